@@ -1,0 +1,35 @@
+"""The `tegrasp` command line: one sub-command per module, each with a `register` function.
+
+A command module defines `register(subparsers)`, which adds its parser and sets
+`func=run` (a function taking the parsed arguments and returning an exit code).
+"""
+
+import argparse
+import importlib
+import sys
+
+# Each entry is a module with a register(subparsers) function. Modules are imported only
+# when the command line is built, so a missing optional extra breaks only its own command.
+COMMAND_MODULES = (
+    "tegrasp_drake.commands.demo",
+    "tegrasp_drake.commands.benchmark",
+)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="tegrasp",
+        description="Tactile-event grasping with memorized triggers, on Drake.")
+    subparsers = parser.add_subparsers(dest="command", required=True)
+    for module_name in COMMAND_MODULES:
+        importlib.import_module(module_name).register(subparsers)
+    return parser
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    return int(args.func(args) or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

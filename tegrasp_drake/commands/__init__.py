@@ -1,0 +1,1 @@
+"""Sub-commands of the tegrasp command line, one module each."""

@@ -1,0 +1,105 @@
+"""Conversions between Robotiq 2F-85 register bytes and SI units, shared by sim and hardware.
+
+The gripper is commanded and read the way the real one is (Robotiq 2F-85 instruction
+manual, "Control" section): position request rPR, speed rSP and force rFR are bytes 0..255,
+and the status reports gACT, gGTO, gSTA, gOBJ, gFLT, the position echo gPR, the encoder
+position gPO and the motor current gCU. The `gripper.command` and `gripper.status` ports of
+the station and of the hardware interface carry exactly these bytes (as floats).
+
+Datasheet figures: stroke 85 mm, closing speed 20-150 mm/s, grip force 20-235 N; the
+encoder reads about 3 fully open and about 230 fully closed.
+"""
+
+import enum
+
+import numpy as np
+
+STROKE_M = 0.085
+SPEED_MIN_MPS = 0.020
+SPEED_MAX_MPS = 0.150
+FORCE_MIN_N = 20.0
+FORCE_MAX_N = 235.0
+POSITION_OPEN_BYTE = 3.0
+POSITION_CLOSED_BYTE = 230.0
+
+# gripper.command = [rPR, rSP, rFR]
+COMMAND_SIZE = 3
+COMMAND_POSITION, COMMAND_SPEED, COMMAND_FORCE = range(COMMAND_SIZE)
+
+# gripper.status = [gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO, gCU]
+STATUS_SIZE = 8
+(STATUS_ACT, STATUS_GTO, STATUS_STA, STATUS_OBJ, STATUS_FLT, STATUS_PR, STATUS_PO,
+ STATUS_CU) = range(STATUS_SIZE)
+
+
+class ObjectStatus(enum.IntEnum):
+    """gOBJ: the object-detection status."""
+    MOVING = 0
+    STOPPED_ON_CONTACT_OPENING = 1
+    STOPPED_ON_CONTACT_CLOSING = 2
+    AT_REQUESTED_POSITION = 3
+
+
+class ActivationStatus(enum.IntEnum):
+    """gSTA: the activation status."""
+    RESET = 0
+    ACTIVATING = 1
+    UNUSED = 2
+    ACTIVE = 3
+
+
+FAULT_NAMES = {
+    0x00: "no fault",
+    0x05: "action delayed: activation (reactivation) must complete first",
+    0x06: "priority fault",
+    0x07: "the activation bit must be set before any action",
+    0x08: "maximum operating temperature exceeded",
+    0x09: "no communication during at least 1 second",
+    0x0A: "under minimum operating voltage",
+    0x0B: "automatic release in progress",
+    0x0C: "internal processor fault",
+    0x0D: "activation fault",
+    0x0E: "overcurrent triggered",
+    0x0F: "automatic release completed",
+}
+
+
+def fault_name(code: int) -> str:
+    """Returns the manual's name for a gFLT fault code."""
+    return FAULT_NAMES.get(int(code), f"unknown fault 0x{int(code):02X}")
+
+
+def opening_from_position_byte(position_byte):
+    """Finger opening [m] (pad to pad) for an rPR/gPO byte; linear between open and closed."""
+    fraction = (POSITION_CLOSED_BYTE - np.clip(position_byte, POSITION_OPEN_BYTE,
+                                               POSITION_CLOSED_BYTE))
+    return STROKE_M * fraction / (POSITION_CLOSED_BYTE - POSITION_OPEN_BYTE)
+
+
+def position_byte_from_opening(opening_m):
+    """The rPR/gPO byte for a finger opening [m], rounded to the nearest integer."""
+    fraction = np.clip(np.asarray(opening_m) / STROKE_M, 0.0, 1.0)
+    return np.rint(POSITION_CLOSED_BYTE - fraction
+                   * (POSITION_CLOSED_BYTE - POSITION_OPEN_BYTE))
+
+
+def speed_from_byte(speed_byte):
+    """Finger closing speed [m/s] (pad to pad) for an rSP byte."""
+    return SPEED_MIN_MPS + np.clip(speed_byte, 0, 255) / 255.0 * (SPEED_MAX_MPS - SPEED_MIN_MPS)
+
+
+def speed_byte_from_speed(speed_mps):
+    """The rSP byte for a closing speed [m/s]."""
+    fraction = (np.asarray(speed_mps) - SPEED_MIN_MPS) / (SPEED_MAX_MPS - SPEED_MIN_MPS)
+    return np.rint(np.clip(fraction, 0.0, 1.0) * 255.0)
+
+
+def force_from_byte(force_byte):
+    """Grip force limit [N] for an rFR byte."""
+    return FORCE_MIN_N + np.clip(force_byte, 0, 255) / 255.0 * (FORCE_MAX_N - FORCE_MIN_N)
+
+
+def force_byte_from_force(force_n):
+    """The rFR byte for a grip force [N]."""
+    fraction = (np.asarray(force_n) - FORCE_MIN_N) / (FORCE_MAX_N - FORCE_MIN_N)
+    return np.rint(np.clip(fraction, 0.0, 1.0) * 255.0)
