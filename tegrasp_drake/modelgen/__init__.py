@@ -1,0 +1,1 @@
+"""Generators for the SDF models in models/ (run `python -m tegrasp_drake.modelgen`)."""

@@ -1,0 +1,26 @@
+"""Regenerates the SDF files in models/ from the generators (run from the repository root)."""
+
+import pathlib
+import sys
+
+from tegrasp_drake.modelgen.jaco2_sdf import jaco2_sdf
+from tegrasp_drake.modelgen.robotiq_sdf import robotiq_sdf
+from tegrasp_drake.modelgen.table_sdf import table_sdf
+
+GENERATED = {
+    "jaco2/j2n6s300.sdf": jaco2_sdf,
+    "robotiq_2f85/robotiq_2f85_tactile.sdf": robotiq_sdf,
+    "table/table.sdf": table_sdf,
+}
+
+
+def main(models_dir: pathlib.Path) -> None:
+    for relative, make in GENERATED.items():
+        path = models_dir / relative
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(make())
+        print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main(pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "models"))

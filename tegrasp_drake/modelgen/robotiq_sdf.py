@@ -1,0 +1,109 @@
+"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like parallel gripper.
+
+Figures from Robotiq's 2F-85 datasheet: stroke 85 mm, mass 0.9 kg, body about 75 mm across,
+fingertip about 0.16 m from the coupling. The real finger linkage keeps the fingertips
+parallel and couples both fingers to one motor; here each finger is a prismatic joint along
+the stroke and the right one mimics the left (a coupler constraint), so an off-centre object
+is pushed to the centre as on the real gripper. One actuator drives the left finger.
+
+Frames (the gripper frame G of the whole project is `grasp_frame`):
+- `base`: origin at the mounting face, +z out of the gripper (approach), y the stroke axis.
+- `grasp_frame`: on the approach axis at the centre of the pads; y toward the left finger.
+- Finger joint coordinate q [m]: the distance of that finger's pad surface from the
+  grasp axis (half the opening), 0 .. 0.0425.
+- `left_pad` / `right_pad` frames: at the centre of each pad's contact surface, +z along the
+  pad's inward normal (toward the object), x along the pad's width, y along its length. The
+  taxel layout (tactile_layout.py) is given in these frames.
+
+Pads are compliant hydroelastic boxes 4 x 22 x 38 mm (DRAKE-NOTES: E about 2e6 Pa,
+Hunt-Crossley dissipation 5, mu 1).
+"""
+
+import numpy as np
+
+from tegrasp_drake.modelgen.sdf_text import box_inertia, inertial_text, pose_text, translation
+
+BASE_RADIUS = 0.0375  # m
+PALM_Z = 0.095  # m, mounting face to palm
+PAD_CENTER_Z = 0.140  # m, mounting face to the pad centre (grasp frame)
+PAD_THICKNESS, PAD_WIDTH, PAD_LENGTH = 0.004, 0.022, 0.038  # m
+HALF_STROKE = 0.0425  # m
+BASE_MASS, FINGER_MASS = 0.80, 0.05  # kg
+PAD_MODULUS = 2.0e6  # Pa
+PAD_DISSIPATION = 5.0  # s/m
+PAD_FRICTION = 1.0
+FINGER_LINK_THICKNESS = 0.010  # m, rigid finger behind the pad
+
+
+def _pad_collision(sign: float) -> str:
+    center_y = sign * PAD_THICKNESS / 2
+    return (f'<collision name="pad">{pose_text(translation((0, center_y, 0)))}'
+            f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
+            "</geometry><drake:proximity_properties><drake:compliant_hydroelastic/>"
+            f"<drake:hydroelastic_modulus>{PAD_MODULUS:g}</drake:hydroelastic_modulus>"
+            "<drake:mesh_resolution_hint>0.004</drake:mesh_resolution_hint>"
+            f"<drake:hunt_crossley_dissipation>{PAD_DISSIPATION:g}"
+            "</drake:hunt_crossley_dissipation>"
+            "<drake:relaxation_time>0.02</drake:relaxation_time>"
+            f"<drake:mu_dynamic>{PAD_FRICTION:g}</drake:mu_dynamic>"
+            f"<drake:mu_static>{PAD_FRICTION:g}</drake:mu_static>"
+            "</drake:proximity_properties></collision>"
+            f'<visual name="pad">{pose_text(translation((0, center_y, 0)))}'
+            f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
+            "</geometry><material><diffuse>0.1 0.1 0.1 1</diffuse></material></visual>")
+
+
+def _finger_link(sign: float) -> str:
+    """The rigid finger behind the pad, reaching back to the palm (visual only)."""
+    length = PAD_CENTER_Z + PAD_LENGTH / 2 - PALM_Z
+    center = (0, sign * (PAD_THICKNESS + FINGER_LINK_THICKNESS / 2),
+              PAD_LENGTH / 2 - length / 2)
+    return (f'<visual name="finger">{pose_text(translation(center))}<geometry><box><size>'
+            f"{PAD_WIDTH} {FINGER_LINK_THICKNESS} {length:.6g}</size></box></geometry>"
+            "<material><diffuse>0.6 0.6 0.62 1</diffuse></material></visual>")
+
+
+def _finger(name: str, sign: float) -> str:
+    # Finger frame: origin at the pad's contact surface centre when q = 0.
+    size = (PAD_WIDTH, PAD_THICKNESS + FINGER_LINK_THICKNESS, PAD_LENGTH)
+    X_pad = np.eye(4)
+    # Pad frame: z along the inward normal (-sign * y_G), x along the pad width (x_G).
+    X_pad[:3, :3] = np.array([[1, 0, 0], [0, 0, -sign], [0, sign, 0]], dtype=float)
+    return (f'<link name="{name}_finger">'
+            f"{pose_text(translation((0, 0, PAD_CENTER_Z)), 'base')}"
+            f"{inertial_text(FINGER_MASS, (0, sign * 0.006, 0), box_inertia(FINGER_MASS, size))}"
+            f"{_pad_collision(sign)}{_finger_link(sign)}</link>"
+            f'<frame name="{name}_pad" attached_to="{name}_finger">'
+            f"{pose_text(X_pad, f'{name}_finger')}</frame>")
+
+
+def robotiq_sdf() -> str:
+    """The SDF text of the tactile 2F-85-like gripper."""
+    base_size = (2 * BASE_RADIUS, 2 * BASE_RADIUS, PALM_Z)
+    palm = (f'<collision name="palm"><pose>0 0 {PALM_Z - 0.005} 0 0 0</pose><geometry><box>'
+            f"<size>0.03 0.07 0.01</size></box></geometry></collision>")
+    parts = [
+        '<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="robotiq_2f85">',
+        '<link name="base">',
+        inertial_text(BASE_MASS, (0, 0, PALM_Z / 2), box_inertia(BASE_MASS, base_size)),
+        f'<visual name="body"><pose>0 0 {PALM_Z / 2} 0 0 0</pose><geometry><cylinder>'
+        f"<radius>{BASE_RADIUS}</radius><length>{PALM_Z}</length></cylinder></geometry>"
+        "<material><diffuse>0.12 0.12 0.12 1</diffuse></material></visual>",
+        palm, "</link>",
+        f'<frame name="grasp_frame" attached_to="base"><pose>0 0 {PAD_CENTER_Z} 0 0 0</pose>'
+        "</frame>",
+        _finger("left", +1.0), _finger("right", -1.0),
+        # Left finger: +q moves its pad toward +y (opening).
+        '<joint name="left_finger_joint" type="prismatic"><parent>base</parent>'
+        '<child>left_finger</child><pose relative_to="left_finger">0 0 0 0 0 0</pose>'
+        '<axis><xyz expressed_in="base">0 1 0</xyz><limit><lower>0</lower>'
+        f"<upper>{HALF_STROKE}</upper><effort>{2 * 235.0:g}</effort><velocity>0.15</velocity>"
+        "</limit><dynamics><damping>0.0</damping></dynamics></axis></joint>",
+        '<joint name="right_finger_joint" type="prismatic"><parent>base</parent>'
+        '<child>right_finger</child><pose relative_to="right_finger">0 0 0 0 0 0</pose>'
+        '<axis><xyz expressed_in="base">0 -1 0</xyz><limit><lower>0</lower>'
+        f"<upper>{HALF_STROKE}</upper><effort>0</effort><velocity>0.15</velocity></limit>"
+        "</axis>"
+        '<drake:mimic joint="left_finger_joint" multiplier="1" offset="0"/></joint>',
+        "</model></sdf>"]
+    return "\n".join(parts) + "\n"

@@ -1,0 +1,66 @@
+"""Small helpers that format SDFormat elements; the model generators use them."""
+
+import numpy as np
+from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
+
+
+def pose_text(X: np.ndarray, relative_to: str | None = None) -> str:
+    """An SDF <pose> for a 4x4 transform, with an optional relative_to frame."""
+    rpy = RollPitchYaw(RotationMatrix(X[:3, :3])).vector()
+    values = " ".join(f"{v:.9g}" for v in (*X[:3, 3], *rpy))
+    attribute = f' relative_to="{relative_to}"' if relative_to else ""
+    return f"<pose{attribute}>{values}</pose>"
+
+
+def translation(p) -> np.ndarray:
+    X = np.eye(4)
+    X[:3, 3] = p
+    return X
+
+
+def segment_pose(p0, p1) -> np.ndarray:
+    """The pose of a frame at the midpoint of p0-p1 whose z axis points from p0 to p1."""
+    p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
+    direction = (p1 - p0) / np.linalg.norm(p1 - p0)
+    X = RigidTransform(RotationMatrix.MakeFromOneVector(direction, 2), (p0 + p1) / 2)
+    return X.GetAsMatrix4()
+
+
+def inertial_text(mass: float, com, inertia: np.ndarray) -> str:
+    """An SDF <inertial> block (inertia about the centre of mass, in the link frame)."""
+    i = inertia
+    return (f"<inertial><pose>{com[0]:.9g} {com[1]:.9g} {com[2]:.9g} 0 0 0</pose>"
+            f"<mass>{mass:.9g}</mass><inertia>"
+            f"<ixx>{i[0, 0]:.9g}</ixx><ixy>{i[0, 1]:.9g}</ixy><ixz>{i[0, 2]:.9g}</ixz>"
+            f"<iyy>{i[1, 1]:.9g}</iyy><iyz>{i[1, 2]:.9g}</iyz><izz>{i[2, 2]:.9g}</izz>"
+            f"</inertia></inertial>")
+
+
+def box_inertia(mass: float, size) -> np.ndarray:
+    x, y, z = size
+    return mass / 12.0 * np.diag([y * y + z * z, x * x + z * z, x * x + y * y])
+
+
+def tube_inertia(mass: float, points: np.ndarray, radius: float):
+    """COM and inertia of mass spread evenly over the segments joining `points`.
+
+    Each segment is a solid rod of the given radius; returns (com, I_com) in the points'
+    frame. Used for the arm links, whose geometry is a chain of capsules.
+    """
+    samples, weights = [], []
+    for p0, p1 in zip(points[:-1], points[1:]):
+        length = np.linalg.norm(p1 - p0)
+        if length < 1e-9:
+            continue
+        s = (np.arange(20) + 0.5) / 20
+        samples.append(p0 + np.outer(s, p1 - p0))
+        weights.append(np.full(20, length / 20))
+    samples, weights = np.vstack(samples), np.concatenate(weights)
+    weights = weights * mass / weights.sum()
+    com = weights @ samples
+    r = samples - com
+    inertia = np.einsum("k,kij->ij", weights,
+                        np.einsum("ki,ki->k", r, r)[:, None, None] * np.eye(3)
+                        - np.einsum("ki,kj->kij", r, r))
+    inertia += np.eye(3) * 0.5 * mass * radius * radius
+    return com, inertia

@@ -1,0 +1,46 @@
+"""Writes models/table/table.sdf: the table with the 9 object markers of the paper (Fig. 8a).
+
+The table top is the world's z = 0 plane; the arm's base stands on it at the origin. Markers
+are thin visual discs at the expected object position (EXPECTED_XY) and at the 8
+misplacements, +-1.5 cm along the finger stroke (world y in the side grasp) and +-1 cm
+normal to the palm (world x). The top is a compliant hydroelastic box, so the rigid objects
+rest on it with area contact.
+"""
+
+from tegrasp_drake.modelgen.sdf_text import pose_text, translation
+
+SIZE = (1.2, 1.0, 0.05)  # m
+CENTER_XY = (0.35, 0.0)  # m
+EXPECTED_XY = (0.50, 0.0)  # m, the centre marker
+STROKE_OFFSETS = (-0.015, 0.0, 0.015)  # m, along world y
+NORMAL_OFFSETS = (-0.010, 0.0, 0.010)  # m, along world x
+MODULUS = 1.0e7  # Pa
+FRICTION = 0.5
+
+
+def table_sdf() -> str:
+    top = translation((CENTER_XY[0], CENTER_XY[1], -SIZE[2] / 2))
+    size = " ".join(f"{s:g}" for s in SIZE)
+    markers = []
+    for i, dx in enumerate(NORMAL_OFFSETS):
+        for j, dy in enumerate(STROKE_OFFSETS):
+            center = (EXPECTED_XY[0] + dx, EXPECTED_XY[1] + dy, 0.0002)
+            color = "0.8 0.1 0.1 1" if (dx, dy) == (0.0, 0.0) else "0.1 0.3 0.8 1"
+            markers.append(f'<visual name="marker_{i}{j}">{pose_text(translation(center))}'
+                           "<geometry><cylinder><radius>0.003</radius><length>0.0004</length>"
+                           f"</cylinder></geometry><material><diffuse>{color}</diffuse>"
+                           "</material></visual>")
+    return "\n".join([
+        '<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="table">',
+        '<link name="top">',
+        f'<collision name="top">{pose_text(top)}<geometry><box><size>{size}</size></box>'
+        "</geometry><drake:proximity_properties><drake:compliant_hydroelastic/>"
+        f"<drake:hydroelastic_modulus>{MODULUS:g}</drake:hydroelastic_modulus>"
+        "<drake:hunt_crossley_dissipation>5</drake:hunt_crossley_dissipation>"
+        "<drake:relaxation_time>0.02</drake:relaxation_time>"
+        f"<drake:mu_dynamic>{FRICTION}</drake:mu_dynamic>"
+        f"<drake:mu_static>{FRICTION}</drake:mu_static>"
+        "</drake:proximity_properties></collision>",
+        f'<visual name="top">{pose_text(top)}<geometry><box><size>{size}</size></box>'
+        "</geometry><material><diffuse>0.82 0.74 0.6 1</diffuse></material></visual>",
+        *markers, "</link>", "</model></sdf>"]) + "\n"

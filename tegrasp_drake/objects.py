@@ -1,0 +1,48 @@
+"""The objects to grasp: the paper's three (Fig. 8a) and user-defined ones.
+
+The paper does not give its objects' sizes; these are chosen to fit the 2F-85's 85 mm stroke
+with the +-1.5 cm misplacement along the stroke and a finger clearance of 2.5 mm or more:
+width along the stroke + 2 x 15 mm <= 85 mm - 2 x 2.5 mm. Masses are those of plastic or
+cardboard objects of that size. Frame of an object O: origin at the centre of its base (the
+face resting on the table), z up.
+"""
+
+import dataclasses
+
+OBJECT_SHAPES = ("box", "cylinder", "file")
+
+
+@dataclasses.dataclass
+class ObjectConfig:
+    """An object to grasp.
+
+    Leave `shape` empty to take the built-in object called `name`. Otherwise:
+    shape "box" with size [x, y, z] m; "cylinder" with size [diameter, height] m; or "file"
+    with `file` an SDF/URDF path or package:// URL whose model has one body, and size
+    [width along the stroke, depth, height] m for planning.
+    """
+    name: str = "box"
+    shape: str = ""
+    size: list[float] = dataclasses.field(default_factory=list)
+    mass: float = 0.0  # kg
+    friction: float = 0.0  # Coulomb coefficient against pads and table (static = dynamic)
+    file: str = ""
+    color: list[float] = dataclasses.field(default_factory=lambda: [0.9, 0.5, 0.1, 1.0])
+
+    def width_along_stroke(self) -> float:
+        """Extent along the finger stroke [m] (y of the object when placed on its marker)."""
+        return self.size[0] if self.shape == "cylinder" else self.size[1]
+
+    def height(self) -> float:
+        return self.size[1] if self.shape == "cylinder" else self.size[2]
+
+
+BUILTIN_OBJECTS = {
+    "box": ObjectConfig(name="box", shape="box", size=[0.045, 0.045, 0.110], mass=0.15,
+                        friction=0.5, color=[0.85, 0.55, 0.2, 1.0]),
+    "thick_cylinder": ObjectConfig(name="thick_cylinder", shape="cylinder",
+                                   size=[0.050, 0.110], mass=0.20, friction=0.5,
+                                   color=[0.2, 0.6, 0.3, 1.0]),
+    "thin_cylinder": ObjectConfig(name="thin_cylinder", shape="cylinder", size=[0.025, 0.120],
+                                  mass=0.06, friction=0.5, color=[0.3, 0.4, 0.85, 1.0]),
+}
