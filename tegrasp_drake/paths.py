@@ -13,14 +13,22 @@ from pydrake.multibody.parsing import Parser
 PACKAGE_NAME = "tegrasp"  # models are reachable as package://tegrasp/...
 
 
+def _data_dir(package: str, source_folder: str) -> pathlib.Path:
+    try:
+        return pathlib.Path(str(importlib.resources.files(package)))
+    except ModuleNotFoundError:
+        # Running from a source tree that is not installed (PYTHONPATH=checkout).
+        return pathlib.Path(__file__).resolve().parents[1] / source_folder
+
+
 def models_dir() -> pathlib.Path:
     """The folder holding package.xml and the SDF models."""
-    return pathlib.Path(str(importlib.resources.files("tegrasp_drake.models_data")))
+    return _data_dir("tegrasp_drake.models_data", "models")
 
 
 def events_dir() -> pathlib.Path:
     """The folder holding the memorized tactile events and their index."""
-    return pathlib.Path(str(importlib.resources.files("tegrasp_drake.events_data")))
+    return _data_dir("tegrasp_drake.events_data", "events")
 
 
 def scenarios_file() -> pathlib.Path:

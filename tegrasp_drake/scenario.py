@@ -66,7 +66,7 @@ class ArmDriverConfig:
     position_gain: float = 400.0  # N m/rad
     damping_gain: float = 40.0  # N m s/rad
     initial_gripper_xyz: list[float] = dataclasses.field(
-        default_factory=lambda: [0.37, 0.0, 0.16])  # m, grasp frame in world at t = 0
+        default_factory=lambda: [0.64, 0.0, 0.14])  # m, grasp frame in world at t = 0
 
 
 @dataclasses.dataclass
@@ -97,7 +97,7 @@ class Scenario:
     # Misplacement of the object from its marker [m]: x normal to the palm, y along the stroke.
     object_offset: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0])
     object_yaw_deg: float = 0.0
-    expected_object_xy: list[float] = dataclasses.field(default_factory=lambda: [0.50, 0.0])
+    expected_object_xy: list[float] = dataclasses.field(default_factory=lambda: [0.72, 0.0])
     plant_config: MultibodyPlantConfig = dataclasses.field(
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged",

@@ -10,8 +10,8 @@ rest on it with area contact.
 from tegrasp_drake.modelgen.sdf_text import pose_text, translation
 
 SIZE = (1.2, 1.0, 0.05)  # m
-CENTER_XY = (0.35, 0.0)  # m
-EXPECTED_XY = (0.50, 0.0)  # m, the centre marker
+CENTER_XY = (0.45, 0.0)  # m
+EXPECTED_XY = (0.72, 0.0)  # m, the centre marker; the side grasp is reachable from 0.7 m
 STROKE_OFFSETS = (-0.015, 0.0, 0.015)  # m, along world y
 NORMAL_OFFSETS = (-0.010, 0.0, 0.010)  # m, along world x
 MODULUS = 1.0e7  # Pa

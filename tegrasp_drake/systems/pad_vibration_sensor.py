@@ -1,0 +1,49 @@
+"""The piezo film on a pad (the RA source), built from Drake systems only (no Python per tick).
+
+Drake's Accelerometer on the pad frame, without the gravity term (a piezo film sees no
+constant acceleration), then a first-order discrete high-pass filter at the charge amplifier's
+corner frequency (1 / (2 pi R_f C_f)), plus seeded Gaussian noise, all sampled at the
+sensor rate. Seed the noise with `diagram.SetRandomContext(context, RandomGenerator(seed))`.
+"""
+
+import math
+
+import numpy as np
+from pydrake.common import RandomDistribution
+from pydrake.systems.primitives import Adder, Gain, LinearSystem, RandomSource
+from pydrake.systems.sensors import Accelerometer
+
+
+def highpass_matrices(cutoff_hz: float, dt: float):
+    """(A, B, C, D) of the discrete first-order high-pass y[k] = a (y[k-1] + u[k] - u[k-1])
+    for 3 axes, written with state w[k] = y[k-1] - u[k-1]."""
+    rc = 1.0 / (2.0 * math.pi * cutoff_hz)
+    a = rc / (rc + dt)
+    eye = np.eye(3)
+    return a * eye, (a - 1.0) * eye, a * eye, a * eye
+
+
+def add_pad_vibration_sensor(builder, plant, body, X_BS, config, name: str):
+    """Adds the sensor for `body` (sensor frame S at X_BS); returns its output port (3,
+    m/s^2, expressed in S)."""
+    dt = 1.0 / config.sample_rate_hz
+    accelerometer = builder.AddNamedSystem(f"{name}_accelerometer",
+                                           Accelerometer(body, X_BS, np.zeros(3)))
+    builder.Connect(plant.get_body_poses_output_port(), accelerometer.get_body_poses_input_port())
+    builder.Connect(plant.get_body_spatial_velocities_output_port(),
+                    accelerometer.get_body_velocities_input_port())
+    builder.Connect(plant.get_body_spatial_accelerations_output_port(),
+                    accelerometer.get_body_accelerations_input_port())
+    A, B, C, D = highpass_matrices(config.highpass_cutoff_hz, dt)
+    highpass = builder.AddNamedSystem(f"{name}_highpass", LinearSystem(A, B, C, D, dt))
+    builder.Connect(accelerometer.get_measurement_output_port(), highpass.get_input_port())
+    if config.noise_std_mps2 <= 0:
+        return highpass.get_output_port()
+    noise = builder.AddNamedSystem(f"{name}_noise",
+                                   RandomSource(RandomDistribution.kGaussian, 3, dt))
+    scale = builder.AddNamedSystem(f"{name}_noise_gain", Gain(config.noise_std_mps2, 3))
+    adder = builder.AddNamedSystem(f"{name}_adder", Adder(2, 3))
+    builder.Connect(noise.get_output_port(), scale.get_input_port())
+    builder.Connect(highpass.get_output_port(), adder.get_input_port(0))
+    builder.Connect(scale.get_output_port(), adder.get_input_port(1))
+    return adder.get_output_port()

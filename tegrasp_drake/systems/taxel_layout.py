@@ -1,0 +1,32 @@
+"""The 3 x 4 taxel layout of a fingertip pad, in the pad frame P.
+
+Pad frame P (frames `left_pad` / `right_pad` of the gripper model): origin at the centre of
+the pad's contact surface, +z the inward normal (toward the object), +x across the pad's
+22 mm width, +y along its 38 mm length toward the fingertip. Taxel index = 3 * row + column,
+row 0..3 along +y (row 0 nearest the palm), column 0..2 along +x. Each taxel is one cell of
+a regular 3 x 4 grid covering the pad, like the 12 electrodes of the paper's Fig. 7c.
+"""
+
+import numpy as np
+
+PAD_WIDTH = 0.022  # m, along x
+PAD_LENGTH = 0.038  # m, along y
+COLUMNS, ROWS = 3, 4
+CELL_X = PAD_WIDTH / COLUMNS
+CELL_Y = PAD_LENGTH / ROWS
+
+
+def taxel_centers() -> np.ndarray:
+    """Centres of the 12 taxels, p_PoTk_P, shape (12, 3) [m]."""
+    rows, cols = np.divmod(np.arange(ROWS * COLUMNS), COLUMNS)
+    x = (cols + 0.5) * CELL_X - PAD_WIDTH / 2
+    y = (rows + 0.5) * CELL_Y - PAD_LENGTH / 2
+    return np.column_stack([x, y, np.zeros_like(x)])
+
+
+def taxel_index(p_P: np.ndarray) -> np.ndarray:
+    """The taxel holding each point (N, 3) of the pad frame; points beyond the pad's edge go
+    to the nearest edge taxel."""
+    col = np.clip(np.floor((p_P[:, 0] + PAD_WIDTH / 2) / CELL_X), 0, COLUMNS - 1)
+    row = np.clip(np.floor((p_P[:, 1] + PAD_LENGTH / 2) / CELL_Y), 0, ROWS - 1)
+    return (row * COLUMNS + col).astype(np.intp)
