@@ -23,7 +23,7 @@ R_WG_SIDE_GRASP = RotationMatrix(np.array([[0.0, 0.0, 1.0],
                                            [0.0, 1.0, 0.0],
                                            [-1.0, 0.0, 0.0]]))
 # A configuration near the side grasp in front of the robot, to seed IK [rad].
-IK_SEED = np.array([3.32, 4.53, 1.13, 2.48, 2.31, 3.91])
+IK_SEED = np.array([3.324, 4.531, 1.126, 2.483, 2.31, 3.913])
 
 
 def make_arm_control_plant() -> MultibodyPlant:
@@ -45,7 +45,7 @@ def _fixed_frame(name, parent, X_PF):
 
 
 def solve_grasp_frame_ik(plant: MultibodyPlant, X_WG: RigidTransform, q_seed=IK_SEED,
-                         position_tolerance=1e-4, angle_tolerance=1e-3) -> np.ndarray:
+                         position_tolerance=1e-7, angle_tolerance=1e-7) -> np.ndarray:
     """Joint angles [rad] that put the grasp frame at X_WG, near q_seed; raises if none."""
     ik = InverseKinematics(plant)
     frame = plant.GetFrameByName("grasp_frame")

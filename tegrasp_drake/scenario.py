@@ -66,7 +66,8 @@ class ArmDriverConfig:
     position_gain: float = 400.0  # N m/rad
     damping_gain: float = 40.0  # N m s/rad
     initial_gripper_xyz: list[float] = dataclasses.field(
-        default_factory=lambda: [0.64, 0.0, 0.14])  # m, grasp frame in world at t = 0
+        default_factory=lambda: [0.69, 0.0, 0.145])  # m, grasp frame in world at t = 0;
+    # 3 cm behind and 9 cm above the grasp: further back, the Jaco nears its wrist singularity
 
 
 @dataclasses.dataclass

@@ -22,7 +22,7 @@ import math
 import numpy as np
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import AddMultibodyPlant
-from pydrake.multibody.tree import PdControllerGains
+from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer
 from pydrake.visualization import ApplyVisualizationConfig, VisualizationConfig
@@ -56,8 +56,12 @@ def initial_arm_positions(scenario) -> np.ndarray:
 
 
 def _set_pd_gains(plant, instance, kp, kd):
-    for index in plant.GetJointActuatorIndices(instance):
-        plant.get_joint_actuator(index).set_controller_gains(PdControllerGains(p=kp, d=kd))
+    # GetJointActuatorIndices(instance) is empty before Finalize(): walk all actuators.
+    actuators = [plant.get_joint_actuator(JointActuatorIndex(i))
+                 for i in range(plant.num_actuators())]
+    for actuator in actuators:
+        if actuator.model_instance() == instance:
+            actuator.set_controller_gains(PdControllerGains(p=kp, d=kd))
 
 
 def _pad_geometries(plant, scene_graph, gripper):

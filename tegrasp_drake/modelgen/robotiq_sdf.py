@@ -28,6 +28,8 @@ PALM_Z = 0.095  # m, mounting face to palm
 PAD_CENTER_Z = 0.140  # m, mounting face to the pad centre (grasp frame)
 PAD_THICKNESS, PAD_WIDTH, PAD_LENGTH = 0.004, 0.022, 0.038  # m
 HALF_STROKE = 0.0425  # m
+JOINT_LIMIT_MARGIN = 0.001  # m; the joint limit lies beyond the stroke, so full opening never
+# strikes it (a limit strike is a false RA event)
 BASE_MASS, FINGER_MASS = 0.80, 0.05  # kg
 PAD_MODULUS = 2.0e6  # Pa
 PAD_DISSIPATION = 5.0  # s/m
@@ -97,12 +99,12 @@ def robotiq_sdf() -> str:
         '<joint name="left_finger_joint" type="prismatic"><parent>base</parent>'
         '<child>left_finger</child><pose relative_to="left_finger">0 0 0 0 0 0</pose>'
         '<axis><xyz expressed_in="base">0 1 0</xyz><limit><lower>0</lower>'
-        f"<upper>{HALF_STROKE}</upper><effort>{2 * 235.0:g}</effort><velocity>0.15</velocity>"
+        f"<upper>{HALF_STROKE + JOINT_LIMIT_MARGIN}</upper><effort>{2 * 235.0:g}</effort><velocity>0.15</velocity>"
         "</limit><dynamics><damping>0.0</damping></dynamics></axis></joint>",
         '<joint name="right_finger_joint" type="prismatic"><parent>base</parent>'
         '<child>right_finger</child><pose relative_to="right_finger">0 0 0 0 0 0</pose>'
         '<axis><xyz expressed_in="base">0 -1 0</xyz><limit><lower>0</lower>'
-        f"<upper>{HALF_STROKE}</upper><effort>0</effort><velocity>0.15</velocity></limit>"
+        f"<upper>{HALF_STROKE + JOINT_LIMIT_MARGIN}</upper><effort>0</effort><velocity>0.15</velocity></limit>"
         "</axis>"
         '<drake:mimic joint="left_finger_joint" multiplier="1" offset="0"/></joint>',
         "</model></sdf>"]

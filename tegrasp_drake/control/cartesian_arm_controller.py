@@ -1,0 +1,58 @@
+"""Cartesian arm control: the grasp frame's desired pose to Jaco joint commands.
+
+Drake's DifferentialInverseKinematicsIntegrator (on the arm-only controller plant, within the
+JACO2's joint position and speed limits) turns X_WG_desired into joint positions each
+control step; a DiscreteDerivative supplies the matching joint velocities. Together they
+form `arm.desired_state`, the port both the simulated station and the Jaco driver take.
+"""
+
+import numpy as np
+from pydrake.multibody.inverse_kinematics import (DifferentialInverseKinematicsIntegrator,
+                                                  DifferentialInverseKinematicsParameters)
+from pydrake.systems.primitives import DiscreteDerivative, Multiplexer
+
+from tegrasp_drake.arm_kinematics import make_arm_control_plant
+from tegrasp_drake.modelgen import jaco2_dh
+
+JOINT_SPEED_MARGIN = 0.9  # use at most 90 % of each joint's published top speed
+
+
+def jaco_joint_limits():
+    """(lower, upper) position limits [rad] and speed limits [rad/s] of the six joints."""
+    lower = np.array([j.lower if j.lower is not None else -np.inf for j in jaco2_dh.JOINTS])
+    upper = np.array([j.upper if j.upper is not None else np.inf for j in jaco2_dh.JOINTS])
+    speed = np.array([j.max_speed for j in jaco2_dh.JOINTS]) * JOINT_SPEED_MARGIN
+    return lower, upper, speed
+
+
+def add_cartesian_arm_controller(builder, *, position_measured, velocity_measured,
+                                 q_nominal: np.ndarray, time_step: float,
+                                 name: str = "arm_controller"):
+    """Adds the controller; returns (X_WG_desired input port, arm.desired_state output port).
+
+    position_measured, velocity_measured: the arm's measured joint state output ports (6
+    each); the integrator starts from them at initialization. q_nominal: the joint angles
+    [rad] that joint centering pulls toward (resolves the arm's redundancy in the nullspace).
+    """
+    plant = make_arm_control_plant()
+    lower, upper, speed = jaco_joint_limits()
+    parameters = DifferentialInverseKinematicsParameters(6, 6)
+    parameters.set_joint_position_limits((lower, upper))
+    parameters.set_joint_velocity_limits((-speed, speed))
+    parameters.set_nominal_joint_position(q_nominal)
+    parameters.set_joint_centering_gain(0.1 * np.eye(6))
+    diff_ik = builder.AddNamedSystem(
+        f"{name}_diff_ik",
+        DifferentialInverseKinematicsIntegrator(plant, plant.world_frame(),
+                                                plant.GetFrameByName("grasp_frame"),
+                                                time_step, parameters))
+    robot_state = builder.AddNamedSystem(f"{name}_robot_state", Multiplexer([6, 6]))
+    builder.Connect(position_measured, robot_state.get_input_port(0))
+    builder.Connect(velocity_measured, robot_state.get_input_port(1))
+    builder.Connect(robot_state.get_output_port(), diff_ik.GetInputPort("robot_state"))
+    derivative = builder.AddNamedSystem(f"{name}_velocity", DiscreteDerivative(6, time_step))
+    mux = builder.AddNamedSystem(f"{name}_desired_state", Multiplexer([6, 6]))
+    builder.Connect(diff_ik.GetOutputPort("joint_positions"), derivative.get_input_port())
+    builder.Connect(diff_ik.GetOutputPort("joint_positions"), mux.get_input_port(0))
+    builder.Connect(derivative.get_output_port(), mux.get_input_port(1))
+    return diff_ik.GetInputPort("X_AE_desired"), mux.get_output_port()

@@ -1,0 +1,109 @@
+"""The ideal open-loop grasp (Sec. III-A): a timed script of smooth arm moves and gripper
+commands, planned for the object at its expected position (the script never sees where the
+object really is).
+
+Phases, in order: settle, reach, load, lift, hold, place, unload, retract, done. The side
+grasp approaches along world +x with the stroke along world y (arm_kinematics.py).
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake import robotiq_units as ru
+from tegrasp_drake.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
+
+PHASES = ("settle", "reach", "load", "lift", "hold", "place", "unload", "retract", "done")
+
+
+@dataclasses.dataclass(frozen=True)
+class Segment:
+    """One phase: the grasp frame moves from X_start to X_end over [t_start, t_end]."""
+    phase: str
+    t_start: float
+    t_end: float
+    X_start: RigidTransform
+    X_end: RigidTransform
+    gripper_command: tuple
+
+
+def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple:
+    """The (rPR, rSP, rFR) bytes for a target opening, speed and force."""
+    return (float(ru.position_byte_from_opening(opening_m)),
+            float(ru.speed_byte_from_speed(speed_mps)),
+            float(ru.force_byte_from_force(force_n)))
+
+
+def plan_scripted_grasp(scenario) -> list[Segment]:
+    """The phase segments of the ideal grasp for the scenario's expected object position."""
+    g = scenario.grasp
+    x0, y0 = scenario.expected_object_xy
+    start = RigidTransform(R_WG_SIDE_GRASP, scenario.arm.initial_gripper_xyz)
+    grasp = RigidTransform(R_WG_SIDE_GRASP, [x0, y0, g.grasp_height])
+    lifted = RigidTransform(R_WG_SIDE_GRASP, [x0, y0, g.grasp_height + g.lift_height])
+    dx, dy = g.place_offset
+    placed = RigidTransform(R_WG_SIDE_GRASP, [x0 + dx, y0 + dy, g.grasp_height - g.place_press])
+    retracted = RigidTransform(R_WG_SIDE_GRASP,
+                               np.add(scenario.arm.initial_gripper_xyz, [dx, dy, 0.0]))
+    opened = gripper_command(ru.STROKE_M, g.close_speed, g.grip_force)
+    closed = gripper_command(0.0, g.close_speed, g.grip_force)
+    steps = [("settle", g.settle_s, start, start, opened),
+             ("reach", g.reach_s, start, grasp, opened),
+             ("load", g.load_s, grasp, grasp, closed),
+             ("lift", g.lift_s, grasp, lifted, closed),
+             ("hold", g.hold_s, lifted, lifted, closed),
+             ("place", g.place_s, lifted, placed, closed),
+             ("unload", g.unload_s, placed, placed, opened),
+             ("retract", g.retract_s, placed, retracted, opened)]
+    segments, t = [], 0.0
+    for phase, duration, X_start, X_end, command in steps:
+        segments.append(Segment(phase, t, t + duration, X_start, X_end, command))
+        t += duration
+    return segments
+
+
+def sample_plan(segments: list[Segment], t: float):
+    """(X_WG, gripper command, phase index into PHASES) of the script at time t [s]."""
+    for segment in segments:
+        if t < segment.t_end:
+            tau = (t - segment.t_start) / (segment.t_end - segment.t_start)
+            X = interpolate_pose(segment.X_start, segment.X_end, minimum_jerk(tau))
+            return X, segment.gripper_command, PHASES.index(segment.phase)
+    last = segments[-1]
+    return last.X_end, last.gripper_command, PHASES.index("done")
+
+
+def plan_duration(segments: list[Segment]) -> float:
+    return segments[-1].t_end
+
+
+class ScriptedGraspSource(LeafSystem):
+    """Plays the open-loop grasp script.
+
+    Output ports: X_WG_desired (RigidTransform of the grasp frame in world),
+    gripper_command (3: rPR, rSP, rFR), phase (1: index into PHASES).
+    """
+
+    def __init__(self, segments: list[Segment]):
+        super().__init__()
+        self._segments = segments
+        time_only = {self.time_ticket()}
+        self.DeclareAbstractOutputPort(
+            "X_WG_desired", lambda: AbstractValue.Make(RigidTransform()),
+            lambda context, output: output.set_value(
+                sample_plan(self._segments, context.get_time())[0]),
+            prerequisites_of_calc=time_only)
+        self.DeclareVectorOutputPort(
+            "gripper_command", 3,
+            lambda context, output: output.SetFromVector(
+                sample_plan(self._segments, context.get_time())[1]),
+            prerequisites_of_calc=time_only)
+        self.DeclareVectorOutputPort(
+            "phase", 1,
+            lambda context, output: output.SetFromVector(
+                [sample_plan(self._segments, context.get_time())[2]]),
+            prerequisites_of_calc=time_only)
