@@ -1,0 +1,21 @@
+"""Command-line options shared by every command that loads a scenario."""
+
+from tegrasp_drake.scenario import DEFAULT_SCENARIO, ScenarioError, load_scenario
+
+
+def add_scenario_arguments(parser) -> None:
+    parser.add_argument("--scenario", metavar="FILE", default=None,
+                        help="YAML file of named scenarios (default: the built-in file)")
+    parser.add_argument("--scenario-name", default=DEFAULT_SCENARIO,
+                        help="which scenario of the file (default: %(default)s)")
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="KEY=VALUE",
+                        help="override a scenario field, e.g. --set object.name=thin_cylinder")
+
+
+def scenario_from_arguments(args):
+    """Loads the scenario, or exits with the error message (no traceback)."""
+    try:
+        return load_scenario(args.scenario, args.scenario_name, args.overrides)
+    except ScenarioError as e:
+        raise SystemExit(f"tegrasp: error: {e}") from None

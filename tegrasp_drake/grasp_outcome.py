@@ -1,0 +1,91 @@
+"""Ground-truth judgement of a trial from its TrialLog: lift, hold, placement, release, and
+the times of the physical events that mark the transitions.
+
+Physical events (from noise-free simulation truth):
+  first_contact        first time either pad's true normal force exceeds CONTACT_FORCE_N
+  grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip force
+  table_touch          first time after lift-off that the object is back within
+                       TOUCH_HEIGHT_M of its resting height
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.common.eigen_geometry import Quaternion
+from pydrake.math import RotationMatrix
+
+CONTACT_FORCE_N = 0.2
+GRIP_FRACTION = 0.9
+TOUCH_HEIGHT_M = 0.0005
+LIFTED_HEIGHT_M = 0.02  # above its resting height, the object counts as lifted
+RELEASED_FORCE_N = 0.5
+
+
+@dataclasses.dataclass
+class GraspOutcome:
+    lift_height_m: float
+    hold_time_s: float
+    final_tilt_deg: float
+    placement_error_m: float
+    released: bool
+    events: dict  # name -> time [s] or None
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+def tilt_deg(object_state_row: np.ndarray) -> float:
+    """Angle [deg] between the object's z axis and world z."""
+    q = object_state_row[:4]
+    R = RotationMatrix(Quaternion(q / np.linalg.norm(q)))
+    return float(np.degrees(np.arccos(np.clip(R.matrix()[2, 2], -1.0, 1.0))))
+
+
+def _first(times: np.ndarray, mask: np.ndarray):
+    index = np.flatnonzero(mask)
+    return float(times[index[0]]) if index.size else None
+
+
+def longest_run_s(times: np.ndarray, mask: np.ndarray) -> float:
+    """Longest contiguous time [s] during which mask holds."""
+    best, start = 0.0, None
+    for t, m in zip(times, mask):
+        if m and start is None:
+            start = t
+        if not m and start is not None:
+            best, start = max(best, t - start), None
+    if start is not None:
+        best = max(best, times[-1] - start)
+    return float(best)
+
+
+def physical_events(log, grip_force: float) -> dict:
+    true_sa = np.column_stack([log.true_taxels[:, :12].sum(axis=1),
+                               log.true_taxels[:, 12:].sum(axis=1)])
+    z = log.object_state[:, 6]
+    z_rest = z[0]
+    lifted = z - z_rest > LIFTED_HEIGHT_M
+    events = {"first_contact": _first(log.t_sa, true_sa.max(axis=1) > CONTACT_FORCE_N),
+              "grip_force_reached": _first(log.t_sa,
+                                           true_sa.min(axis=1) >= GRIP_FRACTION * grip_force),
+              "table_touch": None}
+    lift_index = np.flatnonzero(lifted)
+    if lift_index.size:
+        after = np.arange(z.size) > lift_index[0]
+        events["table_touch"] = _first(log.t_slow, after & (z - z_rest < TOUCH_HEIGHT_M))
+    return events
+
+
+def judge_grasp(log, *, target_xy, grip_force: float) -> GraspOutcome:
+    """Evaluates a trial against the ground truth."""
+    z = log.object_state[:, 6]
+    lifted = z - z[0] > LIFTED_HEIGHT_M
+    final = log.object_state[-1]
+    final_sa = log.true_taxels[-1].reshape(2, 12).sum(axis=1)
+    return GraspOutcome(
+        lift_height_m=float(z.max() - z[0]),
+        hold_time_s=longest_run_s(log.t_slow, lifted),
+        final_tilt_deg=tilt_deg(final),
+        placement_error_m=float(np.linalg.norm(final[4:6] - np.asarray(target_xy))),
+        released=bool(final_sa.max() < RELEASED_FORCE_N),
+        events=physical_events(log, grip_force))

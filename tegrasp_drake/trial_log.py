@@ -1,0 +1,79 @@
+"""TrialLog: everything a later step needs from one trial, in one .npz file.
+
+Arrays (times in s, simulation clock):
+  t_sa (N,), taxels (N, 24) [N] measured (left 12 then right 12), true_taxels (N, 24) [N]
+  t_ra (M,), channels (M, 4) [SA_L, SA_R N; RA_L, RA_R m/s^2], pad_acceleration (M, 6)
+  t_slow (K,), arm_q (K, 6) [rad], arm_q_desired (K, 6), gripper_command (K, 3),
+  gripper_status (K, 8), phase (K,) [index into `phases`], object_state (K, 13)
+Metadata (JSON in `meta`): format version, scenario YAML, phase names, phase start times,
+physical event times, controller name, package versions.
+"""
+
+import dataclasses
+import json
+import pathlib
+
+import numpy as np
+
+FORMAT_VERSION = 1
+ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_acceleration",
+                "t_slow", "arm_q", "arm_q_desired", "gripper_command", "gripper_status",
+                "phase", "object_state")
+
+
+class TrialLogError(ValueError):
+    """A trial log file is missing, truncated or of another format; the message names it."""
+
+
+@dataclasses.dataclass
+class TrialLog:
+    t_sa: np.ndarray
+    taxels: np.ndarray
+    true_taxels: np.ndarray
+    t_ra: np.ndarray
+    channels: np.ndarray
+    pad_acceleration: np.ndarray
+    t_slow: np.ndarray
+    arm_q: np.ndarray
+    arm_q_desired: np.ndarray
+    gripper_command: np.ndarray
+    gripper_status: np.ndarray
+    phase: np.ndarray
+    object_state: np.ndarray
+    meta: dict
+
+    def save(self, path) -> pathlib.Path:
+        path = pathlib.Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        meta = dict(self.meta, format_version=FORMAT_VERSION)
+        arrays = {name: getattr(self, name) for name in ARRAY_FIELDS}
+        with open(path, "wb") as f:
+            np.savez_compressed(f, meta=np.array(json.dumps(meta, sort_keys=True)), **arrays)
+        return path
+
+    @property
+    def sa(self) -> np.ndarray:
+        """SA_left, SA_right (M, 2) [N] at the RA times (held between taxel samples)."""
+        return self.channels[:, :2]
+
+    @property
+    def ra(self) -> np.ndarray:
+        return self.channels[:, 2:]
+
+
+def load_trial_log(path) -> TrialLog:
+    """Reads a TrialLog; raises TrialLogError naming the file on any defect."""
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp demo "
+                            "--log FILE`)")
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            meta = json.loads(str(data["meta"]))
+            arrays = {name: data[name] for name in ARRAY_FIELDS}
+    except (OSError, ValueError, KeyError, EOFError) as e:
+        raise TrialLogError(f"trial log '{path}' is truncated or not a trial log: {e}") from None
+    if meta.get("format_version") != FORMAT_VERSION:
+        raise TrialLogError(f"trial log '{path}' has format version "
+                            f"{meta.get('format_version')}, this package reads {FORMAT_VERSION}")
+    return TrialLog(meta=meta, **arrays)
