@@ -1,0 +1,30 @@
+"""Regenerate the per-position success maps (success_maps.png) from a results folder
+written by `tegrasp sweep`.
+
+    python analysis/make_success_maps.py RESULTS_DIR [--file NAME.png]
+"""
+
+import argparse
+import sys
+
+from tegrasp_drake.sweep import load_records, write_success_maps
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("results", help="the --out folder of a sweep")
+    parser.add_argument("--file", default="success_maps.png",
+                        help="file name inside the results folder")
+    args = parser.parse_args(argv)
+    loaded = load_records(args.results)
+    for path, reason in loaded.corrupt.items():
+        print(f"skipped corrupt record {path}: {reason}", file=sys.stderr)
+    if not any(record["status"] == "ok" for record in loaded.records.values()):
+        print(f"no finished trial records under {args.results}", file=sys.stderr)
+        return 1
+    print(f"wrote {write_success_maps(loaded.records.values(), args.results, args.file)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,30 @@
+"""Regenerate Table I (table1.md, table1.csv) and the trial statistics from a results
+folder written by `tegrasp sweep`.
+
+    python analysis/make_table1.py RESULTS_DIR
+"""
+
+import argparse
+import sys
+
+from tegrasp_drake.sweep import load_records, write_statistics, write_table1
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("results", help="the --out folder of a sweep")
+    args = parser.parse_args(argv)
+    loaded = load_records(args.results)
+    for path, reason in loaded.corrupt.items():
+        print(f"skipped corrupt record {path}: {reason}", file=sys.stderr)
+    if not loaded.records:
+        print(f"no trial records under {args.results}", file=sys.stderr)
+        return 1
+    records = list(loaded.records.values())
+    for path in write_table1(records, args.results) + write_statistics(records, args.results):
+        print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,193 @@
+"""Durable per-trial records: one checksummed JSON file per trial.
+
+A record lives at `<out>/trials/<controller>.<object>.<marker>.a<k>.json` (the trial
+id with '/' turned into '.'; names cannot contain '.', so the mapping is one to one)
+and holds:
+
+    format          "tegrasp-sweep-record"
+    format_version  1
+    trial_id        the trial's id
+    status          "ok" (the trial function returned) or "error" (it raised)
+    trial           TrialSpec.to_dict(): the scene, seeds and perturbation
+    result          the trial function's result dict, or null for an error
+    error           null, or {"type", "message", "traceback"} for an error
+    checksum        "sha256:" + hex digest of the canonical JSON of all other fields
+
+Canonical JSON: sorted keys, no spaces, ASCII, no NaN/Infinity. A record is written to
+a temporary file in the same folder, flushed and fsync'ed, renamed over the final name
+(atomic on POSIX) and the folder fsync'ed, so a crash leaves either no record or a
+whole one. A record that fails to parse or whose checksum does not match (a partial
+write on a filesystem without atomic rename, a flipped bit, a hand edit) is reported
+as corrupt, and the runner runs that trial again.
+"""
+
+import hashlib
+import json
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+RECORD_FORMAT = "tegrasp-sweep-record"
+RECORD_FORMAT_VERSION = 1
+TRIALS_FOLDER = "trials"
+_TEMP_SUFFIX = ".tmp"
+_RECORD_FIELDS = {"format", "format_version", "trial_id", "status", "trial", "result",
+                  "error", "checksum"}
+
+
+class RecordError(ValueError):
+    """A record cannot be built or written (for example a result that is not JSON)."""
+
+
+@dataclass(frozen=True)
+class LoadedRecords:
+    """The records of a results folder: valid ones by trial id, corrupt ones by path."""
+    records: dict[str, dict]
+    corrupt: dict[Path, str]
+
+
+def record_file_name(trial_id: str) -> str:
+    return trial_id.replace("/", ".") + ".json"
+
+
+def record_path(out_dir, trial_id: str) -> Path:
+    return Path(out_dir) / TRIALS_FOLDER / record_file_name(trial_id)
+
+
+def canonical_json(value) -> str:
+    """The one JSON text of `value` that checksums are taken over.
+
+    numpy scalars and arrays become Python numbers and lists (through `tolist`).
+    Raises RecordError for values JSON cannot hold, NaN and infinities included.
+    """
+    try:
+        return json.dumps(value, sort_keys=True, separators=(",", ":"), ensure_ascii=True,
+                          allow_nan=False, default=_numpy_to_python)
+    except (TypeError, ValueError) as error:
+        raise RecordError(f"not representable as JSON: {error}") from None
+
+
+def _numpy_to_python(value):
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    raise TypeError(f"object of type {type(value).__name__} is not JSON serializable")
+
+
+def _checksum(record_without_checksum: dict) -> str:
+    digest = hashlib.sha256(canonical_json(record_without_checksum).encode("ascii"))
+    return "sha256:" + digest.hexdigest()
+
+
+def make_record(trial: dict, *, result: dict | None = None,
+                error: dict | None = None) -> dict:
+    """A checksummed record of a trial that returned `result` or raised `error`."""
+    if (result is None) == (error is None):
+        raise ValueError("a record holds exactly one of result and error")
+    record = {
+        "format": RECORD_FORMAT,
+        "format_version": RECORD_FORMAT_VERSION,
+        "trial_id": trial["trial_id"],
+        "status": "ok" if error is None else "error",
+        "trial": trial,
+        "result": result,
+        "error": error,
+    }
+    # Round trip through canonical JSON so the record holds exactly what a reader sees.
+    record = json.loads(canonical_json(record))
+    record["checksum"] = _checksum(record)
+    return record
+
+
+def write_record(out_dir, record: dict) -> Path:
+    """Writes `record` durably and atomically; returns its path."""
+    path = record_path(out_dir, record["trial_id"])
+    path.parent.mkdir(parents=True, exist_ok=True)
+    text = json.dumps(record, sort_keys=True, indent=1, ensure_ascii=True, allow_nan=False)
+    descriptor, temp_name = tempfile.mkstemp(prefix="." + path.name + ".",
+                                             suffix=_TEMP_SUFFIX, dir=path.parent)
+    try:
+        with os.fdopen(descriptor, "w", encoding="ascii") as file:
+            file.write(text + "\n")
+            file.flush()
+            os.fsync(file.fileno())
+        os.replace(temp_name, path)
+    except BaseException:
+        Path(temp_name).unlink(missing_ok=True)
+        raise
+    _fsync_folder(path.parent)
+    return path
+
+
+def _fsync_folder(folder: Path) -> None:
+    descriptor = os.open(folder, os.O_RDONLY)
+    try:
+        os.fsync(descriptor)
+    finally:
+        os.close(descriptor)
+
+
+def check_record(record, expected_file_name: str | None = None) -> str | None:
+    """Why `record` is not a valid record, or None when it is."""
+    if not isinstance(record, dict):
+        return "not a JSON object"
+    if set(record) != _RECORD_FIELDS:
+        return f"fields {sorted(record)} are not the record fields {sorted(_RECORD_FIELDS)}"
+    if record["format"] != RECORD_FORMAT:
+        return f"format {record['format']!r} is not {RECORD_FORMAT!r}"
+    if record["format_version"] != RECORD_FORMAT_VERSION:
+        return f"format_version {record['format_version']!r} is not {RECORD_FORMAT_VERSION}"
+    content = {key: value for key, value in record.items() if key != "checksum"}
+    try:
+        checksum = _checksum(content)
+    except RecordError as error:
+        return str(error)
+    if record["checksum"] != checksum:
+        return "checksum does not match the content"
+    if record["status"] not in ("ok", "error"):
+        return f"status {record['status']!r} is neither 'ok' nor 'error'"
+    if expected_file_name is not None and (
+            not isinstance(record["trial_id"], str)
+            or record_file_name(record["trial_id"]) != expected_file_name):
+        return f"trial_id {record['trial_id']!r} does not belong in {expected_file_name}"
+    return None
+
+
+def read_record(path) -> tuple[dict | None, str | None]:
+    """(record, None) for a valid record file, (None, reason) otherwise."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="ascii")
+    except (OSError, UnicodeDecodeError) as error:
+        return None, f"unreadable: {error}"
+    try:
+        record = json.loads(text)
+    except json.JSONDecodeError as error:
+        return None, f"not valid JSON (partial write?): {error}"
+    reason = check_record(record, path.name)
+    return (None, reason) if reason else (record, None)
+
+
+def load_records(out_dir) -> LoadedRecords:
+    """Reads every record under `<out_dir>/trials`; temporary files are ignored."""
+    folder = Path(out_dir) / TRIALS_FOLDER
+    records, corrupt = {}, {}
+    if folder.is_dir():
+        for path in sorted(folder.glob("*.json")):
+            record, reason = read_record(path)
+            if record is None:
+                corrupt[path] = reason
+            else:
+                records[record["trial_id"]] = record
+    return LoadedRecords(records=records, corrupt=corrupt)
+
+
+def remove_temporary_files(out_dir) -> list[Path]:
+    """Deletes half-written temporary files a killed writer left; returns them."""
+    folder = Path(out_dir) / TRIALS_FOLDER
+    removed = []
+    if folder.is_dir():
+        for path in folder.glob("." + "*" + _TEMP_SUFFIX):
+            path.unlink(missing_ok=True)
+            removed.append(path)
+    return removed

@@ -1,0 +1,469 @@
+"""What a sweep runs: the typed sweep specification, its validation, and the trial list.
+
+A sweep is the paper's grasping experiment (Sec. IV-B): every object placed at every
+marker of a grid around its expected position, a few attempts per marker, run once per
+controller. `expand_trials` turns a `SweepSpec` into the list of `TrialSpec`s, one per
+(controller, object, marker, attempt).
+
+Frames: marker offsets are given in the gripper's frame at the expected grasp. `x` is the
+approach axis (normal to the palm), `y` the finger-stroke axis. The paper's grid is
++-1 cm along x and +-1.5 cm along y; the marker at (0, 0) is "well placed", every other
+marker "misplaced".
+
+Paired comparison: a trial's random numbers come from a seed derived from
+(base_seed, object, marker offset, attempt) and never from the controller, so every
+controller meets exactly the same perturbed scene and sensor-noise seed.
+"""
+
+import dataclasses
+import math
+import re
+import zlib
+from collections.abc import Collection, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+# The controllers the trial function knows (issue #5): the paper's memorized triggers,
+# heuristic thresholds in the style of Romano et al. 2011, and open loop.
+CONTROLLERS = ("memorized", "heuristic", "open_loop")
+
+# The paper's three objects (Fig. 8a). Their models live with the trial function;
+# a sweep spec can add user-defined objects (`ObjectDefinition`).
+BUILTIN_OBJECTS = ("box", "thick_cylinder", "thin_cylinder")
+
+# The paper's grid (Sec. IV-B): +-1 cm normal to the palm, +-1.5 cm along the stroke.
+PAPER_NORMAL_OFFSETS_M = (-0.010, 0.0, 0.010)
+PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
+
+# Names become parts of trial ids and file names: keep them to a safe alphabet.
+_NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
+_OBJECT_SHAPES = {"box": 3, "cylinder": 2}  # shape -> number of size_m values
+
+
+class SweepSpecError(ValueError):
+    """A sweep specification is invalid; the message names the field and its source."""
+
+
+def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float], ...]:
+    """Every (x, y) combination of the two offset lists, x (normal) varying slowest."""
+    return tuple((float(dx), float(dy))
+                 for dx in normal_offsets_m for dy in stroke_offsets_m)
+
+
+@dataclass(frozen=True)
+class ObjectDefinition:
+    """A user-defined object, handed to the trial function in its trial dict.
+
+    `size_m` follows Drake's shapes: a box's (x, y, z) edge lengths, a cylinder's
+    (radius, length). `friction_coefficient` None means the trial function's default.
+    """
+    shape: str
+    size_m: tuple[float, ...]
+    mass_kg: float
+    friction_coefficient: float | None = None
+
+
+@dataclass(frozen=True)
+class RandomisationConfig:
+    """How much attempts differ, as on a real robot. Every draw is uniform on +-bound.
+
+    Uniform bounds, not Gaussians, so that placement jitter can never carry an object
+    onto a neighbouring marker (1 cm away in the paper's grid).
+    """
+    placement_xy_bound_m: float = 0.002     # jitter of x and y around the marker
+    placement_yaw_bound_deg: float = 3.0    # jitter of the yaw about the vertical
+    friction_scale_bound: float = 0.10      # friction scaled by 1 + U(-b, b)
+    mass_scale_bound: float = 0.10          # mass scaled by 1 + U(-b, b)
+    sensor_noise: bool = True               # the trial function adds sensor noise
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A sweep: objects x grid markers x attempts, once per controller.
+
+    `grid` holds the marker offsets (dx_m, dy_m), x normal to the palm, y along the
+    stroke; (0, 0) is the well-placed marker.
+    """
+    objects: tuple[str, ...] = BUILTIN_OBJECTS
+    controllers: tuple[str, ...] = CONTROLLERS
+    grid: tuple[tuple[float, float], ...] = product_grid(
+        PAPER_NORMAL_OFFSETS_M, PAPER_STROKE_OFFSETS_M)
+    attempts: int = 3
+    base_seed: int = 0
+    randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
+    user_objects: Mapping[str, ObjectDefinition] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Perturbation:
+    """One attempt's random perturbation of the scene, drawn from the trial's seed."""
+    dx_m: float            # placement jitter along x (normal to the palm)
+    dy_m: float            # placement jitter along y (stroke)
+    yaw_rad: float         # placement jitter about the vertical
+    friction_scale: float  # multiplies the object's friction coefficient
+    mass_scale: float      # multiplies the object's mass
+
+
+@dataclass(frozen=True)
+class TrialSpec:
+    """One trial; `to_dict()` is what the trial function receives.
+
+    The object is placed at expected position + (marker_dx_m + dx_m, marker_dy_m + dy_m)
+    in the gripper's x (normal) / y (stroke) axes, yawed by `perturbation.yaw_rad`.
+    `seed` is the entropy for the trial function's own randomness (sensor noise, when
+    `sensor_noise`); it is independent of the stream the perturbation was drawn from.
+    `pair_id` names the same scene for every controller.
+    """
+    trial_id: str
+    pair_id: str
+    controller: str
+    object_name: str
+    object_definition: ObjectDefinition | None
+    marker: str
+    marker_dx_m: float
+    marker_dy_m: float
+    well_placed: bool
+    attempt: int
+    base_seed: int
+    seed: int
+    sensor_noise: bool
+    perturbation: Perturbation
+
+    def to_dict(self) -> dict:
+        d = dataclasses.asdict(self)
+        if d["object_definition"] is not None:
+            d["object_definition"]["size_m"] = list(d["object_definition"]["size_m"])
+        return d
+
+    @classmethod
+    def from_dict(cls, d: Mapping) -> "TrialSpec":
+        definition = d["object_definition"]
+        if definition is not None:
+            definition = ObjectDefinition(**{**definition,
+                                             "size_m": tuple(definition["size_m"])})
+        return cls(**{**d, "object_definition": definition,
+                      "perturbation": Perturbation(**d["perturbation"])})
+
+
+# ---------------------------------------------------------------------------------
+# Validation
+
+
+def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
+                  builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+                  controllers: Collection[str] = CONTROLLERS) -> None:
+    """Raises SweepSpecError naming `source` and the field when `spec` cannot run.
+
+    Objects are checked against `builtin_objects` plus the spec's own `user_objects`,
+    controllers against `controllers`.
+    """
+    def fail(field_name, message):
+        raise SweepSpecError(f"{source}: field '{field_name}': {message}")
+
+    for name, definition in spec.user_objects.items():
+        _check_name(name, f"user_objects.{name}", fail)
+        if name in builtin_objects:
+            fail(f"user_objects.{name}", "redefines a built-in object; choose another name")
+        _check_object_definition(definition, f"user_objects.{name}", fail)
+    known_objects = tuple(builtin_objects) + tuple(spec.user_objects)
+    _check_names_in(spec.objects, known_objects, "objects", "object", fail)
+    _check_names_in(spec.controllers, tuple(controllers), "controllers", "controller", fail)
+
+    if not spec.grid:
+        fail("grid", "is empty: a sweep needs at least one marker offset")
+    seen_markers = set()
+    for offset in spec.grid:
+        if (len(offset) != 2
+                or not all(_is_number(v) and math.isfinite(v) for v in offset)):
+            fail("grid", f"marker offset {offset!r} is not a pair of finite numbers (m)")
+        key = _offset_key(offset)
+        if key in seen_markers:
+            fail("grid", f"marker offset {offset!r} appears twice")
+        seen_markers.add(key)
+
+    if not _is_int(spec.attempts) or spec.attempts < 1:
+        fail("attempts", f"expected a positive integer, got {spec.attempts!r}")
+    if not _is_int(spec.base_seed) or spec.base_seed < 0:
+        fail("base_seed", f"expected a non-negative integer, got {spec.base_seed!r}")
+
+    r = spec.randomisation
+    for name in ("placement_xy_bound_m", "placement_yaw_bound_deg"):
+        value = getattr(r, name)
+        if not _is_number(value) or not 0.0 <= value < math.inf:
+            fail(f"randomisation.{name}", f"expected a non-negative number, got {value!r}")
+    for name in ("friction_scale_bound", "mass_scale_bound"):
+        value = getattr(r, name)
+        if not _is_number(value) or not 0.0 <= value < 1.0:
+            fail(f"randomisation.{name}",
+                 f"expected a number in [0, 1) so the scale stays positive, got {value!r}")
+    if not isinstance(r.sensor_noise, bool):
+        fail("randomisation.sensor_noise", f"expected true or false, got {r.sensor_noise!r}")
+
+
+def _check_name(name, field_name, fail):
+    if not isinstance(name, str) or not _NAME_PATTERN.match(name):
+        fail(field_name, f"{name!r} is not a valid name (letters, digits, '_' and '-')")
+
+
+def _check_names_in(names, known, field_name, kind, fail):
+    if not names:
+        fail(field_name, f"is empty: name at least one {kind}")
+    for name in names:
+        if name not in known:
+            fail(field_name, f"unknown {kind} {name!r}; known: {', '.join(known)}")
+    if len(set(names)) != len(names):
+        fail(field_name, f"names a {kind} twice: {list(names)}")
+
+
+def _check_object_definition(definition, field_name, fail):
+    if not isinstance(definition, ObjectDefinition):
+        fail(field_name, "expected an object definition")
+    if definition.shape not in _OBJECT_SHAPES:
+        fail(f"{field_name}.shape",
+             f"unknown shape {definition.shape!r}; known: {', '.join(_OBJECT_SHAPES)}")
+    n = _OBJECT_SHAPES[definition.shape]
+    if (len(definition.size_m) != n
+            or not all(_is_number(v) and 0.0 < v < math.inf for v in definition.size_m)):
+        meaning = "(x, y, z)" if definition.shape == "box" else "(radius, length)"
+        fail(f"{field_name}.size_m",
+             f"a {definition.shape} needs {n} positive sizes {meaning} in m, "
+             f"got {list(definition.size_m)!r}")
+    if not _is_number(definition.mass_kg) or not 0.0 < definition.mass_kg < math.inf:
+        fail(f"{field_name}.mass_kg", f"expected a positive number, got {definition.mass_kg!r}")
+    mu = definition.friction_coefficient
+    if mu is not None and (not _is_number(mu) or not 0.0 < mu < math.inf):
+        fail(f"{field_name}.friction_coefficient", f"expected a positive number, got {mu!r}")
+
+
+def _is_int(value) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _offset_key(offset) -> tuple[int, int]:
+    """A marker offset in whole micrometres: its identity for seeds and duplicates."""
+    return (round(offset[0] * 1e6), round(offset[1] * 1e6))
+
+
+# ---------------------------------------------------------------------------------
+# Loading from YAML
+
+_SPEC_FIELDS = {"objects", "controllers", "grid", "attempts", "base_seed",
+                "randomisation", "user_objects"}
+_GRID_FIELDS = {"normal_offsets_m", "stroke_offsets_m"}
+_OBJECT_FIELDS = {f.name for f in dataclasses.fields(ObjectDefinition)}
+_RANDOMISATION_FIELDS = {f.name for f in dataclasses.fields(RandomisationConfig)}
+
+
+def load_sweep_spec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+                    controllers: Collection[str] = CONTROLLERS) -> SweepSpec:
+    """Reads and validates a YAML sweep spec; fields left out keep the paper's defaults.
+
+    Fields: objects, controllers (lists of names), attempts, base_seed (integers),
+    grid (either a list of [dx_m, dy_m] marker offsets, or a mapping with
+    normal_offsets_m and stroke_offsets_m lists whose product is the grid),
+    randomisation (a mapping of `RandomisationConfig` fields), user_objects (a mapping
+    from name to `ObjectDefinition` fields). Raises SweepSpecError naming the file and
+    the field for unknown fields, wrong types and values that cannot run.
+    """
+    import yaml  # PyYAML, a dependency of drake; parsed here without Drake.
+
+    path = Path(path)
+    source = str(path)
+
+    def fail(field_name, message):
+        raise SweepSpecError(f"{source}: field '{field_name}': {message}")
+
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as error:
+        raise SweepSpecError(f"{source}: cannot read the sweep spec: {error}") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as error:
+        raise SweepSpecError(f"{source}: not valid YAML: {error}") from None
+    if data is None:
+        data = {}
+    if not isinstance(data, dict):
+        raise SweepSpecError(f"{source}: expected a mapping of fields at the top level")
+    _reject_unknown(data, _SPEC_FIELDS, "", fail)
+
+    kwargs = {}
+    for name in ("objects", "controllers"):
+        if name in data:
+            kwargs[name] = _string_list(data[name], name, fail)
+    for name in ("attempts", "base_seed"):
+        if name in data:
+            if not _is_int(data[name]):
+                fail(name, f"expected an integer, got {data[name]!r}")
+            kwargs[name] = data[name]
+    if "grid" in data:
+        kwargs["grid"] = _parse_grid(data["grid"], fail)
+    if "randomisation" in data:
+        value = data["randomisation"]
+        if not isinstance(value, dict):
+            fail("randomisation", f"expected a mapping, got {value!r}")
+        _reject_unknown(value, _RANDOMISATION_FIELDS, "randomisation.", fail)
+        for name, item in value.items():
+            expected_bool = name == "sensor_noise"
+            if expected_bool != isinstance(item, bool) or not (expected_bool or _is_number(item)):
+                fail(f"randomisation.{name}",
+                     f"expected {'true or false' if expected_bool else 'a number'}, "
+                     f"got {item!r}")
+        kwargs["randomisation"] = RandomisationConfig(**value)
+    if "user_objects" in data:
+        kwargs["user_objects"] = _parse_user_objects(data["user_objects"], fail)
+
+    spec = SweepSpec(**kwargs)
+    validate_spec(spec, source, builtin_objects=builtin_objects, controllers=controllers)
+    return spec
+
+
+def _reject_unknown(mapping, known, prefix, fail):
+    for key in mapping:
+        if key not in known:
+            fail(f"{prefix}{key}", f"unknown field; known fields: {', '.join(sorted(known))}")
+
+
+def _string_list(value, field_name, fail) -> tuple[str, ...]:
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        fail(field_name, f"expected a list of names, got {value!r}")
+    return tuple(value)
+
+
+def _number_list(value, field_name, fail) -> tuple[float, ...]:
+    if not isinstance(value, list) or not all(_is_number(v) for v in value):
+        fail(field_name, f"expected a list of numbers, got {value!r}")
+    if not value:
+        fail(field_name, "is empty: a sweep needs at least one marker offset")
+    return tuple(float(v) for v in value)
+
+
+def _parse_grid(value, fail) -> tuple[tuple[float, float], ...]:
+    if isinstance(value, dict):
+        _reject_unknown(value, _GRID_FIELDS, "grid.", fail)
+        for name in sorted(_GRID_FIELDS):
+            if name not in value:
+                fail(f"grid.{name}", "missing (a product grid needs both offset lists)")
+        return product_grid(_number_list(value["normal_offsets_m"], "grid.normal_offsets_m", fail),
+                            _number_list(value["stroke_offsets_m"], "grid.stroke_offsets_m", fail))
+    if isinstance(value, list):
+        grid = []
+        for item in value:
+            if (not isinstance(item, list) or len(item) != 2
+                    or not all(_is_number(v) for v in item)):
+                fail("grid", f"marker offset {item!r} is not a pair [dx_m, dy_m] of numbers")
+            grid.append((float(item[0]), float(item[1])))
+        return tuple(grid)  # validate_spec rejects an empty list.
+    fail("grid", "expected a list of [dx_m, dy_m] offsets or a mapping with "
+                 f"normal_offsets_m and stroke_offsets_m, got {value!r}")
+
+
+def _parse_user_objects(value, fail) -> dict[str, ObjectDefinition]:
+    if not isinstance(value, dict):
+        fail("user_objects", f"expected a mapping from name to object fields, got {value!r}")
+    objects = {}
+    for name, fields in value.items():
+        prefix = f"user_objects.{name}"
+        if not isinstance(fields, dict):
+            fail(prefix, f"expected a mapping of object fields, got {fields!r}")
+        _reject_unknown(fields, _OBJECT_FIELDS, prefix + ".", fail)
+        for required in ("shape", "size_m", "mass_kg"):
+            if required not in fields:
+                fail(f"{prefix}.{required}", "missing")
+        if not isinstance(fields["shape"], str):
+            fail(f"{prefix}.shape", f"expected a name, got {fields['shape']!r}")
+        size = fields["size_m"]
+        if not isinstance(size, list) or not all(_is_number(v) for v in size):
+            fail(f"{prefix}.size_m", f"expected a list of numbers, got {size!r}")
+        for numeric in ("mass_kg", "friction_coefficient"):
+            if numeric in fields and not _is_number(fields[numeric]):
+                fail(f"{prefix}.{numeric}", f"expected a number, got {fields[numeric]!r}")
+        objects[str(name)] = ObjectDefinition(**{**fields, "size_m": tuple(size)})
+    return objects
+
+
+# ---------------------------------------------------------------------------------
+# Expansion into trials
+
+
+def marker_names(grid) -> list[str]:
+    """`m{i}{j}`: i indexes the sorted distinct x offsets, j the sorted distinct y offsets.
+
+    The paper's grid gives m00 .. m22 with m11 the well-placed marker. Indices are
+    zero-padded to a common width when an axis has more than ten values.
+    """
+    xs = sorted({_offset_key(o)[0] for o in grid})
+    ys = sorted({_offset_key(o)[1] for o in grid})
+    width = len(str(max(len(xs), len(ys)) - 1))
+    return [f"m{xs.index(_offset_key(o)[0]):0{width}d}{ys.index(_offset_key(o)[1]):0{width}d}"
+            for o in grid]
+
+
+def trial_seed_sequence(base_seed: int, object_name: str, marker_offset,
+                        attempt: int) -> np.random.SeedSequence:
+    """The seed of one scene, from (base_seed, object, marker offset, attempt) only.
+
+    Names and offsets enter through CRC-32 of their text (stable across processes,
+    unlike `hash`); the offset in whole micrometres, so a marker keeps its seed when
+    the grid around it changes.
+    """
+    dx_um, dy_um = _offset_key(marker_offset)
+    return np.random.SeedSequence(
+        entropy=base_seed,
+        spawn_key=(zlib.crc32(object_name.encode("utf-8")),
+                   zlib.crc32(f"{dx_um:+d},{dy_um:+d}".encode("ascii")),
+                   attempt))
+
+
+def draw_perturbation(rng: np.random.Generator,
+                      randomisation: RandomisationConfig) -> Perturbation:
+    """Draws, in this order: dx, dy, yaw, friction scale, mass scale; each U(-b, b)."""
+    r = randomisation
+    dx, dy = rng.uniform(-r.placement_xy_bound_m, r.placement_xy_bound_m, size=2)
+    yaw_bound_rad = math.radians(r.placement_yaw_bound_deg)
+    yaw = rng.uniform(-yaw_bound_rad, yaw_bound_rad)
+    friction_scale = 1.0 + rng.uniform(-r.friction_scale_bound, r.friction_scale_bound)
+    mass_scale = 1.0 + rng.uniform(-r.mass_scale_bound, r.mass_scale_bound)
+    return Perturbation(dx_m=float(dx), dy_m=float(dy), yaw_rad=float(yaw),
+                        friction_scale=float(friction_scale), mass_scale=float(mass_scale))
+
+
+def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+                  controllers: Collection[str] = CONTROLLERS) -> list[TrialSpec]:
+    """Validates `spec` and lists its trials, controller-major, deterministically.
+
+    Each scene's seed sequence (`trial_seed_sequence`) spawns two children: the first
+    seeds a numpy PCG64 Generator for `draw_perturbation`, the second gives the
+    trial's 32-bit `seed`. Trial ids read `{controller}/{object}/{marker}/a{attempt}`.
+    """
+    validate_spec(spec, builtin_objects=builtin_objects, controllers=controllers)
+    names = marker_names(spec.grid)
+    scenes = []
+    for object_name in spec.objects:
+        for marker, offset in zip(names, spec.grid):
+            for attempt in range(spec.attempts):
+                perturbation_seq, trial_seq = trial_seed_sequence(
+                    spec.base_seed, object_name, offset, attempt).spawn(2)
+                scenes.append(dict(
+                    pair_id=f"{object_name}/{marker}/a{attempt}",
+                    object_name=object_name,
+                    object_definition=spec.user_objects.get(object_name),
+                    marker=marker,
+                    marker_dx_m=float(offset[0]),
+                    marker_dy_m=float(offset[1]),
+                    well_placed=_offset_key(offset) == (0, 0),
+                    attempt=attempt,
+                    base_seed=spec.base_seed,
+                    seed=int(trial_seq.generate_state(1, dtype=np.uint32)[0]),
+                    sensor_noise=spec.randomisation.sensor_noise,
+                    perturbation=draw_perturbation(np.random.default_rng(perturbation_seq),
+                                                   spec.randomisation)))
+    return [TrialSpec(trial_id=f"{controller}/{scene['pair_id']}", controller=controller,
+                      **scene)
+            for controller in spec.controllers for scene in scenes]

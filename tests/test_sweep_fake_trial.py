@@ -1,0 +1,78 @@
+"""A cheap, deterministic stand-in for the closed-loop trial function (no tests here).
+
+The sweep tests run the sweep machinery with these functions instead of the Drake
+simulation. The outcome is a pure function of the trial dict: the seed gives uniform
+numbers shared by every controller (so the comparison is paired, as with the real
+trial), and each controller turns them into success with its own probability.
+"""
+
+import hashlib
+import os
+import time
+
+# P(success) by controller and placement: (well placed, misplaced).
+_HOLD_PROBABILITY = {"memorized": (0.95, 0.85), "heuristic": (0.9, 0.7),
+                     "open_loop": (0.8, 0.4)}
+_UNLOAD_PROBABILITY = {"memorized": (0.9, 0.8), "heuristic": (0.8, 0.6),
+                       "open_loop": (0.5, 0.3)}
+SLOW_TRIAL_S = 0.05
+
+
+def _uniforms(trial, count):
+    digest = hashlib.sha256(f"{trial['pair_id']}|{trial['seed']}".encode()).digest()
+    return [int.from_bytes(digest[4 * k:4 * k + 4], "big") / 2.0 ** 32 for k in range(count)]
+
+
+def fake_trial(trial):
+    u_hold, u_unload, u_latency, u_false = _uniforms(trial, 4)
+    placement = 0 if trial["well_placed"] else 1
+    hold = u_hold < _HOLD_PROBABILITY[trial["controller"]][placement]
+    unload = hold and u_unload < _UNLOAD_PROBABILITY[trial["controller"]][placement]
+    latency = None if trial["controller"] == "open_loop" else round(0.01 + 0.05 * u_latency, 6)
+    return {
+        "hold_success": hold,
+        "unload_success": unload,
+        "transitions": [{"t": 1.0, "from": "reach", "to": "load", "trigger": "memorized"}],
+        "corrective_actions": ["regrasp"] if not trial["well_placed"] and hold else [],
+        "detection_latency_s": {"reach->load": latency, "lift->hold": latency},
+        "false_triggers": int(u_false < 0.2),
+        "sim_time_s": 8.0,
+        "wall_time_s": 0.0,
+    }
+
+
+def slow_fake_trial(trial):
+    """fake_trial after a pause, so a sweep of a few dozen trials takes seconds."""
+    time.sleep(SLOW_TRIAL_S)
+    result = fake_trial(trial)
+    result["wall_time_s"] = SLOW_TRIAL_S  # Nominal, so records stay deterministic.
+    return result
+
+
+def failing_fake_trial(trial):
+    """Raises on attempt 1, like a simulation that diverges."""
+    if trial["attempt"] == 1:
+        raise RuntimeError(f"simulated divergence in {trial['trial_id']}")
+    return fake_trial(trial)
+
+
+def invalid_result_trial(trial):
+    """Returns a result without the booleans the table needs."""
+    return {"hold_success": 1, "unload_success": None}
+
+
+def dying_fake_trial(trial):
+    """Kills its worker process on the well-placed box, attempt 0 (a hard crash)."""
+    if trial["pair_id"] == "box/m11/a0":
+        os._exit(3)
+    return fake_trial(trial)
+
+
+def numpy_fake_trial(trial):
+    """fake_trial with numpy booleans and numbers, as a simulation tends to return."""
+    import numpy as np
+    result = fake_trial(trial)
+    return {**result, "hold_success": np.bool_(result["hold_success"]),
+            "unload_success": np.bool_(result["unload_success"]),
+            "false_triggers": np.int64(result["false_triggers"]),
+            "sim_time_s": np.float64(result["sim_time_s"])}
