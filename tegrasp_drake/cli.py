@@ -13,6 +13,7 @@ import sys
 COMMAND_MODULES = (
     "tegrasp_drake.commands.demo",
     "tegrasp_drake.commands.benchmark",
+    "tegrasp_drake.sweep.command",
 )
 
 
