@@ -1,0 +1,218 @@
+"""Conversions between Kinova JACO2 LCM messages and vectors, in Drake's driver pattern.
+
+The Kinova LCM driver (Drake's `lcmt_jaco_command` / `lcmt_jaco_status`) listens on
+`KINOVA_JACO_COMMAND` and publishes `KINOVA_JACO_STATUS` at 100 Hz. In joint-velocity mode
+it sends only `joint_velocity` to the arm and integrates nothing: `joint_position` in the
+command is carried for logs and for the emulator, but the real arm ignores it. A position
+error must therefore be turned into velocity before the sender (see
+`JacoVelocityTracker`); the four systems here only convert between messages and vectors.
+
+All angles are in radians, velocities in rad/s, torques in N m, `utime` in microseconds.
+The gripper is a Robotiq 2F-85 on its own bus, so every message has num_fingers = 0.
+
+Hardware side: JacoVelocityTracker -> JacoCommandSender -> LcmPublisherSystem,
+LcmSubscriberSystem -> JacoStatusReceiver.
+Emulator side: LcmSubscriberSystem -> JacoCommandReceiver -> station,
+station -> JacoStatusSender -> LcmPublisherSystem.
+"""
+
+import numpy as np
+from drake import lcmt_jaco_command, lcmt_jaco_status
+from pydrake.common.value import AbstractValue
+from pydrake.systems.framework import BasicVector, LeafSystem
+
+JACO_NUM_JOINTS = 6
+JACO_COMMAND_CHANNEL = "KINOVA_JACO_COMMAND"
+JACO_STATUS_CHANNEL = "KINOVA_JACO_STATUS"
+JACO_LCM_PERIOD = 0.01  # [s], the driver's 100 Hz
+
+
+def utime_from_time(time_s: float) -> int:
+    """Microseconds (LCM `utime`) for a time in seconds."""
+    return int(round(time_s * 1e6))
+
+
+def make_jaco_command(utime, position, velocity) -> lcmt_jaco_command:
+    """An `lcmt_jaco_command` for 6 joint positions [rad] and velocities [rad/s]."""
+    message = lcmt_jaco_command()
+    message.utime = int(utime)
+    message.num_joints = JACO_NUM_JOINTS
+    message.joint_position = [float(x) for x in position]
+    message.joint_velocity = [float(x) for x in velocity]
+    message.num_fingers = 0
+    message.finger_position = []
+    message.finger_velocity = []
+    return message
+
+
+def make_jaco_status(utime, position, velocity, torque) -> lcmt_jaco_status:
+    """An `lcmt_jaco_status` for measured positions, velocities and torques."""
+    message = lcmt_jaco_status()
+    message.utime = int(utime)
+    message.num_joints = JACO_NUM_JOINTS
+    message.joint_position = [float(x) for x in position]
+    message.joint_velocity = [float(x) for x in velocity]
+    message.joint_torque = [float(x) for x in torque]
+    message.joint_torque_external = [0.0] * JACO_NUM_JOINTS
+    message.joint_current = [0.0] * JACO_NUM_JOINTS
+    message.num_fingers = 0
+    for name in ("finger_position", "finger_velocity", "finger_torque",
+                 "finger_torque_external", "finger_current"):
+        setattr(message, name, [])
+    return message
+
+
+def has_joints(message) -> bool:
+    """False for the default (never received) message; raises on a wrong joint count."""
+    if message.num_joints == 0:
+        return False
+    if message.num_joints != JACO_NUM_JOINTS:
+        raise ValueError(f"expected a {JACO_NUM_JOINTS}-joint Jaco message, got "
+                         f"num_joints = {message.num_joints}")
+    return True
+
+
+class JacoCommandSender(LeafSystem):
+    """Converts a desired joint state into an `lcmt_jaco_command` (no feedback, no state).
+
+    Input ports:
+        desired_state (12): joint positions [rad] then joint velocities [rad/s]. In
+            velocity mode the velocities are what the arm executes, so they must already
+            contain the position-error term (JacoVelocityTracker's `commanded_state`).
+    Output ports:
+        lcmt_jaco_command (abstract): utime = Context time [us], num_fingers = 0.
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._desired_state_port = self.DeclareVectorInputPort(
+            "desired_state", 2 * JACO_NUM_JOINTS)
+        self.DeclareAbstractOutputPort(
+            "lcmt_jaco_command", lambda: AbstractValue.Make(lcmt_jaco_command()),
+            self._calc_command)
+
+    def _calc_command(self, context, output):
+        state = self._desired_state_port.Eval(context)
+        output.set_value(make_jaco_command(
+            utime_from_time(context.get_time()), state[:JACO_NUM_JOINTS],
+            state[JACO_NUM_JOINTS:]))
+
+
+class JacoCommandReceiver(LeafSystem):
+    """Converts `lcmt_jaco_command` into the station's `desired_state` (emulator side).
+
+    Like the real driver, the emulated arm stops when commands stop: if no new command
+    (a new `utime`) has arrived for `command_timeout` [s] of Context time, or none ever
+    did, the output holds the last measured position with zero velocity.
+
+    Input ports:
+        lcmt_jaco_command (abstract)
+        position_measured (6): the arm's measured joint positions [rad]; sampled into
+            state, so the output has no direct feedthrough from it.
+    Output ports:
+        desired_state (12): joint positions [rad] then joint velocities [rad/s].
+    """
+
+    def __init__(self, *, command_timeout: float = 0.05, period: float = JACO_LCM_PERIOD / 2):
+        super().__init__()
+        self._command_timeout = command_timeout
+        self._message_port = self.DeclareAbstractInputPort(
+            "lcmt_jaco_command", AbstractValue.Make(lcmt_jaco_command()))
+        self._position_port = self.DeclareVectorInputPort(
+            "position_measured", JACO_NUM_JOINTS)
+        # [last utime seen, Context time it was first seen, hold position (6)]
+        self._state_index = self.DeclareDiscreteState(
+            np.concatenate([[-1.0, -np.inf], np.zeros(JACO_NUM_JOINTS)]))
+        self.DeclareInitializationDiscreteUpdateEvent(self._update)
+        self.DeclarePeriodicDiscreteUpdateEvent(period, 0.0, self._update)
+        self.DeclareVectorOutputPort(
+            "desired_state", 2 * JACO_NUM_JOINTS, self._calc_desired_state,
+            prerequisites_of_calc={self.xd_ticket(), self.time_ticket(),
+                                   self._message_port.ticket()})
+
+    def _update(self, context, discrete_state):
+        old = context.get_discrete_state(self._state_index).get_value()
+        new = old.copy()
+        message = self._message_port.Eval(context)
+        if has_joints(message) and message.utime != old[0]:
+            new[0], new[1] = message.utime, context.get_time()
+        if not self._is_fresh(new, context.get_time()):
+            new[2:] = self._position_port.Eval(context)
+        discrete_state.get_mutable_vector(self._state_index).SetFromVector(new)
+
+    def _is_fresh(self, state, time) -> bool:
+        return time - state[1] <= self._command_timeout
+
+    def _calc_desired_state(self, context, output):
+        state = context.get_discrete_state(self._state_index).get_value()
+        message = self._message_port.Eval(context)
+        # A utime not yet in the state arrived after the last update: fresh by definition.
+        if has_joints(message) and (message.utime != state[0] or self._is_fresh(
+                state, context.get_time())):
+            output.SetFromVector(np.concatenate(
+                [message.joint_position, message.joint_velocity]))
+        else:
+            output.SetFromVector(np.concatenate([state[2:], np.zeros(JACO_NUM_JOINTS)]))
+
+
+class JacoStatusSender(LeafSystem):
+    """Converts the measured arm state into an `lcmt_jaco_status` (emulator side).
+
+    Input ports:
+        position_measured (6) [rad], velocity_measured (6) [rad/s], torque_measured (6) [N m]
+    Output ports:
+        lcmt_jaco_status (abstract): utime = Context time [us], num_fingers = 0.
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._position_port = self.DeclareVectorInputPort("position_measured", JACO_NUM_JOINTS)
+        self._velocity_port = self.DeclareVectorInputPort("velocity_measured", JACO_NUM_JOINTS)
+        self._torque_port = self.DeclareVectorInputPort("torque_measured", JACO_NUM_JOINTS)
+        self.DeclareAbstractOutputPort(
+            "lcmt_jaco_status", lambda: AbstractValue.Make(lcmt_jaco_status()),
+            self._calc_status)
+
+    def _calc_status(self, context, output):
+        output.set_value(make_jaco_status(
+            utime_from_time(context.get_time()), self._position_port.Eval(context),
+            self._velocity_port.Eval(context), self._torque_port.Eval(context)))
+
+
+class JacoStatusReceiver(LeafSystem):
+    """Converts `lcmt_jaco_status` into measured-state vectors (hardware side).
+
+    Before the first message every output is zero (time_measured too), which the device
+    watchdog treats as "not heard from yet".
+
+    Input ports:
+        lcmt_jaco_status (abstract)
+    Output ports:
+        position_measured (6) [rad], velocity_measured (6) [rad/s],
+        torque_measured (6) [N m], time_measured (1): the message's utime [s].
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._message_port = self.DeclareAbstractInputPort(
+            "lcmt_jaco_status", AbstractValue.Make(lcmt_jaco_status()))
+        for name, field in (("position_measured", "joint_position"),
+                            ("velocity_measured", "joint_velocity"),
+                            ("torque_measured", "joint_torque")):
+            self.DeclareVectorOutputPort(
+                name, JACO_NUM_JOINTS, self._make_calc(field),
+                prerequisites_of_calc={self._message_port.ticket()})
+        self.DeclareVectorOutputPort(
+            "time_measured", 1, self._calc_time_measured,
+            prerequisites_of_calc={self._message_port.ticket()})
+
+    def _make_calc(self, field):
+        def calc(context, output: BasicVector):
+            message = self._message_port.Eval(context)
+            output.SetFromVector(getattr(message, field) if has_joints(message)
+                                 else np.zeros(JACO_NUM_JOINTS))
+        return calc
+
+    def _calc_time_measured(self, context, output):
+        message = self._message_port.Eval(context)
+        output.SetAtIndex(0, message.utime * 1e-6 if has_joints(message) else 0.0)

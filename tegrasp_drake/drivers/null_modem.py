@@ -1,0 +1,80 @@
+"""A virtual null-modem cable: two pseudo-terminals whose masters are joined by a thread.
+
+An emulated serial device opens one end by its tty name (as a real device server would
+open a port) and the driver under test opens the other, so both sides use the ordinary
+pyserial path, like `socat pty pty`. `connected = False` unplugs the cable: bytes are
+discarded in both directions, so the device "stops talking" without either side knowing.
+"""
+
+import os
+import select
+import threading
+import tty
+
+
+def open_raw_pty() -> tuple[int, int, str]:
+    """A pseudo-terminal (master fd, slave fd, slave tty name) with the slave in raw mode."""
+    master, slave = os.openpty()
+    tty.setraw(slave)
+    os.set_blocking(master, False)
+    return master, slave, os.ttyname(slave)
+
+
+class NullModem:
+    """Joins two pseudo-terminals; `device_port` and `host_port` are their tty names.
+
+    The relay thread wakes at least every `poll_interval` [s] and stops by itself when
+    `close()` is called. Use as a context manager.
+    """
+
+    def __init__(self, *, poll_interval: float = 0.02):
+        self._poll_interval = poll_interval
+        self._device = open_raw_pty()
+        self._host = open_raw_pty()
+        self._stop = threading.Event()
+        self.connected = True
+        self.bytes_relayed = 0
+        self.bytes_dropped = 0  # the reading side's buffer was full (a UART overrun)
+        self._thread = threading.Thread(target=self._relay, name="null modem", daemon=True)
+        self._thread.start()
+
+    @property
+    def device_port(self) -> str:
+        return self._device[2]
+
+    @property
+    def host_port(self) -> str:
+        return self._host[2]
+
+    def _relay(self):
+        masters = {self._device[0]: self._host[0], self._host[0]: self._device[0]}
+        while not self._stop.is_set():
+            readable, _, _ = select.select(list(masters), [], [], self._poll_interval)
+            for source in readable:
+                try:
+                    data = os.read(source, 4096)
+                except OSError:  # nothing after all, or the tty is being reopened
+                    continue
+                if data and self.connected:
+                    self._forward(masters[source], data)
+
+    def _forward(self, master, data):
+        try:
+            written = os.write(master, data)
+        except BlockingIOError:
+            written = 0
+        self.bytes_relayed += written
+        self.bytes_dropped += len(data) - written
+
+    def close(self):
+        self._stop.set()
+        self._thread.join(2.0)
+        for master, slave, _ in (self._device, self._host):
+            os.close(master)
+            os.close(slave)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()

@@ -1,0 +1,216 @@
+"""The myRIO tactile stream's binary frame: encoder and a resynchronising streaming decoder.
+
+One frame per millisecond carries one piezo sample per finger (the 1 kHz RA signal) and,
+in the millisecond in which a finger's AD7147 finished a 12-stage sequence (every ~9.2 ms,
+~108 Hz, the two chips unsynchronised), that finger's 12 capacitance counts. Little-endian:
+
+    offset size  field
+    0      2     sync 0xA5 0x5A
+    2      1     version (1)
+    3      1     flags: bit0 left counts present, bit1 right counts present, others 0
+    4      2     sequence number u16 (+1 per frame, wraps)
+    6      4     device timestamp u32 [us] of the piezo samples (wraps after 71.6 min)
+    10     2     left piezo i16, charge-amplifier output, LSB = 10 V / 32768
+    12     2     right piezo i16
+    14     24    left counts, 12 x u16 (only if bit0)
+    ..     24    right counts, 12 x u16 (only if bit1)
+    end    4     CRC-32 (zlib.crc32) of every byte from `version` to the last count
+
+18 bytes without counts, 66 with both; on average 1000 x 18 + 2 x 108 x 24 ~ 23 kB/s,
+so the link runs at 921600 baud (25 % load) or is a USB CDC-ACM port. Why 1 ms frames
+rather than 10 ms batches (which would fit 230400 baud): a piezo sample waits at most one
+frame period before it is sent, a lost frame costs 1 ms of signal rather than 10, and
+each CDC sequence has its own frame, whereas 10 ms frames sometimes see two sequences
+complete and would have to merge or drop one. See TACTILE_FRAME.md.
+
+The decoder accepts arbitrary chunks and keeps only what the CRC vouches for: bytes
+outside accepted frames are skipped and counted; a frame with a bad CRC, a corrupt header
+or cut short by the next frame's sync is counted and skipped, and the search resumes one
+byte after its sync; sequence gaps are counted as dropped frames; a repeated or older
+sequence number is discarded (never passed on as new), unless RESTART_RUN of them arrive
+in a row: then the device restarted, and the decoder follows it.
+"""
+
+import dataclasses
+import struct
+import zlib
+
+import numpy as np
+
+SYNC = b"\xa5\x5a"
+VERSION = 1
+FLAG_LEFT_COUNTS = 0x01
+FLAG_RIGHT_COUNTS = 0x02
+_HEADER = struct.Struct("<2sBBHIhh")   # sync, version, flags, sequence, timestamp, piezo x2
+_COUNTS = struct.Struct("<12H")
+_CRC = struct.Struct("<I")
+HEADER_SIZE = _HEADER.size             # 14
+COUNTS_SIZE = _COUNTS.size             # 24
+CRC_SIZE = _CRC.size                   # 4
+MIN_FRAME_SIZE = HEADER_SIZE + CRC_SIZE
+MAX_FRAME_SIZE = MIN_FRAME_SIZE + 2 * COUNTS_SIZE
+TAXELS = 12
+PIEZO_VOLTS_PER_COUNT = 10.0 / 32768.0
+SEQUENCE_MODULUS = 1 << 16
+TIMESTAMP_MODULUS = 1 << 32
+RESTART_RUN = 8
+
+
+@dataclasses.dataclass(frozen=True)
+class TactileFrame:
+    """One decoded frame.
+
+    Attributes:
+        sequence: u16 sequence number.
+        timestamp_us: device timestamp [us], unwrapped by the decoder (u32 as encoded).
+        piezo: (left, right) piezo samples [counts].
+        left_counts, right_counts: 12 AD7147 counts, or None when no new sequence.
+        arrival_time: host `time.monotonic()` [s] of the chunk that completed the frame.
+    """
+    sequence: int
+    timestamp_us: int
+    piezo: tuple[int, int]
+    left_counts: np.ndarray | None = None
+    right_counts: np.ndarray | None = None
+    arrival_time: float = 0.0
+
+    @property
+    def time(self) -> float:
+        """Device timestamp [s]."""
+        return self.timestamp_us * 1e-6
+
+
+def frame_size(flags: int) -> int:
+    """Length [bytes] of a frame with these flags."""
+    return (MIN_FRAME_SIZE + COUNTS_SIZE * bool(flags & FLAG_LEFT_COUNTS)
+            + COUNTS_SIZE * bool(flags & FLAG_RIGHT_COUNTS))
+
+
+def encode_frame(sequence: int, timestamp_us: int, piezo, left_counts=None,
+                 right_counts=None) -> bytes:
+    """The bytes of one frame (sequence and timestamp are wrapped to u16 and u32)."""
+    flags = (FLAG_LEFT_COUNTS if left_counts is not None else 0) | (
+        FLAG_RIGHT_COUNTS if right_counts is not None else 0)
+    body = bytearray(_HEADER.pack(SYNC, VERSION, flags, sequence % SEQUENCE_MODULUS,
+                                  timestamp_us % TIMESTAMP_MODULUS, int(piezo[0]),
+                                  int(piezo[1])))
+    for counts in (left_counts, right_counts):
+        if counts is not None:
+            body += _COUNTS.pack(*(int(c) for c in counts))
+    body += _CRC.pack(zlib.crc32(body[len(SYNC):]))
+    return bytes(body)
+
+
+@dataclasses.dataclass
+class TactileDecoderCounters:
+    """What the decoder accepted and what it threw away."""
+    frames: int = 0           # accepted
+    bad_crc: int = 0          # full-length frame whose CRC failed
+    corrupt_header: int = 0   # sync followed by an unknown version or flags
+    truncated: int = 0        # cut short: another frame's sync inside it
+    dropped_frames: int = 0   # sequence numbers never received
+    repeated: int = 0         # sequence not newer than the last accepted (discarded)
+    restarts: int = 0         # the device restarted its sequence (accepted after a run)
+    skipped_bytes: int = 0    # bytes not part of an accepted frame
+
+    @property
+    def rejected(self) -> int:
+        return self.bad_crc + self.corrupt_header + self.truncated
+
+
+class TactileFrameDecoder:
+    """Streaming decoder (see module docstring). Not thread-safe: one reader owns it."""
+
+    def __init__(self):
+        self._buffer = bytearray()
+        self._last_sequence = None
+        self._last_raw_timestamp = None
+        self._timestamp_wraps = 0
+        self._older_in_a_row = 0
+        self.counters = TactileDecoderCounters()
+
+    def feed(self, data: bytes, arrival_time: float = 0.0) -> list[TactileFrame]:
+        """Adds a chunk; returns the frames it completed, in order."""
+        self._buffer += data
+        frames = []
+        while True:
+            start = self._buffer.find(SYNC)
+            if start < 0:
+                keep = 1 if self._buffer[-1:] == SYNC[:1] else 0
+                self._skip(len(self._buffer) - keep)
+                return frames
+            self._skip(start)
+            if len(self._buffer) < HEADER_SIZE:
+                return frames
+            version, flags = self._buffer[2], self._buffer[3]
+            if version != VERSION or flags & ~(FLAG_LEFT_COUNTS | FLAG_RIGHT_COUNTS):
+                self.counters.corrupt_header += 1
+                self._skip(1)
+                continue
+            size = frame_size(flags)
+            if len(self._buffer) < size:
+                if self._complete_frame_follows(len(self._buffer)):
+                    self.counters.truncated += 1
+                    self._skip(1)
+                    continue
+                return frames
+            body = bytes(self._buffer[:size])
+            if zlib.crc32(body[len(SYNC):-CRC_SIZE]) != _CRC.unpack_from(body, size - CRC_SIZE)[0]:
+                if self._buffer.find(SYNC, 1, min(len(self._buffer), size + 1)) >= 0:
+                    self.counters.truncated += 1
+                else:
+                    self.counters.bad_crc += 1
+                self._skip(1)
+                continue
+            del self._buffer[:size]
+            frame = self._accept(body, flags, arrival_time)
+            if frame is not None:
+                frames.append(frame)
+
+    def _skip(self, count: int):
+        if count > 0:
+            self.counters.skipped_bytes += count
+            del self._buffer[:count]
+
+    def _complete_frame_follows(self, end: int) -> bool:
+        """Whether a CRC-valid frame starts after the first byte and ends before `end`."""
+        position = self._buffer.find(SYNC, 1, end)
+        while position >= 0:
+            if position + HEADER_SIZE <= end:
+                size = frame_size(self._buffer[position + 3])
+                body = self._buffer[position:position + size]
+                if len(body) == size and zlib.crc32(body[len(SYNC):-CRC_SIZE]) == (
+                        _CRC.unpack_from(body, size - CRC_SIZE)[0]):
+                    return True
+            position = self._buffer.find(SYNC, position + 1, end)
+        return False
+
+    def _accept(self, body: bytes, flags: int, arrival_time: float) -> TactileFrame | None:
+        _, _, _, sequence, raw_timestamp, piezo_left, piezo_right = _HEADER.unpack_from(body)
+        if self._last_sequence is not None:
+            gap = (sequence - self._last_sequence) % SEQUENCE_MODULUS
+            if gap == 0 or gap > SEQUENCE_MODULUS // 2:
+                self._older_in_a_row += 1
+                if self._older_in_a_row < RESTART_RUN:
+                    self.counters.repeated += 1
+                    return None
+                self.counters.restarts += 1
+                self._last_raw_timestamp = None
+            else:
+                self.counters.dropped_frames += gap - 1
+        self._older_in_a_row = 0
+        self._last_sequence = sequence
+        if (self._last_raw_timestamp is not None
+                and raw_timestamp < self._last_raw_timestamp - TIMESTAMP_MODULUS // 2):
+            self._timestamp_wraps += 1
+        self._last_raw_timestamp = raw_timestamp
+        counts, offset = [], HEADER_SIZE
+        for flag in (FLAG_LEFT_COUNTS, FLAG_RIGHT_COUNTS):
+            if flags & flag:
+                counts.append(np.array(_COUNTS.unpack_from(body, offset), dtype=float))
+                offset += COUNTS_SIZE
+            else:
+                counts.append(None)
+        self.counters.frames += 1
+        return TactileFrame(sequence, self._timestamp_wraps * TIMESTAMP_MODULUS + raw_timestamp,
+                            (piezo_left, piezo_right), counts[0], counts[1], arrival_time)
