@@ -2,6 +2,7 @@
 
 import dataclasses
 import functools
+import math
 from collections.abc import Iterable, Mapping
 
 import numpy as np
@@ -62,8 +63,9 @@ class EventMatcher(LeafSystem):
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), sampled at
             config.sa_rate_hz (SA) and config.ra_rate_hz (RA).
         expected_event: [index] of the event to check, or -1 for none.
-        scores: the four channels' scores in [-1, 1] (0 when no event is expected, or for a
-            channel whose live window is too flat to carry an event).
+        scores: the four channels' scores in [-1, 1]; 0 when no event is expected, before
+            a full window has been sampled, or for a channel whose live window is too flat
+            to carry an event.
         match: [1.0] when every channel's score exceeds its threshold and the scores are
             for the event now expected, else [0.0]. It depends directly on expected_event,
             so one tick after the expected event changes it cannot report the old event.
@@ -162,7 +164,7 @@ class EventMatcher(LeafSystem):
 
     def _expected_event(self, context) -> int:
         value = self._expected_port.Eval(context)[0]
-        event = int(value) if np.isfinite(value) else None
+        event = int(value) if math.isfinite(value) else None
         if event is None or event != value or not NO_EVENT <= event < len(self._events):
             raise ValueError(
                 f"expected_event {value} is not -1 or an event index 0..{len(self._events) - 1}"
