@@ -1,0 +1,111 @@
+"""Eq. 3 of the paper: the maximum over lags of the normalised cross-correlation.
+
+For a live window x and a memorized window y (same sample rate, N samples each),
+
+    R_XY,normalized(n) = R_XY(n) / sqrt(R_XX(0) R_YY(0)),   R_XY(n) = sum_k x[k+n] y[k],
+
+and a channel's score is the maximum over all lags n = -(N-1)..N-1 (the paper leaves the
+timing free). As in the paper, no mean is removed. The score is scale invariant, so
+normalising either window by its maximum changes nothing, except that an all-zero window
+must be guarded: its score is 0, never NaN.
+
+A flat window carries no event, yet without mean removal it can score high against a
+template that is mostly a plateau (a constant window against a step whose plateau fills a
+fraction f of the window scores sqrt(f): 0.95 for f = 0.9). Holding a steady grip would
+then look like first contact. So a channel's score counts only when its live window has a
+contrast, (max - min) / max|x|, of at least `min_contrast`; otherwise the score is 0. A
+template channel that is itself flat (contrast below `min_contrast`) expects no change, and
+for it the live contrast is not required. A constant window has contrast 0, so it can pass
+only the channels whose template is flat; the matcher refuses events whose four channels
+are all flat, so a constant window never matches.
+
+The straightforward reference here uses numpy.correlate over the full lag range;
+streaming_correlation.py holds the exact per-sample update used in the control loop. Both
+go through `channel_score`.
+"""
+
+import math
+
+import numpy as np
+
+
+def normalize_by_max(window: np.ndarray) -> np.ndarray:
+    """Divide each channel (time along the last axis) by its largest |value|.
+
+    For the non-negative SA and RA signals this is the paper's "normalised by the maximum
+    signal value in the window"; using |value| keeps the sign of a window that noise pushed
+    below zero. An all-zero channel stays zero.
+    """
+    window = np.asarray(window, dtype=float)
+    peak = np.max(np.abs(window), axis=-1, keepdims=True)
+    return np.divide(window, peak, out=np.zeros_like(window), where=peak > 0.0)
+
+
+def contrast(high: float, low: float) -> float:
+    """(high - low) / max(|high|, |low|) of a window with extremes high, low; 0 if all zero."""
+    peak = max(abs(high), abs(low))
+    return (high - low) / peak if peak > 0.0 else 0.0
+
+
+def window_contrast(window: np.ndarray) -> np.ndarray:
+    """`contrast` of each channel of `window` (time along the last axis)."""
+    window = np.atleast_2d(np.asarray(window, dtype=float))
+    return np.array([contrast(high, low)
+                     for high, low in zip(window.max(axis=-1), window.min(axis=-1))])
+
+
+def template_is_flat(templates: np.ndarray, min_contrast: float) -> np.ndarray:
+    """True for each template channel whose contrast is below `min_contrast`."""
+    return window_contrast(templates) < min_contrast
+
+
+def channel_score(peak_correlation: float, live_energy: float, template_norm: float,
+                  live_high: float, live_low: float, template_flat: bool,
+                  min_contrast: float) -> float:
+    """A channel's gated score from its window statistics.
+
+    peak_correlation: max over lags of R_XY(n); live_energy: R_XX(0);
+    template_norm: sqrt(R_YY(0)); live_high, live_low: the live window's extremes.
+    """
+    denominator = math.sqrt(live_energy) * template_norm
+    if not denominator > 0.0:
+        return 0.0
+    if not template_flat and contrast(live_high, live_low) < min_contrast:
+        return 0.0
+    return peak_correlation / denominator
+
+
+def max_normalized_xcorr_reference(live: np.ndarray, template: np.ndarray) -> float:
+    """Maximum over all lags of Eq. 3 for two 1-D windows; 0.0 if either is all zero.
+
+    The ungated score, straight from the definition.
+    """
+    live = np.asarray(live, dtype=float)
+    template = np.asarray(template, dtype=float)
+    denominator = math.sqrt(np.dot(live, live)) * math.sqrt(np.dot(template, template))
+    if not denominator > 0.0:
+        return 0.0
+    return float(np.correlate(live, template, mode="full").max() / denominator)
+
+
+def event_scores_reference(live, templates, min_contrast: float) -> np.ndarray:
+    """Gated Eq. 3 scores of live windows against templates, channel by channel.
+
+    live, templates: sequences of 1-D windows, one per channel (SA and RA windows may differ
+    in length; a channel's live window and its template share a sample rate). Returns one
+    score per channel, in [-1, 1]; all-zero or flat live windows give 0 (module doc).
+    """
+    live = [np.asarray(x, dtype=float) for x in live]
+    templates = [np.asarray(y, dtype=float) for y in templates]
+    if len(live) != len(templates):
+        raise ValueError(f"{len(live)} live windows but {len(templates)} templates")
+    scores = []
+    for x, y in zip(live, templates):
+        scores.append(channel_score(
+            peak_correlation=float(np.correlate(x, y, mode="full").max()),
+            live_energy=float(np.dot(x, x)),
+            template_norm=math.sqrt(np.dot(y, y)),
+            live_high=float(x.max()), live_low=float(x.min()),
+            template_flat=bool(contrast(y.max(), y.min()) < min_contrast),
+            min_contrast=min_contrast))
+    return np.array(scores)

@@ -1,0 +1,113 @@
+"""Cut memorized events out of a recorded ideal grasp (Sec. III-A of the paper).
+
+The record step logs the four channels of an ideal grasp (SA at the SA rate, RA at 1 kHz)
+and the time of each transition's physical event (first contact, grip force reached,
+lift-off, table touch; transitions.py). Around each of those times a window of `window_s`
+is cut from every channel and divided by its maximum.
+
+Window placement: the window starts `pre_transition_s` before the physical event. The
+default, 0.25 s of a 0.5 s window, puts the event in the middle: the memorized event holds
+as much of the state before the event as after it, so it describes the change rather than
+the state (a mostly-plateau window would let a steady grip look like contact; see
+correlation.py). A live window matches best when the event sits at the same place in it,
+that is about window_s - pre_transition_s = 0.25 s after the physical event; the thresholds
+accept a match somewhat earlier. That stays within the 0.5 s a detection may take, with
+half a window of margin for differences between the ideal and the live grasp.
+"""
+
+import dataclasses
+from collections.abc import Mapping
+
+import numpy as np
+
+from tegrasp_drake.events.correlation import normalize_by_max
+from tegrasp_drake.events.memorized_event import MemorizedEvent, current_package_versions
+from tegrasp_drake.events.sampling import samples_per_window
+from tegrasp_drake.events.transitions import transition_order
+
+DEFAULT_WINDOW_S = 0.5
+DEFAULT_PRE_TRANSITION_S = 0.25
+
+
+@dataclasses.dataclass(frozen=True)
+class TactileTrial:
+    """The channels logged during one grasp, and its transitions' physical-event times.
+
+    t_sa (N,) [s], sa (N, 2) [N] for [left, right]; t_ra (M,) [s], ra (M, 2) [m/s^2];
+    transition_times: {transition name: time [s] of its physical event}.
+    Each logged value holds until the next one (zero-order hold).
+    """
+    t_sa: np.ndarray
+    sa: np.ndarray
+    t_ra: np.ndarray
+    ra: np.ndarray
+    transition_times: Mapping[str, float]
+
+    def __post_init__(self):
+        for times_name, values_name in (("t_sa", "sa"), ("t_ra", "ra")):
+            times = np.asarray(getattr(self, times_name), dtype=float)
+            values = np.asarray(getattr(self, values_name), dtype=float)
+            if times.ndim != 1 or len(times) < 2 or np.any(np.diff(times) <= 0.0):
+                raise ValueError(f"{times_name} must be a strictly increasing 1-D array")
+            if values.shape != (len(times), 2):
+                raise ValueError(f"{values_name} has shape {values.shape}; expected "
+                                 f"({len(times)}, 2) for [left, right]")
+            if not (np.all(np.isfinite(times)) and np.all(np.isfinite(values))):
+                raise ValueError(f"{times_name} and {values_name} must be finite")
+            object.__setattr__(self, times_name, times)
+            object.__setattr__(self, values_name, values)
+        object.__setattr__(self, "transition_times", dict(self.transition_times))
+
+
+def cut_window(times: np.ndarray, values: np.ndarray, *, start_s: float, rate_hz: float,
+               length: int, what: str) -> np.ndarray:
+    """Sample a log at start_s + k / rate_hz, k = 0..length-1, holding the latest value.
+
+    times (N,), values (N, channels) -> (channels, length). The window must lie within the
+    log; `what` names it in the error otherwise.
+    """
+    grid = start_s + np.arange(length) / rate_hz
+    tolerance = 1e-6 / rate_hz  # of a sample period: float noise in the time stamps
+    if grid[0] < times[0] - tolerance or grid[-1] > times[-1] + tolerance:
+        raise ValueError(
+            f"{what} needs the log from {grid[0]:.4f} s to {grid[-1]:.4f} s, but the log "
+            f"covers {times[0]:.4f} s to {times[-1]:.4f} s; record a longer trial or move "
+            "the window (pre_transition_s)")
+    indices = np.searchsorted(times, grid + tolerance, side="right") - 1
+    return np.asarray(values)[np.maximum(indices, 0)].T
+
+
+def extract_memorized_events(
+        trial: TactileTrial, *, object_name: str, sa_rate_hz: float, ra_rate_hz: float,
+        window_s: float = DEFAULT_WINDOW_S,
+        pre_transition_s: float = DEFAULT_PRE_TRANSITION_S, scenario: str = "",
+        package_versions: Mapping[str, str] | None = None) -> dict[str, MemorizedEvent]:
+    """One max-normalised MemorizedEvent per transition of `trial`, in grasp order.
+
+    sa_rate_hz, ra_rate_hz: rates [Hz] of the memorized windows (the live rates).
+    Raises ValueError for an unknown transition, a window outside the log, or a channel
+    that is zero throughout its window (Eq. 3 could never match it).
+    """
+    versions = current_package_versions() if package_versions is None else package_versions
+    events = {}
+    for name in sorted(trial.transition_times, key=transition_order):
+        time = float(trial.transition_times[name])
+        start = time - pre_transition_s
+        what = f"transition '{name}' at {time:.4f} s"
+        sa = cut_window(trial.t_sa, trial.sa, start_s=start, rate_hz=sa_rate_hz,
+                        length=samples_per_window(window_s, sa_rate_hz),
+                        what=f"{what} (SA)")
+        ra = cut_window(trial.t_ra, trial.ra, start_s=start, rate_hz=ra_rate_hz,
+                        length=samples_per_window(window_s, ra_rate_hz),
+                        what=f"{what} (RA)")
+        event = MemorizedEvent(
+            object_name=object_name, transition=name, sa=normalize_by_max(sa),
+            ra=normalize_by_max(ra), sa_rate_hz=sa_rate_hz, ra_rate_hz=ra_rate_hz,
+            window_s=window_s, pre_transition_s=pre_transition_s, transition_time_s=time,
+            scenario=scenario, package_versions=versions)
+        zero = event.zero_channels()
+        if zero:
+            raise ValueError(f"{what}: channels {zero} are zero throughout the window; "
+                             "Eq. 3 could never match them")
+        events[name] = event
+    return events

@@ -1,0 +1,162 @@
+"""Eq. 3 scores: the reference, the contrast gate, and the streaming core against both."""
+
+import math
+
+import numpy as np
+import pytest
+
+from tegrasp_drake.events.correlation import (
+    event_scores_reference, max_normalized_xcorr_reference, normalize_by_max,
+    window_contrast)
+from tegrasp_drake.events.sampling import resample_window, samples_per_window
+from tegrasp_drake.events.sliding_window import SlidingWindow, SlidingWindowState
+from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
+
+MIN_CONTRAST = 0.25
+
+
+def contact_step(length=50, onset=25, rise=12):
+    """SA-like window: zero, then a smooth rise to a plateau."""
+    u = np.clip((np.arange(length) - onset) / rise, 0.0, 1.0)
+    return u * u * (3.0 - 2.0 * u)
+
+
+def ring_down(length=500, onset=250, decay=15.0):
+    """RA-like window: a rectified decaying ringing after the onset."""
+    k = np.arange(length) - onset
+    return np.where(k >= 0, np.exp(-np.maximum(k, 0) / decay) * np.abs(np.cos(1.13 * k)), 0.0)
+
+
+def test_normalize_by_max_divides_each_channel_by_its_largest_magnitude():
+    window = np.array([[0.0, 2.0, 4.0], [0.0, -3.0, 1.0]])
+    np.testing.assert_allclose(normalize_by_max(window),
+                               [[0.0, 0.5, 1.0], [0.0, -1.0, 1.0 / 3.0]])
+
+
+def test_normalize_by_max_keeps_an_all_zero_channel_zero():
+    normalized = normalize_by_max(np.array([[0.0, 0.0, 0.0], [1.0, 2.0, 0.0]]))
+    np.testing.assert_array_equal(normalized[0], [0.0, 0.0, 0.0])
+    assert np.all(np.isfinite(normalized))
+
+
+def test_reference_matches_hand_computed_correlations():
+    # R_XY(n) = sum_k x[k+n] y[k]; for [1,2,3] vs [3,2,1] the lags -2..2 give 1, 4, 10, 12, 9.
+    assert max_normalized_xcorr_reference([1.0, 2.0, 3.0], [3.0, 2.0, 1.0]) == (
+        pytest.approx(12.0 / 14.0, abs=1e-15))
+    assert max_normalized_xcorr_reference([1.0, 1.0], [1.0, 0.0]) == (
+        pytest.approx(1.0 / math.sqrt(2.0), abs=1e-15))
+
+
+def test_reference_leaves_the_timing_free():
+    burst = ring_down(onset=100)
+    shifted = ring_down(onset=260)  # 160 samples later; both decay to ~1e-7 in the window
+    assert max_normalized_xcorr_reference(shifted, burst) == pytest.approx(1.0, abs=1e-9)
+
+
+def test_reference_is_scale_invariant():
+    rng = np.random.default_rng(1)
+    live, template = rng.random(80), contact_step(80, 30)
+    assert max_normalized_xcorr_reference(37.0 * live, template) == pytest.approx(
+        max_normalized_xcorr_reference(live, template), abs=1e-14)
+
+
+def test_all_zero_window_scores_zero():
+    assert max_normalized_xcorr_reference(np.zeros(50), contact_step()) == 0.0
+    scores = event_scores_reference([np.zeros(50)], [contact_step()], MIN_CONTRAST)
+    np.testing.assert_array_equal(scores, [0.0])
+
+
+def test_constant_window_scores_zero_although_eq3_alone_rates_it_high():
+    template = contact_step(onset=3)  # a step whose plateau fills most of the window
+    constant = np.full(50, 4.0)
+    assert max_normalized_xcorr_reference(constant, template) > 0.9  # the false-trigger risk
+    np.testing.assert_array_equal(
+        event_scores_reference([constant], [template], MIN_CONTRAST), [0.0])
+
+
+def test_holding_a_noisy_grip_scores_zero_against_a_contact():
+    rng = np.random.default_rng(2)
+    holding = 4.0 + 0.05 * rng.standard_normal(50)  # 4 N grip, 0.05 N sensor noise
+    assert window_contrast(holding)[0] < MIN_CONTRAST
+    np.testing.assert_array_equal(
+        event_scores_reference([holding], [contact_step()], MIN_CONTRAST), [0.0])
+
+
+def test_a_flat_template_channel_accepts_a_flat_live_window():
+    scores = event_scores_reference([np.full(50, 2.0)], [np.ones(50)], MIN_CONTRAST)
+    np.testing.assert_allclose(scores, [1.0], atol=1e-15)
+
+
+def test_noise_floor_scores_low_against_an_impact():
+    rng = np.random.default_rng(3)
+    noise = np.linalg.norm(0.2 * rng.standard_normal((3, 500)), axis=0)  # |a|, 0.2 m/s^2/axis
+    score = event_scores_reference([noise], [ring_down()], MIN_CONTRAST)[0]
+    assert 0.0 < score < 0.5
+
+
+def random_stream(rng, length, n_channels):
+    """Noise with bursts of very different sizes, negative stretches and all-zero gaps."""
+    samples = rng.standard_normal((length, n_channels))
+    samples[::97] *= 1e3
+    samples[300:420] = 0.0
+    samples[700:760] = np.abs(samples[700:760]) * 1e-4
+    samples[900:1000] = 5.0  # constant
+    return samples
+
+
+@pytest.mark.parametrize("n_channels, length, slack", [(2, 50, 10), (2, 500, 100),
+                                                       (4, 120, 7)])
+def test_streaming_core_equals_the_reference(n_channels, length, slack):
+    rng = np.random.default_rng(length)
+    templates = [normalize_by_max(rng.random((n_channels, length)) ** 3),
+                 np.vstack([contact_step(length, length // 2, 5)] * n_channels),
+                 np.vstack([np.ones(length)] + [contact_step(length, 3, 2)] * (n_channels - 1))]
+    correlator = StreamingCorrelator(templates, min_contrast=MIN_CONTRAST, slack=slack)
+    state = correlator.initial_state()
+    largest_error = 0.0
+    for tick, samples in enumerate(random_stream(rng, 1300, n_channels)):
+        event = (tick // 230) % 4 - 1  # cycles NO_EVENT, 0, 1, 2
+        scores = correlator.push(state, samples, event)
+        if tick < length - 1 or event == NO_EVENT:
+            np.testing.assert_array_equal(scores, 0.0)
+            continue
+        window = correlator.window(state)
+        expected = event_scores_reference(window, templates[event], MIN_CONTRAST)
+        largest_error = max(largest_error, np.max(np.abs(scores - expected)))
+        assert correlator.active_event(state) == event
+    assert largest_error <= 1e-9
+
+
+def test_streaming_core_scores_zero_until_the_window_is_full():
+    template = np.vstack([contact_step()] * 2)
+    correlator = StreamingCorrelator([template], min_contrast=MIN_CONTRAST, slack=5)
+    state = correlator.initial_state()
+    for value in template.T[:-1]:
+        np.testing.assert_array_equal(correlator.push(state, value, 0), 0.0)
+    np.testing.assert_allclose(correlator.push(state, template[:, -1], 0), 1.0, atol=1e-12)
+
+
+def test_streaming_core_rejects_an_unknown_event():
+    correlator = StreamingCorrelator([np.ones((2, 10))], min_contrast=MIN_CONTRAST, slack=2)
+    with pytest.raises(ValueError, match="event index 1"):
+        correlator.push(correlator.initial_state(), np.zeros(2), 1)
+
+
+def test_sliding_window_keeps_the_last_samples_oldest_first():
+    layout = SlidingWindowState(SlidingWindow(n_channels=2, length=5, slack=3))
+    state = np.zeros(layout.size)
+    for value in range(1, 38):
+        layout.push(state, [value, -value])
+    np.testing.assert_array_equal(layout.current(state), [[33, 34, 35, 36, 37],
+                                                          [-33, -34, -35, -36, -37]])
+
+
+def test_resampling_holds_values_when_upsampling_and_averages_when_downsampling():
+    np.testing.assert_allclose(resample_window([[1.0, 3.0]], 6), [[1, 1, 1, 3, 3, 3]])
+    np.testing.assert_allclose(resample_window([np.arange(10.0)], 2), [[2.0, 7.0]])
+
+
+def test_samples_per_window_requires_a_whole_number_of_samples():
+    assert samples_per_window(0.5, 100.0) == 50
+    with pytest.raises(ValueError, match="integer"):
+        samples_per_window(0.5, 333.0)
