@@ -14,6 +14,8 @@ COMMAND_MODULES = (
     "tegrasp_drake.commands.demo",
     "tegrasp_drake.commands.benchmark",
     "tegrasp_drake.sweep.command",
+    "tegrasp_drake.commands.record_events",
+    "tegrasp_drake.commands.plot",
 )
 
 

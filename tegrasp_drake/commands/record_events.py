@@ -1,0 +1,59 @@
+"""`tegrasp record-events`: memorize the tactile events of the ideal grasp (Sec. III-A).
+
+For each object, the ideal open-loop grasp is simulated on its built-in scenario, the SA
+(Eq. 1, at the taxel rate) and RA (Eq. 2, at 1 kHz) channels are cut into 0.5 s windows
+around the physical events that mark the transitions (first contact -> reach_load, grip
+force reached -> load_lift, table touch -> place_unload), normalised by their maxima and
+stored in the events folder with an index (format: tegrasp_drake/events/FORMAT.md).
+"""
+
+import numpy as np
+
+from tegrasp_drake import paths
+from tegrasp_drake.objects import BUILTIN_OBJECTS
+
+EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "grip_force_reached",
+                       "place_unload": "table_touch"}
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser("record-events",
+                                   help="simulate the ideal grasp and store memorized events")
+    parser.add_argument("--object", action="append", choices=sorted(BUILTIN_OBJECTS),
+                        help="only this object (repeatable; default: all three)")
+    parser.add_argument("--out", default=None,
+                        help="events folder (default: the package's events/ folder)")
+    parser.set_defaults(func=run)
+
+
+def record_object_events(object_name: str):
+    """Runs the ideal grasp of one built-in object; returns its MemorizedEvents."""
+    from tegrasp_drake.events import TactileTrial, extract_memorized_events
+    from tegrasp_drake.grasp_outcome import physical_events
+    from tegrasp_drake.ideal_grasp import run_ideal_grasp
+    from tegrasp_drake.scenario import load_scenario, scenario_to_yaml
+    from tegrasp_drake.trial_diagram import package_versions
+    scenario = load_scenario(name=object_name)
+    log, _ = run_ideal_grasp(scenario)
+    events = physical_events(log, scenario.grasp.grip_force)
+    missing = [name for name in EVENT_OF_TRANSITION.values() if events[name] is None]
+    if missing:
+        raise RuntimeError(f"the ideal grasp of {object_name} shows no {', '.join(missing)}")
+    sa = np.column_stack([log.taxels[:, :12].sum(axis=1), log.taxels[:, 12:].sum(axis=1)])
+    trial = TactileTrial(t_sa=log.t_sa, sa=sa, t_ra=log.t_ra, ra=log.ra,
+                         transition_times={transition: events[event] for transition, event
+                                           in EVENT_OF_TRANSITION.items()})
+    return extract_memorized_events(
+        trial, object_name=object_name, sa_rate_hz=scenario.tactile.sample_rate_hz,
+        ra_rate_hz=scenario.vibration.sample_rate_hz, scenario=scenario_to_yaml(scenario),
+        package_versions=package_versions())
+
+
+def run(args) -> int:
+    from tegrasp_drake.events import save_memorized_events
+    out = args.out or paths.events_dir()
+    for object_name in args.object or sorted(BUILTIN_OBJECTS):
+        events = record_object_events(object_name)
+        written = save_memorized_events(out, events.values())
+        print(f"{object_name}: {', '.join(events)} -> {len(written)} files in {out}")
+    return 0
