@@ -187,8 +187,12 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
                 f"({', '.join(BUILTIN_OBJECTS)}); for your own object give object.shape "
                 f"({', '.join(OBJECT_SHAPES)}), object.size, object.mass and object.friction")
         builtin = BUILTIN_OBJECTS[config.name]
-        return dataclasses.replace(builtin, size=list(builtin.size), color=list(builtin.color))
-    if config.shape not in OBJECT_SHAPES:
+        # Fields the user set on a built-in object override it (and are checked below).
+        config = dataclasses.replace(
+            builtin, size=list(config.size or builtin.size),
+            mass=config.mass or builtin.mass, friction=config.friction or builtin.friction,
+            color=list(builtin.color))
+    elif config.shape not in OBJECT_SHAPES:
         raise ScenarioError(f"{source}: field 'object.shape': '{config.shape}' is not one of "
                             f"{', '.join(OBJECT_SHAPES)}")
     expected_sizes = {"box": 3, "cylinder": 2, "file": 3}[config.shape]

@@ -26,6 +26,7 @@ def test_override_changes_a_nested_field():
     (["object.shape=box", "object.size=[0.09, 0.09, 0.1]", "object.mass=0.1",
       "object.friction=0.5"], "field 'object.size': the object is 90.0 mm wide"),
     (["object_offset=[0.0, 0.02]"], "field 'object.size'"),
+    (["object.mass=-1"], "field 'object.mass' must be positive"),
     (["object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",
       "object.mass=0.1", "object.friction=0.5"], "model file '/no/such/model.sdf' does not exist"),
     (["plant_config.time_step=fast"], "field 'plant_config'"),
@@ -33,6 +34,11 @@ def test_override_changes_a_nested_field():
 def test_bad_input_names_the_field(overrides, message):
     with pytest.raises(ScenarioError, match=message.replace("[", r"\[").replace("(", r"\(")):
         load_scenario(overrides=overrides)
+
+
+def test_fields_set_on_a_builtin_object_override_it():
+    scenario = load_scenario(overrides=["object.name=box", "object.mass=0.3"])
+    assert scenario.object.mass == 0.3 and scenario.object.size == [0.045, 0.045, 0.110]
 
 
 def test_missing_file_and_scenario_are_named(tmp_path):
