@@ -10,6 +10,7 @@ import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.inverse_kinematics import InverseKinematics
 from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.tree import FixedOffsetFrame
 from pydrake.solvers import Solve
 
 from tegrasp_drake import paths
@@ -34,14 +35,9 @@ def make_arm_control_plant() -> MultibodyPlant:
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
     flange = plant.GetFrameByName("flange", arm)
     X_FG = X_FLANGE_GRIPPER @ RigidTransform([0.0, 0.0, PAD_CENTER_Z])
-    plant.AddFrame(_fixed_frame("grasp_frame", flange, X_FG))
+    plant.AddFrame(FixedOffsetFrame("grasp_frame", flange, X_FG))
     plant.Finalize()
     return plant
-
-
-def _fixed_frame(name, parent, X_PF):
-    from pydrake.multibody.tree import FixedOffsetFrame
-    return FixedOffsetFrame(name, parent, X_PF)
 
 
 def solve_grasp_frame_ik(plant: MultibodyPlant, X_WG: RigidTransform, q_seed=IK_SEED,

@@ -4,7 +4,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 
 from tegrasp_drake.channels import FINGER_NAMES  # noqa: E402
 
@@ -49,6 +48,3 @@ def plot_trial_signals(log, path) -> None:
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
-
-def trial_time_axis_limits(log):
-    return float(np.min(log.t_ra)), float(np.max(log.t_ra))

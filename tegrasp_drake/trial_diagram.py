@@ -7,7 +7,9 @@ Any controller that provides `X_WG_desired` and `gripper_command` output ports (
 import dataclasses
 import importlib.metadata
 
-from pydrake.systems.primitives import LogVectorOutput
+import numpy as np
+
+from pydrake.systems.primitives import Demultiplexer, LogVectorOutput, Multiplexer
 
 from tegrasp_drake.channels import FINGER_NAMES
 from tegrasp_drake.scenario import scenario_to_yaml
@@ -48,12 +50,10 @@ def add_trial_logging(builder, *, scenario, station, channels, arm_desired_state
     the RA rate, the rest every SLOW_LOG_PERIOD)."""
     sa_period = 1.0 / scenario.tactile.sample_rate_hz
     ra_period = 1.0 / scenario.vibration.sample_rate_hz
-    from pydrake.systems.primitives import Multiplexer
     taxel_mux = builder.AddNamedSystem("taxel_log_mux", Multiplexer([12, 12]))
     builder.Connect(station.GetOutputPort("tactile.left_taxel_forces"), taxel_mux.get_input_port(0))
     builder.Connect(station.GetOutputPort("tactile.right_taxel_forces"),
                     taxel_mux.get_input_port(1))
-    from pydrake.systems.primitives import Demultiplexer
     q_desired = builder.AddNamedSystem("arm_desired_demux", Demultiplexer([6, 6]))
     builder.Connect(arm_desired_state, q_desired.get_input_port())
     return TrialLoggers(
@@ -87,8 +87,6 @@ def package_versions() -> dict:
 
 def collect_trial_log(loggers: TrialLoggers, context, *, scenario, meta: dict) -> TrialLog:
     """Reads the loggers into a TrialLog."""
-    import numpy as np
-
     def log(logger):
         return logger.FindLog(context)
 
