@@ -16,7 +16,8 @@ from pydrake.systems.framework import DiagramBuilder
 from tegrasp_drake.control.grasp_controller import add_grasp_controller
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
-from tegrasp_drake.grasp_outcome import CONTACT_FORCE_N, GRIP_FRACTION, judge_grasp
+from tegrasp_drake.grasp_outcome import (CONTACT_FORCE_N, GRIP_FRACTION, TOUCH_HEIGHT_M,
+                                         judge_grasp, lowest_point_heights)
 from tegrasp_drake.station import MakeGraspStation
 from tegrasp_drake.trial_diagram import add_trial_logging, collect_trial_log
 
@@ -64,12 +65,14 @@ def _first_after(times, mask, after: float):
     return float(times[index[0]]) if index.size else None
 
 
-def physical_event_times(log, transitions: list[dict], grip_force: float) -> dict:
+def physical_event_times(log, transitions: list[dict], grip_force: float,
+                         object_config=None) -> dict:
     """The physical event that marks each event transition actually taken, looked for after
     the mode was entered: first contact (Reach-Load), grip force reached (Load-Lift), table
     touch after lift-off (Place-Unload)."""
     sa = _true_sa(log)
-    z = log.object_state[:, 6] - log.object_state[0, 6]
+    low = lowest_point_heights(log.object_state, object_config)
+    low = low - low[0]
     events = {}
     entered = {"Reach": 0.0}
     for entry in transitions:
@@ -82,7 +85,7 @@ def physical_event_times(log, transitions: list[dict], grip_force: float) -> dic
             events[name] = _first_after(log.t_sa, sa.min(axis=1) >= GRIP_FRACTION * grip_force,
                                         entered["Reach"])
         elif name == "place_unload":
-            events[name] = _first_after(log.t_slow, z < 0.0005, since)
+            events[name] = _first_after(log.t_slow, low < TOUCH_HEIGHT_M, since)
         entered[entry["to"]] = entry["t"]
     return events
 
@@ -101,7 +104,7 @@ def judge_trial(log, transitions: list[dict], scenario) -> dict:
                           and outcome.final_tilt_deg < UPRIGHT_TILT_DEG and outcome.released
                           and resting)
     grip_force = scenario.grasp.grip_force
-    physical = physical_event_times(log, transitions, grip_force)
+    physical = physical_event_times(log, transitions, grip_force, scenario.object)
     latency, false_triggers = {}, 0
     for entry in transitions:
         name = EVENT_TRANSITIONS.get((entry["from"], entry["to"]))

@@ -67,8 +67,19 @@ class GraspController:
 def load_controller_events(scenario, events_dir=None) -> dict:
     """The memorized events of the scenario's object; MemorizedEventError (naming the file
     and the record-events command) when they are missing."""
-    from tegrasp_drake.events import load_memorized_events
-    return load_memorized_events(events_dir or paths.events_dir(), scenario.object.name)
+    from tegrasp_drake.events import MemorizedEventError, load_memorized_events
+    from tegrasp_drake.objects import BUILTIN_OBJECTS
+    try:
+        return load_memorized_events(events_dir or paths.events_dir(), scenario.object.name)
+    except MemorizedEventError as e:
+        if scenario.object.name in BUILTIN_OBJECTS:
+            raise
+        error = MemorizedEventError(e.path, "no memorized events")
+        error.args = (f"{e.path}: no memorized events of your object '{scenario.object.name}'."
+                      " Record them from the scenario that describes it: `tegrasp "
+                      "record-events --scenario FILE --scenario-name NAME` (or run "
+                      "`--controller heuristic`).",)
+        raise error from None
 
 
 def _add_detector(builder, scenario, name, events):

@@ -83,6 +83,7 @@ class MachineState:
     reentry_offset: float = 0.0  # Re-Reach shift along world y [m]
     sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
     acceleration_sum: tuple = (0.0, 0.0, 0.0)  # Avoid sensing: pads' world acceleration sum
+    sa_gain_sum: tuple = (0.0, 0.0)  # Avoid sensing: SA gains over sa_before, summed
     timeline: tuple = ()
     failure: str = ""
 
@@ -295,9 +296,13 @@ class GraspStateMachine(LeafSystem):
         if self._pad_acceleration.HasValue(context):
             total = total + pad_accelerations_in_world(
                 self._pad_acceleration.Eval(context)).sum(axis=0)
+        # The push shows in SA for a few samples and then rings: sum it over the sensing.
+        gain = np.asarray(s.sa_gain_sum) + (self._channels.Eval(context)[:2]
+                                            - np.asarray(s.sa_before))
         if t - s.mode_start < config.avoid_sense_s:
-            return dataclasses.replace(s, acceleration_sum=tuple(total))
-        delta_sa = self._channels.Eval(context)[:2] - np.asarray(s.sa_before)
+            return dataclasses.replace(s, acceleration_sum=tuple(total), sa_gain_sum=tuple(gain))
+        ticks = max(1, round(config.avoid_sense_s / config.update_period_s))
+        delta_sa = gain / ticks  # mean SA gain over the sensing time
         direction = avoid_direction(delta_sa, total, config.avoid_sa_asymmetry_n)
         here = s.segment.position(t)
         entry = dict(s.timeline[-1], direction=[round(float(x), 3) for x in direction],
@@ -348,7 +353,9 @@ class GraspStateMachine(LeafSystem):
         return observation, dataclasses.replace(
             s, one_sided_since=one_sided_since, slip_since=slip_since,
             motion_done_since=motion_done_since,
-            sa_before=tuple(channels[:2]) if s.mode == Mode.HOLD else s.sa_before)
+            # The baseline is the last Hold tick before the hit (not the hit's own tick).
+            sa_before=(tuple(channels[:2]) if s.mode == Mode.HOLD and not observation.hit
+                       else s.sa_before))
 
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
         """Log the transition and start the new mode's motion."""
@@ -388,7 +395,7 @@ class GraspStateMachine(LeafSystem):
             remaining = max(target[2] - here[2], 0.0) / p.lift_height
             return new(segment=Segment(t, p.lift_s * max(remaining, 0.2), tuple(here), target))
         if mode == Mode.AVOID:  # stop, sense the hit's direction, then move (_sense_hit)
-            return new(stage="sensing", acceleration_sum=(0.0, 0.0, 0.0))
+            return new(stage="sensing", acceleration_sum=(0.0, 0.0, 0.0), sa_gain_sum=(0.0, 0.0))
         if mode == Mode.PLACE:
             target = (here[0], here[1], p.grasp_height - p.place_press)
             return new(segment=Segment(t, p.place_s, tuple(here), target))
