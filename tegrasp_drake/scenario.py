@@ -81,6 +81,9 @@ class ArmDriverConfig:
     initial_gripper_xyz: list[float] = dataclasses.field(
         default_factory=lambda: [0.69, 0.0, 0.145])  # m, grasp frame in world at t = 0;
     # 3 cm behind and 9 cm above the grasp: further back, the Jaco nears its wrist singularity
+    # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state;
+    # the Jaco's own velocity interface runs at 100 Hz.
+    control_period_s: float = 0.005
 
 
 @dataclasses.dataclass
