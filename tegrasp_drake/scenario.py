@@ -40,7 +40,6 @@ class TactileSensorConfig:
     noise_std_n: float = 0.005  # per taxel, Gaussian
     quantization_n: float = 0.001  # per taxel LSB; 0 disables
     offset_n: float = 0.0  # per taxel constant bias
-    face_subdivisions: int = 3  # each contact face's triangles are cut into n^2 pieces
 
 
 @dataclasses.dataclass
