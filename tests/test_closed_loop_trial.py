@@ -47,15 +47,22 @@ def test_misplaced_along_the_stroke_re_reaches_and_succeeds(offset_y):
         assert trigger_of(result, step) == "memorized_event"
 
 
-def test_a_hit_in_hold_is_avoided_without_dropping_the_object():
+def test_a_hit_in_hold_is_avoided_without_dropping_the_object(tmp_path):
     hit_time = 7.0
-    result = run_trial(load_scenario(overrides=[f"disturbance.hit_time_s={hit_time}"])).result
+    trial = run_trial(load_scenario(overrides=[f"disturbance.hit_time_s={hit_time}"]))
+    result = trial.result
     avoid = next(e for e in result["transitions"] if e["to"] == "Avoid")
     assert avoid["from"] == "Hold" and avoid["trigger"] == "threshold"
     assert 0.0 <= avoid["t"] - hit_time <= 0.1
     assert avoid["direction"] == [0.0, 1.0, 0.0]  # the hit pushed along +y
     assert ("Avoid", "Hold") in steps(result)
     assert result["hold_success"] and result["unload_success"]
+    # Fig. 9 and Fig. 10 from the saved log, through the command.
+    log = trial.log.save(tmp_path / "trial.npz")
+    for what in ("trial", "avoid"):
+        figure = tmp_path / f"{what}.png"
+        assert main(["plot", what, str(log), "--out", str(figure)]) == 0
+        assert figure.stat().st_size > 10_000
 
 
 def test_a_slippery_object_needs_lift_load():
