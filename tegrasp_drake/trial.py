@@ -160,6 +160,9 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialRes
               "sim_time_s": sim_time, "wall_time_s": wall,
               "real_time_factor": sim_time / wall if wall > 0 else None}
     log.meta["result"] = result
+    # For the Fig. 5a-b plot (figures.py): when each state began, and the physical events.
+    log.meta["phase_starts"] = {e["to"]: e["t"] for e in reversed(transitions)}
+    log.meta["events"] = result["physical_events"]
     return TrialResult(result, log)
 
 

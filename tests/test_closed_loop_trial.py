@@ -31,7 +31,8 @@ def test_tegrasp_trial_json_at_the_expected_position(tmp_path, capsys):
     assert result["corrective_actions"] == [] and result["false_triggers"] == 0
     for name, latency in result["detection_latency_s"].items():
         assert 0.0 <= latency <= 0.5, name
-    assert (tmp_path / "trial.npz").is_file() and (tmp_path / "states.png").is_file()
+    for name in ("trial.npz", "states.png", "signals.png"):
+        assert (tmp_path / name).is_file()
 
 
 @pytest.mark.parametrize("offset_y", [0.015, -0.015])
@@ -79,3 +80,12 @@ def test_a_slippery_object_needs_lift_load():
 def test_memorized_controller_without_events_names_the_command():
     with pytest.raises(MemorizedEventError, match="tegrasp record-events --scenario"):
         run_trial(load_scenario(name="custom_can"))
+
+
+def test_demo_keeps_the_ideal_open_loop_grasp_as_an_option(tmp_path, capsys):
+    assert main(["demo", "--controller", "open_loop", "--json", "--out", str(tmp_path)]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["controller"] == "open_loop"
+    assert result["hold_success"] and result["unload_success"]
+    assert {e["trigger"] for e in result["transitions"]} == {"timer"}
+    assert (tmp_path / "signals.png").is_file()
