@@ -16,6 +16,8 @@ Simulator at real-time rate 1 until the state machine is done or failed. On the 
 import dataclasses
 import json
 import pathlib
+import sys
+import threading
 import time
 
 import lcm
@@ -33,30 +35,56 @@ from tegrasp_drake.scenario import scenario_to_yaml
 from tegrasp_drake.trial_diagram import package_versions
 
 AFTER_FAULT_S = 0.5      # [s] the run goes on this long after the first fault
+# The device threads (tactile reader, Modbus client) need the GIL within a few
+# milliseconds while the 1 kHz loop holds it most of the time: ask for it sooner than
+# Python's default 5 ms.
+THREAD_SWITCH_INTERVAL_S = 0.0005
 REPORT_PERIOD_S = 0.002  # [s] of Context time between looks at transitions and faults
 
 
 class BusLogWriter:
-    """Writes every message the DrakeLcm receives to an LCM log file (lcm-logger's format;
-    event timestamps are wall-clock microseconds, as lcm-logger writes them). The writing
-    happens when the diagram's LcmInterfaceSystem pumps the subscriptions."""
+    """lcm-logger in a thread: every message on the bus at `url` goes to an LCM log file
+    (event timestamps are wall-clock microseconds of reception, as lcm-logger writes
+    them). It has its own LCM instance, as lcm-logger does: DrakeLcm's all-channel
+    subscription drops messages when it is pumped in step with its own publications.
+    A memq:// bus lives inside one LCM instance, so there `drake_lcm` is subscribed."""
 
-    def __init__(self, drake_lcm, path):
+    def __init__(self, url: str, path, *, drake_lcm=None):
         self.path = pathlib.Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._log = lcm.EventLog(str(self.path), "w", overwrite=True)
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
         self.messages = 0
-        drake_lcm.SubscribeAllChannels(self._write)
+        self._thread = None
+        if url.startswith("memq"):
+            drake_lcm.SubscribeAllChannels(self._write)
+            return
+        self._bus = lcm.LCM(url)
+        self._bus.subscribe(".*", self._write)
+        self._thread = threading.Thread(target=self._run, name="bus log", daemon=True)
+        self._thread.start()
+
+    def _run(self):
+        while not self._stop.is_set():
+            self._bus.handle_timeout(20)
 
     def _write(self, channel: str, data: bytes):
-        if self._log is not None:
-            self._log.write_event(int(time.time() * 1e6), channel, data)
-            self.messages += 1
+        with self._lock:
+            if self._log is not None:
+                self._log.write_event(int(time.time() * 1e6), channel, data)
+                self.messages += 1
 
-    def close(self):
-        if self._log is not None:
-            self._log.close()
-            self._log = None
+    def close(self, linger: float = 0.05):
+        """Stops after `linger` [s] more of the bus (the last messages in flight)."""
+        if self._thread is not None:
+            self._stop.wait(linger)
+            self._stop.set()
+            self._thread.join(1.0)
+        with self._lock:
+            if self._log is not None:
+                self._log.close()
+                self._log = None
 
 
 def fault_message(fault, now: float) -> lcmt_tegrasp_fault:
@@ -163,11 +191,23 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
     if not isinstance(config, HardwareStationConfig):
         raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "
                          f"station is {type(config).__name__})")
+    switch_interval = sys.getswitchinterval()
+    sys.setswitchinterval(THREAD_SWITCH_INTERVAL_S)
+    try:
+        return _run(scenario, config, controller, events, events_dir, log_path, duration,
+                    drake_lcm, out)
+    finally:
+        sys.setswitchinterval(switch_interval)
+
+
+def _run(scenario, config, controller, events, events_dir, log_path, duration, drake_lcm,
+         out) -> HardwareRunResult:
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
         parts, builder = build_grasp_diagram(scenario, station=station, controller=controller,
                                              events=events)
         diagram = builder.Build()
-        writer = BusLogWriter(station.lcm, log_path) if log_path else None
+        writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path, drake_lcm=station.lcm)
+                  if log_path else None)
         try:
             station.lcm.Publish(RUN_INFO_CHANNEL, run_info_message(
                 scenario, config, controller, events_dir).encode())
@@ -176,7 +216,6 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
             station.wait_until_ready()
             simulator = Simulator(diagram)
             simulator.set_target_realtime_rate(1.0)
-            simulator.set_publish_every_time_step(False)
             reporter = RunReporter(diagram=diagram, station=parts.station, grasp=parts.grasp,
                                    drake_lcm=station.lcm, out=out)
             simulator.set_monitor(reporter)
@@ -185,7 +224,6 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
             start = time.monotonic()
             simulator.AdvanceTo(duration if duration is not None else parts.duration)
             wall = time.monotonic() - start
-            station.lcm.HandleSubscriptions(0)  # the last messages into the log
         finally:
             if writer is not None:
                 writer.close()

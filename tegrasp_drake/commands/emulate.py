@@ -7,9 +7,11 @@
   with the scenario's object between its fingers (drivers/robotiq_emulator.py).
 - myrio: the myRIO tactile stream (drivers/TACTILE_FRAME.md) on a pseudo-terminal,
   replaying a recorded trial (a TrialLog .npz: `tegrasp demo --out DIR` writes one) at its
-  real rate, then holding its last values. With --start-on-arm-command it streams quiet
-  pads until the first KINOVA_JACO_COMMAND, so the replay lines up with the controller.
-- all: the three in one process; the replay starts on the arm's first command.
+  real rate, then holding its last values. With --sync start it streams quiet pads until
+  the first KINOVA_JACO_COMMAND, so the replay starts with the controller; with --sync
+  follow it also follows the controller's clock (the commands' utime, ControllerClock),
+  so the replay stays in step with a controller that runs behind real time.
+- all: the three in one process, with --sync follow by default.
 
 Each prints where it listens, `--write-config FILE` writes the hardware config that
 points `tegrasp hardware --config FILE` at them, and the line "ready" when they are up.
@@ -21,7 +23,8 @@ import threading
 
 import numpy as np
 
-from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
+                                                   scenario_from_arguments)
 from tegrasp_drake.hardware_config import DEFAULT_LCM_URL
 
 DEVICES = ("jaco", "robotiq", "myrio", "all")
@@ -37,9 +40,10 @@ def register(subparsers) -> None:
                         help="the arm's LCM bus (default: %(default)s)")
     parser.add_argument("--trial", metavar="NPZ",
                         help="myrio/all: the recorded trial to replay (a TrialLog .npz)")
-    parser.add_argument("--start-on-arm-command", action="store_true",
-                        help="myrio: start the replay on the first KINOVA_JACO_COMMAND on "
-                        "--lcm-url (always on with `all`)")
+    parser.add_argument("--sync", choices=("none", "start", "follow"), default=None,
+                        help="myrio: replay at once (none), from the first "
+                        "KINOVA_JACO_COMMAND on --lcm-url (start), or on the commands' "
+                        "clock (follow; the default with `all`, else none)")
     parser.add_argument("--inject-fault", metavar="CODE@SECONDS",
                         help="robotiq/all: set gFLT to CODE (e.g. 0x0E) SECONDS after the "
                         "gripper's activation completes")
@@ -114,33 +118,29 @@ def start_robotiq(emulators, scenario, inject_fault, out):
     return emulator
 
 
-def start_myrio(emulators, trial_path, start_on_trigger, out):
+def start_myrio(emulators, trial_path, sync, out):
+    """The myRIO emulator; with sync start/follow, its ControllerClock (feed it commands)."""
+    from tegrasp_drake.drivers.controller_clock import ControllerClock
     from tegrasp_drake.drivers.myrio_emulator import MyRioEmulator, MyRioEmulatorConfig
     trial = load_tactile_trial(trial_path)
+    clock = ControllerClock() if sync in ("start", "follow") else None
     emulator = MyRioEmulator(trial, MyRioEmulatorConfig(
-        start_on_trigger=start_on_trigger, hold_at_end=True)).start()
+        start_on_trigger=clock is not None, hold_at_end=True),
+        trial_clock=clock if sync == "follow" else None).start()
     emulators.add_closer(emulator.stop)
     emulators.config_fields["tactile"] = {"port": emulator.port}
-    when = ("when the arm's first command arrives" if start_on_trigger else "now")
+    if clock is not None:
+        def start_on_first_command():
+            while not clock.started.wait(0.2):
+                if emulators.stop.is_set():
+                    return
+            emulator.start_trial()
+        threading.Thread(target=start_on_first_command, daemon=True).start()
+    when = {"none": "now", "start": "from the arm's first command",
+            "follow": "on the arm commands' clock"}[sync]
     out(f"myrio: tactile stream (1 kHz frames) on {emulator.port}, replaying {trial_path} "
         f"({trial.duration:.2f} s) {when}, then holding its last values")
-    return emulator
-
-
-def _start_replay_on_lcm_command(emulators, lcm_url, emulator):
-    """A thread that starts the replay on the first KINOVA_JACO_COMMAND on `lcm_url`."""
-    import lcm
-
-    from tegrasp_drake.drivers.jaco_lcm import JACO_COMMAND_CHANNEL
-    bus = lcm.LCM(lcm_url)
-    heard = threading.Event()
-    bus.subscribe(JACO_COMMAND_CHANNEL, lambda channel, data: heard.set())
-
-    def wait():
-        while not heard.is_set() and not emulators.stop.is_set():
-            bus.handle_timeout(20)
-        emulator.start_trial()
-    threading.Thread(target=wait, daemon=True).start()
+    return emulator, clock
 
 
 def make_jaco(scenario, lcm_url, out):
@@ -182,6 +182,7 @@ def write_config(path, fields: dict, lcm_url: str, out):
 
 
 def run(args) -> int:
+    quiet_modbus_library()
     def out(line):
         print(line, flush=True)
 
@@ -199,13 +200,17 @@ def run(args) -> int:
         if args.device in ("robotiq", "all"):
             start_robotiq(emulators, scenario, args.inject_fault, out)
         if args.device in ("myrio", "all"):
-            on_command = args.device == "all" or args.start_on_arm_command
-            myrio = start_myrio(emulators, args.trial, on_command, out)
-            if args.device == "all":
+            sync = args.sync or ("follow" if args.device == "all" else "none")
+            _, clock = start_myrio(emulators, args.trial, sync, out)
+            if clock is not None and jaco is not None:
+                from drake import lcmt_jaco_command
+
                 from tegrasp_drake.drivers.jaco_lcm import JACO_COMMAND_CHANNEL
-                jaco[0].Subscribe(JACO_COMMAND_CHANNEL, lambda data: myrio.start_trial())
-            elif on_command:
-                _start_replay_on_lcm_command(emulators, args.lcm_url, myrio)
+                jaco[0].Subscribe(JACO_COMMAND_CHANNEL, lambda data: clock.on_command(
+                    lcmt_jaco_command.decode(data).utime))
+            elif clock is not None:
+                from tegrasp_drake.drivers.controller_clock import follow_jaco_commands
+                follow_jaco_commands(args.lcm_url, clock, emulators.stop)
         write_config(args.write_config, emulators.config_fields, args.lcm_url, out)
         out("ready")
         if jaco is not None:

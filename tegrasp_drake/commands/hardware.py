@@ -10,7 +10,8 @@ fault or a Failed state machine, 1 when a device did not come up.
 
 import datetime
 
-from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
+                                                   scenario_from_arguments)
 from tegrasp_drake.grasp_diagram import DEFAULT_CONTROLLER
 
 
@@ -32,6 +33,7 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    quiet_modbus_library()
     from tegrasp_drake import paths
     from tegrasp_drake.hardware_config import load_hardware_config
     from tegrasp_drake.hardware_run import run_on_hardware

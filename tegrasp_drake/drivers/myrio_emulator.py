@@ -14,7 +14,12 @@ A quiet `lead_in` (no contact, no vibration) precedes the trial so the receiver 
 With `start_on_trigger`, the quiet stream goes on until `start_trial()` (e.g. on the arm's
 first command, so that a replayed trial lines up with the controller's clock); with
 `hold_at_end`, the last values keep streaming after the trial until `stop()`, as a real
-device keeps streaming.
+device keeps streaming. By default the trial is replayed on the stream's own clock (frame
+k after the start carries trial time k x frame_period); given a `trial_clock` (a callable
+returning the trial time [s], e.g. a ControllerClock following the controller's commands),
+each frame carries the trial at that clock's time instead, so that a controller that
+falls behind real time still sees the trial in step with its own clock. Frames are sent
+at the real rate either way.
 
 Faults, each per frame with a given probability, from a seeded generator: a flipped bit,
 a dropped byte, a frame cut short. `stop_talking()` silences it (to trip a watchdog);
@@ -138,6 +143,11 @@ class TactileFrameSource:
             trial_start_frame = self.lead_in_frames
         # trial time of this frame
         t = -1.0 if trial_start_frame is None else (k - trial_start_frame) * c.frame_period
+        return self.frame_at(k, t)
+
+    def frame_at(self, k: int, t: float) -> bytes:
+        """Frame k of the stream carrying the trial at time t [s] (t < 0: quiet)."""
+        c = self._config
         piezo, counts = [], []
         for i, pad in enumerate(c.calibration.pads()):
             acceleration = held_sample(self._trial.acceleration_times, self._film[i], t) \
@@ -175,8 +185,10 @@ class MyRioEmulatorCounters:
 class MyRioEmulator:
     """Streams a trial on a pseudo-terminal; the reader opens `port`. Use with `with`."""
 
-    def __init__(self, trial: TactileTrial, config: MyRioEmulatorConfig | None = None):
+    def __init__(self, trial: TactileTrial, config: MyRioEmulatorConfig | None = None, *,
+                 trial_clock=None):
         self._config = dataclasses.replace(config or MyRioEmulatorConfig())
+        self._trial_clock = trial_clock
         self._source = TactileFrameSource(trial, self._config)
         self._rng = np.random.default_rng(self._config.faults.seed)
         self._master, self._slave, self._port = open_raw_pty()
@@ -249,6 +261,11 @@ class MyRioEmulator:
         with self._lock:
             return list(self._sent)
 
+    def _trial_over(self, k: int, trial_start: int) -> bool:
+        if self._trial_clock is not None:
+            return self._trial_clock() > self._source.trial_frames * self._config.frame_period
+        return k >= trial_start + self._source.trial_frames
+
     def _run(self):
         period = self._config.frame_period
         start = time.monotonic()
@@ -261,8 +278,7 @@ class MyRioEmulator:
                 if self._trial_start_time is None:
                     with self._lock:
                         self._trial_start_time = start + trial_start * period
-                if (not self._config.hold_at_end
-                        and k >= trial_start + self._source.trial_frames):
+                if not self._config.hold_at_end and self._trial_over(k, trial_start):
                     break
             delay = start + k * period - time.monotonic()
             if delay > 0:
@@ -271,7 +287,10 @@ class MyRioEmulator:
                 self._talking.wait(0.05)
                 k = int((time.monotonic() - start) / period)  # silent frames are not sent
                 continue
-            frame = self._source.frame(k, trial_start)
+            if self._trial_clock is not None and trial_start is not None:
+                frame = self._source.frame_at(k, self._trial_clock())
+            else:
+                frame = self._source.frame(k, trial_start)
             data, injected = inject_faults(frame, self._config.faults, self._rng)
             try:
                 written = os.write(self._master, data)

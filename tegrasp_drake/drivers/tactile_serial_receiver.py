@@ -39,6 +39,11 @@ class TactileReceiverState:
     zeroing: tuple = (PadZeroing(), PadZeroing())
     zeroed: bool = False
 
+    def __deepcopy__(self, memo):
+        # Immutable (replaced, never changed in place): the copies Drake makes of the
+        # Context's abstract state at every 1 kHz update can share it.
+        return self
+
 
 def initial_receiver_state(calibration: TactileCalibration) -> TactileReceiverState:
     return TactileReceiverState(pads=calibration.pads(),

@@ -35,6 +35,9 @@ class DeviceActivity:
     since_wall_time: float = 0.0
     fault: DeviceFault | None = None
 
+    def __deepcopy__(self, memo):
+        return self  # immutable: Drake's copies of the Context's state can share it
+
 
 def next_activity(activity: DeviceActivity, value: float, *, device: str, timeout: float,
                   startup_grace: float, sim_time: float, wall_time: float) -> DeviceActivity:
