@@ -64,7 +64,7 @@ class RunLog:
     """What a hardware run's LCM log holds (module docstring)."""
     path: pathlib.Path
     run_info: lcmt_tegrasp_run_info | None
-    tactile: dict           # device_log_messages.tactile_arrays
+    tactile: dict           # device_log_messages.tactile_arrays, and wall_us: reception
     transitions: list       # [{t, from, to, trigger}]
     faults: list            # lcmt_tegrasp_fault
     gripper: list           # lcmt_tegrasp_gripper
@@ -105,10 +105,11 @@ def read_run_log(path) -> RunLog:
         log.close()
     except (OSError, ValueError, IOError) as e:
         raise RunLogError(f"run log '{path}' is not a readable LCM log: {e}") from None
-    tactile = [message for _, message in decoded[TACTILE_CHANNEL]]
+    tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
+    tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     info = decoded[RUN_INFO_CHANNEL]
     return RunLog(
-        path=path, run_info=info[0][1] if info else None, tactile=tactile_arrays(tactile),
+        path=path, run_info=info[0][1] if info else None, tactile=tactile,
         transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
                       "trigger": m.trigger} for _, m in decoded[TRANSITION_CHANNEL]],
         faults=[m for _, m in decoded[FAULT_CHANNEL]],

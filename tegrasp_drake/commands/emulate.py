@@ -150,9 +150,8 @@ def make_jaco(scenario, lcm_url, out):
     from tegrasp_drake.drivers.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
     from tegrasp_drake.station import initial_arm_positions
     drake_lcm = DrakeLcm(lcm_url)
-    diagram = MakeJacoArmEmulator(lcm=drake_lcm, initial_positions=initial_arm_positions(
-        scenario), position_gain=scenario.arm.position_gain,
-        damping_gain=scenario.arm.damping_gain)
+    diagram = MakeJacoArmEmulator(lcm=drake_lcm,
+                                  initial_positions=initial_arm_positions(scenario))
     out(f"jaco: JACO2 simulation on {lcm_url}: executes {JACO_COMMAND_CHANNEL}, answers "
         f"{JACO_STATUS_CHANNEL} at 100 Hz")
     return drake_lcm, diagram
