@@ -12,6 +12,7 @@ import sys
 # when the command line is built, so a missing optional extra breaks only its own command.
 COMMAND_MODULES = (
     "tegrasp_drake.commands.demo",
+    "tegrasp_drake.commands.trial",
     "tegrasp_drake.commands.benchmark",
     "tegrasp_drake.sweep.command",
     "tegrasp_drake.commands.record_events",

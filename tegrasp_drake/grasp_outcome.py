@@ -4,8 +4,9 @@ the times of the physical events that mark the transitions.
 Physical events (from noise-free simulation truth):
   first_contact        first time either pad's true normal force exceeds CONTACT_FORCE_N
   grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip force
-  table_touch          first time after lift-off that the object is back within
-                       TOUCH_HEIGHT_M of its resting height
+  table_touch          first time after lift-off that the object's lowest point is back
+                       within TOUCH_HEIGHT_M of the table (a tilted object touches with an
+                       edge while its origin is still higher)
 """
 
 import dataclasses
@@ -41,6 +42,29 @@ def tilt_deg(object_state_row: np.ndarray) -> float:
     return float(np.degrees(np.arccos(np.clip(R.matrix()[2, 2], -1.0, 1.0))))
 
 
+def lowest_point_heights(object_state: np.ndarray, object_config=None) -> np.ndarray:
+    """Height [m] of the object's lowest point at each logged state (N, 13), for a box or
+    cylinder whose origin is the centre of its base; the origin's height otherwise."""
+    z = object_state[:, 6].copy()
+    if object_config is None or object_config.shape not in ("box", "cylinder"):
+        return z
+    lowest = np.empty_like(z)
+    for k, row in enumerate(object_state):
+        q = row[:4] / np.linalg.norm(row[:4])
+        R = RotationMatrix(Quaternion(q)).matrix()
+        if object_config.shape == "box":
+            sx, sy, sz = object_config.size
+            corners = np.array([[x, y, h] for x in (-sx / 2, sx / 2) for y in (-sy / 2, sy / 2)
+                                for h in (0.0, sz)])
+            lowest[k] = z[k] + (corners @ R.T)[:, 2].min()
+        else:
+            radius, height = object_config.size[0] / 2, object_config.size[1]
+            axis_z = R[2, 2]  # the world z of the cylinder's axis
+            rim = radius * np.sqrt(max(0.0, 1.0 - axis_z ** 2))
+            lowest[k] = z[k] + min(0.0, height * axis_z) - rim
+    return lowest
+
+
 def _first(times: np.ndarray, mask: np.ndarray):
     index = np.flatnonzero(mask)
     return float(times[index[0]]) if index.size else None
@@ -59,12 +83,13 @@ def longest_run_s(times: np.ndarray, mask: np.ndarray) -> float:
     return float(best)
 
 
-def physical_events(log, grip_force: float) -> dict:
+def physical_events(log, grip_force: float, object_config=None) -> dict:
     true_sa = np.column_stack([log.true_taxels[:, :12].sum(axis=1),
                                log.true_taxels[:, 12:].sum(axis=1)])
     z = log.object_state[:, 6]
-    z_rest = z[0]
-    lifted = z - z_rest > LIFTED_HEIGHT_M
+    lifted = z - z[0] > LIFTED_HEIGHT_M
+    low = lowest_point_heights(log.object_state, object_config)
+    low_rest = low[0]
     events = {"first_contact": _first(log.t_sa, true_sa.max(axis=1) > CONTACT_FORCE_N),
               "grip_force_reached": _first(log.t_sa,
                                            true_sa.min(axis=1) >= GRIP_FRACTION * grip_force),
@@ -72,7 +97,7 @@ def physical_events(log, grip_force: float) -> dict:
     lift_index = np.flatnonzero(lifted)
     if lift_index.size:
         after = np.arange(z.size) > lift_index[0]
-        events["table_touch"] = _first(log.t_slow, after & (z - z_rest < TOUCH_HEIGHT_M))
+        events["table_touch"] = _first(log.t_slow, after & (low - low_rest < TOUCH_HEIGHT_M))
     return events
 
 

@@ -17,6 +17,7 @@ from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
 from tegrasp_drake import paths
+from tegrasp_drake.control.controller_config import CONTROLLERS, GraspControllerConfig
 from tegrasp_drake.hardware_config import SimulatedStationConfig, StationConfig
 from tegrasp_drake.objects import BUILTIN_OBJECTS, OBJECT_SHAPES, ObjectConfig
 from tegrasp_drake.robotiq_units import STROKE_M
@@ -49,6 +50,18 @@ class VibrationSensorConfig:
     sample_rate_hz: float = 1000.0
     noise_std_mps2: float = 0.05
     highpass_cutoff_hz: float = 2.0  # charge amplifier R_f C_f corner
+    # Texture of the pad cover that sliding drags the film over (pad_slip_vibration.py): a
+    # woven fabric of about 0.5 mm pitch with a few micrometres of relief. 0 disables.
+    slip_texture_height_m: float = 5e-6
+    slip_texture_period_m: float = 5e-4
+
+
+@dataclasses.dataclass
+class DisturbanceConfig:
+    """An external hit on the object: a constant force pulse at its body origin."""
+    hit_time_s: float = -1.0  # simulated time of the hit [s]; negative: no hit
+    hit_force_n: list[float] = dataclasses.field(default_factory=lambda: [0.0, 20.0, 0.0])  # world
+    hit_duration_s: float = 0.02
 
 
 @dataclasses.dataclass
@@ -87,7 +100,8 @@ class GraspScriptConfig:
     place_press: float = 0.003  # m below the lift-off height at the end of Place
     unload_s: float = 1.0
     retract_s: float = 1.2
-    retract_distance: float = 0.10  # m back along the approach
+    retract_distance: float = 0.10  # m back along the approach (state machine; no nearer
+    # than the start pose, where the wrist nears its singularity)
     place_offset: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0])  # m
 
 
@@ -112,6 +126,8 @@ class Scenario:
     gripper: GripperDriverConfig = dataclasses.field(default_factory=GripperDriverConfig)
     arm: ArmDriverConfig = dataclasses.field(default_factory=ArmDriverConfig)
     grasp: GraspScriptConfig = dataclasses.field(default_factory=GraspScriptConfig)
+    disturbance: DisturbanceConfig = dataclasses.field(default_factory=DisturbanceConfig)
+    controller: GraspControllerConfig = dataclasses.field(default_factory=GraspControllerConfig)
     # Simulated (default) or real devices, selected by the YAML tag (hardware_config.py).
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
 
@@ -258,6 +274,12 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
         for section in (scenario.tactile, scenario.vibration):
             if getattr(section, name) <= 0 or not math.isfinite(getattr(section, name)):
                 raise ScenarioError(f"{source}: sample rates must be positive")
+    if scenario.controller.name not in CONTROLLERS:
+        raise ScenarioError(f"{source}: field 'controller.name': '{scenario.controller.name}' "
+                            f"is not one of {', '.join(CONTROLLERS)}")
+    if len(scenario.disturbance.hit_force_n) != 3 or scenario.disturbance.hit_duration_s <= 0:
+        raise ScenarioError(f"{source}: field 'disturbance': hit_force_n must be [x, y, z] in "
+                            "newtons and hit_duration_s positive")
     if scenario.plant_config.time_step <= 0:
         raise ScenarioError(f"{source}: field 'plant_config.time_step' must be positive "
                             "(the station is a discrete-time plant)")

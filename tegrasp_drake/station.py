@@ -34,6 +34,8 @@ from tegrasp_drake.arm_kinematics import (ARM_URL, GRIPPER_URL, R_WG_SIDE_GRASP,
 from tegrasp_drake.channels import FINGER_NAMES
 from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE
 from tegrasp_drake.object_model import add_object, object_body
+from tegrasp_drake.systems.object_force_pulse import ObjectForcePulse
+from tegrasp_drake.systems.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.systems.pad_vibration_sensor import add_pad_vibration_sensor
 from tegrasp_drake.systems.sim_robotiq_driver import SimRobotiqDriver
 from tegrasp_drake.systems.tactile_pads import PadGeometry, TactilePads
@@ -75,6 +77,30 @@ def _pad_geometries(plant, scene_graph, gripper):
         pads[finger] = PadGeometry(geometry_id, body.index(),
                                    frame.GetFixedPoseInBodyFrame())
     return pads
+
+
+def _add_slip_vibration(builder, plant, pads, body, taxels, config):
+    """The pads' texture vibration under slip, or None when the texture is switched off."""
+    if config.slip_texture_height_m <= 0.0:
+        return None
+    slip = builder.AddNamedSystem("pad_slip_vibration", PadSlipVibration(
+        pads=pads, object_body_index=body.index(), config=config))
+    builder.Connect(plant.get_body_poses_output_port(), slip.GetInputPort("body_poses"))
+    builder.Connect(plant.get_body_spatial_velocities_output_port(),
+                    slip.GetInputPort("body_spatial_velocities"))
+    builder.Connect(taxels.GetOutputPort("true_taxel_forces"),
+                    slip.GetInputPort("true_taxel_forces"))
+    return slip
+
+
+def _add_disturbance(builder, plant, body, config):
+    """The scenario's hit on the object, if it has one."""
+    if config.hit_time_s < 0.0:
+        return
+    pulse = builder.AddNamedSystem("object_force_pulse", ObjectForcePulse(
+        body_index=body.index(), start_s=config.hit_time_s, duration_s=config.hit_duration_s,
+        force_W=config.hit_force_n))
+    builder.Connect(pulse.get_output_port(), plant.get_applied_spatial_force_input_port())
 
 
 def MakeGraspStation(scenario, *, meshcat=None):
@@ -124,14 +150,19 @@ def MakeGraspStation(scenario, *, meshcat=None):
     builder.Connect(plant.get_contact_results_output_port(),
                     taxels.GetInputPort("contact_results"))
     builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
+    slip = _add_slip_vibration(builder, plant, pads, object_body(plant, obj), taxels,
+                               scenario.vibration)
     for finger in FINGER_NAMES:
         builder.ExportOutput(taxels.GetOutputPort(f"{finger}_taxel_forces"),
                              f"tactile.{finger}_taxel_forces")
         vibration = add_pad_vibration_sensor(
             builder, plant, plant.get_body(pads[finger].body_index), pads[finger].X_BP,
-            scenario.vibration, f"{finger}_pad_vibration")
+            scenario.vibration, f"{finger}_pad_vibration",
+            slip_vibration=slip.GetOutputPort(f"{finger}_slip_vibration") if slip else None)
         builder.ExportOutput(vibration, f"tactile.{finger}_pad_acceleration")
     builder.ExportOutput(taxels.GetOutputPort("true_taxel_forces"), "tactile.true_taxel_forces")
+
+    _add_disturbance(builder, plant, object_body(plant, obj), scenario.disturbance)
 
     # Ground truth for evaluation.
     builder.ExportOutput(plant.get_state_output_port(obj), "object.state")

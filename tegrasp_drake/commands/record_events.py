@@ -23,17 +23,24 @@ def register(subparsers) -> None:
                         help="only this object (repeatable; default: all three)")
     parser.add_argument("--out", default=None,
                         help="events folder (default: the package's events/ folder)")
+    parser.add_argument("--scenario", metavar="FILE", default=None,
+                        help="record the object of this scenario file instead (your own object)")
+    parser.add_argument("--scenario-name", default=None,
+                        help="which scenario of --scenario (its object is recorded)")
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="KEY=VALUE", help="override a field of that scenario")
     parser.set_defaults(func=run)
 
 
-def record_object_events(object_name: str):
-    """Runs the ideal grasp of one built-in object; returns its MemorizedEvents."""
+def record_object_events(object_name: str, scenario=None):
+    """Runs the ideal grasp of one object (a built-in one by name, or the object of
+    `scenario`); returns its MemorizedEvents."""
     from tegrasp_drake.events import TactileTrial, extract_memorized_events
     from tegrasp_drake.grasp_outcome import physical_events
     from tegrasp_drake.ideal_grasp import run_ideal_grasp
     from tegrasp_drake.scenario import load_scenario, scenario_to_yaml
     from tegrasp_drake.trial_diagram import package_versions
-    scenario = load_scenario(name=object_name)
+    scenario = scenario or load_scenario(name=object_name)
     log, _ = run_ideal_grasp(scenario)
     events = physical_events(log, scenario.grasp.grip_force)
     missing = [name for name in EVENT_OF_TRANSITION.values() if events[name] is None]
@@ -52,6 +59,15 @@ def record_object_events(object_name: str):
 def run(args) -> int:
     from tegrasp_drake.events import save_memorized_events
     out = args.out or paths.events_dir()
+    if args.scenario or args.scenario_name or args.overrides:
+        from tegrasp_drake.commands.scenario_args import scenario_from_arguments
+        from tegrasp_drake.scenario import DEFAULT_SCENARIO
+        args.scenario_name = args.scenario_name or DEFAULT_SCENARIO
+        scenario = scenario_from_arguments(args)
+        events = record_object_events(scenario.object.name, scenario)
+        written = save_memorized_events(out, events.values())
+        print(f"{scenario.object.name}: {', '.join(events)} -> {len(written)} files in {out}")
+        return 0
     for object_name in args.object or sorted(BUILTIN_OBJECTS):
         events = record_object_events(object_name)
         written = save_memorized_events(out, events.values())

@@ -1,7 +1,8 @@
-"""The piezo film on a pad (the RA source), built from Drake systems only (no Python per tick).
+"""The piezo film on a pad (the RA source).
 
 Drake's Accelerometer on the pad frame, without the gravity term (a piezo film sees no
-constant acceleration), then a first-order discrete high-pass filter at the charge amplifier's
+constant acceleration), plus the texture vibration of slip when given
+(pad_slip_vibration.py), then a first-order discrete high-pass filter at the charge amplifier's
 corner frequency (1 / (2 pi R_f C_f)), plus seeded Gaussian noise, all sampled at the
 sensor rate. Seed the noise with `diagram.SetRandomContext(context, RandomGenerator(seed))`.
 """
@@ -23,9 +24,11 @@ def highpass_matrices(cutoff_hz: float, dt: float):
     return a * eye, (a - 1.0) * eye, a * eye, a * eye
 
 
-def add_pad_vibration_sensor(builder, plant, body, X_BS, config, name: str):
+def add_pad_vibration_sensor(builder, plant, body, X_BS, config, name: str,
+                             slip_vibration=None):
     """Adds the sensor for `body` (sensor frame S at X_BS); returns its output port (3,
-    m/s^2, expressed in S)."""
+    m/s^2, expressed in S). `slip_vibration`, if given, is an output port (3, m/s^2 in S)
+    added to the rigid-body acceleration before the film's high-pass."""
     dt = 1.0 / config.sample_rate_hz
     accelerometer = builder.AddNamedSystem(f"{name}_accelerometer",
                                            Accelerometer(body, X_BS, np.zeros(3)))
@@ -36,7 +39,13 @@ def add_pad_vibration_sensor(builder, plant, body, X_BS, config, name: str):
                     accelerometer.get_body_accelerations_input_port())
     A, B, C, D = highpass_matrices(config.highpass_cutoff_hz, dt)
     highpass = builder.AddNamedSystem(f"{name}_highpass", LinearSystem(A, B, C, D, dt))
-    builder.Connect(accelerometer.get_measurement_output_port(), highpass.get_input_port())
+    film_input = accelerometer.get_measurement_output_port()
+    if slip_vibration is not None:
+        film = builder.AddNamedSystem(f"{name}_film_adder", Adder(2, 3))
+        builder.Connect(film_input, film.get_input_port(0))
+        builder.Connect(slip_vibration, film.get_input_port(1))
+        film_input = film.get_output_port()
+    builder.Connect(film_input, highpass.get_input_port())
     if config.noise_std_mps2 <= 0:
         return highpass.get_output_port()
     noise = builder.AddNamedSystem(f"{name}_noise",

@@ -1,0 +1,70 @@
+"""The grasp controller's settings: which controller, the trigger thresholds and the numbers
+of the corrective actions (Sec. III-C; their triggers are heuristic, as in the paper).
+
+Every number a corrective trigger uses is here, with its unit, so a sweep or a `--set`
+override can change it (e.g. `--set controller.lift_load_enabled=false`).
+"""
+
+import dataclasses
+
+CONTROLLERS = ("memorized", "heuristic", "open_loop")
+
+
+@dataclasses.dataclass
+class HeuristicTriggerConfig:
+    """The hand-set transition thresholds of the heuristic controller, in the style of
+    Romano et al. 2011 (DRAKE-NOTES.md): tuned once on the box at its expected position and
+    left alone."""
+    contact_force_n: float = 1.0  # Reach-Load: each finger's SA above this [N]
+    grip_fraction: float = 0.9  # Load-Lift: each finger's SA above this fraction of the grip
+    place_ra_mps2: float = 3.0  # Place-Unload: either RA above this [m/s^2]
+
+
+@dataclasses.dataclass
+class GraspControllerConfig:
+    """Controller selection, matcher thresholds and corrective-action triggers."""
+    name: str = "memorized"  # one of CONTROLLERS
+    update_period_s: float = 0.005  # state machine tick [s]
+    # Eq. 3 thresholds (Sec. III-B).
+    sa_threshold: float = 0.9
+    ra_threshold: float = 0.7
+    heuristic: HeuristicTriggerConfig = dataclasses.field(default_factory=HeuristicTriggerConfig)
+    # A finger touches when its SA exceeds contact_force_n [N].
+    contact_force_n: float = 0.3
+    # Re-Reach: one finger alone in contact for one_sided_contact_s [s], the gripper closed
+    # on nothing, or no Reach-Load event within reach_event_timeout_s [s] of closing.
+    re_reach_enabled: bool = True
+    one_sided_contact_s: float = 0.1
+    reach_event_timeout_s: float = 2.0
+    max_re_reaches: int = 2
+    re_reach_move_s: float = 0.8  # time to shift the open gripper sideways [s]
+    opened_m: float = 0.080  # the gripper counts as open beyond this opening [m]
+    # Lift-Load: during Lift, either RA above slip_ra_mps2 [m/s^2] for slip_s [s] means
+    # the object slips; back to Load with the grip force times lift_load_force_factor, and
+    # lift again once both SA reach grip_fraction of that force. (Measured: a 50 N request
+    # reads 44.9 N of SA on the box, the contact patch spreading past the taxels; hence 0.8.)
+    lift_load_enabled: bool = True
+    slip_ra_mps2: float = 1.0
+    slip_s: float = 0.02
+    lift_load_force_factor: float = 2.0
+    max_lift_loads: int = 2
+    max_grip_force_n: float = 235.0  # the 2F-85's largest grip force
+    grip_fraction: float = 0.8
+    load_event_timeout_s: float = 2.0  # Load without the Load-Lift event: give up [s]
+    # Avoid: in Hold, either RA above hit_ra_mps2 [m/s^2] is a hit. The machine stops for
+    # avoid_sense_s [s] to see which way the hit pushed (the pad the object was pushed into
+    # gains more than avoid_sa_asymmetry_n [N] over the other: along the stroke; else the
+    # pads' common acceleration in the horizontal plane), moves avoid_distance_m [m] that
+    # way over avoid_s [s], then Holds again. Hits are ignored for hit_refractory_s [s]
+    # after entering Hold (the stop of the lift rings briefly).
+    avoid_enabled: bool = True
+    hit_ra_mps2: float = 3.0
+    avoid_sense_s: float = 0.03
+    avoid_sa_asymmetry_n: float = 1.0
+    avoid_distance_m: float = 0.05
+    avoid_s: float = 0.6
+    hit_refractory_s: float = 0.3
+    # Place: without the Place-Unload event, unload anyway this long after the arm stops [s].
+    place_event_timeout_s: float = 1.0
+    # Lost object: in Lift, Hold, Avoid or Place, both SA below contact_force_n.
+    drop_check_enabled: bool = True

@@ -1,0 +1,148 @@
+"""The closed-loop grasp controller wired to a station: Eq. 1-2 channels, the event detector
+(EventMatcher on the memorized events, or the heuristic thresholds), the GraspStateMachine
+and the Cartesian arm controller; or the open-loop script.
+
+`add_grasp_controller` connects to any system with the station's exported port names
+(station.py): the simulated station and the hardware interface alike.
+"""
+
+import dataclasses
+
+from pydrake.systems.primitives import Multiplexer
+
+from tegrasp_drake import paths
+from tegrasp_drake.channels import FINGER_NAMES
+from tegrasp_drake.control.cartesian_arm_controller import add_cartesian_arm_controller
+from tegrasp_drake.control.grasp_modes import HEURISTIC_EVENT, MEMORIZED_EVENT, TIMER, Mode
+from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
+from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
+from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
+from tegrasp_drake.trial_diagram import add_mechanoreceptor_channels
+
+# The open-loop script's phases as the state machine's modes (for its timeline).
+_MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
+                  "lift": Mode.LIFT, "hold": Mode.HOLD, "place": Mode.PLACE,
+                  "unload": Mode.UNLOAD, "retract": Mode.UNLOAD, "done": Mode.DONE}
+
+
+@dataclasses.dataclass
+class GraspController:
+    """The controller's systems and its ports of interest."""
+    name: str
+    channels: object  # MechanoreceptorChannels
+    detector: object  # EventMatcher, HeuristicEventDetector or None (open loop)
+    state_machine: object  # GraspStateMachine, or ScriptedGraspSource (open loop)
+    gripper_command: object  # output port
+    arm_desired_state: object  # output port
+    mode: object  # output port: the Mode value (open loop: the script's phase index)
+    segments: list = None  # the open-loop script's segments
+
+    def current_mode(self, root_context) -> Mode:
+        """The mode now (open loop: the mode of the script's phase)."""
+        value = int(self.mode.Eval(self._system_context(root_context))[0])
+        return Mode(value) if self.segments is None else _MODE_OF_PHASE[PHASES[value]]
+
+    def _system_context(self, root_context):
+        return self.state_machine.GetMyContextFromRoot(root_context)
+
+    def transition_log(self, root_context) -> list[dict]:
+        """The transitions so far: dicts with t, from, to, trigger (and reason, scores)."""
+        if self.segments is None:
+            return self.state_machine.timeline(self._system_context(root_context))
+        t_now = root_context.get_time()
+        log, previous = [], Mode.REACH
+        for segment in self.segments[1:]:
+            mode = _MODE_OF_PHASE[segment.phase]
+            if segment.t_start <= t_now and mode != previous:
+                log.append({"t": segment.t_start, "from": previous.label, "to": mode.label,
+                            "trigger": TIMER, "reason": f"script phase {segment.phase}"})
+                previous = mode
+        end = self.segments[-1].t_end
+        if end <= t_now:
+            log.append({"t": end, "from": previous.label, "to": Mode.DONE.label,
+                        "trigger": TIMER, "reason": "script ended"})
+        return log
+
+
+def load_controller_events(scenario, events_dir=None) -> dict:
+    """The memorized events of the scenario's object; MemorizedEventError (naming the file
+    and the record-events command) when they are missing."""
+    from tegrasp_drake.events import MemorizedEventError, load_memorized_events
+    from tegrasp_drake.objects import BUILTIN_OBJECTS
+    try:
+        return load_memorized_events(events_dir or paths.events_dir(), scenario.object.name)
+    except MemorizedEventError as e:
+        if scenario.object.name in BUILTIN_OBJECTS:
+            raise
+        error = MemorizedEventError(e.path, "no memorized events")
+        error.args = (f"{e.path}: no memorized events of your object '{scenario.object.name}'."
+                      " Record them from the scenario that describes it: `tegrasp "
+                      "record-events --scenario FILE --scenario-name NAME` (or run "
+                      "`--controller heuristic`).",)
+        raise error from None
+
+
+def _add_detector(builder, scenario, name, events):
+    config = scenario.controller
+    if name == "memorized":
+        from tegrasp_drake.events import EventMatcher, EventMatcherConfig
+        matcher_config = EventMatcherConfig(
+            sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
+            sa_rate_hz=scenario.tactile.sample_rate_hz,
+            ra_rate_hz=scenario.vibration.sample_rate_hz)
+        events = events if events is not None else load_controller_events(scenario)
+        return builder.AddNamedSystem("event_matcher", EventMatcher(events, matcher_config)), \
+            MEMORIZED_EVENT
+    detector = HeuristicEventDetector(config.heuristic, grip_force_n=scenario.grasp.grip_force)
+    return builder.AddNamedSystem("heuristic_detector", detector), HEURISTIC_EVENT
+
+
+def add_grasp_controller(builder, *, scenario, station, controller: str | None = None,
+                         events: dict | None = None) -> GraspController:
+    """Adds the controller `controller` (default: scenario.controller.name) and connects it
+    to `station`'s ports; returns its GraspController.
+
+    events: {transition: MemorizedEvent} for the memorized controller (default: the
+    package's events of the scenario's object).
+    """
+    from tegrasp_drake.station import initial_arm_positions
+    name = controller or scenario.controller.name
+    channels = add_mechanoreceptor_channels(builder, station)
+    X_WG_desired, arm_desired_state = add_cartesian_arm_controller(
+        builder, position_measured=station.GetOutputPort("arm.position_measured"),
+        velocity_measured=station.GetOutputPort("arm.velocity_measured"),
+        q_nominal=initial_arm_positions(scenario), time_step=scenario.plant_config.time_step)
+    builder.Connect(arm_desired_state, station.GetInputPort("arm.desired_state"))
+    if name == "open_loop":
+        segments = plan_scripted_grasp(scenario)
+        script = builder.AddNamedSystem("scripted_grasp", ScriptedGraspSource(segments))
+        builder.Connect(script.GetOutputPort("X_WG_desired"), X_WG_desired)
+        builder.Connect(script.GetOutputPort("gripper_command"),
+                        station.GetInputPort("gripper.command"))
+        return GraspController(name, channels, None, script,
+                               script.GetOutputPort("gripper_command"), arm_desired_state,
+                               script.GetOutputPort("phase"), segments)
+    detector, event_trigger = _add_detector(builder, scenario, name, events)
+    machine = builder.AddNamedSystem("grasp_state_machine", GraspStateMachine(
+        plan=GraspPlan.from_scenario(scenario), config=scenario.controller,
+        event_indices={t: detector.event_index(t) for t in detector.transitions},
+        event_trigger=event_trigger))
+    builder.Connect(channels.GetOutputPort("channels"), detector.GetInputPort("channels"))
+    builder.Connect(machine.GetOutputPort("expected_event"),
+                    detector.GetInputPort("expected_event"))
+    builder.Connect(detector.GetOutputPort("match"), machine.GetInputPort("match"))
+    builder.Connect(detector.GetOutputPort("scores"), machine.GetInputPort("scores"))
+    builder.Connect(channels.GetOutputPort("channels"), machine.GetInputPort("channels"))
+    builder.Connect(station.GetOutputPort("gripper.status"),
+                    machine.GetInputPort("gripper.status"))
+    accelerations = builder.AddNamedSystem("pad_acceleration_mux", Multiplexer([3, 3]))
+    for k, finger in enumerate(FINGER_NAMES):
+        builder.Connect(station.GetOutputPort(f"tactile.{finger}_pad_acceleration"),
+                        accelerations.get_input_port(k))
+    builder.Connect(accelerations.get_output_port(), machine.GetInputPort("pad_acceleration"))
+    builder.Connect(machine.GetOutputPort("X_WG_desired"), X_WG_desired)
+    builder.Connect(machine.GetOutputPort("gripper_command"),
+                    station.GetInputPort("gripper.command"))
+    return GraspController(name, channels, detector, machine,
+                           machine.GetOutputPort("gripper_command"), arm_desired_state,
+                           machine.GetOutputPort("mode"))

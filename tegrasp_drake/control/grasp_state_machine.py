@@ -1,0 +1,418 @@
+"""GraspStateMachine: the tactile-event grasping algorithm (Sec. II-B, III-C, Fig. 6b) as a
+Drake LeafSystem.
+
+Each tick (config.update_period_s) it summarises its inputs into an Observation, asks the
+pure rule (transition_logic.next_mode) for the next mode, and carries out the motion of the
+mode it is in: smooth (minimum-jerk) translations of the grasp frame at the side-grasp
+orientation, and Robotiq-style gripper requests. Everything it remembers is in one abstract
+state value (MachineState), so a Context holds the whole run, timeline included.
+
+Motion of each mode (world frame, grasp frame G; the stroke is world y):
+  Reach     move to the expected object position at grasp height, then close
+  Re-Reach  open, shift along the stroke toward the finger that touched first by the offset
+            its contact implies, (then Reach closes again)
+  Load      keep closing at the grip force (raised by each Lift-Load)
+  Lift      rise by lift_height;  Hold: stay;  Avoid: move avoid_distance along the hit
+  Place     descend to place_press below the lift-off height (stops at the Place-Unload event)
+  Unload    open where it is, then retract along the approach and up
+  Done      stay;  Failed: stay, the gripper keeps its last request (the object is not dropped)
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform, RotationMatrix
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake import robotiq_units as ru
+from tegrasp_drake.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.channels import CHANNEL_NAMES
+from tegrasp_drake.control.grasp_modes import EXPECTED_TRANSITION, Mode
+from tegrasp_drake.control.motion_profiles import minimum_jerk
+from tegrasp_drake.control.scripted_grasp import gripper_command
+from tegrasp_drake.control.transition_logic import Counters, Observation, next_mode
+
+NO_EVENT = -1
+# The pads' frames in the grasp frame G (the fingers are parallel to the gripper base, which
+# is G's orientation): each pad's z axis, its normal, points at the other finger.
+R_G_PAD = (RotationMatrix.MakeXRotation(math.pi / 2),  # left pad
+           RotationMatrix.MakeXRotation(-math.pi / 2))  # right pad
+OPENING_SPEED_MPS = 0.1  # when opening to re-reach or unload
+GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
+
+
+@dataclasses.dataclass(frozen=True)
+class Segment:
+    """A straight move of the grasp frame origin from p_start to p_end [m, world] over
+    [t_start, t_start + duration] with a minimum-jerk profile."""
+    t_start: float
+    duration: float
+    p_start: tuple
+    p_end: tuple
+
+    def position(self, t: float) -> np.ndarray:
+        tau = 1.0 if self.duration <= 0 else (t - self.t_start) / self.duration
+        s = minimum_jerk(min(max(tau, 0.0), 1.0))
+        return np.asarray(self.p_start) + s * (np.asarray(self.p_end) - np.asarray(self.p_start))
+
+    def done(self, t: float) -> bool:
+        return t >= self.t_start + self.duration
+
+    @staticmethod
+    def hold(t: float, p) -> "Segment":
+        return Segment(t, 0.0, tuple(p), tuple(p))
+
+
+@dataclasses.dataclass(frozen=True)
+class MachineState:
+    """Everything the machine remembers (times in s of simulated time)."""
+    mode: Mode
+    mode_start: float
+    segment: Segment
+    gripper: tuple  # (opening [m], speed [m/s], force [N]) requested
+    gripper_request_time: float
+    grip_force: float
+    stage: str = ""  # the step within a mode (e.g. "moving", "closing", "opening")
+    counters: Counters = Counters()
+    closing_since: float = -1.0
+    one_sided_since: float = -1.0
+    slip_since: float = -1.0
+    motion_done_since: float = -1.0
+    reentry_offset: float = 0.0  # Re-Reach shift along world y [m]
+    sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
+    acceleration_sum: tuple = (0.0, 0.0, 0.0)  # Avoid sensing: pads' world acceleration sum
+    sa_gain_sum: tuple = (0.0, 0.0)  # Avoid sensing: SA gains over sa_before, summed
+    timeline: tuple = ()
+    failure: str = ""
+
+
+@dataclasses.dataclass(frozen=True)
+class GraspPlan:
+    """Where and how far to move, from the scenario (its `grasp` section) [m, s, N]."""
+    start_xyz: tuple
+    object_xy: tuple  # the expected object position
+    object_width: float  # along the stroke, for the Re-Reach offset
+    grasp_height: float
+    lift_height: float
+    place_press: float
+    settle_s: float
+    reach_s: float
+    lift_s: float
+    hold_s: float
+    place_s: float
+    unload_s: float
+    retract_s: float
+    retract_distance: float
+    close_speed: float
+    grip_force: float
+
+    @staticmethod
+    def from_scenario(scenario) -> "GraspPlan":
+        g = scenario.grasp
+        return GraspPlan(
+            start_xyz=tuple(scenario.arm.initial_gripper_xyz),
+            object_xy=tuple(scenario.expected_object_xy),
+            object_width=scenario.object.width_along_stroke(), grasp_height=g.grasp_height,
+            lift_height=g.lift_height, place_press=g.place_press, settle_s=g.settle_s,
+            reach_s=g.reach_s, lift_s=g.lift_s, hold_s=g.hold_s, place_s=g.place_s,
+            unload_s=g.unload_s, retract_s=g.retract_s, retract_distance=g.retract_distance,
+            close_speed=g.close_speed, grip_force=g.grip_force)
+
+
+def pad_accelerations_in_world(pad_acceleration: np.ndarray) -> np.ndarray:
+    """(2, 3) the left and right pad accelerations [m/s^2] rotated from the pad frames into
+    world, for the side grasp."""
+    a = np.asarray(pad_acceleration).reshape(2, 3)
+    return np.array([(R_WG_SIDE_GRASP @ R_G_PAD[k]).matrix() @ a[k] for k in range(2)])
+
+
+def avoid_direction(delta_sa, acceleration_sum_W, sa_asymmetry_n: float) -> np.ndarray:
+    """Unit world direction to move away from a hit.
+
+    delta_sa: the (left, right) SA change [N] since just before the hit; the pad the object
+    was pushed into gains: along the stroke (world y, the left finger on +y) when the gain
+    differs by more than sa_asymmetry_n. Otherwise the horizontal part of
+    acceleration_sum_W (the pads' accelerations in world, summed over the sensing time: the
+    common motion of object and gripper); straight up when that is negligible too.
+    """
+    difference = float(delta_sa[0] - delta_sa[1])
+    if abs(difference) > sa_asymmetry_n:
+        return np.array([0.0, math.copysign(1.0, difference), 0.0])
+    a = np.asarray(acceleration_sum_W, dtype=float)
+    horizontal = np.array([a[0], a[1], 0.0])
+    norm = np.linalg.norm(horizontal)
+    return horizontal / norm if norm > 1e-6 else np.array([0.0, 0.0, 1.0])
+
+
+class GraspStateMachine(LeafSystem):
+    """The grasping state machine.
+
+    .. pydrake_system::
+
+        name: GraspStateMachine
+        input_ports:
+        - match
+        - scores
+        - channels
+        - gripper.status
+        - pad_acceleration (optional)
+        - device_fault (optional)
+        output_ports:
+        - X_WG_desired
+        - gripper_command
+        - expected_event
+        - mode
+
+    Ports:
+        match: [1] when the detector matches the expected event, else [0].
+        scores: the detector's four channel scores (logged with each transition).
+        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), Eq. 1-2.
+        gripper.status: the 2F-85 status bytes (robotiq_units order).
+        pad_acceleration: [left xyz, right xyz] (m/s^2, pad frames), for the Avoid
+            direction; unconnected: Avoid moves straight up.
+        device_fault: an abstract str, "" when all devices are alive, else the watchdog's
+            message; unconnected: no faults.
+        X_WG_desired: RigidTransform, the grasp frame's desired pose in world.
+        gripper_command: [rPR, rSP, rFR] bytes.
+        expected_event: [index] of the event the detector should check, -1 for none. It
+            depends only on the state (the detector's `match` feeds back to this system).
+        mode: [Mode value].
+    """
+
+    def __init__(self, *, plan: GraspPlan, config, event_indices: dict,
+                 event_trigger: str):
+        super().__init__()
+        self._plan = plan
+        self._config = config
+        self._event_indices = dict(event_indices)
+        self._event_trigger = event_trigger
+        missing = [t for t in EXPECTED_TRANSITION.values() if t not in self._event_indices]
+        if missing:
+            raise ValueError(f"the event detector has no event for {missing}")
+        self._match = self.DeclareVectorInputPort("match", 1)
+        self._scores = self.DeclareVectorInputPort("scores", len(CHANNEL_NAMES))
+        self._channels = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
+        self._status = self.DeclareVectorInputPort("gripper.status", ru.STATUS_SIZE)
+        self._pad_acceleration = self.DeclareVectorInputPort("pad_acceleration", 6)
+        self._device_fault = self.DeclareAbstractInputPort("device_fault", AbstractValue.Make(""))
+        self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
+        self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
+        state_only = {self.abstract_state_ticket(self._state)}
+        self.DeclareAbstractOutputPort(
+            "X_WG_desired", lambda: AbstractValue.Make(RigidTransform()), self._calc_pose,
+            prerequisites_of_calc=state_only | {self.time_ticket()})
+        self.DeclareVectorOutputPort("gripper_command", ru.COMMAND_SIZE, self._calc_gripper,
+                                     prerequisites_of_calc=state_only)
+        self.DeclareVectorOutputPort("expected_event", 1, self._calc_expected_event,
+                                     prerequisites_of_calc=state_only)
+        self.DeclareVectorOutputPort("mode", 1, self._calc_mode,
+                                     prerequisites_of_calc=state_only)
+
+    # ---- construction helpers -------------------------------------------------------
+
+    def initial_state(self) -> MachineState:
+        p = self._plan
+        grasp = (*p.object_xy, p.grasp_height)
+        return MachineState(
+            mode=Mode.REACH, mode_start=0.0,
+            segment=Segment(p.settle_s, p.reach_s, p.start_xyz, grasp),
+            gripper=(ru.STROKE_M, p.close_speed, p.grip_force), gripper_request_time=0.0,
+            grip_force=p.grip_force, stage="moving")
+
+    def state(self, context) -> MachineState:
+        return context.get_abstract_state(self._state).get_value()
+
+    def timeline(self, context) -> list[dict]:
+        """The transitions so far: dicts with t, from, to, trigger, reason, scores."""
+        return [dict(entry) for entry in self.state(context).timeline]
+
+    # ---- outputs -----------------------------------------------------------------------
+
+    def _calc_pose(self, context, output):
+        position = self.state(context).segment.position(context.get_time())
+        output.set_value(RigidTransform(R_WG_SIDE_GRASP, position))
+
+    def _calc_gripper(self, context, output):
+        output.SetFromVector(gripper_command(*self.state(context).gripper))
+
+    def _calc_expected_event(self, context, output):
+        transition = EXPECTED_TRANSITION.get(self.state(context).mode)
+        output.SetAtIndex(0, self._event_indices[transition] if transition else NO_EVENT)
+
+    def _calc_mode(self, context, output):
+        output.SetAtIndex(0, float(self.state(context).mode))
+
+    # ---- the tick ----------------------------------------------------------------------
+
+    def _update(self, context, state):
+        t = context.get_time()
+        s = self._advance_stage(self.state(context), t, context)
+        observation, s = self._observe(s, t, context)
+        decision = next_mode(s.mode, observation, s.counters, self._config,
+                             event_trigger=self._event_trigger, hold_s=self._plan.hold_s)
+        if decision is not None:
+            s = self._enter(s, decision, t, context)
+        state.get_mutable_abstract_state(self._state).set_value(s)
+
+    def _opening(self, context) -> float:
+        return float(ru.opening_from_position_byte(self._status.Eval(context)[ru.STATUS_PO]))
+
+    def _gripper_settled(self, s: MachineState, t: float) -> bool:
+        return t - s.gripper_request_time >= GRIPPER_STATUS_LAG_S
+
+    def _advance_stage(self, s: MachineState, t: float, context) -> MachineState:
+        """Steps within a mode: close after the reach, shift after opening, retract after
+        releasing."""
+        p = self._plan
+        if s.mode == Mode.REACH and s.stage == "moving" and s.segment.done(t):
+            return dataclasses.replace(
+                s, stage="closing", closing_since=t, gripper_request_time=t,
+                gripper=(0.0, p.close_speed, s.grip_force))
+        if s.mode == Mode.AVOID and s.stage == "sensing":
+            return self._sense_hit(s, t, context)
+        if s.mode in (Mode.RE_REACH, Mode.UNLOAD) and s.stage == "opening":
+            opened = self._opening(context) >= self._config.opened_m
+            if opened and self._gripper_settled(s, t):
+                here = s.segment.position(t)
+                if s.mode == Mode.RE_REACH:
+                    target = here + np.array([0.0, s.reentry_offset, 0.0])
+                    duration = self._config.re_reach_move_s
+                else:
+                    # Back to the start pose's distance (nearer, the wrist nears its singularity).
+                    target = np.array([max(here[0] - p.retract_distance, p.start_xyz[0]),
+                                       here[1], p.start_xyz[2]])
+                    duration = p.retract_s
+                return dataclasses.replace(s, stage="moving",
+                                           segment=Segment(t, duration, tuple(here),
+                                                           tuple(target)))
+        return s
+
+    def _sense_hit(self, s: MachineState, t: float, context) -> MachineState:
+        """Avoid: gather which way the hit pushed, then start moving away from it."""
+        config = self._config
+        total = np.asarray(s.acceleration_sum)
+        if self._pad_acceleration.HasValue(context):
+            total = total + pad_accelerations_in_world(
+                self._pad_acceleration.Eval(context)).sum(axis=0)
+        # The push shows in SA for a few samples and then rings: sum it over the sensing.
+        gain = np.asarray(s.sa_gain_sum) + (self._channels.Eval(context)[:2]
+                                            - np.asarray(s.sa_before))
+        if t - s.mode_start < config.avoid_sense_s:
+            return dataclasses.replace(s, acceleration_sum=tuple(total), sa_gain_sum=tuple(gain))
+        ticks = max(1, round(config.avoid_sense_s / config.update_period_s))
+        delta_sa = gain / ticks  # mean SA gain over the sensing time
+        direction = avoid_direction(delta_sa, total, config.avoid_sa_asymmetry_n)
+        here = s.segment.position(t)
+        entry = dict(s.timeline[-1], direction=[round(float(x), 3) for x in direction],
+                     delta_sa_n=[round(float(x), 3) for x in delta_sa])
+        return dataclasses.replace(
+            s, stage="moving", timeline=s.timeline[:-1] + (entry,),
+            segment=Segment(t, config.avoid_s, tuple(here),
+                            tuple(here + config.avoid_distance_m * direction)))
+
+    def _observe(self, s: MachineState, t: float, context):
+        """The tick's Observation, and the state with its running timers updated."""
+        config = self._config
+        channels = self._channels.Eval(context)
+        contact = (bool(channels[0] > config.contact_force_n),
+                   bool(channels[1] > config.contact_force_n))
+        one_sided = contact[0] != contact[1]
+        one_sided_since = (s.one_sided_since if s.one_sided_since >= 0 else t) if one_sided \
+            else -1.0
+        ra = float(max(channels[2], channels[3]))
+        slipping = s.mode == Mode.LIFT and ra > config.slip_ra_mps2
+        slip_since = (s.slip_since if s.slip_since >= 0 else t) if slipping else -1.0
+        moving_stage = s.stage in ("moving", "")
+        motion_done = moving_stage and s.segment.done(t)
+        motion_done_since = ((s.motion_done_since if s.motion_done_since >= 0 else t)
+                             if motion_done else -1.0)
+        status = self._status.Eval(context)
+        closing = s.mode == Mode.REACH and s.stage == "closing"
+        closed_on_nothing = (closing and self._gripper_settled(s, t) and not any(contact)
+                             and int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION)
+        fault_code = int(status[ru.STATUS_FLT])
+        device_fault = self._device_fault.Eval(context) if self._device_fault.HasValue(
+            context) else ""
+        time_in_mode = t - s.mode_start
+        observation = Observation(
+            time_in_mode=time_in_mode, event_matched=bool(self._match.Eval(context)[0] > 0.5),
+            motion_done=motion_done,
+            time_since_motion_done=t - motion_done_since if motion_done else 0.0,
+            closing_s=t - s.closing_since if closing else -1.0, contact=contact,
+            one_sided_s=t - one_sided_since if one_sided and closing else 0.0,
+            closed_on_nothing=closed_on_nothing,
+            grip_reached=bool(min(channels[0], channels[1])
+                              >= config.grip_fraction * s.grip_force),
+            slip_s=t - slip_since if slipping else 0.0,
+            hit=(s.mode == Mode.HOLD and time_in_mode >= config.hit_refractory_s
+                 and ra > config.hit_ra_mps2),
+            gripper_fault=ru.fault_name(fault_code) if fault_code else "",
+            device_fault=device_fault)
+        return observation, dataclasses.replace(
+            s, one_sided_since=one_sided_since, slip_since=slip_since,
+            motion_done_since=motion_done_since,
+            # The baseline is the last Hold tick before the hit (not the hit's own tick).
+            sa_before=(tuple(channels[:2]) if s.mode == Mode.HOLD and not observation.hit
+                       else s.sa_before))
+
+    def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
+        """Log the transition and start the new mode's motion."""
+        p, config = self._plan, self._config
+        entry = {"t": round(t, 6), "from": s.mode.label, "to": decision.mode.label,
+                 "trigger": decision.trigger, "reason": decision.reason,
+                 "scores": [round(float(x), 4) for x in self._scores.Eval(context)]}
+        here = s.segment.position(t)
+        hold_here = Segment.hold(t, here)
+        common = dict(mode=decision.mode, mode_start=t, timeline=s.timeline + (entry,),
+                      segment=hold_here, stage="", closing_since=-1.0, one_sided_since=-1.0,
+                      slip_since=-1.0, motion_done_since=-1.0)
+
+        def new(**changes) -> MachineState:
+            return dataclasses.replace(s, **{**common, **changes})
+
+        counters, mode = s.counters, decision.mode
+        if mode == Mode.REACH:  # back from Re-Reach: close again where we are
+            return new(stage="closing", closing_since=t, gripper_request_time=t,
+                       gripper=(0.0, p.close_speed, s.grip_force))
+        if mode == Mode.RE_REACH:
+            offset = self._re_reach_offset(context)
+            entry["offset_m"] = round(offset, 5)
+            return new(stage="opening", reentry_offset=offset, gripper_request_time=t,
+                       counters=dataclasses.replace(counters, re_reaches=counters.re_reaches + 1),
+                       gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))
+        if mode == Mode.LOAD:
+            force = s.grip_force
+            if s.mode == Mode.LIFT:  # Lift-Load: squeeze harder
+                force = min(force * config.lift_load_force_factor, config.max_grip_force_n)
+                counters = dataclasses.replace(counters, lift_loads=counters.lift_loads + 1)
+                entry["grip_force_n"] = force
+            return new(counters=counters, grip_force=force, gripper_request_time=t,
+                       gripper=(0.0, p.close_speed, force))
+        if mode == Mode.LIFT:
+            target = (here[0], here[1], p.grasp_height + p.lift_height)
+            remaining = max(target[2] - here[2], 0.0) / p.lift_height
+            return new(segment=Segment(t, p.lift_s * max(remaining, 0.2), tuple(here), target))
+        if mode == Mode.AVOID:  # stop, sense the hit's direction, then move (_sense_hit)
+            return new(stage="sensing", acceleration_sum=(0.0, 0.0, 0.0), sa_gain_sum=(0.0, 0.0))
+        if mode == Mode.PLACE:
+            target = (here[0], here[1], p.grasp_height - p.place_press)
+            return new(segment=Segment(t, p.place_s, tuple(here), target))
+        if mode == Mode.UNLOAD:
+            return new(stage="opening", gripper_request_time=t,
+                       gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))
+        if mode == Mode.FAILED:
+            return new(failure=decision.reason)
+        return new()  # Hold, Done
+
+    def _re_reach_offset(self, context) -> float:
+        """Sideways shift [m, world y] that centres the gripper on the object: the finger
+        still touching it marks its near face, half the object's width from its centre."""
+        channels = self._channels.Eval(context)
+        contact = channels[:2] > self._config.contact_force_n
+        if contact[0] == contact[1]:
+            return 0.0
+        half_gap = (self._opening(context) - self._plan.object_width) / 2.0
+        sign = 1.0 if contact[0] else -1.0  # the left finger is on the +y side
+        return sign * max(half_gap, 0.0)

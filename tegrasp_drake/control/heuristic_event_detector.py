@@ -1,0 +1,82 @@
+"""The heuristic controller's transition triggers: hand-set thresholds in the style of
+Romano et al. 2011, behind the same ports as the EventMatcher so the state machine cannot
+tell which detector drives it.
+
+  reach_load    each finger's SA above contact_force_n (both fingers in contact)
+  load_lift     each finger's SA above grip_fraction of the grip force
+  place_unload  either RA above place_ra_mps2 (the table-contact transient)
+"""
+
+import numpy as np
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.channels import CHANNEL_NAMES
+
+TRANSITIONS = ("reach_load", "load_lift", "place_unload")
+NO_EVENT = -1
+
+
+class HeuristicEventDetector(LeafSystem):
+    """Threshold triggers for the expected transition.
+
+    Inputs: channels (4: sa_left, sa_right [N], ra_left, ra_right [m/s^2]), expected_event
+    (1: index into TRANSITIONS, -1 none). Outputs: scores (4: each channel's value divided
+    by its threshold, 0 for a channel the rule ignores), match (1), scored_event (1).
+    `grip_force_n` is the Load force; the state machine's Lift-Load raises it, so the
+    load_lift rule accepts any SA above grip_fraction of the *initial* grip force.
+    """
+
+    def __init__(self, config, *, grip_force_n: float):
+        super().__init__()
+        self._config = config
+        self._grip_force = float(grip_force_n)
+        self._channels = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
+        self._expected = self.DeclareVectorInputPort("expected_event", 1)
+        self.DeclareVectorOutputPort("scores", len(CHANNEL_NAMES), self._calc_scores)
+        self.DeclareVectorOutputPort("match", 1, self._calc_match)
+        self.DeclareVectorOutputPort(
+            "scored_event", 1, lambda context, output: output.SetAtIndex(
+                0, self._expected_index(context)))
+
+    @property
+    def transitions(self) -> tuple[str, ...]:
+        return TRANSITIONS
+
+    def event_index(self, transition: str) -> int:
+        return TRANSITIONS.index(transition)
+
+    def _expected_index(self, context) -> int:
+        value = int(self._expected.Eval(context)[0])
+        if not NO_EVENT <= value < len(TRANSITIONS):
+            raise ValueError(f"expected_event {value} is not -1 or 0..{len(TRANSITIONS) - 1}")
+        return value
+
+    def thresholds(self, transition: str) -> np.ndarray:
+        """Per-channel thresholds of a transition's rule; inf for an ignored channel."""
+        c = self._config
+        if transition == "reach_load":
+            return np.array([c.contact_force_n, c.contact_force_n, np.inf, np.inf])
+        if transition == "load_lift":
+            level = c.grip_fraction * self._grip_force
+            return np.array([level, level, np.inf, np.inf])
+        return np.array([np.inf, np.inf, c.place_ra_mps2, c.place_ra_mps2])
+
+    def _ratios(self, context) -> np.ndarray:
+        index = self._expected_index(context)
+        if index == NO_EVENT:
+            return np.zeros(len(CHANNEL_NAMES))
+        return self._channels.Eval(context) / self.thresholds(TRANSITIONS[index])
+
+    def _calc_scores(self, context, output):
+        output.SetFromVector(self._ratios(context))
+
+    def _calc_match(self, context, output):
+        index = self._expected_index(context)
+        ratios = self._ratios(context)
+        if index == NO_EVENT:
+            matched = False
+        elif TRANSITIONS[index] == "place_unload":
+            matched = bool(np.any(ratios[2:] > 1.0))
+        else:
+            matched = bool(np.all(ratios[:2] > 1.0))
+        output.SetAtIndex(0, 1.0 if matched else 0.0)

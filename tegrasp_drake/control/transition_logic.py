@@ -1,0 +1,169 @@
+"""The grasp state machine's transition rule as a pure function (Sec. II-B, III-C, Fig. 6).
+
+`next_mode(mode, observation, counters, config)` says which mode comes next and why, from a
+summary of what the machine observes; it keeps no state and has no side effects, so it is
+tested exhaustively. The LeafSystem (grasp_state_machine.py) builds the observation each
+tick and carries out the motion of each mode.
+
+  Reach    -> Load       the Reach-Load event                    (memorized/heuristic event)
+  Reach    -> Re-Reach   one finger alone in contact, closed on nothing, or no event in time
+  Re-Reach -> Reach      the gripper is open and re-centred      (corrective)
+  Load     -> Lift       the Load-Lift event                     (memorized/heuristic event)
+  Load     -> Lift       after a Lift-Load: both SA at the raised grip force (corrective;
+                         the memorized events describe the ideal grasp, not a re-load)
+  Load     -> Re-Reach   no Load-Lift event in time (first load only)
+  Lift     -> Load       the object slips (Lift-Load)            (corrective)
+  Lift     -> Hold       the lift motion ended                   (timer)
+  Hold     -> Avoid      a hit: RA above the hit threshold       (threshold)
+  Hold     -> Place      hold_s in Hold                          (timer)
+  Avoid    -> Hold       the avoiding motion ended               (timer)
+  Place    -> Unload     the Place-Unload event                  (memorized/heuristic event)
+  Place    -> Unload     no event place_event_timeout_s after the arm stopped (timer)
+  Unload   -> Done       the gripper is open and the arm retracted (timer)
+  any      -> Failed     a device fault, the object lost, or corrections used up
+A corrective action whose retries are used up goes to Failed with the reason.
+"""
+
+import dataclasses
+
+from tegrasp_drake.control.grasp_modes import (CORRECTIVE, FAULT, TERMINAL_MODES, THRESHOLD,
+                                               TIMER, Mode)
+
+HOLDING_MODES = (Mode.LIFT, Mode.HOLD, Mode.AVOID, Mode.PLACE)
+
+
+@dataclasses.dataclass(frozen=True)
+class Observation:
+    """What the machine sees in one tick. Durations in seconds."""
+    time_in_mode: float = 0.0
+    event_matched: bool = False  # the detector reports the expected event now
+    motion_done: bool = False  # the mode's arm motion (and gripper stage) has finished
+    time_since_motion_done: float = 0.0
+    closing_s: float = -1.0  # time since the gripper was told to close; -1 if not closing
+    contact: tuple = (False, False)  # (left, right) SA above the contact force
+    one_sided_s: float = 0.0  # how long exactly one finger has been in contact
+    closed_on_nothing: bool = False  # at the closed request with no object (gOBJ 3)
+    grip_reached: bool = False  # both SA at grip_fraction of the requested grip force
+    slip_s: float = 0.0  # how long either RA has been above the slip threshold
+    hit: bool = False  # either RA above the hit threshold (after the refractory time)
+    gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
+    device_fault: str = ""  # a watchdog's message, "" for none
+
+
+@dataclasses.dataclass(frozen=True)
+class Counters:
+    re_reaches: int = 0
+    lift_loads: int = 0
+
+
+@dataclasses.dataclass(frozen=True)
+class Decision:
+    """The next mode, what triggered it and a human-readable reason."""
+    mode: Mode
+    trigger: str
+    reason: str
+
+
+def _re_reach_or_fail(counters: Counters, config, reason: str) -> Decision:
+    if not config.re_reach_enabled:
+        return Decision(Mode.FAILED, CORRECTIVE, f"{reason}; Re-Reach is switched off")
+    if counters.re_reaches >= config.max_re_reaches:
+        return Decision(Mode.FAILED, CORRECTIVE,
+                        f"{reason}, after {counters.re_reaches} Re-Reach attempts")
+    return Decision(Mode.RE_REACH, CORRECTIVE, reason)
+
+
+def _reach(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+    if obs.event_matched:
+        return Decision(Mode.LOAD, event_trigger, "Reach-Load event")
+    if obs.one_sided_s >= config.one_sided_contact_s:
+        finger = "left" if obs.contact[0] else "right"
+        return _re_reach_or_fail(counters, config, f"only the {finger} finger touched")
+    if obs.closed_on_nothing:
+        return _re_reach_or_fail(counters, config, "the gripper closed on nothing")
+    if obs.closing_s >= config.reach_event_timeout_s:
+        return _re_reach_or_fail(
+            counters, config, f"no Reach-Load event {config.reach_event_timeout_s:g} s after "
+            "closing")
+    return None
+
+
+def _load(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+    if obs.event_matched:
+        return Decision(Mode.LIFT, event_trigger, "Load-Lift event")
+    if counters.lift_loads and obs.grip_reached:
+        return Decision(Mode.LIFT, CORRECTIVE, "raised grip force reached (Lift-Load)")
+    if obs.time_in_mode >= config.load_event_timeout_s:
+        reason = f"no Load-Lift event within {config.load_event_timeout_s:g} s"
+        if counters.lift_loads:
+            return Decision(Mode.FAILED, CORRECTIVE, f"{reason} after Lift-Load")
+        return _re_reach_or_fail(counters, config, reason)
+    return None
+
+
+def _lift(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+    if config.lift_load_enabled and obs.slip_s >= config.slip_s:
+        if counters.lift_loads >= config.max_lift_loads:
+            return Decision(Mode.FAILED, CORRECTIVE,
+                            f"the object still slips after {counters.lift_loads} Lift-Load "
+                            "corrections")
+        return Decision(Mode.LOAD, CORRECTIVE, "slip during Lift (Lift-Load)")
+    if obs.motion_done:
+        return Decision(Mode.HOLD, TIMER, "lift motion ended")
+    return None
+
+
+def _hold(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+    if config.avoid_enabled and obs.hit:
+        return Decision(Mode.AVOID, THRESHOLD, "hit: RA above the hit threshold")
+    if obs.time_in_mode >= hold_s:
+        return Decision(Mode.PLACE, TIMER, f"held {hold_s:g} s")
+    return None
+
+
+def _avoid(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+    if obs.motion_done:
+        return Decision(Mode.HOLD, TIMER, "avoiding motion ended")
+    return None
+
+
+def _place(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+    if obs.event_matched:
+        return Decision(Mode.UNLOAD, event_trigger, "Place-Unload event")
+    if obs.motion_done and obs.time_since_motion_done >= config.place_event_timeout_s:
+        return Decision(Mode.UNLOAD, TIMER, "no Place-Unload event after the arm stopped")
+    return None
+
+
+def _re_reach(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+    if obs.motion_done:
+        return Decision(Mode.REACH, CORRECTIVE, "re-centred")
+    return None
+
+
+def _unload(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+    if obs.motion_done:
+        return Decision(Mode.DONE, TIMER, "released and retracted")
+    return None
+
+
+_RULES = {Mode.REACH: _reach, Mode.RE_REACH: _re_reach, Mode.LOAD: _load, Mode.LIFT: _lift,
+          Mode.HOLD: _hold, Mode.AVOID: _avoid, Mode.PLACE: _place, Mode.UNLOAD: _unload}
+
+
+def next_mode(mode: Mode, obs: Observation, counters: Counters, config, *,
+              event_trigger: str, hold_s: float) -> Decision | None:
+    """The transition out of `mode` this tick, or None to stay.
+
+    config: a GraspControllerConfig; event_trigger: the trigger name of this controller's
+    event detector (memorized or heuristic); hold_s: how long to hold [s] (the paper: 3 s).
+    """
+    if mode in TERMINAL_MODES:
+        return None
+    if obs.device_fault:
+        return Decision(Mode.FAILED, FAULT, obs.device_fault)
+    if obs.gripper_fault:
+        return Decision(Mode.FAILED, FAULT, f"gripper fault {obs.gripper_fault}")
+    if (config.drop_check_enabled and mode in HOLDING_MODES and not any(obs.contact)):
+        return Decision(Mode.FAILED, THRESHOLD, "object lost: no finger in contact")
+    return _RULES[mode](obs, counters, config, event_trigger, hold_s)

@@ -1,0 +1,151 @@
+"""The state machine's pure transition rule, exhaustively over its observations."""
+
+import dataclasses
+import itertools
+
+import pytest
+
+from tegrasp_drake.control.controller_config import GraspControllerConfig
+from tegrasp_drake.control.grasp_modes import (CORRECTIVE, FAULT, MEMORIZED_EVENT, TERMINAL_MODES,
+                                               THRESHOLD, TIMER, Mode)
+from tegrasp_drake.control.transition_logic import (HOLDING_MODES, Counters, Observation,
+                                                    next_mode)
+
+HOLD_S = 3.0
+# Fig. 6b: where each mode may go.
+ALLOWED = {Mode.REACH: {Mode.LOAD, Mode.RE_REACH, Mode.FAILED},
+           Mode.RE_REACH: {Mode.REACH, Mode.FAILED},
+           Mode.LOAD: {Mode.LIFT, Mode.RE_REACH, Mode.FAILED},
+           Mode.LIFT: {Mode.LOAD, Mode.HOLD, Mode.FAILED},
+           Mode.HOLD: {Mode.AVOID, Mode.PLACE, Mode.FAILED},
+           Mode.AVOID: {Mode.HOLD, Mode.FAILED},
+           Mode.PLACE: {Mode.UNLOAD, Mode.FAILED},
+           Mode.UNLOAD: {Mode.DONE, Mode.FAILED}}
+EVENT_TRANSITIONS = {(Mode.REACH, Mode.LOAD), (Mode.LOAD, Mode.LIFT), (Mode.PLACE, Mode.UNLOAD)}
+
+
+def decide(mode, config=None, counters=Counters(), **fields):
+    return next_mode(mode, Observation(**fields), counters, config or GraspControllerConfig(),
+                     event_trigger=MEMORIZED_EVENT, hold_s=HOLD_S)
+
+
+def all_observations():
+    """Every combination of the observation's flags, with durations below and above their
+    thresholds."""
+    config = GraspControllerConfig()
+    values = dict(
+        time_in_mode=(0.0, 10.0), event_matched=(False, True), motion_done=(False, True),
+        time_since_motion_done=(0.0, 5.0), closing_s=(-1.0, 0.5, 5.0),
+        contact=((False, False), (True, False), (True, True)),
+        one_sided_s=(0.0, config.one_sided_contact_s), closed_on_nothing=(False, True),
+        slip_s=(0.0, config.slip_s), hit=(False, True), gripper_fault=("", "gFLT_0x08"),
+        device_fault=("", "arm silent since 1.0 s"))
+    names = list(values)
+    for combination in itertools.product(*values.values()):
+        yield Observation(**dict(zip(names, combination)))
+
+
+OBSERVATIONS = list(all_observations())
+
+
+@pytest.mark.parametrize("mode", list(Mode))
+@pytest.mark.parametrize("counters", [Counters(), Counters(re_reaches=2, lift_loads=2)])
+def test_every_transition_is_one_of_fig_6b(mode, counters):
+    config = GraspControllerConfig()
+    for observation in OBSERVATIONS:
+        decision = next_mode(mode, observation, counters, config,
+                             event_trigger=MEMORIZED_EVENT, hold_s=HOLD_S)
+        if mode in TERMINAL_MODES:
+            assert decision is None
+            continue
+        if observation.device_fault or observation.gripper_fault:
+            assert decision.mode == Mode.FAILED and decision.trigger == FAULT
+            continue
+        if decision is None:
+            continue
+        assert decision.mode in ALLOWED[mode], (mode, observation, decision)
+        if decision.trigger == MEMORIZED_EVENT:
+            assert observation.event_matched and (mode, decision.mode) in EVENT_TRANSITIONS
+        if (mode, decision.mode) in EVENT_TRANSITIONS and decision.trigger != TIMER:
+            assert decision.trigger == MEMORIZED_EVENT
+        # Corrections used up never start another one.
+        if counters.re_reaches >= config.max_re_reaches:
+            assert decision.mode != Mode.RE_REACH
+        if counters.lift_loads >= config.max_lift_loads:
+            assert not (mode == Mode.LIFT and decision.mode == Mode.LOAD)
+
+
+@pytest.mark.parametrize("mode", [m for m in Mode if m not in TERMINAL_MODES])
+def test_nothing_happening_keeps_the_mode(mode):
+    assert decide(mode, contact=(True, True)) is None
+
+
+def test_event_transitions():
+    assert decide(Mode.REACH, event_matched=True).mode == Mode.LOAD
+    assert decide(Mode.LOAD, event_matched=True, contact=(True, True)).mode == Mode.LIFT
+    decision = decide(Mode.PLACE, event_matched=True, contact=(True, True))
+    assert (decision.mode, decision.trigger) == (Mode.UNLOAD, MEMORIZED_EVENT)
+
+
+def test_re_reach_triggers_and_their_bound():
+    config = GraspControllerConfig()
+    one_sided = dict(contact=(False, True), one_sided_s=config.one_sided_contact_s)
+    decision = decide(Mode.REACH, **one_sided)
+    assert (decision.mode, decision.trigger) == (Mode.RE_REACH, CORRECTIVE)
+    assert "right finger" in decision.reason
+    assert decide(Mode.REACH, closed_on_nothing=True).mode == Mode.RE_REACH
+    assert decide(Mode.REACH, closing_s=config.reach_event_timeout_s).mode == Mode.RE_REACH
+    assert decide(Mode.REACH, contact=(False, True), one_sided_s=0.5 * config.one_sided_contact_s
+                  ) is None
+    used_up = decide(Mode.REACH, counters=Counters(re_reaches=config.max_re_reaches),
+                     **one_sided)
+    assert used_up.mode == Mode.FAILED and "after 2 Re-Reach attempts" in used_up.reason
+    switched_off = decide(Mode.REACH, dataclasses.replace(config, re_reach_enabled=False),
+                          **one_sided)
+    assert switched_off.mode == Mode.FAILED
+    assert decide(Mode.RE_REACH, motion_done=True).mode == Mode.REACH
+
+
+def test_lift_load_and_its_switch():
+    config = GraspControllerConfig()
+    slipping = dict(slip_s=config.slip_s, contact=(True, True), motion_done=True)
+    decision = decide(Mode.LIFT, **slipping)
+    assert (decision.mode, decision.trigger) == (Mode.LOAD, CORRECTIVE)
+    off = decide(Mode.LIFT, dataclasses.replace(config, lift_load_enabled=False), **slipping)
+    assert off.mode == Mode.HOLD
+    assert decide(Mode.LIFT, counters=Counters(lift_loads=config.max_lift_loads),
+                  **slipping).mode == Mode.FAILED
+    # After a Lift-Load, a Load without its event fails rather than re-reaching.
+    assert decide(Mode.LOAD, counters=Counters(lift_loads=1), contact=(True, True),
+                  time_in_mode=config.load_event_timeout_s).mode == Mode.FAILED
+
+
+def test_hold_avoid_place():
+    decision = decide(Mode.HOLD, hit=True, contact=(True, True))
+    assert (decision.mode, decision.trigger) == (Mode.AVOID, THRESHOLD)
+    assert decide(Mode.HOLD, dataclasses.replace(GraspControllerConfig(), avoid_enabled=False),
+                  hit=True, contact=(True, True)) is None
+    assert decide(Mode.HOLD, time_in_mode=HOLD_S - 0.01, contact=(True, True)) is None
+    assert decide(Mode.HOLD, time_in_mode=HOLD_S, contact=(True, True)).mode == Mode.PLACE
+    assert decide(Mode.AVOID, motion_done=True, contact=(True, True)).mode == Mode.HOLD
+
+
+def test_place_without_event_unloads_on_timer():
+    config = GraspControllerConfig()
+    waiting = dict(motion_done=True, contact=(True, True))
+    assert decide(Mode.PLACE, time_since_motion_done=0.5 * config.place_event_timeout_s,
+                  **waiting) is None
+    decision = decide(Mode.PLACE, time_since_motion_done=config.place_event_timeout_s, **waiting)
+    assert (decision.mode, decision.trigger) == (Mode.UNLOAD, TIMER)
+
+
+@pytest.mark.parametrize("mode", HOLDING_MODES)
+def test_losing_the_object_fails(mode):
+    decision = decide(mode, contact=(False, False))
+    assert decision.mode == Mode.FAILED and "object lost" in decision.reason
+
+
+def test_faults_name_the_device():
+    assert "gFLT_0x08" in decide(Mode.HOLD, gripper_fault="gFLT_0x08").reason
+    assert decide(Mode.LIFT, device_fault="tactile silent since 2.1 s").reason == \
+        "tactile silent since 2.1 s"
