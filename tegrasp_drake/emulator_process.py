@@ -93,3 +93,45 @@ class EmulatorProcess:
 
     def __exit__(self, *exc):
         self.stop()
+
+
+class EmulatedDevices:
+    """The three devices, each emulated in its own process (`tegrasp emulate jaco`,
+    `robotiq`, `myrio --sync follow`), started together; `config` points a hardware
+    station at them. Use as a context manager; `myrio`, `robotiq` and `jaco` are the
+    EmulatorProcess of each (e.g. to kill one)."""
+
+    def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),
+                 robotiq_args=(), timeout: float = 30.0):
+        from tegrasp_drake.hardware_config import HardwareStationConfig
+        self.jaco = self.robotiq = self.myrio = None
+        try:
+            self.jaco = EmulatorProcess("jaco", *scenario_args, "--lcm-url", lcm_url,
+                                        wait=False)
+            self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args,
+                                           wait=False)
+            self.myrio = EmulatorProcess("myrio", "--trial", str(trial), "--sync", "follow",
+                                         "--lcm-url", lcm_url, wait=False)
+            for process in self.processes:
+                process.wait_until_ready(timeout)
+        except BaseException:
+            self.stop()
+            raise
+        self.config = HardwareStationConfig()
+        self.config.arm.lcm_url = lcm_url
+        self.config.gripper.port = self.robotiq.ports["gripper"]
+        self.config.tactile.port = self.myrio.ports["tactile"]
+
+    @property
+    def processes(self) -> list:
+        return [p for p in (self.jaco, self.robotiq, self.myrio) if p is not None]
+
+    def stop(self):
+        for process in self.processes:
+            process.stop()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.stop()

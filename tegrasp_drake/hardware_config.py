@@ -51,11 +51,14 @@ class SerialTactileDriver:
 
     calibration_file: a TactileCalibration YAML (LoadTactileCalibration); empty for the
     defaults. stale_timeout [s]: the receiver's `stale` flag (the watchdog trips on its own
-    timeout)."""
+    timeout). max_backlog [frames]: the receiver plays received frames one per 1 ms tick
+    and at most this many wait (TactileSerialReceiver), so bursts keep every piezo sample
+    at a latency of at most max_backlog ms."""
     port: str = "/dev/ttyACM0"
     baudrate: int = 921600
     calibration_file: str = ""
     stale_timeout: float = 0.05
+    max_backlog: int = 8
 
 
 @dataclasses.dataclass

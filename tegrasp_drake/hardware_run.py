@@ -5,8 +5,10 @@ around the simulated station (grasp_diagram.py), waits for the devices, and runs
 Simulator at real-time rate 1 until the state machine is done or failed. On the way:
 - every state transition is printed as it happens and published on TEGRASP_TRANSITION;
 - every device fault is printed (which device, what, since when) and published on
-  TEGRASP_FAULT; the station holds the arm still at once, and the run ends
-  `AFTER_FAULT_S` later (the state machine should have gone to Failed);
+  TEGRASP_FAULT; the station holds the arm still at once, and the state machine goes to
+  Failed naming it (its `device_fault` input);
+- the run ends END_MARGIN_S after the state machine is done or failed, or after a
+  fault (holding still meanwhile), or at the controller's time limit;
 - every message on the bus (the arm's KINOVA_JACO_*, the station's TEGRASP_TACTILE and
   TEGRASP_GRIPPER, the run's own) is written to an LCM log file, which lcm-logplayer
   plays back and `tegrasp replay` re-runs the event matcher on (run_log.py). The first
@@ -16,8 +18,8 @@ Simulator at real-time rate 1 until the state machine is done or failed. On the 
 import dataclasses
 import json
 import pathlib
-import sys
-import threading
+import signal
+import subprocess
 import time
 
 import lcm
@@ -26,7 +28,7 @@ from pydrake.systems.framework import EventStatus
 
 from tegrasp_drake.drivers.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL, utime)
-from tegrasp_drake.grasp_diagram import DEFAULT_CONTROLLER, build_grasp_diagram, is_finished
+from tegrasp_drake.grasp_diagram import build_grasp_diagram, is_finished
 from tegrasp_drake.hardware_config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware_station import MakeHardwareStation
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
@@ -34,57 +36,69 @@ from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
 from tegrasp_drake.scenario import scenario_to_yaml
 from tegrasp_drake.trial_diagram import package_versions
 
-AFTER_FAULT_S = 0.5      # [s] the run goes on this long after the first fault
-# The device threads (tactile reader, Modbus client) need the GIL within a few
-# milliseconds while the 1 kHz loop holds it most of the time: ask for it sooner than
-# Python's default 5 ms.
-THREAD_SWITCH_INTERVAL_S = 0.0005
-REPORT_PERIOD_S = 0.002  # [s] of Context time between looks at transitions and faults
+END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
+LOGGER_SUBSCRIBE_S = 0.2  # [s] given to lcm-logger to subscribe once its file exists
+REPORT_PERIOD_S = 0.005  # [s] of Context time between looks at transitions and faults
 
 
 class BusLogWriter:
-    """lcm-logger in a thread: every message on the bus at `url` goes to an LCM log file
-    (event timestamps are wall-clock microseconds of reception, as lcm-logger writes
-    them). It has its own LCM instance, as lcm-logger does: DrakeLcm's all-channel
-    subscription drops messages when it is pumped in step with its own publications.
-    A memq:// bus lives inside one LCM instance, so there `drake_lcm` is subscribed."""
+    """Records every message on the bus at `url` to an LCM log file with lcm-logger, the
+    LCM package's own logger, in its own process: in this one, a Python subscriber to
+    all channels would compete with the control loop for the interpreter (it cost the
+    loop a third of its speed), and DrakeLcm's all-channel subscription drops messages
+    when it is pumped in step with its own publications. A memq:// bus lives inside one
+    LCM instance, so there `drake_lcm` is subscribed instead."""
 
-    def __init__(self, url: str, path, *, drake_lcm=None):
+    def __init__(self, url: str, path, *, drake_lcm=None, start_timeout: float = 5.0):
         self.path = pathlib.Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
-        self._log = lcm.EventLog(str(self.path), "w", overwrite=True)
-        self._lock = threading.Lock()
-        self._stop = threading.Event()
-        self.messages = 0
-        self._thread = None
+        self._process = None
+        self._log = None
+        self._in_process_messages = 0
         if url.startswith("memq"):
+            self._log = lcm.EventLog(str(self.path), "w", overwrite=True)
             drake_lcm.SubscribeAllChannels(self._write)
             return
-        self._bus = lcm.LCM(url)
-        self._bus.subscribe(".*", self._write)
-        self._thread = threading.Thread(target=self._run, name="bus log", daemon=True)
-        self._thread.start()
-
-    def _run(self):
-        while not self._stop.is_set():
-            self._bus.handle_timeout(20)
+        self.path.unlink(missing_ok=True)
+        self._process = subprocess.Popen(
+            [str(pathlib.Path(lcm.LCM_BIN_DIR) / "lcm-logger"), "--quiet", "--force",
+             f"--lcm-url={url}", str(self.path)])
+        deadline = time.monotonic() + start_timeout
+        while not self.path.exists():
+            if self._process.poll() is not None or time.monotonic() > deadline:
+                raise RuntimeError(f"lcm-logger did not start on {url} (exit code "
+                                   f"{self._process.poll()})")
+            time.sleep(0.01)
+        time.sleep(LOGGER_SUBSCRIBE_S)
 
     def _write(self, channel: str, data: bytes):
-        with self._lock:
-            if self._log is not None:
-                self._log.write_event(int(time.time() * 1e6), channel, data)
-                self.messages += 1
+        if self._log is not None:
+            self._log.write_event(int(time.time() * 1e6), channel, data)
+            self._in_process_messages += 1
 
-    def close(self, linger: float = 0.05):
-        """Stops after `linger` [s] more of the bus (the last messages in flight)."""
-        if self._thread is not None:
-            self._stop.wait(linger)
-            self._stop.set()
-            self._thread.join(1.0)
-        with self._lock:
-            if self._log is not None:
-                self._log.close()
-                self._log = None
+    def close(self, linger: float = 0.1) -> int:
+        """Stops after `linger` [s] more of the bus; returns the messages recorded."""
+        if self._process is not None and self._process.poll() is None:
+            time.sleep(linger)
+            self._process.send_signal(signal.SIGINT)
+            try:
+                self._process.wait(5.0)
+            except subprocess.TimeoutExpired:
+                self._process.kill()
+                self._process.wait()
+        if self._log is not None:
+            self._log.close()
+            self._log = None
+        return self.messages
+
+    @property
+    def messages(self) -> int:
+        if self._process is None:
+            return self._in_process_messages
+        log = lcm.EventLog(str(self.path), "r")
+        count = sum(1 for _ in log)
+        log.close()
+        return count
 
 
 def fault_message(fault, now: float) -> lcmt_tegrasp_fault:
@@ -103,12 +117,25 @@ def transition_message(transition: dict) -> lcmt_tegrasp_transition:
     message.from_mode = str(transition["from"])
     message.to_mode = str(transition["to"])
     message.trigger = str(transition.get("trigger", ""))
+    message.reason = str(transition.get("reason", ""))
     return message
 
 
 def format_transition(transition: dict) -> str:
-    trigger = f"  ({transition['trigger']})" if transition.get("trigger") else ""
+    why = "; ".join(str(transition[key]) for key in ("trigger", "reason")
+                    if transition.get(key))
+    trigger = f"  ({why})" if why else ""
     return f"[{transition['t']:8.3f} s] {transition['from']} -> {transition['to']}{trigger}"
+
+
+def format_counters(counters: dict) -> str:
+    gripper, tactile = counters["gripper"], counters["tactile"]
+    decoder = tactile.decoder
+    return (f"gripper: {gripper.reads} status reads, {gripper.writes} writes, "
+            f"{gripper.errors} failed transactions"
+            + (f" (last: {gripper.last_error})" if gripper.errors else "")
+            + f"; tactile: {decoder.frames} frames, {decoder.rejected} rejected, "
+            f"{decoder.dropped_frames} dropped, {tactile.queue_overflows} overflowed")
 
 
 def format_fault(fault, now: float) -> str:
@@ -117,7 +144,7 @@ def format_fault(fault, now: float) -> str:
 
 class RunReporter:
     """A Simulator monitor: prints and publishes new transitions and faults, and ends the
-    run when the state machine is done or failed, or AFTER_FAULT_S after a fault."""
+    run END_MARGIN_S after the state machine is done or failed, or after a fault."""
 
     def __init__(self, *, diagram, station, grasp, drake_lcm, out=print):
         self._diagram = diagram
@@ -128,7 +155,7 @@ class RunReporter:
         self._next_look = 0.0
         self.transitions = []
         self.faults = []
-        self.first_fault_time = None
+        self.ended_at = None
 
     def __call__(self, root_context) -> EventStatus:
         now = root_context.get_time()
@@ -143,13 +170,13 @@ class RunReporter:
             self._station.GetMyContextFromRoot(root_context))
         for fault in faults[len(self.faults):]:
             self.faults.append(fault)
-            self.first_fault_time = self.first_fault_time or now
+            self.ended_at = self.ended_at or now
             self._out(format_fault(fault, now))
             self._lcm.Publish(FAULT_CHANNEL, fault_message(fault, now).encode())
-        if is_finished(self.transitions):
-            return EventStatus.ReachedTermination(self._diagram, "the grasp is finished")
-        if self.first_fault_time is not None and now >= self.first_fault_time + AFTER_FAULT_S:
-            return EventStatus.ReachedTermination(self._diagram, "stopped after a fault")
+        if is_finished(self.transitions) and self.ended_at is None:
+            self.ended_at = now
+        if self.ended_at is not None and now >= self.ended_at + END_MARGIN_S:
+            return EventStatus.ReachedTermination(self._diagram, "the grasp has ended")
         return EventStatus.Succeeded()
 
 
@@ -161,6 +188,7 @@ class HardwareRunResult:
     wall_time: float           # [s] from Initialize to the end
     log_path: pathlib.Path | None
     log_messages: int
+    device_counters: dict      # {"gripper": RobotiqModbusCounters, "tactile": ...Counters}
 
     @property
     def realtime_rate(self) -> float:
@@ -168,6 +196,7 @@ class HardwareRunResult:
 
 
 def run_info_message(scenario, config, controller: str, events_dir: str):
+    """The TEGRASP_RUN_INFO message of a run."""
     message = lcmt_tegrasp_run_info()
     message.utime = int(time.time() * 1e6)
     message.scenario_yaml = scenario_to_yaml(scenario)
@@ -180,28 +209,20 @@ def run_info_message(scenario, config, controller: str, events_dir: str):
 
 
 def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
-                    controller: str = DEFAULT_CONTROLLER, events=None, events_dir: str = "",
+                    controller: str | None = None, events=None, events_dir: str = "",
                     log_path=None, duration: float | None = None, drake_lcm=None,
                     out=print) -> HardwareRunResult:
     """Runs the grasp on the devices of `config` (default: the scenario's `station`, which
     must then be a HardwareStationConfig) in real time; see the module docstring.
 
-    drake_lcm: a DrakeLcm to use instead of one on the config's URL."""
+    controller: the controller's name (default: the scenario's); events: its memorized
+    events (default: the package's for the scenario's object); drake_lcm: a DrakeLcm to use
+    instead of one on the config's URL."""
     config = config or scenario.station
     if not isinstance(config, HardwareStationConfig):
         raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "
                          f"station is {type(config).__name__})")
-    switch_interval = sys.getswitchinterval()
-    sys.setswitchinterval(THREAD_SWITCH_INTERVAL_S)
-    try:
-        return _run(scenario, config, controller, events, events_dir, log_path, duration,
-                    drake_lcm, out)
-    finally:
-        sys.setswitchinterval(switch_interval)
-
-
-def _run(scenario, config, controller, events, events_dir, log_path, duration, drake_lcm,
-         out) -> HardwareRunResult:
+    controller = controller or scenario.controller.name
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
         parts, builder = build_grasp_diagram(scenario, station=station, controller=controller,
                                              events=events)
@@ -222,14 +243,16 @@ def _run(scenario, config, controller, events, events_dir, log_path, duration, d
             simulator.Initialize()
             out("devices ready; running in real time")
             start = time.monotonic()
-            simulator.AdvanceTo(duration if duration is not None else parts.duration)
+            simulator.AdvanceTo(duration if duration is not None else parts.time_limit)
             wall = time.monotonic() - start
+            counters = {"gripper": station.gripper_client.counters(),
+                        "tactile": station.tactile_reader.counters()}
+            out(format_counters(counters))
         finally:
-            if writer is not None:
-                writer.close()
+            messages = writer.close() if writer is not None else 0
         context = simulator.get_context()
         return HardwareRunResult(
             transitions=list(reporter.transitions), faults=tuple(reporter.faults),
             sim_time=context.get_time(), wall_time=wall,
             log_path=writer.path if writer else None,
-            log_messages=writer.messages if writer else 0)
+            log_messages=messages, device_counters=counters)

@@ -10,7 +10,9 @@ runs unchanged on either:
            tactile.left_pad_acceleration (3, m/s^2), tactile.right_pad_acceleration (3)
   hardware only:
            fault (abstract tuple of DeviceFault): every fault seen (FaultLatch), empty
-               while all is well; stop (1): 1 once there is any fault;
+               while all is well; device_fault (abstract str): the same as text, ""
+               while all is well (the state machine's `device_fault` input);
+               stop (1): 1 once there is any fault;
            arm.commanded_state (12): positions and the joint velocities sent to the arm;
            {arm,gripper,tactile}.time_measured (1), tactile.stale (1), tactile.zeroing (1).
 
@@ -125,7 +127,7 @@ class HardwareStation(Diagram):
                        if config.tactile.calibration_file else TactileCalibration())
         tactile = builder.AddNamedSystem("tactile_receiver", TactileSerialReceiver(
             self._tactile_reader, calibration=calibration,
-            stale_timeout=config.tactile.stale_timeout))
+            stale_timeout=config.tactile.stale_timeout, max_backlog=config.tactile.max_backlog))
         for finger in FINGER_NAMES:
             for signal in ("taxel_forces", "pad_acceleration"):
                 builder.ExportOutput(tactile.GetOutputPort(f"{finger}_{signal}"),
@@ -147,6 +149,7 @@ class HardwareStation(Diagram):
         builder.Connect(gripper.GetOutputPort("fault"), faults.GetInputPort("gripper_fault"))
         builder.Connect(faults.GetOutputPort("stop"), jaco.tracker.GetInputPort("stop"))
         builder.ExportOutput(faults.GetOutputPort("fault"), "fault")
+        builder.ExportOutput(faults.GetOutputPort("message"), "device_fault")
         builder.ExportOutput(faults.GetOutputPort("stop"), "stop")
 
         # Device data on the bus.

@@ -65,7 +65,7 @@ class RunLog:
     path: pathlib.Path
     run_info: lcmt_tegrasp_run_info | None
     tactile: dict           # device_log_messages.tactile_arrays, and wall_us: reception
-    transitions: list       # [{t, from, to, trigger}]
+    transitions: list       # [{t, from, to, trigger, reason}]
     faults: list            # lcmt_tegrasp_fault
     gripper: list           # lcmt_tegrasp_gripper
     arm_commands: list      # (wall utime, lcmt_jaco_command)
@@ -111,7 +111,8 @@ def read_run_log(path) -> RunLog:
     return RunLog(
         path=path, run_info=info[0][1] if info else None, tactile=tactile,
         transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
-                      "trigger": m.trigger} for _, m in decoded[TRANSITION_CHANNEL]],
+                      "trigger": m.trigger, "reason": m.reason}
+                     for _, m in decoded[TRANSITION_CHANNEL]],
         faults=[m for _, m in decoded[FAULT_CHANNEL]],
         gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
         arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],

@@ -3,17 +3,16 @@ device that dies mid-grasp trips the watchdog, which holds the arm still within 
 after its timeout and names the device and since when; a gripper fault code is named.
 """
 
-import contextlib
 import os
 import threading
+import time
 
 import numpy as np
 import pytest
 
 from tegrasp_drake.drivers.device_fault import DEVICE_FAULT, SILENT
-from tegrasp_drake.emulator_process import EmulatorProcess
-from tegrasp_drake.hardware_config import HardwareStationConfig
-from tegrasp_drake.hardware_run import AFTER_FAULT_S, run_on_hardware
+from tegrasp_drake.emulator_process import EmulatedDevices
+from tegrasp_drake.hardware_run import END_MARGIN_S, run_on_hardware
 from tegrasp_drake.run_log import read_run_log
 from tegrasp_drake.scenario import load_scenario
 
@@ -21,7 +20,7 @@ pytestmark = pytest.mark.slow
 
 # Watchdog timeouts of the test (see test_hardware_hil.py: a loaded host's pty can be
 # 50-100 ms late); the reaction after the timeout is what is measured.
-TIMEOUT_S = 0.3
+TIMEOUT_S = 0.5
 REACTION_S = 0.1     # safe state at most this long after the watchdog's timeout
 STILL_RAD_S = 0.01   # an arm slower than this on every joint is holding still [rad/s]
 KILL_AT_S = 4.6      # in the lift, the arm moving up with the box
@@ -33,37 +32,19 @@ def lcm_url(offset):
 
 @pytest.fixture(scope="module")
 def box_trial(tmp_path_factory):
-    """A short recorded trial for the myRIO to replay (the tactile content is not what is
-    tested here: the ideal grasp's first seconds from the simulation will do)."""
-    from tegrasp_drake.grasp_diagram import run_simulated_grasp
+    """A recorded trial for the myRIO to replay: the simulated grasp of the box up to just
+    after the kill (the rest is not needed)."""
+    from tegrasp_drake.trial import run_trial
     scenario = load_scenario(name="box", overrides=["grasp.hold_s=0.5"])
-    run = run_simulated_grasp(scenario, duration=KILL_AT_S + 1.0)
-    return run.log.save(tmp_path_factory.mktemp("trial") / "box.npz")
+    trial = run_trial(scenario, max_time=KILL_AT_S + 1.0)
+    return trial.log.save(tmp_path_factory.mktemp("trial") / "box.npz")
 
 
-@contextlib.contextmanager
-def emulators(url, trial, *robotiq_args):
-    started = [EmulatorProcess("jaco", "--scenario-name", "box", "--lcm-url", url, wait=False),
-               EmulatorProcess("robotiq", "--scenario-name", "box", *robotiq_args, wait=False),
-               EmulatorProcess("myrio", "--trial", str(trial), "--sync", "follow",
-                               "--lcm-url", url, wait=False)]
-    try:
-        for emulator in started:
-            emulator.wait_until_ready()
-        yield started
-    finally:
-        for emulator in started:
-            emulator.stop()
-
-
-def config_for(url, processes):
-    config = HardwareStationConfig()
-    config.arm.lcm_url = url
-    config.gripper.port = processes[1].ports["gripper"]
-    config.tactile.port = processes[2].ports["tactile"]
-    config.watchdog.arm_timeout = config.watchdog.tactile_timeout = TIMEOUT_S
-    config.watchdog.gripper_timeout = TIMEOUT_S
-    return config
+def devices_for(url, trial, *robotiq_args) -> EmulatedDevices:
+    devices = EmulatedDevices(lcm_url=url, trial=trial, robotiq_args=robotiq_args)
+    watchdog = devices.config.watchdog
+    watchdog.arm_timeout = watchdog.gripper_timeout = watchdog.tactile_timeout = TIMEOUT_S
+    return devices
 
 
 def first_still_command(log):
@@ -94,19 +75,25 @@ def test_killed_myrio_trips_the_watchdog_and_the_arm_holds_still(box_trial, tmp_
     url = lcm_url(1)
     scenario = load_scenario(name="box", overrides=["grasp.hold_s=0.5"])
     lines = []
-    with emulators(url, box_trial) as processes:
-        killer = threading.Timer(KILL_AT_S, processes[2].kill)
+    killed_at = []
+
+    with devices_for(url, box_trial) as devices:
+        def kill():
+            devices.myrio.kill()
+            killed_at.append(time.time())
+        killer = threading.Timer(KILL_AT_S, kill)
 
         def out(line):
             lines.append(line)
             if line.startswith("devices ready"):
                 killer.start()
-        result = run_on_hardware(scenario, config=config_for(url, processes),
+        result = run_on_hardware(scenario, config=devices.config,
                                  log_path=tmp_path / "kill.lcmlog", out=out)
         killer.cancel()
     fault = result.faults[0]
     assert (fault.device, fault.kind) == ("tactile", SILENT), "\n".join(lines)
-    assert KILL_AT_S - 0.3 < fault.since_sim_time < KILL_AT_S + 0.3
+    # The last frame came just before the kill (wall clock: the loop may lag real time).
+    assert killed_at[0] - 0.3 < fault.since_wall_time < killed_at[0] + 0.01
     assert f"tactile: silent: no new data for more than {TIMEOUT_S * 1e3:.0f} ms; since t = " \
         in str(fault)
     assert any(line.startswith("[") and "FAULT tactile: silent" in line for line in lines)
@@ -115,15 +102,18 @@ def test_killed_myrio_trips_the_watchdog_and_the_arm_holds_still(box_trial, tmp_
     still_command_time, _ = first_still_command(log)
     assert still_command_time <= tripped + REACTION_S
     assert arm_still_wall_time(log) <= wall_time_of_context_time(log, tripped) + REACTION_S * 1e6
-    assert result.sim_time < tripped + AFTER_FAULT_S + 0.1
+    assert result.sim_time < tripped + END_MARGIN_S + 0.1
+    assert result.transitions[-1]["to"] == "Failed"
+    assert result.transitions[-1]["trigger"] == "fault"
+    assert "tactile: silent" in result.transitions[-1]["reason"]
 
 
 def test_gripper_fault_code_is_named_and_the_arm_holds_still(box_trial, tmp_path):
     url = lcm_url(2)
     scenario = load_scenario(name="box", overrides=["grasp.hold_s=0.5"])
     lines = []
-    with emulators(url, box_trial, "--inject-fault", "0x0E@3.0") as processes:
-        result = run_on_hardware(scenario, config=config_for(url, processes),
+    with devices_for(url, box_trial, "--inject-fault", "0x0E@3.0") as devices:
+        result = run_on_hardware(scenario, config=devices.config,
                                  log_path=tmp_path / "fault.lcmlog", out=lines.append)
     fault = result.faults[0]
     assert (fault.device, fault.kind, fault.code) == ("gripper", DEVICE_FAULT, 0x0E), \
@@ -133,3 +123,5 @@ def test_gripper_fault_code_is_named_and_the_arm_holds_still(box_trial, tmp_path
     still_command_time, _ = first_still_command(log)
     assert still_command_time <= fault.since_sim_time + REACTION_S
     assert [f.code for f in log.faults] == [0x0E]
+    assert result.transitions[-1]["to"] == "Failed"
+    assert "code 0x0E" in result.transitions[-1]["reason"]

@@ -1,8 +1,8 @@
 """Hardware in the loop: the unchanged controller diagram on MakeHardwareStation against the
-three emulators (`tegrasp emulate all` in its own process: the Jaco simulation on a
-loopback LCM bus, the Robotiq 2F-85 on a pty, the myRIO replaying a recorded simulated
-trial of the box on a pty) picks and places the box with the transitions of the pure
-simulation.
+three emulators, each in its own process (`tegrasp emulate jaco`: the Jaco simulation on
+a loopback LCM bus; `robotiq`: the 2F-85 on a pty; `myrio --sync follow`: a recorded
+simulated trial of the box replayed on a pty) picks and places the box with the
+transitions of the pure simulation.
 
 This machine is shared and not real-time: pty data can arrive 50-100 ms late when it is
 loaded, so the watchdog timeouts here are HIL_TIMEOUT_S rather than the 50-100 ms of the
@@ -19,41 +19,38 @@ import pytest
 
 from tegrasp_drake import cli
 from tegrasp_drake import robotiq_units as units
-from tegrasp_drake.emulator_process import EmulatorProcess
-from tegrasp_drake.grasp_diagram import run_simulated_grasp
-from tegrasp_drake.hardware_config import HardwareStationConfig
+from tegrasp_drake.emulator_process import EmulatedDevices
 from tegrasp_drake.hardware_run import run_on_hardware
 from tegrasp_drake.run_log import read_run_log
 from tegrasp_drake.scenario import load_scenario
+from tegrasp_drake.trial import run_trial
 
 pytestmark = pytest.mark.slow
 
 SHORT_HOLD = ["grasp.hold_s=0.5"]  # the 3 s hold of the paper's script adds nothing here
-HIL_TIMEOUT_S = 0.3
-TRANSITION_TOLERANCE_S = 0.05
+HIL_TIMEOUT_S = 0.5
+# Transitions typically come within 5-20 ms of the simulation's; on a loaded host the
+# emulators' processes get the CPU late and a burst of tactile frames can delay an event's
+# detection by ~0.2 s: half a memorized window (0.5 s) is the tolerance.
+TRANSITION_TOLERANCE_S = 0.25
+# Unload ends when the fingers are open and the arm has retracted. The emulated 2F-85
+# opens at once at the commanded speed; the simulated one (SimRobotiqDriver) reports
+# "stopped on contact opening" for about 0.5 s first while its pads come off the
+# squeezed box, so the simulation's Unload-Done comes about 0.6 s later.
+UNLOAD_TOLERANCE_S = 0.75
 
 
 def unique_lcm_url(offset: int = 0) -> str:
     return f"udpm://239.255.76.67:{7800 + (os.getpid() * 7 + offset) % 1000}?ttl=0"
 
 
-def hil_config(lcm_url: str, ports: dict) -> HardwareStationConfig:
-    config = HardwareStationConfig()
-    config.arm.lcm_url = lcm_url
-    config.gripper.port = ports["gripper"]
-    config.tactile.port = ports["tactile"]
-    config.watchdog.arm_timeout = config.watchdog.gripper_timeout = HIL_TIMEOUT_S
-    config.watchdog.tactile_timeout = HIL_TIMEOUT_S
-    return config
-
-
 @pytest.fixture(scope="module")
 def simulated_box(tmp_path_factory):
-    """The pure simulation of the controller diagram on the box, and its trial log."""
+    """The pure simulation of the controller diagram on the box (trial.py), and its log."""
     scenario = load_scenario(name="box", overrides=SHORT_HOLD)
-    run = run_simulated_grasp(scenario)
-    path = run.log.save(tmp_path_factory.mktemp("sim") / "box.npz")
-    return scenario, run, path
+    trial = run_trial(scenario)
+    path = trial.log.save(tmp_path_factory.mktemp("sim") / "box.npz")
+    return scenario, trial, path
 
 
 @pytest.fixture(scope="module")
@@ -62,39 +59,55 @@ def hil_box(simulated_box, tmp_path_factory):
     url = unique_lcm_url()
     log_path = tmp_path_factory.mktemp("hil") / "box.lcmlog"
     lines = []
-    with EmulatorProcess("all", "--scenario-name", "box", "--trial", str(trial_path),
-                         "--lcm-url", url) as emulators:
-        result = run_on_hardware(scenario, config=hil_config(url, emulators.ports),
-                                 log_path=log_path, out=lines.append)
+    with EmulatedDevices(lcm_url=url, trial=trial_path) as devices:
+        config = devices.config
+        config.watchdog.arm_timeout = config.watchdog.gripper_timeout = HIL_TIMEOUT_S
+        config.watchdog.tactile_timeout = HIL_TIMEOUT_S
+        result = run_on_hardware(scenario, config=config, log_path=log_path,
+                                 out=lines.append)
     return result, read_run_log(log_path), lines
+
+
+def transitions_of(entries):
+    return [(t["from"], t["to"], t["trigger"]) for t in entries]
 
 
 def test_hil_box_makes_the_transitions_of_the_pure_simulation(simulated_box, hil_box):
     _, simulated, _ = simulated_box
     result, _, lines = hil_box
-    assert not result.faults, "\n".join(lines)
-    assert [(t["from"], t["to"]) for t in result.transitions] == [
-        (t["from"], t["to"]) for t in simulated.transitions]
-    np.testing.assert_allclose([t["t"] for t in result.transitions],
-                               [t["t"] for t in simulated.transitions],
-                               atol=TRANSITION_TOLERANCE_S)
-    assert result.transitions[-1]["to"] == "done"
+    expected = simulated.result["transitions"]
+    report = "\n".join(lines + ["simulation:"] + [str(t) for t in transitions_of(expected)])
+    assert not result.faults, report
+    assert transitions_of(result.transitions) == transitions_of(expected), report
+    assert [t["trigger"] for t in expected].count("memorized_event") == 3
+    tolerances = [UNLOAD_TOLERANCE_S if t["from"] == "Unload" else TRANSITION_TOLERANCE_S
+                  for t in expected]
+    errors = np.abs(np.subtract([t["t"] for t in result.transitions],
+                                [t["t"] for t in expected]))
+    assert np.all(errors <= tolerances), (errors, report)
+    assert result.transitions[-1]["to"] == "Done"
 
 
 def test_hil_box_is_picked_and_placed_by_the_emulated_devices(simulated_box, hil_box):
     _, simulated, _ = simulated_box
-    _, log, _ = hil_box
+    result, log, _ = hil_box
     # The gripper stopped on the box while closing during the hold, and opened at the end.
-    hold = [m for m in log.gripper if 5.7 <= m.utime * 1e-6 <= 6.0]
+    start, end = (next(t["t"] for t in result.transitions if t[key] == "Hold")
+                  for key in ("to", "from"))
+    hold = [m for m in log.gripper if start + 0.05 <= m.utime * 1e-6 <= end]
     assert hold and all(m.status[units.STATUS_OBJ] == units.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
                         for m in hold)
     assert log.gripper[-1].status[units.STATUS_PO] < 10
     # The emulated arm followed the controller to where the simulated arm went.
     _, final_status = log.arm_status[-1]
-    np.testing.assert_allclose(final_status.joint_position, simulated.log.arm_q[-1], atol=0.02)
-    # The controller saw the replayed taxels: the peak grip as in the simulation.
-    sa = log.tactile_trial().sa.max(axis=0)
-    np.testing.assert_allclose(sa, simulated.log.channels[:, :2].max(axis=0), rtol=0.05)
+    np.testing.assert_allclose(final_status.joint_position, simulated.log.arm_q[-1],
+                               atol=0.02)
+    # The controller saw the replayed taxels and films: the grip and the impacts.
+    replayed = log.tactile_trial()
+    np.testing.assert_allclose(replayed.sa.max(axis=0),
+                               simulated.log.channels[:, :2].max(axis=0), rtol=0.05)
+    np.testing.assert_allclose(replayed.ra.max(axis=0),
+                               simulated.log.channels[:, 2:].max(axis=0), rtol=0.05)
 
 
 def test_hil_log_holds_every_channel_and_replays(hil_box):
@@ -102,7 +115,7 @@ def test_hil_log_holds_every_channel_and_replays(hil_box):
     for channel in ("TEGRASP_RUN_INFO", "TEGRASP_TACTILE", "TEGRASP_GRIPPER",
                     "TEGRASP_TRANSITION", "KINOVA_JACO_COMMAND", "KINOVA_JACO_STATUS"):
         assert log.message_counts.get(channel, 0) > 0, channel
-    assert log.transitions == result.transitions
+    assert transitions_of(log.transitions) == transitions_of(result.transitions)
     assert log.run_info.object_name == "box"
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
@@ -111,4 +124,4 @@ def test_hil_log_holds_every_channel_and_replays(hil_box):
     assert [r["transition"] for r in summary["replay"]] == [
         "reach_load", "load_lift", "place_unload"]
     # Stale: no frame for the receiver's 50 ms (a loaded host's pty, see the docstring).
-    assert summary["stale_ticks"] < 0.01 * log.message_counts["TEGRASP_TACTILE"]
+    assert summary["stale_ticks"] < 0.05 * log.message_counts["TEGRASP_TACTILE"]

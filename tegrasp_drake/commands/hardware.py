@@ -12,7 +12,7 @@ import datetime
 
 from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
                                                    scenario_from_arguments)
-from tegrasp_drake.grasp_diagram import DEFAULT_CONTROLLER
+from tegrasp_drake.control.controller_config import CONTROLLERS
 
 
 def register(subparsers) -> None:
@@ -24,7 +24,8 @@ def register(subparsers) -> None:
                         metavar="KEY=VALUE", help="override a hardware config field, e.g. "
                         "--config-set tactile.port=/dev/ttyACM1")
     add_scenario_arguments(parser)
-    parser.add_argument("--controller", default=DEFAULT_CONTROLLER)
+    parser.add_argument("--controller", default=None, choices=CONTROLLERS,
+                        help="default: the scenario's (controller.name, memorized)")
     parser.add_argument("--log", metavar="FILE", default=None,
                         help="LCM log to write (default: out/hardware/run-<time>.lcmlog)")
     parser.add_argument("--duration", type=float, default=None,
@@ -59,5 +60,5 @@ def run(args) -> int:
           f"{len(result.faults)} faults; log {result.log_path} ({result.log_messages} "
           "messages)", flush=True)
     failed = result.faults or (result.transitions
-                               and str(result.transitions[-1]["to"]).lower() == "failed")
+                               and result.transitions[-1]["to"] == "Failed")
     return 2 if failed else 0

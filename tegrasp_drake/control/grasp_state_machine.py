@@ -87,6 +87,12 @@ class MachineState:
     timeline: tuple = ()
     failure: str = ""
 
+    def __deepcopy__(self, memo):
+        # Immutable (replaced, never changed in place): the copies Drake makes of the
+        # Context's abstract state at every tick can share it (a deep copy of the growing
+        # timeline cost 0.2 ms a tick, a fifth of the hardware loop's budget).
+        return self
+
 
 @dataclasses.dataclass(frozen=True)
 class GraspPlan:

@@ -4,14 +4,17 @@ Every lcmt_jaco_command is stamped with the controller diagram's Context time (`
 An emulator that replays a recorded trial (MyRioEmulator's `trial_clock`) can follow that
 clock instead of its own, so that the replay stays in step with the controller even when
 the controller runs slower than real time (a loaded host): the trial starts with the
-first command, and its time is the newest command's time since the first, extrapolated
-at the real rate for at most one command period.
+first command, and its time is the newest command's time since the first, extrapolated at
+the controller's recent rate (Context time per wall time, smoothed over about
+RATE_SMOOTHING commands) for at most one command period.
 """
 
 import threading
 import time
 
 from tegrasp_drake.drivers.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD
+
+RATE_SMOOTHING = 10  # commands
 
 
 class ControllerClock:
@@ -24,6 +27,7 @@ class ControllerClock:
         self._first_utime = None
         self._utime = None
         self._received = 0.0
+        self._rate = 1.0  # controller seconds per wall second
         self._last_value = 0.0
         self.started = threading.Event()
 
@@ -32,15 +36,20 @@ class ControllerClock:
         with self._lock:
             if self._first_utime is None:
                 self._first_utime = utime
+            now = self._now()
+            if self._utime is not None and utime > self._utime and now > self._received:
+                rate = (utime - self._utime) * 1e-6 / (now - self._received)
+                self._rate += (min(rate, 2.0) - self._rate) / RATE_SMOOTHING
             if self._utime is None or utime > self._utime:
-                self._utime, self._received = utime, self._now()
+                self._utime, self._received = utime, now
         self.started.set()
 
     def __call__(self) -> float:
         with self._lock:
             if self._utime is None:
                 return 0.0
-            since = min(max(self._now() - self._received, 0.0), self._max_extrapolation)
+            since = min(max(self._now() - self._received, 0.0) * self._rate,
+                        self._max_extrapolation)
             value = (self._utime - self._first_utime) * 1e-6 + since
             self._last_value = max(self._last_value, value)  # never backwards
             return self._last_value

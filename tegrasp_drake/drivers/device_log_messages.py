@@ -59,9 +59,9 @@ class TactileStatusSender(LeafSystem):
         message.zeroing = bool(self._zeroing_port.Eval(context)[0])
         message.num_taxels = TAXELS_PER_PAD
         message.left_taxel_forces, message.right_taxel_forces = (
-            [float(x) for x in port.Eval(context)] for port in self._forces)
+            port.Eval(context).tolist() for port in self._forces)
         message.left_pad_acceleration, message.right_pad_acceleration = (
-            [float(x) for x in port.Eval(context)] for port in self._accelerations)
+            port.Eval(context).tolist() for port in self._accelerations)
         output.set_value(message)
 
 

@@ -10,6 +10,8 @@ still through JacoVelocityTracker) stays set.
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.drivers.device_fault import describe_faults
+
 
 def latched_faults(latched: tuple, current) -> tuple:
     """`latched` plus the faults of `current` not yet in it (same device, kind, code)."""
@@ -23,6 +25,8 @@ class FaultLatch(LeafSystem):
         {source}_fault (abstract tuple of DeviceFault) for each name in `sources`.
     Output ports:
         fault (abstract tuple of DeviceFault): every fault seen, in order of sighting.
+        message (abstract str): "" while there is none, else one line per fault (which
+            device, what, since when), for the state machine's `device_fault` input.
         stop (1): 1 once any fault was seen.
     A fault shows on the outputs one `period` [s] after its source reported it.
     """
@@ -37,6 +41,11 @@ class FaultLatch(LeafSystem):
         self.DeclareAbstractOutputPort(
             "fault", lambda: AbstractValue.Make(()),
             lambda context, out: out.set_value(self._faults(context)),
+            prerequisites_of_calc=ticket)
+        self.DeclareAbstractOutputPort(
+            "message", lambda: AbstractValue.Make(""),
+            lambda context, out: out.set_value(
+                describe_faults(self._faults(context)) if self._faults(context) else ""),
             prerequisites_of_calc=ticket)
         self.DeclareVectorOutputPort(
             "stop", 1, lambda context, out: out.SetAtIndex(0, bool(self._faults(context))),

@@ -14,12 +14,12 @@ A quiet `lead_in` (no contact, no vibration) precedes the trial so the receiver 
 With `start_on_trigger`, the quiet stream goes on until `start_trial()` (e.g. on the arm's
 first command, so that a replayed trial lines up with the controller's clock); with
 `hold_at_end`, the last values keep streaming after the trial until `stop()`, as a real
-device keeps streaming. By default the trial is replayed on the stream's own clock (frame
-k after the start carries trial time k x frame_period); given a `trial_clock` (a callable
-returning the trial time [s], e.g. a ControllerClock following the controller's commands),
-each frame carries the trial at that clock's time instead, so that a controller that
-falls behind real time still sees the trial in step with its own clock. Frames are sent
-at the real rate either way.
+device keeps streaming. Frame n after the trial's start carries trial time n x
+frame_period; by default frames go out at the real rate (the stream's own clock). Given a
+`trial_clock` (a callable returning the trial time [s], e.g. a ControllerClock following
+the controller's commands), frame n goes out once that clock reaches its time instead, so
+that a controller that falls behind real time still gets every sample once, in step with
+its own clock (the sensor as if slaved to the controller).
 
 Faults, each per frame with a given probability, from a seeded generator: a flipped bit,
 a dropped byte, a frame cut short. `stop_talking()` silences it (to trip a watchdog);
@@ -261,11 +261,6 @@ class MyRioEmulator:
         with self._lock:
             return list(self._sent)
 
-    def _trial_over(self, k: int, trial_start: int) -> bool:
-        if self._trial_clock is not None:
-            return self._trial_clock() > self._source.trial_frames * self._config.frame_period
-        return k >= trial_start + self._source.trial_frames
-
     def _run(self):
         period = self._config.frame_period
         start = time.monotonic()
@@ -278,19 +273,28 @@ class MyRioEmulator:
                 if self._trial_start_time is None:
                     with self._lock:
                         self._trial_start_time = start + trial_start * period
-                if not self._config.hold_at_end and self._trial_over(k, trial_start):
+                if (not self._config.hold_at_end
+                        and k >= trial_start + self._source.trial_frames):
                     break
-            delay = start + k * period - time.monotonic()
-            if delay > 0:
-                time.sleep(delay)
-            if not self._talking.is_set():
-                self._talking.wait(0.05)
-                k = int((time.monotonic() - start) / period)  # silent frames are not sent
-                continue
             if self._trial_clock is not None and trial_start is not None:
-                frame = self._source.frame_at(k, self._trial_clock())
+                # Paced by the clock: trial sample n goes out once the clock reached it.
+                due = trial_start + int(self._trial_clock() / period + 1e-9)
+                if k > due:
+                    time.sleep(period / 4)
+                    continue
+                if not self._talking.is_set():
+                    self._talking.wait(0.05)
+                    k = trial_start + int(self._trial_clock() / period)  # not sent
+                    continue
             else:
-                frame = self._source.frame(k, trial_start)
+                delay = start + k * period - time.monotonic()
+                if delay > 0:
+                    time.sleep(delay)
+                if not self._talking.is_set():
+                    self._talking.wait(0.05)
+                    k = int((time.monotonic() - start) / period)  # silent frames are not sent
+                    continue
+            frame = self._source.frame(k, trial_start)
             data, injected = inject_faults(frame, self._config.faults, self._rng)
             try:
                 written = os.write(self._master, data)

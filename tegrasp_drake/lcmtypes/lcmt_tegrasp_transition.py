@@ -10,14 +10,15 @@ import struct
 class lcmt_tegrasp_transition(object):
     """
     One transition of the grasp state machine (channel TEGRASP_TRANSITION), published as it
-    happens; `trigger` says what caused it (a matched memorized event, a timeout, a fault).
+    happens; `trigger` says what caused it (memorized_event, heuristic_event, threshold,
+    timer, corrective, fault) and `reason` how (the state machine's words).
     """
 
-    __slots__ = ["utime", "from_mode", "to_mode", "trigger"]
+    __slots__ = ["utime", "from_mode", "to_mode", "trigger", "reason"]
 
-    __typenames__ = ["int64_t", "string", "string", "string"]
+    __typenames__ = ["int64_t", "string", "string", "string", "string"]
 
-    __dimensions__ = [None, None, None, None]
+    __dimensions__ = [None, None, None, None, None]
 
     def __init__(self):
         self.utime = 0
@@ -31,6 +32,8 @@ class lcmt_tegrasp_transition(object):
         self.to_mode = ""
         """ LCM Type: string """
         self.trigger = ""
+        """ LCM Type: string """
+        self.reason = ""
         """ LCM Type: string """
 
     def encode(self):
@@ -53,6 +56,10 @@ class lcmt_tegrasp_transition(object):
         buf.write(struct.pack('>I', len(__trigger_encoded)+1))
         buf.write(__trigger_encoded)
         buf.write(b"\0")
+        __reason_encoded = self.reason.encode('utf-8')
+        buf.write(struct.pack('>I', len(__reason_encoded)+1))
+        buf.write(__reason_encoded)
+        buf.write(b"\0")
 
     @staticmethod
     def decode(data: bytes):
@@ -74,12 +81,14 @@ class lcmt_tegrasp_transition(object):
         self.to_mode = buf.read(__to_mode_len)[:-1].decode('utf-8', 'replace')
         __trigger_len = struct.unpack('>I', buf.read(4))[0]
         self.trigger = buf.read(__trigger_len)[:-1].decode('utf-8', 'replace')
+        __reason_len = struct.unpack('>I', buf.read(4))[0]
+        self.reason = buf.read(__reason_len)[:-1].decode('utf-8', 'replace')
         return self
 
     @staticmethod
     def _get_hash_recursive(parents):
         if lcmt_tegrasp_transition in parents: return 0
-        tmphash = (0xbe8c185bde4d4254) & 0xffffffffffffffff
+        tmphash = (0x5095c1f8680fbd1a) & 0xffffffffffffffff
         tmphash  = (((tmphash<<1)&0xffffffffffffffff) + (tmphash>>63)) & 0xffffffffffffffff
         return tmphash
     _packed_fingerprint = None
