@@ -97,12 +97,12 @@ class EmulatorProcess:
 
 class EmulatedDevices:
     """The three devices, each emulated in its own process (`tegrasp emulate jaco`,
-    `robotiq`, `myrio --sync follow`), started together; `config` points a hardware
+    `robotiq`, `myrio --sync follow` or `myrio_sync`), started together; `config` points a hardware
     station at them. Use as a context manager; `myrio`, `robotiq` and `jaco` are the
     EmulatorProcess of each (e.g. to kill one)."""
 
     def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),
-                 robotiq_args=(), timeout: float = 30.0):
+                 robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0):
         from tegrasp_drake.hardware_config import HardwareStationConfig
         self.jaco = self.robotiq = self.myrio = None
         try:
@@ -110,7 +110,7 @@ class EmulatedDevices:
                                         wait=False)
             self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args,
                                            wait=False)
-            self.myrio = EmulatorProcess("myrio", "--trial", str(trial), "--sync", "follow",
+            self.myrio = EmulatorProcess("myrio", "--trial", str(trial), "--sync", myrio_sync,
                                          "--lcm-url", lcm_url, wait=False)
             for process in self.processes:
                 process.wait_until_ready(timeout)

@@ -155,7 +155,8 @@ class HardwareStation(Diagram):
         # Device data on the bus.
         tactile_sender = builder.AddNamedSystem("tactile_status_sender", TactileStatusSender())
         for name in ("left_taxel_forces", "right_taxel_forces", "left_pad_acceleration",
-                     "right_pad_acceleration", "time_measured", "stale", "zeroing"):
+                     "right_pad_acceleration", "time_measured", "stale", "zeroing",
+                     "arrival_time"):
             builder.Connect(tactile.GetOutputPort(name), tactile_sender.GetInputPort(name))
         gripper_sender = builder.AddNamedSystem("gripper_status_sender", GripperStatusSender())
         builder.ConnectInput("gripper.command", gripper_sender.GetInputPort("command"))

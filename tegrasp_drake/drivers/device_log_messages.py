@@ -8,6 +8,8 @@ Drake's KINOVA_JACO_COMMAND / KINOVA_JACO_STATUS already. `utime` is the diagram
 Context time [us] in all of them.
 """
 
+import time
+
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
@@ -34,7 +36,9 @@ class TactileStatusSender(LeafSystem):
 
     Input ports: left_taxel_forces (12), right_taxel_forces (12) [N],
         left_pad_acceleration (3), right_pad_acceleration (3) [m/s^2],
-        time_measured (1) [s], stale (1), zeroing (1).
+        time_measured (1) [s], stale (1), zeroing (1), arrival_time (1): the receiver's
+        (host monotonic time [s] the shown frame arrived; the message adds the time it
+        was built, so that a log gives each frame's latency to the control loop).
     Output ports: lcmt_tegrasp_tactile (abstract).
     """
 
@@ -47,6 +51,7 @@ class TactileStatusSender(LeafSystem):
         self._time_port = self.DeclareVectorInputPort("time_measured", 1)
         self._stale_port = self.DeclareVectorInputPort("stale", 1)
         self._zeroing_port = self.DeclareVectorInputPort("zeroing", 1)
+        self._arrival_port = self.DeclareVectorInputPort("arrival_time", 1)
         self.DeclareAbstractOutputPort(
             "lcmt_tegrasp_tactile", lambda: AbstractValue.Make(lcmt_tegrasp_tactile()),
             self._calc_message)
@@ -57,6 +62,8 @@ class TactileStatusSender(LeafSystem):
         message.device_utime = utime(self._time_port.Eval(context)[0])
         message.stale = bool(self._stale_port.Eval(context)[0])
         message.zeroing = bool(self._zeroing_port.Eval(context)[0])
+        message.arrival_s = float(self._arrival_port.Eval(context)[0])
+        message.tick_s = time.monotonic()
         message.num_taxels = TAXELS_PER_PAD
         message.left_taxel_forces, message.right_taxel_forces = (
             port.Eval(context).tolist() for port in self._forces)
@@ -95,7 +102,8 @@ class GripperStatusSender(LeafSystem):
 
 def tactile_arrays(messages) -> dict:
     """Arrays of a sequence of lcmt_tegrasp_tactile: t (n,) [s], device_t (n,) [s],
-    taxels (n, 24) [N] left then right, pad_acceleration (n, 6), stale (n,), zeroing (n,)."""
+    taxels (n, 24) [N] left then right, pad_acceleration (n, 6), stale (n,), zeroing (n,),
+    arrival_s (n,), tick_s (n,) [s, host monotonic clock]."""
     messages = list(messages)
     return {
         "t": np.array([m.utime * 1e-6 for m in messages]),
@@ -106,5 +114,7 @@ def tactile_arrays(messages) -> dict:
             list(m.left_pad_acceleration) + list(m.right_pad_acceleration)
             for m in messages]).reshape(len(messages), 6),
         "stale": np.array([m.stale for m in messages], dtype=bool),
+        "arrival_s": np.array([m.arrival_s for m in messages]),
+        "tick_s": np.array([m.tick_s for m in messages]),
         "zeroing": np.array([m.zeroing for m in messages], dtype=bool),
     }

@@ -9,11 +9,12 @@ when a count sequence arrives (~108 Hz), accelerations with every frame (1 kHz).
 Playout: a serial port delivers frames in bursts (two or three in one tick are common, tens
 when the host is loaded), but the RA channel (Eq. 2) and the event matcher need one piezo
 sample per tick, an impact lasting one sample included. So the received frames wait in the
-state and are played one per tick, in order, adding a millisecond or two of latency; when
-more than `max_backlog` wait, the oldest are played together in one tick (the newest
-counts and the piezo sample of largest magnitude win, so an impact is never dropped) and
-the latency stays at most `max_backlog` ticks. `max_backlog = 0` plays everything that
-arrived at once. When nothing arrived for `stale_timeout` the outputs keep the last
+state and are played one per tick, in order; while more than one waits, two are played
+per tick until the backlog is gone (the latency returns to a millisecond once a burst has
+passed), and when more than `max_backlog` wait, the oldest are played together in one
+tick, so the latency stays at most `max_backlog` ticks. Frames played together keep the
+newest counts and the piezo sample of largest magnitude, so an impact is never dropped.
+`max_backlog = 0` plays everything that arrived at once. When nothing arrived for `stale_timeout` the outputs keep the last
 values, `time_measured` (the played frame's timestamp) stops advancing and `stale` is 1,
 so old data is never passed on as fresh.
 
@@ -47,6 +48,7 @@ class TactileReceiverState:
     zeroing: tuple = (PadZeroing(), PadZeroing())
     zeroed: bool = False
     pending: tuple = ()                 # frames received, not yet played (oldest first)
+    played_arrival_time: float = -np.inf  # time.monotonic() [s] the played frame arrived
 
     def __deepcopy__(self, memo):
         # Immutable (replaced, never changed in place): the copies Drake makes of the
@@ -94,15 +96,17 @@ def receiver_state_after_frames(state: TactileReceiverState, frames,
 def receiver_state_after_tick(state: TactileReceiverState, received, calibration:
                               TactileCalibration, max_backlog: int) -> TactileReceiverState:
     """The state after a tick that received these frames (oldest first): one frame is
-    played, or more when over `max_backlog` wait (module docstring); during zeroing, all.
-    Pure."""
+    played, two while more wait, more when over `max_backlog` wait (module docstring);
+    during zeroing, all. Pure."""
     pending = state.pending + tuple(received)
     if not pending:
         return state
-    count = max(1, len(pending) - max_backlog) if state.zeroed else len(pending)
+    catching_up = 2 if len(pending) > 2 else 1
+    count = max(catching_up, len(pending) - max_backlog) if state.zeroed else len(pending)
     played = receiver_state_after_frames(state, pending[:count], calibration)
     return dataclasses.replace(played, pending=pending[count:],
-                               arrival_time=pending[-1].arrival_time)
+                               arrival_time=pending[-1].arrival_time,
+                               played_arrival_time=pending[count - 1].arrival_time)
 
 
 class TactileSerialReceiver(LeafSystem):
@@ -115,6 +119,8 @@ class TactileSerialReceiver(LeafSystem):
         time_measured (1): device timestamp [s] of the played frame (0 before any).
         stale (1): 1 when no frame arrived for `stale_timeout` [s] of wall time.
         zeroing (1): 1 until the start-up zeroing is complete.
+        arrival_time (1): host time.monotonic() [s] when the played frame arrived (for
+            latency measurements; -inf before any).
     """
 
     def __init__(self, reader, *, calibration: TactileCalibration | None = None,
@@ -141,6 +147,10 @@ class TactileSerialReceiver(LeafSystem):
             prerequisites_of_calc=state_ticket)
         self.DeclareVectorOutputPort(
             "stale", 1, lambda context, out: out.SetAtIndex(0, self._state(context).stale),
+            prerequisites_of_calc=state_ticket)
+        self.DeclareVectorOutputPort(
+            "arrival_time", 1,
+            lambda context, out: out.SetAtIndex(0, self._state(context).played_arrival_time),
             prerequisites_of_calc=state_ticket)
         self.DeclareVectorOutputPort(
             "zeroing", 1,

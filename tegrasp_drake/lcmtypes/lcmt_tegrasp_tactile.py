@@ -13,11 +13,11 @@ class lcmt_tegrasp_tactile(object):
     (channel TEGRASP_TACTILE, 1 kHz): the station's tactile.* output ports, calibrated.
     """
 
-    __slots__ = ["utime", "device_utime", "stale", "zeroing", "num_taxels", "left_taxel_forces", "right_taxel_forces", "left_pad_acceleration", "right_pad_acceleration"]
+    __slots__ = ["utime", "device_utime", "stale", "zeroing", "arrival_s", "tick_s", "num_taxels", "left_taxel_forces", "right_taxel_forces", "left_pad_acceleration", "right_pad_acceleration"]
 
-    __typenames__ = ["int64_t", "int64_t", "boolean", "boolean", "int32_t", "double", "double", "double", "double"]
+    __typenames__ = ["int64_t", "int64_t", "boolean", "boolean", "double", "double", "int32_t", "double", "double", "double", "double"]
 
-    __dimensions__ = [None, None, None, None, None, ["num_taxels"], ["num_taxels"], [3], [3]]
+    __dimensions__ = [None, None, None, None, None, None, None, ["num_taxels"], ["num_taxels"], [3], [3]]
 
     def __init__(self):
         self.utime = 0
@@ -40,9 +40,21 @@ class lcmt_tegrasp_tactile(object):
         LCM Type: boolean
         """
 
-        self.num_taxels = 0
+        self.arrival_s = 0.0
         """
         start-up zeroing not complete (outputs are zero)
+        LCM Type: double
+        """
+
+        self.tick_s = 0.0
+        """
+        host monotonic clock [s] when the frame shown arrived
+        LCM Type: double
+        """
+
+        self.num_taxels = 0
+        """
+        host monotonic clock [s] when this tick's values were shown
         LCM Type: int32_t
         """
 
@@ -78,7 +90,7 @@ class lcmt_tegrasp_tactile(object):
         return buf.getvalue()
 
     def _encode_one(self, buf):
-        buf.write(struct.pack(">qqbbi", self.utime, self.device_utime, self.stale, self.zeroing, self.num_taxels))
+        buf.write(struct.pack(">qqbbddi", self.utime, self.device_utime, self.stale, self.zeroing, self.arrival_s, self.tick_s, self.num_taxels))
         buf.write(struct.pack('>%dd' % self.num_taxels, *self.left_taxel_forces[:self.num_taxels]))
         buf.write(struct.pack('>%dd' % self.num_taxels, *self.right_taxel_forces[:self.num_taxels]))
         buf.write(struct.pack('>3d', *self.left_pad_acceleration[:3]))
@@ -100,7 +112,7 @@ class lcmt_tegrasp_tactile(object):
         self.utime, self.device_utime = struct.unpack(">qq", buf.read(16))
         self.stale = bool(struct.unpack('b', buf.read(1))[0])
         self.zeroing = bool(struct.unpack('b', buf.read(1))[0])
-        self.num_taxels = struct.unpack(">i", buf.read(4))[0]
+        self.arrival_s, self.tick_s, self.num_taxels = struct.unpack(">ddi", buf.read(20))
         self.left_taxel_forces = struct.unpack('>%dd' % self.num_taxels, buf.read(self.num_taxels * 8))
         self.right_taxel_forces = struct.unpack('>%dd' % self.num_taxels, buf.read(self.num_taxels * 8))
         self.left_pad_acceleration = struct.unpack('>3d', buf.read(24))
@@ -110,7 +122,7 @@ class lcmt_tegrasp_tactile(object):
     @staticmethod
     def _get_hash_recursive(parents):
         if lcmt_tegrasp_tactile in parents: return 0
-        tmphash = (0xf83ac6486e942727) & 0xffffffffffffffff
+        tmphash = (0xa6078d5f5766ef1) & 0xffffffffffffffff
         tmphash  = (((tmphash<<1)&0xffffffffffffffff) + (tmphash>>63)) & 0xffffffffffffffff
         return tmphash
     _packed_fingerprint = None
