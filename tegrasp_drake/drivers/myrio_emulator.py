@@ -271,8 +271,10 @@ class MyRioEmulator:
                 trial_start = k
             if trial_start is not None:
                 if self._trial_start_time is None:
-                    with self._lock:
-                        self._trial_start_time = start + trial_start * period
+                    with self._lock:  # a clock-paced trial starts at once
+                        self._trial_start_time = (
+                            time.monotonic() if self._trial_clock is not None
+                            else start + trial_start * period)
                 if (not self._config.hold_at_end
                         and k >= trial_start + self._source.trial_frames):
                     break

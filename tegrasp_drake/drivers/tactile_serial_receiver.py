@@ -9,7 +9,7 @@ when a count sequence arrives (~108 Hz), accelerations with every frame (1 kHz).
 Playout: a serial port delivers frames in bursts (two or three in one tick are common, tens
 when the host is loaded), but the RA channel (Eq. 2) and the event matcher need one piezo
 sample per tick, an impact lasting one sample included. So the received frames wait in the
-state and are played one per tick, in order; while more than one waits, two are played
+state and are played one per tick, in order; while more than two wait, two are played
 per tick until the backlog is gone (the latency returns to a millisecond once a burst has
 passed), and when more than `max_backlog` wait, the oldest are played together in one
 tick, so the latency stays at most `max_backlog` ticks. Frames played together keep the
@@ -96,7 +96,7 @@ def receiver_state_after_frames(state: TactileReceiverState, frames,
 def receiver_state_after_tick(state: TactileReceiverState, received, calibration:
                               TactileCalibration, max_backlog: int) -> TactileReceiverState:
     """The state after a tick that received these frames (oldest first): one frame is
-    played, two while more wait, more when over `max_backlog` wait (module docstring);
+    played, two while more than two wait, more when over `max_backlog` wait (module docstring);
     during zeroing, all. Pure."""
     pending = state.pending + tuple(received)
     if not pending:
