@@ -57,3 +57,18 @@ def test_an_unknown_station_tag_is_named(tmp_path):
     path = write(tmp_path, "s.yaml", "bad:\n  station: !RobotStation {}\n")
     with pytest.raises(ScenarioError, match="unknown tag !RobotStation.*!HardwareStationConfig"):
         load_scenario(path, "bad")
+
+
+def test_the_station_tag_picks_the_station_builder(tmp_path):
+    from tegrasp_drake.grasp_diagram import MakeStation
+    from tegrasp_drake.hardware_station import HardwareNotReadyError
+    assert MakeStation(load_scenario(name="box")).HasOutputPort("object.state")
+    path = write(tmp_path, "s.yaml", """
+real_box:
+  station: !HardwareStationConfig
+    arm: {lcm_url: "memq://"}
+    gripper: {port: /dev/no-such-gripper}
+    tactile: {port: /dev/no-such-myrio}
+""")
+    with pytest.raises(HardwareNotReadyError, match="/dev/no-such-myrio"):
+        MakeStation(load_scenario(path, "real_box"))

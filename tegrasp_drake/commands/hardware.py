@@ -18,8 +18,9 @@ from tegrasp_drake.control.controller_config import CONTROLLERS
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "hardware", help="run the grasp in real time on the devices of a hardware config")
-    parser.add_argument("--config", required=True, metavar="FILE",
-                        help="hardware config YAML (HardwareStationConfig fields)")
+    parser.add_argument("--config", metavar="FILE",
+                        help="hardware config YAML (HardwareStationConfig fields); default: "
+                        "the scenario's `station: !HardwareStationConfig {...}`")
     parser.add_argument("--config-set", dest="config_overrides", action="append", default=[],
                         metavar="KEY=VALUE", help="override a hardware config field, e.g. "
                         "--config-set tactile.port=/dev/ttyACM1")
@@ -40,11 +41,18 @@ def run(args) -> int:
     from tegrasp_drake.hardware_run import run_on_hardware
     from tegrasp_drake.hardware_station import HardwareNotReadyError
     from tegrasp_drake.scenario import ScenarioError
+    from tegrasp_drake.hardware_config import HardwareStationConfig
     scenario = scenario_from_arguments(args)
-    try:
-        config = load_hardware_config(args.config, args.config_overrides)
-    except ScenarioError as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
+    if args.config:
+        try:
+            config = load_hardware_config(args.config, args.config_overrides)
+        except ScenarioError as e:
+            raise SystemExit(f"tegrasp: error: {e}") from None
+    elif isinstance(scenario.station, HardwareStationConfig):
+        config = scenario.station
+    else:
+        raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
+                         "is `!HardwareStationConfig {...}`")
     log = args.log or (f"out/hardware/run-"
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
     try:
