@@ -26,7 +26,7 @@ def build_ideal_grasp_diagram(scenario, *, meshcat=None):
     X_WG_desired, arm_desired_state = add_cartesian_arm_controller(
         builder, position_measured=station.GetOutputPort("arm.position_measured"),
         velocity_measured=station.GetOutputPort("arm.velocity_measured"),
-        q_nominal=initial_arm_positions(scenario), time_step=scenario.plant_config.time_step)
+        q_nominal=initial_arm_positions(scenario), time_step=scenario.arm.control_period_s)
     builder.Connect(script.GetOutputPort("X_WG_desired"), X_WG_desired)
     builder.Connect(arm_desired_state, station.GetInputPort("arm.desired_state"))
     builder.Connect(script.GetOutputPort("gripper_command"), station.GetInputPort("gripper.command"))

@@ -2,7 +2,10 @@
 
 models/ and events/ at the repository top level are installed as the packages
 `tegrasp_drake.models_data` and `tegrasp_drake.events_data`; importlib.resources finds them
-in either install.
+in either install. When the package is imported from a source checkout (its parent folder
+holds pyproject.toml), that checkout's own folders are used: an editable install of another
+checkout (a shared venv, with this checkout first on PYTHONPATH) would otherwise hand out
+the other checkout's models and events.
 """
 
 import importlib.resources
@@ -14,11 +17,10 @@ PACKAGE_NAME = "tegrasp"  # models are reachable as package://tegrasp/...
 
 
 def _data_dir(package: str, source_folder: str) -> pathlib.Path:
-    try:
-        return pathlib.Path(str(importlib.resources.files(package)))
-    except ModuleNotFoundError:
-        # Running from a source tree that is not installed (PYTHONPATH=checkout).
-        return pathlib.Path(__file__).resolve().parents[1] / source_folder
+    checkout = pathlib.Path(__file__).resolve().parents[1]
+    if (checkout / "pyproject.toml").is_file() and (checkout / source_folder).is_dir():
+        return checkout / source_folder  # imported from a source checkout: its own data
+    return pathlib.Path(str(importlib.resources.files(package)))
 
 
 def models_dir() -> pathlib.Path:

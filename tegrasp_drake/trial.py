@@ -160,35 +160,43 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialRes
               "sim_time_s": sim_time, "wall_time_s": wall,
               "real_time_factor": sim_time / wall if wall > 0 else None}
     log.meta["result"] = result
+    # For the Fig. 5a-b plot (figures.py): when each state began, and the physical events.
+    log.meta["phase_starts"] = {e["to"]: e["t"] for e in reversed(transitions)}
+    log.meta["events"] = result["physical_events"]
     return TrialResult(result, log)
 
 
 
 def scenario_from_trial_spec(trial: dict):
-    """The Scenario of one sweep trial (a TrialSpec.to_dict())."""
-    from tegrasp_drake.scenario import load_scenario
+    """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
+    trial's object (perturbed in mass and friction), placement, seed and controller."""
+    from tegrasp_drake.objects import ObjectConfig
+    from tegrasp_drake.scenario import load_scenario, resolve_object, validate
     p = trial["perturbation"]
+    base = load_scenario()
     definition = trial.get("object_definition")
-    overrides = [f"object.name={trial['object_name']}"]
     if definition:
-        overrides += [f"object.shape={definition['shape']}",
-                      f"object.size={list(definition['size_m'])}"]
-    base = load_scenario(overrides=overrides + (
-        [f"object.mass={definition['mass_kg']}",
-         f"object.friction={definition['friction_coefficient']}"] if definition else []))
-    obj = base.object
-    overrides += [f"object.mass={obj.mass * p['mass_scale']!r}",
-                  f"object.friction={obj.friction * p['friction_scale']!r}",
-                  f"object.size={list(obj.size)}",
-                  f"object.shape={obj.shape}",
-                  "object_offset=[{!r}, {!r}]".format(trial["marker_dx_m"] + p["dx_m"],
-                                                       trial["marker_dy_m"] + p["dy_m"]),
-                  f"object_yaw_deg={np.degrees(p['yaw_rad'])!r}",
-                  f"random_seed={trial['seed']}",
-                  f"controller.name={trial['controller']}"]
+        size = [float(v) for v in definition["size_m"]]
+        if definition["shape"] == "cylinder":  # the spec's (radius, length) -> [diameter, height]
+            size = [2.0 * size[0], size[1]]
+        obj = ObjectConfig(name=trial["object_name"], shape=definition["shape"], size=size,
+                           mass=float(definition["mass_kg"]),
+                           friction=float(definition["friction_coefficient"]))
+    else:
+        obj = resolve_object(ObjectConfig(name=trial["object_name"]))
+    obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),
+                              friction=obj.friction * float(p["friction_scale"]))
+    scenario = dataclasses.replace(
+        base, object=obj, random_seed=int(trial["seed"]),
+        object_offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
+                       float(trial["marker_dy_m"]) + float(p["dy_m"])],
+        object_yaw_deg=float(np.degrees(p["yaw_rad"])),
+        controller=dataclasses.replace(base.controller, name=trial["controller"]))
     if not trial.get("sensor_noise", True):
-        overrides += ["tactile.noise_std_n=0.0", "vibration.noise_std_mps2=0.0"]
-    return load_scenario(overrides=overrides)
+        scenario = dataclasses.replace(
+            scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0),
+            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0))
+    return validate(scenario, f"sweep trial {trial['trial_id']}")
 
 
 def run_trial_from_spec(trial: dict) -> dict:

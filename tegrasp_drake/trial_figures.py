@@ -29,8 +29,9 @@ def _draw_states(axis, log, *, labels: bool):
     for state, start, end in state_spans(log):
         axis.axvspan(start, end, color=STATE_COLORS.get(state, "white"), lw=0)
         if labels and end - start > 0.25:
-            axis.text((start + end) / 2, 1.0, state, transform=axis.get_xaxis_transform(),
-                      ha="center", va="bottom", fontsize=7)
+            label = axis.text((start + end) / 2, 0.97, state, fontsize=7, ha="center",
+                              va="top", transform=axis.get_xaxis_transform(), clip_on=True)
+            label.set_in_layout(False)  # labels of states outside a zoomed window
     for entry in log.meta.get("transitions", []):
         style = "-" if entry["trigger"] in ("memorized_event", "heuristic_event") else ":"
         axis.axvline(entry["t"], color="tab:red", lw=0.8, ls=style)
@@ -70,20 +71,22 @@ def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=
     fig, axes = plt.subplots(3, 1, figsize=(9, 7), sharex=True)
     fast = (log.t_ra >= window[0]) & (log.t_ra <= window[1])
     _draw_states(axes[0], log, labels=True)
-    axes[0].plot(log.t_ra[fast], log.ra[fast], lw=0.7)
+    lines = axes[0].plot(log.t_ra[fast], log.ra[fast], lw=0.7)
     if hit_threshold is not None:
-        axes[0].axhline(hit_threshold, color="k", ls="--", lw=0.8, label="hit threshold")
+        lines.append(axes[0].axhline(hit_threshold, color="k", ls="--", lw=0.8))
     axes[0].set_ylabel("RA [m/s^2]")
-    axes[0].legend(list(FINGER_NAMES) + (["hit threshold"] if hit_threshold else []), fontsize=7)
+    axes[0].legend(lines, list(FINGER_NAMES) + ["hit threshold"] * (hit_threshold is not None),
+                   fontsize=7)
     _draw_states(axes[1], log, labels=False)
-    axes[1].plot(log.t_ra[fast], log.sa[fast], lw=0.7)
+    lines = axes[1].plot(log.t_ra[fast], log.sa[fast], lw=0.7)
     axes[1].set_ylabel("SA [N]")
+    axes[1].legend(lines, list(FINGER_NAMES), fontsize=7)
     slow = (log.t_slow >= window[0]) & (log.t_slow <= window[1])
     _draw_states(axes[2], log, labels=False)
     xy = log.object_state[slow, 4:6] - log.object_state[slow, 4:6][0]
-    axes[2].plot(log.t_slow[slow], 1000 * xy)
+    lines = axes[2].plot(log.t_slow[slow], 1000 * xy)
     axes[2].set_ylabel("object x, y shift [mm]")
-    axes[2].legend(["x", "y"], fontsize=7)
+    axes[2].legend(lines, ["x", "y"], fontsize=7)
     axes[2].set_xlabel("time [s]")
     axes[2].set_xlim(*window)
     direction = avoid[0].get("direction")

@@ -31,7 +31,8 @@ def test_tegrasp_trial_json_at_the_expected_position(tmp_path, capsys):
     assert result["corrective_actions"] == [] and result["false_triggers"] == 0
     for name, latency in result["detection_latency_s"].items():
         assert 0.0 <= latency <= 0.5, name
-    assert (tmp_path / "trial.npz").is_file() and (tmp_path / "states.png").is_file()
+    for name in ("trial.npz", "states.png", "signals.png"):
+        assert (tmp_path / name).is_file()
 
 
 @pytest.mark.parametrize("offset_y", [0.015, -0.015])
@@ -47,15 +48,22 @@ def test_misplaced_along_the_stroke_re_reaches_and_succeeds(offset_y):
         assert trigger_of(result, step) == "memorized_event"
 
 
-def test_a_hit_in_hold_is_avoided_without_dropping_the_object():
+def test_a_hit_in_hold_is_avoided_without_dropping_the_object(tmp_path):
     hit_time = 7.0
-    result = run_trial(load_scenario(overrides=[f"disturbance.hit_time_s={hit_time}"])).result
+    trial = run_trial(load_scenario(overrides=[f"disturbance.hit_time_s={hit_time}"]))
+    result = trial.result
     avoid = next(e for e in result["transitions"] if e["to"] == "Avoid")
     assert avoid["from"] == "Hold" and avoid["trigger"] == "threshold"
     assert 0.0 <= avoid["t"] - hit_time <= 0.1
     assert avoid["direction"] == [0.0, 1.0, 0.0]  # the hit pushed along +y
     assert ("Avoid", "Hold") in steps(result)
     assert result["hold_success"] and result["unload_success"]
+    # Fig. 9 and Fig. 10 from the saved log, through the command.
+    log = trial.log.save(tmp_path / "trial.npz")
+    for what in ("trial", "avoid"):
+        figure = tmp_path / f"{what}.png"
+        assert main(["plot", what, str(log), "--out", str(figure)]) == 0
+        assert figure.stat().st_size > 10_000
 
 
 def test_a_slippery_object_needs_lift_load():
@@ -72,3 +80,12 @@ def test_a_slippery_object_needs_lift_load():
 def test_memorized_controller_without_events_names_the_command():
     with pytest.raises(MemorizedEventError, match="tegrasp record-events --scenario"):
         run_trial(load_scenario(name="custom_can"))
+
+
+def test_demo_keeps_the_ideal_open_loop_grasp_as_an_option(tmp_path, capsys):
+    assert main(["demo", "--controller", "open_loop", "--json", "--out", str(tmp_path)]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["controller"] == "open_loop"
+    assert result["hold_success"] and result["unload_success"]
+    assert {e["trigger"] for e in result["transitions"]} == {"timer"}
+    assert (tmp_path / "signals.png").is_file()

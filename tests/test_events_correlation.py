@@ -142,6 +142,16 @@ def test_streaming_core_rejects_an_unknown_event():
         correlator.push(correlator.initial_state(), np.zeros(2), 1)
 
 
+def test_streaming_core_refuses_a_state_it_cannot_update_in_place():
+    correlator = StreamingCorrelator([np.vstack([contact_step(10, 5, 2)] * 2)],
+                                     min_contrast=MIN_CONTRAST, slack=2)
+    strided = np.zeros(2 * correlator.size)[::2]  # BLAS would update a copy
+    strided[0] = NO_EVENT
+    with pytest.raises(ValueError, match="C-contiguous"):
+        for value in np.random.default_rng(0).random((12, 2)):
+            correlator.push(strided, value, 0)
+
+
 def test_sliding_window_keeps_the_last_samples_oldest_first():
     layout = SlidingWindowState(SlidingWindow(n_channels=2, length=5, slack=3))
     state = np.zeros(layout.size)

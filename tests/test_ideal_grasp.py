@@ -11,9 +11,9 @@ pytestmark = pytest.mark.slow
 
 
 @pytest.fixture(scope="module", params=["box", "thick_cylinder", "thin_cylinder"])
-def trial(request):
+def trial(request, ideal_grasp_log):
     scenario = load_scenario(name=request.param)
-    log, _ = run_ideal_grasp(scenario)
+    log = ideal_grasp_log(request.param)
     target = np.add(scenario.expected_object_xy, scenario.grasp.place_offset)
     return scenario, log, judge_grasp(log, target_xy=target, grip_force=scenario.grasp.grip_force)
 

@@ -68,16 +68,27 @@ def test_sa_equals_the_grip_force_while_holding(centred_squeeze):
     assert status[ru.STATUS_OBJ] == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "known defect: Drake meshes a compliant-box pad with a few large, asymmetric tetrahedra, "
-    "so its pressure field (and the taxel pattern) is uneven under an even press; the binning "
-    "itself is even (test_contact_pressure). Fix: a finely meshed symmetric pad (.vtk)."))
-def test_even_press_gives_a_symmetric_pattern_over_all_taxels(centred_squeeze):
+# Under an even press each taxel should carry 1/12 of the pad's force. The expected
+# deviations: the pressure falls to zero over the last ~0.04 mm at the pad's rim (edge
+# taxels -0.25 %, corner taxels -0.45 %), noise of 0.005 N per taxel (0.2 % of 2.5 N; the
+# largest of 24 draws about 0.6 %) and the 0.001 N quantisation: about 1.1 % together.
+EVEN_PATTERN_RTOL = 0.02
+
+
+def test_even_press_gives_an_even_pattern_over_all_taxels(centred_squeeze):
     _, _, _, after, _ = centred_squeeze
-    grid = after["left"].reshape(4, 3)
-    np.testing.assert_allclose(grid[:, 0], grid[:, 2], rtol=0.05)  # mirror across the width
-    centroid = after["left"] @ taxel_centers() / after["left"].sum()
-    assert np.linalg.norm(centroid[:2]) < 0.002
+    for forces in after.values():
+        np.testing.assert_allclose(forces, forces.mean(), rtol=EVEN_PATTERN_RTOL)
+        centroid = forces @ taxel_centers() / forces.sum()
+        assert np.linalg.norm(centroid[:2]) < 0.0002  # m; a taxel cell is 7.3 x 9.5 mm
+
+
+def test_even_press_gives_a_mirror_symmetric_pattern(centred_squeeze):
+    _, _, _, after, _ = centred_squeeze
+    for forces in after.values():
+        grid = forces.reshape(4, 3)  # rows along the pad's length, columns across its width
+        np.testing.assert_allclose(grid, grid[:, ::-1], rtol=EVEN_PATTERN_RTOL)
+        np.testing.assert_allclose(grid, grid[::-1, :], rtol=EVEN_PATTERN_RTOL)
 
 
 def test_every_taxel_carries_load_under_a_full_press(centred_squeeze):

@@ -149,3 +149,17 @@ def test_faults_name_the_device():
     assert "gFLT_0x08" in decide(Mode.HOLD, gripper_fault="gFLT_0x08").reason
     assert decide(Mode.LIFT, device_fault="tactile silent since 2.1 s").reason == \
         "tactile silent since 2.1 s"
+
+
+def test_relift_after_lift_load_waits_for_force_and_quiet():
+    config = GraspControllerConfig()
+    ready = dict(contact=(True, True), grip_reached=True, ra_quiet=True,
+                 time_in_mode=config.relift_settle_s)
+    decision = decide(Mode.LOAD, counters=Counters(lift_loads=1), **ready)
+    assert (decision.mode, decision.trigger) == (Mode.LIFT, CORRECTIVE)
+    assert decide(Mode.LOAD, counters=Counters(lift_loads=1), **{**ready, "ra_quiet": False}) \
+        is None
+    assert decide(Mode.LOAD, counters=Counters(lift_loads=1),
+                  **{**ready, "time_in_mode": 0.5 * config.relift_settle_s}) is None
+    # The first Load waits for its memorized event, whatever the force.
+    assert decide(Mode.LOAD, **ready) is None

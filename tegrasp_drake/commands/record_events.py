@@ -7,8 +7,6 @@ force reached -> load_lift, table touch -> place_unload), normalised by their ma
 stored in the events folder with an index (format: tegrasp_drake/events/FORMAT.md).
 """
 
-import numpy as np
-
 from tegrasp_drake import paths
 from tegrasp_drake.objects import BUILTIN_OBJECTS
 
@@ -35,21 +33,19 @@ def register(subparsers) -> None:
 def record_object_events(object_name: str, scenario=None):
     """Runs the ideal grasp of one object (a built-in one by name, or the object of
     `scenario`); returns its MemorizedEvents."""
-    from tegrasp_drake.events import TactileTrial, extract_memorized_events
+    from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
     from tegrasp_drake.grasp_outcome import physical_events
     from tegrasp_drake.ideal_grasp import run_ideal_grasp
     from tegrasp_drake.scenario import load_scenario, scenario_to_yaml
     from tegrasp_drake.trial_diagram import package_versions
     scenario = scenario or load_scenario(name=object_name)
     log, _ = run_ideal_grasp(scenario)
-    events = physical_events(log, scenario.grasp.grip_force)
+    events = physical_events(log, scenario.grasp.grip_force, scenario.object)
     missing = [name for name in EVENT_OF_TRANSITION.values() if events[name] is None]
     if missing:
         raise RuntimeError(f"the ideal grasp of {object_name} shows no {', '.join(missing)}")
-    sa = np.column_stack([log.taxels[:, :12].sum(axis=1), log.taxels[:, 12:].sum(axis=1)])
-    trial = TactileTrial(t_sa=log.t_sa, sa=sa, t_ra=log.t_ra, ra=log.ra,
-                         transition_times={transition: events[event] for transition, event
-                                           in EVENT_OF_TRANSITION.items()})
+    trial = tactile_trial_from_log(log, {transition: events[event] for transition, event
+                                         in EVENT_OF_TRANSITION.items()})
     return extract_memorized_events(
         trial, object_name=object_name, sa_rate_hz=scenario.tactile.sample_rate_hz,
         ra_rate_hz=scenario.vibration.sample_rate_hz, scenario=scenario_to_yaml(scenario),

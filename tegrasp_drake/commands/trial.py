@@ -17,7 +17,8 @@ def add_trial_arguments(parser, *, default_out: str) -> None:
                              "hand-set thresholds (Romano et al. style); open_loop: the ideal "
                              "scripted grasp (default: the scenario's controller.name)")
     parser.add_argument("--out", default=default_out,
-                        help="folder for the trial log (trial.npz) and figure (states.png)")
+                        help="folder for the trial log (trial.npz) and figures (states.png: "
+                             "Fig. 9; signals.png: Fig. 5a-b)")
     parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
     parser.add_argument("--meshcat", action="store_true",
                         help="show the run in Meshcat (prints the URL; waits for Enter at the end)")
@@ -54,6 +55,7 @@ def run(args) -> int:
     scenario = scenario_from_arguments(args)
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.trial import run_trial
+    from tegrasp_drake.figures import plot_trial_signals
     from tegrasp_drake.trial_figures import plot_trial_states
     meshcat = None
     if args.meshcat:
@@ -66,13 +68,16 @@ def run(args) -> int:
                          f"of '{scenario.object.name}': {e}") from None
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    plot_trial_signals(trial.log, out / "signals.png")  # Fig. 5a-b: raw and processed
     result = dict(trial.result, log=str(trial.log.save(out / "trial.npz")),
-                  figure=plot_trial_states(trial.log, out / "states.png"))
+                  figure=plot_trial_states(trial.log, out / "states.png"),
+                  signals_figure=str(out / "signals.png"))
     if args.json:
         print(json.dumps(result, sort_keys=True))
     else:
         print_result(result)
-        print(f"log {result['log']}, figure {result['figure']}")
+        print(f"log {result['log']}, figures {result['figure']} (Fig. 9), "
+              f"{result['signals_figure']} (Fig. 5a-b)")
     if meshcat is not None and not args.json:
         input(f"Meshcat at {meshcat.web_url()}: replay the recording there; Enter to quit. ")
     return 0

@@ -50,6 +50,7 @@ class GraspControllerConfig:
     max_lift_loads: int = 2
     max_grip_force_n: float = 235.0  # the 2F-85's largest grip force
     grip_fraction: float = 0.8
+    relift_settle_s: float = 0.2  # and RA quiet (the slip has stopped) before lifting again
     load_event_timeout_s: float = 2.0  # Load without the Load-Lift event: give up [s]
     # Avoid: in Hold, either RA above hit_ra_mps2 [m/s^2] is a hit. The machine stops for
     # avoid_sense_s [s] to see which way the hit pushed (the pad the object was pushed into

@@ -111,7 +111,7 @@ def add_grasp_controller(builder, *, scenario, station, controller: str | None =
     X_WG_desired, arm_desired_state = add_cartesian_arm_controller(
         builder, position_measured=station.GetOutputPort("arm.position_measured"),
         velocity_measured=station.GetOutputPort("arm.velocity_measured"),
-        q_nominal=initial_arm_positions(scenario), time_step=scenario.plant_config.time_step)
+        q_nominal=initial_arm_positions(scenario), time_step=scenario.arm.control_period_s)
     builder.Connect(arm_desired_state, station.GetInputPort("arm.desired_state"))
     if name == "open_loop":
         segments = plan_scripted_grasp(scenario)

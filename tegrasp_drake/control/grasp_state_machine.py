@@ -88,9 +88,8 @@ class MachineState:
     failure: str = ""
 
     def __deepcopy__(self, memo):
-        # Immutable (replaced, never changed in place): the copies Drake makes of the
-        # Context's abstract state at every tick can share it (a deep copy of the growing
-        # timeline cost 0.2 ms a tick, a fifth of the hardware loop's budget).
+        # Never mutated once stored (each tick stores a new one), so a copy can share it;
+        # Drake copies abstract state often, and a deep copy of the timeline is costly.
         return self
 
 
@@ -351,7 +350,7 @@ class GraspStateMachine(LeafSystem):
             closed_on_nothing=closed_on_nothing,
             grip_reached=bool(min(channels[0], channels[1])
                               >= config.grip_fraction * s.grip_force),
-            slip_s=t - slip_since if slipping else 0.0,
+            slip_s=t - slip_since if slipping else 0.0, ra_quiet=ra <= config.slip_ra_mps2,
             hit=(s.mode == Mode.HOLD and time_in_mode >= config.hit_refractory_s
                  and ra > config.hit_ra_mps2),
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",

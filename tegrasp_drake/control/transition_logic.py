@@ -9,8 +9,9 @@ tick and carries out the motion of each mode.
   Reach    -> Re-Reach   one finger alone in contact, closed on nothing, or no event in time
   Re-Reach -> Reach      the gripper is open and re-centred      (corrective)
   Load     -> Lift       the Load-Lift event                     (memorized/heuristic event)
-  Load     -> Lift       after a Lift-Load: both SA at the raised grip force (corrective;
-                         the memorized events describe the ideal grasp, not a re-load)
+  Load     -> Lift       after a Lift-Load: both SA at the raised grip force, RA quiet,
+                         relift_settle_s in Load (corrective; the memorized events describe
+                         the ideal grasp, not a re-load)
   Load     -> Re-Reach   no Load-Lift event in time (first load only)
   Lift     -> Load       the object slips (Lift-Load)            (corrective)
   Lift     -> Hold       the lift motion ended                   (timer)
@@ -44,6 +45,7 @@ class Observation:
     one_sided_s: float = 0.0  # how long exactly one finger has been in contact
     closed_on_nothing: bool = False  # at the closed request with no object (gOBJ 3)
     grip_reached: bool = False  # both SA at grip_fraction of the requested grip force
+    ra_quiet: bool = True  # both RA below the slip threshold
     slip_s: float = 0.0  # how long either RA has been above the slip threshold
     hit: bool = False  # either RA above the hit threshold (after the refractory time)
     gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
@@ -91,7 +93,8 @@ def _reach(obs: Observation, counters: Counters, config, event_trigger: str, hol
 def _load(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
     if obs.event_matched:
         return Decision(Mode.LIFT, event_trigger, "Load-Lift event")
-    if counters.lift_loads and obs.grip_reached:
+    if (counters.lift_loads and obs.grip_reached and obs.ra_quiet
+            and obs.time_in_mode >= config.relift_settle_s):
         return Decision(Mode.LIFT, CORRECTIVE, "raised grip force reached (Lift-Load)")
     if obs.time_in_mode >= config.load_event_timeout_s:
         reason = f"no Load-Lift event within {config.load_event_timeout_s:g} s"

@@ -4,7 +4,9 @@ The record step cuts max-normalised 0.5 s windows of the four channels around ea
 transition of an ideal grasp (extraction.py) and stores them (memorized_event.py,
 FORMAT.md). In the control loop, the EventMatcher scores the live channels against the
 expected event with Eq. 3 (correlation.py, streaming_correlation.py); the
-WindowNormalizer outputs the live normalised windows for logging and plots.
+WindowNormalizer outputs the live normalised windows for logging and plots; the
+EventSequencer expects an object's events one after another. replay.py runs a logged
+trial through them offline.
 
 Not re-exported here, so that the control loop does not import matplotlib:
 `plot.plot_memorized_events` (the Fig. 5c-like figure), `benchmark` (the matcher's cost
@@ -16,6 +18,7 @@ from tegrasp_drake.events.correlation import (
     channel_score, event_scores_reference, max_normalized_xcorr_reference,
     normalize_by_max, window_contrast)
 from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
+from tegrasp_drake.events.event_sequencer import EventSequencer, next_sequence_step
 from tegrasp_drake.events.extraction import (
     DEFAULT_PRE_TRANSITION_S, DEFAULT_WINDOW_S, TactileTrial, cut_window,
     extract_memorized_events)
@@ -23,7 +26,9 @@ from tegrasp_drake.events.memorized_event import (
     FORMAT_VERSION, INDEX_FILE, RECORD_COMMAND, MemorizedEvent, MemorizedEventError,
     current_package_versions, load_all_memorized_events, load_memorized_events,
     read_index, read_memorized_event, save_memorized_events)
-from tegrasp_drake.events.replay import channels_trajectory
+from tegrasp_drake.events.replay import (
+    EventReplay, channels_trajectory, live_matcher_config, replay_event_held,
+    replay_events_in_sequence, tactile_trial_from_log)
 from tegrasp_drake.events.sampling import rate_groups, resample_window, samples_per_window
 from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
 from tegrasp_drake.events.transitions import (
@@ -33,11 +38,14 @@ from tegrasp_drake.events.window_normalizer import WindowNormalizer, WindowNorma
 __all__ = [
     "DEFAULT_PRE_TRANSITION_S", "DEFAULT_WINDOW_S", "FORMAT_VERSION", "INDEX_FILE",
     "NO_EVENT", "RECORD_COMMAND", "REQUIRED_TRANSITIONS", "TRANSITIONS", "EventMatcher",
-    "EventMatcherConfig", "MemorizedEvent", "MemorizedEventError", "StreamingCorrelator",
-    "TactileTrial", "WindowNormalizer", "WindowNormalizerConfig", "channel_score",
-    "channels_trajectory", "current_package_versions", "cut_window",
-    "event_scores_reference", "extract_memorized_events", "load_all_memorized_events",
-    "load_memorized_events", "max_normalized_xcorr_reference", "normalize_by_max",
-    "rate_groups", "read_index", "read_memorized_event", "resample_window",
-    "samples_per_window", "save_memorized_events", "transition_order", "window_contrast",
+    "EventMatcherConfig", "EventReplay", "EventSequencer", "MemorizedEvent",
+    "MemorizedEventError", "StreamingCorrelator", "TactileTrial", "WindowNormalizer",
+    "WindowNormalizerConfig", "channel_score", "channels_trajectory",
+    "current_package_versions", "cut_window", "event_scores_reference",
+    "extract_memorized_events", "live_matcher_config", "load_all_memorized_events",
+    "load_memorized_events", "max_normalized_xcorr_reference", "next_sequence_step",
+    "normalize_by_max", "rate_groups", "read_index", "read_memorized_event",
+    "replay_event_held", "replay_events_in_sequence", "resample_window",
+    "samples_per_window", "save_memorized_events", "tactile_trial_from_log",
+    "transition_order", "window_contrast",
 ]

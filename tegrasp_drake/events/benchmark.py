@@ -4,7 +4,7 @@ Four channels with full 0.5 s windows, RA at 1 kHz, SA at 100 Hz or at 1 kHz; th
 signal is a noisy synthetic grasp. Each figure is the median over `repeats` of the mean
 wall time per 1 kHz tick [us] (a mean, so that the SA updates every tenth tick count):
 
-- core_*: the pure numpy streaming core (StreamingCorrelator.push), outside Drake;
+- core_*: the streaming core (StreamingCorrelator.push, numpy and BLAS), outside Drake;
 - reference_*: the straightforward numpy.correlate scoring of the four windows;
 - fft_rebuild_ra_us: an RA push that recomputes the correlations exactly by FFT (at an
   event change, and at a buffer compaction every 0.1 s);

@@ -2,7 +2,6 @@
 
 import dataclasses
 import functools
-import math
 from collections.abc import Iterable, Mapping
 
 import numpy as np
@@ -84,6 +83,9 @@ class EventMatcher(LeafSystem):
         self._transitions = tuple(e.transition for e in self._events)
         self._thresholds = np.array(
             [config.sa_threshold] * len(SA_CHANNELS) + [config.ra_threshold] * len(RA_CHANNELS))
+        # expected_event values accepted, as the port holds them -> event index.
+        self._event_of_value = {float(event): event
+                                for event in range(NO_EVENT, len(self._events))}
         self._channels_port = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
         # One streaming correlator, state group and periodic update per sample rate.
@@ -102,8 +104,7 @@ class EventMatcher(LeafSystem):
             channels = slice(group.channels[0], group.channels[-1] + 1)
             self.DeclarePeriodicDiscreteUpdateEvent(
                 1.0 / group.rate_hz, 0.0,
-                functools.partial(self._update, index=index, correlator=correlator,
-                                  channels=channels))
+                functools.partial(self._update, index, correlator, channels))
             self._groups.append((index, correlator, list(group.channels)))
         self._check_matchable(templates_by_event)
         state = {self.xd_ticket()}
@@ -164,15 +165,15 @@ class EventMatcher(LeafSystem):
 
     def _expected_event(self, context) -> int:
         value = self._expected_port.Eval(context)[0]
-        event = int(value) if math.isfinite(value) else None
-        if event is None or event != value or not NO_EVENT <= event < len(self._events):
+        event = self._event_of_value.get(value)  # None for NaN, fractions, out of range
+        if event is None:
             raise ValueError(
                 f"expected_event {value} is not -1 or an event index 0..{len(self._events) - 1}"
                 f" ({', '.join(f'{i}: {t}' for i, t in enumerate(self._transitions))})")
         return event
 
-    def _update(self, context, discrete_state, *, index, correlator, channels):
-        correlator.push(discrete_state.get_mutable_vector(index).get_mutable_value(),
+    def _update(self, index, correlator, channels, context, discrete_state):
+        correlator.push(discrete_state.get_mutable_value(index),
                         self._channels_port.Eval(context)[channels],
                         self._expected_event(context))
 

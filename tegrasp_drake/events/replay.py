@@ -1,15 +1,31 @@
-"""Replay a logged (or synthetic) trial as the station's `channels` signal.
+"""Replay a logged (or synthetic) trial through the tactile event systems, offline.
 
 `channels_trajectory(trial)` is a zero-order-hold trajectory of the four channels in
 CHANNEL_NAMES order, each logged value held until the next one, as the station's channel
-output holds SA at the SA rate and RA at 1 kHz. Feed it through a TrajectorySource to drive
-the WindowNormalizer and EventMatcher offline.
+output holds SA at the SA rate and RA at 1 kHz. `replay_events_in_sequence` feeds it
+through a TrajectorySource into a WindowNormalizer and an EventMatcher whose expected event
+an EventSequencer advances in grasp order, as the grasp state machine would;
+`replay_event_held` keeps one event expected for the whole trial instead (to see where
+else it would match). Both report the outputs at every control tick.
 """
 
+import dataclasses
+from collections.abc import Mapping, Sequence
+
 import numpy as np
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import Diagram, DiagramBuilder, EventStatus
+from pydrake.systems.primitives import (ConstantVectorSource, LogVectorOutput, TrajectorySource,
+                                         VectorLogSink)
 from pydrake.trajectories import PiecewisePolynomial
 
+from tegrasp_drake.channels import TAXELS_PER_PAD
+from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
+from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
+from tegrasp_drake.events.window_normalizer import WindowNormalizer, WindowNormalizerConfig
 
 # Each value becomes visible this much before its time stamp, so that a periodic update at
 # the stamp's time sees it although k * period and the stamp may differ in the last bit.
@@ -27,3 +43,153 @@ def channels_trajectory(trial: TactileTrial) -> PiecewisePolynomial:
     samples = np.hstack([_hold(trial.t_sa, trial.sa, breaks),
                          _hold(trial.t_ra, trial.ra, breaks)])
     return PiecewisePolynomial.ZeroOrderHold(breaks - TIME_STAMP_ALLOWANCE_S, samples.T)
+
+
+def tactile_trial_from_log(log, transition_times: Mapping[str, float] | None = None
+                           ) -> TactileTrial:
+    """The measured channels of a TrialLog: SA (Eq. 1, each pad's taxel sum) at the taxel
+    times, RA at the vibration times; transition_times as given (default none)."""
+    taxels = np.asarray(log.taxels)
+    sa = np.column_stack([taxels[:, :TAXELS_PER_PAD].sum(axis=1),
+                          taxels[:, TAXELS_PER_PAD:].sum(axis=1)])
+    return TactileTrial(t_sa=log.t_sa, sa=sa, t_ra=log.t_ra, ra=log.ra,
+                        transition_times=dict(transition_times or {}))
+
+
+@dataclasses.dataclass(frozen=True)
+class EventReplay:
+    """The event systems' outputs over a replayed trial, one row per control tick.
+
+    The row at time t holds the outputs as they stood just before the updates at t, i.e.
+    after the tick at t - tick period; a match therefore first shows in the row of the
+    time at which the sequencer fires for it.
+
+    transitions: the matcher's events, by index. times (T,) [s]; scores (T, 4);
+    match (T,) 0 or 1; expected_event (T,) index or -1.
+    fire_times: {transition: time [s] the sequencer advanced past it, or None}, in the
+        sequence's order (empty for a held event).
+    windows_at_match: {transition: (sa_window, ra_window)}, the WindowNormalizer's outputs,
+        (2, N_sa) and (2, N_ra), at the tick that matched it (sequence replays only).
+    scores_at_match: {transition: the matcher's scores at that tick}.
+    """
+    transitions: tuple[str, ...]
+    times: np.ndarray
+    scores: np.ndarray
+    match: np.ndarray
+    expected_event: np.ndarray
+    fire_times: dict[str, float | None]
+    windows_at_match: dict[str, tuple[np.ndarray, np.ndarray]]
+    scores_at_match: dict[str, np.ndarray]
+
+    def match_rises(self) -> np.ndarray:
+        """Times [s] of the rows where match turns on (from off, or in the first row)."""
+        on = self.match > 0.5
+        return self.times[on & ~np.concatenate([[False], on[:-1]])]
+
+
+def live_matcher_config(events: Mapping[str, MemorizedEvent],
+                        config: EventMatcherConfig | None = None) -> EventMatcherConfig:
+    """`config` (default thresholds if None) at the events' sample rates, which a replay of
+    the trial they came from shares."""
+    event = next(iter(events.values()))
+    return dataclasses.replace(config or EventMatcherConfig(), sa_rate_hz=event.sa_rate_hz,
+                               ra_rate_hz=event.ra_rate_hz)
+
+
+@dataclasses.dataclass(frozen=True)
+class _ReplayDiagram:
+    diagram: Diagram
+    normalizer: WindowNormalizer
+    matcher: EventMatcher
+    sequencer: EventSequencer | None
+    loggers: dict[str, VectorLogSink]
+
+
+def _build_replay_diagram(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
+                          sequence: Sequence[str] | None, held: str | None,
+                          config: EventMatcherConfig, tick_s: float) -> _ReplayDiagram:
+    """channels -> WindowNormalizer, EventMatcher <-> EventSequencer (or a held event)."""
+    builder = DiagramBuilder()
+    source = builder.AddNamedSystem("channels", TrajectorySource(channels_trajectory(trial)))
+    normalizer = builder.AddNamedSystem("window_normalizer", WindowNormalizer(
+        WindowNormalizerConfig(window_s=next(iter(events.values())).window_s,
+                               sa_rate_hz=config.sa_rate_hz, ra_rate_hz=config.ra_rate_hz)))
+    matcher = builder.AddNamedSystem("event_matcher", EventMatcher(events, config))
+    builder.Connect(source.get_output_port(), normalizer.GetInputPort("channels"))
+    builder.Connect(source.get_output_port(), matcher.GetInputPort("channels"))
+    sequencer = None
+    if sequence is not None:
+        sequencer = builder.AddNamedSystem("event_sequencer", EventSequencer(
+            [matcher.event_index(transition) for transition in sequence], period_s=tick_s))
+        builder.Connect(matcher.GetOutputPort("match"), sequencer.GetInputPort("match"))
+        expected = sequencer.GetOutputPort("expected_event")
+    else:
+        expected = builder.AddNamedSystem("held_event", ConstantVectorSource(
+            [float(matcher.event_index(held))])).get_output_port()
+    builder.Connect(expected, matcher.GetInputPort("expected_event"))
+    loggers = {name: LogVectorOutput(port, builder, tick_s) for name, port in (
+        ("scores", matcher.GetOutputPort("scores")), ("match", matcher.GetOutputPort("match")),
+        ("expected_event", expected))}
+    return _ReplayDiagram(builder.Build(), normalizer, matcher, sequencer, loggers)
+
+
+def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
+            sequence: Sequence[str] | None, held: str | None,
+            config: EventMatcherConfig | None, t_end: float | None) -> EventReplay:
+    config = live_matcher_config(events, config)
+    tick_s = 1.0 / max(config.sa_rate_hz, config.ra_rate_hz)
+    systems = _build_replay_diagram(trial, events, sequence=sequence, held=held,
+                                    config=config, tick_s=tick_s)
+    simulator = Simulator(systems.diagram)
+    root = simulator.get_mutable_context()
+    matcher, normalizer = systems.matcher, systems.normalizer
+    matcher_context = matcher.GetMyContextFromRoot(root)
+    normalizer_context = normalizer.GetMyContextFromRoot(root)
+    match_port, scores_port = matcher.GetOutputPort("match"), matcher.GetOutputPort("scores")
+    expected_port = matcher.GetInputPort("expected_event")
+    window_ports = {kind: normalizer.GetOutputPort(f"{kind}_window") for kind in ("sa", "ra")}
+    windows_at_match, scores_at_match = {}, {}
+
+    def capture_windows_at_match(context):
+        # Called after each step, with the outputs of the tick before the step's end.
+        if systems.sequencer is not None and match_port.Eval(matcher_context)[0]:
+            transition = matcher.transitions[int(expected_port.Eval(matcher_context)[0])]
+            windows_at_match[transition] = tuple(
+                port.Eval(normalizer_context).reshape(2, normalizer.window_length(kind))
+                for kind, port in window_ports.items())
+            scores_at_match[transition] = scores_port.Eval(matcher_context).copy()
+        return EventStatus.Succeeded()
+
+    simulator.set_monitor(capture_windows_at_match)
+    simulator.AdvanceTo(t_end if t_end is not None else float(trial.t_ra[-1]))
+    logs = {name: logger.FindLog(root) for name, logger in systems.loggers.items()}
+    fire_times = {}
+    if systems.sequencer is not None:
+        fire_times = dict(zip(sequence, systems.sequencer.fire_times(
+            systems.sequencer.GetMyContextFromRoot(root))))
+    return EventReplay(
+        transitions=matcher.transitions, times=logs["match"].sample_times().copy(),
+        scores=logs["scores"].data().T.copy(), match=logs["match"].data()[0].copy(),
+        expected_event=logs["expected_event"].data()[0].copy(), fire_times=fire_times,
+        windows_at_match=windows_at_match, scores_at_match=scores_at_match)
+
+
+def replay_events_in_sequence(
+        trial: TactileTrial, events: Mapping[str, MemorizedEvent],
+        sequence: Sequence[str] = REQUIRED_TRANSITIONS, *,
+        config: EventMatcherConfig | None = None, t_end: float | None = None) -> EventReplay:
+    """Replays `trial`, expecting the events of `sequence` one after another.
+
+    events: one object's memorized events ({transition: event}); config: the matcher's
+    thresholds (its rates are set to the events'); t_end: default the trial's end.
+    """
+    return _replay(trial, events, sequence=tuple(sequence), held=None, config=config,
+                   t_end=t_end)
+
+
+def replay_event_held(
+        trial: TactileTrial, events: Mapping[str, MemorizedEvent], transition: str, *,
+        config: EventMatcherConfig | None = None, t_end: float | None = None) -> EventReplay:
+    """Replays `trial` with the event of `transition` expected throughout."""
+    return _replay(trial, events, sequence=None, held=transition, config=config,
+                   t_end=t_end)

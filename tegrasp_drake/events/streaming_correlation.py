@@ -4,15 +4,17 @@ For a live window x of N samples and a template y, the full cross-correlation
 C(n) = sum_k x[k+n] y[k], n = -(N-1)..N-1, changes by two rank-one terms when the window
 slides by one sample: the dropped sample's products leave and the new sample's enter.
 Indexing C by the buffer column where the template starts (instead of by lag) makes both
-terms land on one contiguous slice of 2N entries, so one multiply-add updates every lag of
-every channel. The window's extremes are kept exactly (a new extreme replaces the old; the
-window is searched again only when its extreme leaves it), its energy by a running sum that
-is reset to exactly 0 when the window is all zero (so an all-zero window scores 0, never
-NaN). Correlations, extremes and energies are recomputed exactly (the correlations by FFT,
-with the templates' spectra cached) whenever the expected event changes or the sliding
-buffer compacts, every `slack` samples; that bounds the round-off of the running sums: the
-scores equal the reference's to about 1e-16 times the signal's dynamic range over the last
-`slack` samples.
+terms land on one contiguous slice of 2N entries per channel: the dropped sample's N
+products on its first half, the new one's on its second half; two in-place BLAS axpy calls
+on the state vector per channel apply them (numpy's temporaries and broadcasting cost
+several times the arithmetic at this size). The window's extremes are kept exactly (a new
+extreme replaces the old; the window is searched again only when its extreme leaves it),
+its energy by a running sum that is reset to exactly 0 when the window is all zero (so an
+all-zero window scores 0, never NaN). Correlations, extremes and energies are recomputed
+exactly (the correlations by FFT, with the templates' spectra cached) whenever the
+expected event changes or the sliding buffer compacts, every `slack` samples; that bounds
+the round-off of the running sums: the scores equal the reference's to about 1e-16 times
+the signal's dynamic range over the last `slack` samples.
 
 Until N samples have been pushed the window is not full (its older part is zero padding,
 which would make a few noise samples look like an onset): the scores stay 0.
@@ -29,6 +31,7 @@ Correlation column j of a row holds the lag n = j - (N + slack) - offset - (N - 
 from collections.abc import Sequence
 
 import numpy as np
+from scipy.linalg.blas import daxpy
 
 from tegrasp_drake.events.correlation import channel_score, template_is_flat
 from tegrasp_drake.events.sliding_window import SlidingWindow
@@ -68,8 +71,9 @@ def slide_statistics(statistics: list[float], dropped_and_new: list[list[float]]
 
 def window_statistics(window: np.ndarray) -> list[float]:
     """[high, low, energy] per channel of `window` (channels, N), flattened by channel."""
-    return np.stack([window.max(axis=1), window.min(axis=1),
-                     np.einsum("ij,ij->i", window, window)], axis=1).ravel().tolist()
+    columns = zip(window.max(axis=1).tolist(), window.min(axis=1).tolist(),
+                  np.einsum("ij,ij->i", window, window).tolist())
+    return [value for channel in columns for value in channel]
 
 
 class StreamingCorrelator:
@@ -92,12 +96,6 @@ class StreamingCorrelator:
         self._length = length
         self._window = SlidingWindow(n_channels, length, slack)
         self._fft_length = 1 << (2 * length - 2).bit_length()  # power of two >= 2N - 1
-        # Per event: [-y reversed, +y reversed] for the two rank-one terms, the templates'
-        # norms, which channels are flat, and the templates' conjugate spectra.
-        self._kernels = [np.stack([-y[:, ::-1], y[:, ::-1]], axis=1) for y in templates]
-        self._template_norms = [np.sqrt(np.einsum("ij,ij->i", y, y)).tolist()
-                                for y in templates]
-        self._template_flat = [template_is_flat(y, min_contrast).tolist() for y in templates]
         self._spectra = [np.conj(np.fft.rfft(y, self._fft_length)) for y in templates]
         self._min_contrast = min_contrast
         self._statistics_at = _HEADER + n_channels
@@ -105,10 +103,20 @@ class StreamingCorrelator:
         self._correlation_at = self._window.columns  # first correlation column of a row
         self._row_length = self._window.columns + 2 * length - 1 + slack
         self._size = self._rows_at + n_channels * self._row_length
+        # Per event and channel, what a push needs: where the channel's correlation buffer
+        # starts in the state, its template reversed (contiguous: the axpy operand), the
+        # template's norm and whether it is flat.
+        correlation_starts = [self._rows_at + channel * self._row_length + self._correlation_at
+                              for channel in range(n_channels)]
+        self._channel_terms = [
+            list(zip(correlation_starts, [np.ascontiguousarray(row[::-1]) for row in y],
+                     np.sqrt(np.einsum("ij,ij->i", y, y)).tolist(),
+                     template_is_flat(y, min_contrast).tolist()))
+            for y in templates]
 
     @property
     def n_events(self) -> int:
-        return len(self._kernels)
+        return len(self._channel_terms)
 
     @property
     def size(self) -> int:
@@ -137,47 +145,48 @@ class StreamingCorrelator:
     def push(self, state: np.ndarray, samples, event: int) -> np.ndarray:
         """Append one sample per channel and score the window against `event`, in place.
 
+        state: a C-contiguous float64 vector (the BLAS calls write into it directly).
         event: index of the expected event, or NO_EVENT (scores 0). Returns the scores view,
         all 0 until the window is full.
         """
-        if not NO_EVENT <= event < len(self._kernels):
-            raise ValueError(f"event index {event} is outside -1..{len(self._kernels) - 1}")
-        n_channels, length = self._n_channels, self._length
-        rows = state[self._rows_at:].reshape(n_channels, self._row_length)
-        offset = self._window.push(rows, int(state[1]), samples)
-        state[1] = offset
-        if state[2] < length:
-            state[2] += 1.0
-        if event == NO_EVENT or state[2] < length:
-            state[0] = NO_EVENT
-            state[_HEADER:self._statistics_at] = 0.0
-            return self.scores(state)
-        lags_at = self._correlation_at + offset  # column of lag -(N-1)
+        if not NO_EVENT <= event < len(self._channel_terms):
+            raise ValueError(
+                f"event index {event} is outside -1..{len(self._channel_terms) - 1}")
+        length = self._length
+        rows = state[self._rows_at:].reshape(self._n_channels, self._row_length)
+        active, offset, pushed = state[:_HEADER].tolist()
+        offset = self._window.push(rows, int(offset), samples)
+        if pushed < length:
+            pushed += 1.0
+        if event == NO_EVENT or pushed < length:
+            state[:self._statistics_at] = [NO_EVENT, offset, pushed] + [0.0] * self._n_channels
+            return state[_HEADER:self._statistics_at]
         window = rows[:, offset:offset + length]
-        if offset == 0 or event != int(state[0]):
+        terms = self._channel_terms[event]
+        if offset == 0 or event != active:
             self._recompute(rows, offset, event)
             statistics = window_statistics(window)
-            state[0] = event
         else:
-            # Dropped sample at column offset - 1, new one N columns later.
-            dropped_and_new = rows[:, offset - 1:offset + length:length]
-            rows[:, lags_at - 1:lags_at - 1 + 2 * length] += (
-                dropped_and_new[:, :, None] * self._kernels[event]).reshape(
-                    n_channels, 2 * length)
+            # The dropped sample (column offset - 1) and the new one (N columns later) add
+            # their products to the 2N correlation columns that end at lag N - 1.
+            dropped_and_new = rows[:, offset - 1:offset + length:length].tolist()
+            for (start, reversed_template, _, _), (dropped, new) in zip(terms,
+                                                                         dropped_and_new):
+                at = start + offset - 1
+                if daxpy(reversed_template, state, length, -dropped, 0, 1, at, 1) is not state:
+                    raise ValueError("the state must be a C-contiguous float64 vector")
+                daxpy(reversed_template, state, length, new, 0, 1, at + length, 1)
             statistics = slide_statistics(
-                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new.tolist(),
-                window)
-        state[self._statistics_at:self._rows_at] = statistics
-        peaks = rows[:, lags_at:lags_at + 2 * length - 1].max(axis=1).tolist()
-        norms = self._template_norms[event]
-        flat = self._template_flat[event]
-        min_contrast = self._min_contrast
-        state[_HEADER:self._statistics_at] = [
-            channel_score(peaks[i], statistics[_STATISTICS * i + 2], norms[i],
-                          statistics[_STATISTICS * i], statistics[_STATISTICS * i + 1],
-                          flat[i], min_contrast)
-            for i in range(n_channels)]
-        return self.scores(state)
+                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new, window)
+        scores = []
+        for i, (start, _, template_norm, template_flat) in enumerate(terms):
+            lags = state[start + offset:start + offset + 2 * length - 1]
+            high, low, energy = statistics[_STATISTICS * i:_STATISTICS * (i + 1)]
+            # argmax is several times cheaper than max here, and finds the same peak.
+            scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
+                                        high, low, template_flat, self._min_contrast))
+        state[:self._rows_at] = [event, offset, pushed] + scores + statistics
+        return state[_HEADER:self._statistics_at]
 
     def _recompute(self, rows: np.ndarray, offset: int, event: int) -> None:
         """Exact full cross-correlation of the window with the event's templates, by FFT.

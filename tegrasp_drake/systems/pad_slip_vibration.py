@@ -24,6 +24,7 @@ from pydrake.systems.framework import BasicVector, LeafSystem
 from tegrasp_drake.channels import FINGER_NAMES, TAXELS_PER_PAD
 
 CONTACT_FORCE_N = 0.2
+UPDATE_PERIOD_S = 0.005  # slip speed sampling; the vibration itself is output at any time
 
 
 def texture_acceleration_amplitude(slip_speed: float, height_m: float, period_m: float) -> float:
@@ -52,8 +53,10 @@ class PadSlipVibration(LeafSystem):
     Inputs: body_poses, body_spatial_velocities (the plant's), true_taxel_forces (24, N:
     left then right). Outputs: {left,right}_slip_vibration (3, m/s^2, expressed in the pad
     frame; only its z, the normal, is non-zero). The discrete state holds, per pad, the
-    texture phase [rad], the acceleration amplitude [m/s^2] and the slip speed [m/s].
-    Slip faster than period * rate / 2 (0.25 m/s for the defaults) would alias.
+    texture phase [rad], the acceleration amplitude [m/s^2] and the slip speed [m/s], sampled
+    every UPDATE_PERIOD_S (the body poses and velocities are read only while a pad touches);
+    between samples the phase advances at the sampled speed. Slip faster than
+    period * film rate / 2 (0.25 m/s for the defaults) would alias in the film's samples.
     """
 
     def __init__(self, *, pads: dict, object_body_index, config):
@@ -62,7 +65,7 @@ class PadSlipVibration(LeafSystem):
         self._object_body = int(object_body_index)
         self._height = config.slip_texture_height_m
         self._period_m = config.slip_texture_period_m
-        self._dt = 1.0 / config.sample_rate_hz
+        self._dt = UPDATE_PERIOD_S
         self._poses = self.DeclareAbstractInputPort(
             "body_poses", AbstractValue.Make([RigidTransform()]))
         self._velocities = self.DeclareAbstractInputPort(
@@ -75,29 +78,39 @@ class PadSlipVibration(LeafSystem):
             self.DeclareVectorOutputPort(
                 f"{finger}_slip_vibration", 3,
                 lambda context, output, k=k: self._calc_vibration(context, output, k),
-                prerequisites_of_calc={self.xd_ticket()})
+                prerequisites_of_calc={self.xd_ticket(), self.time_ticket()})
 
     def _update(self, context, discrete_state):
         state = context.get_discrete_state(self._state).get_value().copy()
-        poses = self._poses.Eval(context)
-        velocities = self._velocities.Eval(context)
         forces = self._forces.Eval(context).reshape(len(FINGER_NAMES), TAXELS_PER_PAD)
-        X_WObj = poses[self._object_body]
+        touching = forces.sum(axis=1) > CONTACT_FORCE_N
+        if not touching.any() and not state[2::3].any():
+            return  # nothing touches and nothing slid: the state stays as it is
+        poses = self._poses.Eval(context) if touching.any() else None
+        velocities = self._velocities.Eval(context) if touching.any() else None
         for k, finger in enumerate(FINGER_NAMES):
             pad = self._pads[finger]
             body = int(pad.body_index)
             speed = 0.0
-            if forces[k].sum() > CONTACT_FORCE_N:
+            if touching[k]:
+                X_WObj = poses[self._object_body]
                 X_WB = poses[body]
                 speed = tangential_slip_speed(X_WB @ pad.X_BP, velocities[body],
                                               X_WB.translation(), velocities[self._object_body],
                                               X_WObj.translation())
-            phase = state[3 * k] + 2.0 * math.pi * speed * self._dt / self._period_m
+            # Advance the phase over the last period at the speed sampled then.
+            phase = state[3 * k] + 2.0 * math.pi * state[3 * k + 2] * self._dt / self._period_m
             state[3 * k:3 * k + 3] = (math.fmod(phase, 2.0 * math.pi),
                                       texture_acceleration_amplitude(speed, self._height,
                                                                      self._period_m), speed)
         discrete_state.get_mutable_vector(self._state).SetFromVector(state)
 
     def _calc_vibration(self, context, output: BasicVector, k: int):
-        phase, amplitude, _ = context.get_discrete_state(self._state).get_value()[3 * k:3 * k + 3]
+        state = context.get_discrete_state(self._state).get_value()
+        phase, amplitude, speed = state[3 * k:3 * k + 3]
+        if amplitude == 0.0:
+            output.SetZero()
+            return
+        since_sample = math.fmod(context.get_time(), self._dt)
+        phase += 2.0 * math.pi * speed * since_sample / self._period_m
         output.SetFromVector([0.0, 0.0, amplitude * math.sin(phase)])

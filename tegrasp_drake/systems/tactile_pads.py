@@ -17,8 +17,7 @@ from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import BasicVector, LeafSystem
 
 from tegrasp_drake.channels import FINGER_NAMES, TAXELS_PER_PAD
-from tegrasp_drake.systems.contact_pressure import (polygon_fan_triangles, subdivision_weights,
-                                                    taxel_normal_forces)
+from tegrasp_drake.systems.contact_pressure import polygon_fan_triangles, taxel_normal_forces
 
 _NOISE_STREAM = 7001  # separates this sensor's random stream from others seeded alike
 
@@ -32,7 +31,7 @@ class PadGeometry:
 
 
 def pad_forces_from_contacts(contact_results: ContactResults, X_WP: RigidTransform,
-                             geometry_id, weights: np.ndarray) -> np.ndarray:
+                             geometry_id) -> np.ndarray:
     """The 12 taxel normal forces [N] of the pad with `geometry_id` (noise-free)."""
     forces = np.zeros(TAXELS_PER_PAD)
     X_PW = X_WP.inverse()
@@ -52,7 +51,7 @@ def pad_forces_from_contacts(contact_results: ContactResults, X_WP: RigidTransfo
         p_WV = np.array([mesh.vertex(v) for v in range(count)])
         pressure = np.array([field.EvaluateAtVertex(v) for v in range(count)])
         p_PV = X_PW.multiply(p_WV.T).T
-        raw = taxel_normal_forces(p_PV, pressure, triangles, weights)
+        raw = taxel_normal_forces(p_PV, pressure, triangles)
         applied = abs(float(info.F_Ac_W().translational() @ z_W))
         total = raw.sum()
         if total > 0:
@@ -88,7 +87,6 @@ class TactilePads(LeafSystem):
         self._pads = pads  # finger name -> PadGeometry
         self._config = config
         self._seed = int(seed)
-        self._weights = subdivision_weights(config.face_subdivisions)
         self._period = 1.0 / config.sample_rate_hz
         self._contact_port = self.DeclareAbstractInputPort(
             "contact_results", AbstractValue.Make(ContactResults()))
@@ -115,7 +113,7 @@ class TactilePads(LeafSystem):
         poses = self._poses_port.Eval(context)
         true_forces = np.concatenate([
             pad_forces_from_contacts(contact_results, poses[int(pad.body_index)] @ pad.X_BP,
-                                     pad.geometry_id, self._weights)
+                                     pad.geometry_id)
             for pad in (self._pads[name] for name in FINGER_NAMES)])
         sample_index = int(round(context.get_time() / self._period))
         rng = np.random.default_rng((self._seed, _NOISE_STREAM, sample_index))

@@ -1,0 +1,100 @@
+"""EventSequencer: expects memorized events one after another, in grasp order.
+
+The smallest state machine over the EventMatcher: it puts the first event of its sequence
+on `expected_event`, and each time the matcher reports a match, moves on to the next one
+and notes the time. After the last event it expects none (-1). The grasp controller's
+state machine does the same while also commanding the arm and gripper; offline replays of
+logged trials (`replay.py`, `tegrasp replay LOG`) use this one alone.
+"""
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.events.streaming_correlation import NO_EVENT
+
+DEFAULT_PERIOD_S = 1e-3  # one control tick at 1 kHz
+
+
+def next_sequence_step(step: int, matched: bool, n_events: int) -> int:
+    """The step after a tick: the next event once the expected one matched."""
+    return step + 1 if matched and step < n_events else step
+
+
+class EventSequencer(LeafSystem):
+    """Expects `event_indices` in turn; advances on each match and records when.
+
+    A periodic update every `period_s` reads `match`; when it is 1, the sequencer advances
+    and stores the update's time as that event's fire time. The matcher's match at a tick
+    therefore becomes a fire time one period later, as for any sampled state machine, and
+    the new expected event reaches the matcher at the tick after that. Outputs depend only
+    on the discrete state, so the loop matcher -> sequencer -> matcher has no algebraic
+    loop.
+
+    .. pydrake_system::
+
+        name: EventSequencer
+        input_ports:
+        - match
+        output_ports:
+        - expected_event
+        - fire_times
+
+    Ports:
+        match: [1.0] when the expected event matched (EventMatcher's `match`), else [0.0].
+        expected_event: [index] of the event now expected (EventMatcher's
+            `expected_event`), -1 once every event has fired.
+        fire_times: one time [s] per event of the sequence, when it fired; NaN until then.
+
+    State: [step, fire time per event], step = number of events fired so far.
+    """
+
+    def __init__(self, event_indices: Sequence[int], *, period_s: float = DEFAULT_PERIOD_S):
+        super().__init__()
+        indices = [int(index) for index in event_indices]
+        if not indices or any(index < 0 or index != value
+                              for index, value in zip(indices, event_indices)):
+            raise ValueError(f"event_indices {list(event_indices)} must be one or more "
+                             "event indices >= 0")
+        if not period_s > 0.0:
+            raise ValueError(f"period_s {period_s} must be positive")
+        self._event_indices = tuple(indices)
+        self._match_port = self.DeclareVectorInputPort("match", 1)
+        self._state_index = self.DeclareDiscreteState(
+            np.concatenate([[0.0], np.full(len(indices), np.nan)]))
+        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
+        state = {self.discrete_state_ticket(self._state_index)}
+        self._expected_port = self.DeclareVectorOutputPort(
+            "expected_event", 1, self._calc_expected_event, prerequisites_of_calc=state)
+        self._fire_times_port = self.DeclareVectorOutputPort(
+            "fire_times", len(indices), self._calc_fire_times, prerequisites_of_calc=state)
+
+    @property
+    def event_indices(self) -> tuple[int, ...]:
+        return self._event_indices
+
+    def _state(self, context) -> np.ndarray:
+        return context.get_discrete_state(self._state_index).value()
+
+    def _update(self, context, discrete_state):
+        state = discrete_state.get_mutable_value(self._state_index)
+        step = int(state[0])
+        matched = self._match_port.Eval(context)[0] > 0.5
+        new_step = next_sequence_step(step, matched, len(self._event_indices))
+        if new_step != step:
+            state[0] = new_step
+            state[1 + step] = context.get_time()
+
+    def _calc_expected_event(self, context, output):
+        step = int(self._state(context)[0])
+        output.SetAtIndex(0, self._event_indices[step] if step < len(self._event_indices)
+                          else NO_EVENT)
+
+    def _calc_fire_times(self, context, output):
+        output.SetFromVector(self._state(context)[1:])
+
+    def fire_times(self, context) -> list[float | None]:
+        """Fire time [s] of each event of the sequence, None if it has not fired."""
+        return [None if math.isnan(t) else float(t) for t in self._state(context)[1:]]

@@ -1,0 +1,27 @@
+"""Fixtures shared by test modules."""
+
+import functools
+
+import numpy as np
+import pytest
+
+from tegrasp_drake.ideal_grasp import run_ideal_grasp
+from tegrasp_drake.scenario import load_scenario
+from tegrasp_drake.trial_log import ARRAY_FIELDS
+
+
+@pytest.fixture(scope="session")
+def ideal_grasp_log():
+    """ideal_grasp_log(object_name) -> the TrialLog of that object's ideal grasp on its
+    built-in scenario.
+
+    Each grasp is simulated once per session (about 13 s each) and shared by every test
+    that asks for it; its arrays are read-only, so that no test can change another's data.
+    """
+    @functools.cache
+    def run(object_name: str):
+        log, _ = run_ideal_grasp(load_scenario(name=object_name))
+        for name in ARRAY_FIELDS:
+            getattr(log, name).setflags(write=False)
+        return log
+    return run
