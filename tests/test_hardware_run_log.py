@@ -109,6 +109,7 @@ def test_replay_command_reports_the_log_and_the_matches(run_log_path, tmp_path):
     summary = json.loads(out.getvalue())
     assert summary["object"] == "box" and summary["controller"] == "memorized"
     assert all(r["match_time"] is not None for r in summary["replay"])
+    assert all(t is not None for t in summary["sequence_fire_times"].values())
 
 
 def test_a_missing_log_is_named(tmp_path):

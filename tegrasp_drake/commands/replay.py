@@ -1,5 +1,9 @@
 """`tegrasp replay LOG`: what a hardware run's log holds, and the event matcher re-run on
-its tactile data offline (run_log.py), next to the transitions the run made."""
+its tactile data offline, two ways: expecting the event of the mode the logged
+transitions show (run_log.replay_matcher), and expecting the memorized events one after
+another, advanced by each match, as an EventSequencer does
+(events/replay.replay_events_in_sequence). The matcher's thresholds are the run's own
+(its scenario in TEGRASP_RUN_INFO), or the defaults."""
 
 import json
 
@@ -21,12 +25,28 @@ def _fmt(value):
     return "-" if value is None else f"{value:8.3f}"
 
 
+def matcher_config_of(run_info, events):
+    """The run's matcher thresholds (from its scenario), at the events' rates."""
+    from tegrasp_drake.events.event_matcher import EventMatcherConfig
+    from tegrasp_drake.events.replay import live_matcher_config
+    config = EventMatcherConfig()
+    if run_info is not None and run_info.scenario_yaml:
+        from pydrake.common.yaml import yaml_load_typed
+
+        from tegrasp_drake.scenario import Scenario
+        scenario = yaml_load_typed(schema=Scenario, data=run_info.scenario_yaml,
+                                   defaults=Scenario())
+        config.sa_threshold = scenario.controller.sa_threshold
+        config.ra_threshold = scenario.controller.ra_threshold
+    return live_matcher_config(events, config)
+
+
 def run(args) -> int:
     import pathlib
 
     from tegrasp_drake import paths
     from tegrasp_drake.events import MemorizedEventError, load_memorized_events
-    from tegrasp_drake.events.event_matcher import EventMatcherConfig
+    from tegrasp_drake.events.replay import replay_events_in_sequence
     from tegrasp_drake.run_log import RunLogError, read_run_log, replay_matcher
     try:
         log = read_run_log(args.log)
@@ -38,9 +58,10 @@ def run(args) -> int:
                                      pathlib.Path(info.events_dir).is_dir()
                                      else str(paths.events_dir()))
         events = load_memorized_events(events_dir, object_name)
-        results = replay_matcher(log.tactile_trial(), log.transitions, events,
-                                 config=EventMatcherConfig(
-                                     sa_rate_hz=events[next(iter(events))].sa_rate_hz))
+        config = matcher_config_of(info, events)
+        trial = log.tactile_trial()
+        results = replay_matcher(trial, log.transitions, events, config=config)
+        in_sequence = replay_events_in_sequence(trial, events, config=config)
     except (RunLogError, MemorizedEventError, ValueError) as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     summary = {
@@ -55,7 +76,8 @@ def run(args) -> int:
                    for f in log.faults],
         "replay": [{"transition": r.transition, "mode_entered": r.mode_entered,
                     "logged_time": r.logged_time, "match_time": r.match_time,
-                    "scores": r.best_scores} for r in results]}
+                    "scores": r.best_scores} for r in results],
+        "sequence_fire_times": in_sequence.fire_times}
     if args.json:
         print(json.dumps(summary, sort_keys=True))
         return 0
@@ -72,4 +94,7 @@ def run(args) -> int:
     for r in results:
         print(f"  {r.transition:14s}  {_fmt(r.mode_entered)}  {_fmt(r.logged_time)}  "
               f"{_fmt(r.match_time)}  " + " ".join(f"{s:5.2f}" for s in r.best_scores))
+    print("offline matcher with an EventSequencer (events expected in grasp order):")
+    for transition, fired in in_sequence.fire_times.items():
+        print(f"  {transition:14s}  fired at {_fmt(fired)}")
     return 0
