@@ -45,8 +45,8 @@ def save_synthetic_trial(path, duration: float):
     return path
 
 
-def run_hardware_benchmark(duration: float = 10.0, *, trial=None, lcm_port: int = 7990,
-                           log_path=None, verbose: bool = True) -> dict:
+def run_hardware_benchmark(duration: float = 10.0, *, trial=None, overrides=(),
+                           lcm_port: int = 7990, log_path=None, verbose: bool = True) -> dict:
     from tegrasp_drake.emulator_process import EmulatedDevices
     from tegrasp_drake.hardware_run import run_on_hardware
     from tegrasp_drake.run_log import read_run_log
@@ -60,15 +60,18 @@ def run_hardware_benchmark(duration: float = 10.0, *, trial=None, lcm_port: int 
         with EmulatedDevices(lcm_url=url, trial=trial, myrio_sync="start") as devices:
             watchdog = devices.config.watchdog
             watchdog.arm_timeout = watchdog.gripper_timeout = watchdog.tactile_timeout = 1.0
-            result = run_on_hardware(load_scenario(name="box"), config=devices.config,
+            result = run_on_hardware(load_scenario(name="box", overrides=overrides),
+                                     config=devices.config,
                                      log_path=log_path or pathlib.Path(folder) / "bench.lcmlog",
                                      duration=duration, out=lambda line: None)
         figures = loop_figures(read_run_log(result.log_path))
     figures.update(realtime_rate=result.realtime_rate, faults=[str(f) for f in result.faults],
-                   counters=result.device_counters)
+                   counters=result.device_counters, sim_time=result.sim_time,
+                   transitions=result.transitions)
     if verbose:
-        print(f"Hardware loop, {duration:.1f} s against the emulators, real-time rate "
-              f"{result.realtime_rate:.3f}, {len(result.faults)} faults")
+        modes = " -> ".join(["Reach"] + [t["to"] for t in result.transitions])
+        print(f"Hardware loop, {result.sim_time:.1f} s against the emulators ({modes}), "
+              f"real-time rate {result.realtime_rate:.3f}, {len(result.faults)} faults")
         print(f"  tactile frame arrival -> matcher input: {figures['latency']}")
         print(f"  1 kHz loop period:                      {figures['period']}")
     return figures
@@ -79,8 +82,11 @@ def main(argv=None) -> int:
     parser.add_argument("--duration", type=float, default=10.0)
     parser.add_argument("--trial", default=None, help="a TrialLog .npz to replay")
     parser.add_argument("--log", default=None, help="keep the run's LCM log here")
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="KEY=VALUE", help="override a field of the box scenario")
     args = parser.parse_args(argv)
-    run_hardware_benchmark(args.duration, trial=args.trial, log_path=args.log)
+    run_hardware_benchmark(args.duration, trial=args.trial, overrides=args.overrides,
+                           log_path=args.log)
     return 0
 
 
