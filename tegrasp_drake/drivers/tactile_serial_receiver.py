@@ -14,9 +14,11 @@ per tick until the backlog is gone (the latency returns to a millisecond once a 
 passed), and when more than `max_backlog` wait, the oldest are played together in one
 tick, so the latency stays at most `max_backlog` ticks. Frames played together keep the
 newest counts and the piezo sample of largest magnitude, so an impact is never dropped.
-`max_backlog = 0` plays everything that arrived at once. When nothing arrived for `stale_timeout` the outputs keep the last
-values, `time_measured` (the played frame's timestamp) stops advancing and `stale` is 1,
-so old data is never passed on as fresh.
+`max_backlog = 0` plays everything that arrived at once.
+
+When nothing arrived for `stale_timeout` the outputs keep the last values,
+`time_measured` (the played frame's timestamp) stops advancing and `stale` is 1, so old
+data is never passed on as fresh.
 
 Zeroing: until `zero_samples` count sequences per finger have arrived the outputs are zero
 and `zeroing` is 1 (keep the pads untouched at start); then the taxel offsets and piezo
