@@ -17,6 +17,9 @@ COMMAND_MODULES = (
     "tegrasp_drake.sweep.command",
     "tegrasp_drake.commands.record_events",
     "tegrasp_drake.commands.plot",
+    "tegrasp_drake.commands.emulate",
+    "tegrasp_drake.commands.hardware",
+    "tegrasp_drake.commands.replay",
 )
 
 

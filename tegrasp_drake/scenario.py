@@ -18,6 +18,7 @@ from pydrake.systems.analysis import SimulatorConfig
 
 from tegrasp_drake import paths
 from tegrasp_drake.control.controller_config import CONTROLLERS, GraspControllerConfig
+from tegrasp_drake.hardware_config import SimulatedStationConfig, StationConfig
 from tegrasp_drake.objects import BUILTIN_OBJECTS, OBJECT_SHAPES, ObjectConfig
 from tegrasp_drake.robotiq_units import STROKE_M
 
@@ -129,6 +130,8 @@ class Scenario:
     grasp: GraspScriptConfig = dataclasses.field(default_factory=GraspScriptConfig)
     disturbance: DisturbanceConfig = dataclasses.field(default_factory=DisturbanceConfig)
     controller: GraspControllerConfig = dataclasses.field(default_factory=GraspControllerConfig)
+    # Simulated (default) or real devices, selected by the YAML tag (hardware_config.py).
+    station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
 
 
 def _describe(value) -> str:
@@ -155,9 +158,25 @@ def _check_against_schema(data, schema, where: str, source: str) -> None:
         _check_value(value, hints[key], path, source)
 
 
+def _union_member(value, hint, path: str, source: str):
+    """The member of a Union that a YAML tag (or its absence: the first) selects."""
+    members = typing.get_args(hint)
+    tag = value.get("_tag") if isinstance(value, dict) else None
+    if tag is None:
+        return members[0], value
+    for member in members:
+        if tag == f"!{member.__name__}":
+            return member, {k: v for k, v in value.items() if k != "_tag"}
+    known = ", ".join(f"!{m.__name__}" for m in members)
+    raise ScenarioError(f"{source}: field '{path}': unknown tag {tag} (known: {known})")
+
+
 def _check_value(value, hint, path: str, source: str) -> None:
     origin = typing.get_origin(hint)
-    if origin is list:
+    if origin is typing.Union:
+        member, value = _union_member(value, hint, path, source)
+        _check_value(value, member, path, source)
+    elif origin is list:
         if not isinstance(value, list):
             raise ScenarioError(f"{source}: field '{path}' must be a list, got {_describe(value)}")
         for k, item in enumerate(value):
@@ -182,7 +201,8 @@ def _check_value(value, hint, path: str, source: str) -> None:
         _check_against_schema(value, hint, path, source)
 
 
-def _apply_override(data: dict, assignment: str) -> None:
+def apply_override(data: dict, assignment: str) -> None:
+    """Sets `key.sub=value` (YAML value) in nested YAML data."""
     if "=" not in assignment:
         raise ScenarioError(f"--set '{assignment}': expected key=value, e.g. object.name=box")
     key, text = assignment.split("=", 1)
@@ -284,14 +304,19 @@ def load_scenario(filename: str | pathlib.Path | None = None, name: str = DEFAUL
         raise ScenarioError(f"{path}: no scenario named '{name}' (scenarios: {names})")
     data = document[name] or {}
     for assignment in overrides:
-        _apply_override(data, assignment)
+        apply_override(data, assignment)
     source = f"{path} [{name}]"
-    _check_against_schema(data, Scenario, "", source)
+    return validate(load_typed(data, Scenario, source), source)
+
+
+def load_typed(data: dict, schema, source: str):
+    """An instance of the dataclass `schema` from YAML data (defaults for what is not
+    set), after a walk that names any unknown or mistyped field."""
+    _check_against_schema(data, schema, "", source)
     try:
-        scenario = yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
+        return yaml_load_typed(schema=schema, data=yaml_dump(data), defaults=schema())
     except (RuntimeError, ValueError) as e:
         raise ScenarioError(f"{source}: {e}") from None
-    return validate(scenario, source)
 
 
 def scenario_to_yaml(scenario: Scenario) -> str:

@@ -1,5 +1,7 @@
 """Command-line options shared by every command that loads a scenario."""
 
+import logging
+
 from tegrasp_drake.scenario import DEFAULT_SCENARIO, ScenarioError, load_scenario
 
 
@@ -19,3 +21,9 @@ def scenario_from_arguments(args):
         return load_scenario(args.scenario, args.scenario_name, args.overrides)
     except ScenarioError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
+
+
+def quiet_modbus_library() -> None:
+    """pymodbus logs every timed-out request; the Robotiq client counts them instead
+    (RobotiqModbusClient.counters()), so keep its log to what is critical."""
+    logging.getLogger("pymodbus").setLevel(logging.CRITICAL)

@@ -181,7 +181,8 @@ def run_driver_benchmark(duration: float = 3.0, *, verbose: bool = True) -> Driv
         print(f"Driver benchmark, {duration:.1f} s per run, real-time rate target 1.0")
         print(f"  tactile frame write -> receiver output port: {latency}")
         print(f"    frames sent {sent}, distinct frames seen at the port {seen} "
-              f"(the 1 kHz tick shows the newest of each tick's frames)")
+              "(played one per tick; frames merged while the receiver catches up are "
+              "not shown)")
         print(f"  1 kHz loop period, tick only:                {bare}")
         print(f"  1 kHz loop period, with tactile receiver:    {with_tactile}")
         print(f"    achieved real-time rate {rate:.3f}")

@@ -35,6 +35,9 @@ class DeviceFault:
     since_sim_time: float = 0.0
     since_wall_time: float = 0.0
 
+    def __deepcopy__(self, memo):
+        return self  # immutable: Drake's copies of the Context's state can share it
+
     def __str__(self) -> str:
         wall = datetime.datetime.fromtimestamp(self.since_wall_time).isoformat(
             timespec="milliseconds")

@@ -11,6 +11,15 @@ thread catches up, it does not slow the stream) and carries:
   chip half a period after the left), from the forces at that time through the
   calibration's inverse.
 A quiet `lead_in` (no contact, no vibration) precedes the trial so the receiver can zero.
+With `start_on_trigger`, the quiet stream goes on until `start_trial()` (e.g. on the arm's
+first command, so that a replayed trial lines up with the controller's clock); with
+`hold_at_end`, the last values keep streaming after the trial until `stop()`, as a real
+device keeps streaming. Frame n after the trial's start carries trial time n x
+frame_period; by default frames go out at the real rate (the stream's own clock). Given a
+`trial_clock` (a callable returning the trial time [s], e.g. a ControllerClock following
+the controller's commands), frame n goes out once that clock reaches its time instead, so
+that a controller that falls behind real time still gets every sample once, in step with
+its own clock (the sensor as if slaved to the controller).
 
 Faults, each per frame with a given probability, from a seeded generator: a flipped bit,
 a dropped byte, a frame cut short. `stop_talking()` silences it (to trip a watchdog);
@@ -32,6 +41,8 @@ from tegrasp_drake.drivers.null_modem import open_raw_pty
 from tegrasp_drake.drivers.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
 from tegrasp_drake.drivers.tactile_frame import encode_frame
+
+MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 kHz)
 
 
 @dataclasses.dataclass
@@ -66,6 +77,8 @@ class MyRioEmulatorConfig:
     cdc_period: float = 9.2e-3
     lead_in: float = 0.5
     piezo_axis: int | None = None
+    start_on_trigger: bool = False
+    hold_at_end: bool = False
     calibration: TactileCalibration = dataclasses.field(default_factory=TactileCalibration)
     faults: StreamFaults = dataclasses.field(default_factory=StreamFaults)
 
@@ -118,11 +131,23 @@ class TactileFrameSource:
                       film_signal(trial.right_acceleration, config.piezo_axis)]
         self._forces = [np.asarray(trial.left_forces, dtype=float),
                         np.asarray(trial.right_forces, dtype=float)]
-        self.frame_count = int(np.ceil((config.lead_in + trial.duration) / config.frame_period))
+        self.lead_in_frames = int(round(config.lead_in / config.frame_period))
+        self.trial_frames = int(np.ceil(trial.duration / config.frame_period))
+        self.frame_count = self.lead_in_frames + self.trial_frames
 
-    def frame(self, k: int) -> bytes:
+    def frame(self, k: int, trial_start_frame: int | None = -1) -> bytes:
+        """Frame k of the stream whose trial time 0 is frame `trial_start_frame` (-1: after
+        the lead-in; None: not started, a quiet frame)."""
         c = self._config
-        t = k * c.frame_period - c.lead_in   # trial time of this frame
+        if trial_start_frame == -1:
+            trial_start_frame = self.lead_in_frames
+        # trial time of this frame
+        t = -1.0 if trial_start_frame is None else (k - trial_start_frame) * c.frame_period
+        return self.frame_at(k, t)
+
+    def frame_at(self, k: int, t: float) -> bytes:
+        """Frame k of the stream carrying the trial at time t [s] (t < 0: quiet)."""
+        c = self._config
         piezo, counts = [], []
         for i, pad in enumerate(c.calibration.pads()):
             acceleration = held_sample(self._trial.acceleration_times, self._film[i], t) \
@@ -160,8 +185,10 @@ class MyRioEmulatorCounters:
 class MyRioEmulator:
     """Streams a trial on a pseudo-terminal; the reader opens `port`. Use with `with`."""
 
-    def __init__(self, trial: TactileTrial, config: MyRioEmulatorConfig | None = None):
+    def __init__(self, trial: TactileTrial, config: MyRioEmulatorConfig | None = None, *,
+                 trial_clock=None):
         self._config = dataclasses.replace(config or MyRioEmulatorConfig())
+        self._trial_clock = trial_clock
         self._source = TactileFrameSource(trial, self._config)
         self._rng = np.random.default_rng(self._config.faults.seed)
         self._master, self._slave, self._port = open_raw_pty()
@@ -169,9 +196,11 @@ class MyRioEmulator:
         self._stop = threading.Event()
         self._talking = threading.Event()
         self._talking.set()
+        self._trigger = threading.Event()
+        self._trial_start_time = None
         self._finished = threading.Event()
         self._counters = MyRioEmulatorCounters()
-        self._sent = []
+        self._sent = collections.deque(maxlen=MAX_SENT_RECORDS)
         self._thread = None
 
     @property
@@ -209,6 +238,16 @@ class MyRioEmulator:
     def resume_talking(self):
         self._talking.set()
 
+    def start_trial(self):
+        """With `start_on_trigger`: the trial starts with the next frame."""
+        self._trigger.set()
+
+    @property
+    def trial_start_time(self) -> float | None:
+        """time.monotonic() [s] when the trial's first frame was due (None before)."""
+        with self._lock:
+            return self._trial_start_time
+
     def wait_until_finished(self, timeout: float) -> bool:
         return self._finished.wait(timeout)
 
@@ -225,16 +264,39 @@ class MyRioEmulator:
     def _run(self):
         period = self._config.frame_period
         start = time.monotonic()
+        trial_start = None if self._config.start_on_trigger else self._source.lead_in_frames
         k = 0
-        while k < self._source.frame_count and not self._stop.is_set():
-            delay = start + k * period - time.monotonic()
-            if delay > 0:
-                time.sleep(delay)
-            if not self._talking.is_set():
-                self._talking.wait(0.05)
-                k = int((time.monotonic() - start) / period)  # silent frames are not sent
-                continue
-            frame = self._source.frame(k)
+        while not self._stop.is_set():
+            if trial_start is None and self._trigger.is_set():
+                trial_start = k
+            if trial_start is not None:
+                if self._trial_start_time is None:
+                    with self._lock:  # a clock-paced trial starts at once
+                        self._trial_start_time = (
+                            time.monotonic() if self._trial_clock is not None
+                            else start + trial_start * period)
+                if (not self._config.hold_at_end
+                        and k >= trial_start + self._source.trial_frames):
+                    break
+            if self._trial_clock is not None and trial_start is not None:
+                # Paced by the clock: trial sample n goes out once the clock reached it.
+                due = trial_start + int(self._trial_clock() / period + 1e-9)
+                if k > due:
+                    time.sleep(period / 4)
+                    continue
+                if not self._talking.is_set():
+                    self._talking.wait(0.05)
+                    k = trial_start + int(self._trial_clock() / period)  # not sent
+                    continue
+            else:
+                delay = start + k * period - time.monotonic()
+                if delay > 0:
+                    time.sleep(delay)
+                if not self._talking.is_set():
+                    self._talking.wait(0.05)
+                    k = int((time.monotonic() - start) / period)  # silent frames are not sent
+                    continue
+            frame = self._source.frame(k, trial_start)
             data, injected = inject_faults(frame, self._config.faults, self._rng)
             try:
                 written = os.write(self._master, data)

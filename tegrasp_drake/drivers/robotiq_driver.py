@@ -29,6 +29,9 @@ class RobotiqDriverState:
     stale: bool = True
     faults: tuple = ()
 
+    def __deepcopy__(self, memo):
+        return self  # immutable: Drake's copies of the Context's state can share it
+
 
 def gripper_faults(status, count: int, driver_error: str | None, previous: tuple, *,
                    device: str, sim_time: float, wall_time: float) -> tuple:

@@ -35,6 +35,9 @@ class DeviceActivity:
     since_wall_time: float = 0.0
     fault: DeviceFault | None = None
 
+    def __deepcopy__(self, memo):
+        return self  # immutable: Drake's copies of the Context's state can share it
+
 
 def next_activity(activity: DeviceActivity, value: float, *, device: str, timeout: float,
                   startup_grace: float, sim_time: float, wall_time: float) -> DeviceActivity:
@@ -73,8 +76,9 @@ class DeviceWatchdog(LeafSystem):
         self._startup_grace = startup_grace
         self._ports = {device: self.DeclareVectorInputPort(f"{device}_time_measured", 1)
                        for device in self._timeouts}
+        # A tuple of (device, DeviceActivity): immutable, so cheap for Drake to copy.
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(
-            {device: DeviceActivity() for device in self._timeouts}))
+            tuple((device, DeviceActivity()) for device in self._timeouts)))
         self.DeclareInitializationUnrestrictedUpdateEvent(self._initialize)
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
         ticket = {self.abstract_state_ticket(self._state_index)}
@@ -85,7 +89,7 @@ class DeviceWatchdog(LeafSystem):
             prerequisites_of_calc=ticket)
 
     def _activities(self, context) -> dict:
-        return context.get_abstract_state(self._state_index).get_value()
+        return dict(context.get_abstract_state(self._state_index).get_value())
 
     def _faults(self, context) -> tuple:
         faults = [a.fault for a in self._activities(context).values() if a.fault]
@@ -93,18 +97,17 @@ class DeviceWatchdog(LeafSystem):
 
     def _initialize(self, context, state):
         now = context.get_time()
-        state.get_mutable_abstract_state(self._state_index).set_value({
-            device: DeviceActivity(None, now, time.time())
-            for device in self._timeouts})
+        state.get_mutable_abstract_state(self._state_index).set_value(tuple(
+            (device, DeviceActivity(None, now, time.time())) for device in self._timeouts))
 
     def _update(self, context, state):
         now, wall = context.get_time(), time.time()
-        activities = {
-            device: next_activity(activity, self._ports[device].Eval(context)[0],
-                                  device=device, timeout=self._timeouts[device],
-                                  startup_grace=self._startup_grace, sim_time=now,
-                                  wall_time=wall)
-            for device, activity in self._activities(context).items()}
+        activities = tuple(
+            (device, next_activity(activity, self._ports[device].Eval(context)[0],
+                                   device=device, timeout=self._timeouts[device],
+                                   startup_grace=self._startup_grace, sim_time=now,
+                                   wall_time=wall))
+            for device, activity in self._activities(context).items())
         state.get_mutable_abstract_state(self._state_index).set_value(activities)
 
     def _calc_fault(self, context, output):

@@ -1,0 +1,72 @@
+"""`tegrasp hardware --config FILE`: the grasp on the real devices (or their emulators).
+
+The controller diagram runs unchanged on MakeHardwareStation, in real time, against the
+devices the config names (hardware_config.py; `tegrasp emulate ... --write-config FILE`
+writes one for the emulators). State transitions and device faults are printed as they
+happen; everything on the bus goes to an LCM log (run_log.py; `tegrasp replay LOG`,
+`lcm-logplayer LOG`). Exit code: 0 when the grasp finished without a fault, 2 after a
+fault or a Failed state machine, 1 when a device did not come up.
+"""
+
+import datetime
+
+from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
+                                                   scenario_from_arguments)
+from tegrasp_drake.control.controller_config import CONTROLLERS
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "hardware", help="run the grasp in real time on the devices of a hardware config")
+    parser.add_argument("--config", metavar="FILE",
+                        help="hardware config YAML (HardwareStationConfig fields); default: "
+                        "the scenario's `station: !HardwareStationConfig {...}`")
+    parser.add_argument("--config-set", dest="config_overrides", action="append", default=[],
+                        metavar="KEY=VALUE", help="override a hardware config field, e.g. "
+                        "--config-set tactile.port=/dev/ttyACM1")
+    add_scenario_arguments(parser)
+    parser.add_argument("--controller", default=None, choices=CONTROLLERS,
+                        help="default: the scenario's (controller.name, memorized)")
+    parser.add_argument("--log", metavar="FILE", default=None,
+                        help="LCM log to write (default: out/hardware/run-<time>.lcmlog)")
+    parser.add_argument("--duration", type=float, default=None,
+                        help="stop after this many seconds (default: when the grasp ends)")
+    parser.set_defaults(func=run)
+
+
+def run(args) -> int:
+    quiet_modbus_library()
+    from tegrasp_drake import paths
+    from tegrasp_drake.hardware_config import load_hardware_config
+    from tegrasp_drake.hardware_run import run_on_hardware
+    from tegrasp_drake.hardware_station import HardwareNotReadyError
+    from tegrasp_drake.scenario import ScenarioError
+    from tegrasp_drake.hardware_config import HardwareStationConfig
+    scenario = scenario_from_arguments(args)
+    if args.config:
+        try:
+            config = load_hardware_config(args.config, args.config_overrides)
+        except ScenarioError as e:
+            raise SystemExit(f"tegrasp: error: {e}") from None
+    elif isinstance(scenario.station, HardwareStationConfig):
+        config = scenario.station
+    else:
+        raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
+                         "is `!HardwareStationConfig {...}`")
+    log = args.log or (f"out/hardware/run-"
+                       f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
+    try:
+        result = run_on_hardware(scenario, config=config, controller=args.controller,
+                                 events_dir=str(paths.events_dir()), log_path=log,
+                                 duration=args.duration,
+                                 out=lambda line: print(line, flush=True))
+    except HardwareNotReadyError as e:
+        print(f"tegrasp: error: {e}", flush=True)
+        return 1
+    print(f"ran {result.sim_time:.2f} s in {result.wall_time:.2f} s (real-time rate "
+          f"{result.realtime_rate:.3f}); {len(result.transitions)} transitions, "
+          f"{len(result.faults)} faults; log {result.log_path} ({result.log_messages} "
+          "messages)", flush=True)
+    failed = result.faults or (result.transitions
+                               and result.transitions[-1]["to"] == "Failed")
+    return 2 if failed else 0

@@ -1,0 +1,94 @@
+"""MakeHardwareStation against in-process emulators: the simulated station's ports, the
+fault latch and the device_fault text the state machine reads."""
+
+import numpy as np
+import pytest
+from pydrake.lcm import DrakeLcm
+from pydrake.systems.analysis import Simulator
+
+from tegrasp_drake.drivers.device_fault import DEVICE_FAULT, SILENT, DeviceFault
+from tegrasp_drake.drivers.fault_latch import FaultLatch, latched_faults
+from tegrasp_drake.drivers.myrio_emulator import MyRioEmulator, TactileTrial
+from tegrasp_drake.drivers.robotiq_emulator import RobotiqEmulator
+from tegrasp_drake.hardware_config import HardwareStationConfig
+from tegrasp_drake.hardware_station import HardwareNotReadyError, MakeHardwareStation
+from tegrasp_drake.scenario import load_scenario
+from tegrasp_drake.station import MakeGraspStation
+
+CONTROLLER_INPUTS = ("arm.desired_state", "gripper.command")
+CONTROLLER_OUTPUTS = ("arm.position_measured", "arm.velocity_measured", "arm.torque_measured",
+                      "gripper.status", "tactile.left_taxel_forces",
+                      "tactile.right_taxel_forces", "tactile.left_pad_acceleration",
+                      "tactile.right_pad_acceleration")
+
+
+def quiet_trial():
+    t = np.arange(0.0, 0.2, 1e-3)
+    return TactileTrial(t, np.zeros((len(t), 12)), np.zeros((len(t), 12)), t,
+                        np.zeros((len(t), 3)), np.zeros(len(t)))
+
+
+@pytest.fixture
+def station():
+    with RobotiqEmulator() as gripper, MyRioEmulator(quiet_trial()) as myrio:
+        config = HardwareStationConfig()
+        config.gripper.port, config.tactile.port = gripper.port, myrio.port
+        with MakeHardwareStation(config, lcm=DrakeLcm("memq://")) as station:
+            yield station
+
+
+def test_hardware_station_has_the_simulated_station_ports(station):
+    simulated = MakeGraspStation(load_scenario(name="box"))
+    for name in CONTROLLER_INPUTS:
+        assert station.GetInputPort(name).size() == simulated.GetInputPort(name).size()
+    for name in CONTROLLER_OUTPUTS:
+        assert station.GetOutputPort(name).size() == simulated.GetOutputPort(name).size()
+    assert station.num_input_ports() == len(CONTROLLER_INPUTS)
+    for name in ("fault", "device_fault", "stop", "arm.commanded_state",
+                 "tactile.time_measured", "tactile.stale", "tactile.zeroing"):
+        assert station.HasOutputPort(name)
+
+
+def test_no_arm_on_the_bus_is_named_when_waiting_for_the_devices(station):
+    with pytest.raises(HardwareNotReadyError, match="arm: no lcmt_jaco_status on "
+                       "KINOVA_JACO_STATUS at memq://"):
+        station.wait_until_ready(timeout=0.2)
+
+
+def test_a_missing_tactile_port_is_named():
+    with RobotiqEmulator() as gripper:
+        config = HardwareStationConfig()
+        config.gripper.port, config.tactile.port = gripper.port, "/dev/no-such-myrio"
+        with pytest.raises(HardwareNotReadyError, match="tactile: cannot open the myRIO "
+                           "serial port /dev/no-such-myrio"):
+            MakeHardwareStation(config, lcm=DrakeLcm("memq://"))
+
+
+SILENT_ARM = DeviceFault("arm", SILENT, "no new data for more than 50 ms", since_sim_time=1.0)
+GRIPPER_OVERCURRENT = DeviceFault("gripper", DEVICE_FAULT, "overcurrent triggered", 0x0E,
+                                  since_sim_time=2.0)
+
+
+def test_faults_are_kept_once_seen_in_order():
+    faults = latched_faults((), [SILENT_ARM])
+    faults = latched_faults(faults, [GRIPPER_OVERCURRENT, SILENT_ARM])
+    assert latched_faults(faults, []) == (SILENT_ARM, GRIPPER_OVERCURRENT)
+
+
+def test_fault_latch_stops_and_names_every_fault():
+    latch = FaultLatch(["watchdog", "gripper"])
+    simulator = Simulator(latch)
+    context = simulator.get_mutable_context()
+    latch.GetInputPort("watchdog_fault").FixValue(context, ())
+    latch.GetInputPort("gripper_fault").FixValue(context, ())
+    simulator.AdvanceTo(0.002)
+    assert latch.GetOutputPort("stop").Eval(context)[0] == 0
+    assert latch.GetOutputPort("message").Eval(context) == ""
+    latch.GetInputPort("gripper_fault").FixValue(context, (GRIPPER_OVERCURRENT,))
+    simulator.AdvanceTo(0.004)
+    latch.GetInputPort("gripper_fault").FixValue(context, ())  # the code cleared: kept
+    simulator.AdvanceTo(0.006)
+    assert latch.GetOutputPort("stop").Eval(context)[0] == 1
+    assert latch.GetOutputPort("fault").Eval(context) == (GRIPPER_OVERCURRENT,)
+    assert latch.GetOutputPort("message").Eval(context).startswith(
+        "gripper: device (code 0x0E): overcurrent triggered; since t = 2.000 s")
