@@ -25,8 +25,10 @@ def make_machine(**config_changes):
     return machine, scenario
 
 
-def status(opening_m=ru.STROKE_M, obj=ru.ObjectStatus.MOVING, fault=0):
+def status(opening_m=ru.STROKE_M, obj=ru.ObjectStatus.MOVING, fault=0, request_byte=None):
     values = np.zeros(ru.STATUS_SIZE)
+    values[ru.STATUS_PR] = (ru.position_byte_from_opening(opening_m) if request_byte is None
+                            else request_byte)
     values[ru.STATUS_ACT], values[ru.STATUS_GTO], values[ru.STATUS_STA] = 1, 1, 3
     values[ru.STATUS_OBJ], values[ru.STATUS_FLT] = obj, fault
     values[ru.STATUS_PO] = ru.position_byte_from_opening(opening_m)
@@ -183,3 +185,18 @@ def test_pad_frames_and_hit_direction():
     # Even pads: the common horizontal acceleration, else up.
     np.testing.assert_allclose(avoid_direction([0.2, 0.1], [3.0, 0.0, 9.0], 1.0), [1, 0, 0])
     np.testing.assert_allclose(avoid_direction([0.0, 0.0], np.zeros(3), 1.0), [0, 0, 1])
+
+
+def test_closed_on_nothing_needs_a_status_that_echoes_the_close_request():
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    g = scenario.grasp
+    simulator.AdvanceTo(g.settle_s + g.reach_s + 0.05)
+    # A late status of the open request: "at requested position", echo = the open byte.
+    inputs.set(status=status(ru.STROKE_M, ru.ObjectStatus.AT_REQUESTED_POSITION))
+    simulator.AdvanceTo(context.get_time() + 0.3)
+    assert mode(machine, context) == Mode.REACH
+    closed = machine.GetOutputPort("gripper_command").Eval(context)[ru.COMMAND_POSITION]
+    inputs.set(status=status(0.0, ru.ObjectStatus.AT_REQUESTED_POSITION, request_byte=closed))
+    run_until_mode(simulator, machine, Mode.RE_REACH, 0.2)
+    assert machine.timeline(context)[-1]["reason"] == "the gripper closed on nothing"

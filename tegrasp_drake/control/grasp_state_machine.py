@@ -335,8 +335,12 @@ class GraspStateMachine(LeafSystem):
                              if motion_done else -1.0)
         status = self._status.Eval(context)
         closing = s.mode == Mode.REACH and s.stage == "closing"
+        # Only a status that echoes the close request (gPR = rPR) says where the fingers
+        # stopped: a late status from the open request also reads "at requested position".
+        requested = gripper_command(*s.gripper)[ru.COMMAND_POSITION]
+        at_request = int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION
         closed_on_nothing = (closing and self._gripper_settled(s, t) and not any(contact)
-                             and int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION)
+                             and status[ru.STATUS_PR] == requested and at_request)
         fault_code = int(status[ru.STATUS_FLT])
         device_fault = self._device_fault.Eval(context) if self._device_fault.HasValue(
             context) else ""
