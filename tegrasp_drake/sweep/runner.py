@@ -282,6 +282,10 @@ def summary_text(summary: SweepSummary) -> str:
     return "\n".join(lines)
 
 
+# Result fields that measure the machine, not the trial.
+TIMING_FIELDS = ("wall_time_s", "real_time_factor")
+
+
 @dataclass(frozen=True)
 class BenchmarkRun:
     workers: int
@@ -296,8 +300,8 @@ def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
     fresh temporary folder, timing the whole run (pool start-up included).
 
     Returns the runs and whether every trial's result was the same in all runs
-    (ignoring `wall_time_s`): with deterministic trials the worker count must not
-    change any result.
+    (ignoring the timing fields TIMING_FIELDS): with deterministic trials the worker
+    count must not change any result.
     """
     spec = dataclasses.replace(spec, controllers=("memorized",))
     runs, results = [], []
@@ -310,7 +314,7 @@ def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
                                  errors=len(summary.errors), wall_time_s=summary.wall_time_s))
         results.append({trial_id: canonical_json(
             {k: v for k, v in (record["result"] or record["error"]).items()
-             if k not in ("wall_time_s", "traceback")})
+             if k not in TIMING_FIELDS + ("traceback",)})
             for trial_id, record in records.items()})
     return runs, all(r == results[0] for r in results)
 
