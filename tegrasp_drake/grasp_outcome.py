@@ -83,22 +83,36 @@ def longest_run_s(times: np.ndarray, mask: np.ndarray) -> float:
     return float(best)
 
 
-def physical_events(log, grip_force: float, object_config=None) -> dict:
-    true_sa = np.column_stack([log.true_taxels[:, :12].sum(axis=1),
-                               log.true_taxels[:, 12:].sum(axis=1)])
-    z = log.object_state[:, 6]
-    lifted = z - z[0] > LIFTED_HEIGHT_M
+def true_sa(log) -> np.ndarray:
+    """(N, 2) the noise-free 12-taxel sums [N] of the left and right pads at log.t_sa."""
+    return log.true_taxels.reshape(len(log.true_taxels), 2, -1).sum(axis=2)
+
+
+def first_contact_time(log, after: float = 0.0):
+    """First time >= after [s] that either pad's true force exceeds CONTACT_FORCE_N."""
+    return _first(log.t_sa, (true_sa(log).max(axis=1) > CONTACT_FORCE_N) & (log.t_sa >= after))
+
+
+def grip_force_time(log, grip_force: float, after: float = 0.0):
+    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of it."""
+    reached = true_sa(log).min(axis=1) >= GRIP_FRACTION * grip_force
+    return _first(log.t_sa, reached & (log.t_sa >= after))
+
+
+def table_touch_time(log, object_config=None, after: float = 0.0):
+    """First logged time > after [s] that the object's lowest point is within TOUCH_HEIGHT_M
+    of where it rested at the start."""
     low = lowest_point_heights(log.object_state, object_config)
-    low_rest = low[0]
-    events = {"first_contact": _first(log.t_sa, true_sa.max(axis=1) > CONTACT_FORCE_N),
-              "grip_force_reached": _first(log.t_sa,
-                                           true_sa.min(axis=1) >= GRIP_FRACTION * grip_force),
-              "table_touch": None}
-    lift_index = np.flatnonzero(lifted)
-    if lift_index.size:
-        after = np.arange(z.size) > lift_index[0]
-        events["table_touch"] = _first(log.t_slow, after & (low - low_rest < TOUCH_HEIGHT_M))
-    return events
+    return _first(log.t_slow, (low - low[0] < TOUCH_HEIGHT_M) & (log.t_slow > after))
+
+
+def physical_events(log, grip_force: float, object_config=None) -> dict:
+    z = log.object_state[:, 6]
+    lift_index = np.flatnonzero(z - z[0] > LIFTED_HEIGHT_M)
+    return {"first_contact": first_contact_time(log),
+            "grip_force_reached": grip_force_time(log, grip_force),
+            "table_touch": (table_touch_time(log, object_config, after=log.t_slow[lift_index[0]])
+                            if lift_index.size else None)}
 
 
 def judge_grasp(log, *, target_xy, grip_force: float) -> GraspOutcome:

@@ -16,8 +16,8 @@ from pydrake.systems.framework import DiagramBuilder
 from tegrasp_drake.control.grasp_controller import add_grasp_controller
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
-from tegrasp_drake.grasp_outcome import (CONTACT_FORCE_N, GRIP_FRACTION, TOUCH_HEIGHT_M,
-                                         judge_grasp, lowest_point_heights)
+from tegrasp_drake.grasp_outcome import (first_contact_time, grip_force_time, judge_grasp,
+                                         table_touch_time)
 from tegrasp_drake.station import MakeGraspStation
 from tegrasp_drake.trial_diagram import add_trial_logging, collect_trial_log
 
@@ -60,36 +60,22 @@ def build_trial_diagram(scenario, *, meshcat=None, events=None):
     return diagram, controller, loggers
 
 
-def _true_sa(log) -> np.ndarray:
-    return log.true_taxels.reshape(len(log.true_taxels), 2, 12).sum(axis=2)
-
-
-def _first_after(times, mask, after: float):
-    index = np.flatnonzero(mask & (times >= after))
-    return float(times[index[0]]) if index.size else None
-
-
 def physical_event_times(log, transitions: list[dict], grip_force: float,
                          object_config=None) -> dict:
     """The physical event that marks each event transition actually taken, looked for after
-    the mode was entered: first contact (Reach-Load), grip force reached (Load-Lift), table
-    touch after lift-off (Place-Unload)."""
-    sa = _true_sa(log)
-    low = lowest_point_heights(log.object_state, object_config)
-    low = low - low[0]
+    the mode was entered: first contact (Reach-Load), grip force reached (Load-Lift, after
+    the last Reach began), table touch (Place-Unload)."""
     events = {}
     entered = {"Reach": 0.0}
     for entry in transitions:
-        key = (entry["from"], entry["to"])
-        name = EVENT_TRANSITIONS.get(key)
+        name = EVENT_TRANSITIONS.get((entry["from"], entry["to"]))
         since = entered.get(entry["from"], 0.0)
         if name == "reach_load":
-            events[name] = _first_after(log.t_sa, sa.max(axis=1) > CONTACT_FORCE_N, since)
+            events[name] = first_contact_time(log, after=since)
         elif name == "load_lift":
-            events[name] = _first_after(log.t_sa, sa.min(axis=1) >= GRIP_FRACTION * grip_force,
-                                        entered["Reach"])
+            events[name] = grip_force_time(log, grip_force, after=entered["Reach"])
         elif name == "place_unload":
-            events[name] = _first_after(log.t_slow, low < TOUCH_HEIGHT_M, since)
+            events[name] = table_touch_time(log, object_config, after=since)
         entered[entry["to"]] = entry["t"]
     return events
 

@@ -52,20 +52,22 @@ def record_object_events(object_name: str, scenario=None):
         package_versions=package_versions())
 
 
-def run(args) -> int:
-    from tegrasp_drake.events import save_memorized_events
-    out = args.out or paths.events_dir()
+def _scenarios_to_record(args) -> list:
+    """(object name, scenario or None for the built-in one) of each object to record."""
     if args.scenario or args.scenario_name or args.overrides:
         from tegrasp_drake.commands.scenario_args import scenario_from_arguments
         from tegrasp_drake.scenario import DEFAULT_SCENARIO
         args.scenario_name = args.scenario_name or DEFAULT_SCENARIO
         scenario = scenario_from_arguments(args)
-        events = record_object_events(scenario.object.name, scenario)
-        written = save_memorized_events(out, events.values())
-        print(f"{scenario.object.name}: {', '.join(events)} -> {len(written)} files in {out}")
-        return 0
-    for object_name in args.object or sorted(BUILTIN_OBJECTS):
-        events = record_object_events(object_name)
+        return [(scenario.object.name, scenario)]
+    return [(name, None) for name in args.object or sorted(BUILTIN_OBJECTS)]
+
+
+def run(args) -> int:
+    from tegrasp_drake.events import save_memorized_events
+    out = args.out or paths.events_dir()
+    for object_name, scenario in _scenarios_to_record(args):
+        events = record_object_events(object_name, scenario)
         written = save_memorized_events(out, events.values())
         print(f"{object_name}: {', '.join(events)} -> {len(written)} files in {out}")
     return 0

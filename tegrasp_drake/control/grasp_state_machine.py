@@ -337,10 +337,10 @@ class GraspStateMachine(LeafSystem):
         closing = s.mode == Mode.REACH and s.stage == "closing"
         # Only a status that echoes the close request (gPR = rPR) says where the fingers
         # stopped: a late status from the open request also reads "at requested position".
-        requested = gripper_command(*s.gripper)[ru.COMMAND_POSITION]
-        at_request = int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION
-        closed_on_nothing = (closing and self._gripper_settled(s, t) and not any(contact)
-                             and status[ru.STATUS_PR] == requested and at_request)
+        closed_on_nothing = (
+            closing and self._gripper_settled(s, t) and not any(contact)
+            and status[ru.STATUS_PR] == gripper_command(*s.gripper)[ru.COMMAND_POSITION]
+            and int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION)
         fault_code = int(status[ru.STATUS_FLT])
         device_fault = self._device_fault.Eval(context) if self._device_fault.HasValue(
             context) else ""

@@ -61,18 +61,17 @@ class HeuristicEventDetector(LeafSystem):
             return np.array([level, level, np.inf, np.inf])
         return np.array([np.inf, np.inf, c.place_ra_mps2, c.place_ra_mps2])
 
-    def _ratios(self, context) -> np.ndarray:
-        index = self._expected_index(context)
+    def _ratios(self, index: int, context) -> np.ndarray:
         if index == NO_EVENT:
             return np.zeros(len(CHANNEL_NAMES))
         return self._channels.Eval(context) / self.thresholds(TRANSITIONS[index])
 
     def _calc_scores(self, context, output):
-        output.SetFromVector(self._ratios(context))
+        output.SetFromVector(self._ratios(self._expected_index(context), context))
 
     def _calc_match(self, context, output):
         index = self._expected_index(context)
-        ratios = self._ratios(context)
+        ratios = self._ratios(index, context)
         if index == NO_EVENT:
             matched = False
         elif TRANSITIONS[index] == "place_unload":
