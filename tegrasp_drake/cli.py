@@ -14,7 +14,7 @@ COMMAND_MODULES = (
     "tegrasp_drake.commands.demo",
     "tegrasp_drake.commands.trial",
     "tegrasp_drake.commands.benchmark",
-    "tegrasp_drake.sweep.command",
+    "tegrasp_drake.commands.sweep",
     "tegrasp_drake.commands.record_events",
     "tegrasp_drake.commands.plot",
     "tegrasp_drake.commands.emulate",

@@ -5,9 +5,9 @@ import functools
 import numpy as np
 import pytest
 
-from tegrasp_drake.ideal_grasp import run_ideal_grasp
-from tegrasp_drake.scenario import load_scenario
-from tegrasp_drake.trial_log import ARRAY_FIELDS
+from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
+from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.trial_log import ARRAY_FIELDS
 
 
 @pytest.fixture(scope="session")

@@ -8,8 +8,8 @@ import pytest
 from tegrasp_drake.events.correlation import (
     event_scores_reference, max_normalized_xcorr_reference, normalize_by_max,
     window_contrast)
-from tegrasp_drake.events.sampling import resample_window, samples_per_window
-from tegrasp_drake.events.sliding_window import SlidingWindow, SlidingWindowState
+from tegrasp_drake.tactile.sampling import resample_window, samples_per_window
+from tegrasp_drake.tactile.sliding_window import SlidingWindow, SlidingWindowState
 from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
 
 MIN_CONTRAST = 0.25

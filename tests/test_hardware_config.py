@@ -2,9 +2,9 @@
 
 import pytest
 
-from tegrasp_drake.hardware_config import (HardwareStationConfig, SimulatedStationConfig,
+from tegrasp_drake.hardware.config import (HardwareStationConfig, SimulatedStationConfig,
                                            hardware_config_to_yaml, load_hardware_config)
-from tegrasp_drake.scenario import ScenarioError, load_scenario
+from tegrasp_drake.experiments.scenario import ScenarioError, load_scenario
 
 
 def write(tmp_path, name, text):
@@ -60,8 +60,8 @@ def test_an_unknown_station_tag_is_named(tmp_path):
 
 
 def test_the_station_tag_picks_the_station_builder(tmp_path):
-    from tegrasp_drake.grasp_diagram import MakeStation
-    from tegrasp_drake.hardware_station import HardwareNotReadyError
+    from tegrasp_drake.experiments.grasp_diagram import MakeStation
+    from tegrasp_drake.hardware.station import HardwareNotReadyError
     assert MakeStation(load_scenario(name="box")).HasOutputPort("object.state")
     path = write(tmp_path, "s.yaml", """
 real_box:

@@ -6,14 +6,14 @@ import pytest
 from pydrake.lcm import DrakeLcm
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.drivers.device_fault import DEVICE_FAULT, SILENT, DeviceFault
-from tegrasp_drake.drivers.fault_latch import FaultLatch, latched_faults
-from tegrasp_drake.drivers.myrio_emulator import MyRioEmulator, TactileTrial
-from tegrasp_drake.drivers.robotiq_emulator import RobotiqEmulator
-from tegrasp_drake.hardware_config import HardwareStationConfig
-from tegrasp_drake.hardware_station import HardwareNotReadyError, MakeHardwareStation
-from tegrasp_drake.scenario import load_scenario
-from tegrasp_drake.station import MakeGraspStation
+from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, SILENT, DeviceFault
+from tegrasp_drake.hardware.fault_latch import FaultLatch, latched_faults
+from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileTrial
+from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
+from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.hardware.station import HardwareNotReadyError, MakeHardwareStation
+from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.simulation.station import MakeGraspStation
 
 CONTROLLER_INPUTS = ("arm.desired_state", "gripper.command")
 CONTROLLER_OUTPUTS = ("arm.position_measured", "arm.velocity_measured", "arm.torque_measured",

@@ -22,7 +22,7 @@ def register(subparsers) -> None:
 def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
     """Median wall time [us] of one TactilePads sample while the box is held."""
     from pydrake.systems.analysis import Simulator
-    from tegrasp_drake.ideal_grasp import build_ideal_grasp_diagram
+    from tegrasp_drake.experiments.ideal_grasp import build_ideal_grasp_diagram
     diagram, _, segments = build_ideal_grasp_diagram(scenario)
     simulator = Simulator(diagram)
     simulator.AdvanceTo(next(s.t_start for s in segments if s.phase == "hold") + 0.5)
@@ -44,7 +44,7 @@ def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
 
 def run(args) -> int:
     scenario = scenario_from_arguments(args)
-    from tegrasp_drake.ideal_grasp import run_ideal_grasp
+    from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
     factors = []
     for _ in range(args.trials):
         log, wall = run_ideal_grasp(scenario)

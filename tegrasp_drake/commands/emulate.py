@@ -25,7 +25,7 @@ import numpy as np
 
 from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
                                                    scenario_from_arguments)
-from tegrasp_drake.hardware_config import DEFAULT_LCM_URL
+from tegrasp_drake.hardware.config import DEFAULT_LCM_URL
 
 DEVICES = ("jaco", "robotiq", "myrio", "all")
 
@@ -55,7 +55,7 @@ def register(subparsers) -> None:
 def load_tactile_trial(path):
     """The myRIO replay of a TrialLog .npz: taxel forces (t_sa, taxels) and pad
     accelerations (t_ra, pad_acceleration); no other array is needed."""
-    from tegrasp_drake.drivers.myrio_emulator import TactileTrial
+    from tegrasp_drake.emulators.myrio_emulator import TactileTrial
     try:
         with np.load(path, allow_pickle=False) as data:
             t_sa, taxels = data["t_sa"], data["taxels"]
@@ -96,7 +96,7 @@ class Emulators:
 def start_robotiq(emulators, scenario, inject_fault, out):
     import time
 
-    from tegrasp_drake.drivers.robotiq_emulator import RobotiqEmulator, RobotiqEmulatorConfig
+    from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator, RobotiqEmulatorConfig
     width = scenario.object.width_along_stroke()
     emulator = RobotiqEmulator(RobotiqEmulatorConfig(object_opening=width)).start()
     emulators.add_closer(emulator.stop)
@@ -120,8 +120,8 @@ def start_robotiq(emulators, scenario, inject_fault, out):
 
 def start_myrio(emulators, trial_path, sync, out):
     """The myRIO emulator; with sync start/follow, its ControllerClock (feed it commands)."""
-    from tegrasp_drake.drivers.controller_clock import ControllerClock
-    from tegrasp_drake.drivers.myrio_emulator import MyRioEmulator, MyRioEmulatorConfig
+    from tegrasp_drake.emulators.controller_clock import ControllerClock
+    from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, MyRioEmulatorConfig
     trial = load_tactile_trial(trial_path)
     clock = ControllerClock() if sync in ("start", "follow") else None
     emulator = MyRioEmulator(trial, MyRioEmulatorConfig(
@@ -146,9 +146,9 @@ def start_myrio(emulators, trial_path, sync, out):
 def make_jaco(scenario, lcm_url, out):
     from pydrake.lcm import DrakeLcm
 
-    from tegrasp_drake.drivers.jaco_arm_emulator import MakeJacoArmEmulator
-    from tegrasp_drake.drivers.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
-    from tegrasp_drake.station import initial_arm_positions
+    from tegrasp_drake.emulators.jaco_arm_emulator import MakeJacoArmEmulator
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
+    from tegrasp_drake.simulation.station import initial_arm_positions
     drake_lcm = DrakeLcm(lcm_url)
     diagram = MakeJacoArmEmulator(lcm=drake_lcm,
                                   initial_positions=initial_arm_positions(scenario))
@@ -168,7 +168,7 @@ def run_jaco_until_stopped(diagram, stop: threading.Event):
 
 
 def write_config(path, fields: dict, lcm_url: str, out):
-    from tegrasp_drake.hardware_config import HardwareStationConfig, hardware_config_to_yaml
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
     config = HardwareStationConfig()
     config.arm.lcm_url = lcm_url
     config.gripper.port = fields.get("gripper", {}).get("port", config.gripper.port)
@@ -204,11 +204,11 @@ def run(args) -> int:
             if clock is not None and jaco is not None:
                 from drake import lcmt_jaco_command
 
-                from tegrasp_drake.drivers.jaco_lcm import JACO_COMMAND_CHANNEL
+                from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL
                 jaco[0].Subscribe(JACO_COMMAND_CHANNEL, lambda data: clock.on_command(
                     lcmt_jaco_command.decode(data).utime))
             elif clock is not None:
-                from tegrasp_drake.drivers.controller_clock import follow_jaco_commands
+                from tegrasp_drake.emulators.controller_clock import follow_jaco_commands
                 follow_jaco_commands(args.lcm_url, clock, emulators.stop)
         write_config(args.write_config, emulators.config_fields, args.lcm_url, out)
         out("ready")

@@ -36,12 +36,12 @@ def register(subparsers) -> None:
 
 def run(args) -> int:
     quiet_modbus_library()
-    from tegrasp_drake import paths
-    from tegrasp_drake.hardware_config import load_hardware_config
-    from tegrasp_drake.hardware_run import run_on_hardware
-    from tegrasp_drake.hardware_station import HardwareNotReadyError
-    from tegrasp_drake.scenario import ScenarioError
-    from tegrasp_drake.hardware_config import HardwareStationConfig
+    from tegrasp_drake.rig import paths
+    from tegrasp_drake.hardware.config import load_hardware_config
+    from tegrasp_drake.experiments.hardware_run import run_on_hardware
+    from tegrasp_drake.hardware.station import HardwareNotReadyError
+    from tegrasp_drake.experiments.scenario import ScenarioError
+    from tegrasp_drake.hardware.config import HardwareStationConfig
     scenario = scenario_from_arguments(args)
     if args.config:
         try:

@@ -8,7 +8,7 @@ LOG is a trial.npz written by `tegrasp trial` or `tegrasp demo`.
 
 import pathlib
 
-from tegrasp_drake import paths
+from tegrasp_drake.rig import paths
 
 DEFAULT_OUT = {"events": "out/memorized_events.png", "trial": "out/trial_states.png",
                "avoid": "out/avoid.png"}
@@ -26,7 +26,7 @@ def register(subparsers) -> None:
 
 def _plot_events(args, out) -> str:
     from tegrasp_drake.events import MemorizedEventError, load_all_memorized_events
-    from tegrasp_drake.events.plot import plot_memorized_events
+    from tegrasp_drake.experiments.figures.events import plot_memorized_events
     try:
         events = load_all_memorized_events(args.events or paths.events_dir())
     except MemorizedEventError as e:
@@ -35,8 +35,8 @@ def _plot_events(args, out) -> str:
 
 
 def _plot_trial(args, out) -> str:
-    from tegrasp_drake.trial_figures import plot_avoid_reaction, plot_trial_states
-    from tegrasp_drake.trial_log import TrialLogError, load_trial_log
+    from tegrasp_drake.experiments.figures.trial import plot_avoid_reaction, plot_trial_states
+    from tegrasp_drake.experiments.trial_log import TrialLogError, load_trial_log
     if not args.log:
         raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a trial log "
                          "(e.g. out/trial/trial.npz from `tegrasp trial`)")
@@ -46,7 +46,7 @@ def _plot_trial(args, out) -> str:
         raise SystemExit(f"tegrasp: error: {e}") from None
     if args.what == "trial":
         return plot_trial_states(log, out)
-    from tegrasp_drake.scenario import Scenario
+    from tegrasp_drake.experiments.scenario import Scenario
     from pydrake.common.yaml import yaml_load_typed
     scenario = yaml_load_typed(schema=Scenario, data=log.meta["scenario"])
     try:

@@ -7,8 +7,8 @@ force reached -> load_lift, table touch -> place_unload), normalised by their ma
 stored in the events folder with an index (format: tegrasp_drake/events/FORMAT.md).
 """
 
-from tegrasp_drake import paths
-from tegrasp_drake.objects import BUILTIN_OBJECTS
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "grip_force_reached",
                        "place_unload": "table_touch"}
@@ -34,10 +34,10 @@ def record_object_events(object_name: str, scenario=None):
     """Runs the ideal grasp of one object (a built-in one by name, or the object of
     `scenario`); returns its MemorizedEvents."""
     from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
-    from tegrasp_drake.grasp_outcome import physical_events
-    from tegrasp_drake.ideal_grasp import run_ideal_grasp
-    from tegrasp_drake.scenario import load_scenario, scenario_to_yaml
-    from tegrasp_drake.trial_diagram import package_versions
+    from tegrasp_drake.experiments.grasp_outcome import physical_events
+    from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
+    from tegrasp_drake.experiments.scenario import load_scenario, scenario_to_yaml
+    from tegrasp_drake.experiments.trial_logging import package_versions
     scenario = scenario or load_scenario(name=object_name)
     log, _ = run_ideal_grasp(scenario)
     events = physical_events(log, scenario.grasp.grip_force, scenario.object)
@@ -56,7 +56,7 @@ def _scenarios_to_record(args) -> list:
     """(object name, scenario or None for the built-in one) of each object to record."""
     if args.scenario or args.scenario_name or args.overrides:
         from tegrasp_drake.commands.scenario_args import scenario_from_arguments
-        from tegrasp_drake.scenario import DEFAULT_SCENARIO
+        from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO
         args.scenario_name = args.scenario_name or DEFAULT_SCENARIO
         scenario = scenario_from_arguments(args)
         return [(scenario.object.name, scenario)]

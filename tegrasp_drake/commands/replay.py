@@ -33,7 +33,7 @@ def matcher_config_of(run_info, events):
     if run_info is not None and run_info.scenario_yaml:
         from pydrake.common.yaml import yaml_load_typed
 
-        from tegrasp_drake.scenario import Scenario
+        from tegrasp_drake.experiments.scenario import Scenario
         scenario = yaml_load_typed(schema=Scenario, data=run_info.scenario_yaml,
                                    defaults=Scenario())
         config.sa_threshold = scenario.controller.sa_threshold
@@ -44,10 +44,10 @@ def matcher_config_of(run_info, events):
 def run(args) -> int:
     import pathlib
 
-    from tegrasp_drake import paths
+    from tegrasp_drake.rig import paths
     from tegrasp_drake.events import MemorizedEventError, load_memorized_events
     from tegrasp_drake.events.replay import replay_events_in_sequence
-    from tegrasp_drake.run_log import RunLogError, read_run_log, replay_matcher
+    from tegrasp_drake.experiments.run_log import RunLogError, read_run_log, replay_matcher
     try:
         log = read_run_log(args.log)
         info = log.run_info

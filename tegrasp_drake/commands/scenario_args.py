@@ -2,7 +2,7 @@
 
 import logging
 
-from tegrasp_drake.scenario import DEFAULT_SCENARIO, ScenarioError, load_scenario
+from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO, ScenarioError, load_scenario
 
 
 def add_scenario_arguments(parser) -> None:

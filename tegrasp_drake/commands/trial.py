@@ -54,9 +54,9 @@ def run(args) -> int:
     args.overrides = overrides
     scenario = scenario_from_arguments(args)
     from tegrasp_drake.events import MemorizedEventError
-    from tegrasp_drake.trial import run_trial
-    from tegrasp_drake.figures import plot_trial_signals
-    from tegrasp_drake.trial_figures import plot_trial_states
+    from tegrasp_drake.experiments.trial import run_trial
+    from tegrasp_drake.experiments.figures.signals import plot_trial_signals
+    from tegrasp_drake.experiments.figures.trial import plot_trial_states
     meshcat = None
     if args.meshcat:
         from pydrake.geometry import StartMeshcat

@@ -11,7 +11,7 @@ from pydrake.multibody.inverse_kinematics import (DifferentialInverseKinematicsI
                                                   DifferentialInverseKinematicsParameters)
 from pydrake.systems.primitives import DiscreteDerivative, Multiplexer
 
-from tegrasp_drake.arm_kinematics import make_arm_control_plant
+from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
 from tegrasp_drake.modelgen import jaco2_dh
 
 JOINT_SPEED_MARGIN = 0.9  # use at most 90 % of each joint's published top speed

@@ -10,14 +10,14 @@ import dataclasses
 
 from pydrake.systems.primitives import Multiplexer
 
-from tegrasp_drake import paths
-from tegrasp_drake.channels import FINGER_NAMES
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.control.cartesian_arm_controller import add_cartesian_arm_controller
 from tegrasp_drake.control.grasp_modes import HEURISTIC_EVENT, MEMORIZED_EVENT, TIMER, Mode
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
-from tegrasp_drake.trial_diagram import add_mechanoreceptor_channels
+from tegrasp_drake.experiments.trial_logging import add_mechanoreceptor_channels
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
 _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
@@ -68,7 +68,7 @@ def load_controller_events(scenario, events_dir=None) -> dict:
     """The memorized events of the scenario's object; MemorizedEventError (naming the file
     and the record-events command) when they are missing."""
     from tegrasp_drake.events import MemorizedEventError, load_memorized_events
-    from tegrasp_drake.objects import BUILTIN_OBJECTS
+    from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
     try:
         return load_memorized_events(events_dir or paths.events_dir(), scenario.object.name)
     except MemorizedEventError as e:
@@ -105,7 +105,7 @@ def add_grasp_controller(builder, *, scenario, station, controller: str | None =
     events: {transition: MemorizedEvent} for the memorized controller (default: the
     package's events of the scenario's object).
     """
-    from tegrasp_drake.station import initial_arm_positions
+    from tegrasp_drake.simulation.station import initial_arm_positions
     name = controller or scenario.controller.name
     channels = add_mechanoreceptor_channels(builder, station)
     X_WG_desired, arm_desired_state = add_cartesian_arm_controller(

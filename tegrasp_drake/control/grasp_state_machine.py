@@ -26,9 +26,9 @@ from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake import robotiq_units as ru
-from tegrasp_drake.arm_kinematics import R_WG_SIDE_GRASP
-from tegrasp_drake.channels import CHANNEL_NAMES
+from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.control.grasp_modes import EXPECTED_TRANSITION, Mode
 from tegrasp_drake.control.motion_profiles import minimum_jerk
 from tegrasp_drake.control.scripted_grasp import gripper_command

@@ -10,7 +10,7 @@ tell which detector drives it.
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.channels import CHANNEL_NAMES
+from tegrasp_drake.rig.channels import CHANNEL_NAMES
 
 TRANSITIONS = ("reach_load", "load_lift", "place_unload")
 NO_EVENT = -1

@@ -13,8 +13,8 @@ from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake import robotiq_units as ru
-from tegrasp_drake.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
 
 PHASES = ("settle", "reach", "load", "lift", "hold", "place", "unload", "retract", "done")

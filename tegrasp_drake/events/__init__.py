@@ -10,7 +10,7 @@ trial through them offline.
 
 Not re-exported here, so that the control loop does not import matplotlib:
 `plot.plot_memorized_events` (the Fig. 5c-like figure), `benchmark` (the matcher's cost
-per tick; `python -m tegrasp_drake.events.benchmark`) and `synthetic` (synthetic grasps
+per tick; `python -m tegrasp_drake.experiments.benchmarks.matcher`) and `synthetic` (synthetic grasps
 for tests).
 """
 
@@ -29,23 +29,19 @@ from tegrasp_drake.events.memorized_event import (
 from tegrasp_drake.events.replay import (
     EventReplay, channels_trajectory, live_matcher_config, replay_event_held,
     replay_events_in_sequence, tactile_trial_from_log)
-from tegrasp_drake.events.sampling import rate_groups, resample_window, samples_per_window
 from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
 from tegrasp_drake.events.transitions import (
     REQUIRED_TRANSITIONS, TRANSITIONS, transition_order)
-from tegrasp_drake.events.window_normalizer import WindowNormalizer, WindowNormalizerConfig
 
 __all__ = [
     "DEFAULT_PRE_TRANSITION_S", "DEFAULT_WINDOW_S", "FORMAT_VERSION", "INDEX_FILE",
     "NO_EVENT", "RECORD_COMMAND", "REQUIRED_TRANSITIONS", "TRANSITIONS", "EventMatcher",
     "EventMatcherConfig", "EventReplay", "EventSequencer", "MemorizedEvent",
-    "MemorizedEventError", "StreamingCorrelator", "TactileTrial", "WindowNormalizer",
-    "WindowNormalizerConfig", "channel_score", "channels_trajectory",
+    "MemorizedEventError", "StreamingCorrelator", "TactileTrial", "channel_score", "channels_trajectory",
     "current_package_versions", "cut_window", "event_scores_reference",
     "extract_memorized_events", "live_matcher_config", "load_all_memorized_events",
     "load_memorized_events", "max_normalized_xcorr_reference", "next_sequence_step",
-    "normalize_by_max", "rate_groups", "read_index", "read_memorized_event",
-    "replay_event_held", "replay_events_in_sequence", "resample_window",
-    "samples_per_window", "save_memorized_events", "tactile_trial_from_log",
+    "normalize_by_max", "read_index", "read_memorized_event",
+    "replay_event_held", "replay_events_in_sequence", "save_memorized_events", "tactile_trial_from_log",
     "transition_order", "window_contrast",
 ]

@@ -7,11 +7,11 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import normalize_by_max, template_is_flat
 from tegrasp_drake.events.memorized_event import MemorizedEvent
-from tegrasp_drake.events.sampling import rate_groups, resample_window
-from tegrasp_drake.events.sliding_window import SLACK_FRACTION
+from tegrasp_drake.tactile.sampling import rate_groups, resample_window
+from tegrasp_drake.tactile.sliding_window import SLACK_FRACTION
 from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
 from tegrasp_drake.events.transitions import transition_order
 

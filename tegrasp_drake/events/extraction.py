@@ -22,7 +22,7 @@ import numpy as np
 
 from tegrasp_drake.events.correlation import normalize_by_max
 from tegrasp_drake.events.memorized_event import MemorizedEvent, current_package_versions
-from tegrasp_drake.events.sampling import samples_per_window
+from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import transition_order
 
 DEFAULT_WINDOW_S = 0.5

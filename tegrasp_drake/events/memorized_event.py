@@ -25,8 +25,8 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 import tegrasp_drake
-from tegrasp_drake.channels import CHANNEL_NAMES
-from tegrasp_drake.events.sampling import samples_per_window
+from tegrasp_drake.rig.channels import CHANNEL_NAMES
+from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import (
     REQUIRED_TRANSITIONS, TRANSITIONS, transition_order)
 

@@ -19,13 +19,13 @@ from pydrake.systems.primitives import (ConstantVectorSource, LogVectorOutput, T
                                          VectorLogSink)
 from pydrake.trajectories import PiecewisePolynomial
 
-from tegrasp_drake.channels import TAXELS_PER_PAD
+from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
 from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
-from tegrasp_drake.events.window_normalizer import WindowNormalizer, WindowNormalizerConfig
+from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig
 
 # Each value becomes visible this much before its time stamp, so that a periodic update at
 # the stamp's time sees it although k * period and the stamp may differ in the last bit.

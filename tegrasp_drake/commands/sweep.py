@@ -1,0 +1,137 @@
+"""`tegrasp sweep`: the paper's grasping experiment over objects, markers and controllers.
+
+    tegrasp sweep [--spec FILE.yaml] [--objects NAME ...] [--controllers NAME ...]
+                  [--attempts N] [--base-seed N] [--workers N] [--out DIR]
+                  [--scheduler tcp://HOST:PORT] [--no-progress] [--benchmark]
+
+Runs every trial without a finished record in `--out` (so the same command resumes a
+killed sweep), then writes table1.md, table1.csv, statistics.md, statistics.json and
+success_maps.png there. Options given on the command line override the spec file.
+Exit codes: 0 all trials finished, 1 some trials raised or were left unfinished
+(run again to retry them), 2 bad input (nothing was run).
+
+Testing hook: `--trial-function MODULE:ATTR` (hidden from --help) replaces the real
+trial function, `tegrasp_drake.experiments.trial:run_trial_from_spec`; the tests use it to run
+the command with a cheap deterministic trial.
+"""
+
+import argparse
+import dataclasses
+import importlib
+import sys
+
+from tegrasp_drake.experiments.sweep.reports import write_reports
+from tegrasp_drake.experiments.sweep.runner import (
+    SweepError,
+    benchmark_text,
+    run_benchmark,
+    run_sweep,
+    summary_text,
+)
+from tegrasp_drake.experiments.sweep.spec import (
+    BUILTIN_OBJECTS,
+    CONTROLLERS,
+    SweepSpec,
+    SweepSpecError,
+    load_sweep_spec,
+    validate_spec,
+)
+
+DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.experiments.trial:run_trial_from_spec"
+DEFAULT_OUT = "results/sweep"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--spec", metavar="FILE.yaml",
+                        help="a YAML sweep spec (grid, offsets, randomisation, "
+                             "user-defined objects); the paper's experiment without it")
+    parser.add_argument("--objects", nargs="+", metavar="NAME",
+                        help=f"objects to grasp (built in: {', '.join(BUILTIN_OBJECTS)})")
+    parser.add_argument("--controllers", nargs="+", metavar="NAME",
+                        help=f"controllers to compare ({', '.join(CONTROLLERS)})")
+    parser.add_argument("--attempts", type=int, metavar="N",
+                        help="attempts per marker position (paper: 3)")
+    parser.add_argument("--base-seed", type=int, metavar="N",
+                        help="seed all trials' randomisation derives from")
+    parser.add_argument("--workers", type=int, metavar="N",
+                        help="local worker processes (default: all cores)")
+    parser.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
+                        help=f"results folder; re-running resumes it (default: {DEFAULT_OUT})")
+    parser.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                        help="run on this Dask distributed scheduler (the 'dask' extra)")
+    parser.add_argument("--no-progress", action="store_true",
+                        help="no progress bar")
+    parser.add_argument("--benchmark", action="store_true",
+                        help="time the memorized sweep with 1 and then 2 workers, each "
+                             "into a temporary folder, and print wall times and speed-up")
+    parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
+                        help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "sweep", help="run the grasping experiment (Table I) over objects and controllers",
+        description=__doc__.split("\n\n")[0])
+    add_arguments(parser)
+    parser.set_defaults(func=run)
+
+
+def spec_from_arguments(args) -> SweepSpec:
+    """The spec file (or the paper's defaults) with the command-line overrides applied."""
+    spec = load_sweep_spec(args.spec) if args.spec else SweepSpec()
+    overrides = {name: value for name, value in (
+        ("objects", args.objects and tuple(args.objects)),
+        ("controllers", args.controllers and tuple(args.controllers)),
+        ("attempts", args.attempts),
+        ("base_seed", args.base_seed)) if value is not None}
+    spec = dataclasses.replace(spec, **overrides)
+    validate_spec(spec, f"{args.spec} with command-line options" if args.spec
+                  else "command line")
+    return spec
+
+
+def resolve_trial_function(text: str):
+    """Imports `MODULE:ATTR`."""
+    module_name, _, attribute = text.partition(":")
+    try:
+        function = getattr(importlib.import_module(module_name), attribute)
+    except (ImportError, AttributeError) as error:
+        raise SweepError(f"cannot load the trial function {text}: {error}") from None
+    if not callable(function):
+        raise SweepError(f"the trial function {text} is not callable")
+    return function
+
+
+def run(args) -> int:
+    try:
+        if args.workers is not None and args.workers < 1:
+            raise SweepError(f"--workers must be at least 1, got {args.workers}")
+        if args.benchmark and args.scheduler:
+            raise SweepError("--benchmark times the local process pool; drop --scheduler")
+        spec = spec_from_arguments(args)
+        trial_function = resolve_trial_function(args.trial_function)
+        if args.benchmark:
+            runs, identical = run_benchmark(spec, trial_function,
+                                            progress=not args.no_progress)
+            print(benchmark_text(runs, identical))
+            return 0 if identical and not any(run.errors for run in runs) else 1
+        summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
+                            scheduler=args.scheduler, progress=not args.no_progress)
+    except (SweepSpecError, SweepError) as error:
+        print(f"tegrasp sweep: error: {error}", file=sys.stderr)
+        return 2
+    print(summary_text(summary))
+    for path in write_reports(args.out):
+        print(f"wrote {path}")
+    return 1 if summary.errors or summary.unfinished else 0
+
+
+def main(argv=None) -> int:
+    """`python -m tegrasp_drake.commands.sweep [options]`, the same as `tegrasp sweep`."""
+    parser = argparse.ArgumentParser(prog="tegrasp sweep", description=__doc__.split("\n\n")[0])
+    add_arguments(parser)
+    return run(parser.parse_args(argv))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

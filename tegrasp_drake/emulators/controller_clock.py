@@ -1,0 +1,72 @@
+"""The controller's clock as its arm commands carry it: a time base for replaying emulators.
+
+Every lcmt_jaco_command is stamped with the controller diagram's Context time (`utime`).
+An emulator that replays a recorded trial (MyRioEmulator's `trial_clock`) can follow that
+clock instead of its own, so that the replay stays in step with the controller even when
+the controller runs slower than real time (a loaded host): the trial starts with the
+first command, and its time is the newest command's time since the first, extrapolated at
+the controller's recent rate (Context time per wall time, smoothed over about
+RATE_SMOOTHING commands) for at most one command period.
+"""
+
+import threading
+import time
+
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD
+
+RATE_SMOOTHING = 10  # commands
+
+
+class ControllerClock:
+    """Seconds of controller time since its first command (0 before); thread-safe."""
+
+    def __init__(self, *, max_extrapolation: float = JACO_LCM_PERIOD, now=time.monotonic):
+        self._max_extrapolation = max_extrapolation
+        self._now = now
+        self._lock = threading.Lock()
+        self._first_utime = None
+        self._utime = None
+        self._received = 0.0
+        self._rate = 1.0  # controller seconds per wall second
+        self._last_value = 0.0
+        self.started = threading.Event()
+
+    def on_command(self, utime: int):
+        """A command stamped `utime` [us] arrived."""
+        with self._lock:
+            if self._first_utime is None:
+                self._first_utime = utime
+            now = self._now()
+            if self._utime is not None and utime > self._utime and now > self._received:
+                rate = (utime - self._utime) * 1e-6 / (now - self._received)
+                self._rate += (min(rate, 2.0) - self._rate) / RATE_SMOOTHING
+            if self._utime is None or utime > self._utime:
+                self._utime, self._received = utime, now
+        self.started.set()
+
+    def __call__(self) -> float:
+        with self._lock:
+            if self._utime is None:
+                return 0.0
+            since = min(max(self._now() - self._received, 0.0) * self._rate,
+                        self._max_extrapolation)
+            value = (self._utime - self._first_utime) * 1e-6 + since
+            self._last_value = max(self._last_value, value)  # never backwards
+            return self._last_value
+
+
+def follow_jaco_commands(lcm_url: str, clock: ControllerClock, stop: threading.Event):
+    """A thread feeding `clock` from KINOVA_JACO_COMMAND on `lcm_url` until `stop`."""
+    import lcm
+    from drake import lcmt_jaco_command
+
+    bus = lcm.LCM(lcm_url)
+    bus.subscribe(JACO_COMMAND_CHANNEL,
+                  lambda channel, data: clock.on_command(lcmt_jaco_command.decode(data).utime))
+
+    def run():
+        while not stop.is_set():
+            bus.handle_timeout(20)
+    thread = threading.Thread(target=run, name="controller clock", daemon=True)
+    thread.start()
+    return thread

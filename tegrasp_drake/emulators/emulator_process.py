@@ -1,0 +1,137 @@
+"""`tegrasp emulate ...` in a child process, as the real devices are outside the controller's
+process: start it, read where it listens, stop or kill it (tests, benchmarks, scripts).
+"""
+
+import os
+import re
+import select
+import signal
+import subprocess
+import sys
+import time
+
+READY_LINE = "ready"
+_PORT = re.compile(r"^(robotiq|myrio): .* on (/dev/\S+),")
+
+
+class EmulatorProcessError(RuntimeError):
+    """The emulator did not come up; the message holds what it printed."""
+
+
+class EmulatorProcess:
+    """`python -m tegrasp_drake emulate DEVICE ARGS...`; use as a context manager.
+
+    `ports` maps "gripper" and "tactile" to the pty names it printed; `output` is all it
+    printed so far (read_output() collects more)."""
+
+    def __init__(self, device: str, *args: str, wait: bool = True, timeout: float = 30.0,
+                 env=None):
+        self.device = device
+        self.ports = {}
+        self.output = []
+        self._process = subprocess.Popen(
+            [sys.executable, "-m", "tegrasp_drake", "emulate", device, *args],
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
+            env=env or dict(os.environ))
+        os.set_blocking(self._process.stdout.fileno(), False)
+        self._buffer = ""
+        if wait:
+            self.wait_until_ready(timeout)
+
+    def wait_until_ready(self, timeout: float = 30.0) -> "EmulatorProcess":
+        """Blocks until it printed "ready"; EmulatorProcessError (and stopped) if not."""
+        deadline = time.monotonic() + timeout
+        while READY_LINE not in self.output:
+            if self._process.poll() is not None or time.monotonic() > deadline:
+                self.stop(timeout=0.0)
+                raise EmulatorProcessError(f"`tegrasp emulate {self.device}` did not get "
+                                           "ready:\n" + "\n".join(self.output))
+            self.read_output(0.1)
+        return self
+
+    @property
+    def pid(self) -> int:
+        return self._process.pid
+
+    def read_output(self, wait: float = 0.0) -> list[str]:
+        """Collects the lines printed since the last call (waits up to `wait` [s])."""
+        stream = self._process.stdout
+        if stream.closed:
+            return []
+        readable, _, _ = select.select([stream], [], [], wait)
+        if readable:
+            self._buffer += stream.read() or ""
+        *lines, self._buffer = self._buffer.split("\n")
+        for line in lines:
+            self.output.append(line)
+            match = _PORT.match(line)
+            if match:
+                self.ports["gripper" if match.group(1) == "robotiq" else "tactile"] = (
+                    match.group(2))
+        return lines
+
+    def stop(self, timeout: float = 5.0) -> int | None:
+        """SIGTERM, as Ctrl-C would; returns the exit code."""
+        if self._process.poll() is None:
+            self._process.send_signal(signal.SIGTERM)
+            try:
+                self._process.wait(timeout)
+            except subprocess.TimeoutExpired:
+                self.kill()
+        self.read_output()
+        self._process.stdout.close()
+        return self._process.returncode
+
+    def kill(self):
+        """SIGKILL: the device dies without a word (a pulled cable, a crashed device)."""
+        if self._process.poll() is None:
+            self._process.kill()
+            self._process.wait()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.stop()
+
+
+class EmulatedDevices:
+    """The three devices, each emulated in its own process (`tegrasp emulate jaco`,
+    `robotiq`, `myrio --sync follow` or `myrio_sync`), started together; `config` points a hardware
+    station at them. Use as a context manager; `myrio`, `robotiq` and `jaco` are the
+    EmulatorProcess of each (e.g. to kill one)."""
+
+    def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),
+                 robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0):
+        from tegrasp_drake.hardware.config import HardwareStationConfig
+        self.jaco = self.robotiq = self.myrio = None
+        try:
+            self.jaco = EmulatorProcess("jaco", *scenario_args, "--lcm-url", lcm_url,
+                                        wait=False)
+            self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args,
+                                           wait=False)
+            self.myrio = EmulatorProcess("myrio", "--trial", str(trial), "--sync", myrio_sync,
+                                         "--lcm-url", lcm_url, wait=False)
+            for process in self.processes:
+                process.wait_until_ready(timeout)
+        except BaseException:
+            self.stop()
+            raise
+        self.config = HardwareStationConfig()
+        self.config.arm.lcm_url = lcm_url
+        self.config.gripper.port = self.robotiq.ports["gripper"]
+        self.config.tactile.port = self.myrio.ports["tactile"]
+
+    @property
+    def processes(self) -> list:
+        return [p for p in (self.jaco, self.robotiq, self.myrio) if p is not None]
+
+    def stop(self):
+        for process in self.processes:
+            process.stop()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.stop()

@@ -1,0 +1,84 @@
+"""An emulated JACO2 on LCM: a Drake simulation of the arm answering the Kinova driver's
+messages, as Drake's hardware_sim does for its arms.
+
+    KINOVA_JACO_COMMAND -> JacoCommandReceiver -> the plant's joint velocity servos
+    plant state -> JacoStatusSender -> KINOVA_JACO_STATUS (100 Hz)
+
+The plant is the JACO2 model of the station with the gripper as one rigid body on its
+flange (gravity off, as the firmware compensates it). Like the real arm in joint-velocity
+mode it executes only the commanded joint velocities: each joint is a velocity servo,
+tau = kd (v_cmd - v) within the joint's effort limit (the plant's implicit PD with kp = 0),
+so the positions in the command are ignored and a position error must be corrected by
+the host (JacoVelocityTracker); when commands stop for `command_timeout`, the command is
+zero velocity and the arm stops within a few milliseconds. It runs well faster than real
+time; the gripper's fingers and the tactile pads have their own emulators.
+
+Run it with `tegrasp emulate jaco` (or `all`), or build it with `MakeJacoArmEmulator` and
+step it in real time.
+"""
+
+import numpy as np
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains, SpatialInertia
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.lcm import LcmInterfaceSystem
+from pydrake.systems.primitives import Demultiplexer
+
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.arm_kinematics import ARM_URL, X_FLANGE_GRIPPER
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_NUM_JOINTS
+from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmEmulator
+
+PLANT_TIME_STEP = 1e-3  # [s]
+# The joints' velocity servos [N m s / rad]: the arm reaches a commanded speed, or stops,
+# within a few milliseconds. (A position gain as well, stiff enough for that, makes SAP
+# fail to converge once the arm is at rest; velocity mode needs none.)
+SERVO_DAMPING_GAIN = 50.0
+# The 2F-85 as a solid cylinder (the tactile gripper model's 0.8 kg base and two 0.05 kg
+# fingers); without it, the bare wrist's tiny inertias make SAP fail to converge at rest.
+GRIPPER_MASS = 0.9        # [kg]
+GRIPPER_RADIUS = 0.04     # [m]
+GRIPPER_LENGTH = 0.15     # [m]
+GRIPPER_COM_Z = 0.06      # [m] from the flange along its z
+
+
+def MakeJacoArmEmulator(*, lcm, initial_positions, damping_gain: float = SERVO_DAMPING_GAIN,
+                        command_timeout: float = 0.05):
+    """The emulator Diagram (module docstring) on `lcm` (a DrakeLcm, which the diagram's
+    LcmInterfaceSystem pumps); the arm starts at `initial_positions` [rad].
+
+    Output ports: position_measured (6), velocity_measured (6) [rad, rad/s], for tests."""
+    builder = DiagramBuilder()
+    builder.AddNamedSystem("lcm", LcmInterfaceSystem(lcm))
+    plant, _ = AddMultibodyPlant(MultibodyPlantConfig(
+        time_step=PLANT_TIME_STEP, discrete_contact_approximation="lagged"), builder)
+    parser = paths.make_parser(plant)
+    (arm,) = parser.AddModels(url=ARM_URL)
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
+    # The gripper as one rigid body of its mass and inertia on the flange: its fingers
+    # are the Robotiq emulator's business, and without their joints a step is 5x cheaper.
+    gripper = plant.AddRigidBody("gripper", arm, SpatialInertia.SolidCylinderWithMass(
+        GRIPPER_MASS, GRIPPER_RADIUS, GRIPPER_LENGTH, [0.0, 0.0, 1.0]).Shift(
+            [0.0, 0.0, -GRIPPER_COM_Z]))
+    plant.WeldFrames(plant.GetFrameByName("flange", arm), gripper.body_frame(),
+                     X_FLANGE_GRIPPER)
+    plant.set_gravity_enabled(arm, False)
+    for i in range(plant.num_actuators()):
+        plant.get_joint_actuator(JointActuatorIndex(i)).set_controller_gains(
+            PdControllerGains(p=0.0, d=damping_gain))
+    plant.Finalize()
+    plant.SetDefaultPositions(arm, np.asarray(initial_positions, dtype=float))
+
+    state = builder.AddNamedSystem("arm_state_demux", Demultiplexer([JACO_NUM_JOINTS] * 2))
+    builder.Connect(plant.get_state_output_port(arm), state.get_input_port())
+    AddJacoLcmEmulator(builder, lcm=lcm,
+                       desired_state_input=plant.get_desired_state_input_port(arm),
+                       position_output=state.get_output_port(0),
+                       velocity_output=state.get_output_port(1),
+                       torque_output=plant.get_net_actuation_output_port(arm),
+                       command_timeout=command_timeout)
+    builder.ExportOutput(state.get_output_port(0), "position_measured")
+    builder.ExportOutput(state.get_output_port(1), "velocity_measured")
+    diagram = builder.Build()
+    diagram.set_name("jaco_arm_emulator")
+    return diagram

@@ -1,0 +1,315 @@
+"""An emulated myRIO streaming tactile frames on a pseudo-terminal, at the real rate.
+
+It replays a trial given as plain arrays (e.g. the simulator's trial log): taxel forces
+[N] at their own times and pad accelerations [m/s^2] at theirs. Frame k (every
+`frame_period`, 1 ms) is written at start + k * frame_period (a deadline loop: a late
+thread catches up, it does not slow the stream) and carries:
+- the piezo samples: the acceleration at the frame's time (sample-and-hold), reduced to
+  the film's one axis (`piezo_axis`; None takes the Euclidean norm, so the RA channel of
+  Eq. 2 replays as recorded), converted to counts through the calibration;
+- a finger's 12 counts when its AD7147 completes a sequence (every `cdc_period`, the right
+  chip half a period after the left), from the forces at that time through the
+  calibration's inverse.
+A quiet `lead_in` (no contact, no vibration) precedes the trial so the receiver can zero.
+With `start_on_trigger`, the quiet stream goes on until `start_trial()` (e.g. on the arm's
+first command, so that a replayed trial lines up with the controller's clock); with
+`hold_at_end`, the last values keep streaming after the trial until `stop()`, as a real
+device keeps streaming. Frame n after the trial's start carries trial time n x
+frame_period; by default frames go out at the real rate (the stream's own clock). Given a
+`trial_clock` (a callable returning the trial time [s], e.g. a ControllerClock following
+the controller's commands), frame n goes out once that clock reaches its time instead, so
+that a controller that falls behind real time still gets every sample once, in step with
+its own clock (the sensor as if slaved to the controller).
+
+Faults, each per frame with a given probability, from a seeded generator: a flipped bit,
+a dropped byte, a frame cut short. `stop_talking()` silences it (to trip a watchdog);
+`resume_talking()` resumes with the frame due then. The master end is non-blocking: if the
+reader does not read and the pty buffer fills, frames are dropped and counted, never
+blocking the emulator. `sent()` lists every frame written (sequence, timestamp, write time,
+injected faults), for latency measurements and tests.
+"""
+
+import collections
+import dataclasses
+import os
+import threading
+import time
+
+import numpy as np
+
+from tegrasp_drake.emulators.null_modem import open_raw_pty
+from tegrasp_drake.hardware.myrio.tactile_calibration import (
+    TactileCalibration, counts_from_forces, piezo_from_acceleration)
+from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
+
+MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 kHz)
+
+
+@dataclasses.dataclass
+class TactileTrial:
+    """A recorded trial. Times [s] ascending; forces (n, 12) [N]; accelerations (m,) or
+    (m, 3) [m/s^2]."""
+    force_times: np.ndarray
+    left_forces: np.ndarray
+    right_forces: np.ndarray
+    acceleration_times: np.ndarray
+    left_acceleration: np.ndarray
+    right_acceleration: np.ndarray
+
+    @property
+    def duration(self) -> float:
+        return float(max(self.force_times[-1], self.acceleration_times[-1]))
+
+
+@dataclasses.dataclass
+class StreamFaults:
+    """Per-frame probabilities of each injected fault, and the generator's seed."""
+    bit_flip: float = 0.0
+    dropped_byte: float = 0.0
+    truncated: float = 0.0
+    seed: int = 0
+
+
+@dataclasses.dataclass
+class MyRioEmulatorConfig:
+    """Stream timing [s], the calibration to invert, faults."""
+    frame_period: float = 1e-3
+    cdc_period: float = 9.2e-3
+    lead_in: float = 0.5
+    piezo_axis: int | None = None
+    start_on_trigger: bool = False
+    hold_at_end: bool = False
+    calibration: TactileCalibration = dataclasses.field(default_factory=TactileCalibration)
+    faults: StreamFaults = dataclasses.field(default_factory=StreamFaults)
+
+
+def held_sample(times, values, t):
+    """values at the last time <= t (the first value before the first time)."""
+    index = np.searchsorted(times, t, side="right") - 1
+    return values[max(index, 0)]
+
+
+def film_signal(acceleration, piezo_axis):
+    """The film's one-axis reading of an (m,) or (m, 3) acceleration array."""
+    acceleration = np.asarray(acceleration, dtype=float)
+    if acceleration.ndim == 1:
+        return acceleration
+    if piezo_axis is None:
+        return np.linalg.norm(acceleration, axis=1)
+    return acceleration[:, piezo_axis]
+
+
+def cdc_completes(k: int, frame_period: float, cdc_period: float, phase: float) -> bool:
+    """Whether a CDC sequence with this phase completes within frame k's period."""
+    def completed(t):
+        return np.floor((t - phase) / cdc_period)
+    return completed(k * frame_period) > completed((k - 1) * frame_period)
+
+
+def inject_faults(frame: bytes, faults: StreamFaults, rng) -> tuple[bytes, list[str]]:
+    """The frame after the faults drawn for it, and their names."""
+    data, injected = bytearray(frame), []
+    if rng.random() < faults.bit_flip:
+        data[rng.integers(len(data))] ^= 1 << int(rng.integers(8))
+        injected.append("bit_flip")
+    if rng.random() < faults.dropped_byte:
+        del data[rng.integers(len(data))]
+        injected.append("dropped_byte")
+    if rng.random() < faults.truncated:
+        del data[rng.integers(1, len(data)):]
+        injected.append("truncated")
+    return bytes(data), injected
+
+
+class TactileFrameSource:
+    """Builds frame k of a trial (module docstring); pure apart from the fault generator."""
+
+    def __init__(self, trial: TactileTrial, config: MyRioEmulatorConfig):
+        self._trial = trial
+        self._config = config
+        self._film = [film_signal(trial.left_acceleration, config.piezo_axis),
+                      film_signal(trial.right_acceleration, config.piezo_axis)]
+        self._forces = [np.asarray(trial.left_forces, dtype=float),
+                        np.asarray(trial.right_forces, dtype=float)]
+        self.lead_in_frames = int(round(config.lead_in / config.frame_period))
+        self.trial_frames = int(np.ceil(trial.duration / config.frame_period))
+        self.frame_count = self.lead_in_frames + self.trial_frames
+
+    def frame(self, k: int, trial_start_frame: int | None = -1) -> bytes:
+        """Frame k of the stream whose trial time 0 is frame `trial_start_frame` (-1: after
+        the lead-in; None: not started, a quiet frame)."""
+        c = self._config
+        if trial_start_frame == -1:
+            trial_start_frame = self.lead_in_frames
+        # trial time of this frame
+        t = -1.0 if trial_start_frame is None else (k - trial_start_frame) * c.frame_period
+        return self.frame_at(k, t)
+
+    def frame_at(self, k: int, t: float) -> bytes:
+        """Frame k of the stream carrying the trial at time t [s] (t < 0: quiet)."""
+        c = self._config
+        piezo, counts = [], []
+        for i, pad in enumerate(c.calibration.pads()):
+            acceleration = held_sample(self._trial.acceleration_times, self._film[i], t) \
+                if t >= 0 else 0.0
+            piezo.append(piezo_from_acceleration(
+                acceleration, c.calibration.piezo_volts_per_count, pad.piezo_gain,
+                pad.piezo_offset))
+            if cdc_completes(k, c.frame_period, c.cdc_period, i * c.cdc_period / 2):
+                forces = held_sample(self._trial.force_times, self._forces[i], t) \
+                    if t >= 0 else np.zeros(self._forces[i].shape[1])
+                counts.append(counts_from_forces(forces, pad.gain, pad.offset))
+            else:
+                counts.append(None)
+        timestamp_us = int(round(k * c.frame_period * 1e6))
+        return encode_frame(k, timestamp_us, piezo, counts[0], counts[1])
+
+
+@dataclasses.dataclass(frozen=True)
+class SentFrame:
+    """A frame written to the port."""
+    sequence: int
+    timestamp_us: int
+    write_time: float     # time.monotonic() [s] after the write returned
+    faults: tuple = ()    # names of the faults injected into it
+
+
+@dataclasses.dataclass
+class MyRioEmulatorCounters:
+    frames_sent: int = 0
+    faulted_frames: int = 0   # frames sent with at least one injected fault
+    tx_overruns: int = 0   # frames not written because the pty buffer was full
+    injected: dict = dataclasses.field(default_factory=lambda: collections.Counter())
+
+
+class MyRioEmulator:
+    """Streams a trial on a pseudo-terminal; the reader opens `port`. Use with `with`."""
+
+    def __init__(self, trial: TactileTrial, config: MyRioEmulatorConfig | None = None, *,
+                 trial_clock=None):
+        self._config = dataclasses.replace(config or MyRioEmulatorConfig())
+        self._trial_clock = trial_clock
+        self._source = TactileFrameSource(trial, self._config)
+        self._rng = np.random.default_rng(self._config.faults.seed)
+        self._master, self._slave, self._port = open_raw_pty()
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._talking = threading.Event()
+        self._talking.set()
+        self._trigger = threading.Event()
+        self._trial_start_time = None
+        self._finished = threading.Event()
+        self._counters = MyRioEmulatorCounters()
+        self._sent = collections.deque(maxlen=MAX_SENT_RECORDS)
+        self._thread = None
+
+    @property
+    def port(self) -> str:
+        return self._port
+
+    @property
+    def frame_count(self) -> int:
+        return self._source.frame_count
+
+    def start(self) -> "MyRioEmulator":
+        self._thread = threading.Thread(target=self._run, name="myrio emulator", daemon=True)
+        self._thread.start()
+        return self
+
+    def stop(self, timeout: float = 2.0):
+        self._stop.set()
+        self._talking.set()
+        if self._thread is not None:
+            self._thread.join(timeout)
+        if self._master >= 0:
+            os.close(self._master)
+            os.close(self._slave)
+            self._master = self._slave = -1
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.stop()
+
+    def stop_talking(self):
+        self._talking.clear()
+
+    def resume_talking(self):
+        self._talking.set()
+
+    def start_trial(self):
+        """With `start_on_trigger`: the trial starts with the next frame."""
+        self._trigger.set()
+
+    @property
+    def trial_start_time(self) -> float | None:
+        """time.monotonic() [s] when the trial's first frame was due (None before)."""
+        with self._lock:
+            return self._trial_start_time
+
+    def wait_until_finished(self, timeout: float) -> bool:
+        return self._finished.wait(timeout)
+
+    def counters(self) -> MyRioEmulatorCounters:
+        with self._lock:
+            return dataclasses.replace(self._counters,
+                                       injected=collections.Counter(self._counters.injected))
+
+    def sent(self) -> list[SentFrame]:
+        """Every frame written so far, oldest first."""
+        with self._lock:
+            return list(self._sent)
+
+    def _run(self):
+        period = self._config.frame_period
+        start = time.monotonic()
+        trial_start = None if self._config.start_on_trigger else self._source.lead_in_frames
+        k = 0
+        while not self._stop.is_set():
+            if trial_start is None and self._trigger.is_set():
+                trial_start = k
+            if trial_start is not None:
+                if self._trial_start_time is None:
+                    with self._lock:  # a clock-paced trial starts at once
+                        self._trial_start_time = (
+                            time.monotonic() if self._trial_clock is not None
+                            else start + trial_start * period)
+                if (not self._config.hold_at_end
+                        and k >= trial_start + self._source.trial_frames):
+                    break
+            if self._trial_clock is not None and trial_start is not None:
+                # Paced by the clock: trial sample n goes out once the clock reached it.
+                due = trial_start + int(self._trial_clock() / period + 1e-9)
+                if k > due:
+                    time.sleep(period / 4)
+                    continue
+                if not self._talking.is_set():
+                    self._talking.wait(0.05)
+                    k = trial_start + int(self._trial_clock() / period)  # not sent
+                    continue
+            else:
+                delay = start + k * period - time.monotonic()
+                if delay > 0:
+                    time.sleep(delay)
+                if not self._talking.is_set():
+                    self._talking.wait(0.05)
+                    k = int((time.monotonic() - start) / period)  # silent frames are not sent
+                    continue
+            frame = self._source.frame(k, trial_start)
+            data, injected = inject_faults(frame, self._config.faults, self._rng)
+            try:
+                written = os.write(self._master, data)
+            except BlockingIOError:
+                written = 0
+            with self._lock:
+                if written:
+                    self._counters.frames_sent += 1
+                    self._sent.append(SentFrame(k, int(round(k * period * 1e6)),
+                                                time.monotonic(), tuple(injected)))
+                    self._counters.injected.update(injected)
+                    self._counters.faulted_frames += bool(injected)
+                else:
+                    self._counters.tx_overruns += 1
+            k += 1
+        self._finished.set()

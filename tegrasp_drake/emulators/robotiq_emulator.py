@@ -1,0 +1,269 @@
+"""An emulated Robotiq 2F-85 answering Modbus RTU on a pseudo-terminal.
+
+pymodbus's `ModbusSerialServer` (RTU framer) serves a `SimDevice` (slave 9) with the
+command registers at 1000-1002 and read-only status registers at 2000-2002; its `action`
+hook runs `RobotiqGripperModel` on every access. pymodbus opens its port by name through
+pyserial, and a pseudo-terminal has only one named end, so the server and the driver sit
+on the two ends of a `NullModem` (two ptys joined by a relay thread); the driver opens
+`RobotiqEmulator.port`.
+
+The model (times from `time.monotonic()`, advanced on every access):
+- a rising edge of rACT starts activation (gSTA = 1) which completes (gSTA = 3, fingers
+  open) after `activation_duration`; rACT = 0 resets everything, faults included;
+- with rGTO = 1 the fingers move towards rPR at the rSP speed (robotiq_units), and stop
+  on an emulated object at `object_opening` [m] while closing (gOBJ = 2) or at the
+  request (gOBJ = 3); gPO is the rounded position, gCU a current [x 10 mA] that grows
+  with rFR while gripping;
+- rGTO = 1 before activation gives gFLT 0x07, during activation 0x05; an injected fault
+  code >= 0x0A (major) stops the fingers until the next activation.
+"""
+
+import asyncio
+import dataclasses
+import threading
+import time
+
+from pymodbus import FramerType
+from pymodbus.server import ModbusSerialServer
+from pymodbus.simulator import DataType, SimData, SimDevice
+
+from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.hardware.robotiq import registers
+from tegrasp_drake.emulators.null_modem import NullModem
+
+ObjectStatus = units.ObjectStatus
+ActivationStatus = units.ActivationStatus
+FAULT_ACTION_DELAYED = 0x05
+FAULT_NOT_ACTIVATED = 0x07
+FIRST_MAJOR_FAULT = 0x0A
+MOVING_CURRENT = 10.0         # gCU while moving [x 10 mA]
+MAX_GRIPPING_CURRENT = 60.0   # gCU gripping at rFR = 255 [x 10 mA]
+
+
+@dataclasses.dataclass
+class RobotiqEmulatorConfig:
+    """Emulated gripper. Times in seconds, openings in metres (pad to pad)."""
+    device_id: int = registers.DEVICE_ID
+    activation_duration: float = 1.5
+    object_opening: float | None = None
+
+
+def bytes_per_second(speed_byte) -> float:
+    """Finger speed in position bytes per second for an rSP byte."""
+    span = units.POSITION_CLOSED_BYTE - units.POSITION_OPEN_BYTE
+    return float(units.speed_from_byte(speed_byte)) / units.STROKE_M * span
+
+
+def object_position_byte(opening_m) -> float:
+    """The (fractional) position byte at which the pads touch an object of this width."""
+    span = units.POSITION_CLOSED_BYTE - units.POSITION_OPEN_BYTE
+    fraction = min(max(opening_m / units.STROKE_M, 0.0), 1.0)
+    return units.POSITION_CLOSED_BYTE - fraction * span
+
+
+class RobotiqGripperModel:
+    """The gripper's state and behaviour (module docstring); thread-safe."""
+
+    def __init__(self, config: RobotiqEmulatorConfig, now: float):
+        self._config = config
+        self._lock = threading.Lock()
+        self._command = [0, 0, 0]
+        self._status = dict(gACT=0, gGTO=0, gSTA=ActivationStatus.RESET,
+                            gOBJ=ObjectStatus.MOVING, gFLT=0, gPR=0)
+        self._position = units.POSITION_OPEN_BYTE
+        self._target = self._position
+        self._speed = 0.0
+        self._force = 0
+        self._activation_start = None
+        self._object = (None if config.object_opening is None
+                        else object_position_byte(config.object_opening))
+        self._time = now
+
+    def set_object_opening(self, opening_m: float | None, now: float):
+        """Puts an object of this width between the pads, or removes it (None)."""
+        with self._lock:
+            self._advance(now)
+            self._object = None if opening_m is None else object_position_byte(opening_m)
+            if self._status["gOBJ"] == ObjectStatus.STOPPED_ON_CONTACT_CLOSING:
+                self._status["gOBJ"] = ObjectStatus.MOVING
+
+    def inject_fault(self, code: int, now: float):
+        """Sets gFLT; a major fault (>= 0x0A) stops the fingers until reactivation."""
+        with self._lock:
+            self._advance(now)
+            self._status["gFLT"] = int(code)
+
+    def write(self, address: int, values, now: float):
+        """A write of command registers (any of 1000-1002)."""
+        with self._lock:
+            self._advance(now)
+            offset = address - registers.COMMAND_ADDRESS
+            self._command[offset:offset + len(values)] = [int(v) for v in values]
+            self._apply(registers.decode_command_registers(self._command), now)
+
+    def status(self, now: float) -> list[float]:
+        """The `gripper.status` vector now."""
+        with self._lock:
+            self._advance(now)
+            s = self._status
+            moving = s["gOBJ"] == ObjectStatus.MOVING and s["gGTO"] and self._can_move()
+            gripping = s["gOBJ"] == ObjectStatus.STOPPED_ON_CONTACT_CLOSING
+            current = (MOVING_CURRENT if moving else
+                       MAX_GRIPPING_CURRENT * self._force / 255.0 if gripping else 0.0)
+            vector = [0.0] * units.STATUS_SIZE
+            vector[units.STATUS_ACT] = s["gACT"]
+            vector[units.STATUS_GTO] = s["gGTO"]
+            vector[units.STATUS_STA] = int(s["gSTA"])
+            vector[units.STATUS_OBJ] = int(s["gOBJ"])
+            vector[units.STATUS_FLT] = s["gFLT"]
+            vector[units.STATUS_PR] = s["gPR"]
+            vector[units.STATUS_PO] = round(self._position)
+            vector[units.STATUS_CU] = round(current)
+            return vector
+
+    def _can_move(self) -> bool:
+        return (self._status["gSTA"] == ActivationStatus.ACTIVE
+                and self._status["gFLT"] < FIRST_MAJOR_FAULT)
+
+    def _apply(self, command: dict, now: float):
+        s = self._status
+        if not command["rACT"]:
+            s.update(gACT=0, gGTO=0, gSTA=ActivationStatus.RESET, gOBJ=ObjectStatus.MOVING,
+                     gFLT=FAULT_NOT_ACTIVATED if command["rGTO"] else 0)
+            self._activation_start = None
+            return
+        if not s["gACT"]:
+            s.update(gACT=1, gSTA=ActivationStatus.ACTIVATING, gFLT=0)
+            self._activation_start = now
+        if not command["rGTO"]:
+            s["gGTO"] = 0
+            return
+        if s["gSTA"] != ActivationStatus.ACTIVE:
+            s["gFLT"] = max(s["gFLT"], FAULT_ACTION_DELAYED)
+            return
+        if not s["gGTO"] or command["rPR"] != self._target:
+            s["gOBJ"] = ObjectStatus.MOVING
+        s.update(gGTO=1, gPR=command["rPR"])
+        self._target = float(command["rPR"])
+        self._speed = bytes_per_second(command["rSP"])
+        self._force = command["rFR"]
+
+    def _advance(self, now: float):
+        """Integrates the finger motion from the last access to `now`."""
+        dt, self._time = max(now - self._time, 0.0), max(now, self._time)
+        s = self._status
+        if (s["gSTA"] == ActivationStatus.ACTIVATING
+                and now - self._activation_start >= self._config.activation_duration):
+            s["gSTA"] = ActivationStatus.ACTIVE
+            self._position = self._target = units.POSITION_OPEN_BYTE
+            if s["gFLT"] == FAULT_ACTION_DELAYED:
+                s["gFLT"] = 0
+        if not (s["gGTO"] and s["gOBJ"] == ObjectStatus.MOVING and self._can_move()):
+            return
+        closing = self._target > self._position
+        step = min(abs(self._target - self._position), self._speed * dt)
+        new_position = self._position + (step if closing else -step)
+        if (closing and self._object is not None
+                and self._position <= self._object <= new_position):
+            self._position = self._object
+            s["gOBJ"] = ObjectStatus.STOPPED_ON_CONTACT_CLOSING
+        else:
+            self._position = new_position
+            if self._position == self._target:
+                s["gOBJ"] = ObjectStatus.AT_REQUESTED_POSITION
+
+
+class RobotiqEmulator:
+    """Serves `RobotiqGripperModel` over Modbus RTU; the driver opens `port`.
+
+    Start and stop with a `with` block (or start()/stop()); `disconnect()` makes the
+    gripper stop talking, `reconnect()` brings it back.
+    """
+
+    def __init__(self, config: RobotiqEmulatorConfig | None = None):
+        self._config = dataclasses.replace(config or RobotiqEmulatorConfig())
+        self.model = RobotiqGripperModel(self._config, time.monotonic())
+        self._cable = None
+        self._loop = None
+        self._thread = None
+        self._stop_serving = None
+        self._ready = threading.Event()
+        self._error = None
+
+    @property
+    def port(self) -> str:
+        """The tty name the driver opens."""
+        return self._cable.host_port
+
+    def set_object_opening(self, opening_m: float | None):
+        self.model.set_object_opening(opening_m, time.monotonic())
+
+    def inject_fault(self, code: int):
+        self.model.inject_fault(code, time.monotonic())
+
+    def disconnect(self):
+        self._cable.connected = False
+
+    def reconnect(self):
+        self._cable.connected = True
+
+    def start(self, timeout: float = 5.0) -> "RobotiqEmulator":
+        self._cable = NullModem()
+        self._thread = threading.Thread(target=self._serve, name="robotiq emulator",
+                                        daemon=True)
+        self._thread.start()
+        if not self._ready.wait(timeout) or self._error:
+            self.stop()
+            raise RuntimeError(f"Robotiq emulator did not start: {self._error}")
+        return self
+
+    def stop(self, timeout: float = 5.0):
+        if self._loop is not None and self._stop_serving is not None:
+            self._loop.call_soon_threadsafe(self._stop_serving.set)
+        if self._thread is not None:
+            self._thread.join(timeout)
+        if self._cable is not None:
+            self._cable.close()
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.stop()
+
+    def _serve(self):
+        self._loop = asyncio.new_event_loop()
+        try:
+            self._loop.run_until_complete(self._serve_async())
+        except Exception as exc:  # reported by start()
+            self._error = repr(exc)
+            self._ready.set()
+        finally:
+            self._loop.close()
+
+    async def _serve_async(self):
+        self._stop_serving = asyncio.Event()
+        device = SimDevice(self._config.device_id, simdata=[
+            SimData(registers.COMMAND_ADDRESS, count=registers.REGISTER_COUNT, values=0,
+                    datatype=DataType.REGISTERS),
+            SimData(registers.STATUS_ADDRESS, count=registers.REGISTER_COUNT, values=0,
+                    datatype=DataType.REGISTERS, readonly=True),
+        ], action=self._on_access)
+        server = ModbusSerialServer(device, framer=FramerType.RTU, port=self._cable.device_port,
+                                    baudrate=registers.BAUDRATE)
+        await server.serve_forever(background=True)
+        self._ready.set()
+        await self._stop_serving.wait()
+        await server.shutdown()
+
+    async def _on_access(self, function_code, start_address, address, count, current,
+                         set_values):
+        """pymodbus `SimDevice.action`: runs the model on every request."""
+        now = time.monotonic()
+        if set_values is not None:
+            self.model.write(address, set_values, now)
+        elif address + count > registers.STATUS_ADDRESS:
+            first = registers.STATUS_ADDRESS - start_address
+            current[first:first + registers.REGISTER_COUNT] = registers.status_registers(
+                self.model.status(now))
+        return None

@@ -1,0 +1,181 @@
+"""The log of a hardware run (an LCM log file) read back, and the matcher re-run on it.
+
+Format: an LCM event log (lcm-logger's), one channel per kind of message; the channels,
+types and fields are in tegrasp_drake/lcmtypes/README.md (`lcm-logplayer FILE` plays it
+back on a bus, `lcm-spy` shows it with the types generated from the .lcm files).
+
+Replay (`tegrasp replay LOG`): the SA (Eq. 1) and RA (Eq. 2) channels are computed from
+TEGRASP_TACTILE as the controller's MechanoreceptorChannels did, and fed through an
+EventMatcher with the object's memorized events. The expected event comes from the logged
+transitions: while the state machine was in mode X, the matcher expects the event of the
+transition that left X (`X_Y`), if one is memorized. For each such transition the replay
+reports when the matcher matched, next to when the transition happened.
+"""
+
+import dataclasses
+import pathlib
+
+import lcm
+import numpy as np
+from drake import lcmt_jaco_command, lcmt_jaco_status
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
+from pydrake.trajectories import PiecewisePolynomial
+
+from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.hardware.device_log_messages import (
+    FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
+    tactile_arrays)
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
+from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
+from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.events.replay import channels_trajectory
+from tegrasp_drake.events.streaming_correlation import NO_EVENT
+from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
+                                    lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
+                                    lcmt_tegrasp_transition)
+
+MESSAGE_TYPES = {
+    RUN_INFO_CHANNEL: lcmt_tegrasp_run_info, TACTILE_CHANNEL: lcmt_tegrasp_tactile,
+    GRIPPER_CHANNEL: lcmt_tegrasp_gripper, TRANSITION_CHANNEL: lcmt_tegrasp_transition,
+    FAULT_CHANNEL: lcmt_tegrasp_fault, JACO_COMMAND_CHANNEL: lcmt_jaco_command,
+    JACO_STATUS_CHANNEL: lcmt_jaco_status}
+
+
+class RunLogError(ValueError):
+    """A run log is missing, unreadable or lacks what the replay needs; names the file."""
+
+
+@dataclasses.dataclass
+class RunLog:
+    """What a hardware run's LCM log holds (module docstring)."""
+    path: pathlib.Path
+    run_info: lcmt_tegrasp_run_info | None
+    tactile: dict           # device_log_messages.tactile_arrays, and wall_us: reception
+    transitions: list       # [{t, from, to, trigger, reason}]
+    faults: list            # lcmt_tegrasp_fault
+    gripper: list           # lcmt_tegrasp_gripper
+    arm_commands: list      # (wall utime, lcmt_jaco_command)
+    arm_status: list        # (wall utime, lcmt_jaco_status)
+    message_counts: dict    # channel -> messages (every channel in the file)
+
+    def tactile_trial(self) -> TactileTrial:
+        """The SA and RA channels the controller computed from the logged tactile ports,
+        at the receiver's ticks (repeated ticks dropped)."""
+        t, keep = np.unique(self.tactile["t"], return_index=True)
+        if len(t) < 2:
+            raise RunLogError(f"run log '{self.path}' has fewer than 2 tactile messages")
+        taxels = self.tactile["taxels"][keep]
+        acceleration = self.tactile["pad_acceleration"][keep]
+        sa = np.column_stack([taxels[:, :TAXELS_PER_PAD].sum(axis=1),
+                              taxels[:, TAXELS_PER_PAD:].sum(axis=1)])
+        ra = np.column_stack([np.linalg.norm(acceleration[:, :3], axis=1),
+                              np.linalg.norm(acceleration[:, 3:], axis=1)])
+        return TactileTrial(t_sa=t, sa=sa, t_ra=t, ra=ra, transition_times={})
+
+
+def read_run_log(path) -> RunLog:
+    """Reads a hardware run's LCM log; RunLogError names the file on any defect."""
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise RunLogError(f"run log '{path}' does not exist (`tegrasp hardware --log FILE` "
+                          "writes one)")
+    decoded = {channel: [] for channel in MESSAGE_TYPES}
+    counts = {}
+    try:
+        log = lcm.EventLog(str(path), "r")
+        for event in log:
+            counts[event.channel] = counts.get(event.channel, 0) + 1
+            if event.channel in MESSAGE_TYPES:
+                decoded[event.channel].append(
+                    (event.timestamp, MESSAGE_TYPES[event.channel].decode(event.data)))
+        log.close()
+    except (OSError, ValueError, IOError) as e:
+        raise RunLogError(f"run log '{path}' is not a readable LCM log: {e}") from None
+    tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
+    tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
+    info = decoded[RUN_INFO_CHANNEL]
+    return RunLog(
+        path=path, run_info=info[0][1] if info else None, tactile=tactile,
+        transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
+                      "trigger": m.trigger, "reason": m.reason}
+                     for _, m in decoded[TRANSITION_CHANNEL]],
+        faults=[m for _, m in decoded[FAULT_CHANNEL]],
+        gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
+        arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],
+        message_counts=counts)
+
+
+def transition_name(transition: dict) -> str:
+    """`from_to` in lower case, e.g. reach_load (the memorized events' naming)."""
+    return f"{transition['from']}_{transition['to']}".lower()
+
+
+def expected_event_schedule(transitions: list[dict], event_index: dict[str, int]):
+    """[(t_start, event index)]: while in the mode a logged transition left, the event of
+    that transition (or -1 if none is memorized); from t = 0 on."""
+    schedule, entered = [], 0.0
+    for transition in transitions:
+        schedule.append((entered, event_index.get(transition_name(transition), NO_EVENT)))
+        entered = transition["t"]
+    schedule.append((entered, NO_EVENT))
+    return schedule
+
+
+@dataclasses.dataclass
+class ReplayedTransition:
+    """One memorized transition of the log, and what the matcher made of it offline."""
+    transition: str
+    mode_entered: float        # [s] when the mode it leaves was entered
+    logged_time: float         # [s] when the state machine made the transition
+    match_time: float | None   # [s] first offline match while expected, None if none
+    best_scores: list          # the four channels' scores at the match, or their maxima
+
+    @property
+    def delay(self) -> float | None:
+        """match - transition [s] (negative: the matcher matched before the transition)."""
+        return None if self.match_time is None else self.match_time - self.logged_time
+
+
+def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
+                   config: EventMatcherConfig | None = None) -> list[ReplayedTransition]:
+    """Runs an EventMatcher over `trial`'s channels with the expected event scheduled by
+    `transitions` (module docstring); one result per transition with a memorized event."""
+    matcher = EventMatcher(events, config)
+    index = {name: matcher.event_index(name) for name in matcher.transitions}
+    schedule = expected_event_schedule(transitions, index)
+    end = float(max(trial.t_sa[-1], trial.t_ra[-1]))
+    breaks = [t for t, _ in schedule] + [max(end, schedule[-1][0]) + 1.0]
+    values = np.array([[float(i) for _, i in schedule] + [float(NO_EVENT)]])
+    builder = DiagramBuilder()
+    builder.AddSystem(matcher)
+    channels = builder.AddSystem(TrajectorySource(channels_trajectory(trial)))
+    expected = builder.AddSystem(TrajectorySource(
+        PiecewisePolynomial.ZeroOrderHold(breaks, values)))
+    builder.Connect(channels.get_output_port(), matcher.GetInputPort("channels"))
+    builder.Connect(expected.get_output_port(), matcher.GetInputPort("expected_event"))
+    period = 1e-3
+    match_log = LogVectorOutput(matcher.GetOutputPort("match"), builder, period)
+    score_log = LogVectorOutput(matcher.GetOutputPort("scores"), builder, period)
+    simulator = Simulator(builder.Build())
+    simulator.AdvanceTo(end)
+    context = simulator.get_context()
+    times = match_log.FindLog(context).sample_times()
+    match = match_log.FindLog(context).data()[0] > 0.5
+    scores = score_log.FindLog(context).data().T
+    results = []
+    for (entered, event), transition in zip(schedule, transitions):
+        if event == NO_EVENT:
+            continue
+        window = (times >= entered) & (times <= transition["t"])
+        hits = np.flatnonzero(window & match)
+        if hits.size:
+            match_time, best = float(times[hits[0]]), scores[hits[0]]
+        else:
+            match_time = None
+            best = scores[window].max(axis=0) if window.any() else np.zeros(4)
+        results.append(ReplayedTransition(transition_name(transition), entered,
+                                          transition["t"], match_time,
+                                          [float(x) for x in best]))
+    return results

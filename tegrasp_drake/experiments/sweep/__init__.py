@@ -1,0 +1,48 @@
+"""The grasping experiment as a sweep: specs, durable trial records, runner, Table I.
+
+`tegrasp sweep` (see `command`) runs every object at every marker of a grid, a few
+attempts each, once per controller, with paired seeds; records each trial durably;
+resumes after a kill; and writes Table I, statistics and per-position success maps.
+"""
+
+from tegrasp_drake.experiments.sweep.records import (
+    LoadedRecords,
+    RecordError,
+    check_record,
+    load_records,
+    make_record,
+    read_record,
+    record_path,
+    write_record,
+)
+from tegrasp_drake.experiments.sweep.reports import write_reports
+from tegrasp_drake.experiments.sweep.runner import (
+    BenchmarkRun,
+    SweepError,
+    SweepSummary,
+    check_result,
+    run_benchmark,
+    run_sweep,
+)
+from tegrasp_drake.experiments.sweep.spec import (
+    BUILTIN_OBJECTS,
+    CONTROLLERS,
+    ObjectDefinition,
+    Perturbation,
+    RandomisationConfig,
+    SweepSpec,
+    SweepSpecError,
+    TrialSpec,
+    expand_trials,
+    load_sweep_spec,
+    product_grid,
+    validate_spec,
+)
+from tegrasp_drake.experiments.sweep.table import (
+    PAPER_TABLE1,
+    controller_statistics,
+    paired_comparisons,
+    table1_rows,
+    write_statistics,
+    write_table1,
+)

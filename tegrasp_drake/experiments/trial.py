@@ -1,0 +1,194 @@
+"""One closed-loop grasp trial: build the station and controller, simulate until the state
+machine ends (Done or Failed) or time runs out, log, and judge it against the ground truth.
+
+`run_trial(scenario)` returns a TrialResult; `run_trial_from_spec(trial_dict)` is the sweep's
+trial function (tegrasp_drake/sweep): it turns a trial of a sweep into a scenario first.
+"""
+
+import dataclasses
+import time
+
+import numpy as np
+from pydrake.common import RandomGenerator
+from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
+from pydrake.systems.framework import DiagramBuilder
+
+from tegrasp_drake.control.grasp_controller import add_grasp_controller
+from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode
+from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
+from tegrasp_drake.experiments.grasp_outcome import (first_contact_time, grip_force_time, judge_grasp,
+                                         table_touch_time)
+from tegrasp_drake.simulation.station import MakeGraspStation
+from tegrasp_drake.experiments.trial_logging import add_trial_logging, collect_trial_log
+
+HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
+UPRIGHT_TILT_DEG = 10.0  # standing upright after Unload
+RESTING_HEIGHT_M = 0.005  # back on the table: within this of its starting height
+END_MARGIN_S = 0.5  # simulated after the machine ends, to see the object settle
+EXTRA_TIME_S = 10.0  # beyond the ideal grasp's duration, for corrections
+CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
+# An event transition earlier than its physical event by more than this is a false trigger;
+# within it, it is the taxel sampling (one 108 Hz sample) and noise around a threshold equal
+# to the ground truth's (the heuristic Load-Lift rule), and its latency is kept as measured.
+FALSE_TRIGGER_MARGIN_S = 0.01
+# Each event-triggered transition and the physical event that marks it.
+EVENT_TRANSITIONS = {("Reach", "Load"): "reach_load", ("Load", "Lift"): "load_lift",
+                     ("Place", "Unload"): "place_unload"}
+CORRECTIVE_ACTION_OF = {("Reach", "Re-Reach"): "re_reach", ("Load", "Re-Reach"): "re_reach",
+                        ("Lift", "Load"): "lift_load", ("Hold", "Avoid"): "avoid"}
+
+
+@dataclasses.dataclass
+class TrialResult:
+    """What one trial did (result) and its full log."""
+    result: dict
+    log: object  # TrialLog
+
+
+def build_trial_diagram(scenario, *, meshcat=None, events=None):
+    """Returns (diagram, GraspController, TrialLoggers) of a trial of `scenario`."""
+    builder = DiagramBuilder()
+    station = builder.AddNamedSystem("station", MakeGraspStation(scenario, meshcat=meshcat))
+    controller = add_grasp_controller(builder, scenario=scenario, station=station, events=events)
+    loggers = add_trial_logging(builder, scenario=scenario, station=station,
+                                channels=controller.channels,
+                                arm_desired_state=controller.arm_desired_state,
+                                gripper_command=controller.gripper_command,
+                                phase=controller.mode)
+    diagram = builder.Build()
+    diagram.set_name(f"grasp_trial_{controller.name}")
+    return diagram, controller, loggers
+
+
+def physical_event_times(log, transitions: list[dict], grip_force: float,
+                         object_config=None) -> dict:
+    """The physical event that marks each event transition actually taken, looked for after
+    the mode was entered: first contact (Reach-Load), grip force reached (Load-Lift, after
+    the last Reach began), table touch (Place-Unload)."""
+    events = {}
+    entered = {"Reach": 0.0}
+    for entry in transitions:
+        name = EVENT_TRANSITIONS.get((entry["from"], entry["to"]))
+        since = entered.get(entry["from"], 0.0)
+        if name == "reach_load":
+            events[name] = first_contact_time(log, after=since)
+        elif name == "load_lift":
+            events[name] = grip_force_time(log, grip_force, after=entered["Reach"])
+        elif name == "place_unload":
+            events[name] = table_touch_time(log, object_config, after=since)
+        entered[entry["to"]] = entry["t"]
+    return events
+
+
+def judge_trial(log, transitions: list[dict], scenario) -> dict:
+    """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
+    at least 3 s; unload = after Unload, upright on the table, released, gripper retracted."""
+    outcome = judge_grasp(log, target_xy=scenario.expected_object_xy,
+                          grip_force=scenario.grasp.grip_force)
+    hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
+    reached = [entry["to"] for entry in transitions]
+    final_mode = reached[-1] if reached else Mode.REACH.label
+    z = log.object_state[:, 6]
+    resting = abs(z[-1] - z[0]) < RESTING_HEIGHT_M
+    unload_success = bool(hold_success and "Unload" in reached and final_mode == "Done"
+                          and outcome.final_tilt_deg < UPRIGHT_TILT_DEG and outcome.released
+                          and resting)
+    grip_force = scenario.grasp.grip_force
+    physical = physical_event_times(log, transitions, grip_force, scenario.object)
+    latency, false_triggers = {}, 0
+    for entry in transitions:
+        name = EVENT_TRANSITIONS.get((entry["from"], entry["to"]))
+        if name is None or entry["trigger"] not in ("memorized_event", "heuristic_event"):
+            continue
+        if physical.get(name) is None or entry["t"] < physical[name] - FALSE_TRIGGER_MARGIN_S:
+            false_triggers += 1
+        else:
+            latency[name] = entry["t"] - physical[name]
+    corrective = [CORRECTIVE_ACTION_OF[(e["from"], e["to"])] for e in transitions
+                  if (e["from"], e["to"]) in CORRECTIVE_ACTION_OF]
+    return {"hold_success": bool(hold_success), "unload_success": unload_success,
+            "final_mode": final_mode, "hold_time_s": outcome.hold_time_s,
+            "lift_height_m": outcome.lift_height_m, "final_tilt_deg": outcome.final_tilt_deg,
+            "placement_error_m": outcome.placement_error_m, "released": outcome.released,
+            "physical_events": physical, "detection_latency_s": latency,
+            "false_triggers": false_triggers, "corrective_actions": corrective,
+            "failure": next((e["reason"] for e in transitions if e["to"] == "Failed"), "")}
+
+
+def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialResult:
+    """Simulates one trial of `scenario` with its controller; returns its TrialResult."""
+    diagram, controller, loggers = build_trial_diagram(scenario, meshcat=meshcat, events=events)
+    simulator = Simulator(diagram)
+    ApplySimulatorConfig(scenario.simulator_config, simulator)
+    context = simulator.get_mutable_context()
+    diagram.SetRandomContext(context, RandomGenerator(scenario.random_seed))
+    limit = max_time if max_time is not None else (
+        plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S)
+    if meshcat is not None:
+        meshcat.StartRecording()
+    start = time.perf_counter()
+    simulator.Initialize()
+    ended_at = None
+    while context.get_time() < limit - 1e-9:
+        simulator.AdvanceTo(min(context.get_time() + CHECK_PERIOD_S, limit))
+        if ended_at is None and controller.current_mode(context) in TERMINAL_MODES:
+            ended_at = context.get_time()
+            limit = min(limit, ended_at + END_MARGIN_S)
+    wall = time.perf_counter() - start
+    if meshcat is not None:
+        meshcat.StopRecording()
+        meshcat.PublishRecording()
+    transitions = controller.transition_log(context)
+    sim_time = context.get_time()
+    meta = {"controller": controller.name, "transitions": transitions,
+            "mode_names": [m.label for m in Mode], "grip_force": scenario.grasp.grip_force,
+            "wall_time_s": wall, "sim_time_s": sim_time}
+    log = collect_trial_log(loggers, context, scenario=scenario, meta=meta)
+    result = {"object": scenario.object.name, "offset_m": list(scenario.object_offset),
+              "controller": controller.name, "seed": scenario.random_seed,
+              "transitions": transitions, **judge_trial(log, transitions, scenario),
+              "sim_time_s": sim_time, "wall_time_s": wall,
+              "real_time_factor": sim_time / wall if wall > 0 else None}
+    log.meta["result"] = result
+    # For the Fig. 5a-b plot (figures.py): when each state began, and the physical events.
+    log.meta["phase_starts"] = {e["to"]: e["t"] for e in reversed(transitions)}
+    log.meta["events"] = result["physical_events"]
+    return TrialResult(result, log)
+
+
+
+def scenario_from_trial_spec(trial: dict):
+    """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
+    trial's object (perturbed in mass and friction), placement, seed and controller."""
+    from tegrasp_drake.rig.objects import ObjectConfig
+    from tegrasp_drake.experiments.scenario import load_scenario, resolve_object, validate
+    p = trial["perturbation"]
+    base = load_scenario()
+    definition = trial.get("object_definition")
+    if definition:
+        size = [float(v) for v in definition["size_m"]]
+        if definition["shape"] == "cylinder":  # the spec's (radius, length) -> [diameter, height]
+            size = [2.0 * size[0], size[1]]
+        obj = ObjectConfig(name=trial["object_name"], shape=definition["shape"], size=size,
+                           mass=float(definition["mass_kg"]),
+                           friction=float(definition["friction_coefficient"]))
+    else:
+        obj = resolve_object(ObjectConfig(name=trial["object_name"]))
+    obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),
+                              friction=obj.friction * float(p["friction_scale"]))
+    scenario = dataclasses.replace(
+        base, object=obj, random_seed=int(trial["seed"]),
+        object_offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
+                       float(trial["marker_dy_m"]) + float(p["dy_m"])],
+        object_yaw_deg=float(np.degrees(p["yaw_rad"])),
+        controller=dataclasses.replace(base.controller, name=trial["controller"]))
+    if not trial.get("sensor_noise", True):
+        scenario = dataclasses.replace(
+            scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0),
+            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0))
+    return validate(scenario, f"sweep trial {trial['trial_id']}")
+
+
+def run_trial_from_spec(trial: dict) -> dict:
+    """The sweep's trial function: runs the trial; returns its result dict."""
+    return run_trial(scenario_from_trial_spec(trial)).result

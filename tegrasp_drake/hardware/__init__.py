@@ -1,0 +1,39 @@
+"""The real devices behind the station's ports (Fig. 7b): the JACO2 on LCM (jaco/), the
+Robotiq 2F-85 on Modbus RTU (robotiq/), the myRIO tactile stream on a serial port (myrio/),
+the device watchdog and fault latch, the device data as LCM messages for logs, the typed
+hardware config and MakeHardwareStation.
+
+Each receiver exposes the same ports as its simulated twin in the station, plus
+`time_measured` and a staleness flag; blocking I/O lives on reader threads. The emulators
+that stand in for the devices are in tegrasp_drake.emulators, never imported from here.
+"""
+
+from tegrasp_drake.hardware.device_fault import (
+    DEVICE_FAULT, DRIVER_ERROR, SILENT, DeviceFault, describe_faults)
+from tegrasp_drake.hardware.device_log_messages import (
+    FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
+    GripperStatusSender, TactileStatusSender, tactile_arrays)
+from tegrasp_drake.hardware.fault_latch import FaultLatch, latched_faults
+from tegrasp_drake.hardware.jaco.jaco_lcm import (
+    JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD, JACO_NUM_JOINTS, JACO_STATUS_CHANNEL,
+    JacoCommandReceiver, JacoCommandSender, JacoStatusReceiver, JacoStatusSender,
+    make_jaco_command, make_jaco_status)
+from tegrasp_drake.hardware.jaco.jaco_lcm_interface import (
+    AddJacoLcmDriver, AddJacoLcmEmulator, JacoLcmDriverSystems, JacoLcmEmulatorSystems)
+from tegrasp_drake.hardware.jaco.velocity_tracker import (
+    JacoVelocityTracker, JacoVelocityTrackerConfig, velocity_command)
+from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver, gripper_faults
+from tegrasp_drake.hardware.robotiq.modbus_client import (
+    RobotiqActivationError, RobotiqModbusClient, RobotiqModbusConfig, RobotiqStatusSample)
+from tegrasp_drake.hardware.robotiq.registers import (
+    command_registers, command_registers_from_vector, decode_command_registers,
+    status_from_registers, status_registers)
+from tegrasp_drake.hardware.myrio.tactile_calibration import (
+    LoadTactileCalibration, PadCalibration, SaveTactileCalibration, TactileCalibration,
+    acceleration_from_piezo, counts_from_forces, forces_from_counts, piezo_from_acceleration)
+from tegrasp_drake.hardware.myrio.tactile_frame import (
+    TactileDecoderCounters, TactileFrame, TactileFrameDecoder, encode_frame)
+from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
+from tegrasp_drake.hardware.myrio.tactile_serial_receiver import (
+    TactileSerialReceiver, receiver_state_after_tick)
+from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS, DeviceWatchdog

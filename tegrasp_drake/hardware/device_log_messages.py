@@ -1,0 +1,120 @@
+"""The hardware station's device data as LCM messages (tegrasp_drake/lcmtypes), so that a
+bus log holds everything the control loop saw: Sender systems (vectors -> message) in
+Drake's driver pattern, and pure decoders back to arrays for replay.
+
+Channels: TEGRASP_TACTILE (1 kHz), TEGRASP_GRIPPER (100 Hz); the run adds
+TEGRASP_TRANSITION, TEGRASP_FAULT and TEGRASP_RUN_INFO (hardware_run.py). The arm is on
+Drake's KINOVA_JACO_COMMAND / KINOVA_JACO_STATUS already. `utime` is the diagram's
+Context time [us] in all of them.
+"""
+
+import time
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
+
+TACTILE_CHANNEL = "TEGRASP_TACTILE"
+GRIPPER_CHANNEL = "TEGRASP_GRIPPER"
+TRANSITION_CHANNEL = "TEGRASP_TRANSITION"
+FAULT_CHANNEL = "TEGRASP_FAULT"
+RUN_INFO_CHANNEL = "TEGRASP_RUN_INFO"
+TACTILE_PUBLISH_PERIOD = 1e-3   # [s], the receiver's tick
+GRIPPER_PUBLISH_PERIOD = 0.01   # [s]
+
+
+def utime(time_s: float) -> int:
+    return int(round(time_s * 1e6))
+
+
+class TactileStatusSender(LeafSystem):
+    """The tactile receiver's outputs as an `lcmt_tegrasp_tactile`.
+
+    Input ports: left_taxel_forces (12), right_taxel_forces (12) [N],
+        left_pad_acceleration (3), right_pad_acceleration (3) [m/s^2],
+        time_measured (1) [s], stale (1), zeroing (1), arrival_time (1): the receiver's
+        (host monotonic time [s] the shown frame arrived; the message adds the time it
+        was built, so that a log gives each frame's latency to the control loop).
+    Output ports: lcmt_tegrasp_tactile (abstract).
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._forces = [self.DeclareVectorInputPort(f"{f}_taxel_forces", TAXELS_PER_PAD)
+                        for f in FINGER_NAMES]
+        self._accelerations = [self.DeclareVectorInputPort(f"{f}_pad_acceleration", 3)
+                               for f in FINGER_NAMES]
+        self._time_port = self.DeclareVectorInputPort("time_measured", 1)
+        self._stale_port = self.DeclareVectorInputPort("stale", 1)
+        self._zeroing_port = self.DeclareVectorInputPort("zeroing", 1)
+        self._arrival_port = self.DeclareVectorInputPort("arrival_time", 1)
+        self.DeclareAbstractOutputPort(
+            "lcmt_tegrasp_tactile", lambda: AbstractValue.Make(lcmt_tegrasp_tactile()),
+            self._calc_message)
+
+    def _calc_message(self, context, output):
+        message = lcmt_tegrasp_tactile()
+        message.utime = utime(context.get_time())
+        message.device_utime = utime(self._time_port.Eval(context)[0])
+        message.stale = bool(self._stale_port.Eval(context)[0])
+        message.zeroing = bool(self._zeroing_port.Eval(context)[0])
+        message.arrival_s = float(self._arrival_port.Eval(context)[0])
+        message.tick_s = time.monotonic()
+        message.num_taxels = TAXELS_PER_PAD
+        message.left_taxel_forces, message.right_taxel_forces = (
+            port.Eval(context).tolist() for port in self._forces)
+        message.left_pad_acceleration, message.right_pad_acceleration = (
+            port.Eval(context).tolist() for port in self._accelerations)
+        output.set_value(message)
+
+
+class GripperStatusSender(LeafSystem):
+    """The gripper's command and status as an `lcmt_tegrasp_gripper`.
+
+    Input ports: command (3) [rPR, rSP, rFR], status (8) (robotiq_units order),
+        time_measured (1): host monotonic time of the status read [s].
+    Output ports: lcmt_tegrasp_gripper (abstract).
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._command_port = self.DeclareVectorInputPort("command", units.COMMAND_SIZE)
+        self._status_port = self.DeclareVectorInputPort("status", units.STATUS_SIZE)
+        self._time_port = self.DeclareVectorInputPort("time_measured", 1)
+        self.DeclareAbstractOutputPort(
+            "lcmt_tegrasp_gripper", lambda: AbstractValue.Make(lcmt_tegrasp_gripper()),
+            self._calc_message)
+
+    def _calc_message(self, context, output):
+        message = lcmt_tegrasp_gripper()
+        message.utime = utime(context.get_time())
+        message.status_arrival_s = float(self._time_port.Eval(context)[0])
+        command = (self._command_port.Eval(context) if self._command_port.HasValue(context)
+                   else np.zeros(units.COMMAND_SIZE))
+        message.command = [int(round(x)) for x in command]
+        message.status = [int(round(x)) for x in self._status_port.Eval(context)]
+        output.set_value(message)
+
+
+def tactile_arrays(messages) -> dict:
+    """Arrays of a sequence of lcmt_tegrasp_tactile: t (n,) [s], device_t (n,) [s],
+    taxels (n, 24) [N] left then right, pad_acceleration (n, 6), stale (n,), zeroing (n,),
+    arrival_s (n,), tick_s (n,) [s, host monotonic clock]."""
+    messages = list(messages)
+    return {
+        "t": np.array([m.utime * 1e-6 for m in messages]),
+        "device_t": np.array([m.device_utime * 1e-6 for m in messages]),
+        "taxels": np.array([list(m.left_taxel_forces) + list(m.right_taxel_forces)
+                            for m in messages]).reshape(len(messages), 2 * TAXELS_PER_PAD),
+        "pad_acceleration": np.array([
+            list(m.left_pad_acceleration) + list(m.right_pad_acceleration)
+            for m in messages]).reshape(len(messages), 6),
+        "stale": np.array([m.stale for m in messages], dtype=bool),
+        "arrival_s": np.array([m.arrival_s for m in messages]),
+        "tick_s": np.array([m.tick_s for m in messages]),
+        "zeroing": np.array([m.zeroing for m in messages], dtype=bool),
+    }

@@ -1,0 +1,88 @@
+"""Builders that wire the Jaco LCM systems into a diagram, for either end of the bus.
+
+`AddJacoLcmDriver` is the hardware side (controller -> KINOVA_JACO_COMMAND,
+KINOVA_JACO_STATUS -> measured state); `AddJacoLcmEmulator` is the simulator answering
+commands with status, as Drake's hardware_sim does. Both need an `LcmInterfaceSystem` for
+the same `lcm` in the diagram (or another pump of its subscriptions).
+"""
+
+import dataclasses
+
+from drake import lcmt_jaco_command, lcmt_jaco_status
+from pydrake.systems.framework import DiagramBuilder, InputPort, OutputPort
+from pydrake.systems.lcm import LcmPublisherSystem, LcmSubscriberSystem
+
+from tegrasp_drake.hardware.jaco.jaco_lcm import (
+    JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD, JACO_STATUS_CHANNEL, JacoCommandReceiver,
+    JacoCommandSender, JacoStatusReceiver, JacoStatusSender)
+from tegrasp_drake.hardware.jaco.velocity_tracker import (
+    JacoVelocityTracker, JacoVelocityTrackerConfig)
+
+
+@dataclasses.dataclass
+class JacoLcmDriverSystems:
+    """The hardware-side systems. Connect the controller's desired state to
+    `tracker.GetInputPort("desired_state")` and optionally the watchdog's stop to
+    `tracker.GetInputPort("stop")`; read `status_receiver`'s *_measured outputs."""
+    tracker: JacoVelocityTracker
+    command_sender: JacoCommandSender
+    command_publisher: LcmPublisherSystem
+    status_subscriber: LcmSubscriberSystem
+    status_receiver: JacoStatusReceiver
+
+
+@dataclasses.dataclass
+class JacoLcmEmulatorSystems:
+    """The emulator-side systems."""
+    command_subscriber: LcmSubscriberSystem
+    command_receiver: JacoCommandReceiver
+    status_sender: JacoStatusSender
+    status_publisher: LcmPublisherSystem
+
+
+def AddJacoLcmDriver(builder: DiagramBuilder, *, lcm, prefix: str = "jaco",
+                     tracker_config: JacoVelocityTrackerConfig | None = None,
+                     publish_period: float = JACO_LCM_PERIOD) -> JacoLcmDriverSystems:
+    """Adds tracker -> command sender -> publisher and subscriber -> status receiver;
+    the tracker's position feedback comes from the status receiver."""
+    tracker = builder.AddNamedSystem(f"{prefix}_velocity_tracker",
+                                     JacoVelocityTracker(tracker_config))
+    sender = builder.AddNamedSystem(f"{prefix}_command_sender", JacoCommandSender())
+    publisher = builder.AddNamedSystem(f"{prefix}_command_publisher", LcmPublisherSystem.Make(
+        channel=JACO_COMMAND_CHANNEL, lcm_type=lcmt_jaco_command, lcm=lcm,
+        publish_period=publish_period))
+    subscriber = builder.AddNamedSystem(f"{prefix}_status_subscriber", LcmSubscriberSystem.Make(
+        channel=JACO_STATUS_CHANNEL, lcm_type=lcmt_jaco_status, lcm=lcm))
+    receiver = builder.AddNamedSystem(f"{prefix}_status_receiver", JacoStatusReceiver())
+    builder.Connect(subscriber.get_output_port(), receiver.GetInputPort("lcmt_jaco_status"))
+    builder.Connect(receiver.GetOutputPort("position_measured"),
+                    tracker.GetInputPort("position_measured"))
+    builder.Connect(tracker.GetOutputPort("commanded_state"),
+                    sender.GetInputPort("desired_state"))
+    builder.Connect(sender.GetOutputPort("lcmt_jaco_command"), publisher.get_input_port())
+    return JacoLcmDriverSystems(tracker, sender, publisher, subscriber, receiver)
+
+
+def AddJacoLcmEmulator(builder: DiagramBuilder, *, lcm, desired_state_input: InputPort,
+                       position_output: OutputPort, velocity_output: OutputPort,
+                       torque_output: OutputPort, prefix: str = "jaco_emulator",
+                       command_timeout: float = 0.05,
+                       publish_period: float = JACO_LCM_PERIOD) -> JacoLcmEmulatorSystems:
+    """Adds subscriber -> command receiver -> `desired_state_input` and the measured
+    outputs -> status sender -> publisher (the simulated arm's side of the bus)."""
+    subscriber = builder.AddNamedSystem(f"{prefix}_command_subscriber", LcmSubscriberSystem.Make(
+        channel=JACO_COMMAND_CHANNEL, lcm_type=lcmt_jaco_command, lcm=lcm))
+    receiver = builder.AddNamedSystem(f"{prefix}_command_receiver",
+                                      JacoCommandReceiver(command_timeout=command_timeout))
+    sender = builder.AddNamedSystem(f"{prefix}_status_sender", JacoStatusSender())
+    publisher = builder.AddNamedSystem(f"{prefix}_status_publisher", LcmPublisherSystem.Make(
+        channel=JACO_STATUS_CHANNEL, lcm_type=lcmt_jaco_status, lcm=lcm,
+        publish_period=publish_period))
+    builder.Connect(subscriber.get_output_port(), receiver.GetInputPort("lcmt_jaco_command"))
+    builder.Connect(position_output, receiver.GetInputPort("position_measured"))
+    builder.Connect(receiver.GetOutputPort("desired_state"), desired_state_input)
+    builder.Connect(position_output, sender.GetInputPort("position_measured"))
+    builder.Connect(velocity_output, sender.GetInputPort("velocity_measured"))
+    builder.Connect(torque_output, sender.GetInputPort("torque_measured"))
+    builder.Connect(sender.GetOutputPort("lcmt_jaco_status"), publisher.get_input_port())
+    return JacoLcmEmulatorSystems(subscriber, receiver, sender, publisher)

@@ -1,0 +1,76 @@
+"""Turns a desired joint state into the joint velocities a velocity-mode Jaco executes.
+
+The Kinova driver in joint-velocity mode integrates nothing, so following a desired path
+needs a position-error term:
+
+    v_cmd = clip(v_des + kp * wrap(q_des - q_measured), -v_max, v_max)
+
+where wrap() maps the error of continuous joints into [-pi, pi). With the driver's 100 Hz
+loop and about 10 ms of latency, kp = 5 1/s (a 0.2 s time constant) keeps the loop well
+damped. When `stop` is set (the device watchdog tripped), the command is to hold still:
+zero velocity at the measured position.
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_NUM_JOINTS
+
+_DEG = np.pi / 180.0
+
+
+@dataclasses.dataclass
+class JacoVelocityTrackerConfig:
+    """Gains and limits of the tracker (JACO2 6-DOF datasheet speeds)."""
+    kp: float = 5.0  # [1/s]
+    max_joint_speed: list[float] = dataclasses.field(
+        default_factory=lambda: [36 * _DEG] * 3 + [48 * _DEG] * 3)  # [rad/s]
+    continuous_joints: list[bool] = dataclasses.field(
+        default_factory=lambda: [True, False, False, True, True, True])
+
+
+def wrap_to_pi(angle):
+    """Angle(s) [rad] mapped into [-pi, pi)."""
+    return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi
+
+
+def velocity_command(q_desired, v_desired, q_measured, config: JacoVelocityTrackerConfig):
+    """Commanded joint velocities [rad/s] for a velocity-mode arm (see module docstring)."""
+    error = np.asarray(q_desired, dtype=float) - np.asarray(q_measured, dtype=float)
+    error = np.where(config.continuous_joints, wrap_to_pi(error), error)
+    v_max = np.asarray(config.max_joint_speed)
+    return np.clip(np.asarray(v_desired) + config.kp * error, -v_max, v_max)
+
+
+class JacoVelocityTracker(LeafSystem):
+    """Adds the position-error term to a desired joint state (see module docstring).
+
+    Input ports:
+        desired_state (12): joint positions [rad] then velocities [rad/s].
+        position_measured (6): measured joint positions [rad].
+        stop (1, optional): nonzero holds the arm still.
+    Output ports:
+        commanded_state (12): desired positions [rad] then commanded velocities [rad/s]
+            (measured positions and zeros while stopped).
+    """
+
+    def __init__(self, config: JacoVelocityTrackerConfig | None = None):
+        super().__init__()
+        self._config = dataclasses.replace(config or JacoVelocityTrackerConfig())
+        n = JACO_NUM_JOINTS
+        self._desired_state_port = self.DeclareVectorInputPort("desired_state", 2 * n)
+        self._position_port = self.DeclareVectorInputPort("position_measured", n)
+        self._stop_port = self.DeclareVectorInputPort("stop", 1)
+        self.DeclareVectorOutputPort("commanded_state", 2 * n, self._calc_commanded_state)
+
+    def _calc_commanded_state(self, context, output):
+        n = JACO_NUM_JOINTS
+        q_measured = self._position_port.Eval(context)
+        if self._stop_port.HasValue(context) and self._stop_port.Eval(context)[0] != 0:
+            output.SetFromVector(np.concatenate([q_measured, np.zeros(n)]))
+            return
+        desired = self._desired_state_port.Eval(context)
+        output.SetFromVector(np.concatenate([desired[:n], velocity_command(
+            desired[:n], desired[n:], q_measured, self._config)]))

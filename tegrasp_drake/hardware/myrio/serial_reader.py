@@ -1,0 +1,109 @@
+"""A reader thread for the myRIO tactile stream: serial port -> decoder -> bounded queue.
+
+The thread blocks on the serial port (for at most `read_timeout` at a time, so it notices
+`close()` quickly); the diagram only calls `drain()`, which never blocks. The queue holds
+at most `queue_size` frames: if the consumer falls behind, the oldest are dropped and
+counted (fresh data wins). A serial error is counted and the thread keeps trying, so a
+replugged adapter comes back.
+"""
+
+import collections
+import dataclasses
+import threading
+import time
+
+import serial
+
+from tegrasp_drake.hardware.myrio.tactile_frame import (
+    TactileDecoderCounters, TactileFrame, TactileFrameDecoder)
+
+DEFAULT_BAUDRATE = 921600
+
+
+@dataclasses.dataclass
+class TactileReaderCounters:
+    """Decoder counters plus the reader's own."""
+    decoder: TactileDecoderCounters
+    bytes_read: int = 0
+    queue_overflows: int = 0   # frames dropped because the consumer fell behind
+    serial_errors: int = 0
+    last_error: str = ""
+
+
+class TactileSerialReader:
+    """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
+
+    `port` is a device path or a pyserial URL. Use as a context manager, or start()/close().
+    """
+
+    def __init__(self, port: str, *, baudrate: int = DEFAULT_BAUDRATE, queue_size: int = 256,
+                 read_timeout: float = 0.005):
+        self._port = port
+        self._baudrate = baudrate
+        self._read_timeout = read_timeout
+        self._queue = collections.deque(maxlen=queue_size)
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._decoder = TactileFrameDecoder()
+        self._counters = TactileReaderCounters(decoder=self._decoder.counters)
+        self._serial = None
+        self._thread = None
+
+    @property
+    def port(self) -> str:
+        return self._port
+
+    def start(self) -> "TactileSerialReader":
+        """Opens the port (raises if it cannot) and starts the thread."""
+        self._serial = serial.serial_for_url(self._port, baudrate=self._baudrate,
+                                             timeout=self._read_timeout)
+        self._thread = threading.Thread(target=self._run, name=f"tactile {self._port}",
+                                        daemon=True)
+        self._thread.start()
+        return self
+
+    def close(self, timeout: float = 1.0):
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout)
+        if self._serial is not None:
+            self._serial.close()
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def drain(self) -> list[TactileFrame]:
+        """All frames decoded since the last call, oldest first (never blocks)."""
+        with self._lock:
+            frames = list(self._queue)
+            self._queue.clear()
+        return frames
+
+    def counters(self) -> TactileReaderCounters:
+        """A snapshot of the counters."""
+        with self._lock:
+            return dataclasses.replace(
+                self._counters, decoder=dataclasses.replace(self._decoder.counters))
+
+    def _run(self):
+        while not self._stop.is_set():
+            try:
+                data = self._serial.read(max(1, self._serial.in_waiting))
+            except (serial.SerialException, OSError) as exc:
+                with self._lock:
+                    self._counters.serial_errors += 1
+                    self._counters.last_error = str(exc)
+                self._stop.wait(0.1)
+                continue
+            if not data:
+                continue
+            arrival_time = time.monotonic()
+            with self._lock:
+                self._counters.bytes_read += len(data)
+                frames = self._decoder.feed(data, arrival_time)
+                overflow = max(0, len(self._queue) + len(frames) - self._queue.maxlen)
+                self._counters.queue_overflows += overflow
+                self._queue.extend(frames)

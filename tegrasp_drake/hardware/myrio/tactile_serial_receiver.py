@@ -1,0 +1,190 @@
+"""The tactile pads on the myRIO stream, as a Drake system with the simulated pads' ports.
+
+Every `period` (1 ms) an unrestricted update takes the frames the reader thread decoded
+since the last tick (`TactileSerialReader.drain()`, which never blocks), calibrates them
+(tactile_calibration) and stores the values in the Context; outputs are computed from
+that state only. A value changes only when a frame carrying it is played: taxel forces
+when a count sequence arrives (~108 Hz), accelerations with every frame (1 kHz).
+
+Playout: a serial port delivers frames in bursts (two or three in one tick are common, tens
+when the host is loaded), but the RA channel (Eq. 2) and the event matcher need one piezo
+sample per tick, an impact lasting one sample included. So the received frames wait in the
+state and are played one per tick, in order; while more than two wait, two are played
+per tick until the backlog is gone (the latency returns to a millisecond once a burst has
+passed), and when more than `max_backlog` wait, the oldest are played together in one
+tick, so the latency stays at most `max_backlog` ticks. Frames played together keep the
+newest counts and the piezo sample of largest magnitude, so an impact is never dropped.
+`max_backlog = 0` plays everything that arrived at once.
+
+When nothing arrived for `stale_timeout` the outputs keep the last values,
+`time_measured` (the played frame's timestamp) stops advancing and `stale` is 1, so old
+data is never passed on as fresh.
+
+Zeroing: until `zero_samples` count sequences per finger have arrived the outputs are zero
+and `zeroing` is 1 (keep the pads untouched at start); then the taxel offsets and piezo
+offsets are the means seen (TactileCalibration.zero_samples = 0 skips this).
+"""
+
+import dataclasses
+import time
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.hardware.myrio.tactile_calibration import (
+    PadCalibration, PadZeroing, TactileCalibration, acceleration_from_piezo,
+    forces_from_counts)
+
+
+@dataclasses.dataclass(frozen=True)
+class TactileReceiverState:
+    """What the receiver knows, kept in the Context."""
+    forces: tuple = (np.zeros(TAXELS_PER_PAD), np.zeros(TAXELS_PER_PAD))  # [N]
+    accelerations: tuple = (0.0, 0.0)   # [m/s^2], along the film's axis
+    device_time: float = 0.0            # [s], timestamp of the played frame; 0 before any
+    arrival_time: float = -np.inf       # time.monotonic() [s] of the newest frame received
+    stale: bool = True
+    pads: tuple = (PadCalibration(), PadCalibration())
+    zeroing: tuple = (PadZeroing(), PadZeroing())
+    zeroed: bool = False
+    pending: tuple = ()                 # frames received, not yet played (oldest first)
+    played_arrival_time: float = -np.inf  # time.monotonic() [s] the played frame arrived
+
+    def __deepcopy__(self, memo):
+        # Immutable (replaced, never changed in place): the copies Drake makes of the
+        # Context's abstract state at every 1 kHz update can share it.
+        return self
+
+
+def initial_receiver_state(calibration: TactileCalibration) -> TactileReceiverState:
+    return TactileReceiverState(pads=calibration.pads(),
+                                zeroed=calibration.zero_samples <= 0)
+
+
+def receiver_state_after_frames(state: TactileReceiverState, frames,
+                                calibration: TactileCalibration) -> TactileReceiverState:
+    """The state after these frames (oldest first); pure."""
+    forces, accelerations = list(state.forces), list(state.accelerations)
+    pads, zeroing, zeroed = state.pads, state.zeroing, state.zeroed
+    peak = [None, None]  # the largest-magnitude piezo sample of these frames, per pad
+    volts_per_count = calibration.piezo_volts_per_count
+    for frame in frames:
+        counts = (frame.left_counts, frame.right_counts)
+        if not zeroed:
+            zeroing = tuple(z.add(c, p * volts_per_count)
+                            for z, c, p in zip(zeroing, counts, frame.piezo))
+            if all(z.done(calibration.zero_samples) for z in zeroing):
+                pads = tuple(z.zeroed(pad) for z, pad in zip(zeroing, pads))
+                zeroed = True
+            continue
+        for i, pad in enumerate(pads):
+            if counts[i] is not None:
+                forces[i] = forces_from_counts(counts[i], pad.gain, pad.offset)
+            acceleration = float(acceleration_from_piezo(
+                frame.piezo[i], volts_per_count, pad.piezo_gain, pad.piezo_offset))
+            if peak[i] is None or abs(acceleration) > abs(peak[i]):
+                peak[i] = acceleration
+    accelerations = [a if p is None else p for a, p in zip(accelerations, peak)]
+    if not frames:
+        return state
+    return dataclasses.replace(
+        state, forces=tuple(forces), accelerations=tuple(accelerations),
+        device_time=frames[-1].time, arrival_time=frames[-1].arrival_time, pads=pads,
+        zeroing=zeroing, zeroed=zeroed)
+
+
+def receiver_state_after_tick(state: TactileReceiverState, received, calibration:
+                              TactileCalibration, max_backlog: int) -> TactileReceiverState:
+    """The state after a tick that received these frames (oldest first): one frame is
+    played, two while more than two wait, more when over `max_backlog` wait (module docstring);
+    during zeroing, all. Pure."""
+    pending = state.pending + tuple(received)
+    if not pending:
+        return state
+    catching_up = 2 if len(pending) > 2 else 1
+    count = max(catching_up, len(pending) - max_backlog) if state.zeroed else len(pending)
+    played = receiver_state_after_frames(state, pending[:count], calibration)
+    return dataclasses.replace(played, pending=pending[count:],
+                               arrival_time=pending[-1].arrival_time,
+                               played_arrival_time=pending[count - 1].arrival_time)
+
+
+class TactileSerialReceiver(LeafSystem):
+    """Both tactile pads from a `TactileSerialReader` (see module docstring).
+
+    Output ports:
+        left_taxel_forces (12), right_taxel_forces (12): taxel normal forces [N].
+        left_pad_acceleration (3), right_pad_acceleration (3): the piezo film's
+            acceleration-equivalent [m/s^2] in x, zeros in y and z.
+        time_measured (1): device timestamp [s] of the played frame (0 before any).
+        stale (1): 1 when no frame arrived for `stale_timeout` [s] of wall time.
+        zeroing (1): 1 until the start-up zeroing is complete.
+        arrival_time (1): host time.monotonic() [s] when the played frame arrived (for
+            latency measurements; -inf before any).
+    """
+
+    def __init__(self, reader, *, calibration: TactileCalibration | None = None,
+                 period: float = 1e-3, stale_timeout: float = 0.05, max_backlog: int = 8):
+        super().__init__()
+        self._reader = reader
+        self._max_backlog = max_backlog
+        self._calibration = dataclasses.replace(calibration or TactileCalibration())
+        self._stale_timeout = stale_timeout
+        self._state_index = self.DeclareAbstractState(
+            AbstractValue.Make(initial_receiver_state(self._calibration)))
+        self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
+        state_ticket = {self.abstract_state_ticket(self._state_index)}
+        for i, finger in enumerate(FINGER_NAMES):
+            self.DeclareVectorOutputPort(
+                f"{finger}_taxel_forces", TAXELS_PER_PAD, self._make_calc_forces(i),
+                prerequisites_of_calc=state_ticket)
+            self.DeclareVectorOutputPort(
+                f"{finger}_pad_acceleration", 3, self._make_calc_acceleration(i),
+                prerequisites_of_calc=state_ticket)
+        self.DeclareVectorOutputPort(
+            "time_measured", 1,
+            lambda context, out: out.SetAtIndex(0, self._state(context).device_time),
+            prerequisites_of_calc=state_ticket)
+        self.DeclareVectorOutputPort(
+            "stale", 1, lambda context, out: out.SetAtIndex(0, self._state(context).stale),
+            prerequisites_of_calc=state_ticket)
+        self.DeclareVectorOutputPort(
+            "arrival_time", 1,
+            lambda context, out: out.SetAtIndex(0, self._state(context).played_arrival_time),
+            prerequisites_of_calc=state_ticket)
+        self.DeclareVectorOutputPort(
+            "zeroing", 1,
+            lambda context, out: out.SetAtIndex(0, not self._state(context).zeroed),
+            prerequisites_of_calc=state_ticket)
+
+    @property
+    def reader(self):
+        """The reader (for its counters)."""
+        return self._reader
+
+    def _state(self, context) -> TactileReceiverState:
+        return context.get_abstract_state(self._state_index).get_value()
+
+    def _update(self, context, state):
+        new = receiver_state_after_tick(self._state(context), self._reader.drain(),
+                                        self._calibration, self._max_backlog)
+        stale = time.monotonic() - new.arrival_time > self._stale_timeout
+        if stale != new.stale:
+            new = dataclasses.replace(new, stale=stale)
+        state.get_mutable_abstract_state(self._state_index).set_value(new)
+
+    def _make_calc_forces(self, finger: int):
+        def calc(context, output):
+            state = self._state(context)
+            output.SetFromVector(state.forces[finger] if state.zeroed
+                                 else np.zeros(TAXELS_PER_PAD))
+        return calc
+
+    def _make_calc_acceleration(self, finger: int):
+        def calc(context, output):
+            state = self._state(context)
+            value = state.accelerations[finger] if state.zeroed else 0.0
+            output.SetFromVector([value, 0.0, 0.0])
+        return calc

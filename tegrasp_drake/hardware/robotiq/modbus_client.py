@@ -1,0 +1,247 @@
+"""A Robotiq 2F-85 Modbus RTU client that runs on its own thread and never blocks its caller.
+
+The thread owns a pymodbus serial RTU client (115200 8N1, slave 9) and:
+1. activates the gripper as the manual prescribes: write zeros, write rACT = 1, poll the
+   status until gSTA = 3 (activation complete); if that takes longer than
+   `activation_timeout`, it stops with an error naming the port;
+2. then loops at most every `period` (>= 5 ms: the gripper's 200 Hz limit) writing the
+   latest requested command when it changed or every `command_refresh_period`, and
+   reading the status.
+
+The caller only exchanges values under a lock: `set_command()` stores the request,
+`latest_status()` returns the newest status with its arrival time (`time.monotonic()`
+[s]). Failed transactions are counted and skipped; a gripper that stops answering shows as
+a status whose arrival time stops advancing.
+"""
+
+import dataclasses
+import threading
+import time
+
+import numpy as np
+from pymodbus import FramerType
+from pymodbus.client import ModbusSerialClient
+from pymodbus.exceptions import ModbusException
+
+from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.hardware.robotiq import registers
+
+MIN_PERIOD = 1.0 / 200.0  # [s]
+
+
+@dataclasses.dataclass
+class RobotiqModbusConfig:
+    """Serial line, bus and timing of the client. Times in seconds."""
+    port: str = "/dev/ttyUSB0"
+    baudrate: int = registers.BAUDRATE
+    device_id: int = registers.DEVICE_ID
+    period: float = MIN_PERIOD
+    request_timeout: float = 0.05
+    activation_timeout: float = 5.0
+    command_refresh_period: float = 0.1
+    read_function: int = registers.READ_FUNCTION  # 4, or 3 on some firmware
+
+
+class RobotiqActivationError(RuntimeError):
+    """The gripper did not come up (port not opened or activation incomplete)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class RobotiqStatusSample:
+    """One status read: the `gripper.status` vector and when it arrived."""
+    status: np.ndarray
+    arrival_time: float  # time.monotonic() [s]
+    count: int           # 1 for the first status read, then +1 per read
+
+
+@dataclasses.dataclass
+class RobotiqModbusCounters:
+    """Transaction counters (read them with `RobotiqModbusClient.counters()`)."""
+    writes: int = 0
+    reads: int = 0
+    errors: int = 0
+    overruns: int = 0  # loop iterations that started late by more than one period
+    last_error: str = ""
+
+
+class RobotiqModbusClient:
+    """See the module docstring. Use as a context manager, or call start() and close()."""
+
+    def __init__(self, config: RobotiqModbusConfig):
+        if config.period < MIN_PERIOD:
+            raise ValueError(f"period {config.period} s is faster than the gripper's 200 Hz")
+        self._config = dataclasses.replace(config)
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._active = threading.Event()
+        self._finished = threading.Event()
+        self._thread = None
+        self._command = None
+        self._sample = None
+        self._error = None
+        self._counters = RobotiqModbusCounters()
+
+    @property
+    def port(self) -> str:
+        return self._config.port
+
+    def start(self) -> "RobotiqModbusClient":
+        """Starts the thread (opening the port happens there); returns at once."""
+        if self._thread is not None:
+            raise RuntimeError("RobotiqModbusClient already started")
+        self._thread = threading.Thread(target=self._run, name=f"robotiq {self.port}",
+                                        daemon=True)
+        self._thread.start()
+        return self
+
+    def close(self, timeout: float = 2.0):
+        """Stops the thread (within a transaction timeout) and closes the port."""
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout)
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def set_command(self, command):
+        """Requests [rPR, rSP, rFR] (bytes); sent with rACT = rGTO = 1 once active."""
+        words = registers.command_registers_from_vector(command)
+        with self._lock:
+            self._command = words
+
+    def latest_status(self) -> RobotiqStatusSample | None:
+        """The newest status read, or None before the first."""
+        with self._lock:
+            return self._sample
+
+    def counters(self) -> RobotiqModbusCounters:
+        with self._lock:
+            return dataclasses.replace(self._counters)
+
+    @property
+    def error(self) -> str | None:
+        """Why the thread stopped (e.g. activation failed), or None."""
+        with self._lock:
+            return self._error
+
+    @property
+    def is_active(self) -> bool:
+        """True once activation completed (gSTA = 3)."""
+        return self._active.is_set()
+
+    def wait_until_active(self, timeout: float) -> RobotiqStatusSample:
+        """Blocks (for start-up code, never inside a diagram) until activation is complete.
+
+        Raises RobotiqActivationError with the thread's error, or on timeout."""
+        deadline = time.monotonic() + timeout
+        while not self._active.wait(0.01):
+            if self._finished.is_set() or time.monotonic() > deadline:
+                raise RobotiqActivationError(
+                    self.error or f"Robotiq 2F-85 on {self.port} (slave "
+                    f"{self._config.device_id}) not active after {timeout} s")
+        return self.latest_status()
+
+    # --- the thread -------------------------------------------------------------------
+
+    def _run(self):
+        client = ModbusSerialClient(
+            self._config.port, framer=FramerType.RTU, baudrate=self._config.baudrate,
+            bytesize=8, parity="N", stopbits=1, timeout=self._config.request_timeout,
+            retries=0)
+        try:
+            if not client.connect():
+                raise RobotiqActivationError(f"cannot open serial port {self.port}")
+            self._activate(client)
+            self._loop(client)
+        except Exception as exc:  # the thread must end quietly and say why
+            with self._lock:
+                self._error = str(exc)
+        finally:
+            client.close()
+            self._finished.set()
+
+    def _transaction(self, function, *args, **kwargs):
+        """One request; returns the response or None (counted as an error)."""
+        try:
+            response = function(*args, device_id=self._config.device_id, **kwargs)
+        except ModbusException as exc:
+            response, message = None, str(exc)
+        else:
+            message = str(response) if response.isError() else ""
+        if message:
+            with self._lock:
+                self._counters.errors += 1
+                self._counters.last_error = message
+            return None
+        return response
+
+    def _write(self, client, words) -> bool:
+        ok = self._transaction(client.write_registers, registers.COMMAND_ADDRESS, words)
+        if ok is not None:
+            with self._lock:
+                self._counters.writes += 1
+        return ok is not None
+
+    def _read(self, client) -> RobotiqStatusSample | None:
+        read = (client.read_input_registers if self._config.read_function == 4
+                else client.read_holding_registers)
+        response = self._transaction(read, registers.STATUS_ADDRESS,
+                                     count=registers.REGISTER_COUNT)
+        if response is None or len(response.registers) != registers.REGISTER_COUNT:
+            return None
+        with self._lock:
+            self._counters.reads += 1
+            self._sample = RobotiqStatusSample(
+                registers.status_from_registers(response.registers), time.monotonic(),
+                self._counters.reads)
+            return self._sample
+
+    def _activate(self, client):
+        reset = registers.command_registers(0, 0, 0, activate=False, go_to=False)
+        activate = registers.command_registers(0, 0, 0, activate=True, go_to=False)
+        deadline = time.monotonic() + self._config.activation_timeout
+        for words in (reset, activate):
+            while not self._write(client, words):
+                if self._stop.wait(self._config.period) or time.monotonic() > deadline:
+                    raise self._activation_error(f"no answer to the write of {words}")
+        while not self._stop.wait(self._config.period):
+            sample = self._read(client)
+            if sample is not None and sample.status[units.STATUS_STA] == (
+                    units.ActivationStatus.ACTIVE):
+                self._active.set()
+                return
+            if time.monotonic() > deadline:
+                last = sample.status if sample is not None else None
+                raise self._activation_error(
+                    "gSTA did not reach 3" if last is None else
+                    f"gSTA = {int(last[units.STATUS_STA])}, gFLT = "
+                    f"0x{int(last[units.STATUS_FLT]):02X} "
+                    f"({units.fault_name(last[units.STATUS_FLT])})")
+
+    def _activation_error(self, why) -> RobotiqActivationError:
+        return RobotiqActivationError(
+            f"Robotiq 2F-85 on {self.port} (slave {self._config.device_id}) did not "
+            f"activate within {self._config.activation_timeout} s: {why}")
+
+    def _loop(self, client):
+        period = self._config.period
+        next_time = time.monotonic()
+        written, written_time = None, -np.inf
+        while not self._stop.wait(max(0.0, next_time - time.monotonic())):
+            now = time.monotonic()
+            next_time += period
+            if next_time < now:
+                next_time = now + period
+                with self._lock:
+                    self._counters.overruns += 1
+            with self._lock:
+                command = self._command
+            if command is not None and (
+                    command != written
+                    or now - written_time >= self._config.command_refresh_period):
+                if self._write(client, command):
+                    written, written_time = command, now
+            self._read(client)

@@ -1,0 +1,224 @@
+"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b).
+
+The controller diagram connects to the same exported ports as on MakeGraspStation, so it
+runs unchanged on either:
+
+  inputs:  arm.desired_state (12: q [rad], v [rad/s]), gripper.command (3: rPR, rSP, rFR)
+  outputs: arm.position_measured (6), arm.velocity_measured (6), arm.torque_measured (6),
+           gripper.status (8, robotiq_units order),
+           tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N),
+           tactile.left_pad_acceleration (3, m/s^2), tactile.right_pad_acceleration (3)
+  hardware only:
+           fault (abstract tuple of DeviceFault): every fault seen (FaultLatch), empty
+               while all is well; device_fault (abstract str): the same as text, ""
+               while all is well (the state machine's `device_fault` input);
+               stop (1): 1 once there is any fault;
+           arm.commanded_state (12): positions and the joint velocities sent to the arm;
+           {arm,gripper,tactile}.time_measured (1), tactile.stale (1), tactile.zeroing (1).
+
+Inside: the Jaco on LCM (AddJacoLcmDriver: JacoVelocityTracker -> KINOVA_JACO_COMMAND at
+100 Hz, KINOVA_JACO_STATUS -> measured state), the Robotiq 2F-85 on Modbus RTU
+(RobotiqDriver on a RobotiqModbusClient thread), the myRIO tactile stream
+(TactileSerialReceiver on a TactileSerialReader thread), the DeviceWatchdog and a
+FaultLatch whose `stop` makes the tracker hold the arm still (zero joint velocity). The
+tactile and gripper data also go out on the bus (TEGRASP_TACTILE, TEGRASP_GRIPPER;
+device_log_messages.py), so a bus log holds everything the controller saw.
+
+The station owns the device threads: use it as a context manager (or call close()), and
+call `wait_until_ready()` before the Simulator's Initialize(), so that the controller
+starts from the arm's measured pose. Run the Simulator at real-time rate 1.
+"""
+
+import time
+
+from pydrake.lcm import DrakeLcm
+from pydrake.systems.framework import Diagram, DiagramBuilder
+from pydrake.systems.lcm import LcmInterfaceSystem, LcmPublisherSystem
+from serial import SerialException
+
+from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.hardware.device_log_messages import (
+    GRIPPER_CHANNEL, GRIPPER_PUBLISH_PERIOD, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
+    GripperStatusSender, TactileStatusSender)
+from tegrasp_drake.hardware.fault_latch import FaultLatch
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL
+from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
+from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
+from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError, RobotiqModbusClient
+from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration, TactileCalibration
+from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
+from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
+from tegrasp_drake.hardware.watchdog import DeviceWatchdog
+from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
+
+
+class HardwareNotReadyError(RuntimeError):
+    """A device did not come up; the message names it and where it was looked for."""
+
+
+class HardwareStation(Diagram):
+    """The hardware interface Diagram (module docstring). Build with MakeHardwareStation."""
+
+    def __init__(self, config: HardwareStationConfig, *, lcm: DrakeLcm | None = None):
+        super().__init__()
+        self._config = config
+        self._lcm = lcm or DrakeLcm(config.arm.lcm_url)
+        self._gripper_client = None
+        self._tactile_reader = None
+        try:
+            self._open_devices()
+            self._build()
+        except BaseException:
+            self.close()
+            raise
+
+    @property
+    def lcm(self) -> DrakeLcm:
+        return self._lcm
+
+    @property
+    def config(self) -> HardwareStationConfig:
+        return self._config
+
+    @property
+    def gripper_client(self) -> RobotiqModbusClient:
+        return self._gripper_client
+
+    @property
+    def tactile_reader(self) -> TactileSerialReader:
+        return self._tactile_reader
+
+    def _open_devices(self):
+        config = self._config
+        self._gripper_client = RobotiqModbusClient(config.gripper).start()
+        try:
+            self._tactile_reader = TactileSerialReader(
+                config.tactile.port, baudrate=config.tactile.baudrate).start()
+        except (SerialException, OSError) as e:
+            raise HardwareNotReadyError(
+                f"tactile: cannot open the myRIO serial port {config.tactile.port}: {e}"
+            ) from None
+
+    def _build(self):
+        config = self._config
+        builder = DiagramBuilder()
+        builder.AddNamedSystem("lcm", LcmInterfaceSystem(self._lcm))
+
+        # Arm.
+        jaco = AddJacoLcmDriver(builder, lcm=self._lcm, tracker_config=config.arm.tracker)
+        builder.ExportInput(jaco.tracker.GetInputPort("desired_state"), "arm.desired_state")
+        for name in ("position_measured", "velocity_measured", "torque_measured",
+                     "time_measured"):
+            builder.ExportOutput(jaco.status_receiver.GetOutputPort(name), f"arm.{name}")
+        builder.ExportOutput(jaco.tracker.GetOutputPort("commanded_state"),
+                             "arm.commanded_state")
+        self._status_subscriber = jaco.status_subscriber
+
+        # Gripper.
+        gripper = builder.AddNamedSystem("gripper_driver", RobotiqDriver(
+            self._gripper_client, stale_timeout=config.watchdog.gripper_timeout))
+        builder.ExportInput(gripper.GetInputPort("command"), "gripper.command")
+        builder.ExportOutput(gripper.GetOutputPort("status"), "gripper.status")
+        builder.ExportOutput(gripper.GetOutputPort("time_measured"), "gripper.time_measured")
+
+        # Tactile pads.
+        calibration = (LoadTactileCalibration(config.tactile.calibration_file)
+                       if config.tactile.calibration_file else TactileCalibration())
+        tactile = builder.AddNamedSystem("tactile_receiver", TactileSerialReceiver(
+            self._tactile_reader, calibration=calibration,
+            stale_timeout=config.tactile.stale_timeout, max_backlog=config.tactile.max_backlog))
+        for finger in FINGER_NAMES:
+            for signal in ("taxel_forces", "pad_acceleration"):
+                builder.ExportOutput(tactile.GetOutputPort(f"{finger}_{signal}"),
+                                     f"tactile.{finger}_{signal}")
+        for name in ("time_measured", "stale", "zeroing"):
+            builder.ExportOutput(tactile.GetOutputPort(name), f"tactile.{name}")
+
+        # Watchdog and faults; any fault holds the arm still.
+        watchdog = builder.AddNamedSystem("watchdog", DeviceWatchdog(
+            config.watchdog.timeouts(), startup_grace=config.watchdog.startup_grace))
+        builder.Connect(jaco.status_receiver.GetOutputPort("time_measured"),
+                        watchdog.GetInputPort("arm_time_measured"))
+        builder.Connect(gripper.GetOutputPort("time_measured"),
+                        watchdog.GetInputPort("gripper_time_measured"))
+        builder.Connect(tactile.GetOutputPort("time_measured"),
+                        watchdog.GetInputPort("tactile_time_measured"))
+        faults = builder.AddNamedSystem("fault_latch", FaultLatch(["watchdog", "gripper"]))
+        builder.Connect(watchdog.GetOutputPort("fault"), faults.GetInputPort("watchdog_fault"))
+        builder.Connect(gripper.GetOutputPort("fault"), faults.GetInputPort("gripper_fault"))
+        builder.Connect(faults.GetOutputPort("stop"), jaco.tracker.GetInputPort("stop"))
+        builder.ExportOutput(faults.GetOutputPort("fault"), "fault")
+        builder.ExportOutput(faults.GetOutputPort("message"), "device_fault")
+        builder.ExportOutput(faults.GetOutputPort("stop"), "stop")
+
+        # Device data on the bus.
+        tactile_sender = builder.AddNamedSystem("tactile_status_sender", TactileStatusSender())
+        for name in ("left_taxel_forces", "right_taxel_forces", "left_pad_acceleration",
+                     "right_pad_acceleration", "time_measured", "stale", "zeroing",
+                     "arrival_time"):
+            builder.Connect(tactile.GetOutputPort(name), tactile_sender.GetInputPort(name))
+        gripper_sender = builder.AddNamedSystem("gripper_status_sender", GripperStatusSender())
+        builder.ConnectInput("gripper.command", gripper_sender.GetInputPort("command"))
+        builder.Connect(gripper.GetOutputPort("status"), gripper_sender.GetInputPort("status"))
+        builder.Connect(gripper.GetOutputPort("time_measured"),
+                        gripper_sender.GetInputPort("time_measured"))
+        for sender, channel, lcm_type, period in (
+                (tactile_sender, TACTILE_CHANNEL, lcmt_tegrasp_tactile, TACTILE_PUBLISH_PERIOD),
+                (gripper_sender, GRIPPER_CHANNEL, lcmt_tegrasp_gripper, GRIPPER_PUBLISH_PERIOD)):
+            publisher = builder.AddNamedSystem(f"{channel.lower()}_publisher",
+                                               LcmPublisherSystem.Make(
+                                                   channel=channel, lcm_type=lcm_type,
+                                                   lcm=self._lcm, publish_period=period))
+            builder.Connect(sender.get_output_port(), publisher.get_input_port())
+
+        builder.BuildInto(self)
+        self.set_name("hardware_station")
+
+    def wait_until_ready(self, timeout: float | None = None):
+        """Blocks (before the Simulator starts, never inside it) until the arm's status has
+        arrived, the gripper's activation is complete and a tactile frame has arrived;
+        raises HardwareNotReadyError naming what is missing."""
+        timeout = self._config.ready_timeout if timeout is None else timeout
+        deadline = time.monotonic() + timeout
+        heard = [False]
+        self._lcm.Subscribe(JACO_STATUS_CHANNEL, lambda data: heard.__setitem__(0, True))
+        while not heard[0] and time.monotonic() < deadline:
+            self._lcm.HandleSubscriptions(10)
+        if not heard[0]:
+            raise HardwareNotReadyError(
+                f"arm: no lcmt_jaco_status on {JACO_STATUS_CHANNEL} at "
+                f"{self._lcm.get_lcm_url()} within {timeout:g} s (is the Kinova driver, or "
+                "`tegrasp emulate jaco`, running on that URL?)")
+        try:
+            self._gripper_client.wait_until_active(max(deadline - time.monotonic(), 0.0))
+        except RobotiqActivationError as e:
+            raise HardwareNotReadyError(f"gripper: {e}") from None
+        while self._tactile_reader.counters().decoder.frames == 0:
+            if time.monotonic() > deadline:
+                raise HardwareNotReadyError(
+                    f"tactile: no valid frame on {self._tactile_reader.port} within "
+                    f"{timeout:g} s ({self._tactile_reader.counters()})")
+            time.sleep(0.005)
+
+    def close(self):
+        """Stops the device threads and closes their ports (idempotent)."""
+        if self._tactile_reader is not None:
+            self._tactile_reader.close()
+            self._tactile_reader = None
+        if self._gripper_client is not None:
+            self._gripper_client.close()
+            self._gripper_client = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def MakeHardwareStation(config: HardwareStationConfig, *,
+                        lcm: DrakeLcm | None = None) -> HardwareStation:
+    """The hardware interface for `config` (module docstring); `lcm` overrides the config's
+    URL (e.g. a shared memq:// instance in tests)."""
+    return HardwareStation(config, lcm=lcm)

@@ -1,0 +1,123 @@
+"""Per-taxel normal force from a hydroelastic contact surface: the pure numpy core.
+
+A contact face's normal force on the pad is the integral of its pressure over the face's
+projection onto the pad plane (pressure x area x |cos| of the angle between the face normal
+and the pad's z). The pressure is linear over each face, and the taxel cells are a
+rectangular grid, so the force each cell takes from each face triangle has a closed form:
+the pattern is exact however large the faces are. (A compliant box pad gives faces a few cm
+across, larger than a taxel, see DRAKE-NOTES; putting a face, or any fixed piece of it, into
+the taxel under its centroid gives an uneven pattern under an even press.)
+
+Method. For a triangle T with linear pressure f, the cumulative integral
+F(a, b) = integral of f over T intersected with {x < a, y < b} is summed from T's edges:
+each edge sweeps the column between y = 0 and the edge, cut off at y = b, and weighted by
+f; the columns under T's upper edges count positive, those under its lower edges negative,
+so what remains is T below b (Green's theorem). Restricting the sweep to x < a gives
+F(a, b). Along an edge the swept integral g(x) = integral from 0 to min(y_edge(x), b) of
+f(x, y) dy is quadratic in x on each side of the point where the edge crosses y = b, so the
+midpoint rule with its curvature term integrates it exactly. A cell's force is then the
+inclusion-exclusion of F at its corners.
+
+Points beyond the pad's edge count to the nearest edge taxel, as `taxel_index` does: the
+outer cells are open toward the outside.
+"""
+
+import numpy as np
+
+from tegrasp_drake.rig.taxel_layout import CELL_X, CELL_Y, COLUMNS, PAD_LENGTH, PAD_WIDTH, ROWS
+
+_OPEN_EDGE = 1.0  # m; stands for "unbounded" on a pad's outer cell edges (pads are cm wide)
+# The upper edges of the columns (along x) and rows (along y), the last one open.
+COLUMN_UPPER_EDGES = np.append(-PAD_WIDTH / 2 + CELL_X * np.arange(1, COLUMNS), _OPEN_EDGE)
+ROW_UPPER_EDGES = np.append(-PAD_LENGTH / 2 + CELL_Y * np.arange(1, ROWS), _OPEN_EDGE)
+# A projected triangle this much flatter than its edges are long is treated as a segment
+# (zero area): its pressure gradient in the pad plane is undefined.
+_FLAT_TRIANGLE = 1e-9
+
+
+def polygon_fan_triangles(face_data) -> np.ndarray:
+    """Vertex indices (T, 3) of a fan triangulation of a flat polygon list.
+
+    `face_data` is Drake's PolygonSurfaceMesh.face_data(): [n, v0 .. v(n-1), n, ...].
+    """
+    data = np.asarray(face_data, dtype=np.intp)
+    starts, counts = [], []
+    k = 0
+    while k < data.size:  # walks the face headers only; the triangles are built vectorised
+        starts.append(k + 1)
+        counts.append(data[k])
+        k += data[k] + 1
+    starts, counts = np.asarray(starts, np.intp), np.asarray(counts, np.intp)
+    fans = counts - 2
+    face_of_triangle = np.repeat(np.arange(starts.size), fans)
+    first = np.cumsum(fans) - fans
+    corner = np.arange(fans.sum()) - np.repeat(first, fans) + 1
+    origin = data[starts[face_of_triangle]]
+    return np.column_stack([origin, data[starts[face_of_triangle] + corner],
+                            data[starts[face_of_triangle] + corner + 1]])
+
+
+def cumulative_pressure_integrals(xy: np.ndarray, pressure: np.ndarray, x_edges: np.ndarray,
+                                  y_edges: np.ndarray) -> np.ndarray:
+    """F[t, i, j] = integral of triangle t's linear pressure over t and {x < x_edges[i],
+    y < y_edges[j]} [N when pressure is in Pa and lengths in m].
+
+    xy: triangle corners (T, 3, 2); pressure: the pressure at them (T, 3). Either
+    orientation of a triangle gives a positive area. See the module docstring for the method.
+    """
+    origin = xy[:, :1]
+    corner = xy - origin  # coordinates relative to each triangle's first corner
+    e1, e2 = corner[:, 1], corner[:, 2]
+    twice_area = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]  # signed
+    flat = np.abs(twice_area) <= _FLAT_TRIANGLE * (np.sum(e1 * e1, 1) + np.sum(e2 * e2, 1))
+    safe = np.where(flat, 1.0, twice_area)
+    dp1, dp2 = pressure[:, 1] - pressure[:, 0], pressure[:, 2] - pressure[:, 0]
+    # The pressure plane f(x, y) = p0 + fx x + fy y, shaped (T, 1, 1, 1) to broadcast over
+    # (triangle, edge, x edge, y edge).
+    fx = np.where(flat, 0.0, (dp1 * e2[:, 1] - dp2 * e1[:, 1]) / safe)[:, None, None, None]
+    fy = np.where(flat, 0.0, (dp2 * e1[:, 0] - dp1 * e2[:, 0]) / safe)[:, None, None, None]
+    p0 = pressure[:, :1, None, None]
+    # Edges P -> Q (corner k to k + 1) as lines y = c + slope x, shaped (T, 3, 1, 1).
+    start, end = corner, np.roll(corner, -1, axis=1)
+    dx = end[:, :, 0] - start[:, :, 0]
+    vertical = dx == 0.0  # sweeps nothing
+    slope = np.where(vertical, 0.0, (end[:, :, 1] - start[:, :, 1]) / np.where(vertical, 1.0, dx))
+    c = (start[:, :, 1] - slope * start[:, :, 0])[:, :, None, None]
+    slope = slope[:, :, None, None]
+    curvature = (2.0 * fx * slope + fy * slope * slope) / 24.0  # g'' / 24 on the edge
+    a = (x_edges[None, :] - origin[:, :, 0])[:, None, :, None]
+    b = (y_edges[None, :] - origin[:, :, 1])[:, None, None, :]
+    # The sweep runs from x_P to x_Q, cut at x = a, split where the edge crosses y = b.
+    x0 = np.minimum(start[:, :, 0, None, None], a)
+    x2 = np.minimum(end[:, :, 0, None, None], a)
+    level = slope == 0.0
+    crossing = (b - c) / np.where(level, 1.0, slope)
+    x1 = np.where(level, x0, np.clip(crossing, np.minimum(x0, x2), np.maximum(x0, x2)))
+
+    def swept(u, v):
+        """Directed integral of g from u to v, exact for g quadratic on [u, v]."""
+        width, middle = v - u, 0.5 * (u + v)
+        y = c + slope * middle
+        on_edge = y < b  # else g is cut off at y = b (linear in x, no curvature term)
+        y = np.minimum(y, b)
+        return width * ((p0 + fx * middle) * y + 0.5 * fy * y * y
+                        + np.where(on_edge, curvature * width * width, 0.0))
+
+    edge_sums = (swept(x0, x1) + swept(x1, x2)).sum(axis=1)
+    return -np.sign(twice_area)[:, None, None] * edge_sums
+
+
+def taxel_normal_forces(p_PV: np.ndarray, pressure_V: np.ndarray,
+                        triangles: np.ndarray) -> np.ndarray:
+    """Normal force on each of the 12 taxels [N] from one contact surface, exactly.
+
+    p_PV: vertex positions in the pad frame (V, 3) [m]; pressure_V: pressure at each vertex
+    [Pa]; triangles: (T, 3) vertex indices. Each triangle's pressure is integrated over its
+    projection onto the pad plane, cell by cell; a triangle's share of a cell is clipped at
+    zero (only rounding can make it negative when pressures are non-negative).
+    """
+    triangles = np.asarray(triangles, dtype=np.intp).reshape(-1, 3)
+    cumulative = cumulative_pressure_integrals(p_PV[triangles][:, :, :2], pressure_V[triangles],
+                                               COLUMN_UPPER_EDGES, ROW_UPPER_EDGES)
+    cells = np.diff(np.diff(cumulative, axis=1, prepend=0.0), axis=2, prepend=0.0)  # (T, col, row)
+    return np.maximum(cells, 0.0).sum(axis=0).T.reshape(ROWS * COLUMNS)

@@ -1,0 +1,71 @@
+"""Adds the scenario's object to a plant: a primitive shape written as SDF, or a model file.
+
+Primitive objects are rigid hydroelastic bodies (the pads and the table are compliant), with
+their frame O at the centre of the base face, z up, and the inertia of a uniform solid.
+"""
+
+import numpy as np
+from pydrake.multibody.tree import ModelInstanceIndex
+
+from tegrasp_drake.modelgen.sdf_text import box_inertia, inertial_text
+from tegrasp_drake.rig.objects import ObjectConfig
+
+OBJECT_MODEL_NAME = "object"
+OBJECT_BODY_NAME = "object"
+
+
+def _geometry(config: ObjectConfig) -> str:
+    if config.shape == "box":
+        return "<box><size>{:g} {:g} {:g}</size></box>".format(*config.size)
+    diameter, height = config.size
+    return f"<cylinder><radius>{diameter / 2:g}</radius><length>{height:g}</length></cylinder>"
+
+
+def _inertia(config: ObjectConfig) -> np.ndarray:
+    if config.shape == "box":
+        return box_inertia(config.mass, config.size)
+    radius, height = config.size[0] / 2, config.size[1]
+    side = config.mass * (3 * radius ** 2 + height ** 2) / 12
+    return np.diag([side, side, config.mass * radius ** 2 / 2])
+
+
+def object_sdf(config: ObjectConfig) -> str:
+    """SDF text of a primitive (box or cylinder) object."""
+    half_height = config.height() / 2
+    color = " ".join(f"{c:g}" for c in config.color)
+    geometry = _geometry(config)
+    mu = f"{config.friction:g}"
+    return (
+        '<?xml version="1.0"?><sdf version="1.9">'
+        f'<model name="{OBJECT_MODEL_NAME}"><link name="{OBJECT_BODY_NAME}">'
+        f"{inertial_text(config.mass, (0, 0, half_height), _inertia(config))}"
+        f'<collision name="collision"><pose>0 0 {half_height:g} 0 0 0</pose>'
+        f"<geometry>{geometry}</geometry><drake:proximity_properties><drake:rigid_hydroelastic/>"
+        "<drake:mesh_resolution_hint>0.005</drake:mesh_resolution_hint>"
+        f"<drake:mu_dynamic>{mu}</drake:mu_dynamic><drake:mu_static>{mu}</drake:mu_static>"
+        "</drake:proximity_properties></collision>"
+        f'<visual name="visual"><pose>0 0 {half_height:g} 0 0 0</pose>'
+        f"<geometry>{geometry}</geometry><material><diffuse>{color}</diffuse></material>"
+        "</visual></link></model></sdf>")
+
+
+def add_object(parser, config: ObjectConfig) -> ModelInstanceIndex:
+    """Adds the object to the parser's plant; returns its model instance."""
+    if config.shape == "file":
+        if config.file.startswith("package://"):
+            instances = parser.AddModels(url=config.file)
+        else:
+            instances = parser.AddModels(file_name=config.file)
+    else:
+        instances = parser.AddModelsFromString(object_sdf(config), "sdf")
+    if len(instances) != 1:
+        raise ValueError(f"object.file '{config.file}' must hold exactly one model")
+    return instances[0]
+
+
+def object_body(plant, instance):
+    """The object's single body."""
+    bodies = plant.GetBodyIndices(instance)
+    if len(bodies) != 1:
+        raise ValueError(f"the object model must have exactly one body, it has {len(bodies)}")
+    return plant.get_body(bodies[0])

@@ -1,0 +1,113 @@
+"""SimRobotiqDriver: the simulated twin of the Robotiq 2F-85's own controller.
+
+It takes the same command bytes as the real gripper (rPR, rSP, rFR) and reports the same
+status bytes (robotiq_units.py). Inside, the finger coordinate q (half the opening, m) follows
+a speed- and acceleration-limited reference toward the requested position; the plant's
+implicit PD (SAP) tracks it. The grip force limit is imposed the way a current-limited motor
+does it: the PD set-point is kept within 2 F / kp of the measured finger position, so a
+blocked finger pushes with at most F on each pad (the right finger mimics the left one, so
+the single actuator carries 2 F). A finger that stops short of its goal reports an object.
+"""
+
+import numpy as np
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.rig import robotiq_units as ru
+
+_REF_Q, _REF_V, _REF_A, _GOAL, _HALF_SPEED, _FORCE, _POSITION_BYTE, _OBJECT, _T = range(9)
+
+
+def reference_step(q: float, v: float, goal: float, max_speed: float, acceleration: float,
+                   dt: float) -> float:
+    """The constant acceleration [m/s^2] over the next dt that moves (q, v) toward goal
+    without exceeding max_speed and while still able to stop at the goal."""
+    distance = goal - q
+    stopping_speed = np.sqrt(2.0 * acceleration * abs(distance))
+    target_v = np.sign(distance) * min(max_speed, stopping_speed)
+    if abs(distance) < 1e-6:
+        target_v = 0.0
+    return float(np.clip((target_v - v) / dt, -acceleration, acceleration))
+
+
+def object_status(q: float, v: float, q_ref: float, goal: float, stall_speed: float) -> int:
+    """gOBJ from the finger's measured motion (see ObjectStatus)."""
+    if abs(q - goal) < 5e-4:
+        return int(ru.ObjectStatus.AT_REQUESTED_POSITION)
+    if abs(v) < stall_speed and abs(q_ref - q) > 1e-3:
+        closing = goal < q
+        return int(ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING if closing
+                   else ru.ObjectStatus.STOPPED_ON_CONTACT_OPENING)
+    return int(ru.ObjectStatus.MOVING)
+
+
+class SimRobotiqDriver(LeafSystem):
+    """Input ports: command (3: rPR, rSP, rFR bytes), finger_state (4: q_left, q_right,
+    v_left, v_right from the plant's gripper instance). Output ports: desired_state (2: q, v
+    of the actuated left finger, to the plant), status (8 bytes, robotiq_units order)."""
+
+    def __init__(self, *, config, initial_opening: float = ru.STROKE_M):
+        super().__init__()
+        self._config = config
+        self._dt = 1.0 / config.update_rate_hz
+        self._command = self.DeclareVectorInputPort("command", ru.COMMAND_SIZE)
+        self._finger_state = self.DeclareVectorInputPort("finger_state", 4)
+        q0 = initial_opening / 2
+        initial = np.zeros(9)
+        initial[[_REF_Q, _GOAL]] = q0
+        initial[_HALF_SPEED] = ru.SPEED_MIN_MPS / 2
+        initial[_FORCE] = ru.FORCE_MIN_N
+        initial[_POSITION_BYTE] = ru.position_byte_from_opening(initial_opening)
+        initial[_OBJECT] = int(ru.ObjectStatus.AT_REQUESTED_POSITION)
+        self._state = self.DeclareDiscreteState(initial)
+        self.DeclarePeriodicDiscreteUpdateEvent(self._dt, 0.0, self._update)
+        state_ticket = {self.discrete_state_ticket(self._state), self.time_ticket(),
+                        self._finger_state.ticket()}
+        self.DeclareVectorOutputPort("desired_state", 2, self._calc_desired_state,
+                                     prerequisites_of_calc=state_ticket)
+        self.DeclareVectorOutputPort(
+            "status", ru.STATUS_SIZE, self._calc_status,
+            prerequisites_of_calc={self.discrete_state_ticket(self._state),
+                                   self._finger_state.ticket()})
+
+    def _update(self, context, discrete_state):
+        s = context.get_discrete_state(self._state).value().copy()
+        t = context.get_time()
+        # Advance the reference to now with the acceleration chosen at the last update.
+        h = t - s[_T]
+        s[_REF_Q] += s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
+        s[_REF_V] += s[_REF_A] * h
+        s[_T] = t
+        command = self._command.Eval(context)
+        s[_POSITION_BYTE] = np.clip(np.round(command[ru.COMMAND_POSITION]), 0, 255)
+        s[_GOAL] = ru.opening_from_position_byte(s[_POSITION_BYTE]) / 2
+        s[_HALF_SPEED] = ru.speed_from_byte(command[ru.COMMAND_SPEED]) / 2
+        s[_FORCE] = ru.force_from_byte(command[ru.COMMAND_FORCE])
+        s[_REF_A] = reference_step(s[_REF_Q], s[_REF_V], s[_GOAL], s[_HALF_SPEED],
+                                   self._config.acceleration, self._dt)
+        q, _, v, _ = self._finger_state.Eval(context)
+        s[_OBJECT] = object_status(q, v, s[_REF_Q], s[_GOAL], self._config.stall_speed)
+        discrete_state.set_value(self._state, s)
+
+    def _calc_desired_state(self, context, output):
+        s = context.get_discrete_state(self._state).value()
+        h = context.get_time() - s[_T]
+        q_ref = s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
+        v_ref = s[_REF_V] + s[_REF_A] * h
+        q = self._finger_state.Eval(context)[0]
+        band = 2.0 * s[_FORCE] / self._config.position_gain
+        output.SetFromVector([q + np.clip(q_ref - q, -band, band), v_ref])
+
+    def _calc_status(self, context, output):
+        s = context.get_discrete_state(self._state).value()
+        q = self._finger_state.Eval(context)[0]
+        band = 2.0 * s[_FORCE] / self._config.position_gain
+        force = self._config.position_gain * min(abs(s[_REF_Q] - q), band) / 2.0
+        status = np.zeros(ru.STATUS_SIZE)
+        status[ru.STATUS_ACT] = 1
+        status[ru.STATUS_GTO] = 1
+        status[ru.STATUS_STA] = int(ru.ActivationStatus.ACTIVE)
+        status[ru.STATUS_OBJ] = s[_OBJECT]
+        status[ru.STATUS_PR] = s[_POSITION_BYTE]
+        status[ru.STATUS_PO] = ru.position_byte_from_opening(2.0 * q)
+        status[ru.STATUS_CU] = np.clip(np.round(force / ru.FORCE_MAX_N * 255.0), 0, 255)
+        output.SetFromVector(status)

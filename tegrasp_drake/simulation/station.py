@@ -1,0 +1,177 @@
+"""MakeGraspStation: the simulated hardware of the paper (Sec. III-A, Fig. 4) as one Diagram.
+
+A JACO2 arm on a table, the tactile 2F-85-like gripper on its flange, the scenario's object
+on its marker (plus its offset), and the sensors: both pads' taxel arrays and vibration
+films. The exported ports are those of the hardware interface, so a controller cannot tell
+the two apart:
+
+  inputs:  arm.desired_state (12: q [rad], v [rad/s]), gripper.command (3: rPR, rSP, rFR)
+  outputs: arm.position_measured (6), arm.velocity_measured (6), arm.torque_measured (6),
+           gripper.status (8, robotiq_units order),
+           tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N),
+           tactile.left_pad_acceleration (3, m/s^2), tactile.right_pad_acceleration (3)
+  simulation only (evaluation): object.state (13: quaternion wxyz, p_WO, w_WO, v_WO),
+           tactile.true_taxel_forces (24, N), contact_results, body_poses, query_object
+
+The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
+their joints track `arm.desired_state` with the plant's implicit PD.
+"""
+
+import math
+
+import numpy as np
+from pydrake.math import RigidTransform, RollPitchYaw
+from pydrake.multibody.plant import AddMultibodyPlant
+from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import Demultiplexer
+from pydrake.visualization import ApplyVisualizationConfig, VisualizationConfig
+
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRIPPER_URL, R_WG_SIDE_GRASP,
+                                          X_FLANGE_GRIPPER, make_arm_control_plant,
+                                          solve_grasp_frame_ik)
+from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE
+from tegrasp_drake.simulation.object_model import add_object, object_body
+from tegrasp_drake.simulation.object_force_pulse import ObjectForcePulse
+from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
+from tegrasp_drake.simulation.pad_vibration_sensor import add_pad_vibration_sensor
+from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
+from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
+
+TABLE_URL = "package://tegrasp/table/table.sdf"
+ARM_JOINTS = 6
+
+
+def object_pose_on_table(scenario) -> RigidTransform:
+    """X_WO of the object resting on its marker plus the scenario's offset and yaw."""
+    x, y = np.add(scenario.expected_object_xy, scenario.object_offset)
+    return RigidTransform(RollPitchYaw(0, 0, math.radians(scenario.object_yaw_deg)),
+                          [x, y, 0.0])
+
+
+def initial_arm_positions(scenario) -> np.ndarray:
+    """Joint angles [rad] that put the grasp frame at the scenario's start pose."""
+    X_WG = RigidTransform(R_WG_SIDE_GRASP, scenario.arm.initial_gripper_xyz)
+    return solve_grasp_frame_ik(make_arm_control_plant(), X_WG)
+
+
+def _set_pd_gains(plant, instance, kp, kd):
+    # GetJointActuatorIndices(instance) is empty before Finalize(): walk all actuators.
+    actuators = [plant.get_joint_actuator(JointActuatorIndex(i))
+                 for i in range(plant.num_actuators())]
+    for actuator in actuators:
+        if actuator.model_instance() == instance:
+            actuator.set_controller_gains(PdControllerGains(p=kp, d=kd))
+
+
+def _pad_geometries(plant, scene_graph, gripper):
+    inspector = scene_graph.model_inspector()
+    pads = {}
+    for finger in FINGER_NAMES:
+        body = plant.GetBodyByName(f"{finger}_finger", gripper)
+        (geometry_id,) = [g for g in plant.GetCollisionGeometriesForBody(body)
+                          if inspector.GetName(g).endswith("pad")]
+        frame = plant.GetFrameByName(f"{finger}_pad", gripper)
+        pads[finger] = PadGeometry(geometry_id, body.index(),
+                                   frame.GetFixedPoseInBodyFrame())
+    return pads
+
+
+def _add_slip_vibration(builder, plant, pads, body, taxels, config):
+    """The pads' texture vibration under slip, or None when the texture is switched off."""
+    if config.slip_texture_height_m <= 0.0:
+        return None
+    slip = builder.AddNamedSystem("pad_slip_vibration", PadSlipVibration(
+        pads=pads, object_body_index=body.index(), config=config))
+    builder.Connect(plant.get_body_poses_output_port(), slip.GetInputPort("body_poses"))
+    builder.Connect(plant.get_body_spatial_velocities_output_port(),
+                    slip.GetInputPort("body_spatial_velocities"))
+    builder.Connect(taxels.GetOutputPort("true_taxel_forces"),
+                    slip.GetInputPort("true_taxel_forces"))
+    return slip
+
+
+def _add_disturbance(builder, plant, body, config):
+    """The scenario's hit on the object, if it has one."""
+    if config.hit_time_s < 0.0:
+        return
+    pulse = builder.AddNamedSystem("object_force_pulse", ObjectForcePulse(
+        body_index=body.index(), start_s=config.hit_time_s, duration_s=config.hit_duration_s,
+        force_W=config.hit_force_n))
+    builder.Connect(pulse.get_output_port(), plant.get_applied_spatial_force_input_port())
+
+
+def MakeGraspStation(scenario, *, meshcat=None):
+    """Builds the simulated station Diagram for `scenario` (see the module docstring)."""
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)
+    parser = paths.make_parser(plant)
+    (arm,) = parser.AddModels(url=ARM_URL)
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
+    (gripper,) = parser.AddModels(url=GRIPPER_URL)
+    plant.WeldFrames(plant.GetFrameByName("flange", arm), plant.GetFrameByName("base", gripper),
+                     X_FLANGE_GRIPPER)
+    (table,) = parser.AddModels(url=TABLE_URL)
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
+    obj = add_object(parser, scenario.object)
+    plant.set_gravity_enabled(arm, False)
+    plant.set_gravity_enabled(gripper, False)
+    _set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
+    _set_pd_gains(plant, gripper, scenario.gripper.position_gain, scenario.gripper.damping_gain)
+    plant.Finalize()
+
+    plant.SetDefaultPositions(arm, initial_arm_positions(scenario))
+    plant.SetDefaultPositions(gripper, [HALF_STROKE, HALF_STROKE])
+    plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), object_pose_on_table(scenario))
+
+    # Arm: the desired state goes straight to the plant's PD; measured state is split.
+    builder.ExportInput(plant.get_desired_state_input_port(arm), "arm.desired_state")
+    arm_state = builder.AddNamedSystem("arm_state_demux", Demultiplexer([ARM_JOINTS] * 2))
+    builder.Connect(plant.get_state_output_port(arm), arm_state.get_input_port())
+    builder.ExportOutput(arm_state.get_output_port(0), "arm.position_measured")
+    builder.ExportOutput(arm_state.get_output_port(1), "arm.velocity_measured")
+    builder.ExportOutput(plant.get_net_actuation_output_port(arm), "arm.torque_measured")
+
+    # Gripper: the simulated 2F-85 controller.
+    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=scenario.gripper))
+    builder.Connect(plant.get_state_output_port(gripper), driver.GetInputPort("finger_state"))
+    builder.Connect(driver.GetOutputPort("desired_state"),
+                    plant.get_desired_state_input_port(gripper))
+    builder.ExportInput(driver.GetInputPort("command"), "gripper.command")
+    builder.ExportOutput(driver.GetOutputPort("status"), "gripper.status")
+
+    # Tactile pads: taxels and vibration films.
+    pads = _pad_geometries(plant, scene_graph, gripper)
+    taxels = builder.AddNamedSystem(
+        "tactile_pads", TactilePads(pads=pads, config=scenario.tactile,
+                                    seed=scenario.random_seed))
+    builder.Connect(plant.get_contact_results_output_port(),
+                    taxels.GetInputPort("contact_results"))
+    builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
+    slip = _add_slip_vibration(builder, plant, pads, object_body(plant, obj), taxels,
+                               scenario.vibration)
+    for finger in FINGER_NAMES:
+        builder.ExportOutput(taxels.GetOutputPort(f"{finger}_taxel_forces"),
+                             f"tactile.{finger}_taxel_forces")
+        vibration = add_pad_vibration_sensor(
+            builder, plant, plant.get_body(pads[finger].body_index), pads[finger].X_BP,
+            scenario.vibration, f"{finger}_pad_vibration",
+            slip_vibration=slip.GetOutputPort(f"{finger}_slip_vibration") if slip else None)
+        builder.ExportOutput(vibration, f"tactile.{finger}_pad_acceleration")
+    builder.ExportOutput(taxels.GetOutputPort("true_taxel_forces"), "tactile.true_taxel_forces")
+
+    _add_disturbance(builder, plant, object_body(plant, obj), scenario.disturbance)
+
+    # Ground truth for evaluation.
+    builder.ExportOutput(plant.get_state_output_port(obj), "object.state")
+    builder.ExportOutput(plant.get_contact_results_output_port(), "contact_results")
+    builder.ExportOutput(plant.get_body_poses_output_port(), "body_poses")
+    builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
+
+    if meshcat is not None:
+        ApplyVisualizationConfig(VisualizationConfig(), builder, meshcat=meshcat)
+    diagram = builder.Build()
+    diagram.set_name("grasp_station")
+    return diagram

@@ -1,0 +1,58 @@
+"""MechanoreceptorChannels: the paper's Eq. 1 (SA) and Eq. 2 (RA) for both fingers.
+
+SA_i = sum over finger i's 12 taxels of the normal force F_z,k [N]          (Eq. 1)
+RA_i = sqrt(a_x^2 + a_y^2 + a_z^2) of finger i's pad vibration [m/s^2]      (Eq. 2)
+"""
+
+import numpy as np
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+
+
+def slowly_adapting(taxel_forces: np.ndarray) -> float:
+    """Eq. 1: the sum of a pad's taxel normal forces [N]."""
+    return float(np.sum(taxel_forces))
+
+
+def rapidly_adapting(acceleration: np.ndarray) -> float:
+    """Eq. 2: the magnitude of a pad's vibration vector [m/s^2]."""
+    return float(np.linalg.norm(acceleration))
+
+
+class MechanoreceptorChannels(LeafSystem):
+    """The four channels SA_left, SA_right, RA_left, RA_right.
+
+    Input ports: left_taxel_forces (12, N), right_taxel_forces (12, N),
+    left_pad_acceleration (3, m/s^2), right_pad_acceleration (3, m/s^2).
+    Output ports: sa (2: left, right) [N], ra (2) [m/s^2], channels (4, in
+    tegrasp_drake.rig.channels.CHANNEL_NAMES order).
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._taxels = [self.DeclareVectorInputPort(f"{f}_taxel_forces", TAXELS_PER_PAD)
+                        for f in FINGER_NAMES]
+        self._accelerations = [self.DeclareVectorInputPort(f"{f}_pad_acceleration", 3)
+                               for f in FINGER_NAMES]
+        sa_tickets = {p.ticket() for p in self._taxels}
+        ra_tickets = {p.ticket() for p in self._accelerations}
+        self.DeclareVectorOutputPort("sa", 2, self._calc_sa, prerequisites_of_calc=sa_tickets)
+        self.DeclareVectorOutputPort("ra", 2, self._calc_ra, prerequisites_of_calc=ra_tickets)
+        self.DeclareVectorOutputPort("channels", 4, self._calc_channels,
+                                     prerequisites_of_calc=sa_tickets | ra_tickets)
+
+    def _sa(self, context):
+        return [slowly_adapting(p.Eval(context)) for p in self._taxels]
+
+    def _ra(self, context):
+        return [rapidly_adapting(p.Eval(context)) for p in self._accelerations]
+
+    def _calc_sa(self, context, output):
+        output.SetFromVector(self._sa(context))
+
+    def _calc_ra(self, context, output):
+        output.SetFromVector(self._ra(context))
+
+    def _calc_channels(self, context, output):
+        output.SetFromVector(self._sa(context) + self._ra(context))

@@ -1,0 +1,69 @@
+"""Sample rates, window lengths and template resampling for the tactile event windows.
+
+SA channels arrive at the capacitance converter's rate (about 100 Hz, or 1 kHz), RA
+channels at 1 kHz. A window of `window_s` seconds at `rate_hz` holds
+`samples_per_window(window_s, rate_hz)` samples; channels that share a rate are grouped so
+that one periodic update serves all of them.
+"""
+
+import dataclasses
+
+import numpy as np
+
+from tegrasp_drake.rig.channels import RA_CHANNELS, SA_CHANNELS
+
+_INTEGER_TOLERANCE = 1e-9
+
+
+def samples_per_window(window_s: float, rate_hz: float) -> int:
+    """Number of samples in a window of `window_s` [s] at `rate_hz` [Hz].
+
+    Raises ValueError unless the product is a positive integer (0.5 s x 100 Hz = 50).
+    """
+    if not (window_s > 0.0 and rate_hz > 0.0):
+        raise ValueError(f"window_s ({window_s}) and rate_hz ({rate_hz}) must be positive")
+    exact = window_s * rate_hz
+    count = int(round(exact))
+    if count < 2 or abs(exact - count) > _INTEGER_TOLERANCE * max(1.0, exact):
+        raise ValueError(
+            f"a window of {window_s} s at {rate_hz} Hz holds {exact} samples; "
+            "choose a window and rate whose product is an integer of 2 or more")
+    return count
+
+
+@dataclasses.dataclass(frozen=True)
+class RateGroup:
+    """Channels (indices into CHANNEL_NAMES) sampled together at one rate."""
+    rate_hz: float
+    channels: tuple[int, ...]
+    window_length: int  # samples per window
+
+
+def rate_groups(*, sa_rate_hz: float, ra_rate_hz: float,
+                window_s: float) -> tuple[RateGroup, ...]:
+    """One group for all four channels when the rates match, else an SA and an RA group."""
+    if sa_rate_hz == ra_rate_hz:
+        return (RateGroup(sa_rate_hz, SA_CHANNELS + RA_CHANNELS,
+                          samples_per_window(window_s, sa_rate_hz)),)
+    return (RateGroup(sa_rate_hz, SA_CHANNELS, samples_per_window(window_s, sa_rate_hz)),
+            RateGroup(ra_rate_hz, RA_CHANNELS, samples_per_window(window_s, ra_rate_hz)))
+
+
+def resample_window(window: np.ndarray, length: int) -> np.ndarray:
+    """Resample each row of `window` (channels x samples) to `length` samples.
+
+    Each sample is taken as the signal's value over its sampling interval (a zero-order
+    hold, as the live channels are held between samples); every output sample is the mean
+    of that piecewise-constant signal over its own interval. Upsampling repeats values,
+    downsampling averages them (no aliasing of RA bursts), and the area is preserved.
+    """
+    window = np.atleast_2d(np.asarray(window, dtype=float))
+    length_in = window.shape[-1]
+    if length == length_in:
+        return window.copy()
+    edges_in = np.linspace(0.0, 1.0, length_in + 1)
+    edges_out = np.linspace(0.0, 1.0, length + 1)
+    integral = np.concatenate(
+        [np.zeros((window.shape[0], 1)), np.cumsum(window, axis=-1) / length_in], axis=-1)
+    integral_out = np.stack([np.interp(edges_out, edges_in, row) for row in integral])
+    return np.diff(integral_out, axis=-1) * length

@@ -1,0 +1,115 @@
+"""The `sweep` sub-command: options, bad input, reports, benchmark."""
+
+import argparse
+import json
+
+import pytest
+
+from tegrasp_drake.commands import sweep as command
+from tegrasp_drake.experiments.sweep.records import load_records
+
+FAKE = ["--trial-function", "test_sweep_fake_trial:fake_trial", "--no-progress"]
+
+
+def test_register_adds_the_sweep_subcommand():
+    parser = argparse.ArgumentParser(prog="tegrasp")
+    command.register(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(["sweep", "--objects", "box", "--workers", "2"])
+    assert args.func is command.run
+    assert (args.objects, args.workers, args.out) == (["box"], 2, "results/sweep")
+    assert args.trial_function == "tegrasp_drake.experiments.trial:run_trial_from_spec"
+
+
+def test_sweep_writes_records_and_reports(tmp_path, capsys):
+    out = tmp_path / "out"
+    code = command.main(["--objects", "box", "--controllers", "memorized", "heuristic",
+                         "--attempts", "1", "--workers", "2", "--base-seed", "3",
+                         "--out", str(out), *FAKE])
+    assert code == 0
+    records = load_records(out).records
+    assert len(records) == 18
+    assert {r["trial"]["base_seed"] for r in records.values()} == {3}
+    for name in ("table1.md", "table1.csv", "statistics.md", "statistics.json",
+                 "success_maps.png"):
+        assert (out / name).is_file(), name
+    stdout = capsys.readouterr().out
+    assert "sweep: 18 trials, 0 already finished, 18 run now on processes:2" in stdout
+    assert "heuristic thresholds" in (out / "table1.md").read_text()
+
+
+def test_spec_file_with_command_line_overrides(tmp_path):
+    spec = tmp_path / "grid.yaml"
+    spec.write_text("objects: [thin_cylinder]\ncontrollers: [open_loop]\nattempts: 3\n"
+                    "grid: [[0.0, 0.0], [0.0, 0.02]]\n")
+    out = tmp_path / "out"
+    assert command.main(["--spec", str(spec), "--attempts", "2", "--out", str(out),
+                         "--workers", "1", *FAKE]) == 0
+    records = load_records(out).records
+    assert sorted(records) == [f"open_loop/thin_cylinder/m0{j}/a{k}"
+                               for j in range(2) for k in range(2)]
+
+
+def test_trial_errors_give_exit_code_1(tmp_path, capsys):
+    code = command.main(["--objects", "box", "--controllers", "memorized", "--attempts", "2",
+                         "--out", str(tmp_path), "--workers", "2", "--no-progress",
+                         "--trial-function", "test_sweep_fake_trial:failing_fake_trial"])
+    assert code == 1
+    assert "9 trial(s) raised" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["--objects", "box", "teapot"], "field 'objects': unknown object 'teapot'"),
+    (["--controllers", "pid"], "field 'controllers': unknown controller 'pid'"),
+    (["--attempts", "0"], "field 'attempts'"),
+    (["--workers", "0"], "--workers must be at least 1"),
+    (["--benchmark", "--scheduler", "tcp://127.0.0.1:8786"], "drop --scheduler"),
+])
+def test_bad_options_stop_before_any_trial(tmp_path, capsys, arguments, message):
+    out = tmp_path / "out"
+    assert command.main([*arguments, "--out", str(out), *FAKE]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("text, message", [
+    ("grid: []\n", "field 'grid': is empty"),
+    ("grid: {normal_offsets_m: [0.0], stroke_offsets_m: []}\n",
+     "field 'grid.stroke_offsets_m': is empty"),
+    ("grid: [[0.0, zero]]\n", "field 'grid'"),
+    ("objects: [box]\nspeed: 3\n", "field 'speed': unknown field"),
+])
+def test_bad_spec_file_stops_before_any_trial(tmp_path, capsys, text, message):
+    spec, out = tmp_path / "bad.yaml", tmp_path / "out"
+    spec.write_text(text)
+    assert command.main(["--spec", str(spec), "--out", str(out), *FAKE]) == 2
+    err = capsys.readouterr().err
+    assert str(spec) in err and message in err
+    assert not out.exists()
+
+
+def test_a_missing_trial_function_is_reported(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert command.main(["--out", str(out), "--no-progress",
+                         "--trial-function", "no_such_module_xyz:run"]) == 2
+    assert "cannot load the trial function no_such_module_xyz:run" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_benchmark_prints_wall_times_and_speed_up(tmp_path, capsys):
+    code = command.main(["--benchmark", "--objects", "box", "--attempts", "1",
+                         "--out", str(tmp_path / "unused"), "--no-progress",
+                         "--trial-function", "test_sweep_fake_trial:slow_fake_trial"])
+    assert code == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "1 worker(s): 9 trials" in lines[1] and "speed-up 1.00x" in lines[1]
+    assert "2 worker(s): 9 trials" in lines[2] and "speed-up" in lines[2]
+    assert lines[3].endswith("results identical across worker counts: yes")
+    assert not (tmp_path / "unused").exists()
+
+
+def test_statistics_json_is_valid(tmp_path):
+    command.main(["--objects", "box", "--attempts", "1", "--workers", "2",
+                  "--out", str(tmp_path), *FAKE])
+    statistics = json.loads((tmp_path / "statistics.json").read_text())
+    assert set(statistics["controllers"]) == {"memorized", "heuristic", "open_loop"}
+    assert len(statistics["paired_comparisons"]) == 6

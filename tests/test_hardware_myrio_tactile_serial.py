@@ -1,0 +1,170 @@
+"""The myRIO emulator on a pty, the reader thread and the receiver system, end to end."""
+
+import dataclasses
+import os
+import time
+
+import numpy as np
+import pytest
+from pydrake.systems.analysis import Simulator
+
+from tegrasp_drake.emulators.myrio_emulator import (
+    MyRioEmulator, MyRioEmulatorConfig, StreamFaults, TactileFrameSource, TactileTrial)
+from tegrasp_drake.emulators.null_modem import open_raw_pty
+from tegrasp_drake.hardware.myrio.tactile_calibration import PadCalibration, TactileCalibration
+from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
+from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
+from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
+
+# Calibration of the emulated pads: different gains per taxel, offsets the receiver must
+# find by zeroing (its own calibration starts from the default offsets).
+PADS = PadCalibration(gain=list(np.linspace(1e-3, 3e-3, 12)), offset=[25000.0] * 12,
+                      piezo_gain=10.0, piezo_offset=0.05)
+
+
+def make_trial(duration=0.3):
+    """Left pad pressed with a ramp, right pad constant; a 50 Hz vibration on both that
+    settles at a constant for the last 50 ms (so the final values do not depend on when
+    exactly the last frame was sampled)."""
+    force_times = np.arange(0.0, duration, 0.001)
+    ramp = np.minimum(force_times / 0.1, 1.0)
+    left = np.outer(ramp, np.linspace(0.5, 2.0, 12))
+    right = np.full((len(force_times), 12), 0.75)
+    acceleration_times = np.arange(0.0, duration, 0.001)
+    vibration = np.where(acceleration_times < duration - 0.05,
+                         np.sin(2 * np.pi * 50 * acceleration_times), 0.3)
+    left_acceleration = np.column_stack([3 * vibration, 4 * vibration, 0 * vibration])
+    return TactileTrial(force_times, left, right, acceleration_times, left_acceleration,
+                        2 * vibration)
+
+
+def emulator_config(**faults):
+    return MyRioEmulatorConfig(
+        lead_in=0.12, calibration=TactileCalibration(left=PADS, right=PADS),
+        faults=StreamFaults(**faults, seed=5))
+
+
+def receiver_calibration():
+    calibration = TactileCalibration(zero_samples=8)
+    for pad in calibration.pads():
+        pad.gain, pad.piezo_gain = list(PADS.gain), PADS.piezo_gain
+    return calibration
+
+
+def test_receiver_reproduces_the_trial_after_zeroing():
+    trial = make_trial()
+    with MyRioEmulator(trial, emulator_config()) as emulator, \
+            TactileSerialReader(emulator.port) as reader:
+        receiver = TactileSerialReceiver(reader, calibration=receiver_calibration())
+        simulator = Simulator(receiver)
+        simulator.set_target_realtime_rate(1.0)
+        context = simulator.get_mutable_context()
+        simulator.AdvanceTo(0.04)  # 8 count sequences take 74 ms
+        assert receiver.GetOutputPort("zeroing").Eval(context)[0] == 1
+        assert not receiver.GetOutputPort("left_taxel_forces").Eval(context).any()
+        simulator.AdvanceTo(0.5)  # lead-in 0.12 s + trial 0.3 s, all in real time
+        assert emulator.wait_until_finished(0.5)
+        simulator.AdvanceTo(0.52)
+        assert receiver.GetOutputPort("zeroing").Eval(context)[0] == 0
+        np.testing.assert_allclose(receiver.GetOutputPort("left_taxel_forces").Eval(context),
+                                   trial.left_forces[-1], atol=3e-3)
+        np.testing.assert_allclose(receiver.GetOutputPort("right_taxel_forces").Eval(context),
+                                   trial.right_forces[-1], atol=3e-3)
+        # The left film is replayed as |a| (Eq. 2), the right one as recorded; x only.
+        left_a = receiver.GetOutputPort("left_pad_acceleration").Eval(context)
+        right_a = receiver.GetOutputPort("right_pad_acceleration").Eval(context)
+        np.testing.assert_allclose(left_a, [np.linalg.norm(trial.left_acceleration[-1]), 0, 0],
+                                   atol=0.01)
+        np.testing.assert_allclose(right_a, [trial.right_acceleration[-1], 0, 0], atol=0.01)
+        last_timestamp = emulator.sent()[-1].timestamp_us
+        assert receiver.GetOutputPort("time_measured").Eval(context)[0] == pytest.approx(
+            last_timestamp * 1e-6)
+        assert reader.counters().decoder.rejected == 0
+
+
+def test_faulty_stream_is_counted_and_only_genuine_frames_pass():
+    trial = make_trial(0.4)
+    config = emulator_config(bit_flip=0.03, dropped_byte=0.03, truncated=0.03)
+    source = TactileFrameSource(trial, dataclasses.replace(config, faults=StreamFaults()))
+    received = []
+    with MyRioEmulator(trial, config) as emulator, \
+            TactileSerialReader(emulator.port) as reader:
+        deadline = time.monotonic() + 3.0
+        while not emulator.wait_until_finished(0.01) and time.monotonic() < deadline:
+            received += reader.drain()
+        time.sleep(0.02)
+        received += reader.drain()
+        counters, sent = reader.counters(), emulator.counters()
+    assert sent.faulted_frames > 10
+    assert counters.decoder.rejected > 0 and counters.decoder.dropped_frames > 0
+    # Frames written before the reader opened the port are flushed by the open.
+    first = received[0].sequence
+    expected = [s.sequence for s in emulator.sent() if s.sequence >= first and not s.faults]
+    assert [frame.sequence for frame in received] == expected
+    assert counters.decoder.frames == len(received)
+    for frame in received:  # each passed frame is exactly what the device meant to send
+        assert encode_frame(frame.sequence, frame.timestamp_us, frame.piezo,
+                            frame.left_counts, frame.right_counts) == source.frame(
+                                frame.sequence)
+
+
+def test_silent_device_makes_outputs_stale_without_changing_them():
+    with MyRioEmulator(make_trial(2.0), emulator_config()) as emulator, \
+            TactileSerialReader(emulator.port) as reader:
+        receiver = TactileSerialReceiver(reader, calibration=receiver_calibration(),
+                                         stale_timeout=0.05)
+        simulator = Simulator(receiver)
+        simulator.set_target_realtime_rate(1.0)
+        context = simulator.get_mutable_context()
+        simulator.AdvanceTo(0.3)
+        assert receiver.GetOutputPort("stale").Eval(context)[0] == 0
+        emulator.stop_talking()
+        simulator.AdvanceTo(0.32)
+        before = {name: receiver.GetOutputPort(name).Eval(context).copy()
+                  for name in ("left_taxel_forces", "left_pad_acceleration", "time_measured")}
+        simulator.AdvanceTo(0.45)
+        assert receiver.GetOutputPort("stale").Eval(context)[0] == 1
+        for name, value in before.items():
+            np.testing.assert_array_equal(receiver.GetOutputPort(name).Eval(context), value)
+        emulator.resume_talking()
+        simulator.AdvanceTo(0.55)
+        assert receiver.GetOutputPort("stale").Eval(context)[0] == 0
+        assert receiver.GetOutputPort("time_measured").Eval(context)[0] > (
+            before["time_measured"][0])
+        assert reader.counters().decoder.dropped_frames > 50
+
+
+def test_a_step_with_no_data_arriving_returns_promptly():
+    master, slave, port = open_raw_pty()
+    try:
+        with TactileSerialReader(port) as reader:
+            receiver = TactileSerialReceiver(reader)
+            simulator = Simulator(receiver)
+            start = time.monotonic()
+            simulator.AdvanceTo(0.5)  # 500 updates, as fast as possible
+            elapsed = time.monotonic() - start
+            assert elapsed < 0.5
+            assert receiver.GetOutputPort("stale").Eval(simulator.get_context())[0] == 1
+            assert receiver.GetOutputPort("time_measured").Eval(
+                simulator.get_context())[0] == 0
+    finally:
+        os.close(master)
+        os.close(slave)
+
+
+def test_reader_queue_is_bounded_and_keeps_the_newest():
+    master, slave, port = open_raw_pty()
+    try:
+        with TactileSerialReader(port, queue_size=10) as reader:
+            os.write(master, b"".join(encode_frame(k, 1000 * k, (k, -k)) for k in range(50)))
+            deadline = time.monotonic() + 2.0
+            while reader.counters().decoder.frames < 50 and time.monotonic() < deadline:
+                time.sleep(0.005)
+            frames = reader.drain()
+            assert [f.sequence for f in frames] == list(range(40, 50))
+            assert reader.counters().queue_overflows == 40
+            assert reader.drain() == []
+    finally:
+        os.close(master)
+        os.close(slave)
+

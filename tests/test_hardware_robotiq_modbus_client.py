@@ -1,0 +1,165 @@
+"""The Robotiq Modbus RTU client and driver system against the emulator on a pty."""
+
+import time
+
+import numpy as np
+import pytest
+from pydrake.systems.analysis import Simulator
+
+from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DRIVER_ERROR, describe_faults
+from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
+from tegrasp_drake.emulators.robotiq_emulator import (
+    RobotiqEmulator, RobotiqEmulatorConfig, object_position_byte)
+from tegrasp_drake.hardware.robotiq.modbus_client import (
+    RobotiqActivationError, RobotiqModbusClient, RobotiqModbusConfig)
+
+ACTIVATION = 0.05  # [s], the emulated activation (the real one takes seconds)
+
+
+def wait_for(predicate, timeout=3.0):
+    """Polls `predicate` every 10 ms; returns its last value."""
+    deadline = time.monotonic() + timeout
+    while not (value := predicate()) and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return value
+
+
+@pytest.fixture
+def emulator():
+    with RobotiqEmulator(RobotiqEmulatorConfig(activation_duration=ACTIVATION)) as emulator:
+        yield emulator
+
+
+@pytest.fixture
+def client(emulator):
+    with RobotiqModbusClient(RobotiqModbusConfig(port=emulator.port,
+                                                 activation_timeout=2.0)) as client:
+        client.wait_until_active(3.0)
+        yield client
+
+
+def status_of(client):
+    return client.latest_status().status
+
+
+def test_activation_sequence_completes(emulator):
+    with RobotiqModbusClient(RobotiqModbusConfig(port=emulator.port)) as client:
+        assert not client.is_active
+        sample = client.wait_until_active(3.0)
+        assert sample.status[units.STATUS_ACT] == 1
+        assert sample.status[units.STATUS_STA] == units.ActivationStatus.ACTIVE
+        assert client.counters().writes == 2  # zeros, then rACT = 1
+        assert client.counters().errors == 0
+
+
+def test_activation_timeout_names_the_port():
+    config = RobotiqEmulatorConfig(activation_duration=60.0)
+    with RobotiqEmulator(config) as emulator, RobotiqModbusClient(RobotiqModbusConfig(
+            port=emulator.port, activation_timeout=0.2)) as client:
+        with pytest.raises(RobotiqActivationError, match=emulator.port):
+            client.wait_until_active(3.0)
+        assert "gSTA = 1" in client.error
+
+
+def test_no_device_on_the_port_is_an_activation_error():
+    with RobotiqModbusClient(RobotiqModbusConfig(port="/dev/does-not-exist")) as client:
+        with pytest.raises(RobotiqActivationError, match="/dev/does-not-exist"):
+            client.wait_until_active(3.0)
+
+
+def test_position_command_reaches_the_requested_position(client):
+    client.set_command([128, 255, 100])
+    assert wait_for(lambda: status_of(client)[units.STATUS_OBJ]
+                    == units.ObjectStatus.AT_REQUESTED_POSITION)
+    status = status_of(client)
+    assert status[units.STATUS_PO] == 128 and status[units.STATUS_PR] == 128
+    assert status[units.STATUS_GTO] == 1
+
+
+def test_closing_on_an_object_reports_contact(emulator, client):
+    emulator.set_object_opening(0.04)
+    client.set_command([255, 255, 150])
+    assert wait_for(lambda: status_of(client)[units.STATUS_OBJ]
+                    == units.ObjectStatus.STOPPED_ON_CONTACT_CLOSING)
+    status = status_of(client)
+    assert status[units.STATUS_PO] == round(object_position_byte(0.04))
+    assert status[units.STATUS_CU] > 0
+
+
+def test_status_reads_stay_within_200_hz(client):
+    before = client.counters().reads
+    time.sleep(0.3)
+    assert 0 < client.counters().reads - before <= 0.3 * 200 + 1
+
+
+def _driver_simulator(client):
+    driver = RobotiqDriver(client, stale_timeout=0.1)
+    simulator = Simulator(driver)
+    simulator.set_target_realtime_rate(1.0)
+    return driver, simulator
+
+
+def test_driver_command_port_moves_the_gripper(client):
+    driver, simulator = _driver_simulator(client)
+    context = simulator.get_mutable_context()
+    driver.GetInputPort("command").FixValue(context, [200.0, 255.0, 50.0])
+    simulator.AdvanceTo(1.0)
+    status = driver.GetOutputPort("status").Eval(context)
+    assert status[units.STATUS_PO] == 200
+    assert status[units.STATUS_OBJ] == units.ObjectStatus.AT_REQUESTED_POSITION
+    assert driver.GetOutputPort("stale").Eval(context)[0] == 0
+    assert driver.GetOutputPort("fault").Eval(context) == ()
+
+
+def test_driver_reports_a_gripper_fault_by_name(emulator, client):
+    driver, simulator = _driver_simulator(client)
+    context = simulator.get_mutable_context()
+    driver.GetInputPort("command").FixValue(context, [3.0, 255.0, 50.0])
+    simulator.AdvanceTo(0.05)
+    emulator.inject_fault(0x0E)
+    simulator.AdvanceTo(0.2)
+    faults = driver.GetOutputPort("fault").Eval(context)
+    assert len(faults) == 1
+    assert (faults[0].device, faults[0].kind, faults[0].code) == ("gripper", DEVICE_FAULT, 0x0E)
+    assert faults[0].description == "overcurrent triggered"
+    assert "overcurrent triggered" in describe_faults(faults)
+    assert 0.05 <= faults[0].since_sim_time <= 0.2
+
+
+def test_driver_marks_status_stale_when_the_gripper_stops_talking(emulator, client):
+    driver, simulator = _driver_simulator(client)
+    context = simulator.get_mutable_context()
+    simulator.AdvanceTo(0.05)
+    assert driver.GetOutputPort("stale").Eval(context)[0] == 0
+    emulator.disconnect()
+    simulator.AdvanceTo(0.1)
+    last_arrival = driver.GetOutputPort("time_measured").Eval(context)[0]
+    simulator.AdvanceTo(0.35)
+    assert driver.GetOutputPort("stale").Eval(context)[0] == 1
+    assert driver.GetOutputPort("time_measured").Eval(context)[0] == last_arrival
+    assert client.counters().errors > 0
+    emulator.reconnect()
+    simulator.AdvanceTo(0.8)
+    assert driver.GetOutputPort("stale").Eval(context)[0] == 0
+    assert driver.GetOutputPort("time_measured").Eval(context)[0] > last_arrival
+
+
+def test_driver_outputs_are_stale_before_the_first_status():
+    client = RobotiqModbusClient(RobotiqModbusConfig(port="/dev/null-never-started"))
+    driver = RobotiqDriver(client)
+    simulator = Simulator(driver)
+    simulator.AdvanceTo(0.01)
+    context = simulator.get_context()
+    assert driver.GetOutputPort("stale").Eval(context)[0] == 1
+    np.testing.assert_array_equal(driver.GetOutputPort("status").Eval(context), np.zeros(8))
+
+
+def test_driver_reports_an_activation_failure_naming_the_port():
+    with RobotiqModbusClient(RobotiqModbusConfig(port="/dev/does-not-exist")) as client:
+        assert wait_for(lambda: client.error)
+        driver = RobotiqDriver(client)
+        simulator = Simulator(driver)
+        simulator.AdvanceTo(0.01)
+        (fault,) = driver.GetOutputPort("fault").Eval(simulator.get_context())
+        assert fault.kind == DRIVER_ERROR and "/dev/does-not-exist" in fault.description

@@ -1,0 +1,106 @@
+"""The simulated station through its exported ports."""
+
+import numpy as np
+import pytest
+from pydrake.systems.analysis import Simulator
+
+from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.control.scripted_grasp import gripper_command
+from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.simulation.station import MakeGraspStation, initial_arm_positions
+from tegrasp_drake.rig.taxel_layout import taxel_centers
+
+GRIP_FORCE = 30.0
+
+
+def _squeeze(offset_x=0.0, close_at=0.3, until=2.2):
+    """Starts with the open pads around the box, closes at GRIP_FORCE; returns samples."""
+    scenario = load_scenario(overrides=[
+        "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]"])
+    station = MakeGraspStation(scenario)
+    context = station.CreateDefaultContext()
+    q0 = initial_arm_positions(scenario)
+    station.GetInputPort("arm.desired_state").FixValue(context, np.concatenate([q0, np.zeros(6)]))
+    command = station.GetInputPort("gripper.command")
+    command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))
+    simulator = Simulator(station, context)
+    simulator.AdvanceTo(close_at)
+    before = {name: station.GetOutputPort(f"tactile.{name}_taxel_forces").Eval(context).copy()
+              for name in ("left", "right")}
+    command.FixValue(context, gripper_command(0.0, 0.05, GRIP_FORCE))
+    simulator.AdvanceTo(until)
+    after = {name: station.GetOutputPort(f"tactile.{name}_taxel_forces").Eval(context).copy()
+             for name in ("left", "right")}
+    contacts = station.GetOutputPort("contact_results").Eval(context)
+    return station, context, before, after, contacts
+
+
+@pytest.fixture(scope="module")
+def centred_squeeze():
+    return _squeeze()
+
+
+def test_exported_ports_match_the_hardware_interface():
+    station = MakeGraspStation(load_scenario())
+    sizes = {station.get_output_port(i).get_name(): station.get_output_port(i).size()
+             for i in range(station.num_output_ports())
+             if station.get_output_port(i).get_data_type().name == "kVectorValued"}
+    assert sizes["arm.position_measured"] == 6 and sizes["arm.velocity_measured"] == 6
+    assert sizes["arm.torque_measured"] == 6 and sizes["gripper.status"] == ru.STATUS_SIZE
+    for finger in ("left", "right"):
+        assert sizes[f"tactile.{finger}_taxel_forces"] == 12
+        assert sizes[f"tactile.{finger}_pad_acceleration"] == 3
+    assert station.GetInputPort("arm.desired_state").size() == 12
+    assert station.GetInputPort("gripper.command").size() == ru.COMMAND_SIZE
+
+
+def test_sa_is_zero_to_noise_without_contact(centred_squeeze):
+    _, _, before, _, _ = centred_squeeze
+    for forces in before.values():
+        assert abs(forces.sum()) < 0.1  # 12 taxels x 0.005 N noise
+
+
+def test_sa_equals_the_grip_force_while_holding(centred_squeeze):
+    station, context, _, after, contacts = centred_squeeze
+    for forces in after.values():
+        assert forces.sum() == pytest.approx(GRIP_FORCE, rel=0.05)
+    status = station.GetOutputPort("gripper.status").Eval(context)
+    assert status[ru.STATUS_OBJ] == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
+
+
+# Under an even press each taxel should carry 1/12 of the pad's force. The expected
+# deviations: the pressure falls to zero over the last ~0.04 mm at the pad's rim (edge
+# taxels -0.25 %, corner taxels -0.45 %), noise of 0.005 N per taxel (0.2 % of 2.5 N; the
+# largest of 24 draws about 0.6 %) and the 0.001 N quantisation: about 1.1 % together.
+EVEN_PATTERN_RTOL = 0.02
+
+
+def test_even_press_gives_an_even_pattern_over_all_taxels(centred_squeeze):
+    _, _, _, after, _ = centred_squeeze
+    for forces in after.values():
+        np.testing.assert_allclose(forces, forces.mean(), rtol=EVEN_PATTERN_RTOL)
+        centroid = forces @ taxel_centers() / forces.sum()
+        assert np.linalg.norm(centroid[:2]) < 0.0002  # m; a taxel cell is 7.3 x 9.5 mm
+
+
+def test_even_press_gives_a_mirror_symmetric_pattern(centred_squeeze):
+    _, _, _, after, _ = centred_squeeze
+    for forces in after.values():
+        grid = forces.reshape(4, 3)  # rows along the pad's length, columns across its width
+        np.testing.assert_allclose(grid, grid[:, ::-1], rtol=EVEN_PATTERN_RTOL)
+        np.testing.assert_allclose(grid, grid[::-1, :], rtol=EVEN_PATTERN_RTOL)
+
+
+def test_every_taxel_carries_load_under_a_full_press(centred_squeeze):
+    _, _, _, after, _ = centred_squeeze
+    for forces in after.values():
+        assert np.all(forces > 0.04 * GRIP_FORCE)
+
+
+def test_off_centre_press_shifts_the_pattern_along_the_pad(centred_squeeze):
+    _, _, _, centred, _ = centred_squeeze
+    _, _, _, shifted, _ = _squeeze(offset_x=0.01)
+    centre = centred["left"] @ taxel_centers() / centred["left"].sum()
+    moved = shifted["left"] @ taxel_centers() / shifted["left"].sum()
+    # The box 1 cm further from the palm covers less of the pad's palm end.
+    assert moved[1] - centre[1] > 0.002

@@ -1,0 +1,36 @@
+import numpy as np
+
+from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
+
+
+def _evaluate(left_taxels, right_taxels, left_acceleration, right_acceleration):
+    system = MechanoreceptorChannels()
+    context = system.CreateDefaultContext()
+    system.GetInputPort("left_taxel_forces").FixValue(context, left_taxels)
+    system.GetInputPort("right_taxel_forces").FixValue(context, right_taxels)
+    system.GetInputPort("left_pad_acceleration").FixValue(context, left_acceleration)
+    system.GetInputPort("right_pad_acceleration").FixValue(context, right_acceleration)
+    return {name: system.GetOutputPort(name).Eval(context) for name in ("sa", "ra", "channels")}
+
+
+def test_ports_have_stable_names_and_sizes():
+    system = MechanoreceptorChannels()
+    assert [system.get_input_port(i).get_name() for i in range(4)] == [
+        "left_taxel_forces", "right_taxel_forces", "left_pad_acceleration",
+        "right_pad_acceleration"]
+    assert system.GetOutputPort("channels").size() == 4
+
+
+def test_eq1_sums_each_fingers_twelve_normal_forces():
+    out = _evaluate(np.arange(12.0), np.full(12, 0.5), np.zeros(3), np.zeros(3))
+    np.testing.assert_allclose(out["sa"], [66.0, 6.0])
+
+
+def test_eq2_is_the_magnitude_of_the_vibration_vector():
+    out = _evaluate(np.zeros(12), np.zeros(12), [3.0, 4.0, 0.0], [-1.0, 2.0, -2.0])
+    np.testing.assert_allclose(out["ra"], [5.0, 3.0])
+
+
+def test_channels_are_in_the_documented_order():
+    out = _evaluate(np.ones(12), np.full(12, 2.0), [0.0, 0.0, 7.0], [0.0, 9.0, 0.0])
+    np.testing.assert_allclose(out["channels"], [12.0, 24.0, 7.0, 9.0])

@@ -1,0 +1,77 @@
+"""WindowNormalizer through its ports."""
+
+import numpy as np
+import pytest
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
+
+from tegrasp_drake.events.correlation import normalize_by_max
+from tegrasp_drake.events.replay import channels_trajectory
+from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
+from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig
+
+NOISY_GRASP = SyntheticGraspConfig(sa_noise_n=0.05, ra_noise=0.2, seed=4)
+
+
+def simulate(source, config, t_end):
+    builder = DiagramBuilder()
+    source = builder.AddSystem(source)
+    normalizer = builder.AddSystem(WindowNormalizer(config))
+    builder.Connect(source.get_output_port(), normalizer.GetInputPort("channels"))
+    simulator = Simulator(builder.Build())
+    simulator.AdvanceTo(t_end)
+    return normalizer, normalizer.GetMyContextFromRoot(simulator.get_context())
+
+
+def expected_window(trajectory, rows, rate_hz, length, t_end):
+    """The trajectory at the last `length` ticks of `rate_hz` before t_end, normalised."""
+    ticks = (np.floor(t_end * rate_hz) - np.arange(length)[::-1]) / rate_hz
+    samples = np.array([trajectory.value(t)[rows, 0] for t in ticks]).T
+    return normalize_by_max(samples).ravel()
+
+
+def test_ports_have_stable_names_and_sizes():
+    normalizer = WindowNormalizer()
+    assert normalizer.get_input_port(0).get_name() == "channels"
+    assert normalizer.get_input_port(0).size() == 4
+    assert normalizer.GetOutputPort("sa_window").size() == 2 * 50
+    assert normalizer.GetOutputPort("ra_window").size() == 2 * 500
+
+
+@pytest.mark.parametrize("sa_rate_hz", [100.0, 1000.0])
+def test_windows_hold_the_last_half_second_normalised(sa_rate_hz):
+    trajectory = channels_trajectory(synthetic_grasp(NOISY_GRASP, sa_rate_hz=sa_rate_hz))
+    config = WindowNormalizerConfig(sa_rate_hz=sa_rate_hz)
+    t_end = 1.1375  # 0.3375 s after first contact, between ticks
+    normalizer, context = simulate(TrajectorySource(trajectory), config, t_end)
+    sa_length = round(0.5 * sa_rate_hz)
+    np.testing.assert_allclose(
+        normalizer.GetOutputPort("sa_window").Eval(context),
+        expected_window(trajectory, [0, 1], sa_rate_hz, sa_length, t_end), atol=1e-12)
+    np.testing.assert_allclose(
+        normalizer.GetOutputPort("ra_window").Eval(context),
+        expected_window(trajectory, [2, 3], 1000.0, 500, t_end), atol=1e-12)
+
+
+def test_a_partly_filled_window_is_zero_before_the_start():
+    normalizer, context = simulate(ConstantVectorSource([2.0, 4.0, 1.0, 1.0]),
+                                   WindowNormalizerConfig(), 0.2005)
+    sa = normalizer.GetOutputPort("sa_window").Eval(context).reshape(2, 50)
+    np.testing.assert_array_equal(sa[:, :29], 0.0)  # ticks at 0, 0.01, ..., 0.2: 21 samples
+    np.testing.assert_array_equal(sa[:, 29:], 1.0)
+
+
+def test_an_all_zero_input_gives_zero_windows_without_nan():
+    normalizer, context = simulate(ConstantVectorSource(np.zeros(4)), WindowNormalizerConfig(),
+                                   0.6)
+    for port in ("sa_window", "ra_window"):
+        np.testing.assert_array_equal(normalizer.GetOutputPort(port).Eval(context), 0.0)
+
+
+def test_history_lives_in_the_context():
+    normalizer, context = simulate(ConstantVectorSource([2.0, 4.0, 1.0, 1.0]),
+                                   WindowNormalizerConfig(), 0.6)
+    fresh = normalizer.CreateDefaultContext()
+    assert np.any(normalizer.GetOutputPort("ra_window").Eval(context) != 0.0)
+    np.testing.assert_array_equal(normalizer.GetOutputPort("ra_window").Eval(fresh), 0.0)
