@@ -4,10 +4,21 @@ import numpy as np
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 
 
+# Below this magnitude a generated number is floating-point round-off (e.g. 1e-19 m from a
+# rotation's cosine): it is written as 0 so that the text does not depend on the CPU's libm.
+ROUND_OFF = 1e-12
+
+
+def number_text(value: float) -> str:
+    """A number for SDF text: 9 significant digits, round-off written as 0."""
+    value = float(value)
+    return "0" if abs(value) < ROUND_OFF else f"{value:.9g}"
+
+
 def pose_text(X: np.ndarray, relative_to: str | None = None) -> str:
     """An SDF <pose> for a 4x4 transform, with an optional relative_to frame."""
     rpy = RollPitchYaw(RotationMatrix(X[:3, :3])).vector()
-    values = " ".join(f"{v:.9g}" for v in (*X[:3, 3], *rpy))
+    values = " ".join(number_text(v) for v in (*X[:3, 3], *rpy))
     attribute = f' relative_to="{relative_to}"' if relative_to else ""
     return f"<pose{attribute}>{values}</pose>"
 
@@ -29,10 +40,11 @@ def segment_pose(p0, p1) -> np.ndarray:
 def inertial_text(mass: float, com, inertia: np.ndarray) -> str:
     """An SDF <inertial> block (inertia about the centre of mass, in the link frame)."""
     i = inertia
-    return (f"<inertial><pose>{com[0]:.9g} {com[1]:.9g} {com[2]:.9g} 0 0 0</pose>"
-            f"<mass>{mass:.9g}</mass><inertia>"
-            f"<ixx>{i[0, 0]:.9g}</ixx><ixy>{i[0, 1]:.9g}</ixy><ixz>{i[0, 2]:.9g}</ixz>"
-            f"<iyy>{i[1, 1]:.9g}</iyy><iyz>{i[1, 2]:.9g}</iyz><izz>{i[2, 2]:.9g}</izz>"
+    n = number_text
+    return (f"<inertial><pose>{n(com[0])} {n(com[1])} {n(com[2])} 0 0 0</pose>"
+            f"<mass>{n(mass)}</mass><inertia>"
+            f"<ixx>{n(i[0, 0])}</ixx><ixy>{n(i[0, 1])}</ixy><ixz>{n(i[0, 2])}</ixz>"
+            f"<iyy>{n(i[1, 1])}</iyy><iyz>{n(i[1, 2])}</iyz><izz>{n(i[2, 2])}</izz>"
             f"</inertia></inertial>")
 
 
