@@ -17,7 +17,7 @@ from tegrasp_drake.control.grasp_modes import HEURISTIC_EVENT, MEMORIZED_EVENT, 
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
-from tegrasp_drake.experiments.trial_logging import add_mechanoreceptor_channels
+from tegrasp_drake.tactile.mechanoreceptor_channels import add_mechanoreceptor_channels
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
 _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,

@@ -10,8 +10,8 @@ from tegrasp_drake.control.cartesian_arm_controller import add_cartesian_arm_con
 from tegrasp_drake.control.scripted_grasp import (PHASES, ScriptedGraspSource, plan_duration,
                                                   plan_scripted_grasp)
 from tegrasp_drake.simulation.station import MakeGraspStation, initial_arm_positions
-from tegrasp_drake.experiments.trial_logging import (add_mechanoreceptor_channels, add_trial_logging,
-                                         collect_trial_log)
+from tegrasp_drake.tactile.mechanoreceptor_channels import add_mechanoreceptor_channels
+from tegrasp_drake.experiments.trial_logging import add_trial_logging, collect_trial_log
 
 CONTROLLER_NAME = "open_loop"
 END_MARGIN_S = 0.5  # simulated after the script ends, to see the object settle

@@ -13,21 +13,11 @@ from pydrake.systems.primitives import Demultiplexer, LogVectorOutput, Multiplex
 
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.experiments.scenario import scenario_to_yaml
-from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
 from tegrasp_drake.experiments.trial_log import TrialLog
 
 SLOW_LOG_PERIOD = 0.01  # s, arm, gripper, phase and object logs
 
 
-def add_mechanoreceptor_channels(builder, station):
-    """Adds Eq. 1-2 fed by the station's tactile ports; returns the system."""
-    channels = builder.AddNamedSystem("mechanoreceptor_channels", MechanoreceptorChannels())
-    for finger in FINGER_NAMES:
-        builder.Connect(station.GetOutputPort(f"tactile.{finger}_taxel_forces"),
-                        channels.GetInputPort(f"{finger}_taxel_forces"))
-        builder.Connect(station.GetOutputPort(f"tactile.{finger}_pad_acceleration"),
-                        channels.GetInputPort(f"{finger}_pad_acceleration"))
-    return channels
 
 
 @dataclasses.dataclass

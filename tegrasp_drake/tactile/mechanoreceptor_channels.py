@@ -56,3 +56,14 @@ class MechanoreceptorChannels(LeafSystem):
 
     def _calc_channels(self, context, output):
         output.SetFromVector(self._sa(context) + self._ra(context))
+
+
+def add_mechanoreceptor_channels(builder, station):
+    """Adds Eq. 1-2 fed by the station's tactile ports; returns the system."""
+    channels = builder.AddNamedSystem("mechanoreceptor_channels", MechanoreceptorChannels())
+    for finger in FINGER_NAMES:
+        builder.Connect(station.GetOutputPort(f"tactile.{finger}_taxel_forces"),
+                        channels.GetInputPort(f"{finger}_taxel_forces"))
+        builder.Connect(station.GetOutputPort(f"tactile.{finger}_pad_acceleration"),
+                        channels.GetInputPort(f"{finger}_pad_acceleration"))
+    return channels
