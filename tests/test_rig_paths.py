@@ -15,3 +15,9 @@ def test_a_source_checkout_uses_its_own_models_and_events():
     assert paths.events_dir() == CHECKOUT / "events"
     assert (paths.models_dir() / "package.xml").is_file()
     assert (paths.events_dir() / "index.json").is_file()
+
+
+def test_the_package_folder_is_the_one_imported():
+    # paths.py sits one folder below the package; a wrong depth would hand out the data of
+    # whichever checkout is installed instead of this one.
+    assert paths.PACKAGE_DIR == pathlib.Path(tegrasp_drake.__file__).resolve().parent

@@ -14,10 +14,11 @@ import pathlib
 from pydrake.multibody.parsing import Parser
 
 PACKAGE_NAME = "tegrasp"  # models are reachable as package://tegrasp/...
+PACKAGE_DIR = pathlib.Path(__file__).resolve().parents[1]  # tegrasp_drake/ (this file: rig/)
 
 
 def _data_dir(package: str, source_folder: str) -> pathlib.Path:
-    checkout = pathlib.Path(__file__).resolve().parents[1]
+    checkout = PACKAGE_DIR.parent
     if (checkout / "pyproject.toml").is_file() and (checkout / source_folder).is_dir():
         return checkout / source_folder  # imported from a source checkout: its own data
     return pathlib.Path(str(importlib.resources.files(package)))
