@@ -2,9 +2,10 @@
 
 import pytest
 
-from tegrasp_drake.hardware.config import (HardwareStationConfig, SimulatedStationConfig,
-                                           hardware_config_to_yaml, load_hardware_config)
+from tegrasp_drake.hardware.config import (HardwareStationConfig, hardware_config_to_yaml,
+                                           load_hardware_config)
 from tegrasp_drake.experiments.scenario import ScenarioError, load_scenario
+from tegrasp_drake.simulation.station import SimulatedStationConfig
 
 
 def write(tmp_path, name, text):

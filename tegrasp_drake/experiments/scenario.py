@@ -4,7 +4,8 @@ Scenarios live in a YAML file as a mapping from scenario name to fields of `Scen
 built-in file is tegrasp_drake/scenarios/scenarios.yaml. Loading goes through Drake's
 `yaml_load_typed` after a walk that names any unknown or mistyped field by its dotted path.
 `--set key=value` overrides (e.g. `--set object.name=thin_cylinder`) are applied to the YAML
-data before loading, so they are checked the same way.
+data before loading, so they are checked the same way. Each section's config class lives
+beside the system that uses it.
 """
 
 import dataclasses
@@ -16,95 +17,29 @@ from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
-from tegrasp_drake.rig import paths
 from tegrasp_drake.control.controller_config import CONTROLLERS, GraspControllerConfig
-from tegrasp_drake.hardware.config import SimulatedStationConfig, StationConfig
+from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
+from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, OBJECT_SHAPES, ObjectConfig
 from tegrasp_drake.rig.robotiq_units import STROKE_M
+from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
+from tegrasp_drake.simulation.station import ArmDriverConfig, SimulatedStationConfig
+from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 
 DEFAULT_SCENARIO = "default"
 FINGER_CLEARANCE_M = 0.0025  # smallest gap between an open pad and the object
 
 
+# Which station a scenario runs on, selected by the YAML tag of its `station` field
+# (hardware/config.py): the simulation (the default, untagged) or the real devices.
+StationConfig = typing.Union[SimulatedStationConfig, HardwareStationConfig]
+
+
 class ScenarioError(ValueError):
     """A scenario file, field or value is wrong; the message names it."""
-
-
-@dataclasses.dataclass
-class TactileSensorConfig:
-    """The capacitive taxel array of each pad (SA channel source).
-
-    AD7147: 12 conversion stages at decimation 64 take about 9.2 ms (about 108 Hz); 1000 Hz
-    is also selectable for an idealised sensor.
-    """
-    sample_rate_hz: float = 108.0
-    noise_std_n: float = 0.005  # per taxel, Gaussian
-    quantization_n: float = 0.001  # per taxel LSB; 0 disables
-    offset_n: float = 0.0  # per taxel constant bias
-
-
-@dataclasses.dataclass
-class VibrationSensorConfig:
-    """The piezo film of each pad (RA channel source): a high-passed accelerometer."""
-    sample_rate_hz: float = 1000.0
-    noise_std_mps2: float = 0.05
-    highpass_cutoff_hz: float = 2.0  # charge amplifier R_f C_f corner
-    # Texture of the pad cover that sliding drags the film over (pad_slip_vibration.py): a
-    # woven fabric of about 0.5 mm pitch with a few micrometres of relief. 0 disables.
-    slip_texture_height_m: float = 5e-6
-    slip_texture_period_m: float = 5e-4
-
-
-@dataclasses.dataclass
-class DisturbanceConfig:
-    """An external hit on the object: a constant force pulse at its body origin."""
-    hit_time_s: float = -1.0  # simulated time of the hit [s]; negative: no hit
-    hit_force_n: list[float] = dataclasses.field(default_factory=lambda: [0.0, 20.0, 0.0])  # world
-    hit_duration_s: float = 0.02
-
-
-@dataclasses.dataclass
-class GripperDriverConfig:
-    """The simulated 2F-85 controller (position loop with a force limit)."""
-    update_rate_hz: float = 200.0  # the 2F-85 accepts commands at up to 200 Hz
-    position_gain: float = 4000.0  # N/m on the finger coordinate
-    damping_gain: float = 40.0  # N s/m
-    acceleration: float = 0.5  # m/s^2, finger speed ramps
-    stall_speed: float = 0.002  # m/s; slower than this before the goal = object detected
-
-
-@dataclasses.dataclass
-class ArmDriverConfig:
-    """The simulated JACO2 joint controller; the firmware compensates gravity."""
-    position_gain: float = 400.0  # N m/rad
-    damping_gain: float = 40.0  # N m s/rad
-    initial_gripper_xyz: list[float] = dataclasses.field(
-        default_factory=lambda: [0.69, 0.0, 0.145])  # m, grasp frame in world at t = 0;
-    # 3 cm behind and 9 cm above the grasp: further back, the Jaco nears its wrist singularity
-    # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state;
-    # the Jaco's own velocity interface runs at 100 Hz.
-    control_period_s: float = 0.005
-
-
-@dataclasses.dataclass
-class GraspScriptConfig:
-    """Timing and targets of the ideal open-loop grasp (side grasp, approach along +x)."""
-    grasp_height: float = 0.055  # m, pad centre above the table
-    settle_s: float = 0.3
-    reach_s: float = 2.5
-    close_speed: float = 0.05  # m/s
-    grip_force: float = 25.0  # N
-    load_s: float = 1.3  # from the close command to the start of the lift
-    lift_height: float = 0.06  # m
-    lift_s: float = 1.5
-    hold_s: float = 3.0
-    place_s: float = 1.5
-    place_press: float = 0.003  # m below the lift-off height at the end of Place
-    unload_s: float = 1.0
-    retract_s: float = 1.2
-    retract_distance: float = 0.10  # m back along the approach (state machine; no nearer
-    # than the start pose, where the wrist nears its singularity)
-    place_offset: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0])  # m
 
 
 @dataclasses.dataclass
@@ -130,7 +65,7 @@ class Scenario:
     grasp: GraspScriptConfig = dataclasses.field(default_factory=GraspScriptConfig)
     disturbance: DisturbanceConfig = dataclasses.field(default_factory=DisturbanceConfig)
     controller: GraspControllerConfig = dataclasses.field(default_factory=GraspControllerConfig)
-    # Simulated (default) or real devices, selected by the YAML tag (hardware_config.py).
+    # Simulated (default) or real devices, selected by the YAML tag (hardware/config.py).
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
 
 

@@ -1,6 +1,7 @@
 """Which station a scenario runs on: the simulation, or the real devices (typed config).
 
-A scenario's `station` field is a tagged variant, as in Drake's hardware_sim:
+A scenario's `station` field is a tagged variant (experiments/scenario.py `StationConfig`),
+as in Drake's hardware_sim:
 
     station: !SimulatedStationConfig {}          # the default: MakeGraspStation
 
@@ -86,14 +87,6 @@ class HardwareStationConfig:
     # How long [s] to wait, before the control loop starts, for the arm's first status,
     # the gripper's activation and the first tactile frame.
     ready_timeout: float = 10.0
-
-
-@dataclasses.dataclass
-class SimulatedStationConfig:
-    """The simulated station (MakeGraspStation); its settings are the scenario's own."""
-
-
-StationConfig = typing.Union[SimulatedStationConfig, HardwareStationConfig]
 
 
 def load_hardware_config(filename, overrides: typing.Sequence[str] = ()
