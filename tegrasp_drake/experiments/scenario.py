@@ -22,7 +22,7 @@ from tegrasp_drake.control.controller_config import CONTROLLERS, GraspController
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, OBJECT_SHAPES, ObjectConfig
+from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, OBJECT_SHAPES, ObjectConfig, object_problem
 from tegrasp_drake.rig.robotiq_units import STROKE_M
 from tegrasp_drake.rig.typed_yaml import ConfigError, apply_override, load_typed, read_yaml_file
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig
@@ -80,19 +80,10 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
             builtin, size=list(config.size or builtin.size),
             mass=config.mass or builtin.mass, friction=config.friction or builtin.friction,
             color=list(builtin.color))
-    elif config.shape not in OBJECT_SHAPES:
-        raise ConfigError(f"{source}: field 'object.shape': '{config.shape}' is not one of "
-                          f"{', '.join(OBJECT_SHAPES)}")
-    expected_sizes = {"box": 3, "cylinder": 2, "file": 3}[config.shape]
-    if len(config.size) != expected_sizes or min(config.size) <= 0:
-        raise ConfigError(f"{source}: field 'object.size' must hold {expected_sizes} positive "
-                          f"lengths in metres for shape '{config.shape}', got {config.size}")
-    if config.mass <= 0:
-        raise ConfigError(f"{source}: field 'object.mass' must be positive [kg], got "
-                          f"{config.mass}")
-    if config.friction <= 0:
-        raise ConfigError(f"{source}: field 'object.friction' must be positive, got "
-                          f"{config.friction}")
+    problem = object_problem(config)
+    if problem:
+        field, words = problem
+        raise ConfigError(f"{source}: field 'object.{field}' {words}")
     if config.shape == "file":
         _check_model_file(config.file, source)
     return config

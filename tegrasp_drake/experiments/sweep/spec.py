@@ -29,15 +29,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from tegrasp_drake.control import controller_config
+from tegrasp_drake.rig import objects
+from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
 
 # The controllers the trial function knows (issue #5): the paper's memorized triggers,
 # heuristic thresholds in the style of Romano et al. 2011, and open loop.
-CONTROLLERS = ("memorized", "heuristic", "open_loop")
+CONTROLLERS = controller_config.CONTROLLERS
 
-# The paper's three objects (Fig. 8a). Their models live with the trial function;
+# The paper's three objects (Fig. 8a), as the scenario knows them (rig/objects.py);
 # a sweep spec can add user-defined objects (`ObjectDefinition`).
-BUILTIN_OBJECTS = ("box", "thick_cylinder", "thin_cylinder")
+BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
 
 # The paper's grid (Sec. IV-B): +-1 cm normal to the palm, +-1.5 cm along the stroke.
 PAPER_NORMAL_OFFSETS_M = (-0.010, 0.0, 0.010)
@@ -45,7 +48,8 @@ PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
 
 # Names become parts of trial ids and file names: keep them to a safe alphabet.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
-_OBJECT_SHAPES = {"box": 3, "cylinder": 2}  # shape -> number of size_m values
+# A sweep's object is a primitive shape: an ObjectDefinition has no model file field.
+_OBJECT_SHAPES = tuple(shape for shape in objects.OBJECT_SHAPES if shape != "file")
 
 
 def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float], ...]:
@@ -56,15 +60,24 @@ def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float
 
 @dataclass(frozen=True)
 class ObjectDefinition:
-    """A user-defined object, handed to the trial function in its trial dict.
+    """A user-defined object, handed to the trial function in its trial dict: the frozen
+    (hashable) form of the scenario's ObjectConfig (rig/objects.py), with the same meaning.
 
-    `size_m` follows Drake's shapes: a box's (x, y, z) edge lengths, a cylinder's
-    (radius, length). `friction_coefficient` None means the trial function's default.
+    `size_m` is ObjectConfig.size: a box's [x, y, z] edge lengths, a cylinder's
+    [diameter, height]. `friction_coefficient` None means the trial function's default.
     """
     shape: str
     size_m: tuple[float, ...]
     mass_kg: float
     friction_coefficient: float | None = None
+
+    def object_config(self, name: str) -> ObjectConfig:
+        """This object as the scenario's ObjectConfig called `name` (friction 0, which
+        ObjectConfig reads as not set, when `friction_coefficient` is None)."""
+        friction = self.friction_coefficient
+        return ObjectConfig(name=name, shape=self.shape, size=[float(v) for v in self.size_m],
+                            mass=float(self.mass_kg),
+                            friction=0.0 if friction is None else float(friction))
 
 
 @dataclass(frozen=True)
@@ -168,7 +181,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
         _check_name(name, f"user_objects.{name}", fail)
         if name in builtin_objects:
             fail(f"user_objects.{name}", "redefines a built-in object; choose another name")
-        _check_object_definition(definition, f"user_objects.{name}", fail)
+        _check_object_definition(name, definition, fail)
     known_objects = tuple(builtin_objects) + tuple(spec.user_objects)
     _check_names_in(spec.objects, known_objects, "objects", "object", fail)
     _check_names_in(spec.controllers, tuple(controllers), "controllers", "controller", fail)
@@ -219,24 +232,20 @@ def _check_names_in(names, known, field_name, kind, fail):
         fail(field_name, f"names a {kind} twice: {list(names)}")
 
 
-def _check_object_definition(definition, field_name, fail):
+# ObjectConfig's field names -> ObjectDefinition's.
+_DEFINITION_FIELDS = {"shape": "shape", "size": "size_m", "mass": "mass_kg",
+                      "friction": "friction_coefficient"}
+
+
+def _check_object_definition(name, definition, fail):
+    """The checks of the scenario's objects (rig/objects.py), named by the sweep's fields."""
     if not isinstance(definition, ObjectDefinition):
-        fail(field_name, "expected an object definition")
-    if definition.shape not in _OBJECT_SHAPES:
-        fail(f"{field_name}.shape",
-             f"unknown shape {definition.shape!r}; known: {', '.join(_OBJECT_SHAPES)}")
-    n = _OBJECT_SHAPES[definition.shape]
-    if (len(definition.size_m) != n
-            or not all(_is_number(v) and 0.0 < v < math.inf for v in definition.size_m)):
-        meaning = "(x, y, z)" if definition.shape == "box" else "(radius, length)"
-        fail(f"{field_name}.size_m",
-             f"a {definition.shape} needs {n} positive sizes {meaning} in m, "
-             f"got {list(definition.size_m)!r}")
-    if not _is_number(definition.mass_kg) or not 0.0 < definition.mass_kg < math.inf:
-        fail(f"{field_name}.mass_kg", f"expected a positive number, got {definition.mass_kg!r}")
-    mu = definition.friction_coefficient
-    if mu is not None and (not _is_number(mu) or not 0.0 < mu < math.inf):
-        fail(f"{field_name}.friction_coefficient", f"expected a positive number, got {mu!r}")
+        fail(f"user_objects.{name}", "expected an object definition")
+    problem = object_problem(definition.object_config(name), shapes=_OBJECT_SHAPES,
+                             friction_given=definition.friction_coefficient is not None)
+    if problem:
+        config_field, words = problem
+        fail(f"user_objects.{name}.{_DEFINITION_FIELDS[config_field]}", words)
 
 
 def _is_int(value) -> bool:
