@@ -2,7 +2,8 @@ import pytest
 from pydrake.common.yaml import yaml_load
 
 from tegrasp_drake.rig import paths
-from tegrasp_drake.experiments.scenario import ScenarioError, load_scenario
+from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.rig.typed_yaml import ConfigError
 
 SCENARIO_NAMES = sorted(yaml_load(filename=str(paths.scenarios_file())))
 
@@ -33,7 +34,7 @@ def test_override_changes_a_nested_field():
     (["plant_config.time_step=fast"], "field 'plant_config'"),
 ])
 def test_bad_input_names_the_field(overrides, message):
-    with pytest.raises(ScenarioError, match=message.replace("[", r"\[").replace("(", r"\(")):
+    with pytest.raises(ConfigError, match=message.replace("[", r"\[").replace("(", r"\(")):
         load_scenario(overrides=overrides)
 
 
@@ -43,8 +44,8 @@ def test_fields_set_on_a_builtin_object_override_it():
 
 
 def test_missing_file_and_scenario_are_named(tmp_path):
-    with pytest.raises(ScenarioError, match="does not exist"):
+    with pytest.raises(ConfigError, match="does not exist"):
         load_scenario(tmp_path / "none.yaml")
     (tmp_path / "s.yaml").write_text("mine: {}\n")
-    with pytest.raises(ScenarioError, match="no scenario named 'default'.*mine"):
+    with pytest.raises(ConfigError, match="no scenario named 'default'.*mine"):
         load_scenario(tmp_path / "s.yaml")

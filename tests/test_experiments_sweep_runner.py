@@ -7,7 +7,8 @@ import pytest
 
 from tegrasp_drake.experiments.sweep.records import load_records, record_path
 from tegrasp_drake.experiments.sweep.runner import LOCK_FILE_NAME, SweepError, run_sweep
-from tegrasp_drake.experiments.sweep.spec import SweepSpec, SweepSpecError, expand_trials
+from tegrasp_drake.experiments.sweep.spec import SweepSpec, expand_trials
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from test_sweep_fake_trial import (
     dying_fake_trial,
     failing_fake_trial,
@@ -131,9 +132,9 @@ def test_a_sweep_already_writing_the_folder_is_refused(tmp_path):
 
 def test_bad_input_stops_before_anything_runs(tmp_path):
     out_dir = tmp_path / "out"
-    with pytest.raises(SweepSpecError, match="unknown object 'teapot'"):
+    with pytest.raises(ConfigError, match="unknown object 'teapot'"):
         run_sweep(SweepSpec(objects=("teapot",)), fake_trial, out_dir, progress=False)
-    with pytest.raises(SweepSpecError, match="empty"):
+    with pytest.raises(ConfigError, match="empty"):
         run_sweep(SweepSpec(grid=()), fake_trial, out_dir, progress=False)
     with pytest.raises(SweepError, match="module-level"):
         run_sweep(SMALL, lambda trial: fake_trial(trial), out_dir, progress=False)

@@ -12,13 +12,13 @@ from tegrasp_drake.experiments.sweep.spec import (
     ObjectDefinition,
     RandomisationConfig,
     SweepSpec,
-    SweepSpecError,
     TrialSpec,
     expand_trials,
     load_sweep_spec,
     marker_names,
     product_grid,
 )
+from tegrasp_drake.rig.typed_yaml import ConfigError
 
 
 def write_yaml(tmp_path, text):
@@ -181,7 +181,7 @@ def test_an_empty_yaml_file_is_the_papers_experiment(tmp_path):
 ])
 def test_invalid_yaml_names_file_and_field(tmp_path, text, field, words):
     path = write_yaml(tmp_path, text)
-    with pytest.raises(SweepSpecError) as error:
+    with pytest.raises(ConfigError) as error:
         load_sweep_spec(path)
     message = str(error.value)
     assert str(path) in message
@@ -190,14 +190,14 @@ def test_invalid_yaml_names_file_and_field(tmp_path, text, field, words):
 
 
 def test_invalid_yaml_syntax_and_missing_file(tmp_path):
-    with pytest.raises(SweepSpecError, match="not valid YAML"):
+    with pytest.raises(ConfigError, match="not valid YAML"):
         load_sweep_spec(write_yaml(tmp_path, "objects: [box\n"))
-    with pytest.raises(SweepSpecError, match="cannot read"):
+    with pytest.raises(ConfigError, match="cannot read"):
         load_sweep_spec(tmp_path / "missing.yaml")
 
 
 def test_a_registry_can_narrow_the_known_names():
-    with pytest.raises(SweepSpecError, match="unknown controller 'heuristic'"):
+    with pytest.raises(ConfigError, match="unknown controller 'heuristic'"):
         expand_trials(SweepSpec(), controllers=("memorized", "open_loop"))
 
 

@@ -2,9 +2,11 @@
 
 import pytest
 
-from tegrasp_drake.hardware.config import (HardwareStationConfig, SimulatedStationConfig,
-                                           hardware_config_to_yaml, load_hardware_config)
-from tegrasp_drake.experiments.scenario import ScenarioError, load_scenario
+from tegrasp_drake.hardware.config import (HardwareStationConfig, hardware_config_to_yaml,
+                                           load_hardware_config)
+from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.simulation.station import SimulatedStationConfig
 
 
 def write(tmp_path, name, text):
@@ -36,7 +38,7 @@ def test_hardware_config_round_trips_through_yaml(tmp_path):
 
 def test_a_misspelt_hardware_field_is_named(tmp_path):
     path = write(tmp_path, "hw.yaml", "gripper: {prot: /dev/ttyUSB0}\n")
-    with pytest.raises(ScenarioError, match="unknown field 'gripper.prot'"):
+    with pytest.raises(ConfigError, match="unknown field 'gripper.prot'"):
         load_hardware_config(path)
 
 
@@ -55,7 +57,7 @@ real_box:
 
 def test_an_unknown_station_tag_is_named(tmp_path):
     path = write(tmp_path, "s.yaml", "bad:\n  station: !RobotStation {}\n")
-    with pytest.raises(ScenarioError, match="unknown tag !RobotStation.*!HardwareStationConfig"):
+    with pytest.raises(ConfigError, match="unknown tag !RobotStation.*!HardwareStationConfig"):
         load_scenario(path, "bad")
 
 

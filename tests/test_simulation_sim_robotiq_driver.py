@@ -1,9 +1,8 @@
 import numpy as np
 
 from tegrasp_drake.rig import robotiq_units as ru
-from tegrasp_drake.experiments.scenario import GripperDriverConfig
-from tegrasp_drake.simulation.sim_robotiq_driver import (SimRobotiqDriver, object_status,
-                                                      reference_step)
+from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig, SimRobotiqDriver,
+                                                         object_status, reference_step)
 
 
 def test_reference_accelerates_toward_the_goal_then_cruises():

@@ -1,7 +1,7 @@
 """`tegrasp hardware --config FILE`: the grasp on the real devices (or their emulators).
 
 The controller diagram runs unchanged on MakeHardwareStation, in real time, against the
-devices the config names (hardware_config.py; `tegrasp emulate ... --write-config FILE`
+devices the config names (hardware/config.py; `tegrasp emulate ... --write-config FILE`
 writes one for the emulators). State transitions and device faults are printed as they
 happen; everything on the bus goes to an LCM log (run_log.py; `tegrasp replay LOG`,
 `lcm-logplayer LOG`). Exit code: 0 when the grasp finished without a fault, 2 after a
@@ -40,13 +40,13 @@ def run(args) -> int:
     from tegrasp_drake.hardware.config import load_hardware_config
     from tegrasp_drake.experiments.hardware_run import run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError
-    from tegrasp_drake.experiments.scenario import ScenarioError
+    from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.hardware.config import HardwareStationConfig
     scenario = scenario_from_arguments(args)
     if args.config:
         try:
             config = load_hardware_config(args.config, args.config_overrides)
-        except ScenarioError as e:
+        except ConfigError as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
     elif isinstance(scenario.station, HardwareStationConfig):
         config = scenario.station

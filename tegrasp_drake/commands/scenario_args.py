@@ -2,7 +2,8 @@
 
 import logging
 
-from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO, ScenarioError, load_scenario
+from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO, load_scenario
+from tegrasp_drake.rig.typed_yaml import ConfigError
 
 
 def add_scenario_arguments(parser) -> None:
@@ -19,7 +20,7 @@ def scenario_from_arguments(args):
     """Loads the scenario, or exits with the error message (no traceback)."""
     try:
         return load_scenario(args.scenario, args.scenario_name, args.overrides)
-    except ScenarioError as e:
+    except ConfigError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
 
 

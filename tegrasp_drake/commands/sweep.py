@@ -32,10 +32,10 @@ from tegrasp_drake.experiments.sweep.spec import (
     BUILTIN_OBJECTS,
     CONTROLLERS,
     SweepSpec,
-    SweepSpecError,
     load_sweep_spec,
     validate_spec,
 )
+from tegrasp_drake.rig.typed_yaml import ConfigError
 
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.experiments.trial:run_trial_from_spec"
 DEFAULT_OUT = "results/sweep"
@@ -117,7 +117,7 @@ def run(args) -> int:
             return 0 if identical and not any(run.errors for run in runs) else 1
         summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
                             scheduler=args.scheduler, progress=not args.no_progress)
-    except (SweepSpecError, SweepError) as error:
+    except (ConfigError, SweepError) as error:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
     print(summary_text(summary))

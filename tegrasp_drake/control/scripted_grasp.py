@@ -20,6 +20,27 @@ from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
 PHASES = ("settle", "reach", "load", "lift", "hold", "place", "unload", "retract", "done")
 
 
+@dataclasses.dataclass
+class GraspScriptConfig:
+    """Timing and targets of the ideal open-loop grasp (side grasp, approach along +x)."""
+    grasp_height: float = 0.055  # m, pad centre above the table
+    settle_s: float = 0.3
+    reach_s: float = 2.5
+    close_speed: float = 0.05  # m/s
+    grip_force: float = 25.0  # N
+    load_s: float = 1.3  # from the close command to the start of the lift
+    lift_height: float = 0.06  # m
+    lift_s: float = 1.5
+    hold_s: float = 3.0
+    place_s: float = 1.5
+    place_press: float = 0.003  # m below the lift-off height at the end of Place
+    unload_s: float = 1.0
+    retract_s: float = 1.2
+    retract_distance: float = 0.10  # m back along the approach (state machine; no nearer
+    # than the start pose, where the wrist nears its singularity)
+    place_offset: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0])  # m
+
+
 @dataclasses.dataclass(frozen=True)
 class Segment:
     """One phase: the grasp frame moves from X_start to X_end over [t_start, t_end]."""

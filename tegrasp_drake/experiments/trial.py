@@ -162,16 +162,12 @@ def scenario_from_trial_spec(trial: dict):
     trial's object (perturbed in mass and friction), placement, seed and controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
     from tegrasp_drake.experiments.scenario import load_scenario, resolve_object, validate
+    from tegrasp_drake.experiments.sweep.spec import ObjectDefinition
     p = trial["perturbation"]
     base = load_scenario()
     definition = trial.get("object_definition")
     if definition:
-        size = [float(v) for v in definition["size_m"]]
-        if definition["shape"] == "cylinder":  # the spec's (radius, length) -> [diameter, height]
-            size = [2.0 * size[0], size[1]]
-        obj = ObjectConfig(name=trial["object_name"], shape=definition["shape"], size=size,
-                           mass=float(definition["mass_kg"]),
-                           friction=float(definition["friction_coefficient"]))
+        obj = ObjectDefinition(**definition).object_config(trial["object_name"])
     else:
         obj = resolve_object(ObjectConfig(name=trial["object_name"]))
     obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),

@@ -1,6 +1,7 @@
 """Which station a scenario runs on: the simulation, or the real devices (typed config).
 
-A scenario's `station` field is a tagged variant, as in Drake's hardware_sim:
+A scenario's `station` field is a tagged variant (experiments/scenario.py `StationConfig`),
+as in Drake's hardware_sim:
 
     station: !SimulatedStationConfig {}          # the default: MakeGraspStation
 
@@ -12,20 +13,20 @@ A scenario's `station` field is a tagged variant, as in Drake's hardware_sim:
 
 `tegrasp hardware --config FILE` reads a file holding only the HardwareStationConfig
 mapping (the lines under `station:` above, untagged) with `load_hardware_config`, checked
-field by field like a scenario and with the same `--set key=value` overrides; `tegrasp
-emulate ... --write-config FILE` writes one for the emulators it started.
+field by field like a scenario (rig/typed_yaml.py) and with the same `--set key=value`
+overrides; `tegrasp emulate ... --write-config FILE` writes one for the emulators it started.
 """
 
 import dataclasses
-import pathlib
 import typing
 
-from pydrake.common.yaml import yaml_dump_typed, yaml_load
+from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 from tegrasp_drake.hardware.jaco.velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
+from tegrasp_drake.rig.typed_yaml import apply_override, load_typed, read_yaml_file
 
 DEFAULT_LCM_URL = "udpm://239.255.76.67:7667?ttl=0"
 
@@ -88,29 +89,15 @@ class HardwareStationConfig:
     ready_timeout: float = 10.0
 
 
-@dataclasses.dataclass
-class SimulatedStationConfig:
-    """The simulated station (MakeGraspStation); its settings are the scenario's own."""
-
-
-StationConfig = typing.Union[SimulatedStationConfig, HardwareStationConfig]
-
-
 def load_hardware_config(filename, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
-    """Reads a HardwareStationConfig mapping from YAML; ScenarioError names a bad field."""
-    from tegrasp_drake.experiments.scenario import ScenarioError, apply_override, load_typed
-    path = pathlib.Path(filename)
-    if not path.is_file():
-        raise ScenarioError(f"hardware config '{path}' does not exist")
-    try:
-        data = yaml_load(filename=str(path)) or {}
-    except RuntimeError as e:
-        raise ScenarioError(f"{path}: not valid YAML: {e}") from None
-    data.pop("_tag", None)
+    """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
+    data = read_yaml_file(filename, "the hardware config") or {}
+    if isinstance(data, dict):
+        data.pop("_tag", None)
     for assignment in overrides:
         apply_override(data, assignment)
-    return load_typed(data, HardwareStationConfig, str(path))
+    return load_typed(data, HardwareStationConfig, str(filename))
 
 
 def hardware_config_to_yaml(config: HardwareStationConfig) -> str:

@@ -8,8 +8,12 @@ face resting on the table), z up.
 """
 
 import dataclasses
+import math
 
-OBJECT_SHAPES = ("box", "cylinder", "file")
+# The entries of an object's `size` [m] for each shape.
+OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),
+                "file": ("width along the stroke", "depth", "height")}
+OBJECT_SHAPES = tuple(OBJECT_SIZES)
 
 
 @dataclasses.dataclass
@@ -46,3 +50,30 @@ BUILTIN_OBJECTS = {
     "thin_cylinder": ObjectConfig(name="thin_cylinder", shape="cylinder", size=[0.025, 0.120],
                                   mass=0.06, friction=0.5, color=[0.3, 0.4, 0.85, 1.0]),
 }
+
+
+def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES,
+                   friction_given: bool = True) -> tuple[str, str] | None:
+    """The first field of a user-defined object (its shape given) that cannot make an
+    object, and what is wrong, in words that follow "field 'x'"; None when all can.
+
+    `shapes` narrows the shapes allowed; with `friction_given` False the friction is not
+    checked (left for later). A model file is not looked for.
+    """
+    if config.shape not in shapes:
+        return "shape", f"names an unknown shape {config.shape!r} (known: {', '.join(shapes)})"
+    sizes = OBJECT_SIZES[config.shape]
+    if len(config.size) != len(sizes) or not all(_is_positive(v) for v in config.size):
+        return "size", (f"must hold {len(sizes)} positive sizes [{', '.join(sizes)}] in "
+                        f"metres for a {config.shape}, got {list(config.size)}")
+    if not _is_positive(config.mass):
+        return "mass", f"must be positive [kg], got {config.mass!r}"
+    if friction_given and not _is_positive(config.friction):
+        return "friction", f"must be positive, got {config.friction!r}"
+    return None
+
+
+def _is_positive(value) -> bool:
+    """A finite number above zero."""
+    return (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and 0.0 < value < math.inf)

@@ -22,6 +22,7 @@ from pydrake.multibody.math import SpatialVelocity
 from pydrake.systems.framework import BasicVector, LeafSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 
 CONTACT_FORCE_N = 0.2
 UPDATE_PERIOD_S = 0.005  # slip speed sampling; the vibration itself is output at any time
@@ -59,7 +60,7 @@ class PadSlipVibration(LeafSystem):
     period * film rate / 2 (0.25 m/s for the defaults) would alias in the film's samples.
     """
 
-    def __init__(self, *, pads: dict, object_body_index, config):
+    def __init__(self, *, pads: dict, object_body_index, config: VibrationSensorConfig):
         super().__init__()
         self._pads = pads  # finger name -> PadGeometry (body_index, X_BP)
         self._object_body = int(object_body_index)

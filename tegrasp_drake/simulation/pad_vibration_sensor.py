@@ -7,12 +7,25 @@ corner frequency (1 / (2 pi R_f C_f)), plus seeded Gaussian noise, all sampled a
 sensor rate. Seed the noise with `diagram.SetRandomContext(context, RandomGenerator(seed))`.
 """
 
+import dataclasses
 import math
 
 import numpy as np
 from pydrake.common import RandomDistribution
 from pydrake.systems.primitives import Adder, Gain, LinearSystem, RandomSource
 from pydrake.systems.sensors import Accelerometer
+
+
+@dataclasses.dataclass
+class VibrationSensorConfig:
+    """The piezo film of each pad (RA channel source): a high-passed accelerometer."""
+    sample_rate_hz: float = 1000.0
+    noise_std_mps2: float = 0.05
+    highpass_cutoff_hz: float = 2.0  # charge amplifier R_f C_f corner
+    # Texture of the pad cover that sliding drags the film over (pad_slip_vibration.py): a
+    # woven fabric of about 0.5 mm pitch with a few micrometres of relief. 0 disables.
+    slip_texture_height_m: float = 5e-6
+    slip_texture_period_m: float = 5e-4
 
 
 def highpass_matrices(cutoff_hz: float, dt: float):
@@ -24,8 +37,8 @@ def highpass_matrices(cutoff_hz: float, dt: float):
     return a * eye, (a - 1.0) * eye, a * eye, a * eye
 
 
-def add_pad_vibration_sensor(builder, plant, body, X_BS, config, name: str,
-                             slip_vibration=None):
+def add_pad_vibration_sensor(builder, plant, body, X_BS, config: VibrationSensorConfig,
+                             name: str, slip_vibration=None):
     """Adds the sensor for `body` (sensor frame S at X_BS); returns its output port (3,
     m/s^2, expressed in S). `slip_vibration`, if given, is an output port (3, m/s^2 in S)
     added to the rigid-body acceleration before the film's high-pass."""

@@ -9,12 +9,24 @@ blocked finger pushes with at most F on each pad (the right finger mimics the le
 the single actuator carries 2 F). A finger that stops short of its goal reports an object.
 """
 
+import dataclasses
+
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig import robotiq_units as ru
 
 _REF_Q, _REF_V, _REF_A, _GOAL, _HALF_SPEED, _FORCE, _POSITION_BYTE, _OBJECT, _T = range(9)
+
+
+@dataclasses.dataclass
+class GripperDriverConfig:
+    """The simulated 2F-85 controller (position loop with a force limit)."""
+    update_rate_hz: float = 200.0  # the 2F-85 accepts commands at up to 200 Hz
+    position_gain: float = 4000.0  # N/m on the finger coordinate
+    damping_gain: float = 40.0  # N s/m
+    acceleration: float = 0.5  # m/s^2, finger speed ramps
+    stall_speed: float = 0.002  # m/s; slower than this before the goal = object detected
 
 
 def reference_step(q: float, v: float, goal: float, max_speed: float, acceleration: float,
@@ -45,7 +57,7 @@ class SimRobotiqDriver(LeafSystem):
     v_left, v_right from the plant's gripper instance). Output ports: desired_state (2: q, v
     of the actuated left finger, to the plant), status (8 bytes, robotiq_units order)."""
 
-    def __init__(self, *, config, initial_opening: float = ru.STROKE_M):
+    def __init__(self, *, config: GripperDriverConfig, initial_opening: float = ru.STROKE_M):
         super().__init__()
         self._config = config
         self._dt = 1.0 / config.update_rate_hz

@@ -17,6 +17,7 @@ The Jaco's firmware compensates gravity, so gravity is off for the arm and gripp
 their joints track `arm.desired_state` with the plant's implicit PD.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -34,14 +35,33 @@ from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRIPPER_URL, R_WG_SIDE_GR
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE
 from tegrasp_drake.simulation.object_model import add_object, object_body
-from tegrasp_drake.simulation.object_force_pulse import ObjectForcePulse
+from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
-from tegrasp_drake.simulation.pad_vibration_sensor import add_pad_vibration_sensor
+from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
+                                                          add_pad_vibration_sensor)
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
 
 TABLE_URL = "package://tegrasp/table/table.sdf"
 ARM_JOINTS = 6
+
+
+@dataclasses.dataclass
+class ArmDriverConfig:
+    """The simulated JACO2 joint controller; the firmware compensates gravity."""
+    position_gain: float = 400.0  # N m/rad
+    damping_gain: float = 40.0  # N m s/rad
+    initial_gripper_xyz: list[float] = dataclasses.field(
+        default_factory=lambda: [0.69, 0.0, 0.145])  # m, grasp frame in world at t = 0;
+    # 3 cm behind and 9 cm above the grasp: further back, the Jaco nears its wrist singularity
+    # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state;
+    # the Jaco's own velocity interface runs at 100 Hz.
+    control_period_s: float = 0.005
+
+
+@dataclasses.dataclass
+class SimulatedStationConfig:
+    """The simulated station (MakeGraspStation); its settings are the scenario's own."""
 
 
 def object_pose_on_table(scenario) -> RigidTransform:
@@ -79,7 +99,7 @@ def _pad_geometries(plant, scene_graph, gripper):
     return pads
 
 
-def _add_slip_vibration(builder, plant, pads, body, taxels, config):
+def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSensorConfig):
     """The pads' texture vibration under slip, or None when the texture is switched off."""
     if config.slip_texture_height_m <= 0.0:
         return None
@@ -93,13 +113,12 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config):
     return slip
 
 
-def _add_disturbance(builder, plant, body, config):
+def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
     """The scenario's hit on the object, if it has one."""
     if config.hit_time_s < 0.0:
         return
-    pulse = builder.AddNamedSystem("object_force_pulse", ObjectForcePulse(
-        body_index=body.index(), start_s=config.hit_time_s, duration_s=config.hit_duration_s,
-        force_W=config.hit_force_n))
+    pulse = builder.AddNamedSystem("object_force_pulse",
+                                   ObjectForcePulse(body_index=body.index(), config=config))
     builder.Connect(pulse.get_output_port(), plant.get_applied_spatial_force_input_port())
 
 

@@ -22,6 +22,19 @@ from tegrasp_drake.simulation.contact_pressure import polygon_fan_triangles, tax
 _NOISE_STREAM = 7001  # separates this sensor's random stream from others seeded alike
 
 
+@dataclasses.dataclass
+class TactileSensorConfig:
+    """The capacitive taxel array of each pad (SA channel source).
+
+    AD7147: 12 conversion stages at decimation 64 take about 9.2 ms (about 108 Hz); 1000 Hz
+    is also selectable for an idealised sensor.
+    """
+    sample_rate_hz: float = 108.0
+    noise_std_n: float = 0.005  # per taxel, Gaussian
+    quantization_n: float = 0.001  # per taxel LSB; 0 disables
+    offset_n: float = 0.0  # per taxel constant bias
+
+
 @dataclasses.dataclass(frozen=True)
 class PadGeometry:
     """Where one pad is: its collision geometry and its frame P on body B (X_BP)."""
@@ -82,7 +95,7 @@ class TactilePads(LeafSystem):
       - true_taxel_forces: 24 noise-free forces [N] (left then right), for evaluation.
     """
 
-    def __init__(self, *, pads: dict, config, seed: int):
+    def __init__(self, *, pads: dict, config: TactileSensorConfig, seed: int):
         super().__init__()
         self._pads = pads  # finger name -> PadGeometry
         self._config = config

@@ -31,7 +31,6 @@ from tegrasp_drake.experiments.sweep.spec import (
     Perturbation,
     RandomisationConfig,
     SweepSpec,
-    SweepSpecError,
     TrialSpec,
     expand_trials,
     load_sweep_spec,

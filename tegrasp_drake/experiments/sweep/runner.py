@@ -105,7 +105,7 @@ def run_sweep(spec: SweepSpec, trial_function, out_dir, *, workers: int | None =
     `trial_function(trial_dict) -> result_dict` must be a picklable module-level
     callable importable by the workers. `workers` defaults to all cores of the local
     pool; `scheduler` ("tcp://host:port") runs on that Dask cluster instead. Raises
-    SweepSpecError or SweepError before any trial runs when the spec is invalid,
+    ConfigError or SweepError before any trial runs when the spec is invalid,
     the folder holds records of a different sweep, or another sweep is writing there.
     """
     start = time.perf_counter()

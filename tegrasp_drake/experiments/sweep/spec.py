@@ -13,6 +13,11 @@ marker "misplaced".
 Paired comparison: a trial's random numbers come from a seed derived from
 (base_seed, object, marker offset, attempt) and never from the controller, so every
 controller meets exactly the same perturbed scene and sensor-noise seed.
+
+A spec file is read like every other configuration file (rig/typed_yaml.py): the same YAML
+parser, the same walk that names an unknown, missing or mistyped field, and ConfigError. The
+spec's types are frozen and hashable (scenes are compared and collected in sets), which
+Drake's `yaml_load_typed` cannot build, so `load_sweep_spec` builds them from the checked data.
 """
 
 import dataclasses
@@ -21,17 +26,21 @@ import re
 import zlib
 from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
+from tegrasp_drake.control import controller_config
+from tegrasp_drake.rig import objects
+from tegrasp_drake.rig.objects import ObjectConfig, object_problem
+from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
+
 # The controllers the trial function knows (issue #5): the paper's memorized triggers,
 # heuristic thresholds in the style of Romano et al. 2011, and open loop.
-CONTROLLERS = ("memorized", "heuristic", "open_loop")
+CONTROLLERS = controller_config.CONTROLLERS
 
-# The paper's three objects (Fig. 8a). Their models live with the trial function;
+# The paper's three objects (Fig. 8a), as the scenario knows them (rig/objects.py);
 # a sweep spec can add user-defined objects (`ObjectDefinition`).
-BUILTIN_OBJECTS = ("box", "thick_cylinder", "thin_cylinder")
+BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
 
 # The paper's grid (Sec. IV-B): +-1 cm normal to the palm, +-1.5 cm along the stroke.
 PAPER_NORMAL_OFFSETS_M = (-0.010, 0.0, 0.010)
@@ -39,11 +48,8 @@ PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
 
 # Names become parts of trial ids and file names: keep them to a safe alphabet.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
-_OBJECT_SHAPES = {"box": 3, "cylinder": 2}  # shape -> number of size_m values
-
-
-class SweepSpecError(ValueError):
-    """A sweep specification is invalid; the message names the field and its source."""
+# A sweep's object is a primitive shape: an ObjectDefinition has no model file field.
+_OBJECT_SHAPES = tuple(shape for shape in objects.OBJECT_SHAPES if shape != "file")
 
 
 def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float], ...]:
@@ -54,15 +60,24 @@ def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float
 
 @dataclass(frozen=True)
 class ObjectDefinition:
-    """A user-defined object, handed to the trial function in its trial dict.
+    """A user-defined object, handed to the trial function in its trial dict: the frozen
+    (hashable) form of the scenario's ObjectConfig (rig/objects.py), with the same meaning.
 
-    `size_m` follows Drake's shapes: a box's (x, y, z) edge lengths, a cylinder's
-    (radius, length). `friction_coefficient` None means the trial function's default.
+    `size_m` is ObjectConfig.size: a box's [x, y, z] edge lengths, a cylinder's
+    [diameter, height]. `friction_coefficient` None means the trial function's default.
     """
     shape: str
     size_m: tuple[float, ...]
     mass_kg: float
     friction_coefficient: float | None = None
+
+    def object_config(self, name: str) -> ObjectConfig:
+        """This object as the scenario's ObjectConfig called `name` (friction 0, which
+        ObjectConfig reads as not set, when `friction_coefficient` is None)."""
+        friction = self.friction_coefficient
+        return ObjectConfig(name=name, shape=self.shape, size=[float(v) for v in self.size_m],
+                            mass=float(self.mass_kg),
+                            friction=0.0 if friction is None else float(friction))
 
 
 @dataclass(frozen=True)
@@ -154,19 +169,19 @@ class TrialSpec:
 def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                   builtin_objects: Collection[str] = BUILTIN_OBJECTS,
                   controllers: Collection[str] = CONTROLLERS) -> None:
-    """Raises SweepSpecError naming `source` and the field when `spec` cannot run.
+    """Raises ConfigError naming `source` and the field when `spec` cannot run.
 
     Objects are checked against `builtin_objects` plus the spec's own `user_objects`,
     controllers against `controllers`.
     """
     def fail(field_name, message):
-        raise SweepSpecError(f"{source}: field '{field_name}': {message}")
+        raise ConfigError(f"{source}: field '{field_name}': {message}")
 
     for name, definition in spec.user_objects.items():
         _check_name(name, f"user_objects.{name}", fail)
         if name in builtin_objects:
             fail(f"user_objects.{name}", "redefines a built-in object; choose another name")
-        _check_object_definition(definition, f"user_objects.{name}", fail)
+        _check_object_definition(name, definition, fail)
     known_objects = tuple(builtin_objects) + tuple(spec.user_objects)
     _check_names_in(spec.objects, known_objects, "objects", "object", fail)
     _check_names_in(spec.controllers, tuple(controllers), "controllers", "controller", fail)
@@ -217,24 +232,20 @@ def _check_names_in(names, known, field_name, kind, fail):
         fail(field_name, f"names a {kind} twice: {list(names)}")
 
 
-def _check_object_definition(definition, field_name, fail):
+# ObjectConfig's field names -> ObjectDefinition's.
+_DEFINITION_FIELDS = {"shape": "shape", "size": "size_m", "mass": "mass_kg",
+                      "friction": "friction_coefficient"}
+
+
+def _check_object_definition(name, definition, fail):
+    """The checks of the scenario's objects (rig/objects.py), named by the sweep's fields."""
     if not isinstance(definition, ObjectDefinition):
-        fail(field_name, "expected an object definition")
-    if definition.shape not in _OBJECT_SHAPES:
-        fail(f"{field_name}.shape",
-             f"unknown shape {definition.shape!r}; known: {', '.join(_OBJECT_SHAPES)}")
-    n = _OBJECT_SHAPES[definition.shape]
-    if (len(definition.size_m) != n
-            or not all(_is_number(v) and 0.0 < v < math.inf for v in definition.size_m)):
-        meaning = "(x, y, z)" if definition.shape == "box" else "(radius, length)"
-        fail(f"{field_name}.size_m",
-             f"a {definition.shape} needs {n} positive sizes {meaning} in m, "
-             f"got {list(definition.size_m)!r}")
-    if not _is_number(definition.mass_kg) or not 0.0 < definition.mass_kg < math.inf:
-        fail(f"{field_name}.mass_kg", f"expected a positive number, got {definition.mass_kg!r}")
-    mu = definition.friction_coefficient
-    if mu is not None and (not _is_number(mu) or not 0.0 < mu < math.inf):
-        fail(f"{field_name}.friction_coefficient", f"expected a positive number, got {mu!r}")
+        fail(f"user_objects.{name}", "expected an object definition")
+    problem = object_problem(definition.object_config(name), shapes=_OBJECT_SHAPES,
+                             friction_given=definition.friction_coefficient is not None)
+    if problem:
+        config_field, words = problem
+        fail(f"user_objects.{name}.{_DEFINITION_FIELDS[config_field]}", words)
 
 
 def _is_int(value) -> bool:
@@ -253,11 +264,12 @@ def _offset_key(offset) -> tuple[int, int]:
 # ---------------------------------------------------------------------------------
 # Loading from YAML
 
-_SPEC_FIELDS = {"objects", "controllers", "grid", "attempts", "base_seed",
-                "randomisation", "user_objects"}
-_GRID_FIELDS = {"normal_offsets_m", "stroke_offsets_m"}
-_OBJECT_FIELDS = {f.name for f in dataclasses.fields(ObjectDefinition)}
-_RANDOMISATION_FIELDS = {f.name for f in dataclasses.fields(RandomisationConfig)}
+
+@dataclass
+class _ProductGrid:
+    """The mapping form of a spec's `grid`: the product of two offset lists [m]."""
+    normal_offsets_m: list[float]
+    stroke_offsets_m: list[float]
 
 
 def load_sweep_spec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
@@ -268,90 +280,49 @@ def load_sweep_spec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
     grid (either a list of [dx_m, dy_m] marker offsets, or a mapping with
     normal_offsets_m and stroke_offsets_m lists whose product is the grid),
     randomisation (a mapping of `RandomisationConfig` fields), user_objects (a mapping
-    from name to `ObjectDefinition` fields). Raises SweepSpecError naming the file and
+    from name to `ObjectDefinition` fields). Raises ConfigError naming the file and
     the field for unknown fields, wrong types and values that cannot run.
     """
-    import yaml  # PyYAML, a dependency of drake; parsed here without Drake.
-
-    path = Path(path)
     source = str(path)
 
     def fail(field_name, message):
-        raise SweepSpecError(f"{source}: field '{field_name}': {message}")
+        raise ConfigError(f"{source}: field '{field_name}': {message}")
 
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise SweepSpecError(f"{source}: cannot read the sweep spec: {error}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        raise SweepSpecError(f"{source}: not valid YAML: {error}") from None
-    if data is None:
-        data = {}
-    if not isinstance(data, dict):
-        raise SweepSpecError(f"{source}: expected a mapping of fields at the top level")
-    _reject_unknown(data, _SPEC_FIELDS, "", fail)
-
-    kwargs = {}
+    fields = read_yaml_file(path, "the sweep spec")
+    if fields is None:
+        fields = {}
+    # The grid has two forms, a list of markers or a product grid: it is read on its own.
+    has_grid = isinstance(fields, dict) and "grid" in fields
+    grid = fields.pop("grid") if has_grid else None
+    check_fields(fields, SweepSpec, source)
+    if has_grid:
+        fields["grid"] = _parse_grid(grid, source, fail)
     for name in ("objects", "controllers"):
-        if name in data:
-            kwargs[name] = _string_list(data[name], name, fail)
-    for name in ("attempts", "base_seed"):
-        if name in data:
-            if not _is_int(data[name]):
-                fail(name, f"expected an integer, got {data[name]!r}")
-            kwargs[name] = data[name]
-    if "grid" in data:
-        kwargs["grid"] = _parse_grid(data["grid"], fail)
-    if "randomisation" in data:
-        value = data["randomisation"]
-        if not isinstance(value, dict):
-            fail("randomisation", f"expected a mapping, got {value!r}")
-        _reject_unknown(value, _RANDOMISATION_FIELDS, "randomisation.", fail)
-        for name, item in value.items():
-            expected_bool = name == "sensor_noise"
-            if expected_bool != isinstance(item, bool) or not (expected_bool or _is_number(item)):
-                fail(f"randomisation.{name}",
-                     f"expected {'true or false' if expected_bool else 'a number'}, "
-                     f"got {item!r}")
-        kwargs["randomisation"] = RandomisationConfig(**value)
-    if "user_objects" in data:
-        kwargs["user_objects"] = _parse_user_objects(data["user_objects"], fail)
+        if name in fields:
+            fields[name] = tuple(fields[name])
+    if "randomisation" in fields:
+        fields["randomisation"] = RandomisationConfig(**fields["randomisation"])
+    if "user_objects" in fields:
+        fields["user_objects"] = {
+            str(name): ObjectDefinition(**{**definition, "size_m": tuple(definition["size_m"])})
+            for name, definition in fields["user_objects"].items()}
 
-    spec = SweepSpec(**kwargs)
+    spec = SweepSpec(**fields)
     validate_spec(spec, source, builtin_objects=builtin_objects, controllers=controllers)
     return spec
 
 
-def _reject_unknown(mapping, known, prefix, fail):
-    for key in mapping:
-        if key not in known:
-            fail(f"{prefix}{key}", f"unknown field; known fields: {', '.join(sorted(known))}")
-
-
-def _string_list(value, field_name, fail) -> tuple[str, ...]:
-    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-        fail(field_name, f"expected a list of names, got {value!r}")
-    return tuple(value)
-
-
-def _number_list(value, field_name, fail) -> tuple[float, ...]:
-    if not isinstance(value, list) or not all(_is_number(v) for v in value):
-        fail(field_name, f"expected a list of numbers, got {value!r}")
-    if not value:
+def _offsets(values, field_name, fail) -> tuple[float, ...]:
+    if not values:
         fail(field_name, "is empty: a sweep needs at least one marker offset")
-    return tuple(float(v) for v in value)
+    return tuple(float(v) for v in values)
 
 
-def _parse_grid(value, fail) -> tuple[tuple[float, float], ...]:
+def _parse_grid(value, source, fail) -> tuple[tuple[float, float], ...]:
     if isinstance(value, dict):
-        _reject_unknown(value, _GRID_FIELDS, "grid.", fail)
-        for name in sorted(_GRID_FIELDS):
-            if name not in value:
-                fail(f"grid.{name}", "missing (a product grid needs both offset lists)")
-        return product_grid(_number_list(value["normal_offsets_m"], "grid.normal_offsets_m", fail),
-                            _number_list(value["stroke_offsets_m"], "grid.stroke_offsets_m", fail))
+        check_fields(value, _ProductGrid, source, "grid")
+        return product_grid(_offsets(value["normal_offsets_m"], "grid.normal_offsets_m", fail),
+                            _offsets(value["stroke_offsets_m"], "grid.stroke_offsets_m", fail))
     if isinstance(value, list):
         grid = []
         for item in value:
@@ -362,30 +333,6 @@ def _parse_grid(value, fail) -> tuple[tuple[float, float], ...]:
         return tuple(grid)  # validate_spec rejects an empty list.
     fail("grid", "expected a list of [dx_m, dy_m] offsets or a mapping with "
                  f"normal_offsets_m and stroke_offsets_m, got {value!r}")
-
-
-def _parse_user_objects(value, fail) -> dict[str, ObjectDefinition]:
-    if not isinstance(value, dict):
-        fail("user_objects", f"expected a mapping from name to object fields, got {value!r}")
-    objects = {}
-    for name, fields in value.items():
-        prefix = f"user_objects.{name}"
-        if not isinstance(fields, dict):
-            fail(prefix, f"expected a mapping of object fields, got {fields!r}")
-        _reject_unknown(fields, _OBJECT_FIELDS, prefix + ".", fail)
-        for required in ("shape", "size_m", "mass_kg"):
-            if required not in fields:
-                fail(f"{prefix}.{required}", "missing")
-        if not isinstance(fields["shape"], str):
-            fail(f"{prefix}.shape", f"expected a name, got {fields['shape']!r}")
-        size = fields["size_m"]
-        if not isinstance(size, list) or not all(_is_number(v) for v in size):
-            fail(f"{prefix}.size_m", f"expected a list of numbers, got {size!r}")
-        for numeric in ("mass_kg", "friction_coefficient"):
-            if numeric in fields and not _is_number(fields[numeric]):
-                fail(f"{prefix}.{numeric}", f"expected a number, got {fields[numeric]!r}")
-        objects[str(name)] = ObjectDefinition(**{**fields, "size_m": tuple(size)})
-    return objects
 
 
 # ---------------------------------------------------------------------------------

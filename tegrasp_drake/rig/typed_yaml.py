@@ -1,0 +1,169 @@
+"""Typed configuration from YAML files, with errors that name the field.
+
+Every YAML file the project reads as configuration goes through here: scenarios
+(experiments/scenario.py), the hardware config (hardware/config.py) and sweep specs
+(experiments/sweep/spec.py).
+
+- `read_yaml_file` parses a file with Drake's `yaml_load` (PyYAML; a tag such as
+  `!HardwareStationConfig` is kept as the mapping's `_tag`).
+- `apply_override` applies a `--set key.sub=value` assignment to the parsed data.
+- `check_fields` walks the data against a dataclass schema and names the first field that is
+  unknown, missing (a dataclass field without a default) or of the wrong type by its dotted
+  path, e.g. `object.mass` or `user_objects.mug.size_m`.
+- `load_typed` checks the data, then builds the schema with Drake's `yaml_load_typed`.
+
+Every problem is a ConfigError whose message begins with the file (and section) it came from.
+"""
+
+import collections.abc
+import dataclasses
+import pathlib
+import types
+import typing
+
+import yaml
+from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
+
+
+class ConfigError(ValueError):
+    """A configuration file, field or value is wrong; the message names it."""
+
+
+def read_yaml_file(path: str | pathlib.Path, what: str):
+    """The parsed content of the YAML file at `path` (None if it is empty); `what` names the
+    file in errors, e.g. "the scenario file"."""
+    path = pathlib.Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: cannot read {what}: it does not exist") from None
+    except OSError as e:
+        raise ConfigError(f"{path}: cannot read {what}: {e.strerror or e}") from None
+    try:
+        return yaml_load(data=text) if text else None
+    except yaml.YAMLError as e:
+        raise ConfigError(f"{path}: not valid YAML: {e}") from None
+
+
+def apply_override(data: dict, assignment: str) -> None:
+    """Sets `key.sub=value` (YAML value) in nested YAML data."""
+    if "=" not in assignment:
+        raise ConfigError(f"--set '{assignment}': expected key=value, e.g. object.name=box")
+    key, text = assignment.split("=", 1)
+    value = yaml_load(data=f"value: {text}")["value"] if text.strip() else ""
+    node = data
+    parts = key.strip().split(".")
+    for part in parts[:-1]:
+        node = node.setdefault(part, {})
+        if not isinstance(node, dict):
+            raise ConfigError(f"--set '{assignment}': '{part}' is not a mapping")
+    node[parts[-1]] = value
+
+
+def load_typed(data: dict, schema, source: str):
+    """An instance of the dataclass `schema` from YAML data (defaults for what is not
+    set), after `check_fields`."""
+    check_fields(data, schema, source)
+    try:
+        return yaml_load_typed(schema=schema, data=yaml_dump(data), defaults=schema())
+    except (RuntimeError, ValueError) as e:
+        raise ConfigError(f"{source}: {e}") from None
+
+
+def check_fields(data, schema, source: str, where: str = "") -> None:
+    """Walks YAML data against a dataclass schema (at the dotted path `where`); raises
+    ConfigError naming the first unknown, missing or mistyped field.
+
+    Understood in the schema: dataclasses, float, int, str, bool, list[T], tuple[T, ...],
+    dict[str, T] and Mapping[str, T], T | None, a Union of dataclasses selected by a YAML tag
+    (the first member without one), and Drake's own config classes (checked by Drake).
+    """
+    if not dataclasses.is_dataclass(schema):
+        # A Drake config class: let Drake check it, but name the section.
+        try:
+            yaml_load_typed(schema=schema, data=yaml_dump(data))
+        except (RuntimeError, ValueError) as e:
+            raise ConfigError(f"{source}: field '{where}': {e}") from None
+        return
+    if not isinstance(data, dict):
+        raise ConfigError(f"{source}: {_field(where)}must be a mapping of fields, got "
+                          f"{_describe(data)}")
+    hints = typing.get_type_hints(schema)
+    for key, value in data.items():
+        path = f"{where}.{key}" if where else str(key)
+        if key not in hints:
+            raise ConfigError(f"{source}: field '{path}': unknown field '{path}' (known: "
+                              f"{', '.join(sorted(hints))})")
+        _check_value(value, hints[key], path, source)
+    for field in dataclasses.fields(schema):
+        required = (field.default is dataclasses.MISSING
+                    and field.default_factory is dataclasses.MISSING)
+        if required and field.name not in data:
+            path = f"{where}.{field.name}" if where else field.name
+            raise ConfigError(f"{source}: field '{path}' is missing")
+
+
+# What a value of each scalar type must be, in an error message: alone, and in a list.
+_SCALAR_WORDS = {float: ("a number", "numbers"), int: ("an integer", "integers"),
+                 str: ("a string", "names"), bool: ("true or false", "true or false values")}
+
+
+def _is_scalar(value, hint) -> bool:
+    if hint is bool:
+        return isinstance(value, bool)
+    if isinstance(value, bool):
+        return False
+    return isinstance(value, (int, float) if hint is float else hint)
+
+
+def _check_value(value, hint, path: str, source: str) -> None:
+    origin = typing.get_origin(hint)
+    if origin in (typing.Union, types.UnionType):
+        members = [m for m in typing.get_args(hint) if m is not type(None)]
+        if value is None and len(members) < len(typing.get_args(hint)):
+            return  # an optional field left empty
+        if len(members) == 1:
+            _check_value(value, members[0], path, source)
+        else:
+            member, value = _union_member(value, members, path, source)
+            _check_value(value, member, path, source)
+    elif origin in (list, tuple):
+        element = typing.get_args(hint)[0]
+        if not isinstance(value, list):
+            words = _SCALAR_WORDS.get(element, (None, "entries"))[1]
+            raise ConfigError(f"{source}: field '{path}' must be a list of {words}, got "
+                              f"{_describe(value)}")
+        for k, item in enumerate(value):
+            _check_value(item, element, f"{path}[{k}]", source)
+    elif origin in (dict, collections.abc.Mapping):
+        if not isinstance(value, dict):
+            raise ConfigError(f"{source}: field '{path}' must be a mapping, got "
+                              f"{_describe(value)}")
+        for key, item in value.items():
+            _check_value(item, typing.get_args(hint)[1], f"{path}.{key}", source)
+    elif hint in _SCALAR_WORDS:
+        if not _is_scalar(value, hint):
+            raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
+                              f"{_describe(value)}")
+    else:
+        check_fields(value, hint, source, path)
+
+
+def _union_member(value, members, path: str, source: str):
+    """The member of a Union that a YAML tag (or its absence: the first) selects."""
+    tag = value.get("_tag") if isinstance(value, dict) else None
+    if tag is None:
+        return members[0], value
+    for member in members:
+        if tag == f"!{member.__name__}":
+            return member, {k: v for k, v in value.items() if k != "_tag"}
+    known = ", ".join(f"!{m.__name__}" for m in members)
+    raise ConfigError(f"{source}: field '{path}': unknown tag {tag} (known: {known})")
+
+
+def _field(path: str) -> str:
+    return f"field '{path}' " if path else ""
+
+
+def _describe(value) -> str:
+    return f"{type(value).__name__} {value!r}"
