@@ -8,10 +8,8 @@ from pydrake.systems.analysis import Simulator
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.controller_config import GraspControllerConfig
-from tegrasp_drake.control.grasp_modes import MEMORIZED_EVENT, Mode
-from tegrasp_drake.control.grasp_state_machine import (GraspStateMachine, avoid_direction,
-                                                       pad_accelerations_in_world)
-from tegrasp_drake.control.grasp_state_machine import GraspPlan
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.experiments.scenario import load_scenario
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
@@ -21,7 +19,7 @@ def make_machine(**config_changes):
     scenario = load_scenario(name="box")
     config = GraspControllerConfig(**config_changes)
     machine = GraspStateMachine(plan=GraspPlan.from_scenario(scenario), config=config,
-                                event_indices=EVENT_INDICES, event_trigger=MEMORIZED_EVENT)
+                                event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT)
     return machine, scenario
 
 
@@ -173,18 +171,6 @@ def test_device_fault_input_fails_with_the_message():
     simulator.AdvanceTo(0.02)
     assert mode(machine, context) == Mode.FAILED
     assert machine.timeline(context)[-1]["reason"] == "tactile: no frame since 1.234 s"
-
-
-def test_pad_frames_and_hit_direction():
-    # Each pad's normal (its z) points at the other finger: left pad toward -y, right +y.
-    normals = pad_accelerations_in_world(np.array([0, 0, 1.0, 0, 0, 1.0]))
-    np.testing.assert_allclose(normals, [[0, -1, 0], [0, 1, 0]], atol=1e-12)
-    # Pushed into the left pad (+y side): away is +y; into the right pad: -y.
-    np.testing.assert_allclose(avoid_direction([3.0, -2.0], np.zeros(3), 1.0), [0, 1, 0])
-    np.testing.assert_allclose(avoid_direction([-1.0, 2.0], np.zeros(3), 1.0), [0, -1, 0])
-    # Even pads: the common horizontal acceleration, else up.
-    np.testing.assert_allclose(avoid_direction([0.2, 0.1], [3.0, 0.0, 9.0], 1.0), [1, 0, 0])
-    np.testing.assert_allclose(avoid_direction([0.0, 0.0], np.zeros(3), 1.0), [0, 0, 1])
 
 
 def test_closed_on_nothing_needs_a_status_that_echoes_the_close_request():

@@ -6,8 +6,7 @@ import itertools
 import pytest
 
 from tegrasp_drake.control.controller_config import GraspControllerConfig
-from tegrasp_drake.control.grasp_modes import (CORRECTIVE, FAULT, MEMORIZED_EVENT, TERMINAL_MODES,
-                                               THRESHOLD, TIMER, Mode)
+from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Trigger
 from tegrasp_drake.control.transition_logic import (HOLDING_MODES, Counters, Observation,
                                                     next_mode)
 
@@ -26,7 +25,7 @@ EVENT_TRANSITIONS = {(Mode.REACH, Mode.LOAD), (Mode.LOAD, Mode.LIFT), (Mode.PLAC
 
 def decide(mode, config=None, counters=Counters(), **fields):
     return next_mode(mode, Observation(**fields), counters, config or GraspControllerConfig(),
-                     event_trigger=MEMORIZED_EVENT, hold_s=HOLD_S)
+                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=HOLD_S)
 
 
 def all_observations():
@@ -54,20 +53,20 @@ def test_every_transition_is_one_of_fig_6b(mode, counters):
     config = GraspControllerConfig()
     for observation in OBSERVATIONS:
         decision = next_mode(mode, observation, counters, config,
-                             event_trigger=MEMORIZED_EVENT, hold_s=HOLD_S)
+                             event_trigger=Trigger.MEMORIZED_EVENT, hold_s=HOLD_S)
         if mode in TERMINAL_MODES:
             assert decision is None
             continue
         if observation.device_fault or observation.gripper_fault:
-            assert decision.mode == Mode.FAILED and decision.trigger == FAULT
+            assert decision.mode == Mode.FAILED and decision.trigger == Trigger.FAULT
             continue
         if decision is None:
             continue
         assert decision.mode in ALLOWED[mode], (mode, observation, decision)
-        if decision.trigger == MEMORIZED_EVENT:
+        if decision.trigger == Trigger.MEMORIZED_EVENT:
             assert observation.event_matched and (mode, decision.mode) in EVENT_TRANSITIONS
-        if (mode, decision.mode) in EVENT_TRANSITIONS and decision.trigger != TIMER:
-            assert decision.trigger == MEMORIZED_EVENT
+        if (mode, decision.mode) in EVENT_TRANSITIONS and decision.trigger != Trigger.TIMER:
+            assert decision.trigger == Trigger.MEMORIZED_EVENT
         # Corrections used up never start another one.
         if counters.re_reaches >= config.max_re_reaches:
             assert decision.mode != Mode.RE_REACH
@@ -84,14 +83,14 @@ def test_event_transitions():
     assert decide(Mode.REACH, event_matched=True).mode == Mode.LOAD
     assert decide(Mode.LOAD, event_matched=True, contact=(True, True)).mode == Mode.LIFT
     decision = decide(Mode.PLACE, event_matched=True, contact=(True, True))
-    assert (decision.mode, decision.trigger) == (Mode.UNLOAD, MEMORIZED_EVENT)
+    assert (decision.mode, decision.trigger) == (Mode.UNLOAD, Trigger.MEMORIZED_EVENT)
 
 
 def test_re_reach_triggers_and_their_bound():
     config = GraspControllerConfig()
     one_sided = dict(contact=(False, True), one_sided_s=config.one_sided_contact_s)
     decision = decide(Mode.REACH, **one_sided)
-    assert (decision.mode, decision.trigger) == (Mode.RE_REACH, CORRECTIVE)
+    assert (decision.mode, decision.trigger) == (Mode.RE_REACH, Trigger.CORRECTIVE)
     assert "right finger" in decision.reason
     assert decide(Mode.REACH, closed_on_nothing=True).mode == Mode.RE_REACH
     assert decide(Mode.REACH, closing_s=config.reach_event_timeout_s).mode == Mode.RE_REACH
@@ -110,7 +109,7 @@ def test_lift_load_and_its_switch():
     config = GraspControllerConfig()
     slipping = dict(slip_s=config.slip_s, contact=(True, True), motion_done=True)
     decision = decide(Mode.LIFT, **slipping)
-    assert (decision.mode, decision.trigger) == (Mode.LOAD, CORRECTIVE)
+    assert (decision.mode, decision.trigger) == (Mode.LOAD, Trigger.CORRECTIVE)
     off = decide(Mode.LIFT, dataclasses.replace(config, lift_load_enabled=False), **slipping)
     assert off.mode == Mode.HOLD
     assert decide(Mode.LIFT, counters=Counters(lift_loads=config.max_lift_loads),
@@ -122,7 +121,7 @@ def test_lift_load_and_its_switch():
 
 def test_hold_avoid_place():
     decision = decide(Mode.HOLD, hit=True, contact=(True, True))
-    assert (decision.mode, decision.trigger) == (Mode.AVOID, THRESHOLD)
+    assert (decision.mode, decision.trigger) == (Mode.AVOID, Trigger.THRESHOLD)
     assert decide(Mode.HOLD, dataclasses.replace(GraspControllerConfig(), avoid_enabled=False),
                   hit=True, contact=(True, True)) is None
     assert decide(Mode.HOLD, time_in_mode=HOLD_S - 0.01, contact=(True, True)) is None
@@ -136,7 +135,7 @@ def test_place_without_event_unloads_on_timer():
     assert decide(Mode.PLACE, time_since_motion_done=0.5 * config.place_event_timeout_s,
                   **waiting) is None
     decision = decide(Mode.PLACE, time_since_motion_done=config.place_event_timeout_s, **waiting)
-    assert (decision.mode, decision.trigger) == (Mode.UNLOAD, TIMER)
+    assert (decision.mode, decision.trigger) == (Mode.UNLOAD, Trigger.TIMER)
 
 
 @pytest.mark.parametrize("mode", HOLDING_MODES)
@@ -156,7 +155,7 @@ def test_relift_after_lift_load_waits_for_force_and_quiet():
     ready = dict(contact=(True, True), grip_reached=True, ra_quiet=True,
                  time_in_mode=config.relift_settle_s)
     decision = decide(Mode.LOAD, counters=Counters(lift_loads=1), **ready)
-    assert (decision.mode, decision.trigger) == (Mode.LIFT, CORRECTIVE)
+    assert (decision.mode, decision.trigger) == (Mode.LIFT, Trigger.CORRECTIVE)
     assert decide(Mode.LOAD, counters=Counters(lift_loads=1), **{**ready, "ra_quiet": False}) \
         is None
     assert decide(Mode.LOAD, counters=Counters(lift_loads=1),

@@ -10,7 +10,8 @@ from tegrasp_drake.events.correlation import (
     window_contrast)
 from tegrasp_drake.tactile.sampling import resample_window, samples_per_window
 from tegrasp_drake.tactile.sliding_window import SlidingWindow, SlidingWindowState
-from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
+from tegrasp_drake.events.streaming_correlation import StreamingCorrelator
+from tegrasp_drake.events.transitions import NO_EVENT
 
 MIN_CONTRAST = 0.25
 

@@ -31,13 +31,15 @@ def register(subparsers) -> None:
 
 
 def print_result(result: dict) -> None:
+    from tegrasp_drake.control.grasp_modes import Transition
     print(f"object {result['object']} offset {result['offset_m']} m, controller "
           f"{result['controller']}, seed {result['seed']}")
-    for entry in result["transitions"]:
-        scores = entry.get("scores")
-        extra = f"  scores {scores}" if entry["trigger"].endswith("_event") else ""
-        print(f"  {entry['t']:7.3f} s  {entry['from']:>8} -> {entry['to']:<8} "
-              f"[{entry['trigger']}] {entry['reason']}{extra}")
+    for transition in map(Transition.from_dict, result["transitions"]):
+        scores = None if transition.scores is None else list(transition.scores)
+        extra = f"  scores {scores}" if transition.trigger.is_event else ""
+        print(f"  {transition.t:7.3f} s  {transition.from_mode.label:>8} -> "
+              f"{transition.to_mode.label:<8} [{transition.trigger.value}] "
+              f"{transition.reason}{extra}")
     print(f"hold {'SUCCESS' if result['hold_success'] else 'FAIL'} (held "
           f"{result['hold_time_s']:.2f} s), unload "
           f"{'SUCCESS' if result['unload_success'] else 'FAIL'} (tilt "

@@ -7,6 +7,9 @@ override can change it (e.g. `--set controller.lift_load_enabled=false`).
 
 import dataclasses
 
+# The controllers (issue #5): the paper's memorized triggers, heuristic thresholds in the
+# style of Romano et al. 2011, and open loop. This module imports no Drake: the sweep spec
+# (parsed without Drake) reads the names here.
 CONTROLLERS = ("memorized", "heuristic", "open_loop")
 
 

@@ -13,7 +13,7 @@ from pydrake.systems.primitives import Multiplexer
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.control.cartesian_arm_controller import add_cartesian_arm_controller
-from tegrasp_drake.control.grasp_modes import HEURISTIC_EVENT, MEMORIZED_EVENT, TIMER, Mode
+from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
@@ -35,7 +35,7 @@ class GraspController:
     gripper_command: object  # output port
     arm_desired_state: object  # output port
     mode: object  # output port: the Mode value (open loop: the script's phase index)
-    segments: list = None  # the open-loop script's segments
+    segments: list = None  # the open-loop script's ScriptSegments
 
     def current_mode(self, root_context) -> Mode:
         """The mode now (open loop: the mode of the script's phase)."""
@@ -45,22 +45,24 @@ class GraspController:
     def _system_context(self, root_context):
         return self.state_machine.GetMyContextFromRoot(root_context)
 
-    def transition_log(self, root_context) -> list[dict]:
-        """The transitions so far: dicts with t, from, to, trigger (and reason, scores)."""
+    def transitions(self, root_context) -> list[Transition]:
+        """The transitions so far (open loop: the script's changes of mode, by its timer;
+        they carry no scores)."""
         if self.segments is None:
-            return self.state_machine.timeline(self._system_context(root_context))
+            return list(self.state_machine.transitions(self._system_context(root_context)))
         t_now = root_context.get_time()
         log, previous = [], Mode.REACH
         for segment in self.segments[1:]:
             mode = _MODE_OF_PHASE[segment.phase]
             if segment.t_start <= t_now and mode != previous:
-                log.append({"t": segment.t_start, "from": previous.label, "to": mode.label,
-                            "trigger": TIMER, "reason": f"script phase {segment.phase}"})
+                log.append(Transition(t=segment.t_start, from_mode=previous, to_mode=mode,
+                                      trigger=Trigger.TIMER,
+                                      reason=f"script phase {segment.phase}"))
                 previous = mode
         end = self.segments[-1].t_end
         if end <= t_now:
-            log.append({"t": end, "from": previous.label, "to": Mode.DONE.label,
-                        "trigger": TIMER, "reason": "script ended"})
+            log.append(Transition(t=end, from_mode=previous, to_mode=Mode.DONE,
+                                  trigger=Trigger.TIMER, reason="script ended"))
         return log
 
 
@@ -92,9 +94,9 @@ def _add_detector(builder, scenario, name, events):
             ra_rate_hz=scenario.vibration.sample_rate_hz)
         events = events if events is not None else load_controller_events(scenario)
         return builder.AddNamedSystem("event_matcher", EventMatcher(events, matcher_config)), \
-            MEMORIZED_EVENT
+            Trigger.MEMORIZED_EVENT
     detector = HeuristicEventDetector(config.heuristic, grip_force_n=scenario.grasp.grip_force)
-    return builder.AddNamedSystem("heuristic_detector", detector), HEURISTIC_EVENT
+    return builder.AddNamedSystem("heuristic_detector", detector), Trigger.HEURISTIC_EVENT
 
 
 def add_grasp_controller(builder, *, scenario, station, controller: str | None = None,

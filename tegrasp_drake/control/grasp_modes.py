@@ -1,5 +1,7 @@
-"""The states of the grasping algorithm (Sec. II-B, Fig. 6b) and what can trigger a change."""
+"""The states of the grasping algorithm (Sec. II-B, Fig. 6b), what can trigger a change, and
+the record of each change (the state machine's timeline)."""
 
+import dataclasses
 import enum
 
 
@@ -21,18 +23,88 @@ class Mode(enum.IntEnum):
         """The paper's name: Reach, Re-Reach, Load, ..."""
         return "Re-Reach" if self is Mode.RE_REACH else self.name.capitalize()
 
+    @staticmethod
+    def from_label(label: str) -> "Mode":
+        """The mode named `label` (Mode.label); ValueError for an unknown name."""
+        for mode in Mode:
+            if mode.label == label:
+                return mode
+        raise ValueError(f"unknown mode '{label}'; known: {', '.join(m.label for m in Mode)}")
+
 
 TERMINAL_MODES = (Mode.DONE, Mode.FAILED)
 
-# What made a transition (the `trigger` of each timeline entry).
-MEMORIZED_EVENT = "memorized_event"  # the EventMatcher matched the expected memorized event
-HEURISTIC_EVENT = "heuristic_event"  # the heuristic controller's threshold detector fired
-THRESHOLD = "threshold"  # a hand-set threshold on the live signals (hit, lost object)
-TIMER = "timer"  # a planned motion or a timed phase ended
-CORRECTIVE = "corrective"  # a corrective action (Re-Reach, Lift-Load) started or ended
-FAULT = "fault"  # a device fault
-TRIGGERS = (MEMORIZED_EVENT, HEURISTIC_EVENT, THRESHOLD, TIMER, CORRECTIVE, FAULT)
 
-# The transitions each mode checks an event for, by mode (the expected event).
-EXPECTED_TRANSITION = {Mode.REACH: "reach_load", Mode.LOAD: "load_lift",
-                       Mode.PLACE: "place_unload"}
+class Trigger(enum.StrEnum):
+    """What made a transition (the `trigger` of each timeline entry)."""
+    MEMORIZED_EVENT = "memorized_event"  # the EventMatcher matched the expected memorized event
+    HEURISTIC_EVENT = "heuristic_event"  # the heuristic controller's threshold detector fired
+    THRESHOLD = "threshold"  # a hand-set threshold on the live signals (hit, lost object)
+    TIMER = "timer"  # a planned motion or a timed phase ended
+    CORRECTIVE = "corrective"  # a corrective action (Re-Reach, Lift-Load) started or ended
+    FAULT = "fault"  # a device fault
+
+    @property
+    def is_event(self) -> bool:
+        """True for an event detector's trigger (memorized or heuristic)."""
+        return self in (Trigger.MEMORIZED_EVENT, Trigger.HEURISTIC_EVENT)
+
+
+class Stage(enum.StrEnum):
+    """The step within a mode (grasp_state_machine.py)."""
+    NONE = ""  # the mode's motion, or none
+    MOVING = "moving"  # a planned motion of the grasp frame
+    CLOSING = "closing"  # Reach: the gripper closes on the object
+    OPENING = "opening"  # Re-Reach, Unload: the gripper opens before the arm moves
+    SENSING = "sensing"  # Avoid: the arm stands still while the hit's direction is sensed
+
+
+@dataclasses.dataclass(frozen=True)
+class Decision:
+    """The next mode, what triggered it and a human-readable reason."""
+    mode: Mode
+    trigger: Trigger
+    reason: str
+
+
+@dataclasses.dataclass(frozen=True)
+class Transition:
+    """One entry of the state machine's timeline: at t [s] (simulated, or the hardware
+    run's Context time) the machine went from from_mode to to_mode.
+
+    The corrective fields are set only on the transition that starts that action.
+    """
+    t: float
+    from_mode: Mode
+    to_mode: Mode
+    trigger: Trigger
+    reason: str
+    scores: tuple[float, ...] | None = None  # the detector's four channel scores; None: none
+    offset_m: float | None = None  # Re-Reach: the shift along world y [m]
+    grip_force_n: float | None = None  # Lift-Load: the raised grip force [N]
+    direction: tuple[float, float, float] | None = None  # Avoid: unit direction, world
+    delta_sa_n: tuple[float, float] | None = None  # Avoid: (left, right) SA gain of the hit [N]
+
+    def as_dict(self) -> dict:
+        """The JSON form (trial results, logs): t, from, to, trigger, reason, then the
+        fields that are set (scores, offset_m, grip_force_n, direction, delta_sa_n) with
+        tuples as lists. Modes by their labels (Mode.label)."""
+        entry = {"t": self.t, "from": self.from_mode.label, "to": self.to_mode.label,
+                 "trigger": self.trigger.value, "reason": self.reason}
+        for key in _OPTIONAL_FIELDS:
+            value = getattr(self, key)
+            if value is not None:
+                entry[key] = list(value) if isinstance(value, tuple) else value
+        return entry
+
+    @staticmethod
+    def from_dict(entry: dict) -> "Transition":
+        """The Transition of its JSON form (as_dict)."""
+        optional = {key: tuple(entry[key]) if isinstance(entry[key], list) else entry[key]
+                    for key in _OPTIONAL_FIELDS if key in entry}
+        return Transition(t=entry["t"], from_mode=Mode.from_label(entry["from"]),
+                          to_mode=Mode.from_label(entry["to"]),
+                          trigger=Trigger(entry["trigger"]), reason=entry["reason"], **optional)
+
+
+_OPTIONAL_FIELDS = ("scores", "offset_m", "grip_force_n", "direction", "delta_sa_n")

@@ -7,7 +7,8 @@ mode it is in: smooth (minimum-jerk) translations of the grasp frame at the side
 orientation, and Robotiq-style gripper requests. Everything it remembers is in one abstract
 state value (MachineState), so a Context holds the whole run, timeline included.
 
-Motion of each mode (world frame, grasp frame G; the stroke is world y):
+Motion of each mode (world frame, grasp frame G; the stroke is world y; the corrective
+actions' decisions and moves are in corrective_actions.py):
   Reach     move to the expected object position at grasp height, then close
   Re-Reach  open, shift along the stroke toward the finger that touched first by the offset
             its contact implies, (then Reach closes again)
@@ -19,50 +20,30 @@ Motion of each mode (world frame, grasp frame G; the stroke is world y):
 """
 
 import dataclasses
-import math
 
 import numpy as np
 from pydrake.common.value import AbstractValue
-from pydrake.math import RigidTransform, RotationMatrix
+from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.control.corrective_actions import (
+    Counters, avoid_move, is_hit, lift_load_grip_force, pad_accelerations_in_world,
+    re_reach_shift, re_reach_target)
+from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
+from tegrasp_drake.control.motion_profiles import MotionSegment
+from tegrasp_drake.control.scripted_grasp import gripper_command
+from tegrasp_drake.control.transition_logic import Observation, next_mode
+from tegrasp_drake.events.transitions import NO_EVENT, REQUIRED_TRANSITIONS, transition_states
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
-from tegrasp_drake.control.grasp_modes import EXPECTED_TRANSITION, Mode
-from tegrasp_drake.control.motion_profiles import minimum_jerk
-from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.control.transition_logic import Counters, Observation, next_mode
 
-NO_EVENT = -1
-# The pads' frames in the grasp frame G (the fingers are parallel to the gripper base, which
-# is G's orientation): each pad's z axis, its normal, points at the other finger.
-R_G_PAD = (RotationMatrix.MakeXRotation(math.pi / 2),  # left pad
-           RotationMatrix.MakeXRotation(-math.pi / 2))  # right pad
 OPENING_SPEED_MPS = 0.1  # when opening to re-reach or unload
 GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
-
-
-@dataclasses.dataclass(frozen=True)
-class Segment:
-    """A straight move of the grasp frame origin from p_start to p_end [m, world] over
-    [t_start, t_start + duration] with a minimum-jerk profile."""
-    t_start: float
-    duration: float
-    p_start: tuple
-    p_end: tuple
-
-    def position(self, t: float) -> np.ndarray:
-        tau = 1.0 if self.duration <= 0 else (t - self.t_start) / self.duration
-        s = minimum_jerk(min(max(tau, 0.0), 1.0))
-        return np.asarray(self.p_start) + s * (np.asarray(self.p_end) - np.asarray(self.p_start))
-
-    def done(self, t: float) -> bool:
-        return t >= self.t_start + self.duration
-
-    @staticmethod
-    def hold(t: float, p) -> "Segment":
-        return Segment(t, 0.0, tuple(p), tuple(p))
+# The event each mode checks for (the expected event): the event-triggered transition that
+# leaves it.
+EXPECTED_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
+                       for name in REQUIRED_TRANSITIONS}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -70,11 +51,11 @@ class MachineState:
     """Everything the machine remembers (times in s of simulated time)."""
     mode: Mode
     mode_start: float
-    segment: Segment
+    segment: MotionSegment
     gripper: tuple  # (opening [m], speed [m/s], force [N]) requested
     gripper_request_time: float
     grip_force: float
-    stage: str = ""  # the step within a mode (e.g. "moving", "closing", "opening")
+    stage: Stage = Stage.NONE  # the step within a mode
     counters: Counters = Counters()
     closing_since: float = -1.0
     one_sided_since: float = -1.0
@@ -84,7 +65,7 @@ class MachineState:
     sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
     acceleration_sum: tuple = (0.0, 0.0, 0.0)  # Avoid sensing: pads' world acceleration sum
     sa_gain_sum: tuple = (0.0, 0.0)  # Avoid sensing: SA gains over sa_before, summed
-    timeline: tuple = ()
+    timeline: tuple[Transition, ...] = ()
     failure: str = ""
 
     def __deepcopy__(self, memo):
@@ -98,7 +79,7 @@ class GraspPlan:
     """Where and how far to move, from the scenario (its `grasp` section) [m, s, N]."""
     start_xyz: tuple
     object_xy: tuple  # the expected object position
-    object_width: float  # along the stroke, for the Re-Reach offset
+    object_width: float  # along the stroke, for the Re-Reach shift
     grasp_height: float
     lift_height: float
     place_press: float
@@ -124,31 +105,6 @@ class GraspPlan:
             reach_s=g.reach_s, lift_s=g.lift_s, hold_s=g.hold_s, place_s=g.place_s,
             unload_s=g.unload_s, retract_s=g.retract_s, retract_distance=g.retract_distance,
             close_speed=g.close_speed, grip_force=g.grip_force)
-
-
-def pad_accelerations_in_world(pad_acceleration: np.ndarray) -> np.ndarray:
-    """(2, 3) the left and right pad accelerations [m/s^2] rotated from the pad frames into
-    world, for the side grasp."""
-    a = np.asarray(pad_acceleration).reshape(2, 3)
-    return np.array([(R_WG_SIDE_GRASP @ R_G_PAD[k]).matrix() @ a[k] for k in range(2)])
-
-
-def avoid_direction(delta_sa, acceleration_sum_W, sa_asymmetry_n: float) -> np.ndarray:
-    """Unit world direction to move away from a hit.
-
-    delta_sa: the (left, right) SA change [N] since just before the hit; the pad the object
-    was pushed into gains: along the stroke (world y, the left finger on +y) when the gain
-    differs by more than sa_asymmetry_n. Otherwise the horizontal part of
-    acceleration_sum_W (the pads' accelerations in world, summed over the sensing time: the
-    common motion of object and gripper); straight up when that is negligible too.
-    """
-    difference = float(delta_sa[0] - delta_sa[1])
-    if abs(difference) > sa_asymmetry_n:
-        return np.array([0.0, math.copysign(1.0, difference), 0.0])
-    a = np.asarray(acceleration_sum_W, dtype=float)
-    horizontal = np.array([a[0], a[1], 0.0])
-    norm = np.linalg.norm(horizontal)
-    return horizontal / norm if norm > 1e-6 else np.array([0.0, 0.0, 1.0])
 
 
 class GraspStateMachine(LeafSystem):
@@ -187,7 +143,7 @@ class GraspStateMachine(LeafSystem):
     """
 
     def __init__(self, *, plan: GraspPlan, config, event_indices: dict,
-                 event_trigger: str):
+                 event_trigger: Trigger):
         super().__init__()
         self._plan = plan
         self._config = config
@@ -222,16 +178,21 @@ class GraspStateMachine(LeafSystem):
         grasp = (*p.object_xy, p.grasp_height)
         return MachineState(
             mode=Mode.REACH, mode_start=0.0,
-            segment=Segment(p.settle_s, p.reach_s, p.start_xyz, grasp),
+            segment=MotionSegment(p.settle_s, p.reach_s, p.start_xyz, grasp),
             gripper=(ru.STROKE_M, p.close_speed, p.grip_force), gripper_request_time=0.0,
-            grip_force=p.grip_force, stage="moving")
+            grip_force=p.grip_force, stage=Stage.MOVING)
 
     def state(self, context) -> MachineState:
         return context.get_abstract_state(self._state).get_value()
 
+    def transitions(self, context) -> tuple[Transition, ...]:
+        """The transitions so far, in order."""
+        return self.state(context).timeline
+
     def timeline(self, context) -> list[dict]:
-        """The transitions so far: dicts with t, from, to, trigger, reason, scores."""
-        return [dict(entry) for entry in self.state(context).timeline]
+        """The transitions so far in their JSON form (Transition.as_dict): dicts with t,
+        from, to, trigger, reason, scores."""
+        return [transition.as_dict() for transition in self.transitions(context)]
 
     # ---- outputs -----------------------------------------------------------------------
 
@@ -271,27 +232,27 @@ class GraspStateMachine(LeafSystem):
         """Steps within a mode: close after the reach, shift after opening, retract after
         releasing."""
         p = self._plan
-        if s.mode == Mode.REACH and s.stage == "moving" and s.segment.done(t):
+        if s.mode == Mode.REACH and s.stage == Stage.MOVING and s.segment.done(t):
             return dataclasses.replace(
-                s, stage="closing", closing_since=t, gripper_request_time=t,
+                s, stage=Stage.CLOSING, closing_since=t, gripper_request_time=t,
                 gripper=(0.0, p.close_speed, s.grip_force))
-        if s.mode == Mode.AVOID and s.stage == "sensing":
+        if s.mode == Mode.AVOID and s.stage == Stage.SENSING:
             return self._sense_hit(s, t, context)
-        if s.mode in (Mode.RE_REACH, Mode.UNLOAD) and s.stage == "opening":
+        if s.mode in (Mode.RE_REACH, Mode.UNLOAD) and s.stage == Stage.OPENING:
             opened = self._opening(context) >= self._config.opened_m
             if opened and self._gripper_settled(s, t):
                 here = s.segment.position(t)
                 if s.mode == Mode.RE_REACH:
-                    target = here + np.array([0.0, s.reentry_offset, 0.0])
+                    target = re_reach_target(here, s.reentry_offset)
                     duration = self._config.re_reach_move_s
                 else:
                     # Back to the start pose's distance (nearer, the wrist nears its singularity).
                     target = np.array([max(here[0] - p.retract_distance, p.start_xyz[0]),
                                        here[1], p.start_xyz[2]])
                     duration = p.retract_s
-                return dataclasses.replace(s, stage="moving",
-                                           segment=Segment(t, duration, tuple(here),
-                                                           tuple(target)))
+                return dataclasses.replace(s, stage=Stage.MOVING,
+                                           segment=MotionSegment(t, duration, tuple(here),
+                                                                 tuple(target)))
         return s
 
     def _sense_hit(self, s: MachineState, t: float, context) -> MachineState:
@@ -306,16 +267,14 @@ class GraspStateMachine(LeafSystem):
                                             - np.asarray(s.sa_before))
         if t - s.mode_start < config.avoid_sense_s:
             return dataclasses.replace(s, acceleration_sum=tuple(total), sa_gain_sum=tuple(gain))
-        ticks = max(1, round(config.avoid_sense_s / config.update_period_s))
-        delta_sa = gain / ticks  # mean SA gain over the sensing time
-        direction = avoid_direction(delta_sa, total, config.avoid_sa_asymmetry_n)
         here = s.segment.position(t)
-        entry = dict(s.timeline[-1], direction=[round(float(x), 3) for x in direction],
-                     delta_sa_n=[round(float(x), 3) for x in delta_sa])
+        move = avoid_move(here, gain, total, config)
+        entry = dataclasses.replace(
+            s.timeline[-1], direction=tuple(round(float(x), 3) for x in move.direction_W),
+            delta_sa_n=tuple(round(float(x), 3) for x in move.delta_sa_n))
         return dataclasses.replace(
-            s, stage="moving", timeline=s.timeline[:-1] + (entry,),
-            segment=Segment(t, config.avoid_s, tuple(here),
-                            tuple(here + config.avoid_distance_m * direction)))
+            s, stage=Stage.MOVING, timeline=s.timeline[:-1] + (entry,),
+            segment=MotionSegment(t, config.avoid_s, tuple(here), tuple(move.p_end_W)))
 
     def _observe(self, s: MachineState, t: float, context):
         """The tick's Observation, and the state with its running timers updated."""
@@ -329,12 +288,12 @@ class GraspStateMachine(LeafSystem):
         ra = float(max(channels[2], channels[3]))
         slipping = s.mode == Mode.LIFT and ra > config.slip_ra_mps2
         slip_since = (s.slip_since if s.slip_since >= 0 else t) if slipping else -1.0
-        moving_stage = s.stage in ("moving", "")
+        moving_stage = s.stage in (Stage.MOVING, Stage.NONE)
         motion_done = moving_stage and s.segment.done(t)
         motion_done_since = ((s.motion_done_since if s.motion_done_since >= 0 else t)
                              if motion_done else -1.0)
         status = self._status.Eval(context)
-        closing = s.mode == Mode.REACH and s.stage == "closing"
+        closing = s.mode == Mode.REACH and s.stage == Stage.CLOSING
         # Only a status that echoes the close request (gPR = rPR) says where the fingers
         # stopped: a late status from the open request also reads "at requested position".
         closed_on_nothing = (
@@ -355,8 +314,7 @@ class GraspStateMachine(LeafSystem):
             grip_reached=bool(min(channels[0], channels[1])
                               >= config.grip_fraction * s.grip_force),
             slip_s=t - slip_since if slipping else 0.0, ra_quiet=ra <= config.slip_ra_mps2,
-            hit=(s.mode == Mode.HOLD and time_in_mode >= config.hit_refractory_s
-                 and ra > config.hit_ra_mps2),
+            hit=s.mode == Mode.HOLD and is_hit(ra, time_in_mode, config),
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",
             device_fault=device_fault)
         return observation, dataclasses.replace(
@@ -369,59 +327,52 @@ class GraspStateMachine(LeafSystem):
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
         """Log the transition and start the new mode's motion."""
         p, config = self._plan, self._config
-        entry = {"t": round(t, 6), "from": s.mode.label, "to": decision.mode.label,
-                 "trigger": decision.trigger, "reason": decision.reason,
-                 "scores": [round(float(x), 4) for x in self._scores.Eval(context)]}
+        entry = Transition(t=round(t, 6), from_mode=s.mode, to_mode=decision.mode,
+                           trigger=decision.trigger, reason=decision.reason,
+                           scores=tuple(round(float(x), 4) for x in self._scores.Eval(context)))
         here = s.segment.position(t)
-        hold_here = Segment.hold(t, here)
-        common = dict(mode=decision.mode, mode_start=t, timeline=s.timeline + (entry,),
-                      segment=hold_here, stage="", closing_since=-1.0, one_sided_since=-1.0,
-                      slip_since=-1.0, motion_done_since=-1.0)
+        hold_here = MotionSegment.hold(t, here)
+        common = dict(mode=decision.mode, mode_start=t, segment=hold_here, stage=Stage.NONE,
+                      closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
+                      motion_done_since=-1.0)
 
-        def new(**changes) -> MachineState:
-            return dataclasses.replace(s, **{**common, **changes})
+        def new(logged: Transition = entry, **changes) -> MachineState:
+            return dataclasses.replace(s, **{**common, "timeline": s.timeline + (logged,),
+                                             **changes})
 
         counters, mode = s.counters, decision.mode
         if mode == Mode.REACH:  # back from Re-Reach: close again where we are
-            return new(stage="closing", closing_since=t, gripper_request_time=t,
+            return new(stage=Stage.CLOSING, closing_since=t, gripper_request_time=t,
                        gripper=(0.0, p.close_speed, s.grip_force))
         if mode == Mode.RE_REACH:
-            offset = self._re_reach_offset(context)
-            entry["offset_m"] = round(offset, 5)
-            return new(stage="opening", reentry_offset=offset, gripper_request_time=t,
+            shift = re_reach_shift(self._channels.Eval(context), self._opening(context),
+                                   p.object_width, config.contact_force_n)
+            return new(dataclasses.replace(entry, offset_m=round(shift, 5)),
+                       stage=Stage.OPENING, reentry_offset=shift, gripper_request_time=t,
                        counters=dataclasses.replace(counters, re_reaches=counters.re_reaches + 1),
                        gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))
         if mode == Mode.LOAD:
-            force = s.grip_force
-            if s.mode == Mode.LIFT:  # Lift-Load: squeeze harder
-                force = min(force * config.lift_load_force_factor, config.max_grip_force_n)
-                counters = dataclasses.replace(counters, lift_loads=counters.lift_loads + 1)
-                entry["grip_force_n"] = force
-            return new(counters=counters, grip_force=force, gripper_request_time=t,
+            if s.mode != Mode.LIFT:
+                return new(gripper_request_time=t, gripper=(0.0, p.close_speed, s.grip_force))
+            force = lift_load_grip_force(s.grip_force, config)  # Lift-Load: squeeze harder
+            return new(dataclasses.replace(entry, grip_force_n=force),
+                       counters=dataclasses.replace(counters, lift_loads=counters.lift_loads + 1),
+                       grip_force=force, gripper_request_time=t,
                        gripper=(0.0, p.close_speed, force))
         if mode == Mode.LIFT:
             target = (here[0], here[1], p.grasp_height + p.lift_height)
             remaining = max(target[2] - here[2], 0.0) / p.lift_height
-            return new(segment=Segment(t, p.lift_s * max(remaining, 0.2), tuple(here), target))
+            return new(segment=MotionSegment(t, p.lift_s * max(remaining, 0.2), tuple(here),
+                                             target))
         if mode == Mode.AVOID:  # stop, sense the hit's direction, then move (_sense_hit)
-            return new(stage="sensing", acceleration_sum=(0.0, 0.0, 0.0), sa_gain_sum=(0.0, 0.0))
+            return new(stage=Stage.SENSING, acceleration_sum=(0.0, 0.0, 0.0),
+                       sa_gain_sum=(0.0, 0.0))
         if mode == Mode.PLACE:
             target = (here[0], here[1], p.grasp_height - p.place_press)
-            return new(segment=Segment(t, p.place_s, tuple(here), target))
+            return new(segment=MotionSegment(t, p.place_s, tuple(here), target))
         if mode == Mode.UNLOAD:
-            return new(stage="opening", gripper_request_time=t,
+            return new(stage=Stage.OPENING, gripper_request_time=t,
                        gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))
         if mode == Mode.FAILED:
             return new(failure=decision.reason)
         return new()  # Hold, Done
-
-    def _re_reach_offset(self, context) -> float:
-        """Sideways shift [m, world y] that centres the gripper on the object: the finger
-        still touching it marks its near face, half the object's width from its centre."""
-        channels = self._channels.Eval(context)
-        contact = channels[:2] > self._config.contact_force_n
-        if contact[0] == contact[1]:
-            return 0.0
-        half_gap = (self._opening(context) - self._plan.object_width) / 2.0
-        sign = 1.0 if contact[0] else -1.0  # the left finger is on the +y side
-        return sign * max(half_gap, 0.0)

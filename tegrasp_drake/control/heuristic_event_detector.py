@@ -10,18 +10,16 @@ tell which detector drives it.
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.events.transitions import NO_EVENT, REQUIRED_TRANSITIONS
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
-
-TRANSITIONS = ("reach_load", "load_lift", "place_unload")
-NO_EVENT = -1
 
 
 class HeuristicEventDetector(LeafSystem):
     """Threshold triggers for the expected transition.
 
     Inputs: channels (4: sa_left, sa_right [N], ra_left, ra_right [m/s^2]), expected_event
-    (1: index into TRANSITIONS, -1 none). Outputs: scores (4: each channel's value divided
-    by its threshold, 0 for a channel the rule ignores), match (1), scored_event (1).
+    (1: index into REQUIRED_TRANSITIONS, -1 none). Outputs: scores (4: each channel's value
+    divided by its threshold, 0 for a channel the rule ignores), match (1), scored_event (1).
     `grip_force_n` is the Load force; the state machine's Lift-Load raises it, so the
     load_lift rule accepts any SA above grip_fraction of the *initial* grip force.
     """
@@ -40,15 +38,16 @@ class HeuristicEventDetector(LeafSystem):
 
     @property
     def transitions(self) -> tuple[str, ...]:
-        return TRANSITIONS
+        return REQUIRED_TRANSITIONS
 
     def event_index(self, transition: str) -> int:
-        return TRANSITIONS.index(transition)
+        return REQUIRED_TRANSITIONS.index(transition)
 
     def _expected_index(self, context) -> int:
         value = int(self._expected.Eval(context)[0])
-        if not NO_EVENT <= value < len(TRANSITIONS):
-            raise ValueError(f"expected_event {value} is not -1 or 0..{len(TRANSITIONS) - 1}")
+        if not NO_EVENT <= value < len(REQUIRED_TRANSITIONS):
+            raise ValueError(f"expected_event {value} is not -1 or "
+                             f"0..{len(REQUIRED_TRANSITIONS) - 1}")
         return value
 
     def thresholds(self, transition: str) -> np.ndarray:
@@ -64,7 +63,7 @@ class HeuristicEventDetector(LeafSystem):
     def _ratios(self, index: int, context) -> np.ndarray:
         if index == NO_EVENT:
             return np.zeros(len(CHANNEL_NAMES))
-        return self._channels.Eval(context) / self.thresholds(TRANSITIONS[index])
+        return self._channels.Eval(context) / self.thresholds(REQUIRED_TRANSITIONS[index])
 
     def _calc_scores(self, context, output):
         output.SetFromVector(self._ratios(self._expected_index(context), context))
@@ -74,7 +73,7 @@ class HeuristicEventDetector(LeafSystem):
         ratios = self._ratios(index, context)
         if index == NO_EVENT:
             matched = False
-        elif TRANSITIONS[index] == "place_unload":
+        elif REQUIRED_TRANSITIONS[index] == "place_unload":
             matched = bool(np.any(ratios[2:] > 1.0))
         else:
             matched = bool(np.all(ratios[:2] > 1.0))

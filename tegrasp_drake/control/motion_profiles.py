@@ -1,8 +1,11 @@
-"""Smooth point-to-point motion: minimum-jerk timing and pose interpolation.
+"""Smooth point-to-point motion: minimum-jerk timing, pose interpolation and the state
+machine's straight moves (MotionSegment).
 
 A minimum-jerk segment starts and ends with zero velocity and acceleration, so phase
 boundaries put no velocity jumps (and no false RA spikes) into the pad accelerometers.
 """
+
+import dataclasses
 
 import numpy as np
 from pydrake.math import RigidTransform
@@ -22,3 +25,26 @@ def interpolate_pose(X_start: RigidTransform, X_end: RigidTransform, s: float) -
     rotation = q0.slerp(s, q1) if s > 0 else q0
     p = (1.0 - s) * X_start.translation() + s * X_end.translation()
     return RigidTransform(Quaternion(rotation.wxyz()), p)
+
+
+@dataclasses.dataclass(frozen=True)
+class MotionSegment:
+    """A straight move of the grasp frame origin from p_start to p_end [m, world] over
+    [t_start, t_start + duration] [s] with a minimum-jerk profile."""
+    t_start: float
+    duration: float
+    p_start: tuple
+    p_end: tuple
+
+    def position(self, t: float) -> np.ndarray:
+        tau = 1.0 if self.duration <= 0 else (t - self.t_start) / self.duration
+        s = minimum_jerk(min(max(tau, 0.0), 1.0))
+        return np.asarray(self.p_start) + s * (np.asarray(self.p_end) - np.asarray(self.p_start))
+
+    def done(self, t: float) -> bool:
+        return t >= self.t_start + self.duration
+
+    @staticmethod
+    def hold(t: float, p) -> "MotionSegment":
+        """Standing still at p [m, world] from t [s] on."""
+        return MotionSegment(t, 0.0, tuple(p), tuple(p))

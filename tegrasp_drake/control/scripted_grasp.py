@@ -42,8 +42,9 @@ class GraspScriptConfig:
 
 
 @dataclasses.dataclass(frozen=True)
-class Segment:
-    """One phase: the grasp frame moves from X_start to X_end over [t_start, t_end]."""
+class ScriptSegment:
+    """One phase of the script: the grasp frame moves from X_start to X_end over
+    [t_start, t_end] [s] while the gripper holds one (rPR, rSP, rFR) command."""
     phase: str
     t_start: float
     t_end: float
@@ -59,7 +60,7 @@ def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple
             float(ru.force_byte_from_force(force_n)))
 
 
-def plan_scripted_grasp(scenario) -> list[Segment]:
+def plan_scripted_grasp(scenario) -> list[ScriptSegment]:
     """The phase segments of the ideal grasp for the scenario's expected object position."""
     g = scenario.grasp
     x0, y0 = scenario.expected_object_xy
@@ -82,12 +83,12 @@ def plan_scripted_grasp(scenario) -> list[Segment]:
              ("retract", g.retract_s, placed, retracted, opened)]
     segments, t = [], 0.0
     for phase, duration, X_start, X_end, command in steps:
-        segments.append(Segment(phase, t, t + duration, X_start, X_end, command))
+        segments.append(ScriptSegment(phase, t, t + duration, X_start, X_end, command))
         t += duration
     return segments
 
 
-def sample_plan(segments: list[Segment], t: float):
+def sample_plan(segments: list[ScriptSegment], t: float):
     """(X_WG, gripper command, phase index into PHASES) of the script at time t [s]."""
     for segment in segments:
         if t < segment.t_end:
@@ -98,7 +99,7 @@ def sample_plan(segments: list[Segment], t: float):
     return last.X_end, last.gripper_command, PHASES.index("done")
 
 
-def plan_duration(segments: list[Segment]) -> float:
+def plan_duration(segments: list[ScriptSegment]) -> float:
     return segments[-1].t_end
 
 
@@ -109,7 +110,7 @@ class ScriptedGraspSource(LeafSystem):
     gripper_command (3: rPR, rSP, rFR), phase (1: index into PHASES).
     """
 
-    def __init__(self, segments: list[Segment]):
+    def __init__(self, segments: list[ScriptSegment]):
         super().__init__()
         self._segments = segments
         time_only = {self.time_ticket()}

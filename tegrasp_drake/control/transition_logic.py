@@ -22,13 +22,15 @@ tick and carries out the motion of each mode.
   Place    -> Unload     no event place_event_timeout_s after the arm stopped (timer)
   Unload   -> Done       the gripper is open and the arm retracted (timer)
   any      -> Failed     a device fault, the object lost, or corrections used up
-A corrective action whose retries are used up goes to Failed with the reason.
+A corrective action whose retries are used up goes to Failed with the reason; those
+decisions (take the action, or give up) are in corrective_actions.py.
 """
 
 import dataclasses
 
-from tegrasp_drake.control.grasp_modes import (CORRECTIVE, FAULT, TERMINAL_MODES, THRESHOLD,
-                                               TIMER, Mode)
+from tegrasp_drake.control.corrective_actions import (Counters, avoid_on_hit, lift_load_or_fail,
+                                                      re_reach_or_fail, relift_after_lift_load)
+from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Decision, Mode, Trigger
 
 HOLDING_MODES = (Mode.LIFT, Mode.HOLD, Mode.AVOID, Mode.PLACE)
 
@@ -52,101 +54,78 @@ class Observation:
     device_fault: str = ""  # a watchdog's message, "" for none
 
 
-@dataclasses.dataclass(frozen=True)
-class Counters:
-    re_reaches: int = 0
-    lift_loads: int = 0
-
-
-@dataclasses.dataclass(frozen=True)
-class Decision:
-    """The next mode, what triggered it and a human-readable reason."""
-    mode: Mode
-    trigger: str
-    reason: str
-
-
-def _re_reach_or_fail(counters: Counters, config, reason: str) -> Decision:
-    if not config.re_reach_enabled:
-        return Decision(Mode.FAILED, CORRECTIVE, f"{reason}; Re-Reach is switched off")
-    if counters.re_reaches >= config.max_re_reaches:
-        return Decision(Mode.FAILED, CORRECTIVE,
-                        f"{reason}, after {counters.re_reaches} Re-Reach attempts")
-    return Decision(Mode.RE_REACH, CORRECTIVE, reason)
-
-
-def _reach(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+def _reach(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
     if obs.event_matched:
         return Decision(Mode.LOAD, event_trigger, "Reach-Load event")
     if obs.one_sided_s >= config.one_sided_contact_s:
         finger = "left" if obs.contact[0] else "right"
-        return _re_reach_or_fail(counters, config, f"only the {finger} finger touched")
+        return re_reach_or_fail(counters, config, f"only the {finger} finger touched")
     if obs.closed_on_nothing:
-        return _re_reach_or_fail(counters, config, "the gripper closed on nothing")
+        return re_reach_or_fail(counters, config, "the gripper closed on nothing")
     if obs.closing_s >= config.reach_event_timeout_s:
-        return _re_reach_or_fail(
+        return re_reach_or_fail(
             counters, config, f"no Reach-Load event {config.reach_event_timeout_s:g} s after "
             "closing")
     return None
 
 
-def _load(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+def _load(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
     if obs.event_matched:
         return Decision(Mode.LIFT, event_trigger, "Load-Lift event")
-    if (counters.lift_loads and obs.grip_reached and obs.ra_quiet
-            and obs.time_in_mode >= config.relift_settle_s):
-        return Decision(Mode.LIFT, CORRECTIVE, "raised grip force reached (Lift-Load)")
+    relift = relift_after_lift_load(grip_reached=obs.grip_reached, ra_quiet=obs.ra_quiet,
+                                    time_in_load_s=obs.time_in_mode, counters=counters,
+                                    config=config)
+    if relift is not None:
+        return relift
     if obs.time_in_mode >= config.load_event_timeout_s:
         reason = f"no Load-Lift event within {config.load_event_timeout_s:g} s"
         if counters.lift_loads:
-            return Decision(Mode.FAILED, CORRECTIVE, f"{reason} after Lift-Load")
-        return _re_reach_or_fail(counters, config, reason)
+            return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason} after Lift-Load")
+        return re_reach_or_fail(counters, config, reason)
     return None
 
 
-def _lift(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
-    if config.lift_load_enabled and obs.slip_s >= config.slip_s:
-        if counters.lift_loads >= config.max_lift_loads:
-            return Decision(Mode.FAILED, CORRECTIVE,
-                            f"the object still slips after {counters.lift_loads} Lift-Load "
-                            "corrections")
-        return Decision(Mode.LOAD, CORRECTIVE, "slip during Lift (Lift-Load)")
+def _lift(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
+    lift_load = lift_load_or_fail(obs.slip_s, counters, config)
+    if lift_load is not None:
+        return lift_load
     if obs.motion_done:
-        return Decision(Mode.HOLD, TIMER, "lift motion ended")
+        return Decision(Mode.HOLD, Trigger.TIMER, "lift motion ended")
     return None
 
 
-def _hold(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
-    if config.avoid_enabled and obs.hit:
-        return Decision(Mode.AVOID, THRESHOLD, "hit: RA above the hit threshold")
+def _hold(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
+    avoid = avoid_on_hit(obs.hit, config)
+    if avoid is not None:
+        return avoid
     if obs.time_in_mode >= hold_s:
-        return Decision(Mode.PLACE, TIMER, f"held {hold_s:g} s")
+        return Decision(Mode.PLACE, Trigger.TIMER, f"held {hold_s:g} s")
     return None
 
 
-def _avoid(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+def _avoid(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
     if obs.motion_done:
-        return Decision(Mode.HOLD, TIMER, "avoiding motion ended")
+        return Decision(Mode.HOLD, Trigger.TIMER, "avoiding motion ended")
     return None
 
 
-def _place(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+def _place(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
     if obs.event_matched:
         return Decision(Mode.UNLOAD, event_trigger, "Place-Unload event")
     if obs.motion_done and obs.time_since_motion_done >= config.place_event_timeout_s:
-        return Decision(Mode.UNLOAD, TIMER, "no Place-Unload event after the arm stopped")
+        return Decision(Mode.UNLOAD, Trigger.TIMER, "no Place-Unload event after the arm stopped")
     return None
 
 
-def _re_reach(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+def _re_reach(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
     if obs.motion_done:
-        return Decision(Mode.REACH, CORRECTIVE, "re-centred")
+        return Decision(Mode.REACH, Trigger.CORRECTIVE, "re-centred")
     return None
 
 
-def _unload(obs: Observation, counters: Counters, config, event_trigger: str, hold_s: float):
+def _unload(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
     if obs.motion_done:
-        return Decision(Mode.DONE, TIMER, "released and retracted")
+        return Decision(Mode.DONE, Trigger.TIMER, "released and retracted")
     return None
 
 
@@ -155,7 +134,7 @@ _RULES = {Mode.REACH: _reach, Mode.RE_REACH: _re_reach, Mode.LOAD: _load, Mode.L
 
 
 def next_mode(mode: Mode, obs: Observation, counters: Counters, config, *,
-              event_trigger: str, hold_s: float) -> Decision | None:
+              event_trigger: Trigger, hold_s: float) -> Decision | None:
     """The transition out of `mode` this tick, or None to stay.
 
     config: a GraspControllerConfig; event_trigger: the trigger name of this controller's
@@ -164,9 +143,9 @@ def next_mode(mode: Mode, obs: Observation, counters: Counters, config, *,
     if mode in TERMINAL_MODES:
         return None
     if obs.device_fault:
-        return Decision(Mode.FAILED, FAULT, obs.device_fault)
+        return Decision(Mode.FAILED, Trigger.FAULT, obs.device_fault)
     if obs.gripper_fault:
-        return Decision(Mode.FAILED, FAULT, f"gripper fault {obs.gripper_fault}")
+        return Decision(Mode.FAILED, Trigger.FAULT, f"gripper fault {obs.gripper_fault}")
     if (config.drop_check_enabled and mode in HOLDING_MODES and not any(obs.contact)):
-        return Decision(Mode.FAILED, THRESHOLD, "object lost: no finger in contact")
+        return Decision(Mode.FAILED, Trigger.THRESHOLD, "object lost: no finger in contact")
     return _RULES[mode](obs, counters, config, event_trigger, hold_s)

@@ -29,19 +29,21 @@ from tegrasp_drake.events.memorized_event import (
 from tegrasp_drake.events.replay import (
     EventReplay, channels_trajectory, live_matcher_config, replay_event_held,
     replay_events_in_sequence, tactile_trial_from_log)
-from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
+from tegrasp_drake.events.streaming_correlation import StreamingCorrelator
 from tegrasp_drake.events.transitions import (
-    REQUIRED_TRANSITIONS, TRANSITIONS, transition_order)
+    NO_EVENT, REQUIRED_TRANSITIONS, TRANSITIONS, event_transition, transition_name,
+    transition_order, transition_states)
 
 __all__ = [
     "DEFAULT_PRE_TRANSITION_S", "DEFAULT_WINDOW_S", "FORMAT_VERSION", "INDEX_FILE",
     "NO_EVENT", "RECORD_COMMAND", "REQUIRED_TRANSITIONS", "TRANSITIONS", "EventMatcher",
     "EventMatcherConfig", "EventReplay", "EventSequencer", "MemorizedEvent",
     "MemorizedEventError", "StreamingCorrelator", "TactileTrial", "channel_score", "channels_trajectory",
-    "current_package_versions", "cut_window", "event_scores_reference",
+    "current_package_versions", "cut_window", "event_scores_reference", "event_transition",
     "extract_memorized_events", "live_matcher_config", "load_all_memorized_events",
     "load_memorized_events", "max_normalized_xcorr_reference", "next_sequence_step",
     "normalize_by_max", "read_index", "read_memorized_event",
     "replay_event_held", "replay_events_in_sequence", "save_memorized_events", "tactile_trial_from_log",
-    "transition_order", "window_contrast",
+    "transition_name", "transition_order", "transition_states",
+    "window_contrast",
 ]

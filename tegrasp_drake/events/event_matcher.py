@@ -12,8 +12,8 @@ from tegrasp_drake.events.correlation import normalize_by_max, template_is_flat
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.tactile.sampling import rate_groups, resample_window
 from tegrasp_drake.tactile.sliding_window import SLACK_FRACTION
-from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
-from tegrasp_drake.events.transitions import transition_order
+from tegrasp_drake.events.streaming_correlation import StreamingCorrelator
+from tegrasp_drake.events.transitions import NO_EVENT, transition_order
 
 
 @dataclasses.dataclass

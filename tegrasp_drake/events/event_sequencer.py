@@ -13,7 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.events.streaming_correlation import NO_EVENT
+from tegrasp_drake.events.transitions import NO_EVENT
 
 DEFAULT_PERIOD_S = 1e-3  # one control tick at 1 kHz
 

@@ -34,9 +34,9 @@ import numpy as np
 from scipy.linalg.blas import daxpy
 
 from tegrasp_drake.events.correlation import channel_score, template_is_flat
+from tegrasp_drake.events.transitions import NO_EVENT
 from tegrasp_drake.tactile.sliding_window import SlidingWindow
 
-NO_EVENT = -1
 _HEADER = 3  # active_event, offset, samples_pushed
 _STATISTICS = 3  # high, low, energy
 

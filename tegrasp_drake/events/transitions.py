@@ -5,7 +5,13 @@ is cut around the time of that physical event (extraction.py). The paper trigger
 Reach-Load, Load-Lift and Place-Unload by tactile events (its Fig. 9); every object's
 memorized events include those three. Lift-Hold is optional: record it where the lift-off
 leaves a clear tactile trace.
+
+A transition's name is its two states, `from_to` in lower case (Reach -> Load:
+reach_load); transition_name and transition_states convert between the two.
 """
+
+# The value of an `expected_event` or `scored_event` port when no event is expected.
+NO_EVENT = -1
 
 TRANSITIONS = {
     "reach_load": "first contact of the fingers with the object",
@@ -13,6 +19,7 @@ TRANSITIONS = {
     "lift_hold": "the object lifts off the table",
     "place_unload": "the object touches the table",
 }
+# The transitions the state machine triggers by an event, in grasp order.
 REQUIRED_TRANSITIONS = ("reach_load", "load_lift", "place_unload")
 
 
@@ -23,3 +30,21 @@ def transition_order(name: str) -> int:
     except ValueError:
         raise ValueError(
             f"unknown transition '{name}'; known: {', '.join(TRANSITIONS)}") from None
+
+
+def transition_name(from_state: str, to_state: str) -> str:
+    """`from_to` in lower case, e.g. ("Reach", "Load") -> reach_load."""
+    return f"{from_state}_{to_state}".lower()
+
+
+def transition_states(name: str) -> tuple[str, str]:
+    """The (from, to) state names of transition `name`, e.g. reach_load -> (Reach, Load)."""
+    from_state, to_state = name.split("_")
+    return from_state.capitalize(), to_state.capitalize()
+
+
+def event_transition(from_state: str, to_state: str) -> str | None:
+    """The event-triggered transition (REQUIRED_TRANSITIONS) from `from_state` to
+    `to_state`, e.g. ("Place", "Unload") -> place_unload; None for any other step."""
+    name = transition_name(from_state, to_state)
+    return name if name in REQUIRED_TRANSITIONS else None

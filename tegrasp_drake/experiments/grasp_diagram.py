@@ -15,13 +15,11 @@ import dataclasses
 from pydrake.systems.framework import DiagramBuilder
 
 from tegrasp_drake.control.grasp_controller import add_grasp_controller
-from tegrasp_drake.control.grasp_modes import TERMINAL_MODES
+from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.simulation.station import MakeGraspStation
 from tegrasp_drake.experiments.trial import EXTRA_TIME_S
-
-TERMINAL_LABELS = tuple(mode.label for mode in TERMINAL_MODES)
 
 
 def MakeStation(scenario, *, meshcat=None, lcm=None):
@@ -57,6 +55,6 @@ def build_grasp_diagram(scenario, *, station, controller: str | None = None, eve
     return GraspDiagram(station, grasp, time_limit), builder
 
 
-def is_finished(transitions: list[dict]) -> bool:
+def is_finished(transitions: list[Transition]) -> bool:
     """True once the state machine reached Done or Failed."""
-    return bool(transitions) and transitions[-1]["to"] in TERMINAL_LABELS
+    return bool(transitions) and transitions[-1].to_mode in TERMINAL_MODES

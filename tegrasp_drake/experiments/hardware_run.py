@@ -29,6 +29,7 @@ from pydrake.systems.framework import EventStatus
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL, utime)
 from tegrasp_drake.experiments.grasp_diagram import build_grasp_diagram, is_finished
+from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.station import MakeHardwareStation
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
@@ -121,11 +122,11 @@ def transition_message(transition: dict) -> lcmt_tegrasp_transition:
     return message
 
 
-def format_transition(transition: dict) -> str:
-    why = "; ".join(str(transition[key]) for key in ("trigger", "reason")
-                    if transition.get(key))
+def format_transition(transition: Transition) -> str:
+    why = "; ".join(part for part in (transition.trigger.value, transition.reason) if part)
     trigger = f"  ({why})" if why else ""
-    return f"[{transition['t']:8.3f} s] {transition['from']} -> {transition['to']}{trigger}"
+    return (f"[{transition.t:8.3f} s] {transition.from_mode.label} -> "
+            f"{transition.to_mode.label}{trigger}")
 
 
 def format_counters(counters: dict) -> str:
@@ -153,7 +154,7 @@ class RunReporter:
         self._lcm = drake_lcm
         self._out = out
         self._next_look = 0.0
-        self.transitions = []
+        self.transitions = []  # Transition
         self.faults = []
         self.ended_at = None
 
@@ -162,10 +163,11 @@ class RunReporter:
         if now < self._next_look:
             return EventStatus.DidNothing()
         self._next_look = now + REPORT_PERIOD_S
-        for transition in self._grasp.transition_log(root_context)[len(self.transitions):]:
+        for transition in self._grasp.transitions(root_context)[len(self.transitions):]:
             self.transitions.append(transition)
             self._out(format_transition(transition))
-            self._lcm.Publish(TRANSITION_CHANNEL, transition_message(transition).encode())
+            message = transition_message(transition.as_dict())  # the JSON form's fields
+            self._lcm.Publish(TRANSITION_CHANNEL, message.encode())
         faults = self._station.GetOutputPort("fault").Eval(
             self._station.GetMyContextFromRoot(root_context))
         for fault in faults[len(self.faults):]:
@@ -182,7 +184,7 @@ class RunReporter:
 
 @dataclasses.dataclass
 class HardwareRunResult:
-    transitions: list          # [{t, from, to, trigger}]
+    transitions: list          # [{t, from, to, trigger, ...}]: Transition.as_dict()
     faults: tuple              # DeviceFault
     sim_time: float            # [s] Context time at the end
     wall_time: float           # [s] from Initialize to the end
@@ -252,7 +254,8 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
             messages = writer.close() if writer is not None else 0
         context = simulator.get_context()
         return HardwareRunResult(
-            transitions=list(reporter.transitions), faults=tuple(reporter.faults),
+            transitions=[transition.as_dict() for transition in reporter.transitions],
+            faults=tuple(reporter.faults),
             sim_time=context.get_time(), wall_time=wall,
             log_path=writer.path if writer else None,
             log_messages=messages, device_counters=counters)

@@ -35,6 +35,7 @@ from tegrasp_drake.events.streaming_correlation import NO_EVENT
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
                                     lcmt_tegrasp_transition)
+from tegrasp_drake.events.transitions import transition_name
 
 MESSAGE_TYPES = {
     RUN_INFO_CHANNEL: lcmt_tegrasp_run_info, TACTILE_CHANNEL: lcmt_tegrasp_tactile,
@@ -107,17 +108,13 @@ def read_run_log(path) -> RunLog:
         message_counts=counts)
 
 
-def transition_name(transition: dict) -> str:
-    """`from_to` in lower case, e.g. reach_load (the memorized events' naming)."""
-    return f"{transition['from']}_{transition['to']}".lower()
-
-
 def expected_event_schedule(transitions: list[dict], event_index: dict[str, int]):
     """[(t_start, event index)]: while in the mode a logged transition left, the event of
     that transition (or -1 if none is memorized); from t = 0 on."""
     schedule, entered = [], 0.0
     for transition in transitions:
-        schedule.append((entered, event_index.get(transition_name(transition), NO_EVENT)))
+        schedule.append((entered, event_index.get(
+            transition_name(transition["from"], transition["to"]), NO_EVENT)))
         entered = transition["t"]
     schedule.append((entered, NO_EVENT))
     return schedule
@@ -175,7 +172,7 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
         else:
             match_time = None
             best = scores[window].max(axis=0) if window.any() else np.zeros(4)
-        results.append(ReplayedTransition(transition_name(transition), entered,
-                                          transition["t"], match_time,
+        name = transition_name(transition["from"], transition["to"])
+        results.append(ReplayedTransition(name, entered, transition["t"], match_time,
                                           [float(x) for x in best]))
     return results

@@ -13,11 +13,13 @@ from pydrake.common import RandomGenerator
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 from pydrake.systems.framework import DiagramBuilder
 
+from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_controller import add_grasp_controller
-from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode
+from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
 from tegrasp_drake.experiments.grasp_outcome import (first_contact_time, grip_force_time, judge_grasp,
                                          table_touch_time)
+from tegrasp_drake.events.transitions import event_transition
 from tegrasp_drake.simulation.station import MakeGraspStation
 from tegrasp_drake.experiments.trial_logging import add_trial_logging, collect_trial_log
 
@@ -31,11 +33,6 @@ CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
 # within it, it is the taxel sampling (one 108 Hz sample) and noise around a threshold equal
 # to the ground truth's (the heuristic Load-Lift rule), and its latency is kept as measured.
 FALSE_TRIGGER_MARGIN_S = 0.01
-# Each event-triggered transition and the physical event that marks it.
-EVENT_TRANSITIONS = {("Reach", "Load"): "reach_load", ("Load", "Lift"): "load_lift",
-                     ("Place", "Unload"): "place_unload"}
-CORRECTIVE_ACTION_OF = {("Reach", "Re-Reach"): "re_reach", ("Load", "Re-Reach"): "re_reach",
-                        ("Lift", "Load"): "lift_load", ("Hold", "Avoid"): "avoid"}
 
 
 @dataclasses.dataclass
@@ -60,59 +57,64 @@ def build_trial_diagram(scenario, *, meshcat=None, events=None):
     return diagram, controller, loggers
 
 
-def physical_event_times(log, transitions: list[dict], grip_force: float,
+def _event_transition(transition: Transition) -> str | None:
+    """The event-triggered transition (reach_load, ...) that `transition` is, if any."""
+    return event_transition(transition.from_mode.label, transition.to_mode.label)
+
+
+def physical_event_times(log, transitions: list[Transition], grip_force: float,
                          object_config=None) -> dict:
     """The physical event that marks each event transition actually taken, looked for after
     the mode was entered: first contact (Reach-Load), grip force reached (Load-Lift, after
     the last Reach began), table touch (Place-Unload)."""
     events = {}
-    entered = {"Reach": 0.0}
+    entered = {Mode.REACH: 0.0}
     for entry in transitions:
-        name = EVENT_TRANSITIONS.get((entry["from"], entry["to"]))
-        since = entered.get(entry["from"], 0.0)
+        name = _event_transition(entry)
+        since = entered.get(entry.from_mode, 0.0)
         if name == "reach_load":
             events[name] = first_contact_time(log, after=since)
         elif name == "load_lift":
-            events[name] = grip_force_time(log, grip_force, after=entered["Reach"])
+            events[name] = grip_force_time(log, grip_force, after=entered[Mode.REACH])
         elif name == "place_unload":
             events[name] = table_touch_time(log, object_config, after=since)
-        entered[entry["to"]] = entry["t"]
+        entered[entry.to_mode] = entry.t
     return events
 
 
-def judge_trial(log, transitions: list[dict], scenario) -> dict:
+def judge_trial(log, transitions: list[Transition], scenario) -> dict:
     """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
     at least 3 s; unload = after Unload, upright on the table, released, gripper retracted."""
     outcome = judge_grasp(log, target_xy=scenario.expected_object_xy,
                           grip_force=scenario.grasp.grip_force)
     hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
-    reached = [entry["to"] for entry in transitions]
-    final_mode = reached[-1] if reached else Mode.REACH.label
+    reached = [entry.to_mode for entry in transitions]
+    final_mode = reached[-1] if reached else Mode.REACH
     z = log.object_state[:, 6]
     resting = abs(z[-1] - z[0]) < RESTING_HEIGHT_M
-    unload_success = bool(hold_success and "Unload" in reached and final_mode == "Done"
+    unload_success = bool(hold_success and Mode.UNLOAD in reached and final_mode == Mode.DONE
                           and outcome.final_tilt_deg < UPRIGHT_TILT_DEG and outcome.released
                           and resting)
     grip_force = scenario.grasp.grip_force
     physical = physical_event_times(log, transitions, grip_force, scenario.object)
     latency, false_triggers = {}, 0
     for entry in transitions:
-        name = EVENT_TRANSITIONS.get((entry["from"], entry["to"]))
-        if name is None or entry["trigger"] not in ("memorized_event", "heuristic_event"):
+        name = _event_transition(entry)
+        if name is None or not entry.trigger.is_event:
             continue
-        if physical.get(name) is None or entry["t"] < physical[name] - FALSE_TRIGGER_MARGIN_S:
+        if physical.get(name) is None or entry.t < physical[name] - FALSE_TRIGGER_MARGIN_S:
             false_triggers += 1
         else:
-            latency[name] = entry["t"] - physical[name]
-    corrective = [CORRECTIVE_ACTION_OF[(e["from"], e["to"])] for e in transitions
-                  if (e["from"], e["to"]) in CORRECTIVE_ACTION_OF]
+            latency[name] = entry.t - physical[name]
+    corrective = [action for action in (corrective_action_of(e.from_mode, e.to_mode)
+                                        for e in transitions) if action is not None]
     return {"hold_success": bool(hold_success), "unload_success": unload_success,
-            "final_mode": final_mode, "hold_time_s": outcome.hold_time_s,
+            "final_mode": final_mode.label, "hold_time_s": outcome.hold_time_s,
             "lift_height_m": outcome.lift_height_m, "final_tilt_deg": outcome.final_tilt_deg,
             "placement_error_m": outcome.placement_error_m, "released": outcome.released,
             "physical_events": physical, "detection_latency_s": latency,
             "false_triggers": false_triggers, "corrective_actions": corrective,
-            "failure": next((e["reason"] for e in transitions if e["to"] == "Failed"), "")}
+            "failure": next((e.reason for e in transitions if e.to_mode == Mode.FAILED), "")}
 
 
 def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialResult:
@@ -138,20 +140,21 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialRes
     if meshcat is not None:
         meshcat.StopRecording()
         meshcat.PublishRecording()
-    transitions = controller.transition_log(context)
+    transitions = controller.transitions(context)
+    timeline = [transition.as_dict() for transition in transitions]
     sim_time = context.get_time()
-    meta = {"controller": controller.name, "transitions": transitions,
+    meta = {"controller": controller.name, "transitions": timeline,
             "mode_names": [m.label for m in Mode], "grip_force": scenario.grasp.grip_force,
             "wall_time_s": wall, "sim_time_s": sim_time}
     log = collect_trial_log(loggers, context, scenario=scenario, meta=meta)
     result = {"object": scenario.object.name, "offset_m": list(scenario.object_offset),
               "controller": controller.name, "seed": scenario.random_seed,
-              "transitions": transitions, **judge_trial(log, transitions, scenario),
+              "transitions": timeline, **judge_trial(log, transitions, scenario),
               "sim_time_s": sim_time, "wall_time_s": wall,
               "real_time_factor": sim_time / wall if wall > 0 else None}
     log.meta["result"] = result
     # For the Fig. 5a-b plot (figures.py): when each state began, and the physical events.
-    log.meta["phase_starts"] = {e["to"]: e["t"] for e in reversed(transitions)}
+    log.meta["phase_starts"] = {e.to_mode.label: e.t for e in reversed(transitions)}
     log.meta["events"] = result["physical_events"]
     return TrialResult(result, log)
 

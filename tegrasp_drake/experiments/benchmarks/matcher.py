@@ -32,7 +32,8 @@ from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.replay import channels_trajectory
 from tegrasp_drake.tactile.sampling import rate_groups
 from tegrasp_drake.tactile.sliding_window import SLACK_FRACTION
-from tegrasp_drake.events.streaming_correlation import NO_EVENT, StreamingCorrelator
+from tegrasp_drake.events.streaming_correlation import StreamingCorrelator
+from tegrasp_drake.events.transitions import NO_EVENT
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig
 

@@ -7,6 +7,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from tegrasp_drake.control.grasp_modes import Mode, Transition  # noqa: E402
 from tegrasp_drake.rig.channels import FINGER_NAMES  # noqa: E402
 
 STATE_COLORS = {"Reach": "#d9e8f5", "Re-Reach": "#f7d6d0", "Load": "#dcefd9",
@@ -14,13 +15,18 @@ STATE_COLORS = {"Reach": "#d9e8f5", "Re-Reach": "#f7d6d0", "Load": "#dcefd9",
                 "Unload": "#fbe3d4", "Done": "#eeeeee", "Failed": "#f2b8b5"}
 
 
+def logged_transitions(log) -> list[Transition]:
+    """The transitions in the log's meta."""
+    return [Transition.from_dict(entry) for entry in log.meta.get("transitions", [])]
+
+
 def state_spans(log) -> list[tuple[str, float, float]]:
     """(state, start, end) [s] of the run, from the transitions in the log's meta."""
     end_time = float(log.t_ra[-1])
-    spans, state, start = [], "Reach", 0.0
-    for entry in log.meta.get("transitions", []):
-        spans.append((state, start, entry["t"]))
-        state, start = entry["to"], entry["t"]
+    spans, state, start = [], Mode.REACH.label, 0.0
+    for transition in logged_transitions(log):
+        spans.append((state, start, transition.t))
+        state, start = transition.to_mode.label, transition.t
     spans.append((state, start, end_time))
     return spans
 
@@ -32,9 +38,9 @@ def _draw_states(axis, log, *, labels: bool):
             label = axis.text((start + end) / 2, 0.97, state, fontsize=7, ha="center",
                               va="top", transform=axis.get_xaxis_transform(), clip_on=True)
             label.set_in_layout(False)  # labels of states outside a zoomed window
-    for entry in log.meta.get("transitions", []):
-        style = "-" if entry["trigger"] in ("memorized_event", "heuristic_event") else ":"
-        axis.axvline(entry["t"], color="tab:red", lw=0.8, ls=style)
+    for transition in logged_transitions(log):
+        style = "-" if transition.trigger.is_event else ":"
+        axis.axvline(transition.t, color="tab:red", lw=0.8, ls=style)
 
 
 def plot_trial_states(log, path, *, time_window=None) -> str:
@@ -63,10 +69,10 @@ def plot_trial_states(log, path, *, time_window=None) -> str:
 def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=1.2) -> str:
     """Writes a PNG like Fig. 10: RA and SA around the first Hold -> Avoid transition, with
     the hit threshold, and the grasp frame's commanded lateral motion."""
-    avoid = [e for e in log.meta.get("transitions", []) if e["to"] == "Avoid"]
+    avoid = [e for e in logged_transitions(log) if e.to_mode == Mode.AVOID]
     if not avoid:
         raise ValueError("the trial has no Avoid transition (was there a hit in Hold?)")
-    t0 = avoid[0]["t"]
+    t0 = avoid[0].t
     window = (t0 - before_s, t0 + after_s)
     fig, axes = plt.subplots(3, 1, figsize=(9, 7), sharex=True)
     fast = (log.t_ra >= window[0]) & (log.t_ra <= window[1])
@@ -89,7 +95,7 @@ def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=
     axes[2].legend(lines, ["x", "y"], fontsize=7)
     axes[2].set_xlabel("time [s]")
     axes[2].set_xlim(*window)
-    direction = avoid[0].get("direction")
+    direction = None if avoid[0].direction is None else list(avoid[0].direction)
     fig.suptitle(f"Hold -> Avoid at {t0:.3f} s, moving along {direction}", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=120)

@@ -1,0 +1,52 @@
+"""The state machine's vocabulary: modes by label, triggers, and a timeline entry's JSON."""
+
+import json
+
+import pytest
+
+from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+
+REACH_LOAD = {"t": 3.76, "from": "Reach", "to": "Load", "trigger": "memorized_event",
+              "reason": "Reach-Load event", "scores": [0.9004, 0.9007, 0.9987, 0.9986]}
+
+
+def test_every_mode_is_found_by_its_label():
+    assert [Mode.from_label(mode.label) for mode in Mode] == list(Mode)
+    assert Mode.from_label("Re-Reach") == Mode.RE_REACH
+    with pytest.raises(ValueError, match="unknown mode 'Grasp'"):
+        Mode.from_label("Grasp")
+
+
+def test_only_the_detectors_triggers_are_events():
+    assert {t for t in Trigger if t.is_event} == {Trigger.MEMORIZED_EVENT,
+                                                  Trigger.HEURISTIC_EVENT}
+    assert [t.value for t in Trigger] == ["memorized_event", "heuristic_event", "threshold",
+                                          "timer", "corrective", "fault"]
+
+
+def test_a_transition_keeps_the_json_field_names_and_order():
+    transition = Transition(t=3.76, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+                            trigger=Trigger.MEMORIZED_EVENT, reason="Reach-Load event",
+                            scores=(0.9004, 0.9007, 0.9987, 0.9986))
+    entry = transition.as_dict()
+    assert list(entry) == ["t", "from", "to", "trigger", "reason", "scores"]
+    assert json.dumps(entry) == json.dumps(REACH_LOAD)
+    assert Transition.from_dict(entry) == transition
+
+
+def test_a_transition_without_scores_has_no_scores_field():
+    entry = Transition(t=8.5, from_mode=Mode.UNLOAD, to_mode=Mode.DONE, trigger=Trigger.TIMER,
+                       reason="script ended").as_dict()
+    assert entry == {"t": 8.5, "from": "Unload", "to": "Done", "trigger": "timer",
+                     "reason": "script ended"}
+
+
+def test_an_avoid_transition_lists_its_direction_after_the_scores():
+    avoid = Transition(t=7.02, from_mode=Mode.HOLD, to_mode=Mode.AVOID,
+                       trigger=Trigger.THRESHOLD, reason="hit: RA above the hit threshold",
+                       scores=(0.0, 0.0, 0.0, 0.0), direction=(0.0, 1.0, 0.0),
+                       delta_sa_n=(3.1, -0.2))
+    entry = avoid.as_dict()
+    assert list(entry)[-3:] == ["scores", "direction", "delta_sa_n"]
+    assert entry["direction"] == [0.0, 1.0, 0.0] and entry["delta_sa_n"] == [3.1, -0.2]
+    assert Transition.from_dict(json.loads(json.dumps(entry))) == avoid
