@@ -17,7 +17,7 @@ PACKAGE_NAME = "tegrasp"  # models are reachable as package://tegrasp/...
 
 
 def _data_dir(package: str, source_folder: str) -> pathlib.Path:
-    checkout = pathlib.Path(__file__).resolve().parents[1]
+    checkout = pathlib.Path(__file__).resolve().parents[2]  # above tegrasp_drake/rig/
     if (checkout / "pyproject.toml").is_file() and (checkout / source_folder).is_dir():
         return checkout / source_folder  # imported from a source checkout: its own data
     return pathlib.Path(str(importlib.resources.files(package)))
