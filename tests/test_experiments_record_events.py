@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.rig import paths
-from tegrasp_drake.commands.record_events import record_object_events
+from tegrasp_drake.experiments.record_events import record_object_events
 from tegrasp_drake.events import load_memorized_events
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 

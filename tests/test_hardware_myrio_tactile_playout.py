@@ -6,7 +6,8 @@ import time
 import numpy as np
 import pytest
 
-from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, MyRioEmulatorConfig, TactileTrial
+from tegrasp_drake.emulators.myrio_emulator import (
+    MyRioEmulator, MyRioEmulatorConfig, TactileRecording)
 from tegrasp_drake.hardware.myrio.tactile_calibration import TactileCalibration
 from tegrasp_drake.hardware.myrio.tactile_frame import PIEZO_VOLTS_PER_COUNT, TactileFrame
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
@@ -56,7 +57,7 @@ def test_more_than_max_backlog_frames_play_at_once_keeping_the_impact():
 
 def test_replay_paced_by_a_clock_sends_each_sample_once_when_the_clock_reaches_it():
     t = np.arange(0.0, 1.0, 1e-3)
-    trial = TactileTrial(t, np.zeros((len(t), 12)), np.zeros((len(t), 12)), t,
+    trial = TactileRecording(t, np.zeros((len(t), 12)), np.zeros((len(t), 12)), t,
                          np.zeros((len(t), 3)), np.zeros(len(t)))
     clock = [0.0]
     config = MyRioEmulatorConfig(start_on_trigger=True, lead_in=0.0)

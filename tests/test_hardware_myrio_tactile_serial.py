@@ -9,7 +9,7 @@ import pytest
 from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.emulators.myrio_emulator import (
-    MyRioEmulator, MyRioEmulatorConfig, StreamFaults, TactileFrameSource, TactileTrial)
+    MyRioEmulator, MyRioEmulatorConfig, StreamFaults, TactileFrameSource, TactileRecording)
 from tegrasp_drake.emulators.null_modem import open_raw_pty
 from tegrasp_drake.hardware.myrio.tactile_calibration import PadCalibration, TactileCalibration
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
@@ -34,7 +34,7 @@ def make_trial(duration=0.3):
     vibration = np.where(acceleration_times < duration - 0.05,
                          np.sin(2 * np.pi * 50 * acceleration_times), 0.3)
     left_acceleration = np.column_stack([3 * vibration, 4 * vibration, 0 * vibration])
-    return TactileTrial(force_times, left, right, acceleration_times, left_acceleration,
+    return TactileRecording(force_times, left, right, acceleration_times, left_acceleration,
                         2 * vibration)
 
 

@@ -9,8 +9,7 @@ from pydrake.systems.analysis import Simulator
 from tegrasp_drake.rig import robotiq_units as units
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DRIVER_ERROR, describe_faults
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
-from tegrasp_drake.emulators.robotiq_emulator import (
-    RobotiqEmulator, RobotiqEmulatorConfig, object_position_byte)
+from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator, RobotiqEmulatorConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import (
     RobotiqActivationError, RobotiqModbusClient, RobotiqModbusConfig)
 
@@ -83,7 +82,7 @@ def test_closing_on_an_object_reports_contact(emulator, client):
     assert wait_for(lambda: status_of(client)[units.STATUS_OBJ]
                     == units.ObjectStatus.STOPPED_ON_CONTACT_CLOSING)
     status = status_of(client)
-    assert status[units.STATUS_PO] == round(object_position_byte(0.04))
+    assert status[units.STATUS_PO] == round(units.position_from_opening(0.04))
     assert status[units.STATUS_CU] > 0
 
 

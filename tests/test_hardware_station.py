@@ -8,7 +8,7 @@ from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, SILENT, DeviceFault
 from tegrasp_drake.hardware.fault_latch import FaultLatch, latched_faults
-from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileTrial
+from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecording
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.station import HardwareNotReadyError, MakeHardwareStation
@@ -24,7 +24,7 @@ CONTROLLER_OUTPUTS = ("arm.position_measured", "arm.velocity_measured", "arm.tor
 
 def quiet_trial():
     t = np.arange(0.0, 0.2, 1e-3)
-    return TactileTrial(t, np.zeros((len(t), 12)), np.zeros((len(t), 12)), t,
+    return TactileRecording(t, np.zeros((len(t), 12)), np.zeros((len(t), 12)), t,
                         np.zeros((len(t), 3)), np.zeros(len(t)))
 
 

@@ -6,7 +6,8 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from tegrasp_drake.hardware.device_fault import SILENT
-from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, MyRioEmulatorConfig, TactileTrial
+from tegrasp_drake.emulators.myrio_emulator import (
+    MyRioEmulator, MyRioEmulatorConfig, TactileRecording)
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 from tegrasp_drake.hardware.watchdog import DeviceActivity, DeviceWatchdog, next_activity
@@ -78,7 +79,7 @@ def test_watchdog_names_the_silent_device_and_raises_stop():
 
 def test_watchdog_trips_when_the_tactile_stream_stops():
     times = np.arange(0.0, 3.0, 0.001)
-    trial = TactileTrial(times, np.zeros((len(times), 12)), np.zeros((len(times), 12)),
+    trial = TactileRecording(times, np.zeros((len(times), 12)), np.zeros((len(times), 12)),
                          times, np.zeros(len(times)), np.zeros(len(times)))
     with MyRioEmulator(trial, MyRioEmulatorConfig(lead_in=0.0)) as emulator, \
             TactileSerialReader(emulator.port) as reader:

@@ -3,8 +3,8 @@
 The controller diagram runs unchanged on MakeHardwareStation, in real time, against the
 devices the config names (hardware/config.py; `tegrasp emulate ... --write-config FILE`
 writes one for the emulators). State transitions and device faults are printed as they
-happen; everything on the bus goes to an LCM log (run_log.py; `tegrasp replay LOG`,
-`lcm-logplayer LOG`). Exit code: 0 when the grasp finished without a fault, 2 after a
+happen; everything on the bus goes to an LCM log (experiments/run_log.py; `tegrasp replay
+LOG`, `lcm-logplayer LOG`). Exit code: 0 when the grasp finished without a fault, 2 after a
 fault or a Failed state machine, 1 when a device did not come up.
 """
 

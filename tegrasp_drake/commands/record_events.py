@@ -1,17 +1,12 @@
 """`tegrasp record-events`: memorize the tactile events of the ideal grasp (Sec. III-A).
 
-For each object, the ideal open-loop grasp is simulated on its built-in scenario, the SA
-(Eq. 1, at the taxel rate) and RA (Eq. 2, at 1 kHz) channels are cut into 0.5 s windows
-around the physical events that mark the transitions (first contact -> reach_load, grip
-force reached -> load_lift, table touch -> place_unload), normalised by their maxima and
-stored in the events folder with an index (format: tegrasp_drake/events/FORMAT.md).
+For each object (its built-in scenario, or the object of a scenario given), the events
+of its ideal grasp (experiments/record_events.py) are stored in the events folder with an
+index (format: tegrasp_drake/events/FORMAT.md).
 """
 
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
-
-EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "grip_force_reached",
-                       "place_unload": "table_touch"}
 
 
 def register(subparsers) -> None:
@@ -30,28 +25,6 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
-def record_object_events(object_name: str, scenario=None):
-    """Runs the ideal grasp of one object (a built-in one by name, or the object of
-    `scenario`); returns its MemorizedEvents."""
-    from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
-    from tegrasp_drake.experiments.grasp_outcome import physical_events
-    from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
-    from tegrasp_drake.experiments.scenario import load_scenario, scenario_to_yaml
-    from tegrasp_drake.experiments.trial_logging import package_versions
-    scenario = scenario or load_scenario(name=object_name)
-    log, _ = run_ideal_grasp(scenario)
-    events = physical_events(log, scenario.grasp.grip_force, scenario.object)
-    missing = [name for name in EVENT_OF_TRANSITION.values() if events[name] is None]
-    if missing:
-        raise RuntimeError(f"the ideal grasp of {object_name} shows no {', '.join(missing)}")
-    trial = tactile_trial_from_log(log, {transition: events[event] for transition, event
-                                         in EVENT_OF_TRANSITION.items()})
-    return extract_memorized_events(
-        trial, object_name=object_name, sa_rate_hz=scenario.tactile.sample_rate_hz,
-        ra_rate_hz=scenario.vibration.sample_rate_hz, scenario=scenario_to_yaml(scenario),
-        package_versions=package_versions())
-
-
 def _scenarios_to_record(args) -> list:
     """(object name, scenario or None for the built-in one) of each object to record."""
     if args.scenario or args.scenario_name or args.overrides:
@@ -65,6 +38,7 @@ def _scenarios_to_record(args) -> list:
 
 def run(args) -> int:
     from tegrasp_drake.events import save_memorized_events
+    from tegrasp_drake.experiments.record_events import record_object_events
     out = args.out or paths.events_dir()
     for object_name, scenario in _scenarios_to_record(args):
         events = record_object_events(object_name, scenario)

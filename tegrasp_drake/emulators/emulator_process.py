@@ -1,17 +1,20 @@
 """`tegrasp emulate ...` in a child process, as the real devices are outside the controller's
 process: start it, read where it listens, stop or kill it (tests, benchmarks, scripts).
+
+Where the child's devices listen comes as data: the launcher's "devices: {JSON}" line,
+decoded by `launcher.devices_from_line`; the rest of its output is for people.
 """
 
 import os
-import re
 import select
 import signal
 import subprocess
 import sys
 import time
 
+from tegrasp_drake.emulators.launcher import devices_from_line, hardware_config_for
+
 READY_LINE = "ready"
-_PORT = re.compile(r"^(robotiq|myrio): .* on (/dev/\S+),")
 
 
 class EmulatorProcessError(RuntimeError):
@@ -21,13 +24,14 @@ class EmulatorProcessError(RuntimeError):
 class EmulatorProcess:
     """`python -m tegrasp_drake emulate DEVICE ARGS...`; use as a context manager.
 
-    `ports` maps "gripper" and "tactile" to the pty names it printed; `output` is all it
-    printed so far (read_output() collects more)."""
+    `devices` holds the HardwareStationConfig fields of the devices it emulates (e.g.
+    {"gripper": {"port": "/dev/pts/3"}}) once it is ready; `output` is all it printed so
+    far (read_output() collects more)."""
 
     def __init__(self, device: str, *args: str, wait: bool = True, timeout: float = 30.0,
                  env=None):
         self.device = device
-        self.ports = {}
+        self.devices = {}
         self.output = []
         self._process = subprocess.Popen(
             [sys.executable, "-m", "tegrasp_drake", "emulate", device, *args],
@@ -64,10 +68,9 @@ class EmulatorProcess:
         *lines, self._buffer = self._buffer.split("\n")
         for line in lines:
             self.output.append(line)
-            match = _PORT.match(line)
-            if match:
-                self.ports["gripper" if match.group(1) == "robotiq" else "tactile"] = (
-                    match.group(2))
+            devices = devices_from_line(line)
+            if devices is not None:
+                self.devices.update(devices)
         return lines
 
     def stop(self, timeout: float = 5.0) -> int | None:
@@ -97,13 +100,12 @@ class EmulatorProcess:
 
 class EmulatedDevices:
     """The three devices, each emulated in its own process (`tegrasp emulate jaco`,
-    `robotiq`, `myrio --sync follow` or `myrio_sync`), started together; `config` points a hardware
+    `robotiq` and `myrio --sync <myrio_sync>`), started together; `config` points a hardware
     station at them. Use as a context manager; `myrio`, `robotiq` and `jaco` are the
     EmulatorProcess of each (e.g. to kill one)."""
 
     def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),
                  robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0):
-        from tegrasp_drake.hardware.config import HardwareStationConfig
         self.jaco = self.robotiq = self.myrio = None
         try:
             self.jaco = EmulatorProcess("jaco", *scenario_args, "--lcm-url", lcm_url,
@@ -117,10 +119,8 @@ class EmulatedDevices:
         except BaseException:
             self.stop()
             raise
-        self.config = HardwareStationConfig()
-        self.config.arm.lcm_url = lcm_url
-        self.config.gripper.port = self.robotiq.ports["gripper"]
-        self.config.tactile.port = self.myrio.ports["tactile"]
+        self.config = hardware_config_for(
+            {**self.jaco.devices, **self.robotiq.devices, **self.myrio.devices})
 
     @property
     def processes(self) -> list:

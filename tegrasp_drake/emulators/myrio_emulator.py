@@ -1,7 +1,8 @@
 """An emulated myRIO streaming tactile frames on a pseudo-terminal, at the real rate.
 
-It replays a trial given as plain arrays (e.g. the simulator's trial log): taxel forces
-[N] at their own times and pad accelerations [m/s^2] at theirs. Frame k (every
+It replays a TactileRecording, a trial's raw pad signals as plain arrays (e.g. from the
+simulator's trial log, `load_tactile_recording`): taxel forces [N] at their own times and
+pad accelerations [m/s^2] at theirs. Frame k (every
 `frame_period`, 1 ms) is written at start + k * frame_period (a deadline loop: a late
 thread catches up, it does not slow the stream) and carries:
 - the piezo samples: the acceleration at the frame's time (sample-and-hold), reduced to
@@ -37,18 +38,19 @@ import time
 
 import numpy as np
 
-from tegrasp_drake.emulators.null_modem import open_raw_pty
+from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
+from tegrasp_drake.emulators.null_modem import open_raw_pty
 
 MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 kHz)
 
 
 @dataclasses.dataclass
-class TactileTrial:
-    """A recorded trial. Times [s] ascending; forces (n, 12) [N]; accelerations (m,) or
-    (m, 3) [m/s^2]."""
+class TactileRecording:
+    """The raw pad signals of a recorded trial, as the myRIO replays them. Times [s]
+    ascending; forces (n, 12) [N]; accelerations (m,) or (m, 3) [m/s^2]."""
     force_times: np.ndarray
     left_forces: np.ndarray
     right_forces: np.ndarray
@@ -59,6 +61,41 @@ class TactileTrial:
     @property
     def duration(self) -> float:
         return float(max(self.force_times[-1], self.acceleration_times[-1]))
+
+
+class TactileRecordingError(ValueError):
+    """A file is not a trial log holding the pad signals; the message names it."""
+
+
+def load_tactile_recording(path) -> TactileRecording:
+    """The pad signals of a TrialLog .npz: taxel forces (t_sa, taxels: left then right) and
+    pad accelerations (t_ra, pad_acceleration: left x, y, z then right); no other array is
+    needed."""
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            t_sa, taxels = data["t_sa"], data["taxels"]
+            t_ra, acceleration = data["t_ra"], data["pad_acceleration"]
+    except (OSError, KeyError, ValueError) as e:
+        raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
+                                    f"and pad_acceleration: {e}") from None
+    return TactileRecording(t_sa, taxels[:, :TAXELS_PER_PAD], taxels[:, TAXELS_PER_PAD:],
+                            t_ra, acceleration[:, :3], acceleration[:, 3:])
+
+
+def save_tactile_recording(path, recording: TactileRecording):
+    """Writes the arrays `load_tactile_recording` reads; a one-axis (m,) acceleration is
+    stored as x, with y and z zero. Returns `path`."""
+    def three_axes(acceleration):
+        acceleration = np.asarray(acceleration, dtype=float)
+        if acceleration.ndim == 2:
+            return acceleration
+        return np.column_stack([acceleration, np.zeros((len(acceleration), 2))])
+    np.savez(path, t_sa=recording.force_times,
+             taxels=np.hstack([recording.left_forces, recording.right_forces]),
+             t_ra=recording.acceleration_times,
+             pad_acceleration=np.hstack([three_axes(recording.left_acceleration),
+                                         three_axes(recording.right_acceleration)]))
+    return path
 
 
 @dataclasses.dataclass
@@ -124,7 +161,7 @@ def inject_faults(frame: bytes, faults: StreamFaults, rng) -> tuple[bytes, list[
 class TactileFrameSource:
     """Builds frame k of a trial (module docstring); pure apart from the fault generator."""
 
-    def __init__(self, trial: TactileTrial, config: MyRioEmulatorConfig):
+    def __init__(self, trial: TactileRecording, config: MyRioEmulatorConfig):
         self._trial = trial
         self._config = config
         self._film = [film_signal(trial.left_acceleration, config.piezo_axis),
@@ -185,7 +222,7 @@ class MyRioEmulatorCounters:
 class MyRioEmulator:
     """Streams a trial on a pseudo-terminal; the reader opens `port`. Use with `with`."""
 
-    def __init__(self, trial: TactileTrial, config: MyRioEmulatorConfig | None = None, *,
+    def __init__(self, trial: TactileRecording, config: MyRioEmulatorConfig | None = None, *,
                  trial_clock=None):
         self._config = dataclasses.replace(config or MyRioEmulatorConfig())
         self._trial_clock = trial_clock

@@ -33,9 +33,6 @@ from tegrasp_drake.emulators.null_modem import NullModem
 
 ObjectStatus = units.ObjectStatus
 ActivationStatus = units.ActivationStatus
-FAULT_ACTION_DELAYED = 0x05
-FAULT_NOT_ACTIVATED = 0x07
-FIRST_MAJOR_FAULT = 0x0A
 MOVING_CURRENT = 10.0         # gCU while moving [x 10 mA]
 MAX_GRIPPING_CURRENT = 60.0   # gCU gripping at rFR = 255 [x 10 mA]
 
@@ -46,19 +43,6 @@ class RobotiqEmulatorConfig:
     device_id: int = registers.DEVICE_ID
     activation_duration: float = 1.5
     object_opening: float | None = None
-
-
-def bytes_per_second(speed_byte) -> float:
-    """Finger speed in position bytes per second for an rSP byte."""
-    span = units.POSITION_CLOSED_BYTE - units.POSITION_OPEN_BYTE
-    return float(units.speed_from_byte(speed_byte)) / units.STROKE_M * span
-
-
-def object_position_byte(opening_m) -> float:
-    """The (fractional) position byte at which the pads touch an object of this width."""
-    span = units.POSITION_CLOSED_BYTE - units.POSITION_OPEN_BYTE
-    fraction = min(max(opening_m / units.STROKE_M, 0.0), 1.0)
-    return units.POSITION_CLOSED_BYTE - fraction * span
 
 
 class RobotiqGripperModel:
@@ -76,14 +60,15 @@ class RobotiqGripperModel:
         self._force = 0
         self._activation_start = None
         self._object = (None if config.object_opening is None
-                        else object_position_byte(config.object_opening))
+                        else units.position_from_opening(config.object_opening))
         self._time = now
 
     def set_object_opening(self, opening_m: float | None, now: float):
         """Puts an object of this width between the pads, or removes it (None)."""
         with self._lock:
             self._advance(now)
-            self._object = None if opening_m is None else object_position_byte(opening_m)
+            self._object = (None if opening_m is None
+                            else units.position_from_opening(opening_m))
             if self._status["gOBJ"] == ObjectStatus.STOPPED_ON_CONTACT_CLOSING:
                 self._status["gOBJ"] = ObjectStatus.MOVING
 
@@ -123,13 +108,13 @@ class RobotiqGripperModel:
 
     def _can_move(self) -> bool:
         return (self._status["gSTA"] == ActivationStatus.ACTIVE
-                and self._status["gFLT"] < FIRST_MAJOR_FAULT)
+                and self._status["gFLT"] < units.FIRST_MAJOR_FAULT)
 
     def _apply(self, command: dict, now: float):
         s = self._status
         if not command["rACT"]:
             s.update(gACT=0, gGTO=0, gSTA=ActivationStatus.RESET, gOBJ=ObjectStatus.MOVING,
-                     gFLT=FAULT_NOT_ACTIVATED if command["rGTO"] else 0)
+                     gFLT=units.FAULT_NOT_ACTIVATED if command["rGTO"] else 0)
             self._activation_start = None
             return
         if not s["gACT"]:
@@ -139,13 +124,13 @@ class RobotiqGripperModel:
             s["gGTO"] = 0
             return
         if s["gSTA"] != ActivationStatus.ACTIVE:
-            s["gFLT"] = max(s["gFLT"], FAULT_ACTION_DELAYED)
+            s["gFLT"] = max(s["gFLT"], units.FAULT_ACTION_DELAYED)
             return
         if not s["gGTO"] or command["rPR"] != self._target:
             s["gOBJ"] = ObjectStatus.MOVING
         s.update(gGTO=1, gPR=command["rPR"])
         self._target = float(command["rPR"])
-        self._speed = bytes_per_second(command["rSP"])
+        self._speed = units.position_bytes_per_second(command["rSP"])
         self._force = command["rFR"]
 
     def _advance(self, now: float):
@@ -156,7 +141,7 @@ class RobotiqGripperModel:
                 and now - self._activation_start >= self._config.activation_duration):
             s["gSTA"] = ActivationStatus.ACTIVE
             self._position = self._target = units.POSITION_OPEN_BYTE
-            if s["gFLT"] == FAULT_ACTION_DELAYED:
+            if s["gFLT"] == units.FAULT_ACTION_DELAYED:
                 s["gFLT"] = 0
         if not (s["gGTO"] and s["gOBJ"] == ObjectStatus.MOVING and self._can_move()):
             return

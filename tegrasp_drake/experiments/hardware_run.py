@@ -27,7 +27,8 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import EventStatus
 
 from tegrasp_drake.hardware.device_log_messages import (
-    FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL, utime)
+    FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
+from tegrasp_drake.hardware.lcm_time import utime_from_time
 from tegrasp_drake.experiments.grasp_diagram import build_grasp_diagram, is_finished
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
@@ -104,17 +105,17 @@ class BusLogWriter:
 
 def fault_message(fault, now: float) -> lcmt_tegrasp_fault:
     message = lcmt_tegrasp_fault()
-    message.utime = utime(now)
+    message.utime = utime_from_time(now)
     message.device, message.kind, message.code = fault.device, fault.kind, int(fault.code)
     message.description = fault.description
-    message.since_utime = utime(fault.since_sim_time)
-    message.since_wall_utime = utime(fault.since_wall_time)
+    message.since_utime = utime_from_time(fault.since_sim_time)
+    message.since_wall_utime = utime_from_time(fault.since_wall_time)
     return message
 
 
 def transition_message(transition: dict) -> lcmt_tegrasp_transition:
     message = lcmt_tegrasp_transition()
-    message.utime = utime(transition["t"])
+    message.utime = utime_from_time(transition["t"])
     message.from_mode = str(transition["from"])
     message.to_mode = str(transition["to"])
     message.trigger = str(transition.get("trigger", ""))

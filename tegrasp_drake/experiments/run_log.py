@@ -9,7 +9,10 @@ TEGRASP_TACTILE as the controller's MechanoreceptorChannels did, and fed through
 EventMatcher with the object's memorized events. The expected event comes from the logged
 transitions: while the state machine was in mode X, the matcher expects the event of the
 transition that left X (`X_Y`), if one is memorized. For each such transition the replay
-reports when the matcher matched, next to when the transition happened.
+reports when the matcher matched, next to when the transition happened. `replay_run_log`
+also replays the memorized events one after another, advanced by each match, as an
+EventSequencer does (events/replay.replay_events_in_sequence); the matcher's thresholds
+are the run's own (its scenario in TEGRASP_RUN_INFO), or the defaults.
 """
 
 import dataclasses
@@ -18,11 +21,13 @@ import pathlib
 import lcm
 import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
+from pydrake.common.yaml import yaml_load_typed
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
+from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
@@ -30,8 +35,11 @@ from tegrasp_drake.hardware.device_log_messages import (
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
 from tegrasp_drake.events.extraction import TactileTrial
-from tegrasp_drake.events.replay import channels_trajectory
+from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.replay import (EventReplay, channels_trajectory, live_matcher_config,
+                                         replay_events_in_sequence)
 from tegrasp_drake.events.streaming_correlation import NO_EVENT
+from tegrasp_drake.experiments.scenario import Scenario
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
                                     lcmt_tegrasp_transition)
@@ -176,3 +184,69 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
         results.append(ReplayedTransition(name, entered, transition["t"], match_time,
                                           [float(x) for x in best]))
     return results
+
+
+def matcher_config_of_run(run_info, events) -> EventMatcherConfig:
+    """The run's matcher thresholds (from its scenario in TEGRASP_RUN_INFO, else the
+    defaults), at the events' rates."""
+    config = EventMatcherConfig()
+    if run_info is not None and run_info.scenario_yaml:
+        scenario = yaml_load_typed(schema=Scenario, data=run_info.scenario_yaml,
+                                   defaults=Scenario())
+        config.sa_threshold = scenario.controller.sa_threshold
+        config.ra_threshold = scenario.controller.ra_threshold
+    return live_matcher_config(events, config)
+
+
+@dataclasses.dataclass
+class RunLogReplay:
+    """A run's log and the matcher re-run on it offline, both ways (module docstring)."""
+    log: RunLog
+    object_name: str
+    events_dir: str
+    transitions: list[ReplayedTransition]   # expecting the logged transitions' events
+    in_sequence: EventReplay                # expecting the events in grasp order
+
+    def summary(self) -> dict:
+        """What the log holds and what the replays found, as JSON-able data."""
+        log, info = self.log, self.log.run_info
+        return {
+            "log": str(log.path), "controller": info.controller if info else None,
+            "object": self.object_name, "events": self.events_dir,
+            "messages": log.message_counts,
+            "tactile_s": float(log.tactile["t"][-1] - log.tactile["t"][0])
+            if len(log.tactile["t"]) else 0.0,
+            "stale_ticks": int(log.tactile["stale"].sum()),
+            "transitions": log.transitions,
+            "faults": [{"t": f.utime * 1e-6, "device": f.device, "kind": f.kind,
+                        "code": f.code, "description": f.description,
+                        "since": f.since_utime * 1e-6}
+                       for f in log.faults],
+            "replay": [{"transition": r.transition, "mode_entered": r.mode_entered,
+                        "logged_time": r.logged_time, "match_time": r.match_time,
+                        "scores": r.best_scores} for r in self.transitions],
+            "sequence_fire_times": self.in_sequence.fire_times}
+
+
+def replay_run_log(path, *, object_name: str | None = None,
+                   events_dir: str | None = None) -> RunLogReplay:
+    """Reads a run's log and re-runs the matcher on it, both ways (module docstring), with
+    the memorized events of `object_name` (default: the run's object) in `events_dir`
+    (default: the folder the run used if it still exists, else the package's).
+
+    Raises RunLogError, MemorizedEventError or ValueError, each naming what is wrong."""
+    log = read_run_log(path)
+    info = log.run_info
+    object_name = object_name or (info.object_name if info else None)
+    if not object_name:
+        raise RunLogError(f"run log '{path}' has no TEGRASP_RUN_INFO: give --object")
+    events_dir = events_dir or (info.events_dir if info and info.events_dir and
+                                pathlib.Path(info.events_dir).is_dir()
+                                else str(paths.events_dir()))
+    events = load_memorized_events(events_dir, object_name)
+    config = matcher_config_of_run(info, events)
+    trial = log.tactile_trial()
+    return RunLogReplay(
+        log=log, object_name=object_name, events_dir=events_dir,
+        transitions=replay_matcher(trial, log.transitions, events, config=config),
+        in_sequence=replay_events_in_sequence(trial, events, config=config))

@@ -14,6 +14,7 @@ from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
     GripperStatusSender, TactileStatusSender, tactile_arrays)
 from tegrasp_drake.hardware.fault_latch import FaultLatch, latched_faults
+from tegrasp_drake.hardware.lcm_time import utime_from_time
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD, JACO_NUM_JOINTS, JACO_STATUS_CHANNEL,
     JacoCommandReceiver, JacoCommandSender, JacoStatusReceiver, JacoStatusSender,

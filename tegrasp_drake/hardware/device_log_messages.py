@@ -14,6 +14,7 @@ import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.hardware.lcm_time import utime_from_time
 from tegrasp_drake.rig import robotiq_units as units
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
@@ -25,10 +26,6 @@ FAULT_CHANNEL = "TEGRASP_FAULT"
 RUN_INFO_CHANNEL = "TEGRASP_RUN_INFO"
 TACTILE_PUBLISH_PERIOD = 1e-3   # [s], the receiver's tick
 GRIPPER_PUBLISH_PERIOD = 0.01   # [s]
-
-
-def utime(time_s: float) -> int:
-    return int(round(time_s * 1e6))
 
 
 class TactileStatusSender(LeafSystem):
@@ -58,8 +55,8 @@ class TactileStatusSender(LeafSystem):
 
     def _calc_message(self, context, output):
         message = lcmt_tegrasp_tactile()
-        message.utime = utime(context.get_time())
-        message.device_utime = utime(self._time_port.Eval(context)[0])
+        message.utime = utime_from_time(context.get_time())
+        message.device_utime = utime_from_time(self._time_port.Eval(context)[0])
         message.stale = bool(self._stale_port.Eval(context)[0])
         message.zeroing = bool(self._zeroing_port.Eval(context)[0])
         message.arrival_s = float(self._arrival_port.Eval(context)[0])
@@ -91,7 +88,7 @@ class GripperStatusSender(LeafSystem):
 
     def _calc_message(self, context, output):
         message = lcmt_tegrasp_gripper()
-        message.utime = utime(context.get_time())
+        message.utime = utime_from_time(context.get_time())
         message.status_arrival_s = float(self._time_port.Eval(context)[0])
         command = (self._command_port.Eval(context) if self._command_port.HasValue(context)
                    else np.zeros(units.COMMAND_SIZE))

@@ -21,6 +21,7 @@ FORCE_MIN_N = 20.0
 FORCE_MAX_N = 235.0
 POSITION_OPEN_BYTE = 3.0
 POSITION_CLOSED_BYTE = 230.0
+POSITION_SPAN_BYTES = POSITION_CLOSED_BYTE - POSITION_OPEN_BYTE  # the stroke in position bytes
 
 # gripper.command = [rPR, rSP, rFR]
 COMMAND_SIZE = 3
@@ -48,14 +49,20 @@ class ActivationStatus(enum.IntEnum):
     ACTIVE = 3
 
 
+# gFLT codes the gripper's behaviour depends on; from FIRST_MAJOR_FAULT on, a fault is
+# major: the fingers stop until the next activation.
+FAULT_ACTION_DELAYED = 0x05
+FAULT_NOT_ACTIVATED = 0x07
+FIRST_MAJOR_FAULT = 0x0A
+
 FAULT_NAMES = {
     0x00: "no fault",
-    0x05: "action delayed: activation (reactivation) must complete first",
+    FAULT_ACTION_DELAYED: "action delayed: activation (reactivation) must complete first",
     0x06: "priority fault",
-    0x07: "the activation bit must be set before any action",
+    FAULT_NOT_ACTIVATED: "the activation bit must be set before any action",
     0x08: "maximum operating temperature exceeded",
     0x09: "no communication during at least 1 second",
-    0x0A: "under minimum operating voltage",
+    FIRST_MAJOR_FAULT: "under minimum operating voltage",
     0x0B: "automatic release in progress",
     0x0C: "internal processor fault",
     0x0D: "activation fault",
@@ -73,19 +80,29 @@ def opening_from_position_byte(position_byte):
     """Finger opening [m] (pad to pad) for an rPR/gPO byte; linear between open and closed."""
     fraction = (POSITION_CLOSED_BYTE - np.clip(position_byte, POSITION_OPEN_BYTE,
                                                POSITION_CLOSED_BYTE))
-    return STROKE_M * fraction / (POSITION_CLOSED_BYTE - POSITION_OPEN_BYTE)
+    return STROKE_M * fraction / POSITION_SPAN_BYTES
+
+
+def position_from_opening(opening_m):
+    """The finger position on the rPR/gPO byte scale for a finger opening [m] (pad to pad),
+    not rounded (a finger stands between two bytes); linear between open and closed."""
+    fraction = np.clip(np.asarray(opening_m) / STROKE_M, 0.0, 1.0)
+    return POSITION_CLOSED_BYTE - fraction * POSITION_SPAN_BYTES
 
 
 def position_byte_from_opening(opening_m):
     """The rPR/gPO byte for a finger opening [m], rounded to the nearest integer."""
-    fraction = np.clip(np.asarray(opening_m) / STROKE_M, 0.0, 1.0)
-    return np.rint(POSITION_CLOSED_BYTE - fraction
-                   * (POSITION_CLOSED_BYTE - POSITION_OPEN_BYTE))
+    return np.rint(position_from_opening(opening_m))
 
 
 def speed_from_byte(speed_byte):
     """Finger closing speed [m/s] (pad to pad) for an rSP byte."""
     return SPEED_MIN_MPS + np.clip(speed_byte, 0, 255) / 255.0 * (SPEED_MAX_MPS - SPEED_MIN_MPS)
+
+
+def position_bytes_per_second(speed_byte) -> float:
+    """Finger speed on the position byte scale [bytes/s] for an rSP byte."""
+    return float(speed_from_byte(speed_byte)) / STROKE_M * POSITION_SPAN_BYTES
 
 
 def speed_byte_from_speed(speed_mps):

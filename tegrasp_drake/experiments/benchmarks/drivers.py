@@ -23,7 +23,8 @@ import numpy as np
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus, LeafSystem
 
-from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, MyRioEmulatorConfig, TactileTrial
+from tegrasp_drake.emulators.myrio_emulator import (
+    MyRioEmulator, MyRioEmulatorConfig, TactileRecording)
 from tegrasp_drake.hardware.myrio.tactile_calibration import TactileCalibration
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
@@ -72,14 +73,14 @@ class DriverBenchmarkResult:
     frames_seen_at_port: int
 
 
-def synthetic_trial(duration: float, seed: int = 0) -> TactileTrial:
+def synthetic_trial(duration: float, seed: int = 0) -> TactileRecording:
     """Forces pressing in and out and a noisy vibration, for the latency run."""
     rng = np.random.default_rng(seed)
     times = np.arange(0.0, duration, 1e-3)
     press = 2.0 * np.clip(np.sin(np.pi * times / max(duration, 1e-3)), 0, None)
     forces = np.outer(press, np.linspace(0.2, 1.0, 12))
     vibration = rng.normal(0.0, 1.0, (len(times), 3))
-    return TactileTrial(times, forces, forces[:, ::-1], times, vibration, vibration[:, 0])
+    return TactileRecording(times, forces, forces[:, ::-1], times, vibration, vibration[:, 0])
 
 
 def _periods(wall_times) -> np.ndarray:
@@ -95,7 +96,7 @@ def measure_bare_loop(duration: float) -> Percentiles:
     return Percentiles.of(_periods(wall_times))
 
 
-def _stream_in_child(trial: TactileTrial, config: MyRioEmulatorConfig, connection):
+def _stream_in_child(trial: TactileRecording, config: MyRioEmulatorConfig, connection):
     """Child process: emulate the myRIO, say where, stream on "go", report what was sent."""
     emulator = MyRioEmulator(trial, config)
     try:

@@ -14,12 +14,14 @@ trial, the myRIO replays the drivers benchmark's synthetic pressing and vibratio
 """
 
 import argparse
+import dataclasses
 import os
 import pathlib
 import tempfile
 
 import numpy as np
 
+from tegrasp_drake.emulators.myrio_emulator import save_tactile_recording
 from tegrasp_drake.experiments.benchmarks.drivers import Percentiles, synthetic_trial
 
 
@@ -34,15 +36,11 @@ def loop_figures(log) -> dict:
 
 
 def save_synthetic_trial(path, duration: float):
-    """The synthetic trial as the arrays `tegrasp emulate myrio --trial` reads."""
+    """The synthetic trial as the arrays `tegrasp emulate myrio --trial` reads, each pad's
+    vibration along x only."""
     trial = synthetic_trial(duration)
-    zeros = np.zeros((len(trial.acceleration_times), 2))
-    np.savez(path, t_sa=trial.force_times,
-             taxels=np.hstack([trial.left_forces, trial.right_forces]),
-             t_ra=trial.acceleration_times,
-             pad_acceleration=np.column_stack([trial.left_acceleration[:, :1], zeros,
-                                               trial.right_acceleration, zeros]))
-    return path
+    along_x = dataclasses.replace(trial, left_acceleration=trial.left_acceleration[:, 0])
+    return save_tactile_recording(path, along_x)
 
 
 def run_hardware_benchmark(duration: float = 10.0, *, trial=None, overrides=(),

@@ -21,15 +21,12 @@ from drake import lcmt_jaco_command, lcmt_jaco_status
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import BasicVector, LeafSystem
 
+from tegrasp_drake.hardware.lcm_time import utime_from_time
+
 JACO_NUM_JOINTS = 6
 JACO_COMMAND_CHANNEL = "KINOVA_JACO_COMMAND"
 JACO_STATUS_CHANNEL = "KINOVA_JACO_STATUS"
 JACO_LCM_PERIOD = 0.01  # [s], the driver's 100 Hz
-
-
-def utime_from_time(time_s: float) -> int:
-    """Microseconds (LCM `utime`) for a time in seconds."""
-    return int(round(time_s * 1e6))
 
 
 def make_jaco_command(utime, position, velocity) -> lcmt_jaco_command:

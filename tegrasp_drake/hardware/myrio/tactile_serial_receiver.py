@@ -33,6 +33,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.hardware.state_outputs import declare_scalar_state_outputs
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     PadCalibration, PadZeroing, TactileCalibration, acceleration_from_piezo,
     forces_from_counts)
@@ -143,21 +144,11 @@ class TactileSerialReceiver(LeafSystem):
             self.DeclareVectorOutputPort(
                 f"{finger}_pad_acceleration", 3, self._make_calc_acceleration(i),
                 prerequisites_of_calc=state_ticket)
-        self.DeclareVectorOutputPort(
-            "time_measured", 1,
-            lambda context, out: out.SetAtIndex(0, self._state(context).device_time),
-            prerequisites_of_calc=state_ticket)
-        self.DeclareVectorOutputPort(
-            "stale", 1, lambda context, out: out.SetAtIndex(0, self._state(context).stale),
-            prerequisites_of_calc=state_ticket)
-        self.DeclareVectorOutputPort(
-            "arrival_time", 1,
-            lambda context, out: out.SetAtIndex(0, self._state(context).played_arrival_time),
-            prerequisites_of_calc=state_ticket)
-        self.DeclareVectorOutputPort(
-            "zeroing", 1,
-            lambda context, out: out.SetAtIndex(0, not self._state(context).zeroed),
-            prerequisites_of_calc=state_ticket)
+        declare_scalar_state_outputs(self, self._state_index, {
+            "time_measured": lambda state: state.device_time,
+            "stale": lambda state: state.stale,
+            "arrival_time": lambda state: state.played_arrival_time,
+            "zeroing": lambda state: not state.zeroed})
 
     @property
     def reader(self):

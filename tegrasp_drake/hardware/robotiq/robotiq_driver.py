@@ -18,6 +18,7 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig import robotiq_units as units
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DRIVER_ERROR, DeviceFault
+from tegrasp_drake.hardware.state_outputs import declare_scalar_state_outputs
 
 
 @dataclasses.dataclass(frozen=True)
@@ -76,13 +77,9 @@ class RobotiqDriver(LeafSystem):
             "status", units.STATUS_SIZE,
             lambda context, out: out.SetFromVector(self._state(context).status),
             prerequisites_of_calc=ticket)
-        self.DeclareVectorOutputPort(
-            "time_measured", 1,
-            lambda context, out: out.SetAtIndex(0, self._state(context).arrival_time),
-            prerequisites_of_calc=ticket)
-        self.DeclareVectorOutputPort(
-            "stale", 1, lambda context, out: out.SetAtIndex(0, self._state(context).stale),
-            prerequisites_of_calc=ticket)
+        declare_scalar_state_outputs(self, self._state_index, {
+            "time_measured": lambda state: state.arrival_time,
+            "stale": lambda state: state.stale})
         self.DeclareAbstractOutputPort(
             "fault", lambda: AbstractValue.Make(()),
             lambda context, out: out.set_value(self._state(context).faults),

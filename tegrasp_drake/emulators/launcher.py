@@ -1,0 +1,214 @@
+"""The emulated devices of one `tegrasp emulate`, started together in this process.
+
+- jaco: a Drake simulation of the JACO2 on LCM (jaco_arm_emulator.py) at the scenario's
+  start pose, in real time: it executes lcmt_jaco_command joint velocities and answers
+  lcmt_jaco_status at 100 Hz on KINOVA_JACO_COMMAND / KINOVA_JACO_STATUS.
+- robotiq: a Robotiq 2F-85 answering Modbus RTU (slave 9, 115200 8N1) on a pseudo-terminal,
+  with the scenario's object between its fingers (robotiq_emulator.py), optionally with a
+  fault code injected some time after its activation.
+- myrio: the myRIO tactile stream (hardware/myrio/TACTILE_FRAME.md) on a pseudo-terminal,
+  replaying a recorded trial (load_tactile_recording) at its real rate, then holding its
+  last values. Sync "start" streams quiet pads until the first KINOVA_JACO_COMMAND, so the
+  replay starts with the controller; "follow" also follows the controller's clock (the
+  commands' utime, ControllerClock), so the replay stays in step with a controller that
+  runs behind real time.
+
+`Emulators.start` says where each device listens, in words, through `out`. As data,
+`hardware_config()` points a hardware station at them, and `devices_line()` is one line
+for programs (emulator_process.py reads it back with `devices_from_line`): the
+HardwareStationConfig fields of the devices emulated, as JSON.
+"""
+
+import dataclasses
+import json
+import threading
+import time
+
+from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+from tegrasp_drake.rig import robotiq_units as units
+
+DEVICES = ("jaco", "robotiq", "myrio")
+SYNC_MODES = ("none", "start", "follow")
+DEVICES_LINE_PREFIX = "devices: "
+
+
+def devices_from_line(line: str) -> dict | None:
+    """The {config section: {field: value}} of a `devices_line`, or None for another line."""
+    if not line.startswith(DEVICES_LINE_PREFIX):
+        return None
+    return json.loads(line[len(DEVICES_LINE_PREFIX):])
+
+
+def hardware_config_for(devices: dict) -> HardwareStationConfig:
+    """The default HardwareStationConfig with the fields of `devices` ({"arm": {"lcm_url":
+    ...}, "gripper": {"port": ...}, "tactile": {"port": ...}}, any of them) set."""
+    config = HardwareStationConfig()
+    for section, fields in devices.items():
+        for name, value in fields.items():
+            setattr(getattr(config, section), name, value)
+    return config
+
+
+@dataclasses.dataclass(frozen=True)
+class FaultInjection:
+    """Set gFLT to `code` `delay` [s] after the gripper's activation completes."""
+    code: int
+    delay: float
+
+
+class Emulators:
+    """The emulated devices (module docstring); close() stops them all.
+
+    lcm_url: the arm's bus (the jaco emulator's, and the commands the myRIO syncs to);
+    out: a function taking each line that says where a device listens or what it does."""
+
+    def __init__(self, *, lcm_url: str, out=print):
+        self.lcm_url = lcm_url
+        self.stop = threading.Event()
+        self._out = out
+        self._devices = {}
+        self._closers = []
+        self._jaco = None  # (DrakeLcm, emulator Diagram)
+
+    def start(self, devices, scenario, *, trial=None, sync: str = "none",
+              inject_fault: FaultInjection | None = None) -> "Emulators":
+        """Starts `devices` (names in DEVICES, in that order) with the scenario's arm start
+        pose and object; `trial` is the recording the myRIO replays (a TrialLog .npz)."""
+        unknown = set(devices) - set(DEVICES)
+        if unknown:
+            raise ValueError(f"unknown devices {sorted(unknown)}; known: {DEVICES}")
+        if sync not in SYNC_MODES:
+            raise ValueError(f"sync must be one of {SYNC_MODES}, got {sync!r}")
+        if "myrio" in devices and trial is None:
+            raise ValueError("the myRIO needs a trial to replay")
+        if "jaco" in devices:
+            self._start_jaco(scenario)
+        if "robotiq" in devices:
+            self._start_robotiq(scenario, inject_fault)
+        if "myrio" in devices:
+            self._start_myrio(trial, sync)
+        return self
+
+    @property
+    def devices(self) -> dict:
+        """The HardwareStationConfig fields of the devices emulated: {section: {field:
+        value}}."""
+        return {section: dict(fields) for section, fields in self._devices.items()}
+
+    def devices_line(self) -> str:
+        """`devices` as one line for programs (read it back with `devices_from_line`)."""
+        return DEVICES_LINE_PREFIX + json.dumps(self.devices, sort_keys=True)
+
+    def hardware_config(self) -> HardwareStationConfig:
+        """The config of a station on these devices, the arm on `lcm_url` (emulated or
+        not)."""
+        return hardware_config_for({**self.devices, "arm": {"lcm_url": self.lcm_url}})
+
+    def write_hardware_config(self, path) -> None:
+        """Writes `hardware_config()` for `tegrasp hardware --config`."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(hardware_config_to_yaml(self.hardware_config()))
+
+    def run_until_stopped(self) -> None:
+        """Runs the arm's simulation in real time (or just waits) until `stop` is set."""
+        if self._jaco is None:
+            while not self.stop.wait(0.2):
+                pass
+            return
+        from pydrake.systems.analysis import Simulator
+        simulator = Simulator(self._jaco[1])
+        simulator.set_target_realtime_rate(1.0)
+        simulator.Initialize()
+        context = simulator.get_context()
+        while not self.stop.is_set():
+            simulator.AdvanceTo(context.get_time() + 0.05)
+
+    def close(self) -> None:
+        self.stop.set()
+        for closer in reversed(self._closers):
+            closer()
+        self._closers.clear()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def _start_jaco(self, scenario):
+        from pydrake.lcm import DrakeLcm
+
+        from tegrasp_drake.emulators.jaco_arm_emulator import MakeJacoArmEmulator
+        from tegrasp_drake.hardware.jaco.jaco_lcm import (
+            JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL)
+        from tegrasp_drake.simulation.station import initial_arm_positions
+        drake_lcm = DrakeLcm(self.lcm_url)
+        diagram = MakeJacoArmEmulator(lcm=drake_lcm,
+                                      initial_positions=initial_arm_positions(scenario))
+        self._jaco = (drake_lcm, diagram)
+        self._devices["arm"] = {"lcm_url": self.lcm_url}
+        self._out(f"jaco: JACO2 simulation on {self.lcm_url}: executes {JACO_COMMAND_CHANNEL}, "
+                  f"answers {JACO_STATUS_CHANNEL} at 100 Hz")
+
+    def _start_robotiq(self, scenario, inject_fault: FaultInjection | None):
+        from tegrasp_drake.emulators.robotiq_emulator import (
+            RobotiqEmulator, RobotiqEmulatorConfig)
+        width = scenario.object.width_along_stroke()
+        emulator = RobotiqEmulator(RobotiqEmulatorConfig(object_opening=width)).start()
+        self._closers.append(emulator.stop)
+        self._devices["gripper"] = {"port": emulator.port}
+        self._out(f"robotiq: Robotiq 2F-85 (Modbus RTU, slave 9, 115200 8N1) on "
+                  f"{emulator.port}, object {width * 1000:.1f} mm wide between the fingers")
+        if inject_fault is not None:
+            threading.Thread(target=self._inject_fault_after_activation,
+                             args=(emulator, inject_fault), daemon=True).start()
+
+    def _inject_fault_after_activation(self, emulator, fault: FaultInjection):
+        while not self.stop.is_set():
+            status = emulator.model.status(time.monotonic())
+            if status[units.STATUS_STA] == units.ActivationStatus.ACTIVE:
+                break
+            self.stop.wait(0.01)
+        if not self.stop.wait(fault.delay):
+            emulator.inject_fault(fault.code)
+            self._out(f"robotiq: injected fault 0x{fault.code:02X}")
+
+    def _start_myrio(self, trial_path, sync: str):
+        from tegrasp_drake.emulators.controller_clock import ControllerClock
+        from tegrasp_drake.emulators.myrio_emulator import (
+            MyRioEmulator, MyRioEmulatorConfig, load_tactile_recording)
+        recording = load_tactile_recording(trial_path)
+        clock = ControllerClock() if sync in ("start", "follow") else None
+        emulator = MyRioEmulator(recording, MyRioEmulatorConfig(
+            start_on_trigger=clock is not None, hold_at_end=True),
+            trial_clock=clock if sync == "follow" else None).start()
+        self._closers.append(emulator.stop)
+        self._devices["tactile"] = {"port": emulator.port}
+        if clock is not None:
+            self._feed_controller_clock(clock)
+            threading.Thread(target=self._start_trial_on_first_command,
+                             args=(emulator, clock), daemon=True).start()
+        when = {"none": "now", "start": "from the arm's first command",
+                "follow": "on the arm commands' clock"}[sync]
+        self._out(f"myrio: tactile stream (1 kHz frames) on {emulator.port}, replaying "
+                  f"{trial_path} ({recording.duration:.2f} s) {when}, then holding its last "
+                  "values")
+
+    def _feed_controller_clock(self, clock):
+        """Feeds `clock` the arm's commands: through the emulated arm's DrakeLcm when it
+        runs here, else from a thread listening on `lcm_url`."""
+        if self._jaco is None:
+            from tegrasp_drake.emulators.controller_clock import follow_jaco_commands
+            follow_jaco_commands(self.lcm_url, clock, self.stop)
+            return
+        from drake import lcmt_jaco_command
+
+        from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL
+        self._jaco[0].Subscribe(JACO_COMMAND_CHANNEL, lambda data: clock.on_command(
+            lcmt_jaco_command.decode(data).utime))
+
+    def _start_trial_on_first_command(self, emulator, clock):
+        while not clock.started.wait(0.2):
+            if self.stop.is_set():
+                return
+        emulator.start_trial()

@@ -1,0 +1,49 @@
+"""The launcher of `tegrasp emulate`: the emulated devices' config as data, and its line."""
+
+import os
+
+import numpy as np
+
+from tegrasp_drake.emulators.launcher import (
+    Emulators, devices_from_line, hardware_config_for)
+from tegrasp_drake.emulators.myrio_emulator import TactileRecording, save_tactile_recording
+from tegrasp_drake.experiments.scenario import load_scenario
+
+
+def quiet_recording() -> TactileRecording:
+    t = np.arange(0.0, 0.2, 1e-3)
+    return TactileRecording(t, np.zeros((len(t), 12)), np.zeros((len(t), 12)), t,
+                            np.zeros(len(t)), np.zeros(len(t)))
+
+
+def test_started_devices_are_reported_as_hardware_config_fields(tmp_path):
+    trial = save_tactile_recording(tmp_path / "trial.npz", quiet_recording())
+    lines = []
+    with Emulators(lcm_url="memq://", out=lines.append).start(
+            ("robotiq", "myrio"), load_scenario(name="box"), trial=trial) as emulators:
+        devices = emulators.devices
+        assert set(devices) == {"gripper", "tactile"}
+        assert all(os.path.exists(fields["port"]) for fields in devices.values())
+        config = emulators.hardware_config()
+        assert config.gripper.port == devices["gripper"]["port"]
+        assert config.tactile.port == devices["tactile"]["port"]
+        assert config.arm.lcm_url == "memq://"
+        assert devices_from_line(emulators.devices_line()) == devices
+    assert [line.split(":")[0] for line in lines] == ["robotiq", "myrio"]
+
+
+def test_devices_line_is_the_only_line_read_as_data():
+    assert devices_from_line("robotiq: Robotiq 2F-85 (...) on /dev/pts/3, object ...") is None
+    assert devices_from_line("ready") is None
+    assert devices_from_line('devices: {"gripper": {"port": "/dev/pts/3"}}') == {
+        "gripper": {"port": "/dev/pts/3"}}
+
+
+def test_hardware_config_for_sets_only_the_given_fields():
+    config = hardware_config_for({"arm": {"lcm_url": "memq://"},
+                                  "tactile": {"port": "/dev/pts/9"}})
+    default = hardware_config_for({})
+    assert config.arm.lcm_url == "memq://"
+    assert config.tactile.port == "/dev/pts/9"
+    assert config.gripper == default.gripper
+    assert config.tactile.baudrate == default.tactile.baudrate
