@@ -5,14 +5,14 @@ import pytest
 
 from tegrasp_drake.experiments.grasp_outcome import judge_grasp
 from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 
 pytestmark = pytest.mark.slow
 
 
 @pytest.fixture(scope="module", params=["box", "thick_cylinder", "thin_cylinder"])
 def trial(request, ideal_grasp_log):
-    scenario = load_scenario(name=request.param)
+    scenario = LoadScenario(name=request.param)
     log = ideal_grasp_log(request.param)
     target = np.add(scenario.expected_object_xy, scenario.grasp.place_offset)
     return scenario, log, judge_grasp(log, target_xy=target, grip_force=scenario.grasp.grip_force)
@@ -51,7 +51,7 @@ def test_ra_stays_at_noise_in_free_motion_and_static_hold(trial):
 
 
 def test_same_scenario_and_seed_give_the_same_numbers():
-    scenario = load_scenario(name="box")
+    scenario = LoadScenario(name="box")
     first, _ = run_ideal_grasp(scenario, duration=4.5)
     second, _ = run_ideal_grasp(scenario, duration=4.5)
     np.testing.assert_array_equal(first.channels, second.channels)

@@ -6,7 +6,7 @@ from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation, initial_arm_positions
 from tegrasp_drake.rig.taxel_layout import taxel_centers
 
@@ -15,7 +15,7 @@ GRIP_FORCE = 30.0
 
 def _squeeze(offset_x=0.0, close_at=0.3, until=2.2):
     """Starts with the open pads around the box, closes at GRIP_FORCE; returns samples."""
-    scenario = load_scenario(overrides=[
+    scenario = LoadScenario(overrides=[
         "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]"])
     station = MakeGraspStation(scenario)
     context = station.CreateDefaultContext()
@@ -41,7 +41,7 @@ def centred_squeeze():
 
 
 def test_exported_ports_match_the_hardware_interface():
-    station = MakeGraspStation(load_scenario())
+    station = MakeGraspStation(LoadScenario())
     sizes = {station.get_output_port(i).get_name(): station.get_output_port(i).size()
              for i in range(station.num_output_ports())
              if station.get_output_port(i).get_data_type().name == "kVectorValued"}

@@ -2,7 +2,7 @@
 
     station (MakeStation: MakeGraspStation or MakeHardwareStation, by the scenario's
              `station` tag, or one the caller built)
-      -> add_grasp_controller (control/grasp_controller.py): Eq. 1-2 channels, the event
+      -> AddGraspController (control/grasp_controller.py): Eq. 1-2 channels, the event
          detector, the state machine (or the open-loop script) and Cartesian control;
          arm.desired_state and gripper.command from the measured arm, gripper and tactile
          ports; the hardware station's `device_fault` goes to the state machine
@@ -20,10 +20,10 @@ from pydrake.common import RandomGenerator
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 from pydrake.systems.framework import Diagram, DiagramBuilder
 
-from tegrasp_drake.control.grasp_controller import GraspController, add_grasp_controller
+from tegrasp_drake.control.grasp_controller import GraspController, AddGraspController
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
-from tegrasp_drake.experiments.trial_logging import TrialLoggers, add_trial_logging
+from tegrasp_drake.experiments.trial_logging import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.simulation.station import MakeGraspStation
 
@@ -48,7 +48,7 @@ class GraspDiagram:
     time_limit: float            # [s] the longest the run may take (the plan plus corrections)
 
 
-def build_grasp_diagram(scenario, *, station=None, controller: str | None = None,
+def MakeGraspDiagram(scenario, *, station=None, controller: str | None = None,
                         events=None, meshcat=None, log: bool = True) -> GraspDiagram:
     """Builds the station and the controller `controller` (default: the scenario's) into
     one Diagram.
@@ -60,7 +60,7 @@ def build_grasp_diagram(scenario, *, station=None, controller: str | None = None
     if station is None:
         station = MakeStation(scenario, meshcat=meshcat)
     station = builder.AddNamedSystem("station", station)
-    grasp = add_grasp_controller(builder, scenario=scenario, station=station,
+    grasp = AddGraspController(builder, scenario=scenario, station=station,
                                  controller=controller, events=events)
     machine = grasp.state_machine
     if station.HasOutputPort("device_fault") and machine.HasInputPort("device_fault"):
@@ -68,7 +68,7 @@ def build_grasp_diagram(scenario, *, station=None, controller: str | None = None
                         machine.GetInputPort("device_fault"))
     loggers = None
     if log:
-        loggers = add_trial_logging(builder, scenario=scenario, station=station,
+        loggers = AddTrialLogging(builder, scenario=scenario, station=station,
                                     channels=grasp.channels,
                                     arm_desired_state=grasp.arm_desired_state,
                                     gripper_command=grasp.gripper_command, phase=grasp.mode)

@@ -28,7 +28,7 @@ from pydrake.systems.framework import EventStatus
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
 from tegrasp_drake.hardware.lcm_time import utime_from_time
-from tegrasp_drake.experiments.grasp_diagram import (build_grasp_diagram, is_finished,
+from tegrasp_drake.experiments.grasp_diagram import (MakeGraspDiagram, is_finished,
                                                      make_simulator)
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
@@ -227,7 +227,7 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
                          f"station is {type(config).__name__})")
     controller = controller or scenario.controller.name
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
-        parts = build_grasp_diagram(scenario, station=station, controller=controller,
+        parts = MakeGraspDiagram(scenario, station=station, controller=controller,
                                     events=events, log=False)
         diagram = parts.diagram
         writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path, drake_lcm=station.lcm)

@@ -7,7 +7,7 @@ control/scripted_grasp.py), simulated to the end of the script and a little beyo
 import time
 
 from tegrasp_drake.control.scripted_grasp import PHASES, plan_duration
-from tegrasp_drake.experiments.grasp_diagram import build_grasp_diagram, make_simulator
+from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, make_simulator
 from tegrasp_drake.experiments.trial_logging import collect_trial_log
 from tegrasp_drake.simulation.station import MakeGraspStation
 
@@ -15,15 +15,15 @@ CONTROLLER_NAME = "open_loop"
 END_MARGIN_S = 0.5  # simulated after the script ends, to see the object settle
 
 
-def build_ideal_grasp_diagram(scenario, *, meshcat=None):
+def MakeIdealGraspDiagram(scenario, *, meshcat=None):
     """The GraspDiagram of the scripted grasp around the simulated station."""
-    return build_grasp_diagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
+    return MakeGraspDiagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
                                controller=CONTROLLER_NAME)
 
 
 def run_ideal_grasp(scenario, *, meshcat=None, duration=None):
     """Simulates the ideal grasp; returns (TrialLog, wall time [s])."""
-    grasp = build_ideal_grasp_diagram(scenario, meshcat=meshcat)
+    grasp = MakeIdealGraspDiagram(scenario, meshcat=meshcat)
     segments = grasp.controller.segments
     simulator = make_simulator(grasp.diagram, scenario)
     context = simulator.get_mutable_context()

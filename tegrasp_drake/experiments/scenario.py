@@ -130,7 +130,7 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     return scenario
 
 
-def load_scenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT_SCENARIO,
+def LoadScenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT_SCENARIO,
                   overrides: typing.Sequence[str] = ()) -> Scenario:
     """Loads scenario `name` from `filename` (default: the built-in file) with overrides."""
     path = pathlib.Path(filename) if filename else paths.scenarios_file()

@@ -13,7 +13,7 @@ import numpy as np
 from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
-from tegrasp_drake.experiments.grasp_diagram import build_grasp_diagram, make_simulator
+from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, make_simulator
 from tegrasp_drake.experiments.grasp_outcome import (first_contact_time, grip_force_time,
                                                      judge_grasp, table_touch_time)
 from tegrasp_drake.experiments.trial_logging import collect_trial_log
@@ -100,7 +100,7 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
 
 def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialResult:
     """Simulates one trial of `scenario` with its controller; returns its TrialResult."""
-    grasp = build_grasp_diagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
+    grasp = MakeGraspDiagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
                                 events=events)
     controller, loggers = grasp.controller, grasp.loggers
     simulator = make_simulator(grasp.diagram, scenario)
@@ -143,10 +143,10 @@ def scenario_from_trial_spec(trial: dict):
     """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
     trial's object (perturbed in mass and friction), placement, seed and controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
-    from tegrasp_drake.experiments.scenario import load_scenario, resolve_object, validate
+    from tegrasp_drake.experiments.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.experiments.sweep.spec import ObjectDefinition
     p = trial["perturbation"]
-    base = load_scenario()
+    base = LoadScenario()
     definition = trial.get("object_definition")
     if definition:
         obj = ObjectDefinition(**definition).object_config(trial["object_name"])

@@ -49,7 +49,7 @@ def object_sdf(config: ObjectConfig) -> str:
         "</visual></link></model></sdf>")
 
 
-def add_object(parser, config: ObjectConfig) -> ModelInstanceIndex:
+def AddObject(parser, config: ObjectConfig) -> ModelInstanceIndex:
     """Adds the object to the parser's plant; returns its model instance."""
     if config.shape == "file":
         if config.file.startswith("package://"):

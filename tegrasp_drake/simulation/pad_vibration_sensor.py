@@ -37,7 +37,7 @@ def highpass_matrices(cutoff_hz: float, dt: float):
     return a * eye, (a - 1.0) * eye, a * eye, a * eye
 
 
-def add_pad_vibration_sensor(builder, plant, body, X_BS, config: VibrationSensorConfig,
+def AddPadVibrationSensor(builder, plant, body, X_BS, config: VibrationSensorConfig,
                              name: str, slip_vibration=None):
     """Adds the sensor for `body` (sensor frame S at X_BS); returns its output port (3,
     m/s^2, expressed in S). `slip_vibration`, if given, is an output port (3, m/s^2 in S)

@@ -34,11 +34,11 @@ from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRIPPER_URL, R_WG_SIDE_GR
                                           solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE
-from tegrasp_drake.simulation.object_model import add_object, object_body
+from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
-                                                          add_pad_vibration_sensor)
+                                                          AddPadVibrationSensor)
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
 
@@ -134,7 +134,7 @@ def MakeGraspStation(scenario, *, meshcat=None):
                      X_FLANGE_GRIPPER)
     (table,) = parser.AddModels(url=TABLE_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
-    obj = add_object(parser, scenario.object)
+    obj = AddObject(parser, scenario.object)
     plant.set_gravity_enabled(arm, False)
     plant.set_gravity_enabled(gripper, False)
     _set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
@@ -174,7 +174,7 @@ def MakeGraspStation(scenario, *, meshcat=None):
     for finger in FINGER_NAMES:
         builder.ExportOutput(taxels.GetOutputPort(f"{finger}_taxel_forces"),
                              f"tactile.{finger}_taxel_forces")
-        vibration = add_pad_vibration_sensor(
+        vibration = AddPadVibrationSensor(
             builder, plant, plant.get_body(pads[finger].body_index), pads[finger].X_BP,
             scenario.vibration, f"{finger}_pad_vibration",
             slip_vibration=slip.GetOutputPort(f"{finger}_slip_vibration") if slip else None)

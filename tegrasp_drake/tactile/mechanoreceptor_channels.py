@@ -58,7 +58,7 @@ class MechanoreceptorChannels(LeafSystem):
         output.SetFromVector(self._sa(context) + self._ra(context))
 
 
-def add_mechanoreceptor_channels(builder, station):
+def AddMechanoreceptorChannels(builder, station):
     """Adds Eq. 1-2 fed by the station's tactile ports; returns the system."""
     channels = builder.AddNamedSystem("mechanoreceptor_channels", MechanoreceptorChannels())
     for finger in FINGER_NAMES:

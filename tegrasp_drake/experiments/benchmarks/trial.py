@@ -5,12 +5,12 @@ import statistics
 import time
 
 from tegrasp_drake.experiments.grasp_diagram import make_simulator
-from tegrasp_drake.experiments.ideal_grasp import build_ideal_grasp_diagram, run_ideal_grasp
+from tegrasp_drake.experiments.ideal_grasp import MakeIdealGraspDiagram, run_ideal_grasp
 
 
 def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
     """Median wall time [us] of one TactilePads sample while the box is held."""
-    grasp = build_ideal_grasp_diagram(scenario)
+    grasp = MakeIdealGraspDiagram(scenario)
     diagram, segments = grasp.diagram, grasp.controller.segments
     simulator = make_simulator(diagram, scenario)
     simulator.AdvanceTo(next(s.t_start for s in segments if s.phase == "hold") + 0.5)
