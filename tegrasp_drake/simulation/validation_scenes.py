@@ -8,7 +8,7 @@ with the grip force given as a profile over time and allowed below the 2F-85's 2
 that slip can be provoked. The plant's settings are the scenario's (`plant_config`).
 
 The three experiments return what a closed form predicts (module docstrings of the tests in
-tests/test_simulation_validation.py give the formulas):
+tests/test_simulation_validation_scenes.py give the formulas):
 - push_standing_object: one pad pushes a standing object sideways at a height; it slides
   or tips over.
 - slip_onset_grip_force: a held object, the grip force ramped down; the force at which it
@@ -27,6 +27,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus, LeafSystem
 
 from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE, PAD_CENTER_Z
+from tegrasp_drake.modelgen.table_sdf import EXPECTED_XY
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL, R_WG_SIDE_GRASP
 from tegrasp_drake.rig.objects import ObjectConfig
@@ -36,8 +37,7 @@ from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig,
 from tegrasp_drake.simulation.station import TABLE_URL
 
 GRAVITY = 9.81  # m/s^2, Drake's default
-# Where scenes stand: above the station's expected object position, on its table.
-SCENE_XY = (0.72, 0.0)  # m
+SCENE_XY = EXPECTED_XY  # m; scenes stand at the station's expected object position
 
 
 @dataclasses.dataclass(frozen=True)
