@@ -27,6 +27,16 @@ def test_lifts_holds_places_upright_and_releases(trial):
     assert outcome.released
 
 
+def test_sa_equals_the_commanded_grip_force_while_holding(trial):
+    # Eq. 1: the summed taxel forces are the pad's normal force, which the gripper's force
+    # limit sets while the lifted object hangs in the grasp (issue #11: within 5 %).
+    scenario, log, _ = trial
+    starts = log.meta["phase_starts"]
+    holding = (log.t_sa >= starts["hold"]) & (log.t_sa < starts["place"])
+    for pad in (log.taxels[holding, :12], log.taxels[holding, 12:]):
+        np.testing.assert_allclose(pad.sum(axis=1), scenario.grasp.grip_force, rtol=0.05)
+
+
 def _ra_peak(log, t0, t1):
     mask = (log.t_ra >= t0) & (log.t_ra < t1)
     return log.ra[mask].max(axis=0)

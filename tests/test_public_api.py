@@ -19,7 +19,7 @@ def test_builders_follow_drakes_camel_case():
     assert {"LoadScenario", "MakeGraspStation", "MakeHardwareStation",
             "MakeGraspDiagram"} <= set(builders)
     assert not [n for n in tegrasp_drake.__all__
-                if n.startswith(("make_station", "build_", "load_scenario", "add_"))]
+                if n.startswith(("make_station", "build_", "LoadScenario", "add_"))]
 
 
 def test_an_unknown_name_is_an_attribute_error():
