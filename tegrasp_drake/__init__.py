@@ -6,10 +6,10 @@ Memorized Triggers and Mechanoreceptive Sensors", on Drake's systems framework.
 The public API is importable from here; builders of systems and diagrams follow Drake's
 CamelCase (Make*, Load*, Add*), everything else is snake_case:
 
-    from tegrasp_drake import LoadScenario, MakeGraspDiagram, make_simulator
+    from tegrasp_drake import LoadScenario, MakeGraspDiagram, MakeSimulator
     scenario = LoadScenario(name="box")
     grasp = MakeGraspDiagram(scenario)           # station + controller + loggers
-    simulator = make_simulator(grasp.diagram, scenario)
+    simulator = MakeSimulator(grasp.diagram, scenario)
     simulator.AdvanceTo(12.0)
     print(grasp.controller.transitions(simulator.get_context()))
 
@@ -43,7 +43,7 @@ _PUBLIC = {
     "GraspController": "tegrasp_drake.control.grasp_controller",
     "MakeGraspDiagram": "tegrasp_drake.experiments.grasp_diagram",
     "GraspDiagram": "tegrasp_drake.experiments.grasp_diagram",
-    "make_simulator": "tegrasp_drake.experiments.grasp_diagram",
+    "MakeSimulator": "tegrasp_drake.experiments.grasp_diagram",
     "Mode": "tegrasp_drake.control.grasp_modes",
     "Transition": "tegrasp_drake.control.grasp_modes",
     "Trigger": "tegrasp_drake.control.grasp_modes",
@@ -67,7 +67,7 @@ _PUBLIC = {
     "load_trial_log": "tegrasp_drake.experiments.trial_log",
     "run_on_hardware": "tegrasp_drake.experiments.hardware_run",
     "SweepSpec": "tegrasp_drake.experiments.sweep.spec",
-    "load_sweep_spec": "tegrasp_drake.experiments.sweep.spec",
+    "LoadSweepSpec": "tegrasp_drake.experiments.sweep.spec",
     "run_sweep": "tegrasp_drake.experiments.sweep.runner",
     "write_reports": "tegrasp_drake.experiments.sweep.reports",
 }

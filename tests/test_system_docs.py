@@ -50,6 +50,7 @@ from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.rig import paths
 from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
+from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
 
 # Modules whose systems have no block yet: simulation/ is being rewritten on other
 # branches. Pending issue #10; the lead removes each entry (and adds the systems to
@@ -110,6 +111,7 @@ CONSTRUCTORS = {
     TactileSerialReceiver: lambda: TactileSerialReceiver(TactileSerialReader("/dev/unused")),
     RobotiqDriver: lambda: RobotiqDriver(RobotiqModbusClient(HardwareStationConfig().gripper)),
     HardwareStation: hardware_station,
+    FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
 }
 
 # Documented systems that are not built here, with the reason. Empty: every one is cheap.

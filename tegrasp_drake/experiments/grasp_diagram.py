@@ -11,7 +11,7 @@
 The controller cannot tell the simulated station from the hardware one: both export the
 same ports. trial.py runs the diagram on the simulated station in simulated time,
 ideal_grasp.py runs it with the open-loop script, hardware_run.py runs it on the devices in
-real time. `make_simulator` is the one simulator set-up for all of them.
+real time. `MakeSimulator` is the one simulator set-up for all of them.
 """
 
 import dataclasses
@@ -78,7 +78,7 @@ def MakeGraspDiagram(scenario, *, station=None, controller: str | None = None,
     return GraspDiagram(diagram, station, grasp, loggers, time_limit)
 
 
-def make_simulator(diagram, scenario, *, realtime: bool = False) -> Simulator:
+def MakeSimulator(diagram, scenario, *, realtime: bool = False) -> Simulator:
     """A Simulator of `diagram` with the scenario's SimulatorConfig and its random seed
     (sensor noise); realtime: paced at real-time rate 1 (hardware)."""
     simulator = Simulator(diagram)

@@ -29,7 +29,7 @@ from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
 from tegrasp_drake.hardware.lcm_time import utime_from_time
 from tegrasp_drake.experiments.grasp_diagram import (MakeGraspDiagram, is_finished,
-                                                     make_simulator)
+                                                     MakeSimulator)
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.station import MakeHardwareStation
@@ -238,7 +238,7 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
             out(f"waiting for the devices: arm on {station.lcm.get_lcm_url()}, gripper on "
                 f"{config.gripper.port}, tactile on {config.tactile.port}")
             station.wait_until_ready()
-            simulator = make_simulator(diagram, scenario, realtime=True)
+            simulator = MakeSimulator(diagram, scenario, realtime=True)
             reporter = RunReporter(diagram=diagram, station=parts.station,
                                    grasp=parts.controller,
                                    drake_lcm=station.lcm, out=out)

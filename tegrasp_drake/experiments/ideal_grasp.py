@@ -7,7 +7,7 @@ control/scripted_grasp.py), simulated to the end of the script and a little beyo
 import time
 
 from tegrasp_drake.control.scripted_grasp import PHASES, plan_duration
-from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, make_simulator
+from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, MakeSimulator
 from tegrasp_drake.experiments.trial_logging import collect_trial_log
 from tegrasp_drake.simulation.station import MakeGraspStation
 
@@ -25,7 +25,7 @@ def run_ideal_grasp(scenario, *, meshcat=None, duration=None):
     """Simulates the ideal grasp; returns (TrialLog, wall time [s])."""
     grasp = MakeIdealGraspDiagram(scenario, meshcat=meshcat)
     segments = grasp.controller.segments
-    simulator = make_simulator(grasp.diagram, scenario)
+    simulator = MakeSimulator(grasp.diagram, scenario)
     context = simulator.get_mutable_context()
     end_time = duration if duration is not None else plan_duration(segments) + END_MARGIN_S
     if meshcat is not None:

@@ -13,7 +13,7 @@ import numpy as np
 from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
-from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, make_simulator
+from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, MakeSimulator
 from tegrasp_drake.experiments.grasp_outcome import (first_contact_time, grip_force_time,
                                                      judge_grasp, table_touch_time)
 from tegrasp_drake.experiments.trial_logging import collect_trial_log
@@ -103,7 +103,7 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialRes
     grasp = MakeGraspDiagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
                                 events=events)
     controller, loggers = grasp.controller, grasp.loggers
-    simulator = make_simulator(grasp.diagram, scenario)
+    simulator = MakeSimulator(grasp.diagram, scenario)
     context = simulator.get_mutable_context()
     limit = max_time if max_time is not None else grasp.time_limit
     if meshcat is not None:

@@ -65,8 +65,18 @@ class GripProgram:
 class FingerDrive(LeafSystem):
     """The fingers' force-limited position loop for a GripProgram.
 
-    Input port finger_state (4: q_left, q_right, v_left, v_right); output port
-    desired_state (2: q, v of the actuated left finger, for the plant's implicit PD).
+    .. pydrake_system::
+
+        name: FingerDrive
+        input_ports:
+        - finger_state
+        output_ports:
+        - desired_state
+
+    Ports:
+        finger_state: [q_left, q_right, v_left, v_right] (m, m, m/s, m/s).
+        desired_state: [q, v] of the actuated left finger (m, m/s), for the plant's
+            implicit PD.
     """
 
     def __init__(self, *, program: GripProgram, position_gain: float):

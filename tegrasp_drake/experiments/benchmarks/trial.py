@@ -4,7 +4,7 @@ tactile-pad evaluation while the object is held (`tegrasp benchmark` prints them
 import statistics
 import time
 
-from tegrasp_drake.experiments.grasp_diagram import make_simulator
+from tegrasp_drake.experiments.grasp_diagram import MakeSimulator
 from tegrasp_drake.experiments.ideal_grasp import MakeIdealGraspDiagram, run_ideal_grasp
 
 
@@ -12,7 +12,7 @@ def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
     """Median wall time [us] of one TactilePads sample while the box is held."""
     grasp = MakeIdealGraspDiagram(scenario)
     diagram, segments = grasp.diagram, grasp.controller.segments
-    simulator = make_simulator(diagram, scenario)
+    simulator = MakeSimulator(diagram, scenario)
     simulator.AdvanceTo(next(s.t_start for s in segments if s.phase == "hold") + 0.5)
     context = simulator.get_context()
     pads = diagram.GetSubsystemByName("station").GetSubsystemByName("tactile_pads")
