@@ -17,7 +17,7 @@ from tegrasp_drake.events.transitions import NO_EVENT, transition_order
 from tegrasp_drake.tactile.sampling import resample_window
 from tegrasp_drake.tactile.sliding_window import SlidingWindowState
 from tegrasp_drake.tactile.window_normalizer import (
-    WindowNormalizer, WindowNormalizerConfig, window_layout)
+    WindowNormalizer, WindowNormalizerConfig, entering_samples, window_layout)
 
 
 @dataclasses.dataclass
@@ -69,10 +69,11 @@ class EventScorer(LeafSystem):
     the same ticks, and Drake computes every update of a tick from the state before it: at
     the tick, the normaliser's `*_window_position` (offset, samples held, oldest samples)
     still describes the window before the sample. The update takes the entering sample from
-    `channels`, as the normaliser does, and the leaving one from the position; it reads the
-    normaliser's buffer (`*_window_buffer`) only to recompute the correlations or when an
-    extreme left the window, and then pushes the sample into a copy of it. So the scores
-    after a tick are those of the window the normaliser holds after that tick.
+    `channels` (entering_samples, as the normaliser does) and the leaving one from the
+    position; it reads the normaliser's buffer (`*_window_buffer`) only to recompute the
+    correlations or when an extreme left the window, and then pushes the sample into a copy
+    of it. So the scores after a tick are those of the window the normaliser holds after
+    that tick.
 
     .. pydrake_system::
 
@@ -197,7 +198,7 @@ class EventScorer(LeafSystem):
 
     def _update(self, group, context, discrete_state):
         position = group.position_port.Eval(context)  # the window before this tick's sample
-        samples = self._channels_port.Eval(context)[group.channels]
+        samples = entering_samples(self._channels_port.Eval(context), group.channels)
         group.correlation.slide(
             discrete_state.get_mutable_value(group.state_index), position, samples,
             lambda: group.layout.window_after(position, group.buffer_port.Eval(context),

@@ -31,6 +31,12 @@ def window_layout(group: RateGroup) -> SlidingWindowState:
     return SlidingWindowState(default_sliding_window(len(group.channels), group.window_length))
 
 
+def entering_samples(channels: np.ndarray, rows: slice) -> np.ndarray:
+    """The samples a tick pushes into a rate group's window: the group's `rows` of the four
+    channels. The EventScorer slides its correlations by these same samples."""
+    return channels[rows]
+
+
 class WindowNormalizer(LeafSystem):
     """Keeps the last `window_s` of each channel in the Context; outputs them max-normalised,
     and raw for the EventMatcher to score (the paper's Fig. 3, Sec. III-A and III-B).
@@ -111,7 +117,7 @@ class WindowNormalizer(LeafSystem):
         position, buffer = indices
         layout.push_into(discrete_state.get_mutable_value(position),
                          discrete_state.get_mutable_value(buffer),
-                         self._channels_port.Eval(context)[channels])
+                         entering_samples(self._channels_port.Eval(context), channels))
 
     def _calc_window(self, context, output, *, indices, layout, rows):
         window = layout.window_in(*(context.get_discrete_state(i).value() for i in indices))
