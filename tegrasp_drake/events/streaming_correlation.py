@@ -275,8 +275,8 @@ class StreamingCorrelator:
         all 0 until the window is full.
         """
         self._correlation.check_event(event)
-        window = state[:self._split]
-        position = self._window.split(window)[0].copy()  # before the push
-        self._window.push(window, samples)
-        return self._correlation.slide(state[self._split:], position, samples,
-                                       lambda: self._window.current(window), event)
+        position, buffer = self._window.split(state[:self._split])
+        before = position.copy()
+        self._window.push_into(position, buffer, samples)
+        return self._correlation.slide(state[self._split:], before, samples,
+                                       lambda: self._window.window_in(position, buffer), event)

@@ -103,10 +103,11 @@ class SlidingWindowState:
     def push_into(self, position: np.ndarray, buffer: np.ndarray, samples) -> None:
         """Append one sample per channel to the window, in place."""
         window = self.window
-        offset, held = position.item(0), position.item(1)
+        offset, held, *_ = position.tolist()
         rows = buffer.reshape(window.n_channels, window.columns)
         offset = window.push(rows, int(offset), samples)
-        position[:] = [offset, min(held + 1.0, window.length)] + rows[:, offset].tolist()
+        position[:] = [offset, held + 1.0 if held < window.length else held] + rows[
+            :, offset].tolist()
 
     def window_after(self, position: np.ndarray, buffer: np.ndarray, samples) -> np.ndarray:
         """The window (channels, N) once `samples` are pushed, computed on copies:
