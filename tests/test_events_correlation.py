@@ -162,6 +162,21 @@ def test_sliding_window_keeps_the_last_samples_oldest_first():
                                                           [-33, -34, -35, -36, -37]])
 
 
+def test_window_after_a_push_leaves_the_window_it_starts_from_alone():
+    layout = SlidingWindowState(SlidingWindow(n_channels=2, length=5, slack=3))
+    position, buffer = (np.zeros(layout.position_size), np.zeros(layout.buffer_size))
+    for value in range(1, 12):
+        before = (position.copy(), buffer.copy())
+        after = layout.window_after(position, buffer, [value, -value]).copy()
+        np.testing.assert_array_equal(position, before[0])
+        np.testing.assert_array_equal(buffer, before[1])
+        layout.push_into(position, buffer, [value, -value])
+        np.testing.assert_array_equal(after, layout.window_in(position, buffer))
+        offset, held, oldest = layout.unpack(position)
+        assert held == min(value, 5)
+        np.testing.assert_array_equal(oldest, layout.window_in(position, buffer)[:, 0])
+
+
 def test_resampling_holds_values_when_upsampling_and_averages_when_downsampling():
     np.testing.assert_allclose(resample_window([[1.0, 3.0]], 6), [[1, 1, 1, 3, 3, 3]])
     np.testing.assert_allclose(resample_window([np.arange(10.0)], 2), [[2.0, 7.0]])

@@ -15,6 +15,8 @@ from tegrasp_drake.events.replay import channels_trajectory
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 
+from one_system_matcher import replay_both
+
 IDEAL = SyntheticGraspConfig()
 NOISY = SyntheticGraspConfig(sa_noise_n=0.05, ra_noise=0.2, seed=7)  # N, m/s^2 per axis
 EVENTS = extract_memorized_events(synthetic_grasp(IDEAL), object_name="box",
@@ -201,3 +203,36 @@ def test_an_all_zero_template_channel_is_refused():
     silent = dataclasses.replace(event, ra=np.vstack([event.ra[0], np.zeros(500)]))
     with pytest.raises(ValueError, match=r"all-zero channels \['ra_right'\]"):
         EventMatcher({"reach_load": silent})
+
+
+def test_scores_are_eq3_of_the_normalizer_windows_at_every_tick():
+    harness = Harness(replay(NOISY))
+    normalizer = harness.matcher.normalizer
+    compared = 0
+    for event, (t_start, t_end) in (("reach_load", (0.6, 1.3)), ("load_lift", (1.3, 1.9))):
+        harness.expect(event)
+        for _, scores, _ in harness.run(t_end):
+            if harness.simulator.get_context().get_time() < t_start or (
+                    harness.output("scored_event")[0] != harness.matcher.event_index(event)):
+                continue  # the window is not yet full, or the SA scores are the old event's
+            context = normalizer.GetMyContextFromRoot(harness.simulator.get_context())
+            windows = [normalizer.GetOutputPort(f"{kind}_window").Eval(context).reshape(
+                2, normalizer.window_length(kind)) for kind in ("sa", "ra")]
+            template = EVENTS[event]
+            expected = event_scores_reference(list(windows[0]) + list(windows[1]),
+                                              list(template.sa) + list(template.ra), 0.25)
+            np.testing.assert_allclose(scores, expected, rtol=0, atol=1e-9)
+            compared += 1
+    assert compared > 1200
+
+
+@pytest.mark.parametrize("sa_rate_hz", [100.0, 1000.0])
+def test_scores_and_match_equal_the_one_system_matcher_tick_by_tick(sa_rate_hz):
+    events = extract_memorized_events(synthetic_grasp(IDEAL, sa_rate_hz=sa_rate_hz),
+                                      object_name="box", sa_rate_hz=sa_rate_hz,
+                                      ra_rate_hz=1000.0, package_versions={})
+    both = replay_both(synthetic_grasp(NOISY, sa_rate_hz=sa_rate_hz), events,
+                       EventMatcherConfig(sa_rate_hz=sa_rate_hz))
+    assert not np.isnan(both.fire_times).any()  # every event matched: the scores moved on
+    np.testing.assert_allclose(both.scores, both.one_system_scores, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(both.match, both.one_system_match)

@@ -13,6 +13,8 @@ from tegrasp_drake.experiments.grasp_outcome import physical_events
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.experiments.scenario import LoadScenario
 
+from one_system_matcher import replay_both
+
 pytestmark = pytest.mark.slow
 
 DETECTION_DEADLINE_S = 0.5  # a transition must fire within this after its physical event
@@ -56,6 +58,14 @@ def test_the_normalized_windows_at_each_match_give_the_matcher_scores(grasp, in_
             live_matcher_config(events).min_contrast)
         np.testing.assert_allclose(in_sequence.scores_at_match[transition], expected,
                                    rtol=0, atol=1e-9, err_msg=transition)
+
+
+def test_the_live_matcher_scores_as_the_one_system_matcher_at_every_tick(grasp):
+    _, _, trial, events = grasp
+    both = replay_both(trial, events, live_matcher_config(events))
+    assert not np.isnan(both.fire_times).any()  # every event matched: the scores moved on
+    np.testing.assert_allclose(both.scores, both.one_system_scores, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(both.match, both.one_system_match)
 
 
 def no_transition_stretches(log, physical) -> dict[str, tuple[float, float]]:

@@ -9,7 +9,8 @@ from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 from tegrasp_drake.events.correlation import normalize_by_max
 from tegrasp_drake.events.replay import channels_trajectory
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
-from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig
+from tegrasp_drake.tactile.window_normalizer import (
+    WindowNormalizer, WindowNormalizerConfig, window_layout)
 
 NOISY_GRASP = SyntheticGraspConfig(sa_noise_n=0.05, ra_noise=0.2, seed=4)
 
@@ -75,3 +76,20 @@ def test_history_lives_in_the_context():
     fresh = normalizer.CreateDefaultContext()
     assert np.any(normalizer.GetOutputPort("ra_window").Eval(context) != 0.0)
     np.testing.assert_array_equal(normalizer.GetOutputPort("ra_window").Eval(fresh), 0.0)
+
+
+@pytest.mark.parametrize("sa_rate_hz, groups", [(100.0, ("sa", "ra")), (1000.0, ("sa_ra",))])
+def test_raw_window_outputs_hold_the_windows_it_normalises(sa_rate_hz, groups):
+    trajectory = channels_trajectory(synthetic_grasp(NOISY_GRASP, sa_rate_hz=sa_rate_hz))
+    config = WindowNormalizerConfig(sa_rate_hz=sa_rate_hz)
+    normalizer, context = simulate(TrajectorySource(trajectory), config, 1.1375)
+    channels = []  # raw windows in CHANNEL_NAMES order
+    for group, name in zip(config.rate_groups(), groups, strict=True):
+        assert group.name == name
+        channels += list(window_layout(group).window_in(
+            normalizer.GetOutputPort(f"{name}_window_position").Eval(context),
+            normalizer.GetOutputPort(f"{name}_window_buffer").Eval(context)))
+    np.testing.assert_array_equal(normalizer.GetOutputPort("sa_window").Eval(context),
+                                  normalize_by_max(np.array(channels[:2])).ravel())
+    np.testing.assert_array_equal(normalizer.GetOutputPort("ra_window").Eval(context),
+                                  normalize_by_max(np.array(channels[2:])).ravel())

@@ -1,6 +1,11 @@
 """The closed-loop grasp controller wired to a station: Eq. 1-2 channels, the event detector
-(EventMatcher on the memorized events, or the heuristic thresholds), the GraspStateMachine
-and the Cartesian arm controller; or the open-loop script.
+(the memorized events' WindowNormalizer -> EventScorer, or the heuristic thresholds), the
+GraspStateMachine and the Cartesian arm controller; or the open-loop script.
+
+With the memorized events the live diagram follows the paper's Fig. 3:
+
+    mechanoreceptor_channels (Eq. 1-2) -> window_normalizer (0.5 s, max-normalised)
+      -> event_scorer (Eq. 3 against the expected event) -> grasp_state_machine
 
 `AddGraspController` connects to any system with the station's exported port names
 (station.py): the simulated station and the hardware interface alike.
@@ -30,7 +35,8 @@ class GraspController:
     """The controller's systems and its ports of interest."""
     name: str
     channels: object  # MechanoreceptorChannels
-    detector: object  # EventMatcher, HeuristicEventDetector or None (open loop)
+    detector: object  # EventScorer (fed by a WindowNormalizer), HeuristicEventDetector or
+    #                   None (open loop)
     state_machine: object  # GraspStateMachine, or ScriptedGraspSource (open loop)
     gripper_command: object  # output port
     arm_desired_state: object  # output port
@@ -84,19 +90,22 @@ def load_controller_events(scenario, events_dir=None) -> dict:
         raise error from None
 
 
-def _add_detector(builder, scenario, name, events):
+def _add_detector(builder, scenario, name, events, channels):
+    """The detector fed by `channels` (an output port), and its trigger."""
     config = scenario.controller
     if name == "memorized":
-        from tegrasp_drake.events import EventMatcher, EventMatcherConfig
+        from tegrasp_drake.events import EventMatcherConfig, add_event_matcher
         matcher_config = EventMatcherConfig(
             sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
             sa_rate_hz=scenario.tactile.sample_rate_hz,
             ra_rate_hz=scenario.vibration.sample_rate_hz)
         events = events if events is not None else load_controller_events(scenario)
-        return builder.AddNamedSystem("event_matcher", EventMatcher(events, matcher_config)), \
-            Trigger.MEMORIZED_EVENT
-    detector = HeuristicEventDetector(config.heuristic, grip_force_n=scenario.grasp.grip_force)
-    return builder.AddNamedSystem("heuristic_detector", detector), Trigger.HEURISTIC_EVENT
+        matcher = add_event_matcher(builder, events, matcher_config, channels=channels)
+        return matcher.scorer, Trigger.MEMORIZED_EVENT
+    detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
+        config.heuristic, grip_force_n=scenario.grasp.grip_force))
+    builder.Connect(channels, detector.GetInputPort("channels"))
+    return detector, Trigger.HEURISTIC_EVENT
 
 
 def AddGraspController(builder, *, scenario, station, controller: str | None = None,
@@ -124,12 +133,12 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
         return GraspController(name, channels, None, script,
                                script.GetOutputPort("gripper_command"), arm_desired_state,
                                script.GetOutputPort("phase"), segments)
-    detector, event_trigger = _add_detector(builder, scenario, name, events)
+    detector, event_trigger = _add_detector(builder, scenario, name, events,
+                                            channels.GetOutputPort("channels"))
     machine = builder.AddNamedSystem("grasp_state_machine", GraspStateMachine(
         plan=GraspPlan.from_scenario(scenario), config=scenario.controller,
         event_indices={t: detector.event_index(t) for t in detector.transitions},
         event_trigger=event_trigger))
-    builder.Connect(channels.GetOutputPort("channels"), detector.GetInputPort("channels"))
     builder.Connect(machine.GetOutputPort("expected_event"),
                     detector.GetInputPort("expected_event"))
     builder.Connect(detector.GetOutputPort("match"), machine.GetInputPort("match"))

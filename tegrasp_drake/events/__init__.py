@@ -2,9 +2,10 @@
 
 The record step cuts max-normalised 0.5 s windows of the four channels around each grasp
 transition of an ideal grasp (extraction.py) and stores them (memorized_event.py,
-FORMAT.md). In the control loop, the EventMatcher scores the live channels against the
-expected event with Eq. 3 (correlation.py, streaming_correlation.py); the
-WindowNormalizer outputs the live normalised windows for logging and plots; the
+FORMAT.md). In the control loop (the paper's Fig. 3), the WindowNormalizer
+(tactile/window_normalizer.py) keeps the live 0.5 s windows and the EventScorer scores them
+against the expected event with Eq. 3 (correlation.py, streaming_correlation.py);
+`add_event_matcher` wires the two, the EventMatcher is the pair as one system. The
 EventSequencer expects an object's events one after another. replay.py runs a logged
 trial through them offline.
 
@@ -17,7 +18,9 @@ for tests).
 from tegrasp_drake.events.correlation import (
     channel_score, event_scores_reference, max_normalized_xcorr_reference,
     normalize_by_max, window_contrast)
-from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
+from tegrasp_drake.events.event_matcher import (
+    EventMatcher, EventMatcherConfig, EventMatcherSystems, EventScorer, add_event_matcher,
+    event_templates)
 from tegrasp_drake.events.event_sequencer import EventSequencer, next_sequence_step
 from tegrasp_drake.events.extraction import (
     DEFAULT_PRE_TRANSITION_S, DEFAULT_WINDOW_S, TactileTrial, cut_window,
@@ -29,7 +32,7 @@ from tegrasp_drake.events.memorized_event import (
 from tegrasp_drake.events.replay import (
     EventReplay, channels_trajectory, live_matcher_config, replay_event_held,
     replay_events_in_sequence, tactile_trial_from_log)
-from tegrasp_drake.events.streaming_correlation import StreamingCorrelator
+from tegrasp_drake.events.streaming_correlation import SlidingCorrelation, StreamingCorrelator
 from tegrasp_drake.events.transitions import (
     NO_EVENT, REQUIRED_TRANSITIONS, TRANSITIONS, event_transition, transition_name,
     transition_order, transition_states)
@@ -37,9 +40,11 @@ from tegrasp_drake.events.transitions import (
 __all__ = [
     "DEFAULT_PRE_TRANSITION_S", "DEFAULT_WINDOW_S", "FORMAT_VERSION", "INDEX_FILE",
     "NO_EVENT", "RECORD_COMMAND", "REQUIRED_TRANSITIONS", "TRANSITIONS", "EventMatcher",
-    "EventMatcherConfig", "EventReplay", "EventSequencer", "MemorizedEvent",
-    "MemorizedEventError", "StreamingCorrelator", "TactileTrial", "channel_score", "channels_trajectory",
-    "current_package_versions", "cut_window", "event_scores_reference", "event_transition",
+    "EventMatcherConfig", "EventMatcherSystems", "EventReplay", "EventScorer",
+    "EventSequencer", "MemorizedEvent", "MemorizedEventError", "SlidingCorrelation",
+    "StreamingCorrelator", "TactileTrial", "add_event_matcher", "channel_score",
+    "channels_trajectory", "current_package_versions", "cut_window",
+    "event_scores_reference", "event_templates", "event_transition",
     "extract_memorized_events", "live_matcher_config", "load_all_memorized_events",
     "load_memorized_events", "max_normalized_xcorr_reference", "next_sequence_step",
     "normalize_by_max", "read_index", "read_memorized_event",

@@ -3,8 +3,9 @@
 `channels_trajectory(trial)` is a zero-order-hold trajectory of the four channels in
 CHANNEL_NAMES order, each logged value held until the next one, as the station's channel
 output holds SA at the SA rate and RA at 1 kHz. `replay_events_in_sequence` feeds it
-through a TrajectorySource into a WindowNormalizer and an EventMatcher whose expected event
-an EventSequencer advances in grasp order, as the grasp state machine would;
+through a TrajectorySource into a WindowNormalizer and an EventScorer (add_event_matcher, as
+the grasp controller wires them) whose expected event an EventSequencer advances in grasp
+order, as the grasp state machine would;
 `replay_event_held` keeps one event expected for the whole trial instead (to see where
 else it would match). Both report the outputs at every control tick.
 """
@@ -20,12 +21,12 @@ from pydrake.systems.primitives import (ConstantVectorSource, LogVectorOutput, T
 from pydrake.trajectories import PiecewisePolynomial
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
-from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
+from tegrasp_drake.events.event_matcher import (
+    EventMatcherConfig, EventMatcherSystems, add_event_matcher)
 from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
-from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig
 
 # Each value becomes visible this much before its time stamp, so that a periodic update at
 # the stamp's time sees it although k * period and the stamp may differ in the last bit.
@@ -69,7 +70,8 @@ class EventReplay:
     fire_times: {transition: time [s] the sequencer advanced past it, or None}, in the
         sequence's order (empty for a held event).
     windows_at_match: {transition: (sa_window, ra_window)}, the WindowNormalizer's outputs,
-        (2, N_sa) and (2, N_ra), at the tick that matched it (sequence replays only).
+        (2, N_sa) and (2, N_ra), at the tick that matched it (sequence replays only): the
+        windows the EventScorer scored.
     scores_at_match: {transition: the matcher's scores at that tick}.
     """
     transitions: tuple[str, ...]
@@ -99,8 +101,7 @@ def live_matcher_config(events: Mapping[str, MemorizedEvent],
 @dataclasses.dataclass(frozen=True)
 class _ReplayDiagram:
     diagram: Diagram
-    normalizer: WindowNormalizer
-    matcher: EventMatcher
+    matcher: EventMatcherSystems
     sequencer: EventSequencer | None
     loggers: dict[str, VectorLogSink]
 
@@ -108,15 +109,11 @@ class _ReplayDiagram:
 def _build_replay_diagram(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
                           sequence: Sequence[str] | None, held: str | None,
                           config: EventMatcherConfig, tick_s: float) -> _ReplayDiagram:
-    """channels -> WindowNormalizer, EventMatcher <-> EventSequencer (or a held event)."""
+    """channels -> WindowNormalizer -> EventScorer <-> EventSequencer (or a held event)."""
     builder = DiagramBuilder()
     source = builder.AddNamedSystem("channels", TrajectorySource(channels_trajectory(trial)))
-    normalizer = builder.AddNamedSystem("window_normalizer", WindowNormalizer(
-        WindowNormalizerConfig(window_s=next(iter(events.values())).window_s,
-                               sa_rate_hz=config.sa_rate_hz, ra_rate_hz=config.ra_rate_hz)))
-    matcher = builder.AddNamedSystem("event_matcher", EventMatcher(events, config))
-    builder.Connect(source.get_output_port(), normalizer.GetInputPort("channels"))
-    builder.Connect(source.get_output_port(), matcher.GetInputPort("channels"))
+    systems = add_event_matcher(builder, events, config, channels=source.get_output_port())
+    matcher = systems.scorer
     sequencer = None
     if sequence is not None:
         sequencer = builder.AddNamedSystem("event_sequencer", EventSequencer(
@@ -130,7 +127,7 @@ def _build_replay_diagram(trial: TactileTrial, events: Mapping[str, MemorizedEve
     loggers = {name: LogVectorOutput(port, builder, tick_s) for name, port in (
         ("scores", matcher.GetOutputPort("scores")), ("match", matcher.GetOutputPort("match")),
         ("expected_event", expected))}
-    return _ReplayDiagram(builder.Build(), normalizer, matcher, sequencer, loggers)
+    return _ReplayDiagram(builder.Build(), systems, sequencer, loggers)
 
 
 def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
@@ -142,7 +139,7 @@ def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
                                     config=config, tick_s=tick_s)
     simulator = Simulator(systems.diagram)
     root = simulator.get_mutable_context()
-    matcher, normalizer = systems.matcher, systems.normalizer
+    matcher, normalizer = systems.matcher.scorer, systems.matcher.normalizer
     matcher_context = matcher.GetMyContextFromRoot(root)
     normalizer_context = normalizer.GetMyContextFromRoot(root)
     match_port, scores_port = matcher.GetOutputPort("match"), matcher.GetOutputPort("scores")

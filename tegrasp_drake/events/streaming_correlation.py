@@ -3,68 +3,77 @@
 For a live window x of N samples and a template y, the full cross-correlation
 C(n) = sum_k x[k+n] y[k], n = -(N-1)..N-1, changes by two rank-one terms when the window
 slides by one sample: the dropped sample's products leave and the new sample's enter.
-Indexing C by the buffer column where the template starts (instead of by lag) makes both
-terms land on one contiguous slice of 2N entries per channel: the dropped sample's N
-products on its first half, the new one's on its second half; two in-place BLAS axpy calls
-on the state vector per channel apply them (numpy's temporaries and broadcasting cost
-several times the arithmetic at this size). The window's extremes are kept exactly (a new
-extreme replaces the old; the window is searched again only when its extreme leaves it),
-its energy by a running sum that is reset to exactly 0 when the window is all zero (so an
-all-zero window scores 0, never NaN). Correlations, extremes and energies are recomputed
-exactly (the correlations by FFT, with the templates' spectra cached) whenever the
-expected event changes or the sliding buffer compacts, every `slack` samples; that bounds
-the round-off of the running sums: the scores equal the reference's to about 1e-16 times
-the signal's dynamic range over the last `slack` samples.
+Indexing C by the window buffer's column where the template starts (instead of by lag)
+makes both terms land on one contiguous slice of 2N entries per channel: the dropped
+sample's N products on its first half, the new one's on its second half; two in-place BLAS
+axpy calls on the state vector per channel apply them (numpy's temporaries and broadcasting
+cost several times the arithmetic at this size). The window's extremes are kept exactly (a
+new extreme replaces the old; the window is searched again only when its extreme leaves
+it), its energy by a running sum that is reset to exactly 0 when the window is all zero (so
+an all-zero window scores 0, never NaN). Correlations, extremes and energies are recomputed
+exactly (the correlations by FFT, with the templates' spectra cached) whenever the expected
+event changes or the sliding buffer compacts, every `slack` samples; that bounds the
+round-off of the running sums: the scores equal the reference's to about 1e-16 times the
+signal's dynamic range over the last `slack` samples.
 
-Until N samples have been pushed the window is not full (its older part is zero padding,
-which would make a few noise samples look like an onset): the scores stay 0.
+The window itself is not kept here. `SlidingCorrelation.slide` follows a sliding window
+(tactile/sliding_window.py) push by push: it reads the window's position before the push
+(offset, samples held, the oldest samples, which the push drops) and the samples entering
+it, and the whole window only to recompute or when an extreme left it. In the control loop
+that window is the WindowNormalizer's. Until the window is full (its older part is zero
+padding, which would make a few noise samples look like an onset) the scores stay 0.
 
-All history is in one flat float vector (a Context's discrete state):
+A SlidingCorrelation's history is one flat float vector (a Context's discrete state):
 
-    [active_event, offset, samples_pushed (saturating at N), scores (channels),
-     [high, low, energy] per channel,
-     rows: channels x (window buffer (N + slack) | correlation buffer (2N - 1 + slack))]
+    [active_event, scores (channels), [high, low, energy] per channel,
+     correlation buffers: channels x (2N - 1 + slack)]
 
-Correlation column j of a row holds the lag n = j - (N + slack) - offset - (N - 1).
+Correlation column j of a channel holds the lag n = j - offset - (N - 1), where offset is
+the window's (the buffer column where the window starts). `StreamingCorrelator` keeps a
+window and its correlations in one vector, for use outside a Diagram.
 """
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 from scipy.linalg.blas import daxpy
 
 from tegrasp_drake.events.correlation import channel_score, template_is_flat
 from tegrasp_drake.events.transitions import NO_EVENT
-from tegrasp_drake.tactile.sliding_window import SlidingWindow
+from tegrasp_drake.tactile.sliding_window import SlidingWindow, SlidingWindowState
 
-_HEADER = 3  # active_event, offset, samples_pushed
 _STATISTICS = 3  # high, low, energy
 
 
 def slide_statistics(statistics: list[float], dropped_and_new: list[list[float]],
-                     window: np.ndarray) -> list[float]:
-    """[high, low, energy] per channel of `window` after one sample per channel left it
+                     window: Callable[[], np.ndarray]) -> list[float]:
+    """[high, low, energy] per channel of a window after one sample per channel left it
     and one entered, from their values before (statistics, flattened by channel).
 
-    dropped_and_new: [[dropped, new], ...] per channel; window: (channels, N), new included.
+    dropped_and_new: [[dropped, new], ...] per channel; window(): the window (channels, N),
+    new included, called only when an extreme left it or round-off ate its energy.
     """
     updated = []
+    rows = None
     for channel, (dropped, new) in enumerate(dropped_and_new):
         high, low, energy = statistics[_STATISTICS * channel:_STATISTICS * (channel + 1)]
         if new >= high:
             high = new
         elif dropped == high:
-            high = float(window[channel].max())
+            rows = window() if rows is None else rows
+            high = float(rows[channel].max())
         if new <= low:
             low = new
         elif dropped == low:
-            low = float(window[channel].min())
+            rows = window() if rows is None else rows
+            low = float(rows[channel].min())
         if high == 0.0 and low == 0.0:
             energy = 0.0
         else:
             energy += new * new - dropped * dropped
             if not energy > 0.0:  # round-off ate a tiny energy: recompute it
-                energy = float(np.dot(window[channel], window[channel]))
+                rows = window() if rows is None else rows
+                energy = float(np.dot(rows[channel], rows[channel]))
         updated += [high, low, energy]
     return updated
 
@@ -76,37 +85,47 @@ def window_statistics(window: np.ndarray) -> list[float]:
     return [value for channel in columns for value in channel]
 
 
-class StreamingCorrelator:
-    """Gated Eq. 3 scores of channels sharing one rate, against one event chosen per push.
+def _as_templates(templates: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """The templates as (channels, N) float arrays, all of one shape."""
+    templates = [np.atleast_2d(np.asarray(y, dtype=float)) for y in templates]
+    if not templates:
+        raise ValueError("at least one event template is needed")
+    if any(y.shape != templates[0].shape for y in templates):
+        raise ValueError("all templates must have the same (channels, samples) shape")
+    return templates
+
+
+class SlidingCorrelation:
+    """Gated Eq. 3 scores of a sliding window of channels sharing one rate, against one
+    event chosen per slide.
 
     Args:
         templates: one (channels, N) array per event, at the live sample rate.
         min_contrast: live contrast a channel needs for its score to count (correlation.py).
-        slack: samples between two exact recomputations of the correlation buffer.
+        window: the sliding window's layout (its channels and N must be the templates').
     """
 
-    def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int):
-        templates = [np.atleast_2d(np.asarray(y, dtype=float)) for y in templates]
-        if not templates:
-            raise ValueError("at least one event template is needed")
+    def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float,
+                 window: SlidingWindow):
+        templates = _as_templates(templates)
         n_channels, length = templates[0].shape
-        if any(y.shape != (n_channels, length) for y in templates):
-            raise ValueError("all templates must have the same (channels, samples) shape")
+        if (window.n_channels, window.length) != (n_channels, length):
+            raise ValueError(f"templates of {n_channels} x {length} samples do not fit "
+                             f"{window}")
         self._n_channels = n_channels
         self._length = length
-        self._window = SlidingWindow(n_channels, length, slack)
+        self._window = SlidingWindowState(window)
         self._fft_length = 1 << (2 * length - 2).bit_length()  # power of two >= 2N - 1
         self._spectra = [np.conj(np.fft.rfft(y, self._fft_length)) for y in templates]
         self._min_contrast = min_contrast
-        self._statistics_at = _HEADER + n_channels
+        self._statistics_at = 1 + n_channels
         self._rows_at = self._statistics_at + _STATISTICS * n_channels
-        self._correlation_at = self._window.columns  # first correlation column of a row
-        self._row_length = self._window.columns + 2 * length - 1 + slack
+        self._row_length = 2 * length - 1 + window.slack
         self._size = self._rows_at + n_channels * self._row_length
-        # Per event and channel, what a push needs: where the channel's correlation buffer
-        # starts in the state, its template reversed (contiguous: the axpy operand), the
-        # template's norm and whether it is flat.
-        correlation_starts = [self._rows_at + channel * self._row_length + self._correlation_at
+        # Per event and channel, what an update needs: where the channel's correlation
+        # buffer starts in the state, its template reversed (contiguous: the axpy operand),
+        # the template's norm and whether it is flat.
+        correlation_starts = [self._rows_at + channel * self._row_length
                               for channel in range(n_channels)]
         self._channel_terms = [
             list(zip(correlation_starts, [np.ascontiguousarray(row[::-1]) for row in y],
@@ -124,7 +143,7 @@ class StreamingCorrelator:
         return self._size
 
     def initial_state(self) -> np.ndarray:
-        """An all-zero window, no active event, scores 0."""
+        """No active event, scores 0."""
         state = np.zeros(self._size)
         state[0] = NO_EVENT
         return state
@@ -135,12 +154,118 @@ class StreamingCorrelator:
 
     def scores(self, state: np.ndarray) -> np.ndarray:
         """View of the channels' scores held in `state`."""
-        return state[_HEADER:self._statistics_at]
+        return state[1:self._statistics_at]
+
+    def check_event(self, event: int) -> None:
+        """Raises ValueError unless `event` is NO_EVENT or an event index."""
+        if not NO_EVENT <= event < len(self._channel_terms):
+            raise ValueError(
+                f"event index {event} is outside -1..{len(self._channel_terms) - 1}")
+
+    def slide(self, state: np.ndarray, position: np.ndarray, samples,
+              window_after: Callable[[], np.ndarray], event: int) -> np.ndarray:
+        """Slide the correlations by one sample per channel and score the window against
+        `event`, in place.
+
+        state: a C-contiguous float64 vector (the BLAS calls write into it directly).
+        position: the window's SlidingWindowState position before `samples` entered it.
+        samples: the samples entering the window, one per channel.
+        window_after(): the window (channels, N) with them, oldest first; called only when
+            the correlations are recomputed or an extreme left the window.
+        event: index of the expected event, or NO_EVENT (scores 0). Returns the scores view,
+        all 0 until the window is full.
+        """
+        self.check_event(event)
+        length = self._length
+        offset, held, oldest = self._window.unpack(position)
+        offset = self._window.window.next_offset(offset)
+        if event == NO_EVENT or held + 1.0 < length:
+            state[:self._statistics_at] = [NO_EVENT] + [0.0] * self._n_channels
+            return state[1:self._statistics_at]
+        terms = self._channel_terms[event]
+        if offset == 0 or event != state.item(0):
+            window = window_after()
+            self._recompute(state, window, offset, event)
+            statistics = window_statistics(window)
+        else:
+            # The dropped (oldest) sample and the new one, N buffer columns later, add their
+            # products to the 2N correlation columns that end at lag N - 1.
+            dropped_and_new = list(zip(oldest, np.asarray(samples, dtype=float).tolist()))
+            for (start, reversed_template, _, _), (dropped, new) in zip(terms,
+                                                                         dropped_and_new):
+                at = start + offset - 1
+                if daxpy(reversed_template, state, length, -dropped, 0, 1, at, 1) is not state:
+                    raise ValueError("the state must be a C-contiguous float64 vector")
+                daxpy(reversed_template, state, length, new, 0, 1, at + length, 1)
+            statistics = slide_statistics(
+                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new,
+                window_after)
+        scores = []
+        for i, (start, _, template_norm, template_flat) in enumerate(terms):
+            lags = state[start + offset:start + offset + 2 * length - 1]
+            high, low, energy = statistics[_STATISTICS * i:_STATISTICS * (i + 1)]
+            # argmax is several times cheaper than max here, and finds the same peak.
+            scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
+                                        high, low, template_flat, self._min_contrast))
+        state[:self._rows_at] = [event] + scores + statistics
+        return state[1:self._statistics_at]
+
+    def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
+                   event: int) -> None:
+        """Exact full cross-correlation of the window with the event's templates, by FFT.
+
+        Columns after the valid lags are zeroed: later updates start new lags there.
+        """
+        length = self._length
+        rows = state[self._rows_at:].reshape(self._n_channels, self._row_length)
+        circular = np.fft.irfft(np.fft.rfft(window, self._fft_length) * self._spectra[event],
+                                self._fft_length)
+        rows[:] = 0.0
+        rows[:, offset:offset + length - 1] = circular[:, self._fft_length - length + 1:]
+        rows[:, offset + length - 1:offset + 2 * length - 1] = circular[:, :length]
+
+
+class StreamingCorrelator:
+    """A sliding window and its SlidingCorrelation in one flat vector, [window | correlation]:
+    push a sample, get the scores (tests and benchmarks use it outside a Diagram).
+
+    Args:
+        templates: one (channels, N) array per event, at the live sample rate.
+        min_contrast: live contrast a channel needs for its score to count (correlation.py).
+        slack: samples between two exact recomputations of the correlation buffer.
+    """
+
+    def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int):
+        templates = _as_templates(templates)
+        self._window = SlidingWindowState(SlidingWindow(*templates[0].shape, slack))
+        self._correlation = SlidingCorrelation(templates, min_contrast=min_contrast,
+                                               window=self._window.window)
+        self._split = self._window.size
+
+    @property
+    def n_events(self) -> int:
+        return self._correlation.n_events
+
+    @property
+    def size(self) -> int:
+        """Length of the flat state vector."""
+        return self._split + self._correlation.size
+
+    def initial_state(self) -> np.ndarray:
+        """An all-zero window, no active event, scores 0."""
+        return np.concatenate([np.zeros(self._split), self._correlation.initial_state()])
+
+    def active_event(self, state: np.ndarray) -> int:
+        """The event the scores in `state` refer to (NO_EVENT for none)."""
+        return self._correlation.active_event(state[self._split:])
+
+    def scores(self, state: np.ndarray) -> np.ndarray:
+        """View of the channels' scores held in `state`."""
+        return self._correlation.scores(state[self._split:])
 
     def window(self, state: np.ndarray) -> np.ndarray:
         """View (channels, N) of the live window, oldest first, not normalised."""
-        rows = state[self._rows_at:].reshape(self._n_channels, self._row_length)
-        return self._window.window(rows, int(state[1]))
+        return self._window.current(state[:self._split])
 
     def push(self, state: np.ndarray, samples, event: int) -> np.ndarray:
         """Append one sample per channel and score the window against `event`, in place.
@@ -149,55 +274,9 @@ class StreamingCorrelator:
         event: index of the expected event, or NO_EVENT (scores 0). Returns the scores view,
         all 0 until the window is full.
         """
-        if not NO_EVENT <= event < len(self._channel_terms):
-            raise ValueError(
-                f"event index {event} is outside -1..{len(self._channel_terms) - 1}")
-        length = self._length
-        rows = state[self._rows_at:].reshape(self._n_channels, self._row_length)
-        active, offset, pushed = state[:_HEADER].tolist()
-        offset = self._window.push(rows, int(offset), samples)
-        if pushed < length:
-            pushed += 1.0
-        if event == NO_EVENT or pushed < length:
-            state[:self._statistics_at] = [NO_EVENT, offset, pushed] + [0.0] * self._n_channels
-            return state[_HEADER:self._statistics_at]
-        window = rows[:, offset:offset + length]
-        terms = self._channel_terms[event]
-        if offset == 0 or event != active:
-            self._recompute(rows, offset, event)
-            statistics = window_statistics(window)
-        else:
-            # The dropped sample (column offset - 1) and the new one (N columns later) add
-            # their products to the 2N correlation columns that end at lag N - 1.
-            dropped_and_new = rows[:, offset - 1:offset + length:length].tolist()
-            for (start, reversed_template, _, _), (dropped, new) in zip(terms,
-                                                                         dropped_and_new):
-                at = start + offset - 1
-                if daxpy(reversed_template, state, length, -dropped, 0, 1, at, 1) is not state:
-                    raise ValueError("the state must be a C-contiguous float64 vector")
-                daxpy(reversed_template, state, length, new, 0, 1, at + length, 1)
-            statistics = slide_statistics(
-                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new, window)
-        scores = []
-        for i, (start, _, template_norm, template_flat) in enumerate(terms):
-            lags = state[start + offset:start + offset + 2 * length - 1]
-            high, low, energy = statistics[_STATISTICS * i:_STATISTICS * (i + 1)]
-            # argmax is several times cheaper than max here, and finds the same peak.
-            scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
-                                        high, low, template_flat, self._min_contrast))
-        state[:self._rows_at] = [event, offset, pushed] + scores + statistics
-        return state[_HEADER:self._statistics_at]
-
-    def _recompute(self, rows: np.ndarray, offset: int, event: int) -> None:
-        """Exact full cross-correlation of the window with the event's templates, by FFT.
-
-        Columns after the valid lags are zeroed: later pushes start new lags there.
-        """
-        length = self._length
-        window = rows[:, offset:offset + length]
-        circular = np.fft.irfft(np.fft.rfft(window, self._fft_length) * self._spectra[event],
-                                self._fft_length)
-        lags_at = self._correlation_at + offset
-        rows[:, self._correlation_at:] = 0.0
-        rows[:, lags_at:lags_at + length - 1] = circular[:, self._fft_length - length + 1:]
-        rows[:, lags_at + length - 1:lags_at + 2 * length - 1] = circular[:, :length]
+        self._correlation.check_event(event)
+        position, buffer = self._window.split(state[:self._split])
+        before = position.copy()
+        self._window.push_into(position, buffer, samples)
+        return self._correlation.slide(state[self._split:], before, samples,
+                                       lambda: self._window.window_in(position, buffer), event)

@@ -38,6 +38,12 @@ class RateGroup:
     channels: tuple[int, ...]
     window_length: int  # samples per window
 
+    @property
+    def name(self) -> str:
+        """The group's kinds of channel: "sa", "ra", or "sa_ra" (port names use it)."""
+        kinds = (("sa", SA_CHANNELS), ("ra", RA_CHANNELS))
+        return "_".join(kind for kind, channels in kinds if channels[0] in self.channels)
+
 
 def rate_groups(*, sa_rate_hz: float, ra_rate_hz: float,
                 window_s: float) -> tuple[RateGroup, ...]:

@@ -4,14 +4,17 @@ Four channels with full 0.5 s windows, RA at 1 kHz, SA at 100 Hz or at 1 kHz; th
 signal is a noisy synthetic grasp. Each figure is the median over `repeats` of the mean
 wall time per 1 kHz tick [us] (a mean, so that the SA updates every tenth tick count):
 
-- core_*: the streaming core (StreamingCorrelator.push, numpy and BLAS), outside Drake;
+- core_*: the streaming core (StreamingCorrelator.push: a sliding window and its
+  SlidingCorrelation, numpy and BLAS), outside Drake;
 - reference_*: the straightforward numpy.correlate scoring of the four windows;
 - fft_rebuild_ra_us: an RA push that recomputes the correlations exactly by FFT (at an
   event change, and at a buffer compaction every 0.1 s);
-- system_*: a Simulator running TrajectorySource -> EventMatcher, wall time / ticks;
+- system_*: a Simulator running TrajectorySource -> WindowNormalizer -> EventScorer, wired
+  as the grasp controller wires them (add_event_matcher), wall time / ticks;
 - framework_tick_us: the same diagram with a Python system whose 1 kHz update only reads
   its input, i.e. the part of system_* that any Python LeafSystem pays;
-- window_normalizer_tick_us: TrajectorySource -> WindowNormalizer, wall time / ticks.
+- window_normalizer_tick_us: TrajectorySource -> WindowNormalizer alone, wall time / ticks
+  (the part of system_* that keeps the windows).
 
 Run `python -m tegrasp_drake.experiments.benchmarks.matcher` to print them.
 """
@@ -27,7 +30,7 @@ from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import event_scores_reference
-from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
+from tegrasp_drake.events.event_matcher import EventMatcherConfig, add_event_matcher
 from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.replay import channels_trajectory
 from tegrasp_drake.tactile.sampling import rate_groups
@@ -151,13 +154,23 @@ class _InputReader(LeafSystem):
         discrete_state.get_mutable_vector(self._state).SetFromVector(self._input.Eval(context))
 
 
-def _simulated_tick(make_system, sa_rate_hz: float, seconds: float, repeats: int) -> float:
-    """Wall seconds per 1 kHz tick of TrajectorySource -> system, after a full window."""
+def _fed_by_channels(make_system):
+    """add_system for _simulated_tick: make_system() with its `channels` input connected."""
+    def add_system(builder, channels):
+        system = builder.AddSystem(make_system())
+        builder.Connect(channels, system.GetInputPort("channels"))
+        return system
+    return add_system
+
+
+def _simulated_tick(add_system, sa_rate_hz: float, seconds: float, repeats: int) -> float:
+    """Wall seconds per 1 kHz tick of TrajectorySource -> the systems that
+    add_system(builder, channels port) adds, after a full window; the system it returns gets
+    event 0 on its `expected_event` input, if it has one."""
     live = synthetic_grasp(_LIVE, sa_rate_hz=sa_rate_hz)
     builder = DiagramBuilder()
     source = builder.AddSystem(TrajectorySource(channels_trajectory(live)))
-    system = builder.AddSystem(make_system())
-    builder.Connect(source.get_output_port(), system.GetInputPort("channels"))
+    system = add_system(builder, source.get_output_port())
     if system.HasInputPort("expected_event"):
         expected = builder.AddSystem(ConstantVectorSource([0.0]))
         builder.Connect(expected.get_output_port(), system.GetInputPort("expected_event"))
@@ -183,11 +196,15 @@ def run_matcher_benchmark(*, repeats: int = 5, ticks: int = 2000) -> dict[str, f
         results[f"core_tick_{label}_us"] = _core_tick(sa_rate_hz, ticks, repeats)
         results[f"reference_tick_{label}_us"] = _reference_tick(sa_rate_hz, repeats)
         results[f"system_tick_{label}_us"] = _simulated_tick(
-            lambda: EventMatcher(events, config), sa_rate_hz, seconds, repeats)
+            lambda builder, channels: add_event_matcher(
+                builder, events, config, channels=channels).scorer,
+            sa_rate_hz, seconds, repeats)
     results["fft_rebuild_ra_us"] = _fft_rebuild(repeats)
-    results["framework_tick_us"] = _simulated_tick(_InputReader, 100.0, seconds, repeats)
+    results["framework_tick_us"] = _simulated_tick(
+        _fed_by_channels(_InputReader), 100.0, seconds, repeats)
     results["window_normalizer_tick_us"] = _simulated_tick(
-        lambda: WindowNormalizer(WindowNormalizerConfig()), 100.0, seconds, repeats)
+        _fed_by_channels(lambda: WindowNormalizer(WindowNormalizerConfig())), 100.0, seconds,
+        repeats)
     return results
 
 
