@@ -1,7 +1,7 @@
-"""add_grasp_controller's wiring: the memorized controller reads as the paper's Fig. 3."""
+"""AddGraspController's wiring: the memorized controller reads as the paper's Fig. 3."""
 
-from tegrasp_drake.experiments.grasp_diagram import build_grasp_diagram
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
+from tegrasp_drake.experiments.scenario import LoadScenario
 
 
 def connections(diagram) -> set[tuple[str, str, str, str]]:
@@ -12,7 +12,7 @@ def connections(diagram) -> set[tuple[str, str, str, str]]:
 
 
 def test_memorized_controller_scores_the_window_normalizer_windows():
-    wiring = connections(build_grasp_diagram(load_scenario(name="box"), log=False).diagram)
+    wiring = connections(MakeGraspDiagram(LoadScenario(name="box"), log=False).diagram)
     assert {("mechanoreceptor_channels", "channels", "window_normalizer", "channels"),
             ("window_normalizer", "sa_window_position", "event_scorer", "sa_window_position"),
             ("window_normalizer", "sa_window_buffer", "event_scorer", "sa_window_buffer"),
@@ -25,7 +25,7 @@ def test_memorized_controller_scores_the_window_normalizer_windows():
 
 
 def test_heuristic_controller_reads_the_channels_directly():
-    wiring = connections(build_grasp_diagram(load_scenario(name="box"), log=False,
+    wiring = connections(MakeGraspDiagram(LoadScenario(name="box"), log=False,
                                              controller="heuristic").diagram)
     assert ("mechanoreceptor_channels", "channels", "heuristic_detector", "channels") in wiring
     assert ("heuristic_detector", "match", "grasp_state_machine", "match") in wiring
