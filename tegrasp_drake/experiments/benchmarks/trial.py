@@ -1,5 +1,6 @@
-"""Trial benchmark: the real-time factor of full ideal-grasp trials, and the cost of one
-tactile-pad evaluation while the object is held (`tegrasp benchmark` prints them)."""
+"""Trial benchmark: the real-time factor of full ideal-grasp trials, the cost of one
+tactile-pad evaluation while the object is held, and the cost of the films' update per plant
+step in free motion and while holding (`tegrasp benchmark` prints them)."""
 
 import statistics
 import time
@@ -30,9 +31,29 @@ def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
             "contact_faces_while_holding": faces}
 
 
+def time_pad_film_update(scenario, repeats: int = 500) -> dict:
+    """Median wall time [us] of one PadFilms update (both pads, one plant step) during the
+    reach (free motion) and while the box is held (texture and contact forces read)."""
+    diagram, _, segments = build_ideal_grasp_diagram(scenario)
+    simulator = Simulator(diagram)
+    films = diagram.GetSubsystemByName("station").GetSubsystemByName("pad_films")
+    result = {}
+    for label, phase, after in (("free_motion", "reach", 0.5), ("holding", "hold", 0.5)):
+        simulator.AdvanceTo(next(s.t_start for s in segments if s.phase == phase) + after)
+        context = films.GetMyContextFromRoot(simulator.get_context())
+        state = context.get_discrete_state().Clone()
+        samples = []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            films._update(context, state)
+            samples.append((time.perf_counter() - start) * 1e6)
+        result[f"pad_film_update_us_median_{label}"] = statistics.median(samples)
+    return result
+
+
 def run_trial_benchmark(scenario, trials: int = 3) -> dict:
     """The real-time factors of `trials` ideal-grasp trials (and their median), the taxel
-    rate and `time_tactile_pad_evaluation`'s figures."""
+    rate, `time_tactile_pad_evaluation`'s and `time_pad_film_update`'s figures."""
     factors = []
     for _ in range(trials):
         log, wall = run_ideal_grasp(scenario)
@@ -41,4 +62,4 @@ def run_trial_benchmark(scenario, trials: int = 3) -> dict:
             "real_time_factor_median": statistics.median(factors),
             "real_time_factors": [round(f, 3) for f in factors],
             "taxel_rate_hz": scenario.tactile.sample_rate_hz,
-            **time_tactile_pad_evaluation(scenario)}
+            **time_tactile_pad_evaluation(scenario), **time_pad_film_update(scenario)}
