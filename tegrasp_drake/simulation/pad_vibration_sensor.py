@@ -174,7 +174,12 @@ class PadFilms(LeafSystem):
                                             config.internal_rate_hz)
         self._midpoints = self._matrices.substep_starts + 0.5 * self._matrices.h
         self._texture_period_m = config.slip_texture_period_m
-        self._steps_per_sample = max(1, int(round(1.0 / (config.sample_rate_hz * self._dt))))
+        steps_per_sample = 1.0 / (config.sample_rate_hz * self._dt)
+        if steps_per_sample > 1.0 and abs(steps_per_sample - round(steps_per_sample)) > 1e-6:
+            raise ValueError(f"the RA period 1/{config.sample_rate_hz:g} s must be a whole "
+                             f"number of plant steps ({self._dt:g} s)")
+        # A plant step longer than the RA period gives a sample per step.
+        self._steps_per_sample = max(1, int(round(steps_per_sample)))
         # What a contact onset needs to know about the other body: which body a collision
         # geometry belongs to, its mass, and whether it is welded to the world.
         self._geometry_body = {}

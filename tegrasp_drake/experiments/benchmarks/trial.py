@@ -10,24 +10,29 @@ from pydrake.systems.analysis import Simulator
 from tegrasp_drake.experiments.ideal_grasp import build_ideal_grasp_diagram, run_ideal_grasp
 
 
+def _median_call_us(update, context, repeats: int) -> float:
+    """Median wall time [us] of update(context, a copy of the context's discrete state)."""
+    state = context.get_discrete_state().Clone()
+    samples = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        update(context, state)
+        samples.append((time.perf_counter() - start) * 1e6)
+    return statistics.median(samples)
+
+
 def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
     """Median wall time [us] of one TactilePads sample while the box is held."""
     diagram, _, segments = build_ideal_grasp_diagram(scenario)
     simulator = Simulator(diagram)
     simulator.AdvanceTo(next(s.t_start for s in segments if s.phase == "hold") + 0.5)
-    context = simulator.get_context()
     pads = diagram.GetSubsystemByName("station").GetSubsystemByName("tactile_pads")
-    pads_context = pads.GetMyContextFromRoot(context)
-    state = pads_context.get_discrete_state().Clone()
-    samples = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        pads._sample(pads_context, state)
-        samples.append((time.perf_counter() - start) * 1e6)
+    pads_context = pads.GetMyContextFromRoot(simulator.get_context())
     contacts = pads.GetInputPort("contact_results").Eval(pads_context)
     faces = sum(contacts.hydroelastic_contact_info(i).contact_surface().num_faces()
                 for i in range(contacts.num_hydroelastic_contacts()))
-    return {"tactile_pad_evaluation_us_median": statistics.median(samples),
+    return {"tactile_pad_evaluation_us_median": _median_call_us(pads._sample, pads_context,
+                                                                repeats),
             "contact_faces_while_holding": faces}
 
 
@@ -38,16 +43,11 @@ def time_pad_film_update(scenario, repeats: int = 500) -> dict:
     simulator = Simulator(diagram)
     films = diagram.GetSubsystemByName("station").GetSubsystemByName("pad_films")
     result = {}
-    for label, phase, after in (("free_motion", "reach", 0.5), ("holding", "hold", 0.5)):
-        simulator.AdvanceTo(next(s.t_start for s in segments if s.phase == phase) + after)
+    for label, phase in (("free_motion", "reach"), ("holding", "hold")):
+        simulator.AdvanceTo(next(s.t_start for s in segments if s.phase == phase) + 0.5)
         context = films.GetMyContextFromRoot(simulator.get_context())
-        state = context.get_discrete_state().Clone()
-        samples = []
-        for _ in range(repeats):
-            start = time.perf_counter()
-            films._update(context, state)
-            samples.append((time.perf_counter() - start) * 1e6)
-        result[f"pad_film_update_us_median_{label}"] = statistics.median(samples)
+        result[f"pad_film_update_us_median_{label}"] = _median_call_us(films._update, context,
+                                                                       repeats)
     return result
 
 
