@@ -2,6 +2,87 @@
 
 A Python implementation of Kim and Kim, "Tactile Event Based Grasping Algorithm using
 Memorized Triggers and Mechanoreceptive Sensors", on Drake's systems framework.
+
+The public API is importable from here; builders of systems and diagrams follow Drake's
+CamelCase (Make*, Load*, Add*), everything else is snake_case:
+
+    from tegrasp_drake import LoadScenario, MakeGraspDiagram, MakeSimulator
+    scenario = LoadScenario(name="box")
+    grasp = MakeGraspDiagram(scenario)           # station + controller + loggers
+    simulator = MakeSimulator(grasp.diagram, scenario)
+    simulator.AdvanceTo(12.0)
+    print(grasp.controller.transitions(simulator.get_context()))
+
+Names are imported on first use, so that `import tegrasp_drake` (and the command line's
+help) does not load pydrake.
 """
 
+import importlib
+
 __version__ = "0.1.0"
+
+# Public name -> the module that defines it.
+_PUBLIC = {
+    # Scenarios and configuration (experiments/scenario.py, rig/, hardware/config.py).
+    "Scenario": "tegrasp_drake.experiments.scenario",
+    "LoadScenario": "tegrasp_drake.experiments.scenario",
+    "scenario_to_yaml": "tegrasp_drake.experiments.scenario",
+    "ConfigError": "tegrasp_drake.rig.typed_yaml",
+    "ObjectConfig": "tegrasp_drake.rig.objects",
+    "BUILTIN_OBJECTS": "tegrasp_drake.rig.objects",
+    "HardwareStationConfig": "tegrasp_drake.hardware.config",
+    "LoadHardwareConfig": "tegrasp_drake.hardware.config",
+    "GraspControllerConfig": "tegrasp_drake.control.controller_config",
+    "CONTROLLERS": "tegrasp_drake.control.controller_config",
+    # Stations: the simulation and the real devices behind the same ports.
+    "MakeGraspStation": "tegrasp_drake.simulation.station",
+    "MakeHardwareStation": "tegrasp_drake.hardware.station",
+    "MakeStation": "tegrasp_drake.experiments.grasp_diagram",
+    # The controller and the diagram around a station.
+    "AddGraspController": "tegrasp_drake.control.grasp_controller",
+    "GraspController": "tegrasp_drake.control.grasp_controller",
+    "MakeGraspDiagram": "tegrasp_drake.experiments.grasp_diagram",
+    "GraspDiagram": "tegrasp_drake.experiments.grasp_diagram",
+    "MakeSimulator": "tegrasp_drake.experiments.grasp_diagram",
+    "Mode": "tegrasp_drake.control.grasp_modes",
+    "Transition": "tegrasp_drake.control.grasp_modes",
+    "Trigger": "tegrasp_drake.control.grasp_modes",
+    # The tactile chain of Fig. 3: Eq. 1-2, the 0.5 s window, Eq. 3.
+    "MechanoreceptorChannels": "tegrasp_drake.tactile.mechanoreceptor_channels",
+    "AddMechanoreceptorChannels": "tegrasp_drake.tactile.mechanoreceptor_channels",
+    "WindowNormalizer": "tegrasp_drake.tactile.window_normalizer",
+    "EventMatcher": "tegrasp_drake.events.event_matcher",
+    "EventMatcherConfig": "tegrasp_drake.events.event_matcher",
+    # Memorized events.
+    "MemorizedEvent": "tegrasp_drake.events.memorized_event",
+    "MemorizedEventError": "tegrasp_drake.events.memorized_event",
+    "load_memorized_events": "tegrasp_drake.events.memorized_event",
+    "save_memorized_events": "tegrasp_drake.events.memorized_event",
+    "record_events": "tegrasp_drake.experiments.record_events",
+    # Runs: a simulated trial, the ideal grasp, a run on the devices, a sweep.
+    "run_trial": "tegrasp_drake.experiments.trial",
+    "TrialResult": "tegrasp_drake.experiments.trial",
+    "run_ideal_grasp": "tegrasp_drake.experiments.ideal_grasp",
+    "TrialLog": "tegrasp_drake.experiments.trial_log",
+    "load_trial_log": "tegrasp_drake.experiments.trial_log",
+    "run_on_hardware": "tegrasp_drake.experiments.hardware_run",
+    "SweepSpec": "tegrasp_drake.experiments.sweep.spec",
+    "LoadSweepSpec": "tegrasp_drake.experiments.sweep.spec",
+    "run_sweep": "tegrasp_drake.experiments.sweep.runner",
+    "write_reports": "tegrasp_drake.experiments.sweep.reports",
+}
+
+__all__ = sorted(_PUBLIC)
+
+
+def __getattr__(name: str):
+    module = _PUBLIC.get(name)
+    if module is None:
+        raise AttributeError(f"module 'tegrasp_drake' has no attribute '{name}'")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # imported once
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

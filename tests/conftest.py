@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.experiments.trial_log import ARRAY_FIELDS
 
 
@@ -20,7 +20,7 @@ def ideal_grasp_log():
     """
     @functools.cache
     def run(object_name: str):
-        log, _ = run_ideal_grasp(load_scenario(name=object_name))
+        log, _ = run_ideal_grasp(LoadScenario(name=object_name))
         for name in ARRAY_FIELDS:
             getattr(log, name).setflags(write=False)
         return log

@@ -10,13 +10,13 @@ from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 
 
 def make_machine(**config_changes):
-    scenario = load_scenario(name="box")
+    scenario = LoadScenario(name="box")
     config = GraspControllerConfig(**config_changes)
     machine = GraspStateMachine(plan=GraspPlan.from_scenario(scenario), config=config,
                                 event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT)

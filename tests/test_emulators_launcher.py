@@ -7,7 +7,7 @@ import numpy as np
 from tegrasp_drake.emulators.launcher import (
     Emulators, devices_from_line, hardware_config_for)
 from tegrasp_drake.emulators.myrio_emulator import TactileRecording, save_tactile_recording
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 
 
 def quiet_recording() -> TactileRecording:
@@ -20,7 +20,7 @@ def test_started_devices_are_reported_as_hardware_config_fields(tmp_path):
     trial = save_tactile_recording(tmp_path / "trial.npz", quiet_recording())
     lines = []
     with Emulators(lcm_url="memq://", out=lines.append).start(
-            ("robotiq", "myrio"), load_scenario(name="box"), trial=trial) as emulators:
+            ("robotiq", "myrio"), LoadScenario(name="box"), trial=trial) as emulators:
         devices = emulators.devices
         assert set(devices) == {"gripper", "tactile"}
         assert all(os.path.exists(fields["port"]) for fields in devices.values())

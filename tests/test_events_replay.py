@@ -11,7 +11,7 @@ from tegrasp_drake.events import (
     replay_event_held, replay_events_in_sequence, tactile_trial_from_log)
 from tegrasp_drake.experiments.grasp_outcome import physical_events
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 
 pytestmark = pytest.mark.slow
 
@@ -23,7 +23,7 @@ SETTLE_S = 0.5  # stretches without a transition start this long after the motio
 def grasp(request, ideal_grasp_log):
     """(log, its physical-event times, its tactile trial, the object's memorized events)."""
     log = ideal_grasp_log(request.param)
-    physical = physical_events(log, load_scenario(name=request.param).grasp.grip_force)
+    physical = physical_events(log, LoadScenario(name=request.param).grasp.grip_force)
     events = load_memorized_events(paths.events_dir(), request.param)
     return log, physical, tactile_trial_from_log(log), events
 

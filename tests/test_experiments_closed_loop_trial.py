@@ -6,7 +6,7 @@ import pytest
 
 from tegrasp_drake.cli import main
 from tegrasp_drake.events import MemorizedEventError
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.experiments.trial import run_trial
 
 EVENT_TRANSITIONS = [("Reach", "Load"), ("Load", "Lift"), ("Place", "Unload")]
@@ -37,7 +37,7 @@ def test_tegrasp_trial_json_at_the_expected_position(tmp_path, capsys):
 
 @pytest.mark.parametrize("offset_y", [0.015, -0.015])
 def test_misplaced_along_the_stroke_re_reaches_and_succeeds(offset_y):
-    result = run_trial(load_scenario(overrides=[f"object_offset=[0.0, {offset_y}]"])).result
+    result = run_trial(LoadScenario(overrides=[f"object_offset=[0.0, {offset_y}]"])).result
     assert result["corrective_actions"] == ["re_reach"]
     re_reach = next(e for e in result["transitions"] if e["to"] == "Re-Reach")
     toward = "left" if offset_y > 0 else "right"  # the left finger is on the +y side
@@ -50,7 +50,7 @@ def test_misplaced_along_the_stroke_re_reaches_and_succeeds(offset_y):
 
 def test_a_hit_in_hold_is_avoided_without_dropping_the_object(tmp_path):
     hit_time = 7.0
-    trial = run_trial(load_scenario(overrides=[f"disturbance.hit_time_s={hit_time}"]))
+    trial = run_trial(LoadScenario(overrides=[f"disturbance.hit_time_s={hit_time}"]))
     result = trial.result
     avoid = next(e for e in result["transitions"] if e["to"] == "Avoid")
     assert avoid["from"] == "Hold" and avoid["trigger"] == "threshold"
@@ -68,10 +68,10 @@ def test_a_hit_in_hold_is_avoided_without_dropping_the_object(tmp_path):
 
 def test_a_slippery_object_needs_lift_load():
     slippery = ["object.friction=0.01"]
-    corrected = run_trial(load_scenario(overrides=slippery)).result
+    corrected = run_trial(LoadScenario(overrides=slippery)).result
     assert "lift_load" in corrected["corrective_actions"]
     assert corrected["hold_success"]
-    without = run_trial(load_scenario(
+    without = run_trial(LoadScenario(
         overrides=slippery + ["controller.lift_load_enabled=false"])).result
     assert without["corrective_actions"] == []
     assert not without["hold_success"]
@@ -79,7 +79,7 @@ def test_a_slippery_object_needs_lift_load():
 
 def test_memorized_controller_without_events_names_the_command():
     with pytest.raises(MemorizedEventError, match="tegrasp record-events --scenario"):
-        run_trial(load_scenario(name="custom_can"))
+        run_trial(LoadScenario(name="custom_can"))
 
 
 def test_demo_keeps_the_ideal_open_loop_grasp_as_an_option(tmp_path, capsys):

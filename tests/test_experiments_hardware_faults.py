@@ -14,7 +14,7 @@ from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, SILENT
 from tegrasp_drake.emulators.emulator_process import EmulatedDevices
 from tegrasp_drake.experiments.hardware_run import END_MARGIN_S, run_on_hardware
 from tegrasp_drake.experiments.run_log import read_run_log
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 
 pytestmark = pytest.mark.slow
 
@@ -35,7 +35,7 @@ def box_trial(tmp_path_factory):
     """A recorded trial for the myRIO to replay: the simulated grasp of the box up to just
     after the kill (the rest is not needed)."""
     from tegrasp_drake.experiments.trial import run_trial
-    scenario = load_scenario(name="box", overrides=["grasp.hold_s=0.5"])
+    scenario = LoadScenario(name="box", overrides=["grasp.hold_s=0.5"])
     trial = run_trial(scenario, max_time=KILL_AT_S + 1.0)
     return trial.log.save(tmp_path_factory.mktemp("trial") / "box.npz")
 
@@ -73,7 +73,7 @@ def wall_time_of_context_time(log, t: float) -> float:
 
 def test_killed_myrio_trips_the_watchdog_and_the_arm_holds_still(box_trial, tmp_path):
     url = lcm_url(1)
-    scenario = load_scenario(name="box", overrides=["grasp.hold_s=0.5"])
+    scenario = LoadScenario(name="box", overrides=["grasp.hold_s=0.5"])
     lines = []
     killed_at = []
 
@@ -110,7 +110,7 @@ def test_killed_myrio_trips_the_watchdog_and_the_arm_holds_still(box_trial, tmp_
 
 def test_gripper_fault_code_is_named_and_the_arm_holds_still(box_trial, tmp_path):
     url = lcm_url(2)
-    scenario = load_scenario(name="box", overrides=["grasp.hold_s=0.5"])
+    scenario = LoadScenario(name="box", overrides=["grasp.hold_s=0.5"])
     lines = []
     with devices_for(url, box_trial, "--inject-fault", "0x0E@3.0") as devices:
         result = run_on_hardware(scenario, config=devices.config,

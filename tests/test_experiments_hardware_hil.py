@@ -22,7 +22,7 @@ from tegrasp_drake.rig import robotiq_units as units
 from tegrasp_drake.emulators.emulator_process import EmulatedDevices
 from tegrasp_drake.experiments.hardware_run import run_on_hardware
 from tegrasp_drake.experiments.run_log import read_run_log
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.experiments.trial import run_trial
 
 pytestmark = pytest.mark.slow
@@ -47,7 +47,7 @@ def unique_lcm_url(offset: int = 0) -> str:
 @pytest.fixture(scope="module")
 def simulated_box(tmp_path_factory):
     """The pure simulation of the controller diagram on the box (trial.py), and its log."""
-    scenario = load_scenario(name="box", overrides=SHORT_HOLD)
+    scenario = LoadScenario(name="box", overrides=SHORT_HOLD)
     trial = run_trial(scenario)
     path = trial.log.save(tmp_path_factory.mktemp("sim") / "box.npz")
     return scenario, trial, path

@@ -2,7 +2,7 @@ import pytest
 from pydrake.common.yaml import yaml_load
 
 from tegrasp_drake.rig import paths
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 SCENARIO_NAMES = sorted(yaml_load(filename=str(paths.scenarios_file())))
@@ -10,12 +10,12 @@ SCENARIO_NAMES = sorted(yaml_load(filename=str(paths.scenarios_file())))
 
 @pytest.mark.parametrize("name", SCENARIO_NAMES)
 def test_every_named_scenario_loads(name):
-    scenario = load_scenario(name=name)
+    scenario = LoadScenario(name=name)
     assert scenario.object.shape in ("box", "cylinder", "file")
 
 
 def test_override_changes_a_nested_field():
-    scenario = load_scenario(overrides=["object.name=thin_cylinder", "random_seed=7"])
+    scenario = LoadScenario(overrides=["object.name=thin_cylinder", "random_seed=7"])
     assert scenario.object.name == "thin_cylinder" and scenario.random_seed == 7
 
 
@@ -35,17 +35,17 @@ def test_override_changes_a_nested_field():
 ])
 def test_bad_input_names_the_field(overrides, message):
     with pytest.raises(ConfigError, match=message.replace("[", r"\[").replace("(", r"\(")):
-        load_scenario(overrides=overrides)
+        LoadScenario(overrides=overrides)
 
 
 def test_fields_set_on_a_builtin_object_override_it():
-    scenario = load_scenario(overrides=["object.name=box", "object.mass=0.3"])
+    scenario = LoadScenario(overrides=["object.name=box", "object.mass=0.3"])
     assert scenario.object.mass == 0.3 and scenario.object.size == [0.045, 0.045, 0.110]
 
 
 def test_missing_file_and_scenario_are_named(tmp_path):
     with pytest.raises(ConfigError, match="does not exist"):
-        load_scenario(tmp_path / "none.yaml")
+        LoadScenario(tmp_path / "none.yaml")
     (tmp_path / "s.yaml").write_text("mine: {}\n")
     with pytest.raises(ConfigError, match="no scenario named 'default'.*mine"):
-        load_scenario(tmp_path / "s.yaml")
+        LoadScenario(tmp_path / "s.yaml")

@@ -14,7 +14,7 @@ from tegrasp_drake.experiments.sweep.spec import (
     SweepSpec,
     TrialSpec,
     expand_trials,
-    load_sweep_spec,
+    LoadSweepSpec,
     marker_names,
     product_grid,
 )
@@ -127,7 +127,7 @@ def test_yaml_spec_with_product_grid_and_user_object(tmp_path):
         user_objects:
           mug: {shape: cylinder, size_m: [0.04, 0.1], mass_kg: 0.3, friction_coefficient: 0.6}
         """)
-    spec = load_sweep_spec(path)
+    spec = LoadSweepSpec(path)
     assert spec.grid == ((0.0, -0.02), (0.0, 0.0), (0.0, 0.02))
     assert spec.randomisation == RandomisationConfig(placement_xy_bound_m=0.001,
                                                      sensor_noise=False)
@@ -139,13 +139,13 @@ def test_yaml_spec_with_product_grid_and_user_object(tmp_path):
 
 
 def test_yaml_spec_with_a_list_of_markers(tmp_path):
-    spec = load_sweep_spec(write_yaml(tmp_path, "grid: [[0, 0], [0.005, -0.01]]\n"))
+    spec = LoadSweepSpec(write_yaml(tmp_path, "grid: [[0, 0], [0.005, -0.01]]\n"))
     assert spec.grid == ((0.0, 0.0), (0.005, -0.01))
     assert spec.objects == SweepSpec().objects
 
 
 def test_an_empty_yaml_file_is_the_papers_experiment(tmp_path):
-    assert load_sweep_spec(write_yaml(tmp_path, "")) == SweepSpec()
+    assert LoadSweepSpec(write_yaml(tmp_path, "")) == SweepSpec()
 
 
 @pytest.mark.parametrize("text, field, words", [
@@ -182,7 +182,7 @@ def test_an_empty_yaml_file_is_the_papers_experiment(tmp_path):
 def test_invalid_yaml_names_file_and_field(tmp_path, text, field, words):
     path = write_yaml(tmp_path, text)
     with pytest.raises(ConfigError) as error:
-        load_sweep_spec(path)
+        LoadSweepSpec(path)
     message = str(error.value)
     assert str(path) in message
     assert f"field '{field}'" in message
@@ -191,9 +191,9 @@ def test_invalid_yaml_names_file_and_field(tmp_path, text, field, words):
 
 def test_invalid_yaml_syntax_and_missing_file(tmp_path):
     with pytest.raises(ConfigError, match="not valid YAML"):
-        load_sweep_spec(write_yaml(tmp_path, "objects: [box\n"))
+        LoadSweepSpec(write_yaml(tmp_path, "objects: [box\n"))
     with pytest.raises(ConfigError, match="cannot read"):
-        load_sweep_spec(tmp_path / "missing.yaml")
+        LoadSweepSpec(tmp_path / "missing.yaml")
 
 
 def test_a_registry_can_narrow_the_known_names():
@@ -203,7 +203,7 @@ def test_a_registry_can_narrow_the_known_names():
 
 def test_the_example_spec_file_loads_and_expands():
     path = Path(__file__).resolve().parent.parent / "analysis" / "example_sweep.yaml"
-    spec = load_sweep_spec(path)
+    spec = LoadSweepSpec(path)
     trials = expand_trials(spec)
     assert len(trials) == 3 * 4 * 15 * 3
     assert sum(t.well_placed for t in trials) == 3 * 4 * 3

@@ -3,8 +3,8 @@
 import pytest
 
 from tegrasp_drake.hardware.config import (HardwareStationConfig, hardware_config_to_yaml,
-                                           load_hardware_config)
-from tegrasp_drake.experiments.scenario import load_scenario
+                                           LoadHardwareConfig)
+from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.simulation.station import SimulatedStationConfig
 
@@ -22,7 +22,7 @@ gripper: {port: /dev/ttyUSB3, device_id: 9}
 tactile: {port: /dev/ttyACM1, calibration_file: pads.yaml}
 watchdog: {tactile_timeout: 0.08}
 """)
-    config = load_hardware_config(path, ["gripper.port=/dev/ttyUSB4"])
+    config = LoadHardwareConfig(path, ["gripper.port=/dev/ttyUSB4"])
     assert config.arm.lcm_url == "udpm://239.255.76.67:7700?ttl=0"
     assert (config.gripper.port, config.gripper.device_id) == ("/dev/ttyUSB4", 9)
     assert config.tactile.calibration_file == "pads.yaml"
@@ -33,24 +33,24 @@ def test_hardware_config_round_trips_through_yaml(tmp_path):
     config = HardwareStationConfig()
     config.tactile.port = "/dev/pts/7"
     path = write(tmp_path, "hw.yaml", hardware_config_to_yaml(config))
-    assert load_hardware_config(path) == config
+    assert LoadHardwareConfig(path) == config
 
 
 def test_a_misspelt_hardware_field_is_named(tmp_path):
     path = write(tmp_path, "hw.yaml", "gripper: {prot: /dev/ttyUSB0}\n")
     with pytest.raises(ConfigError, match="unknown field 'gripper.prot'"):
-        load_hardware_config(path)
+        LoadHardwareConfig(path)
 
 
 def test_scenarios_run_on_the_simulated_station_unless_tagged(tmp_path):
-    assert load_scenario(name="box").station == SimulatedStationConfig()
+    assert LoadScenario(name="box").station == SimulatedStationConfig()
     path = write(tmp_path, "s.yaml", """
 real_box:
   object: {name: box}
   station: !HardwareStationConfig
     tactile: {port: /dev/ttyACM0}
 """)
-    station = load_scenario(path, "real_box").station
+    station = LoadScenario(path, "real_box").station
     assert isinstance(station, HardwareStationConfig)
     assert station.tactile.port == "/dev/ttyACM0"
 
@@ -58,13 +58,13 @@ real_box:
 def test_an_unknown_station_tag_is_named(tmp_path):
     path = write(tmp_path, "s.yaml", "bad:\n  station: !RobotStation {}\n")
     with pytest.raises(ConfigError, match="unknown tag !RobotStation.*!HardwareStationConfig"):
-        load_scenario(path, "bad")
+        LoadScenario(path, "bad")
 
 
 def test_the_station_tag_picks_the_station_builder(tmp_path):
     from tegrasp_drake.experiments.grasp_diagram import MakeStation
     from tegrasp_drake.hardware.station import HardwareNotReadyError
-    assert MakeStation(load_scenario(name="box")).HasOutputPort("object.state")
+    assert MakeStation(LoadScenario(name="box")).HasOutputPort("object.state")
     path = write(tmp_path, "s.yaml", """
 real_box:
   station: !HardwareStationConfig
@@ -73,4 +73,4 @@ real_box:
     tactile: {port: /dev/no-such-myrio}
 """)
     with pytest.raises(HardwareNotReadyError, match="/dev/no-such-myrio"):
-        MakeStation(load_scenario(path, "real_box"))
+        MakeStation(LoadScenario(path, "real_box"))

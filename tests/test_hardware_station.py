@@ -12,7 +12,7 @@ from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecordi
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.station import HardwareNotReadyError, MakeHardwareStation
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation
 
 CONTROLLER_INPUTS = ("arm.desired_state", "gripper.command")
@@ -38,7 +38,7 @@ def station():
 
 
 def test_hardware_station_has_the_simulated_station_ports(station):
-    simulated = MakeGraspStation(load_scenario(name="box"))
+    simulated = MakeGraspStation(LoadScenario(name="box"))
     for name in CONTROLLER_INPUTS:
         assert station.GetInputPort(name).size() == simulated.GetInputPort(name).size()
     for name in CONTROLLER_OUTPUTS:

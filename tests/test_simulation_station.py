@@ -6,17 +6,18 @@ from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.experiments.scenario import load_scenario
+from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation, initial_arm_positions
 from tegrasp_drake.rig.taxel_layout import taxel_centers
 
 GRIP_FORCE = 30.0
 
 
-def _squeeze(offset_x=0.0, close_at=0.3, until=2.2):
-    """Starts with the open pads around the box, closes at GRIP_FORCE; returns samples."""
-    scenario = load_scenario(overrides=[
-        "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]"])
+def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
+    """Starts with the open pads around the object, closes at GRIP_FORCE; returns samples."""
+    scenario = LoadScenario(overrides=[
+        "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]",
+        f"object.name={object_name}"])
     station = MakeGraspStation(scenario)
     context = station.CreateDefaultContext()
     q0 = initial_arm_positions(scenario)
@@ -40,8 +41,15 @@ def centred_squeeze():
     return _squeeze()
 
 
+@pytest.fixture(scope="module")
+def fingertip_squeeze():
+    """The thin cylinder 1 cm further from the palm (the paper's misplacement normal to the
+    palm): its contact line lies in the fingertip row of the 24 mm pads (rows 6 mm long)."""
+    return _squeeze(offset_x=0.01, object_name="thin_cylinder")
+
+
 def test_exported_ports_match_the_hardware_interface():
-    station = MakeGraspStation(load_scenario())
+    station = MakeGraspStation(LoadScenario())
     sizes = {station.get_output_port(i).get_name(): station.get_output_port(i).size()
              for i in range(station.num_output_ports())
              if station.get_output_port(i).get_data_type().name == "kVectorValued"}
@@ -80,7 +88,7 @@ def test_even_press_gives_an_even_pattern_over_all_taxels(centred_squeeze):
     for forces in after.values():
         np.testing.assert_allclose(forces, forces.mean(), rtol=EVEN_PATTERN_RTOL)
         centroid = forces @ taxel_centers() / forces.sum()
-        assert np.linalg.norm(centroid[:2]) < 0.0002  # m; a taxel cell is 7.3 x 9.5 mm
+        assert np.linalg.norm(centroid[:2]) < 0.0002  # m; a taxel cell is 6.7 x 6.0 mm
 
 
 def test_even_press_gives_a_mirror_symmetric_pattern(centred_squeeze):
@@ -97,10 +105,18 @@ def test_every_taxel_carries_load_under_a_full_press(centred_squeeze):
         assert np.all(forces > 0.04 * GRIP_FORCE)
 
 
-def test_off_centre_press_shifts_the_pattern_along_the_pad(centred_squeeze):
+def test_off_centre_press_shifts_the_pattern_along_the_pad(centred_squeeze, fingertip_squeeze):
     _, _, _, centred, _ = centred_squeeze
-    _, _, _, shifted, _ = _squeeze(offset_x=0.01)
+    _, _, _, shifted, _ = fingertip_squeeze
     centre = centred["left"] @ taxel_centers() / centred["left"].sum()
     moved = shifted["left"] @ taxel_centers() / shifted["left"].sum()
-    # The box 1 cm further from the palm covers less of the pad's palm end.
+    # A cylinder 1 cm further from the palm presses the pad's fingertip end. (The 45 mm box
+    # would overhang the 24 mm pad at both ends and press it evenly.)
     assert moved[1] - centre[1] > 0.002
+
+
+def test_an_object_toward_the_fingertip_loads_the_same_row_on_both_pads(fingertip_squeeze):
+    _, _, _, after, _ = fingertip_squeeze
+    for finger, forces in after.items():
+        rows = forces.reshape(4, 3).sum(axis=1)  # row 0 nearest the palm
+        assert rows[3] > 0.5 * rows.sum(), finger  # the fingertip row carries most

@@ -37,7 +37,7 @@ def register(subparsers) -> None:
 def run(args) -> int:
     quiet_modbus_library()
     from tegrasp_drake.rig import paths
-    from tegrasp_drake.hardware.config import load_hardware_config
+    from tegrasp_drake.hardware.config import LoadHardwareConfig
     from tegrasp_drake.experiments.hardware_run import run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError
     from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -45,7 +45,7 @@ def run(args) -> int:
     scenario = scenario_from_arguments(args)
     if args.config:
         try:
-            config = load_hardware_config(args.config, args.config_overrides)
+            config = LoadHardwareConfig(args.config, args.config_overrides)
         except ConfigError as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
     elif isinstance(scenario.station, HardwareStationConfig):

@@ -38,10 +38,10 @@ def _scenarios_to_record(args) -> list:
 
 def run(args) -> int:
     from tegrasp_drake.events import save_memorized_events
-    from tegrasp_drake.experiments.record_events import record_object_events
+    from tegrasp_drake.experiments.record_events import record_events
     out = args.out or paths.events_dir()
     for object_name, scenario in _scenarios_to_record(args):
-        events = record_object_events(object_name, scenario)
+        events = record_events(object_name, scenario)
         written = save_memorized_events(out, events.values())
         print(f"{object_name}: {', '.join(events)} -> {len(written)} files in {out}")
     return 0

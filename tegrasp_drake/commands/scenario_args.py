@@ -2,7 +2,7 @@
 
 import logging
 
-from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO, load_scenario
+from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 
@@ -19,7 +19,7 @@ def add_scenario_arguments(parser) -> None:
 def scenario_from_arguments(args):
     """Loads the scenario, or exits with the error message (no traceback)."""
     try:
-        return load_scenario(args.scenario, args.scenario_name, args.overrides)
+        return LoadScenario(args.scenario, args.scenario_name, args.overrides)
     except ConfigError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
 

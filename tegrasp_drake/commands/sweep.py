@@ -32,7 +32,7 @@ from tegrasp_drake.experiments.sweep.spec import (
     BUILTIN_OBJECTS,
     CONTROLLERS,
     SweepSpec,
-    load_sweep_spec,
+    LoadSweepSpec,
     validate_spec,
 )
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -78,7 +78,7 @@ def register(subparsers) -> None:
 
 def spec_from_arguments(args) -> SweepSpec:
     """The spec file (or the paper's defaults) with the command-line overrides applied."""
-    spec = load_sweep_spec(args.spec) if args.spec else SweepSpec()
+    spec = LoadSweepSpec(args.spec) if args.spec else SweepSpec()
     overrides = {name: value for name, value in (
         ("objects", args.objects and tuple(args.objects)),
         ("controllers", args.controllers and tuple(args.controllers)),

@@ -25,7 +25,7 @@ def jaco_joint_limits():
     return lower, upper, speed
 
 
-def add_cartesian_arm_controller(builder, *, position_measured, velocity_measured,
+def AddCartesianArmController(builder, *, position_measured, velocity_measured,
                                  q_nominal: np.ndarray, time_step: float,
                                  name: str = "arm_controller"):
     """Adds the controller; returns (X_WG_desired input port, arm.desired_state output port).

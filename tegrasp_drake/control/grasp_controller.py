@@ -2,7 +2,7 @@
 (EventMatcher on the memorized events, or the heuristic thresholds), the GraspStateMachine
 and the Cartesian arm controller; or the open-loop script.
 
-`add_grasp_controller` connects to any system with the station's exported port names
+`AddGraspController` connects to any system with the station's exported port names
 (station.py): the simulated station and the hardware interface alike.
 """
 
@@ -12,12 +12,12 @@ from pydrake.systems.primitives import Multiplexer
 
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.channels import FINGER_NAMES
-from tegrasp_drake.control.cartesian_arm_controller import add_cartesian_arm_controller
+from tegrasp_drake.control.cartesian_arm_controller import AddCartesianArmController
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
-from tegrasp_drake.tactile.mechanoreceptor_channels import add_mechanoreceptor_channels
+from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
 _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
@@ -99,7 +99,7 @@ def _add_detector(builder, scenario, name, events):
     return builder.AddNamedSystem("heuristic_detector", detector), Trigger.HEURISTIC_EVENT
 
 
-def add_grasp_controller(builder, *, scenario, station, controller: str | None = None,
+def AddGraspController(builder, *, scenario, station, controller: str | None = None,
                          events: dict | None = None) -> GraspController:
     """Adds the controller `controller` (default: scenario.controller.name) and connects it
     to `station`'s ports; returns its GraspController.
@@ -109,8 +109,8 @@ def add_grasp_controller(builder, *, scenario, station, controller: str | None =
     """
     from tegrasp_drake.simulation.station import initial_arm_positions
     name = controller or scenario.controller.name
-    channels = add_mechanoreceptor_channels(builder, station)
-    X_WG_desired, arm_desired_state = add_cartesian_arm_controller(
+    channels = AddMechanoreceptorChannels(builder, station)
+    X_WG_desired, arm_desired_state = AddCartesianArmController(
         builder, position_measured=station.GetOutputPort("arm.position_measured"),
         velocity_measured=station.GetOutputPort("arm.velocity_measured"),
         q_nominal=initial_arm_positions(scenario), time_step=scenario.arm.control_period_s)

@@ -17,11 +17,27 @@ from tegrasp_drake.rig.channels import CHANNEL_NAMES
 class HeuristicEventDetector(LeafSystem):
     """Threshold triggers for the expected transition.
 
-    Inputs: channels (4: sa_left, sa_right [N], ra_left, ra_right [m/s^2]), expected_event
-    (1: index into REQUIRED_TRANSITIONS, -1 none). Outputs: scores (4: each channel's value
-    divided by its threshold, 0 for a channel the rule ignores), match (1), scored_event (1).
     `grip_force_n` is the Load force; the state machine's Lift-Load raises it, so the
     load_lift rule accepts any SA above grip_fraction of the *initial* grip force.
+
+    .. pydrake_system::
+
+        name: HeuristicEventDetector
+        input_ports:
+        - channels
+        - expected_event
+        output_ports:
+        - scores
+        - match
+        - scored_event
+
+    Ports:
+        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2).
+        expected_event: [index] into REQUIRED_TRANSITIONS, -1 for none.
+        scores: (4) each channel's value divided by its threshold (unitless); 0 for a
+            channel the rule ignores and when no event is expected.
+        match: [1.0] when the expected transition's rule holds, else [0.0].
+        scored_event: [index] the scores refer to (= expected_event).
     """
 
     def __init__(self, config, *, grip_force_n: float):

@@ -104,10 +104,20 @@ def plan_duration(segments: list[ScriptSegment]) -> float:
 
 
 class ScriptedGraspSource(LeafSystem):
-    """Plays the open-loop grasp script.
+    """Plays the open-loop grasp script; outputs depend on time only.
 
-    Output ports: X_WG_desired (RigidTransform of the grasp frame in world),
-    gripper_command (3: rPR, rSP, rFR), phase (1: index into PHASES).
+    .. pydrake_system::
+
+        name: ScriptedGraspSource
+        output_ports:
+        - X_WG_desired
+        - gripper_command
+        - phase
+
+    Ports:
+        X_WG_desired: (abstract RigidTransform) the grasp frame G's desired pose in world.
+        gripper_command: (3) [rPR, rSP, rFR] bytes.
+        phase: (1) index into PHASES.
     """
 
     def __init__(self, segments: list[ScriptSegment]):

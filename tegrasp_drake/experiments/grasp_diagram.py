@@ -1,25 +1,33 @@
-"""The grasp controller diagram, built the same way around the simulated or the hardware
-station, so that the controller cannot tell them apart.
+"""The grasp diagram: a station and the grasp controller, built one way for every run.
 
-    station (MakeGraspStation or MakeHardwareStation, by the scenario's `station` tag)
-      -> add_grasp_controller (control/grasp_controller.py): arm.desired_state and
-         gripper.command from the measured arm, gripper and tactile ports; the hardware
-         station's `device_fault` goes to the state machine's `device_fault` input.
+    station (MakeStation: MakeGraspStation or MakeHardwareStation, by the scenario's
+             `station` tag, or one the caller built)
+      -> AddGraspController (control/grasp_controller.py): Eq. 1-2 channels, the event
+         detector, the state machine (or the open-loop script) and Cartesian control;
+         arm.desired_state and gripper.command from the measured arm, gripper and tactile
+         ports; the hardware station's `device_fault` goes to the state machine
+      -> the trial's loggers (experiments/trial_logging.py), unless `log=False`.
 
-trial.py runs this controller on the simulated station in simulated time; hardware_run.py
-runs it on the hardware station in real time.
+The controller cannot tell the simulated station from the hardware one: both export the
+same ports. trial.py runs the diagram on the simulated station in simulated time,
+ideal_grasp.py runs it with the open-loop script, hardware_run.py runs it on the devices in
+real time. `MakeSimulator` is the one simulator set-up for all of them.
 """
 
 import dataclasses
 
-from pydrake.systems.framework import DiagramBuilder
+from pydrake.common import RandomGenerator
+from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
+from pydrake.systems.framework import Diagram, DiagramBuilder
 
-from tegrasp_drake.control.grasp_controller import add_grasp_controller
+from tegrasp_drake.control.grasp_controller import GraspController, AddGraspController
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
+from tegrasp_drake.experiments.trial_logging import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.simulation.station import MakeGraspStation
-from tegrasp_drake.experiments.trial import EXTRA_TIME_S
+
+EXTRA_TIME_S = 10.0  # beyond the ideal grasp's duration, for corrections
 
 
 def MakeStation(scenario, *, meshcat=None, lcm=None):
@@ -32,27 +40,54 @@ def MakeStation(scenario, *, meshcat=None, lcm=None):
 
 @dataclasses.dataclass
 class GraspDiagram:
-    station: object       # the station subsystem
-    grasp: object         # the GraspController
-    time_limit: float     # [s] the longest the run may take (the plan plus corrections)
+    """A built grasp diagram and the parts that a run reads."""
+    diagram: Diagram
+    station: object              # the station subsystem
+    controller: GraspController  # the controller's systems and ports
+    loggers: TrialLoggers | None  # None when built with log=False
+    time_limit: float            # [s] the longest the run may take (the plan plus corrections)
 
 
-def build_grasp_diagram(scenario, *, station, controller: str | None = None, events=None,
-                        builder: DiagramBuilder | None = None
-                        ) -> tuple[GraspDiagram, DiagramBuilder]:
-    """Adds `station` (a built station Diagram) and the controller (default: the
-    scenario's) to `builder` (a new one by default); returns the parts and the builder,
-    not yet built, so that callers can add to it."""
-    builder = builder or DiagramBuilder()
+def MakeGraspDiagram(scenario, *, station=None, controller: str | None = None,
+                        events=None, meshcat=None, log: bool = True) -> GraspDiagram:
+    """Builds the station and the controller `controller` (default: the scenario's) into
+    one Diagram.
+
+    station: a station Diagram with the station's ports (default: MakeStation(scenario,
+    meshcat=meshcat)); events: the memorized events (default: the package's for the
+    scenario's object); log: add the TrialLog loggers (simulated runs)."""
+    builder = DiagramBuilder()
+    if station is None:
+        station = MakeStation(scenario, meshcat=meshcat)
     station = builder.AddNamedSystem("station", station)
-    grasp = add_grasp_controller(builder, scenario=scenario, station=station,
+    grasp = AddGraspController(builder, scenario=scenario, station=station,
                                  controller=controller, events=events)
     machine = grasp.state_machine
     if station.HasOutputPort("device_fault") and machine.HasInputPort("device_fault"):
         builder.Connect(station.GetOutputPort("device_fault"),
                         machine.GetInputPort("device_fault"))
+    loggers = None
+    if log:
+        loggers = AddTrialLogging(builder, scenario=scenario, station=station,
+                                    channels=grasp.channels,
+                                    arm_desired_state=grasp.arm_desired_state,
+                                    gripper_command=grasp.gripper_command, phase=grasp.mode)
+    diagram = builder.Build()
+    diagram.set_name(f"grasp_{grasp.name}")
     time_limit = plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S
-    return GraspDiagram(station, grasp, time_limit), builder
+    return GraspDiagram(diagram, station, grasp, loggers, time_limit)
+
+
+def MakeSimulator(diagram, scenario, *, realtime: bool = False) -> Simulator:
+    """A Simulator of `diagram` with the scenario's SimulatorConfig and its random seed
+    (sensor noise); realtime: paced at real-time rate 1 (hardware)."""
+    simulator = Simulator(diagram)
+    ApplySimulatorConfig(scenario.simulator_config, simulator)
+    if realtime:
+        simulator.set_target_realtime_rate(1.0)
+    diagram.SetRandomContext(simulator.get_mutable_context(),
+                             RandomGenerator(scenario.random_seed))
+    return simulator
 
 
 def is_finished(transitions: list[Transition]) -> bool:

@@ -23,13 +23,13 @@ import subprocess
 import time
 
 import lcm
-from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import EventStatus
 
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
 from tegrasp_drake.hardware.lcm_time import utime_from_time
-from tegrasp_drake.experiments.grasp_diagram import build_grasp_diagram, is_finished
+from tegrasp_drake.experiments.grasp_diagram import (MakeGraspDiagram, is_finished,
+                                                     MakeSimulator)
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.station import MakeHardwareStation
@@ -227,9 +227,9 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
                          f"station is {type(config).__name__})")
     controller = controller or scenario.controller.name
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
-        parts, builder = build_grasp_diagram(scenario, station=station, controller=controller,
-                                             events=events)
-        diagram = builder.Build()
+        parts = MakeGraspDiagram(scenario, station=station, controller=controller,
+                                    events=events, log=False)
+        diagram = parts.diagram
         writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path, drake_lcm=station.lcm)
                   if log_path else None)
         try:
@@ -238,9 +238,9 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
             out(f"waiting for the devices: arm on {station.lcm.get_lcm_url()}, gripper on "
                 f"{config.gripper.port}, tactile on {config.tactile.port}")
             station.wait_until_ready()
-            simulator = Simulator(diagram)
-            simulator.set_target_realtime_rate(1.0)
-            reporter = RunReporter(diagram=diagram, station=parts.station, grasp=parts.grasp,
+            simulator = MakeSimulator(diagram, scenario, realtime=True)
+            reporter = RunReporter(diagram=diagram, station=parts.station,
+                                   grasp=parts.controller,
                                    drake_lcm=station.lcm, out=out)
             simulator.set_monitor(reporter)
             simulator.Initialize()

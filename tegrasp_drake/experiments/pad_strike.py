@@ -2,7 +2,7 @@
 
 The tactile gripper welded in the side-grasp pose above the table, the scenario's object
 standing between its pads, offset toward the left finger, and the simulated 2F-85 closing
-at a constant finger speed with the station's sensors (station.add_tactile_sensors). The
+at a constant finger speed with the station's sensors (station.AddTactileSensors). The
 left pad strikes the object first and pushes it on; the right pad meets it later. Used by
 the RA tests (time-step convergence, approach speed, the finger that does not touch, the
 ring) and by analysis/compare_ra_transients.py.
@@ -24,9 +24,9 @@ from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL, R_WG_SIDE_GRASP
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.film_dynamics import first_order_highpass
-from tegrasp_drake.simulation.object_model import add_object, object_body
+from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
-from tegrasp_drake.simulation.station import TABLE_URL, add_tactile_sensors, set_pd_gains
+from tegrasp_drake.simulation.station import TABLE_URL, AddTactileSensors, set_pd_gains
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.tactile.sampling import samples_per_window
 
@@ -91,8 +91,8 @@ class PadStrike:
 
 def strike_scenario(config: PadStrikeConfig):
     """The default scenario at config's plant step, noise-free unless config.sensor_noise."""
-    from tegrasp_drake.experiments.scenario import load_scenario
-    scenario = load_scenario(overrides=[f"plant_config.time_step={config.time_step_s}"])
+    from tegrasp_drake.experiments.scenario import LoadScenario
+    scenario = LoadScenario(overrides=[f"plant_config.time_step={config.time_step_s}"])
     if not config.sensor_noise:
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0,
@@ -115,7 +115,7 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
                      X_WG @ X_BG.inverse())
     (table,) = parser.AddModels(url=TABLE_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
-    obj = add_object(parser, scenario.object)
+    obj = AddObject(parser, scenario.object)
     plant.set_gravity_enabled(gripper, False)
     set_pd_gains(plant, gripper, scenario.gripper.position_gain, scenario.gripper.damping_gain)
     plant.Finalize()
@@ -136,7 +136,7 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     builder.Connect(plant.get_state_output_port(gripper), driver.GetInputPort("finger_state"))
     builder.Connect(driver.GetOutputPort("desired_state"),
                     plant.get_desired_state_input_port(gripper))
-    taxels, films = add_tactile_sensors(builder, plant=plant, scene_graph=scene_graph,
+    taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
                                         gripper=gripper, object_body=object_body(plant, obj),
                                         scenario=scenario)
     ra_period = 1.0 / scenario.vibration.sample_rate_hz

@@ -11,17 +11,17 @@ them in the events folder with an index.
 from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
 from tegrasp_drake.experiments.grasp_outcome import physical_events
 from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
-from tegrasp_drake.experiments.scenario import load_scenario, scenario_to_yaml
+from tegrasp_drake.experiments.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.experiments.trial_logging import package_versions
 
 EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "grip_force_reached",
                        "place_unload": "table_touch"}
 
 
-def record_object_events(object_name: str, scenario=None):
+def record_events(object_name: str, scenario=None):
     """Runs the ideal grasp of one object (a built-in one by name, or the object of
     `scenario`); returns its MemorizedEvents."""
-    scenario = scenario or load_scenario(name=object_name)
+    scenario = scenario or LoadScenario(name=object_name)
     log, _ = run_ideal_grasp(scenario)
     events = physical_events(log, scenario.grasp.grip_force, scenario.object)
     missing = [name for name in EVENT_OF_TRANSITION.values() if events[name] is None]

@@ -9,25 +9,20 @@ import dataclasses
 import time
 
 import numpy as np
-from pydrake.common import RandomGenerator
-from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
-from pydrake.systems.framework import DiagramBuilder
 
 from tegrasp_drake.control.corrective_actions import corrective_action_of
-from tegrasp_drake.control.grasp_controller import add_grasp_controller
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
-from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
-from tegrasp_drake.experiments.grasp_outcome import (first_contact_time, grip_force_time, judge_grasp,
-                                         table_touch_time)
 from tegrasp_drake.events.transitions import event_transition
+from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, MakeSimulator
+from tegrasp_drake.experiments.grasp_outcome import (first_contact_time, grip_force_time,
+                                                     judge_grasp, table_touch_time)
+from tegrasp_drake.experiments.trial_logging import collect_trial_log
 from tegrasp_drake.simulation.station import MakeGraspStation
-from tegrasp_drake.experiments.trial_logging import add_trial_logging, collect_trial_log
 
 HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
 UPRIGHT_TILT_DEG = 10.0  # standing upright after Unload
 RESTING_HEIGHT_M = 0.005  # back on the table: within this of its starting height
 END_MARGIN_S = 0.5  # simulated after the machine ends, to see the object settle
-EXTRA_TIME_S = 10.0  # beyond the ideal grasp's duration, for corrections
 CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
 # An event transition earlier than its physical event by more than this is a false trigger;
 # within it, it is the taxel sampling (one 108 Hz sample) and noise around a threshold equal
@@ -41,20 +36,6 @@ class TrialResult:
     result: dict
     log: object  # TrialLog
 
-
-def build_trial_diagram(scenario, *, meshcat=None, events=None):
-    """Returns (diagram, GraspController, TrialLoggers) of a trial of `scenario`."""
-    builder = DiagramBuilder()
-    station = builder.AddNamedSystem("station", MakeGraspStation(scenario, meshcat=meshcat))
-    controller = add_grasp_controller(builder, scenario=scenario, station=station, events=events)
-    loggers = add_trial_logging(builder, scenario=scenario, station=station,
-                                channels=controller.channels,
-                                arm_desired_state=controller.arm_desired_state,
-                                gripper_command=controller.gripper_command,
-                                phase=controller.mode)
-    diagram = builder.Build()
-    diagram.set_name(f"grasp_trial_{controller.name}")
-    return diagram, controller, loggers
 
 
 def _event_transition(transition: Transition) -> str | None:
@@ -119,13 +100,12 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
 
 def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialResult:
     """Simulates one trial of `scenario` with its controller; returns its TrialResult."""
-    diagram, controller, loggers = build_trial_diagram(scenario, meshcat=meshcat, events=events)
-    simulator = Simulator(diagram)
-    ApplySimulatorConfig(scenario.simulator_config, simulator)
+    grasp = MakeGraspDiagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
+                                events=events)
+    controller, loggers = grasp.controller, grasp.loggers
+    simulator = MakeSimulator(grasp.diagram, scenario)
     context = simulator.get_mutable_context()
-    diagram.SetRandomContext(context, RandomGenerator(scenario.random_seed))
-    limit = max_time if max_time is not None else (
-        plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S)
+    limit = max_time if max_time is not None else grasp.time_limit
     if meshcat is not None:
         meshcat.StartRecording()
     start = time.perf_counter()
@@ -159,15 +139,14 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialRes
     return TrialResult(result, log)
 
 
-
 def scenario_from_trial_spec(trial: dict):
     """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
     trial's object (perturbed in mass and friction), placement, seed and controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
-    from tegrasp_drake.experiments.scenario import load_scenario, resolve_object, validate
+    from tegrasp_drake.experiments.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.experiments.sweep.spec import ObjectDefinition
     p = trial["perturbation"]
-    base = load_scenario()
+    base = LoadScenario()
     definition = trial.get("object_definition")
     if definition:
         obj = ObjectDefinition(**definition).object_config(trial["object_name"])

@@ -1,7 +1,7 @@
 """Wires a controller to the station with the Eq. 1-2 channels and the trial's loggers.
 
 Any controller that provides `X_WG_desired` and `gripper_command` output ports (and a
-`phase` port) can be run through `add_trial_logging` and `collect_trial_log`.
+`phase` port) can be run through `AddTrialLogging` and `collect_trial_log`.
 """
 
 import dataclasses
@@ -34,7 +34,7 @@ class TrialLoggers:
     object_state: object
 
 
-def add_trial_logging(builder, *, scenario, station, channels, arm_desired_state,
+def AddTrialLogging(builder, *, scenario, station, channels, arm_desired_state,
                       gripper_command, phase) -> TrialLoggers:
     """Adds the loggers of a TrialLog (taxels at the SA rate, channels and accelerations at
     the RA rate, the rest every SLOW_LOG_PERIOD)."""

@@ -12,7 +12,7 @@ as in Drake's hardware_sim:
       watchdog: {arm_timeout: 0.05, gripper_timeout: 0.1, tactile_timeout: 0.05}
 
 `tegrasp hardware --config FILE` reads a file holding only the HardwareStationConfig
-mapping (the lines under `station:` above, untagged) with `load_hardware_config`, checked
+mapping (the lines under `station:` above, untagged) with `LoadHardwareConfig`, checked
 field by field like a scenario (rig/typed_yaml.py) and with the same `--set key=value`
 overrides; `tegrasp emulate ... --write-config FILE` writes one for the emulators it started.
 """
@@ -89,7 +89,7 @@ class HardwareStationConfig:
     ready_timeout: float = 10.0
 
 
-def load_hardware_config(filename, overrides: typing.Sequence[str] = ()
+def LoadHardwareConfig(filename, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
     """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
     data = read_yaml_file(filename, "the hardware config") or {}

@@ -31,12 +31,29 @@ GRIPPER_PUBLISH_PERIOD = 0.01   # [s]
 class TactileStatusSender(LeafSystem):
     """The tactile receiver's outputs as an `lcmt_tegrasp_tactile`.
 
-    Input ports: left_taxel_forces (12), right_taxel_forces (12) [N],
-        left_pad_acceleration (3), right_pad_acceleration (3) [m/s^2],
-        time_measured (1) [s], stale (1), zeroing (1), arrival_time (1): the receiver's
-        (host monotonic time [s] the shown frame arrived; the message adds the time it
-        was built, so that a log gives each frame's latency to the control loop).
-    Output ports: lcmt_tegrasp_tactile (abstract).
+    .. pydrake_system::
+
+        name: TactileStatusSender
+        input_ports:
+        - left_taxel_forces
+        - right_taxel_forces
+        - left_pad_acceleration
+        - right_pad_acceleration
+        - time_measured
+        - stale
+        - zeroing
+        - arrival_time
+        output_ports:
+        - lcmt_tegrasp_tactile
+
+    Ports (the inputs are TactileSerialReceiver's outputs of the same names):
+        left_taxel_forces, right_taxel_forces: (12) taxel normal forces [N].
+        left_pad_acceleration, right_pad_acceleration: (3) [m/s^2], pad frame.
+        time_measured: (1) device timestamp [s]. stale, zeroing: (1) flags.
+        arrival_time: (1) host monotonic time [s] the shown frame arrived; the message
+            adds the time it was built, so that a log gives each frame's latency to the
+            control loop.
+        lcmt_tegrasp_tactile: (abstract) utime = Context time [us].
     """
 
     def __init__(self):
@@ -72,9 +89,21 @@ class TactileStatusSender(LeafSystem):
 class GripperStatusSender(LeafSystem):
     """The gripper's command and status as an `lcmt_tegrasp_gripper`.
 
-    Input ports: command (3) [rPR, rSP, rFR], status (8) (robotiq_units order),
-        time_measured (1): host monotonic time of the status read [s].
-    Output ports: lcmt_tegrasp_gripper (abstract).
+    .. pydrake_system::
+
+        name: GripperStatusSender
+        input_ports:
+        - command (optional)
+        - status
+        - time_measured
+        output_ports:
+        - lcmt_tegrasp_gripper
+
+    Ports:
+        command: (3) [rPR, rSP, rFR] bytes; unconnected: logged as zeros.
+        status: (8) the status bytes, robotiq_units order.
+        time_measured: (1) host monotonic time of the status read [s].
+        lcmt_tegrasp_gripper: (abstract) utime = Context time [us].
     """
 
     def __init__(self):

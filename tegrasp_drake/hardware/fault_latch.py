@@ -21,13 +21,29 @@ def latched_faults(latched: tuple, current) -> tuple:
 
 
 class FaultLatch(LeafSystem):
-    """Input ports:
-        {source}_fault (abstract tuple of DeviceFault) for each name in `sources`.
-    Output ports:
-        fault (abstract tuple of DeviceFault): every fault seen, in order of sighting.
-        message (abstract str): "" while there is none, else one line per fault (which
+    """Keeps every fault of its sources (module docstring).
+
+    One input per name in `sources`, in its order; with sources ["watchdog", "gripper"]
+    (as MakeHardwareStation builds it):
+
+    .. pydrake_system::
+
+        name: FaultLatch
+        input_ports:
+        - watchdog_fault
+        - gripper_fault
+        output_ports:
+        - fault
+        - message
+        - stop
+
+    Ports:
+        {source}_fault: (abstract tuple of DeviceFault) the source's current faults.
+        fault: (abstract tuple of DeviceFault) every fault seen, in order of sighting.
+        message: (abstract str) "" while there is none, else one line per fault (which
             device, what, since when), for the state machine's `device_fault` input.
-        stop (1): 1 once any fault was seen.
+        stop: (1) 1 once any fault was seen.
+
     A fault shows on the outputs one `period` [s] after its source reported it.
     """
 

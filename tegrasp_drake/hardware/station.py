@@ -58,7 +58,42 @@ class HardwareNotReadyError(RuntimeError):
 
 
 class HardwareStation(Diagram):
-    """The hardware interface Diagram (module docstring). Build with MakeHardwareStation."""
+    """The hardware interface Diagram (module docstring). Build with MakeHardwareStation.
+
+    .. pydrake_system::
+
+        name: HardwareStation
+        input_ports:
+        - arm.desired_state
+        - gripper.command
+        output_ports:
+        - arm.position_measured
+        - arm.velocity_measured
+        - arm.torque_measured
+        - arm.time_measured
+        - arm.commanded_state
+        - gripper.status
+        - gripper.time_measured
+        - tactile.left_taxel_forces
+        - tactile.left_pad_acceleration
+        - tactile.right_taxel_forces
+        - tactile.right_pad_acceleration
+        - tactile.time_measured
+        - tactile.stale
+        - tactile.zeroing
+        - fault
+        - device_fault
+        - stop
+
+    Ports (sizes and units in the module docstring):
+        arm.*: joint space of the Jaco [rad, rad/s, N m]; arm.time_measured is the
+            status message's utime [s].
+        gripper.*: Robotiq bytes (robotiq_units order); gripper.time_measured is host
+            monotonic time [s].
+        tactile.*: taxel forces [N] and pad-frame accelerations [m/s^2], as the
+            simulated station's; tactile.time_measured is the myRIO timestamp [s].
+        fault, device_fault, stop: FaultLatch's fault, message and stop.
+    """
 
     def __init__(self, config: HardwareStationConfig, *, lcm: DrakeLcm | None = None):
         super().__init__()

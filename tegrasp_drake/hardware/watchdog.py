@@ -62,11 +62,25 @@ def next_activity(activity: DeviceActivity, value: float, *, device: str, timeou
 class DeviceWatchdog(LeafSystem):
     """Watches devices' `time_measured` (module docstring).
 
-    Input ports:
-        {device}_time_measured (1) for each device, e.g. arm_time_measured.
-    Output ports:
-        fault (abstract tuple of DeviceFault): the silent devices, in trip order.
-        stop (1): 1 once any device tripped (connect to JacoVelocityTracker's `stop`).
+    One input per device of `timeouts`, in its order; with DEFAULT_TIMEOUTS (as
+    MakeHardwareStation builds it):
+
+    .. pydrake_system::
+
+        name: DeviceWatchdog
+        input_ports:
+        - arm_time_measured
+        - gripper_time_measured
+        - tactile_time_measured
+        output_ports:
+        - fault
+        - stop
+
+    Ports:
+        {device}_time_measured: (1) the device receiver's `time_measured` [s], in the
+            device's clock; only its changes matter.
+        fault: (abstract tuple of DeviceFault) the silent devices, in trip order.
+        stop: (1) 1 once any device tripped (connect to JacoVelocityTracker's `stop`).
     """
 
     def __init__(self, timeouts: dict[str, float] | None = None, *, period: float = 1e-3,

@@ -12,28 +12,36 @@ Frames (the gripper frame G of the whole project is `grasp_frame`):
 - Finger joint coordinate q [m]: the distance of that finger's pad surface from the
   grasp axis (half the opening), 0 .. 0.0425.
 - `left_pad` / `right_pad` frames: at the centre of each pad's contact surface, +z along the
-  pad's inward normal (toward the object), x along the pad's width, y along its length. The
-  taxel layout (tactile_layout.py) is given in these frames.
+  pad's inward normal (toward the object), +y along its length toward the fingertip (the
+  approach direction, the same for both pads), x across its width. The two pads are one
+  sensor design mounted facing each other (the right one turned 180 degrees about the
+  approach axis), so their x axes point opposite ways. The taxel layout
+  (rig/taxel_layout.py) is given in these frames: row 0 is nearest the palm on both pads.
 
-Pads are compliant hydroelastic boxes 4 x 22 x 38 mm (DRAKE-NOTES: E about 2e6 Pa,
-Hunt-Crossley dissipation 5, mu 1).
+Pads are compliant hydroelastic boxes, sized as the paper's fingertip
+(tactile_fingertip.py: 4 x 20 x 24 mm), E 2e6 Pa and Hunt-Crossley dissipation 5
+(DRAKE-NOTES), friction from materials.py. Behind each pad a rigid aluminium finger (a
+collision geometry too, so that an object cannot pass through the finger's back or tip).
 """
 
 import numpy as np
 
-from tegrasp_drake.modelgen.sdf_text import box_inertia, inertial_text, pose_text, translation
+from tegrasp_drake.modelgen import materials
+from tegrasp_drake.modelgen.sdf_text import (box_inertia, friction_text, inertial_text, pose_text,
+                                             translation)
+from tegrasp_drake.modelgen.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 
 BASE_RADIUS = 0.0375  # m
 PALM_Z = 0.095  # m, mounting face to palm
 PAD_CENTER_Z = 0.140  # m, mounting face to the pad centre (grasp frame)
-PAD_THICKNESS, PAD_WIDTH, PAD_LENGTH = 0.004, 0.022, 0.038  # m
 HALF_STROKE = 0.0425  # m
 JOINT_LIMIT_MARGIN = 0.001  # m; the joint limit lies beyond the stroke, so full opening never
 # strikes it (a limit strike is a false RA event)
 BASE_MASS, FINGER_MASS = 0.80, 0.05  # kg
 PAD_MODULUS = 2.0e6  # Pa
 PAD_DISSIPATION = 5.0  # s/m
-PAD_FRICTION = 1.0
+PAD_FRICTION = materials.PAD_COVER
+FINGER_FRICTION = materials.ALUMINIUM  # the finger behind the pad and the palm
 FINGER_LINK_THICKNESS = 0.010  # m, rigid finger behind the pad
 
 
@@ -47,21 +55,25 @@ def _pad_collision(sign: float) -> str:
             f"<drake:hunt_crossley_dissipation>{PAD_DISSIPATION:g}"
             "</drake:hunt_crossley_dissipation>"
             "<drake:relaxation_time>0.02</drake:relaxation_time>"
-            f"<drake:mu_dynamic>{PAD_FRICTION:g}</drake:mu_dynamic>"
-            f"<drake:mu_static>{PAD_FRICTION:g}</drake:mu_static>"
-            "</drake:proximity_properties></collision>"
+            f"{friction_text(PAD_FRICTION)}</drake:proximity_properties></collision>"
             f'<visual name="pad">{pose_text(translation((0, center_y, 0)))}'
             f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
             "</geometry><material><diffuse>0.1 0.1 0.1 1</diffuse></material></visual>")
 
 
 def _finger_link(sign: float) -> str:
-    """The rigid finger behind the pad, reaching back to the palm (visual only)."""
+    """The rigid finger behind the pad, reaching back to the palm (rigid hydroelastic, so a
+    rigid object meets it with point contact and the compliant table or the other pad with
+    hydroelastic contact)."""
     length = PAD_CENTER_Z + PAD_LENGTH / 2 - PALM_Z
-    center = (0, sign * (PAD_THICKNESS + FINGER_LINK_THICKNESS / 2),
-              PAD_LENGTH / 2 - length / 2)
-    return (f'<visual name="finger">{pose_text(translation(center))}<geometry><box><size>'
-            f"{PAD_WIDTH} {FINGER_LINK_THICKNESS} {length:.6g}</size></box></geometry>"
+    center = pose_text(translation((0, sign * (PAD_THICKNESS + FINGER_LINK_THICKNESS / 2),
+                                    PAD_LENGTH / 2 - length / 2)))
+    box = (f"<geometry><box><size>{PAD_WIDTH} {FINGER_LINK_THICKNESS} {length:.6g}</size></box>"
+           "</geometry>")
+    return (f'<collision name="finger">{center}{box}<drake:proximity_properties>'
+            f"<drake:rigid_hydroelastic/>{friction_text(FINGER_FRICTION)}"
+            "</drake:proximity_properties></collision>"
+            f'<visual name="finger">{center}{box}'
             "<material><diffuse>0.6 0.6 0.62 1</diffuse></material></visual>")
 
 
@@ -69,8 +81,10 @@ def _finger(name: str, sign: float) -> str:
     # Finger frame: origin at the pad's contact surface centre when q = 0.
     size = (PAD_WIDTH, PAD_THICKNESS + FINGER_LINK_THICKNESS, PAD_LENGTH)
     X_pad = np.eye(4)
-    # Pad frame: z along the inward normal (-sign * y_G), x along the pad width (x_G).
-    X_pad[:3, :3] = np.array([[1, 0, 0], [0, 0, -sign], [0, sign, 0]], dtype=float)
+    # Pad frame (columns: its axes in the finger frame): y toward the fingertip (z_G) on both
+    # pads, z along the inward normal (-sign * y_G), x = y x z = sign * x_G. The right pad's
+    # y used to point toward the palm, which reversed its taxel rows.
+    X_pad[:3, :3] = np.array([[sign, 0, 0], [0, 0, -sign], [0, 1, 0]], dtype=float)
     return (f'<link name="{name}_finger">'
             f"{pose_text(translation((0, 0, PAD_CENTER_Z)), 'base')}"
             f"{inertial_text(FINGER_MASS, (0, sign * 0.006, 0), box_inertia(FINGER_MASS, size))}"
@@ -83,7 +97,8 @@ def robotiq_sdf() -> str:
     """The SDF text of the tactile 2F-85-like gripper."""
     base_size = (2 * BASE_RADIUS, 2 * BASE_RADIUS, PALM_Z)
     palm = (f'<collision name="palm"><pose>0 0 {PALM_Z - 0.005} 0 0 0</pose><geometry><box>'
-            f"<size>0.03 0.07 0.01</size></box></geometry></collision>")
+            f"<size>0.03 0.07 0.01</size></box></geometry><drake:proximity_properties>"
+            f"{friction_text(FINGER_FRICTION)}</drake:proximity_properties></collision>")
     parts = [
         '<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="robotiq_2f85">',
         '<link name="base">',

@@ -76,3 +76,10 @@ def tube_inertia(mass: float, points: np.ndarray, radius: float):
                         - np.einsum("ki,kj->kij", r, r))
     inertia += np.eye(3) * 0.5 * mass * radius * radius
     return com, inertia
+
+
+def friction_text(mu: float) -> str:
+    """Drake's friction elements for a geometry's proximity properties: one coefficient as
+    both mu_dynamic and mu_static (the discrete solvers read only mu_dynamic; materials.py)."""
+    return (f"<drake:mu_dynamic>{mu:g}</drake:mu_dynamic>"
+            f"<drake:mu_static>{mu:g}</drake:mu_static>")

@@ -4,10 +4,11 @@ The table top is the world's z = 0 plane; the arm's base stands on it at the ori
 are thin visual discs at the expected object position (EXPECTED_XY) and at the 8
 misplacements, +-1.5 cm along the finger stroke (world y in the side grasp) and +-1 cm
 normal to the palm (world x). The top is a compliant hydroelastic box, so the rigid objects
-rest on it with area contact.
+rest on it with area contact. Its friction is a melamine-faced wood top's (materials.py).
 """
 
-from tegrasp_drake.modelgen.sdf_text import pose_text, translation
+from tegrasp_drake.modelgen import materials
+from tegrasp_drake.modelgen.sdf_text import friction_text, pose_text, translation
 
 SIZE = (1.2, 1.0, 0.05)  # m
 CENTER_XY = (0.45, 0.0)  # m
@@ -15,7 +16,7 @@ EXPECTED_XY = (0.72, 0.0)  # m, the centre marker; the side grasp is reachable f
 STROKE_OFFSETS = (-0.015, 0.0, 0.015)  # m, along world y
 NORMAL_OFFSETS = (-0.010, 0.0, 0.010)  # m, along world x
 MODULUS = 1.0e7  # Pa
-FRICTION = 0.5
+FRICTION = materials.TABLE_TOP
 
 
 def table_sdf() -> str:
@@ -38,9 +39,7 @@ def table_sdf() -> str:
         f"<drake:hydroelastic_modulus>{MODULUS:g}</drake:hydroelastic_modulus>"
         "<drake:hunt_crossley_dissipation>5</drake:hunt_crossley_dissipation>"
         "<drake:relaxation_time>0.02</drake:relaxation_time>"
-        f"<drake:mu_dynamic>{FRICTION}</drake:mu_dynamic>"
-        f"<drake:mu_static>{FRICTION}</drake:mu_static>"
-        "</drake:proximity_properties></collision>",
+        f"{friction_text(FRICTION)}</drake:proximity_properties></collision>",
         f'<visual name="top">{pose_text(top)}<geometry><box><size>{size}</size></box>'
         "</geometry><material><diffuse>0.82 0.74 0.6 1</diffuse></material></visual>",
         *markers, "</link>", "</model></sdf>"]) + "\n"

@@ -5,10 +5,18 @@ with the +-1.5 cm misplacement along the stroke and a finger clearance of 2.5 mm
 width along the stroke + 2 x 15 mm <= 85 mm - 2 x 2.5 mm. Masses are those of plastic or
 cardboard objects of that size. Frame of an object O: origin at the centre of its base (the
 face resting on the table), z up.
+
+An object's `friction` is the coefficient of its own collision geometry, not of any pair:
+Drake combines it with the other geometry's as 2 mu_A mu_B / (mu_A + mu_B)
+(modelgen/materials.py). The built-in box is cardboard (0.448: pad 0.814, table 0.412),
+the cylinders rigid plastic (0.374: pad 0.690, table 0.377). For a pair value P against the
+pad, give the object P mu_pad / (2 mu_pad - P) with mu_pad = materials.PAD_COVER.
 """
 
 import dataclasses
 import math
+
+from tegrasp_drake.modelgen import materials
 
 # The entries of an object's `size` [m] for each shape.
 OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),
@@ -29,7 +37,9 @@ class ObjectConfig:
     shape: str = ""
     size: list[float] = dataclasses.field(default_factory=list)
     mass: float = 0.0  # kg
-    friction: float = 0.0  # Coulomb coefficient against pads and table (static = dynamic)
+    # Coulomb coefficient of the object's geometry (static = dynamic), combined with the
+    # pad's and the table's by Drake's pair rule (see the module docstring).
+    friction: float = 0.0
     file: str = ""
     color: list[float] = dataclasses.field(default_factory=lambda: [0.9, 0.5, 0.1, 1.0])
 
@@ -43,12 +53,14 @@ class ObjectConfig:
 
 BUILTIN_OBJECTS = {
     "box": ObjectConfig(name="box", shape="box", size=[0.045, 0.045, 0.110], mass=0.15,
-                        friction=0.5, color=[0.85, 0.55, 0.2, 1.0]),
+                        friction=materials.CARDBOARD, color=[0.85, 0.55, 0.2, 1.0]),
     "thick_cylinder": ObjectConfig(name="thick_cylinder", shape="cylinder",
-                                   size=[0.050, 0.110], mass=0.20, friction=0.5,
+                                   size=[0.050, 0.110], mass=0.20,
+                                   friction=materials.PLASTIC,
                                    color=[0.2, 0.6, 0.3, 1.0]),
     "thin_cylinder": ObjectConfig(name="thin_cylinder", shape="cylinder", size=[0.025, 0.120],
-                                  mass=0.06, friction=0.5, color=[0.3, 0.4, 0.85, 1.0]),
+                                  mass=0.06, friction=materials.PLASTIC,
+                                  color=[0.3, 0.4, 0.85, 1.0]),
 }
 
 

@@ -7,7 +7,7 @@ their frame O at the centre of the base face, z up, and the inertia of a uniform
 import numpy as np
 from pydrake.multibody.tree import ModelInstanceIndex
 
-from tegrasp_drake.modelgen.sdf_text import box_inertia, inertial_text
+from tegrasp_drake.modelgen.sdf_text import box_inertia, friction_text, inertial_text
 from tegrasp_drake.rig.objects import ObjectConfig
 
 OBJECT_MODEL_NAME = "object"
@@ -34,7 +34,6 @@ def object_sdf(config: ObjectConfig) -> str:
     half_height = config.height() / 2
     color = " ".join(f"{c:g}" for c in config.color)
     geometry = _geometry(config)
-    mu = f"{config.friction:g}"
     return (
         '<?xml version="1.0"?><sdf version="1.9">'
         f'<model name="{OBJECT_MODEL_NAME}"><link name="{OBJECT_BODY_NAME}">'
@@ -42,14 +41,13 @@ def object_sdf(config: ObjectConfig) -> str:
         f'<collision name="collision"><pose>0 0 {half_height:g} 0 0 0</pose>'
         f"<geometry>{geometry}</geometry><drake:proximity_properties><drake:rigid_hydroelastic/>"
         "<drake:mesh_resolution_hint>0.005</drake:mesh_resolution_hint>"
-        f"<drake:mu_dynamic>{mu}</drake:mu_dynamic><drake:mu_static>{mu}</drake:mu_static>"
-        "</drake:proximity_properties></collision>"
+        f"{friction_text(config.friction)}</drake:proximity_properties></collision>"
         f'<visual name="visual"><pose>0 0 {half_height:g} 0 0 0</pose>'
         f"<geometry>{geometry}</geometry><material><diffuse>{color}</diffuse></material>"
         "</visual></link></model></sdf>")
 
 
-def add_object(parser, config: ObjectConfig) -> ModelInstanceIndex:
+def AddObject(parser, config: ObjectConfig) -> ModelInstanceIndex:
     """Adds the object to the parser's plant; returns its model instance."""
     if config.shape == "file":
         if config.file.startswith("package://"):

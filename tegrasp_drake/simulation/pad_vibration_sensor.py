@@ -53,8 +53,8 @@ from pydrake.systems.framework import LeafSystem
 from pydrake.systems.primitives import RandomSource
 from pydrake.systems.sensors import Accelerometer
 
-from tegrasp_drake.modelgen.robotiq_sdf import (PAD_DISSIPATION, PAD_LENGTH, PAD_MODULUS,
-                                                PAD_THICKNESS, PAD_WIDTH)
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION, PAD_MODULUS
+from tegrasp_drake.modelgen.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, FilmParameters, advance_films,
                                                     film_sensitivity, film_step_matrices,
@@ -144,21 +144,38 @@ def _point_velocity_before_step(X_WB: RigidTransform, V_WB: SpatialVelocity,
 class PadFilms(LeafSystem):
     """Both pads' PVDF films, advanced once per plant step (see the module docstring).
 
-    Input ports:
-      - generalized_contact_forces: the gripper model instance's generalized contact forces;
-        entry `force_indices[k]` is finger k's joint, positive pushing its pad outward [N].
-      - left_pad_frame_acceleration, right_pad_frame_acceleration (3, m/s^2, pad frame):
-        each pad frame's acceleration without gravity (Drake Accelerometer).
-      - texture_state (6; only with `with_texture`): PadSlipVibration's texture_state, from
-        which the texture acceleration along each pad normal is synthesised at the internal
-        rate (pad_slip_vibration.texture_acceleration).
-      - noise (2; only when config.noise_std_mps2 > 0): unit Gaussian samples at the
-        sensor rate.
-      - contact_results, body_poses, body_spatial_velocities, body_spatial_accelerations:
-        the plant's; read only on the plant step where a pad's contact begins.
-    Output ports (updated every sensor period):
-      - left_pad_vibration, right_pad_vibration (3, m/s^2-equivalent, pad frame): the film's
-        peak-hold sample plus noise on z; x, y zero.
+    .. pydrake_system::
+
+        name: PadFilms
+        input_ports:
+        - generalized_contact_forces
+        - left_pad_frame_acceleration
+        - right_pad_frame_acceleration
+        - texture_state (optional)
+        - noise (optional)
+        - contact_results
+        - body_poses
+        - body_spatial_velocities
+        - body_spatial_accelerations
+        output_ports:
+        - left_pad_vibration
+        - right_pad_vibration
+
+    Ports:
+        generalized_contact_forces: the gripper model instance's generalized contact
+            forces; entry force_indices[k] is finger k's joint, positive pushing its pad
+            outward (N).
+        left_pad_frame_acceleration, right_pad_frame_acceleration: each pad frame's
+            acceleration without gravity, in the pad frame (3, m/s^2; Drake Accelerometer).
+        texture_state: PadSlipVibration's texture_state (6), from which the texture
+            acceleration along each pad normal is synthesised at the internal rate; declared
+            only with `with_texture`.
+        noise: unit Gaussian samples at the sensor rate (2); declared only when
+            config.noise_std_mps2 > 0.
+        contact_results, body_poses, body_spatial_velocities, body_spatial_accelerations:
+            the plant's; read only on the plant step where a pad's contact begins.
+        left_pad_vibration, right_pad_vibration: the film's peak-hold sample plus noise on
+            z, x and y zero (3, m/s^2-equivalent, pad frame); updated every sensor period.
     """
 
     def __init__(self, *, plant, pads: dict, force_indices, config: VibrationSensorConfig,
@@ -355,7 +372,7 @@ def finger_force_indices(plant, gripper) -> list[int]:
     return indices
 
 
-def add_pad_films(builder, *, plant, pads: dict, gripper, config: VibrationSensorConfig,
+def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorConfig,
                   slip_vibration=None, name: str = "pad_films") -> PadFilms:
     """Adds both pads' films (and the accelerometers and noise source they read) to
     `builder`, connected to `plant`; `slip_vibration`, if given, is the PadSlipVibration

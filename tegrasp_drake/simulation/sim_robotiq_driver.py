@@ -50,6 +50,14 @@ def has_arrived(q: float, v: float, goal: float, acceleration: float, dt: float)
     return abs(goal - q) <= acceleration * dt * dt and abs(v) <= acceleration * dt
 
 
+def force_limited_set_point(q: float, q_ref: float, force: float, position_gain: float) -> float:
+    """The PD set-point [m] for the actuated finger: the reference, but no further than
+    2 force / position_gain from the measured q, so that a blocked finger pushes each pad
+    (the right finger mimics the left, so the actuator carries both) with at most force [N]."""
+    band = 2.0 * force / position_gain
+    return q + float(np.clip(q_ref - q, -band, band))
+
+
 def object_status(q: float, v: float, q_ref: float, goal: float, stall_speed: float) -> int:
     """gOBJ from the finger's measured motion (see ObjectStatus)."""
     if abs(q - goal) < 5e-4:
@@ -117,8 +125,8 @@ class SimRobotiqDriver(LeafSystem):
         q_ref = s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
         v_ref = s[_REF_V] + s[_REF_A] * h
         q = self._finger_state.Eval(context)[0]
-        band = 2.0 * s[_FORCE] / self._config.position_gain
-        output.SetFromVector([q + np.clip(q_ref - q, -band, band), v_ref])
+        output.SetFromVector([force_limited_set_point(q, q_ref, s[_FORCE],
+                                                      self._config.position_gain), v_ref])
 
     def _calc_status(self, context, output):
         s = context.get_discrete_state(self._state).value()

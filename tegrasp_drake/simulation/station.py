@@ -35,10 +35,10 @@ from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRIPPER_URL, R_WG_SIDE_GR
                                           solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE
-from tegrasp_drake.simulation.object_model import add_object, object_body
+from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
-from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, add_pad_films
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
 
@@ -86,7 +86,8 @@ def set_pd_gains(plant, instance, kp, kd):
             actuator.set_controller_gains(PdControllerGains(p=kp, d=kd))
 
 
-def _pad_geometries(plant, scene_graph, gripper):
+def pad_geometries(plant, scene_graph, gripper) -> dict:
+    """{finger name: PadGeometry} of the gripper's two pads."""
     inspector = scene_graph.model_inspector()
     pads = {}
     for finger in FINGER_NAMES:
@@ -113,10 +114,10 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
     return slip
 
 
-def add_tactile_sensors(builder, *, plant, scene_graph, gripper, object_body, scenario):
+def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scenario):
     """Both pads' taxel arrays (TactilePads), the slip texture (PadSlipVibration) and the
     films (PadFilms), connected to the finalized `plant`; returns (TactilePads, PadFilms)."""
-    pads = _pad_geometries(plant, scene_graph, gripper)
+    pads = pad_geometries(plant, scene_graph, gripper)
     taxels = builder.AddNamedSystem(
         "tactile_pads", TactilePads(pads=pads, config=scenario.tactile,
                                     seed=scenario.random_seed))
@@ -124,7 +125,7 @@ def add_tactile_sensors(builder, *, plant, scene_graph, gripper, object_body, sc
                     taxels.GetInputPort("contact_results"))
     builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
     slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, scenario.vibration)
-    films = add_pad_films(builder, plant=plant, pads=pads, gripper=gripper,
+    films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper,
                           config=scenario.vibration, slip_vibration=slip)
     return taxels, films
 
@@ -150,7 +151,7 @@ def MakeGraspStation(scenario, *, meshcat=None):
                      X_FLANGE_GRIPPER)
     (table,) = parser.AddModels(url=TABLE_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
-    obj = add_object(parser, scenario.object)
+    obj = AddObject(parser, scenario.object)
     plant.set_gravity_enabled(arm, False)
     plant.set_gravity_enabled(gripper, False)
     set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
@@ -178,7 +179,7 @@ def MakeGraspStation(scenario, *, meshcat=None):
     builder.ExportOutput(driver.GetOutputPort("status"), "gripper.status")
 
     # Tactile pads: taxels and vibration films.
-    taxels, films = add_tactile_sensors(builder, plant=plant, scene_graph=scene_graph,
+    taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
                                         gripper=gripper, object_body=object_body(plant, obj),
                                         scenario=scenario)
     for finger in FINGER_NAMES:

@@ -23,10 +23,27 @@ def rapidly_adapting(acceleration: np.ndarray) -> float:
 class MechanoreceptorChannels(LeafSystem):
     """The four channels SA_left, SA_right, RA_left, RA_right.
 
-    Input ports: left_taxel_forces (12, N), right_taxel_forces (12, N),
-    left_pad_acceleration (3, m/s^2), right_pad_acceleration (3, m/s^2).
-    Output ports: sa (2: left, right) [N], ra (2) [m/s^2], channels (4, in
-    tegrasp_drake.rig.channels.CHANNEL_NAMES order).
+    .. pydrake_system::
+
+        name: MechanoreceptorChannels
+        input_ports:
+        - left_taxel_forces
+        - right_taxel_forces
+        - left_pad_acceleration
+        - right_pad_acceleration
+        output_ports:
+        - sa
+        - ra
+        - channels
+
+    Ports:
+        left_taxel_forces, right_taxel_forces: (12) each taxel's normal force F_z [N].
+        left_pad_acceleration, right_pad_acceleration: (3) the pad's vibration [m/s^2],
+            pad frame.
+        sa: (2) [left, right] Eq. 1 [N].
+        ra: (2) [left, right] Eq. 2 [m/s^2].
+        channels: (4) [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), in
+            tegrasp_drake.rig.channels.CHANNEL_NAMES order.
     """
 
     def __init__(self):
@@ -58,7 +75,7 @@ class MechanoreceptorChannels(LeafSystem):
         output.SetFromVector(self._sa(context) + self._ra(context))
 
 
-def add_mechanoreceptor_channels(builder, station):
+def AddMechanoreceptorChannels(builder, station):
     """Adds Eq. 1-2 fed by the station's tactile ports; returns the system."""
     channels = builder.AddNamedSystem("mechanoreceptor_channels", MechanoreceptorChannels())
     for finger in FINGER_NAMES:

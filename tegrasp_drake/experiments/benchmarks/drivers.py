@@ -34,7 +34,14 @@ TICK_PERIOD = 1e-3  # [s]
 
 class LoopTick(LeafSystem):
     """A benchmark probe: a periodic publish that appends `time.perf_counter()` to a list
-    it was given (the measurement leaves the diagram on purpose; it holds no state)."""
+    it was given (the measurement leaves the diagram on purpose; it holds no state).
+
+    .. pydrake_system::
+
+        name: LoopTick
+
+    No ports: the wall-clock times [s] go to the list, one per `period` [s].
+    """
 
     def __init__(self, wall_times: list, period: float = TICK_PERIOD):
         super().__init__()

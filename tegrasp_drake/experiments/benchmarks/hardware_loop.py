@@ -48,7 +48,7 @@ def run_hardware_benchmark(duration: float = 10.0, *, trial=None, overrides=(),
     from tegrasp_drake.emulators.emulator_process import EmulatedDevices
     from tegrasp_drake.experiments.hardware_run import run_on_hardware
     from tegrasp_drake.experiments.run_log import read_run_log
-    from tegrasp_drake.experiments.scenario import load_scenario
+    from tegrasp_drake.experiments.scenario import LoadScenario
     with tempfile.TemporaryDirectory() as folder:
         trial = trial or save_synthetic_trial(pathlib.Path(folder) / "trial.npz", duration)
         url = f"udpm://239.255.76.67:{lcm_port + os.getpid() % 7}?ttl=0"
@@ -58,7 +58,7 @@ def run_hardware_benchmark(duration: float = 10.0, *, trial=None, overrides=(),
         with EmulatedDevices(lcm_url=url, trial=trial, myrio_sync="start") as devices:
             watchdog = devices.config.watchdog
             watchdog.arm_timeout = watchdog.gripper_timeout = watchdog.tactile_timeout = 1.0
-            result = run_on_hardware(load_scenario(name="box", overrides=overrides),
+            result = run_on_hardware(LoadScenario(name="box", overrides=overrides),
                                      config=devices.config,
                                      log_path=log_path or pathlib.Path(folder) / "bench.lcmlog",
                                      duration=duration, out=lambda line: None)

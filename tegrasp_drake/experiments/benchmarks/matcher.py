@@ -128,7 +128,18 @@ def _fft_rebuild(repeats: int) -> float:
 
 
 class _InputReader(LeafSystem):
-    """A 1 kHz update that only reads its input: the cost any Python LeafSystem pays."""
+    """A 1 kHz update that only reads its input: the cost any Python LeafSystem pays.
+
+    .. pydrake_system::
+
+        name: _InputReader
+        input_ports:
+        - channels
+
+    Ports:
+        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), copied into
+            discrete state each tick; there is no output.
+    """
 
     def __init__(self):
         super().__init__()

@@ -5,9 +5,8 @@ step in free motion and while holding (`tegrasp benchmark` prints them)."""
 import statistics
 import time
 
-from pydrake.systems.analysis import Simulator
-
-from tegrasp_drake.experiments.ideal_grasp import build_ideal_grasp_diagram, run_ideal_grasp
+from tegrasp_drake.experiments.grasp_diagram import MakeSimulator
+from tegrasp_drake.experiments.ideal_grasp import MakeIdealGraspDiagram, run_ideal_grasp
 
 
 def _median_call_us(update, context, repeats: int) -> float:
@@ -23,8 +22,9 @@ def _median_call_us(update, context, repeats: int) -> float:
 
 def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
     """Median wall time [us] of one TactilePads sample while the box is held."""
-    diagram, _, segments = build_ideal_grasp_diagram(scenario)
-    simulator = Simulator(diagram)
+    grasp = MakeIdealGraspDiagram(scenario)
+    diagram, segments = grasp.diagram, grasp.controller.segments
+    simulator = MakeSimulator(diagram, scenario)
     simulator.AdvanceTo(next(s.t_start for s in segments if s.phase == "hold") + 0.5)
     pads = diagram.GetSubsystemByName("station").GetSubsystemByName("tactile_pads")
     pads_context = pads.GetMyContextFromRoot(simulator.get_context())
@@ -39,7 +39,7 @@ def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
 def time_pad_film_update(scenario, repeats: int = 500) -> dict:
     """Median wall time [us] of one PadFilms update (both pads, one plant step) during the
     reach (free motion) and while the box is held (texture and contact forces read)."""
-    diagram, _, segments = build_ideal_grasp_diagram(scenario)
+    diagram, _, segments = MakeIdealGraspDiagram(scenario)
     simulator = Simulator(diagram)
     films = diagram.GetSubsystemByName("station").GetSubsystemByName("pad_films")
     result = {}

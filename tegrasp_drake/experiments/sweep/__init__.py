@@ -33,7 +33,7 @@ from tegrasp_drake.experiments.sweep.spec import (
     SweepSpec,
     TrialSpec,
     expand_trials,
-    load_sweep_spec,
+    LoadSweepSpec,
     product_grid,
     validate_spec,
 )

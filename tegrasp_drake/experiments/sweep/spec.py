@@ -17,7 +17,7 @@ controller meets exactly the same perturbed scene and sensor-noise seed.
 A spec file is read like every other configuration file (rig/typed_yaml.py): the same YAML
 parser, the same walk that names an unknown, missing or mistyped field, and ConfigError. The
 spec's types are frozen and hashable (scenes are compared and collected in sets), which
-Drake's `yaml_load_typed` cannot build, so `load_sweep_spec` builds them from the checked data.
+Drake's `yaml_load_typed` cannot build, so `LoadSweepSpec` builds them from the checked data.
 """
 
 import dataclasses
@@ -272,7 +272,7 @@ class _ProductGrid:
     stroke_offsets_m: list[float]
 
 
-def load_sweep_spec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
                     controllers: Collection[str] = CONTROLLERS) -> SweepSpec:
     """Reads and validates a YAML sweep spec; fields left out keep the paper's defaults.
 

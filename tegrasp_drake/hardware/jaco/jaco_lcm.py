@@ -72,12 +72,19 @@ def has_joints(message) -> bool:
 class JacoCommandSender(LeafSystem):
     """Converts a desired joint state into an `lcmt_jaco_command` (no feedback, no state).
 
-    Input ports:
-        desired_state (12): joint positions [rad] then joint velocities [rad/s]. In
+    .. pydrake_system::
+
+        name: JacoCommandSender
+        input_ports:
+        - desired_state
+        output_ports:
+        - lcmt_jaco_command
+
+    Ports:
+        desired_state: (12) joint positions [rad] then joint velocities [rad/s]. In
             velocity mode the velocities are what the arm executes, so they must already
             contain the position-error term (JacoVelocityTracker's `commanded_state`).
-    Output ports:
-        lcmt_jaco_command (abstract): utime = Context time [us], num_fingers = 0.
+        lcmt_jaco_command: (abstract) utime = Context time [us], num_fingers = 0.
     """
 
     def __init__(self):
@@ -102,12 +109,20 @@ class JacoCommandReceiver(LeafSystem):
     (a new `utime`) has arrived for `command_timeout` [s] of Context time, or none ever
     did, the output holds the last measured position with zero velocity.
 
-    Input ports:
-        lcmt_jaco_command (abstract)
-        position_measured (6): the arm's measured joint positions [rad]; sampled into
+    .. pydrake_system::
+
+        name: JacoCommandReceiver
+        input_ports:
+        - lcmt_jaco_command
+        - position_measured
+        output_ports:
+        - desired_state
+
+    Ports:
+        lcmt_jaco_command: (abstract) the newest command message.
+        position_measured: (6) the arm's measured joint positions [rad]; sampled into
             state, so the output has no direct feedthrough from it.
-    Output ports:
-        desired_state (12): joint positions [rad] then joint velocities [rad/s].
+        desired_state: (12) joint positions [rad] then joint velocities [rad/s].
     """
 
     def __init__(self, *, command_timeout: float = 0.05, period: float = JACO_LCM_PERIOD / 2):
@@ -155,10 +170,20 @@ class JacoCommandReceiver(LeafSystem):
 class JacoStatusSender(LeafSystem):
     """Converts the measured arm state into an `lcmt_jaco_status` (emulator side).
 
-    Input ports:
-        position_measured (6) [rad], velocity_measured (6) [rad/s], torque_measured (6) [N m]
-    Output ports:
-        lcmt_jaco_status (abstract): utime = Context time [us], num_fingers = 0.
+    .. pydrake_system::
+
+        name: JacoStatusSender
+        input_ports:
+        - position_measured
+        - velocity_measured
+        - torque_measured
+        output_ports:
+        - lcmt_jaco_status
+
+    Ports:
+        position_measured (6) [rad], velocity_measured (6) [rad/s],
+        torque_measured (6) [N m]: the arm's measured joint state.
+        lcmt_jaco_status: (abstract) utime = Context time [us], num_fingers = 0.
     """
 
     def __init__(self):
@@ -182,11 +207,22 @@ class JacoStatusReceiver(LeafSystem):
     Before the first message every output is zero (time_measured too), which the device
     watchdog treats as "not heard from yet".
 
-    Input ports:
-        lcmt_jaco_status (abstract)
-    Output ports:
+    .. pydrake_system::
+
+        name: JacoStatusReceiver
+        input_ports:
+        - lcmt_jaco_status
+        output_ports:
+        - position_measured
+        - velocity_measured
+        - torque_measured
+        - time_measured
+
+    Ports:
+        lcmt_jaco_status: (abstract) the newest status message.
         position_measured (6) [rad], velocity_measured (6) [rad/s],
-        torque_measured (6) [N m], time_measured (1): the message's utime [s].
+        torque_measured (6) [N m]: the message's joint state.
+        time_measured: (1) the message's utime [s].
     """
 
     def __init__(self):

@@ -47,12 +47,21 @@ def velocity_command(q_desired, v_desired, q_measured, config: JacoVelocityTrack
 class JacoVelocityTracker(LeafSystem):
     """Adds the position-error term to a desired joint state (see module docstring).
 
-    Input ports:
-        desired_state (12): joint positions [rad] then velocities [rad/s].
-        position_measured (6): measured joint positions [rad].
-        stop (1, optional): nonzero holds the arm still.
-    Output ports:
-        commanded_state (12): desired positions [rad] then commanded velocities [rad/s]
+    .. pydrake_system::
+
+        name: JacoVelocityTracker
+        input_ports:
+        - desired_state
+        - position_measured
+        - stop (optional)
+        output_ports:
+        - commanded_state
+
+    Ports:
+        desired_state: (12) joint positions [rad] then velocities [rad/s].
+        position_measured: (6) measured joint positions [rad].
+        stop: (1) nonzero holds the arm still; unconnected: never stops.
+        commanded_state: (12) desired positions [rad] then commanded velocities [rad/s]
             (measured positions and zeros while stopped).
     """
 

@@ -115,15 +115,28 @@ def receiver_state_after_tick(state: TactileReceiverState, received, calibration
 class TactileSerialReceiver(LeafSystem):
     """Both tactile pads from a `TactileSerialReader` (see module docstring).
 
-    Output ports:
-        left_taxel_forces (12), right_taxel_forces (12): taxel normal forces [N].
-        left_pad_acceleration (3), right_pad_acceleration (3): the piezo film's
-            acceleration-equivalent [m/s^2] in x, zeros in y and z.
-        time_measured (1): device timestamp [s] of the played frame (0 before any).
-        stale (1): 1 when no frame arrived for `stale_timeout` [s] of wall time.
-        zeroing (1): 1 until the start-up zeroing is complete.
-        arrival_time (1): host time.monotonic() [s] when the played frame arrived (for
+    .. pydrake_system::
+
+        name: TactileSerialReceiver
+        output_ports:
+        - left_taxel_forces
+        - left_pad_acceleration
+        - right_taxel_forces
+        - right_pad_acceleration
+        - time_measured
+        - stale
+        - arrival_time
+        - zeroing
+
+    Ports:
+        left_taxel_forces, right_taxel_forces: (12) taxel normal forces [N].
+        left_pad_acceleration, right_pad_acceleration: (3) the piezo film's
+            acceleration-equivalent [m/s^2] along the pad frame's x, zeros in y and z.
+        time_measured: (1) device timestamp [s] of the played frame (0 before any).
+        stale: (1) 1 when no frame arrived for `stale_timeout` [s] of wall time.
+        arrival_time: (1) host time.monotonic() [s] when the played frame arrived (for
             latency measurements; -inf before any).
+        zeroing: (1) 1 until the start-up zeroing is complete.
     """
 
     def __init__(self, reader, *, calibration: TactileCalibration | None = None,

@@ -53,13 +53,24 @@ def gripper_faults(status, count: int, driver_error: str | None, previous: tuple
 class RobotiqDriver(LeafSystem):
     """Wraps a started `RobotiqModbusClient` (module docstring).
 
-    Input ports:
-        command (3): [rPR, rSP, rFR] bytes, as the station's `gripper.command`.
-    Output ports:
-        status (8): [gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO, gCU], as `gripper.status`.
-        time_measured (1): host `time.monotonic()` [s] when `status` arrived (0 before).
-        stale (1): 1 when the newest status is older than `stale_timeout` [s].
-        fault (abstract tuple of DeviceFault): empty when all is well.
+    .. pydrake_system::
+
+        name: RobotiqDriver
+        input_ports:
+        - command (optional)
+        output_ports:
+        - status
+        - time_measured
+        - stale
+        - fault
+
+    Ports:
+        command: (3) [rPR, rSP, rFR] bytes, as the station's `gripper.command`;
+            unconnected: nothing is sent.
+        status: (8) [gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO, gCU], as `gripper.status`.
+        time_measured: (1) host `time.monotonic()` [s] when `status` arrived (0 before).
+        stale: (1) 1 when the newest status is older than `stale_timeout` [s].
+        fault: (abstract tuple of DeviceFault) empty when all is well.
     """
 
     def __init__(self, client, *, period: float = 0.005, stale_timeout: float = 0.1,

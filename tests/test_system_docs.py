@@ -1,0 +1,213 @@
+"""Every system's docstring has a `.. pydrake_system::` block naming its real ports, in
+order (issue #10).
+
+The block is Drake's (YAML: name, input_ports, output_ports); a port name may carry an
+" (optional)" note, as in GraspStateMachine. Systems whose ports depend on constructor
+arguments (DeviceWatchdog, FaultLatch) document, and are built here with, the arguments
+MakeHardwareStation uses.
+"""
+
+import contextlib
+import functools
+import importlib
+import inspect
+import pkgutil
+import re
+
+import numpy as np
+import pytest
+import yaml
+from pydrake.lcm import DrakeLcm
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.framework import Diagram, DiagramBuilder, LeafSystem
+
+import tegrasp_drake
+from tegrasp_drake.control.controller_config import (
+    GraspControllerConfig, HeuristicTriggerConfig)
+from tegrasp_drake.control.grasp_modes import Trigger
+from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
+from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
+from tegrasp_drake.control.scripted_grasp import ScriptedGraspSource, plan_scripted_grasp
+from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecording
+from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
+from tegrasp_drake.events.event_matcher import EventMatcher
+from tegrasp_drake.events.event_sequencer import EventSequencer
+from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.experiments.benchmarks.drivers import LoopTick
+from tegrasp_drake.experiments.benchmarks.matcher import _InputReader
+from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.hardware.device_log_messages import GripperStatusSender, TactileStatusSender
+from tegrasp_drake.hardware.fault_latch import FaultLatch
+from tegrasp_drake.hardware.jaco.jaco_lcm import (
+    JacoCommandReceiver, JacoCommandSender, JacoStatusReceiver, JacoStatusSender)
+from tegrasp_drake.hardware.jaco.velocity_tracker import JacoVelocityTracker
+from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
+from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
+from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusClient
+from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
+from tegrasp_drake.hardware.station import HardwareStation, MakeHardwareStation
+from tegrasp_drake.hardware.watchdog import DeviceWatchdog
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL
+from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
+from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
+from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
+from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSensorConfig,
+                                                           finger_force_indices)
+from tegrasp_drake.simulation.station import pad_geometries
+
+# Modules whose systems have no block yet: simulation/ is being rewritten on other
+# branches. Pending issue #10; the lead removes each entry (and adds the systems to
+# CONSTRUCTORS) once that work is merged and documented.
+PENDING_MODULES = (
+    "tegrasp_drake.simulation.object_force_pulse",
+    "tegrasp_drake.simulation.pad_slip_vibration",
+    "tegrasp_drake.simulation.sim_robotiq_driver",
+    "tegrasp_drake.simulation.tactile_pads",
+)
+
+EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
+
+
+@functools.cache
+def box_scenario():
+    return LoadScenario(name="box")
+
+
+def pad_films() -> PadFilms:
+    """PadFilms of a plant that holds only the gripper, with every optional port."""
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), builder)
+    (gripper,) = paths.make_parser(plant).AddModels(url=GRIPPER_URL)
+    plant.Finalize()
+    return PadFilms(plant=plant, pads=pad_geometries(plant, scene_graph, gripper),
+                    force_indices=finger_force_indices(plant, gripper),
+                    config=VibrationSensorConfig(noise_std_mps2=0.05), with_texture=True)
+
+
+@contextlib.contextmanager
+def hardware_station():
+    """The station on in-process emulators (pty serial ports, memq:// LCM): real device
+    threads, no hardware."""
+    t = np.arange(0.0, 0.2, 1e-3)
+    quiet = TactileRecording(t, np.zeros((len(t), 12)), np.zeros((len(t), 12)), t,
+                             np.zeros((len(t), 3)), np.zeros(len(t)))
+    with RobotiqEmulator() as gripper, MyRioEmulator(quiet) as myrio:
+        config = HardwareStationConfig()
+        config.gripper.port, config.tactile.port = gripper.port, myrio.port
+        with MakeHardwareStation(config, lcm=DrakeLcm("memq://")) as station:
+            yield station
+
+
+# Class -> a zero-argument factory of a real instance, or of a context manager yielding one.
+# The device drivers get their real I/O objects unstarted: their constructors open nothing.
+CONSTRUCTORS = {
+    MechanoreceptorChannels: MechanoreceptorChannels,
+    WindowNormalizer: WindowNormalizer,
+    EventMatcher: lambda: EventMatcher(load_memorized_events(paths.events_dir(), "box")),
+    EventSequencer: lambda: EventSequencer([0, 1, 2]),
+    GraspStateMachine: lambda: GraspStateMachine(
+        plan=GraspPlan.from_scenario(box_scenario()), config=GraspControllerConfig(),
+        event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT),
+    HeuristicEventDetector: lambda: HeuristicEventDetector(HeuristicTriggerConfig(),
+                                                           grip_force_n=25.0),
+    ScriptedGraspSource: lambda: ScriptedGraspSource(plan_scripted_grasp(box_scenario())),
+    LoopTick: lambda: LoopTick([]),
+    _InputReader: _InputReader,
+    DeviceWatchdog: DeviceWatchdog,
+    FaultLatch: lambda: FaultLatch(["watchdog", "gripper"]),
+    JacoVelocityTracker: JacoVelocityTracker,
+    JacoCommandSender: JacoCommandSender,
+    JacoCommandReceiver: JacoCommandReceiver,
+    JacoStatusSender: JacoStatusSender,
+    JacoStatusReceiver: JacoStatusReceiver,
+    TactileStatusSender: TactileStatusSender,
+    GripperStatusSender: GripperStatusSender,
+    TactileSerialReceiver: lambda: TactileSerialReceiver(TactileSerialReader("/dev/unused")),
+    RobotiqDriver: lambda: RobotiqDriver(RobotiqModbusClient(HardwareStationConfig().gripper)),
+    HardwareStation: hardware_station,
+    FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
+    PadFilms: pad_films,
+}
+
+# Documented systems that are not built here, with the reason. Empty: every one is cheap.
+NOT_CONSTRUCTED = {}
+
+_OPTIONAL = re.compile(r"\s*\(optional\)$")
+
+
+def pydrake_system_block(cls) -> dict | None:
+    """The `.. pydrake_system::` block of cls's own docstring as {name, input_ports,
+    output_ports} (port names without their "(optional)" note); None without one."""
+    lines = inspect.cleandoc(cls.__dict__.get("__doc__") or "").splitlines()
+    starts = [i for i, line in enumerate(lines) if line.strip() == ".. pydrake_system::"]
+    if not starts:
+        return None
+    indent = len(lines[starts[0]]) - len(lines[starts[0]].lstrip())
+    body = []
+    for line in lines[starts[0] + 1:]:
+        if line.strip() and len(line) - len(line.lstrip()) <= indent:
+            break
+        body.append(line)
+    block = yaml.safe_load(inspect.cleandoc("\n".join(body)))
+    return {"name": block["name"],
+            **{key: [_OPTIONAL.sub("", port) for port in block.get(key) or []]
+               for key in ("input_ports", "output_ports")}}
+
+
+@functools.cache
+def system_classes() -> tuple[type, ...]:
+    """Every LeafSystem or Diagram subclass defined in a module of the package."""
+    found = []
+    for module_info in pkgutil.walk_packages(tegrasp_drake.__path__, "tegrasp_drake."):
+        if module_info.name.rsplit(".", 1)[-1] == "__main__":
+            continue  # runs the command line when imported
+        module = importlib.import_module(module_info.name)
+        found += [cls for cls in vars(module).values()
+                  if inspect.isclass(cls) and cls.__module__ == module.__name__
+                  and issubclass(cls, (LeafSystem, Diagram))]
+    return tuple(found)
+
+
+def port_names(system) -> dict[str, list[str]]:
+    return {"input_ports": [system.get_input_port(i).get_name()
+                            for i in range(system.num_input_ports())],
+            "output_ports": [system.get_output_port(i).get_name()
+                             for i in range(system.num_output_ports())]}
+
+
+def _qualified(cls) -> str:
+    return f"{cls.__module__}.{cls.__qualname__}"
+
+
+@pytest.mark.parametrize("cls", list(CONSTRUCTORS), ids=lambda cls: cls.__name__)
+def test_block_lists_the_constructed_systems_ports_in_order(cls):
+    block = pydrake_system_block(cls)
+    assert block is not None, f"{_qualified(cls)} has no .. pydrake_system:: block"
+    assert block["name"] == cls.__name__
+    made = CONSTRUCTORS[cls]()
+    with made if hasattr(made, "__enter__") else contextlib.nullcontext(made) as system:
+        assert isinstance(system, cls)
+        assert {key: block[key] for key in ("input_ports", "output_ports")} == \
+            port_names(system)
+
+
+def test_every_system_class_has_a_block():
+    missing = [_qualified(cls) for cls in system_classes()
+               if cls.__module__ not in PENDING_MODULES and pydrake_system_block(cls) is None]
+    assert missing == []
+
+
+def test_every_documented_system_is_checked_against_its_ports():
+    unchecked = [_qualified(cls) for cls in system_classes()
+                 if pydrake_system_block(cls) is not None
+                 and cls not in CONSTRUCTORS and cls not in NOT_CONSTRUCTED]
+    assert unchecked == [], "add them to CONSTRUCTORS (or NOT_CONSTRUCTED, with the reason)"
+
+
+def test_pending_modules_still_have_undocumented_systems():
+    undocumented = {cls.__module__ for cls in system_classes()
+                    if pydrake_system_block(cls) is None}
+    assert [name for name in PENDING_MODULES if name not in undocumented] == [], \
+        "documented (or gone): remove them from PENDING_MODULES"
