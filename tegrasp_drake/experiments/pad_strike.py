@@ -13,13 +13,13 @@ import dataclasses
 import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import AddMultibodyPlant
-from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource, LogVectorOutput
 
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.extraction import cut_window
+from tegrasp_drake.experiments.grasp_diagram import MakeSimulator
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL, R_WG_SIDE_GRASP
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
@@ -152,7 +152,7 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
                                     builder, scenario.plant_config.time_step)
     diagram = builder.Build()
 
-    simulator = Simulator(diagram)
+    simulator = MakeSimulator(diagram, scenario)
     context = simulator.get_mutable_context()
     expected_contact = speed / acceleration + (q0 - half_width - config.object_offset_m
                                                - speed ** 2 / (2 * acceleration)) / speed

@@ -186,6 +186,7 @@ class PadFilms(LeafSystem):
             raise ValueError("PadFilms needs a discrete-time plant")
         self._pads = [pads[finger] for finger in FINGER_NAMES]
         self._force_indices = np.asarray(force_indices, dtype=int)
+        self._left_index, self._right_index = (int(i) for i in force_indices)
         self._config = config
         self._matrices = film_step_matrices(film_parameters(config), self._dt,
                                             config.internal_rate_hz)
@@ -241,19 +242,21 @@ class PadFilms(LeafSystem):
         return tuple(int(i) for i in self._force_indices)
 
     def _update(self, context, discrete_state):
-        state = context.get_discrete_state(self._state).get_value().copy()
-        forces = self._forces.Eval(context)
-        left, right = forces[self._force_indices[0]], forces[self._force_indices[1]]
+        # Scalars are handled as Python floats: per plant step, numpy's scalar overhead
+        # would cost more than the integration itself.
+        state = discrete_state.get_mutable_value(self._state)  # holds the current state
+        forces = self._forces.Eval(context).tolist()
+        left, right = forces[self._left_index], forces[self._right_index]
+        before_left, before_right = state[_FORCE:_FORCE + 2].tolist()
         m = self._config.mode_mass_kg
-        state[_LOAD] = left + m * self._accelerations[0].Eval(context)[2]
-        state[_LOAD + 1] = right + m * self._accelerations[1].Eval(context)[2]
-        onsets = [abs(f) > CONTACT_ONSET_N and abs(before) <= CONTACT_ONSET_N
-                  for f, before in ((left, state[_FORCE]), (right, state[_FORCE + 1]))]
-        state[_FORCE], state[_FORCE + 1] = left, right
+        state[_LOAD:_LOAD + 2] = (left + m * self._accelerations[0].Eval(context).item(2),
+                                  right + m * self._accelerations[1].Eval(context).item(2))
+        state[_FORCE:_FORCE + 2] = (left, right)
+        onsets = (abs(left) > CONTACT_ONSET_N >= abs(before_left),
+                  abs(right) > CONTACT_ONSET_N >= abs(before_right))
         time = context.get_time()
         step = int(round(time / self._dt))
         if step == 0:  # no plant step has ended yet
-            discrete_state.set_value(self._state, state)
             return
         step_start = time - self._dt
         if self._config.impact_enabled and (onsets[0] or onsets[1]):
@@ -266,30 +269,35 @@ class PadFilms(LeafSystem):
         films, outputs = advance_films(self._matrices,
                                        state[_FILM_AND_LOAD].reshape(STATE_SIZE + 1, 2), direct)
         state[_FILM] = films.ravel()
-        for k, row in enumerate(np.abs(outputs).argmax(axis=0)):
-            peak = outputs[row, k]  # the sample of largest magnitude, with its sign
-            if abs(peak) > abs(state[_PEAK.start + k]):
-                state[_PEAK.start + k] = peak
-        if step % self._steps_per_sample == 0:
-            state[_SAMPLE:_SAMPLE + 2] = state[_PEAK]
-            if self._noise is not None:
-                state[_SAMPLE:_SAMPLE + 2] += (self._config.noise_std_mps2
-                                               * self._noise.Eval(context))
-            state[_PEAK] = 0.0
-        discrete_state.set_value(self._state, state)
+        # The sample of largest magnitude, with its sign, held over the sensor period.
+        rows = np.abs(outputs).argmax(axis=0).tolist()
+        peaks = state[_PEAK].tolist()
+        for k in (0, 1):
+            peak = outputs.item(rows[k], k)
+            if abs(peak) > abs(peaks[k]):
+                peaks[k] = peak
+        if step % self._steps_per_sample:
+            state[_PEAK] = peaks
+            return
+        state[_SAMPLE:_SAMPLE + 2] = peaks
+        if self._noise is not None:
+            state[_SAMPLE:_SAMPLE + 2] += self._config.noise_std_mps2 * self._noise.Eval(context)
+        state[_PEAK] = 0.0
 
     def _impact_loads(self, step_start: float, state: np.ndarray):
         """(n, 2) impact forces [N] over this step's internal steps, or None."""
+        impulses = state[_IMPULSE].tolist()
+        if impulses[0] <= 0.0 and impulses[1] <= 0.0:
+            return None
         direct = None
-        for k in range(2):
-            impulse, onset = state[_IMPULSE.start + k], state[_ONSET.start + k]
-            duration = state[_DURATION.start + k]
-            if impulse <= 0.0 or step_start >= onset + duration:
+        for k in (0, 1):
+            onset, duration = state.item(_ONSET.start + k), state.item(_DURATION.start + k)
+            if impulses[k] <= 0.0 or step_start >= onset + duration:
                 continue
             if direct is None:
                 direct = np.zeros((self._matrices.substeps, 2))
             direct[:, k] = halfsine_mean_forces(step_start, self._matrices.substep_starts,
-                                                self._matrices.h, onset, impulse, duration)
+                                                self._matrices.h, onset, impulses[k], duration)
             if step_start + self._dt >= onset + duration:
                 state[_IMPULSE.start + k] = 0.0  # delivered
         return direct
@@ -298,7 +306,8 @@ class PadFilms(LeafSystem):
         """(n, 2) the texture's inertial load [N] on each fingertip over this step's internal
         steps, or None when neither pad's texture is above TEXTURE_FLOOR_MPS2."""
         texture = self._texture.Eval(context)
-        if abs(texture[1]) <= TEXTURE_FLOOR_MPS2 and abs(texture[4]) <= TEXTURE_FLOOR_MPS2:
+        if (abs(texture.item(1)) <= TEXTURE_FLOOR_MPS2
+                and abs(texture.item(4)) <= TEXTURE_FLOOR_MPS2):
             return None
         phase, amplitude, speed = texture[0::3], texture[1::3], texture[2::3]
         # The texture sample in force now is the one taken at the last multiple of its

@@ -39,8 +39,9 @@ def time_tactile_pad_evaluation(scenario, repeats: int = 200) -> dict:
 def time_pad_film_update(scenario, repeats: int = 500) -> dict:
     """Median wall time [us] of one PadFilms update (both pads, one plant step) during the
     reach (free motion) and while the box is held (texture and contact forces read)."""
-    diagram, _, segments = MakeIdealGraspDiagram(scenario)
-    simulator = Simulator(diagram)
+    grasp = MakeIdealGraspDiagram(scenario)
+    diagram, segments = grasp.diagram, grasp.controller.segments
+    simulator = MakeSimulator(diagram, scenario)
     films = diagram.GetSubsystemByName("station").GetSubsystemByName("pad_films")
     result = {}
     for label, phase in (("free_motion", "reach"), ("holding", "hold")):
