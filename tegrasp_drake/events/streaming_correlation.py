@@ -19,10 +19,15 @@ the signal's dynamic range over the last `slack` samples.
 Until N samples have been pushed the window is not full (its older part is zero padding,
 which would make a few noise samples look like an onset): the scores stay 0.
 
+Missing samples: a NaN or infinite sample (a sensor glitch, a lost frame) is missing. It
+enters the window as the channel's previous sample (so the running sums stay finite and
+exact), and the channel's score is 0 until N samples have followed it, i.e. until it has
+left the window: the channel recovers within one window and is never poisoned.
+
 All history is in one flat float vector (a Context's discrete state):
 
     [active_event, offset, samples_pushed (saturating at N), scores (channels),
-     [high, low, energy] per channel,
+     [high, low, energy] per channel, clean samples in a row per channel (saturating at N),
      rows: channels x (window buffer (N + slack) | correlation buffer (2N - 1 + slack))]
 
 Correlation column j of a row holds the lag n = j - (N + slack) - offset - (N - 1).
@@ -99,7 +104,8 @@ class StreamingCorrelator:
         self._spectra = [np.conj(np.fft.rfft(y, self._fft_length)) for y in templates]
         self._min_contrast = min_contrast
         self._statistics_at = _HEADER + n_channels
-        self._rows_at = self._statistics_at + _STATISTICS * n_channels
+        self._clean_at = self._statistics_at + _STATISTICS * n_channels
+        self._rows_at = self._clean_at + n_channels
         self._correlation_at = self._window.columns  # first correlation column of a row
         self._row_length = self._window.columns + 2 * length - 1 + slack
         self._size = self._rows_at + n_channels * self._row_length
@@ -124,9 +130,11 @@ class StreamingCorrelator:
         return self._size
 
     def initial_state(self) -> np.ndarray:
-        """An all-zero window, no active event, scores 0."""
+        """An all-zero window, no active event, scores 0; the zero padding counts as clean
+        (a window is scored only once full anyway)."""
         state = np.zeros(self._size)
         state[0] = NO_EVENT
+        state[self._clean_at:self._rows_at] = self._length
         return state
 
     def active_event(self, state: np.ndarray) -> int:
@@ -155,6 +163,14 @@ class StreamingCorrelator:
         length = self._length
         rows = state[self._rows_at:].reshape(self._n_channels, self._row_length)
         active, offset, pushed = state[:_HEADER].tolist()
+        samples = np.asarray(samples, dtype=float)
+        finite = np.isfinite(samples)
+        clean = state[self._clean_at:self._rows_at]
+        if not finite.all():
+            # Missing: hold the channel's newest sample; score it 0 for one window.
+            newest = self._window.window(rows, int(offset))[:, -1]
+            samples = np.where(finite, samples, newest)
+        clean[:] = np.where(finite, np.minimum(clean + 1.0, length), 0.0)
         offset = self._window.push(rows, int(offset), samples)
         if pushed < length:
             pushed += 1.0
@@ -177,15 +193,17 @@ class StreamingCorrelator:
                     raise ValueError("the state must be a C-contiguous float64 vector")
                 daxpy(reversed_template, state, length, new, 0, 1, at + length, 1)
             statistics = slide_statistics(
-                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new, window)
+                state[self._statistics_at:self._clean_at].tolist(), dropped_and_new, window)
         scores = []
+        complete = (clean >= length).tolist()
         for i, (start, _, template_norm, template_flat) in enumerate(terms):
             lags = state[start + offset:start + offset + 2 * length - 1]
             high, low, energy = statistics[_STATISTICS * i:_STATISTICS * (i + 1)]
             # argmax is several times cheaper than max here, and finds the same peak.
             scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
-                                        high, low, template_flat, self._min_contrast))
-        state[:self._rows_at] = [event, offset, pushed] + scores + statistics
+                                        high, low, template_flat, self._min_contrast)
+                          if complete[i] else 0.0)
+        state[:self._clean_at] = [event, offset, pushed] + scores + statistics
         return state[_HEADER:self._statistics_at]
 
     def _recompute(self, rows: np.ndarray, offset: int, event: int) -> None:
