@@ -105,3 +105,10 @@ def test_a_hardware_result_is_json(tmp_path):
     assert data["transitions"][0]["to"] == "Failed"
     assert data["realtime_rate"] == pytest.approx(3.9 / 4.0)
     assert data["log"] == str(tmp_path / "run.lcmlog")
+
+
+def test_demo_replaces_its_default_folder_and_trial_keeps_its_runs():
+    demo = cli.build_parser().parse_args(["demo"])
+    trial = cli.build_parser().parse_args(["trial"])
+    assert (demo.out, demo.default_out, demo.replace_default_out) == (None, "out/demo", True)
+    assert (trial.out, trial.default_out, trial.replace_default_out) == (None, "out/trial", False)
