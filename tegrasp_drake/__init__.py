@@ -13,6 +13,9 @@ CamelCase (Make*, Load*, Add*), everything else is snake_case:
     simulator.AdvanceTo(12.0)
     print(grasp.controller.transitions(simulator.get_context()))
 
+The README's "From Python" section has a complete DiagramBuilder example and a sweep;
+tests/test_readme_examples.py runs both.
+
 Names are imported on first use, so that `import tegrasp_drake` (and the command line's
 help) does not load pydrake.
 """
@@ -61,6 +64,7 @@ _PUBLIC = {
     "record_events": "tegrasp_drake.experiments.record_events",
     # Runs: a simulated trial, the ideal grasp, a run on the devices, a sweep.
     "run_trial": "tegrasp_drake.experiments.trial",
+    "run_trial_from_spec": "tegrasp_drake.experiments.trial",
     "TrialResult": "tegrasp_drake.experiments.trial",
     "run_ideal_grasp": "tegrasp_drake.experiments.ideal_grasp",
     "TrialLog": "tegrasp_drake.experiments.trial_log",
@@ -70,6 +74,7 @@ _PUBLIC = {
     "LoadSweepSpec": "tegrasp_drake.experiments.sweep.spec",
     "run_sweep": "tegrasp_drake.experiments.sweep.runner",
     "write_reports": "tegrasp_drake.experiments.sweep.reports",
+    "load_records": "tegrasp_drake.experiments.sweep.records",
 }
 
 __all__ = sorted(_PUBLIC)

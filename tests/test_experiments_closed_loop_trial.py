@@ -22,7 +22,10 @@ def trigger_of(result, step):
 
 def test_tegrasp_trial_json_at_the_expected_position(tmp_path, capsys):
     assert main(["trial", "--json", "--out", str(tmp_path)]) == 0
-    result = json.loads(capsys.readouterr().out)
+    captured = capsys.readouterr()
+    result = json.loads(captured.out)
+    assert json.loads((tmp_path / "result.json").read_text()) == result
+    assert "simulated" not in captured.err  # no progress bar off a terminal
     assert result["hold_success"] and result["unload_success"]
     for entry in result["transitions"]:
         assert {"t", "from", "to", "trigger"} <= set(entry)

@@ -14,6 +14,7 @@ programs: emulators/emulator_process.py reads it) and the line "ready" when they
 They run until Ctrl-C (SIGINT) or SIGTERM.
 """
 
+import argparse
 import signal
 
 from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
@@ -25,10 +26,20 @@ from tegrasp_drake.hardware.config import DEFAULT_LCM_URL
 DEVICES = (*EMULATED_DEVICES, "all")
 
 
+EPILOG = """\
+examples:
+  tegrasp emulate all --trial out/demo/trial.npz --write-config hw.yaml
+  tegrasp emulate robotiq --scenario-name box --inject-fault 0x0E@3
+
+Then `tegrasp hardware --config hw.yaml` in another shell; Ctrl-C stops the emulators."""
+
+
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "emulate", help="emulate the Jaco (LCM), the Robotiq 2F-85 (Modbus RTU on a pty) "
-        "and the myRIO tactile stream (pty) for `tegrasp hardware`")
+        "and the myRIO tactile stream (pty) for `tegrasp hardware`",
+        description=__doc__.split("\n\n")[0], epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("device", choices=DEVICES)
     add_scenario_arguments(parser)
     parser.add_argument("--lcm-url", default=DEFAULT_LCM_URL,

@@ -5,19 +5,42 @@ devices the config names (hardware/config.py; `tegrasp emulate ... --write-confi
 writes one for the emulators). State transitions and device faults are printed as they
 happen; everything on the bus goes to an LCM log (experiments/run_log.py; `tegrasp replay
 LOG`, `lcm-logplayer LOG`). Exit code: 0 when the grasp finished without a fault, 2 after a
-fault or a Failed state machine, 1 when a device did not come up.
+fault or a Failed state machine, 1 when a device did not come up. The run's result
+(transitions, faults, times, device counters) goes beside the log: run.result.json.
 """
 
+import argparse
 import datetime
+import pathlib
 
+from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
+from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
 from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
                                                    scenario_from_arguments)
 from tegrasp_drake.control.controller_config import CONTROLLERS
 
 
+DESCRIPTION = """\
+The grasp on the real devices (or their emulators), in real time: the controller diagram of
+`tegrasp trial` on MakeHardwareStation. Prints each state transition and device fault as it
+happens, logs the whole LCM bus (tegrasp replay LOG, lcm-logplayer LOG) and writes the
+result beside the log (run.lcmlog -> run.result.json). Exit code 0: the grasp finished
+without a fault; 2: a fault or a Failed state machine; 1: a device did not come up."""
+
+EPILOG = """\
+examples:
+  tegrasp hardware --config hw.yaml --scenario-name box --log out/run.lcmlog
+  tegrasp hardware --config hw.yaml --config-set tactile.port=/dev/ttyACM1 --duration 20
+
+`tegrasp emulate all --trial out/demo/trial.npz --write-config hw.yaml` writes hw.yaml for
+emulated devices. An existing --log FILE is refused unless --overwrite."""
+
+
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
-        "hardware", help="run the grasp in real time on the devices of a hardware config")
+        "hardware", help="run the grasp in real time on the devices of a hardware config",
+        description=DESCRIPTION, epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--config", metavar="FILE",
                         help="hardware config YAML (HardwareStationConfig fields); default: "
                         "the scenario's `station: !HardwareStationConfig {...}`")
@@ -29,6 +52,8 @@ def register(subparsers) -> None:
                         help="default: the scenario's (controller.name, memorized)")
     parser.add_argument("--log", metavar="FILE", default=None,
                         help="LCM log to write (default: out/hardware/run-<time>.lcmlog)")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace the --log FILE (and its result) if it exists")
     parser.add_argument("--duration", type=float, default=None,
                         help="stop after this many seconds (default: when the grasp ends)")
     parser.set_defaults(func=run)
@@ -55,18 +80,25 @@ def run(args) -> int:
                          "is `!HardwareStationConfig {...}`")
     log = args.log or (f"out/hardware/run-"
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
+    if pathlib.Path(log).exists() and not args.overwrite:
+        raise SystemExit(f"tegrasp: error: {log} already holds a run's log; give another "
+                         "--log, or --overwrite to replace it")
+    result_path = result_path_beside_log(log)
+    result_path.unlink(missing_ok=True)
     try:
-        result = run_on_hardware(scenario, config=config, controller=args.controller,
-                                 events_dir=str(paths.events_dir()), log_path=log,
-                                 duration=args.duration,
-                                 out=lambda line: print(line, flush=True))
+        with SimulatedTimeBar("hardware", enabled=progress_wanted(args)) as progress:
+            result = run_on_hardware(scenario, config=config, controller=args.controller,
+                                     events_dir=str(paths.events_dir()), log_path=log,
+                                     duration=args.duration, out=progress.write,
+                                     progress=progress)
     except HardwareNotReadyError as e:
         print(f"tegrasp: error: {e}", flush=True)
         return 1
+    write_result(result_path, dict(result.as_dict(), result=str(result_path)))
     print(f"ran {result.sim_time:.2f} s in {result.wall_time:.2f} s (real-time rate "
           f"{result.realtime_rate:.3f}); {len(result.transitions)} transitions, "
           f"{len(result.faults)} faults; log {result.log_path} ({result.log_messages} "
-          "messages)", flush=True)
+          f"messages), result {result_path}", flush=True)
     failed = result.faults or (result.transitions
                                and result.transitions[-1]["to"] == "Failed")
     return 2 if failed else 0

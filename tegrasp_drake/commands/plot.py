@@ -6,6 +6,7 @@
 LOG is a trial.npz written by `tegrasp trial` or `tegrasp demo`.
 """
 
+import argparse
 import pathlib
 
 from tegrasp_drake.rig import paths
@@ -14,9 +15,20 @@ DEFAULT_OUT = {"events": "out/memorized_events.png", "trial": "out/trial_states.
                "avoid": "out/avoid.png"}
 
 
+EPILOG = """\
+examples:
+  tegrasp plot events                            # Fig. 5c: out/memorized_events.png
+  tegrasp plot trial out/demo/trial.npz --out out/demo/fig9.png
+  tegrasp plot avoid out/hit/trial.npz           # Fig. 10: the reaction to a hit
+
+out/hit/trial.npz: `tegrasp trial --set disturbance.hit_time_s=7.0 --out out/hit`."""
+
+
 def register(subparsers) -> None:
     parser = subparsers.add_parser("plot", help="figures: events (Fig. 5c), trial (Fig. 9), "
-                                                "avoid (Fig. 10)")
+                                                "avoid (Fig. 10)",
+                                   description=__doc__, epilog=EPILOG,
+                                   formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("what", choices=tuple(DEFAULT_OUT))
     parser.add_argument("log", nargs="?", help="trial log (trial.npz) for trial and avoid")
     parser.add_argument("--events", default=None, help="events folder (default: the package's)")

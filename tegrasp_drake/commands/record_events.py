@@ -5,13 +5,32 @@ of its ideal grasp (experiments/record_events.py) are stored in the events folde
 index (format: tegrasp_drake/events/FORMAT.md).
 """
 
+import argparse
+
+from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 
+DESCRIPTION = """\
+Simulates the ideal open-loop grasp (Sec. III-A) of each object and stores its memorized
+tactile events (Reach-Load, Load-Lift, Place-Unload) with an index (format:
+tegrasp_drake/events/FORMAT.md)."""
+
+EPILOG = """\
+examples:
+  tegrasp record-events --object box          # re-record the box's events into events/
+  tegrasp record-events --scenario my.yaml --scenario-name my_can --out my_events
+
+The events of an object are replaced by the new recording (that is what re-recording is);
+give --out to write them elsewhere."""
+
+
 def register(subparsers) -> None:
-    parser = subparsers.add_parser("record-events",
-                                   help="simulate the ideal grasp and store memorized events")
+    parser = subparsers.add_parser(
+        "record-events", help="simulate the ideal grasp and store memorized events",
+        description=DESCRIPTION, epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--object", action="append", choices=sorted(BUILTIN_OBJECTS),
                         help="only this object (repeatable; default: all three)")
     parser.add_argument("--out", default=None,
@@ -41,7 +60,8 @@ def run(args) -> int:
     from tegrasp_drake.experiments.record_events import record_events
     out = args.out or paths.events_dir()
     for object_name, scenario in _scenarios_to_record(args):
-        events = record_events(object_name, scenario)
+        with SimulatedTimeBar(object_name, enabled=progress_wanted(args)) as progress:
+            events = record_events(object_name, scenario, progress=progress)
         written = save_memorized_events(out, events.values())
         print(f"{object_name}: {', '.join(events)} -> {len(written)} files in {out}")
     return 0

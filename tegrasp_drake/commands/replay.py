@@ -3,12 +3,21 @@ its tactile data offline, two ways (experiments/run_log.replay_run_log): expecti
 event of the mode the logged transitions show, and expecting the memorized events one
 after another, as an EventSequencer does."""
 
+import argparse
 import json
+
+
+EPILOG = """\
+examples:
+  tegrasp replay out/run.lcmlog                  # what the log holds; the matcher, offline
+  tegrasp replay out/run.lcmlog --events my_events --object box --json"""
 
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
-        "replay", help="re-run the event matcher offline on the LCM log of `tegrasp hardware`")
+        "replay", help="re-run the event matcher offline on the LCM log of `tegrasp hardware`",
+        description=__doc__, epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("log", metavar="LOG")
     parser.add_argument("--events", default=None,
                         help="memorized events folder (default: the one the run used, "

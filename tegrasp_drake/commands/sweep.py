@@ -2,13 +2,14 @@
 
     tegrasp sweep [--spec FILE.yaml] [--objects NAME ...] [--controllers NAME ...]
                   [--attempts N] [--base-seed N] [--workers N] [--out DIR]
-                  [--scheduler tcp://HOST:PORT] [--no-progress] [--benchmark]
+                  [--scheduler tcp://HOST:PORT] [--no-progress] [--benchmark] [-v | -q]
 
 Runs every trial without a finished record in `--out` (so the same command resumes a
 killed sweep), then writes table1.md, table1.csv, statistics.md, statistics.json and
 success_maps.png there. Options given on the command line override the spec file.
 Exit codes: 0 all trials finished, 1 some trials raised or were left unfinished
-(run again to retry them), 2 bad input (nothing was run).
+(run again to retry them), 2 bad input (nothing was run). The progress bar (trials done,
+rate, ETA) is shown on a terminal only, and not with --no-progress or --quiet.
 
 Testing hook: `--trial-function MODULE:ATTR` (hidden from --help) replaces the real
 trial function, `tegrasp_drake.experiments.trial:run_trial_from_spec`; the tests use it to run
@@ -19,6 +20,9 @@ import argparse
 import dataclasses
 import importlib
 import sys
+
+from tegrasp_drake.commands.progress import progress_wanted
+from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 
 from tegrasp_drake.experiments.sweep.reports import write_reports
 from tegrasp_drake.experiments.sweep.runner import (
@@ -40,6 +44,16 @@ from tegrasp_drake.rig.typed_yaml import ConfigError
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.experiments.trial:run_trial_from_spec"
 DEFAULT_OUT = "results/sweep"
 
+EPILOG = """\
+examples:
+  tegrasp sweep --out results/sweep            # Table I: 3 objects x 9 markers x 3, 3 controllers
+  tegrasp sweep --objects box --controllers memorized --attempts 1 --workers 2 --out out/box
+  tegrasp sweep --spec analysis/example_sweep.yaml --scheduler tcp://10.0.0.5:8786
+
+Re-running a command into the same --out resumes the sweep: finished trials are kept and
+only the missing ones run. Reports: table1.md/.csv, statistics.md/.json, summary.md (the
+README's results table) and success_maps.png."""
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--spec", metavar="FILE.yaml",
@@ -60,7 +74,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                         help="run on this Dask distributed scheduler (the 'dask' extra)")
     parser.add_argument("--no-progress", action="store_true",
-                        help="no progress bar")
+                        help="no progress bar (there is none off a terminal either)")
     parser.add_argument("--benchmark", action="store_true",
                         help="time the memorized sweep with 1 and then 2 workers, each "
                              "into a temporary folder, and print wall times and speed-up")
@@ -71,7 +85,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "sweep", help="run the grasping experiment (Table I) over objects and controllers",
-        description=__doc__.split("\n\n")[0])
+        description=__doc__.split("\n\n")[0], epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     add_arguments(parser)
     parser.set_defaults(func=run)
 
@@ -110,13 +125,13 @@ def run(args) -> int:
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
+        progress = not args.no_progress and progress_wanted(args)
         if args.benchmark:
-            runs, identical = run_benchmark(spec, trial_function,
-                                            progress=not args.no_progress)
+            runs, identical = run_benchmark(spec, trial_function, progress=progress)
             print(benchmark_text(runs, identical))
             return 0 if identical and not any(run.errors for run in runs) else 1
         summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
-                            scheduler=args.scheduler, progress=not args.no_progress)
+                            scheduler=args.scheduler, progress=progress)
     except (ConfigError, SweepError) as error:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
@@ -128,9 +143,14 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`python -m tegrasp_drake.commands.sweep [options]`, the same as `tegrasp sweep`."""
-    parser = argparse.ArgumentParser(prog="tegrasp sweep", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="tegrasp sweep", description=__doc__.split("\n\n")[0],
+                                     epilog=EPILOG,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     add_arguments(parser)
-    return run(parser.parse_args(argv))
+    add_verbosity_arguments(parser)
+    args = parser.parse_args(argv)
+    configure_logging(args)
+    return run(args)
 
 
 if __name__ == "__main__":

@@ -1,33 +1,58 @@
 """`tegrasp trial`: one closed-loop grasp trial, its state timeline and its success.
 
 `tegrasp demo` is this command on the default scenario with a figure (the README's main job).
+Where the files go, and when an earlier run's are kept: commands/run_folder.py.
 """
 
+import argparse
 import json
-import pathlib
 
+from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
+from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
+                                               write_result)
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
 from tegrasp_drake.control.controller_config import CONTROLLERS
 
+DESCRIPTION = """\
+One closed-loop grasp trial of any scenario: the object, its placement, the controller and
+the seed, with any scenario field overridden. Prints each state transition (time, trigger,
+correlation scores), hold and unload success from the simulation's ground truth, and the
+real-time factor. Writes a new run folder: trial.npz (the log), result.json (what --json
+prints), states.png (Fig. 9) and signals.png (Fig. 5a-b)."""
 
-def add_trial_arguments(parser, *, default_out: str) -> None:
+EPILOG = """\
+examples:
+  tegrasp trial --set object_offset=[0.0,0.015]    # misplaced along the stroke: Re-Reach
+  tegrasp trial --set disturbance.hit_time_s=7.0 --out out/hit    # a hit in Hold: Avoid
+  tegrasp trial --scenario-name thin_cylinder --controller heuristic --json
+
+Without --out, each trial gets a new folder: out/trial, then out/trial-2, out/trial-3, ...
+A folder given with --out that holds a run is refused unless --overwrite."""
+
+
+def add_trial_arguments(parser, *, out_help: str) -> None:
     add_scenario_arguments(parser)
     parser.add_argument("--controller", choices=CONTROLLERS, default=None,
                         help="memorized: the paper's memorized tactile events; heuristic: "
                              "hand-set thresholds (Romano et al. style); open_loop: the ideal "
                              "scripted grasp (default: the scenario's controller.name)")
-    parser.add_argument("--out", default=default_out,
-                        help="folder for the trial log (trial.npz) and figures (states.png: "
-                             "Fig. 9; signals.png: Fig. 5a-b)")
-    parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    parser.add_argument("--out", metavar="DIR", default=None, help=out_help)
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace the run that the --out folder holds")
+    parser.add_argument("--json", action="store_true",
+                        help="print the result as one JSON object (also in result.json)")
     parser.add_argument("--meshcat", action="store_true",
                         help="show the run in Meshcat (prints the URL; waits for Enter at the end)")
 
 
 def register(subparsers) -> None:
-    parser = subparsers.add_parser("trial", help="run one closed-loop grasp trial")
-    add_trial_arguments(parser, default_out="out/trial")
-    parser.set_defaults(func=run)
+    parser = subparsers.add_parser(
+        "trial", help="run one closed-loop grasp trial of any scenario and controller",
+        description=DESCRIPTION, epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_trial_arguments(parser, out_help="folder for this run (default: out/trial, or the first "
+                         "of out/trial-2, -3, ... that holds no run)")
+    parser.set_defaults(func=run, default_out="out/trial", replace_default_out=False)
 
 
 def print_result(result: dict) -> None:
@@ -55,6 +80,12 @@ def run(args) -> int:
         overrides.append(f"controller.name={args.controller}")
     args.overrides = overrides
     scenario = scenario_from_arguments(args)
+    try:
+        out = choose_run_folder(args.out, default=args.default_out,
+                                replace_default=args.replace_default_out,
+                                overwrite=args.overwrite)
+    except RunFolderError as e:
+        raise SystemExit(f"tegrasp: error: {e}") from None
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.experiments.trial import run_trial
     from tegrasp_drake.experiments.figures.signals import plot_trial_signals
@@ -64,22 +95,22 @@ def run(args) -> int:
         from pydrake.geometry import StartMeshcat
         meshcat = StartMeshcat()
     try:
-        trial = run_trial(scenario, meshcat=meshcat)
+        with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
+            trial = run_trial(scenario, meshcat=meshcat, progress=progress)
     except MemorizedEventError as e:
         raise SystemExit(f"tegrasp: error: the memorized controller needs the memorized events "
                          f"of '{scenario.object.name}': {e}") from None
-    out = pathlib.Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     plot_trial_signals(trial.log, out / "signals.png")  # Fig. 5a-b: raw and processed
     result = dict(trial.result, log=str(trial.log.save(out / "trial.npz")),
                   figure=plot_trial_states(trial.log, out / "states.png"),
-                  signals_figure=str(out / "signals.png"))
+                  signals_figure=str(out / "signals.png"), result=str(out / RESULT_FILE))
+    write_result(out / RESULT_FILE, result)
     if args.json:
         print(json.dumps(result, sort_keys=True))
     else:
         print_result(result)
-        print(f"log {result['log']}, figures {result['figure']} (Fig. 9), "
-              f"{result['signals_figure']} (Fig. 5a-b)")
+        print(f"log {result['log']}, result {result['result']}, figures {result['figure']} "
+              f"(Fig. 9), {result['signals_figure']} (Fig. 5a-b)")
     if meshcat is not None and not args.json:
         input(f"Meshcat at {meshcat.web_url()}: replay the recording there; Enter to quit. ")
     return 0

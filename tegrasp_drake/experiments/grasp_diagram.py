@@ -31,7 +31,16 @@ EXTRA_TIME_S = 10.0  # beyond the ideal grasp's duration, for corrections
 
 
 def MakeStation(scenario, *, meshcat=None, lcm=None):
-    """MakeGraspStation or MakeHardwareStation, as the scenario's `station` tag says."""
+    """The station of `scenario`, simulated or real, as its `station` tag says.
+
+    `station: !SimulatedStationConfig {}` (the default): MakeGraspStation(scenario,
+    meshcat=meshcat), the simulated arm, gripper, object and sensors.
+    `station: !HardwareStationConfig {...}`: MakeHardwareStation(scenario.station, lcm=lcm),
+    the devices (the Jaco on LCM, the 2F-85 on Modbus RTU, the myRIO tactile stream); it
+    owns device threads, so use it in a `with` block, call its wait_until_ready() before
+    the Simulator's Initialize() and simulate at real-time rate (run_on_hardware does all
+    of that). Both export the same ports (simulation/station.py, hardware/station.py), so
+    AddGraspController wires either one the same way."""
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation
         return MakeHardwareStation(scenario.station, lcm=lcm)

@@ -41,6 +41,7 @@ from tegrasp_drake.experiments.trial_logging import package_versions
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
 LOGGER_SUBSCRIBE_S = 0.2  # [s] given to lcm-logger to subscribe once its file exists
 REPORT_PERIOD_S = 0.005  # [s] of Context time between looks at transitions and faults
+PROGRESS_PERIOD_S = 0.25  # [s] of Context time between calls of `progress`
 
 
 class BusLogWriter:
@@ -148,13 +149,17 @@ class RunReporter:
     """A Simulator monitor: prints and publishes new transitions and faults, and ends the
     run END_MARGIN_S after the state machine is done or failed, or after a fault."""
 
-    def __init__(self, *, diagram, station, grasp, drake_lcm, out=print):
+    def __init__(self, *, diagram, station, grasp, drake_lcm, out=print, progress=None,
+                 end_time: float = float("inf")):
         self._diagram = diagram
         self._station = station
         self._grasp = grasp
         self._lcm = drake_lcm
         self._out = out
+        self._progress = progress
+        self._end_time = end_time  # [s] the run's end unless the grasp ends first
         self._next_look = 0.0
+        self._next_progress = 0.0
         self.transitions = []  # Transition
         self.faults = []
         self.ended_at = None
@@ -178,6 +183,11 @@ class RunReporter:
             self._lcm.Publish(FAULT_CHANNEL, fault_message(fault, now).encode())
         if is_finished(self.transitions) and self.ended_at is None:
             self.ended_at = now
+        if self._progress is not None and now >= self._next_progress:
+            self._next_progress = now + PROGRESS_PERIOD_S
+            end = self._end_time if self.ended_at is None else min(
+                self._end_time, self.ended_at + END_MARGIN_S)
+            self._progress(now, end)
         if self.ended_at is not None and now >= self.ended_at + END_MARGIN_S:
             return EventStatus.ReachedTermination(self._diagram, "the grasp has ended")
         return EventStatus.Succeeded()
@@ -197,6 +207,18 @@ class HardwareRunResult:
     def realtime_rate(self) -> float:
         return self.sim_time / self.wall_time if self.wall_time > 0 else float("nan")
 
+    def as_dict(self) -> dict:
+        """The JSON form (the result.json beside the log): times in s, faults and device
+        counters as dicts (DeviceFault, RobotiqModbusCounters, TactileReaderCounters)."""
+        return {"transitions": self.transitions,
+                "faults": [dataclasses.asdict(fault) for fault in self.faults],
+                "sim_time_s": self.sim_time, "wall_time_s": self.wall_time,
+                "realtime_rate": self.realtime_rate if self.wall_time > 0 else None,
+                "log": None if self.log_path is None else str(self.log_path),
+                "log_messages": self.log_messages,
+                "device_counters": {device: dataclasses.asdict(counters) for device, counters
+                                    in self.device_counters.items()}}
+
 
 def run_info_message(scenario, config, controller: str, events_dir: str):
     """The TEGRASP_RUN_INFO message of a run."""
@@ -214,13 +236,14 @@ def run_info_message(scenario, config, controller: str, events_dir: str):
 def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
                     controller: str | None = None, events=None, events_dir: str = "",
                     log_path=None, duration: float | None = None, drake_lcm=None,
-                    out=print) -> HardwareRunResult:
+                    out=print, progress=None) -> HardwareRunResult:
     """Runs the grasp on the devices of `config` (default: the scenario's `station`, which
     must then be a HardwareStationConfig) in real time; see the module docstring.
 
     controller: the controller's name (default: the scenario's); events: its memorized
     events (default: the package's for the scenario's object); drake_lcm: a DrakeLcm to use
-    instead of one on the config's URL."""
+    instead of one on the config's URL; out: prints a line; progress: called as
+    progress(t, end) [s of Context time] as the run goes."""
     config = config or scenario.station
     if not isinstance(config, HardwareStationConfig):
         raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "
@@ -239,14 +262,16 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
                 f"{config.gripper.port}, tactile on {config.tactile.port}")
             station.wait_until_ready()
             simulator = MakeSimulator(diagram, scenario, realtime=True)
+            end_time = duration if duration is not None else parts.time_limit
             reporter = RunReporter(diagram=diagram, station=parts.station,
                                    grasp=parts.controller,
-                                   drake_lcm=station.lcm, out=out)
+                                   drake_lcm=station.lcm, out=out, progress=progress,
+                                   end_time=end_time)
             simulator.set_monitor(reporter)
             simulator.Initialize()
             out("devices ready; running in real time")
             start = time.monotonic()
-            simulator.AdvanceTo(duration if duration is not None else parts.time_limit)
+            simulator.AdvanceTo(end_time)
             wall = time.monotonic() - start
             counters = {"gripper": station.gripper_client.counters(),
                         "tactile": station.tactile_reader.counters()}

@@ -8,22 +8,28 @@ by their maxima (format: tegrasp_drake/events/FORMAT.md). `tegrasp record-events
 them in the events folder with an index.
 """
 
+import logging
+
 from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
 from tegrasp_drake.experiments.grasp_outcome import physical_events
 from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.experiments.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.experiments.trial_logging import package_versions
 
+logger = logging.getLogger(__name__)
+
 EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "grip_force_reached",
                        "place_unload": "table_touch"}
 
 
-def record_events(object_name: str, scenario=None):
+def record_events(object_name: str, scenario=None, *, progress=None):
     """Runs the ideal grasp of one object (a built-in one by name, or the object of
-    `scenario`); returns its MemorizedEvents."""
+    `scenario`); returns its MemorizedEvents. progress: as run_ideal_grasp's."""
     scenario = scenario or LoadScenario(name=object_name)
-    log, _ = run_ideal_grasp(scenario)
+    log, _ = run_ideal_grasp(scenario, progress=progress)
     events = physical_events(log, scenario.grasp.grip_force, scenario.object)
+    logger.info("%s: physical events of the ideal grasp at %s", object_name,
+                {name: events[name] for name in EVENT_OF_TRANSITION.values()})
     missing = [name for name in EVENT_OF_TRANSITION.values() if events[name] is None]
     if missing:
         raise RuntimeError(f"the ideal grasp of {object_name} shows no {', '.join(missing)}")

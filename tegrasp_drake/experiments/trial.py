@@ -6,6 +6,7 @@ trial function (tegrasp_drake/sweep): it turns a trial of a sweep into a scenari
 """
 
 import dataclasses
+import logging
 import time
 
 import numpy as np
@@ -28,6 +29,8 @@ CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
 # within it, it is the taxel sampling (one 108 Hz sample) and noise around a threshold equal
 # to the ground truth's (the heuristic Load-Lift rule), and its latency is kept as measured.
 FALSE_TRIGGER_MARGIN_S = 0.01
+
+logger = logging.getLogger(__name__)
 
 
 @dataclasses.dataclass
@@ -98,24 +101,44 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
             "failure": next((e.reason for e in transitions if e.to_mode == Mode.FAILED), "")}
 
 
-def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialResult:
-    """Simulates one trial of `scenario` with its controller; returns its TrialResult."""
+def run_trial(scenario, *, meshcat=None, events=None, max_time=None,
+              progress=None) -> TrialResult:
+    """Simulates one trial of `scenario` with its controller; returns its TrialResult.
+
+    progress: called as progress(t, end) [s, simulated] as the run goes (`end` shrinks to
+    the state machine's end plus END_MARGIN_S once it is Done or Failed)."""
     grasp = MakeGraspDiagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
                                 events=events)
     controller, loggers = grasp.controller, grasp.loggers
     simulator = MakeSimulator(grasp.diagram, scenario)
     context = simulator.get_mutable_context()
     limit = max_time if max_time is not None else grasp.time_limit
+    logger.info("trial: %s at offset %s m, controller %s, seed %d; simulating up to %.1f s",
+                scenario.object.name, list(scenario.object_offset), controller.name,
+                scenario.random_seed, limit)
+    if logger.isEnabledFor(logging.DEBUG):
+        from tegrasp_drake.experiments.scenario import scenario_to_yaml
+        logger.debug("the trial's scenario:\n%s", scenario_to_yaml(scenario))
     if meshcat is not None:
         meshcat.StartRecording()
     start = time.perf_counter()
     simulator.Initialize()
     ended_at = None
+    reported = 0
     while context.get_time() < limit - 1e-9:
         simulator.AdvanceTo(min(context.get_time() + CHECK_PERIOD_S, limit))
+        if logger.isEnabledFor(logging.INFO):
+            transitions = controller.transitions(context)
+            for transition in transitions[reported:]:
+                logger.info("%7.3f s  %s -> %s [%s] %s", transition.t,
+                            transition.from_mode.label, transition.to_mode.label,
+                            transition.trigger.value, transition.reason)
+            reported = len(transitions)
         if ended_at is None and controller.current_mode(context) in TERMINAL_MODES:
             ended_at = context.get_time()
             limit = min(limit, ended_at + END_MARGIN_S)
+        if progress is not None:
+            progress(context.get_time(), limit)
     wall = time.perf_counter() - start
     if meshcat is not None:
         meshcat.StopRecording()
@@ -136,6 +159,8 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None) -> TrialRes
     # For the Fig. 5a-b plot (figures.py): when each state began, and the physical events.
     log.meta["phase_starts"] = {e.to_mode.label: e.t for e in reversed(transitions)}
     log.meta["events"] = result["physical_events"]
+    logger.info("trial: simulated %.2f s in %.2f s wall; hold %s, unload %s", sim_time, wall,
+                result["hold_success"], result["unload_success"])
     return TrialResult(result, log)
 
 

@@ -65,8 +65,8 @@ def load_trial_log(path) -> TrialLog:
     """Reads a TrialLog; raises TrialLogError naming the file on any defect."""
     path = pathlib.Path(path)
     if not path.is_file():
-        raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp demo "
-                            "--log FILE`)")
+        raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp trial "
+                            "--out DIR`: DIR/trial.npz, or `tegrasp demo`: out/demo/trial.npz)")
     try:
         with np.load(path, allow_pickle=False) as data:
             meta = json.loads(str(data["meta"]))

@@ -37,6 +37,11 @@ from tegrasp_drake.experiments.sweep.spec import (
     product_grid,
     validate_spec,
 )
+from tegrasp_drake.experiments.sweep.summary import (
+    readme_with_summaries,
+    summary_markdown,
+    write_summary,
+)
 from tegrasp_drake.experiments.sweep.table import (
     PAPER_TABLE1,
     controller_statistics,

@@ -1,0 +1,114 @@
+"""Where a run's files go: a named folder that holds a run is refused unless --overwrite,
+`tegrasp trial` without --out keeps every run in a new folder, `tegrasp demo` replaces its
+own; result.json is written whole; a hardware run's result goes beside its log."""
+
+import dataclasses
+import json
+
+import pytest
+
+from tegrasp_drake import cli
+from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
+                                               first_free_folder, result_path_beside_log,
+                                               write_result)
+from tegrasp_drake.experiments.hardware_run import HardwareRunResult
+from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+from tegrasp_drake.hardware.device_fault import DeviceFault
+from tegrasp_drake.hardware.myrio.serial_reader import TactileReaderCounters
+from tegrasp_drake.hardware.myrio.tactile_frame import TactileDecoderCounters
+from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusCounters
+
+
+def earlier_run(folder, name="trial.npz"):
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / name).write_text("an earlier run")
+    return folder
+
+
+@pytest.mark.parametrize("command", ["trial", "demo"])
+@pytest.mark.parametrize("left", ["trial.npz", RESULT_FILE])
+def test_a_named_folder_that_holds_a_run_is_refused_before_simulating(tmp_path, capsys,
+                                                                       command, left):
+    folder = earlier_run(tmp_path / "run", left)
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main([command, "--out", str(folder)])
+    message = str(exit_info.value.code)
+    assert message.startswith("tegrasp: error: ") and "\n" not in message
+    assert str(folder) in message and "--overwrite" in message and left in message
+    assert (folder / left).read_text() == "an earlier run"
+    assert capsys.readouterr().out == ""
+
+
+def test_overwrite_allows_the_named_folder_and_removes_its_old_result(tmp_path):
+    folder = earlier_run(tmp_path / "run", RESULT_FILE)
+    assert choose_run_folder(str(folder), default="unused", replace_default=False,
+                             overwrite=True) == folder
+    assert not (folder / RESULT_FILE).exists()  # a run that fails leaves no stale result
+
+
+def test_an_empty_named_folder_is_used(tmp_path):
+    (tmp_path / "run").mkdir()
+    assert choose_run_folder(str(tmp_path / "run"), default="unused", replace_default=False,
+                             overwrite=False) == tmp_path / "run"
+
+
+def test_trial_without_out_takes_the_next_free_numbered_folder(tmp_path):
+    default = tmp_path / "out" / "trial"
+    assert first_free_folder(default) == default
+    earlier_run(default)
+    earlier_run(tmp_path / "out" / "trial-2", RESULT_FILE)
+    chosen = choose_run_folder(None, default=str(default), replace_default=False,
+                               overwrite=False)
+    assert chosen == tmp_path / "out" / "trial-3" and chosen.is_dir()
+    assert (default / "trial.npz").read_text() == "an earlier run"
+
+
+def test_demo_without_out_replaces_its_own_folder(tmp_path):
+    default = earlier_run(earlier_run(tmp_path / "out" / "demo"), RESULT_FILE)
+    assert choose_run_folder(None, default=str(default), replace_default=True,
+                             overwrite=False) == default
+    assert not (default / RESULT_FILE).exists()
+
+
+def test_result_json_holds_the_result_whole(tmp_path):
+    result = {"hold_success": True, "transitions": [{"t": 3.5, "from": "Reach"}]}
+    path = write_result(tmp_path / RESULT_FILE, result)
+    assert json.loads(path.read_text()) == result
+    assert [p.name for p in tmp_path.iterdir()] == [RESULT_FILE]  # no temporary file left
+
+
+def test_hardware_refuses_an_existing_log_before_connecting(tmp_path, capsys):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    log = tmp_path / "run.lcmlog"
+    log.write_bytes(b"an earlier run")
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main(["hardware", "--config", str(config), "--log", str(log)])
+    message = str(exit_info.value.code)
+    assert message.startswith("tegrasp: error: ") and str(log) in message
+    assert "--overwrite" in message and log.read_bytes() == b"an earlier run"
+    assert result_path_beside_log(log) == tmp_path / "run.result.json"
+
+
+def test_a_hardware_result_is_json(tmp_path):
+    fault = DeviceFault(device="gripper", kind="DEVICE_FAULT", description="overcurrent",
+                        code=0x0E, since_sim_time=3.2, since_wall_time=1.7e9)
+    result = HardwareRunResult(
+        transitions=[{"t": 3.4, "from": "Load", "to": "Failed", "trigger": "fault"}],
+        faults=(fault,), sim_time=3.9, wall_time=4.0, log_path=tmp_path / "run.lcmlog",
+        log_messages=1200,
+        device_counters={"gripper": RobotiqModbusCounters(reads=300),
+                         "tactile": TactileReaderCounters(TactileDecoderCounters(frames=400))})
+    data = json.loads(write_result(tmp_path / "run.result.json", result.as_dict()).read_text())
+    assert data["faults"] == [dataclasses.asdict(fault)]
+    assert data["device_counters"]["tactile"]["decoder"]["frames"] == 400
+    assert data["transitions"][0]["to"] == "Failed"
+    assert data["realtime_rate"] == pytest.approx(3.9 / 4.0)
+    assert data["log"] == str(tmp_path / "run.lcmlog")
+
+
+def test_demo_replaces_its_default_folder_and_trial_keeps_its_runs():
+    demo = cli.build_parser().parse_args(["demo"])
+    trial = cli.build_parser().parse_args(["trial"])
+    assert (demo.out, demo.default_out, demo.replace_default_out) == (None, "out/demo", True)
+    assert (trial.out, trial.default_out, trial.replace_default_out) == (None, "out/trial", False)
