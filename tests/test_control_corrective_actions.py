@@ -94,17 +94,17 @@ def test_lift_load_switched_off_ignores_a_slip():
 
 
 def test_relift_waits_for_the_raised_force_quiet_ra_and_settling():
-    ready = dict(grip_reached=True, ra_quiet=True, time_in_load_s=CONFIG.relift_settle_s,
+    ready = dict(grip_reached=True, slip_quiet=True, time_in_load_s=CONFIG.relift_settle_s,
                  counters=Counters(lift_loads=1), config=CONFIG)
     decision = relift_after_lift_load(**ready)
     assert (decision.mode, decision.trigger) == (Mode.LIFT, Trigger.CORRECTIVE)
     assert relift_after_lift_load(**{**ready, "grip_reached": False}) is None
-    assert relift_after_lift_load(**{**ready, "ra_quiet": False}) is None
+    assert relift_after_lift_load(**{**ready, "slip_quiet": False}) is None
     assert relift_after_lift_load(**{**ready, "time_in_load_s": 0.1}) is None
 
 
 def test_the_first_load_never_relifts():
-    assert relift_after_lift_load(grip_reached=True, ra_quiet=True, time_in_load_s=5.0,
+    assert relift_after_lift_load(grip_reached=True, slip_quiet=True, time_in_load_s=5.0,
                                   counters=Counters(), config=CONFIG) is None
 
 

@@ -38,13 +38,16 @@ class Inputs:
 
     def __init__(self, machine, context):
         self.machine, self.context = machine, context
-        self.set(match=0.0, channels=[0.0, 0.0, 0.0, 0.0], status=status())
+        self.set(match=0.0, channels=[0.0, 0.0, 0.0, 0.0], status=status(),
+                 slip_vibration=[0.0, 0.0])
         machine.GetInputPort("scores").FixValue(context, np.zeros(4))
 
-    def set(self, *, match=None, channels=None, status=None, pad_acceleration=None):
+    def set(self, *, match=None, channels=None, status=None, pad_acceleration=None,
+            slip_vibration=None):
         for name, value in (("match", [match] if match is not None else None),
                             ("channels", channels), ("gripper.status", status),
-                            ("pad_acceleration", pad_acceleration)):
+                            ("pad_acceleration", pad_acceleration),
+                            ("slip_vibration", slip_vibration)):
             if value is not None:
                 self.machine.GetInputPort(name).FixValue(self.context, np.asarray(value, float))
 
@@ -132,6 +135,42 @@ def test_a_full_grasp_driven_through_the_ports():
         ("Reach", "Load", "memorized_event"), ("Load", "Lift", "memorized_event"),
         ("Lift", "Hold", "timer"), ("Hold", "Place", "timer"),
         ("Place", "Unload", "memorized_event"), ("Unload", "Done", "timer")]
+
+
+def lift(simulator, machine, context, inputs, scenario):
+    """Drives the machine from Reach into Lift; returns the time Lift began [s]."""
+    g = scenario.grasp
+    simulator.AdvanceTo(g.settle_s + g.reach_s + 0.2)
+    inputs.set(channels=[10.0, 10.0, 0.1, 0.1], match=1.0)
+    run_until_mode(simulator, machine, Mode.LOAD, 0.01)
+    started = run_until_mode(simulator, machine, Mode.LIFT, 0.01)
+    inputs.set(match=0.0)
+    return started
+
+
+def test_a_squeeze_in_the_ra_channel_is_not_a_slip():
+    # The film reads a rising grip as RA of about 165 m/s^2 (README, "Vibration (RA)
+    # model"); only the slip band's vibration may trigger Lift-Load.
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    lift(simulator, machine, context, inputs, scenario)
+    inputs.set(channels=[10.0, 10.0, 165.0, 165.0], slip_vibration=[0.5, 0.5])
+    simulator.AdvanceTo(context.get_time() + 0.2)
+    assert mode(machine, context) == Mode.LIFT
+
+
+def test_slip_band_vibration_for_slip_s_is_a_lift_load():
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    lift(simulator, machine, context, inputs, scenario)
+    config = GraspControllerConfig()
+    inputs.set(slip_vibration=[0.0, 2.0 * config.slip_vibration_mps2])
+    began = context.get_time()
+    t = run_until_mode(simulator, machine, Mode.LOAD, 0.1)
+    assert config.slip_s <= t - began <= config.slip_s + 2 * config.update_period_s
+    command = machine.GetOutputPort("gripper_command").Eval(context)
+    assert command[ru.COMMAND_FORCE] == ru.force_byte_from_force(
+        scenario.grasp.grip_force * config.lift_load_force_factor)
 
 
 def test_one_sided_contact_re_reaches_toward_the_touching_finger():

@@ -152,11 +152,11 @@ def test_faults_name_the_device():
 
 def test_relift_after_lift_load_waits_for_force_and_quiet():
     config = GraspControllerConfig()
-    ready = dict(contact=(True, True), grip_reached=True, ra_quiet=True,
+    ready = dict(contact=(True, True), grip_reached=True, slip_quiet=True,
                  time_in_mode=config.relift_settle_s)
     decision = decide(Mode.LOAD, counters=Counters(lift_loads=1), **ready)
     assert (decision.mode, decision.trigger) == (Mode.LIFT, Trigger.CORRECTIVE)
-    assert decide(Mode.LOAD, counters=Counters(lift_loads=1), **{**ready, "ra_quiet": False}) \
+    assert decide(Mode.LOAD, counters=Counters(lift_loads=1), **{**ready, "slip_quiet": False}) \
         is None
     assert decide(Mode.LOAD, counters=Counters(lift_loads=1),
                   **{**ready, "time_in_mode": 0.5 * config.relift_settle_s}) is None

@@ -2,7 +2,8 @@ import numpy as np
 
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig, SimRobotiqDriver,
-                                                         object_status, reference_step)
+                                                         has_arrived, object_status,
+                                                         reference_step)
 
 
 def test_reference_accelerates_toward_the_goal_then_cruises():
@@ -12,6 +13,18 @@ def test_reference_accelerates_toward_the_goal_then_cruises():
 
 def test_reference_brakes_to_stop_at_the_goal():
     assert reference_step(0.0005, -0.025, 0.0, 0.025, 0.5, 0.005) > 0.0
+
+
+def test_reference_comes_to_rest_on_the_goal_instead_of_circling_it():
+    q, v, a, dt = 0.02, -0.025, 0.5, 0.005
+    velocities = []
+    for _ in range(300):
+        if has_arrived(q, v, 0.0, a, dt):
+            q, v = 0.0, 0.0
+        acceleration = reference_step(q, v, 0.0, 0.025, a, dt)
+        q, v = q + v * dt + 0.5 * acceleration * dt * dt, v + acceleration * dt
+        velocities.append(v)
+    assert q == 0.0 and not any(velocities[-100:])
 
 
 def test_object_status_reports_a_stall_before_the_goal_while_closing():

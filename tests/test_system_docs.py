@@ -18,7 +18,8 @@ import numpy as np
 import pytest
 import yaml
 from pydrake.lcm import DrakeLcm
-from pydrake.systems.framework import Diagram, LeafSystem
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.framework import Diagram, DiagramBuilder, LeafSystem
 
 import tegrasp_drake
 from tegrasp_drake.control.controller_config import (
@@ -48,9 +49,14 @@ from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.station import HardwareStation, MakeHardwareStation
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL
 from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
+from tegrasp_drake.tactile.slip_vibration_band import SlipVibrationBand
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
 from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
+from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSensorConfig,
+                                                           finger_force_indices)
+from tegrasp_drake.simulation.station import pad_geometries
 
 # Modules whose systems have no block yet: simulation/ is being rewritten on other
 # branches. Pending issue #10; the lead removes each entry (and adds the systems to
@@ -68,6 +74,17 @@ EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 @functools.cache
 def box_scenario():
     return LoadScenario(name="box")
+
+
+def pad_films() -> PadFilms:
+    """PadFilms of a plant that holds only the gripper, with every optional port."""
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), builder)
+    (gripper,) = paths.make_parser(plant).AddModels(url=GRIPPER_URL)
+    plant.Finalize()
+    return PadFilms(plant=plant, pads=pad_geometries(plant, scene_graph, gripper),
+                    force_indices=finger_force_indices(plant, gripper),
+                    config=VibrationSensorConfig(noise_std_mps2=0.05), with_texture=True)
 
 
 @contextlib.contextmanager
@@ -89,6 +106,8 @@ def hardware_station():
 CONSTRUCTORS = {
     MechanoreceptorChannels: MechanoreceptorChannels,
     WindowNormalizer: WindowNormalizer,
+    SlipVibrationBand: lambda: SlipVibrationBand(band_hz=80.0, window_s=0.01,
+                                                 sample_rate_hz=1000.0),
     EventMatcher: lambda: EventMatcher(load_memorized_events(paths.events_dir(), "box")),
     EventScorer: lambda: EventScorer(load_memorized_events(paths.events_dir(), "box")),
     EventSequencer: lambda: EventSequencer([0, 1, 2]),
@@ -113,6 +132,7 @@ CONSTRUCTORS = {
     RobotiqDriver: lambda: RobotiqDriver(RobotiqModbusClient(HardwareStationConfig().gripper)),
     HardwareStation: hardware_station,
     FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
+    PadFilms: pad_films,
 }
 
 # Documented systems that are not built here, with the reason. Empty: every one is cheap.

@@ -97,9 +97,9 @@ def re_reach_target(p_WG, shift_m: float) -> np.ndarray:
 
 def lift_load_or_fail(slip_s: float, counters: Counters,
                       config: GraspControllerConfig) -> Decision | None:
-    """In Lift: back to Load when the object has slipped for slip_s [s] (RA above
-    slip_ra_mps2) and Lift-Load is on; Failed once max_lift_loads are used up; None to
-    go on lifting."""
+    """In Lift: back to Load when the object has slipped for slip_s [s] (slip-band
+    vibration above slip_vibration_mps2) and Lift-Load is on; Failed once max_lift_loads
+    are used up; None to go on lifting."""
     if not (config.lift_load_enabled and slip_s >= config.slip_s):
         return None
     if counters.lift_loads >= config.max_lift_loads:
@@ -115,14 +115,14 @@ def lift_load_grip_force(grip_force_n: float, config: GraspControllerConfig) -> 
     return min(grip_force_n * config.lift_load_force_factor, config.max_grip_force_n)
 
 
-def relift_after_lift_load(*, grip_reached: bool, ra_quiet: bool, time_in_load_s: float,
+def relift_after_lift_load(*, grip_reached: bool, slip_quiet: bool, time_in_load_s: float,
                            counters: Counters,
                            config: GraspControllerConfig) -> Decision | None:
     """In Load after a Lift-Load: lift again once both SA reach the raised grip force
-    (grip_reached), the RA are quiet (the slip has stopped) and relift_settle_s [s] have
+    (grip_reached), the slip band is quiet (the slip has stopped) and relift_settle_s [s] have
     passed in Load; None otherwise, and always in the first Load (it waits for its
     memorized event: those describe the ideal grasp, not a re-load)."""
-    if (counters.lift_loads and grip_reached and ra_quiet
+    if (counters.lift_loads and grip_reached and slip_quiet
             and time_in_load_s >= config.relift_settle_s):
         return Decision(Mode.LIFT, Trigger.CORRECTIVE, "raised grip force reached (Lift-Load)")
     return None

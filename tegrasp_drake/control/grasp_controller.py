@@ -23,6 +23,7 @@ from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachi
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
 from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
+from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
 _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
@@ -151,6 +152,12 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
         builder.Connect(station.GetOutputPort(f"tactile.{finger}_pad_acceleration"),
                         accelerations.get_input_port(k))
     builder.Connect(accelerations.get_output_port(), machine.GetInputPort("pad_acceleration"))
+    config = scenario.controller
+    builder.Connect(AddSlipVibrationBand(builder, accelerations.get_output_port(),
+                                         band_hz=config.slip_band_hz,
+                                         window_s=config.slip_window_s,
+                                         sample_rate_hz=scenario.vibration.sample_rate_hz),
+                    machine.GetInputPort("slip_vibration"))
     builder.Connect(machine.GetOutputPort("X_WG_desired"), X_WG_desired)
     builder.Connect(machine.GetOutputPort("gripper_command"),
                     station.GetInputPort("gripper.command"))

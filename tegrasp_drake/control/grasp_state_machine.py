@@ -119,6 +119,7 @@ class GraspStateMachine(LeafSystem):
         - channels
         - gripper.status
         - pad_acceleration (optional)
+        - slip_vibration
         - device_fault (optional)
         output_ports:
         - X_WG_desired
@@ -133,6 +134,8 @@ class GraspStateMachine(LeafSystem):
         gripper.status: the 2F-85 status bytes (robotiq_units order).
         pad_acceleration: [left xyz, right xyz] (m/s^2, pad frames), for the Avoid
             direction; unconnected: Avoid moves straight up.
+        slip_vibration: [left, right] the pads' vibration in the slip band (m/s^2,
+            tactile.slip_vibration_band), for Lift-Load.
         device_fault: an abstract str, "" when all devices are alive, else the watchdog's
             message; unconnected: no faults.
         X_WG_desired: RigidTransform, the grasp frame's desired pose in world.
@@ -157,6 +160,7 @@ class GraspStateMachine(LeafSystem):
         self._channels = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
         self._status = self.DeclareVectorInputPort("gripper.status", ru.STATUS_SIZE)
         self._pad_acceleration = self.DeclareVectorInputPort("pad_acceleration", 6)
+        self._slip_vibration = self.DeclareVectorInputPort("slip_vibration", 2)
         self._device_fault = self.DeclareAbstractInputPort("device_fault", AbstractValue.Make(""))
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
@@ -286,7 +290,8 @@ class GraspStateMachine(LeafSystem):
         one_sided_since = (s.one_sided_since if s.one_sided_since >= 0 else t) if one_sided \
             else -1.0
         ra = float(max(channels[2], channels[3]))
-        slipping = s.mode == Mode.LIFT and ra > config.slip_ra_mps2
+        slip_vibration = float(max(self._slip_vibration.Eval(context)))
+        slipping = s.mode == Mode.LIFT and slip_vibration > config.slip_vibration_mps2
         slip_since = (s.slip_since if s.slip_since >= 0 else t) if slipping else -1.0
         moving_stage = s.stage in (Stage.MOVING, Stage.NONE)
         motion_done = moving_stage and s.segment.done(t)
@@ -313,7 +318,8 @@ class GraspStateMachine(LeafSystem):
             closed_on_nothing=closed_on_nothing,
             grip_reached=bool(min(channels[0], channels[1])
                               >= config.grip_fraction * s.grip_force),
-            slip_s=t - slip_since if slipping else 0.0, ra_quiet=ra <= config.slip_ra_mps2,
+            slip_s=t - slip_since if slipping else 0.0,
+            slip_quiet=slip_vibration <= config.slip_vibration_mps2,
             hit=s.mode == Mode.HOLD and is_hit(ra, time_in_mode, config),
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",
             device_fault=device_fault)

@@ -47,7 +47,7 @@ class Observation:
     one_sided_s: float = 0.0  # how long exactly one finger has been in contact
     closed_on_nothing: bool = False  # at the closed request with no object (gOBJ 3)
     grip_reached: bool = False  # both SA at grip_fraction of the requested grip force
-    ra_quiet: bool = True  # both RA below the slip threshold
+    slip_quiet: bool = True  # both slip-band vibrations below the slip threshold
     slip_s: float = 0.0  # how long either RA has been above the slip threshold
     hit: bool = False  # either RA above the hit threshold (after the refractory time)
     gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
@@ -72,7 +72,7 @@ def _reach(obs: Observation, counters: Counters, config, event_trigger: Trigger,
 def _load(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
     if obs.event_matched:
         return Decision(Mode.LIFT, event_trigger, "Load-Lift event")
-    relift = relift_after_lift_load(grip_reached=obs.grip_reached, ra_quiet=obs.ra_quiet,
+    relift = relift_after_lift_load(grip_reached=obs.grip_reached, slip_quiet=obs.slip_quiet,
                                     time_in_load_s=obs.time_in_mode, counters=counters,
                                     config=config)
     if relift is not None:

@@ -14,6 +14,7 @@ force exceeds CONTACT_FORCE_N.
 """
 
 import math
+import typing
 
 import numpy as np
 from pydrake.common.value import AbstractValue
@@ -22,7 +23,9 @@ from pydrake.multibody.math import SpatialVelocity
 from pydrake.systems.framework import BasicVector, LeafSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
-from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+
+if typing.TYPE_CHECKING:  # the films (pad_vibration_sensor.py) read this module's texture
+    from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 
 CONTACT_FORCE_N = 0.2
 UPDATE_PERIOD_S = 0.005  # slip speed sampling; the vibration itself is output at any time
@@ -32,6 +35,13 @@ def texture_acceleration_amplitude(slip_speed: float, height_m: float, period_m:
     """Peak acceleration [m/s^2] of a film dragged at slip_speed [m/s] over the texture."""
     omega = 2.0 * math.pi * slip_speed / period_m
     return height_m * omega ** 2
+
+
+def texture_acceleration(phase, amplitude, speed, elapsed, period_m: float):
+    """The texture's acceleration [m/s^2] `elapsed` [s] after a sample of (phase [rad],
+    amplitude [m/s^2], slip speed [m/s]): the phase advances at the sampled speed. numpy
+    arrays broadcast."""
+    return amplitude * np.sin(phase + 2.0 * np.pi * speed * elapsed / period_m)
 
 
 def tangential_slip_speed(X_WP: RigidTransform, V_WPad: SpatialVelocity, p_WPad_origin,
@@ -53,14 +63,15 @@ class PadSlipVibration(LeafSystem):
 
     Inputs: body_poses, body_spatial_velocities (the plant's), true_taxel_forces (24, N:
     left then right). Outputs: {left,right}_slip_vibration (3, m/s^2, expressed in the pad
-    frame; only its z, the normal, is non-zero). The discrete state holds, per pad, the
-    texture phase [rad], the acceleration amplitude [m/s^2] and the slip speed [m/s], sampled
-    every UPDATE_PERIOD_S (the body poses and velocities are read only while a pad touches);
-    between samples the phase advances at the sampled speed. Slip faster than
-    period * film rate / 2 (0.25 m/s for the defaults) would alias in the film's samples.
+    frame; only its z, the normal, is non-zero) and texture_state (6: the discrete state,
+    from which the films synthesise the texture at their internal rate with
+    texture_acceleration). The state holds, per pad, the texture phase [rad], the
+    acceleration amplitude [m/s^2] and the slip speed [m/s], sampled every UPDATE_PERIOD_S
+    (the body poses and velocities are read only while a pad touches); between samples the
+    phase advances at the sampled speed.
     """
 
-    def __init__(self, *, pads: dict, object_body_index, config: VibrationSensorConfig):
+    def __init__(self, *, pads: dict, object_body_index, config: "VibrationSensorConfig"):
         super().__init__()
         self._pads = pads  # finger name -> PadGeometry (body_index, X_BP)
         self._object_body = int(object_body_index)
@@ -80,6 +91,11 @@ class PadSlipVibration(LeafSystem):
                 f"{finger}_slip_vibration", 3,
                 lambda context, output, k=k: self._calc_vibration(context, output, k),
                 prerequisites_of_calc={self.xd_ticket(), self.time_ticket()})
+        self.DeclareVectorOutputPort(
+            "texture_state", 3 * len(FINGER_NAMES),
+            lambda context, output: output.SetFromVector(
+                context.get_discrete_state(self._state).get_value()),
+            prerequisites_of_calc={self.discrete_state_ticket(self._state)})
 
     def _update(self, context, discrete_state):
         state = context.get_discrete_state(self._state).get_value().copy()
@@ -113,5 +129,5 @@ class PadSlipVibration(LeafSystem):
             output.SetZero()
             return
         since_sample = math.fmod(context.get_time(), self._dt)
-        phase += 2.0 * math.pi * speed * since_sample / self._period_m
-        output.SetFromVector([0.0, 0.0, amplitude * math.sin(phase)])
+        output.SetFromVector([0.0, 0.0, texture_acceleration(phase, amplitude, speed,
+                                                             since_sample, self._period_m)])

@@ -41,6 +41,15 @@ def reference_step(q: float, v: float, goal: float, max_speed: float, accelerati
     return float(np.clip((target_v - v) / dt, -acceleration, acceleration))
 
 
+def has_arrived(q: float, v: float, goal: float, acceleration: float, dt: float) -> bool:
+    """True when the reference (q, v) is within one step's reach of goal at rest: it is then
+    put on the goal. Otherwise the discrete bang-bang of reference_step circles the goal in
+    a limit cycle (|q - goal| about acceleration dt^2, |v| about acceleration dt), whose
+    velocity the plant's PD damping turns into a grip-force ripple (about 0.1 N peak to peak
+    at 30 Hz with the defaults) that a blocked finger never sees on the real gripper."""
+    return abs(goal - q) <= acceleration * dt * dt and abs(v) <= acceleration * dt
+
+
 def force_limited_set_point(q: float, q_ref: float, force: float, position_gain: float) -> float:
     """The PD set-point [m] for the actuated finger: the reference, but no further than
     2 force / position_gain from the measured q, so that a blocked finger pushes each pad
@@ -102,6 +111,8 @@ class SimRobotiqDriver(LeafSystem):
         s[_GOAL] = ru.opening_from_position_byte(s[_POSITION_BYTE]) / 2
         s[_HALF_SPEED] = ru.speed_from_byte(command[ru.COMMAND_SPEED]) / 2
         s[_FORCE] = ru.force_from_byte(command[ru.COMMAND_FORCE])
+        if has_arrived(s[_REF_Q], s[_REF_V], s[_GOAL], self._config.acceleration, self._dt):
+            s[_REF_Q], s[_REF_V] = s[_GOAL], 0.0
         s[_REF_A] = reference_step(s[_REF_Q], s[_REF_V], s[_GOAL], s[_HALF_SPEED],
                                    self._config.acceleration, self._dt)
         q, _, v, _ = self._finger_state.Eval(context)

@@ -9,7 +9,8 @@ the two apart:
   outputs: arm.position_measured (6), arm.velocity_measured (6), arm.torque_measured (6),
            gripper.status (8, robotiq_units order),
            tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N),
-           tactile.left_pad_acceleration (3, m/s^2), tactile.right_pad_acceleration (3)
+           tactile.left_pad_acceleration (3), tactile.right_pad_acceleration (3): each pad's
+           PVDF film in acceleration-equivalent units [m/s^2], on the pad normal (z)
   simulation only (evaluation): object.state (13: quaternion wxyz, p_WO, w_WO, v_WO),
            tactile.true_taxel_forces (24, N), contact_results, body_poses, query_object
 
@@ -37,8 +38,7 @@ from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
-from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
-                                                          AddPadVibrationSensor)
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
 
@@ -77,7 +77,7 @@ def initial_arm_positions(scenario) -> np.ndarray:
     return solve_grasp_frame_ik(make_arm_control_plant(), X_WG)
 
 
-def _set_pd_gains(plant, instance, kp, kd):
+def set_pd_gains(plant, instance, kp, kd):
     # GetJointActuatorIndices(instance) is empty before Finalize(): walk all actuators.
     actuators = [plant.get_joint_actuator(JointActuatorIndex(i))
                  for i in range(plant.num_actuators())]
@@ -86,7 +86,8 @@ def _set_pd_gains(plant, instance, kp, kd):
             actuator.set_controller_gains(PdControllerGains(p=kp, d=kd))
 
 
-def _pad_geometries(plant, scene_graph, gripper):
+def pad_geometries(plant, scene_graph, gripper) -> dict:
+    """{finger name: PadGeometry} of the gripper's two pads."""
     inspector = scene_graph.model_inspector()
     pads = {}
     for finger in FINGER_NAMES:
@@ -113,6 +114,22 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
     return slip
 
 
+def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scenario):
+    """Both pads' taxel arrays (TactilePads), the slip texture (PadSlipVibration) and the
+    films (PadFilms), connected to the finalized `plant`; returns (TactilePads, PadFilms)."""
+    pads = pad_geometries(plant, scene_graph, gripper)
+    taxels = builder.AddNamedSystem(
+        "tactile_pads", TactilePads(pads=pads, config=scenario.tactile,
+                                    seed=scenario.random_seed))
+    builder.Connect(plant.get_contact_results_output_port(),
+                    taxels.GetInputPort("contact_results"))
+    builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
+    slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, scenario.vibration)
+    films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper,
+                          config=scenario.vibration, slip_vibration=slip)
+    return taxels, films
+
+
 def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
     """The scenario's hit on the object, if it has one."""
     if config.hit_time_s < 0.0:
@@ -137,8 +154,8 @@ def MakeGraspStation(scenario, *, meshcat=None):
     obj = AddObject(parser, scenario.object)
     plant.set_gravity_enabled(arm, False)
     plant.set_gravity_enabled(gripper, False)
-    _set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
-    _set_pd_gains(plant, gripper, scenario.gripper.position_gain, scenario.gripper.damping_gain)
+    set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
+    set_pd_gains(plant, gripper, scenario.gripper.position_gain, scenario.gripper.damping_gain)
     plant.Finalize()
 
     plant.SetDefaultPositions(arm, initial_arm_positions(scenario))
@@ -162,23 +179,14 @@ def MakeGraspStation(scenario, *, meshcat=None):
     builder.ExportOutput(driver.GetOutputPort("status"), "gripper.status")
 
     # Tactile pads: taxels and vibration films.
-    pads = _pad_geometries(plant, scene_graph, gripper)
-    taxels = builder.AddNamedSystem(
-        "tactile_pads", TactilePads(pads=pads, config=scenario.tactile,
-                                    seed=scenario.random_seed))
-    builder.Connect(plant.get_contact_results_output_port(),
-                    taxels.GetInputPort("contact_results"))
-    builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
-    slip = _add_slip_vibration(builder, plant, pads, object_body(plant, obj), taxels,
-                               scenario.vibration)
+    taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
+                                        gripper=gripper, object_body=object_body(plant, obj),
+                                        scenario=scenario)
     for finger in FINGER_NAMES:
         builder.ExportOutput(taxels.GetOutputPort(f"{finger}_taxel_forces"),
                              f"tactile.{finger}_taxel_forces")
-        vibration = AddPadVibrationSensor(
-            builder, plant, plant.get_body(pads[finger].body_index), pads[finger].X_BP,
-            scenario.vibration, f"{finger}_pad_vibration",
-            slip_vibration=slip.GetOutputPort(f"{finger}_slip_vibration") if slip else None)
-        builder.ExportOutput(vibration, f"tactile.{finger}_pad_acceleration")
+        builder.ExportOutput(films.GetOutputPort(f"{finger}_pad_vibration"),
+                             f"tactile.{finger}_pad_acceleration")
     builder.ExportOutput(taxels.GetOutputPort("true_taxel_forces"), "tactile.true_taxel_forces")
 
     _add_disturbance(builder, plant, object_body(plant, obj), scenario.disturbance)

@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
+from tegrasp_drake.experiments.sweep.failure_classes import (failure_class_counts,
+                                                             failure_classes_markdown)
 from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLERS
 
 # (placement, phase) columns of Table I, in the paper's order.
@@ -303,8 +305,14 @@ def write_statistics(records, out_dir) -> list[Path]:
     comparisons = paired_comparisons(records)
     out_dir = Path(out_dir)
     markdown_path, json_path = out_dir / "statistics.md", out_dir / "statistics.json"
-    markdown_path.write_text(statistics_markdown(statistics, comparisons), encoding="utf-8")
+    counted = failure_class_counts(records)
+    failures = {controller: counted[controller] for controller in statistics
+                if controller in counted}
+    markdown_path.write_text(statistics_markdown(statistics, comparisons) + "\n"
+                             + failure_classes_markdown(failures, CONTROLLER_TITLES),
+                             encoding="utf-8")
     json_path.write_text(json.dumps({"controllers": statistics,
-                                     "paired_comparisons": comparisons},
+                                     "paired_comparisons": comparisons,
+                                     "failure_classes": failures},
                                     indent=1, sort_keys=True) + "\n", encoding="utf-8")
     return [markdown_path, json_path]

@@ -22,8 +22,13 @@ with `piezo_offset` [V] zeroed at start like the taxels. The film has one axis: 
 receiver puts `a` in x of the pad's 3-vector and zeros in y, z, so Eq. 2 gives |a|.
 
 The default gains are placeholders of the right order (1 mN per count, 30000-count
-baseline, 10 m/s^2 per volt); a real pad's numbers go in a YAML file loaded with
-`LoadTactileCalibration`.
+baseline); a real pad's numbers go in a YAML file loaded with `LoadTactileCalibration`. The
+default piezo gain is the simulated film's, 1 / S = 253 (m/s^2)/V with S = G_Q / (w^2 C_f)
+its mid-band sensitivity to base acceleration (simulation/pad_vibration_sensor.py, README
+"Vibration (RA) model"), so that a recorded simulation replays through the emulated myRIO
+within the +-10 V input range. For a real pad, S is measured: shake the finger at a known
+acceleration between the amplifier's high-pass and the fingertip's mode (e.g. 10-100 Hz)
+and read the voltage.
 """
 
 import dataclasses
@@ -45,7 +50,7 @@ class PadCalibration:
         default_factory=lambda: [1e-3] * TAXELS_PER_PAD)          # [N/count]
     offset: list[float] = dataclasses.field(
         default_factory=lambda: [30000.0] * TAXELS_PER_PAD)       # [counts]
-    piezo_gain: float = 10.0    # [(m/s^2)/V]
+    piezo_gain: float = 253.0   # [(m/s^2)/V], 1 / S of the simulated film
     piezo_offset: float = 0.0   # [V]
 
 

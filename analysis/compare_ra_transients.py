@@ -1,0 +1,33 @@
+"""The first-contact RA of the old accelerometer chain and of the PVDF film, side by side,
+for the same pad strike at plant steps of 1, 0.5 and 0.25 ms; prints the contact peaks.
+
+    python analysis/compare_ra_transients.py OUT.png [--speed 0.025]
+"""
+
+import argparse
+import sys
+
+from tegrasp_drake.experiments.figures.ra_transients import plot_ra_transients
+from tegrasp_drake.experiments.pad_strike import PadStrikeConfig, run_pad_strike
+
+TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("out", help="the PNG to write")
+    parser.add_argument("--speed", type=float, default=0.025, help="finger speed [m/s]")
+    args = parser.parse_args(argv)
+    strikes = {dt: run_pad_strike(PadStrikeConfig(time_step_s=dt, finger_speed_mps=args.speed))
+               for dt in TIME_STEPS}
+    for dt, strike in strikes.items():
+        old = strike.accelerometer_ra(2.0)
+        print(f"dt {1e3 * dt:g} ms: film peaks left {strike.contact_peak(0):.1f}, right "
+              f"(own contact) {strike.contact_peak(1):.1f} m/s^2; accelerometer peak "
+              f"{old[:, 0].max():.1f} m/s^2")
+    print(f"wrote {plot_ra_transients(strikes, args.out)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,108 @@
+"""SlipVibrationBand: the pads' vibration in the band where slip rings, for Lift-Load.
+
+The PVDF film reads the rate of change of the pad's stress (README, "Vibration (RA)
+model"), so a grip that is still rising, the lift's load and the charge amplifier's decay
+after them read too: several m/s^2 to 165 m/s^2, below about 10 Hz (a 0.45 s squeeze, a
+0.3 s lift acceleration, the 2 Hz high-pass's 80 ms decay). Slip rings higher: the pad
+cover's texture (0.5 mm pitch) sliding at v reads at v / 0.5 mm, 80 Hz at 40 mm/s, a lift's
+speed. Slip detectors on vibration sensors read such a band (Howe and Cutkosky 1989, "Sensing
+skin acceleration for slip and texture perception"; Romano et al. 2011 high-pass their
+signals for the same reason). This system high-passes each pad's vibration vector and gives
+its RMS over a short window, the amplitude the Lift-Load trigger compares with its
+threshold.
+
+    y = HP(a), per axis: a second-order Butterworth high-pass at `band_hz`
+    slip_vibration_i = sqrt(mean over the last `window_s` of |y_i|^2)   [m/s^2]
+
+A slip slower than band_hz x 0.5 mm (40 mm/s at 80 Hz) is attenuated at 12 dB per octave:
+the trigger sees fast slips (the object falling or the pads sliding along it at lift
+speed), not creep.
+"""
+
+import numpy as np
+from pydrake.systems.framework import BasicVector, LeafSystem
+from scipy import signal
+
+from tegrasp_drake.rig.channels import FINGER_NAMES
+
+_AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
+
+
+def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
+    """[b0, b1, b2, a1, a2] of the second-order Butterworth high-pass at band_hz [Hz] for
+    samples at sample_rate_hz [Hz] (a0 = 1)."""
+    if not 0.0 < band_hz < sample_rate_hz / 2:
+        raise ValueError(f"slip band {band_hz} Hz must lie between 0 and the Nyquist "
+                         f"frequency {sample_rate_hz / 2} Hz of the RA samples")
+    sos = signal.butter(2, band_hz, "highpass", fs=sample_rate_hz, output="sos")[0]
+    return np.array([sos[0], sos[1], sos[2], sos[4], sos[5]])
+
+
+def highpass_step(coefficients: np.ndarray, x: np.ndarray, z1: np.ndarray,
+                  z2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One sample of the biquad (transposed direct form II) on every axis at once: the
+    output y and the next (z1, z2)."""
+    b0, b1, b2, a1, a2 = coefficients
+    y = b0 * x + z1
+    return y, b1 * x - a1 * y + z2, b2 * x - a2 * y
+
+
+class SlipVibrationBand(LeafSystem):
+    """Each pad's vibration RMS above the slip band's corner.
+
+    .. pydrake_system::
+
+        name: SlipVibrationBand
+        input_ports:
+        - pad_acceleration
+        output_ports:
+        - slip_vibration
+
+    Ports:
+        pad_acceleration: (6) [left x, y, z, right x, y, z] the pads' vibration [m/s^2],
+            pad frames, sampled every 1 / sample_rate_hz.
+        slip_vibration: (2) [left, right] RMS of the high-passed vibration over the last
+            window_s [m/s^2].
+
+    State (discrete, updated every 1 / sample_rate_hz): the filter's two delays per axis
+    (12) and the last window_s of squared magnitudes per pad (2 x n).
+    """
+
+    def __init__(self, *, band_hz: float, window_s: float, sample_rate_hz: float):
+        super().__init__()
+        self._coefficients = highpass_biquad(band_hz, sample_rate_hz)
+        self._window = max(1, round(window_s * sample_rate_hz))
+        self._input = self.DeclareVectorInputPort("pad_acceleration", _AXES)
+        size = 2 * _AXES + len(FINGER_NAMES) * self._window
+        self._state = self.DeclareDiscreteState(BasicVector(np.zeros(size)))
+        self.DeclarePeriodicDiscreteUpdateEvent(1.0 / sample_rate_hz, 0.0, self._update)
+        self.DeclareVectorOutputPort("slip_vibration", len(FINGER_NAMES), self._calc,
+                                     prerequisites_of_calc={self.xd_ticket()})
+
+    def _update(self, context, discrete_state):
+        s = context.get_discrete_state(self._state).get_value()
+        z1, z2, squares = s[:_AXES], s[_AXES:2 * _AXES], s[2 * _AXES:]
+        x = self._input.Eval(context)
+        y, z1, z2 = highpass_step(self._coefficients, x, z1, z2)
+        # The oldest squared magnitude of each pad leaves, the newest enters at the end.
+        squares = squares.reshape(len(FINGER_NAMES), self._window)
+        newest = np.sum(y.reshape(len(FINGER_NAMES), 3) ** 2, axis=1)
+        squares = np.concatenate([squares[:, 1:], newest[:, None]], axis=1)
+        discrete_state.get_mutable_vector(self._state).SetFromVector(
+            np.concatenate([z1, z2, squares.ravel()]))
+
+    def _calc(self, context, output):
+        squares = context.get_discrete_state(self._state).get_value()[2 * _AXES:]
+        mean = squares.reshape(len(FINGER_NAMES), self._window).mean(axis=1)
+        output.SetFromVector(np.sqrt(mean))
+
+
+def AddSlipVibrationBand(builder, pad_acceleration, *, band_hz: float, window_s: float,
+                         sample_rate_hz: float):
+    """Adds a SlipVibrationBand fed by `pad_acceleration` (an output port, 6); returns its
+    slip_vibration output port."""
+    band = builder.AddNamedSystem("slip_vibration_band", SlipVibrationBand(
+        band_hz=band_hz, window_s=window_s, sample_rate_hz=sample_rate_hz))
+    builder.Connect(pad_acceleration, band.get_input_port())
+    return band.GetOutputPort("slip_vibration")
+

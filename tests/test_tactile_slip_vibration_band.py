@@ -1,0 +1,82 @@
+import numpy as np
+import pytest
+from pydrake.systems.analysis import Simulator
+from scipy import signal
+
+from tegrasp_drake.control.controller_config import GraspControllerConfig
+from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, advance_films,
+                                                    film_step_matrices, signed_peak)
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, film_parameters
+from tegrasp_drake.tactile.slip_vibration_band import (SlipVibrationBand, highpass_biquad,
+                                                       highpass_step)
+
+RATE_HZ = 1000.0
+
+
+def band_output(samples: np.ndarray, *, band_hz=80.0, window_s=0.01) -> np.ndarray:
+    """The system's slip_vibration after each row of `samples` (n x 6) is fed, one per
+    sample period."""
+    system = SlipVibrationBand(band_hz=band_hz, window_s=window_s, sample_rate_hz=RATE_HZ)
+    simulator = Simulator(system)
+    context = simulator.get_mutable_context()
+    outputs = []
+    for k, row in enumerate(samples):
+        system.get_input_port().FixValue(context, row)
+        simulator.AdvanceTo(k / RATE_HZ)  # the update at k / RATE_HZ reads row k
+        outputs.append(system.GetOutputPort("slip_vibration").Eval(context).copy())
+    return np.array(outputs)
+
+
+def test_biquad_equals_scipys_butterworth_filter():
+    rng = np.random.default_rng(0)
+    x = rng.normal(size=(500, 6))
+    coefficients = highpass_biquad(80.0, RATE_HZ)
+    z1 = z2 = np.zeros(6)
+    ours = []
+    for row in x:
+        y, z1, z2 = highpass_step(coefficients, row, z1, z2)
+        ours.append(y)
+    sos = signal.butter(2, 80.0, "highpass", fs=RATE_HZ, output="sos")
+    np.testing.assert_allclose(ours, signal.sosfilt(sos, x, axis=0), atol=1e-12)
+
+
+def test_texture_vibration_reads_its_rms_and_stays_on_its_pad():
+    t = np.arange(400) / RATE_HZ
+    samples = np.zeros((len(t), 6))
+    samples[:, 2] = 3.0 * np.sin(2 * np.pi * 200.0 * t)  # left film, 200 Hz, 3 m/s^2
+    out = band_output(samples)
+    # 200 Hz lies 2.5 octaves above the corner: the gain is 1 / sqrt(1 + (80/200)^4) = 0.987;
+    # 10 ms hold two periods.
+    assert out[-1, 0] == pytest.approx(0.987 * 3.0 / np.sqrt(2), rel=0.02)
+    assert out[-1, 1] == 0.0
+
+
+def film_reading_of_a_squeeze(grip_n: float, ramp_s: float, duration_s: float) -> np.ndarray:
+    """The simulated film's RA samples [m/s^2] (1 kHz peak-hold, no noise) while the pad
+    load rises linearly to grip_n [N] over ramp_s [s] and stays: a squeeze with the
+    sharpest corners a ramp can have."""
+    config = VibrationSensorConfig()
+    steps = film_step_matrices(film_parameters(config), 1.0 / RATE_HZ, config.internal_rate_hz)
+    state = np.zeros((STATE_SIZE + 1, 1))
+    samples = []
+    for k in range(round(duration_s * RATE_HZ)):
+        state[STATE_SIZE, 0] = grip_n * min(k / RATE_HZ / ramp_s, 1.0)
+        state[:STATE_SIZE], outputs = advance_films(steps, state)
+        samples.append(signed_peak(outputs)[0])
+    return np.array(samples)
+
+
+def test_the_films_reading_of_a_squeeze_stays_below_the_slip_threshold():
+    # The default grip, 25 N reached in about 0.45 s (README, "Vibration (RA) model"): the
+    # film reads about 180 m/s^2; the slip band reads 0.75 m/s^2 at the ramp's corners.
+    film = film_reading_of_a_squeeze(25.0, 0.45, 1.5)
+    assert film.max() > 150.0
+    samples = np.zeros((len(film), 6))
+    samples[:, 2] = film
+    out = band_output(samples)
+    assert out.max() < 0.8 * GraspControllerConfig().slip_vibration_mps2
+
+
+def test_a_corner_beyond_nyquist_is_refused():
+    with pytest.raises(ValueError, match="Nyquist"):
+        highpass_biquad(600.0, RATE_HZ)
