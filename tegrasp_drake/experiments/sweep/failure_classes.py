@@ -7,8 +7,9 @@ Checked in this order (the first that applies):
 
   closed on nothing      the gripper closed without touching the object (Re-Reach used up)
   one finger only        one finger touched and the other never did (Re-Reach used up)
+  slipped in Lift        Lift-Load used up: the object still slipping, or no Load-Lift
+                         event after it
   event never matched    no memorized/heuristic event within its timeout (Re-Reach used up)
-  slipped in Lift        Lift-Load used up, the object still slipping
   object lost            the controller saw both pads empty in Lift, Hold, Avoid or Place
   device fault           a gripper or watchdog fault
   not lifted             the grasp went on but the object never rose 2 cm
@@ -21,8 +22,8 @@ Checked in this order (the first that applies):
 from tegrasp_drake.experiments.grasp_outcome import LIFTED_HEIGHT_M
 from tegrasp_drake.experiments.trial import UPRIGHT_TILT_DEG
 
-FAILURE_CLASSES = ("closed on nothing", "one finger only", "event never matched",
-                   "slipped in Lift", "object lost", "device fault", "not lifted",
+FAILURE_CLASSES = ("closed on nothing", "one finger only", "slipped in Lift",
+                   "event never matched", "object lost", "device fault", "not lifted",
                    "dropped in Hold", "toppled at release", "not placed", "other")
 
 
@@ -37,10 +38,10 @@ def failure_class(result: dict) -> str | None:
             return "closed on nothing"
         if "finger touched" in failure:
             return "one finger only"
-        if "event" in failure and failure.startswith("no "):
-            return "event never matched"
         if "still slips" in failure or "after Lift-Load" in failure:
             return "slipped in Lift"
+        if "event" in failure and failure.startswith("no "):
+            return "event never matched"
         if failure.startswith("object lost"):
             return "object lost"
         if failure.startswith("gripper fault") or result.get("final_mode") == "Failed" \
