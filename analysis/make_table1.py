@@ -1,5 +1,5 @@
-"""Regenerate Table I (table1.md, table1.csv) and the trial statistics from a results
-folder written by `tegrasp sweep`.
+"""Regenerate Table I (table1.md, table1.csv), the trial statistics and the success per
+placement offset (success_by_offset.md, .csv) from a results folder written by `tegrasp sweep`.
 
     python analysis/make_table1.py RESULTS_DIR
 """
@@ -7,7 +7,8 @@ folder written by `tegrasp sweep`.
 import argparse
 import sys
 
-from tegrasp_drake.experiments.sweep import load_records, write_statistics, write_table1
+from tegrasp_drake.experiments.sweep import (load_records, write_offset_table, write_statistics,
+                                             write_table1)
 
 
 def main(argv=None) -> int:
@@ -21,7 +22,8 @@ def main(argv=None) -> int:
         print(f"no trial records under {args.results}", file=sys.stderr)
         return 1
     records = list(loaded.records.values())
-    for path in write_table1(records, args.results) + write_statistics(records, args.results):
+    for path in (write_table1(records, args.results) + write_statistics(records, args.results)
+                 + write_offset_table(records, args.results)):
         print(f"wrote {path}")
     return 0
 

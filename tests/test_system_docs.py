@@ -17,6 +17,7 @@ import re
 import numpy as np
 import pytest
 import yaml
+from pydrake.geometry import Meshcat
 from pydrake.lcm import DrakeLcm
 from pydrake.systems.framework import Diagram, LeafSystem
 
@@ -50,6 +51,8 @@ from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.rig import paths
 from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
+from tegrasp_drake.simulation.taxel_force_display import (TaxelForceDisplay,
+                                                          TaxelForceDisplayConfig)
 from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
 
 # Modules whose systems have no block yet: simulation/ is being rewritten on other
@@ -113,6 +116,8 @@ CONSTRUCTORS = {
     RobotiqDriver: lambda: RobotiqDriver(RobotiqModbusClient(HardwareStationConfig().gripper)),
     HardwareStation: hardware_station,
     FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
+    TaxelForceDisplay: lambda: TaxelForceDisplay(meshcat=Meshcat(), pads={},
+                                                 config=TaxelForceDisplayConfig()),
 }
 
 # Documented systems that are not built here, with the reason. Empty: every one is cheap.

@@ -7,7 +7,11 @@ import json
 import pathlib
 
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
+                                                start_viewer, wait_for_viewer,
+                                                write_replay_html)
 from tegrasp_drake.control.controller_config import CONTROLLERS
+from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
 
 
 def add_trial_arguments(parser, *, default_out: str) -> None:
@@ -17,11 +21,12 @@ def add_trial_arguments(parser, *, default_out: str) -> None:
                              "hand-set thresholds (Romano et al. style); open_loop: the ideal "
                              "scripted grasp (default: the scenario's controller.name)")
     parser.add_argument("--out", default=default_out,
-                        help="folder for the trial log (trial.npz) and figures (states.png: "
-                             "Fig. 9; signals.png: Fig. 5a-b)")
+                        help="folder for the trial log (trial.npz) and figures (states: "
+                             "Fig. 9; signals: Fig. 5a-b; avoid: Fig. 10, after a hit)")
+    parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
+                        help="the figures' file format (default: %(default)s)")
     parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
-    parser.add_argument("--meshcat", action="store_true",
-                        help="show the run in Meshcat (prints the URL; waits for Enter at the end)")
+    add_viewer_arguments(parser)
 
 
 def register(subparsers) -> None:
@@ -55,14 +60,11 @@ def run(args) -> int:
         overrides.append(f"controller.name={args.controller}")
     args.overrides = overrides
     scenario = scenario_from_arguments(args)
+    html = check_html_path(args)
     from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.experiments.figures.trial_figures import write_trial_figures
     from tegrasp_drake.experiments.trial import run_trial
-    from tegrasp_drake.experiments.figures.signals import plot_trial_signals
-    from tegrasp_drake.experiments.figures.trial import plot_trial_states
-    meshcat = None
-    if args.meshcat:
-        from pydrake.geometry import StartMeshcat
-        meshcat = StartMeshcat()
+    meshcat = start_viewer(args)
     try:
         trial = run_trial(scenario, meshcat=meshcat)
     except MemorizedEventError as e:
@@ -70,16 +72,19 @@ def run(args) -> int:
                          f"of '{scenario.object.name}': {e}") from None
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    plot_trial_signals(trial.log, out / "signals.png")  # Fig. 5a-b: raw and processed
     result = dict(trial.result, log=str(trial.log.save(out / "trial.npz")),
-                  figure=plot_trial_states(trial.log, out / "states.png"),
-                  signals_figure=str(out / "signals.png"))
+                  **write_trial_figures(trial.log, out, args.format))
+    if html is not None:
+        result["replay_html"] = str(write_replay_html(meshcat, html))
     if args.json:
-        print(json.dumps(result, sort_keys=True))
+        print(json.dumps(result, sort_keys=True), flush=True)
     else:
         print_result(result)
         print(f"log {result['log']}, figures {result['figure']} (Fig. 9), "
-              f"{result['signals_figure']} (Fig. 5a-b)")
-    if meshcat is not None and not args.json:
-        input(f"Meshcat at {meshcat.web_url()}: replay the recording there; Enter to quit. ")
+              f"{result['signals_figure']} (Fig. 5a-b)"
+              + (f", {result['avoid_figure']} (Fig. 10)" if "avoid_figure" in result else ""))
+        if html is not None:
+            print(f"replay {result['replay_html']} (open it in a browser)")
+    wait_for_viewer(args, meshcat)
     return 0
+
