@@ -12,6 +12,7 @@ of `tegrasp sweep` (e.g. analysis/results_seed0). --format png|pdf|svg, or --out
 suffix names the format.
 """
 
+import argparse
 import pathlib
 
 from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
@@ -28,7 +29,7 @@ def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "plot", help="figures: events (Fig. 5c), signals (Fig. 5a-b), trial (Fig. 9), avoid "
                      "(Fig. 10), table1 (Table I), latency, success-maps",
-        description=__doc__.split("\n\n")[0])
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("what", choices=tuple(DEFAULT_STEMS))
     parser.add_argument("source", nargs="?", metavar="LOG|RESULTS",
                         help="trial log (trial.npz) for signals, trial and avoid; sweep "
