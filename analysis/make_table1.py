@@ -1,5 +1,6 @@
-"""Regenerate Table I (table1.md, table1.csv), the trial statistics and the README's
-results table (summary.md) from a results folder written by `tegrasp sweep`.
+"""Regenerate Table I (table1.md, table1.csv), the trial statistics, the README's results
+table (summary.md) and the success per placement offset (success_by_offset.md, .csv) from a
+results folder written by `tegrasp sweep`.
 
     python analysis/make_table1.py RESULTS_DIR
 """
@@ -7,8 +8,8 @@ results table (summary.md) from a results folder written by `tegrasp sweep`.
 import argparse
 import sys
 
-from tegrasp_drake.experiments.sweep import (load_records, write_statistics, write_summary,
-                                             write_table1)
+from tegrasp_drake.experiments.sweep import (load_records, write_offset_table, write_statistics,
+                                             write_summary, write_table1)
 
 
 def main(argv=None) -> int:
@@ -23,7 +24,8 @@ def main(argv=None) -> int:
         return 1
     records = list(loaded.records.values())
     for path in (write_table1(records, args.results) + write_statistics(records, args.results)
-                 + write_summary(records, args.results)):
+                 + write_summary(records, args.results)
+                 + write_offset_table(records, args.results)):
         print(f"wrote {path}")
     return 0
 

@@ -31,9 +31,16 @@ def test_tegrasp_trial_json_at_the_expected_position(tmp_path, capsys):
         assert {"t", "from", "to", "trigger"} <= set(entry)
     for step in EVENT_TRANSITIONS:
         assert trigger_of(result, step) == "memorized_event"
-    assert result["corrective_actions"] == [] and result["false_triggers"] == 0
+    assert result["corrective_actions"] == []
+    # The film's Load-Lift template is the squeeze, and Eq. 3 ignores lag: the event matches
+    # while the grip force is still rising, 32-117 ms before it reaches 90 % of the command
+    # across the committed sweep (README, Results). By the 10 ms rule that one transition is
+    # a false trigger; Reach-Load and Place-Unload come after their physical events.
+    load_lift = next(e["t"] for e in result["transitions"] if e["to"] == "Lift")
+    early_s = result["physical_events"]["load_lift"] - load_lift
+    assert result["false_triggers"] == 1 and 0.01 < early_s <= 0.12
     for name, latency in result["detection_latency_s"].items():
-        assert 0.0 <= latency <= 0.5, name
+        assert name != "load_lift" and 0.0 <= latency <= 0.5, name
     for name in ("trial.npz", "states.png", "signals.png"):
         assert (tmp_path / name).is_file()
 

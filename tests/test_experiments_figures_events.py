@@ -6,6 +6,7 @@ from matplotlib.image import imread
 
 from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.experiments.figures.events import plot_memorized_events
+from tegrasp_drake.experiments.figures.figure_files import PNG_DPI
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 
 
@@ -15,7 +16,8 @@ def test_plot_saves_a_grid_of_transitions_by_channels(tmp_path):
                                       ra_rate_hz=1000.0, package_versions={})
     path = plot_memorized_events({"box": events}, tmp_path / "figures" / "events.png")
     image = imread(path)
-    assert image.shape[:2] == (round(2.2 * len(events) * 100), 4 * 3 * 100)
+    # A row of panels per transition under the title, a column per channel.
+    assert image.shape[:2] == (round((0.6 + 2.2 * len(events)) * PNG_DPI), 4 * 3 * PNG_DPI)
     assert np.ptp(image[..., :3]) > 0.5  # not a blank canvas
 
 

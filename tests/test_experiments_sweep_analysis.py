@@ -20,7 +20,8 @@ def test_scripts_regenerate_the_reports(tmp_path):
     run_sweep(SweepSpec(objects=("box", "thin_cylinder"), attempts=1), fake_trial, tmp_path,
               workers=2, progress=False)
     write_reports(tmp_path)
-    names = ("table1.md", "table1.csv", "statistics.md", "statistics.json")
+    names = ("table1.md", "table1.csv", "statistics.md", "statistics.json",
+             "success_by_offset.md", "success_by_offset.csv")
     expected = {name: (tmp_path / name).read_bytes() for name in names}
     for name in names + ("success_maps.png",):
         (tmp_path / name).unlink()

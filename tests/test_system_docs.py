@@ -17,6 +17,7 @@ import re
 import numpy as np
 import pytest
 import yaml
+from pydrake.geometry import Meshcat
 from pydrake.lcm import DrakeLcm
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.framework import Diagram, DiagramBuilder, LeafSystem
@@ -53,6 +54,8 @@ from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL
 from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
 from tegrasp_drake.tactile.slip_vibration_band import SlipVibrationBand
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
+from tegrasp_drake.simulation.taxel_force_display import (TaxelForceDisplay,
+                                                          TaxelForceDisplayConfig)
 from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
 from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSensorConfig,
                                                            finger_force_indices)
@@ -133,6 +136,8 @@ CONSTRUCTORS = {
     HardwareStation: hardware_station,
     FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
     PadFilms: pad_films,
+    TaxelForceDisplay: lambda: TaxelForceDisplay(meshcat=Meshcat(), pads={},
+                                                 config=TaxelForceDisplayConfig()),
 }
 
 # Documented systems that are not built here, with the reason. Empty: every one is cheap.

@@ -1,18 +1,28 @@
-"""`tegrasp plot`: figures.
+"""`tegrasp plot`: the paper's figures from a trial log or a sweep's results folder.
 
-  tegrasp plot events            every memorized event, each channel (paper Fig. 5c)
-  tegrasp plot trial LOG         a trial's SA and RA with its states (Fig. 9)
-  tegrasp plot avoid LOG         a trial's reaction to a hit in Hold (Fig. 10)
-LOG is a trial.npz written by `tegrasp trial` or `tegrasp demo`.
+  tegrasp plot events                  every memorized event, each channel (Fig. 5c)
+  tegrasp plot signals LOG             a trial's raw and processed signals (Fig. 5a-b)
+  tegrasp plot trial LOG               a trial's SA and RA with its states (Fig. 9)
+  tegrasp plot avoid LOG               a trial's reaction to a hit in Hold (Fig. 10)
+  tegrasp plot table1 RESULTS          Table I of a sweep against the paper's
+  tegrasp plot latency RESULTS         detection latencies per transition and controller
+  tegrasp plot success-maps RESULTS    success per marker position
+LOG is a trial.npz written by `tegrasp trial` or `tegrasp demo`; RESULTS the --out folder
+of `tegrasp sweep` (e.g. analysis/results_seed0). --format png|pdf|svg, or --out FILE whose
+suffix names the format.
 """
 
 import argparse
 import pathlib
 
+from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig import paths
 
-DEFAULT_OUT = {"events": "out/memorized_events.png", "trial": "out/trial_states.png",
-               "avoid": "out/avoid.png"}
+TRIAL_FIGURES = ("signals", "trial", "avoid")
+SWEEP_FIGURES = ("table1", "latency", "success-maps")
+DEFAULT_STEMS = {"events": "memorized_events", "signals": "trial_signals",
+                 "trial": "trial_states", "avoid": "avoid", "table1": "table1_vs_paper",
+                 "latency": "latency", "success-maps": "success_maps"}
 
 
 EPILOG = """\
@@ -20,20 +30,42 @@ examples:
   tegrasp plot events                            # Fig. 5c: out/memorized_events.png
   tegrasp plot trial out/demo/trial.npz --out out/demo/fig9.png
   tegrasp plot avoid out/hit/trial.npz           # Fig. 10: the reaction to a hit
+  tegrasp plot table1 analysis/results_seed0 --format pdf
 
 out/hit/trial.npz: `tegrasp trial --set disturbance.hit_time_s=7.0 --out out/hit`."""
 
 
 def register(subparsers) -> None:
-    parser = subparsers.add_parser("plot", help="figures: events (Fig. 5c), trial (Fig. 9), "
-                                                "avoid (Fig. 10)",
-                                   description=__doc__, epilog=EPILOG,
-                                   formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=tuple(DEFAULT_OUT))
-    parser.add_argument("log", nargs="?", help="trial log (trial.npz) for trial and avoid")
+    parser = subparsers.add_parser(
+        "plot", help="figures: events (Fig. 5c), signals (Fig. 5a-b), trial (Fig. 9), avoid "
+                     "(Fig. 10), table1 (Table I), latency, success-maps",
+        description=__doc__, epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("what", choices=tuple(DEFAULT_STEMS))
+    parser.add_argument("source", nargs="?", metavar="LOG|RESULTS",
+                        help="trial log (trial.npz) for signals, trial and avoid; sweep "
+                             "results folder for table1, latency and success-maps")
     parser.add_argument("--events", default=None, help="events folder (default: the package's)")
-    parser.add_argument("--out", default=None, help="PNG to write")
+    parser.add_argument("--format", choices=FIGURE_FORMATS, default=None,
+                        help="file format (default: --out's suffix, else png)")
+    parser.add_argument("--out", default=None,
+                        help="figure file (default: out/<figure>.<format>)")
     parser.set_defaults(func=run)
+
+
+def output_path(args) -> pathlib.Path:
+    """--out, or out/<figure>.<format>; exits when --out's suffix and --format disagree."""
+    if args.out is None:
+        return pathlib.Path("out") / f"{DEFAULT_STEMS[args.what]}.{args.format or 'png'}"
+    out = pathlib.Path(args.out)
+    suffix = out.suffix.lstrip(".").lower()
+    if suffix not in FIGURE_FORMATS:
+        raise SystemExit(f"tegrasp: error: --out {out}: the file name must end in one of "
+                         f"{', '.join('.' + f for f in FIGURE_FORMATS)}")
+    if args.format is not None and args.format != suffix:
+        raise SystemExit(f"tegrasp: error: --out {out} is a .{suffix} file but --format is "
+                         f"{args.format}; give one of them")
+    return out
 
 
 def _plot_events(args, out) -> str:
@@ -43,32 +75,61 @@ def _plot_events(args, out) -> str:
         events = load_all_memorized_events(args.events or paths.events_dir())
     except MemorizedEventError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
-    return plot_memorized_events(events, out)
+    return str(plot_memorized_events(events, out))
 
 
 def _plot_trial(args, out) -> str:
-    from tegrasp_drake.experiments.figures.trial import plot_avoid_reaction, plot_trial_states
     from tegrasp_drake.experiments.trial_log import TrialLogError, load_trial_log
-    if not args.log:
+    if not args.source:
         raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a trial log "
-                         "(e.g. out/trial/trial.npz from `tegrasp trial`)")
+                         "(e.g. out/demo/trial.npz from `tegrasp demo`)")
     try:
-        log = load_trial_log(args.log)
+        log = load_trial_log(args.source)
     except TrialLogError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
+    if args.what == "signals":
+        from tegrasp_drake.experiments.figures.signals import plot_trial_signals
+        return plot_trial_signals(log, out)
     if args.what == "trial":
+        from tegrasp_drake.experiments.figures.states import plot_trial_states
         return plot_trial_states(log, out)
-    from tegrasp_drake.experiments.scenario import Scenario
-    from pydrake.common.yaml import yaml_load_typed
-    scenario = yaml_load_typed(schema=Scenario, data=log.meta["scenario"])
+    from tegrasp_drake.experiments.figures.avoid import NoAvoidError, plot_avoid_reaction
+    from tegrasp_drake.experiments.figures.trial_annotations import logged_scenario
     try:
-        return plot_avoid_reaction(log, out, hit_threshold=scenario.controller.hit_ra_mps2)
+        return plot_avoid_reaction(log, out,
+                                   hit_threshold=logged_scenario(log).controller.hit_ra_mps2)
+    except NoAvoidError as e:
+        raise SystemExit(f"tegrasp: error: {args.source}: {e}") from None
+
+
+def _plot_sweep(args, out) -> str:
+    from tegrasp_drake.experiments.sweep import load_records
+    if not args.source:
+        raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a sweep's results "
+                         "folder (e.g. analysis/results_seed0)")
+    records = list(load_records(args.source).records.values())
+    if not records:
+        raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
+                         "(run `tegrasp sweep --out FOLDER` first)")
+    from tegrasp_drake.experiments.figures.latency import plot_latency_distributions
+    from tegrasp_drake.experiments.figures.sweep import write_success_maps
+    from tegrasp_drake.experiments.figures.table1 import plot_table1
+    try:
+        if args.what == "table1":
+            return plot_table1(records, out)
+        if args.what == "latency":
+            return plot_latency_distributions(records, out)
+        return str(write_success_maps(records, out.parent, out.name))
     except ValueError as e:
-        raise SystemExit(f"tegrasp: error: {args.log}: {e}") from None
+        raise SystemExit(f"tegrasp: error: {args.source}: {e}") from None
 
 
 def run(args) -> int:
-    out = pathlib.Path(args.out or DEFAULT_OUT[args.what])
-    out.parent.mkdir(parents=True, exist_ok=True)
-    print(_plot_events(args, out) if args.what == "events" else _plot_trial(args, out))
+    out = output_path(args)
+    if args.what == "events":
+        print(_plot_events(args, out))
+    elif args.what in TRIAL_FIGURES:
+        print(_plot_trial(args, out))
+    else:
+        print(_plot_sweep(args, out))
     return 0

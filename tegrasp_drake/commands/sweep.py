@@ -2,11 +2,13 @@
 
     tegrasp sweep [--spec FILE.yaml] [--objects NAME ...] [--controllers NAME ...]
                   [--attempts N] [--base-seed N] [--workers N] [--out DIR]
-                  [--scheduler tcp://HOST:PORT] [--no-progress] [--benchmark] [-v | -q]
+                  [--scheduler tcp://HOST:PORT] [--no-progress] [--format png|pdf|svg]
+                  [--benchmark] [-v | -q]
 
 Runs every trial without a finished record in `--out` (so the same command resumes a
-killed sweep), then writes table1.md, table1.csv, statistics.md, statistics.json and
-success_maps.png there. Options given on the command line override the spec file.
+killed sweep), then writes table1.md/.csv, statistics.md/.json, success_by_offset.md/.csv
+and the figures success_maps, table1_vs_paper and latency (--format) there. Options
+given on the command line override the spec file.
 Exit codes: 0 all trials finished, 1 some trials raised or were left unfinished
 (run again to retry them), 2 bad input (nothing was run). The progress bar (trials done,
 rate, ETA) is shown on a terminal only, and not with --no-progress or --quiet.
@@ -23,7 +25,7 @@ import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
-
+from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.experiments.sweep.reports import write_reports
 from tegrasp_drake.experiments.sweep.runner import (
     SweepError,
@@ -75,6 +77,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="run on this Dask distributed scheduler (the 'dask' extra)")
     parser.add_argument("--no-progress", action="store_true",
                         help="no progress bar (there is none off a terminal either)")
+    parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
+                        help="the figures' file format (default: %(default)s)")
     parser.add_argument("--benchmark", action="store_true",
                         help="time the memorized sweep with 1 and then 2 workers, each "
                              "into a temporary folder, and print wall times and speed-up")
@@ -136,7 +140,7 @@ def run(args) -> int:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
     print(summary_text(summary))
-    for path in write_reports(args.out):
+    for path in write_reports(args.out, figure_format=args.format):
         print(f"wrote {path}")
     return 1 if summary.errors or summary.unfinished else 0
 

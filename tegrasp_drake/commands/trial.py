@@ -11,7 +11,11 @@ from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
                                                write_result)
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
+                                                start_viewer, wait_for_viewer,
+                                                write_replay_html)
 from tegrasp_drake.control.controller_config import CONTROLLERS
+from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
 
 DESCRIPTION = """\
 One closed-loop grasp trial of any scenario: the object, its placement, the controller and
@@ -39,10 +43,11 @@ def add_trial_arguments(parser, *, out_help: str) -> None:
     parser.add_argument("--out", metavar="DIR", default=None, help=out_help)
     parser.add_argument("--overwrite", action="store_true",
                         help="replace the run that the --out folder holds")
+    parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
+                        help="the figures' file format (default: %(default)s)")
     parser.add_argument("--json", action="store_true",
                         help="print the result as one JSON object (also in result.json)")
-    parser.add_argument("--meshcat", action="store_true",
-                        help="show the run in Meshcat (prints the URL; waits for Enter at the end)")
+    add_viewer_arguments(parser)
 
 
 def register(subparsers) -> None:
@@ -86,31 +91,32 @@ def run(args) -> int:
                                 overwrite=args.overwrite)
     except RunFolderError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
+    html = check_html_path(args)
     from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.experiments.figures.trial_figures import write_trial_figures
     from tegrasp_drake.experiments.trial import run_trial
-    from tegrasp_drake.experiments.figures.signals import plot_trial_signals
-    from tegrasp_drake.experiments.figures.trial import plot_trial_states
-    meshcat = None
-    if args.meshcat:
-        from pydrake.geometry import StartMeshcat
-        meshcat = StartMeshcat()
+    meshcat = start_viewer(args)
     try:
         with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
             trial = run_trial(scenario, meshcat=meshcat, progress=progress)
     except MemorizedEventError as e:
         raise SystemExit(f"tegrasp: error: the memorized controller needs the memorized events "
                          f"of '{scenario.object.name}': {e}") from None
-    plot_trial_signals(trial.log, out / "signals.png")  # Fig. 5a-b: raw and processed
     result = dict(trial.result, log=str(trial.log.save(out / "trial.npz")),
-                  figure=plot_trial_states(trial.log, out / "states.png"),
-                  signals_figure=str(out / "signals.png"), result=str(out / RESULT_FILE))
+                  **write_trial_figures(trial.log, out, args.format),
+                  result=str(out / RESULT_FILE))
+    if html is not None:
+        result["replay_html"] = str(write_replay_html(meshcat, html))
     write_result(out / RESULT_FILE, result)
     if args.json:
-        print(json.dumps(result, sort_keys=True))
+        print(json.dumps(result, sort_keys=True), flush=True)
     else:
         print_result(result)
         print(f"log {result['log']}, result {result['result']}, figures {result['figure']} "
-              f"(Fig. 9), {result['signals_figure']} (Fig. 5a-b)")
-    if meshcat is not None and not args.json:
-        input(f"Meshcat at {meshcat.web_url()}: replay the recording there; Enter to quit. ")
+              f"(Fig. 9), {result['signals_figure']} (Fig. 5a-b)"
+              + (f", {result['avoid_figure']} (Fig. 10)" if "avoid_figure" in result else ""))
+        if html is not None:
+            print(f"replay {result['replay_html']} (open it in a browser)")
+    wait_for_viewer(args, meshcat)
     return 0
+

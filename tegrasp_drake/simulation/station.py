@@ -27,7 +27,6 @@ from pydrake.multibody.plant import AddMultibodyPlant
 from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer
-from pydrake.visualization import ApplyVisualizationConfig, VisualizationConfig
 
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRIPPER_URL, R_WG_SIDE_GRASP,
@@ -40,6 +39,7 @@ from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, Objec
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
+from tegrasp_drake.simulation.station_visualization import AddStationVisualization
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
 
 TABLE_URL = "package://tegrasp/table/table.sdf"
@@ -197,8 +197,9 @@ def MakeGraspStation(scenario, *, meshcat=None):
     builder.ExportOutput(plant.get_body_poses_output_port(), "body_poses")
     builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
 
-    if meshcat is not None:
-        ApplyVisualizationConfig(VisualizationConfig(), builder, meshcat=meshcat)
+    if meshcat is not None:  # the scene, contact forces, taxel forces; a framed camera
+        AddStationVisualization(builder, plant=plant, scene_graph=scene_graph, taxels=taxels,
+                                pads=pads, meshcat=meshcat, scenario=scenario)
     diagram = builder.Build()
     diagram.set_name("grasp_station")
     return diagram

@@ -1,69 +1,78 @@
-"""Figures of a trial: raw taxels and pad films, SA/RA with phases (paper Fig. 5a-b), and the
-RA around first contact over a few tens of milliseconds."""
+"""Fig. 5a-b of the paper for one trial: per finger, the raw signals (the 12 taxel forces and
+the pad's vibration, Fig. 5a) and the processed SA and RA channels (Eq. 1-2, Fig. 5b), with
+the states, the transitions by trigger and the physical events."""
 
-import matplotlib
+from matplotlib.lines import Line2D
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from tegrasp_drake.experiments.figures.figure_files import new_figure, save_figure
+from tegrasp_drake.experiments.figures.trial_annotations import (
+    draw_physical_events, draw_state_bands, draw_state_strip, draw_transition_lines,
+    logged_transitions, marker_legend_handles, outcome_description, physical_events,
+    run_description, state_spans, time_limits)
+from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS
 
-from tegrasp_drake.experiments.grasp_outcome import first_contact_time  # noqa: E402
-from tegrasp_drake.rig.channels import FINGER_NAMES  # noqa: E402
-
-CONTACT_ZOOM_S = (-0.04, 0.06)  # the last row's window around first contact [s]
-
-
-def _mark_phases(axis, log):
-    for name, t in log.meta.get("phase_starts", {}).items():
-        axis.axvline(t, color="0.6", lw=0.6, ls="--")
-    for name, t in (log.meta.get("events") or {}).items():
-        if t is not None:
-            axis.axvline(t, color="tab:red", lw=0.8, alpha=0.6)
+# A taxel's line: its colour by row (along the approach axis), its style by column.
+ROW_COLORS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a")
+COLUMN_STYLES = ("-", "--", ":")
+AXIS_COLORS = ("tab:red", "tab:green", "tab:blue")
+AXIS_NAMES = ("x (across the pad)", "y (toward the fingertip)", "z (pad normal)")
 
 
-def plot_trial_signals(log, path) -> None:
-    """Writes a PNG: per finger, raw taxel forces and the pad film's signal (Fig. 5a), the
-    processed SA and RA channels with phase boundaries (dashed) and events (red) (Fig. 5b),
-    and RA from 40 ms before to 60 ms after the first taxel contact (the film's ring; the
-    taxels, sampled at 108 Hz, see the contact up to a period after the film)."""
-    fig, axes = plt.subplots(5, 2, figsize=(13, 12.5))
-    contact = first_contact_time(log)
-    for k, finger in enumerate(FINGER_NAMES):
-        ax = axes[0, k]
-        ax.plot(log.t_sa, log.taxels[:, 12 * k:12 * (k + 1)], lw=0.7)
-        ax.set_title(f"{finger} finger: raw taxel normal forces (12)")
-        ax.set_ylabel("F_z [N]")
-        ax = axes[1, k]
-        ax.plot(log.t_ra, log.pad_acceleration[:, 3 * k:3 * (k + 1)], lw=0.5)
-        ax.set_ylabel("film [m/s^2 equiv.]")
-        ax.set_title(f"{finger} pad film (x, y, z; the film's axis is the pad normal z)")
-        ax = axes[2, k]
-        ax.plot(log.t_ra, log.sa[:, k], color="tab:blue", lw=0.8)
-        ax.set_ylabel("SA [N] (Eq. 1)")
-        _mark_phases(ax, log)
-        ax = axes[3, k]
-        ax.plot(log.t_ra, log.ra[:, k], color="tab:orange", lw=0.6)
-        ax.set_ylabel("RA [m/s^2] (Eq. 2)")
-        ax.set_xlabel("time [s]")
-        _mark_phases(ax, log)
-        for ax in axes[:4, k]:
-            ax.sharex(axes[3, k])
-        ax = axes[4, k]
-        if contact is None:
-            ax.set_title("no contact")
-            continue
-        window = ((log.t_ra >= contact + CONTACT_ZOOM_S[0])
-                  & (log.t_ra <= contact + CONTACT_ZOOM_S[1]))
-        ax.plot(1e3 * (log.t_ra[window] - contact), log.ra[window, k], color="tab:orange",
-                lw=0.8, marker=".", ms=3)
-        ax.set_title(f"{finger} RA around first contact (1 ms peak-hold samples)")
-        ax.set_xlabel("time from the first taxel contact [ms]")
-        ax.set_ylabel("RA [m/s^2]")
-    starts = log.meta.get("phase_starts", {})
-    for name, t in starts.items():
-        axes[2, 0].text(t, axes[2, 0].get_ylim()[1] * 0.9, name, fontsize=7, rotation=90,
-                        va="top")
-    fig.suptitle(f"{log.meta.get('controller', '')} trial: "
-                 f"{log.meta.get('object', '')}", fontsize=11)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+
+def _taxel_legend_handles() -> list:
+    rows = [Line2D([], [], color=ROW_COLORS[r], lw=1.5,
+                   label=f"row {r}" + (" (palm)" if r == 0 else " (tip)" if r == ROWS - 1
+                                       else "")) for r in range(ROWS)]
+    columns = [Line2D([], [], color="0.3", ls=COLUMN_STYLES[c], lw=1.2, label=f"column {c}")
+               for c in range(COLUMNS)]
+    return rows + columns
+
+
+def _plot_taxels(axis, log, finger: int) -> None:
+    for k in range(TAXELS_PER_PAD):
+        row, column = divmod(k, COLUMNS)
+        axis.plot(log.t_sa, log.taxels[:, TAXELS_PER_PAD * finger + k], lw=0.8,
+                  color=ROW_COLORS[row], ls=COLUMN_STYLES[column])
+
+
+def plot_trial_signals(log, path) -> str:
+    """Writes the figure to `path` (.png, .pdf or .svg); returns the path as text."""
+    transitions, spans, events = logged_transitions(log), state_spans(log), physical_events(log)
+    figure = new_figure(14.0, 11.0)
+    axes = figure.subplots(5, 2, sharex=True,
+                           gridspec_kw={"height_ratios": [0.4, 1.2, 1.2, 1.2, 1.2]})
+    for finger, name in enumerate(FINGER_NAMES):
+        state_axis, taxel_axis, vibration_axis, sa_axis, ra_axis = axes[:, finger]
+        _plot_taxels(taxel_axis, log, finger)
+        taxel_axis.set_title(f"{name} finger: (a) raw signals", loc="left")
+        taxel_axis.set_ylabel("taxel normal force [N]")
+        for axis in range(3):
+            vibration_axis.plot(log.t_ra, log.pad_acceleration[:, 3 * finger + axis], lw=0.6,
+                                color=AXIS_COLORS[axis])
+        vibration_axis.set_ylabel("pad vibration [m/s²]")
+        sa_axis.plot(log.t_ra, log.sa[:, finger], lw=0.8, color="tab:blue", zorder=2)
+        sa_axis.set_title(f"{name} finger: (b) processed signals", loc="left")
+        sa_axis.set_ylabel("SA (Eq. 1) [N]")
+        ra_axis.plot(log.t_ra, log.ra[:, finger], lw=0.6, color="tab:orange", zorder=2)
+        ra_axis.set_ylabel("RA (Eq. 2) [m/s²]")
+        ra_axis.set_xlabel("time [s]")
+        for axis in (taxel_axis, vibration_axis, sa_axis, ra_axis):
+            draw_state_bands(axis, spans)
+            draw_transition_lines(axis, transitions)
+            draw_physical_events(axis, events)
+            axis.grid(True, axis="y", alpha=0.3)
+    axes[-1, 0].set_xlim(*time_limits(log))
+    axes[1, 1].legend(handles=_taxel_legend_handles(), loc="upper left",
+                      bbox_to_anchor=(1.01, 1.0), title="12 taxels")
+    axes[2, 1].legend(handles=[Line2D([], [], color=c, label=n)
+                               for c, n in zip(AXIS_COLORS, AXIS_NAMES)],
+                      loc="upper left", bbox_to_anchor=(1.01, 1.0), title="pad frame axis")
+    axes[3, 1].legend(handles=marker_legend_handles(transitions, events), loc="upper left",
+                      bbox_to_anchor=(1.01, 1.0), fontsize=8)
+    figure.suptitle(f"Fig. 5a-b: raw and processed tactile signals, {run_description(log)}\n"
+                    f"{outcome_description(log)}")
+    figure.draw_without_rendering()  # fix the layout, then place the labels
+    for finger in range(len(FINGER_NAMES)):
+        draw_state_strip(axes[0, finger], spans)
+    return str(save_figure(figure, path))

@@ -2,8 +2,7 @@
 
 One panel per (controller, object, phase): the marker grid seen from above, the stroke
 axis y across and the palm normal x upwards, each marker coloured by its success rate
-and annotated with successes/trials; the well-placed marker is outlined. Drawn with matplotlib's object API (no pyplot, no
-global backend state); saving a PNG uses the Agg renderer.
+and annotated with successes/trials; the well-placed marker is outlined.
 """
 
 from collections import defaultdict
@@ -11,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from tegrasp_drake.experiments.figures.figure_files import new_figure, save_figure
 from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLERS
 from tegrasp_drake.experiments.sweep.table import succeeded
 
@@ -42,7 +42,6 @@ def success_grids(records):
 
 def plot_success_maps(records):
     """A matplotlib Figure: rows are controllers, columns objects x (~Hold, ~Unload)."""
-    from matplotlib.figure import Figure
     from matplotlib.patches import Rectangle
 
     xs_mm, ys_mm, grids = success_grids(records)
@@ -54,8 +53,7 @@ def plot_success_maps(records):
     objects += sorted({k[1] for k in grids} - set(objects))
     columns = [(o, p) for o in objects for p in PHASES]
 
-    figure = Figure(figsize=(1.0 + 2.3 * len(columns), 0.6 + 2.4 * len(controllers)),
-                    layout="constrained")
+    figure = new_figure(1.0 + 2.3 * len(columns), 0.6 + 2.4 * len(controllers))
     axes = figure.subplots(len(controllers), len(columns), squeeze=False)
     image = None
     for row, controller in enumerate(controllers):
@@ -90,7 +88,6 @@ def plot_success_maps(records):
 
 
 def write_success_maps(records, out_dir, file_name="success_maps.png") -> Path:
-    """Saves the success-map figure as a PNG in `out_dir`; returns its path."""
-    path = Path(out_dir) / file_name
-    plot_success_maps(list(records)).savefig(path, dpi=120)
-    return path
+    """Saves the success-map figure in `out_dir` (.png, .pdf or .svg, by `file_name`);
+    returns its path."""
+    return save_figure(plot_success_maps(list(records)), Path(out_dir) / file_name)

@@ -2,9 +2,10 @@
 
 `tegrasp sweep` (see `command`) runs every object at every marker of a grid, a few
 attempts each, once per controller, with paired seeds; records each trial durably;
-resumes after a kill; and writes Table I, statistics and per-position success maps.
+resumes after a kill; and writes Table I, statistics, success per offset and figures.
 """
 
+from tegrasp_drake.experiments.sweep.offset_table import offset_rows, write_offset_table
 from tegrasp_drake.experiments.sweep.records import (
     LoadedRecords,
     RecordError,

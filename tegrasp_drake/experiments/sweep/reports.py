@@ -1,26 +1,39 @@
 """Everything a results folder's records yield: Table I, statistics, the README's results
-table, success maps."""
+table, success per offset, and the figures (success maps, Table I against the paper,
+detection latencies)."""
 
 from pathlib import Path
 
+from tegrasp_drake.experiments.sweep.offset_table import write_offset_table
 from tegrasp_drake.experiments.sweep.records import load_records
 from tegrasp_drake.experiments.sweep.summary import write_summary
 from tegrasp_drake.experiments.sweep.table import write_statistics, write_table1
 
 
-def write_reports(out_dir) -> list[Path]:
-    """Writes table1.md/.csv, statistics.md/.json, summary.md and success_maps.png into
-    `out_dir`.
+def write_reports(out_dir, *, figure_format: str = "png") -> list[Path]:
+    """Writes table1.md/.csv, statistics.md/.json, summary.md, success_by_offset.md/.csv and
+    the figures success_maps, table1_vs_paper and latency (in `figure_format`: png, pdf or
+    svg) into `out_dir`.
 
     Reads only the records, so it reproduces the reports of any results folder.
-    Corrupt records are skipped (the next sweep run re-runs their trials); the success
-    map is left out when no trial has finished.
+    Corrupt records are skipped (the next sweep run re-runs their trials); the figures are
+    left out when no trial has finished, the latency figure when no trial detected an event.
     """
-    # Imported here: the figure module reads the sweep's spec and table (this package).
+    # Imported here: the figure modules read the sweep's spec and table (this package).
+    from tegrasp_drake.experiments.figures.figure_files import figure_path
+    from tegrasp_drake.experiments.figures.latency import (latency_samples,
+                                                           plot_latency_distributions)
     from tegrasp_drake.experiments.figures.sweep import write_success_maps
+    from tegrasp_drake.experiments.figures.table1 import plot_table1
     records = list(load_records(out_dir).records.values())
-    paths = write_table1(records, out_dir) + write_statistics(records, out_dir)
-    paths += write_summary(records, out_dir)
+    paths = (write_table1(records, out_dir) + write_statistics(records, out_dir)
+             + write_summary(records, out_dir) + write_offset_table(records, out_dir))
     if any(record["status"] == "ok" for record in records):
-        paths.append(write_success_maps(records, out_dir))
+        paths.append(write_success_maps(records, out_dir,
+                                        figure_path(".", "success_maps", figure_format).name))
+        paths.append(Path(plot_table1(records, figure_path(out_dir, "table1_vs_paper",
+                                                           figure_format))))
+    if latency_samples(records):
+        paths.append(Path(plot_latency_distributions(
+            records, figure_path(out_dir, "latency", figure_format))))
     return paths

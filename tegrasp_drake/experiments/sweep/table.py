@@ -67,7 +67,8 @@ def succeeded(result: dict, phase: str) -> bool:
     return result["hold_success"] and result["unload_success"]
 
 
-def _ordered(names, preferred):
+def ordered_names(names, preferred) -> list:
+    """`names` in the `preferred` order, then the others sorted."""
     return [n for n in preferred if n in names] + sorted(set(names) - set(preferred))
 
 
@@ -92,8 +93,8 @@ def table1_rows(records) -> list[Table1Row]:
                 cell[1] += 1
 
     rows = []
-    object_order = _ordered(objects, BUILTIN_OBJECTS)
-    for controller in _ordered(controllers, CONTROLLERS):
+    object_order = ordered_names(objects, BUILTIN_OBJECTS)
+    for controller in ordered_names(controllers, CONTROLLERS):
         object_rows = []
         for object_name in object_order:
             cells = []
@@ -132,7 +133,7 @@ def table1_markdown(rows) -> str:
     for title in _COLUMN_TITLES:
         header += [title, "paper"]
     header.append("Errors")
-    for controller in _ordered({row.controller for row in rows}, CONTROLLERS):
+    for controller in ordered_names({row.controller for row in rows}, CONTROLLERS):
         lines += ["", f"## {CONTROLLER_TITLES.get(controller, controller)}", "",
                   "| " + " | ".join(header) + " |",
                   "|" + "---|" * len(header)]
@@ -192,7 +193,7 @@ def controller_statistics(records) -> dict:
     for record in records:
         by_controller[record["trial"]["controller"]].append(record)
     statistics = {}
-    for controller in _ordered(by_controller, CONTROLLERS):
+    for controller in ordered_names(by_controller, CONTROLLERS):
         results = [r["result"] for r in by_controller[controller] if r["status"] == "ok"]
         latencies = defaultdict(list)
         missed = Counter()
@@ -246,7 +247,7 @@ def paired_comparisons(records) -> list[dict]:
         if record["status"] == "ok":
             outcomes[record["trial"]["controller"]][record["trial"]["pair_id"]] = \
                 record["result"]
-    controllers = _ordered(outcomes, CONTROLLERS)
+    controllers = ordered_names(outcomes, CONTROLLERS)
     comparisons = []
     for i, a in enumerate(controllers):
         for b in controllers[i + 1:]:

@@ -1,0 +1,70 @@
+"""The Meshcat options of the run commands (trial, demo): a live viewer and a standalone HTML
+replay of the run.
+
+  --meshcat    serve the run live; the URL is printed (on stderr) as soon as the viewer starts,
+               and at the end the command waits for Enter so the viewer stays up (with --json
+               too: the JSON goes to stdout, the prompt to stderr)
+  --html FILE  write the run's recording as one HTML file (Meshcat.StaticHtml(): the scene,
+               the animation and the viewer's JavaScript with three.js inlined; no server, no
+               network); works without --meshcat
+"""
+
+import pathlib
+import sys
+
+
+def add_viewer_arguments(parser) -> None:
+    parser.add_argument("--meshcat", action="store_true",
+                        help="show the run live in Meshcat: prints the URL as soon as the "
+                             "viewer starts; at the end replays the recording there and waits "
+                             "for Enter")
+    parser.add_argument("--html", metavar="FILE", default=None,
+                        help="write the run as a standalone HTML replay (3D scene, contact "
+                             "and taxel forces, animation) that opens offline in any browser")
+
+
+def check_html_path(args) -> pathlib.Path | None:
+    """--html as a Path, checked before the run: exits naming the problem."""
+    if args.html is None:
+        return None
+    path = pathlib.Path(args.html)
+    if path.is_dir():
+        raise SystemExit(f"tegrasp: error: --html {path} is a folder; give a file name, "
+                         "e.g. replay.html")
+    for parent in path.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise SystemExit(f"tegrasp: error: --html {path}: {parent} is a file, not a "
+                                 "folder")
+            break
+    return path
+
+
+def start_viewer(args):
+    """A Meshcat for --meshcat or --html (None without either); prints its URL for
+    --meshcat at once."""
+    if not (args.meshcat or args.html):
+        return None
+    from pydrake.geometry import Meshcat
+    meshcat = Meshcat()
+    if args.meshcat:
+        print(f"Meshcat: open {meshcat.web_url()} to watch the run", file=sys.stderr,
+              flush=True)
+    return meshcat
+
+
+def write_replay_html(meshcat, path) -> pathlib.Path:
+    """Writes the Meshcat's scene and published recording as one HTML file."""
+    path = pathlib.Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(meshcat.StaticHtml(), encoding="utf-8")
+    return path
+
+
+def wait_for_viewer(args, meshcat) -> None:
+    """With --meshcat, keeps the viewer up until Enter (prompt on stderr)."""
+    if meshcat is None or not args.meshcat:
+        return
+    print(f"Meshcat at {meshcat.web_url()}: the recording replays there (its controls: "
+          "Animations); press Enter to quit.", file=sys.stderr, flush=True)
+    sys.stdin.readline()

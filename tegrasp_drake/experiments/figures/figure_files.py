@@ -1,0 +1,59 @@
+"""A figure, its file and its format: every figure module makes its Figure with `new_figure`
+and writes it with `save_figure`, as PNG (for screens), PDF or SVG (vector, for papers).
+
+Figures are drawn with matplotlib's object API (no pyplot, no global backend state); the
+Agg canvas renders PNG, and matplotlib picks its PDF or SVG backend from the file's suffix.
+"""
+
+import pathlib
+
+FIGURE_FORMATS = ("png", "pdf", "svg")
+PNG_DPI = 150  # about 1800 px across a 12 in figure: sharp on screens and in a PDF viewer
+
+
+class FigureFormatError(ValueError):
+    """A figure file name whose suffix is not one of FIGURE_FORMATS."""
+
+
+def new_figure(width_in: float, height_in: float):
+    """An empty matplotlib Figure of that size [in], laid out by constrained layout."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # only when drawing
+    from matplotlib.figure import Figure
+    figure = Figure(figsize=(width_in, height_in), layout="constrained")
+    FigureCanvasAgg(figure)
+    return figure
+
+
+def figure_path(folder, stem: str, figure_format: str) -> pathlib.Path:
+    """folder / stem.figure_format, after checking the format."""
+    if figure_format not in FIGURE_FORMATS:
+        raise FigureFormatError(f"figure format '{figure_format}' is not one of "
+                                f"{', '.join(FIGURE_FORMATS)}")
+    return pathlib.Path(folder) / f"{stem}.{figure_format}"
+
+
+def check_figure_path(path) -> pathlib.Path:
+    """`path` as a Path if its suffix names a figure format; FigureFormatError if not."""
+    path = pathlib.Path(path)
+    if path.suffix.lstrip(".").lower() not in FIGURE_FORMATS:
+        raise FigureFormatError(f"figure file '{path}' must end in one of "
+                                f"{', '.join('.' + f for f in FIGURE_FORMATS)}")
+    return path
+
+
+def save_figure(figure, path) -> pathlib.Path:
+    """Writes `figure` to `path` in the format its suffix names; returns the path."""
+    path = check_figure_path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=PNG_DPI, metadata=_metadata(path))
+    return path
+
+
+def _metadata(path: pathlib.Path) -> dict:
+    # Reproducible vector files: no creation date (PDF) and no date (SVG).
+    suffix = path.suffix.lower()
+    if suffix == ".pdf":
+        return {"CreationDate": None}
+    if suffix == ".svg":
+        return {"Date": None}
+    return {}

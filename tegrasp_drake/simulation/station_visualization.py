@@ -1,0 +1,52 @@
+"""What the simulated station shows in Meshcat: the scene (Drake's illustration and proximity
+geometry), the contact forces (Drake's ContactVisualizer), each taxel's force on the pads
+(TaxelForceDisplay) and a camera framed on the gripper and the object.
+
+Everything it draws goes into Meshcat's recording when one is running, so a replay
+(`Meshcat.PublishRecording()`, `Meshcat.StaticHtml()`) shows the same.
+"""
+
+import numpy as np
+from pydrake.multibody.meshcat import ContactVisualizer, ContactVisualizerParams
+from pydrake.visualization import ApplyVisualizationConfig, VisualizationConfig
+
+from tegrasp_drake.simulation.taxel_force_display import TaxelForceDisplay, TaxelForceDisplayConfig
+
+# Contact force arrows: the default 25 N grip is a 5 cm arrow (Drake's default, 10 N/m, makes
+# it 2.5 m, far outside the view); moments at 1 cm per 0.01 N m.
+CONTACT_NEWTONS_PER_METER = 500.0
+CONTACT_NEWTON_METERS_PER_METER = 1.0
+# Camera: above, in front of the fingertips and to the +y side, looking at the point between
+# the palm and the object, half the lift above the grasp (world frame, from the object's
+# position at the grasp height) [m]: both fingers, their taxel bars and the contact forces
+# in view, the gripper a quarter to a half of the view through the grasp.
+CAMERA_TARGET_FROM_OBJECT_M = (-0.03, 0.0, 0.03)
+CAMERA_FROM_TARGET_M = (0.08, 0.10, 0.18)
+
+
+def grasp_camera_pose(scenario) -> tuple[np.ndarray, np.ndarray]:
+    """(p_WC, p_WT): the camera position and the point it looks at [m], world frame."""
+    x, y = np.add(scenario.expected_object_xy, scenario.object_offset)
+    target = np.array([x, y, scenario.grasp.grasp_height]) + CAMERA_TARGET_FROM_OBJECT_M
+    return target + CAMERA_FROM_TARGET_M, target
+
+
+def AddStationVisualization(builder, *, plant, scene_graph, taxels, pads, meshcat, scenario):
+    """Adds the Meshcat visualizers to the station's builder and frames the camera.
+
+    taxels: the TactilePads system (its `{finger}_taxel_forces` outputs); pads: finger name
+    -> PadGeometry."""
+    ApplyVisualizationConfig(VisualizationConfig(publish_contacts=False), builder,
+                             meshcat=meshcat)
+    ContactVisualizer.AddToBuilder(
+        builder, plant, meshcat,
+        ContactVisualizerParams(newtons_per_meter=CONTACT_NEWTONS_PER_METER,
+                                newton_meters_per_meter=CONTACT_NEWTON_METERS_PER_METER))
+    display = builder.AddNamedSystem("taxel_force_display", TaxelForceDisplay(
+        meshcat=meshcat, pads=pads, config=TaxelForceDisplayConfig()))
+    builder.Connect(plant.get_body_poses_output_port(), display.GetInputPort("body_poses"))
+    for finger in pads:
+        builder.Connect(taxels.GetOutputPort(f"{finger}_taxel_forces"),
+                        display.GetInputPort(f"{finger}_taxel_forces"))
+    meshcat.SetCameraPose(*grasp_camera_pose(scenario))
+    return display

@@ -1,0 +1,54 @@
+"""The run commands' Meshcat options: the URL as soon as the viewer starts, the wait for
+Enter (also with --json), and --html checked before a run."""
+
+import argparse
+import io
+
+import pytest
+
+from tegrasp_drake.commands.viewer_args import (check_html_path, start_viewer,
+                                                wait_for_viewer)
+
+
+def _args(**values):
+    return argparse.Namespace(**{"meshcat": False, "html": None, "json": False, **values})
+
+
+def test_no_viewer_without_meshcat_or_html():
+    assert start_viewer(_args()) is None
+
+
+def test_meshcat_prints_its_url_on_stderr_at_once(capsys):
+    meshcat = start_viewer(_args(meshcat=True))
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert meshcat.web_url() in captured.err
+
+
+def test_html_alone_starts_a_viewer_quietly(capsys, tmp_path):
+    assert start_viewer(_args(html=str(tmp_path / "replay.html"))) is not None
+    assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("json_output", [False, True])
+def test_meshcat_waits_for_enter_even_with_json(json_output, monkeypatch, capsys):
+    meshcat = start_viewer(_args(meshcat=True))
+    stdin = io.StringIO("\n")
+    monkeypatch.setattr("sys.stdin", stdin)
+    capsys.readouterr()
+    wait_for_viewer(_args(meshcat=True, json=json_output), meshcat)
+    assert stdin.tell() == 1  # the Enter was read
+    captured = capsys.readouterr()
+    assert captured.out == ""  # stdout holds only the result (one JSON object with --json)
+    assert "press Enter" in captured.err
+
+
+def test_html_that_is_a_folder_stops_before_the_run(tmp_path):
+    with pytest.raises(SystemExit, match="is a folder; give a file name"):
+        check_html_path(_args(html=str(tmp_path)))
+
+
+def test_html_under_a_file_stops_before_the_run(tmp_path):
+    (tmp_path / "a_file").write_text("")
+    with pytest.raises(SystemExit, match="is a file, not a folder"):
+        check_html_path(_args(html=str(tmp_path / "a_file" / "replay.html")))
