@@ -11,9 +11,10 @@ from tegrasp_drake.events.event_sequencer import EventSequencer, next_sequence_s
 class Harness:
     """EventSequencer with `match` fixed by the test."""
 
-    def __init__(self, event_indices=(0, 1, 3)):
+    def __init__(self, event_indices=(0, 1, 3), armed_from_s=None):
         builder = DiagramBuilder()
-        self.sequencer = builder.AddSystem(EventSequencer(event_indices))
+        self.sequencer = builder.AddSystem(EventSequencer(event_indices,
+                                                          armed_from_s=armed_from_s))
         builder.ExportInput(self.sequencer.GetInputPort("match"), "match")
         self.diagram = builder.Build()
         self.simulator = Simulator(self.diagram)
@@ -89,3 +90,21 @@ def test_next_sequence_step(step, matched, expected):
 def test_invalid_event_indices_are_refused(event_indices):
     with pytest.raises(ValueError, match="event_indices"):
         EventSequencer(event_indices)
+
+
+def test_an_event_is_neither_expected_nor_fired_before_it_is_armed():
+    harness = Harness(event_indices=(0, 2), armed_from_s=(0.0, 0.0105))
+    harness.set_match(1.0)  # the matcher reports a match at every tick
+    harness.simulator.AdvanceTo(0.0045)
+    assert harness.output("expected_event")[0] == -1  # event 0 fired; event 2 not armed
+    times = harness.output("fire_times")
+    assert times[0] == pytest.approx(0.0) and np.isnan(times[1])
+    harness.simulator.AdvanceTo(0.0125)
+    assert harness.output("fire_times")[1] == pytest.approx(0.011)  # first tick armed
+
+
+def test_arming_times_must_match_the_sequence():
+    with pytest.raises(ValueError, match="one finite time"):
+        EventSequencer((0, 1), armed_from_s=(0.0,))
+    with pytest.raises(ValueError, match="one finite time"):
+        EventSequencer((0, 1), armed_from_s=(0.0, float("nan")))

@@ -2,7 +2,9 @@
 
 The smallest state machine over the EventMatcher: it puts the first event of its sequence
 on `expected_event`, and each time the matcher reports a match, moves on to the next one
-and notes the time. After the last event it expects none (-1). The grasp controller's
+and notes the time. After the last event it expects none (-1). An event may be armed from a
+time on (`armed_from_s`), as the grasp's state machine expects Place-Unload only in Place:
+before that time the sequencer expects none. The grasp controller's
 state machine does the same while also commanding the arm and gripper; offline replays of
 logged trials (`replay.py`, `tegrasp replay LOG`) use this one alone.
 """
@@ -45,13 +47,14 @@ class EventSequencer(LeafSystem):
     Ports:
         match: [1.0] when the expected event matched (EventMatcher's `match`), else [0.0].
         expected_event: [index] of the event now expected (EventMatcher's
-            `expected_event`), -1 once every event has fired.
+            `expected_event`), -1 before it is armed and once every event has fired.
         fire_times: one time [s] per event of the sequence, when it fired; NaN until then.
 
     State: [step, fire time per event], step = number of events fired so far.
     """
 
-    def __init__(self, event_indices: Sequence[int], *, period_s: float = DEFAULT_PERIOD_S):
+    def __init__(self, event_indices: Sequence[int], *, period_s: float = DEFAULT_PERIOD_S,
+                 armed_from_s: Sequence[float] | None = None):
         super().__init__()
         indices = [int(index) for index in event_indices]
         if not indices or any(index < 0 or index != value
@@ -61,13 +64,19 @@ class EventSequencer(LeafSystem):
         if not period_s > 0.0:
             raise ValueError(f"period_s {period_s} must be positive")
         self._event_indices = tuple(indices)
+        armed = [0.0] * len(indices) if armed_from_s is None else [float(t) for t in armed_from_s]
+        if len(armed) != len(indices) or not all(math.isfinite(t) for t in armed):
+            raise ValueError(f"armed_from_s {armed_from_s} must give one finite time [s] per "
+                             "event of the sequence")
+        self._armed_from_s = tuple(armed)
         self._match_port = self.DeclareVectorInputPort("match", 1)
         self._state_index = self.DeclareDiscreteState(
             np.concatenate([[0.0], np.full(len(indices), np.nan)]))
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
         state = {self.discrete_state_ticket(self._state_index)}
         self._expected_port = self.DeclareVectorOutputPort(
-            "expected_event", 1, self._calc_expected_event, prerequisites_of_calc=state)
+            "expected_event", 1, self._calc_expected_event,
+            prerequisites_of_calc=state | {self.time_ticket()})
         self._fire_times_port = self.DeclareVectorOutputPort(
             "fire_times", len(indices), self._calc_fire_times, prerequisites_of_calc=state)
 
@@ -81,7 +90,9 @@ class EventSequencer(LeafSystem):
     def _update(self, context, discrete_state):
         state = discrete_state.get_mutable_value(self._state_index)
         step = int(state[0])
-        matched = self._match_port.Eval(context)[0] > 0.5
+        armed = step < len(self._event_indices) and \
+            context.get_time() >= self._armed_from_s[step]
+        matched = armed and self._match_port.Eval(context)[0] > 0.5
         new_step = next_sequence_step(step, matched, len(self._event_indices))
         if new_step != step:
             state[0] = new_step
@@ -89,8 +100,9 @@ class EventSequencer(LeafSystem):
 
     def _calc_expected_event(self, context, output):
         step = int(self._state(context)[0])
-        output.SetAtIndex(0, self._event_indices[step] if step < len(self._event_indices)
-                          else NO_EVENT)
+        armed = step < len(self._event_indices) and \
+            context.get_time() >= self._armed_from_s[step]
+        output.SetAtIndex(0, self._event_indices[step] if armed else NO_EVENT)
 
     def _calc_fire_times(self, context, output):
         output.SetFromVector(self._state(context)[1:])

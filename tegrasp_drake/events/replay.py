@@ -108,7 +108,8 @@ class _ReplayDiagram:
 
 def _build_replay_diagram(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
                           sequence: Sequence[str] | None, held: str | None,
-                          config: EventMatcherConfig, tick_s: float) -> _ReplayDiagram:
+                          config: EventMatcherConfig, tick_s: float,
+                          armed_from_s: Mapping[str, float] | None = None) -> _ReplayDiagram:
     """channels -> WindowNormalizer -> EventScorer <-> EventSequencer (or a held event)."""
     builder = DiagramBuilder()
     source = builder.AddNamedSystem("channels", TrajectorySource(channels_trajectory(trial)))
@@ -117,7 +118,8 @@ def _build_replay_diagram(trial: TactileTrial, events: Mapping[str, MemorizedEve
     sequencer = None
     if sequence is not None:
         sequencer = builder.AddNamedSystem("event_sequencer", EventSequencer(
-            [matcher.event_index(transition) for transition in sequence], period_s=tick_s))
+            [matcher.event_index(transition) for transition in sequence], period_s=tick_s,
+            armed_from_s=[(armed_from_s or {}).get(transition, 0.0) for transition in sequence]))
         builder.Connect(matcher.GetOutputPort("match"), sequencer.GetInputPort("match"))
         expected = sequencer.GetOutputPort("expected_event")
     else:
@@ -132,11 +134,12 @@ def _build_replay_diagram(trial: TactileTrial, events: Mapping[str, MemorizedEve
 
 def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
             sequence: Sequence[str] | None, held: str | None,
-            config: EventMatcherConfig | None, t_end: float | None) -> EventReplay:
+            config: EventMatcherConfig | None, t_end: float | None,
+            armed_from_s: Mapping[str, float] | None = None) -> EventReplay:
     config = live_matcher_config(events, config)
     tick_s = 1.0 / max(config.sa_rate_hz, config.ra_rate_hz)
     systems = _build_replay_diagram(trial, events, sequence=sequence, held=held,
-                                    config=config, tick_s=tick_s)
+                                    config=config, tick_s=tick_s, armed_from_s=armed_from_s)
     simulator = Simulator(systems.diagram)
     root = simulator.get_mutable_context()
     matcher, normalizer = systems.matcher.scorer, systems.matcher.normalizer
@@ -174,14 +177,17 @@ def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
 def replay_events_in_sequence(
         trial: TactileTrial, events: Mapping[str, MemorizedEvent],
         sequence: Sequence[str] = REQUIRED_TRANSITIONS, *,
-        config: EventMatcherConfig | None = None, t_end: float | None = None) -> EventReplay:
+        config: EventMatcherConfig | None = None, t_end: float | None = None,
+        armed_from_s: Mapping[str, float] | None = None) -> EventReplay:
     """Replays `trial`, expecting the events of `sequence` one after another.
 
     events: one object's memorized events ({transition: event}); config: the matcher's
-    thresholds (its rates are set to the events'); t_end: default the trial's end.
+    thresholds (its rates are set to the events'); t_end: default the trial's end;
+    armed_from_s: {transition: time [s]} before which that event is not looked for (as the
+    state machine looks for Place-Unload only in Place); default: each from the start.
     """
     return _replay(trial, events, sequence=tuple(sequence), held=None, config=config,
-                   t_end=t_end)
+                   t_end=t_end, armed_from_s=armed_from_s)
 
 
 def replay_event_held(

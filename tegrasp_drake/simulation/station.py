@@ -199,7 +199,8 @@ def MakeGraspStation(scenario, *, meshcat=None):
 
     if meshcat is not None:  # the scene, contact forces, taxel forces; a framed camera
         AddStationVisualization(builder, plant=plant, scene_graph=scene_graph, taxels=taxels,
-                                pads=pads, meshcat=meshcat, scenario=scenario)
+                                pads=pad_geometries(plant, scene_graph, gripper),
+                                meshcat=meshcat, scenario=scenario)
     diagram = builder.Build()
     diagram.set_name("grasp_station")
     return diagram
