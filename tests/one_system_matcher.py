@@ -1,7 +1,7 @@
 """The event matcher as one system, as it was before the WindowNormalizer fed it (up to
 commit ae03fd0): each rate's StreamingCorrelator keeps its own window and scores it in one
-periodic update. Tests run it beside the live WindowNormalizer -> EventScorer pair and
-compare the two tick by tick."""
+periodic update. Tests run it beside the live EventMatcher (which scores its
+WindowNormalizer's windows) and compare the two tick by tick."""
 
 import dataclasses
 import functools
@@ -82,8 +82,7 @@ def replay_both(trial, events, config: EventMatcherConfig, *,
     EventSequencer on the live matcher's match sets the expected event of both."""
     builder = DiagramBuilder()
     source = builder.AddSystem(TrajectorySource(channels_trajectory(trial)))
-    live = add_event_matcher(builder, events, config,
-                             channels=source.get_output_port()).scorer
+    live = add_event_matcher(builder, events, config, channels=source.get_output_port())
     old = builder.AddSystem(OneSystemMatcher(events, config))
     builder.Connect(source.get_output_port(), old.GetInputPort("channels"))
     tick_s = 1.0 / max(config.sa_rate_hz, config.ra_rate_hz)

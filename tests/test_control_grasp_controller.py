@@ -2,6 +2,7 @@
 
 from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
 from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
 
 
 def connections(diagram) -> set[tuple[str, str, str, str]]:
@@ -12,16 +13,13 @@ def connections(diagram) -> set[tuple[str, str, str, str]]:
 
 
 def test_memorized_controller_scores_the_window_normalizer_windows():
-    wiring = connections(MakeGraspDiagram(LoadScenario(name="box"), log=False).diagram)
-    assert {("mechanoreceptor_channels", "channels", "window_normalizer", "channels"),
-            ("window_normalizer", "sa_window_position", "event_scorer", "sa_window_position"),
-            ("window_normalizer", "sa_window_buffer", "event_scorer", "sa_window_buffer"),
-            ("window_normalizer", "ra_window_position", "event_scorer", "ra_window_position"),
-            ("window_normalizer", "ra_window_buffer", "event_scorer", "ra_window_buffer"),
-            ("mechanoreceptor_channels", "channels", "event_scorer", "channels"),
-            ("grasp_state_machine", "expected_event", "event_scorer", "expected_event"),
-            ("event_scorer", "match", "grasp_state_machine", "match"),
-            ("event_scorer", "scores", "grasp_state_machine", "scores")} <= wiring
+    diagram = MakeGraspDiagram(LoadScenario(name="box"), log=False).diagram
+    assert isinstance(diagram.GetSubsystemByName("event_matcher"), WindowNormalizer)
+    wiring = connections(diagram)
+    assert {("mechanoreceptor_channels", "channels", "event_matcher", "channels"),
+            ("grasp_state_machine", "expected_event", "event_matcher", "expected_event"),
+            ("event_matcher", "match", "grasp_state_machine", "match"),
+            ("event_matcher", "scores", "grasp_state_machine", "scores")} <= wiring
 
 
 def test_heuristic_controller_reads_the_channels_directly():
@@ -29,4 +27,4 @@ def test_heuristic_controller_reads_the_channels_directly():
                                              controller="heuristic").diagram)
     assert ("mechanoreceptor_channels", "channels", "heuristic_detector", "channels") in wiring
     assert ("heuristic_detector", "match", "grasp_state_machine", "match") in wiring
-    assert not any("window_normalizer" in (c[0], c[2]) for c in wiring)
+    assert not any("event_matcher" in (c[0], c[2]) for c in wiring)

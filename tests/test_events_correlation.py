@@ -162,19 +162,16 @@ def test_sliding_window_keeps_the_last_samples_oldest_first():
                                                           [-33, -34, -35, -36, -37]])
 
 
-def test_window_after_a_push_leaves_the_window_it_starts_from_alone():
+def test_a_push_reports_where_the_window_is_and_whether_it_is_full():
     layout = SlidingWindowState(SlidingWindow(n_channels=2, length=5, slack=3))
-    position, buffer = (np.zeros(layout.position_size), np.zeros(layout.buffer_size))
+    state = np.zeros(layout.size)
     for value in range(1, 12):
-        before = (position.copy(), buffer.copy())
-        after = layout.window_after(position, buffer, [value, -value]).copy()
-        np.testing.assert_array_equal(position, before[0])
-        np.testing.assert_array_equal(buffer, before[1])
-        layout.push_into(position, buffer, [value, -value])
-        np.testing.assert_array_equal(after, layout.window_in(position, buffer))
-        offset, held, oldest = layout.unpack(position)
-        assert held == min(value, 5)
-        np.testing.assert_array_equal(oldest, layout.window_in(position, buffer)[:, 0])
+        rows, offset, full = layout.push(state, [value, -value])
+        assert full == (value >= 5)
+        window = layout.current(state)
+        np.testing.assert_array_equal(rows[:, offset:offset + 5], window)
+        np.testing.assert_array_equal(window[:, -1], [value, -value])
+        assert window[0, 0] == (value - 4 if full else 0.0)  # zero until full
 
 
 def test_resampling_holds_values_when_upsampling_and_averages_when_downsampling():

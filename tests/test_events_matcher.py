@@ -69,8 +69,9 @@ def test_ports_have_stable_names_and_sizes():
             for i in range(matcher.num_input_ports())] == [("channels", 4),
                                                            ("expected_event", 1)]
     assert [(matcher.get_output_port(i).get_name(), matcher.get_output_port(i).size())
-            for i in range(matcher.num_output_ports())] == [("scores", 4), ("match", 1),
-                                                            ("scored_event", 1)]
+            for i in range(matcher.num_output_ports())] == [
+                ("sa_window", 2 * 50), ("ra_window", 2 * 500), ("scores", 4), ("match", 1),
+                ("scored_event", 1)]
 
 
 def test_events_are_numbered_in_grasp_order():
@@ -207,7 +208,7 @@ def test_an_all_zero_template_channel_is_refused():
 
 def test_scores_are_eq3_of_the_normalizer_windows_at_every_tick():
     harness = Harness(replay(NOISY))
-    normalizer = harness.matcher.normalizer
+    normalizer = harness.matcher  # a WindowNormalizer: the windows it scores
     compared = 0
     for event, (t_start, t_end) in (("reach_load", (0.6, 1.3)), ("load_lift", (1.3, 1.9))):
         harness.expect(event)

@@ -31,7 +31,7 @@ from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetecto
 from tegrasp_drake.control.scripted_grasp import ScriptedGraspSource, plan_scripted_grasp
 from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecording
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
-from tegrasp_drake.events.event_matcher import EventMatcher, EventScorer
+from tegrasp_drake.events.event_matcher import EventMatcher
 from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.memorized_event import load_memorized_events
 from tegrasp_drake.experiments.benchmarks.drivers import LoopTick
@@ -112,7 +112,6 @@ CONSTRUCTORS = {
     SlipVibrationBand: lambda: SlipVibrationBand(band_hz=80.0, window_s=0.01,
                                                  sample_rate_hz=1000.0),
     EventMatcher: lambda: EventMatcher(load_memorized_events(paths.events_dir(), "box")),
-    EventScorer: lambda: EventScorer(load_memorized_events(paths.events_dir(), "box")),
     EventSequencer: lambda: EventSequencer([0, 1, 2]),
     GraspStateMachine: lambda: GraspStateMachine(
         plan=GraspPlan.from_scenario(box_scenario()), config=GraspControllerConfig(),

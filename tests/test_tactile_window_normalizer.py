@@ -9,8 +9,7 @@ from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 from tegrasp_drake.events.correlation import normalize_by_max
 from tegrasp_drake.events.replay import channels_trajectory
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
-from tegrasp_drake.tactile.window_normalizer import (
-    WindowNormalizer, WindowNormalizerConfig, window_layout)
+from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig
 
 NOISY_GRASP = SyntheticGraspConfig(sa_noise_n=0.05, ra_noise=0.2, seed=4)
 
@@ -79,17 +78,24 @@ def test_history_lives_in_the_context():
 
 
 @pytest.mark.parametrize("sa_rate_hz, groups", [(100.0, ("sa", "ra")), (1000.0, ("sa_ra",))])
-def test_raw_window_outputs_hold_the_windows_it_normalises(sa_rate_hz, groups):
+def test_rate_windows_hold_the_windows_it_normalises(sa_rate_hz, groups):
     trajectory = channels_trajectory(synthetic_grasp(NOISY_GRASP, sa_rate_hz=sa_rate_hz))
     config = WindowNormalizerConfig(sa_rate_hz=sa_rate_hz)
     normalizer, context = simulate(TrajectorySource(trajectory), config, 1.1375)
     channels = []  # raw windows in CHANNEL_NAMES order
-    for group, name in zip(config.rate_groups(), groups, strict=True):
-        assert group.name == name
-        channels += list(window_layout(group).window_in(
-            normalizer.GetOutputPort(f"{name}_window_position").Eval(context),
-            normalizer.GetOutputPort(f"{name}_window_buffer").Eval(context)))
+    for window, name in zip(normalizer.rate_windows, groups, strict=True):
+        assert window.group.name == name
+        channels += list(window.layout.current(
+            context.get_discrete_state(window.state).value()))
     np.testing.assert_array_equal(normalizer.GetOutputPort("sa_window").Eval(context),
                                   normalize_by_max(np.array(channels[:2])).ravel())
     np.testing.assert_array_equal(normalizer.GetOutputPort("ra_window").Eval(context),
                                   normalize_by_max(np.array(channels[2:])).ravel())
+
+
+def test_a_subclass_state_must_start_with_an_empty_window():
+    config = WindowNormalizerConfig()
+    size = WindowNormalizer(config).rate_windows[0].layout.size
+    for name, state in (("too short", np.zeros(size - 1)), ("not empty", np.ones(size + 3))):
+        with pytest.raises(ValueError, match="must start with an empty window"):
+            WindowNormalizer(config, window_states={"sa": state, "ra": np.zeros(10_000)})

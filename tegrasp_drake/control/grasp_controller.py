@@ -1,11 +1,12 @@
 """The closed-loop grasp controller wired to a station: Eq. 1-2 channels, the event detector
-(the memorized events' WindowNormalizer -> EventScorer, or the heuristic thresholds), the
+(the memorized events' EventMatcher: a WindowNormalizer that scores its windows by Eq. 3,
+or the heuristic thresholds), the
 GraspStateMachine and the Cartesian arm controller; or the open-loop script.
 
 With the memorized events the live diagram follows the paper's Fig. 3:
 
-    mechanoreceptor_channels (Eq. 1-2) -> window_normalizer (0.5 s, max-normalised)
-      -> event_scorer (Eq. 3 against the expected event) -> grasp_state_machine
+    mechanoreceptor_channels (Eq. 1-2) -> event_matcher (the 0.5 s windows,
+      max-normalised, scored by Eq. 3 against the expected event) -> grasp_state_machine
 
 `AddGraspController` connects to any system with the station's exported port names
 (station.py): the simulated station and the hardware interface alike.
@@ -36,8 +37,7 @@ class GraspController:
     """The controller's systems and its ports of interest."""
     name: str
     channels: object  # MechanoreceptorChannels
-    detector: object  # EventScorer (fed by a WindowNormalizer), HeuristicEventDetector or
-    #                   None (open loop)
+    detector: object  # EventMatcher, HeuristicEventDetector or None (open loop)
     state_machine: object  # GraspStateMachine, or ScriptedGraspSource (open loop)
     gripper_command: object  # output port
     arm_desired_state: object  # output port
@@ -101,8 +101,8 @@ def _add_detector(builder, scenario, name, events, channels):
             sa_rate_hz=scenario.tactile.sample_rate_hz,
             ra_rate_hz=scenario.vibration.sample_rate_hz)
         events = events if events is not None else load_controller_events(scenario)
-        matcher = add_event_matcher(builder, events, matcher_config, channels=channels)
-        return matcher.scorer, Trigger.MEMORIZED_EVENT
+        return (add_event_matcher(builder, events, matcher_config, channels=channels),
+                Trigger.MEMORIZED_EVENT)
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
         config.heuristic, grip_force_n=scenario.grasp.grip_force))
     builder.Connect(channels, detector.GetInputPort("channels"))

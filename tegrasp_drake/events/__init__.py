@@ -2,11 +2,10 @@
 
 The record step cuts max-normalised 0.5 s windows of the four channels around each grasp
 transition of an ideal grasp (extraction.py) and stores them (memorized_event.py,
-FORMAT.md). In the control loop (the paper's Fig. 3), the WindowNormalizer
-(tactile/window_normalizer.py) keeps the live 0.5 s windows and the EventScorer scores them
-against the expected event with Eq. 3 (correlation.py, streaming_correlation.py);
-`add_event_matcher` wires the two, the EventMatcher is the pair as one system. The
-EventSequencer expects an object's events one after another. replay.py runs a logged
+FORMAT.md). In the control loop (the paper's Fig. 3), the EventMatcher is a WindowNormalizer
+(tactile/window_normalizer.py: the live 0.5 s windows) that scores its windows against the
+expected event with Eq. 3 (correlation.py, streaming_correlation.py) in the update that
+takes each sample; `add_event_matcher` adds it to a diagram. The EventSequencer expects an object's events one after another. replay.py runs a logged
 trial through them offline.
 
 Not re-exported here, so that the control loop does not import matplotlib:
@@ -19,8 +18,7 @@ from tegrasp_drake.events.correlation import (
     channel_score, event_scores_reference, max_normalized_xcorr_reference,
     normalize_by_max, window_contrast)
 from tegrasp_drake.events.event_matcher import (
-    EventMatcher, EventMatcherConfig, EventMatcherSystems, EventScorer, add_event_matcher,
-    event_templates)
+    EventMatcher, EventMatcherConfig, add_event_matcher, event_templates)
 from tegrasp_drake.events.event_sequencer import EventSequencer, next_sequence_step
 from tegrasp_drake.events.extraction import (
     DEFAULT_PRE_TRANSITION_S, DEFAULT_WINDOW_S, TactileTrial, cut_window,
@@ -40,8 +38,7 @@ from tegrasp_drake.events.transitions import (
 __all__ = [
     "DEFAULT_PRE_TRANSITION_S", "DEFAULT_WINDOW_S", "FORMAT_VERSION", "INDEX_FILE",
     "NO_EVENT", "RECORD_COMMAND", "REQUIRED_TRANSITIONS", "TRANSITIONS", "EventMatcher",
-    "EventMatcherConfig", "EventMatcherSystems", "EventReplay", "EventScorer",
-    "EventSequencer", "MemorizedEvent", "MemorizedEventError", "SlidingCorrelation",
+    "EventMatcherConfig", "EventReplay", "EventSequencer", "MemorizedEvent", "MemorizedEventError", "SlidingCorrelation",
     "StreamingCorrelator", "TactileTrial", "add_event_matcher", "channel_score",
     "channels_trajectory", "current_package_versions", "cut_window",
     "event_scores_reference", "event_templates", "event_transition",

@@ -3,9 +3,9 @@
 `channels_trajectory(trial)` is a zero-order-hold trajectory of the four channels in
 CHANNEL_NAMES order, each logged value held until the next one, as the station's channel
 output holds SA at the SA rate and RA at 1 kHz. `replay_events_in_sequence` feeds it
-through a TrajectorySource into a WindowNormalizer and an EventScorer (add_event_matcher, as
-the grasp controller wires them) whose expected event an EventSequencer advances in grasp
-order, as the grasp state machine would;
+through a TrajectorySource into an EventMatcher (add_event_matcher, as the grasp controller
+wires it) whose expected event an EventSequencer advances in grasp order, as the grasp
+state machine would;
 `replay_event_held` keeps one event expected for the whole trial instead (to see where
 else it would match). Both report the outputs at every control tick.
 """
@@ -22,7 +22,7 @@ from pydrake.trajectories import PiecewisePolynomial
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.events.event_matcher import (
-    EventMatcherConfig, EventMatcherSystems, add_event_matcher)
+    EventMatcher, EventMatcherConfig, add_event_matcher)
 from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -69,9 +69,9 @@ class EventReplay:
     match (T,) 0 or 1; expected_event (T,) index or -1.
     fire_times: {transition: time [s] the sequencer advanced past it, or None}, in the
         sequence's order (empty for a held event).
-    windows_at_match: {transition: (sa_window, ra_window)}, the WindowNormalizer's outputs,
-        (2, N_sa) and (2, N_ra), at the tick that matched it (sequence replays only): the
-        windows the EventScorer scored.
+    windows_at_match: {transition: (sa_window, ra_window)}, the matcher's max-normalised
+        windows, (2, N_sa) and (2, N_ra), at the tick that matched it (sequence replays
+        only): the windows it scored.
     scores_at_match: {transition: the matcher's scores at that tick}.
     """
     transitions: tuple[str, ...]
@@ -101,7 +101,7 @@ def live_matcher_config(events: Mapping[str, MemorizedEvent],
 @dataclasses.dataclass(frozen=True)
 class _ReplayDiagram:
     diagram: Diagram
-    matcher: EventMatcherSystems
+    matcher: EventMatcher
     sequencer: EventSequencer | None
     loggers: dict[str, VectorLogSink]
 
@@ -110,11 +110,10 @@ def _build_replay_diagram(trial: TactileTrial, events: Mapping[str, MemorizedEve
                           sequence: Sequence[str] | None, held: str | None,
                           config: EventMatcherConfig, tick_s: float,
                           armed_from_s: Mapping[str, float] | None = None) -> _ReplayDiagram:
-    """channels -> WindowNormalizer -> EventScorer <-> EventSequencer (or a held event)."""
+    """channels -> EventMatcher <-> EventSequencer (or a held event)."""
     builder = DiagramBuilder()
     source = builder.AddNamedSystem("channels", TrajectorySource(channels_trajectory(trial)))
-    systems = add_event_matcher(builder, events, config, channels=source.get_output_port())
-    matcher = systems.scorer
+    matcher = add_event_matcher(builder, events, config, channels=source.get_output_port())
     sequencer = None
     if sequence is not None:
         sequencer = builder.AddNamedSystem("event_sequencer", EventSequencer(
@@ -129,7 +128,7 @@ def _build_replay_diagram(trial: TactileTrial, events: Mapping[str, MemorizedEve
     loggers = {name: LogVectorOutput(port, builder, tick_s) for name, port in (
         ("scores", matcher.GetOutputPort("scores")), ("match", matcher.GetOutputPort("match")),
         ("expected_event", expected))}
-    return _ReplayDiagram(builder.Build(), systems, sequencer, loggers)
+    return _ReplayDiagram(builder.Build(), matcher, sequencer, loggers)
 
 
 def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
@@ -142,12 +141,11 @@ def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
                                     config=config, tick_s=tick_s, armed_from_s=armed_from_s)
     simulator = Simulator(systems.diagram)
     root = simulator.get_mutable_context()
-    matcher, normalizer = systems.matcher.scorer, systems.matcher.normalizer
+    matcher = systems.matcher
     matcher_context = matcher.GetMyContextFromRoot(root)
-    normalizer_context = normalizer.GetMyContextFromRoot(root)
     match_port, scores_port = matcher.GetOutputPort("match"), matcher.GetOutputPort("scores")
     expected_port = matcher.GetInputPort("expected_event")
-    window_ports = {kind: normalizer.GetOutputPort(f"{kind}_window") for kind in ("sa", "ra")}
+    window_ports = {kind: matcher.GetOutputPort(f"{kind}_window") for kind in ("sa", "ra")}
     windows_at_match, scores_at_match = {}, {}
 
     def capture_windows_at_match(context):
@@ -155,7 +153,7 @@ def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
         if systems.sequencer is not None and match_port.Eval(matcher_context)[0]:
             transition = matcher.transitions[int(expected_port.Eval(matcher_context)[0])]
             windows_at_match[transition] = tuple(
-                port.Eval(normalizer_context).reshape(2, normalizer.window_length(kind))
+                port.Eval(matcher_context).reshape(2, matcher.window_length(kind))
                 for kind, port in window_ports.items())
             scores_at_match[transition] = scores_port.Eval(matcher_context).copy()
         return EventStatus.Succeeded()

@@ -16,24 +16,27 @@ event changes or the sliding buffer compacts, every `slack` samples; that bounds
 round-off of the running sums: the scores equal the reference's to about 1e-16 times the
 signal's dynamic range over the last `slack` samples.
 
-The window itself is not kept here. `SlidingCorrelation.slide` follows a sliding window
-(tactile/sliding_window.py) push by push: it reads the window's position before the push
-(offset, samples held, the oldest samples, which the push drops) and the samples entering
-it, and the whole window only to recompute or when an extreme left it. In the control loop
-that window is the WindowNormalizer's. Until the window is full (its older part is zero
-padding, which would make a few noise samples look like an onset) the scores stay 0.
+The window is not pushed here. `SlidingCorrelation.slide` follows a sliding window
+(tactile/sliding_window.py) push by push: just after a push, the sample that left the
+window is still in the buffer's column before the window (a compaction overwrites it, and
+then the correlations are recomputed anyway), so the slide reads that sample and the new
+one, and the whole window only to recompute or when an extreme left it. In the control
+loop the window is the EventMatcher's, i.e. its WindowNormalizer's. Until the window is
+full (its older part is zero padding, which would make a few noise samples look like an
+onset) the scores stay 0.
 
-A SlidingCorrelation's history is one flat float vector (a Context's discrete state):
+The correlation's history follows the window's in one flat float vector (a Context's
+discrete state group):
 
-    [active_event, scores (channels), [high, low, energy] per channel,
-     correlation buffers: channels x (2N - 1 + slack)]
+    [window (SlidingWindowState) | active_event, scores (channels),
+     [high, low, energy] per channel, correlation buffers: channels x (2N - 1 + slack)]
 
 Correlation column j of a channel holds the lag n = j - offset - (N - 1), where offset is
-the window's (the buffer column where the window starts). `StreamingCorrelator` keeps a
-window and its correlations in one vector, for use outside a Diagram.
+the window's (the buffer column where the window starts). `StreamingCorrelator` pushes the
+window and slides its correlation in one call, for use outside a Diagram.
 """
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 
 import numpy as np
 from scipy.linalg.blas import daxpy
@@ -46,34 +49,30 @@ _STATISTICS = 3  # high, low, energy
 
 
 def slide_statistics(statistics: list[float], dropped_and_new: list[list[float]],
-                     window: Callable[[], np.ndarray]) -> list[float]:
+                     window: np.ndarray) -> list[float]:
     """[high, low, energy] per channel of a window after one sample per channel left it
     and one entered, from their values before (statistics, flattened by channel).
 
-    dropped_and_new: [[dropped, new], ...] per channel; window(): the window (channels, N),
-    new included, called only when an extreme left it or round-off ate its energy.
+    dropped_and_new: [[dropped, new], ...] per channel; window: the window (channels, N),
+    new included, read only when an extreme left it or round-off ate its energy.
     """
     updated = []
-    rows = None
     for channel, (dropped, new) in enumerate(dropped_and_new):
         high, low, energy = statistics[_STATISTICS * channel:_STATISTICS * (channel + 1)]
         if new >= high:
             high = new
         elif dropped == high:
-            rows = window() if rows is None else rows
-            high = float(rows[channel].max())
+            high = float(window[channel].max())
         if new <= low:
             low = new
         elif dropped == low:
-            rows = window() if rows is None else rows
-            low = float(rows[channel].min())
+            low = float(window[channel].min())
         if high == 0.0 and low == 0.0:
             energy = 0.0
         else:
             energy += new * new - dropped * dropped
             if not energy > 0.0:  # round-off ate a tiny energy: recompute it
-                rows = window() if rows is None else rows
-                energy = float(np.dot(rows[channel], rows[channel]))
+                energy = float(np.dot(window[channel], window[channel]))
         updated += [high, low, energy]
     return updated
 
@@ -97,7 +96,7 @@ def _as_templates(templates: Sequence[np.ndarray]) -> list[np.ndarray]:
 
 class SlidingCorrelation:
     """Gated Eq. 3 scores of a sliding window of channels sharing one rate, against one
-    event chosen per slide.
+    event chosen per slide, kept after the window in its state vector (module docstring).
 
     Args:
         templates: one (channels, N) array per event, at the live sample rate.
@@ -114,11 +113,12 @@ class SlidingCorrelation:
                              f"{window}")
         self._n_channels = n_channels
         self._length = length
-        self._window = SlidingWindowState(window)
         self._fft_length = 1 << (2 * length - 2).bit_length()  # power of two >= 2N - 1
         self._spectra = [np.conj(np.fft.rfft(y, self._fft_length)) for y in templates]
         self._min_contrast = min_contrast
-        self._statistics_at = 1 + n_channels
+        self._event_at = SlidingWindowState(window).size  # the window comes first
+        self._scores_at = self._event_at + 1
+        self._statistics_at = self._scores_at + n_channels
         self._rows_at = self._statistics_at + _STATISTICS * n_channels
         self._row_length = 2 * length - 1 + window.slack
         self._size = self._rows_at + n_channels * self._row_length
@@ -139,22 +139,22 @@ class SlidingCorrelation:
 
     @property
     def size(self) -> int:
-        """Length of the flat state vector."""
+        """Length of the flat state vector, window included."""
         return self._size
 
     def initial_state(self) -> np.ndarray:
-        """No active event, scores 0."""
+        """An all-zero window, no active event, scores 0."""
         state = np.zeros(self._size)
-        state[0] = NO_EVENT
+        state[self._event_at] = NO_EVENT
         return state
 
     def active_event(self, state: np.ndarray) -> int:
         """The event the scores in `state` refer to (NO_EVENT for none)."""
-        return int(state[0])
+        return int(state[self._event_at])
 
     def scores(self, state: np.ndarray) -> np.ndarray:
         """View of the channels' scores held in `state`."""
-        return state[1:self._statistics_at]
+        return state[self._scores_at:self._statistics_at]
 
     def check_event(self, event: int) -> None:
         """Raises ValueError unless `event` is NO_EVENT or an event index."""
@@ -162,35 +162,30 @@ class SlidingCorrelation:
             raise ValueError(
                 f"event index {event} is outside -1..{len(self._channel_terms) - 1}")
 
-    def slide(self, state: np.ndarray, position: np.ndarray, samples,
-              window_after: Callable[[], np.ndarray], event: int) -> np.ndarray:
-        """Slide the correlations by one sample per channel and score the window against
-        `event`, in place.
+    def slide(self, state: np.ndarray, rows: np.ndarray, offset: int, full: bool,
+              event: int) -> np.ndarray:
+        """Slide the correlations by the samples that the window just took (one per
+        channel) and score the window against `event`, in place.
 
-        state: a C-contiguous float64 vector (the BLAS calls write into it directly).
-        position: the window's SlidingWindowState position before `samples` entered it.
-        samples: the samples entering the window, one per channel.
-        window_after(): the window (channels, N) with them, oldest first; called only when
-            the correlations are recomputed or an extreme left the window.
-        event: index of the expected event, or NO_EVENT (scores 0). Returns the scores view,
-        all 0 until the window is full.
+        state: the window's and correlation's vector, C-contiguous float64 (the BLAS calls
+            write into it directly).
+        rows, offset, full: the window just after a push (SlidingWindowState.push).
+        event: index of the expected event, or NO_EVENT (scores 0), as check_event accepts
+        (the caller checks it). Returns the scores view, all 0 until the window is full.
         """
-        self.check_event(event)
         length = self._length
-        offset, held, oldest = self._window.unpack(position)
-        offset = self._window.window.next_offset(offset)
-        if event == NO_EVENT or held + 1.0 < length:
-            state[:self._statistics_at] = [NO_EVENT] + [0.0] * self._n_channels
-            return state[1:self._statistics_at]
+        if event == NO_EVENT or not full:
+            state[self._event_at:self._statistics_at] = [NO_EVENT] + [0.0] * self._n_channels
+            return state[self._scores_at:self._statistics_at]
+        window = rows[:, offset:offset + length]
         terms = self._channel_terms[event]
-        if offset == 0 or event != state.item(0):
-            window = window_after()
+        if offset == 0 or event != state.item(self._event_at):
             self._recompute(state, window, offset, event)
             statistics = window_statistics(window)
         else:
-            # The dropped (oldest) sample and the new one, N buffer columns later, add their
-            # products to the 2N correlation columns that end at lag N - 1.
-            dropped_and_new = list(zip(oldest, np.asarray(samples, dtype=float).tolist()))
+            # The dropped sample (the column before the window) and the new one, N columns
+            # later, add their products to the 2N correlation columns that end at lag N - 1.
+            dropped_and_new = rows[:, offset - 1:offset + length:length].tolist()
             for (start, reversed_template, _, _), (dropped, new) in zip(terms,
                                                                          dropped_and_new):
                 at = start + offset - 1
@@ -198,8 +193,7 @@ class SlidingCorrelation:
                     raise ValueError("the state must be a C-contiguous float64 vector")
                 daxpy(reversed_template, state, length, new, 0, 1, at + length, 1)
             statistics = slide_statistics(
-                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new,
-                window_after)
+                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new, window)
         scores = []
         for i, (start, _, template_norm, template_flat) in enumerate(terms):
             lags = state[start + offset:start + offset + 2 * length - 1]
@@ -207,8 +201,8 @@ class SlidingCorrelation:
             # argmax is several times cheaper than max here, and finds the same peak.
             scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
                                         high, low, template_flat, self._min_contrast))
-        state[:self._rows_at] = [event] + scores + statistics
-        return state[1:self._statistics_at]
+        state[self._event_at:self._rows_at] = [event] + scores + statistics
+        return state[self._scores_at:self._statistics_at]
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
                    event: int) -> None:
@@ -217,7 +211,7 @@ class SlidingCorrelation:
         Columns after the valid lags are zeroed: later updates start new lags there.
         """
         length = self._length
-        rows = state[self._rows_at:].reshape(self._n_channels, self._row_length)
+        rows = state[self._rows_at:self._size].reshape(self._n_channels, self._row_length)
         circular = np.fft.irfft(np.fft.rfft(window, self._fft_length) * self._spectra[event],
                                 self._fft_length)
         rows[:] = 0.0
@@ -227,7 +221,8 @@ class SlidingCorrelation:
 
 class StreamingCorrelator:
     """A sliding window and its SlidingCorrelation in one flat vector, [window | correlation]:
-    push a sample, get the scores (tests and benchmarks use it outside a Diagram).
+    push a sample, get the scores (tests and benchmarks use it outside a Diagram, as the
+    EventMatcher's update does inside).
 
     Args:
         templates: one (channels, N) array per event, at the live sample rate.
@@ -240,7 +235,6 @@ class StreamingCorrelator:
         self._window = SlidingWindowState(SlidingWindow(*templates[0].shape, slack))
         self._correlation = SlidingCorrelation(templates, min_contrast=min_contrast,
                                                window=self._window.window)
-        self._split = self._window.size
 
     @property
     def n_events(self) -> int:
@@ -249,23 +243,23 @@ class StreamingCorrelator:
     @property
     def size(self) -> int:
         """Length of the flat state vector."""
-        return self._split + self._correlation.size
+        return self._correlation.size
 
     def initial_state(self) -> np.ndarray:
         """An all-zero window, no active event, scores 0."""
-        return np.concatenate([np.zeros(self._split), self._correlation.initial_state()])
+        return self._correlation.initial_state()
 
     def active_event(self, state: np.ndarray) -> int:
         """The event the scores in `state` refer to (NO_EVENT for none)."""
-        return self._correlation.active_event(state[self._split:])
+        return self._correlation.active_event(state)
 
     def scores(self, state: np.ndarray) -> np.ndarray:
         """View of the channels' scores held in `state`."""
-        return self._correlation.scores(state[self._split:])
+        return self._correlation.scores(state)
 
     def window(self, state: np.ndarray) -> np.ndarray:
         """View (channels, N) of the live window, oldest first, not normalised."""
-        return self._window.current(state[:self._split])
+        return self._window.current(state)
 
     def push(self, state: np.ndarray, samples, event: int) -> np.ndarray:
         """Append one sample per channel and score the window against `event`, in place.
@@ -275,8 +269,5 @@ class StreamingCorrelator:
         all 0 until the window is full.
         """
         self._correlation.check_event(event)
-        position, buffer = self._window.split(state[:self._split])
-        before = position.copy()
-        self._window.push_into(position, buffer, samples)
-        return self._correlation.slide(state[self._split:], before, samples,
-                                       lambda: self._window.window_in(position, buffer), event)
+        rows, offset, full = self._window.push(state, samples)
+        return self._correlation.slide(state, rows, offset, full, event)

@@ -7,6 +7,7 @@ that one periodic update serves all of them.
 """
 
 import dataclasses
+import functools
 
 import numpy as np
 
@@ -38,7 +39,7 @@ class RateGroup:
     channels: tuple[int, ...]
     window_length: int  # samples per window
 
-    @property
+    @functools.cached_property
     def name(self) -> str:
         """The group's kinds of channel: "sa", "ra", or "sa_ra" (port names use it)."""
         kinds = (("sa", SA_CHANNELS), ("ra", RA_CHANNELS))

@@ -6,12 +6,12 @@ push writes one column and advances the offset; when the offset reaches `slack`,
 N - 1 samples move back to the buffer's start (one copy every `slack` pushes instead of a
 roll every push). A zero buffer with offset 0 is an all-zero window.
 
-Beside the buffer, a short `position` vector holds the offset, the number of samples held
-and the window's oldest samples (those the next push drops), so that a system following the
-window push by push (the EventMatcher's scorer) reads a few numbers per tick, not the buffer.
+In a Context the window starts a state vector, [offset, held, buffer | ...], where `held`
+counts the samples pushed up to N (SlidingWindowState).
 """
 
 import dataclasses
+import functools
 
 import numpy as np
 
@@ -20,12 +20,12 @@ import numpy as np
 # column of slack lengthens the state that Drake copies at every update.
 SLACK_FRACTION = 0.2
 
-_OLDEST = 2  # position: [offset, held, oldest sample of each channel]
+_BUFFER_AT = 2  # a window's state: [offset, held | buffer]
 
 
 @dataclasses.dataclass(frozen=True)
 class SlidingWindow:
-    """Layout and operations of a sliding window of `length` samples per channel."""
+    """Layout of a sliding window of `length` samples per channel."""
     n_channels: int
     length: int  # N, samples per window
     slack: int  # pushes between two compactions (>= 1)
@@ -34,95 +34,63 @@ class SlidingWindow:
         if self.n_channels < 1 or self.length < 2 or self.slack < 1:
             raise ValueError(f"invalid sliding window {self}")
 
-    @property
+    @functools.cached_property
     def columns(self) -> int:
         """Buffer columns per channel."""
         return self.length + self.slack
 
-    def window(self, buffer: np.ndarray, offset: int) -> np.ndarray:
-        """View (channels, N) of the window, oldest sample first."""
-        return buffer[:, offset:offset + self.length]
-
-    def next_offset(self, offset: int) -> int:
-        """The offset after a push at `offset`: 0 exactly when the push compacts."""
-        return 0 if offset == self.slack else offset + 1
-
-    def push(self, buffer: np.ndarray, offset: int, samples) -> int:
-        """Append one sample per channel to `buffer` in place; returns the new offset.
-
-        buffer: (channels, >= N + slack) array; only its first N + slack columns are used.
-        """
-        if offset == self.slack:
-            buffer[:, :self.length - 1] = buffer[:, offset + 1:offset + self.length]
-            buffer[:, self.length - 1] = samples
-        else:
-            buffer[:, offset + self.length] = samples
-        return self.next_offset(offset)
 
 
 @dataclasses.dataclass(frozen=True)
 class SlidingWindowState:
-    """A SlidingWindow in flat vectors: a position and a buffer,
+    """A SlidingWindow at the start of a flat vector (a Context's discrete state group),
 
-        position: [offset, held, oldest sample of each channel]
-        buffer: channels x (N + slack), row-major
+        [offset, held, buffer: channels x (N + slack), row-major | anything else]
 
-    either as two vectors (two state groups of a Context) or as one, [position | buffer].
     `held` counts the samples pushed, up to N: the window is full once it holds N. While it
-    is not, its older part (and so its oldest sample) is zero.
+    is not, its older part is zero. The vector may go on after the window's `size` entries
+    (with what a system keeps about the window, such as the EventMatcher's correlations).
     """
     window: SlidingWindow
 
-    @property
-    def position_size(self) -> int:
-        return _OLDEST + self.window.n_channels
-
-    @property
-    def buffer_size(self) -> int:
-        return self.window.n_channels * self.window.columns
-
-    @property
+    @functools.cached_property
     def size(self) -> int:
-        """Length of the one-vector form, [position | buffer]."""
-        return self.position_size + self.buffer_size
+        """Entries of the vector that hold the window."""
+        return _BUFFER_AT + self.window.n_channels * self.window.columns
 
-    def split(self, state: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Views (position, buffer) of the one-vector form."""
-        return state[:self.position_size], state[self.position_size:]
-
-    def unpack(self, position: np.ndarray) -> tuple[int, float, list[float]]:
-        """(offset, held, oldest sample of each channel), as Python numbers."""
-        offset, held, *oldest = position.tolist()
-        return int(offset), held, oldest
-
-    def window_in(self, position: np.ndarray, buffer: np.ndarray) -> np.ndarray:
-        """View (channels, N) of the window, oldest sample first."""
-        rows = buffer.reshape(self.window.n_channels, self.window.columns)
-        return self.window.window(rows, int(position[0]))
-
-    def push_into(self, position: np.ndarray, buffer: np.ndarray, samples) -> None:
-        """Append one sample per channel to the window, in place."""
-        window = self.window
-        offset, held, *_ = position.tolist()
-        rows = buffer.reshape(window.n_channels, window.columns)
-        offset = window.push(rows, int(offset), samples)
-        position[:] = [offset, held + 1.0 if held < window.length else held] + rows[
-            :, offset].tolist()
-
-    def window_after(self, position: np.ndarray, buffer: np.ndarray, samples) -> np.ndarray:
-        """The window (channels, N) once `samples` are pushed, computed on copies:
-        position and buffer stay as they are."""
-        position, buffer = position.copy(), buffer.copy()
-        self.push_into(position, buffer, samples)
-        return self.window_in(position, buffer)
+    def rows(self, state: np.ndarray) -> np.ndarray:
+        """View (channels, N + slack) of the buffer in `state`."""
+        return state[_BUFFER_AT:self.size].reshape(self.window.n_channels,
+                                                   self.window.columns)
 
     def current(self, state: np.ndarray) -> np.ndarray:
-        """View (channels, N) of the window held in the one-vector `state`."""
-        return self.window_in(*self.split(state))
+        """View (channels, N) of the window held in `state`, oldest sample first."""
+        offset = int(state[0])
+        return self.rows(state)[:, offset:offset + self.window.length]
 
-    def push(self, state: np.ndarray, samples) -> None:
-        """Append one sample per channel to the window held in the one-vector `state`."""
-        self.push_into(*self.split(state), samples)
+    def push(self, state: np.ndarray, samples) -> tuple[np.ndarray, int, bool]:
+        """Append one sample per channel to the window held in `state`, in place (the
+        module docstring says how).
+
+        Returns, after the push, the buffer (a view, as `rows`), the window's offset in it
+        (0 exactly when the push compacted) and whether the window is full.
+        """
+        length = self.window.length
+        rows = self.rows(state)
+        offset = int(state.item(0))
+        if offset == self.window.slack:
+            rows[:, :length - 1] = rows[:, offset + 1:offset + length]
+            rows[:, length - 1] = samples
+            offset = 0
+        else:
+            rows[:, offset + length] = samples
+            offset += 1
+        state[0] = offset
+        held = state.item(1)
+        if held < length:
+            held += 1.0
+            state[1] = held
+        return rows, offset, held == length
 
 
 def default_sliding_window(n_channels: int, length: int) -> SlidingWindow:

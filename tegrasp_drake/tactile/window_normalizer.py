@@ -2,6 +2,7 @@
 
 import dataclasses
 import functools
+from collections.abc import Mapping
 
 import numpy as np
 from pydrake.systems.framework import LeafSystem
@@ -26,26 +27,31 @@ class WindowNormalizerConfig:
 
 
 def window_layout(group: RateGroup) -> SlidingWindowState:
-    """How a WindowNormalizer holds `group`'s window in its state (and in the group's
-    `*_window_position` and `*_window_buffer` outputs)."""
+    """How a WindowNormalizer holds `group`'s window: at the start of the group's state."""
     return SlidingWindowState(default_sliding_window(len(group.channels), group.window_length))
 
 
-def entering_samples(channels: np.ndarray, rows: slice) -> np.ndarray:
-    """The samples a tick pushes into a rate group's window: the group's `rows` of the four
-    channels. The EventScorer slides its correlations by these same samples."""
-    return channels[rows]
+@dataclasses.dataclass(frozen=True)
+class RateWindow:
+    """One rate group's sliding window in a WindowNormalizer's Context."""
+    group: RateGroup
+    layout: SlidingWindowState  # how the state holds the window (window_layout)
+    state: object  # DiscreteStateIndex of the group's state vector
+    channels: slice  # the group's entries of the four channels
 
 
 class WindowNormalizer(LeafSystem):
-    """Keeps the last `window_s` of each channel in the Context; outputs them max-normalised,
-    and raw for the EventMatcher to score (the paper's Fig. 3, Sec. III-A and III-B).
+    """Keeps the last `window_s` of each channel in the Context and outputs them
+    max-normalised (the paper's Fig. 3, Sec. III-A).
 
     Periodic discrete updates sample the SA entries of `channels` at sa_rate_hz and the RA
     entries at ra_rate_hz (one update for all four when the rates match). Before a full
-    window has been sampled, the older part of the window is zero. As for any discrete
-    state, a system that updates at the same tick reads the windows before that tick's
-    sample (the EventMatcher's scorer adds it from `channels`).
+    window has been sampled, the older part of the window is zero.
+
+    Each rate's window is one discrete state vector. A subclass that works on the windows
+    (the EventMatcher scores them) keeps what it needs after the window in that vector
+    (`window_states`) and updates it in `_after_push`, in the update that pushed the sample:
+    one copy of the windows, one state group and one update per rate and tick.
 
     .. pydrake_system::
 
@@ -55,70 +61,76 @@ class WindowNormalizer(LeafSystem):
         output_ports:
         - sa_window
         - ra_window
-        - sa_window_position
-        - sa_window_buffer
-        - ra_window_position
-        - ra_window_buffer
 
     Ports:
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2).
         sa_window: 2 * N_sa values, [sa_left window, sa_right window], oldest first, each
             divided by its max |value| (an all-zero window stays zero); unitless.
         ra_window: 2 * N_ra values, likewise for ra_left, ra_right.
-        sa_window_position, sa_window_buffer (and ra_*): the raw SA windows as the state
-            holds them (N), laid out by `window_layout` (SlidingWindowState): the position
-            (offset, samples held, each window's oldest sample) and the buffer. One
-            `sa_ra_window_*` pair instead when the rates match.
     with N_sa = window_s * sa_rate_hz and N_ra = window_s * ra_rate_hz.
     """
 
-    def __init__(self, config: WindowNormalizerConfig | None = None):
+    def __init__(self, config: WindowNormalizerConfig | None = None, *,
+                 window_states: Mapping[str, np.ndarray] | None = None):
+        """window_states: for a subclass, {rate group name: the initial state vector of the
+        group}: an empty window_layout(group) window, then what the subclass keeps (default:
+        the window alone)."""
         super().__init__()
         config = dataclasses.replace(config or WindowNormalizerConfig())
         self._config = config
         self._channels_port = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
         self._window_lengths = {}
-        self._window_ports = {}
-        raw_windows = {}
+        rate_windows = []
         for group in config.rate_groups():
             layout = window_layout(group)
-            indices = (self.DeclareDiscreteState(layout.position_size),
-                       self.DeclareDiscreteState(layout.buffer_size))
-            channels = slice(group.channels[0], group.channels[-1] + 1)
-            self.DeclarePeriodicDiscreteUpdateEvent(
-                1.0 / group.rate_hz, 0.0,
-                functools.partial(self._sample, indices=indices, layout=layout,
-                                  channels=channels))
+            initial = (np.zeros(layout.size) if window_states is None
+                       else np.asarray(window_states[group.name], dtype=float))
+            if len(initial) < layout.size or np.any(initial[:layout.size]):
+                raise ValueError(f"the initial '{group.name}' state must start with an empty "
+                                 f"window of {layout.size} entries")
+            window = RateWindow(group, layout, self.DeclareDiscreteState(initial),
+                                slice(group.channels[0], group.channels[-1] + 1))
+            self.DeclarePeriodicDiscreteUpdateEvent(1.0 / group.rate_hz, 0.0,
+                                                    functools.partial(self._sample, window))
+            rate_windows.append(window)
             for kind, kind_channels in (("sa", SA_CHANNELS), ("ra", RA_CHANNELS)):
                 if kind_channels[0] in group.channels:
                     first_row = group.channels.index(kind_channels[0])
-                    rows = slice(first_row, first_row + len(kind_channels))
                     self._window_lengths[kind] = group.window_length
-                    self._window_ports[kind] = self.DeclareVectorOutputPort(
+                    self.DeclareVectorOutputPort(
                         f"{kind}_window", len(kind_channels) * group.window_length,
-                        functools.partial(self._calc_window, indices=indices, layout=layout,
-                                          rows=rows),
-                        prerequisites_of_calc={self.discrete_state_ticket(i)
-                                               for i in indices})
-            raw_windows[group.name] = indices
-        for name, (position, buffer) in raw_windows.items():
-            self.DeclareStateOutputPort(f"{name}_window_position", position)
-            self.DeclareStateOutputPort(f"{name}_window_buffer", buffer)
+                        functools.partial(self._calc_window, window, slice(
+                            first_row, first_row + len(kind_channels))),
+                        prerequisites_of_calc={self.discrete_state_ticket(window.state)})
+        self._rate_windows = tuple(rate_windows)
 
     @property
     def config(self) -> WindowNormalizerConfig:
         return dataclasses.replace(self._config)
 
+    @property
+    def rate_windows(self) -> tuple[RateWindow, ...]:
+        """The windows, one per rate group, in the order of config.rate_groups()."""
+        return self._rate_windows
+
     def window_length(self, kind: str) -> int:
         """Samples per channel in the `kind` ("sa" or "ra") window."""
         return self._window_lengths[kind]
 
-    def _sample(self, context, discrete_state, *, indices, layout, channels):
-        position, buffer = indices
-        layout.push_into(discrete_state.get_mutable_value(position),
-                         discrete_state.get_mutable_value(buffer),
-                         entering_samples(self._channels_port.Eval(context), channels))
+    def _sample(self, window: RateWindow, context, discrete_state) -> None:
+        """The periodic update of `window`: pushes this tick's samples of its channels into
+        it, at the start of the group's state vector (in discrete_state; the context still
+        holds the vector before), then calls `_after_push`."""
+        state = discrete_state.get_mutable_value(window.state)
+        pushed = window.layout.push(state, self._channels_port.Eval(context)[window.channels])
+        self._after_push(window, state, pushed, context)
 
-    def _calc_window(self, context, output, *, indices, layout, rows):
-        window = layout.window_in(*(context.get_discrete_state(i).value() for i in indices))
-        output.SetFromVector(np.ravel(normalize_by_max(window[rows])))
+    def _after_push(self, window: RateWindow, state: np.ndarray,
+                    pushed: tuple[np.ndarray, int, bool], context) -> None:
+        """For a subclass that keeps more about `window` in `state`, the group's state
+        vector: update it after each push. pushed: SlidingWindowState.push's (buffer,
+        offset, full). Nothing to do here."""
+
+    def _calc_window(self, window: RateWindow, rows: slice, context, output):
+        raw = window.layout.current(context.get_discrete_state(window.state).value())
+        output.SetFromVector(np.ravel(normalize_by_max(raw[rows])))

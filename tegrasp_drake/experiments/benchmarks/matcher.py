@@ -9,12 +9,12 @@ wall time per 1 kHz tick [us] (a mean, so that the SA updates every tenth tick c
 - reference_*: the straightforward numpy.correlate scoring of the four windows;
 - fft_rebuild_ra_us: an RA push that recomputes the correlations exactly by FFT (at an
   event change, and at a buffer compaction every 0.1 s);
-- system_*: a Simulator running TrajectorySource -> WindowNormalizer -> EventScorer, wired
-  as the grasp controller wires them (add_event_matcher), wall time / ticks;
+- system_*: a Simulator running TrajectorySource -> EventMatcher, added as the grasp
+  controller adds it (add_event_matcher), wall time / ticks;
 - framework_tick_us: the same diagram with a Python system whose 1 kHz update only reads
   its input, i.e. the part of system_* that any Python LeafSystem pays;
 - window_normalizer_tick_us: TrajectorySource -> WindowNormalizer alone, wall time / ticks
-  (the part of system_* that keeps the windows).
+  (the part of system_* that keeps the windows: the EventMatcher is a WindowNormalizer).
 
 Run `python -m tegrasp_drake.experiments.benchmarks.matcher` to print them.
 """
@@ -196,8 +196,8 @@ def run_matcher_benchmark(*, repeats: int = 5, ticks: int = 2000) -> dict[str, f
         results[f"core_tick_{label}_us"] = _core_tick(sa_rate_hz, ticks, repeats)
         results[f"reference_tick_{label}_us"] = _reference_tick(sa_rate_hz, repeats)
         results[f"system_tick_{label}_us"] = _simulated_tick(
-            lambda builder, channels: add_event_matcher(
-                builder, events, config, channels=channels).scorer,
+            lambda builder, channels: add_event_matcher(builder, events, config,
+                                                        channels=channels),
             sa_rate_hz, seconds, repeats)
     results["fft_rebuild_ra_us"] = _fft_rebuild(repeats)
     results["framework_tick_us"] = _simulated_tick(
