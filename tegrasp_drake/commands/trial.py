@@ -114,6 +114,8 @@ def run(args) -> int:
         print_result(result)
         print(f"log {result['log']}, result {result['result']}, figures {result['figure']} "
               f"(Fig. 9), {result['signals_figure']} (Fig. 5a-b)"
+              + (f", {result['contact_ra_figure']} (RA at first contact)"
+                 if "contact_ra_figure" in result else "")
               + (f", {result['avoid_figure']} (Fig. 10)" if "avoid_figure" in result else ""))
         if html is not None:
             print(f"replay {result['replay_html']} (open it in a browser)")
