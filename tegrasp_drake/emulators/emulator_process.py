@@ -102,18 +102,24 @@ class EmulatedDevices:
     """The three devices, each emulated in its own process (`tegrasp emulate jaco`,
     `robotiq` and `myrio --sync <myrio_sync>`), started together; `config` points a hardware
     station at them. Use as a context manager; `myrio`, `robotiq` and `jaco` are the
-    EmulatorProcess of each (e.g. to kill one)."""
+    EmulatorProcess of each (e.g. to kill one).
+
+    scheduling: the emulators' `--scheduling`. Real devices have processors of their own;
+    on a shared host the default, "fifo", keeps their stand-ins on time when the host is
+    busy, so that what a busy host delays is the controller under test."""
 
     def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),
-                 robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0):
+                 robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0,
+                 scheduling: str = "fifo"):
         self.jaco = self.robotiq = self.myrio = None
+        common = ("--scheduling", scheduling)
         try:
             self.jaco = EmulatorProcess("jaco", *scenario_args, "--lcm-url", lcm_url,
-                                        wait=False)
-            self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args,
+                                        *common, wait=False)
+            self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args, *common,
                                            wait=False)
             self.myrio = EmulatorProcess("myrio", "--trial", str(trial), "--sync", myrio_sync,
-                                         "--lcm-url", lcm_url, wait=False)
+                                         "--lcm-url", lcm_url, *common, wait=False)
             for process in self.processes:
                 process.wait_until_ready(timeout)
         except BaseException:

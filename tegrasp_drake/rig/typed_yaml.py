@@ -8,8 +8,10 @@ Every YAML file the project reads as configuration goes through here: scenarios
   `!HardwareStationConfig` is kept as the mapping's `_tag`).
 - `apply_override` applies a `--set key.sub=value` assignment to the parsed data.
 - `check_fields` walks the data against a dataclass schema and names the first field that is
-  unknown, missing (a dataclass field without a default) or of the wrong type by its dotted
-  path, e.g. `object.mass` or `user_objects.mug.size_m`.
+  unknown, missing (a dataclass field without a default), of the wrong type or a number that
+  is not finite (`.nan`, `.inf`: no setting means "not a number") by its dotted path, e.g.
+  `object.mass` or `user_objects.mug.size_m`.
+- `require` checks one value of a loaded config (a positive timeout, a threshold in range).
 - `load_typed` checks the data, then builds the schema with Drake's `yaml_load_typed`.
 
 Every problem is a ConfigError whose message begins with the file (and section) it came from.
@@ -17,6 +19,7 @@ Every problem is a ConfigError whose message begins with the file (and section) 
 
 import collections.abc
 import dataclasses
+import math
 import pathlib
 import types
 import typing
@@ -80,6 +83,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
     """
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
+        _check_finite_numbers(data, source, where)
         try:
             yaml_load_typed(schema=schema, data=yaml_dump(data))
         except (RuntimeError, ValueError) as e:
@@ -104,7 +108,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
 
 
 # What a value of each scalar type must be, in an error message: alone, and in a list.
-_SCALAR_WORDS = {float: ("a number", "numbers"), int: ("an integer", "integers"),
+_SCALAR_WORDS = {float: ("a finite number", "finite numbers"), int: ("an integer", "integers"),
                  str: ("a string", "names"), bool: ("true or false", "true or false values")}
 
 
@@ -113,7 +117,27 @@ def _is_scalar(value, hint) -> bool:
         return isinstance(value, bool)
     if isinstance(value, bool):
         return False
-    return isinstance(value, (int, float) if hint is float else hint)
+    if hint is float:
+        return isinstance(value, (int, float)) and math.isfinite(value)
+    return isinstance(value, hint)
+
+
+def _check_finite_numbers(data, source: str, where: str) -> None:
+    """Names the first NaN or infinite number in YAML data (of a Drake config class)."""
+    if isinstance(data, float) and not math.isfinite(data):
+        raise ConfigError(f"{source}: field '{where}' must be a finite number, got {data!r}")
+    items = data.items() if isinstance(data, dict) else (
+        enumerate(data) if isinstance(data, list) else ())
+    for key, value in items:
+        path = f"{where}[{key}]" if isinstance(data, list) else (
+            f"{where}.{key}" if where else str(key))
+        _check_finite_numbers(value, source, path)
+
+
+def require(condition: bool, source: str, path: str, words: str, value) -> None:
+    """Raises ConfigError "SOURCE: field 'PATH' WORDS, got VALUE" unless `condition`."""
+    if not condition:
+        raise ConfigError(f"{source}: field '{path}' {words}, got {value!r}")
 
 
 def _check_value(value, hint, path: str, source: str) -> None:
