@@ -114,8 +114,8 @@ def edit(change):
 DAMAGES = {  # name: (file, damage, what the message says)
     "missing file": ("load_lift", lambda path: path.unlink(), "file is missing"),
     "truncated file": ("reach_load", truncate, "not valid JSON"),
-    "wrong format_version": ("place_unload", edit(lambda data: data.update(format_version=2)),
-                             "has format_version 2"),
+    "wrong format_version": ("place_unload", edit(lambda data: data.update(format_version=99)),
+                             "has format_version 99"),
     "missing field": ("reach_load", edit(lambda data: data.pop("sa_rate_hz")),
                       "field 'sa_rate_hz' is missing"),
     "window too short": ("load_lift", edit(lambda data: data["samples"]["ra_left"].pop()),

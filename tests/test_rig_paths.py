@@ -12,9 +12,9 @@ def test_a_source_checkout_uses_its_own_models_and_events():
     # Also when another checkout is installed editable in the same venv.
     assert (CHECKOUT / "pyproject.toml").is_file()
     assert paths.models_dir() == CHECKOUT / "models"
-    assert paths.events_dir() == CHECKOUT / "events"
+    assert paths.package_events_dir() == CHECKOUT / "events"
     assert (paths.models_dir() / "package.xml").is_file()
-    assert (paths.events_dir() / "index.json").is_file()
+    assert (paths.package_events_dir() / "index.json").is_file()
 
 
 def test_the_package_folder_is_the_one_imported():

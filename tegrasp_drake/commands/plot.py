@@ -19,7 +19,9 @@ def register(subparsers) -> None:
                                                 "avoid (Fig. 10)")
     parser.add_argument("what", choices=tuple(DEFAULT_OUT))
     parser.add_argument("log", nargs="?", help="trial log (trial.npz) for trial and avoid")
-    parser.add_argument("--events", default=None, help="events folder (default: the package's)")
+    parser.add_argument("--events", default=None, metavar="DIR",
+                        help="events folder (default: $TEGRASP_EVENTS_DIR or "
+                        "~/.local/share/tegrasp/events, then the package's)")
     parser.add_argument("--out", default=None, help="PNG to write")
     parser.set_defaults(func=run)
 
@@ -27,8 +29,12 @@ def register(subparsers) -> None:
 def _plot_events(args, out) -> str:
     from tegrasp_drake.events import MemorizedEventError, load_all_memorized_events
     from tegrasp_drake.experiments.figures.events import plot_memorized_events
+    events = {}
     try:
-        events = load_all_memorized_events(args.events or paths.events_dir())
+        # The first folder that has an object's events wins (the user's before the package's).
+        for folder in reversed(paths.events_search_path(args.events)):
+            if (folder / "index.json").is_file() or args.events:
+                events.update(load_all_memorized_events(folder))
     except MemorizedEventError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     return plot_memorized_events(events, out)

@@ -17,6 +17,7 @@ the command with a cheap deterministic trial.
 
 import argparse
 import dataclasses
+import functools
 import importlib
 import sys
 
@@ -64,6 +65,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--benchmark", action="store_true",
                         help="time the memorized sweep with 1 and then 2 workers, each "
                              "into a temporary folder, and print wall times and speed-up")
+    parser.add_argument("--events", metavar="DIR", default=None,
+                        help="memorized events folder (default: $TEGRASP_EVENTS_DIR or "
+                        "~/.local/share/tegrasp/events, then the package's)")
     parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
                         help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
 
@@ -110,6 +114,8 @@ def run(args) -> int:
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
+        if args.events:
+            trial_function = functools.partial(trial_function, events_dir=args.events)
         if args.benchmark:
             runs, identical = run_benchmark(spec, trial_function,
                                             progress=not args.no_progress)

@@ -6,12 +6,14 @@
 import json
 import pathlib
 
-from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
+                                                   controller_events, scenario_from_arguments)
 from tegrasp_drake.control.controller_config import CONTROLLERS
 
 
 def add_trial_arguments(parser, *, default_out: str) -> None:
     add_scenario_arguments(parser)
+    add_events_argument(parser)
     parser.add_argument("--controller", choices=CONTROLLERS, default=None,
                         help="memorized: the paper's memorized tactile events; heuristic: "
                              "hand-set thresholds (Romano et al. style); open_loop: the ideal "
@@ -55,7 +57,7 @@ def run(args) -> int:
         overrides.append(f"controller.name={args.controller}")
     args.overrides = overrides
     scenario = scenario_from_arguments(args)
-    from tegrasp_drake.events import MemorizedEventError
+    events = controller_events(scenario, args.events)
     from tegrasp_drake.experiments.trial import run_trial
     from tegrasp_drake.experiments.figures.signals import plot_trial_signals
     from tegrasp_drake.experiments.figures.trial import plot_trial_states
@@ -63,11 +65,7 @@ def run(args) -> int:
     if args.meshcat:
         from pydrake.geometry import StartMeshcat
         meshcat = StartMeshcat()
-    try:
-        trial = run_trial(scenario, meshcat=meshcat)
-    except MemorizedEventError as e:
-        raise SystemExit(f"tegrasp: error: the memorized controller needs the memorized events "
-                         f"of '{scenario.object.name}': {e}") from None
+    trial = run_trial(scenario, meshcat=meshcat, events=events)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plot_trial_signals(trial.log, out / "signals.png")  # Fig. 5a-b: raw and processed

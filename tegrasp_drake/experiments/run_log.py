@@ -35,7 +35,7 @@ from tegrasp_drake.hardware.device_log_messages import (
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
 from tegrasp_drake.events.extraction import TactileTrial
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.memorized_event import find_memorized_events
 from tegrasp_drake.events.replay import (EventReplay, channels_trajectory, live_matcher_config,
                                          replay_events_in_sequence)
 from tegrasp_drake.events.streaming_correlation import NO_EVENT
@@ -232,7 +232,8 @@ def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
     """Reads a run's log and re-runs the matcher on it, both ways (module docstring), with
     the memorized events of `object_name` (default: the run's object) in `events_dir`
-    (default: the folder the run used if it still exists, else the package's).
+    (default: the folder the run used if it still exists, else the user's events folder,
+    then the package's).
 
     Raises RunLogError, MemorizedEventError or ValueError, each naming what is wrong."""
     log = read_run_log(path)
@@ -240,10 +241,10 @@ def replay_run_log(path, *, object_name: str | None = None,
     object_name = object_name or (info.object_name if info else None)
     if not object_name:
         raise RunLogError(f"run log '{path}' has no TEGRASP_RUN_INFO: give --object")
-    events_dir = events_dir or (info.events_dir if info and info.events_dir and
-                                pathlib.Path(info.events_dir).is_dir()
-                                else str(paths.events_dir()))
-    events = load_memorized_events(events_dir, object_name)
+    if not events_dir and info and info.events_dir and pathlib.Path(info.events_dir).is_dir():
+        events_dir = info.events_dir
+    folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
+    events_dir = str(folder)
     config = matcher_config_of_run(info, events)
     trial = log.tactile_trial()
     return RunLogReplay(

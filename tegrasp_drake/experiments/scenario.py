@@ -21,6 +21,7 @@ from tegrasp_drake.control.controller_config import CONTROLLERS, GraspController
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
@@ -160,6 +161,9 @@ def _check_controller(controller: GraspControllerConfig, source: str) -> None:
     for name in ("grip_fraction",):
         require(0 < getattr(controller, name) <= 1, source, f"controller.{name}",
                 "must lie in (0, 1]", getattr(controller, name))
+    for k, name in enumerate(controller.event_object_may_differ):
+        require(name in DESCRIPTION_FIELDS, source, f"controller.event_object_may_differ[{k}]",
+                f"must name a field of the object ({', '.join(DESCRIPTION_FIELDS)})", name)
     require(0 < controller.heuristic.grip_fraction <= 1, source,
             "controller.heuristic.grip_fraction", "must lie in (0, 1]",
             controller.heuristic.grip_fraction)

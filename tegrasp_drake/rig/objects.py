@@ -97,6 +97,9 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
     return None
 
 
+DESCRIPTION_FIELDS = ("shape", "size", "mass", "friction", "file")
+
+
 def object_description(config: ObjectConfig) -> dict:
     """What the physics sees of a resolved object: {shape, size, mass, friction, file}
     (memorized events carry it, so that they are used only for the object they felt)."""
@@ -108,7 +111,7 @@ def object_description(config: ObjectConfig) -> dict:
 def description_differences(recorded: dict, current: dict, *, rtol: float = 1e-9) -> list[str]:
     """The fields in which two object descriptions differ, in words ("mass 0.15 != 0.12")."""
     differences = []
-    for name in ("shape", "size", "mass", "friction", "file"):
+    for name in DESCRIPTION_FIELDS:
         a, b = recorded.get(name), current.get(name)
         if name in ("size", "mass", "friction") and a is not None and b is not None:
             a_list, b_list = (a, b) if name == "size" else ([a], [b])
