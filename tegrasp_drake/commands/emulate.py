@@ -21,9 +21,12 @@ from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import SYNC_MODES, Emulators, FaultInjection
 from tegrasp_drake.hardware.config import DEFAULT_LCM_URL
-from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES, raise_process_scheduling
+from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES, raise_scheduling
 
 DEVICES = (*EMULATED_DEVICES, "all")
+# Above the control loop (hardware/config.py realtime_priority 10) and its I/O threads:
+# the emulators stand in for devices that have processors of their own.
+EMULATOR_PRIORITY = 30
 
 
 def register(subparsers) -> None:
@@ -69,7 +72,7 @@ def run(args) -> int:
 
     scenario = scenario_from_arguments(args)
     if args.scheduling != "normal":
-        out(f"scheduling: {raise_process_scheduling(args.scheduling)}")
+        out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     if args.device in ("myrio", "all") and not args.trial:
         raise SystemExit("tegrasp: error: emulate myrio/all needs --trial NPZ (a trial log; "
                          "`tegrasp demo --out DIR` writes DIR/trial.npz)")

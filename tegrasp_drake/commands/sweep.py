@@ -127,7 +127,7 @@ def run(args) -> int:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
     print(summary_text(summary))
-    for path in write_reports(args.out):
+    for path in write_reports(args.out, summary.trial_ids):
         print(f"wrote {path}")
     return 1 if summary.errors or summary.unfinished else 0
 

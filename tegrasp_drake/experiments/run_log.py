@@ -17,8 +17,8 @@ are the run's own (its scenario in TEGRASP_RUN_INFO), or the defaults.
 
 import dataclasses
 import pathlib
+import struct
 
-import lcm
 import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 from pydrake.common.yaml import yaml_load_typed
@@ -68,6 +68,15 @@ class RunLog:
     arm_commands: list      # (wall utime, lcmt_jaco_command)
     arm_status: list        # (wall utime, lcmt_jaco_status)
     message_counts: dict    # channel -> messages (every channel in the file)
+    damage: list = dataclasses.field(default_factory=list)  # what was lost, in words
+
+    def damage_text(self) -> str:
+        """One line: what was read and what was lost ("" for an intact log)."""
+        if not self.damage:
+            return ""
+        return (f"{self.path}: damaged log: read {sum(self.message_counts.values())} "
+                f"messages; " + "; ".join(self.damage)
+                + ". The replay uses the messages that were read.")
 
     def tactile_trial(self) -> TactileTrial:
         """The SA and RA channels the controller computed from the logged tactile ports,
@@ -84,8 +93,99 @@ class RunLog:
         return TactileTrial(t_sa=t, sa=sa, t_ra=t, ra=ra, transition_times={})
 
 
+LCM_SYNC = 0xEDA1DA01
+_EVENT_HEADER = struct.Struct(">IqqII")  # sync, event number, timestamp, channel, data sizes
+MAX_CHANNEL_LENGTH = 256
+MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
+
+
+def _plausible_header(data: bytes, position: int) -> bool:
+    """Whether an LCM event header that fits in `data` starts at `position`."""
+    if len(data) - position < _EVENT_HEADER.size:
+        return False
+    word, _, _, channel_length, _ = _EVENT_HEADER.unpack_from(data, position)
+    channel = data[position + _EVENT_HEADER.size:position + _EVENT_HEADER.size + channel_length]
+    return (word == LCM_SYNC and 0 < channel_length <= MAX_CHANNEL_LENGTH
+            and len(channel) == channel_length
+            and all(32 < c < 127 for c in channel))
+
+
+def _next_header(data: bytes, start: int) -> int:
+    """Position of the first plausible event header at or after `start`, or -1."""
+    sync = LCM_SYNC.to_bytes(4, "big")
+    position = data.find(sync, start)
+    while position >= 0 and not _plausible_header(data, position):
+        position = data.find(sync, position + 1)
+    return position
+
+
+def _next_event_number(data: bytes, position: int) -> int | None:
+    """The event number of the header at `position` (None at the end or if none is)."""
+    if not _plausible_header(data, position):
+        return None
+    return _EVENT_HEADER.unpack_from(data, position)[1]
+
+
+def scan_lcm_log(path) -> tuple[list, list[str]]:
+    """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
+    words: bytes that are not events (skipped up to the next event header), event numbers
+    missing in between (events lost), and an event cut short at the end of the file (a
+    truncated log). The format is LCM's: per event a big-endian header (sync word
+    0xEDA1DA01, event number, timestamp, channel length, data length), channel, data."""
+    data = pathlib.Path(path).read_bytes()
+    events = []
+    corrupt_regions = corrupt_bytes = lost = 0
+    truncated = None
+    position, expected_number = 0, None
+    while position < len(data):
+        plausible = _plausible_header(data, position)
+        end = None
+        if plausible:
+            _, number, timestamp, channel_length, data_length = _EVENT_HEADER.unpack_from(
+                data, position)
+            end = position + _EVENT_HEADER.size + channel_length + data_length
+            if end > len(data):
+                following = _next_header(data, position + 1)
+                if following < 0:
+                    truncated = (f"the last message is cut off after {len(data) - position} "
+                                 f"of its {end - position} bytes")
+                    break
+                plausible = False  # a damaged length: the next event header follows
+        if not plausible:
+            if len(data) - position < _EVENT_HEADER.size and not corrupt_regions:
+                truncated = f"the last {len(data) - position} bytes are a cut-off header"
+                break
+            following = _next_header(data, position + 1)
+            stop = len(data) if following < 0 else following
+            corrupt_regions += 1
+            corrupt_bytes += stop - position
+            position = stop
+            continue
+        if expected_number is not None and number != expected_number and not (
+                0 < number - expected_number < MAX_EVENT_GAP
+                and _next_event_number(data, end) in (None, number + 1)):
+            number = expected_number  # a damaged event number: count it as the next one
+        if expected_number is not None:
+            lost += number - expected_number
+        expected_number = number + 1
+        start = position + _EVENT_HEADER.size
+        channel = data[start:start + channel_length].decode("ascii")
+        events.append((timestamp, channel, data[start + channel_length:end]))
+        position = end
+    damage = []
+    if corrupt_regions:
+        damage.append(f"{corrupt_bytes} corrupt bytes in {corrupt_regions} place(s) skipped")
+    if lost:
+        damage.append(f"{lost} message(s) lost (gaps in the event numbers)")
+    if truncated:
+        damage.append(f"truncated: {truncated}; what followed is lost")
+    return events, damage
+
+
 def read_run_log(path) -> RunLog:
-    """Reads a hardware run's LCM log; RunLogError names the file on any defect."""
+    """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
+    holds no event. A damaged log (truncated, corrupt bytes, messages that do not decode)
+    is read as far as it can be, and `RunLog.damage` says what was read and what was lost."""
     path = pathlib.Path(path)
     if not path.is_file():
         raise RunLogError(f"run log '{path}' does not exist (`tegrasp hardware --log FILE` "
@@ -93,15 +193,24 @@ def read_run_log(path) -> RunLog:
     decoded = {channel: [] for channel in MESSAGE_TYPES}
     counts = {}
     try:
-        log = lcm.EventLog(str(path), "r")
-        for event in log:
-            counts[event.channel] = counts.get(event.channel, 0) + 1
-            if event.channel in MESSAGE_TYPES:
-                decoded[event.channel].append(
-                    (event.timestamp, MESSAGE_TYPES[event.channel].decode(event.data)))
-        log.close()
-    except (OSError, ValueError, IOError) as e:
-        raise RunLogError(f"run log '{path}' is not a readable LCM log: {e}") from None
+        events, damage = scan_lcm_log(path)
+    except OSError as e:
+        raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
+    if not events:
+        raise RunLogError(f"run log '{path}' holds no LCM message"
+                          + (f" ({'; '.join(damage)})" if damage else ""))
+    undecodable = {}
+    for timestamp, channel, data in events:
+        counts[channel] = counts.get(channel, 0) + 1
+        if channel in MESSAGE_TYPES:
+            try:
+                message = MESSAGE_TYPES[channel].decode(data)
+            except (ValueError, struct.error, UnicodeDecodeError, IndexError):
+                undecodable[channel] = undecodable.get(channel, 0) + 1
+                continue
+            decoded[channel].append((timestamp, message))
+    damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
+               " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
     tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
     tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     info = decoded[RUN_INFO_CHANNEL]
@@ -113,7 +222,7 @@ def read_run_log(path) -> RunLog:
         faults=[m for _, m in decoded[FAULT_CHANNEL]],
         gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
         arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],
-        message_counts=counts)
+        message_counts=counts, damage=damage)
 
 
 def expected_event_schedule(transitions: list[dict], event_index: dict[str, int]):

@@ -16,6 +16,11 @@ refuses (no CAP_SYS_NICE, a container without it):
 - "nice": SCHED_OTHER at nice NICE_LEVEL, about 10x the CPU share of a normal process.
 - "normal": unchanged.
 It yields a one-line description of what it got, for the run's output.
+
+Device I/O threads (the tactile reader, the Modbus client) call `raise_io_thread_priority`
+and run a few levels above the loop: their work is short and must not wait behind the
+loop's. Emulators of the devices (`tegrasp emulate --scheduling fifo`) use
+`raise_scheduling` for their whole process.
 """
 
 import contextlib
@@ -23,25 +28,24 @@ import os
 
 SCHEDULING_POLICIES = ("fifo", "nice", "normal")
 NICE_LEVEL = -10
+IO_PRIORITY_BOOST = 5  # device I/O threads run this far above the control loop
 
 
 def _set_fifo(priority: int) -> None:
     os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(priority))
 
 
-@contextlib.contextmanager
-def realtime_scheduling(policy: str = "fifo", priority: int = 10):
-    """Raises the calling thread's scheduling for the block; yields what it got, in words."""
+def raise_scheduling(policy: str = "fifo", priority: int = 10) -> str:
+    """Raises the calling thread's scheduling (threads it starts inherit it); returns what
+    it got, in words (module docstring)."""
     if policy not in SCHEDULING_POLICIES:
         raise ValueError(f"scheduling policy {policy!r} is not one of "
                          f"{', '.join(SCHEDULING_POLICIES)}")
-    old_policy, old_param = os.sched_getscheduler(0), os.sched_getparam(0)
-    old_nice = os.getpriority(os.PRIO_PROCESS, 0)
     got, refused = "normal scheduling", []
     if policy == "fifo":
         try:
             _set_fifo(priority)
-            got = f"real-time scheduling (SCHED_FIFO, priority {priority})"
+            return f"real-time scheduling (SCHED_FIFO, priority {priority})"
         except (PermissionError, OSError) as e:
             refused.append(f"SCHED_FIFO refused: {e.strerror or e}")
             policy = "nice"
@@ -51,7 +55,24 @@ def realtime_scheduling(policy: str = "fifo", priority: int = 10):
             got = f"raised priority (nice {NICE_LEVEL})"
         except (PermissionError, OSError) as e:
             refused.append(f"nice {NICE_LEVEL} refused: {e.strerror or e}")
-    description = got + (f" ({'; '.join(refused)})" if refused else "")
+    return got + (f" ({'; '.join(refused)})" if refused else "")
+
+
+def raise_io_thread_priority(boost: int = IO_PRIORITY_BOOST) -> None:
+    """Called at the start of a device I/O thread: under SCHED_FIFO, runs it `boost` levels
+    above the thread that started it, so that reading a device is never queued behind the
+    control loop's computation (a no-op under other policies)."""
+    with contextlib.suppress(OSError):
+        if os.sched_getscheduler(0) == os.SCHED_FIFO:
+            _set_fifo(min(os.sched_getparam(0).sched_priority + boost, 99))
+
+
+@contextlib.contextmanager
+def realtime_scheduling(policy: str = "fifo", priority: int = 10):
+    """Raises the calling thread's scheduling for the block; yields what it got, in words."""
+    old_policy, old_param = os.sched_getscheduler(0), os.sched_getparam(0)
+    old_nice = os.getpriority(os.PRIO_PROCESS, 0)
+    description = raise_scheduling(policy, priority)
     try:
         yield description
     finally:
@@ -59,10 +80,3 @@ def realtime_scheduling(policy: str = "fifo", priority: int = 10):
             os.sched_setscheduler(0, old_policy, old_param)
         with contextlib.suppress(OSError):
             os.setpriority(os.PRIO_PROCESS, 0, old_nice)
-
-
-def raise_process_scheduling(policy: str = "fifo", priority: int = 10) -> str:
-    """Raises the scheduling of this process for good (an emulator's, a device
-    stand-in's); returns what it got, in words."""
-    manager = realtime_scheduling(policy, priority)
-    return manager.__enter__()  # never restored: the process ends with it

@@ -235,6 +235,7 @@ class HardwareStation(Diagram):
                     f"tactile: no valid frame on {self._tactile_reader.port} within "
                     f"{timeout:g} s ({self._tactile_reader.counters()})")
             time.sleep(0.005)
+        self._tactile_reader.discard_pending()
 
     def close(self):
         """Stops the device threads and closes their ports (idempotent)."""
