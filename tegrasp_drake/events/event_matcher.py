@@ -198,12 +198,14 @@ class EventScorer(LeafSystem):
 
     def _update(self, group, context, discrete_state):
         position = group.position_port.Eval(context)  # the window before this tick's sample
-        samples = entering_samples(self._channels_port.Eval(context), group.channels)
+        samples, missing = entering_samples(
+            self._channels_port.Eval(context), group.channels,
+            lambda: group.layout.newest_in(position, group.buffer_port.Eval(context)))
         group.correlation.slide(
             discrete_state.get_mutable_value(group.state_index), position, samples,
             lambda: group.layout.window_after(position, group.buffer_port.Eval(context),
                                               samples),
-            self._expected_event(context))
+            self._expected_event(context), missing)
 
     def _group_states(self, context):
         for group in self._groups:

@@ -23,9 +23,16 @@ it, and the whole window only to recompute or when an extreme left it. In the co
 that window is the WindowNormalizer's. Until the window is full (its older part is zero
 padding, which would make a few noise samples look like an onset) the scores stay 0.
 
+Missing samples: a NaN or infinite sample (a sensor glitch, a lost frame) enters the window
+as the channel's previous one (tactile/window_normalizer.py, entering_samples), so that the
+sums stay finite and exact; the slide is told which samples were missing and scores their
+channel 0 for the next N slides, until the made-up sample has left the window. A channel
+recovers within one window and is never poisoned.
+
 A SlidingCorrelation's history is one flat float vector (a Context's discrete state):
 
     [active_event, scores (channels), [high, low, energy] per channel,
+     slides left until a missing sample leaves the window, per channel,
      correlation buffers: channels x (2N - 1 + slack)]
 
 Correlation column j of a channel holds the lag n = j - offset - (N - 1), where offset is
@@ -41,6 +48,7 @@ from scipy.linalg.blas import daxpy
 from tegrasp_drake.events.correlation import channel_score, template_is_flat
 from tegrasp_drake.events.transitions import NO_EVENT
 from tegrasp_drake.tactile.sliding_window import SlidingWindow, SlidingWindowState
+from tegrasp_drake.tactile.window_normalizer import entering_samples
 
 _STATISTICS = 3  # high, low, energy
 
@@ -119,7 +127,8 @@ class SlidingCorrelation:
         self._spectra = [np.conj(np.fft.rfft(y, self._fft_length)) for y in templates]
         self._min_contrast = min_contrast
         self._statistics_at = 1 + n_channels
-        self._rows_at = self._statistics_at + _STATISTICS * n_channels
+        self._missing_at = self._statistics_at + _STATISTICS * n_channels
+        self._rows_at = self._missing_at + n_channels
         self._row_length = 2 * length - 1 + window.slack
         self._size = self._rows_at + n_channels * self._row_length
         # Per event and channel, what an update needs: where the channel's correlation
@@ -163,7 +172,8 @@ class SlidingCorrelation:
                 f"event index {event} is outside -1..{len(self._channel_terms) - 1}")
 
     def slide(self, state: np.ndarray, position: np.ndarray, samples,
-              window_after: Callable[[], np.ndarray], event: int) -> np.ndarray:
+              window_after: Callable[[], np.ndarray], event: int,
+              missing=None) -> np.ndarray:
         """Slide the correlations by one sample per channel and score the window against
         `event`, in place.
 
@@ -174,13 +184,21 @@ class SlidingCorrelation:
             the correlations are recomputed or an extreme left the window.
         event: index of the expected event, or NO_EVENT (scores 0). Returns the scores view,
         all 0 until the window is full.
+        missing: per channel, whether its sample was missing (entering_samples: it entered
+            as the channel's previous one); such a channel scores 0 for N slides.
         """
         self.check_event(event)
         length = self._length
         offset, held, oldest = self._window.unpack(position)
         offset = self._window.window.next_offset(offset)
+        left = state[self._missing_at:self._rows_at].tolist()
+        if missing is None:
+            missing = [False] * self._n_channels
+        left = [float(length) if is_missing else max(n - 1.0, 0.0)
+                for n, is_missing in zip(left, np.asarray(missing).tolist())]
         if event == NO_EVENT or held + 1.0 < length:
             state[:self._statistics_at] = [NO_EVENT] + [0.0] * self._n_channels
+            state[self._missing_at:self._rows_at] = left
             return state[1:self._statistics_at]
         terms = self._channel_terms[event]
         if offset == 0 or event != state.item(0):
@@ -198,16 +216,19 @@ class SlidingCorrelation:
                     raise ValueError("the state must be a C-contiguous float64 vector")
                 daxpy(reversed_template, state, length, new, 0, 1, at + length, 1)
             statistics = slide_statistics(
-                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new,
+                state[self._statistics_at:self._missing_at].tolist(), dropped_and_new,
                 window_after)
         scores = []
         for i, (start, _, template_norm, template_flat) in enumerate(terms):
+            if left[i]:  # a missing sample is in this channel's window
+                scores.append(0.0)
+                continue
             lags = state[start + offset:start + offset + 2 * length - 1]
             high, low, energy = statistics[_STATISTICS * i:_STATISTICS * (i + 1)]
             # argmax is several times cheaper than max here, and finds the same peak.
             scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
                                         high, low, template_flat, self._min_contrast))
-        state[:self._rows_at] = [event] + scores + statistics
+        state[:self._rows_at] = [event] + scores + statistics + left
         return state[1:self._statistics_at]
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
@@ -277,6 +298,9 @@ class StreamingCorrelator:
         self._correlation.check_event(event)
         position, buffer = self._window.split(state[:self._split])
         before = position.copy()
+        samples, missing = entering_samples(np.asarray(samples, dtype=float), slice(None),
+                                            lambda: self._window.newest_in(position, buffer))
         self._window.push_into(position, buffer, samples)
         return self._correlation.slide(state[self._split:], before, samples,
-                                       lambda: self._window.window_in(position, buffer), event)
+                                       lambda: self._window.window_in(position, buffer), event,
+                                       missing)

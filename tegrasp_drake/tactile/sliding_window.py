@@ -100,6 +100,10 @@ class SlidingWindowState:
         rows = buffer.reshape(self.window.n_channels, self.window.columns)
         return self.window.window(rows, int(position[0]))
 
+    def newest_in(self, position: np.ndarray, buffer: np.ndarray) -> np.ndarray:
+        """The window's newest sample of each channel (0 while the window is empty)."""
+        return self.window_in(position, buffer)[:, -1].copy()
+
     def push_into(self, position: np.ndarray, buffer: np.ndarray, samples) -> None:
         """Append one sample per channel to the window, in place."""
         window = self.window

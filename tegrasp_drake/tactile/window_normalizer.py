@@ -2,6 +2,7 @@
 
 import dataclasses
 import functools
+from collections.abc import Callable
 
 import numpy as np
 from pydrake.systems.framework import LeafSystem
@@ -31,10 +32,22 @@ def window_layout(group: RateGroup) -> SlidingWindowState:
     return SlidingWindowState(default_sliding_window(len(group.channels), group.window_length))
 
 
-def entering_samples(channels: np.ndarray, rows: slice) -> np.ndarray:
-    """The samples a tick pushes into a rate group's window: the group's `rows` of the four
-    channels. The EventScorer slides its correlations by these same samples."""
-    return channels[rows]
+def entering_samples(channels: np.ndarray, rows: slice,
+                     newest: Callable[[], np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """The samples a tick pushes into a rate group's window, and which of them are missing.
+
+    The group's `rows` of the four channels enter the window, except a non-finite one (NaN
+    or inf: a sensor glitch, a lost frame), which is missing: the channel's newest sample
+    in the window, `newest()` (called only then), enters in its place, so that the window
+    and the sums kept over it stay finite. Returns (samples, missing: bool per row). The
+    EventScorer slides its correlations by these same samples and scores a channel 0 while
+    a missing sample is in its window.
+    """
+    samples = channels[rows]
+    missing = ~np.isfinite(samples)
+    if missing.any():
+        samples = np.where(missing, newest(), samples)
+    return samples, missing
 
 
 class WindowNormalizer(LeafSystem):
@@ -43,9 +56,10 @@ class WindowNormalizer(LeafSystem):
 
     Periodic discrete updates sample the SA entries of `channels` at sa_rate_hz and the RA
     entries at ra_rate_hz (one update for all four when the rates match). Before a full
-    window has been sampled, the older part of the window is zero. As for any discrete
-    state, a system that updates at the same tick reads the windows before that tick's
-    sample (the EventMatcher's scorer adds it from `channels`).
+    window has been sampled, the older part of the window is zero. A non-finite sample is
+    missing: the channel's previous sample enters instead (entering_samples). As for any
+    discrete state, a system that updates at the same tick reads the windows before that
+    tick's sample (the EventMatcher's scorer adds it from `channels`).
 
     .. pydrake_system::
 
@@ -114,10 +128,11 @@ class WindowNormalizer(LeafSystem):
         return self._window_lengths[kind]
 
     def _sample(self, context, discrete_state, *, indices, layout, channels):
-        position, buffer = indices
-        layout.push_into(discrete_state.get_mutable_value(position),
-                         discrete_state.get_mutable_value(buffer),
-                         entering_samples(self._channels_port.Eval(context), channels))
+        position = discrete_state.get_mutable_value(indices[0])
+        buffer = discrete_state.get_mutable_value(indices[1])
+        samples, _ = entering_samples(self._channels_port.Eval(context), channels,
+                                      lambda: layout.newest_in(position, buffer))
+        layout.push_into(position, buffer, samples)
 
     def _calc_window(self, context, output, *, indices, layout, rows):
         window = layout.window_in(*(context.get_discrete_state(i).value() for i in indices))
