@@ -74,7 +74,7 @@ def load_tactile_recording(path) -> TactileRecording:
     pad accelerations (t_ra, pad_acceleration: left x, y, z then right); no other array is
     needed."""
     try:
-        with np.load(path, allow_pickle=False) as data:
+        with open(path, "rb") as file, np.load(file, allow_pickle=False) as data:
             t_sa, taxels = data["t_sa"], data["taxels"]
             t_ra, acceleration = data["t_ra"], data["pad_acceleration"]
     except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:

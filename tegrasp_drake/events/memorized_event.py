@@ -391,6 +391,10 @@ def read_memorized_event(path, *, object_name: str | None = None,
             channel_names=tuple(channels), object_description=description)
     except ValueError as error:
         raise MemorizedEventError(path, str(error), owner) from None
+    zero = event.zero_channels()
+    if zero:
+        raise MemorizedEventError(path, f"channels {zero} are zero throughout the window: "
+                                  "Eq. 3 could never match them", owner)
     for name, expected, found in (("object", object_name, event.object_name),
                                   ("transition", transition, event.transition)):
         if expected is not None and expected != found:
@@ -441,6 +445,12 @@ def load_memorized_events(events_dir, object_name: str) -> dict[str, MemorizedEv
             f"no memorized events for object '{object_name}' (it lists {objects})",
             object_name)
     events = _sorted_events(_load_entry(events_dir, entry) for entry in entries)
+    missing = [t for t in REQUIRED_TRANSITIONS if t not in {e.transition for e in events}]
+    if missing:
+        raise MemorizedEventError(
+            events_dir / INDEX_FILE, f"lists no {', '.join(missing)} event of object "
+            f"'{object_name}' (every object needs {', '.join(REQUIRED_TRANSITIONS)})",
+            object_name)
     return {event.transition: event for event in events}
 
 

@@ -70,7 +70,7 @@ def load_trial_log(path) -> TrialLog:
         raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp demo "
                             "--log FILE`)")
     try:
-        with np.load(path, allow_pickle=False) as data:
+        with open(path, "rb") as file, np.load(file, allow_pickle=False) as data:
             missing = [name for name in ("meta", *ARRAY_FIELDS) if name not in data.files]
             if missing:
                 raise TrialLogError(f"trial log '{path}' lacks the arrays {missing}; it is not "
