@@ -182,6 +182,36 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
     return events, damage
 
 
+MAX_TACTILE_VALUE = 1e6  # [N], [m/s^2]: no taxel or film reads this much
+TIME_NEIGHBOURS = 5  # messages on each side whose median time a message's is compared with
+MAX_TIME_OUTLIER_S = 1.0
+
+
+def _plausible_tactile(messages: list) -> tuple[list, int]:
+    """The (wall time, lcmt_tegrasp_tactile) messages whose values can be real, and how many
+    were not. LCM logs carry no checksum, so a flipped byte inside a number is found only
+    when it makes the value impossible: not finite, beyond MAX_TACTILE_VALUE, a taxel count
+    other than 12, or a time more than MAX_TIME_OUTLIER_S from the median of its
+    neighbours' (ticks are 1 ms apart) or earlier than the message before."""
+    values_ok = []
+    for _, message in messages:
+        values = np.array([*message.left_taxel_forces, *message.right_taxel_forces,
+                           *message.left_pad_acceleration, *message.right_pad_acceleration])
+        values_ok.append(len(message.left_taxel_forces) == TAXELS_PER_PAD
+                         and len(message.right_taxel_forces) == TAXELS_PER_PAD
+                         and bool(np.all(np.isfinite(values)))
+                         and float(np.max(np.abs(values), initial=0.0)) <= MAX_TACTILE_VALUE)
+    times = np.array([message.utime * 1e-6 for _, message in messages])
+    kept, last = [], -np.inf
+    for k, (wall, message) in enumerate(messages):
+        neighbours = times[max(0, k - TIME_NEIGHBOURS):k + TIME_NEIGHBOURS + 1]
+        if (values_ok[k] and abs(times[k] - np.median(neighbours)) <= MAX_TIME_OUTLIER_S
+                and times[k] >= last):
+            kept.append((wall, message))
+            last = times[k]
+    return kept, len(messages) - len(kept)
+
+
 def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
     holds no event. A damaged log (truncated, corrupt bytes, messages that do not decode)
@@ -211,6 +241,11 @@ def read_run_log(path) -> RunLog:
             decoded[channel].append((timestamp, message))
     damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
                " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
+    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL])
+    if implausible:
+        damage.append(f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values "
+                      "(not finite, beyond 1e6, or time going back: corrupt bytes); skipped")
+    decoded[TACTILE_CHANNEL] = tactile_messages
     tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
     tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     info = decoded[RUN_INFO_CHANNEL]
