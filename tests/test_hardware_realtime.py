@@ -1,5 +1,5 @@
 """Scheduling of the real-time loop (hardware/realtime.py): raised for the run, restored
-after it, device threads above the loop, and a fallback that says what the OS refused."""
+after it, inherited by the device threads, and a fallback that says what the OS refused."""
 
 import os
 import threading
@@ -21,20 +21,16 @@ def test_the_scheduling_is_restored_after_the_block():
             os.getpriority(os.PRIO_PROCESS, 0)) == before
 
 
-def test_device_threads_run_above_the_loop_when_it_is_real_time():
+def test_threads_started_inside_inherit_the_loops_scheduling():
     seen = []
-
-    def device_thread():
-        realtime.raise_io_thread_priority()
-        seen.append((os.sched_getscheduler(0), os.sched_getparam(0).sched_priority))
-
     with realtime.realtime_scheduling("fifo", 10) as got:
-        thread = threading.Thread(target=device_thread)
+        thread = threading.Thread(target=lambda: seen.append(
+            (os.sched_getscheduler(0), os.sched_getparam(0).sched_priority)))
         thread.start()
         thread.join()
-    if "SCHED_FIFO" not in got or "refused" in got:
+    if "refused" in got:
         pytest.skip(f"this host refuses SCHED_FIFO: {got}")
-    assert seen == [(os.SCHED_FIFO, 10 + realtime.IO_PRIORITY_BOOST)]
+    assert seen == [(os.SCHED_FIFO, 10)]
 
 
 def test_a_refused_real_time_class_falls_back_and_says_so(monkeypatch):

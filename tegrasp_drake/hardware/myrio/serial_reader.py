@@ -17,7 +17,6 @@ import serial
 
 from tegrasp_drake.hardware.myrio.tactile_frame import (
     TactileDecoderCounters, TactileFrame, TactileFrameDecoder)
-from tegrasp_drake.hardware.realtime import raise_io_thread_priority
 
 DEFAULT_BAUDRATE = 921600
 
@@ -111,7 +110,6 @@ class TactileSerialReader:
                 self._counters, decoder=dataclasses.replace(self._decoder.counters))
 
     def _run(self):
-        raise_io_thread_priority()
         while not self._stop.is_set():
             try:
                 data = self._serial.read(max(1, self._serial.in_waiting))

@@ -25,7 +25,6 @@ from pymodbus.exceptions import ModbusException
 
 from tegrasp_drake.rig import robotiq_units as units
 from tegrasp_drake.hardware.robotiq import registers
-from tegrasp_drake.hardware.realtime import raise_io_thread_priority
 
 MIN_PERIOD = 1.0 / 200.0  # [s]
 
@@ -148,7 +147,6 @@ class RobotiqModbusClient:
     # --- the thread -------------------------------------------------------------------
 
     def _run(self):
-        raise_io_thread_priority()
         client = ModbusSerialClient(
             self._config.port, framer=FramerType.RTU, baudrate=self._config.baudrate,
             bytesize=8, parity="N", stopbits=1, timeout=self._config.request_timeout,
