@@ -37,9 +37,9 @@ def missing_event_advice(name: str, log, scenario) -> str:
         return (f"the weaker pad's force peaked at {peak:.1f} N, below {GRIP_FRACTION:.0%} of "
                 f"the commanded grip force grasp.grip_force = {grip:g} N "
                 f"({GRIP_FRACTION * grip:.1f} N){' although the grasp lifted the object' if lifted else ''}"
-                f"; the pads do not cover all of this object's contact, so lower "
-                f"grasp.grip_force (e.g. --set grasp.grip_force={0.95 * peak / GRIP_FRACTION:.0f})"
-                " or choose a larger object")
+                f"; the taxels do not see all of this object's contact force, so try a lower "
+                f"grasp.grip_force (e.g. --set grasp.grip_force={0.95 * peak / GRIP_FRACTION:.0f}"
+                ", which records a 22 mm cylinder of 0.25 kg) or a larger object")
     if name == "first_contact":
         return ("the fingers never touched the object: check object.size, object_offset and "
                 "expected_object_xy")
