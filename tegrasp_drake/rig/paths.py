@@ -47,6 +47,9 @@ def package_events_dir() -> pathlib.Path:
     return _data_dir("tegrasp_drake.events_data", "events")
 
 
+events_dir = package_events_dir  # the old name (read-only: never write there)
+
+
 def user_events_dir() -> pathlib.Path:
     """Where the user's recorded events go: $TEGRASP_EVENTS_DIR, else the user's data
     folder ($XDG_DATA_HOME or ~/.local/share) / tegrasp / events."""
