@@ -32,6 +32,7 @@ def assert_one_line_error(code, text, *expected):
     assert "Traceback" not in text, text
     error_lines = [line for line in text.splitlines() if "error" in line]
     assert len(error_lines) == 1, text
+    assert len(text.strip().splitlines()) == 1, text  # nothing else printed
     for words in expected:
         assert words in error_lines[0], text
 
@@ -72,7 +73,8 @@ def test_a_yaml_syntax_error_in_a_scenario_file_is_named(tmp_path, capsys):
     scenario.write_text("mine:\n  object: {name: box\n")
     code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
                          capsys)
-    assert_one_line_error(code, text, str(scenario), "not valid YAML")
+    assert_one_line_error(code, text, str(scenario), "not valid YAML: line 3, column 1: "
+                          "expected ',' or '}'")
 
 
 # --- object model files ----------------------------------------------------------------

@@ -45,7 +45,16 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
     try:
         return yaml_load(data=text) if text else None
     except yaml.YAMLError as e:
-        raise ConfigError(f"{path}: not valid YAML: {e}") from None
+        raise ConfigError(f"{path}: not valid YAML: {_yaml_problem(e)}") from None
+
+
+def _yaml_problem(error: yaml.YAMLError) -> str:
+    """A YAML error in one line: what and where (line, column in the file)."""
+    mark = getattr(error, "problem_mark", None)
+    problem = getattr(error, "problem", None) or str(error).splitlines()[0]
+    where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark is not None else ""
+    context = getattr(error, "context", None)
+    return where + problem + (f" ({context})" if context else "")
 
 
 def apply_override(data: dict, assignment: str) -> None:
