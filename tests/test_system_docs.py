@@ -89,8 +89,8 @@ def hardware_station():
 CONSTRUCTORS = {
     MechanoreceptorChannels: MechanoreceptorChannels,
     WindowNormalizer: WindowNormalizer,
-    EventMatcher: lambda: EventMatcher(load_memorized_events(paths.events_dir(), "box")),
-    EventScorer: lambda: EventScorer(load_memorized_events(paths.events_dir(), "box")),
+    EventMatcher: lambda: EventMatcher(load_memorized_events(paths.package_events_dir(), "box")),
+    EventScorer: lambda: EventScorer(load_memorized_events(paths.package_events_dir(), "box")),
     EventSequencer: lambda: EventSequencer([0, 1, 2]),
     GraspStateMachine: lambda: GraspStateMachine(
         plan=GraspPlan.from_scenario(box_scenario()), config=GraspControllerConfig(),
