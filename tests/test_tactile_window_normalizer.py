@@ -93,3 +93,22 @@ def test_raw_window_outputs_hold_the_windows_it_normalises(sa_rate_hz, groups):
                                   normalize_by_max(np.array(channels[:2])).ravel())
     np.testing.assert_array_equal(normalizer.GetOutputPort("ra_window").Eval(context),
                                   normalize_by_max(np.array(channels[2:])).ravel())
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_a_non_finite_sample_enters_as_the_channels_previous_one(bad):
+    normalizer = WindowNormalizer(WindowNormalizerConfig(sa_rate_hz=1000.0))
+    simulator = Simulator(normalizer)
+    context = simulator.get_mutable_context()
+    port = normalizer.get_input_port(0)
+    for time, channels in ((0.0025, [1.0, 2.0, 3.0, 4.0]), (0.0035, [bad, 5.0, 6.0, bad]),
+                           (0.0045, [7.0, 8.0, 9.0, 10.0])):
+        port.FixValue(context, channels)
+        simulator.AdvanceTo(time)  # one tick (1 kHz) per value, the first three at once
+    group, = WindowNormalizerConfig(sa_rate_hz=1000.0).rate_groups()
+    window = window_layout(group).window_in(
+        normalizer.GetOutputPort("sa_ra_window_position").Eval(context),
+        normalizer.GetOutputPort("sa_ra_window_buffer").Eval(context))
+    np.testing.assert_array_equal(window[:, -5:].T, [[1, 2, 3, 4]] * 3 + [[1, 5, 6, 4],
+                                                                         [7, 8, 9, 10]])
+    assert np.all(np.isfinite(normalizer.GetOutputPort("sa_window").Eval(context)))

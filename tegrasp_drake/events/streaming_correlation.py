@@ -32,7 +32,7 @@ recovers within one window and is never poisoned.
 A SlidingCorrelation's history is one flat float vector (a Context's discrete state):
 
     [active_event, scores (channels), [high, low, energy] per channel,
-     slides left until a missing sample leaves the window, per channel,
+     slides left until a missing sample leaves the window: their sum, then per channel,
      correlation buffers: channels x (2N - 1 + slack)]
 
 Correlation column j of a channel holds the lag n = j - offset - (N - 1), where offset is
@@ -128,7 +128,7 @@ class SlidingCorrelation:
         self._min_contrast = min_contrast
         self._statistics_at = 1 + n_channels
         self._missing_at = self._statistics_at + _STATISTICS * n_channels
-        self._rows_at = self._missing_at + n_channels
+        self._rows_at = self._missing_at + 1 + n_channels
         self._row_length = 2 * length - 1 + window.slack
         self._size = self._rows_at + n_channels * self._row_length
         # Per event and channel, what an update needs: where the channel's correlation
@@ -184,21 +184,21 @@ class SlidingCorrelation:
             the correlations are recomputed or an extreme left the window.
         event: index of the expected event, or NO_EVENT (scores 0). Returns the scores view,
         all 0 until the window is full.
-        missing: per channel, whether its sample was missing (entering_samples: it entered
-            as the channel's previous one); such a channel scores 0 for N slides.
+        missing: None, or per channel whether its sample was missing (entering_samples: it
+            entered as the channel's previous one); such a channel scores 0 for N slides.
         """
         self.check_event(event)
         length = self._length
         offset, held, oldest = self._window.unpack(position)
         offset = self._window.window.next_offset(offset)
-        left = state[self._missing_at:self._rows_at].tolist()
-        if missing is None:
-            missing = [False] * self._n_channels
-        left = [float(length) if is_missing else max(n - 1.0, 0.0)
-                for n, is_missing in zip(left, np.asarray(missing).tolist())]
+        left = None  # slides left per channel, read only while a missing sample is around
+        if missing is not None or state.item(self._missing_at):
+            missing = missing or [False] * self._n_channels
+            left = [float(length) if is_missing else max(n - 1.0, 0.0) for n, is_missing
+                    in zip(state[self._missing_at + 1:self._rows_at].tolist(), missing)]
+            state[self._missing_at:self._rows_at] = [sum(left)] + left
         if event == NO_EVENT or held + 1.0 < length:
             state[:self._statistics_at] = [NO_EVENT] + [0.0] * self._n_channels
-            state[self._missing_at:self._rows_at] = left
             return state[1:self._statistics_at]
         terms = self._channel_terms[event]
         if offset == 0 or event != state.item(0):
@@ -220,7 +220,7 @@ class SlidingCorrelation:
                 window_after)
         scores = []
         for i, (start, _, template_norm, template_flat) in enumerate(terms):
-            if left[i]:  # a missing sample is in this channel's window
+            if left and left[i]:  # a missing sample is in this channel's window
                 scores.append(0.0)
                 continue
             lags = state[start + offset:start + offset + 2 * length - 1]
@@ -228,7 +228,7 @@ class SlidingCorrelation:
             # argmax is several times cheaper than max here, and finds the same peak.
             scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
                                         high, low, template_flat, self._min_contrast))
-        state[:self._rows_at] = [event] + scores + statistics + left
+        state[:self._missing_at] = [event] + scores + statistics
         return state[1:self._statistics_at]
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,

@@ -2,6 +2,7 @@
 
 import dataclasses
 import functools
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -32,22 +33,22 @@ def window_layout(group: RateGroup) -> SlidingWindowState:
     return SlidingWindowState(default_sliding_window(len(group.channels), group.window_length))
 
 
-def entering_samples(channels: np.ndarray, rows: slice,
-                     newest: Callable[[], np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+def entering_samples(channels: np.ndarray, rows: slice, newest: Callable[[], np.ndarray]
+                     ) -> tuple[np.ndarray, list[bool] | None]:
     """The samples a tick pushes into a rate group's window, and which of them are missing.
 
     The group's `rows` of the four channels enter the window, except a non-finite one (NaN
     or inf: a sensor glitch, a lost frame), which is missing: the channel's newest sample
     in the window, `newest()` (called only then), enters in its place, so that the window
-    and the sums kept over it stay finite. Returns (samples, missing: bool per row). The
-    EventScorer slides its correlations by these same samples and scores a channel 0 while
-    a missing sample is in its window.
+    and the sums kept over it stay finite. Returns (samples, missing: a bool per row, or
+    None when none is). The EventScorer slides its correlations by these same samples and
+    scores a channel 0 while a missing sample is in its window.
     """
     samples = channels[rows]
+    if math.isfinite(sum(samples.tolist())):  # the common case, at a fraction of isfinite's cost
+        return samples, None
     missing = ~np.isfinite(samples)
-    if missing.any():
-        samples = np.where(missing, newest(), samples)
-    return samples, missing
+    return np.where(missing, newest(), samples), missing.tolist()
 
 
 class WindowNormalizer(LeafSystem):
