@@ -16,14 +16,14 @@ OWN_CYLINDER = ["--set", "object.shape=cylinder", "--set", "object.size=[0.04,0.
                 "--set", "object.mass=0.12", "--set", "object.friction=0.6"]
 
 
-def run_cli(argv, capsys) -> tuple[int, str]:
+def run_cli(argv, capfd) -> tuple[int, str]:
     """(exit code, what it printed) of `tegrasp ARGV`, run in this process."""
     try:
         code = cli.main(argv)
         message = ""
     except SystemExit as exit_:
         code, message = (1, exit_.code) if isinstance(exit_.code, str) else (exit_.code, "")
-    captured = capsys.readouterr()
+    captured = capfd.readouterr()
     return code, "\n".join(part for part in (message, captured.err, captured.out) if part)
 
 
@@ -53,26 +53,26 @@ def assert_one_line_error(code, text, *expected):
     (["controller.event_object_may_differ=[colour]"],
      "field 'controller.event_object_may_differ[0]' must name a field"),
 ])
-def test_a_bad_scenario_value_is_named_and_nothing_runs(overrides, expected, capsys):
+def test_a_bad_scenario_value_is_named_and_nothing_runs(overrides, expected, capfd):
     argv = ["trial", "--controller", "heuristic"]
     for assignment in overrides:
         argv += ["--set", assignment]
-    code, text = run_cli(argv, capsys)
+    code, text = run_cli(argv, capfd)
     assert_one_line_error(code, text, expected)
 
 
 @pytest.mark.parametrize("command", [["trial"], ["record-events"]])
-def test_your_own_object_needs_its_own_name(command, capsys):
-    code, text = run_cli([*command, *OWN_CYLINDER], capsys)
+def test_your_own_object_needs_its_own_name(command, capfd):
+    code, text = run_cli([*command, *OWN_CYLINDER], capfd)
     assert_one_line_error(code, text, "field 'object.name'", "needs its own name",
                           "not the built-in 'box'")
 
 
-def test_a_yaml_syntax_error_in_a_scenario_file_is_named(tmp_path, capsys):
+def test_a_yaml_syntax_error_in_a_scenario_file_is_named(tmp_path, capfd):
     scenario = tmp_path / "bad.yaml"
     scenario.write_text("mine:\n  object: {name: box\n")
     code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
-                         capsys)
+                         capfd)
     assert_one_line_error(code, text, str(scenario), "not valid YAML: line 3, column 1: "
                           "expected ',' or '}'")
 
@@ -89,7 +89,7 @@ TWO_LINKS = """<?xml version="1.0"?><sdf version="1.9"><model name="two">
     (TWO_LINKS, "must hold one model with one body"),
     (None, "is not a model Drake can load"),  # a package:// URL that does not exist
 ])
-def test_a_bad_object_model_file_is_named(content, expected, tmp_path, capsys):
+def test_a_bad_object_model_file_is_named(content, expected, tmp_path, capfd):
     if content is None:
         file = "package://tegrasp/no_such_object.sdf"
     else:
@@ -97,7 +97,7 @@ def test_a_bad_object_model_file_is_named(content, expected, tmp_path, capsys):
         file.write_text(content)
     code, text = run_cli(["trial", "--set", "object.name=mine", "--set", "object.shape=file",
                           "--set", f"object.file={file}", "--set", "object.size=[0.04,0.04,0.1]",
-                          "--set", "object.mass=0.1", "--set", "object.friction=0.5"], capsys)
+                          "--set", "object.mass=0.1", "--set", "object.friction=0.5"], capfd)
     assert_one_line_error(code, text, "field 'object.file'", expected)
 
 
@@ -116,11 +116,11 @@ def test_a_bad_object_model_file_is_named(content, expected, tmp_path, capsys):
     ("scheduling: deadline\n", "field 'scheduling' must be one of fifo, nice, normal"),
 ])
 def test_a_bad_hardware_config_is_named_before_any_device_is_opened(text, expected, tmp_path,
-                                                                     capsys):
+                                                                     capfd):
     config = tmp_path / "hw.yaml"
     config.write_text(text)
     code, output = run_cli(["hardware", "--config", str(config), "--controller", "heuristic"],
-                           capsys)
+                           capfd)
     assert_one_line_error(code, output, str(config), expected)
 
 
@@ -168,14 +168,14 @@ def _copy_other_objects_events(folder):
     (_copy_other_objects_events, "were recorded on another object: shape 'cylinder' "
                                  "(recorded) != 'box' (now)"),
 ])
-def test_unusable_events_are_named_before_the_trial_runs(spoil, expected, events_copy, capsys):
+def test_unusable_events_are_named_before_the_trial_runs(spoil, expected, events_copy, capfd):
     spoil(events_copy)
-    code, text = run_cli(["trial", "--events", str(events_copy)], capsys)
+    code, text = run_cli(["trial", "--events", str(events_copy)], capfd)
     assert_one_line_error(code, text, str(events_copy), expected)
 
 
-def test_events_of_a_changed_builtin_object_are_refused_unless_accepted(capsys):
-    code, text = run_cli(["trial", "--set", "object.mass=0.3"], capsys)
+def test_events_of_a_changed_builtin_object_are_refused_unless_accepted(capfd):
+    code, text = run_cli(["trial", "--set", "object.mass=0.3"], capfd)
     assert_one_line_error(code, text, "mass 0.15 (recorded) != 0.3 (now)",
                           "controller.event_object_may_differ=[mass]")
 
@@ -219,10 +219,10 @@ def _flip_bits(path):
     (lambda p: _trial_log(p, channels=np.full((101, 4), np.nan)),
      "the channels ['channels'] hold NaN or infinite values"),
 ])
-def test_a_damaged_trial_log_is_named_and_not_plotted(make, expected, tmp_path, capsys):
+def test_a_damaged_trial_log_is_named_and_not_plotted(make, expected, tmp_path, capfd):
     path = tmp_path / "trial.npz"
     make(path)
-    code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "x.png")], capsys)
+    code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "x.png")], capfd)
     assert_one_line_error(code, text, str(path), expected)
     assert not (tmp_path / "x.png").exists()
 
@@ -236,11 +236,11 @@ def test_a_damaged_trial_log_is_named_and_not_plotted(make, expected, tmp_path, 
      "field 'user_objects.crate.friction_coefficient': is missing"),
 ])
 def test_a_sweep_spec_whose_objects_cannot_run_is_refused_at_load(definition, expected,
-                                                                  tmp_path, capsys):
+                                                                  tmp_path, capfd):
     spec = tmp_path / "spec.yaml"
     spec.write_text(f"objects: [crate]\nuser_objects:\n  crate: {definition}\n")
     code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"),
-                          "--no-progress"], capsys)
+                          "--no-progress"], capfd)
     assert code == 2, text
     assert_one_line_error(code, text, str(spec), expected)
     assert not (tmp_path / "out" / "trials").exists()

@@ -18,6 +18,9 @@ overrides; `tegrasp emulate ... --write-config FILE` writes one for the emulator
 """
 
 import dataclasses
+import os
+import sys
+import tempfile
 import typing
 
 from pydrake.common.yaml import yaml_dump_typed
@@ -97,14 +100,33 @@ class HardwareStationConfig:
 
 
 def lcm_url_problem(url: str) -> str | None:
-    """Why the LCM library cannot open `url`, or None (an empty URL is LCM's default)."""
+    """Why the LCM library cannot open `url`, or None (an empty URL is LCM's default).
+
+    The library prints its reason on the process's stderr (file descriptor 2, below
+    Python); it is caught there and becomes part of the answer, so that a bad URL is one
+    line."""
     import lcm
-    try:
-        lcm.LCM(url)
-    except (RuntimeError, OSError):
-        return ("cannot be opened by LCM (expected e.g. udpm://239.255.76.67:7667?ttl=0 or "
-                "memq://)")
-    return None
+    with tempfile.TemporaryFile() as captured:
+        sys.stderr.flush()
+        saved = os.dup(2)
+        os.dup2(captured.fileno(), 2)
+        try:
+            lcm.LCM(url)
+            failed = False
+        except (RuntimeError, OSError):
+            failed = True
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+        captured.seek(0)
+        said = captured.read().decode(errors="replace").strip()
+    if not failed:
+        if said:
+            print(said, file=sys.stderr)  # not ours to hide
+        return None
+    reason = said.splitlines()[-1].split(" -- ", 1)[-1].strip() if said else ""
+    return (f"cannot be opened by LCM ({reason + '; ' if reason else ''}expected e.g. "
+            "udpm://239.255.76.67:7667?ttl=0 or memq://)")
 
 
 def validate_hardware_config(config: HardwareStationConfig, source: str,
