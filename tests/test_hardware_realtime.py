@@ -45,3 +45,21 @@ def test_a_refused_real_time_class_falls_back_and_says_so(monkeypatch):
 def test_an_unknown_policy_is_refused():
     with pytest.raises(ValueError, match="'deadline' is not one of fifo, nice, normal"):
         realtime.raise_scheduling("deadline")
+
+
+def test_an_emulator_process_runs_at_the_emulators_priority_from_its_start():
+    """Its start-up (importing Drake, building the arm's simulation) must not be starved
+    on a busy host: the parent raises the child at once. (The child here is not given
+    --scheduling, so what it runs at is the parent's doing.)"""
+    from tegrasp_drake.emulators.emulator_process import EmulatorProcess
+    with realtime.realtime_scheduling("fifo", 10) as got:
+        if "refused" in got:
+            pytest.skip(f"this host refuses SCHED_FIFO: {got}")
+    process = EmulatorProcess("robotiq", "--scenario-name", "box", wait=False,
+                              scheduling="fifo")
+    try:
+        process.wait_until_ready(60.0)
+        assert os.sched_getscheduler(process.pid) == os.SCHED_FIFO
+        assert os.sched_getparam(process.pid).sched_priority == realtime.EMULATOR_PRIORITY
+    finally:
+        process.stop()

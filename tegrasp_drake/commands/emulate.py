@@ -21,12 +21,10 @@ from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import SYNC_MODES, Emulators, FaultInjection
 from tegrasp_drake.hardware.config import DEFAULT_LCM_URL
-from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES, raise_scheduling
+from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
+                                              raise_scheduling)
 
 DEVICES = (*EMULATED_DEVICES, "all")
-# Above the control loop (hardware/config.py realtime_priority 10) and its I/O threads:
-# the emulators stand in for devices that have processors of their own.
-EMULATOR_PRIORITY = 30
 
 
 def register(subparsers) -> None:

@@ -13,6 +13,7 @@ import sys
 import time
 
 from tegrasp_drake.emulators.launcher import devices_from_line, hardware_config_for
+from tegrasp_drake.hardware.realtime import EMULATOR_PRIORITY, raise_scheduling
 
 READY_LINE = "ready"
 
@@ -29,7 +30,7 @@ class EmulatorProcess:
     far (read_output() collects more)."""
 
     def __init__(self, device: str, *args: str, wait: bool = True, timeout: float = 30.0,
-                 env=None):
+                 env=None, scheduling: str = "normal"):
         self.device = device
         self.devices = {}
         self.output = []
@@ -37,6 +38,10 @@ class EmulatorProcess:
             [sys.executable, "-m", "tegrasp_drake", "emulate", device, *args],
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
             env=env or dict(os.environ))
+        if scheduling != "normal":
+            # The child's own --scheduling applies once it has started; this covers its
+            # start-up too (where the OS refuses, the child says so in its output).
+            raise_scheduling(scheduling, EMULATOR_PRIORITY, pid=self._process.pid)
         os.set_blocking(self._process.stdout.fileno(), False)
         self._buffer = ""
         if wait:
@@ -115,11 +120,12 @@ class EmulatedDevices:
         common = ("--scheduling", scheduling)
         try:
             self.jaco = EmulatorProcess("jaco", *scenario_args, "--lcm-url", lcm_url,
-                                        *common, wait=False)
+                                        *common, wait=False, scheduling=scheduling)
             self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args, *common,
-                                           wait=False)
+                                           wait=False, scheduling=scheduling)
             self.myrio = EmulatorProcess("myrio", "--trial", str(trial), "--sync", myrio_sync,
-                                         "--lcm-url", lcm_url, *common, wait=False)
+                                         "--lcm-url", lcm_url, *common, wait=False,
+                                         scheduling=scheduling)
             for process in self.processes:
                 process.wait_until_ready(timeout)
         except BaseException:

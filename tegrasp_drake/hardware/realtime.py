@@ -23,7 +23,9 @@ thread that wakes every millisecond (pymodbus polls for a reply every 1 ms) take
 from the loop each time; measured beside four CPU hogs, the loop ran at 0.76-0.84 of real
 time with the device threads 5 levels above it and at 0.90-0.95 with them at its level.
 Emulators of the devices (`tegrasp emulate --scheduling fifo`) use `raise_scheduling` for
-their whole process, at a priority above the loop's (commands/emulate.py).
+their whole process, at EMULATOR_PRIORITY, above the loop's (commands/emulate.py); an
+EmulatorProcess raises its child's at once, so that its start-up (importing Drake,
+building the arm's simulation) is not starved on a busy host either.
 """
 
 import contextlib
@@ -31,29 +33,33 @@ import os
 
 SCHEDULING_POLICIES = ("fifo", "nice", "normal")
 NICE_LEVEL = -10
+# Emulated devices: above the control loop (hardware/config.py realtime_priority 10) and its
+# I/O threads, as they stand in for devices that have processors of their own.
+EMULATOR_PRIORITY = 30
 
 
-def _set_fifo(priority: int) -> None:
-    os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(priority))
+def _set_fifo(priority: int, pid: int = 0) -> None:
+    os.sched_setscheduler(pid, os.SCHED_FIFO, os.sched_param(priority))
 
 
-def raise_scheduling(policy: str = "fifo", priority: int = 10) -> str:
-    """Raises the calling thread's scheduling (threads it starts inherit it); returns what
-    it got, in words (module docstring)."""
+def raise_scheduling(policy: str = "fifo", priority: int = 10, pid: int = 0) -> str:
+    """Raises the scheduling of the calling thread, or of process `pid` (its main thread:
+    set it before it starts threads, which inherit it); returns what it got, in words
+    (module docstring)."""
     if policy not in SCHEDULING_POLICIES:
         raise ValueError(f"scheduling policy {policy!r} is not one of "
                          f"{', '.join(SCHEDULING_POLICIES)}")
     got, refused = "normal scheduling", []
     if policy == "fifo":
         try:
-            _set_fifo(priority)
+            _set_fifo(priority, pid)
             return f"real-time scheduling (SCHED_FIFO, priority {priority})"
         except (PermissionError, OSError) as e:
             refused.append(f"SCHED_FIFO refused: {e.strerror or e}")
             policy = "nice"
     if policy == "nice":
         try:
-            os.setpriority(os.PRIO_PROCESS, 0, NICE_LEVEL)
+            os.setpriority(os.PRIO_PROCESS, pid, NICE_LEVEL)
             got = f"raised priority (nice {NICE_LEVEL})"
         except (PermissionError, OSError) as e:
             refused.append(f"nice {NICE_LEVEL} refused: {e.strerror or e}")
