@@ -1,18 +1,18 @@
 """Success per placement offset: Table I split by marker, so that a reader sees where each
-controller fails (e.g. the box 1 cm toward the palm and 1.5 cm along the stroke).
+controller fails (the markers 1.5 cm along the stroke, say, where Re-Reach acts).
 
 One table per controller: a row per marker (its nominal offset from the expected position:
 dx normal to the palm, dy along the stroke, mm; the attempts add jitter), a column pair
 (~Hold, ~Unload) per object, as successes/trials of the finished trials.
 """
 
-import csv
 from collections import defaultdict
 from dataclasses import dataclass
 from pathlib import Path
 
 from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLERS
-from tegrasp_drake.experiments.sweep.table import CONTROLLER_TITLES, ordered_names, succeeded
+from tegrasp_drake.experiments.sweep.table import (CONTROLLER_TITLES, ordered_names, succeeded,
+                                                   write_markdown_and_csv)
 
 PHASES = ("hold", "unload")
 
@@ -94,15 +94,10 @@ def offset_markdown(rows: list[OffsetRow]) -> str:
 def write_offset_table(records, out_dir) -> list[Path]:
     """Writes `success_by_offset.md` and `.csv` into `out_dir`; returns their paths."""
     rows = offset_rows(records)
-    out_dir = Path(out_dir)
-    markdown_path, csv_path = out_dir / "success_by_offset.md", out_dir / "success_by_offset.csv"
-    markdown_path.write_text(offset_markdown(rows), encoding="utf-8")
-    with open(csv_path, "w", newline="", encoding="utf-8") as file:
-        writer = csv.writer(file)
-        writer.writerow(["controller", "object", "marker_dx_mm", "marker_dy_mm", "trials",
-                         "hold_successes", "unload_successes", "errors"])
-        for row in rows:
-            writer.writerow([row.controller, row.object_name, f"{row.marker_dx_mm:g}",
-                             f"{row.marker_dy_mm:g}", row.trials, row.hold_successes,
-                             row.unload_successes, row.errors])
-    return [markdown_path, csv_path]
+    header = ["controller", "object", "marker_dx_mm", "marker_dy_mm", "trials",
+              "hold_successes", "unload_successes", "errors"]
+    csv_rows = [[row.controller, row.object_name, f"{row.marker_dx_mm:g}",
+                 f"{row.marker_dy_mm:g}", row.trials, row.hold_successes,
+                 row.unload_successes, row.errors] for row in rows]
+    return write_markdown_and_csv(out_dir, "success_by_offset", offset_markdown(rows), header,
+                                  csv_rows)

@@ -149,30 +149,40 @@ def table1_markdown(rows) -> str:
     return "\n".join(lines) + "\n"
 
 
+def write_markdown_and_csv(out_dir, stem: str, markdown: str, header: list,
+                           rows: list[list]) -> list[Path]:
+    """Writes `stem`.md (the text `markdown`) and `stem`.csv (`header`, then `rows`) into
+    `out_dir`; returns their paths. Every report table of a results folder is written so."""
+    out_dir = Path(out_dir)
+    markdown_path, csv_path = out_dir / f"{stem}.md", out_dir / f"{stem}.csv"
+    markdown_path.write_text(markdown, encoding="utf-8")
+    with open(csv_path, "w", newline="", encoding="utf-8") as file:
+        writer = csv.writer(file)
+        writer.writerow(header)
+        writer.writerows(rows)
+    return [markdown_path, csv_path]
+
+
 def write_table1(records, out_dir) -> list[Path]:
     """Writes `table1.md` and `table1.csv` into `out_dir`; returns their paths."""
     rows = table1_rows(records)
-    out_dir = Path(out_dir)
-    markdown_path, csv_path = out_dir / "table1.md", out_dir / "table1.csv"
-    markdown_path.write_text(table1_markdown(rows), encoding="utf-8")
     fieldnames = ["controller", "object"]
     for placement, phase in TABLE1_COLUMNS:
         name = f"{placement}_{phase}"
         fieldnames += [f"{name}_successes", f"{name}_trials", f"{name}_percent",
                        f"paper_{name}_percent"]
     fieldnames.append("errors")
-    with open(csv_path, "w", newline="", encoding="utf-8") as file:
-        writer = csv.writer(file)
-        writer.writerow(fieldnames)
-        for row in rows:
-            values = [row.controller, row.object_name]
-            for i, cell in enumerate(row.cells):
-                values += [cell.successes, cell.trials,
-                           "" if cell.percent is None else f"{cell.percent:.2f}",
-                           "" if row.paper_percent is None else row.paper_percent[i]]
-            values.append(row.errors)
-            writer.writerow(values)
-    return [markdown_path, csv_path]
+    csv_rows = []
+    for row in rows:
+        values = [row.controller, row.object_name]
+        for i, cell in enumerate(row.cells):
+            values += [cell.successes, cell.trials,
+                       "" if cell.percent is None else f"{cell.percent:.2f}",
+                       "" if row.paper_percent is None else row.paper_percent[i]]
+        values.append(row.errors)
+        csv_rows.append(values)
+    return write_markdown_and_csv(out_dir, "table1", table1_markdown(rows), fieldnames,
+                                  csv_rows)
 
 
 # ---------------------------------------------------------------------------------
