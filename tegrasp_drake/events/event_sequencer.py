@@ -87,12 +87,15 @@ class EventSequencer(LeafSystem):
     def _state(self, context) -> np.ndarray:
         return context.get_discrete_state(self._state_index).value()
 
+    def _armed(self, step: int, context) -> bool:
+        """True when the sequence has an event at `step` and its arming time has come."""
+        return step < len(self._event_indices) and \
+            context.get_time() >= self._armed_from_s[step]
+
     def _update(self, context, discrete_state):
         state = discrete_state.get_mutable_value(self._state_index)
         step = int(state[0])
-        armed = step < len(self._event_indices) and \
-            context.get_time() >= self._armed_from_s[step]
-        matched = armed and self._match_port.Eval(context)[0] > 0.5
+        matched = self._armed(step, context) and self._match_port.Eval(context)[0] > 0.5
         new_step = next_sequence_step(step, matched, len(self._event_indices))
         if new_step != step:
             state[0] = new_step
@@ -100,9 +103,8 @@ class EventSequencer(LeafSystem):
 
     def _calc_expected_event(self, context, output):
         step = int(self._state(context)[0])
-        armed = step < len(self._event_indices) and \
-            context.get_time() >= self._armed_from_s[step]
-        output.SetAtIndex(0, self._event_indices[step] if armed else NO_EVENT)
+        output.SetAtIndex(0, self._event_indices[step] if self._armed(step, context)
+                          else NO_EVENT)
 
     def _calc_fire_times(self, context, output):
         output.SetFromVector(self._state(context)[1:])
