@@ -10,6 +10,16 @@ from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.experiments.trial_log import ARRAY_FIELDS
 
 
+@pytest.fixture(autouse=True)
+def empty_user_events_folder(tmp_path_factory, monkeypatch):
+    """Tests read the package's events, never the developer's own recorded ones: the user's
+    events folder (TEGRASP_EVENTS_DIR) is an empty folder of the test session."""
+    folder = tmp_path_factory.getbasetemp() / "user-events"
+    folder.mkdir(exist_ok=True)
+    monkeypatch.setenv("TEGRASP_EVENTS_DIR", str(folder))
+    return folder
+
+
 @pytest.fixture(scope="session")
 def ideal_grasp_log():
     """ideal_grasp_log(object_name) -> the TrialLog of that object's ideal grasp on its

@@ -113,3 +113,22 @@ def test_statistics_json_is_valid(tmp_path):
     statistics = json.loads((tmp_path / "statistics.json").read_text())
     assert set(statistics["controllers"]) == {"memorized", "heuristic", "open_loop"}
     assert len(statistics["paired_comparisons"]) == 6
+
+
+def test_a_smaller_spec_in_a_reused_folder_counts_only_its_own_trials(tmp_path, capsys):
+    """Issue #12: --attempts 2, then --attempts 1 into the same folder printed "9 trials"
+    and tabulated 18."""
+    out = tmp_path / "out"
+    common = ["--objects", "box", "--controllers", "memorized", "--workers", "2",
+              "--out", str(out), *FAKE]
+    assert command.main([*common, "--attempts", "2"]) == 0
+    capsys.readouterr()
+    assert command.main([*common, "--attempts", "1"]) == 0
+    stdout = capsys.readouterr().out
+    assert "sweep: 9 trials, 9 already finished" in stdout
+    assert "9 record(s) of trials not in this spec are in" in stdout
+    rows = (out / "table1.csv").read_text().splitlines()
+    header, box = rows[0].split(","), rows[1].split(",")
+    trials = sum(int(box[header.index(f"{placement}_hold_trials")])
+                 for placement in ("well_placed", "misplaced"))
+    assert trials == 9

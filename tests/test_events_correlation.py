@@ -183,3 +183,33 @@ def test_samples_per_window_requires_a_whole_number_of_samples():
     assert samples_per_window(0.5, 100.0) == 50
     with pytest.raises(ValueError, match="integer"):
         samples_per_window(0.5, 333.0)
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_a_non_finite_sample_is_missing_for_one_window_and_poisons_nothing(bad):
+    """The reproducer of issue #12: one NaN or inf sample kept the streaming state wrong
+    for 100+ ticks after it left the window (inf gave NaN scores). Now the sample enters as
+    the channel's previous one, the channel scores 0 while it is in the window, and from
+    the tick it leaves, the scores are those of the stream without it, to round-off."""
+    length, at = 50, 400
+    rng = np.random.default_rng(3)
+    template = normalize_by_max(rng.random((2, length)) ** 3)
+    stream = random_stream(rng, 700, 2)
+    held = stream.copy()
+    held[at, 0] = stream[at - 1, 0]  # what "missing" enters the window as
+    glitched = stream.copy()
+    glitched[at, 0] = bad
+    with_glitch = StreamingCorrelator([template], min_contrast=MIN_CONTRAST, slack=10)
+    without = StreamingCorrelator([template], min_contrast=MIN_CONTRAST, slack=10)
+    state, clean_state = with_glitch.initial_state(), without.initial_state()
+    for tick in range(len(stream)):
+        scores = with_glitch.push(state, glitched[tick], 0).copy()
+        expected = without.push(clean_state, held[tick], 0)
+        assert np.all(np.isfinite(scores)), tick
+        if at <= tick < at + length:
+            assert scores[0] == 0.0, tick  # the missing sample is in the window
+            assert scores[1] == pytest.approx(expected[1], abs=1e-12), tick
+        else:
+            np.testing.assert_allclose(scores, expected, atol=1e-9, err_msg=str(tick))
+        if tick == at + length:  # recovered within one window of the glitch
+            assert scores[0] != 0.0

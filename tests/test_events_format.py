@@ -9,7 +9,7 @@ import pytest
 from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.memorized_event import (
     INDEX_FILE, MemorizedEvent, MemorizedEventError, load_all_memorized_events,
-    load_memorized_events, read_index, save_memorized_events)
+    load_memorized_events, read_index, read_memorized_event, save_memorized_events)
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 
 VERSIONS = {"drake": "1.51.1", "numpy": "2.4.6", "tegrasp-drake": "0.1.0"}
@@ -114,8 +114,8 @@ def edit(change):
 DAMAGES = {  # name: (file, damage, what the message says)
     "missing file": ("load_lift", lambda path: path.unlink(), "file is missing"),
     "truncated file": ("reach_load", truncate, "not valid JSON"),
-    "wrong format_version": ("place_unload", edit(lambda data: data.update(format_version=2)),
-                             "has format_version 2"),
+    "wrong format_version": ("place_unload", edit(lambda data: data.update(format_version=99)),
+                             "has format_version 99"),
     "missing field": ("reach_load", edit(lambda data: data.pop("sa_rate_hz")),
                       "field 'sa_rate_hz' is missing"),
     "window too short": ("load_lift", edit(lambda data: data["samples"]["ra_left"].pop()),
@@ -164,3 +164,46 @@ def test_an_event_must_be_normalised_by_its_maximum():
     event = make_events()["reach_load"]
     with pytest.raises(ValueError, match="not normalised"):
         dataclasses.replace(event, sa=2.0 * event.sa)
+
+
+DESCRIPTION = {"shape": "box", "size": [0.045, 0.045, 0.11], "mass": 0.15, "friction": 0.5,
+               "file": ""}
+
+
+def test_the_object_description_is_written_and_read_back(tmp_path):
+    events = {name: dataclasses.replace(event, object_description=DESCRIPTION)
+              for name, event in make_events().items()}
+    save_memorized_events(tmp_path, events.values())
+    loaded = load_memorized_events(tmp_path, "box")
+    assert all(event.object_description == DESCRIPTION for event in loaded.values())
+    index = json.loads((tmp_path / "index.json").read_text())
+    assert all(entry["object_description"] == DESCRIPTION for entry in index["events"])
+
+
+def _as_version_1(path, scenario_text):
+    def change(data):
+        data.pop("object_description", None)
+        data.update(format_version=1, scenario=scenario_text)
+    edit_json(path, change)
+
+
+def test_a_version_1_file_is_migrated_from_its_scenario_text(tmp_path):
+    save_memorized_events(tmp_path, make_events().values())
+    scenario = ("object:\n  name: box\n  shape: box\n  size: [0.045, 0.045, 0.11]\n"
+                "  mass: 0.15\n  friction: 0.5\n  file: ''\n")
+    for path in (tmp_path / "box").glob("*.json"):
+        _as_version_1(path, scenario)
+    edit_json(tmp_path / "index.json", lambda data: [
+        (entry.pop("object_description"), entry.update(scenario=scenario))
+        for entry in data["events"]])
+    loaded = load_memorized_events(tmp_path, "box")
+    assert all(event.object_description == DESCRIPTION for event in loaded.values())
+
+
+def test_a_version_1_file_that_does_not_describe_its_object_is_refused(tmp_path):
+    save_memorized_events(tmp_path, make_events().values())
+    path = tmp_path / "box" / "reach_load.json"
+    _as_version_1(path, "box")
+    with pytest.raises(MemorizedEventError, match="format_version 1 file whose scenario text "
+                                                   "does not describe the object"):
+        read_memorized_event(path)

@@ -7,6 +7,7 @@ import pytest
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
+from pydrake.trajectories import PiecewisePolynomial
 
 from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
@@ -237,3 +238,49 @@ def test_scores_and_match_equal_the_one_system_matcher_tick_by_tick(sa_rate_hz):
     assert not np.isnan(both.fire_times).any()  # every event matched: the scores moved on
     np.testing.assert_allclose(both.scores, both.one_system_scores, rtol=0, atol=1e-12)
     np.testing.assert_array_equal(both.match, both.one_system_match)
+
+
+def glitched_and_held(glitches):
+    """The NOISY replay with a non-finite value at each (channel, tick time, value) of
+    `glitches`, and the same replay with each of them replaced by the channel's previous
+    sample (what a missing sample enters the window as)."""
+    trajectory = channels_trajectory(synthetic_grasp(NOISY))
+    breaks = np.array(trajectory.get_segment_times())
+    samples = np.hstack([trajectory.value(t) for t in breaks])
+    glitched, held = samples.copy(), samples.copy()
+    for channel, time, value in glitches:
+        # The tick at `time` reads the segment that starts just before it (the breaks are
+        # the union of the SA and RA sample times, so a segment is one RA tick long).
+        segment = int(np.searchsorted(breaks, time, side="right")) - 1
+        glitched[channel, segment] = value
+        held[channel, segment] = samples[channel, segment - 1]
+    return [TrajectorySource(PiecewisePolynomial.ZeroOrderHold(breaks, values))
+            for values in (glitched, held)]
+
+
+def test_a_non_finite_sample_scores_its_channel_zero_for_one_window_and_poisons_nothing():
+    """Issue #12: one NaN or inf sample kept the streaming state wrong for 100+ ticks after
+    it left the window, and inf gave NaN scores. Through the EventMatcher
+    (WindowNormalizer and scores in one update): the sample enters as its channel's previous one, the channel scores 0 while it is
+    in the window (0.5 s), every other score and every later one is that of the stream
+    without the glitch, and the event still matches when it comes."""
+    # (channel, time, value): ra_left NaN, sa_right inf, ra_right -inf
+    glitches = [(2, 0.2, np.nan), (1, 0.25, np.inf), (3, 0.3, -np.inf)]
+    runs = []
+    for source in glitched_and_held(glitches):
+        harness = Harness(source)
+        harness.expect("reach_load")
+        runs.append(np.array([[time, match, *scores]
+                              for time, scores, match in harness.run(1.3)]))
+    glitched, held = runs
+    times = glitched[:, 0]
+    assert np.all(np.isfinite(glitched))
+    in_window = np.zeros(glitched[:, 2:].shape, dtype=bool)
+    for channel, time, _ in glitches:
+        in_window[:, channel] = (times > time) & (times < time + 0.5)
+        assert np.any(held[in_window[:, channel], 2 + channel] != 0.0)  # so 0 is the glitch's
+    np.testing.assert_array_equal(glitched[:, 2:][in_window], 0.0)
+    np.testing.assert_allclose(glitched[:, 2:][~in_window], held[:, 2:][~in_window],
+                               rtol=0, atol=1e-9)
+    matched = [times[run[:, 1] > 0][0] for run in runs]
+    assert matched[0] == matched[1] and 0.8 < matched[0] < 1.3

@@ -30,7 +30,7 @@ def grasp(request, ideal_grasp_log):
     """(log, its physical-event times, its tactile trial, the object's memorized events)."""
     log = ideal_grasp_log(request.param)
     physical = physical_events(log, LoadScenario(name=request.param).grasp.grip_force)
-    events = load_memorized_events(paths.events_dir(), request.param)
+    events = load_memorized_events(paths.package_events_dir(), request.param)
     return log, physical, tactile_trial_from_log(log), events
 
 

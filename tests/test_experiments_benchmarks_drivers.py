@@ -12,11 +12,12 @@ def test_percentiles_of_known_values():
 
 
 def test_short_benchmark_measures_latency_and_periods(capsys):
+    # What it measures depends on how busy the host is (that is what it is for): only that
+    # it measured is asserted, never a figure a loaded CPU could miss.
     result = run_driver_benchmark(0.3)
-    assert result.frames_seen_at_port > 100
-    # Figures, not targets: a busy host stretches and bunches the real-time loop's periods
-    # (a catching-up simulator takes several short steps), so only their presence is checked.
-    assert 0 < result.tactile_latency.median < 10e6  # [us]
-    assert result.loop_period_bare.median > 0
-    assert result.loop_period_with_tactile.median > 0
+    assert 0 < result.frames_seen_at_port <= result.frames_sent
+    assert result.tactile_latency.count == result.frames_seen_at_port
+    assert 0 < result.tactile_latency.median
+    assert 0 < result.loop_period_bare.median and result.loop_period_bare.count > 0
+    assert 0 < result.loop_period_with_tactile.median
     assert "tactile frame write -> receiver output port" in capsys.readouterr().out

@@ -115,3 +115,40 @@ def test_replay_command_reports_the_log_and_the_matches(run_log_path, tmp_path):
 def test_a_missing_log_is_named(tmp_path):
     with pytest.raises(RunLogError, match="run log '.*none.lcmlog' does not exist"):
         read_run_log(tmp_path / "none.lcmlog")
+
+
+def test_an_intact_log_reports_no_damage(run_log_path):
+    assert read_run_log(run_log_path).damage == []
+
+
+def _truncated(data: bytes) -> bytes:
+    return data[:len(data) // 2 + 7]  # mid-message
+
+
+def _bit_flipped(data: bytes) -> bytes:
+    damaged = bytearray(data)
+    for k in range(len(damaged) // 3, len(damaged) // 3 + 20000, 97):
+        damaged[k] ^= 0x5A
+    return bytes(damaged)
+
+
+@pytest.mark.parametrize("damage, words", [(_truncated, "truncated: the last message is cut"),
+                                           (_bit_flipped, "corrupt bytes in")])
+def test_a_damaged_log_is_replayed_as_far_as_it_goes_and_says_what_was_lost(
+        damage, words, run_log_path, tmp_path, capsys):
+    """Issue #12: a log truncated mid-message or with flipped bytes replayed with exit 0,
+    no warning, and the rest silently dropped."""
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    path = tmp_path / "damaged.lcmlog"
+    path.write_bytes(damage(run_log_path.read_bytes()))
+    total = sum(read_run_log(run_log_path).message_counts.values())
+    log = read_run_log(path)
+    read = sum(log.message_counts.values())
+    assert 0 < read < total
+    code = cli.main(["replay", str(path), "--events", str(tmp_path / "events"), "--json"])
+    captured = capsys.readouterr()
+    assert code == 3
+    warning = [line for line in captured.err.splitlines() if "warning" in line]
+    assert len(warning) == 1 and str(path) in warning[0] and words in warning[0]
+    assert f"read {read} messages" in warning[0]
+    assert json.loads(captured.out)["damage"] == log.damage

@@ -21,15 +21,16 @@ def test_override_changes_a_nested_field():
 
 @pytest.mark.parametrize("overrides, message", [
     (["object.colour=[1,0,0,1]"], "unknown field 'object.colour'"),
-    (["object.mass=heavy"], "field 'object.mass' must be a number"),
-    (["grasp.hold_s=[3]"], "field 'grasp.hold_s' must be a number"),
+    (["object.mass=heavy"], "field 'object.mass' must be a finite number"),
+    (["grasp.hold_s=[3]"], "field 'grasp.hold_s' must be a finite number"),
     (["object.name=bowl"], "field 'object.name': 'bowl' is not a built-in object"),
-    (["object.shape=box", "object.size=[0.09, 0.09, 0.1]", "object.mass=0.1",
-      "object.friction=0.5"], "field 'object.size': the object is 90.0 mm wide"),
+    (["object.name=crate", "object.shape=box", "object.size=[0.09, 0.09, 0.1]",
+      "object.mass=0.1", "object.friction=0.5"],
+     "field 'object.size' makes the object 90.0 mm wide"),
     (["controller.name=magic"], "field 'controller.name': 'magic' is not one of"),
     (["disturbance.hit_force_n=[1, 2]"], "field 'disturbance'"),
     (["object.mass=-1"], "field 'object.mass' must be positive"),
-    (["object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",
+    (["object.name=model", "object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",
       "object.mass=0.1", "object.friction=0.5"], "model file '/no/such/model.sdf' does not exist"),
     (["plant_config.time_step=fast"], "field 'plant_config'"),
 ])

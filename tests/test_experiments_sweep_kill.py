@@ -85,3 +85,43 @@ def test_sigkill_then_resume_gives_the_records_of_an_uninterrupted_run(tmp_path)
         assert a.read_bytes() == b.read_bytes(), a.name
     assert not list((killed_dir / "trials").glob(".*.tmp"))
     assert (killed_dir / "table1.csv").read_bytes() == (clean_dir / "table1.csv").read_bytes()
+
+
+def session_processes(session_id: int) -> set[int]:
+    """The pids of the live processes of a session (the sweep started in its own)."""
+    pids = set()
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[3]) == session_id and fields[0] != "Z":
+                pids.add(int(entry.name))
+    return pids
+
+
+def test_workers_end_when_only_the_main_process_is_killed(tmp_path):
+    """Issue #12: SIGKILL of the sweep's main process alone left its workers running
+    forever (~210 MB each). They now notice within a second and end."""
+    out_dir = tmp_path / "out"
+    process = subprocess.Popen(sweep_command(out_dir), env=environment(),
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               start_new_session=True)
+    deadline = time.monotonic() + TIMEOUT_S
+    try:
+        while len(record_files(out_dir)) < 2:
+            assert process.poll() is None and time.monotonic() < deadline
+            time.sleep(0.01)
+        others = session_processes(process.pid) - {process.pid}
+        assert others, "the sweep has worker processes"
+        os.kill(process.pid, signal.SIGKILL)  # the main process only
+        process.wait(timeout=TIMEOUT_S)
+        while session_processes(process.pid) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not session_processes(process.pid), "workers outlived the sweep"
+    finally:
+        try:
+            os.killpg(process.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass

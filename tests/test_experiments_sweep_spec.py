@@ -100,7 +100,8 @@ def test_perturbations_stay_within_their_bounds():
 
 def test_trial_spec_survives_a_dict_round_trip():
     spec = SweepSpec(objects=("mug",), user_objects={
-        "mug": ObjectDefinition(shape="cylinder", size_m=(0.04, 0.1), mass_kg=0.3)})
+        "mug": ObjectDefinition(shape="cylinder", size_m=(0.04, 0.1), mass_kg=0.3,
+                                friction_coefficient=0.6)})
     for trial in expand_trials(spec)[:3]:
         assert TrialSpec.from_dict(trial.to_dict()) == trial
         assert trial.to_dict()["object_definition"]["size_m"] == [0.04, 0.1]

@@ -112,7 +112,7 @@ def test_markdown_and_csv_files(records, tmp_path):
 def test_user_objects_have_no_paper_numbers(tmp_path):
     from tegrasp_drake.experiments.sweep.spec import ObjectDefinition
     spec = SweepSpec(objects=("box", "mug"), controllers=("memorized",), attempts=1,
-                     user_objects={"mug": ObjectDefinition("cylinder", (0.04, 0.1), 0.3)})
+                     user_objects={"mug": ObjectDefinition("cylinder", (0.04, 0.1), 0.3, 0.6)})
     records = [make_record(t.to_dict(), result=result(True, True))
                for t in expand_trials(spec)]
     rows = {r.object_name: r for r in table1_rows(records)}

@@ -126,3 +126,45 @@ def test_timestamps_are_unwrapped():
     data = b"".join(encode_frame(k, near_wrap + 1000 * k, (0, 0)) for k in range(4))
     decoded = TactileFrameDecoder().feed(data)
     assert np.all(np.diff([f.timestamp_us for f in decoded]) == 1000)
+
+
+def _with_outlier(outlier: bytes, at: int = 10, count: int = 30) -> tuple[list, list]:
+    frames = make_frames(count)
+    return frames, frames[:at] + [outlier] + frames[at:]
+
+
+@pytest.mark.parametrize("sequence, timestamp_us", [
+    (30000, 10_500),             # sequence 30000 in a stream at 10 (issue #12)
+    (10, (1 << 32) - 20),        # a timestamp near 2^32: not a wrap
+    (10, 2_000),                 # a timestamp going backwards
+    (11, 900_000),               # the next sequence, but 0.9 s later
+])
+def test_a_valid_frame_with_absurd_content_is_discarded_and_shifts_nothing(sequence,
+                                                                           timestamp_us):
+    frames, stream = _with_outlier(encode_frame(sequence, timestamp_us, (7, 7)))
+    decoder = TactileFrameDecoder()
+    decoded = decoder.feed(b"".join(stream))
+    assert [f.sequence for f in decoded] == list(range(len(frames)))
+    assert [f.timestamp_us for f in decoded] == [1000 * k for k in range(len(frames))]
+    assert decoder.counters.dropped_frames == 0
+    assert decoder.counters.implausible + decoder.counters.repeated == 1
+    assert decoder.counters.restarts == 0
+
+
+def test_a_stream_resuming_after_a_silence_is_followed_at_once():
+    frames = make_frames(3000)
+    decoder = TactileFrameDecoder()
+    decoded = decoder.feed(b"".join(frames[:100] + frames[2100:2110]))
+    assert [f.sequence for f in decoded] == list(range(100)) + list(range(2100, 2110))
+    assert decoder.counters.dropped_frames == 2000
+    assert decoder.counters.implausible == 0
+
+
+def test_a_wrap_of_the_sequence_and_the_timestamp_together_is_continuous():
+    start_k = (1 << 16) - 5
+    base = (1 << 32) - 5000
+    data = b"".join(encode_frame(k, base + 1000 * (k - start_k), (0, 0))
+                    for k in range(start_k, start_k + 12))
+    decoded = TactileFrameDecoder().feed(data)
+    assert len(decoded) == 12
+    assert np.all(np.diff([f.timestamp_us for f in decoded]) == 1000)

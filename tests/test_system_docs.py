@@ -111,7 +111,7 @@ CONSTRUCTORS = {
     WindowNormalizer: WindowNormalizer,
     SlipVibrationBand: lambda: SlipVibrationBand(band_hz=80.0, window_s=0.01,
                                                  sample_rate_hz=1000.0),
-    EventMatcher: lambda: EventMatcher(load_memorized_events(paths.events_dir(), "box")),
+    EventMatcher: lambda: EventMatcher(load_memorized_events(paths.package_events_dir(), "box")),
     EventSequencer: lambda: EventSequencer([0, 1, 2]),
     GraspStateMachine: lambda: GraspStateMachine(
         plan=GraspPlan.from_scenario(box_scenario()), config=GraspControllerConfig(),

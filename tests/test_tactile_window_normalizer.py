@@ -99,3 +99,20 @@ def test_a_subclass_state_must_start_with_an_empty_window():
     for name, state in (("too short", np.zeros(size - 1)), ("not empty", np.ones(size + 3))):
         with pytest.raises(ValueError, match="must start with an empty window"):
             WindowNormalizer(config, window_states={"sa": state, "ra": np.zeros(10_000)})
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_a_non_finite_sample_enters_as_the_channels_previous_one(bad):
+    normalizer = WindowNormalizer(WindowNormalizerConfig(sa_rate_hz=1000.0))
+    simulator = Simulator(normalizer)
+    context = simulator.get_mutable_context()
+    port = normalizer.get_input_port(0)
+    for time, channels in ((0.0025, [1.0, 2.0, 3.0, 4.0]), (0.0035, [bad, 5.0, 6.0, bad]),
+                           (0.0045, [7.0, 8.0, 9.0, 10.0])):
+        port.FixValue(context, channels)
+        simulator.AdvanceTo(time)  # one tick (1 kHz) per value, the first three at once
+    window, = normalizer.rate_windows
+    window = window.layout.current(context.get_discrete_state(window.state).value())
+    np.testing.assert_array_equal(window[:, -5:].T, [[1, 2, 3, 4]] * 3 + [[1, 5, 6, 4],
+                                                                         [7, 8, 9, 10]])
+    assert np.all(np.isfinite(normalizer.GetOutputPort("sa_window").Eval(context)))

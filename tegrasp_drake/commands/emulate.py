@@ -22,6 +22,8 @@ from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import SYNC_MODES, Emulators, FaultInjection
 from tegrasp_drake.hardware.config import DEFAULT_LCM_URL
+from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
+                                              raise_scheduling)
 
 DEVICES = (*EMULATED_DEVICES, "all")
 
@@ -55,6 +57,10 @@ def register(subparsers) -> None:
                         "gripper's activation completes")
     parser.add_argument("--write-config", metavar="FILE",
                         help="write the hardware config for `tegrasp hardware --config`")
+    parser.add_argument("--scheduling", choices=SCHEDULING_POLICIES, default="normal",
+                        help="the emulators' scheduling: a real device has its own "
+                        "processor; on a busy shared host `fifo` (real-time) or `nice` keeps "
+                        "the stand-ins on time (default: %(default)s)")
     parser.set_defaults(func=run)
 
 
@@ -74,6 +80,8 @@ def run(args) -> int:
         print(line, flush=True)
 
     scenario = scenario_from_arguments(args)
+    if args.scheduling != "normal":
+        out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     if args.device in ("myrio", "all") and not args.trial:
         raise SystemExit("tegrasp: error: emulate myrio/all needs --trial NPZ (a trial log; "
                          "`tegrasp demo --out DIR` writes DIR/trial.npz)")

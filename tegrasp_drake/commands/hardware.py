@@ -15,7 +15,8 @@ import pathlib
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
-from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
+from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
+                                                   controller_events, quiet_modbus_library,
                                                    scenario_from_arguments)
 from tegrasp_drake.control.controller_config import CONTROLLERS
 
@@ -48,6 +49,7 @@ def register(subparsers) -> None:
                         metavar="KEY=VALUE", help="override a hardware config field, e.g. "
                         "--config-set tactile.port=/dev/ttyACM1")
     add_scenario_arguments(parser)
+    add_events_argument(parser)
     parser.add_argument("--controller", default=None, choices=CONTROLLERS,
                         help="default: the scenario's (controller.name, memorized)")
     parser.add_argument("--log", metavar="FILE", default=None,
@@ -59,9 +61,17 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
+def _events_folder(events, args, scenario) -> str:
+    """The folder the events were read from, for the run's log ("" without events)."""
+    if not events:
+        return ""
+    from tegrasp_drake.events.memorized_event import events_folder_of
+    from tegrasp_drake.rig import paths
+    return str(events_folder_of(paths.events_search_path(args.events), scenario.object.name))
+
+
 def run(args) -> int:
     quiet_modbus_library()
-    from tegrasp_drake.rig import paths
     from tegrasp_drake.hardware.config import LoadHardwareConfig
     from tegrasp_drake.experiments.hardware_run import run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError
@@ -78,6 +88,7 @@ def run(args) -> int:
     else:
         raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
                          "is `!HardwareStationConfig {...}`")
+    events = controller_events(scenario, args.events, args.controller)
     log = args.log or (f"out/hardware/run-"
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
     if pathlib.Path(log).exists() and not args.overwrite:
@@ -88,9 +99,10 @@ def run(args) -> int:
     try:
         with SimulatedTimeBar("hardware", enabled=progress_wanted(args)) as progress:
             result = run_on_hardware(scenario, config=config, controller=args.controller,
-                                     events_dir=str(paths.events_dir()), log_path=log,
-                                     duration=args.duration, out=progress.write,
-                                     progress=progress)
+                                     events=events,
+                                     events_dir=_events_folder(events, args, scenario),
+                                     log_path=log, duration=args.duration,
+                                     out=progress.write, progress=progress)
     except HardwareNotReadyError as e:
         print(f"tegrasp: error: {e}", flush=True)
         return 1

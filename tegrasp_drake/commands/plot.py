@@ -45,7 +45,9 @@ def register(subparsers) -> None:
     parser.add_argument("source", nargs="?", metavar="LOG|RESULTS",
                         help="trial log (trial.npz) for signals, trial and avoid; sweep "
                              "results folder for table1, latency and success-maps")
-    parser.add_argument("--events", default=None, help="events folder (default: the package's)")
+    parser.add_argument("--events", default=None, metavar="DIR",
+                        help="events folder (default: $TEGRASP_EVENTS_DIR or "
+                        "~/.local/share/tegrasp/events, then the package's)")
     parser.add_argument("--format", choices=FIGURE_FORMATS, default=None,
                         help="file format (default: --out's suffix, else png)")
     parser.add_argument("--out", default=None,
@@ -71,8 +73,12 @@ def output_path(args) -> pathlib.Path:
 def _plot_events(args, out) -> str:
     from tegrasp_drake.events import MemorizedEventError, load_all_memorized_events
     from tegrasp_drake.experiments.figures.events import plot_memorized_events
+    events = {}
     try:
-        events = load_all_memorized_events(args.events or paths.events_dir())
+        # The first folder that has an object's events wins (the user's before the package's).
+        for folder in reversed(paths.events_search_path(args.events)):
+            if (folder / "index.json").is_file() or args.events:
+                events.update(load_all_memorized_events(folder))
     except MemorizedEventError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     return str(plot_memorized_events(events, out))

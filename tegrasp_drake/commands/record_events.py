@@ -2,7 +2,10 @@
 
 For each object (its built-in scenario, or the object of a scenario given), the events
 of its ideal grasp (experiments/record_events.py) are stored in the events folder with an
-index (format: tegrasp_drake/events/FORMAT.md).
+index (format: tegrasp_drake/events/FORMAT.md): `--events DIR`, else the user's events
+folder (TEGRASP_EVENTS_DIR, else ~/.local/share/tegrasp/events; rig/paths.py), never the
+installed package's, which `pip install` replaces. From a source checkout,
+`--events events` remakes the package's own events.
 """
 
 import argparse
@@ -19,11 +22,12 @@ tegrasp_drake/events/FORMAT.md)."""
 
 EPILOG = """\
 examples:
-  tegrasp record-events --object box          # re-record the box's events into events/
-  tegrasp record-events --scenario my.yaml --scenario-name my_can --out my_events
+  tegrasp record-events --object box          # the box's events, into your events folder
+  tegrasp record-events --scenario my.yaml --scenario-name my_can --events my_events
+  tegrasp record-events --events events       # from a source checkout: the package's own
 
 The events of an object are replaced by the new recording (that is what re-recording is);
-give --out to write them elsewhere."""
+give --events DIR to write them elsewhere."""
 
 
 def register(subparsers) -> None:
@@ -33,8 +37,9 @@ def register(subparsers) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--object", action="append", choices=sorted(BUILTIN_OBJECTS),
                         help="only this object (repeatable; default: all three)")
-    parser.add_argument("--out", default=None,
-                        help="events folder (default: the package's events/ folder)")
+    parser.add_argument("--events", "--out", dest="events", default=None, metavar="DIR",
+                        help="events folder to write (default: $TEGRASP_EVENTS_DIR, else "
+                        "~/.local/share/tegrasp/events)")
     parser.add_argument("--scenario", metavar="FILE", default=None,
                         help="record the object of this scenario file instead (your own object)")
     parser.add_argument("--scenario-name", default=None,
@@ -57,11 +62,21 @@ def _scenarios_to_record(args) -> list:
 
 def run(args) -> int:
     from tegrasp_drake.events import save_memorized_events
-    from tegrasp_drake.experiments.record_events import record_events
-    out = args.out or paths.events_dir()
+    from tegrasp_drake.experiments.record_events import RecordEventsError, record_events
+    out = args.events or paths.user_events_dir()
+    if paths.is_installed_package_data(out):
+        raise SystemExit(f"tegrasp: error: {out} holds the installed package's events, which "
+                         "`pip install` replaces; record into your own folder (--events DIR "
+                         f"or {paths.EVENTS_ENV}; default {paths.user_events_dir()})")
     for object_name, scenario in _scenarios_to_record(args):
-        with SimulatedTimeBar(object_name, enabled=progress_wanted(args)) as progress:
-            events = record_events(object_name, scenario, progress=progress)
-        written = save_memorized_events(out, events.values())
+        try:
+            with SimulatedTimeBar(object_name, enabled=progress_wanted(args)) as progress:
+                events = record_events(object_name, scenario, progress=progress)
+            written = save_memorized_events(out, events.values())
+        except RecordEventsError as e:
+            raise SystemExit(f"tegrasp: error: {e}") from None
+        except OSError as e:
+            raise SystemExit(f"tegrasp: error: cannot write the events to {out}: "
+                             f"{e.strerror or e}") from None
         print(f"{object_name}: {', '.join(events)} -> {len(written)} files in {out}")
     return 0

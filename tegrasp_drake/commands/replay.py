@@ -1,10 +1,15 @@
 """`tegrasp replay LOG`: what a hardware run's log holds, and the event matcher re-run on
 its tactile data offline, two ways (experiments/run_log.replay_run_log): expecting the
 event of the mode the logged transitions show, and expecting the memorized events one
-after another, as an EventSequencer does."""
+after another, as an EventSequencer does.
+
+Exit codes: 0 replayed; 1 nothing to replay (a missing or empty log, no events); 3 the
+log is damaged (truncated, corrupt bytes): the replay used what was readable, and a line
+on stderr says what was read and what was lost."""
 
 import argparse
 import json
+import sys
 
 
 EPILOG = """\
@@ -40,9 +45,12 @@ def run(args) -> int:
     except (RunLogError, MemorizedEventError, ValueError) as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     summary = replay.summary()
+    damaged = replay.log.damage_text()
+    if damaged:
+        print(f"tegrasp: warning: {damaged}", file=sys.stderr)
     if args.json:
-        print(json.dumps(summary, sort_keys=True))
-        return 0
+        print(json.dumps(dict(summary, damage=replay.log.damage), sort_keys=True))
+        return 3 if damaged else 0
     log = replay.log
     print(f"{summary['log']}: controller {summary['controller']}, object "
           f"{replay.object_name}, {summary['tactile_s']:.2f} s of tactile data "
@@ -61,4 +69,4 @@ def run(args) -> int:
     print("offline matcher with an EventSequencer (events expected in grasp order):")
     for transition, fired in replay.in_sequence.fire_times.items():
         print(f"  {transition:14s}  fired at {_fmt(fired)}")
-    return 0
+    return 3 if damaged else 0

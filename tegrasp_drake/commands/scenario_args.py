@@ -28,3 +28,24 @@ def quiet_modbus_library() -> None:
     """pymodbus logs every timed-out request; the Robotiq client counts them instead
     (RobotiqModbusClient.counters()), so keep its log to what is critical."""
     logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
+
+
+def add_events_argument(parser, *, what: str = "read") -> None:
+    parser.add_argument("--events", metavar="DIR", default=None,
+                        help=f"memorized events folder to {what} (default: "
+                        "$TEGRASP_EVENTS_DIR or ~/.local/share/tegrasp/events, then the "
+                        "package's)")
+
+
+def controller_events(scenario, events_dir, controller: str | None = None):
+    """The memorized events the scenario's controller needs (None for the others), or
+    exits with the message (which folder, which file, what to do)."""
+    if (controller or scenario.controller.name) != "memorized":
+        return None
+    from tegrasp_drake.control.grasp_controller import load_controller_events
+    from tegrasp_drake.events import MemorizedEventError
+    try:
+        return load_controller_events(scenario, events_dir)
+    except MemorizedEventError as e:
+        raise SystemExit(f"tegrasp: error: the memorized controller needs the memorized "
+                         f"events of '{scenario.object.name}': {e}") from None

@@ -20,6 +20,7 @@ the command with a cheap deterministic trial.
 
 import argparse
 import dataclasses
+import functools
 import importlib
 import sys
 
@@ -82,6 +83,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--benchmark", action="store_true",
                         help="time the memorized sweep with 1 and then 2 workers, each "
                              "into a temporary folder, and print wall times and speed-up")
+    parser.add_argument("--events", metavar="DIR", default=None,
+                        help="memorized events folder (default: $TEGRASP_EVENTS_DIR or "
+                        "~/.local/share/tegrasp/events, then the package's)")
     parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
                         help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
 
@@ -130,6 +134,8 @@ def run(args) -> int:
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
         progress = not args.no_progress and progress_wanted(args)
+        if args.events:
+            trial_function = functools.partial(trial_function, events_dir=args.events)
         if args.benchmark:
             runs, identical = run_benchmark(spec, trial_function, progress=progress)
             print(benchmark_text(runs, identical))
@@ -140,7 +146,7 @@ def run(args) -> int:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
     print(summary_text(summary))
-    for path in write_reports(args.out, figure_format=args.format):
+    for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):
         print(f"wrote {path}")
     return 1 if summary.errors or summary.unfinished else 0
 

@@ -10,7 +10,8 @@ import json
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
                                                write_result)
-from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
+                                                   controller_events, scenario_from_arguments)
 from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
                                                 start_viewer, wait_for_viewer,
                                                 write_replay_html)
@@ -36,6 +37,7 @@ A folder given with --out that holds a run is refused unless --overwrite."""
 
 def add_trial_arguments(parser, *, out_help: str) -> None:
     add_scenario_arguments(parser)
+    add_events_argument(parser)
     parser.add_argument("--controller", choices=CONTROLLERS, default=None,
                         help="memorized: the paper's memorized tactile events; heuristic: "
                              "hand-set thresholds (Romano et al. style); open_loop: the ideal "
@@ -85,6 +87,7 @@ def run(args) -> int:
         overrides.append(f"controller.name={args.controller}")
     args.overrides = overrides
     scenario = scenario_from_arguments(args)
+    events = controller_events(scenario, args.events)  # fails before anything is written
     try:
         out = choose_run_folder(args.out, default=args.default_out,
                                 replace_default=args.replace_default_out,
@@ -92,16 +95,11 @@ def run(args) -> int:
     except RunFolderError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     html = check_html_path(args)
-    from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.experiments.figures.trial_figures import write_trial_figures
     from tegrasp_drake.experiments.trial import run_trial
     meshcat = start_viewer(args)
-    try:
-        with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
-            trial = run_trial(scenario, meshcat=meshcat, progress=progress)
-    except MemorizedEventError as e:
-        raise SystemExit(f"tegrasp: error: the memorized controller needs the memorized events "
-                         f"of '{scenario.object.name}': {e}") from None
+    with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
+        trial = run_trial(scenario, meshcat=meshcat, events=events, progress=progress)
     result = dict(trial.result, log=str(trial.log.save(out / "trial.npz")),
                   **write_trial_figures(trial.log, out, args.format),
                   result=str(out / RESULT_FILE))

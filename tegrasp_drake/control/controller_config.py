@@ -81,3 +81,8 @@ class GraspControllerConfig:
     place_event_timeout_s: float = 1.0
     # Lost object: in Lift, Hold, Avoid or Place, both SA below contact_force_n.
     drop_check_enabled: bool = True
+    # The memorized events carry the object they were recorded on; the controller refuses
+    # events of an object that differs from the scenario's, except in the fields listed
+    # here (of shape, size, mass, friction, file), e.g. [friction] to grasp a slippery box
+    # with the box's events.
+    event_object_may_differ: list[str] = dataclasses.field(default_factory=list)

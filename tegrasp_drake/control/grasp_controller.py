@@ -73,22 +73,47 @@ class GraspController:
         return log
 
 
-def load_controller_events(scenario, events_dir=None) -> dict:
-    """The memorized events of the scenario's object; MemorizedEventError (naming the file
-    and the record-events command) when they are missing."""
-    from tegrasp_drake.events import MemorizedEventError, load_memorized_events
-    from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+def load_controller_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
+    """The memorized events of the scenario's object, from `events_dir` or else the user's
+    events folder or the package's (rig/paths.events_search_path).
+
+    MemorizedEventError (naming the folders, the file and the command that records them)
+    when they are missing, or when they were recorded on an object that differs from the
+    scenario's (`nominal_object`, e.g. a sweep's unperturbed object, if given) in a field
+    not listed in controller.event_object_may_differ."""
+    from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.events.memorized_event import find_memorized_events
+    from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, description_differences,
+                                           object_description)
+    name = scenario.object.name
     try:
-        return load_memorized_events(events_dir or paths.events_dir(), scenario.object.name)
+        folder, events = find_memorized_events(paths.events_search_path(events_dir), name)
     except MemorizedEventError as e:
-        if scenario.object.name in BUILTIN_OBJECTS:
-            raise
-        error = MemorizedEventError(e.path, "no memorized events")
-        error.args = (f"{e.path}: no memorized events of your object '{scenario.object.name}'."
-                      " Record them from the scenario that describes it: `tegrasp "
-                      "record-events --scenario FILE --scenario-name NAME` (or run "
-                      "`--controller heuristic`).",)
-        raise error from None
+        if name not in BUILTIN_OBJECTS:
+            e.args = (f"{e.args[0]} For your own object: `tegrasp record-events --scenario "
+                      "FILE --scenario-name NAME` (or the same --set options you gave "
+                      "here), or run `--controller heuristic`.",)
+        raise
+    current = object_description(nominal_object or scenario.object)
+    allowed = set(scenario.controller.event_object_may_differ)
+    for event in events.values():
+        if not event.object_description:
+            error = MemorizedEventError(folder / event.relative_path(),
+                                        "records no object description", name)
+            raise error
+        differences = [d for d in description_differences(event.object_description, current)
+                       if d.split(" ", 1)[0] not in allowed]
+        if differences:
+            path = folder / event.relative_path()
+            error = MemorizedEventError(path, "object differs", name)
+            error.args = (
+                f"{path}: the memorized events of '{name}' were recorded on another object: "
+                f"{'; '.join(differences)}. Give your object its own name and record its "
+                f"events (`tegrasp record-events` with the same scenario options), or "
+                f"accept the difference with --set controller.event_object_may_differ="
+                f"[{','.join(d.split(' ', 1)[0] for d in differences)}].",)
+            raise error
+    return events
 
 
 def _add_detector(builder, scenario, name, events, channels):

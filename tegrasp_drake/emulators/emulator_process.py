@@ -13,6 +13,7 @@ import sys
 import time
 
 from tegrasp_drake.emulators.launcher import devices_from_line, hardware_config_for
+from tegrasp_drake.hardware.realtime import EMULATOR_PRIORITY, raise_scheduling
 
 READY_LINE = "ready"
 
@@ -29,7 +30,7 @@ class EmulatorProcess:
     far (read_output() collects more)."""
 
     def __init__(self, device: str, *args: str, wait: bool = True, timeout: float = 30.0,
-                 env=None):
+                 env=None, scheduling: str = "normal"):
         self.device = device
         self.devices = {}
         self.output = []
@@ -37,6 +38,10 @@ class EmulatorProcess:
             [sys.executable, "-m", "tegrasp_drake", "emulate", device, *args],
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
             env=env or dict(os.environ))
+        if scheduling != "normal":
+            # The child's own --scheduling applies once it has started; this covers its
+            # start-up too (where the OS refuses, the child says so in its output).
+            raise_scheduling(scheduling, EMULATOR_PRIORITY, pid=self._process.pid)
         os.set_blocking(self._process.stdout.fileno(), False)
         self._buffer = ""
         if wait:
@@ -102,18 +107,25 @@ class EmulatedDevices:
     """The three devices, each emulated in its own process (`tegrasp emulate jaco`,
     `robotiq` and `myrio --sync <myrio_sync>`), started together; `config` points a hardware
     station at them. Use as a context manager; `myrio`, `robotiq` and `jaco` are the
-    EmulatorProcess of each (e.g. to kill one)."""
+    EmulatorProcess of each (e.g. to kill one).
+
+    scheduling: the emulators' `--scheduling`. Real devices have processors of their own;
+    on a shared host the default, "fifo", keeps their stand-ins on time when the host is
+    busy, so that what a busy host delays is the controller under test."""
 
     def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),
-                 robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0):
+                 robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0,
+                 scheduling: str = "fifo"):
         self.jaco = self.robotiq = self.myrio = None
+        common = ("--scheduling", scheduling)
         try:
             self.jaco = EmulatorProcess("jaco", *scenario_args, "--lcm-url", lcm_url,
-                                        wait=False)
-            self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args,
-                                           wait=False)
+                                        *common, wait=False, scheduling=scheduling)
+            self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args, *common,
+                                           wait=False, scheduling=scheduling)
             self.myrio = EmulatorProcess("myrio", "--trial", str(trial), "--sync", myrio_sync,
-                                         "--lcm-url", lcm_url, wait=False)
+                                         "--lcm-url", lcm_url, *common, wait=False,
+                                         scheduling=scheduling)
             for process in self.processes:
                 process.wait_until_ready(timeout)
         except BaseException:

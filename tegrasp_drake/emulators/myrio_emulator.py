@@ -35,6 +35,8 @@ import dataclasses
 import os
 import threading
 import time
+import zipfile
+import zlib
 
 import numpy as np
 
@@ -72,12 +74,25 @@ def load_tactile_recording(path) -> TactileRecording:
     pad accelerations (t_ra, pad_acceleration: left x, y, z then right); no other array is
     needed."""
     try:
-        with np.load(path, allow_pickle=False) as data:
+        with open(path, "rb") as file, np.load(file, allow_pickle=False) as data:
             t_sa, taxels = data["t_sa"], data["taxels"]
             t_ra, acceleration = data["t_ra"], data["pad_acceleration"]
-    except (OSError, KeyError, ValueError) as e:
+    except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:
         raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
-                                    f"and pad_acceleration: {e}") from None
+                                    f"and pad_acceleration (or it is truncated or corrupt): "
+                                    f"{type(e).__name__}: {e}") from None
+    for times, values, names in ((t_sa, taxels, "t_sa and taxels"),
+                                 (t_ra, acceleration, "t_ra and pad_acceleration")):
+        if (times.ndim != 1 or len(times) < 2 or values.ndim != 2
+                or len(values) != len(times) or not np.all(np.isfinite(values))
+                or not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0)):
+            raise TactileRecordingError(
+                f"'{path}': {names} must be increasing finite times and as many rows of "
+                f"finite values (got {times.shape} and {values.shape})")
+    if taxels.shape[1] != 2 * TAXELS_PER_PAD or acceleration.shape[1] != 6:
+        raise TactileRecordingError(f"'{path}': taxels must have {2 * TAXELS_PER_PAD} columns "
+                                    f"and pad_acceleration 6 (got {taxels.shape[1]} and "
+                                    f"{acceleration.shape[1]})")
     return TactileRecording(t_sa, taxels[:, :TAXELS_PER_PAD], taxels[:, TAXELS_PER_PAD:],
                             t_ra, acceleration[:, :3], acceleration[:, 3:])
 

@@ -193,12 +193,13 @@ class EventMatcher(WindowNormalizer):
         return event
 
     def _after_push(self, window: RateWindow, state: np.ndarray,
-                    pushed: tuple[np.ndarray, int, bool], context) -> None:
+                    pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
+                    context) -> None:
         """Slides the window's correlation, after the window in `state`, by the samples the
-        WindowNormalizer just pushed."""
+        WindowNormalizer just pushed (a missing one scores its channel 0 for one window)."""
         rows, offset, full = pushed  # (a star call costs more than this unpacking)
         self._correlations[window.group.name].slide(state, rows, offset, full,
-                                                    self._expected_event(context))
+                                                    self._expected_event(context), missing)
 
     def _correlation_states(self, context):
         """(window, its correlation, their state vector) per rate group."""

@@ -81,8 +81,11 @@ def extract_memorized_events(
         trial: TactileTrial, *, object_name: str, sa_rate_hz: float, ra_rate_hz: float,
         window_s: float = DEFAULT_WINDOW_S,
         pre_transition_s: float = DEFAULT_PRE_TRANSITION_S, scenario: str = "",
-        package_versions: Mapping[str, str] | None = None) -> dict[str, MemorizedEvent]:
+        package_versions: Mapping[str, str] | None = None,
+        object_description: Mapping | None = None) -> dict[str, MemorizedEvent]:
     """One max-normalised MemorizedEvent per transition of `trial`, in grasp order.
+
+    object_description: the object the trial grasped (rig/objects.object_description).
 
     sa_rate_hz, ra_rate_hz: rates [Hz] of the memorized windows (the live rates).
     Raises ValueError for an unknown transition, a window outside the log, or a channel
@@ -104,7 +107,8 @@ def extract_memorized_events(
             object_name=object_name, transition=name, sa=normalize_by_max(sa),
             ra=normalize_by_max(ra), sa_rate_hz=sa_rate_hz, ra_rate_hz=ra_rate_hz,
             window_s=window_s, pre_transition_s=pre_transition_s, transition_time_s=time,
-            scenario=scenario, package_versions=versions)
+            scenario=scenario, package_versions=versions,
+            object_description=object_description or {})
         zero = event.zero_channels()
         if zero:
             raise ValueError(f"{what}: channels {zero} are zero throughout the window; "

@@ -26,11 +26,15 @@ import numpy as np
 
 import tegrasp_drake
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
+from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import (
     REQUIRED_TRANSITIONS, TRANSITIONS, transition_order)
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+# Version 1 files lack `object_description`; they are read by taking it from the object
+# section of their `scenario` text (FORMAT.md, Versions).
+MIGRATED_VERSIONS = (1,)
 EVENT_FORMAT = "tegrasp.memorized_event"
 INDEX_FORMAT = "tegrasp.memorized_event_index"
 INDEX_FILE = "index.json"
@@ -69,6 +73,9 @@ class MemorizedEvent:
     transition_time_s: float = 0.0  # [s] in the source trial
     scenario: str = ""  # name or text of the scenario that produced the trial
     package_versions: Mapping[str, str] = dataclasses.field(default_factory=dict)
+    # The object the event was felt on: {shape, size, mass, friction, file}
+    # (rig/objects.object_description); {} when unknown (synthetic events in tests).
+    object_description: Mapping = dataclasses.field(default_factory=dict)
     normalization: str = NORMALIZATION
     channel_names: tuple[str, ...] = CHANNEL_NAMES
 
@@ -105,6 +112,11 @@ class MemorizedEvent:
             raise ValueError("package_versions must map package names to version text")
         object.__setattr__(self, "package_versions", versions)
         object.__setattr__(self, "channel_names", tuple(self.channel_names))
+        description = dict(self.object_description)
+        if description and sorted(description) != sorted(DESCRIPTION_FIELDS):
+            raise ValueError(f"object_description has fields {sorted(description)}; "
+                             f"expected {sorted(DESCRIPTION_FIELDS)}")
+        object.__setattr__(self, "object_description", description)
 
     def channel(self, name: str) -> np.ndarray:
         """The window of channel `name` (one of CHANNEL_NAMES)."""
@@ -155,6 +167,7 @@ def _summary(event: MemorizedEvent) -> dict:
         "normalization": event.normalization,
         "scenario": event.scenario,
         "package_versions": dict(sorted(event.package_versions.items())),
+        "object_description": dict(event.object_description),
     }
 
 
@@ -260,11 +273,54 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
     if not isinstance(data, dict) or data.get("format") != expected_format:
         raise MemorizedEventError(path, f"is not a '{expected_format}' file", object_name)
     version = data.get("format_version")
-    if version != FORMAT_VERSION:
+    if version != FORMAT_VERSION and version not in MIGRATED_VERSIONS:
         raise MemorizedEventError(
-            path, f"has format_version {version!r}; this tegrasp reads version "
-            f"{FORMAT_VERSION}", object_name)
+            path, f"has format_version {version!r}; this tegrasp reads versions "
+            f"{', '.join(map(str, (*MIGRATED_VERSIONS, FORMAT_VERSION)))}", object_name)
     return data
+
+
+def _description_from_scenario(scenario_text: str, path, object_name) -> dict:
+    """A version-1 file's object description: the object section of its scenario text."""
+    import yaml
+    try:
+        scenario = yaml.safe_load(scenario_text)
+        obj = scenario["object"]
+        description = {name: obj.get(name, "") for name in DESCRIPTION_FIELDS}
+        description["size"] = [float(v) for v in description["size"]]
+        description["mass"], description["friction"] = (float(obj["mass"]),
+                                                        float(obj["friction"]))
+        if not description["shape"] or not description["size"]:
+            raise KeyError("shape")
+    except (yaml.YAMLError, TypeError, KeyError, ValueError):
+        raise MemorizedEventError(
+            path, "is a format_version 1 file whose scenario text does not describe the "
+            "object (shape, size, mass, friction), so it cannot be checked against the "
+            "object it is used for", object_name) from None
+    return description
+
+
+def _object_description(data: dict, path, object_name) -> dict:
+    """The file's object description (version 2), or its migration (version 1)."""
+    if data.get("format_version") in MIGRATED_VERSIONS:
+        return _description_from_scenario(
+            _field(data, "scenario", "text", path, object_name), path, object_name)
+    description = _field(data, "object_description", "object", path, object_name)
+    if not description:
+        return {}  # unknown (synthetic events); the controller refuses such events
+    for name in DESCRIPTION_FIELDS:
+        if name not in description:
+            raise MemorizedEventError(path, f"field 'object_description.{name}' is missing",
+                                      object_name)
+    ok = (isinstance(description["shape"], str) and isinstance(description["file"], str)
+          and isinstance(description["size"], list)
+          and all(_is_number(v) for v in description["size"])
+          and _is_number(description["mass"]) and _is_number(description["friction"]))
+    if not ok:
+        raise MemorizedEventError(path, "field 'object_description' must hold shape and file "
+                                  "(text), size (list of numbers), mass and friction "
+                                  "(numbers)", object_name)
+    return dict(description)
 
 
 def _is_number(value) -> bool:
@@ -316,6 +372,7 @@ def read_memorized_event(path, *, object_name: str | None = None,
              for name in ("transition", "normalization", "scenario")}
     channels = _field(data, "channels", "list", path, owner)
     versions = _field(data, "package_versions", "object", path, owner)
+    description = _object_description(data, path, owner)
     try:
         lengths = [samples_per_window(numbers["window_s"], numbers[rate])
                    for rate in ("sa_rate_hz", "sa_rate_hz", "ra_rate_hz", "ra_rate_hz")]
@@ -331,9 +388,13 @@ def read_memorized_event(path, *, object_name: str | None = None,
             window_s=numbers["window_s"], pre_transition_s=numbers["pre_transition_s"],
             transition_time_s=numbers["transition_time_s"], scenario=texts["scenario"],
             package_versions=versions, normalization=texts["normalization"],
-            channel_names=tuple(channels))
+            channel_names=tuple(channels), object_description=description)
     except ValueError as error:
         raise MemorizedEventError(path, str(error), owner) from None
+    zero = event.zero_channels()
+    if zero:
+        raise MemorizedEventError(path, f"channels {zero} are zero throughout the window: "
+                                  "Eq. 3 could never match them", owner)
     for name, expected, found in (("object", object_name, event.object_name),
                                   ("transition", transition, event.transition)):
         if expected is not None and expected != found:
@@ -362,6 +423,8 @@ def _load_entry(events_dir: pathlib.Path, entry: dict) -> MemorizedEvent:
     event = read_memorized_event(events_dir / entry["file"], object_name=entry["object"],
                                  transition=entry["transition"])
     expected = dict(_summary(event), file=event.relative_path())
+    if "object_description" not in entry:  # a version-1 index: migrated from the file
+        expected.pop("object_description")
     for name, value in expected.items():
         if entry.get(name) != value:
             raise MemorizedEventError(
@@ -382,7 +445,43 @@ def load_memorized_events(events_dir, object_name: str) -> dict[str, MemorizedEv
             f"no memorized events for object '{object_name}' (it lists {objects})",
             object_name)
     events = _sorted_events(_load_entry(events_dir, entry) for entry in entries)
+    missing = [t for t in REQUIRED_TRANSITIONS if t not in {e.transition for e in events}]
+    if missing:
+        raise MemorizedEventError(
+            events_dir / INDEX_FILE, f"lists no {', '.join(missing)} event of object "
+            f"'{object_name}' (every object needs {', '.join(REQUIRED_TRANSITIONS)})",
+            object_name)
     return {event.transition: event for event in events}
+
+
+def events_folder_of(folders, object_name: str) -> pathlib.Path | None:
+    """The first of `folders` whose index lists `object_name` (None if none does)."""
+    for folder in map(pathlib.Path, folders):
+        if (folder / INDEX_FILE).is_file() and any(
+                e["object"] == object_name for e in read_index(folder)):
+            return folder
+    return None
+
+
+def find_memorized_events(folders, object_name: str
+                          ) -> tuple[pathlib.Path, dict[str, MemorizedEvent]]:
+    """(folder, events) of `object_name` from the first of `folders` whose index lists it
+    (a folder without an index is passed over); MemorizedEventError says where it looked."""
+    folders = [pathlib.Path(f) for f in folders]
+    looked = []
+    for folder in folders:
+        if not (folder / INDEX_FILE).is_file():
+            looked.append(f"{folder} (no {INDEX_FILE})")
+            continue
+        if any(e["object"] == object_name for e in read_index(folder)):
+            return folder, load_memorized_events(folder, object_name)
+        objects = sorted({e["object"] for e in read_index(folder)})
+        looked.append(f"{folder} (has {', '.join(objects) or 'none'})")
+    error = MemorizedEventError(folders[0] / INDEX_FILE if folders else INDEX_FILE,
+                                "no events", object_name)
+    error.args = (f"no memorized events of object '{object_name}' in {'; '.join(looked)}. "
+                  f"Record them with `{RECORD_COMMAND} ...` (they go to the first folder).",)
+    raise error
 
 
 def load_all_memorized_events(events_dir) -> dict[str, dict[str, MemorizedEvent]]:

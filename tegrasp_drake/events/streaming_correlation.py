@@ -25,11 +25,19 @@ loop the window is the EventMatcher's, i.e. its WindowNormalizer's. Until the wi
 full (its older part is zero padding, which would make a few noise samples look like an
 onset) the scores stay 0.
 
+Missing samples: a NaN or infinite sample (a sensor glitch, a lost frame) enters the window
+as the channel's previous one (SlidingWindowState.entering_samples), so that the sums stay
+finite and exact; the slide is told which samples were missing and scores their channel 0
+for the next N slides, until the made-up sample has left the window. A channel recovers
+within one window and is never poisoned.
+
 The correlation's history follows the window's in one flat float vector (a Context's
 discrete state group):
 
     [window (SlidingWindowState) | active_event, scores (channels),
-     [high, low, energy] per channel, correlation buffers: channels x (2N - 1 + slack)]
+     [high, low, energy] per channel,
+     slides left until a missing sample leaves the window: their sum, then per channel,
+     correlation buffers: channels x (2N - 1 + slack)]
 
 Correlation column j of a channel holds the lag n = j - offset - (N - 1), where offset is
 the window's (the buffer column where the window starts). `StreamingCorrelator` pushes the
@@ -119,7 +127,8 @@ class SlidingCorrelation:
         self._event_at = SlidingWindowState(window).size  # the window comes first
         self._scores_at = self._event_at + 1
         self._statistics_at = self._scores_at + n_channels
-        self._rows_at = self._statistics_at + _STATISTICS * n_channels
+        self._missing_at = self._statistics_at + _STATISTICS * n_channels
+        self._rows_at = self._missing_at + 1 + n_channels
         self._row_length = 2 * length - 1 + window.slack
         self._size = self._rows_at + n_channels * self._row_length
         # Per event and channel, what an update needs: where the channel's correlation
@@ -163,7 +172,7 @@ class SlidingCorrelation:
                 f"event index {event} is outside -1..{len(self._channel_terms) - 1}")
 
     def slide(self, state: np.ndarray, rows: np.ndarray, offset: int, full: bool,
-              event: int) -> np.ndarray:
+              event: int, missing: list[bool] | None = None) -> np.ndarray:
         """Slide the correlations by the samples that the window just took (one per
         channel) and score the window against `event`, in place.
 
@@ -172,8 +181,17 @@ class SlidingCorrelation:
         rows, offset, full: the window just after a push (SlidingWindowState.push).
         event: index of the expected event, or NO_EVENT (scores 0), as check_event accepts
         (the caller checks it). Returns the scores view, all 0 until the window is full.
+        missing: None, or per channel whether its sample was missing
+            (SlidingWindowState.entering_samples: it entered as the channel's previous
+            one); such a channel scores 0 for N slides.
         """
         length = self._length
+        left = None  # slides left per channel, read only while a missing sample is around
+        if missing is not None or state.item(self._missing_at):
+            missing = missing or [False] * self._n_channels
+            left = [float(length) if is_missing else max(n - 1.0, 0.0) for n, is_missing
+                    in zip(state[self._missing_at + 1:self._rows_at].tolist(), missing)]
+            state[self._missing_at:self._rows_at] = [sum(left)] + left
         if event == NO_EVENT or not full:
             state[self._event_at:self._statistics_at] = [NO_EVENT] + [0.0] * self._n_channels
             return state[self._scores_at:self._statistics_at]
@@ -193,15 +211,18 @@ class SlidingCorrelation:
                     raise ValueError("the state must be a C-contiguous float64 vector")
                 daxpy(reversed_template, state, length, new, 0, 1, at + length, 1)
             statistics = slide_statistics(
-                state[self._statistics_at:self._rows_at].tolist(), dropped_and_new, window)
+                state[self._statistics_at:self._missing_at].tolist(), dropped_and_new, window)
         scores = []
         for i, (start, _, template_norm, template_flat) in enumerate(terms):
+            if left and left[i]:  # a missing sample is in this channel's window
+                scores.append(0.0)
+                continue
             lags = state[start + offset:start + offset + 2 * length - 1]
             high, low, energy = statistics[_STATISTICS * i:_STATISTICS * (i + 1)]
             # argmax is several times cheaper than max here, and finds the same peak.
             scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
                                         high, low, template_flat, self._min_contrast))
-        state[self._event_at:self._rows_at] = [event] + scores + statistics
+        state[self._event_at:self._missing_at] = [event] + scores + statistics
         return state[self._scores_at:self._statistics_at]
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
@@ -269,5 +290,7 @@ class StreamingCorrelator:
         all 0 until the window is full.
         """
         self._correlation.check_event(event)
+        samples, missing = self._window.entering_samples(
+            state, np.asarray(samples, dtype=float))
         rows, offset, full = self._window.push(state, samples)
-        return self._correlation.slide(state, rows, offset, full, event)
+        return self._correlation.slide(state, rows, offset, full, event, missing)

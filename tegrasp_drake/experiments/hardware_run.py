@@ -32,6 +32,7 @@ from tegrasp_drake.experiments.grasp_diagram import (MakeGraspDiagram, is_finish
                                                      MakeSimulator)
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+from tegrasp_drake.hardware.realtime import realtime_scheduling
 from tegrasp_drake.hardware.station import MakeHardwareStation
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
                                     lcmt_tegrasp_transition)
@@ -249,6 +250,14 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
         raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "
                          f"station is {type(config).__name__})")
     controller = controller or scenario.controller.name
+    with realtime_scheduling(config.scheduling, config.realtime_priority) as scheduling:
+        out(f"control loop: {scheduling}")
+        return _run(scenario, config, controller, events, events_dir, log_path, duration,
+                    drake_lcm, out)
+
+
+def _run(scenario, config, controller, events, events_dir, log_path, duration, drake_lcm,
+         out) -> HardwareRunResult:
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
         parts = MakeGraspDiagram(scenario, station=station, controller=controller,
                                     events=events, log=False)

@@ -10,8 +10,12 @@ them in the events folder with an index.
 
 import logging
 
+import numpy as np
+
 from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
-from tegrasp_drake.experiments.grasp_outcome import physical_events
+from tegrasp_drake.experiments.grasp_outcome import (GRIP_FRACTION, LIFTED_HEIGHT_M,
+                                                     physical_events, true_sa)
+from tegrasp_drake.rig.objects import object_description
 from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.experiments.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.experiments.trial_logging import package_versions
@@ -22,9 +26,35 @@ EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "grip_force_r
                        "place_unload": "table_touch"}
 
 
+class RecordEventsError(RuntimeError):
+    """The ideal grasp did not show a physical event; the message says what to change."""
+
+
+def missing_event_advice(name: str, log, scenario) -> str:
+    """Why the ideal grasp showed no `name` event, and what to change, in words."""
+    grip = scenario.grasp.grip_force
+    if name == "grip_force_reached":
+        sa = true_sa(log)
+        peak = float(sa.min(axis=1).max()) if len(sa) else 0.0
+        z = log.object_state[:, 6]
+        lifted = bool(np.any(z - z[0] > LIFTED_HEIGHT_M))
+        return (f"the weaker pad's force peaked at {peak:.1f} N, below {GRIP_FRACTION:.0%} of "
+                f"the commanded grip force grasp.grip_force = {grip:g} N "
+                f"({GRIP_FRACTION * grip:.1f} N){' although the grasp lifted the object' if lifted else ''}"
+                f"; the taxels do not see all of this object's contact force, so try a lower "
+                f"grasp.grip_force (e.g. --set grasp.grip_force={0.95 * peak / GRIP_FRACTION:.0f}"
+                ", which records a 22 mm cylinder of 0.25 kg) or a larger object")
+    if name == "first_contact":
+        return ("the fingers never touched the object: check object.size, object_offset and "
+                "expected_object_xy")
+    return ("the object never came back to the table after a lift: check that the grasp "
+            "lifts it (object.mass, object.friction, grasp.grip_force)")
+
+
 def record_events(object_name: str, scenario=None, *, progress=None):
     """Runs the ideal grasp of one object (a built-in one by name, or the object of
-    `scenario`); returns its MemorizedEvents. progress: as run_ideal_grasp's."""
+    `scenario`); returns its MemorizedEvents. progress: as run_ideal_grasp's.
+    RecordEventsError when a physical event is missing."""
     scenario = scenario or LoadScenario(name=object_name)
     log, _ = run_ideal_grasp(scenario, progress=progress)
     events = physical_events(log, scenario.grasp.grip_force, scenario.object)
@@ -32,10 +62,13 @@ def record_events(object_name: str, scenario=None, *, progress=None):
                 {name: events[name] for name in EVENT_OF_TRANSITION.values()})
     missing = [name for name in EVENT_OF_TRANSITION.values() if events[name] is None]
     if missing:
-        raise RuntimeError(f"the ideal grasp of {object_name} shows no {', '.join(missing)}")
+        raise RecordEventsError(
+            f"the ideal grasp of '{object_name}' shows no {', '.join(missing)}: "
+            + "; ".join(missing_event_advice(name, log, scenario) for name in missing))
     trial = tactile_trial_from_log(log, {transition: events[event] for transition, event
                                          in EVENT_OF_TRANSITION.items()})
     return extract_memorized_events(
         trial, object_name=object_name, sa_rate_hz=scenario.tactile.sample_rate_hz,
         ra_rate_hz=scenario.vibration.sample_rate_hz, scenario=scenario_to_yaml(scenario),
-        package_versions=package_versions())
+        package_versions=package_versions(),
+        object_description=object_description(scenario.object))

@@ -10,7 +10,6 @@ ConfigError.
 """
 
 import dataclasses
-import math
 import pathlib
 import typing
 
@@ -20,11 +19,13 @@ from pydrake.systems.analysis import SimulatorConfig
 
 from tegrasp_drake.control.controller_config import CONTROLLERS, GraspControllerConfig
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
-from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, OBJECT_SHAPES, ObjectConfig, object_problem
-from tegrasp_drake.rig.robotiq_units import STROKE_M
-from tegrasp_drake.rig.typed_yaml import ConfigError, apply_override, load_typed, read_yaml_file
+from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
+from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJECT_SHAPES,
+                                       ObjectConfig, object_problem)
+from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
+                                          read_yaml_file, require)
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
@@ -32,7 +33,8 @@ from tegrasp_drake.simulation.station import ArmDriverConfig, SimulatedStationCo
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 
 DEFAULT_SCENARIO = "default"
-FINGER_CLEARANCE_M = 0.0025  # smallest gap between an open pad and the object
+__all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
+           "resolve_object", "scenario_to_yaml", "validate"]
 
 # Which station a scenario runs on, selected by the YAML tag of its `station` field
 # (hardware/config.py): the simulation (the default, untagged) or the real devices.
@@ -81,11 +83,19 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
                 f"({', '.join(BUILTIN_OBJECTS)}); for your own object give object.shape "
                 f"({', '.join(OBJECT_SHAPES)}), object.size, object.mass and object.friction")
         builtin = BUILTIN_OBJECTS[config.name]
-        # Fields the user set on a built-in object override it (and are checked below).
+        # Fields the user set on a built-in object override it (and are checked below);
+        # None is "not set", so that a 0 the user gave is checked, never replaced.
         config = dataclasses.replace(
             builtin, size=list(config.size or builtin.size),
-            mass=config.mass or builtin.mass, friction=config.friction or builtin.friction,
+            mass=builtin.mass if config.mass is None else config.mass,
+            friction=builtin.friction if config.friction is None else config.friction,
             color=list(builtin.color))
+    elif config.name in BUILTIN_OBJECTS:
+        raise ConfigError(
+            f"{source}: field 'object.name': your own object (object.shape "
+            f"'{config.shape}') needs its own name, not the built-in '{config.name}': its "
+            f"memorized events are stored under that name (e.g. --set object.name=my_"
+            f"{config.shape})")
     problem = object_problem(config)
     if problem:
         field, words = problem
@@ -96,12 +106,67 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
 
 
 def _check_model_file(file: str, source: str) -> None:
+    """The object's model file parses and holds one model with one body."""
+    from pydrake.multibody.plant import MultibodyPlant
     if not file:
         raise ConfigError(f"{source}: field 'object.file' is required for shape 'file'")
-    if file.startswith("package://"):
-        return  # resolved (and checked) by the parser's package map
-    if not pathlib.Path(file).is_file():
+    if not file.startswith("package://") and not pathlib.Path(file).is_file():
         raise ConfigError(f"{source}: field 'object.file': model file '{file}' does not exist")
+    plant = MultibodyPlant(time_step=0.0)
+    parser = paths.make_parser(plant)
+    try:
+        if file.startswith("package://"):
+            instances = parser.AddModels(url=file)
+        else:
+            instances = parser.AddModels(file_name=file)
+    except (RuntimeError, ValueError) as e:
+        first_line = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        raise ConfigError(f"{source}: field 'object.file': '{file}' is not a model Drake "
+                          f"can load: {first_line}") from None
+    bodies = [plant.get_body(b).name() for i in instances for b in plant.GetBodyIndices(i)]
+    if len(instances) != 1 or len(bodies) != 1:
+        raise ConfigError(
+            f"{source}: field 'object.file': '{file}' must hold one model with one body "
+            f"(the object), it holds {len(instances)} model(s) with bodies {bodies}")
+
+
+# Controller settings by unit (the suffix of their names): what each must be.
+_CONTROLLER_RULES = (("_s", lambda v: v >= 0, "must be zero or positive [s]"),
+                     ("_n", lambda v: v >= 0, "must be zero or positive [N]"),
+                     ("_mps2", lambda v: v >= 0, "must be zero or positive [m/s^2]"),
+                     ("_m", lambda v: v >= 0, "must be zero or positive [m]"),
+                     ("_threshold", lambda v: -1.0 <= v <= 1.0,
+                      "must lie in [-1, 1] (Eq. 3 scores are correlations)"))
+
+
+def _check_controller(controller: GraspControllerConfig, source: str) -> None:
+    if controller.name not in CONTROLLERS:
+        raise ConfigError(f"{source}: field 'controller.name': '{controller.name}' "
+                          f"is not one of {', '.join(CONTROLLERS)}")
+    require(controller.update_period_s > 0, source, "controller.update_period_s",
+            "must be positive [s]", controller.update_period_s)
+    sections = (("controller", controller), ("controller.heuristic", controller.heuristic))
+    for prefix, section in sections:
+        for field in dataclasses.fields(section):
+            value = getattr(section, field.name)
+            for suffix, ok, words in _CONTROLLER_RULES:
+                if field.name.endswith(suffix) and isinstance(value, float):
+                    require(ok(value), source, f"{prefix}.{field.name}", words, value)
+    for name in ("max_re_reaches", "max_lift_loads"):
+        require(getattr(controller, name) >= 0, source, f"controller.{name}",
+                "must be zero or positive", getattr(controller, name))
+    require(controller.lift_load_force_factor >= 1, source,
+            "controller.lift_load_force_factor", "must be at least 1",
+            controller.lift_load_force_factor)
+    for name in ("grip_fraction",):
+        require(0 < getattr(controller, name) <= 1, source, f"controller.{name}",
+                "must lie in (0, 1]", getattr(controller, name))
+    for k, name in enumerate(controller.event_object_may_differ):
+        require(name in DESCRIPTION_FIELDS, source, f"controller.event_object_may_differ[{k}]",
+                f"must name a field of the object ({', '.join(DESCRIPTION_FIELDS)})", name)
+    require(0 < controller.heuristic.grip_fraction <= 1, source,
+            "controller.heuristic.grip_fraction", "must lie in (0, 1]",
+            controller.heuristic.grip_fraction)
 
 
 def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
@@ -110,29 +175,23 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     if len(scenario.object_offset) != 2:
         raise ConfigError(f"{source}: field 'object_offset' must be [x, y] in metres, got "
                             f"{scenario.object_offset}")
-    # The object must fit between the open fingers. Offset along the stroke beyond that is
-    # allowed: an open finger then meets the object on the way in, as it would on a robot
-    # (the paper's thick cylinder failed most when misplaced outward).
-    width = scenario.object.width_along_stroke()
-    room = STROKE_M - 2 * FINGER_CLEARANCE_M
-    if width > room:
-        raise ConfigError(
-            f"{source}: field 'object.size': the object is {width * 1000:.1f} mm wide along the "
-            f"finger stroke, more than the {room * 1000:.1f} mm the 85 mm stroke leaves with "
-            f"{FINGER_CLEARANCE_M * 1000:.1f} mm clearance per finger")
-    for name in ("sample_rate_hz",):
-        for section in (scenario.tactile, scenario.vibration):
-            if getattr(section, name) <= 0 or not math.isfinite(getattr(section, name)):
-                raise ConfigError(f"{source}: sample rates must be positive")
-    if scenario.controller.name not in CONTROLLERS:
-        raise ConfigError(f"{source}: field 'controller.name': '{scenario.controller.name}' "
-                            f"is not one of {', '.join(CONTROLLERS)}")
+    # The object must fit between the open fingers (object_problem). Offset along the
+    # stroke beyond that is allowed: an open finger then meets the object on the way in, as
+    # it would on a robot (the paper's thick cylinder failed most when misplaced outward).
+    for section in ("tactile", "vibration"):
+        rate = getattr(scenario, section).sample_rate_hz
+        require(rate > 0, source, f"{section}.sample_rate_hz", "must be positive [Hz]", rate)
+    _check_controller(scenario.controller, source)
     if len(scenario.disturbance.hit_force_n) != 3 or scenario.disturbance.hit_duration_s <= 0:
         raise ConfigError(f"{source}: field 'disturbance': hit_force_n must be [x, y, z] in "
                             "newtons and hit_duration_s positive")
     if scenario.plant_config.time_step <= 0:
         raise ConfigError(f"{source}: field 'plant_config.time_step' must be positive "
                             "(the station is a discrete-time plant)")
+    require(scenario.grasp.grip_force > 0, source, "grasp.grip_force", "must be positive [N]",
+            scenario.grasp.grip_force)
+    if isinstance(scenario.station, HardwareStationConfig):
+        validate_hardware_config(scenario.station, source, "station")
     return scenario
 
 

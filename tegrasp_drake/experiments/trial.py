@@ -164,9 +164,10 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None,
     return TrialResult(result, log)
 
 
-def scenario_from_trial_spec(trial: dict):
+def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
-    trial's object (perturbed in mass and friction), placement, seed and controller."""
+    trial's object (perturbed in mass and friction; unperturbed with `nominal`), placement,
+    seed and controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
     from tegrasp_drake.experiments.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.experiments.sweep.spec import ObjectDefinition
@@ -177,8 +178,9 @@ def scenario_from_trial_spec(trial: dict):
         obj = ObjectDefinition(**definition).object_config(trial["object_name"])
     else:
         obj = resolve_object(ObjectConfig(name=trial["object_name"]))
-    obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),
-                              friction=obj.friction * float(p["friction_scale"]))
+    if not nominal:
+        obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),
+                                  friction=obj.friction * float(p["friction_scale"]))
     scenario = dataclasses.replace(
         base, object=obj, random_seed=int(trial["seed"]),
         object_offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
@@ -192,6 +194,16 @@ def scenario_from_trial_spec(trial: dict):
     return validate(scenario, f"sweep trial {trial['trial_id']}")
 
 
-def run_trial_from_spec(trial: dict) -> dict:
-    """The sweep's trial function: runs the trial; returns its result dict."""
-    return run_trial(scenario_from_trial_spec(trial)).result
+def run_trial_from_spec(trial: dict, *, events_dir=None) -> dict:
+    """The sweep's trial function: runs the trial; returns its result dict.
+
+    The memorized controller's events (from `events_dir`, else the user's folder, then the
+    package's) must have been recorded on the trial's unperturbed object: the sweep's
+    mass and friction perturbations are the experiment's, not a mismatch."""
+    from tegrasp_drake.control.grasp_controller import load_controller_events
+    scenario = scenario_from_trial_spec(trial)
+    events = None
+    if scenario.controller.name == "memorized":
+        nominal = scenario_from_trial_spec(trial, nominal=True).object
+        events = load_controller_events(scenario, events_dir, nominal_object=nominal)
+    return run_trial(scenario, events=events).result

@@ -12,6 +12,8 @@ physical event times, controller name, package versions.
 import dataclasses
 import json
 import pathlib
+import zipfile
+import zlib
 
 import numpy as np
 
@@ -68,12 +70,52 @@ def load_trial_log(path) -> TrialLog:
         raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp trial "
                             "--out DIR`: DIR/trial.npz, or `tegrasp demo`: out/demo/trial.npz)")
     try:
-        with np.load(path, allow_pickle=False) as data:
+        with open(path, "rb") as file, np.load(file, allow_pickle=False) as data:
+            missing = [name for name in ("meta", *ARRAY_FIELDS) if name not in data.files]
+            if missing:
+                raise TrialLogError(f"trial log '{path}' lacks the arrays {missing}; it is not "
+                                    "a trial log (`tegrasp trial --out DIR` writes one)")
             meta = json.loads(str(data["meta"]))
             arrays = {name: data[name] for name in ARRAY_FIELDS}
-    except (OSError, ValueError, KeyError, EOFError) as e:
-        raise TrialLogError(f"trial log '{path}' is truncated or not a trial log: {e}") from None
-    if meta.get("format_version") != FORMAT_VERSION:
-        raise TrialLogError(f"trial log '{path}' has format version "
-                            f"{meta.get('format_version')}, this package reads {FORMAT_VERSION}")
+    except TrialLogError:
+        raise
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error,
+            UnicodeDecodeError) as e:
+        raise TrialLogError(f"trial log '{path}' is truncated or corrupt ({type(e).__name__}: "
+                            f"{e}); run the trial again to remake it") from None
+    if not isinstance(meta, dict) or meta.get("format_version") != FORMAT_VERSION:
+        version = meta.get("format_version") if isinstance(meta, dict) else None
+        raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
+                            f"reads {FORMAT_VERSION}")
+    problem = _shape_problem(arrays)
+    if problem:
+        raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
     return TrialLog(meta=meta, **arrays)
+
+
+# The arrays sampled at each time base, and their columns (None: a vector).
+_TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
+               "t_ra": {"channels": 4, "pad_acceleration": 6},
+               "t_slow": {"arm_q": 6, "arm_q_desired": 6, "gripper_command": 3,
+                          "gripper_status": 8, "phase": None, "object_state": 13}}
+
+
+def _shape_problem(arrays: dict) -> str | None:
+    """What is wrong with the shapes or values of a trial log's arrays, or None."""
+    for time_name, columns in _TIME_BASES.items():
+        times = arrays[time_name]
+        if times.ndim != 1 or len(times) < 2:
+            return f"'{time_name}' holds {times.size} time(s); a trial needs at least two"
+        if not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
+            return f"'{time_name}' is not a finite, increasing list of times"
+        for name, width in columns.items():
+            array = arrays[name]
+            expected = (len(times),) if width is None else (len(times), width)
+            if array.shape != expected:
+                return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
+                        f"'{time_name}' need {expected}")
+    bad = [name for name in ("taxels", "channels", "pad_acceleration")
+           if not np.all(np.isfinite(arrays[name]))]
+    if bad:
+        return f"the channels {bad} hold NaN or infinite values"
+    return None

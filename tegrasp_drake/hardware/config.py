@@ -18,15 +18,19 @@ overrides; `tegrasp emulate ... --write-config FILE` writes one for the emulator
 """
 
 import dataclasses
+import os
+import sys
+import tempfile
 import typing
 
 from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 from tegrasp_drake.hardware.jaco.velocity_tracker import JacoVelocityTrackerConfig
-from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
+from tegrasp_drake.hardware.robotiq.modbus_client import MIN_PERIOD, RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
-from tegrasp_drake.rig.typed_yaml import apply_override, load_typed, read_yaml_file
+from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
+                                          read_yaml_file, require)
 
 DEFAULT_LCM_URL = "udpm://239.255.76.67:7667?ttl=0"
 
@@ -87,17 +91,98 @@ class HardwareStationConfig:
     # How long [s] to wait, before the control loop starts, for the arm's first status,
     # the gripper's activation and the first tactile frame.
     ready_timeout: float = 10.0
+    # The control loop's scheduling (hardware/realtime.py): "fifo" (SCHED_FIFO at
+    # `realtime_priority`, so that a busy host does not delay the 1 kHz loop), "nice"
+    # (the highest CFS weight the OS grants) or "normal"; what the OS refuses falls back
+    # to the next, and the run says which it got.
+    scheduling: str = "fifo"
+    realtime_priority: int = 10
+
+
+def lcm_url_problem(url: str) -> str | None:
+    """Why the LCM library cannot open `url`, or None (an empty URL is LCM's default).
+
+    The library prints its reason on the process's stderr (file descriptor 2, below
+    Python); it is caught there and becomes part of the answer, so that a bad URL is one
+    line."""
+    import lcm
+    with tempfile.TemporaryFile() as captured:
+        sys.stderr.flush()
+        saved = os.dup(2)
+        os.dup2(captured.fileno(), 2)
+        try:
+            lcm.LCM(url)
+            failed = False
+        except (RuntimeError, OSError):
+            failed = True
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+        captured.seek(0)
+        said = captured.read().decode(errors="replace").strip()
+    if not failed:
+        if said:
+            print(said, file=sys.stderr)  # not ours to hide
+        return None
+    reason = said.splitlines()[-1].split(" -- ", 1)[-1].strip() if said else ""
+    return (f"cannot be opened by LCM ({reason + '; ' if reason else ''}expected e.g. "
+            "udpm://239.255.76.67:7667?ttl=0 or memq://)")
+
+
+def validate_hardware_config(config: HardwareStationConfig, source: str,
+                             where: str = "") -> HardwareStationConfig:
+    """Checks the values the schema cannot (positive timeouts, known choices, a usable LCM
+    URL); ConfigError names the field."""
+    from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
+    prefix = f"{where}." if where else ""
+
+    def positive(path, value, unit="s"):
+        require(value > 0, source, prefix + path, f"must be positive [{unit}]", value)
+
+    for device, timeout in config.watchdog.timeouts().items():
+        positive(f"watchdog.{device}_timeout", timeout)
+    require(config.watchdog.startup_grace >= 0, source, prefix + "watchdog.startup_grace",
+            "must be zero or positive [s]", config.watchdog.startup_grace)
+    positive("ready_timeout", config.ready_timeout)
+    positive("tactile.stale_timeout", config.tactile.stale_timeout)
+    require(config.tactile.max_backlog >= 0, source, prefix + "tactile.max_backlog",
+            "must be zero or a positive number of frames", config.tactile.max_backlog)
+    positive("tactile.baudrate", config.tactile.baudrate, "baud")
+    gripper = config.gripper
+    require(gripper.period >= MIN_PERIOD, source, prefix + "gripper.period",
+            f"must be at least {MIN_PERIOD} s (the 2F-85's 200 Hz)", gripper.period)
+    for name in ("request_timeout", "activation_timeout", "command_refresh_period"):
+        positive(f"gripper.{name}", getattr(gripper, name))
+    positive("gripper.baudrate", gripper.baudrate, "baud")
+    require(1 <= gripper.device_id <= 247, source, prefix + "gripper.device_id",
+            "must be a Modbus slave id 1..247", gripper.device_id)
+    require(gripper.read_function in (3, 4), source, prefix + "gripper.read_function",
+            "must be 4 (input registers) or 3 (holding registers)", gripper.read_function)
+    require(config.scheduling in SCHEDULING_POLICIES, source, prefix + "scheduling",
+            f"must be one of {', '.join(SCHEDULING_POLICIES)}", config.scheduling)
+    require(1 <= config.realtime_priority <= 99, source, prefix + "realtime_priority",
+            "must be a SCHED_FIFO priority 1..99", config.realtime_priority)
+    problem = lcm_url_problem(config.arm.lcm_url)
+    if problem:
+        raise ConfigError(f"{source}: field '{prefix}arm.lcm_url' {problem}, got "
+                          f"{config.arm.lcm_url!r}")
+    return config
 
 
 def LoadHardwareConfig(filename, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
     """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
-    data = read_yaml_file(filename, "the hardware config") or {}
-    if isinstance(data, dict):
-        data.pop("_tag", None)
+    data = read_yaml_file(filename, "the hardware config")
+    data = {} if data is None else data
+    if not isinstance(data, dict):
+        raise ConfigError(f"{filename}: the hardware config must be a mapping of "
+                          f"HardwareStationConfig fields (arm, gripper, tactile, watchdog, "
+                          f"...), got a {type(data).__name__}")
+    data.pop("_tag", None)
     for assignment in overrides:
         apply_override(data, assignment)
-    return load_typed(data, HardwareStationConfig, str(filename))
+    config = load_typed(data, HardwareStationConfig, str(filename))
+    return validate_hardware_config(config, str(filename))
 
 
 def hardware_config_to_yaml(config: HardwareStationConfig) -> str:

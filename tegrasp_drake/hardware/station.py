@@ -49,7 +49,7 @@ from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibrat
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
-from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.hardware.config import HardwareStationConfig, lcm_url_problem
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 
 
@@ -98,6 +98,9 @@ class HardwareStation(Diagram):
     def __init__(self, config: HardwareStationConfig, *, lcm: DrakeLcm | None = None):
         super().__init__()
         self._config = config
+        problem = None if lcm is not None else lcm_url_problem(config.arm.lcm_url)
+        if problem:
+            raise HardwareNotReadyError(f"arm: the LCM URL {config.arm.lcm_url!r} {problem}")
         self._lcm = lcm or DrakeLcm(config.arm.lcm_url)
         self._gripper_client = None
         self._tactile_reader = None
@@ -235,6 +238,7 @@ class HardwareStation(Diagram):
                     f"tactile: no valid frame on {self._tactile_reader.port} within "
                     f"{timeout:g} s ({self._tactile_reader.counters()})")
             time.sleep(0.005)
+        self._tactile_reader.discard_pending()
 
     def close(self):
         """Stops the device threads and closes their ports (idempotent)."""

@@ -39,6 +39,14 @@ class DeviceActivity:
         return self  # immutable: Drake's copies of the Context's state can share it
 
 
+class DeviceActivities(tuple):
+    """The watchdog's state, ((device, DeviceActivity), ...): immutable, so the copies Drake
+    makes of the Context's state at every 1 kHz update share it rather than walk it."""
+
+    def __deepcopy__(self, memo):
+        return self
+
+
 def next_activity(activity: DeviceActivity, value: float, *, device: str, timeout: float,
                   startup_grace: float, sim_time: float, wall_time: float) -> DeviceActivity:
     """The activity after seeing `value` at `sim_time`; trips (latched) once silent.
@@ -90,9 +98,9 @@ class DeviceWatchdog(LeafSystem):
         self._startup_grace = startup_grace
         self._ports = {device: self.DeclareVectorInputPort(f"{device}_time_measured", 1)
                        for device in self._timeouts}
-        # A tuple of (device, DeviceActivity): immutable, so cheap for Drake to copy.
+        # DeviceActivities: immutable, so cheap for Drake to copy.
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(
-            tuple((device, DeviceActivity()) for device in self._timeouts)))
+            DeviceActivities((device, DeviceActivity()) for device in self._timeouts)))
         self.DeclareInitializationUnrestrictedUpdateEvent(self._initialize)
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
         ticket = {self.abstract_state_ticket(self._state_index)}
@@ -111,12 +119,12 @@ class DeviceWatchdog(LeafSystem):
 
     def _initialize(self, context, state):
         now = context.get_time()
-        state.get_mutable_abstract_state(self._state_index).set_value(tuple(
+        state.get_mutable_abstract_state(self._state_index).set_value(DeviceActivities(
             (device, DeviceActivity(None, now, time.time())) for device in self._timeouts))
 
     def _update(self, context, state):
         now, wall = context.get_time(), time.time()
-        activities = tuple(
+        activities = DeviceActivities(
             (device, next_activity(activity, self._ports[device].Eval(context)[0],
                                    device=device, timeout=self._timeouts[device],
                                    startup_grace=self._startup_grace, sim_time=now,

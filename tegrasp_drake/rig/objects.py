@@ -17,35 +17,40 @@ import dataclasses
 import math
 
 from tegrasp_drake.modelgen import materials
+from tegrasp_drake.rig.robotiq_units import STROKE_M
 
 # The entries of an object's `size` [m] for each shape.
 OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),
                 "file": ("width along the stroke", "depth", "height")}
 OBJECT_SHAPES = tuple(OBJECT_SIZES)
+FINGER_CLEARANCE_M = 0.0025  # smallest gap between an open pad and the object
+MAX_WIDTH_M = STROKE_M - 2 * FINGER_CLEARANCE_M  # widest object the open fingers clear
 
 
 @dataclasses.dataclass
 class ObjectConfig:
     """An object to grasp.
 
-    Leave `shape` empty to take the built-in object called `name`. Otherwise:
-    shape "box" with size [x, y, z] m; "cylinder" with size [diameter, height] m; or "file"
-    with `file` an SDF/URDF path or package:// URL whose model has one body, and size
-    [width along the stroke, depth, height] m for planning.
+    Leave `shape` empty to take the built-in object called `name`; its size, mass and
+    friction can be changed (a field left out, None, keeps the built-in value). Otherwise
+    the object is your own and needs its own `name` (its memorized events are stored
+    under it): shape "box" with size [x, y, z] m; "cylinder" with size [diameter, height]
+    m; or "file" with `file` an SDF/URDF path or package:// URL whose model has one body,
+    and size [width along the stroke, depth, height] m for planning; and mass and friction.
     """
     name: str = "box"
     shape: str = ""
     size: list[float] = dataclasses.field(default_factory=list)
-    mass: float = 0.0  # kg
+    mass: float | None = None  # kg
     # Coulomb coefficient of the object's geometry (static = dynamic), combined with the
     # pad's and the table's by Drake's pair rule (see the module docstring).
-    friction: float = 0.0
+    friction: float | None = None
     file: str = ""
     color: list[float] = dataclasses.field(default_factory=lambda: [0.9, 0.5, 0.1, 1.0])
 
     def width_along_stroke(self) -> float:
         """Extent along the finger stroke [m] (y of the object when placed on its marker)."""
-        return self.size[0] if self.shape == "cylinder" else self.size[1]
+        return self.size[0] if self.shape in ("cylinder", "file") else self.size[1]
 
     def height(self) -> float:
         return self.size[1] if self.shape == "cylinder" else self.size[2]
@@ -64,13 +69,11 @@ BUILTIN_OBJECTS = {
 }
 
 
-def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES,
-                   friction_given: bool = True) -> tuple[str, str] | None:
+def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, str] | None:
     """The first field of a user-defined object (its shape given) that cannot make an
     object, and what is wrong, in words that follow "field 'x'"; None when all can.
 
-    `shapes` narrows the shapes allowed; with `friction_given` False the friction is not
-    checked (left for later). A model file is not looked for.
+    `shapes` narrows the shapes allowed. A model file is not looked for.
     """
     if config.shape not in shapes:
         return "shape", f"names an unknown shape {config.shape!r} (known: {', '.join(shapes)})"
@@ -78,11 +81,47 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES,
     if len(config.size) != len(sizes) or not all(_is_positive(v) for v in config.size):
         return "size", (f"must hold {len(sizes)} positive sizes [{', '.join(sizes)}] in "
                         f"metres for a {config.shape}, got {list(config.size)}")
-    if not _is_positive(config.mass):
-        return "mass", f"must be positive [kg], got {config.mass!r}"
-    if friction_given and not _is_positive(config.friction):
-        return "friction", f"must be positive, got {config.friction!r}"
+    if config.width_along_stroke() > MAX_WIDTH_M:
+        return "size", (
+            f"makes the object {config.width_along_stroke() * 1000:.1f} mm wide along the "
+            f"finger stroke, more than the {MAX_WIDTH_M * 1000:.1f} mm the 85 mm stroke "
+            f"leaves with {FINGER_CLEARANCE_M * 1000:.1f} mm clearance per finger")
+    for name, words in (("mass", "the object's mass [kg]"),
+                        ("friction", "its Coulomb friction coefficient, e.g. 0.5 (a "
+                                     "frictionless object cannot be held from the side)")):
+        value = getattr(config, name)
+        if value is None:
+            return name, f"is missing: give {words}"
+        if not _is_positive(value):
+            return name, f"must be positive ({words}), got {value!r}"
     return None
+
+
+DESCRIPTION_FIELDS = ("shape", "size", "mass", "friction", "file")
+
+
+def object_description(config: ObjectConfig) -> dict:
+    """What the physics sees of a resolved object: {shape, size, mass, friction, file}
+    (memorized events carry it, so that they are used only for the object they felt)."""
+    return {"shape": config.shape, "size": [float(v) for v in config.size],
+            "mass": float(config.mass), "friction": float(config.friction),
+            "file": config.file}
+
+
+def description_differences(recorded: dict, current: dict, *, rtol: float = 1e-9) -> list[str]:
+    """The fields in which two object descriptions differ, in words ("mass 0.15 != 0.12")."""
+    differences = []
+    for name in DESCRIPTION_FIELDS:
+        a, b = recorded.get(name), current.get(name)
+        if name in ("size", "mass", "friction") and a is not None and b is not None:
+            a_list, b_list = (a, b) if name == "size" else ([a], [b])
+            same = len(a_list) == len(b_list) and all(
+                math.isclose(x, y, rel_tol=rtol, abs_tol=1e-12) for x, y in zip(a_list, b_list))
+        else:
+            same = a == b
+        if not same:
+            differences.append(f"{name} {a!r} (recorded) != {b!r} (now)")
+    return differences
 
 
 def _is_positive(value) -> bool:

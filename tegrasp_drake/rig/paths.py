@@ -1,4 +1,12 @@
-"""Where the package's data lives, for editable and non-editable installs alike.
+"""Where the package's data and the user's data live, for editable and non-editable
+installs alike.
+
+Memorized events: the package's own (`package_events_dir()`) are read-only; events the user
+records go to the user's events folder (`user_events_dir()`): the environment variable
+TEGRASP_EVENTS_DIR, else $XDG_DATA_HOME/tegrasp/events, else
+~/.local/share/tegrasp/events, which `pip install` never touches. Readers look in
+`events_search_path()`: a folder given on the command line (--events DIR) alone, else the
+user's folder first, then the package's.
 
 models/ and events/ at the repository top level are installed as the packages
 `tegrasp_drake.models_data` and `tegrasp_drake.events_data`; importlib.resources finds them
@@ -9,6 +17,7 @@ the other checkout's models and events.
 """
 
 import importlib.resources
+import os
 import pathlib
 
 from pydrake.multibody.parsing import Parser
@@ -29,9 +38,47 @@ def models_dir() -> pathlib.Path:
     return _data_dir("tegrasp_drake.models_data", "models")
 
 
-def events_dir() -> pathlib.Path:
-    """The folder holding the memorized tactile events and their index."""
+EVENTS_ENV = "TEGRASP_EVENTS_DIR"
+
+
+def package_events_dir() -> pathlib.Path:
+    """The folder holding the package's memorized tactile events and their index
+    (read-only: `tegrasp record-events` writes to user_events_dir())."""
     return _data_dir("tegrasp_drake.events_data", "events")
+
+
+events_dir = package_events_dir  # the old name (read-only: never write there)
+
+
+def user_events_dir() -> pathlib.Path:
+    """Where the user's recorded events go: $TEGRASP_EVENTS_DIR, else the user's data
+    folder ($XDG_DATA_HOME or ~/.local/share) / tegrasp / events."""
+    chosen = os.environ.get(EVENTS_ENV, "").strip()
+    if chosen:
+        return pathlib.Path(chosen).expanduser()
+    data_home = os.environ.get("XDG_DATA_HOME", "").strip()
+    base = pathlib.Path(data_home) if data_home else pathlib.Path.home() / ".local" / "share"
+    return base / "tegrasp" / "events"
+
+
+def events_search_path(explicit=None) -> list[pathlib.Path]:
+    """The folders to read events from, first first: [explicit] if given, else the
+    user's folder and the package's."""
+    if explicit:
+        return [pathlib.Path(explicit).expanduser()]
+    return [user_events_dir(), package_events_dir()]
+
+
+def is_installed_package_data(folder) -> bool:
+    """True for the events folder of an installed (non-source) copy of the package, which
+    `pip install` replaces: nothing may be written there."""
+    if (PACKAGE_DIR.parent / "pyproject.toml").is_file():
+        return False  # a source checkout: its events/ folder is the lead's to remake
+    try:
+        installed = pathlib.Path(str(importlib.resources.files("tegrasp_drake.events_data")))
+    except ModuleNotFoundError:
+        return False
+    return pathlib.Path(folder).resolve() == installed.resolve()
 
 
 def scenarios_file() -> pathlib.Path:

@@ -8,8 +8,10 @@ Every YAML file the project reads as configuration goes through here: scenarios
   `!HardwareStationConfig` is kept as the mapping's `_tag`).
 - `apply_override` applies a `--set key.sub=value` assignment to the parsed data.
 - `check_fields` walks the data against a dataclass schema and names the first field that is
-  unknown, missing (a dataclass field without a default) or of the wrong type by its dotted
-  path, e.g. `object.mass` or `user_objects.mug.size_m`.
+  unknown, missing (a dataclass field without a default), of the wrong type or a number that
+  is not finite (`.nan`, `.inf`: no setting means "not a number") by its dotted path, e.g.
+  `object.mass` or `user_objects.mug.size_m`.
+- `require` checks one value of a loaded config (a positive timeout, a threshold in range).
 - `load_typed` checks the data, then builds the schema with Drake's `yaml_load_typed`.
 
 Every problem is a ConfigError whose message begins with the file (and section) it came from.
@@ -17,6 +19,7 @@ Every problem is a ConfigError whose message begins with the file (and section) 
 
 import collections.abc
 import dataclasses
+import math
 import pathlib
 import types
 import typing
@@ -42,7 +45,16 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
     try:
         return yaml_load(data=text) if text else None
     except yaml.YAMLError as e:
-        raise ConfigError(f"{path}: not valid YAML: {e}") from None
+        raise ConfigError(f"{path}: not valid YAML: {_yaml_problem(e)}") from None
+
+
+def _yaml_problem(error: yaml.YAMLError) -> str:
+    """A YAML error in one line: what and where (line, column in the file)."""
+    mark = getattr(error, "problem_mark", None)
+    problem = getattr(error, "problem", None) or str(error).splitlines()[0]
+    where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark is not None else ""
+    context = getattr(error, "context", None)
+    return where + problem + (f" ({context})" if context else "")
 
 
 def apply_override(data: dict, assignment: str) -> None:
@@ -80,6 +92,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
     """
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
+        _check_finite_numbers(data, source, where)
         try:
             yaml_load_typed(schema=schema, data=yaml_dump(data))
         except (RuntimeError, ValueError) as e:
@@ -104,7 +117,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
 
 
 # What a value of each scalar type must be, in an error message: alone, and in a list.
-_SCALAR_WORDS = {float: ("a number", "numbers"), int: ("an integer", "integers"),
+_SCALAR_WORDS = {float: ("a finite number", "finite numbers"), int: ("an integer", "integers"),
                  str: ("a string", "names"), bool: ("true or false", "true or false values")}
 
 
@@ -113,7 +126,27 @@ def _is_scalar(value, hint) -> bool:
         return isinstance(value, bool)
     if isinstance(value, bool):
         return False
-    return isinstance(value, (int, float) if hint is float else hint)
+    if hint is float:
+        return isinstance(value, (int, float)) and math.isfinite(value)
+    return isinstance(value, hint)
+
+
+def _check_finite_numbers(data, source: str, where: str) -> None:
+    """Names the first NaN or infinite number in YAML data (of a Drake config class)."""
+    if isinstance(data, float) and not math.isfinite(data):
+        raise ConfigError(f"{source}: field '{where}' must be a finite number, got {data!r}")
+    items = data.items() if isinstance(data, dict) else (
+        enumerate(data) if isinstance(data, list) else ())
+    for key, value in items:
+        path = f"{where}[{key}]" if isinstance(data, list) else (
+            f"{where}.{key}" if where else str(key))
+        _check_finite_numbers(value, source, path)
+
+
+def require(condition: bool, source: str, path: str, words: str, value) -> None:
+    """Raises ConfigError "SOURCE: field 'PATH' WORDS, got VALUE" unless `condition`."""
+    if not condition:
+        raise ConfigError(f"{source}: field '{path}' {words}, got {value!r}")
 
 
 def _check_value(value, hint, path: str, source: str) -> None:

@@ -12,6 +12,7 @@ counts the samples pushed up to N (SlidingWindowState).
 
 import dataclasses
 import functools
+import math
 
 import numpy as np
 
@@ -62,6 +63,25 @@ class SlidingWindowState:
         """View (channels, N + slack) of the buffer in `state`."""
         return state[_BUFFER_AT:self.size].reshape(self.window.n_channels,
                                                    self.window.columns)
+
+    def newest(self, state: np.ndarray) -> np.ndarray:
+        """The window's newest sample of each channel (0 while the window is empty)."""
+        return self.rows(state)[:, int(state.item(0)) + self.window.length - 1].copy()
+
+    def entering_samples(self, state: np.ndarray, samples: np.ndarray
+                         ) -> tuple[np.ndarray, list[bool] | None]:
+        """The samples a push of `samples` (one per channel) should take into the window
+        held in `state`, and which of them are missing.
+
+        A non-finite sample (NaN or inf: a sensor glitch, a lost frame) is missing: the
+        channel's newest sample in the window enters in its place, so that the window and
+        the sums kept over it stay finite. Returns (samples, missing: a bool per channel,
+        or None when none is, the common case, checked at a fraction of isfinite's cost).
+        """
+        if math.isfinite(sum(samples.tolist())):
+            return samples, None
+        missing = ~np.isfinite(samples)
+        return np.where(missing, self.newest(state), samples), missing.tolist()
 
     def current(self, state: np.ndarray) -> np.ndarray:
         """View (channels, N) of the window held in `state`, oldest sample first."""

@@ -46,7 +46,9 @@ class WindowNormalizer(LeafSystem):
 
     Periodic discrete updates sample the SA entries of `channels` at sa_rate_hz and the RA
     entries at ra_rate_hz (one update for all four when the rates match). Before a full
-    window has been sampled, the older part of the window is zero.
+    window has been sampled, the older part of the window is zero. A non-finite sample is
+    missing: the channel's previous sample enters instead
+    (SlidingWindowState.entering_samples).
 
     Each rate's window is one discrete state vector. A subclass that works on the windows
     (the EventMatcher scores them) keeps what it needs after the window in that vector
@@ -120,16 +122,21 @@ class WindowNormalizer(LeafSystem):
     def _sample(self, window: RateWindow, context, discrete_state) -> None:
         """The periodic update of `window`: pushes this tick's samples of its channels into
         it, at the start of the group's state vector (in discrete_state; the context still
-        holds the vector before), then calls `_after_push`."""
+        holds the vector before), a missing one as its channel's previous sample, then
+        calls `_after_push`."""
         state = discrete_state.get_mutable_value(window.state)
-        pushed = window.layout.push(state, self._channels_port.Eval(context)[window.channels])
-        self._after_push(window, state, pushed, context)
+        samples, missing = window.layout.entering_samples(
+            state, self._channels_port.Eval(context)[window.channels])
+        pushed = window.layout.push(state, samples)
+        self._after_push(window, state, pushed, missing, context)
 
     def _after_push(self, window: RateWindow, state: np.ndarray,
-                    pushed: tuple[np.ndarray, int, bool], context) -> None:
+                    pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
+                    context) -> None:
         """For a subclass that keeps more about `window` in `state`, the group's state
         vector: update it after each push. pushed: SlidingWindowState.push's (buffer,
-        offset, full). Nothing to do here."""
+        offset, full); missing: SlidingWindowState.entering_samples's (None, or per channel
+        whether its sample was missing). Nothing to do here."""
 
     def _calc_window(self, window: RateWindow, rows: slice, context, output):
         raw = window.layout.current(context.get_discrete_state(window.state).value())

@@ -10,12 +10,14 @@ from tegrasp_drake.experiments.sweep.summary import write_summary
 from tegrasp_drake.experiments.sweep.table import write_statistics, write_table1
 
 
-def write_reports(out_dir, *, figure_format: str = "png") -> list[Path]:
+def write_reports(out_dir, trial_ids=None, *, figure_format: str = "png") -> list[Path]:
     """Writes table1.md/.csv, statistics.md/.json, summary.md, success_by_offset.md/.csv and
     the figures success_maps, table1_vs_paper and latency (in `figure_format`: png, pdf or
     svg) into `out_dir`.
 
-    Reads only the records, so it reproduces the reports of any results folder.
+    Reads only the records, so it reproduces the reports of any results folder; with
+    `trial_ids` (a sweep's own trials), only theirs: records another spec left in the
+    folder are not counted.
     Corrupt records are skipped (the next sweep run re-runs their trials); the figures are
     left out when no trial has finished, the latency figure when no trial detected an event.
     """
@@ -25,7 +27,9 @@ def write_reports(out_dir, *, figure_format: str = "png") -> list[Path]:
                                                            plot_latency_distributions)
     from tegrasp_drake.experiments.figures.sweep import write_success_maps
     from tegrasp_drake.experiments.figures.table1 import plot_table1
-    records = list(load_records(out_dir).records.values())
+    own = None if trial_ids is None else set(trial_ids)
+    records = [record for trial_id, record in load_records(out_dir).records.items()
+               if own is None or trial_id in own]
     paths = (write_table1(records, out_dir) + write_statistics(records, out_dir)
              + write_summary(records, out_dir) + write_offset_table(records, out_dir))
     if any(record["status"] == "ok" for record in records):

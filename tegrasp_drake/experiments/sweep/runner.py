@@ -60,6 +60,8 @@ class SweepSummary:
     corrupt: tuple[str, ...]        # corrupt record files found (their trials re-run)
     backend: str                    # "processes:N" or "dask:ADDRESS"
     wall_time_s: float
+    trial_ids: tuple[str, ...] = ()  # the trials of this spec (what the reports count)
+    other_records: int = 0          # records in the folder of trials not in this spec
 
 
 def check_result(result) -> str | None:
@@ -135,11 +137,14 @@ def run_sweep(spec: SweepSpec, trial_function, out_dir, *, workers: int | None =
             backend = f"dask:{scheduler}"
             outcomes = _run_on_dask(trial_function, pending, scheduler)
         ran, errors, unfinished = _record_outcomes(outcomes, pending, out_dir, progress_bar)
+    trial_ids = tuple(trial["trial_id"] for trial in trials)
     return SweepSummary(out_dir=out_dir, total=len(trials),
                         skipped=len(trials) - len(pending), ran=ran, errors=tuple(errors),
                         unfinished=tuple(unfinished),
                         corrupt=tuple(str(path) for path in loaded.corrupt),
-                        backend=backend, wall_time_s=time.perf_counter() - start)
+                        backend=backend, wall_time_s=time.perf_counter() - start,
+                        trial_ids=trial_ids,
+                        other_records=len(set(loaded.records) - set(trial_ids)))
 
 
 @contextmanager
@@ -224,7 +229,8 @@ def _run_on_process_pool(trial_function, pending, workers):
     start_method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
         else "spawn"
     executor = ProcessPoolExecutor(max_workers=workers,
-                                   mp_context=multiprocessing.get_context(start_method))
+                                   mp_context=multiprocessing.get_context(start_method),
+                                   initializer=end_with_parent, initargs=(os.getpid(),))
     try:
         futures = {executor.submit(run_trial_safely, trial_function, trial): trial["trial_id"]
                    for trial in pending}
@@ -236,6 +242,34 @@ def _run_on_process_pool(trial_function, pending, workers):
             yield futures[future], outcome
     finally:
         executor.shutdown(wait=True, cancel_futures=True)
+
+
+PARENT_CHECK_PERIOD_S = 0.5
+
+
+def end_with_parent(parent_pid: int) -> None:
+    """A pool worker's initializer: the worker ends (os._exit) as soon as the sweep's main
+    process `parent_pid` is gone, however it died (SIGKILL included), instead of running
+    its trial to no one and idling forever. Linux also gets PR_SET_PDEATHSIG, which kills
+    the worker when its own parent (the fork server) exits with the main process."""
+    import ctypes
+    import threading
+    try:
+        libc = ctypes.CDLL("libc.so.6", use_errno=True)
+        libc.prctl(1, 9)  # PR_SET_PDEATHSIG, SIGKILL
+    except (OSError, AttributeError):
+        pass
+
+    def watch():
+        while True:
+            time.sleep(PARENT_CHECK_PERIOD_S)
+            try:
+                os.kill(parent_pid, 0)
+            except ProcessLookupError:
+                os._exit(1)
+            except PermissionError:
+                pass  # alive, someone else's (cannot happen for our parent)
+    threading.Thread(target=watch, name="end with the sweep", daemon=True).start()
 
 
 def _run_on_dask(trial_function, pending, scheduler):
@@ -269,6 +303,10 @@ def _run_on_dask(trial_function, pending, scheduler):
 def summary_text(summary: SweepSummary) -> str:
     lines = [f"sweep: {summary.total} trials, {summary.skipped} already finished, "
              f"{summary.ran} run now on {summary.backend} in {summary.wall_time_s:.1f} s"]
+    if summary.other_records:
+        lines.append(f"  {summary.other_records} record(s) of trials not in this spec are in "
+                     f"{summary.out_dir} (another spec's); the reports count only this "
+                     "spec's trials")
     if summary.corrupt:
         lines.append(f"  {len(summary.corrupt)} corrupt record(s) found and re-run: "
                      + ", ".join(summary.corrupt))

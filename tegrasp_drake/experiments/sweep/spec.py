@@ -64,7 +64,8 @@ class ObjectDefinition:
     (hashable) form of the scenario's ObjectConfig (rig/objects.py), with the same meaning.
 
     `size_m` is ObjectConfig.size: a box's [x, y, z] edge lengths, a cylinder's
-    [diameter, height]. `friction_coefficient` None means the trial function's default.
+    [diameter, height]. `friction_coefficient` is required (a spec without it is refused
+    when it is loaded): there is no default friction for an object the sweep has not seen.
     """
     shape: str
     size_m: tuple[float, ...]
@@ -72,12 +73,11 @@ class ObjectDefinition:
     friction_coefficient: float | None = None
 
     def object_config(self, name: str) -> ObjectConfig:
-        """This object as the scenario's ObjectConfig called `name` (friction 0, which
-        ObjectConfig reads as not set, when `friction_coefficient` is None)."""
+        """This object as the scenario's ObjectConfig called `name`."""
         friction = self.friction_coefficient
         return ObjectConfig(name=name, shape=self.shape, size=[float(v) for v in self.size_m],
-                            mass=float(self.mass_kg),
-                            friction=0.0 if friction is None else float(friction))
+                            mass=self.mass_kg if self.mass_kg is None else float(self.mass_kg),
+                            friction=None if friction is None else float(friction))
 
 
 @dataclass(frozen=True)
@@ -241,8 +241,7 @@ def _check_object_definition(name, definition, fail):
     """The checks of the scenario's objects (rig/objects.py), named by the sweep's fields."""
     if not isinstance(definition, ObjectDefinition):
         fail(f"user_objects.{name}", "expected an object definition")
-    problem = object_problem(definition.object_config(name), shapes=_OBJECT_SHAPES,
-                             friction_given=definition.friction_coefficient is not None)
+    problem = object_problem(definition.object_config(name), shapes=_OBJECT_SHAPES)
     if problem:
         config_field, words = problem
         fail(f"user_objects.{name}.{_DEFINITION_FIELDS[config_field]}", words)

@@ -8,6 +8,7 @@ replugged adapter comes back.
 """
 
 import collections
+import contextlib
 import dataclasses
 import threading
 import time
@@ -26,6 +27,7 @@ class TactileReaderCounters:
     decoder: TactileDecoderCounters
     bytes_read: int = 0
     queue_overflows: int = 0   # frames dropped because the consumer fell behind
+    discarded_before_start: int = 0  # frames received before the control loop started
     serial_errors: int = 0
     last_error: str = ""
 
@@ -34,13 +36,21 @@ class TactileSerialReader:
     """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
 
     `port` is a device path or a pyserial URL. Use as a context manager, or start()/close().
+
+    After the first bytes of a burst the thread waits `batch_period` [s] for the rest, so
+    it takes Python's interpreter lock a few hundred times a second rather than once per
+    1 ms frame; every lock hand-over costs the control loop's thread time. The receiver
+    plays frames one per tick, so this adds at most `batch_period` to their latency. The
+    queue holds `queue_size` frames (1 s at 1 kHz): a loop that stalls that long loses the
+    oldest, counted.
     """
 
-    def __init__(self, port: str, *, baudrate: int = DEFAULT_BAUDRATE, queue_size: int = 256,
-                 read_timeout: float = 0.005):
+    def __init__(self, port: str, *, baudrate: int = DEFAULT_BAUDRATE, queue_size: int = 1024,
+                 read_timeout: float = 0.005, batch_period: float = 0.002):
         self._port = port
         self._baudrate = baudrate
         self._read_timeout = read_timeout
+        self._batch_period = batch_period
         self._queue = collections.deque(maxlen=queue_size)
         self._lock = threading.Lock()
         self._stop = threading.Event()
@@ -82,6 +92,17 @@ class TactileSerialReader:
             self._queue.clear()
         return frames
 
+    def discard_pending(self) -> int:
+        """Drops the frames received so far (before the control loop starts: a start-up
+        backlog would only delay the first ticks) and forgets their overflows; returns how
+        many were dropped in all."""
+        with self._lock:
+            dropped = len(self._queue) + self._counters.queue_overflows
+            self._queue.clear()
+            self._counters.discarded_before_start += dropped
+            self._counters.queue_overflows = 0
+        return dropped
+
     def counters(self) -> TactileReaderCounters:
         """A snapshot of the counters."""
         with self._lock:
@@ -101,6 +122,10 @@ class TactileSerialReader:
             if not data:
                 continue
             arrival_time = time.monotonic()
+            if self._batch_period > 0:  # let a few frames gather (see the class docstring)
+                self._stop.wait(self._batch_period)
+                with contextlib.suppress(serial.SerialException, OSError):
+                    data += self._serial.read(self._serial.in_waiting)
             with self._lock:
                 self._counters.bytes_read += len(data)
                 frames = self._decoder.feed(data, arrival_time)

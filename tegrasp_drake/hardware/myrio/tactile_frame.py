@@ -26,9 +26,14 @@ complete and would have to merge or drop one. See TACTILE_FRAME.md.
 The decoder accepts arbitrary chunks and keeps only what the CRC vouches for: bytes
 outside accepted frames are skipped and counted; a frame with a bad CRC, a corrupt header
 or cut short by the next frame's sync is counted and skipped, and the search resumes one
-byte after its sync; sequence gaps are counted as dropped frames; a repeated or older
-sequence number is discarded (never passed on as new), unless RESTART_RUN of them arrive
-in a row: then the device restarted, and the decoder follows it.
+byte after its sync; sequence gaps are counted as dropped frames. A frame is passed on
+only if it follows the last one: a newer sequence number whose timestamp advanced by the
+gap's frame periods (a CRC-valid frame with absurd content, e.g. sequence 30000 in a
+stream at 500 or a timestamp near 2^32, is discarded and counted as `implausible`; a
+repeated or older sequence as `repeated`), unless RESTART_RUN frames that follow each other
+arrive in a row: then the device restarted, and the decoder follows it. Device time is
+unwrapped by adding each frame's forward distance (mod 2^32), so a real wrap is
+continuous and one absurd timestamp shifts nothing.
 """
 
 import dataclasses
@@ -54,6 +59,11 @@ PIEZO_VOLTS_PER_COUNT = 10.0 / 32768.0
 SEQUENCE_MODULUS = 1 << 16
 TIMESTAMP_MODULUS = 1 << 32
 RESTART_RUN = 8
+FRAME_PERIOD_US = 1000  # one frame per millisecond
+# A frame follows the last one when its timestamp advanced by its sequence gap's frame
+# periods within this tolerance (the device's clock drives both).
+TIME_TOLERANCE_US = 2000
+TIME_TOLERANCE_FRACTION = 0.05
 
 
 @dataclasses.dataclass(frozen=True)
@@ -110,6 +120,7 @@ class TactileDecoderCounters:
     truncated: int = 0        # cut short: another frame's sync inside it
     dropped_frames: int = 0   # sequence numbers never received
     repeated: int = 0         # sequence not newer than the last accepted (discarded)
+    implausible: int = 0      # newer sequence, but its time does not fit the gap (discarded)
     restarts: int = 0         # the device restarted its sequence (accepted after a run)
     skipped_bytes: int = 0    # bytes not part of an accepted frame
 
@@ -121,12 +132,13 @@ class TactileDecoderCounters:
 class TactileFrameDecoder:
     """Streaming decoder (see module docstring). Not thread-safe: one reader owns it."""
 
-    def __init__(self):
+    def __init__(self, frame_period_us: int = FRAME_PERIOD_US):
         self._buffer = bytearray()
+        self._frame_period_us = frame_period_us
         self._last_sequence = None
         self._last_raw_timestamp = None
-        self._timestamp_wraps = 0
-        self._older_in_a_row = 0
+        self._device_time_us = 0
+        self._candidate = None  # (sequence, raw timestamp, run) of frames held back
         self.counters = TactileDecoderCounters()
 
     def feed(self, data: bytes, arrival_time: float = 0.0) -> list[TactileFrame]:
@@ -185,25 +197,55 @@ class TactileFrameDecoder:
             position = self._buffer.find(SYNC, position + 1, end)
         return False
 
+    def _follows(self, sequence: int, raw_timestamp: int, last_sequence: int,
+                 last_raw: int) -> str:
+        """How a frame relates to the frame (last_sequence, last_raw) before it: "next"
+        (newer, its time advanced by its sequence gap's frame periods, within
+        TIME_TOLERANCE), "old" (a repeated or older sequence number) or "implausible"."""
+        gap = (sequence - last_sequence) % SEQUENCE_MODULUS
+        if gap == 0 or gap > SEQUENCE_MODULUS // 2:
+            return "old"
+        elapsed = (raw_timestamp - last_raw) % TIMESTAMP_MODULUS  # forward, across a wrap
+        expected = gap * self._frame_period_us
+        if abs(elapsed - expected) <= TIME_TOLERANCE_US + TIME_TOLERANCE_FRACTION * expected:
+            return "next"
+        return "implausible"
+
     def _accept(self, body: bytes, flags: int, arrival_time: float) -> TactileFrame | None:
         _, _, _, sequence, raw_timestamp, piezo_left, piezo_right = _HEADER.unpack_from(body)
-        if self._last_sequence is not None:
-            gap = (sequence - self._last_sequence) % SEQUENCE_MODULUS
-            if gap == 0 or gap > SEQUENCE_MODULUS // 2:
-                self._older_in_a_row += 1
-                if self._older_in_a_row < RESTART_RUN:
-                    self.counters.repeated += 1
+        if self._last_sequence is None:
+            device_time_us = raw_timestamp
+        else:
+            relation = self._follows(sequence, raw_timestamp, self._last_sequence,
+                                     self._last_raw_timestamp)
+            if relation == "next":
+                self.counters.dropped_frames += (sequence - self._last_sequence) % (
+                    SEQUENCE_MODULUS) - 1
+                self._candidate = None
+                device_time_us = self._device_time_us + (
+                    raw_timestamp - self._last_raw_timestamp) % TIMESTAMP_MODULUS
+            else:
+                # A frame that does not follow is held back: a damaged one (the stream
+                # goes on after it, and it is counted) or the first of a new stream (a
+                # restarted device), which is followed once RESTART_RUN frames in a row
+                # follow each other. Device time never jumps on one frame.
+                run = 1
+                if self._candidate is not None and self._follows(
+                        sequence, raw_timestamp, *self._candidate[:2]) == "next":
+                    run = self._candidate[2] + 1
+                self._candidate = (sequence, raw_timestamp, run)
+                if run < RESTART_RUN:
+                    if relation == "old":
+                        self.counters.repeated += 1
+                    else:
+                        self.counters.implausible += 1
                     return None
                 self.counters.restarts += 1
-                self._last_raw_timestamp = None
-            else:
-                self.counters.dropped_frames += gap - 1
-        self._older_in_a_row = 0
+                self._candidate = None
+                device_time_us = raw_timestamp  # the restarted device's own clock
         self._last_sequence = sequence
-        if (self._last_raw_timestamp is not None
-                and raw_timestamp < self._last_raw_timestamp - TIMESTAMP_MODULUS // 2):
-            self._timestamp_wraps += 1
         self._last_raw_timestamp = raw_timestamp
+        self._device_time_us = device_time_us
         counts, offset = [], HEADER_SIZE
         for flag in (FLAG_LEFT_COUNTS, FLAG_RIGHT_COUNTS):
             if flags & flag:
@@ -212,5 +254,5 @@ class TactileFrameDecoder:
             else:
                 counts.append(None)
         self.counters.frames += 1
-        return TactileFrame(sequence, self._timestamp_wraps * TIMESTAMP_MODULUS + raw_timestamp,
-                            (piezo_left, piezo_right), counts[0], counts[1], arrival_time)
+        return TactileFrame(sequence, device_time_us, (piezo_left, piezo_right), counts[0],
+                            counts[1], arrival_time)
