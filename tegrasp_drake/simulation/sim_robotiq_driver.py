@@ -120,13 +120,16 @@ class SimRobotiqDriver(LeafSystem):
         discrete_state.set_value(self._state, s)
 
     def _calc_desired_state(self, context, output):
-        s = context.get_discrete_state(self._state).value()
-        h = context.get_time() - s[_T]
-        q_ref = s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
-        v_ref = s[_REF_V] + s[_REF_A] * h
-        q = self._finger_state.Eval(context)[0]
-        output.SetFromVector([force_limited_set_point(q, q_ref, s[_FORCE],
-                                                      self._config.position_gain), v_ref])
+        # Evaluated on every plant step: Python floats, not numpy scalars (the same IEEE
+        # arithmetic as force_limited_set_point, a tenth of the overhead).
+        ref_q, ref_v, ref_a, force, updated_at = context.get_discrete_state(
+            self._state).value()[[_REF_Q, _REF_V, _REF_A, _FORCE, _T]].tolist()
+        h = context.get_time() - updated_at
+        q_ref = ref_q + ref_v * h + 0.5 * ref_a * h * h
+        v_ref = ref_v + ref_a * h
+        q = self._finger_state.Eval(context).item(0)
+        band = 2.0 * force / self._config.position_gain
+        output.SetFromVector([q + min(max(q_ref - q, -band), band), v_ref])
 
     def _calc_status(self, context, output):
         s = context.get_discrete_state(self._state).value()
