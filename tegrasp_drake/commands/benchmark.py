@@ -55,10 +55,11 @@ def format_report(result: dict) -> str:
                   f"({profile['sim_time_s']:.2f} s simulated, {profile['profiled_cpu_time_s']:.2f}"
                   f" s CPU profiled, {profile['python_systems_s']:.2f} s in the systems, "
                   f"{profile['eval_calls']} Eval calls from Python)",
-                  f"{'system':<26} {'calls':>8} {'us/call':>9} {'total s':>8}"]
+                  f"{'system':<26} {'calls':>8} {'us/call':>9} {'own s':>8} {'Evals':>8} "
+                  f"{'in Evals s':>11}"]
         for name, cost in profile["systems"].items():
             lines.append(f"{name:<26} {cost['calls']:>8} {cost['us_per_call']:>9.1f} "
-                         f"{cost['total_s']:>8.3f}")
+                         f"{cost['own_s']:>8.3f} {cost['eval_calls']:>8} {cost['eval_s']:>11.3f}")
     if "contact_face_growth" in result:
         lines += ["", "contact faces (open-loop grasp, object mesh hint)",
                   f"{'mesh mm':>8} {'faces':>6} {'pad sample us':>14} {'rtf cpu':>8} "

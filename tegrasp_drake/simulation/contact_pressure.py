@@ -41,12 +41,13 @@ def polygon_fan_triangles(face_data) -> np.ndarray:
     `face_data` is Drake's PolygonSurfaceMesh.face_data(): [n, v0 .. v(n-1), n, ...].
     """
     data = np.asarray(face_data, dtype=np.intp)
+    headers = data.tolist()  # Python ints: the walk below reads one per face
     starts, counts = [], []
     k = 0
-    while k < data.size:  # walks the face headers only; the triangles are built vectorised
+    while k < len(headers):  # walks the face headers only; the triangles are built vectorised
         starts.append(k + 1)
-        counts.append(data[k])
-        k += data[k] + 1
+        counts.append(headers[k])
+        k += headers[k] + 1
     starts, counts = np.asarray(starts, np.intp), np.asarray(counts, np.intp)
     fans = counts - 2
     face_of_triangle = np.repeat(np.arange(starts.size), fans)

@@ -60,9 +60,10 @@ def pad_forces_from_contacts(contact_results: ContactResults, X_WP: RigidTransfo
         else:
             mesh, field = surface.poly_mesh_W(), surface.poly_e_MN()
             triangles = polygon_fan_triangles(mesh.face_data())
+        # Drake binds no bulk accessor: one call per vertex (map avoids a Python frame each).
         count = mesh.num_vertices()
-        p_WV = np.array([mesh.vertex(v) for v in range(count)])
-        pressure = np.array([field.EvaluateAtVertex(v) for v in range(count)])
+        p_WV = np.array(list(map(mesh.vertex, range(count))))
+        pressure = np.fromiter(map(field.EvaluateAtVertex, range(count)), float, count)
         p_PV = X_PW.multiply(p_WV.T).T
         raw = taxel_normal_forces(p_PV, pressure, triangles)
         applied = abs(float(info.F_Ac_W().translational() @ z_W))

@@ -2,8 +2,9 @@
 
 One trial runs under cProfile. A system's callbacks are the functions defined in its class
 body or its base classes' in this package (methods and the lambdas of its output ports)
-that Drake called from C++; their calls
-from C++ and the time spent in them (their Python callees included) are summed per class.
+that Drake called from C++. Per class: those calls, and the time spent in them with their
+Python callees, less the time in the port Evals they made (an Eval may run another
+system's calculation, counted there, or the plant's), which is given apart.
 cProfile's own overhead inflates small callbacks, so compare these figures with each other,
 and take the trial's real-time factor from an unprofiled run.
 """
@@ -37,22 +38,42 @@ def _is_called_from_cpp(caller) -> bool:
     return caller[0] == "~"  # cProfile files built-ins (pydrake's C++ entry points) under "~"
 
 
+def _is_eval(key) -> bool:
+    return key[0] == "~" and key[2].endswith("pydrake.systems.framework.Eval>")
+
+
 def system_costs(stats: pstats.Stats, classes) -> dict:
-    """{class name: {"calls", "total_s", "us_per_call"}} of the callbacks that C++ made into
-    each class in `classes`, from profile `stats`."""
+    """{class name: {"calls", "own_s", "us_per_call", "eval_calls", "eval_s"}} per class in
+    `classes`, from profile `stats`: calls is how often C++ called into the class's
+    callbacks; own_s the time in them less the time in the Evals they made (an Eval may
+    compute another system's output, counted there, or the plant's); eval_s that time."""
     spans = [(cls.__name__, _class_lines(base)) for cls in classes for base in cls.__mro__
              if base.__module__.startswith(PACKAGE)]
-    costs = {name: {"calls": 0, "total_s": 0.0} for name, _ in spans}
+    costs = {name: {"calls": 0, "total_s": 0.0, "eval_calls": 0, "eval_s": 0.0}
+             for name, _ in spans}
+    evals = [callers for key, (_, _, _, _, callers) in stats.stats.items() if _is_eval(key)]
+
+    def owner(filename, line):
+        return next((name for name, (source, first, last) in spans
+                     if filename == source and first <= line < last), None)
+
     for (filename, line, _), (_, _, _, _, callers) in stats.stats.items():
-        for name, (source, first, last) in spans:
-            if filename == source and first <= line < last:
-                for caller, (_, calls, _, cumulative) in callers.items():
-                    if _is_called_from_cpp(caller):
-                        costs[name]["calls"] += calls
-                        costs[name]["total_s"] += cumulative
-                break  # a base class shared by several systems counts for the first
+        name = owner(filename, line)
+        if name is None:
+            continue
+        for caller, (_, calls, _, cumulative) in callers.items():
+            if _is_called_from_cpp(caller):
+                costs[name]["calls"] += calls
+                costs[name]["total_s"] += cumulative
+    for callers in evals:
+        for (filename, line, _), (_, calls, _, cumulative) in callers.items():
+            name = owner(filename, line)
+            if name is not None:
+                costs[name]["eval_calls"] += calls
+                costs[name]["eval_s"] += cumulative
     for cost in costs.values():
-        cost["us_per_call"] = 1e6 * cost["total_s"] / cost["calls"] if cost["calls"] else 0.0
+        cost["own_s"] = cost.pop("total_s") - cost["eval_s"]
+        cost["us_per_call"] = 1e6 * cost["own_s"] / cost["calls"] if cost["calls"] else 0.0
     return costs
 
 
@@ -75,7 +96,7 @@ def profile_trial(scenario, *, events=None) -> dict:
     profiler.disable()
     stats = pstats.Stats(profiler)
     costs = system_costs(stats, classes)
-    python_s = sum(cost["total_s"] for cost in costs.values())
+    python_s = sum(cost["own_s"] for cost in costs.values())
     return {"sim_time_s": result["sim_time_s"], "profiled_cpu_time_s": result["cpu_time_s"],
             "python_systems_s": python_s, "eval_calls": eval_calls(stats),
-            "systems": dict(sorted(costs.items(), key=lambda item: -item[1]["total_s"]))}
+            "systems": dict(sorted(costs.items(), key=lambda item: -item[1]["own_s"]))}
