@@ -89,7 +89,7 @@ class SlipVibrationBand(LeafSystem):
         # The oldest squared magnitude of each pad leaves, the newest enters at the end.
         squares = s[2 * _AXES:].reshape(len(FINGER_NAMES), self._window)
         squares[:, :-1] = squares[:, 1:]
-        squares[:, -1] = np.sum(y.reshape(len(FINGER_NAMES), 3) ** 2, axis=1)
+        squares[:, -1] = np.add.reduce(y.reshape(len(FINGER_NAMES), 3) ** 2, axis=1)
 
     def _calc(self, context, output):
         squares = context.get_discrete_state(self._state).get_value()[2 * _AXES:]
