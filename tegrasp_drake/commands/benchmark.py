@@ -13,8 +13,9 @@ examples:
   tegrasp benchmark --repeats 5 --no-growth --no-profile --json
 
 Variants alternate within each repeat; medians are printed, ratios are per repeat. It
-times its runs, so it shows no progress bar (the runs are the measurement). About 2 min
-per repeat and 3 min for the profile and growth tables on one idle core."""
+times its runs, so it shows no progress bar (the runs are the measurement). It took 6 min
+with 3 repeats on a shared 2-core host: about 1 min per repeat, 3 min for the recorded
+trial, the profile and the growth tables."""
 
 
 def register(subparsers) -> None:
@@ -54,7 +55,7 @@ def format_report(result: dict) -> str:
         lines += ["", f"Python systems, one memorized trial under cProfile "
                   f"({profile['sim_time_s']:.2f} s simulated, {profile['profiled_cpu_time_s']:.2f}"
                   f" s CPU profiled, {profile['python_systems_s']:.2f} s in the systems, "
-                  f"{profile['eval_calls']} Eval calls from Python)",
+                  f"{profile['eval_calls']} input-port Evals from Python)",
                   f"{'system':<26} {'calls':>8} {'us/call':>9} {'own s':>8} {'Evals':>8} "
                   f"{'in Evals s':>11}"]
         for name, cost in profile["systems"].items():

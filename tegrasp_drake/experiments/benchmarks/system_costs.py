@@ -48,7 +48,7 @@ def system_costs(stats: pstats.Stats, classes) -> dict:
     callbacks; own_s the time in them less the time in the Evals they made (an Eval may
     compute another system's output, counted there, or the plant's); eval_s that time."""
     spans = [(cls.__name__, _class_lines(base)) for cls in classes for base in cls.__mro__
-             if base.__module__.startswith(PACKAGE)]
+             if base is cls or base.__module__.startswith(PACKAGE)]
     costs = {name: {"calls": 0, "total_s": 0.0, "eval_calls": 0, "eval_s": 0.0}
              for name, _ in spans}
     evals = [callers for key, (_, _, _, _, callers) in stats.stats.items() if _is_eval(key)]
@@ -78,14 +78,15 @@ def system_costs(stats: pstats.Stats, classes) -> dict:
 
 
 def eval_calls(stats: pstats.Stats) -> int:
-    """How many times Python called a port's Eval."""
+    """How many times Python called an input port's Eval (what the systems read; cProfile
+    does not see an output port's Eval called from Python)."""
     return sum(calls for (filename, _, name), (_, calls, _, _, _) in stats.stats.items()
                if filename == "~" and name.endswith("pydrake.systems.framework.Eval>"))
 
 
 def profile_trial(scenario, *, events=None) -> dict:
     """One closed-loop trial of `scenario` under cProfile: its simulated and profiled time,
-    the Python Eval calls, and each Python system's calls and cost (system_costs)."""
+    the input-port Evals from Python, and each Python system's calls and cost (system_costs)."""
     from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
     from tegrasp_drake.experiments.trial import run_trial
     grasp = MakeGraspDiagram(scenario, events=events)
