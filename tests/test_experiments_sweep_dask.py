@@ -6,7 +6,7 @@ from tegrasp_drake.experiments.sweep import runner
 from tegrasp_drake.experiments.sweep.records import load_records
 from tegrasp_drake.experiments.sweep.runner import SweepError, run_sweep
 from tegrasp_drake.experiments.sweep.spec import SweepSpec
-from test_sweep_fake_trial import failing_fake_trial, fake_trial
+from test_sweep_fake_trial import failing_fake_trial, fake_trial, process_reporting_fake_trial
 
 distributed = pytest.importorskip(
     "distributed", reason="the optional 'dask' extra (dask, distributed) is not installed")
@@ -47,3 +47,17 @@ def test_an_unreachable_scheduler_is_reported(tmp_path, monkeypatch):
     with pytest.raises(SweepError, match="cannot reach the Dask scheduler"):
         run_sweep(SPEC, fake_trial, tmp_path, scheduler="tcp://127.0.0.1:9", progress=False)
     assert not (tmp_path / "trials").exists()
+
+
+def test_a_cluster_with_more_workers_than_cores_runs_every_trial_once(tmp_path):
+    workers = runner.default_workers() + 2
+    spec = SweepSpec(objects=("box",), controllers=("memorized", "heuristic"), attempts=2)
+    # Its own dashboard port (":0", any free one): the module's cluster may still hold 8787.
+    with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster:
+        summary = run_sweep(spec, process_reporting_fake_trial, tmp_path,
+                            scheduler=cluster.scheduler_address, progress=False)
+    assert (summary.ran, summary.errors, summary.unfinished) == (36, (), ())
+    records = load_records(tmp_path).records
+    assert len(records) == 36
+    assert len({r["result"]["worker_pid"] for r in records.values()}) > runner.default_workers()

@@ -210,3 +210,12 @@ def test_the_example_spec_file_loads_and_expands():
     assert sum(t.well_placed for t in trials) == 3 * 4 * 3
     assert {t.object_definition for t in trials if t.object_name == "mug"} == {
         ObjectDefinition("cylinder", (0.04, 0.1), 0.3, 0.8)}
+
+
+def test_the_randomised_cluster_spec_holds_1050_trials_of_distinct_seeds_and_yaws():
+    path = Path(__file__).resolve().parent.parent / "analysis" / "randomised_sweep_1050.yaml"
+    trials = expand_trials(LoadSweepSpec(path))
+    assert len(trials) == 3 * 35 * 10
+    assert len({t.seed for t in trials}) == len(trials)
+    yaws = [abs(t.perturbation.yaw_rad) for t in trials]
+    assert max(yaws) <= math.radians(10.0) and len(set(yaws)) == len(trials)

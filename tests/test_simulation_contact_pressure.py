@@ -81,3 +81,18 @@ def test_faces_edge_on_to_the_pad_and_empty_surfaces_give_no_force():
                                   np.zeros(12))
     empty = taxel_normal_forces(PAD_SQUARE, np.full(4, 1e4), np.zeros((0, 3), dtype=int))
     assert empty.shape == (12,) and empty.dtype == float and not empty.any()
+
+
+def test_surfaces_in_one_pass_give_each_surfaces_forces_bit_for_bit():
+    from tegrasp_drake.simulation.contact_pressure import surfaces_taxel_normal_forces
+    rng = np.random.default_rng(11)
+    surfaces = []
+    for count in (1, 7, 30):
+        corners = np.column_stack([rng.uniform(-0.012, 0.012, 3 * count),
+                                   rng.uniform(-0.01, 0.01, 3 * count), np.zeros(3 * count)])
+        surfaces.append((corners, rng.uniform(0.0, 3e4, 3 * count),
+                         np.arange(3 * count).reshape(count, 3)))
+    together = surfaces_taxel_normal_forces(surfaces)
+    for surface, forces in zip(surfaces, together):
+        np.testing.assert_array_equal(forces, taxel_normal_forces(*surface))
+        assert forces.sum() > 0.0

@@ -76,3 +76,12 @@ def numpy_fake_trial(trial):
             "unload_success": np.bool_(result["unload_success"]),
             "false_triggers": np.int64(result["false_triggers"]),
             "sim_time_s": np.float64(result["sim_time_s"])}
+
+
+def process_reporting_fake_trial(trial):
+    """fake_trial's result plus the process that ran it, after a short pause so that every
+    worker of a pool takes some of the trials."""
+    import os
+    import time
+    time.sleep(0.2)
+    return {**fake_trial(trial), "worker_pid": os.getpid()}

@@ -34,3 +34,15 @@ def test_eq2_is_the_magnitude_of_the_vibration_vector():
 def test_channels_are_in_the_documented_order():
     out = _evaluate(np.ones(12), np.full(12, 2.0), [0.0, 0.0, 7.0], [0.0, 9.0, 0.0])
     np.testing.assert_allclose(out["channels"], [12.0, 24.0, 7.0, 9.0])
+
+
+def test_the_channels_equal_numpys_sum_and_norm_bit_for_bit():
+    # Eq. 1-2 are computed without np.sum's and np.linalg.norm's wrappers; same numbers.
+    import numpy as np
+    from tegrasp_drake.tactile.mechanoreceptor_channels import rapidly_adapting, slowly_adapting
+    rng = np.random.default_rng(5)
+    for _ in range(2000):
+        forces = rng.normal(size=12) * 10.0 ** rng.uniform(-3, 2)
+        vibration = rng.normal(size=3) * 10.0 ** rng.uniform(-3, 3)
+        assert slowly_adapting(forces) == float(np.sum(forces))
+        assert rapidly_adapting(vibration) == float(np.linalg.norm(vibration))

@@ -121,7 +121,7 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None,
         logger.debug("the trial's scenario:\n%s", scenario_to_yaml(scenario))
     if meshcat is not None:
         meshcat.StartRecording()
-    start = time.perf_counter()
+    start, start_cpu = time.perf_counter(), time.process_time()
     simulator.Initialize()
     ended_at = None
     reported = 0
@@ -139,7 +139,7 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None,
             limit = min(limit, ended_at + END_MARGIN_S)
         if progress is not None:
             progress(context.get_time(), limit)
-    wall = time.perf_counter() - start
+    wall, cpu = time.perf_counter() - start, time.process_time() - start_cpu
     if meshcat is not None:
         meshcat.StopRecording()
         meshcat.PublishRecording()
@@ -153,7 +153,7 @@ def run_trial(scenario, *, meshcat=None, events=None, max_time=None,
     result = {"object": scenario.object.name, "offset_m": list(scenario.object_offset),
               "controller": controller.name, "seed": scenario.random_seed,
               "transitions": timeline, **judge_trial(log, transitions, scenario),
-              "sim_time_s": sim_time, "wall_time_s": wall,
+              "sim_time_s": sim_time, "wall_time_s": wall, "cpu_time_s": cpu,
               "real_time_factor": sim_time / wall if wall > 0 else None}
     log.meta["result"] = result
     # For the Fig. 5a-b plot (figures.py): when each state began, and the physical events.

@@ -41,12 +41,13 @@ def polygon_fan_triangles(face_data) -> np.ndarray:
     `face_data` is Drake's PolygonSurfaceMesh.face_data(): [n, v0 .. v(n-1), n, ...].
     """
     data = np.asarray(face_data, dtype=np.intp)
+    headers = data.tolist()  # Python ints: the walk below reads one per face
     starts, counts = [], []
     k = 0
-    while k < data.size:  # walks the face headers only; the triangles are built vectorised
+    while k < len(headers):  # walks the face headers only; the triangles are built vectorised
         starts.append(k + 1)
-        counts.append(data[k])
-        k += data[k] + 1
+        counts.append(headers[k])
+        k += headers[k] + 1
     starts, counts = np.asarray(starts, np.intp), np.asarray(counts, np.intp)
     fans = counts - 2
     face_of_triangle = np.repeat(np.arange(starts.size), fans)
@@ -116,8 +117,24 @@ def taxel_normal_forces(p_PV: np.ndarray, pressure_V: np.ndarray,
     projection onto the pad plane, cell by cell; a triangle's share of a cell is clipped at
     zero (only rounding can make it negative when pressures are non-negative).
     """
-    triangles = np.asarray(triangles, dtype=np.intp).reshape(-1, 3)
-    cumulative = cumulative_pressure_integrals(p_PV[triangles][:, :, :2], pressure_V[triangles],
-                                               COLUMN_UPPER_EDGES, ROW_UPPER_EDGES)
+    return surfaces_taxel_normal_forces([(p_PV, pressure_V, triangles)])[0]
+
+
+def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
+    """taxel_normal_forces of each (p_PV, pressure_V, triangles) in `surfaces`, in one pass
+    over all their triangles (each triangle's arithmetic is its own, and each surface's
+    triangles are summed in order: the numbers are those of one call per surface)."""
+    triangles = [np.asarray(t, dtype=np.intp).reshape(-1, 3) for _, _, t in surfaces]
+    xy = np.concatenate([np.asarray(p_PV, dtype=float)[t][:, :, :2]
+                         for (p_PV, _, _), t in zip(surfaces, triangles)])
+    pressure = np.concatenate([np.asarray(p, dtype=float)[t]
+                               for (_, p, _), t in zip(surfaces, triangles)])
+    cumulative = cumulative_pressure_integrals(xy, pressure, COLUMN_UPPER_EDGES,
+                                               ROW_UPPER_EDGES)
     cells = np.diff(np.diff(cumulative, axis=1, prepend=0.0), axis=2, prepend=0.0)  # (T, col, row)
-    return np.maximum(cells, 0.0).sum(axis=0).T.reshape(ROWS * COLUMNS)
+    cells = np.maximum(cells, 0.0)
+    forces, start = [], 0
+    for t in triangles:
+        forces.append(cells[start:start + len(t)].sum(axis=0).T.reshape(ROWS * COLUMNS))
+        start += len(t)
+    return forces

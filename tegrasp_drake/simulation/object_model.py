@@ -12,6 +12,9 @@ from tegrasp_drake.rig.objects import ObjectConfig
 
 OBJECT_MODEL_NAME = "object"
 OBJECT_BODY_NAME = "object"
+# Edge length [m] of a primitive's rigid hydroelastic surface mesh (a cylinder's facets; a
+# box's mesh is its 12 triangles whatever the hint): 5 mm facets on the 25-50 mm cylinders.
+MESH_RESOLUTION_M = 0.005
 
 
 def _geometry(config: ObjectConfig) -> str:
@@ -29,8 +32,9 @@ def _inertia(config: ObjectConfig) -> np.ndarray:
     return np.diag([side, side, config.mass * radius ** 2 / 2])
 
 
-def object_sdf(config: ObjectConfig) -> str:
-    """SDF text of a primitive (box or cylinder) object."""
+def object_sdf(config: ObjectConfig, *, mesh_resolution_m: float = MESH_RESOLUTION_M) -> str:
+    """SDF text of a primitive (box or cylinder) object; mesh_resolution_m: its
+    drake:mesh_resolution_hint [m] (the trial benchmark varies it)."""
     half_height = config.height() / 2
     color = " ".join(f"{c:g}" for c in config.color)
     geometry = _geometry(config)
@@ -40,7 +44,7 @@ def object_sdf(config: ObjectConfig) -> str:
         f"{inertial_text(config.mass, (0, 0, half_height), _inertia(config))}"
         f'<collision name="collision"><pose>0 0 {half_height:g} 0 0 0</pose>'
         f"<geometry>{geometry}</geometry><drake:proximity_properties><drake:rigid_hydroelastic/>"
-        "<drake:mesh_resolution_hint>0.005</drake:mesh_resolution_hint>"
+        f"<drake:mesh_resolution_hint>{mesh_resolution_m:g}</drake:mesh_resolution_hint>"
         f"{friction_text(config.friction)}</drake:proximity_properties></collision>"
         f'<visual name="visual"><pose>0 0 {half_height:g} 0 0 0</pose>'
         f"<geometry>{geometry}</geometry><material><diffuse>{color}</diffuse></material>"

@@ -12,7 +12,9 @@ the two apart:
            tactile.left_pad_acceleration (3), tactile.right_pad_acceleration (3): each pad's
            PVDF film in acceleration-equivalent units [m/s^2], on the pad normal (z)
   simulation only (evaluation): object.state (13: quaternion wxyz, p_WO, w_WO, v_WO),
-           tactile.true_taxel_forces (24, N), contact_results, body_poses, query_object
+           tactile.true_taxel_forces (24, N), contact_results, body_poses, query_object,
+           gripper.plant_desired_state (2: the simulated 2F-85 controller's set-point q [m],
+           v [m/s] for the plant's finger PD)
 
 The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
 their joints track `arm.desired_state` with the plant's implicit PD.
@@ -139,9 +141,21 @@ def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
     builder.Connect(pulse.get_output_port(), plant.get_applied_spatial_force_input_port())
 
 
-def MakeGraspStation(scenario, *, meshcat=None):
-    """Builds the simulated station Diagram for `scenario` (see the module docstring)."""
-    builder = DiagramBuilder()
+@dataclasses.dataclass
+class StationPlant:
+    """The station's MultibodyPlant and SceneGraph and its model instances."""
+    plant: object
+    scene_graph: object
+    arm: object
+    gripper: object
+    object_instance: object
+
+
+def AddStationPlant(builder, scenario) -> StationPlant:
+    """Adds the station's plant to `builder`: the arm, the gripper (PD gains, no gravity),
+    the table and the scenario's object on its marker, finalized, at their default poses.
+    MakeGraspStation builds its sensors on it; the trial benchmark's plant-alone floor
+    (experiments/benchmarks/plant_floor.py) drives it alone."""
     plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)
     parser = paths.make_parser(plant)
     (arm,) = parser.AddModels(url=ARM_URL)
@@ -161,6 +175,15 @@ def MakeGraspStation(scenario, *, meshcat=None):
     plant.SetDefaultPositions(arm, initial_arm_positions(scenario))
     plant.SetDefaultPositions(gripper, [HALF_STROKE, HALF_STROKE])
     plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), object_pose_on_table(scenario))
+    return StationPlant(plant, scene_graph, arm, gripper, obj)
+
+
+def MakeGraspStation(scenario, *, meshcat=None):
+    """Builds the simulated station Diagram for `scenario` (see the module docstring)."""
+    builder = DiagramBuilder()
+    parts = AddStationPlant(builder, scenario)
+    plant, scene_graph = parts.plant, parts.scene_graph
+    arm, gripper, obj = parts.arm, parts.gripper, parts.object_instance
 
     # Arm: the desired state goes straight to the plant's PD; measured state is split.
     builder.ExportInput(plant.get_desired_state_input_port(arm), "arm.desired_state")
@@ -177,6 +200,7 @@ def MakeGraspStation(scenario, *, meshcat=None):
                     plant.get_desired_state_input_port(gripper))
     builder.ExportInput(driver.GetInputPort("command"), "gripper.command")
     builder.ExportOutput(driver.GetOutputPort("status"), "gripper.status")
+    builder.ExportOutput(driver.GetOutputPort("desired_state"), "gripper.plant_desired_state")
 
     # Tactile pads: taxels and vibration films.
     taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,

@@ -17,7 +17,8 @@ from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import BasicVector, LeafSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
-from tegrasp_drake.simulation.contact_pressure import polygon_fan_triangles, taxel_normal_forces
+from tegrasp_drake.simulation.contact_pressure import (polygon_fan_triangles,
+                                                       surfaces_taxel_normal_forces)
 
 _NOISE_STREAM = 7001  # separates this sensor's random stream from others seeded alike
 
@@ -46,7 +47,13 @@ class PadGeometry:
 def pad_forces_from_contacts(contact_results: ContactResults, X_WP: RigidTransform,
                              geometry_id) -> np.ndarray:
     """The 12 taxel normal forces [N] of the pad with `geometry_id` (noise-free)."""
-    forces = np.zeros(TAXELS_PER_PAD)
+    return pads_forces_from_contacts(contact_results, [(X_WP, geometry_id)])[0]
+
+
+def _pad_surfaces(contact_results: ContactResults, X_WP: RigidTransform, geometry_id):
+    """[(p_PV, pressure_V, triangles, applied normal force [N])] of each hydroelastic
+    contact surface of the pad with `geometry_id`, vertices in the pad frame P."""
+    surfaces = []
     X_PW = X_WP.inverse()
     z_W = X_WP.rotation().matrix()[:, 2].copy()
     for i in range(contact_results.num_hydroelastic_contacts()):
@@ -60,16 +67,32 @@ def pad_forces_from_contacts(contact_results: ContactResults, X_WP: RigidTransfo
         else:
             mesh, field = surface.poly_mesh_W(), surface.poly_e_MN()
             triangles = polygon_fan_triangles(mesh.face_data())
+        # Drake binds no bulk accessor: one call per vertex (map avoids a Python frame each).
         count = mesh.num_vertices()
-        p_WV = np.array([mesh.vertex(v) for v in range(count)])
-        pressure = np.array([field.EvaluateAtVertex(v) for v in range(count)])
+        p_WV = np.array(list(map(mesh.vertex, range(count))))
+        pressure = np.fromiter(map(field.EvaluateAtVertex, range(count)), float, count)
         p_PV = X_PW.multiply(p_WV.T).T
-        raw = taxel_normal_forces(p_PV, pressure, triangles)
         applied = abs(float(info.F_Ac_W().translational() @ z_W))
-        total = raw.sum()
-        if total > 0:
-            forces += raw * (applied / total)
-    return forces
+        surfaces.append((p_PV, pressure, triangles, applied))
+    return surfaces
+
+
+def pads_forces_from_contacts(contact_results: ContactResults, pads) -> list[np.ndarray]:
+    """The 12 taxel normal forces [N] (noise-free) of each pad (X_WP, geometry_id) in
+    `pads`: each surface's pressure integral (contact_pressure.py, all surfaces of all pads
+    in one pass) scaled to the normal force the solver applied on it."""
+    per_pad = [_pad_surfaces(contact_results, X_WP, geometry_id) for X_WP, geometry_id in pads]
+    surfaces = [surface for pad in per_pad for surface in pad]
+    raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces]) if surfaces else [])
+    result = []
+    for pad in per_pad:
+        forces = np.zeros(TAXELS_PER_PAD)
+        for (_, _, _, applied), raw in zip(pad, raws):
+            total = raw.sum()
+            if total > 0:
+                forces += raw * (applied / total)
+        result.append(forces)
+    return result
 
 
 def apply_sensor_model(true_forces: np.ndarray, rng: np.random.Generator, noise_std: float,
@@ -124,10 +147,9 @@ class TactilePads(LeafSystem):
     def _sample(self, context, discrete_state):
         contact_results = self._contact_port.Eval(context)
         poses = self._poses_port.Eval(context)
-        true_forces = np.concatenate([
-            pad_forces_from_contacts(contact_results, poses[int(pad.body_index)] @ pad.X_BP,
-                                     pad.geometry_id)
-            for pad in (self._pads[name] for name in FINGER_NAMES)])
+        true_forces = np.concatenate(pads_forces_from_contacts(contact_results, [
+            (poses[int(pad.body_index)] @ pad.X_BP, pad.geometry_id)
+            for pad in (self._pads[name] for name in FINGER_NAMES)]))
         sample_index = int(round(context.get_time() / self._period))
         rng = np.random.default_rng((self._seed, _NOISE_STREAM, sample_index))
         c = self._config

@@ -4,6 +4,8 @@ SA_i = sum over finger i's 12 taxels of the normal force F_z,k [N]          (Eq.
 RA_i = sqrt(a_x^2 + a_y^2 + a_z^2) of finger i's pad vibration [m/s^2]      (Eq. 2)
 """
 
+import math
+
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
@@ -12,12 +14,13 @@ from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 
 def slowly_adapting(taxel_forces: np.ndarray) -> float:
     """Eq. 1: the sum of a pad's taxel normal forces [N]."""
-    return float(np.sum(taxel_forces))
+    return float(np.add.reduce(taxel_forces))  # np.sum's own reduction, without its wrapper
 
 
 def rapidly_adapting(acceleration: np.ndarray) -> float:
     """Eq. 2: the magnitude of a pad's vibration vector [m/s^2]."""
-    return float(np.linalg.norm(acceleration))
+    a = np.asarray(acceleration, dtype=float)
+    return math.sqrt(a.dot(a))  # what np.linalg.norm computes for a vector
 
 
 class MechanoreceptorChannels(LeafSystem):

@@ -80,16 +80,16 @@ class SlipVibrationBand(LeafSystem):
                                      prerequisites_of_calc={self.xd_ticket()})
 
     def _update(self, context, discrete_state):
-        s = context.get_discrete_state(self._state).get_value()
-        z1, z2, squares = s[:_AXES], s[_AXES:2 * _AXES], s[2 * _AXES:]
+        # In place: discrete_state starts as a copy of the current state; the window is
+        # shifted by one sample (numpy copies overlapping slices safely).
+        s = discrete_state.get_mutable_value(self._state)
         x = self._input.Eval(context)
-        y, z1, z2 = highpass_step(self._coefficients, x, z1, z2)
+        y, s[:_AXES], s[_AXES:2 * _AXES] = highpass_step(self._coefficients, x, s[:_AXES],
+                                                         s[_AXES:2 * _AXES])
         # The oldest squared magnitude of each pad leaves, the newest enters at the end.
-        squares = squares.reshape(len(FINGER_NAMES), self._window)
-        newest = np.sum(y.reshape(len(FINGER_NAMES), 3) ** 2, axis=1)
-        squares = np.concatenate([squares[:, 1:], newest[:, None]], axis=1)
-        discrete_state.get_mutable_vector(self._state).SetFromVector(
-            np.concatenate([z1, z2, squares.ravel()]))
+        squares = s[2 * _AXES:].reshape(len(FINGER_NAMES), self._window)
+        squares[:, :-1] = squares[:, 1:]
+        squares[:, -1] = np.add.reduce(y.reshape(len(FINGER_NAMES), 3) ** 2, axis=1)
 
     def _calc(self, context, output):
         squares = context.get_discrete_state(self._state).get_value()[2 * _AXES:]

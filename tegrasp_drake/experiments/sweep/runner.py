@@ -321,7 +321,7 @@ def summary_text(summary: SweepSummary) -> str:
 
 
 # Result fields that measure the machine, not the trial.
-TIMING_FIELDS = ("wall_time_s", "real_time_factor")
+TIMING_FIELDS = ("wall_time_s", "cpu_time_s", "real_time_factor")
 
 
 @dataclass(frozen=True)
