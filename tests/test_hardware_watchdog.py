@@ -10,6 +10,7 @@ from tegrasp_drake.emulators.myrio_emulator import (
     MyRioEmulator, MyRioEmulatorConfig, TactileRecording)
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
+from tegrasp_drake.hardware.realtime import realtime_scheduling
 from tegrasp_drake.hardware.watchdog import DeviceActivity, DeviceWatchdog, next_activity
 
 
@@ -78,24 +79,30 @@ def test_watchdog_names_the_silent_device_and_raises_stop():
 
 
 def test_watchdog_trips_when_the_tactile_stream_stops():
+    """Through the real serial path in real time. The loop, the reader and the emulator run
+    with the real-time scheduling a deployment uses (threads inherit it), so that a busy host
+    does not starve them past the timeout (under a CPU hog on both cores, a 50 ms timeout at
+    normal scheduling tripped while the stream was still talking)."""
+    timeout = 0.1
     times = np.arange(0.0, 3.0, 0.001)
     trial = TactileRecording(times, np.zeros((len(times), 12)), np.zeros((len(times), 12)),
                          times, np.zeros(len(times)), np.zeros(len(times)))
-    with MyRioEmulator(trial, MyRioEmulatorConfig(lead_in=0.0)) as emulator, \
+    with realtime_scheduling("fifo", 10), \
+            MyRioEmulator(trial, MyRioEmulatorConfig(lead_in=0.0)) as emulator, \
             TactileSerialReader(emulator.port) as reader:
         builder = DiagramBuilder()
         receiver = builder.AddSystem(TactileSerialReceiver(reader))
-        watchdog = builder.AddSystem(DeviceWatchdog({"tactile": 0.05}))
+        watchdog = builder.AddSystem(DeviceWatchdog({"tactile": timeout}))
         builder.Connect(receiver.GetOutputPort("time_measured"),
                         watchdog.GetInputPort("tactile_time_measured"))
         simulator = Simulator(builder.Build())
         simulator.set_target_realtime_rate(1.0)
         context = watchdog.GetMyContextFromRoot(simulator.get_context())
-        simulator.AdvanceTo(0.2)
+        simulator.AdvanceTo(0.3)
         assert watchdog.GetOutputPort("fault").Eval(context) == ()
         emulator.stop_talking()
         stopped_at = simulator.get_context().get_time()
-        simulator.AdvanceTo(0.4)
+        simulator.AdvanceTo(stopped_at + 3 * timeout)
         (fault,) = watchdog.GetOutputPort("fault").Eval(context)
         assert fault.device == "tactile"
         assert stopped_at - 0.02 <= fault.since_sim_time <= stopped_at + 0.02
