@@ -8,6 +8,20 @@ import pytest
 from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.experiments.trial_log import ARRAY_FIELDS
+from tegrasp_drake.hardware.realtime import realtime_scheduling
+
+
+@pytest.fixture(scope="module", autouse=True)
+def deployment_scheduling_for_real_time_tests(request):
+    """A module marked `real_time` (devices or emulators against the clock, with timeouts of
+    50-500 ms) runs at the scheduling a deployment uses (SCHED_FIFO 10, where allowed; the
+    threads it starts inherit it), so that a busy host cannot starve it past a timeout: beside
+    a CPU hog on every core such tests failed at normal scheduling."""
+    if request.node.get_closest_marker("real_time") is None:
+        yield
+        return
+    with realtime_scheduling("fifo", 10):
+        yield
 
 
 @pytest.fixture(autouse=True)

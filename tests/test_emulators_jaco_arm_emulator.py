@@ -2,6 +2,7 @@
 driver, both in one Simulator on memq:// LCM."""
 
 import numpy as np
+import pytest
 from pydrake.lcm import DrakeLcm
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
@@ -9,6 +10,8 @@ from pydrake.systems.primitives import ConstantVectorSource
 
 from tegrasp_drake.emulators.jaco_arm_emulator import MakeJacoArmEmulator
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
+
+pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
 
 Q0 = np.array([3.3, 4.5, 1.1, 2.5, 2.3, 3.9])
 GOAL = Q0 + np.array([0.1, -0.1, 0.05, 0.2, -0.2, 0.1])

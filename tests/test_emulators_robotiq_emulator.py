@@ -6,6 +6,8 @@ from tegrasp_drake.rig import robotiq_units as units
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulatorConfig, RobotiqGripperModel
 from tegrasp_drake.hardware.robotiq.registers import command_registers
 
+pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
+
 
 def _model(**config):
     return RobotiqGripperModel(RobotiqEmulatorConfig(**config), now=0.0)

@@ -17,6 +17,8 @@ from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver, Add
 from tegrasp_drake.hardware.jaco.velocity_tracker import (
     JacoVelocityTracker, JacoVelocityTrackerConfig, velocity_command)
 
+pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
+
 Q = np.array([0.1, -0.2, 0.3, -0.4, 0.5, -0.6])
 V = np.array([0.01, 0.02, -0.03, 0.04, -0.05, 0.06])
 TAU = np.array([1.0, 2.0, 3.0, -4.0, -5.0, -6.0])

@@ -14,6 +14,8 @@ from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import (initial_receiver_state,
                                                            receiver_state_after_tick)
 
+pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
+
 CALIBRATION = TactileCalibration(zero_samples=0)  # no zeroing: piezo offset 0
 IMPACT = 3000  # piezo counts
 

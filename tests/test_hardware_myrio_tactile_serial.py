@@ -16,6 +16,8 @@ from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 
+pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
+
 # Calibration of the emulated pads: different gains per taxel, offsets the receiver must
 # find by zeroing (its own calibration starts from the default offsets).
 PADS = PadCalibration(gain=list(np.linspace(1e-3, 3e-3, 12)), offset=[25000.0] * 12,

@@ -13,6 +13,8 @@ from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator, RobotiqEmu
 from tegrasp_drake.hardware.robotiq.modbus_client import (
     RobotiqActivationError, RobotiqModbusClient, RobotiqModbusConfig)
 
+pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
+
 ACTIVATION = 0.05  # [s], the emulated activation (the real one takes seconds)
 
 

@@ -15,6 +15,8 @@ from tegrasp_drake.hardware.station import HardwareNotReadyError, MakeHardwareSt
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation
 
+pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
+
 CONTROLLER_INPUTS = ("arm.desired_state", "gripper.command")
 CONTROLLER_OUTPUTS = ("arm.position_measured", "arm.velocity_measured", "arm.torque_measured",
                       "gripper.status", "tactile.left_taxel_forces",

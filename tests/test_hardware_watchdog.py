@@ -10,8 +10,9 @@ from tegrasp_drake.emulators.myrio_emulator import (
     MyRioEmulator, MyRioEmulatorConfig, TactileRecording)
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
-from tegrasp_drake.hardware.realtime import realtime_scheduling
 from tegrasp_drake.hardware.watchdog import DeviceActivity, DeviceWatchdog, next_activity
+
+pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
 
 
 def step(activity, value, t, timeout=0.05, grace=1.0):
@@ -79,16 +80,14 @@ def test_watchdog_names_the_silent_device_and_raises_stop():
 
 
 def test_watchdog_trips_when_the_tactile_stream_stops():
-    """Through the real serial path in real time. The loop, the reader and the emulator run
-    with the real-time scheduling a deployment uses (threads inherit it), so that a busy host
-    does not starve them past the timeout (under a CPU hog on both cores, a 50 ms timeout at
-    normal scheduling tripped while the stream was still talking)."""
+    """Through the real serial path in real time (at the deployment's scheduling, see the
+    module's mark; a 50 ms timeout at normal scheduling tripped beside a CPU hog while the
+    stream was still talking)."""
     timeout = 0.1
     times = np.arange(0.0, 3.0, 0.001)
     trial = TactileRecording(times, np.zeros((len(times), 12)), np.zeros((len(times), 12)),
                          times, np.zeros(len(times)), np.zeros(len(times)))
-    with realtime_scheduling("fifo", 10), \
-            MyRioEmulator(trial, MyRioEmulatorConfig(lead_in=0.0)) as emulator, \
+    with MyRioEmulator(trial, MyRioEmulatorConfig(lead_in=0.0)) as emulator, \
             TactileSerialReader(emulator.port) as reader:
         builder = DiagramBuilder()
         receiver = builder.AddSystem(TactileSerialReceiver(reader))
