@@ -3,7 +3,9 @@ the times of the physical events that mark the transitions.
 
 Physical events (from noise-free simulation truth):
   first_contact        first time either pad's true normal force exceeds CONTACT_FORCE_N
-  grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip force
+  grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip
+                       force, or of the grip's plateau where the taxels never see the
+                       commanded force (grip_plateau_n: any graspable object has one)
   table_touch          first time after lift-off that the object's lowest point is back
                        within TOUCH_HEIGHT_M of the table (a tilted object touches with an
                        edge while its origin is still higher)
@@ -93,9 +95,24 @@ def first_contact_time(log, after: float = 0.0):
     return _first(log.t_sa, (true_sa(log).max(axis=1) > CONTACT_FORCE_N) & (log.t_sa >= after))
 
 
+def grip_plateau_n(log, after: float = 0.0) -> float:
+    """The level [N] the weaker pad's true force settles at after `after` [s]: its
+    maximum (the squeeze rises monotonically to it and the lift only redistributes it).
+    0 without samples."""
+    weaker = true_sa(log).min(axis=1)[log.t_sa >= after]
+    return float(weaker.max()) if weaker.size else 0.0
+
+
 def grip_force_time(log, grip_force: float, after: float = 0.0):
-    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of it."""
-    reached = true_sa(log).min(axis=1) >= GRIP_FRACTION * grip_force
+    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the
+    grip force, or of grip_plateau_n when that is lower (the taxels do not see all of the
+    contact force of a thin object: a 22 mm cylinder's plateau is 21.4 N of a 25 N
+    command). Identical to the fraction of the command wherever the command is reached.
+    None when the force never rises above CONTACT_FORCE_N."""
+    level = min(grip_force, grip_plateau_n(log, after))
+    if level <= CONTACT_FORCE_N:
+        return None
+    reached = true_sa(log).min(axis=1) >= GRIP_FRACTION * level
     return _first(log.t_sa, reached & (log.t_sa >= after))
 
 

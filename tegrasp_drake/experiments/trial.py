@@ -11,6 +11,7 @@ import time
 
 import numpy as np
 
+from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
 from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
@@ -90,7 +91,7 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
             false_triggers += 1
         else:
             latency[name] = entry.t - physical[name]
-    corrective = [action for action in (corrective_action_of(e.from_mode, e.to_mode)
+    corrective = [action for action in (corrective_action_of(e.from_mode, e.to_mode, e.trigger)
                                         for e in transitions) if action is not None]
     return {"hold_success": bool(hold_success), "unload_success": unload_success,
             "final_mode": final_mode.label, "hold_time_s": outcome.hold_time_s,
@@ -203,7 +204,7 @@ def run_trial_from_spec(trial: dict, *, events_dir=None) -> dict:
     from tegrasp_drake.control.grasp_controller import load_controller_events
     scenario = scenario_from_trial_spec(trial)
     events = None
-    if scenario.controller.name == "memorized":
+    if scenario.controller.name in MEMORIZED_EVENT_CONTROLLERS:
         nominal = scenario_from_trial_spec(trial, nominal=True).object
         events = load_controller_events(scenario, events_dir, nominal_object=nominal)
     return run_trial(scenario, events=events).result
