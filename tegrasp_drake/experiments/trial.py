@@ -7,6 +7,7 @@ trial function (tegrasp_drake/sweep): it turns a trial of a sweep into a scenari
 
 import dataclasses
 import logging
+import pathlib
 import time
 
 import numpy as np
@@ -195,16 +196,25 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     return validate(scenario, f"sweep trial {trial['trial_id']}")
 
 
-def run_trial_from_spec(trial: dict, *, events_dir=None) -> dict:
+def trial_log_name(trial_id: str) -> str:
+    """The file name of a sweep trial's log: its id with '/' as '.', and .npz."""
+    return trial_id.replace("/", ".") + ".npz"
+
+
+def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
     """The sweep's trial function: runs the trial; returns its result dict.
 
-    The memorized controller's events (from `events_dir`, else the user's folder, then the
+    The memorized controllers' events (from `events_dir`, else the user's folder, then the
     package's) must have been recorded on the trial's unperturbed object: the sweep's
-    mass and friction perturbations are the experiment's, not a mismatch."""
+    mass and friction perturbations are the experiment's, not a mismatch.
+    log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
     from tegrasp_drake.control.grasp_controller import load_controller_events
     scenario = scenario_from_trial_spec(trial)
     events = None
     if scenario.controller.name in MEMORIZED_EVENT_CONTROLLERS:
         nominal = scenario_from_trial_spec(trial, nominal=True).object
         events = load_controller_events(scenario, events_dir, nominal_object=nominal)
-    return run_trial(scenario, events=events).result
+    run = run_trial(scenario, events=events)
+    if log_dir is not None:
+        run.log.save(pathlib.Path(log_dir) / trial_log_name(trial["trial_id"]))
+    return run.result
