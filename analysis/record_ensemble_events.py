@@ -4,7 +4,7 @@
         [--workers 2] [--events events]
 
 Runs `--runs` randomised ideal grasps of each built-in object (seeds 1_000_000 + run),
-saves each log to LOGS_DIR/<object>/run<k>.npz, combines the first `--template-runs` into
+saves each log to LOGS_DIR/<object>/run<k>.npz (a log already there is reused), combines the first `--template-runs` into
 the events in EVENTS/ensemble (the mean rule), and leaves the other runs' logs for choosing
 the thresholds (analysis/choose_ensemble_thresholds.py), apart from the sweeps that judge.
 """
@@ -16,12 +16,19 @@ from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.memorized_event import save_memorized_events
 from tegrasp_drake.experiments.ensemble_events import (ENSEMBLE_FOLDER, combine_runs,
-                                                       record_ensemble_run)
+                                                       ensemble_scenario, record_ensemble_run,
+                                                       run_events)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 
 def _one(job):
     object_name, run, path = job
+    if path.is_file():  # recorded before: cut its events again, without simulating
+        from tegrasp_drake.experiments.scenario import LoadScenario
+        from tegrasp_drake.experiments.trial_log import load_trial_log
+        return object_name, run, run_events(load_trial_log(path),
+                                            ensemble_scenario(object_name, run), object_name,
+                                            LoadScenario(name=object_name).object)
     return object_name, run, record_ensemble_run(object_name, run, log_path=path)
 
 

@@ -58,6 +58,20 @@ class TaxelAwareConfig:
     height_mismatch_m: float = 0.0033
     tilt_sustain_s: float = 0.1  # for this long [s] (one tick of noise is not a tilt)
     max_regrasps: int = 1
+    # Eq. 3 thresholds [SA, RA] of each ensemble event (events/ensemble), chosen per
+    # transition on held-out ensemble runs by analysis/choose_ensemble_thresholds.py
+    # (analysis/ensemble_thresholds.md: the rule and the ROC-style tables), never on a
+    # sweep's trials.
+    reach_load_thresholds: list[float] = dataclasses.field(default_factory=lambda: [0.44, 0.65])
+    load_lift_thresholds: list[float] = dataclasses.field(default_factory=lambda: [0.94, 0.90])
+    place_unload_thresholds: list[float] = dataclasses.field(
+        default_factory=lambda: [0.98, 0.90])
+
+    def event_thresholds(self) -> dict[str, tuple[float, float]]:
+        """{transition: (SA, RA)} for the EventMatcher."""
+        return {"reach_load": tuple(self.reach_load_thresholds),
+                "load_lift": tuple(self.load_lift_thresholds),
+                "place_unload": tuple(self.place_unload_thresholds)}
 
 
 @dataclasses.dataclass

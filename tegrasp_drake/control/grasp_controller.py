@@ -136,6 +136,8 @@ def _add_detector(builder, scenario, name, events, channels):
         from tegrasp_drake.events import EventMatcherConfig, add_event_matcher
         matcher_config = EventMatcherConfig(
             sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
+            event_thresholds=(config.taxel_aware.event_thresholds()
+                              if name == "taxel_aware" else {}),
             sa_rate_hz=scenario.tactile.sample_rate_hz,
             ra_rate_hz=scenario.vibration.sample_rate_hz)
         events = (events if events is not None

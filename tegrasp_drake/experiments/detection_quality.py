@@ -16,8 +16,10 @@ threshold pair is then applied to the logged scores:
 
 ROC-style curve: the rates of detected and false spans over a range of thresholds (the SA
 and RA thresholds scaled together from the paper's 0.9 / 0.7). Threshold choice
-(choose_thresholds): among the pairs with no false trigger on the spans given, the highest
-detection rate, then the lowest median latency, then the highest thresholds (margin).
+(choose_thresholds), per transition: among the pairs with no false trigger on the spans
+given and the highest detection rate, those whose median latency meets LATENCY_TARGET_S
+(issue #14's 60 ms) if any, else those of the lowest median latency; of these, the highest
+thresholds (SA + RA: the widest margin above what the spans scored before their events).
 """
 
 import dataclasses
@@ -27,6 +29,7 @@ import numpy as np
 
 FALSE_TRIGGER_MARGIN_S = 0.01
 DEADLINE_S = 0.5
+LATENCY_TARGET_S = 0.06
 
 
 @dataclasses.dataclass(frozen=True)
@@ -111,10 +114,16 @@ def choose_thresholds(spans: Sequence[ScoredSpan], sa_grid: Iterable[float],
     clean = [p for p in points if p.false == 0]
     if not clean:
         raise ValueError("every threshold pair of the grid has a false trigger on these spans")
-    return max(clean, key=lambda p: (p.detected, -(p.median_latency_s
-                                                   if p.median_latency_s is not None
-                                                   else np.inf),
-                                     p.sa_threshold + p.ra_threshold))
+    best = max(p.detected for p in clean)
+    candidates = [p for p in clean if p.detected == best]
+    if best:
+        on_target = [p for p in candidates if p.median_latency_s <= LATENCY_TARGET_S]
+        if on_target:
+            candidates = on_target
+        else:
+            fastest = min(p.median_latency_s for p in candidates)
+            candidates = [p for p in candidates if p.median_latency_s == fastest]
+    return max(candidates, key=lambda p: p.sa_threshold + p.ra_threshold)
 
 
 def _trial_from(trial, start_s: float):
