@@ -253,11 +253,11 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
     with realtime_scheduling(config.scheduling, config.realtime_priority) as scheduling:
         out(f"control loop: {scheduling}")
         return _run(scenario, config, controller, events, events_dir, log_path, duration,
-                    drake_lcm, out)
+                    drake_lcm, out, progress)
 
 
 def _run(scenario, config, controller, events, events_dir, log_path, duration, drake_lcm,
-         out) -> HardwareRunResult:
+         out, progress) -> HardwareRunResult:
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
         parts = MakeGraspDiagram(scenario, station=station, controller=controller,
                                     events=events, log=False)

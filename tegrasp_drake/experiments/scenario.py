@@ -90,7 +90,7 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
             mass=builtin.mass if config.mass is None else config.mass,
             friction=builtin.friction if config.friction is None else config.friction,
             color=list(builtin.color))
-    elif config.name in BUILTIN_OBJECTS:
+    elif config.name in BUILTIN_OBJECTS and not _is_builtin_geometry(config):
         raise ConfigError(
             f"{source}: field 'object.name': your own object (object.shape "
             f"'{config.shape}') needs its own name, not the built-in '{config.name}': its "
@@ -103,6 +103,15 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
     if config.shape == "file":
         _check_model_file(config.file, source)
     return config
+
+
+def _is_builtin_geometry(config: ObjectConfig) -> bool:
+    """Whether `config` has the shape, size and model file of the built-in object of its
+    name (a resolved built-in, perhaps with its mass or friction set): resolving is
+    idempotent."""
+    builtin = BUILTIN_OBJECTS[config.name]
+    return (config.shape == builtin.shape and list(config.size) == list(builtin.size)
+            and config.file == builtin.file)
 
 
 def _check_model_file(file: str, source: str) -> None:

@@ -1,0 +1,50 @@
+"""The Scenario of a sweep trial (experiments/trial.py, scenario_from_trial_spec): what each
+of the sweep's trials runs, built and validated without simulating."""
+
+import dataclasses
+
+import pytest
+
+from tegrasp_drake.experiments.scenario import LoadScenario, validate
+from tegrasp_drake.experiments.sweep.spec import SweepSpec, expand_trials
+from tegrasp_drake.experiments.trial import scenario_from_trial_spec
+from tegrasp_drake.rig.typed_yaml import ConfigError
+
+
+def _first_trial(**spec_fields) -> dict:
+    return expand_trials(SweepSpec(**spec_fields))[0].to_dict()
+
+
+@pytest.mark.parametrize("name", ["box", "thick_cylinder", "thin_cylinder"])
+def test_a_built_in_objects_trial_is_that_object_with_its_perturbed_mass_and_friction(name):
+    """Regression: the sweep built the built-in object with its shape filled in, which the
+    validation then refused as "your own object ... needs its own name" in every trial."""
+    trial = _first_trial(objects=(name,), controllers=("memorized",), grid=((0.0, 0.0),))
+    scenario = scenario_from_trial_spec(trial)
+    nominal = scenario_from_trial_spec(trial, nominal=True)
+    p = trial["perturbation"]
+    assert scenario.object.name == nominal.object.name == name
+    assert scenario.object.shape == nominal.object.shape != ""
+    assert scenario.object.size == nominal.object.size
+    assert scenario.object.mass == pytest.approx(nominal.object.mass * p["mass_scale"])
+    assert scenario.object.friction == pytest.approx(
+        nominal.object.friction * p["friction_scale"])
+    assert scenario.object_offset == pytest.approx([trial["marker_dx_m"] + p["dx_m"],
+                                                    trial["marker_dy_m"] + p["dy_m"]])
+    assert scenario.controller.name == "memorized"
+    assert scenario.random_seed == trial["seed"]
+
+
+def test_validating_a_loaded_scenario_again_changes_nothing():
+    """A script may change a loaded scenario and validate it again; the built-in object
+    (now with its shape filled in) stays the built-in, and an own object must still be
+    named."""
+    scenario = LoadScenario()
+    assert validate(scenario) == scenario
+    heavier = dataclasses.replace(scenario, object=dataclasses.replace(scenario.object,
+                                                                       mass=0.3))
+    assert validate(heavier).object.mass == 0.3
+    cylinder = dataclasses.replace(scenario, object=dataclasses.replace(
+        scenario.object, shape="cylinder", size=[0.04, 0.1]))
+    with pytest.raises(ConfigError, match="needs its own name"):
+        validate(cylinder)
