@@ -141,7 +141,20 @@ def report_markdown(records, controllers, reference: str, title: str) -> str:
     """The detection-quality and paired-comparison report of a sweep, as Markdown."""
     def ms(value):
         return "–" if value is None else f"{1000 * value:.0f} ms"
-    lines = [f"# {title}\n", "## Event triggers (per trial that reached the waiting mode)\n",
+    lines = [f"# {title}\n", "## Success (trials)\n",
+             "| controller | " + " | ".join(" ".join(m) for m in MARKERS) + " |",
+             "|---|" + "---|" * len(MARKERS)]
+    for controller in controllers:
+        cells = []
+        for placement, column in MARKERS:
+            mine = [r for r in records.values() if r.get("result") is not None
+                    and r["trial"]["controller"] == controller
+                    and r["trial"]["well_placed"] == (placement == "well_placed")]
+            wins = sum(_success(r, column) for r in mine)
+            cells.append(f"{100 * wins / len(mine):.0f} % ({wins}/{len(mine)})" if mine
+                         else "–")
+        lines.append(f"| {controller} | " + " | ".join(cells) + " |")
+    lines += ["\n## Event triggers (per trial that reached the waiting mode)\n",
              "| controller | transition | trials | detected | false | other trigger / none "
              "| median latency | p90 latency |", "|---|---|---|---|---|---|---|---|"]
     for row in event_trigger_rows(records):
