@@ -143,3 +143,19 @@ def test_the_load_timeout_lifts_with_both_pads_on_the_object():
 def test_the_taxel_aware_settings_are_reasoned_in_pad_units():
     assert TaxelAwareConfig().centre_tolerance_m < CELL_Y  # within a row
     assert TaxelAwareConfig().max_approach_shift_m > 2 * CELL_Y
+
+
+def test_a_pad_touching_during_the_approach_stops_it_for_a_re_reach_within_the_limit():
+    """Issue #14's second grid: a yawed box 2.5 cm along the stroke met the right pad during
+    the approach and was pushed over by it."""
+    obs = Observation(contact=(False, True), approach_contact_s=CONFIG.one_sided_contact_s)
+    decision = next_mode(Mode.REACH, obs, Counters(), CONFIG,
+                         event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (decision.mode, decision.trigger) == (Mode.RE_REACH, Trigger.CORRECTIVE)
+    assert "right pad touched during the approach" in decision.reason
+    used_up = next_mode(Mode.REACH, obs, Counters(re_reaches=TAXEL.max_re_reaches), CONFIG,
+                        event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert used_up.mode == Mode.FAILED
+    brief = Observation(contact=(False, True), approach_contact_s=0.02)
+    assert next_mode(Mode.REACH, brief, Counters(), CONFIG,
+                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None

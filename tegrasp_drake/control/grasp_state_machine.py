@@ -69,6 +69,8 @@ class MachineState:
     reentry_offset_x: float = 0.0  # Re-Reach shift along world x [m] (taxel_aware)
     tilted_since: float = -1.0  # Hold: since when the object sits tilted (taxel_aware) [s]
     regrasp_pending: bool = False  # the Place puts a tilted object down to re-grasp it
+    approach_contact_since: float = -1.0  # a pad touched while approaching (taxel_aware) [s]
+    resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
     sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
     acceleration_sum: tuple = (0.0, 0.0, 0.0)  # Avoid sensing: pads' world acceleration sum
     sa_gain_sum: tuple = (0.0, 0.0)  # Avoid sensing: SA gains over sa_before, summed
@@ -327,7 +329,12 @@ class GraspStateMachine(LeafSystem):
             shape = grasp_contact(self._taxel_forces.Eval(context))
             tilted = s.mode == Mode.HOLD and held_tilted(shape, config.taxel_aware)
             tilted_since = (s.tilted_since if s.tilted_since >= 0 else t) if tilted else -1.0
-            taxel_fields = dict(opening_m=self._opening(context),
+            approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING and any(contact)
+            approach_since = ((s.approach_contact_since if s.approach_contact_since >= 0
+                               else t) if approaching else -1.0)
+            s = dataclasses.replace(s, approach_contact_since=approach_since)
+            taxel_fields = dict(approach_contact_s=t - approach_since if approaching else 0.0,
+                                opening_m=self._opening(context),
                                 object_width_m=self._plan.object_width, contact_shape=shape,
                                 tilted_s=t - tilted_since if tilted else 0.0,
                                 regrasp_pending=s.regrasp_pending)
@@ -362,23 +369,34 @@ class GraspStateMachine(LeafSystem):
         hold_here = MotionSegment.hold(t, here)
         common = dict(mode=decision.mode, mode_start=t, segment=hold_here, stage=Stage.NONE,
                       closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
-                      motion_done_since=-1.0, tilted_since=-1.0)
+                      motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0)
 
         def new(logged: Transition = entry, **changes) -> MachineState:
             return dataclasses.replace(s, **{**common, "timeline": s.timeline + (logged,),
                                              **changes})
 
         counters, mode = s.counters, decision.mode
+        if mode == Mode.REACH and s.resume_approach:  # finish the interrupted approach
+            target = (p.object_xy[0], here[1], p.grasp_height)
+            start_to_grasp = np.linalg.norm(np.subtract((*p.object_xy, p.grasp_height),
+                                                        p.start_xyz))
+            remaining = np.linalg.norm(np.subtract(target, here))
+            duration = max(config.re_reach_move_s, p.reach_s * remaining / start_to_grasp)
+            return new(stage=Stage.MOVING, resume_approach=False,
+                       segment=MotionSegment(t, duration, tuple(here), target))
         if mode == Mode.REACH:  # back from Re-Reach: close again where we are
             return new(stage=Stage.CLOSING, closing_since=t, gripper_request_time=t,
                        gripper=(0.0, p.close_speed, s.grip_force))
         if mode == Mode.RE_REACH:
+            approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING
             if s.mode == Mode.PLACE:  # a re-grasp: open where it stands, close again
                 shift, re_reaches = Shift(0.0, 0.0), counters.re_reaches
             elif self._taxel_aware:
                 shift = taxel_re_reach_shift(
                     grasp_contact(self._taxel_forces.Eval(context)), self._channels.Eval(context),
                     self._opening(context), p.object_width, config)
+                if approaching:  # the approach resumes to the grasp point: only the stroke
+                    shift = Shift(0.0, shift.dy_m)
                 re_reaches = counters.re_reaches + 1
             else:
                 shift = Shift(0.0, re_reach_shift(self._channels.Eval(context),
@@ -390,7 +408,7 @@ class GraspStateMachine(LeafSystem):
                 logged = dataclasses.replace(logged, approach_offset_m=round(shift.dx_m, 5))
             return new(logged, stage=Stage.OPENING, reentry_offset=shift.dy_m,
                        reentry_offset_x=shift.dx_m, gripper_request_time=t,
-                       regrasp_pending=False,
+                       regrasp_pending=False, resume_approach=approaching,
                        counters=dataclasses.replace(counters, re_reaches=re_reaches),
                        gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))
         if mode == Mode.LOAD:

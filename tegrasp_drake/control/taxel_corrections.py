@@ -13,6 +13,11 @@ the left finger on +y (corrective_actions.py). Settings: TaxelAwareConfig
   one-sided contact     one finger alone touches while the gripper is already closed to the
                         object's width: Load (the squeeze brings the other pad on), never a
                         Re-Reach that would shift by nothing and close on the same contact
+  contact in the approach  a pad touches the object while the open gripper still moves
+                        toward it (a misplaced or yawed object in the finger's path: left
+                        alone, the moving finger pushes it over): stop, shift along the
+                        stroke toward the touching finger (the paper's shift), and resume
+                        the approach (bounded by max_re_reaches)
   no event in time      both pads hold the object, centred, and no Reach-Load event came
                         within the timeout: Load anyway (bounded: never Re-Reach a grasp
                         that is already centred)
@@ -88,6 +93,15 @@ def one_sided_response(*, finger: str, opening_m: float, object_width_m: float,
                         f"only the {finger} finger touches, the gripper closed to the "
                         "object's width: load")
     return _re_reach_or_fail(re_reaches, config, f"only the {finger} finger touched")
+
+
+def approach_contact_response(*, contact: tuple, re_reaches: int, config) -> Decision:
+    """A pad has touched for one_sided_contact_s while the gripper still approaches: stop
+    and Re-Reach (the state machine resumes the approach after the shift), or Failed once
+    taxel_aware.max_re_reaches are used up."""
+    pads = [name for name, touching in zip(("left", "right"), contact) if touching]
+    return _re_reach_or_fail(re_reaches, config,
+                             f"the {' and '.join(pads) or 'a'} pad touched during the approach")
 
 
 def on_reach_event(contact: GraspContact, *, re_reaches: int, config) -> Decision:

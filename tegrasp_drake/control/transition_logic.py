@@ -39,7 +39,7 @@ from tegrasp_drake.control.corrective_actions import (Counters, avoid_on_hit, li
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Decision, Mode, Trigger
 from tegrasp_drake.control.taxel_contact import GraspContact
 from tegrasp_drake.control.taxel_corrections import (
-    after_regrasp_place, on_reach_event, on_reach_timeout, one_sided_response, regrasp_or_none)
+    after_regrasp_place, approach_contact_response, on_reach_event, on_reach_timeout, one_sided_response, regrasp_or_none)
 
 TAXEL_AWARE = "taxel_aware"
 
@@ -71,6 +71,7 @@ class Observation:
     contact_shape: GraspContact | None = None
     tilted_s: float = 0.0
     regrasp_pending: bool = False
+    approach_contact_s: float = 0.0  # a pad in contact while the approach moves [s]
 
 
 def _taxel_aware(config) -> bool:
@@ -78,6 +79,9 @@ def _taxel_aware(config) -> bool:
 
 
 def _reach_taxel_aware(obs: Observation, counters: Counters, config, event_trigger: Trigger):
+    if obs.approach_contact_s >= config.one_sided_contact_s:
+        return approach_contact_response(contact=obs.contact, re_reaches=counters.re_reaches,
+                                         config=config)
     if obs.event_matched:
         centre_first = (on_reach_event(obs.contact_shape, re_reaches=counters.re_reaches,
                                        config=config)

@@ -124,18 +124,27 @@ def table_touch_time(log, object_config=None, after: float = 0.0):
 
 
 def physical_events(log, grip_force: float, object_config=None) -> dict:
-    z = log.object_state[:, 6]
-    lift_index = np.flatnonzero(z - z[0] > LIFTED_HEIGHT_M)
+    lift_index = np.flatnonzero(lifted_mask(log, object_config))
     return {"first_contact": first_contact_time(log),
             "grip_force_reached": grip_force_time(log, grip_force),
             "table_touch": (table_touch_time(log, object_config, after=log.t_slow[lift_index[0]])
                             if lift_index.size else None)}
 
 
-def judge_grasp(log, *, target_xy, grip_force: float) -> GraspOutcome:
-    """Evaluates a trial against the ground truth."""
+def lifted_mask(log, object_config=None) -> np.ndarray:
+    """At each logged state: the object's lowest point (lowest_point_heights) is more than
+    LIFTED_HEIGHT_M above where it rested at the start. By the lowest point, not the origin:
+    a 45 mm box knocked onto its side raises its origin 22.5 mm while lying on the table
+    (issue #14's second grid did it)."""
+    low = lowest_point_heights(log.object_state, object_config)
+    return low - low[0] > LIFTED_HEIGHT_M
+
+
+def judge_grasp(log, *, target_xy, grip_force: float, object_config=None) -> GraspOutcome:
+    """Evaluates a trial against the ground truth (object_config: the object's shape and
+    size, for its lowest point; without it, its origin's height)."""
     z = log.object_state[:, 6]
-    lifted = z - z[0] > LIFTED_HEIGHT_M
+    lifted = lifted_mask(log, object_config)
     final = log.object_state[-1]
     final_sa = log.true_taxels[-1].reshape(2, 12).sum(axis=1)
     return GraspOutcome(
@@ -144,4 +153,4 @@ def judge_grasp(log, *, target_xy, grip_force: float) -> GraspOutcome:
         final_tilt_deg=tilt_deg(final),
         placement_error_m=float(np.linalg.norm(final[4:6] - np.asarray(target_xy))),
         released=bool(final_sa.max() < RELEASED_FORCE_N),
-        events=physical_events(log, grip_force))
+        events=physical_events(log, grip_force, object_config))

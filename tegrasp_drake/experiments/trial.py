@@ -72,7 +72,7 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
     """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
     at least 3 s; unload = after Unload, upright on the table, released, gripper retracted."""
     outcome = judge_grasp(log, target_xy=scenario.expected_object_xy,
-                          grip_force=scenario.grasp.grip_force)
+                          grip_force=scenario.grasp.grip_force, object_config=scenario.object)
     hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
     reached = [entry.to_mode for entry in transitions]
     final_mode = reached[-1] if reached else Mode.REACH
