@@ -44,6 +44,11 @@ class TaxelAwareConfig:
     # Re-Reaches of either direction, repeated until centred, at most this many (the
     # paper's 2 plus one for each axis the taxels add).
     max_re_reaches: int = 4
+    # A pad touching during the approach: back off this far along the approach axis while
+    # shifting along the stroke [m], then approach again; a sideways shift while still
+    # pressing would drag the object over. The pad's length less its palm row (18 mm),
+    # rounded up: wherever along the pad the object touched, the pad backs off it.
+    approach_retreat_m: float = 0.02
     # One finger alone touches while the gripper has closed to within this of the
     # object's width [m]: the object is between the fingers, the other finger's contact is
     # off its pad or light; Load (the squeeze brings the second pad on) instead of another

@@ -395,8 +395,8 @@ class GraspStateMachine(LeafSystem):
                 shift = taxel_re_reach_shift(
                     grasp_contact(self._taxel_forces.Eval(context)), self._channels.Eval(context),
                     self._opening(context), p.object_width, config)
-                if approaching:  # the approach resumes to the grasp point: only the stroke
-                    shift = Shift(0.0, shift.dy_m)
+                if approaching:  # back off, shift along the stroke, approach again
+                    shift = Shift(-config.taxel_aware.approach_retreat_m, shift.dy_m)
                 re_reaches = counters.re_reaches + 1
             else:
                 shift = Shift(0.0, re_reach_shift(self._channels.Eval(context),

@@ -15,9 +15,10 @@ the left finger on +y (corrective_actions.py). Settings: TaxelAwareConfig
                         Re-Reach that would shift by nothing and close on the same contact
   contact in the approach  a pad touches the object while the open gripper still moves
                         toward it (a misplaced or yawed object in the finger's path: left
-                        alone, the moving finger pushes it over): stop, shift along the
-                        stroke toward the touching finger (the paper's shift), and resume
-                        the approach (bounded by max_re_reaches)
+                        alone, the moving finger pushes it over): stop, back off by
+                        approach_retreat_m while shifting along the stroke toward the
+                        touching finger (the paper's shift), and resume the approach
+                        (bounded by max_re_reaches)
   no event in time      both pads hold the object, centred, and no Reach-Load event came
                         within the timeout: Load anyway (bounded: never Re-Reach a grasp
                         that is already centred)
