@@ -177,9 +177,7 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     if definition:
         obj = ObjectDefinition(**definition).object_config(trial["object_name"])
     else:
-        # A built-in object stays one (no shape given), with its mass and friction set here.
-        builtin = resolve_object(ObjectConfig(name=trial["object_name"]))
-        obj = ObjectConfig(name=builtin.name, mass=builtin.mass, friction=builtin.friction)
+        obj = resolve_object(ObjectConfig(name=trial["object_name"]))
     if not nominal:
         obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),
                                   friction=obj.friction * float(p["friction_scale"]))
