@@ -57,6 +57,23 @@ def test_more_than_max_backlog_frames_play_at_once_keeping_the_impact():
     assert readings == [(IMPACT, 7)]
 
 
+def test_every_sample_is_played_once_in_order_whatever_the_bursts():
+    # Bursts that drain one, two and many (over max_backlog) per tick and ticks with none:
+    # the vector output merges and holds, played_samples hold each device sample once.
+    sent = np.arange(1, 41)
+    burst = frames(sent)
+    ticks = [burst[:3], [], [], burst[3:20], [], burst[20:21], [], [], [], burst[21:]] + [[]] * 20
+    state = initial_receiver_state(CALIBRATION)
+    played, empty_ticks = [], 0
+    for received in ticks:
+        state = receiver_state_after_tick(state, received, CALIBRATION, max_backlog=4)
+        played.extend(state.played_samples[:, 1])
+        empty_ticks += len(state.played_samples) == 0
+    volts = np.array(played) / CALIBRATION.right.piezo_gain
+    np.testing.assert_array_equal(np.round(volts / PIEZO_VOLTS_PER_COUNT), sent)
+    assert empty_ticks > 0
+
+
 def test_replay_paced_by_a_clock_sends_each_sample_once_when_the_clock_reaches_it():
     t = np.arange(0.0, 1.0, 1e-3)
     trial = TactileRecording(t, np.zeros((len(t), 12)), np.zeros((len(t), 12)), t,

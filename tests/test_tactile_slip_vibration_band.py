@@ -21,8 +21,10 @@ def band_output(samples: np.ndarray, *, band_hz=80.0, window_s=0.01) -> np.ndarr
     context = simulator.get_mutable_context()
     outputs = []
     for k, row in enumerate(samples):
-        system.get_input_port().FixValue(context, row)
-        simulator.AdvanceTo(k / RATE_HZ)  # the update at k / RATE_HZ reads row k
+        system.GetInputPort("pad_acceleration").FixValue(context, row)
+        # The update at k / RATE_HZ is done at the start of the step that leaves that time,
+        # so it reads row k when the simulator advances past it.
+        simulator.AdvanceTo((k + 0.5) / RATE_HZ)
         outputs.append(system.GetOutputPort("slip_vibration").Eval(context).copy())
     return np.array(outputs)
 
@@ -80,3 +82,39 @@ def test_the_films_reading_of_a_squeeze_stays_below_the_slip_threshold():
 def test_a_corner_beyond_nyquist_is_refused():
     with pytest.raises(ValueError, match="Nyquist"):
         highpass_biquad(600.0, RATE_HZ)
+
+
+def band_output_from_sample_blocks(blocks) -> np.ndarray:
+    """The system's slip_vibration after each tick, fed each tick's block of samples (k x 6)
+    on its pad_acceleration_samples input."""
+    system = SlipVibrationBand(band_hz=80.0, window_s=0.01, sample_rate_hz=RATE_HZ)
+    simulator = Simulator(system)
+    context = simulator.get_mutable_context()
+    system.GetInputPort("pad_acceleration").FixValue(context, np.full(6, np.nan))  # unread
+    outputs = []
+    for k, block in enumerate(blocks):
+        system.GetInputPort("pad_acceleration_samples").FixValue(context, block)
+        simulator.AdvanceTo((k + 0.5) / RATE_HZ)  # as in band_output
+        outputs.append(system.GetOutputPort("slip_vibration").Eval(context).copy())
+    return np.array(outputs)
+
+
+def test_sample_blocks_give_the_band_of_the_uninterrupted_stream_whatever_the_bursts():
+    # A smooth film reading (a squeeze) delivered in random bursts: after each tick the band
+    # reads what it would have read after the same samples played one per tick; ticks that
+    # bring nothing leave it unchanged.
+    film = film_reading_of_a_squeeze(25.0, 0.45, 0.6)
+    samples = np.zeros((len(film), 6))
+    samples[:, 0], samples[:, 3] = film, -0.5 * film
+    steady = band_output(samples)
+    rng = np.random.default_rng(3)
+    sizes = rng.integers(0, 6, size=len(film))  # 0 to 5 samples per tick, 2.5 on average
+    ends = np.minimum(np.cumsum(sizes), len(film))
+    starts = np.concatenate([[0], ends[:-1]])
+    blocks = [samples[a:b] for a, b in zip(starts, ends)]
+    bursty = band_output_from_sample_blocks(blocks)
+    for k, end in enumerate(ends):
+        if end > 0:
+            np.testing.assert_array_equal(bursty[k], steady[end - 1])
+        else:
+            assert np.all(bursty[k] == 0.0)

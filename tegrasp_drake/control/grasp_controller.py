@@ -178,10 +178,14 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
                         accelerations.get_input_port(k))
     builder.Connect(accelerations.get_output_port(), machine.GetInputPort("pad_acceleration"))
     config = scenario.controller
+    # On hardware the band filters the device's own samples (see SlipVibrationBand).
+    samples = (station.GetOutputPort("tactile.pad_acceleration_samples")
+               if station.HasOutputPort("tactile.pad_acceleration_samples") else None)
     builder.Connect(AddSlipVibrationBand(builder, accelerations.get_output_port(),
                                          band_hz=config.slip_band_hz,
                                          window_s=config.slip_window_s,
-                                         sample_rate_hz=scenario.vibration.sample_rate_hz),
+                                         sample_rate_hz=scenario.vibration.sample_rate_hz,
+                                         pad_acceleration_samples=samples),
                     machine.GetInputPort("slip_vibration"))
     builder.Connect(machine.GetOutputPort("X_WG_desired"), X_WG_desired)
     builder.Connect(machine.GetOutputPort("gripper_command"),

@@ -14,7 +14,9 @@ runs unchanged on either:
                while all is well (the state machine's `device_fault` input);
                stop (1): 1 once there is any fault;
            arm.commanded_state (12): positions and the joint velocities sent to the arm;
-           {arm,gripper,tactile}.time_measured (1), tactile.stale (1), tactile.zeroing (1).
+           {arm,gripper,tactile}.time_measured (1), tactile.stale (1), tactile.zeroing (1);
+           tactile.pad_acceleration_samples (abstract (n, 6) array, m/s^2): every film
+               sample played in the tick, in device order (TactileSerialReceiver).
 
 Inside: the Jaco on LCM (AddJacoLcmDriver: JacoVelocityTracker -> KINOVA_JACO_COMMAND at
 100 Hz, KINOVA_JACO_STATUS -> measured state), the Robotiq 2F-85 on Modbus RTU
@@ -78,6 +80,7 @@ class HardwareStation(Diagram):
         - tactile.left_pad_acceleration
         - tactile.right_taxel_forces
         - tactile.right_pad_acceleration
+        - tactile.pad_acceleration_samples
         - tactile.time_measured
         - tactile.stale
         - tactile.zeroing
@@ -170,7 +173,7 @@ class HardwareStation(Diagram):
             for signal in ("taxel_forces", "pad_acceleration"):
                 builder.ExportOutput(tactile.GetOutputPort(f"{finger}_{signal}"),
                                      f"tactile.{finger}_{signal}")
-        for name in ("time_measured", "stale", "zeroing"):
+        for name in ("pad_acceleration_samples", "time_measured", "stale", "zeroing"):
             builder.ExportOutput(tactile.GetOutputPort(name), f"tactile.{name}")
 
         # Watchdog and faults; any fault holds the arm still.

@@ -14,12 +14,21 @@ threshold.
     y = HP(a), per axis: a second-order Butterworth high-pass at `band_hz`
     slip_vibration_i = sqrt(mean over the last `window_s` of |y_i|^2)   [m/s^2]
 
+The filter runs once per device sample. In simulation that is once per tick; on hardware
+the samples arrive in bursts and the receiver holds or merges them to give one value per
+tick, and a held value followed by a jump is a step the high-pass rings on (beside a CPU
+hog, bursts of a few ticks rang above the slip threshold during a smooth lift). So when
+the `pad_acceleration_samples` input is connected (the hardware station's port of that
+name), each tick filters exactly the samples the device sent since the last one, in order,
+and a tick with none leaves the band as it was.
+
 A slip slower than band_hz x 0.5 mm (40 mm/s at 80 Hz) is attenuated at 12 dB per octave:
 the trigger sees fast slips (the object falling or the pads sliding along it at lift
 speed), not creep.
 """
 
 import numpy as np
+from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import BasicVector, LeafSystem
 from scipy import signal
 
@@ -55,12 +64,16 @@ class SlipVibrationBand(LeafSystem):
         name: SlipVibrationBand
         input_ports:
         - pad_acceleration
+        - pad_acceleration_samples (optional)
         output_ports:
         - slip_vibration
 
     Ports:
         pad_acceleration: (6) [left x, y, z, right x, y, z] the pads' vibration [m/s^2],
             pad frames, sampled every 1 / sample_rate_hz.
+        pad_acceleration_samples: (abstract, an (n, 6) array) when connected, the rows of
+            pad_acceleration the device sampled since the last tick, oldest first; then
+            pad_acceleration is not read.
         slip_vibration: (2) [left, right] RMS of the high-passed vibration over the last
             window_s [m/s^2].
 
@@ -73,6 +86,8 @@ class SlipVibrationBand(LeafSystem):
         self._coefficients = highpass_biquad(band_hz, sample_rate_hz)
         self._window = max(1, round(window_s * sample_rate_hz))
         self._input = self.DeclareVectorInputPort("pad_acceleration", _AXES)
+        self._samples = self.DeclareAbstractInputPort(
+            "pad_acceleration_samples", AbstractValue.Make(np.zeros((0, _AXES))))
         size = 2 * _AXES + len(FINGER_NAMES) * self._window
         self._state = self.DeclareDiscreteState(BasicVector(np.zeros(size)))
         self.DeclarePeriodicDiscreteUpdateEvent(1.0 / sample_rate_hz, 0.0, self._update)
@@ -80,13 +95,20 @@ class SlipVibrationBand(LeafSystem):
                                      prerequisites_of_calc={self.xd_ticket()})
 
     def _update(self, context, discrete_state):
-        # In place: discrete_state starts as a copy of the current state; the window is
-        # shifted by one sample (numpy copies overlapping slices safely).
+        # In place: discrete_state starts as a copy of the current state.
         s = discrete_state.get_mutable_value(self._state)
-        x = self._input.Eval(context)
+        if self._samples.HasValue(context):
+            for x in self._samples.Eval(context):
+                self._filter_sample(s, x)
+        else:
+            self._filter_sample(s, self._input.Eval(context))
+
+    def _filter_sample(self, s: np.ndarray, x: np.ndarray):
+        """Advances the state vector s by one sample x (6) [m/s^2], in place."""
         y, s[:_AXES], s[_AXES:2 * _AXES] = highpass_step(self._coefficients, x, s[:_AXES],
                                                          s[_AXES:2 * _AXES])
-        # The oldest squared magnitude of each pad leaves, the newest enters at the end.
+        # The oldest squared magnitude of each pad leaves, the newest enters at the end
+        # (numpy copies overlapping slices safely).
         squares = s[2 * _AXES:].reshape(len(FINGER_NAMES), self._window)
         squares[:, :-1] = squares[:, 1:]
         squares[:, -1] = np.add.reduce(y.reshape(len(FINGER_NAMES), 3) ** 2, axis=1)
@@ -98,11 +120,15 @@ class SlipVibrationBand(LeafSystem):
 
 
 def AddSlipVibrationBand(builder, pad_acceleration, *, band_hz: float, window_s: float,
-                         sample_rate_hz: float):
-    """Adds a SlipVibrationBand fed by `pad_acceleration` (an output port, 6); returns its
-    slip_vibration output port."""
+                         sample_rate_hz: float, pad_acceleration_samples=None):
+    """Adds a SlipVibrationBand fed by `pad_acceleration` (an output port, 6) and, when
+    given, `pad_acceleration_samples` (an abstract output port, see the class); returns
+    its slip_vibration output port."""
     band = builder.AddNamedSystem("slip_vibration_band", SlipVibrationBand(
         band_hz=band_hz, window_s=window_s, sample_rate_hz=sample_rate_hz))
-    builder.Connect(pad_acceleration, band.get_input_port())
+    builder.Connect(pad_acceleration, band.GetInputPort("pad_acceleration"))
+    if pad_acceleration_samples is not None:
+        builder.Connect(pad_acceleration_samples,
+                        band.GetInputPort("pad_acceleration_samples"))
     return band.GetOutputPort("slip_vibration")
 

@@ -16,6 +16,11 @@ tick, so the latency stays at most `max_backlog` ticks. Frames played together k
 newest counts and the piezo sample of largest magnitude, so an impact is never dropped.
 `max_backlog = 0` plays everything that arrived at once.
 
+Filters that must see the device's sample sequence (the slip band's high-pass: a held or
+skipped sample is a step it would ring on) read `pad_acceleration_samples` instead: every
+piezo sample played in the tick, in device order, none merged or repeated (empty in a tick
+that played none).
+
 When nothing arrived for `stale_timeout` the outputs keep the last values,
 `time_measured` (the played frame's timestamp) stops advancing and `stale` is 1, so old
 data is never passed on as fresh.
@@ -39,6 +44,9 @@ from tegrasp_drake.hardware.myrio.tactile_calibration import (
     forces_from_counts)
 
 
+_NO_SAMPLES = np.zeros((0, len(FINGER_NAMES)))
+
+
 @dataclasses.dataclass(frozen=True)
 class TactileReceiverState:
     """What the receiver knows, kept in the Context."""
@@ -52,6 +60,8 @@ class TactileReceiverState:
     zeroed: bool = False
     pending: tuple = ()                 # frames received, not yet played (oldest first)
     played_arrival_time: float = -np.inf  # time.monotonic() [s] the played frame arrived
+    played_samples: np.ndarray = dataclasses.field(  # (n, 2) [m/s^2] played in the last tick
+        default_factory=lambda: _NO_SAMPLES)  # noqa: the one empty array, never changed
 
     def __deepcopy__(self, memo):
         # Immutable (replaced, never changed in place): the copies Drake makes of the
@@ -70,6 +80,7 @@ def receiver_state_after_frames(state: TactileReceiverState, frames,
     forces, accelerations = list(state.forces), list(state.accelerations)
     pads, zeroing, zeroed = state.pads, state.zeroing, state.zeroed
     peak = [None, None]  # the largest-magnitude piezo sample of these frames, per pad
+    samples = []  # every piezo sample of these frames once zeroed, oldest first, per pad
     volts_per_count = calibration.piezo_volts_per_count
     for frame in frames:
         counts = (frame.left_counts, frame.right_counts)
@@ -83,17 +94,21 @@ def receiver_state_after_frames(state: TactileReceiverState, frames,
         for i, pad in enumerate(pads):
             if counts[i] is not None:
                 forces[i] = forces_from_counts(counts[i], pad.gain, pad.offset)
-            acceleration = float(acceleration_from_piezo(
-                frame.piezo[i], volts_per_count, pad.piezo_gain, pad.piezo_offset))
+        frame_samples = [float(acceleration_from_piezo(
+            piezo, volts_per_count, pad.piezo_gain, pad.piezo_offset))
+            for piezo, pad in zip(frame.piezo, pads)]
+        for i, acceleration in enumerate(frame_samples):
             if peak[i] is None or abs(acceleration) > abs(peak[i]):
                 peak[i] = acceleration
+        samples.append(frame_samples)
     accelerations = [a if p is None else p for a, p in zip(accelerations, peak)]
     if not frames:
         return state
     return dataclasses.replace(
         state, forces=tuple(forces), accelerations=tuple(accelerations),
         device_time=frames[-1].time, arrival_time=frames[-1].arrival_time, pads=pads,
-        zeroing=zeroing, zeroed=zeroed)
+        zeroing=zeroing, zeroed=zeroed,
+        played_samples=np.array(samples).reshape(len(samples), len(FINGER_NAMES)))
 
 
 def receiver_state_after_tick(state: TactileReceiverState, received, calibration:
@@ -103,7 +118,8 @@ def receiver_state_after_tick(state: TactileReceiverState, received, calibration
     during zeroing, all. Pure."""
     pending = state.pending + tuple(received)
     if not pending:
-        return state
+        return (state if not len(state.played_samples) else
+                dataclasses.replace(state, played_samples=_NO_SAMPLES))
     catching_up = 2 if len(pending) > 2 else 1
     count = max(catching_up, len(pending) - max_backlog) if state.zeroed else len(pending)
     played = receiver_state_after_frames(state, pending[:count], calibration)
@@ -123,6 +139,7 @@ class TactileSerialReceiver(LeafSystem):
         - left_pad_acceleration
         - right_taxel_forces
         - right_pad_acceleration
+        - pad_acceleration_samples
         - time_measured
         - stale
         - arrival_time
@@ -132,6 +149,9 @@ class TactileSerialReceiver(LeafSystem):
         left_taxel_forces, right_taxel_forces: (12) taxel normal forces [N].
         left_pad_acceleration, right_pad_acceleration: (3) the piezo film's
             acceleration-equivalent [m/s^2] along the pad frame's x, zeros in y and z.
+        pad_acceleration_samples: (abstract, an (n, 6) array) every piezo sample played in
+            the last tick, oldest first, as rows [left x, y, z, right x, y, z] [m/s^2]
+            (zeros in y and z); no rows when none was played.
         time_measured: (1) device timestamp [s] of the played frame (0 before any).
         stale: (1) 1 when no frame arrived for `stale_timeout` [s] of wall time.
         arrival_time: (1) host time.monotonic() [s] when the played frame arrived (for
@@ -157,6 +177,9 @@ class TactileSerialReceiver(LeafSystem):
             self.DeclareVectorOutputPort(
                 f"{finger}_pad_acceleration", 3, self._make_calc_acceleration(i),
                 prerequisites_of_calc=state_ticket)
+        self.DeclareAbstractOutputPort(
+            "pad_acceleration_samples", lambda: AbstractValue.Make(np.zeros((0, 6))),
+            self._calc_samples, prerequisites_of_calc=state_ticket)
         declare_scalar_state_outputs(self, self._state_index, {
             "time_measured": lambda state: state.device_time,
             "stale": lambda state: state.stale,
@@ -178,6 +201,12 @@ class TactileSerialReceiver(LeafSystem):
         if stale != new.stale:
             new = dataclasses.replace(new, stale=stale)
         state.get_mutable_abstract_state(self._state_index).set_value(new)
+
+    def _calc_samples(self, context, output):
+        played = self._state(context).played_samples
+        rows = np.zeros((len(played), 6))
+        rows[:, 0], rows[:, 3] = played[:, 0], played[:, 1]
+        output.set_value(rows)
 
     def _make_calc_forces(self, finger: int):
         def calc(context, output):
