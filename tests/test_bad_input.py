@@ -58,7 +58,7 @@ def test_a_bad_scenario_value_is_named_and_nothing_runs(overrides, expected, cap
     for assignment in overrides:
         argv += ["--set", assignment]
     code, text = run_cli(argv, capfd)
-    assert_one_line_error(code, text, expected)
+    assert_one_line_error(code, text, expected, f"--set {overrides[0]}")
 
 
 @pytest.mark.parametrize("command", [["trial"], ["record-events"]])

@@ -215,7 +215,8 @@ def LoadScenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT
     data = document[name] or {}
     for assignment in overrides:
         apply_override(data, assignment)
-    source = f"{path} [{name}]"
+    # A bad value given with --set is named as such, not as the file's.
+    source = f"{path} [{name}]" + "".join(f" --set {a}" for a in overrides)
     return validate(load_typed(data, Scenario, source), source)
 
 
