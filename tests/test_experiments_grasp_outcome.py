@@ -44,4 +44,8 @@ def test_the_grip_force_is_reached_at_the_command_or_at_the_plateau_below_it():
         GRIP_FRACTION * 25.0 / 30.0, abs=0.011)
     # The 22 mm cylinder's case: the taxels never see 90 % of the command.
     assert grip_force_time(squeeze_log(21.4), 25.0) == pytest.approx(GRIP_FRACTION, abs=0.011)
+    # A plateau below the command but above its fraction: the command's fraction, as
+    # before the plateau rule (the built-in objects' committed events depend on it).
+    assert grip_force_time(squeeze_log(24.0), 25.0) == pytest.approx(
+        GRIP_FRACTION * 25.0 / 24.0, abs=0.011)
     assert grip_force_time(squeeze_log(0.1), 25.0) is None  # never squeezed

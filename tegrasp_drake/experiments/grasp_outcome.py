@@ -4,8 +4,8 @@ the times of the physical events that mark the transitions.
 Physical events (from noise-free simulation truth):
   first_contact        first time either pad's true normal force exceeds CONTACT_FORCE_N
   grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip
-                       force, or of the grip's plateau where the taxels never see the
-                       commanded force (grip_plateau_n: any graspable object has one)
+                       force, or of the grip's plateau where the taxels never see that
+                       much (grip_plateau_n: any graspable object has one)
   table_touch          first time after lift-off that the object's lowest point is back
                        within TOUCH_HEIGHT_M of the table (a tilted object touches with an
                        edge while its origin is still higher)
@@ -105,15 +105,18 @@ def grip_plateau_n(log, after: float = 0.0) -> float:
 
 def grip_force_time(log, grip_force: float, after: float = 0.0):
     """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the
-    grip force, or of grip_plateau_n when that is lower (the taxels do not see all of the
-    contact force of a thin object: a 22 mm cylinder's plateau is 21.4 N of a 25 N
-    command). Identical to the fraction of the command wherever the command is reached.
-    None when the force never rises above CONTACT_FORCE_N."""
-    level = min(grip_force, grip_plateau_n(log, after))
-    if level <= CONTACT_FORCE_N:
-        return None
-    reached = true_sa(log).min(axis=1) >= GRIP_FRACTION * level
-    return _first(log.t_sa, reached & (log.t_sa >= after))
+    grip force; where it never does, GRIP_FRACTION of grip_plateau_n instead (the taxels
+    do not see all of the contact force of a thin object: a 22 mm cylinder's plateau is
+    21.4 N of a 25 N command). A plateau below the command but above its fraction changes
+    nothing (the built-in objects' events were recorded so). None when the force never
+    rises above CONTACT_FORCE_N."""
+    weaker = true_sa(log).min(axis=1)
+    level = grip_force
+    if not np.any((weaker >= GRIP_FRACTION * grip_force) & (log.t_sa >= after)):
+        level = grip_plateau_n(log, after)
+        if level <= CONTACT_FORCE_N:
+            return None
+    return _first(log.t_sa, (weaker >= GRIP_FRACTION * level) & (log.t_sa >= after))
 
 
 def table_touch_time(log, object_config=None, after: float = 0.0):
