@@ -284,3 +284,14 @@ def test_a_non_finite_sample_scores_its_channel_zero_for_one_window_and_poisons_
                                rtol=0, atol=1e-9)
     matched = [times[run[:, 1] > 0][0] for run in runs]
     assert matched[0] == matched[1] and 0.8 < matched[0] < 1.3
+
+
+
+def test_per_event_thresholds_replace_the_common_pair_for_their_event_only():
+    """Issue #14: the taxel_aware controller's ensemble events carry a threshold pair each.
+    Unmatchable thresholds for Load-Lift alone stop the sequence there; the others match."""
+    config = EventMatcherConfig(event_thresholds={"load_lift": (1.0, 1.0)})
+    matched = run_grasp_sequence(replay(NOISY), config)
+    assert list(matched) == ["reach_load"]
+    with pytest.raises(ValueError, match="without an event"):
+        EventMatcher(EVENTS, EventMatcherConfig(event_thresholds={"hold_place": (0.5, 0.5)}))

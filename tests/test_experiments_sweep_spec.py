@@ -9,6 +9,7 @@ import pytest
 
 from tegrasp_drake.experiments.sweep.spec import (
     CONTROLLERS,
+    PAPER_CONTROLLERS,
     ObjectDefinition,
     RandomisationConfig,
     SweepSpec,
@@ -32,7 +33,8 @@ def write_yaml(tmp_path, text):
 
 def test_default_spec_is_the_papers_experiment():
     trials = expand_trials(SweepSpec())
-    for controller in CONTROLLERS:
+    assert {t.controller for t in trials} == set(PAPER_CONTROLLERS)
+    for controller in PAPER_CONTROLLERS:
         mine = [t for t in trials if t.controller == controller]
         assert len(mine) == 81  # 3 objects x 9 markers x 3 attempts
         assert sum(t.well_placed for t in mine) == 9

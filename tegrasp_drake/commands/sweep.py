@@ -86,6 +86,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--events", metavar="DIR", default=None,
                         help="memorized events folder (default: $TEGRASP_EVENTS_DIR or "
                         "~/.local/share/tegrasp/events, then the package's)")
+    parser.add_argument("--logs", metavar="DIR", default=None,
+                        help="also save each trial's log (trial.npz format) in DIR, for "
+                        "re-scoring offline (analysis/detection_quality.py)")
     parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
                         help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
 
@@ -136,6 +139,8 @@ def run(args) -> int:
         progress = not args.no_progress and progress_wanted(args)
         if args.events:
             trial_function = functools.partial(trial_function, events_dir=args.events)
+        if args.logs:
+            trial_function = functools.partial(trial_function, log_dir=args.logs)
         if args.benchmark:
             runs, identical = run_benchmark(spec, trial_function, progress=progress)
             print(benchmark_text(runs, identical))

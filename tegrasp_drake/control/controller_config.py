@@ -8,9 +8,13 @@ override can change it (e.g. `--set controller.lift_load_enabled=false`).
 import dataclasses
 
 # The controllers (issue #5): the paper's memorized triggers, heuristic thresholds in the
-# style of Romano et al. 2011, and open loop. This module imports no Drake: the sweep spec
-# (parsed without Drake) reads the names here.
-CONTROLLERS = ("memorized", "heuristic", "open_loop")
+# style of Romano et al. 2011, and open loop; issue #14 adds taxel_aware (corrections from
+# the whole taxel array, memorized events of an ensemble of ideal grasps). This module
+# imports no Drake: the sweep spec (parsed without Drake) reads the names here.
+CONTROLLERS = ("memorized", "heuristic", "open_loop", "taxel_aware")
+# The controllers whose transitions a memorized event triggers, and the events folder each
+# reads (a sub-folder of the events folder; "" is the folder itself: the paper's events).
+MEMORIZED_EVENT_CONTROLLERS = {"memorized": "", "taxel_aware": "ensemble"}
 
 
 @dataclasses.dataclass
@@ -21,6 +25,58 @@ class HeuristicTriggerConfig:
     contact_force_n: float = 1.0  # Reach-Load: each finger's SA above this [N]
     grip_fraction: float = 0.9  # Load-Lift: each finger's SA above this fraction of the grip
     place_ra_mps2: float = 3.0  # Place-Unload: either RA above this [m/s^2]
+
+
+@dataclasses.dataclass
+class TaxelAwareConfig:
+    """The taxel-aware corrections (control/taxel_corrections.py; issue #14). Lengths in
+    the pad's terms: a row is 6 mm along the approach axis, a column 6.7 mm high."""
+    # Re-Reach normal to the palm when the contact's centroid sits more than this far from
+    # the pads' centres along the approach axis [m]: two thirds of a row (a line contact
+    # between two rows interpolates; within this it presses the two middle rows).
+    centre_tolerance_m: float = 0.004
+    # At most this far per Re-Reach along the approach axis [m]: the pad's half length
+    # (12 mm) plus a quarter row; a contact on the edge row only says "at least this far".
+    max_approach_shift_m: float = 0.015
+    # A shift below this along both axes is not worth an open-move-close [m]: a third of
+    # a row, below the centroid's resolution with the taxel noise.
+    min_shift_m: float = 0.002
+    # Re-Reaches of either direction, repeated until centred, at most this many (the
+    # paper's 2 plus one for each axis the taxels add).
+    max_re_reaches: int = 4
+    # A pad touching during the approach: back off this far along the approach axis while
+    # shifting along the stroke [m], then approach again; a sideways shift while still
+    # pressing would drag the object over. The pad's length less its palm row (18 mm),
+    # rounded up: wherever along the pad the object touched, the pad backs off it.
+    approach_retreat_m: float = 0.02
+    # One finger alone touches while the gripper has closed to within this of the
+    # object's width [m]: the object is between the fingers, the other finger's contact is
+    # off its pad or light; Load (the squeeze brings the second pad on) instead of another
+    # Re-Reach that would shift by less than min_shift_m (the stall of issue #14).
+    one_sided_width_margin_m: float = 0.004
+    # Held tilted: re-grasp (put it down, open, close again, lift) when in Hold the
+    # contact line on a pad turns more than tilt_limit_deg, or the two pads' contact
+    # heights differ by more than height_mismatch_m [m] (half a column: the contacts
+    # lie in different columns).
+    regrasp_enabled: bool = True
+    tilt_limit_deg: float = 10.0
+    height_mismatch_m: float = 0.0033
+    tilt_sustain_s: float = 0.1  # for this long [s] (one tick of noise is not a tilt)
+    max_regrasps: int = 1
+    # Eq. 3 thresholds [SA, RA] of each ensemble event (events/ensemble), chosen per
+    # transition on held-out ensemble runs by analysis/choose_ensemble_thresholds.py
+    # (analysis/ensemble_thresholds.md: the rule and the ROC-style tables), never on a
+    # sweep's trials.
+    reach_load_thresholds: list[float] = dataclasses.field(default_factory=lambda: [0.44, 0.65])
+    load_lift_thresholds: list[float] = dataclasses.field(default_factory=lambda: [0.94, 0.90])
+    place_unload_thresholds: list[float] = dataclasses.field(
+        default_factory=lambda: [0.98, 0.90])
+
+    def event_thresholds(self) -> dict[str, tuple[float, float]]:
+        """{transition: (SA, RA)} for the EventMatcher."""
+        return {"reach_load": tuple(self.reach_load_thresholds),
+                "load_lift": tuple(self.load_lift_thresholds),
+                "place_unload": tuple(self.place_unload_thresholds)}
 
 
 @dataclasses.dataclass
@@ -86,3 +142,5 @@ class GraspControllerConfig:
     # here (of shape, size, mass, friction, file), e.g. [friction] to grasp a slippery box
     # with the box's events.
     event_object_may_differ: list[str] = dataclasses.field(default_factory=list)
+    # The taxel_aware controller's corrections (unused by the other controllers).
+    taxel_aware: TaxelAwareConfig = dataclasses.field(default_factory=TaxelAwareConfig)

@@ -44,12 +44,25 @@ class Counters:
     """How many Re-Reach and Lift-Load corrections the grasp has made."""
     re_reaches: int = 0
     lift_loads: int = 0
+    regrasps: int = 0  # the taxel_aware controller's re-grasps of a tilted object
 
 
-def corrective_action_of(from_mode: Mode, to_mode: Mode) -> str | None:
-    """The corrective action ("re_reach", "lift_load", "avoid") that the transition
-    from_mode -> to_mode starts; None for any other transition."""
-    return CORRECTIVE_ACTIONS.get((from_mode, to_mode))
+# Taken by a corrective trigger, these transitions start the taxel_aware controller's
+# actions (taxel_corrections.py); by their usual trigger they start none.
+CORRECTIVE_ONLY_ACTIONS = {(Mode.HOLD, Mode.PLACE): "regrasp",
+                           (Mode.REACH, Mode.LOAD): "load_without_event"}
+
+
+def corrective_action_of(from_mode: Mode, to_mode: Mode,
+                         trigger: Trigger | None = None) -> str | None:
+    """The corrective action ("re_reach", "lift_load", "avoid"; with a corrective
+    `trigger` also "regrasp", "load_without_event") that the transition from_mode ->
+    to_mode starts; None for any other transition (a corrective Load -> Lift, after a
+    Lift-Load's re-load or the taxel_aware Load timeout, is no action of its own)."""
+    action = CORRECTIVE_ACTIONS.get((from_mode, to_mode))
+    if action is None and trigger == Trigger.CORRECTIVE:
+        action = CORRECTIVE_ONLY_ACTIONS.get((from_mode, to_mode))
+    return action
 
 
 # ---- Re-Reach -------------------------------------------------------------------------

@@ -17,8 +17,9 @@ import dataclasses
 from pydrake.systems.primitives import Multiplexer
 
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.control.cartesian_arm_controller import AddCartesianArmController
+from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
@@ -73,9 +74,20 @@ class GraspController:
         return log
 
 
-def load_controller_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
-    """The memorized events of the scenario's object, from `events_dir` or else the user's
-    events folder or the package's (rig/paths.events_search_path).
+def controller_events_folders(controller: str, events_dir=None) -> list:
+    """The folders the controller `controller` reads its memorized events from: the events
+    search path (rig/paths.events_search_path), each folder's sub-folder
+    MEMORIZED_EVENT_CONTROLLERS[controller] ("" for the paper's memorized controller)."""
+    from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
+    sub = MEMORIZED_EVENT_CONTROLLERS.get(controller, "")
+    return [folder / sub if sub else folder for folder in paths.events_search_path(events_dir)]
+
+
+def load_controller_events(scenario, events_dir=None, *, nominal_object=None,
+                           controller: str | None = None) -> dict:
+    """The memorized events of the scenario's object for `controller` (default the
+    scenario's), from `events_dir` or else the user's events folder or the package's
+    (controller_events_folders).
 
     MemorizedEventError (naming the folders, the file and the command that records them)
     when they are missing, or when they were recorded on an object that differs from the
@@ -87,7 +99,8 @@ def load_controller_events(scenario, events_dir=None, *, nominal_object=None) ->
                                            object_description)
     name = scenario.object.name
     try:
-        folder, events = find_memorized_events(paths.events_search_path(events_dir), name)
+        folder, events = find_memorized_events(
+            controller_events_folders(controller or scenario.controller.name, events_dir), name)
     except MemorizedEventError as e:
         if name not in BUILTIN_OBJECTS:
             e.args = (f"{e.args[0]} For your own object: `tegrasp record-events --scenario "
@@ -119,13 +132,16 @@ def load_controller_events(scenario, events_dir=None, *, nominal_object=None) ->
 def _add_detector(builder, scenario, name, events, channels):
     """The detector fed by `channels` (an output port), and its trigger."""
     config = scenario.controller
-    if name == "memorized":
+    if name in MEMORIZED_EVENT_CONTROLLERS:
         from tegrasp_drake.events import EventMatcherConfig, add_event_matcher
         matcher_config = EventMatcherConfig(
             sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
+            event_thresholds=(config.taxel_aware.event_thresholds()
+                              if name == "taxel_aware" else {}),
             sa_rate_hz=scenario.tactile.sample_rate_hz,
             ra_rate_hz=scenario.vibration.sample_rate_hz)
-        events = events if events is not None else load_controller_events(scenario)
+        events = (events if events is not None
+                  else load_controller_events(scenario, controller=name))
         return (add_event_matcher(builder, events, matcher_config, channels=channels),
                 Trigger.MEMORIZED_EVENT)
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
@@ -187,6 +203,11 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
                                          sample_rate_hz=scenario.vibration.sample_rate_hz,
                                          pad_acceleration_samples=samples),
                     machine.GetInputPort("slip_vibration"))
+    taxels = builder.AddNamedSystem("taxel_forces_mux", Multiplexer([TAXELS_PER_PAD] * 2))
+    for k, finger in enumerate(FINGER_NAMES):
+        builder.Connect(station.GetOutputPort(f"tactile.{finger}_taxel_forces"),
+                        taxels.get_input_port(k))
+    builder.Connect(taxels.get_output_port(), machine.GetInputPort("taxel_forces"))
     builder.Connect(machine.GetOutputPort("X_WG_desired"), X_WG_desired)
     builder.Connect(machine.GetOutputPort("gripper_command"),
                     station.GetInputPort("gripper.command"))

@@ -81,13 +81,14 @@ class Transition:
     reason: str
     scores: tuple[float, ...] | None = None  # the detector's four channel scores; None: none
     offset_m: float | None = None  # Re-Reach: the shift along world y [m]
+    approach_offset_m: float | None = None  # taxel_aware Re-Reach: the shift along world x [m]
     grip_force_n: float | None = None  # Lift-Load: the raised grip force [N]
     direction: tuple[float, float, float] | None = None  # Avoid: unit direction, world
     delta_sa_n: tuple[float, float] | None = None  # Avoid: (left, right) SA gain of the hit [N]
 
     def as_dict(self) -> dict:
         """The JSON form (trial results, logs): t, from, to, trigger, reason, then the
-        fields that are set (scores, offset_m, grip_force_n, direction, delta_sa_n) with
+        fields that are set (scores, offset_m, approach_offset_m, grip_force_n, direction, delta_sa_n) with
         tuples as lists. Modes by their labels (Mode.label)."""
         entry = {"t": self.t, "from": self.from_mode.label, "to": self.to_mode.label,
                  "trigger": self.trigger.value, "reason": self.reason}
@@ -107,4 +108,4 @@ class Transition:
                           trigger=Trigger(entry["trigger"]), reason=entry["reason"], **optional)
 
 
-_OPTIONAL_FIELDS = ("scores", "offset_m", "grip_force_n", "direction", "delta_sa_n")
+_OPTIONAL_FIELDS = ("scores", "offset_m", "approach_offset_m", "grip_force_n", "direction", "delta_sa_n")

@@ -11,7 +11,9 @@ Motion of each mode (world frame, grasp frame G; the stroke is world y; the corr
 actions' decisions and moves are in corrective_actions.py):
   Reach     move to the expected object position at grasp height, then close
   Re-Reach  open, shift along the stroke toward the finger that touched first by the offset
-            its contact implies, (then Reach closes again)
+            its contact implies, (then Reach closes again); the taxel_aware controller also
+            shifts along the approach axis by the contact's offset on the pads, and opens
+            without a shift to re-grasp an object it put down because it sat tilted
   Load      keep closing at the grip force (raised by each Lift-Load)
   Lift      rise by lift_height;  Hold: stay;  Avoid: move avoid_distance along the hit
   Place     descend to place_press below the lift-off height (stops at the Place-Unload event)
@@ -31,12 +33,14 @@ from tegrasp_drake.control.corrective_actions import (
     re_reach_shift, re_reach_target)
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.motion_profiles import MotionSegment
+from tegrasp_drake.control.taxel_contact import grasp_contact
+from tegrasp_drake.control.taxel_corrections import Shift, held_tilted, taxel_re_reach_shift
 from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.control.transition_logic import Observation, next_mode
+from tegrasp_drake.control.transition_logic import TAXEL_AWARE, Observation, next_mode
 from tegrasp_drake.events.transitions import NO_EVENT, REQUIRED_TRANSITIONS, transition_states
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
-from tegrasp_drake.rig.channels import CHANNEL_NAMES
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, TAXELS_PER_PAD
 
 OPENING_SPEED_MPS = 0.1  # when opening to re-reach or unload
 GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
@@ -62,6 +66,11 @@ class MachineState:
     slip_since: float = -1.0
     motion_done_since: float = -1.0
     reentry_offset: float = 0.0  # Re-Reach shift along world y [m]
+    reentry_offset_x: float = 0.0  # Re-Reach shift along world x [m] (taxel_aware)
+    tilted_since: float = -1.0  # Hold: since when the object sits tilted (taxel_aware) [s]
+    regrasp_pending: bool = False  # the Place puts a tilted object down to re-grasp it
+    approach_contact_since: float = -1.0  # a pad touched while approaching (taxel_aware) [s]
+    resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
     sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
     acceleration_sum: tuple = (0.0, 0.0, 0.0)  # Avoid sensing: pads' world acceleration sum
     sa_gain_sum: tuple = (0.0, 0.0)  # Avoid sensing: SA gains over sa_before, summed
@@ -121,6 +130,7 @@ class GraspStateMachine(LeafSystem):
         - pad_acceleration (optional)
         - slip_vibration
         - device_fault (optional)
+        - taxel_forces (optional)
         output_ports:
         - X_WG_desired
         - gripper_command
@@ -138,6 +148,8 @@ class GraspStateMachine(LeafSystem):
             tactile.slip_vibration_band), for Lift-Load.
         device_fault: an abstract str, "" when all devices are alive, else the watchdog's
             message; unconnected: no faults.
+        taxel_forces: [left 12, right 12] taxel forces (N, taxel_layout order); read by
+            the taxel_aware controller only, which needs it connected.
         X_WG_desired: RigidTransform, the grasp frame's desired pose in world.
         gripper_command: [rPR, rSP, rFR] bytes.
         expected_event: [index] of the event the detector should check, -1 for none. It
@@ -162,6 +174,8 @@ class GraspStateMachine(LeafSystem):
         self._pad_acceleration = self.DeclareVectorInputPort("pad_acceleration", 6)
         self._slip_vibration = self.DeclareVectorInputPort("slip_vibration", 2)
         self._device_fault = self.DeclareAbstractInputPort("device_fault", AbstractValue.Make(""))
+        self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
+        self._taxel_aware = getattr(config, "name", "") == TAXEL_AWARE
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
         state_only = {self.abstract_state_ticket(self._state)}
@@ -247,7 +261,8 @@ class GraspStateMachine(LeafSystem):
             if opened and self._gripper_settled(s, t):
                 here = s.segment.position(t)
                 if s.mode == Mode.RE_REACH:
-                    target = re_reach_target(here, s.reentry_offset)
+                    target = re_reach_target(here, s.reentry_offset) + np.array(
+                        [s.reentry_offset_x, 0.0, 0.0])
                     duration = self._config.re_reach_move_s
                 else:
                     # Back to the start pose's distance (nearer, the wrist nears its singularity).
@@ -309,7 +324,21 @@ class GraspStateMachine(LeafSystem):
         device_fault = self._device_fault.Eval(context) if self._device_fault.HasValue(
             context) else ""
         time_in_mode = t - s.mode_start
-        observation = Observation(
+        taxel_fields, tilted_since = {}, -1.0
+        if self._taxel_aware:
+            shape = grasp_contact(self._taxel_forces.Eval(context))
+            tilted = s.mode == Mode.HOLD and held_tilted(shape, config.taxel_aware)
+            tilted_since = (s.tilted_since if s.tilted_since >= 0 else t) if tilted else -1.0
+            approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING and any(contact)
+            approach_since = ((s.approach_contact_since if s.approach_contact_since >= 0
+                               else t) if approaching else -1.0)
+            s = dataclasses.replace(s, approach_contact_since=approach_since)
+            taxel_fields = dict(approach_contact_s=t - approach_since if approaching else 0.0,
+                                opening_m=self._opening(context),
+                                object_width_m=self._plan.object_width, contact_shape=shape,
+                                tilted_s=t - tilted_since if tilted else 0.0,
+                                regrasp_pending=s.regrasp_pending)
+        observation = Observation(**taxel_fields,
             time_in_mode=time_in_mode, event_matched=bool(self._match.Eval(context)[0] > 0.5),
             motion_done=motion_done,
             time_since_motion_done=t - motion_done_since if motion_done else 0.0,
@@ -324,7 +353,7 @@ class GraspStateMachine(LeafSystem):
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",
             device_fault=device_fault)
         return observation, dataclasses.replace(
-            s, one_sided_since=one_sided_since, slip_since=slip_since,
+            s, one_sided_since=one_sided_since, slip_since=slip_since, tilted_since=tilted_since,
             motion_done_since=motion_done_since,
             # The baseline is the last Hold tick before the hit (not the hit's own tick).
             sa_before=(tuple(channels[:2]) if s.mode == Mode.HOLD and not observation.hit
@@ -340,22 +369,47 @@ class GraspStateMachine(LeafSystem):
         hold_here = MotionSegment.hold(t, here)
         common = dict(mode=decision.mode, mode_start=t, segment=hold_here, stage=Stage.NONE,
                       closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
-                      motion_done_since=-1.0)
+                      motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0)
 
         def new(logged: Transition = entry, **changes) -> MachineState:
             return dataclasses.replace(s, **{**common, "timeline": s.timeline + (logged,),
                                              **changes})
 
         counters, mode = s.counters, decision.mode
+        if mode == Mode.REACH and s.resume_approach:  # finish the interrupted approach
+            target = (p.object_xy[0], here[1], p.grasp_height)
+            start_to_grasp = np.linalg.norm(np.subtract((*p.object_xy, p.grasp_height),
+                                                        p.start_xyz))
+            remaining = np.linalg.norm(np.subtract(target, here))
+            duration = max(config.re_reach_move_s, p.reach_s * remaining / start_to_grasp)
+            return new(stage=Stage.MOVING, resume_approach=False,
+                       segment=MotionSegment(t, duration, tuple(here), target))
         if mode == Mode.REACH:  # back from Re-Reach: close again where we are
             return new(stage=Stage.CLOSING, closing_since=t, gripper_request_time=t,
                        gripper=(0.0, p.close_speed, s.grip_force))
         if mode == Mode.RE_REACH:
-            shift = re_reach_shift(self._channels.Eval(context), self._opening(context),
-                                   p.object_width, config.contact_force_n)
-            return new(dataclasses.replace(entry, offset_m=round(shift, 5)),
-                       stage=Stage.OPENING, reentry_offset=shift, gripper_request_time=t,
-                       counters=dataclasses.replace(counters, re_reaches=counters.re_reaches + 1),
+            approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING
+            if s.mode == Mode.PLACE:  # a re-grasp: open where it stands, close again
+                shift, re_reaches = Shift(0.0, 0.0), counters.re_reaches
+            elif self._taxel_aware:
+                shift = taxel_re_reach_shift(
+                    grasp_contact(self._taxel_forces.Eval(context)), self._channels.Eval(context),
+                    self._opening(context), p.object_width, config)
+                if approaching:  # back off, shift along the stroke, approach again
+                    shift = Shift(-config.taxel_aware.approach_retreat_m, shift.dy_m)
+                re_reaches = counters.re_reaches + 1
+            else:
+                shift = Shift(0.0, re_reach_shift(self._channels.Eval(context),
+                                                  self._opening(context), p.object_width,
+                                                  config.contact_force_n))
+                re_reaches = counters.re_reaches + 1
+            logged = dataclasses.replace(entry, offset_m=round(shift.dy_m, 5))
+            if self._taxel_aware:
+                logged = dataclasses.replace(logged, approach_offset_m=round(shift.dx_m, 5))
+            return new(logged, stage=Stage.OPENING, reentry_offset=shift.dy_m,
+                       reentry_offset_x=shift.dx_m, gripper_request_time=t,
+                       regrasp_pending=False, resume_approach=approaching,
+                       counters=dataclasses.replace(counters, re_reaches=re_reaches),
                        gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))
         if mode == Mode.LOAD:
             if s.mode != Mode.LIFT:
@@ -375,7 +429,11 @@ class GraspStateMachine(LeafSystem):
                        sa_gain_sum=(0.0, 0.0))
         if mode == Mode.PLACE:
             target = (here[0], here[1], p.grasp_height - p.place_press)
-            return new(segment=MotionSegment(t, p.place_s, tuple(here), target))
+            regrasp = decision.trigger == Trigger.CORRECTIVE  # put down a tilted object
+            return new(segment=MotionSegment(t, p.place_s, tuple(here), target),
+                       regrasp_pending=regrasp,
+                       counters=dataclasses.replace(
+                           counters, regrasps=counters.regrasps + int(regrasp)))
         if mode == Mode.UNLOAD:
             return new(stage=Stage.OPENING, gripper_request_time=t,
                        gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))

@@ -24,6 +24,12 @@ tick and carries out the motion of each mode.
   any      -> Failed     a device fault, the object lost, or corrections used up
 A corrective action whose retries are used up goes to Failed with the reason; those
 decisions (take the action, or give up) are in corrective_actions.py.
+
+The taxel_aware controller (issue #14) changes Reach, Load, Hold and Place with the
+decisions of taxel_corrections.py: Re-Reach along both axes until centred, Load on
+one-sided contact at the object's width or with both pads on the object after the event
+timeout, Lift after the Load timeout with both pads on, and a re-grasp of an object held
+tilted (Hold -> Place -> Re-Reach -> Reach ...).
 """
 
 import dataclasses
@@ -31,6 +37,11 @@ import dataclasses
 from tegrasp_drake.control.corrective_actions import (Counters, avoid_on_hit, lift_load_or_fail,
                                                       re_reach_or_fail, relift_after_lift_load)
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Decision, Mode, Trigger
+from tegrasp_drake.control.taxel_contact import GraspContact
+from tegrasp_drake.control.taxel_corrections import (
+    after_regrasp_place, approach_contact_response, on_reach_event, on_reach_timeout, one_sided_response, regrasp_or_none)
+
+TAXEL_AWARE = "taxel_aware"
 
 HOLDING_MODES = (Mode.LIFT, Mode.HOLD, Mode.AVOID, Mode.PLACE)
 
@@ -52,9 +63,47 @@ class Observation:
     hit: bool = False  # either RA above the hit threshold (after the refractory time)
     gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
     device_fault: str = ""  # a watchdog's message, "" for none
+    # The taxel_aware controller's: the gripper's opening and the object's width along the
+    # stroke [m], the contact's shape on the pads (None: not read), how long the object
+    # has sat tilted in Hold [s], and whether the Place is a re-grasp's.
+    opening_m: float = 0.0
+    object_width_m: float = 0.0
+    contact_shape: GraspContact | None = None
+    tilted_s: float = 0.0
+    regrasp_pending: bool = False
+    approach_contact_s: float = 0.0  # a pad in contact while the approach moves [s]
+
+
+def _taxel_aware(config) -> bool:
+    return getattr(config, "name", "") == TAXEL_AWARE
+
+
+def _reach_taxel_aware(obs: Observation, counters: Counters, config, event_trigger: Trigger):
+    if obs.approach_contact_s >= config.one_sided_contact_s:
+        return approach_contact_response(contact=obs.contact, re_reaches=counters.re_reaches,
+                                         config=config)
+    if obs.event_matched:
+        centre_first = (on_reach_event(obs.contact_shape, re_reaches=counters.re_reaches,
+                                       config=config)
+                        if obs.contact_shape is not None else None)
+        return centre_first or Decision(Mode.LOAD, event_trigger, "Reach-Load event")
+    if obs.one_sided_s >= config.one_sided_contact_s:
+        return one_sided_response(finger="left" if obs.contact[0] else "right",
+                                  opening_m=obs.opening_m, object_width_m=obs.object_width_m,
+                                  re_reaches=counters.re_reaches, config=config)
+    if obs.closed_on_nothing:
+        return on_reach_timeout(both_touch=False, re_reaches=counters.re_reaches,
+                                config=config, reason="the gripper closed on nothing")
+    if obs.closing_s >= config.reach_event_timeout_s:
+        return on_reach_timeout(
+            both_touch=all(obs.contact), re_reaches=counters.re_reaches, config=config,
+            reason=f"no Reach-Load event {config.reach_event_timeout_s:g} s after closing")
+    return None
 
 
 def _reach(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
+    if _taxel_aware(config):
+        return _reach_taxel_aware(obs, counters, config, event_trigger)
     if obs.event_matched:
         return Decision(Mode.LOAD, event_trigger, "Reach-Load event")
     if obs.one_sided_s >= config.one_sided_contact_s:
@@ -79,6 +128,9 @@ def _load(obs: Observation, counters: Counters, config, event_trigger: Trigger, 
         return relift
     if obs.time_in_mode >= config.load_event_timeout_s:
         reason = f"no Load-Lift event within {config.load_event_timeout_s:g} s"
+        if _taxel_aware(config) and all(obs.contact):
+            return Decision(Mode.LIFT, Trigger.CORRECTIVE, f"{reason}, both pads hold the "
+                            "object: lift")
         if counters.lift_loads:
             return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason} after Lift-Load")
         return re_reach_or_fail(counters, config, reason)
@@ -98,6 +150,11 @@ def _hold(obs: Observation, counters: Counters, config, event_trigger: Trigger, 
     avoid = avoid_on_hit(obs.hit, config)
     if avoid is not None:
         return avoid
+    if _taxel_aware(config):
+        regrasp = regrasp_or_none(tilted_s=obs.tilted_s, regrasps=counters.regrasps,
+                                  taxel_config=config.taxel_aware)
+        if regrasp is not None:
+            return regrasp
     if obs.time_in_mode >= hold_s:
         return Decision(Mode.PLACE, Trigger.TIMER, f"held {hold_s:g} s")
     return None
@@ -110,9 +167,15 @@ def _avoid(obs: Observation, counters: Counters, config, event_trigger: Trigger,
 
 
 def _place(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
+    placed = obs.event_matched or (obs.motion_done and obs.time_since_motion_done
+                                   >= config.place_event_timeout_s)
+    if placed:
+        regrasp = after_regrasp_place(regrasp_pending=obs.regrasp_pending)
+        if regrasp is not None:
+            return regrasp
     if obs.event_matched:
         return Decision(Mode.UNLOAD, event_trigger, "Place-Unload event")
-    if obs.motion_done and obs.time_since_motion_done >= config.place_event_timeout_s:
+    if placed:
         return Decision(Mode.UNLOAD, Trigger.TIMER, "no Place-Unload event after the arm stopped")
     return None
 

@@ -26,6 +26,10 @@ class EventMatcherConfig:
     """
     sa_threshold: float = 0.9
     ra_threshold: float = 0.7
+    # {transition: (sa, ra)} thresholds of single events, in place of the two above (the
+    # taxel_aware controller's ensemble events, chosen per transition); {}: none.
+    event_thresholds: Mapping[str, tuple[float, float]] = dataclasses.field(
+        default_factory=dict)
     min_contrast: float = 0.25
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0
@@ -116,8 +120,13 @@ class EventMatcher(WindowNormalizer):
         self._correlations = correlations
         self._events = ordered_events
         self._transitions = tuple(e.transition for e in self._events)
-        self._thresholds = np.array(
-            [config.sa_threshold] * len(SA_CHANNELS) + [config.ra_threshold] * len(RA_CHANNELS))
+        unknown = set(config.event_thresholds) - set(self._transitions)
+        if unknown:
+            raise ValueError(f"thresholds for transitions without an event: {sorted(unknown)}")
+        self._thresholds = np.array([
+            [sa] * len(SA_CHANNELS) + [ra] * len(RA_CHANNELS) for sa, ra in (
+                config.event_thresholds.get(t, (config.sa_threshold, config.ra_threshold))
+                for t in self._transitions)])
         # expected_event values accepted, as the port holds them -> event index.
         self._event_of_value = {float(event): event
                                 for event in range(NO_EVENT, len(self._events))}
@@ -225,7 +234,7 @@ class EventMatcher(WindowNormalizer):
         expected = self._expected_event(context)
         scores = self._scores_port.Eval(context)
         matched = (expected != NO_EVENT and self._scored_event(context) == expected
-                   and bool(np.all(scores > self._thresholds)))
+                   and bool(np.all(scores > self._thresholds[expected])))
         output.SetAtIndex(0, 1.0 if matched else 0.0)
 
 

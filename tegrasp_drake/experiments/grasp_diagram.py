@@ -28,6 +28,10 @@ from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.simulation.station import MakeGraspStation
 
 EXTRA_TIME_S = 10.0  # beyond the ideal grasp's duration, for corrections
+# The taxel_aware controller's further corrections: two more Re-Reaches than the paper's
+# (open, move 0.8 s, close: about 2.5 s each) and a re-grasp (put down, open, close, load,
+# lift and hold again: about 9 s), rounded up [s].
+TAXEL_AWARE_EXTRA_TIME_S = 15.0
 
 
 def MakeStation(scenario, *, meshcat=None, lcm=None):
@@ -83,7 +87,8 @@ def MakeGraspDiagram(scenario, *, station=None, controller: str | None = None,
                                     gripper_command=grasp.gripper_command, phase=grasp.mode)
     diagram = builder.Build()
     diagram.set_name(f"grasp_{grasp.name}")
-    time_limit = plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S
+    time_limit = plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S + (
+        TAXEL_AWARE_EXTRA_TIME_S if grasp.name == "taxel_aware" else 0.0)
     return GraspDiagram(diagram, station, grasp, loggers, time_limit)
 
 

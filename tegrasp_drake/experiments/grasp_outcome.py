@@ -3,7 +3,9 @@ the times of the physical events that mark the transitions.
 
 Physical events (from noise-free simulation truth):
   first_contact        first time either pad's true normal force exceeds CONTACT_FORCE_N
-  grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip force
+  grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip
+                       force, or of the grip's plateau where the taxels never see that
+                       much (grip_plateau_n: any graspable object has one)
   table_touch          first time after lift-off that the object's lowest point is back
                        within TOUCH_HEIGHT_M of the table (a tilted object touches with an
                        edge while its origin is still higher)
@@ -93,10 +95,28 @@ def first_contact_time(log, after: float = 0.0):
     return _first(log.t_sa, (true_sa(log).max(axis=1) > CONTACT_FORCE_N) & (log.t_sa >= after))
 
 
+def grip_plateau_n(log, after: float = 0.0) -> float:
+    """The level [N] the weaker pad's true force settles at after `after` [s]: its
+    maximum (the squeeze rises monotonically to it and the lift only redistributes it).
+    0 without samples."""
+    weaker = true_sa(log).min(axis=1)[log.t_sa >= after]
+    return float(weaker.max()) if weaker.size else 0.0
+
+
 def grip_force_time(log, grip_force: float, after: float = 0.0):
-    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of it."""
-    reached = true_sa(log).min(axis=1) >= GRIP_FRACTION * grip_force
-    return _first(log.t_sa, reached & (log.t_sa >= after))
+    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the
+    grip force; where it never does, GRIP_FRACTION of grip_plateau_n instead (the taxels
+    do not see all of the contact force of a thin object: a 22 mm cylinder's plateau is
+    21.4 N of a 25 N command). A plateau below the command but above its fraction changes
+    nothing (the built-in objects' events were recorded so). None when the force never
+    rises above CONTACT_FORCE_N."""
+    weaker = true_sa(log).min(axis=1)
+    level = grip_force
+    if not np.any((weaker >= GRIP_FRACTION * grip_force) & (log.t_sa >= after)):
+        level = grip_plateau_n(log, after)
+        if level <= CONTACT_FORCE_N:
+            return None
+    return _first(log.t_sa, (weaker >= GRIP_FRACTION * level) & (log.t_sa >= after))
 
 
 def table_touch_time(log, object_config=None, after: float = 0.0):
@@ -107,18 +127,27 @@ def table_touch_time(log, object_config=None, after: float = 0.0):
 
 
 def physical_events(log, grip_force: float, object_config=None) -> dict:
-    z = log.object_state[:, 6]
-    lift_index = np.flatnonzero(z - z[0] > LIFTED_HEIGHT_M)
+    lift_index = np.flatnonzero(lifted_mask(log, object_config))
     return {"first_contact": first_contact_time(log),
             "grip_force_reached": grip_force_time(log, grip_force),
             "table_touch": (table_touch_time(log, object_config, after=log.t_slow[lift_index[0]])
                             if lift_index.size else None)}
 
 
-def judge_grasp(log, *, target_xy, grip_force: float) -> GraspOutcome:
-    """Evaluates a trial against the ground truth."""
+def lifted_mask(log, object_config=None) -> np.ndarray:
+    """At each logged state: the object's lowest point (lowest_point_heights) is more than
+    LIFTED_HEIGHT_M above where it rested at the start. By the lowest point, not the origin:
+    a 45 mm box knocked onto its side raises its origin 22.5 mm while lying on the table
+    (issue #14's second grid did it)."""
+    low = lowest_point_heights(log.object_state, object_config)
+    return low - low[0] > LIFTED_HEIGHT_M
+
+
+def judge_grasp(log, *, target_xy, grip_force: float, object_config=None) -> GraspOutcome:
+    """Evaluates a trial against the ground truth (object_config: the object's shape and
+    size, for its lowest point; without it, its origin's height)."""
     z = log.object_state[:, 6]
-    lifted = z - z[0] > LIFTED_HEIGHT_M
+    lifted = lifted_mask(log, object_config)
     final = log.object_state[-1]
     final_sa = log.true_taxels[-1].reshape(2, 12).sum(axis=1)
     return GraspOutcome(
@@ -127,4 +156,4 @@ def judge_grasp(log, *, target_xy, grip_force: float) -> GraspOutcome:
         final_tilt_deg=tilt_deg(final),
         placement_error_m=float(np.linalg.norm(final[4:6] - np.asarray(target_xy))),
         released=bool(final_sa.max() < RELEASED_FORCE_N),
-        events=physical_events(log, grip_force))
+        events=physical_events(log, grip_force, object_config))

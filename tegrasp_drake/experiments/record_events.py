@@ -10,11 +10,9 @@ them in the events folder with an index.
 
 import logging
 
-import numpy as np
 
 from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
-from tegrasp_drake.experiments.grasp_outcome import (GRIP_FRACTION, LIFTED_HEIGHT_M,
-                                                     physical_events, true_sa)
+from tegrasp_drake.experiments.grasp_outcome import physical_events, true_sa
 from tegrasp_drake.rig.objects import object_description
 from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.experiments.scenario import LoadScenario, scenario_to_yaml
@@ -36,14 +34,9 @@ def missing_event_advice(name: str, log, scenario) -> str:
     if name == "grip_force_reached":
         sa = true_sa(log)
         peak = float(sa.min(axis=1).max()) if len(sa) else 0.0
-        z = log.object_state[:, 6]
-        lifted = bool(np.any(z - z[0] > LIFTED_HEIGHT_M))
-        return (f"the weaker pad's force peaked at {peak:.1f} N, below {GRIP_FRACTION:.0%} of "
-                f"the commanded grip force grasp.grip_force = {grip:g} N "
-                f"({GRIP_FRACTION * grip:.1f} N){' although the grasp lifted the object' if lifted else ''}"
-                f"; the taxels do not see all of this object's contact force, so try a lower "
-                f"grasp.grip_force (e.g. --set grasp.grip_force={0.95 * peak / GRIP_FRACTION:.0f}"
-                ", which records a 22 mm cylinder of 0.25 kg) or a larger object")
+        return (f"the weaker pad's force peaked at {peak:.2f} N (commanded grasp.grip_force = "
+                f"{grip:g} N): the fingers never squeezed the object with both pads, so "
+                "check object.size against the gripper's 85 mm stroke and object_offset")
     if name == "first_contact":
         return ("the fingers never touched the object: check object.size, object_offset and "
                 "expected_object_xy")

@@ -7,10 +7,12 @@ trial function (tegrasp_drake/sweep): it turns a trial of a sweep into a scenari
 
 import dataclasses
 import logging
+import pathlib
 import time
 
 import numpy as np
 
+from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
 from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
@@ -70,7 +72,7 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
     """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
     at least 3 s; unload = after Unload, upright on the table, released, gripper retracted."""
     outcome = judge_grasp(log, target_xy=scenario.expected_object_xy,
-                          grip_force=scenario.grasp.grip_force)
+                          grip_force=scenario.grasp.grip_force, object_config=scenario.object)
     hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
     reached = [entry.to_mode for entry in transitions]
     final_mode = reached[-1] if reached else Mode.REACH
@@ -90,7 +92,7 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
             false_triggers += 1
         else:
             latency[name] = entry.t - physical[name]
-    corrective = [action for action in (corrective_action_of(e.from_mode, e.to_mode)
+    corrective = [action for action in (corrective_action_of(e.from_mode, e.to_mode, e.trigger)
                                         for e in transitions) if action is not None]
     return {"hold_success": bool(hold_success), "unload_success": unload_success,
             "final_mode": final_mode.label, "hold_time_s": outcome.hold_time_s,
@@ -194,16 +196,25 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     return validate(scenario, f"sweep trial {trial['trial_id']}")
 
 
-def run_trial_from_spec(trial: dict, *, events_dir=None) -> dict:
+def trial_log_name(trial_id: str) -> str:
+    """The file name of a sweep trial's log: its id with '/' as '.', and .npz."""
+    return trial_id.replace("/", ".") + ".npz"
+
+
+def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
     """The sweep's trial function: runs the trial; returns its result dict.
 
-    The memorized controller's events (from `events_dir`, else the user's folder, then the
+    The memorized controllers' events (from `events_dir`, else the user's folder, then the
     package's) must have been recorded on the trial's unperturbed object: the sweep's
-    mass and friction perturbations are the experiment's, not a mismatch."""
+    mass and friction perturbations are the experiment's, not a mismatch.
+    log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
     from tegrasp_drake.control.grasp_controller import load_controller_events
     scenario = scenario_from_trial_spec(trial)
     events = None
-    if scenario.controller.name == "memorized":
+    if scenario.controller.name in MEMORIZED_EVENT_CONTROLLERS:
         nominal = scenario_from_trial_spec(trial, nominal=True).object
         events = load_controller_events(scenario, events_dir, nominal_object=nominal)
-    return run_trial(scenario, events=events).result
+    run = run_trial(scenario, events=events)
+    if log_dir is not None:
+        run.log.save(pathlib.Path(log_dir) / trial_log_name(trial["trial_id"]))
+    return run.result

@@ -8,7 +8,8 @@ from tegrasp_drake.experiments.figures.figure_files import new_figure, save_figu
 from tegrasp_drake.experiments.sweep.table import (AVERAGE, PAPER_TABLE1, TABLE1_COLUMNS,
                                                    table1_rows)
 
-CONTROLLER_COLORS = {"memorized": "#c0392b", "heuristic": "#8e44ad", "open_loop": "#7f8c8d"}
+CONTROLLER_COLORS = {"memorized": "#c0392b", "heuristic": "#8e44ad", "open_loop": "#7f8c8d",
+                     "taxel_aware": "#1f77b4"}
 PAPER_COLOR = "#2c3e50"
 COLUMN_TITLES = {("well_placed", "hold"): "well placed, ~Hold",
                  ("well_placed", "unload"): "well placed, ~Unload",

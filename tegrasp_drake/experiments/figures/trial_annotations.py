@@ -31,7 +31,7 @@ PHYSICAL_EVENT_STYLE = ("#117a65", (0, (6, 2)))  # colour, dash pattern
 PHYSICAL_EVENT_NAMES = {"reach_load": "first contact", "load_lift": "grip force reached",
                         "place_unload": "table touch", "hit": "hit"}
 CONTROLLER_NAMES = {"memorized": "memorized triggers", "heuristic": "heuristic thresholds",
-                    "open_loop": "open loop"}
+                    "open_loop": "open loop", "taxel_aware": "taxel-aware, ensemble events"}
 SCORE_THRESHOLDS = "match: SA > 0.9 and RA > 0.7 on all four channels"
 
 

@@ -37,6 +37,8 @@ from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_fi
 # The controllers the trial function knows (issue #5): the paper's memorized triggers,
 # heuristic thresholds in the style of Romano et al. 2011, and open loop.
 CONTROLLERS = controller_config.CONTROLLERS
+# A spec that names no controllers runs the paper's comparison (Table I): these three.
+PAPER_CONTROLLERS = ("memorized", "heuristic", "open_loop")
 
 # The paper's three objects (Fig. 8a), as the scenario knows them (rig/objects.py);
 # a sweep spec can add user-defined objects (`ObjectDefinition`).
@@ -102,7 +104,7 @@ class SweepSpec:
     stroke; (0, 0) is the well-placed marker.
     """
     objects: tuple[str, ...] = BUILTIN_OBJECTS
-    controllers: tuple[str, ...] = CONTROLLERS
+    controllers: tuple[str, ...] = PAPER_CONTROLLERS
     grid: tuple[tuple[float, float], ...] = product_grid(
         PAPER_NORMAL_OFFSETS_M, PAPER_STROKE_OFFSETS_M)
     attempts: int = 3

@@ -24,7 +24,8 @@ from tegrasp_drake.experiments.sweep.table import (AVERAGE, PAPER_TABLE1, contro
 
 SUMMARY_FILE = "summary.md"
 CONTROLLER_NAMES = {"memorized": "memorized triggers", "heuristic": "heuristic thresholds",
-                    "open_loop": "open loop"}
+                    "open_loop": "open loop",
+                    "taxel_aware": "taxel-aware, ensemble events"}
 PAPER_ROW_NAME = "the paper (real robot, memorized)"
 _SUCCESS_HEADERS = ("well-placed ~Hold", "~Unload", "misplaced ~Hold", "~Unload")
 _NONE = "–"

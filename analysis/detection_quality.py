@@ -1,0 +1,42 @@
+"""Detection quality per trigger and controller, and paired McNemar comparisons, from one or
+more sweep results folders (experiments/sweep/detection_report.py).
+
+    python analysis/detection_quality.py OUT.md RESULTS [RESULTS ...]
+        [--reference open_loop] [--title TEXT]
+
+The folders' records are merged (the same base seed and grid give the same pair ids, so a
+folder of one controller pairs with another folder's controllers).
+"""
+
+import argparse
+import pathlib
+import sys
+
+from tegrasp_drake.experiments.sweep.detection_report import report_markdown
+from tegrasp_drake.experiments.sweep.records import load_records
+from tegrasp_drake.experiments.sweep.spec import CONTROLLERS
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("out", type=pathlib.Path)
+    parser.add_argument("results", type=pathlib.Path, nargs="+")
+    parser.add_argument("--reference", default="open_loop")
+    parser.add_argument("--title", default="Detection quality and paired comparison")
+    args = parser.parse_args(argv)
+    records = {}
+    for folder in args.results:
+        loaded = load_records(folder)
+        if not loaded.records:
+            raise SystemExit(f"detection_quality: {folder} holds no trial records")
+        records.update(loaded.records)
+    controllers = [c for c in CONTROLLERS
+                   if any(r["trial"]["controller"] == c for r in records.values())]
+    text = report_markdown(records, controllers, args.reference, args.title)
+    args.out.write_text(text)
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,54 @@
+"""Judge a sweep's trials again from their logs with the current judge
+(experiments/trial.judge_trial), e.g. after the judge changed; writes a results folder of
+updated records beside the original (records' results replaced, nothing re-simulated).
+
+    python analysis/rejudge_from_logs.py RESULTS LOGS OUT
+
+RESULTS: a sweep's results folder; LOGS: its `tegrasp sweep --logs` folder; OUT: the new
+results folder (created; must not exist). A record whose log is missing is copied unchanged
+and named on stderr.
+"""
+
+import argparse
+import json
+import pathlib
+import sys
+
+from tegrasp_drake.control.grasp_modes import Transition
+from tegrasp_drake.experiments.sweep.records import (TRIALS_FOLDER, load_records, make_record,
+                                                    write_record)
+from tegrasp_drake.experiments.trial import judge_trial, scenario_from_trial_spec, trial_log_name
+from tegrasp_drake.experiments.trial_log import load_trial_log
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("results", type=pathlib.Path)
+    parser.add_argument("logs", type=pathlib.Path)
+    parser.add_argument("out", type=pathlib.Path)
+    args = parser.parse_args(argv)
+    if args.out.exists():
+        raise SystemExit(f"rejudge_from_logs: {args.out} exists; choose a new folder")
+    (args.out / TRIALS_FOLDER).mkdir(parents=True)
+    changed = 0
+    for trial_id, record in load_records(args.results).records.items():
+        path = args.logs / trial_log_name(trial_id)
+        result = record.get("result")
+        if result is not None and path.is_file():
+            scenario = scenario_from_trial_spec(record["trial"])
+            transitions = [Transition.from_dict(t) for t in result["transitions"]]
+            judged = judge_trial(load_trial_log(path), transitions, scenario)
+            new = dict(result, **judged)
+            changed += int(json.dumps(new, sort_keys=True, default=str)
+                           != json.dumps(result, sort_keys=True, default=str))
+            record = make_record(record["trial"], result=new)
+        elif result is not None:
+            print(f"rejudge_from_logs: no log {path}; {trial_id} copied unchanged",
+                  file=sys.stderr)
+        write_record(args.out, record)
+    print(f"wrote {args.out}; {changed} results changed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

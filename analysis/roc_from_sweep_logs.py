@@ -1,0 +1,100 @@
+"""ROC-style curves of a memorized controller's event triggers from a sweep's trial logs
+(`tegrasp sweep --logs DIR`), re-scored offline (experiments/detection_quality.py): for each
+event transition, detection and false-trigger rates as the thresholds are scaled from the
+controller's own. A report of the judged trials: nothing here chooses a threshold.
+
+    python analysis/roc_from_sweep_logs.py LOGS_DIR OUT.md [--controller taxel_aware]
+        [--events events] [--limit N]
+
+Armed spans follow the logged transitions, as the state machine looks for each event:
+Reach-Load from the start of the last Reach before Load, Load-Lift from the entry into
+Load, Place-Unload from the entry into Place. The physical events are the trial's own
+(result physical_events, kept in the log's meta).
+"""
+
+import argparse
+import pathlib
+import sys
+
+import numpy as np
+
+from tegrasp_drake.control.controller_config import TaxelAwareConfig
+from tegrasp_drake.control.grasp_controller import controller_events_folders
+from tegrasp_drake.events import tactile_trial_from_log
+from tegrasp_drake.events.memorized_event import find_memorized_events
+from tegrasp_drake.experiments.detection_quality import roc_curve, scored_span
+from tegrasp_drake.experiments.trial_log import load_trial_log
+
+TRANSITIONS = ("reach_load", "load_lift", "place_unload")
+SOURCE = {"reach_load": "Reach", "load_lift": "Load", "place_unload": "Place"}
+TARGET = {"reach_load": "Load", "load_lift": "Lift", "place_unload": "Unload"}
+SCALES = np.round(np.arange(0.70, 1.111, 0.05), 3)
+
+
+def armed_from(transitions, transition):
+    """When the mode that waits for `transition` was last entered before it was left
+    toward its target (None when the trial never reached that mode)."""
+    source, target = SOURCE[transition], TARGET[transition]
+    entered = 0.0 if source == "Reach" else None
+    for entry in transitions:
+        if entry["from"] == source and entry["to"] == target:
+            return entered
+        if entry["to"] == source:
+            entered = entry["t"]
+    return entered
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("logs", type=pathlib.Path)
+    parser.add_argument("out", type=pathlib.Path)
+    parser.add_argument("--controller", default="taxel_aware")
+    parser.add_argument("--events", default="events")
+    parser.add_argument("--limit", type=int, default=None)
+    args = parser.parse_args(argv)
+    paths = sorted(args.logs.glob(f"{args.controller}.*.npz"))[:args.limit]
+    if not paths:
+        raise SystemExit(f"roc_from_sweep_logs: no {args.controller}.*.npz in {args.logs}")
+    thresholds = TaxelAwareConfig().event_thresholds() if args.controller == "taxel_aware" \
+        else {t: (0.9, 0.7) for t in TRANSITIONS}
+    events_by_object, spans = {}, {t: [] for t in TRANSITIONS}
+    for path in paths:
+        log = load_trial_log(path)
+        name = path.name.split(".")[1]
+        if name not in events_by_object:
+            events_by_object[name] = find_memorized_events(
+                controller_events_folders(args.controller, args.events), name)[1]
+        trial = tactile_trial_from_log(log)
+        physical = log.meta.get("events", {})
+        for transition in TRANSITIONS:
+            start = armed_from(log.meta["transitions"], transition)
+            if start is None or physical.get(transition) is None:
+                continue
+            spans[transition].append(scored_span(
+                path.stem, trial, events_by_object[name], transition, armed_from_s=start,
+                physical_s=physical[transition]))
+        print(f"scored {path.name}", flush=True)
+    lines = [f"# ROC-style curves of the {args.controller} controller's event triggers\n",
+             f"From {len(paths)} trial logs of `{args.logs.name}`, re-scored offline "
+             "(`analysis/roc_from_sweep_logs.py`); the thresholds are scaled together from "
+             "the controller's own (scale 1.00). Judged trials: no threshold is chosen "
+             "here.\n"]
+    for transition in TRANSITIONS:
+        base = thresholds[transition]
+        lines += [f"## {transition} ({len(spans[transition])} trials; SA > {base[0]:.2f}, "
+                  f"RA > {base[1]:.2f} at 1.00)\n",
+                  "| scale | SA | RA | detected | false | missed | median latency |",
+                  "|---|---|---|---|---|---|---|"]
+        for scale, p in zip(SCALES, roc_curve(spans[transition], SCALES, base=base)):
+            latency = "–" if p.median_latency_s is None else f"{1000 * p.median_latency_s:.0f} ms"
+            lines.append(f"| {scale:.2f} | {p.sa_threshold:.3f} | {p.ra_threshold:.3f} | "
+                         f"{p.detection_rate:.2f} | {p.false_rate:.2f} | "
+                         f"{p.missed / p.spans if p.spans else 0:.2f} | {latency} |")
+        lines.append("")
+    args.out.write_text("\n".join(lines))
+    print(f"wrote {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,153 @@
+"""The taxel-aware controller's corrective actions (issue #14), as pure functions: each a
+decision (take it, give up, or None to leave the paper's rule in charge) and an action
+(where to move). They read the whole taxel array (taxel_contact.py), not only Eq. 1's sums.
+
+Frames: world W; the side grasp approaches along world +x with the stroke along world y,
+the left finger on +y (corrective_actions.py). Settings: TaxelAwareConfig
+(controller_config.py).
+
+  Re-Reach, both axes   along the stroke toward the finger that touched alone, by half the
+                        gap between the opening and the object's width (the paper's), and
+                        along the approach axis by the contact's offset from the pads'
+                        centres; repeated until centred, at most max_re_reaches times
+  one-sided contact     one finger alone touches while the gripper is already closed to the
+                        object's width: Load (the squeeze brings the other pad on), never a
+                        Re-Reach that would shift by nothing and close on the same contact
+  contact in the approach  a pad touches the object while the open gripper still moves
+                        toward it (a misplaced or yawed object in the finger's path: left
+                        alone, the moving finger pushes it over): stop, back off by
+                        approach_retreat_m while shifting along the stroke toward the
+                        touching finger (the paper's shift), and resume the approach
+                        (bounded by max_re_reaches)
+  no event in time      both pads hold the object, centred, and no Reach-Load event came
+                        within the timeout: Load anyway (bounded: never Re-Reach a grasp
+                        that is already centred)
+  re-grasp              held tilted (the contact line turned on a pad, or the two pads'
+                        contacts at different heights) for tilt_sustain_s in Hold: put the
+                        object down, open, close again and lift (at most max_regrasps)
+"""
+
+import dataclasses
+
+import numpy as np
+
+from tegrasp_drake.control.corrective_actions import re_reach_shift
+from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
+from tegrasp_drake.control.taxel_contact import GraspContact
+
+
+@dataclasses.dataclass(frozen=True)
+class Shift:
+    """A Re-Reach move of the open gripper [m, world]: dx along the approach axis, dy along
+    the stroke."""
+    dx_m: float
+    dy_m: float
+
+    def is_negligible(self, min_shift_m: float) -> bool:
+        return abs(self.dx_m) < min_shift_m and abs(self.dy_m) < min_shift_m
+
+
+def approach_shift(contact: GraspContact, taxel_config) -> float:
+    """The shift along world x [m] that puts the pads' centres on the contact: the
+    contact's approach_offset_m (pad +y is world +x at the side grasp), clipped to
+    +-max_approach_shift_m; 0 without contact or within centre_tolerance_m."""
+    touching = contact.left.touching or contact.right.touching
+    offset = contact.approach_offset_m
+    if not touching or abs(offset) <= taxel_config.centre_tolerance_m:
+        return 0.0
+    return float(np.clip(offset, -taxel_config.max_approach_shift_m,
+                         taxel_config.max_approach_shift_m))
+
+
+def taxel_re_reach_shift(contact: GraspContact, sa_n, opening_m: float,
+                         object_width_m: float, config) -> Shift:
+    """Re-Reach in both directions: along the stroke the paper's shift (re_reach_shift),
+    along the approach axis approach_shift. config: GraspControllerConfig."""
+    dy = re_reach_shift(sa_n, opening_m, object_width_m, config.contact_force_n)
+    return Shift(approach_shift(contact, config.taxel_aware), dy)
+
+
+def re_reach_target_2d(p_WG, shift: Shift) -> np.ndarray:
+    """Where the open gripper moves to [m, world]: p_WG + (dx, dy, 0)."""
+    return np.asarray(p_WG, dtype=float) + np.array([shift.dx_m, shift.dy_m, 0.0])
+
+
+def _re_reach_or_fail(re_reaches: int, config, reason: str) -> Decision:
+    if not config.re_reach_enabled:
+        return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason}; Re-Reach is switched off")
+    if re_reaches >= config.taxel_aware.max_re_reaches:
+        return Decision(Mode.FAILED, Trigger.CORRECTIVE,
+                        f"{reason}, after {re_reaches} Re-Reach attempts")
+    return Decision(Mode.RE_REACH, Trigger.CORRECTIVE, reason)
+
+
+def one_sided_response(*, finger: str, opening_m: float, object_width_m: float,
+                       re_reaches: int, config) -> Decision:
+    """One finger alone has touched for one_sided_contact_s while closing.
+
+    Closed to within one_sided_width_margin_m of the object's width: the object is
+    between the fingers already, so Load (a Re-Reach would shift by almost nothing and close
+    on the same contact). Wider: Re-Reach toward the touching finger, or Failed once
+    taxel_aware.max_re_reaches are used up."""
+    if opening_m <= object_width_m + config.taxel_aware.one_sided_width_margin_m:
+        return Decision(Mode.LOAD, Trigger.CORRECTIVE,
+                        f"only the {finger} finger touches, the gripper closed to the "
+                        "object's width: load")
+    return _re_reach_or_fail(re_reaches, config, f"only the {finger} finger touched")
+
+
+def approach_contact_response(*, contact: tuple, re_reaches: int, config) -> Decision:
+    """A pad has touched for one_sided_contact_s while the gripper still approaches: stop
+    and Re-Reach (the state machine resumes the approach after the shift), or Failed once
+    taxel_aware.max_re_reaches are used up."""
+    pads = [name for name, touching in zip(("left", "right"), contact) if touching]
+    return _re_reach_or_fail(re_reaches, config,
+                             f"the {' and '.join(pads) or 'a'} pad touched during the approach")
+
+
+def on_reach_event(contact: GraspContact, *, re_reaches: int, config) -> Decision:
+    """The Reach-Load event came: Load, unless the contact sits off the pads' centres
+    along the approach axis (approach_shift not 0) and Re-Reaches are left, then Re-Reach
+    to centre it first."""
+    if (approach_shift(contact, config.taxel_aware) != 0.0 and config.re_reach_enabled
+            and re_reaches < config.taxel_aware.max_re_reaches):
+        return Decision(Mode.RE_REACH, Trigger.CORRECTIVE,
+                        f"contact {1000 * contact.approach_offset_m:+.1f} mm from the pads' "
+                        "centres along the approach axis")
+    return None
+
+
+def on_reach_timeout(*, both_touch: bool, re_reaches: int, config, reason: str) -> Decision:
+    """No Reach-Load event in time (or the gripper closed on nothing): with both pads on
+    the object, Load anyway; otherwise Re-Reach (bounded as one_sided_response)."""
+    if both_touch:
+        return Decision(Mode.LOAD, Trigger.CORRECTIVE, f"{reason}, both pads hold the object: "
+                        "load")
+    return _re_reach_or_fail(re_reaches, config, reason)
+
+
+def held_tilted(contact: GraspContact, taxel_config) -> bool:
+    """The object sits tilted in the grasp: a pad's contact line turned more than
+    tilt_limit_deg, or the two pads' contacts more than height_mismatch_m apart in
+    height."""
+    tilted_line = contact.tilt_deg is not None and abs(contact.tilt_deg) > \
+        taxel_config.tilt_limit_deg
+    return tilted_line or abs(contact.height_mismatch_m) > taxel_config.height_mismatch_m
+
+
+def regrasp_or_none(*, tilted_s: float, regrasps: int, taxel_config) -> Decision | None:
+    """In Hold: put the object down to re-grasp it when it has sat tilted for
+    tilt_sustain_s [s] and re-grasps are left; None otherwise."""
+    if (taxel_config.regrasp_enabled and tilted_s >= taxel_config.tilt_sustain_s
+            and regrasps < taxel_config.max_regrasps):
+        return Decision(Mode.PLACE, Trigger.CORRECTIVE, "held tilted: put down to re-grasp")
+    return None
+
+
+def after_regrasp_place(*, regrasp_pending: bool) -> Decision | None:
+    """In Place: once the object stands on the table again (the Place-Unload event or its
+    timeout), a pending re-grasp opens and closes again (through Re-Reach, no shift)
+    instead of Unload; None otherwise."""
+    if regrasp_pending:
+        return Decision(Mode.RE_REACH, Trigger.CORRECTIVE, "re-grasp: open and close again")
+    return None

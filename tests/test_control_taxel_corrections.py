@@ -1,0 +1,161 @@
+"""The taxel_aware controller's corrective decisions and moves (issue #14), as pure
+functions, and through the transition rule."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from tegrasp_drake.control.controller_config import GraspControllerConfig, TaxelAwareConfig
+from tegrasp_drake.control.corrective_actions import Counters, corrective_action_of
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.taxel_contact import grasp_contact
+from tegrasp_drake.control.taxel_corrections import (
+    Shift, approach_shift, held_tilted, on_reach_event, on_reach_timeout, one_sided_response,
+    re_reach_target_2d, regrasp_or_none, taxel_re_reach_shift)
+from tegrasp_drake.control.transition_logic import Observation, next_mode
+from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
+
+CONFIG = GraspControllerConfig(name="taxel_aware")
+TAXEL = CONFIG.taxel_aware
+
+
+def line_on_row(row, force=1.0):
+    taxels = np.zeros((ROWS, COLUMNS))
+    taxels[row, :] = force
+    return taxels.reshape(-1)
+
+
+def both(row_left, row_right=None):
+    return grasp_contact(np.concatenate([line_on_row(row_left),
+                                         line_on_row(row_left if row_right is None
+                                                     else row_right)]))
+
+
+def test_a_contact_on_the_fingertip_row_moves_the_gripper_forward_by_its_offset():
+    shift = approach_shift(both(3), TAXEL)
+    assert shift == pytest.approx(1.5 * CELL_Y)
+    assert approach_shift(both(0), TAXEL) == pytest.approx(-1.5 * CELL_Y)
+
+
+def test_a_centred_contact_or_none_needs_no_approach_shift():
+    assert approach_shift(both(1, 2), TAXEL) == 0.0  # between the middle rows
+    assert approach_shift(grasp_contact(np.zeros(24)), TAXEL) == 0.0
+
+
+def test_the_approach_shift_is_clipped_to_its_limit():
+    tight = dataclasses.replace(TAXEL, max_approach_shift_m=0.005)
+    assert approach_shift(both(3), tight) == pytest.approx(0.005)
+
+
+def test_re_reach_shifts_along_both_axes():
+    # The left finger alone touches, on its fingertip row; the gripper stopped 60 mm open
+    # on a 45 mm box: 7.5 mm toward the left (+y), 9 mm forward (+x).
+    contact = grasp_contact(np.concatenate([line_on_row(3), np.zeros(12)]))
+    shift = taxel_re_reach_shift(contact, [3.0, 0.0], 0.060, 0.045, CONFIG)
+    assert shift.dy_m == pytest.approx(0.0075)
+    assert shift.dx_m == pytest.approx(1.5 * CELL_Y)
+    assert re_reach_target_2d([0.7, 0.0, 0.1], shift) == pytest.approx(
+        [0.7 + 1.5 * CELL_Y, 0.0075, 0.1])
+    assert Shift(0.001, -0.001).is_negligible(TAXEL.min_shift_m)
+
+
+def test_one_sided_contact_at_the_objects_width_loads_instead_of_stalling():
+    """Issue #14's stall: the second Re-Reach shifted 0.09 mm and the third close stalled
+    on left 1.72 N / right 0.14 N."""
+    decision = one_sided_response(finger="left", opening_m=0.0452, object_width_m=0.045,
+                                  re_reaches=2, config=CONFIG)
+    assert decision.mode == Mode.LOAD and decision.trigger == Trigger.CORRECTIVE
+
+
+def test_one_sided_contact_with_the_gripper_wide_open_re_reaches_until_the_limit():
+    wide = dict(finger="right", opening_m=0.070, object_width_m=0.045, config=CONFIG)
+    assert one_sided_response(re_reaches=0, **wide).mode == Mode.RE_REACH
+    assert one_sided_response(re_reaches=TAXEL.max_re_reaches - 1, **wide).mode == Mode.RE_REACH
+    assert one_sided_response(re_reaches=TAXEL.max_re_reaches, **wide).mode == Mode.FAILED
+
+
+def test_the_reach_event_re_reaches_an_off_centre_contact_first_while_attempts_are_left():
+    assert on_reach_event(both(3), re_reaches=0, config=CONFIG).mode == Mode.RE_REACH
+    assert on_reach_event(both(3), re_reaches=TAXEL.max_re_reaches, config=CONFIG) is None
+    assert on_reach_event(both(1, 2), re_reaches=0, config=CONFIG) is None
+
+
+def test_no_event_in_time_with_both_pads_on_loads_and_without_re_reaches():
+    assert on_reach_timeout(both_touch=True, re_reaches=0, config=CONFIG,
+                            reason="late").mode == Mode.LOAD
+    assert on_reach_timeout(both_touch=False, re_reaches=0, config=CONFIG,
+                            reason="late").mode == Mode.RE_REACH
+
+
+def test_a_tilted_hold_is_put_down_once_to_re_grasp():
+    diagonal = np.zeros((ROWS, COLUMNS))
+    diagonal[[0, 1, 2], [0, 1, 2]] = 1.0
+    tilted = grasp_contact(np.concatenate([diagonal.reshape(-1), diagonal.reshape(-1)]))
+    assert held_tilted(tilted, TAXEL)
+    assert not held_tilted(both(1), TAXEL)
+    assert regrasp_or_none(tilted_s=0.2, regrasps=0, taxel_config=TAXEL).mode == Mode.PLACE
+    assert regrasp_or_none(tilted_s=0.05, regrasps=0, taxel_config=TAXEL) is None
+    assert regrasp_or_none(tilted_s=0.2, regrasps=1, taxel_config=TAXEL) is None
+    off = dataclasses.replace(TAXEL, regrasp_enabled=False)
+    assert regrasp_or_none(tilted_s=0.2, regrasps=0, taxel_config=off) is None
+
+
+def test_the_rule_runs_the_re_grasp_hold_place_re_reach():
+    hold = next_mode(Mode.HOLD, Observation(contact=(True, True), tilted_s=0.2),
+                     Counters(), CONFIG, event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (hold.mode, hold.trigger) == (Mode.PLACE, Trigger.CORRECTIVE)
+    assert corrective_action_of(Mode.HOLD, Mode.PLACE, hold.trigger) == "regrasp"
+    assert corrective_action_of(Mode.HOLD, Mode.PLACE, Trigger.TIMER) is None
+    place = next_mode(Mode.PLACE, Observation(contact=(True, True), event_matched=True,
+                                              regrasp_pending=True),
+                      Counters(regrasps=1), CONFIG, event_trigger=Trigger.MEMORIZED_EVENT,
+                      hold_s=3.0)
+    assert place.mode == Mode.RE_REACH
+    unload = next_mode(Mode.PLACE, Observation(contact=(True, True), event_matched=True),
+                       Counters(regrasps=1), CONFIG, event_trigger=Trigger.MEMORIZED_EVENT,
+                       hold_s=3.0)
+    assert unload.mode == Mode.UNLOAD
+
+
+def test_the_papers_controller_ignores_the_taxel_fields():
+    paper = GraspControllerConfig(name="memorized")
+    obs = Observation(contact=(True, False), one_sided_s=0.2, opening_m=0.0452,
+                      object_width_m=0.045, tilted_s=1.0)
+    reach = next_mode(Mode.REACH, obs, Counters(), paper,
+                      event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert reach.mode == Mode.RE_REACH
+    hold = next_mode(Mode.HOLD, Observation(contact=(True, True), tilted_s=1.0), Counters(),
+                     paper, event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert hold is None
+    taxel = next_mode(Mode.REACH, obs, Counters(), CONFIG,
+                      event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert taxel.mode == Mode.LOAD
+
+
+def test_the_load_timeout_lifts_with_both_pads_on_the_object():
+    obs = Observation(contact=(True, True), time_in_mode=CONFIG.load_event_timeout_s)
+    decision = next_mode(Mode.LOAD, obs, Counters(), CONFIG,
+                         event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (decision.mode, decision.trigger) == (Mode.LIFT, Trigger.CORRECTIVE)
+
+
+def test_the_taxel_aware_settings_are_reasoned_in_pad_units():
+    assert TaxelAwareConfig().centre_tolerance_m < CELL_Y  # within a row
+    assert TaxelAwareConfig().max_approach_shift_m > 2 * CELL_Y
+
+
+def test_a_pad_touching_during_the_approach_stops_it_for_a_re_reach_within_the_limit():
+    """Issue #14's second grid: a yawed box 2.5 cm along the stroke met the right pad during
+    the approach and was pushed over by it."""
+    obs = Observation(contact=(False, True), approach_contact_s=CONFIG.one_sided_contact_s)
+    decision = next_mode(Mode.REACH, obs, Counters(), CONFIG,
+                         event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (decision.mode, decision.trigger) == (Mode.RE_REACH, Trigger.CORRECTIVE)
+    assert "right pad touched during the approach" in decision.reason
+    used_up = next_mode(Mode.REACH, obs, Counters(re_reaches=TAXEL.max_re_reaches), CONFIG,
+                        event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert used_up.mode == Mode.FAILED
+    brief = Observation(contact=(False, True), approach_contact_s=0.02)
+    assert next_mode(Mode.REACH, brief, Counters(), CONFIG,
+                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None
