@@ -55,3 +55,43 @@ def test_status_reports_activation_and_position_bytes():
     status = driver.GetOutputPort("status").Eval(context)
     assert status[ru.STATUS_STA] == ru.ActivationStatus.ACTIVE
     assert status[ru.STATUS_PO] == ru.POSITION_OPEN_BYTE
+
+
+def test_float_helpers_equal_the_numpy_forms_bit_for_bit():
+    # The driver's per-update helpers run on Python floats; the same numbers as numpy's.
+    import numpy as np
+    from tegrasp_drake.rig import robotiq_units as ru
+    from tegrasp_drake.simulation.sim_robotiq_driver import (command_targets, reference_step,
+                                                             status_position_byte)
+
+    def numpy_reference_step(q, v, goal, max_speed, acceleration, dt):
+        distance = goal - q
+        stopping_speed = np.sqrt(2.0 * acceleration * abs(distance))
+        target_v = np.sign(distance) * min(max_speed, stopping_speed)
+        if abs(distance) < 1e-6:
+            target_v = 0.0
+        return float(np.clip((target_v - v) / dt, -acceleration, acceleration))
+
+    rng = np.random.default_rng(8)
+    for _ in range(20000):
+        q, goal = rng.uniform(0.0, 0.0425, size=2)
+        if rng.random() < 0.1:
+            goal = q + rng.choice([0.0, 1e-7, -1e-7, 2e-6])
+        v = rng.normal(scale=0.05)
+        args = (q, v, goal, rng.uniform(0.01, 0.075), 0.5, 0.005)
+        assert reference_step(*args) == numpy_reference_step(*args)
+        opening = rng.uniform(-0.01, 0.1)
+        assert status_position_byte(opening / 2) == float(ru.position_byte_from_opening(opening))
+    for position in [-3.0, 0.0, 0.5, 1.5, 2.5, 3.0, 127.5, 230.0, 254.5, 255.0, 300.0]:
+        for speed, force in [(0.0, 0.0), (128.0, 77.0), (255.0, 255.0), (-1.0, 400.0)]:
+            position_byte = np.clip(np.round(position), 0, 255)
+            assert command_targets(position, speed, force) == (
+                position_byte, ru.opening_from_position_byte(position_byte) / 2,
+                ru.speed_from_byte(speed) / 2, ru.force_from_byte(force))
+
+
+def test_cached_gripper_command_equals_the_computed_one():
+    from tegrasp_drake.control.scripted_grasp import gripper_command
+    for request in [(0.0, 0.05, 20.0), (0.085, 0.15, 235.0), (0.04, 0.02, 61.3)]:
+        assert gripper_command(*request) == gripper_command.__wrapped__(*request)
+        assert gripper_command(*request) == gripper_command(*request)

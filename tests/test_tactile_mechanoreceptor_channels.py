@@ -46,3 +46,27 @@ def test_the_channels_equal_numpys_sum_and_norm_bit_for_bit():
         vibration = rng.normal(size=3) * 10.0 ** rng.uniform(-3, 3)
         assert slowly_adapting(forces) == float(np.sum(forces))
         assert rapidly_adapting(vibration) == float(np.linalg.norm(vibration))
+
+
+def test_channels_follow_the_taxels_and_the_vibration_when_either_changes_alone():
+    # channels reads SA from the sa port's cache: a new taxel sample must reach it, and a
+    # new vibration sample alone must not leave a stale SA or RA.
+    system = MechanoreceptorChannels()
+    context = system.CreateDefaultContext()
+    ports = {name: system.GetInputPort(name) for name in (
+        "left_taxel_forces", "right_taxel_forces", "left_pad_acceleration",
+        "right_pad_acceleration")}
+    rng = np.random.default_rng(11)
+    values = {name: rng.normal(size=port.size()) for name, port in ports.items()}
+    for name, port in ports.items():
+        port.FixValue(context, values[name])
+    channels = system.GetOutputPort("channels")
+    for step in range(40):
+        name = list(ports)[step % 4]
+        values[name] = rng.normal(size=ports[name].size())
+        ports[name].FixValue(context, values[name])
+        expected = [float(np.sum(values["left_taxel_forces"])),
+                    float(np.sum(values["right_taxel_forces"])),
+                    float(np.linalg.norm(values["left_pad_acceleration"])),
+                    float(np.linalg.norm(values["right_pad_acceleration"]))]
+        assert channels.Eval(context).tolist() == expected

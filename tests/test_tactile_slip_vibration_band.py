@@ -118,3 +118,48 @@ def test_sample_blocks_give_the_band_of_the_uninterrupted_stream_whatever_the_bu
             np.testing.assert_array_equal(bursty[k], steady[end - 1])
         else:
             assert np.all(bursty[k] == 0.0)
+
+
+def _numpy_band_reference(samples: np.ndarray, *, band_hz: float, window_s: float):
+    """The band computed with numpy arrays, highpass_step and np.add.reduce (the form the
+    system had before it ran on Python floats): slip_vibration after each sample."""
+    coefficients = highpass_biquad(band_hz, RATE_HZ)
+    window = max(1, round(window_s * RATE_HZ))
+    z1 = z2 = np.zeros(6)
+    squares = np.zeros((2, window))
+    out = []
+    for row in samples:
+        y, z1, z2 = highpass_step(coefficients, row, z1, z2)
+        squares[:, :-1] = squares[:, 1:]
+        squares[:, -1] = np.add.reduce(y.reshape(2, 3) ** 2, axis=1)
+        out.append(np.sqrt(squares.mean(axis=1)))
+    return np.array(out)
+
+
+def test_float_filter_step_equals_the_numpy_step_bit_for_bit():
+    from tegrasp_drake.tactile.slip_vibration_band import highpass_step_floats
+    rng = np.random.default_rng(3)
+    coefficients = highpass_biquad(80.0, RATE_HZ)
+    z1 = z2 = np.zeros(6)
+    delays = [0.0] * 12
+    for _ in range(3000):
+        x = rng.normal(size=6) * 10.0 ** rng.uniform(-3, 3, size=6)
+        y, z1, z2 = highpass_step(coefficients, x, z1, z2)
+        y_floats, delays = highpass_step_floats(tuple(coefficients.tolist()), x.tolist(), delays)
+        assert y_floats == y.tolist()
+        assert delays == z1.tolist() + z2.tolist()
+
+
+def test_system_equals_the_numpy_form_bit_for_bit():
+    rng = np.random.default_rng(4)
+    samples = rng.normal(size=(300, 6)) * 10.0 ** rng.uniform(-2, 2, size=(300, 6))
+    system = SlipVibrationBand(band_hz=80.0, window_s=0.01, sample_rate_hz=RATE_HZ)
+    simulator = Simulator(system)
+    context = simulator.get_mutable_context()
+    ours = []
+    for k, row in enumerate(samples):
+        system.GetInputPort("pad_acceleration").FixValue(context, row)
+        simulator.AdvanceTo((k + 0.5) / RATE_HZ)  # past the update at k / RATE_HZ
+        ours.append(system.GetOutputPort("slip_vibration").Eval(context).tolist())
+    reference = _numpy_band_reference(samples, band_hz=80.0, window_s=0.01)
+    assert ours == reference.tolist()

@@ -7,6 +7,7 @@ grasp approaches along world +x with the stroke along world y (arm_kinematics.py
 """
 
 import dataclasses
+import functools
 
 import numpy as np
 from pydrake.common.value import AbstractValue
@@ -53,8 +54,10 @@ class ScriptSegment:
     gripper_command: tuple
 
 
+@functools.lru_cache(maxsize=256)
 def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple:
-    """The (rPR, rSP, rFR) bytes for a target opening, speed and force."""
+    """The (rPR, rSP, rFR) bytes for a target opening, speed and force. Cached: the state
+    machine asks for the same few requests on every tick (a pure function of its scalars)."""
     return (float(ru.position_byte_from_opening(opening_m)),
             float(ru.speed_byte_from_speed(speed_mps)),
             float(ru.force_byte_from_force(force_n)))

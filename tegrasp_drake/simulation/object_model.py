@@ -13,7 +13,8 @@ from tegrasp_drake.rig.objects import ObjectConfig
 OBJECT_MODEL_NAME = "object"
 OBJECT_BODY_NAME = "object"
 # Edge length [m] of a primitive's rigid hydroelastic surface mesh (a cylinder's facets; a
-# box's mesh is its 12 triangles whatever the hint): 5 mm facets on the 25-50 mm cylinders.
+# box's mesh is 24 triangles, 14 vertices with one at each face's centre, whatever the hint:
+# counted at 50, 5 and 2 mm): 5 mm facets on the 25-50 mm cylinders.
 MESH_RESOLUTION_M = 0.005
 
 

@@ -115,18 +115,20 @@ def volts_per_mps2(config: VibrationSensorConfig) -> float:
                             config.feedback_capacitance_f)
 
 
-# The discrete state, one vector: the films' states (5 x 2, row-major: state i of pad p at
-# 2 i + p) followed by this step's loads, so that [0:12] reshaped (6, 2) is advance_films'
-# input; the last step's normal forces; the impact pulses (onset times, impulses,
-# durations); the running peak of the sensor period; the output sample.
+# The discrete state. Group 0, one vector: the films' states (5 x 2, row-major: state i of
+# pad p at 2 i + p) followed by this step's loads, so that [0:12] reshaped (6, 2) is
+# advance_films' input; the last step's normal forces; the impact pulses (onset times,
+# impulses, durations); the running peak of the sensor period. Then one group per pad, its
+# output sample as the port gives it, [0, 0, a] (x and y stay zero): the output ports are
+# Drake state output ports, read with no Python call.
 _FILM = slice(0, 2 * STATE_SIZE)
 _LOAD = 2 * STATE_SIZE  # left, right
 _FILM_AND_LOAD = slice(0, _LOAD + 2)
 _FORCE = 12  # left, right
 _ONSET, _IMPULSE, _DURATION = slice(14, 16), slice(16, 18), slice(18, 20)
 _PEAK = slice(20, 22)
-_SAMPLE = 22
-_STATE_LENGTH = 24
+_STATE_LENGTH = 22
+_SAMPLE_AXIS = 2  # the film's axis, the pad frame's z, in each sample group
 
 
 def _point_velocity_before_step(X_WB: RigidTransform, V_WB: SpatialVelocity,
@@ -227,14 +229,10 @@ class PadFilms(LeafSystem):
         self._body_accelerations = self.DeclareAbstractInputPort(
             "body_spatial_accelerations", AbstractValue.Make([SpatialAcceleration()]))
         self._state = self.DeclareDiscreteState(_STATE_LENGTH)
+        self._samples = [self.DeclareDiscreteState(3) for _ in FINGER_NAMES]
         self.DeclarePeriodicDiscreteUpdateEvent(self._dt, 0.0, self._update)
-        for k, finger in enumerate(FINGER_NAMES):
-            self.DeclareVectorOutputPort(
-                f"{finger}_pad_vibration", 3,
-                lambda context, output, k=k: output.SetFromVector(
-                    [0.0, 0.0, context.get_discrete_state(self._state).get_value()[
-                        _SAMPLE + k]]),
-                prerequisites_of_calc={self.discrete_state_ticket(self._state)})
+        for finger, sample in zip(FINGER_NAMES, self._samples):
+            self.DeclareStateOutputPort(f"{finger}_pad_vibration", sample)
 
     @property
     def force_indices(self) -> tuple[int, ...]:
@@ -279,9 +277,11 @@ class PadFilms(LeafSystem):
         if step % self._steps_per_sample:
             state[_PEAK] = peaks
             return
-        state[_SAMPLE:_SAMPLE + 2] = peaks
         if self._noise is not None:
-            state[_SAMPLE:_SAMPLE + 2] += self._config.noise_std_mps2 * self._noise.Eval(context)
+            noise, std = self._noise.Eval(context).tolist(), self._config.noise_std_mps2
+            peaks = [peaks[0] + std * noise[0], peaks[1] + std * noise[1]]
+        for sample, value in zip(self._samples, peaks):
+            discrete_state.get_mutable_value(sample)[_SAMPLE_AXIS] = value
         state[_PEAK] = 0.0
 
     def _impact_loads(self, step_start: float, state: np.ndarray):

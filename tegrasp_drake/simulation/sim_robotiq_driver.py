@@ -10,6 +10,8 @@ the single actuator carries 2 F). A finger that stops short of its goal reports 
 """
 
 import dataclasses
+import functools
+import math
 
 import numpy as np
 from pydrake.systems.framework import LeafSystem
@@ -32,13 +34,32 @@ class GripperDriverConfig:
 def reference_step(q: float, v: float, goal: float, max_speed: float, acceleration: float,
                    dt: float) -> float:
     """The constant acceleration [m/s^2] over the next dt that moves (q, v) toward goal
-    without exceeding max_speed and while still able to stop at the goal."""
+    without exceeding max_speed and while still able to stop at the goal. Python floats
+    (math.sqrt rounds as np.sqrt does), called on every update."""
     distance = goal - q
-    stopping_speed = np.sqrt(2.0 * acceleration * abs(distance))
-    target_v = np.sign(distance) * min(max_speed, stopping_speed)
     if abs(distance) < 1e-6:
         target_v = 0.0
-    return float(np.clip((target_v - v) / dt, -acceleration, acceleration))
+    else:
+        speed = min(max_speed, math.sqrt(2.0 * acceleration * abs(distance)))
+        target_v = speed if distance > 0.0 else -speed
+    return float(min(max((target_v - v) / dt, -acceleration), acceleration))
+
+
+@functools.lru_cache(maxsize=256)
+def command_targets(position: float, speed: float, force: float) -> tuple[float, ...]:
+    """(position byte, goal finger coordinate q [m], half the closing speed [m/s], force
+    limit [N]) of a command's (rPR, rSP, rFR) bytes. Cached: the command changes a few
+    times a trial and is read on every update."""
+    position_byte = float(np.clip(np.round(position), 0, 255))
+    return (position_byte, float(ru.opening_from_position_byte(position_byte) / 2),
+            float(ru.speed_from_byte(speed) / 2), float(ru.force_from_byte(force)))
+
+
+def status_position_byte(q: float) -> float:
+    """gPO of the finger coordinate q [m]: ru.position_byte_from_opening(2 q) on Python
+    floats (round() rounds half to even, as np.rint)."""
+    fraction = min(max(2.0 * q / ru.STROKE_M, 0.0), 1.0)
+    return float(round(ru.POSITION_CLOSED_BYTE - fraction * ru.POSITION_SPAN_BYTES))
 
 
 def has_arrived(q: float, v: float, goal: float, acceleration: float, dt: float) -> bool:
@@ -106,11 +127,8 @@ class SimRobotiqDriver(LeafSystem):
         s[_REF_Q] += s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
         s[_REF_V] += s[_REF_A] * h
         s[_T] = t
-        command = self._command.Eval(context)
-        s[_POSITION_BYTE] = np.clip(np.round(command[ru.COMMAND_POSITION]), 0, 255)
-        s[_GOAL] = ru.opening_from_position_byte(s[_POSITION_BYTE]) / 2
-        s[_HALF_SPEED] = ru.speed_from_byte(command[ru.COMMAND_SPEED]) / 2
-        s[_FORCE] = ru.force_from_byte(command[ru.COMMAND_FORCE])
+        s[_POSITION_BYTE], s[_GOAL], s[_HALF_SPEED], s[_FORCE] = command_targets(
+            *self._command.Eval(context).tolist())
         if has_arrived(s[_REF_Q], s[_REF_V], s[_GOAL], self._config.acceleration, self._dt):
             s[_REF_Q], s[_REF_V] = s[_GOAL], 0.0
         s[_REF_A] = reference_step(s[_REF_Q], s[_REF_V], s[_GOAL], s[_HALF_SPEED],
@@ -132,16 +150,17 @@ class SimRobotiqDriver(LeafSystem):
                                                       self._config.position_gain), v_ref])
 
     def _calc_status(self, context, output):
-        s = context.get_discrete_state(self._state).value()
-        q = self._finger_state.Eval(context)[0]
+        # Python floats (round() rounds half to even, as np.round); the same bytes.
+        s = context.get_discrete_state(self._state).get_value().tolist()
+        q = self._finger_state.Eval(context).item(0)
         band = 2.0 * s[_FORCE] / self._config.position_gain
         force = self._config.position_gain * min(abs(s[_REF_Q] - q), band) / 2.0
-        status = np.zeros(ru.STATUS_SIZE)
-        status[ru.STATUS_ACT] = 1
-        status[ru.STATUS_GTO] = 1
-        status[ru.STATUS_STA] = int(ru.ActivationStatus.ACTIVE)
+        status = [0.0] * ru.STATUS_SIZE
+        status[ru.STATUS_ACT] = 1.0
+        status[ru.STATUS_GTO] = 1.0
+        status[ru.STATUS_STA] = float(ru.ActivationStatus.ACTIVE)
         status[ru.STATUS_OBJ] = s[_OBJECT]
         status[ru.STATUS_PR] = s[_POSITION_BYTE]
-        status[ru.STATUS_PO] = ru.position_byte_from_opening(2.0 * q)
-        status[ru.STATUS_CU] = np.clip(np.round(force / ru.FORCE_MAX_N * 255.0), 0, 255)
+        status[ru.STATUS_PO] = status_position_byte(q)
+        status[ru.STATUS_CU] = float(min(max(round(force / ru.FORCE_MAX_N * 255.0), 0), 255))
         output.SetFromVector(status)

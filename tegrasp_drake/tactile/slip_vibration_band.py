@@ -56,6 +56,17 @@ def highpass_step(coefficients: np.ndarray, x: np.ndarray, z1: np.ndarray,
     return y, b1 * x - a1 * y + z2, b2 * x - a2 * y
 
 
+def highpass_step_floats(coefficients: tuple[float, ...], x: list[float],
+                         delays: list[float]) -> tuple[list[float], list[float]]:
+    """highpass_step on Python floats: x the samples of n axes, delays [z1 (n), z2 (n)];
+    returns (y, the next [z1, z2]), bit for bit what highpass_step gives."""
+    b0, b1, b2, a1, a2 = coefficients
+    n = len(x)
+    y = [b0 * u + z1 for u, z1 in zip(x, delays[:n])]
+    return y, ([b1 * u - a1 * v + z2 for u, v, z2 in zip(x, y, delays[n:])]
+               + [b2 * u - a2 * v for u, v in zip(x, y)])
+
+
 class SlipVibrationBand(LeafSystem):
     """Each pad's vibration RMS above the slip band's corner.
 
@@ -84,6 +95,7 @@ class SlipVibrationBand(LeafSystem):
     def __init__(self, *, band_hz: float, window_s: float, sample_rate_hz: float):
         super().__init__()
         self._coefficients = highpass_biquad(band_hz, sample_rate_hz)
+        self._coefficient_floats = tuple(self._coefficients.tolist())
         self._window = max(1, round(window_s * sample_rate_hz))
         self._input = self.DeclareVectorInputPort("pad_acceleration", _AXES)
         self._samples = self.DeclareAbstractInputPort(
@@ -99,19 +111,24 @@ class SlipVibrationBand(LeafSystem):
         s = discrete_state.get_mutable_value(self._state)
         if self._samples.HasValue(context):
             for x in self._samples.Eval(context):
-                self._filter_sample(s, x)
+                self._filter_sample(s, x.tolist())
         else:
-            self._filter_sample(s, self._input.Eval(context))
+            self._filter_sample(s, self._input.Eval(context).tolist())
 
-    def _filter_sample(self, s: np.ndarray, x: np.ndarray):
-        """Advances the state vector s by one sample x (6) [m/s^2], in place."""
-        y, s[:_AXES], s[_AXES:2 * _AXES] = highpass_step(self._coefficients, x, s[:_AXES],
-                                                         s[_AXES:2 * _AXES])
+    def _filter_sample(self, s: np.ndarray, x: list[float]):
+        """Advances the state vector s by one sample x (6) [m/s^2], in place. The filter
+        runs on Python floats, highpass_step's operations in its order (the same IEEE
+        results; numpy's per-call overhead on 6-vectors costs several times the
+        arithmetic)."""
+        y, delays = highpass_step_floats(self._coefficient_floats, x, s[:2 * _AXES].tolist())
+        s[:2 * _AXES] = delays
         # The oldest squared magnitude of each pad leaves, the newest enters at the end
-        # (numpy copies overlapping slices safely).
+        # (numpy copies overlapping slices safely; |y|^2 summed x, y, z from the left, as
+        # np.add.reduce does over 3 entries).
         squares = s[2 * _AXES:].reshape(len(FINGER_NAMES), self._window)
         squares[:, :-1] = squares[:, 1:]
-        squares[:, -1] = np.add.reduce(y.reshape(len(FINGER_NAMES), 3) ** 2, axis=1)
+        squares[:, -1] = [(y[i] * y[i] + y[i + 1] * y[i + 1]) + y[i + 2] * y[i + 2]
+                          for i in range(0, _AXES, 3)]
 
     def _calc(self, context, output):
         squares = context.get_discrete_state(self._state).get_value()[2 * _AXES:]
