@@ -15,6 +15,11 @@ CONTROLLERS = ("memorized", "heuristic", "open_loop", "taxel_aware")
 # The controllers whose transitions a memorized event triggers, and the events folder each
 # reads (a sub-folder of the events folder; "" is the folder itself: the paper's events).
 MEMORIZED_EVENT_CONTROLLERS = {"memorized": "", "taxel_aware": "ensemble"}
+# What triggers Lift-Load and Avoid (issue #14): the heuristic thresholds below (the
+# paper's, the default) or memorized corrective events (experiments/corrective_events.py,
+# read from the events folder's CORRECTIVE_EVENTS_FOLDER) matched by Eq. 3.
+CORRECTIVE_TRIGGERS = ("heuristic", "memorized")
+CORRECTIVE_EVENTS_FOLDER = "corrective"
 
 
 @dataclasses.dataclass
@@ -142,5 +147,23 @@ class GraspControllerConfig:
     # here (of shape, size, mass, friction, file), e.g. [friction] to grasp a slippery box
     # with the box's events.
     event_object_may_differ: list[str] = dataclasses.field(default_factory=list)
+    # Lift-Load's and Avoid's triggers: "heuristic" (the slip band and RA thresholds above)
+    # or "memorized" (the memorized corrective events lift_load and hold_avoid, matched by
+    # Eq. 3 in Lift and in Hold; Avoid still waits hit_refractory_s after entering Hold).
+    corrective_triggers: str = "heuristic"
+    # Eq. 3 thresholds [SA, RA] of the memorized corrective events, chosen on held-out
+    # recorded runs by analysis/choose_corrective_thresholds.py
+    # (analysis/corrective_thresholds.md: the rule and the tables), never on the
+    # closed-loop trials that judge them.
+    lift_load_event_thresholds: list[float] = dataclasses.field(
+        default_factory=lambda: [0.9, 0.7])
+    hold_avoid_event_thresholds: list[float] = dataclasses.field(
+        default_factory=lambda: [0.9, 0.7])
+
+    def corrective_event_thresholds(self) -> dict[str, tuple[float, float]]:
+        """{corrective transition: (SA, RA)} for the corrective EventMatcher."""
+        return {"lift_load": tuple(self.lift_load_event_thresholds),
+                "hold_avoid": tuple(self.hold_avoid_event_thresholds)}
+
     # The taxel_aware controller's corrections (unused by the other controllers).
     taxel_aware: TaxelAwareConfig = dataclasses.field(default_factory=TaxelAwareConfig)

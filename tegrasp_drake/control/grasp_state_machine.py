@@ -36,8 +36,10 @@ from tegrasp_drake.control.motion_profiles import MotionSegment
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import Shift, held_tilted, taxel_re_reach_shift
 from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.control.transition_logic import TAXEL_AWARE, Observation, next_mode
-from tegrasp_drake.events.transitions import NO_EVENT, REQUIRED_TRANSITIONS, transition_states
+from tegrasp_drake.control.transition_logic import (
+    TAXEL_AWARE, Observation, memorized_corrective_triggers, next_mode)
+from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
+                                              REQUIRED_TRANSITIONS, transition_states)
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, TAXELS_PER_PAD
@@ -48,6 +50,10 @@ GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
 # leaves it.
 EXPECTED_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                        for name in REQUIRED_TRANSITIONS}
+# The memorized corrective event each mode checks for (controller.corrective_triggers =
+# "memorized"): the corrective transition that leaves it.
+EXPECTED_CORRECTIVE_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
+                                  for name in CORRECTIVE_TRANSITIONS}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -131,11 +137,13 @@ class GraspStateMachine(LeafSystem):
         - slip_vibration
         - device_fault (optional)
         - taxel_forces (optional)
+        - corrective_match (optional)
         output_ports:
         - X_WG_desired
         - gripper_command
         - expected_event
         - mode
+        - corrective_expected_event
 
     Ports:
         match: [1] when the detector matches the expected event, else [0].
@@ -150,15 +158,21 @@ class GraspStateMachine(LeafSystem):
             message; unconnected: no faults.
         taxel_forces: [left 12, right 12] taxel forces (N, taxel_layout order); read by
             the taxel_aware controller only, which needs it connected.
+        corrective_match: [1] when the corrective EventMatcher matches the mode's
+            memorized corrective event, else [0]; read with memorized corrective triggers
+            only (controller.corrective_triggers), which need it connected.
         X_WG_desired: RigidTransform, the grasp frame's desired pose in world.
         gripper_command: [rPR, rSP, rFR] bytes.
         expected_event: [index] of the event the detector should check, -1 for none. It
             depends only on the state (the detector's `match` feeds back to this system).
         mode: [Mode value].
+        corrective_expected_event: [index] of the corrective event the corrective matcher
+            should check (slip in Lift, a hit in Hold), -1 for none or without memorized
+            corrective triggers; depends only on the state.
     """
 
     def __init__(self, *, plan: GraspPlan, config, event_indices: dict,
-                 event_trigger: Trigger):
+                 event_trigger: Trigger, corrective_event_indices: dict | None = None):
         super().__init__()
         self._plan = plan
         self._config = config
@@ -167,6 +181,13 @@ class GraspStateMachine(LeafSystem):
         missing = [t for t in EXPECTED_TRANSITION.values() if t not in self._event_indices]
         if missing:
             raise ValueError(f"the event detector has no event for {missing}")
+        self._corrective_event_indices = dict(corrective_event_indices or {})
+        self._memorized_corrective = memorized_corrective_triggers(config)
+        missing = [t for t in CORRECTIVE_TRANSITIONS
+                   if t not in self._corrective_event_indices]
+        if self._memorized_corrective and missing:
+            raise ValueError(f"memorized corrective triggers need the corrective events "
+                             f"{missing}")
         self._match = self.DeclareVectorInputPort("match", 1)
         self._scores = self.DeclareVectorInputPort("scores", len(CHANNEL_NAMES))
         self._channels = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
@@ -175,6 +196,7 @@ class GraspStateMachine(LeafSystem):
         self._slip_vibration = self.DeclareVectorInputPort("slip_vibration", 2)
         self._device_fault = self.DeclareAbstractInputPort("device_fault", AbstractValue.Make(""))
         self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
+        self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
         self._taxel_aware = getattr(config, "name", "") == TAXEL_AWARE
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
@@ -187,6 +209,9 @@ class GraspStateMachine(LeafSystem):
         self.DeclareVectorOutputPort("expected_event", 1, self._calc_expected_event,
                                      prerequisites_of_calc=state_only)
         self.DeclareVectorOutputPort("mode", 1, self._calc_mode,
+                                     prerequisites_of_calc=state_only)
+        self.DeclareVectorOutputPort("corrective_expected_event", 1,
+                                     self._calc_corrective_expected_event,
                                      prerequisites_of_calc=state_only)
 
     # ---- construction helpers -------------------------------------------------------
@@ -224,6 +249,12 @@ class GraspStateMachine(LeafSystem):
     def _calc_expected_event(self, context, output):
         transition = EXPECTED_TRANSITION.get(self.state(context).mode)
         output.SetAtIndex(0, self._event_indices[transition] if transition else NO_EVENT)
+
+    def _calc_corrective_expected_event(self, context, output):
+        transition = (EXPECTED_CORRECTIVE_TRANSITION.get(self.state(context).mode)
+                      if self._memorized_corrective else None)
+        output.SetAtIndex(0, self._corrective_event_indices[transition] if transition
+                          else NO_EVENT)
 
     def _calc_mode(self, context, output):
         output.SetAtIndex(0, float(self.state(context).mode))
@@ -350,14 +381,17 @@ class GraspStateMachine(LeafSystem):
             slip_s=t - slip_since if slipping else 0.0,
             slip_quiet=slip_vibration <= config.slip_vibration_mps2,
             hit=s.mode == Mode.HOLD and is_hit(ra, time_in_mode, config),
+            corrective_event_matched=self._memorized_corrective and bool(
+                self._corrective_match.Eval(context)[0] > 0.5),
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",
             device_fault=device_fault)
         return observation, dataclasses.replace(
             s, one_sided_since=one_sided_since, slip_since=slip_since, tilted_since=tilted_since,
             motion_done_since=motion_done_since,
             # The baseline is the last Hold tick before the hit (not the hit's own tick).
-            sa_before=(tuple(channels[:2]) if s.mode == Mode.HOLD and not observation.hit
-                       else s.sa_before))
+            sa_before=(tuple(channels[:2]) if s.mode == Mode.HOLD and not (
+                observation.corrective_event_matched if self._memorized_corrective
+                else observation.hit) else s.sa_before))
 
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
         """Log the transition and start the new mode's motion."""

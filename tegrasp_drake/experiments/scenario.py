@@ -17,7 +17,8 @@ from pydrake.common.yaml import yaml_dump_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
-from tegrasp_drake.control.controller_config import CONTROLLERS, GraspControllerConfig
+from tegrasp_drake.control.controller_config import (CONTROLLERS, CORRECTIVE_TRIGGERS,
+                                                     GraspControllerConfig)
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
@@ -154,6 +155,14 @@ def _check_controller(controller: GraspControllerConfig, source: str) -> None:
                           f"is not one of {', '.join(CONTROLLERS)}")
     require(controller.update_period_s > 0, source, "controller.update_period_s",
             "must be positive [s]", controller.update_period_s)
+    require(controller.corrective_triggers in CORRECTIVE_TRIGGERS, source,
+            "controller.corrective_triggers", f"must be one of {', '.join(CORRECTIVE_TRIGGERS)}",
+            controller.corrective_triggers)
+    for name in ("lift_load_event_thresholds", "hold_avoid_event_thresholds"):
+        pair = getattr(controller, name)
+        require(len(pair) == 2 and all(-1.0 <= v <= 1.0 for v in pair), source,
+                f"controller.{name}", "must be [SA, RA], each in [-1, 1] (Eq. 3 scores)",
+                pair)
     sections = (("controller", controller), ("controller.heuristic", controller.heuristic))
     for prefix, section in sections:
         for field in dataclasses.fields(section):
