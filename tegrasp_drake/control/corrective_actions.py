@@ -18,8 +18,8 @@ side; each pad's frame has its z axis, the pad normal, pointing at the other fin
              that way
 
 Lift-Load's and Avoid's triggers are the heuristic thresholds (lift_load_or_fail,
-avoid_on_hit) or, with controller.corrective_triggers = "memorized", the memorized
-corrective events matched by Eq. 3 (lift_load_on_slip_event, avoid_on_hit_event).
+avoid_on_hit) or, for the events named in controller.memorized_corrective_events, the
+memorized corrective events matched by Eq. 3 (lift_load_on_slip_event, avoid_on_hit_event).
 """
 
 import dataclasses

@@ -110,7 +110,7 @@ def load_corrective_events(scenario, events_dir=None, *, nominal_object=None) ->
                                 required=CORRECTIVE_TRANSITIONS,
                                 record_hint="`python analysis/record_corrective_events.py "
                                 "LOGS --object NAME`, or --set "
-                                "controller.corrective_triggers=heuristic")
+                                "controller.memorized_corrective_events=[]")
 
 
 def _load_checked_events(scenario, folders, *, nominal_object=None, required=None,
@@ -185,8 +185,11 @@ def _add_corrective_matcher(builder, scenario, corrective_events, channels):
     config = scenario.controller
     events = (corrective_events if corrective_events is not None
               else load_corrective_events(scenario))
+    events = {t: events[t] for t in config.memorized_corrective_events}
     matcher = builder.AddNamedSystem("corrective_matcher", EventMatcher(
-        events, EventMatcherConfig(event_thresholds=config.corrective_event_thresholds(),
+        events, EventMatcherConfig(event_thresholds={
+            t: pair for t, pair in config.corrective_event_thresholds().items()
+            if t in events},
                                    sa_rate_hz=scenario.tactile.sample_rate_hz,
                                    ra_rate_hz=scenario.vibration.sample_rate_hz)))
     builder.Connect(channels, matcher.GetInputPort("channels"))
@@ -201,8 +204,8 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
 
     events: {transition: MemorizedEvent} for the memorized controller (default: the
     package's events of the scenario's object). corrective_events: the memorized
-    corrective events {lift_load, hold_avoid} read with controller.corrective_triggers =
-    "memorized" (default: load_corrective_events).
+    corrective events {lift_load, hold_avoid}, of which those named in
+    controller.memorized_corrective_events are matched (default: load_corrective_events).
     """
     from tegrasp_drake.simulation.station import initial_arm_positions
     name = controller or scenario.controller.name
@@ -224,7 +227,7 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
     detector, event_trigger = _add_detector(builder, scenario, name, events,
                                             channels.GetOutputPort("channels"))
     corrective = None
-    if scenario.controller.corrective_triggers == "memorized":
+    if scenario.controller.memorized_corrective_events:
         corrective = _add_corrective_matcher(builder, scenario, corrective_events,
                                              channels.GetOutputPort("channels"))
     machine = builder.AddNamedSystem("grasp_state_machine", GraspStateMachine(

@@ -41,7 +41,7 @@ class Trigger(enum.StrEnum):
     HEURISTIC_EVENT = "heuristic_event"  # the heuristic controller's threshold detector fired
     THRESHOLD = "threshold"  # a hand-set threshold on the live signals (hit, lost object)
     # A memorized corrective event matched (slip in Lift, a hit in Hold; issue #14,
-    # controller.corrective_triggers = "memorized").
+    # controller.memorized_corrective_events).
     CORRECTIVE_EVENT = "corrective_event"
     TIMER = "timer"  # a planned motion or a timed phase ended
     CORRECTIVE = "corrective"  # a corrective action (Re-Reach, Lift-Load) started or ended

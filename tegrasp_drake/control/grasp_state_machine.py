@@ -37,7 +37,7 @@ from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import Shift, held_tilted, taxel_re_reach_shift
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.control.transition_logic import (
-    TAXEL_AWARE, Observation, memorized_corrective_triggers, next_mode)
+    TAXEL_AWARE, Observation, memorized_corrective_trigger, next_mode)
 from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
                                               REQUIRED_TRANSITIONS, transition_states)
 from tegrasp_drake.rig import robotiq_units as ru
@@ -50,8 +50,8 @@ GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
 # leaves it.
 EXPECTED_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                        for name in REQUIRED_TRANSITIONS}
-# The memorized corrective event each mode checks for (controller.corrective_triggers =
-# "memorized"): the corrective transition that leaves it.
+# The memorized corrective event each mode checks for (when named in
+# controller.memorized_corrective_events): the corrective transition that leaves it.
 EXPECTED_CORRECTIVE_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                                   for name in CORRECTIVE_TRANSITIONS}
 
@@ -160,7 +160,7 @@ class GraspStateMachine(LeafSystem):
             the taxel_aware controller only, which needs it connected.
         corrective_match: [1] when the corrective EventMatcher matches the mode's
             memorized corrective event, else [0]; read with memorized corrective triggers
-            only (controller.corrective_triggers), which need it connected.
+            only (controller.memorized_corrective_events), which need it connected.
         X_WG_desired: RigidTransform, the grasp frame's desired pose in world.
         gripper_command: [rPR, rSP, rFR] bytes.
         expected_event: [index] of the event the detector should check, -1 for none. It
@@ -182,10 +182,11 @@ class GraspStateMachine(LeafSystem):
         if missing:
             raise ValueError(f"the event detector has no event for {missing}")
         self._corrective_event_indices = dict(corrective_event_indices or {})
-        self._memorized_corrective = memorized_corrective_triggers(config)
-        missing = [t for t in CORRECTIVE_TRANSITIONS
+        self._memorized_corrective = tuple(
+            t for t in CORRECTIVE_TRANSITIONS if memorized_corrective_trigger(config, t))
+        missing = [t for t in self._memorized_corrective
                    if t not in self._corrective_event_indices]
-        if self._memorized_corrective and missing:
+        if missing:
             raise ValueError(f"memorized corrective triggers need the corrective events "
                              f"{missing}")
         self._match = self.DeclareVectorInputPort("match", 1)
@@ -251,10 +252,9 @@ class GraspStateMachine(LeafSystem):
         output.SetAtIndex(0, self._event_indices[transition] if transition else NO_EVENT)
 
     def _calc_corrective_expected_event(self, context, output):
-        transition = (EXPECTED_CORRECTIVE_TRANSITION.get(self.state(context).mode)
-                      if self._memorized_corrective else None)
-        output.SetAtIndex(0, self._corrective_event_indices[transition] if transition
-                          else NO_EVENT)
+        transition = EXPECTED_CORRECTIVE_TRANSITION.get(self.state(context).mode)
+        output.SetAtIndex(0, self._corrective_event_indices[transition]
+                          if transition in self._memorized_corrective else NO_EVENT)
 
     def _calc_mode(self, context, output):
         output.SetAtIndex(0, float(self.state(context).mode))
@@ -381,7 +381,7 @@ class GraspStateMachine(LeafSystem):
             slip_s=t - slip_since if slipping else 0.0,
             slip_quiet=slip_vibration <= config.slip_vibration_mps2,
             hit=s.mode == Mode.HOLD and is_hit(ra, time_in_mode, config),
-            corrective_event_matched=self._memorized_corrective and bool(
+            corrective_event_matched=bool(self._memorized_corrective) and bool(
                 self._corrective_match.Eval(context)[0] > 0.5),
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",
             device_fault=device_fault)
@@ -390,7 +390,8 @@ class GraspStateMachine(LeafSystem):
             motion_done_since=motion_done_since,
             # The baseline is the last Hold tick before the hit (not the hit's own tick).
             sa_before=(tuple(channels[:2]) if s.mode == Mode.HOLD and not (
-                observation.corrective_event_matched if self._memorized_corrective
+                observation.corrective_event_matched
+                if "hold_avoid" in self._memorized_corrective
                 else observation.hit) else s.sa_before))
 
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:

@@ -65,7 +65,7 @@ class Observation:
     slip_s: float = 0.0  # how long either RA has been above the slip threshold
     hit: bool = False  # either RA above the hit threshold (after the refractory time)
     # The corrective EventMatcher matches the mode's memorized corrective event (slip in
-    # Lift, a hit in Hold); read with controller.corrective_triggers = "memorized".
+    # Lift, a hit in Hold); read for the events in controller.memorized_corrective_events.
     corrective_event_matched: bool = False
     gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
     device_fault: str = ""  # a watchdog's message, "" for none
@@ -143,13 +143,14 @@ def _load(obs: Observation, counters: Counters, config, event_trigger: Trigger, 
     return None
 
 
-def memorized_corrective_triggers(config) -> bool:
-    """True when Lift-Load and Avoid are triggered by memorized corrective events."""
-    return getattr(config, "corrective_triggers", "heuristic") == "memorized"
+def memorized_corrective_trigger(config, transition: str) -> bool:
+    """True when the corrective `transition` (lift_load, hold_avoid) is triggered by its
+    memorized corrective event (controller.memorized_corrective_events)."""
+    return transition in getattr(config, "memorized_corrective_events", ())
 
 
 def _lift(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if memorized_corrective_triggers(config):
+    if memorized_corrective_trigger(config, "lift_load"):
         lift_load = lift_load_on_slip_event(obs.corrective_event_matched, counters, config)
     else:
         lift_load = lift_load_or_fail(obs.slip_s, counters, config)
@@ -161,7 +162,7 @@ def _lift(obs: Observation, counters: Counters, config, event_trigger: Trigger, 
 
 
 def _hold(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if memorized_corrective_triggers(config):
+    if memorized_corrective_trigger(config, "hold_avoid"):
         avoid = avoid_on_hit_event(obs.corrective_event_matched, obs.time_in_mode, config)
     else:
         avoid = avoid_on_hit(obs.hit, config)

@@ -17,8 +17,8 @@ from pydrake.common.yaml import yaml_dump_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
-from tegrasp_drake.control.controller_config import (CONTROLLERS, CORRECTIVE_TRIGGERS,
-                                                     GraspControllerConfig)
+from tegrasp_drake.control.controller_config import CONTROLLERS, GraspControllerConfig
+from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
@@ -155,9 +155,10 @@ def _check_controller(controller: GraspControllerConfig, source: str) -> None:
                           f"is not one of {', '.join(CONTROLLERS)}")
     require(controller.update_period_s > 0, source, "controller.update_period_s",
             "must be positive [s]", controller.update_period_s)
-    require(controller.corrective_triggers in CORRECTIVE_TRIGGERS, source,
-            "controller.corrective_triggers", f"must be one of {', '.join(CORRECTIVE_TRIGGERS)}",
-            controller.corrective_triggers)
+    for k, name in enumerate(controller.memorized_corrective_events):
+        require(name in CORRECTIVE_TRANSITIONS, source,
+                f"controller.memorized_corrective_events[{k}]",
+                f"must name a corrective event ({', '.join(CORRECTIVE_TRANSITIONS)})", name)
     for name in ("lift_load_event_thresholds", "hold_avoid_event_thresholds"):
         pair = getattr(controller, name)
         require(len(pair) == 2 and all(-1.0 <= v <= 1.0 for v in pair), source,
