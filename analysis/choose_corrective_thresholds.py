@@ -24,10 +24,11 @@ from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.memorized_event import load_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.experiments.corrective_detection import (
-    SituationSpan, classify_first_firing, event_span, heuristic_hit_time, heuristic_slip_time)
+    SituationSpan, choose_centred_thresholds, classify_first_firing, event_span,
+    heuristic_hit_time, heuristic_slip_time, on_controller_ticks)
 from tegrasp_drake.experiments.corrective_events import (
     CORRECTIVE_FOLDER, CORRECTIVE_RUNS, corrective_event_time, corrective_scenario)
-from tegrasp_drake.experiments.detection_quality import choose_thresholds, classify, rate_point
+from tegrasp_drake.experiments.detection_quality import classify, rate_point
 from tegrasp_drake.experiments.ensemble_events import ensemble_scenario
 from tegrasp_drake.experiments.trial_log import load_trial_log
 
@@ -91,21 +92,23 @@ def main(argv=None) -> int:
     events = load_memorized_events(args.events / CORRECTIVE_FOLDER, args.object,
                                    required=CORRECTIVE_TRANSITIONS)
     rows = spans(args)
-    scored = [(role, span, log, event_span(tactile_trial_from_log(log), events, span))
+    scored = [(role, span, log, on_controller_ticks(
+        event_span(tactile_trial_from_log(log), events, span), CONFIG.update_period_s))
               for role, span, log in rows]
     lines = [f"# Memorized corrective triggers of `{args.object}`: thresholds and detection",
              "", "Made by `python analysis/choose_corrective_thresholds.py` (its docstring: "
              "which runs choose, which only report). Detected: first firing from 10 ms "
              "before to 0.5 s after the physical event (a hit's start; the pads' first 1 mm "
              "of slip); false: earlier, or in a normal grasp's span; latency after the "
-             "physical event.", ""]
+             "physical event. Scores are read at the state machine's 5 ms ticks. Rule: "
+             "experiments/corrective_detection.choose_centred_thresholds.", ""]
     chosen = {}
     for transition in CORRECTIVE_TRANSITIONS:
         choosing = [s for role, span, _, s in scored if span.transition == transition
                     and role in ("held_out", "held_out_normal")]
         situations = sum(s.physical_s != np.inf for s in choosing)
         try:
-            best = choose_thresholds(choosing, GRID, GRID)
+            best = choose_centred_thresholds(choosing, GRID, GRID)
             verdict = (f"**SA > {best.sa_threshold:g}, RA > {best.ra_threshold:g}** "
                        f"(detected {best.detected}, false {best.false}, missed {best.missed}, "
                        f"median latency {1000 * best.median_latency_s:.0f} ms).")
@@ -135,6 +138,8 @@ def main(argv=None) -> int:
                 fire = (heuristic_slip_time(log, span, CONFIG, 1000.0)
                         if transition == "lift_load"
                         else heuristic_hit_time(log, span, CONFIG.hit_ra_mps2))
+                if fire is not None:  # read at the state machine's next tick
+                    fire = CONFIG.update_period_s * np.ceil(fire / CONFIG.update_period_s - 1e-6)
                 heuristic.append(classify_first_firing(fire, span.physical_s))
             for trigger, outcomes in (("memorized, chosen", memorized),
                                       ("memorized, paper's 0.9 / 0.7", paper),

@@ -1,6 +1,14 @@
 """How well the corrective triggers detect their situations, from recorded logs (issue #14):
 the memorized corrective events (Eq. 3 at any thresholds, experiments/detection_quality.py)
-and the heuristic triggers they would replace, on the same spans.
+and the heuristic triggers they would replace, on the same spans; and the rule that
+chooses a corrective event's thresholds (choose_centred_thresholds).
+
+Why not detection_quality.choose_thresholds (the highest admissible thresholds, the rule
+of the ensemble events): for the hit it chose SA and RA > 0.98, which the held-out hits
+passed (their RA peaked at 0.98-0.999) but two closed-loop hits did not (the right pad's
+RA peaked at 0.969): it leaves no margin below the situation's scores. The hit's spans
+separate widely (RA at most 0.28 without a hit), so the centre of the admissible range
+keeps a margin on both sides.
 
 A span is the part of a logged run in which the state machine would look for the
 corrective event: Lift for the slip (lift_load), Hold after hit_refractory_s for the hit
@@ -21,8 +29,9 @@ import math
 import numpy as np
 from scipy import signal
 
-from tegrasp_drake.experiments.detection_quality import (DEADLINE_S, FALSE_TRIGGER_MARGIN_S,
-                                                         Outcome, ScoredSpan, scored_span)
+from tegrasp_drake.experiments.detection_quality import (
+    DEADLINE_S, FALSE_TRIGGER_MARGIN_S, LATENCY_TARGET_S, Outcome, ScoredSpan, rate_point,
+    scored_span)
 from tegrasp_drake.tactile.slip_vibration_band import highpass_biquad
 
 
@@ -50,6 +59,35 @@ def event_span(trial, events, span: SituationSpan) -> ScoredSpan:
     keep = scored.times <= span.armed_until_s
     return dataclasses.replace(scored, times=scored.times[keep], scores=scored.scores[keep],
                                physical_s=math.inf)
+
+
+def on_controller_ticks(span: ScoredSpan, period_s: float) -> ScoredSpan:
+    """`span` at the state machine's ticks only (every period_s [s]): the machine reads the
+    matcher's `match` once a tick, so a match shorter than a tick between two is missed."""
+    ticks = np.abs(span.times / period_s - np.round(span.times / period_s)) < 1e-6
+    return dataclasses.replace(span, times=span.times[ticks], scores=span.scores[ticks])
+
+
+def choose_centred_thresholds(spans, sa_grid, ra_grid):
+    """The threshold pair for a corrective event: among the grid's pairs with no false
+    trigger and the most detections (and, if any, a median latency within
+    LATENCY_TARGET_S), the one nearest the centre of that admissible set (per threshold,
+    the midpoint of its range): the widest margin both above what the spans scored
+    without the situation and below what they scored with it. ValueError when every pair
+    has a false trigger."""
+    points = [rate_point(spans, sa, ra) for sa in sa_grid for ra in ra_grid]
+    clean = [p for p in points if p.false == 0]
+    if not clean:
+        raise ValueError("every threshold pair of the grid has a false trigger on these spans")
+    best = max(p.detected for p in clean)
+    candidates = [p for p in clean if p.detected == best]
+    on_target = [p for p in candidates
+                 if p.median_latency_s is not None and p.median_latency_s <= LATENCY_TARGET_S]
+    candidates = on_target or candidates
+    centre = [np.mean([min(values), max(values)]) for values in (
+        [p.sa_threshold for p in candidates], [p.ra_threshold for p in candidates])]
+    return min(candidates, key=lambda p: (p.sa_threshold - centre[0]) ** 2
+               + (p.ra_threshold - centre[1]) ** 2)
 
 
 def classify_first_firing(fire_s: float | None, physical_s: float | None) -> Outcome:
