@@ -130,3 +130,12 @@ def test_the_corrective_runs_have_template_and_held_out_runs_of_each_event():
         roles = {run.role for run in CORRECTIVE_RUNS if run.transition == transition}
         assert roles == {"template", "held_out"}
     assert len({run.seed for run in CORRECTIVE_RUNS}) == len(CORRECTIVE_RUNS)
+
+
+def test_a_memorized_hits_baseline_is_the_sa_before_the_match():
+    from tegrasp_drake.control.corrective_actions import hit_baseline_history
+    history = ()
+    for k in range(20):  # 5 ms ticks, SA rising 1 N a tick
+        history = hit_baseline_history(history, (float(k), 2.0 * k), 0.06, 0.005)
+    assert len(history) == 13  # 60 ms back, and now
+    assert history[0] == (7.0, 14.0) and history[-1] == (19.0, 38.0)

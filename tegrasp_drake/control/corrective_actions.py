@@ -188,6 +188,15 @@ def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
     return None
 
 
+def hit_baseline_history(history: tuple, sa_n, baseline_s: float,
+                         period_s: float) -> tuple:
+    """The Hold ticks' (left, right) SA [N] kept for a memorized hit's baseline: `history`
+    with sa_n appended, the last round(baseline_s / period_s) + 1 ticks; its first entry
+    is the SA baseline_s [s] ago (or the oldest since Hold began)."""
+    keep = max(1, round(baseline_s / period_s)) + 1
+    return (history + (tuple(float(x) for x in sa_n[:2]),))[-keep:]
+
+
 def pad_accelerations_in_world(pad_acceleration: np.ndarray) -> np.ndarray:
     """(2, 3) the left and right pad accelerations [m/s^2] rotated from the pad frames into
     world, for the side grasp."""

@@ -29,8 +29,8 @@ from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.control.corrective_actions import (
-    Counters, avoid_move, is_hit, lift_load_grip_force, pad_accelerations_in_world,
-    re_reach_shift, re_reach_target)
+    Counters, avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
+    pad_accelerations_in_world, re_reach_shift, re_reach_target)
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.motion_profiles import MotionSegment
 from tegrasp_drake.control.taxel_contact import grasp_contact
@@ -78,6 +78,8 @@ class MachineState:
     approach_contact_since: float = -1.0  # a pad touched while approaching (taxel_aware) [s]
     resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
     sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
+    # The memorized hit trigger's: the last Hold ticks' SA (hit_baseline_history).
+    sa_history: tuple = ()
     acceleration_sum: tuple = (0.0, 0.0, 0.0)  # Avoid sensing: pads' world acceleration sum
     sa_gain_sum: tuple = (0.0, 0.0)  # Avoid sensing: SA gains over sa_before, summed
     timeline: tuple[Transition, ...] = ()
@@ -385,14 +387,20 @@ class GraspStateMachine(LeafSystem):
                 self._corrective_match.Eval(context)[0] > 0.5),
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",
             device_fault=device_fault)
+        sa_before, sa_history = s.sa_before, s.sa_history
+        if "hold_avoid" in self._memorized_corrective:
+            # The match comes after the hit: the baseline is the SA before it.
+            if s.mode == Mode.HOLD and not observation.corrective_event_matched:
+                sa_history = hit_baseline_history(s.sa_history, channels,
+                                                  config.memorized_hit_baseline_s,
+                                                  config.update_period_s)
+                sa_before = sa_history[0]
+        elif s.mode == Mode.HOLD and not observation.hit:
+            # The baseline is the last Hold tick before the hit (not the hit's own tick).
+            sa_before = tuple(channels[:2])
         return observation, dataclasses.replace(
             s, one_sided_since=one_sided_since, slip_since=slip_since, tilted_since=tilted_since,
-            motion_done_since=motion_done_since,
-            # The baseline is the last Hold tick before the hit (not the hit's own tick).
-            sa_before=(tuple(channels[:2]) if s.mode == Mode.HOLD and not (
-                observation.corrective_event_matched
-                if "hold_avoid" in self._memorized_corrective
-                else observation.hit) else s.sa_before))
+            motion_done_since=motion_done_since, sa_before=sa_before, sa_history=sa_history)
 
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
         """Log the transition and start the new mode's motion."""
@@ -404,7 +412,8 @@ class GraspStateMachine(LeafSystem):
         hold_here = MotionSegment.hold(t, here)
         common = dict(mode=decision.mode, mode_start=t, segment=hold_here, stage=Stage.NONE,
                       closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
-                      motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0)
+                      motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0,
+                      sa_history=())
 
         def new(logged: Transition = entry, **changes) -> MachineState:
             return dataclasses.replace(s, **{**common, "timeline": s.timeline + (logged,),
