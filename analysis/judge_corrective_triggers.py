@@ -39,7 +39,8 @@ def main(argv=None) -> int:
     jobs = [(label, force, time, trigger) for label, force, time in HITS
             for trigger in TRIGGERS]
     lines = ["| situation | trigger | Avoid at (after the hit) | Avoid's trigger | direction | "
-             "hold / unload | wall [s] |", "|---|---|---|---|---|---|---|"]
+             "Avoids | hold / unload | final mode, tilt, placement error | wall [s] |",
+             "|---|---|---|---|---|---|---|---|---|"]
     with ProcessPoolExecutor(args.workers) as pool:
         for label, time, trigger, result, avoid in pool.map(one, jobs):
             if avoid:
@@ -49,8 +50,10 @@ def main(argv=None) -> int:
                 how, direction = first["trigger"], first.get("direction")
             else:
                 at, how, direction = "none", "-", "-"
-            lines.append(f"| {label} | {trigger} | {at} | {how} | {direction} | "
+            lines.append(f"| {label} | {trigger} | {at} | {how} | {direction} | {len(avoid)} | "
                          f"{result['hold_success']} / {result['unload_success']} | "
+                         f"{result['final_mode']}, {result['final_tilt_deg']:.1f} deg, "
+                         f"{1000 * result['placement_error_m']:.0f} mm | "
                          f"{result['wall_time_s']:.0f} |")
             print(lines[-1], flush=True)
     args.out.write_text("\n".join(lines) + "\n")

@@ -36,10 +36,11 @@ def decide(mode, config, **fields):
                      event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
 
 
-def test_a_memorized_hit_event_avoids_after_the_refractory_time():
-    decision = avoid_on_hit_event(True, CONFIG.hit_refractory_s, CONFIG)
+def test_a_memorized_hit_event_avoids_once_the_window_is_clear_of_the_stop():
+    decision = avoid_on_hit_event(True, CONFIG.memorized_hit_armed_s, CONFIG)
     assert (decision.mode, decision.trigger) == (Mode.AVOID, Trigger.CORRECTIVE_EVENT)
-    assert avoid_on_hit_event(True, 0.5 * CONFIG.hit_refractory_s, CONFIG) is None
+    # The heuristic's refractory time is not enough: the window still holds the stop.
+    assert avoid_on_hit_event(True, CONFIG.hit_refractory_s + 0.2, CONFIG) is None
     assert avoid_on_hit_event(False, 1.0, CONFIG) is None
     assert avoid_on_hit_event(True, 1.0, dataclasses.replace(CONFIG, avoid_enabled=False)) is None
 

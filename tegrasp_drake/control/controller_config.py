@@ -144,6 +144,13 @@ class GraspControllerConfig:
     # already moved SA: the Avoid direction's SA baseline is the SA this long before the
     # match [s], the latency target, so that it precedes the hit.
     memorized_hit_baseline_s: float = 0.06
+    # The memorized hit event is looked for from this long after entering Hold [s]:
+    # hit_refractory_s (a stop's ringing) plus the events' 0.5 s window, so that the window
+    # holds no sample of the ringing. Eq. 3 takes the best of all lags, so a transient
+    # anywhere in the window can match the hit's shape whatever its size; armed after
+    # hit_refractory_s alone, the stop of each Avoid move matched as a new hit 0.53 s into
+    # the next Hold (14 Avoids in a row, README).
+    memorized_hit_armed_s: float = 0.8
     # Place: without the Place-Unload event, unload anyway this long after the arm stops [s].
     place_event_timeout_s: float = 1.0
     # Lost object: in Lift, Hold, Avoid or Place, both SA below contact_force_n.

@@ -181,9 +181,11 @@ def avoid_on_hit(hit: bool, config: GraspControllerConfig) -> Decision | None:
 def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
                        config: GraspControllerConfig) -> Decision | None:
     """In Hold, with memorized corrective triggers: Avoid when the memorized hit event
-    (hold_avoid) matches hit_refractory_s [s] or more after entering Hold (the stop of the
-    lift rings briefly) and Avoid is on; None otherwise."""
-    if config.avoid_enabled and hit_event and time_in_hold_s >= config.hit_refractory_s:
+    (hold_avoid) matches memorized_hit_armed_s [s] or more after entering Hold (the stop of
+    the lift or of an Avoid rings briefly, and stays in the matcher's window) and Avoid is
+    on; None otherwise."""
+    if (config.avoid_enabled and hit_event
+            and time_in_hold_s >= config.memorized_hit_armed_s):
         return Decision(Mode.AVOID, Trigger.CORRECTIVE_EVENT, "memorized hit event in Hold")
     return None
 
