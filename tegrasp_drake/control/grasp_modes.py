@@ -40,12 +40,12 @@ class Trigger(enum.StrEnum):
     MEMORIZED_EVENT = "memorized_event"  # the EventMatcher matched the expected memorized event
     HEURISTIC_EVENT = "heuristic_event"  # the heuristic controller's threshold detector fired
     THRESHOLD = "threshold"  # a hand-set threshold on the live signals (hit, lost object)
-    # A memorized corrective event matched (slip in Lift, a hit in Hold; issue #14,
-    # controller.memorized_corrective_events).
-    CORRECTIVE_EVENT = "corrective_event"
     TIMER = "timer"  # a planned motion or a timed phase ended
     CORRECTIVE = "corrective"  # a corrective action (Re-Reach, Lift-Load) started or ended
     FAULT = "fault"  # a device fault
+    # A memorized corrective event matched (slip in Lift, a hit in Hold; issue #14,
+    # controller.memorized_corrective_events).
+    CORRECTIVE_EVENT = "corrective_event"
 
     @property
     def is_event(self) -> bool:
