@@ -140,3 +140,19 @@ def test_a_memorized_hits_baseline_is_the_sa_before_the_match():
         history = hit_baseline_history(history, (float(k), 2.0 * k), 0.06, 0.005)
     assert len(history) == 13  # 60 ms back, and now
     assert history[0] == (7.0, 14.0) and history[-1] == (19.0, 38.0)
+
+
+def test_an_object_without_corrective_events_names_the_command(tmp_path):
+    from tegrasp_drake.control.grasp_controller import load_corrective_events
+    from tegrasp_drake.events import MemorizedEventError
+    scenario = LoadScenario(name="custom_can", overrides=[
+        "controller.name=heuristic", "controller.memorized_corrective_events=[hold_avoid]"])
+    with pytest.raises(MemorizedEventError, match="record_corrective_events.py"):
+        load_corrective_events(scenario, tmp_path)
+
+
+def test_the_boxs_corrective_events_load_for_the_box():
+    from tegrasp_drake.control.grasp_controller import load_corrective_events
+    events = load_corrective_events(LoadScenario(name="box"),
+                                    EVENTS.parent)  # the package's events folder
+    assert set(events) == set(CORRECTIVE_TRANSITIONS)
