@@ -127,8 +127,9 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
         folder, events = find_memorized_events(folders, name,
                                                required=required or REQUIRED_TRANSITIONS)
     except MemorizedEventError as e:
-        if record_hint:
-            e.args = (f"{e.args[0]} Corrective events: {record_hint}.",)
+        if record_hint:  # not `tegrasp record-events`: say what makes these
+            e.args = (f"{e.args[0].split(' Record them')[0]} Record them with "
+                      f"{record_hint}.",)
             raise
         if name not in BUILTIN_OBJECTS:
             e.args = (f"{e.args[0]} For your own object: `tegrasp record-events --scenario "
