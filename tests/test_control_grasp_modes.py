@@ -21,7 +21,7 @@ def test_only_the_detectors_triggers_are_events():
     assert {t for t in Trigger if t.is_event} == {Trigger.MEMORIZED_EVENT,
                                                   Trigger.HEURISTIC_EVENT}
     assert [t.value for t in Trigger] == ["memorized_event", "heuristic_event", "threshold",
-                                          "timer", "corrective", "fault"]
+                                          "timer", "corrective", "fault", "corrective_event"]
 
 
 def test_a_transition_keeps_the_json_field_names_and_order():

@@ -16,6 +16,10 @@ side; each pad's frame has its z axis, the pad normal, pointing at the other fin
              the grip force, and lift again once both SA reach it (at most max_lift_loads)
   Avoid      a hit in Hold: stop, sense which way the hit pushed, move avoid_distance_m
              that way
+
+Lift-Load's and Avoid's triggers are the heuristic thresholds (lift_load_or_fail,
+avoid_on_hit) or, for the events named in controller.memorized_corrective_events, the
+memorized corrective events matched by Eq. 3 (lift_load_on_slip_event, avoid_on_hit_event).
 """
 
 import dataclasses
@@ -108,6 +112,15 @@ def re_reach_target(p_WG, shift_m: float) -> np.ndarray:
 # ---- Lift-Load ------------------------------------------------------------------------
 
 
+def _lift_load_for_slip(counters: Counters, config: GraspControllerConfig, trigger: Trigger,
+                        reason: str) -> Decision:
+    if counters.lift_loads >= config.max_lift_loads:
+        return Decision(Mode.FAILED, trigger,
+                        f"the object still slips after {counters.lift_loads} Lift-Load "
+                        "corrections")
+    return Decision(Mode.LOAD, trigger, reason)
+
+
 def lift_load_or_fail(slip_s: float, counters: Counters,
                       config: GraspControllerConfig) -> Decision | None:
     """In Lift: back to Load when the object has slipped for slip_s [s] (slip-band
@@ -115,11 +128,19 @@ def lift_load_or_fail(slip_s: float, counters: Counters,
     are used up; None to go on lifting."""
     if not (config.lift_load_enabled and slip_s >= config.slip_s):
         return None
-    if counters.lift_loads >= config.max_lift_loads:
-        return Decision(Mode.FAILED, Trigger.CORRECTIVE,
-                        f"the object still slips after {counters.lift_loads} Lift-Load "
-                        "corrections")
-    return Decision(Mode.LOAD, Trigger.CORRECTIVE, "slip during Lift (Lift-Load)")
+    return _lift_load_for_slip(counters, config, Trigger.CORRECTIVE,
+                               "slip during Lift (Lift-Load)")
+
+
+def lift_load_on_slip_event(slip_event: bool, counters: Counters,
+                            config: GraspControllerConfig) -> Decision | None:
+    """In Lift, with memorized corrective triggers: back to Load when the memorized slip
+    event (lift_load) matches and Lift-Load is on; Failed once max_lift_loads are used up;
+    None to go on lifting."""
+    if not (config.lift_load_enabled and slip_event):
+        return None
+    return _lift_load_for_slip(counters, config, Trigger.CORRECTIVE_EVENT,
+                               "memorized slip event during Lift (Lift-Load)")
 
 
 def lift_load_grip_force(grip_force_n: float, config: GraspControllerConfig) -> float:
@@ -155,6 +176,27 @@ def avoid_on_hit(hit: bool, config: GraspControllerConfig) -> Decision | None:
     if config.avoid_enabled and hit:
         return Decision(Mode.AVOID, Trigger.THRESHOLD, "hit: RA above the hit threshold")
     return None
+
+
+def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
+                       config: GraspControllerConfig) -> Decision | None:
+    """In Hold, with memorized corrective triggers: Avoid when the memorized hit event
+    (hold_avoid) matches memorized_hit_armed_s [s] or more after entering Hold (the stop of
+    the lift or of an Avoid rings briefly, and stays in the matcher's window) and Avoid is
+    on; None otherwise."""
+    if (config.avoid_enabled and hit_event
+            and time_in_hold_s >= config.memorized_hit_armed_s):
+        return Decision(Mode.AVOID, Trigger.CORRECTIVE_EVENT, "memorized hit event in Hold")
+    return None
+
+
+def hit_baseline_history(history: tuple, sa_n, baseline_s: float,
+                         period_s: float) -> tuple:
+    """The Hold ticks' (left, right) SA [N] kept for a memorized hit's baseline: `history`
+    with sa_n appended, the last round(baseline_s / period_s) + 1 ticks; its first entry
+    is the SA baseline_s [s] ago (or the oldest since Hold began)."""
+    keep = max(1, round(baseline_s / period_s)) + 1
+    return (history + (tuple(float(x) for x in sa_n[:2]),))[-keep:]
 
 
 def pad_accelerations_in_world(pad_acceleration: np.ndarray) -> np.ndarray:

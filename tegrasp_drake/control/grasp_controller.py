@@ -93,15 +93,44 @@ def load_controller_events(scenario, events_dir=None, *, nominal_object=None,
     when they are missing, or when they were recorded on an object that differs from the
     scenario's (`nominal_object`, e.g. a sweep's unperturbed object, if given) in a field
     not listed in controller.event_object_may_differ."""
+    return _load_checked_events(
+        scenario, controller_events_folders(controller or scenario.controller.name, events_dir),
+        nominal_object=nominal_object)
+
+
+def load_corrective_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
+    """The memorized corrective events (lift_load, hold_avoid) of the scenario's object,
+    from the CORRECTIVE_EVENTS_FOLDER of the events search path, checked against the
+    object as load_controller_events checks the transition events."""
+    from tegrasp_drake.control.controller_config import CORRECTIVE_EVENTS_FOLDER
+    from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
+    folders = [folder / CORRECTIVE_EVENTS_FOLDER
+               for folder in paths.events_search_path(events_dir)]
+    return _load_checked_events(scenario, folders, nominal_object=nominal_object,
+                                required=CORRECTIVE_TRANSITIONS,
+                                record_hint="`python analysis/record_corrective_events.py "
+                                "LOGS --object NAME`, or --set "
+                                "controller.memorized_corrective_events=[]")
+
+
+def _load_checked_events(scenario, folders, *, nominal_object=None, required=None,
+                         record_hint: str = "") -> dict:
+    """The scenario object's events from the first of `folders` that lists it, checked
+    against the object (load_controller_events)."""
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.events.memorized_event import find_memorized_events
+    from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
     from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, description_differences,
                                            object_description)
     name = scenario.object.name
     try:
-        folder, events = find_memorized_events(
-            controller_events_folders(controller or scenario.controller.name, events_dir), name)
+        folder, events = find_memorized_events(folders, name,
+                                               required=required or REQUIRED_TRANSITIONS)
     except MemorizedEventError as e:
+        if record_hint:  # not `tegrasp record-events`: say what makes these
+            e.args = (f"{e.args[0].split(' Record them')[0]} Record them with "
+                      f"{record_hint}.",)
+            raise
         if name not in BUILTIN_OBJECTS:
             e.args = (f"{e.args[0]} For your own object: `tegrasp record-events --scenario "
                       "FILE --scenario-name NAME` (or the same --set options you gave "
@@ -150,13 +179,34 @@ def _add_detector(builder, scenario, name, events, channels):
     return detector, Trigger.HEURISTIC_EVENT
 
 
+def _add_corrective_matcher(builder, scenario, corrective_events, channels):
+    """The corrective EventMatcher (`corrective_matcher`) of the memorized corrective
+    events, fed by `channels`, with their thresholds (controller.*_event_thresholds)."""
+    from tegrasp_drake.events import EventMatcher, EventMatcherConfig
+    config = scenario.controller
+    events = (corrective_events if corrective_events is not None
+              else load_corrective_events(scenario))
+    events = {t: events[t] for t in config.memorized_corrective_events}
+    matcher = builder.AddNamedSystem("corrective_matcher", EventMatcher(
+        events, EventMatcherConfig(event_thresholds={
+            t: pair for t, pair in config.corrective_event_thresholds().items()
+            if t in events},
+                                   sa_rate_hz=scenario.tactile.sample_rate_hz,
+                                   ra_rate_hz=scenario.vibration.sample_rate_hz)))
+    builder.Connect(channels, matcher.GetInputPort("channels"))
+    return matcher
+
+
 def AddGraspController(builder, *, scenario, station, controller: str | None = None,
-                         events: dict | None = None) -> GraspController:
+                         events: dict | None = None,
+                         corrective_events: dict | None = None) -> GraspController:
     """Adds the controller `controller` (default: scenario.controller.name) and connects it
     to `station`'s ports; returns its GraspController.
 
     events: {transition: MemorizedEvent} for the memorized controller (default: the
-    package's events of the scenario's object).
+    package's events of the scenario's object). corrective_events: the memorized
+    corrective events {lift_load, hold_avoid}, of which those named in
+    controller.memorized_corrective_events are matched (default: load_corrective_events).
     """
     from tegrasp_drake.simulation.station import initial_arm_positions
     name = controller or scenario.controller.name
@@ -177,10 +227,21 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
                                script.GetOutputPort("phase"), segments)
     detector, event_trigger = _add_detector(builder, scenario, name, events,
                                             channels.GetOutputPort("channels"))
+    corrective = None
+    if scenario.controller.memorized_corrective_events:
+        corrective = _add_corrective_matcher(builder, scenario, corrective_events,
+                                             channels.GetOutputPort("channels"))
     machine = builder.AddNamedSystem("grasp_state_machine", GraspStateMachine(
         plan=GraspPlan.from_scenario(scenario), config=scenario.controller,
         event_indices={t: detector.event_index(t) for t in detector.transitions},
-        event_trigger=event_trigger))
+        event_trigger=event_trigger,
+        corrective_event_indices=({t: corrective.event_index(t)
+                                   for t in corrective.transitions} if corrective else None)))
+    if corrective is not None:
+        builder.Connect(machine.GetOutputPort("corrective_expected_event"),
+                        corrective.GetInputPort("expected_event"))
+        builder.Connect(corrective.GetOutputPort("match"),
+                        machine.GetInputPort("corrective_match"))
     builder.Connect(machine.GetOutputPort("expected_event"),
                     detector.GetInputPort("expected_event"))
     builder.Connect(detector.GetOutputPort("match"), machine.GetInputPort("match"))

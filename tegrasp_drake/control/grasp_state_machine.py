@@ -29,15 +29,17 @@ from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.control.corrective_actions import (
-    Counters, avoid_move, is_hit, lift_load_grip_force, pad_accelerations_in_world,
-    re_reach_shift, re_reach_target)
+    Counters, avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
+    pad_accelerations_in_world, re_reach_shift, re_reach_target)
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.motion_profiles import MotionSegment
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import Shift, held_tilted, taxel_re_reach_shift
 from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.control.transition_logic import TAXEL_AWARE, Observation, next_mode
-from tegrasp_drake.events.transitions import NO_EVENT, REQUIRED_TRANSITIONS, transition_states
+from tegrasp_drake.control.transition_logic import (
+    TAXEL_AWARE, Observation, memorized_corrective_trigger, next_mode)
+from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
+                                              REQUIRED_TRANSITIONS, transition_states)
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, TAXELS_PER_PAD
@@ -48,6 +50,10 @@ GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
 # leaves it.
 EXPECTED_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                        for name in REQUIRED_TRANSITIONS}
+# The memorized corrective event each mode checks for (when named in
+# controller.memorized_corrective_events): the corrective transition that leaves it.
+EXPECTED_CORRECTIVE_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
+                                  for name in CORRECTIVE_TRANSITIONS}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -72,6 +78,8 @@ class MachineState:
     approach_contact_since: float = -1.0  # a pad touched while approaching (taxel_aware) [s]
     resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
     sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
+    # The memorized hit trigger's: the last Hold ticks' SA (hit_baseline_history).
+    sa_history: tuple = ()
     acceleration_sum: tuple = (0.0, 0.0, 0.0)  # Avoid sensing: pads' world acceleration sum
     sa_gain_sum: tuple = (0.0, 0.0)  # Avoid sensing: SA gains over sa_before, summed
     timeline: tuple[Transition, ...] = ()
@@ -131,11 +139,13 @@ class GraspStateMachine(LeafSystem):
         - slip_vibration
         - device_fault (optional)
         - taxel_forces (optional)
+        - corrective_match (optional)
         output_ports:
         - X_WG_desired
         - gripper_command
         - expected_event
         - mode
+        - corrective_expected_event
 
     Ports:
         match: [1] when the detector matches the expected event, else [0].
@@ -150,15 +160,21 @@ class GraspStateMachine(LeafSystem):
             message; unconnected: no faults.
         taxel_forces: [left 12, right 12] taxel forces (N, taxel_layout order); read by
             the taxel_aware controller only, which needs it connected.
+        corrective_match: [1] when the corrective EventMatcher matches the mode's
+            memorized corrective event, else [0]; read with memorized corrective triggers
+            only (controller.memorized_corrective_events), which need it connected.
         X_WG_desired: RigidTransform, the grasp frame's desired pose in world.
         gripper_command: [rPR, rSP, rFR] bytes.
         expected_event: [index] of the event the detector should check, -1 for none. It
             depends only on the state (the detector's `match` feeds back to this system).
         mode: [Mode value].
+        corrective_expected_event: [index] of the corrective event the corrective matcher
+            should check (slip in Lift, a hit in Hold), -1 for none or without memorized
+            corrective triggers; depends only on the state.
     """
 
     def __init__(self, *, plan: GraspPlan, config, event_indices: dict,
-                 event_trigger: Trigger):
+                 event_trigger: Trigger, corrective_event_indices: dict | None = None):
         super().__init__()
         self._plan = plan
         self._config = config
@@ -167,6 +183,14 @@ class GraspStateMachine(LeafSystem):
         missing = [t for t in EXPECTED_TRANSITION.values() if t not in self._event_indices]
         if missing:
             raise ValueError(f"the event detector has no event for {missing}")
+        self._corrective_event_indices = dict(corrective_event_indices or {})
+        self._memorized_corrective = tuple(
+            t for t in CORRECTIVE_TRANSITIONS if memorized_corrective_trigger(config, t))
+        missing = [t for t in self._memorized_corrective
+                   if t not in self._corrective_event_indices]
+        if missing:
+            raise ValueError(f"memorized corrective triggers need the corrective events "
+                             f"{missing}")
         self._match = self.DeclareVectorInputPort("match", 1)
         self._scores = self.DeclareVectorInputPort("scores", len(CHANNEL_NAMES))
         self._channels = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
@@ -175,6 +199,7 @@ class GraspStateMachine(LeafSystem):
         self._slip_vibration = self.DeclareVectorInputPort("slip_vibration", 2)
         self._device_fault = self.DeclareAbstractInputPort("device_fault", AbstractValue.Make(""))
         self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
+        self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
         self._taxel_aware = getattr(config, "name", "") == TAXEL_AWARE
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
@@ -187,6 +212,9 @@ class GraspStateMachine(LeafSystem):
         self.DeclareVectorOutputPort("expected_event", 1, self._calc_expected_event,
                                      prerequisites_of_calc=state_only)
         self.DeclareVectorOutputPort("mode", 1, self._calc_mode,
+                                     prerequisites_of_calc=state_only)
+        self.DeclareVectorOutputPort("corrective_expected_event", 1,
+                                     self._calc_corrective_expected_event,
                                      prerequisites_of_calc=state_only)
 
     # ---- construction helpers -------------------------------------------------------
@@ -224,6 +252,11 @@ class GraspStateMachine(LeafSystem):
     def _calc_expected_event(self, context, output):
         transition = EXPECTED_TRANSITION.get(self.state(context).mode)
         output.SetAtIndex(0, self._event_indices[transition] if transition else NO_EVENT)
+
+    def _calc_corrective_expected_event(self, context, output):
+        transition = EXPECTED_CORRECTIVE_TRANSITION.get(self.state(context).mode)
+        output.SetAtIndex(0, self._corrective_event_indices[transition]
+                          if transition in self._memorized_corrective else NO_EVENT)
 
     def _calc_mode(self, context, output):
         output.SetAtIndex(0, float(self.state(context).mode))
@@ -350,14 +383,24 @@ class GraspStateMachine(LeafSystem):
             slip_s=t - slip_since if slipping else 0.0,
             slip_quiet=slip_vibration <= config.slip_vibration_mps2,
             hit=s.mode == Mode.HOLD and is_hit(ra, time_in_mode, config),
+            corrective_event_matched=bool(self._memorized_corrective) and bool(
+                self._corrective_match.Eval(context)[0] > 0.5),
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",
             device_fault=device_fault)
+        sa_before, sa_history = s.sa_before, s.sa_history
+        if "hold_avoid" in self._memorized_corrective:
+            # The match comes after the hit: the baseline is the SA before it.
+            if s.mode == Mode.HOLD and not observation.corrective_event_matched:
+                sa_history = hit_baseline_history(s.sa_history, channels,
+                                                  config.memorized_hit_baseline_s,
+                                                  config.update_period_s)
+                sa_before = sa_history[0]
+        elif s.mode == Mode.HOLD and not observation.hit:
+            # The baseline is the last Hold tick before the hit (not the hit's own tick).
+            sa_before = tuple(channels[:2])
         return observation, dataclasses.replace(
             s, one_sided_since=one_sided_since, slip_since=slip_since, tilted_since=tilted_since,
-            motion_done_since=motion_done_since,
-            # The baseline is the last Hold tick before the hit (not the hit's own tick).
-            sa_before=(tuple(channels[:2]) if s.mode == Mode.HOLD and not observation.hit
-                       else s.sa_before))
+            motion_done_since=motion_done_since, sa_before=sa_before, sa_history=sa_history)
 
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
         """Log the transition and start the new mode's motion."""
@@ -369,7 +412,8 @@ class GraspStateMachine(LeafSystem):
         hold_here = MotionSegment.hold(t, here)
         common = dict(mode=decision.mode, mode_start=t, segment=hold_here, stage=Stage.NONE,
                       closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
-                      motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0)
+                      motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0,
+                      sa_history=())
 
         def new(logged: Transition = entry, **changes) -> MachineState:
             return dataclasses.replace(s, **{**common, "timeline": s.timeline + (logged,),

@@ -13,9 +13,11 @@ tick and carries out the motion of each mode.
                          relift_settle_s in Load (corrective; the memorized events describe
                          the ideal grasp, not a re-load)
   Load     -> Re-Reach   no Load-Lift event in time (first load only)
-  Lift     -> Load       the object slips (Lift-Load)            (corrective)
+  Lift     -> Load       the object slips (Lift-Load)            (corrective; or the
+                         memorized slip event: corrective_event)
   Lift     -> Hold       the lift motion ended                   (timer)
-  Hold     -> Avoid      a hit: RA above the hit threshold       (threshold)
+  Hold     -> Avoid      a hit: RA above the hit threshold       (threshold; or the
+                         memorized hit event: corrective_event)
   Hold     -> Place      hold_s in Hold                          (timer)
   Avoid    -> Hold       the avoiding motion ended               (timer)
   Place    -> Unload     the Place-Unload event                  (memorized/heuristic event)
@@ -34,8 +36,9 @@ tilted (Hold -> Place -> Re-Reach -> Reach ...).
 
 import dataclasses
 
-from tegrasp_drake.control.corrective_actions import (Counters, avoid_on_hit, lift_load_or_fail,
-                                                      re_reach_or_fail, relift_after_lift_load)
+from tegrasp_drake.control.corrective_actions import (
+    Counters, avoid_on_hit, avoid_on_hit_event, lift_load_on_slip_event, lift_load_or_fail,
+    re_reach_or_fail, relift_after_lift_load)
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Decision, Mode, Trigger
 from tegrasp_drake.control.taxel_contact import GraspContact
 from tegrasp_drake.control.taxel_corrections import (
@@ -61,6 +64,9 @@ class Observation:
     slip_quiet: bool = True  # both slip-band vibrations below the slip threshold
     slip_s: float = 0.0  # how long either RA has been above the slip threshold
     hit: bool = False  # either RA above the hit threshold (after the refractory time)
+    # The corrective EventMatcher matches the mode's memorized corrective event (slip in
+    # Lift, a hit in Hold); read for the events in controller.memorized_corrective_events.
+    corrective_event_matched: bool = False
     gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
     device_fault: str = ""  # a watchdog's message, "" for none
     # The taxel_aware controller's: the gripper's opening and the object's width along the
@@ -137,8 +143,17 @@ def _load(obs: Observation, counters: Counters, config, event_trigger: Trigger, 
     return None
 
 
+def memorized_corrective_trigger(config, transition: str) -> bool:
+    """True when the corrective `transition` (lift_load, hold_avoid) is triggered by its
+    memorized corrective event (controller.memorized_corrective_events)."""
+    return transition in getattr(config, "memorized_corrective_events", ())
+
+
 def _lift(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    lift_load = lift_load_or_fail(obs.slip_s, counters, config)
+    if memorized_corrective_trigger(config, "lift_load"):
+        lift_load = lift_load_on_slip_event(obs.corrective_event_matched, counters, config)
+    else:
+        lift_load = lift_load_or_fail(obs.slip_s, counters, config)
     if lift_load is not None:
         return lift_load
     if obs.motion_done:
@@ -147,7 +162,10 @@ def _lift(obs: Observation, counters: Counters, config, event_trigger: Trigger, 
 
 
 def _hold(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    avoid = avoid_on_hit(obs.hit, config)
+    if memorized_corrective_trigger(config, "hold_avoid"):
+        avoid = avoid_on_hit_event(obs.corrective_event_matched, obs.time_in_mode, config)
+    else:
+        avoid = avoid_on_hit(obs.hit, config)
     if avoid is not None:
         return avoid
     if _taxel_aware(config):

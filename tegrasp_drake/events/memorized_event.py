@@ -20,7 +20,7 @@ import math
 import os
 import pathlib
 import re
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -214,13 +214,15 @@ def _sorted_events(events: Iterable[MemorizedEvent]) -> list[MemorizedEvent]:
 
 
 def save_memorized_events(events_dir, events: Iterable[MemorizedEvent], *,
-                          keep_other_objects: bool = True) -> list[pathlib.Path]:
+                          keep_other_objects: bool = True,
+                          required: Sequence[str] = REQUIRED_TRANSITIONS) -> list[pathlib.Path]:
     """Write the events' files and the index; returns the paths written.
 
     Each object given replaces that object's previous events (stale files of that object
     are removed). With keep_other_objects, the index keeps the entries of objects not given
     (so recording one object keeps the others); otherwise the index lists only `events`.
-    Every object must have the REQUIRED_TRANSITIONS.
+    Every object must have the `required` transitions (REQUIRED_TRANSITIONS; a corrective
+    events folder: CORRECTIVE_TRANSITIONS).
     """
     events_dir = pathlib.Path(events_dir)
     events = _sorted_events(events)
@@ -229,7 +231,7 @@ def save_memorized_events(events_dir, events: Iterable[MemorizedEvent], *,
         raise ValueError("two events share an object and a transition")
     objects = sorted({e.object_name for e in events})
     for object_name in objects:
-        missing = [t for t in REQUIRED_TRANSITIONS if (object_name, t) not in keys]
+        missing = [t for t in required if (object_name, t) not in keys]
         if missing:
             raise ValueError(f"object '{object_name}' lacks transitions {missing}")
     kept_entries = []
@@ -434,8 +436,12 @@ def _load_entry(events_dir: pathlib.Path, entry: dict) -> MemorizedEvent:
     return event
 
 
-def load_memorized_events(events_dir, object_name: str) -> dict[str, MemorizedEvent]:
-    """The memorized events of `object_name`, by transition, in grasp order."""
+def load_memorized_events(events_dir, object_name: str, *,
+                          required: Sequence[str] = REQUIRED_TRANSITIONS
+                          ) -> dict[str, MemorizedEvent]:
+    """The memorized events of `object_name`, by transition, in grasp order; the folder
+    must hold its `required` transitions (a corrective events folder:
+    CORRECTIVE_TRANSITIONS)."""
     events_dir = pathlib.Path(events_dir)
     entries = [e for e in read_index(events_dir) if e["object"] == object_name]
     if not entries:
@@ -445,11 +451,11 @@ def load_memorized_events(events_dir, object_name: str) -> dict[str, MemorizedEv
             f"no memorized events for object '{object_name}' (it lists {objects})",
             object_name)
     events = _sorted_events(_load_entry(events_dir, entry) for entry in entries)
-    missing = [t for t in REQUIRED_TRANSITIONS if t not in {e.transition for e in events}]
+    missing = [t for t in required if t not in {e.transition for e in events}]
     if missing:
         raise MemorizedEventError(
             events_dir / INDEX_FILE, f"lists no {', '.join(missing)} event of object "
-            f"'{object_name}' (every object needs {', '.join(REQUIRED_TRANSITIONS)})",
+            f"'{object_name}' (every object needs {', '.join(required)})",
             object_name)
     return {event.transition: event for event in events}
 
@@ -463,7 +469,8 @@ def events_folder_of(folders, object_name: str) -> pathlib.Path | None:
     return None
 
 
-def find_memorized_events(folders, object_name: str
+def find_memorized_events(folders, object_name: str, *,
+                          required: Sequence[str] = REQUIRED_TRANSITIONS
                           ) -> tuple[pathlib.Path, dict[str, MemorizedEvent]]:
     """(folder, events) of `object_name` from the first of `folders` whose index lists it
     (a folder without an index is passed over); MemorizedEventError says where it looked."""
@@ -474,7 +481,7 @@ def find_memorized_events(folders, object_name: str
             looked.append(f"{folder} (no {INDEX_FILE})")
             continue
         if any(e["object"] == object_name for e in read_index(folder)):
-            return folder, load_memorized_events(folder, object_name)
+            return folder, load_memorized_events(folder, object_name, required=required)
         objects = sorted({e["object"] for e in read_index(folder)})
         looked.append(f"{folder} (has {', '.join(objects) or 'none'})")
     error = MemorizedEventError(folders[0] / INDEX_FILE if folders else INDEX_FILE,

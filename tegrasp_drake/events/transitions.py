@@ -18,9 +18,15 @@ TRANSITIONS = {
     "load_lift": "target grip force reached",
     "lift_hold": "the object lifts off the table",
     "place_unload": "the object touches the table",
+    # Corrective events (issue #14, experiments/corrective_events.py): the situations that
+    # start a corrective action, memorized in their own folder (events/corrective/).
+    "lift_load": "the pads slip up along the object during Lift",
+    "hold_avoid": "an external hit on the held object",
 }
 # The transitions the state machine triggers by an event, in grasp order.
 REQUIRED_TRANSITIONS = ("reach_load", "load_lift", "place_unload")
+# The corrective events a corrective events folder holds for each object, in order.
+CORRECTIVE_TRANSITIONS = ("lift_load", "hold_avoid")
 
 
 def transition_order(name: str) -> int:

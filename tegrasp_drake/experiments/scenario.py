@@ -18,6 +18,7 @@ from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
 from tegrasp_drake.control.controller_config import CONTROLLERS, GraspControllerConfig
+from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
@@ -154,6 +155,15 @@ def _check_controller(controller: GraspControllerConfig, source: str) -> None:
                           f"is not one of {', '.join(CONTROLLERS)}")
     require(controller.update_period_s > 0, source, "controller.update_period_s",
             "must be positive [s]", controller.update_period_s)
+    for k, name in enumerate(controller.memorized_corrective_events):
+        require(name in CORRECTIVE_TRANSITIONS, source,
+                f"controller.memorized_corrective_events[{k}]",
+                f"must name a corrective event ({', '.join(CORRECTIVE_TRANSITIONS)})", name)
+    for name in ("lift_load_event_thresholds", "hold_avoid_event_thresholds"):
+        pair = getattr(controller, name)
+        require(len(pair) == 2 and all(-1.0 <= v <= 1.0 for v in pair), source,
+                f"controller.{name}", "must be [SA, RA], each in [-1, 1] (Eq. 3 scores)",
+                pair)
     sections = (("controller", controller), ("controller.heuristic", controller.heuristic))
     for prefix, section in sections:
         for field in dataclasses.fields(section):

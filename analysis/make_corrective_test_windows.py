@@ -1,0 +1,53 @@
+"""Cut the recorded channels that tests/test_experiments_corrective_events.py replays
+(tests/data/corrective_windows.npz) from the corrective and ensemble logs.
+
+    python analysis/make_corrective_test_windows.py CORRECTIVE_LOGS ENSEMBLE_LOGS
+
+Held-out runs only (none made a corrective template): the hit "+y 15 N at 7.4 s", the
+slip "friction 0.012", and the ensemble's normal grasp of the box, run 6.
+"""
+
+import pathlib
+import sys
+
+import numpy as np
+
+from tegrasp_drake.events import tactile_trial_from_log
+from tegrasp_drake.experiments.trial_log import load_trial_log
+
+sys.path.insert(0, str(pathlib.Path(__file__).parent))
+from record_corrective_events import log_path  # noqa: E402
+
+OUT = pathlib.Path(__file__).parents[1] / "tests" / "data" / "corrective_windows.npz"
+
+
+def cut(log, name, start, end, arrays):
+    trial = tactile_trial_from_log(log)
+    sa = (trial.t_sa >= start) & (trial.t_sa <= end)
+    ra = (trial.t_ra >= start) & (trial.t_ra <= end)
+    slow = (log.t_slow >= start) & (log.t_slow <= end)
+    arrays.update({f"{name}_t_sa": trial.t_sa[sa], f"{name}_sa": trial.sa[sa],
+                   f"{name}_t_ra": trial.t_ra[ra], f"{name}_ra": trial.ra[ra],
+                   f"{name}_t_slow": log.t_slow[slow], f"{name}_arm_q": log.arm_q[slow],
+                   f"{name}_object_state": log.object_state[slow]})
+
+
+def main(argv=None) -> int:
+    from tegrasp_drake.experiments.corrective_events import CORRECTIVE_RUNS
+    corrective, ensemble = map(pathlib.Path, (argv or sys.argv[1:])[:2])
+    runs = {run.label: run for run in CORRECTIVE_RUNS}
+    arrays = {}
+    cut(load_trial_log(log_path(corrective, "box", runs["hit +y 15 N at 7.4 s"])), "hit",
+        6.8, 8.0, arrays)
+    cut(load_trial_log(log_path(corrective, "box", runs["friction 0.012"])), "slip",
+        3.5, 5.6, arrays)
+    normal = load_trial_log(ensemble / "box" / "run6.npz")
+    cut(normal, "normal_lift", 3.5, 5.6, arrays)
+    cut(normal, "normal_hold", 5.6, 8.6, arrays)
+    np.savez_compressed(OUT, **arrays)
+    print(f"wrote {OUT} ({OUT.stat().st_size} bytes)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
