@@ -30,8 +30,8 @@ import numpy as np
 from scipy import signal
 
 from tegrasp_drake.experiments.detection_quality import (
-    DEADLINE_S, FALSE_TRIGGER_MARGIN_S, LATENCY_TARGET_S, Outcome, ScoredSpan, rate_point,
-    scored_span)
+    DEADLINE_S, FALSE_TRIGGER_MARGIN_S, LATENCY_TARGET_S, Outcome, ScoredSpan,
+    most_detecting_clean_points, scored_span)
 from tegrasp_drake.tactile.slip_vibration_band import highpass_biquad
 
 
@@ -75,12 +75,7 @@ def choose_centred_thresholds(spans, sa_grid, ra_grid):
     the midpoint of its range): the widest margin both above what the spans scored
     without the situation and below what they scored with it. ValueError when every pair
     has a false trigger."""
-    points = [rate_point(spans, sa, ra) for sa in sa_grid for ra in ra_grid]
-    clean = [p for p in points if p.false == 0]
-    if not clean:
-        raise ValueError("every threshold pair of the grid has a false trigger on these spans")
-    best = max(p.detected for p in clean)
-    candidates = [p for p in clean if p.detected == best]
+    candidates = most_detecting_clean_points(spans, sa_grid, ra_grid)
     on_target = [p for p in candidates
                  if p.median_latency_s is not None and p.median_latency_s <= LATENCY_TARGET_S]
     candidates = on_target or candidates

@@ -106,17 +106,24 @@ def roc_curve(spans: Sequence[ScoredSpan], scales: Iterable[float],
             for s in scales]
 
 
-def choose_thresholds(spans: Sequence[ScoredSpan], sa_grid: Iterable[float],
-                      ra_grid: Iterable[float]) -> RatePoint:
-    """The threshold pair of the grids chosen by the module doc's rule; ValueError when
-    every pair has a false trigger."""
+def most_detecting_clean_points(spans: Sequence[ScoredSpan], sa_grid: Iterable[float],
+                                ra_grid: Iterable[float]) -> list[RatePoint]:
+    """The grids' threshold pairs with no false trigger on `spans` and, among those, the
+    most detections; ValueError when every pair has a false trigger."""
     points = [rate_point(spans, sa, ra) for sa in sa_grid for ra in ra_grid]
     clean = [p for p in points if p.false == 0]
     if not clean:
         raise ValueError("every threshold pair of the grid has a false trigger on these spans")
     best = max(p.detected for p in clean)
-    candidates = [p for p in clean if p.detected == best]
-    if best:
+    return [p for p in clean if p.detected == best]
+
+
+def choose_thresholds(spans: Sequence[ScoredSpan], sa_grid: Iterable[float],
+                      ra_grid: Iterable[float]) -> RatePoint:
+    """The threshold pair of the grids chosen by the module doc's rule; ValueError when
+    every pair has a false trigger."""
+    candidates = most_detecting_clean_points(spans, sa_grid, ra_grid)
+    if candidates[0].detected:
         on_target = [p for p in candidates if p.median_latency_s <= LATENCY_TARGET_S]
         if on_target:
             candidates = on_target
