@@ -8,9 +8,18 @@ from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, advance_films,
                                                     film_step_matrices, signed_peak)
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, film_parameters
 from tegrasp_drake.tactile.slip_vibration_band import (SlipVibrationBand, highpass_biquad,
-                                                       highpass_step)
+                                                       highpass_step_floats)
 
 RATE_HZ = 1000.0
+
+
+def highpass_step(coefficients: np.ndarray, x: np.ndarray, z1: np.ndarray,
+                  z2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The biquad's step in numpy form (the form the system had before it ran on Python
+    floats), the reference highpass_step_floats must equal bit for bit."""
+    b0, b1, b2, a1, a2 = coefficients
+    y = b0 * x + z1
+    return y, b1 * x - a1 * y + z2, b2 * x - a2 * y
 
 
 def band_output(samples: np.ndarray, *, band_hz=80.0, window_s=0.01) -> np.ndarray:
@@ -137,7 +146,6 @@ def _numpy_band_reference(samples: np.ndarray, *, band_hz: float, window_s: floa
 
 
 def test_float_filter_step_equals_the_numpy_step_bit_for_bit():
-    from tegrasp_drake.tactile.slip_vibration_band import highpass_step_floats
     rng = np.random.default_rng(3)
     coefficients = highpass_biquad(80.0, RATE_HZ)
     z1 = z2 = np.zeros(6)

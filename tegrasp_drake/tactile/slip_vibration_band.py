@@ -47,19 +47,11 @@ def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
     return np.array([sos[0], sos[1], sos[2], sos[4], sos[5]])
 
 
-def highpass_step(coefficients: np.ndarray, x: np.ndarray, z1: np.ndarray,
-                  z2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """One sample of the biquad (transposed direct form II) on every axis at once: the
-    output y and the next (z1, z2)."""
-    b0, b1, b2, a1, a2 = coefficients
-    y = b0 * x + z1
-    return y, b1 * x - a1 * y + z2, b2 * x - a2 * y
-
-
 def highpass_step_floats(coefficients: tuple[float, ...], x: list[float],
                          delays: list[float]) -> tuple[list[float], list[float]]:
-    """highpass_step on Python floats: x the samples of n axes, delays [z1 (n), z2 (n)];
-    returns (y, the next [z1, z2]), bit for bit what highpass_step gives."""
+    """One sample of the biquad (transposed direct form II) on n axes at once, on Python
+    floats (numpy's per-call overhead on 6-vectors costs several times the arithmetic):
+    x the samples, delays [z1 (n), z2 (n)]; returns (y, the next [z1, z2])."""
     b0, b1, b2, a1, a2 = coefficients
     n = len(x)
     y = [b0 * u + z1 for u, z1 in zip(x, delays[:n])]
@@ -117,9 +109,7 @@ class SlipVibrationBand(LeafSystem):
 
     def _filter_sample(self, s: np.ndarray, x: list[float]):
         """Advances the state vector s by one sample x (6) [m/s^2], in place. The filter
-        runs on Python floats, highpass_step's operations in its order (the same IEEE
-        results; numpy's per-call overhead on 6-vectors costs several times the
-        arithmetic)."""
+        runs on Python floats (highpass_step_floats)."""
         y, delays = highpass_step_floats(self._coefficient_floats, x, s[:2 * _AXES].tolist())
         s[:2 * _AXES] = delays
         # The oldest squared magnitude of each pad leaves, the newest enters at the end
