@@ -174,6 +174,15 @@ def test_unusable_events_are_named_before_the_trial_runs(spoil, expected, events
     assert_one_line_error(code, text, str(events_copy), expected)
 
 
+def test_the_corrective_events_are_read_from_the_events_folder_given(events_copy, capfd):
+    _edit(events_copy / "corrective" / "box" / "hold_avoid.json",
+          lambda data: data["samples"].update(ra_left=[0.0] * len(data["samples"]["ra_left"])))
+    code, text = run_cli(["trial", "--events", str(events_copy), "--set",
+                          "controller.memorized_corrective_events=[hold_avoid]"], capfd)
+    assert_one_line_error(code, text, str(events_copy / "corrective"),
+                          "channels ['ra_left'] are zero throughout the window")
+
+
 def test_events_of_a_changed_builtin_object_are_refused_unless_accepted(capfd):
     code, text = run_cli(["trial", "--set", "object.mass=0.3"], capfd)
     assert_one_line_error(code, text, "mass 0.15 (recorded) != 0.3 (now)",

@@ -16,7 +16,8 @@ import pathlib
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
-                                                   controller_events, quiet_modbus_library,
+                                                   controller_events, corrective_events,
+                                                   quiet_modbus_library,
                                                    scenario_from_arguments)
 from tegrasp_drake.control.controller_config import CONTROLLERS
 
@@ -89,6 +90,7 @@ def run(args) -> int:
         raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
                          "is `!HardwareStationConfig {...}`")
     events = controller_events(scenario, args.events, args.controller)
+    corrective = corrective_events(scenario, args.events)
     log = args.log or (f"out/hardware/run-"
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
     if pathlib.Path(log).exists() and not args.overwrite:
@@ -99,7 +101,7 @@ def run(args) -> int:
     try:
         with SimulatedTimeBar("hardware", enabled=progress_wanted(args)) as progress:
             result = run_on_hardware(scenario, config=config, controller=args.controller,
-                                     events=events,
+                                     events=events, corrective_events=corrective,
                                      events_dir=_events_folder(events, args, scenario),
                                      log_path=log, duration=args.duration,
                                      out=progress.write, progress=progress)

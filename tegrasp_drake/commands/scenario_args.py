@@ -51,3 +51,18 @@ def controller_events(scenario, events_dir, controller: str | None = None):
     except MemorizedEventError as e:
         raise SystemExit(f"tegrasp: error: the {name} controller needs the memorized "
                          f"events of '{scenario.object.name}': {e}") from None
+
+
+def corrective_events(scenario, events_dir):
+    """The memorized corrective events the scenario's controller matches (None when
+    controller.memorized_corrective_events is empty), from `events_dir` first, or exits
+    with the message."""
+    if not scenario.controller.memorized_corrective_events:
+        return None
+    from tegrasp_drake.control.grasp_controller import load_corrective_events
+    from tegrasp_drake.events import MemorizedEventError
+    try:
+        return load_corrective_events(scenario, events_dir)
+    except MemorizedEventError as e:
+        raise SystemExit("tegrasp: error: controller.memorized_corrective_events needs the "
+                         f"corrective events of '{scenario.object.name}': {e}") from None

@@ -11,7 +11,8 @@ from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
                                                write_result)
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
-                                                   controller_events, scenario_from_arguments)
+                                                   controller_events, corrective_events,
+                                                   scenario_from_arguments)
 from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
                                                 start_viewer, wait_for_viewer,
                                                 write_replay_html)
@@ -88,6 +89,7 @@ def run(args) -> int:
     args.overrides = overrides
     scenario = scenario_from_arguments(args)
     events = controller_events(scenario, args.events)  # fails before anything is written
+    corrective = corrective_events(scenario, args.events)
     try:
         out = choose_run_folder(args.out, default=args.default_out,
                                 replace_default=args.replace_default_out,
@@ -99,7 +101,8 @@ def run(args) -> int:
     from tegrasp_drake.experiments.trial import run_trial
     meshcat = start_viewer(args)
     with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
-        trial = run_trial(scenario, meshcat=meshcat, events=events, progress=progress)
+        trial = run_trial(scenario, meshcat=meshcat, events=events,
+                          corrective_events=corrective, progress=progress)
     result = dict(trial.result, log=str(trial.log.save(out / "trial.npz")),
                   **write_trial_figures(trial.log, out, args.format),
                   result=str(out / RESULT_FILE))

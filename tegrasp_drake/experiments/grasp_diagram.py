@@ -62,19 +62,23 @@ class GraspDiagram:
 
 
 def MakeGraspDiagram(scenario, *, station=None, controller: str | None = None,
-                        events=None, meshcat=None, log: bool = True) -> GraspDiagram:
+                        events=None, corrective_events=None, meshcat=None,
+                        log: bool = True) -> GraspDiagram:
     """Builds the station and the controller `controller` (default: the scenario's) into
     one Diagram.
 
     station: a station Diagram with the station's ports (default: MakeStation(scenario,
     meshcat=meshcat)); events: the memorized events (default: the package's for the
-    scenario's object); log: add the TrialLog loggers (simulated runs)."""
+    scenario's object); corrective_events: the memorized corrective events, used when
+    controller.memorized_corrective_events names some (default: load_corrective_events's);
+    log: add the TrialLog loggers (simulated runs)."""
     builder = DiagramBuilder()
     if station is None:
         station = MakeStation(scenario, meshcat=meshcat)
     station = builder.AddNamedSystem("station", station)
     grasp = AddGraspController(builder, scenario=scenario, station=station,
-                                 controller=controller, events=events)
+                                 controller=controller, events=events,
+                                 corrective_events=corrective_events)
     machine = grasp.state_machine
     if station.HasOutputPort("device_fault") and machine.HasInputPort("device_fault"):
         builder.Connect(station.GetOutputPort("device_fault"),

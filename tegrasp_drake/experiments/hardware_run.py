@@ -235,14 +235,16 @@ def run_info_message(scenario, config, controller: str, events_dir: str):
 
 
 def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
-                    controller: str | None = None, events=None, events_dir: str = "",
+                    controller: str | None = None, events=None, corrective_events=None,
+                    events_dir: str = "",
                     log_path=None, duration: float | None = None, drake_lcm=None,
                     out=print, progress=None) -> HardwareRunResult:
     """Runs the grasp on the devices of `config` (default: the scenario's `station`, which
     must then be a HardwareStationConfig) in real time; see the module docstring.
 
     controller: the controller's name (default: the scenario's); events: its memorized
-    events (default: the package's for the scenario's object); drake_lcm: a DrakeLcm to use
+    events (default: the package's for the scenario's object); corrective_events: the
+    memorized corrective events (default: load_corrective_events's); drake_lcm: a DrakeLcm to use
     instead of one on the config's URL; out: prints a line; progress: called as
     progress(t, end) [s of Context time] as the run goes."""
     config = config or scenario.station
@@ -252,15 +254,16 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
     controller = controller or scenario.controller.name
     with realtime_scheduling(config.scheduling, config.realtime_priority) as scheduling:
         out(f"control loop: {scheduling}")
-        return _run(scenario, config, controller, events, events_dir, log_path, duration,
-                    drake_lcm, out, progress)
+        return _run(scenario, config, controller, events, corrective_events, events_dir,
+                    log_path, duration, drake_lcm, out, progress)
 
 
-def _run(scenario, config, controller, events, events_dir, log_path, duration, drake_lcm,
-         out, progress) -> HardwareRunResult:
+def _run(scenario, config, controller, events, corrective_events, events_dir, log_path,
+         duration, drake_lcm, out, progress) -> HardwareRunResult:
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
         parts = MakeGraspDiagram(scenario, station=station, controller=controller,
-                                    events=events, log=False)
+                                    events=events, corrective_events=corrective_events,
+                                    log=False)
         diagram = parts.diagram
         writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path, drake_lcm=station.lcm)
                   if log_path else None)

@@ -103,14 +103,15 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
             "failure": next((e.reason for e in transitions if e.to_mode == Mode.FAILED), "")}
 
 
-def run_trial(scenario, *, meshcat=None, events=None, max_time=None,
-              progress=None) -> TrialResult:
+def run_trial(scenario, *, meshcat=None, events=None, corrective_events=None,
+              max_time=None, progress=None) -> TrialResult:
     """Simulates one trial of `scenario` with its controller; returns its TrialResult.
 
+    events, corrective_events: the memorized events (MakeGraspDiagram's defaults if None).
     progress: called as progress(t, end) [s, simulated] as the run goes (`end` shrinks to
     the state machine's end plus END_MARGIN_S once it is Done or Failed)."""
     grasp = MakeGraspDiagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
-                                events=events)
+                                events=events, corrective_events=corrective_events)
     controller, loggers = grasp.controller, grasp.loggers
     simulator = MakeSimulator(grasp.diagram, scenario)
     context = simulator.get_mutable_context()
