@@ -115,3 +115,14 @@ def test_the_settings_are_given_with_set_and_checked():
     assert scenario.controller.taxel_aware.finger_strike.enabled is False
     with pytest.raises(ConfigError, match="finger_strike.force_n"):
         LoadScenario(overrides=["controller.taxel_aware.finger_strike.force_n=-1.0"])
+
+
+@pytest.mark.parametrize("controller,wired", [("taxel_aware", True), ("memorized", False)])
+def test_only_taxel_aware_reads_the_joint_torques(controller, wired):
+    from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
+    from tegrasp_drake.experiments.scenario import LoadScenario
+    grasp = MakeGraspDiagram(LoadScenario(), controller=controller, log=False)
+    assert grasp.diagram.HasSubsystemNamed("grasp_wrench_estimator") == wired
+    machine = grasp.controller.state_machine
+    context = machine.GetMyContextFromRoot(grasp.diagram.CreateDefaultContext())
+    assert machine.GetInputPort("grasp_wrench").HasValue(context) == wired
