@@ -29,7 +29,7 @@ class GraspWrenchEstimator(LeafSystem):
             actuation; on the JACO2 its joint torque sensors (gravity-free).
         wrench: [Mx, My, Mz, Fx, Fy, Fz] [N m, N] on the arm at G's origin, in world
             (grasp_wrench_from_torques); it ignores the arm's inertia, which the
-            approach's slow motion keeps below 0.4 N (FingerStrikeConfig).
+            approach's slow motion keeps below 0.81 N (FingerStrikeConfig).
     """
 
     def __init__(self):
