@@ -27,6 +27,7 @@ from tegrasp_drake.control.controller_config import (
     GraspControllerConfig, HeuristicTriggerConfig)
 from tegrasp_drake.control.grasp_modes import Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
+from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import ScriptedGraspSource, plan_scripted_grasp
 from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecording
@@ -120,6 +121,7 @@ CONSTRUCTORS = {
                                                            grip_force_n=25.0),
     ScriptedGraspSource: lambda: ScriptedGraspSource(plan_scripted_grasp(box_scenario())),
     LoopTick: lambda: LoopTick([]),
+    GraspWrenchEstimator: GraspWrenchEstimator,
     _InputReader: _InputReader,
     DeviceWatchdog: DeviceWatchdog,
     FaultLatch: lambda: FaultLatch(["watchdog", "gripper"]),

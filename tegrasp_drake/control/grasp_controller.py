@@ -22,6 +22,7 @@ from tegrasp_drake.control.cartesian_arm_controller import AddCartesianArmContro
 from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
+from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
 from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
@@ -269,6 +270,14 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
         builder.Connect(station.GetOutputPort(f"tactile.{finger}_taxel_forces"),
                         taxels.get_input_port(k))
     builder.Connect(taxels.get_output_port(), machine.GetInputPort("taxel_forces"))
+    if name == "taxel_aware" and station.HasOutputPort("arm.torque_measured"):
+        # The finger-strike sense: the wrench the arm's joint torques hold at the grasp frame.
+        wrench = builder.AddNamedSystem("grasp_wrench_estimator", GraspWrenchEstimator())
+        builder.Connect(station.GetOutputPort("arm.position_measured"),
+                        wrench.GetInputPort("arm.position_measured"))
+        builder.Connect(station.GetOutputPort("arm.torque_measured"),
+                        wrench.GetInputPort("arm.torque_measured"))
+        builder.Connect(wrench.GetOutputPort("wrench"), machine.GetInputPort("grasp_wrench"))
     builder.Connect(machine.GetOutputPort("X_WG_desired"), X_WG_desired)
     builder.Connect(machine.GetOutputPort("gripper_command"),
                     station.GetInputPort("gripper.command"))

@@ -31,6 +31,8 @@ from pydrake.systems.framework import LeafSystem
 from tegrasp_drake.control.corrective_actions import (
     Counters, avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
     pad_accelerations_in_world, re_reach_shift, re_reach_target)
+from tegrasp_drake.control.finger_strike import (side_moment_nm, strike_force_n, strike_shift,
+                                                 struck_finger)
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.motion_profiles import MotionSegment
 from tegrasp_drake.control.taxel_contact import grasp_contact
@@ -77,6 +79,12 @@ class MachineState:
     regrasp_pending: bool = False  # the Place puts a tilted object down to re-grasp it
     approach_contact_since: float = -1.0  # a pad touched while approaching (taxel_aware) [s]
     resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
+    # The finger-strike sense (taxel_aware, finger_strike.py): the wrench on G at the
+    # approach's start [N m, N], since when the force beyond it exceeds the threshold [s],
+    # and the side moment summed over those ticks [N m].
+    strike_baseline: tuple = ()
+    strike_since: float = -1.0
+    strike_moment_sum: float = 0.0
     sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
     # The memorized hit trigger's: the last Hold ticks' SA (hit_baseline_history).
     sa_history: tuple = ()
@@ -140,6 +148,7 @@ class GraspStateMachine(LeafSystem):
         - device_fault (optional)
         - taxel_forces (optional)
         - corrective_match (optional)
+        - grasp_wrench (optional)
         output_ports:
         - X_WG_desired
         - gripper_command
@@ -163,6 +172,9 @@ class GraspStateMachine(LeafSystem):
         corrective_match: [1] when the corrective EventMatcher matches the mode's
             memorized corrective event, else [0]; read with memorized corrective triggers
             only (controller.memorized_corrective_events), which need it connected.
+        grasp_wrench: [Mx, My, Mz, Fx, Fy, Fz] (N m, N; world) on the arm at the grasp
+            frame, from the arm's joint torques (GraspWrenchEstimator); read by the
+            taxel_aware controller's finger-strike sense; unconnected: no such sense.
         X_WG_desired: RigidTransform, the grasp frame's desired pose in world.
         gripper_command: [rPR, rSP, rFR] bytes.
         expected_event: [index] of the event the detector should check, -1 for none. It
@@ -200,6 +212,7 @@ class GraspStateMachine(LeafSystem):
         self._device_fault = self.DeclareAbstractInputPort("device_fault", AbstractValue.Make(""))
         self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
         self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
+        self._grasp_wrench = self.DeclareVectorInputPort("grasp_wrench", 6)
         self._taxel_aware = getattr(config, "name", "") == TAXEL_AWARE
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
@@ -366,7 +379,9 @@ class GraspStateMachine(LeafSystem):
             approach_since = ((s.approach_contact_since if s.approach_contact_since >= 0
                                else t) if approaching else -1.0)
             s = dataclasses.replace(s, approach_contact_since=approach_since)
-            taxel_fields = dict(approach_contact_s=t - approach_since if approaching else 0.0,
+            s, strike_fields = self._sense_strike(s, t, context, contact)
+            taxel_fields.update(strike_fields)
+            taxel_fields.update(approach_contact_s=t - approach_since if approaching else 0.0,
                                 opening_m=self._opening(context),
                                 object_width_m=self._plan.object_width, contact_shape=shape,
                                 tilted_s=t - tilted_since if tilted else 0.0,
@@ -402,6 +417,29 @@ class GraspStateMachine(LeafSystem):
             s, one_sided_since=one_sided_since, slip_since=slip_since, tilted_since=tilted_since,
             motion_done_since=motion_done_since, sa_before=sa_before, sa_history=sa_history)
 
+    def _sense_strike(self, s: MachineState, t: float, context, contact: tuple):
+        """The finger-strike sense during the approach (taxel_aware): the state with its
+        baseline, timer and moment sum updated, and the Observation's strike fields."""
+        config = self._config.taxel_aware.finger_strike
+        approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING
+        if not (config.enabled and approaching and self._grasp_wrench.HasValue(context)):
+            return s, {}
+        wrench = self._grasp_wrench.Eval(context)
+        baseline = s.strike_baseline or tuple(float(x) for x in wrench)
+        force = strike_force_n(wrench, baseline)
+        striking = force > config.force_n
+        since = (s.strike_since if s.strike_since >= 0 else t) if striking else -1.0
+        moment_sum = (s.strike_moment_sum + side_moment_nm(wrench, baseline)) if striking \
+            else 0.0
+        s = dataclasses.replace(s, strike_baseline=baseline, strike_since=since,
+                                strike_moment_sum=moment_sum)
+        return s, dict(strike_s=t - since if striking else 0.0, strike_force_n=force,
+                       strike_finger=struck_finger(moment_sum, contact, config) or "")
+
+    def _strike_sustained(self, s: MachineState, t: float) -> bool:
+        return (s.strike_since >= 0 and t - s.strike_since
+                >= self._config.taxel_aware.finger_strike.sustain_s)
+
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
         """Log the transition and start the new mode's motion."""
         p, config = self._plan, self._config
@@ -413,7 +451,8 @@ class GraspStateMachine(LeafSystem):
         common = dict(mode=decision.mode, mode_start=t, segment=hold_here, stage=Stage.NONE,
                       closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
                       motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0,
-                      sa_history=())
+                      sa_history=(), strike_baseline=(), strike_since=-1.0,
+                      strike_moment_sum=0.0)
 
         def new(logged: Transition = entry, **changes) -> MachineState:
             return dataclasses.replace(s, **{**common, "timeline": s.timeline + (logged,),
@@ -439,7 +478,14 @@ class GraspStateMachine(LeafSystem):
                 shift = taxel_re_reach_shift(
                     grasp_contact(self._taxel_forces.Eval(context)), self._channels.Eval(context),
                     self._opening(context), p.object_width, config)
-                if approaching:  # back off, shift along the stroke, approach again
+                if approaching and self._strike_sustained(s, t):  # a finger struck it
+                    contact = tuple(bool(x > config.contact_force_n)
+                                    for x in self._channels.Eval(context)[:2])
+                    finger = struck_finger(s.strike_moment_sum, contact,
+                                           config.taxel_aware.finger_strike)
+                    shift = Shift(-config.taxel_aware.approach_retreat_m,
+                                  strike_shift(finger, self._opening(context), p.object_width))
+                elif approaching:  # back off, shift along the stroke, approach again
                     shift = Shift(-config.taxel_aware.approach_retreat_m, shift.dy_m)
                 re_reaches = counters.re_reaches + 1
             else:

@@ -7,6 +7,8 @@ tick and carries out the motion of each mode.
 
   Reach    -> Load       the Reach-Load event                    (memorized/heuristic event)
   Reach    -> Re-Reach   one finger alone in contact, closed on nothing, or no event in time
+                         (taxel_aware: also a finger striking the object during the approach,
+                         from the joint torques: finger_strike.py)
   Re-Reach -> Reach      the gripper is open and re-centred      (corrective)
   Load     -> Lift       the Load-Lift event                     (memorized/heuristic event)
   Load     -> Lift       after a Lift-Load: both SA at the raised grip force, RA quiet,
@@ -39,6 +41,7 @@ import dataclasses
 from tegrasp_drake.control.corrective_actions import (
     Counters, avoid_on_hit, avoid_on_hit_event, lift_load_on_slip_event, lift_load_or_fail,
     re_reach_or_fail, relift_after_lift_load)
+from tegrasp_drake.control.finger_strike import finger_strike_response
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Decision, Mode, Trigger
 from tegrasp_drake.control.taxel_contact import GraspContact
 from tegrasp_drake.control.taxel_corrections import (
@@ -78,6 +81,12 @@ class Observation:
     tilted_s: float = 0.0
     regrasp_pending: bool = False
     approach_contact_s: float = 0.0  # a pad in contact while the approach moves [s]
+    # The finger-strike sense (taxel_aware, finger_strike.py): how long the force on the
+    # wrist has exceeded the strike threshold during the approach [s], that force [N], and
+    # the struck finger ("left", "right", "" unknown).
+    strike_s: float = 0.0
+    strike_force_n: float = 0.0
+    strike_finger: str = ""
 
 
 def _taxel_aware(config) -> bool:
@@ -85,6 +94,11 @@ def _taxel_aware(config) -> bool:
 
 
 def _reach_taxel_aware(obs: Observation, counters: Counters, config, event_trigger: Trigger):
+    strike = config.taxel_aware.finger_strike
+    if strike.enabled and obs.strike_s >= strike.sustain_s:
+        return finger_strike_response(finger=obs.strike_finger or None,
+                                      force_n=obs.strike_force_n,
+                                      re_reaches=counters.re_reaches, config=config)
     if obs.approach_contact_s >= config.one_sided_contact_s:
         return approach_contact_response(contact=obs.contact, re_reaches=counters.re_reaches,
                                          config=config)

@@ -186,6 +186,13 @@ def _check_controller(controller: GraspControllerConfig, source: str) -> None:
     require(0 < controller.heuristic.grip_fraction <= 1, source,
             "controller.heuristic.grip_fraction", "must lie in (0, 1]",
             controller.heuristic.grip_fraction)
+    strike, prefix = controller.taxel_aware.finger_strike, "controller.taxel_aware.finger_strike"
+    for name, ok, words in (("force_n", lambda v: v > 0, "must be positive [N]"),
+                            ("sustain_s", lambda v: v >= 0, "must be zero or positive [s]"),
+                            ("min_moment_nm", lambda v: v >= 0,
+                             "must be zero or positive [N m]")):
+        require(ok(getattr(strike, name)), source, f"{prefix}.{name}", words,
+                getattr(strike, name))
 
 
 def validate(scenario: Scenario, source: str = "scenario") -> Scenario:

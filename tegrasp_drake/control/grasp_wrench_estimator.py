@@ -1,0 +1,50 @@
+"""GraspWrenchEstimator: the wrench the arm's joint torques hold at the grasp frame G, for
+the taxel_aware controller's finger-strike sense (finger_strike.py)."""
+
+import numpy as np
+from pydrake.multibody.tree import JacobianWrtVariable
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.control.finger_strike import grasp_wrench_from_torques
+from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
+
+ARM_JOINTS = 6
+
+
+class GraspWrenchEstimator(LeafSystem):
+    """The wrench on the arm at G from its measured joint torques, statically.
+
+    .. pydrake_system::
+
+        name: GraspWrenchEstimator
+        input_ports:
+        - arm.position_measured
+        - arm.torque_measured
+        output_ports:
+        - wrench
+
+    Ports:
+        arm.position_measured: the arm's joint angles [rad] (6).
+        arm.torque_measured: the arm's joint torques [N m] (6): simulated, the plant's net
+            actuation; on the JACO2 its joint torque sensors (gravity-free).
+        wrench: [Mx, My, Mz, Fx, Fy, Fz] [N m, N] on the arm at G's origin, in world
+            (grasp_wrench_from_torques); it ignores the arm's inertia, which the
+            approach's slow motion keeps below 0.81 N (FingerStrikeConfig).
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._plant = make_arm_control_plant()
+        self._plant_context = self._plant.CreateDefaultContext()
+        self._frame = self._plant.GetFrameByName("grasp_frame")
+        self._q = self.DeclareVectorInputPort("arm.position_measured", ARM_JOINTS)
+        self._tau = self.DeclareVectorInputPort("arm.torque_measured", ARM_JOINTS)
+        self.DeclareVectorOutputPort("wrench", 6, self._calc_wrench)
+
+    def _calc_wrench(self, context, output):
+        self._plant.SetPositions(self._plant_context, self._q.Eval(context))
+        world = self._plant.world_frame()
+        J = self._plant.CalcJacobianSpatialVelocity(
+            self._plant_context, JacobianWrtVariable.kV, self._frame, np.zeros(3), world,
+            world)
+        output.SetFromVector(grasp_wrench_from_torques(J, self._tau.Eval(context)))

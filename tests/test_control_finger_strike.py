@@ -1,0 +1,128 @@
+"""The taxel_aware controller's finger-strike sense (issue #14): the wrench from the arm's
+joint torques, which finger struck, the shift, and the decision through the transition
+rule; the other controllers ignore it."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+from pydrake.multibody.tree import JacobianWrtVariable
+
+from tegrasp_drake.control.controller_config import GraspControllerConfig
+from tegrasp_drake.control.corrective_actions import Counters
+from tegrasp_drake.control.finger_strike import (
+    finger_strike_response, grasp_wrench_from_torques, side_moment_nm, strike_force_n,
+    strike_shift, struck_finger)
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.transition_logic import Observation, next_mode
+from tegrasp_drake.rig.arm_kinematics import IK_SEED, make_arm_control_plant
+
+CONFIG = GraspControllerConfig(name="taxel_aware")
+STRIKE = CONFIG.taxel_aware.finger_strike
+NO_CONTACT = (False, False)
+BOX_WIDTH_M = 0.045
+OPEN_M = 0.085
+
+
+def _grasp_jacobian(q=IK_SEED):
+    plant = make_arm_control_plant()
+    context = plant.CreateDefaultContext()
+    plant.SetPositions(context, q)
+    world = plant.world_frame()
+    return plant.CalcJacobianSpatialVelocity(context, JacobianWrtVariable.kV,
+                                             plant.GetFrameByName("grasp_frame"),
+                                             np.zeros(3), world, world)
+
+
+def _push_at(point_G, force_W):
+    """The wrench at G's origin [N m, N] of force_W [N] acting at point_G [m, from G's
+    origin, world axes]."""
+    return np.concatenate([np.cross(point_G, force_W), force_W])
+
+
+def test_the_wrench_is_recovered_from_the_torques_that_hold_it():
+    J = _grasp_jacobian()
+    wrench = np.array([0.3, -0.2, 0.5, -4.0, 1.0, 2.0])
+    torques = -J.T @ wrench  # the actuators balance the wrench on the arm
+    np.testing.assert_allclose(grasp_wrench_from_torques(J, torques), wrench, atol=1e-9)
+
+
+def test_a_push_against_the_approach_on_the_left_finger_reads_as_the_left_finger():
+    """The left finger's front (+42 mm along the stroke, world +y) pushed back (-x)."""
+    for y, finger in ((0.042, "left"), (-0.042, "right")):
+        wrench = _push_at([0.0, y, 0.0], [-5.0, 0.0, 0.0])
+        moment = side_moment_nm(wrench, np.zeros(6))
+        assert strike_force_n(wrench, np.zeros(6)) == pytest.approx(5.0)
+        assert struck_finger(3 * moment, NO_CONTACT, STRIKE) == finger
+
+
+def test_the_baseline_is_taken_off_before_the_threshold():
+    baseline = np.array([0.0, 0.1, 0.0, 0.4, 0.0, -0.3])  # the Reach's own, at its start
+    assert strike_force_n(baseline, baseline) == 0.0
+    pushed = baseline + _push_at([0.0, 0.042, 0.0], [-STRIKE.force_n - 0.5, 0.0, 0.0])
+    assert strike_force_n(pushed, baseline) > STRIKE.force_n
+
+
+def test_a_touching_pad_names_the_finger_and_a_small_moment_names_none():
+    assert struck_finger(-1.0, (True, False), STRIKE) == "left"  # the taxels see it
+    assert struck_finger(1.0, (False, True), STRIKE) == "right"
+    assert struck_finger(0.5 * STRIKE.min_moment_nm, NO_CONTACT, STRIKE) is None
+    assert struck_finger(0.5 * STRIKE.min_moment_nm, (True, True), STRIKE) is None
+
+
+def test_the_shift_moves_toward_the_struck_finger_by_the_half_gap():
+    assert strike_shift("left", OPEN_M, BOX_WIDTH_M) == pytest.approx(0.02)
+    assert strike_shift("right", OPEN_M, BOX_WIDTH_M) == pytest.approx(-0.02)
+    assert strike_shift(None, OPEN_M, BOX_WIDTH_M) == 0.0
+    assert strike_shift("left", 0.03, BOX_WIDTH_M) == 0.0  # never away
+
+
+def test_the_response_re_reaches_until_the_limit_then_fails():
+    decision = finger_strike_response(finger="left", force_n=6.3, re_reaches=0, config=CONFIG)
+    assert decision.mode == Mode.RE_REACH and decision.trigger == Trigger.CORRECTIVE
+    assert "left finger struck" in decision.reason
+    used_up = finger_strike_response(finger="right", force_n=6.3,
+                                     re_reaches=CONFIG.taxel_aware.max_re_reaches,
+                                     config=CONFIG)
+    assert used_up.mode == Mode.FAILED
+    off = dataclasses.replace(CONFIG, re_reach_enabled=False)
+    assert finger_strike_response(finger=None, force_n=3.0, re_reaches=0,
+                                  config=off).mode == Mode.FAILED
+
+
+def _reach(config, strike_s):
+    observation = Observation(strike_s=strike_s, strike_force_n=6.0, strike_finger="left")
+    return next_mode(Mode.REACH, observation, Counters(), config,
+                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+
+
+def test_the_rule_stops_the_approach_on_a_sustained_strike_only():
+    assert _reach(CONFIG, STRIKE.sustain_s).mode == Mode.RE_REACH
+    assert _reach(CONFIG, 0.5 * STRIKE.sustain_s) is None  # one spike is not a strike
+
+
+def test_the_sense_can_be_switched_off_and_the_other_controllers_ignore_it():
+    off = dataclasses.replace(CONFIG, taxel_aware=dataclasses.replace(
+        CONFIG.taxel_aware, finger_strike=dataclasses.replace(STRIKE, enabled=False)))
+    assert _reach(off, 1.0) is None
+    for name in ("memorized", "heuristic"):
+        assert _reach(GraspControllerConfig(name=name), 1.0) is None
+
+
+def test_the_settings_are_given_with_set_and_checked():
+    from tegrasp_drake.experiments.scenario import ConfigError, LoadScenario
+    scenario = LoadScenario(overrides=["controller.taxel_aware.finger_strike.enabled=false"])
+    assert scenario.controller.taxel_aware.finger_strike.enabled is False
+    with pytest.raises(ConfigError, match="finger_strike.force_n"):
+        LoadScenario(overrides=["controller.taxel_aware.finger_strike.force_n=-1.0"])
+
+
+@pytest.mark.parametrize("controller,wired", [("taxel_aware", True), ("memorized", False)])
+def test_only_taxel_aware_reads_the_joint_torques(controller, wired):
+    from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
+    from tegrasp_drake.experiments.scenario import LoadScenario
+    grasp = MakeGraspDiagram(LoadScenario(), controller=controller, log=False)
+    assert grasp.diagram.HasSubsystemNamed("grasp_wrench_estimator") == wired
+    machine = grasp.controller.state_machine
+    context = machine.GetMyContextFromRoot(grasp.diagram.CreateDefaultContext())
+    assert machine.GetInputPort("grasp_wrench").HasValue(context) == wired
