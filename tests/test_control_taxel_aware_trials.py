@@ -61,3 +61,13 @@ def test_a_tilted_hold_is_put_down_and_grasped_again():
     assert "regrasp" in result["corrective_actions"]
     assert steps.count(("Load", "Lift")) == 2
     assert result["final_mode"] == "Done" and result["hold_success"]
+
+
+def test_a_thin_cylinder_pushed_along_the_stroke_is_loaded_where_it_is_not_let_go():
+    """The faithful sweep's failure: the right pad pushes the rod 15 mm along the stroke
+    (tipping it past its 11.8 deg standing limit) and reads the contact on the fingertip
+    row; re-centring opened the gripper on it and it fell over."""
+    result = _run("thin_cylinder", offset=(0.01, -0.015))
+    leaving = [t for t in result["transitions"] if t["from"] == "Reach"]
+    assert leaving[0]["to"] == "Load"
+    assert result["hold_success"] and result["unload_success"]

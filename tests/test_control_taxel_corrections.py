@@ -12,7 +12,9 @@ from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import (
     Shift, approach_shift, held_tilted, on_reach_event, on_reach_timeout, one_sided_response,
-    re_reach_target_2d, regrasp_or_none, taxel_re_reach_shift)
+    pushed_distance_m, re_reach_target_2d, regrasp_or_none, release_topples,
+    taxel_re_reach_shift)
+from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
 
@@ -79,6 +81,49 @@ def test_the_reach_event_re_reaches_an_off_centre_contact_first_while_attempts_a
     assert on_reach_event(both(3), re_reaches=0, config=CONFIG).mode == Mode.RE_REACH
     assert on_reach_event(both(3), re_reaches=TAXEL.max_re_reaches, config=CONFIG) is None
     assert on_reach_event(both(1, 2), re_reaches=0, config=CONFIG) is None
+
+
+def test_the_push_is_half_the_opening_closed_from_the_first_touch_to_the_width():
+    # The faithful sweep's thin cylinder 15 mm along the stroke: first touch 55.4 mm open.
+    assert pushed_distance_m(0.0554, 0.025) == pytest.approx(0.0152)
+    assert pushed_distance_m(0.0247, 0.025) == 0.0  # first touch at the width: no push
+    assert pushed_distance_m(-1.0, 0.025) == 0.0  # no touch yet
+
+
+def _topples(object_name, pushed_m, grasp_height_m=0.055):
+    o = BUILTIN_OBJECTS[object_name]
+    return release_topples(pushed_m, grasp_height_m=grasp_height_m,
+                           object_width_m=o.width_along_stroke(), object_height_m=o.height())
+
+
+def test_a_pushed_object_topples_when_let_go_past_its_standing_tilt():
+    """Tipped by atan(push / grasp height); stands while under atan(width / height)."""
+    thin = BUILTIN_OBJECTS["thin_cylinder"]
+    limit_m = 0.055 * thin.width_along_stroke() / thin.height()  # 11.5 mm
+    assert _topples("thin_cylinder", 0.015)  # the paper's grid: 15 mm along the stroke
+    assert not _topples("thin_cylinder", 0.9 * limit_m)
+    assert _topples("thin_cylinder", 1.1 * limit_m)
+    assert not _topples("thin_cylinder", 0.0015)  # a centred rod: the pads meet it together
+    # The box (45 mm x 110 mm) and thick cylinder (50 mm x 110 mm) stand after 15-17 mm.
+    assert not _topples("box", 0.017) and not _topples("thick_cylinder", 0.017)
+    assert _topples("box", 0.025)  # the second grid's 2.5 cm, where the box does not
+
+
+def test_the_reach_event_loads_a_pushed_object_where_it_is_instead_of_letting_it_fall():
+    """The faithful sweep: thin cylinders pushed 13-16 mm read the contact at +-9 mm, were
+    let go to re-centre and fell over or were dragged off the pads (7 of 8)."""
+    assert on_reach_event(both(0), re_reaches=0, config=CONFIG,
+                          topples_if_released=True) is None
+    assert on_reach_event(both(3), re_reaches=0, config=CONFIG,
+                          topples_if_released=False).mode == Mode.RE_REACH
+    pushed = Observation(contact=(True, True), event_matched=True, contact_shape=both(3),
+                         topples_if_released=True)
+    decision = next_mode(Mode.REACH, pushed, Counters(), CONFIG,
+                         event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (decision.mode, decision.trigger) == (Mode.LOAD, Trigger.MEMORIZED_EVENT)
+    standing = dataclasses.replace(pushed, topples_if_released=False)
+    assert next_mode(Mode.REACH, standing, Counters(), CONFIG,
+                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0).mode == Mode.RE_REACH
 
 
 def test_no_event_in_time_with_both_pads_on_loads_and_without_re_reaches():

@@ -36,7 +36,8 @@ from tegrasp_drake.control.finger_strike import (side_moment_nm, strike_force_n,
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.motion_profiles import MotionSegment
 from tegrasp_drake.control.taxel_contact import grasp_contact
-from tegrasp_drake.control.taxel_corrections import Shift, held_tilted, taxel_re_reach_shift
+from tegrasp_drake.control.taxel_corrections import (
+    Shift, held_tilted, pushed_distance_m, release_topples, taxel_re_reach_shift)
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.control.transition_logic import (
     TAXEL_AWARE, Observation, memorized_corrective_trigger, next_mode)
@@ -78,6 +79,8 @@ class MachineState:
     tilted_since: float = -1.0  # Hold: since when the object sits tilted (taxel_aware) [s]
     regrasp_pending: bool = False  # the Place puts a tilted object down to re-grasp it
     approach_contact_since: float = -1.0  # a pad touched while approaching (taxel_aware) [s]
+    # The gripper's opening [m] when a pad first touched in this close (taxel_aware; -1: none).
+    first_touch_opening_m: float = -1.0
     resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
     # The finger-strike sense (taxel_aware, finger_strike.py): the wrench on G at the
     # approach's start [N m, N], since when the force beyond it exceeds the threshold [s],
@@ -106,6 +109,7 @@ class GraspPlan:
     object_xy: tuple  # the expected object position
     object_width: float  # along the stroke, for the Re-Reach shift
     grasp_height: float
+    object_height: float  # for whether a pushed object stands when let go (taxel_aware)
     lift_height: float
     place_press: float
     settle_s: float
@@ -126,6 +130,7 @@ class GraspPlan:
             start_xyz=tuple(scenario.arm.initial_gripper_xyz),
             object_xy=tuple(scenario.expected_object_xy),
             object_width=scenario.object.width_along_stroke(), grasp_height=g.grasp_height,
+            object_height=scenario.object.height(),
             lift_height=g.lift_height, place_press=g.place_press, settle_s=g.settle_s,
             reach_s=g.reach_s, lift_s=g.lift_s, hold_s=g.hold_s, place_s=g.place_s,
             unload_s=g.unload_s, retract_s=g.retract_s, retract_distance=g.retract_distance,
@@ -381,7 +386,9 @@ class GraspStateMachine(LeafSystem):
             s = dataclasses.replace(s, approach_contact_since=approach_since)
             s, strike_fields = self._sense_strike(s, t, context, contact)
             taxel_fields.update(strike_fields)
+            s, topples = self._pushed_past_tipping(s, shape, closing, context)
             taxel_fields.update(approach_contact_s=t - approach_since if approaching else 0.0,
+                                topples_if_released=topples,
                                 opening_m=self._opening(context),
                                 object_width_m=self._plan.object_width, contact_shape=shape,
                                 tilted_s=t - tilted_since if tilted else 0.0,
@@ -440,6 +447,22 @@ class GraspStateMachine(LeafSystem):
         return (s.strike_since >= 0 and t - s.strike_since
                 >= self._config.taxel_aware.finger_strike.sustain_s)
 
+    def _pushed_past_tipping(self, s: MachineState, shape, closing: bool,
+                             context) -> tuple[MachineState, bool]:
+        """taxel_aware, while Reach closes: remember the opening at the first pad's first
+        touch (any taxel above TAXEL_CONTACT_N: a light object slides under a push below
+        contact_force_n) and say whether the push since then would topple the object if
+        the gripper let go (taxel_corrections.release_topples)."""
+        first = s.first_touch_opening_m
+        if closing and first < 0.0 and (shape.left.touching or shape.right.touching):
+            first = self._opening(context)
+        p = self._plan
+        pushed = pushed_distance_m(first, p.object_width)
+        topples = closing and release_topples(pushed, grasp_height_m=p.grasp_height,
+                                              object_width_m=p.object_width,
+                                              object_height_m=p.object_height)
+        return dataclasses.replace(s, first_touch_opening_m=first), topples
+
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
         """Log the transition and start the new mode's motion."""
         p, config = self._plan, self._config
@@ -451,8 +474,8 @@ class GraspStateMachine(LeafSystem):
         common = dict(mode=decision.mode, mode_start=t, segment=hold_here, stage=Stage.NONE,
                       closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
                       motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0,
-                      sa_history=(), strike_baseline=(), strike_since=-1.0,
-                      strike_moment_sum=0.0)
+                      first_touch_opening_m=-1.0, sa_history=(), strike_baseline=(),
+                      strike_since=-1.0, strike_moment_sum=0.0)
 
         def new(logged: Transition = entry, **changes) -> MachineState:
             return dataclasses.replace(s, **{**common, "timeline": s.timeline + (logged,),

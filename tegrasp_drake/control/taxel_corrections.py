@@ -9,7 +9,9 @@ the left finger on +y (corrective_actions.py). Settings: TaxelAwareConfig
   Re-Reach, both axes   along the stroke toward the finger that touched alone, by half the
                         gap between the opening and the object's width (the paper's), and
                         along the approach axis by the contact's offset from the pads'
-                        centres; repeated until centred, at most max_re_reaches times
+                        centres; repeated until centred, at most max_re_reaches times;
+                        after the Reach-Load event only when letting go leaves the object
+                        standing (not pushed past its tipping limit, release_topples)
   one-sided contact     one finger alone touches while the gripper is already closed to the
                         object's width: Load (the squeeze brings the other pad on), never a
                         Re-Reach that would shift by nothing and close on the same contact
@@ -105,10 +107,43 @@ def approach_contact_response(*, contact: tuple, re_reaches: int, config) -> Dec
                              f"the {' and '.join(pads) or 'a'} pad touched during the approach")
 
 
-def on_reach_event(contact: GraspContact, *, re_reaches: int, config) -> Decision:
+def pushed_distance_m(first_touch_opening_m: float, object_width_m: float) -> float:
+    """How far [m, along the stroke] the first pad to touch pushed the object across the
+    table before the other pad met it: the fingers close symmetrically, so the first one
+    travels half of what the opening closes from its first touch to the object's width
+    (the paper's Re-Reach shift, read at the first touch). 0 when no pad has touched
+    (first_touch_opening_m < 0) or the first touch came at the object's width."""
+    if first_touch_opening_m < 0.0:
+        return 0.0
+    return max(first_touch_opening_m - object_width_m, 0.0) / 2.0
+
+
+def release_topples(pushed_m: float, *, grasp_height_m: float, object_width_m: float,
+                    object_height_m: float) -> bool:
+    """Whether opening the gripper would let a pushed object fall over.
+
+    A pad pushing an upright object pushed_m [m] along the stroke at the grasp height
+    grasp_height_m [m] tips it about its base edge by up to atan(pushed / grasp_height)
+    (the worst case: the base sticks on the table instead of sliding); the pads hold it
+    there. Released, it stands up again only while its centre of mass, half its height
+    up, stays over its base, i.e. tilt < atan(width / height) (width along the stroke,
+    height object_height_m). So it topples when pushed_m * object_height_m >
+    grasp_height_m * object_width_m. Measured on the faithful world's sweep: a thin
+    cylinder (25 mm x 120 mm, limit 11.8 deg, 11.5 mm of push at 55 mm) misplaced 15 mm
+    along the stroke was held 13-16 deg tilted at the Reach-Load event, and fell or leaned
+    onto a finger when the gripper opened."""
+    return pushed_m * object_height_m > grasp_height_m * object_width_m
+
+
+def on_reach_event(contact: GraspContact, *, re_reaches: int, config,
+                   topples_if_released: bool = False) -> Decision | None:
     """The Reach-Load event came: Load, unless the contact sits off the pads' centres
     along the approach axis (approach_shift not 0) and Re-Reaches are left, then Re-Reach
-    to centre it first."""
+    to centre it first. Never when topples_if_released (release_topples): both pads hold
+    the object on them, and opening would let it fall; grasping it off-centre holds it
+    (open loop does), re-centring it knocks it over."""
+    if topples_if_released:
+        return None
     if (approach_shift(contact, config.taxel_aware) != 0.0 and config.re_reach_enabled
             and re_reaches < config.taxel_aware.max_re_reaches):
         return Decision(Mode.RE_REACH, Trigger.CORRECTIVE,

@@ -87,6 +87,9 @@ class Observation:
     strike_s: float = 0.0
     strike_force_n: float = 0.0
     strike_finger: str = ""
+    # The close pushed the object far enough that opening would let it fall over
+    # (taxel_corrections.release_topples).
+    topples_if_released: bool = False
 
 
 def _taxel_aware(config) -> bool:
@@ -104,7 +107,8 @@ def _reach_taxel_aware(obs: Observation, counters: Counters, config, event_trigg
                                          config=config)
     if obs.event_matched:
         centre_first = (on_reach_event(obs.contact_shape, re_reaches=counters.re_reaches,
-                                       config=config)
+                                       config=config,
+                                       topples_if_released=obs.topples_if_released)
                         if obs.contact_shape is not None else None)
         return centre_first or Decision(Mode.LOAD, event_trigger, "Reach-Load event")
     if obs.one_sided_s >= config.one_sided_contact_s:
