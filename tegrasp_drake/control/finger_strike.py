@@ -15,7 +15,8 @@ the left finger on +y (corrective_actions.py). Wrenches are [Mx, My, Mz, Fx, Fy,
 
 import numpy as np
 
-from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
+from tegrasp_drake.control.grasp_modes import Decision
+from tegrasp_drake.control.taxel_corrections import re_reach_or_fail
 
 FINGERS = ("left", "right")
 
@@ -74,10 +75,5 @@ def finger_strike_response(*, finger: str | None, force_n: float, re_reaches: in
     approaches again), or Failed once taxel_aware.max_re_reaches are used up.
     config: GraspControllerConfig."""
     who = f"the {finger} finger" if finger else "a finger (side unknown)"
-    reason = f"{who} struck the object during the approach ({force_n:.1f} N at the wrist)"
-    if not config.re_reach_enabled:
-        return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason}; Re-Reach is switched off")
-    if re_reaches >= config.taxel_aware.max_re_reaches:
-        return Decision(Mode.FAILED, Trigger.CORRECTIVE,
-                        f"{reason}, after {re_reaches} Re-Reach attempts")
-    return Decision(Mode.RE_REACH, Trigger.CORRECTIVE, reason)
+    return re_reach_or_fail(re_reaches, config, f"{who} struck the object during the "
+                            f"approach ({force_n:.1f} N at the wrist)")

@@ -74,7 +74,9 @@ def re_reach_target_2d(p_WG, shift: Shift) -> np.ndarray:
     return np.asarray(p_WG, dtype=float) + np.array([shift.dx_m, shift.dy_m, 0.0])
 
 
-def _re_reach_or_fail(re_reaches: int, config, reason: str) -> Decision:
+def re_reach_or_fail(re_reaches: int, config, reason: str) -> Decision:
+    """Re-Reach for `reason`, or Failed when Re-Reach is switched off or
+    taxel_aware.max_re_reaches are used up. config: GraspControllerConfig."""
     if not config.re_reach_enabled:
         return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason}; Re-Reach is switched off")
     if re_reaches >= config.taxel_aware.max_re_reaches:
@@ -95,7 +97,7 @@ def one_sided_response(*, finger: str, opening_m: float, object_width_m: float,
         return Decision(Mode.LOAD, Trigger.CORRECTIVE,
                         f"only the {finger} finger touches, the gripper closed to the "
                         "object's width: load")
-    return _re_reach_or_fail(re_reaches, config, f"only the {finger} finger touched")
+    return re_reach_or_fail(re_reaches, config, f"only the {finger} finger touched")
 
 
 def approach_contact_response(*, contact: tuple, re_reaches: int, config) -> Decision:
@@ -103,7 +105,7 @@ def approach_contact_response(*, contact: tuple, re_reaches: int, config) -> Dec
     and Re-Reach (the state machine resumes the approach after the shift), or Failed once
     taxel_aware.max_re_reaches are used up."""
     pads = [name for name, touching in zip(("left", "right"), contact) if touching]
-    return _re_reach_or_fail(re_reaches, config,
+    return re_reach_or_fail(re_reaches, config,
                              f"the {' and '.join(pads) or 'a'} pad touched during the approach")
 
 
@@ -158,7 +160,7 @@ def on_reach_timeout(*, both_touch: bool, re_reaches: int, config, reason: str) 
     if both_touch:
         return Decision(Mode.LOAD, Trigger.CORRECTIVE, f"{reason}, both pads hold the object: "
                         "load")
-    return _re_reach_or_fail(re_reaches, config, reason)
+    return re_reach_or_fail(re_reaches, config, reason)
 
 
 def held_tilted(contact: GraspContact, taxel_config) -> bool:
