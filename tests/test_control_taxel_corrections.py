@@ -11,8 +11,8 @@ from tegrasp_drake.control.corrective_actions import Counters, corrective_action
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import (
-    Shift, approach_shift, caged_behind_pads, held_tilted, on_reach_event, on_reach_timeout, one_sided_response,
-    pushed_distance_m, re_reach_target_2d, regrasp_or_none, release_topples,
+    Shift, approach_shift, caged_behind_pads, held_tilted, on_reach_event, on_reach_timeout,
+    one_sided_response, pushed_distance_m, re_reach_target_2d, regrasp_or_none, release_topples,
     taxel_re_reach_shift)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.control.transition_logic import Observation, next_mode
