@@ -71,3 +71,15 @@ def test_a_thin_cylinder_pushed_along_the_stroke_is_loaded_where_it_is_not_let_g
     leaving = [t for t in result["transitions"] if t["from"] == "Reach"]
     assert leaving[0]["to"] == "Load"
     assert result["hold_success"] and result["unload_success"]
+
+
+def test_a_thin_cylinder_caged_behind_the_pads_is_lifted_not_re_reached():
+    """Issue #14's second grid: the rod 15 mm toward the palm and 2.5 cm along the stroke
+    is first touched on the palm-side row, pushed behind the pads by the close and caged
+    there; no taxel sees it again. The old rule Re-Reached four times without a shift and
+    failed; open loop lifts it."""
+    result = _run("thin_cylinder", offset=(-0.015, -0.025), yaw_deg=-10.0)
+    leaving = [t for t in result["transitions"] if t["from"] == "Reach"]
+    assert leaving[0]["to"] == "Load" and "behind the pads" in leaving[0]["reason"]
+    assert "re_reach" not in result["corrective_actions"]
+    assert result["hold_success"] and result["unload_success"]

@@ -11,8 +11,8 @@ from tegrasp_drake.control.corrective_actions import Counters, corrective_action
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import (
-    Shift, approach_shift, held_tilted, on_reach_event, on_reach_timeout, one_sided_response,
-    pushed_distance_m, re_reach_target_2d, regrasp_or_none, release_topples,
+    Shift, approach_shift, caged_behind_pads, held_tilted, on_reach_event, on_reach_timeout,
+    one_sided_response, pushed_distance_m, re_reach_target_2d, regrasp_or_none, release_topples,
     taxel_re_reach_shift)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.control.transition_logic import Observation, next_mode
@@ -124,6 +124,53 @@ def test_the_reach_event_loads_a_pushed_object_where_it_is_instead_of_letting_it
     standing = dataclasses.replace(pushed, topples_if_released=False)
     assert next_mode(Mode.REACH, standing, Counters(), CONFIG,
                      event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0).mode == Mode.RE_REACH
+
+
+def _caged(**changes):
+    # The thin cylinder (25 mm) of issue #14's second grid, 15 mm toward the palm: first
+    # touched on the palm-side edge row (-9 mm), the fingers stopped at 16.9 mm, no pad on it.
+    args = dict(first_touch_offset_m=-0.009, opening_m=0.0169, object_width_m=0.025,
+                pads_touch=False, closed_to_request=False, taxel_config=TAXEL)
+    return caged_behind_pads(**{**args, **changes})
+
+
+def test_fingers_closed_past_an_object_first_touched_on_the_palm_side_cage_it():
+    assert _caged()
+    assert not _caged(pads_touch=True)  # on the pads: the paper's rules
+    assert not _caged(opening_m=0.026)  # the fingers stopped on the object's width
+    assert not _caged(closed_to_request=True)  # closed on nothing (fell over, slid away)
+    assert not _caged(first_touch_offset_m=0.009)  # fingertip side: pushed out beyond them
+    assert not _caged(first_touch_offset_m=0.0)  # no pad ever touched it
+
+
+def test_no_event_in_time_loads_an_object_caged_behind_the_pads_instead_of_re_reaching():
+    """The old rule Re-Reached four times without a shift (no taxel saw the rod), closed
+    the same way each time, and failed; open loop lifted it from the same cage."""
+    assert on_reach_timeout(both_touch=False, re_reaches=0, config=CONFIG, reason="late",
+                            caged=True).mode == Mode.LOAD
+    obs = Observation(closing_s=CONFIG.reach_event_timeout_s, caged_behind_pads=True)
+    decision = next_mode(Mode.REACH, obs, Counters(), CONFIG,
+                         event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (decision.mode, decision.trigger) == (Mode.LOAD, Trigger.CORRECTIVE)
+    loaded = Observation(time_in_mode=CONFIG.load_event_timeout_s, caged_behind_pads=True)
+    assert next_mode(Mode.LOAD, loaded, Counters(), CONFIG,
+                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0).mode == Mode.LIFT
+    paper = GraspControllerConfig()  # the other controllers never read it
+    assert next_mode(Mode.REACH, obs, Counters(), paper, event_trigger=Trigger.MEMORIZED_EVENT,
+                     hold_s=3.0).mode == Mode.RE_REACH
+
+
+def test_a_caged_object_is_held_without_pad_contact_slip_squeeze_or_avoid():
+    """Caged, no pad touches it: an empty pad is not a drop (that is the fingers closing
+    to their request), a squeeze cannot stop a slip, and the pads' RA reads the object
+    rattling in the cage, not a hit."""
+    caged = Observation(caged_behind_pads=True, slip_s=1.0, hit=True)
+    for mode in (Mode.LIFT, Mode.HOLD):
+        assert next_mode(mode, caged, Counters(), CONFIG, event_trigger=Trigger.MEMORIZED_EVENT,
+                         hold_s=3.0) is None
+    lost = dataclasses.replace(caged, caged_behind_pads=False)
+    assert next_mode(Mode.HOLD, lost, Counters(), CONFIG, event_trigger=Trigger.MEMORIZED_EVENT,
+                     hold_s=3.0).mode == Mode.FAILED
 
 
 def test_no_event_in_time_with_both_pads_on_loads_and_without_re_reaches():

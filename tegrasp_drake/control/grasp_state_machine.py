@@ -37,10 +37,11 @@ from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.motion_profiles import MotionSegment
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import (
-    Shift, held_tilted, pushed_distance_m, release_topples, taxel_re_reach_shift)
+    Shift, caged_behind_pads, held_tilted, pushed_distance_m, release_topples,
+    taxel_re_reach_shift)
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.control.transition_logic import (
-    TAXEL_AWARE, Observation, memorized_corrective_trigger, next_mode)
+    HOLDING_MODES, TAXEL_AWARE, Observation, memorized_corrective_trigger, next_mode)
 from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
                                               REQUIRED_TRANSITIONS, transition_states)
 from tegrasp_drake.rig import robotiq_units as ru
@@ -81,6 +82,9 @@ class MachineState:
     approach_contact_since: float = -1.0  # a pad touched while approaching (taxel_aware) [s]
     # The gripper's opening [m] when a pad first touched in this close (taxel_aware; -1: none).
     first_touch_opening_m: float = -1.0
+    # The contact's offset along the approach axis [m, pad +y] at that first touch, kept
+    # until the next Re-Reach (read again in Load; 0: no pad has touched).
+    first_touch_offset_m: float = 0.0
     resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
     # The finger-strike sense (taxel_aware, finger_strike.py): the wrench on G at the
     # approach's start [N m, N], since when the force beyond it exceeds the threshold [s],
@@ -389,6 +393,7 @@ class GraspStateMachine(LeafSystem):
             s, topples = self._pushed_past_tipping(s, shape, closing, context)
             taxel_fields.update(approach_contact_s=t - approach_since if approaching else 0.0,
                                 topples_if_released=topples,
+                                caged_behind_pads=self._caged(s, shape, status, context),
                                 opening_m=self._opening(context),
                                 object_width_m=self._plan.object_width, contact_shape=shape,
                                 tilted_s=t - tilted_since if tilted else 0.0,
@@ -453,15 +458,28 @@ class GraspStateMachine(LeafSystem):
         touch (any taxel above TAXEL_CONTACT_N: a light object slides under a push below
         contact_force_n) and say whether the push since then would topple the object if
         the gripper let go (taxel_corrections.release_topples)."""
-        first = s.first_touch_opening_m
+        first, offset = s.first_touch_opening_m, s.first_touch_offset_m
         if closing and first < 0.0 and (shape.left.touching or shape.right.touching):
-            first = self._opening(context)
+            first, offset = self._opening(context), shape.approach_offset_m
         p = self._plan
         pushed = pushed_distance_m(first, p.object_width)
         topples = closing and release_topples(pushed, grasp_height_m=p.grasp_height,
                                               object_width_m=p.object_width,
                                               object_height_m=p.object_height)
-        return dataclasses.replace(s, first_touch_opening_m=first), topples
+        return dataclasses.replace(s, first_touch_opening_m=first,
+                                   first_touch_offset_m=offset), topples
+
+    def _caged(self, s: MachineState, shape, status, context) -> bool:
+        """taxel_aware, while Reach closes, in Load and while holding: the fingers hold
+        the object behind the pads (taxel_corrections.caged_behind_pads)."""
+        closed = ((s.mode == Mode.REACH and s.stage == Stage.CLOSING)
+                  or s.mode in (Mode.LOAD, *HOLDING_MODES))
+        at_request = int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION
+        return closed and caged_behind_pads(
+            first_touch_offset_m=s.first_touch_offset_m, opening_m=self._opening(context),
+            object_width_m=self._plan.object_width,
+            pads_touch=shape.left.touching or shape.right.touching, closed_to_request=at_request,
+            taxel_config=self._config.taxel_aware)
 
     def _enter(self, s: MachineState, decision, t: float, context) -> MachineState:
         """Log the transition and start the new mode's motion."""
@@ -520,6 +538,7 @@ class GraspStateMachine(LeafSystem):
             if self._taxel_aware:
                 logged = dataclasses.replace(logged, approach_offset_m=round(shift.dx_m, 5))
             return new(logged, stage=Stage.OPENING, reentry_offset=shift.dy_m,
+                       first_touch_offset_m=0.0,
                        reentry_offset_x=shift.dx_m, gripper_request_time=t,
                        regrasp_pending=False, resume_approach=approaching,
                        counters=dataclasses.replace(counters, re_reaches=re_reaches),

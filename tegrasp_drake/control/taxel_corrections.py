@@ -24,6 +24,9 @@ the left finger on +y (corrective_actions.py). Settings: TaxelAwareConfig
   no event in time      both pads hold the object, centred, and no Reach-Load event came
                         within the timeout: Load anyway (bounded: never Re-Reach a grasp
                         that is already centred)
+  caged behind the pads the fingers closed past an object that the first touch put on
+                        the pads' palm side and stopped short on it, no pad touching: no
+                        event comes, Load and lift it where it is (caged_behind_pads)
   re-grasp              held tilted (the contact line turned on a pad, or the two pads'
                         contacts at different heights) for tilt_sustain_s in Hold: put the
                         object down, open, close again and lift (at most max_regrasps)
@@ -154,12 +157,41 @@ def on_reach_event(contact: GraspContact, *, re_reaches: int, config,
     return None
 
 
-def on_reach_timeout(*, both_touch: bool, re_reaches: int, config, reason: str) -> Decision:
+def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,
+                      object_width_m: float, pads_touch: bool, closed_to_request: bool,
+                      taxel_config) -> bool:
+    """Whether the closed fingers hold the object between them and the palm, off the pads.
+
+    The first pad to touch in this close read the contact on its palm side
+    (first_touch_offset_m [m, approach axis, pad +y toward the fingertips] below
+    -centre_tolerance_m; 0 when no pad touched); the fingers then stopped short of the
+    close request (not closed_to_request, gOBJ 3: something between them stops them; read
+    at the Reach and Load timeouts, 2 s, by which the 85 mm close at the default speed,
+    about 1.5 s, has ended) at an opening narrower than the object (opening_m <
+    object_width_m) with neither pad touching it. The pads have closed past the object on
+    its fingertip side, so it stands behind them, between the fingers' inner links and the
+    palm, and stops the fingers there: it cannot leave through the fingertips' gap
+    (narrower than it) and the fingers bound it along the stroke. Lifting carries it (the
+    open loop's grasp of a thin cylinder 15 mm toward the palm on issue #14's second grid;
+    the simulated 2F-85 there reported gOBJ 0, moving, not 2, with its fingers stopped at
+    16.9 mm for 0.5 s of a fully closed request, so no stall byte is required). A Re-Reach
+    here learns nothing: no taxel sees the object, so its shift is zero and it closes the
+    same way again (the 4 identical Re-Reaches that ended in Failed)."""
+    return (not closed_to_request and not pads_touch and opening_m < object_width_m
+            and first_touch_offset_m < -taxel_config.centre_tolerance_m)
+
+
+def on_reach_timeout(*, both_touch: bool, re_reaches: int, config, reason: str,
+                     caged: bool = False) -> Decision:
     """No Reach-Load event in time (or the gripper closed on nothing): with both pads on
-    the object, Load anyway; otherwise Re-Reach (bounded as one_sided_response)."""
+    the object, or the object caged behind them (caged_behind_pads), Load anyway;
+    otherwise Re-Reach (bounded as one_sided_response)."""
     if both_touch:
         return Decision(Mode.LOAD, Trigger.CORRECTIVE, f"{reason}, both pads hold the object: "
                         "load")
+    if caged:
+        return Decision(Mode.LOAD, Trigger.CORRECTIVE, f"{reason}, the fingers closed on the "
+                        "object behind the pads: load it there")
     return re_reach_or_fail(re_reaches, config, reason)
 
 

@@ -25,7 +25,8 @@ tick and carries out the motion of each mode.
   Place    -> Unload     the Place-Unload event                  (memorized/heuristic event)
   Place    -> Unload     no event place_event_timeout_s after the arm stopped (timer)
   Unload   -> Done       the gripper is open and the arm retracted (timer)
-  any      -> Failed     a device fault, the object lost, or corrections used up
+  any      -> Failed     a device fault, the object lost (no pad contact, and not caged
+                         behind the pads), or corrections used up
 A corrective action whose retries are used up goes to Failed with the reason; those
 decisions (take the action, or give up) are in corrective_actions.py.
 
@@ -90,6 +91,9 @@ class Observation:
     # The close pushed the object far enough that opening would let it fall over
     # (taxel_corrections.release_topples).
     topples_if_released: bool = False
+    # The closed fingers hold the object behind the pads, against the palm
+    # (taxel_corrections.caged_behind_pads): no pad touches it, so no event comes.
+    caged_behind_pads: bool = False
 
 
 def _taxel_aware(config) -> bool:
@@ -121,7 +125,8 @@ def _reach_taxel_aware(obs: Observation, counters: Counters, config, event_trigg
     if obs.closing_s >= config.reach_event_timeout_s:
         return on_reach_timeout(
             both_touch=all(obs.contact), re_reaches=counters.re_reaches, config=config,
-            reason=f"no Reach-Load event {config.reach_event_timeout_s:g} s after closing")
+            reason=f"no Reach-Load event {config.reach_event_timeout_s:g} s after closing",
+            caged=obs.caged_behind_pads)
     return None
 
 
@@ -155,6 +160,9 @@ def _load(obs: Observation, counters: Counters, config, event_trigger: Trigger, 
         if _taxel_aware(config) and all(obs.contact):
             return Decision(Mode.LIFT, Trigger.CORRECTIVE, f"{reason}, both pads hold the "
                             "object: lift")
+        if _taxel_aware(config) and obs.caged_behind_pads:
+            return Decision(Mode.LIFT, Trigger.CORRECTIVE, f"{reason}, the fingers hold the "
+                            "object behind the pads: lift")
         if counters.lift_loads:
             return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason} after Lift-Load")
         return re_reach_or_fail(counters, config, reason)
@@ -168,6 +176,9 @@ def memorized_corrective_trigger(config, transition: str) -> bool:
 
 
 def _lift(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
+    if obs.caged_behind_pads:  # no pad touches it: squeezing harder cannot stop a slip
+        return Decision(Mode.HOLD, Trigger.TIMER, "lift motion ended") if obs.motion_done \
+            else None
     if memorized_corrective_trigger(config, "lift_load"):
         lift_load = lift_load_on_slip_event(obs.corrective_event_matched, counters, config)
     else:
@@ -184,7 +195,9 @@ def _hold(obs: Observation, counters: Counters, config, event_trigger: Trigger, 
         avoid = avoid_on_hit_event(obs.corrective_event_matched, obs.time_in_mode, config)
     else:
         avoid = avoid_on_hit(obs.hit, config)
-    if avoid is not None:
+    # A caged object touches no pad: the pads' RA reads it rattling against the fingers'
+    # links, not a hit passed through a grasp contact (caged_behind_pads).
+    if avoid is not None and not obs.caged_behind_pads:
         return avoid
     if _taxel_aware(config):
         regrasp = regrasp_or_none(tilted_s=obs.tilted_s, regrasps=counters.regrasps,
@@ -245,6 +258,9 @@ def next_mode(mode: Mode, obs: Observation, counters: Counters, config, *,
         return Decision(Mode.FAILED, Trigger.FAULT, obs.device_fault)
     if obs.gripper_fault:
         return Decision(Mode.FAILED, Trigger.FAULT, f"gripper fault {obs.gripper_fault}")
-    if (config.drop_check_enabled and mode in HOLDING_MODES and not any(obs.contact)):
+    # A caged object (taxel_aware) touches no pad; it is lost when the fingers close to
+    # their request, which ends caged_behind_pads.
+    if (config.drop_check_enabled and mode in HOLDING_MODES and not any(obs.contact)
+            and not obs.caged_behind_pads):
         return Decision(Mode.FAILED, Trigger.THRESHOLD, "object lost: no finger in contact")
     return _RULES[mode](obs, counters, config, event_trigger, hold_s)
