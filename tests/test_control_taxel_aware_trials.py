@@ -43,6 +43,18 @@ def test_an_object_two_centimetres_along_the_stroke_is_grasped_without_stalling(
     assert result["hold_success"] and result["unload_success"]
 
 
+def test_a_pad_touching_the_object_during_the_approach_stops_it_and_shifts_the_grasp():
+    """16 mm beyond and 24 mm along the stroke, yawed: the right pad meets the box while
+    the open gripper still approaches; it backs off, shifts toward that pad, approaches
+    again and holds the box."""
+    result = _run("box", offset=(0.016, -0.024), yaw_deg=-2.0)
+    first = result["transitions"][0]
+    assert (first["from"], first["to"]) == ("Reach", "Re-Reach")
+    assert "right pad touched during the approach" in first["reason"]
+    assert result["final_mode"] == "Done"
+    assert result["hold_success"] and result["unload_success"]
+
+
 def test_a_yawed_box_is_loaded_although_its_events_come_late_or_never():
     """Issue #14: a box yawed 10 deg never matched the paper's Reach-Load event."""
     result = _run("box", yaw_deg=10.0)
