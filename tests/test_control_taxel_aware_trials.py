@@ -55,6 +55,19 @@ def test_a_pad_touching_the_object_during_the_approach_stops_it_and_shifts_the_g
     assert result["hold_success"] and result["unload_success"]
 
 
+def test_one_finger_touching_at_the_objects_width_loads_and_the_squeeze_brings_the_other():
+    """14 mm toward the palm, yawed 4.7 deg (a second-grid scene): the gripper closes to the
+    box's width with only the left pad reading the contact force; it loads instead of
+    Re-Reaching, and the squeeze brings the right pad on. (At 15 mm and 5 deg the event
+    comes first: the scene sits where this rule, not the event, decides.)"""
+    result = _run("box", offset=(-0.014, 0.001), yaw_deg=4.7)
+    first = result["transitions"][0]
+    assert (first["from"], first["to"]) == ("Reach", "Load")
+    assert "closed to the object's width" in first["reason"]
+    assert "re_reach" not in result["corrective_actions"]
+    assert result["hold_success"] and result["unload_success"]
+
+
 def test_a_yawed_box_is_loaded_although_its_events_come_late_or_never():
     """Issue #14: a box yawed 10 deg never matched the paper's Reach-Load event."""
     result = _run("box", yaw_deg=10.0)
