@@ -88,10 +88,11 @@ class MachineState:
     resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
     # The finger-strike sense (taxel_aware, finger_strike.py): the wrench on G at the
     # approach's start [N m, N], since when the force beyond it exceeds the threshold [s],
-    # and the side moment summed over those ticks [N m].
+    # the side moment summed over those ticks [N m], and the finger they point to.
     strike_baseline: tuple = ()
     strike_since: float = -1.0
     strike_moment_sum: float = 0.0
+    strike_finger: str = ""  # the struck finger those ticks say ("left", "right", "" unknown)
     sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
     # The memorized hit trigger's: the last Hold ticks' SA (hit_baseline_history).
     sa_history: tuple = ()
@@ -390,11 +391,12 @@ class GraspStateMachine(LeafSystem):
             s = dataclasses.replace(s, approach_contact_since=approach_since)
             s, strike_fields = self._sense_strike(s, t, context, contact)
             taxel_fields.update(strike_fields)
-            s, topples = self._pushed_past_tipping(s, shape, closing, context)
+            opening = self._opening(context)
+            s, topples = self._pushed_past_tipping(s, shape, closing, opening)
             taxel_fields.update(approach_contact_s=t - approach_since if approaching else 0.0,
                                 topples_if_released=topples,
-                                caged_behind_pads=self._caged(s, shape, status, context),
-                                opening_m=self._opening(context),
+                                caged_behind_pads=self._caged(s, shape, status, opening),
+                                opening_m=opening,
                                 object_width_m=self._plan.object_width, contact_shape=shape,
                                 tilted_s=t - tilted_since if tilted else 0.0,
                                 regrasp_pending=s.regrasp_pending)
@@ -443,24 +445,25 @@ class GraspStateMachine(LeafSystem):
         since = (s.strike_since if s.strike_since >= 0 else t) if striking else -1.0
         moment_sum = (s.strike_moment_sum + side_moment_nm(wrench, baseline)) if striking \
             else 0.0
+        finger = struck_finger(moment_sum, contact, config) or ""
         s = dataclasses.replace(s, strike_baseline=baseline, strike_since=since,
-                                strike_moment_sum=moment_sum)
+                                strike_moment_sum=moment_sum, strike_finger=finger)
         return s, dict(strike_s=t - since if striking else 0.0, strike_force_n=force,
-                       strike_finger=struck_finger(moment_sum, contact, config) or "")
+                       strike_finger=finger)
 
     def _strike_sustained(self, s: MachineState, t: float) -> bool:
         return (s.strike_since >= 0 and t - s.strike_since
                 >= self._config.taxel_aware.finger_strike.sustain_s)
 
     def _pushed_past_tipping(self, s: MachineState, shape, closing: bool,
-                             context) -> tuple[MachineState, bool]:
+                             opening_m: float) -> tuple[MachineState, bool]:
         """taxel_aware, while Reach closes: remember the opening at the first pad's first
         touch (any taxel above TAXEL_CONTACT_N: a light object slides under a push below
         contact_force_n) and say whether the push since then would topple the object if
         the gripper let go (taxel_corrections.release_topples)."""
         first, offset = s.first_touch_opening_m, s.first_touch_offset_m
         if closing and first < 0.0 and (shape.left.touching or shape.right.touching):
-            first, offset = self._opening(context), shape.approach_offset_m
+            first, offset = opening_m, shape.approach_offset_m
         p = self._plan
         pushed = pushed_distance_m(first, p.object_width)
         topples = closing and release_topples(pushed, grasp_height_m=p.grasp_height,
@@ -469,14 +472,14 @@ class GraspStateMachine(LeafSystem):
         return dataclasses.replace(s, first_touch_opening_m=first,
                                    first_touch_offset_m=offset), topples
 
-    def _caged(self, s: MachineState, shape, status, context) -> bool:
+    def _caged(self, s: MachineState, shape, status, opening_m: float) -> bool:
         """taxel_aware, while Reach closes, in Load and while holding: the fingers hold
         the object behind the pads (taxel_corrections.caged_behind_pads)."""
         closed = ((s.mode == Mode.REACH and s.stage == Stage.CLOSING)
                   or s.mode in (Mode.LOAD, *HOLDING_MODES))
         at_request = int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION
         return closed and caged_behind_pads(
-            first_touch_offset_m=s.first_touch_offset_m, opening_m=self._opening(context),
+            first_touch_offset_m=s.first_touch_offset_m, opening_m=opening_m,
             object_width_m=self._plan.object_width,
             pads_touch=shape.left.touching or shape.right.touching, closed_to_request=at_request,
             taxel_config=self._config.taxel_aware)
@@ -493,7 +496,7 @@ class GraspStateMachine(LeafSystem):
                       closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
                       motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0,
                       first_touch_opening_m=-1.0, sa_history=(), strike_baseline=(),
-                      strike_since=-1.0, strike_moment_sum=0.0)
+                      strike_since=-1.0, strike_moment_sum=0.0, strike_finger="")
 
         def new(logged: Transition = entry, **changes) -> MachineState:
             return dataclasses.replace(s, **{**common, "timeline": s.timeline + (logged,),
@@ -520,12 +523,9 @@ class GraspStateMachine(LeafSystem):
                     grasp_contact(self._taxel_forces.Eval(context)), self._channels.Eval(context),
                     self._opening(context), p.object_width, config)
                 if approaching and self._strike_sustained(s, t):  # a finger struck it
-                    contact = tuple(bool(x > config.contact_force_n)
-                                    for x in self._channels.Eval(context)[:2])
-                    finger = struck_finger(s.strike_moment_sum, contact,
-                                           config.taxel_aware.finger_strike)
                     shift = Shift(-config.taxel_aware.approach_retreat_m,
-                                  strike_shift(finger, self._opening(context), p.object_width))
+                                  strike_shift(s.strike_finger or None, self._opening(context),
+                                               p.object_width))
                 elif approaching:  # back off, shift along the stroke, approach again
                     shift = Shift(-config.taxel_aware.approach_retreat_m, shift.dy_m)
                 re_reaches = counters.re_reaches + 1
