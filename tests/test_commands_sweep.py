@@ -49,6 +49,25 @@ def test_spec_file_with_command_line_overrides(tmp_path):
                                for j in range(2) for k in range(2)]
 
 
+def test_set_options_follow_the_spec_files_overrides_into_every_record(tmp_path):
+    spec = tmp_path / "hit.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [memorized]\nattempts: 1\n"
+                    "scenario_overrides: ['disturbance.hit_time_s=7.0']\n")
+    out = tmp_path / "out"
+    assert command.main(["--spec", str(spec), "--set",
+                         "controller.memorized_corrective_events=[hold_avoid]",
+                         "--out", str(out), "--workers", "1", *FAKE]) == 0
+    records = load_records(out).records
+    assert len(records) == 9
+    for record in records.values():
+        assert record["trial"]["scenario_overrides"] == [
+            "disturbance.hit_time_s=7.0",
+            "controller.memorized_corrective_events=[hold_avoid]"]
+    # The same folder with other settings is refused, not mixed.
+    assert command.main(["--spec", str(spec), "--out", str(out), "--workers", "1",
+                         *FAKE]) == 2
+
+
 def test_trial_errors_give_exit_code_1(tmp_path, capsys):
     code = command.main(["--objects", "box", "--controllers", "memorized", "--attempts", "2",
                          "--out", str(tmp_path), "--workers", "2", "--no-progress",
@@ -63,6 +82,9 @@ def test_trial_errors_give_exit_code_1(tmp_path, capsys):
     (["--attempts", "0"], "field 'attempts'"),
     (["--workers", "0"], "--workers must be at least 1"),
     (["--benchmark", "--scheduler", "tcp://127.0.0.1:8786"], "drop --scheduler"),
+    (["--set", "controller.memorized_corrective_events=[hold_smash]"],
+     "field 'scenario_overrides'"),
+    (["--set", "object.name=box"], "set per trial by the sweep"),
 ])
 def test_bad_options_stop_before_any_trial(tmp_path, capsys, arguments, message):
     out = tmp_path / "out"

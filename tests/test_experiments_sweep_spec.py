@@ -181,6 +181,17 @@ def test_an_empty_yaml_file_is_the_papers_experiment(tmp_path):
      "user_objects.cup.mass_kg", "missing"),
     ("user_objects: {'a.b': {shape: box, size_m: [0.1, 0.1, 0.1], mass_kg: 1}}\n",
      "user_objects.a.b", "not a valid name"),
+    ("scenario_overrides: [controller.memorized_corrective_events]\n",
+     "scenario_overrides[0]", "key=value"),
+    ("scenario_overrides: ['object.name=thin_cylinder']\n",
+     "scenario_overrides[0]", "set per trial"),
+    ("scenario_overrides: ['controller.name=heuristic']\n",
+     "scenario_overrides[0]", "set per trial"),
+    ("scenario_overrides: ['object_offset=[0.0, 0.01]']\n",
+     "scenario_overrides[0]", "set per trial"),
+    ("scenario_overrides: ['controller.memorized_corrective_events=[hold_smash]']\n",
+     "scenario_overrides", "hold_smash"),
+    ("scenario_overrides: ['controller.wobble=1']\n", "scenario_overrides", "wobble"),
 ])
 def test_invalid_yaml_names_file_and_field(tmp_path, text, field, words):
     path = write_yaml(tmp_path, text)
@@ -221,3 +232,28 @@ def test_the_randomised_cluster_spec_holds_1050_trials_of_distinct_seeds_and_yaw
     assert len({t.seed for t in trials}) == len(trials)
     yaws = [abs(t.perturbation.yaw_rad) for t in trials]
     assert max(yaws) <= math.radians(10.0) and len(set(yaws)) == len(trials)
+
+
+def test_scenario_overrides_reach_every_trial_and_survive_a_round_trip(tmp_path):
+    """A spec's scenario_overrides (`--set` assignments) go with every trial, so a record
+    says which settings made it."""
+    path = write_yaml(tmp_path, "objects: [box]\ncontrollers: [memorized, heuristic]\n"
+                      "attempts: 1\nscenario_overrides:\n"
+                      "  - controller.memorized_corrective_events=[hold_avoid]\n")
+    spec = LoadSweepSpec(path)
+    assert spec.scenario_overrides == ("controller.memorized_corrective_events=[hold_avoid]",)
+    trials = expand_trials(spec)
+    assert len(trials) == 18
+    for trial in trials:
+        d = trial.to_dict()
+        assert d["scenario_overrides"] == list(spec.scenario_overrides)
+        assert TrialSpec.from_dict(d) == trial
+
+
+def test_a_sweep_without_overrides_writes_the_trial_dicts_it_always_wrote():
+    """No scenario_overrides: the trial dict has no such key, so a results folder made
+    before the field existed still resumes (the runner compares trial dicts)."""
+    trial = expand_trials(SweepSpec(objects=("box",), attempts=1))[0]
+    d = trial.to_dict()
+    assert "scenario_overrides" not in d
+    assert TrialSpec.from_dict(d) == trial

@@ -3,7 +3,7 @@
     tegrasp sweep [--spec FILE.yaml] [--objects NAME ...] [--controllers NAME ...]
                   [--attempts N] [--base-seed N] [--workers N] [--out DIR]
                   [--scheduler tcp://HOST:PORT] [--no-progress] [--format png|pdf|svg]
-                  [--benchmark] [-v | -q]
+                  [--benchmark] [--set KEY=VALUE ...] [-v | -q]
 
 Runs every trial without a finished record in `--out` (so the same command resumes a
 killed sweep), then writes table1.md/.csv, statistics.md/.json, success_by_offset.md/.csv
@@ -52,6 +52,8 @@ examples:
   tegrasp sweep --out results/sweep            # Table I: 3 objects x 9 markers x 3, 3 controllers
   tegrasp sweep --objects box --controllers memorized --attempts 1 --workers 2 --out out/box
   tegrasp sweep --spec analysis/example_sweep.yaml --scheduler tcp://10.0.0.5:8786
+  tegrasp sweep --objects box --set controller.memorized_corrective_events=[hold_avoid] \
+      --set disturbance.hit_time_s=7.0 --out out/hit   # memorized Avoid against a hit
 
 Re-running a command into the same --out resumes the sweep: finished trials are kept and
 only the missing ones run. Reports: table1.md/.csv, statistics.md/.json, summary.md (the
@@ -89,6 +91,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--logs", metavar="DIR", default=None,
                         help="also save each trial's log (trial.npz format) in DIR, for "
                         "re-scoring offline (analysis/detection_quality.py)")
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="KEY=VALUE",
+                        help="override a field of every trial's scenario, after the spec's "
+                        "scenario_overrides, e.g. --set "
+                        "controller.memorized_corrective_events=[hold_avoid]")
     parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
                         help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
 
@@ -110,6 +117,8 @@ def spec_from_arguments(args) -> SweepSpec:
         ("controllers", args.controllers and tuple(args.controllers)),
         ("attempts", args.attempts),
         ("base_seed", args.base_seed)) if value is not None}
+    if args.overrides:
+        overrides["scenario_overrides"] = spec.scenario_overrides + tuple(args.overrides)
     spec = dataclasses.replace(spec, **overrides)
     validate_spec(spec, f"{args.spec} with command-line options" if args.spec
                   else "command line")

@@ -169,13 +169,13 @@ def run_trial(scenario, *, meshcat=None, events=None, corrective_events=None,
 
 def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
-    trial's object (perturbed in mass and friction; unperturbed with `nominal`), placement,
-    seed and controller."""
+    sweep's scenario_overrides, and the trial's object (perturbed in mass and friction;
+    unperturbed with `nominal`), placement, seed and controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
     from tegrasp_drake.experiments.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.experiments.sweep.spec import ObjectDefinition
     p = trial["perturbation"]
-    base = LoadScenario()
+    base = LoadScenario(overrides=tuple(trial.get("scenario_overrides", ())))
     definition = trial.get("object_definition")
     if definition:
         obj = ObjectDefinition(**definition).object_config(trial["object_name"])
@@ -208,14 +208,21 @@ def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
     The memorized controllers' events (from `events_dir`, else the user's folder, then the
     package's) must have been recorded on the trial's unperturbed object: the sweep's
     mass and friction perturbations are the experiment's, not a mismatch.
+    The memorized corrective events, when the sweep's scenario_overrides name some
+    (controller.memorized_corrective_events), come from the same search path's corrective
+    folder, checked the same way.
     log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
-    from tegrasp_drake.control.grasp_controller import load_controller_events
+    from tegrasp_drake.control.grasp_controller import (load_controller_events,
+                                                        load_corrective_events)
     scenario = scenario_from_trial_spec(trial)
-    events = None
+    events = corrective_events = None
+    nominal = scenario_from_trial_spec(trial, nominal=True).object
     if scenario.controller.name in MEMORIZED_EVENT_CONTROLLERS:
-        nominal = scenario_from_trial_spec(trial, nominal=True).object
         events = load_controller_events(scenario, events_dir, nominal_object=nominal)
-    run = run_trial(scenario, events=events)
+    if scenario.controller.memorized_corrective_events:
+        corrective_events = load_corrective_events(scenario, events_dir,
+                                                   nominal_object=nominal)
+    run = run_trial(scenario, events=events, corrective_events=corrective_events)
     if log_dir is not None:
         run.log.save(pathlib.Path(log_dir) / trial_log_name(trial["trial_id"]))
     return run.result

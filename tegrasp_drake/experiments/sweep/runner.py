@@ -169,8 +169,8 @@ def _check_same_sweep(trials, records, out_dir):
         if record is not None and canonical_json(record["trial"]) != canonical_json(trial):
             raise SweepError(
                 f"{out_dir} holds a record of trial {trial['trial_id']} made with other "
-                "settings (seed, grid offsets or randomisation differ); resume with the "
-                "same spec, or choose another output folder")
+                "settings (seed, grid offsets, randomisation or scenario overrides differ); "
+                "resume with the same spec, or choose another output folder")
 
 
 def _record_outcomes(outcomes, pending, out_dir, progress_bar):

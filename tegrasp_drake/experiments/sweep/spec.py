@@ -48,6 +48,11 @@ BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
 PAPER_NORMAL_OFFSETS_M = (-0.010, 0.0, 0.010)
 PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
 
+# The scenario fields a sweep sets per trial (scenario_from_trial_spec): a spec's
+# scenario_overrides may not assign them.
+PER_TRIAL_SCENARIO_FIELDS = ("object", "object_offset", "object_yaw_deg", "random_seed",
+                             "controller.name")
+
 # Names become parts of trial ids and file names: keep them to a safe alphabet.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
 # A sweep's object is a primitive shape: an ObjectDefinition has no model file field.
@@ -111,6 +116,10 @@ class SweepSpec:
     base_seed: int = 0
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
     user_objects: Mapping[str, ObjectDefinition] = field(default_factory=dict)
+    # `--set key=value` assignments applied to every trial's default scenario, e.g.
+    # "controller.memorized_corrective_events=[hold_avoid]" (not the per-trial fields,
+    # PER_TRIAL_SCENARIO_FIELDS).
+    scenario_overrides: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -147,11 +156,18 @@ class TrialSpec:
     seed: int
     sensor_noise: bool
     perturbation: Perturbation
+    scenario_overrides: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
         d = dataclasses.asdict(self)
         if d["object_definition"] is not None:
             d["object_definition"]["size_m"] = list(d["object_definition"]["size_m"])
+        # Left out when empty: a sweep without overrides keeps the records it always wrote,
+        # so folders made before the field existed still resume.
+        if self.scenario_overrides:
+            d["scenario_overrides"] = list(self.scenario_overrides)
+        else:
+            del d["scenario_overrides"]
         return d
 
     @classmethod
@@ -161,7 +177,8 @@ class TrialSpec:
             definition = ObjectDefinition(**{**definition,
                                              "size_m": tuple(definition["size_m"])})
         return cls(**{**d, "object_definition": definition,
-                      "perturbation": Perturbation(**d["perturbation"])})
+                      "perturbation": Perturbation(**d["perturbation"]),
+                      "scenario_overrides": tuple(d.get("scenario_overrides", ()))})
 
 
 # ---------------------------------------------------------------------------------
@@ -217,6 +234,29 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                  f"expected a number in [0, 1) so the scale stays positive, got {value!r}")
     if not isinstance(r.sensor_noise, bool):
         fail("randomisation.sensor_noise", f"expected true or false, got {r.sensor_noise!r}")
+    _check_scenario_overrides(spec.scenario_overrides, fail)
+
+
+def _check_scenario_overrides(assignments, fail):
+    """Each a `key=value` that the default scenario accepts, none of the per-trial
+    fields."""
+    from tegrasp_drake.experiments.scenario import LoadScenario
+    for k, assignment in enumerate(assignments):
+        field_name = f"scenario_overrides[{k}]"
+        if not isinstance(assignment, str) or "=" not in assignment:
+            fail(field_name, f"expected 'key=value' (as `tegrasp trial --set`), got "
+                             f"{assignment!r}")
+        key = assignment.split("=", 1)[0].strip()
+        for per_trial in PER_TRIAL_SCENARIO_FIELDS:
+            if key == per_trial or key.startswith(per_trial + ".") or \
+                    per_trial.startswith(key + "."):
+                fail(field_name, f"'{key}' is set per trial by the sweep (objects, grid, "
+                                 "randomisation, base_seed, controllers); set it there")
+    if assignments:
+        try:
+            LoadScenario(overrides=assignments)
+        except ConfigError as error:
+            fail("scenario_overrides", str(error))
 
 
 def _check_name(name, field_name, fail):
@@ -281,8 +321,10 @@ def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
     grid (either a list of [dx_m, dy_m] marker offsets, or a mapping with
     normal_offsets_m and stroke_offsets_m lists whose product is the grid),
     randomisation (a mapping of `RandomisationConfig` fields), user_objects (a mapping
-    from name to `ObjectDefinition` fields). Raises ConfigError naming the file and
-    the field for unknown fields, wrong types and values that cannot run.
+    from name to `ObjectDefinition` fields), scenario_overrides (a list of `--set`
+    assignments for every trial's scenario, e.g. the controller's settings). Raises
+    ConfigError naming the file and the field for unknown fields, wrong types and values
+    that cannot run.
     """
     source = str(path)
 
@@ -298,7 +340,7 @@ def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
     check_fields(fields, SweepSpec, source)
     if has_grid:
         fields["grid"] = _parse_grid(grid, source, fail)
-    for name in ("objects", "controllers"):
+    for name in ("objects", "controllers", "scenario_overrides"):
         if name in fields:
             fields[name] = tuple(fields[name])
     if "randomisation" in fields:
@@ -411,7 +453,8 @@ def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN
                     seed=int(trial_seq.generate_state(1, dtype=np.uint32)[0]),
                     sensor_noise=spec.randomisation.sensor_noise,
                     perturbation=draw_perturbation(np.random.default_rng(perturbation_seq),
-                                                   spec.randomisation)))
+                                                   spec.randomisation),
+                    scenario_overrides=tuple(spec.scenario_overrides)))
     return [TrialSpec(trial_id=f"{controller}/{scene['pair_id']}", controller=controller,
                       **scene)
             for controller in spec.controllers for scene in scenes]
