@@ -109,6 +109,30 @@ def test_bad_spec_file_stops_before_any_trial(tmp_path, capsys, text, message):
     assert not out.exists()
 
 
+@pytest.mark.parametrize("arguments, spec_text, message", [
+    (["--objects", "thick_cylinder", "--set",
+      "controller.memorized_corrective_events=[hold_avoid]"], None,
+     "no memorized events of object 'thick_cylinder'"),
+    ([], "objects: [cup]\ncontrollers: [open_loop, memorized]\nuser_objects:\n"
+         "  cup: {shape: cylinder, size_m: [0.03, 0.1], mass_kg: 0.1, friction_coefficient: 0.5}\n",
+     "trial memorized/cup/m00/a0"),
+])
+def test_missing_memorized_events_stop_the_real_sweep_before_any_trial(
+        tmp_path, capsys, arguments, spec_text, message):
+    """The real trial function's events are checked once per object and controller
+    before anything runs: one line naming the trial, the folders and what to do, exit 2,
+    no results folder (not one error record per trial)."""
+    out = tmp_path / "out"
+    if spec_text is not None:
+        spec = tmp_path / "cup.yaml"
+        spec.write_text(spec_text)
+        arguments = ["--spec", str(spec)]
+    assert command.main([*arguments, "--out", str(out), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err and "\n" not in err and "Traceback" not in err
+    assert not out.exists()
+
+
 def test_a_missing_trial_function_is_reported(tmp_path, capsys):
     out = tmp_path / "out"
     assert command.main(["--out", str(out), "--no-progress",

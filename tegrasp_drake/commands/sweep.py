@@ -145,6 +145,10 @@ def run(args) -> int:
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
+        if args.trial_function == DEFAULT_TRIAL_FUNCTION:
+            from tegrasp_drake.experiments.sweep.spec import expand_trials
+            from tegrasp_drake.experiments.trial import check_sweep_events
+            check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
         progress = not args.no_progress and progress_wanted(args)
         if args.events:
             trial_function = functools.partial(trial_function, events_dir=args.events)

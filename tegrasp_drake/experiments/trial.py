@@ -202,27 +202,54 @@ def trial_log_name(trial_id: str) -> str:
     return trial_id.replace("/", ".") + ".npz"
 
 
-def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
-    """The sweep's trial function: runs the trial; returns its result dict.
+def trial_events(trial: dict, events_dir=None) -> tuple[dict | None, dict | None]:
+    """The memorized events a sweep trial's controller needs: (transition events, or None
+    for the controllers without them; corrective events, or None unless the sweep's
+    scenario_overrides name some in controller.memorized_corrective_events).
 
-    The memorized controllers' events (from `events_dir`, else the user's folder, then the
-    package's) must have been recorded on the trial's unperturbed object: the sweep's
-    mass and friction perturbations are the experiment's, not a mismatch.
-    The memorized corrective events, when the sweep's scenario_overrides name some
-    (controller.memorized_corrective_events), come from the same search path's corrective
-    folder, checked the same way.
-    log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
+    Both come from `events_dir`, else the user's folder, then the package's, and must have
+    been recorded on the trial's unperturbed object: the sweep's mass and friction
+    perturbations are the experiment's, not a mismatch. Raises MemorizedEventError."""
     from tegrasp_drake.control.grasp_controller import (load_controller_events,
                                                         load_corrective_events)
     scenario = scenario_from_trial_spec(trial)
-    events = corrective_events = None
     nominal = scenario_from_trial_spec(trial, nominal=True).object
+    events = corrective_events = None
     if scenario.controller.name in MEMORIZED_EVENT_CONTROLLERS:
         events = load_controller_events(scenario, events_dir, nominal_object=nominal)
     if scenario.controller.memorized_corrective_events:
         corrective_events = load_corrective_events(scenario, events_dir,
                                                    nominal_object=nominal)
-    run = run_trial(scenario, events=events, corrective_events=corrective_events)
+    return events, corrective_events
+
+
+def check_sweep_events(trials, events_dir=None) -> None:
+    """Raises ConfigError, naming the trial, the file and what to do, when some trial's
+    memorized events (trial_events) are missing or were recorded on another object:
+    checked once per (object, controller), before the sweep runs anything."""
+    from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    checked = set()
+    for trial in trials:
+        key = (trial["object_name"], trial["controller"])
+        if key in checked:
+            continue
+        checked.add(key)
+        try:
+            trial_events(trial, events_dir)
+        except MemorizedEventError as error:
+            raise ConfigError(f"trial {trial['trial_id']} ({trial['controller']} on "
+                              f"'{trial['object_name']}'): {error}") from None
+
+
+def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
+    """The sweep's trial function: runs the trial with its memorized events
+    (trial_events); returns its result dict.
+
+    log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
+    events, corrective_events = trial_events(trial, events_dir)
+    run = run_trial(scenario_from_trial_spec(trial), events=events,
+                    corrective_events=corrective_events)
     if log_dir is not None:
         run.log.save(pathlib.Path(log_dir) / trial_log_name(trial["trial_id"]))
     return run.result
