@@ -22,3 +22,5 @@ def test_a_hit_in_hold_is_avoided_by_the_memorized_hit_event():
     assert 0.0 <= avoids[0]["t"] - hit_time <= 0.06  # issue #14's latency target
     assert result["corrective_actions"] == ["avoid"]
     assert result["hold_success"] and result["unload_success"]
+    # The judge keeps the hit as the Avoid's physical event (the sweep's detection report).
+    assert result["physical_events"]["hit"] == pytest.approx(hit_time)

@@ -49,11 +49,15 @@ def _event_transition(transition: Transition) -> str | None:
 
 
 def physical_event_times(log, transitions: list[Transition], grip_force: float,
-                         object_config=None) -> dict:
+                         object_config=None, hit_time_s: float = -1.0) -> dict:
     """The physical event that marks each event transition actually taken, looked for after
     the mode was entered: first contact (Reach-Load), grip force reached (Load-Lift, after
-    the last Reach began), table touch (Place-Unload)."""
+    the last Reach began), table touch (Place-Unload); and "hit", the scenario's hit on the
+    object (disturbance.hit_time_s [s]), when it came within the simulated time, whatever
+    the controller did (the Avoid's ground truth: detection_report.hit_avoid_rows)."""
     events = {}
+    if 0.0 <= hit_time_s <= float(log.t_slow[-1]):
+        events["hit"] = float(hit_time_s)
     entered = {Mode.REACH: 0.0}
     for entry in transitions:
         name = _event_transition(entry)
@@ -82,7 +86,8 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
                           and outcome.final_tilt_deg < UPRIGHT_TILT_DEG and outcome.released
                           and resting)
     grip_force = scenario.grasp.grip_force
-    physical = physical_event_times(log, transitions, grip_force, scenario.object)
+    physical = physical_event_times(log, transitions, grip_force, scenario.object,
+                                    hit_time_s=scenario.disturbance.hit_time_s)
     latency, false_triggers = {}, 0
     for entry in transitions:
         name = _event_transition(entry)

@@ -9,7 +9,14 @@ that reached the transition's source mode:
              no physical event at all)
   other      left by another trigger (a timer, a corrective action, a fault) or never left
   latency    median and 90th percentile of the detected ones [s after the physical event]
-Corrective triggers: the number of trials in which each corrective action started.
+Corrective triggers: the number of trials in which each corrective action started. The
+hit in Hold (a sweep with `--set disturbance.hit_time_s=...`), per controller, over the
+trials that were in Hold when the hit came (physical event "hit"):
+  detected   Hold -> Avoid at or after the hit (less than 10 ms before it counts, as above)
+  missed     no Avoid after the hit
+  false      trials that reached Hold with an Avoid before the hit, or without a hit
+  latency    of the detected ones [s after the hit's start]
+  trigger    what made the Avoids (memorized: corrective_event; the threshold: threshold)
 
 Paired comparison (McNemar's exact test): for one success marker (well-placed or
 misplaced, hold or unload), the scenes both controllers ran (same pair_id: the same
@@ -79,6 +86,62 @@ def event_trigger_rows(records) -> list[TriggerRow]:
             float(np.median(latencies)) if latencies else None,
             float(np.percentile(latencies, 90)) if latencies else None))
     return rows
+
+
+@dataclasses.dataclass(frozen=True)
+class HitAvoidRow:
+    controller: str
+    triggers: tuple[str, ...]   # the triggers of its Avoids
+    hits_in_hold: int
+    detected: int
+    missed: int
+    false: int                  # of reached_hold
+    reached_hold: int
+    median_latency_s: float | None
+    p90_latency_s: float | None
+
+
+def _mode_at(transitions, t: float) -> str:
+    """The mode the timeline was in at time t [s] (Reach before the first transition)."""
+    mode = "Reach"
+    for entry in transitions:
+        if entry["t"] > t:
+            break
+        mode = entry["to"]
+    return mode
+
+
+def hit_avoid_rows(records) -> list[HitAvoidRow]:
+    """One HitAvoidRow per controller with a hit in Hold or an Avoid (module doc)."""
+    rows = collections.defaultdict(lambda: {"triggers": set(), "hits": 0, "detected": 0,
+                                            "missed": 0, "false": 0, "reached": 0,
+                                            "latencies": []})
+    for record in records.values():
+        result = record.get("result")
+        if not result or not any(t["to"] == "Hold" for t in result["transitions"]):
+            continue
+        row = rows[record["trial"]["controller"]]
+        row["reached"] += 1
+        avoids = [t for t in result["transitions"] if t["to"] == "Avoid"]
+        row["triggers"].update(t["trigger"] for t in avoids)
+        hit = result["physical_events"].get("hit")
+        in_hold = hit is not None and _mode_at(result["transitions"], hit) == "Hold"
+        if any(hit is None or t["t"] < hit - FALSE_TRIGGER_MARGIN_S for t in avoids):
+            row["false"] += 1
+        if not in_hold:
+            continue
+        row["hits"] += 1
+        after = [t["t"] for t in avoids if t["t"] >= hit - FALSE_TRIGGER_MARGIN_S]
+        if after:
+            row["detected"] += 1
+            row["latencies"].append(after[0] - hit)
+        else:
+            row["missed"] += 1
+    return [HitAvoidRow(controller, tuple(sorted(r["triggers"])), r["hits"], r["detected"],
+                        r["missed"], r["false"], r["reached"],
+                        float(np.median(r["latencies"])) if r["latencies"] else None,
+                        float(np.percentile(r["latencies"], 90)) if r["latencies"] else None)
+            for controller, r in sorted(rows.items()) if r["hits"] or r["triggers"]]
 
 
 def corrective_counts(records) -> dict[str, collections.Counter]:
@@ -161,6 +224,17 @@ def report_markdown(records, controllers, reference: str, title: str) -> str:
         if row.controller in controllers and row.detected + row.false > 0:
             lines.append(f"| {row.controller} | {row.trigger} | {row.trials} | {row.detected} | "
                          f"{row.false} | {row.other} | {ms(row.median_latency_s)} | "
+                         f"{ms(row.p90_latency_s)} |")
+    hit_rows = [row for row in hit_avoid_rows(records) if row.controller in controllers]
+    if hit_rows:
+        lines += ["\n## Hit in Hold -> Avoid\n",
+                  "| controller | Avoid trigger | hits in Hold | detected | missed | false (of "
+                  "trials in Hold) | median latency | p90 latency |",
+                  "|---|---|---|---|---|---|---|---|"]
+        for row in hit_rows:
+            lines.append(f"| {row.controller} | {', '.join(row.triggers) or '–'} | "
+                         f"{row.hits_in_hold} | {row.detected} | {row.missed} | "
+                         f"{row.false} of {row.reached_hold} | {ms(row.median_latency_s)} | "
                          f"{ms(row.p90_latency_s)} |")
     lines += ["\n## Corrective actions (trials in which each started)\n",
               "| controller | actions |", "|---|---|"]
