@@ -91,8 +91,10 @@ def test_a_tilted_hold_is_put_down_and_grasped_again():
 def test_a_thin_cylinder_pushed_along_the_stroke_is_loaded_where_it_is_not_let_go():
     """The faithful sweep's failure: the right pad pushes the rod 15 mm along the stroke
     (tipping it past its 11.8 deg standing limit) and reads the contact on the fingertip
-    row; re-centring opened the gripper on it and it fell over."""
-    result = _run("thin_cylinder", offset=(0.01, -0.015))
+    row; re-centring opened the gripper on it and it fell over. (At 1 cm beyond the nominal
+    grasp the first touch now lies on the distal row alone and the close stops there,
+    touched_beyond_pads: this scene has the rod on the grasp's line.)"""
+    result = _run("thin_cylinder", offset=(0.0, -0.015))
     leaving = [t for t in result["transitions"] if t["from"] == "Reach"]
     assert leaving[0]["to"] == "Load"
     assert result["hold_success"] and result["unload_success"]
@@ -107,4 +109,19 @@ def test_a_thin_cylinder_caged_behind_the_pads_is_lifted_not_re_reached():
     leaving = [t for t in result["transitions"] if t["from"] == "Reach"]
     assert leaving[0]["to"] == "Load" and "behind the pads" in leaving[0]["reason"]
     assert "re_reach" not in result["corrective_actions"]
+    assert result["hold_success"] and result["unload_success"]
+
+
+def test_a_thin_cylinder_beyond_the_fingertips_stops_the_close_and_is_grasped_centred():
+    """Issue #14's second grid (dev seed 700, marker 1.5 cm beyond, 2.5 cm along the
+    stroke): the rod's axis stands beyond the pads' distal edge; the right pad's edge
+    touched it first and the close pushed it over and past the fingertips (4 Re-Reaches
+    on nothing, Failed). Now the close stops at that touch, moves forward and toward the
+    right pad, and closes centred."""
+    result = _run("thin_cylinder", offset=(0.0139, -0.0246), yaw_deg=7.8)
+    first = result["transitions"][0]
+    assert (first["from"], first["to"]) == ("Reach", "Re-Reach")
+    assert "right pad's distal row alone" in first["reason"]
+    assert first["approach_offset_m"] > 0.0 and first["offset_m"] < -0.015
+    assert result["final_mode"] == "Done"
     assert result["hold_success"] and result["unload_success"]

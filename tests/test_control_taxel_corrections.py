@@ -11,9 +11,10 @@ from tegrasp_drake.control.corrective_actions import Counters, corrective_action
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import (
-    Shift, approach_shift, caged_behind_pads, held_tilted, on_reach_event, on_reach_timeout,
-    one_sided_response, pushed_distance_m, re_reach_target_2d, regrasp_or_none, release_topples,
-    taxel_re_reach_shift)
+    Shift, approach_shift, beyond_pads_response, beyond_pads_shift, caged_behind_pads,
+    held_tilted, on_reach_event, on_reach_timeout, one_sided_response, pushed_distance_m,
+    re_reach_target_2d, regrasp_or_none, release_topples, taxel_re_reach_shift,
+    touched_beyond_pads)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
@@ -250,4 +251,54 @@ def test_a_pad_touching_during_the_approach_stops_it_for_a_re_reach_within_the_l
     assert used_up.mode == Mode.FAILED
     brief = Observation(contact=(False, True), approach_contact_s=0.02)
     assert next_mode(Mode.REACH, brief, Counters(), CONFIG,
+                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None
+
+
+def _beyond(first_touch_offset_m=grasp_contact(
+        np.concatenate([np.zeros(12), line_on_row(3, 0.1)])).approach_offset_m,
+        one_pad=True, first_touch_opening_m=0.0719):
+    # Issue #14's second grid: the thin cylinder 1.5 cm beyond the nominal grasp and 2.5 cm
+    # along the stroke; the right pad's distal row alone touched at 71.9 mm.
+    thin = BUILTIN_OBJECTS["thin_cylinder"]
+    return touched_beyond_pads(
+        first_touch_offset_m=first_touch_offset_m, one_pad=one_pad,
+        pushed_m=pushed_distance_m(first_touch_opening_m, thin.width_along_stroke()),
+        grasp_height_m=0.055, object_width_m=thin.width_along_stroke(),
+        object_height_m=thin.height(), taxel_config=TAXEL)
+
+
+def test_a_first_touch_on_one_pads_distal_row_that_would_push_the_object_over_stops_it():
+    assert _beyond()
+    # Force above the taxel threshold on the third row too: the object lies on the face.
+    face = grasp_contact(np.concatenate([np.zeros(12), line_on_row(3, 0.15)
+                                         + line_on_row(2, 0.06)]))
+    assert not _beyond(first_touch_offset_m=face.approach_offset_m)
+    assert not _beyond(one_pad=False)  # both pads at once: centred along the stroke
+    # A push within the tipping limit (11.5 mm): the paper's rule grasps it.
+    assert not _beyond(first_touch_opening_m=0.025 + 2 * 0.010)
+
+
+def test_the_stop_beyond_the_pads_moves_forward_and_toward_the_touching_pad():
+    shift = beyond_pads_shift(finger="right", first_touch_opening_m=0.0719,
+                              object_width_m=0.025, taxel_config=TAXEL)
+    # Forward by the pad's half length (its centre onto its distal edge: 2 rows).
+    assert shift == Shift(pytest.approx(2 * CELL_Y), pytest.approx(-0.02345))
+    left = beyond_pads_shift(finger="left", first_touch_opening_m=0.0719,
+                             object_width_m=0.025, taxel_config=TAXEL)
+    assert left.dy_m == pytest.approx(0.02345) and left.dx_m > 0.0
+
+
+def test_the_stop_beyond_the_pads_re_reaches_within_the_limit_then_lets_the_close_go_on():
+    obs = Observation(contact=(False, False), closing_s=0.2, touched_beyond_pads=True,
+                      first_touch_finger="right")
+    decision = next_mode(Mode.REACH, obs, Counters(), CONFIG,
+                         event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (decision.mode, decision.trigger) == (Mode.RE_REACH, Trigger.CORRECTIVE)
+    assert "right pad's distal row" in decision.reason
+    assert beyond_pads_response(finger="right", re_reaches=TAXEL.max_re_reaches,
+                                config=CONFIG) is None
+    assert next_mode(Mode.REACH, obs, Counters(re_reaches=TAXEL.max_re_reaches), CONFIG,
+                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None
+    paper = GraspControllerConfig(name="memorized")
+    assert next_mode(Mode.REACH, obs, Counters(), paper,
                      event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None

@@ -94,6 +94,14 @@ class TaxelAwareConfig:
     # off its pad or light; Load (the squeeze brings the second pad on) instead of another
     # Re-Reach that would shift by less than min_shift_m (the stall of issue #14).
     one_sided_width_margin_m: float = 0.004
+    # The first touch of a close lies on a pad's distal row alone when its contact centroid
+    # along the approach axis is at least this far toward the fingertips [m]: the distal
+    # row's centre (9 mm) less 0.5 mm. A row-2 taxel above TAXEL_CONTACT_N (0.05 N) beside
+    # a first touch of 0.15 N (the measured edge touch) pulls the centroid to 7.5 mm; the
+    # object then lies on the pad's face, not beyond its edge. With the close's push past
+    # the tipping limit, the close stops and Re-Reaches forward
+    # (taxel_corrections.touched_beyond_pads).
+    beyond_pads_centroid_m: float = 0.0085
     # Held tilted: re-grasp (put it down, open, close again, lift) when in Hold the
     # contact line on a pad turns more than tilt_limit_deg, or the two pads' contact
     # heights differ by more than height_mismatch_m [m] (half a column: the contacts

@@ -12,8 +12,10 @@ actions' decisions and moves are in corrective_actions.py):
   Reach     move to the expected object position at grasp height, then close
   Re-Reach  open, shift along the stroke toward the finger that touched first by the offset
             its contact implies, (then Reach closes again); the taxel_aware controller also
-            shifts along the approach axis by the contact's offset on the pads, and opens
-            without a shift to re-grasp an object it put down because it sat tilted
+            shifts along the approach axis by the contact's offset on the pads (by the
+            pad's half length after a first touch beyond the pads, which stops the close:
+            taxel_corrections.touched_beyond_pads), and opens without a shift to re-grasp
+            an object it put down because it sat tilted
   Load      keep closing at the grip force (raised by each Lift-Load)
   Lift      rise by lift_height;  Hold: stay;  Avoid: move avoid_distance along the hit
   Place     descend to place_press below the lift-off height (stops at the Place-Unload event)
@@ -37,8 +39,8 @@ from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.motion_profiles import MotionSegment
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import (
-    Shift, caged_behind_pads, held_tilted, pushed_distance_m, release_topples,
-    taxel_re_reach_shift)
+    Shift, beyond_pads_shift, caged_behind_pads, held_tilted, pushed_distance_m,
+    release_topples, taxel_re_reach_shift, touched_beyond_pads)
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.control.transition_logic import (
     HOLDING_MODES, TAXEL_AWARE, Observation, memorized_corrective_trigger, next_mode)
@@ -85,6 +87,8 @@ class MachineState:
     # The contact's offset along the approach axis [m, pad +y] at that first touch, kept
     # until the next Re-Reach (read again in Load; 0: no pad has touched).
     first_touch_offset_m: float = 0.0
+    # The pad alone at that first touch ("left", "right"; "" both or none).
+    first_touch_finger: str = ""
     resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
     # The finger-strike sense (taxel_aware, finger_strike.py): the wrench on G at the
     # approach's start [N m, N], since when the force beyond it exceeds the threshold [s],
@@ -392,9 +396,16 @@ class GraspStateMachine(LeafSystem):
             s, strike_fields = self._sense_strike(s, t, context, contact)
             taxel_fields.update(strike_fields)
             opening = self._opening(context)
-            s, topples = self._pushed_past_tipping(s, shape, closing, opening)
+            # The close goes on in the first Load: a Reach-Load event can match the impact of
+            # the first touch a taxel sample (9.3 ms) before the taxels show it.
+            first_load = s.mode == Mode.LOAD and s.counters.lift_loads == 0
+            first_close = closing or first_load
+            s, topples = self._pushed_past_tipping(s, shape, closing, opening,
+                                                   first_load=first_load)
             taxel_fields.update(approach_contact_s=t - approach_since if approaching else 0.0,
                                 topples_if_released=topples,
+                                touched_beyond_pads=self._touched_beyond_pads(s, first_close),
+                                first_touch_finger=s.first_touch_finger,
                                 caged_behind_pads=self._caged(s, shape, status, opening),
                                 opening_m=opening,
                                 object_width_m=self._plan.object_width, contact_shape=shape,
@@ -456,21 +467,42 @@ class GraspStateMachine(LeafSystem):
                 >= self._config.taxel_aware.finger_strike.sustain_s)
 
     def _pushed_past_tipping(self, s: MachineState, shape, closing: bool,
-                             opening_m: float) -> tuple[MachineState, bool]:
-        """taxel_aware, while Reach closes: remember the opening at the first pad's first
-        touch (any taxel above TAXEL_CONTACT_N: a light object slides under a push below
-        contact_force_n) and say whether the push since then would topple the object if
-        the gripper let go (taxel_corrections.release_topples)."""
-        first, offset = s.first_touch_opening_m, s.first_touch_offset_m
-        if closing and first < 0.0 and (shape.left.touching or shape.right.touching):
+                             opening_m: float, *, first_load: bool = False
+                             ) -> tuple[MachineState, bool]:
+        """taxel_aware, while Reach closes: remember the opening, the contact's offset and
+        the pad alone (if one) at the first pad's first touch (any taxel above
+        TAXEL_CONTACT_N: a light object slides under a push below contact_force_n) and say
+        whether the push since then would topple the object if the gripper let go
+        (taxel_corrections.release_topples). In the first Load (first_load), where the
+        close goes on after a Reach-Load event that matched the first touch's impact
+        before the taxels showed it, a first touch is remembered only on the fingertip
+        side (offset >= 0), for touched_beyond_pads: caged_behind_pads reads a palm-side
+        first touch, and sees in Load only the Reach's, as before."""
+        first, offset, finger = s.first_touch_opening_m, s.first_touch_offset_m, \
+            s.first_touch_finger
+        recording = closing or (first_load and shape.approach_offset_m >= 0.0)
+        if recording and first < 0.0 and (shape.left.touching or shape.right.touching):
             first, offset = opening_m, shape.approach_offset_m
+            finger = ("" if shape.left.touching == shape.right.touching
+                      else "left" if shape.left.touching else "right")
         p = self._plan
         pushed = pushed_distance_m(first, p.object_width)
         topples = closing and release_topples(pushed, grasp_height_m=p.grasp_height,
                                               object_width_m=p.object_width,
                                               object_height_m=p.object_height)
-        return dataclasses.replace(s, first_touch_opening_m=first,
-                                   first_touch_offset_m=offset), topples
+        return dataclasses.replace(s, first_touch_opening_m=first, first_touch_offset_m=offset,
+                                   first_touch_finger=finger), topples
+
+    def _touched_beyond_pads(self, s: MachineState, closing: bool) -> bool:
+        """taxel_aware, while the close goes on (Reach closing, the first Load): the first
+        touch says the object stands beyond the pads and the close would push it over
+        (taxel_corrections.touched_beyond_pads)."""
+        p = self._plan
+        return closing and touched_beyond_pads(
+            first_touch_offset_m=s.first_touch_offset_m, one_pad=bool(s.first_touch_finger),
+            pushed_m=pushed_distance_m(s.first_touch_opening_m, p.object_width),
+            grasp_height_m=p.grasp_height, object_width_m=p.object_width,
+            object_height_m=p.object_height, taxel_config=self._config.taxel_aware)
 
     def _caged(self, s: MachineState, shape, status, opening_m: float) -> bool:
         """taxel_aware, while Reach closes, in Load and while holding: the fingers hold
@@ -495,7 +527,8 @@ class GraspStateMachine(LeafSystem):
         common = dict(mode=decision.mode, mode_start=t, segment=hold_here, stage=Stage.NONE,
                       closing_since=-1.0, one_sided_since=-1.0, slip_since=-1.0,
                       motion_done_since=-1.0, tilted_since=-1.0, approach_contact_since=-1.0,
-                      first_touch_opening_m=-1.0, sa_history=(), strike_baseline=(),
+                      first_touch_opening_m=-1.0, first_touch_finger="", sa_history=(),
+                      strike_baseline=(),
                       strike_since=-1.0, strike_moment_sum=0.0, strike_finger="")
 
         def new(logged: Transition = entry, **changes) -> MachineState:
@@ -516,6 +549,8 @@ class GraspStateMachine(LeafSystem):
                        gripper=(0.0, p.close_speed, s.grip_force))
         if mode == Mode.RE_REACH:
             approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING
+            first_close = ((s.mode == Mode.REACH and s.stage == Stage.CLOSING)
+                           or (s.mode == Mode.LOAD and counters.lift_loads == 0))
             if s.mode == Mode.PLACE:  # a re-grasp: open where it stands, close again
                 shift, re_reaches = Shift(0.0, 0.0), counters.re_reaches
             elif self._taxel_aware:
@@ -528,6 +563,11 @@ class GraspStateMachine(LeafSystem):
                                                p.object_width))
                 elif approaching:  # back off, shift along the stroke, approach again
                     shift = Shift(-config.taxel_aware.approach_retreat_m, shift.dy_m)
+                elif self._touched_beyond_pads(s, first_close):  # forward and centre
+                    shift = beyond_pads_shift(
+                        finger=s.first_touch_finger,
+                        first_touch_opening_m=s.first_touch_opening_m,
+                        object_width_m=p.object_width, taxel_config=config.taxel_aware)
                 re_reaches = counters.re_reaches + 1
             else:
                 shift = Shift(0.0, re_reach_shift(self._channels.Eval(context),
@@ -544,8 +584,10 @@ class GraspStateMachine(LeafSystem):
                        counters=dataclasses.replace(counters, re_reaches=re_reaches),
                        gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))
         if mode == Mode.LOAD:
-            if s.mode != Mode.LIFT:
-                return new(gripper_request_time=t, gripper=(0.0, p.close_speed, s.grip_force))
+            if s.mode != Mode.LIFT:  # the close goes on: so does its first touch's record
+                return new(gripper_request_time=t, gripper=(0.0, p.close_speed, s.grip_force),
+                           first_touch_opening_m=s.first_touch_opening_m,
+                           first_touch_finger=s.first_touch_finger)
             force = lift_load_grip_force(s.grip_force, config)  # Lift-Load: squeeze harder
             return new(dataclasses.replace(entry, grip_force_n=force),
                        counters=dataclasses.replace(counters, lift_loads=counters.lift_loads + 1),

@@ -21,6 +21,12 @@ the left finger on +y (corrective_actions.py). Settings: TaxelAwareConfig
                         approach_retreat_m while shifting along the stroke toward the
                         touching finger (the paper's shift), and resume the approach
                         (bounded by max_re_reaches)
+  touched beyond the pads  while closing, the first touch came on one pad's distal row alone
+                        and the close would push the object past its tipping limit (a
+                        thin object standing beyond the fingertips, pushed at the pad's
+                        edge, tips and escapes past them): stop at once and Re-Reach,
+                        forward along the approach axis by the pad's half length and along
+                        the stroke by the first touch's push distance (touched_beyond_pads)
   no event in time      both pads hold the object, centred, and no Reach-Load event came
                         within the timeout: Load anyway (bounded: never Re-Reach a grasp
                         that is already centred)
@@ -39,6 +45,7 @@ import numpy as np
 from tegrasp_drake.control.corrective_actions import re_reach_shift
 from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
 from tegrasp_drake.control.taxel_contact import GraspContact
+from tegrasp_drake.rig.taxel_layout import PAD_LENGTH
 
 
 @dataclasses.dataclass(frozen=True)
@@ -138,6 +145,71 @@ def release_topples(pushed_m: float, *, grasp_height_m: float, object_width_m: f
     along the stroke was held 13-16 deg tilted at the Reach-Load event, and fell or leaned
     onto a finger when the gripper opened."""
     return pushed_m * object_height_m > grasp_height_m * object_width_m
+
+
+def touched_beyond_pads(*, first_touch_offset_m: float, one_pad: bool, pushed_m: float,
+                        grasp_height_m: float, object_width_m: float, object_height_m: float,
+                        taxel_config) -> bool:
+    """Whether the close must stop at its first touch: one pad alone touched, on its
+    distal row alone (first_touch_offset_m [m, approach axis, pad +y toward the
+    fingertips] at least beyond_pads_centroid_m), and closing on would push the object
+    pushed_m [m] (pushed_distance_m), past its tipping limit (release_topples).
+
+    Why (measured on the thin cylinder, 25 mm x 120 mm, 1.5 cm beyond the nominal grasp
+    and 2.5 cm along the stroke, issue #14's second grid, dev seeds 700 and 800): its axis
+    stands about 2 mm beyond the pads' distal edge, so the near pad meets it with that
+    edge (its distal row alone, 0.15 N, at an opening of 72 mm: 23.5 mm of push to come
+    against a tipping limit of 11.5 mm at the 55 mm grasp height). The edge touches the
+    rod off its axis and pushes it outward as well as across; tipping it needs
+    m g (W / 2) / h = 0.06 kg x 9.81 m/s^2 x 12.5 mm / 55 mm = 0.13 N at the grasp
+    height, less than the mu m g = 0.374 x 0.59 N = 0.22 N that slides it, so it tips from the
+    first touch on (its pose moves from that tick), leaves the pad's edge and falls past
+    the fingertips; the four Re-Reaches that follow close on nothing. Stopping at the
+    first touch costs one taxel sample (9.3 ms) and one tick (5 ms), plus the gripper's
+    reversal: at the 50 mm/s close a finger moves 25 mm/s, about 0.4 mm in those 14 ms,
+    1 mm at most with the reversal, a tilt of atan(1/55) = 1 deg against the 11.8 deg
+    the rod stands up from (measured on both markers of both seeds: the opening closed 1.1-1.5 mm
+    more after the first touch, 0.55-0.75 mm of push; the rod tilted 1.0 deg at most
+    and stood again). A contact with some force on the third row lies on the pad's
+    face. The box and the thick cylinder never meet the rule: their tipping limits
+    (22.5 mm, 25 mm of push) exceed what the 85 mm stroke can push them
+    ((85 - 45) / 2 = 20 mm, 17.5 mm). The rows cannot tell the edge from the distal
+    row's face: the rod 1 cm beyond and 1.5 cm along the stroke (axis 8-11 mm ahead,
+    15 mm of push to come) stops and centres too, where the paper's rule loaded it
+    pushed over (release_topples)."""
+    return (one_pad and first_touch_offset_m >= taxel_config.beyond_pads_centroid_m
+            and release_topples(pushed_m, grasp_height_m=grasp_height_m,
+                                object_width_m=object_width_m,
+                                object_height_m=object_height_m))
+
+
+def beyond_pads_shift(*, finger: str, first_touch_opening_m: float, object_width_m: float,
+                      taxel_config) -> Shift:
+    """The Re-Reach after touched_beyond_pads [m, world]: forward along the approach axis
+    by the pad's half length (12 mm: the pads' centres onto their distal edge; the
+    contact on the distal row alone puts the object's axis from that row's inner
+    boundary, 6 mm, to some mm beyond the edge, and the measured edge touches had it about
+    2 mm beyond: 14 mm ahead, left 2 mm off the centres, within centre_tolerance_m,
+    while a rod on the distal row's face, 8-11 mm ahead, is left 1-4 mm behind them;
+    max_approach_shift_m, 15 mm, would leave that one 4-7 mm behind, for a second
+    Re-Reach), at most max_approach_shift_m; and along the stroke toward the touching
+    finger (`finger`, "left" on +y) by the push the close would have made,
+    pushed_distance_m at the first touch: the object has barely moved, so that centres
+    it."""
+    dy = pushed_distance_m(first_touch_opening_m, object_width_m)
+    dx = min(PAD_LENGTH / 2, taxel_config.max_approach_shift_m)
+    return Shift(dx, dy if finger == "left" else -dy)
+
+
+def beyond_pads_response(*, finger: str, re_reaches: int, config) -> Decision | None:
+    """touched_beyond_pads: Re-Reach while Re-Reaches are left; then None (the close goes
+    on under the paper's rule: a pushed grasp may still hold the object, a Failed
+    cannot). config: GraspControllerConfig."""
+    if not config.re_reach_enabled or re_reaches >= config.taxel_aware.max_re_reaches:
+        return None
+    return Decision(Mode.RE_REACH, Trigger.CORRECTIVE,
+                    f"the {finger} pad's distal row alone touched first, the close would "
+                    "push the object over: stop, move forward and centre")
 
 
 def on_reach_event(contact: GraspContact, *, re_reaches: int, config,

@@ -8,13 +8,17 @@ tick and carries out the motion of each mode.
   Reach    -> Load       the Reach-Load event                    (memorized/heuristic event)
   Reach    -> Re-Reach   one finger alone in contact, closed on nothing, or no event in time
                          (taxel_aware: also a finger striking the object during the approach,
-                         from the joint torques: finger_strike.py)
+                         from the joint torques: finger_strike.py; and the close's first
+                         touch on one pad's distal row alone when the close would push
+                         the object over: taxel_corrections.touched_beyond_pads)
   Re-Reach -> Reach      the gripper is open and re-centred      (corrective)
   Load     -> Lift       the Load-Lift event                     (memorized/heuristic event)
   Load     -> Lift       after a Lift-Load: both SA at the raised grip force, RA quiet,
                          relift_settle_s in Load (corrective; the memorized events describe
                          the ideal grasp, not a re-load)
-  Load     -> Re-Reach   no Load-Lift event in time (first load only)
+  Load     -> Re-Reach   no Load-Lift event in time (first load only); taxel_aware: the
+                         close's first touch, seen after the Reach-Load event, came on one
+                         pad's distal row alone (taxel_corrections.touched_beyond_pads)
   Lift     -> Load       the object slips (Lift-Load)            (corrective; or the
                          memorized slip event: corrective_event)
   Lift     -> Hold       the lift motion ended                   (timer)
@@ -46,7 +50,8 @@ from tegrasp_drake.control.finger_strike import finger_strike_response
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Decision, Mode, Trigger
 from tegrasp_drake.control.taxel_contact import GraspContact
 from tegrasp_drake.control.taxel_corrections import (
-    after_regrasp_place, approach_contact_response, on_reach_event, on_reach_timeout, one_sided_response, regrasp_or_none)
+    after_regrasp_place, approach_contact_response, beyond_pads_response, on_reach_event,
+    on_reach_timeout, one_sided_response, regrasp_or_none)
 
 TAXEL_AWARE = "taxel_aware"
 
@@ -94,6 +99,11 @@ class Observation:
     # The closed fingers hold the object behind the pads, against the palm
     # (taxel_corrections.caged_behind_pads): no pad touches it, so no event comes.
     caged_behind_pads: bool = False
+    # The close's first touch came on one pad's distal row alone and the close would push
+    # the object past its tipping limit (taxel_corrections.touched_beyond_pads), and which
+    # pad that was ("left", "right").
+    touched_beyond_pads: bool = False
+    first_touch_finger: str = ""
 
 
 def _taxel_aware(config) -> bool:
@@ -109,6 +119,11 @@ def _reach_taxel_aware(obs: Observation, counters: Counters, config, event_trigg
     if obs.approach_contact_s >= config.one_sided_contact_s:
         return approach_contact_response(contact=obs.contact, re_reaches=counters.re_reaches,
                                          config=config)
+    if obs.touched_beyond_pads:
+        beyond = beyond_pads_response(finger=obs.first_touch_finger,
+                                      re_reaches=counters.re_reaches, config=config)
+        if beyond is not None:
+            return beyond
     if obs.event_matched:
         centre_first = (on_reach_event(obs.contact_shape, re_reaches=counters.re_reaches,
                                        config=config,
@@ -148,6 +163,11 @@ def _reach(obs: Observation, counters: Counters, config, event_trigger: Trigger,
 
 
 def _load(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
+    if _taxel_aware(config) and obs.touched_beyond_pads:  # the event came before the taxels
+        beyond = beyond_pads_response(finger=obs.first_touch_finger,
+                                      re_reaches=counters.re_reaches, config=config)
+        if beyond is not None:
+            return beyond
     if obs.event_matched:
         return Decision(Mode.LIFT, event_trigger, "Load-Lift event")
     relift = relift_after_lift_load(grip_reached=obs.grip_reached, slip_quiet=obs.slip_quiet,
