@@ -90,11 +90,13 @@ def test_a_tilted_hold_is_put_down_and_grasped_again():
 
 def test_a_thin_cylinder_pushed_along_the_stroke_is_loaded_where_it_is_not_let_go():
     """The faithful sweep's failure: the right pad pushes the rod 15 mm along the stroke
-    (tipping it past its 11.8 deg standing limit) and reads the contact on the fingertip
-    row; re-centring opened the gripper on it and it fell over. (At 1 cm beyond the nominal
-    grasp the first touch now lies on the distal row alone and the close stops there,
-    touched_beyond_pads: this scene has the rod on the grasp's line.)"""
-    result = _run("thin_cylinder", offset=(0.0, -0.015))
+    (tipping it past its 11.8 deg standing limit) and reads the contact on the palm-side
+    row (-9 mm); re-centring opened the gripper on it, it leaned on a finger and was lost
+    (with release_topples patched to False this scene Re-Reaches and fails). At 1 cm beyond
+    the nominal grasp the first touch lies on the distal row alone and the close stops
+    there instead (touched_beyond_pads); on the grasp's line there is no approach shift to
+    hold back."""
+    result = _run("thin_cylinder", offset=(-0.01, -0.015))
     leaving = [t for t in result["transitions"] if t["from"] == "Reach"]
     assert leaving[0]["to"] == "Load"
     assert result["hold_success"] and result["unload_success"]
