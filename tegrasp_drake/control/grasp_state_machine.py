@@ -13,8 +13,8 @@ actions' decisions and moves are in corrective_actions.py):
   Re-Reach  open, shift along the stroke toward the finger that touched first by the offset
             its contact implies, (then Reach closes again); the taxel_aware controller also
             shifts along the approach axis by the contact's offset on the pads, goes to the
-            midpoint of the two faces when the finger touching alone flips sides from one
-            close to the next (taxel_corrections.bracketed_object), and opens without a
+            midpoint of the two faces when a finger touches alone after the other touched
+            at an earlier close (taxel_corrections.bracketed_object), and opens without a
             shift to re-grasp an object it put down because it sat tilted
   Load      keep closing at the grip force (raised by each Lift-Load)
   Lift      rise by lift_height;  Hold: stay;  Avoid: move avoid_distance along the hit

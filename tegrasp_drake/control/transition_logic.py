@@ -95,9 +95,9 @@ class Observation:
     # The closed fingers hold the object behind the pads, against the palm
     # (taxel_corrections.caged_behind_pads): no pad touches it, so no event comes.
     caged_behind_pads: bool = False
-    # One finger touches alone while closing, and the other did at the last Re-Reach: the
-    # object's extent between the two faces [m] (taxel_corrections.bracketed_object; 0:
-    # no such pair).
+    # One finger touches alone while closing, and the other touched at an earlier close:
+    # the object's extent between the two faces [m] (taxel_corrections.bracketed_object;
+    # 0: no such pair).
     bracketed_width_m: float = 0.0
 
 
