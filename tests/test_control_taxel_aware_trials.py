@@ -6,7 +6,8 @@ import dataclasses
 import pytest
 
 from tegrasp_drake.experiments.scenario import LoadScenario
-from tegrasp_drake.experiments.trial import run_trial
+from tegrasp_drake.experiments.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
+from tegrasp_drake.experiments.trial import run_trial, run_trial_from_spec
 
 pytestmark = pytest.mark.slow
 
@@ -125,5 +126,27 @@ def test_a_thin_cylinder_beyond_the_fingertips_stops_the_close_and_is_grasped_ce
     assert (first["from"], first["to"]) == ("Reach", "Re-Reach")
     assert "right pad's distal row alone" in first["reason"]
     assert first["approach_offset_m"] > 0.0 and first["offset_m"] < -0.015
+    assert result["final_mode"] == "Done"
+    assert result["hold_success"] and result["unload_success"]
+
+
+def test_one_sided_contact_flipping_fingers_re_centres_between_the_two_touched_faces():
+    """Box m20 of issue #14's second grid (15 mm beyond, 25 mm along the stroke, the
+    grid's randomisation) on dev seed 700: the approach's push yaws the box from 0.7 to
+    32 deg, 62 mm across the stroke. The right finger touches alone, then the left: the
+    paper's shift from the left touch (+6.3 mm, for a 45 mm box) overshot and the fingers
+    took turns (-9.1 mm next) to Failed. Between the two touched faces the Re-Reach goes
+    back by less than it came."""
+    spec = SweepSpec(objects=("box",), controllers=("taxel_aware",), attempts=1,
+                     base_seed=700, grid=((0.015, -0.025),),
+                     randomisation=RandomisationConfig(placement_yaw_bound_deg=15.0))
+    (trial,) = [t.to_dict() for t in expand_trials(spec)]
+    result = run_trial_from_spec(trial)
+    shifts = [t for t in result["transitions"] if t["to"] == "Re-Reach"]
+    flips = [k for k, t in enumerate(shifts) if "between the two faces" in t["reason"]]
+    assert flips, [t["reason"] for t in shifts]
+    before, flip = shifts[flips[0] - 1], shifts[flips[0]]
+    assert "only the right finger touched" in before["reason"]
+    assert 0.0 < flip["offset_m"] < abs(before["offset_m"])
     assert result["final_mode"] == "Done"
     assert result["hold_success"] and result["unload_success"]

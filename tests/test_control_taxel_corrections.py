@@ -11,10 +11,11 @@ from tegrasp_drake.control.corrective_actions import Counters, corrective_action
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import (
-    Shift, approach_shift, beyond_pads_response, beyond_pads_shift, caged_behind_pads,
-    held_tilted, on_reach_event, on_reach_timeout, one_sided_response, pushed_distance_m,
-    re_reach_target_2d, regrasp_or_none, release_topples, taxel_re_reach_shift,
-    touched_beyond_pads)
+    FaceTouch, Shift, approach_shift, beyond_pads_response, beyond_pads_shift,
+    bracketed_object, caged_behind_pads, held_tilted, on_reach_event, on_reach_timeout,
+    one_sided_response, opposite_face, pushed_distance_m, re_reach_target_2d,
+    regrasp_or_none, release_topples, remembered_faces, taxel_re_reach_shift,
+    touched_beyond_pads, touched_face, touched_faces)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
@@ -302,3 +303,78 @@ def test_the_stop_beyond_the_pads_re_reaches_within_the_limit_then_lets_the_clos
     paper = GraspControllerConfig(name="memorized")
     assert next_mode(Mode.REACH, obs, Counters(), paper,
                      event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None
+
+
+def test_a_finger_touching_alone_presses_the_face_half_the_opening_to_its_side():
+    assert touched_face("left", 0.10, 0.060) == FaceTouch("left", pytest.approx(0.13))
+    assert touched_face("right", 0.10, 0.060) == FaceTouch("right", pytest.approx(0.07))
+
+
+def test_faces_touched_from_both_sides_in_turn_put_the_object_at_their_midpoint():
+    """Box m20 of dev seed 700 (second grid), yawed to 32 deg by the approach's push: the
+    right finger alone at 80.9 mm open with the gripper 20 mm off (y in mm from the
+    expected position), then the left alone at 57.7 mm open 37.9 mm off. The paper's
+    shift, (57.7 - 45) / 2 = +6.3 mm, overshot the box (measured at -34.8 mm) and the
+    right finger touched alone next."""
+    right = touched_face("right", -0.020, 0.0809)
+    left = touched_face("left", -0.0379, 0.0577)
+    centre, extent = bracketed_object(right, left, 0.045)
+    assert centre == pytest.approx(-0.0348, abs=2e-4)
+    assert extent == pytest.approx(0.0514, abs=2e-4)
+    shift = centre - (-0.0379)
+    assert 0.0 < shift < (0.0577 - 0.045) / 2  # toward the left finger, short of the paper's
+    # Faces farther apart than the width: the midpoint, whichever finger touched last.
+    assert bracketed_object(left, right, 0.045) == pytest.approx((centre, extent))
+
+
+def test_the_latest_face_of_each_finger_is_remembered_until_a_close_touches_nothing():
+    """Box m20 of dev seed 600: the right finger alone, then both pads (a Re-Reach along
+    the approach axis after the Reach-Load event), then the left alone: the right face of
+    the two-pad close is the one to bracket the left touch with."""
+    right_alone = touched_faces((False, True), 0.0, 0.080)
+    assert right_alone == (FaceTouch("right", pytest.approx(-0.040)),)
+    both_pads = touched_faces((True, True), -0.018, 0.050)
+    faces = remembered_faces(remembered_faces((), right_alone), both_pads)
+    assert sorted(face.finger for face in faces) == ["left", "right"]
+    assert opposite_face(faces, "left").face_y_m == pytest.approx(-0.043)
+    assert opposite_face(faces, "right").face_y_m == pytest.approx(0.007)
+    assert remembered_faces(faces, ()) == ()  # closed on nothing
+    assert opposite_face((), "left") is None
+
+
+def test_the_same_finger_twice_or_no_earlier_touch_brackets_nothing():
+    left = FaceTouch("left", 0.01)
+    assert bracketed_object(None, left, 0.045) is None
+    assert bracketed_object(FaceTouch("left", 0.02), left, 0.045) is None
+
+
+def test_faces_read_closer_than_the_objects_width_fall_back_to_the_papers_shift():
+    """The object moved between the touches: the fresh face and the nominal width say where
+    it is (the paper's shift)."""
+    right = FaceTouch("right", 0.0)
+    left = FaceTouch("left", 0.030)  # 30 mm apart, the box is 45 mm wide
+    centre, extent = bracketed_object(right, left, 0.045)
+    assert extent == pytest.approx(0.045)
+    assert centre == pytest.approx(0.030 - 0.0225)
+
+
+def test_one_sided_contact_at_the_bracketed_extent_loads_and_wider_re_centres_between():
+    wide_box = dict(finger="right", object_width_m=0.045, re_reaches=3, config=CONFIG)
+    at_extent = one_sided_response(opening_m=0.0530, bracketed_width_m=0.0514, **wide_box)
+    assert at_extent.mode == Mode.LOAD and "between both fingers' touches" in at_extent.reason
+    wider = one_sided_response(opening_m=0.0577, bracketed_width_m=0.0514, **wide_box)
+    assert wider.mode == Mode.RE_REACH and "between the two faces" in wider.reason
+    assert one_sided_response(opening_m=0.0577, bracketed_width_m=0.0514,
+                              **{**wide_box, "re_reaches": TAXEL.max_re_reaches}).mode \
+        == Mode.FAILED
+    # Without a bracket the same opening is the paper's Re-Reach.
+    plain = one_sided_response(opening_m=0.0530, **wide_box)
+    assert plain.mode == Mode.RE_REACH and "faces" not in plain.reason
+
+
+def test_the_rule_passes_the_bracketed_extent_to_the_one_sided_response():
+    obs = Observation(contact=(False, True), one_sided_s=CONFIG.one_sided_contact_s,
+                      opening_m=0.0530, object_width_m=0.045, bracketed_width_m=0.0514)
+    decision = next_mode(Mode.REACH, obs, Counters(re_reaches=3), CONFIG,
+                         event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert decision.mode == Mode.LOAD

@@ -14,8 +14,10 @@ actions' decisions and moves are in corrective_actions.py):
             its contact implies, (then Reach closes again); the taxel_aware controller also
             shifts along the approach axis by the contact's offset on the pads (by the
             pad's half length after a first touch beyond the pads, which stops the close:
-            taxel_corrections.touched_beyond_pads), and opens without a shift to re-grasp
-            an object it put down because it sat tilted
+            taxel_corrections.touched_beyond_pads), goes to the midpoint of the two faces
+            when a finger touches alone after the other touched at an earlier close
+            (taxel_corrections.bracketed_object), and opens without a shift to re-grasp an
+            object it put down because it sat tilted
   Load      keep closing at the grip force (raised by each Lift-Load)
   Lift      rise by lift_height;  Hold: stay;  Avoid: move avoid_distance along the hit
   Place     descend to place_press below the lift-off height (stops at the Place-Unload event)
@@ -39,8 +41,9 @@ from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.motion_profiles import MotionSegment
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.taxel_corrections import (
-    Shift, beyond_pads_shift, caged_behind_pads, held_tilted, pushed_distance_m,
-    release_topples, taxel_re_reach_shift, touched_beyond_pads)
+    FaceTouch, Shift, beyond_pads_shift, bracketed_object, caged_behind_pads, held_tilted,
+    opposite_face, pushed_distance_m, release_topples, remembered_faces, taxel_re_reach_shift,
+    touched_beyond_pads, touched_face, touched_faces)
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.control.transition_logic import (
     HOLDING_MODES, TAXEL_AWARE, Observation, memorized_corrective_trigger, next_mode)
@@ -90,6 +93,10 @@ class MachineState:
     # The pad alone at that first touch ("left", "right"; "" both or none).
     first_touch_finger: str = ""
     resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
+    # The faces the fingers in contact pressed when the last Re-Reaches began from a close
+    # (taxel_aware, taxel_corrections.remembered_faces: the latest of each finger); () after
+    # a Re-Reach that began otherwise.
+    touched_faces: tuple = ()
     # The finger-strike sense (taxel_aware, finger_strike.py): the wrench on G at the
     # approach's start [N m, N], since when the force beyond it exceeds the threshold [s],
     # the side moment summed over those ticks [N m], and the finger they point to.
@@ -402,6 +409,10 @@ class GraspStateMachine(LeafSystem):
             first_close = closing or first_load
             s, topples = self._pushed_past_tipping(s, shape, closing, opening,
                                                    first_load=first_load)
+            touch = self._one_sided_touch(s, t, contact, opening)
+            located = bracketed_object(opposite_face(s.touched_faces, touch.finger), touch,
+                                       self._plan.object_width) if touch is not None else None
+            taxel_fields.update(bracketed_width_m=located[1] if located else 0.0)
             taxel_fields.update(approach_contact_s=t - approach_since if approaching else 0.0,
                                 topples_if_released=topples,
                                 touched_beyond_pads=self._touched_beyond_pads(s, first_close),
@@ -504,6 +515,16 @@ class GraspStateMachine(LeafSystem):
             grasp_height_m=p.grasp_height, object_width_m=p.object_width,
             object_height_m=p.object_height, taxel_config=self._config.taxel_aware)
 
+    def _one_sided_touch(self, s: MachineState, t: float, contact: tuple,
+                         opening_m: float) -> FaceTouch | None:
+        """taxel_aware, while Reach closes with one finger alone in contact (SA above
+        contact_force_n): the face it presses (taxel_corrections.touched_face), from the
+        grasp frame's commanded y (the arm tracks it) and the opening; None otherwise."""
+        if not (s.mode == Mode.REACH and s.stage == Stage.CLOSING and contact[0] != contact[1]):
+            return None
+        return touched_face("left" if contact[0] else "right", s.segment.position(t)[1],
+                            opening_m)
+
     def _caged(self, s: MachineState, shape, status, opening_m: float) -> bool:
         """taxel_aware, while Reach closes, in Load and while holding: the fingers hold
         the object behind the pads (taxel_corrections.caged_behind_pads)."""
@@ -551,6 +572,7 @@ class GraspStateMachine(LeafSystem):
             approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING
             first_close = ((s.mode == Mode.REACH and s.stage == Stage.CLOSING)
                            or (s.mode == Mode.LOAD and counters.lift_loads == 0))
+            faces = ()
             if s.mode == Mode.PLACE:  # a re-grasp: open where it stands, close again
                 shift, re_reaches = Shift(0.0, 0.0), counters.re_reaches
             elif self._taxel_aware:
@@ -563,11 +585,27 @@ class GraspStateMachine(LeafSystem):
                                                p.object_width))
                 elif approaching:  # back off, shift along the stroke, approach again
                     shift = Shift(-config.taxel_aware.approach_retreat_m, shift.dy_m)
-                elif self._touched_beyond_pads(s, first_close):  # forward and centre
+                beyond = not approaching and self._touched_beyond_pads(s, first_close)
+                if beyond:  # forward and centre
                     shift = beyond_pads_shift(
                         finger=s.first_touch_finger,
                         first_touch_opening_m=s.first_touch_opening_m,
                         object_width_m=p.object_width, taxel_config=config.taxel_aware)
+                channels = self._channels.Eval(context)
+                contact = (bool(channels[0] > config.contact_force_n),
+                           bool(channels[1] > config.contact_force_n))
+                touch = self._one_sided_touch(s, t, contact, self._opening(context))
+                located = bracketed_object(opposite_face(s.touched_faces, touch.finger), touch,
+                                           p.object_width) if touch is not None else None
+                # Both fingers have touched in turn: go between them; not after a touch
+                # beyond the pads, whose shift reads the object (a cylinder: its width at
+                # any yaw) from this touch alone, while a face of an earlier close may
+                # have been pushed since.
+                if located is not None and not beyond:
+                    shift = Shift(shift.dx_m, located[0] - here[1])
+                if s.mode == Mode.REACH and s.stage == Stage.CLOSING:
+                    faces = remembered_faces(s.touched_faces, touched_faces(
+                        contact, here[1], self._opening(context)))
                 re_reaches = counters.re_reaches + 1
             else:
                 shift = Shift(0.0, re_reach_shift(self._channels.Eval(context),
@@ -581,6 +619,7 @@ class GraspStateMachine(LeafSystem):
                        first_touch_offset_m=0.0,
                        reentry_offset_x=shift.dx_m, gripper_request_time=t,
                        regrasp_pending=False, resume_approach=approaching,
+                       touched_faces=faces,
                        counters=dataclasses.replace(counters, re_reaches=re_reaches),
                        gripper=(ru.STROKE_M, OPENING_SPEED_MPS, s.grip_force))
         if mode == Mode.LOAD:

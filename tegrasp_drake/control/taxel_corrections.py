@@ -15,6 +15,10 @@ the left finger on +y (corrective_actions.py). Settings: TaxelAwareConfig
   one-sided contact     one finger alone touches while the gripper is already closed to the
                         object's width: Load (the squeeze brings the other pad on), never a
                         Re-Reach that would shift by nothing and close on the same contact
+  one-sided ping-pong   a finger touches alone after the other touched at an earlier close
+                        (alone, or both pads on): the object lies between the two touched
+                        faces (remembered_faces, bracketed_object); Re-Reach to their
+                        midpoint, or Load when closed to their distance
   contact in the approach  a pad touches the object while the open gripper still moves
                         toward it (a misplaced or yawed object in the finger's path: left
                         alone, the moving finger pushes it over): stop, back off by
@@ -96,18 +100,102 @@ def re_reach_or_fail(re_reaches: int, config, reason: str) -> Decision:
 
 
 def one_sided_response(*, finger: str, opening_m: float, object_width_m: float,
-                       re_reaches: int, config) -> Decision:
+                       re_reaches: int, config, bracketed_width_m: float = 0.0) -> Decision:
     """One finger alone has touched for one_sided_contact_s while closing.
 
     Closed to within one_sided_width_margin_m of the object's width: the object is
     between the fingers already, so Load (a Re-Reach would shift by almost nothing and close
     on the same contact). Wider: Re-Reach toward the touching finger, or Failed once
-    taxel_aware.max_re_reaches are used up."""
-    if opening_m <= object_width_m + config.taxel_aware.one_sided_width_margin_m:
+    taxel_aware.max_re_reaches are used up.
+
+    bracketed_width_m [m, along the stroke; 0: unknown]: the object's extent between the
+    faces that the two fingers touched alone in turn (bracketed_object). Wider than
+    object_width_m (a yawed box: w (cos yaw + |sin yaw|)), the gripper closed to within
+    the margin of it leaves the touching pad at most margin / 2 to push before the other
+    pad meets the other face (the fingers close symmetrically), so Load; otherwise the
+    Re-Reach goes to the faces' midpoint (the state machine's shift)."""
+    margin = config.taxel_aware.one_sided_width_margin_m
+    if opening_m <= object_width_m + margin:
         return Decision(Mode.LOAD, Trigger.CORRECTIVE,
                         f"only the {finger} finger touches, the gripper closed to the "
                         "object's width: load")
-    return re_reach_or_fail(re_reaches, config, f"only the {finger} finger touched")
+    if bracketed_width_m > object_width_m and opening_m <= bracketed_width_m + margin:
+        return Decision(Mode.LOAD, Trigger.CORRECTIVE,
+                        f"only the {finger} finger touches, the gripper closed to the "
+                        f"object's extent between both fingers' touches "
+                        f"({1000 * bracketed_width_m:.1f} mm): load")
+    reason = f"only the {finger} finger touched"
+    if bracketed_width_m > 0.0:
+        reason += (f", the other before it: re-centre between the two faces "
+                   f"({1000 * bracketed_width_m:.1f} mm apart)")
+    return re_reach_or_fail(re_reaches, config, reason)
+
+
+@dataclasses.dataclass(frozen=True)
+class FaceTouch:
+    """A finger that touched the object alone while closing, and where: finger "left"
+    (on world +y) or "right"; face_y_m [m, world y] the object's face under its pad."""
+    finger: str
+    face_y_m: float
+
+
+def touched_face(finger: str, gripper_y_m: float, opening_m: float) -> FaceTouch:
+    """The face a finger touching alone presses [m, world y]: the fingers close
+    symmetrically about the grasp frame's origin gripper_y_m [m, world y], so the pad of
+    a gripper open opening_m [m] sits opening_m / 2 from it, the left one on +y."""
+    sign = 1.0 if finger == "left" else -1.0
+    return FaceTouch(finger, gripper_y_m + sign * opening_m / 2.0)
+
+
+def touched_faces(contact: tuple, gripper_y_m: float, opening_m: float) -> tuple:
+    """The FaceTouch of each finger in contact ((left, right) booleans) [m, world y]."""
+    return tuple(touched_face(finger, gripper_y_m, opening_m)
+                 for finger, touching in zip(("left", "right"), contact) if touching)
+
+
+def remembered_faces(kept: tuple, touched: tuple) -> tuple:
+    """The faces to remember when a Re-Reach begins from a close: the ones touched now
+    replace those of the same finger (the object may have moved since); none touched (the
+    gripper closed on nothing: the object is not where they were) forgets them all."""
+    if not touched:
+        return ()
+    fingers = {face.finger for face in touched}
+    return tuple(face for face in kept if face.finger not in fingers) + tuple(touched)
+
+
+def opposite_face(faces: tuple, finger: str) -> FaceTouch | None:
+    """The remembered face of the finger other than `finger`, or None."""
+    return next((face for face in faces if face.finger != finger), None)
+
+
+def bracketed_object(previous: FaceTouch | None, current: FaceTouch,
+                     object_width_m: float) -> tuple[float, float] | None:
+    """Where the object lies along the stroke once both fingers have touched it in turn:
+    (centre [m, world y], extent [m]); None unless previous (the other finger's face
+    remembered from an earlier close, remembered_faces) and current (the finger touching
+    alone now) are different fingers.
+
+    Why (the one-sided ping-pong of issue #14's second grid): the paper's shift,
+    (opening - width) / 2 toward the touching finger, puts the gripper on the object only
+    when the object's extent along the stroke is its nominal width. A box yawed by a
+    pushing pad is wider: w (cos yaw + |sin yaw|), 62 mm for the 45 mm box at 32 deg
+    (measured: box m20 dev seed 700, yawed from 0.7 to 32 deg by the approach's push);
+    the shift then overshoots by (62 - 45) / 2 = 8.5 mm, the other finger touches alone
+    next, and four Re-Reaches alternate (+-18, +6.3, -9.1 mm) to Failed. Two faces touched
+    from opposite sides bound the object whatever its yaw or width: it lies between them,
+    its centre is their midpoint (that trial: right face -60.5 mm, left face -9.1 mm from
+    the expected position, midpoint -34.8 mm; the box's measured centre -34.8 mm).
+    The current touch is the fresh one (the previous may be stale by the current push, a
+    few mm in 0.1 s of one-sided contact): the centre is read from it, half the extent
+    away, with the extent never below object_width_m (faces read less than the object's
+    width apart are inconsistent: the object moved between the touches; then this is the
+    paper's shift)."""
+    if previous is None or previous.finger == current.finger:
+        return None
+    left, right = (current, previous) if current.finger == "left" else (previous, current)
+    extent = max(left.face_y_m - right.face_y_m, object_width_m)
+    toward_previous = -1.0 if current.finger == "left" else 1.0
+    return current.face_y_m + toward_previous * extent / 2.0, extent
 
 
 def approach_contact_response(*, contact: tuple, re_reaches: int, config) -> Decision:

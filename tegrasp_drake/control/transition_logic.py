@@ -36,9 +36,10 @@ decisions (take the action, or give up) are in corrective_actions.py.
 
 The taxel_aware controller (issue #14) changes Reach, Load, Hold and Place with the
 decisions of taxel_corrections.py: Re-Reach along both axes until centred, Load on
-one-sided contact at the object's width or with both pads on the object after the event
-timeout, Lift after the Load timeout with both pads on, and a re-grasp of an object held
-tilted (Hold -> Place -> Re-Reach -> Reach ...).
+one-sided contact at the object's width (or at the extent between the faces that the two
+fingers touched alone in turn) or with both pads on the object after the event timeout,
+Lift after the Load timeout with both pads on, and a re-grasp of an object held tilted
+(Hold -> Place -> Re-Reach -> Reach ...).
 """
 
 import dataclasses
@@ -104,6 +105,10 @@ class Observation:
     # pad that was ("left", "right").
     touched_beyond_pads: bool = False
     first_touch_finger: str = ""
+    # One finger touches alone while closing, and the other touched at an earlier close:
+    # the object's extent between the two faces [m] (taxel_corrections.bracketed_object;
+    # 0: no such pair).
+    bracketed_width_m: float = 0.0
 
 
 def _taxel_aware(config) -> bool:
@@ -133,7 +138,8 @@ def _reach_taxel_aware(obs: Observation, counters: Counters, config, event_trigg
     if obs.one_sided_s >= config.one_sided_contact_s:
         return one_sided_response(finger="left" if obs.contact[0] else "right",
                                   opening_m=obs.opening_m, object_width_m=obs.object_width_m,
-                                  re_reaches=counters.re_reaches, config=config)
+                                  re_reaches=counters.re_reaches, config=config,
+                                  bracketed_width_m=obs.bracketed_width_m)
     if obs.closed_on_nothing:
         return on_reach_timeout(both_touch=False, re_reaches=counters.re_reaches,
                                 config=config, reason="the gripper closed on nothing")
