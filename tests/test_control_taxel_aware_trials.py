@@ -150,3 +150,20 @@ def test_one_sided_contact_flipping_fingers_re_centres_between_the_two_touched_f
     assert 0.0 < flip["offset_m"] < abs(before["offset_m"])
     assert result["final_mode"] == "Done"
     assert result["hold_success"] and result["unload_success"]
+
+
+def test_no_load_lift_event_in_time_with_both_pads_on_lifts_after_the_timeout():
+    """The Load timeout with both pads on the object (transition_logic._load): no judged
+    sweep has met it (the Load-Lift event always came), so the event is made unmatchable
+    here (Load-Lift thresholds above 1, the largest Eq. 3 score): the well-placed box is
+    squeezed, waits load_event_timeout_s in Load and is lifted anyway, held and unloaded;
+    the paper's rule would Re-Reach a grasp that is already made."""
+    result = _run("box", taxel_aware={"load_lift_thresholds": [1.01, 1.01]})
+    leaving = [t for t in result["transitions"] if t["from"] == "Load"]
+    assert leaving[0]["to"] == "Lift" and leaving[0]["trigger"] == "corrective"
+    assert "both pads hold the object" in leaving[0]["reason"]
+    entered = [t["t"] for t in result["transitions"] if t["to"] == "Load"][0]
+    timeout = LoadScenario(name="box").controller.load_event_timeout_s
+    assert leaving[0]["t"] - entered >= timeout - 1e-9
+    assert "re_reach" not in result["corrective_actions"]
+    assert result["hold_success"] and result["unload_success"]
