@@ -72,13 +72,14 @@ def corrective_action_of(from_mode: Mode, to_mode: Mode,
 # ---- Re-Reach -------------------------------------------------------------------------
 
 
-def re_reach_or_fail(counters: Counters, config: GraspControllerConfig,
-                     reason: str) -> Decision:
-    """Re-Reach for `reason`, or Failed when Re-Reach is switched off or its
-    max_re_reaches attempts are used up."""
+def re_reach_or_fail(counters: Counters, config: GraspControllerConfig, reason: str, *,
+                     max_re_reaches: int | None = None) -> Decision:
+    """Re-Reach for `reason`, or Failed when Re-Reach is switched off or max_re_reaches
+    attempts (default: config.max_re_reaches, the paper's controllers') are used up."""
+    limit = config.max_re_reaches if max_re_reaches is None else max_re_reaches
     if not config.re_reach_enabled:
         return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason}; Re-Reach is switched off")
-    if counters.re_reaches >= config.max_re_reaches:
+    if counters.re_reaches >= limit:
         return Decision(Mode.FAILED, Trigger.CORRECTIVE,
                         f"{reason}, after {counters.re_reaches} Re-Reach attempts")
     return Decision(Mode.RE_REACH, Trigger.CORRECTIVE, reason)

@@ -46,7 +46,8 @@ import dataclasses
 
 import numpy as np
 
-from tegrasp_drake.control.corrective_actions import re_reach_shift
+from tegrasp_drake.control import corrective_actions
+from tegrasp_drake.control.corrective_actions import Counters, re_reach_shift
 from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
 from tegrasp_drake.control.taxel_contact import GraspContact
 from tegrasp_drake.rig.taxel_layout import PAD_LENGTH
@@ -89,14 +90,12 @@ def re_reach_target_2d(p_WG, shift: Shift) -> np.ndarray:
 
 
 def re_reach_or_fail(re_reaches: int, config, reason: str) -> Decision:
-    """Re-Reach for `reason`, or Failed when Re-Reach is switched off or
-    taxel_aware.max_re_reaches are used up. config: GraspControllerConfig."""
-    if not config.re_reach_enabled:
-        return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason}; Re-Reach is switched off")
-    if re_reaches >= config.taxel_aware.max_re_reaches:
-        return Decision(Mode.FAILED, Trigger.CORRECTIVE,
-                        f"{reason}, after {re_reaches} Re-Reach attempts")
-    return Decision(Mode.RE_REACH, Trigger.CORRECTIVE, reason)
+    """The paper's rule (corrective_actions.re_reach_or_fail) with the taxel-aware limit,
+    taxel_aware.max_re_reaches, after `re_reaches` Re-Reaches. config:
+    GraspControllerConfig."""
+    return corrective_actions.re_reach_or_fail(
+        Counters(re_reaches=re_reaches), config, reason,
+        max_re_reaches=config.taxel_aware.max_re_reaches)
 
 
 def one_sided_response(*, finger: str, opening_m: float, object_width_m: float,
