@@ -366,8 +366,7 @@ class GraspStateMachine(LeafSystem):
         """The tick's Observation, and the state with its running timers updated."""
         config = self._config
         channels = self._channels.Eval(context)
-        contact = (bool(channels[0] > config.contact_force_n),
-                   bool(channels[1] > config.contact_force_n))
+        contact = self._sa_contact(channels)
         one_sided = contact[0] != contact[1]
         one_sided_since = (s.one_sided_since if s.one_sided_since >= 0 else t) if one_sided \
             else -1.0
@@ -409,9 +408,7 @@ class GraspStateMachine(LeafSystem):
             first_close = closing or first_load
             s, topples = self._pushed_past_tipping(s, shape, closing, opening,
                                                    first_load=first_load)
-            touch = self._one_sided_touch(s, t, contact, opening)
-            located = bracketed_object(opposite_face(s.touched_faces, touch.finger), touch,
-                                       self._plan.object_width) if touch is not None else None
+            located = self._bracket(s, t, contact, opening)
             taxel_fields.update(bracketed_width_m=located[1] if located else 0.0)
             taxel_fields.update(approach_contact_s=t - approach_since if approaching else 0.0,
                                 topples_if_released=topples,
@@ -515,6 +512,11 @@ class GraspStateMachine(LeafSystem):
             grasp_height_m=p.grasp_height, object_width_m=p.object_width,
             object_height_m=p.object_height, taxel_config=self._config.taxel_aware)
 
+    def _sa_contact(self, channels) -> tuple[bool, bool]:
+        """(left, right): each pad's SA sum (Eq. 1) above contact_force_n."""
+        threshold = self._config.contact_force_n
+        return bool(channels[0] > threshold), bool(channels[1] > threshold)
+
     def _one_sided_touch(self, s: MachineState, t: float, contact: tuple,
                          opening_m: float) -> FaceTouch | None:
         """taxel_aware, while Reach closes with one finger alone in contact (SA above
@@ -524,6 +526,17 @@ class GraspStateMachine(LeafSystem):
             return None
         return touched_face("left" if contact[0] else "right", s.segment.position(t)[1],
                             opening_m)
+
+    def _bracket(self, s: MachineState, t: float, contact: tuple,
+                 opening_m: float) -> tuple[float, float] | None:
+        """taxel_aware: (centre [m, world y], extent [m]) of the object between the face a
+        finger touching alone presses now and the other finger's remembered face
+        (taxel_corrections.bracketed_object); None without such a pair."""
+        touch = self._one_sided_touch(s, t, contact, opening_m)
+        if touch is None:
+            return None
+        return bracketed_object(opposite_face(s.touched_faces, touch.finger), touch,
+                                self._plan.object_width)
 
     def _caged(self, s: MachineState, shape, status, opening_m: float) -> bool:
         """taxel_aware, while Reach closes, in Load and while holding: the fingers hold
@@ -576,12 +589,13 @@ class GraspStateMachine(LeafSystem):
             if s.mode == Mode.PLACE:  # a re-grasp: open where it stands, close again
                 shift, re_reaches = Shift(0.0, 0.0), counters.re_reaches
             elif self._taxel_aware:
-                shift = taxel_re_reach_shift(
-                    grasp_contact(self._taxel_forces.Eval(context)), self._channels.Eval(context),
-                    self._opening(context), p.object_width, config)
+                channels, opening = self._channels.Eval(context), self._opening(context)
+                contact = self._sa_contact(channels)
+                shift = taxel_re_reach_shift(grasp_contact(self._taxel_forces.Eval(context)),
+                                             channels, opening, p.object_width, config)
                 if approaching and self._strike_sustained(s, t):  # a finger struck it
                     shift = Shift(-config.taxel_aware.approach_retreat_m,
-                                  strike_shift(s.strike_finger or None, self._opening(context),
+                                  strike_shift(s.strike_finger or None, opening,
                                                p.object_width))
                 elif approaching:  # back off, shift along the stroke, approach again
                     shift = Shift(-config.taxel_aware.approach_retreat_m, shift.dy_m)
@@ -591,12 +605,7 @@ class GraspStateMachine(LeafSystem):
                         finger=s.first_touch_finger,
                         first_touch_opening_m=s.first_touch_opening_m,
                         object_width_m=p.object_width, taxel_config=config.taxel_aware)
-                channels = self._channels.Eval(context)
-                contact = (bool(channels[0] > config.contact_force_n),
-                           bool(channels[1] > config.contact_force_n))
-                touch = self._one_sided_touch(s, t, contact, self._opening(context))
-                located = bracketed_object(opposite_face(s.touched_faces, touch.finger), touch,
-                                           p.object_width) if touch is not None else None
+                located = self._bracket(s, t, contact, opening)
                 # Both fingers have touched in turn: go between them; not after a touch
                 # beyond the pads, whose shift reads the object (a cylinder: its width at
                 # any yaw) from this touch alone, while a face of an earlier close may
@@ -604,8 +613,8 @@ class GraspStateMachine(LeafSystem):
                 if located is not None and not beyond:
                     shift = Shift(shift.dx_m, located[0] - here[1])
                 if s.mode == Mode.REACH and s.stage == Stage.CLOSING:
-                    faces = remembered_faces(s.touched_faces, touched_faces(
-                        contact, here[1], self._opening(context)))
+                    faces = remembered_faces(s.touched_faces,
+                                             touched_faces(contact, here[1], opening))
                 re_reaches = counters.re_reaches + 1
             else:
                 shift = Shift(0.0, re_reach_shift(self._channels.Eval(context),

@@ -207,10 +207,11 @@ def trial_log_name(trial_id: str) -> str:
     return trial_id.replace("/", ".") + ".npz"
 
 
-def trial_events(trial: dict, events_dir=None) -> tuple[dict | None, dict | None]:
-    """The memorized events a sweep trial's controller needs: (transition events, or None
-    for the controllers without them; corrective events, or None unless the sweep's
-    scenario_overrides name some in controller.memorized_corrective_events).
+def trial_events(trial: dict, events_dir=None) -> tuple:
+    """A sweep trial's scenario (scenario_from_trial_spec) and the memorized events its
+    controller needs: (scenario, transition events or None for the controllers without
+    them, corrective events or None unless the sweep's scenario_overrides name some in
+    controller.memorized_corrective_events).
 
     Both come from `events_dir`, else the user's folder, then the package's, and must have
     been recorded on the trial's unperturbed object: the sweep's mass and friction
@@ -225,7 +226,7 @@ def trial_events(trial: dict, events_dir=None) -> tuple[dict | None, dict | None
     if scenario.controller.memorized_corrective_events:
         corrective_events = load_corrective_events(scenario, events_dir,
                                                    nominal_object=nominal)
-    return events, corrective_events
+    return scenario, events, corrective_events
 
 
 def check_sweep_events(trials, events_dir=None) -> None:
@@ -252,9 +253,8 @@ def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
     (trial_events); returns its result dict.
 
     log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
-    events, corrective_events = trial_events(trial, events_dir)
-    run = run_trial(scenario_from_trial_spec(trial), events=events,
-                    corrective_events=corrective_events)
+    scenario, events, corrective_events = trial_events(trial, events_dir)
+    run = run_trial(scenario, events=events, corrective_events=corrective_events)
     if log_dir is not None:
         run.log.save(pathlib.Path(log_dir) / trial_log_name(trial["trial_id"]))
     return run.result
