@@ -44,7 +44,7 @@ from tegrasp_drake.control.taxel_corrections import (
     FaceTouch, Shift, beyond_pads_shift, bracketed_object, caged_behind_pads, held_tilted,
     opposite_face, pushed_distance_m, release_topples, remembered_faces, taxel_re_reach_shift,
     touched_beyond_pads, touched_face, touched_faces)
-from tegrasp_drake.control.scripted_grasp import gripper_command
+from tegrasp_drake.control.scripted_grasp import gripper_command, grasp_frame_xy
 from tegrasp_drake.control.transition_logic import (
     HOLDING_MODES, TAXEL_AWARE, Observation, memorized_corrective_trigger, next_mode)
 from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
@@ -122,7 +122,7 @@ class MachineState:
 class GraspPlan:
     """Where and how far to move, from the scenario (its `grasp` section) [m, s, N]."""
     start_xyz: tuple
-    object_xy: tuple  # the expected object position
+    object_xy: tuple  # the grasp frame's target for the expected object (grasp_frame_xy)
     object_width: float  # along the stroke, for the Re-Reach shift
     grasp_height: float
     object_height: float  # for whether a pushed object stands when let go (taxel_aware)
@@ -144,7 +144,7 @@ class GraspPlan:
         g = scenario.grasp
         return GraspPlan(
             start_xyz=tuple(scenario.arm.initial_gripper_xyz),
-            object_xy=tuple(scenario.expected_object_xy),
+            object_xy=tuple(grasp_frame_xy(scenario)),
             object_width=scenario.object.width_along_stroke(), grasp_height=g.grasp_height,
             object_height=scenario.object.height(),
             lift_height=g.lift_height, place_press=g.place_press, settle_s=g.settle_s,

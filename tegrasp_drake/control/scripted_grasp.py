@@ -17,6 +17,7 @@ from pydrake.systems.framework import LeafSystem
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
+from tegrasp_drake.simulation.gripper_hands import gripper_hand
 
 PHASES = ("settle", "reach", "load", "lift", "hold", "place", "unload", "retract", "done")
 
@@ -63,10 +64,21 @@ def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple
             float(ru.force_byte_from_force(force_n)))
 
 
+def grasp_frame_xy(scenario) -> tuple[float, float]:
+    """Where the grasp frame goes [m], world (x, y), so that the closing pads meet the
+    object at its expected position with their centres on its centre line: the linkage
+    hand's pads travel along the approach axis (world +x) as they close, so the frame stops
+    short by the pads' offset at the object's width (gripper_hands.pad_center_offset)."""
+    x0, y0 = scenario.expected_object_xy
+    offset = gripper_hand(scenario.gripper.model).pad_center_offset(
+        scenario.object.width_along_stroke())
+    return x0 - offset, y0
+
+
 def plan_scripted_grasp(scenario) -> list[ScriptSegment]:
     """The phase segments of the ideal grasp for the scenario's expected object position."""
     g = scenario.grasp
-    x0, y0 = scenario.expected_object_xy
+    x0, y0 = grasp_frame_xy(scenario)
     start = RigidTransform(R_WG_SIDE_GRASP, scenario.arm.initial_gripper_xyz)
     grasp = RigidTransform(R_WG_SIDE_GRASP, [x0, y0, g.grasp_height])
     lifted = RigidTransform(R_WG_SIDE_GRASP, [x0, y0, g.grasp_height + g.lift_height])

@@ -21,7 +21,8 @@ from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.extraction import cut_window
 from tegrasp_drake.experiments.grasp_diagram import MakeSimulator
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL, R_WG_SIDE_GRASP
+from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.simulation.gripper_hands import PrismaticHand, actuated_state_selector
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.film_dynamics import first_order_highpass
 from tegrasp_drake.simulation.object_model import AddObject, object_body
@@ -90,9 +91,11 @@ class PadStrike:
 
 
 def strike_scenario(config: PadStrikeConfig):
-    """The default scenario at config's plant step, noise-free unless config.sensor_noise."""
+    """The default scenario at config's plant step, noise-free unless config.sensor_noise,
+    on the prismatic hand (the strike is a finger moving along its pad normal)."""
     from tegrasp_drake.experiments.scenario import LoadScenario
-    scenario = LoadScenario(overrides=[f"plant_config.time_step={config.time_step_s}"])
+    scenario = LoadScenario(overrides=[f"plant_config.time_step={config.time_step_s}",
+                                       "gripper.model=prismatic"])
     if not config.sensor_noise:
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0,
@@ -108,7 +111,8 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)
     parser = paths.make_parser(plant)
-    (gripper,) = parser.AddModels(url=GRIPPER_URL)
+    hand = PrismaticHand()
+    (gripper,) = parser.AddModels(url=hand.url)
     X_BG = plant.GetFrameByName("grasp_frame", gripper).GetFixedPoseInBodyFrame()
     X_WG = RigidTransform(R_WG_SIDE_GRASP, [*GRASP_XY, config.grasp_height_m])
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", gripper),
@@ -117,7 +121,7 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
     obj = AddObject(parser, scenario.object)
     plant.set_gravity_enabled(gripper, False)
-    set_pd_gains(plant, gripper, scenario.gripper.position_gain, scenario.gripper.damping_gain)
+    set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
     plant.Finalize()
 
     speed, acceleration = config.finger_speed_mps, scenario.gripper.acceleration
@@ -133,7 +137,9 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     command = builder.AddNamedSystem("command", ConstantVectorSource(
         gripper_command(0.0, 2 * speed, config.grip_force_n)))
     builder.Connect(command.get_output_port(), driver.GetInputPort("command"))
-    builder.Connect(plant.get_state_output_port(gripper), driver.GetInputPort("finger_state"))
+    selector = builder.AddSystem(actuated_state_selector(plant, gripper, hand))
+    builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
+    builder.Connect(selector.get_output_port(), driver.GetInputPort("finger_state"))
     builder.Connect(driver.GetOutputPort("desired_state"),
                     plant.get_desired_state_input_port(gripper))
     taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,

@@ -29,6 +29,7 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_type
                                           read_yaml_file, require)
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import ArmDriverConfig, SimulatedStationConfig
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
@@ -216,6 +217,9 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
                             "(the station is a discrete-time plant)")
     require(scenario.grasp.grip_force > 0, source, "grasp.grip_force", "must be positive [N]",
             scenario.grasp.grip_force)
+    require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
+            f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "
+            "prismatic fingers)", scenario.gripper.model)
     if isinstance(scenario.station, HardwareStationConfig):
         validate_hardware_config(scenario.station, source, "station")
     return scenario

@@ -4,12 +4,14 @@ import pathlib
 import sys
 
 from tegrasp_drake.modelgen.jaco2_sdf import jaco2_sdf
+from tegrasp_drake.modelgen.robotiq_linkage_sdf import robotiq_linkage_sdf
 from tegrasp_drake.modelgen.robotiq_sdf import robotiq_sdf
 from tegrasp_drake.modelgen.table_sdf import table_sdf
 
 GENERATED = {
     "jaco2/j2n6s300.sdf": jaco2_sdf,
     "robotiq_2f85/robotiq_2f85_tactile.sdf": robotiq_sdf,
+    "robotiq_2f85/robotiq_2f85_linkage.sdf": robotiq_linkage_sdf,
     "table/table.sdf": table_sdf,
 }
 

@@ -45,9 +45,11 @@ FINGER_FRICTION = materials.ALUMINIUM  # the finger behind the pad and the palm
 FINGER_LINK_THICKNESS = 0.010  # m, rigid finger behind the pad
 
 
-def _pad_collision(sign: float) -> str:
-    center_y = sign * PAD_THICKNESS / 2
-    return (f'<collision name="pad">{pose_text(translation((0, center_y, 0)))}'
+def pad_text(sign: float, relative_to: str | None = None) -> str:
+    """The pad's collision and visual boxes, its contact face on the origin of the link
+    frame or of the frame `relative_to` (sign +1: the finger on +y)."""
+    center = pose_text(translation((0, sign * PAD_THICKNESS / 2, 0)), relative_to)
+    return (f'<collision name="pad">{center}'
             f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
             "</geometry><drake:proximity_properties><drake:compliant_hydroelastic/>"
             f"<drake:hydroelastic_modulus>{PAD_MODULUS:g}</drake:hydroelastic_modulus>"
@@ -56,7 +58,7 @@ def _pad_collision(sign: float) -> str:
             "</drake:hunt_crossley_dissipation>"
             "<drake:relaxation_time>0.02</drake:relaxation_time>"
             f"{friction_text(PAD_FRICTION)}</drake:proximity_properties></collision>"
-            f'<visual name="pad">{pose_text(translation((0, center_y, 0)))}'
+            f'<visual name="pad">{center}'
             f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
             "</geometry><material><diffuse>0.1 0.1 0.1 1</diffuse></material></visual>")
 
@@ -80,33 +82,44 @@ def _finger_link(sign: float) -> str:
 def _finger(name: str, sign: float) -> str:
     # Finger frame: origin at the pad's contact surface centre when q = 0.
     size = (PAD_WIDTH, PAD_THICKNESS + FINGER_LINK_THICKNESS, PAD_LENGTH)
-    X_pad = np.eye(4)
-    # Pad frame (columns: its axes in the finger frame): y toward the fingertip (z_G) on both
-    # pads, z along the inward normal (-sign * y_G), x = y x z = sign * x_G. The right pad's
-    # y used to point toward the palm, which reversed its taxel rows.
-    X_pad[:3, :3] = np.array([[sign, 0, 0], [0, 0, -sign], [0, 1, 0]], dtype=float)
+    X_pad = pad_frame_rotation(sign)
     return (f'<link name="{name}_finger">'
             f"{pose_text(translation((0, 0, PAD_CENTER_Z)), 'base')}"
             f"{inertial_text(FINGER_MASS, (0, sign * 0.006, 0), box_inertia(FINGER_MASS, size))}"
-            f"{_pad_collision(sign)}{_finger_link(sign)}</link>"
+            f"{pad_text(sign)}{_finger_link(sign)}</link>"
             f'<frame name="{name}_pad" attached_to="{name}_finger">'
             f"{pose_text(X_pad, f'{name}_finger')}</frame>")
 
 
-def robotiq_sdf() -> str:
-    """The SDF text of the tactile 2F-85-like gripper."""
+def pad_frame_rotation(sign: float) -> np.ndarray:
+    """The pad frame in its finger's frame (4x4, no translation). Columns: y toward the
+    fingertip (z_G) on both pads, z along the inward normal (-sign * y_G), x = y x z =
+    sign * x_G."""
+    X_pad = np.eye(4)
+    X_pad[:3, :3] = np.array([[sign, 0, 0], [0, 0, -sign], [0, 1, 0]], dtype=float)
+    return X_pad
+
+
+def base_link_text() -> str:
+    """The gripper body (link `base`): its inertia, visual and the palm's collision box."""
     base_size = (2 * BASE_RADIUS, 2 * BASE_RADIUS, PALM_Z)
     palm = (f'<collision name="palm"><pose>0 0 {PALM_Z - 0.005} 0 0 0</pose><geometry><box>'
             f"<size>0.03 0.07 0.01</size></box></geometry><drake:proximity_properties>"
             f"{friction_text(FINGER_FRICTION)}</drake:proximity_properties></collision>")
-    parts = [
-        '<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="robotiq_2f85">',
+    return "\n".join([
         '<link name="base">',
         inertial_text(BASE_MASS, (0, 0, PALM_Z / 2), box_inertia(BASE_MASS, base_size)),
         f'<visual name="body"><pose>0 0 {PALM_Z / 2} 0 0 0</pose><geometry><cylinder>'
         f"<radius>{BASE_RADIUS}</radius><length>{PALM_Z}</length></cylinder></geometry>"
         "<material><diffuse>0.12 0.12 0.12 1</diffuse></material></visual>",
-        palm, "</link>",
+        palm, "</link>"])
+
+
+def robotiq_sdf() -> str:
+    """The SDF text of the tactile 2F-85-like gripper with prismatic fingers."""
+    parts = [
+        '<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="robotiq_2f85">',
+        base_link_text(),
         f'<frame name="grasp_frame" attached_to="base"><pose>0 0 {PAD_CENTER_Z} 0 0 0</pose>'
         "</frame>",
         _finger("left", +1.0), _finger("right", -1.0),

@@ -6,7 +6,8 @@ mode. A charge amplifier turns its charge into a voltage and high-passes it at 1
 C_f). Per pad, the mode is driven by (film_dynamics.py):
 
   - the slow load L = F + m a_n: the pad's normal contact force F from the plant (the
-    finger joint's generalized contact force; the finger joint moves along the pad normal)
+    prismatic finger joint's generalized contact force, which moves along the pad normal;
+    on the linkage hand the finger body's contact force along the pad normal)
     plus the fingertip's inertia under the finger body's acceleration a_n along the pad's
     inward normal (a Drake Accelerometer on the pad frame, without gravity). A plant step
     resolves a contact's first millisecond into one or two force samples whose size depends
@@ -166,7 +167,7 @@ class PadFilms(LeafSystem):
     Ports:
         generalized_contact_forces: the gripper model instance's generalized contact
             forces; entry force_indices[k] is finger k's joint, positive pushing its pad
-            outward (N).
+            outward (N); or PadNormalForces' output with force_indices (0, 1).
         left_pad_frame_acceleration, right_pad_frame_acceleration: each pad frame's
             acceleration without gravity, in the pad frame (3, m/s^2; Drake Accelerometer).
         texture_state: PadSlipVibration's texture_state (6), from which the texture
@@ -382,15 +383,21 @@ def finger_force_indices(plant, gripper) -> list[int]:
 
 
 def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorConfig,
-                  slip_vibration=None, name: str = "pad_films") -> PadFilms:
+                slip_vibration=None, pad_forces=None, name: str = "pad_films") -> PadFilms:
     """Adds both pads' films (and the accelerometers and noise source they read) to
     `builder`, connected to `plant`; `slip_vibration`, if given, is the PadSlipVibration
-    system. Returns the PadFilms system (outputs `<finger>_pad_vibration`)."""
+    system. The pads' normal contact forces come from the fingers' prismatic joints, or from
+    `pad_forces` (a PadNormalForces system) when given, as the linkage hand needs. Returns
+    the PadFilms system (outputs `<finger>_pad_vibration`)."""
+    if pad_forces is None:
+        force_indices = finger_force_indices(plant, gripper)
+        force_port = plant.get_generalized_contact_forces_output_port(gripper)
+    else:
+        force_indices, force_port = (0, 1), pad_forces.GetOutputPort("pad_normal_forces")
     films = builder.AddNamedSystem(name, PadFilms(
-        plant=plant, pads=pads, force_indices=finger_force_indices(plant, gripper),
+        plant=plant, pads=pads, force_indices=force_indices,
         config=config, with_texture=slip_vibration is not None))
-    builder.Connect(plant.get_generalized_contact_forces_output_port(gripper),
-                    films.GetInputPort("generalized_contact_forces"))
+    builder.Connect(force_port, films.GetInputPort("generalized_contact_forces"))
     for finger in FINGER_NAMES:
         pad = pads[finger]
         accelerometer = builder.AddNamedSystem(

@@ -1,12 +1,18 @@
 """SimRobotiqDriver: the simulated twin of the Robotiq 2F-85's own controller.
 
 It takes the same command bytes as the real gripper (rPR, rSP, rFR) and reports the same
-status bytes (robotiq_units.py). Inside, the finger coordinate q (half the opening, m) follows
-a speed- and acceleration-limited reference toward the requested position; the plant's
-implicit PD (SAP) tracks it. The grip force limit is imposed the way a current-limited motor
-does it: the PD set-point is kept within 2 F / kp of the measured finger position, so a
-blocked finger pushes with at most F on each pad (the right finger mimics the left one, so
-the single actuator carries 2 F). A finger that stops short of its goal reports an object.
+status bytes (robotiq_units.py). Inside, half the pad opening q [m] follows a speed- and
+acceleration-limited reference toward the requested position (the 2F-85's speed setting is a
+finger speed); the hand (gripper_hands.py) maps it to its actuated coordinate a (the left
+driver's angle on the linkage hand, q itself on the prismatic one), which the plant's
+implicit PD (SAP) tracks. The grip force limit is imposed the way a current-limited motor
+does it: the PD set-point is kept within 2 F |dq/da| / kp of the measured a, so a blocked
+finger pushes each pad with at most F in a parallel grasp (one actuator drives both fingers,
+so it carries both pads' share). On the linkage hand the drive is non-backdrivable, as the
+2F-85's screw and nut are: the set-point (the nut) moves only in the commanded direction, so
+a load pushing the fingers back meets the PD's full stiffness, not the force limit. The
+position byte gPO is computed from the measured a through the hand's linkage; a finger that
+stops short of its goal reports an object (gOBJ).
 """
 
 import dataclasses
@@ -17,16 +23,28 @@ import numpy as np
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
 
-_REF_Q, _REF_V, _REF_A, _GOAL, _HALF_SPEED, _FORCE, _POSITION_BYTE, _OBJECT, _T = range(9)
+(_REF_Q, _REF_V, _REF_A, _GOAL, _HALF_SPEED, _FORCE, _POSITION_BYTE, _OBJECT, _T, _HELD,
+ _DIRECTION) = range(11)
 
 
 @dataclasses.dataclass
 class GripperDriverConfig:
-    """The simulated 2F-85 controller (position loop with a force limit)."""
+    """The simulated 2F-85: which hand, and its controller (a position loop with a force
+    limit)."""
+    # The hand (gripper_hands.py): "linkage", the 2F-85's five-bar fingers, or "prismatic".
+    model: str = "linkage"
     update_rate_hz: float = 200.0  # the 2F-85 accepts commands at up to 200 Hz
-    position_gain: float = 4000.0  # N/m on the finger coordinate
+    # The prismatic hand's PD on half the opening.
+    position_gain: float = 4000.0  # N/m
     damping_gain: float = 40.0  # N s/m
+    # The linkage hand's PD on the driver angle. The screw drive is stiff: 1000 N m/rad
+    # gives 0.16 mm at a pad pushed with 50 N (lever 57 mm), and the damping is critical
+    # for both fingers' linkage inertia about the driver axis, about 2.4e-4 kg m^2
+    # (2 sqrt(1000 x 2.4e-4) = 0.98).
+    driver_position_gain: float = 1000.0  # N m/rad
+    driver_damping_gain: float = 1.0  # N m s/rad
     acceleration: float = 0.5  # m/s^2, finger speed ramps
     stall_speed: float = 0.002  # m/s; slower than this before the goal = object detected
 
@@ -71,12 +89,25 @@ def has_arrived(q: float, v: float, goal: float, acceleration: float, dt: float)
     return abs(goal - q) <= acceleration * dt * dt and abs(v) <= acceleration * dt
 
 
-def force_limited_set_point(q: float, q_ref: float, force: float, position_gain: float) -> float:
-    """The PD set-point [m] for the actuated finger: the reference, but no further than
-    2 force / position_gain from the measured q, so that a blocked finger pushes each pad
-    (the right finger mimics the left, so the actuator carries both) with at most force [N]."""
-    band = 2.0 * force / position_gain
+def force_limited_set_point(q: float, q_ref: float, force: float, position_gain: float,
+                            lever: float = 1.0) -> float:
+    """The PD set-point for the actuated coordinate: the reference, but no further than
+    2 force lever / position_gain from the measured q, so that a blocked finger pushes each
+    pad (one actuator drives both) with at most force [N]; lever = |d(half opening)/dq|."""
+    band = 2.0 * force * lever / position_gain
     return q + min(max(q_ref - q, -band), band)  # floats: called on every plant step
+
+
+def nut_set_point(held: float, limited: float, reference: float, direction: float) -> float:
+    """The set-point of a non-backdrivable drive: the nut at `held` moves only in
+    `direction` (+1 or -1; 0 when it has not moved yet), toward the force-limited set-point
+    `limited` but never past the reference. A load that pushes the finger either way
+    leaves it where it is."""
+    if direction > 0.0:
+        return max(held, min(limited, reference))
+    if direction < 0.0:
+        return min(held, max(limited, reference))
+    return limited
 
 
 def object_status(q: float, v: float, q_ref: float, goal: float, stall_speed: float) -> int:
@@ -91,19 +122,42 @@ def object_status(q: float, v: float, q_ref: float, goal: float, stall_speed: fl
 
 
 class SimRobotiqDriver(LeafSystem):
-    """Input ports: command (3: rPR, rSP, rFR bytes), finger_state (4: q_left, q_right,
-    v_left, v_right from the plant's gripper instance). Output ports: desired_state (2: q, v
-    of the actuated left finger, to the plant), status (8 bytes, robotiq_units order)."""
+    """The simulated 2F-85 controller.
+
+    .. pydrake_system::
+
+        name: SimRobotiqDriver
+        input_ports:
+        - command
+        - finger_state
+        output_ports:
+        - desired_state
+        - status
+
+    Ports:
+        command: (3) rPR, rSP, rFR bytes.
+        finger_state: (2) the hand's actuated coordinate a and its rate (the left driver's
+            angle [rad] and [rad/s] on the linkage hand; half the opening [m], [m/s] on the
+            prismatic one), from gripper_hands.actuated_state_selector.
+        desired_state: (2) a and da/dt set-points for the plant's PD on the actuated joint.
+        status: (8) status bytes, robotiq_units order.
+    """
 
     def __init__(self, *, config: GripperDriverConfig, initial_opening: float = ru.STROKE_M):
         super().__init__()
+        if config.model not in GRIPPER_MODELS:
+            raise ValueError(f"gripper.model '{config.model}' is not one of "
+                             f"{', '.join(GRIPPER_MODELS)}")
         self._config = config
+        self._hand = gripper_hand(config.model)
+        self._gain, _ = self._hand.pd_gains(config)
         self._dt = 1.0 / config.update_rate_hz
         self._command = self.DeclareVectorInputPort("command", ru.COMMAND_SIZE)
-        self._finger_state = self.DeclareVectorInputPort("finger_state", 4)
+        self._finger_state = self.DeclareVectorInputPort("finger_state", 2)
         q0 = initial_opening / 2
-        initial = np.zeros(9)
+        initial = np.zeros(11)
         initial[[_REF_Q, _GOAL]] = q0
+        initial[_HELD] = self._hand.actuated(q0)
         initial[_HALF_SPEED] = ru.SPEED_MIN_MPS / 2
         initial[_FORCE] = ru.FORCE_MIN_N
         initial[_POSITION_BYTE] = ru.position_byte_from_opening(initial_opening)
@@ -122,6 +176,9 @@ class SimRobotiqDriver(LeafSystem):
     def _update(self, context, discrete_state):
         s = context.get_discrete_state(self._state).value().copy()
         t = context.get_time()
+        hand = self._hand
+        if hand.non_backdrivable:  # the nut stays where the last plant step put it
+            s[_HELD] = self._set_point(context, s)
         # Advance the reference to now with the acceleration chosen at the last update.
         h = t - s[_T]
         s[_REF_Q] += s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
@@ -133,34 +190,64 @@ class SimRobotiqDriver(LeafSystem):
             s[_REF_Q], s[_REF_V] = s[_GOAL], 0.0
         s[_REF_A] = reference_step(s[_REF_Q], s[_REF_V], s[_GOAL], s[_HALF_SPEED],
                                    self._config.acceleration, self._dt)
-        q, _, v, _ = self._finger_state.Eval(context)
-        s[_OBJECT] = object_status(q, v, s[_REF_Q], s[_GOAL], self._config.stall_speed)
+        if hand.non_backdrivable and s[_GOAL] != s[_REF_Q]:
+            # The direction the nut moves in, in the actuated coordinate.
+            rate = hand.half_opening_rate(hand.actuated(s[_REF_Q]))
+            s[_DIRECTION] = 1.0 if (s[_GOAL] - s[_REF_Q]) * rate > 0.0 else -1.0
+        a, v = self._finger_state.Eval(context).tolist()
+        q = hand.half_opening(a)
+        s[_OBJECT] = object_status(q, v * hand.half_opening_rate(a), s[_REF_Q], s[_GOAL],
+                                   self._config.stall_speed)
         discrete_state.set_value(self._state, s)
+
+    def _set_point(self, context, s) -> float:
+        """The PD set-point of the actuated coordinate now, from state s (a list or array)."""
+        ref_q, ref_v, ref_a, force, updated_at = (s[_REF_Q], s[_REF_V], s[_REF_A], s[_FORCE],
+                                                  s[_T])
+        h = context.get_time() - updated_at
+        q_ref = ref_q + ref_v * h + 0.5 * ref_a * h * h
+        a = self._finger_state.Eval(context).item(0)
+        hand = self._hand
+        reference = hand.actuated(q_ref)
+        limited = force_limited_set_point(a, reference, force, self._gain,
+                                          abs(hand.half_opening_rate(a)))
+        if hand.non_backdrivable:
+            return nut_set_point(s[_HELD], limited, reference, s[_DIRECTION])
+        return limited
 
     def _calc_desired_state(self, context, output):
         # Evaluated on every plant step: Python floats, not numpy scalars (a tenth of the
         # overhead, the same IEEE arithmetic).
-        ref_q, ref_v, ref_a, force, updated_at = context.get_discrete_state(
-            self._state).value()[[_REF_Q, _REF_V, _REF_A, _FORCE, _T]].tolist()
-        h = context.get_time() - updated_at
-        q_ref = ref_q + ref_v * h + 0.5 * ref_a * h * h
-        v_ref = ref_v + ref_a * h
-        q = self._finger_state.Eval(context).item(0)
-        output.SetFromVector([force_limited_set_point(q, q_ref, force,
-                                                      self._config.position_gain), v_ref])
+        s = context.get_discrete_state(self._state).value().tolist()
+        h = context.get_time() - s[_T]
+        v_ref = s[_REF_V] + s[_REF_A] * h
+        q_ref = s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
+        reference = self._hand.actuated(q_ref)
+        v_ref = v_ref / self._hand.half_opening_rate(reference)
+        set_point = self._set_point(context, s)
+        if self._hand.non_backdrivable and set_point != reference:
+            # The nut is held back by the force limit or stands: it does not move with the
+            # reference, and a PD damping term on the reference's speed would add
+            # kd v_ref to the grip (4 N at 25 mm/s with the linkage's gains).
+            v_ref = 0.0
+        output.SetFromVector([set_point, v_ref])
 
     def _calc_status(self, context, output):
         # Python floats (round() rounds half to even, as np.round); the same bytes.
         s = context.get_discrete_state(self._state).get_value().tolist()
-        q = self._finger_state.Eval(context).item(0)
-        band = 2.0 * s[_FORCE] / self._config.position_gain
-        force = self._config.position_gain * min(abs(s[_REF_Q] - q), band) / 2.0
+        a = self._finger_state.Eval(context).item(0)
+        hand = self._hand
+        lever = abs(hand.half_opening_rate(a))
+        band = 2.0 * s[_FORCE] * lever / self._gain
+        # The motor's current is capped at the force limit; a held load beyond it is taken
+        # by the screw, not the motor.
+        force = self._gain * min(abs(hand.actuated(s[_REF_Q]) - a), band) / (2.0 * lever)
         status = [0.0] * ru.STATUS_SIZE
         status[ru.STATUS_ACT] = 1.0
         status[ru.STATUS_GTO] = 1.0
         status[ru.STATUS_STA] = float(ru.ActivationStatus.ACTIVE)
         status[ru.STATUS_OBJ] = s[_OBJECT]
         status[ru.STATUS_PR] = s[_POSITION_BYTE]
-        status[ru.STATUS_PO] = status_position_byte(q)
+        status[ru.STATUS_PO] = status_position_byte(hand.half_opening(a))
         status[ru.STATUS_CU] = float(min(max(round(force / ru.FORCE_MAX_N * 255.0), 0), 255))
         output.SetFromVector(status)

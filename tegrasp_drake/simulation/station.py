@@ -13,8 +13,12 @@ the two apart:
            PVDF film in acceleration-equivalent units [m/s^2], on the pad normal (z)
   simulation only (evaluation): object.state (13: quaternion wxyz, p_WO, w_WO, v_WO),
            tactile.true_taxel_forces (24, N), contact_results, body_poses, query_object,
-           gripper.plant_desired_state (2: the simulated 2F-85 controller's set-point q [m],
-           v [m/s] for the plant's finger PD)
+           gripper.plant_desired_state (2: the simulated 2F-85 controller's set-point of
+           the hand's actuated joint, position and rate, for the plant's PD),
+           gripper.state (the gripper model instance's joint positions and velocities)
+
+The hand is `scenario.gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
+default) or the earlier prismatic fingers.
 
 The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
 their joints track `arm.desired_state` with the plant's implicit PD.
@@ -31,11 +35,12 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer
 
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRIPPER_URL, R_WG_SIDE_GRASP,
-                                          X_FLANGE_GRIPPER, make_arm_control_plant,
-                                          solve_grasp_frame_ik)
+from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
+                                              make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
-from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE
+from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
+                                                    gripper_hand)
+from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
@@ -127,8 +132,15 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scen
                     taxels.GetInputPort("contact_results"))
     builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
     slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, scenario.vibration)
+    pad_forces = None
+    if isinstance(gripper_hand(scenario.gripper.model), LinkageHand):
+        pad_forces = builder.AddNamedSystem("pad_normal_forces",
+                                            PadNormalForces(plant=plant, pads=pads))
+        builder.Connect(plant.get_contact_results_output_port(),
+                        pad_forces.GetInputPort("contact_results"))
+        builder.Connect(plant.get_body_poses_output_port(), pad_forces.GetInputPort("body_poses"))
     films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper,
-                          config=scenario.vibration, slip_vibration=slip)
+                        config=scenario.vibration, slip_vibration=slip, pad_forces=pad_forces)
     return taxels, films
 
 
@@ -160,7 +172,8 @@ def AddStationPlant(builder, scenario) -> StationPlant:
     parser = paths.make_parser(plant)
     (arm,) = parser.AddModels(url=ARM_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
-    (gripper,) = parser.AddModels(url=GRIPPER_URL)
+    hand = gripper_hand(scenario.gripper.model)
+    (gripper,) = parser.AddModels(url=hand.url)
     plant.WeldFrames(plant.GetFrameByName("flange", arm), plant.GetFrameByName("base", gripper),
                      X_FLANGE_GRIPPER)
     (table,) = parser.AddModels(url=TABLE_URL)
@@ -169,11 +182,11 @@ def AddStationPlant(builder, scenario) -> StationPlant:
     plant.set_gravity_enabled(arm, False)
     plant.set_gravity_enabled(gripper, False)
     set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
-    set_pd_gains(plant, gripper, scenario.gripper.position_gain, scenario.gripper.damping_gain)
+    set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
     plant.Finalize()
 
     plant.SetDefaultPositions(arm, initial_arm_positions(scenario))
-    plant.SetDefaultPositions(gripper, [HALF_STROKE, HALF_STROKE])
+    plant.SetDefaultPositions(gripper, hand.default_positions())
     plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), object_pose_on_table(scenario))
     return StationPlant(plant, scene_graph, arm, gripper, obj)
 
@@ -195,7 +208,11 @@ def MakeGraspStation(scenario, *, meshcat=None):
 
     # Gripper: the simulated 2F-85 controller.
     driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=scenario.gripper))
-    builder.Connect(plant.get_state_output_port(gripper), driver.GetInputPort("finger_state"))
+    selector = builder.AddNamedSystem("gripper_actuated_state", actuated_state_selector(
+        plant, gripper, gripper_hand(scenario.gripper.model)))
+    builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
+    builder.Connect(selector.get_output_port(), driver.GetInputPort("finger_state"))
+    builder.ExportOutput(plant.get_state_output_port(gripper), "gripper.state")
     builder.Connect(driver.GetOutputPort("desired_state"),
                     plant.get_desired_state_input_port(gripper))
     builder.ExportInput(driver.GetInputPort("command"), "gripper.command")

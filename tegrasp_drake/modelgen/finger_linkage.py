@@ -1,0 +1,176 @@
+"""The Robotiq 2F-85 finger linkage in closed form: the one source of its dimensions.
+
+Each finger is an underactuated five-bar in the gripper base's y-z plane (y along the
+stroke toward this finger, z out of the palm along the approach axis; metres):
+
+- A: the driver's pivot on the base; the motor turns the driver A-B;
+- B: driver-coupler joint; a pin stops the coupler turning one way against the driver;
+- C: coupler-follower joint, with the torsional spring that holds B on its pin;
+- D: follower-spring link joint; the follower carries the fingertip;
+- E: the spring link's pivot on the base.
+
+Open-pose joint coordinates from Robotiq's own kinematics asset for Isaac Sim
+(robotiq/isaacsim_assets, `Robotiq_2F_85_kinematics_physics.usda` and
+`grippers/GRIPPER_SIMULATION_GUIDE.md`, sections 4.1-4.5); MuJoCo Menagerie's
+`robotiq_2f85/2f85.xml` agrees within 0.5 mm (its driver pivot: (30.6, 54.9) mm).
+On the pin, A-C-D-E is a parallelogram (|AC| = |ED| = 57.16 mm, |AE| = |CD| = 19.05 mm):
+the follower translates on a circle of radius |AC| and the pad stays parallel.
+
+Angles are the SDF joint coordinates of the finger on +y (the other finger is its mirror):
+theta, the driver's turn from the open pose, positive closing; beta, the coupler's turn
+against the driver from its pin, 0 on the pin and negative off it, where the fingertip curls
+toward the object (the encompassing grasp). A contact force on the pad pushes B off its pin
+when it acts below the finger's flip height: about the height of the follower's
+instantaneous centre with the driver held (where lines B-C and E-D cross), lowered by the
+spring's share (`flip_height`).
+
+The fingertip is the paper's tactile pad (tactile_fingertip.py), mounted where Robotiq's
+stock pad sits on the follower: Menagerie's pad boxes span 111.9-149.4 mm from the base in
+the open pose, so the pad centre is at z = 130.7 mm; its contact face lies at y = 42.5 mm,
+half the 85 mm stroke.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+# Open-pose joint coordinates [m], (y, z) in the gripper base frame, finger on +y.
+A = np.array([0.03060, 0.05466])
+B = np.array([0.06213, 0.05090])
+C = np.array([0.06776, 0.09809])
+D = np.array([0.04986, 0.10460])
+E = np.array([0.01270, 0.06118])
+
+PAD_CENTER_OPEN = np.array([0.0425, 0.1307])  # m, the pad face's centre, open pose
+DRIVER_RANGE_RAD = math.radians(47.0)  # the driver's travel (Isaac asset; Menagerie 0.8 rad)
+COUPLER_RANGE_RAD = 1.57  # the coupler's travel off its pin (Menagerie: -1.57..0)
+FOLLOWER_RANGE_RAD = 0.872664  # the follower's travel against the coupler (Menagerie)
+# The torsional spring at C: 0.0004 N m/deg = 0.0229 N m/rad, preloaded by 90 deg: 37 N mm
+# in the open pose (GRIPPER_SIMULATION_GUIDE.md, section 4.2). It turns the follower back
+# (uncurls it) against the coupler, which holds B on its pin: its rest angle is -90 deg.
+SPRING_STIFFNESS_NM_PER_RAD = 0.0004 * 180.0 / math.pi
+SPRING_REST_ANGLE_RAD = -math.pi / 2.0
+
+_AC = C - A
+LINK_RADIUS = float(np.linalg.norm(_AC))  # m, 57.16 mm: the follower's circle on the pin
+_PHI_OPEN = math.atan2(_AC[1], _AC[0])  # the angle of A->C from +y, open: 49.4 deg
+
+
+def _rotate(v, angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+
+def follower_offset(theta: float) -> np.ndarray:
+    """The follower's (and the pad's) displacement from the open pose [m], (y, z), with
+    the driver at theta [rad] and B on its pin."""
+    return A + _rotate(_AC, theta) - C
+
+
+def pad_center(theta: float) -> np.ndarray:
+    """The pad face's centre [m], (y, z) in the base frame, with B on its pin."""
+    return PAD_CENTER_OPEN + follower_offset(theta)
+
+
+def half_opening(theta: float) -> float:
+    """The pad face's distance from the grasp axis [m] (half the opening), on the pin."""
+    return float(pad_center(theta)[0])
+
+
+def pad_travel(theta: float) -> float:
+    """The pad's travel along the approach axis from the open pose [m] (positive away
+    from the palm), on the pin."""
+    return float(follower_offset(theta)[1])
+
+
+def driver_angle(half_opening_m: float) -> float:
+    """The driver angle [rad] that leaves the pad face half_opening_m [m] from the grasp
+    axis (the inverse of half_opening), for 0 <= half_opening_m <= the open value."""
+    q = min(max(float(half_opening_m), 0.0), float(PAD_CENTER_OPEN[0]))
+    cosine = (q - PAD_CENTER_OPEN[0] + C[0] - A[0]) / LINK_RADIUS
+    return math.acos(min(max(cosine, -1.0), 1.0)) - _PHI_OPEN
+
+
+THETA_PADS_MEET = driver_angle(0.0)  # rad, 45.96 deg: the pad faces touch
+
+
+def half_opening_rate(theta: float) -> float:
+    """d(half opening)/d(theta) [m/rad] on the pin: minus the pad's lever arm about A."""
+    return -LINK_RADIUS * math.sin(_PHI_OPEN + theta)
+
+
+def pad_travel_at_opening(opening_m: float) -> float:
+    """The pad's travel along the approach axis [m] with the pads opening_m [m] apart."""
+    return pad_travel(driver_angle(opening_m / 2.0))
+
+
+@dataclasses.dataclass(frozen=True)
+class FingerPose:
+    """The five-bar's moving joint points [m], (y, z) in the base frame, and the follower's
+    turn from the open pose [rad] (positive: the fingertip tilts toward the object)."""
+    b: np.ndarray
+    c: np.ndarray
+    d: np.ndarray
+    follower_angle: float
+
+
+def _circle_intersection(p0, r0: float, p1, r1: float, near) -> np.ndarray:
+    """The intersection of two circles (centre, radius) nearest `near`."""
+    d = float(np.linalg.norm(p1 - p0))
+    a = (r0 * r0 - r1 * r1 + d * d) / (2.0 * d)
+    h = math.sqrt(max(r0 * r0 - a * a, 0.0))
+    mid = p0 + a * (p1 - p0) / d
+    perpendicular = np.array([-(p1 - p0)[1], (p1 - p0)[0]]) / d
+    return min((mid + h * perpendicular, mid - h * perpendicular),
+               key=lambda p: float(np.linalg.norm(p - near)))
+
+
+def _angle_of(v) -> float:
+    return math.atan2(v[1], v[0])
+
+
+def finger_pose(theta: float, beta: float = 0.0) -> FingerPose:
+    """The five-bar with the driver at theta and the coupler at beta [rad]."""
+    b = A + _rotate(B - A, theta)
+    c = b + _rotate(C - B, theta + beta)
+    d_on_pin = D + follower_offset(theta)
+    d = _circle_intersection(c, float(np.linalg.norm(D - C)), E,
+                             float(np.linalg.norm(D - E)), near=d_on_pin)
+    turn = _angle_of(d - c) - _angle_of(D - C)
+    return FingerPose(b, c, d, (turn + math.pi) % (2.0 * math.pi) - math.pi)
+
+
+def point_on_follower(theta: float, beta: float, p_open) -> np.ndarray:
+    """Where the follower's point that sits at p_open [m] in the open pose is [m]."""
+    pose = finger_pose(theta, beta)
+    return pose.c + _rotate(np.asarray(p_open, float) - C, pose.follower_angle)
+
+
+def _spring_joint_angle(theta: float, beta: float) -> float:
+    """The follower's turn against the coupler [rad] (the SDF's follower joint angle)."""
+    return finger_pose(theta, beta).follower_angle - (theta + beta)
+
+
+def coupler_generalized_force(theta: float, contact_height_m: float, force_n: float,
+                              step: float = 1e-6) -> float:
+    """The generalized force on beta [N m] with the driver held at theta and B on its pin,
+    of a contact force force_n [N] pushing the pad face outward (along +y), acting
+    contact_height_m [m] above the pad centre along the pad, plus the spring's. Negative:
+    B leaves its pin. Virtual work by central differences of the closed-form five-bar."""
+    p_open = PAD_CENTER_OPEN + np.array([0.0, contact_height_m])
+    dp = (point_on_follower(theta, step, p_open)
+          - point_on_follower(theta, -step, p_open)) / (2.0 * step)
+    dgamma = (_spring_joint_angle(theta, step)
+              - _spring_joint_angle(theta, -step)) / (2.0 * step)
+    spring_torque = SPRING_STIFFNESS_NM_PER_RAD * (SPRING_REST_ANGLE_RAD
+                                                   - _spring_joint_angle(theta, 0.0))
+    return force_n * float(dp[0]) + spring_torque * dgamma
+
+
+def flip_height(theta: float, force_n: float) -> float:
+    """The contact height [m] above the pad centre (negative: toward the palm) below which
+    a pad force force_n [N] lifts B off its pin, the driver held at theta [rad]."""
+    return brentq(lambda h: coupler_generalized_force(theta, h, force_n), -0.1, 0.1,
+                  xtol=1e-7)

@@ -1,0 +1,147 @@
+"""MakeGripperBench: the simulated 2F-85 alone, its base welded to the world, for the hand's
+checks against closed form (the pad's path, the flip height, the grip force, the drive's
+non-backdrivability, the loops' closure).
+
+The gripper's base frame is the world frame (z the approach axis, y the stroke); gravity is
+off for the gripper, as on the arm. The simulated 2F-85 controller (SimRobotiqDriver) plays
+one command. Optionally a rigid obstacle is welded to the world between the fingers (a box,
+or a rod across the pads), and a constant force pushes the left pad outward from a given
+time, at the pad centre.
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.geometry import Box, Cylinder, ProximityProperties
+from pydrake.geometry import AddContactMaterial, AddRigidHydroelasticProperties
+from pydrake.math import RigidTransform, RollPitchYaw
+from pydrake.multibody.math import SpatialForce
+from pydrake.multibody.plant import (AddMultibodyPlant, CoulombFriction,
+                                     ExternallyAppliedSpatialForce, MultibodyPlantConfig)
+from pydrake.common.value import AbstractValue
+from pydrake.systems.framework import DiagramBuilder, LeafSystem
+from pydrake.systems.primitives import ConstantVectorSource
+
+from tegrasp_drake.modelgen import finger_linkage
+from tegrasp_drake.rig import paths
+from tegrasp_drake.simulation.gripper_hands import actuated_state_selector, gripper_hand
+from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
+from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
+from tegrasp_drake.simulation.station import pad_geometries, set_pd_gains
+
+
+@dataclasses.dataclass
+class BenchObstacle:
+    """A rigid obstacle welded between the fingers: `box` (size [m], x y z in the gripper
+    base frame) or `rod` (a cylinder across the pads, along x: size = [diameter, length])
+    centred at (0, 0, z_m) in the gripper base frame."""
+    shape: str
+    size: tuple
+    z_m: float
+    friction: float = 0.5
+
+
+class _PadPush(LeafSystem):
+    """A constant force [N] on the left finger's pad centre along its outward normal (+y
+    of the base on the pin) from time start_s on."""
+
+    def __init__(self, *, body_index, p_BP, force_n: float, start_s: float):
+        super().__init__()
+        self._body_index, self._p_BP = body_index, np.asarray(p_BP, float)
+        self._force_n, self._start_s = force_n, start_s
+        self.DeclareAbstractOutputPort(
+            "spatial_forces", lambda: AbstractValue.Make([ExternallyAppliedSpatialForce()]),
+            self._calc)
+
+    def _calc(self, context, output):
+        push = ExternallyAppliedSpatialForce()
+        push.body_index = self._body_index
+        push.p_BoBq_B = self._p_BP
+        on = context.get_time() >= self._start_s
+        push.F_Bq_W = SpatialForce(np.zeros(3), [0.0, self._force_n if on else 0.0, 0.0])
+        output.set_value([push])
+
+
+@dataclasses.dataclass
+class GripperBench:
+    """A built bench: the diagram and its parts."""
+    diagram: object
+    plant: object
+    gripper: object
+    pad_forces: object
+
+
+def _add_obstacle(plant, obstacle: BenchObstacle) -> None:
+    properties = ProximityProperties()
+    AddRigidHydroelasticProperties(resolution_hint=0.002, properties=properties)
+    AddContactMaterial(friction=CoulombFriction(obstacle.friction, obstacle.friction),
+                       properties=properties)
+    if obstacle.shape == "box":
+        shape, X = Box(*obstacle.size), RigidTransform([0.0, 0.0, obstacle.z_m])
+    elif obstacle.shape == "rod":
+        shape = Cylinder(obstacle.size[0] / 2, obstacle.size[1])
+        X = RigidTransform(RollPitchYaw(0.0, np.pi / 2, 0.0), [0.0, 0.0, obstacle.z_m])
+    else:
+        raise ValueError(f"obstacle shape '{obstacle.shape}' is not box or rod")
+    plant.RegisterCollisionGeometry(plant.world_body(), X, shape, "obstacle", properties)
+
+
+def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConfig(),
+                     obstacle: BenchObstacle | None = None, push_n: float = 0.0,
+                     push_start_s: float = 0.0,
+                     plant_config: MultibodyPlantConfig | None = None) -> GripperBench:
+    """The gripper of `driver.model` playing `command` (rPR, rSP, rFR bytes) from the open
+    pose; see the module docstring."""
+    plant_config = plant_config or MultibodyPlantConfig(
+        time_step=1e-3, discrete_contact_approximation="lagged",
+        contact_model="hydroelastic_with_fallback")
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlant(plant_config, builder)
+    hand = gripper_hand(driver.model)
+    (gripper,) = paths.make_parser(plant).AddModels(url=hand.url)
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", gripper))
+    if obstacle is not None:
+        _add_obstacle(plant, obstacle)
+    plant.set_gravity_enabled(gripper, False)
+    set_pd_gains(plant, gripper, *hand.pd_gains(driver))
+    plant.Finalize()
+    plant.SetDefaultPositions(gripper, hand.default_positions())
+
+    sim_driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=driver))
+    selector = builder.AddSystem(actuated_state_selector(plant, gripper, hand))
+    builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
+    builder.Connect(selector.get_output_port(), sim_driver.GetInputPort("finger_state"))
+    builder.Connect(sim_driver.GetOutputPort("desired_state"),
+                    plant.get_desired_state_input_port(gripper))
+    source = builder.AddSystem(ConstantVectorSource(np.asarray(command, float)))
+    builder.Connect(source.get_output_port(), sim_driver.GetInputPort("command"))
+
+    pads = pad_geometries(plant, scene_graph, gripper)
+    pad_forces = builder.AddNamedSystem("pad_normal_forces",
+                                        PadNormalForces(plant=plant, pads=pads))
+    builder.Connect(plant.get_contact_results_output_port(),
+                    pad_forces.GetInputPort("contact_results"))
+    builder.Connect(plant.get_body_poses_output_port(), pad_forces.GetInputPort("body_poses"))
+    if push_n:
+        left = pads["left"]
+        push = builder.AddSystem(_PadPush(body_index=left.body_index,
+                                          p_BP=left.X_BP.translation(), force_n=push_n,
+                                          start_s=push_start_s))
+        builder.Connect(push.get_output_port(), plant.get_applied_spatial_force_input_port())
+    diagram = builder.Build()
+    diagram.set_name("gripper_bench")
+    return GripperBench(diagram, plant, gripper, pad_forces)
+
+
+def loop_closure_error_m(plant, plant_context, gripper) -> float:
+    """The largest distance [m] between the two bodies' copies of joint D (follower and
+    spring link) over both linkage fingers: how far the ball constraints are violated."""
+    worst = 0.0
+    for finger, sign in (("left", 1.0), ("right", -1.0)):
+        p_D = np.array([0.0, sign * finger_linkage.D[0], finger_linkage.D[1]])
+        follower = plant.GetBodyByName(f"{finger}_finger", gripper)
+        spring_link = plant.GetBodyByName(f"{finger}_spring_link", gripper)
+        gap = (plant.EvalBodyPoseInWorld(plant_context, follower).multiply(p_D)
+               - plant.EvalBodyPoseInWorld(plant_context, spring_link).multiply(p_D))
+        worst = max(worst, float(np.linalg.norm(gap)))
+    return worst

@@ -1,0 +1,105 @@
+"""The two simulated 2F-85 hands, selected by `gripper.model`: what differs between them.
+
+- `linkage` (the default): the 2F-85's underactuated five-bar fingers
+  (modelgen/finger_linkage.py, modelgen/robotiq_linkage_sdf.py). The actuated coordinate is
+  the left driver's angle [rad]; the drive is a non-backdrivable screw (the motor drives
+  both fingers through a screw and nut: an object pushing the fingers open cannot turn it).
+- `prismatic`: two prismatic fingers, the right one mimicking the left
+  (modelgen/robotiq_sdf.py); the actuated coordinate is half the opening [m]. Kept so that
+  results can be compared with the earlier hand; its drive is backdrivable.
+
+Everything else (the taxels, the films, the driver's command and status bytes) is common.
+A hand maps its actuated coordinate `a` to half the pad opening q [m] on the pin: the
+SimRobotiqDriver plans in q (the 2F-85's speed is a finger speed) and commands `a`.
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.systems.primitives import MatrixGain
+
+from tegrasp_drake.modelgen import finger_linkage
+from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE, PAD_CENTER_Z
+
+GRIPPER_MODELS = ("linkage", "prismatic")
+
+
+@dataclasses.dataclass(frozen=True)
+class PrismaticHand:
+    """Two prismatic fingers; the actuated coordinate is half the opening [m]."""
+    url: str = "package://tegrasp/robotiq_2f85/robotiq_2f85_tactile.sdf"
+    actuated_joint: str = "left_finger_joint"
+    non_backdrivable: bool = False
+
+    def half_opening(self, a: float) -> float:
+        return a
+
+    def actuated(self, half_opening_m: float) -> float:
+        return half_opening_m
+
+    def half_opening_rate(self, a: float) -> float:
+        """d(half opening)/da."""
+        return 1.0
+
+    def default_positions(self) -> list[float]:
+        return [HALF_STROKE, HALF_STROKE]
+
+    def pd_gains(self, config) -> tuple[float, float]:
+        """(kp [N/m], kd [N s/m]) of the PD on half the opening (GripperDriverConfig)."""
+        return config.position_gain, config.damping_gain
+
+    def pad_center_offset(self, opening_m: float) -> float:
+        """How far the pads' centres lie beyond the grasp frame along the approach axis [m]
+        when the pads are opening_m apart: 0, the pads move along the stroke only."""
+        return 0.0
+
+
+@dataclasses.dataclass(frozen=True)
+class LinkageHand:
+    """The 2F-85's five-bar fingers; the actuated coordinate is the left driver's angle."""
+    url: str = "package://tegrasp/robotiq_2f85/robotiq_2f85_linkage.sdf"
+    actuated_joint: str = "left_driver_joint"
+    non_backdrivable: bool = True
+
+    def half_opening(self, a: float) -> float:
+        return finger_linkage.half_opening(a)
+
+    def actuated(self, half_opening_m: float) -> float:
+        return finger_linkage.driver_angle(half_opening_m)
+
+    def half_opening_rate(self, a: float) -> float:
+        return finger_linkage.half_opening_rate(a)
+
+    def default_positions(self) -> list[float]:
+        return [0.0] * 8  # every joint at zero is the open pose, the loops closed
+
+    def pd_gains(self, config) -> tuple[float, float]:
+        """(kp [N m/rad], kd [N m s/rad]) of the PD on the driver (GripperDriverConfig)."""
+        return config.driver_position_gain, config.driver_damping_gain
+
+    def pad_center_offset(self, opening_m: float) -> float:
+        """How far the pads' centres lie beyond the grasp frame along the approach axis [m]
+        when the pads are opening_m apart (on the pin): -9.3 mm open, +1.8 mm at 45 mm,
+        +4.0 mm at 25 mm."""
+        return (float(finger_linkage.PAD_CENTER_OPEN[1]) - PAD_CENTER_Z
+                + finger_linkage.pad_travel_at_opening(opening_m))
+
+
+def gripper_hand(model: str):
+    """The hand of a `gripper.model` name (GRIPPER_MODELS)."""
+    return {"linkage": LinkageHand, "prismatic": PrismaticHand}[model]()
+
+
+def actuated_state_selector(plant, gripper, hand) -> MatrixGain:
+    """A MatrixGain that picks (a, da/dt) of the hand's actuated joint out of the gripper
+    model instance's state (for the driver's `finger_state` input)."""
+    joint = plant.GetJointByName(hand.actuated_joint, gripper)
+    nq, nv = plant.num_positions(gripper), plant.num_velocities(gripper)
+    q_marker = np.zeros(plant.num_positions())
+    q_marker[joint.position_start()] = 1.0
+    v_marker = np.zeros(plant.num_velocities())
+    v_marker[joint.velocity_start()] = 1.0
+    selection = np.zeros((2, nq + nv))
+    selection[0, :nq] = plant.GetPositionsFromArray(gripper, q_marker)
+    selection[1, nq:] = plant.GetVelocitiesFromArray(gripper, v_marker)
+    return MatrixGain(selection)

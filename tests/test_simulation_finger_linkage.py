@@ -1,0 +1,126 @@
+"""The simulated 2F-85 finger linkage against the closed form of its five-bar
+(modelgen/finger_linkage.py), on the gripper bench (the gripper alone, welded)."""
+
+import math
+
+import numpy as np
+import pytest
+from pydrake.systems.analysis import Simulator
+
+from tegrasp_drake.control.scripted_grasp import gripper_command
+from tegrasp_drake.modelgen import finger_linkage as linkage
+from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.simulation.gripper_bench import (BenchObstacle, MakeGripperBench,
+                                                    loop_closure_error_m)
+from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
+
+FRICTIONLESS = 1e-4  # the rod's friction: the statics of the flip height have none
+ROD_DIAMETER = 0.030  # m: the pads stop on it at a 30 mm opening
+
+
+def _run(command, *, t_end=1.6, sample_s=0.005, **bench_options):
+    """Runs the bench; returns one sample per sample_s: (driver angle, coupler angle, left
+    pad frame X_WP, pad normal forces, loop error); the angles are nan and the loop error 0
+    on the prismatic hand."""
+    bench = MakeGripperBench(command=command, **bench_options)
+    simulator = Simulator(bench.diagram)
+    context = simulator.get_mutable_context()
+    plant_context = bench.plant.GetMyContextFromRoot(context)
+    forces_context = bench.pad_forces.GetMyContextFromRoot(context)
+    plant, gripper = bench.plant, bench.gripper
+    linkage_hand = plant.HasJointNamed("left_driver_joint", gripper)
+    angle = lambda name: (plant.GetJointByName(name, gripper).get_angle(plant_context)
+                          if linkage_hand else math.nan)
+    samples = []
+    for k in range(1, int(round(t_end / sample_s)) + 1):
+        simulator.AdvanceTo(k * sample_s)
+        samples.append((
+            angle("left_driver_joint"), angle("left_coupler_joint"),
+            plant.GetFrameByName("left_pad", gripper).CalcPoseInWorld(plant_context),
+            bench.pad_forces.GetOutputPort("pad_normal_forces").Eval(forces_context).copy(),
+            loop_closure_error_m(plant, plant_context, gripper) if linkage_hand else 0.0))
+    return samples
+
+
+def _pad_tilt_deg(X_WP) -> float:
+    """The pad normal's turn from the stroke axis toward the approach axis [deg]."""
+    normal = X_WP.rotation().matrix()[:, 2].copy()
+    return math.degrees(math.asin(float(normal[2])))
+
+
+def _rod_at(height_above_flip_m: float, force_n: float) -> BenchObstacle:
+    """The rod across the pads, height_above_flip_m [m] above the closed-form flip height
+    where the pads stop on it."""
+    theta = linkage.driver_angle(ROD_DIAMETER / 2)
+    z = (linkage.PAD_CENTER_OPEN[1] + linkage.pad_travel(theta)
+         + linkage.flip_height(theta, force_n) + height_above_flip_m)
+    return BenchObstacle("rod", (ROD_DIAMETER, 0.06), z, friction=FRICTIONLESS)
+
+
+def test_joint_coordinates_form_the_published_parallelogram():
+    length = lambda p, q: float(np.linalg.norm(p - q))
+    assert length(linkage.A, linkage.C) == pytest.approx(0.05715, abs=5e-5)
+    assert length(linkage.E, linkage.D) == pytest.approx(length(linkage.A, linkage.C), abs=5e-5)
+    assert length(linkage.A, linkage.E) == pytest.approx(0.01905, abs=5e-5)
+    assert length(linkage.C, linkage.D) == pytest.approx(length(linkage.A, linkage.E), abs=5e-5)
+
+
+def test_closed_form_pad_travel_is_the_derived_13_5_mm():
+    # DRAKE-NOTES, from the joint coordinates: 5.3-5.4 / 10.2 / 11.8 / 12.9 / 13.5 mm.
+    travel = [linkage.pad_travel_at_opening(gap) * 1000 for gap in (0.07, 0.05, 0.04, 0.03, 0.02)]
+    np.testing.assert_allclose(travel, [5.43, 10.24, 11.82, 12.91, 13.54], atol=0.05)
+
+
+def test_pad_centre_follows_the_four_bar_and_the_loops_stay_closed_while_closing():
+    samples = _run(gripper_command(0.0, 0.05, 20.0), t_end=2.0)
+    errors = [np.linalg.norm(X.translation()[1:] - linkage.pad_center(theta))
+              for theta, _, X, _, _ in samples]
+    assert max(errors) < 0.5e-3
+    assert samples[-1][0] > math.radians(45)  # it closed all the way
+    assert max(s[4] for s in samples) < 0.1e-3
+    assert max(abs(s[1]) for s in samples) < math.radians(0.1)  # on the pin throughout
+
+
+@pytest.mark.parametrize("force_n", [50.0, 235.0])
+def test_pads_stay_parallel_above_the_flip_height(force_n):
+    samples = _run(gripper_command(0.0, 0.05, force_n), obstacle=_rod_at(0.002, force_n))
+    _, beta, X_WP, forces, _ = samples[-1]
+    assert min(forces) > 0.8 * force_n  # gripping the rod
+    assert abs(_pad_tilt_deg(X_WP)) < 1.0
+    assert abs(math.degrees(beta)) < 0.2
+
+
+@pytest.mark.parametrize("force_n", [50.0, 235.0])
+def test_contact_below_the_flip_height_lifts_the_pin_and_curls_the_fingertip(force_n):
+    samples = _run(gripper_command(0.0, 0.05, force_n), obstacle=_rod_at(-0.002, force_n))
+    _, beta, X_WP, forces, _ = samples[-1]
+    assert math.degrees(beta) < -3.0  # off the pin
+    assert abs(_pad_tilt_deg(X_WP)) > 3.0
+    assert min(forces) > 0.5 * force_n
+
+
+@pytest.mark.parametrize("force_n", [20.0, 100.0, 235.0])
+def test_grip_force_at_the_pad_follows_the_force_setting(force_n):
+    # A box face covering the pads, its centre where the pads' centres meet a 45 mm object.
+    z = linkage.PAD_CENTER_OPEN[1] + linkage.pad_travel_at_opening(0.045)
+    samples = _run(gripper_command(0.0, 0.05, force_n),
+                   obstacle=BenchObstacle("box", (0.04, 0.045, 0.06), z))
+    force_setting = float(ru.force_from_byte(ru.force_byte_from_force(force_n)))
+    np.testing.assert_allclose(samples[-1][3], force_setting, rtol=0.10)
+
+
+def test_fifty_newtons_pushing_a_finger_open_moves_it_less_than_half_a_millimetre():
+    samples = _run(gripper_command(0.040, 0.05, 20.0), t_end=2.0, push_n=50.0,
+                   push_start_s=1.2)
+    before = samples[int(1.15 / 0.005)][2].translation()[1]
+    after = max(s[2].translation()[1] for s in samples[int(1.2 / 0.005):])
+    assert after - before < 0.5e-3
+
+
+def test_the_prismatic_hand_yields_to_the_same_push():
+    # The check above can fail: the earlier prismatic hand's drive is backdrivable.
+    samples = _run(gripper_command(0.040, 0.05, 20.0), t_end=2.0, push_n=50.0,
+                   push_start_s=1.2, driver=GripperDriverConfig(model="prismatic"))
+    before = samples[int(1.15 / 0.005)][2].translation()[1]
+    after = max(s[2].translation()[1] for s in samples[int(1.2 / 0.005):])
+    assert after - before > 0.5e-3
