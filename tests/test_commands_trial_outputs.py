@@ -167,6 +167,32 @@ def test_replay_lifts_the_object_with_contact_and_taxel_forces_shown(run, page):
     assert {tuple(t["color"]) for t in held} != {tuple(t["color"]) for t in idle}
 
 
+LINKS = ("driver", "coupler", "finger", "spring_link")
+
+
+def test_replay_shows_the_finger_linkage_moving(run, page):
+    out, result = run
+    hold_start, hold_end = _span(result, "Hold")
+    paths = [["drake", "illustration", "robotiq_2f85", f"{finger}_{link}"]
+             for finger in ("left", "right") for link in LINKS]
+    for path in paths:
+        assert page.execute_script(f"return tegrasp.meshCount({path})") > 0, path
+    page.execute_script("tegrasp.seek(0.0)")
+    open_pose = [np.array(page.execute_script(f"return tegrasp.center({p})")) for p in paths]
+    page.execute_script(f"tegrasp.seek({(hold_start + hold_end) / 2})")
+    gripper = np.array(page.execute_script(
+        "return tegrasp.center(['drake', 'illustration', 'robotiq_2f85', 'base'])"))
+    page.execute_script("tegrasp.seek(0.0)")
+    base_open = np.array(page.execute_script(
+        "return tegrasp.center(['drake', 'illustration', 'robotiq_2f85', 'base'])"))
+    page.execute_script(f"tegrasp.seek({(hold_start + hold_end) / 2})")
+    for path, before in zip(paths, open_pose):
+        now = np.array(page.execute_script(f"return tegrasp.center({path})"))
+        # Each link moved against the gripper body: the linkage closed on the box.
+        moved = np.linalg.norm((now - gripper) - (before - base_open))
+        assert moved > 0.003, path
+
+
 def test_replay_screenshot_shows_the_gripper_at_a_readable_size(run, page):
     out, result = run
     hold_start, hold_end = _span(result, "Hold")

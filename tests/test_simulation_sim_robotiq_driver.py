@@ -1,9 +1,12 @@
 import numpy as np
 
 from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.modelgen import finger_linkage
 from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig, SimRobotiqDriver,
-                                                         has_arrived, object_status,
-                                                         reference_step)
+                                                         has_arrived, nut_set_point,
+                                                         object_status, reference_step)
+
+PRISMATIC = GripperDriverConfig(model="prismatic")
 
 
 def test_reference_accelerates_toward_the_goal_then_cruises():
@@ -35,11 +38,11 @@ def test_object_status_reports_a_stall_before_the_goal_while_closing():
 
 
 def test_force_limit_bounds_the_setpoint_offset():
-    config = GripperDriverConfig()
+    config = PRISMATIC
     driver = SimRobotiqDriver(config=config)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, 0])  # close at 20 N
-    driver.GetInputPort("finger_state").FixValue(context, [0.02, 0.02, 0.0, 0.0])
+    driver.GetInputPort("finger_state").FixValue(context, [0.02, 0.0])
     # Put the reference far inside the object: the set-point stays within 2 F / kp.
     state = context.get_mutable_discrete_state(0).get_mutable_value()
     state[0] = 0.0
@@ -48,13 +51,55 @@ def test_force_limit_bounds_the_setpoint_offset():
 
 
 def test_status_reports_activation_and_position_bytes():
-    driver = SimRobotiqDriver(config=GripperDriverConfig())
+    driver = SimRobotiqDriver(config=PRISMATIC)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [0, 0, 0])
-    driver.GetInputPort("finger_state").FixValue(context, [0.0425, 0.0425, 0.0, 0.0])
+    driver.GetInputPort("finger_state").FixValue(context, [0.0425, 0.0])
     status = driver.GetOutputPort("status").Eval(context)
     assert status[ru.STATUS_STA] == ru.ActivationStatus.ACTIVE
     assert status[ru.STATUS_PO] == ru.POSITION_OPEN_BYTE
+
+
+def test_linkage_status_position_comes_from_the_driver_angle_through_the_linkage():
+    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"))
+    context = driver.CreateDefaultContext()
+    driver.GetInputPort("command").FixValue(context, [0, 0, 0])
+    for opening in (0.085, 0.045, 0.010):
+        theta = finger_linkage.driver_angle(opening / 2)
+        driver.GetInputPort("finger_state").FixValue(context, [theta, 0.0])
+        status = driver.GetOutputPort("status").Eval(context)
+        assert status[ru.STATUS_PO] == ru.position_byte_from_opening(opening)
+
+
+def test_linkage_force_limit_is_the_pad_force_through_the_lever():
+    config = GripperDriverConfig(model="linkage")
+    driver = SimRobotiqDriver(config=config)
+    context = driver.CreateDefaultContext()
+    driver.GetInputPort("command").FixValue(context, [255, 255, 0])  # close at 20 N
+    theta = finger_linkage.driver_angle(0.0225)  # blocked on a 45 mm object
+    driver.GetInputPort("finger_state").FixValue(context, [theta, 0.0])
+    state = context.get_mutable_discrete_state(0).get_mutable_value()
+    state[0] = 0.0  # the reference far inside the object
+    state[10] = 1.0  # closing
+    desired = driver.GetOutputPort("desired_state").Eval(context)
+    lever = -finger_linkage.half_opening_rate(theta)
+    # One actuator drives both fingers: 2 F lever of torque, and no more.
+    assert np.isclose(config.driver_position_gain * (desired[0] - theta),
+                      2 * ru.FORCE_MIN_N * lever)
+    assert desired[1] == 0.0  # the nut stands
+
+
+def test_the_nut_moves_only_in_the_commanded_direction():
+    # Closing (+1): a load pushing the finger open leaves the nut where it is...
+    assert nut_set_point(0.30, limited=0.28, reference=0.50, direction=1.0) == 0.30
+    # ...and so does one pushing it further closed than the reference.
+    assert nut_set_point(0.30, limited=0.45, reference=0.30, direction=1.0) == 0.30
+    # It advances up to the force limit, never past the reference.
+    assert nut_set_point(0.30, limited=0.32, reference=0.50, direction=1.0) == 0.32
+    assert nut_set_point(0.30, limited=0.60, reference=0.50, direction=1.0) == 0.50
+    # Opening (-1) mirrors it.
+    assert nut_set_point(0.30, limited=0.33, reference=0.10, direction=-1.0) == 0.30
+    assert nut_set_point(0.30, limited=0.20, reference=0.10, direction=-1.0) == 0.20
 
 
 def test_float_helpers_equal_the_numpy_forms_bit_for_bit():
