@@ -1,4 +1,4 @@
-"""Why slip and one-finger-first are not memorized corrective events (README, "Memorized
+"""Why slip and one-finger-first are not memorized corrective events (docs/controller.md, "Memorized
 corrective triggers"): Eq. 3 scores, from recorded logs, of
 
   slip   the slip band (tactile/slip_vibration_band: the film's vibration above 80 Hz, RMS

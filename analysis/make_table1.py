@@ -1,4 +1,4 @@
-"""Regenerate Table I (table1.md, table1.csv), the trial statistics, the README's results
+"""Regenerate Table I (table1.md, table1.csv), the trial statistics, the results
 table (summary.md) and the success per placement offset (success_by_offset.md, .csv) from a
 results folder written by `tegrasp sweep`.
 

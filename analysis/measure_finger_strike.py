@@ -26,7 +26,7 @@ from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
 from tegrasp_drake.rig.objects import ObjectConfig
 
 # (object, offset normal to the palm [m], along the stroke [m], yaw [deg]): scenes of
-# issue #14's second grid (analysis/results_beyond/second_grid), open loop knocked over.
+# the second grid (analysis/results_beyond/second_grid) that open loop knocked over.
 SCENES = (("box", 0.0, 0.0, 5.4), ("box", 0.0, 0.025, -11.8), ("box", 0.0, -0.025, -12.5),
           ("thick_cylinder", -0.015, -0.025, -7.7))
 END_S = 3.0  # past the Reach (settle 0.3 s + reach 2.5 s)

@@ -13,8 +13,8 @@ CamelCase (Make*, Load*, Add*), everything else is snake_case:
     simulator.AdvanceTo(12.0)
     print(grasp.controller.transitions(simulator.get_context()))
 
-The README's "From Python" section has a complete DiagramBuilder example and a sweep;
-tests/test_readme_examples.py runs both.
+The README's "From Python" section has a complete DiagramBuilder example, and
+docs/sweeps.md a sweep; tests/test_readme_examples.py runs both.
 
 Names are imported on first use, so that `import tegrasp_drake` (and the command line's
 help) does not load pydrake.

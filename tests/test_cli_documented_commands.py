@@ -1,6 +1,7 @@
-"""Every `tegrasp ...` command that the README, the `--help` examples and the package's own
-messages show exists: code-block lines and help examples parse with the real parser, and
-every sub-command and `--option` named anywhere belongs to it. `--help` shows examples."""
+"""Every `tegrasp ...` command that the README, the docs/ pages, the `--help` examples and the
+package's own messages show exists: code-block lines and help examples parse with the real
+parser, and every sub-command and `--option` named anywhere belongs to it. `--help` shows
+examples."""
 
 import argparse
 import contextlib
@@ -80,6 +81,12 @@ def readme_text() -> str:
     return README.read_text(encoding="utf-8")
 
 
+def page_texts() -> dict[str, str]:
+    """The README and the docs/ pages by their path."""
+    return {str(path.relative_to(ROOT)): path.read_text(encoding="utf-8")
+            for path in [README, *sorted((ROOT / "docs").glob("*.md"))]}
+
+
 def package_texts() -> dict[str, str]:
     return {str(path.relative_to(ROOT)): path.read_text(encoding="utf-8")
             for pattern in ("**/*.py", "**/*.md") for path in PACKAGE.glob(pattern)}
@@ -92,9 +99,17 @@ def test_readme_code_block_commands_parse():
         parse(command)
 
 
+def test_docs_code_block_commands_parse():
+    pages = page_texts()
+    assert len(pages) > 1
+    for text in pages.values():
+        for command in code_block_commands(text):
+            parse(command)
+
+
 def test_every_documented_subcommand_and_option_exists():
     parsers = subcommand_parsers()
-    sources = {"README.md": readme_text(), **package_texts()}
+    sources = {**page_texts(), **package_texts()}
     problems = []
     for where, text in sources.items():
         for command in inline_mentions(text) + code_block_commands(text):

@@ -20,7 +20,7 @@ pytestmark = pytest.mark.slow
 DETECTION_DEADLINE_S = 0.5  # a transition must fire within this after its physical event
 # Load-Lift's memorized RA is the film's reading of the squeeze, and Eq. 3 ignores lag: it
 # matches while the grip force still rises, 32-117 ms before it reaches 90 % of the command
-# across the committed sweep (README, Results). Reach-Load and Place-Unload come after theirs.
+# across the committed sweep (docs/results.md, Table I). Reach-Load and Place-Unload come after theirs.
 EARLIEST_BEFORE_EVENT_S = {"load_lift": 0.12}
 SETTLE_S = 0.5  # stretches without a transition start this long after the motion starts
 

@@ -34,7 +34,7 @@ def test_tegrasp_trial_json_at_the_expected_position(tmp_path, capsys):
     assert result["corrective_actions"] == []
     # The film's Load-Lift template is the squeeze, and Eq. 3 ignores lag: the event matches
     # while the grip force is still rising, 32-117 ms before it reaches 90 % of the command
-    # across the committed sweep (README, Results). By the 10 ms rule that one transition is
+    # across the committed sweep (docs/results.md, Table I). By the 10 ms rule that one transition is
     # a false trigger; Reach-Load and Place-Unload come after their physical events.
     load_lift = next(e["t"] for e in result["transitions"] if e["to"] == "Lift")
     early_s = result["physical_events"]["load_lift"] - load_lift

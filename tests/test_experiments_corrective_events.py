@@ -107,7 +107,7 @@ def test_the_hit_event_matches_a_held_out_hit_and_no_normal_hold():
 
 
 def test_the_slip_event_also_matches_a_normal_lift():
-    # Why lift_load stays heuristic (README): Eq. 3 is scale invariant, and the film's
+    # Why lift_load stays heuristic (docs/controller.md): Eq. 3 is scale invariant, and the film's
     # signal around a slip has the shape of any lift's; the slip differs in amplitude.
     assert _match_rises("normal_lift", "lift_load", CONFIG.lift_load_event_thresholds).size
 

@@ -46,7 +46,7 @@ def test_each_controller_has_the_nine_markers(records):
 def test_the_memorized_failures_are_where_the_readme_says(records):
     failed = [(r.object_name, r.marker_dx_mm, r.marker_dy_mm) for r in offset_rows(records)
               if r.controller == "memorized" and r.hold_successes < r.trials]
-    # In the faithful world no memorized trial failed (README, Results).
+    # In the faithful world no memorized trial failed (docs/results.md, Table I).
     assert failed == []
     assert "| -10 | -15 | 3/3 | 3/3 |" in offset_markdown(offset_rows(records))
 

@@ -1,15 +1,18 @@
-"""The README's results table from sweep records: success beside false triggers and
-latency, made by the reports, and the README's copy kept equal to its results folder."""
+"""The results table from sweep records: success beside false triggers and latency, made
+by the reports; the results page (docs/results.md) kept equal to its results folders and
+naming the commit of each folder's records."""
 
 import pathlib
 
 import pytest
 
 from tegrasp_drake.experiments.sweep import SweepSpec, expand_trials, make_record, write_reports
-from tegrasp_drake.experiments.sweep.summary import (PAPER_ROW_NAME, readme_with_summaries,
-                                                     summary_rows)
+from tegrasp_drake.experiments.sweep.summary import (PAPER_ROW_NAME, RESULTS_BLOCK, RECORDS_LINE,
+                                                     last_commit, page_with_record_commits,
+                                                     readme_with_summaries, summary_rows)
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+RESULTS_PAGE = ROOT / "docs" / "results.md"
 
 
 def result(hold, *, latency=None, false_triggers=0):
@@ -75,12 +78,36 @@ def test_the_reports_write_the_summary(tmp_path):
     assert "| memorized triggers | 0 % (0/1) |" in (tmp_path / "summary.md").read_text()
 
 
-def test_readme_results_table_is_the_one_of_its_results_folder():
-    readme = ROOT / "README.md"
-    text = readme.read_text(encoding="utf-8")
-    assert readme_with_summaries(text, ROOT) == text, (
-        "the README's results table differs from its folder's records: run "
-        "`python analysis/update_readme_results.py`")
+def test_the_results_pages_tables_are_those_of_their_results_folders():
+    text = RESULTS_PAGE.read_text(encoding="utf-8")
+    folders = [m["folder"] for m in RESULTS_BLOCK.finditer(text)]
+    assert "../analysis/results_seed0" in folders and len(folders) >= 7
+    assert readme_with_summaries(text, RESULTS_PAGE.parent) == text, (
+        "a table of docs/results.md differs from its folder's records: run "
+        "`python analysis/update_results_page.py`")
+
+
+def test_the_results_page_names_the_commit_of_each_tables_records():
+    text = RESULTS_PAGE.read_text(encoding="utf-8")
+    named = {m["path"] for m in RECORDS_LINE.finditer(text)}
+    for match in RESULTS_BLOCK.finditer(text):
+        assert match["folder"].removeprefix("../") + "/trials" in named, match["folder"]
+    if last_commit(ROOT, "analysis/results_seed0/trials") is None:
+        pytest.skip("not a git checkout: the commits cannot be read")
+    assert page_with_record_commits(text, ROOT) == text, (
+        "docs/results.md names another commit than the last one of some records: run "
+        "`python analysis/update_results_page.py`")
+
+
+def test_a_stale_commit_is_replaced_and_an_abbreviation_of_the_right_one_kept():
+    def commit_of(root, path):
+        return {"a/trials": ("0123456789abcdef", "0123456", "2026-11-24")}.get(path)
+    stale = "Records `a/trials`, commit `fedcba9` (2026-01-01).\nrecords `b/trials`, commit\n`1234567` (2026-01-02)."
+    assert page_with_record_commits(stale, ".", commit_of) == (
+        "Records `a/trials`, commit `0123456` (2026-11-24).\n"
+        "records `b/trials`, commit\n`1234567` (2026-01-02).")
+    kept = "Records `a/trials`, commit `01234567` (2026-11-24)"
+    assert page_with_record_commits(kept, ".", commit_of) == kept
 
 
 def test_a_readme_without_the_block_or_records_is_an_error(tmp_path):

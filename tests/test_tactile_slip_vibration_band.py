@@ -78,7 +78,7 @@ def film_reading_of_a_squeeze(grip_n: float, ramp_s: float, duration_s: float) -
 
 
 def test_the_films_reading_of_a_squeeze_stays_below_the_slip_threshold():
-    # The default grip, 25 N reached in about 0.45 s (README, "Vibration (RA) model"): the
+    # The default grip, 25 N reached in about 0.45 s (docs/model.md, "Vibration (RA) model"): the
     # film reads about 180 m/s^2; the slip band reads 0.75 m/s^2 at the ramp's corners.
     film = film_reading_of_a_squeeze(25.0, 0.45, 1.5)
     assert film.max() > 150.0

@@ -1,4 +1,4 @@
-"""How well the corrective triggers detect their situations, from recorded logs (issue #14):
+"""How well the corrective triggers detect their situations, from recorded logs:
 the memorized corrective events (Eq. 3 at any thresholds, experiments/detection_quality.py)
 and the heuristic triggers they would replace, on the same spans; and the rule that
 chooses a corrective event's thresholds (choose_centred_thresholds).

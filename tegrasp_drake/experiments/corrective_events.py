@@ -1,4 +1,4 @@
-"""Memorized corrective events (issue #14): the tactile events of the situations that call
+"""Memorized corrective events: the tactile events of the situations that call
 for a corrective action, recorded in simulation and matched by the same Eq. 3 machinery as
 the grasp transitions, so that Lift-Load and Avoid can be triggered by a memorized event
 instead of the heuristic thresholds (controller.memorized_corrective_events).
@@ -17,7 +17,7 @@ not react, so the situation plays out in full) of a perturbed scene, CORRECTIVE_
   slip  a lowered object friction (and once a heavier object): the grip's friction
         2 mu_pair F_grip falls below the weight m g, so the pads slide up the object from
         the start of Lift. The pad-object pair's mu_pair = 2 mu_pad mu / (mu_pad + mu)
-        with the pad's mu_pad = 4.42 (README, "Friction by material pair"): object friction
+        with the pad's mu_pad = 4.42 (docs/model.md, "Friction by material pair"): object friction
         0.010 -> mu_pair 0.020, 1.0 N of friction against the box's 1.47 N; 0.012 -> 1.2 N;
         0.014 -> 1.4 N; 0.020 with 0.25 kg -> 2.0 N against 2.45 N.
 
@@ -31,7 +31,7 @@ Physical events (simulation truth, like grasp_outcome.physical_events):
 
 Window: PRE_TRANSITION_S = 0.45 s into the 0.5 s window, as the ensemble's Reach-Load
 (ensemble_events.py): the live window looks most like it about 50 ms after the physical
-event, within issue #14's 60 ms latency target. Combination: the mean of the template runs
+event, within the 60 ms latency target (LATENCY_TARGET_S, detection_quality.py). Combination: the mean of the template runs
 (the ensemble's rule and its reasons, ensemble_events.py). The two hit directions (+y, -y)
 mirror each other between the pads; their mean matches either side's hit.
 

@@ -1,4 +1,4 @@
-"""How well a memorized event detects its transition, from recorded logs (issue #14):
+"""How well a memorized event detects its transition, from recorded logs:
 detection, false triggers and latency at any pair of Eq. 3 thresholds, without simulating
 again.
 
@@ -18,7 +18,7 @@ ROC-style curve: the rates of detected and false spans over a range of threshold
 and RA thresholds scaled together from the paper's 0.9 / 0.7). Threshold choice
 (choose_thresholds), per transition: among the pairs with no false trigger on the spans
 given and the highest detection rate, those whose median latency meets LATENCY_TARGET_S
-(issue #14's 60 ms) if any, else those of the lowest median latency; of these, the highest
+(60 ms) if any, else those of the lowest median latency; of these, the highest
 thresholds (SA + RA: the widest margin above what the spans scored before their events).
 """
 

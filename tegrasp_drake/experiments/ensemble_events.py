@@ -1,4 +1,4 @@
-"""Memorized events from an ensemble of randomised ideal grasps (issue #14), for the
+"""Memorized events from an ensemble of randomised ideal grasps, for the
 taxel_aware controller; the paper's one-clean-run events (record_events.py) stay as they are.
 
 Each object's ideal open-loop grasp (Sec. III-A) is simulated `size` times, each with its
@@ -9,12 +9,12 @@ transition are combined by their mean.
 Ranges (uniform on +-bound; ENSEMBLE_RANGES), and why:
   placement +-2 mm, yaw +-5 deg   the sweep's placement jitter (sweep/spec.py
                                   RandomisationConfig: an object set by hand on a marker) for
-                                  x and y; yaw widened from the sweep's 3 deg toward the
-                                  issue's yawed box (10 deg) while keeping each run an
-                                  ideal, centred grasp
+                                  x and y; yaw widened from the sweep's 3 deg toward a
+                                  yawed box (10 deg) while keeping each run an ideal,
+                                  centred grasp
   mass, friction +-10 %           the sweep's bounds: the spread between nominally equal
                                   objects and of a friction estimate from handbook ranges
-                                  (README, "Friction by material pair")
+                                  (docs/model.md, "Friction by material pair")
   sensor noise                    on: the taxels' 5 mN and the film's noise, each run its seed
 Seeds: TRAINING_BASE_SEED + run, apart from every sweep's seeds (a sweep's seed is a CRC of
 its base seed, object, marker and attempt; base seeds here start at 1_000_000).
@@ -29,7 +29,7 @@ K correlations per sample in the control loop; one mean costs the matcher nothin
 
 Windows: Reach-Load is cut with its physical event PRE_TRANSITION_S["reach_load"] = 0.45 s
 into the 0.5 s window, so the live window looks most like it 50 ms after first contact
-(the paper's centred window matches 0.25 s after; issue #14's target is 60 ms). The other
+(the paper's centred window matches 0.25 s after; the latency target is 60 ms). The other
 transitions keep the paper's 0.25 s.
 """
 

@@ -137,8 +137,7 @@ def physical_events(log, grip_force: float, object_config=None) -> dict:
 def lifted_mask(log, object_config=None) -> np.ndarray:
     """At each logged state: the object's lowest point (lowest_point_heights) is more than
     LIFTED_HEIGHT_M above where it rested at the start. By the lowest point, not the origin:
-    a 45 mm box knocked onto its side raises its origin 22.5 mm while lying on the table
-    (issue #14's second grid did it)."""
+    a 45 mm box knocked onto its side raises its origin 22.5 mm while lying on the table."""
     low = lowest_point_heights(log.object_state, object_config)
     return low - low[0] > LIFTED_HEIGHT_M
 

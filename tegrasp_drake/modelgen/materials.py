@@ -26,7 +26,7 @@ The geometry values below are the weighted least-squares fit in reciprocals (wei
 pad-object 10, object-table 3, finger-object 1, object-object 0.3), rounded to 3 digits:
 the grasp pairs (pad-object) land within 2 %, the others within about 10 % (the worst,
 cardboard on cardboard, 10.4 % low). `MATERIAL_PAIRS` lists every pair with its intended
-value; the README's "Friction by material pair" shows the table with the results.
+value; docs/model.md, "Friction by material pair", shows the table with the results.
 """
 
 import dataclasses

@@ -74,7 +74,7 @@ TEXTURE_FLOOR_MPS2 = 1e-6
 @dataclasses.dataclass
 class VibrationSensorConfig:
     """The PVDF film of each pad (RA channel source). Sources and reasoning of every number:
-    the README's section "Vibration (RA) model"."""
+    docs/model.md, "Vibration (RA) model"."""
     sample_rate_hz: float = 1000.0  # RA output rate (peak-hold over each period)
     noise_std_mps2: float = 0.05  # per sample, acceleration-equivalent
     highpass_cutoff_hz: float = 2.0  # charge amplifier corner 1 / (2 pi R_f C_f)
@@ -82,7 +82,7 @@ class VibrationSensorConfig:
     # woven fabric of about 0.5 mm pitch with a few micrometres of relief. 0 disables.
     slip_texture_height_m: float = 5e-6
     slip_texture_period_m: float = 5e-4
-    # The fingertip's first structural mode (an estimate: see the README).
+    # The fingertip's first structural mode (an estimate: see docs/model.md).
     mode_frequency_hz: float = 400.0
     mode_damping_ratio: float = 0.05
     mode_mass_kg: float = 0.024

@@ -1,6 +1,6 @@
 """SlipVibrationBand: the pads' vibration in the band where slip rings, for Lift-Load.
 
-The PVDF film reads the rate of change of the pad's stress (README, "Vibration (RA)
+The PVDF film reads the rate of change of the pad's stress (docs/model.md, "Vibration (RA)
 model"), so a grip that is still rising, the lift's load and the charge amplifier's decay
 after them read too: several m/s^2 to 165 m/s^2, below about 10 Hz (a 0.45 s squeeze, a
 0.3 s lift acceleration, the 2 Hz high-pass's 80 ms decay). Slip rings higher: the pad

@@ -1,5 +1,5 @@
 """Detection quality per trigger and controller, and paired comparisons of controllers, from
-a sweep's records (issue #14).
+a sweep's records.
 
 Per event transition (Reach-Load, Load-Lift, Place-Unload) and controller, over the trials
 that reached the transition's source mode:

@@ -1,5 +1,5 @@
-"""Everything a results folder's records yield: Table I, statistics, the README's results
-table, success per offset, and the figures (success maps, Table I against the paper,
+"""Everything a results folder's records yield: Table I, statistics, the results table
+(summary.md), success per offset, and the figures (success maps, Table I against the paper,
 detection latencies)."""
 
 from pathlib import Path

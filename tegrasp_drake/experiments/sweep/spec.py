@@ -34,8 +34,8 @@ from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
 
-# The controllers the trial function knows (issue #5): the paper's memorized triggers,
-# heuristic thresholds in the style of Romano et al. 2011, and open loop.
+# The controllers the trial function knows: the paper's memorized triggers, heuristic
+# thresholds in the style of Romano et al. 2011, open loop, and taxel_aware.
 CONTROLLERS = controller_config.CONTROLLERS
 # A spec that names no controllers runs the paper's comparison (Table I): these three.
 PAPER_CONTROLLERS = ("memorized", "heuristic", "open_loop")

@@ -1,9 +1,10 @@
-"""The results table of the README: per controller, Table I's average success rates beside
-its false-trigger rate and its detection latencies, and the paper's row.
+"""The results table of a sweep: per controller, Table I's average success rates beside its
+false-trigger rate and its detection latencies, and the paper's row.
 
 It is made from a results folder's records only (`write_summary`, called by write_reports),
-so re-running a sweep regenerates it; `analysis/update_readme_results.py` copies it into
-the README between the markers that name the folder.
+so re-running a sweep regenerates it; `analysis/update_results_page.py` copies it into the
+results page (docs/results.md) between the markers that name the folder, and names there
+the commit that committed each folder's records.
 
 Success: Table I's average row (the mean of the objects' rates, counts pooled; table.py).
 False triggers: trials with at least one event-triggered transition more than
@@ -15,6 +16,7 @@ neither.
 """
 
 import re
+import subprocess
 from pathlib import Path
 
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
@@ -29,10 +31,14 @@ CONTROLLER_NAMES = {"memorized": "memorized triggers", "heuristic": "heuristic t
 PAPER_ROW_NAME = "the paper (real robot, memorized)"
 _SUCCESS_HEADERS = ("well-placed ~Hold", "~Unload", "misplaced ~Hold", "~Unload")
 _NONE = "–"
-# The README's block: `<!-- results table from FOLDER -->`, the table, `<!-- end ... -->`;
-# FOLDER is relative to the README's folder.
-README_BLOCK = re.compile(r"(<!-- results table from (?P<folder>\S+) -->\n)(?P<table>.*?)"
+# A page's block: `<!-- results table from FOLDER -->`, the table, `<!-- end ... -->`;
+# FOLDER is relative to the page's folder.
+RESULTS_BLOCK = re.compile(r"(<!-- results table from (?P<folder>\S+) -->\n)(?P<table>.*?)"
                           r"(<!-- end of results table -->)", re.DOTALL)
+# A page's line naming the commit of some records: "Records `PATH`, commit `HASH`
+# (YYYY-MM-DD)", PATH relative to the repository's root.
+RECORDS_LINE = re.compile(r"[Rr]ecords\s+`(?P<path>[^`]+)`,\s+commit\s+`(?P<commit>[0-9a-f]{7,40})`"
+                          r"\s+\((?P<date>\d{4}-\d{2}-\d{2})\)")
 
 
 def _transition_title(name: str) -> str:
@@ -88,7 +94,7 @@ def summary_rows(records) -> tuple[list[str], list[list[str]]]:
 
 
 def summary_markdown(records) -> str:
-    """The results table as Markdown (the README's block between its markers)."""
+    """The results table as Markdown (a page's block between its markers)."""
     header, rows = summary_rows(records)
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(cells) + " |" for cells in rows]
@@ -103,15 +109,48 @@ def write_summary(records, out_dir) -> list[Path]:
 
 
 def readme_with_summaries(text: str, root) -> str:
-    """`text` (a README) with each results-table block regenerated from the results folder
-    its marker names (relative to `root`). ValueError when there is no block."""
+    """`text` (a Markdown page) with each results-table block regenerated from the results
+    folder its marker names (relative to `root`, the page's folder). ValueError when there
+    is no block."""
     def regenerate(match):
         folder = Path(root) / match["folder"]
         records = load_records(folder).records.values()
         if not records:
-            raise ValueError(f"{folder}: no trial records for the README's results table")
+            raise ValueError(f"{folder}: no trial records for the page's results table")
         return match[1] + summary_markdown(records) + match[4]
-    if not README_BLOCK.search(text):
+    if not RESULTS_BLOCK.search(text):
         raise ValueError("no `<!-- results table from FOLDER -->` ... "
                          "`<!-- end of results table -->` block")
-    return README_BLOCK.sub(regenerate, text)
+    return RESULTS_BLOCK.sub(regenerate, text)
+
+
+def last_commit(root, path) -> tuple[str, str, str] | None:
+    """(full hash, short hash, date YYYY-MM-DD) of the last commit that changed `path`
+    (relative to `root`, a git checkout); None without git, outside a checkout, or for a
+    path no commit holds."""
+    try:
+        done = subprocess.run(["git", "-C", str(root), "log", "-1", "--format=%H %h %ad",
+                               "--date=short", "--", str(path)],
+                              capture_output=True, text=True, timeout=60)
+    except OSError:
+        return None
+    words = done.stdout.split()
+    return tuple(words) if done.returncode == 0 and len(words) == 3 else None
+
+
+def page_with_record_commits(text: str, root, commit_of=last_commit) -> str:
+    """`text` with each "Records `PATH`, commit `HASH` (DATE)" naming the last commit that
+    changed PATH (`commit_of(root, PATH)`); a HASH that abbreviates that commit is kept, and
+    a PATH without one (no git) is left as it is."""
+    def renamed(match):
+        found = commit_of(root, match["path"])
+        if found is None:
+            return match[0]
+        full, short, date = found
+        commit = match["commit"] if full.startswith(match["commit"]) else short
+        start = match.start()
+        (c0, c1), (d0, d1) = match.span("commit"), match.span("date")
+        line = match[0]
+        return (line[:c0 - start] + commit + line[c1 - start:d0 - start] + date
+                + line[d1 - start:])
+    return RECORDS_LINE.sub(renamed, text)

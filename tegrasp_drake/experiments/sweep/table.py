@@ -37,7 +37,7 @@ CONTROLLER_TITLES = {
     "memorized": "memorized triggers (the paper's method)",
     "heuristic": "heuristic thresholds (Romano et al. 2011 style)",
     "open_loop": "open loop",
-    "taxel_aware": "taxel-aware corrections, ensemble events (issue #14)",
+    "taxel_aware": "taxel-aware corrections, ensemble events",
 }
 _OBJECT_TITLES = {"box": "Box", "thick_cylinder": "Thick cylinder",
                   "thin_cylinder": "Thin cylinder", AVERAGE: "Average"}

@@ -24,8 +24,8 @@ receiver puts `a` in x of the pad's 3-vector and zeros in y, z, so Eq. 2 gives |
 The default gains are placeholders of the right order (1 mN per count, 30000-count
 baseline); a real pad's numbers go in a YAML file loaded with `LoadTactileCalibration`. The
 default piezo gain is the simulated film's, 1 / S = 253 (m/s^2)/V with S = G_Q / (w^2 C_f)
-its mid-band sensitivity to base acceleration (simulation/pad_vibration_sensor.py, README
-"Vibration (RA) model"), so that a recorded simulation replays through the emulated myRIO
+its mid-band sensitivity to base acceleration (simulation/pad_vibration_sensor.py,
+docs/model.md "Vibration (RA) model"), so that a recorded simulation replays through the emulated myRIO
 within the +-10 V input range. For a real pad, S is measured: shake the finger at a known
 acceleration between the amplifier's high-pass and the fingertip's mode (e.g. 10-100 Hz)
 and read the voltage.

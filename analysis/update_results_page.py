@@ -1,0 +1,43 @@
+"""Regenerate the results page's tables from the results folders their markers name
+(`<!-- results table from ../analysis/results_seed0 -->`) and name the commit of each
+folder's records ("Records `analysis/results_seed0/trials`, commit `...` (date)"), after a
+sweep was re-run and its records committed.
+
+    python analysis/update_results_page.py [docs/results.md]
+"""
+
+import argparse
+import os
+import pathlib
+import sys
+import tempfile
+
+from tegrasp_drake.experiments.sweep import readme_with_summaries
+from tegrasp_drake.experiments.sweep.summary import page_with_record_commits
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+PAGE = ROOT / "docs" / "results.md"
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("page", nargs="?", default=str(PAGE))
+    args = parser.parse_args(argv)
+    path = pathlib.Path(args.page)
+    text = path.read_text(encoding="utf-8")
+    try:
+        updated = page_with_record_commits(readme_with_summaries(text, path.parent), ROOT)
+    except ValueError as e:
+        print(f"{path}: {e}", file=sys.stderr)
+        return 1
+    if updated != text:  # a new file renamed into place: an interruption leaves the old one
+        with tempfile.NamedTemporaryFile("w", encoding="utf-8", dir=path.parent,
+                                         suffix=".tmp", delete=False) as f:
+            f.write(updated)
+        os.replace(f.name, path)
+    print(f"{path}: results {'updated' if updated != text else 'unchanged'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
