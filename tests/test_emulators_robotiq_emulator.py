@@ -69,3 +69,48 @@ def test_model_major_fault_stops_the_fingers_until_reactivation():
     assert model.status(0.5)[units.STATUS_FLT] == 0x0E
     _activate(model, 0.5)
     assert model.status(0.6)[units.STATUS_FLT] == 0
+
+
+def test_model_go_to_written_with_the_activation_is_carried_out_after_it():
+    # One register, rACT | rGTO (0x0900), as pyrobotiqgripper's activate() writes it.
+    model = _model(activation_duration=0.5)
+    model.write(1000, command_registers(0, 0, 0, activate=False, go_to=False), 0.0)
+    model.write(1000, [0x0900], 0.0)
+    activating = model.status(0.4)
+    assert activating[units.STATUS_STA] == units.ActivationStatus.ACTIVATING
+    assert activating[units.STATUS_GTO] == 0
+    assert activating[units.STATUS_FLT] == units.FAULT_ACTION_DELAYED
+    active = model.status(0.6)
+    assert active[units.STATUS_STA] == units.ActivationStatus.ACTIVE
+    assert active[units.STATUS_GTO] == 1  # the echo of rGTO
+    assert active[units.STATUS_FLT] == 0
+    model.write(1001, [60, 0xFFFF], 0.6)  # rPR, then rSP | rFR, rGTO still 1
+    assert model.status(2.0)[units.STATUS_PO] == 60
+
+
+def test_model_go_to_stays_delayed_if_rgto_is_cleared_during_activation():
+    model = _model(activation_duration=0.5)
+    model.write(1000, [0x0900, 60, 0xFFFF], 0.0)
+    model.write(1000, [0x0100], 0.1)
+    status = model.status(1.0)
+    assert status[units.STATUS_GTO] == 0 and status[units.STATUS_FLT] == 0
+    assert status[units.STATUS_PO] == units.POSITION_OPEN_BYTE
+
+
+def test_model_fingers_stop_at_the_ends_of_the_stroke():
+    model = _model(activation_duration=0.0)
+    _activate(model, 0.0)
+    model.write(1000, command_registers(255, 255, 10), 0.0)
+    closed = model.status(2.0)
+    assert closed[units.STATUS_PO] == units.POSITION_CLOSED_BYTE
+    assert closed[units.STATUS_OBJ] == units.ObjectStatus.AT_REQUESTED_POSITION
+    assert closed[units.STATUS_PR] == 255
+    model.write(1000, command_registers(0, 255, 10), 2.0)
+    opened = model.status(4.0)
+    assert opened[units.STATUS_PO] == units.POSITION_OPEN_BYTE
+    assert opened[units.STATUS_OBJ] == units.ObjectStatus.AT_REQUESTED_POSITION
+
+
+def test_model_rejects_a_write_outside_the_command_registers():
+    with pytest.raises(ValueError, match="registers 1000-1002"):
+        _model().write(1002, [0, 0], 0.0)

@@ -54,6 +54,18 @@ def test_activation_sequence_completes(emulator):
         assert client.counters().errors == 0
 
 
+def test_status_read_with_function_3_follows_the_gripper(emulator):
+    # Some manual versions and firmware read the status as holding registers (function 3).
+    with RobotiqModbusClient(RobotiqModbusConfig(port=emulator.port, read_function=3,
+                                                 activation_timeout=2.0)) as client:
+        client.wait_until_active(3.0)
+        client.set_command([128, 255, 100])
+        assert wait_for(lambda: status_of(client)[units.STATUS_OBJ]
+                        == units.ObjectStatus.AT_REQUESTED_POSITION)
+        assert status_of(client)[units.STATUS_PO] == 128
+        assert client.counters().errors == 0
+
+
 def test_activation_timeout_names_the_port():
     config = RobotiqEmulatorConfig(activation_duration=60.0)
     with RobotiqEmulator(config) as emulator, RobotiqModbusClient(RobotiqModbusConfig(

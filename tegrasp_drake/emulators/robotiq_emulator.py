@@ -10,12 +10,21 @@ on the two ends of a `NullModem` (two ptys joined by a relay thread); the driver
 The model (times from `time.monotonic()`, advanced on every access):
 - a rising edge of rACT starts activation (gSTA = 1) which completes (gSTA = 3, fingers
   open) after `activation_duration`; rACT = 0 resets everything, faults included;
-- with rGTO = 1 the fingers move towards rPR at the rSP speed (robotiq_units), and stop
-  on an emulated object at `object_opening` [m] while closing (gOBJ = 2) or at the
-  request (gOBJ = 3); gPO is the rounded position, gCU a current [x 10 mA] that grows
-  with rFR while gripping;
-- rGTO = 1 before activation gives gFLT 0x07, during activation 0x05; an injected fault
-  code >= 0x0A (major) stops the fingers until the next activation.
+- gGTO is the echo of rGTO (manual, "Gripper status"), 0 while activation runs: rGTO = 1
+  during activation (as in one write of rACT and rGTO) is the manual's fault 0x05, "action
+  delayed", and the go-to is carried out when activation completes (gGTO = 1, gFLT = 0);
+- with rGTO = 1 the fingers move towards rPR at the rSP speed (robotiq_units), within the
+  stroke (gPO POSITION_OPEN_BYTE .. POSITION_CLOSED_BYTE: rPR 0 stops fully open, 255
+  fully closed, both gOBJ = 3), and stop on an emulated object at `object_opening` [m]
+  while closing (gOBJ = 2) or at the request (gOBJ = 3); gPR echoes the rPR of the last
+  go-to; gPO is the rounded position, gCU a current [x 10 mA] that grows with rFR while
+  gripping;
+- rGTO = 1 without rACT gives gFLT 0x07; an injected fault code >= 0x0A (major) stops the
+  fingers until the next activation.
+
+Every command write (function 16, or the write half of function 23, which pymodbus does
+before its read half) and every status read (function 4, or 3, or 23's read half) runs the
+model, so a status read in the same transaction as a command already reflects it.
 """
 
 import asyncio
@@ -80,9 +89,14 @@ class RobotiqGripperModel:
 
     def write(self, address: int, values, now: float):
         """A write of command registers (any of 1000-1002)."""
+        offset = address - registers.COMMAND_ADDRESS
+        if not (0 <= offset and offset + len(values) <= registers.REGISTER_COUNT):
+            raise ValueError(
+                f"command write of {len(values)} registers at {address} leaves registers "
+                f"{registers.COMMAND_ADDRESS}-"
+                f"{registers.COMMAND_ADDRESS + registers.REGISTER_COUNT - 1}: write within them")
         with self._lock:
             self._advance(now)
-            offset = address - registers.COMMAND_ADDRESS
             self._command[offset:offset + len(values)] = [int(v) for v in values]
             self._apply(registers.decode_command_registers(self._command), now)
 
@@ -124,12 +138,19 @@ class RobotiqGripperModel:
             s["gGTO"] = 0
             return
         if s["gSTA"] != ActivationStatus.ACTIVE:
+            # Carried out when activation completes (_advance), as the manual's 0x05 says.
             s["gFLT"] = max(s["gFLT"], units.FAULT_ACTION_DELAYED)
             return
-        if not s["gGTO"] or command["rPR"] != self._target:
+        self._go_to(command)
+
+    def _go_to(self, command: dict):
+        """rGTO = 1 while activated: gGTO echoes it and the fingers head for rPR."""
+        s = self._status
+        if not s["gGTO"] or command["rPR"] != s["gPR"]:
             s["gOBJ"] = ObjectStatus.MOVING
         s.update(gGTO=1, gPR=command["rPR"])
-        self._target = float(command["rPR"])
+        self._target = min(max(float(command["rPR"]), units.POSITION_OPEN_BYTE),
+                           units.POSITION_CLOSED_BYTE)
         self._speed = units.position_bytes_per_second(command["rSP"])
         self._force = command["rFR"]
 
@@ -137,12 +158,18 @@ class RobotiqGripperModel:
         """Integrates the finger motion from the last access to `now`."""
         dt, self._time = max(now - self._time, 0.0), max(now, self._time)
         s = self._status
-        if (s["gSTA"] == ActivationStatus.ACTIVATING
-                and now - self._activation_start >= self._config.activation_duration):
+        if s["gSTA"] == ActivationStatus.ACTIVATING:
+            completed_at = self._activation_start + self._config.activation_duration
+            if now < completed_at:
+                return
             s["gSTA"] = ActivationStatus.ACTIVE
             self._position = self._target = units.POSITION_OPEN_BYTE
             if s["gFLT"] == units.FAULT_ACTION_DELAYED:
                 s["gFLT"] = 0
+            command = registers.decode_command_registers(self._command)
+            if command["rGTO"]:
+                self._go_to(command)
+            dt = min(dt, now - completed_at)  # the fingers move from completion on
         if not (s["gGTO"] and s["gOBJ"] == ObjectStatus.MOVING and self._can_move()):
             return
         closing = self._target > self._position
