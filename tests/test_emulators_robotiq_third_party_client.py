@@ -9,14 +9,12 @@ it serves the project's own driver; the client opens the pty's tty name.
 
 import logging
 
+import pyrobotiqgripper  # a test-only dependency (the `test` extra): never skipped
 import pytest
 
 from tegrasp_drake.rig import robotiq_units as units
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator, RobotiqEmulatorConfig
 from tegrasp_drake.experiments.scenario import LoadScenario
-
-pyrobotiqgripper = pytest.importorskip(
-    "pyrobotiqgripper", reason="test-only dependency: pip install -e '.[test]'")
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
 
