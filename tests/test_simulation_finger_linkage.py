@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import EventStatus
 
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.modelgen import finger_linkage as linkage
@@ -124,3 +125,25 @@ def test_the_prismatic_hand_yields_to_the_same_push():
     before = samples[int(1.15 / 0.005)][2].translation()[1]
     after = max(s[2].translation()[1] for s in samples[int(1.2 / 0.005):])
     assert after - before > 0.5e-3
+
+
+@pytest.mark.slow
+def test_the_loops_stay_closed_through_a_whole_trial():
+    from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, MakeSimulator
+    from tegrasp_drake.experiments.scenario import LoadScenario
+    scenario = LoadScenario(overrides=["gripper.model=linkage"])
+    grasp = MakeGraspDiagram(scenario, controller="open_loop", log=False)
+    simulator = MakeSimulator(grasp.diagram, scenario)
+    plant = grasp.station.GetSubsystemByName("plant")
+    gripper = plant.GetModelInstanceByName("robotiq_2f85")
+    plant_context = plant.GetMyContextFromRoot(simulator.get_context())
+    worst = []
+
+    def monitor(context):
+        worst.append(loop_closure_error_m(plant, plant_context, gripper))
+        return EventStatus.Succeeded()
+
+    simulator.set_monitor(monitor)
+    simulator.AdvanceTo(12.5)  # reach, grip, lift, hold, place, release
+    assert len(worst) > 10000  # every plant step
+    assert max(worst) < 0.1e-3

@@ -14,8 +14,11 @@ GRIP_FORCE = 30.0
 
 
 def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
-    """Starts with the open pads around the object, closes at GRIP_FORCE; returns samples."""
-    scenario = LoadScenario(overrides=[
+    """Starts with the open pads around the object, closes at GRIP_FORCE; returns samples.
+    On the prismatic hand: these check the taxels' integration of the pressure field, which
+    needs pads that stay exactly parallel (the linkage's constraints tilt a pressed pad by
+    a few hundredths of a degree, a 3 % gradient across a 4 mm elastomer)."""
+    scenario = LoadScenario(overrides=["gripper.model=prismatic",
         "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]",
         f"object.name={object_name}"])
     station = MakeGraspStation(scenario)

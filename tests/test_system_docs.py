@@ -61,6 +61,9 @@ from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
 from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSensorConfig,
                                                            finger_force_indices)
 from tegrasp_drake.simulation.station import pad_geometries
+from tegrasp_drake.simulation.gripper_bench import PadPush
+from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
+from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
 
 # Modules whose systems have no block yet: simulation/ is being rewritten on other
 # branches. Pending issue #10; the lead removes each entry (and adds the systems to
@@ -68,7 +71,6 @@ from tegrasp_drake.simulation.station import pad_geometries
 PENDING_MODULES = (
     "tegrasp_drake.simulation.object_force_pulse",
     "tegrasp_drake.simulation.pad_slip_vibration",
-    "tegrasp_drake.simulation.sim_robotiq_driver",
     "tegrasp_drake.simulation.tactile_pads",
 )
 
@@ -78,6 +80,17 @@ EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 @functools.cache
 def box_scenario():
     return LoadScenario(name="box")
+
+
+@functools.cache
+def gripper_plant():
+    """A finalized plant holding only the (linkage) gripper, and its pads."""
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), builder)
+    (gripper,) = paths.make_parser(plant).AddModels(
+        url="package://tegrasp/robotiq_2f85/robotiq_2f85_linkage.sdf")
+    plant.Finalize()
+    return plant, pad_geometries(plant, scene_graph, gripper)
 
 
 def pad_films() -> PadFilms:
@@ -137,6 +150,9 @@ CONSTRUCTORS = {
     HardwareStation: hardware_station,
     FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
     PadFilms: pad_films,
+    PadNormalForces: lambda: PadNormalForces(plant=gripper_plant()[0], pads=gripper_plant()[1]),
+    PadPush: lambda: PadPush(body_index=0, p_BP=[0.0, 0.0, 0.0], force_n=50.0, start_s=1.0),
+    SimRobotiqDriver: lambda: SimRobotiqDriver(config=GripperDriverConfig()),
     TaxelForceDisplay: lambda: TaxelForceDisplay(meshcat=Meshcat(), pads={},
                                                  config=TaxelForceDisplayConfig()),
 }

@@ -41,9 +41,20 @@ class BenchObstacle:
     friction: float = 0.5
 
 
-class _PadPush(LeafSystem):
-    """A constant force [N] on the left finger's pad centre along its outward normal (+y
-    of the base on the pin) from time start_s on."""
+class PadPush(LeafSystem):
+    """A constant force [N] on the left finger's pad centre along the base's +y (its
+    outward normal on the pin) from time start_s [s] on.
+
+    .. pydrake_system::
+
+        name: PadPush
+        output_ports:
+        - spatial_forces
+
+    Ports:
+        spatial_forces: (abstract list of ExternallyAppliedSpatialForce) for the plant's
+            applied_spatial_force input.
+    """
 
     def __init__(self, *, body_index, p_BP, force_n: float, start_s: float):
         super().__init__()
@@ -124,7 +135,7 @@ def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConf
     builder.Connect(plant.get_body_poses_output_port(), pad_forces.GetInputPort("body_poses"))
     if push_n:
         left = pads["left"]
-        push = builder.AddSystem(_PadPush(body_index=left.body_index,
+        push = builder.AddSystem(PadPush(body_index=left.body_index,
                                           p_BP=left.X_BP.translation(), force_n=push_n,
                                           start_s=push_start_s))
         builder.Connect(push.get_output_port(), plant.get_applied_spatial_force_input_port())
