@@ -140,3 +140,22 @@ def test_cached_gripper_command_equals_the_computed_one():
     for request in [(0.0, 0.05, 20.0), (0.085, 0.15, 235.0), (0.04, 0.02, 61.3)]:
         assert gripper_command(*request) == gripper_command.__wrapped__(*request)
         assert gripper_command(*request) == gripper_command(*request)
+
+
+def test_simulated_and_emulated_grippers_report_the_same_current_when_gripping():
+    from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulatorConfig, RobotiqGripperModel
+    force_byte = 128
+    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"))
+    context = driver.CreateDefaultContext()
+    driver.GetInputPort("command").FixValue(context, [255, 255, force_byte])
+    theta = finger_linkage.driver_angle(0.0225)  # stopped on a 45 mm object
+    driver.GetInputPort("finger_state").FixValue(context, [theta, 0.0])
+    state = context.get_mutable_discrete_state(0).get_mutable_value()
+    state[0], state[5], state[7] = 0.0, ru.force_from_byte(force_byte), 2  # ref closed; gOBJ 2
+    simulated = driver.GetOutputPort("status").Eval(context)[ru.STATUS_CU]
+    model = RobotiqGripperModel(RobotiqEmulatorConfig(activation_duration=0.0,
+                                                      object_opening=0.045), now=0.0)
+    model.write(1000, [0x0900, 255, (255 << 8) | force_byte], now=0.0)
+    emulated = model.status(now=5.0)
+    assert emulated[ru.STATUS_OBJ] == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
+    assert simulated == emulated[ru.STATUS_CU] > 0

@@ -42,8 +42,6 @@ from tegrasp_drake.emulators.null_modem import NullModem
 
 ObjectStatus = units.ObjectStatus
 ActivationStatus = units.ActivationStatus
-MOVING_CURRENT = 10.0         # gCU while moving [x 10 mA]
-MAX_GRIPPING_CURRENT = 60.0   # gCU gripping at rFR = 255 [x 10 mA]
 
 
 @dataclasses.dataclass
@@ -107,8 +105,9 @@ class RobotiqGripperModel:
             s = self._status
             moving = s["gOBJ"] == ObjectStatus.MOVING and s["gGTO"] and self._can_move()
             gripping = s["gOBJ"] == ObjectStatus.STOPPED_ON_CONTACT_CLOSING
-            current = (MOVING_CURRENT if moving else
-                       MAX_GRIPPING_CURRENT * self._force / 255.0 if gripping else 0.0)
+            current = (units.current_byte(0.0, moving=True) if moving else
+                       units.current_byte(float(units.force_from_byte(self._force)),
+                                          moving=False) if gripping else 0.0)
             vector = [0.0] * units.STATUS_SIZE
             vector[units.STATUS_ACT] = s["gACT"]
             vector[units.STATUS_GTO] = s["gGTO"]

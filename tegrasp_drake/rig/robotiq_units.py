@@ -76,6 +76,20 @@ def fault_name(code: int) -> str:
     return FAULT_NAMES.get(int(code), f"unknown fault 0x{int(code):02X}")
 
 
+# gCU, the motor current [x 10 mA] (the manual's unit). Robotiq publishes no current-force
+# curve: the scale is a stated assumption, about 100 mA while the fingers move and up to
+# 600 mA holding the 235 N grip, in proportion to the force the motor carries.
+MOVING_CURRENT = 10.0
+MAX_GRIPPING_CURRENT = 60.0
+
+
+def current_byte(force_n: float, moving: bool) -> float:
+    """gCU [x 10 mA] of a gripper moving freely, or pushing each pad with force_n [N]."""
+    if moving:
+        return MOVING_CURRENT
+    return float(round(MAX_GRIPPING_CURRENT * min(max(force_n, 0.0), FORCE_MAX_N) / FORCE_MAX_N))
+
+
 def opening_from_position_byte(position_byte):
     """Finger opening [m] (pad to pad) for an rPR/gPO byte; linear between open and closed."""
     fraction = (POSITION_CLOSED_BYTE - np.clip(position_byte, POSITION_OPEN_BYTE,

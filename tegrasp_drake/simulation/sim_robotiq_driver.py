@@ -249,5 +249,6 @@ class SimRobotiqDriver(LeafSystem):
         status[ru.STATUS_OBJ] = s[_OBJECT]
         status[ru.STATUS_PR] = s[_POSITION_BYTE]
         status[ru.STATUS_PO] = status_position_byte(hand.half_opening(a))
-        status[ru.STATUS_CU] = float(min(max(round(force / ru.FORCE_MAX_N * 255.0), 0), 255))
+        status[ru.STATUS_CU] = ru.current_byte(
+            force, moving=s[_OBJECT] == int(ru.ObjectStatus.MOVING))
         output.SetFromVector(status)
