@@ -26,6 +26,7 @@ import numpy as np
 
 import tegrasp_drake
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
+from tegrasp_drake.rig.files import interruptions_deferred, staged_file
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import (
@@ -201,14 +202,6 @@ def _dumps(data: dict) -> str:
     return _render(data) + "\n"
 
 
-def _write_text(path: pathlib.Path, text: str) -> None:
-    """Write via a temporary file and a rename, so that a crash leaves no truncated file."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    temporary = path.with_name(path.name + ".tmp")
-    temporary.write_text(text, encoding="utf-8")
-    os.replace(temporary, path)
-
-
 def _sorted_events(events: Iterable[MemorizedEvent]) -> list[MemorizedEvent]:
     return sorted(events, key=lambda e: (e.object_name, transition_order(e.transition)))
 
@@ -238,24 +231,38 @@ def save_memorized_events(events_dir, events: Iterable[MemorizedEvent], *,
     if keep_other_objects and (events_dir / INDEX_FILE).exists():
         kept_entries = [entry for entry in read_index(events_dir)
                         if entry["object"] not in objects]
-    written = []
-    for object_name in objects:
-        object_dir = events_dir / object_name
-        new_files = {f"{e.transition}.json" for e in events if e.object_name == object_name}
-        if object_dir.is_dir():
-            for stale in sorted(object_dir.glob("*.json")):
-                if stale.name not in new_files:
-                    stale.unlink()
-    for event in events:
-        path = events_dir / event.relative_path()
-        _write_text(path, _dumps(event_to_json(event)))
-        written.append(path)
     entries = kept_entries + [dict(_summary(e), file=e.relative_path()) for e in events]
     entries.sort(key=lambda entry: (entry["object"], transition_order(entry["transition"])))
     index = {"format": INDEX_FORMAT, "format_version": FORMAT_VERSION,
              "remake_command": RECORD_COMMAND, "events": entries}
-    _write_text(events_dir / INDEX_FILE, _dumps(index))
-    written.append(events_dir / INDEX_FILE)
+    # All or nothing: every file is staged beside its target first, then the renames and
+    # the stale files' removal commit together with Ctrl-C held back, the index last.
+    staged = []
+    events_dir.mkdir(parents=True, exist_ok=True)
+    try:
+        for event in events:
+            path = events_dir / event.relative_path()
+            path.parent.mkdir(parents=True, exist_ok=True)
+            staged.append((staged_file(path, _dumps(event_to_json(event))), path))
+        staged.append((staged_file(events_dir / INDEX_FILE, _dumps(index)),
+                       events_dir / INDEX_FILE))
+        with interruptions_deferred():
+            for object_name in objects:
+                object_dir = events_dir / object_name
+                new_files = {f"{e.transition}.json" for e in events
+                             if e.object_name == object_name}
+                if object_dir.is_dir():
+                    for stale in sorted(object_dir.glob("*.json")):
+                        if stale.name not in new_files:
+                            stale.unlink()
+            for temporary, path in staged:
+                os.replace(temporary, path)
+    except BaseException:
+        for temporary, _ in staged:
+            if temporary.exists():
+                temporary.unlink()
+        raise
+    written = [path for _, path in staged]
     return written
 
 
