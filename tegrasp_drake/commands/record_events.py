@@ -20,7 +20,7 @@ import pathlib
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.files import interruptions_deferred
+from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 TEMPLATE_RUNS = 5  # experiments/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
@@ -99,6 +99,10 @@ def run(args) -> int:
         raise SystemExit(f"tegrasp: error: {out} holds the installed package's events, which "
                          "`pip install` replaces; record into your own folder (--events DIR "
                          f"or {paths.EVENTS_ENV}; default {paths.user_events_dir()})")
+    problem = folder_problem(out)
+    if problem:
+        raise SystemExit(f"tegrasp: error: --events {out}: {problem}; give a folder you can "
+                         "write")
     to_record = _scenarios_to_record(args)
     runs = _ensemble_runs(args, to_record[0][1])
     for object_name, scenario in to_record:

@@ -25,7 +25,8 @@ import pathlib
 import shutil
 import tempfile
 
-from tegrasp_drake.rig.files import claim_folder, interruptions_deferred, write_atomically
+from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions_deferred,
+                                     write_atomically)
 
 RESULT_FILE = "result.json"
 RUN_FILES = (RESULT_FILE, "trial.npz")  # a folder with any of these holds a run
@@ -63,16 +64,9 @@ def claim_numbered_folder(default) -> pathlib.Path:
 
 def check_run_folder(folder) -> None:
     """RunFolderError unless `folder` is, or can be made as, a folder this user can write."""
-    folder = pathlib.Path(folder)
-    for place in (folder, *folder.parents):
-        if place.exists() or place.is_symlink():
-            if not place.is_dir():
-                raise RunFolderError(f"--out {folder}: {place} is not a folder; give a "
-                                     "folder's name")
-            if not os.access(place, os.W_OK | os.X_OK):
-                raise RunFolderError(f"--out {folder}: {place} is not writable; give a "
-                                     "folder you can write")
-            return
+    problem = folder_problem(folder)
+    if problem:
+        raise RunFolderError(f"--out {folder}: {problem}; give a folder you can write")
 
 
 def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -> pathlib.Path:

@@ -19,7 +19,6 @@ import json
 import math
 import os
 import pathlib
-import re
 from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
@@ -27,7 +26,7 @@ import numpy as np
 import tegrasp_drake
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.files import interruptions_deferred, staged_file
-from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
+from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import (
     REQUIRED_TRANSITIONS, TRANSITIONS, transition_order)
@@ -41,7 +40,7 @@ INDEX_FORMAT = "tegrasp.memorized_event_index"
 INDEX_FILE = "index.json"
 RECORD_COMMAND = "tegrasp record-events"
 NORMALIZATION = "max"
-_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")
+_NAME_PATTERN = OBJECT_NAME_PATTERN
 _NORMALIZATION_TOLERANCE = 1e-9
 
 
@@ -458,6 +457,13 @@ def load_memorized_events(events_dir, object_name: str, *,
             f"no memorized events for object '{object_name}' (it lists {objects})",
             object_name)
     events = _sorted_events(_load_entry(events_dir, entry) for entry in entries)
+    windows = {(e.window_s, e.sa_rate_hz, e.ra_rate_hz): e for e in events}
+    if len(windows) > 1:
+        shown = "; ".join(f"{e.relative_path()}: {w:g} s at {sa:g}/{ra:g} Hz"
+                          for (w, sa, ra), e in windows.items())
+        raise MemorizedEventError(
+            events_dir / INDEX_FILE, f"the events of '{object_name}' have different windows "
+            f"or rates (SA/RA), which one matcher cannot use ({shown})", object_name)
     missing = [t for t in required if t not in {e.transition for e in events}]
     if missing:
         raise MemorizedEventError(

@@ -5,6 +5,7 @@
 - interruptions_deferred: Ctrl-C and SIGTERM wait while several renames commit one result
   (an object's event files and their index), so that it is all old or all new.
 - claim_folder: a fresh folder made with one mkdir, so that two runs never take the same.
+- folder_problem: what stops a folder from being written, checked before any long work.
 """
 
 import contextlib
@@ -77,6 +78,24 @@ def interruptions_deferred():
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+def folder_problem(path) -> str | None:
+    """Why `path` cannot be, or be made as, a folder this user writes in (None if it can):
+    its nearest existing part must be a writable folder."""
+    path = pathlib.Path(path)
+    for place in (path, *path.parents):
+        try:
+            exists = place.exists() or place.is_symlink()
+        except OSError as e:  # a symlink loop, a name too long
+            return f"{place}: {e.strerror or e}"
+        if exists:
+            if not place.is_dir():
+                return f"{place} is not a folder"
+            if not os.access(place, os.W_OK | os.X_OK):
+                return f"{place} is not writable"
+            return None
+    return None
 
 
 def claim_folder(path) -> bool:
