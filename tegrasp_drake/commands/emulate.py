@@ -120,13 +120,14 @@ def run(args) -> int:
     scenario = scenario_from_arguments(args)
     if args.write_config:
         _check_config_target(args.write_config)
-    out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     if args.device in ("myrio", "all") and not args.trial:
         raise SystemExit("tegrasp: error: emulate myrio/all needs --trial NPZ (a trial log; "
                          "`tegrasp demo --out DIR` writes DIR/trial.npz)")
     devices = EMULATED_DEVICES if args.device == "all" else (args.device,)
     inject_fault = (_parse_fault(args.inject_fault)
                     if args.inject_fault and "robotiq" in devices else None)
+    # Every argument is checked above; only now is the whole process raised.
+    out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     sync = args.sync or ("follow" if args.device == "all" else "none")
     emulators = Emulators(lcm_url=args.lcm_url, out=out)
     for signal_number in (signal.SIGINT, signal.SIGTERM):

@@ -67,17 +67,27 @@ def temporary_sibling(path):
 
 @contextlib.contextmanager
 def interruptions_deferred():
-    """Holds SIGINT and SIGTERM back (in the main thread) until the block ends; a signal
-    that came meanwhile is delivered then."""
+    """Holds SIGINT and SIGTERM back until the block ends, then acts on the first that came
+    as the handler before would have (Ctrl-C: KeyboardInterrupt). Python-level handlers, not
+    a signal mask: in a process with threads the kernel may hand the signal to any of them.
+    Only the main thread can set handlers; elsewhere the block runs as it is."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    held = {signal.SIGINT, signal.SIGTERM}
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    received = []
+    previous = {number: signal.signal(number, lambda got, frame: received.append(got))
+                for number in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+        if received:
+            handler = previous[received[0]]
+            if callable(handler):
+                handler(received[0], None)
+            elif handler == signal.SIG_DFL:
+                os.kill(os.getpid(), received[0])
 
 
 def folder_problem(path) -> str | None:
