@@ -8,10 +8,9 @@ import json
 import pytest
 
 from tegrasp_drake import cli
-from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
-                                               commit_run, first_free_folder,
-                                               result_path_beside_log, staged_run,
-                                               write_result)
+from tegrasp_drake.commands.run_folder import (RESULT_FILE, choose_run_folder,
+                                               commit_run, result_path_beside_log,
+                                               staged_run, write_result)
 from tegrasp_drake.experiments.hardware_run import HardwareRunResult
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.device_fault import DeviceFault
@@ -83,7 +82,6 @@ def test_an_empty_named_folder_is_used(tmp_path):
 
 def test_trial_without_out_takes_the_next_free_numbered_folder(tmp_path):
     default = tmp_path / "out" / "trial"
-    assert first_free_folder(default) == default
     earlier_run(default)
     earlier_run(tmp_path / "out" / "trial-2", RESULT_FILE)
     chosen = choose_run_folder(None, default=str(default), replace_default=False,

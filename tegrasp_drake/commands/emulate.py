@@ -25,9 +25,9 @@ from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Emulators,
                                               FaultInjection)
 from tegrasp_drake.hardware.config import DEFAULT_LCM_URL
-from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
+from tegrasp_drake.rig.files import folder_problem
 
 DEVICES = (*EMULATED_DEVICES, "all")
 GFLT_MAX = 0xF  # the Robotiq status register's fault field is 4 bits
@@ -102,8 +102,8 @@ def _check_config_target(path) -> None:
                              f"({e.strerror or e}); give another file name") from None
         if first != WRITTEN_BY_EMULATE:
             raise SystemExit(f"tegrasp: error: --write-config {path} exists and was not "
-                             "written by `tegrasp emulate`; give another file name (or "
-                             "remove it yourself)")
+                             "written by `tegrasp emulate` (its first line is not the one "
+                             "emulate writes); give another file name, or remove it yourself")
     problem = folder_problem(path.parent) or (None if path.parent.is_dir() else
                                               f"{path.parent} does not exist")
     if problem:

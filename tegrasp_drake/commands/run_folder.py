@@ -5,7 +5,7 @@ that `--json` prints), written last. A new run never replaces an earlier one una
 - a folder named with `--out` that already holds a run (result.json or trial.npz) is
   refused with one line, unless `--overwrite` is given;
 - without `--out`, `tegrasp trial` writes out/trial, or the first of out/trial-2,
-  out/trial-3, ... that holds no run, so that every trial is kept;
+  out/trial-3, ... that is not there yet, so that every trial is kept;
 - `tegrasp demo` writes out/demo and replaces the last demo there: it is the README's
   demonstration, run again as it stands (give `--out DIR` to keep one).
 A hardware run's result goes beside its LCM log: run.lcmlog -> run.result.json.
@@ -39,16 +39,6 @@ class RunFolderError(Exception):
 def holds_run(folder) -> bool:
     folder = pathlib.Path(folder)
     return any((folder / name).exists() for name in RUN_FILES)
-
-
-def first_free_folder(default) -> pathlib.Path:
-    """`default`, or the first of default-2, default-3, ... that holds no run."""
-    default = pathlib.Path(default)
-    candidate, number = default, 1
-    while holds_run(candidate):
-        number += 1
-        candidate = default.with_name(f"{default.name}-{number}")
-    return candidate
 
 
 def claim_numbered_folder(default) -> pathlib.Path:

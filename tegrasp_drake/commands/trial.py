@@ -59,7 +59,7 @@ def register(subparsers) -> None:
         description=DESCRIPTION, epilog=EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter)
     add_trial_arguments(parser, out_help="folder for this run (default: out/trial, or the first "
-                         "of out/trial-2, -3, ... that holds no run)")
+                         "of out/trial-2, -3, ... that is not there yet)")
     parser.set_defaults(func=run, default_out="out/trial", replace_default_out=False)
 
 
