@@ -111,12 +111,16 @@ def run(args) -> int:
                 events = record_events(object_name, scenario, progress=progress)
             ensemble = {}
             if runs:
-                with contextlib.ExitStack() as bars:
+                with contextlib.ExitStack() as bar:  # one bar at a time, one per run
+
+                    def progress_of_run(k):
+                        bar.close()
+                        return bar.enter_context(SimulatedTimeBar(
+                            f"{object_name} ensemble {k + 1}/{runs}",
+                            enabled=progress_wanted(args)))
                     ensemble = record_object_ensemble(
                         object_name, scenario or _builtin_scenario(object_name), runs,
-                        progress_of_run=lambda k: bars.enter_context(SimulatedTimeBar(
-                            f"{object_name} ensemble {k + 1}/{runs}",
-                            enabled=progress_wanted(args))))
+                        progress_of_run=progress_of_run)
             with interruptions_deferred():  # the paper's events and the ensemble together
                 written = save_memorized_events(out, events.values())
                 if ensemble:
