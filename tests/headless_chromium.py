@@ -1,7 +1,7 @@
 """A real headless Chromium driven by Selenium, for tests that open a saved page (no tests
 here).
 
-Debian's `chromium` and its matching `chromium-driver` (`.ci/run` installs both when
+Debian's `chromium` and its matching `chromium-driver` (`tests/run` installs both when
 missing); Selenium only drives them through the WebDriver protocol, with the driver given by
 path so that Selenium Manager never downloads anything. The browser runs offline: a proxy on
 a closed port makes any network request fail, so a page that needed a CDN would break.
@@ -26,7 +26,7 @@ CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic
 # parse, during which each WebDriver command waits for the page's main thread.
 COMMAND_TIMEOUT_S = 900.0
 INSTALL_HINT = ("install Debian's chromium and chromium-driver (apt-get install chromium "
-                "chromium-driver; .ci/run does)")
+                "chromium-driver; tests/run does)")
 
 
 def missing_browser() -> str | None:

@@ -8,9 +8,9 @@ import json
 import pytest
 
 from tegrasp_drake import cli
-from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
-                                               first_free_folder, result_path_beside_log,
-                                               write_result)
+from tegrasp_drake.commands.run_folder import (RESULT_FILE, choose_run_folder,
+                                               commit_run, result_path_beside_log,
+                                               staged_run, write_result)
 from tegrasp_drake.experiments.hardware_run import HardwareRunResult
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.device_fault import DeviceFault
@@ -39,11 +39,39 @@ def test_a_named_folder_that_holds_a_run_is_refused_before_simulating(tmp_path, 
     assert capsys.readouterr().out == ""
 
 
-def test_overwrite_allows_the_named_folder_and_removes_its_old_result(tmp_path):
-    folder = earlier_run(tmp_path / "run", RESULT_FILE)
+def test_overwrite_allows_the_named_folder_and_keeps_its_old_run_until_the_new_one_commits(
+        tmp_path):
+    folder = earlier_run(earlier_run(tmp_path / "run", RESULT_FILE))
     assert choose_run_folder(str(folder), default="unused", replace_default=False,
                              overwrite=True) == folder
-    assert not (folder / RESULT_FILE).exists()  # a run that fails leaves no stale result
+    assert (folder / RESULT_FILE).read_text() == "an earlier run"  # kept until the commit
+    with staged_run(folder) as stage:
+        (stage / "trial.npz").write_text("the new run")
+        result = commit_run(stage, folder, {"log": str(stage / "trial.npz")})
+    assert result["log"] == str(folder / "trial.npz")
+    assert (folder / "trial.npz").read_text() == "the new run"
+    assert json.loads((folder / RESULT_FILE).read_text())["log"] == result["log"]
+    assert sorted(p.name for p in folder.iterdir()) == [RESULT_FILE, "trial.npz"]
+
+
+def test_a_run_interrupted_before_its_commit_leaves_the_earlier_run_whole(tmp_path):
+    folder = earlier_run(earlier_run(tmp_path / "run", RESULT_FILE))
+    with pytest.raises(KeyboardInterrupt):
+        with staged_run(folder) as stage:
+            (stage / "trial.npz").write_text("half a new run")
+            raise KeyboardInterrupt
+    assert sorted(p.name for p in folder.iterdir()) == [RESULT_FILE, "trial.npz"]
+    assert (folder / "trial.npz").read_text() == "an earlier run"
+
+
+def test_two_runs_without_out_claim_different_folders(tmp_path):
+    """Issue #25, probe 4: a folder counts as taken from the moment it is claimed."""
+    default = tmp_path / "out" / "trial"
+    first = choose_run_folder(None, default=str(default), replace_default=False,
+                              overwrite=False)
+    second = choose_run_folder(None, default=str(default), replace_default=False,
+                               overwrite=False)
+    assert first == default and second == tmp_path / "out" / "trial-2"
 
 
 def test_an_empty_named_folder_is_used(tmp_path):
@@ -54,7 +82,6 @@ def test_an_empty_named_folder_is_used(tmp_path):
 
 def test_trial_without_out_takes_the_next_free_numbered_folder(tmp_path):
     default = tmp_path / "out" / "trial"
-    assert first_free_folder(default) == default
     earlier_run(default)
     earlier_run(tmp_path / "out" / "trial-2", RESULT_FILE)
     chosen = choose_run_folder(None, default=str(default), replace_default=False,
@@ -67,7 +94,6 @@ def test_demo_without_out_replaces_its_own_folder(tmp_path):
     default = earlier_run(earlier_run(tmp_path / "out" / "demo"), RESULT_FILE)
     assert choose_run_folder(None, default=str(default), replace_default=True,
                              overwrite=False) == default
-    assert not (default / RESULT_FILE).exists()
 
 
 def test_result_json_holds_the_result_whole(tmp_path):
@@ -112,3 +138,15 @@ def test_demo_replaces_its_default_folder_and_trial_keeps_its_runs():
     trial = cli.build_parser().parse_args(["trial"])
     assert (demo.out, demo.default_out, demo.replace_default_out) == (None, "out/demo", True)
     assert (trial.out, trial.default_out, trial.replace_default_out) == (None, "out/trial", False)
+
+
+def test_hardware_keeps_an_earlier_result_when_its_log_is_gone(tmp_path):
+    """Issue #25, probe 1: the result beside the log was deleted before anything ran."""
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    result = tmp_path / "run.result.json"
+    result.write_text("an earlier result")
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main(["hardware", "--config", str(config), "--log", str(tmp_path / "run.lcmlog")])
+    assert str(result) in str(exit_info.value.code) and "--overwrite" in str(exit_info.value.code)
+    assert result.read_text() == "an earlier result"

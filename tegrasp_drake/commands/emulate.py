@@ -15,17 +15,22 @@ They run until Ctrl-C (SIGINT) or SIGTERM.
 """
 
 import argparse
+import math
+import pathlib
 import signal
 
 from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
                                                    scenario_from_arguments)
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
-from tegrasp_drake.emulators.launcher import SYNC_MODES, Emulators, FaultInjection
+from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Emulators,
+                                              FaultInjection)
 from tegrasp_drake.hardware.config import DEFAULT_LCM_URL
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
+from tegrasp_drake.rig.files import folder_problem
 
 DEVICES = (*EMULATED_DEVICES, "all")
+GFLT_MAX = 0xF  # the Robotiq status register's fault field is 4 bits
 
 
 EPILOG = """\
@@ -57,20 +62,53 @@ def register(subparsers) -> None:
                         "gripper's activation completes")
     parser.add_argument("--write-config", metavar="FILE",
                         help="write the hardware config for `tegrasp hardware --config`")
-    parser.add_argument("--scheduling", choices=SCHEDULING_POLICIES, default="normal",
+    parser.add_argument("--scheduling", choices=SCHEDULING_POLICIES, default="fifo",
                         help="the emulators' scheduling: a real device has its own "
-                        "processor; on a busy shared host `fifo` (real-time) or `nice` keeps "
-                        "the stand-ins on time (default: %(default)s)")
+                        "processor, so by default the stand-ins run at real-time priority "
+                        "(SCHED_FIFO, falling back to nice, then normal, where the OS "
+                        "refuses), as the tests run them (default: %(default)s)")
     parser.set_defaults(func=run)
 
 
 def _parse_fault(text) -> FaultInjection:
+    """CODE@SECONDS: CODE a gFLT value (4 bits: 0x0..0xF), SECONDS finite and >= 0."""
     try:
         code, at = text.split("@")
-        return FaultInjection(int(code, 0), float(at))
+        code, at = int(code, 0), float(at)
     except ValueError:
         raise SystemExit(f"tegrasp: error: --inject-fault '{text}': expected CODE@SECONDS, "
                          "e.g. 0x0E@3.5") from None
+    if not 0 <= code <= GFLT_MAX:
+        raise SystemExit(f"tegrasp: error: --inject-fault '{text}': the 2F-85's fault "
+                         f"register gFLT holds 4 bits; give a CODE from 0x0 to {GFLT_MAX:#x}")
+    if not (math.isfinite(at) and at >= 0):
+        raise SystemExit(f"tegrasp: error: --inject-fault '{text}': SECONDS must be a "
+                         "finite number >= 0 (after the gripper's activation)")
+    return FaultInjection(code, at)
+
+
+def _check_config_target(path) -> None:
+    """Exits before any device starts when --write-config would replace a file that
+    `tegrasp emulate` did not write, or cannot be written."""
+    path = pathlib.Path(path)
+    if path.is_dir():
+        raise SystemExit(f"tegrasp: error: --write-config {path} is a folder; give a file "
+                         "name, e.g. hw.yaml")
+    if path.exists():
+        try:
+            first = path.read_text(encoding="utf-8", errors="replace").split("\n", 1)[0]
+        except OSError as e:
+            raise SystemExit(f"tegrasp: error: --write-config {path}: cannot read it "
+                             f"({e.strerror or e}); give another file name") from None
+        if first != WRITTEN_BY_EMULATE:
+            raise SystemExit(f"tegrasp: error: --write-config {path} exists and was not "
+                             "written by `tegrasp emulate` (its first line is not the one "
+                             "emulate writes); give another file name, or remove it yourself")
+    problem = folder_problem(path.parent) or (None if path.parent.is_dir() else
+                                              f"{path.parent} does not exist")
+    if problem:
+        raise SystemExit(f"tegrasp: error: --write-config {path}: {problem}; give a file in "
+                         "a folder you can write")
 
 
 def run(args) -> int:
@@ -80,14 +118,16 @@ def run(args) -> int:
         print(line, flush=True)
 
     scenario = scenario_from_arguments(args)
-    if args.scheduling != "normal":
-        out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
+    if args.write_config:
+        _check_config_target(args.write_config)
     if args.device in ("myrio", "all") and not args.trial:
         raise SystemExit("tegrasp: error: emulate myrio/all needs --trial NPZ (a trial log; "
                          "`tegrasp demo --out DIR` writes DIR/trial.npz)")
     devices = EMULATED_DEVICES if args.device == "all" else (args.device,)
     inject_fault = (_parse_fault(args.inject_fault)
                     if args.inject_fault and "robotiq" in devices else None)
+    # Every argument is checked above; only now is the whole process raised.
+    out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     sync = args.sync or ("follow" if args.device == "all" else "none")
     emulators = Emulators(lcm_url=args.lcm_url, out=out)
     for signal_number in (signal.SIGINT, signal.SIGTERM):

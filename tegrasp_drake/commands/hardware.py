@@ -93,11 +93,13 @@ def run(args) -> int:
     corrective = corrective_events(scenario, args.events)
     log = args.log or (f"out/hardware/run-"
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
-    if pathlib.Path(log).exists() and not args.overwrite:
-        raise SystemExit(f"tegrasp: error: {log} already holds a run's log; give another "
-                         "--log, or --overwrite to replace it")
     result_path = result_path_beside_log(log)
-    result_path.unlink(missing_ok=True)
+    for taken in (pathlib.Path(log), result_path):
+        if taken.exists() and not args.overwrite:
+            raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
+                             f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
+                             "another --log, or --overwrite to replace it")
+    # The earlier result stays until this run's replaces it (write_result, at the end).
     try:
         with SimulatedTimeBar("hardware", enabled=progress_wanted(args)) as progress:
             result = run_on_hardware(scenario, config=config, controller=args.controller,

@@ -113,7 +113,14 @@ def _plot_sweep(args, out) -> str:
     if not args.source:
         raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a sweep's results "
                          "folder (e.g. analysis/results_seed0)")
-    records = list(load_records(args.source).records.values())
+    loaded = load_records(args.source)
+    if loaded.corrupt:
+        path, reason = next(iter(loaded.corrupt.items()))
+        raise SystemExit(f"tegrasp: error: {len(loaded.corrupt)} corrupt trial record(s) in "
+                         f"{args.source} (first: {path}: {reason}); a figure without them "
+                         f"would be wrong: `tegrasp sweep --out {args.source}` with the "
+                         "sweep's options runs them again")
+    records = list(loaded.records.values())
     if not records:
         raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
                          "(run `tegrasp sweep --out FOLDER` first)")

@@ -6,13 +6,25 @@ index (format: tegrasp_drake/events/FORMAT.md): `--events DIR`, else the user's 
 folder (TEGRASP_EVENTS_DIR, else ~/.local/share/tegrasp/events; rig/paths.py), never the
 installed package's, which `pip install` replaces. From a source checkout,
 `--events events` remakes the package's own events.
+
+Every controller's events: the paper's (one clean ideal grasp; `memorized`) and, for an
+object whose ensemble the package does not ship (your own), the taxel_aware controller's
+ensemble events (experiments/ensemble_events.py: --ensemble-runs randomised ideal grasps,
+in the folder's `ensemble/`). An object's new events replace its old ones only once all of
+them are made, all together.
 """
 
 import argparse
+import contextlib
+import pathlib
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+
+TEMPLATE_RUNS = 5  # experiments/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
+MAX_ENSEMBLE_RUNS = 50  # each is an ideal grasp of about 20 s wall
 
 
 DESCRIPTION = """\
@@ -26,8 +38,11 @@ examples:
   tegrasp record-events --scenario my.yaml --scenario-name my_can --events my_events
   tegrasp record-events --events events       # from a source checkout: the package's own
 
-The events of an object are replaced by the new recording (that is what re-recording is);
-give --events DIR to write them elsewhere."""
+Your own object gets the events of every controller: the paper's (one ideal grasp) and the
+taxel_aware controller's ensemble (--ensemble-runs, default 5 more ideal grasps; 0 skips
+them). A built-in object's ensemble ships with the package (--ensemble-runs 0 by default).
+The events of an object are replaced by the new recording (that is what re-recording is),
+once it is complete; give --events DIR to write them elsewhere."""
 
 
 def register(subparsers) -> None:
@@ -46,6 +61,11 @@ def register(subparsers) -> None:
                         help="which scenario of --scenario (its object is recorded)")
     parser.add_argument("--set", dest="overrides", action="append", default=[],
                         metavar="KEY=VALUE", help="override a field of that scenario")
+    parser.add_argument("--ensemble-runs", type=int, default=None, metavar="N",
+                        help="also record the taxel_aware controller's ensemble events from "
+                        f"N randomised ideal grasps (default {TEMPLATE_RUNS} for your own "
+                        "object, 0 for a built-in one, whose ensemble ships with the "
+                        "package)")
     parser.set_defaults(func=run)
 
 
@@ -60,23 +80,63 @@ def _scenarios_to_record(args) -> list:
     return [(name, None) for name in args.object or sorted(BUILTIN_OBJECTS)]
 
 
+def _ensemble_runs(args, scenario) -> int:
+    if args.ensemble_runs is None:
+        return TEMPLATE_RUNS if scenario is not None else 0
+    if not 0 <= args.ensemble_runs <= MAX_ENSEMBLE_RUNS:
+        raise SystemExit(f"tegrasp: error: --ensemble-runs {args.ensemble_runs}: give 0 "
+                         f"(none) to {MAX_ENSEMBLE_RUNS} ideal grasps (each about 20 s)")
+    return args.ensemble_runs
+
+
 def run(args) -> int:
     from tegrasp_drake.events import save_memorized_events
+    from tegrasp_drake.experiments.ensemble_events import (ENSEMBLE_FOLDER,
+                                                           record_object_ensemble)
     from tegrasp_drake.experiments.record_events import RecordEventsError, record_events
     out = args.events or paths.user_events_dir()
     if paths.is_installed_package_data(out):
         raise SystemExit(f"tegrasp: error: {out} holds the installed package's events, which "
                          "`pip install` replaces; record into your own folder (--events DIR "
                          f"or {paths.EVENTS_ENV}; default {paths.user_events_dir()})")
-    for object_name, scenario in _scenarios_to_record(args):
+    problem = folder_problem(out)
+    if problem:
+        raise SystemExit(f"tegrasp: error: --events {out}: {problem}; give a folder you can "
+                         "write")
+    to_record = _scenarios_to_record(args)
+    runs = _ensemble_runs(args, to_record[0][1])
+    for object_name, scenario in to_record:
         try:
             with SimulatedTimeBar(object_name, enabled=progress_wanted(args)) as progress:
                 events = record_events(object_name, scenario, progress=progress)
-            written = save_memorized_events(out, events.values())
+            ensemble = {}
+            if runs:
+                with contextlib.ExitStack() as bar:  # one bar at a time, one per run
+
+                    def progress_of_run(k):
+                        bar.close()
+                        return bar.enter_context(SimulatedTimeBar(
+                            f"{object_name} ensemble {k + 1}/{runs}",
+                            enabled=progress_wanted(args)))
+                    ensemble = record_object_ensemble(
+                        object_name, scenario or _builtin_scenario(object_name), runs,
+                        progress_of_run=progress_of_run)
+            with interruptions_deferred():  # the paper's events and the ensemble together
+                written = save_memorized_events(out, events.values())
+                if ensemble:
+                    written += save_memorized_events(pathlib.Path(out) / ENSEMBLE_FOLDER,
+                                                     ensemble.values())
         except RecordEventsError as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
         except OSError as e:
             raise SystemExit(f"tegrasp: error: cannot write the events to {out}: "
-                             f"{e.strerror or e}") from None
-        print(f"{object_name}: {', '.join(events)} -> {len(written)} files in {out}")
+                             f"{e.strerror or e}; nothing of '{object_name}' was "
+                             "replaced") from None
+        made = ", ".join(events) + (f"; ensemble of {runs} runs" if ensemble else "")
+        print(f"{object_name}: {made} -> {len(written)} files in {out}")
     return 0
+
+
+def _builtin_scenario(object_name: str):
+    from tegrasp_drake.experiments.scenario import LoadScenario
+    return LoadScenario(name=object_name)

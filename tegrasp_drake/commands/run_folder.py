@@ -5,15 +5,28 @@ that `--json` prints), written last. A new run never replaces an earlier one una
 - a folder named with `--out` that already holds a run (result.json or trial.npz) is
   refused with one line, unless `--overwrite` is given;
 - without `--out`, `tegrasp trial` writes out/trial, or the first of out/trial-2,
-  out/trial-3, ... that holds no run, so that every trial is kept;
+  out/trial-3, ... that is not there yet, so that every trial is kept;
 - `tegrasp demo` writes out/demo and replaces the last demo there: it is the README's
   demonstration, run again as it stands (give `--out DIR` to keep one).
 A hardware run's result goes beside its LCM log: run.lcmlog -> run.result.json.
+
+Nothing of an earlier run is removed before the new one is complete: a run writes its files
+into a hidden staging folder inside its folder (staged_run), and they replace the earlier
+ones together at the end, result.json last, with Ctrl-C held back (commit_run); a run that
+fails or is interrupted leaves the earlier run whole and no file of its own. Without --out,
+a numbered folder is claimed with one mkdir before the run starts, so two runs started
+together never share one.
 """
 
+import contextlib
 import json
 import os
 import pathlib
+import shutil
+import tempfile
+
+from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions_deferred,
+                                     write_atomically)
 
 RESULT_FILE = "result.json"
 RUN_FILES = (RESULT_FILE, "trial.npz")  # a folder with any of these holds a run
@@ -28,42 +41,77 @@ def holds_run(folder) -> bool:
     return any((folder / name).exists() for name in RUN_FILES)
 
 
-def first_free_folder(default) -> pathlib.Path:
-    """`default`, or the first of default-2, default-3, ... that holds no run."""
+def claim_numbered_folder(default) -> pathlib.Path:
+    """The first of `default`, default-2, default-3, ... that this call creates (one mkdir
+    each: a folder another run has just claimed, or that already exists, is passed over)."""
     default = pathlib.Path(default)
     candidate, number = default, 1
-    while holds_run(candidate):
+    while not claim_folder(candidate):
         number += 1
         candidate = default.with_name(f"{default.name}-{number}")
     return candidate
 
 
+def check_run_folder(folder) -> None:
+    """RunFolderError unless `folder` is, or can be made as, a folder this user can write."""
+    problem = folder_problem(folder)
+    if problem:
+        raise RunFolderError(f"--out {folder}: {problem}; give a folder you can write")
+
+
 def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -> pathlib.Path:
     """The folder for a new run (module docstring); out: the `--out` given, or None.
 
-    Raises RunFolderError when `out` holds a run and `overwrite` is false. The folder is
-    created, and an earlier result.json in it removed, so that a run that fails before
-    its end leaves no result that is not its own."""
-    if out is None:
-        folder = pathlib.Path(default) if replace_default else first_free_folder(default)
-    else:
-        folder = pathlib.Path(out)
-        if holds_run(folder) and not overwrite:
-            present = ", ".join(name for name in RUN_FILES if (folder / name).exists())
-            raise RunFolderError(f"{folder} already holds a run ({present}); give another "
-                                 "--out, or --overwrite to replace it")
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / RESULT_FILE).unlink(missing_ok=True)
+    Raises RunFolderError when `out` holds a run and `overwrite` is false, or cannot be
+    written. The folder is created; nothing in it is removed (commit_run replaces)."""
+    folder = pathlib.Path(out if out is not None else default)
+    check_run_folder(folder)
+    if out is not None and holds_run(folder) and not overwrite:
+        present = ", ".join(name for name in RUN_FILES if (folder / name).exists())
+        raise RunFolderError(f"{folder} already holds a run ({present}); give another "
+                             "--out, or --overwrite to replace it")
+    try:
+        if out is None and not replace_default:
+            return claim_numbered_folder(default)
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise RunFolderError(f"--out {folder}: cannot make the folder: "
+                             f"{e.strerror or e}") from None
     return folder
+
+
+@contextlib.contextmanager
+def staged_run(folder):
+    """A hidden staging folder inside the run folder for the run's files (removed, with
+    whatever it holds, when the block ends)."""
+    try:
+        stage = pathlib.Path(tempfile.mkdtemp(prefix=".staging-", dir=folder))
+    except OSError as e:
+        raise RunFolderError(f"--out {folder}: cannot write there: {e.strerror or e}") from None
+    try:
+        yield stage
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def commit_run(stage, folder, result: dict) -> dict:
+    """Moves the staged files into `folder` and writes result.json last, Ctrl-C held back;
+    returns `result` with the staged paths replaced by the final ones."""
+    stage, folder = pathlib.Path(stage), pathlib.Path(folder)
+    result = {key: (str(folder / pathlib.Path(value).name)
+                    if isinstance(value, str) and pathlib.Path(value).parent == stage
+                    else value) for key, value in result.items()}
+    result["result"] = str(folder / RESULT_FILE)
+    with interruptions_deferred():
+        for staged in sorted(stage.iterdir()):
+            os.replace(staged, folder / staged.name)
+        write_result(folder / RESULT_FILE, result)
+    return result
 
 
 def write_result(path, result: dict) -> pathlib.Path:
     """Writes `result` as JSON (keys sorted, as `--json` prints it) to `path`, atomically."""
-    path = pathlib.Path(path)
-    temporary = path.with_name(f".{path.name}.tmp")
-    temporary.write_text(json.dumps(result, sort_keys=True, indent=1) + "\n", encoding="utf-8")
-    os.replace(temporary, path)
-    return path
+    return write_atomically(path, json.dumps(result, sort_keys=True, indent=1) + "\n")
 
 
 def result_path_beside_log(log_path) -> pathlib.Path:

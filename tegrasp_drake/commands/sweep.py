@@ -28,6 +28,7 @@ from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.experiments.sweep.reports import write_reports
+from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.experiments.sweep.runner import (
     SweepError,
     benchmark_text,
@@ -125,6 +126,14 @@ def spec_from_arguments(args) -> SweepSpec:
     return spec
 
 
+def _check_logs_folder(logs) -> None:
+    """--logs names a folder this user can write (made if missing), before any trial."""
+    problem = folder_problem(logs)
+    if problem:
+        raise SweepError(f"--logs {logs}: {problem}; give a folder you can write for the "
+                         "trials' logs")
+
+
 def resolve_trial_function(text: str):
     """Imports `MODULE:ATTR`."""
     module_name, _, attribute = text.partition(":")
@@ -153,6 +162,7 @@ def run(args) -> int:
         if args.events:
             trial_function = functools.partial(trial_function, events_dir=args.events)
         if args.logs:
+            _check_logs_folder(args.logs)
             trial_function = functools.partial(trial_function, log_dir=args.logs)
         if args.benchmark:
             runs, identical = run_benchmark(spec, trial_function, progress=progress)

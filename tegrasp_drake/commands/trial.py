@@ -8,8 +8,8 @@ import argparse
 import json
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
-from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
-                                               write_result)
+from tegrasp_drake.commands.run_folder import (RunFolderError, choose_run_folder, commit_run,
+                                               staged_run)
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                    controller_events, corrective_events,
                                                    scenario_from_arguments)
@@ -59,7 +59,7 @@ def register(subparsers) -> None:
         description=DESCRIPTION, epilog=EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter)
     add_trial_arguments(parser, out_help="folder for this run (default: out/trial, or the first "
-                         "of out/trial-2, -3, ... that holds no run)")
+                         "of out/trial-2, -3, ... that is not there yet)")
     parser.set_defaults(func=run, default_out="out/trial", replace_default_out=False)
 
 
@@ -90,25 +90,32 @@ def run(args) -> int:
     scenario = scenario_from_arguments(args)
     events = controller_events(scenario, args.events)  # fails before anything is written
     corrective = corrective_events(scenario, args.events)
+    html = check_html_path(args)
     try:
         out = choose_run_folder(args.out, default=args.default_out,
                                 replace_default=args.replace_default_out,
                                 overwrite=args.overwrite)
     except RunFolderError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
-    html = check_html_path(args)
     from tegrasp_drake.experiments.figures.trial_figures import write_trial_figures
     from tegrasp_drake.experiments.trial import run_trial
     meshcat = start_viewer(args)
-    with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
-        trial = run_trial(scenario, meshcat=meshcat, events=events,
-                          corrective_events=corrective, progress=progress)
-    result = dict(trial.result, log=str(trial.log.save(out / "trial.npz")),
-                  **write_trial_figures(trial.log, out, args.format),
-                  result=str(out / RESULT_FILE))
-    if html is not None:
-        result["replay_html"] = str(write_replay_html(meshcat, html))
-    write_result(out / RESULT_FILE, result)
+    try:
+        with staged_run(out) as stage:
+            with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
+                trial = run_trial(scenario, meshcat=meshcat, events=events,
+                                  corrective_events=corrective, progress=progress)
+            try:
+                result = dict(trial.result, log=str(trial.log.save(stage / "trial.npz")),
+                              **write_trial_figures(trial.log, stage, args.format))
+                if html is not None:
+                    result["replay_html"] = str(write_replay_html(meshcat, html))
+                result = commit_run(stage, out, result)
+            except OSError as e:
+                raise RunFolderError(f"cannot write the run to {out}: {e.strerror or e}; "
+                                     "an earlier run there is kept whole") from None
+    except RunFolderError as e:
+        raise SystemExit(f"tegrasp: error: {e}") from None
     if args.json:
         print(json.dumps(result, sort_keys=True), flush=True)
     else:

@@ -12,6 +12,8 @@ replay of the run.
 import pathlib
 import sys
 
+from tegrasp_drake.rig.files import write_atomically
+
 
 def add_viewer_arguments(parser) -> None:
     parser.add_argument("--meshcat", action="store_true",
@@ -57,8 +59,7 @@ def write_replay_html(meshcat, path) -> pathlib.Path:
     """Writes the Meshcat's scene and published recording as one HTML file."""
     path = pathlib.Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(meshcat.StaticHtml(), encoding="utf-8")
-    return path
+    return write_atomically(path, meshcat.StaticHtml())
 
 
 def wait_for_viewer(args, meshcat) -> None:

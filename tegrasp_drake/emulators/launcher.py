@@ -26,6 +26,10 @@ import time
 
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.rig.files import write_atomically
+
+# The first line of a hardware config that `tegrasp emulate --write-config` wrote.
+WRITTEN_BY_EMULATE = "# written by `tegrasp emulate --write-config`; the next one replaces it"
 
 DEVICES = ("jaco", "robotiq", "myrio")
 SYNC_MODES = ("none", "start", "follow")
@@ -105,9 +109,10 @@ class Emulators:
         return hardware_config_for({**self.devices, "arm": {"lcm_url": self.lcm_url}})
 
     def write_hardware_config(self, path) -> None:
-        """Writes `hardware_config()` for `tegrasp hardware --config`."""
-        with open(path, "w", encoding="utf-8") as f:
-            f.write(hardware_config_to_yaml(self.hardware_config()))
+        """Writes `hardware_config()` for `tegrasp hardware --config`, atomically, under the
+        first line WRITTEN_BY_EMULATE (what may be replaced by the next emulate)."""
+        write_atomically(path, f"{WRITTEN_BY_EMULATE}\n"
+                         + hardware_config_to_yaml(self.hardware_config()))
 
     def run_until_stopped(self) -> None:
         """Runs the arm's simulation in real time (or just waits) until `stop` is set."""

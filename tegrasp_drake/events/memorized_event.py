@@ -19,14 +19,14 @@ import json
 import math
 import os
 import pathlib
-import re
 from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
 import tegrasp_drake
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
-from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
+from tegrasp_drake.rig.files import interruptions_deferred, staged_file
+from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import (
     REQUIRED_TRANSITIONS, TRANSITIONS, transition_order)
@@ -40,7 +40,7 @@ INDEX_FORMAT = "tegrasp.memorized_event_index"
 INDEX_FILE = "index.json"
 RECORD_COMMAND = "tegrasp record-events"
 NORMALIZATION = "max"
-_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")
+_NAME_PATTERN = OBJECT_NAME_PATTERN
 _NORMALIZATION_TOLERANCE = 1e-9
 
 
@@ -201,14 +201,6 @@ def _dumps(data: dict) -> str:
     return _render(data) + "\n"
 
 
-def _write_text(path: pathlib.Path, text: str) -> None:
-    """Write via a temporary file and a rename, so that a crash leaves no truncated file."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    temporary = path.with_name(path.name + ".tmp")
-    temporary.write_text(text, encoding="utf-8")
-    os.replace(temporary, path)
-
-
 def _sorted_events(events: Iterable[MemorizedEvent]) -> list[MemorizedEvent]:
     return sorted(events, key=lambda e: (e.object_name, transition_order(e.transition)))
 
@@ -238,24 +230,38 @@ def save_memorized_events(events_dir, events: Iterable[MemorizedEvent], *,
     if keep_other_objects and (events_dir / INDEX_FILE).exists():
         kept_entries = [entry for entry in read_index(events_dir)
                         if entry["object"] not in objects]
-    written = []
-    for object_name in objects:
-        object_dir = events_dir / object_name
-        new_files = {f"{e.transition}.json" for e in events if e.object_name == object_name}
-        if object_dir.is_dir():
-            for stale in sorted(object_dir.glob("*.json")):
-                if stale.name not in new_files:
-                    stale.unlink()
-    for event in events:
-        path = events_dir / event.relative_path()
-        _write_text(path, _dumps(event_to_json(event)))
-        written.append(path)
     entries = kept_entries + [dict(_summary(e), file=e.relative_path()) for e in events]
     entries.sort(key=lambda entry: (entry["object"], transition_order(entry["transition"])))
     index = {"format": INDEX_FORMAT, "format_version": FORMAT_VERSION,
              "remake_command": RECORD_COMMAND, "events": entries}
-    _write_text(events_dir / INDEX_FILE, _dumps(index))
-    written.append(events_dir / INDEX_FILE)
+    # All or nothing: every file is staged beside its target first, then the renames and
+    # the stale files' removal commit together with Ctrl-C held back, the index last.
+    staged = []
+    events_dir.mkdir(parents=True, exist_ok=True)
+    try:
+        for event in events:
+            path = events_dir / event.relative_path()
+            path.parent.mkdir(parents=True, exist_ok=True)
+            staged.append((staged_file(path, _dumps(event_to_json(event))), path))
+        staged.append((staged_file(events_dir / INDEX_FILE, _dumps(index)),
+                       events_dir / INDEX_FILE))
+        with interruptions_deferred():
+            for object_name in objects:
+                object_dir = events_dir / object_name
+                new_files = {f"{e.transition}.json" for e in events
+                             if e.object_name == object_name}
+                if object_dir.is_dir():
+                    for stale in sorted(object_dir.glob("*.json")):
+                        if stale.name not in new_files:
+                            stale.unlink()
+            for temporary, path in staged:
+                os.replace(temporary, path)
+    except BaseException:
+        for temporary, _ in staged:
+            if temporary.exists():
+                temporary.unlink()
+        raise
+    written = [path for _, path in staged]
     return written
 
 
@@ -451,6 +457,13 @@ def load_memorized_events(events_dir, object_name: str, *,
             f"no memorized events for object '{object_name}' (it lists {objects})",
             object_name)
     events = _sorted_events(_load_entry(events_dir, entry) for entry in entries)
+    windows = {(e.window_s, e.sa_rate_hz, e.ra_rate_hz): e for e in events}
+    if len(windows) > 1:
+        shown = "; ".join(f"{e.relative_path()}: {w:g} s at {sa:g}/{ra:g} Hz"
+                          for (w, sa, ra), e in windows.items())
+        raise MemorizedEventError(
+            events_dir / INDEX_FILE, f"the events of '{object_name}' have different windows "
+            f"or rates (SA/RA), which one matcher cannot use ({shown})", object_name)
     missing = [t for t in required if t not in {e.transition for e in events}]
     if missing:
         raise MemorizedEventError(

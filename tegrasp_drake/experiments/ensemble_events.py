@@ -140,3 +140,26 @@ def record_ensemble_run(object_name: str, run: int, log_path=None,
         log.meta["ensemble_run"] = run
         log.save(log_path)
     return run_events(log, scenario, object_name, LoadScenario(name=object_name).object)
+
+
+# The runs whose mean makes the events (the package's ensembles: analysis/
+# record_ensemble_events.py --template-runs 5).
+TEMPLATE_RUNS = 5
+
+
+def record_object_ensemble(object_name: str, scenario, runs: int = TEMPLATE_RUNS, *,
+                           progress_of_run=None) -> dict[str, MemorizedEvent]:
+    """The ensemble events of the object of `scenario` (a user's own object, or a built-in
+    one): `runs` randomised ideal grasps around that scenario, combined by the mean.
+    progress_of_run(k) gives run k's progress callback (or None). RecordEventsError when a
+    run shows no physical event."""
+    members = []
+    for run in range(runs):
+        perturbed = ensemble_scenario(object_name, run, base=scenario)
+        log, wall = run_ideal_grasp(
+            perturbed, progress=progress_of_run(run) if progress_of_run else None)
+        logger.info("ensemble %s run %d: %.1f s wall", object_name, run, wall)
+        members.append(run_events(log, perturbed, object_name, scenario.object))
+    return combine_runs(members, scenario_note=(
+        f"ensemble of ideal grasps of {object_name}, seeds {TRAINING_BASE_SEED}.."
+        f"{TRAINING_BASE_SEED + runs - 1}"))

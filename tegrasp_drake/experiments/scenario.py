@@ -10,6 +10,7 @@ ConfigError.
 """
 
 import dataclasses
+import math
 import pathlib
 import typing
 
@@ -196,6 +197,52 @@ def _check_controller(controller: GraspControllerConfig, source: str) -> None:
                 getattr(strike, name))
 
 
+# Ranges a simulation can use; each message says why (README, "Bad input").
+MIN_TIME_STEP_S, MAX_TIME_STEP_S = 1e-4, 1e-3
+MIN_SAMPLE_RATE_HZ, MAX_SAMPLE_RATE_HZ = 16.0, 20_000.0
+MAX_HIT_FORCE_N = 100.0  # five times the paper's 20 N hit
+MAX_HIT_DURATION_S = 1.0
+SEED_LIMIT = 2**32  # Drake's RandomGenerator takes a 32-bit seed
+
+
+def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
+    """Values that would switch a sensor off, or put the hit outside the trial."""
+    require(0 <= scenario.random_seed < SEED_LIMIT, source, "random_seed",
+            f"must lie in [0, {SEED_LIMIT - 1}] (Drake's random generator takes a 32-bit "
+            "seed; a larger one would repeat a smaller one's noise)", scenario.random_seed)
+    tactile, vibration = scenario.tactile, scenario.vibration
+    for path, value, unit in (("tactile.noise_std_n", tactile.noise_std_n, "N"),
+                              ("tactile.quantization_n", tactile.quantization_n, "N"),
+                              ("vibration.noise_std_mps2", vibration.noise_std_mps2, "m/s^2")):
+        require(value >= 0, source, path, f"must be zero (no noise) or positive [{unit}]",
+                value)
+    require(vibration.internal_rate_hz > 0, source, "vibration.internal_rate_hz",
+            "must be positive [Hz]", vibration.internal_rate_hz)
+    nyquist = vibration.internal_rate_hz / 2
+    require(0 < vibration.mode_frequency_hz < nyquist, source, "vibration.mode_frequency_hz",
+            f"must lie in (0, {nyquist:g}) Hz (the fingertip's mode, integrated at "
+            "vibration.internal_rate_hz; at 0 the film feels no ring)",
+            vibration.mode_frequency_hz)
+    require(vibration.mode_mass_kg > 0, source, "vibration.mode_mass_kg",
+            "must be positive [kg] (the fingertip's moving mass)", vibration.mode_mass_kg)
+    require(vibration.mode_damping_ratio >= 0, source, "vibration.mode_damping_ratio",
+            "must be zero or positive", vibration.mode_damping_ratio)
+    disturbance = scenario.disturbance
+    force = math.hypot(*disturbance.hit_force_n) if len(disturbance.hit_force_n) == 3 else 0
+    require(force <= MAX_HIT_FORCE_N, source, "disturbance.hit_force_n",
+            f"must be at most {MAX_HIT_FORCE_N:g} N in size (five times the paper's 20 N "
+            "hit; the simulated grasp is not made for more)", disturbance.hit_force_n)
+    require(disturbance.hit_duration_s <= MAX_HIT_DURATION_S, source,
+            "disturbance.hit_duration_s", f"must be at most {MAX_HIT_DURATION_S:g} s (a hit, "
+            "not a push)", disturbance.hit_duration_s)
+    if disturbance.hit_time_s >= 0:
+        from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
+        end = plan_duration(plan_scripted_grasp(scenario))
+        require(disturbance.hit_time_s < end, source, "disturbance.hit_time_s",
+                f"must come before the grasp's script ends at {end:.1f} s (or be negative: "
+                "no hit)", disturbance.hit_time_s)
+
+
 def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     """Checks values that the schema cannot; returns the scenario with its object resolved."""
     scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source))
@@ -207,14 +254,20 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     # it would on a robot (the paper's thick cylinder failed most when misplaced outward).
     for section in ("tactile", "vibration"):
         rate = getattr(scenario, section).sample_rate_hz
-        require(rate > 0, source, f"{section}.sample_rate_hz", "must be positive [Hz]", rate)
+        require(MIN_SAMPLE_RATE_HZ <= rate <= MAX_SAMPLE_RATE_HZ, source,
+                f"{section}.sample_rate_hz", f"must lie in [{MIN_SAMPLE_RATE_HZ:g}, "
+                f"{MAX_SAMPLE_RATE_HZ:g}] Hz (the 0.5 s event window needs 8 samples; the "
+                "film is integrated at 20 kHz)", rate)
+    _check_sensors_and_scene(scenario, source)
     _check_controller(scenario.controller, source)
     if len(scenario.disturbance.hit_force_n) != 3 or scenario.disturbance.hit_duration_s <= 0:
         raise ConfigError(f"{source}: field 'disturbance': hit_force_n must be [x, y, z] in "
                             "newtons and hit_duration_s positive")
-    if scenario.plant_config.time_step <= 0:
-        raise ConfigError(f"{source}: field 'plant_config.time_step' must be positive "
-                            "(the station is a discrete-time plant)")
+    require(MIN_TIME_STEP_S <= scenario.plant_config.time_step <= MAX_TIME_STEP_S, source,
+            "plant_config.time_step", f"must lie in [{MIN_TIME_STEP_S:g}, "
+            f"{MAX_TIME_STEP_S:g}] s (a discrete step the pads' contact and the 1 kHz "
+            "sensors can use; the wall time grows as 1/step)",
+            scenario.plant_config.time_step)
     require(scenario.grasp.grip_force > 0, source, "grasp.grip_force", "must be positive [N]",
             scenario.grasp.grip_force)
     require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
@@ -234,6 +287,9 @@ def LoadScenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT
         names = ", ".join(document) if isinstance(document, dict) else "none"
         raise ConfigError(f"{path}: no scenario named '{name}' (scenarios: {names})")
     data = document[name] or {}
+    if not isinstance(data, dict):
+        raise ConfigError(f"{path}: scenario '{name}' must be a mapping of fields, got "
+                          f"{type(data).__name__} {data!r}")
     for assignment in overrides:
         apply_override(data, assignment)
     # A bad value given with --set is named as such, not as the file's.

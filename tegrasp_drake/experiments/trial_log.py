@@ -17,6 +17,8 @@ import zlib
 
 import numpy as np
 
+from tegrasp_drake.rig.files import temporary_sibling
+
 FORMAT_VERSION = 1
 ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_acceleration",
                 "t_slow", "arm_q", "arm_q_desired", "gripper_command", "gripper_status",
@@ -49,7 +51,8 @@ class TrialLog:
         path.parent.mkdir(parents=True, exist_ok=True)
         meta = dict(self.meta, format_version=FORMAT_VERSION)
         arrays = {name: getattr(self, name) for name in ARRAY_FIELDS}
-        with open(path, "wb") as f:
+        with temporary_sibling(path) as temporary, open(temporary, "wb") as f:
+            # A full disk or Ctrl-C leaves no truncated log, and an earlier one whole.
             np.savez_compressed(f, meta=np.array(json.dumps(meta, sort_keys=True)), **arrays)
         return path
 

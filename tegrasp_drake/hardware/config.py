@@ -32,7 +32,9 @@ from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
 
-DEFAULT_LCM_URL = "udpm://239.255.76.67:7667?ttl=0"
+# LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
+DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
+                   or "udpm://239.255.76.67:7667?ttl=0")
 
 
 @dataclasses.dataclass

@@ -15,6 +15,7 @@ pad, give the object P mu_pad / (2 mu_pad - P) with mu_pad = materials.PAD_COVER
 
 import dataclasses
 import math
+import re
 
 from tegrasp_drake.modelgen import materials
 from tegrasp_drake.rig.robotiq_units import STROKE_M
@@ -25,6 +26,7 @@ OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),
 OBJECT_SHAPES = tuple(OBJECT_SIZES)
 FINGER_CLEARANCE_M = 0.0025  # smallest gap between an open pad and the object
 MAX_WIDTH_M = STROKE_M - 2 * FINGER_CLEARANCE_M  # widest object the open fingers clear
+OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")  # it names a folder
 
 
 @dataclasses.dataclass
@@ -75,6 +77,9 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
 
     `shapes` narrows the shapes allowed. A model file is not looked for.
     """
+    if not OBJECT_NAME_PATTERN.match(config.name):
+        return "name", (f"'{config.name}' must be letters, digits, '_' or '-' (not first): "
+                        "it names the folder of the object's events")
     if config.shape not in shapes:
         return "shape", f"names an unknown shape {config.shape!r} (known: {', '.join(shapes)})"
     sizes = OBJECT_SIZES[config.shape]

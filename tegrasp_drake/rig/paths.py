@@ -78,7 +78,11 @@ def is_installed_package_data(folder) -> bool:
         installed = pathlib.Path(str(importlib.resources.files("tegrasp_drake.events_data")))
     except ModuleNotFoundError:
         return False
-    return pathlib.Path(folder).resolve() == installed.resolve()
+    try:
+        folder, installed = pathlib.Path(folder).resolve(), installed.resolve()
+    except (OSError, RuntimeError):  # a symlink loop: not the package (and not writable)
+        return False
+    return folder == installed or installed in folder.parents  # ensemble/, corrective/ too
 
 
 def scenarios_file() -> pathlib.Path:

@@ -4,8 +4,12 @@ Every YAML file the project reads as configuration goes through here: scenarios
 (experiments/scenario.py), the hardware config (hardware/config.py) and sweep specs
 (experiments/sweep/spec.py).
 
-- `read_yaml_file` parses a file with Drake's `yaml_load` (PyYAML; a tag such as
-  `!HardwareStationConfig` is kept as the mapping's `_tag`).
+- `parse_yaml` is the one way YAML text becomes data, for files and `--set` values alike:
+  Drake's `yaml_load` (PyYAML's safe loader: no Python objects; a tag such as
+  `!HardwareStationConfig` is kept as the mapping's `_tag`), after refusing a duplicate key
+  (PyYAML would keep the last silently), text over MAX_YAML_BYTES and aliases that expand
+  past MAX_YAML_NODES (nested aliases multiply: a few lines can stand for billions).
+- `read_yaml_file` parses a file with it.
 - `apply_override` applies a `--set key.sub=value` assignment to the parsed data.
 - `check_fields` walks the data against a dataclass schema and names the first field that is
   unknown, missing (a dataclass field without a default), of the wrong type or a number that
@@ -42,19 +46,82 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
         raise ConfigError(f"{path}: cannot read {what}: it does not exist") from None
     except OSError as e:
         raise ConfigError(f"{path}: cannot read {what}: {e.strerror or e}") from None
+    return parse_yaml(text, str(path)) if text else None
+
+
+# A configuration is a few kB; these bound what a mistaken or hostile file can cost.
+MAX_YAML_BYTES = 1_000_000
+MAX_YAML_NODES = 100_000
+
+
+def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: int = 0):
+    """The data of YAML `text` (module docstring); ConfigError "SOURCE: ..." in one line
+    naming the line and column (less the offsets of text the caller put before it)."""
+    if len(text.encode("utf-8", errors="replace")) > MAX_YAML_BYTES:
+        raise ConfigError(f"{source}: {len(text.encode('utf-8', errors='replace'))} bytes of "
+                          f"YAML; a configuration is at most {MAX_YAML_BYTES} bytes")
     try:
-        return yaml_load(data=text) if text else None
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        if root is not None:
+            _check_nodes(root, source, line_offset, column_offset)
+        return yaml_load(data=text)
     except yaml.YAMLError as e:
-        raise ConfigError(f"{path}: not valid YAML: {_yaml_problem(e)}") from None
+        raise ConfigError(f"{source}: not valid YAML: "
+                          f"{_yaml_problem(e, line_offset, column_offset)}") from None
+    except RecursionError:
+        raise ConfigError(f"{source}: the YAML nests too deeply") from None
 
 
-def _yaml_problem(error: yaml.YAMLError) -> str:
-    """A YAML error in one line: what and where (line, column in the file)."""
+def _check_nodes(root, source: str, line_offset: int, column_offset: int) -> None:
+    """Refuses duplicate mapping keys and an alias expansion past MAX_YAML_NODES."""
+    sizes = {}  # id(node) -> its size with every alias expanded
+
+    def where(node) -> str:
+        mark = node.start_mark
+        column = mark.column + 1 - (column_offset if mark.line == 0 else 0)
+        return f"line {mark.line + 1 - line_offset}, column {column}"
+
+    def size(node) -> int:
+        if id(node) in sizes:
+            return sizes[id(node)]
+        sizes[id(node)] = 1  # a node that holds itself counts once
+        if node.tag.startswith("tag:yaml.org,2002:python/"):
+            raise ConfigError(f"{source}: {where(node)}: a Python object tag "
+                              f"(!!{node.tag.split(':', 2)[2]}) is never loaded; give a "
+                              "plain value")
+        total = 1
+        if isinstance(node, yaml.MappingNode):
+            seen = {}
+            for key, value in node.value:
+                if isinstance(key, yaml.ScalarNode) and key.tag != "tag:yaml.org,2002:merge":
+                    if key.value in seen:
+                        raise ConfigError(
+                            f"{source}: key '{key.value}' appears twice ({seen[key.value]} "
+                            f"and {where(key)}); keep one")
+                    seen[key.value] = where(key)
+                total += size(key) + size(value)
+        elif isinstance(node, yaml.SequenceNode):
+            total += sum(size(item) for item in node.value)
+        if total > MAX_YAML_NODES:
+            raise ConfigError(f"{source}: the YAML's aliases expand to more than "
+                              f"{MAX_YAML_NODES} values ({where(node)}); write the values "
+                              "out, or use fewer nested aliases")
+        sizes[id(node)] = total
+        return total
+
+    size(root)
+
+
+def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: int = 0) -> str:
+    """A YAML error in one line: what and where (line, column in the text given)."""
     mark = getattr(error, "problem_mark", None)
     problem = getattr(error, "problem", None) or str(error).splitlines()[0]
-    where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark is not None else ""
+    where = ""
+    if mark is not None:
+        column = mark.column + 1 - (column_offset if mark.line == line_offset else 0)
+        where = f"line {mark.line + 1 - line_offset}, column {max(column, 1)}: "
     context = getattr(error, "context", None)
-    return where + problem + (f" ({context})" if context else "")
+    return (where + problem + (f" ({context})" if context else "")).replace("\n", " ")
 
 
 def apply_override(data: dict, assignment: str) -> None:
@@ -62,7 +129,20 @@ def apply_override(data: dict, assignment: str) -> None:
     if "=" not in assignment:
         raise ConfigError(f"--set '{assignment}': expected key=value, e.g. object.name=box")
     key, text = assignment.split("=", 1)
-    value = yaml_load(data=f"value: {text}")["value"] if text.strip() else ""
+    if not isinstance(data, dict):
+        raise ConfigError(f"--set '{assignment}': the document it would change is "
+                          f"{_describe(data)}, not a mapping of fields; fix the file")
+    if "\n" in text:
+        raise ConfigError(f"--set '{assignment}': the value must be on one line")
+    prefix = "value: "
+    try:
+        value = (parse_yaml(prefix + text, f"--set '{assignment}'",
+                            column_offset=len(prefix))["value"] if text.strip() else "")
+    except ConfigError as e:
+        if "not valid YAML" not in str(e):
+            raise
+        raise ConfigError(f"{e}; the value is YAML: quote text that holds ': ', '#', '*', "
+                          "'&', '!' or brackets, e.g. object.name='a: b'") from None
     node = data
     parts = key.strip().split(".")
     for part in parts[:-1]:

@@ -7,6 +7,8 @@ Agg canvas renders PNG, and matplotlib picks its PDF or SVG backend from the fil
 
 import pathlib
 
+from tegrasp_drake.rig.files import temporary_sibling
+
 FIGURE_FORMATS = ("png", "pdf", "svg")
 PNG_DPI = 150  # about 1800 px across a 12 in figure: sharp on screens and in a PDF viewer
 
@@ -45,7 +47,8 @@ def save_figure(figure, path) -> pathlib.Path:
     """Writes `figure` to `path` in the format its suffix names; returns the path."""
     path = check_figure_path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=PNG_DPI, metadata=_metadata(path))
+    with temporary_sibling(path) as temporary:  # a full disk leaves the old figure whole
+        figure.savefig(temporary, dpi=PNG_DPI, metadata=_metadata(path))
     return path
 
 

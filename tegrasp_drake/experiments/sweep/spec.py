@@ -219,6 +219,11 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
 
     if not _is_int(spec.attempts) or spec.attempts < 1:
         fail("attempts", f"expected a positive integer, got {spec.attempts!r}")
+    trials = len(spec.objects) * len(spec.grid) * spec.attempts * len(spec.controllers)
+    if trials > MAX_TRIALS:
+        fail("attempts", f"{spec.attempts} attempts make {trials} trials (objects x markers x "
+             f"attempts x controllers), about {trials * TRIAL_CORE_SECONDS / 3600:.0f} "
+             f"core-hours; a sweep is at most {MAX_TRIALS} trials: split it")
     if not _is_int(spec.base_seed) or spec.base_seed < 0:
         fail("base_seed", f"expected a non-negative integer, got {spec.base_seed!r}")
 
@@ -422,6 +427,12 @@ def draw_perturbation(rng: np.random.Generator,
     mass_scale = 1.0 + rng.uniform(-r.mass_scale_bound, r.mass_scale_bound)
     return Perturbation(dx_m=float(dx), dy_m=float(dy), yaw_rad=float(yaw),
                         friction_scale=float(friction_scale), mass_scale=float(mass_scale))
+
+
+# What one sweep may ask for: a trial is a simulation of about TRIAL_CORE_SECONDS of one core
+# (README, "Simulation cost"); the paper's Table I sweep is 81 trials per controller.
+MAX_TRIALS = 100_000
+TRIAL_CORE_SECONDS = 30
 
 
 def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
