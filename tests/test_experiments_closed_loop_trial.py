@@ -32,15 +32,13 @@ def test_tegrasp_trial_json_at_the_expected_position(tmp_path, capsys):
     for step in EVENT_TRANSITIONS:
         assert trigger_of(result, step) == "memorized_event"
     assert result["corrective_actions"] == []
-    # The film's Load-Lift template is the squeeze, and Eq. 3 ignores lag: the event matches
-    # while the grip force is still rising, 32-117 ms before it reaches 90 % of the command
-    # across the committed sweep (docs/results.md, Table I). By the 10 ms rule that one transition is
-    # a false trigger; Reach-Load and Place-Unload come after their physical events.
-    load_lift = next(e["t"] for e in result["transitions"] if e["to"] == "Lift")
-    early_s = result["physical_events"]["load_lift"] - load_lift
-    assert result["false_triggers"] == 1 and 0.01 < early_s <= 0.12
+    # The 2F-85's screw drive brings the grip force up within a taxel frame of the first
+    # contact, so each event transition comes after its physical event, within the 0.5 s a
+    # window takes to fill: no false trigger.
+    assert result["false_triggers"] == 0
+    assert set(result["detection_latency_s"]) == {"reach_load", "load_lift", "place_unload"}
     for name, latency in result["detection_latency_s"].items():
-        assert name != "load_lift" and 0.0 <= latency <= 0.5, name
+        assert 0.0 <= latency <= 0.5, name
     for name in ("trial.npz", "states.png", "signals.png"):
         assert (tmp_path / name).is_file()
 
