@@ -5,13 +5,13 @@ import numpy as np
 import pytest
 from pydrake.multibody.tree import JacobianWrtVariable
 
-from tegrasp_drake.control.controller_config import GraspControllerConfig
+from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.finger_strike import (
     grasp_wrench_from_torques, side_moment_nm, strike_force_n,
     strike_shift, struck_finger)
 from tegrasp_drake.rig.arm_kinematics import IK_SEED, make_arm_control_plant
 
-CONFIG = GraspControllerConfig(name="taxel_aware")
+CONFIG = TaxelAwareControllerConfig()
 STRIKE = CONFIG.taxel_aware.finger_strike
 NO_CONTACT = (False, False)
 BOX_WIDTH_M = 0.045
@@ -73,17 +73,22 @@ def test_the_shift_moves_toward_the_struck_finger_by_the_half_gap():
 
 def test_the_settings_are_given_with_set_and_checked():
     from tegrasp_drake.experiments.scenario import ConfigError, LoadScenario
-    scenario = LoadScenario(overrides=["controller.taxel_aware.finger_strike.enabled=false"])
+    scenario = LoadScenario(overrides=["controller.name=taxel_aware",
+                                       "controller.taxel_aware.finger_strike.enabled=false"])
     assert scenario.controller.taxel_aware.finger_strike.enabled is False
     with pytest.raises(ConfigError, match="finger_strike.force_n"):
-        LoadScenario(overrides=["controller.taxel_aware.finger_strike.force_n=-1.0"])
+        LoadScenario(overrides=["controller.taxel_aware.finger_strike.force_n=-1.0"],
+                     controller="taxel_aware")
+    with pytest.raises(ConfigError, match="a setting of the taxel_aware controller: select one "
+                       "with --set controller.name=taxel_aware"):
+        LoadScenario(overrides=["controller.taxel_aware.finger_strike.enabled=false"])
 
 
 @pytest.mark.parametrize("controller,wired", [("taxel_aware", True), ("memorized", False)])
 def test_only_taxel_aware_reads_the_joint_torques(controller, wired):
     from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
     from tegrasp_drake.experiments.scenario import LoadScenario
-    grasp = MakeGraspDiagram(LoadScenario(), controller=controller, log=False)
+    grasp = MakeGraspDiagram(LoadScenario(controller=controller), log=False)
     assert grasp.diagram.HasSubsystemNamed("grasp_wrench_estimator") == wired
     machine = grasp.controller.state_machine
     context = machine.GetMyContextFromRoot(grasp.diagram.CreateDefaultContext())

@@ -6,7 +6,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from tegrasp_drake.control.controller_config import GraspControllerConfig
+from tegrasp_drake.control.controller_config import (MemorizedControllerConfig,
+                                                     TaxelAwareControllerConfig)
 from tegrasp_drake.control.corrective_actions import Counters
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_aware import (ANY_MODE, TABLE, Failed, Reason, Regrasp,
@@ -18,7 +19,7 @@ from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.transition_logic import Observation
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
 
-CONFIG = GraspControllerConfig(name="taxel_aware")
+CONFIG = TaxelAwareControllerConfig()
 TAXEL = CONFIG.taxel_aware
 WIDTH_M = 0.045  # the box
 USED_UP = Counters(re_reaches=TAXEL.max_re_reaches)
@@ -261,7 +262,7 @@ def test_an_empty_pad_is_no_lost_object_while_the_fingers_cage_it():
 
 def test_the_papers_controller_reads_no_estimate():
     from tegrasp_drake.control.transition_logic import next_mode as paper_next_mode
-    paper = GraspControllerConfig(name="memorized")
+    paper = MemorizedControllerConfig()
     obs = situation(**ONE_SIDED, estimate=dict(opening_m=0.0452, tilted_s=1.0,
                                                caged_behind_pads=True))
     reach = paper_next_mode(Mode.REACH, obs, Counters(), paper,

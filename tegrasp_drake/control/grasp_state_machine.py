@@ -30,6 +30,7 @@ from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.control import taxel_aware, transition_logic
+from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.corrective_actions import (
     avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
     pad_accelerations_in_world, re_reach_shift, re_reach_target)
@@ -144,7 +145,7 @@ class GraspStateMachine(LeafSystem):
             taxel_config=config.taxel_aware, geometry=taxel_aware.ObjectGeometry(
                 width_m=plan.object_width, height_m=plan.object_height,
                 grasp_height_m=plan.grasp_height))
-            if getattr(config, "name", "") == "taxel_aware" else None)
+            if isinstance(config, TaxelAwareControllerConfig) else None)
         self._next_mode = (transition_logic.next_mode if self._estimator is None
                            else taxel_aware.next_mode)
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
