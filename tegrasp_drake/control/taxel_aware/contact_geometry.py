@@ -84,11 +84,12 @@ def bracketed_object(previous: FaceTouch | None, current: FaceTouch,
     remembered from an earlier close, remembered_faces) and current (the finger touching
     alone now) are different fingers.
 
-    Why (the one-sided ping-pong of issue #14's second grid): the paper's shift,
+    Why (the one-sided ping-pong, where the fingers take turns): the paper's shift,
     (opening - width) / 2 toward the touching finger, puts the gripper on the object only
     when the object's extent along the stroke is its nominal width. A box yawed by a
     pushing pad is wider: w (cos yaw + |sin yaw|), 62 mm for the 45 mm box at 32 deg
-    (measured: box m20 dev seed 700, yawed from 0.7 to 32 deg by the approach's push);
+    (measured: a box 15 mm beyond and 25 mm along the stroke, yawed from 0.7 to 32 deg by
+    the approach's push);
     the shift then overshoots by (62 - 45) / 2 = 8.5 mm, the other finger touches alone
     next, and four Re-Reaches alternate (+-18, +6.3, -9.1 mm) to Failed. Two faces touched
     from opposite sides bound the object whatever its yaw or width: it lies between them,
@@ -144,7 +145,7 @@ def touched_beyond_pads(*, first_touch_offset_m: float, one_pad: bool, pushed_m:
     pushed_m [m] (pushed_distance_m), past its tipping limit (release_topples).
 
     Why (measured on the thin cylinder, 25 mm x 120 mm, 1.5 cm beyond the nominal grasp
-    and 2.5 cm along the stroke, issue #14's second grid, dev seeds 700 and 800): its axis
+    and 2.5 cm along the stroke): its axis
     stands about 2 mm beyond the pads' distal edge, so the near pad meets it with that
     edge (its distal row alone, 0.15 N, at an opening of 72 mm: 23.5 mm of push to come
     against a tipping limit of 11.5 mm at the 55 mm grasp height). The edge touches the
@@ -204,7 +205,7 @@ def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,
     its fingertip side, so it stands behind them, between the fingers' inner links and the
     palm, and stops the fingers there: it cannot leave through the fingertips' gap
     (narrower than it) and the fingers bound it along the stroke. Lifting carries it (the
-    open loop's grasp of a thin cylinder 15 mm toward the palm on issue #14's second grid;
+    open loop's grasp of a thin cylinder 15 mm toward the palm and 25 mm along the stroke;
     the simulated 2F-85 there reported gOBJ 0, moving, not 2, with its fingers stopped at
     16.9 mm for 0.5 s of a fully closed request, so no stall byte is required). A Re-Reach
     here learns nothing: no taxel sees the object, so its shift is zero and it closes the
