@@ -2,7 +2,7 @@
 (table.py) over what one ContactEstimator senses (estimator.py), one module per rule."""
 
 from tegrasp_drake.control.taxel_aware.decision import (Failed, Lift, Load, Reason, Regrasp,
-                                                        ReReach, Rule, Situation, Stay)
+                                                        ReReach, Rule, Situation)
 from tegrasp_drake.control.taxel_aware.estimator import (ContactEstimate, ContactEstimator,
                                                          ContactMemory, ContactReading,
                                                          ObjectGeometry)
@@ -10,4 +10,4 @@ from tegrasp_drake.control.taxel_aware.table import ANY_MODE, TABLE, next_mode, 
 
 __all__ = ["ANY_MODE", "TABLE", "ContactEstimate", "ContactEstimator", "ContactMemory",
            "ContactReading", "Failed", "Lift", "Load", "ObjectGeometry", "Reason", "Regrasp",
-           "ReReach", "Rule", "Situation", "Stay", "next_mode", "rows"]
+           "ReReach", "Rule", "Situation", "next_mode", "rows"]

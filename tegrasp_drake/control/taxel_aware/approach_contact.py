@@ -20,6 +20,7 @@ def stop_back_off_and_shift(situation):
                             f"the {' and '.join(pads) or 'a'} pad touched during the approach")
 
 
-APPROACH_CONTACT = Rule(Reason.APPROACH_CONTACT, touches_in_approach, stop_back_off_and_shift,
-    when='a pad touched for one_sided_contact_s in the approach',
+APPROACH_CONTACT = Rule(
+    Reason.APPROACH_CONTACT, touches_in_approach, stop_back_off_and_shift,
+    when="a pad touched for one_sided_contact_s in the approach",
     then="ReReach(back off, the paper's shift) or Failed")

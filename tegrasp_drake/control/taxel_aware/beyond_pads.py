@@ -27,6 +27,8 @@ def stop_move_forward_and_centre(situation):
                   "close would push the object over: stop, move forward and centre")
 
 
-BEYOND_PADS = Rule(Reason.BEYOND_PADS, touched_beyond, stop_move_forward_and_centre,
-    when="the first touch on one pad's distal row alone, the close would topple the object; Re-Reaches left",
-    then='ReReach(forward half a pad, the push toward the pad)')
+BEYOND_PADS = Rule(
+    Reason.BEYOND_PADS, touched_beyond, stop_move_forward_and_centre,
+    when="the first touch on one pad's distal row alone, the close would topple the "
+    "object; Re-Reaches left",
+    then="ReReach(forward half a pad, the push toward the pad)")

@@ -45,9 +45,11 @@ def recentre(situation):
         " mm apart)")
 
 
-BRACKETED_AT_EXTENT = Rule(Reason.BRACKETED_AT_EXTENT, closed_to_extent, load,
+BRACKETED_AT_EXTENT = Rule(
+    Reason.BRACKETED_AT_EXTENT, closed_to_extent, load,
     when="one finger alone, the other's face remembered, closed to their extent + margin",
-    then='Load')
-BRACKET_RECENTRE = Rule(Reason.BRACKET_RECENTRE, bracketed, recentre,
+    then="Load")
+BRACKET_RECENTRE = Rule(
+    Reason.BRACKET_RECENTRE, bracketed, recentre,
     when="one finger alone, the other's face remembered",
     then="ReReach(to the faces' midpoint) or Failed")

@@ -13,8 +13,7 @@ The object_lost and avoid_hit rules also stand aside for a caged object (its pad
 contact and RA say nothing about it)."""
 
 from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
-from tegrasp_drake.control.taxel_aware.decision import (Lift, Load, Reason, Rule, Stay,
-                                                        decide)
+from tegrasp_drake.control.taxel_aware.decision import Lift, Load, Reason, Rule, decide
 from tegrasp_drake.control.taxel_aware.no_event_in_time import (
     load_timeout_reason, load_timed_out, reach_timed_out, reach_timeout_reason)
 
@@ -27,19 +26,20 @@ REACH_TIMEOUT_CAGED = Rule(
     Reason.REACH_TIMEOUT_CAGED, lambda s: reach_timed_out(s) and caged(s),
     lambda s: decide(Load(), Trigger.CORRECTIVE, f"{reach_timeout_reason(s)}, the fingers "
                      "closed on the object behind the pads: load it there"),
-    when='no Reach-Load event in time, the object caged behind the pads',
-    then='Load')
+    when="no Reach-Load event in time, the object caged behind the pads",
+    then="Load")
 LOAD_TIMEOUT_CAGED = Rule(
     Reason.LOAD_TIMEOUT_CAGED, lambda s: load_timed_out(s) and caged(s),
     lambda s: decide(Lift(), Trigger.CORRECTIVE, f"{load_timeout_reason(s)}, the fingers "
                      "hold the object behind the pads: lift"),
-    when='no Load-Lift event in time, the object caged behind the pads',
-    then='Lift')
+    when="no Load-Lift event in time, the object caged behind the pads",
+    then="Lift")
 CAGED_LIFT_ENDED = Rule(
     Reason.CAGED_LIFT_ENDED, lambda s: caged(s) and s.obs.motion_done,
     lambda s: Decision(Mode.HOLD, Trigger.TIMER, "lift motion ended"),
-    when='caged, the lift motion ended',
-    then='Hold')
-CAGED_NO_LIFT_LOAD = Rule(Reason.CAGED_NO_LIFT_LOAD, caged, lambda s: None,
-    when='caged',
-    then='Stay (no Lift-Load)')
+    when="caged, the lift motion ended",
+    then="Hold")
+CAGED_NO_LIFT_LOAD = Rule(
+    Reason.CAGED_NO_LIFT_LOAD, caged, lambda s: None,
+    when="caged",
+    then="Stay (no Lift-Load)")

@@ -89,12 +89,6 @@ class Failed:
     mode = Mode.FAILED
 
 
-@dataclasses.dataclass(frozen=True)
-class Stay:
-    """Stay in the mode: the rule holds back the rules below it."""
-    mode = None
-
-
 # ---- rules --------------------------------------------------------------------------
 
 

@@ -25,6 +25,7 @@ def back_off_and_shift(situation):
                             f"approach ({e.strike_force_n:.1f} N at the wrist)")
 
 
-FINGER_STRIKE = Rule(Reason.FINGER_STRIKE, strikes, back_off_and_shift,
-    when='the wrist force exceeded finger_strike.force_n for sustain_s in the approach',
-    then='ReReach(back off, toward the struck finger) or Failed')
+FINGER_STRIKE = Rule(
+    Reason.FINGER_STRIKE, strikes, back_off_and_shift,
+    when="the wrist force exceeded finger_strike.force_n for sustain_s in the approach",
+    then="ReReach(back off, toward the struck finger) or Failed")

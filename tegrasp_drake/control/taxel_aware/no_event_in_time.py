@@ -32,11 +32,11 @@ REACH_TIMEOUT_BOTH_PADS = Rule(
     Reason.REACH_TIMEOUT_BOTH_PADS, lambda s: reach_timed_out(s) and both_pads(s),
     lambda s: decide(Load(), Trigger.CORRECTIVE,
                      f"{reach_timeout_reason(s)}, both pads hold the object: load"),
-    when='no Reach-Load event reach_event_timeout_s after closing, both pads on',
-    then='Load')
+    when="no Reach-Load event reach_event_timeout_s after closing, both pads on",
+    then="Load")
 LOAD_TIMEOUT_BOTH_PADS = Rule(
     Reason.LOAD_TIMEOUT_BOTH_PADS, lambda s: load_timed_out(s) and both_pads(s),
     lambda s: decide(Lift(), Trigger.CORRECTIVE,
                      f"{load_timeout_reason(s)}, both pads hold the object: lift"),
-    when='no Load-Lift event load_event_timeout_s in Load, both pads on',
-    then='Lift')
+    when="no Load-Lift event load_event_timeout_s in Load, both pads on",
+    then="Lift")

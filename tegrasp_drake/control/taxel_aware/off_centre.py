@@ -22,6 +22,8 @@ def centre_first(situation):
                   "approach axis")
 
 
-OFF_CENTRE = Rule(Reason.OFF_CENTRE, event_off_centre, centre_first,
-    when="Reach-Load event, the contact off the pads' centres along the approach axis; Re-Reaches left",
-    then='ReReach(centring, both axes)')
+OFF_CENTRE = Rule(
+    Reason.OFF_CENTRE, event_off_centre, centre_first,
+    when="Reach-Load event, the contact off the pads' centres along the approach axis; "
+    "Re-Reaches left",
+    then="ReReach(centring, both axes)")

@@ -29,6 +29,7 @@ def load(situation):
                   "to the object's width: load")
 
 
-ONE_SIDED_AT_WIDTH = Rule(Reason.ONE_SIDED_AT_WIDTH, closed_to_width, load,
-    when='one finger alone for one_sided_contact_s, closed to the width + margin',
-    then='Load')
+ONE_SIDED_AT_WIDTH = Rule(
+    Reason.ONE_SIDED_AT_WIDTH, closed_to_width, load,
+    when="one finger alone for one_sided_contact_s, closed to the width + margin",
+    then="Load")

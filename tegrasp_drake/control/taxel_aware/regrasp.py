@@ -30,10 +30,11 @@ def open_and_close_again(situation):
                   "re-grasp: open and close again")
 
 
-HELD_TILTED = Rule(Reason.HELD_TILTED, tilted_for_long, put_down,
-    when='held tilted for tilt_sustain_s; re-grasps left',
-    then='Regrasp (Place)')
+HELD_TILTED = Rule(
+    Reason.HELD_TILTED, tilted_for_long, put_down,
+    when="held tilted for tilt_sustain_s; re-grasps left",
+    then="Regrasp (Place)")
 REGRASP_AFTER_PLACE = Rule(Reason.REGRASP_AFTER_PLACE, placed_to_regrasp,
                            open_and_close_again,
     when="a re-grasp's Place: the object stands again",
-    then='ReReach(no shift, not counted)')
+    then="ReReach(no shift, not counted)")

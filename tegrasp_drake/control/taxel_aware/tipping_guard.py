@@ -15,6 +15,7 @@ def load_where_it_is(situation):
     return decide(Load(), situation.event_trigger, "Reach-Load event")
 
 
-TIPPING_GUARD = Rule(Reason.TIPPING_GUARD, event_with_object_pushed_over, load_where_it_is,
-    when='Reach-Load event, the close pushed the object past its tipping limit',
-    then='Load (event)')
+TIPPING_GUARD = Rule(
+    Reason.TIPPING_GUARD, event_with_object_pushed_over, load_where_it_is,
+    when="Reach-Load event, the close pushed the object past its tipping limit",
+    then="Load (event)")
