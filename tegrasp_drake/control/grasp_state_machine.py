@@ -4,8 +4,9 @@ Drake LeafSystem.
 Each tick (config.update_period_s) it summarises its inputs into an Observation (with the
 taxel_aware controller, the ContactEstimator's estimate of the contact), asks the pure
 rule (transition_logic.next_mode, or the taxel_aware rule table) for the next mode, and
-carries out the decision and the motion of the mode it is in: smooth (minimum-jerk) translations of the grasp frame at the side-grasp
-orientation, and Robotiq-style gripper requests. Everything it remembers is in one abstract
+carries out the decision and the motion of the mode it is in: smooth (minimum-jerk)
+translations of the grasp frame at the side-grasp orientation, and Robotiq-style gripper
+requests. Everything it remembers is in one abstract
 state value (MachineState), so a Context holds the whole run, timeline included.
 
 Motion of each mode (world frame, grasp frame G; the stroke is world y; the corrective
