@@ -20,7 +20,7 @@ import numpy as np
 
 from tegrasp_drake.control.controller_config import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
-from tegrasp_drake.events import tactile_trial_from_log
+from tegrasp_drake.events import EventMatcherConfig, tactile_trial_from_log
 from tegrasp_drake.events.memorized_event import find_memorized_events
 from tegrasp_drake.experiments.detection_quality import roc_curve, scored_span
 from tegrasp_drake.experiments.trial_log import load_trial_log
@@ -56,8 +56,11 @@ def main(argv=None) -> int:
     if not paths:
         raise SystemExit(f"roc_from_sweep_logs: no {args.controller}.*.npz in {args.logs}")
     controller = controller_named(args.controller)
-    thresholds = {t: (controller.sa_threshold, controller.ra_threshold) for t in TRANSITIONS}
-    thresholds.update(controller.event_thresholds())
+    default = EventMatcherConfig()  # the paper's 0.9 / 0.7, for controllers without events
+    thresholds = {t: (getattr(controller, "sa_threshold", default.sa_threshold),
+                      getattr(controller, "ra_threshold", default.ra_threshold))
+                  for t in TRANSITIONS}
+    thresholds.update(getattr(controller, "event_thresholds", dict)())
     events_by_object, spans = {}, {t: [] for t in TRANSITIONS}
     for path in paths:
         log = load_trial_log(path)
