@@ -15,6 +15,7 @@ import sys
 
 import numpy as np
 
+from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.memorized_event import find_memorized_events
@@ -60,7 +61,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     spans = []
     for name in sorted(BUILTIN_OBJECTS):
-        _, events = find_memorized_events(controller_events_folders("taxel_aware", args.events),
+        _, events = find_memorized_events(controller_events_folders(TaxelAwareControllerConfig(), args.events),
                                           name)
         for run in args.runs:
             path = args.logs / name / f"run{run}.npz"

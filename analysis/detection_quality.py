@@ -14,7 +14,7 @@ import sys
 
 from tegrasp_drake.experiments.sweep.detection_report import report_markdown
 from tegrasp_drake.experiments.sweep.records import load_records
-from tegrasp_drake.experiments.sweep.spec import CONTROLLERS
+from tegrasp_drake.experiments.sweep.spec import CONTROLLER_NAMES
 
 
 def main(argv=None) -> int:
@@ -30,7 +30,7 @@ def main(argv=None) -> int:
         if not loaded.records:
             raise SystemExit(f"detection_quality: {folder} holds no trial records")
         records.update(loaded.records)
-    controllers = [c for c in CONTROLLERS
+    controllers = [c for c in CONTROLLER_NAMES
                    if any(r["trial"]["controller"] == c for r in records.values())]
     text = report_markdown(records, controllers, args.reference, args.title)
     args.out.write_text(text)

@@ -19,6 +19,7 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput
 
 from tegrasp_drake import AddGraspController, LoadScenario, MakeSimulator, MakeStation
+from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.finger_strike import (grasp_wrench_from_torques, side_moment_nm,
                                                  strike_force_n)
 from tegrasp_drake.experiments.scenario import resolve_object, validate
@@ -38,7 +39,7 @@ def reach_log(object_name, dx, dy, yaw_deg):
     scenario = validate(dataclasses.replace(
         base, object=resolve_object(ObjectConfig(name=object_name)), random_seed=700,
         object_offset=[dx, dy], object_yaw_deg=yaw_deg,
-        controller=dataclasses.replace(base.controller, name="open_loop")), "measure")
+        controller=OpenLoopControllerConfig()), "measure")
     builder = DiagramBuilder()
     station = builder.AddNamedSystem("station", MakeStation(scenario))
     AddGraspController(builder, scenario=scenario, station=station)

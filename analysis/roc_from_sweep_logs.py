@@ -18,9 +18,9 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.control.controller_config import TaxelAwareConfig
+from tegrasp_drake.control.controller_config import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
-from tegrasp_drake.events import tactile_trial_from_log
+from tegrasp_drake.events import EventMatcherConfig, tactile_trial_from_log
 from tegrasp_drake.events.memorized_event import find_memorized_events
 from tegrasp_drake.experiments.detection_quality import roc_curve, scored_span
 from tegrasp_drake.experiments.trial_log import load_trial_log
@@ -55,15 +55,19 @@ def main(argv=None) -> int:
     paths = sorted(args.logs.glob(f"{args.controller}.*.npz"))[:args.limit]
     if not paths:
         raise SystemExit(f"roc_from_sweep_logs: no {args.controller}.*.npz in {args.logs}")
-    thresholds = TaxelAwareConfig().event_thresholds() if args.controller == "taxel_aware" \
-        else {t: (0.9, 0.7) for t in TRANSITIONS}
+    controller = controller_named(args.controller)
+    default = EventMatcherConfig()  # the paper's 0.9 / 0.7, for controllers without events
+    thresholds = {t: (getattr(controller, "sa_threshold", default.sa_threshold),
+                      getattr(controller, "ra_threshold", default.ra_threshold))
+                  for t in TRANSITIONS}
+    thresholds.update(getattr(controller, "event_thresholds", dict)())
     events_by_object, spans = {}, {t: [] for t in TRANSITIONS}
     for path in paths:
         log = load_trial_log(path)
         name = path.name.split(".")[1]
         if name not in events_by_object:
             events_by_object[name] = find_memorized_events(
-                controller_events_folders(args.controller, args.events), name)[1]
+                controller_events_folders(controller, args.events), name)[1]
         trial = tactile_trial_from_log(log)
         physical = log.meta.get("events", {})
         for transition in TRANSITIONS:

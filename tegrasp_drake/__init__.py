@@ -36,7 +36,12 @@ _PUBLIC = {
     "HardwareStationConfig": "tegrasp_drake.hardware.config",
     "LoadHardwareConfig": "tegrasp_drake.hardware.config",
     "GraspControllerConfig": "tegrasp_drake.control.controller_config",
-    "CONTROLLERS": "tegrasp_drake.control.controller_config",
+    "MemorizedControllerConfig": "tegrasp_drake.control.controller_config",
+    "HeuristicControllerConfig": "tegrasp_drake.control.controller_config",
+    "OpenLoopControllerConfig": "tegrasp_drake.control.controller_config",
+    "TaxelAwareControllerConfig": "tegrasp_drake.control.controller_config",
+    "CONTROLLER_NAMES": "tegrasp_drake.control.controller_config",
+    "with_controller": "tegrasp_drake.experiments.scenario",
     # Stations: the simulation and the real devices behind the same ports.
     "MakeGraspStation": "tegrasp_drake.simulation.station",
     "MakeHardwareStation": "tegrasp_drake.hardware.station",

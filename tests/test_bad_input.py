@@ -54,7 +54,7 @@ def assert_one_line_error(code, text, *expected):
      "field 'controller.event_object_may_differ[0]' must name a field"),
 ])
 def test_a_bad_scenario_value_is_named_and_nothing_runs(overrides, expected, capfd):
-    argv = ["trial", "--controller", "heuristic"]
+    argv = ["trial", "--controller", "memorized"]
     for assignment in overrides:
         argv += ["--set", assignment]
     code, text = run_cli(argv, capfd)

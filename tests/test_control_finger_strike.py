@@ -1,23 +1,17 @@
-"""The taxel_aware controller's finger-strike sense (issue #14): the wrench from the arm's
-joint torques, which finger struck, the shift, and the decision through the transition
-rule; the other controllers ignore it."""
-
-import dataclasses
+"""The taxel_aware controller's finger-strike sense: the wrench from the arm's joint
+torques, which finger struck, the shift; only taxel_aware reads the torques."""
 
 import numpy as np
 import pytest
 from pydrake.multibody.tree import JacobianWrtVariable
 
-from tegrasp_drake.control.controller_config import GraspControllerConfig
-from tegrasp_drake.control.corrective_actions import Counters
+from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.finger_strike import (
-    finger_strike_response, grasp_wrench_from_torques, side_moment_nm, strike_force_n,
+    grasp_wrench_from_torques, side_moment_nm, strike_force_n,
     strike_shift, struck_finger)
-from tegrasp_drake.control.grasp_modes import Mode, Trigger
-from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.rig.arm_kinematics import IK_SEED, make_arm_control_plant
 
-CONFIG = GraspControllerConfig(name="taxel_aware")
+CONFIG = TaxelAwareControllerConfig()
 STRIKE = CONFIG.taxel_aware.finger_strike
 NO_CONTACT = (False, False)
 BOX_WIDTH_M = 0.045
@@ -77,51 +71,24 @@ def test_the_shift_moves_toward_the_struck_finger_by_the_half_gap():
     assert strike_shift("left", 0.03, BOX_WIDTH_M) == 0.0  # never away
 
 
-def test_the_response_re_reaches_until_the_limit_then_fails():
-    decision = finger_strike_response(finger="left", force_n=6.3, re_reaches=0, config=CONFIG)
-    assert decision.mode == Mode.RE_REACH and decision.trigger == Trigger.CORRECTIVE
-    assert "left finger struck" in decision.reason
-    used_up = finger_strike_response(finger="right", force_n=6.3,
-                                     re_reaches=CONFIG.taxel_aware.max_re_reaches,
-                                     config=CONFIG)
-    assert used_up.mode == Mode.FAILED
-    off = dataclasses.replace(CONFIG, re_reach_enabled=False)
-    assert finger_strike_response(finger=None, force_n=3.0, re_reaches=0,
-                                  config=off).mode == Mode.FAILED
-
-
-def _reach(config, strike_s):
-    observation = Observation(strike_s=strike_s, strike_force_n=6.0, strike_finger="left")
-    return next_mode(Mode.REACH, observation, Counters(), config,
-                     event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
-
-
-def test_the_rule_stops_the_approach_on_a_sustained_strike_only():
-    assert _reach(CONFIG, STRIKE.sustain_s).mode == Mode.RE_REACH
-    assert _reach(CONFIG, 0.5 * STRIKE.sustain_s) is None  # one spike is not a strike
-
-
-def test_the_sense_can_be_switched_off_and_the_other_controllers_ignore_it():
-    off = dataclasses.replace(CONFIG, taxel_aware=dataclasses.replace(
-        CONFIG.taxel_aware, finger_strike=dataclasses.replace(STRIKE, enabled=False)))
-    assert _reach(off, 1.0) is None
-    for name in ("memorized", "heuristic"):
-        assert _reach(GraspControllerConfig(name=name), 1.0) is None
-
-
 def test_the_settings_are_given_with_set_and_checked():
     from tegrasp_drake.experiments.scenario import ConfigError, LoadScenario
-    scenario = LoadScenario(overrides=["controller.taxel_aware.finger_strike.enabled=false"])
+    scenario = LoadScenario(overrides=["controller.name=taxel_aware",
+                                       "controller.taxel_aware.finger_strike.enabled=false"])
     assert scenario.controller.taxel_aware.finger_strike.enabled is False
     with pytest.raises(ConfigError, match="finger_strike.force_n"):
-        LoadScenario(overrides=["controller.taxel_aware.finger_strike.force_n=-1.0"])
+        LoadScenario(overrides=["controller.taxel_aware.finger_strike.force_n=-1.0"],
+                     controller="taxel_aware")
+    with pytest.raises(ConfigError, match="a setting of the taxel_aware controller: select one "
+                       "with --set controller.name=taxel_aware"):
+        LoadScenario(overrides=["controller.taxel_aware.finger_strike.enabled=false"])
 
 
 @pytest.mark.parametrize("controller,wired", [("taxel_aware", True), ("memorized", False)])
 def test_only_taxel_aware_reads_the_joint_torques(controller, wired):
     from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
     from tegrasp_drake.experiments.scenario import LoadScenario
-    grasp = MakeGraspDiagram(LoadScenario(), controller=controller, log=False)
+    grasp = MakeGraspDiagram(LoadScenario(controller=controller), log=False)
     assert grasp.diagram.HasSubsystemNamed("grasp_wrench_estimator") == wired
     machine = grasp.controller.state_machine
     context = machine.GetMyContextFromRoot(grasp.diagram.CreateDefaultContext())

@@ -23,8 +23,8 @@ def test_memorized_controller_scores_the_window_normalizer_windows():
 
 
 def test_heuristic_controller_reads_the_channels_directly():
-    wiring = connections(MakeGraspDiagram(LoadScenario(name="box"), log=False,
-                                             controller="heuristic").diagram)
+    wiring = connections(MakeGraspDiagram(LoadScenario(name="box", controller="heuristic"),
+                                          log=False).diagram)
     assert ("mechanoreceptor_channels", "channels", "heuristic_detector", "channels") in wiring
     assert ("heuristic_detector", "match", "grasp_state_machine", "match") in wiring
     assert not any("event_matcher" in (c[0], c[2]) for c in wiring)

@@ -7,7 +7,7 @@ from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
-from tegrasp_drake.control.controller_config import GraspControllerConfig
+from tegrasp_drake.control.controller_config import MemorizedControllerConfig
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.experiments.scenario import LoadScenario
@@ -17,7 +17,7 @@ EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 
 def make_machine(**config_changes):
     scenario = LoadScenario(name="box")
-    config = GraspControllerConfig(**config_changes)
+    config = MemorizedControllerConfig(**config_changes)
     machine = GraspStateMachine(plan=GraspPlan.from_scenario(scenario), config=config,
                                 event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT)
     return machine, scenario
@@ -166,7 +166,7 @@ def test_slip_band_vibration_for_slip_s_is_a_lift_load():
     machine, scenario = make_machine()
     simulator, context, inputs = start(machine)
     lift(simulator, machine, context, inputs, scenario)
-    config = GraspControllerConfig()
+    config = MemorizedControllerConfig()
     inputs.set(slip_vibration=[0.0, 2.0 * config.slip_vibration_mps2])
     began = context.get_time()
     t = run_until_mode(simulator, machine, Mode.LOAD, 0.1)

@@ -1,169 +1,153 @@
-"""The taxel_aware controller's corrective actions in closed-loop trials (issue #14): one
-trial per action, on the faithful world, with the controller's ensemble events."""
+"""The taxel_aware controller's rules in closed-loop trials, one scene per row: the scene,
+the rules that must decide its transitions (structured Reason codes, in order), and what
+the grasp must achieve. Scenes on the faithful world with the controller's ensemble
+events."""
 
 import dataclasses
 
 import pytest
 
+from tegrasp_drake.control.taxel_aware import Reason
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.experiments.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
-from tegrasp_drake.experiments.trial import run_trial, run_trial_from_spec
+from tegrasp_drake.experiments.trial import run_trial, trial_events
 
 pytestmark = pytest.mark.slow
 
 
-def _run(name, *, offset=(0.0, 0.0), yaw_deg=0.0, taxel_aware=None):
-    base = LoadScenario(name=name)
-    controller = dataclasses.replace(base.controller, name="taxel_aware")
-    if taxel_aware:
-        controller = dataclasses.replace(controller, taxel_aware=dataclasses.replace(
-            controller.taxel_aware, **taxel_aware))
-    scenario = dataclasses.replace(base, object_offset=list(offset), object_yaw_deg=yaw_deg,
-                                   controller=controller)
-    return run_trial(scenario).result
+@dataclasses.dataclass(frozen=True)
+class Scene:
+    """A trial: the object placed `offset` [m] (approach axis, stroke) and `yaw_deg` from its
+    marker, the taxel_aware settings changed by `taxel_aware`, or a sweep spec's trial."""
+    object_name: str = "box"
+    offset: tuple = (0.0, 0.0)
+    yaw_deg: float = 0.0
+    seed: int | None = None
+    taxel_aware: tuple = ()  # (setting, value) pairs
+    spec: SweepSpec | None = None
 
 
-def _steps(result):
-    return [(t["from"], t["to"]) for t in result["transitions"]]
+@dataclasses.dataclass(frozen=True)
+class Expect:
+    """The (from, to, Reason) transitions that must occur in this order (others may come
+    between), `first`: the first of them is the trial's first transition; `check`: a
+    further assertion on (the matched transitions, the result dict)."""
+    steps: tuple
+    first: bool = False
+    no_re_reach: bool = False
+    unload: bool = True
+    check: object = None
 
 
-def test_a_cylinder_beyond_the_pads_centre_is_re_reached_along_the_approach_axis():
-    """12 mm farther than expected: the contact sits on the fingertip rows."""
-    result = _run("thick_cylinder", offset=(0.012, 0.0))
-    shifts = [t["approach_offset_m"] for t in result["transitions"]
-              if t["to"] == "Re-Reach" and "approach_offset_m" in t]
-    assert shifts and shifts[0] > 0.004  # forward, toward where the contact was
-    assert result["hold_success"] and result["unload_success"]
+def _run(scene: Scene):
+    if scene.spec is not None:
+        (trial,) = [t.to_dict() for t in expand_trials(scene.spec)]
+        scenario, events, corrective = trial_events(trial)
+        return run_trial(scenario, events=events, corrective_events=corrective)
+    base = LoadScenario(name=scene.object_name, controller="taxel_aware")
+    controller = dataclasses.replace(base.controller, taxel_aware=dataclasses.replace(
+        base.controller.taxel_aware, **dict(scene.taxel_aware)))
+    changes = dict(object_offset=list(scene.offset), object_yaw_deg=scene.yaw_deg,
+                   controller=controller)
+    if scene.seed is not None:
+        changes["random_seed"] = scene.seed
+    return run_trial(dataclasses.replace(base, **changes))
 
 
-def test_an_object_two_centimetres_along_the_stroke_is_grasped_without_stalling():
-    """Issue #14's reproducer: the paper's controller stalled on one-sided contact."""
-    result = _run("box", offset=(0.0, 0.02))
-    assert ("Reach", "Re-Reach") in _steps(result)
-    assert result["final_mode"] == "Done"
-    assert result["hold_success"] and result["unload_success"]
+def _matched(transitions, steps):
+    """The transitions matching `steps` in order, or None."""
+    found, k = [], 0
+    for t in transitions:
+        if k < len(steps) and (t.from_mode.label, t.to_mode.label, t.code) == steps[k]:
+            found.append(t)
+            k += 1
+    return found if k == len(steps) else None
 
 
-def test_a_pad_touching_the_object_during_the_approach_stops_it_and_shifts_the_grasp():
-    """16 mm beyond and 24 mm along the stroke, yawed: the right pad meets the box while
-    the open gripper still approaches; it backs off, shifts toward that pad, approaches
-    again and holds the box."""
-    result = _run("box", offset=(0.016, -0.024), yaw_deg=-2.0)
-    first = result["transitions"][0]
-    assert (first["from"], first["to"]) == ("Reach", "Re-Reach")
-    assert "right pad touched during the approach" in first["reason"]
-    assert result["final_mode"] == "Done"
-    assert result["hold_success"] and result["unload_success"]
-
-
-def test_one_finger_touching_at_the_objects_width_loads_and_the_squeeze_brings_the_other():
-    """14 mm toward the palm, yawed 4.7 deg (a second-grid scene): the gripper closes to the
-    box's width with only the left pad reading the contact force; it loads instead of
-    Re-Reaching, and the squeeze brings the right pad on. (At 15 mm and 5 deg the event
-    comes first: the scene sits where this rule, not the event, decides.)"""
-    result = _run("box", offset=(-0.014, 0.001), yaw_deg=4.7)
-    first = result["transitions"][0]
-    assert (first["from"], first["to"]) == ("Reach", "Load")
-    assert "closed to the object's width" in first["reason"]
-    assert "re_reach" not in result["corrective_actions"]
-    assert result["hold_success"] and result["unload_success"]
-
-
-def test_a_yawed_box_is_loaded_although_its_events_come_late_or_never():
-    """Issue #14: a box yawed 10 deg never matched the paper's Reach-Load event."""
-    result = _run("box", yaw_deg=10.0)
-    assert result["final_mode"] == "Done"
-    assert result["hold_success"] and result["unload_success"]
-
-
-def test_a_tilted_hold_is_put_down_and_grasped_again():
-    """The thin cylinder pushed along the stroke is held 3-5 deg tilted; its taxels read
-    0.4-0.9 deg of line tilt there (a 6 mm row resolves little of a thin contact line), so
-    this trial lowers the tilt limit below that reading to exercise the re-grasp's motion:
-    Hold -> Place -> Re-Reach -> Reach -> Load -> Lift -> Hold -> Place -> Unload."""
-    result = _run("thin_cylinder", offset=(0.0, 0.015), taxel_aware={"tilt_limit_deg": 0.2})
-    steps = _steps(result)
-    assert ("Hold", "Place") in steps and ("Place", "Re-Reach") in steps
-    assert "regrasp" in result["corrective_actions"]
-    assert steps.count(("Load", "Lift")) == 2
-    assert result["final_mode"] == "Done" and result["hold_success"]
-
-
-def test_a_thin_cylinder_pushed_along_the_stroke_is_loaded_where_it_is_not_let_go():
-    """The faithful sweep's failure: the right pad pushes the rod 15 mm along the stroke
-    (tipping it past its 11.8 deg standing limit) and reads the contact on the palm-side
-    row (-9 mm); re-centring opened the gripper on it, it leaned on a finger and was lost
-    (with release_topples patched to False this scene Re-Reaches and fails). At 1 cm beyond
-    the nominal grasp the first touch lies on the distal row alone and the close stops
-    there instead (touched_beyond_pads); on the grasp's line there is no approach shift to
-    hold back."""
-    result = _run("thin_cylinder", offset=(-0.01, -0.015))
-    leaving = [t for t in result["transitions"] if t["from"] == "Reach"]
-    assert leaving[0]["to"] == "Load"
-    assert result["hold_success"] and result["unload_success"]
-
-
-def test_a_thin_cylinder_caged_behind_the_pads_is_lifted_not_re_reached():
-    """Issue #14's second grid: the rod 15 mm toward the palm and 2.5 cm along the stroke
-    is first touched on the palm-side row, pushed behind the pads by the close and caged
-    there; no taxel sees it again. The old rule Re-Reached four times without a shift and
-    failed; open loop lifts it."""
-    result = _run("thin_cylinder", offset=(-0.015, -0.025), yaw_deg=-10.0)
-    leaving = [t for t in result["transitions"] if t["from"] == "Reach"]
-    assert leaving[0]["to"] == "Load" and "behind the pads" in leaving[0]["reason"]
-    assert "re_reach" not in result["corrective_actions"]
-    assert result["hold_success"] and result["unload_success"]
-
-
-def test_a_thin_cylinder_beyond_the_fingertips_stops_the_close_and_is_grasped_centred():
-    """Issue #14's second grid (dev seed 700, marker 1.5 cm beyond, 2.5 cm along the
-    stroke): the rod's axis stands beyond the pads' distal edge; the right pad's edge
-    touched it first and the close pushed it over and past the fingertips (4 Re-Reaches
-    on nothing, Failed). Now the close stops at that touch, moves forward and toward the
-    right pad, and closes centred."""
-    result = _run("thin_cylinder", offset=(0.0139, -0.0246), yaw_deg=7.8)
-    first = result["transitions"][0]
-    assert (first["from"], first["to"]) == ("Reach", "Re-Reach")
-    assert "right pad's distal row alone" in first["reason"]
-    assert first["approach_offset_m"] > 0.0 and first["offset_m"] < -0.015
-    assert result["final_mode"] == "Done"
-    assert result["hold_success"] and result["unload_success"]
-
-
-def test_one_sided_contact_flipping_fingers_re_centres_between_the_two_touched_faces():
-    """Box m20 of issue #14's second grid (15 mm beyond, 25 mm along the stroke, the
-    grid's randomisation) on dev seed 700: the approach's push yaws the box from 0.7 to
-    32 deg, 62 mm across the stroke. The right finger touches alone, then the left: the
-    paper's shift from the left touch (+6.3 mm, for a 45 mm box) overshot and the fingers
-    took turns (-9.1 mm next) to Failed. Between the two touched faces the Re-Reach goes
-    back by less than it came."""
-    spec = SweepSpec(objects=("box",), controllers=("taxel_aware",), attempts=1,
-                     base_seed=700, grid=((0.015, -0.025),),
-                     randomisation=RandomisationConfig(placement_yaw_bound_deg=15.0))
-    (trial,) = [t.to_dict() for t in expand_trials(spec)]
-    result = run_trial_from_spec(trial)
-    shifts = [t for t in result["transitions"] if t["to"] == "Re-Reach"]
-    flips = [k for k, t in enumerate(shifts) if "between the two faces" in t["reason"]]
-    assert flips, [t["reason"] for t in shifts]
-    before, flip = shifts[flips[0] - 1], shifts[flips[0]]
-    assert "only the right finger touched" in before["reason"]
-    assert 0.0 < flip["offset_m"] < abs(before["offset_m"])
-    assert result["final_mode"] == "Done"
-    assert result["hold_success"] and result["unload_success"]
-
-
-def test_no_load_lift_event_in_time_with_both_pads_on_lifts_after_the_timeout():
-    """The Load timeout with both pads on the object (transition_logic._load): no judged
-    sweep has met it (the Load-Lift event always came), so the event is made unmatchable
-    here (Load-Lift thresholds above 1, the largest Eq. 3 score): the well-placed box is
-    squeezed, waits load_event_timeout_s in Load and is lifted anyway, held and unloaded;
-    the paper's rule would Re-Reach a grasp that is already made."""
-    result = _run("box", taxel_aware={"load_lift_thresholds": [1.01, 1.01]})
-    leaving = [t for t in result["transitions"] if t["from"] == "Load"]
-    assert leaving[0]["to"] == "Lift" and leaving[0]["trigger"] == "corrective"
-    assert "both pads hold the object" in leaving[0]["reason"]
+def _load_waited_the_timeout(found, result):
     entered = [t["t"] for t in result["transitions"] if t["to"] == "Load"][0]
     timeout = LoadScenario(name="box").controller.load_event_timeout_s
-    assert leaving[0]["t"] - entered >= timeout - 1e-9
-    assert "re_reach" not in result["corrective_actions"]
-    assert result["hold_success"] and result["unload_success"]
+    return found[0].t - entered >= timeout - 1e-9 and found[0].trigger == "corrective"
+
+
+SCENES = {
+    # 12 mm farther than expected: the contact sits on the fingertip rows.
+    "off_centre": (Scene("thick_cylinder", (0.012, 0.0)), Expect(
+        (("Reach", "Re-Reach", Reason.OFF_CENTRE),),
+        check=lambda found, r: found[0].approach_offset_m > 0.004)),
+    # The paper's controller stalled on one-sided contact 2 cm along the stroke.
+    "one_sided": (Scene("box", (0.0, 0.02)), Expect(
+        (("Reach", "Re-Reach", Reason.ONE_SIDED), ("Reach", "Load", Reason.REACH_EVENT)))),
+    # 16 mm beyond and 24 mm along the stroke: the right pad meets the box in the approach;
+    # back off, shift toward it (-y), approach again.
+    "approach_contact": (Scene("box", (0.016, -0.024), -2.0), Expect(
+        (("Reach", "Re-Reach", Reason.APPROACH_CONTACT),), first=True,
+        check=lambda found, r: found[0].offset_m < 0.0 and found[0].approach_offset_m < 0.0)),
+    # 14 mm toward the palm, yawed 4.7 deg: closed to the width with the left pad alone.
+    "one_sided_at_width": (Scene("box", (-0.014, 0.001), 4.7), Expect(
+        (("Reach", "Load", Reason.ONE_SIDED_AT_WIDTH),), first=True, no_re_reach=True)),
+    # A box yawed 10 deg, whose events the paper's controller never matched.
+    "yawed_box": (Scene("box", yaw_deg=10.0), Expect(
+        (("Reach", "Load", Reason.REACH_EVENT), ("Load", "Lift", Reason.LOAD_LIFT_EVENT)))),
+    # The thin cylinder pushed along the stroke is held 3-5 deg tilted; its taxels read
+    # 0.4-0.9 deg of line tilt, so the limit is lowered below that to run the re-grasp.
+    "regrasp": (Scene("thin_cylinder", (0.0, 0.015), taxel_aware=(("tilt_limit_deg", 0.2),)),
+                Expect((("Hold", "Place", Reason.HELD_TILTED),
+                        ("Place", "Re-Reach", Reason.REGRASP_AFTER_PLACE),
+                        ("Load", "Lift", Reason.LOAD_LIFT_EVENT)), unload=False,
+                       check=lambda found, r: found[1].offset_m == 0.0
+                       and "regrasp" in r["corrective_actions"]
+                       and [(t["from"], t["to"]) for t in r["transitions"]].count(
+                           ("Load", "Lift")) == 2)),
+    # The rod pushed 15 mm along the stroke past its tipping limit: loaded where it is,
+    # not let go to re-centre (it would fall).
+    "tipping_guard": (Scene("thin_cylinder", (-0.01, -0.015)), Expect(
+        (("Reach", "Load", Reason.TIPPING_GUARD),), no_re_reach=True)),
+    # The rod 15 mm toward the palm is pushed behind the pads and caged there.
+    "caged": (Scene("thin_cylinder", (-0.015, -0.025), -10.0), Expect(
+        (("Reach", "Load", Reason.REACH_TIMEOUT_CAGED),
+         ("Load", "Lift", Reason.LOAD_TIMEOUT_CAGED)), first=True, no_re_reach=True)),
+    # The rod's axis beyond the pads' distal edge: stop at the first touch, move forward
+    # and toward the right pad.
+    "beyond_pads": (Scene("thin_cylinder", (0.0139, -0.0246), 7.8), Expect(
+        (("Reach", "Re-Reach", Reason.BEYOND_PADS),), first=True,
+        check=lambda found, r: found[0].approach_offset_m > 0.0 and found[0].offset_m < -0.015)),
+    # Box m20 of the second grid (15 mm beyond, 25 mm along the stroke) on dev seed 700,
+    # yawed to 32 deg by the approach's push: the right finger alone, then the left; the
+    # Re-Reach goes between the two faces, back by less than it came.
+    "bracket": (Scene(spec=SweepSpec(
+        objects=("box",), controllers=("taxel_aware",), attempts=1, base_seed=700,
+        grid=((0.015, -0.025),), randomisation=RandomisationConfig(placement_yaw_bound_deg=15.0))),
+        Expect((("Reach", "Re-Reach", Reason.ONE_SIDED),
+                ("Reach", "Re-Reach", Reason.BRACKET_RECENTRE)),
+               check=lambda found, r: found[0].offset_m < 0.0
+               and 0.0 < found[1].offset_m < abs(found[0].offset_m))),
+    # The Load-Lift event made unmatchable (thresholds above 1): lifted after the Load
+    # timeout with both pads on the box, where the paper's rule would Re-Reach.
+    "load_timeout": (Scene("box", taxel_aware=(("load_lift_thresholds", [1.01, 1.01]),)),
+                     Expect((("Load", "Lift", Reason.LOAD_TIMEOUT_BOTH_PADS),),
+                            no_re_reach=True, check=_load_waited_the_timeout)),
+    # A yawed box 25 mm along the stroke in the left finger's path: the strike, felt in the
+    # joint torques, backs the approach off and shifts it toward the left finger (+y).
+    "finger_strike": (Scene("box", (0.0, 0.025), -11.8, seed=700), Expect(
+        (("Reach", "Re-Reach", Reason.FINGER_STRIKE),), first=True,
+        check=lambda found, r: found[0].offset_m > 0.01 and found[0].approach_offset_m < 0)),
+}
+
+
+@pytest.mark.parametrize("name", list(SCENES))
+def test_the_scene_is_decided_by_its_rules_and_grasped(name):
+    scene, expect = SCENES[name]
+    run = _run(scene)
+    result = run.result
+    codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]
+    found = _matched(run.transitions, expect.steps)
+    assert found is not None, codes
+    if expect.first:
+        assert found[0] is run.transitions[0], codes
+    if expect.no_re_reach:
+        assert "re_reach" not in result["corrective_actions"]
+    if expect.check is not None:
+        assert expect.check(found, result), codes
+    assert result["final_mode"] == "Done" and result["hold_success"]
+    assert result["unload_success"] or not expect.unload

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from tegrasp_drake.experiments.sweep.spec import (
-    CONTROLLERS,
+    CONTROLLER_NAMES,
     PAPER_CONTROLLERS,
     ObjectDefinition,
     RandomisationConfig,

@@ -92,7 +92,12 @@ def test_a_sweep_trial_with_memorized_corrective_triggers_gets_their_events(monk
     plain = _first_trial(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),))
     trial_module.run_trial_from_spec(plain)
     assert handed == {"events": None, "corrective_events": None}
-    thick = _first_trial(objects=("thick_cylinder",), controllers=("open_loop",),
+    thick = _first_trial(objects=("thick_cylinder",), controllers=("heuristic",),
                          grid=((0.0, 0.0),), scenario_overrides=overrides)
     with pytest.raises(MemorizedEventError, match="record_corrective_events"):
         trial_module.run_trial_from_spec(thick)
+    # The open loop matches no corrective event: the sweep's setting is not its own.
+    scripted = _first_trial(objects=("thick_cylinder",), controllers=("open_loop",),
+                            grid=((0.0, 0.0),), scenario_overrides=overrides)
+    trial_module.run_trial_from_spec(scripted)
+    assert handed == {"events": None, "corrective_events": None}

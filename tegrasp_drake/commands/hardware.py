@@ -19,7 +19,7 @@ from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scena
                                                    controller_events, corrective_events,
                                                    quiet_modbus_library,
                                                    scenario_from_arguments)
-from tegrasp_drake.control.controller_config import CONTROLLERS
+from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
 
 
 DESCRIPTION = """\
@@ -51,8 +51,8 @@ def register(subparsers) -> None:
                         "--config-set tactile.port=/dev/ttyACM1")
     add_scenario_arguments(parser)
     add_events_argument(parser)
-    parser.add_argument("--controller", default=None, choices=CONTROLLERS,
-                        help="default: the scenario's (controller.name, memorized)")
+    parser.add_argument("--controller", default=None, choices=CONTROLLER_NAMES,
+                        help="default: the scenario's (its controller tag, memorized)")
     parser.add_argument("--log", metavar="FILE", default=None,
                         help="LCM log to write (default: out/hardware/run-<time>.lcmlog)")
     parser.add_argument("--overwrite", action="store_true",
@@ -79,6 +79,9 @@ def run(args) -> int:
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.hardware.config import HardwareStationConfig
     scenario = scenario_from_arguments(args)
+    if args.controller:
+        from tegrasp_drake.experiments.scenario import with_controller
+        scenario = with_controller(scenario, args.controller)
     if args.config:
         try:
             config = LoadHardwareConfig(args.config, args.config_overrides)
@@ -89,7 +92,7 @@ def run(args) -> int:
     else:
         raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
                          "is `!HardwareStationConfig {...}`")
-    events = controller_events(scenario, args.events, args.controller)
+    events = controller_events(scenario, args.events)
     corrective = corrective_events(scenario, args.events)
     log = args.log or (f"out/hardware/run-"
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
@@ -102,8 +105,7 @@ def run(args) -> int:
     # The earlier result stays until this run's replaces it (write_result, at the end).
     try:
         with SimulatedTimeBar("hardware", enabled=progress_wanted(args)) as progress:
-            result = run_on_hardware(scenario, config=config, controller=args.controller,
-                                     events=events, corrective_events=corrective,
+            result = run_on_hardware(scenario, config=config, events=events, corrective_events=corrective,
                                      events_dir=_events_folder(events, args, scenario),
                                      log_path=log, duration=args.duration,
                                      out=progress.write, progress=progress)

@@ -37,19 +37,18 @@ def add_events_argument(parser, *, what: str = "read") -> None:
                         "package's)")
 
 
-def controller_events(scenario, events_dir, controller: str | None = None):
+def controller_events(scenario, events_dir):
     """The memorized events the scenario's controller needs (None for the others), or
     exits with the message (which folder, which file, what to do)."""
-    from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
-    name = controller or scenario.controller.name
-    if name not in MEMORIZED_EVENT_CONTROLLERS:
+    if scenario.controller.events_folder is None:
         return None
     from tegrasp_drake.control.grasp_controller import load_controller_events
     from tegrasp_drake.events import MemorizedEventError
     try:
-        return load_controller_events(scenario, events_dir, controller=name)
+        return load_controller_events(scenario, events_dir)
     except MemorizedEventError as e:
-        raise SystemExit(f"tegrasp: error: the {name} controller needs the memorized "
+        raise SystemExit(f"tegrasp: error: the {scenario.controller.name} controller needs "
+                         f"the memorized "
                          f"events of '{scenario.object.name}': {e}") from None
 
 

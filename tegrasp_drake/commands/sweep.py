@@ -38,7 +38,7 @@ from tegrasp_drake.experiments.sweep.runner import (
 )
 from tegrasp_drake.experiments.sweep.spec import (
     BUILTIN_OBJECTS,
-    CONTROLLERS,
+    CONTROLLER_NAMES,
     SweepSpec,
     LoadSweepSpec,
     validate_spec,
@@ -68,7 +68,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--objects", nargs="+", metavar="NAME",
                         help=f"objects to grasp (built in: {', '.join(BUILTIN_OBJECTS)})")
     parser.add_argument("--controllers", nargs="+", metavar="NAME",
-                        help=f"controllers to compare ({', '.join(CONTROLLERS)})")
+                        help=f"controllers to compare ({', '.join(CONTROLLER_NAMES)})")
     parser.add_argument("--attempts", type=int, metavar="N",
                         help="attempts per marker position (paper: 3)")
     parser.add_argument("--base-seed", type=int, metavar="N",

@@ -16,7 +16,7 @@ from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scena
 from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
                                                 start_viewer, wait_for_viewer,
                                                 write_replay_html)
-from tegrasp_drake.control.controller_config import CONTROLLERS
+from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
 from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
 
 DESCRIPTION = """\
@@ -39,7 +39,7 @@ A folder given with --out that holds a run is refused unless --overwrite."""
 def add_trial_arguments(parser, *, out_help: str) -> None:
     add_scenario_arguments(parser)
     add_events_argument(parser)
-    parser.add_argument("--controller", choices=CONTROLLERS, default=None,
+    parser.add_argument("--controller", choices=CONTROLLER_NAMES, default=None,
                         help="memorized: the paper's memorized tactile events; heuristic: "
                              "hand-set thresholds (Romano et al. style); open_loop: the ideal "
                              "scripted grasp (default: the scenario's controller.name)")

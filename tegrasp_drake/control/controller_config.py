@@ -1,21 +1,25 @@
-"""The grasp controller's settings: which controller, the trigger thresholds and the numbers
-of the corrective actions (Sec. III-C; their triggers are heuristic, as in the paper).
+"""The grasp controllers' settings, one config class per controller, selected by the YAML
+tag of the scenario's `controller` field as `station:` selects its station:
 
-Every number a corrective trigger uses is here, with its unit, so a sweep or a `--set`
-override can change it (e.g. `--set controller.lift_load_enabled=false`).
+    controller: !MemorizedControllerConfig {}      # the default: the paper's algorithm
+    controller: !HeuristicControllerConfig {heuristic: {contact_force_n: 1.0}}
+    controller: !OpenLoopControllerConfig {}       # the ideal scripted grasp
+    controller: !TaxelAwareControllerConfig {taxel_aware: {max_re_reaches: 4}}
+
+`controller: {name: heuristic, ...}` and `--set controller.name=heuristic` are shorthands
+for the tag (select_controller_tag). The closed-loop controllers share the state machine's
+settings (GraspControllerConfig: the trigger thresholds and the numbers of the corrective
+actions, Sec. III-C, with their units) and add their own; what a controller is, beyond its
+settings, is said by its class (ClassVars): its name in results and sweeps, the events
+folder it reads, the extra time its corrections may take.
+
+This module imports no Drake: the sweep spec (parsed without Drake) reads the names here.
 """
 
 import dataclasses
+import typing
 
-# The controllers (issue #5): the paper's memorized triggers, heuristic thresholds in the
-# style of Romano et al. 2011, and open loop; issue #14 adds taxel_aware (corrections from
-# the whole taxel array, memorized events of an ensemble of ideal grasps). This module
-# imports no Drake: the sweep spec (parsed without Drake) reads the names here.
-CONTROLLERS = ("memorized", "heuristic", "open_loop", "taxel_aware")
-# The controllers whose transitions a memorized event triggers, and the events folder each
-# reads (a sub-folder of the events folder; "" is the folder itself: the paper's events).
-MEMORIZED_EVENT_CONTROLLERS = {"memorized": "", "taxel_aware": "ensemble"}
-# What triggers Lift-Load and Avoid (issue #14): the heuristic thresholds below (the
+# What triggers Lift-Load and Avoid: the heuristic thresholds below (the
 # paper's, the default) or, for each corrective event named in
 # controller.memorized_corrective_events, its memorized event (experiments/
 # corrective_events.py, read from the events folder's CORRECTIVE_EVENTS_FOLDER) matched by
@@ -69,8 +73,8 @@ class FingerStrikeConfig:
 
 @dataclasses.dataclass
 class TaxelAwareConfig:
-    """The taxel-aware corrections (control/taxel_corrections.py; issue #14). Lengths in
-    the pad's terms: a row is 6 mm along the approach axis, a column 6.7 mm high."""
+    """The taxel-aware corrections (control/taxel_aware). Lengths in the pad's terms: a row
+    is 6 mm along the approach axis, a column 6.7 mm high."""
     # Re-Reach normal to the palm when the contact's centroid sits more than this far from
     # the pads' centres along the approach axis [m]: two thirds of a row (a line contact
     # between two rows interpolates; within this it presses the two middle rows).
@@ -92,7 +96,7 @@ class TaxelAwareConfig:
     # One finger alone touches while the gripper has closed to within this of the
     # object's width [m]: the object is between the fingers, the other finger's contact is
     # off its pad or light; Load (the squeeze brings the second pad on) instead of another
-    # Re-Reach that would shift by less than min_shift_m (the stall of issue #14).
+    # Re-Reach that would shift by less than min_shift_m (a stall).
     one_sided_width_margin_m: float = 0.004
     # The first touch of a close lies on a pad's distal row alone when its contact centroid
     # along the approach axis is at least this far toward the fingertips [m]: the distal
@@ -100,7 +104,7 @@ class TaxelAwareConfig:
     # a first touch of 0.15 N (the measured edge touch) pulls the centroid to 7.5 mm; the
     # object then lies on the pad's face, not beyond its edge. With the close's push past
     # the tipping limit, the close stops and Re-Reaches forward
-    # (taxel_corrections.touched_beyond_pads).
+    # (taxel_aware/beyond_pads.py).
     beyond_pads_centroid_m: float = 0.0085
     # Held tilted: re-grasp (put it down, open, close again, lift) when in Hold the
     # contact line on a pad turns more than tilt_limit_deg, or the two pads' contact
@@ -133,13 +137,9 @@ class TaxelAwareConfig:
 
 @dataclasses.dataclass
 class GraspControllerConfig:
-    """Controller selection, matcher thresholds and corrective-action triggers."""
-    name: str = "memorized"  # one of CONTROLLERS
+    """The grasp state machine's settings, shared by the closed-loop controllers: the tick,
+    the contact force and the corrective actions' triggers and numbers."""
     update_period_s: float = 0.005  # state machine tick [s]
-    # Eq. 3 thresholds (Sec. III-B).
-    sa_threshold: float = 0.9
-    ra_threshold: float = 0.7
-    heuristic: HeuristicTriggerConfig = dataclasses.field(default_factory=HeuristicTriggerConfig)
     # A finger touches when its SA exceeds contact_force_n [N].
     contact_force_n: float = 0.3
     # Re-Reach: one finger alone in contact for one_sided_contact_s [s], the gripper closed
@@ -186,7 +186,7 @@ class GraspControllerConfig:
     avoid_s: float = 0.6
     hit_refractory_s: float = 0.3
     # With the memorized hit trigger (memorized_corrective_events), the match comes after
-    # the hit (15 ms measured, issue #14's target at most 60 ms), when the push has
+    # the hit (15 ms measured, the target at most 60 ms), when the push has
     # already moved SA: the Avoid direction's SA baseline is the SA this long before the
     # match [s], the latency target, so that it precedes the hit.
     memorized_hit_baseline_s: float = 0.06
@@ -232,5 +232,130 @@ class GraspControllerConfig:
         return {"lift_load": tuple(self.lift_load_event_thresholds),
                 "hold_avoid": tuple(self.hold_avoid_event_thresholds)}
 
-    # The taxel_aware controller's corrections (unused by the other controllers).
+
+@dataclasses.dataclass
+class EventTriggeredConfig(GraspControllerConfig):
+    """The settings of a state machine whose transitions memorized tactile events trigger,
+    matched by Eq. 3."""
+    # Eq. 3 thresholds (Sec. III-B).
+    sa_threshold: float = 0.9
+    ra_threshold: float = 0.7
+
+    def event_thresholds(self) -> dict[str, tuple[float, float]]:
+        """{transition: (SA, RA)} thresholds that replace sa/ra_threshold (none)."""
+        return {}
+
+
+@dataclasses.dataclass
+class MemorizedControllerConfig(EventTriggeredConfig):
+    """The paper's algorithm: transitions triggered by the memorized tactile events."""
+    name: typing.ClassVar[str] = "memorized"
+    # The events folder it reads: the events search path's folders themselves.
+    events_folder: typing.ClassVar[str | None] = ""
+    extra_time_s: typing.ClassVar[float] = 0.0
+
+
+@dataclasses.dataclass
+class HeuristicControllerConfig(GraspControllerConfig):
+    """Hand-set transition thresholds in the style of Romano et al. 2011."""
+    name: typing.ClassVar[str] = "heuristic"
+    events_folder: typing.ClassVar[str | None] = None  # reads no memorized events
+    extra_time_s: typing.ClassVar[float] = 0.0
+    heuristic: HeuristicTriggerConfig = dataclasses.field(default_factory=HeuristicTriggerConfig)
+
+
+@dataclasses.dataclass
+class OpenLoopControllerConfig:
+    """The ideal scripted grasp (control/scripted_grasp.py, from the scenario's `grasp`
+    section): no settings of its own."""
+    name: typing.ClassVar[str] = "open_loop"
+    events_folder: typing.ClassVar[str | None] = None
+    extra_time_s: typing.ClassVar[float] = 0.0
+    memorized_corrective_events: typing.ClassVar[tuple] = ()  # it matches none
+
+
+@dataclasses.dataclass
+class TaxelAwareControllerConfig(EventTriggeredConfig):
+    """The paper's algorithm with corrections from the whole taxel array (the rule table of
+    control/taxel_aware), its transitions triggered by the memorized events of an ensemble
+    of ideal grasps."""
+    name: typing.ClassVar[str] = "taxel_aware"
+    events_folder: typing.ClassVar[str | None] = "ensemble"
+    # Its further corrections: two more Re-Reaches than the paper's (open, move 0.8 s,
+    # close: about 2.5 s each) and a re-grasp (put down, open, close, load, lift and hold
+    # again: about 9 s), rounded up [s].
+    extra_time_s: typing.ClassVar[float] = 15.0
     taxel_aware: TaxelAwareConfig = dataclasses.field(default_factory=TaxelAwareConfig)
+
+    def event_thresholds(self) -> dict[str, tuple[float, float]]:
+        """{transition: (SA, RA)}: the ensemble events' own (TaxelAwareConfig)."""
+        return self.taxel_aware.event_thresholds()
+
+
+# The scenario's `controller` field: the first (the default) when untagged.
+ControllerConfig = typing.Union[MemorizedControllerConfig, HeuristicControllerConfig,
+                                OpenLoopControllerConfig, TaxelAwareControllerConfig]
+CONTROLLER_CLASSES = typing.get_args(ControllerConfig)
+# Their names (results, sweeps, --controller), in the tables' order.
+CONTROLLER_NAMES = tuple(cls.name for cls in CONTROLLER_CLASSES)
+_CLASS_OF_NAME = {cls.name: cls for cls in CONTROLLER_CLASSES}
+
+
+class UnknownControllerError(ValueError):
+    """A controller name that names no controller config class."""
+
+
+def controller_class(name: str):
+    """The config class of the controller called `name` (UnknownControllerError)."""
+    try:
+        return _CLASS_OF_NAME[name]
+    except KeyError:
+        raise UnknownControllerError(
+            f"'{name}' is not one of {', '.join(CONTROLLER_NAMES)}") from None
+
+
+def controller_named(name: str, like=None):
+    """The config of the controller called `name`, with the settings of `like` (another
+    controller's config) that its class also has; the defaults otherwise."""
+    cls = controller_class(name)
+    settings = {f.name for f in dataclasses.fields(like)} if like is not None else set()
+    return cls(**{f.name: getattr(like, f.name) for f in dataclasses.fields(cls)
+                  if f.name in settings})
+
+
+def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
+    """A setting of a scenario's YAML `controller` section (tagged or not) that its
+    controller lacks but others have: (setting, the names of those that have it)."""
+    if not isinstance(section, dict):
+        return None
+    tag = section.get("_tag")
+    cls = next((c for c in CONTROLLER_CLASSES if tag == f"!{c.__name__}"),
+               CONTROLLER_CLASSES[0] if tag is None else None)
+    if cls is None:
+        return None
+    own = {f.name for f in dataclasses.fields(cls)}
+    for key in section:
+        owners = tuple(other.name for other in CONTROLLER_CLASSES
+                       if key in {f.name for f in dataclasses.fields(other)})
+        if key not in own and owners:
+            return key, owners
+    return None
+
+
+def select_controller_tag(data: dict, *, drop_others: bool = False) -> None:
+    """Turns the shorthand `controller: {name: NAME, ...}` of YAML data (a scenario's, in
+    place) into the tag of NAME's config class (`_tag`, as Drake's yaml_load keeps it).
+    drop_others: drop the settings of other controllers that NAME's class lacks (a sweep's
+    overrides, which apply to each of its controllers; a log written when one flat config
+    served every controller); a setting no controller has stays, to be refused.
+    UnknownControllerError for an unknown name."""
+    section = data.get("controller") if isinstance(data, dict) else None
+    if not isinstance(section, dict) or "name" not in section:
+        return
+    cls = controller_class(section.pop("name"))
+    section["_tag"] = f"!{cls.__name__}"
+    if drop_others:
+        own = {f.name for f in dataclasses.fields(cls)}
+        others = {f.name for other in CONTROLLER_CLASSES for f in dataclasses.fields(other)}
+        for key in [key for key in section if key in others - own]:
+            del section[key]

@@ -52,7 +52,7 @@ class Counters:
 
 
 # Taken by a corrective trigger, these transitions start the taxel_aware controller's
-# actions (taxel_corrections.py); by their usual trigger they start none.
+# actions (control/taxel_aware); by their usual trigger they start none.
 CORRECTIVE_ONLY_ACTIONS = {(Mode.HOLD, Mode.PLACE): "regrasp",
                            (Mode.REACH, Mode.LOAD): "load_without_event"}
 

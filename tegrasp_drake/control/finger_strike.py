@@ -1,6 +1,7 @@
-"""The taxel_aware controller's finger-strike sense (issue #14), as pure functions: a
-finger's front striking the object while the open gripper approaches it, seen in the arm's
-joint torques, and the response (stop, back off, shift along the stroke, approach again).
+"""The taxel_aware controller's finger-strike sense, as pure functions: a finger's front
+striking the object while the open gripper approaches it, seen in the arm's joint torques,
+and where the gripper moves after it (stop, back off, shift along the stroke, approach
+again: the rule taxel_aware/finger_strike.py).
 
 The taxels cannot see it: a 45 mm box 25 mm along the 85 mm stroke lies in the path of the
 finger's front, not its pad, and the moving finger knocks it over. The joints feel it: the
@@ -14,9 +15,6 @@ the left finger on +y (corrective_actions.py). Wrenches are [Mx, My, Mz, Fx, Fy,
 """
 
 import numpy as np
-
-from tegrasp_drake.control.grasp_modes import Decision
-from tegrasp_drake.control.taxel_corrections import re_reach_or_fail
 
 FINGERS = ("left", "right")
 
@@ -66,14 +64,3 @@ def strike_shift(finger: str | None, opening_m: float, object_width_m: float) ->
         return 0.0
     sign = 1.0 if finger == FINGERS[0] else -1.0
     return sign * max((opening_m - object_width_m) / 2.0, 0.0)
-
-
-def finger_strike_response(*, finger: str | None, force_n: float, re_reaches: int,
-                           config) -> Decision:
-    """A finger has struck the object for finger_strike.sustain_s during the approach:
-    Re-Reach (the state machine backs off approach_retreat_m, shifts by strike_shift and
-    approaches again), or Failed once taxel_aware.max_re_reaches are used up.
-    config: GraspControllerConfig."""
-    who = f"the {finger} finger" if finger else "a finger (side unknown)"
-    return re_reach_or_fail(re_reaches, config, f"{who} struck the object during the "
-                            f"approach ({force_n:.1f} N at the wrist)")

@@ -19,7 +19,8 @@ from pydrake.systems.primitives import Multiplexer
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.control.cartesian_arm_controller import AddCartesianArmController
-from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
+from tegrasp_drake.control.controller_config import (EventTriggeredConfig, OpenLoopControllerConfig,
+                                                     TaxelAwareControllerConfig)
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
@@ -75,19 +76,17 @@ class GraspController:
         return log
 
 
-def controller_events_folders(controller: str, events_dir=None) -> list:
-    """The folders the controller `controller` reads its memorized events from: the events
+def controller_events_folders(controller, events_dir=None) -> list:
+    """The folders the controller (its config) reads its memorized events from: the events
     search path (rig/paths.events_search_path), each folder's sub-folder
-    MEMORIZED_EVENT_CONTROLLERS[controller] ("" for the paper's memorized controller)."""
-    from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
-    sub = MEMORIZED_EVENT_CONTROLLERS.get(controller, "")
+    controller.events_folder ("" for the paper's memorized controller)."""
+    sub = controller.events_folder or ""
     return [folder / sub if sub else folder for folder in paths.events_search_path(events_dir)]
 
 
-def load_controller_events(scenario, events_dir=None, *, nominal_object=None,
-                           controller: str | None = None) -> dict:
-    """The memorized events of the scenario's object for `controller` (default the
-    scenario's), from `events_dir` or else the user's events folder or the package's
+def load_controller_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
+    """The memorized events of the scenario's object for the scenario's controller, from
+    `events_dir` or else the user's events folder or the package's
     (controller_events_folders).
 
     MemorizedEventError (naming the folders, the file and the command that records them)
@@ -95,7 +94,7 @@ def load_controller_events(scenario, events_dir=None, *, nominal_object=None,
     scenario's (`nominal_object`, e.g. a sweep's unperturbed object, if given) in a field
     not listed in controller.event_object_may_differ."""
     return _load_checked_events(
-        scenario, controller_events_folders(controller or scenario.controller.name, events_dir),
+        scenario, controller_events_folders(scenario.controller, events_dir),
         nominal_object=nominal_object)
 
 
@@ -159,19 +158,18 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
     return events
 
 
-def _add_detector(builder, scenario, name, events, channels):
-    """The detector fed by `channels` (an output port), and its trigger."""
+def _add_detector(builder, scenario, events, channels):
+    """The detector fed by `channels` (an output port), and its trigger: the memorized
+    events' matcher for an event-triggered controller, else the heuristic thresholds."""
     config = scenario.controller
-    if name in MEMORIZED_EVENT_CONTROLLERS:
+    if isinstance(config, EventTriggeredConfig):
         from tegrasp_drake.events import EventMatcherConfig, add_event_matcher
         matcher_config = EventMatcherConfig(
             sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
-            event_thresholds=(config.taxel_aware.event_thresholds()
-                              if name == "taxel_aware" else {}),
+            event_thresholds=config.event_thresholds(),
             sa_rate_hz=scenario.tactile.sample_rate_hz,
             ra_rate_hz=scenario.vibration.sample_rate_hz)
-        events = (events if events is not None
-                  else load_controller_events(scenario, controller=name))
+        events = events if events is not None else load_controller_events(scenario)
         return (add_event_matcher(builder, events, matcher_config, channels=channels),
                 Trigger.MEMORIZED_EVENT)
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
@@ -198,11 +196,10 @@ def _add_corrective_matcher(builder, scenario, corrective_events, channels):
     return matcher
 
 
-def AddGraspController(builder, *, scenario, station, controller: str | None = None,
-                         events: dict | None = None,
+def AddGraspController(builder, *, scenario, station, events: dict | None = None,
                          corrective_events: dict | None = None) -> GraspController:
-    """Adds the controller `controller` (default: scenario.controller.name) and connects it
-    to `station`'s ports; returns its GraspController.
+    """Adds the scenario's controller (its `controller` config) and connects it to
+    `station`'s ports; returns its GraspController.
 
     events: {transition: MemorizedEvent} for the memorized controller (default: the
     package's events of the scenario's object). corrective_events: the memorized
@@ -210,14 +207,15 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
     controller.memorized_corrective_events are matched (default: load_corrective_events).
     """
     from tegrasp_drake.simulation.station import initial_arm_positions
-    name = controller or scenario.controller.name
+    config = scenario.controller
+    name = config.name
     channels = AddMechanoreceptorChannels(builder, station)
     X_WG_desired, arm_desired_state = AddCartesianArmController(
         builder, position_measured=station.GetOutputPort("arm.position_measured"),
         velocity_measured=station.GetOutputPort("arm.velocity_measured"),
         q_nominal=initial_arm_positions(scenario), time_step=scenario.arm.control_period_s)
     builder.Connect(arm_desired_state, station.GetInputPort("arm.desired_state"))
-    if name == "open_loop":
+    if isinstance(config, OpenLoopControllerConfig):
         segments = plan_scripted_grasp(scenario)
         script = builder.AddNamedSystem("scripted_grasp", ScriptedGraspSource(segments))
         builder.Connect(script.GetOutputPort("X_WG_desired"), X_WG_desired)
@@ -226,14 +224,14 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
         return GraspController(name, channels, None, script,
                                script.GetOutputPort("gripper_command"), arm_desired_state,
                                script.GetOutputPort("phase"), segments)
-    detector, event_trigger = _add_detector(builder, scenario, name, events,
+    detector, event_trigger = _add_detector(builder, scenario, events,
                                             channels.GetOutputPort("channels"))
     corrective = None
-    if scenario.controller.memorized_corrective_events:
+    if config.memorized_corrective_events:
         corrective = _add_corrective_matcher(builder, scenario, corrective_events,
                                              channels.GetOutputPort("channels"))
     machine = builder.AddNamedSystem("grasp_state_machine", GraspStateMachine(
-        plan=GraspPlan.from_scenario(scenario), config=scenario.controller,
+        plan=GraspPlan.from_scenario(scenario), config=config,
         event_indices={t: detector.event_index(t) for t in detector.transitions},
         event_trigger=event_trigger,
         corrective_event_indices=({t: corrective.event_index(t)
@@ -255,7 +253,6 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
         builder.Connect(station.GetOutputPort(f"tactile.{finger}_pad_acceleration"),
                         accelerations.get_input_port(k))
     builder.Connect(accelerations.get_output_port(), machine.GetInputPort("pad_acceleration"))
-    config = scenario.controller
     # On hardware the band filters the device's own samples (see SlipVibrationBand).
     samples = (station.GetOutputPort("tactile.pad_acceleration_samples")
                if station.HasOutputPort("tactile.pad_acceleration_samples") else None)
@@ -270,7 +267,8 @@ def AddGraspController(builder, *, scenario, station, controller: str | None = N
         builder.Connect(station.GetOutputPort(f"tactile.{finger}_taxel_forces"),
                         taxels.get_input_port(k))
     builder.Connect(taxels.get_output_port(), machine.GetInputPort("taxel_forces"))
-    if name == "taxel_aware" and station.HasOutputPort("arm.torque_measured"):
+    if isinstance(config, TaxelAwareControllerConfig) and station.HasOutputPort(
+            "arm.torque_measured"):
         # The finger-strike sense: the wrench the arm's joint torques hold at the grasp frame.
         wrench = builder.AddNamedSystem("grasp_wrench_estimator", GraspWrenchEstimator())
         builder.Connect(station.GetOutputPort("arm.position_measured"),

@@ -33,6 +33,8 @@ class Mode(enum.IntEnum):
 
 
 TERMINAL_MODES = (Mode.DONE, Mode.FAILED)
+# The modes in which the fingers hold the object (the drop check's).
+HOLDING_MODES = (Mode.LIFT, Mode.HOLD, Mode.AVOID, Mode.PLACE)
 
 
 class Trigger(enum.StrEnum):
@@ -64,10 +66,16 @@ class Stage(enum.StrEnum):
 
 @dataclasses.dataclass(frozen=True)
 class Decision:
-    """The next mode, what triggered it and a human-readable reason."""
+    """The next mode, what triggered it and a human-readable reason.
+
+    A rule table's decision (control/taxel_aware) also carries its action (e.g. a
+    ReReach with its shift), which the state machine carries out, and the structured
+    reason code of the rule that decided it."""
     mode: Mode
     trigger: Trigger
     reason: str
+    action: object | None = None
+    code: enum.Enum | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -88,6 +96,9 @@ class Transition:
     grip_force_n: float | None = None  # Lift-Load: the raised grip force [N]
     direction: tuple[float, float, float] | None = None  # Avoid: unit direction, world
     delta_sa_n: tuple[float, float] | None = None  # Avoid: (left, right) SA gain of the hit [N]
+    # The structured reason code of the rule that decided it (taxel_aware's Reason), for
+    # code that asks which rule fired; not part of the JSON form, which keeps the text.
+    code: enum.Enum | None = None
 
     def as_dict(self) -> dict:
         """The JSON form (trial results, logs): t, from, to, trigger, reason, then the

@@ -27,11 +27,9 @@ from tegrasp_drake.experiments.trial_logging import TrialLoggers, AddTrialLoggin
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.simulation.station import MakeGraspStation
 
-EXTRA_TIME_S = 10.0  # beyond the ideal grasp's duration, for corrections
-# The taxel_aware controller's further corrections: two more Re-Reaches than the paper's
-# (open, move 0.8 s, close: about 2.5 s each) and a re-grasp (put down, open, close, load,
-# lift and hold again: about 9 s), rounded up [s].
-TAXEL_AWARE_EXTRA_TIME_S = 15.0
+# Beyond the ideal grasp's duration, for corrections (and the controller's own
+# extra_time_s, controller_config.py) [s].
+EXTRA_TIME_S = 10.0
 
 
 def MakeStation(scenario, *, meshcat=None, lcm=None):
@@ -61,11 +59,9 @@ class GraspDiagram:
     time_limit: float            # [s] the longest the run may take (the plan plus corrections)
 
 
-def MakeGraspDiagram(scenario, *, station=None, controller: str | None = None,
-                        events=None, corrective_events=None, meshcat=None,
-                        log: bool = True) -> GraspDiagram:
-    """Builds the station and the controller `controller` (default: the scenario's) into
-    one Diagram.
+def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=None,
+                     meshcat=None, log: bool = True) -> GraspDiagram:
+    """Builds the station and the scenario's controller into one Diagram.
 
     station: a station Diagram with the station's ports (default: MakeStation(scenario,
     meshcat=meshcat)); events: the memorized events (default: the package's for the
@@ -77,8 +73,7 @@ def MakeGraspDiagram(scenario, *, station=None, controller: str | None = None,
         station = MakeStation(scenario, meshcat=meshcat)
     station = builder.AddNamedSystem("station", station)
     grasp = AddGraspController(builder, scenario=scenario, station=station,
-                                 controller=controller, events=events,
-                                 corrective_events=corrective_events)
+                               events=events, corrective_events=corrective_events)
     machine = grasp.state_machine
     if station.HasOutputPort("device_fault") and machine.HasInputPort("device_fault"):
         builder.Connect(station.GetOutputPort("device_fault"),
@@ -91,8 +86,8 @@ def MakeGraspDiagram(scenario, *, station=None, controller: str | None = None,
                                     gripper_command=grasp.gripper_command, phase=grasp.mode)
     diagram = builder.Build()
     diagram.set_name(f"grasp_{grasp.name}")
-    time_limit = plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S + (
-        TAXEL_AWARE_EXTRA_TIME_S if grasp.name == "taxel_aware" else 0.0)
+    time_limit = (plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S
+                  + scenario.controller.extra_time_s)
     return GraspDiagram(diagram, station, grasp, loggers, time_limit)
 
 

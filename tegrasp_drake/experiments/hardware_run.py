@@ -36,7 +36,7 @@ from tegrasp_drake.hardware.realtime import realtime_scheduling
 from tegrasp_drake.hardware.station import MakeHardwareStation
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
                                     lcmt_tegrasp_transition)
-from tegrasp_drake.experiments.scenario import scenario_to_yaml
+from tegrasp_drake.experiments.scenario import scenario_to_yaml, with_controller
 from tegrasp_drake.experiments.trial_logging import package_versions
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
@@ -251,25 +251,25 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
     if not isinstance(config, HardwareStationConfig):
         raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "
                          f"station is {type(config).__name__})")
-    controller = controller or scenario.controller.name
+    if controller is not None:
+        scenario = with_controller(scenario, controller)
     with realtime_scheduling(config.scheduling, config.realtime_priority) as scheduling:
         out(f"control loop: {scheduling}")
-        return _run(scenario, config, controller, events, corrective_events, events_dir,
+        return _run(scenario, config, events, corrective_events, events_dir,
                     log_path, duration, drake_lcm, out, progress)
 
 
-def _run(scenario, config, controller, events, corrective_events, events_dir, log_path,
+def _run(scenario, config, events, corrective_events, events_dir, log_path,
          duration, drake_lcm, out, progress) -> HardwareRunResult:
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
-        parts = MakeGraspDiagram(scenario, station=station, controller=controller,
-                                    events=events, corrective_events=corrective_events,
-                                    log=False)
+        parts = MakeGraspDiagram(scenario, station=station, events=events,
+                                 corrective_events=corrective_events, log=False)
         diagram = parts.diagram
         writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path, drake_lcm=station.lcm)
                   if log_path else None)
         try:
             station.lcm.Publish(RUN_INFO_CHANNEL, run_info_message(
-                scenario, config, controller, events_dir).encode())
+                scenario, config, scenario.controller.name, events_dir).encode())
             out(f"waiting for the devices: arm on {station.lcm.get_lcm_url()}, gripper on "
                 f"{config.gripper.port}, tactile on {config.tactile.port}")
             station.wait_until_ready()

@@ -4,17 +4,19 @@ The grasp diagram with the open-loop controller (the scripted grasp of
 control/scripted_grasp.py), simulated to the end of the script and a little beyond.
 """
 
+import dataclasses
 import logging
 import time
 
 from pydrake.systems.framework import EventStatus
 
+from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.scripted_grasp import PHASES, plan_duration
 from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, MakeSimulator
 from tegrasp_drake.experiments.trial_logging import collect_trial_log
 from tegrasp_drake.simulation.station import MakeGraspStation
 
-CONTROLLER_NAME = "open_loop"
+CONTROLLER_NAME = OpenLoopControllerConfig.name
 END_MARGIN_S = 0.5  # simulated after the script ends, to see the object settle
 PROGRESS_PERIOD_S = 0.25  # [s] of simulated time between calls of `progress`
 
@@ -23,8 +25,8 @@ logger = logging.getLogger(__name__)
 
 def MakeIdealGraspDiagram(scenario, *, meshcat=None):
     """The GraspDiagram of the scripted grasp around the simulated station."""
-    return MakeGraspDiagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
-                               controller=CONTROLLER_NAME)
+    scripted = dataclasses.replace(scenario, controller=OpenLoopControllerConfig())
+    return MakeGraspDiagram(scripted, station=MakeGraspStation(scripted, meshcat=meshcat))
 
 
 def progress_monitor(progress, end_time: float):

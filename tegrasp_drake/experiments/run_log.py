@@ -21,7 +21,6 @@ import struct
 
 import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
-from pydrake.common.yaml import yaml_load_typed
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
@@ -39,7 +38,7 @@ from tegrasp_drake.events.memorized_event import find_memorized_events
 from tegrasp_drake.events.replay import (EventReplay, channels_trajectory, live_matcher_config,
                                          replay_events_in_sequence)
 from tegrasp_drake.events.streaming_correlation import NO_EVENT
-from tegrasp_drake.experiments.scenario import Scenario
+from tegrasp_drake.experiments.scenario import scenario_from_yaml
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
                                     lcmt_tegrasp_transition)
@@ -335,10 +334,9 @@ def matcher_config_of_run(run_info, events) -> EventMatcherConfig:
     defaults), at the events' rates."""
     config = EventMatcherConfig()
     if run_info is not None and run_info.scenario_yaml:
-        scenario = yaml_load_typed(schema=Scenario, data=run_info.scenario_yaml,
-                                   defaults=Scenario())
-        config.sa_threshold = scenario.controller.sa_threshold
-        config.ra_threshold = scenario.controller.ra_threshold
+        controller = scenario_from_yaml(run_info.scenario_yaml).controller
+        config.sa_threshold = getattr(controller, "sa_threshold", config.sa_threshold)
+        config.ra_threshold = getattr(controller, "ra_threshold", config.ra_threshold)
     return live_matcher_config(events, config)
 
 

@@ -14,11 +14,14 @@ import math
 import pathlib
 import typing
 
-from pydrake.common.yaml import yaml_dump_typed
+from pydrake.common.yaml import yaml_dump, yaml_dump_typed, yaml_load, yaml_load_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
-from tegrasp_drake.control.controller_config import CONTROLLERS, GraspControllerConfig
+from tegrasp_drake.control.controller_config import (
+    ControllerConfig, GraspControllerConfig, HeuristicControllerConfig,
+    MemorizedControllerConfig, TaxelAwareControllerConfig, UnknownControllerError,
+    controller_named, foreign_setting, select_controller_tag)
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
@@ -37,7 +40,8 @@ from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
-           "resolve_object", "scenario_to_yaml", "validate"]
+           "resolve_object", "scenario_from_yaml", "scenario_to_yaml", "validate",
+           "with_controller"]
 
 # Which station a scenario runs on, selected by the YAML tag of its `station` field
 # (hardware/config.py): the simulation (the default, untagged) or the real devices.
@@ -72,7 +76,8 @@ class Scenario:
     arm: ArmDriverConfig = dataclasses.field(default_factory=ArmDriverConfig)
     grasp: GraspScriptConfig = dataclasses.field(default_factory=GraspScriptConfig)
     disturbance: DisturbanceConfig = dataclasses.field(default_factory=DisturbanceConfig)
-    controller: GraspControllerConfig = dataclasses.field(default_factory=GraspControllerConfig)
+    # Which controller, with its settings, selected by the YAML tag (controller_config.py).
+    controller: ControllerConfig = dataclasses.field(default_factory=MemorizedControllerConfig)
     # Simulated (default) or real devices, selected by the YAML tag (hardware/config.py).
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
 
@@ -151,10 +156,36 @@ _CONTROLLER_RULES = (("_s", lambda v: v >= 0, "must be zero or positive [s]"),
                       "must lie in [-1, 1] (Eq. 3 scores are correlations)"))
 
 
-def _check_controller(controller: GraspControllerConfig, source: str) -> None:
-    if controller.name not in CONTROLLERS:
-        raise ConfigError(f"{source}: field 'controller.name': '{controller.name}' "
-                          f"is not one of {', '.join(CONTROLLERS)}")
+def _check_controller(controller, source: str) -> None:
+    if isinstance(controller, GraspControllerConfig):
+        _check_state_machine(controller, source)
+    if isinstance(controller, HeuristicControllerConfig):
+        _check_units(controller.heuristic, source, "controller.heuristic")
+        require(0 < controller.heuristic.grip_fraction <= 1, source,
+                "controller.heuristic.grip_fraction", "must lie in (0, 1]",
+                controller.heuristic.grip_fraction)
+    if isinstance(controller, TaxelAwareControllerConfig):
+        strike = controller.taxel_aware.finger_strike
+        prefix = "controller.taxel_aware.finger_strike"
+        for name, ok, words in (("force_n", lambda v: v > 0, "must be positive [N]"),
+                                ("sustain_s", lambda v: v >= 0,
+                                 "must be zero or positive [s]"),
+                                ("min_moment_nm", lambda v: v >= 0,
+                                 "must be zero or positive [N m]")):
+            require(ok(getattr(strike, name)), source, f"{prefix}.{name}", words,
+                    getattr(strike, name))
+
+
+def _check_units(section, source: str, prefix: str) -> None:
+    """Each float setting of `section` by the unit its name ends in (_CONTROLLER_RULES)."""
+    for field in dataclasses.fields(section):
+        value = getattr(section, field.name)
+        for suffix, ok, words in _CONTROLLER_RULES:
+            if field.name.endswith(suffix) and isinstance(value, float):
+                require(ok(value), source, f"{prefix}.{field.name}", words, value)
+
+
+def _check_state_machine(controller: GraspControllerConfig, source: str) -> None:
     require(controller.update_period_s > 0, source, "controller.update_period_s",
             "must be positive [s]", controller.update_period_s)
     for k, name in enumerate(controller.memorized_corrective_events):
@@ -166,13 +197,7 @@ def _check_controller(controller: GraspControllerConfig, source: str) -> None:
         require(len(pair) == 2 and all(-1.0 <= v <= 1.0 for v in pair), source,
                 f"controller.{name}", "must be [SA, RA], each in [-1, 1] (Eq. 3 scores)",
                 pair)
-    sections = (("controller", controller), ("controller.heuristic", controller.heuristic))
-    for prefix, section in sections:
-        for field in dataclasses.fields(section):
-            value = getattr(section, field.name)
-            for suffix, ok, words in _CONTROLLER_RULES:
-                if field.name.endswith(suffix) and isinstance(value, float):
-                    require(ok(value), source, f"{prefix}.{field.name}", words, value)
+    _check_units(controller, source, "controller")
     for name in ("max_re_reaches", "max_lift_loads"):
         require(getattr(controller, name) >= 0, source, f"controller.{name}",
                 "must be zero or positive", getattr(controller, name))
@@ -185,16 +210,6 @@ def _check_controller(controller: GraspControllerConfig, source: str) -> None:
     for k, name in enumerate(controller.event_object_may_differ):
         require(name in DESCRIPTION_FIELDS, source, f"controller.event_object_may_differ[{k}]",
                 f"must name a field of the object ({', '.join(DESCRIPTION_FIELDS)})", name)
-    require(0 < controller.heuristic.grip_fraction <= 1, source,
-            "controller.heuristic.grip_fraction", "must lie in (0, 1]",
-            controller.heuristic.grip_fraction)
-    strike, prefix = controller.taxel_aware.finger_strike, "controller.taxel_aware.finger_strike"
-    for name, ok, words in (("force_n", lambda v: v > 0, "must be positive [N]"),
-                            ("sustain_s", lambda v: v >= 0, "must be zero or positive [s]"),
-                            ("min_moment_nm", lambda v: v >= 0,
-                             "must be zero or positive [N m]")):
-        require(ok(getattr(strike, name)), source, f"{prefix}.{name}", words,
-                getattr(strike, name))
 
 
 # Ranges a simulation can use; each message says why (README, "Bad input").
@@ -279,8 +294,12 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
 
 
 def LoadScenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT_SCENARIO,
-                  overrides: typing.Sequence[str] = ()) -> Scenario:
-    """Loads scenario `name` from `filename` (default: the built-in file) with overrides."""
+                  overrides: typing.Sequence[str] = (), *,
+                  controller: str | None = None) -> Scenario:
+    """Loads scenario `name` from `filename` (default: the built-in file) with overrides.
+
+    controller: run it with the controller of this name (a sweep's trial), keeping the
+    overrides' settings that controller has and dropping those of the others."""
     path = pathlib.Path(filename) if filename else paths.scenarios_file()
     document = read_yaml_file(path, "the scenario file")
     if not isinstance(document, dict) or name not in document:
@@ -294,7 +313,38 @@ def LoadScenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT
         apply_override(data, assignment)
     # A bad value given with --set is named as such, not as the file's.
     source = f"{path} [{name}]" + "".join(f" --set {a}" for a in overrides)
+    if controller is not None:
+        data.setdefault("controller", {})["name"] = controller
+    try:
+        select_controller_tag(data, drop_others=controller is not None)
+    except UnknownControllerError as e:
+        raise ConfigError(f"{source}: field 'controller.name': {e} (or select it by its "
+                          "tag, e.g. controller: !TaxelAwareControllerConfig {})") from None
+    foreign = foreign_setting(data.get("controller"))
+    if foreign is not None:
+        key, owners = foreign
+        raise ConfigError(f"{source}: field 'controller.{key}' is a setting of the "
+                          f"{' and '.join(owners)} controller{'s' * (len(owners) > 1)}: "
+                          "select one with --set "
+                          f"controller.name={owners[0]} (or its YAML tag "
+                          f"controller: !{type(controller_named(owners[0])).__name__} {{...}})")
     return validate(load_typed(data, Scenario, source), source)
+
+
+def with_controller(scenario: Scenario, name: str) -> Scenario:
+    """`scenario` run by the controller called `name` (controller_config.CONTROLLER_NAMES),
+    keeping the settings its config class shares with the scenario's controller."""
+    return dataclasses.replace(scenario, controller=controller_named(
+        name, like=scenario.controller))
+
+
+def scenario_from_yaml(text: str) -> Scenario:
+    """The Scenario of YAML text that scenario_to_yaml wrote (a log's), also when written
+    with a flat controller section naming its controller (the settings its class lacks are
+    dropped)."""
+    data = yaml_load(data=text) or {}
+    select_controller_tag(data, drop_others=True)
+    return yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
 
 
 def scenario_to_yaml(scenario: Scenario) -> str:

@@ -12,7 +12,6 @@ import time
 
 import numpy as np
 
-from tegrasp_drake.control.controller_config import MEMORIZED_EVENT_CONTROLLERS
 from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
@@ -37,9 +36,11 @@ logger = logging.getLogger(__name__)
 
 @dataclasses.dataclass
 class TrialResult:
-    """What one trial did (result) and its full log."""
+    """What one trial did (result), its full log, and the state machine's transitions
+    (each with the structured reason code of the rule that decided it, if any)."""
     result: dict
     log: object  # TrialLog
+    transitions: tuple[Transition, ...] = ()
 
 
 
@@ -169,7 +170,7 @@ def run_trial(scenario, *, meshcat=None, events=None, corrective_events=None,
     log.meta["events"] = result["physical_events"]
     logger.info("trial: simulated %.2f s in %.2f s wall; hold %s, unload %s", sim_time, wall,
                 result["hold_success"], result["unload_success"])
-    return TrialResult(result, log)
+    return TrialResult(result, log, tuple(transitions))
 
 
 def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
@@ -180,7 +181,8 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     from tegrasp_drake.experiments.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.experiments.sweep.spec import ObjectDefinition
     p = trial["perturbation"]
-    base = LoadScenario(overrides=tuple(trial.get("scenario_overrides", ())))
+    base = LoadScenario(overrides=tuple(trial.get("scenario_overrides", ())),
+                        controller=trial["controller"])
     definition = trial.get("object_definition")
     if definition:
         obj = ObjectDefinition(**definition).object_config(trial["object_name"])
@@ -193,8 +195,7 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
         base, object=obj, random_seed=int(trial["seed"]),
         object_offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
                        float(trial["marker_dy_m"]) + float(p["dy_m"])],
-        object_yaw_deg=float(np.degrees(p["yaw_rad"])),
-        controller=dataclasses.replace(base.controller, name=trial["controller"]))
+        object_yaw_deg=float(np.degrees(p["yaw_rad"])))
     if not trial.get("sensor_noise", True):
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0),
@@ -221,7 +222,7 @@ def trial_events(trial: dict, events_dir=None) -> tuple:
     scenario = scenario_from_trial_spec(trial)
     nominal = scenario_from_trial_spec(trial, nominal=True).object
     events = corrective_events = None
-    if scenario.controller.name in MEMORIZED_EVENT_CONTROLLERS:
+    if scenario.controller.events_folder is not None:
         events = load_controller_events(scenario, events_dir, nominal_object=nominal)
     if scenario.controller.memorized_corrective_events:
         corrective_events = load_corrective_events(scenario, events_dir,

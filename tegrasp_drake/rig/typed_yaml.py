@@ -182,6 +182,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         raise ConfigError(f"{source}: {_field(where)}must be a mapping of fields, got "
                           f"{_describe(data)}")
     hints = typing.get_type_hints(schema)
+    hints = {field.name: hints[field.name] for field in dataclasses.fields(schema)}
     for key, value in data.items():
         path = f"{where}.{key}" if where else str(key)
         if key not in hints:

@@ -23,20 +23,17 @@ from tegrasp_drake.experiments.benchmarks.plant_floor import record_plant_inputs
 from tegrasp_drake.experiments.benchmarks.system_costs import profile_trial
 from tegrasp_drake.experiments.grasp_diagram import MakeSimulator
 from tegrasp_drake.experiments.ideal_grasp import END_MARGIN_S, MakeIdealGraspDiagram
+from tegrasp_drake.experiments.scenario import with_controller
 from tegrasp_drake.experiments.trial import run_trial
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, ObjectConfig
 from tegrasp_drake.simulation.object_model import object_sdf
 
-CONTROLLERS = ("memorized", "heuristic", "open_loop")
+# The paper's controllers, by name (controller_config.CONTROLLER_NAMES).
+PAPER_CONTROLLER_NAMES = ("memorized", "heuristic", "open_loop")
 FLOOR = "plant_alone"
 MESH_RESOLUTIONS_M = (0.01, 0.005, 0.0025)  # object mesh hints of the contact-face curve
 TAXEL_RATES_HZ = (108.0, 500.0, 1000.0)
 FILM_RATES_HZ = (500.0, 1000.0)
-
-
-def with_controller(scenario, name: str):
-    return dataclasses.replace(scenario,
-                               controller=dataclasses.replace(scenario.controller, name=name))
 
 
 def _factors(sim_s: float, wall_s: float, cpu_s: float) -> dict:
@@ -57,7 +54,7 @@ def _medians(runs: list[dict]) -> dict:
 
 
 def compare_trials_with_floor(scenario, *, repeats: int = 3,
-                              controllers=CONTROLLERS) -> dict:
+                              controllers=PAPER_CONTROLLER_NAMES) -> dict:
     """Each controller's trial and the plant-alone floor, alternating, `repeats` times:
     medians per variant and the median per-repeat ratio of each trial's cost to the floor's."""
     inputs = record_plant_inputs(with_controller(scenario, "memorized"))

@@ -11,7 +11,7 @@ import numpy as np
 from tegrasp_drake.events.transitions import TRANSITIONS
 from tegrasp_drake.experiments.figures.figure_files import new_figure, save_figure
 from tegrasp_drake.experiments.figures.table1 import CONTROLLER_COLORS
-from tegrasp_drake.experiments.sweep.spec import CONTROLLERS
+from tegrasp_drake.experiments.sweep.spec import CONTROLLER_NAMES
 
 TRANSITION_TITLES = {"reach_load": "Reach-Load (first contact)",
                      "load_lift": "Load-Lift (grip force reached)",
@@ -52,7 +52,7 @@ def plot_latency_distributions(records, path) -> str:
                          "event transition")
     transitions = sorted(samples, key=lambda name: (
         list(TRANSITIONS).index(name) if name in TRANSITIONS else len(TRANSITIONS), name))
-    controllers = [c for c in CONTROLLERS if any(c in samples[t] for t in transitions)]
+    controllers = [c for c in CONTROLLER_NAMES if any(c in samples[t] for t in transitions)]
     controllers += sorted({c for t in transitions for c in samples[t]} - set(controllers))
     false_triggers = false_trigger_counts(records)
     figure = new_figure(4.2 * len(transitions), 4.8)

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from tegrasp_drake.experiments.figures.figure_files import new_figure, save_figure
-from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLERS
+from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
 from tegrasp_drake.experiments.sweep.table import succeeded
 
 PHASES = ("hold", "unload")
@@ -47,7 +47,7 @@ def plot_success_maps(records):
     xs_mm, ys_mm, grids = success_grids(records)
     if not grids:
         raise ValueError("no finished trials to draw: no record has status 'ok'")
-    controllers = [c for c in CONTROLLERS if any(k[0] == c for k in grids)]
+    controllers = [c for c in CONTROLLER_NAMES if any(k[0] == c for k in grids)]
     controllers += sorted({k[0] for k in grids} - set(controllers))
     objects = [o for o in BUILTIN_OBJECTS if any(k[1] == o for k in grids)]
     objects += sorted({k[1] for k in grids} - set(objects))

@@ -11,7 +11,6 @@ import dataclasses
 import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
-from pydrake.common.yaml import yaml_load_typed
 
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 
@@ -53,8 +52,8 @@ def state_spans(log) -> list[tuple[str, float, float]]:
 
 def logged_scenario(log):
     """The Scenario the trial ran (from the YAML in the log's meta)."""
-    from tegrasp_drake.experiments.scenario import Scenario  # the figures' only use of it
-    return yaml_load_typed(schema=Scenario, data=log.meta["scenario"])
+    from tegrasp_drake.experiments.scenario import scenario_from_yaml  # the figures' only use
+    return scenario_from_yaml(log.meta["scenario"])
 
 
 def physical_events(log) -> dict[str, float]:

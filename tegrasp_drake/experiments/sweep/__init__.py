@@ -27,7 +27,7 @@ from tegrasp_drake.experiments.sweep.runner import (
 )
 from tegrasp_drake.experiments.sweep.spec import (
     BUILTIN_OBJECTS,
-    CONTROLLERS,
+    CONTROLLER_NAMES,
     ObjectDefinition,
     Perturbation,
     RandomisationConfig,

@@ -10,7 +10,7 @@ from collections import defaultdict
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLERS
+from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
 from tegrasp_drake.experiments.sweep.table import (CONTROLLER_TITLES, ordered_names, succeeded,
                                                    write_markdown_and_csv)
 
@@ -43,7 +43,7 @@ def offset_rows(records) -> list[OffsetRow]:
         count["trials"] += 1
         for phase in PHASES:
             count[phase] += succeeded(record["result"], phase)
-    controllers = ordered_names({k[0] for k in counts}, CONTROLLERS)
+    controllers = ordered_names({k[0] for k in counts}, CONTROLLER_NAMES)
     objects = ordered_names({k[1] for k in counts}, BUILTIN_OBJECTS)
     rows = []
     for key in sorted(counts, key=lambda k: (controllers.index(k[0]), objects.index(k[1]),
@@ -65,7 +65,7 @@ def offset_markdown(rows: list[OffsetRow]) -> str:
              "held the object 3 s (~Hold) and held then placed it upright (~Unload), as "
              "successes/trials of the finished trials. (0, 0) is the well-placed marker."]
     objects = ordered_names({row.object_name for row in rows}, BUILTIN_OBJECTS)
-    for controller in ordered_names({row.controller for row in rows}, CONTROLLERS):
+    for controller in ordered_names({row.controller for row in rows}, CONTROLLER_NAMES):
         mine = [row for row in rows if row.controller == controller]
         markers = sorted({(row.marker_dx_mm, row.marker_dy_mm) for row in mine})
         by_key = {(row.object_name, row.marker_dx_mm, row.marker_dy_mm): row for row in mine}

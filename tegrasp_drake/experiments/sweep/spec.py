@@ -36,7 +36,7 @@ from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_fi
 
 # The controllers the trial function knows: the paper's memorized triggers, heuristic
 # thresholds in the style of Romano et al. 2011, open loop, and taxel_aware.
-CONTROLLERS = controller_config.CONTROLLERS
+CONTROLLER_NAMES = controller_config.CONTROLLER_NAMES
 # A spec that names no controllers runs the paper's comparison (Table I): these three.
 PAPER_CONTROLLERS = ("memorized", "heuristic", "open_loop")
 
@@ -187,7 +187,7 @@ class TrialSpec:
 
 def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                   builtin_objects: Collection[str] = BUILTIN_OBJECTS,
-                  controllers: Collection[str] = CONTROLLERS) -> None:
+                  controllers: Collection[str] = CONTROLLER_NAMES) -> None:
     """Raises ConfigError naming `source` and the field when `spec` cannot run.
 
     Objects are checked against `builtin_objects` plus the spec's own `user_objects`,
@@ -239,12 +239,12 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                  f"expected a number in [0, 1) so the scale stays positive, got {value!r}")
     if not isinstance(r.sensor_noise, bool):
         fail("randomisation.sensor_noise", f"expected true or false, got {r.sensor_noise!r}")
-    _check_scenario_overrides(spec.scenario_overrides, fail)
+    _check_scenario_overrides(spec.scenario_overrides, spec.controllers, fail)
 
 
-def _check_scenario_overrides(assignments, fail):
-    """Each a `key=value` that the default scenario accepts, none of the per-trial
-    fields."""
+def _check_scenario_overrides(assignments, controllers, fail):
+    """Each a `key=value` the default scenario accepts with each of the `controllers` (one
+    controller's setting is dropped for the others), none of the per-trial fields."""
     from tegrasp_drake.experiments.scenario import LoadScenario
     for k, assignment in enumerate(assignments):
         field_name = f"scenario_overrides[{k}]"
@@ -257,9 +257,9 @@ def _check_scenario_overrides(assignments, fail):
                     per_trial.startswith(key + "."):
                 fail(field_name, f"'{key}' is set per trial by the sweep (objects, grid, "
                                  "randomisation, base_seed, controllers); set it there")
-    if assignments:
+    for controller in controllers if assignments else ():
         try:
-            LoadScenario(overrides=assignments)
+            LoadScenario(overrides=assignments, controller=controller)
         except ConfigError as error:
             fail("scenario_overrides", str(error))
 
@@ -319,7 +319,7 @@ class _ProductGrid:
 
 
 def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
-                    controllers: Collection[str] = CONTROLLERS) -> SweepSpec:
+                    controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
     """Reads and validates a YAML sweep spec; fields left out keep the paper's defaults.
 
     Fields: objects, controllers (lists of names), attempts, base_seed (integers),
@@ -436,7 +436,7 @@ TRIAL_CORE_SECONDS = 30
 
 
 def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
-                  controllers: Collection[str] = CONTROLLERS) -> list[TrialSpec]:
+                  controllers: Collection[str] = CONTROLLER_NAMES) -> list[TrialSpec]:
     """Validates `spec` and lists its trials, controller-major, deterministically.
 
     Each scene's seed sequence (`trial_seed_sequence`) spawns two children: the first

@@ -20,7 +20,7 @@ import numpy as np
 
 from tegrasp_drake.experiments.sweep.failure_classes import (failure_class_counts,
                                                              failure_classes_markdown)
-from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLERS
+from tegrasp_drake.experiments.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
 
 # (placement, phase) columns of Table I, in the paper's order.
 TABLE1_COLUMNS = (("well_placed", "hold"), ("well_placed", "unload"),
@@ -95,7 +95,7 @@ def table1_rows(records) -> list[Table1Row]:
 
     rows = []
     object_order = ordered_names(objects, BUILTIN_OBJECTS)
-    for controller in ordered_names(controllers, CONTROLLERS):
+    for controller in ordered_names(controllers, CONTROLLER_NAMES):
         object_rows = []
         for object_name in object_order:
             cells = []
@@ -134,7 +134,7 @@ def table1_markdown(rows) -> str:
     for title in _COLUMN_TITLES:
         header += [title, "paper"]
     header.append("Errors")
-    for controller in ordered_names({row.controller for row in rows}, CONTROLLERS):
+    for controller in ordered_names({row.controller for row in rows}, CONTROLLER_NAMES):
         lines += ["", f"## {CONTROLLER_TITLES.get(controller, controller)}", "",
                   "| " + " | ".join(header) + " |",
                   "|" + "---|" * len(header)]
@@ -204,7 +204,7 @@ def controller_statistics(records) -> dict:
     for record in records:
         by_controller[record["trial"]["controller"]].append(record)
     statistics = {}
-    for controller in ordered_names(by_controller, CONTROLLERS):
+    for controller in ordered_names(by_controller, CONTROLLER_NAMES):
         results = [r["result"] for r in by_controller[controller] if r["status"] == "ok"]
         latencies = defaultdict(list)
         missed = Counter()
@@ -258,7 +258,7 @@ def paired_comparisons(records) -> list[dict]:
         if record["status"] == "ok":
             outcomes[record["trial"]["controller"]][record["trial"]["pair_id"]] = \
                 record["result"]
-    controllers = ordered_names(outcomes, CONTROLLERS)
+    controllers = ordered_names(outcomes, CONTROLLER_NAMES)
     comparisons = []
     for i, a in enumerate(controllers):
         for b in controllers[i + 1:]:

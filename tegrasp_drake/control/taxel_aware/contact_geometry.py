@@ -1,54 +1,18 @@
-"""The taxel-aware controller's corrective actions (issue #14), as pure functions: each a
-decision (take it, give up, or None to leave the paper's rule in charge) and an action
-(where to move). They read the whole taxel array (taxel_contact.py), not only Eq. 1's sums.
+"""What the taxel-aware rules know about the object's place, as pure functions of the
+contact's geometry: where a Re-Reach moves, the faces the fingers touched, the push of a
+close and whether it topples the object, a touch beyond the pads, an object caged behind
+them, a tilted hold. The ContactEstimator (estimator.py) calls them each tick; the rules
+(table.py) read what it estimated.
 
 Frames: world W; the side grasp approaches along world +x with the stroke along world y,
 the left finger on +y (corrective_actions.py). Settings: TaxelAwareConfig
 (controller_config.py).
-
-  Re-Reach, both axes   along the stroke toward the finger that touched alone, by half the
-                        gap between the opening and the object's width (the paper's), and
-                        along the approach axis by the contact's offset from the pads'
-                        centres; repeated until centred, at most max_re_reaches times;
-                        after the Reach-Load event only when letting go leaves the object
-                        standing (not pushed past its tipping limit, release_topples)
-  one-sided contact     one finger alone touches while the gripper is already closed to the
-                        object's width: Load (the squeeze brings the other pad on), never a
-                        Re-Reach that would shift by nothing and close on the same contact
-  one-sided ping-pong   a finger touches alone after the other touched at an earlier close
-                        (alone, or both pads on): the object lies between the two touched
-                        faces (remembered_faces, bracketed_object); Re-Reach to their
-                        midpoint, or Load when closed to their distance
-  contact in the approach  a pad touches the object while the open gripper still moves
-                        toward it (a misplaced or yawed object in the finger's path: left
-                        alone, the moving finger pushes it over): stop, back off by
-                        approach_retreat_m while shifting along the stroke toward the
-                        touching finger (the paper's shift), and resume the approach
-                        (bounded by max_re_reaches)
-  touched beyond the pads  while closing, the first touch came on one pad's distal row alone
-                        and the close would push the object past its tipping limit (a
-                        thin object standing beyond the fingertips, pushed at the pad's
-                        edge, tips and escapes past them): stop at once and Re-Reach,
-                        forward along the approach axis by the pad's half length and along
-                        the stroke by the first touch's push distance (touched_beyond_pads)
-  no event in time      both pads hold the object, centred, and no Reach-Load event came
-                        within the timeout: Load anyway (bounded: never Re-Reach a grasp
-                        that is already centred)
-  caged behind the pads the fingers closed past an object that the first touch put on
-                        the pads' palm side and stopped short on it, no pad touching: no
-                        event comes, Load and lift it where it is (caged_behind_pads)
-  re-grasp              held tilted (the contact line turned on a pad, or the two pads'
-                        contacts at different heights) for tilt_sustain_s in Hold: put the
-                        object down, open, close again and lift (at most max_regrasps)
 """
 
 import dataclasses
 
 import numpy as np
 
-from tegrasp_drake.control import corrective_actions
-from tegrasp_drake.control.corrective_actions import Counters, re_reach_shift
-from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
 from tegrasp_drake.control.taxel_contact import GraspContact
 from tegrasp_drake.rig.taxel_layout import PAD_LENGTH
 
@@ -74,60 +38,6 @@ def approach_shift(contact: GraspContact, taxel_config) -> float:
         return 0.0
     return float(np.clip(offset, -taxel_config.max_approach_shift_m,
                          taxel_config.max_approach_shift_m))
-
-
-def taxel_re_reach_shift(contact: GraspContact, sa_n, opening_m: float,
-                         object_width_m: float, config) -> Shift:
-    """Re-Reach in both directions: along the stroke the paper's shift (re_reach_shift),
-    along the approach axis approach_shift. config: GraspControllerConfig."""
-    dy = re_reach_shift(sa_n, opening_m, object_width_m, config.contact_force_n)
-    return Shift(approach_shift(contact, config.taxel_aware), dy)
-
-
-def re_reach_target_2d(p_WG, shift: Shift) -> np.ndarray:
-    """Where the open gripper moves to [m, world]: p_WG + (dx, dy, 0)."""
-    return np.asarray(p_WG, dtype=float) + np.array([shift.dx_m, shift.dy_m, 0.0])
-
-
-def re_reach_or_fail(re_reaches: int, config, reason: str) -> Decision:
-    """The paper's rule (corrective_actions.re_reach_or_fail) with the taxel-aware limit,
-    taxel_aware.max_re_reaches, after `re_reaches` Re-Reaches. config:
-    GraspControllerConfig."""
-    return corrective_actions.re_reach_or_fail(
-        Counters(re_reaches=re_reaches), config, reason,
-        max_re_reaches=config.taxel_aware.max_re_reaches)
-
-
-def one_sided_response(*, finger: str, opening_m: float, object_width_m: float,
-                       re_reaches: int, config, bracketed_width_m: float = 0.0) -> Decision:
-    """One finger alone has touched for one_sided_contact_s while closing.
-
-    Closed to within one_sided_width_margin_m of the object's width: the object is
-    between the fingers already, so Load (a Re-Reach would shift by almost nothing and close
-    on the same contact). Wider: Re-Reach toward the touching finger, or Failed once
-    taxel_aware.max_re_reaches are used up.
-
-    bracketed_width_m [m, along the stroke; 0: unknown]: the object's extent between the
-    faces that the two fingers touched alone in turn (bracketed_object). Wider than
-    object_width_m (a yawed box: w (cos yaw + |sin yaw|)), the gripper closed to within
-    the margin of it leaves the touching pad at most margin / 2 to push before the other
-    pad meets the other face (the fingers close symmetrically), so Load; otherwise the
-    Re-Reach goes to the faces' midpoint (the state machine's shift)."""
-    margin = config.taxel_aware.one_sided_width_margin_m
-    if opening_m <= object_width_m + margin:
-        return Decision(Mode.LOAD, Trigger.CORRECTIVE,
-                        f"only the {finger} finger touches, the gripper closed to the "
-                        "object's width: load")
-    if bracketed_width_m > object_width_m and opening_m <= bracketed_width_m + margin:
-        return Decision(Mode.LOAD, Trigger.CORRECTIVE,
-                        f"only the {finger} finger touches, the gripper closed to the "
-                        f"object's extent between both fingers' touches "
-                        f"({1000 * bracketed_width_m:.1f} mm): load")
-    reason = f"only the {finger} finger touched"
-    if bracketed_width_m > 0.0:
-        reason += (f", the other before it: re-centre between the two faces "
-                   f"({1000 * bracketed_width_m:.1f} mm apart)")
-    return re_reach_or_fail(re_reaches, config, reason)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -174,11 +84,12 @@ def bracketed_object(previous: FaceTouch | None, current: FaceTouch,
     remembered from an earlier close, remembered_faces) and current (the finger touching
     alone now) are different fingers.
 
-    Why (the one-sided ping-pong of issue #14's second grid): the paper's shift,
+    Why (the one-sided ping-pong, where the fingers take turns): the paper's shift,
     (opening - width) / 2 toward the touching finger, puts the gripper on the object only
     when the object's extent along the stroke is its nominal width. A box yawed by a
     pushing pad is wider: w (cos yaw + |sin yaw|), 62 mm for the 45 mm box at 32 deg
-    (measured: box m20 dev seed 700, yawed from 0.7 to 32 deg by the approach's push);
+    (measured: a box 15 mm beyond and 25 mm along the stroke, yawed from 0.7 to 32 deg by
+    the approach's push);
     the shift then overshoots by (62 - 45) / 2 = 8.5 mm, the other finger touches alone
     next, and four Re-Reaches alternate (+-18, +6.3, -9.1 mm) to Failed. Two faces touched
     from opposite sides bound the object whatever its yaw or width: it lies between them,
@@ -195,15 +106,6 @@ def bracketed_object(previous: FaceTouch | None, current: FaceTouch,
     extent = max(left.face_y_m - right.face_y_m, object_width_m)
     toward_previous = -1.0 if current.finger == "left" else 1.0
     return current.face_y_m + toward_previous * extent / 2.0, extent
-
-
-def approach_contact_response(*, contact: tuple, re_reaches: int, config) -> Decision:
-    """A pad has touched for one_sided_contact_s while the gripper still approaches: stop
-    and Re-Reach (the state machine resumes the approach after the shift), or Failed once
-    taxel_aware.max_re_reaches are used up."""
-    pads = [name for name, touching in zip(("left", "right"), contact) if touching]
-    return re_reach_or_fail(re_reaches, config,
-                             f"the {' and '.join(pads) or 'a'} pad touched during the approach")
 
 
 def pushed_distance_m(first_touch_opening_m: float, object_width_m: float) -> float:
@@ -243,7 +145,7 @@ def touched_beyond_pads(*, first_touch_offset_m: float, one_pad: bool, pushed_m:
     pushed_m [m] (pushed_distance_m), past its tipping limit (release_topples).
 
     Why (measured on the thin cylinder, 25 mm x 120 mm, 1.5 cm beyond the nominal grasp
-    and 2.5 cm along the stroke, issue #14's second grid, dev seeds 700 and 800): its axis
+    and 2.5 cm along the stroke): its axis
     stands about 2 mm beyond the pads' distal edge, so the near pad meets it with that
     edge (its distal row alone, 0.15 N, at an opening of 72 mm: 23.5 mm of push to come
     against a tipping limit of 11.5 mm at the 55 mm grasp height). The edge touches the
@@ -288,34 +190,6 @@ def beyond_pads_shift(*, finger: str, first_touch_opening_m: float, object_width
     return Shift(dx, dy if finger == "left" else -dy)
 
 
-def beyond_pads_response(*, finger: str, re_reaches: int, config) -> Decision | None:
-    """touched_beyond_pads: Re-Reach while Re-Reaches are left; then None (the close goes
-    on under the paper's rule: a pushed grasp may still hold the object, a Failed
-    cannot). config: GraspControllerConfig."""
-    if not config.re_reach_enabled or re_reaches >= config.taxel_aware.max_re_reaches:
-        return None
-    return Decision(Mode.RE_REACH, Trigger.CORRECTIVE,
-                    f"the {finger} pad's distal row alone touched first, the close would "
-                    "push the object over: stop, move forward and centre")
-
-
-def on_reach_event(contact: GraspContact, *, re_reaches: int, config,
-                   topples_if_released: bool = False) -> Decision | None:
-    """The Reach-Load event came: Load, unless the contact sits off the pads' centres
-    along the approach axis (approach_shift not 0) and Re-Reaches are left, then Re-Reach
-    to centre it first. Never when topples_if_released (release_topples): both pads hold
-    the object on them, and opening would let it fall; grasping it off-centre holds it
-    (open loop does), re-centring it knocks it over."""
-    if topples_if_released:
-        return None
-    if (approach_shift(contact, config.taxel_aware) != 0.0 and config.re_reach_enabled
-            and re_reaches < config.taxel_aware.max_re_reaches):
-        return Decision(Mode.RE_REACH, Trigger.CORRECTIVE,
-                        f"contact {1000 * contact.approach_offset_m:+.1f} mm from the pads' "
-                        "centres along the approach axis")
-    return None
-
-
 def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,
                       object_width_m: float, pads_touch: bool, closed_to_request: bool,
                       taxel_config) -> bool:
@@ -331,27 +205,13 @@ def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,
     its fingertip side, so it stands behind them, between the fingers' inner links and the
     palm, and stops the fingers there: it cannot leave through the fingertips' gap
     (narrower than it) and the fingers bound it along the stroke. Lifting carries it (the
-    open loop's grasp of a thin cylinder 15 mm toward the palm on issue #14's second grid;
+    open loop's grasp of a thin cylinder 15 mm toward the palm and 25 mm along the stroke;
     the simulated 2F-85 there reported gOBJ 0, moving, not 2, with its fingers stopped at
     16.9 mm for 0.5 s of a fully closed request, so no stall byte is required). A Re-Reach
     here learns nothing: no taxel sees the object, so its shift is zero and it closes the
     same way again (the 4 identical Re-Reaches that ended in Failed)."""
     return (not closed_to_request and not pads_touch and opening_m < object_width_m
             and first_touch_offset_m < -taxel_config.centre_tolerance_m)
-
-
-def on_reach_timeout(*, both_touch: bool, re_reaches: int, config, reason: str,
-                     caged: bool = False) -> Decision:
-    """No Reach-Load event in time (or the gripper closed on nothing): with both pads on
-    the object, or the object caged behind them (caged_behind_pads), Load anyway;
-    otherwise Re-Reach (bounded as one_sided_response)."""
-    if both_touch:
-        return Decision(Mode.LOAD, Trigger.CORRECTIVE, f"{reason}, both pads hold the object: "
-                        "load")
-    if caged:
-        return Decision(Mode.LOAD, Trigger.CORRECTIVE, f"{reason}, the fingers closed on the "
-                        "object behind the pads: load it there")
-    return re_reach_or_fail(re_reaches, config, reason)
 
 
 def held_tilted(contact: GraspContact, taxel_config) -> bool:
@@ -362,20 +222,3 @@ def held_tilted(contact: GraspContact, taxel_config) -> bool:
         taxel_config.tilt_limit_deg
     return tilted_line or abs(contact.height_mismatch_m) > taxel_config.height_mismatch_m
 
-
-def regrasp_or_none(*, tilted_s: float, regrasps: int, taxel_config) -> Decision | None:
-    """In Hold: put the object down to re-grasp it when it has sat tilted for
-    tilt_sustain_s [s] and re-grasps are left; None otherwise."""
-    if (taxel_config.regrasp_enabled and tilted_s >= taxel_config.tilt_sustain_s
-            and regrasps < taxel_config.max_regrasps):
-        return Decision(Mode.PLACE, Trigger.CORRECTIVE, "held tilted: put down to re-grasp")
-    return None
-
-
-def after_regrasp_place(*, regrasp_pending: bool) -> Decision | None:
-    """In Place: once the object stands on the table again (the Place-Unload event or its
-    timeout), a pending re-grasp opens and closes again (through Re-Reach, no shift)
-    instead of Unload; None otherwise."""
-    if regrasp_pending:
-        return Decision(Mode.RE_REACH, Trigger.CORRECTIVE, "re-grasp: open and close again")
-    return None

@@ -1,0 +1,88 @@
+"""What the GraspStateMachine remembers (MachineState, one abstract state value) and the
+plan it follows (GraspPlan, from the scenario's `grasp` section)."""
+
+import dataclasses
+
+from tegrasp_drake.control.corrective_actions import Counters
+from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition
+from tegrasp_drake.control.motion_profiles import MotionSegment
+from tegrasp_drake.control.scripted_grasp import grasp_frame_xy
+from tegrasp_drake.control.taxel_aware.estimator import ContactMemory
+
+
+@dataclasses.dataclass(frozen=True)
+class ModeTimers:
+    """What a mode measures while it lasts; every transition starts a fresh one (times in
+    s of simulated time, -1: not running). sa_history: the last Hold ticks' SA, for the
+    memorized hit's baseline (hit_baseline_history); acceleration_sum, sa_gain_sum: Avoid's
+    sensing of the hit's direction (the pads' world acceleration, the SA gain over
+    MachineState.sa_before, summed over its ticks)."""
+    closing_since: float = -1.0
+    one_sided_since: float = -1.0
+    slip_since: float = -1.0
+    motion_done_since: float = -1.0
+    sa_history: tuple = ()
+    acceleration_sum: tuple = (0.0, 0.0, 0.0)
+    sa_gain_sum: tuple = (0.0, 0.0)
+
+
+@dataclasses.dataclass(frozen=True)
+class MachineState:
+    """Everything the machine remembers (times in s of simulated time)."""
+    mode: Mode
+    mode_start: float
+    segment: MotionSegment
+    gripper: tuple  # (opening [m], speed [m/s], force [N]) requested
+    gripper_request_time: float
+    grip_force: float
+    stage: Stage = Stage.NONE  # the step within a mode
+    counters: Counters = Counters()
+    timers: ModeTimers = ModeTimers()
+    # The taxel_aware controller's ContactEstimator's memory (the default for the others).
+    contact: ContactMemory = ContactMemory()
+    reentry_shift: tuple = (0.0, 0.0)  # Re-Reach shift along world x and y [m]
+    regrasp_pending: bool = False  # the Place puts a tilted object down to re-grasp it
+    resume_approach: bool = False  # the Re-Reach stopped the approach: finish it, then close
+    sa_before: tuple = (0.0, 0.0)  # SA [N] at the last Hold tick (the hit's baseline)
+    timeline: tuple[Transition, ...] = ()
+    failure: str = ""
+
+    def __deepcopy__(self, memo):
+        # Never mutated once stored (each tick stores a new one), so a copy can share it;
+        # Drake copies abstract state often, and a deep copy of the timeline is costly.
+        return self
+
+
+@dataclasses.dataclass(frozen=True)
+class GraspPlan:
+    """Where and how far to move, from the scenario (its `grasp` section) [m, s, N]."""
+    start_xyz: tuple
+    object_xy: tuple  # the grasp frame's target for the expected object (grasp_frame_xy)
+    object_width: float  # along the stroke, for the Re-Reach shift
+    grasp_height: float
+    object_height: float  # for whether a pushed object stands when let go (taxel_aware)
+    lift_height: float
+    place_press: float
+    settle_s: float
+    reach_s: float
+    lift_s: float
+    hold_s: float
+    place_s: float
+    unload_s: float
+    retract_s: float
+    retract_distance: float
+    close_speed: float
+    grip_force: float
+
+    @staticmethod
+    def from_scenario(scenario) -> "GraspPlan":
+        g = scenario.grasp
+        return GraspPlan(
+            start_xyz=tuple(scenario.arm.initial_gripper_xyz),
+            object_xy=tuple(grasp_frame_xy(scenario)),
+            object_width=scenario.object.width_along_stroke(), grasp_height=g.grasp_height,
+            object_height=scenario.object.height(),
+            lift_height=g.lift_height, place_press=g.place_press, settle_s=g.settle_s,
+            reach_s=g.reach_s, lift_s=g.lift_s, hold_s=g.hold_s, place_s=g.place_s,
+            unload_s=g.unload_s, retract_s=g.retract_s, retract_distance=g.retract_distance,
+            close_speed=g.close_speed, grip_force=g.grip_force)

@@ -1,0 +1,34 @@
+"""Rule beyond_pads (Reach while closing, and the first Load, where the close goes on):
+the close's first touch came on one pad's distal row alone and closing on would push the
+object past its tipping limit (contact_geometry.touched_beyond_pads: a thin object
+standing beyond the fingertips, pushed at the pad's edge, tips and escapes past them).
+Stop at once and Re-Reach forward by the pad's half length and along the stroke by the
+push the close would have made (contact_geometry.beyond_pads_shift). With no Re-Reach
+left the rule stands aside: the close goes on under the rules below (a pushed grasp may
+still hold the object, a Failed cannot)."""
+
+from tegrasp_drake.control.grasp_modes import Trigger
+from tegrasp_drake.control.taxel_aware.contact_geometry import beyond_pads_shift
+from tegrasp_drake.control.taxel_aware.decision import (Reason, ReReach, Rule, decide,
+                                                        re_reach_allowed)
+
+
+def touched_beyond(situation) -> bool:
+    return situation.estimate.touched_beyond_pads and re_reach_allowed(situation)
+
+
+def stop_move_forward_and_centre(situation):
+    e = situation.estimate
+    shift = beyond_pads_shift(finger=e.first_touch_finger,
+                              first_touch_opening_m=e.first_touch_opening_m,
+                              object_width_m=e.object_width_m, taxel_config=situation.taxel)
+    return decide(ReReach(shift), Trigger.CORRECTIVE,
+                  f"the {e.first_touch_finger} pad's distal row alone touched first, the "
+                  "close would push the object over: stop, move forward and centre")
+
+
+BEYOND_PADS = Rule(
+    Reason.BEYOND_PADS, touched_beyond, stop_move_forward_and_centre,
+    when="the first touch on one pad's distal row alone, the close would topple the "
+    "object; Re-Reaches left",
+    then="ReReach(forward half a pad, the push toward the pad)")

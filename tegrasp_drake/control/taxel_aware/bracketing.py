@@ -1,0 +1,55 @@
+"""Rules bracketed_at_extent and bracket_recentre (Reach while closing): one finger touches
+alone, and the other touched at an earlier close: the object lies between the two faces
+(contact_geometry.bracketed_object, ContactEstimate.bracket). The paper's shift assumes
+the object's nominal width; a box yawed by a pushing pad is wider, the shift overshoots
+and the fingers take turns touching alone until the Re-Reaches are used up. Two faces
+touched from opposite sides bound the object whatever its yaw.
+
+  bracketed_at_extent  the gripper has closed to within one_sided_width_margin_m of the
+                       extent between the faces (wider than the object's width): the
+                       touching pad can push at most half the margin before the other pad
+                       meets the other face: Load
+  bracket_recentre     otherwise Re-Reach to the faces' midpoint (moves.centring_shift)
+"""
+
+from tegrasp_drake.control.grasp_modes import Trigger
+from tegrasp_drake.control.taxel_aware.decision import (Load, Reason, Rule, decide,
+                                                        re_reach_or_fail)
+from tegrasp_drake.control.taxel_aware.moves import centring_shift
+from tegrasp_drake.control.taxel_aware.one_sided_at_width import one_sided, touching_finger
+
+
+def closed_to_extent(situation) -> bool:
+    e = situation.estimate
+    extent = e.bracketed_width_m
+    return (one_sided(situation) and extent > e.object_width_m
+            and e.opening_m <= extent + situation.taxel.one_sided_width_margin_m)
+
+
+def load(situation):
+    return decide(Load(), Trigger.CORRECTIVE,
+                  f"only the {touching_finger(situation)} finger touches, the gripper closed "
+                  f"to the object's extent between both fingers' touches "
+                  f"({1000 * situation.estimate.bracketed_width_m:.1f} mm): load")
+
+
+def bracketed(situation) -> bool:
+    return one_sided(situation) and situation.estimate.bracketed_width_m > 0.0
+
+
+def recentre(situation):
+    return re_reach_or_fail(
+        situation, centring_shift(situation),
+        f"only the {touching_finger(situation)} finger touched, the other before it: "
+        f"re-centre between the two faces ({1000 * situation.estimate.bracketed_width_m:.1f}"
+        " mm apart)")
+
+
+BRACKETED_AT_EXTENT = Rule(
+    Reason.BRACKETED_AT_EXTENT, closed_to_extent, load,
+    when="one finger alone, the other's face remembered, closed to their extent + margin",
+    then="Load")
+BRACKET_RECENTRE = Rule(
+    Reason.BRACKET_RECENTRE, bracketed, recentre,
+    when="one finger alone, the other's face remembered",
+    then="ReReach(to the faces' midpoint) or Failed")

@@ -1,0 +1,237 @@
+"""What the taxel-aware rules sense, estimated in one place, apart from the decisions: the
+contact's shape on the pads, the close's first touch (its opening, offset and pad), the
+faces the fingers touched at earlier closes and the object they bracket, a finger
+striking the object in the approach, a pad touching it in the approach, the push of the
+close and whether it would topple the object, a touch beyond the pads, an object caged
+behind them, a tilted hold.
+
+`ContactEstimator.update(memory, reading)` is pure: the GraspStateMachine keeps the
+ContactMemory in its abstract state, hands in the tick's ContactReading and gets the
+ContactEstimate the rules read (Observation.estimate) and the memory to keep. What the
+memory keeps across a change of mode is said once, in ContactMemory.after_transition.
+"""
+
+import dataclasses
+
+from tegrasp_drake.control.finger_strike import side_moment_nm, strike_force_n, struck_finger
+from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Mode, Stage
+from tegrasp_drake.control.taxel_aware.contact_geometry import (
+    bracketed_object, caged_behind_pads, held_tilted, opposite_face, pushed_distance_m,
+    release_topples, remembered_faces, touched_beyond_pads, touched_face, touched_faces)
+from tegrasp_drake.control.taxel_contact import GraspContact, grasp_contact
+
+
+@dataclasses.dataclass(frozen=True)
+class ContactMemory:
+    """What the estimator remembers between ticks (times in s; -1: not running).
+
+    first_touch_*: the close's first pad touch: the opening then [m; -1 none], the
+    contact's offset along the approach axis [m, pad +y] and the pad alone then ("left",
+    "right"; "" both or none). touched_faces: the faces (FaceTouch) the fingers in
+    contact pressed when the last Re-Reaches began from a close. strike_*: the wrench on
+    G at the approach's start, since when the force beyond it exceeds the threshold, the
+    side moment summed over those ticks and the finger it points to."""
+    first_touch_opening_m: float = -1.0
+    first_touch_offset_m: float = 0.0
+    first_touch_finger: str = ""
+    touched_faces: tuple = ()
+    strike_baseline: tuple = ()
+    strike_since: float = -1.0
+    strike_moment_sum: float = 0.0
+    strike_finger: str = ""
+    approach_contact_since: float = -1.0
+    tilted_since: float = -1.0
+
+    def after_transition(self, from_mode: Mode, to_mode: Mode,
+                         touched_now: tuple) -> "ContactMemory":
+        """The memory on entering `to_mode` from `from_mode`: the timers start again; the
+        first touch is kept while the close goes on into Load; its offset is kept until a
+        Re-Reach, which remembers the faces touched now (touched_now: those of a close,
+        else ())."""
+        close_goes_on = to_mode == Mode.LOAD and from_mode != Mode.LIFT
+        re_reach = to_mode == Mode.RE_REACH
+        return ContactMemory(
+            first_touch_opening_m=self.first_touch_opening_m if close_goes_on else -1.0,
+            first_touch_finger=self.first_touch_finger if close_goes_on else "",
+            first_touch_offset_m=0.0 if re_reach else self.first_touch_offset_m,
+            touched_faces=(remembered_faces(self.touched_faces, touched_now) if re_reach
+                           else self.touched_faces))
+
+
+@dataclasses.dataclass(frozen=True)
+class ContactReading:
+    """The tick's inputs to the estimator [s, N, m; world]: the machine's mode, stage and
+    Lift-Load count, the 24 taxel forces, the SA sums and which pads exceed the contact
+    force, the opening, whether the gripper reports it stopped at its request, the wrench
+    on G (None: no finger-strike sense) and the grasp frame's commanded y."""
+    t: float
+    mode: Mode
+    stage: object
+    lift_loads: int
+    taxel_forces: tuple
+    sa_n: tuple
+    contact: tuple
+    opening_m: float
+    at_requested_position: bool
+    wrench: tuple | None
+    gripper_y_m: float
+
+    @property
+    def approaching(self) -> bool:
+        return self.mode == Mode.REACH and self.stage == Stage.MOVING
+
+    @property
+    def closing(self) -> bool:
+        return self.mode == Mode.REACH and self.stage == Stage.CLOSING
+
+
+@dataclasses.dataclass(frozen=True)
+class ContactEstimate:
+    """What the rules read [s, N, m; world].
+
+    shape: the contact on the pads (GraspContact). sa_n, contact, opening_m,
+    gripper_y_m, approaching: the reading's. approach_contact_s: how long a pad has
+    touched while approaching. strike_s, strike_force_n, strike_finger: how long the force
+    on G has exceeded the strike threshold in the approach, that force and the struck
+    finger ("" unknown). topples_if_released: the close pushed the object past its
+    tipping limit (release_topples). touched_beyond_pads: the first touch lay on one pad's
+    distal row alone and the close would push the object over. first_touch_finger,
+    first_touch_opening_m: that touch's. caged_behind_pads: the closed fingers hold the
+    object behind the pads. bracket: (centre [m, world y], extent [m]) of the object
+    between the face a finger touching alone presses now and the other finger's
+    remembered face, or None. touched_now: the faces pressed now while closing. tilted_s:
+    how long the object has sat tilted in Hold."""
+    shape: GraspContact
+    sa_n: tuple
+    contact: tuple
+    opening_m: float
+    object_width_m: float
+    gripper_y_m: float
+    approaching: bool
+    approach_contact_s: float = 0.0
+    strike_s: float = 0.0
+    strike_force_n: float = 0.0
+    strike_finger: str = ""
+    topples_if_released: bool = False
+    touched_beyond_pads: bool = False
+    first_touch_finger: str = ""
+    first_touch_opening_m: float = -1.0
+    caged_behind_pads: bool = False
+    bracket: tuple | None = None
+    touched_now: tuple = ()
+    tilted_s: float = 0.0
+
+    @property
+    def bracketed_width_m(self) -> float:
+        """The bracketed object's extent [m]; 0 without a bracket."""
+        return self.bracket[1] if self.bracket else 0.0
+
+
+@dataclasses.dataclass(frozen=True)
+class ObjectGeometry:
+    """The expected object and grasp [m]: its width along the stroke and height, and the
+    grasp height."""
+    width_m: float
+    height_m: float
+    grasp_height_m: float
+
+
+class ContactEstimator:
+    """Estimates the contact each tick (see the module docstring). taxel_config:
+    TaxelAwareConfig; geometry: ObjectGeometry."""
+
+    def __init__(self, *, taxel_config, geometry: ObjectGeometry):
+        self._config = taxel_config
+        self._geometry = geometry
+
+    def update(self, memory: ContactMemory, r: ContactReading
+               ) -> tuple[ContactMemory, ContactEstimate]:
+        t, g = r.t, self._geometry
+        shape = grasp_contact(r.taxel_forces)
+        tilted = r.mode == Mode.HOLD and held_tilted(shape, self._config)
+        tilted_since = _since(memory.tilted_since, t, tilted)
+        touching_in_approach = r.approaching and any(r.contact)
+        approach_since = _since(memory.approach_contact_since, t, touching_in_approach)
+        memory = dataclasses.replace(memory, tilted_since=tilted_since,
+                                     approach_contact_since=approach_since)
+        memory, strike = self._sense_strike(memory, r)
+        # The close goes on in the first Load: a Reach-Load event can match the impact of
+        # the first touch a taxel sample (9.3 ms) before the taxels show it.
+        first_load = r.mode == Mode.LOAD and r.lift_loads == 0
+        memory, topples = self._first_touch(memory, r, shape, first_load)
+        touch = (touched_face("left" if r.contact[0] else "right", r.gripper_y_m, r.opening_m)
+                 if r.closing and r.contact[0] != r.contact[1] else None)
+        bracket = (bracketed_object(opposite_face(memory.touched_faces, touch.finger), touch,
+                                    g.width_m) if touch is not None else None)
+        first_close = r.closing or first_load
+        beyond = first_close and touched_beyond_pads(
+            first_touch_offset_m=memory.first_touch_offset_m,
+            one_pad=bool(memory.first_touch_finger),
+            pushed_m=pushed_distance_m(memory.first_touch_opening_m, g.width_m),
+            grasp_height_m=g.grasp_height_m, object_width_m=g.width_m,
+            object_height_m=g.height_m, taxel_config=self._config)
+        closed = r.closing or r.mode in (Mode.LOAD, *HOLDING_MODES)
+        caged = closed and caged_behind_pads(
+            first_touch_offset_m=memory.first_touch_offset_m, opening_m=r.opening_m,
+            object_width_m=g.width_m, pads_touch=shape.left.touching or shape.right.touching,
+            closed_to_request=r.at_requested_position, taxel_config=self._config)
+        estimate = ContactEstimate(
+            shape=shape, sa_n=tuple(r.sa_n), contact=r.contact, opening_m=r.opening_m,
+            object_width_m=g.width_m, gripper_y_m=r.gripper_y_m, approaching=r.approaching,
+            approach_contact_s=t - approach_since if touching_in_approach else 0.0,
+            **strike, topples_if_released=topples, touched_beyond_pads=beyond,
+            first_touch_finger=memory.first_touch_finger,
+            first_touch_opening_m=memory.first_touch_opening_m, caged_behind_pads=caged,
+            bracket=bracket,
+            touched_now=(touched_faces(r.contact, r.gripper_y_m, r.opening_m)
+                         if r.closing else ()),
+            tilted_s=t - tilted_since if tilted else 0.0)
+        return memory, estimate
+
+    def _sense_strike(self, memory: ContactMemory, r: ContactReading):
+        """The finger-strike sense in the approach: the memory with its baseline, timer and
+        moment sum updated, and the estimate's strike fields."""
+        config = self._config.finger_strike
+        if not (config.enabled and r.approaching and r.wrench is not None):
+            return memory, {}
+        baseline = memory.strike_baseline or tuple(float(x) for x in r.wrench)
+        force = strike_force_n(r.wrench, baseline)
+        striking = force > config.force_n
+        since = _since(memory.strike_since, r.t, striking)
+        moment_sum = (memory.strike_moment_sum + side_moment_nm(r.wrench, baseline)
+                      if striking else 0.0)
+        finger = struck_finger(moment_sum, r.contact, config) or ""
+        memory = dataclasses.replace(memory, strike_baseline=baseline, strike_since=since,
+                                     strike_moment_sum=moment_sum, strike_finger=finger)
+        return memory, dict(strike_s=r.t - since if striking else 0.0, strike_force_n=force,
+                            strike_finger=finger)
+
+    def _first_touch(self, memory: ContactMemory, r: ContactReading, shape: GraspContact,
+                     first_load: bool) -> tuple[ContactMemory, bool]:
+        """While the close goes on: remember the opening, the contact's offset and the pad
+        alone (if one) at the first pad's first touch (any taxel above TAXEL_CONTACT_N: a
+        light object slides under a push below contact_force_n), and say whether the push
+        since then would topple the object if the gripper let go (release_topples). In
+        the first Load, where the close goes on after a Reach-Load event that matched the
+        first touch's impact before the taxels showed it, a first touch is remembered only
+        on the fingertip side (offset >= 0), for touched_beyond_pads: caged_behind_pads
+        reads a palm-side first touch, and sees in Load only the Reach's."""
+        g = self._geometry
+        recording = r.closing or (first_load and shape.approach_offset_m >= 0.0)
+        if (recording and memory.first_touch_opening_m < 0.0
+                and (shape.left.touching or shape.right.touching)):
+            finger = ("" if shape.left.touching == shape.right.touching
+                      else "left" if shape.left.touching else "right")
+            memory = dataclasses.replace(memory, first_touch_opening_m=r.opening_m,
+                                         first_touch_offset_m=shape.approach_offset_m,
+                                         first_touch_finger=finger)
+        pushed = pushed_distance_m(memory.first_touch_opening_m, g.width_m)
+        topples = r.closing and release_topples(pushed, grasp_height_m=g.grasp_height_m,
+                                                object_width_m=g.width_m,
+                                                object_height_m=g.height_m)
+        return memory, topples
+
+
+def _since(since: float, t: float, on: bool) -> float:
+    """A timer's start: kept while `on` (started now if it was not running), else -1."""
+    return (since if since >= 0 else t) if on else -1.0

@@ -1,0 +1,31 @@
+"""Rule finger_strike (Reach, in the approach): a finger's front has struck the object for
+finger_strike.sustain_s, seen in the arm's joint torques (control/finger_strike.py). Left
+alone, the moving finger knocks the object over; the taxels cannot see it (the object lies
+in the finger's path, not on its pad). Stop, back off approach_retreat_m, shift along the
+stroke toward the struck finger (strike_shift) and approach again; Failed once the
+Re-Reaches are used up."""
+
+from tegrasp_drake.control.finger_strike import strike_shift
+from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
+from tegrasp_drake.control.taxel_aware.decision import Reason, Rule, re_reach_or_fail
+
+
+def strikes(situation) -> bool:
+    strike = situation.taxel.finger_strike
+    return strike.enabled and situation.estimate.strike_s >= strike.sustain_s
+
+
+def back_off_and_shift(situation):
+    e = situation.estimate
+    finger = e.strike_finger or None
+    who = f"the {finger} finger" if finger else "a finger (side unknown)"
+    shift = Shift(-situation.taxel.approach_retreat_m,
+                  strike_shift(finger, e.opening_m, e.object_width_m))
+    return re_reach_or_fail(situation, shift, f"{who} struck the object during the "
+                            f"approach ({e.strike_force_n:.1f} N at the wrist)")
+
+
+FINGER_STRIKE = Rule(
+    Reason.FINGER_STRIKE, strikes, back_off_and_shift,
+    when="the wrist force exceeded finger_strike.force_n for sustain_s in the approach",
+    then="ReReach(back off, toward the struck finger) or Failed")

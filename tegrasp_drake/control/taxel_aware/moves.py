@@ -1,0 +1,25 @@
+"""Where a taxel-aware Re-Reach moves the open gripper when the rule that decided it has
+no move of its own: centred on the contact.
+
+Along the stroke the paper's shift (corrective_actions.re_reach_shift: toward the finger
+touching alone, by half the gap between the opening and the object's width), or, once both
+fingers have touched in turn, to the middle of the two faces they touched (the bracket,
+contact_geometry.bracketed_object). Along the approach axis the contact's offset from the
+pads' centres (contact_geometry.approach_shift); in the approach a back-off of
+approach_retreat_m instead, before the approach resumes.
+"""
+
+from tegrasp_drake.control.corrective_actions import re_reach_shift
+from tegrasp_drake.control.taxel_aware.contact_geometry import Shift, approach_shift
+
+
+def centring_shift(situation) -> Shift:
+    """The centring Re-Reach's shift [m, world] from the situation's ContactEstimate."""
+    e, config = situation.estimate, situation.config
+    dy = re_reach_shift(e.sa_n, e.opening_m, e.object_width_m, config.contact_force_n)
+    if e.approaching:
+        return Shift(-config.taxel_aware.approach_retreat_m, dy)
+    dx = approach_shift(e.shape, config.taxel_aware)
+    if e.bracket is not None:
+        return Shift(dx, e.bracket[0] - e.gripper_y_m)
+    return Shift(dx, dy)

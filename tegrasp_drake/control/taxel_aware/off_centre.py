@@ -1,0 +1,29 @@
+"""Rule off_centre (Reach, at the Reach-Load event): the contact sits off the pads' centres
+along the approach axis by more than centre_tolerance_m (contact_geometry.approach_shift
+not 0) and Re-Reaches are left: Re-Reach to centre it along both axes
+(moves.centring_shift) before loading, repeated until centred."""
+
+from tegrasp_drake.control.grasp_modes import Trigger
+from tegrasp_drake.control.taxel_aware.contact_geometry import approach_shift
+from tegrasp_drake.control.taxel_aware.decision import (Reason, ReReach, Rule, decide,
+                                                        re_reach_allowed)
+from tegrasp_drake.control.taxel_aware.moves import centring_shift
+
+
+def event_off_centre(situation) -> bool:
+    return (situation.obs.event_matched and re_reach_allowed(situation)
+            and approach_shift(situation.estimate.shape, situation.taxel) != 0.0)
+
+
+def centre_first(situation):
+    offset = situation.estimate.shape.approach_offset_m
+    return decide(ReReach(centring_shift(situation)), Trigger.CORRECTIVE,
+                  f"contact {1000 * offset:+.1f} mm from the pads' centres along the "
+                  "approach axis")
+
+
+OFF_CENTRE = Rule(
+    Reason.OFF_CENTRE, event_off_centre, centre_first,
+    when="Reach-Load event, the contact off the pads' centres along the approach axis; "
+    "Re-Reaches left",
+    then="ReReach(centring, both axes)")

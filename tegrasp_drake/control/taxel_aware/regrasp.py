@@ -1,0 +1,40 @@
+"""Rules held_tilted (Hold) and regrasp_after_place (Place): the object sits tilted in the
+grasp (contact_geometry.held_tilted: a pad's contact line turned more than tilt_limit_deg,
+or the two pads' contacts at different heights) for tilt_sustain_s: put it down (Place),
+then, once it stands on the table again (the Place-Unload event or its timeout), open and
+close again through a Re-Reach without a shift, and lift it again; at most max_regrasps."""
+
+from tegrasp_drake.control.grasp_modes import Trigger
+from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
+from tegrasp_drake.control.taxel_aware.decision import (Reason, Regrasp, ReReach, Rule,
+                                                        decide)
+from tegrasp_drake.control.transition_logic import placed
+
+
+def tilted_for_long(situation) -> bool:
+    taxel = situation.taxel
+    return (taxel.regrasp_enabled and situation.estimate.tilted_s >= taxel.tilt_sustain_s
+            and situation.counters.regrasps < taxel.max_regrasps)
+
+
+def put_down(situation):
+    return decide(Regrasp(), Trigger.CORRECTIVE, "held tilted: put down to re-grasp")
+
+
+def placed_to_regrasp(situation) -> bool:
+    return situation.obs.regrasp_pending and placed(situation.obs, situation.config)
+
+
+def open_and_close_again(situation):
+    return decide(ReReach(Shift(0.0, 0.0), counted=False), Trigger.CORRECTIVE,
+                  "re-grasp: open and close again")
+
+
+HELD_TILTED = Rule(
+    Reason.HELD_TILTED, tilted_for_long, put_down,
+    when="held tilted for tilt_sustain_s; re-grasps left",
+    then="Regrasp (Place)")
+REGRASP_AFTER_PLACE = Rule(Reason.REGRASP_AFTER_PLACE, placed_to_regrasp,
+                           open_and_close_again,
+    when="a re-grasp's Place: the object stands again",
+    then="ReReach(no shift, not counted)")

@@ -1,0 +1,91 @@
+"""The ContactEstimator, pure: what it senses from a reading and what it remembers, tick
+to tick and across a change of mode."""
+
+import numpy as np
+import pytest
+
+from tegrasp_drake.control.controller_config import TaxelAwareConfig
+from tegrasp_drake.control.grasp_modes import Mode, Stage
+from tegrasp_drake.control.taxel_aware import (ContactEstimator, ContactMemory,
+                                               ContactReading, ObjectGeometry)
+from tegrasp_drake.control.taxel_aware.contact_geometry import FaceTouch
+from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS
+
+TAXEL = TaxelAwareConfig()
+THIN = BUILTIN_OBJECTS["thin_cylinder"]
+ESTIMATOR = ContactEstimator(taxel_config=TAXEL, geometry=ObjectGeometry(
+    width_m=THIN.width_along_stroke(), height_m=THIN.height(), grasp_height_m=0.055))
+
+
+def taxels(left_row=None, right_row=None, force=0.15):
+    forces = np.zeros((2, ROWS, COLUMNS))
+    for k, row in enumerate((left_row, right_row)):
+        if row is not None:
+            forces[k, row, :] = force
+    return tuple(forces.reshape(-1))
+
+
+def reading(t=1.0, mode=Mode.REACH, stage=Stage.CLOSING, forces=taxels(), contact=(False, False),
+            opening_m=0.0719, wrench=None, **changes):
+    return ContactReading(t=t, mode=mode, stage=stage, lift_loads=0, taxel_forces=forces,
+                          sa_n=(0.0, 0.0), contact=contact, opening_m=opening_m,
+                          at_requested_position=False, wrench=wrench, gripper_y_m=0.0,
+                          **changes)
+
+
+def test_the_first_touch_on_one_distal_row_of_a_thin_rod_stops_the_close():
+    """The thin cylinder beyond the fingertips: the right pad's distal row alone at 71.9 mm,
+    23.5 mm of push to come against its 11.5 mm tipping limit."""
+    memory, estimate = ESTIMATOR.update(ContactMemory(), reading(forces=taxels(None, 3)))
+    assert (memory.first_touch_opening_m, memory.first_touch_finger) == (0.0719, "right")
+    assert estimate.touched_beyond_pads and estimate.topples_if_released
+    later, again = ESTIMATOR.update(memory, reading(t=1.005, forces=taxels(2, 3),
+                                                    opening_m=0.060))
+    assert later.first_touch_opening_m == 0.0719  # the first touch is kept
+    assert again.touched_beyond_pads
+
+
+def test_no_touch_while_approaching_records_nothing():
+    memory, estimate = ESTIMATOR.update(ContactMemory(), reading(stage=Stage.MOVING))
+    assert memory == ContactMemory() and not estimate.touched_beyond_pads
+    assert estimate.approaching and estimate.strike_s == 0.0
+
+
+def test_a_sustained_force_on_the_wrist_in_the_approach_is_a_strike():
+    push = np.array([0.0, 0.0, 0.5, -TAXEL.finger_strike.force_n - 1.0, 0.0, 0.0])
+    memory, _ = ESTIMATOR.update(ContactMemory(), reading(stage=Stage.MOVING,
+                                                          wrench=tuple(np.zeros(6))))
+    estimates = []
+    for k in range(1, 4):
+        memory, estimate = ESTIMATOR.update(memory, reading(
+            t=1.0 + 0.005 * k, stage=Stage.MOVING, wrench=tuple(push)))
+        estimates.append(estimate)
+    assert estimates[0].strike_s == 0.0 and estimates[-1].strike_s == pytest.approx(0.01)
+    assert estimates[-1].strike_finger == "left"  # the moment about z is positive
+    off = ContactEstimator(taxel_config=TaxelAwareConfig(finger_strike=type(
+        TAXEL.finger_strike)(enabled=False)), geometry=ESTIMATOR._geometry)
+    assert off.update(memory, reading(stage=Stage.MOVING, wrench=tuple(push)))[1].strike_s == 0
+
+
+def test_a_finger_touching_alone_after_the_other_brackets_the_object():
+    memory = ContactMemory(touched_faces=(FaceTouch("right", -0.040),))
+    _, estimate = ESTIMATOR.update(memory, reading(contact=(True, False), opening_m=0.040))
+    assert estimate.bracket == pytest.approx((-0.010, 0.060))  # faces -40 and +20 mm
+    assert estimate.touched_now == (FaceTouch("left", pytest.approx(0.020)),)
+
+
+def test_the_memory_keeps_the_first_touch_into_load_and_the_faces_until_a_re_reach():
+    memory = ContactMemory(first_touch_opening_m=0.07, first_touch_offset_m=0.009,
+                           first_touch_finger="right", strike_since=0.5, tilted_since=0.2,
+                           touched_faces=(FaceTouch("left", 0.01),))
+    load = memory.after_transition(Mode.REACH, Mode.LOAD, ())
+    assert (load.first_touch_opening_m, load.first_touch_finger) == (0.07, "right")
+    assert (load.strike_since, load.tilted_since) == (-1.0, -1.0)
+    relift = memory.after_transition(Mode.LIFT, Mode.LOAD, ())
+    assert relift.first_touch_opening_m == -1.0 and relift.first_touch_offset_m == 0.009
+    right = (FaceTouch("right", -0.03),)
+    re_reach = memory.after_transition(Mode.REACH, Mode.RE_REACH, right)
+    assert re_reach.first_touch_offset_m == 0.0
+    assert re_reach.touched_faces == (FaceTouch("left", 0.01), *right)
+    assert memory.after_transition(Mode.PLACE, Mode.RE_REACH, ()).touched_faces == ()
