@@ -20,6 +20,7 @@ import numpy as np
 
 from tegrasp_drake.control.controller_config import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
+from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.events import EventMatcherConfig, tactile_trial_from_log
 from tegrasp_drake.events.memorized_event import find_memorized_events
 from tegrasp_drake.experiments.detection_quality import roc_curve, scored_span
@@ -51,6 +52,8 @@ def main(argv=None) -> int:
     parser.add_argument("--controller", default="taxel_aware")
     parser.add_argument("--events", default="events")
     parser.add_argument("--limit", type=int, default=None)
+    parser.add_argument("--gripper-model", default="linkage",
+                        help="the hand the logs were simulated on (its chosen thresholds)")
     args = parser.parse_args(argv)
     paths = sorted(args.logs.glob(f"{args.controller}.*.npz"))[:args.limit]
     if not paths:
@@ -60,7 +63,9 @@ def main(argv=None) -> int:
     thresholds = {t: (getattr(controller, "sa_threshold", default.sa_threshold),
                       getattr(controller, "ra_threshold", default.ra_threshold))
                   for t in TRANSITIONS}
-    thresholds.update(getattr(controller, "event_thresholds", dict)())
+    chosen = dict(gripper_hand(args.gripper_model).ensemble_thresholds)
+    if hasattr(controller, "event_thresholds"):
+        thresholds.update(controller.event_thresholds(chosen))
     events_by_object, spans = {}, {t: [] for t in TRANSITIONS}
     for path in paths:
         log = load_trial_log(path)

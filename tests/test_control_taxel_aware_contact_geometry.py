@@ -42,6 +42,14 @@ def test_a_centred_contact_or_none_needs_no_approach_shift():
     assert approach_shift(grasp_contact(np.zeros(24)), TAXEL) == 0.0
 
 
+def test_the_linkage_pads_travel_still_to_come_is_taken_off_the_approach_shift():
+    # A fingertip-row contact (9 mm out) read while the linkage's pads have 5 mm still to
+    # travel along the approach axis before they close on the object: move 4 mm, not 9.
+    assert approach_shift(both(3), TAXEL, 0.005) == pytest.approx(1.5 * CELL_Y - 0.005)
+    # Travel that brings the pads onto the contact needs no shift at all.
+    assert approach_shift(both(3), TAXEL, 1.5 * CELL_Y) == 0.0
+
+
 def test_the_approach_shift_is_clipped_to_its_limit():
     tight = dataclasses.replace(TAXEL, max_approach_shift_m=0.005)
     assert approach_shift(both(3), tight) == pytest.approx(0.005)

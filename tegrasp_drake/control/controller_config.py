@@ -115,24 +115,26 @@ class TaxelAwareConfig:
     height_mismatch_m: float = 0.0033
     tilt_sustain_s: float = 0.1  # for this long [s] (one tick of noise is not a tilt)
     max_regrasps: int = 1
-    # Eq. 3 thresholds [SA, RA] of each ensemble event (events/ensemble), chosen per
-    # transition on held-out ensemble runs by analysis/choose_ensemble_thresholds.py
-    # (analysis/ensemble_thresholds.md: the rule and the ROC-style tables), never on a
-    # sweep's trials.
-    reach_load_thresholds: list[float] = dataclasses.field(default_factory=lambda: [0.44, 0.65])
-    load_lift_thresholds: list[float] = dataclasses.field(default_factory=lambda: [0.94, 0.90])
-    place_unload_thresholds: list[float] = dataclasses.field(
-        default_factory=lambda: [0.98, 0.90])
+    # Eq. 3 thresholds [SA, RA] of each ensemble event (events/ensemble); empty: the ones
+    # chosen for the simulated hand's own ensemble events (gripper_hands.py), per
+    # transition on held-out ensemble runs by analysis/choose_ensemble_thresholds.py, never
+    # on a sweep's trials.
+    reach_load_thresholds: list[float] = dataclasses.field(default_factory=list)
+    load_lift_thresholds: list[float] = dataclasses.field(default_factory=list)
+    place_unload_thresholds: list[float] = dataclasses.field(default_factory=list)
     # A finger striking the object during the approach (joint torques): stop, back off
     # approach_retreat_m, shift along the stroke toward the struck finger, approach again
     # (counted in max_re_reaches).
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
-    def event_thresholds(self) -> dict[str, tuple[float, float]]:
-        """{transition: (SA, RA)} for the EventMatcher."""
-        return {"reach_load": tuple(self.reach_load_thresholds),
-                "load_lift": tuple(self.load_lift_thresholds),
-                "place_unload": tuple(self.place_unload_thresholds)}
+    def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
+        """{transition: (SA, RA)} for the EventMatcher: the ones set here, else `chosen`'s
+        (the hand's, gripper_hands.py)."""
+        chosen = chosen or {}
+        given = {"reach_load": self.reach_load_thresholds,
+                 "load_lift": self.load_lift_thresholds,
+                 "place_unload": self.place_unload_thresholds}
+        return {t: tuple(pair) if pair else tuple(chosen[t]) for t, pair in given.items()}
 
 
 @dataclasses.dataclass
@@ -241,7 +243,7 @@ class EventTriggeredConfig(GraspControllerConfig):
     sa_threshold: float = 0.9
     ra_threshold: float = 0.7
 
-    def event_thresholds(self) -> dict[str, tuple[float, float]]:
+    def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
         """{transition: (SA, RA)} thresholds that replace sa/ra_threshold (none)."""
         return {}
 
@@ -287,9 +289,10 @@ class TaxelAwareControllerConfig(EventTriggeredConfig):
     extra_time_s: typing.ClassVar[float] = 15.0
     taxel_aware: TaxelAwareConfig = dataclasses.field(default_factory=TaxelAwareConfig)
 
-    def event_thresholds(self) -> dict[str, tuple[float, float]]:
-        """{transition: (SA, RA)}: the ensemble events' own (TaxelAwareConfig)."""
-        return self.taxel_aware.event_thresholds()
+    def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
+        """{transition: (SA, RA)}: the ensemble events' own (TaxelAwareConfig), else the
+        ones `chosen` for the hand's ensemble events."""
+        return self.taxel_aware.event_thresholds(chosen)
 
 
 # The scenario's `controller` field: the first (the default) when untagged.

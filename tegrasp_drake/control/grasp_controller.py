@@ -26,6 +26,7 @@ from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachi
 from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
+from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
 from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 
@@ -76,12 +77,18 @@ class GraspController:
         return log
 
 
-def controller_events_folders(controller, events_dir=None) -> list:
+def controller_events_folders(controller, events_dir=None, hand_folder: str = "") -> list:
     """The folders the controller (its config) reads its memorized events from: the events
-    search path (rig/paths.events_search_path), each folder's sub-folder
-    controller.events_folder ("" for the paper's memorized controller)."""
+    search path (rig/paths.events_search_path, the package's for the hand in hand_folder),
+    each folder's sub-folder controller.events_folder ("" for the paper's memorized
+    controller)."""
     sub = controller.events_folder or ""
-    return [folder / sub if sub else folder for folder in paths.events_search_path(events_dir)]
+    return [folder / sub if sub else folder
+            for folder in paths.events_search_path(events_dir, hand_folder)]
+
+
+def _hand_folder(scenario) -> str:
+    return gripper_hand(scenario.gripper.model).events_folder
 
 
 def load_controller_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
@@ -94,7 +101,8 @@ def load_controller_events(scenario, events_dir=None, *, nominal_object=None) ->
     scenario's (`nominal_object`, e.g. a sweep's unperturbed object, if given) in a field
     not listed in controller.event_object_may_differ."""
     return _load_checked_events(
-        scenario, controller_events_folders(scenario.controller, events_dir),
+        scenario, controller_events_folders(scenario.controller, events_dir,
+                                            _hand_folder(scenario)),
         nominal_object=nominal_object)
 
 
@@ -105,7 +113,7 @@ def load_corrective_events(scenario, events_dir=None, *, nominal_object=None) ->
     from tegrasp_drake.control.controller_config import CORRECTIVE_EVENTS_FOLDER
     from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
     folders = [folder / CORRECTIVE_EVENTS_FOLDER
-               for folder in paths.events_search_path(events_dir)]
+               for folder in paths.events_search_path(events_dir, _hand_folder(scenario))]
     return _load_checked_events(scenario, folders, nominal_object=nominal_object,
                                 required=CORRECTIVE_TRANSITIONS,
                                 record_hint="`python analysis/record_corrective_events.py "
@@ -166,7 +174,8 @@ def _add_detector(builder, scenario, events, channels):
         from tegrasp_drake.events import EventMatcherConfig, add_event_matcher
         matcher_config = EventMatcherConfig(
             sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
-            event_thresholds=config.event_thresholds(),
+            event_thresholds=config.event_thresholds(
+                dict(gripper_hand(scenario.gripper.model).ensemble_thresholds)),
             sa_rate_hz=scenario.tactile.sample_rate_hz,
             ra_rate_hz=scenario.vibration.sample_rate_hz)
         events = events if events is not None else load_controller_events(scenario)

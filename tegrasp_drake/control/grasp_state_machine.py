@@ -43,6 +43,7 @@ from tegrasp_drake.control.transition_logic import Observation, memorized_correc
 from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
                                               REQUIRED_TRANSITIONS, transition_states)
 from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, TAXELS_PER_PAD
 
@@ -145,7 +146,8 @@ class GraspStateMachine(LeafSystem):
         self._estimator = (taxel_aware.ContactEstimator(
             taxel_config=config.taxel_aware, geometry=taxel_aware.ObjectGeometry(
                 width_m=plan.object_width, height_m=plan.object_height,
-                grasp_height_m=plan.grasp_height))
+                grasp_height_m=plan.grasp_height,
+                pad_center_offset=gripper_hand(plan.gripper_model).pad_center_offset))
             if isinstance(config, TaxelAwareControllerConfig) else None)
         self._next_mode = (transition_logic.next_mode if self._estimator is None
                            else taxel_aware.next_mode)

@@ -73,6 +73,7 @@ class GraspPlan:
     retract_distance: float
     close_speed: float
     grip_force: float
+    gripper_model: str = "linkage"  # the hand (gripper_hands.py): where its pads lie
 
     @staticmethod
     def from_scenario(scenario) -> "GraspPlan":
@@ -85,4 +86,5 @@ class GraspPlan:
             lift_height=g.lift_height, place_press=g.place_press, settle_s=g.settle_s,
             reach_s=g.reach_s, lift_s=g.lift_s, hold_s=g.hold_s, place_s=g.place_s,
             unload_s=g.unload_s, retract_s=g.retract_s, retract_distance=g.retract_distance,
-            close_speed=g.close_speed, grip_force=g.grip_force)
+            close_speed=g.close_speed, grip_force=g.grip_force,
+            gripper_model=scenario.gripper.model)

@@ -61,12 +61,15 @@ def user_events_dir() -> pathlib.Path:
     return base / "tegrasp" / "events"
 
 
-def events_search_path(explicit=None) -> list[pathlib.Path]:
+def events_search_path(explicit=None, hand_folder: str = "") -> list[pathlib.Path]:
     """The folders to read events from, first first: [explicit] if given, else the
-    user's folder and the package's."""
+    user's folder and the package's; the package keeps each simulated hand's own events,
+    the linkage's at its top and the prismatic hand's in `hand_folder` "prismatic"
+    (gripper_hands.py)."""
     if explicit:
         return [pathlib.Path(explicit).expanduser()]
-    return [user_events_dir(), package_events_dir()]
+    package = package_events_dir()
+    return [user_events_dir(), package / hand_folder if hand_folder else package]
 
 
 def is_installed_package_data(folder) -> bool:

@@ -30,6 +30,11 @@ class PrismaticHand:
     url: str = "package://tegrasp/robotiq_2f85/robotiq_2f85_tactile.sdf"
     actuated_joint: str = "left_finger_joint"
     non_backdrivable: bool = False
+    events_folder: str = "prismatic"  # its memorized events, in the package's events
+    # Eq. 3 thresholds [SA, RA] of its ensemble events, chosen on held-out ensemble runs
+    # (analysis/choose_ensemble_thresholds.py; analysis/ensemble_thresholds_prismatic.md).
+    ensemble_thresholds: tuple = (("reach_load", (0.44, 0.65)), ("load_lift", (0.94, 0.90)),
+                                  ("place_unload", (0.98, 0.90)))
 
     def half_opening(self, a: float) -> float:
         return a
@@ -60,6 +65,11 @@ class LinkageHand:
     url: str = "package://tegrasp/robotiq_2f85/robotiq_2f85_linkage.sdf"
     actuated_joint: str = "left_driver_joint"
     non_backdrivable: bool = True
+    events_folder: str = ""  # its memorized events: the package's events themselves
+    # Eq. 3 thresholds [SA, RA] of its ensemble events, chosen on held-out ensemble runs
+    # (analysis/choose_ensemble_thresholds.py; analysis/ensemble_thresholds.md).
+    ensemble_thresholds: tuple = (("reach_load", (0.40, 0.80)), ("load_lift", (0.50, 0.90)),
+                                  ("place_unload", (0.98, 0.70)))
 
     def half_opening(self, a: float) -> float:
         return finger_linkage.half_opening(a)

@@ -28,12 +28,15 @@ class Shift:
         return abs(self.dx_m) < min_shift_m and abs(self.dy_m) < min_shift_m
 
 
-def approach_shift(contact: GraspContact, taxel_config) -> float:
-    """The shift along world x [m] that puts the pads' centres on the contact: the
-    contact's approach_offset_m (pad +y is world +x at the side grasp), clipped to
+def approach_shift(contact: GraspContact, taxel_config,
+                   pad_travel_to_grasp_m: float = 0.0) -> float:
+    """The shift along world x [m] that puts the pads' centres on the contact once closed
+    on the object: the contact's approach_offset_m (pad +y is world +x at the side grasp)
+    less the pads' travel along the approach axis still to come as they close to the
+    object's width (pad_travel_to_grasp_m [m]: 0 on the prismatic hand), clipped to
     +-max_approach_shift_m; 0 without contact or within centre_tolerance_m."""
     touching = contact.left.touching or contact.right.touching
-    offset = contact.approach_offset_m
+    offset = contact.approach_offset_m - pad_travel_to_grasp_m
     if not touching or abs(offset) <= taxel_config.centre_tolerance_m:
         return 0.0
     return float(np.clip(offset, -taxel_config.max_approach_shift_m,

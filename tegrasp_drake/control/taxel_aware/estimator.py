@@ -12,6 +12,7 @@ memory keeps across a change of mode is said once, in ContactMemory.after_transi
 """
 
 import dataclasses
+import typing
 
 from tegrasp_drake.control.finger_strike import side_moment_nm, strike_force_n, struck_finger
 from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Mode, Stage
@@ -96,7 +97,10 @@ class ContactEstimate:
     finger ("" unknown). topples_if_released: the close pushed the object past its
     tipping limit (release_topples). touched_beyond_pads: the first touch lay on one pad's
     distal row alone and the close would push the object over. first_touch_finger,
-    first_touch_opening_m: that touch's. caged_behind_pads: the closed fingers hold the
+    first_touch_opening_m: that touch's. pad_travel_to_grasp_m: how much further along the
+    approach axis the pads' centres will lie when closed on the object than now (0 on the
+    prismatic hand; the linkage's pads move out as they close). caged_behind_pads: the
+    closed fingers hold the
     object behind the pads. bracket: (centre [m, world y], extent [m]) of the object
     between the face a finger touching alone presses now and the other finger's
     remembered face, or None. touched_now: the faces pressed now while closing. tilted_s:
@@ -116,6 +120,7 @@ class ContactEstimate:
     touched_beyond_pads: bool = False
     first_touch_finger: str = ""
     first_touch_opening_m: float = -1.0
+    pad_travel_to_grasp_m: float = 0.0
     caged_behind_pads: bool = False
     bracket: tuple | None = None
     touched_now: tuple = ()
@@ -129,11 +134,13 @@ class ContactEstimate:
 
 @dataclasses.dataclass(frozen=True)
 class ObjectGeometry:
-    """The expected object and grasp [m]: its width along the stroke and height, and the
-    grasp height."""
+    """The expected object and grasp [m]: its width along the stroke and height, the
+    grasp height, and where the hand's pads' centres lie beyond the grasp frame along the
+    approach axis at an opening (gripper_hands.pad_center_offset; 0 without a hand)."""
     width_m: float
     height_m: float
     grasp_height_m: float
+    pad_center_offset: typing.Callable[[float], float] = lambda opening_m: 0.0
 
 
 class ContactEstimator:
@@ -181,8 +188,10 @@ class ContactEstimator:
             approach_contact_s=t - approach_since if touching_in_approach else 0.0,
             **strike, topples_if_released=topples, touched_beyond_pads=beyond,
             first_touch_finger=memory.first_touch_finger,
-            first_touch_opening_m=memory.first_touch_opening_m, caged_behind_pads=caged,
-            bracket=bracket,
+            first_touch_opening_m=memory.first_touch_opening_m,
+            pad_travel_to_grasp_m=(g.pad_center_offset(g.width_m)
+                                   - g.pad_center_offset(r.opening_m)),
+            caged_behind_pads=caged, bracket=bracket,
             touched_now=(touched_faces(r.contact, r.gripper_y_m, r.opening_m)
                          if r.closing else ()),
             tilted_s=t - tilted_since if tilted else 0.0)

@@ -19,7 +19,7 @@ def centring_shift(situation) -> Shift:
     dy = re_reach_shift(e.sa_n, e.opening_m, e.object_width_m, config.contact_force_n)
     if e.approaching:
         return Shift(-config.taxel_aware.approach_retreat_m, dy)
-    dx = approach_shift(e.shape, config.taxel_aware)
+    dx = approach_shift(e.shape, config.taxel_aware, e.pad_travel_to_grasp_m)
     if e.bracket is not None:
         return Shift(dx, e.bracket[0] - e.gripper_y_m)
     return Shift(dx, dy)

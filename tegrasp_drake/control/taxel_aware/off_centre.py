@@ -12,7 +12,8 @@ from tegrasp_drake.control.taxel_aware.moves import centring_shift
 
 def event_off_centre(situation) -> bool:
     return (situation.obs.event_matched and re_reach_allowed(situation)
-            and approach_shift(situation.estimate.shape, situation.taxel) != 0.0)
+            and approach_shift(situation.estimate.shape, situation.taxel,
+                               situation.estimate.pad_travel_to_grasp_m) != 0.0)
 
 
 def centre_first(situation):
