@@ -1,0 +1,113 @@
+"""Pair two hands' sweep records trial by trial: success rates, McNemar, changed trials.
+
+    python analysis/compare_hands.py PRISMATIC_FOLDER LINKAGE_FOLDER OUT.md
+
+Both folders hold `tegrasp sweep` records (`trials/*.json`) of the same trials (the same
+spec and base seed: a trial id names the controller, object, marker and attempt, and its
+seeds follow from them), one run on each hand. For every controller in both: Table I's
+columns (well-placed and misplaced, hold and hold-and-unload) per object on each hand, the
+exact McNemar test on hold-and-unload over the paired trials, and each trial whose outcome
+changed, with the linkage run's failure. Then the linkage run's failures by class.
+"""
+
+import argparse
+import collections
+import json
+import pathlib
+import re
+
+from tegrasp_drake.experiments.sweep.table import exact_mcnemar_p_value
+
+
+def load(folder: pathlib.Path) -> dict:
+    """{trial_id: (trial, result)} of a folder's finished records."""
+    records = {}
+    for path in sorted((folder / "trials").glob("*.json")):
+        record = json.loads(path.read_text())
+        if record.get("status") == "ok":
+            records[record["trial_id"]] = (record["trial"], record["result"])
+    return records
+
+
+def success(result) -> bool:
+    return bool(result["hold_success"] and result["unload_success"])
+
+
+def failure_class(result) -> str:
+    """A failed trial's class: where it ended and why, without its numbers."""
+    if success(result):
+        return "held and unloaded"
+    if result["hold_success"]:
+        return f"held, not unloaded (final tilt {result['final_tilt_deg']:.0f} deg)" \
+            if result["final_tilt_deg"] > 30 else "held, not unloaded"
+    text = result.get("failure") or result.get("final_mode", "")
+    return re.sub(r"[-+]?\d+(\.\d+)?", "N", text).strip() or "failed"
+
+
+def rates(pairs, side: int) -> str:
+    """'hold% / unload%' of one hand's results in (trial, prismatic, linkage) rows."""
+    if not pairs:
+        return "-"
+    held = sum(p[side]["hold_success"] for p in pairs) / len(pairs)
+    unloaded = sum(success(p[side]) for p in pairs) / len(pairs)
+    return f"{100 * held:.0f} / {100 * unloaded:.0f}"
+
+
+def report(prismatic: dict, linkage: dict) -> str:
+    common = sorted(set(prismatic) & set(linkage))
+    controllers = sorted({prismatic[t][0]["controller"] for t in common})
+    lines = [f"{len(common)} paired trials (prismatic {len(prismatic)}, linkage {len(linkage)} "
+             "records).", ""]
+    for controller in controllers:
+        ids = [t for t in common if prismatic[t][0]["controller"] == controller]
+        rows = [(prismatic[t][0], prismatic[t][1], linkage[t][1]) for t in ids]
+        lines += [f"## {controller}", "",
+                  "| object | placed | trials | prismatic hold / unload % | linkage hold / unload % |",
+                  "|---|---|---|---|---|"]
+        for name in sorted({r[0]["object_name"] for r in rows}):
+            for placed, well in (("well", True), ("misplaced", False)):
+                pairs = [(r[1], r[2]) for r in rows
+                         if r[0]["object_name"] == name and r[0]["well_placed"] == well]
+                lines.append(f"| {name} | {placed} | {len(pairs)} | {rates(pairs, 0)} | "
+                             f"{rates(pairs, 1)} |")
+        only_prismatic = sum(success(r[1]) and not success(r[2]) for r in rows)
+        only_linkage = sum(success(r[2]) and not success(r[1]) for r in rows)
+        lines += ["", f"Held and unloaded: prismatic {sum(success(r[1]) for r in rows)}/"
+                      f"{len(rows)}, linkage {sum(success(r[2]) for r in rows)}/{len(rows)}; "
+                      f"only prismatic {only_prismatic}, only linkage {only_linkage}, exact "
+                      f"McNemar p = {exact_mcnemar_p_value(only_prismatic, only_linkage):.3g}.",
+                  ""]
+        changed = [r for r in rows if success(r[1]) != success(r[2])]
+        if changed:
+            lines += ["| trial | offset [mm] (normal, stroke) | prismatic | linkage |",
+                      "|---|---|---|---|"]
+            for trial, before, after in changed:
+                offset = (f"{1000 * trial['marker_dx_m']:+.0f}, "
+                          f"{1000 * trial['marker_dy_m']:+.0f}")
+                lines.append(f"| {trial['trial_id']} | {offset} | {failure_class(before)} | "
+                             f"{failure_class(after)} |")
+            lines.append("")
+    classes = collections.Counter(
+        (linkage[t][0]["controller"], failure_class(linkage[t][1])) for t in linkage
+        if not success(linkage[t][1]))
+    lines += ["## The linkage run's failures by class", "", "| controller | class | trials |",
+              "|---|---|---|"]
+    lines += [f"| {c} | {k} | {n} |" for (c, k), n in sorted(classes.items())]
+    return "\n".join(lines) + "\n"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("prismatic", type=pathlib.Path)
+    parser.add_argument("linkage", type=pathlib.Path)
+    parser.add_argument("out", type=pathlib.Path)
+    args = parser.parse_args()
+    text = f"# Prismatic against linkage hand\n\n{report(load(args.prismatic), load(args.linkage))}"
+    temporary = args.out.with_name(args.out.name + ".tmp")
+    temporary.write_text(text)
+    temporary.replace(args.out)
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()
