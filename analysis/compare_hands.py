@@ -34,14 +34,13 @@ def success(result) -> bool:
 
 
 def failure_class(result) -> str:
-    """A failed trial's class: where it ended and why, without its numbers."""
+    """A trial's class: held and placed, or what went wrong (its numbers left out)."""
     if success(result):
         return "held and unloaded"
-    if result["hold_success"]:
-        return f"held, not unloaded (final tilt {result['final_tilt_deg']:.0f} deg)" \
-            if result["final_tilt_deg"] > 30 else "held, not unloaded"
-    text = result.get("failure") or result.get("final_mode", "")
-    return re.sub(r"[-+]?\d+(\.\d+)?", "N", text).strip() or "failed"
+    reason = re.sub(r"[-+]?\d+(\.\d+)?", "N", result.get("failure") or "").strip()
+    upright = "fell over" if result["final_tilt_deg"] > 30.0 else "upright"
+    what = "held, not unloaded" if result["hold_success"] else "not held"
+    return f"{what}, {upright}" + (f": {reason}" if reason else "")
 
 
 def rates(pairs, side: int) -> str:

@@ -131,8 +131,8 @@ def test_the_prismatic_hand_yields_to_the_same_push():
 def test_the_loops_stay_closed_through_a_whole_trial():
     from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, MakeSimulator
     from tegrasp_drake.experiments.scenario import LoadScenario
-    scenario = LoadScenario(overrides=["gripper.model=linkage"])
-    grasp = MakeGraspDiagram(scenario, controller="open_loop", log=False)
+    scenario = LoadScenario(overrides=["gripper.model=linkage"], controller="open_loop")
+    grasp = MakeGraspDiagram(scenario, log=False)
     simulator = MakeSimulator(grasp.diagram, scenario)
     plant = grasp.station.GetSubsystemByName("plant")
     gripper = plant.GetModelInstanceByName("robotiq_2f85")
