@@ -173,7 +173,17 @@ def _events(object_name="mine", sa_rate_hz=108.0, seed=0):
                            ra_rate_hz=1000.0) for transition in REQUIRED_TRANSITIONS]
 
 
-def test_ctrl_c_while_events_are_replaced_leaves_them_all_new(tmp_path, monkeypatch):
+@pytest.fixture
+def python_sigint_handler():
+    """Python's own Ctrl-C handler for the test, whatever an earlier test in this process
+    left installed (the emulator and hardware tests install their own)."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
+def test_ctrl_c_while_events_are_replaced_leaves_them_all_new(tmp_path, monkeypatch,
+                                                              python_sigint_handler):
     """Probe 8: the SIGINT comes during the renames; it is held until the index is in."""
     save_memorized_events(tmp_path, _events(seed=1))
     real_replace, interrupted = os.replace, []

@@ -24,7 +24,9 @@ from tegrasp_drake.experiments.corrective_events import CORRECTIVE_RUNS, slip_on
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
-EVENTS = pathlib.Path(__file__).parents[1] / "events" / "corrective"
+# The recorded held-out windows (tests/data) were simulated on the prismatic hand: they are
+# matched against that hand's corrective events.
+EVENTS = pathlib.Path(__file__).parents[1] / "events" / "prismatic" / "corrective"
 WINDOWS = pathlib.Path(__file__).parent / "data" / "corrective_windows.npz"
 CONFIG = GraspControllerConfig()
 MEMORIZED_HIT = dataclasses.replace(CONFIG, memorized_corrective_events=["hold_avoid"])

@@ -1,7 +1,7 @@
-"""The README's emulator walk-through ("On the robot, or against emulators of it") runs as
-written and ends Done (issue #25): its `tegrasp` lines, each in a shell, in a fresh folder.
+"""The emulator walk-through of docs/hardware.md ("On the robot, or against emulators of it")
+runs as written and ends Done: its `tegrasp` lines, each in a shell, in a fresh folder.
 
-The lines come from the README itself, so the documented flow is the tested one: the
+The lines come from the page itself, so the documented flow is the tested one: the
 emulators run at the scheduling `tegrasp emulate` gives them by default, and the control
 loop at the hardware config's, with nothing raised by the test. Two departures, neither in
 what the commands do: the bus is this test's own (LCM_DEFAULT_URL, which every default LCM
@@ -20,14 +20,14 @@ import time
 
 import pytest
 
-README = pathlib.Path(__file__).resolve().parent.parent / "README.md"
-SECTION = "### On the robot, or against emulators of it"
+PAGE = pathlib.Path(__file__).resolve().parent.parent / "docs" / "hardware.md"
+SECTION = "# On the robot, or against emulators of it"
 READY_TIMEOUT_S = 600.0  # a hang guard on a busy host, not a performance criterion
 
 
 def walkthrough_lines() -> list[str]:
     """The `tegrasp` lines of the section's first code block, without their comments."""
-    text = README.read_text(encoding="utf-8")
+    text = PAGE.read_text(encoding="utf-8")
     section = text[text.index(SECTION):]
     block = re.search(r"\n\n((?:    .*\n)+)", section).group(1)
     lines = [line.split("#")[0].strip() for line in block.splitlines()]
