@@ -1,8 +1,8 @@
 """Pair two hands' sweep records trial by trial: success rates, McNemar, changed trials.
 
-    python analysis/compare_hands.py PRISMATIC_FOLDER LINKAGE_FOLDER OUT.md
+    python analysis/compare_hands.py OUT.md LINKAGE_FOLDER PRISMATIC_FOLDER [PRISMATIC_FOLDER ...]
 
-Both folders hold `tegrasp sweep` records (`trials/*.json`) of the same trials (the same
+The folders hold `tegrasp sweep` records (`trials/*.json`) of the same trials (the same
 spec and base seed: a trial id names the controller, object, marker and attempt, and its
 seeds follow from them), one run on each hand. For every controller in both: Table I's
 columns (well-placed and misplaced, hold and hold-and-unload) per object on each hand, the
@@ -97,11 +97,14 @@ def report(prismatic: dict, linkage: dict) -> str:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("prismatic", type=pathlib.Path)
-    parser.add_argument("linkage", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)
+    parser.add_argument("linkage", type=pathlib.Path)
+    parser.add_argument("prismatic", type=pathlib.Path, nargs="+")
     args = parser.parse_args()
-    text = f"# Prismatic against linkage hand\n\n{report(load(args.prismatic), load(args.linkage))}"
+    prismatic = {}
+    for folder in args.prismatic:
+        prismatic.update(load(folder))
+    text = f"# Prismatic against linkage hand\n\n{report(prismatic, load(args.linkage))}"
     temporary = args.out.with_name(args.out.name + ".tmp")
     temporary.write_text(text)
     temporary.replace(args.out)
