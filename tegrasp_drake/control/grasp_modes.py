@@ -45,7 +45,7 @@ class Trigger(enum.StrEnum):
     TIMER = "timer"  # a planned motion or a timed phase ended
     CORRECTIVE = "corrective"  # a corrective action (Re-Reach, Lift-Load) started or ended
     FAULT = "fault"  # a device fault
-    # A memorized corrective event matched (slip in Lift, a hit in Hold; issue #14,
+    # A memorized corrective event matched (slip in Lift, a hit in Hold;
     # controller.memorized_corrective_events).
     CORRECTIVE_EVENT = "corrective_event"
 

@@ -59,10 +59,10 @@ class Scenario:
     expected_object_xy: list[float] = dataclasses.field(default_factory=lambda: [0.72, 0.0])
     # stiction_tolerance 1e-6 m/s instead of Drake's 1e-4: SAP's lagged/similar friction is
     # viscous below eps = max(stiction_tolerance, mu R_t n0), so a held object under a torque
-    # tau creeps at tau eps / (2 mu N r_g^2) whatever the time step (the rotating object of
-    # issue #11). 1e-6 brings eps down to the solver's own O(time_step) floor, about 4e-5 m/s
+    # tau creeps at tau eps / (2 mu N r_g^2) whatever the time step (a held object slowly
+    # rotating). 1e-6 brings eps down to the solver's own O(time_step) floor, about 4e-5 m/s
     # at 1 ms: creep 0.161 -> 0.048 deg/s at 17 % of the torsional friction limit, slip
-    # onset moved by 2 %, no measurable cost (README, "No creep").
+    # onset moved by 2 %, no measurable cost (docs/model.md, "No creep").
     plant_config: MultibodyPlantConfig = dataclasses.field(
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged", stiction_tolerance=1e-6,

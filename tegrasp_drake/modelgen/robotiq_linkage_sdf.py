@@ -38,7 +38,9 @@ from tegrasp_drake.modelgen.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, 
 # Link masses [kg] (Menagerie 2f85.xml) and the bar each is spread along (joint points).
 DRIVER_MASS, COUPLER_MASS, SPRING_LINK_MASS, FOLLOWER_MASS = 0.0090, 0.0141, 0.0222, 0.0125
 FINGERTIP_MASS = 0.0085  # kg, the paper's tactile fingertip (module docstring)
-LINK_BAR_SIZE = 0.008  # m, side of the bars' square section (inertia and visuals)
+LINK_BAR_SIZE = 0.008  # m, side of the bars' square section (inertia and visuals): the
+# 2F-85's links are stamped plates about 8 mm deep at the pins (Menagerie's meshes); with
+# the links' masses set, it only spreads their inertia across the bar
 # Effort limit of the driver joint [N m]: the screw and nut hold any load the fingers meet;
 # this only bounds the implicit PD (twice the 26.9 N m that 235 N on both pads needs).
 DRIVER_EFFORT_LIMIT_NM = 60.0

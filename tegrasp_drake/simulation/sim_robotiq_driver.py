@@ -178,7 +178,8 @@ class SimRobotiqDriver(LeafSystem):
         t = context.get_time()
         hand = self._hand
         if hand.non_backdrivable:  # the nut stays where the last plant step put it
-            s[_HELD] = self._set_point(context, s)
+            s[_HELD] = self._set_point(context, s,
+                                       hand.actuated(self._reference(context, s)[0]))
         # Advance the reference to now with the acceleration chosen at the last update.
         h = t - s[_T]
         s[_REF_Q] += s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
@@ -200,16 +201,18 @@ class SimRobotiqDriver(LeafSystem):
                                    self._config.stall_speed)
         discrete_state.set_value(self._state, s)
 
-    def _set_point(self, context, s) -> float:
-        """The PD set-point of the actuated coordinate now, from state s (a list or array)."""
-        ref_q, ref_v, ref_a, force, updated_at = (s[_REF_Q], s[_REF_V], s[_REF_A], s[_FORCE],
-                                                  s[_T])
-        h = context.get_time() - updated_at
-        q_ref = ref_q + ref_v * h + 0.5 * ref_a * h * h
+    def _reference(self, context, s) -> tuple[float, float]:
+        """(q_ref [m], v_ref [m/s]): the reference of half the opening now, from state s."""
+        h = context.get_time() - s[_T]
+        return (s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h,
+                s[_REF_V] + s[_REF_A] * h)
+
+    def _set_point(self, context, s, reference: float) -> float:
+        """The PD set-point of the actuated coordinate now, from state s (a list or array)
+        and the reference in the actuated coordinate."""
         a = self._finger_state.Eval(context).item(0)
         hand = self._hand
-        reference = hand.actuated(q_ref)
-        limited = force_limited_set_point(a, reference, force, self._gain,
+        limited = force_limited_set_point(a, reference, s[_FORCE], self._gain,
                                           abs(hand.half_opening_rate(a)))
         if hand.non_backdrivable:
             return nut_set_point(s[_HELD], limited, reference, s[_DIRECTION])
@@ -219,12 +222,10 @@ class SimRobotiqDriver(LeafSystem):
         # Evaluated on every plant step: Python floats, not numpy scalars (a tenth of the
         # overhead, the same IEEE arithmetic).
         s = context.get_discrete_state(self._state).value().tolist()
-        h = context.get_time() - s[_T]
-        v_ref = s[_REF_V] + s[_REF_A] * h
-        q_ref = s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
+        q_ref, v_ref = self._reference(context, s)
         reference = self._hand.actuated(q_ref)
         v_ref = v_ref / self._hand.half_opening_rate(reference)
-        set_point = self._set_point(context, s)
+        set_point = self._set_point(context, s, reference)
         if self._hand.non_backdrivable and set_point != reference:
             # The nut is held back by the force limit or stands: it does not move with the
             # reference, and a PD damping term on the reference's speed would add
