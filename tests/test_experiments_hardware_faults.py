@@ -26,8 +26,7 @@ STILL_RAD_S = 0.01   # an arm slower than this on every joint is holding still [
 KILL_AT_S = 4.6      # in the lift, the arm moving up with the box
 
 
-# On the prismatic hand, as the hardware-in-the-loop tests (their module docstring).
-SHORT_HOLD = ["grasp.hold_s=0.5", "gripper.model=prismatic"]
+SHORT_HOLD = ["grasp.hold_s=0.5"]
 
 
 def lcm_url(offset):

@@ -27,11 +27,8 @@ from tegrasp_drake.experiments.trial import run_trial
 
 pytestmark = pytest.mark.slow
 
-# The 3 s hold of the paper's script adds nothing here. On the prismatic hand: with the
-# linkage hand's events (their Reach-Load a step within one taxel frame) the hardware run in
-# the full suite matched Reach-Load and Load-Lift at 0.53 s on the replay's first windows and
-# failed (the object lost), while the run alone passes: under investigation (docs/hardware.md).
-SHORT_HOLD = ["grasp.hold_s=0.5", "gripper.model=prismatic"]
+# The 3 s hold of the paper's script adds nothing here.
+SHORT_HOLD = ["grasp.hold_s=0.5"]
 HIL_TIMEOUT_S = 0.5
 # Transitions typically come within 5-20 ms of the simulation's; on a loaded host the
 # emulators' processes get the CPU late and a burst of tactile frames can delay an event's

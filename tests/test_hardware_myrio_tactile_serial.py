@@ -170,3 +170,31 @@ def test_reader_queue_is_bounded_and_keeps_the_newest():
         os.close(master)
         os.close(slave)
 
+
+
+def test_a_receiver_zeroed_before_the_start_starts_zeroed():
+    """Zeroing before the Simulator starts leaves no stretch of exact zeros at the start of
+    the run: the first tick already carries the zeroed pads (a zeroing stretch followed by
+    the pads' clipped noise is a step that step-shaped memorized events match)."""
+    with MyRioEmulator(make_trial(), emulator_config()) as emulator, \
+            TactileSerialReader(emulator.port) as reader:
+        receiver = TactileSerialReceiver(reader, calibration=receiver_calibration())
+        assert receiver.zero_before_start(time.monotonic() + 2.0)
+        simulator = Simulator(receiver)
+        context = simulator.get_mutable_context()
+        assert receiver.GetOutputPort("zeroing").Eval(context)[0] == 1  # the default state
+        simulator.Initialize()
+        assert receiver.GetOutputPort("zeroing").Eval(context)[0] == 0
+        # The offsets found are the emulated pads' (the lead-in is quiet: zero force).
+        pads = receiver.GetMyContextFromRoot(context).get_abstract_state(0).get_value().pads
+        for pad in pads:
+            np.testing.assert_allclose(pad.offset, PADS.offset, atol=0.5)
+            assert pad.piezo_offset == pytest.approx(PADS.piezo_offset, abs=1e-3)
+
+
+def test_zeroing_before_the_start_gives_up_at_its_deadline():
+    with MyRioEmulator(make_trial(), emulator_config()) as emulator, \
+            TactileSerialReader(emulator.port) as reader:
+        receiver = TactileSerialReceiver(reader, calibration=TactileCalibration(
+            zero_samples=10_000))
+        assert not receiver.zero_before_start(time.monotonic() + 0.05)

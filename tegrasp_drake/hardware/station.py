@@ -169,6 +169,7 @@ class HardwareStation(Diagram):
         tactile = builder.AddNamedSystem("tactile_receiver", TactileSerialReceiver(
             self._tactile_reader, calibration=calibration,
             stale_timeout=config.tactile.stale_timeout, max_backlog=config.tactile.max_backlog))
+        self._tactile_receiver = tactile
         for finger in FINGER_NAMES:
             for signal in ("taxel_forces", "pad_acceleration"):
                 builder.ExportOutput(tactile.GetOutputPort(f"{finger}_{signal}"),
@@ -218,8 +219,9 @@ class HardwareStation(Diagram):
 
     def wait_until_ready(self, timeout: float | None = None):
         """Blocks (before the Simulator starts, never inside it) until the arm's status has
-        arrived, the gripper's activation is complete and a tactile frame has arrived;
-        raises HardwareNotReadyError naming what is missing."""
+        arrived, the gripper's activation is complete and the tactile pads are zeroed on the
+        frames arriving (the pads must be untouched); raises HardwareNotReadyError naming
+        what is missing."""
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
         heard = [False]
@@ -241,6 +243,11 @@ class HardwareStation(Diagram):
                     f"tactile: no valid frame on {self._tactile_reader.port} within "
                     f"{timeout:g} s ({self._tactile_reader.counters()})")
             time.sleep(0.005)
+        if not self._tactile_receiver.zero_before_start(deadline):
+            raise HardwareNotReadyError(
+                f"tactile: zeroing the pads needs {self._tactile_receiver.zero_samples} count "
+                f"sequences per finger on {self._tactile_reader.port}; they did not arrive "
+                f"within {timeout:g} s ({self._tactile_reader.counters()})")
         self._tactile_reader.discard_pending()
 
     def close(self):
