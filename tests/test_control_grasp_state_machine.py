@@ -5,7 +5,7 @@ import pytest
 from pydrake.common.value import AbstractValue
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.controller_config import MemorizedControllerConfig
 from tegrasp_drake.control.grasp_modes import Mode, Trigger

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation, initial_arm_positions

@@ -42,7 +42,7 @@ from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.control.transition_logic import Observation, memorized_corrective_trigger
 from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
                                               REQUIRED_TRANSITIONS, transition_states)
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, TAXELS_PER_PAD
@@ -89,7 +89,7 @@ class GraspStateMachine(LeafSystem):
         match: [1] when the detector matches the expected event, else [0].
         scores: the detector's four channel scores (logged with each transition).
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), Eq. 1-2.
-        gripper.status: the 2F-85 status bytes (robotiq_units order).
+        gripper.status: the 2F-85 status bytes (robotiq.units order).
         pad_acceleration: [left xyz, right xyz] (m/s^2, pad frames), for the Avoid
             direction; unconnected: Avoid moves straight up.
         slip_vibration: [left, right] the pads' vibration in the slip band (m/s^2,

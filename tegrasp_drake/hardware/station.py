@@ -5,7 +5,7 @@ runs unchanged on either:
 
   inputs:  arm.desired_state (12: q [rad], v [rad/s]), gripper.command (3: rPR, rSP, rFR)
   outputs: arm.position_measured (6), arm.velocity_measured (6), arm.torque_measured (6),
-           gripper.status (8, robotiq_units order),
+           gripper.status (8, robotiq.units order),
            tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N),
            tactile.left_pad_acceleration (3, m/s^2), tactile.right_pad_acceleration (3)
   hardware only:
@@ -91,7 +91,7 @@ class HardwareStation(Diagram):
     Ports (sizes and units in the module docstring):
         arm.*: joint space of the Jaco [rad, rad/s, N m]; arm.time_measured is the
             status message's utime [s].
-        gripper.*: Robotiq bytes (robotiq_units order); gripper.time_measured is host
+        gripper.*: Robotiq bytes (robotiq.units order); gripper.time_measured is host
             monotonic time [s].
         tactile.*: taxel forces [N] and pad-frame accelerations [m/s^2], as the
             simulated station's; tactile.time_measured is the myRIO timestamp [s].

@@ -7,7 +7,7 @@ the two apart:
 
   inputs:  arm.desired_state (12: q [rad], v [rad/s]), gripper.command (3: rPR, rSP, rFR)
   outputs: arm.position_measured (6), arm.velocity_measured (6), arm.torque_measured (6),
-           gripper.status (8, robotiq_units order),
+           gripper.status (8, robotiq.units order),
            tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N),
            tactile.left_pad_acceleration (3), tactile.right_pad_acceleration (3): each pad's
            PVDF film in acceleration-equivalent units [m/s^2], on the pad normal (z)
