@@ -2,7 +2,7 @@
 
 import pytest
 
-from tegrasp_drake.robotiq import units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulatorConfig, RobotiqGripperModel
 from tegrasp_drake.robotiq.registers import command_registers
 

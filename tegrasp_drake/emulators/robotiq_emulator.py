@@ -36,7 +36,7 @@ from pymodbus import FramerType
 from pymodbus.server import ModbusSerialServer
 from pymodbus.simulator import DataType, SimData, SimDevice
 
-from tegrasp_drake.robotiq import units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.robotiq import registers
 from tegrasp_drake.emulators.null_modem import NullModem
 

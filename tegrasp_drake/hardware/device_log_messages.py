@@ -15,7 +15,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.hardware.lcm_time import utime_from_time
-from tegrasp_drake.robotiq import units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 

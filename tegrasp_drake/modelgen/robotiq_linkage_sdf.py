@@ -45,8 +45,6 @@ LINK_BAR_SIZE = 0.008  # m, side of the bars' square section (inertia and visual
 # this only bounds the implicit PD (twice the 26.9 N m that 235 N on both pads needs).
 DRIVER_EFFORT_LIMIT_NM = 60.0
 
-FINGER_SIGNS = {"left": 1.0, "right": -1.0}
-
 
 def _point(p2, sign: float) -> np.ndarray:
     """A five-bar point (y, z) of the finger on +y as 3D base coordinates of the finger

@@ -25,11 +25,3 @@ def taxel_centers() -> np.ndarray:
     x = (cols + 0.5) * CELL_X - PAD_WIDTH / 2
     y = (rows + 0.5) * CELL_Y - PAD_LENGTH / 2
     return np.column_stack([x, y, np.zeros_like(x)])
-
-
-def taxel_index(p_P: np.ndarray) -> np.ndarray:
-    """The taxel holding each point (N, 3) of the pad frame; points beyond the pad's edge go
-    to the nearest edge taxel."""
-    col = np.clip(np.floor((p_P[:, 0] + PAD_WIDTH / 2) / CELL_X), 0, COLUMNS - 1)
-    row = np.clip(np.floor((p_P[:, 1] + PAD_LENGTH / 2) / CELL_Y), 0, ROWS - 1)
-    return (row * COLUMNS + col).astype(np.intp)

@@ -17,14 +17,13 @@ The status vector is the project's `gripper.status` port:
 
 import numpy as np
 
-from tegrasp_drake.robotiq import units as units
+from tegrasp_drake.robotiq import units
 
 BAUDRATE = 115200
 DEVICE_ID = 9
 COMMAND_ADDRESS = 1000
 STATUS_ADDRESS = 2000
 REGISTER_COUNT = 3
-WRITE_FUNCTION = 16
 READ_FUNCTION = 4
 
 # Action request bits (command byte 0).

@@ -16,7 +16,7 @@ import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.robotiq import units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DRIVER_ERROR, DeviceFault
 from tegrasp_drake.hardware.state_outputs import declare_scalar_state_outputs
 
