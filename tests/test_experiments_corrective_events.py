@@ -18,7 +18,7 @@ from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachi
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.events import EventMatcherConfig, replay_event_held
 from tegrasp_drake.events.extraction import TactileTrial
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.experiments.corrective_events import CORRECTIVE_RUNS, slip_onset_time
 from tegrasp_drake.experiments.scenario import LoadScenario

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.experiments.pad_strike import (PadStrikeConfig, run_pad_strike,
                                                   strike_scenario)
 from tegrasp_drake.rig import paths

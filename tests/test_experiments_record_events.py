@@ -8,7 +8,7 @@ import pytest
 
 from tegrasp_drake import cli
 from tegrasp_drake.control.grasp_controller import load_controller_events
-from tegrasp_drake.events.memorized_event import events_folder_of
+from tegrasp_drake.events.events_folder import events_folder_of
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.rig import paths
 from tegrasp_drake.experiments.record_events import record_events

@@ -34,7 +34,7 @@ from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecordi
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.events.event_matcher import EventMatcher
 from tegrasp_drake.events.event_sequencer import EventSequencer
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.experiments.benchmarks.drivers import LoopTick
 from tegrasp_drake.experiments.benchmarks.matcher import _InputReader
 from tegrasp_drake.experiments.scenario import LoadScenario

@@ -127,7 +127,7 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
     """The scenario object's events from the first of `folders` that lists it, checked
     against the object (load_controller_events)."""
     from tegrasp_drake.events import MemorizedEventError
-    from tegrasp_drake.events.memorized_event import find_memorized_events
+    from tegrasp_drake.events.events_folder import find_memorized_events
     from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
     from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, description_differences,
                                            object_description)
