@@ -1,4 +1,4 @@
-"""Issue #25's probes, as a table beside tests/test_bad_input.py: each bad input stops
+"""More bad inputs, as a table beside tests/test_bad_input.py: each stops
 before anything runs with one line naming the input and what to do, a non-zero exit, and
 every file that was there before left as it was."""
 
