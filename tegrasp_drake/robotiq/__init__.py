@@ -18,7 +18,8 @@ Each side keeps its own module in its own layer, importing from here:
   `modelgen/robotiq_linkage_sdf.py` (the five-bar hand) write models/robotiq_2f85/;
 - simulation: `simulation/sim_robotiq_driver.py` (SimRobotiqDriver, the simulated
   controller behind `gripper.command` / `gripper.status`) and `simulation/gripper_hands.py`
-  (how the simulation drives either hand's actuated joint);
+  (the two simulated hands, five-bar and prismatic: each one's actuated joint and how it
+  maps to the pad opening);
 - hardware: `hardware/robotiq/modbus_client.py` (RobotiqModbusClient, the serial thread)
   and `hardware/robotiq/robotiq_driver.py` (RobotiqDriver, the system with the same ports
   as the simulated twin);
