@@ -13,7 +13,7 @@ import argparse
 import dataclasses
 import statistics
 
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.experiments.benchmarks.plant_floor import record_plant_inputs, run_plant_floor
 from tegrasp_drake.experiments.scenario import LoadScenario, with_controller
 from tegrasp_drake.experiments.trial import run_trial

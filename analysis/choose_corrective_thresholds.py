@@ -21,7 +21,7 @@ import numpy as np
 
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.experiments.corrective_detection import (
     SituationSpan, choose_centred_thresholds, classify_first_firing, event_span,

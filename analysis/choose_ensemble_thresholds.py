@@ -18,7 +18,7 @@ import numpy as np
 from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.events import tactile_trial_from_log
-from tegrasp_drake.events.memorized_event import find_memorized_events
+from tegrasp_drake.events.events_folder import find_memorized_events
 from tegrasp_drake.experiments.detection_quality import (choose_thresholds, rate_point,
                                                          roc_curve, scored_span)
 from tegrasp_drake.experiments.grasp_outcome import physical_events

@@ -2,7 +2,7 @@
 
     python analysis/linkage_figure.py docs/figures/finger_linkage.png
 
-The closed form of modelgen/finger_linkage.py: joints A-E, the driver (A-B), coupler (B-C),
+The closed form of robotiq/linkage.py: joints A-E, the driver (A-B), coupler (B-C),
 follower (C-D, carrying the pad) and spring link (E-D), the pad face, its centre's path over
 the stroke, and the flip height at 25 N (a contact below it lifts B off its pin).
 """
@@ -16,8 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from tegrasp_drake.modelgen import finger_linkage as linkage  # noqa: E402
-from tegrasp_drake.modelgen.tactile_fingertip import PAD_LENGTH  # noqa: E402
+from tegrasp_drake.robotiq import linkage  # noqa: E402
+from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH  # noqa: E402
 
 
 def draw(ax, theta: float, color: str, label: str) -> None:

@@ -14,7 +14,7 @@ import argparse
 import pathlib
 from concurrent.futures import ProcessPoolExecutor
 
-from tegrasp_drake.events.memorized_event import save_memorized_events
+from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.experiments.corrective_events import (
     CORRECTIVE_FOLDER, CORRECTIVE_RUNS, combine_corrective_runs, corrective_scenario,

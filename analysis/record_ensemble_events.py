@@ -14,7 +14,7 @@ import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
-from tegrasp_drake.events.memorized_event import save_memorized_events
+from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.experiments.ensemble_events import (ENSEMBLE_FOLDER, combine_runs,
                                                        ensemble_scenario, record_ensemble_run,
                                                        run_events)

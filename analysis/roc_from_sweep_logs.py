@@ -22,7 +22,7 @@ from tegrasp_drake.control.controller_config import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.events import EventMatcherConfig, tactile_trial_from_log
-from tegrasp_drake.events.memorized_event import find_memorized_events
+from tegrasp_drake.events.events_folder import find_memorized_events
 from tegrasp_drake.experiments.detection_quality import roc_curve, scored_span
 from tegrasp_drake.experiments.trial_log import load_trial_log
 

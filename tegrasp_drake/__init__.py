@@ -63,9 +63,9 @@ _PUBLIC = {
     "EventMatcherConfig": "tegrasp_drake.events.event_matcher",
     # Memorized events.
     "MemorizedEvent": "tegrasp_drake.events.memorized_event",
-    "MemorizedEventError": "tegrasp_drake.events.memorized_event",
-    "load_memorized_events": "tegrasp_drake.events.memorized_event",
-    "save_memorized_events": "tegrasp_drake.events.memorized_event",
+    "MemorizedEventError": "tegrasp_drake.events.event_file",
+    "load_memorized_events": "tegrasp_drake.events.events_folder",
+    "save_memorized_events": "tegrasp_drake.events.events_folder",
     "record_events": "tegrasp_drake.experiments.record_events",
     # Runs: a simulated trial, the ideal grasp, a run on the devices, a sweep.
     "run_trial": "tegrasp_drake.experiments.trial",

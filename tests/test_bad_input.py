@@ -1,4 +1,4 @@
-"""Every bad input the reliability issue (#12) found, through the command line: each stops
+"""Bad inputs through the command line: each stops
 before anything runs, with one line that names the file, field or value and says what to do,
 and a non-zero exit; none runs with a value other than the one given."""
 

@@ -1,4 +1,4 @@
-"""Issue #25's probes, as a table beside tests/test_bad_input.py: each bad input stops
+"""More bad inputs, as a table beside tests/test_bad_input.py: each stops
 before anything runs with one line naming the input and what to do, a non-zero exit, and
 every file that was there before left as it was."""
 
@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from test_bad_input import assert_one_line_error, run_cli
-from tegrasp_drake.events.memorized_event import (INDEX_FILE, MemorizedEvent,
-                                                  MemorizedEventError, load_memorized_events,
-                                                  save_memorized_events)
+from tegrasp_drake.events.event_file import INDEX_FILE, MemorizedEventError
+from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
+from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 from tegrasp_drake.experiments.figures import figure_files
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
@@ -208,15 +208,15 @@ def test_a_failed_staging_leaves_the_old_events_whole(tmp_path, monkeypatch):
     old = _events(seed=1)
     save_memorized_events(tmp_path, old)
     before = _contents(tmp_path)
-    from tegrasp_drake.events import memorized_event
-    real_stage, calls = memorized_event.staged_file, []
+    from tegrasp_drake.events import events_folder
+    real_stage, calls = events_folder.staged_file, []
 
     def stage_until_the_disk_is_full(path, data):
         calls.append(path)
         if len(calls) == 3:
             raise OSError(28, "No space left on device")
         return real_stage(path, data)
-    monkeypatch.setattr(memorized_event, "staged_file", stage_until_the_disk_is_full)
+    monkeypatch.setattr(events_folder, "staged_file", stage_until_the_disk_is_full)
     with pytest.raises(OSError):
         save_memorized_events(tmp_path, _events(seed=2))
     assert _contents(tmp_path) == before

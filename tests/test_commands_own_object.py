@@ -1,4 +1,4 @@
-"""A user's own object with every controller (issue #25): the documented
+"""A user's own object with every controller: the documented
 `tegrasp record-events --scenario FILE --scenario-name NAME` records what each controller
 needs, then `tegrasp trial --controller taxel_aware` runs on that object."""
 

@@ -65,7 +65,7 @@ def test_a_run_interrupted_before_its_commit_leaves_the_earlier_run_whole(tmp_pa
 
 
 def test_two_runs_without_out_claim_different_folders(tmp_path):
-    """Issue #25, probe 4: a folder counts as taken from the moment it is claimed."""
+    """A folder counts as taken from the moment it is claimed."""
     default = tmp_path / "out" / "trial"
     first = choose_run_folder(None, default=str(default), replace_default=False,
                               overwrite=False)
@@ -141,7 +141,8 @@ def test_demo_replaces_its_default_folder_and_trial_keeps_its_runs():
 
 
 def test_hardware_keeps_an_earlier_result_when_its_log_is_gone(tmp_path):
-    """Issue #25, probe 1: the result beside the log was deleted before anything ran."""
+    """A result beside the log, with no log, stops the run before anything is deleted; the
+    message names it and --overwrite."""
     config = tmp_path / "hw.yaml"
     config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
     result = tmp_path / "run.result.json"

@@ -162,8 +162,8 @@ def test_statistics_json_is_valid(tmp_path):
 
 
 def test_a_smaller_spec_in_a_reused_folder_counts_only_its_own_trials(tmp_path, capsys):
-    """Issue #12: --attempts 2, then --attempts 1 into the same folder printed "9 trials"
-    and tabulated 18."""
+    """--attempts 2, then --attempts 1 into the same folder: the second run counts and
+    tabulates its own 9 trials, not all 18 in the folder."""
     out = tmp_path / "out"
     common = ["--objects", "box", "--controllers", "memorized", "--workers", "2",
               "--out", str(out), *FAKE]

@@ -5,7 +5,8 @@ import pytest
 from pydrake.common.value import AbstractValue
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import units as ru
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.controller_config import MemorizedControllerConfig
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
@@ -45,7 +46,7 @@ class Inputs:
     def set(self, *, match=None, channels=None, status=None, pad_acceleration=None,
             slip_vibration=None):
         for name, value in (("match", [match] if match is not None else None),
-                            ("channels", channels), ("gripper.status", status),
+                            ("channels", channels), (ports.GRIPPER_STATUS, status),
                             ("pad_acceleration", pad_acceleration),
                             ("slip_vibration", slip_vibration)):
             if value is not None:
@@ -76,7 +77,7 @@ def run_until_mode(simulator, machine, wanted: Mode, limit_s: float) -> float:
 
 def test_expected_event_does_not_feed_through_from_match():
     machine, _ = make_machine()
-    for port in ("match", "channels", "gripper.status"):
+    for port in ("match", "channels", ports.GRIPPER_STATUS):
         assert not machine.HasDirectFeedthrough(machine.GetInputPort(port).get_index(),
                                                 machine.GetOutputPort("expected_event").get_index())
 
@@ -208,7 +209,7 @@ def test_gripper_fault_fails_with_its_name():
 def test_device_fault_input_fails_with_the_message():
     machine, _ = make_machine()
     simulator, context, _ = start(machine)
-    machine.GetInputPort("device_fault").FixValue(context, AbstractValue.Make(
+    machine.GetInputPort(ports.DEVICE_FAULT).FixValue(context, AbstractValue.Make(
         "tactile: no frame since 1.234 s"))
     simulator.AdvanceTo(0.02)
     assert mode(machine, context) == Mode.FAILED

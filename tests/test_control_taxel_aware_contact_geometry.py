@@ -82,7 +82,7 @@ def test_a_pushed_object_topples_when_let_go_past_its_standing_tilt():
 
 
 def _caged(**changes):
-    # The thin cylinder (25 mm) of issue #14's second grid, 15 mm toward the palm: first
+    # The thin cylinder (25 mm) misplaced 15 mm toward the palm: first
     # touched on the palm-side edge row (-9 mm), the fingers stopped at 16.9 mm, no pad on it.
     args = dict(first_touch_offset_m=-0.009, opening_m=0.0169, object_width_m=0.025,
                 pads_touch=False, closed_to_request=False, taxel_config=TAXEL)
@@ -114,7 +114,7 @@ def test_the_taxel_aware_settings_are_reasoned_in_pad_units():
 def _beyond(first_touch_offset_m=grasp_contact(
         np.concatenate([np.zeros(12), line_on_row(3, 0.1)])).approach_offset_m,
         one_pad=True, first_touch_opening_m=0.0719):
-    # Issue #14's second grid: the thin cylinder 1.5 cm beyond the nominal grasp and 2.5 cm
+    # The thin cylinder 1.5 cm beyond the nominal grasp and 2.5 cm
     # along the stroke; the right pad's distal row alone touched at 71.9 mm.
     thin = BUILTIN_OBJECTS["thin_cylinder"]
     return touched_beyond_pads(
@@ -151,7 +151,7 @@ def test_a_finger_touching_alone_presses_the_face_half_the_opening_to_its_side()
 
 
 def test_faces_touched_from_both_sides_in_turn_put_the_object_at_their_midpoint():
-    """Box m20 of dev seed 700 (second grid), yawed to 32 deg by the approach's push: the
+    """Box m20 of the second grid with seed 700, yawed to 32 deg by the approach's push: the
     right finger alone at 80.9 mm open with the gripper 20 mm off (y in mm from the
     expected position), then the left alone at 57.7 mm open 37.9 mm off. The paper's
     shift, (57.7 - 45) / 2 = +6.3 mm, overshot the box (measured at -34.8 mm) and the
@@ -168,7 +168,7 @@ def test_faces_touched_from_both_sides_in_turn_put_the_object_at_their_midpoint(
 
 
 def test_the_latest_face_of_each_finger_is_remembered_until_a_close_touches_nothing():
-    """Box m20 of dev seed 600: the right finger alone, then both pads (a Re-Reach along
+    """Box m20 with seed 600: the right finger alone, then both pads (a Re-Reach along
     the approach axis after the Reach-Load event), then the left alone: the right face of
     the two-pad close is the one to bracket the left touch with."""
     right_alone = touched_faces((False, True), 0.0, 0.080)

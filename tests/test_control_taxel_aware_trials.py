@@ -119,7 +119,7 @@ SCENES = {
     "beyond_pads": (Scene("thin_cylinder", (0.0139, -0.0246), 7.8), Expect(
         (("Reach", "Re-Reach", Reason.BEYOND_PADS),), first=True,
         check=lambda found, r: found[0].approach_offset_m > 0.0 and found[0].offset_m < -0.015)),
-    # Box m20 of the second grid (15 mm beyond, 25 mm along the stroke) on dev seed 700,
+    # Box m20 of the second grid (15 mm beyond, 25 mm along the stroke) with seed 700,
     # yawed to 32 deg by the approach's push: the right finger alone, then the left; the
     # Re-Reach goes between the two faces, back by less than it came.
     "bracket": (Scene(spec=SweepSpec(

@@ -1,4 +1,4 @@
-"""The contact's place and tilt on the pads from the 3 x 4 taxel pattern (issue #14)."""
+"""The contact's place and tilt on the pads from the 3 x 4 taxel pattern."""
 
 import math
 

@@ -2,9 +2,9 @@
 
 import pytest
 
-from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulatorConfig, RobotiqGripperModel
-from tegrasp_drake.hardware.robotiq.registers import command_registers
+from tegrasp_drake.robotiq.registers import command_registers
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
 

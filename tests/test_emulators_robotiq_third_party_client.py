@@ -12,7 +12,7 @@ import logging
 import pyrobotiqgripper  # a test-only dependency (the `test` extra): never skipped
 import pytest
 
-from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator, RobotiqEmulatorConfig
 from tegrasp_drake.experiments.scenario import LoadScenario
 

@@ -187,9 +187,8 @@ def test_samples_per_window_requires_a_whole_number_of_samples():
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
 def test_a_non_finite_sample_is_missing_for_one_window_and_poisons_nothing(bad):
-    """The reproducer of issue #12: one NaN or inf sample kept the streaming state wrong
-    for 100+ ticks after it left the window (inf gave NaN scores). Now the sample enters as
-    the channel's previous one, the channel scores 0 while it is in the window, and from
+    """One NaN or inf sample must not keep the streaming state wrong after it leaves the
+    window, nor give NaN scores: the sample enters as the channel's previous one, the channel scores 0 while it is in the window, and from
     the tick it leaves, the scores are those of the stream without it, to round-off."""
     length, at = 50, 400
     rng = np.random.default_rng(3)

@@ -7,9 +7,11 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.events.extraction import extract_memorized_events
-from tegrasp_drake.events.memorized_event import (
-    INDEX_FILE, MemorizedEvent, MemorizedEventError, load_all_memorized_events,
-    load_memorized_events, read_index, read_memorized_event, save_memorized_events)
+from tegrasp_drake.events.event_file import (
+    INDEX_FILE, MemorizedEventError, read_index, read_memorized_event)
+from tegrasp_drake.events.events_folder import (
+    load_all_memorized_events, load_memorized_events, save_memorized_events)
+from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 
 VERSIONS = {"drake": "1.51.1", "numpy": "2.4.6", "tegrasp-drake": "0.1.0"}

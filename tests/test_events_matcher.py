@@ -259,8 +259,8 @@ def glitched_and_held(glitches):
 
 
 def test_a_non_finite_sample_scores_its_channel_zero_for_one_window_and_poisons_nothing():
-    """Issue #12: one NaN or inf sample kept the streaming state wrong for 100+ ticks after
-    it left the window, and inf gave NaN scores. Through the EventMatcher
+    """One NaN or inf sample must not keep the streaming state wrong after it leaves the
+    window, nor give NaN scores. Through the EventMatcher
     (WindowNormalizer and scores in one update): the sample enters as its channel's previous one, the channel scores 0 while it is
     in the window (0.5 s), every other score and every later one is that of the stream
     without the glitch, and the event still matches when it comes."""
@@ -288,7 +288,7 @@ def test_a_non_finite_sample_scores_its_channel_zero_for_one_window_and_poisons_
 
 
 def test_per_event_thresholds_replace_the_common_pair_for_their_event_only():
-    """Issue #14: the taxel_aware controller's ensemble events carry a threshold pair each.
+    """The taxel_aware controller's ensemble events carry a threshold pair each.
     Unmatchable thresholds for Load-Lift alone stop the sequence there; the others match."""
     config = EventMatcherConfig(event_thresholds={"load_lift": (1.0, 1.0)})
     matched = run_grasp_sequence(replay(NOISY), config)

@@ -1,5 +1,5 @@
 """Each object's ideal grasp replayed through WindowNormalizer + EventMatcher + EventSequencer
-(events issue acceptance)."""
+matches its own memorized events in order."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Memorized corrective triggers (issue #14): the pure decisions, the switch, the committed
+"""Memorized corrective triggers: the pure decisions, the switch, the committed
 corrective events matched by the EventMatcher on recorded held-out runs, and the slip's
 physical event. The recorded channels are tests/data/corrective_windows.npz
 (analysis/make_corrective_test_windows.py: held-out runs that made no template)."""
@@ -18,7 +18,7 @@ from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachi
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.events import EventMatcherConfig, replay_event_held
 from tegrasp_drake.events.extraction import TactileTrial
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.experiments.corrective_events import CORRECTIVE_RUNS, slip_onset_time
 from tegrasp_drake.experiments.scenario import LoadScenario
@@ -104,7 +104,7 @@ def _match_rises(name, transition, thresholds):
 def test_the_hit_event_matches_a_held_out_hit_and_no_normal_hold():
     rises = _match_rises("hit", "hold_avoid", CONFIG.hold_avoid_event_thresholds)
     assert rises.size >= 1
-    assert 0.0 <= rises[0] - HELD_OUT_HIT_S <= 0.06  # issue #14's latency target
+    assert 0.0 <= rises[0] - HELD_OUT_HIT_S <= 0.06  # the hit matched within 60 ms
     assert _match_rises("normal_hold", "hold_avoid", CONFIG.hold_avoid_event_thresholds).size == 0
 
 

@@ -1,5 +1,5 @@
 """Detection, false triggers and latency of a memorized event at any thresholds, from
-logged scores (issue #14)."""
+logged scores."""
 
 import numpy as np
 import pytest

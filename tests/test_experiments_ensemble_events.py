@@ -1,4 +1,4 @@
-"""The ensemble events' perturbations and their combination rule (issue #14)."""
+"""The ensemble events' perturbations and their combination rule."""
 
 import dataclasses
 

@@ -1,4 +1,4 @@
-"""The judge's lifted test and the grip-force event at a plateau (issue #14)."""
+"""The judge's lifted test and the grip-force event at a plateau."""
 
 import math
 import types

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake import cli
-from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.emulators.emulator_process import EmulatedDevices
 from tegrasp_drake.experiments.hardware_run import run_on_hardware
 from tegrasp_drake.experiments.run_log import read_run_log

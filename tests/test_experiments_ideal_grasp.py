@@ -1,4 +1,4 @@
-"""The ideal open-loop grasp (station issue acceptance) for the paper's three objects."""
+"""The ideal open-loop grasp for the paper's three objects."""
 
 import numpy as np
 import pytest
@@ -29,7 +29,7 @@ def test_lifts_holds_places_upright_and_releases(trial):
 
 def test_sa_equals_the_commanded_grip_force_while_holding(trial):
     # Eq. 1: the summed taxel forces are the pad's normal force, which the gripper's force
-    # limit sets while the lifted object hangs in the grasp (issue #11: within 5 %).
+    # limit sets while the lifted object hangs in the grasp (within 5 %).
     scenario, log, _ = trial
     starts = log.meta["phase_starts"]
     holding = (log.t_sa >= starts["hold"]) & (log.t_sa < starts["place"])

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.experiments.pad_strike import (PadStrikeConfig, run_pad_strike,
                                                   strike_scenario)
 from tegrasp_drake.rig import paths
@@ -22,7 +22,7 @@ def strikes_by_speed():
 
 @pytest.mark.slow
 def test_ra_converges_with_the_plant_step():
-    """Issue #11: at 1, 0.5 and 0.25 ms the contact peaks agree within 15 % and the Eq. 3
+    """At 1, 0.5 and 0.25 ms the contact peaks agree within 15 % and the Eq. 3
     scores of the same trial against the same memorized event within 0.05 (measured: peaks
     within 1 %, scores within 0.03)."""
     # The strike is the prismatic hand's finger: that hand's memorized event.

@@ -1,5 +1,5 @@
-"""The committed events/ are record-events' output (events issue acceptance); recorded
-events go to the user's folder and carry their object (issue #12)."""
+"""The committed events/ are record-events' output; recorded events go to the user's folder
+and carry their object."""
 
 import hashlib
 
@@ -8,7 +8,7 @@ import pytest
 
 from tegrasp_drake import cli
 from tegrasp_drake.control.grasp_controller import load_controller_events
-from tegrasp_drake.events.memorized_event import events_folder_of
+from tegrasp_drake.events.events_folder import events_folder_of
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.rig import paths
 from tegrasp_drake.experiments.record_events import record_events
@@ -56,10 +56,10 @@ def test_record_events_writes_the_users_folder_and_the_controller_reads_it_first
 
 def test_an_object_whose_taxels_never_see_the_commanded_grip_records_at_its_plateau(
         tmp_path, capsys):
-    """Issue #12/#14: a 22 mm cylinder of 0.25 kg reads 21.4 N of 22.5 N (90 % of the
+    """A 22 mm cylinder of 0.25 kg reads 21.4 N of 22.5 N (90 % of the
     command) on the taxels (the pad does not cover all of its contact) although the grasp
-    lifts it; record-events refused it. Its grip-force event is now at 90 % of the grip's
-    plateau, between first contact and lift-off."""
+    lifts it. Its grip-force event is at 90 % of the grip's plateau, between first contact
+    and lift-off, so record-events records it."""
     assert cli.main(["record-events", "--events", str(tmp_path),
                      "--set", "object.name=rod", "--set", "object.shape=cylinder",
                      "--set", "object.size=[0.022,0.12]", "--set", "object.mass=0.25",

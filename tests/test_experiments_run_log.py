@@ -136,8 +136,9 @@ def _bit_flipped(data: bytes) -> bytes:
                                            (_bit_flipped, "corrupt bytes in")])
 def test_a_damaged_log_is_replayed_as_far_as_it_goes_and_says_what_was_lost(
         damage, words, run_log_path, tmp_path, capsys):
-    """Issue #12: a log truncated mid-message or with flipped bytes replayed with exit 0,
-    no warning, and the rest silently dropped."""
+    """A log truncated mid-message or with flipped bytes is replayed as far as it goes,
+    with one warning that names the damage and the messages read, and exit code 3 (never
+    exit 0 with the rest silently dropped)."""
     save_memorized_events(tmp_path / "events", EVENTS.values())
     path = tmp_path / "damaged.lcmlog"
     path.write_bytes(damage(run_log_path.read_bytes()))

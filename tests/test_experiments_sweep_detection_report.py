@@ -1,4 +1,4 @@
-"""Detection quality per trigger and McNemar comparisons from sweep records (issue #14)."""
+"""Detection quality per trigger and McNemar comparisons from sweep records."""
 
 import pytest
 

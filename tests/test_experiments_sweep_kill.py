@@ -102,8 +102,8 @@ def session_processes(session_id: int) -> set[int]:
 
 
 def test_workers_end_when_only_the_main_process_is_killed(tmp_path):
-    """Issue #12: SIGKILL of the sweep's main process alone left its workers running
-    forever (~210 MB each). They now notice within a second and end."""
+    """After SIGKILL of the sweep's main process alone, its workers (about 210 MB each)
+    notice within a second and end."""
     out_dir = tmp_path / "out"
     process = subprocess.Popen(sweep_command(out_dir), env=environment(),
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,

@@ -134,7 +134,7 @@ def _with_outlier(outlier: bytes, at: int = 10, count: int = 30) -> tuple[list, 
 
 
 @pytest.mark.parametrize("sequence, timestamp_us", [
-    (30000, 10_500),             # sequence 30000 in a stream at 10 (issue #12)
+    (30000, 10_500),             # sequence 30000 in a stream at 10: a jump, not a wrap
     (10, (1 << 32) - 20),        # a timestamp near 2^32: not a wrap
     (10, 2_000),                 # a timestamp going backwards
     (11, 900_000),               # the next sequence, but 0.9 s later

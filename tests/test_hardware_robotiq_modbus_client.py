@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DRIVER_ERROR, describe_faults
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator, RobotiqEmulatorConfig

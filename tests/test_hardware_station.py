@@ -14,15 +14,9 @@ from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.station import HardwareNotReadyError, MakeHardwareStation
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation
+from tegrasp_drake.rig import station_interface as ports
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
-
-CONTROLLER_INPUTS = ("arm.desired_state", "gripper.command")
-CONTROLLER_OUTPUTS = ("arm.position_measured", "arm.velocity_measured", "arm.torque_measured",
-                      "gripper.status", "tactile.left_taxel_forces",
-                      "tactile.right_taxel_forces", "tactile.left_pad_acceleration",
-                      "tactile.right_pad_acceleration")
-
 
 def quiet_trial():
     t = np.arange(0.0, 0.2, 1e-3)
@@ -41,13 +35,15 @@ def station():
 
 def test_hardware_station_has_the_simulated_station_ports(station):
     simulated = MakeGraspStation(LoadScenario(name="box"))
-    for name in CONTROLLER_INPUTS:
-        assert station.GetInputPort(name).size() == simulated.GetInputPort(name).size()
-    for name in CONTROLLER_OUTPUTS:
-        assert station.GetOutputPort(name).size() == simulated.GetOutputPort(name).size()
-    assert station.num_input_ports() == len(CONTROLLER_INPUTS)
-    for name in ("fault", "device_fault", "stop", "arm.commanded_state",
-                 "tactile.time_measured", "tactile.stale", "tactile.zeroing"):
+    for name, size in ports.CONTROLLER_INPUTS.items():
+        assert station.GetInputPort(name).size() == simulated.GetInputPort(name).size() == size
+    for name, size in ports.CONTROLLER_OUTPUTS.items():
+        assert station.GetOutputPort(name).size() == simulated.GetOutputPort(name).size() == size
+    assert station.num_input_ports() == len(ports.CONTROLLER_INPUTS)
+    for name in (ports.FAULT, ports.DEVICE_FAULT, ports.STOP, ports.ARM_COMMANDED_STATE,
+                 ports.ARM_TIME_MEASURED, ports.GRIPPER_TIME_MEASURED,
+                 ports.TACTILE_TIME_MEASURED, ports.TACTILE_STALE, ports.TACTILE_ZEROING,
+                 ports.TACTILE_PAD_ACCELERATION_SAMPLES):
         assert station.HasOutputPort(name)
 
 

@@ -1,7 +1,7 @@
 import numpy as np
 
-from tegrasp_drake.rig import robotiq_units as ru
-from tegrasp_drake.modelgen import finger_linkage
+from tegrasp_drake.robotiq import units as ru
+from tegrasp_drake.robotiq import linkage
 from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig, SimRobotiqDriver,
                                                          has_arrived, nut_set_point,
                                                          object_status, reference_step)
@@ -65,7 +65,7 @@ def test_linkage_status_position_comes_from_the_driver_angle_through_the_linkage
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [0, 0, 0])
     for opening in (0.085, 0.045, 0.010):
-        theta = finger_linkage.driver_angle(opening / 2)
+        theta = linkage.driver_angle(opening / 2)
         driver.GetInputPort("finger_state").FixValue(context, [theta, 0.0])
         status = driver.GetOutputPort("status").Eval(context)
         assert status[ru.STATUS_PO] == ru.position_byte_from_opening(opening)
@@ -76,13 +76,13 @@ def test_linkage_force_limit_is_the_pad_force_through_the_lever():
     driver = SimRobotiqDriver(config=config)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, 0])  # close at 20 N
-    theta = finger_linkage.driver_angle(0.0225)  # blocked on a 45 mm object
+    theta = linkage.driver_angle(0.0225)  # blocked on a 45 mm object
     driver.GetInputPort("finger_state").FixValue(context, [theta, 0.0])
     state = context.get_mutable_discrete_state(0).get_mutable_value()
     state[0] = 0.0  # the reference far inside the object
     state[10] = 1.0  # closing
     desired = driver.GetOutputPort("desired_state").Eval(context)
-    lever = -finger_linkage.half_opening_rate(theta)
+    lever = -linkage.half_opening_rate(theta)
     # One actuator drives both fingers: 2 F lever of torque, and no more.
     assert np.isclose(config.driver_position_gain * (desired[0] - theta),
                       2 * ru.FORCE_MIN_N * lever)
@@ -105,7 +105,7 @@ def test_the_nut_moves_only_in_the_commanded_direction():
 def test_float_helpers_equal_the_numpy_forms_bit_for_bit():
     # The driver's per-update helpers run on Python floats; the same numbers as numpy's.
     import numpy as np
-    from tegrasp_drake.rig import robotiq_units as ru
+    from tegrasp_drake.robotiq import units as ru
     from tegrasp_drake.simulation.sim_robotiq_driver import (command_targets, reference_step,
                                                              status_position_byte)
 
@@ -148,7 +148,7 @@ def test_simulated_and_emulated_grippers_report_the_same_current_when_gripping()
     driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"))
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, force_byte])
-    theta = finger_linkage.driver_angle(0.0225)  # stopped on a 45 mm object
+    theta = linkage.driver_angle(0.0225)  # stopped on a 45 mm object
     driver.GetInputPort("finger_state").FixValue(context, [theta, 0.0])
     state = context.get_mutable_discrete_state(0).get_mutable_value()
     state[0], state[5], state[7] = 0.0, ru.force_from_byte(force_byte), 2  # ref closed; gOBJ 2

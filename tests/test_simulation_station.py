@@ -4,10 +4,11 @@ import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.experiments.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation, initial_arm_positions
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.taxel_layout import taxel_centers
 
 GRIP_FORCE = 30.0
@@ -24,18 +25,18 @@ def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
     station = MakeGraspStation(scenario)
     context = station.CreateDefaultContext()
     q0 = initial_arm_positions(scenario)
-    station.GetInputPort("arm.desired_state").FixValue(context, np.concatenate([q0, np.zeros(6)]))
-    command = station.GetInputPort("gripper.command")
+    station.GetInputPort(ports.ARM_DESIRED_STATE).FixValue(context, np.concatenate([q0, np.zeros(6)]))
+    command = station.GetInputPort(ports.GRIPPER_COMMAND)
     command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))
     simulator = Simulator(station, context)
     simulator.AdvanceTo(close_at)
-    before = {name: station.GetOutputPort(f"tactile.{name}_taxel_forces").Eval(context).copy()
+    before = {name: station.GetOutputPort(ports.taxel_forces(name)).Eval(context).copy()
               for name in ("left", "right")}
     command.FixValue(context, gripper_command(0.0, 0.05, GRIP_FORCE))
     simulator.AdvanceTo(until)
-    after = {name: station.GetOutputPort(f"tactile.{name}_taxel_forces").Eval(context).copy()
+    after = {name: station.GetOutputPort(ports.taxel_forces(name)).Eval(context).copy()
              for name in ("left", "right")}
-    contacts = station.GetOutputPort("contact_results").Eval(context)
+    contacts = station.GetOutputPort(ports.CONTACT_RESULTS).Eval(context)
     return station, context, before, after, contacts
 
 
@@ -56,13 +57,15 @@ def test_exported_ports_match_the_hardware_interface():
     sizes = {station.get_output_port(i).get_name(): station.get_output_port(i).size()
              for i in range(station.num_output_ports())
              if station.get_output_port(i).get_data_type().name == "kVectorValued"}
-    assert sizes["arm.position_measured"] == 6 and sizes["arm.velocity_measured"] == 6
-    assert sizes["arm.torque_measured"] == 6 and sizes["gripper.status"] == ru.STATUS_SIZE
-    for finger in ("left", "right"):
-        assert sizes[f"tactile.{finger}_taxel_forces"] == 12
-        assert sizes[f"tactile.{finger}_pad_acceleration"] == 3
-    assert station.GetInputPort("arm.desired_state").size() == 12
-    assert station.GetInputPort("gripper.command").size() == ru.COMMAND_SIZE
+    for name, size in ports.CONTROLLER_OUTPUTS.items():
+        assert sizes[name] == size, name
+    assert station.num_input_ports() == len(ports.CONTROLLER_INPUTS)
+    for name, size in ports.CONTROLLER_INPUTS.items():
+        assert station.GetInputPort(name).size() == size, name
+    for name in (ports.OBJECT_STATE, ports.TRUE_TAXEL_FORCES, ports.CONTACT_RESULTS,
+                 ports.BODY_POSES, ports.QUERY_OBJECT, ports.GRIPPER_STATE,
+                 ports.GRIPPER_PLANT_DESIRED_STATE):
+        assert station.HasOutputPort(name), name
 
 
 def test_sa_is_zero_to_noise_without_contact(centred_squeeze):
@@ -75,7 +78,7 @@ def test_sa_equals_the_grip_force_while_holding(centred_squeeze):
     station, context, _, after, contacts = centred_squeeze
     for forces in after.values():
         assert forces.sum() == pytest.approx(GRIP_FORCE, rel=0.05)
-    status = station.GetOutputPort("gripper.status").Eval(context)
+    status = station.GetOutputPort(ports.GRIPPER_STATUS).Eval(context)
     assert status[ru.STATUS_OBJ] == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
 
 

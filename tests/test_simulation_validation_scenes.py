@@ -1,4 +1,4 @@
-"""The station's contact world against closed-form mechanics (issue #11, part A).
+"""The station's contact world against closed-form mechanics.
 
 Every scene is the station's own gripper, table and materials with the scenario's default
 plant settings (simulation/validation_scenes.py); thresholds come from the closed forms
@@ -28,8 +28,8 @@ tilted, off-centre held cylinder in the pads' plane; under Drake's default stict
 import dataclasses
 
 from tegrasp_drake.experiments.scenario import Scenario
-from tegrasp_drake.modelgen import materials
-from tegrasp_drake.modelgen.tactile_fingertip import PAD_WIDTH
+from tegrasp_drake.rig import materials
+from tegrasp_drake.rig.tactile_fingertip import PAD_WIDTH
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.simulation.validation_scenes import (GRAVITY, held_tilt_rate,
                                                         push_standing_object,
@@ -79,5 +79,5 @@ def test_a_tilted_object_held_below_the_friction_limit_does_not_creep():
     # this scene turned at 0.127 deg/s; with the scenario's 1e-6 at 0.017 deg/s.
     rate = held_tilt_rate(THIN_CYLINDER, tilt_deg=30.0, com_offset=0.045, grip_force=10.0,
                           plant_config=PLANT_CONFIG)
-    assert abs(rate) < 0.05  # deg/s (issue #11)
+    assert abs(rate) < 0.05  # deg/s
 

@@ -1,5 +1,5 @@
 """Every system's docstring has a `.. pydrake_system::` block naming its real ports, in
-order (issue #10).
+order.
 
 The block is Drake's (YAML: name, input_ports, output_ports); a port name may carry an
 " (optional)" note, as in GraspStateMachine. Systems whose ports depend on constructor
@@ -34,7 +34,7 @@ from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecordi
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.events.event_matcher import EventMatcher
 from tegrasp_drake.events.event_sequencer import EventSequencer
-from tegrasp_drake.events.memorized_event import load_memorized_events
+from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.experiments.benchmarks.drivers import LoopTick
 from tegrasp_drake.experiments.benchmarks.matcher import _InputReader
 from tegrasp_drake.experiments.scenario import LoadScenario
@@ -65,9 +65,8 @@ from tegrasp_drake.simulation.gripper_bench import PadPush
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
 
-# Modules whose systems have no block yet: simulation/ is being rewritten on other
-# branches. Pending issue #10; the lead removes each entry (and adds the systems to
-# CONSTRUCTORS) once that work is merged and documented.
+# Modules whose systems have no block yet: each entry goes (and its systems join
+# CONSTRUCTORS) once they are documented.
 PENDING_MODULES = (
     "tegrasp_drake.simulation.object_force_pulse",
     "tegrasp_drake.simulation.pad_slip_vibration",

@@ -66,7 +66,7 @@ def _events_folder(events, args, scenario) -> str:
     """The folder the events were read from, for the run's log ("" without events)."""
     if not events:
         return ""
-    from tegrasp_drake.events.memorized_event import events_folder_of
+    from tegrasp_drake.events.events_folder import events_folder_of
     from tegrasp_drake.rig import paths
     return str(events_folder_of(paths.events_search_path(args.events), scenario.object.name))
 

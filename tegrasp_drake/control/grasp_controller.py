@@ -9,7 +9,7 @@ With the memorized events the live diagram follows the paper's Fig. 3:
       max-normalised, scored by Eq. 3 against the expected event) -> grasp_state_machine
 
 `AddGraspController` connects to any system with the station's exported port names
-(station.py): the simulated station and the hardware interface alike.
+(rig/station_interface.py): the simulated station and the hardware interface alike.
 """
 
 import dataclasses
@@ -17,6 +17,7 @@ import dataclasses
 from pydrake.systems.primitives import Multiplexer
 
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.control.cartesian_arm_controller import AddCartesianArmController
 from tegrasp_drake.control.controller_config import (EventTriggeredConfig, OpenLoopControllerConfig,
@@ -126,7 +127,7 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
     """The scenario object's events from the first of `folders` that lists it, checked
     against the object (load_controller_events)."""
     from tegrasp_drake.events import MemorizedEventError
-    from tegrasp_drake.events.memorized_event import find_memorized_events
+    from tegrasp_drake.events.events_folder import find_memorized_events
     from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
     from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, description_differences,
                                            object_description)
@@ -220,16 +221,16 @@ def AddGraspController(builder, *, scenario, station, events: dict | None = None
     name = config.name
     channels = AddMechanoreceptorChannels(builder, station)
     X_WG_desired, arm_desired_state = AddCartesianArmController(
-        builder, position_measured=station.GetOutputPort("arm.position_measured"),
-        velocity_measured=station.GetOutputPort("arm.velocity_measured"),
+        builder, position_measured=station.GetOutputPort(ports.ARM_POSITION_MEASURED),
+        velocity_measured=station.GetOutputPort(ports.ARM_VELOCITY_MEASURED),
         q_nominal=initial_arm_positions(scenario), time_step=scenario.arm.control_period_s)
-    builder.Connect(arm_desired_state, station.GetInputPort("arm.desired_state"))
+    builder.Connect(arm_desired_state, station.GetInputPort(ports.ARM_DESIRED_STATE))
     if isinstance(config, OpenLoopControllerConfig):
         segments = plan_scripted_grasp(scenario)
         script = builder.AddNamedSystem("scripted_grasp", ScriptedGraspSource(segments))
         builder.Connect(script.GetOutputPort("X_WG_desired"), X_WG_desired)
         builder.Connect(script.GetOutputPort("gripper_command"),
-                        station.GetInputPort("gripper.command"))
+                        station.GetInputPort(ports.GRIPPER_COMMAND))
         return GraspController(name, channels, None, script,
                                script.GetOutputPort("gripper_command"), arm_desired_state,
                                script.GetOutputPort("phase"), segments)
@@ -255,16 +256,16 @@ def AddGraspController(builder, *, scenario, station, events: dict | None = None
     builder.Connect(detector.GetOutputPort("match"), machine.GetInputPort("match"))
     builder.Connect(detector.GetOutputPort("scores"), machine.GetInputPort("scores"))
     builder.Connect(channels.GetOutputPort("channels"), machine.GetInputPort("channels"))
-    builder.Connect(station.GetOutputPort("gripper.status"),
-                    machine.GetInputPort("gripper.status"))
-    accelerations = builder.AddNamedSystem("pad_acceleration_mux", Multiplexer([3, 3]))
+    builder.Connect(station.GetOutputPort(ports.GRIPPER_STATUS),
+                    machine.GetInputPort(ports.GRIPPER_STATUS))
+    accelerations = builder.AddNamedSystem("pad_acceleration_mux", Multiplexer([ports.PAD_ACCELERATION_AXES] * 2))
     for k, finger in enumerate(FINGER_NAMES):
-        builder.Connect(station.GetOutputPort(f"tactile.{finger}_pad_acceleration"),
+        builder.Connect(station.GetOutputPort(ports.pad_acceleration(finger)),
                         accelerations.get_input_port(k))
     builder.Connect(accelerations.get_output_port(), machine.GetInputPort("pad_acceleration"))
     # On hardware the band filters the device's own samples (see SlipVibrationBand).
-    samples = (station.GetOutputPort("tactile.pad_acceleration_samples")
-               if station.HasOutputPort("tactile.pad_acceleration_samples") else None)
+    samples = (station.GetOutputPort(ports.TACTILE_PAD_ACCELERATION_SAMPLES)
+               if station.HasOutputPort(ports.TACTILE_PAD_ACCELERATION_SAMPLES) else None)
     builder.Connect(AddSlipVibrationBand(builder, accelerations.get_output_port(),
                                          band_hz=config.slip_band_hz,
                                          window_s=config.slip_window_s,
@@ -273,21 +274,21 @@ def AddGraspController(builder, *, scenario, station, events: dict | None = None
                     machine.GetInputPort("slip_vibration"))
     taxels = builder.AddNamedSystem("taxel_forces_mux", Multiplexer([TAXELS_PER_PAD] * 2))
     for k, finger in enumerate(FINGER_NAMES):
-        builder.Connect(station.GetOutputPort(f"tactile.{finger}_taxel_forces"),
+        builder.Connect(station.GetOutputPort(ports.taxel_forces(finger)),
                         taxels.get_input_port(k))
     builder.Connect(taxels.get_output_port(), machine.GetInputPort("taxel_forces"))
     if isinstance(config, TaxelAwareControllerConfig) and station.HasOutputPort(
-            "arm.torque_measured"):
+            ports.ARM_TORQUE_MEASURED):
         # The finger-strike sense: the wrench the arm's joint torques hold at the grasp frame.
         wrench = builder.AddNamedSystem("grasp_wrench_estimator", GraspWrenchEstimator())
-        builder.Connect(station.GetOutputPort("arm.position_measured"),
-                        wrench.GetInputPort("arm.position_measured"))
-        builder.Connect(station.GetOutputPort("arm.torque_measured"),
-                        wrench.GetInputPort("arm.torque_measured"))
+        builder.Connect(station.GetOutputPort(ports.ARM_POSITION_MEASURED),
+                        wrench.GetInputPort(ports.ARM_POSITION_MEASURED))
+        builder.Connect(station.GetOutputPort(ports.ARM_TORQUE_MEASURED),
+                        wrench.GetInputPort(ports.ARM_TORQUE_MEASURED))
         builder.Connect(wrench.GetOutputPort("wrench"), machine.GetInputPort("grasp_wrench"))
     builder.Connect(machine.GetOutputPort("X_WG_desired"), X_WG_desired)
     builder.Connect(machine.GetOutputPort("gripper_command"),
-                    station.GetInputPort("gripper.command"))
+                    station.GetInputPort(ports.GRIPPER_COMMAND))
     return GraspController(name, channels, detector, machine,
                            machine.GetOutputPort("gripper_command"), arm_desired_state,
                            machine.GetOutputPort("mode"))

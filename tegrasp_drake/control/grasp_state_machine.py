@@ -42,9 +42,10 @@ from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.control.transition_logic import Observation, memorized_corrective_trigger
 from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
                                               REQUIRED_TRANSITIONS, transition_states)
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, TAXELS_PER_PAD
 
 __all__ = ["GraspPlan", "GraspStateMachine", "MachineState"]
@@ -89,7 +90,7 @@ class GraspStateMachine(LeafSystem):
         match: [1] when the detector matches the expected event, else [0].
         scores: the detector's four channel scores (logged with each transition).
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), Eq. 1-2.
-        gripper.status: the 2F-85 status bytes (robotiq_units order).
+        gripper.status: the 2F-85 status bytes (robotiq.units order).
         pad_acceleration: [left xyz, right xyz] (m/s^2, pad frames), for the Avoid
             direction; unconnected: Avoid moves straight up.
         slip_vibration: [left, right] the pads' vibration in the slip band (m/s^2,
@@ -135,10 +136,11 @@ class GraspStateMachine(LeafSystem):
         self._match = self.DeclareVectorInputPort("match", 1)
         self._scores = self.DeclareVectorInputPort("scores", len(CHANNEL_NAMES))
         self._channels = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
-        self._status = self.DeclareVectorInputPort("gripper.status", ru.STATUS_SIZE)
+        self._status = self.DeclareVectorInputPort(ports.GRIPPER_STATUS, ru.STATUS_SIZE)
         self._pad_acceleration = self.DeclareVectorInputPort("pad_acceleration", 6)
         self._slip_vibration = self.DeclareVectorInputPort("slip_vibration", 2)
-        self._device_fault = self.DeclareAbstractInputPort("device_fault", AbstractValue.Make(""))
+        self._device_fault = self.DeclareAbstractInputPort(ports.DEVICE_FAULT,
+                                                             AbstractValue.Make(""))
         self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
         self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
         self._grasp_wrench = self.DeclareVectorInputPort("grasp_wrench", 6)

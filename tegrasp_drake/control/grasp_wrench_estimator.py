@@ -7,8 +7,7 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.control.finger_strike import grasp_wrench_from_torques
 from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
-
-ARM_JOINTS = 6
+from tegrasp_drake.rig import station_interface as ports
 
 
 class GraspWrenchEstimator(LeafSystem):
@@ -37,8 +36,8 @@ class GraspWrenchEstimator(LeafSystem):
         self._plant = make_arm_control_plant()
         self._plant_context = self._plant.CreateDefaultContext()
         self._frame = self._plant.GetFrameByName("grasp_frame")
-        self._q = self.DeclareVectorInputPort("arm.position_measured", ARM_JOINTS)
-        self._tau = self.DeclareVectorInputPort("arm.torque_measured", ARM_JOINTS)
+        self._q = self.DeclareVectorInputPort(ports.ARM_POSITION_MEASURED, ports.ARM_JOINTS)
+        self._tau = self.DeclareVectorInputPort(ports.ARM_TORQUE_MEASURED, ports.ARM_JOINTS)
         self.DeclareVectorOutputPort("wrench", 6, self._calc_wrench)
 
     def _calc_wrench(self, context, output):

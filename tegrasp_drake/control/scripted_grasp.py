@@ -14,7 +14,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
 from tegrasp_drake.simulation.gripper_hands import gripper_hand

@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from tegrasp_drake.rig.taxel_layout import CELL_X, COLUMNS, ROWS, taxel_centers
+from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS, taxel_centers
 
 TAXELS_PER_PAD = ROWS * COLUMNS
 # A taxel counts toward a contact's shape above this force [N]: ten times the taxel noise
@@ -110,6 +110,3 @@ def grasp_contact(taxels24) -> GraspContact:
     mismatch = pads[0].x_m - pads[1].x_m if pads[0].touching and pads[1].touching else 0.0
     return GraspContact(pads[0], pads[1], float(offset), tilt, float(mismatch))
 
-
-# Half a column: a height mismatch beyond it puts the two contacts in different columns.
-HALF_COLUMN_M = CELL_X / 2

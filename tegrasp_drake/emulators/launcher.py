@@ -25,7 +25,7 @@ import threading
 import time
 
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
-from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.rig.files import write_atomically
 
 # The first line of a hardware config that `tegrasp emulate --write-config` wrote.

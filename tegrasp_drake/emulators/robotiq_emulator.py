@@ -13,7 +13,7 @@ The model (times from `time.monotonic()`, advanced on every access):
 - gGTO is the echo of rGTO (manual, "Gripper status"), 0 while activation runs: rGTO = 1
   during activation (as in one write of rACT and rGTO) is the manual's fault 0x05, "action
   delayed", and the go-to is carried out when activation completes (gGTO = 1, gFLT = 0);
-- with rGTO = 1 the fingers move towards rPR at the rSP speed (robotiq_units), within the
+- with rGTO = 1 the fingers move towards rPR at the rSP speed (robotiq.units), within the
   stroke (gPO POSITION_OPEN_BYTE .. POSITION_CLOSED_BYTE: rPR 0 stops fully open, 255
   fully closed, both gOBJ = 3), and stop on an emulated object at `object_opening` [m]
   while closing (gOBJ = 2) or at the request (gOBJ = 3); gPR echoes the rPR of the last
@@ -36,8 +36,8 @@ from pymodbus import FramerType
 from pymodbus.server import ModbusSerialServer
 from pymodbus.simulator import DataType, SimData, SimDevice
 
-from tegrasp_drake.rig import robotiq_units as units
-from tegrasp_drake.hardware.robotiq import registers
+from tegrasp_drake.robotiq import units
+from tegrasp_drake.robotiq import registers
 from tegrasp_drake.emulators.null_modem import NullModem
 
 ObjectStatus = units.ObjectStatus

@@ -1,17 +1,18 @@
 """Memorized tactile events: extraction, file format, live windows and matching.
 
 The record step cuts max-normalised 0.5 s windows of the four channels around each grasp
-transition of an ideal grasp (extraction.py) and stores them (memorized_event.py,
-FORMAT.md). In the control loop (the paper's Fig. 3), the EventMatcher is a WindowNormalizer
-(tactile/window_normalizer.py: the live 0.5 s windows) that scores its windows against the
-expected event with Eq. 3 (correlation.py, streaming_correlation.py) in the update that
-takes each sample; `add_event_matcher` adds it to a diagram. The EventSequencer expects an object's events one after another. replay.py runs a logged
-trial through them offline.
+transition of an ideal grasp (extraction.py); each is a MemorizedEvent (memorized_event.py),
+stored as JSON files (event_file.py, FORMAT.md) in an events folder with an index
+(events_folder.py). In the control loop (the paper's Fig. 3), the EventMatcher is a
+WindowNormalizer (tactile/window_normalizer.py: the live 0.5 s windows) that scores its
+windows against the expected event with Eq. 3 (correlation.py, streaming_correlation.py) in
+the update that takes each sample; `add_event_matcher` adds it to a diagram. The
+EventSequencer expects an object's events one after another. replay.py runs a logged trial
+through them offline.
 
-Not re-exported here, so that the control loop does not import matplotlib:
-`plot.plot_memorized_events` (the Fig. 5c-like figure), `benchmark` (the matcher's cost
-per tick; `python -m tegrasp_drake.experiments.benchmarks.matcher`) and `synthetic` (synthetic grasps
-for tests).
+Not re-exported here: `synthetic` (synthetic grasps for tests). The figure of an object's
+events (Fig. 5c) and the matcher's cost per tick are drawn and measured with the
+experiments, not here, so that the control loop does not import matplotlib.
 """
 
 from tegrasp_drake.events.correlation import (
@@ -23,10 +24,12 @@ from tegrasp_drake.events.event_sequencer import EventSequencer, next_sequence_s
 from tegrasp_drake.events.extraction import (
     DEFAULT_PRE_TRANSITION_S, DEFAULT_WINDOW_S, TactileTrial, cut_window,
     extract_memorized_events)
-from tegrasp_drake.events.memorized_event import (
-    FORMAT_VERSION, INDEX_FILE, RECORD_COMMAND, MemorizedEvent, MemorizedEventError,
-    current_package_versions, load_all_memorized_events, load_memorized_events,
-    read_index, read_memorized_event, save_memorized_events)
+from tegrasp_drake.events.event_file import (
+    FORMAT_VERSION, INDEX_FILE, MemorizedEventError, RECORD_COMMAND, read_index,
+    read_memorized_event)
+from tegrasp_drake.events.events_folder import (
+    load_all_memorized_events, load_memorized_events, save_memorized_events)
+from tegrasp_drake.events.memorized_event import MemorizedEvent, current_package_versions
 from tegrasp_drake.events.replay import (
     EventReplay, channels_trajectory, live_matcher_config, replay_event_held,
     replay_events_in_sequence, tactile_trial_from_log)

@@ -25,6 +25,7 @@ from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
 from tegrasp_drake.experiments.trial_logging import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.simulation.station import MakeGraspStation
 
 # Beyond the ideal grasp's duration, for corrections (and the controller's own
@@ -75,9 +76,9 @@ def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=N
     grasp = AddGraspController(builder, scenario=scenario, station=station,
                                events=events, corrective_events=corrective_events)
     machine = grasp.state_machine
-    if station.HasOutputPort("device_fault") and machine.HasInputPort("device_fault"):
-        builder.Connect(station.GetOutputPort("device_fault"),
-                        machine.GetInputPort("device_fault"))
+    if station.HasOutputPort(ports.DEVICE_FAULT) and machine.HasInputPort(ports.DEVICE_FAULT):
+        builder.Connect(station.GetOutputPort(ports.DEVICE_FAULT),
+                        machine.GetInputPort(ports.DEVICE_FAULT))
     loggers = None
     if log:
         loggers = AddTrialLogging(builder, scenario=scenario, station=station,

@@ -34,6 +34,7 @@ from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.realtime import realtime_scheduling
 from tegrasp_drake.hardware.station import MakeHardwareStation
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
                                     lcmt_tegrasp_transition)
 from tegrasp_drake.experiments.scenario import scenario_to_yaml, with_controller
@@ -175,7 +176,7 @@ class RunReporter:
             self._out(format_transition(transition))
             message = transition_message(transition.as_dict())  # the JSON form's fields
             self._lcm.Publish(TRANSITION_CHANNEL, message.encode())
-        faults = self._station.GetOutputPort("fault").Eval(
+        faults = self._station.GetOutputPort(ports.FAULT).Eval(
             self._station.GetMyContextFromRoot(root_context))
         for fault in faults[len(self.faults):]:
             self.faults.append(fault)

@@ -34,7 +34,7 @@ from tegrasp_drake.hardware.device_log_messages import (
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
 from tegrasp_drake.events.extraction import TactileTrial
-from tegrasp_drake.events.memorized_event import find_memorized_events
+from tegrasp_drake.events.events_folder import find_memorized_events
 from tegrasp_drake.events.replay import (EventReplay, channels_trajectory, live_matcher_config,
                                          replay_events_in_sequence)
 from tegrasp_drake.events.streaming_correlation import NO_EVENT

@@ -12,6 +12,7 @@ import numpy as np
 from pydrake.systems.primitives import Demultiplexer, LogVectorOutput, Multiplexer
 
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.experiments.scenario import scenario_to_yaml
 from tegrasp_drake.experiments.trial_log import TrialLog
 
@@ -41,27 +42,27 @@ def AddTrialLogging(builder, *, scenario, station, channels, arm_desired_state,
     sa_period = 1.0 / scenario.tactile.sample_rate_hz
     ra_period = 1.0 / scenario.vibration.sample_rate_hz
     taxel_mux = builder.AddNamedSystem("taxel_log_mux", Multiplexer([12, 12]))
-    builder.Connect(station.GetOutputPort("tactile.left_taxel_forces"), taxel_mux.get_input_port(0))
-    builder.Connect(station.GetOutputPort("tactile.right_taxel_forces"),
+    builder.Connect(station.GetOutputPort(ports.taxel_forces("left")), taxel_mux.get_input_port(0))
+    builder.Connect(station.GetOutputPort(ports.taxel_forces("right")),
                     taxel_mux.get_input_port(1))
     q_desired = builder.AddNamedSystem("arm_desired_demux", Demultiplexer([6, 6]))
     builder.Connect(arm_desired_state, q_desired.get_input_port())
     return TrialLoggers(
         taxels=LogVectorOutput(taxel_mux.get_output_port(), builder, sa_period),
-        true_taxels=LogVectorOutput(station.GetOutputPort("tactile.true_taxel_forces"), builder,
+        true_taxels=LogVectorOutput(station.GetOutputPort(ports.TRUE_TAXEL_FORCES), builder,
                                     sa_period),
         channels=LogVectorOutput(channels.GetOutputPort("channels"), builder, ra_period),
         accelerations=tuple(
-            LogVectorOutput(station.GetOutputPort(f"tactile.{f}_pad_acceleration"), builder,
+            LogVectorOutput(station.GetOutputPort(ports.pad_acceleration(f)), builder,
                             ra_period) for f in FINGER_NAMES),
-        arm_q=LogVectorOutput(station.GetOutputPort("arm.position_measured"), builder,
+        arm_q=LogVectorOutput(station.GetOutputPort(ports.ARM_POSITION_MEASURED), builder,
                               SLOW_LOG_PERIOD),
         arm_q_desired=LogVectorOutput(q_desired.get_output_port(0), builder, SLOW_LOG_PERIOD),
         gripper_command=LogVectorOutput(gripper_command, builder, SLOW_LOG_PERIOD),
-        gripper_status=LogVectorOutput(station.GetOutputPort("gripper.status"), builder,
+        gripper_status=LogVectorOutput(station.GetOutputPort(ports.GRIPPER_STATUS), builder,
                                        SLOW_LOG_PERIOD),
         phase=LogVectorOutput(phase, builder, SLOW_LOG_PERIOD),
-        object_state=LogVectorOutput(station.GetOutputPort("object.state"), builder,
+        object_state=LogVectorOutput(station.GetOutputPort(ports.OBJECT_STATE), builder,
                                      SLOW_LOG_PERIOD))
 
 

@@ -1,5 +1,6 @@
 """The real devices behind the station's ports (Fig. 7b): the JACO2 on LCM (jaco/), the
-Robotiq 2F-85 on Modbus RTU (robotiq/), the myRIO tactile stream on a serial port (myrio/),
+Robotiq 2F-85 on Modbus RTU (robotiq/: the Modbus client and the driver system; the registers
+and units are in tegrasp_drake.robotiq), the myRIO tactile stream on a serial port (myrio/),
 the device watchdog and fault latch, the device data as LCM messages for logs, the typed
 hardware config and MakeHardwareStation.
 
@@ -26,9 +27,6 @@ from tegrasp_drake.hardware.jaco.velocity_tracker import (
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver, gripper_faults
 from tegrasp_drake.hardware.robotiq.modbus_client import (
     RobotiqActivationError, RobotiqModbusClient, RobotiqModbusConfig, RobotiqStatusSample)
-from tegrasp_drake.hardware.robotiq.registers import (
-    command_registers, command_registers_from_vector, decode_command_registers,
-    status_from_registers, status_registers)
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     LoadTactileCalibration, PadCalibration, SaveTactileCalibration, TactileCalibration,
     acceleration_from_piezo, counts_from_forces, forces_from_counts, piezo_from_acceleration)

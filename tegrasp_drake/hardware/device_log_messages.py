@@ -15,7 +15,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.hardware.lcm_time import utime_from_time
-from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 
@@ -101,7 +101,7 @@ class GripperStatusSender(LeafSystem):
 
     Ports:
         command: (3) [rPR, rSP, rFR] bytes; unconnected: logged as zeros.
-        status: (8) the status bytes, robotiq_units order.
+        status: (8) the status bytes, robotiq.units order.
         time_measured: (1) host monotonic time of the status read [s].
         lcmt_tegrasp_gripper: (abstract) utime = Context time [us].
     """

@@ -1,22 +1,17 @@
 """MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b).
 
-The controller diagram connects to the same exported ports as on MakeGraspStation, so it
-runs unchanged on either:
+The controller diagram connects to the same exported ports as on MakeGraspStation
+(rig/station_interface.py: its CONTROLLER_INPUTS and CONTROLLER_OUTPUTS, with their sizes),
+so it runs unchanged on either. The hardware also exports the ports station_interface lists
+as hardware only:
 
-  inputs:  arm.desired_state (12: q [rad], v [rad/s]), gripper.command (3: rPR, rSP, rFR)
-  outputs: arm.position_measured (6), arm.velocity_measured (6), arm.torque_measured (6),
-           gripper.status (8, robotiq_units order),
-           tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N),
-           tactile.left_pad_acceleration (3, m/s^2), tactile.right_pad_acceleration (3)
-  hardware only:
-           fault (abstract tuple of DeviceFault): every fault seen (FaultLatch), empty
-               while all is well; device_fault (abstract str): the same as text, ""
-               while all is well (the state machine's `device_fault` input);
-               stop (1): 1 once there is any fault;
-           arm.commanded_state (12): positions and the joint velocities sent to the arm;
-           {arm,gripper,tactile}.time_measured (1), tactile.stale (1), tactile.zeroing (1);
-           tactile.pad_acceleration_samples (abstract (n, 6) array, m/s^2): every film
-               sample played in the tick, in device order (TactileSerialReceiver).
+  fault (abstract tuple of DeviceFault): every fault seen (FaultLatch), empty while all is
+      well; device_fault (abstract str): the same as text, "" while all is well (the state
+      machine's `device_fault` input); stop (1): 1 once there is any fault;
+  arm.commanded_state (12): positions and the joint velocities sent to the arm;
+  {arm,gripper,tactile}.time_measured (1), tactile.stale (1), tactile.zeroing (1);
+  tactile.pad_acceleration_samples (abstract (n, 6) array, m/s^2): every film sample
+      played in the tick, in device order (TactileSerialReceiver).
 
 Inside: the Jaco on LCM (AddJacoLcmDriver: JacoVelocityTracker -> KINOVA_JACO_COMMAND at
 100 Hz, KINOVA_JACO_STATUS -> measured state), the Robotiq 2F-85 on Modbus RTU
@@ -38,6 +33,7 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.lcm import LcmInterfaceSystem, LcmPublisherSystem
 from serial import SerialException
 
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.hardware.device_log_messages import (
     GRIPPER_CHANNEL, GRIPPER_PUBLISH_PERIOD, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
@@ -88,10 +84,10 @@ class HardwareStation(Diagram):
         - device_fault
         - stop
 
-    Ports (sizes and units in the module docstring):
+    Ports (sizes and units in rig/station_interface.py and the module docstring):
         arm.*: joint space of the Jaco [rad, rad/s, N m]; arm.time_measured is the
             status message's utime [s].
-        gripper.*: Robotiq bytes (robotiq_units order); gripper.time_measured is host
+        gripper.*: Robotiq bytes (robotiq.units order); gripper.time_measured is host
             monotonic time [s].
         tactile.*: taxel forces [N] and pad-frame accelerations [m/s^2], as the
             simulated station's; tactile.time_measured is the myRIO timestamp [s].
@@ -148,20 +144,22 @@ class HardwareStation(Diagram):
 
         # Arm.
         jaco = AddJacoLcmDriver(builder, lcm=self._lcm, tracker_config=config.arm.tracker)
-        builder.ExportInput(jaco.tracker.GetInputPort("desired_state"), "arm.desired_state")
-        for name in ("position_measured", "velocity_measured", "torque_measured",
-                     "time_measured"):
-            builder.ExportOutput(jaco.status_receiver.GetOutputPort(name), f"arm.{name}")
+        builder.ExportInput(jaco.tracker.GetInputPort("desired_state"), ports.ARM_DESIRED_STATE)
+        for name, port in (("position_measured", ports.ARM_POSITION_MEASURED),
+                           ("velocity_measured", ports.ARM_VELOCITY_MEASURED),
+                           ("torque_measured", ports.ARM_TORQUE_MEASURED),
+                           ("time_measured", ports.ARM_TIME_MEASURED)):
+            builder.ExportOutput(jaco.status_receiver.GetOutputPort(name), port)
         builder.ExportOutput(jaco.tracker.GetOutputPort("commanded_state"),
-                             "arm.commanded_state")
+                             ports.ARM_COMMANDED_STATE)
         self._status_subscriber = jaco.status_subscriber
 
         # Gripper.
         gripper = builder.AddNamedSystem("gripper_driver", RobotiqDriver(
             self._gripper_client, stale_timeout=config.watchdog.gripper_timeout))
-        builder.ExportInput(gripper.GetInputPort("command"), "gripper.command")
-        builder.ExportOutput(gripper.GetOutputPort("status"), "gripper.status")
-        builder.ExportOutput(gripper.GetOutputPort("time_measured"), "gripper.time_measured")
+        builder.ExportInput(gripper.GetInputPort("command"), ports.GRIPPER_COMMAND)
+        builder.ExportOutput(gripper.GetOutputPort("status"), ports.GRIPPER_STATUS)
+        builder.ExportOutput(gripper.GetOutputPort("time_measured"), ports.GRIPPER_TIME_MEASURED)
 
         # Tactile pads.
         calibration = (LoadTactileCalibration(config.tactile.calibration_file)
@@ -171,11 +169,14 @@ class HardwareStation(Diagram):
             stale_timeout=config.tactile.stale_timeout, max_backlog=config.tactile.max_backlog))
         self._tactile_receiver = tactile
         for finger in FINGER_NAMES:
-            for signal in ("taxel_forces", "pad_acceleration"):
-                builder.ExportOutput(tactile.GetOutputPort(f"{finger}_{signal}"),
-                                     f"tactile.{finger}_{signal}")
-        for name in ("pad_acceleration_samples", "time_measured", "stale", "zeroing"):
-            builder.ExportOutput(tactile.GetOutputPort(name), f"tactile.{name}")
+            builder.ExportOutput(tactile.GetOutputPort(f"{finger}_taxel_forces"),
+                                 ports.taxel_forces(finger))
+            builder.ExportOutput(tactile.GetOutputPort(f"{finger}_pad_acceleration"),
+                                 ports.pad_acceleration(finger))
+        for name, port in (("pad_acceleration_samples", ports.TACTILE_PAD_ACCELERATION_SAMPLES),
+                           ("time_measured", ports.TACTILE_TIME_MEASURED),
+                           ("stale", ports.TACTILE_STALE), ("zeroing", ports.TACTILE_ZEROING)):
+            builder.ExportOutput(tactile.GetOutputPort(name), port)
 
         # Watchdog and faults; any fault holds the arm still.
         watchdog = builder.AddNamedSystem("watchdog", DeviceWatchdog(
@@ -190,9 +191,9 @@ class HardwareStation(Diagram):
         builder.Connect(watchdog.GetOutputPort("fault"), faults.GetInputPort("watchdog_fault"))
         builder.Connect(gripper.GetOutputPort("fault"), faults.GetInputPort("gripper_fault"))
         builder.Connect(faults.GetOutputPort("stop"), jaco.tracker.GetInputPort("stop"))
-        builder.ExportOutput(faults.GetOutputPort("fault"), "fault")
-        builder.ExportOutput(faults.GetOutputPort("message"), "device_fault")
-        builder.ExportOutput(faults.GetOutputPort("stop"), "stop")
+        builder.ExportOutput(faults.GetOutputPort("fault"), ports.FAULT)
+        builder.ExportOutput(faults.GetOutputPort("message"), ports.DEVICE_FAULT)
+        builder.ExportOutput(faults.GetOutputPort("stop"), ports.STOP)
 
         # Device data on the bus.
         tactile_sender = builder.AddNamedSystem("tactile_status_sender", TactileStatusSender())
@@ -201,7 +202,7 @@ class HardwareStation(Diagram):
                      "arrival_time"):
             builder.Connect(tactile.GetOutputPort(name), tactile_sender.GetInputPort(name))
         gripper_sender = builder.AddNamedSystem("gripper_status_sender", GripperStatusSender())
-        builder.ConnectInput("gripper.command", gripper_sender.GetInputPort("command"))
+        builder.ConnectInput(ports.GRIPPER_COMMAND, gripper_sender.GetInputPort("command"))
         builder.Connect(gripper.GetOutputPort("status"), gripper_sender.GetInputPort("status"))
         builder.Connect(gripper.GetOutputPort("time_measured"),
                         gripper_sender.GetInputPort("time_measured"))

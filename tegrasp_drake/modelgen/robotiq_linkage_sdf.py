@@ -1,6 +1,6 @@
 """Writes models/robotiq_2f85/robotiq_2f85_linkage.sdf: the 2F-85 with its real finger linkage.
 
-Each finger is the 2F-85's underactuated five-bar (finger_linkage.py has the dimensions and
+Each finger is the 2F-85's underactuated five-bar (robotiq/linkage.py has the dimensions and
 their sources): links `<f>_driver`, `<f>_coupler`, `<f>_finger` (the follower, carrying the
 paper's tactile fingertip) and `<f>_spring_link`, for f in left (+y) and right (-y). The loop
 is closed by a ball constraint at D between the follower and the spring link (the planar
@@ -26,14 +26,14 @@ visual only (the object cannot reach them past the follower and the palm).
 
 import numpy as np
 
-from tegrasp_drake.modelgen import finger_linkage as linkage
+from tegrasp_drake.robotiq import linkage
+from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z
 from tegrasp_drake.modelgen.robotiq_sdf import (FINGER_FRICTION, FINGER_LINK_THICKNESS,
-                                                PAD_CENTER_Z, base_link_text,
-                                                pad_frame_rotation, pad_text)
+                                                base_link_text, pad_frame_rotation, pad_text)
 from tegrasp_drake.modelgen.sdf_text import (box_inertia, friction_text, inertial_text,
                                              number_text, pose_text, segment_pose,
                                              translation)
-from tegrasp_drake.modelgen.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
+from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 
 # Link masses [kg] (Menagerie 2f85.xml) and the bar each is spread along (joint points).
 DRIVER_MASS, COUPLER_MASS, SPRING_LINK_MASS, FOLLOWER_MASS = 0.0090, 0.0141, 0.0222, 0.0125
@@ -44,8 +44,6 @@ LINK_BAR_SIZE = 0.008  # m, side of the bars' square section (inertia and visual
 # Effort limit of the driver joint [N m]: the screw and nut hold any load the fingers meet;
 # this only bounds the implicit PD (twice the 26.9 N m that 235 N on both pads needs).
 DRIVER_EFFORT_LIMIT_NM = 60.0
-
-FINGER_SIGNS = {"left": 1.0, "right": -1.0}
 
 
 def _point(p2, sign: float) -> np.ndarray:

@@ -19,22 +19,21 @@ Frames (the gripper frame G of the whole project is `grasp_frame`):
   (rig/taxel_layout.py) is given in these frames: row 0 is nearest the palm on both pads.
 
 Pads are compliant hydroelastic boxes, sized as the paper's fingertip
-(tactile_fingertip.py: 4 x 20 x 24 mm), E 2e6 Pa and Hunt-Crossley dissipation 5
-(DRAKE-NOTES), friction from materials.py. Behind each pad a rigid aluminium finger (a
+(rig/tactile_fingertip.py: 4 x 20 x 24 mm), E 2e6 Pa and Hunt-Crossley dissipation 5
+(DRAKE-NOTES), friction from rig/materials.py. Behind each pad a rigid aluminium finger (a
 collision geometry too, so that an object cannot pass through the finger's back or tip).
 """
 
 import numpy as np
 
-from tegrasp_drake.modelgen import materials
+from tegrasp_drake.rig import materials
+from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
 from tegrasp_drake.modelgen.sdf_text import (box_inertia, friction_text, inertial_text, pose_text,
                                              translation)
-from tegrasp_drake.modelgen.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
+from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 
 BASE_RADIUS = 0.0375  # m
 PALM_Z = 0.095  # m, mounting face to palm
-PAD_CENTER_Z = 0.140  # m, mounting face to the pad centre (grasp frame)
-HALF_STROKE = 0.0425  # m
 JOINT_LIMIT_MARGIN = 0.001  # m; the joint limit lies beyond the stroke, so full opening never
 # strikes it (a limit strike is a false RA event)
 BASE_MASS, FINGER_MASS = 0.80, 0.05  # kg

@@ -7,7 +7,7 @@ normal to the palm (world x). The top is a compliant hydroelastic box, so the ri
 rest on it with area contact. Its friction is a melamine-faced wood top's (materials.py).
 """
 
-from tegrasp_drake.modelgen import materials
+from tegrasp_drake.rig import materials
 from tegrasp_drake.modelgen.sdf_text import friction_text, pose_text, translation
 
 SIZE = (1.2, 1.0, 0.05)  # m

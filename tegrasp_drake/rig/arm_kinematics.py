@@ -14,7 +14,7 @@ from pydrake.multibody.tree import FixedOffsetFrame
 from pydrake.solvers import Solve
 
 from tegrasp_drake.rig import paths
-from tegrasp_drake.modelgen.robotiq_sdf import PAD_CENTER_Z
+from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z
 
 ARM_URL = "package://tegrasp/jaco2/j2n6s300.sdf"
 GRIPPER_URL = "package://tegrasp/robotiq_2f85/robotiq_2f85_tactile.sdf"

@@ -8,7 +8,7 @@ face resting on the table), z up.
 
 An object's `friction` is the coefficient of its own collision geometry, not of any pair:
 Drake combines it with the other geometry's as 2 mu_A mu_B / (mu_A + mu_B)
-(modelgen/materials.py). The built-in box is cardboard (0.448: pad 0.814, table 0.412),
+(rig/materials.py). The built-in box is cardboard (0.448: pad 0.814, table 0.412),
 the cylinders rigid plastic (0.374: pad 0.690, table 0.377). For a pair value P against the
 pad, give the object P mu_pad / (2 mu_pad - P) with mu_pad = materials.PAD_COVER.
 """
@@ -17,8 +17,8 @@ import dataclasses
 import math
 import re
 
-from tegrasp_drake.modelgen import materials
-from tegrasp_drake.rig.robotiq_units import STROKE_M
+from tegrasp_drake.rig import materials
+from tegrasp_drake.robotiq.units import STROKE_M
 
 # The entries of an object's `size` [m] for each shape.
 OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),

@@ -76,7 +76,7 @@ def is_installed_package_data(folder) -> bool:
     """True for the events folder of an installed (non-source) copy of the package, which
     `pip install` replaces: nothing may be written there."""
     if (PACKAGE_DIR.parent / "pyproject.toml").is_file():
-        return False  # a source checkout: its events/ folder is the lead's to remake
+        return False  # a source checkout: its events/ folder is remade by its maintainers
     try:
         installed = pathlib.Path(str(importlib.resources.files("tegrasp_drake.events_data")))
     except ModuleNotFoundError:

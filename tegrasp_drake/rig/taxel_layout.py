@@ -5,13 +5,13 @@ the pad's contact surface, +z the inward normal (toward the object), +x across t
 20 mm width, +y along its 24 mm length toward the fingertip (on both pads). Taxel index =
 3 * row + column, row 0..3 along +y (row 0 nearest the palm), column 0..2 along +x. Each
 taxel is one cell of a regular 3 x 4 grid covering the pad, like the 12 electrodes of the
-paper's Fig. 7c; the sizes are the gripper model's own (modelgen/tactile_fingertip.py).
+paper's Fig. 7c; the sizes are the gripper model's own (rig/tactile_fingertip.py).
 """
 
 import numpy as np
 
 # The pad's size is part of the layout's interface (contact_pressure.py reads it from here).
-from tegrasp_drake.modelgen.tactile_fingertip import (PAD_LENGTH, PAD_WIDTH, TAXEL_COLUMNS,
+from tegrasp_drake.rig.tactile_fingertip import (PAD_LENGTH, PAD_WIDTH, TAXEL_COLUMNS,
                                                       TAXEL_ROWS)
 
 COLUMNS, ROWS = TAXEL_COLUMNS, TAXEL_ROWS  # along x, along y
@@ -25,11 +25,3 @@ def taxel_centers() -> np.ndarray:
     x = (cols + 0.5) * CELL_X - PAD_WIDTH / 2
     y = (rows + 0.5) * CELL_Y - PAD_LENGTH / 2
     return np.column_stack([x, y, np.zeros_like(x)])
-
-
-def taxel_index(p_P: np.ndarray) -> np.ndarray:
-    """The taxel holding each point (N, 3) of the pad frame; points beyond the pad's edge go
-    to the nearest edge taxel."""
-    col = np.clip(np.floor((p_P[:, 0] + PAD_WIDTH / 2) / CELL_X), 0, COLUMNS - 1)
-    row = np.clip(np.floor((p_P[:, 1] + PAD_LENGTH / 2) / CELL_Y), 0, ROWS - 1)
-    return (row * COLUMNS + col).astype(np.intp)

@@ -18,8 +18,8 @@ f(x, y) dy is quadratic in x on each side of the point where the edge crosses y 
 midpoint rule with its curvature term integrates it exactly. A cell's force is then the
 inclusion-exclusion of F at its corners.
 
-Points beyond the pad's edge count to the nearest edge taxel, as `taxel_index` does: the
-outer cells are open toward the outside.
+Points beyond the pad's edge count to the nearest edge taxel: the outer cells are open
+toward the outside.
 """
 
 import numpy as np

@@ -22,7 +22,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 from pydrake.systems.primitives import ConstantVectorSource
 
-from tegrasp_drake.modelgen import finger_linkage
+from tegrasp_drake.robotiq import linkage
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.gripper_hands import actuated_state_selector, gripper_hand
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
@@ -149,7 +149,7 @@ def loop_closure_error_m(plant, plant_context, gripper) -> float:
     spring link) over both linkage fingers: how far the ball constraints are violated."""
     worst = 0.0
     for finger, sign in (("left", 1.0), ("right", -1.0)):
-        p_D = np.array([0.0, sign * finger_linkage.D[0], finger_linkage.D[1]])
+        p_D = np.array([0.0, sign * linkage.D[0], linkage.D[1]])
         follower = plant.GetBodyByName(f"{finger}_finger", gripper)
         spring_link = plant.GetBodyByName(f"{finger}_spring_link", gripper)
         gap = (plant.EvalBodyPoseInWorld(plant_context, follower).multiply(p_D)

@@ -1,7 +1,7 @@
 """The two simulated 2F-85 hands, selected by `gripper.model`: what differs between them.
 
 - `linkage` (the default): the 2F-85's underactuated five-bar fingers
-  (modelgen/finger_linkage.py, modelgen/robotiq_linkage_sdf.py). The actuated coordinate is
+  (robotiq/linkage.py, modelgen/robotiq_linkage_sdf.py). The actuated coordinate is
   the left driver's angle [rad]; the drive is a non-backdrivable screw (the motor drives
   both fingers through a screw and nut: an object pushing the fingers open cannot turn it).
 - `prismatic`: two prismatic fingers, the right one mimicking the left
@@ -18,8 +18,8 @@ import dataclasses
 import numpy as np
 from pydrake.systems.primitives import MatrixGain
 
-from tegrasp_drake.modelgen import finger_linkage
-from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE, PAD_CENTER_Z
+from tegrasp_drake.robotiq import linkage
+from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
 
 GRIPPER_MODELS = ("linkage", "prismatic")
 
@@ -72,13 +72,13 @@ class LinkageHand:
                                   ("place_unload", (0.98, 0.70)))
 
     def half_opening(self, a: float) -> float:
-        return finger_linkage.half_opening(a)
+        return linkage.half_opening(a)
 
     def actuated(self, half_opening_m: float) -> float:
-        return finger_linkage.driver_angle(half_opening_m)
+        return linkage.driver_angle(half_opening_m)
 
     def half_opening_rate(self, a: float) -> float:
-        return finger_linkage.half_opening_rate(a)
+        return linkage.half_opening_rate(a)
 
     def default_positions(self) -> list[float]:
         return [0.0] * 8  # every joint at zero is the open pose, the loops closed
@@ -91,8 +91,8 @@ class LinkageHand:
         """How far the pads' centres lie beyond the grasp frame along the approach axis [m]
         when the pads are opening_m apart (on the pin): -9.3 mm open, +1.8 mm at 45 mm,
         +4.0 mm at 25 mm."""
-        return (float(finger_linkage.PAD_CENTER_OPEN[1]) - PAD_CENTER_Z
-                + finger_linkage.pad_travel_at_opening(opening_m))
+        return (float(linkage.PAD_CENTER_OPEN[1]) - PAD_CENTER_Z
+                + linkage.pad_travel_at_opening(opening_m))
 
 
 def gripper_hand(model: str):

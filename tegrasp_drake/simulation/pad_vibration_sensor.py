@@ -55,7 +55,7 @@ from pydrake.systems.primitives import RandomSource
 from pydrake.systems.sensors import Accelerometer
 
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION, PAD_MODULUS
-from tegrasp_drake.modelgen.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
+from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, FilmParameters, advance_films,
                                                     film_sensitivity, film_step_matrices,

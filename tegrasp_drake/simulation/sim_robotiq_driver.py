@@ -1,7 +1,7 @@
 """SimRobotiqDriver: the simulated twin of the Robotiq 2F-85's own controller.
 
 It takes the same command bytes as the real gripper (rPR, rSP, rFR) and reports the same
-status bytes (robotiq_units.py). Inside, half the pad opening q [m] follows a speed- and
+status bytes (robotiq/units.py). Inside, half the pad opening q [m] follows a speed- and
 acceleration-limited reference toward the requested position (the 2F-85's speed setting is a
 finger speed); the hand (gripper_hands.py) maps it to its actuated coordinate a (the left
 driver's angle on the linkage hand, q itself on the prismatic one), which the plant's
@@ -22,7 +22,7 @@ import math
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
 
 (_REF_Q, _REF_V, _REF_A, _GOAL, _HALF_SPEED, _FORCE, _POSITION_BYTE, _OBJECT, _T, _HELD,
@@ -140,7 +140,7 @@ class SimRobotiqDriver(LeafSystem):
             angle [rad] and [rad/s] on the linkage hand; half the opening [m], [m/s] on the
             prismatic one), from gripper_hands.actuated_state_selector.
         desired_state: (2) a and da/dt set-points for the plant's PD on the actuated joint.
-        status: (8) status bytes, robotiq_units order.
+        status: (8) status bytes, robotiq.units order.
     """
 
     def __init__(self, *, config: GripperDriverConfig, initial_opening: float = ru.STROKE_M):

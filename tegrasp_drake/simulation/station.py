@@ -2,20 +2,13 @@
 
 A JACO2 arm on a table, the tactile 2F-85-like gripper on its flange, the scenario's object
 on its marker (plus its offset), and the sensors: both pads' taxel arrays and vibration
-films. The exported ports are those of the hardware interface, so a controller cannot tell
-the two apart:
-
-  inputs:  arm.desired_state (12: q [rad], v [rad/s]), gripper.command (3: rPR, rSP, rFR)
-  outputs: arm.position_measured (6), arm.velocity_measured (6), arm.torque_measured (6),
-           gripper.status (8, robotiq_units order),
-           tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N),
-           tactile.left_pad_acceleration (3), tactile.right_pad_acceleration (3): each pad's
-           PVDF film in acceleration-equivalent units [m/s^2], on the pad normal (z)
-  simulation only (evaluation): object.state (13: quaternion wxyz, p_WO, w_WO, v_WO),
-           tactile.true_taxel_forces (24, N), contact_results, body_poses, query_object,
-           gripper.plant_desired_state (2: the simulated 2F-85 controller's set-point of
-           the hand's actuated joint, position and rate, for the plant's PD),
-           gripper.state (the gripper model instance's joint positions and velocities)
+films. The exported ports are those of the hardware interface (rig/station_interface.py:
+its CONTROLLER_INPUTS and CONTROLLER_OUTPUTS), so a controller cannot tell the two apart;
+each pad's PVDF film is in acceleration-equivalent units [m/s^2], on the pad normal (z).
+For evaluation the simulation also exports the ground truth that station_interface lists
+as simulation only: the object's state, the taxel forces before noise, the contact results,
+body poses and query object, the gripper's joint state and the simulated 2F-85
+controller's set-point of the hand's actuated joint.
 
 The hand is `scenario.gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
 default) or the earlier prismatic fingers.
@@ -35,6 +28,7 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer
 
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
@@ -50,7 +44,6 @@ from tegrasp_drake.simulation.station_visualization import AddStationVisualizati
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
 
 TABLE_URL = "package://tegrasp/table/table.sdf"
-ARM_JOINTS = 6
 
 
 @dataclasses.dataclass
@@ -199,12 +192,12 @@ def MakeGraspStation(scenario, *, meshcat=None):
     arm, gripper, obj = parts.arm, parts.gripper, parts.object_instance
 
     # Arm: the desired state goes straight to the plant's PD; measured state is split.
-    builder.ExportInput(plant.get_desired_state_input_port(arm), "arm.desired_state")
-    arm_state = builder.AddNamedSystem("arm_state_demux", Demultiplexer([ARM_JOINTS] * 2))
+    builder.ExportInput(plant.get_desired_state_input_port(arm), ports.ARM_DESIRED_STATE)
+    arm_state = builder.AddNamedSystem("arm_state_demux", Demultiplexer([ports.ARM_JOINTS] * 2))
     builder.Connect(plant.get_state_output_port(arm), arm_state.get_input_port())
-    builder.ExportOutput(arm_state.get_output_port(0), "arm.position_measured")
-    builder.ExportOutput(arm_state.get_output_port(1), "arm.velocity_measured")
-    builder.ExportOutput(plant.get_net_actuation_output_port(arm), "arm.torque_measured")
+    builder.ExportOutput(arm_state.get_output_port(0), ports.ARM_POSITION_MEASURED)
+    builder.ExportOutput(arm_state.get_output_port(1), ports.ARM_VELOCITY_MEASURED)
+    builder.ExportOutput(plant.get_net_actuation_output_port(arm), ports.ARM_TORQUE_MEASURED)
 
     # Gripper: the simulated 2F-85 controller.
     driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=scenario.gripper))
@@ -212,12 +205,13 @@ def MakeGraspStation(scenario, *, meshcat=None):
         plant, gripper, gripper_hand(scenario.gripper.model)))
     builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
     builder.Connect(selector.get_output_port(), driver.GetInputPort("finger_state"))
-    builder.ExportOutput(plant.get_state_output_port(gripper), "gripper.state")
+    builder.ExportOutput(plant.get_state_output_port(gripper), ports.GRIPPER_STATE)
     builder.Connect(driver.GetOutputPort("desired_state"),
                     plant.get_desired_state_input_port(gripper))
-    builder.ExportInput(driver.GetInputPort("command"), "gripper.command")
-    builder.ExportOutput(driver.GetOutputPort("status"), "gripper.status")
-    builder.ExportOutput(driver.GetOutputPort("desired_state"), "gripper.plant_desired_state")
+    builder.ExportInput(driver.GetInputPort("command"), ports.GRIPPER_COMMAND)
+    builder.ExportOutput(driver.GetOutputPort("status"), ports.GRIPPER_STATUS)
+    builder.ExportOutput(driver.GetOutputPort("desired_state"),
+                         ports.GRIPPER_PLANT_DESIRED_STATE)
 
     # Tactile pads: taxels and vibration films.
     taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
@@ -225,18 +219,18 @@ def MakeGraspStation(scenario, *, meshcat=None):
                                         scenario=scenario)
     for finger in FINGER_NAMES:
         builder.ExportOutput(taxels.GetOutputPort(f"{finger}_taxel_forces"),
-                             f"tactile.{finger}_taxel_forces")
+                             ports.taxel_forces(finger))
         builder.ExportOutput(films.GetOutputPort(f"{finger}_pad_vibration"),
-                             f"tactile.{finger}_pad_acceleration")
-    builder.ExportOutput(taxels.GetOutputPort("true_taxel_forces"), "tactile.true_taxel_forces")
+                             ports.pad_acceleration(finger))
+    builder.ExportOutput(taxels.GetOutputPort("true_taxel_forces"), ports.TRUE_TAXEL_FORCES)
 
     _add_disturbance(builder, plant, object_body(plant, obj), scenario.disturbance)
 
     # Ground truth for evaluation.
-    builder.ExportOutput(plant.get_state_output_port(obj), "object.state")
-    builder.ExportOutput(plant.get_contact_results_output_port(), "contact_results")
-    builder.ExportOutput(plant.get_body_poses_output_port(), "body_poses")
-    builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
+    builder.ExportOutput(plant.get_state_output_port(obj), ports.OBJECT_STATE)
+    builder.ExportOutput(plant.get_contact_results_output_port(), ports.CONTACT_RESULTS)
+    builder.ExportOutput(plant.get_body_poses_output_port(), ports.BODY_POSES)
+    builder.ExportOutput(scene_graph.get_query_output_port(), ports.QUERY_OBJECT)
 
     if meshcat is not None:  # the scene, contact forces, taxel forces; a framed camera
         AddStationVisualization(builder, plant=plant, scene_graph=scene_graph, taxels=taxels,

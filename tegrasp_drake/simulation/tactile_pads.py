@@ -14,7 +14,7 @@ import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import ContactResults
-from pydrake.systems.framework import BasicVector, LeafSystem
+from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.contact_pressure import (polygon_fan_triangles,
@@ -42,12 +42,6 @@ class PadGeometry:
     geometry_id: object
     body_index: object
     X_BP: RigidTransform
-
-
-def pad_forces_from_contacts(contact_results: ContactResults, X_WP: RigidTransform,
-                             geometry_id) -> np.ndarray:
-    """The 12 taxel normal forces [N] of the pad with `geometry_id` (noise-free)."""
-    return pads_forces_from_contacts(contact_results, [(X_WP, geometry_id)])[0]
 
 
 def _pad_surfaces(contact_results: ContactResults, X_WP: RigidTransform, geometry_id):

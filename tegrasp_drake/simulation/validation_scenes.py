@@ -26,7 +26,7 @@ from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus, LeafSystem
 
-from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE, PAD_CENTER_Z
+from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
 from tegrasp_drake.modelgen.table_sdf import EXPECTED_XY
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL, R_WG_SIDE_GRASP

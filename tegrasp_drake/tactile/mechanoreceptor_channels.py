@@ -10,6 +10,7 @@ import numpy as np
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.rig import station_interface as ports
 
 
 def slowly_adapting(taxel_forces: np.ndarray) -> float:
@@ -85,8 +86,8 @@ def AddMechanoreceptorChannels(builder, station):
     """Adds Eq. 1-2 fed by the station's tactile ports; returns the system."""
     channels = builder.AddNamedSystem("mechanoreceptor_channels", MechanoreceptorChannels())
     for finger in FINGER_NAMES:
-        builder.Connect(station.GetOutputPort(f"tactile.{finger}_taxel_forces"),
+        builder.Connect(station.GetOutputPort(ports.taxel_forces(finger)),
                         channels.GetInputPort(f"{finger}_taxel_forces"))
-        builder.Connect(station.GetOutputPort(f"tactile.{finger}_pad_acceleration"),
+        builder.Connect(station.GetOutputPort(ports.pad_acceleration(finger)),
                         channels.GetInputPort(f"{finger}_pad_acceleration"))
     return channels

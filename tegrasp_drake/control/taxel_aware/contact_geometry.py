@@ -24,9 +24,6 @@ class Shift:
     dx_m: float
     dy_m: float
 
-    def is_negligible(self, min_shift_m: float) -> bool:
-        return abs(self.dx_m) < min_shift_m and abs(self.dy_m) < min_shift_m
-
 
 def approach_shift(contact: GraspContact, taxel_config,
                    pad_travel_to_grasp_m: float = 0.0) -> float:

@@ -22,6 +22,7 @@ from tegrasp_drake.control.grasp_controller import AddGraspController
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
 from tegrasp_drake.experiments.grasp_diagram import EXTRA_TIME_S, MakeSimulator
+from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.simulation.station import AddStationPlant, MakeGraspStation
 
 END_MARGIN_S = 0.5  # as a trial: simulated after the state machine ends
@@ -51,8 +52,8 @@ def record_plant_inputs(scenario, *, events=None) -> PlantInputs:
     station = builder.AddNamedSystem("station", MakeGraspStation(scenario))
     grasp = AddGraspController(builder, scenario=scenario, station=station, events=events)
     arm_log = LogVectorOutput(grasp.arm_desired_state, builder)
-    gripper_log = LogVectorOutput(station.GetOutputPort("gripper.plant_desired_state"), builder)
-    object_port = station.GetOutputPort("object.state")
+    gripper_log = LogVectorOutput(station.GetOutputPort(ports.GRIPPER_PLANT_DESIRED_STATE), builder)
+    object_port = station.GetOutputPort(ports.OBJECT_STATE)
     diagram = builder.Build()
     simulator = MakeSimulator(diagram, scenario)
     context = simulator.get_mutable_context()

@@ -23,8 +23,8 @@ from pymodbus import FramerType
 from pymodbus.client import ModbusSerialClient
 from pymodbus.exceptions import ModbusException
 
-from tegrasp_drake.rig import robotiq_units as units
-from tegrasp_drake.hardware.robotiq import registers
+from tegrasp_drake.robotiq import units
+from tegrasp_drake.robotiq import registers
 
 MIN_PERIOD = 1.0 / 200.0  # [s]
 

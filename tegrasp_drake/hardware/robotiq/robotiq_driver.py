@@ -5,7 +5,7 @@ stores it; its thread does the I/O), and a periodic unrestricted update copies t
 client's newest status into the Context. Nothing here waits on the serial line. The
 status output changes only when a new status read arrived; `stale` says when the newest
 is older than `stale_timeout` of wall time. `fault` names every problem: a nonzero gFLT
-(by the manual's name, robotiq_units.fault_name) or the client's error (e.g. activation
+(by the manual's name, robotiq.units.fault_name) or the client's error (e.g. activation
 failed on a named port).
 """
 
@@ -16,7 +16,7 @@ import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.robotiq import units
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DRIVER_ERROR, DeviceFault
 from tegrasp_drake.hardware.state_outputs import declare_scalar_state_outputs
 

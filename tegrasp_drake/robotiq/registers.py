@@ -12,19 +12,18 @@ Status: 3 registers read with function 4 at 2000 (0x07D0) (some firmware answers
     byte 4 gPO position, byte 5 gCU current (x 10 mA).
 
 The status vector is the project's `gripper.status` port:
-[gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO, gCU] (robotiq_units).
+[gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO, gCU] (robotiq.units).
 """
 
 import numpy as np
 
-from tegrasp_drake.rig import robotiq_units as units
+from tegrasp_drake.robotiq import units
 
 BAUDRATE = 115200
 DEVICE_ID = 9
 COMMAND_ADDRESS = 1000
 STATUS_ADDRESS = 2000
 REGISTER_COUNT = 3
-WRITE_FUNCTION = 16
 READ_FUNCTION = 4
 
 # Action request bits (command byte 0).

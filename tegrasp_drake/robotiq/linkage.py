@@ -24,7 +24,7 @@ when it acts below the finger's flip height: about the height of the follower's
 instantaneous centre with the driver held (where lines B-C and E-D cross), lowered by the
 spring's share (`flip_height`).
 
-The fingertip is the paper's tactile pad (tactile_fingertip.py), mounted where Robotiq's
+The fingertip is the paper's tactile pad (rig/tactile_fingertip.py), mounted where Robotiq's
 stock pad sits on the follower: Menagerie's pad boxes span 111.9-149.4 mm from the base in
 the open pose, so the pad centre is at z = 130.7 mm; its contact face lies at y = 42.5 mm,
 half the 85 mm stroke.

@@ -1,7 +1,7 @@
 import pytest
 from pydrake.multibody.plant import CalcContactFrictionFromSurfaceProperties, CoulombFriction
 
-from tegrasp_drake.modelgen import materials
+from tegrasp_drake.rig import materials
 
 
 def test_geometry_coefficients_are_the_rounded_fit_of_the_intended_pairs():

@@ -1,5 +1,5 @@
 """The simulated 2F-85 finger linkage against the closed form of its five-bar
-(modelgen/finger_linkage.py), on the gripper bench (the gripper alone, welded)."""
+(robotiq/linkage.py), on the gripper bench (the gripper alone, welded)."""
 
 import math
 
@@ -9,8 +9,8 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import EventStatus
 
 from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.modelgen import finger_linkage as linkage
-from tegrasp_drake.rig import robotiq_units as ru
+from tegrasp_drake.robotiq import linkage
+from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_bench import (BenchObstacle, MakeGripperBench,
                                                     loop_closure_error_m)
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from tegrasp_drake.hardware.robotiq.registers import (
+from tegrasp_drake.robotiq.registers import (
     command_registers, command_registers_from_vector, decode_command_registers,
     status_from_registers, status_registers)
 

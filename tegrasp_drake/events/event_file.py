@@ -1,0 +1,255 @@
+"""The JSON files of memorized events: one event's file and the folder's index.
+
+    events/index.json                      the list of events, with their metadata
+    events/<object>/<transition>.json      one event: four max-normalised windows
+
+Files are plain JSON, written with sorted keys, one-space indent, each window on one line
+and Python's shortest round-trip float repr, so that a file reads back to the same float64
+values and re-running the record step on the same data produces identical bytes. Any
+problem when reading (a missing, truncated or invalid file, a wrong format_version, a
+missing field, a window of the wrong length) raises MemorizedEventError, whose message
+names the file and the command that remakes it. FORMAT.md describes every field.
+"""
+
+import json
+import math
+import pathlib
+
+import numpy as np
+
+from tegrasp_drake.rig.channels import CHANNEL_NAMES
+from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
+from tegrasp_drake.tactile.sampling import samples_per_window
+from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.events.transitions import TRANSITIONS
+
+FORMAT_VERSION = 2
+# Version 1 files lack `object_description`; they are read by taking it from the object
+# section of their `scenario` text (FORMAT.md, Versions).
+MIGRATED_VERSIONS = (1,)
+EVENT_FORMAT = "tegrasp.memorized_event"
+INDEX_FORMAT = "tegrasp.memorized_event_index"
+INDEX_FILE = "index.json"
+RECORD_COMMAND = "tegrasp record-events"
+
+
+class MemorizedEventError(Exception):
+    """A memorized event or index file is missing or unusable."""
+
+    def __init__(self, path, problem: str, object_name: str | None = None):
+        self.path = pathlib.Path(path)
+        remake = f"{RECORD_COMMAND} --object {object_name}" if object_name else RECORD_COMMAND
+        super().__init__(f"{self.path}: {problem}. Remake it with `{remake}`.")
+
+
+# ---- Writing -------------------------------------------------------------------------
+
+
+def event_summary(event: MemorizedEvent) -> dict:
+    """The metadata shared by an event's file and its index entry."""
+    return {
+        "object": event.object_name,
+        "transition": event.transition,
+        "channels": list(event.channel_names),
+        "sa_rate_hz": float(event.sa_rate_hz),
+        "ra_rate_hz": float(event.ra_rate_hz),
+        "window_s": float(event.window_s),
+        "pre_transition_s": float(event.pre_transition_s),
+        "normalization": event.normalization,
+        "scenario": event.scenario,
+        "package_versions": dict(sorted(event.package_versions.items())),
+        "object_description": dict(event.object_description),
+    }
+
+
+def event_to_json(event: MemorizedEvent) -> dict:
+    """The JSON object stored in an event's file."""
+    data = event_summary(event)
+    data.update({
+        "format": EVENT_FORMAT,
+        "format_version": FORMAT_VERSION,
+        "physical_event": TRANSITIONS[event.transition],
+        "transition_time_s": float(event.transition_time_s),
+        "samples": {name: event.channel(name).tolist() for name in CHANNEL_NAMES},
+    })
+    return data
+
+
+def _render(value, indent: str = "") -> str:
+    """JSON text with sorted keys, one item per line, but each list of numbers on one line."""
+    inner = indent + " "
+    if isinstance(value, dict) and value:
+        items = [f"{inner}{json.dumps(key)}: {_render(value[key], inner)}"
+                 for key in sorted(value)]
+        return "{\n" + ",\n".join(items) + "\n" + indent + "}"
+    if isinstance(value, list) and value and not all(_is_number(v) for v in value):
+        items = [inner + _render(item, inner) for item in value]
+        return "[\n" + ",\n".join(items) + "\n" + indent + "]"
+    return json.dumps(value, allow_nan=False)
+
+
+def event_json_text(data: dict) -> str:
+    """The file text of a JSON object: _render's layout and a final newline."""
+    return _render(data) + "\n"
+
+
+# ---- Reading -------------------------------------------------------------------------
+
+
+def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None) -> dict:
+    if not path.is_file():
+        raise MemorizedEventError(path, "file is missing", object_name)
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except UnicodeDecodeError as error:
+        raise MemorizedEventError(path, f"is not UTF-8 text ({error})", object_name) from None
+    except json.JSONDecodeError as error:
+        raise MemorizedEventError(
+            path, f"is not valid JSON, perhaps truncated ({error})", object_name) from None
+    if not isinstance(data, dict) or data.get("format") != expected_format:
+        raise MemorizedEventError(path, f"is not a '{expected_format}' file", object_name)
+    version = data.get("format_version")
+    if version != FORMAT_VERSION and version not in MIGRATED_VERSIONS:
+        raise MemorizedEventError(
+            path, f"has format_version {version!r}; this tegrasp reads versions "
+            f"{', '.join(map(str, (*MIGRATED_VERSIONS, FORMAT_VERSION)))}", object_name)
+    return data
+
+
+def _description_from_scenario(scenario_text: str, path, object_name) -> dict:
+    """A version-1 file's object description: the object section of its scenario text."""
+    import yaml
+    try:
+        scenario = yaml.safe_load(scenario_text)
+        obj = scenario["object"]
+        description = {name: obj.get(name, "") for name in DESCRIPTION_FIELDS}
+        description["size"] = [float(v) for v in description["size"]]
+        description["mass"], description["friction"] = (float(obj["mass"]),
+                                                        float(obj["friction"]))
+        if not description["shape"] or not description["size"]:
+            raise KeyError("shape")
+    except (yaml.YAMLError, TypeError, KeyError, ValueError):
+        raise MemorizedEventError(
+            path, "is a format_version 1 file whose scenario text does not describe the "
+            "object (shape, size, mass, friction), so it cannot be checked against the "
+            "object it is used for", object_name) from None
+    return description
+
+
+def _object_description(data: dict, path, object_name) -> dict:
+    """The file's object description (version 2), or its migration (version 1)."""
+    if data.get("format_version") in MIGRATED_VERSIONS:
+        return _description_from_scenario(
+            _field(data, "scenario", "text", path, object_name), path, object_name)
+    description = _field(data, "object_description", "object", path, object_name)
+    if not description:
+        return {}  # unknown (synthetic events); the controller refuses such events
+    for name in DESCRIPTION_FIELDS:
+        if name not in description:
+            raise MemorizedEventError(path, f"field 'object_description.{name}' is missing",
+                                      object_name)
+    ok = (isinstance(description["shape"], str) and isinstance(description["file"], str)
+          and isinstance(description["size"], list)
+          and all(_is_number(v) for v in description["size"])
+          and _is_number(description["mass"]) and _is_number(description["friction"]))
+    if not ok:
+        raise MemorizedEventError(path, "field 'object_description' must hold shape and file "
+                                  "(text), size (list of numbers), mass and friction "
+                                  "(numbers)", object_name)
+    return dict(description)
+
+
+def _is_number(value) -> bool:
+    return (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value))
+
+
+_KINDS = {"number": _is_number, "text": lambda v: isinstance(v, str),
+          "list": lambda v: isinstance(v, list), "object": lambda v: isinstance(v, dict)}
+
+
+def _field(data: dict, name: str, kind: str, path, object_name):
+    """data[name], checked to be of `kind` (a key of _KINDS)."""
+    if name not in data:
+        raise MemorizedEventError(path, f"field '{name}' is missing", object_name)
+    if not _KINDS[kind](data[name]):
+        article = "an" if kind == "object" else "a"
+        raise MemorizedEventError(path, f"field '{name}' is not {article} {kind}",
+                                  object_name)
+    return data[name]
+
+
+def _samples(data: dict, name: str, length: int, path, object_name) -> list[float]:
+    samples = _field(data, "samples", "object", path, object_name)
+    if name not in samples:
+        raise MemorizedEventError(path, f"field 'samples.{name}' is missing", object_name)
+    values = samples[name]
+    if not isinstance(values, list) or not all(_is_number(v) for v in values):
+        raise MemorizedEventError(
+            path, f"field 'samples.{name}' is not a list of finite numbers", object_name)
+    if len(values) != length:
+        raise MemorizedEventError(
+            path, f"field 'samples.{name}' has {len(values)} samples; the window needs "
+            f"{length}", object_name)
+    return values
+
+
+def read_memorized_event(path, *, object_name: str | None = None,
+                         transition: str | None = None) -> MemorizedEvent:
+    """Load one event file; object_name and transition, if given, must match its content."""
+    path = pathlib.Path(path)
+    data = _read_json(path, EVENT_FORMAT, object_name)
+    file_object = _field(data, "object", "text", path, object_name)
+    owner = object_name or file_object
+    numbers = {name: float(_field(data, name, "number", path, owner))
+               for name in ("sa_rate_hz", "ra_rate_hz", "window_s", "pre_transition_s",
+                            "transition_time_s")}
+    texts = {name: _field(data, name, "text", path, owner)
+             for name in ("transition", "normalization", "scenario")}
+    channels = _field(data, "channels", "list", path, owner)
+    versions = _field(data, "package_versions", "object", path, owner)
+    description = _object_description(data, path, owner)
+    try:
+        lengths = [samples_per_window(numbers["window_s"], numbers[rate])
+                   for rate in ("sa_rate_hz", "sa_rate_hz", "ra_rate_hz", "ra_rate_hz")]
+    except ValueError as error:
+        raise MemorizedEventError(path, str(error), owner) from None
+    windows = [_samples(data, name, length, path, owner)
+               for name, length in zip(CHANNEL_NAMES, lengths)]
+    try:
+        event = MemorizedEvent(
+            object_name=file_object, transition=texts["transition"],
+            sa=np.array(windows[:2], dtype=float), ra=np.array(windows[2:], dtype=float),
+            sa_rate_hz=numbers["sa_rate_hz"], ra_rate_hz=numbers["ra_rate_hz"],
+            window_s=numbers["window_s"], pre_transition_s=numbers["pre_transition_s"],
+            transition_time_s=numbers["transition_time_s"], scenario=texts["scenario"],
+            package_versions=versions, normalization=texts["normalization"],
+            channel_names=tuple(channels), object_description=description)
+    except ValueError as error:
+        raise MemorizedEventError(path, str(error), owner) from None
+    zero = event.zero_channels()
+    if zero:
+        raise MemorizedEventError(path, f"channels {zero} are zero throughout the window: "
+                                  "Eq. 3 could never match them", owner)
+    for name, expected, found in (("object", object_name, event.object_name),
+                                  ("transition", transition, event.transition)):
+        if expected is not None and expected != found:
+            raise MemorizedEventError(path, f"holds {name} '{found}', expected '{expected}'",
+                                      owner)
+    return event
+
+
+def read_index(events_dir) -> list[dict]:
+    """The index's entries (object, transition, file and the events' metadata)."""
+    path = pathlib.Path(events_dir) / INDEX_FILE
+    data = _read_json(path, INDEX_FORMAT, None)
+    entries = _field(data, "events", "list", path, None)
+    for number, entry in enumerate(entries):
+        if not isinstance(entry, dict):
+            raise MemorizedEventError(path, f"entry {number} of 'events' is not an object")
+        for name in ("object", "transition", "file"):
+            _field(entry, name, "text", path, None)
+        file = pathlib.PurePosixPath(entry["file"])
+        if file.is_absolute() or ".." in file.parts:
+            raise MemorizedEventError(path, f"entry {number} points outside the folder")
+    return entries

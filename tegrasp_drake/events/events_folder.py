@@ -1,0 +1,165 @@
+"""An events folder: save an object's memorized events with the index, load them back,
+find the folder that holds an object's events.
+
+Saving is all or nothing: every file is staged beside its target, then all are renamed
+into place together with Ctrl-C held back, the index last (event_file.py has the files'
+layout).
+"""
+
+import os
+import pathlib
+from collections.abc import Iterable, Sequence
+
+from tegrasp_drake.rig.files import interruptions_deferred, staged_file
+from tegrasp_drake.events.event_file import (
+    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
+    event_json_text, event_summary, event_to_json, read_index, read_memorized_event)
+from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_order
+
+
+def _sorted_events(events: Iterable[MemorizedEvent]) -> list[MemorizedEvent]:
+    return sorted(events, key=lambda e: (e.object_name, transition_order(e.transition)))
+
+
+def save_memorized_events(events_dir, events: Iterable[MemorizedEvent], *,
+                          keep_other_objects: bool = True,
+                          required: Sequence[str] = REQUIRED_TRANSITIONS) -> list[pathlib.Path]:
+    """Write the events' files and the index; returns the paths written.
+
+    Each object given replaces that object's previous events (stale files of that object
+    are removed). With keep_other_objects, the index keeps the entries of objects not given
+    (so recording one object keeps the others); otherwise the index lists only `events`.
+    Every object must have the `required` transitions (REQUIRED_TRANSITIONS; a corrective
+    events folder: CORRECTIVE_TRANSITIONS).
+    """
+    events_dir = pathlib.Path(events_dir)
+    events = _sorted_events(events)
+    keys = [(e.object_name, e.transition) for e in events]
+    if len(set(keys)) != len(keys):
+        raise ValueError("two events share an object and a transition")
+    objects = sorted({e.object_name for e in events})
+    for object_name in objects:
+        missing = [t for t in required if (object_name, t) not in keys]
+        if missing:
+            raise ValueError(f"object '{object_name}' lacks transitions {missing}")
+    kept_entries = []
+    if keep_other_objects and (events_dir / INDEX_FILE).exists():
+        kept_entries = [entry for entry in read_index(events_dir)
+                        if entry["object"] not in objects]
+    entries = kept_entries + [dict(event_summary(e), file=e.relative_path()) for e in events]
+    entries.sort(key=lambda entry: (entry["object"], transition_order(entry["transition"])))
+    index = {"format": INDEX_FORMAT, "format_version": FORMAT_VERSION,
+             "remake_command": RECORD_COMMAND, "events": entries}
+    # All or nothing: every file is staged beside its target first, then the renames and
+    # the stale files' removal commit together with Ctrl-C held back, the index last.
+    staged = []
+    events_dir.mkdir(parents=True, exist_ok=True)
+    try:
+        for event in events:
+            path = events_dir / event.relative_path()
+            path.parent.mkdir(parents=True, exist_ok=True)
+            staged.append((staged_file(path, event_json_text(event_to_json(event))), path))
+        staged.append((staged_file(events_dir / INDEX_FILE, event_json_text(index)),
+                       events_dir / INDEX_FILE))
+        with interruptions_deferred():
+            for object_name in objects:
+                object_dir = events_dir / object_name
+                new_files = {f"{e.transition}.json" for e in events
+                             if e.object_name == object_name}
+                if object_dir.is_dir():
+                    for stale in sorted(object_dir.glob("*.json")):
+                        if stale.name not in new_files:
+                            stale.unlink()
+            for temporary, path in staged:
+                os.replace(temporary, path)
+    except BaseException:
+        for temporary, _ in staged:
+            if temporary.exists():
+                temporary.unlink()
+        raise
+    written = [path for _, path in staged]
+    return written
+
+
+def _load_entry(events_dir: pathlib.Path, entry: dict) -> MemorizedEvent:
+    event = read_memorized_event(events_dir / entry["file"], object_name=entry["object"],
+                                 transition=entry["transition"])
+    expected = dict(event_summary(event), file=event.relative_path())
+    if "object_description" not in entry:  # a version-1 index: migrated from the file
+        expected.pop("object_description")
+    for name, value in expected.items():
+        if entry.get(name) != value:
+            raise MemorizedEventError(
+                events_dir / INDEX_FILE,
+                f"entry {entry['object']}/{entry['transition']} says {name} = "
+                f"{entry.get(name)!r} but {entry['file']} says {value!r}", entry["object"])
+    return event
+
+
+def load_memorized_events(events_dir, object_name: str, *,
+                          required: Sequence[str] = REQUIRED_TRANSITIONS
+                          ) -> dict[str, MemorizedEvent]:
+    """The memorized events of `object_name`, by transition, in grasp order; the folder
+    must hold its `required` transitions (a corrective events folder:
+    CORRECTIVE_TRANSITIONS)."""
+    events_dir = pathlib.Path(events_dir)
+    entries = [e for e in read_index(events_dir) if e["object"] == object_name]
+    if not entries:
+        objects = sorted({e["object"] for e in read_index(events_dir)})
+        raise MemorizedEventError(
+            events_dir / INDEX_FILE,
+            f"no memorized events for object '{object_name}' (it lists {objects})",
+            object_name)
+    events = _sorted_events(_load_entry(events_dir, entry) for entry in entries)
+    windows = {(e.window_s, e.sa_rate_hz, e.ra_rate_hz): e for e in events}
+    if len(windows) > 1:
+        shown = "; ".join(f"{e.relative_path()}: {w:g} s at {sa:g}/{ra:g} Hz"
+                          for (w, sa, ra), e in windows.items())
+        raise MemorizedEventError(
+            events_dir / INDEX_FILE, f"the events of '{object_name}' have different windows "
+            f"or rates (SA/RA), which one matcher cannot use ({shown})", object_name)
+    missing = [t for t in required if t not in {e.transition for e in events}]
+    if missing:
+        raise MemorizedEventError(
+            events_dir / INDEX_FILE, f"lists no {', '.join(missing)} event of object "
+            f"'{object_name}' (every object needs {', '.join(required)})",
+            object_name)
+    return {event.transition: event for event in events}
+
+
+def events_folder_of(folders, object_name: str) -> pathlib.Path | None:
+    """The first of `folders` whose index lists `object_name` (None if none does)."""
+    for folder in map(pathlib.Path, folders):
+        if (folder / INDEX_FILE).is_file() and any(
+                e["object"] == object_name for e in read_index(folder)):
+            return folder
+    return None
+
+
+def find_memorized_events(folders, object_name: str, *,
+                          required: Sequence[str] = REQUIRED_TRANSITIONS
+                          ) -> tuple[pathlib.Path, dict[str, MemorizedEvent]]:
+    """(folder, events) of `object_name` from the first of `folders` whose index lists it
+    (a folder without an index is passed over); MemorizedEventError says where it looked."""
+    folders = [pathlib.Path(f) for f in folders]
+    looked = []
+    for folder in folders:
+        if not (folder / INDEX_FILE).is_file():
+            looked.append(f"{folder} (no {INDEX_FILE})")
+            continue
+        if any(e["object"] == object_name for e in read_index(folder)):
+            return folder, load_memorized_events(folder, object_name, required=required)
+        objects = sorted({e["object"] for e in read_index(folder)})
+        looked.append(f"{folder} (has {', '.join(objects) or 'none'})")
+    error = MemorizedEventError(folders[0] / INDEX_FILE if folders else INDEX_FILE,
+                                "no events", object_name)
+    error.args = (f"no memorized events of object '{object_name}' in {'; '.join(looked)}. "
+                  f"Record them with `{RECORD_COMMAND} ...` (they go to the first folder).",)
+    raise error
+
+
+def load_all_memorized_events(events_dir) -> dict[str, dict[str, MemorizedEvent]]:
+    """Every object's memorized events: {object: {transition: event}}."""
+    objects = sorted({e["object"] for e in read_index(events_dir)})
+    return {name: load_memorized_events(events_dir, name) for name in objects}
