@@ -8,9 +8,12 @@ the two apart:
   inputs:  arm.desired_state (12: q [rad], v [rad/s]), gripper.command (3: rPR, rSP, rFR)
   outputs: arm.position_measured (6), arm.velocity_measured (6), arm.torque_measured (6),
            gripper.status (8, robotiq_units order),
-           tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N),
+           tactile.left_taxel_forces (12, N), tactile.right_taxel_forces (12, N): with
+           the capacitive transducer, calibrated newtons or AD7147 counts
+           (capacitive_taxels.py),
            tactile.left_pad_acceleration (3), tactile.right_pad_acceleration (3): each pad's
-           PVDF film in acceleration-equivalent units [m/s^2], on the pad normal (z)
+           PVDF film in acceleration-equivalent units [m/s^2], on the pad normal (z), or
+           its high-passed accelerometer (pad_accelerometers.py)
   simulation only (evaluation): object.state (13: quaternion wxyz, p_WO, w_WO, v_WO),
            tactile.true_taxel_forces (24, N), contact_results, body_poses, query_object,
            gripper.plant_desired_state (2: the simulated 2F-85 controller's set-point of
@@ -42,7 +45,9 @@ from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_
                                                     gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.object_model import AddObject, object_body
+from tegrasp_drake.simulation.capacitive_taxels import AddTaxelTransducer
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
+from tegrasp_drake.simulation.pad_accelerometers import AddPadAccelerometers
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
@@ -123,7 +128,9 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
 
 def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scenario):
     """Both pads' taxel arrays (TactilePads), the slip texture (PadSlipVibration) and the
-    films (PadFilms), connected to the finalized `plant`; returns (TactilePads, PadFilms)."""
+    films (PadFilms), connected to the finalized `plant`; returns (TactilePads, PadFilms).
+    With `vibration.transducer` accelerometer, the pads' accelerometers (PadAccelerometers)
+    take the films' place, without the slip texture."""
     pads = pad_geometries(plant, scene_graph, gripper)
     taxels = builder.AddNamedSystem(
         "tactile_pads", TactilePads(pads=pads, config=scenario.tactile,
@@ -131,6 +138,9 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scen
     builder.Connect(plant.get_contact_results_output_port(),
                     taxels.GetInputPort("contact_results"))
     builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
+    if scenario.vibration.transducer == "accelerometer":
+        return taxels, AddPadAccelerometers(builder, plant=plant, pads=pads,
+                                            config=scenario.vibration)
     slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, scenario.vibration)
     pad_forces = None
     if isinstance(gripper_hand(scenario.gripper.model), LinkageHand):
@@ -223,8 +233,9 @@ def MakeGraspStation(scenario, *, meshcat=None):
     taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
                                         gripper=gripper, object_body=object_body(plant, obj),
                                         scenario=scenario)
+    readings = AddTaxelTransducer(builder, taxels=taxels, tactile_config=scenario.tactile)
     for finger in FINGER_NAMES:
-        builder.ExportOutput(taxels.GetOutputPort(f"{finger}_taxel_forces"),
+        builder.ExportOutput(readings.GetOutputPort(f"{finger}_taxel_forces"),
                              f"tactile.{finger}_taxel_forces")
         builder.ExportOutput(films.GetOutputPort(f"{finger}_pad_vibration"),
                              f"tactile.{finger}_pad_acceleration")
