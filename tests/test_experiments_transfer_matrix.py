@@ -83,7 +83,7 @@ def test_the_committed_matrix_spec_loads_with_both_ends_and_one_factor_worlds():
      "sweep: {attempts: 0}\n", "field 'attempts'"),
 ])
 def test_a_bad_spec_is_refused_naming_the_field(tmp_path, text, words):
-    with pytest.raises(ConfigError, match=None) as error:
+    with pytest.raises(ConfigError) as error:
         LoadTransferSpec(write_spec(tmp_path, text))
     assert words in str(error.value)
     assert "\n" not in str(error.value)
@@ -95,7 +95,7 @@ def environment():
 
 
 def transfer_command(spec, out, *extra):
-    return [sys.executable, "-m", "tegrasp_drake.commands.transfer", str(spec), "--out",
+    return [sys.executable, "-m", "tegrasp_drake.cli", "transfer", str(spec), "--out",
             str(out), "--workers", "1", "--no-progress", *extra]
 
 

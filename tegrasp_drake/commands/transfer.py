@@ -84,19 +84,3 @@ def run(args) -> int:
         print(f"wrote {path}")
     return 1 if any(s.errors or s.unfinished for s in summaries.values()) else 0
 
-
-def main(argv=None) -> int:
-    """`python -m tegrasp_drake.commands.transfer SPEC [options]`, as `tegrasp transfer`."""
-    from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
-    parser = argparse.ArgumentParser(prog="tegrasp transfer",
-                                     description=__doc__.split("\n\n")[0], epilog=EPILOG,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    add_arguments(parser)
-    add_verbosity_arguments(parser)
-    args = parser.parse_args(argv)
-    configure_logging(args)
-    return run(args)
-
-
-if __name__ == "__main__":
-    sys.exit(main())
