@@ -17,8 +17,8 @@ import argparse
 import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
-from tegrasp_drake.commands.sweep import DEFAULT_TRIAL_FUNCTION, resolve_trial_function
-from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
+                                          resolve_trial_function)
 from tegrasp_drake.experiments.sweep.runner import SweepError, summary_text
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -38,16 +38,7 @@ A spec names the worlds (a scenario preset such as memorizing_world or faithful_
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("spec", metavar="SPEC.yaml", help="the transfer spec")
-    parser.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
-                        help=f"results folder; re-running resumes it (default: {DEFAULT_OUT})")
-    parser.add_argument("--workers", type=int, metavar="N",
-                        help="local worker processes (default: all cores)")
-    parser.add_argument("--scheduler", metavar="tcp://HOST:PORT",
-                        help="run on this Dask distributed scheduler (the 'dask' extra)")
-    parser.add_argument("--no-progress", action="store_true",
-                        help="no progress bar (there is none off a terminal either)")
-    parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
-                        help="the heat map's file format (default: %(default)s)")
+    add_runner_arguments(parser, default_out=DEFAULT_OUT)
     parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
                         help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
 
