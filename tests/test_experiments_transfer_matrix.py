@@ -183,3 +183,17 @@ def test_two_real_trials_run_end_to_end_and_resume_after_a_kill(tmp_path):
         result = json.loads(record.read_text())["result"]
         assert isinstance(result["hold_success"], bool) and result["transitions"]
     assert "| ideal | faithful | memorized | 2 |" in (out / "transfer.md").read_text()
+
+
+def test_missing_events_of_a_cell_are_named_before_any_trial_runs(tmp_path):
+    spec = write_spec(tmp_path, TWO_WORLDS.replace("controllers: [memorized]",
+                                                   "controllers: [taxel_aware]"))
+    out = tmp_path / "out"
+    shutil.copytree(paths.package_events_dir(), out / "events" / "ideal",
+                    ignore=shutil.ignore_patterns("ensemble", "corrective", "prismatic"))
+    done = subprocess.run(transfer_command(spec, out), env=environment(),
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert done.stderr.startswith("tegrasp transfer: error: trial taxel_aware/box/")
+    assert done.stderr.count("\n") == 1
+    assert not (out / "cells").exists()

@@ -246,12 +246,14 @@ def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
     from tegrasp_drake.experiments.trial import check_sweep_events, run_trial_from_spec
     for world in spec.memorizing_worlds():
         record_world_events(spec, world, world_events_folder(out_dir, world), log=log)
+    if trial_function is run_trial_from_spec:  # every cell's events, before any trial
+        for memorizing, running in spec.cells:
+            check_sweep_events([t.to_dict() for t in expand_trials(running_sweep(
+                spec, running))], world_events_folder(out_dir, memorizing))
     summaries = {}
     for memorizing, running in spec.cells:
         events = world_events_folder(out_dir, memorizing)
         sweep = running_sweep(spec, running)
-        if trial_function is run_trial_from_spec:
-            check_sweep_events([t.to_dict() for t in expand_trials(sweep)], events)
         name = cell_name(memorizing, running)
         log(f"cell {name}: events of {memorizing}, trials in {running}")
         summaries[name] = run_sweep(sweep, functools.partial(trial_function, events_dir=events),

@@ -21,7 +21,8 @@ from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 from tegrasp_drake.experiments.figures.figure_files import figure_path, new_figure, save_figure
 from tegrasp_drake.experiments.sweep.detection_report import event_trigger_rows
 from tegrasp_drake.experiments.sweep.records import load_records
-from tegrasp_drake.experiments.transfer_matrix import cell_folder, cell_name
+from tegrasp_drake.experiments.sweep.spec import expand_trials
+from tegrasp_drake.experiments.transfer_matrix import cell_folder, cell_name, running_sweep
 from tegrasp_drake.rig.files import write_atomically
 
 TABLE_FILE = "transfer.md"
@@ -48,14 +49,16 @@ class CellRow:
 
 
 def cell_rows(spec, out_dir) -> list[CellRow]:
-    """One CellRow per (cell, controller) with finished trials in `out_dir`."""
+    """One CellRow per (cell, controller) with finished trials of the spec in `out_dir`
+    (records of other trials in a cell's folder are left out, as the sweep's reports do)."""
     rows = []
     for memorizing, running in spec.cells:
         folder = cell_folder(out_dir, memorizing, running)
         if not (folder / "trials").is_dir():
             continue
+        ids = {trial.trial_id for trial in expand_trials(running_sweep(spec, running))}
         records = {trial_id: record for trial_id, record in load_records(folder).records.items()
-                   if record.get("result") is not None}
+                   if trial_id in ids and record.get("result") is not None}
         for controller in spec.sweep.controllers:
             mine = {k: r for k, r in records.items() if r["trial"]["controller"] == controller}
             if not mine:
