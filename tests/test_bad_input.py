@@ -77,6 +77,13 @@ def test_a_yaml_syntax_error_in_a_scenario_file_is_named(tmp_path, capfd):
                           "expected ',' or '}'")
 
 
+@pytest.mark.parametrize("command", [["record-events"], ["trial"]])
+def test_a_built_in_scenario_name_given_as_its_file_says_use_scenario_name(command, capfd):
+    code, text = run_cli([*command, "--scenario", "memorizing_world"], capfd)
+    assert_one_line_error(code, text, "'memorizing_world' is a built-in scenario",
+                          "--scenario-name memorizing_world")
+
+
 # --- object model files ----------------------------------------------------------------
 
 TWO_LINKS = """<?xml version="1.0"?><sdf version="1.9"><model name="two">

@@ -36,6 +36,14 @@ def test_override_changes_a_nested_field():
     (["object.name=model", "object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",
       "object.mass=0.1", "object.friction=0.5"], "model file '/no/such/model.sdf' does not exist"),
     (["plant_config.time_step=fast"], "field 'plant_config'"),
+    (["tactile.transducer=piezo"], "field 'tactile.transducer' must be one of force, "
+     "capacitive"),
+    (["vibration.transducer=microphone"], "field 'vibration.transducer' must be one of film, "
+     "accelerometer"),
+    (["tactile.capacitive.minimum_gap_fraction=1.5"],
+     "field 'tactile.capacitive.minimum_gap_fraction' must lie in"),
+    (["tactile.capacitive.output=volts"], "field 'tactile.capacitive.output' must be one of "
+     "calibrated, counts"),
 ])
 def test_bad_input_names_the_field(overrides, message):
     with pytest.raises(ConfigError, match=message.replace("[", r"\[").replace("(", r"\(")):

@@ -85,3 +85,14 @@ def process_reporting_fake_trial(trial):
     import time
     time.sleep(0.2)
     return {**fake_trial(trial), "worker_pid": os.getpid()}
+
+
+def fake_trial_with_events(trial, *, events_dir):
+    """fake_trial of a transfer cell, which hands each trial its memorizing world's events
+    folder: the result names that folder, so a test can check which events a cell used."""
+    result = fake_trial(trial)
+    result["transitions"] = [{"t": 1.0, "from": "Reach", "to": "Load",
+                              "trigger": "memorized_event"}]
+    result["physical_events"] = {"reach_load": 0.97}
+    result["events_dir"] = str(events_dir)
+    return result

@@ -63,6 +63,8 @@ from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSe
 from tegrasp_drake.simulation.station import pad_geometries
 from tegrasp_drake.simulation.gripper_bench import PadPush
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
+from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig, CapacitiveTaxels
+from tegrasp_drake.simulation.pad_accelerometers import PadAccelerometers
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
 
 # Modules whose systems have no block yet: each entry goes (and its systems join
@@ -149,6 +151,9 @@ CONSTRUCTORS = {
     HardwareStation: hardware_station,
     FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
     PadFilms: pad_films,
+    CapacitiveTaxels: lambda: CapacitiveTaxels(config=CapacitiveTaxelConfig()),
+    PadAccelerometers: lambda: PadAccelerometers(sample_rate_hz=1000.0, highpass_cutoff_hz=2.0,
+                                                 noise_std_mps2=0.05),
     PadNormalForces: lambda: PadNormalForces(plant=gripper_plant()[0], pads=gripper_plant()[1]),
     PadPush: lambda: PadPush(body_index=0, p_BP=[0.0, 0.0, 0.0], force_n=50.0, start_s=1.0),
     SimRobotiqDriver: lambda: SimRobotiqDriver(config=GripperDriverConfig()),

@@ -1,9 +1,11 @@
 """Command-line options shared by every command that loads a scenario."""
 
 import logging
+import pathlib
 
 from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO, LoadScenario
-from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file
 
 
 def add_scenario_arguments(parser) -> None:
@@ -18,6 +20,11 @@ def add_scenario_arguments(parser) -> None:
 
 def scenario_from_arguments(args):
     """Loads the scenario, or exits with the error message (no traceback)."""
+    if args.scenario and not pathlib.Path(args.scenario).exists() and \
+            args.scenario in (read_yaml_file(paths.scenarios_file(), "the scenario file") or {}):
+        raise SystemExit(f"tegrasp: error: --scenario takes a file of scenarios; "
+                         f"'{args.scenario}' is a built-in scenario: give --scenario-name "
+                         f"{args.scenario}")
     try:
         return LoadScenario(args.scenario, args.scenario_name, args.overrides)
     except ConfigError as e:

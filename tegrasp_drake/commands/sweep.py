@@ -61,6 +61,21 @@ only the missing ones run. Reports: table1.md/.csv, statistics.md/.json, summary
 README's results table) and success_maps.png."""
 
 
+def add_runner_arguments(parser: argparse.ArgumentParser, *, default_out: str) -> None:
+    """Where and how a sweep's trials run: --workers, --out, --scheduler, --no-progress,
+    and the reports' --format."""
+    parser.add_argument("--workers", type=int, metavar="N",
+                        help="local worker processes (default: all cores)")
+    parser.add_argument("--out", default=default_out, metavar="DIR",
+                        help=f"results folder; re-running resumes it (default: {default_out})")
+    parser.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                        help="run on this Dask distributed scheduler (the 'dask' extra)")
+    parser.add_argument("--no-progress", action="store_true",
+                        help="no progress bar (there is none off a terminal either)")
+    parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
+                        help="the figures' file format (default: %(default)s)")
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--spec", metavar="FILE.yaml",
                         help="a YAML sweep spec (grid, offsets, randomisation, "
@@ -73,16 +88,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="attempts per marker position (paper: 3)")
     parser.add_argument("--base-seed", type=int, metavar="N",
                         help="seed all trials' randomisation derives from")
-    parser.add_argument("--workers", type=int, metavar="N",
-                        help="local worker processes (default: all cores)")
-    parser.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
-                        help=f"results folder; re-running resumes it (default: {DEFAULT_OUT})")
-    parser.add_argument("--scheduler", metavar="tcp://HOST:PORT",
-                        help="run on this Dask distributed scheduler (the 'dask' extra)")
-    parser.add_argument("--no-progress", action="store_true",
-                        help="no progress bar (there is none off a terminal either)")
-    parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
-                        help="the figures' file format (default: %(default)s)")
+    add_runner_arguments(parser, default_out=DEFAULT_OUT)
     parser.add_argument("--benchmark", action="store_true",
                         help="time the memorized sweep with 1 and then 2 workers, each "
                              "into a temporary folder, and print wall times and speed-up")

@@ -31,7 +31,9 @@ from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJE
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
+from tegrasp_drake.simulation.capacitive_taxels import CAPACITIVE_OUTPUTS, TAXEL_TRANSDUCERS
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig
+from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
@@ -258,6 +260,27 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
                 "no hit)", disturbance.hit_time_s)
 
 
+def _check_transducers(scenario: Scenario, source: str) -> None:
+    """The SA and RA transducers by name, and the capacitive taxel's numbers."""
+    require(scenario.tactile.transducer in TAXEL_TRANSDUCERS, source, "tactile.transducer",
+            f"must be one of {', '.join(TAXEL_TRANSDUCERS)} (ideal force taxels, or the "
+            "AD7147's parallel-plate taxels)", scenario.tactile.transducer)
+    require(scenario.vibration.transducer in VIBRATION_TRANSDUCERS, source,
+            "vibration.transducer", f"must be one of {', '.join(VIBRATION_TRANSDUCERS)} "
+            "(the PVDF film, or a high-passed accelerometer on the pad)",
+            scenario.vibration.transducer)
+    capacitive = scenario.tactile.capacitive
+    require(capacitive.output in CAPACITIVE_OUTPUTS, source, "tactile.capacitive.output",
+            f"must be one of {', '.join(CAPACITIVE_OUTPUTS)}", capacitive.output)
+    for name, ok, words in (
+            ("relative_permittivity", lambda v: v >= 1.0, "must be at least 1 (vacuum)"),
+            ("noise_std_counts", lambda v: v >= 0.0, "must be zero (no noise) or positive"),
+            ("minimum_gap_fraction", lambda v: 0.0 < v < 1.0, "must lie in (0, 1)"),
+            ("calibration_force_n", lambda v: v > 0.0, "must be positive [N]")):
+        require(ok(getattr(capacitive, name)), source, f"tactile.capacitive.{name}", words,
+                getattr(capacitive, name))
+
+
 def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     """Checks values that the schema cannot; returns the scenario with its object resolved."""
     scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source))
@@ -285,6 +308,7 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
             scenario.plant_config.time_step)
     require(scenario.grasp.grip_force > 0, source, "grasp.grip_force", "must be positive [N]",
             scenario.grasp.grip_force)
+    _check_transducers(scenario, source)
     require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
             f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "
             "prismatic fingers)", scenario.gripper.model)

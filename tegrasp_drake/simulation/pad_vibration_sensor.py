@@ -52,7 +52,6 @@ from pydrake.multibody.plant import ContactResults
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import LeafSystem
 from pydrake.systems.primitives import RandomSource
-from pydrake.systems.sensors import Accelerometer
 
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION, PAD_MODULUS
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
@@ -60,6 +59,7 @@ from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, FilmParameters, advance_films,
                                                     film_sensitivity, film_step_matrices,
                                                     halfsine_mean_forces, impact_pulse)
+from tegrasp_drake.simulation.pad_accelerometers import AddPadFrameAccelerometer
 from tegrasp_drake.simulation.pad_slip_vibration import UPDATE_PERIOD_S as TEXTURE_PERIOD_S
 from tegrasp_drake.simulation.pad_slip_vibration import texture_acceleration
 
@@ -100,6 +100,11 @@ class VibrationSensorConfig:
     film_charge_gain_c_per_m: float = 2.5e-5
     feedback_capacitance_f: float = 1e-9
     internal_rate_hz: float = 20000.0  # exact integration points per second
+    # "film": the PVDF film above (the real pad's); "accelerometer": a rigid-body
+    # accelerometer on the pad, its normal axis high-passed at highpass_cutoff_hz
+    # (pad_accelerometers.py; the paper's simulation had one per pad). The film's own
+    # settings are then unused.
+    transducer: str = "film"
 
 
 def film_parameters(config: VibrationSensorConfig) -> FilmParameters:
@@ -399,16 +404,9 @@ def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorC
         config=config, with_texture=slip_vibration is not None))
     builder.Connect(force_port, films.GetInputPort("generalized_contact_forces"))
     for finger in FINGER_NAMES:
-        pad = pads[finger]
-        accelerometer = builder.AddNamedSystem(
-            f"{finger}_pad_accelerometer",
-            Accelerometer(plant.get_body(pad.body_index), pad.X_BP, np.zeros(3)))
-        builder.Connect(plant.get_body_poses_output_port(),
-                        accelerometer.get_body_poses_input_port())
-        builder.Connect(plant.get_body_spatial_velocities_output_port(),
-                        accelerometer.get_body_velocities_input_port())
-        builder.Connect(plant.get_body_spatial_accelerations_output_port(),
-                        accelerometer.get_body_accelerations_input_port())
+        accelerometer = AddPadFrameAccelerometer(
+            builder, plant=plant, pad=pads[finger], name=f"{finger}_pad_accelerometer",
+            gravity=np.zeros(3))
         builder.Connect(accelerometer.get_measurement_output_port(),
                         films.GetInputPort(f"{finger}_pad_frame_acceleration"))
     if slip_vibration is not None:

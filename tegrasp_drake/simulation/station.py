@@ -4,7 +4,9 @@ A JACO2 arm on a table, the tactile 2F-85-like gripper on its flange, the scenar
 on its marker (plus its offset), and the sensors: both pads' taxel arrays and vibration
 films. The exported ports are those of the hardware interface (rig/station_interface.py:
 its CONTROLLER_INPUTS and CONTROLLER_OUTPUTS), so a controller cannot tell the two apart;
-each pad's PVDF film is in acceleration-equivalent units [m/s^2], on the pad normal (z).
+the taxels' readings are newtons, or with the capacitive transducer calibrated newtons or
+AD7147 counts (capacitive_taxels.py); each pad's PVDF film is in acceleration-equivalent
+units [m/s^2] on the pad normal (z), or its high-passed accelerometer (pad_accelerometers.py).
 For evaluation the simulation also exports the ground truth that station_interface lists
 as simulation only: the object's state, the taxel forces before noise, the contact results,
 body poses and query object, the gripper's joint state and the simulated 2F-85
@@ -36,7 +38,9 @@ from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_
                                                     gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.object_model import AddObject, object_body
+from tegrasp_drake.simulation.capacitive_taxels import AddTaxelTransducer
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
+from tegrasp_drake.simulation.pad_accelerometers import AddPadAccelerometers
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
@@ -116,7 +120,9 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
 
 def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scenario):
     """Both pads' taxel arrays (TactilePads), the slip texture (PadSlipVibration) and the
-    films (PadFilms), connected to the finalized `plant`; returns (TactilePads, PadFilms)."""
+    films (PadFilms), connected to the finalized `plant`; returns (TactilePads, PadFilms).
+    With `vibration.transducer` accelerometer, the pads' accelerometers (PadAccelerometers)
+    take the films' place, without the slip texture."""
     pads = pad_geometries(plant, scene_graph, gripper)
     taxels = builder.AddNamedSystem(
         "tactile_pads", TactilePads(pads=pads, config=scenario.tactile,
@@ -124,6 +130,9 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scen
     builder.Connect(plant.get_contact_results_output_port(),
                     taxels.GetInputPort("contact_results"))
     builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
+    if scenario.vibration.transducer == "accelerometer":
+        return taxels, AddPadAccelerometers(builder, plant=plant, pads=pads,
+                                            config=scenario.vibration)
     slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, scenario.vibration)
     pad_forces = None
     if isinstance(gripper_hand(scenario.gripper.model), LinkageHand):
@@ -217,8 +226,9 @@ def MakeGraspStation(scenario, *, meshcat=None):
     taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
                                         gripper=gripper, object_body=object_body(plant, obj),
                                         scenario=scenario)
+    readings = AddTaxelTransducer(builder, taxels=taxels, tactile_config=scenario.tactile)
     for finger in FINGER_NAMES:
-        builder.ExportOutput(taxels.GetOutputPort(f"{finger}_taxel_forces"),
+        builder.ExportOutput(readings.GetOutputPort(f"{finger}_taxel_forces"),
                              ports.taxel_forces(finger))
         builder.ExportOutput(films.GetOutputPort(f"{finger}_pad_vibration"),
                              ports.pad_acceleration(finger))

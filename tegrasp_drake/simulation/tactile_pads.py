@@ -17,6 +17,7 @@ from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig
 from tegrasp_drake.simulation.contact_pressure import (polygon_fan_triangles,
                                                        surfaces_taxel_normal_forces)
 
@@ -29,11 +30,19 @@ class TactileSensorConfig:
 
     AD7147: 12 conversion stages at decimation 64 take about 9.2 ms (about 108 Hz); 1000 Hz
     is also selectable for an idealised sensor.
+
+    transducer: "force", the taxel forces with the noise, quantisation and offset below (an
+    ideal force sensor, as in the paper's simulation), or "capacitive", the real pad's
+    parallel-plate taxels read by the AD7147 (capacitive_taxels.py, settings in
+    `capacitive`; the force noise settings are then unused).
     """
     sample_rate_hz: float = 108.0
     noise_std_n: float = 0.005  # per taxel, Gaussian
     quantization_n: float = 0.001  # per taxel LSB; 0 disables
     offset_n: float = 0.0  # per taxel constant bias
+    transducer: str = "force"
+    capacitive: CapacitiveTaxelConfig = dataclasses.field(
+        default_factory=CapacitiveTaxelConfig)
 
 
 @dataclasses.dataclass(frozen=True)

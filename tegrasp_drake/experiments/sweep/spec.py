@@ -331,12 +331,18 @@ def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
     ConfigError naming the file and the field for unknown fields, wrong types and values
     that cannot run.
     """
-    source = str(path)
+    return sweep_spec_from_fields(read_yaml_file(path, "the sweep spec"), str(path),
+                                  builtin_objects=builtin_objects, controllers=controllers)
 
+
+def sweep_spec_from_fields(fields, source: str, *,
+                           builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+                           controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
+    """The SweepSpec of a spec file's parsed YAML data (LoadSweepSpec), or of a section of
+    another file holding the same fields; errors name `source`."""
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
-    fields = read_yaml_file(path, "the sweep spec")
     if fields is None:
         fields = {}
     # The grid has two forms, a list of markers or a product grid: it is read on its own.

@@ -1,0 +1,41 @@
+"""Rebuilds the transfer matrix's table (transfer.md) and heat map (transfer_matrix.png)
+from the committed records of its cells' sweeps.
+
+    python analysis/transfer_matrix.py SPEC.yaml RESULTS [--format png|pdf|svg]
+
+SPEC.yaml is the transfer spec the results were run with (analysis/transfer_matrix.yaml),
+RESULTS the folder `tegrasp transfer` wrote (its cells/ folder holds the records).
+"""
+
+import argparse
+import sys
+
+from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.experiments.transfer_matrix import LoadTransferSpec
+from tegrasp_drake.experiments.transfer_report import write_transfer_reports
+from tegrasp_drake.rig.typed_yaml import ConfigError
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("spec", help="the transfer spec (YAML)")
+    parser.add_argument("results", help="the folder `tegrasp transfer` wrote")
+    parser.add_argument("--format", choices=FIGURE_FORMATS, default="png")
+    args = parser.parse_args(argv)
+    try:
+        spec = LoadTransferSpec(args.spec)
+    except ConfigError as error:
+        print(f"transfer_matrix.py: error: {error}", file=sys.stderr)
+        return 2
+    written = write_transfer_reports(spec, args.results, figure_format=args.format)
+    if not written:
+        print(f"transfer_matrix.py: error: no finished trial in {args.results}/cells",
+              file=sys.stderr)
+        return 1
+    for path in written:
+        print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,77 @@
+"""`tegrasp transfer SPEC.yaml`: events memorized in one world, trials run in another.
+
+    tegrasp transfer SPEC.yaml [--out DIR] [--workers N] [--scheduler tcp://HOST:PORT]
+                     [--no-progress] [--format png|pdf|svg] [-v | -q]
+
+Records each memorizing world's events into DIR/events/<world>, runs each cell as an
+ordinary sweep into DIR/cells/<memorizing>-in-<running> (durable, resumable, process pool
+or Dask), then writes DIR/transfer.md and the heat map DIR/transfer_matrix.png
+(experiments/transfer_matrix.py, experiments/transfer_report.py). The same command into
+the same DIR resumes it. Exit codes: 0 every trial finished, 1 some raised or were left
+unfinished (run again to retry them), 2 bad input (nothing was run).
+
+Testing hook: `--trial-function MODULE:ATTR` (hidden from --help), as `tegrasp sweep`'s.
+"""
+
+import argparse
+import sys
+
+from tegrasp_drake.commands.progress import progress_wanted
+from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
+                                          resolve_trial_function)
+from tegrasp_drake.experiments.sweep.runner import SweepError, summary_text
+from tegrasp_drake.rig.files import folder_problem
+from tegrasp_drake.rig.typed_yaml import ConfigError
+
+DEFAULT_OUT = "results/transfer"
+
+EPILOG = """\
+examples:
+  tegrasp transfer analysis/transfer_matrix.yaml --out results/transfer
+  tegrasp transfer my_transfer.yaml --workers 2 --out out/transfer
+  tegrasp transfer analysis/transfer_matrix.yaml --scheduler tcp://10.0.0.5:8786
+
+A spec names the worlds (a scenario preset such as memorizing_world or faithful_world, plus
+--set overrides), the cells [memorizing world, running world] and the sweep every cell runs
+(docs/transfer.md). Re-running the command into the same --out resumes it."""
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("spec", metavar="SPEC.yaml", help="the transfer spec")
+    add_runner_arguments(parser, default_out=DEFAULT_OUT)
+    parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
+                        help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "transfer", help="events memorized in one world, trials run in another (a matrix "
+        "of sweeps)", description=__doc__.split("\n\n")[0], epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_arguments(parser)
+    parser.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from tegrasp_drake.experiments.transfer_matrix import LoadTransferSpec, run_transfer
+    from tegrasp_drake.experiments.transfer_report import write_transfer_reports
+    try:
+        if args.workers is not None and args.workers < 1:
+            raise SweepError(f"--workers must be at least 1, got {args.workers}")
+        problem = folder_problem(args.out)
+        if problem:
+            raise SweepError(f"--out {args.out}: {problem}; give a folder you can write")
+        spec = LoadTransferSpec(args.spec)
+        trial_function = resolve_trial_function(args.trial_function)
+        summaries = run_transfer(spec, trial_function, args.out, workers=args.workers,
+                                 scheduler=args.scheduler,
+                                 progress=not args.no_progress and progress_wanted(args))
+    except (ConfigError, SweepError) as error:
+        print(f"tegrasp transfer: error: {error}", file=sys.stderr)
+        return 2
+    for name, summary in summaries.items():
+        print(f"{name}: {summary_text(summary)}")
+    for path in write_transfer_reports(spec, args.out, figure_format=args.format):
+        print(f"wrote {path}")
+    return 1 if any(s.errors or s.unfinished for s in summaries.values()) else 0
+

@@ -1,0 +1,184 @@
+"""The real pad's SA transducer: each taxel a parallel-plate capacitor read by an AD7147.
+
+The paper's electrodes (Sec. IV-A, Fig. 7c) form a parallel-plate capacitor with the
+conductive fabric over the pad's elastomer; pressing the pad compresses the elastomer and
+the capacitance grows (the paper's Eq. 3 of Sec. IV-A):
+
+    Delta C = eps_r eps_0 A (1/d1 - 1/d0),    d1 = d0 - compression.
+
+Per taxel, the compression comes from the taxel's mean pressure p = F / A through the
+elastomer's modulus, as a thin layer under uniaxial stress: compression = d0 p / E, with
+d0 the elastomer's thickness and E its modulus, the pad model's own (PAD_THICKNESS,
+PAD_MODULUS; docs/model.md). The AD7147 turns Delta C into 16-bit counts around its
+mid-scale baseline; noise is added in counts and the counts are whole numbers.
+
+What the station then reports (`CapacitiveTaxelConfig.output`):
+  - "calibrated": newtons through the per-taxel straight line the hardware side uses
+    (hardware/myrio/tactile_calibration.py: F = max(0, gain (counts - baseline))), the gain
+    from one bench point, `calibration_force_n` on a taxel. The paper says only that "the
+    pressure applied on the finger is inferred from Delta C"; this project's hardware path
+    has that line, so it is the default. Because 1/d1 grows faster than the compression,
+    the calibrated force is nonlinear in the true force (below the calibration point it
+    reads low, above it high).
+  - "counts": the counts above the baseline, uncalibrated.
+
+Either way the SA channel (Eq. 1) sums the 12 readings, and the window normalisation
+divides out the scale but not the nonlinearity.
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.common import RandomDistribution
+from pydrake.systems.framework import LeafSystem
+from pydrake.systems.primitives import RandomSource
+
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
+from tegrasp_drake.modelgen.tactile_fingertip import PAD_THICKNESS
+from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.rig.taxel_layout import CELL_X, CELL_Y
+
+VACUUM_PERMITTIVITY_F_PER_M = 8.8541878128e-12
+TAXEL_TRANSDUCERS = ("force", "capacitive")
+CAPACITIVE_OUTPUTS = ("calibrated", "counts")
+# AD7147 data sheet: a 16-bit CDC over a +-8 pF input range, 65536 codes / 16 pF = 4096
+# counts per pF (0.244 fF a count); the no-touch reading sits at mid-scale, 32768, once the
+# stray capacitance is trimmed with the chip's offset DACs (Analog Devices' application
+# support says the same: 0.244 fF per count, zero at 32k).
+AD7147_COUNTS_PER_PF = 65536 / 16.0
+AD7147_BASELINE_COUNTS = 32768
+AD7147_MAX_COUNTS = 65535
+
+
+@dataclasses.dataclass
+class CapacitiveTaxelConfig:
+    """The capacitive taxel's parameters (used when `tactile.transducer` is capacitive)."""
+    # Silicone elastomer between electrode and fabric: 2.7 (PDMS, Dow Sylgard 184 data
+    # sheet, 2.72 at 100 Hz-100 kHz). An assumption: the paper does not name its elastomer.
+    relative_permittivity: float = 2.7
+    # Counts of noise per taxel reading, Gaussian. An assumption of the data sheet's order:
+    # the AD7147 resolves about 1 fF at decimation 64, i.e. about 4 counts.
+    noise_std_counts: float = 4.0
+    # The elastomer stops compressing at this fraction of its thickness (the gap cannot
+    # close: the fabric and the compressed rubber take the load). An assumption: pad
+    # pressures of the grasps here compress it by 2-30 %, far from this.
+    minimum_gap_fraction: float = 0.1
+    output: str = "calibrated"  # calibrated (newtons) or counts (above the baseline)
+    # The bench calibration's one point [N on a taxel]: a 0.5 kg weight, within the 1-10 N a
+    # taxel carries in the 25-100 N grasps.
+    calibration_force_n: float = 5.0
+
+
+def electrode_area_m2() -> float:
+    """A taxel electrode's area [m^2]: one cell of the pad's taxel grid."""
+    return CELL_X * CELL_Y
+
+
+def taxel_compression_m(forces_n, config: CapacitiveTaxelConfig) -> np.ndarray:
+    """Each taxel's elastomer compression [m] under its normal force [N]: d0 p / E, p the
+    taxel's mean pressure; zero for no (or negative) force, at most (1 - minimum gap) d0."""
+    pressure = np.maximum(np.asarray(forces_n, dtype=float), 0.0) / electrode_area_m2()
+    return np.minimum(PAD_THICKNESS * pressure / PAD_MODULUS,
+                      (1.0 - config.minimum_gap_fraction) * PAD_THICKNESS)
+
+
+def capacitance_change_f(compression_m, relative_permittivity: float) -> np.ndarray:
+    """Delta C = eps_r eps_0 A (1/d1 - 1/d0) [F], d0 the elastomer's thickness and
+    d1 = d0 - compression."""
+    d0 = PAD_THICKNESS
+    d1 = d0 - np.asarray(compression_m, dtype=float)
+    return (relative_permittivity * VACUUM_PERMITTIVITY_F_PER_M * electrode_area_m2()
+            * (1.0 / d1 - 1.0 / d0))
+
+
+def counts_above_baseline(forces_n, config: CapacitiveTaxelConfig,
+                          noise_counts=0.0) -> np.ndarray:
+    """The AD7147's reading of each taxel, counts above its baseline: Delta C in counts
+    plus noise, rounded to whole counts, clipped to the 16-bit range."""
+    delta_c = capacitance_change_f(taxel_compression_m(forces_n, config),
+                                   config.relative_permittivity)
+    counts = np.rint(delta_c * 1e12 * AD7147_COUNTS_PER_PF + noise_counts)
+    return np.clip(counts, -AD7147_BASELINE_COUNTS,
+                   AD7147_MAX_COUNTS - AD7147_BASELINE_COUNTS)
+
+
+def calibration_gain_n_per_count(config: CapacitiveTaxelConfig) -> float:
+    """The calibration line's gain [N/count]: the bench force over the (noise-free,
+    unrounded) counts it gives."""
+    delta_c = capacitance_change_f(taxel_compression_m(config.calibration_force_n, config),
+                                   config.relative_permittivity)
+    return config.calibration_force_n / float(delta_c * 1e12 * AD7147_COUNTS_PER_PF)
+
+
+def capacitive_readings(forces_n, config: CapacitiveTaxelConfig,
+                        noise_counts=0.0) -> np.ndarray:
+    """What the station reports for true taxel forces [N]: calibrated newtons (clipped at
+    zero, as the hardware's calibration does) or counts above the baseline."""
+    counts = counts_above_baseline(forces_n, config, noise_counts)
+    if config.output == "counts":
+        return counts
+    return np.maximum(calibration_gain_n_per_count(config) * counts, 0.0)
+
+
+class CapacitiveTaxels(LeafSystem):
+    """Both pads' capacitive taxels: the true taxel forces as an AD7147 reads them.
+
+    .. pydrake_system::
+
+        name: CapacitiveTaxels
+        input_ports:
+        - true_taxel_forces
+        - noise (optional)
+        output_ports:
+        - left_taxel_forces
+        - right_taxel_forces
+
+    Ports:
+        true_taxel_forces: 24 noise-free taxel normal forces [N], left then right, held at
+            the taxel rate (TactilePads' output).
+        noise: 24 unit Gaussian samples drawn at the taxel rate; declared only when
+            config.noise_std_counts > 0.
+        left_taxel_forces, right_taxel_forces: 12 readings each, calibrated newtons or
+            counts above the baseline (config.output).
+
+    No state: the outputs follow the held inputs, so the readings change exactly when a
+    taxel sample is taken.
+    """
+
+    def __init__(self, *, config: CapacitiveTaxelConfig):
+        super().__init__()
+        self._config = config
+        size = TAXELS_PER_PAD * len(FINGER_NAMES)
+        self._forces = self.DeclareVectorInputPort("true_taxel_forces", size)
+        self._noise = (self.DeclareVectorInputPort("noise", size)
+                       if config.noise_std_counts > 0 else None)
+        for k, finger in enumerate(FINGER_NAMES):
+            self.DeclareVectorOutputPort(
+                f"{finger}_taxel_forces", TAXELS_PER_PAD,
+                lambda context, output, k=k: output.SetFromVector(
+                    self._readings(context)[k * TAXELS_PER_PAD:(k + 1) * TAXELS_PER_PAD]))
+
+    def _readings(self, context) -> np.ndarray:
+        noise = 0.0
+        if self._noise is not None:
+            noise = self._config.noise_std_counts * self._noise.Eval(context)
+        return capacitive_readings(self._forces.Eval(context), self._config, noise)
+
+
+def AddTaxelTransducer(builder, *, taxels, tactile_config, name: str = "capacitive_taxels"):
+    """The system whose `<finger>_taxel_forces` outputs are the station's taxel readings:
+    `taxels` (TactilePads) itself for the ideal force transducer, else a CapacitiveTaxels
+    fed by its true forces and, with noise, a RandomSource at the taxel rate (seeded with
+    the diagram's random context)."""
+    if tactile_config.transducer == "force":
+        return taxels
+    config = tactile_config.capacitive
+    readings = builder.AddNamedSystem(name, CapacitiveTaxels(config=config))
+    builder.Connect(taxels.GetOutputPort("true_taxel_forces"),
+                    readings.GetInputPort("true_taxel_forces"))
+    if config.noise_std_counts > 0:
+        noise = builder.AddNamedSystem(f"{name}_noise", RandomSource(
+            RandomDistribution.kGaussian, TAXELS_PER_PAD * len(FINGER_NAMES),
+            1.0 / tactile_config.sample_rate_hz))
+        builder.Connect(noise.get_output_port(), readings.GetInputPort("noise"))
+    return readings
