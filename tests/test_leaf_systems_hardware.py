@@ -23,7 +23,7 @@ def _tactile_message(t: float) -> tuple[lcmt_tegrasp_tactile, float, float]:
     for name, value in (("left_taxel_forces", LEFT_TAXELS), ("right_taxel_forces", RIGHT_TAXELS),
                         ("left_pad_acceleration", LEFT_FILM),
                         ("right_pad_acceleration", RIGHT_FILM),
-                        ("time_measured", [12.3456784]), ("stale", [1.0]), ("zeroing", [0.0]),
+                        ("time_measured", [12.3456786]), ("stale", [1.0]), ("zeroing", [0.0]),
                         ("arrival_time", [5021.25])):
         sender.GetInputPort(name).FixValue(context, value)
     before = time.monotonic()
@@ -32,9 +32,9 @@ def _tactile_message(t: float) -> tuple[lcmt_tegrasp_tactile, float, float]:
 
 
 def test_tactile_message_carries_every_input_in_its_units():
-    message, before, after = _tactile_message(1.2345674)
-    assert message.utime == 1234567  # us, rounded
-    assert message.device_utime == 12345678  # 12.3456784 s
+    message, before, after = _tactile_message(1.2345676)
+    assert message.utime == 1234568  # us, to the nearest
+    assert message.device_utime == 12345679  # 12.3456786 s, to the nearest us
     assert (message.stale, message.zeroing) == (True, False)
     assert message.arrival_s == 5021.25
     assert before <= message.tick_s <= after  # the host clock when the message was built
@@ -50,7 +50,7 @@ def test_tactile_messages_decode_back_to_the_arrays_through_lcm_bytes():
                 for t in (0.001, 0.002)]
     arrays = tactile_arrays(messages)
     np.testing.assert_allclose(arrays["t"], [0.001, 0.002], rtol=0, atol=1e-12)
-    np.testing.assert_allclose(arrays["device_t"], [12.345678] * 2, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(arrays["device_t"], [12.345679] * 2, rtol=0, atol=1e-12)
     np.testing.assert_array_equal(arrays["taxels"],
                                   np.tile(np.concatenate([LEFT_TAXELS, RIGHT_TAXELS]), (2, 1)))
     np.testing.assert_array_equal(arrays["pad_acceleration"],
@@ -72,10 +72,10 @@ def _gripper_message(command) -> lcmt_tegrasp_gripper:
 
 
 def test_gripper_message_rounds_command_and_status_to_bytes():
-    message = _gripper_message([230.0, 127.4, 54.5])
+    message = _gripper_message([230.0, 127.6, 54.5])
     assert message.utime == 250000
     assert message.status_arrival_s == 77.5
-    assert list(message.command) == [230, 127, 54]  # round half to even: 54.5 -> 54
+    assert list(message.command) == [230, 128, 54]  # round half to even: 54.5 -> 54
     assert list(message.status) == [1, 1, 3, 2, 0, 230, 140, 32]
 
 
