@@ -1,6 +1,6 @@
 """The Cartesian arm controller (control/cartesian_arm_controller.py): from the measured
 joints it drives the joint command toward a grasp-frame pose, within the JACO2's limits,
-with the velocity the command's own rate one control step late.
+with the velocity the command's own rate one control step late."""
 
 import numpy as np
 from pydrake.common.value import AbstractValue
