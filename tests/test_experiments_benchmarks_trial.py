@@ -1,8 +1,10 @@
-"""The trial benchmark's parts: per-system costs from a profile, the plant-alone floor."""
+"""The trial benchmark's parts: per-system costs from a profile, the plant-alone floor, the
+trial-to-floor ratios and their report."""
 
 import cProfile
 import pstats
 
+import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
@@ -62,3 +64,42 @@ def test_the_plant_alone_floor_replays_the_trial_to_the_same_object_pose():
     run = run_plant_floor(scenario, inputs)
     assert run.sim_time_s == pytest.approx(inputs.times[-1])
     assert run.object_deviation_m < 1e-9  # the same contacts, step for step
+
+
+def test_trial_to_floor_ratios_are_per_repeat_and_the_report_shows_them(monkeypatch):
+    # Fake runs of known times (no simulation): the comparison must give each variant its
+    # medians, and each controller the median over repeats of its CPU (wall) time per
+    # simulated second over the floor's in the same repeat. The trials take 12 s of
+    # simulated time, the floor 10 s.
+    from tegrasp_drake.commands.benchmark import format_report
+    from tegrasp_drake.experiments.benchmarks import trial as benchmark
+    from tegrasp_drake.experiments.benchmarks.plant_floor import FloorRun
+    from tegrasp_drake.experiments.scenario import LoadScenario
+    trial_cpu = {"memorized": iter([24.0, 36.0, 30.0]), "open_loop": iter([12.0, 12.0, 18.0])}
+    floor_cpu = iter([5.0, 10.0, 6.0])
+    monkeypatch.setattr(benchmark, "record_plant_inputs", lambda scenario: None)
+    monkeypatch.setattr(benchmark, "time_trial", lambda scenario: benchmark._factors(
+        12.0, 2.0 * (cpu := next(trial_cpu[scenario.controller.name])), cpu))
+    monkeypatch.setattr(benchmark, "run_plant_floor", lambda scenario, inputs: FloorRun(
+        10.0, 2.0 * (cpu := next(floor_cpu)), cpu, 1e-12))
+    result = benchmark.compare_trials_with_floor(LoadScenario(), repeats=3,
+                                                 controllers=("memorized", "open_loop"))
+    # Per repeat, cost over floor = (trial cpu / 12) / (floor cpu / 10):
+    # memorized 4.0, 3.0, 4.1667 -> median 4.0; open_loop 2.0, 1.0, 2.5 -> median 2.0.
+    assert result["memorized"]["cost_over_floor_cpu"] == pytest.approx(4.0, rel=1e-12)
+    assert result["open_loop"]["cost_over_floor_cpu"] == pytest.approx(2.0, rel=1e-12)
+    for name in ("memorized", "open_loop"):  # wall = 2 cpu in every run: the same ratio
+        assert result[name]["cost_over_floor_wall"] == pytest.approx(
+            result[name]["cost_over_floor_cpu"], rel=1e-12)
+    assert result["memorized"]["cpu_time_s"] == 30.0  # median of 24, 36, 30
+    assert result["memorized"]["rtf_cpu"] == pytest.approx(12.0 / 30.0, rel=1e-12)
+    assert result["plant_alone"]["rtf_wall"] == pytest.approx(10.0 / 12.0, rel=1e-12)
+    assert result["plant_alone"]["object_deviation_from_trial_m"] == 1e-12
+    report = format_report({"object": "box", "repeats": 3, "trials": result})
+    # Rows: variant, rtf wall, rtf cpu, cost/floor cpu, cost/floor wall (printed rounded).
+    rows = {line.split()[0]: [float(x) for x in line.split()[1:]]
+            for line in report.splitlines()[2:5]}
+    assert rows.keys() == {"memorized", "open_loop", "plant_alone"}
+    np.testing.assert_allclose(rows["memorized"], [0.2, 0.4, 4.0, 4.0], atol=0.01)
+    np.testing.assert_allclose(rows["open_loop"], [0.5, 1.0, 2.0, 2.0], atol=0.01)
+    np.testing.assert_allclose(rows["plant_alone"], [10 / 12, 10 / 6], atol=0.01)

@@ -20,6 +20,7 @@ import yaml
 from pydrake.geometry import Meshcat
 from pydrake.lcm import DrakeLcm
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import Diagram, DiagramBuilder, LeafSystem
 
 import tegrasp_drake
@@ -62,18 +63,13 @@ from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSe
                                                            finger_force_indices)
 from tegrasp_drake.simulation.station import pad_geometries
 from tegrasp_drake.simulation.gripper_bench import PadPush
+from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
+from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
+from tegrasp_drake.simulation.tactile_pads import TactilePads, TactileSensorConfig
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig, CapacitiveTaxels
 from tegrasp_drake.simulation.pad_accelerometers import PadAccelerometers
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
-
-# Modules whose systems have no block yet: each entry goes (and its systems join
-# CONSTRUCTORS) once they are documented.
-PENDING_MODULES = (
-    "tegrasp_drake.simulation.object_force_pulse",
-    "tegrasp_drake.simulation.pad_slip_vibration",
-    "tegrasp_drake.simulation.tactile_pads",
-)
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 
@@ -157,6 +153,11 @@ CONSTRUCTORS = {
     PadNormalForces: lambda: PadNormalForces(plant=gripper_plant()[0], pads=gripper_plant()[1]),
     PadPush: lambda: PadPush(body_index=0, p_BP=[0.0, 0.0, 0.0], force_n=50.0, start_s=1.0),
     SimRobotiqDriver: lambda: SimRobotiqDriver(config=GripperDriverConfig()),
+    ObjectForcePulse: lambda: ObjectForcePulse(body_index=BodyIndex(1), config=DisturbanceConfig()),
+    PadSlipVibration: lambda: PadSlipVibration(pads=gripper_plant()[1], object_body_index=0,
+                                               config=VibrationSensorConfig()),
+    TactilePads: lambda: TactilePads(pads=gripper_plant()[1], config=TactileSensorConfig(),
+                                     seed=0),
     TaxelForceDisplay: lambda: TaxelForceDisplay(meshcat=Meshcat(), pads={},
                                                  config=TaxelForceDisplayConfig()),
 }
@@ -225,7 +226,7 @@ def test_block_lists_the_constructed_systems_ports_in_order(cls):
 
 def test_every_system_class_has_a_block():
     missing = [_qualified(cls) for cls in system_classes()
-               if cls.__module__ not in PENDING_MODULES and pydrake_system_block(cls) is None]
+               if pydrake_system_block(cls) is None]
     assert missing == []
 
 
@@ -234,10 +235,3 @@ def test_every_documented_system_is_checked_against_its_ports():
                  if pydrake_system_block(cls) is not None
                  and cls not in CONSTRUCTORS and cls not in NOT_CONSTRUCTED]
     assert unchecked == [], "add them to CONSTRUCTORS (or NOT_CONSTRUCTED, with the reason)"
-
-
-def test_pending_modules_still_have_undocumented_systems():
-    undocumented = {cls.__module__ for cls in system_classes()
-                    if pydrake_system_block(cls) is None}
-    assert [name for name in PENDING_MODULES if name not in undocumented] == [], \
-        "documented (or gone): remove them from PENDING_MODULES"

@@ -34,7 +34,7 @@ from pydrake.systems.framework import LeafSystem
 from pydrake.systems.primitives import RandomSource
 
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
-from tegrasp_drake.modelgen.tactile_fingertip import PAD_THICKNESS
+from tegrasp_drake.rig.tactile_fingertip import PAD_THICKNESS
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.rig.taxel_layout import CELL_X, CELL_Y
 

@@ -21,8 +21,16 @@ class ObjectForcePulse(LeafSystem):
     """A constant force `config.hit_force_n` [N, world frame] on the object's body origin
     during [hit_time_s, hit_time_s + hit_duration_s); nothing otherwise.
 
-    Output: applied_spatial_force (list of ExternallyAppliedSpatialForce), for the plant's
-    applied_spatial_force input.
+    .. pydrake_system::
+
+        name: ObjectForcePulse
+        output_ports:
+        - applied_spatial_force
+
+    Ports:
+        applied_spatial_force: (abstract list of ExternallyAppliedSpatialForce) the pulse on
+            the object's body origin during the hit, an empty list otherwise; for the
+            plant's applied_spatial_force input.
     """
 
     def __init__(self, *, body_index, config: DisturbanceConfig):

@@ -67,16 +67,30 @@ def tangential_slip_speed(X_WP: RigidTransform, V_WPad: SpatialVelocity, p_WPad_
 
 
 class PadSlipVibration(LeafSystem):
-    """The texture vibration of both pads, sampled at the film's rate.
+    """The texture vibration of both pads, sampled every UPDATE_PERIOD_S.
 
-    Inputs: body_poses, body_spatial_velocities (the plant's), true_taxel_forces (24, N:
-    left then right). Outputs: {left,right}_slip_vibration (3, m/s^2, expressed in the pad
-    frame; only its z, the normal, is non-zero) and texture_state (6: the discrete state,
-    from which the films synthesise the texture at their internal rate with
-    texture_acceleration). The state holds, per pad, the texture phase [rad], the
-    acceleration amplitude [m/s^2] and the slip speed [m/s], sampled every UPDATE_PERIOD_S
-    (the body poses and velocities are read only while a pad touches); between samples the
-    phase advances at the sampled speed.
+    .. pydrake_system::
+
+        name: PadSlipVibration
+        input_ports:
+        - body_poses
+        - body_spatial_velocities
+        - true_taxel_forces
+        output_ports:
+        - left_slip_vibration
+        - right_slip_vibration
+        - texture_state
+
+    Ports:
+        body_poses, body_spatial_velocities: the plant's; read only while a pad touches.
+        true_taxel_forces: (24) noise-free taxel forces [N], left then right (TactilePads).
+        left_slip_vibration, right_slip_vibration: (3) the texture's acceleration [m/s^2]
+            in the pad frame; only z, the pad normal, is non-zero.
+        texture_state: (6) the discrete state, from which the films synthesise the texture
+            at their internal rate with texture_acceleration: per pad (left, right), the
+            texture phase [rad], the acceleration amplitude [m/s^2] and the slip speed
+            [m/s], sampled every UPDATE_PERIOD_S; between samples the phase advances at
+            the sampled speed.
     """
 
     def __init__(self, *, pads: dict, object_body_index, config: "VibrationSensorConfig"):

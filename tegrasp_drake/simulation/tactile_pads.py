@@ -112,13 +112,23 @@ def apply_sensor_model(true_forces: np.ndarray, rng: np.random.Generator, noise_
 class TactilePads(LeafSystem):
     """Samples both pads' taxel arrays at a fixed rate.
 
-    Input ports:
-      - contact_results: the plant's ContactResults.
-      - body_poses: the plant's body poses (X_WB per body index).
-    Output ports (updated at `sample_rate_hz`, held in between):
-      - left_taxel_forces, right_taxel_forces: 12 measured normal forces [N] each, taxel
-        order of taxel_layout.py.
-      - true_taxel_forces: 24 noise-free forces [N] (left then right), for evaluation.
+    .. pydrake_system::
+
+        name: TactilePads
+        input_ports:
+        - contact_results
+        - body_poses
+        output_ports:
+        - left_taxel_forces
+        - right_taxel_forces
+        - true_taxel_forces
+
+    Ports (the outputs are updated at `sample_rate_hz` and held in between):
+        contact_results: the plant's ContactResults.
+        body_poses: the plant's body poses (X_WB per body index).
+        left_taxel_forces, right_taxel_forces: (12) measured normal forces [N] each, taxel
+            order of taxel_layout.py.
+        true_taxel_forces: (24) noise-free forces [N] (left then right), for evaluation.
     """
 
     def __init__(self, *, pads: dict, config: TactileSensorConfig, seed: int):

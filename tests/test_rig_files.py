@@ -1,0 +1,68 @@
+"""Writing the user's files (rig/files.py): an interrupted or failed write leaves the old
+file whole and no temporary behind; a claimed folder is never claimed twice."""
+
+import os
+import signal
+
+import pytest
+
+from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions_deferred,
+                                     temporary_sibling, write_atomically)
+
+
+def test_write_atomically_replaces_the_file_and_leaves_nothing_else(tmp_path):
+    target = tmp_path / "events.yaml"
+    target.write_text("old")
+    write_atomically(target, "new ü")
+    write_atomically(tmp_path / "data.bin", b"\x00\x01")
+    assert target.read_bytes() == "new ü".encode("utf-8")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["data.bin", "events.yaml"]
+
+
+def test_a_failed_write_leaves_the_old_file_and_no_temporary(tmp_path):
+    target = tmp_path / "events.yaml"
+    target.write_text("old")
+    with pytest.raises(TypeError):
+        write_atomically(target, 12345)  # neither text nor bytes: fails mid-write
+    with pytest.raises(OSError):
+        write_atomically(tmp_path / "missing" / "x.yaml", "data")
+    assert target.read_text() == "old"
+    assert [p.name for p in tmp_path.iterdir()] == ["events.yaml"]
+
+
+def test_temporary_sibling_renames_on_success_and_removes_on_error(tmp_path):
+    target = tmp_path / "trial.npz"
+    with temporary_sibling(target) as temporary:
+        assert temporary.parent == tmp_path and temporary.suffix == ".npz"
+        temporary.write_text("done")
+    assert target.read_text() == "done"
+    with pytest.raises(RuntimeError):
+        with temporary_sibling(target) as temporary:
+            temporary.write_text("half")
+            raise RuntimeError("the writer failed")
+    assert target.read_text() == "done"
+    assert [p.name for p in tmp_path.iterdir()] == ["trial.npz"]
+
+
+def test_ctrl_c_inside_the_block_is_acted_on_after_it():
+    finished = []
+    with pytest.raises(KeyboardInterrupt):
+        with interruptions_deferred():
+            os.kill(os.getpid(), signal.SIGINT)
+            finished.append(True)  # the block runs to its end first
+    assert finished == [True]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_claim_folder_is_true_once(tmp_path):
+    folder = tmp_path / "runs" / "run-1"
+    assert claim_folder(folder) is True
+    assert claim_folder(folder) is False
+    assert folder.is_dir()
+
+
+def test_folder_problem_names_a_file_in_the_way(tmp_path):
+    blocker = tmp_path / "out"
+    blocker.write_text("a file")
+    assert folder_problem(blocker / "sweep") == f"{blocker} is not a folder"
+    assert folder_problem(tmp_path / "new" / "deeper") is None

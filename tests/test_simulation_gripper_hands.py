@@ -1,0 +1,79 @@
+"""The two simulated hands' kinematic maps (simulation/gripper_hands.py): the actuated
+coordinate to half the pad opening and back, its rate, where the pads' centres lie along
+the approach axis, and the selector of the actuated joint's state."""
+
+import numpy as np
+import pytest
+from pydrake.multibody.plant import MultibodyPlant
+
+from tegrasp_drake.rig import paths
+from tegrasp_drake.simulation.gripper_hands import (LinkageHand, PrismaticHand,
+                                                    actuated_state_selector, gripper_hand)
+
+LINKAGE, PRISMATIC = LinkageHand(), PrismaticHand()
+DRIVER_ANGLES = np.radians([0.0, 10.0, 25.0, 40.0, 45.0])  # up to the pads meeting, 45.96 deg
+
+
+def test_gripper_hand_names_select_the_two_hands():
+    assert isinstance(gripper_hand("linkage"), LinkageHand)
+    assert isinstance(gripper_hand("prismatic"), PrismaticHand)
+
+
+@pytest.mark.parametrize("angle", DRIVER_ANGLES)
+def test_linkage_actuated_coordinate_inverts_half_opening(angle):
+    assert LINKAGE.actuated(LINKAGE.half_opening(angle)) == pytest.approx(angle, abs=1e-9)
+
+
+@pytest.mark.parametrize("angle", DRIVER_ANGLES[1:-1])
+def test_linkage_half_opening_rate_is_the_derivative(angle):
+    h = 1e-6
+    difference = (LINKAGE.half_opening(angle + h) - LINKAGE.half_opening(angle - h)) / (2 * h)
+    assert LINKAGE.half_opening_rate(angle) == pytest.approx(difference, rel=1e-6)
+    assert LINKAGE.half_opening_rate(angle) < 0  # the driver closes the fingers
+
+
+def test_linkage_opens_to_the_full_stroke_and_closes_as_the_driver_turns():
+    assert 2 * LINKAGE.half_opening(0.0) == pytest.approx(0.085, abs=1e-4)  # 85 mm stroke
+    openings = [LINKAGE.half_opening(a) for a in DRIVER_ANGLES]
+    assert np.all(np.diff(openings) < 0)
+
+
+def test_linkage_pad_centres_move_along_the_approach_axis_as_the_2f85s_do():
+    # The pad centre's travel from open (gap 85 mm) along the approach axis, from the
+    # linkage's closed form (DRAKE-NOTES: 5.43 / 10.24 / 11.82 / 12.91 / 13.54 mm at gaps
+    # 70 / 50 / 40 / 30 / 20 mm, matched by the simulated linkage within 0.01 mm).
+    open_offset = LINKAGE.pad_center_offset(0.085)
+    travel_mm = [1000 * (LINKAGE.pad_center_offset(gap) - open_offset)
+                 for gap in (0.07, 0.05, 0.04, 0.03, 0.02)]
+    np.testing.assert_allclose(travel_mm, [5.43, 10.24, 11.82, 12.91, 13.54], rtol=0,
+                               atol=0.02)
+    # The figures its docstring gives: -9.3 mm open, +1.8 mm at 45 mm, +4.0 mm at 25 mm.
+    np.testing.assert_allclose([1000 * LINKAGE.pad_center_offset(g)
+                                for g in (0.085, 0.045, 0.025)], [-9.3, 1.8, 4.0], rtol=0,
+                               atol=0.05)
+
+
+def test_prismatic_hand_moves_its_pads_along_the_stroke_only():
+    for q in (0.0, 0.02, 0.0425):
+        assert (PRISMATIC.half_opening(q), PRISMATIC.actuated(q)) == (q, q)
+        assert PRISMATIC.half_opening_rate(q) == 1.0
+        assert PRISMATIC.pad_center_offset(2 * q) == 0.0
+
+
+@pytest.mark.parametrize("hand", [LINKAGE, PRISMATIC], ids=["linkage", "prismatic"])
+def test_actuated_state_selector_picks_the_actuated_joints_position_and_velocity(hand):
+    plant = MultibodyPlant(0.0)
+    (gripper,) = paths.make_parser(plant).AddModels(url=hand.url)
+    plant.Finalize()
+    joint = plant.GetJointByName(hand.actuated_joint, gripper)
+    q = np.arange(1, plant.num_positions(gripper) + 1) * 0.01  # every coordinate distinct
+    v = -np.arange(1, plant.num_velocities(gripper) + 1) * 0.1
+    q_all, v_all = np.zeros(plant.num_positions()), np.zeros(plant.num_velocities())
+    plant.SetPositionsInArray(gripper, q, q_all)
+    plant.SetVelocitiesInArray(gripper, v, v_all)
+    selector = actuated_state_selector(plant, gripper, hand)
+    context = selector.CreateDefaultContext()
+    selector.get_input_port().FixValue(context, np.concatenate([q, v]))
+    np.testing.assert_array_equal(selector.get_output_port().Eval(context),
+                                  [q_all[joint.position_start()],
+                                   v_all[joint.velocity_start()]])
