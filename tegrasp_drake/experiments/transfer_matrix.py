@@ -196,7 +196,7 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
     the objects already there; returns how many objects it recorded. A folder recorded with
     other world settings is refused (SweepError)."""
     from tegrasp_drake.events import save_memorized_events
-    from tegrasp_drake.events.memorized_event import INDEX_FILE, read_index
+    from tegrasp_drake.events.event_file import INDEX_FILE, read_index
     from tegrasp_drake.experiments.record_events import RecordEventsError, record_events
     from tegrasp_drake.experiments.sweep.runner import SweepError
     from tegrasp_drake.rig.files import write_atomically
