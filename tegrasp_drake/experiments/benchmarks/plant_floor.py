@@ -32,7 +32,7 @@ CHECK_PERIOD_S = 0.25
 class PlantInputs:
     """The plant's inputs at each plant step of one trial and where the object ended."""
     times: np.ndarray  # (N,) [s]
-    arm_desired_state: np.ndarray  # (12, N): q [rad], v [rad/s]
+    arm_desired_state: np.ndarray  # (12, N): q, v of the arm [rad] or the carriage [m, rad]
     gripper_desired_state: np.ndarray  # (2, N): q [m], v [m/s]
     final_object_position: np.ndarray  # (3,) p_WO [m] at the end of the trial
 
@@ -50,7 +50,10 @@ def record_plant_inputs(scenario, *, events=None) -> PlantInputs:
     builder = DiagramBuilder()
     station = builder.AddNamedSystem("station", MakeGraspStation(scenario))
     grasp = AddGraspController(builder, scenario=scenario, station=station, events=events)
-    arm_log = LogVectorOutput(grasp.arm_desired_state, builder)
+    # The set-point the plant's arm PD reads: the arm's, or the carriage's on a carriage.
+    arm_log = LogVectorOutput(station.GetOutputPort("carriage.desired_state")
+                              if station.HasOutputPort("carriage.desired_state")
+                              else grasp.arm_desired_state, builder)
     gripper_log = LogVectorOutput(station.GetOutputPort("gripper.plant_desired_state"), builder)
     object_port = station.GetOutputPort("object.state")
     diagram = builder.Build()

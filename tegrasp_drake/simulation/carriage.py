@@ -1,0 +1,182 @@
+"""The Cartesian carriage: the gripper on six actuated joints that reproduce the JACO2's
+end-point behaviour, for sweeps (`station: !SimulatedStationConfig {arm: carriage}`).
+
+For the hand and the object the arm is a stiff pose source: the Jaco's firmware tracks its
+joints stiffly and compensates gravity. The carriage keeps what the hand feels of it and
+drops the rest: three prismatic joints along world x, y, z move the grasp frame G's origin,
+then three revolute joints about world z, y, x (yaw, pitch, roll: R = Rz Ry Rx, Drake's
+RollPitchYaw) turn G about its own origin, and the gripper is welded on the last one in
+the side-grasp orientation R_WG_SIDE_GRASP (all joint angles zero). The gimbal's
+singularity (pitch +-90 deg) is far from the grasp's few degrees of tilt.
+
+Why joints with the plant's implicit PD and not a floating gripper pushed by a spatial PD:
+SAP treats PD-controlled actuators as implicit constraints, so a stiffness of 4e4 N/m on a
+kilogram is stable at the 1 ms step with no Python in the loop; a spatial PD applied as an
+external force is explicit (stable only for k dt^2 / m well below 1) and would be a Python
+system evaluated every step.
+
+Stiffness, damping and inertia (`arm_endpoint_impedance`): those the arm's joint PD
+(ArmDriverConfig: kp, kd per joint) gives at G at the grasp pose, K_x = J^-T K_q J^-1,
+D_x = J^-T D_q J^-1, and the arm's operational-space inertia Lambda = (J M^-1 J^T)^-1,
+each J and M from the arm model (rig/arm_kinematics.py) and expressed in world at G. The
+carriage takes their diagonals (the arm's cross-couplings, up to 40 % of the diagonal in
+translation, are dropped). At the box's grasp pose this is about 4.5e4 / 1.3e4 / 5.1e3 N/m
+along x / y / z (the arm is stiffest along the approach, which points at its base) and
+400 / 5.9e3 / 5.3e3 N m/rad about x / y / z, with the arm's D_q = K_q / 10 damping
+(time constant 0.1 s), and 1.0 / 2.9 / 2.1 kg, 2e-4 / 0.23 / 0.43 kg m^2 of arm inertia.
+
+Frames: world W; G the grasp frame (origin between the pads' centres, z the approach).
+Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G's origin, expressed in W.
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
+from pydrake.multibody.tree import (JacobianWrtVariable, PdControllerGains, PrismaticJoint,
+                                    RevoluteJoint, RotationalInertia, SpatialInertia)
+
+from tegrasp_drake.rig.arm_kinematics import (R_WG_SIDE_GRASP, make_arm_control_plant,
+                                              solve_grasp_frame_ik)
+
+AXES = np.eye(3)
+ROTATION_AXES = (2, 1, 0)  # the gimbal: yaw about z, then pitch about y, then roll about x
+# Each gimbal body's own mass [kg]: the arm's inertia is in the translation bodies; a body
+# with none is not allowed, and 10 g at G's origin adds no moment about it.
+GIMBAL_BODY_MASS_KG = 0.01
+MIN_INERTIA_KG_M2 = 1e-6  # floor of a gimbal body's inertia step (a body needs some)
+
+
+@dataclasses.dataclass(frozen=True)
+class EndpointImpedance:
+    """Diagonal end-point impedance at G in world axes, [rotation x, y, z; translation x,
+    y, z]: stiffness [N m/rad; N/m], damping [N m s/rad; N s/m], inertia [kg m^2; kg]."""
+    stiffness: np.ndarray
+    damping: np.ndarray
+    inertia: np.ndarray
+
+
+def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedance:
+    """The JACO2's end-point impedance at G when G is at X_WG (see the module docstring):
+    its joint PD `arm_config` (ArmDriverConfig) mapped through the Jacobian, and its
+    operational-space inertia, diagonals in world axes."""
+    plant = make_arm_control_plant()
+    context = plant.CreateDefaultContext()
+    plant.SetPositions(context, solve_grasp_frame_ik(plant, X_WG))
+    world = plant.world_frame()
+    J = plant.CalcJacobianSpatialVelocity(context, JacobianWrtVariable.kV,
+                                          plant.GetFrameByName("grasp_frame"), np.zeros(3),
+                                          world, world)
+    J_inv = np.linalg.inv(J)
+    joints = np.eye(plant.num_velocities())
+    stiffness = J_inv.T @ (arm_config.position_gain * joints) @ J_inv
+    damping = J_inv.T @ (arm_config.damping_gain * joints) @ J_inv
+    inertia = np.linalg.inv(J @ np.linalg.inv(plant.CalcMassMatrix(context)) @ J.T)
+    return EndpointImpedance(np.diag(stiffness).copy(), np.diag(damping).copy(),
+                             np.diag(inertia).copy())
+
+
+@dataclasses.dataclass(frozen=True)
+class Carriage:
+    """The carriage in a plant: its model instance, its joints in actuator order (the order
+    of its desired-state input) and the body the gripper is welded to."""
+    instance: object
+    joints: tuple
+    translation_axes: tuple  # world axis (0 x, 1 y, 2 z) of each prismatic joint, in order
+    end_body: object
+
+
+def _translation_masses(inertia: np.ndarray):
+    """Prismatic joints heaviest first and each one's own body mass [kg], so that joint k
+    moves the arm's operational-space mass along its axis (Lambda's diagonal)."""
+    order = tuple(int(k) for k in np.argsort(-inertia[3:]))
+    masses = [inertia[3 + a] for a in order]
+    steps = [masses[k] - (masses[k + 1] if k + 1 < 3 else 0.0) for k in range(3)]
+    steps[-1] -= GIMBAL_BODY_MASS_KG * 3
+    return order, [max(step, GIMBAL_BODY_MASS_KG) for step in steps]
+
+
+def _body_inertia(mass_kg: float, inertia_kg_m2: float) -> SpatialInertia:
+    """A body's inertia about its origin: the mass there and an equal moment about any axis."""
+    return SpatialInertia.MakeFromCentralInertia(
+        mass_kg, np.zeros(3), RotationalInertia(inertia_kg_m2, inertia_kg_m2, inertia_kg_m2))
+
+
+def AddCarriage(plant, impedance: EndpointImpedance, name: str = "carriage") -> Carriage:
+    """Adds the six-joint carriage (see the module docstring) to the unfinalized `plant`,
+    with implicit PD gains from `impedance` and gravity off (the arm's firmware compensates
+    it); returns the Carriage. All joints at zero put G at W's origin in the side-grasp
+    orientation."""
+    instance = plant.AddModelInstance(name)
+    order, masses = _translation_masses(impedance.inertia)
+    parent, joints = plant.world_body(), []
+    for axis, mass in zip(order, masses):
+        body = plant.AddRigidBody(f"{name}_{'xyz'[axis]}_slide", instance,
+                                  _body_inertia(mass, MIN_INERTIA_KG_M2))
+        joints.append(plant.AddJoint(PrismaticJoint(
+            f"{name}_{'xyz'[axis]}", parent.body_frame(), body.body_frame(), AXES[axis])))
+        parent = body
+    # Gimbal bodies: each one's rotational inertia is the step that makes the joints before
+    # it see the arm's inertia about their axes (yaw sees all three bodies, roll one).
+    inertias = [impedance.inertia[a] for a in ROTATION_AXES] + [0.0]
+    for k, axis in enumerate(ROTATION_AXES):
+        step = max(inertias[k] - inertias[k + 1], MIN_INERTIA_KG_M2)
+        body = plant.AddRigidBody(
+            f"{name}_{'xyz'[axis]}_turn", instance, _body_inertia(GIMBAL_BODY_MASS_KG, step))
+        joints.append(plant.AddJoint(RevoluteJoint(
+            f"{name}_{'xyz'[axis]}_rotation", parent.body_frame(), body.body_frame(),
+            AXES[axis])))
+        parent = body
+    gains = ([(impedance.stiffness[3 + a], impedance.damping[3 + a]) for a in order]
+             + [(impedance.stiffness[a], impedance.damping[a]) for a in ROTATION_AXES])
+    for joint, (kp, kd) in zip(joints, gains):
+        actuator = plant.AddJointActuator(f"{joint.name()}_drive", joint)
+        actuator.set_controller_gains(PdControllerGains(p=kp, d=kd))
+    plant.set_gravity_enabled(instance, False)
+    return Carriage(instance, tuple(joints), order, parent)
+
+
+def carriage_positions(carriage: Carriage, X_WG: RigidTransform) -> np.ndarray:
+    """The carriage's joint positions [m, rad] (actuator order) that put G at X_WG."""
+    rpy = RollPitchYaw(X_WG.rotation() @ R_WG_SIDE_GRASP.inverse()).vector()  # [r, p, y]
+    translation = X_WG.translation()
+    return np.concatenate([[translation[a] for a in carriage.translation_axes],
+                           [rpy[2], rpy[1], rpy[0]]])
+
+
+def carriage_state(carriage: Carriage, X_WG: RigidTransform, V_WG: np.ndarray) -> np.ndarray:
+    """The carriage's joint positions and rates (actuator order) that put G at X_WG moving
+    with spatial velocity V_WG = [w_WG; v_WG] (world)."""
+    q = carriage_positions(carriage, X_WG)
+    rpy = RollPitchYaw(q[5], q[4], q[3])
+    rpy_dt = rpy.CalcRpyDtFromAngularVelocityInParent(V_WG[:3])  # [r, p, y] rates
+    v = np.concatenate([[V_WG[3 + a] for a in carriage.translation_axes],
+                        [rpy_dt[2], rpy_dt[1], rpy_dt[0]]])
+    return np.concatenate([q, v])
+
+
+class ArmGraspFrameKinematics:
+    """G's pose, spatial velocity and Jacobian of the arm model at given joint angles: what
+    the carriage needs of the arm to follow its commands and to report its torques."""
+
+    def __init__(self):
+        self._plant = make_arm_control_plant()
+        self._context = self._plant.CreateDefaultContext()
+        self._frame = self._plant.GetFrameByName("grasp_frame")
+
+    def pose_and_jacobian(self, q: np.ndarray):
+        """(X_WG, J_WG): G's pose and its 6 x 6 spatial-velocity Jacobian ([w; v], world)."""
+        self._plant.SetPositions(self._context, q)
+        world = self._plant.world_frame()
+        X_WG = self._frame.CalcPoseInWorld(self._context)
+        J = self._plant.CalcJacobianSpatialVelocity(self._context, JacobianWrtVariable.kV,
+                                                    self._frame, np.zeros(3), world, world)
+        return X_WG, J
+
+
+def wrench_on_arm(F_GJ_G: np.ndarray, R_WG: RotationMatrix) -> np.ndarray:
+    """The wrench the gripper puts on the arm at G, in world [Mx, My, Mz, Fx, Fy, Fz]
+    [N m, N], from the weld's reaction F_GJ_G = [torque; force] that the carriage exerts on
+    the gripper at G, in G (Drake's reaction forces at the joint's child frame)."""
+    R = R_WG.matrix()
+    return -np.concatenate([R @ F_GJ_G[:3], R @ F_GJ_G[3:]])
