@@ -15,15 +15,21 @@ kilogram is stable at the 1 ms step with no Python in the loop; a spatial PD app
 external force is explicit (stable only for k dt^2 / m well below 1) and would be a Python
 system evaluated every step.
 
-Stiffness, damping and inertia (`arm_endpoint_impedance`): those the arm's joint PD
-(ArmDriverConfig: kp, kd per joint) gives at G at the grasp pose, K_x = J^-T K_q J^-1,
-D_x = J^-T D_q J^-1, and the arm's operational-space inertia Lambda = (J M^-1 J^T)^-1,
-each J and M from the arm model (rig/arm_kinematics.py) and expressed in world at G. The
-carriage takes their diagonals (the arm's cross-couplings, up to 40 % of the diagonal in
-translation, are dropped). At the box's grasp pose this is about 4.5e4 / 1.3e4 / 5.1e3 N/m
-along x / y / z (the arm is stiffest along the approach, which points at its base) and
-400 / 5.9e3 / 5.3e3 N m/rad about x / y / z, with the arm's D_q = K_q / 10 damping
-(time constant 0.1 s), and 1.0 / 2.9 / 2.1 kg, 2e-4 / 0.23 / 0.43 kg m^2 of arm inertia.
+Stiffness, damping and inertia (`arm_endpoint_impedance`): what the arm's joint PD
+(ArmDriverConfig: kp, kd per joint) and its links give at G at the grasp pose. The arm's
+end-point stiffness is K_x = J^-T K_q J^-1 and its damping D_x = J^-T D_q J^-1 (J, the
+arm model's 6 x 6 Jacobian of G in world, rig/arm_kinematics.py); its operational-space
+inertia Lambda = (J M^-1 J^T)^-1. The carriage's joint along an axis gets what the arm
+shows to a force (or moment) along that axis alone at G, everything else free: the inverse
+of the compliance's diagonal, 1 / (K_x^-1)_ii, and likewise for damping and inertia. K_x's
+own diagonal would be the stiffness with the other five directions held, which a free
+hand does not have: along the stroke 1.3e4 N/m against the 560 N/m that a push there
+meets (the arm turns as it yields). At the box's grasp pose: 3.0e3 / 560 / 630 N/m along
+x / y / z (stiffest along the approach, which points at the arm's base; a 1.5 N object
+sags the hand 2.4 mm, as on the arm), 290 / 170 / 170 N m/rad about x / y / z, with the
+arm's D_q = K_q / 10 (time constant 0.1 s), and 0.92 / 0.098 / 0.094 kg,
+2e-4 / 0.010 / 0.013 kg m^2 of arm inertia. The couplings between directions (a push along
+y also turns the arm's hand) are dropped.
 
 Frames: world W; G the grasp frame (origin between the pads' centres, z the approach).
 Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G's origin, expressed in W.
@@ -49,8 +55,8 @@ MIN_INERTIA_KG_M2 = 1e-6  # floor of a gimbal body's inertia step (a body needs 
 
 @dataclasses.dataclass(frozen=True)
 class EndpointImpedance:
-    """Diagonal end-point impedance at G in world axes, [rotation x, y, z; translation x,
-    y, z]: stiffness [N m/rad; N/m], damping [N m s/rad; N s/m], inertia [kg m^2; kg]."""
+    """End-point impedance at G along world axes, [rotation x, y, z; translation x, y, z]:
+    stiffness [N m/rad; N/m], damping [N m s/rad; N s/m], inertia [kg m^2; kg]."""
     stiffness: np.ndarray
     damping: np.ndarray
     inertia: np.ndarray
@@ -58,8 +64,9 @@ class EndpointImpedance:
 
 def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedance:
     """The JACO2's end-point impedance at G when G is at X_WG (see the module docstring):
-    its joint PD `arm_config` (ArmDriverConfig) mapped through the Jacobian, and its
-    operational-space inertia, diagonals in world axes."""
+    its joint PD `arm_config` (ArmDriverConfig) and its inertia as felt along each world
+    axis at G alone, 1 / diag of the compliance (and of its damping and inertia's
+    inverses)."""
     plant = make_arm_control_plant()
     context = plant.CreateDefaultContext()
     plant.SetPositions(context, solve_grasp_frame_ik(plant, X_WG))
@@ -67,13 +74,13 @@ def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedanc
     J = plant.CalcJacobianSpatialVelocity(context, JacobianWrtVariable.kV,
                                           plant.GetFrameByName("grasp_frame"), np.zeros(3),
                                           world, world)
-    J_inv = np.linalg.inv(J)
+    # The inverses of K_x, D_x and Lambda: J K_q^-1 J^T and so on, no inverse of J needed.
     joints = np.eye(plant.num_velocities())
-    stiffness = J_inv.T @ (arm_config.position_gain * joints) @ J_inv
-    damping = J_inv.T @ (arm_config.damping_gain * joints) @ J_inv
-    inertia = np.linalg.inv(J @ np.linalg.inv(plant.CalcMassMatrix(context)) @ J.T)
-    return EndpointImpedance(np.diag(stiffness).copy(), np.diag(damping).copy(),
-                             np.diag(inertia).copy())
+    compliance = J @ (joints / arm_config.position_gain) @ J.T
+    damping_inverse = J @ (joints / arm_config.damping_gain) @ J.T
+    mobility = J @ np.linalg.inv(plant.CalcMassMatrix(context)) @ J.T
+    return EndpointImpedance(1.0 / np.diag(compliance), 1.0 / np.diag(damping_inverse),
+                             1.0 / np.diag(mobility))
 
 
 @dataclasses.dataclass(frozen=True)

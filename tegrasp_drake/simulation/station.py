@@ -46,8 +46,9 @@ from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
-from tegrasp_drake.simulation.carriage import (Carriage, EndpointImpedance, AddCarriage,
-                                               arm_endpoint_impedance, carriage_positions)
+from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinematics, Carriage,
+                                               EndpointImpedance, arm_endpoint_impedance,
+                                               carriage_positions)
 from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     gripper_hand)
@@ -232,9 +233,12 @@ def AddStationPlant(builder, scenario) -> StationPlant:
     set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
     plant.Finalize()
 
-    X_WG_start = RigidTransform(R_WG_SIDE_GRASP, scenario.arm.initial_gripper_xyz)
-    plant.SetDefaultPositions(arm, initial_arm_positions(scenario) if carriage is None
-                              else carriage_positions(carriage, X_WG_start))
+    q_arm = initial_arm_positions(scenario)
+    if carriage is None:
+        plant.SetDefaultPositions(arm, q_arm)
+    else:  # where the arm's start joints put G, so that the first command finds it there
+        X_WG_start, _ = ArmGraspFrameKinematics().pose_and_jacobian(q_arm)
+        plant.SetDefaultPositions(arm, carriage_positions(carriage, X_WG_start))
     plant.SetDefaultPositions(gripper, hand.default_positions())
     plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), object_pose_on_table(scenario))
     return StationPlant(plant, scene_graph, arm, gripper, obj, carriage, weld)

@@ -91,8 +91,8 @@ class FloorRun:
     object_deviation_m: float
 
 
-def run_plant_floor(scenario, inputs: PlantInputs) -> FloorRun:
-    """The station's plant alone, driven by `inputs` for the trial's duration."""
+def build_plant_floor(scenario, inputs: PlantInputs):
+    """(Simulator, StationPlant) of the station's plant alone, driven by `inputs`."""
     builder = DiagramBuilder()
     parts = AddStationPlant(builder, scenario)
     plant = parts.plant
@@ -102,7 +102,13 @@ def run_plant_floor(scenario, inputs: PlantInputs) -> FloorRun:
     builder.Connect(gripper.get_output_port(),
                     plant.get_desired_state_input_port(parts.gripper))
     diagram = builder.Build()
-    simulator = MakeSimulator(diagram, scenario)
+    return MakeSimulator(diagram, scenario), parts
+
+
+def run_plant_floor(scenario, inputs: PlantInputs) -> FloorRun:
+    """The station's plant alone, driven by `inputs` for the trial's duration."""
+    simulator, parts = build_plant_floor(scenario, inputs)
+    plant = parts.plant
     end = float(inputs.times[-1])
     wall, cpu = time.perf_counter(), time.process_time()
     simulator.Initialize()
