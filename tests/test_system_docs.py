@@ -19,7 +19,7 @@ import pytest
 import yaml
 from pydrake.geometry import Meshcat
 from pydrake.lcm import DrakeLcm
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.framework import Diagram, DiagramBuilder, LeafSystem
 
 import tegrasp_drake
@@ -62,7 +62,10 @@ from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSe
                                                            finger_force_indices)
 from tegrasp_drake.simulation.station import pad_geometries
 from tegrasp_drake.simulation.gripper_bench import PadPush
+from tegrasp_drake.simulation.carriage import AddCarriage
+from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
+from tegrasp_drake.simulation.station import carriage_impedance, initial_arm_positions
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
 
 # Modules whose systems have no block yet: simulation/ is being rewritten on other
@@ -118,6 +121,15 @@ def hardware_station():
             yield station
 
 
+@functools.cache
+def carriage():
+    """A Carriage (its plant finalized), with the arm's impedance at the box's grasp pose."""
+    plant = MultibodyPlant(1e-3)
+    made = AddCarriage(plant, carriage_impedance(LoadScenario(name="box")))
+    plant.Finalize()
+    return made
+
+
 # Class -> a zero-argument factory of a real instance, or of a context manager yielding one.
 # The device drivers get their real I/O objects unstarted: their constructors open nothing.
 CONSTRUCTORS = {
@@ -153,6 +165,10 @@ CONSTRUCTORS = {
     PadNormalForces: lambda: PadNormalForces(plant=gripper_plant()[0], pads=gripper_plant()[1]),
     PadPush: lambda: PadPush(body_index=0, p_BP=[0.0, 0.0, 0.0], force_n=50.0, start_s=1.0),
     SimRobotiqDriver: lambda: SimRobotiqDriver(config=GripperDriverConfig()),
+    CarriageCommand: lambda: CarriageCommand(
+        carriage(), initial_positions=initial_arm_positions(LoadScenario(name="box")),
+        period_s=1e-3),
+    CarriageWristWrench: lambda: CarriageWristWrench(weld_index=0, gripper_body_index=0),
     TaxelForceDisplay: lambda: TaxelForceDisplay(meshcat=Meshcat(), pads={},
                                                  config=TaxelForceDisplayConfig()),
 }
