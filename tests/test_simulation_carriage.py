@@ -2,7 +2,6 @@
 a commanded pose as its gains say, its weld measures the weight it carries, the arm's
 torque port maps back to that wrench, and a closed-loop trial on it grasps and lifts."""
 
-import dataclasses
 
 import numpy as np
 import pytest
@@ -63,14 +62,14 @@ def test_the_carriage_starts_where_the_arm_puts_the_grasp_frame(scenario):
     np.testing.assert_allclose(X_WG.translation(), scenario.arm.initial_gripper_xyz, atol=1e-6)
 
 
-def _simulate_tracking(scenario, X_WG_of_t, duration_s):
-    """The carriage station's plant driven by carriage_state(X_WG_of_t(t)) sampled at 1 ms
-    (first-order hold); returns (times t_k, the set-points at t_k, the carriage's positions
+def _simulate_tracking(scenario, set_point_of_t, duration_s):
+    """The carriage station's plant driven by the carriage set-points set_point_of_t(t)
+    (positions and rates, actuator order) sampled at 1 ms (first-order hold); returns (times t_k, the set-points at t_k, the carriage's positions
     after the step that began at t_k)."""
     builder = DiagramBuilder()
     parts = AddStationPlant(builder, scenario)
     times = np.arange(0.0, duration_s + 1e-9, 1e-3)
-    commanded = np.column_stack([X_WG_of_t(t) for t in times])
+    commanded = np.column_stack([set_point_of_t(t) for t in times])
     source = builder.AddSystem(TrajectorySource(
         PiecewisePolynomial.FirstOrderHold(times, commanded)))
     builder.Connect(source.get_output_port(),
