@@ -88,29 +88,29 @@ def _simulate_tracking(scenario, set_point_of_t, duration_s):
     return times[:-1], commanded[:6, :-1], np.array(measured).T, parts
 
 
-def _linear_tracking_error(M, K, D, times, accelerations):
-    """The tracking error of the linear PD model M e'' + D e' + K e = -M a(t) (a the
-    commanded joint accelerations, rates fed forward), integrated implicitly at 0.1 ms."""
-    dt, e, e_dot, out = 1e-4, np.zeros(len(K)), np.zeros(len(K)), []
-    fine = np.arange(times[0], times[-1] + 1e-12, dt)
-    a_fine = np.array([np.interp(fine, times, row) for row in accelerations])
+def _linear_pd_positions(M, K, D, dt, set_points, q0):
+    """The joint positions after each step of the linear PD model with the plant's implicit
+    step: M (v' - v) / dt = K (q_d - q') + D (v_d - v'), q' = q + dt v', the set-point
+    (q_d, v_d) held over the step; starting at q0 at rest."""
+    n = len(K)
     step = np.linalg.inv(M + dt * np.diag(D) + dt * dt * np.diag(K))
-    for k in range(len(fine)):
-        e_dot = step @ (M @ e_dot - dt * (M @ a_fine[:, k]) - dt * K * e)
-        e = e + dt * e_dot
-        out.append(e.copy())
-    out = np.array(out).T
-    return np.array([np.interp(times, fine, row) for row in out])
+    q, v, out = np.array(q0, dtype=float), np.zeros(n), []
+    for q_d, v_d in zip(set_points[:n].T, set_points[n:].T):
+        v = step @ (M @ v + dt * K * (q_d - q) + dt * D * v_d)
+        q = q + dt * v
+        out.append(q.copy())
+    return np.array(out).T
 
 
 def test_the_carriage_tracks_a_smooth_move_as_its_gains_say(scenario):
-    """A cosine move of 40 mm back and up in 0.8 s. With the commanded rates fed forward,
-    the carriage's joint error is that of the linear model M e'' + D e' + K e =
-    -M a_commanded (K, D its PD gains, M its block of the mass matrix with the hand held
-    rigid): within 10 % of that model's peak in each joint, the pitch that the hand's
-    offset centre of mass couples in included. (A turn about the fingers' own joint axes,
-    world z here, is left out: the hand's passive finger joints lag it, so the carriage
-    feels about half the inertia that the rigid model gives.)"""
+    """A cosine move of 40 mm back and up in 0.8 s, the commanded rates fed forward: the
+    carriage's joints follow the linear PD model of the plant's implicit step
+    (_linear_pd_positions: K, D its PD gains, M its block of the mass matrix with the hand
+    held rigid), within 2 % of that model's peak tracking error in each joint (measured:
+    0.07 % or less where the error is above 1 um).
+    The pitch that the hand's offset centre of mass couples in is included. (A turn about
+    the fingers' own joint axes, world z here, is left out: the hand's passive finger
+    joints lag it, so the carriage feels about half the inertia the rigid model gives.)"""
     start, _ = ArmGraspFrameKinematics().pose_and_jacobian(initial_arm_positions(scenario))
     parts0 = AddStationPlant(DiagramBuilder(), scenario)
     duration, move = 0.8, np.array([-0.04, 0.0, 0.04])
@@ -129,17 +129,17 @@ def test_the_carriage_tracks_a_smooth_move_as_its_gains_say(scenario):
     actuators = [plant.get_joint_actuator(a) for a in plant.GetJointActuatorIndices(parts.arm)]
     K = np.array([a.get_controller_gains().p for a in actuators])
     D = np.array([a.get_controller_gains().d for a in actuators])
-    rates = np.column_stack([profile(t)[6:] for t in times])
-    model = _linear_tracking_error(M, K, D, times, np.gradient(rates, times, axis=1))
-    error = measured - commanded
-    peak = np.max(np.abs(model), axis=1)
-    mismatch = np.max(np.abs(error - model), axis=1)
-    assert np.all(mismatch <= 0.1 * peak + 1e-7), (mismatch, peak)
+    set_points = np.column_stack([profile(t) for t in times])
+    model = _linear_pd_positions(M, K, D, times[1] - times[0], set_points, commanded[:, 0])
+    peak = np.max(np.abs(model - commanded), axis=1)
+    mismatch = np.max(np.abs(measured - model), axis=1)
+    assert np.all(mismatch <= 0.02 * peak + 1e-7), (mismatch, peak)
     np.testing.assert_allclose(measured[:, -1], commanded[:, -1], atol=1e-5)
 
 
 def test_the_carriage_yields_to_a_steady_force_as_its_stiffness_says(scenario):
-    """A 20 N push along world y on the hand at G, held: the carriage gives F / k_y."""
+    """A 20 N push along world y on the hand at G, held: G moves by the carriage's
+    compliance times the force, C = E diag(1 / k) E^T (E its prismatic axes)."""
     from pydrake.multibody.math import SpatialForce
     from pydrake.multibody.plant import ExternallyAppliedSpatialForce
     from pydrake.systems.primitives import ConstantValueSource
@@ -163,10 +163,11 @@ def test_the_carriage_yields_to_a_steady_force_as_its_stiffness_says(scenario):
                                                            np.concatenate([q0, np.zeros(6)]))
     plant.get_desired_state_input_port(parts.gripper).FixValue(context, [0.0, 0.0])
     simulator.AdvanceTo(1.0)  # ten of the carriage's d / k = 0.1 s time constants
-    y_joint = list(parts.carriage.translation_axes).index(1)
-    k_y = carriage_impedance(scenario).stiffness[4]
-    shift = plant.GetPositions(context, parts.arm)[y_joint] - q0[y_joint]
-    assert shift == pytest.approx(20.0 / k_y, rel=0.02)
+    axes = parts.carriage.translation_axes
+    compliance = axes @ np.diag(1.0 / carriage_impedance(scenario).stiffness[3:]) @ axes.T
+    shift = axes @ (plant.GetPositions(context, parts.arm)[:3] - q0[:3])
+    np.testing.assert_allclose(shift, compliance @ [0.0, 20.0, 0.0], atol=0.02 * 20.0 *
+                               compliance[1, 1])
 
 
 def _carriage_with_load(scenario, mass_kg, p_GL):

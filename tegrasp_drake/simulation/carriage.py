@@ -55,18 +55,25 @@ MIN_INERTIA_KG_M2 = 1e-6  # floor of a gimbal body's inertia step (a body needs 
 
 @dataclasses.dataclass(frozen=True)
 class EndpointImpedance:
-    """End-point impedance at G along world axes, [rotation x, y, z; translation x, y, z]:
-    stiffness [N m/rad; N/m], damping [N m s/rad; N s/m], inertia [kg m^2; kg]."""
+    """End-point impedance at G, [rotation about world x, y, z; translation along
+    translation_axes' columns]: stiffness [N m/rad; N/m], damping [N m s/rad; N s/m],
+    inertia [kg m^2; kg]. translation_axes: 3 x 3, unit axes in world, heaviest first."""
     stiffness: np.ndarray
     damping: np.ndarray
     inertia: np.ndarray
+    translation_axes: np.ndarray
+
+
+def _along(inverse: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """1 / (a^T X a) for each column a of `axes`: what a push along a alone meets."""
+    return 1.0 / np.einsum("ij,ik,kj->j", axes, inverse, axes)
 
 
 def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedance:
     """The JACO2's end-point impedance at G when G is at X_WG (see the module docstring):
-    its joint PD `arm_config` (ArmDriverConfig) and its inertia as felt along each world
-    axis at G alone, 1 / diag of the compliance (and of its damping and inertia's
-    inverses)."""
+    its joint PD `arm_config` (ArmDriverConfig) and its inertia as a push along each
+    carriage axis at G alone meets them; the translation axes are the principal axes of
+    the arm's translational mobility at G."""
     plant = make_arm_control_plant()
     context = plant.CreateDefaultContext()
     plant.SetPositions(context, solve_grasp_frame_ik(plant, X_WG))
@@ -79,28 +86,36 @@ def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedanc
     compliance = J @ (joints / arm_config.position_gain) @ J.T
     damping_inverse = J @ (joints / arm_config.damping_gain) @ J.T
     mobility = J @ np.linalg.inv(plant.CalcMassMatrix(context)) @ J.T
-    return EndpointImpedance(1.0 / np.diag(compliance), 1.0 / np.diag(damping_inverse),
-                             1.0 / np.diag(mobility))
+    inverse_masses, axes = np.linalg.eigh(mobility[3:, 3:])
+    axes = axes[:, np.argsort(inverse_masses)]  # heaviest first
+    axes *= np.sign(axes[np.argmax(np.abs(axes), axis=0), range(3)])  # mostly positive
+    rotation, translation = slice(0, 3), slice(3, 6)
+    return EndpointImpedance(
+        np.concatenate([_along(compliance[rotation, rotation], AXES),
+                        _along(compliance[translation, translation], axes)]),
+        np.concatenate([_along(damping_inverse[rotation, rotation], AXES),
+                        _along(damping_inverse[translation, translation], axes)]),
+        np.concatenate([_along(mobility[rotation, rotation], AXES),
+                        _along(mobility[translation, translation], axes)]),
+        axes)
 
 
 @dataclasses.dataclass(frozen=True)
 class Carriage:
     """The carriage in a plant: its model instance, its joints in actuator order (the order
-    of its desired-state input) and the body the gripper is welded to."""
+    of its desired-state input), its prismatic joints' unit axes in world (3 x 3, columns
+    in joint order) and the body the gripper is welded to."""
     instance: object
     joints: tuple
-    translation_axes: tuple  # world axis (0 x, 1 y, 2 z) of each prismatic joint, in order
+    translation_axes: np.ndarray
     end_body: object
 
 
-def _translation_masses(inertia: np.ndarray):
-    """Prismatic joints heaviest first and each one's own body mass [kg], so that joint k
-    moves the arm's operational-space mass along its axis (Lambda's diagonal)."""
-    order = tuple(int(k) for k in np.argsort(-inertia[3:]))
-    masses = [inertia[3 + a] for a in order]
-    steps = [masses[k] - (masses[k + 1] if k + 1 < 3 else 0.0) for k in range(3)]
-    steps[-1] -= GIMBAL_BODY_MASS_KG * 3
-    return order, [max(step, GIMBAL_BODY_MASS_KG) for step in steps]
+def _translation_masses(inertia: np.ndarray) -> list:
+    """Each prismatic body's own mass [kg], heaviest axis first, so that joint k moves the
+    arm's mass along its axis (a joint moves its own body and all after it)."""
+    masses = list(inertia[3:]) + [GIMBAL_BODY_MASS_KG * 3]
+    return [max(masses[k] - masses[k + 1], GIMBAL_BODY_MASS_KG) for k in range(3)]
 
 
 def _body_inertia(mass_kg: float, inertia_kg_m2: float) -> SpatialInertia:
@@ -115,13 +130,13 @@ def AddCarriage(plant, impedance: EndpointImpedance, name: str = "carriage") -> 
     it); returns the Carriage. All joints at zero put G at W's origin in the side-grasp
     orientation."""
     instance = plant.AddModelInstance(name)
-    order, masses = _translation_masses(impedance.inertia)
     parent, joints = plant.world_body(), []
-    for axis, mass in zip(order, masses):
-        body = plant.AddRigidBody(f"{name}_{'xyz'[axis]}_slide", instance,
+    axes = impedance.translation_axes
+    for k, mass in enumerate(_translation_masses(impedance.inertia)):
+        body = plant.AddRigidBody(f"{name}_slide_{k}", instance,
                                   _body_inertia(mass, MIN_INERTIA_KG_M2))
         joints.append(plant.AddJoint(PrismaticJoint(
-            f"{name}_{'xyz'[axis]}", parent.body_frame(), body.body_frame(), AXES[axis])))
+            f"{name}_slide_{k}", parent.body_frame(), body.body_frame(), axes[:, k])))
         parent = body
     # Gimbal bodies: each one's rotational inertia is the step that makes the joints before
     # it see the arm's inertia about their axes (yaw sees all three bodies, roll one).
@@ -134,20 +149,19 @@ def AddCarriage(plant, impedance: EndpointImpedance, name: str = "carriage") -> 
             f"{name}_{'xyz'[axis]}_rotation", parent.body_frame(), body.body_frame(),
             AXES[axis])))
         parent = body
-    gains = ([(impedance.stiffness[3 + a], impedance.damping[3 + a]) for a in order]
+    gains = ([(impedance.stiffness[3 + k], impedance.damping[3 + k]) for k in range(3)]
              + [(impedance.stiffness[a], impedance.damping[a]) for a in ROTATION_AXES])
     for joint, (kp, kd) in zip(joints, gains):
         actuator = plant.AddJointActuator(f"{joint.name()}_drive", joint)
         actuator.set_controller_gains(PdControllerGains(p=kp, d=kd))
     plant.set_gravity_enabled(instance, False)
-    return Carriage(instance, tuple(joints), order, parent)
+    return Carriage(instance, tuple(joints), axes.copy(), parent)
 
 
 def carriage_positions(carriage: Carriage, X_WG: RigidTransform) -> np.ndarray:
     """The carriage's joint positions [m, rad] (actuator order) that put G at X_WG."""
     rpy = RollPitchYaw(X_WG.rotation() @ R_WG_SIDE_GRASP.inverse()).vector()  # [r, p, y]
-    translation = X_WG.translation()
-    return np.concatenate([[translation[a] for a in carriage.translation_axes],
+    return np.concatenate([carriage.translation_axes.T @ X_WG.translation(),
                            [rpy[2], rpy[1], rpy[0]]])
 
 
@@ -157,7 +171,7 @@ def carriage_state(carriage: Carriage, X_WG: RigidTransform, V_WG: np.ndarray) -
     q = carriage_positions(carriage, X_WG)
     rpy = RollPitchYaw(q[5], q[4], q[3])
     rpy_dt = rpy.CalcRpyDtFromAngularVelocityInParent(V_WG[:3])  # [r, p, y] rates
-    v = np.concatenate([[V_WG[3 + a] for a in carriage.translation_axes],
+    v = np.concatenate([carriage.translation_axes.T @ V_WG[3:],
                         [rpy_dt[2], rpy_dt[1], rpy_dt[0]]])
     return np.concatenate([q, v])
 
