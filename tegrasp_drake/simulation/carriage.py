@@ -3,33 +3,35 @@ end-point behaviour, for sweeps (`station: !SimulatedStationConfig {arm: carriag
 
 For the hand and the object the arm is a stiff pose source: the Jaco's firmware tracks its
 joints stiffly and compensates gravity. The carriage keeps what the hand feels of it and
-drops the rest: three prismatic joints along world x, y, z move the grasp frame G's origin,
+drops the rest: three prismatic joints along three orthogonal world axes (the principal
+axes of the arm's translational mobility at G, below) move the grasp frame G's origin,
 then three revolute joints about world z, y, x (yaw, pitch, roll: R = Rz Ry Rx, Drake's
 RollPitchYaw) turn G about its own origin, and the gripper is welded on the last one in
 the side-grasp orientation R_WG_SIDE_GRASP (all joint angles zero). The gimbal's
 singularity (pitch +-90 deg) is far from the grasp's few degrees of tilt.
 
 Why joints with the plant's implicit PD and not a floating gripper pushed by a spatial PD:
-SAP treats PD-controlled actuators as implicit constraints, so a stiffness of 4e4 N/m on a
-kilogram is stable at the 1 ms step with no Python in the loop; a spatial PD applied as an
-external force is explicit (stable only for k dt^2 / m well below 1) and would be a Python
-system evaluated every step.
+SAP treats PD-controlled actuators as implicit constraints, stable at the 1 ms step for any
+gains, with no Python in the loop and no extra state; a spatial PD applied as an external
+force is explicit (stable only while k dt^2 / m and d dt / m stay well below 1, which the
+arm's 2e-4 kg m^2 about the approach axis does not promise) and would be a Python system
+evaluated every step.
 
 Stiffness, damping and inertia (`arm_endpoint_impedance`): what the arm's joint PD
-(ArmDriverConfig: kp, kd per joint) and its links give at G at the grasp pose. The arm's
-end-point stiffness is K_x = J^-T K_q J^-1 and its damping D_x = J^-T D_q J^-1 (J, the
-arm model's 6 x 6 Jacobian of G in world, rig/arm_kinematics.py); its operational-space
-inertia Lambda = (J M^-1 J^T)^-1. The carriage's joint along an axis gets what the arm
-shows to a force (or moment) along that axis alone at G, everything else free: the inverse
-of the compliance's diagonal, 1 / (K_x^-1)_ii, and likewise for damping and inertia. K_x's
-own diagonal would be the stiffness with the other five directions held, which a free
-hand does not have: along the stroke 1.3e4 N/m against the 560 N/m that a push there
-meets (the arm turns as it yields). At the box's grasp pose: 3.0e3 / 560 / 630 N/m along
-x / y / z (stiffest along the approach, which points at the arm's base; a 1.5 N object
-sags the hand 2.4 mm, as on the arm), 290 / 170 / 170 N m/rad about x / y / z, with the
-arm's D_q = K_q / 10 (time constant 0.1 s), and 0.92 / 0.098 / 0.094 kg,
-2e-4 / 0.010 / 0.013 kg m^2 of arm inertia. The couplings between directions (a push along
-y also turns the arm's hand) are dropped.
+(ArmDriverConfig: kp, kd per joint) and its links give at G at the grasp pose. With J the
+arm model's 6 x 6 Jacobian of G in world (rig/arm_kinematics.py), the arm's end-point
+compliance is C = J K_q^-1 J^T, the inverse of its damping J D_q^-1 J^T, and its mobility
+(inverse operational-space inertia) J M^-1 J^T. The prismatic axes are the eigenvectors of
+the mobility's translational block, so the carriage's translational inertia is the arm's
+with its couplings (the arm's mobility turns a vertical push at G into 0.22 of it along
+the stroke); along each axis a the joint gets what a push along a alone meets,
+1 / (a^T C a), and likewise damping and mass. Rotations, about world axes, get
+1 / C_ii. At the box's grasp pose: axes near x, (-0.12, 0.74, -0.66) and (0.01, 0.67,
+0.74), with 4.3e3 / 560 / 580 N/m and 1.0 / 0.12 / 0.078 kg; 290 / 170 / 170 N m/rad and
+2e-4 / 0.010 / 0.013 kg m^2 about x / y / z; the arm's D_q = K_q / 10 (a 0.1 s time
+constant). Left out: the couplings between translation and rotation and within the
+stiffness. (The stiffness matrix's own diagonal, J^-T K_q J^-1, is the arm with the other
+five directions held: along the stroke 1.3e4 N/m against the 560 N/m a push meets.)
 
 Frames: world W; G the grasp frame (origin between the pads' centres, z the approach).
 Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G's origin, expressed in W.
