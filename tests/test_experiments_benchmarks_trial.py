@@ -54,11 +54,12 @@ def test_system_costs_count_the_calls_cpp_made_and_the_evals():
 
 
 @pytest.mark.slow
-def test_the_plant_alone_floor_replays_the_trial_to_the_same_object_pose():
+@pytest.mark.parametrize("arm", ["jaco2", "carriage"])
+def test_the_plant_alone_floor_replays_the_trial_to_the_same_object_pose(arm):
     from tegrasp_drake.experiments.benchmarks.plant_floor import (record_plant_inputs,
                                                                   run_plant_floor)
     from tegrasp_drake.experiments.scenario import LoadScenario
-    scenario = LoadScenario()
+    scenario = LoadScenario(overrides=[f"station.arm={arm}", "random_seed=600"])
     inputs = record_plant_inputs(scenario)
     assert inputs.arm_desired_state.shape == (12, inputs.times.size)
     run = run_plant_floor(scenario, inputs)
@@ -103,3 +104,20 @@ def test_trial_to_floor_ratios_are_per_repeat_and_the_report_shows_them(monkeypa
     np.testing.assert_allclose(rows["memorized"], [0.2, 0.4, 4.0, 4.0], atol=0.01)
     np.testing.assert_allclose(rows["open_loop"], [0.5, 1.0, 2.0, 2.0], atol=0.01)
     np.testing.assert_allclose(rows["plant_alone"], [10 / 12, 10 / 6], atol=0.01)
+def test_the_station_benchmark_splits_a_timeline_into_phase_spans():
+    from tegrasp_drake.experiments.benchmarks.station_costs import _phase_sim, _phase_spans
+    timeline = [(0.0, "reach"), (3.6, "close"), (3.9, "lift"), (5.4, "hold")]
+    assert _phase_spans(timeline, 5.0) == [("reach", 0.0, 3.6), ("close", 3.6, 3.9),
+                                           ("lift", 3.9, 5.0)]
+    sim = _phase_sim(timeline, 6.0)
+    assert sim["reach"] == pytest.approx(3.6) and sim["hold"] == pytest.approx(0.6)
+    assert sim["place"] == 0.0
+
+
+def test_the_station_benchmark_counts_a_touching_reach_as_closing():
+    from tegrasp_drake.control.grasp_modes import Mode
+    from tegrasp_drake.experiments.benchmarks.station_costs import _phase
+    assert _phase(Mode.REACH, touched=False) == "reach"
+    assert _phase(Mode.REACH, touched=True) == "close"
+    assert _phase(Mode.LOAD, touched=True) == "close"
+    assert _phase(Mode.AVOID, touched=True) == "hold"

@@ -19,7 +19,7 @@ import pytest
 import yaml
 from pydrake.geometry import Meshcat
 from pydrake.lcm import DrakeLcm
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import Diagram, DiagramBuilder, LeafSystem
 
@@ -66,9 +66,12 @@ from tegrasp_drake.simulation.gripper_bench import PadPush
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.tactile_pads import TactilePads, TactileSensorConfig
-from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig, CapacitiveTaxels
 from tegrasp_drake.simulation.pad_accelerometers import PadAccelerometers
+from tegrasp_drake.simulation.carriage import AddCarriage
+from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
+from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
+from tegrasp_drake.simulation.station import carriage_impedance, initial_arm_positions
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
@@ -115,6 +118,15 @@ def hardware_station():
             yield station
 
 
+@functools.cache
+def carriage():
+    """A Carriage (its plant finalized), with the arm's impedance at the box's grasp pose."""
+    plant = MultibodyPlant(1e-3)
+    made = AddCarriage(plant, carriage_impedance(LoadScenario(name="box")))
+    plant.Finalize()
+    return made
+
+
 # Class -> a zero-argument factory of a real instance, or of a context manager yielding one.
 # The device drivers get their real I/O objects unstarted: their constructors open nothing.
 CONSTRUCTORS = {
@@ -158,6 +170,10 @@ CONSTRUCTORS = {
                                                config=VibrationSensorConfig()),
     TactilePads: lambda: TactilePads(pads=gripper_plant()[1], config=TactileSensorConfig(),
                                      seed=0),
+    CarriageCommand: lambda: CarriageCommand(
+        carriage(), initial_positions=initial_arm_positions(LoadScenario(name="box")),
+        period_s=1e-3),
+    CarriageWristWrench: lambda: CarriageWristWrench(weld_index=0, gripper_body_index=0),
     TaxelForceDisplay: lambda: TaxelForceDisplay(meshcat=Meshcat(), pads={},
                                                  config=TaxelForceDisplayConfig()),
 }

@@ -11,6 +11,7 @@ EPILOG = """\
 examples:
   tegrasp benchmark                      # 3 repeats of each controller and the floor, all tables
   tegrasp benchmark --repeats 5 --no-growth --no-profile --json
+  tegrasp benchmark --stations --set random_seed=600   # full arm against the carriage
 
 Variants alternate within each repeat; medians are printed, ratios are per repeat. It
 times its runs, so it shows no progress bar (the runs are the measurement). It took 6 min
@@ -30,6 +31,9 @@ def register(subparsers) -> None:
                         help="skip the contact-face and sensor-rate tables")
     parser.add_argument("--no-profile", action="store_true",
                         help="skip the per-system profile")
+    parser.add_argument("--stations", action="store_true",
+                        help="instead: the full-arm and the carriage stations' memorized "
+                        "trials, their plant-alone floors and the floor's cost per phase")
     parser.add_argument("--json", action="store_true")
     parser.set_defaults(func=run)
 
@@ -83,6 +87,12 @@ def run(args) -> int:
         print(f"tegrasp benchmark: --repeats {args.repeats}: give at least 1 run per variant")
         return 2
     scenario = scenario_from_arguments(args)
+    if args.stations:
+        from tegrasp_drake.experiments.benchmarks.station_costs import (
+            format_station_report, run_station_benchmark)
+        result = run_station_benchmark(scenario, repeats=args.repeats)
+        print(json.dumps(result) if args.json else format_station_report(result))
+        return 0
     from tegrasp_drake.experiments.benchmarks.trial import run_trial_benchmark
     result = run_trial_benchmark(scenario, repeats=args.repeats, growth=not args.no_growth,
                                  profile=not args.no_profile)

@@ -37,7 +37,8 @@ from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
-from tegrasp_drake.simulation.station import ArmDriverConfig, SimulatedStationConfig
+from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
+                                             SimulatedStationConfig)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 
 DEFAULT_SCENARIO = "default"
@@ -314,6 +315,10 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
             "prismatic fingers)", scenario.gripper.model)
     if isinstance(scenario.station, HardwareStationConfig):
         validate_hardware_config(scenario.station, source, "station")
+    else:
+        require(scenario.station.arm in ARM_MOUNTS, source, "station.arm",
+                f"must be one of {', '.join(ARM_MOUNTS)} (the JACO2 arm, or the Cartesian "
+                "carriage with the arm's end-point impedance, for sweeps)", scenario.station.arm)
     return scenario
 
 

@@ -17,6 +17,14 @@ default) or the earlier prismatic fingers.
 
 The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
 their joints track `arm.desired_state` with the plant's implicit PD.
+
+With `station: !SimulatedStationConfig {arm: carriage}` the gripper rides on a Cartesian
+carriage instead (carriage.py), which follows the pose the commanded joints give G; the
+arm's ports stay: arm.position_measured and arm.velocity_measured report the commanded
+joint state one controller period late (the firmware's tracking, idealised), and
+arm.torque_measured the joint torques that would hold the wrench measured at the
+carriage-gripper weld. Simulation only there: carriage.desired_state (12, the carriage
+PD's set-point), gripper.wrist_wrench (6: [M; F] on the arm at G, world [N m, N]).
 """
 
 import dataclasses
@@ -34,6 +42,10 @@ from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinematics, Carriage,
+                                               EndpointImpedance, arm_endpoint_impedance,
+                                               carriage_positions)
+from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
@@ -63,9 +75,22 @@ class ArmDriverConfig:
     control_period_s: float = 0.005
 
 
+ARM_MOUNTS = ("jaco2", "carriage")
+
+
 @dataclasses.dataclass
 class SimulatedStationConfig:
-    """The simulated station (MakeGraspStation); its settings are the scenario's own."""
+    """The simulated station (MakeGraspStation); its other settings are the scenario's own.
+
+    arm: what carries the gripper. `jaco2` (the default, for demos and hardware twins): the
+    JACO2 arm, its joints on the plant's PD. `carriage` (for sweeps): the gripper on a
+    six-joint Cartesian carriage with the arm's end-point stiffness, damping and inertia
+    at the grasp pose (simulation/carriage.py), driven by the same arm.desired_state and
+    reporting the same arm ports (simulation/carriage_systems.py)."""
+    arm: str = "jaco2"
+
+    def uses_carriage(self) -> bool:
+        return self.arm == "carriage"
 
 
 def object_pose_on_table(scenario) -> RigidTransform:
@@ -157,40 +182,94 @@ def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
 
 @dataclasses.dataclass
 class StationPlant:
-    """The station's MultibodyPlant and SceneGraph and its model instances."""
+    """The station's MultibodyPlant and SceneGraph and its model instances; `arm` is the
+    carriage's instance when the gripper rides on one (then `carriage` describes it)."""
     plant: object
     scene_graph: object
     arm: object
     gripper: object
     object_instance: object
+    carriage: Carriage | None = None
+    carriage_weld: object = None  # the carriage-gripper weld joint
+
+
+def carriage_impedance(scenario) -> EndpointImpedance:
+    """The arm's end-point impedance at the scenario's grasp pose (the object's marker at
+    the grasp height), where the hand meets the object."""
+    x, y = scenario.expected_object_xy
+    return arm_endpoint_impedance(scenario.arm, RigidTransform(
+        R_WG_SIDE_GRASP, [x, y, scenario.grasp.grasp_height]))
 
 
 def AddStationPlant(builder, scenario) -> StationPlant:
-    """Adds the station's plant to `builder`: the arm, the gripper (PD gains, no gravity),
-    the table and the scenario's object on its marker, finalized, at their default poses.
-    MakeGraspStation builds its sensors on it; the trial benchmark's plant-alone floor
+    """Adds the station's plant to `builder`: the arm (or the carriage, as
+    scenario.station.arm says), the gripper (PD gains, no gravity), the table and the
+    scenario's object on its marker, finalized, at their default poses. MakeGraspStation
+    builds its sensors on it; the trial benchmark's plant-alone floor
     (experiments/benchmarks/plant_floor.py) drives it alone."""
     plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)
     parser = paths.make_parser(plant)
-    (arm,) = parser.AddModels(url=ARM_URL)
-    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
+    carriage = None
+    if scenario.station.uses_carriage():
+        carriage = AddCarriage(plant, carriage_impedance(scenario))
+        arm = carriage.instance
+    else:
+        (arm,) = parser.AddModels(url=ARM_URL)
+        plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
     hand = gripper_hand(scenario.gripper.model)
     (gripper,) = parser.AddModels(url=hand.url)
-    plant.WeldFrames(plant.GetFrameByName("flange", arm), plant.GetFrameByName("base", gripper),
-                     X_FLANGE_GRIPPER)
+    if carriage is None:
+        weld = plant.WeldFrames(plant.GetFrameByName("flange", arm),
+                                plant.GetFrameByName("base", gripper), X_FLANGE_GRIPPER)
+    else:
+        weld = plant.WeldFrames(carriage.end_body.body_frame(),
+                                plant.GetFrameByName("grasp_frame", gripper),
+                                RigidTransform(R_WG_SIDE_GRASP))
     (table,) = parser.AddModels(url=TABLE_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
     obj = AddObject(parser, scenario.object)
     plant.set_gravity_enabled(arm, False)
     plant.set_gravity_enabled(gripper, False)
-    set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
+    if carriage is None:
+        set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
     set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
     plant.Finalize()
 
-    plant.SetDefaultPositions(arm, initial_arm_positions(scenario))
+    q_arm = initial_arm_positions(scenario)
+    if carriage is None:
+        plant.SetDefaultPositions(arm, q_arm)
+    else:  # where the arm's start joints put G, so that the first command finds it there
+        X_WG_start, _ = ArmGraspFrameKinematics().pose_and_jacobian(q_arm)
+        plant.SetDefaultPositions(arm, carriage_positions(carriage, X_WG_start))
     plant.SetDefaultPositions(gripper, hand.default_positions())
     plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), object_pose_on_table(scenario))
-    return StationPlant(plant, scene_graph, arm, gripper, obj)
+    return StationPlant(plant, scene_graph, arm, gripper, obj, carriage, weld)
+
+
+def _add_carriage_arm_ports(builder, parts: StationPlant, scenario) -> None:
+    """The arm's ports on the carriage (carriage_systems.py), and `carriage.desired_state`
+    (the carriage PD's set-point) and `gripper.wrist_wrench` (on the arm at G, world)."""
+    plant = parts.plant
+    command = builder.AddNamedSystem("carriage_command", CarriageCommand(
+        parts.carriage, initial_positions=initial_arm_positions(scenario),
+        period_s=scenario.plant_config.time_step))
+    builder.ExportInput(command.GetInputPort(ports.ARM_DESIRED_STATE), ports.ARM_DESIRED_STATE)
+    builder.Connect(command.GetOutputPort("carriage_desired_state"),
+                    plant.get_desired_state_input_port(parts.arm))
+    builder.ExportOutput(command.GetOutputPort("carriage_desired_state"),
+                         ports.CARRIAGE_DESIRED_STATE)
+    for name in (ports.ARM_POSITION_MEASURED, ports.ARM_VELOCITY_MEASURED):
+        builder.ExportOutput(command.GetOutputPort(name), name)
+    wrench = builder.AddNamedSystem("carriage_wrist_wrench", CarriageWristWrench(
+        weld_index=parts.carriage_weld.index(),
+        gripper_body_index=plant.GetBodyByName("base", parts.gripper).index()))
+    builder.Connect(plant.get_reaction_forces_output_port(),
+                    wrench.GetInputPort("reaction_forces"))
+    builder.Connect(plant.get_body_poses_output_port(), wrench.GetInputPort("body_poses"))
+    builder.Connect(command.GetOutputPort(ports.ARM_POSITION_MEASURED),
+                    wrench.GetInputPort(ports.ARM_POSITION_MEASURED))
+    builder.ExportOutput(wrench.GetOutputPort(ports.ARM_TORQUE_MEASURED), ports.ARM_TORQUE_MEASURED)
+    builder.ExportOutput(wrench.GetOutputPort("wrist_wrench"), ports.GRIPPER_WRIST_WRENCH)
 
 
 def MakeGraspStation(scenario, *, meshcat=None):
@@ -200,13 +279,17 @@ def MakeGraspStation(scenario, *, meshcat=None):
     plant, scene_graph = parts.plant, parts.scene_graph
     arm, gripper, obj = parts.arm, parts.gripper, parts.object_instance
 
-    # Arm: the desired state goes straight to the plant's PD; measured state is split.
-    builder.ExportInput(plant.get_desired_state_input_port(arm), ports.ARM_DESIRED_STATE)
-    arm_state = builder.AddNamedSystem("arm_state_demux", Demultiplexer([ports.ARM_JOINTS] * 2))
-    builder.Connect(plant.get_state_output_port(arm), arm_state.get_input_port())
-    builder.ExportOutput(arm_state.get_output_port(0), ports.ARM_POSITION_MEASURED)
-    builder.ExportOutput(arm_state.get_output_port(1), ports.ARM_VELOCITY_MEASURED)
-    builder.ExportOutput(plant.get_net_actuation_output_port(arm), ports.ARM_TORQUE_MEASURED)
+    if parts.carriage is None:
+        # Arm: the desired state goes straight to the plant's PD; measured state is split.
+        builder.ExportInput(plant.get_desired_state_input_port(arm), ports.ARM_DESIRED_STATE)
+        arm_state = builder.AddNamedSystem("arm_state_demux",
+                                           Demultiplexer([ports.ARM_JOINTS] * 2))
+        builder.Connect(plant.get_state_output_port(arm), arm_state.get_input_port())
+        builder.ExportOutput(arm_state.get_output_port(0), ports.ARM_POSITION_MEASURED)
+        builder.ExportOutput(arm_state.get_output_port(1), ports.ARM_VELOCITY_MEASURED)
+        builder.ExportOutput(plant.get_net_actuation_output_port(arm), ports.ARM_TORQUE_MEASURED)
+    else:
+        _add_carriage_arm_ports(builder, parts, scenario)
 
     # Gripper: the simulated 2F-85 controller.
     driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=scenario.gripper))

@@ -33,7 +33,7 @@ CHECK_PERIOD_S = 0.25
 class PlantInputs:
     """The plant's inputs at each plant step of one trial and where the object ended."""
     times: np.ndarray  # (N,) [s]
-    arm_desired_state: np.ndarray  # (12, N): q [rad], v [rad/s]
+    arm_desired_state: np.ndarray  # (12, N): q, v of the arm [rad] or the carriage [m, rad]
     gripper_desired_state: np.ndarray  # (2, N): q [m], v [m/s]
     final_object_position: np.ndarray  # (3,) p_WO [m] at the end of the trial
 
@@ -51,7 +51,10 @@ def record_plant_inputs(scenario, *, events=None) -> PlantInputs:
     builder = DiagramBuilder()
     station = builder.AddNamedSystem("station", MakeGraspStation(scenario))
     grasp = AddGraspController(builder, scenario=scenario, station=station, events=events)
-    arm_log = LogVectorOutput(grasp.arm_desired_state, builder)
+    # The set-point the plant's arm PD reads: the arm's, or the carriage's on a carriage.
+    arm_log = LogVectorOutput(station.GetOutputPort(ports.CARRIAGE_DESIRED_STATE)
+                              if station.HasOutputPort(ports.CARRIAGE_DESIRED_STATE)
+                              else grasp.arm_desired_state, builder)
     gripper_log = LogVectorOutput(station.GetOutputPort(ports.GRIPPER_PLANT_DESIRED_STATE), builder)
     object_port = station.GetOutputPort(ports.OBJECT_STATE)
     diagram = builder.Build()
@@ -89,8 +92,8 @@ class FloorRun:
     object_deviation_m: float
 
 
-def run_plant_floor(scenario, inputs: PlantInputs) -> FloorRun:
-    """The station's plant alone, driven by `inputs` for the trial's duration."""
+def build_plant_floor(scenario, inputs: PlantInputs):
+    """(Simulator, StationPlant) of the station's plant alone, driven by `inputs`."""
     builder = DiagramBuilder()
     parts = AddStationPlant(builder, scenario)
     plant = parts.plant
@@ -100,7 +103,13 @@ def run_plant_floor(scenario, inputs: PlantInputs) -> FloorRun:
     builder.Connect(gripper.get_output_port(),
                     plant.get_desired_state_input_port(parts.gripper))
     diagram = builder.Build()
-    simulator = MakeSimulator(diagram, scenario)
+    return MakeSimulator(diagram, scenario), parts
+
+
+def run_plant_floor(scenario, inputs: PlantInputs) -> FloorRun:
+    """The station's plant alone, driven by `inputs` for the trial's duration."""
+    simulator, parts = build_plant_floor(scenario, inputs)
+    plant = parts.plant
     end = float(inputs.times[-1])
     wall, cpu = time.perf_counter(), time.process_time()
     simulator.Initialize()

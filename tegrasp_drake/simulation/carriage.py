@@ -1,0 +1,205 @@
+"""The Cartesian carriage: the gripper on six actuated joints that reproduce the JACO2's
+end-point behaviour, for sweeps (`station: !SimulatedStationConfig {arm: carriage}`).
+
+For the hand and the object the arm is a stiff pose source: the Jaco's firmware tracks its
+joints stiffly and compensates gravity. The carriage keeps what the hand feels of it and
+drops the rest: three prismatic joints along three orthogonal world axes (the principal
+axes of the arm's translational mobility at G, below) move the grasp frame G's origin,
+then three revolute joints about world z, y, x (yaw, pitch, roll: R = Rz Ry Rx, Drake's
+RollPitchYaw) turn G about its own origin, and the gripper is welded on the last one in
+the side-grasp orientation R_WG_SIDE_GRASP (all joint angles zero). The gimbal's
+singularity (pitch +-90 deg) is far from the grasp's few degrees of tilt.
+
+Why joints with the plant's implicit PD and not a floating gripper pushed by a spatial PD:
+SAP treats PD-controlled actuators as implicit constraints, stable at the 1 ms step for any
+gains, with no Python in the loop and no extra state; a spatial PD applied as an external
+force is explicit (stable only while k dt^2 / m and d dt / m stay well below 1, which the
+arm's 2e-4 kg m^2 about the approach axis does not promise) and would be a Python system
+evaluated every step.
+
+Stiffness, damping and inertia (`arm_endpoint_impedance`): what the arm's joint PD
+(ArmDriverConfig: kp, kd per joint) and its links give at G at the grasp pose. With J the
+arm model's 6 x 6 Jacobian of G in world (rig/arm_kinematics.py), the arm's end-point
+compliance is C = J K_q^-1 J^T, the inverse of its damping J D_q^-1 J^T, and its mobility
+(inverse operational-space inertia) J M^-1 J^T. The prismatic axes are the eigenvectors of
+the mobility's translational block, so the carriage's translational inertia is the arm's
+with its couplings (the arm's mobility turns a vertical push at G into 0.22 of it along
+the stroke); along each axis a the joint gets what a push along a alone meets,
+1 / (a^T C a), and likewise damping and mass. Rotations, about world axes, get
+1 / C_ii. At the box's grasp pose: axes near x, (-0.12, 0.74, -0.66) and (0.01, 0.67,
+0.74), with 4.3e3 / 560 / 580 N/m and 1.0 / 0.12 / 0.078 kg; 290 / 170 / 170 N m/rad and
+2e-4 / 0.010 / 0.013 kg m^2 about x / y / z; the arm's D_q = K_q / 10 (a 0.1 s time
+constant). Left out: the couplings between translation and rotation and within the
+stiffness. (The stiffness matrix's own diagonal, J^-T K_q J^-1, is the arm with the other
+five directions held: along the stroke 1.3e4 N/m against the 560 N/m a push meets.)
+
+Frames: world W; G the grasp frame (origin between the pads' centres, z the approach).
+Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G's origin, expressed in W.
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
+from pydrake.multibody.tree import (JacobianWrtVariable, PdControllerGains, PrismaticJoint,
+                                    RevoluteJoint, RotationalInertia, SpatialInertia)
+
+from tegrasp_drake.rig.arm_kinematics import (R_WG_SIDE_GRASP, make_arm_control_plant,
+                                              solve_grasp_frame_ik)
+
+AXES = np.eye(3)
+ROTATION_AXES = (2, 1, 0)  # the gimbal: yaw about z, then pitch about y, then roll about x
+# Each gimbal body's own mass [kg]: the arm's inertia is in the translation bodies; a body
+# with none is not allowed, and 10 g at G's origin adds no moment about it.
+GIMBAL_BODY_MASS_KG = 0.01
+MIN_INERTIA_KG_M2 = 1e-6  # floor of a gimbal body's inertia step (a body needs some)
+
+
+@dataclasses.dataclass(frozen=True)
+class EndpointImpedance:
+    """End-point impedance at G, [rotation about world x, y, z; translation along
+    translation_axes' columns]: stiffness [N m/rad; N/m], damping [N m s/rad; N s/m],
+    inertia [kg m^2; kg]. translation_axes: 3 x 3, unit axes in world, heaviest first."""
+    stiffness: np.ndarray
+    damping: np.ndarray
+    inertia: np.ndarray
+    translation_axes: np.ndarray
+
+
+def _along(inverse: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """1 / (a^T X a) for each column a of `axes`: what a push along a alone meets."""
+    return 1.0 / np.einsum("ij,ik,kj->j", axes, inverse, axes)
+
+
+def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedance:
+    """The JACO2's end-point impedance at G when G is at X_WG (see the module docstring):
+    its joint PD `arm_config` (ArmDriverConfig) and its inertia as a push along each
+    carriage axis at G alone meets them; the translation axes are the principal axes of
+    the arm's translational mobility at G."""
+    plant = make_arm_control_plant()
+    context = plant.CreateDefaultContext()
+    plant.SetPositions(context, solve_grasp_frame_ik(plant, X_WG))
+    world = plant.world_frame()
+    J = plant.CalcJacobianSpatialVelocity(context, JacobianWrtVariable.kV,
+                                          plant.GetFrameByName("grasp_frame"), np.zeros(3),
+                                          world, world)
+    # The inverses of K_x, D_x and Lambda: J K_q^-1 J^T and so on, no inverse of J needed.
+    joints = np.eye(plant.num_velocities())
+    compliance = J @ (joints / arm_config.position_gain) @ J.T
+    damping_inverse = J @ (joints / arm_config.damping_gain) @ J.T
+    mobility = J @ np.linalg.inv(plant.CalcMassMatrix(context)) @ J.T
+    inverse_masses, axes = np.linalg.eigh(mobility[3:, 3:])
+    axes = axes[:, np.argsort(inverse_masses)]  # heaviest first
+    axes *= np.sign(axes[np.argmax(np.abs(axes), axis=0), range(3)])  # mostly positive
+    rotation, translation = slice(0, 3), slice(3, 6)
+    return EndpointImpedance(
+        np.concatenate([_along(compliance[rotation, rotation], AXES),
+                        _along(compliance[translation, translation], axes)]),
+        np.concatenate([_along(damping_inverse[rotation, rotation], AXES),
+                        _along(damping_inverse[translation, translation], axes)]),
+        np.concatenate([_along(mobility[rotation, rotation], AXES),
+                        _along(mobility[translation, translation], axes)]),
+        axes)
+
+
+@dataclasses.dataclass(frozen=True)
+class Carriage:
+    """The carriage in a plant: its model instance, its joints in actuator order (the order
+    of its desired-state input), its prismatic joints' unit axes in world (3 x 3, columns
+    in joint order) and the body the gripper is welded to."""
+    instance: object
+    joints: tuple
+    translation_axes: np.ndarray
+    end_body: object
+
+
+def _translation_masses(inertia: np.ndarray) -> list:
+    """Each prismatic body's own mass [kg], heaviest axis first, so that joint k moves the
+    arm's mass along its axis (a joint moves its own body and all after it)."""
+    masses = list(inertia[3:]) + [GIMBAL_BODY_MASS_KG * 3]
+    return [max(masses[k] - masses[k + 1], GIMBAL_BODY_MASS_KG) for k in range(3)]
+
+
+def _body_inertia(mass_kg: float, inertia_kg_m2: float) -> SpatialInertia:
+    """A body's inertia about its origin: the mass there and an equal moment about any axis."""
+    return SpatialInertia.MakeFromCentralInertia(
+        mass_kg, np.zeros(3), RotationalInertia(inertia_kg_m2, inertia_kg_m2, inertia_kg_m2))
+
+
+def AddCarriage(plant, impedance: EndpointImpedance, name: str = "carriage") -> Carriage:
+    """Adds the six-joint carriage (see the module docstring) to the unfinalized `plant`,
+    with implicit PD gains from `impedance` and gravity off (the arm's firmware compensates
+    it); returns the Carriage. All joints at zero put G at W's origin in the side-grasp
+    orientation."""
+    instance = plant.AddModelInstance(name)
+    parent, joints = plant.world_body(), []
+    axes = impedance.translation_axes
+    for k, mass in enumerate(_translation_masses(impedance.inertia)):
+        body = plant.AddRigidBody(f"{name}_slide_{k}", instance,
+                                  _body_inertia(mass, MIN_INERTIA_KG_M2))
+        joints.append(plant.AddJoint(PrismaticJoint(
+            f"{name}_slide_{k}", parent.body_frame(), body.body_frame(), axes[:, k])))
+        parent = body
+    # Gimbal bodies: each one's rotational inertia is the step that makes the joints before
+    # it see the arm's inertia about their axes (yaw sees all three bodies, roll one).
+    inertias = [impedance.inertia[a] for a in ROTATION_AXES] + [0.0]
+    for k, axis in enumerate(ROTATION_AXES):
+        step = max(inertias[k] - inertias[k + 1], MIN_INERTIA_KG_M2)
+        body = plant.AddRigidBody(
+            f"{name}_{'xyz'[axis]}_turn", instance, _body_inertia(GIMBAL_BODY_MASS_KG, step))
+        joints.append(plant.AddJoint(RevoluteJoint(
+            f"{name}_{'xyz'[axis]}_rotation", parent.body_frame(), body.body_frame(),
+            AXES[axis])))
+        parent = body
+    gains = ([(impedance.stiffness[3 + k], impedance.damping[3 + k]) for k in range(3)]
+             + [(impedance.stiffness[a], impedance.damping[a]) for a in ROTATION_AXES])
+    for joint, (kp, kd) in zip(joints, gains):
+        actuator = plant.AddJointActuator(f"{joint.name()}_drive", joint)
+        actuator.set_controller_gains(PdControllerGains(p=kp, d=kd))
+    plant.set_gravity_enabled(instance, False)
+    return Carriage(instance, tuple(joints), axes.copy(), parent)
+
+
+def carriage_positions(carriage: Carriage, X_WG: RigidTransform) -> np.ndarray:
+    """The carriage's joint positions [m, rad] (actuator order) that put G at X_WG."""
+    rpy = RollPitchYaw(X_WG.rotation() @ R_WG_SIDE_GRASP.inverse()).vector()  # [r, p, y]
+    return np.concatenate([carriage.translation_axes.T @ X_WG.translation(),
+                           [rpy[2], rpy[1], rpy[0]]])
+
+
+def carriage_state(carriage: Carriage, X_WG: RigidTransform, V_WG: np.ndarray) -> np.ndarray:
+    """The carriage's joint positions and rates (actuator order) that put G at X_WG moving
+    with spatial velocity V_WG = [w_WG; v_WG] (world)."""
+    q = carriage_positions(carriage, X_WG)
+    rpy = RollPitchYaw(q[5], q[4], q[3])
+    rpy_dt = rpy.CalcRpyDtFromAngularVelocityInParent(V_WG[:3])  # [r, p, y] rates
+    v = np.concatenate([carriage.translation_axes.T @ V_WG[3:],
+                        [rpy_dt[2], rpy_dt[1], rpy_dt[0]]])
+    return np.concatenate([q, v])
+
+
+class ArmGraspFrameKinematics:
+    """G's pose, spatial velocity and Jacobian of the arm model at given joint angles: what
+    the carriage needs of the arm to follow its commands and to report its torques."""
+
+    def __init__(self):
+        self._plant = make_arm_control_plant()
+        self._context = self._plant.CreateDefaultContext()
+        self._frame = self._plant.GetFrameByName("grasp_frame")
+
+    def pose_and_jacobian(self, q: np.ndarray):
+        """(X_WG, J_WG): G's pose and its 6 x 6 spatial-velocity Jacobian ([w; v], world)."""
+        self._plant.SetPositions(self._context, q)
+        world = self._plant.world_frame()
+        X_WG = self._frame.CalcPoseInWorld(self._context)
+        J = self._plant.CalcJacobianSpatialVelocity(self._context, JacobianWrtVariable.kV,
+                                                    self._frame, np.zeros(3), world, world)
+        return X_WG, J
+
+
+def wrench_on_arm(F_GJ_G: np.ndarray, R_WG: RotationMatrix) -> np.ndarray:
+    """The wrench the gripper puts on the arm at G, in world [Mx, My, Mz, Fx, Fy, Fz]
+    [N m, N], from the weld's reaction F_GJ_G = [torque; force] that the carriage exerts on
+    the gripper at G, in G (Drake's reaction forces at the joint's child frame)."""
+    R = R_WG.matrix()
+    return -np.concatenate([R @ F_GJ_G[:3], R @ F_GJ_G[3:]])

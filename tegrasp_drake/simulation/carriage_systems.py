@@ -1,0 +1,139 @@
+"""The two systems that let the carriage (carriage.py) stand in for the JACO2 behind the
+arm's ports: the controller keeps commanding joint states and reading joint torques.
+
+- CarriageCommand: the arm's commanded joint state -> the pose and velocity of G that the
+  arm's joints would give (the arm model's forward kinematics) -> the carriage's joint
+  set-point, recomputed when the command changes (once per controller period). It also
+  keeps the commanded joint state as the arm's measured one: the Jaco firmware's stiff joint tracking, idealised (what
+  arm.position_measured reports).
+- CarriageWristWrench: the carriage-gripper weld's reaction (Drake's reaction forces) ->
+  the wrench the gripper puts on the arm at G, and the joint torques that would hold it,
+  tau = -J_WG^T w, at the reported joint angles: the arm.torque_measured that the taxel_aware
+  controller's GraspWrenchEstimator maps back to the same wrench.
+"""
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform
+from pydrake.multibody.math import SpatialForce
+from pydrake.systems.framework import BasicVector, LeafSystem
+
+from tegrasp_drake.rig import station_interface as ports
+from tegrasp_drake.simulation.carriage import (ArmGraspFrameKinematics, carriage_state,
+                                               wrench_on_arm)
+
+ARM_JOINTS = ports.ARM_JOINTS
+
+
+class CarriageCommand(LeafSystem):
+    """The arm's joint command as a carriage set-point, and the arm's reported joint state.
+
+    .. pydrake_system::
+
+        name: CarriageCommand
+        input_ports:
+        - arm.desired_state
+        output_ports:
+        - carriage_desired_state
+        - arm.position_measured
+        - arm.velocity_measured
+
+    It samples the command every plant step `period_s` (on the plant's own step times: an
+    event between them would cost a step of its own) and runs the arm model's kinematics
+    only when the command changed, once per controller period; the carriage follows the
+    command one plant step late.
+
+    Ports:
+        arm.desired_state: the arm's commanded joint positions [rad] and rates [rad/s] (12).
+        carriage_desired_state: the carriage joints' positions [m, rad] and rates [m/s,
+            rad/s] (12, actuator order) that put G where the commanded joints put it, moving
+            as they move it (carriage_state).
+        arm.position_measured, arm.velocity_measured: the commanded joint state at the same
+            sample: an arm that tracks its commands exactly, one plant step late. Starts
+            at `initial_positions` [rad], at rest.
+    """
+
+    def __init__(self, carriage, *, initial_positions: np.ndarray, period_s: float):
+        super().__init__()
+        self._carriage = carriage
+        self._kinematics = ArmGraspFrameKinematics()
+        self._command = self.DeclareVectorInputPort(ports.ARM_DESIRED_STATE, 2 * ARM_JOINTS)
+        initial = np.concatenate([initial_positions, np.zeros(ARM_JOINTS)])
+        self._arm_state = self.DeclareDiscreteState(initial)
+        self._set_point = self.DeclareDiscreteState(self._carriage_set_point(initial))
+        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._sample_command)
+        self.DeclareStateOutputPort("carriage_desired_state", self._set_point)
+        self.DeclareVectorOutputPort(ports.ARM_POSITION_MEASURED, ARM_JOINTS,
+                                     self._calc_positions,
+                                     prerequisites_of_calc={self.xd_ticket()})
+        self.DeclareVectorOutputPort(ports.ARM_VELOCITY_MEASURED, ARM_JOINTS,
+                                     self._calc_velocities,
+                                     prerequisites_of_calc={self.xd_ticket()})
+
+    def _carriage_set_point(self, command: np.ndarray) -> np.ndarray:
+        X_WG, J = self._kinematics.pose_and_jacobian(command[:ARM_JOINTS])
+        return carriage_state(self._carriage, X_WG, J @ command[ARM_JOINTS:])
+
+    def _sample_command(self, context, discrete_state):
+        command = self._command.Eval(context)
+        if np.array_equal(command, context.get_discrete_state(self._arm_state).value()):
+            return
+        discrete_state.set_value(self._arm_state, command)
+        discrete_state.set_value(self._set_point, self._carriage_set_point(command))
+
+    def _calc_positions(self, context, output):
+        output.SetFromVector(context.get_discrete_state(self._arm_state).value()[:ARM_JOINTS])
+
+    def _calc_velocities(self, context, output):
+        output.SetFromVector(context.get_discrete_state(self._arm_state).value()[ARM_JOINTS:])
+
+
+class CarriageWristWrench(LeafSystem):
+    """The wrench at the carriage-gripper weld, and the arm joint torques that hold it.
+
+    .. pydrake_system::
+
+        name: CarriageWristWrench
+        input_ports:
+        - reaction_forces
+        - body_poses
+        - arm.position_measured
+        output_ports:
+        - wrist_wrench
+        - arm.torque_measured
+
+    Ports:
+        reaction_forces: the plant's reaction forces (one SpatialForce per joint).
+        body_poses: the plant's body poses (one RigidTransform per body).
+        arm.position_measured: the arm's reported joint angles [rad] (6).
+        wrist_wrench: [Mx, My, Mz, Fx, Fy, Fz] [N m, N], the wrench the gripper puts on the
+            arm at G, in world: contact forces on the hand and the hand's own inertia (its
+            gravity is off, as the firmware compensates it).
+        arm.torque_measured: the joint torques [N m] (6) that hold wrist_wrench statically,
+            tau = -J_WG(q)^T w.
+    """
+
+    def __init__(self, *, weld_index, gripper_body_index):
+        super().__init__()
+        self._weld_index = int(weld_index)
+        self._gripper_body_index = int(gripper_body_index)
+        self._kinematics = ArmGraspFrameKinematics()
+        self._reactions = self.DeclareAbstractInputPort(
+            "reaction_forces", AbstractValue.Make([SpatialForce()]))
+        self._poses = self.DeclareAbstractInputPort("body_poses",
+                                                    AbstractValue.Make([RigidTransform()]))
+        self._q = self.DeclareVectorInputPort(ports.ARM_POSITION_MEASURED, ARM_JOINTS)
+        self.DeclareVectorOutputPort("wrist_wrench", 6, self._calc_wrench)
+        self.DeclareVectorOutputPort(ports.ARM_TORQUE_MEASURED, ARM_JOINTS, self._calc_torques)
+
+    def _wrench(self, context) -> np.ndarray:
+        reaction = self._reactions.Eval(context)[self._weld_index]
+        R_WG = self._poses.Eval(context)[self._gripper_body_index].rotation()
+        return wrench_on_arm(reaction.get_coeffs(), R_WG)
+
+    def _calc_wrench(self, context, output: BasicVector):
+        output.SetFromVector(self._wrench(context))
+
+    def _calc_torques(self, context, output: BasicVector):
+        _, J = self._kinematics.pose_and_jacobian(self._q.Eval(context))
+        output.SetFromVector(-J.T @ self._wrench(context))
