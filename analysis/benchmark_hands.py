@@ -14,9 +14,9 @@ import dataclasses
 import statistics
 
 from tegrasp_drake.events.memorized_event import load_memorized_events
-from tegrasp_drake.experiments.benchmarks.plant_floor import record_plant_inputs, run_plant_floor
-from tegrasp_drake.experiments.scenario import LoadScenario, with_controller
-from tegrasp_drake.experiments.trial import run_trial
+from benchmarks.plant_floor import record_plant_inputs, run_plant_floor
+from tegrasp_drake.scenario.scenario import LoadScenario, with_controller
+from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.rig import paths
 
 HANDS = {"prismatic": "prismatic", "linkage": ""}  # hand -> its events' sub-folder

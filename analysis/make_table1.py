@@ -8,7 +8,7 @@ results folder written by `tegrasp sweep`.
 import argparse
 import sys
 
-from tegrasp_drake.experiments.sweep import (load_records, write_offset_table, write_statistics,
+from tegrasp_drake.sweep import (load_records, write_offset_table, write_statistics,
                                              write_summary, write_table1)
 
 

@@ -22,7 +22,7 @@ from tegrasp_drake import AddGraspController, LoadScenario, MakeSimulator, MakeS
 from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.finger_strike import (grasp_wrench_from_torques, side_moment_nm,
                                                  strike_force_n)
-from tegrasp_drake.experiments.scenario import resolve_object, validate
+from tegrasp_drake.scenario.scenario import resolve_object, validate
 from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
 from tegrasp_drake.rig.objects import ObjectConfig
 

@@ -1,4 +1,4 @@
-"""Record the memorized corrective events (experiments/corrective_events.py).
+"""Record the memorized corrective events (recording/corrective_events.py).
 
     python analysis/record_corrective_events.py LOGS_DIR [--object box] [--workers 2]
         [--events events]
@@ -16,7 +16,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.memorized_event import save_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
-from tegrasp_drake.experiments.corrective_events import (
+from tegrasp_drake.recording.corrective_events import (
     CORRECTIVE_FOLDER, CORRECTIVE_RUNS, combine_corrective_runs, corrective_scenario,
     run_corrective_event)
 
@@ -31,8 +31,8 @@ def log_path(logs: pathlib.Path, object_name: str, run) -> pathlib.Path:
 
 def simulate(job):
     object_name, run, path = job
-    from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
-    from tegrasp_drake.experiments.trial_log import load_trial_log
+    from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
+    from tegrasp_drake.scenario.trial_log_file import load_trial_log
     if not path.is_file():
         log, wall = run_ideal_grasp(corrective_scenario(object_name, run),
                                     duration=RUN_DURATION_S[run.transition])
@@ -49,7 +49,7 @@ def main(argv=None) -> int:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--events", type=pathlib.Path, default=pathlib.Path("events"))
     args = parser.parse_args(argv)
-    from tegrasp_drake.experiments.scenario import LoadScenario
+    from tegrasp_drake.scenario.scenario import LoadScenario
     jobs = [(args.object, run, log_path(args.logs, args.object, run)) for run in CORRECTIVE_RUNS]
     with ProcessPoolExecutor(args.workers) as pool:
         logs = list(pool.map(simulate, jobs))

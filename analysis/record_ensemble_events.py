@@ -1,4 +1,4 @@
-"""Record the taxel_aware controller's ensemble events (experiments/ensemble_events.py).
+"""Record the taxel_aware controller's ensemble events (recording/ensemble_events.py).
 
     python analysis/record_ensemble_events.py LOGS_DIR [--runs 8] [--template-runs 5]
         [--workers 2] [--events events]
@@ -15,7 +15,7 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.memorized_event import save_memorized_events
-from tegrasp_drake.experiments.ensemble_events import (ENSEMBLE_FOLDER, combine_runs,
+from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, combine_runs,
                                                        ensemble_scenario, record_ensemble_run,
                                                        run_events)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
@@ -24,8 +24,8 @@ from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 def _one(job):
     object_name, run, path = job
     if path.is_file():  # recorded before: cut its events again, without simulating
-        from tegrasp_drake.experiments.scenario import LoadScenario
-        from tegrasp_drake.experiments.trial_log import load_trial_log
+        from tegrasp_drake.scenario.scenario import LoadScenario
+        from tegrasp_drake.scenario.trial_log_file import load_trial_log
         return object_name, run, run_events(load_trial_log(path),
                                             ensemble_scenario(object_name, run), object_name,
                                             LoadScenario(name=object_name).object)

@@ -26,10 +26,10 @@ __version__ = "0.1.0"
 
 # Public name -> the module that defines it.
 _PUBLIC = {
-    # Scenarios and configuration (experiments/scenario.py, rig/, hardware/config.py).
-    "Scenario": "tegrasp_drake.experiments.scenario",
-    "LoadScenario": "tegrasp_drake.experiments.scenario",
-    "scenario_to_yaml": "tegrasp_drake.experiments.scenario",
+    # Scenarios and configuration (scenario/scenario.py, rig/, hardware/config.py).
+    "Scenario": "tegrasp_drake.scenario.scenario",
+    "LoadScenario": "tegrasp_drake.scenario.scenario",
+    "scenario_to_yaml": "tegrasp_drake.scenario.scenario",
     "ConfigError": "tegrasp_drake.rig.typed_yaml",
     "ObjectConfig": "tegrasp_drake.rig.objects",
     "BUILTIN_OBJECTS": "tegrasp_drake.rig.objects",
@@ -41,17 +41,17 @@ _PUBLIC = {
     "OpenLoopControllerConfig": "tegrasp_drake.control.controller_config",
     "TaxelAwareControllerConfig": "tegrasp_drake.control.controller_config",
     "CONTROLLER_NAMES": "tegrasp_drake.control.controller_config",
-    "with_controller": "tegrasp_drake.experiments.scenario",
+    "with_controller": "tegrasp_drake.scenario.scenario",
     # Stations: the simulation and the real devices behind the same ports.
     "MakeGraspStation": "tegrasp_drake.simulation.station",
     "MakeHardwareStation": "tegrasp_drake.hardware.station",
-    "MakeStation": "tegrasp_drake.experiments.grasp_diagram",
+    "MakeStation": "tegrasp_drake.scenario.grasp_diagram",
     # The controller and the diagram around a station.
     "AddGraspController": "tegrasp_drake.control.grasp_controller",
     "GraspController": "tegrasp_drake.control.grasp_controller",
-    "MakeGraspDiagram": "tegrasp_drake.experiments.grasp_diagram",
-    "GraspDiagram": "tegrasp_drake.experiments.grasp_diagram",
-    "MakeSimulator": "tegrasp_drake.experiments.grasp_diagram",
+    "MakeGraspDiagram": "tegrasp_drake.scenario.grasp_diagram",
+    "GraspDiagram": "tegrasp_drake.scenario.grasp_diagram",
+    "MakeSimulator": "tegrasp_drake.scenario.grasp_diagram",
     "Mode": "tegrasp_drake.control.grasp_modes",
     "Transition": "tegrasp_drake.control.grasp_modes",
     "Trigger": "tegrasp_drake.control.grasp_modes",
@@ -66,20 +66,20 @@ _PUBLIC = {
     "MemorizedEventError": "tegrasp_drake.events.memorized_event",
     "load_memorized_events": "tegrasp_drake.events.memorized_event",
     "save_memorized_events": "tegrasp_drake.events.memorized_event",
-    "record_events": "tegrasp_drake.experiments.record_events",
+    "record_events": "tegrasp_drake.recording.record_events",
     # Runs: a simulated trial, the ideal grasp, a run on the devices, a sweep.
-    "run_trial": "tegrasp_drake.experiments.trial",
-    "run_trial_from_spec": "tegrasp_drake.experiments.trial",
-    "TrialResult": "tegrasp_drake.experiments.trial",
-    "run_ideal_grasp": "tegrasp_drake.experiments.ideal_grasp",
-    "TrialLog": "tegrasp_drake.experiments.trial_log",
-    "load_trial_log": "tegrasp_drake.experiments.trial_log",
-    "run_on_hardware": "tegrasp_drake.experiments.hardware_run",
-    "SweepSpec": "tegrasp_drake.experiments.sweep.spec",
-    "LoadSweepSpec": "tegrasp_drake.experiments.sweep.spec",
-    "run_sweep": "tegrasp_drake.experiments.sweep.runner",
-    "write_reports": "tegrasp_drake.experiments.sweep.reports",
-    "load_records": "tegrasp_drake.experiments.sweep.records",
+    "run_trial": "tegrasp_drake.runs.trial",
+    "run_trial_from_spec": "tegrasp_drake.sweep.trial_function",
+    "TrialResult": "tegrasp_drake.runs.trial",
+    "run_ideal_grasp": "tegrasp_drake.runs.ideal_grasp",
+    "TrialLog": "tegrasp_drake.scenario.trial_log_file",
+    "load_trial_log": "tegrasp_drake.scenario.trial_log_file",
+    "run_on_hardware": "tegrasp_drake.runs.hardware_run",
+    "SweepSpec": "tegrasp_drake.sweep.spec",
+    "LoadSweepSpec": "tegrasp_drake.sweep.spec",
+    "run_sweep": "tegrasp_drake.sweep.runner",
+    "write_reports": "tegrasp_drake.reports",
+    "load_records": "tegrasp_drake.sweep.records",
 }
 
 __all__ = sorted(_PUBLIC)

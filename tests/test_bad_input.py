@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake import cli
-from tegrasp_drake.experiments.trial_log import ARRAY_FIELDS, FORMAT_VERSION
+from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, FORMAT_VERSION
 from tegrasp_drake.rig import paths
 
 OWN_CYLINDER = ["--set", "object.shape=cylinder", "--set", "object.size=[0.04,0.1]",

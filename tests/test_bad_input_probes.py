@@ -15,7 +15,7 @@ from tegrasp_drake.events.memorized_event import (INDEX_FILE, MemorizedEvent,
                                                   MemorizedEventError, load_memorized_events,
                                                   save_memorized_events)
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
-from tegrasp_drake.experiments.figures import figure_files
+from tegrasp_drake.figures import figure_files
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.tactile.sampling import samples_per_window
 

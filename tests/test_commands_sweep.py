@@ -6,7 +6,7 @@ import json
 import pytest
 
 from tegrasp_drake.commands import sweep as command
-from tegrasp_drake.experiments.sweep.records import load_records
+from tegrasp_drake.sweep.records import load_records
 
 FAKE = ["--trial-function", "test_sweep_fake_trial:fake_trial", "--no-progress"]
 
@@ -17,7 +17,7 @@ def test_register_adds_the_sweep_subcommand():
     args = parser.parse_args(["sweep", "--objects", "box", "--workers", "2"])
     assert args.func is command.run
     assert (args.objects, args.workers, args.out) == (["box"], 2, "results/sweep")
-    assert args.trial_function == "tegrasp_drake.experiments.trial:run_trial_from_spec"
+    assert args.trial_function == "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
 
 
 def test_sweep_writes_records_and_reports(tmp_path, capsys):

@@ -6,7 +6,7 @@ import pytest
 from tegrasp_drake.control.controller_config import (
     CONTROLLER_CLASSES, CONTROLLER_NAMES, HeuristicControllerConfig, MemorizedControllerConfig,
     OpenLoopControllerConfig, TaxelAwareControllerConfig, controller_named)
-from tegrasp_drake.experiments.scenario import (LoadScenario, scenario_from_yaml,
+from tegrasp_drake.scenario.scenario import (LoadScenario, scenario_from_yaml,
                                                 scenario_to_yaml, with_controller)
 
 

@@ -10,7 +10,7 @@ from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.controller_config import MemorizedControllerConfig
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 

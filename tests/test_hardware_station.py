@@ -12,7 +12,7 @@ from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecordi
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.station import HardwareNotReadyError, MakeHardwareStation
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling

@@ -6,7 +6,7 @@ from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.rig import robotiq_units as ru
 from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.simulation.station import MakeGraspStation, initial_arm_positions
 from tegrasp_drake.rig.taxel_layout import taxel_centers
 

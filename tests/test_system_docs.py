@@ -35,9 +35,9 @@ from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.events.event_matcher import EventMatcher
 from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.memorized_event import load_memorized_events
-from tegrasp_drake.experiments.benchmarks.drivers import LoopTick
-from tegrasp_drake.experiments.benchmarks.matcher import _InputReader
-from tegrasp_drake.experiments.scenario import LoadScenario
+from benchmarks.drivers import LoopTick
+from benchmarks.matcher import _InputReader
+from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import GripperStatusSender, TactileStatusSender
 from tegrasp_drake.hardware.fault_latch import FaultLatch

@@ -1,5 +1,5 @@
 """`tegrasp benchmark`: what a closed-loop trial costs, against the plant alone, per Python
-system, and as contact faces and sensor rates grow (experiments/benchmarks/trial.py)."""
+system, and as contact faces and sensor rates grow (benchmarks/trial.py)."""
 
 import argparse
 import json
@@ -83,7 +83,7 @@ def run(args) -> int:
         print(f"tegrasp benchmark: --repeats {args.repeats}: give at least 1 run per variant")
         return 2
     scenario = scenario_from_arguments(args)
-    from tegrasp_drake.experiments.benchmarks.trial import run_trial_benchmark
+    from benchmarks.trial import run_trial_benchmark
     result = run_trial_benchmark(scenario, repeats=args.repeats, growth=not args.no_growth,
                                  profile=not args.no_profile)
     print(json.dumps(result) if args.json else format_report(result))

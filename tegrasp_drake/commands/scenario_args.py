@@ -2,7 +2,7 @@
 
 import logging
 
-from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO, LoadScenario
+from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 

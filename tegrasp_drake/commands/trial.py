@@ -17,7 +17,7 @@ from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html
                                                 start_viewer, wait_for_viewer,
                                                 write_replay_html)
 from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
-from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 
 DESCRIPTION = """\
 One closed-loop grasp trial of any scenario: the object, its placement, the controller and
@@ -97,8 +97,8 @@ def run(args) -> int:
                                 overwrite=args.overwrite)
     except RunFolderError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
-    from tegrasp_drake.experiments.figures.trial_figures import write_trial_figures
-    from tegrasp_drake.experiments.trial import run_trial
+    from tegrasp_drake.figures.trial_figures import write_trial_figures
+    from tegrasp_drake.runs.trial import run_trial
     meshcat = start_viewer(args)
     try:
         with staged_run(out) as stage:

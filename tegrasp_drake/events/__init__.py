@@ -10,7 +10,7 @@ trial through them offline.
 
 Not re-exported here, so that the control loop does not import matplotlib:
 `plot.plot_memorized_events` (the Fig. 5c-like figure), `benchmark` (the matcher's cost
-per tick; `python -m tegrasp_drake.experiments.benchmarks.matcher`) and `synthetic` (synthetic grasps
+per tick; `python -m benchmarks.matcher`) and `synthetic` (synthetic grasps
 for tests).
 """
 

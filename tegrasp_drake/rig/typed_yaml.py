@@ -1,8 +1,8 @@
 """Typed configuration from YAML files, with errors that name the field.
 
 Every YAML file the project reads as configuration goes through here: scenarios
-(experiments/scenario.py), the hardware config (hardware/config.py) and sweep specs
-(experiments/sweep/spec.py).
+(scenario/scenario.py), the hardware config (hardware/config.py) and sweep specs
+(sweep/spec.py).
 
 - `parse_yaml` is the one way YAML text becomes data, for files and `--set` values alike:
   Drake's `yaml_load` (PyYAML's safe loader: no Python objects; a tag such as

@@ -167,7 +167,7 @@ def AddStationPlant(builder, scenario) -> StationPlant:
     """Adds the station's plant to `builder`: the arm, the gripper (PD gains, no gravity),
     the table and the scenario's object on its marker, finalized, at their default poses.
     MakeGraspStation builds its sensors on it; the trial benchmark's plant-alone floor
-    (experiments/benchmarks/plant_floor.py) drives it alone."""
+    (benchmarks/plant_floor.py) drives it alone."""
     plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)
     parser = paths.make_parser(plant)
     (arm,) = parser.AddModels(url=ARM_URL)
