@@ -29,7 +29,6 @@ from tegrasp_drake.recording.corrective_detection import (
 from tegrasp_drake.recording.corrective_events import (
     CORRECTIVE_FOLDER, CORRECTIVE_RUNS, corrective_event_time, corrective_scenario)
 from tegrasp_drake.recording.detection_quality import classify, rate_point
-from tegrasp_drake.recording.ensemble_events import ensemble_scenario
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 sys.path.insert(0, str(pathlib.Path(__file__).parent))

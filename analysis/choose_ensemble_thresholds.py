@@ -19,8 +19,8 @@ from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.memorized_event import find_memorized_events
-from tegrasp_drake.recording.detection_quality import (choose_thresholds, rate_point,
-                                                         roc_curve, scored_span)
+from tegrasp_drake.recording.detection_quality import (choose_thresholds, rate_point, roc_curve,
+                                                       scored_span)
 from tegrasp_drake.runs.grasp_outcome import physical_events
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.scenario.trial_log_file import load_trial_log

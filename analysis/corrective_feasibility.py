@@ -22,7 +22,7 @@ from tegrasp_drake.events.correlation import event_scores_reference, normalize_b
 from tegrasp_drake.events.extraction import cut_window
 from tegrasp_drake.recording.corrective_detection import slip_band
 from tegrasp_drake.recording.corrective_events import (CORRECTIVE_RUNS, corrective_scenario,
-                                                         slip_onset_time)
+                                                       slip_onset_time)
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 

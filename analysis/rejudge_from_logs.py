@@ -15,8 +15,7 @@ import pathlib
 import sys
 
 from tegrasp_drake.control.grasp_modes import Transition
-from tegrasp_drake.sweep.records import (TRIALS_FOLDER, load_records, make_record,
-                                                    write_record)
+from tegrasp_drake.sweep.records import (TRIALS_FOLDER, load_records, make_record, write_record)
 from tegrasp_drake.runs.trial import judge_trial
 from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec, trial_log_name
 from tegrasp_drake.scenario.trial_log_file import load_trial_log

@@ -66,7 +66,7 @@ _PUBLIC = {
     "MemorizedEventError": "tegrasp_drake.events.memorized_event",
     "load_memorized_events": "tegrasp_drake.events.memorized_event",
     "save_memorized_events": "tegrasp_drake.events.memorized_event",
-    "record_events": "tegrasp_drake.recording.record_events",
+    "record_events": "tegrasp_drake.recording.paper_events",
     # Runs: a simulated trial, the ideal grasp, a run on the devices, a sweep.
     "run_trial": "tegrasp_drake.runs.trial",
     "run_trial_from_spec": "tegrasp_drake.sweep.trial_function",
@@ -76,7 +76,7 @@ _PUBLIC = {
     "load_trial_log": "tegrasp_drake.scenario.trial_log_file",
     "run_on_hardware": "tegrasp_drake.runs.hardware_run",
     "SweepSpec": "tegrasp_drake.sweep.spec",
-    "LoadSweepSpec": "tegrasp_drake.sweep.spec",
+    "LoadSweepSpec": "tegrasp_drake.sweep.spec_file",
     "run_sweep": "tegrasp_drake.sweep.runner",
     "write_reports": "tegrasp_drake.reports",
     "load_records": "tegrasp_drake.sweep.records",

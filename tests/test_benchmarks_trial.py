@@ -53,8 +53,7 @@ def test_system_costs_count_the_calls_cpp_made_and_the_evals():
 
 @pytest.mark.slow
 def test_the_plant_alone_floor_replays_the_trial_to_the_same_object_pose():
-    from benchmarks.plant_floor import (record_plant_inputs,
-                                                                  run_plant_floor)
+    from benchmarks.plant_floor import (record_plant_inputs, run_plant_floor)
     from tegrasp_drake.scenario.scenario import LoadScenario
     scenario = LoadScenario()
     inputs = record_plant_inputs(scenario)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.rig import paths
-from tegrasp_drake.recording.record_events import EVENT_OF_TRANSITION
+from tegrasp_drake.recording.paper_events import EVENT_OF_TRANSITION
 from tegrasp_drake.events import (
     REQUIRED_TRANSITIONS, event_scores_reference, live_matcher_config, load_memorized_events,
     replay_event_held, replay_events_in_sequence, tactile_trial_from_log)

@@ -4,8 +4,8 @@ logged scores (issue #14)."""
 import numpy as np
 import pytest
 
-from tegrasp_drake.recording.detection_quality import (ScoredSpan, choose_thresholds,
-                                                         classify, rate_point, roc_curve)
+from tegrasp_drake.recording.detection_quality import (ScoredSpan, choose_thresholds, classify,
+                                                       rate_point, roc_curve)
 
 TIMES = np.round(np.arange(0.0, 2.0, 0.001), 6)
 

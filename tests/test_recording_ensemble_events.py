@@ -7,7 +7,8 @@ import pytest
 
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.recording.ensemble_events import (
-    ENSEMBLE_RANGES, TRAINING_BASE_SEED, combine_runs, ensemble_scenario)
+    ENSEMBLE_RANGES, ensemble_scenario)
+from tegrasp_drake.recording.campaign import ENSEMBLE_BASE_SEED, combine_runs
 from tegrasp_drake.scenario.scenario import LoadScenario
 
 
@@ -21,20 +22,20 @@ def event(sa_row, ra_row, t=1.0):
 def test_the_combined_event_is_the_max_normalised_mean_of_the_runs():
     runs = [{"reach_load": event([0, 0.5, 1, 1], [0, 1, 0, 0], t=1.0)},
             {"reach_load": event([0, 1, 1, 1], [0, 0, 1, 0], t=2.0)}]
-    combined = combine_runs(runs, scenario_note="test")["reach_load"]
+    combined = combine_runs(runs, note="test")["reach_load"]
     np.testing.assert_allclose(combined.sa[0], [0, 0.75, 1, 1])
     np.testing.assert_allclose(combined.ra[0], [0, 1, 1, 0])
     assert combined.transition_time_s == pytest.approx(1.5)
     assert "mean of 2 runs" in combined.scenario
     with pytest.raises(ValueError):
-        combine_runs([], scenario_note="none")
+        combine_runs([], note="none")
 
 
 def test_each_run_is_perturbed_within_its_ranges_from_its_own_seed():
     base = LoadScenario(name="box")
     draws = [ensemble_scenario("box", run) for run in range(20)]
     for run, scenario in enumerate(draws):
-        assert scenario.random_seed == TRAINING_BASE_SEED + run
+        assert scenario.random_seed == ENSEMBLE_BASE_SEED + run
         assert abs(scenario.object_offset[0]) <= ENSEMBLE_RANGES.placement_xy_bound_m
         assert abs(scenario.object_offset[1]) <= ENSEMBLE_RANGES.placement_xy_bound_m
         assert abs(scenario.object_yaw_deg) <= ENSEMBLE_RANGES.yaw_bound_deg

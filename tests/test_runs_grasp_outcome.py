@@ -6,8 +6,7 @@ import types
 import numpy as np
 import pytest
 
-from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, grip_force_time,
-                                                     lifted_mask)
+from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, grip_force_time, lifted_mask)
 from tegrasp_drake.rig.objects import ObjectConfig
 
 BOX = ObjectConfig(name="box", shape="box", size=[0.045, 0.045, 0.11], mass=0.15,

@@ -11,13 +11,13 @@ import pytest
 
 from tegrasp_drake import cli
 from tegrasp_drake.hardware.device_log_messages import (RUN_INFO_CHANNEL, TACTILE_CHANNEL,
-                                                       TRANSITION_CHANNEL)
+                                                        TRANSITION_CHANNEL)
 from tegrasp_drake.events import extract_memorized_events, save_memorized_events
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 from tegrasp_drake.runs.hardware_run import transition_message
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info, lcmt_tegrasp_tactile
-from tegrasp_drake.runs.hardware_log_reader import (RunLogError, expected_event_schedule, read_run_log,
-                                   replay_matcher)
+from tegrasp_drake.runs.hardware_log_reader import RunLogError, read_run_log
+from tegrasp_drake.runs.hardware_log_replay import expected_event_schedule, replay_matcher
 
 GRASP = SyntheticGraspConfig()
 EVENTS = extract_memorized_events(synthetic_grasp(GRASP), object_name="box",

@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.events.memorized_event import load_memorized_events
-from tegrasp_drake.runs.pad_strike import (PadStrikeConfig, run_pad_strike,
-                                                  strike_scenario)
+from tegrasp_drake.runs.pad_strike import (PadStrikeConfig, run_pad_strike, strike_scenario)
 from tegrasp_drake.rig import paths
 
 SHORT = dict(before_contact_s=0.05, after_contact_s=0.05)

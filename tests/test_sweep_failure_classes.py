@@ -1,9 +1,7 @@
 import pytest
 
-from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASSES,
-                                                             failure_class,
-                                                             failure_class_counts,
-                                                             failure_classes_markdown)
+from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASSES, failure_class,
+                                                 failure_class_counts, failure_classes_markdown)
 
 
 def result(**changes):

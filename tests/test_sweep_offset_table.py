@@ -6,8 +6,7 @@ from collections import Counter
 import pytest
 
 from tegrasp_drake.sweep import load_records, table1_rows
-from tegrasp_drake.sweep.offset_table import (offset_markdown, offset_rows,
-                                                          write_offset_table)
+from tegrasp_drake.sweep.offset_table import (offset_markdown, offset_rows, write_offset_table)
 
 RESULTS = pathlib.Path(__file__).resolve().parent.parent / "analysis" / "results_seed0"
 

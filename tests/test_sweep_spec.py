@@ -10,15 +10,15 @@ import pytest
 from tegrasp_drake.sweep.spec import (
     CONTROLLER_NAMES,
     PAPER_CONTROLLERS,
-    ObjectDefinition,
     RandomisationConfig,
     SweepSpec,
     TrialSpec,
     expand_trials,
-    LoadSweepSpec,
     marker_names,
     product_grid,
 )
+from tegrasp_drake.sweep.spec_file import LoadSweepSpec
+from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 
@@ -102,11 +102,24 @@ def test_perturbations_stay_within_their_bounds():
 
 def test_trial_spec_survives_a_dict_round_trip():
     spec = SweepSpec(objects=("mug",), user_objects={
-        "mug": ObjectDefinition(shape="cylinder", size_m=(0.04, 0.1), mass_kg=0.3,
-                                friction_coefficient=0.6)})
+        "mug": ObjectConfig(name="mug", shape="cylinder", size=[0.04, 0.1], mass=0.3,
+                            friction=0.6)})
     for trial in expand_trials(spec)[:3]:
         assert TrialSpec.from_dict(trial.to_dict()) == trial
-        assert trial.to_dict()["object_definition"]["size_m"] == [0.04, 0.1]
+        assert trial.to_dict()["object_definition"]["size"] == [0.04, 0.1]
+
+
+def test_a_record_of_the_old_object_fields_reads_as_the_same_object():
+    """Records written when a sweep's object had size_m, mass_kg and friction_coefficient
+    still turn into their trial, with the object's ObjectConfig."""
+    spec = SweepSpec(objects=("mug",), user_objects={
+        "mug": ObjectConfig(name="mug", shape="cylinder", size=[0.04, 0.1], mass=0.3,
+                            friction=0.6)})
+    trial = expand_trials(spec)[0]
+    old = trial.to_dict()
+    old["object_definition"] = {"shape": "cylinder", "size_m": [0.04, 0.1], "mass_kg": 0.3,
+                                "friction_coefficient": 0.6}
+    assert TrialSpec.from_dict(old) == trial
 
 
 def test_marker_names_index_sorted_offsets():
@@ -128,7 +141,7 @@ def test_yaml_spec_with_product_grid_and_user_object(tmp_path):
         grid: {normal_offsets_m: [0.0], stroke_offsets_m: [-0.02, 0.0, 0.02]}
         randomisation: {placement_xy_bound_m: 0.001, sensor_noise: false}
         user_objects:
-          mug: {shape: cylinder, size_m: [0.04, 0.1], mass_kg: 0.3, friction_coefficient: 0.6}
+          mug: {shape: cylinder, size: [0.04, 0.1], mass: 0.3, friction: 0.6}
         """)
     spec = LoadSweepSpec(path)
     assert spec.grid == ((0.0, -0.02), (0.0, 0.0), (0.0, 0.02))
@@ -137,7 +150,8 @@ def test_yaml_spec_with_product_grid_and_user_object(tmp_path):
     trials = expand_trials(spec)
     assert len(trials) == 2 * 2 * 3 * 2
     mug = [t for t in trials if t.object_name == "mug"]
-    assert mug[0].object_definition == ObjectDefinition("cylinder", (0.04, 0.1), 0.3, 0.6)
+    assert mug[0].object_definition == ObjectConfig(name="mug", shape="cylinder",
+                                                    size=[0.04, 0.1], mass=0.3, friction=0.6)
     assert not any(t.sensor_noise for t in trials)
 
 
@@ -171,16 +185,20 @@ def test_an_empty_yaml_file_is_the_papers_experiment(tmp_path):
     ("randomisation: {mass_scale_bound: 1.5}\n", "randomisation.mass_scale_bound", "[0, 1)"),
     ("randomisation: {sensor_noise: 1}\n", "randomisation.sensor_noise", "true or false"),
     ("randomisation: {wobble: 1}\n", "randomisation.wobble", "unknown field"),
-    ("user_objects: {box: {shape: box, size_m: [0.1, 0.1, 0.1], mass_kg: 1}}\n",
+    ("user_objects: {box: {shape: box, size: [0.1, 0.1, 0.1], mass: 1}}\n",
      "user_objects.box", "built-in"),
-    ("user_objects: {cup: {shape: cone, size_m: [0.1], mass_kg: 1}}\n",
+    ("user_objects: {cup: {shape: cone, size: [0.1], mass: 1}}\n",
      "user_objects.cup.shape", "unknown shape"),
-    ("user_objects: {cup: {shape: box, size_m: [0.1, 0.1], mass_kg: 1}}\n",
-     "user_objects.cup.size_m", "3 positive sizes"),
-    ("user_objects: {cup: {shape: box, size_m: [0.1, 0.1, 0.1]}}\n",
-     "user_objects.cup.mass_kg", "missing"),
-    ("user_objects: {'a.b': {shape: box, size_m: [0.1, 0.1, 0.1], mass_kg: 1}}\n",
+    ("user_objects: {cup: {shape: box, size: [0.1, 0.1], mass: 1}}\n",
+     "user_objects.cup.size", "3 positive sizes"),
+    ("user_objects: {cup: {shape: box, size: [0.04, 0.04, 0.1]}}\n",
+     "user_objects.cup.mass", "missing"),
+    ("user_objects: {'a.b': {shape: box, size: [0.1, 0.1, 0.1], mass: 1}}\n",
      "user_objects.a.b", "not a valid name"),
+    ("user_objects: {cup: {shape: box, size_m: [0.1, 0.1, 0.1], mass: 1}}\n",
+     "user_objects.cup.size_m", "rename size_m to size, mass_kg to mass"),
+    ("user_objects: {cup: {shape: box, file: cup.sdf}}\n",
+     "user_objects.cup.file", "unknown field"),
     ("scenario_overrides: [controller.memorized_corrective_events]\n",
      "scenario_overrides[0]", "key=value"),
     ("scenario_overrides: ['object.name=thin_cylinder']\n",
@@ -221,8 +239,8 @@ def test_the_example_spec_file_loads_and_expands():
     trials = expand_trials(spec)
     assert len(trials) == 3 * 4 * 15 * 3
     assert sum(t.well_placed for t in trials) == 3 * 4 * 3
-    assert {t.object_definition for t in trials if t.object_name == "mug"} == {
-        ObjectDefinition("cylinder", (0.04, 0.1), 0.3, 0.8)}
+    mug = ObjectConfig(name="mug", shape="cylinder", size=[0.04, 0.1], mass=0.3, friction=0.8)
+    assert all(t.object_definition == mug for t in trials if t.object_name == "mug")
 
 
 def test_the_randomised_cluster_spec_holds_1050_trials_of_distinct_seeds_and_yaws():

@@ -8,9 +8,9 @@ import pytest
 
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.sweep import SweepSpec, expand_trials, make_record
-from tegrasp_drake.sweep.summary import (PAPER_ROW_NAME, RESULTS_BLOCK, RECORDS_LINE,
-                                                     last_commit, page_with_record_commits,
-                                                     readme_with_summaries, summary_rows)
+from tegrasp_drake.sweep.summary import (PAPER_ROW_NAME, RESULTS_BLOCK, RECORDS_LINE, last_commit,
+                                         page_with_record_commits, readme_with_summaries,
+                                         summary_rows)
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 RESULTS_PAGE = ROOT / "docs" / "results.md"

@@ -110,9 +110,11 @@ def test_markdown_and_csv_files(records, tmp_path):
 
 
 def test_user_objects_have_no_paper_numbers(tmp_path):
-    from tegrasp_drake.sweep.spec import ObjectDefinition
+    from tegrasp_drake.rig.objects import ObjectConfig
     spec = SweepSpec(objects=("box", "mug"), controllers=("memorized",), attempts=1,
-                     user_objects={"mug": ObjectDefinition("cylinder", (0.04, 0.1), 0.3, 0.6)})
+                     user_objects={"mug": ObjectConfig(name="mug", shape="cylinder",
+                                                        size=[0.04, 0.1], mass=0.3,
+                                                        friction=0.6)})
     records = [make_record(t.to_dict(), result=result(True, True))
                for t in expand_trials(spec)]
     rows = {r.object_name: r for r in table1_rows(records)}

@@ -16,9 +16,8 @@ import pathlib
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
-                                                   controller_events, corrective_events,
-                                                   quiet_modbus_library,
-                                                   scenario_from_arguments)
+                                                  controller_events, corrective_events,
+                                                  quiet_modbus_library, scenario_from_arguments)
 from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
 
 

@@ -1,7 +1,7 @@
 """`tegrasp record-events`: memorize the tactile events of the ideal grasp (Sec. III-A).
 
 For each object (its built-in scenario, or the object of a scenario given), the events
-of its ideal grasp (recording/record_events.py) are stored in the events folder with an
+of its ideal grasp (recording/paper_events.py) are stored in the events folder with an
 index (format: tegrasp_drake/events/FORMAT.md): `--events DIR`, else the user's events
 folder (TEGRASP_EVENTS_DIR, else ~/.local/share/tegrasp/events; rig/paths.py), never the
 installed package's, which `pip install` replaces. From a source checkout,
@@ -91,9 +91,8 @@ def _ensemble_runs(args, scenario) -> int:
 
 def run(args) -> int:
     from tegrasp_drake.events import save_memorized_events
-    from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER,
-                                                           record_object_ensemble)
-    from tegrasp_drake.recording.record_events import RecordEventsError, record_events
+    from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, record_object_ensemble)
+    from tegrasp_drake.recording.paper_events import RecordEventsError, record_events
     out = args.events or paths.user_events_dir()
     if paths.is_installed_package_data(out):
         raise SystemExit(f"tegrasp: error: {out} holds the installed package's events, which "

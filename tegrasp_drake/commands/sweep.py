@@ -40,9 +40,9 @@ from tegrasp_drake.sweep.spec import (
     BUILTIN_OBJECTS,
     CONTROLLER_NAMES,
     SweepSpec,
-    LoadSweepSpec,
     validate_spec,
 )
+from tegrasp_drake.sweep.spec_file import LoadSweepSpec
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.sweep.trial_function:run_trial_from_spec"

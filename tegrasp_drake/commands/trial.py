@@ -11,8 +11,8 @@ from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RunFolderError, choose_run_folder, commit_run,
                                                staged_run)
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
-                                                   controller_events, corrective_events,
-                                                   scenario_from_arguments)
+                                                  controller_events, corrective_events,
+                                                  scenario_from_arguments)
 from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
                                                 start_viewer, wait_for_viewer,
                                                 write_replay_html)

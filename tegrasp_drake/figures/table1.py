@@ -5,8 +5,7 @@ of a sweep beside the paper's rate (the real robot with memorized triggers)."""
 import numpy as np
 
 from tegrasp_drake.figures.figure_files import new_figure, save_figure
-from tegrasp_drake.sweep.table import (AVERAGE, PAPER_TABLE1, TABLE1_COLUMNS,
-                                                   table1_rows)
+from tegrasp_drake.sweep.table import AVERAGE, PAPER_TABLE1, TABLE1_COLUMNS, table1_rows
 
 CONTROLLER_COLORS = {"memorized": "#c0392b", "heuristic": "#8e44ad", "open_loop": "#7f8c8d",
                      "taxel_aware": "#1f77b4"}

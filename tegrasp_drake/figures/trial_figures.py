@@ -8,8 +8,7 @@ from tegrasp_drake.figures.contact_ra import plot_contact_ra
 from tegrasp_drake.figures.figure_files import figure_path
 from tegrasp_drake.figures.signals import plot_trial_signals
 from tegrasp_drake.figures.states import plot_trial_states
-from tegrasp_drake.figures.trial_annotations import (logged_scenario,
-                                                                 logged_transitions)
+from tegrasp_drake.figures.trial_annotations import (logged_scenario, logged_transitions)
 
 
 def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, str]:

@@ -31,33 +31,32 @@ Physical events (simulation truth, like grasp_outcome.physical_events):
 
 Window: PRE_TRANSITION_S = 0.45 s into the 0.5 s window, as the ensemble's Reach-Load
 (ensemble_events.py): the live window looks most like it about 50 ms after the physical
-event, within the 60 ms latency target (LATENCY_TARGET_S, detection_quality.py). Combination: the mean of the template runs
-(the ensemble's rule and its reasons, ensemble_events.py). The two hit directions (+y, -y)
+event, within the 60 ms latency target (LATENCY_TARGET_S, detection_quality.py).
+Combination: the mean of the template runs (campaign.py). The two hit directions (+y, -y)
 mirror each other between the pads; their mean matches either side's hit.
 
 Role of the runs: "template" runs make the events; "held_out" runs (and the ensemble's
 held-out normal grasps, runs 5-7) choose the thresholds (analysis/choose_corrective_
-thresholds.py); the closed-loop trials judge them. The seeds, CORRECTIVE_BASE_SEED + k, are
-apart from every sweep's and the ensemble's (1_000_000 + run).
+thresholds.py); the closed-loop trials judge them. The seeds are CORRECTIVE_BASE_SEED + k
+(campaign.py).
 """
 
 import dataclasses
 
 import numpy as np
 
-from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
-from tegrasp_drake.events.correlation import normalize_by_max
-from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.recording.campaign import (CORRECTIVE_BASE_SEED, CampaignRun,
+                                              record_campaign)
 from tegrasp_drake.scenario.scenario import LoadScenario
-from tegrasp_drake.scenario.trial_log_writer import package_versions
-from tegrasp_drake.rig.objects import object_description
 
 CORRECTIVE_FOLDER = "corrective"
-CORRECTIVE_BASE_SEED = 2_000_000
 PRE_TRANSITION_S = 0.45
 SLIP_DISPLACEMENT_M = 0.001  # the pads' rise over the object's that counts as slip [m]
 # The modes in which each corrective event is looked for, and its action.
 CORRECTIVE_SITUATIONS = {"lift_load": "slip during Lift", "hold_avoid": "a hit during Hold"}
+# Simulated time of a run [s]: the script's Hold ends at 8.6 s, its Lift at 5.6 s
+# (scripted_grasp.plan_scripted_grasp with the default grasp timing).
+RUN_DURATION_S = {"hold_avoid": 8.7, "lift_load": 6.0}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -95,6 +94,13 @@ def corrective_scenario(object_name: str, run: CorrectiveRun):
     """The scenario of `run` on `object_name`: the object's scenario with its overrides."""
     return LoadScenario(name=object_name,
                         overrides=[f"random_seed={run.seed}", *run.overrides])
+
+
+def campaign_run(object_name: str, run: CorrectiveRun) -> CampaignRun:
+    """`run` as a run of the recording campaign, simulated only as long as its situation
+    needs (RUN_DURATION_S)."""
+    return CampaignRun(run.label, corrective_scenario(object_name, run), role=run.role,
+                       duration_s=RUN_DURATION_S[run.transition])
 
 
 def grasp_frame_heights(arm_q: np.ndarray) -> np.ndarray:
@@ -139,29 +145,15 @@ def corrective_event_time(log, scenario, transition: str) -> float | None:
                      f"{', '.join(CORRECTIVE_SITUATIONS)}")
 
 
-def run_corrective_event(log, scenario, run: CorrectiveRun, object_name: str,
-                         nominal_object) -> MemorizedEvent:
-    """The event of `run` cut from its log (PRE_TRANSITION_S); ValueError when the run
-    shows no such physical event."""
-    time = corrective_event_time(log, scenario, run.transition)
-    if time is None:
-        raise ValueError(f"corrective run '{run.label}' of '{object_name}' (seed {run.seed}) "
-                         f"shows no {CORRECTIVE_SITUATIONS[run.transition]}")
-    trial = tactile_trial_from_log(log, {run.transition: time})
-    return extract_memorized_events(
-        trial, object_name=object_name, sa_rate_hz=scenario.tactile.sample_rate_hz,
-        ra_rate_hz=scenario.vibration.sample_rate_hz, pre_transition_s=PRE_TRANSITION_S,
-        scenario=f"corrective run '{run.label}' seed {run.seed}",
-        package_versions=package_versions(),
-        object_description=object_description(nominal_object))[run.transition]
-
-
-def combine_corrective_runs(events: list[MemorizedEvent], note: str) -> MemorizedEvent:
-    """The mean of the runs' windows of one transition, max-normalised (module doc)."""
-    if not events:
-        raise ValueError("a corrective event needs at least one run")
-    return dataclasses.replace(
-        events[0], sa=normalize_by_max(np.mean([e.sa for e in events], axis=0)),
-        ra=normalize_by_max(np.mean([e.ra for e in events], axis=0)),
-        transition_time_s=float(np.mean([e.transition_time_s for e in events])),
-        scenario=f"{note}; mean of {len(events)} runs")
+def record_corrective_events(object_name: str, transition: str, *, log_dir=None):
+    """The memorized corrective event of `transition` on `object_name`: the campaign of its
+    CORRECTIVE_RUNS (the held-out runs' logs are kept in `log_dir` for choosing the
+    thresholds), the template runs combined by their mean."""
+    runs = [campaign_run(object_name, run) for run in CORRECTIVE_RUNS
+            if run.transition == transition]
+    return record_campaign(
+        runs, lambda log, scenario: {transition: corrective_event_time(log, scenario,
+                                                                       transition)},
+        object_name=object_name, nominal_object=LoadScenario(name=object_name).object,
+        pre_transition_s=PRE_TRANSITION_S, log_dir=log_dir,
+        note=f"corrective template runs of {object_name} ({transition})")[transition]

@@ -14,7 +14,7 @@ Every YAML file the project reads as configuration goes through here: scenarios
 - `check_fields` walks the data against a dataclass schema and names the first field that is
   unknown, missing (a dataclass field without a default), of the wrong type or a number that
   is not finite (`.nan`, `.inf`: no setting means "not a number") by its dotted path, e.g.
-  `object.mass` or `user_objects.mug.size_m`.
+  `object.mass` or `user_objects.mug.size`.
 - `require` checks one value of a loaded config (a positive timeout, a threshold in range).
 - `load_typed` checks the data, then builds the schema with Drake's `yaml_load_typed`.
 

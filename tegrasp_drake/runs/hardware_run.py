@@ -11,8 +11,9 @@ Simulator at real-time rate 1 until the state machine is done or failed. On the 
   fault (holding still meanwhile), or at the controller's time limit;
 - every message on the bus (the arm's KINOVA_JACO_*, the station's TEGRASP_TACTILE and
   TEGRASP_GRIPPER, the run's own) is written to an LCM log file, which lcm-logplayer
-  plays back and `tegrasp replay` re-runs the event matcher on (run_log.py). The first
-  message is TEGRASP_RUN_INFO: the scenario, the hardware config and the controller.
+  plays back, hardware_log_reader.py reads and `tegrasp replay` re-runs the event matcher
+  on (hardware_log_replay.py). The first message is TEGRASP_RUN_INFO: the scenario, the
+  hardware config and the controller.
 """
 
 import dataclasses
@@ -28,8 +29,7 @@ from pydrake.systems.framework import EventStatus
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
 from tegrasp_drake.hardware.lcm_time import utime_from_time
-from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, is_finished,
-                                                     MakeSimulator)
+from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram, MakeSimulator, is_finished
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.realtime import realtime_scheduling

@@ -28,16 +28,16 @@ from tegrasp_drake.sweep.runner import (
 from tegrasp_drake.sweep.spec import (
     BUILTIN_OBJECTS,
     CONTROLLER_NAMES,
-    ObjectDefinition,
     Perturbation,
     RandomisationConfig,
     SweepSpec,
     TrialSpec,
     expand_trials,
-    LoadSweepSpec,
     product_grid,
+    user_object,
     validate_spec,
 )
+from tegrasp_drake.sweep.spec_file import LoadSweepSpec
 from tegrasp_drake.sweep.summary import (
     readme_with_summaries,
     summary_markdown,

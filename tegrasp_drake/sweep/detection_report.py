@@ -21,7 +21,8 @@ trials that were in Hold when the hit came (physical event "hit"):
 Paired comparison (McNemar's exact test): for one success marker (well-placed or
 misplaced, hold or unload), the scenes both controllers ran (same pair_id: the same
 perturbed scene and noise seed), b = scenes only the first succeeded on, c = only the
-second; p = the two-sided binomial test of b against c (scipy.stats.binomtest, p = 0.5).
+second; p = the two-sided binomial test of b against c at p = 0.5 (table.py
+exact_mcnemar_p_value).
 """
 
 import collections
@@ -30,6 +31,7 @@ import dataclasses
 import numpy as np
 
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
+from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
 FALSE_TRIGGER_MARGIN_S = 0.01
 EVENT_TRIGGERS = ("memorized_event", "heuristic_event")
@@ -172,13 +174,6 @@ class PairedComparison:
     p_value: float
 
 
-def mcnemar_p(only_first: int, only_second: int) -> float:
-    """McNemar's exact two-sided p-value of the discordant counts (1.0 with none)."""
-    from scipy.stats import binomtest
-    n = only_first + only_second
-    return 1.0 if n == 0 else float(binomtest(only_first, n, 0.5).pvalue)
-
-
 def paired_comparison(records, first: str, second: str,
                       marker: tuple[str, str]) -> PairedComparison:
     """McNemar comparison of two controllers' success on one marker (module doc)."""
@@ -197,7 +192,7 @@ def paired_comparison(records, first: str, second: str,
     n = len(pairs)
     return PairedComparison(first, second, marker, n,
                             sum(x for x, _ in pairs) / n if n else 0.0,
-                            sum(y for _, y in pairs) / n if n else 0.0, a, b, mcnemar_p(a, b))
+                            sum(y for _, y in pairs) / n if n else 0.0, a, b, exact_mcnemar_p_value(a, b))
 
 
 def report_markdown(records, controllers, reference: str, title: str) -> str:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
 from tegrasp_drake.sweep.table import (CONTROLLER_TITLES, ordered_names, succeeded,
-                                                   write_markdown_and_csv)
+                                       write_markdown_and_csv)
 
 PHASES = ("hold", "unload")
 

@@ -38,7 +38,7 @@ from tegrasp_drake.sweep.records import (
     remove_temporary_files,
     write_record,
 )
-from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
+from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, expand_trials
 
 LOCK_FILE_NAME = ".sweep.lock"
 DASK_CONNECT_TIMEOUT_S = 30.0
@@ -166,7 +166,11 @@ def _check_same_sweep(trials, records, out_dir):
     """Refuses a folder whose records were made with other settings for the same ids."""
     for trial in trials:
         record = records.get(trial["trial_id"])
-        if record is not None and canonical_json(record["trial"]) != canonical_json(trial):
+        recorded = None if record is None else record["trial"]
+        if recorded is not None and recorded.get("object_definition"):
+            # A user object recorded with its old field names (spec.user_object).
+            recorded = TrialSpec.from_dict(recorded).to_dict()
+        if recorded is not None and canonical_json(recorded) != canonical_json(trial):
             raise SweepError(
                 f"{out_dir} holds a record of trial {trial['trial_id']} made with other "
                 "settings (seed, grid offsets, randomisation or scenario overrides differ); "

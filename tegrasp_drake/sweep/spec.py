@@ -14,10 +14,7 @@ Paired comparison: a trial's random numbers come from a seed derived from
 (base_seed, object, marker offset, attempt) and never from the controller, so every
 controller meets exactly the same perturbed scene and sensor-noise seed.
 
-A spec file is read like every other configuration file (rig/typed_yaml.py): the same YAML
-parser, the same walk that names an unknown, missing or mistyped field, and ConfigError. The
-spec's types are frozen and hashable (scenes are compared and collected in sets), which
-Drake's `yaml_load_typed` cannot build, so `LoadSweepSpec` builds them from the checked data.
+A spec file is read by `LoadSweepSpec` (spec_file.py).
 """
 
 import dataclasses
@@ -32,7 +29,7 @@ import numpy as np
 from tegrasp_drake.control import controller_config
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
-from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
+from tegrasp_drake.rig.typed_yaml import ConfigError
 
 # The controllers the trial function knows: the paper's memorized triggers, heuristic
 # thresholds in the style of Romano et al. 2011, open loop, and taxel_aware.
@@ -41,7 +38,7 @@ CONTROLLER_NAMES = controller_config.CONTROLLER_NAMES
 PAPER_CONTROLLERS = ("memorized", "heuristic", "open_loop")
 
 # The paper's three objects (Fig. 8a), as the scenario knows them (rig/objects.py);
-# a sweep spec can add user-defined objects (`ObjectDefinition`).
+# a sweep spec can add user-defined objects (`user_objects`, the scenario's ObjectConfig).
 BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
 
 # The paper's grid (Sec. IV-B): +-1 cm normal to the palm, +-1.5 cm along the stroke.
@@ -55,8 +52,13 @@ PER_TRIAL_SCENARIO_FIELDS = ("object", "object_offset", "object_yaw_deg", "rando
 
 # Names become parts of trial ids and file names: keep them to a safe alphabet.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
-# A sweep's object is a primitive shape: an ObjectDefinition has no model file field.
+# A sweep's own object is a primitive shape given by these fields of ObjectConfig (its name
+# is its key in `user_objects`).
 _OBJECT_SHAPES = tuple(shape for shape in objects.OBJECT_SHAPES if shape != "file")
+USER_OBJECT_FIELDS = ("shape", "size", "mass", "friction", "color")
+# The field names of sweep specs written before the sweep used ObjectConfig.
+RENAMED_OBJECT_FIELDS = {"size_m": "size", "mass_kg": "mass",
+                         "friction_coefficient": "friction"}
 
 
 def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float], ...]:
@@ -65,26 +67,14 @@ def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float
                  for dx in normal_offsets_m for dy in stroke_offsets_m)
 
 
-@dataclass(frozen=True)
-class ObjectDefinition:
-    """A user-defined object, handed to the trial function in its trial dict: the frozen
-    (hashable) form of the scenario's ObjectConfig (rig/objects.py), with the same meaning.
-
-    `size_m` is ObjectConfig.size: a box's [x, y, z] edge lengths, a cylinder's
-    [diameter, height]. `friction_coefficient` is required (a spec without it is refused
-    when it is loaded): there is no default friction for an object the sweep has not seen.
-    """
-    shape: str
-    size_m: tuple[float, ...]
-    mass_kg: float
-    friction_coefficient: float | None = None
-
-    def object_config(self, name: str) -> ObjectConfig:
-        """This object as the scenario's ObjectConfig called `name`."""
-        friction = self.friction_coefficient
-        return ObjectConfig(name=name, shape=self.shape, size=[float(v) for v in self.size_m],
-                            mass=self.mass_kg if self.mass_kg is None else float(self.mass_kg),
-                            friction=None if friction is None else float(friction))
+def user_object(name: str, fields: Mapping) -> ObjectConfig:
+    """The ObjectConfig called `name` of a sweep's own object (its `fields` from a spec or a
+    trial record). A record written before the sweep used ObjectConfig names its fields
+    size_m, mass_kg and friction_coefficient: they are read as size, mass and friction."""
+    fields = {RENAMED_OBJECT_FIELDS.get(key, key): value for key, value in fields.items()}
+    fields = {key: value for key, value in fields.items() if key != "name"}
+    return ObjectConfig(name=name, **{**fields,
+                                      "size": [float(v) for v in fields.get("size", [])]})
 
 
 @dataclass(frozen=True)
@@ -115,7 +105,7 @@ class SweepSpec:
     attempts: int = 3
     base_seed: int = 0
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
-    user_objects: Mapping[str, ObjectDefinition] = field(default_factory=dict)
+    user_objects: Mapping[str, ObjectConfig] = field(default_factory=dict)
     # `--set key=value` assignments applied to every trial's default scenario, e.g.
     # "controller.memorized_corrective_events=[hold_avoid]" (not the per-trial fields,
     # PER_TRIAL_SCENARIO_FIELDS).
@@ -146,7 +136,7 @@ class TrialSpec:
     pair_id: str
     controller: str
     object_name: str
-    object_definition: ObjectDefinition | None
+    object_definition: ObjectConfig | None  # a user object; None: the built-in one
     marker: str
     marker_dx_m: float
     marker_dy_m: float
@@ -160,8 +150,6 @@ class TrialSpec:
 
     def to_dict(self) -> dict:
         d = dataclasses.asdict(self)
-        if d["object_definition"] is not None:
-            d["object_definition"]["size_m"] = list(d["object_definition"]["size_m"])
         # Left out when empty: a sweep without overrides keeps the records it always wrote,
         # so folders made before the field existed still resume.
         if self.scenario_overrides:
@@ -174,8 +162,7 @@ class TrialSpec:
     def from_dict(cls, d: Mapping) -> "TrialSpec":
         definition = d["object_definition"]
         if definition is not None:
-            definition = ObjectDefinition(**{**definition,
-                                             "size_m": tuple(definition["size_m"])})
+            definition = user_object(d["object_name"], definition)
         return cls(**{**d, "object_definition": definition,
                       "perturbation": Perturbation(**d["perturbation"]),
                       "scenario_overrides": tuple(d.get("scenario_overrides", ()))})
@@ -196,11 +183,11 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
-    for name, definition in spec.user_objects.items():
+    for name, config in spec.user_objects.items():
         _check_name(name, f"user_objects.{name}", fail)
         if name in builtin_objects:
             fail(f"user_objects.{name}", "redefines a built-in object; choose another name")
-        _check_object_definition(name, definition, fail)
+        _check_user_object(name, config, fail)
     known_objects = tuple(builtin_objects) + tuple(spec.user_objects)
     _check_names_in(spec.objects, known_objects, "objects", "object", fail)
     _check_names_in(spec.controllers, tuple(controllers), "controllers", "controller", fail)
@@ -210,7 +197,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     seen_markers = set()
     for offset in spec.grid:
         if (len(offset) != 2
-                or not all(_is_number(v) and math.isfinite(v) for v in offset)):
+                or not all(is_number(v) and math.isfinite(v) for v in offset)):
             fail("grid", f"marker offset {offset!r} is not a pair of finite numbers (m)")
         key = _offset_key(offset)
         if key in seen_markers:
@@ -230,11 +217,11 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     r = spec.randomisation
     for name in ("placement_xy_bound_m", "placement_yaw_bound_deg"):
         value = getattr(r, name)
-        if not _is_number(value) or not 0.0 <= value < math.inf:
+        if not is_number(value) or not 0.0 <= value < math.inf:
             fail(f"randomisation.{name}", f"expected a non-negative number, got {value!r}")
     for name in ("friction_scale_bound", "mass_scale_bound"):
         value = getattr(r, name)
-        if not _is_number(value) or not 0.0 <= value < 1.0:
+        if not is_number(value) or not 0.0 <= value < 1.0:
             fail(f"randomisation.{name}",
                  f"expected a number in [0, 1) so the scale stays positive, got {value!r}")
     if not isinstance(r.sensor_noise, bool):
@@ -279,108 +266,27 @@ def _check_names_in(names, known, field_name, kind, fail):
         fail(field_name, f"names a {kind} twice: {list(names)}")
 
 
-# ObjectConfig's field names -> ObjectDefinition's.
-_DEFINITION_FIELDS = {"shape": "shape", "size": "size_m", "mass": "mass_kg",
-                      "friction": "friction_coefficient"}
-
-
-def _check_object_definition(name, definition, fail):
-    """The checks of the scenario's objects (rig/objects.py), named by the sweep's fields."""
-    if not isinstance(definition, ObjectDefinition):
-        fail(f"user_objects.{name}", "expected an object definition")
-    problem = object_problem(definition.object_config(name), shapes=_OBJECT_SHAPES)
+def _check_user_object(name, config, fail):
+    """The checks of the scenario's objects (rig/objects.py), on a primitive shape."""
+    if not isinstance(config, ObjectConfig):
+        fail(f"user_objects.{name}", "expected an object (shape, size, mass, friction)")
+    problem = object_problem(config, shapes=_OBJECT_SHAPES)
     if problem:
         config_field, words = problem
-        fail(f"user_objects.{name}.{_DEFINITION_FIELDS[config_field]}", words)
+        fail(f"user_objects.{name}.{config_field}", words)
 
 
 def _is_int(value) -> bool:
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-def _is_number(value) -> bool:
+def is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 def _offset_key(offset) -> tuple[int, int]:
     """A marker offset in whole micrometres: its identity for seeds and duplicates."""
     return (round(offset[0] * 1e6), round(offset[1] * 1e6))
-
-
-# ---------------------------------------------------------------------------------
-# Loading from YAML
-
-
-@dataclass
-class _ProductGrid:
-    """The mapping form of a spec's `grid`: the product of two offset lists [m]."""
-    normal_offsets_m: list[float]
-    stroke_offsets_m: list[float]
-
-
-def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
-                    controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
-    """Reads and validates a YAML sweep spec; fields left out keep the paper's defaults.
-
-    Fields: objects, controllers (lists of names), attempts, base_seed (integers),
-    grid (either a list of [dx_m, dy_m] marker offsets, or a mapping with
-    normal_offsets_m and stroke_offsets_m lists whose product is the grid),
-    randomisation (a mapping of `RandomisationConfig` fields), user_objects (a mapping
-    from name to `ObjectDefinition` fields), scenario_overrides (a list of `--set`
-    assignments for every trial's scenario, e.g. the controller's settings). Raises
-    ConfigError naming the file and the field for unknown fields, wrong types and values
-    that cannot run.
-    """
-    source = str(path)
-
-    def fail(field_name, message):
-        raise ConfigError(f"{source}: field '{field_name}': {message}")
-
-    fields = read_yaml_file(path, "the sweep spec")
-    if fields is None:
-        fields = {}
-    # The grid has two forms, a list of markers or a product grid: it is read on its own.
-    has_grid = isinstance(fields, dict) and "grid" in fields
-    grid = fields.pop("grid") if has_grid else None
-    check_fields(fields, SweepSpec, source)
-    if has_grid:
-        fields["grid"] = _parse_grid(grid, source, fail)
-    for name in ("objects", "controllers", "scenario_overrides"):
-        if name in fields:
-            fields[name] = tuple(fields[name])
-    if "randomisation" in fields:
-        fields["randomisation"] = RandomisationConfig(**fields["randomisation"])
-    if "user_objects" in fields:
-        fields["user_objects"] = {
-            str(name): ObjectDefinition(**{**definition, "size_m": tuple(definition["size_m"])})
-            for name, definition in fields["user_objects"].items()}
-
-    spec = SweepSpec(**fields)
-    validate_spec(spec, source, builtin_objects=builtin_objects, controllers=controllers)
-    return spec
-
-
-def _offsets(values, field_name, fail) -> tuple[float, ...]:
-    if not values:
-        fail(field_name, "is empty: a sweep needs at least one marker offset")
-    return tuple(float(v) for v in values)
-
-
-def _parse_grid(value, source, fail) -> tuple[tuple[float, float], ...]:
-    if isinstance(value, dict):
-        check_fields(value, _ProductGrid, source, "grid")
-        return product_grid(_offsets(value["normal_offsets_m"], "grid.normal_offsets_m", fail),
-                            _offsets(value["stroke_offsets_m"], "grid.stroke_offsets_m", fail))
-    if isinstance(value, list):
-        grid = []
-        for item in value:
-            if (not isinstance(item, list) or len(item) != 2
-                    or not all(_is_number(v) for v in item)):
-                fail("grid", f"marker offset {item!r} is not a pair [dx_m, dy_m] of numbers")
-            grid.append((float(item[0]), float(item[1])))
-        return tuple(grid)  # validate_spec rejects an empty list.
-    fail("grid", "expected a list of [dx_m, dy_m] offsets or a mapping with "
-                 f"normal_offsets_m and stroke_offsets_m, got {value!r}")
 
 
 # ---------------------------------------------------------------------------------

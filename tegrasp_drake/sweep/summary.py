@@ -21,8 +21,7 @@ from pathlib import Path
 
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
 from tegrasp_drake.sweep.records import load_records
-from tegrasp_drake.sweep.table import (AVERAGE, PAPER_TABLE1, controller_statistics,
-                                                   table1_rows)
+from tegrasp_drake.sweep.table import AVERAGE, PAPER_TABLE1, controller_statistics, table1_rows
 
 SUMMARY_FILE = "summary.md"
 CONTROLLER_NAMES = {"memorized": "memorized triggers", "heuristic": "heuristic thresholds",

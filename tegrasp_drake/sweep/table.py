@@ -18,8 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tegrasp_drake.sweep.failure_classes import (failure_class_counts,
-                                                             failure_classes_markdown)
+from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_classes_markdown
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
 
 # (placement, phase) columns of Table I, in the paper's order.

@@ -19,13 +19,13 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     unperturbed with `nominal`), placement, seed and controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
     from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
-    from tegrasp_drake.sweep.spec import ObjectDefinition
+    from tegrasp_drake.sweep.spec import user_object
     p = trial["perturbation"]
     base = LoadScenario(overrides=tuple(trial.get("scenario_overrides", ())),
                         controller=trial["controller"])
     definition = trial.get("object_definition")
     if definition:
-        obj = ObjectDefinition(**definition).object_config(trial["object_name"])
+        obj = user_object(trial["object_name"], definition)
     else:
         obj = resolve_object(ObjectConfig(name=trial["object_name"]))
     if not nominal:

@@ -1,6 +1,6 @@
 """What the linkage hand costs against the prismatic one, side by side in one run.
 
-    python analysis/benchmark_hands.py [--repeats 3]
+    python -m benchmarks.hands [--repeats 3]
 
 For each hand: the memorized closed-loop trial of the default scenario (the box on its
 marker) with that hand's own memorized events, and the plant-alone floor (the station's plant

@@ -11,7 +11,7 @@ from tegrasp_drake.control.grasp_controller import load_controller_events
 from tegrasp_drake.events.memorized_event import events_folder_of
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.rig import paths
-from tegrasp_drake.recording.record_events import record_events
+from tegrasp_drake.recording.paper_events import record_events
 from tegrasp_drake.events import load_memorized_events
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, object_description
 
