@@ -18,10 +18,11 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from tegrasp_drake.control.grasp_controller import AddGraspController
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
-from tegrasp_drake.scenario.grasp_diagram import EXTRA_TIME_S, MakeSimulator
+from tegrasp_drake.scenario.grasp_diagram import (EXTRA_TIME_S, AddScenarioController,
+                                                  MakeSimulator)
+from tegrasp_drake.scenario.scenario import grasp_plan
 from tegrasp_drake.simulation.station import AddStationPlant, MakeGraspStation
 
 END_MARGIN_S = 0.5  # as a trial: simulated after the state machine ends
@@ -49,14 +50,14 @@ def record_plant_inputs(scenario, *, events=None) -> PlantInputs:
     the package's) to its end and records the plant's inputs at every plant step."""
     builder = DiagramBuilder()
     station = builder.AddNamedSystem("station", MakeGraspStation(scenario))
-    grasp = AddGraspController(builder, scenario=scenario, station=station, events=events)
+    grasp = AddScenarioController(builder, scenario, station=station, events=events)
     arm_log = LogVectorOutput(grasp.arm_desired_state, builder)
     gripper_log = LogVectorOutput(station.GetOutputPort("gripper.plant_desired_state"), builder)
     object_port = station.GetOutputPort("object.state")
     diagram = builder.Build()
     simulator = MakeSimulator(diagram, scenario)
     context = simulator.get_mutable_context()
-    limit = plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S
+    limit = plan_duration(plan_scripted_grasp(grasp_plan(scenario))) + EXTRA_TIME_S
     simulator.Initialize()
     ended = False
     while context.get_time() < limit - 1e-9:

@@ -14,14 +14,14 @@ from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.control.corrective_actions import (Counters, avoid_on_hit_event,
                                                       lift_load_on_slip_event)
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
-from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
+from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.events import EventMatcherConfig, replay_event_held
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.events.memorized_event import load_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.recording.corrective_events import CORRECTIVE_RUNS, slip_onset_time
-from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 # The recorded held-out windows (tests/data) were simulated on the prismatic hand: they are
@@ -76,7 +76,7 @@ def test_the_switch_names_a_bad_event_and_needs_the_events():
     with pytest.raises(ConfigError, match=r"controller.memorized_corrective_events\[0\]"):
         LoadScenario(overrides=["controller.memorized_corrective_events=[hold_hit]"])
     with pytest.raises(ValueError, match="hold_avoid"):
-        GraspStateMachine(plan=GraspPlan.from_scenario(LoadScenario()), config=MEMORIZED_HIT,
+        GraspStateMachine(plan=grasp_plan(LoadScenario()), config=MEMORIZED_HIT,
                           event_indices={"reach_load": 0, "load_lift": 1, "place_unload": 2},
                           event_trigger=Trigger.MEMORIZED_EVENT)
 

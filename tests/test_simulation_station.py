@@ -23,7 +23,7 @@ def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
         f"object.name={object_name}"])
     station = MakeGraspStation(scenario)
     context = station.CreateDefaultContext()
-    q0 = initial_arm_positions(scenario)
+    q0 = initial_arm_positions(scenario.arm)
     station.GetInputPort("arm.desired_state").FixValue(context, np.concatenate([q0, np.zeros(6)]))
     command = station.GetInputPort("gripper.command")
     command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))

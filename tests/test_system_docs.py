@@ -26,7 +26,7 @@ import tegrasp_drake
 from tegrasp_drake.control.controller_config import (
     GraspControllerConfig, HeuristicTriggerConfig)
 from tegrasp_drake.control.grasp_modes import Trigger
-from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
+from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
 from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import ScriptedGraspSource, plan_scripted_grasp
@@ -37,7 +37,7 @@ from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.memorized_event import load_memorized_events
 from benchmarks.drivers import LoopTick
 from benchmarks.matcher import _InputReader
-from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import GripperStatusSender, TactileStatusSender
 from tegrasp_drake.hardware.fault_latch import FaultLatch
@@ -128,11 +128,11 @@ CONSTRUCTORS = {
     EventMatcher: lambda: EventMatcher(load_memorized_events(paths.package_events_dir(), "box")),
     EventSequencer: lambda: EventSequencer([0, 1, 2]),
     GraspStateMachine: lambda: GraspStateMachine(
-        plan=GraspPlan.from_scenario(box_scenario()), config=GraspControllerConfig(),
+        plan=grasp_plan(box_scenario()), config=GraspControllerConfig(),
         event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT),
     HeuristicEventDetector: lambda: HeuristicEventDetector(HeuristicTriggerConfig(),
                                                            grip_force_n=25.0),
-    ScriptedGraspSource: lambda: ScriptedGraspSource(plan_scripted_grasp(box_scenario())),
+    ScriptedGraspSource: lambda: ScriptedGraspSource(plan_scripted_grasp(grasp_plan(box_scenario()))),
     LoopTick: lambda: LoopTick([]),
     GraspWrenchEstimator: GraspWrenchEstimator,
     _InputReader: _InputReader,

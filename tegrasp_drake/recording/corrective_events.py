@@ -47,7 +47,7 @@ import numpy as np
 
 from tegrasp_drake.recording.campaign import (CORRECTIVE_BASE_SEED, CampaignRun,
                                               record_campaign)
-from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 
 CORRECTIVE_FOLDER = "corrective"
 PRE_TRANSITION_S = 0.45
@@ -122,7 +122,7 @@ def slip_onset_time(log, scenario) -> float | None:
     measured arm joints) have risen more than SLIP_DISPLACEMENT_M further than the object
     since Lift began; None if they never do."""
     from tegrasp_drake.control.scripted_grasp import plan_scripted_grasp
-    lift = next(s for s in plan_scripted_grasp(scenario) if s.phase == "lift")
+    lift = next(s for s in plan_scripted_grasp(grasp_plan(scenario)) if s.phase == "lift")
     t = np.asarray(log.t_slow)
     in_lift = np.flatnonzero((t >= lift.t_start) & (t <= lift.t_end))
     if in_lift.size == 0:

@@ -5,8 +5,10 @@ loggers write.
     from tegrasp_drake.scenario import LoadScenario, MakeGraspDiagram, MakeSimulator
 """
 
-from tegrasp_drake.scenario.grasp_diagram import (GraspDiagram, MakeGraspDiagram,
-                                                  MakeSimulator, MakeStation)
+from tegrasp_drake.scenario.grasp_diagram import (AddScenarioController, GraspDiagram,
+                                                  MakeGraspDiagram, MakeSimulator,
+                                                  MakeStation)
 from tegrasp_drake.scenario.scenario import (DEFAULT_SCENARIO, LoadScenario, Scenario,
-                                             scenario_to_yaml, with_controller)
+                                             grasp_plan, sample_rates_hz, scenario_to_yaml,
+                                             with_controller)
 from tegrasp_drake.scenario.trial_log_file import TrialLog, TrialLogError, load_trial_log

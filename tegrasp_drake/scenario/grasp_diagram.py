@@ -2,7 +2,8 @@
 
     station (MakeStation: MakeGraspStation or MakeHardwareStation, by the scenario's
              `station` tag, or one the caller built)
-      -> AddGraspController (control/grasp_controller.py): Eq. 1-2 channels, the event
+      -> AddGraspController (control/grasp_controller.py) with the scenario's sections
+         (AddScenarioController): Eq. 1-2 channels, the event
          detector, the state machine (or the open-loop script) and Cartesian control;
          arm.desired_state and gripper.command from the measured arm, gripper and tactile
          ports; the hardware station's `device_fault` goes to the state machine
@@ -20,11 +21,15 @@ from pydrake.common import RandomGenerator
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 from pydrake.systems.framework import Diagram, DiagramBuilder
 
-from tegrasp_drake.control.grasp_controller import GraspController, AddGraspController
+from tegrasp_drake.control.controller_config import EventTriggeredConfig
+from tegrasp_drake.control.grasp_controller import (AddGraspController, GraspController,
+                                                    load_controller_events,
+                                                    load_corrective_events)
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
 from tegrasp_drake.scenario.trial_log_writer import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.scenario.scenario import grasp_plan, sample_rates_hz
 from tegrasp_drake.simulation.station import MakeGraspStation
 
 # Beyond the ideal grasp's duration, for corrections (and the controller's own
@@ -47,6 +52,22 @@ def MakeStation(scenario, *, meshcat=None, lcm=None):
         from tegrasp_drake.hardware.station import MakeHardwareStation
         return MakeHardwareStation(scenario.station, lcm=lcm)
     return MakeGraspStation(scenario, meshcat=meshcat)
+
+
+def AddScenarioController(builder, scenario, *, station, events=None,
+                          corrective_events=None) -> GraspController:
+    """AddGraspController with the scenario's sections: its controller, its GraspPlan
+    (grasp_plan), its arm and its sample rates; the memorized events its controller needs
+    default to the scenario object's (load_controller_events, load_corrective_events)."""
+    controller = scenario.controller
+    if events is None and isinstance(controller, EventTriggeredConfig):
+        events = load_controller_events(scenario)
+    if corrective_events is None and getattr(controller, "memorized_corrective_events", ()):
+        corrective_events = load_corrective_events(scenario)
+    return AddGraspController(builder, controller=controller, plan=grasp_plan(scenario),
+                              station=station, arm=scenario.arm,
+                              sample_rates_hz=sample_rates_hz(scenario), events=events,
+                              corrective_events=corrective_events)
 
 
 @dataclasses.dataclass
@@ -72,8 +93,8 @@ def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=N
     if station is None:
         station = MakeStation(scenario, meshcat=meshcat)
     station = builder.AddNamedSystem("station", station)
-    grasp = AddGraspController(builder, scenario=scenario, station=station,
-                               events=events, corrective_events=corrective_events)
+    grasp = AddScenarioController(builder, scenario, station=station, events=events,
+                                  corrective_events=corrective_events)
     machine = grasp.state_machine
     if station.HasOutputPort("device_fault") and machine.HasInputPort("device_fault"):
         builder.Connect(station.GetOutputPort("device_fault"),
@@ -86,7 +107,7 @@ def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=N
                                     gripper_command=grasp.gripper_command, phase=grasp.mode)
     diagram = builder.Build()
     diagram.set_name(f"grasp_{grasp.name}")
-    time_limit = (plan_duration(plan_scripted_grasp(scenario)) + EXTRA_TIME_S
+    time_limit = (plan_duration(plan_scripted_grasp(grasp_plan(scenario))) + EXTRA_TIME_S
                   + scenario.controller.extra_time_s)
     return GraspDiagram(diagram, station, grasp, loggers, time_limit)
 

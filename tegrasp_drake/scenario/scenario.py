@@ -40,8 +40,8 @@ from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
-           "resolve_object", "scenario_from_yaml", "scenario_to_yaml", "validate",
-           "with_controller"]
+           "grasp_plan", "resolve_object", "sample_rates_hz", "scenario_from_yaml",
+           "scenario_to_yaml", "validate", "with_controller"]
 
 # Which station a scenario runs on, selected by the YAML tag of its `station` field
 # (hardware/config.py): the simulation (the default, untagged) or the real devices.
@@ -252,7 +252,7 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
             "not a push)", disturbance.hit_duration_s)
     if disturbance.hit_time_s >= 0:
         from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
-        end = plan_duration(plan_scripted_grasp(scenario))
+        end = plan_duration(plan_scripted_grasp(grasp_plan(scenario)))
         require(disturbance.hit_time_s < end, source, "disturbance.hit_time_s",
                 f"must come before the grasp's script ends at {end:.1f} s (or be negative: "
                 "no hit)", disturbance.hit_time_s)
@@ -329,6 +329,20 @@ def LoadScenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT
                           f"controller.name={owners[0]} (or its YAML tag "
                           f"controller: !{type(controller_named(owners[0])).__name__} {{...}})")
     return validate(load_typed(data, Scenario, source), source)
+
+
+def grasp_plan(scenario: Scenario):
+    """The GraspPlan of the scenario: its grasp script placed for its expected object, by
+    its hand, from its arm's start pose."""
+    from tegrasp_drake.control.machine_state import GraspPlan
+    return GraspPlan.make(scenario.grasp, start_xyz=scenario.arm.initial_gripper_xyz,
+                          expected_object_xy=scenario.expected_object_xy,
+                          object=scenario.object, gripper_model=scenario.gripper.model)
+
+
+def sample_rates_hz(scenario: Scenario) -> tuple[float, float]:
+    """The live SA (taxel) and RA (film) sample rates [Hz] the controller's matchers read."""
+    return scenario.tactile.sample_rate_hz, scenario.vibration.sample_rate_hz
 
 
 def with_controller(scenario: Scenario, name: str) -> Scenario:

@@ -78,9 +78,10 @@ def object_pose_on_table(scenario) -> RigidTransform:
                           [x, y, 0.0])
 
 
-def initial_arm_positions(scenario) -> np.ndarray:
-    """Joint angles [rad] that put the grasp frame at the scenario's start pose."""
-    X_WG = RigidTransform(R_WG_SIDE_GRASP, scenario.arm.initial_gripper_xyz)
+def initial_arm_positions(arm: ArmDriverConfig) -> np.ndarray:
+    """Joint angles [rad] that put the grasp frame at the arm's start pose
+    (arm.initial_gripper_xyz, side-grasp orientation)."""
+    X_WG = RigidTransform(R_WG_SIDE_GRASP, arm.initial_gripper_xyz)
     return solve_grasp_frame_ik(make_arm_control_plant(), X_WG)
 
 
@@ -185,7 +186,7 @@ def AddStationPlant(builder, scenario) -> StationPlant:
     set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
     plant.Finalize()
 
-    plant.SetDefaultPositions(arm, initial_arm_positions(scenario))
+    plant.SetDefaultPositions(arm, initial_arm_positions(scenario.arm))
     plant.SetDefaultPositions(gripper, hand.default_positions())
     plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), object_pose_on_table(scenario))
     return StationPlant(plant, scene_graph, arm, gripper, obj)
