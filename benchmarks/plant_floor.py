@@ -21,9 +21,9 @@ from pydrake.trajectories import PiecewisePolynomial
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
 from tegrasp_drake.scenario.grasp_diagram import (EXTRA_TIME_S, AddScenarioController,
-                                                  MakeSimulator)
-from tegrasp_drake.scenario.scenario import grasp_plan
-from tegrasp_drake.simulation.station import AddStationPlant, MakeGraspStation
+                                                  MakeSimulatedStation, MakeSimulator)
+from tegrasp_drake.scenario.scenario import grasp_plan, object_pose
+from tegrasp_drake.simulation.station import AddStationPlant
 
 END_MARGIN_S = 0.5  # as a trial: simulated after the state machine ends
 CHECK_PERIOD_S = 0.25
@@ -49,7 +49,7 @@ def record_plant_inputs(scenario, *, events=None) -> PlantInputs:
     """Runs the closed-loop trial of `scenario` (its controller; memorized `events`, default
     the package's) to its end and records the plant's inputs at every plant step."""
     builder = DiagramBuilder()
-    station = builder.AddNamedSystem("station", MakeGraspStation(scenario))
+    station = builder.AddNamedSystem("station", MakeSimulatedStation(scenario))
     grasp = AddScenarioController(builder, scenario, station=station, events=events)
     arm_log = LogVectorOutput(grasp.arm_desired_state, builder)
     gripper_log = LogVectorOutput(station.GetOutputPort("gripper.plant_desired_state"), builder)
@@ -92,7 +92,9 @@ class FloorRun:
 def run_plant_floor(scenario, inputs: PlantInputs) -> FloorRun:
     """The station's plant alone, driven by `inputs` for the trial's duration."""
     builder = DiagramBuilder()
-    parts = AddStationPlant(builder, scenario)
+    parts = AddStationPlant(builder, plant_config=scenario.plant_config, arm=scenario.arm,
+                            gripper=scenario.gripper, object=scenario.object,
+                            X_WO=object_pose(scenario))
     plant = parts.plant
     arm = builder.AddSystem(_held(inputs.times, inputs.arm_desired_state))
     builder.Connect(arm.get_output_port(), plant.get_desired_state_input_port(parts.arm))

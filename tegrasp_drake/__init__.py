@@ -51,6 +51,7 @@ _PUBLIC = {
     "GraspController": "tegrasp_drake.control.grasp_controller",
     "MakeGraspDiagram": "tegrasp_drake.scenario.grasp_diagram",
     "AddScenarioController": "tegrasp_drake.scenario.grasp_diagram",
+    "MakeSimulatedStation": "tegrasp_drake.scenario.grasp_diagram",
     "GraspPlan": "tegrasp_drake.control.machine_state",
     "grasp_plan": "tegrasp_drake.scenario.scenario",
     "sample_rates_hz": "tegrasp_drake.scenario.scenario",

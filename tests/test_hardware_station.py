@@ -13,7 +13,7 @@ from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.station import HardwareNotReadyError, MakeHardwareStation
 from tegrasp_drake.scenario.scenario import LoadScenario
-from tegrasp_drake.simulation.station import MakeGraspStation
+from tegrasp_drake.scenario import MakeSimulatedStation
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
 
@@ -40,7 +40,7 @@ def station():
 
 
 def test_hardware_station_has_the_simulated_station_ports(station):
-    simulated = MakeGraspStation(LoadScenario(name="box"))
+    simulated = MakeSimulatedStation(LoadScenario(name="box"))
     for name in CONTROLLER_INPUTS:
         assert station.GetInputPort(name).size() == simulated.GetInputPort(name).size()
     for name in CONTROLLER_OUTPUTS:

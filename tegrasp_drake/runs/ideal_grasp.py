@@ -12,9 +12,9 @@ from pydrake.systems.framework import EventStatus
 
 from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.scripted_grasp import PHASES, plan_duration
-from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram, MakeSimulator
+from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
+                                                  MakeSimulator)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
-from tegrasp_drake.simulation.station import MakeGraspStation
 
 CONTROLLER_NAME = OpenLoopControllerConfig.name
 END_MARGIN_S = 0.5  # simulated after the script ends, to see the object settle
@@ -26,7 +26,7 @@ logger = logging.getLogger(__name__)
 def MakeIdealGraspDiagram(scenario, *, meshcat=None):
     """The GraspDiagram of the scripted grasp around the simulated station."""
     scripted = dataclasses.replace(scenario, controller=OpenLoopControllerConfig())
-    return MakeGraspDiagram(scripted, station=MakeGraspStation(scripted, meshcat=meshcat))
+    return MakeGraspDiagram(scripted, station=MakeSimulatedStation(scripted, meshcat=meshcat))
 
 
 def progress_monitor(progress, end_time: float):

@@ -143,8 +143,10 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     builder.Connect(driver.GetOutputPort("desired_state"),
                     plant.get_desired_state_input_port(gripper))
     taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
-                                        gripper=gripper, object_body=object_body(plant, obj),
-                                        scenario=scenario)
+                                      gripper=gripper, object_body=object_body(plant, obj),
+                                      tactile=scenario.tactile, vibration=scenario.vibration,
+                                      gripper_model=scenario.gripper.model,
+                                      random_seed=scenario.random_seed)
     ra_period = 1.0 / scenario.vibration.sample_rate_hz
     logs = {f"ra_{f}": LogVectorOutput(films.GetOutputPort(f"{f}_pad_vibration"), builder,
                                        ra_period) for f in FINGER_NAMES}

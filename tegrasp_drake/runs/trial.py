@@ -13,11 +13,11 @@ import time
 from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
-from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram, MakeSimulator
+from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
+                                                  MakeSimulator)
 from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
                                               judge_grasp, table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
-from tegrasp_drake.simulation.station import MakeGraspStation
 
 HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
 UPRIGHT_TILT_DEG = 10.0  # standing upright after Unload
@@ -114,7 +114,7 @@ def run_trial(scenario, *, meshcat=None, events=None, corrective_events=None,
     events, corrective_events: the memorized events (MakeGraspDiagram's defaults if None).
     progress: called as progress(t, end) [s, simulated] as the run goes (`end` shrinks to
     the state machine's end plus END_MARGIN_S once it is Done or Failed)."""
-    grasp = MakeGraspDiagram(scenario, station=MakeGraspStation(scenario, meshcat=meshcat),
+    grasp = MakeGraspDiagram(scenario, station=MakeSimulatedStation(scenario, meshcat=meshcat),
                                 events=events, corrective_events=corrective_events)
     controller, loggers = grasp.controller, grasp.loggers
     simulator = MakeSimulator(grasp.diagram, scenario)

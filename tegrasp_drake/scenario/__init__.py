@@ -6,9 +6,10 @@ loggers write.
 """
 
 from tegrasp_drake.scenario.grasp_diagram import (AddScenarioController, GraspDiagram,
-                                                  MakeGraspDiagram, MakeSimulator,
-                                                  MakeStation)
+                                                  MakeGraspDiagram, MakeSimulatedStation,
+                                                  MakeSimulator, MakeStation)
 from tegrasp_drake.scenario.scenario import (DEFAULT_SCENARIO, LoadScenario, Scenario,
-                                             grasp_plan, sample_rates_hz, scenario_to_yaml,
+                                             grasp_plan, object_pose, sample_rates_hz,
+                                             scenario_to_yaml,
                                              with_controller)
 from tegrasp_drake.scenario.trial_log_file import TrialLog, TrialLogError, load_trial_log

@@ -1,6 +1,6 @@
 """The grasp diagram: a station and the grasp controller, built one way for every run.
 
-    station (MakeStation: MakeGraspStation or MakeHardwareStation, by the scenario's
+    station (MakeStation: MakeSimulatedStation or MakeHardwareStation, by the scenario's
              `station` tag, or one the caller built)
       -> AddGraspController (control/grasp_controller.py) with the scenario's sections
          (AddScenarioController): Eq. 1-2 channels, the event
@@ -29,7 +29,7 @@ from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
 from tegrasp_drake.scenario.trial_log_writer import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
-from tegrasp_drake.scenario.scenario import grasp_plan, sample_rates_hz
+from tegrasp_drake.scenario.scenario import grasp_plan, object_pose, sample_rates_hz
 from tegrasp_drake.simulation.station import MakeGraspStation
 
 # Beyond the ideal grasp's duration, for corrections (and the controller's own
@@ -40,7 +40,7 @@ EXTRA_TIME_S = 10.0
 def MakeStation(scenario, *, meshcat=None, lcm=None):
     """The station of `scenario`, simulated or real, as its `station` tag says.
 
-    `station: !SimulatedStationConfig {}` (the default): MakeGraspStation(scenario,
+    `station: !SimulatedStationConfig {}` (the default): MakeSimulatedStation(scenario,
     meshcat=meshcat), the simulated arm, gripper, object and sensors.
     `station: !HardwareStationConfig {...}`: MakeHardwareStation(scenario.station, lcm=lcm),
     the devices (the Jaco on LCM, the 2F-85 on Modbus RTU, the myRIO tactile stream); it
@@ -51,7 +51,17 @@ def MakeStation(scenario, *, meshcat=None, lcm=None):
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation
         return MakeHardwareStation(scenario.station, lcm=lcm)
-    return MakeGraspStation(scenario, meshcat=meshcat)
+    return MakeSimulatedStation(scenario, meshcat=meshcat)
+
+
+def MakeSimulatedStation(scenario, *, meshcat=None):
+    """MakeGraspStation with the scenario's sections, whatever its `station` tag says."""
+    return MakeGraspStation(
+        plant_config=scenario.plant_config, arm=scenario.arm, gripper=scenario.gripper,
+        object=scenario.object, X_WO=object_pose(scenario), tactile=scenario.tactile,
+        vibration=scenario.vibration, disturbance=scenario.disturbance,
+        random_seed=scenario.random_seed, grasp_height=scenario.grasp.grasp_height,
+        meshcat=meshcat)
 
 
 def AddScenarioController(builder, scenario, *, station, events=None,

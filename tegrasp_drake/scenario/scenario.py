@@ -40,7 +40,7 @@ from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
-           "grasp_plan", "resolve_object", "sample_rates_hz", "scenario_from_yaml",
+           "grasp_plan", "object_pose", "resolve_object", "sample_rates_hz", "scenario_from_yaml",
            "scenario_to_yaml", "validate", "with_controller"]
 
 # Which station a scenario runs on, selected by the YAML tag of its `station` field
@@ -338,6 +338,13 @@ def grasp_plan(scenario: Scenario):
     return GraspPlan.make(scenario.grasp, start_xyz=scenario.arm.initial_gripper_xyz,
                           expected_object_xy=scenario.expected_object_xy,
                           object=scenario.object, gripper_model=scenario.gripper.model)
+
+
+def object_pose(scenario: Scenario):
+    """X_WO of the scenario's object: on its marker, moved by its offset, yawed."""
+    from tegrasp_drake.simulation.station import object_pose_on_table
+    return object_pose_on_table(scenario.expected_object_xy, scenario.object_offset,
+                                scenario.object_yaw_deg)
 
 
 def sample_rates_hz(scenario: Scenario) -> tuple[float, float]:

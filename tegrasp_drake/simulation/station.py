@@ -1,7 +1,7 @@
 """MakeGraspStation: the simulated hardware of the paper (Sec. III-A, Fig. 4) as one Diagram.
 
-A JACO2 arm on a table, the tactile 2F-85-like gripper on its flange, the scenario's object
-on its marker (plus its offset), and the sensors: both pads' taxel arrays and vibration
+A JACO2 arm on a table, the tactile 2F-85-like gripper on its flange, the object on its
+marker (plus its offset), and the sensors: both pads' taxel arrays and vibration
 films. The exported ports are those of the hardware interface, so a controller cannot tell
 the two apart:
 
@@ -17,7 +17,7 @@ the two apart:
            the hand's actuated joint, position and rate, for the plant's PD),
            gripper.state (the gripper model instance's joint positions and velocities)
 
-The hand is `scenario.gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
+The hand is `gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
 default) or the earlier prismatic fingers.
 
 The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
@@ -38,6 +38,7 @@ from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
@@ -45,9 +46,10 @@ from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
-from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
-from tegrasp_drake.simulation.station_visualization import AddStationVisualization
-from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
+from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
+from tegrasp_drake.simulation.station_visualization import (AddStationVisualization,
+                                                           grasp_camera_pose)
+from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, TactileSensorConfig
 
 TABLE_URL = "package://tegrasp/table/table.sdf"
 ARM_JOINTS = 6
@@ -68,14 +70,16 @@ class ArmDriverConfig:
 
 @dataclasses.dataclass
 class SimulatedStationConfig:
-    """The simulated station (MakeGraspStation); its settings are the scenario's own."""
+    """The simulated station (MakeGraspStation); its settings are the scenario's sections
+    (scenario/grasp_diagram.py MakeSimulatedStation hands them over)."""
 
 
-def object_pose_on_table(scenario) -> RigidTransform:
-    """X_WO of the object resting on its marker plus the scenario's offset and yaw."""
-    x, y = np.add(scenario.expected_object_xy, scenario.object_offset)
-    return RigidTransform(RollPitchYaw(0, 0, math.radians(scenario.object_yaw_deg)),
-                          [x, y, 0.0])
+def object_pose_on_table(expected_object_xy, object_offset, object_yaw_deg: float
+                         ) -> RigidTransform:
+    """X_WO of an object resting on its marker `expected_object_xy` [m, world] moved by
+    `object_offset` [m] and yawed by `object_yaw_deg` [deg]."""
+    x, y = np.add(expected_object_xy, object_offset)
+    return RigidTransform(RollPitchYaw(0, 0, math.radians(object_yaw_deg)), [x, y, 0.0])
 
 
 def initial_arm_positions(arm: ArmDriverConfig) -> np.ndarray:
@@ -122,31 +126,33 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
     return slip
 
 
-def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scenario):
-    """Both pads' taxel arrays (TactilePads), the slip texture (PadSlipVibration) and the
-    films (PadFilms), connected to the finalized `plant`; returns (TactilePads, PadFilms)."""
+def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
+                      tactile: TactileSensorConfig, vibration: VibrationSensorConfig,
+                      gripper_model: str, random_seed: int):
+    """Both pads' taxel arrays (TactilePads, seeded by `random_seed`), the slip texture
+    (PadSlipVibration) and the films (PadFilms) of the hand `gripper_model`, connected to
+    the finalized `plant`; returns (TactilePads, PadFilms)."""
     pads = pad_geometries(plant, scene_graph, gripper)
     taxels = builder.AddNamedSystem(
-        "tactile_pads", TactilePads(pads=pads, config=scenario.tactile,
-                                    seed=scenario.random_seed))
+        "tactile_pads", TactilePads(pads=pads, config=tactile, seed=random_seed))
     builder.Connect(plant.get_contact_results_output_port(),
                     taxels.GetInputPort("contact_results"))
     builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
-    slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, scenario.vibration)
+    slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, vibration)
     pad_forces = None
-    if isinstance(gripper_hand(scenario.gripper.model), LinkageHand):
+    if isinstance(gripper_hand(gripper_model), LinkageHand):
         pad_forces = builder.AddNamedSystem("pad_normal_forces",
                                             PadNormalForces(plant=plant, pads=pads))
         builder.Connect(plant.get_contact_results_output_port(),
                         pad_forces.GetInputPort("contact_results"))
         builder.Connect(plant.get_body_poses_output_port(), pad_forces.GetInputPort("body_poses"))
     films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper,
-                        config=scenario.vibration, slip_vibration=slip, pad_forces=pad_forces)
+                        config=vibration, slip_vibration=slip, pad_forces=pad_forces)
     return taxels, films
 
 
 def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
-    """The scenario's hit on the object, if it has one."""
+    """The hit on the object (`config`), if it has one."""
     if config.hit_time_s < 0.0:
         return
     pulse = builder.AddNamedSystem("object_force_pulse",
@@ -164,53 +170,64 @@ class StationPlant:
     object_instance: object
 
 
-def AddStationPlant(builder, scenario) -> StationPlant:
-    """Adds the station's plant to `builder`: the arm, the gripper (PD gains, no gravity),
-    the table and the scenario's object on its marker, finalized, at their default poses.
-    MakeGraspStation builds its sensors on it; the trial benchmark's plant-alone floor
-    (benchmarks/plant_floor.py) drives it alone."""
-    plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)
+def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
+                    gripper: GripperDriverConfig, object: ObjectConfig,
+                    X_WO: RigidTransform) -> StationPlant:
+    """Adds the station's plant (`plant_config`) to `builder`: the arm at its start pose,
+    the gripper of `gripper.model` (PD gains, no gravity), the table and `object` at
+    X_WO, finalized. MakeGraspStation builds its sensors on it; the trial benchmark's
+    plant-alone floor (benchmarks/plant_floor.py) drives it alone."""
+    arm_config, gripper_config = arm, gripper
+    plant, scene_graph = AddMultibodyPlant(plant_config, builder)
     parser = paths.make_parser(plant)
     (arm,) = parser.AddModels(url=ARM_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
-    hand = gripper_hand(scenario.gripper.model)
+    hand = gripper_hand(gripper_config.model)
     (gripper,) = parser.AddModels(url=hand.url)
     plant.WeldFrames(plant.GetFrameByName("flange", arm), plant.GetFrameByName("base", gripper),
                      X_FLANGE_GRIPPER)
     (table,) = parser.AddModels(url=TABLE_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
-    obj = AddObject(parser, scenario.object)
+    obj = AddObject(parser, object)
     plant.set_gravity_enabled(arm, False)
     plant.set_gravity_enabled(gripper, False)
-    set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
-    set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
+    set_pd_gains(plant, arm, arm_config.position_gain, arm_config.damping_gain)
+    set_pd_gains(plant, gripper, *hand.pd_gains(gripper_config))
     plant.Finalize()
 
-    plant.SetDefaultPositions(arm, initial_arm_positions(scenario.arm))
+    plant.SetDefaultPositions(arm, initial_arm_positions(arm_config))
     plant.SetDefaultPositions(gripper, hand.default_positions())
-    plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), object_pose_on_table(scenario))
+    plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), X_WO)
     return StationPlant(plant, scene_graph, arm, gripper, obj)
 
 
-def MakeGraspStation(scenario, *, meshcat=None):
-    """Builds the simulated station Diagram for `scenario` (see the module docstring)."""
+def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriverConfig,
+                     object: ObjectConfig, X_WO: RigidTransform, tactile: TactileSensorConfig,
+                     vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
+                     random_seed: int, grasp_height: float, meshcat=None):
+    """Builds the simulated station Diagram (see the module docstring) from the sections it
+    uses: the plant, arm and gripper configs, the object at X_WO, the taxels' and films'
+    configs (their noise seeded by `random_seed`), the hit on the object; with `meshcat`,
+    its visualization, the camera on the grasp at `grasp_height` [m] above the table."""
     builder = DiagramBuilder()
-    parts = AddStationPlant(builder, scenario)
+    parts = AddStationPlant(builder, plant_config=plant_config, arm=arm, gripper=gripper,
+                            object=object, X_WO=X_WO)
+    gripper_config = gripper
     plant, scene_graph = parts.plant, parts.scene_graph
-    arm, gripper, obj = parts.arm, parts.gripper, parts.object_instance
+    arm_instance, gripper, obj = parts.arm, parts.gripper, parts.object_instance
 
     # Arm: the desired state goes straight to the plant's PD; measured state is split.
-    builder.ExportInput(plant.get_desired_state_input_port(arm), "arm.desired_state")
+    builder.ExportInput(plant.get_desired_state_input_port(arm_instance), "arm.desired_state")
     arm_state = builder.AddNamedSystem("arm_state_demux", Demultiplexer([ARM_JOINTS] * 2))
-    builder.Connect(plant.get_state_output_port(arm), arm_state.get_input_port())
+    builder.Connect(plant.get_state_output_port(arm_instance), arm_state.get_input_port())
     builder.ExportOutput(arm_state.get_output_port(0), "arm.position_measured")
     builder.ExportOutput(arm_state.get_output_port(1), "arm.velocity_measured")
-    builder.ExportOutput(plant.get_net_actuation_output_port(arm), "arm.torque_measured")
+    builder.ExportOutput(plant.get_net_actuation_output_port(arm_instance), "arm.torque_measured")
 
     # Gripper: the simulated 2F-85 controller.
-    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=scenario.gripper))
+    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=gripper_config))
     selector = builder.AddNamedSystem("gripper_actuated_state", actuated_state_selector(
-        plant, gripper, gripper_hand(scenario.gripper.model)))
+        plant, gripper, gripper_hand(gripper_config.model)))
     builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
     builder.Connect(selector.get_output_port(), driver.GetInputPort("finger_state"))
     builder.ExportOutput(plant.get_state_output_port(gripper), "gripper.state")
@@ -222,8 +239,10 @@ def MakeGraspStation(scenario, *, meshcat=None):
 
     # Tactile pads: taxels and vibration films.
     taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
-                                        gripper=gripper, object_body=object_body(plant, obj),
-                                        scenario=scenario)
+                                      gripper=gripper, object_body=object_body(plant, obj),
+                                      tactile=tactile, vibration=vibration,
+                                      gripper_model=gripper_config.model,
+                                      random_seed=random_seed)
     for finger in FINGER_NAMES:
         builder.ExportOutput(taxels.GetOutputPort(f"{finger}_taxel_forces"),
                              f"tactile.{finger}_taxel_forces")
@@ -231,7 +250,7 @@ def MakeGraspStation(scenario, *, meshcat=None):
                              f"tactile.{finger}_pad_acceleration")
     builder.ExportOutput(taxels.GetOutputPort("true_taxel_forces"), "tactile.true_taxel_forces")
 
-    _add_disturbance(builder, plant, object_body(plant, obj), scenario.disturbance)
+    _add_disturbance(builder, plant, object_body(plant, obj), disturbance)
 
     # Ground truth for evaluation.
     builder.ExportOutput(plant.get_state_output_port(obj), "object.state")
@@ -242,7 +261,8 @@ def MakeGraspStation(scenario, *, meshcat=None):
     if meshcat is not None:  # the scene, contact forces, taxel forces; a framed camera
         AddStationVisualization(builder, plant=plant, scene_graph=scene_graph, taxels=taxels,
                                 pads=pad_geometries(plant, scene_graph, gripper),
-                                meshcat=meshcat, scenario=scenario)
+                                meshcat=meshcat,
+                                camera=grasp_camera_pose(X_WO.translation(), grasp_height))
     diagram = builder.Build()
     diagram.set_name("grasp_station")
     return diagram
