@@ -114,7 +114,7 @@ def test_bad_spec_file_stops_before_any_trial(tmp_path, capsys, text, message):
       "controller.memorized_corrective_events=[hold_avoid]"], None,
      "no memorized events of object 'thick_cylinder'"),
     ([], "objects: [cup]\ncontrollers: [open_loop, memorized]\nuser_objects:\n"
-         "  cup: {shape: cylinder, size_m: [0.03, 0.1], mass_kg: 0.1, friction_coefficient: 0.5}\n",
+         "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n",
      "trial memorized/cup/m00/a0"),
 ])
 def test_missing_memorized_events_stop_the_real_sweep_before_any_trial(
