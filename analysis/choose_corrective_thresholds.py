@@ -1,6 +1,6 @@
 """Choose the memorized corrective events' Eq. 3 thresholds on held-out recorded runs, and
-compare them with the heuristic triggers on the same spans (experiments/corrective_
-detection.py, experiments/detection_quality.py).
+compare them with the heuristic triggers on the same spans (recording/corrective_
+detection.py, recording/detection_quality.py).
 
     python analysis/choose_corrective_thresholds.py CORRECTIVE_LOGS ENSEMBLE_LOGS OUT.md
         [--object box] [--events events]
@@ -10,7 +10,7 @@ analysis/record_ensemble_events.py's (normal grasps: <object>/run<k>.npz). Chose
 held-out corrective runs (role "held_out") as the situations, the ensemble's runs 5-7 as
 normal grasps (none made a corrective template). Also reported, not used to choose: the
 template runs and the ensemble's runs 0-4. The closed-loop trials that judge the choice
-(tests/test_experiments_corrective_trials.py) use other seeds.
+(tests/test_runs_corrective_trials.py) use other seeds.
 """
 
 import argparse
@@ -23,14 +23,13 @@ from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
-from tegrasp_drake.experiments.corrective_detection import (
+from tegrasp_drake.recording.corrective_detection import (
     SituationSpan, choose_centred_thresholds, classify_first_firing, event_span,
     heuristic_hit_time, heuristic_slip_time, on_controller_ticks)
-from tegrasp_drake.experiments.corrective_events import (
+from tegrasp_drake.recording.corrective_events import (
     CORRECTIVE_FOLDER, CORRECTIVE_RUNS, corrective_event_time, corrective_scenario)
-from tegrasp_drake.experiments.detection_quality import classify, rate_point
-from tegrasp_drake.experiments.ensemble_events import ensemble_scenario
-from tegrasp_drake.experiments.trial_log import load_trial_log
+from tegrasp_drake.recording.detection_quality import classify, rate_point
+from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 sys.path.insert(0, str(pathlib.Path(__file__).parent))
 from record_corrective_events import log_path  # noqa: E402
@@ -101,7 +100,7 @@ def main(argv=None) -> int:
              "before to 0.5 s after the physical event (a hit's start; the pads' first 1 mm "
              "of slip); false: earlier, or in a normal grasp's span; latency after the "
              "physical event. Scores are read at the state machine's 5 ms ticks. Rule: "
-             "experiments/corrective_detection.choose_centred_thresholds.", ""]
+             "recording/corrective_detection.choose_centred_thresholds.", ""]
     chosen = {}
     for transition in CORRECTIVE_TRANSITIONS:
         choosing = [s for role, span, _, s in scored if span.transition == transition

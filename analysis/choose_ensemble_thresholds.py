@@ -1,5 +1,5 @@
 """Choose the taxel_aware controller's Eq. 3 thresholds on held-out ensemble runs, and
-write their ROC-style table (experiments/detection_quality.py).
+write their ROC-style table (recording/detection_quality.py).
 
     python analysis/choose_ensemble_thresholds.py LOGS_DIR OUT.md [--runs 5 6 7]
         [--events events]
@@ -19,11 +19,11 @@ from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.events_folder import find_memorized_events
-from tegrasp_drake.experiments.detection_quality import (choose_thresholds, rate_point,
-                                                         roc_curve, scored_span)
-from tegrasp_drake.experiments.grasp_outcome import physical_events
-from tegrasp_drake.experiments.scenario import LoadScenario
-from tegrasp_drake.experiments.trial_log import load_trial_log
+from tegrasp_drake.recording.detection_quality import (choose_thresholds, rate_point, roc_curve,
+                                                       scored_span)
+from tegrasp_drake.runs.grasp_outcome import physical_events
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 SA_GRID = np.round(np.arange(0.40, 0.981, 0.02), 3)
@@ -76,7 +76,7 @@ def main(argv=None) -> int:
              f"Chosen per transition on the held-out ensemble runs (seeds 1000000 + "
              f"{args.runs} of each object: {len(spans) // 3} spans per transition; the "
              "templates came from the other runs) by `analysis/choose_ensemble_thresholds.py`"
-             " (rule: `experiments/detection_quality.py`), and set in TaxelAwareConfig:\n",
+             " (rule: `recording/detection_quality.py`), and set in TaxelAwareConfig:\n",
              "| transition | SA > | RA > | detected | false | missed | median latency |",
              "|---|---|---|---|---|---|---|"]
     for t in TRANSITIONS:

@@ -16,7 +16,7 @@ import json
 import pathlib
 import re
 
-from tegrasp_drake.experiments.sweep.table import exact_mcnemar_p_value
+from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
 
 def load(folder: pathlib.Path) -> dict:

@@ -7,8 +7,8 @@ for the same pad strike at plant steps of 1, 0.5 and 0.25 ms; prints the contact
 import argparse
 import sys
 
-from tegrasp_drake.experiments.figures.ra_transients import plot_ra_transients
-from tegrasp_drake.experiments.pad_strike import PadStrikeConfig, run_pad_strike
+from tegrasp_drake.figures.ra_transients import plot_ra_transients
+from tegrasp_drake.runs.pad_strike import PadStrikeConfig, run_pad_strike
 
 TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
 

@@ -20,10 +20,10 @@ from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.correlation import event_scores_reference, normalize_by_max
 from tegrasp_drake.events.extraction import cut_window
-from tegrasp_drake.experiments.corrective_detection import slip_band
-from tegrasp_drake.experiments.corrective_events import (CORRECTIVE_RUNS, corrective_scenario,
-                                                         slip_onset_time)
-from tegrasp_drake.experiments.trial_log import load_trial_log
+from tegrasp_drake.recording.corrective_detection import slip_band
+from tegrasp_drake.recording.corrective_events import (CORRECTIVE_RUNS, corrective_scenario,
+                                                       slip_onset_time)
+from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 
 sys.path.insert(0, str(pathlib.Path(__file__).parent))

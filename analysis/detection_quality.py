@@ -1,5 +1,5 @@
 """Detection quality per trigger and controller, and paired McNemar comparisons, from one or
-more sweep results folders (experiments/sweep/detection_report.py).
+more sweep results folders (sweep/detection_report.py).
 
     python analysis/detection_quality.py OUT.md RESULTS [RESULTS ...]
         [--reference open_loop] [--title TEXT]
@@ -12,9 +12,9 @@ import argparse
 import pathlib
 import sys
 
-from tegrasp_drake.experiments.sweep.detection_report import report_markdown
-from tegrasp_drake.experiments.sweep.records import load_records
-from tegrasp_drake.experiments.sweep.spec import CONTROLLER_NAMES
+from tegrasp_drake.sweep.detection_report import report_markdown
+from tegrasp_drake.sweep.records import load_records
+from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
 
 
 def main(argv=None) -> int:

@@ -20,8 +20,8 @@ TRIGGERS = {"memorized": ["controller.memorized_corrective_events=[hold_avoid]"]
 
 def one(job):
     label, force, time, trigger = job
-    from tegrasp_drake.experiments.scenario import LoadScenario
-    from tegrasp_drake.experiments.trial import run_trial
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    from tegrasp_drake.runs.trial import run_trial
     overrides = list(TRIGGERS[trigger])
     if force is not None:
         overrides += [f"disturbance.hit_time_s={time}",

@@ -1,4 +1,4 @@
-"""Cut the recorded channels that tests/test_experiments_corrective_events.py replays
+"""Cut the recorded channels that tests/test_recording_corrective_events.py replays
 (tests/data/corrective_windows.npz) from the corrective and ensemble logs.
 
     python analysis/make_corrective_test_windows.py CORRECTIVE_LOGS ENSEMBLE_LOGS
@@ -13,7 +13,7 @@ import sys
 import numpy as np
 
 from tegrasp_drake.events import tactile_trial_from_log
-from tegrasp_drake.experiments.trial_log import load_trial_log
+from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 sys.path.insert(0, str(pathlib.Path(__file__).parent))
 from record_corrective_events import log_path  # noqa: E402
@@ -33,7 +33,7 @@ def cut(log, name, start, end, arrays):
 
 
 def main(argv=None) -> int:
-    from tegrasp_drake.experiments.corrective_events import CORRECTIVE_RUNS
+    from tegrasp_drake.recording.corrective_events import CORRECTIVE_RUNS
     corrective, ensemble = map(pathlib.Path, (argv or sys.argv[1:])[:2])
     runs = {run.label: run for run in CORRECTIVE_RUNS}
     arrays = {}

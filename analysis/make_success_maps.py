@@ -7,8 +7,8 @@ written by `tegrasp sweep`.
 import argparse
 import sys
 
-from tegrasp_drake.experiments.figures.sweep import write_success_maps
-from tegrasp_drake.experiments.sweep import load_records
+from tegrasp_drake.figures.sweep import write_success_maps
+from tegrasp_drake.sweep import load_records
 
 
 def main(argv=None) -> int:

@@ -8,8 +8,8 @@ results folder written by `tegrasp sweep`.
 import argparse
 import sys
 
-from tegrasp_drake.experiments.sweep import (load_records, write_offset_table, write_statistics,
-                                             write_summary, write_table1)
+from tegrasp_drake.sweep import (load_records, write_offset_table, write_statistics, write_summary,
+                                 write_table1)
 
 
 def main(argv=None) -> int:

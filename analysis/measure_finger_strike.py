@@ -18,11 +18,11 @@ from pydrake.multibody.tree import JacobianWrtVariable
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput
 
-from tegrasp_drake import AddGraspController, LoadScenario, MakeSimulator, MakeStation
+from tegrasp_drake import AddScenarioController, LoadScenario, MakeSimulator, MakeStation
 from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.finger_strike import (grasp_wrench_from_torques, side_moment_nm,
                                                  strike_force_n)
-from tegrasp_drake.experiments.scenario import resolve_object, validate
+from tegrasp_drake.scenario.scenario import resolve_object, validate
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
 from tegrasp_drake.rig.objects import ObjectConfig
@@ -43,7 +43,7 @@ def reach_log(object_name, dx, dy, yaw_deg):
         controller=OpenLoopControllerConfig()), "measure")
     builder = DiagramBuilder()
     station = builder.AddNamedSystem("station", MakeStation(scenario))
-    AddGraspController(builder, scenario=scenario, station=station)
+    AddScenarioController(builder, scenario, station=station)
     logs = {name: LogVectorOutput(station.GetOutputPort(port), builder, 1e-3)
             for name, port in (("q", ports.ARM_POSITION_MEASURED),
                                ("tau", ports.ARM_TORQUE_MEASURED), ("object", ports.OBJECT_STATE))}

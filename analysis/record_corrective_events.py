@@ -1,4 +1,4 @@
-"""Record the memorized corrective events (experiments/corrective_events.py).
+"""Record the memorized corrective events (recording/corrective_events.py).
 
     python analysis/record_corrective_events.py LOGS_DIR [--object box] [--workers 2]
         [--events events]
@@ -16,30 +16,20 @@ from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
-from tegrasp_drake.experiments.corrective_events import (
-    CORRECTIVE_FOLDER, CORRECTIVE_RUNS, combine_corrective_runs, corrective_scenario,
-    run_corrective_event)
-
-# Simulated time of a run [s]: the script's Hold ends at 8.6 s, its Lift at 5.6 s
-# (scripted_grasp.plan_scripted_grasp with the default grasp timing).
-RUN_DURATION_S = {"hold_avoid": 8.7, "lift_load": 6.0}
+from tegrasp_drake.recording.campaign import run_log_path, simulate_run
+from tegrasp_drake.recording.corrective_events import (
+    CORRECTIVE_FOLDER, CORRECTIVE_RUNS, campaign_run, record_corrective_events)
 
 
 def log_path(logs: pathlib.Path, object_name: str, run) -> pathlib.Path:
-    return logs / object_name / (run.label.replace(" ", "_").replace(",", "") + ".npz")
+    """Where the log of corrective run `run` of `object_name` is kept under `logs`."""
+    return run_log_path(logs / object_name, run)
 
 
-def simulate(job):
-    object_name, run, path = job
-    from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
-    from tegrasp_drake.experiments.trial_log import load_trial_log
-    if not path.is_file():
-        log, wall = run_ideal_grasp(corrective_scenario(object_name, run),
-                                    duration=RUN_DURATION_S[run.transition])
-        log.meta["corrective_run"] = run.label
-        log.save(path)
-        print(f"{object_name} '{run.label}': {wall:.0f} s wall", flush=True)
-    return load_trial_log(path)
+def simulate(job) -> None:
+    object_name, run, logs = job
+    simulate_run(campaign_run(object_name, run), log_path=log_path(logs, object_name, run))
+    print(f"{object_name} '{run.label}' done", flush=True)
 
 
 def main(argv=None) -> int:
@@ -49,19 +39,11 @@ def main(argv=None) -> int:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--events", type=pathlib.Path, default=pathlib.Path("events"))
     args = parser.parse_args(argv)
-    from tegrasp_drake.experiments.scenario import LoadScenario
-    jobs = [(args.object, run, log_path(args.logs, args.object, run)) for run in CORRECTIVE_RUNS]
-    with ProcessPoolExecutor(args.workers) as pool:
-        logs = list(pool.map(simulate, jobs))
-    nominal = LoadScenario(name=args.object).object
-    events = []
-    for transition in CORRECTIVE_TRANSITIONS:
-        members = [run_corrective_event(log, corrective_scenario(args.object, run), run,
-                                        args.object, nominal)
-                   for run, log in zip(CORRECTIVE_RUNS, logs)
-                   if run.transition == transition and run.role == "template"]
-        events.append(combine_corrective_runs(
-            members, f"corrective template runs of {args.object} ({transition})"))
+    with ProcessPoolExecutor(args.workers) as pool:  # the logs, in parallel
+        list(pool.map(simulate, [(args.object, run, args.logs) for run in CORRECTIVE_RUNS]))
+    events = [record_corrective_events(args.object, transition,
+                                       log_dir=args.logs / args.object)
+              for transition in CORRECTIVE_TRANSITIONS]
     written = save_memorized_events(args.events / CORRECTIVE_FOLDER, events,
                                     required=CORRECTIVE_TRANSITIONS)
     print(f"wrote {len(written)} files to {args.events / CORRECTIVE_FOLDER}")

@@ -1,12 +1,13 @@
-"""Record the taxel_aware controller's ensemble events (experiments/ensemble_events.py).
+"""Record the taxel_aware controller's ensemble events (recording/ensemble_events.py).
 
     python analysis/record_ensemble_events.py LOGS_DIR [--runs 8] [--template-runs 5]
         [--workers 2] [--events events]
 
 Runs `--runs` randomised ideal grasps of each built-in object (seeds 1_000_000 + run),
-saves each log to LOGS_DIR/<object>/run<k>.npz (a log already there is reused), combines the first `--template-runs` into
-the events in EVENTS/ensemble (the mean rule), and leaves the other runs' logs for choosing
-the thresholds (analysis/choose_ensemble_thresholds.py), apart from the sweeps that judge.
+saves each log to LOGS_DIR/<object>/run<k>.npz (a log already there is reused), combines
+the first `--template-runs` into the events in EVENTS/ensemble (the mean rule), and leaves
+the other runs' logs for choosing the thresholds (analysis/choose_ensemble_thresholds.py),
+apart from the sweeps that judge.
 """
 
 import argparse
@@ -15,21 +16,16 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.events_folder import save_memorized_events
-from tegrasp_drake.experiments.ensemble_events import (ENSEMBLE_FOLDER, combine_runs,
-                                                       ensemble_scenario, record_ensemble_run,
-                                                       run_events)
+from tegrasp_drake.recording.campaign import run_log_path, simulate_run
+from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, ensemble_runs,
+                                                     record_object_ensemble)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 
-def _one(job):
-    object_name, run, path = job
-    if path.is_file():  # recorded before: cut its events again, without simulating
-        from tegrasp_drake.experiments.scenario import LoadScenario
-        from tegrasp_drake.experiments.trial_log import load_trial_log
-        return object_name, run, run_events(load_trial_log(path),
-                                            ensemble_scenario(object_name, run), object_name,
-                                            LoadScenario(name=object_name).object)
-    return object_name, run, record_ensemble_run(object_name, run, log_path=path)
+def simulate(job) -> None:
+    object_name, run, log_dir = job
+    simulate_run(run, log_path=run_log_path(log_dir, run))
+    print(f"{object_name} {run.label} done", flush=True)
 
 
 def main(argv=None) -> int:
@@ -42,19 +38,16 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if not 0 < args.template_runs <= args.runs:
         raise SystemExit("record_ensemble_events: --template-runs must be 1..--runs")
-    jobs = [(name, run, args.logs / name / f"run{run}.npz")
-            for name in sorted(BUILTIN_OBJECTS) for run in range(args.runs)]
-    runs = {}
-    with ProcessPoolExecutor(args.workers) as pool:
-        for name, run, events in pool.map(_one, jobs):
-            runs[(name, run)] = events
-            print(f"{name} run {run} done", flush=True)
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    jobs = [(name, run, args.logs / name) for name in sorted(BUILTIN_OBJECTS)
+            for run in ensemble_runs(name, args.runs, args.template_runs)]
+    with ProcessPoolExecutor(args.workers) as pool:  # the logs, in parallel
+        list(pool.map(simulate, jobs))
     combined = []
     for name in sorted(BUILTIN_OBJECTS):
-        members = [runs[(name, run)] for run in range(args.template_runs)]
-        combined += list(combine_runs(
-            members, scenario_note=f"ensemble of ideal grasps of {name}, seeds "
-            f"1000000..{1000000 + args.template_runs - 1}").values())
+        combined += record_object_ensemble(
+            name, LoadScenario(name=name), args.runs, template_runs=args.template_runs,
+            log_dir=args.logs / name).values()
     written = save_memorized_events(args.events / ENSEMBLE_FOLDER, combined)
     print(f"wrote {len(written)} files to {args.events / ENSEMBLE_FOLDER}")
     return 0

@@ -1,5 +1,5 @@
 """Judge a sweep's trials again from their logs with the current judge
-(experiments/trial.judge_trial), e.g. after the judge changed; writes a results folder of
+(runs/trial.judge_trial), e.g. after the judge changed; writes a results folder of
 updated records beside the original (records' results replaced, nothing re-simulated).
 
     python analysis/rejudge_from_logs.py RESULTS LOGS OUT
@@ -15,10 +15,10 @@ import pathlib
 import sys
 
 from tegrasp_drake.control.grasp_modes import Transition
-from tegrasp_drake.experiments.sweep.records import (TRIALS_FOLDER, load_records, make_record,
-                                                    write_record)
-from tegrasp_drake.experiments.trial import judge_trial, scenario_from_trial_spec, trial_log_name
-from tegrasp_drake.experiments.trial_log import load_trial_log
+from tegrasp_drake.sweep.records import (TRIALS_FOLDER, load_records, make_record, write_record)
+from tegrasp_drake.runs.trial import judge_trial
+from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec, trial_log_name
+from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 
 def main(argv=None) -> int:

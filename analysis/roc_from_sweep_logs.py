@@ -1,5 +1,5 @@
 """ROC-style curves of a memorized controller's event triggers from a sweep's trial logs
-(`tegrasp sweep --logs DIR`), re-scored offline (experiments/detection_quality.py): for each
+(`tegrasp sweep --logs DIR`), re-scored offline (recording/detection_quality.py): for each
 event transition, detection and false-trigger rates as the thresholds are scaled from the
 controller's own. A report of the judged trials: nothing here chooses a threshold.
 
@@ -23,8 +23,8 @@ from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.events import EventMatcherConfig, tactile_trial_from_log
 from tegrasp_drake.events.events_folder import find_memorized_events
-from tegrasp_drake.experiments.detection_quality import roc_curve, scored_span
-from tegrasp_drake.experiments.trial_log import load_trial_log
+from tegrasp_drake.recording.detection_quality import roc_curve, scored_span
+from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 TRANSITIONS = ("reach_load", "load_lift", "place_unload")
 SOURCE = {"reach_load": "Reach", "load_lift": "Load", "place_unload": "Place"}

@@ -10,9 +10,9 @@ RESULTS the folder `tegrasp transfer` wrote (its cells/ folder holds the records
 import argparse
 import sys
 
-from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
-from tegrasp_drake.experiments.transfer_matrix import LoadTransferSpec
-from tegrasp_drake.experiments.transfer_report import write_transfer_reports
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.transfer.matrix import LoadTransferSpec
+from tegrasp_drake.transfer.report import write_transfer_reports
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 

@@ -12,8 +12,8 @@ import pathlib
 import sys
 import tempfile
 
-from tegrasp_drake.experiments.sweep import readme_with_summaries
-from tegrasp_drake.experiments.sweep.summary import page_with_record_commits
+from tegrasp_drake.sweep import readme_with_summaries
+from tegrasp_drake.sweep.summary import page_with_record_commits
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PAGE = ROOT / "docs" / "results.md"

@@ -16,7 +16,6 @@ from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_
 COMMAND_MODULES = (
     "tegrasp_drake.commands.demo",
     "tegrasp_drake.commands.trial",
-    "tegrasp_drake.commands.benchmark",
     "tegrasp_drake.commands.sweep",
     "tegrasp_drake.commands.transfer",
     "tegrasp_drake.commands.record_events",

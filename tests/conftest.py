@@ -5,9 +5,9 @@ import functools
 import numpy as np
 import pytest
 
-from tegrasp_drake.experiments.ideal_grasp import run_ideal_grasp
-from tegrasp_drake.experiments.scenario import LoadScenario
-from tegrasp_drake.experiments.trial_log import ARRAY_FIELDS
+from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS
 from tegrasp_drake.hardware.realtime import realtime_scheduling
 
 

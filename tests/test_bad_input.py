@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake import cli
-from tegrasp_drake.experiments.trial_log import ARRAY_FIELDS, FORMAT_VERSION
+from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, FORMAT_VERSION
 from tegrasp_drake.rig import paths
 
 OWN_CYLINDER = ["--set", "object.shape=cylinder", "--set", "object.size=[0.04,0.1]",
@@ -246,10 +246,13 @@ def test_a_damaged_trial_log_is_named_and_not_plotted(make, expected, tmp_path, 
 # --- sweep specs ------------------------------------------------------------------------
 
 @pytest.mark.parametrize("definition, expected", [
-    ("{shape: box, size_m: [0.04, 0.09, 0.1], mass_kg: 0.1, friction_coefficient: 0.5}",
-     "field 'user_objects.crate.size_m': makes the object 90.0 mm wide"),
-    ("{shape: cylinder, size_m: [0.04, 0.1], mass_kg: 0.1}",
-     "field 'user_objects.crate.friction_coefficient': is missing"),
+    ("{shape: box, size: [0.04, 0.09, 0.1], mass: 0.1, friction: 0.5}",
+     "field 'user_objects.crate.size': makes the object 90.0 mm wide"),
+    ("{shape: cylinder, size: [0.04, 0.1], mass: 0.1}",
+     "field 'user_objects.crate.friction': is missing"),
+    ("{shape: cylinder, size_m: [0.04, 0.1], mass_kg: 0.1, friction_coefficient: 0.5}",
+     "field 'user_objects.crate.size_m': is the old name of the field: rename size_m to "
+     "size, mass_kg to mass, friction_coefficient to friction"),
 ])
 def test_a_sweep_spec_whose_objects_cannot_run_is_refused_at_load(definition, expected,
                                                                   tmp_path, capfd):

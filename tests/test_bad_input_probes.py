@@ -15,7 +15,7 @@ from tegrasp_drake.events.event_file import INDEX_FILE, MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
-from tegrasp_drake.experiments.figures import figure_files
+from tegrasp_drake.figures import figure_files
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.tactile.sampling import samples_per_window
 

@@ -9,8 +9,8 @@ import pytest
 from matplotlib.image import imread
 
 from tegrasp_drake.cli import main
-from tegrasp_drake.experiments.scenario import LoadScenario
-from tegrasp_drake.experiments.trial import run_trial
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.runs.trial import run_trial
 
 RESULTS = pathlib.Path(__file__).resolve().parent.parent / "analysis" / "results_seed0"
 

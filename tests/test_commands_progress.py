@@ -106,5 +106,5 @@ def test_a_demo_on_a_terminal_shows_the_bar_unless_quiet(tmp_path, quiet):
         assert "s simulated" not in shown and "INFO" not in shown, shown
     else:
         assert re.search(r"demo:.*\d+\.\d/\d+\.\d s simulated", shown), shown
-        assert "INFO tegrasp_drake.experiments.trial: trial: box" in shown, shown
+        assert "INFO tegrasp_drake.runs.trial: trial: box" in shown, shown
     assert (tmp_path / "demo" / "result.json").is_file()

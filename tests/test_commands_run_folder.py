@@ -11,7 +11,7 @@ from tegrasp_drake import cli
 from tegrasp_drake.commands.run_folder import (RESULT_FILE, choose_run_folder,
                                                commit_run, result_path_beside_log,
                                                staged_run, write_result)
-from tegrasp_drake.experiments.hardware_run import HardwareRunResult
+from tegrasp_drake.runs.hardware_run import HardwareRunResult
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.device_fault import DeviceFault
 from tegrasp_drake.hardware.myrio.serial_reader import TactileReaderCounters

@@ -6,7 +6,7 @@ import json
 import pytest
 
 from tegrasp_drake.commands import sweep as command
-from tegrasp_drake.experiments.sweep.records import load_records
+from tegrasp_drake.sweep.records import load_records
 
 FAKE = ["--trial-function", "test_sweep_fake_trial:fake_trial", "--no-progress"]
 
@@ -17,7 +17,7 @@ def test_register_adds_the_sweep_subcommand():
     args = parser.parse_args(["sweep", "--objects", "box", "--workers", "2"])
     assert args.func is command.run
     assert (args.objects, args.workers, args.out) == (["box"], 2, "results/sweep")
-    assert args.trial_function == "tegrasp_drake.experiments.trial:run_trial_from_spec"
+    assert args.trial_function == "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
 
 
 def test_sweep_writes_records_and_reports(tmp_path, capsys):
@@ -114,7 +114,7 @@ def test_bad_spec_file_stops_before_any_trial(tmp_path, capsys, text, message):
       "controller.memorized_corrective_events=[hold_avoid]"], None,
      "no memorized events of object 'thick_cylinder'"),
     ([], "objects: [cup]\ncontrollers: [open_loop, memorized]\nuser_objects:\n"
-         "  cup: {shape: cylinder, size_m: [0.03, 0.1], mass_kg: 0.1, friction_coefficient: 0.5}\n",
+         "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n",
      "trial memorized/cup/m00/a0"),
 ])
 def test_missing_memorized_events_stop_the_real_sweep_before_any_trial(

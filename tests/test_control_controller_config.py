@@ -6,8 +6,8 @@ import pytest
 from tegrasp_drake.control.controller_config import (
     CONTROLLER_CLASSES, CONTROLLER_NAMES, HeuristicControllerConfig, MemorizedControllerConfig,
     OpenLoopControllerConfig, TaxelAwareControllerConfig, controller_named)
-from tegrasp_drake.experiments.scenario import (LoadScenario, scenario_from_yaml,
-                                                scenario_to_yaml, with_controller)
+from tegrasp_drake.scenario.scenario import (LoadScenario, scenario_from_yaml, scenario_to_yaml,
+                                             with_controller)
 
 
 def test_the_default_is_the_papers_algorithm():

@@ -72,7 +72,7 @@ def test_the_shift_moves_toward_the_struck_finger_by_the_half_gap():
 
 
 def test_the_settings_are_given_with_set_and_checked():
-    from tegrasp_drake.experiments.scenario import ConfigError, LoadScenario
+    from tegrasp_drake.scenario.scenario import ConfigError, LoadScenario
     scenario = LoadScenario(overrides=["controller.name=taxel_aware",
                                        "controller.taxel_aware.finger_strike.enabled=false"])
     assert scenario.controller.taxel_aware.finger_strike.enabled is False
@@ -86,8 +86,8 @@ def test_the_settings_are_given_with_set_and_checked():
 
 @pytest.mark.parametrize("controller,wired", [("taxel_aware", True), ("memorized", False)])
 def test_only_taxel_aware_reads_the_joint_torques(controller, wired):
-    from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
-    from tegrasp_drake.experiments.scenario import LoadScenario
+    from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram
+    from tegrasp_drake.scenario.scenario import LoadScenario
     grasp = MakeGraspDiagram(LoadScenario(controller=controller), log=False)
     assert grasp.diagram.HasSubsystemNamed("grasp_wrench_estimator") == wired
     machine = grasp.controller.state_machine

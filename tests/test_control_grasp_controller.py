@@ -1,7 +1,7 @@
 """AddGraspController's wiring: the memorized controller reads as the paper's Fig. 3."""
 
-from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram
+from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
 
 

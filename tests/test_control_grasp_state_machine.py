@@ -10,8 +10,8 @@ from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.controller_config import MemorizedControllerConfig
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
-from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
+from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 
@@ -19,7 +19,7 @@ EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 def make_machine(**config_changes):
     scenario = LoadScenario(name="box")
     config = MemorizedControllerConfig(**config_changes)
-    machine = GraspStateMachine(plan=GraspPlan.from_scenario(scenario), config=config,
+    machine = GraspStateMachine(plan=grasp_plan(scenario), config=config,
                                 event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT)
     return machine, scenario
 

@@ -11,9 +11,10 @@ import dataclasses
 import pytest
 
 from tegrasp_drake.control.taxel_aware import Reason
-from tegrasp_drake.experiments.scenario import LoadScenario
-from tegrasp_drake.experiments.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
-from tegrasp_drake.experiments.trial import run_trial, trial_events
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
+from tegrasp_drake.runs.trial import run_trial
+from tegrasp_drake.sweep.trial_function import trial_events
 
 pytestmark = pytest.mark.slow
 

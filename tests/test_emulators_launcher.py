@@ -7,7 +7,7 @@ import numpy as np
 from tegrasp_drake.emulators.launcher import (
     Emulators, devices_from_line, hardware_config_for)
 from tegrasp_drake.emulators.myrio_emulator import TactileRecording, save_tactile_recording
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario
 
 
 def quiet_recording() -> TactileRecording:

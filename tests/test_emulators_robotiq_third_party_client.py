@@ -14,7 +14,7 @@ import pytest
 
 from tegrasp_drake.robotiq import units
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator, RobotiqEmulatorConfig
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
 

@@ -5,13 +5,13 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.rig import paths
-from tegrasp_drake.experiments.record_events import EVENT_OF_TRANSITION
+from tegrasp_drake.recording.paper_events import EVENT_OF_TRANSITION
 from tegrasp_drake.events import (
     REQUIRED_TRANSITIONS, event_scores_reference, live_matcher_config, load_memorized_events,
     replay_event_held, replay_events_in_sequence, tactile_trial_from_log)
-from tegrasp_drake.experiments.grasp_outcome import physical_events
+from tegrasp_drake.runs.grasp_outcome import physical_events
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario
 
 from one_system_matcher import replay_both
 

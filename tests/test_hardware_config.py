@@ -4,7 +4,7 @@ import pytest
 
 from tegrasp_drake.hardware.config import (HardwareStationConfig, hardware_config_to_yaml,
                                            LoadHardwareConfig)
-from tegrasp_drake.experiments.scenario import LoadScenario
+from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.simulation.station import SimulatedStationConfig
@@ -63,7 +63,7 @@ def test_an_unknown_station_tag_is_named(tmp_path):
 
 
 def test_the_station_tag_picks_the_station_builder(tmp_path):
-    from tegrasp_drake.experiments.grasp_diagram import MakeStation
+    from tegrasp_drake.scenario.grasp_diagram import MakeStation
     from tegrasp_drake.hardware.station import HardwareNotReadyError
     assert MakeStation(LoadScenario(name="box")).HasOutputPort(ports.OBJECT_STATE)
     path = write(tmp_path, "s.yaml", """

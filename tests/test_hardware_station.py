@@ -12,8 +12,8 @@ from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecordi
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.station import HardwareNotReadyError, MakeHardwareStation
-from tegrasp_drake.experiments.scenario import LoadScenario
-from tegrasp_drake.simulation.station import MakeGraspStation
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.scenario import MakeSimulatedStation
 from tegrasp_drake.rig import station_interface as ports
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
@@ -34,7 +34,7 @@ def station():
 
 
 def test_hardware_station_has_the_simulated_station_ports(station):
-    simulated = MakeGraspStation(LoadScenario(name="box"))
+    simulated = MakeSimulatedStation(LoadScenario(name="box"))
     for name, size in ports.CONTROLLER_INPUTS.items():
         assert station.GetInputPort(name).size() == simulated.GetInputPort(name).size() == size
     for name, size in ports.CONTROLLER_OUTPUTS.items():

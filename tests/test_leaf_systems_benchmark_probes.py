@@ -4,8 +4,8 @@ reading per period, _InputReader copies its input into its state every milliseco
 import numpy as np
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.experiments.benchmarks.drivers import LoopTick
-from tegrasp_drake.experiments.benchmarks.matcher import _InputReader
+from benchmarks.drivers import LoopTick
+from benchmarks.matcher import _InputReader
 
 
 def test_loop_tick_appends_one_increasing_reading_per_period():

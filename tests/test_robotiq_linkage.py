@@ -129,8 +129,8 @@ def test_the_prismatic_hand_yields_to_the_same_push():
 
 @pytest.mark.slow
 def test_the_loops_stay_closed_through_a_whole_trial():
-    from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, MakeSimulator
-    from tegrasp_drake.experiments.scenario import LoadScenario
+    from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram, MakeSimulator
+    from tegrasp_drake.scenario.scenario import LoadScenario
     scenario = LoadScenario(overrides=["gripper.model=linkage"], controller="open_loop")
     grasp = MakeGraspDiagram(scenario, log=False)
     simulator = MakeSimulator(grasp.diagram, scenario)

@@ -15,7 +15,7 @@ from pydrake.trajectories import PiecewisePolynomial
 
 from tegrasp_drake.control.finger_strike import grasp_wrench_from_torques
 from tegrasp_drake.control.grasp_modes import Mode
-from tegrasp_drake.experiments.scenario import LoadScenario, with_controller
+from tegrasp_drake.scenario.scenario import LoadScenario, with_controller
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -23,10 +23,19 @@ from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinemat
                                                carriage_positions, carriage_state)
 from tegrasp_drake.simulation.carriage_systems import CarriageWristWrench
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
-from tegrasp_drake.simulation.station import (AddStationPlant, MakeGraspStation,
-                                              carriage_impedance, initial_arm_positions)
+from tegrasp_drake.scenario import MakeSimulatedStation
+from tegrasp_drake.scenario.grasp_diagram import station_carriage
+from tegrasp_drake.scenario.scenario import object_pose
+from tegrasp_drake.simulation.station import AddStationPlant, initial_arm_positions
 
 GRAVITY = 9.81
+
+
+def station_plant(builder, scenario):
+    """The scenario's station plant (the carriage's when its station says so)."""
+    return AddStationPlant(builder, plant_config=scenario.plant_config, arm=scenario.arm,
+                           gripper=scenario.gripper, object=scenario.object,
+                           X_WO=object_pose(scenario), carriage=station_carriage(scenario))
 
 
 @pytest.fixture(scope="module")
@@ -40,8 +49,8 @@ def test_an_unknown_arm_is_refused_with_the_choices():
 
 
 def test_the_carriage_station_keeps_the_arm_ports(scenario):
-    station = MakeGraspStation(scenario)
-    jaco = MakeGraspStation(LoadScenario(name="box"))
+    station = MakeSimulatedStation(scenario)
+    jaco = MakeSimulatedStation(LoadScenario(name="box"))
     for port in ("arm.desired_state",):
         assert station.GetInputPort(port).size() == jaco.GetInputPort(port).size() == 12
     for port in ("arm.position_measured", "arm.velocity_measured", "arm.torque_measured"):
@@ -51,11 +60,11 @@ def test_the_carriage_station_keeps_the_arm_ports(scenario):
 def test_the_carriage_starts_where_the_arm_puts_the_grasp_frame(scenario):
     """The arm's commanded start joints, through CarriageCommand's kinematics, are the
     carriage's default positions."""
-    station = MakeGraspStation(scenario)
+    station = MakeSimulatedStation(scenario)
     context = station.CreateDefaultContext()
     set_point = station.GetOutputPort("carriage.desired_state").Eval(context)
-    X_WG, _ = ArmGraspFrameKinematics().pose_and_jacobian(initial_arm_positions(scenario))
-    parts = AddStationPlant(DiagramBuilder(), scenario)
+    X_WG, _ = ArmGraspFrameKinematics().pose_and_jacobian(initial_arm_positions(scenario.arm))
+    parts = station_plant(DiagramBuilder(), scenario)
     default = parts.plant.GetDefaultPositions(parts.arm)
     np.testing.assert_allclose(set_point[:6], default, atol=1e-9)
     np.testing.assert_allclose(set_point[6:], 0.0, atol=1e-12)
@@ -67,7 +76,7 @@ def _simulate_tracking(scenario, set_point_of_t, duration_s):
     (positions and rates, actuator order) sampled at 1 ms (first-order hold); returns (times t_k, the set-points at t_k, the carriage's positions
     after the step that began at t_k)."""
     builder = DiagramBuilder()
-    parts = AddStationPlant(builder, scenario)
+    parts = station_plant(builder, scenario)
     times = np.arange(0.0, duration_s + 1e-9, 1e-3)
     commanded = np.column_stack([set_point_of_t(t) for t in times])
     source = builder.AddSystem(TrajectorySource(
@@ -111,8 +120,8 @@ def test_the_carriage_tracks_a_smooth_move_as_its_gains_say(scenario):
     The pitch that the hand's offset centre of mass couples in is included. (A turn about
     the fingers' own joint axes, world z here, is left out: the hand's passive finger
     joints lag it, so the carriage feels about half the inertia the rigid model gives.)"""
-    start, _ = ArmGraspFrameKinematics().pose_and_jacobian(initial_arm_positions(scenario))
-    parts0 = AddStationPlant(DiagramBuilder(), scenario)
+    start, _ = ArmGraspFrameKinematics().pose_and_jacobian(initial_arm_positions(scenario.arm))
+    parts0 = station_plant(DiagramBuilder(), scenario)
     duration, move = 0.8, np.array([-0.04, 0.0, 0.04])
 
     def profile(t):
@@ -145,7 +154,7 @@ def test_the_carriage_yields_to_a_steady_force_as_its_stiffness_says(scenario):
     from pydrake.systems.primitives import ConstantValueSource
     from pydrake.common.value import AbstractValue
     builder = DiagramBuilder()
-    parts = AddStationPlant(builder, scenario)
+    parts = station_plant(builder, scenario)
     plant = parts.plant
     base = plant.GetBodyByName("base", parts.gripper)
     push = ExternallyAppliedSpatialForce()
@@ -164,7 +173,7 @@ def test_the_carriage_yields_to_a_steady_force_as_its_stiffness_says(scenario):
     plant.get_desired_state_input_port(parts.gripper).FixValue(context, [0.0, 0.0])
     simulator.AdvanceTo(1.0)  # ten of the carriage's d / k = 0.1 s time constants
     axes = parts.carriage.translation_axes
-    compliance = axes @ np.diag(1.0 / carriage_impedance(scenario).stiffness[3:]) @ axes.T
+    compliance = axes @ np.diag(1.0 / station_carriage(scenario).stiffness[3:]) @ axes.T
     shift = axes @ (plant.GetPositions(context, parts.arm)[:3] - q0[:3])
     np.testing.assert_allclose(shift, compliance @ [0.0, 20.0, 0.0], atol=0.02 * 20.0 *
                                compliance[1, 1])
@@ -175,7 +184,7 @@ def _carriage_with_load(scenario, mass_kg, p_GL):
     gravity on the load only; the CarriageWristWrench on the weld; at rest at the start."""
     builder = DiagramBuilder()
     plant, _ = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), builder)
-    carriage = AddCarriage(plant, carriage_impedance(scenario))
+    carriage = AddCarriage(plant, station_carriage(scenario))
     (gripper,) = paths.make_parser(plant).AddModels(url=gripper_hand("linkage").url)
     weld = plant.WeldFrames(carriage.end_body.body_frame(),
                             plant.GetFrameByName("grasp_frame", gripper),
@@ -204,7 +213,7 @@ def _carriage_with_load(scenario, mass_kg, p_GL):
         context, np.concatenate([q0, np.zeros(6)]))
     plant.get_desired_state_input_port(gripper).FixValue(context, [0.0, 0.0])
     wrench.GetInputPort("arm.position_measured").FixValue(
-        wrench.GetMyMutableContextFromRoot(root), initial_arm_positions(scenario))
+        wrench.GetMyMutableContextFromRoot(root), initial_arm_positions(scenario.arm))
     return simulator, wrench
 
 
@@ -231,13 +240,13 @@ def test_the_arm_torques_map_back_to_the_wrist_wrench(scenario):
     context = wrench.GetMyContextFromRoot(simulator.get_context())
     w = wrench.GetOutputPort("wrist_wrench").Eval(context)
     tau = wrench.GetOutputPort("arm.torque_measured").Eval(context)
-    _, J = ArmGraspFrameKinematics().pose_and_jacobian(initial_arm_positions(scenario))
+    _, J = ArmGraspFrameKinematics().pose_and_jacobian(initial_arm_positions(scenario.arm))
     np.testing.assert_allclose(grasp_wrench_from_torques(J, tau), w, atol=1e-9)
 
 
 @pytest.mark.slow
 def test_a_memorized_trial_on_the_carriage_reaches_lift(scenario):
-    from tegrasp_drake.experiments.grasp_diagram import MakeGraspDiagram, MakeSimulator
+    from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram, MakeSimulator
     memorized = with_controller(scenario, "memorized")
     grasp = MakeGraspDiagram(memorized, log=False)
     simulator = MakeSimulator(grasp.diagram, memorized)

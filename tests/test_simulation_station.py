@@ -6,8 +6,9 @@ from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.control.scripted_grasp import gripper_command
-from tegrasp_drake.experiments.scenario import LoadScenario
-from tegrasp_drake.simulation.station import MakeGraspStation, initial_arm_positions
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.scenario import MakeSimulatedStation
+from tegrasp_drake.simulation.station import initial_arm_positions
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.taxel_layout import taxel_centers
 
@@ -22,10 +23,11 @@ def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
     scenario = LoadScenario(overrides=["gripper.model=prismatic",
         "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]",
         f"object.name={object_name}"])
-    station = MakeGraspStation(scenario)
+    station = MakeSimulatedStation(scenario)
     context = station.CreateDefaultContext()
-    q0 = initial_arm_positions(scenario)
-    station.GetInputPort(ports.ARM_DESIRED_STATE).FixValue(context, np.concatenate([q0, np.zeros(6)]))
+    q0 = initial_arm_positions(scenario.arm)
+    station.GetInputPort(ports.ARM_DESIRED_STATE).FixValue(context,
+                                                            np.concatenate([q0, np.zeros(6)]))
     command = station.GetInputPort(ports.GRIPPER_COMMAND)
     command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))
     simulator = Simulator(station, context)
@@ -53,7 +55,7 @@ def fingertip_squeeze():
 
 
 def test_exported_ports_match_the_hardware_interface():
-    station = MakeGraspStation(LoadScenario())
+    station = MakeSimulatedStation(LoadScenario())
     sizes = {station.get_output_port(i).get_name(): station.get_output_port(i).size()
              for i in range(station.num_output_ports())
              if station.get_output_port(i).get_data_type().name == "kVectorValued"}

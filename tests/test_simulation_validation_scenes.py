@@ -27,7 +27,7 @@ tilted, off-centre held cylinder in the pads' plane; under Drake's default stict
 
 import dataclasses
 
-from tegrasp_drake.experiments.scenario import Scenario
+from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig import materials
 from tegrasp_drake.rig.tactile_fingertip import PAD_WIDTH
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS

@@ -27,7 +27,7 @@ import tegrasp_drake
 from tegrasp_drake.control.controller_config import (
     GraspControllerConfig, HeuristicTriggerConfig)
 from tegrasp_drake.control.grasp_modes import Trigger
-from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
+from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
 from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
 from tegrasp_drake.control.scripted_grasp import ScriptedGraspSource, plan_scripted_grasp
@@ -36,9 +36,9 @@ from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.events.event_matcher import EventMatcher
 from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.events_folder import load_memorized_events
-from tegrasp_drake.experiments.benchmarks.drivers import LoopTick
-from tegrasp_drake.experiments.benchmarks.matcher import _InputReader
-from tegrasp_drake.experiments.scenario import LoadScenario
+from benchmarks.drivers import LoopTick
+from benchmarks.matcher import _InputReader
+from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import GripperStatusSender, TactileStatusSender
 from tegrasp_drake.hardware.fault_latch import FaultLatch
@@ -71,7 +71,8 @@ from tegrasp_drake.simulation.pad_accelerometers import PadAccelerometers
 from tegrasp_drake.simulation.carriage import AddCarriage
 from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
-from tegrasp_drake.simulation.station import carriage_impedance, initial_arm_positions
+from tegrasp_drake.scenario.grasp_diagram import station_carriage
+from tegrasp_drake.simulation.station import initial_arm_positions
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
@@ -122,7 +123,8 @@ def hardware_station():
 def carriage():
     """A Carriage (its plant finalized), with the arm's impedance at the box's grasp pose."""
     plant = MultibodyPlant(1e-3)
-    made = AddCarriage(plant, carriage_impedance(LoadScenario(name="box")))
+    made = AddCarriage(plant, station_carriage(LoadScenario(
+        name="box", overrides=["station.arm=carriage"])))
     plant.Finalize()
     return made
 
@@ -137,11 +139,11 @@ CONSTRUCTORS = {
     EventMatcher: lambda: EventMatcher(load_memorized_events(paths.package_events_dir(), "box")),
     EventSequencer: lambda: EventSequencer([0, 1, 2]),
     GraspStateMachine: lambda: GraspStateMachine(
-        plan=GraspPlan.from_scenario(box_scenario()), config=GraspControllerConfig(),
+        plan=grasp_plan(box_scenario()), config=GraspControllerConfig(),
         event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT),
     HeuristicEventDetector: lambda: HeuristicEventDetector(HeuristicTriggerConfig(),
                                                            grip_force_n=25.0),
-    ScriptedGraspSource: lambda: ScriptedGraspSource(plan_scripted_grasp(box_scenario())),
+    ScriptedGraspSource: lambda: ScriptedGraspSource(plan_scripted_grasp(grasp_plan(box_scenario()))),
     LoopTick: lambda: LoopTick([]),
     GraspWrenchEstimator: GraspWrenchEstimator,
     _InputReader: _InputReader,
@@ -171,7 +173,7 @@ CONSTRUCTORS = {
     TactilePads: lambda: TactilePads(pads=gripper_plant()[1], config=TactileSensorConfig(),
                                      seed=0),
     CarriageCommand: lambda: CarriageCommand(
-        carriage(), initial_positions=initial_arm_positions(LoadScenario(name="box")),
+        carriage(), initial_positions=initial_arm_positions(LoadScenario(name="box").arm),
         period_s=1e-3),
     CarriageWristWrench: lambda: CarriageWristWrench(weld_index=0, gripper_body_index=0),
     TaxelForceDisplay: lambda: TaxelForceDisplay(meshcat=Meshcat(), pads={},

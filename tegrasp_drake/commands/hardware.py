@@ -3,7 +3,7 @@
 The controller diagram runs unchanged on MakeHardwareStation, in real time, against the
 devices the config names (hardware/config.py; `tegrasp emulate ... --write-config FILE`
 writes one for the emulators). State transitions and device faults are printed as they
-happen; everything on the bus goes to an LCM log (experiments/run_log.py; `tegrasp replay
+happen; everything on the bus goes to an LCM log (runs/hardware_log_reader.py; `tegrasp replay
 LOG`, `lcm-logplayer LOG`). Exit code: 0 when the grasp finished without a fault, 2 after a
 fault or a Failed state machine, 1 when a device did not come up. The run's result
 (transitions, faults, times, device counters) goes beside the log: run.result.json.
@@ -16,9 +16,8 @@ import pathlib
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
-                                                   controller_events, corrective_events,
-                                                   quiet_modbus_library,
-                                                   scenario_from_arguments)
+                                                  controller_events, corrective_events,
+                                                  quiet_modbus_library, scenario_from_arguments)
 from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
 
 
@@ -74,13 +73,13 @@ def _events_folder(events, args, scenario) -> str:
 def run(args) -> int:
     quiet_modbus_library()
     from tegrasp_drake.hardware.config import LoadHardwareConfig
-    from tegrasp_drake.experiments.hardware_run import run_on_hardware
+    from tegrasp_drake.runs.hardware_run import run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.hardware.config import HardwareStationConfig
     scenario = scenario_from_arguments(args)
     if args.controller:
-        from tegrasp_drake.experiments.scenario import with_controller
+        from tegrasp_drake.scenario.scenario import with_controller
         scenario = with_controller(scenario, args.controller)
     if args.config:
         try:

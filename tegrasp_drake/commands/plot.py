@@ -15,7 +15,7 @@ suffix names the format.
 import argparse
 import pathlib
 
-from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig import paths
 
 TRIAL_FIGURES = ("signals", "trial", "avoid")
@@ -72,7 +72,7 @@ def output_path(args) -> pathlib.Path:
 
 def _plot_events(args, out) -> str:
     from tegrasp_drake.events import MemorizedEventError, load_all_memorized_events
-    from tegrasp_drake.experiments.figures.events import plot_memorized_events
+    from tegrasp_drake.figures.events import plot_memorized_events
     events = {}
     try:
         # The first folder that has an object's events wins (the user's before the package's).
@@ -85,7 +85,7 @@ def _plot_events(args, out) -> str:
 
 
 def _plot_trial(args, out) -> str:
-    from tegrasp_drake.experiments.trial_log import TrialLogError, load_trial_log
+    from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
     if not args.source:
         raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a trial log "
                          "(e.g. out/demo/trial.npz from `tegrasp demo`)")
@@ -94,13 +94,13 @@ def _plot_trial(args, out) -> str:
     except TrialLogError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     if args.what == "signals":
-        from tegrasp_drake.experiments.figures.signals import plot_trial_signals
+        from tegrasp_drake.figures.signals import plot_trial_signals
         return plot_trial_signals(log, out)
     if args.what == "trial":
-        from tegrasp_drake.experiments.figures.states import plot_trial_states
+        from tegrasp_drake.figures.states import plot_trial_states
         return plot_trial_states(log, out)
-    from tegrasp_drake.experiments.figures.avoid import NoAvoidError, plot_avoid_reaction
-    from tegrasp_drake.experiments.figures.trial_annotations import logged_scenario
+    from tegrasp_drake.figures.avoid import NoAvoidError, plot_avoid_reaction
+    from tegrasp_drake.figures.trial_annotations import logged_scenario
     try:
         return plot_avoid_reaction(log, out,
                                    hit_threshold=logged_scenario(log).controller.hit_ra_mps2)
@@ -109,7 +109,7 @@ def _plot_trial(args, out) -> str:
 
 
 def _plot_sweep(args, out) -> str:
-    from tegrasp_drake.experiments.sweep import load_records
+    from tegrasp_drake.sweep import load_records
     if not args.source:
         raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a sweep's results "
                          "folder (e.g. analysis/results_seed0)")
@@ -124,9 +124,9 @@ def _plot_sweep(args, out) -> str:
     if not records:
         raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
                          "(run `tegrasp sweep --out FOLDER` first)")
-    from tegrasp_drake.experiments.figures.latency import plot_latency_distributions
-    from tegrasp_drake.experiments.figures.sweep import write_success_maps
-    from tegrasp_drake.experiments.figures.table1 import plot_table1
+    from tegrasp_drake.figures.latency import plot_latency_distributions
+    from tegrasp_drake.figures.sweep import write_success_maps
+    from tegrasp_drake.figures.table1 import plot_table1
     try:
         if args.what == "table1":
             return plot_table1(records, out)

@@ -1,7 +1,7 @@
 """`tegrasp record-events`: memorize the tactile events of the ideal grasp (Sec. III-A).
 
 For each object (its built-in scenario, or the object of a scenario given), the events
-of its ideal grasp (experiments/record_events.py) are stored in the events folder with an
+of its ideal grasp (recording/paper_events.py) are stored in the events folder with an
 index (format: tegrasp_drake/events/FORMAT.md): `--events DIR`, else the user's events
 folder (TEGRASP_EVENTS_DIR, else ~/.local/share/tegrasp/events; rig/paths.py), never the
 installed package's, which `pip install` replaces. From a source checkout,
@@ -9,7 +9,7 @@ installed package's, which `pip install` replaces. From a source checkout,
 
 Every controller's events: the paper's (one clean ideal grasp; `memorized`) and, for an
 object whose ensemble the package does not ship (your own), the taxel_aware controller's
-ensemble events (experiments/ensemble_events.py: --ensemble-runs randomised ideal grasps,
+ensemble events (recording/ensemble_events.py: --ensemble-runs randomised ideal grasps,
 in the folder's `ensemble/`). An object's new events replace its old ones only once all of
 them are made, all together.
 """
@@ -23,7 +23,7 @@ from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
-TEMPLATE_RUNS = 5  # experiments/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
+TEMPLATE_RUNS = 5  # recording/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
 MAX_ENSEMBLE_RUNS = 50  # each is an ideal grasp of about 20 s wall
 
 
@@ -73,7 +73,7 @@ def _scenarios_to_record(args) -> list:
     """(object name, scenario or None for the built-in one) of each object to record."""
     if args.scenario or args.scenario_name or args.overrides:
         from tegrasp_drake.commands.scenario_args import scenario_from_arguments
-        from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO
+        from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO
         args.scenario_name = args.scenario_name or DEFAULT_SCENARIO
         scenario = scenario_from_arguments(args)
         return [(scenario.object.name, scenario)]
@@ -91,9 +91,8 @@ def _ensemble_runs(args, scenario) -> int:
 
 def run(args) -> int:
     from tegrasp_drake.events import save_memorized_events
-    from tegrasp_drake.experiments.ensemble_events import (ENSEMBLE_FOLDER,
-                                                           record_object_ensemble)
-    from tegrasp_drake.experiments.record_events import RecordEventsError, record_events
+    from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, record_object_ensemble)
+    from tegrasp_drake.recording.paper_events import RecordEventsError, record_events
     out = args.events or paths.user_events_dir()
     if paths.is_installed_package_data(out):
         raise SystemExit(f"tegrasp: error: {out} holds the installed package's events, which "
@@ -138,5 +137,5 @@ def run(args) -> int:
 
 
 def _builtin_scenario(object_name: str):
-    from tegrasp_drake.experiments.scenario import LoadScenario
+    from tegrasp_drake.scenario.scenario import LoadScenario
     return LoadScenario(name=object_name)

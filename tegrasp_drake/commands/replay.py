@@ -1,5 +1,5 @@
 """`tegrasp replay LOG`: what a hardware run's log holds, and the event matcher re-run on
-its tactile data offline, two ways (experiments/run_log.replay_run_log): expecting the
+its tactile data offline, two ways (runs/hardware_log_replay.replay_run_log): expecting the
 event of the mode the logged transitions show, and expecting the memorized events one
 after another, as an EventSequencer does.
 
@@ -39,7 +39,8 @@ def _fmt(value):
 
 def run(args) -> int:
     from tegrasp_drake.events import MemorizedEventError
-    from tegrasp_drake.experiments.run_log import RunLogError, replay_run_log
+    from tegrasp_drake.runs.hardware_log_reader import RunLogError
+    from tegrasp_drake.runs.hardware_log_replay import replay_run_log
     try:
         replay = replay_run_log(args.log, object_name=args.object, events_dir=args.events)
     except (RunLogError, MemorizedEventError, ValueError) as e:

@@ -3,7 +3,7 @@
 import logging
 import pathlib
 
-from tegrasp_drake.experiments.scenario import DEFAULT_SCENARIO, LoadScenario
+from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file
 

@@ -14,7 +14,7 @@ Exit codes: 0 all trials finished, 1 some trials raised or were left unfinished
 rate, ETA) is shown on a terminal only, and not with --no-progress or --quiet.
 
 Testing hook: `--trial-function MODULE:ATTR` (hidden from --help) replaces the real
-trial function, `tegrasp_drake.experiments.trial:run_trial_from_spec`; the tests use it to run
+trial function, `tegrasp_drake.sweep.trial_function:run_trial_from_spec`; the tests use it to run
 the command with a cheap deterministic trial.
 """
 
@@ -26,26 +26,26 @@ import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
-from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
-from tegrasp_drake.experiments.sweep.reports import write_reports
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.files import folder_problem
-from tegrasp_drake.experiments.sweep.runner import (
+from tegrasp_drake.sweep.runner import (
     SweepError,
     benchmark_text,
     run_benchmark,
     run_sweep,
     summary_text,
 )
-from tegrasp_drake.experiments.sweep.spec import (
+from tegrasp_drake.sweep.spec import (
     BUILTIN_OBJECTS,
     CONTROLLER_NAMES,
     SweepSpec,
-    LoadSweepSpec,
     validate_spec,
 )
+from tegrasp_drake.sweep.spec_file import LoadSweepSpec
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
-DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.experiments.trial:run_trial_from_spec"
+DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
 DEFAULT_OUT = "results/sweep"
 
 EPILOG = """\
@@ -161,8 +161,8 @@ def run(args) -> int:
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
         if args.trial_function == DEFAULT_TRIAL_FUNCTION:
-            from tegrasp_drake.experiments.sweep.spec import expand_trials
-            from tegrasp_drake.experiments.trial import check_sweep_events
+            from tegrasp_drake.sweep.spec import expand_trials
+            from tegrasp_drake.sweep.trial_function import check_sweep_events
             check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
         progress = not args.no_progress and progress_wanted(args)
         if args.events:

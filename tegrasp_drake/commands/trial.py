@@ -11,13 +11,13 @@ from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RunFolderError, choose_run_folder, commit_run,
                                                staged_run)
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
-                                                   controller_events, corrective_events,
-                                                   scenario_from_arguments)
+                                                  controller_events, corrective_events,
+                                                  scenario_from_arguments)
 from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
                                                 start_viewer, wait_for_viewer,
                                                 write_replay_html)
 from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
-from tegrasp_drake.experiments.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 
 DESCRIPTION = """\
 One closed-loop grasp trial of any scenario: the object, its placement, the controller and
@@ -97,8 +97,8 @@ def run(args) -> int:
                                 overwrite=args.overwrite)
     except RunFolderError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
-    from tegrasp_drake.experiments.figures.trial_figures import write_trial_figures
-    from tegrasp_drake.experiments.trial import run_trial
+    from tegrasp_drake.figures.trial_figures import write_trial_figures
+    from tegrasp_drake.runs.trial import run_trial
     meshcat = start_viewer(args)
     try:
         with staged_run(out) as stage:

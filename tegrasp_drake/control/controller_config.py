@@ -21,7 +21,7 @@ import typing
 
 # What triggers Lift-Load and Avoid: the heuristic thresholds below (the
 # paper's, the default) or, for each corrective event named in
-# controller.memorized_corrective_events, its memorized event (experiments/
+# controller.memorized_corrective_events, its memorized event (recording/
 # corrective_events.py, read from the events folder's CORRECTIVE_EVENTS_FOLDER) matched by
 # Eq. 3.
 CORRECTIVE_EVENTS_FOLDER = "corrective"

@@ -167,66 +167,68 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
     return events
 
 
-def _add_detector(builder, scenario, events, channels):
+def _add_detector(builder, config, plan, rates_hz, events, channels):
     """The detector fed by `channels` (an output port), and its trigger: the memorized
     events' matcher for an event-triggered controller, else the heuristic thresholds."""
-    config = scenario.controller
     if isinstance(config, EventTriggeredConfig):
         from tegrasp_drake.events import EventMatcherConfig, add_event_matcher
+        if events is None:
+            raise ValueError(f"AddGraspController: the {config.name} controller needs its "
+                             "memorized events (events=load_controller_events(scenario))")
         matcher_config = EventMatcherConfig(
             sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
             event_thresholds=config.event_thresholds(
-                dict(gripper_hand(scenario.gripper.model).ensemble_thresholds)),
-            sa_rate_hz=scenario.tactile.sample_rate_hz,
-            ra_rate_hz=scenario.vibration.sample_rate_hz)
-        events = events if events is not None else load_controller_events(scenario)
+                dict(gripper_hand(plan.gripper_model).ensemble_thresholds)),
+            sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1])
         return (add_event_matcher(builder, events, matcher_config, channels=channels),
                 Trigger.MEMORIZED_EVENT)
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
-        config.heuristic, grip_force_n=scenario.grasp.grip_force))
+        config.heuristic, grip_force_n=plan.grip_force))
     builder.Connect(channels, detector.GetInputPort("channels"))
     return detector, Trigger.HEURISTIC_EVENT
 
 
-def _add_corrective_matcher(builder, scenario, corrective_events, channels):
+def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channels):
     """The corrective EventMatcher (`corrective_matcher`) of the memorized corrective
     events, fed by `channels`, with their thresholds (controller.*_event_thresholds)."""
     from tegrasp_drake.events import EventMatcher, EventMatcherConfig
-    config = scenario.controller
-    events = (corrective_events if corrective_events is not None
-              else load_corrective_events(scenario))
-    events = {t: events[t] for t in config.memorized_corrective_events}
+    if corrective_events is None:
+        raise ValueError("AddGraspController: controller.memorized_corrective_events names "
+                         f"{list(config.memorized_corrective_events)}: give their events "
+                         "(corrective_events=load_corrective_events(scenario))")
+    events = {t: corrective_events[t] for t in config.memorized_corrective_events}
     matcher = builder.AddNamedSystem("corrective_matcher", EventMatcher(
         events, EventMatcherConfig(event_thresholds={
             t: pair for t, pair in config.corrective_event_thresholds().items()
-            if t in events},
-                                   sa_rate_hz=scenario.tactile.sample_rate_hz,
-                                   ra_rate_hz=scenario.vibration.sample_rate_hz)))
+            if t in events}, sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1])))
     builder.Connect(channels, matcher.GetInputPort("channels"))
     return matcher
 
 
-def AddGraspController(builder, *, scenario, station, events: dict | None = None,
-                         corrective_events: dict | None = None) -> GraspController:
-    """Adds the scenario's controller (its `controller` config) and connects it to
-    `station`'s ports; returns its GraspController.
+def AddGraspController(builder, *, controller, plan: GraspPlan, station, arm,
+                       sample_rates_hz: tuple[float, float], events: dict | None = None,
+                       corrective_events: dict | None = None) -> GraspController:
+    """Adds the controller configured by `controller` (a ControllerConfig) and connects it
+    to `station`'s ports; returns its GraspController.
 
-    events: {transition: MemorizedEvent} for the memorized controller (default: the
-    package's events of the scenario's object). corrective_events: the memorized
-    corrective events {lift_load, hold_avoid}, of which those named in
-    controller.memorized_corrective_events are matched (default: load_corrective_events).
+    plan: the grasp it follows (GraspPlan.make); arm: the arm's settings (ArmDriverConfig:
+    its start pose and the Cartesian controller's period); sample_rates_hz: the live SA
+    (taxel) and RA (film) rates [Hz] the matchers read. events: {transition:
+    MemorizedEvent}, needed by the event-triggered controllers (load_controller_events).
+    corrective_events: the memorized corrective events {lift_load, hold_avoid}, needed when
+    controller.memorized_corrective_events names some (load_corrective_events).
     """
     from tegrasp_drake.simulation.station import initial_arm_positions
-    config = scenario.controller
+    config = controller
     name = config.name
     channels = AddMechanoreceptorChannels(builder, station)
     X_WG_desired, arm_desired_state = AddCartesianArmController(
         builder, position_measured=station.GetOutputPort(ports.ARM_POSITION_MEASURED),
         velocity_measured=station.GetOutputPort(ports.ARM_VELOCITY_MEASURED),
-        q_nominal=initial_arm_positions(scenario), time_step=scenario.arm.control_period_s)
+        q_nominal=initial_arm_positions(arm), time_step=arm.control_period_s)
     builder.Connect(arm_desired_state, station.GetInputPort(ports.ARM_DESIRED_STATE))
     if isinstance(config, OpenLoopControllerConfig):
-        segments = plan_scripted_grasp(scenario)
+        segments = plan_scripted_grasp(plan)
         script = builder.AddNamedSystem("scripted_grasp", ScriptedGraspSource(segments))
         builder.Connect(script.GetOutputPort("X_WG_desired"), X_WG_desired)
         builder.Connect(script.GetOutputPort("gripper_command"),
@@ -234,14 +236,15 @@ def AddGraspController(builder, *, scenario, station, events: dict | None = None
         return GraspController(name, channels, None, script,
                                script.GetOutputPort("gripper_command"), arm_desired_state,
                                script.GetOutputPort("phase"), segments)
-    detector, event_trigger = _add_detector(builder, scenario, events,
+    detector, event_trigger = _add_detector(builder, config, plan, sample_rates_hz, events,
                                             channels.GetOutputPort("channels"))
     corrective = None
     if config.memorized_corrective_events:
-        corrective = _add_corrective_matcher(builder, scenario, corrective_events,
+        corrective = _add_corrective_matcher(builder, config, sample_rates_hz,
+                                             corrective_events,
                                              channels.GetOutputPort("channels"))
     machine = builder.AddNamedSystem("grasp_state_machine", GraspStateMachine(
-        plan=GraspPlan.from_scenario(scenario), config=config,
+        plan=plan, config=config,
         event_indices={t: detector.event_index(t) for t in detector.transitions},
         event_trigger=event_trigger,
         corrective_event_indices=({t: corrective.event_index(t)
@@ -269,7 +272,7 @@ def AddGraspController(builder, *, scenario, station, events: dict | None = None
     builder.Connect(AddSlipVibrationBand(builder, accelerations.get_output_port(),
                                          band_hz=config.slip_band_hz,
                                          window_s=config.slip_window_s,
-                                         sample_rate_hz=scenario.vibration.sample_rate_hz,
+                                         sample_rate_hz=sample_rates_hz[1],
                                          pad_acceleration_samples=samples),
                     machine.GetInputPort("slip_vibration"))
     taxels = builder.AddNamedSystem("taxel_forces_mux", Multiplexer([TAXELS_PER_PAD] * 2))

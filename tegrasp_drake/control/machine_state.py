@@ -1,5 +1,5 @@
 """What the GraspStateMachine remembers (MachineState, one abstract state value) and the
-plan it follows (GraspPlan, from the scenario's `grasp` section)."""
+plan it follows (GraspPlan: the grasp script placed for the expected object)."""
 
 import dataclasses
 
@@ -55,7 +55,8 @@ class MachineState:
 
 @dataclasses.dataclass(frozen=True)
 class GraspPlan:
-    """Where and how far to move, from the scenario (its `grasp` section) [m, s, N]."""
+    """Where and how far to move [m, s, N]: the grasp script's timing and targets
+    (GraspScriptConfig) placed for the expected object, from the arm's start pose."""
     start_xyz: tuple
     object_xy: tuple  # the grasp frame's target for the expected object (grasp_frame_xy)
     object_width: float  # along the stroke, for the Re-Reach shift
@@ -73,18 +74,25 @@ class GraspPlan:
     retract_distance: float
     close_speed: float
     grip_force: float
+    load_s: float  # the script's close command to the start of its lift
+    place_offset: tuple  # where the script puts the object down, from where it took it
     gripper_model: str = "linkage"  # the hand (gripper_hands.py): where its pads lie
 
     @staticmethod
-    def from_scenario(scenario) -> "GraspPlan":
-        g = scenario.grasp
+    def make(grasp, *, start_xyz, expected_object_xy, object, gripper_model: str
+             ) -> "GraspPlan":
+        """The plan of the grasp script `grasp` (GraspScriptConfig) for `object`
+        (ObjectConfig) expected at `expected_object_xy` [m, world], by the hand
+        `gripper_model`, from the grasp frame's start position `start_xyz` [m, world]."""
+        g = grasp
         return GraspPlan(
-            start_xyz=tuple(scenario.arm.initial_gripper_xyz),
-            object_xy=tuple(grasp_frame_xy(scenario)),
-            object_width=scenario.object.width_along_stroke(), grasp_height=g.grasp_height,
-            object_height=scenario.object.height(),
+            start_xyz=tuple(start_xyz),
+            object_xy=tuple(grasp_frame_xy(expected_object_xy, object.width_along_stroke(),
+                                           gripper_model)),
+            object_width=object.width_along_stroke(), grasp_height=g.grasp_height,
+            object_height=object.height(),
             lift_height=g.lift_height, place_press=g.place_press, settle_s=g.settle_s,
             reach_s=g.reach_s, lift_s=g.lift_s, hold_s=g.hold_s, place_s=g.place_s,
             unload_s=g.unload_s, retract_s=g.retract_s, retract_distance=g.retract_distance,
-            close_speed=g.close_speed, grip_force=g.grip_force,
-            gripper_model=scenario.gripper.model)
+            close_speed=g.close_speed, grip_force=g.grip_force, load_s=g.load_s,
+            place_offset=tuple(g.place_offset), gripper_model=gripper_model)

@@ -64,38 +64,38 @@ def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple
             float(ru.force_byte_from_force(force_n)))
 
 
-def grasp_frame_xy(scenario) -> tuple[float, float]:
-    """Where the grasp frame goes [m], world (x, y), so that the closing pads meet the
-    object at its expected position with their centres on its centre line: the linkage
-    hand's pads travel along the approach axis (world +x) as they close, so the frame stops
-    short by the pads' offset at the object's width (gripper_hands.pad_center_offset)."""
-    x0, y0 = scenario.expected_object_xy
-    offset = gripper_hand(scenario.gripper.model).pad_center_offset(
-        scenario.object.width_along_stroke())
+def grasp_frame_xy(expected_object_xy, object_width: float, gripper_model: str
+                   ) -> tuple[float, float]:
+    """Where the grasp frame goes [m], world (x, y), so that the closing pads meet an object
+    `object_width` [m] wide along the stroke at its expected position [m, world] with their
+    centres on its centre line: the linkage hand's pads travel along the approach axis
+    (world +x) as they close, so the frame stops short by the pads' offset at the object's
+    width (gripper_hands.pad_center_offset)."""
+    x0, y0 = expected_object_xy
+    offset = gripper_hand(gripper_model).pad_center_offset(object_width)
     return x0 - offset, y0
 
 
-def plan_scripted_grasp(scenario) -> list[ScriptSegment]:
-    """The phase segments of the ideal grasp for the scenario's expected object position."""
-    g = scenario.grasp
-    x0, y0 = grasp_frame_xy(scenario)
-    start = RigidTransform(R_WG_SIDE_GRASP, scenario.arm.initial_gripper_xyz)
-    grasp = RigidTransform(R_WG_SIDE_GRASP, [x0, y0, g.grasp_height])
-    lifted = RigidTransform(R_WG_SIDE_GRASP, [x0, y0, g.grasp_height + g.lift_height])
-    dx, dy = g.place_offset
-    placed = RigidTransform(R_WG_SIDE_GRASP, [x0 + dx, y0 + dy, g.grasp_height - g.place_press])
-    retracted = RigidTransform(R_WG_SIDE_GRASP,
-                               np.add(scenario.arm.initial_gripper_xyz, [dx, dy, 0.0]))
-    opened = gripper_command(ru.STROKE_M, g.close_speed, g.grip_force)
-    closed = gripper_command(0.0, g.close_speed, g.grip_force)
-    steps = [("settle", g.settle_s, start, start, opened),
-             ("reach", g.reach_s, start, grasp, opened),
-             ("load", g.load_s, grasp, grasp, closed),
-             ("lift", g.lift_s, grasp, lifted, closed),
-             ("hold", g.hold_s, lifted, lifted, closed),
-             ("place", g.place_s, lifted, placed, closed),
-             ("unload", g.unload_s, placed, placed, opened),
-             ("retract", g.retract_s, placed, retracted, opened)]
+def plan_scripted_grasp(plan) -> list[ScriptSegment]:
+    """The phase segments of the ideal grasp of `plan` (machine_state.GraspPlan)."""
+    x0, y0 = plan.object_xy
+    start = RigidTransform(R_WG_SIDE_GRASP, plan.start_xyz)
+    grasp = RigidTransform(R_WG_SIDE_GRASP, [x0, y0, plan.grasp_height])
+    lifted = RigidTransform(R_WG_SIDE_GRASP, [x0, y0, plan.grasp_height + plan.lift_height])
+    dx, dy = plan.place_offset
+    placed = RigidTransform(R_WG_SIDE_GRASP,
+                            [x0 + dx, y0 + dy, plan.grasp_height - plan.place_press])
+    retracted = RigidTransform(R_WG_SIDE_GRASP, np.add(plan.start_xyz, [dx, dy, 0.0]))
+    opened = gripper_command(ru.STROKE_M, plan.close_speed, plan.grip_force)
+    closed = gripper_command(0.0, plan.close_speed, plan.grip_force)
+    steps = [("settle", plan.settle_s, start, start, opened),
+             ("reach", plan.reach_s, start, grasp, opened),
+             ("load", plan.load_s, grasp, grasp, closed),
+             ("lift", plan.lift_s, grasp, lifted, closed),
+             ("hold", plan.hold_s, lifted, lifted, closed),
+             ("place", plan.place_s, lifted, placed, closed),
+             ("unload", plan.unload_s, placed, placed, opened),
+             ("retract", plan.retract_s, placed, retracted, opened)]
     segments, t = [], 0.0
     for phase, duration, X_start, X_end, command in steps:
         segments.append(ScriptSegment(phase, t, t + duration, X_start, X_end, command))

@@ -149,7 +149,7 @@ class Emulators:
         from tegrasp_drake.simulation.station import initial_arm_positions
         drake_lcm = DrakeLcm(self.lcm_url)
         diagram = MakeJacoArmEmulator(lcm=drake_lcm,
-                                      initial_positions=initial_arm_positions(scenario))
+                                      initial_positions=initial_arm_positions(scenario.arm))
         self._jaco = (drake_lcm, diagram)
         self._devices["arm"] = {"lcm_url": self.lcm_url}
         self._out(f"jaco: JACO2 simulation on {self.lcm_url}: executes {JACO_COMMAND_CHANNEL}, "

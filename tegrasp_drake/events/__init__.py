@@ -10,9 +10,10 @@ the update that takes each sample; `add_event_matcher` adds it to a diagram. The
 EventSequencer expects an object's events one after another. replay.py runs a logged trial
 through them offline.
 
-Not re-exported here: `synthetic` (synthetic grasps for tests). The figure of an object's
-events (Fig. 5c) and the matcher's cost per tick are drawn and measured with the
-experiments, not here, so that the control loop does not import matplotlib.
+Not re-exported here, so that the control loop does not import matplotlib:
+`plot.plot_memorized_events` (the Fig. 5c-like figure), `benchmark` (the matcher's cost
+per tick; `python -m benchmarks.matcher`) and `synthetic` (synthetic grasps
+for tests).
 """
 
 from tegrasp_drake.events.correlation import (

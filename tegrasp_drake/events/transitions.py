@@ -18,7 +18,7 @@ TRANSITIONS = {
     "load_lift": "target grip force reached",
     "lift_hold": "the object lifts off the table",
     "place_unload": "the object touches the table",
-    # Corrective events (experiments/corrective_events.py): the situations that
+    # Corrective events (recording/corrective_events.py): the situations that
     # start a corrective action, memorized in their own folder (events/corrective/).
     "lift_load": "the pads slip up along the object during Lift",
     "hold_avoid": "an external hit on the held object",

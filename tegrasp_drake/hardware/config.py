@@ -1,6 +1,6 @@
 """Which station a scenario runs on: the simulation, or the real devices (typed config).
 
-A scenario's `station` field is a tagged variant (experiments/scenario.py `StationConfig`),
+A scenario's `station` field is a tagged variant (scenario/scenario.py `StationConfig`),
 as in Drake's hardware_sim:
 
     station: !SimulatedStationConfig {}          # the default: MakeGraspStation

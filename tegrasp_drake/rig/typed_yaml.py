@@ -1,8 +1,8 @@
 """Typed configuration from YAML files, with errors that name the field.
 
 Every YAML file the project reads as configuration goes through here: scenarios
-(experiments/scenario.py), the hardware config (hardware/config.py) and sweep specs
-(experiments/sweep/spec.py).
+(scenario/scenario.py), the hardware config (hardware/config.py) and sweep specs
+(sweep/spec.py).
 
 - `parse_yaml` is the one way YAML text becomes data, for files and `--set` values alike:
   Drake's `yaml_load` (PyYAML's safe loader: no Python objects; a tag such as
@@ -14,7 +14,7 @@ Every YAML file the project reads as configuration goes through here: scenarios
 - `check_fields` walks the data against a dataclass schema and names the first field that is
   unknown, missing (a dataclass field without a default), of the wrong type or a number that
   is not finite (`.nan`, `.inf`: no setting means "not a number") by its dotted path, e.g.
-  `object.mass` or `user_objects.mug.size_m`.
+  `object.mass` or `user_objects.mug.size`.
 - `require` checks one value of a loaded config (a positive timeout, a threshold in range).
 - `load_typed` checks the data, then builds the schema with Drake's `yaml_load_typed`.
 

@@ -1,7 +1,7 @@
 """MakeGraspStation: the simulated hardware of the paper (Sec. III-A, Fig. 4) as one Diagram.
 
-A JACO2 arm on a table, the tactile 2F-85-like gripper on its flange, the scenario's object
-on its marker (plus its offset), and the sensors: both pads' taxel arrays and vibration
+A JACO2 arm on a table, the tactile 2F-85-like gripper on its flange, the object on its
+marker (plus its offset), and the sensors: both pads' taxel arrays and vibration
 films. The exported ports are those of the hardware interface (rig/station_interface.py:
 its CONTROLLER_INPUTS and CONTROLLER_OUTPUTS), so a controller cannot tell the two apart;
 the taxels' readings are newtons, or with the capacitive transducer calibrated newtons or
@@ -12,7 +12,7 @@ as simulation only: the object's state, the taxel forces before noise, the conta
 body poses and query object, the gripper's joint state and the simulated 2F-85
 controller's set-point of the hand's actuated joint.
 
-The hand is `scenario.gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
+The hand is `gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
 default) or the earlier prismatic fingers.
 
 The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
@@ -46,6 +46,7 @@ from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinemat
                                                EndpointImpedance, arm_endpoint_impedance,
                                                carriage_positions)
 from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
+from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
@@ -55,9 +56,10 @@ from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, Objec
 from tegrasp_drake.simulation.pad_accelerometers import AddPadAccelerometers
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
-from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
-from tegrasp_drake.simulation.station_visualization import AddStationVisualization
-from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads
+from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
+from tegrasp_drake.simulation.station_visualization import (AddStationVisualization,
+                                                           grasp_camera_pose)
+from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, TactileSensorConfig
 
 TABLE_URL = "package://tegrasp/table/table.sdf"
 
@@ -80,7 +82,8 @@ ARM_MOUNTS = ("jaco2", "carriage")
 
 @dataclasses.dataclass
 class SimulatedStationConfig:
-    """The simulated station (MakeGraspStation); its other settings are the scenario's own.
+    """The simulated station (MakeGraspStation); its other settings are the scenario's
+    sections (scenario/grasp_diagram.py MakeSimulatedStation hands them over).
 
     arm: what carries the gripper. `jaco2` (the default, for demos and hardware twins): the
     JACO2 arm, its joints on the plant's PD. `carriage` (for sweeps): the gripper on a
@@ -93,16 +96,18 @@ class SimulatedStationConfig:
         return self.arm == "carriage"
 
 
-def object_pose_on_table(scenario) -> RigidTransform:
-    """X_WO of the object resting on its marker plus the scenario's offset and yaw."""
-    x, y = np.add(scenario.expected_object_xy, scenario.object_offset)
-    return RigidTransform(RollPitchYaw(0, 0, math.radians(scenario.object_yaw_deg)),
-                          [x, y, 0.0])
+def object_pose_on_table(expected_object_xy, object_offset, object_yaw_deg: float
+                         ) -> RigidTransform:
+    """X_WO of an object resting on its marker `expected_object_xy` [m, world] moved by
+    `object_offset` [m] and yawed by `object_yaw_deg` [deg]."""
+    x, y = np.add(expected_object_xy, object_offset)
+    return RigidTransform(RollPitchYaw(0, 0, math.radians(object_yaw_deg)), [x, y, 0.0])
 
 
-def initial_arm_positions(scenario) -> np.ndarray:
-    """Joint angles [rad] that put the grasp frame at the scenario's start pose."""
-    X_WG = RigidTransform(R_WG_SIDE_GRASP, scenario.arm.initial_gripper_xyz)
+def initial_arm_positions(arm: ArmDriverConfig) -> np.ndarray:
+    """Joint angles [rad] that put the grasp frame at the arm's start pose
+    (arm.initial_gripper_xyz, side-grasp orientation)."""
+    X_WG = RigidTransform(R_WG_SIDE_GRASP, arm.initial_gripper_xyz)
     return solve_grasp_frame_ik(make_arm_control_plant(), X_WG)
 
 
@@ -143,36 +148,37 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
     return slip
 
 
-def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body, scenario):
-    """Both pads' taxel arrays (TactilePads), the slip texture (PadSlipVibration) and the
-    films (PadFilms), connected to the finalized `plant`; returns (TactilePads, PadFilms).
-    With `vibration.transducer` accelerometer, the pads' accelerometers (PadAccelerometers)
-    take the films' place, without the slip texture."""
+def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
+                      tactile: TactileSensorConfig, vibration: VibrationSensorConfig,
+                      gripper_model: str, random_seed: int):
+    """Both pads' taxel arrays (TactilePads, seeded by `random_seed`), the slip texture
+    (PadSlipVibration) and the films (PadFilms) of the hand `gripper_model`, connected to
+    the finalized `plant`; returns (TactilePads, PadFilms). With `vibration.transducer`
+    accelerometer, the pads' accelerometers (PadAccelerometers) take the films' place,
+    without the slip texture."""
     pads = pad_geometries(plant, scene_graph, gripper)
     taxels = builder.AddNamedSystem(
-        "tactile_pads", TactilePads(pads=pads, config=scenario.tactile,
-                                    seed=scenario.random_seed))
+        "tactile_pads", TactilePads(pads=pads, config=tactile, seed=random_seed))
     builder.Connect(plant.get_contact_results_output_port(),
                     taxels.GetInputPort("contact_results"))
     builder.Connect(plant.get_body_poses_output_port(), taxels.GetInputPort("body_poses"))
-    if scenario.vibration.transducer == "accelerometer":
-        return taxels, AddPadAccelerometers(builder, plant=plant, pads=pads,
-                                            config=scenario.vibration)
-    slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, scenario.vibration)
+    if vibration.transducer == "accelerometer":
+        return taxels, AddPadAccelerometers(builder, plant=plant, pads=pads, config=vibration)
+    slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, vibration)
     pad_forces = None
-    if isinstance(gripper_hand(scenario.gripper.model), LinkageHand):
+    if isinstance(gripper_hand(gripper_model), LinkageHand):
         pad_forces = builder.AddNamedSystem("pad_normal_forces",
                                             PadNormalForces(plant=plant, pads=pads))
         builder.Connect(plant.get_contact_results_output_port(),
                         pad_forces.GetInputPort("contact_results"))
         builder.Connect(plant.get_body_poses_output_port(), pad_forces.GetInputPort("body_poses"))
     films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper,
-                        config=scenario.vibration, slip_vibration=slip, pad_forces=pad_forces)
+                        config=vibration, slip_vibration=slip, pad_forces=pad_forces)
     return taxels, films
 
 
 def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
-    """The scenario's hit on the object, if it has one."""
+    """The hit on the object (`config`), if it has one."""
     if config.hit_time_s < 0.0:
         return
     pulse = builder.AddNamedSystem("object_force_pulse",
@@ -193,30 +199,37 @@ class StationPlant:
     carriage_weld: object = None  # the carriage-gripper weld joint
 
 
-def carriage_impedance(scenario) -> EndpointImpedance:
-    """The arm's end-point impedance at the scenario's grasp pose (the object's marker at
-    the grasp height), where the hand meets the object."""
-    x, y = scenario.expected_object_xy
-    return arm_endpoint_impedance(scenario.arm, RigidTransform(
-        R_WG_SIDE_GRASP, [x, y, scenario.grasp.grasp_height]))
+def carriage_impedance(arm: ArmDriverConfig, X_WG: RigidTransform) -> EndpointImpedance:
+    """The arm's end-point impedance with its grasp frame at X_WG (a carriage standing in for
+    the arm takes it where the hand meets the object)."""
+    return arm_endpoint_impedance(arm, X_WG)
 
 
-def AddStationPlant(builder, scenario) -> StationPlant:
-    """Adds the station's plant to `builder`: the arm (or the carriage, as
-    scenario.station.arm says), the gripper (PD gains, no gravity), the table and the
-    scenario's object on its marker, finalized, at their default poses. MakeGraspStation
-    builds its sensors on it; the trial benchmark's plant-alone floor
-    (experiments/benchmarks/plant_floor.py) drives it alone."""
-    plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)
+def side_grasp_pose(xy, height: float) -> RigidTransform:
+    """X_WG of the side grasp over the point `xy` [m, world] at `height` [m]."""
+    return RigidTransform(R_WG_SIDE_GRASP, [xy[0], xy[1], height])
+
+
+def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
+                    gripper: GripperDriverConfig, object: ObjectConfig,
+                    X_WO: RigidTransform, carriage: EndpointImpedance | None = None
+                    ) -> StationPlant:
+    """Adds the station's plant (`plant_config`) to `builder`: the arm at its start pose, or
+    with `carriage` the gripper on a Cartesian carriage of that impedance; the gripper of
+    `gripper.model` (PD gains, no gravity), the table and `object` at X_WO, finalized.
+    MakeGraspStation builds its sensors on it; the trial benchmark's plant-alone floor
+    (benchmarks/plant_floor.py) drives it alone."""
+    arm_config, gripper_config, impedance = arm, gripper, carriage
+    plant, scene_graph = AddMultibodyPlant(plant_config, builder)
     parser = paths.make_parser(plant)
     carriage = None
-    if scenario.station.uses_carriage():
-        carriage = AddCarriage(plant, carriage_impedance(scenario))
+    if impedance is not None:
+        carriage = AddCarriage(plant, impedance)
         arm = carriage.instance
     else:
         (arm,) = parser.AddModels(url=ARM_URL)
         plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
-    hand = gripper_hand(scenario.gripper.model)
+    hand = gripper_hand(gripper_config.model)
     (gripper,) = parser.AddModels(url=hand.url)
     if carriage is None:
         weld = plant.WeldFrames(plant.GetFrameByName("flange", arm),
@@ -227,32 +240,32 @@ def AddStationPlant(builder, scenario) -> StationPlant:
                                 RigidTransform(R_WG_SIDE_GRASP))
     (table,) = parser.AddModels(url=TABLE_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
-    obj = AddObject(parser, scenario.object)
+    obj = AddObject(parser, object)
     plant.set_gravity_enabled(arm, False)
     plant.set_gravity_enabled(gripper, False)
     if carriage is None:
-        set_pd_gains(plant, arm, scenario.arm.position_gain, scenario.arm.damping_gain)
-    set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
+        set_pd_gains(plant, arm, arm_config.position_gain, arm_config.damping_gain)
+    set_pd_gains(plant, gripper, *hand.pd_gains(gripper_config))
     plant.Finalize()
 
-    q_arm = initial_arm_positions(scenario)
+    q_arm = initial_arm_positions(arm_config)
     if carriage is None:
         plant.SetDefaultPositions(arm, q_arm)
     else:  # where the arm's start joints put G, so that the first command finds it there
         X_WG_start, _ = ArmGraspFrameKinematics().pose_and_jacobian(q_arm)
         plant.SetDefaultPositions(arm, carriage_positions(carriage, X_WG_start))
     plant.SetDefaultPositions(gripper, hand.default_positions())
-    plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), object_pose_on_table(scenario))
+    plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), X_WO)
     return StationPlant(plant, scene_graph, arm, gripper, obj, carriage, weld)
 
 
-def _add_carriage_arm_ports(builder, parts: StationPlant, scenario) -> None:
+def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
+                            time_step: float) -> None:
     """The arm's ports on the carriage (carriage_systems.py), and `carriage.desired_state`
     (the carriage PD's set-point) and `gripper.wrist_wrench` (on the arm at G, world)."""
     plant = parts.plant
     command = builder.AddNamedSystem("carriage_command", CarriageCommand(
-        parts.carriage, initial_positions=initial_arm_positions(scenario),
-        period_s=scenario.plant_config.time_step))
+        parts.carriage, initial_positions=initial_arm_positions(arm), period_s=time_step))
     builder.ExportInput(command.GetInputPort(ports.ARM_DESIRED_STATE), ports.ARM_DESIRED_STATE)
     builder.Connect(command.GetOutputPort("carriage_desired_state"),
                     plant.get_desired_state_input_port(parts.arm))
@@ -268,33 +281,47 @@ def _add_carriage_arm_ports(builder, parts: StationPlant, scenario) -> None:
     builder.Connect(plant.get_body_poses_output_port(), wrench.GetInputPort("body_poses"))
     builder.Connect(command.GetOutputPort(ports.ARM_POSITION_MEASURED),
                     wrench.GetInputPort(ports.ARM_POSITION_MEASURED))
-    builder.ExportOutput(wrench.GetOutputPort(ports.ARM_TORQUE_MEASURED), ports.ARM_TORQUE_MEASURED)
+    builder.ExportOutput(wrench.GetOutputPort(ports.ARM_TORQUE_MEASURED),
+                         ports.ARM_TORQUE_MEASURED)
     builder.ExportOutput(wrench.GetOutputPort("wrist_wrench"), ports.GRIPPER_WRIST_WRENCH)
 
 
-def MakeGraspStation(scenario, *, meshcat=None):
-    """Builds the simulated station Diagram for `scenario` (see the module docstring)."""
+def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriverConfig,
+                     object: ObjectConfig, X_WO: RigidTransform, tactile: TactileSensorConfig,
+                     vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
+                     random_seed: int, grasp_height: float,
+                     carriage: EndpointImpedance | None = None, meshcat=None):
+    """Builds the simulated station Diagram (see the module docstring) from the sections it
+    uses: the plant, arm and gripper configs, the object at X_WO, the taxels' and films'
+    configs (their noise seeded by `random_seed`), the hit on the object; with `carriage`,
+    the gripper on a Cartesian carriage of that impedance in the arm's place; with
+    `meshcat`, its visualization, the camera on the grasp at `grasp_height` [m] above the
+    table."""
     builder = DiagramBuilder()
-    parts = AddStationPlant(builder, scenario)
+    parts = AddStationPlant(builder, plant_config=plant_config, arm=arm, gripper=gripper,
+                            object=object, X_WO=X_WO, carriage=carriage)
+    gripper_config = gripper
     plant, scene_graph = parts.plant, parts.scene_graph
-    arm, gripper, obj = parts.arm, parts.gripper, parts.object_instance
+    arm_instance, gripper, obj = parts.arm, parts.gripper, parts.object_instance
 
     if parts.carriage is None:
         # Arm: the desired state goes straight to the plant's PD; measured state is split.
-        builder.ExportInput(plant.get_desired_state_input_port(arm), ports.ARM_DESIRED_STATE)
+        builder.ExportInput(plant.get_desired_state_input_port(arm_instance),
+                            ports.ARM_DESIRED_STATE)
         arm_state = builder.AddNamedSystem("arm_state_demux",
                                            Demultiplexer([ports.ARM_JOINTS] * 2))
-        builder.Connect(plant.get_state_output_port(arm), arm_state.get_input_port())
+        builder.Connect(plant.get_state_output_port(arm_instance), arm_state.get_input_port())
         builder.ExportOutput(arm_state.get_output_port(0), ports.ARM_POSITION_MEASURED)
         builder.ExportOutput(arm_state.get_output_port(1), ports.ARM_VELOCITY_MEASURED)
-        builder.ExportOutput(plant.get_net_actuation_output_port(arm), ports.ARM_TORQUE_MEASURED)
+        builder.ExportOutput(plant.get_net_actuation_output_port(arm_instance),
+                             ports.ARM_TORQUE_MEASURED)
     else:
-        _add_carriage_arm_ports(builder, parts, scenario)
+        _add_carriage_arm_ports(builder, parts, arm, plant_config.time_step)
 
     # Gripper: the simulated 2F-85 controller.
-    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=scenario.gripper))
+    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=gripper_config))
     selector = builder.AddNamedSystem("gripper_actuated_state", actuated_state_selector(
-        plant, gripper, gripper_hand(scenario.gripper.model)))
+        plant, gripper, gripper_hand(gripper_config.model)))
     builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
     builder.Connect(selector.get_output_port(), driver.GetInputPort("finger_state"))
     builder.ExportOutput(plant.get_state_output_port(gripper), ports.GRIPPER_STATE)
@@ -307,9 +334,11 @@ def MakeGraspStation(scenario, *, meshcat=None):
 
     # Tactile pads: taxels and vibration films.
     taxels, films = AddTactileSensors(builder, plant=plant, scene_graph=scene_graph,
-                                        gripper=gripper, object_body=object_body(plant, obj),
-                                        scenario=scenario)
-    readings = AddTaxelTransducer(builder, taxels=taxels, tactile_config=scenario.tactile)
+                                      gripper=gripper, object_body=object_body(plant, obj),
+                                      tactile=tactile, vibration=vibration,
+                                      gripper_model=gripper_config.model,
+                                      random_seed=random_seed)
+    readings = AddTaxelTransducer(builder, taxels=taxels, tactile_config=tactile)
     for finger in FINGER_NAMES:
         builder.ExportOutput(readings.GetOutputPort(f"{finger}_taxel_forces"),
                              ports.taxel_forces(finger))
@@ -317,7 +346,7 @@ def MakeGraspStation(scenario, *, meshcat=None):
                              ports.pad_acceleration(finger))
     builder.ExportOutput(taxels.GetOutputPort("true_taxel_forces"), ports.TRUE_TAXEL_FORCES)
 
-    _add_disturbance(builder, plant, object_body(plant, obj), scenario.disturbance)
+    _add_disturbance(builder, plant, object_body(plant, obj), disturbance)
 
     # Ground truth for evaluation.
     builder.ExportOutput(plant.get_state_output_port(obj), ports.OBJECT_STATE)
@@ -328,7 +357,8 @@ def MakeGraspStation(scenario, *, meshcat=None):
     if meshcat is not None:  # the scene, contact forces, taxel forces; a framed camera
         AddStationVisualization(builder, plant=plant, scene_graph=scene_graph, taxels=taxels,
                                 pads=pad_geometries(plant, scene_graph, gripper),
-                                meshcat=meshcat, scenario=scenario)
+                                meshcat=meshcat,
+                                camera=grasp_camera_pose(X_WO.translation(), grasp_height))
     diagram = builder.Build()
     diagram.set_name("grasp_station")
     return diagram

@@ -24,15 +24,17 @@ CAMERA_TARGET_FROM_OBJECT_M = (-0.03, 0.0, 0.03)
 CAMERA_FROM_TARGET_M = (0.08, 0.10, 0.18)
 
 
-def grasp_camera_pose(scenario) -> tuple[np.ndarray, np.ndarray]:
-    """(p_WC, p_WT): the camera position and the point it looks at [m], world frame."""
-    x, y = np.add(scenario.expected_object_xy, scenario.object_offset)
-    target = np.array([x, y, scenario.grasp.grasp_height]) + CAMERA_TARGET_FROM_OBJECT_M
+def grasp_camera_pose(p_WO, grasp_height: float) -> tuple[np.ndarray, np.ndarray]:
+    """(p_WC, p_WT): the camera position and the point it looks at [m], world frame, for
+    an object at p_WO [m] grasped `grasp_height` [m] above the table."""
+    x, y = p_WO[0], p_WO[1]
+    target = np.array([x, y, grasp_height]) + CAMERA_TARGET_FROM_OBJECT_M
     return target + CAMERA_FROM_TARGET_M, target
 
 
-def AddStationVisualization(builder, *, plant, scene_graph, taxels, pads, meshcat, scenario):
-    """Adds the Meshcat visualizers to the station's builder and frames the camera.
+def AddStationVisualization(builder, *, plant, scene_graph, taxels, pads, meshcat, camera):
+    """Adds the Meshcat visualizers to the station's builder and frames the camera
+    (`camera`: grasp_camera_pose's (p_WC, p_WT)).
 
     taxels: the TactilePads system (its `{finger}_taxel_forces` outputs); pads: finger name
     -> PadGeometry."""
@@ -48,5 +50,5 @@ def AddStationVisualization(builder, *, plant, scene_graph, taxels, pads, meshca
     for finger in pads:
         builder.Connect(taxels.GetOutputPort(f"{finger}_taxel_forces"),
                         display.GetInputPort(f"{finger}_taxel_forces"))
-    meshcat.SetCameraPose(*grasp_camera_pose(scenario))
+    meshcat.SetCameraPose(*camera)
     return display

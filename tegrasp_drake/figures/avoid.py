@@ -1,0 +1,89 @@
+"""Fig. 10 of the paper for one trial: a hit on the held object, seen by RA, and the Avoid
+state's reaction. Around the first Hold -> Avoid transition: RA of both fingers with the hit
+threshold, SA, and the object's displacement (the gripper carries it along the avoiding
+direction)."""
+
+import numpy as np
+
+from tegrasp_drake.control.grasp_modes import Mode
+from tegrasp_drake.figures.figure_files import new_figure, save_figure
+from tegrasp_drake.figures.trial_annotations import (
+    PHYSICAL_EVENT_NAMES, draw_annotation_strip, draw_physical_events, draw_state_bands,
+    draw_state_strip, draw_transition_lines, logged_scenario, logged_transitions,
+    marker_legend_handles, physical_events, run_description, state_spans)
+from tegrasp_drake.rig.channels import FINGER_NAMES
+
+FINGER_COLORS = ("tab:blue", "tab:orange")
+OBJECT_AXIS_COLORS = ("tab:red", "tab:green", "tab:blue")
+
+
+class NoAvoidError(ValueError):
+    """The trial has no Hold -> Avoid transition to draw."""
+
+
+def _hit_text(log) -> str:
+    hit = logged_scenario(log).disturbance
+    if hit.hit_time_s < 0.0:
+        return "no scripted hit"
+    force = np.asarray(hit.hit_force_n, float)
+    along = ", ".join(f"{v:g}" for v in force / np.linalg.norm(force))
+    return (f"hit of {np.linalg.norm(force):.0f} N along ({along}) for "
+            f"{1000 * hit.hit_duration_s:.0f} ms at {hit.hit_time_s:.2f} s")
+
+
+def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=1.2) -> str:
+    """Writes the figure to `path` (.png, .pdf or .svg); returns the path as text.
+    hit_threshold: the controller's RA hit threshold [m/s^2], drawn when given."""
+    transitions, spans = logged_transitions(log), state_spans(log)
+    avoid = [e for e in transitions if e.to_mode == Mode.AVOID]
+    if not avoid:
+        raise NoAvoidError("the trial has no Avoid transition (was there a hit in Hold? "
+                           "e.g. --scenario-name box_hit_in_hold)")
+    t0 = avoid[0].t
+    window = (t0 - before_s, t0 + after_s)
+    events = {name: t for name, t in physical_events(log).items()
+              if window[0] <= t <= window[1]}
+    shown = [e for e in transitions if window[0] <= e.t <= window[1]]
+    figure = new_figure(10.0, 8.5)
+    axes = figure.subplots(5, 1, sharex=True,
+                           gridspec_kw={"height_ratios": [0.3, 0.4, 1.3, 1.3, 1.3]})
+    annotation_axis, state_axis, ra_axis, sa_axis, object_axis = axes
+    fast = (log.t_ra >= window[0]) & (log.t_ra <= window[1])
+    for k, finger in enumerate(FINGER_NAMES):
+        ra_axis.plot(log.t_ra[fast], log.ra[fast, k], lw=0.8, color=FINGER_COLORS[k],
+                     label=f"RA {finger}", zorder=2)
+        sa_axis.plot(log.t_ra[fast], log.sa[fast, k], lw=0.8, color=FINGER_COLORS[k],
+                     label=f"SA {finger}", zorder=2)
+    if hit_threshold is not None:
+        ra_axis.axhline(hit_threshold, color="black", ls="--", lw=0.8,
+                        label=f"hit threshold {hit_threshold:g} m/s²")
+    ra_axis.set_ylabel("RA (Eq. 2) [m/s²]")
+    sa_axis.set_ylabel("SA (Eq. 1) [N]")
+    slow = (log.t_slow >= window[0]) & (log.t_slow <= window[1])
+    p_WO = log.object_state[slow, 4:7]
+    for axis, name in enumerate("xyz"):
+        object_axis.plot(log.t_slow[slow], 1000.0 * (p_WO[:, axis] - p_WO[0, axis]),
+                         color=OBJECT_AXIS_COLORS[axis], lw=1.0, label=f"world {name}", zorder=2)
+    object_axis.set_ylabel(f"object displacement\nsince {window[0]:.2f} s [mm]")
+    object_axis.set_xlabel("time [s]")
+    object_axis.set_xlim(*window)
+    for axis in (ra_axis, sa_axis, object_axis):
+        draw_state_bands(axis, spans)
+        draw_transition_lines(axis, shown)
+        draw_physical_events(axis, events)
+        axis.grid(True, axis="y", alpha=0.3)
+        axis.legend(loc="best", fontsize=8)
+    direction = "none" if avoid[0].direction is None else \
+        "(" + ", ".join(f"{v:g}" for v in avoid[0].direction) + ")"
+    hit_time = events.get(PHYSICAL_EVENT_NAMES["hit"])
+    delay = "" if hit_time is None else f", {1000 * (t0 - hit_time):.0f} ms after the hit"
+    figure.suptitle(f"Fig. 10: a hit in Hold and the Avoid reaction\n{run_description(log)}\n"
+                    f"{_hit_text(log)}; Hold -> Avoid at {t0:.3f} s{delay}, moving along "
+                    f"{direction}", fontsize=10)
+    figure.legend(handles=marker_legend_handles(shown, events), loc="outside lower center",
+                  ncols=2, fontsize=8)
+    figure.draw_without_rendering()  # fix the layout, then place the labels
+    draw_state_strip(state_axis, [(s, max(a, window[0]), min(b, window[1]))
+                                  for s, a, b in spans if b > window[0] and a < window[1]])
+    draw_annotation_strip(annotation_axis, shown, events)
+    return str(save_figure(figure, path))

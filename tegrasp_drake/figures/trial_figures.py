@@ -1,0 +1,29 @@
+"""The figures of one trial, as `tegrasp trial`/`demo` write them: Fig. 9 (states), Fig. 5a-b
+(signals), the RA at first contact (contact_ra) and, when the trial has a Hold -> Avoid
+transition, Fig. 10 (avoid)."""
+
+from tegrasp_drake.control.grasp_modes import Mode
+from tegrasp_drake.figures.avoid import plot_avoid_reaction
+from tegrasp_drake.figures.contact_ra import plot_contact_ra
+from tegrasp_drake.figures.figure_files import figure_path
+from tegrasp_drake.figures.signals import plot_trial_signals
+from tegrasp_drake.figures.states import plot_trial_states
+from tegrasp_drake.figures.trial_annotations import (logged_scenario, logged_transitions)
+
+
+def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, str]:
+    """Writes the trial's figures into `folder` as states/signals/avoid.<figure_format>;
+    returns their paths as the trial result's fields: figure (Fig. 9), signals_figure
+    (Fig. 5a-b), contact_ra_figure (only when a pad touched) and avoid_figure (Fig. 10,
+    only after a hit in Hold)."""
+    figures = {"figure": plot_trial_states(log, figure_path(folder, "states", figure_format)),
+               "signals_figure": plot_trial_signals(log, figure_path(folder, "signals",
+                                                                     figure_format))}
+    contact_ra = plot_contact_ra(log, figure_path(folder, "contact_ra", figure_format))
+    if contact_ra is not None:
+        figures["contact_ra_figure"] = contact_ra
+    if any(t.to_mode == Mode.AVOID for t in logged_transitions(log)):
+        figures["avoid_figure"] = plot_avoid_reaction(
+            log, figure_path(folder, "avoid", figure_format),
+            hit_threshold=logged_scenario(log).controller.hit_ra_mps2)
+    return figures

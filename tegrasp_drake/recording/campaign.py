@@ -1,0 +1,153 @@
+"""One event-recording campaign: open-loop grasps of one object, each cut into memorized
+events around its physical events, and the template runs' windows combined into one event
+per transition.
+
+The paper's events (paper_events.py: one clean ideal grasp), the ensemble events
+(ensemble_events.py: randomised ideal grasps) and the corrective events
+(corrective_events.py: hits and slips in a scripted grasp) are campaigns that differ only
+in their runs (`CampaignRun`: a scenario, its seed and its role), in when their physical
+events happen (an `event_times(log, scenario)` function) and in where the window sits
+around them (`pre_transition_s`).
+
+Seeds: a campaign's run k is seeded `base_seed + k`; each campaign has its own base
+(ENSEMBLE_BASE_SEED, CORRECTIVE_BASE_SEED), at or above 1_000_000, apart from one another
+and from every sweep's seeds (a sweep's seed is a CRC of its base seed, object, marker and
+attempt).
+
+Combination rule: the mean of the template runs' max-normalised windows of a transition,
+aligned on the physical event, max-normalised again. Eq. 3 is a normalised correlation;
+under a signal-plus-independent-noise model of the runs the mean is the template whose
+expected correlation with a new run is largest (the matched filter of the average shape),
+and the noise of the template falls as 1/sqrt(runs). Several templates with the max score
+would raise the false-trigger rate with each template added (the max of K noisy scores) and
+cost K correlations per sample in the control loop; one mean costs the matcher nothing
+more.
+"""
+
+import dataclasses
+import logging
+import pathlib
+import typing
+from collections.abc import Callable, Mapping
+
+import numpy as np
+
+from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
+from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.rig.objects import object_description
+from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
+from tegrasp_drake.scenario.trial_log_file import load_trial_log
+from tegrasp_drake.scenario.trial_log_writer import package_versions
+from tegrasp_drake.tactile.max_normalization import normalize_by_max
+
+logger = logging.getLogger(__name__)
+
+ENSEMBLE_BASE_SEED = 1_000_000
+CORRECTIVE_BASE_SEED = 2_000_000
+
+
+class RecordEventsError(RuntimeError):
+    """A run did not show a physical event; the message says which and what to change."""
+
+
+@dataclasses.dataclass(frozen=True)
+class CampaignRun:
+    """One open-loop grasp of a campaign."""
+    label: str                      # names the run (and its log file)
+    scenario: typing.Any            # the run's Scenario (its random_seed is the run's seed)
+    role: str = "template"          # "template" runs make the events; "held_out" runs
+                                    # only choose thresholds
+    duration_s: float | None = None  # simulated time [s]; None: the script and a margin
+
+
+# When a run's physical events happen: {transition: time [s] or None (not seen)}.
+EventTimes = Callable[[typing.Any, typing.Any], Mapping[str, float | None]]
+
+
+def simulate_run(run: CampaignRun, *, log_path=None, progress=None):
+    """The run's TrialLog: simulated (and saved to `log_path` when given), or read from
+    `log_path` when a log is already there."""
+    if log_path is not None and pathlib.Path(log_path).is_file():
+        return load_trial_log(log_path)
+    log, wall = run_ideal_grasp(run.scenario, duration=run.duration_s, progress=progress)
+    logger.info("%s: %.1f s wall", run.label, wall)
+    if log_path is not None:
+        log.meta["campaign_run"] = run.label
+        log.save(log_path)
+    return log
+
+
+def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
+               object_name: str, nominal_object,
+               pre_transition_s: float | Mapping[str, float] | None = None,
+               note: str | None = None, advice: Callable[[str], str] | None = None
+               ) -> dict[str, MemorizedEvent]:
+    """The run's events: each transition's window cut around its physical event at
+    `times`, `pre_transition_s` [s] (one for all, or per transition; None: the paper's)
+    into the window, tagged with the `nominal_object`'s description (the object without
+    the run's perturbation) and `note` (default: the run's label and seed).
+    RecordEventsError naming the missing events (with `advice(transition)`, if given)."""
+    missing = [name for name, time in times.items() if time is None]
+    if missing:
+        words = (f"{run.label} of '{object_name}' (seed {run.scenario.random_seed}) shows "
+                 f"no physical event for {', '.join(missing)}")
+        if advice is not None:
+            words += ": " + "; ".join(advice(name) for name in missing)
+        raise RecordEventsError(words)
+    scenario = run.scenario
+    cut = {}
+    for transition, time in times.items():
+        pre = (pre_transition_s.get(transition) if isinstance(pre_transition_s, Mapping)
+               else pre_transition_s)
+        cut.update(extract_memorized_events(
+            tactile_trial_from_log(log, {transition: time}), object_name=object_name,
+            sa_rate_hz=scenario.tactile.sample_rate_hz,
+            ra_rate_hz=scenario.vibration.sample_rate_hz,
+            **({} if pre is None else {"pre_transition_s": pre}),
+            scenario=note if note is not None else f"{run.label} seed {scenario.random_seed}",
+            package_versions=package_versions(),
+            object_description=object_description(nominal_object)))
+    return cut
+
+
+def combine_runs(runs: list[Mapping[str, MemorizedEvent]], *, note: str
+                 ) -> dict[str, MemorizedEvent]:
+    """Per transition, the mean of the runs' windows, max-normalised (module doc: why the
+    mean); its transition time is the runs' mean."""
+    if not runs:
+        raise ValueError("a campaign needs at least one template run")
+    combined = {}
+    for transition in runs[0]:
+        members = [run[transition] for run in runs]
+        combined[transition] = dataclasses.replace(
+            members[0], sa=normalize_by_max(np.mean([e.sa for e in members], axis=0)),
+            ra=normalize_by_max(np.mean([e.ra for e in members], axis=0)),
+            transition_time_s=float(np.mean([e.transition_time_s for e in members])),
+            scenario=f"{note}; mean of {len(members)} runs")
+    return combined
+
+
+def record_campaign(runs: typing.Sequence[CampaignRun], event_times: EventTimes, *,
+                    object_name: str, nominal_object,
+                    pre_transition_s: float | Mapping[str, float] | None = None, note: str,
+                    log_dir=None, progress_of_run=None) -> dict[str, MemorizedEvent]:
+    """The campaign's events: every run simulated (its log kept in, or reused from,
+    `log_dir`/<label>.npz), its events cut (cut_events), and the template runs combined
+    (combine_runs). progress_of_run(k) gives run k's progress callback (or None)."""
+    templates = []
+    for k, run in enumerate(runs):
+        log = simulate_run(run, log_path=run_log_path(log_dir, run),
+                           progress=progress_of_run(k) if progress_of_run else None)
+        events = cut_events(log, run, event_times(log, run.scenario),
+                            object_name=object_name, nominal_object=nominal_object,
+                            pre_transition_s=pre_transition_s)
+        if run.role == "template":
+            templates.append(events)
+    return combine_runs(templates, note=note)
+
+
+def run_log_path(log_dir, run: CampaignRun) -> pathlib.Path | None:
+    """Where a run's log is kept: `log_dir`/<label, spaces as '_', no commas>.npz."""
+    if log_dir is None:
+        return None
+    return pathlib.Path(log_dir) / (run.label.replace(" ", "_").replace(",", "") + ".npz")

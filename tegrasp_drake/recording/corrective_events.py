@@ -1,0 +1,159 @@
+"""Memorized corrective events: the tactile events of the situations that call
+for a corrective action, recorded in simulation and matched by the same Eq. 3 machinery as
+the grasp transitions, so that Lift-Load and Avoid can be triggered by a memorized event
+instead of the heuristic thresholds (controller.memorized_corrective_events).
+
+Each corrective event is a transition named as the grasp's are (transitions.py):
+
+  lift_load   slip during Lift  (Lift -> Load): the pads slide up along the object
+  hold_avoid  a hit during Hold (Hold -> Avoid): an external force pulse on the object
+
+Recorded from open-loop grasps (the ideal grasp's script, scripted_grasp.py: the script does
+not react, so the situation plays out in full) of a perturbed scene, CORRECTIVE_RUNS:
+
+  hit   the scenario's `disturbance`: a force pulse on the held object (20 N for 20 ms
+        along the stroke is the paper's Fig. 10 hit; the others vary its size, direction
+        and time within the script's Hold, 5.6-8.6 s)
+  slip  a lowered object friction (and once a heavier object): the grip's friction
+        2 mu_pair F_grip falls below the weight m g, so the pads slide up the object from
+        the start of Lift. The pad-object pair's mu_pair = 2 mu_pad mu / (mu_pad + mu)
+        with the pad's mu_pad = 4.42 (docs/model.md, "Friction by material pair"): object friction
+        0.010 -> mu_pair 0.020, 1.0 N of friction against the box's 1.47 N; 0.012 -> 1.2 N;
+        0.014 -> 1.4 N; 0.020 with 0.25 kg -> 2.0 N against 2.45 N.
+
+Physical events (simulation truth, like grasp_outcome.physical_events):
+  hold_avoid  the pulse's start, disturbance.hit_time_s
+  lift_load   the first time in the script's Lift that the pads have risen more than
+              SLIP_DISPLACEMENT_M further than the object: the grasp frame's rise (forward
+              kinematics of the logged arm joints) minus the object's (its pose), both
+              from the start of Lift; a normal grasp stays below it (the pads' compliance
+              under the object's weight)
+
+Window: PRE_TRANSITION_S = 0.45 s into the 0.5 s window, as the ensemble's Reach-Load
+(ensemble_events.py): the live window looks most like it about 50 ms after the physical
+event, within the 60 ms latency target (LATENCY_TARGET_S, detection_quality.py).
+Combination: the mean of the template runs (campaign.py). The two hit directions (+y, -y)
+mirror each other between the pads; their mean matches either side's hit.
+
+Role of the runs: "template" runs make the events; "held_out" runs (and the ensemble's
+held-out normal grasps, runs 5-7) choose the thresholds (analysis/choose_corrective_
+thresholds.py); the closed-loop trials judge them. The seeds are CORRECTIVE_BASE_SEED + k
+(campaign.py).
+"""
+
+import dataclasses
+
+import numpy as np
+
+from tegrasp_drake.recording.campaign import (CORRECTIVE_BASE_SEED, CampaignRun,
+                                              record_campaign)
+from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
+
+CORRECTIVE_FOLDER = "corrective"
+PRE_TRANSITION_S = 0.45
+SLIP_DISPLACEMENT_M = 0.001  # the pads' rise over the object's that counts as slip [m]
+# The modes in which each corrective event is looked for, and its action.
+CORRECTIVE_SITUATIONS = {"lift_load": "slip during Lift", "hold_avoid": "a hit during Hold"}
+# Simulated time of a run [s]: the script's Hold ends at 8.6 s, its Lift at 5.6 s
+# (scripted_grasp.plan_scripted_grasp with the default grasp timing).
+RUN_DURATION_S = {"hold_avoid": 8.7, "lift_load": 6.0}
+
+
+@dataclasses.dataclass(frozen=True)
+class CorrectiveRun:
+    """One recorded open-loop run of a corrective situation."""
+    transition: str  # "lift_load" or "hold_avoid"
+    label: str
+    seed_offset: int  # its seed: CORRECTIVE_BASE_SEED + seed_offset
+    overrides: tuple[str, ...]  # scenario --set assignments
+    role: str  # "template" or "held_out"
+
+    @property
+    def seed(self) -> int:
+        return CORRECTIVE_BASE_SEED + self.seed_offset
+
+
+def _hit(force_y: float, time_s: float) -> tuple[str, ...]:
+    return (f"disturbance.hit_time_s={time_s}", f"disturbance.hit_force_n=[0.0, {force_y}, 0.0]")
+
+
+CORRECTIVE_RUNS = (
+    CorrectiveRun("hold_avoid", "hit +y 20 N at 7.0 s", 0, _hit(20.0, 7.0), "template"),
+    CorrectiveRun("hold_avoid", "hit -y 20 N at 6.6 s", 1, _hit(-20.0, 6.6), "template"),
+    CorrectiveRun("hold_avoid", "hit +y 15 N at 7.4 s", 2, _hit(15.0, 7.4), "held_out"),
+    CorrectiveRun("hold_avoid", "hit -y 25 N at 6.8 s", 3, _hit(-25.0, 6.8), "held_out"),
+    CorrectiveRun("lift_load", "friction 0.010", 4, ("object.friction=0.010",), "template"),
+    CorrectiveRun("lift_load", "friction 0.014", 5, ("object.friction=0.014",), "template"),
+    CorrectiveRun("lift_load", "friction 0.012", 6, ("object.friction=0.012",), "held_out"),
+    CorrectiveRun("lift_load", "friction 0.020, mass 0.25 kg", 7,
+                  ("object.friction=0.020", "object.mass=0.25"), "held_out"),
+)
+
+
+def corrective_scenario(object_name: str, run: CorrectiveRun):
+    """The scenario of `run` on `object_name`: the object's scenario with its overrides."""
+    return LoadScenario(name=object_name,
+                        overrides=[f"random_seed={run.seed}", *run.overrides])
+
+
+def campaign_run(object_name: str, run: CorrectiveRun) -> CampaignRun:
+    """`run` as a run of the recording campaign, simulated only as long as its situation
+    needs (RUN_DURATION_S)."""
+    return CampaignRun(run.label, corrective_scenario(object_name, run), role=run.role,
+                       duration_s=RUN_DURATION_S[run.transition])
+
+
+def grasp_frame_heights(arm_q: np.ndarray) -> np.ndarray:
+    """The grasp frame's height [m, world z up to the arm base's offset] at each logged
+    arm configuration (N, 6) [rad], by the controller plant's kinematics."""
+    from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
+    plant = make_arm_control_plant()
+    context = plant.CreateDefaultContext()
+    frame = plant.GetFrameByName("grasp_frame")
+    heights = np.empty(len(arm_q))
+    for k, q in enumerate(np.asarray(arm_q)):
+        plant.SetPositions(context, q)
+        heights[k] = frame.CalcPoseInWorld(context).translation()[2]
+    return heights
+
+
+def slip_onset_time(log, scenario) -> float | None:
+    """The first time [s] in the script's Lift that the pads (the grasp frame, from the
+    measured arm joints) have risen more than SLIP_DISPLACEMENT_M further than the object
+    since Lift began; None if they never do."""
+    from tegrasp_drake.control.scripted_grasp import plan_scripted_grasp
+    lift = next(s for s in plan_scripted_grasp(grasp_plan(scenario)) if s.phase == "lift")
+    t = np.asarray(log.t_slow)
+    in_lift = np.flatnonzero((t >= lift.t_start) & (t <= lift.t_end))
+    if in_lift.size == 0:
+        return None
+    gripper = grasp_frame_heights(np.asarray(log.arm_q)[in_lift])
+    obj = np.asarray(log.object_state)[in_lift, 6]
+    lag = (gripper - gripper[0]) - (obj - obj[0])
+    index = np.flatnonzero(lag > SLIP_DISPLACEMENT_M)
+    return float(t[in_lift[index[0]]]) if index.size else None
+
+
+def corrective_event_time(log, scenario, transition: str) -> float | None:
+    """The physical event's time [s] of `transition` in a run (module doc)."""
+    if transition == "hold_avoid":
+        hit = scenario.disturbance.hit_time_s
+        return float(hit) if hit >= 0.0 else None
+    if transition == "lift_load":
+        return slip_onset_time(log, scenario)
+    raise ValueError(f"unknown corrective transition '{transition}'; known: "
+                     f"{', '.join(CORRECTIVE_SITUATIONS)}")
+
+
+def record_corrective_events(object_name: str, transition: str, *, log_dir=None):
+    """The memorized corrective event of `transition` on `object_name`: the campaign of its
+    CORRECTIVE_RUNS (the held-out runs' logs are kept in `log_dir` for choosing the
+    thresholds), the template runs combined by their mean."""
+    runs = [campaign_run(object_name, run) for run in CORRECTIVE_RUNS
+            if run.transition == transition]
+    return record_campaign(
+        runs, lambda log, scenario: {transition: corrective_event_time(log, scenario,
+                                                                       transition)},
+        object_name=object_name, nominal_object=LoadScenario(name=object_name).object,
+        pre_transition_s=PRE_TRANSITION_S, log_dir=log_dir,
+        note=f"corrective template runs of {object_name} ({transition})")[transition]

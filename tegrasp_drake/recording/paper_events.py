@@ -1,0 +1,61 @@
+"""Memorizing the tactile events of the ideal grasp (Sec. III-A): the paper's campaign.
+
+For one object, the ideal open-loop grasp is simulated once on its scenario, the SA (Eq. 1,
+at the taxel rate) and RA (Eq. 2, at 1 kHz) channels are cut into 0.5 s windows around the
+physical events that mark the transitions (EVENT_OF_TRANSITION: first contact ->
+reach_load, grip force reached -> load_lift, table touch -> place_unload) and normalised
+by their maxima (format: tegrasp_drake/events/FORMAT.md; the cutting: campaign.py).
+`tegrasp record-events` stores them in the events folder with an index.
+"""
+
+import logging
+
+from tegrasp_drake.recording.campaign import CampaignRun, RecordEventsError, cut_events
+from tegrasp_drake.runs.grasp_outcome import physical_events, true_sa
+from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
+from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
+
+logger = logging.getLogger(__name__)
+
+__all__ = ["EVENT_OF_TRANSITION", "RecordEventsError", "grasp_event_times", "record_events"]
+
+EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "grip_force_reached",
+                       "place_unload": "table_touch"}
+
+
+def grasp_event_times(log, scenario) -> dict[str, float | None]:
+    """When the grasp's transitions' physical events happened in a run [s] (None: not
+    seen), from the simulation's truth (grasp_outcome.physical_events)."""
+    events = physical_events(log, scenario.grasp.grip_force, scenario.object)
+    return {transition: events[event] for transition, event in EVENT_OF_TRANSITION.items()}
+
+
+def missing_event_advice(transition: str, log, scenario) -> str:
+    """Why the ideal grasp showed no physical event of `transition`, and what to change."""
+    grip = scenario.grasp.grip_force
+    if transition == "load_lift":
+        sa = true_sa(log)
+        peak = float(sa.min(axis=1).max()) if len(sa) else 0.0
+        return (f"the weaker pad's force peaked at {peak:.2f} N (commanded grasp.grip_force = "
+                f"{grip:g} N): the fingers never squeezed the object with both pads, so "
+                "check object.size against the gripper's 85 mm stroke and object_offset")
+    if transition == "reach_load":
+        return ("the fingers never touched the object: check object.size, object_offset and "
+                "expected_object_xy")
+    return ("the object never came back to the table after a lift: check that the grasp "
+            "lifts it (object.mass, object.friction, grasp.grip_force)")
+
+
+def record_events(object_name: str, scenario=None, *, progress=None):
+    """Runs the ideal grasp of one object (a built-in one by name, or the object of
+    `scenario`); returns its MemorizedEvents. progress: as run_ideal_grasp's.
+    RecordEventsError when a physical event is missing."""
+    scenario = scenario or LoadScenario(name=object_name)
+    log, _ = run_ideal_grasp(scenario, progress=progress)
+    times = grasp_event_times(log, scenario)
+    logger.info("%s: physical events of the ideal grasp at %s", object_name, times)
+    run = CampaignRun("the ideal grasp", scenario)
+    return cut_events(log, run, times, object_name=object_name,
+                      nominal_object=scenario.object, note=scenario_to_yaml(scenario),
+                      advice=lambda transition: missing_event_advice(transition, log,
+                                                                     scenario))

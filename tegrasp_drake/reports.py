@@ -1,0 +1,42 @@
+"""Everything a results folder's records yield: Table I, statistics, the results table
+(summary.md), success per offset, and the figures (success maps, Table I against the paper,
+detection latencies)."""
+
+from pathlib import Path
+
+from tegrasp_drake.sweep.offset_table import write_offset_table
+from tegrasp_drake.sweep.records import load_records
+from tegrasp_drake.sweep.summary import write_summary
+from tegrasp_drake.sweep.table import write_statistics, write_table1
+
+
+def write_reports(out_dir, trial_ids=None, *, figure_format: str = "png") -> list[Path]:
+    """Writes table1.md/.csv, statistics.md/.json, summary.md, success_by_offset.md/.csv and
+    the figures success_maps, table1_vs_paper and latency (in `figure_format`: png, pdf or
+    svg) into `out_dir`.
+
+    Reads only the records, so it reproduces the reports of any results folder; with
+    `trial_ids` (a sweep's own trials), only theirs: records another spec left in the
+    folder are not counted.
+    Corrupt records are skipped (the next sweep run re-runs their trials); the figures are
+    left out when no trial has finished, the latency figure when no trial detected an event.
+    """
+    # Imported here: matplotlib loads only when a report is written.
+    from tegrasp_drake.figures.figure_files import figure_path
+    from tegrasp_drake.figures.latency import latency_samples, plot_latency_distributions
+    from tegrasp_drake.figures.sweep import write_success_maps
+    from tegrasp_drake.figures.table1 import plot_table1
+    own = None if trial_ids is None else set(trial_ids)
+    records = [record for trial_id, record in load_records(out_dir).records.items()
+               if own is None or trial_id in own]
+    paths = (write_table1(records, out_dir) + write_statistics(records, out_dir)
+             + write_summary(records, out_dir) + write_offset_table(records, out_dir))
+    if any(record["status"] == "ok" for record in records):
+        paths.append(write_success_maps(records, out_dir,
+                                        figure_path(".", "success_maps", figure_format).name))
+        paths.append(Path(plot_table1(records, figure_path(out_dir, "table1_vs_paper",
+                                                           figure_format))))
+    if latency_samples(records):
+        paths.append(Path(plot_latency_distributions(
+            records, figure_path(out_dir, "latency", figure_format))))
+    return paths

@@ -1,0 +1,239 @@
+"""The log of a hardware run (an LCM log file) read back: `read_run_log` -> RunLog.
+
+Format: an LCM event log (lcm-logger's), one channel per kind of message; the channels,
+types and fields are in tegrasp_drake/lcmtypes/README.md (`lcm-logplayer FILE` plays it
+back on a bus, `lcm-spy` shows it with the types generated from the .lcm files). A damaged
+log is read as far as it goes (RunLog.damage says what was lost). The matcher re-run on a
+log is hardware_log_replay.py.
+"""
+
+import dataclasses
+import pathlib
+import struct
+
+import numpy as np
+from drake import lcmt_jaco_command, lcmt_jaco_status
+
+from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.hardware.device_log_messages import (
+    FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
+    tactile_arrays)
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
+from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
+                                    lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
+                                    lcmt_tegrasp_transition)
+
+MESSAGE_TYPES = {
+    RUN_INFO_CHANNEL: lcmt_tegrasp_run_info, TACTILE_CHANNEL: lcmt_tegrasp_tactile,
+    GRIPPER_CHANNEL: lcmt_tegrasp_gripper, TRANSITION_CHANNEL: lcmt_tegrasp_transition,
+    FAULT_CHANNEL: lcmt_tegrasp_fault, JACO_COMMAND_CHANNEL: lcmt_jaco_command,
+    JACO_STATUS_CHANNEL: lcmt_jaco_status}
+
+
+class RunLogError(ValueError):
+    """A run log is missing, unreadable or lacks what the replay needs; names the file."""
+
+
+@dataclasses.dataclass
+class RunLog:
+    """What a hardware run's LCM log holds (module docstring)."""
+    path: pathlib.Path
+    run_info: lcmt_tegrasp_run_info | None
+    tactile: dict           # device_log_messages.tactile_arrays, and wall_us: reception
+    transitions: list       # [{t, from, to, trigger, reason}]
+    faults: list            # lcmt_tegrasp_fault
+    gripper: list           # lcmt_tegrasp_gripper
+    arm_commands: list      # (wall utime, lcmt_jaco_command)
+    arm_status: list        # (wall utime, lcmt_jaco_status)
+    message_counts: dict    # channel -> messages (every channel in the file)
+    damage: list = dataclasses.field(default_factory=list)  # what was lost, in words
+
+    def damage_text(self) -> str:
+        """One line: what was read and what was lost ("" for an intact log)."""
+        if not self.damage:
+            return ""
+        return (f"{self.path}: damaged log: read {sum(self.message_counts.values())} "
+                f"messages; " + "; ".join(self.damage)
+                + ". The replay uses the messages that were read.")
+
+    def tactile_trial(self) -> TactileTrial:
+        """The SA and RA channels the controller computed from the logged tactile ports,
+        at the receiver's ticks (repeated ticks dropped)."""
+        t, keep = np.unique(self.tactile["t"], return_index=True)
+        if len(t) < 2:
+            raise RunLogError(f"run log '{self.path}' has fewer than 2 tactile messages")
+        taxels = self.tactile["taxels"][keep]
+        acceleration = self.tactile["pad_acceleration"][keep]
+        sa = np.column_stack([taxels[:, :TAXELS_PER_PAD].sum(axis=1),
+                              taxels[:, TAXELS_PER_PAD:].sum(axis=1)])
+        ra = np.column_stack([np.linalg.norm(acceleration[:, :3], axis=1),
+                              np.linalg.norm(acceleration[:, 3:], axis=1)])
+        return TactileTrial(t_sa=t, sa=sa, t_ra=t, ra=ra, transition_times={})
+
+
+LCM_SYNC = 0xEDA1DA01
+_EVENT_HEADER = struct.Struct(">IqqII")  # sync, event number, timestamp, channel, data sizes
+MAX_CHANNEL_LENGTH = 256
+MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
+
+
+def _plausible_header(data: bytes, position: int) -> bool:
+    """Whether an LCM event header that fits in `data` starts at `position`."""
+    if len(data) - position < _EVENT_HEADER.size:
+        return False
+    word, _, _, channel_length, _ = _EVENT_HEADER.unpack_from(data, position)
+    channel = data[position + _EVENT_HEADER.size:position + _EVENT_HEADER.size + channel_length]
+    return (word == LCM_SYNC and 0 < channel_length <= MAX_CHANNEL_LENGTH
+            and len(channel) == channel_length
+            and all(32 < c < 127 for c in channel))
+
+
+def _next_header(data: bytes, start: int) -> int:
+    """Position of the first plausible event header at or after `start`, or -1."""
+    sync = LCM_SYNC.to_bytes(4, "big")
+    position = data.find(sync, start)
+    while position >= 0 and not _plausible_header(data, position):
+        position = data.find(sync, position + 1)
+    return position
+
+
+def _next_event_number(data: bytes, position: int) -> int | None:
+    """The event number of the header at `position` (None at the end or if none is)."""
+    if not _plausible_header(data, position):
+        return None
+    return _EVENT_HEADER.unpack_from(data, position)[1]
+
+
+def scan_lcm_log(path) -> tuple[list, list[str]]:
+    """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
+    words: bytes that are not events (skipped up to the next event header), event numbers
+    missing in between (events lost), and an event cut short at the end of the file (a
+    truncated log). The format is LCM's: per event a big-endian header (sync word
+    0xEDA1DA01, event number, timestamp, channel length, data length), channel, data."""
+    data = pathlib.Path(path).read_bytes()
+    events = []
+    corrupt_regions = corrupt_bytes = lost = 0
+    truncated = None
+    position, expected_number = 0, None
+    while position < len(data):
+        plausible = _plausible_header(data, position)
+        end = None
+        if plausible:
+            _, number, timestamp, channel_length, data_length = _EVENT_HEADER.unpack_from(
+                data, position)
+            end = position + _EVENT_HEADER.size + channel_length + data_length
+            if end > len(data):
+                following = _next_header(data, position + 1)
+                if following < 0:
+                    truncated = (f"the last message is cut off after {len(data) - position} "
+                                 f"of its {end - position} bytes")
+                    break
+                plausible = False  # a damaged length: the next event header follows
+        if not plausible:
+            if len(data) - position < _EVENT_HEADER.size and not corrupt_regions:
+                truncated = f"the last {len(data) - position} bytes are a cut-off header"
+                break
+            following = _next_header(data, position + 1)
+            stop = len(data) if following < 0 else following
+            corrupt_regions += 1
+            corrupt_bytes += stop - position
+            position = stop
+            continue
+        if expected_number is not None and number != expected_number and not (
+                0 < number - expected_number < MAX_EVENT_GAP
+                and _next_event_number(data, end) in (None, number + 1)):
+            number = expected_number  # a damaged event number: count it as the next one
+        if expected_number is not None:
+            lost += number - expected_number
+        expected_number = number + 1
+        start = position + _EVENT_HEADER.size
+        channel = data[start:start + channel_length].decode("ascii")
+        events.append((timestamp, channel, data[start + channel_length:end]))
+        position = end
+    damage = []
+    if corrupt_regions:
+        damage.append(f"{corrupt_bytes} corrupt bytes in {corrupt_regions} place(s) skipped")
+    if lost:
+        damage.append(f"{lost} message(s) lost (gaps in the event numbers)")
+    if truncated:
+        damage.append(f"truncated: {truncated}; what followed is lost")
+    return events, damage
+
+
+MAX_TACTILE_VALUE = 1e6  # [N], [m/s^2]: no taxel or film reads this much
+TIME_NEIGHBOURS = 5  # messages on each side whose median time a message's is compared with
+MAX_TIME_OUTLIER_S = 1.0
+
+
+def _plausible_tactile(messages: list) -> tuple[list, int]:
+    """The (wall time, lcmt_tegrasp_tactile) messages whose values can be real, and how many
+    were not. LCM logs carry no checksum, so a flipped byte inside a number is found only
+    when it makes the value impossible: not finite, beyond MAX_TACTILE_VALUE, a taxel count
+    other than 12, or a time more than MAX_TIME_OUTLIER_S from the median of its
+    neighbours' (ticks are 1 ms apart) or earlier than the message before."""
+    values_ok = []
+    for _, message in messages:
+        values = np.array([*message.left_taxel_forces, *message.right_taxel_forces,
+                           *message.left_pad_acceleration, *message.right_pad_acceleration])
+        values_ok.append(len(message.left_taxel_forces) == TAXELS_PER_PAD
+                         and len(message.right_taxel_forces) == TAXELS_PER_PAD
+                         and bool(np.all(np.isfinite(values)))
+                         and float(np.max(np.abs(values), initial=0.0)) <= MAX_TACTILE_VALUE)
+    times = np.array([message.utime * 1e-6 for _, message in messages])
+    kept, last = [], -np.inf
+    for k, (wall, message) in enumerate(messages):
+        neighbours = times[max(0, k - TIME_NEIGHBOURS):k + TIME_NEIGHBOURS + 1]
+        if (values_ok[k] and abs(times[k] - np.median(neighbours)) <= MAX_TIME_OUTLIER_S
+                and times[k] >= last):
+            kept.append((wall, message))
+            last = times[k]
+    return kept, len(messages) - len(kept)
+
+
+def read_run_log(path) -> RunLog:
+    """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
+    holds no event. A damaged log (truncated, corrupt bytes, messages that do not decode)
+    is read as far as it can be, and `RunLog.damage` says what was read and what was lost."""
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise RunLogError(f"run log '{path}' does not exist (`tegrasp hardware --log FILE` "
+                          "writes one)")
+    decoded = {channel: [] for channel in MESSAGE_TYPES}
+    counts = {}
+    try:
+        events, damage = scan_lcm_log(path)
+    except OSError as e:
+        raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
+    if not events:
+        raise RunLogError(f"run log '{path}' holds no LCM message"
+                          + (f" ({'; '.join(damage)})" if damage else ""))
+    undecodable = {}
+    for timestamp, channel, data in events:
+        counts[channel] = counts.get(channel, 0) + 1
+        if channel in MESSAGE_TYPES:
+            try:
+                message = MESSAGE_TYPES[channel].decode(data)
+            except (ValueError, struct.error, UnicodeDecodeError, IndexError):
+                undecodable[channel] = undecodable.get(channel, 0) + 1
+                continue
+            decoded[channel].append((timestamp, message))
+    damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
+               " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
+    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL])
+    if implausible:
+        damage.append(f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values "
+                      "(not finite, beyond 1e6, or time going back: corrupt bytes); skipped")
+    decoded[TACTILE_CHANNEL] = tactile_messages
+    tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
+    tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
+    info = decoded[RUN_INFO_CHANNEL]
+    return RunLog(
+        path=path, run_info=info[0][1] if info else None, tactile=tactile,
+        transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
+                      "trigger": m.trigger, "reason": m.reason}
+                     for _, m in decoded[TRANSITION_CHANNEL]],
+        faults=[m for _, m in decoded[FAULT_CHANNEL]],
+        gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
+        arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],
+        message_counts=counts, damage=damage)

@@ -1,0 +1,168 @@
+"""The event matcher re-run offline on a hardware run's LCM log (`tegrasp replay LOG`).
+
+The SA (Eq. 1) and RA (Eq. 2) channels are computed from TEGRASP_TACTILE as the
+controller's MechanoreceptorChannels did (hardware_log_reader.py reads them), and fed
+through an EventMatcher with the object's memorized events. The expected event comes from
+the logged transitions: while the state machine was in mode X, the matcher expects the
+event of the transition that left X (`X_Y`), if one is memorized. For each such transition
+the replay reports when the matcher matched, next to when the transition happened.
+`replay_run_log` also replays the memorized events one after another, advanced by each
+match, as an EventSequencer does (events/replay.replay_events_in_sequence); the matcher's
+thresholds are the run's own (its scenario in TEGRASP_RUN_INFO), or the defaults.
+"""
+
+import dataclasses
+import pathlib
+
+import numpy as np
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
+from pydrake.trajectories import PiecewisePolynomial
+
+from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
+from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.events.events_folder import find_memorized_events
+from tegrasp_drake.events.replay import (EventReplay, live_matcher_config,
+                                         channels_trajectory, replay_events_in_sequence)
+from tegrasp_drake.events.streaming_correlation import NO_EVENT
+from tegrasp_drake.events.transitions import transition_name
+from tegrasp_drake.rig import paths
+from tegrasp_drake.runs.hardware_log_reader import RunLog, RunLogError, read_run_log
+from tegrasp_drake.scenario.scenario import scenario_from_yaml
+
+
+def expected_event_schedule(transitions: list[dict], event_index: dict[str, int]):
+    """[(t_start, event index)]: while in the mode a logged transition left, the event of
+    that transition (or -1 if none is memorized); from t = 0 on."""
+    schedule, entered = [], 0.0
+    for transition in transitions:
+        schedule.append((entered, event_index.get(
+            transition_name(transition["from"], transition["to"]), NO_EVENT)))
+        entered = transition["t"]
+    schedule.append((entered, NO_EVENT))
+    return schedule
+
+
+@dataclasses.dataclass
+class ReplayedTransition:
+    """One memorized transition of the log, and what the matcher made of it offline."""
+    transition: str
+    mode_entered: float        # [s] when the mode it leaves was entered
+    logged_time: float         # [s] when the state machine made the transition
+    match_time: float | None   # [s] first offline match while expected, None if none
+    best_scores: list          # the four channels' scores at the match, or their maxima
+
+    @property
+    def delay(self) -> float | None:
+        """match - transition [s] (negative: the matcher matched before the transition)."""
+        return None if self.match_time is None else self.match_time - self.logged_time
+
+
+def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
+                   config: EventMatcherConfig | None = None) -> list[ReplayedTransition]:
+    """Runs an EventMatcher over `trial`'s channels with the expected event scheduled by
+    `transitions` (module docstring); one result per transition with a memorized event."""
+    matcher = EventMatcher(events, config)
+    index = {name: matcher.event_index(name) for name in matcher.transitions}
+    schedule = expected_event_schedule(transitions, index)
+    end = float(max(trial.t_sa[-1], trial.t_ra[-1]))
+    breaks = [t for t, _ in schedule] + [max(end, schedule[-1][0]) + 1.0]
+    values = np.array([[float(i) for _, i in schedule] + [float(NO_EVENT)]])
+    builder = DiagramBuilder()
+    builder.AddSystem(matcher)
+    channels = builder.AddSystem(TrajectorySource(channels_trajectory(trial)))
+    expected = builder.AddSystem(TrajectorySource(
+        PiecewisePolynomial.ZeroOrderHold(breaks, values)))
+    builder.Connect(channels.get_output_port(), matcher.GetInputPort("channels"))
+    builder.Connect(expected.get_output_port(), matcher.GetInputPort("expected_event"))
+    period = 1e-3
+    match_log = LogVectorOutput(matcher.GetOutputPort("match"), builder, period)
+    score_log = LogVectorOutput(matcher.GetOutputPort("scores"), builder, period)
+    simulator = Simulator(builder.Build())
+    simulator.AdvanceTo(end)
+    context = simulator.get_context()
+    times = match_log.FindLog(context).sample_times()
+    match = match_log.FindLog(context).data()[0] > 0.5
+    scores = score_log.FindLog(context).data().T
+    results = []
+    for (entered, event), transition in zip(schedule, transitions):
+        if event == NO_EVENT:
+            continue
+        window = (times >= entered) & (times <= transition["t"])
+        hits = np.flatnonzero(window & match)
+        if hits.size:
+            match_time, best = float(times[hits[0]]), scores[hits[0]]
+        else:
+            match_time = None
+            best = scores[window].max(axis=0) if window.any() else np.zeros(4)
+        name = transition_name(transition["from"], transition["to"])
+        results.append(ReplayedTransition(name, entered, transition["t"], match_time,
+                                          [float(x) for x in best]))
+    return results
+
+
+def matcher_config_of_run(run_info, events) -> EventMatcherConfig:
+    """The run's matcher thresholds (from its scenario in TEGRASP_RUN_INFO, else the
+    defaults), at the events' rates."""
+    config = EventMatcherConfig()
+    if run_info is not None and run_info.scenario_yaml:
+        controller = scenario_from_yaml(run_info.scenario_yaml).controller
+        config.sa_threshold = getattr(controller, "sa_threshold", config.sa_threshold)
+        config.ra_threshold = getattr(controller, "ra_threshold", config.ra_threshold)
+    return live_matcher_config(events, config)
+
+
+@dataclasses.dataclass
+class RunLogReplay:
+    """A run's log and the matcher re-run on it offline, both ways (module docstring)."""
+    log: RunLog
+    object_name: str
+    events_dir: str
+    transitions: list[ReplayedTransition]   # expecting the logged transitions' events
+    in_sequence: EventReplay                # expecting the events in grasp order
+
+    def summary(self) -> dict:
+        """What the log holds and what the replays found, as JSON-able data."""
+        log, info = self.log, self.log.run_info
+        return {
+            "log": str(log.path), "controller": info.controller if info else None,
+            "object": self.object_name, "events": self.events_dir,
+            "messages": log.message_counts,
+            "tactile_s": float(log.tactile["t"][-1] - log.tactile["t"][0])
+            if len(log.tactile["t"]) else 0.0,
+            "stale_ticks": int(log.tactile["stale"].sum()),
+            "transitions": log.transitions,
+            "faults": [{"t": f.utime * 1e-6, "device": f.device, "kind": f.kind,
+                        "code": f.code, "description": f.description,
+                        "since": f.since_utime * 1e-6}
+                       for f in log.faults],
+            "replay": [{"transition": r.transition, "mode_entered": r.mode_entered,
+                        "logged_time": r.logged_time, "match_time": r.match_time,
+                        "scores": r.best_scores} for r in self.transitions],
+            "sequence_fire_times": self.in_sequence.fire_times}
+
+
+def replay_run_log(path, *, object_name: str | None = None,
+                   events_dir: str | None = None) -> RunLogReplay:
+    """Reads a run's log and re-runs the matcher on it, both ways (module docstring), with
+    the memorized events of `object_name` (default: the run's object) in `events_dir`
+    (default: the folder the run used if it still exists, else the user's events folder,
+    then the package's).
+
+    Raises RunLogError, MemorizedEventError or ValueError, each naming what is wrong."""
+    log = read_run_log(path)
+    info = log.run_info
+    object_name = object_name or (info.object_name if info else None)
+    if not object_name:
+        raise RunLogError(f"run log '{path}' has no TEGRASP_RUN_INFO: give --object")
+    if not events_dir and info and info.events_dir and pathlib.Path(info.events_dir).is_dir():
+        events_dir = info.events_dir
+    folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
+    events_dir = str(folder)
+    config = matcher_config_of_run(info, events)
+    trial = log.tactile_trial()
+    return RunLogReplay(
+        log=log, object_name=object_name, events_dir=events_dir,
+        transitions=replay_matcher(trial, log.transitions, events, config=config),
+        in_sequence=replay_events_in_sequence(trial, events, config=config))

@@ -1,0 +1,300 @@
+"""A grasp on the real devices (or their emulators) in real time, with a replayable log.
+
+`run_on_hardware` builds the controller diagram around MakeHardwareStation exactly as
+around the simulated station (grasp_diagram.py), waits for the devices, and runs the
+Simulator at real-time rate 1 until the state machine is done or failed. On the way:
+- every state transition is printed as it happens and published on TEGRASP_TRANSITION;
+- every device fault is printed (which device, what, since when) and published on
+  TEGRASP_FAULT; the station holds the arm still at once, and the state machine goes to
+  Failed naming it (its `device_fault` input);
+- the run ends END_MARGIN_S after the state machine is done or failed, or after a
+  fault (holding still meanwhile), or at the controller's time limit;
+- every message on the bus (the arm's KINOVA_JACO_*, the station's TEGRASP_TACTILE and
+  TEGRASP_GRIPPER, the run's own) is written to an LCM log file, which lcm-logplayer
+  plays back, hardware_log_reader.py reads and `tegrasp replay` re-runs the event matcher
+  on (hardware_log_replay.py). The first message is TEGRASP_RUN_INFO: the scenario, the
+  hardware config and the controller.
+"""
+
+import dataclasses
+import json
+import pathlib
+import signal
+import subprocess
+import time
+
+import lcm
+from pydrake.systems.framework import EventStatus
+
+from tegrasp_drake.hardware.device_log_messages import (
+    FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
+from tegrasp_drake.hardware.lcm_time import utime_from_time
+from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram, MakeSimulator, is_finished
+from tegrasp_drake.control.grasp_modes import Transition
+from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+from tegrasp_drake.hardware.realtime import realtime_scheduling
+from tegrasp_drake.hardware.station import MakeHardwareStation
+from tegrasp_drake.rig import station_interface as ports
+from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
+                                    lcmt_tegrasp_transition)
+from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
+from tegrasp_drake.scenario.trial_log_writer import package_versions
+
+END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
+LOGGER_SUBSCRIBE_S = 0.2  # [s] given to lcm-logger to subscribe once its file exists
+REPORT_PERIOD_S = 0.005  # [s] of Context time between looks at transitions and faults
+PROGRESS_PERIOD_S = 0.25  # [s] of Context time between calls of `progress`
+
+
+class BusLogWriter:
+    """Records every message on the bus at `url` to an LCM log file with lcm-logger, the
+    LCM package's own logger, in its own process: in this one, a Python subscriber to
+    all channels would compete with the control loop for the interpreter (it cost the
+    loop a third of its speed), and DrakeLcm's all-channel subscription drops messages
+    when it is pumped in step with its own publications. A memq:// bus lives inside one
+    LCM instance, so there `drake_lcm` is subscribed instead."""
+
+    def __init__(self, url: str, path, *, drake_lcm=None, start_timeout: float = 5.0):
+        self.path = pathlib.Path(path)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self._process = None
+        self._log = None
+        self._in_process_messages = 0
+        if url.startswith("memq"):
+            self._log = lcm.EventLog(str(self.path), "w", overwrite=True)
+            drake_lcm.SubscribeAllChannels(self._write)
+            return
+        self.path.unlink(missing_ok=True)
+        self._process = subprocess.Popen(
+            [str(pathlib.Path(lcm.LCM_BIN_DIR) / "lcm-logger"), "--quiet", "--force",
+             f"--lcm-url={url}", str(self.path)])
+        deadline = time.monotonic() + start_timeout
+        while not self.path.exists():
+            if self._process.poll() is not None or time.monotonic() > deadline:
+                raise RuntimeError(f"lcm-logger did not start on {url} (exit code "
+                                   f"{self._process.poll()})")
+            time.sleep(0.01)
+        time.sleep(LOGGER_SUBSCRIBE_S)
+
+    def _write(self, channel: str, data: bytes):
+        if self._log is not None:
+            self._log.write_event(int(time.time() * 1e6), channel, data)
+            self._in_process_messages += 1
+
+    def close(self, linger: float = 0.1) -> int:
+        """Stops after `linger` [s] more of the bus; returns the messages recorded."""
+        if self._process is not None and self._process.poll() is None:
+            time.sleep(linger)
+            self._process.send_signal(signal.SIGINT)
+            try:
+                self._process.wait(5.0)
+            except subprocess.TimeoutExpired:
+                self._process.kill()
+                self._process.wait()
+        if self._log is not None:
+            self._log.close()
+            self._log = None
+        return self.messages
+
+    @property
+    def messages(self) -> int:
+        if self._process is None:
+            return self._in_process_messages
+        log = lcm.EventLog(str(self.path), "r")
+        count = sum(1 for _ in log)
+        log.close()
+        return count
+
+
+def fault_message(fault, now: float) -> lcmt_tegrasp_fault:
+    message = lcmt_tegrasp_fault()
+    message.utime = utime_from_time(now)
+    message.device, message.kind, message.code = fault.device, fault.kind, int(fault.code)
+    message.description = fault.description
+    message.since_utime = utime_from_time(fault.since_sim_time)
+    message.since_wall_utime = utime_from_time(fault.since_wall_time)
+    return message
+
+
+def transition_message(transition: dict) -> lcmt_tegrasp_transition:
+    message = lcmt_tegrasp_transition()
+    message.utime = utime_from_time(transition["t"])
+    message.from_mode = str(transition["from"])
+    message.to_mode = str(transition["to"])
+    message.trigger = str(transition.get("trigger", ""))
+    message.reason = str(transition.get("reason", ""))
+    return message
+
+
+def format_transition(transition: Transition) -> str:
+    why = "; ".join(part for part in (transition.trigger.value, transition.reason) if part)
+    trigger = f"  ({why})" if why else ""
+    return (f"[{transition.t:8.3f} s] {transition.from_mode.label} -> "
+            f"{transition.to_mode.label}{trigger}")
+
+
+def format_counters(counters: dict) -> str:
+    gripper, tactile = counters["gripper"], counters["tactile"]
+    decoder = tactile.decoder
+    return (f"gripper: {gripper.reads} status reads, {gripper.writes} writes, "
+            f"{gripper.errors} failed transactions"
+            + (f" (last: {gripper.last_error})" if gripper.errors else "")
+            + f"; tactile: {decoder.frames} frames, {decoder.rejected} rejected, "
+            f"{decoder.dropped_frames} dropped, {tactile.queue_overflows} overflowed")
+
+
+def format_fault(fault, now: float) -> str:
+    return f"[{now:8.3f} s] FAULT {fault}; the arm is held still"
+
+
+class RunReporter:
+    """A Simulator monitor: prints and publishes new transitions and faults, and ends the
+    run END_MARGIN_S after the state machine is done or failed, or after a fault."""
+
+    def __init__(self, *, diagram, station, grasp, drake_lcm, out=print, progress=None,
+                 end_time: float = float("inf")):
+        self._diagram = diagram
+        self._station = station
+        self._grasp = grasp
+        self._lcm = drake_lcm
+        self._out = out
+        self._progress = progress
+        self._end_time = end_time  # [s] the run's end unless the grasp ends first
+        self._next_look = 0.0
+        self._next_progress = 0.0
+        self.transitions = []  # Transition
+        self.faults = []
+        self.ended_at = None
+
+    def __call__(self, root_context) -> EventStatus:
+        now = root_context.get_time()
+        if now < self._next_look:
+            return EventStatus.DidNothing()
+        self._next_look = now + REPORT_PERIOD_S
+        for transition in self._grasp.transitions(root_context)[len(self.transitions):]:
+            self.transitions.append(transition)
+            self._out(format_transition(transition))
+            message = transition_message(transition.as_dict())  # the JSON form's fields
+            self._lcm.Publish(TRANSITION_CHANNEL, message.encode())
+        faults = self._station.GetOutputPort(ports.FAULT).Eval(
+            self._station.GetMyContextFromRoot(root_context))
+        for fault in faults[len(self.faults):]:
+            self.faults.append(fault)
+            self.ended_at = self.ended_at or now
+            self._out(format_fault(fault, now))
+            self._lcm.Publish(FAULT_CHANNEL, fault_message(fault, now).encode())
+        if is_finished(self.transitions) and self.ended_at is None:
+            self.ended_at = now
+        if self._progress is not None and now >= self._next_progress:
+            self._next_progress = now + PROGRESS_PERIOD_S
+            end = self._end_time if self.ended_at is None else min(
+                self._end_time, self.ended_at + END_MARGIN_S)
+            self._progress(now, end)
+        if self.ended_at is not None and now >= self.ended_at + END_MARGIN_S:
+            return EventStatus.ReachedTermination(self._diagram, "the grasp has ended")
+        return EventStatus.Succeeded()
+
+
+@dataclasses.dataclass
+class HardwareRunResult:
+    transitions: list          # [{t, from, to, trigger, ...}]: Transition.as_dict()
+    faults: tuple              # DeviceFault
+    sim_time: float            # [s] Context time at the end
+    wall_time: float           # [s] from Initialize to the end
+    log_path: pathlib.Path | None
+    log_messages: int
+    device_counters: dict      # {"gripper": RobotiqModbusCounters, "tactile": ...Counters}
+
+    @property
+    def realtime_rate(self) -> float:
+        return self.sim_time / self.wall_time if self.wall_time > 0 else float("nan")
+
+    def as_dict(self) -> dict:
+        """The JSON form (the result.json beside the log): times in s, faults and device
+        counters as dicts (DeviceFault, RobotiqModbusCounters, TactileReaderCounters)."""
+        return {"transitions": self.transitions,
+                "faults": [dataclasses.asdict(fault) for fault in self.faults],
+                "sim_time_s": self.sim_time, "wall_time_s": self.wall_time,
+                "realtime_rate": self.realtime_rate if self.wall_time > 0 else None,
+                "log": None if self.log_path is None else str(self.log_path),
+                "log_messages": self.log_messages,
+                "device_counters": {device: dataclasses.asdict(counters) for device, counters
+                                    in self.device_counters.items()}}
+
+
+def run_info_message(scenario, config, controller: str, events_dir: str):
+    """The TEGRASP_RUN_INFO message of a run."""
+    message = lcmt_tegrasp_run_info()
+    message.utime = int(time.time() * 1e6)
+    message.scenario_yaml = scenario_to_yaml(scenario)
+    message.hardware_yaml = hardware_config_to_yaml(config)
+    message.controller = controller
+    message.object_name = scenario.object.name
+    message.events_dir = events_dir
+    message.versions_json = json.dumps(package_versions(), sort_keys=True)
+    return message
+
+
+def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
+                    controller: str | None = None, events=None, corrective_events=None,
+                    events_dir: str = "",
+                    log_path=None, duration: float | None = None, drake_lcm=None,
+                    out=print, progress=None) -> HardwareRunResult:
+    """Runs the grasp on the devices of `config` (default: the scenario's `station`, which
+    must then be a HardwareStationConfig) in real time; see the module docstring.
+
+    controller: the controller's name (default: the scenario's); events: its memorized
+    events (default: the package's for the scenario's object); corrective_events: the
+    memorized corrective events (default: load_corrective_events's); drake_lcm: a DrakeLcm to use
+    instead of one on the config's URL; out: prints a line; progress: called as
+    progress(t, end) [s of Context time] as the run goes."""
+    config = config or scenario.station
+    if not isinstance(config, HardwareStationConfig):
+        raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "
+                         f"station is {type(config).__name__})")
+    if controller is not None:
+        scenario = with_controller(scenario, controller)
+    with realtime_scheduling(config.scheduling, config.realtime_priority) as scheduling:
+        out(f"control loop: {scheduling}")
+        return _run(scenario, config, events, corrective_events, events_dir,
+                    log_path, duration, drake_lcm, out, progress)
+
+
+def _run(scenario, config, events, corrective_events, events_dir, log_path,
+         duration, drake_lcm, out, progress) -> HardwareRunResult:
+    with MakeHardwareStation(config, lcm=drake_lcm) as station:
+        parts = MakeGraspDiagram(scenario, station=station, events=events,
+                                 corrective_events=corrective_events, log=False)
+        diagram = parts.diagram
+        writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path, drake_lcm=station.lcm)
+                  if log_path else None)
+        try:
+            station.lcm.Publish(RUN_INFO_CHANNEL, run_info_message(
+                scenario, config, scenario.controller.name, events_dir).encode())
+            out(f"waiting for the devices: arm on {station.lcm.get_lcm_url()}, gripper on "
+                f"{config.gripper.port}, tactile on {config.tactile.port}")
+            station.wait_until_ready()
+            simulator = MakeSimulator(diagram, scenario, realtime=True)
+            end_time = duration if duration is not None else parts.time_limit
+            reporter = RunReporter(diagram=diagram, station=parts.station,
+                                   grasp=parts.controller,
+                                   drake_lcm=station.lcm, out=out, progress=progress,
+                                   end_time=end_time)
+            simulator.set_monitor(reporter)
+            simulator.Initialize()
+            out("devices ready; running in real time")
+            start = time.monotonic()
+            simulator.AdvanceTo(end_time)
+            wall = time.monotonic() - start
+            counters = {"gripper": station.gripper_client.counters(),
+                        "tactile": station.tactile_reader.counters()}
+            out(format_counters(counters))
+        finally:
+            messages = writer.close() if writer is not None else 0
+        context = simulator.get_context()
+        return HardwareRunResult(
+            transitions=[transition.as_dict() for transition in reporter.transitions],
+            faults=tuple(reporter.faults),
+            sim_time=context.get_time(), wall_time=wall,
+            log_path=writer.path if writer else None,
+            log_messages=messages, device_counters=counters)

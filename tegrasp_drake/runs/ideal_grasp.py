@@ -1,0 +1,72 @@
+"""The ideal open-loop grasp as a runnable trial: build, simulate, log (Sec. III-A).
+
+The grasp diagram with the open-loop controller (the scripted grasp of
+control/scripted_grasp.py), simulated to the end of the script and a little beyond.
+"""
+
+import dataclasses
+import logging
+import time
+
+from pydrake.systems.framework import EventStatus
+
+from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
+from tegrasp_drake.control.scripted_grasp import PHASES, plan_duration
+from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
+                                                  MakeSimulator)
+from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
+
+CONTROLLER_NAME = OpenLoopControllerConfig.name
+END_MARGIN_S = 0.5  # simulated after the script ends, to see the object settle
+PROGRESS_PERIOD_S = 0.25  # [s] of simulated time between calls of `progress`
+
+logger = logging.getLogger(__name__)
+
+
+def MakeIdealGraspDiagram(scenario, *, meshcat=None):
+    """The GraspDiagram of the scripted grasp around the simulated station."""
+    scripted = dataclasses.replace(scenario, controller=OpenLoopControllerConfig())
+    return MakeGraspDiagram(scripted, station=MakeSimulatedStation(scripted, meshcat=meshcat))
+
+
+def progress_monitor(progress, end_time: float):
+    """A Simulator monitor that calls progress(t, end_time) every PROGRESS_PERIOD_S."""
+    next_call = [0.0]
+
+    def monitor(root_context) -> EventStatus:
+        t = root_context.get_time()
+        if t >= next_call[0]:
+            next_call[0] = t + PROGRESS_PERIOD_S
+            progress(t, end_time)
+        return EventStatus.DidNothing()
+    return monitor
+
+
+def run_ideal_grasp(scenario, *, meshcat=None, duration=None, progress=None):
+    """Simulates the ideal grasp; returns (TrialLog, wall time [s]).
+
+    progress: called as progress(t, end) [s, simulated] as the run goes."""
+    grasp = MakeIdealGraspDiagram(scenario, meshcat=meshcat)
+    segments = grasp.controller.segments
+    simulator = MakeSimulator(grasp.diagram, scenario)
+    context = simulator.get_mutable_context()
+    end_time = duration if duration is not None else plan_duration(segments) + END_MARGIN_S
+    if progress is not None:
+        simulator.set_monitor(progress_monitor(progress, end_time))
+    logger.info("ideal grasp of %s: simulating %.1f s", scenario.object.name, end_time)
+    if meshcat is not None:
+        meshcat.StartRecording()
+    start = time.perf_counter()
+    simulator.Initialize()
+    simulator.AdvanceTo(end_time)
+    wall = time.perf_counter() - start
+    if progress is not None:
+        progress(end_time, end_time)
+    if meshcat is not None:
+        meshcat.StopRecording()
+        meshcat.PublishRecording()
+    meta = {"controller": CONTROLLER_NAME, "phases": list(PHASES),
+            "phase_starts": {s.phase: s.t_start for s in segments},
+            "grip_force": scenario.grasp.grip_force, "wall_time_s": wall,
+            "sim_time_s": end_time}
+    return collect_trial_log(grasp.loggers, context, scenario=scenario, meta=meta), wall

@@ -1,0 +1,171 @@
+"""One closed-loop grasp trial: build the station and controller, simulate until the state
+machine ends (Done or Failed) or time runs out, log, and judge it against the ground truth.
+
+`run_trial(scenario)` returns a TrialResult; the sweep's trial function, which turns a
+trial of a sweep into a scenario first, is sweep/trial_function.py.
+"""
+
+import dataclasses
+import logging
+import time
+
+
+from tegrasp_drake.control.corrective_actions import corrective_action_of
+from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
+from tegrasp_drake.events.transitions import event_transition
+from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
+                                                  MakeSimulator)
+from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
+                                              judge_grasp, table_touch_time)
+from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
+
+HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
+UPRIGHT_TILT_DEG = 10.0  # standing upright after Unload
+RESTING_HEIGHT_M = 0.005  # back on the table: within this of its starting height
+END_MARGIN_S = 0.5  # simulated after the machine ends, to see the object settle
+CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
+# An event transition earlier than its physical event by more than this is a false trigger;
+# within it, it is the taxel sampling (one 108 Hz sample) and noise around a threshold equal
+# to the ground truth's (the heuristic Load-Lift rule), and its latency is kept as measured.
+FALSE_TRIGGER_MARGIN_S = 0.01
+
+logger = logging.getLogger(__name__)
+
+
+@dataclasses.dataclass
+class TrialResult:
+    """What one trial did (result), its full log, and the state machine's transitions
+    (each with the structured reason code of the rule that decided it, if any)."""
+    result: dict
+    log: object  # TrialLog
+    transitions: tuple[Transition, ...] = ()
+
+
+
+def _event_transition(transition: Transition) -> str | None:
+    """The event-triggered transition (reach_load, ...) that `transition` is, if any."""
+    return event_transition(transition.from_mode.label, transition.to_mode.label)
+
+
+def physical_event_times(log, transitions: list[Transition], grip_force: float,
+                         object_config=None, hit_time_s: float = -1.0) -> dict:
+    """The physical event that marks each event transition actually taken, looked for after
+    the mode was entered: first contact (Reach-Load), grip force reached (Load-Lift, after
+    the last Reach began), table touch (Place-Unload); and "hit", the scenario's hit on the
+    object (disturbance.hit_time_s [s]), when it came within the simulated time, whatever
+    the controller did (the Avoid's ground truth: detection_report.hit_avoid_rows)."""
+    events = {}
+    if 0.0 <= hit_time_s <= float(log.t_slow[-1]):
+        events["hit"] = float(hit_time_s)
+    entered = {Mode.REACH: 0.0}
+    for entry in transitions:
+        name = _event_transition(entry)
+        since = entered.get(entry.from_mode, 0.0)
+        if name == "reach_load":
+            events[name] = first_contact_time(log, after=since)
+        elif name == "load_lift":
+            events[name] = grip_force_time(log, grip_force, after=entered[Mode.REACH])
+        elif name == "place_unload":
+            events[name] = table_touch_time(log, object_config, after=since)
+        entered[entry.to_mode] = entry.t
+    return events
+
+
+def judge_trial(log, transitions: list[Transition], scenario) -> dict:
+    """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
+    at least 3 s; unload = after Unload, upright on the table, released, gripper retracted."""
+    outcome = judge_grasp(log, target_xy=scenario.expected_object_xy,
+                          grip_force=scenario.grasp.grip_force, object_config=scenario.object)
+    hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
+    reached = [entry.to_mode for entry in transitions]
+    final_mode = reached[-1] if reached else Mode.REACH
+    z = log.object_state[:, 6]
+    resting = abs(z[-1] - z[0]) < RESTING_HEIGHT_M
+    unload_success = bool(hold_success and Mode.UNLOAD in reached and final_mode == Mode.DONE
+                          and outcome.final_tilt_deg < UPRIGHT_TILT_DEG and outcome.released
+                          and resting)
+    grip_force = scenario.grasp.grip_force
+    physical = physical_event_times(log, transitions, grip_force, scenario.object,
+                                    hit_time_s=scenario.disturbance.hit_time_s)
+    latency, false_triggers = {}, 0
+    for entry in transitions:
+        name = _event_transition(entry)
+        if name is None or not entry.trigger.is_event:
+            continue
+        if physical.get(name) is None or entry.t < physical[name] - FALSE_TRIGGER_MARGIN_S:
+            false_triggers += 1
+        else:
+            latency[name] = entry.t - physical[name]
+    corrective = [action for action in (corrective_action_of(e.from_mode, e.to_mode, e.trigger)
+                                        for e in transitions) if action is not None]
+    return {"hold_success": bool(hold_success), "unload_success": unload_success,
+            "final_mode": final_mode.label, "hold_time_s": outcome.hold_time_s,
+            "lift_height_m": outcome.lift_height_m, "final_tilt_deg": outcome.final_tilt_deg,
+            "placement_error_m": outcome.placement_error_m, "released": outcome.released,
+            "physical_events": physical, "detection_latency_s": latency,
+            "false_triggers": false_triggers, "corrective_actions": corrective,
+            "failure": next((e.reason for e in transitions if e.to_mode == Mode.FAILED), "")}
+
+
+def run_trial(scenario, *, meshcat=None, events=None, corrective_events=None,
+              max_time=None, progress=None) -> TrialResult:
+    """Simulates one trial of `scenario` with its controller; returns its TrialResult.
+
+    events, corrective_events: the memorized events (MakeGraspDiagram's defaults if None).
+    progress: called as progress(t, end) [s, simulated] as the run goes (`end` shrinks to
+    the state machine's end plus END_MARGIN_S once it is Done or Failed)."""
+    grasp = MakeGraspDiagram(scenario, station=MakeSimulatedStation(scenario, meshcat=meshcat),
+                                events=events, corrective_events=corrective_events)
+    controller, loggers = grasp.controller, grasp.loggers
+    simulator = MakeSimulator(grasp.diagram, scenario)
+    context = simulator.get_mutable_context()
+    limit = max_time if max_time is not None else grasp.time_limit
+    logger.info("trial: %s at offset %s m, controller %s, seed %d; simulating up to %.1f s",
+                scenario.object.name, list(scenario.object_offset), controller.name,
+                scenario.random_seed, limit)
+    if logger.isEnabledFor(logging.DEBUG):
+        from tegrasp_drake.scenario.scenario import scenario_to_yaml
+        logger.debug("the trial's scenario:\n%s", scenario_to_yaml(scenario))
+    if meshcat is not None:
+        meshcat.StartRecording()
+    start, start_cpu = time.perf_counter(), time.process_time()
+    simulator.Initialize()
+    ended_at = None
+    reported = 0
+    while context.get_time() < limit - 1e-9:
+        simulator.AdvanceTo(min(context.get_time() + CHECK_PERIOD_S, limit))
+        if logger.isEnabledFor(logging.INFO):
+            transitions = controller.transitions(context)
+            for transition in transitions[reported:]:
+                logger.info("%7.3f s  %s -> %s [%s] %s", transition.t,
+                            transition.from_mode.label, transition.to_mode.label,
+                            transition.trigger.value, transition.reason)
+            reported = len(transitions)
+        if ended_at is None and controller.current_mode(context) in TERMINAL_MODES:
+            ended_at = context.get_time()
+            limit = min(limit, ended_at + END_MARGIN_S)
+        if progress is not None:
+            progress(context.get_time(), limit)
+    wall, cpu = time.perf_counter() - start, time.process_time() - start_cpu
+    if meshcat is not None:
+        meshcat.StopRecording()
+        meshcat.PublishRecording()
+    transitions = controller.transitions(context)
+    timeline = [transition.as_dict() for transition in transitions]
+    sim_time = context.get_time()
+    meta = {"controller": controller.name, "transitions": timeline,
+            "mode_names": [m.label for m in Mode], "grip_force": scenario.grasp.grip_force,
+            "wall_time_s": wall, "sim_time_s": sim_time}
+    log = collect_trial_log(loggers, context, scenario=scenario, meta=meta)
+    result = {"object": scenario.object.name, "offset_m": list(scenario.object_offset),
+              "controller": controller.name, "seed": scenario.random_seed,
+              "transitions": timeline, **judge_trial(log, transitions, scenario),
+              "sim_time_s": sim_time, "wall_time_s": wall, "cpu_time_s": cpu,
+              "real_time_factor": sim_time / wall if wall > 0 else None}
+    log.meta["result"] = result
+    # For the Fig. 5a-b plot (figures.py): when each state began, and the physical events.
+    log.meta["phase_starts"] = {e.to_mode.label: e.t for e in reversed(transitions)}
+    log.meta["events"] = result["physical_events"]
+    logger.info("trial: simulated %.2f s in %.2f s wall; hold %s, unload %s", sim_time, wall,
+                result["hold_success"], result["unload_success"])
+    return TrialResult(result, log, tuple(transitions))

@@ -1,0 +1,154 @@
+"""The grasp diagram: a station and the grasp controller, built one way for every run.
+
+    station (MakeStation: MakeSimulatedStation or MakeHardwareStation, by the scenario's
+             `station` tag, or one the caller built)
+      -> AddGraspController (control/grasp_controller.py) with the scenario's sections
+         (AddScenarioController): Eq. 1-2 channels, the event
+         detector, the state machine (or the open-loop script) and Cartesian control;
+         arm.desired_state and gripper.command from the measured arm, gripper and tactile
+         ports; the hardware station's `device_fault` goes to the state machine
+      -> the trial's loggers (scenario/trial_log_writer.py), unless `log=False`.
+
+The controller cannot tell the simulated station from the hardware one: both export the
+same ports. trial.py runs the diagram on the simulated station in simulated time,
+ideal_grasp.py runs it with the open-loop script, hardware_run.py runs it on the devices in
+real time. `MakeSimulator` is the one simulator set-up for all of them.
+"""
+
+import dataclasses
+
+from pydrake.common import RandomGenerator
+from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
+from pydrake.systems.framework import Diagram, DiagramBuilder
+
+from tegrasp_drake.control.controller_config import EventTriggeredConfig
+from tegrasp_drake.control.grasp_controller import (AddGraspController, GraspController,
+                                                    load_controller_events,
+                                                    load_corrective_events)
+from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
+from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
+from tegrasp_drake.scenario.trial_log_writer import TrialLoggers, AddTrialLogging
+from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.rig import station_interface as ports
+from tegrasp_drake.scenario.scenario import grasp_plan, object_pose, sample_rates_hz
+from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStationConfig,
+                                              carriage_impedance, side_grasp_pose)
+
+# Beyond the ideal grasp's duration, for corrections (and the controller's own
+# extra_time_s, controller_config.py) [s].
+EXTRA_TIME_S = 10.0
+
+
+def MakeStation(scenario, *, meshcat=None, lcm=None):
+    """The station of `scenario`, simulated or real, as its `station` tag says.
+
+    `station: !SimulatedStationConfig {}` (the default): MakeSimulatedStation(scenario,
+    meshcat=meshcat), the simulated arm, gripper, object and sensors.
+    `station: !HardwareStationConfig {...}`: MakeHardwareStation(scenario.station, lcm=lcm),
+    the devices (the Jaco on LCM, the 2F-85 on Modbus RTU, the myRIO tactile stream); it
+    owns device threads, so use it in a `with` block, call its wait_until_ready() before
+    the Simulator's Initialize() and simulate at real-time rate (run_on_hardware does all
+    of that). Both export the same ports (simulation/station.py, hardware/station.py), so
+    AddGraspController wires either one the same way."""
+    if isinstance(scenario.station, HardwareStationConfig):
+        from tegrasp_drake.hardware.station import MakeHardwareStation
+        return MakeHardwareStation(scenario.station, lcm=lcm)
+    return MakeSimulatedStation(scenario, meshcat=meshcat)
+
+
+def station_carriage(scenario):
+    """The carriage's impedance when the scenario's simulated station rides the gripper on
+    one (`station.arm: carriage`): the arm's at the side grasp over the object's marker, at
+    the grasp height, where the hand meets the object; None for the arm itself (and for a
+    hardware station)."""
+    station = scenario.station
+    if not (isinstance(station, SimulatedStationConfig) and station.uses_carriage()):
+        return None
+    return carriage_impedance(scenario.arm, side_grasp_pose(scenario.expected_object_xy,
+                                                            scenario.grasp.grasp_height))
+
+
+def MakeSimulatedStation(scenario, *, meshcat=None):
+    """MakeGraspStation with the scenario's sections, whatever its `station` tag says (its
+    `arm` setting when it is a simulated station's)."""
+    return MakeGraspStation(
+        plant_config=scenario.plant_config, arm=scenario.arm, gripper=scenario.gripper,
+        object=scenario.object, X_WO=object_pose(scenario), tactile=scenario.tactile,
+        vibration=scenario.vibration, disturbance=scenario.disturbance,
+        random_seed=scenario.random_seed, grasp_height=scenario.grasp.grasp_height,
+        carriage=station_carriage(scenario), meshcat=meshcat)
+
+
+def AddScenarioController(builder, scenario, *, station, events=None,
+                          corrective_events=None) -> GraspController:
+    """AddGraspController with the scenario's sections: its controller, its GraspPlan
+    (grasp_plan), its arm and its sample rates; the memorized events its controller needs
+    default to the scenario object's (load_controller_events, load_corrective_events)."""
+    controller = scenario.controller
+    if events is None and isinstance(controller, EventTriggeredConfig):
+        events = load_controller_events(scenario)
+    if corrective_events is None and getattr(controller, "memorized_corrective_events", ()):
+        corrective_events = load_corrective_events(scenario)
+    return AddGraspController(builder, controller=controller, plan=grasp_plan(scenario),
+                              station=station, arm=scenario.arm,
+                              sample_rates_hz=sample_rates_hz(scenario), events=events,
+                              corrective_events=corrective_events)
+
+
+@dataclasses.dataclass
+class GraspDiagram:
+    """A built grasp diagram and the parts that a run reads."""
+    diagram: Diagram
+    station: object              # the station subsystem
+    controller: GraspController  # the controller's systems and ports
+    loggers: TrialLoggers | None  # None when built with log=False
+    time_limit: float            # [s] the longest the run may take (the plan plus corrections)
+
+
+def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=None,
+                     meshcat=None, log: bool = True) -> GraspDiagram:
+    """Builds the station and the scenario's controller into one Diagram.
+
+    station: a station Diagram with the station's ports (default: MakeStation(scenario,
+    meshcat=meshcat)); events: the memorized events (default: the package's for the
+    scenario's object); corrective_events: the memorized corrective events, used when
+    controller.memorized_corrective_events names some (default: load_corrective_events's);
+    log: add the TrialLog loggers (simulated runs)."""
+    builder = DiagramBuilder()
+    if station is None:
+        station = MakeStation(scenario, meshcat=meshcat)
+    station = builder.AddNamedSystem("station", station)
+    grasp = AddScenarioController(builder, scenario, station=station, events=events,
+                                  corrective_events=corrective_events)
+    machine = grasp.state_machine
+    if station.HasOutputPort(ports.DEVICE_FAULT) and machine.HasInputPort(ports.DEVICE_FAULT):
+        builder.Connect(station.GetOutputPort(ports.DEVICE_FAULT),
+                        machine.GetInputPort(ports.DEVICE_FAULT))
+    loggers = None
+    if log:
+        loggers = AddTrialLogging(builder, scenario=scenario, station=station,
+                                    channels=grasp.channels,
+                                    arm_desired_state=grasp.arm_desired_state,
+                                    gripper_command=grasp.gripper_command, phase=grasp.mode)
+    diagram = builder.Build()
+    diagram.set_name(f"grasp_{grasp.name}")
+    time_limit = (plan_duration(plan_scripted_grasp(grasp_plan(scenario))) + EXTRA_TIME_S
+                  + scenario.controller.extra_time_s)
+    return GraspDiagram(diagram, station, grasp, loggers, time_limit)
+
+
+def MakeSimulator(diagram, scenario, *, realtime: bool = False) -> Simulator:
+    """A Simulator of `diagram` with the scenario's SimulatorConfig and its random seed
+    (sensor noise); realtime: paced at real-time rate 1 (hardware)."""
+    simulator = Simulator(diagram)
+    ApplySimulatorConfig(scenario.simulator_config, simulator)
+    if realtime:
+        simulator.set_target_realtime_rate(1.0)
+    diagram.SetRandomContext(simulator.get_mutable_context(),
+                             RandomGenerator(scenario.random_seed))
+    return simulator
+
+
+def is_finished(transitions: list[Transition]) -> bool:
+    """True once the state machine reached Done or Failed."""
+    return bool(transitions) and transitions[-1].to_mode in TERMINAL_MODES

@@ -1,0 +1,94 @@
+"""Why a trial failed: one class per failed trial, from its sweep record's result.
+
+The classes follow the paper's failure modes (Sec. IV-C: the thick cylinder not held when
+misplaced outward, the thin cylinder not standing upright after placing) and the
+controller's own reasons for giving up. A trial that held and unloaded has no class.
+Checked in this order (the first that applies):
+
+  closed on nothing      the gripper closed without touching the object (Re-Reach used up)
+  one finger only        one finger touched and the other never did (Re-Reach used up)
+  slipped in Lift        Lift-Load used up: the object still slipping, or no Load-Lift
+                         event after it
+  event never matched    no memorized/heuristic event within its timeout (Re-Reach used up)
+  object lost            the controller saw both pads empty in Lift, Hold, Avoid or Place
+  device fault           a gripper or watchdog fault
+  not lifted             the grasp went on but the object never rose 2 cm
+  dropped in Hold        lifted, but held for less than the paper's 3 s
+  toppled at release     held, then left tilted by 10 deg or more after Unload
+  not placed             held, upright, but not released, not resting or not retracted
+  other                  a Failed reason none of the above names (see the record)
+"""
+
+from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
+from tegrasp_drake.runs.trial import UPRIGHT_TILT_DEG
+
+FAILURE_CLASSES = ("closed on nothing", "one finger only", "slipped in Lift",
+                   "event never matched", "object lost", "device fault", "not lifted",
+                   "dropped in Hold", "toppled at release", "not placed", "other")
+
+
+def failure_class(result: dict) -> str | None:
+    """The failure class of a trial's result (a sweep record's "result"), None when it held
+    and unloaded."""
+    if result["unload_success"]:
+        return None
+    failure = result.get("failure", "")
+    if failure:
+        if "closed on nothing" in failure:
+            return "closed on nothing"
+        if "finger touched" in failure:
+            return "one finger only"
+        if "still slips" in failure or "after Lift-Load" in failure:
+            return "slipped in Lift"
+        if "event" in failure and failure.startswith("no "):
+            return "event never matched"
+        if failure.startswith("object lost"):
+            return "object lost"
+        if failure.startswith("gripper fault") or result.get("final_mode") == "Failed" \
+                and any(entry.get("trigger") == "fault" for entry in result["transitions"]):
+            return "device fault"
+        return "other"
+    if result.get("lift_height_m") is None or result.get("final_tilt_deg") is None:
+        return "other"  # a record without the ground truth (not written by run_trial)
+    if not result["hold_success"]:
+        if result["lift_height_m"] < LIFTED_HEIGHT_M:
+            return "not lifted"
+        return "dropped in Hold"
+    if result["final_tilt_deg"] >= UPRIGHT_TILT_DEG:
+        return "toppled at release"
+    return "not placed"
+
+
+def failure_class_counts(records) -> dict:
+    """{controller: {object: {class: trials}}} over the records that ran (status ok), with
+    every failure class present (0 when none)."""
+    counts = {}
+    for record in records:
+        if record["status"] != "ok":
+            continue
+        trial = record["trial"]
+        per_object = counts.setdefault(trial["controller"], {}).setdefault(
+            trial["object_name"], dict.fromkeys(FAILURE_CLASSES, 0))
+        name = failure_class(record["result"])
+        if name is not None:
+            per_object[name] += 1
+    return counts
+
+
+def failure_classes_markdown(counts: dict, controller_titles: dict) -> str:
+    """A table per controller: objects by the failure classes that occur in the sweep."""
+    present = [name for name in FAILURE_CLASSES
+               if any(per_object[name] for objects in counts.values()
+                      for per_object in objects.values())]
+    lines = ["## Failure classes (trials that were not held and unloaded)", "",
+             "Classes and their order: `tegrasp_drake/sweep/failure_classes.py`.", ""]
+    if not present:
+        return "\n".join(lines + ["No trial failed.", ""])
+    for controller, objects in counts.items():
+        lines += [f"### {controller_titles.get(controller, controller)}", "",
+                  "| Object | " + " | ".join(present) + " |",
+                  "|---|" + "---|" * len(present)]
+        for name, per_object in objects.items():
+            lines.append(f"| {name} | " + " | ".join(str(per_object[c]) for c in present) + " |")
+        lines.append("")
+    return "\n".join(lines)

@@ -1,0 +1,374 @@
+"""Runs a sweep's trials in parallel and records each one durably as it finishes.
+
+Resume: `run_sweep` skips every trial whose valid "ok" record exists, so killing a sweep
+and running the same call again finishes it, with nothing run twice that had finished
+and nothing lost that had not. Trials are run again when their record is missing,
+corrupt (see `records`), or an error record: a trial function that raised is recorded
+with its traceback (counted apart in the table), and given another chance on the next
+run, since most errors are bugs or resource trouble that get fixed between runs.
+
+Backends: a local process pool (forkserver, never fork: the real trial function uses
+pydrake, and forking a process that has started threads is unsafe), or a Dask
+distributed cluster when `scheduler` names one (the optional `dask` extra). Either way
+the workers only compute; the parent writes every record.
+
+A worker that dies (a crash, out of memory) leaves its trial unfinished, not recorded:
+the summary lists those trials and the next run picks them up.
+"""
+
+import dataclasses
+import fcntl
+import json
+import multiprocessing
+import os
+import pickle
+import tempfile
+import time
+import traceback
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import closing, contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+from tegrasp_drake.sweep.records import (
+    RecordError,
+    canonical_json,
+    load_records,
+    make_record,
+    remove_temporary_files,
+    write_record,
+)
+from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, expand_trials
+
+LOCK_FILE_NAME = ".sweep.lock"
+DASK_CONNECT_TIMEOUT_S = 30.0
+
+
+class SweepError(RuntimeError):
+    """A sweep cannot start or could not finish; the message says what to do."""
+
+
+@dataclass(frozen=True)
+class SweepSummary:
+    """What one `run_sweep` call did."""
+    out_dir: Path
+    total: int                      # trials in the spec
+    skipped: int                    # already finished before this call
+    ran: int                        # trials this call ran and recorded
+    errors: tuple[str, ...]         # trial ids whose trial function raised in this call
+    unfinished: tuple[str, ...]     # trial ids left without a record (a worker died)
+    corrupt: tuple[str, ...]        # corrupt record files found (their trials re-run)
+    backend: str                    # "processes:N" or "dask:ADDRESS"
+    wall_time_s: float
+    trial_ids: tuple[str, ...] = ()  # the trials of this spec (what the reports count)
+    other_records: int = 0          # records in the folder of trials not in this spec
+
+
+def check_result(result) -> str | None:
+    """Why a trial function's return value cannot be a result, or None when it can."""
+    if not isinstance(result, dict):
+        return f"the trial function returned {type(result).__name__}, not a dict"
+    for name in ("hold_success", "unload_success"):
+        if not isinstance(result.get(name), bool):
+            return f"result field {name!r} must be true or false, got {result.get(name)!r}"
+    expected_types = {"transitions": list, "corrective_actions": (list, dict),
+                      "detection_latency_s": dict, "false_triggers": int}
+    for name, types in expected_types.items():
+        if name in result and not isinstance(result[name], types):
+            return f"result field {name!r} has type {type(result[name]).__name__}"
+    return None
+
+
+def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict]:
+    """Runs one trial in a worker: ("ok", result) or ("error", error dict), never raises.
+
+    The result goes through canonical JSON here, so numpy scalars and arrays arrive as
+    plain numbers and lists, and a result that cannot be stored fails with a traceback.
+    """
+    try:
+        result = json.loads(canonical_json(trial_function(trial)))
+    except Exception as error:  # Any failure of the trial is recorded, not raised.
+        return "error", {"type": type(error).__name__, "message": str(error),
+                         "traceback": traceback.format_exc()}
+    problem = check_result(result)
+    if problem is not None:
+        return "error", {"type": "InvalidResult", "message": problem, "traceback": ""}
+    return "ok", result
+
+
+def default_workers() -> int:
+    return len(os.sched_getaffinity(0))
+
+
+def run_sweep(spec: SweepSpec, trial_function, out_dir, *, workers: int | None = None,
+              scheduler: str | None = None, progress: bool = True) -> SweepSummary:
+    """Runs the trials of `spec` that have no finished record in `out_dir`.
+
+    `trial_function(trial_dict) -> result_dict` must be a picklable module-level
+    callable importable by the workers. `workers` defaults to all cores of the local
+    pool; `scheduler` ("tcp://host:port") runs on that Dask cluster instead. Raises
+    ConfigError or SweepError before any trial runs when the spec is invalid,
+    the folder holds records of a different sweep, or another sweep is writing there.
+    """
+    start = time.perf_counter()
+    trials = [trial.to_dict() for trial in expand_trials(spec)]
+    if workers is not None and workers < 1:
+        raise SweepError(f"workers must be at least 1, got {workers}")
+    progress_bar = _progress_bar_factory(progress)
+    try:
+        pickle.dumps(trial_function)
+    except Exception as error:
+        raise SweepError(f"the trial function cannot be sent to worker processes "
+                         f"(it must be a module-level function): {error}") from None
+
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    with _exclusive_lock(out_dir):
+        remove_temporary_files(out_dir)
+        loaded = load_records(out_dir)
+        _check_same_sweep(trials, loaded.records, out_dir)
+        pending = [trial for trial in trials
+                   if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
+        if scheduler is None:
+            n = min(workers or default_workers(), max(len(pending), 1))
+            backend = f"processes:{n}"
+            outcomes = _run_on_process_pool(trial_function, pending, n)
+        else:
+            backend = f"dask:{scheduler}"
+            outcomes = _run_on_dask(trial_function, pending, scheduler)
+        ran, errors, unfinished = _record_outcomes(outcomes, pending, out_dir, progress_bar)
+    trial_ids = tuple(trial["trial_id"] for trial in trials)
+    return SweepSummary(out_dir=out_dir, total=len(trials),
+                        skipped=len(trials) - len(pending), ran=ran, errors=tuple(errors),
+                        unfinished=tuple(unfinished),
+                        corrupt=tuple(str(path) for path in loaded.corrupt),
+                        backend=backend, wall_time_s=time.perf_counter() - start,
+                        trial_ids=trial_ids,
+                        other_records=len(set(loaded.records) - set(trial_ids)))
+
+
+@contextmanager
+def _exclusive_lock(out_dir: Path):
+    """Holds an flock on the folder's lock file; the kernel drops it if we die."""
+    with open(out_dir / LOCK_FILE_NAME, "a") as lock_file:
+        try:
+            fcntl.flock(lock_file, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise SweepError(f"another sweep is writing into {out_dir}; wait for it "
+                             "or choose another output folder") from None
+        try:
+            yield
+        finally:
+            fcntl.flock(lock_file, fcntl.LOCK_UN)
+
+
+def _check_same_sweep(trials, records, out_dir):
+    """Refuses a folder whose records were made with other settings for the same ids."""
+    for trial in trials:
+        record = records.get(trial["trial_id"])
+        recorded = None if record is None else record["trial"]
+        if recorded is not None and recorded.get("object_definition"):
+            # A user object recorded with its old field names (spec.user_object).
+            recorded = TrialSpec.from_dict(recorded).to_dict()
+        if recorded is not None and canonical_json(recorded) != canonical_json(trial):
+            raise SweepError(
+                f"{out_dir} holds a record of trial {trial['trial_id']} made with other "
+                "settings (seed, grid offsets, randomisation or scenario overrides differ); "
+                "resume with the same spec, or choose another output folder")
+
+
+def _record_outcomes(outcomes, pending, out_dir, progress_bar):
+    """Writes each finished trial's record as it arrives; returns (ran, errors, unfinished)."""
+    by_id = {trial["trial_id"]: trial for trial in pending}
+    finished, errors = set(), []
+    # closing(): an interrupt shuts the backend down here, not at garbage collection.
+    with closing(outcomes), progress_bar(len(pending)) as bar:
+        for trial_id, outcome in outcomes:
+            if outcome is None:
+                continue  # The worker died: no record, the next run retries it.
+            status, payload = outcome
+            trial = by_id[trial_id]
+            try:
+                record = (make_record(trial, result=payload) if status == "ok"
+                          else make_record(trial, error=payload))
+            except RecordError as error:
+                record = make_record(trial, error={"type": "RecordError",
+                                                   "message": str(error), "traceback": ""})
+            write_record(out_dir, record)
+            finished.add(trial_id)
+            if record["status"] == "error":
+                errors.append(trial_id)
+            bar.update(1)
+    unfinished = [trial["trial_id"] for trial in pending if trial["trial_id"] not in finished]
+    return len(finished), sorted(errors), unfinished
+
+
+class _NoProgressBar:
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        return False
+
+    def update(self, n):
+        pass
+
+
+def _progress_bar_factory(enabled):
+    """A function total -> progress bar (tqdm, with rate and ETA), checked up front."""
+    if not enabled:
+        return lambda total: _NoProgressBar()
+    try:
+        from tqdm import tqdm
+    except ImportError:
+        raise SweepError("the progress bar needs tqdm, a dependency of tegrasp-drake: "
+                         "install it, or run without a progress bar") from None
+    return lambda total: tqdm(total=total, desc="sweep", unit="trial", dynamic_ncols=True)
+
+
+def _run_on_process_pool(trial_function, pending, workers):
+    """Yields (trial_id, outcome) as trials finish; outcome None if the worker died."""
+    if not pending:
+        return
+    start_method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
+        else "spawn"
+    executor = ProcessPoolExecutor(max_workers=workers,
+                                   mp_context=multiprocessing.get_context(start_method),
+                                   initializer=end_with_parent, initargs=(os.getpid(),))
+    try:
+        futures = {executor.submit(run_trial_safely, trial_function, trial): trial["trial_id"]
+                   for trial in pending}
+        for future in as_completed(futures):
+            try:
+                outcome = future.result()
+            except Exception:  # BrokenProcessPool: a worker died; no trial result.
+                outcome = None
+            yield futures[future], outcome
+    finally:
+        executor.shutdown(wait=True, cancel_futures=True)
+
+
+PARENT_CHECK_PERIOD_S = 0.5
+
+
+def end_with_parent(parent_pid: int) -> None:
+    """A pool worker's initializer: the worker ends (os._exit) as soon as the sweep's main
+    process `parent_pid` is gone, however it died (SIGKILL included), instead of running
+    its trial to no one and idling forever. Linux also gets PR_SET_PDEATHSIG, which kills
+    the worker when its own parent (the fork server) exits with the main process."""
+    import ctypes
+    import threading
+    try:
+        libc = ctypes.CDLL("libc.so.6", use_errno=True)
+        libc.prctl(1, 9)  # PR_SET_PDEATHSIG, SIGKILL
+    except (OSError, AttributeError):
+        pass
+
+    def watch():
+        while True:
+            time.sleep(PARENT_CHECK_PERIOD_S)
+            try:
+                os.kill(parent_pid, 0)
+            except ProcessLookupError:
+                os._exit(1)
+            except PermissionError:
+                pass  # alive, someone else's (cannot happen for our parent)
+    threading.Thread(target=watch, name="end with the sweep", daemon=True).start()
+
+
+def _run_on_dask(trial_function, pending, scheduler):
+    """Yields (trial_id, outcome) from a Dask cluster; outcome None if workers died."""
+    try:
+        from distributed import Client, as_completed as dask_as_completed
+    except ImportError:
+        raise SweepError("--scheduler needs the optional Dask extra: "
+                         "pip install 'tegrasp-drake[dask]'") from None
+    if not pending:
+        return
+    try:
+        client = Client(scheduler, timeout=f"{DASK_CONNECT_TIMEOUT_S}s")
+    except OSError as error:
+        raise SweepError(f"cannot reach the Dask scheduler at {scheduler}: {error}") from None
+    with client:
+        futures = {client.submit(run_trial_safely, trial_function, trial, pure=False,
+                                 key=f"tegrasp-trial-{trial['trial_id']}-{os.getpid()}"):
+                   trial["trial_id"] for trial in pending}
+        try:
+            for future in dask_as_completed(list(futures)):
+                try:
+                    outcome = future.result()
+                except Exception:  # KilledWorker and kin: no trial result.
+                    outcome = None
+                yield futures[future], outcome
+        finally:
+            client.cancel(list(futures))
+
+
+def summary_text(summary: SweepSummary) -> str:
+    lines = [f"sweep: {summary.total} trials, {summary.skipped} already finished, "
+             f"{summary.ran} run now on {summary.backend} in {summary.wall_time_s:.1f} s"]
+    if summary.other_records:
+        lines.append(f"  {summary.other_records} record(s) of trials not in this spec are in "
+                     f"{summary.out_dir} (another spec's); the reports count only this "
+                     "spec's trials")
+    if summary.corrupt:
+        lines.append(f"  {len(summary.corrupt)} corrupt record(s) found and re-run: "
+                     + ", ".join(summary.corrupt))
+    if summary.errors:
+        lines.append(f"  {len(summary.errors)} trial(s) raised (error records; re-run on "
+                     "the next run): " + ", ".join(summary.errors[:10])
+                     + (" ..." if len(summary.errors) > 10 else ""))
+    if summary.unfinished:
+        lines.append(f"  {len(summary.unfinished)} trial(s) unfinished because a worker "
+                     "died; run the same command again to finish them")
+    return "\n".join(lines)
+
+
+# Result fields that measure the machine, not the trial.
+TIMING_FIELDS = ("wall_time_s", "cpu_time_s", "real_time_factor")
+
+
+@dataclass(frozen=True)
+class BenchmarkRun:
+    workers: int
+    trials: int
+    errors: int
+    wall_time_s: float
+
+
+def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
+                  progress: bool = True) -> tuple[list[BenchmarkRun], bool]:
+    """Runs the memorized-trigger sweep of `spec` once per worker count, each into a
+    fresh temporary folder, timing the whole run (pool start-up included).
+
+    Returns the runs and whether every trial's result was the same in all runs
+    (ignoring the timing fields TIMING_FIELDS): with deterministic trials the worker
+    count must not change any result.
+    """
+    spec = dataclasses.replace(spec, controllers=("memorized",))
+    runs, results = [], []
+    for workers in worker_counts:
+        with tempfile.TemporaryDirectory(prefix="tegrasp-benchmark-") as folder:
+            summary = run_sweep(spec, trial_function, folder, workers=workers,
+                                progress=progress)
+            records = load_records(folder).records
+        runs.append(BenchmarkRun(workers=workers, trials=summary.ran,
+                                 errors=len(summary.errors), wall_time_s=summary.wall_time_s))
+        results.append({trial_id: canonical_json(
+            {k: v for k, v in (record["result"] or record["error"]).items()
+             if k not in TIMING_FIELDS + ("traceback",)})
+            for trial_id, record in records.items()})
+    return runs, all(r == results[0] for r in results)
+
+
+def benchmark_text(runs: list[BenchmarkRun], identical: bool) -> str:
+    base = runs[0].wall_time_s
+    lines = ["benchmark: memorized sweep, workers / trials / wall time / trials per s / "
+             "speed-up"]
+    for run in runs:
+        lines.append(f"  {run.workers:>2} worker(s): {run.trials} trials, "
+                     f"{run.wall_time_s:.2f} s, {run.trials / run.wall_time_s:.2f} trials/s, "
+                     f"speed-up {base / run.wall_time_s:.2f}x"
+                     + (f" ({run.errors} errors)" if run.errors else ""))
+    lines.append("  results identical across worker counts: " + ("yes" if identical else "NO"))
+    return "\n".join(lines)

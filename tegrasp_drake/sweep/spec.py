@@ -1,0 +1,377 @@
+"""What a sweep runs: the typed sweep specification, its validation, and the trial list.
+
+A sweep is the paper's grasping experiment (Sec. IV-B): every object placed at every
+marker of a grid around its expected position, a few attempts per marker, run once per
+controller. `expand_trials` turns a `SweepSpec` into the list of `TrialSpec`s, one per
+(controller, object, marker, attempt).
+
+Frames: marker offsets are given in the gripper's frame at the expected grasp. `x` is the
+approach axis (normal to the palm), `y` the finger-stroke axis. The paper's grid is
++-1 cm along x and +-1.5 cm along y; the marker at (0, 0) is "well placed", every other
+marker "misplaced".
+
+Paired comparison: a trial's random numbers come from a seed derived from
+(base_seed, object, marker offset, attempt) and never from the controller, so every
+controller meets exactly the same perturbed scene and sensor-noise seed.
+
+A spec file is read by `LoadSweepSpec` (spec_file.py).
+"""
+
+import dataclasses
+import math
+import re
+import zlib
+from collections.abc import Collection, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from tegrasp_drake.control import controller_config
+from tegrasp_drake.rig import objects
+from tegrasp_drake.rig.objects import ObjectConfig, object_problem
+from tegrasp_drake.rig.typed_yaml import ConfigError
+
+# The controllers the trial function knows: the paper's memorized triggers, heuristic
+# thresholds in the style of Romano et al. 2011, open loop, and taxel_aware.
+CONTROLLER_NAMES = controller_config.CONTROLLER_NAMES
+# A spec that names no controllers runs the paper's comparison (Table I): these three.
+PAPER_CONTROLLERS = ("memorized", "heuristic", "open_loop")
+
+# The paper's three objects (Fig. 8a), as the scenario knows them (rig/objects.py);
+# a sweep spec can add user-defined objects (`user_objects`, the scenario's ObjectConfig).
+BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
+
+# The paper's grid (Sec. IV-B): +-1 cm normal to the palm, +-1.5 cm along the stroke.
+PAPER_NORMAL_OFFSETS_M = (-0.010, 0.0, 0.010)
+PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
+
+# The scenario fields a sweep sets per trial (scenario_from_trial_spec): a spec's
+# scenario_overrides may not assign them.
+PER_TRIAL_SCENARIO_FIELDS = ("object", "object_offset", "object_yaw_deg", "random_seed",
+                             "controller.name")
+
+# Names become parts of trial ids and file names: keep them to a safe alphabet.
+_NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
+# A sweep's own object is a primitive shape given by these fields of ObjectConfig (its name
+# is its key in `user_objects`).
+_OBJECT_SHAPES = tuple(shape for shape in objects.OBJECT_SHAPES if shape != "file")
+USER_OBJECT_FIELDS = ("shape", "size", "mass", "friction", "color")
+# The field names of sweep specs written before the sweep used ObjectConfig.
+RENAMED_OBJECT_FIELDS = {"size_m": "size", "mass_kg": "mass",
+                         "friction_coefficient": "friction"}
+
+
+def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float], ...]:
+    """Every (x, y) combination of the two offset lists, x (normal) varying slowest."""
+    return tuple((float(dx), float(dy))
+                 for dx in normal_offsets_m for dy in stroke_offsets_m)
+
+
+def user_object(name: str, fields: Mapping) -> ObjectConfig:
+    """The ObjectConfig called `name` of a sweep's own object (its `fields` from a spec or a
+    trial record). A record written before the sweep used ObjectConfig names its fields
+    size_m, mass_kg and friction_coefficient: they are read as size, mass and friction."""
+    fields = {RENAMED_OBJECT_FIELDS.get(key, key): value for key, value in fields.items()}
+    fields = {key: value for key, value in fields.items() if key != "name"}
+    return ObjectConfig(name=name, **{**fields,
+                                      "size": [float(v) for v in fields.get("size", [])]})
+
+
+@dataclass(frozen=True)
+class RandomisationConfig:
+    """How much attempts differ, as on a real robot. Every draw is uniform on +-bound.
+
+    Uniform bounds, not Gaussians, so that placement jitter can never carry an object
+    onto a neighbouring marker (1 cm away in the paper's grid).
+    """
+    placement_xy_bound_m: float = 0.002     # jitter of x and y around the marker
+    placement_yaw_bound_deg: float = 3.0    # jitter of the yaw about the vertical
+    friction_scale_bound: float = 0.10      # friction scaled by 1 + U(-b, b)
+    mass_scale_bound: float = 0.10          # mass scaled by 1 + U(-b, b)
+    sensor_noise: bool = True               # the trial function adds sensor noise
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A sweep: objects x grid markers x attempts, once per controller.
+
+    `grid` holds the marker offsets (dx_m, dy_m), x normal to the palm, y along the
+    stroke; (0, 0) is the well-placed marker.
+    """
+    objects: tuple[str, ...] = BUILTIN_OBJECTS
+    controllers: tuple[str, ...] = PAPER_CONTROLLERS
+    grid: tuple[tuple[float, float], ...] = product_grid(
+        PAPER_NORMAL_OFFSETS_M, PAPER_STROKE_OFFSETS_M)
+    attempts: int = 3
+    base_seed: int = 0
+    randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
+    user_objects: Mapping[str, ObjectConfig] = field(default_factory=dict)
+    # `--set key=value` assignments applied to every trial's default scenario, e.g.
+    # "controller.memorized_corrective_events=[hold_avoid]" (not the per-trial fields,
+    # PER_TRIAL_SCENARIO_FIELDS).
+    scenario_overrides: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Perturbation:
+    """One attempt's random perturbation of the scene, drawn from the trial's seed."""
+    dx_m: float            # placement jitter along x (normal to the palm)
+    dy_m: float            # placement jitter along y (stroke)
+    yaw_rad: float         # placement jitter about the vertical
+    friction_scale: float  # multiplies the object's friction coefficient
+    mass_scale: float      # multiplies the object's mass
+
+
+@dataclass(frozen=True)
+class TrialSpec:
+    """One trial; `to_dict()` is what the trial function receives.
+
+    The object is placed at expected position + (marker_dx_m + dx_m, marker_dy_m + dy_m)
+    in the gripper's x (normal) / y (stroke) axes, yawed by `perturbation.yaw_rad`.
+    `seed` is the entropy for the trial function's own randomness (sensor noise, when
+    `sensor_noise`); it is independent of the stream the perturbation was drawn from.
+    `pair_id` names the same scene for every controller.
+    """
+    trial_id: str
+    pair_id: str
+    controller: str
+    object_name: str
+    object_definition: ObjectConfig | None  # a user object; None: the built-in one
+    marker: str
+    marker_dx_m: float
+    marker_dy_m: float
+    well_placed: bool
+    attempt: int
+    base_seed: int
+    seed: int
+    sensor_noise: bool
+    perturbation: Perturbation
+    scenario_overrides: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict:
+        d = dataclasses.asdict(self)
+        # Left out when empty: a sweep without overrides keeps the records it always wrote,
+        # so folders made before the field existed still resume.
+        if self.scenario_overrides:
+            d["scenario_overrides"] = list(self.scenario_overrides)
+        else:
+            del d["scenario_overrides"]
+        return d
+
+    @classmethod
+    def from_dict(cls, d: Mapping) -> "TrialSpec":
+        definition = d["object_definition"]
+        if definition is not None:
+            definition = user_object(d["object_name"], definition)
+        return cls(**{**d, "object_definition": definition,
+                      "perturbation": Perturbation(**d["perturbation"]),
+                      "scenario_overrides": tuple(d.get("scenario_overrides", ()))})
+
+
+# ---------------------------------------------------------------------------------
+# Validation
+
+
+def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
+                  builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+                  controllers: Collection[str] = CONTROLLER_NAMES) -> None:
+    """Raises ConfigError naming `source` and the field when `spec` cannot run.
+
+    Objects are checked against `builtin_objects` plus the spec's own `user_objects`,
+    controllers against `controllers`.
+    """
+    def fail(field_name, message):
+        raise ConfigError(f"{source}: field '{field_name}': {message}")
+
+    for name, config in spec.user_objects.items():
+        _check_name(name, f"user_objects.{name}", fail)
+        if name in builtin_objects:
+            fail(f"user_objects.{name}", "redefines a built-in object; choose another name")
+        _check_user_object(name, config, fail)
+    known_objects = tuple(builtin_objects) + tuple(spec.user_objects)
+    _check_names_in(spec.objects, known_objects, "objects", "object", fail)
+    _check_names_in(spec.controllers, tuple(controllers), "controllers", "controller", fail)
+
+    if not spec.grid:
+        fail("grid", "is empty: a sweep needs at least one marker offset")
+    seen_markers = set()
+    for offset in spec.grid:
+        if (len(offset) != 2
+                or not all(is_number(v) and math.isfinite(v) for v in offset)):
+            fail("grid", f"marker offset {offset!r} is not a pair of finite numbers (m)")
+        key = _offset_key(offset)
+        if key in seen_markers:
+            fail("grid", f"marker offset {offset!r} appears twice")
+        seen_markers.add(key)
+
+    if not _is_int(spec.attempts) or spec.attempts < 1:
+        fail("attempts", f"expected a positive integer, got {spec.attempts!r}")
+    trials = len(spec.objects) * len(spec.grid) * spec.attempts * len(spec.controllers)
+    if trials > MAX_TRIALS:
+        fail("attempts", f"{spec.attempts} attempts make {trials} trials (objects x markers x "
+             f"attempts x controllers), about {trials * TRIAL_CORE_SECONDS / 3600:.0f} "
+             f"core-hours; a sweep is at most {MAX_TRIALS} trials: split it")
+    if not _is_int(spec.base_seed) or spec.base_seed < 0:
+        fail("base_seed", f"expected a non-negative integer, got {spec.base_seed!r}")
+
+    r = spec.randomisation
+    for name in ("placement_xy_bound_m", "placement_yaw_bound_deg"):
+        value = getattr(r, name)
+        if not is_number(value) or not 0.0 <= value < math.inf:
+            fail(f"randomisation.{name}", f"expected a non-negative number, got {value!r}")
+    for name in ("friction_scale_bound", "mass_scale_bound"):
+        value = getattr(r, name)
+        if not is_number(value) or not 0.0 <= value < 1.0:
+            fail(f"randomisation.{name}",
+                 f"expected a number in [0, 1) so the scale stays positive, got {value!r}")
+    if not isinstance(r.sensor_noise, bool):
+        fail("randomisation.sensor_noise", f"expected true or false, got {r.sensor_noise!r}")
+    _check_scenario_overrides(spec.scenario_overrides, spec.controllers, fail)
+
+
+def _check_scenario_overrides(assignments, controllers, fail):
+    """Each a `key=value` the default scenario accepts with each of the `controllers` (one
+    controller's setting is dropped for the others), none of the per-trial fields."""
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    for k, assignment in enumerate(assignments):
+        field_name = f"scenario_overrides[{k}]"
+        if not isinstance(assignment, str) or "=" not in assignment:
+            fail(field_name, f"expected 'key=value' (as `tegrasp trial --set`), got "
+                             f"{assignment!r}")
+        key = assignment.split("=", 1)[0].strip()
+        for per_trial in PER_TRIAL_SCENARIO_FIELDS:
+            if key == per_trial or key.startswith(per_trial + ".") or \
+                    per_trial.startswith(key + "."):
+                fail(field_name, f"'{key}' is set per trial by the sweep (objects, grid, "
+                                 "randomisation, base_seed, controllers); set it there")
+    for controller in controllers if assignments else ():
+        try:
+            LoadScenario(overrides=assignments, controller=controller)
+        except ConfigError as error:
+            fail("scenario_overrides", str(error))
+
+
+def _check_name(name, field_name, fail):
+    if not isinstance(name, str) or not _NAME_PATTERN.match(name):
+        fail(field_name, f"{name!r} is not a valid name (letters, digits, '_' and '-')")
+
+
+def _check_names_in(names, known, field_name, kind, fail):
+    if not names:
+        fail(field_name, f"is empty: name at least one {kind}")
+    for name in names:
+        if name not in known:
+            fail(field_name, f"unknown {kind} {name!r}; known: {', '.join(known)}")
+    if len(set(names)) != len(names):
+        fail(field_name, f"names a {kind} twice: {list(names)}")
+
+
+def _check_user_object(name, config, fail):
+    """The checks of the scenario's objects (rig/objects.py), on a primitive shape."""
+    if not isinstance(config, ObjectConfig):
+        fail(f"user_objects.{name}", "expected an object (shape, size, mass, friction)")
+    problem = object_problem(config, shapes=_OBJECT_SHAPES)
+    if problem:
+        config_field, words = problem
+        fail(f"user_objects.{name}.{config_field}", words)
+
+
+def _is_int(value) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _offset_key(offset) -> tuple[int, int]:
+    """A marker offset in whole micrometres: its identity for seeds and duplicates."""
+    return (round(offset[0] * 1e6), round(offset[1] * 1e6))
+
+
+# ---------------------------------------------------------------------------------
+# Expansion into trials
+
+
+def marker_names(grid) -> list[str]:
+    """`m{i}{j}`: i indexes the sorted distinct x offsets, j the sorted distinct y offsets.
+
+    The paper's grid gives m00 .. m22 with m11 the well-placed marker. Indices are
+    zero-padded to a common width when an axis has more than ten values.
+    """
+    xs = sorted({_offset_key(o)[0] for o in grid})
+    ys = sorted({_offset_key(o)[1] for o in grid})
+    width = len(str(max(len(xs), len(ys)) - 1))
+    return [f"m{xs.index(_offset_key(o)[0]):0{width}d}{ys.index(_offset_key(o)[1]):0{width}d}"
+            for o in grid]
+
+
+def trial_seed_sequence(base_seed: int, object_name: str, marker_offset,
+                        attempt: int) -> np.random.SeedSequence:
+    """The seed of one scene, from (base_seed, object, marker offset, attempt) only.
+
+    Names and offsets enter through CRC-32 of their text (stable across processes,
+    unlike `hash`); the offset in whole micrometres, so a marker keeps its seed when
+    the grid around it changes.
+    """
+    dx_um, dy_um = _offset_key(marker_offset)
+    return np.random.SeedSequence(
+        entropy=base_seed,
+        spawn_key=(zlib.crc32(object_name.encode("utf-8")),
+                   zlib.crc32(f"{dx_um:+d},{dy_um:+d}".encode("ascii")),
+                   attempt))
+
+
+def draw_perturbation(rng: np.random.Generator,
+                      randomisation: RandomisationConfig) -> Perturbation:
+    """Draws, in this order: dx, dy, yaw, friction scale, mass scale; each U(-b, b)."""
+    r = randomisation
+    dx, dy = rng.uniform(-r.placement_xy_bound_m, r.placement_xy_bound_m, size=2)
+    yaw_bound_rad = math.radians(r.placement_yaw_bound_deg)
+    yaw = rng.uniform(-yaw_bound_rad, yaw_bound_rad)
+    friction_scale = 1.0 + rng.uniform(-r.friction_scale_bound, r.friction_scale_bound)
+    mass_scale = 1.0 + rng.uniform(-r.mass_scale_bound, r.mass_scale_bound)
+    return Perturbation(dx_m=float(dx), dy_m=float(dy), yaw_rad=float(yaw),
+                        friction_scale=float(friction_scale), mass_scale=float(mass_scale))
+
+
+# What one sweep may ask for: a trial is a simulation of about TRIAL_CORE_SECONDS of one core
+# (README, "Simulation cost"); the paper's Table I sweep is 81 trials per controller.
+MAX_TRIALS = 100_000
+TRIAL_CORE_SECONDS = 30
+
+
+def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+                  controllers: Collection[str] = CONTROLLER_NAMES) -> list[TrialSpec]:
+    """Validates `spec` and lists its trials, controller-major, deterministically.
+
+    Each scene's seed sequence (`trial_seed_sequence`) spawns two children: the first
+    seeds a numpy PCG64 Generator for `draw_perturbation`, the second gives the
+    trial's 32-bit `seed`. Trial ids read `{controller}/{object}/{marker}/a{attempt}`.
+    """
+    validate_spec(spec, builtin_objects=builtin_objects, controllers=controllers)
+    names = marker_names(spec.grid)
+    scenes = []
+    for object_name in spec.objects:
+        for marker, offset in zip(names, spec.grid):
+            for attempt in range(spec.attempts):
+                perturbation_seq, trial_seq = trial_seed_sequence(
+                    spec.base_seed, object_name, offset, attempt).spawn(2)
+                scenes.append(dict(
+                    pair_id=f"{object_name}/{marker}/a{attempt}",
+                    object_name=object_name,
+                    object_definition=spec.user_objects.get(object_name),
+                    marker=marker,
+                    marker_dx_m=float(offset[0]),
+                    marker_dy_m=float(offset[1]),
+                    well_placed=_offset_key(offset) == (0, 0),
+                    attempt=attempt,
+                    base_seed=spec.base_seed,
+                    seed=int(trial_seq.generate_state(1, dtype=np.uint32)[0]),
+                    sensor_noise=spec.randomisation.sensor_noise,
+                    perturbation=draw_perturbation(np.random.default_rng(perturbation_seq),
+                                                   spec.randomisation),
+                    scenario_overrides=tuple(spec.scenario_overrides)))
+    return [TrialSpec(trial_id=f"{controller}/{scene['pair_id']}", controller=controller,
+                      **scene)
+            for controller in spec.controllers for scene in scenes]

@@ -1,0 +1,111 @@
+"""Reading a sweep spec from a YAML file: `LoadSweepSpec`.
+
+A spec file is read like every other configuration file (rig/typed_yaml.py): the same YAML
+parser, the same walk that names an unknown, missing or mistyped field, and ConfigError. The
+spec's types are frozen dataclasses, which Drake's `yaml_load_typed` cannot build, so
+`LoadSweepSpec` builds them from the checked data and validates them (spec.validate_spec).
+"""
+
+from collections.abc import Collection
+from dataclasses import dataclass
+
+from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
+from tegrasp_drake.sweep.spec import (BUILTIN_OBJECTS, CONTROLLER_NAMES, RENAMED_OBJECT_FIELDS,
+                                      USER_OBJECT_FIELDS, RandomisationConfig, SweepSpec,
+                                      is_number, product_grid, user_object, validate_spec)
+
+
+@dataclass
+class _ProductGrid:
+    """The mapping form of a spec's `grid`: the product of two offset lists [m]."""
+    normal_offsets_m: list[float]
+    stroke_offsets_m: list[float]
+
+
+def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+                    controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
+    """Reads and validates a YAML sweep spec; fields left out keep the paper's defaults.
+
+    Fields: objects, controllers (lists of names), attempts, base_seed (integers),
+    grid (either a list of [dx_m, dy_m] marker offsets, or a mapping with
+    normal_offsets_m and stroke_offsets_m lists whose product is the grid),
+    randomisation (a mapping of `RandomisationConfig` fields), user_objects (a mapping
+    from name to the object's shape, size, mass and friction, as the scenario's
+    `object`), scenario_overrides (a list of `--set`
+    assignments for every trial's scenario, e.g. the controller's settings). Raises
+    ConfigError naming the file and the field for unknown fields, wrong types and values
+    that cannot run.
+    """
+    return sweep_spec_from_fields(read_yaml_file(path, "the sweep spec"), str(path),
+                                  builtin_objects=builtin_objects, controllers=controllers)
+
+
+def sweep_spec_from_fields(fields, source: str, *,
+                           builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+                           controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
+    """The SweepSpec of a spec file's parsed YAML data (LoadSweepSpec), or of a section of
+    another file holding the same fields (a transfer spec's `sweep`); errors name `source`."""
+    def fail(field_name, message):
+        raise ConfigError(f"{source}: field '{field_name}': {message}")
+
+    if fields is None:
+        fields = {}
+    # The grid has two forms, a list of markers or a product grid: it is read on its own.
+    has_grid = isinstance(fields, dict) and "grid" in fields
+    grid = fields.pop("grid") if has_grid else None
+    if isinstance(fields, dict):
+        _check_user_object_fields(fields.get("user_objects"), fail)
+    check_fields(fields, SweepSpec, source)
+    if has_grid:
+        fields["grid"] = _parse_grid(grid, source, fail)
+    for name in ("objects", "controllers", "scenario_overrides"):
+        if name in fields:
+            fields[name] = tuple(fields[name])
+    if "randomisation" in fields:
+        fields["randomisation"] = RandomisationConfig(**fields["randomisation"])
+    if "user_objects" in fields:
+        fields["user_objects"] = {str(name): user_object(str(name), definition)
+                                  for name, definition in fields["user_objects"].items()}
+
+    spec = SweepSpec(**fields)
+    validate_spec(spec, source, builtin_objects=builtin_objects, controllers=controllers)
+    return spec
+
+
+def _offsets(values, field_name, fail) -> tuple[float, ...]:
+    if not values:
+        fail(field_name, "is empty: a sweep needs at least one marker offset")
+    return tuple(float(v) for v in values)
+
+
+def _parse_grid(value, source, fail) -> tuple[tuple[float, float], ...]:
+    if isinstance(value, dict):
+        check_fields(value, _ProductGrid, source, "grid")
+        return product_grid(_offsets(value["normal_offsets_m"], "grid.normal_offsets_m", fail),
+                            _offsets(value["stroke_offsets_m"], "grid.stroke_offsets_m", fail))
+    if isinstance(value, list):
+        grid = []
+        for item in value:
+            if (not isinstance(item, list) or len(item) != 2
+                    or not all(is_number(v) for v in item)):
+                fail("grid", f"marker offset {item!r} is not a pair [dx_m, dy_m] of numbers")
+            grid.append((float(item[0]), float(item[1])))
+        return tuple(grid)  # validate_spec rejects an empty list.
+    fail("grid", "expected a list of [dx_m, dy_m] offsets or a mapping with "
+                 f"normal_offsets_m and stroke_offsets_m, got {value!r}")
+
+
+def _check_user_object_fields(user_objects, fail):
+    """Each user object's YAML fields are ObjectConfig's USER_OBJECT_FIELDS; the old
+    names (RENAMED_OBJECT_FIELDS) are named with what to rename them to."""
+    if not isinstance(user_objects, dict):
+        return  # check_fields names the type
+    for name, fields in user_objects.items():
+        for key in fields if isinstance(fields, dict) else ():
+            if key in RENAMED_OBJECT_FIELDS:
+                fail(f"user_objects.{name}.{key}", "is the old name of the field: rename "
+                     + ", ".join(f"{old} to {new}" for old, new in
+                                 RENAMED_OBJECT_FIELDS.items()))
+            if key not in USER_OBJECT_FIELDS:
+                fail(f"user_objects.{name}.{key}", "unknown field (known: "
+                     f"{', '.join(USER_OBJECT_FIELDS)})")

@@ -1,0 +1,103 @@
+"""The sweep's trial function: one trial of a sweep (a TrialSpec.to_dict()) turned into its
+scenario, given its memorized events, run (runs/trial.py) and returned as its result dict.
+
+`run_trial_from_spec` is what `tegrasp sweep` hands to the runner; `check_sweep_events`
+checks before a sweep starts that every trial's memorized events are there.
+"""
+
+import dataclasses
+import pathlib
+
+import numpy as np
+
+from tegrasp_drake.runs.trial import run_trial
+
+
+def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
+    """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
+    sweep's scenario_overrides, and the trial's object (perturbed in mass and friction;
+    unperturbed with `nominal`), placement, seed and controller."""
+    from tegrasp_drake.rig.objects import ObjectConfig
+    from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
+    from tegrasp_drake.sweep.spec import user_object
+    p = trial["perturbation"]
+    base = LoadScenario(overrides=tuple(trial.get("scenario_overrides", ())),
+                        controller=trial["controller"])
+    definition = trial.get("object_definition")
+    if definition:
+        obj = user_object(trial["object_name"], definition)
+    else:
+        obj = resolve_object(ObjectConfig(name=trial["object_name"]))
+    if not nominal:
+        obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),
+                                  friction=obj.friction * float(p["friction_scale"]))
+    scenario = dataclasses.replace(
+        base, object=obj, random_seed=int(trial["seed"]),
+        object_offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
+                       float(trial["marker_dy_m"]) + float(p["dy_m"])],
+        object_yaw_deg=float(np.degrees(p["yaw_rad"])))
+    if not trial.get("sensor_noise", True):
+        scenario = dataclasses.replace(
+            scenario, tactile=dataclasses.replace(
+                scenario.tactile, noise_std_n=0.0, capacitive=dataclasses.replace(
+                    scenario.tactile.capacitive, noise_std_counts=0.0)),
+            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0))
+    return validate(scenario, f"sweep trial {trial['trial_id']}")
+
+
+def trial_log_name(trial_id: str) -> str:
+    """The file name of a sweep trial's log: its id with '/' as '.', and .npz."""
+    return trial_id.replace("/", ".") + ".npz"
+
+
+def trial_events(trial: dict, events_dir=None) -> tuple:
+    """A sweep trial's scenario (scenario_from_trial_spec) and the memorized events its
+    controller needs: (scenario, transition events or None for the controllers without
+    them, corrective events or None unless the sweep's scenario_overrides name some in
+    controller.memorized_corrective_events).
+
+    Both come from `events_dir`, else the user's folder, then the package's, and must have
+    been recorded on the trial's unperturbed object: the sweep's mass and friction
+    perturbations are the experiment's, not a mismatch. Raises MemorizedEventError."""
+    from tegrasp_drake.control.grasp_controller import (load_controller_events,
+                                                        load_corrective_events)
+    scenario = scenario_from_trial_spec(trial)
+    nominal = scenario_from_trial_spec(trial, nominal=True).object
+    events = corrective_events = None
+    if scenario.controller.events_folder is not None:
+        events = load_controller_events(scenario, events_dir, nominal_object=nominal)
+    if scenario.controller.memorized_corrective_events:
+        corrective_events = load_corrective_events(scenario, events_dir,
+                                                   nominal_object=nominal)
+    return scenario, events, corrective_events
+
+
+def check_sweep_events(trials, events_dir=None) -> None:
+    """Raises ConfigError, naming the trial, the file and what to do, when some trial's
+    memorized events (trial_events) are missing or were recorded on another object:
+    checked once per (object, controller), before the sweep runs anything."""
+    from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    checked = set()
+    for trial in trials:
+        key = (trial["object_name"], trial["controller"])
+        if key in checked:
+            continue
+        checked.add(key)
+        try:
+            trial_events(trial, events_dir)
+        except MemorizedEventError as error:
+            raise ConfigError(f"trial {trial['trial_id']} ({trial['controller']} on "
+                              f"'{trial['object_name']}'): {error}") from None
+
+
+def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
+    """The sweep's trial function: runs the trial with its memorized events
+    (trial_events); returns its result dict.
+
+    log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
+    scenario, events, corrective_events = trial_events(trial, events_dir)
+    run = run_trial(scenario, events=events, corrective_events=corrective_events)
+    if log_dir is not None:
+        run.log.save(pathlib.Path(log_dir) / trial_log_name(trial["trial_id"]))
+    return run.result

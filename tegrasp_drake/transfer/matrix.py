@@ -1,0 +1,263 @@
+"""Do memorized events transfer? Events memorized in one world, trials run in another.
+
+A world is a scenario preset (tegrasp_drake/scenarios/scenarios.yaml, e.g.
+`memorizing_world`, `faithful_world`) plus `--set` assignments: a hand, its SA and RA
+transducers, their rates, the grip force. A transfer spec (YAML, `LoadTransferSpec`) names
+the worlds, the cells (memorizing world, running world) and one ordinary sweep (objects,
+grid, attempts, seeds: the fields of a sweep spec, experiments/sweep/spec.py).
+
+`run_transfer` first records each memorizing world's events (the ideal grasp of each object,
+experiments/record_events.py) into that world's events folder, then runs each cell as an
+ordinary sweep (experiments/sweep/runner.py: durable records, resume, process pool or
+Dask) of the running world's scenario with the memorizing world's events, into
+OUT/cells/<memorizing>-in-<running>/. Running the same call again resumes it: recorded
+events are kept, finished trials are not run again.
+
+A world's preset sets the scenario's sections; its `object` is ignored (the sweep sets each
+trial's object), so a preset can name an object for `tegrasp record-events`.
+"""
+
+import dataclasses
+import functools
+import json
+import pathlib
+from collections.abc import Mapping
+
+from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
+from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
+
+EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
+CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
+WORLD_FILE = "world.json"  # in a world's events folder: the assignments it was recorded with
+_NAME_CHARACTERS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_")
+
+
+@dataclasses.dataclass(frozen=True)
+class TransferWorld:
+    """A world: a scenario preset of the built-in scenario file, then `--set` overrides."""
+    scenario: str
+    overrides: tuple[str, ...] = ()
+
+
+@dataclasses.dataclass(frozen=True)
+class TransferSpec:
+    """The worlds, the cells (memorizing world, running world) and the sweep of each cell."""
+    worlds: Mapping[str, TransferWorld]
+    cells: tuple[tuple[str, str], ...]
+    sweep: SweepSpec
+
+    def memorizing_worlds(self) -> tuple[str, ...]:
+        return tuple(dict.fromkeys(a for a, _ in self.cells))
+
+
+def cell_name(memorizing: str, running: str) -> str:
+    """The folder name of a cell: `<memorizing>-in-<running>`."""
+    return f"{memorizing}-in-{running}"
+
+
+def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tuple[str, ...]:
+    """The world as `--set` assignments on the default scenario: its preset's fields
+    (flattened to dotted keys, `object` left out) and then its own overrides."""
+    document = read_yaml_file(paths.scenarios_file(), "the scenario file")
+    if world.scenario not in document:
+        raise ConfigError(f"{source}: scenario '{world.scenario}' is not in "
+                          f"{paths.scenarios_file()} (scenarios: {', '.join(document)})")
+    preset = dict(document[world.scenario] or {})
+    preset.pop("object", None)
+    assignments = []
+
+    def flatten(prefix, value):
+        if isinstance(value, dict) and value:
+            for key, item in value.items():
+                flatten(f"{prefix}.{key}" if prefix else str(key), item)
+        else:  # JSON is YAML: quoted text, numbers, true/false, [lists]
+            assignments.append(f"{prefix}={json.dumps(value)}")
+    flatten("", preset)
+    return tuple(assignments) + tuple(world.overrides)
+
+
+def running_sweep(spec: TransferSpec, running: str) -> SweepSpec:
+    """The ordinary sweep of a cell that runs in world `running`: the spec's sweep with the
+    world's assignments before the sweep's own scenario_overrides."""
+    return dataclasses.replace(spec.sweep, scenario_overrides=(
+        world_assignments(spec.worlds[running]) + tuple(spec.sweep.scenario_overrides)))
+
+
+def LoadTransferSpec(path) -> TransferSpec:
+    """Reads and checks a transfer spec. Fields:
+
+    worlds: {name: {scenario: PRESET, overrides: [KEY=VALUE, ...]}}
+    cells: a list of [memorizing world, running world] pairs, or
+        {memorize_in: [worlds], run_in: [worlds]} for every pair of the two lists
+    sweep: the fields of a sweep spec (analysis/example_sweep.yaml); the paper's sweep
+        when left out
+
+    ConfigError names the file and the field of anything that cannot run."""
+    source = str(path)
+    data = read_yaml_file(path, "the transfer spec") or {}
+    if not isinstance(data, dict):
+        raise ConfigError(f"{source}: must be a mapping with worlds, cells and sweep")
+    unknown = set(data) - {"worlds", "cells", "sweep"}
+    if unknown:
+        raise ConfigError(f"{source}: unknown field '{sorted(unknown)[0]}' (fields: worlds, "
+                          "cells, sweep)")
+    for required in ("worlds", "cells"):
+        if required not in data:
+            raise ConfigError(f"{source}: field '{required}' is missing")
+    worlds = _parse_worlds(data["worlds"], source)
+    cells = _parse_cells(data["cells"], worlds, source)
+    sweep = sweep_spec_from_fields(data.get("sweep"), f"{source} [sweep]")
+    spec = TransferSpec(worlds=worlds, cells=cells, sweep=sweep)
+    for name in dict.fromkeys(w for cell in cells for w in cell):
+        try:  # the world's assignments as each cell's sweep checks them
+            sweep_spec_from_fields(
+                {"scenario_overrides": list(running_sweep(spec, name).scenario_overrides),
+                 "controllers": list(sweep.controllers)}, f"{source} [worlds.{name}]")
+        except ConfigError as error:
+            raise ConfigError(str(error).replace("field 'scenario_overrides", "the world's "
+                                                 "preset and overrides ('scenario_overrides")
+                              ) from None
+    return spec
+
+
+def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
+    if not isinstance(value, dict) or not value:
+        raise ConfigError(f"{source}: field 'worlds' must map world names to "
+                          "{scenario: PRESET, overrides: [...]}")
+    worlds = {}
+    for name, fields in value.items():
+        name = str(name)
+        if not name or not set(name) <= _NAME_CHARACTERS:
+            raise ConfigError(f"{source}: field 'worlds.{name}': a world's name is letters, "
+                              "digits and '_' (it names folders)")
+        check_fields(fields, TransferWorld, source, f"worlds.{name}")
+        world = TransferWorld(scenario=fields["scenario"],
+                              overrides=tuple(fields.get("overrides", ())))
+        for assignment in world.overrides:
+            key = assignment.split("=", 1)[0].strip()
+            if any(key == f or key.startswith(f + ".") for f in PER_TRIAL_SCENARIO_FIELDS):
+                raise ConfigError(f"{source}: field 'worlds.{name}.overrides': '{key}' is set "
+                                  "per trial by the sweep; a world may not set it")
+        world_assignments(world, f"{source}: field 'worlds.{name}.scenario'")
+        worlds[name] = world
+    return worlds
+
+
+def _parse_cells(value, worlds, source: str) -> tuple[tuple[str, str], ...]:
+    if isinstance(value, dict):
+        check_fields(value, _CellProduct, source, "cells")
+        cells = [(a, b) for a in value["memorize_in"] for b in value["run_in"]]
+    elif isinstance(value, list):
+        cells = []
+        for item in value:
+            if not isinstance(item, list) or len(item) != 2:
+                raise ConfigError(f"{source}: field 'cells': {item!r} is not a pair "
+                                  "[memorizing world, running world]")
+            cells.append((str(item[0]), str(item[1])))
+    else:
+        raise ConfigError(f"{source}: field 'cells' must be a list of [memorizing, running] "
+                          "pairs or {memorize_in: [...], run_in: [...]}")
+    if not cells:
+        raise ConfigError(f"{source}: field 'cells' is empty: name at least one cell")
+    for cell in cells:
+        for world in cell:
+            if world not in worlds:
+                raise ConfigError(f"{source}: field 'cells': unknown world '{world}' "
+                                  f"(worlds: {', '.join(worlds)})")
+    if len(set(cells)) != len(cells):
+        raise ConfigError(f"{source}: field 'cells' names a cell twice")
+    return tuple(cells)
+
+
+@dataclasses.dataclass
+class _CellProduct:
+    """The mapping form of `cells`: every pair of the two lists."""
+    memorize_in: list[str]
+    run_in: list[str]
+
+
+def world_scenario(spec: TransferSpec, world: str, object_name: str):
+    """The nominal Scenario of `object_name` (built in, or one of the sweep's user_objects)
+    in `world`: what that world's events are recorded on."""
+    from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
+    from tegrasp_drake.rig.objects import ObjectConfig
+    base = LoadScenario(overrides=world_assignments(spec.worlds[world])
+                        + tuple(spec.sweep.scenario_overrides))
+    definition = spec.sweep.user_objects.get(object_name)
+    obj = (definition.object_config(object_name) if definition
+           else resolve_object(ObjectConfig(name=object_name)))
+    return validate(dataclasses.replace(base, object=obj), f"world {world}")
+
+
+def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) -> int:
+    """Records the events of every object of the sweep in `world` into `folder`, skipping
+    the objects already there; returns how many objects it recorded. A folder recorded with
+    other world settings is refused (SweepError)."""
+    from tegrasp_drake.events import save_memorized_events
+    from tegrasp_drake.events.event_file import INDEX_FILE, read_index
+    from tegrasp_drake.recording.campaign import RecordEventsError
+    from tegrasp_drake.recording.paper_events import record_events
+    from tegrasp_drake.sweep.runner import SweepError
+    from tegrasp_drake.rig.files import write_atomically
+    folder = pathlib.Path(folder)
+    assignments = list(world_assignments(spec.worlds[world])
+                       + tuple(spec.sweep.scenario_overrides))
+    marker = folder / WORLD_FILE
+    if marker.is_file():
+        recorded = json.loads(marker.read_text(encoding="utf-8"))
+        if recorded != assignments:
+            raise SweepError(f"{folder} holds the events of world '{world}' recorded with "
+                             f"other settings ({recorded}); give another output folder or "
+                             "remove that one")
+    folder.mkdir(parents=True, exist_ok=True)
+    write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
+    have = ({entry["object"] for entry in read_index(folder)}
+            if (folder / INDEX_FILE).is_file() else set())
+    recorded = 0
+    for object_name in spec.sweep.objects:
+        if object_name in have:
+            continue
+        log(f"recording the events of {object_name} in world {world}")
+        try:
+            events = record_events(object_name, world_scenario(spec, world, object_name))
+        except RecordEventsError as error:
+            raise SweepError(f"world {world}: {error}") from None
+        save_memorized_events(folder, events.values())
+        recorded += 1
+    return recorded
+
+
+def world_events_folder(out_dir, world: str) -> pathlib.Path:
+    return pathlib.Path(out_dir) / EVENTS_FOLDER / world
+
+
+def cell_folder(out_dir, memorizing: str, running: str) -> pathlib.Path:
+    return pathlib.Path(out_dir) / CELLS_FOLDER / cell_name(memorizing, running)
+
+
+def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
+                 scheduler=None, progress: bool = True, log=print) -> dict:
+    """Records the memorizing worlds' events (record_world_events) and runs every cell's
+    sweep (run_sweep with the memorizing world's events); returns {cell name:
+    SweepSummary}. Resumable (module docstring)."""
+    from tegrasp_drake.sweep.runner import run_sweep
+    from tegrasp_drake.sweep.spec import expand_trials
+    from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec
+    for world in spec.memorizing_worlds():
+        record_world_events(spec, world, world_events_folder(out_dir, world), log=log)
+    if trial_function is run_trial_from_spec:  # every cell's events, before any trial
+        for memorizing, running in spec.cells:
+            check_sweep_events([t.to_dict() for t in expand_trials(running_sweep(
+                spec, running))], world_events_folder(out_dir, memorizing))
+    summaries = {}
+    for memorizing, running in spec.cells:
+        events = world_events_folder(out_dir, memorizing)
+        sweep = running_sweep(spec, running)
+        name = cell_name(memorizing, running)
+        log(f"cell {name}: events of {memorizing}, trials in {running}")
+        summaries[name] = run_sweep(sweep, functools.partial(trial_function, events_dir=events),
+                                    cell_folder(out_dir, memorizing, running), workers=workers,
+                                    scheduler=scheduler, progress=progress)
+    return summaries

@@ -1,0 +1,161 @@
+"""The transfer matrix's table and heat map, from the records of its cells' sweeps.
+
+Per cell (events memorized in world A, trials run in world B) and controller, over the
+cell's finished trials:
+  - each event transition's match rate: the trials whose transition was taken by the event
+    trigger on time, over the trials that reached the mode waiting for it (the sweep's
+    detection report, experiments/sweep/detection_report.py), and the median latency after
+    its physical event;
+  - false triggers: event transitions taken more than 10 ms before their physical event
+    (the trial judge's count), per trial;
+  - hold and unload success (the paper's criteria, experiments/trial.py);
+  - the median CPU seconds and simulated seconds of a trial.
+"""
+
+import dataclasses
+import pathlib
+
+import numpy as np
+
+from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
+from tegrasp_drake.figures.figure_files import figure_path, new_figure, save_figure
+from tegrasp_drake.sweep.detection_report import event_trigger_rows
+from tegrasp_drake.sweep.records import load_records
+from tegrasp_drake.sweep.spec import expand_trials
+from tegrasp_drake.transfer.matrix import cell_folder, cell_name, running_sweep
+from tegrasp_drake.rig.files import write_atomically
+
+TABLE_FILE = "transfer.md"
+FIGURE_STEM = "transfer_matrix"
+
+
+@dataclasses.dataclass(frozen=True)
+class CellRow:
+    memorizing: str
+    running: str
+    controller: str
+    trials: int
+    # per REQUIRED_TRANSITIONS: (detected, trials that waited for it, median latency [s])
+    transitions: tuple[tuple[int, int, float | None], ...]
+    false_triggers: int
+    hold: int
+    unload: int
+    cpu_s: float | None  # median per trial
+    sim_s: float | None
+
+    def match_rate(self, k: int) -> float:
+        detected, waited, _ = self.transitions[k]
+        return detected / waited if waited else float("nan")
+
+
+def cell_rows(spec, out_dir) -> list[CellRow]:
+    """One CellRow per (cell, controller) with finished trials of the spec in `out_dir`
+    (records of other trials in a cell's folder are left out, as the sweep's reports do)."""
+    rows = []
+    for memorizing, running in spec.cells:
+        folder = cell_folder(out_dir, memorizing, running)
+        if not (folder / "trials").is_dir():
+            continue
+        ids = {trial.trial_id for trial in expand_trials(running_sweep(spec, running))}
+        records = {trial_id: record for trial_id, record in load_records(folder).records.items()
+                   if trial_id in ids and record.get("result") is not None}
+        for controller in spec.sweep.controllers:
+            mine = {k: r for k, r in records.items() if r["trial"]["controller"] == controller}
+            if not mine:
+                continue
+            triggers = {row.trigger: row for row in event_trigger_rows(mine)}
+            transitions = tuple(
+                (triggers[t].detected, triggers[t].trials, triggers[t].median_latency_s)
+                if t in triggers else (0, 0, None) for t in REQUIRED_TRANSITIONS)
+            results = [r["result"] for r in mine.values()]
+            cpu = [r["cpu_time_s"] for r in results if r.get("cpu_time_s") is not None]
+            sim = [r["sim_time_s"] for r in results if r.get("sim_time_s") is not None]
+            rows.append(CellRow(
+                memorizing, running, controller, len(results), transitions,
+                sum(int(r.get("false_triggers", 0)) for r in results),
+                sum(bool(r["hold_success"]) for r in results),
+                sum(bool(r["unload_success"]) for r in results),
+                float(np.median(cpu)) if cpu else None, float(np.median(sim)) if sim else None))
+    return rows
+
+
+def _percent(part: int, whole: int) -> str:
+    return f"{100 * part / whole:.0f} % ({part}/{whole})" if whole else "–"
+
+
+def transfer_markdown(rows: list[CellRow]) -> str:
+    """The transfer table (module docstring) as Markdown."""
+    header = ["memorized in", "run in", "controller", "trials"]
+    header += [f"{t} match (median latency)" for t in REQUIRED_TRANSITIONS]
+    header += ["false triggers / trial", "hold", "unload", "CPU s / trial"]
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    for row in rows:
+        cells = [row.memorizing, row.running, row.controller, str(row.trials)]
+        for detected, waited, latency in row.transitions:
+            text = _percent(detected, waited)
+            cells.append(text + (f" ({1000 * latency:.0f} ms)" if latency is not None else ""))
+        cells += [f"{row.false_triggers / row.trials:.2f}", _percent(row.hold, row.trials),
+                  _percent(row.unload, row.trials),
+                  "–" if row.cpu_s is None else f"{row.cpu_s:.1f}"]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def _heatmap_panels(rows: list[CellRow]):
+    """(title, value of a row in [0, 1]) of each heat-map panel."""
+    panels = [(f"{t} match", lambda row, k=k: row.match_rate(k))
+              for k, t in enumerate(REQUIRED_TRANSITIONS)]
+    panels += [("hold success", lambda row: row.hold / row.trials),
+               ("unload success", lambda row: row.unload / row.trials)]
+    return panels
+
+
+def draw_transfer_heatmap(rows: list[CellRow], path) -> pathlib.Path:
+    """Heat maps, memorizing world (rows) by running world (columns), of each transition's
+    match rate and of hold and unload success; blank where a cell has no trials."""
+    memorizing = list(dict.fromkeys(row.memorizing for row in rows))
+    running = list(dict.fromkeys(row.running for row in rows))
+    panels = _heatmap_panels(rows)
+    figure = new_figure(max(6.0, 1.0 + 0.55 * len(running)) * len(panels) / 2,
+                        1.6 + 0.45 * len(memorizing) + 1.2)
+    axes = figure.subplots(1, len(panels), sharey=True)
+    for ax, (title, value) in zip(np.atleast_1d(axes), panels):
+        grid = np.full((len(memorizing), len(running)), np.nan)
+        for row in rows:
+            grid[memorizing.index(row.memorizing), running.index(row.running)] = value(row)
+        image = ax.imshow(grid, vmin=0.0, vmax=1.0, cmap="viridis", aspect="auto")
+        for (i, j), v in np.ndenumerate(grid):
+            if np.isfinite(v):
+                ax.text(j, i, f"{100 * v:.0f}", ha="center", va="center", fontsize=7,
+                        color="white" if v < 0.5 else "black")
+        ax.set_title(title, fontsize=9)
+        ax.set_xticks(range(len(running)), running, rotation=60, ha="right", fontsize=7)
+        ax.set_yticks(range(len(memorizing)), memorizing, fontsize=7)
+        ax.set_xlabel("run in", fontsize=8)
+    np.atleast_1d(axes)[0].set_ylabel("memorized in", fontsize=8)
+    figure.colorbar(image, ax=axes, shrink=0.8, label="rate")
+    return save_figure(figure, path)
+
+
+def heatmap_rows(rows: list[CellRow]) -> list[CellRow]:
+    """The rows the heat map shows: the memorized controller's, or the first controller's
+    when the sweep did not run it."""
+    controllers = list(dict.fromkeys(row.controller for row in rows))
+    chosen = "memorized" if "memorized" in controllers else controllers[0]
+    return [row for row in rows if row.controller == chosen]
+
+
+def write_transfer_reports(spec, out_dir, *, figure_format: str = "png") -> list[pathlib.Path]:
+    """Writes OUT/transfer.md and the heat map OUT/transfer_matrix.<format> from the cells'
+    records; returns the paths written (none when no cell has a finished trial)."""
+    rows = cell_rows(spec, out_dir)
+    if not rows:
+        return []
+    out_dir = pathlib.Path(out_dir)
+    text = ("# Transfer matrix\n\nEvents memorized in one world (row), trials run in another."
+            " Cells: " + ", ".join(cell_name(a, b) for a, b in spec.cells) + ".\n\n"
+            + transfer_markdown(rows))
+    written = [write_atomically(out_dir / TABLE_FILE, text)]
+    written.append(draw_transfer_heatmap(heatmap_rows(rows),
+                                         figure_path(out_dir, FIGURE_STEM, figure_format)))
+    return written

@@ -1,0 +1,92 @@
+"""Detection quality per trigger and McNemar comparisons from sweep records."""
+
+import pytest
+
+from tegrasp_drake.sweep.detection_report import (
+    corrective_counts, event_trigger_rows, hit_avoid_rows, paired_comparison, report_markdown)
+
+
+def record(controller, pair, *, hold=True, unload=True, reach_t=4.05, well_placed=False,
+           actions=()):
+    transitions = [{"t": 3.0, "from": "Reach", "to": "Re-Reach", "trigger": "corrective"},
+                   {"t": reach_t, "from": "Reach", "to": "Load",
+                    "trigger": "memorized_event"}]
+    return {"trial_id": f"{controller}/{pair}",
+            "trial": {"controller": controller, "pair_id": pair, "well_placed": well_placed},
+            "result": {"transitions": transitions, "hold_success": hold,
+                       "unload_success": unload, "corrective_actions": list(actions),
+                       "physical_events": {"reach_load": 4.0}}}
+
+
+def test_a_late_match_is_detected_with_its_latency_and_an_early_one_is_false():
+    records = {str(k): r for k, r in enumerate([record("memorized", "a", reach_t=4.05),
+                                                record("memorized", "b", reach_t=4.03),
+                                                record("memorized", "c", reach_t=3.5)])}
+    (row,) = [r for r in event_trigger_rows(records) if r.trigger == "reach_load"]
+    assert (row.trials, row.detected, row.false, row.other) == (3, 2, 1, 0)
+    assert row.median_latency_s == pytest.approx(0.04)
+
+
+def test_mcnemar_counts_the_discordant_pairs_of_the_same_scenes():
+    records = {}
+    for k in range(8):
+        records[f"t{k}"] = record("taxel_aware", f"s{k}", hold=True)
+        records[f"o{k}"] = record("open_loop", f"s{k}", hold=k < 2)
+    records["lonely"] = record("taxel_aware", "other-scene", hold=False)
+    c = paired_comparison(records, "taxel_aware", "open_loop", ("misplaced", "hold"))
+    assert (c.pairs, c.only_first, c.only_second) == (8, 6, 0)
+    assert c.p_value == pytest.approx(2 * 0.5 ** 6)
+    text = report_markdown(records, ["taxel_aware", "open_loop"], "open_loop", "t")
+    assert "| taxel_aware | misplaced hold | 8 |" in text
+
+
+def test_corrective_actions_are_counted_once_per_trial():
+    records = {"a": record("taxel_aware", "a", actions=("re_reach", "re_reach", "regrasp"))}
+    assert corrective_counts(records)["taxel_aware"] == {"re_reach": 1, "regrasp": 1}
+
+
+def hit_record(controller, pair, *, hit, avoids=(), trigger="corrective_event",
+               hold_at=5.5):
+    """A trial in Hold from hold_at [s], hit at `hit` (None: no hit), Avoids at `avoids`."""
+    transitions = [{"t": 4.0, "from": "Reach", "to": "Load", "trigger": "memorized_event"},
+                   {"t": 4.5, "from": "Load", "to": "Lift", "trigger": "memorized_event"},
+                   {"t": hold_at, "from": "Lift", "to": "Hold", "trigger": "timer"}]
+    for t in avoids:
+        transitions += [{"t": t, "from": "Hold", "to": "Avoid", "trigger": trigger},
+                        {"t": t + 0.6, "from": "Avoid", "to": "Hold", "trigger": "timer"}]
+    events = {"reach_load": 3.95} if hit is None else {"reach_load": 3.95, "hit": hit}
+    return {"trial": {"controller": controller, "pair_id": pair, "well_placed": True},
+            "result": {"transitions": transitions, "hold_success": True,
+                       "unload_success": True, "corrective_actions": ["avoid"] * len(avoids),
+                       "physical_events": events}}
+
+
+def test_a_hit_in_hold_is_detected_missed_or_preceded_by_a_false_avoid():
+    records = {
+        "on_time": hit_record("memorized", "a", hit=7.1, avoids=(7.115,)),
+        "slow": hit_record("memorized", "b", hit=7.1, avoids=(7.16,)),
+        "missed": hit_record("memorized", "c", hit=7.1),
+        "early": hit_record("memorized", "d", hit=7.1, avoids=(6.5, 7.11)),
+        "no_hit": hit_record("memorized", "e", hit=None, avoids=(6.0,)),
+        "quiet": hit_record("memorized", "f", hit=None),
+        # Hit before Hold (still lifting): not a hit in Hold, not counted as one.
+        "in_lift": hit_record("memorized", "g", hit=5.0, hold_at=5.5),
+        "threshold": hit_record("heuristic", "a", hit=7.1, avoids=(7.105,),
+                                trigger="threshold"),
+    }
+    memorized, heuristic = sorted(hit_avoid_rows(records), key=lambda r: r.controller,
+                                  reverse=True)
+    assert memorized.controller == "memorized"
+    assert (memorized.hits_in_hold, memorized.detected, memorized.missed) == (4, 3, 1)
+    assert (memorized.false, memorized.reached_hold) == (2, 7)
+    assert memorized.median_latency_s == pytest.approx(0.015)
+    assert memorized.triggers == ("corrective_event",)
+    assert (heuristic.detected, heuristic.triggers) == (1, ("threshold",))
+    text = report_markdown(records, ["memorized", "heuristic"], "heuristic", "t")
+    assert "| memorized | corrective_event | 4 | 3 | 1 | 2 of 7 | 15 ms |" in text
+
+
+def test_a_sweep_without_hits_or_avoids_has_no_hit_rows():
+    records = {"a": record("taxel_aware", "a")}
+    assert hit_avoid_rows(records) == []
+    assert "Hit in Hold" not in report_markdown(records, ["taxel_aware"], "taxel_aware", "t")
