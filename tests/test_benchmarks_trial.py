@@ -71,8 +71,8 @@ def test_trial_to_floor_ratios_are_per_repeat_and_the_report_shows_them(monkeypa
     # medians, and each controller the median over repeats of its CPU (wall) time per
     # simulated second over the floor's in the same repeat. The trials take 12 s of
     # simulated time, the floor 10 s.
-    from tegrasp_drake.commands.benchmark import format_report
-    from tegrasp_drake.experiments.benchmarks import trial as benchmark
+    from benchmarks import trial as benchmark
+    from benchmarks.trial import format_report
     from benchmarks.plant_floor import FloorRun
     from tegrasp_drake.scenario.scenario import LoadScenario
     trial_cpu = {"memorized": iter([24.0, 36.0, 30.0]), "open_loop": iter([12.0, 12.0, 18.0])}
