@@ -14,7 +14,7 @@ from tegrasp_drake.events.streaming_correlation import SlidingCorrelation
 from tegrasp_drake.events.transitions import NO_EVENT, transition_order
 from tegrasp_drake.tactile.sampling import resample_window
 from tegrasp_drake.tactile.window_normalizer import (
-    RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
+    ConnectWindowChannels, RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
 
 
 @dataclasses.dataclass
@@ -33,6 +33,10 @@ class EventMatcherConfig:
     min_contrast: float = 0.25
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0
+    # Block [s] in which a fast rate's samples are scored, one update per block (0: one
+    # per sample; WindowNormalizerConfig.block_s). A match then shows at the block's end,
+    # at most one block later than per sample.
+    block_s: float = 0.0
 
 
 def event_templates(event: MemorizedEvent, channels: tuple[int, ...],
@@ -46,7 +50,8 @@ def window_normalizer_config(events: Mapping[str, MemorizedEvent],
                              config: EventMatcherConfig) -> WindowNormalizerConfig:
     """The windows an EventMatcher scores: the events' window_s at the config's rates."""
     return WindowNormalizerConfig(window_s=next(iter(events.values())).window_s,
-                                  sa_rate_hz=config.sa_rate_hz, ra_rate_hz=config.ra_rate_hz)
+                                  sa_rate_hz=config.sa_rate_hz, ra_rate_hz=config.ra_rate_hz,
+                                  block_s=config.block_s)
 
 
 class EventMatcher(WindowNormalizer):
@@ -60,6 +65,8 @@ class EventMatcher(WindowNormalizer):
     are the normaliser's, held once in the Context, each followed in its rate's state vector
     by the streaming correlation of the window (SlidingCorrelation); each tick of a rate
     takes the sample into the window and slides the scores in one update (`_after_push`).
+    A rate in blocks (config.block_s) slides its scores sample by sample through the block
+    in one update, and keeps whether its channels passed their thresholds at any of them.
 
     Constructed with one object's memorized events; their grasp order (transitions.py)
     numbers them 0, 1, ... (see `transition_indices`). Every tick of a channel's rate, the
@@ -74,6 +81,8 @@ class EventMatcher(WindowNormalizer):
         name: EventMatcher
         input_ports:
         - channels
+        - sa_block (optional)
+        - ra_block (optional)
         - expected_event
         output_ports:
         - sa_window
@@ -85,6 +94,8 @@ class EventMatcher(WindowNormalizer):
     Ports:
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), sampled at
             config.sa_rate_hz (SA) and config.ra_rate_hz (RA).
+        sa_block, ra_block: a rate's samples in blocks (WindowNormalizer); connected, with
+            channels, by ConnectWindowChannels.
         expected_event: [index] of the event to check, or -1 for none.
         sa_window, ra_window: the max-normalised windows that are scored (WindowNormalizer).
         scores: the four channels' scores in [-1, 1]; 0 when no event is expected, before
@@ -93,6 +104,10 @@ class EventMatcher(WindowNormalizer):
         match: [1.0] when every channel's score exceeds its threshold and the scores are
             for the event now expected, else [0.0]. It depends directly on expected_event,
             so one tick after the expected event changes it cannot report the old event.
+            For a rate in blocks, its channels count as passing when they passed at any
+            sample of the last block (scored against the event expected at the block's
+            end), so a match is reported at most one block after the per-sample matcher's
+            and none is missed between two block ends.
         scored_event: [index] of the event the scores refer to, -1 for none or while the
             SA and RA scores refer to different events.
     """
@@ -115,8 +130,11 @@ class EventMatcher(WindowNormalizer):
             correlations[group.name] = SlidingCorrelation(
                 templates, min_contrast=config.min_contrast, window=window_layout(group).window)
         self._check_matchable(ordered_events, templates_by_event, config.min_contrast)
+        # After each rate's correlation, whether its channels passed in its last update.
+        self._passed_at = {name: correlation.size for name, correlation in correlations.items()}
         super().__init__(normalizer_config, window_states={
-            name: correlation.initial_state() for name, correlation in correlations.items()})
+            name: np.append(correlation.initial_state(), 0.0)
+            for name, correlation in correlations.items()})
         self._correlations = correlations
         self._events = ordered_events
         self._transitions = tuple(e.transition for e in self._events)
@@ -127,6 +145,10 @@ class EventMatcher(WindowNormalizer):
             [sa] * len(SA_CHANNELS) + [ra] * len(RA_CHANNELS) for sa, ra in (
                 config.event_thresholds.get(t, (config.sa_threshold, config.ra_threshold))
                 for t in self._transitions)])
+        # Per rate group, per event: the thresholds of the group's channels (floats).
+        self._group_thresholds = {window.group.name: [
+            row[window.channels].tolist() for row in self._thresholds]
+            for window in self.rate_windows}
         # expected_event values accepted, as the port holds them -> event index.
         self._event_of_value = {float(event): event
                                 for event in range(NO_EVENT, len(self._events))}
@@ -203,12 +225,20 @@ class EventMatcher(WindowNormalizer):
 
     def _after_push(self, window: RateWindow, state: np.ndarray,
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
-                    context) -> None:
+                    context, first: bool) -> None:
         """Slides the window's correlation, after the window in `state`, by the samples the
-        WindowNormalizer just pushed (a missing one scores its channel 0 for one window)."""
+        WindowNormalizer just pushed (a missing one scores its channel 0 for one window),
+        and keeps whether the group's channels passed at any push of this update."""
         rows, offset, full = pushed  # (a star call costs more than this unpacking)
-        self._correlations[window.group.name].slide(state, rows, offset, full,
-                                                    self._expected_event(context), missing)
+        name = window.group.name
+        expected = self._expected_event(context)
+        scores = self._correlations[name].slide(state, rows, offset, full, expected, missing)
+        passed = (expected != NO_EVENT and full and all(
+            score > threshold for score, threshold in
+            zip(scores.tolist(), self._group_thresholds[name][expected])))
+        at = self._passed_at[name]
+        if first or passed:
+            state[at] = 1.0 if passed else 0.0
 
     def _correlation_states(self, context):
         """(window, its correlation, their state vector) per rate group."""
@@ -232,9 +262,9 @@ class EventMatcher(WindowNormalizer):
 
     def _calc_match(self, context, output):
         expected = self._expected_event(context)
-        scores = self._scores_port.Eval(context)
         matched = (expected != NO_EVENT and self._scored_event(context) == expected
-                   and bool(np.all(scores > self._thresholds[expected])))
+                   and all(state[self._passed_at[window.group.name]] > 0.0
+                           for window, _, state in self._correlation_states(context)))
         output.SetAtIndex(0, 1.0 if matched else 0.0)
 
 
@@ -243,11 +273,12 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
                       channels=None) -> EventMatcher:
     """Adds the paper's Fig. 3 comparison to `builder`: an EventMatcher (`event_matcher`).
 
-    channels: an output port of the four channels, connected to its `channels` input (else
-    the caller connects it). Its `expected_event` input and its `scores`, `match` and
-    `scored_event` outputs are the caller's to connect.
+    channels: an output port of the four channels, connected to its `channels` input and,
+    for a config in blocks, to its block inputs through sample registers
+    (ConnectWindowChannels); else the caller connects them. Its `expected_event` input and
+    its `scores`, `match` and `scored_event` outputs are the caller's to connect.
     """
     matcher = builder.AddNamedSystem("event_matcher", EventMatcher(events, config))
     if channels is not None:
-        builder.Connect(channels, matcher.GetInputPort("channels"))
+        ConnectWindowChannels(builder, matcher, channels)
     return matcher
