@@ -28,6 +28,7 @@ from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetecto
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
+from tegrasp_drake.tactile.sample_block import block_samples
 from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
@@ -177,7 +178,7 @@ def _add_detector(builder, scenario, events, channels):
             event_thresholds=config.event_thresholds(
                 dict(gripper_hand(scenario.gripper.model).ensemble_thresholds)),
             sa_rate_hz=scenario.tactile.sample_rate_hz,
-            ra_rate_hz=scenario.vibration.sample_rate_hz)
+            ra_rate_hz=scenario.vibration.sample_rate_hz, block_s=config.sensor_block_s)
         events = events if events is not None else load_controller_events(scenario)
         return (add_event_matcher(builder, events, matcher_config, channels=channels),
                 Trigger.MEMORIZED_EVENT)
@@ -191,6 +192,7 @@ def _add_corrective_matcher(builder, scenario, corrective_events, channels):
     """The corrective EventMatcher (`corrective_matcher`) of the memorized corrective
     events, fed by `channels`, with their thresholds (controller.*_event_thresholds)."""
     from tegrasp_drake.events import EventMatcher, EventMatcherConfig
+    from tegrasp_drake.tactile.window_normalizer import ConnectWindowChannels
     config = scenario.controller
     events = (corrective_events if corrective_events is not None
               else load_corrective_events(scenario))
@@ -200,8 +202,9 @@ def _add_corrective_matcher(builder, scenario, corrective_events, channels):
             t: pair for t, pair in config.corrective_event_thresholds().items()
             if t in events},
                                    sa_rate_hz=scenario.tactile.sample_rate_hz,
-                                   ra_rate_hz=scenario.vibration.sample_rate_hz)))
-    builder.Connect(channels, matcher.GetInputPort("channels"))
+                                   ra_rate_hz=scenario.vibration.sample_rate_hz,
+                                   block_s=config.sensor_block_s)))
+    ConnectWindowChannels(builder, matcher, channels)
     return matcher
 
 
@@ -262,14 +265,18 @@ def AddGraspController(builder, *, scenario, station, events: dict | None = None
         builder.Connect(station.GetOutputPort(f"tactile.{finger}_pad_acceleration"),
                         accelerations.get_input_port(k))
     builder.Connect(accelerations.get_output_port(), machine.GetInputPort("pad_acceleration"))
-    # On hardware the band filters the device's own samples (see SlipVibrationBand).
+    # On hardware the band filters the device's own samples (see SlipVibrationBand), in
+    # simulation the film's samples in blocks.
     samples = (station.GetOutputPort("tactile.pad_acceleration_samples")
                if station.HasOutputPort("tactile.pad_acceleration_samples") else None)
     builder.Connect(AddSlipVibrationBand(builder, accelerations.get_output_port(),
                                          band_hz=config.slip_band_hz,
                                          window_s=config.slip_window_s,
                                          sample_rate_hz=scenario.vibration.sample_rate_hz,
-                                         pad_acceleration_samples=samples),
+                                         pad_acceleration_samples=samples,
+                                         block_samples=block_samples(
+                                             scenario.vibration.sample_rate_hz,
+                                             config.sensor_block_s)),
                     machine.GetInputPort("slip_vibration"))
     taxels = builder.AddNamedSystem("taxel_forces_mux", Multiplexer([TAXELS_PER_PAD] * 2))
     for k, finger in enumerate(FINGER_NAMES):
