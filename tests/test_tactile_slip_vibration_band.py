@@ -11,6 +11,7 @@ from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, advance_films,
                                                     film_step_matrices, signed_peak)
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, film_parameters
 from tegrasp_drake.tactile.slip_vibration_band import (AddSlipVibrationBand, SlipVibrationBand,
+                                                       biquad_block_map,
                                                        highpass_biquad, highpass_step_floats)
 
 RATE_HZ = 1000.0
@@ -214,3 +215,18 @@ def test_band_in_blocks_is_refused_with_no_samples_or_off_the_sample_times():
     with pytest.raises(ValueError, match="25 samples"):  # 3 x 0.025 s != 75 x 0.001 s
         SlipVibrationBand(band_hz=80.0, window_s=0.01, sample_rate_hz=RATE_HZ,
                           block_samples=25)
+
+
+def test_block_map_equals_the_biquad_run_sample_by_sample_from_any_delays():
+    rng = np.random.default_rng(6)
+    coefficients = highpass_biquad(80.0, RATE_HZ)
+    x = rng.normal(size=(10, 6)) * 20.0
+    z1, z2 = rng.normal(size=6), rng.normal(size=6)
+    stacked = biquad_block_map(coefficients, 10) @ np.vstack([x, z1, z2])
+    outputs = []
+    for row in x:
+        y, z1, z2 = highpass_step(coefficients, row, z1, z2)
+        outputs.append(y)
+    # Sums of about 12 terms of up to |x| 60: round-off.
+    np.testing.assert_allclose(stacked[:10], outputs, rtol=0.0, atol=1e-12)
+    np.testing.assert_allclose(stacked[10:], [z1, z2], rtol=0.0, atol=1e-12)

@@ -19,9 +19,11 @@ The filter runs once per device sample, in one of three modes:
 - per tick (`block_samples` 1): each update reads `pad_acceleration`;
 - in blocks (`block_samples` B > 1, simulation): every B samples one update filters the
   block of the last B samples that a sample register (tactile/sample_block.py) kept on
-  `pad_acceleration_block`, with scipy's lfilter carrying the filter's delays from block to
-  block; at each block boundary the band equals the per-tick band (to round-off), between
-  boundaries it holds the last block's value, at most B - 1 samples old;
+  `pad_acceleration_block`, by one matrix product: the biquad is linear, so its B outputs
+  and its delays after the block are a fixed matrix times the block's samples and the
+  delays before it (`biquad_block_map`); at each block boundary the band equals the
+  per-tick band (to round-off), between boundaries it holds the last block's value, at
+  most B - 1 samples old;
 - device samples (hardware): the samples arrive in bursts and the receiver holds or merges
   them to give one value per tick, and a held value followed by a jump is a step the
   high-pass rings on (beside a CPU hog, bursts of a few ticks rang above the slip threshold
@@ -54,6 +56,29 @@ def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
                          f"frequency {sample_rate_hz / 2} Hz of the RA samples")
     sos = signal.butter(2, band_hz, "highpass", fs=sample_rate_hz, output="sos")[0]
     return np.array([sos[0], sos[1], sos[2], sos[4], sos[5]])
+
+
+def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
+    """The biquad (transposed direct form II, [b0, b1, b2, a1, a2]) over `samples` samples
+    as one matrix M ((samples + 2) x (samples + 2)): [y; z_after] = M [x; z_before], with x
+    and y the block's inputs and outputs (oldest first) and z = [z1, z2] its delays (each
+    column an axis)."""
+    b0, b1, b2, a1, a2 = coefficients
+    A = np.array([[-a1, 1.0], [-a2, 0.0]])  # the delays' update, [z1, z2]' = A z + B x
+    B = np.array([b1 - a1 * b0, b2 - a2 * b0])
+    M = np.zeros((samples + 2, samples + 2))
+    power = np.eye(2)  # A^k
+    for k in range(samples):
+        # y_k = b0 x_k + z1_k; z_k = A^k z_0 + sum_{i<k} A^(k-1-i) B x_i.
+        M[k, k] = b0
+        M[k, samples:] = power[0]
+        for i in range(k):
+            M[k, i] = (np.linalg.matrix_power(A, k - 1 - i) @ B)[0]
+        power = A @ power
+    for i in range(samples):
+        M[samples:, i] = np.linalg.matrix_power(A, samples - 1 - i) @ B
+    M[samples:, samples:] = power
+    return M
 
 
 def highpass_step_floats(coefficients: tuple[float, ...], x: list[float],
@@ -106,6 +131,10 @@ class SlipVibrationBand(LeafSystem):
         self._sample_period = 1.0 / sample_rate_hz
         self._coefficients = highpass_biquad(band_hz, sample_rate_hz)
         self._coefficient_floats = tuple(self._coefficients.tolist())
+        # The filter over k samples, for each k a block update may take (samples_in_block).
+        self._block_maps = ([None] + [biquad_block_map(self._coefficients, k)
+                                      for k in range(1, block_samples + 1)]
+                            if block_samples > 1 else None)
         self._window = max(1, round(window_s * sample_rate_hz))
         self._input = self.DeclareVectorInputPort("pad_acceleration", _AXES)
         self._samples = self.DeclareAbstractInputPort(
@@ -141,7 +170,7 @@ class SlipVibrationBand(LeafSystem):
         s = discrete_state.get_mutable_value(self._state)
         taken = samples_in_block(context.get_time(), self._sample_period, self._block_samples)
         block = self._block.Eval(context).reshape(self._block_samples, _AXES)[-taken:]
-        filter_block(self._coefficients, block, s, self._window)
+        filter_block(self._block_maps[taken], block, s, self._window)
 
     def _filter_sample(self, s: np.ndarray, x: list[float]):
         """Advances the state vector s by one sample x (6) [m/s^2], in place. The filter
@@ -162,14 +191,16 @@ class SlipVibrationBand(LeafSystem):
         output.SetFromVector(np.sqrt(mean))
 
 
-def filter_block(coefficients: np.ndarray, block: np.ndarray, s: np.ndarray,
+def filter_block(block_map: np.ndarray, block: np.ndarray, s: np.ndarray,
                  window: int) -> None:
     """Advances a SlipVibrationBand's state vector s by the rows of `block` (k x 6, oldest
-    first) [m/s^2], in place: the biquad over the block by lfilter from the delays in s,
-    then each row's squared magnitude per pad into the window of the last `window`."""
-    b, a = coefficients[:3], np.concatenate([[1.0], coefficients[3:]])
-    y, delays = signal.lfilter(b, a, block, axis=0, zi=s[:2 * _AXES].reshape(2, _AXES))
-    s[:2 * _AXES] = delays.ravel()
+    first) [m/s^2], in place: the biquad over the block (block_map: biquad_block_map of k
+    samples) from the delays in s, then each row's squared magnitude per pad into the
+    window of the last `window`."""
+    k = len(block)
+    stacked = block_map @ np.vstack([block, s[:2 * _AXES].reshape(2, _AXES)])
+    y = stacked[:k]
+    s[:2 * _AXES] = stacked[k:].ravel()
     squares = s[2 * _AXES:].reshape(len(FINGER_NAMES), window)
     per_pad = y.reshape(len(y), len(FINGER_NAMES), 3)
     new = np.einsum("kpi,kpi->pk", per_pad, per_pad)  # |y|^2 per pad (rows) and sample

@@ -1,0 +1,94 @@
+"""What processing the film's 1 kHz samples in blocks saves (controller.sensor_block_s).
+
+In one run, alternating within each repeat: the memorized closed-loop trial with the
+tactile systems taking one sample per update (sensor_block_s 0) and in blocks (the
+scenario's sensor_block_s, 10 ms by default): real-time factors (medians) and the
+per-repeat ratio of their CPU times; then one profiled trial of each, the cost per
+simulated second of each Python system that the blocks change.
+
+Run `python -m tegrasp_drake.experiments.benchmarks.sensor_blocks` to print them.
+"""
+
+import argparse
+import dataclasses
+import statistics
+
+from tegrasp_drake.experiments.benchmarks.system_costs import profile_trial
+from tegrasp_drake.experiments.benchmarks.trial import time_trial
+from tegrasp_drake.experiments.scenario import LoadScenario, with_controller
+
+# The systems whose updates the blocks change (system_costs.py names them by class).
+BLOCK_SYSTEMS = ("EventMatcher", "SlipVibrationBand", "MechanoreceptorChannels")
+
+
+def with_sensor_block(scenario, block_s: float):
+    """`scenario` with the memorized controller taking samples in blocks of block_s [s]."""
+    memorized = with_controller(scenario, "memorized")
+    return dataclasses.replace(memorized, controller=dataclasses.replace(
+        memorized.controller, sensor_block_s=block_s))
+
+
+def compare_sensor_blocks(scenario, *, repeats: int = 3, profile: bool = True) -> dict:
+    """{"per_sample": ..., "blocks": ..., "cpu_ratio": per-sample CPU time over the blocks'
+    (median of the repeats), "systems": {variant: {system: us per simulated second}}}."""
+    variants = {"per_sample": with_sensor_block(scenario, 0.0),
+                "blocks": with_controller(scenario, "memorized")}
+    runs = {name: [] for name in variants}
+    for _ in range(repeats):
+        for name, variant in variants.items():
+            runs[name].append(time_trial(variant))
+    result = {name: {key: statistics.median(run[key] for run in variant_runs)
+                     for key in ("rtf_cpu", "rtf_wall", "cpu_time_s", "wall_time_s")}
+              for name, variant_runs in runs.items()}
+    result["cpu_ratio"] = statistics.median(
+        a["cpu_time_s"] / b["cpu_time_s"] for a, b in zip(runs["per_sample"], runs["blocks"]))
+    result["block_s"] = variants["blocks"].controller.sensor_block_s
+    if profile:
+        result["systems"] = {}
+        for name, variant in variants.items():
+            profiled = profile_trial(variant)
+            result["systems"][name] = {
+                system: {"calls": cost["calls"],
+                         "ms_per_sim_s": 1e3 * cost["own_s"] / profiled["sim_time_s"]}
+                for system, cost in profiled["systems"].items()}
+    return result
+
+
+def format_sensor_blocks(result: dict) -> str:
+    """The comparison as plain-text tables."""
+    lines = [f"tactile samples per update: one (per_sample) or blocks of "
+             f"{result['block_s'] * 1e3:g} ms; medians; cpu ratio = per-sample CPU time / "
+             f"blocks' (per repeat, median) = {result['cpu_ratio']:.3f}",
+             f"{'variant':<12} {'rtf cpu':>8} {'rtf wall':>9}"]
+    for name in ("per_sample", "blocks"):
+        lines.append(f"{name:<12} {result[name]['rtf_cpu']:>8.3f} "
+                     f"{result[name]['rtf_wall']:>9.3f}")
+    if "systems" in result:
+        lines += ["", "profiled (cProfile), own time per simulated second [ms/s] and calls",
+                  f"{'system':<26} {'per_sample':>11} {'calls':>7} {'blocks':>8} {'calls':>7}"]
+        per_sample, blocks = result["systems"]["per_sample"], result["systems"]["blocks"]
+        for system in per_sample:
+            a, b = per_sample[system], blocks.get(system, {"ms_per_sim_s": 0.0, "calls": 0})
+            lines.append(f"{system:<26} {a['ms_per_sim_s']:>11.1f} {a['calls']:>7} "
+                         f"{b['ms_per_sim_s']:>8.1f} {b['calls']:>7}")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--scenario-name", default="box")
+    parser.add_argument("--seed", type=int, default=600)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--no-profile", action="store_true")
+    args = parser.parse_args(argv)
+    if args.repeats < 1:
+        parser.error(f"--repeats {args.repeats}: give at least 1 run per variant")
+    scenario = dataclasses.replace(LoadScenario(name=args.scenario_name),
+                                   random_seed=args.seed)
+    print(format_sensor_blocks(compare_sensor_blocks(scenario, repeats=args.repeats,
+                                                     profile=not args.no_profile)))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
