@@ -4,7 +4,9 @@ In one run, alternating within each repeat: the memorized closed-loop trial with
 tactile systems taking one sample per update (sensor_block_s 0) and in blocks (the
 scenario's sensor_block_s, 10 ms by default): real-time factors (medians) and the
 per-repeat ratio of their CPU times; then one profiled trial of each, the cost per
-simulated second of each Python system that the blocks change.
+simulated second of each Python system that the blocks change; and the slip band alone
+(a stream of random samples -> AddSlipVibrationBand, its sample register included), CPU
+microseconds per 1 kHz tick both ways (the matcher's: benchmarks/matcher.py).
 
 Run `python -m tegrasp_drake.experiments.benchmarks.sensor_blocks` to print them.
 """
@@ -12,10 +14,22 @@ Run `python -m tegrasp_drake.experiments.benchmarks.sensor_blocks` to print them
 import argparse
 import dataclasses
 import statistics
+import time
+
+import numpy as np
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import TrajectorySource
+from pydrake.trajectories import PiecewisePolynomial
 
 from tegrasp_drake.experiments.benchmarks.system_costs import profile_trial
 from tegrasp_drake.experiments.benchmarks.trial import time_trial
 from tegrasp_drake.experiments.scenario import LoadScenario, with_controller
+from tegrasp_drake.tactile.sample_block import BLOCK_PERIOD_S, block_samples
+from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
+
+RATE_HZ = 1000.0  # the film's samples
+BAND_SECONDS = 3.0  # simulated per slip band measurement
 
 # The systems whose updates the blocks change (system_costs.py names them by class).
 BLOCK_SYSTEMS = ("EventMatcher", "SlipVibrationBand", "MechanoreceptorChannels")
@@ -43,6 +57,9 @@ def compare_sensor_blocks(scenario, *, repeats: int = 3, profile: bool = True) -
     result["cpu_ratio"] = statistics.median(
         a["cpu_time_s"] / b["cpu_time_s"] for a, b in zip(runs["per_sample"], runs["blocks"]))
     result["block_s"] = variants["blocks"].controller.sensor_block_s
+    result["slip_band_tick_us"] = {
+        "per_sample": slip_band_tick_us(1),
+        "blocks": slip_band_tick_us(block_samples(RATE_HZ, result["block_s"] or BLOCK_PERIOD_S))}
     if profile:
         result["systems"] = {}
         for name, variant in variants.items():
@@ -54,6 +71,26 @@ def compare_sensor_blocks(scenario, *, repeats: int = 3, profile: bool = True) -
     return result
 
 
+def slip_band_tick_us(block: int, *, repeats: int = 5) -> float:
+    """Median CPU microseconds per 1 kHz tick of a random 6-axis stream filtered by
+    AddSlipVibrationBand in blocks of `block` samples (1: per tick), after 0.1 s."""
+    samples = np.random.default_rng(0).normal(size=(int(BAND_SECONDS * RATE_HZ) + 1, 6))
+    breaks = np.arange(len(samples)) / RATE_HZ
+
+    def measure():
+        builder = DiagramBuilder()
+        source = builder.AddSystem(TrajectorySource(
+            PiecewisePolynomial.ZeroOrderHold(breaks, samples.T)))
+        AddSlipVibrationBand(builder, source.get_output_port(), band_hz=80.0, window_s=0.01,
+                             sample_rate_hz=RATE_HZ, block_samples=block)
+        simulator = Simulator(builder.Build())
+        simulator.AdvanceTo(0.1)
+        start = time.process_time()
+        simulator.AdvanceTo(BAND_SECONDS - 0.01)
+        return (time.process_time() - start) / ((BAND_SECONDS - 0.11) * RATE_HZ) * 1e6
+    return statistics.median(measure() for _ in range(repeats))
+
+
 def format_sensor_blocks(result: dict) -> str:
     """The comparison as plain-text tables."""
     lines = [f"tactile samples per update: one (per_sample) or blocks of "
@@ -63,6 +100,10 @@ def format_sensor_blocks(result: dict) -> str:
     for name in ("per_sample", "blocks"):
         lines.append(f"{name:<12} {result[name]['rtf_cpu']:>8.3f} "
                      f"{result[name]['rtf_wall']:>9.3f}")
+    if "slip_band_tick_us" in result:
+        band = result["slip_band_tick_us"]
+        lines += ["", f"slip band alone, CPU per 1 kHz tick: {band['per_sample']:.1f} us per "
+                  f"sample, {band['blocks']:.1f} us in blocks"]
     if "systems" in result:
         lines += ["", "profiled (cProfile), own time per simulated second [ms/s] and calls",
                   f"{'system':<26} {'per_sample':>11} {'calls':>7} {'blocks':>8} {'calls':>7}"]
