@@ -155,7 +155,7 @@ class EventMatcher(WindowNormalizer):
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
         scores_state = {self.discrete_state_ticket(window.state)
                         for window in self.rate_windows}
-        self._scores_port = self.DeclareVectorOutputPort(
+        self.DeclareVectorOutputPort(
             "scores", len(CHANNEL_NAMES), self._calc_scores,
             prerequisites_of_calc=scores_state)
         self._match_port = self.DeclareVectorOutputPort(
