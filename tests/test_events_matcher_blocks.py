@@ -63,13 +63,15 @@ def test_blocks_equal_the_per_sample_matcher_at_every_block_boundary(sa_rate_hz,
         # The same pushes and slides in the same order: the same floats.
         per_sample, in_blocks = both[name]
         np.testing.assert_array_equal(in_blocks[ends], per_sample[ends], err_msg=name)
-    # At a block's end the block matcher reports a match when the per-sample matcher
-    # matched after any of the block's ticks (with SA at 100 Hz, the SA channels pass or
-    # fail at their own ticks within the block).
-    if sa_rate_hz == 1000.0:
-        matched_in_block = [per_tick_match[max(0, end - block + 1):end + 1].any()
-                            for end in ends]
-        np.testing.assert_array_equal(both["match"][1][ends, 0], matched_in_block)
+    # At a block's end the block matcher reports a match exactly when the per-sample
+    # matcher matched after any of the block's ticks (with SA at 100 Hz, as the SA channels
+    # passed at that tick), and holds it until the next block's end.
+    matched_in_block = [per_tick_match[max(0, end - block + 1):end + 1].any()
+                        for end in ends]
+    in_blocks_match = both["match"][1][:, 0]
+    np.testing.assert_array_equal(in_blocks_match[ends], matched_in_block)
+    for end in ends[:-1]:
+        assert np.all(in_blocks_match[end:end + block] == in_blocks_match[end])
 
 
 @pytest.mark.parametrize("sa_rate_hz", [100.0, 1000.0])

@@ -153,30 +153,30 @@ class WindowNormalizer(LeafSystem):
         samples, missing = window.layout.entering_samples(
             state, self._channels_port.Eval(context)[window.channels])
         pushed = window.layout.push(state, samples)
-        self._after_push(window, state, pushed, missing, context, True)
+        self._after_push(window, state, pushed, missing, context, context.get_time())
 
     def _sample_block(self, window: RateWindow, context, discrete_state) -> None:
         """The periodic update of a `window` in blocks: pushes the samples of its channels
         taken since the last update (the rows of its block input, oldest first), each as
         `_sample` pushes one."""
         state = discrete_state.get_mutable_value(window.state)
-        taken = samples_in_block(context.get_time(), 1.0 / window.group.rate_hz,
-                                 window.block_samples)
+        period, now = 1.0 / window.group.rate_hz, context.get_time()
+        taken = samples_in_block(now, period, window.block_samples)
         block = window.block.Eval(context).reshape(window.block_samples, -1)
         for k in range(window.block_samples - taken, window.block_samples):
             samples, missing = window.layout.entering_samples(state, block[k])
             pushed = window.layout.push(state, samples)
             self._after_push(window, state, pushed, missing, context,
-                             k == window.block_samples - taken)
+                             now - (window.block_samples - 1 - k) * period)
 
     def _after_push(self, window: RateWindow, state: np.ndarray,
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
-                    context, first: bool) -> None:
+                    context, sample_time: float) -> None:
         """For a subclass that keeps more about `window` in `state`, the group's state
         vector: update it after each push. pushed: SlidingWindowState.push's (buffer,
         offset, full); missing: SlidingWindowState.entering_samples's (None, or per channel
-        whether its sample was missing); first: whether this is the update's first push
-        (an update in blocks pushes several). Nothing to do here."""
+        whether its sample was missing); sample_time: when the sample was taken [s] (an
+        update in blocks pushes several, taken before the update). Nothing to do here."""
 
     def _calc_window(self, window: RateWindow, rows: slice, context, output):
         raw = window.layout.current(context.get_discrete_state(window.state).value())
