@@ -143,9 +143,10 @@ class EventMatcher(WindowNormalizer):
         self._histories = {}
         for group in normalizer_config.rate_groups():
             samples = block_samples(group.rate_hz, config.block_s)
+            length = (samples if samples > 1
+                      else 2 + math.ceil(2 * block_span_s * group.rate_hz))
             self._histories[group.name] = PassHistory(
-                at=correlations[group.name].size, in_blocks=samples > 1,
-                length=samples if samples > 1 else 2 + math.ceil(2 * block_span_s * group.rate_hz))
+                at=correlations[group.name].size, in_blocks=samples > 1, length=length)
         super().__init__(normalizer_config, window_states={
             name: np.concatenate([correlation.initial_state(),
                                   self._histories[name].initial_state()])
