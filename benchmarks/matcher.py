@@ -10,7 +10,8 @@ wall time per 1 kHz tick [us] (a mean, so that the SA updates every tenth tick c
 - fft_rebuild_ra_us: an RA push that recomputes the correlations exactly by FFT (at an
   event change, and at a buffer compaction every 0.1 s);
 - system_*: a Simulator running TrajectorySource -> EventMatcher, added as the grasp
-  controller adds it (add_event_matcher), wall time / ticks;
+  controller adds it (add_event_matcher), wall time / ticks; system_blocks_*: the same
+  with the RA samples taken in 10 ms blocks (EventMatcherConfig.block_s);
 - framework_tick_us: the same diagram with a Python system whose 1 kHz update only reads
   its input, i.e. the part of system_* that any Python LeafSystem pays;
 - window_normalizer_tick_us: TrajectorySource -> WindowNormalizer alone, wall time / ticks
@@ -20,6 +21,7 @@ Run `python -m benchmarks.matcher` to print them.
 """
 
 import argparse
+import dataclasses
 import statistics
 import time
 
@@ -33,6 +35,7 @@ from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.event_matcher import EventMatcherConfig, add_event_matcher
 from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.replay import channels_trajectory
+from tegrasp_drake.tactile.sample_block import BLOCK_PERIOD_S
 from tegrasp_drake.tactile.sampling import rate_groups
 from tegrasp_drake.tactile.sliding_window import SLACK_FRACTION
 from tegrasp_drake.events.streaming_correlation import StreamingCorrelator
@@ -195,10 +198,12 @@ def run_matcher_benchmark(*, repeats: int = 5, ticks: int = 2000) -> dict[str, f
         config = EventMatcherConfig(sa_rate_hz=sa_rate_hz, ra_rate_hz=RA_RATE_HZ)
         results[f"core_tick_{label}_us"] = _core_tick(sa_rate_hz, ticks, repeats)
         results[f"reference_tick_{label}_us"] = _reference_tick(sa_rate_hz, repeats)
-        results[f"system_tick_{label}_us"] = _simulated_tick(
-            lambda builder, channels: add_event_matcher(builder, events, config,
-                                                        channels=channels),
-            sa_rate_hz, seconds, repeats)
+        for name, block_s in (("system", 0.0), ("system_blocks", BLOCK_PERIOD_S)):
+            results[f"{name}_tick_{label}_us"] = _simulated_tick(
+                lambda builder, channels, block_s=block_s: add_event_matcher(
+                    builder, events, dataclasses.replace(config, block_s=block_s),
+                    channels=channels),
+                sa_rate_hz, seconds, repeats)
     results["fft_rebuild_ra_us"] = _fft_rebuild(repeats)
     results["framework_tick_us"] = _simulated_tick(
         _fed_by_channels(_InputReader), 100.0, seconds, repeats)

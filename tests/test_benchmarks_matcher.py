@@ -9,7 +9,8 @@ from benchmarks import matcher
 from benchmarks.matcher import run_matcher_benchmark
 
 FIGURES = {"core_tick_sa100_us", "reference_tick_sa100_us", "system_tick_sa100_us",
-           "core_tick_sa1k_us", "reference_tick_sa1k_us", "system_tick_sa1k_us",
+           "system_blocks_tick_sa100_us", "core_tick_sa1k_us", "reference_tick_sa1k_us",
+           "system_tick_sa1k_us", "system_blocks_tick_sa1k_us",
            "fft_rebuild_ra_us", "framework_tick_us", "window_normalizer_tick_us"}
 
 

@@ -15,6 +15,7 @@ from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.replay import channels_trajectory
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
+from tegrasp_drake.tactile.window_normalizer import ConnectWindowChannels
 
 from one_system_matcher import replay_both
 
@@ -32,7 +33,7 @@ class Harness:
         builder = DiagramBuilder()
         source = builder.AddSystem(source)
         self.matcher = builder.AddSystem(EventMatcher(events, config))
-        builder.Connect(source.get_output_port(), self.matcher.GetInputPort("channels"))
+        ConnectWindowChannels(builder, self.matcher, source.get_output_port())
         builder.ExportInput(self.matcher.GetInputPort("expected_event"), "expected_event")
         self.diagram = builder.Build()
         self.simulator = Simulator(self.diagram)
@@ -64,11 +65,13 @@ def replay(config, **options):
     return TrajectorySource(channels_trajectory(synthetic_grasp(config, **options)))
 
 
-def test_ports_have_stable_names_and_sizes():
-    matcher = EventMatcher(EVENTS)
+@pytest.mark.parametrize("block_s, ra_block", [(0.0, 1), (0.01, 10)])
+def test_ports_have_stable_names_and_sizes(block_s, ra_block):
+    matcher = EventMatcher(EVENTS, EventMatcherConfig(block_s=block_s))
     assert [(matcher.get_input_port(i).get_name(), matcher.get_input_port(i).size())
-            for i in range(matcher.num_input_ports())] == [("channels", 4),
-                                                           ("expected_event", 1)]
+            for i in range(matcher.num_input_ports())] == [
+                ("channels", 4), ("sa_block", 2), ("ra_block", 2 * ra_block),
+                ("expected_event", 1)]
     assert [(matcher.get_output_port(i).get_name(), matcher.get_output_port(i).size())
             for i in range(matcher.num_output_ports())] == [
                 ("sa_window", 2 * 50), ("ra_window", 2 * 500), ("scores", 4), ("match", 1),

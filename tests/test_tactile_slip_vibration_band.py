@@ -1,14 +1,18 @@
 import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
 from scipy import signal
+
+from sample_stream import AddSampleStream, outputs_after_updates
 
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, advance_films,
                                                     film_step_matrices, signed_peak)
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, film_parameters
-from tegrasp_drake.tactile.slip_vibration_band import (SlipVibrationBand, highpass_biquad,
-                                                       highpass_step_floats)
+from tegrasp_drake.tactile.slip_vibration_band import (AddSlipVibrationBand, SlipVibrationBand,
+                                                       biquad_block_map,
+                                                       highpass_biquad, highpass_step_floats)
 
 RATE_HZ = 1000.0
 
@@ -171,3 +175,58 @@ def test_system_equals_the_numpy_form_bit_for_bit():
         ours.append(system.GetOutputPort("slip_vibration").Eval(context).tolist())
     reference = _numpy_band_reference(samples, band_hz=80.0, window_s=0.01)
     assert ours == reference.tolist()
+
+
+def _band_per_tick_and_in_blocks(samples: np.ndarray, block: int):
+    """slip_vibration of the per-tick band and of AddSlipVibrationBand's band in blocks of
+    `block`, fed the same stream, just after each block boundary."""
+    builder = DiagramBuilder()
+    stream = AddSampleStream(builder, samples, 1.0 / RATE_HZ)
+    per_tick = builder.AddSystem(SlipVibrationBand(band_hz=80.0, window_s=0.01,
+                                                   sample_rate_hz=RATE_HZ))
+    builder.Connect(stream, per_tick.GetInputPort("pad_acceleration"))
+    in_blocks = AddSlipVibrationBand(builder, stream, band_hz=80.0, window_s=0.01,
+                                     sample_rate_hz=RATE_HZ, block_samples=block)
+    diagram = builder.Build()
+    boundaries = np.arange(0, len(samples), block) / RATE_HZ
+    return outputs_after_updates(diagram, [per_tick.GetOutputPort("slip_vibration"),
+                                           in_blocks], boundaries, period_s=1.0 / RATE_HZ)
+
+
+@pytest.mark.parametrize("block", [10, 40])  # as long and longer than the 10-sample window
+def test_band_in_blocks_equals_the_per_tick_band_at_every_block_boundary(block):
+    rng = np.random.default_rng(5)
+    film = film_reading_of_a_squeeze(25.0, 0.45, 0.6)[:400]
+    samples = np.zeros((len(film), 6))
+    samples[:, 2], samples[:, 5] = film, -0.5 * film
+    samples += rng.normal(scale=0.05, size=samples.shape)
+    samples[200:260, 2] += 30.0 * np.sin(np.arange(60))  # a burst of slip
+    per_tick, in_blocks = _band_per_tick_and_in_blocks(samples, block)
+    assert per_tick.max() > 1.0  # the burst reads
+    # lfilter sums the biquad's terms in another order than the per-tick floats: round-off
+    # of the largest sample times the few sums per output.
+    np.testing.assert_allclose(in_blocks, per_tick, rtol=0.0,
+                               atol=1e-13 * np.abs(samples).max())
+
+
+def test_band_in_blocks_is_refused_with_no_samples_or_off_the_sample_times():
+    with pytest.raises(ValueError, match="block_samples 0"):
+        SlipVibrationBand(band_hz=80.0, window_s=0.01, sample_rate_hz=RATE_HZ, block_samples=0)
+    with pytest.raises(ValueError, match="25 samples"):  # 3 x 0.025 s != 75 x 0.001 s
+        SlipVibrationBand(band_hz=80.0, window_s=0.01, sample_rate_hz=RATE_HZ,
+                          block_samples=25)
+
+
+def test_block_map_equals_the_biquad_run_sample_by_sample_from_any_delays():
+    rng = np.random.default_rng(6)
+    coefficients = highpass_biquad(80.0, RATE_HZ)
+    x = rng.normal(size=(10, 6)) * 20.0
+    z1, z2 = rng.normal(size=6), rng.normal(size=6)
+    stacked = biquad_block_map(coefficients, 10) @ np.vstack([x, z1, z2])
+    outputs = []
+    for row in x:
+        y, z1, z2 = highpass_step(coefficients, row, z1, z2)
+        outputs.append(y)
+    # Sums of about 12 terms of up to |x| 60: round-off.
+    np.testing.assert_allclose(stacked[:10], outputs, rtol=0.0, atol=1e-12)
+    np.testing.assert_allclose(stacked[10:], [z1, z2], rtol=0.0, atol=1e-12)

@@ -19,6 +19,7 @@ This module imports no Drake: the sweep spec (parsed without Drake) reads the na
 import dataclasses
 import typing
 
+
 # What triggers Lift-Load and Avoid: the heuristic thresholds below (the
 # paper's, the default) or, for each corrective event named in
 # controller.memorized_corrective_events, its memorized event (recording/
@@ -142,6 +143,12 @@ class GraspControllerConfig:
     """The grasp state machine's settings, shared by the closed-loop controllers: the tick,
     the contact force and the corrective actions' triggers and numbers."""
     update_period_s: float = 0.005  # state machine tick [s]
+    # The tactile systems that take the 1 kHz film samples (the event matchers' RA windows,
+    # the slip band) process them in blocks of this long [s], one Python update per block
+    # (tactile/sample_block.py: BLOCK_PERIOD_S, 10 ms, about one AD7147 frame); 0 (the
+    # default): one update per sample. Blocks save about 1 % of a trial's CPU time and act on
+    # each event up to one block later (docs/sweeps.md), so results stay per-sample.
+    sensor_block_s: float = 0.0
     # A finger touches when its SA exceeds contact_force_n [N].
     contact_force_n: float = 0.3
     # Re-Reach: one finger alone in contact for one_sided_contact_s [s], the gripper closed

@@ -29,6 +29,7 @@ from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetecto
 from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
+from tegrasp_drake.tactile.sample_block import block_samples
 from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
@@ -179,7 +180,7 @@ def _add_detector(builder, config, plan, rates_hz, events, channels):
             sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
             event_thresholds=config.event_thresholds(
                 dict(gripper_hand(plan.gripper_model).ensemble_thresholds)),
-            sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1])
+            sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s)
         return (add_event_matcher(builder, events, matcher_config, channels=channels),
                 Trigger.MEMORIZED_EVENT)
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
@@ -196,12 +197,14 @@ def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channe
         raise ValueError("AddGraspController: controller.memorized_corrective_events names "
                          f"{list(config.memorized_corrective_events)}: give their events "
                          "(corrective_events=load_corrective_events(scenario))")
+    from tegrasp_drake.tactile.window_normalizer import ConnectWindowChannels
     events = {t: corrective_events[t] for t in config.memorized_corrective_events}
     matcher = builder.AddNamedSystem("corrective_matcher", EventMatcher(
         events, EventMatcherConfig(event_thresholds={
             t: pair for t, pair in config.corrective_event_thresholds().items()
-            if t in events}, sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1])))
-    builder.Connect(channels, matcher.GetInputPort("channels"))
+            if t in events}, sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1],
+            block_s=config.sensor_block_s)))
+    ConnectWindowChannels(builder, matcher, channels)
     return matcher
 
 
@@ -266,14 +269,17 @@ def AddGraspController(builder, *, controller, plan: GraspPlan, station, arm,
         builder.Connect(station.GetOutputPort(ports.pad_acceleration(finger)),
                         accelerations.get_input_port(k))
     builder.Connect(accelerations.get_output_port(), machine.GetInputPort("pad_acceleration"))
-    # On hardware the band filters the device's own samples (see SlipVibrationBand).
+    # On hardware the band filters the device's own samples (see SlipVibrationBand), in
+    # simulation the film's samples in blocks.
     samples = (station.GetOutputPort(ports.TACTILE_PAD_ACCELERATION_SAMPLES)
                if station.HasOutputPort(ports.TACTILE_PAD_ACCELERATION_SAMPLES) else None)
     builder.Connect(AddSlipVibrationBand(builder, accelerations.get_output_port(),
                                          band_hz=config.slip_band_hz,
                                          window_s=config.slip_window_s,
                                          sample_rate_hz=sample_rates_hz[1],
-                                         pad_acceleration_samples=samples),
+                                         pad_acceleration_samples=samples,
+                                         block_samples=block_samples(
+                                             sample_rates_hz[1], config.sensor_block_s)),
                     machine.GetInputPort("slip_vibration"))
     taxels = builder.AddNamedSystem("taxel_forces_mux", Multiplexer([TAXELS_PER_PAD] * 2))
     for k, finger in enumerate(FINGER_NAMES):

@@ -3,6 +3,7 @@ expected memorized event: a WindowNormalizer's 0.5 s windows (Sec. III-A) scored
 (Sec. III-B) in the same update that takes each sample."""
 
 import dataclasses
+import math
 from collections.abc import Iterable, Mapping
 
 import numpy as np
@@ -12,9 +13,10 @@ from tegrasp_drake.events.correlation import normalize_by_max, template_is_flat
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.streaming_correlation import SlidingCorrelation
 from tegrasp_drake.events.transitions import NO_EVENT, transition_order
+from tegrasp_drake.tactile.sample_block import block_samples
 from tegrasp_drake.tactile.sampling import resample_window
 from tegrasp_drake.tactile.window_normalizer import (
-    RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
+    ConnectWindowChannels, RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
 
 
 @dataclasses.dataclass
@@ -33,6 +35,10 @@ class EventMatcherConfig:
     min_contrast: float = 0.25
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0
+    # Block [s] in which a fast rate's samples are scored, one update per block (0: one
+    # per sample; WindowNormalizerConfig.block_s). A match then shows at the block's end,
+    # at most one block later than per sample.
+    block_s: float = 0.0
 
 
 def event_templates(event: MemorizedEvent, channels: tuple[int, ...],
@@ -46,7 +52,8 @@ def window_normalizer_config(events: Mapping[str, MemorizedEvent],
                              config: EventMatcherConfig) -> WindowNormalizerConfig:
     """The windows an EventMatcher scores: the events' window_s at the config's rates."""
     return WindowNormalizerConfig(window_s=next(iter(events.values())).window_s,
-                                  sa_rate_hz=config.sa_rate_hz, ra_rate_hz=config.ra_rate_hz)
+                                  sa_rate_hz=config.sa_rate_hz, ra_rate_hz=config.ra_rate_hz,
+                                  block_s=config.block_s)
 
 
 class EventMatcher(WindowNormalizer):
@@ -60,6 +67,12 @@ class EventMatcher(WindowNormalizer):
     are the normaliser's, held once in the Context, each followed in its rate's state vector
     by the streaming correlation of the window (SlidingCorrelation); each tick of a rate
     takes the sample into the window and slides the scores in one update (`_after_push`).
+    After each sample a rate keeps whether its channels passed their thresholds (its pass
+    history: the last samples' time, expected event and pass). A rate in blocks
+    (config.block_s) slides its scores sample by sample through the block in one update;
+    `match` then asks whether the per-sample matcher would have matched after any of the
+    block's samples: each of those samples passed and every other rate's latest sample at
+    or before it passed too.
 
     Constructed with one object's memorized events; their grasp order (transitions.py)
     numbers them 0, 1, ... (see `transition_indices`). Every tick of a channel's rate, the
@@ -74,6 +87,8 @@ class EventMatcher(WindowNormalizer):
         name: EventMatcher
         input_ports:
         - channels
+        - sa_block (optional)
+        - ra_block (optional)
         - expected_event
         output_ports:
         - sa_window
@@ -85,6 +100,8 @@ class EventMatcher(WindowNormalizer):
     Ports:
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), sampled at
             config.sa_rate_hz (SA) and config.ra_rate_hz (RA).
+        sa_block, ra_block: a rate's samples in blocks (WindowNormalizer); connected, with
+            channels, by ConnectWindowChannels.
         expected_event: [index] of the event to check, or -1 for none.
         sa_window, ra_window: the max-normalised windows that are scored (WindowNormalizer).
         scores: the four channels' scores in [-1, 1]; 0 when no event is expected, before
@@ -93,6 +110,10 @@ class EventMatcher(WindowNormalizer):
         match: [1.0] when every channel's score exceeds its threshold and the scores are
             for the event now expected, else [0.0]. It depends directly on expected_event,
             so one tick after the expected event changes it cannot report the old event.
+            With a rate in blocks, [1.0] when the per-sample matcher would have matched
+            after any sample of the last block (scored against the event expected at the
+            block's end), held until the next block: a match is reported at most one block
+            after the per-sample matcher's and none is missed between two block ends.
         scored_event: [index] of the event the scores refer to, -1 for none or while the
             SA and RA scores refer to different events.
     """
@@ -115,8 +136,21 @@ class EventMatcher(WindowNormalizer):
             correlations[group.name] = SlidingCorrelation(
                 templates, min_contrast=config.min_contrast, window=window_layout(group).window)
         self._check_matchable(ordered_events, templates_by_event, config.min_contrast)
+        # After each rate's correlation, its pass history (PassHistory): as many samples as
+        # a block holds, or, for a rate taken per sample, as many as span two blocks.
+        block_span_s = max(block_samples(g.rate_hz, config.block_s) / g.rate_hz
+                           for g in normalizer_config.rate_groups())
+        self._histories = {}
+        for group in normalizer_config.rate_groups():
+            samples = block_samples(group.rate_hz, config.block_s)
+            length = (samples if samples > 1
+                      else 2 + math.ceil(2 * block_span_s * group.rate_hz))
+            self._histories[group.name] = PassHistory(
+                at=correlations[group.name].size, in_blocks=samples > 1, length=length)
         super().__init__(normalizer_config, window_states={
-            name: correlation.initial_state() for name, correlation in correlations.items()})
+            name: np.concatenate([correlation.initial_state(),
+                                  self._histories[name].initial_state()])
+            for name, correlation in correlations.items()})
         self._correlations = correlations
         self._events = ordered_events
         self._transitions = tuple(e.transition for e in self._events)
@@ -127,13 +161,17 @@ class EventMatcher(WindowNormalizer):
             [sa] * len(SA_CHANNELS) + [ra] * len(RA_CHANNELS) for sa, ra in (
                 config.event_thresholds.get(t, (config.sa_threshold, config.ra_threshold))
                 for t in self._transitions)])
+        # Per rate group, per event: the thresholds of the group's channels (floats).
+        self._group_thresholds = {window.group.name: [
+            row[window.channels].tolist() for row in self._thresholds]
+            for window in self.rate_windows}
         # expected_event values accepted, as the port holds them -> event index.
         self._event_of_value = {float(event): event
                                 for event in range(NO_EVENT, len(self._events))}
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
         scores_state = {self.discrete_state_ticket(window.state)
                         for window in self.rate_windows}
-        self._scores_port = self.DeclareVectorOutputPort(
+        self.DeclareVectorOutputPort(
             "scores", len(CHANNEL_NAMES), self._calc_scores,
             prerequisites_of_calc=scores_state)
         self._match_port = self.DeclareVectorOutputPort(
@@ -203,12 +241,18 @@ class EventMatcher(WindowNormalizer):
 
     def _after_push(self, window: RateWindow, state: np.ndarray,
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
-                    context) -> None:
+                    context, sample_time: float) -> None:
         """Slides the window's correlation, after the window in `state`, by the samples the
-        WindowNormalizer just pushed (a missing one scores its channel 0 for one window)."""
+        WindowNormalizer just pushed (a missing one scores its channel 0 for one window),
+        and adds whether the group's channels passed to its pass history."""
         rows, offset, full = pushed  # (a star call costs more than this unpacking)
-        self._correlations[window.group.name].slide(state, rows, offset, full,
-                                                    self._expected_event(context), missing)
+        name = window.group.name
+        expected = self._expected_event(context)
+        scores = self._correlations[name].slide(state, rows, offset, full, expected, missing)
+        passed = (expected != NO_EVENT and full and all(
+            score > threshold for score, threshold in
+            zip(scores.tolist(), self._group_thresholds[name][expected])))
+        self._histories[name].add(state, sample_time, expected, passed)
 
     def _correlation_states(self, context):
         """(window, its correlation, their state vector) per rate group."""
@@ -232,10 +276,63 @@ class EventMatcher(WindowNormalizer):
 
     def _calc_match(self, context, output):
         expected = self._expected_event(context)
-        scores = self._scores_port.Eval(context)
         matched = (expected != NO_EVENT and self._scored_event(context) == expected
-                   and bool(np.all(scores > self._thresholds[expected])))
+                   and self._matched_at_a_sample(context, expected))
         output.SetAtIndex(0, 1.0 if matched else 0.0)
+
+    def _matched_at_a_sample(self, context, expected: int) -> bool:
+        """Whether every rate passed for `expected` at one instant: a sample of the last
+        block of a rate in blocks (every other rate's latest sample at or before it), or,
+        with no rate in blocks, the latest samples of all."""
+        entries = {window.group.name: self._histories[window.group.name].entries(state)
+                   for window, _, state in self._correlation_states(context)}
+        if not all(entries.values()):
+            return False  # a rate has taken no sample yet
+        blocked = [name for name, history in self._histories.items() if history.in_blocks]
+        instants = ([time for name in blocked for time, _, _ in entries[name]] if blocked
+                    else [max(rows[-1][0] for rows in entries.values())])
+        return any(all(passed_at(rows, instant, expected) for rows in entries.values())
+                   for instant in instants)
+
+
+@dataclasses.dataclass(frozen=True)
+class PassHistory:
+    """Where a rate's state vector keeps its last `length` samples' [time [s], expected
+    event, passed (0 or 1)], oldest first, from entry `at` on; in_blocks: the rate is taken
+    in blocks of `length` samples (the history is then its last block)."""
+    at: int
+    in_blocks: bool
+    length: int
+
+    def initial_state(self) -> np.ndarray:
+        """No sample yet: times far in the past, no event, not passed."""
+        return np.tile([-math.inf, float(NO_EVENT), 0.0], self.length)
+
+    def add(self, state: np.ndarray, time: float, event: int, passed: bool) -> None:
+        """Appends a sample's entry to the history in `state`, in place."""
+        rows = state[self.at:self.at + 3 * self.length].reshape(self.length, 3)
+        rows[:-1] = rows[1:]
+        rows[-1] = (time, event, 1.0 if passed else 0.0)
+
+    def entries(self, state: np.ndarray) -> list[tuple[float, int, bool]]:
+        """The history's (time, event, passed), oldest first, samples taken only."""
+        rows = state[self.at:self.at + 3 * self.length].reshape(self.length, 3).tolist()
+        return [(t, int(e), p > 0.0) for t, e, p in rows if t > -math.inf]
+
+
+# Sample times of two rates that coincide are computed apart (k / rate in the simulator, a
+# block's end less whole periods here): equal within this [s].
+_SAME_INSTANT_S = 1e-7
+
+
+def passed_at(entries, instant: float, event: int) -> bool:
+    """Whether the latest of a rate's history `entries` taken at or before `instant` [s]
+    passed for `event` (False when none was)."""
+    latest = None
+    for time, scored, passed in entries:
+        if time <= instant + _SAME_INSTANT_S:
+            latest = (scored, passed)
+    return latest is not None and latest[0] == event and latest[1]
 
 
 def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
@@ -243,11 +340,12 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
                       channels=None) -> EventMatcher:
     """Adds the paper's Fig. 3 comparison to `builder`: an EventMatcher (`event_matcher`).
 
-    channels: an output port of the four channels, connected to its `channels` input (else
-    the caller connects it). Its `expected_event` input and its `scores`, `match` and
-    `scored_event` outputs are the caller's to connect.
+    channels: an output port of the four channels, connected to its `channels` input and,
+    for a config in blocks, to its block inputs through sample registers
+    (ConnectWindowChannels); else the caller connects them. Its `expected_event` input and
+    its `scores`, `match` and `scored_event` outputs are the caller's to connect.
     """
     matcher = builder.AddNamedSystem("event_matcher", EventMatcher(events, config))
     if channels is not None:
-        builder.Connect(channels, matcher.GetInputPort("channels"))
+        ConnectWindowChannels(builder, matcher, channels)
     return matcher

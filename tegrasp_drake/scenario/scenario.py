@@ -191,6 +191,8 @@ def _check_units(section, source: str, prefix: str) -> None:
 def _check_state_machine(controller: GraspControllerConfig, source: str) -> None:
     require(controller.update_period_s > 0, source, "controller.update_period_s",
             "must be positive [s]", controller.update_period_s)
+    require(controller.sensor_block_s >= 0, source, "controller.sensor_block_s",
+            "must be zero (one update per sample) or positive [s]", controller.sensor_block_s)
     for k, name in enumerate(controller.memorized_corrective_events):
         require(name in CORRECTIVE_TRANSITIONS, source,
                 f"controller.memorized_corrective_events[{k}]",
@@ -245,6 +247,18 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
             "must be positive [kg] (the fingertip's moving mass)", vibration.mode_mass_kg)
     require(vibration.mode_damping_ratio >= 0, source, "vibration.mode_damping_ratio",
             "must be zero or positive", vibration.mode_damping_ratio)
+    block_s = getattr(scenario.controller, "sensor_block_s", 0.0)
+    if block_s > 0 and vibration.sample_rate_hz > 0:
+        from tegrasp_drake.tactile.sample_block import block_samples, block_update_period
+        samples = block_samples(vibration.sample_rate_hz, block_s)
+        try:
+            if samples > 1:
+                block_update_period(1.0 / vibration.sample_rate_hz, samples)
+        except ValueError:
+            require(False, source, "controller.sensor_block_s",
+                    f"gives blocks of {samples} samples at vibration.sample_rate_hz "
+                    f"{vibration.sample_rate_hz:g}, which do not fall on the sample times in "
+                    "floating point; choose a block such as 0.01 or 0.016 s", block_s)
     disturbance = scenario.disturbance
     force = math.hypot(*disturbance.hit_force_n) if len(disturbance.hit_force_n) == 3 else 0
     require(force <= MAX_HIT_FORCE_N, source, "disturbance.hit_force_n",

@@ -14,13 +14,22 @@ threshold.
     y = HP(a), per axis: a second-order Butterworth high-pass at `band_hz`
     slip_vibration_i = sqrt(mean over the last `window_s` of |y_i|^2)   [m/s^2]
 
-The filter runs once per device sample. In simulation that is once per tick; on hardware
-the samples arrive in bursts and the receiver holds or merges them to give one value per
-tick, and a held value followed by a jump is a step the high-pass rings on (beside a CPU
-hog, bursts of a few ticks rang above the slip threshold during a smooth lift). So when
-the `pad_acceleration_samples` input is connected (the hardware station's port of that
-name), each tick filters exactly the samples the device sent since the last one, in order,
-and a tick with none leaves the band as it was.
+The filter runs once per device sample, in one of three modes:
+
+- per tick (`block_samples` 1): each update reads `pad_acceleration`;
+- in blocks (`block_samples` B > 1, simulation): every B samples one update filters the
+  block of the last B samples that a sample register (tactile/sample_block.py) kept on
+  `pad_acceleration_block`, by one matrix product: the biquad is linear, so its B outputs
+  and its delays after the block are a fixed matrix times the block's samples and the
+  delays before it (`biquad_block_map`); at each block boundary the band equals the
+  per-tick band (to round-off), between boundaries it holds the last block's value, at
+  most B - 1 samples old;
+- device samples (hardware): the samples arrive in bursts and the receiver holds or merges
+  them to give one value per tick, and a held value followed by a jump is a step the
+  high-pass rings on (beside a CPU hog, bursts of a few ticks rang above the slip threshold
+  during a smooth lift). So when the `pad_acceleration_samples` input is connected (the
+  hardware station's port of that name), each tick filters exactly the samples the device
+  sent since the last one, in order, and a tick with none leaves the band as it was.
 
 A slip slower than band_hz x 0.5 mm (40 mm/s at 80 Hz) is attenuated at 12 dB per octave:
 the trigger sees fast slips (the object falling or the pads sliding along it at lift
@@ -33,6 +42,8 @@ from pydrake.systems.framework import BasicVector, LeafSystem
 from scipy import signal
 
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.tactile.sample_block import (AddSampleRegister, block_update_period,
+                                               samples_in_block)
 
 _AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
 
@@ -45,6 +56,29 @@ def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
                          f"frequency {sample_rate_hz / 2} Hz of the RA samples")
     sos = signal.butter(2, band_hz, "highpass", fs=sample_rate_hz, output="sos")[0]
     return np.array([sos[0], sos[1], sos[2], sos[4], sos[5]])
+
+
+def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
+    """The biquad (transposed direct form II, [b0, b1, b2, a1, a2]) over `samples` samples
+    as one matrix M ((samples + 2) x (samples + 2)): [y; z_after] = M [x; z_before], with x
+    and y the block's inputs and outputs (oldest first) and z = [z1, z2] its delays (each
+    column an axis)."""
+    b0, b1, b2, a1, a2 = coefficients
+    A = np.array([[-a1, 1.0], [-a2, 0.0]])  # the delays' update, [z1, z2]' = A z + B x
+    B = np.array([b1 - a1 * b0, b2 - a2 * b0])
+    M = np.zeros((samples + 2, samples + 2))
+    power = np.eye(2)  # A^k
+    for k in range(samples):
+        # y_k = b0 x_k + z1_k; z_k = A^k z_0 + sum_{i<k} A^(k-1-i) B x_i.
+        M[k, k] = b0
+        M[k, samples:] = power[0]
+        for i in range(k):
+            M[k, i] = (np.linalg.matrix_power(A, k - 1 - i) @ B)[0]
+        power = A @ power
+    for i in range(samples):
+        M[samples:, i] = np.linalg.matrix_power(A, samples - 1 - i) @ B
+    M[samples:, samples:] = power
+    return M
 
 
 def highpass_step_floats(coefficients: tuple[float, ...], x: list[float],
@@ -68,6 +102,7 @@ class SlipVibrationBand(LeafSystem):
         input_ports:
         - pad_acceleration
         - pad_acceleration_samples (optional)
+        - pad_acceleration_block (optional)
         output_ports:
         - slip_vibration
 
@@ -77,24 +112,43 @@ class SlipVibrationBand(LeafSystem):
         pad_acceleration_samples: (abstract, an (n, 6) array) when connected, the rows of
             pad_acceleration the device sampled since the last tick, oldest first; then
             pad_acceleration is not read.
+        pad_acceleration_block: (block_samples x 6) the last block_samples rows of
+            pad_acceleration, oldest first (a sample register's output); read, in place of
+            pad_acceleration, when block_samples > 1.
         slip_vibration: (2) [left, right] RMS of the high-passed vibration over the last
             window_s [m/s^2].
 
-    State (discrete, updated every 1 / sample_rate_hz): the filter's two delays per axis
-    (12) and the last window_s of squared magnitudes per pad (2 x n).
+    State (discrete, updated every block_samples / sample_rate_hz): the filter's two delays
+    per axis (12) and the last window_s of squared magnitudes per pad (2 x n).
     """
 
-    def __init__(self, *, band_hz: float, window_s: float, sample_rate_hz: float):
+    def __init__(self, *, band_hz: float, window_s: float, sample_rate_hz: float,
+                 block_samples: int = 1):
         super().__init__()
+        if block_samples < 1:
+            raise ValueError(f"block_samples {block_samples} must be 1 or more")
+        self._block_samples = block_samples
+        self._sample_period = 1.0 / sample_rate_hz
         self._coefficients = highpass_biquad(band_hz, sample_rate_hz)
         self._coefficient_floats = tuple(self._coefficients.tolist())
+        # The filter over k samples, for each k a block update may take (samples_in_block).
+        self._block_maps = ([None] + [biquad_block_map(self._coefficients, k)
+                                      for k in range(1, block_samples + 1)]
+                            if block_samples > 1 else None)
         self._window = max(1, round(window_s * sample_rate_hz))
         self._input = self.DeclareVectorInputPort("pad_acceleration", _AXES)
         self._samples = self.DeclareAbstractInputPort(
             "pad_acceleration_samples", AbstractValue.Make(np.zeros((0, _AXES))))
+        self._block = self.DeclareVectorInputPort("pad_acceleration_block",
+                                                  block_samples * _AXES)
         size = 2 * _AXES + len(FINGER_NAMES) * self._window
         self._state = self.DeclareDiscreteState(BasicVector(np.zeros(size)))
-        self.DeclarePeriodicDiscreteUpdateEvent(1.0 / sample_rate_hz, 0.0, self._update)
+        if block_samples > 1:
+            self.DeclarePeriodicDiscreteUpdateEvent(
+                block_update_period(self._sample_period, block_samples), 0.0,
+                self._update_block)
+        else:
+            self.DeclarePeriodicDiscreteUpdateEvent(self._sample_period, 0.0, self._update)
         self.DeclareVectorOutputPort("slip_vibration", len(FINGER_NAMES), self._calc,
                                      prerequisites_of_calc={self.xd_ticket()})
 
@@ -106,6 +160,17 @@ class SlipVibrationBand(LeafSystem):
                 self._filter_sample(s, x.tolist())
         else:
             self._filter_sample(s, self._input.Eval(context).tolist())
+
+    @property
+    def block_samples(self) -> int:
+        """Samples per update: 1 per tick, more in blocks (the module docstring)."""
+        return self._block_samples
+
+    def _update_block(self, context, discrete_state):
+        s = discrete_state.get_mutable_value(self._state)
+        taken = samples_in_block(context.get_time(), self._sample_period, self._block_samples)
+        block = self._block.Eval(context).reshape(self._block_samples, _AXES)[-taken:]
+        filter_block(self._block_maps[taken], block, s, self._window)
 
     def _filter_sample(self, s: np.ndarray, x: list[float]):
         """Advances the state vector s by one sample x (6) [m/s^2], in place. The filter
@@ -126,16 +191,45 @@ class SlipVibrationBand(LeafSystem):
         output.SetFromVector(np.sqrt(mean))
 
 
+def filter_block(block_map: np.ndarray, block: np.ndarray, s: np.ndarray,
+                 window: int) -> None:
+    """Advances a SlipVibrationBand's state vector s by the rows of `block` (k x 6, oldest
+    first) [m/s^2], in place: the biquad over the block (block_map: biquad_block_map of k
+    samples) from the delays in s, then each row's squared magnitude per pad into the
+    window of the last `window`."""
+    k = len(block)
+    stacked = block_map @ np.vstack([block, s[:2 * _AXES].reshape(2, _AXES)])
+    y = stacked[:k]
+    s[:2 * _AXES] = stacked[k:].ravel()
+    squares = s[2 * _AXES:].reshape(len(FINGER_NAMES), window)
+    per_pad = y.reshape(len(y), len(FINGER_NAMES), 3)
+    new = np.einsum("kpi,kpi->pk", per_pad, per_pad)  # |y|^2 per pad (rows) and sample
+    entering = min(len(y), window)
+    squares[:, :window - entering] = squares[:, entering:]
+    squares[:, window - entering:] = new[:, len(y) - entering:]
+
+
 def AddSlipVibrationBand(builder, pad_acceleration, *, band_hz: float, window_s: float,
-                         sample_rate_hz: float, pad_acceleration_samples=None):
+                         sample_rate_hz: float, pad_acceleration_samples=None,
+                         block_samples: int = 1):
     """Adds a SlipVibrationBand fed by `pad_acceleration` (an output port, 6) and, when
-    given, `pad_acceleration_samples` (an abstract output port, see the class); returns
-    its slip_vibration output port."""
+    given, `pad_acceleration_samples` (an abstract output port, see the class: the band
+    then runs per tick on the device's samples); else, with block_samples > 1, in blocks
+    of that many samples, kept by a sample register (`slip_vibration_block`) on
+    `pad_acceleration`. Returns its slip_vibration output port."""
+    if pad_acceleration_samples is not None:
+        block_samples = 1
     band = builder.AddNamedSystem("slip_vibration_band", SlipVibrationBand(
-        band_hz=band_hz, window_s=window_s, sample_rate_hz=sample_rate_hz))
+        band_hz=band_hz, window_s=window_s, sample_rate_hz=sample_rate_hz,
+        block_samples=block_samples))
     builder.Connect(pad_acceleration, band.GetInputPort("pad_acceleration"))
     if pad_acceleration_samples is not None:
         builder.Connect(pad_acceleration_samples,
                         band.GetInputPort("pad_acceleration_samples"))
+    elif block_samples > 1:
+        builder.Connect(AddSampleRegister(builder, pad_acceleration, samples=block_samples,
+                                          sample_period_s=1.0 / sample_rate_hz,
+                                          name="slip_vibration_block"),
+                        band.GetInputPort("pad_acceleration_block"))
     return band.GetOutputPort("slip_vibration")
 

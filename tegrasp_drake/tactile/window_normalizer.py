@@ -9,16 +9,21 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
+from tegrasp_drake.tactile.sample_block import (AddSampleRegister, block_samples,
+                                               block_update_period, samples_in_block)
 from tegrasp_drake.tactile.sampling import RateGroup, rate_groups
 from tegrasp_drake.tactile.sliding_window import SlidingWindowState, default_sliding_window
 
 
 @dataclasses.dataclass
 class WindowNormalizerConfig:
-    """Window length [s] and the rates [Hz] at which SA and RA channels are sampled."""
+    """Window length [s], the rates [Hz] at which SA and RA channels are sampled, and the
+    block [s] in which a rate's samples are taken (0: one update per sample; else each rate
+    takes block_samples(rate, block_s) samples per update, tactile/sample_block.py)."""
     window_s: float = 0.5
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0
+    block_s: float = 0.0
 
     def rate_groups(self) -> tuple[RateGroup, ...]:
         """The channels sampled together, one periodic update per group."""
@@ -38,6 +43,8 @@ class RateWindow:
     layout: SlidingWindowState  # how the state holds the window (window_layout)
     state: object  # DiscreteStateIndex of the group's state vector
     channels: slice  # the group's entries of the four channels
+    block_samples: int  # samples per update (1: one per sample period)
+    block: object  # the `<group>_block` input port (the last block_samples samples)
 
 
 class WindowNormalizer(LeafSystem):
@@ -45,7 +52,12 @@ class WindowNormalizer(LeafSystem):
     max-normalised (the paper's Fig. 3, Sec. III-A).
 
     Periodic discrete updates sample the SA entries of `channels` at sa_rate_hz and the RA
-    entries at ra_rate_hz (one update for all four when the rates match). Before a full
+    entries at ra_rate_hz (one update for all four when the rates match). With
+    config.block_s > 0, a rate fast enough to have several samples per block (the 1 kHz RA
+    channels in 10 ms blocks) is instead updated once per block from the `<group>_block`
+    input, which a sample register on `channels` feeds (ConnectWindowChannels): each update
+    pushes the block's samples in order, so at each block boundary the windows equal the
+    per-sample windows; between boundaries they are up to one block old. Before a full
     window has been sampled, the older part of the window is zero. A non-finite sample is
     missing: the channel's previous sample enters instead
     (SlidingWindowState.entering_samples).
@@ -60,12 +72,17 @@ class WindowNormalizer(LeafSystem):
         name: WindowNormalizer
         input_ports:
         - channels
+        - sa_block (optional)
+        - ra_block (optional)
         output_ports:
         - sa_window
         - ra_window
 
     Ports:
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2).
+        sa_block, ra_block (sa_ra_block when the rates match): the last block_samples
+            samples of the rate's channels, oldest first (block_samples x channels, in
+            channels' order); read instead of `channels` by a rate in blocks.
         sa_window: 2 * N_sa values, [sa_left window, sa_right window], oldest first, each
             divided by its max |value| (an all-zero window stays zero); unitless.
         ra_window: 2 * N_ra values, likewise for ra_left, ra_right.
@@ -90,10 +107,18 @@ class WindowNormalizer(LeafSystem):
             if len(initial) < layout.size or np.any(initial[:layout.size]):
                 raise ValueError(f"the initial '{group.name}' state must start with an empty "
                                  f"window of {layout.size} entries")
+            samples = block_samples(group.rate_hz, config.block_s)
             window = RateWindow(group, layout, self.DeclareDiscreteState(initial),
-                                slice(group.channels[0], group.channels[-1] + 1))
-            self.DeclarePeriodicDiscreteUpdateEvent(1.0 / group.rate_hz, 0.0,
-                                                    functools.partial(self._sample, window))
+                                slice(group.channels[0], group.channels[-1] + 1), samples,
+                                self.DeclareVectorInputPort(f"{group.name}_block",
+                                                            samples * len(group.channels)))
+            if samples > 1:
+                self.DeclarePeriodicDiscreteUpdateEvent(
+                    block_update_period(1.0 / group.rate_hz, samples), 0.0,
+                    functools.partial(self._sample_block, window))
+            else:
+                self.DeclarePeriodicDiscreteUpdateEvent(1.0 / group.rate_hz, 0.0,
+                                                        functools.partial(self._sample, window))
             rate_windows.append(window)
             for kind, kind_channels in (("sa", SA_CHANNELS), ("ra", RA_CHANNELS)):
                 if kind_channels[0] in group.channels:
@@ -128,16 +153,47 @@ class WindowNormalizer(LeafSystem):
         samples, missing = window.layout.entering_samples(
             state, self._channels_port.Eval(context)[window.channels])
         pushed = window.layout.push(state, samples)
-        self._after_push(window, state, pushed, missing, context)
+        self._after_push(window, state, pushed, missing, context, context.get_time())
+
+    def _sample_block(self, window: RateWindow, context, discrete_state) -> None:
+        """The periodic update of a `window` in blocks: pushes the samples of its channels
+        taken since the last update (the rows of its block input, oldest first), each as
+        `_sample` pushes one."""
+        state = discrete_state.get_mutable_value(window.state)
+        period, now = 1.0 / window.group.rate_hz, context.get_time()
+        taken = samples_in_block(now, period, window.block_samples)
+        block = window.block.Eval(context).reshape(window.block_samples, -1)
+        for k in range(window.block_samples - taken, window.block_samples):
+            samples, missing = window.layout.entering_samples(state, block[k])
+            pushed = window.layout.push(state, samples)
+            self._after_push(window, state, pushed, missing, context,
+                             now - (window.block_samples - 1 - k) * period)
 
     def _after_push(self, window: RateWindow, state: np.ndarray,
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
-                    context) -> None:
+                    context, sample_time: float) -> None:
         """For a subclass that keeps more about `window` in `state`, the group's state
         vector: update it after each push. pushed: SlidingWindowState.push's (buffer,
         offset, full); missing: SlidingWindowState.entering_samples's (None, or per channel
-        whether its sample was missing). Nothing to do here."""
+        whether its sample was missing); sample_time: when the sample was taken [s] (an
+        update in blocks pushes several, taken before the update). Nothing to do here."""
 
     def _calc_window(self, window: RateWindow, rows: slice, context, output):
         raw = window.layout.current(context.get_discrete_state(window.state).value())
         output.SetFromVector(np.ravel(normalize_by_max(raw[rows])))
+
+
+def ConnectWindowChannels(builder, normalizer: WindowNormalizer, channels) -> None:
+    """Connects `channels` (an output port of the four channels) to a WindowNormalizer (or
+    EventMatcher) already in `builder`: to its `channels` input and, for each rate in blocks,
+    through a sample register of the rate's channels (`<system name>_<group>_block`) to its
+    `<group>_block` input."""
+    builder.Connect(channels, normalizer.GetInputPort("channels"))
+    for window in normalizer.rate_windows:
+        if window.block_samples > 1:
+            builder.Connect(
+                AddSampleRegister(builder, channels, samples=window.block_samples,
+                                  sample_period_s=1.0 / window.group.rate_hz,
+                                  entries=window.group.channels,
+                                  name=f"{normalizer.get_name()}_{window.group.name}_block"),
+                window.block)
