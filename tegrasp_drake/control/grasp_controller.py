@@ -178,7 +178,8 @@ def _add_detector(builder, scenario, events, channels):
             event_thresholds=config.event_thresholds(
                 dict(gripper_hand(scenario.gripper.model).ensemble_thresholds)),
             sa_rate_hz=scenario.tactile.sample_rate_hz,
-            ra_rate_hz=scenario.vibration.sample_rate_hz)
+            ra_rate_hz=scenario.vibration.sample_rate_hz,
+            ra_envelope_hz=config.ra_envelope_hz)
         events = events if events is not None else load_controller_events(scenario)
         return (add_event_matcher(builder, events, matcher_config, channels=channels),
                 Trigger.MEMORIZED_EVENT)

@@ -10,6 +10,7 @@ import numpy as np
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import normalize_by_max, template_is_flat
 from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.events.ra_envelope import ra_enveloped
 from tegrasp_drake.events.streaming_correlation import SlidingCorrelation
 from tegrasp_drake.events.transitions import NO_EVENT, transition_order
 from tegrasp_drake.tactile.sampling import resample_window
@@ -33,6 +34,9 @@ class EventMatcherConfig:
     min_contrast: float = 0.25
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0
+    # Cutoff [Hz] of the RA envelope that add_event_matcher puts on the memorized and the
+    # live RA windows alike (events/ra_envelope.py); 0: none, Eq. 3 on the raw windows.
+    ra_envelope_hz: float = 0.0
 
 
 def event_templates(event: MemorizedEvent, channels: tuple[int, ...],
@@ -244,9 +248,13 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
     """Adds the paper's Fig. 3 comparison to `builder`: an EventMatcher (`event_matcher`).
 
     channels: an output port of the four channels, connected to its `channels` input (else
-    the caller connects it). Its `expected_event` input and its `scores`, `match` and
+    the caller connects it). With config.ra_envelope_hz, the events' and the channels' RA
+    pass through the RA envelope first (events/ra_envelope.py; `channels` is then required).
+    Its `expected_event` input and its `scores`, `match` and
     `scored_event` outputs are the caller's to connect.
     """
+    if config is not None and config.ra_envelope_hz:
+        events, channels = ra_enveloped(builder, events, channels, config)
     matcher = builder.AddNamedSystem("event_matcher", EventMatcher(events, config))
     if channels is not None:
         builder.Connect(channels, matcher.GetInputPort("channels"))
