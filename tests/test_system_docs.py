@@ -34,6 +34,7 @@ from tegrasp_drake.control.scripted_grasp import ScriptedGraspSource, plan_scrip
 from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecording
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
 from tegrasp_drake.events.event_matcher import EventMatcher
+from tegrasp_drake.events.ra_envelope import RaEnvelope
 from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.events_folder import load_memorized_events
 from benchmarks.drivers import LoopTick
@@ -134,6 +135,7 @@ def carriage():
 CONSTRUCTORS = {
     MechanoreceptorChannels: MechanoreceptorChannels,
     WindowNormalizer: WindowNormalizer,
+    RaEnvelope: lambda: RaEnvelope(cutoff_hz=2.0, ra_rate_hz=1000.0),
     SlipVibrationBand: lambda: SlipVibrationBand(band_hz=80.0, window_s=0.01,
                                                  sample_rate_hz=1000.0),
     EventMatcher: lambda: EventMatcher(load_memorized_events(paths.package_events_dir(), "box")),

@@ -1,6 +1,7 @@
 """The transfer matrix: its spec, its worlds as scenarios, and `tegrasp transfer` end to end
 (a fake trial for the machinery; two real trials, interrupted and resumed)."""
 
+import dataclasses
 import json
 import os
 import shutil
@@ -66,6 +67,14 @@ def test_the_committed_matrix_spec_loads_with_both_ends_and_one_factor_worlds():
     assert ("ideal", "faithful") in spec.cells and ("faithful", "ideal") in spec.cells
     assert ("ideal", "ideal") in spec.cells and ("faithful", "faithful") in spec.cells
     assert len(spec.sweep.objects) * len(spec.sweep.grid) * spec.sweep.attempts == 81
+
+
+def test_the_remedy_spec_is_the_matrix_with_the_ra_envelope_in_every_world():
+    plain = LoadTransferSpec(REPOSITORY / "analysis" / "transfer_matrix.yaml")
+    remedy = LoadTransferSpec(REPOSITORY / "analysis" / "transfer_matrix_remedy.yaml")
+    assert remedy.worlds == plain.worlds and remedy.cells == plain.cells
+    assert remedy.sweep == dataclasses.replace(
+        plain.sweep, scenario_overrides=("controller.ra_envelope_hz=2.0",))
 
 
 @pytest.mark.parametrize("text, words", [

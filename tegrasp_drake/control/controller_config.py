@@ -249,6 +249,11 @@ class EventTriggeredConfig(GraspControllerConfig):
     # Eq. 3 thresholds (Sec. III-B).
     sa_threshold: float = 0.9
     ra_threshold: float = 0.7
+    # Cutoff [Hz] of the RA envelope on the memorized and live RA windows before Eq. 3
+    # (events/ra_envelope.py, docs/transfer.md): 2.0, the corner both RA chains share (the
+    # charge amplifier's and the accelerometer's high-pass), lets events memorized with one
+    # vibration transducer match on the other; 0 (the paper): Eq. 3 on the raw windows.
+    ra_envelope_hz: float = 0.0
 
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
         """{transition: (SA, RA)} thresholds that replace sa/ra_threshold (none)."""

@@ -180,7 +180,8 @@ def _add_detector(builder, config, plan, rates_hz, events, channels):
             sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
             event_thresholds=config.event_thresholds(
                 dict(gripper_hand(plan.gripper_model).ensemble_thresholds)),
-            sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s)
+            sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s,
+            ra_envelope_hz=config.ra_envelope_hz)
         return (add_event_matcher(builder, events, matcher_config, channels=channels),
                 Trigger.MEMORIZED_EVENT)
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(

@@ -11,6 +11,7 @@ import numpy as np
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import normalize_by_max, template_is_flat
 from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.events.ra_envelope import ra_enveloped
 from tegrasp_drake.events.streaming_correlation import SlidingCorrelation
 from tegrasp_drake.events.transitions import NO_EVENT, transition_order
 from tegrasp_drake.tactile.sample_block import block_samples
@@ -39,6 +40,9 @@ class EventMatcherConfig:
     # per sample; WindowNormalizerConfig.block_s). A match then shows at the block's end,
     # at most one block later than per sample.
     block_s: float = 0.0
+    # Cutoff [Hz] of the RA envelope that add_event_matcher puts on the memorized and the
+    # live RA windows alike (events/ra_envelope.py); 0: none, Eq. 3 on the raw windows.
+    ra_envelope_hz: float = 0.0
 
 
 def event_templates(event: MemorizedEvent, channels: tuple[int, ...],
@@ -342,9 +346,13 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
 
     channels: an output port of the four channels, connected to its `channels` input and,
     for a config in blocks, to its block inputs through sample registers
-    (ConnectWindowChannels); else the caller connects them. Its `expected_event` input and
-    its `scores`, `match` and `scored_event` outputs are the caller's to connect.
+    (ConnectWindowChannels); else the caller connects them. With config.ra_envelope_hz, the
+    events' and the channels' RA pass through the RA envelope first (events/ra_envelope.py;
+    `channels` is then required). Its `expected_event` input and its `scores`, `match` and
+    `scored_event` outputs are the caller's to connect.
     """
+    if config is not None and config.ra_envelope_hz:
+        events, channels = ra_enveloped(builder, events, channels, config)
     matcher = builder.AddNamedSystem("event_matcher", EventMatcher(events, config))
     if channels is not None:
         ConnectWindowChannels(builder, matcher, channels)

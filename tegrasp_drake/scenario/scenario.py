@@ -311,6 +311,11 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
                 f"{section}.sample_rate_hz", f"must lie in [{MIN_SAMPLE_RATE_HZ:g}, "
                 f"{MAX_SAMPLE_RATE_HZ:g}] Hz (the 0.5 s event window needs 8 samples; the "
                 "film is integrated at 20 kHz)", rate)
+    envelope_hz = getattr(scenario.controller, "ra_envelope_hz", 0.0)
+    require(envelope_hz == 0 or 0 < envelope_hz < scenario.vibration.sample_rate_hz / 2,
+            source, "controller.ra_envelope_hz", "must be 0 (no RA envelope) or lie between "
+            f"0 and half the RA rate ({scenario.vibration.sample_rate_hz / 2:g} Hz)",
+            envelope_hz)
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario.controller, source)
     if len(scenario.disturbance.hit_force_n) != 3 or scenario.disturbance.hit_duration_s <= 0:

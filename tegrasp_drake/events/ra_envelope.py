@@ -1,0 +1,136 @@
+"""The RA envelope: both RA windows, memorized and live, through the same low-pass before
+Eq. 3, so that events memorized with one vibration transducer match on another.
+
+Why. The two RA transducers of the paper's pipeline read a contact differently. The
+idealised simulation's accelerometer reads the pad's rigid-body acceleration: a contact is a
+one-sample spike (the contact's one-step change of velocity), nothing while the grip
+squeezes. The real pad's PVDF film reads the load on the pad through its charge amplifier:
+a contact rings at the fingertip's mode and the rising grip holds the reading up until the
+force stops rising. Eq. 3 of a spike against such a window is the window's peak over its
+energy, far below the RA threshold (docs/transfer.md, "What breaks transfer"), although both
+windows say the same thing: the pad was touched at this moment and the reading then decayed.
+
+What. A first-order low-pass of each RA channel (Eq. 2's magnitude, so an envelope of the
+vibration) at `cutoff_hz`, applied alike to the memorized event's RA windows (at their
+rate, then max-normalised again) and to the live RA samples ahead of the matcher's window.
+At a cutoff below both transducers' own bandwidths, each one's contact reading becomes a
+pulse of the filter's time constant, whatever the transducer made of it; Eq. 3 then compares
+when and how often the pads were touched, not the transducer's impulse response.
+
+The cutoff to use is the one corner the two RA chains share: both the film's charge
+amplifier and the accelerometer's high-pass forget a reading with the 2 Hz corner
+(`vibration.highpass_cutoff_hz`, tau = 80 ms), the longest memory in either chain; below it
+neither transducer has a bandwidth of its own (docs/transfer.md). The SA channels pass
+unchanged.
+
+The filter is y[k] = y[k-1] + a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s): the
+impulse-invariant discretisation of 1 / (1 + s / (2 pi f_c)) at the sample rate f_s. A
+memorized window starts from its first sample as the filter's steady state (the reading
+before the window is unknown; the event windows open on a quiet pad); the live filter starts
+at zero, as the channels do.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+from pydrake.systems.framework import BasicVector, LeafSystem
+from scipy.signal import lfilter
+
+from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
+from tegrasp_drake.tactile.max_normalization import normalize_by_max
+
+
+def envelope_coefficient(cutoff_hz: float, rate_hz: float) -> float:
+    """a of y[k] = y[k-1] + a (u[k] - y[k-1]) for a first-order low-pass at cutoff_hz [Hz]
+    sampled at rate_hz [Hz]; the cutoff must lie in (0, rate_hz / 2)."""
+    if not 0.0 < cutoff_hz < rate_hz / 2.0:
+        raise ValueError(f"RA envelope cutoff {cutoff_hz} Hz must lie between 0 and half the "
+                         f"RA rate ({rate_hz / 2.0} Hz); 0 switches the envelope off")
+    return 1.0 - math.exp(-2.0 * math.pi * cutoff_hz / rate_hz)
+
+
+def ra_envelope(windows: np.ndarray, cutoff_hz: float, rate_hz: float) -> np.ndarray:
+    """Each row of `windows` (time along the last axis, sampled at rate_hz) low-passed at
+    cutoff_hz, starting from its first sample as the steady state; same units."""
+    a = envelope_coefficient(cutoff_hz, rate_hz)
+    windows = np.atleast_2d(np.asarray(windows, dtype=float))
+    filtered, _ = lfilter([a], [1.0, a - 1.0], windows, axis=-1,
+                          zi=(1.0 - a) * windows[..., :1])
+    return filtered
+
+
+def enveloped_event(event: MemorizedEvent, cutoff_hz: float) -> MemorizedEvent:
+    """`event` with its RA windows low-passed at cutoff_hz [Hz] (at the event's RA rate)
+    and max-normalised again; its SA windows unchanged."""
+    return dataclasses.replace(event, ra=normalize_by_max(
+        ra_envelope(event.ra, cutoff_hz, event.ra_rate_hz)))
+
+
+class RaEnvelope(LeafSystem):
+    """The live side of the RA envelope: the four channels with the RA ones low-passed.
+
+    Every 1 / ra_rate_hz it takes the RA samples into a first-order low-pass at cutoff_hz
+    (module docstring); its output is the filter's value at that tick, computed from the
+    previous value and the present input, so that a matcher sampling at the same ticks reads
+    the envelope of the same samples it would have read raw.
+
+    .. pydrake_system::
+
+        name: RaEnvelope
+        input_ports:
+        - channels
+        output_ports:
+        - channels
+
+    Ports:
+        channels (input): [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2).
+        channels (output): the same, RA low-passed at cutoff_hz; SA passed through.
+    """
+
+    def __init__(self, *, cutoff_hz: float, ra_rate_hz: float):
+        super().__init__()
+        self._a = envelope_coefficient(cutoff_hz, ra_rate_hz)
+        self._ra = list(RA_CHANNELS)
+        self._input = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
+        self._previous = self.DeclareDiscreteState(len(RA_CHANNELS))  # y[k-1], zero at start
+        self.DeclarePeriodicDiscreteUpdateEvent(1.0 / ra_rate_hz, 0.0, self._update)
+        self.DeclareVectorOutputPort("channels", BasicVector(len(CHANNEL_NAMES)),
+                                     self._calc_channels)
+
+    def _filtered(self, context) -> np.ndarray:
+        previous = context.get_discrete_state(self._previous).value()
+        return previous + self._a * (self._input.Eval(context)[self._ra] - previous)
+
+    def _update(self, context, discrete_state):
+        discrete_state.get_mutable_vector(self._previous).SetFromVector(self._filtered(context))
+
+    def _calc_channels(self, context, output):
+        channels = np.array(self._input.Eval(context), dtype=float)
+        channels[self._ra] = self._filtered(context)
+        output.SetFromVector(channels)
+
+
+def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
+    """Adds an RaEnvelope (`ra_envelope`) fed by the output port `channels`; returns its
+    output port."""
+    envelope = builder.AddNamedSystem("ra_envelope", RaEnvelope(
+        cutoff_hz=cutoff_hz, ra_rate_hz=ra_rate_hz))
+    builder.Connect(channels, envelope.GetInputPort("channels"))
+    return envelope.GetOutputPort("channels")
+
+
+def ra_enveloped(builder, events, channels, config):
+    """(events, channels) with the RA envelope at config.ra_envelope_hz [Hz] on both: the
+    events' RA windows low-passed (enveloped_event), and `channels`, an output port of the
+    four channels, through an RaEnvelope at config.ra_rate_hz added to `builder`.
+
+    config: an EventMatcherConfig (read: ra_envelope_hz, ra_rate_hz)."""
+    if channels is None:
+        raise ValueError("the RA envelope needs the channels' output port to filter "
+                         "(add_event_matcher(..., channels=PORT))")
+    enveloped = {transition: enveloped_event(event, config.ra_envelope_hz)
+                 for transition, event in events.items()}
+    return enveloped, add_ra_envelope(builder, channels, cutoff_hz=config.ra_envelope_hz,
+                                      ra_rate_hz=config.ra_rate_hz)
