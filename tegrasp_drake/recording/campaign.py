@@ -99,14 +99,22 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
     for transition, time in times.items():
         pre = (pre_transition_s.get(transition) if isinstance(pre_transition_s, Mapping)
                else pre_transition_s)
-        cut.update(extract_memorized_events(
-            tactile_trial_from_log(log, {transition: time}), object_name=object_name,
-            sa_rate_hz=scenario.tactile.sample_rate_hz,
-            ra_rate_hz=scenario.vibration.sample_rate_hz,
-            **({} if pre is None else {"pre_transition_s": pre}),
-            scenario=note if note is not None else f"{run.label} seed {scenario.random_seed}",
-            package_versions=package_versions(),
-            object_description=object_description(nominal_object)))
+        try:
+            cut.update(extract_memorized_events(
+                tactile_trial_from_log(log, {transition: time}), object_name=object_name,
+                sa_rate_hz=scenario.tactile.sample_rate_hz,
+                ra_rate_hz=scenario.vibration.sample_rate_hz,
+                **({} if pre is None else {"pre_transition_s": pre}),
+                scenario=(note if note is not None
+                          else f"{run.label} seed {scenario.random_seed}"),
+                package_versions=package_versions(),
+                object_description=object_description(nominal_object)))
+        except ValueError as error:  # a window off the log, or a channel with no signal
+            raise RecordEventsError(
+                f"{run.label} of '{object_name}' (seed {scenario.random_seed}): {error} (a "
+                "noise-free sensor reads exactly zero on a pad that is not touched: record "
+                "without that run, e.g. --ensemble-runs 0, or give the sensors noise)"
+            ) from None
     return cut
 
 
