@@ -6,7 +6,7 @@
 Records each memorizing world's events into DIR/events/<world>, runs each cell as an
 ordinary sweep into DIR/cells/<memorizing>-in-<running> (durable, resumable, process pool
 or Dask), then writes DIR/transfer.md and the heat map DIR/transfer_matrix.png
-(experiments/transfer_matrix.py, experiments/transfer_report.py). The same command into
+(transfer/matrix.py, transfer/report.py). The same command into
 the same DIR resumes it. Exit codes: 0 every trial finished, 1 some raised or were left
 unfinished (run again to retry them), 2 bad input (nothing was run).
 

@@ -9,7 +9,7 @@ pad's proper acceleration in the pad frame; its component along the pad's inward
     y[k] = a (y[k-1] + u[k] - u[k-1]),   a = RC / (RC + T),   RC = 1 / (2 pi f_c),
 
 the filter of the accelerometer chain that the film model replaced
-(film_dynamics.first_order_highpass, used offline by experiments/pad_strike.py), here as a
+(film_dynamics.first_order_highpass, used offline by runs/pad_strike.py), here as a
 discrete-time system. The filter starts from its first sample (u[-1] = u[0]), so the
 gravity already there at t = 0 is not a step. Gaussian noise is added to each sample.
 

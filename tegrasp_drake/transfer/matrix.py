@@ -4,11 +4,11 @@ A world is a scenario preset (tegrasp_drake/scenarios/scenarios.yaml, e.g.
 `memorizing_world`, `faithful_world`) plus `--set` assignments: a hand, its SA and RA
 transducers, their rates, the grip force. A transfer spec (YAML, `LoadTransferSpec`) names
 the worlds, the cells (memorizing world, running world) and one ordinary sweep (objects,
-grid, attempts, seeds: the fields of a sweep spec, experiments/sweep/spec.py).
+grid, attempts, seeds: the fields of a sweep spec, sweep/spec.py).
 
 `run_transfer` first records each memorizing world's events (the ideal grasp of each object,
-experiments/record_events.py) into that world's events folder, then runs each cell as an
-ordinary sweep (experiments/sweep/runner.py: durable records, resume, process pool or
+recording/paper_events.py) into that world's events folder, then runs each cell as an
+ordinary sweep (sweep/runner.py: durable records, resume, process pool or
 Dask) of the running world's scenario with the memorizing world's events, into
 OUT/cells/<memorizing>-in-<running>/. Running the same call again resumes it: recorded
 events are kept, finished trials are not run again.

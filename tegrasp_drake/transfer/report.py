@@ -4,11 +4,11 @@ Per cell (events memorized in world A, trials run in world B) and controller, ov
 cell's finished trials:
   - each event transition's match rate: the trials whose transition was taken by the event
     trigger on time, over the trials that reached the mode waiting for it (the sweep's
-    detection report, experiments/sweep/detection_report.py), and the median latency after
+    detection report, sweep/detection_report.py), and the median latency after
     its physical event;
   - false triggers: event transitions taken more than 10 ms before their physical event
     (the trial judge's count), per trial;
-  - hold and unload success (the paper's criteria, experiments/trial.py);
+  - hold and unload success (the paper's criteria, runs/trial.py);
   - the median CPU seconds and simulated seconds of a trial.
 """
 
