@@ -145,7 +145,7 @@ def test_a_memorized_hits_baseline_is_the_sa_before_the_match():
 
 
 def test_an_object_without_corrective_events_names_the_command(tmp_path):
-    from tegrasp_drake.control.grasp_controller import load_corrective_events
+    from tegrasp_drake.scenario.scenario_events import load_corrective_events
     from tegrasp_drake.events import MemorizedEventError
     scenario = LoadScenario(name="custom_can", overrides=[
         "controller.name=heuristic", "controller.memorized_corrective_events=[hold_avoid]"])
@@ -154,7 +154,7 @@ def test_an_object_without_corrective_events_names_the_command(tmp_path):
 
 
 def test_the_boxs_corrective_events_load_for_the_box():
-    from tegrasp_drake.control.grasp_controller import load_corrective_events
+    from tegrasp_drake.scenario.scenario_events import load_corrective_events
     events = load_corrective_events(LoadScenario(name="box"),
                                     EVENTS.parent)  # the package's events folder
     assert set(events) == set(CORRECTIVE_TRANSITIONS)

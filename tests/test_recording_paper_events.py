@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake import cli
-from tegrasp_drake.control.grasp_controller import load_controller_events
+from tegrasp_drake.scenario.scenario_events import load_controller_events
 from tegrasp_drake.events.events_folder import events_folder_of
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.rig import paths

@@ -49,7 +49,7 @@ def controller_events(scenario, events_dir):
     exits with the message (which folder, which file, what to do)."""
     if scenario.controller.events_folder is None:
         return None
-    from tegrasp_drake.control.grasp_controller import load_controller_events
+    from tegrasp_drake.scenario.scenario_events import load_controller_events
     from tegrasp_drake.events import MemorizedEventError
     try:
         return load_controller_events(scenario, events_dir)
@@ -65,7 +65,7 @@ def corrective_events(scenario, events_dir):
     with the message."""
     if not scenario.controller.memorized_corrective_events:
         return None
-    from tegrasp_drake.control.grasp_controller import load_corrective_events
+    from tegrasp_drake.scenario.scenario_events import load_corrective_events
     from tegrasp_drake.events import MemorizedEventError
     try:
         return load_corrective_events(scenario, events_dir)

@@ -22,11 +22,10 @@ from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 from pydrake.systems.framework import Diagram, DiagramBuilder
 
 from tegrasp_drake.control.controller_config import EventTriggeredConfig
-from tegrasp_drake.control.grasp_controller import (AddGraspController, GraspController,
-                                                    load_controller_events,
-                                                    load_corrective_events)
+from tegrasp_drake.control.grasp_controller import AddGraspController, GraspController
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
+from tegrasp_drake.scenario.scenario_events import load_controller_events, load_corrective_events
 from tegrasp_drake.scenario.trial_log_writer import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import station_interface as ports

@@ -59,8 +59,8 @@ def trial_events(trial: dict, events_dir=None) -> tuple:
     Both come from `events_dir`, else the user's folder, then the package's, and must have
     been recorded on the trial's unperturbed object: the sweep's mass and friction
     perturbations are the experiment's, not a mismatch. Raises MemorizedEventError."""
-    from tegrasp_drake.control.grasp_controller import (load_controller_events,
-                                                        load_corrective_events)
+    from tegrasp_drake.scenario.scenario_events import (load_controller_events,
+                                                       load_corrective_events)
     scenario = scenario_from_trial_spec(trial)
     nominal = scenario_from_trial_spec(trial, nominal=True).object
     events = corrective_events = None

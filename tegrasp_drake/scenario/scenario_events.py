@@ -1,0 +1,90 @@
+"""The memorized events a scenario's controller reads: its object's, for its controller and
+its hand, from the events search path (an explicit folder, else the user's events folder,
+else the package's; rig/paths.py), checked against the object they were recorded on.
+
+These read the whole Scenario (its object, controller and hand), so they live with it; the
+controller itself (control/grasp_controller.AddGraspController) takes the events given.
+"""
+
+from tegrasp_drake.control.grasp_controller import controller_events_folders
+from tegrasp_drake.rig import paths
+from tegrasp_drake.simulation.gripper_hands import gripper_hand
+
+
+def _hand_folder(scenario) -> str:
+    return gripper_hand(scenario.gripper.model).events_folder
+
+
+def load_controller_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
+    """The memorized events of the scenario's object for the scenario's controller, from
+    `events_dir` or else the user's events folder or the package's
+    (controller_events_folders).
+
+    MemorizedEventError (naming the folders, the file and the command that records them)
+    when they are missing, or when they were recorded on an object that differs from the
+    scenario's (`nominal_object`, e.g. a sweep's unperturbed object, if given) in a field
+    not listed in controller.event_object_may_differ."""
+    return _load_checked_events(
+        scenario, controller_events_folders(scenario.controller, events_dir,
+                                            _hand_folder(scenario)),
+        nominal_object=nominal_object)
+
+
+def load_corrective_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
+    """The memorized corrective events (lift_load, hold_avoid) of the scenario's object,
+    from the CORRECTIVE_EVENTS_FOLDER of the events search path, checked against the
+    object as load_controller_events checks the transition events."""
+    from tegrasp_drake.control.controller_config import CORRECTIVE_EVENTS_FOLDER
+    from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
+    folders = [folder / CORRECTIVE_EVENTS_FOLDER
+               for folder in paths.events_search_path(events_dir, _hand_folder(scenario))]
+    return _load_checked_events(scenario, folders, nominal_object=nominal_object,
+                                required=CORRECTIVE_TRANSITIONS,
+                                record_hint="`python analysis/record_corrective_events.py "
+                                "LOGS --object NAME`, or --set "
+                                "controller.memorized_corrective_events=[]")
+
+
+def _load_checked_events(scenario, folders, *, nominal_object=None, required=None,
+                         record_hint: str = "") -> dict:
+    """The scenario object's events from the first of `folders` that lists it, checked
+    against the object (load_controller_events)."""
+    from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.events.events_folder import find_memorized_events
+    from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
+    from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, description_differences,
+                                           object_description)
+    name = scenario.object.name
+    try:
+        folder, events = find_memorized_events(folders, name,
+                                               required=required or REQUIRED_TRANSITIONS)
+    except MemorizedEventError as e:
+        if record_hint:  # not `tegrasp record-events`: say what makes these
+            e.args = (f"{e.args[0].split(' Record them')[0]} Record them with "
+                      f"{record_hint}.",)
+            raise
+        if name not in BUILTIN_OBJECTS:
+            e.args = (f"{e.args[0]} For your own object: `tegrasp record-events --scenario "
+                      "FILE --scenario-name NAME` (or the same --set options you gave "
+                      "here), or run `--controller heuristic`.",)
+        raise
+    current = object_description(nominal_object or scenario.object)
+    allowed = set(scenario.controller.event_object_may_differ)
+    for event in events.values():
+        if not event.object_description:
+            error = MemorizedEventError(folder / event.relative_path(),
+                                        "records no object description", name)
+            raise error
+        differences = [d for d in description_differences(event.object_description, current)
+                       if d.split(" ", 1)[0] not in allowed]
+        if differences:
+            path = folder / event.relative_path()
+            error = MemorizedEventError(path, "object differs", name)
+            error.args = (
+                f"{path}: the memorized events of '{name}' were recorded on another object: "
+                f"{'; '.join(differences)}. Give your object its own name and record its "
+                f"events (`tegrasp record-events` with the same scenario options), or "
+                f"accept the difference with --set controller.event_object_may_differ="
+                f"[{','.join(d.split(' ', 1)[0] for d in differences)}].",)
+            raise error
+    return events
