@@ -19,7 +19,6 @@ from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig import paths
 
 TRIAL_FIGURES = ("signals", "trial", "avoid")
-SWEEP_FIGURES = ("table1", "latency", "success-maps")
 DEFAULT_STEMS = {"events": "memorized_events", "signals": "trial_signals",
                  "trial": "trial_states", "avoid": "avoid", "table1": "table1_vs_paper",
                  "latency": "latency", "success-maps": "success_maps"}

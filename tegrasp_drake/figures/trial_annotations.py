@@ -10,7 +10,6 @@ import dataclasses
 
 import numpy as np
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
 
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 
@@ -123,11 +122,6 @@ def marker_legend_handles(transitions, events: dict) -> list:
         handles.append(Line2D([], [], color=color, ls=dashes, lw=1.2,
                               label="physical event (ground truth)"))
     return handles
-
-
-def state_legend_handles(spans) -> list:
-    seen = list(dict.fromkeys(state for state, _, _ in spans))
-    return [Patch(color=STATE_COLORS.get(state, "white"), label=state) for state in seen]
 
 
 @dataclasses.dataclass
