@@ -30,8 +30,9 @@ from tegrasp_drake.scenario.trial_log_writer import TrialLoggers, AddTrialLoggin
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.scenario.scenario import grasp_plan, object_pose, sample_rates_hz
+from tegrasp_drake.simulation.carriage import arm_endpoint_impedance
 from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStationConfig,
-                                              carriage_impedance, side_grasp_pose)
+                                              side_grasp_pose)
 
 # Beyond the ideal grasp's duration, for corrections (and the controller's own
 # extra_time_s, controller_config.py) [s].
@@ -63,8 +64,8 @@ def station_carriage(scenario):
     station = scenario.station
     if not (isinstance(station, SimulatedStationConfig) and station.uses_carriage()):
         return None
-    return carriage_impedance(scenario.arm, side_grasp_pose(scenario.expected_object_xy,
-                                                            scenario.grasp.grasp_height))
+    return arm_endpoint_impedance(scenario.arm, side_grasp_pose(
+        scenario.expected_object_xy, scenario.grasp.grasp_height))
 
 
 def MakeSimulatedStation(scenario, *, meshcat=None):

@@ -43,8 +43,7 @@ from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinematics, Carriage,
-                                               EndpointImpedance, arm_endpoint_impedance,
-                                               carriage_positions)
+                                               EndpointImpedance, carriage_positions)
 from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
@@ -197,12 +196,6 @@ class StationPlant:
     object_instance: object
     carriage: Carriage | None = None
     carriage_weld: object = None  # the carriage-gripper weld joint
-
-
-def carriage_impedance(arm: ArmDriverConfig, X_WG: RigidTransform) -> EndpointImpedance:
-    """The arm's end-point impedance with its grasp frame at X_WG (a carriage standing in for
-    the arm takes it where the hand meets the object)."""
-    return arm_endpoint_impedance(arm, X_WG)
 
 
 def side_grasp_pose(xy, height: float) -> RigidTransform:
