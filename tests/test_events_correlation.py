@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.events.correlation import (
-    event_scores_reference, max_normalized_xcorr_reference, normalize_by_max,
-    window_contrast)
+    event_scores_reference, max_normalized_xcorr_reference, window_contrast)
+from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.tactile.sampling import resample_window, samples_per_window
 from tegrasp_drake.tactile.sliding_window import SlidingWindow, SlidingWindowState
 from tegrasp_drake.events.streaming_correlation import StreamingCorrelator
@@ -26,18 +26,6 @@ def ring_down(length=500, onset=250, decay=15.0):
     """RA-like window: a rectified decaying ringing after the onset."""
     k = np.arange(length) - onset
     return np.where(k >= 0, np.exp(-np.maximum(k, 0) / decay) * np.abs(np.cos(1.13 * k)), 0.0)
-
-
-def test_normalize_by_max_divides_each_channel_by_its_largest_magnitude():
-    window = np.array([[0.0, 2.0, 4.0], [0.0, -3.0, 1.0]])
-    np.testing.assert_allclose(normalize_by_max(window),
-                               [[0.0, 0.5, 1.0], [0.0, -1.0, 1.0 / 3.0]])
-
-
-def test_normalize_by_max_keeps_an_all_zero_channel_zero():
-    normalized = normalize_by_max(np.array([[0.0, 0.0, 0.0], [1.0, 2.0, 0.0]]))
-    np.testing.assert_array_equal(normalized[0], [0.0, 0.0, 0.0])
-    assert np.all(np.isfinite(normalized))
 
 
 def test_reference_matches_hand_computed_correlations():

@@ -6,7 +6,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 
-from tegrasp_drake.events.correlation import normalize_by_max
+from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.events.replay import channels_trajectory
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig

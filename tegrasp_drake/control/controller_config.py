@@ -83,9 +83,6 @@ class TaxelAwareConfig:
     # At most this far per Re-Reach along the approach axis [m]: the pad's half length
     # (12 mm) plus a quarter row; a contact on the edge row only says "at least this far".
     max_approach_shift_m: float = 0.015
-    # A shift below this along both axes is not worth an open-move-close [m]: a third of
-    # a row, below the centroid's resolution with the taxel noise.
-    min_shift_m: float = 0.002
     # Re-Reaches of either direction, repeated until centred, at most this many (the
     # paper's 2 plus one for each axis the taxels add).
     max_re_reaches: int = 4
@@ -97,7 +94,7 @@ class TaxelAwareConfig:
     # One finger alone touches while the gripper has closed to within this of the
     # object's width [m]: the object is between the fingers, the other finger's contact is
     # off its pad or light; Load (the squeeze brings the second pad on) instead of another
-    # Re-Reach that would shift by less than min_shift_m (a stall).
+    # Re-Reach that would shift by less than a third of a taxel row (a stall).
     one_sided_width_margin_m: float = 0.004
     # The first touch of a close lies on a pad's distal row alone when its contact centroid
     # along the approach axis is at least this far toward the fingertips [m]: the distal

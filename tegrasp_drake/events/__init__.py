@@ -17,8 +17,7 @@ for tests).
 """
 
 from tegrasp_drake.events.correlation import (
-    channel_score, event_scores_reference, max_normalized_xcorr_reference,
-    normalize_by_max, window_contrast)
+    channel_score, event_scores_reference, max_normalized_xcorr_reference, window_contrast)
 from tegrasp_drake.events.event_matcher import (
     EventMatcher, EventMatcherConfig, add_event_matcher, event_templates)
 from tegrasp_drake.events.event_sequencer import EventSequencer, next_sequence_step
@@ -38,6 +37,7 @@ from tegrasp_drake.events.streaming_correlation import SlidingCorrelation, Strea
 from tegrasp_drake.events.transitions import (
     NO_EVENT, REQUIRED_TRANSITIONS, TRANSITIONS, event_transition, transition_name,
     transition_order, transition_states)
+from tegrasp_drake.tactile.max_normalization import normalize_by_max
 
 __all__ = [
     "DEFAULT_PRE_TRANSITION_S", "DEFAULT_WINDOW_S", "FORMAT_VERSION", "INDEX_FILE",

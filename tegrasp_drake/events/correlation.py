@@ -28,7 +28,6 @@ import math
 
 import numpy as np
 
-from tegrasp_drake.tactile.max_normalization import normalize_by_max
 
 
 

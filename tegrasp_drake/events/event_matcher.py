@@ -9,7 +9,8 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
-from tegrasp_drake.events.correlation import normalize_by_max, template_is_flat
+from tegrasp_drake.events.correlation import template_is_flat
+from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.ra_envelope import ra_enveloped
 from tegrasp_drake.events.streaming_correlation import SlidingCorrelation

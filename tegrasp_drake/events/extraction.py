@@ -20,7 +20,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from tegrasp_drake.events.correlation import normalize_by_max
+from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.events.memorized_event import MemorizedEvent, current_package_versions
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import transition_order
