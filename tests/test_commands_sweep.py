@@ -2,6 +2,7 @@
 
 import argparse
 import json
+from statistics import median as statistics_median
 
 import pytest
 
@@ -157,8 +158,39 @@ def test_statistics_json_is_valid(tmp_path):
     command.main(["--objects", "box", "--attempts", "1", "--workers", "2",
                   "--out", str(tmp_path), *FAKE])
     statistics = json.loads((tmp_path / "statistics.json").read_text())
-    assert set(statistics["controllers"]) == {"memorized", "heuristic", "open_loop"}
-    assert len(statistics["paired_comparisons"]) == 6
+    records = [json.loads(path.read_text()) for path in (tmp_path / "trials").glob("*.json")]
+    by_controller = {}
+    for record in records:
+        by_controller.setdefault(record["trial"]["controller"], {})[
+            record["trial"]["pair_id"]] = record["result"]
+    assert set(statistics["controllers"]) == set(by_controller) == {
+        "memorized", "heuristic", "open_loop"}
+    for name, results in by_controller.items():  # each figure recomputed from the records
+        figures = statistics["controllers"][name]
+        assert figures["trials"] == len(results) == 9
+        assert figures["false_triggers"]["total"] == sum(
+            r["false_triggers"] for r in results.values())
+        assert figures["corrective_actions"]["trials_with_any"] == sum(
+            bool(r["corrective_actions"]) for r in results.values())
+        latencies = [r["detection_latency_s"]["reach->load"] for r in results.values()]
+        detected = [value for value in latencies if value is not None]
+        latency = figures["detection_latency_s"]["reach->load"]
+        assert latency["n"] == len(detected)
+        assert latency["not_detected"] == len(latencies) - len(detected)
+        if detected:
+            assert latency["median"] == pytest.approx(statistics_median(detected))
+    comparisons = statistics["paired_comparisons"]
+    assert len(comparisons) == 6  # 3 controller pairs x (hold, unload)
+    for comparison in comparisons:
+        key = "hold_success" if comparison["phase"] == "hold" else "unload_success"
+        a = by_controller[comparison["controller_a"]]
+        b = by_controller[comparison["controller_b"]]
+        assert comparison["pairs"] == len(a.keys() & b.keys()) == 9
+        assert comparison["a_success"] == sum(a[pair][key] for pair in a)
+        assert comparison["b_success"] == sum(b[pair][key] for pair in b)
+        assert comparison["a_only"] == sum(a[pair][key] and not b[pair][key] for pair in a)
+        assert comparison["b_only"] == sum(b[pair][key] and not a[pair][key] for pair in a)
+        assert 0.0 <= comparison["p_value"] <= 1.0
 
 
 def test_a_smaller_spec_in_a_reused_folder_counts_only_its_own_trials(tmp_path, capsys):

@@ -7,7 +7,7 @@ import io
 import pytest
 
 from tegrasp_drake.commands.viewer_args import (check_html_path, start_viewer,
-                                                wait_for_viewer)
+                                                wait_for_viewer, write_replay_html)
 
 
 def _args(**values):
@@ -25,9 +25,19 @@ def test_meshcat_prints_its_url_on_stderr_at_once(capsys):
     assert meshcat.web_url() in captured.err
 
 
-def test_html_alone_starts_a_viewer_quietly(capsys, tmp_path):
-    assert start_viewer(_args(html=str(tmp_path / "replay.html"))) is not None
-    assert capsys.readouterr().err == ""
+def test_html_alone_starts_a_viewer_quietly_and_writes_its_page_without_waiting(
+        capsys, tmp_path, monkeypatch):
+    args = _args(html=str(tmp_path / "replays" / "replay.html"))
+    meshcat = start_viewer(args)
+    assert capsys.readouterr().err == ""  # no URL: nobody is asked to open a browser
+    stdin = io.StringIO("\n")
+    monkeypatch.setattr("sys.stdin", stdin)
+    wait_for_viewer(args, meshcat)
+    assert stdin.tell() == 0  # --html alone does not wait for Enter
+    page = write_replay_html(meshcat, args.html)
+    assert page == tmp_path / "replays" / "replay.html"
+    text = page.read_text()
+    assert "<html" in text.lower() and "meshcat" in text.lower()
 
 
 @pytest.mark.parametrize("json_output", [False, True])
