@@ -1,6 +1,10 @@
 """The ensemble events' perturbations and their combination rule."""
 
 import dataclasses
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -46,3 +50,23 @@ def test_each_run_is_perturbed_within_its_ranges_from_its_own_seed():
     assert ensemble_scenario("box", 3).object_offset == draws[3].object_offset  # repeatable
     quiet = ensemble_scenario("box", 0, dataclasses.replace(ENSEMBLE_RANGES, sensor_noise=False))
     assert quiet.tactile.noise_std_n == 0.0
+
+
+@pytest.mark.slow
+def test_an_ensemble_run_with_an_untouched_noise_free_pad_stops_with_one_line(tmp_path):
+    """The memorizing world's sensors are noise-free: in a perturbed ensemble run one pad
+    is still untouched at the Reach-Load window, its SA reads exactly zero, and no window
+    of it could ever match; the command says which run, which channel and what to do."""
+    repository = Path(__file__).resolve().parent.parent
+    environment = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        e for e in (str(repository), os.environ.get("PYTHONPATH", "")) if e)}
+    done = subprocess.run(
+        [sys.executable, "-m", "tegrasp_drake.cli", "record-events", "--scenario-name",
+         "memorizing_world", "--object", "box", "--ensemble-runs", "1", "--events",
+         str(tmp_path / "events"), "-q"],
+        env=environment, capture_output=True, text=True, timeout=900)
+    assert done.returncode == 1
+    (line,) = done.stderr.strip().splitlines()
+    assert "Traceback" not in done.stderr
+    assert line.startswith("tegrasp: error: run0 of 'box'")
+    assert "are zero throughout the window" in line and "--ensemble-runs 0" in line
