@@ -49,14 +49,19 @@ def controller_events(scenario, events_dir):
     exits with the message (which folder, which file, what to do)."""
     if scenario.controller.events_folder is None:
         return None
-    from tegrasp_drake.scenario.scenario_events import load_controller_events
+    from tegrasp_drake.scenario.scenario_events import (another_hands_events,
+                                                       load_controller_events)
     from tegrasp_drake.events import MemorizedEventError
     try:
-        return load_controller_events(scenario, events_dir)
+        events = load_controller_events(scenario, events_dir)
     except MemorizedEventError as e:
         raise SystemExit(f"tegrasp: error: the {scenario.controller.name} controller needs "
                          f"the memorized "
                          f"events of '{scenario.object.name}': {e}") from None
+    warning = another_hands_events(scenario, events)
+    if warning:
+        logging.getLogger(__name__).warning(warning)
+    return events
 
 
 def corrective_events(scenario, events_dir):

@@ -6,6 +6,8 @@ These read the whole Scenario (its object, controller and hand), so they live wi
 controller itself (control/grasp_controller.AddGraspController) takes the events given.
 """
 
+import yaml
+
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
@@ -88,3 +90,36 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
                 f"[{','.join(d.split(' ', 1)[0] for d in differences)}].",)
             raise error
     return events
+
+
+# The hand of a scenario whose gripper section has no `model`: it was recorded before the
+# linkage hand existed, when the prismatic fingers were the only hand.
+HAND_BEFORE_THE_MODEL_SETTING = "prismatic"
+
+
+def recorded_hand(event) -> str | None:
+    """The `gripper.model` of the scenario an event was recorded in, or None when its
+    scenario text is not a scenario (a note, e.g. an ensemble's combined runs)."""
+    try:
+        recorded = yaml.safe_load(event.scenario)
+    except yaml.YAMLError:
+        return None
+    gripper = recorded.get("gripper") if isinstance(recorded, dict) else None
+    if not isinstance(gripper, dict):
+        return None
+    model = gripper.get("model", HAND_BEFORE_THE_MODEL_SETTING)
+    return model if isinstance(model, str) else None
+
+
+def another_hands_events(scenario, events: dict) -> str | None:
+    """A one-line warning when `events` were recorded on a hand other than the scenario's
+    `gripper.model` (the transfer study does that on purpose; anyone else has most likely
+    pointed --events at the wrong folder), else None."""
+    hands = {recorded_hand(event) for event in events.values()} - {None}
+    others = sorted(hands - {scenario.gripper.model})
+    if not others:
+        return None
+    return (f"the memorized events of '{scenario.object.name}' were recorded on the "
+            f"{' and '.join(others)} hand and are matched on the {scenario.gripper.model} "
+            "hand: expect missed or early triggers (record the hand's own with "
+            "`tegrasp record-events --set gripper.model=...`)")

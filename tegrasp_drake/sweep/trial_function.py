@@ -6,11 +6,14 @@ checks before a sweep starts that every trial's memorized events are there.
 """
 
 import dataclasses
+import logging
 import pathlib
 
 import numpy as np
 
 from tegrasp_drake.runs.trial import run_trial
+
+logger = logging.getLogger(__name__)
 
 
 def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
@@ -75,8 +78,10 @@ def trial_events(trial: dict, events_dir=None) -> tuple:
 def check_sweep_events(trials, events_dir=None) -> None:
     """Raises ConfigError, naming the trial, the file and what to do, when some trial's
     memorized events (trial_events) are missing or were recorded on another object:
-    checked once per (object, controller), before the sweep runs anything."""
+    checked once per (object, controller), before the sweep runs anything. Logs a warning
+    when the events were recorded on another hand (another_hands_events)."""
     from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.scenario.scenario_events import another_hands_events
     from tegrasp_drake.rig.typed_yaml import ConfigError
     checked = set()
     for trial in trials:
@@ -85,10 +90,13 @@ def check_sweep_events(trials, events_dir=None) -> None:
             continue
         checked.add(key)
         try:
-            trial_events(trial, events_dir)
+            scenario, events, _ = trial_events(trial, events_dir)
         except MemorizedEventError as error:
             raise ConfigError(f"trial {trial['trial_id']} ({trial['controller']} on "
                               f"'{trial['object_name']}'): {error}") from None
+        warning = events and another_hands_events(scenario, events)
+        if warning:
+            logger.warning(warning)
 
 
 def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
