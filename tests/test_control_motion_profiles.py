@@ -26,6 +26,13 @@ def test_minimum_jerk_starts_and_ends_at_rest():
 def test_minimum_jerk_clips_tau_outside_the_segment():
     np.testing.assert_array_equal(minimum_jerk(np.array([-3.0, -1e-9, 1.0 + 1e-9, 7.0])),
                                   [0.0, 0.0, 1.0, 1.0])
+    assert [minimum_jerk(tau) for tau in (-3.0, -1e-9, 1.0 + 1e-9, 7.0)] == [0.0, 0.0, 1.0, 1.0]
+
+
+def test_minimum_jerk_of_a_float_is_the_polynomial_on_the_clipped_numpy_scalar_to_the_bit():
+    for tau in np.linspace(-0.1, 1.1, 1201).tolist():
+        clipped = np.clip(tau, 0.0, 1.0)  # a numpy scalar: its own arithmetic
+        assert minimum_jerk(tau) == clipped ** 3 * (10.0 + clipped * (-15.0 + 6.0 * clipped))
 
 
 def test_interpolate_pose_moves_straight_and_turns_about_the_fixed_axis():

@@ -28,7 +28,8 @@ from pydrake.systems.framework import DiagramBuilder
 from tegrasp_drake.modelgen.robotiq_sdf import HALF_STROKE
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL
-from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
+from tegrasp_drake.simulation.pad_normal_forces import (PadNormalForces, bodies_contact_forces,
+                                                        collision_geometry_bodies)
 from tegrasp_drake.simulation.station import pad_geometries
 from tegrasp_drake.simulation.tactile_pads import TactilePads, TactileSensorConfig
 
@@ -163,3 +164,23 @@ def test_pad_normal_force_is_the_applied_force_pushing_the_left_pad_open(block_f
     np.testing.assert_allclose(system.GetOutputPort("pad_normal_forces").Eval(context),
                                [_applied_normal_force(block_first), 0.0], rtol=1e-9,
                                atol=1e-12)
+
+
+@pytest.mark.parametrize("block_first", [False, True], ids=["pad_is_M", "pad_is_N"])
+def test_one_contact_walk_gives_each_body_its_net_contact_force(block_first):
+    plant, pads, contacts, _, _ = _pressed_pad(block_first)
+    (info,) = [contacts.hydroelastic_contact_info(0)]
+    force = info.F_Ac_W().translational()  # on the body of the surface's geometry M
+    left, right = (int(pads[f].body_index) for f in ("left", "right"))
+    block = int(plant.GetBodyByName("block").index())
+    on_pad = -force if block_first else force  # Newton's third law: the block takes -F
+    bodies = (left, right, block)
+    totals = bodies_contact_forces(contacts, collision_geometry_bodies(plant), bodies)
+    assert np.linalg.norm(force) > 1.0  # a real press
+    np.testing.assert_array_equal(totals[0], on_pad)
+    np.testing.assert_array_equal(totals[1], np.zeros(3))
+    np.testing.assert_array_equal(totals[2], -on_pad)
+    for body, total in zip(bodies, totals):  # the same as walking for one body alone
+        np.testing.assert_array_equal(
+            bodies_contact_forces(contacts, collision_geometry_bodies(plant), (body,))[0],
+            total)

@@ -58,6 +58,19 @@ def _rod_at(height_above_flip_m: float, force_n: float) -> BenchObstacle:
     return BenchObstacle("rod", (ROD_DIAMETER, 0.06), z, friction=FRICTIONLESS)
 
 
+def test_half_opening_is_the_pad_centres_distance_from_the_axis_to_the_bit():
+    for theta in np.linspace(-0.1, linkage.DRIVER_RANGE_RAD, 471):
+        assert linkage.half_opening(theta) == float(linkage.pad_center(theta)[0])
+
+
+def test_driver_angle_inverts_half_opening_and_clips_to_the_stroke():
+    for theta in np.linspace(0.0, linkage.THETA_PADS_MEET, 47):
+        assert linkage.driver_angle(linkage.half_opening(theta)) == pytest.approx(
+            theta, abs=1e-9)
+    assert linkage.driver_angle(1.0) == pytest.approx(0.0, abs=1e-12)  # beyond open: open
+    assert linkage.driver_angle(-1.0) == linkage.THETA_PADS_MEET
+
+
 def test_joint_coordinates_form_the_published_parallelogram():
     length = lambda p, q: float(np.linalg.norm(p - q))
     assert length(linkage.A, linkage.C) == pytest.approx(0.05715, abs=5e-5)

@@ -345,10 +345,14 @@ class GraspStateMachine(LeafSystem):
         elif s.mode == Mode.HOLD and not observation.hit:
             # The baseline is the last Hold tick before the hit (not the hit's own tick).
             sa_before = tuple(channels[:2])
-        return observation, dataclasses.replace(
-            s, sa_before=sa_before, timers=dataclasses.replace(
+        if not (one_sided_since == timers.one_sided_since and slip_since == timers.slip_since
+                and motion_done_since == timers.motion_done_since
+                and sa_history is timers.sa_history):
+            timers = dataclasses.replace(
                 timers, one_sided_since=one_sided_since, slip_since=slip_since,
-                motion_done_since=motion_done_since, sa_history=sa_history))
+                motion_done_since=motion_done_since, sa_history=sa_history)
+        return observation, (s if timers is s.timers and sa_before is s.sa_before else
+                             dataclasses.replace(s, sa_before=sa_before, timers=timers))
 
     def _approach_wrench(self, s: MachineState, context):
         """The wrench on G [N m, N] while the approach moves, for the finger-strike sense;

@@ -13,8 +13,9 @@ from pydrake.common.eigen_geometry import Quaternion
 
 
 def minimum_jerk(tau):
-    """s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5 for tau clipped to [0, 1]."""
-    tau = np.clip(tau, 0.0, 1.0)
+    """s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5 for tau clipped to [0, 1] (a float or an
+    array; a float is clipped on floats, np.clip's overhead being most of the cost)."""
+    tau = min(max(tau, 0.0), 1.0) if isinstance(tau, float) else np.clip(tau, 0.0, 1.0)
     return tau ** 3 * (10.0 + tau * (-15.0 + 6.0 * tau))
 
 

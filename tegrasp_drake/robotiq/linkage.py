@@ -56,6 +56,11 @@ SPRING_REST_ANGLE_RAD = -math.pi / 2.0
 _AC = C - A
 LINK_RADIUS = float(np.linalg.norm(_AC))  # m, 57.16 mm: the follower's circle on the pin
 _PHI_OPEN = math.atan2(_AC[1], _AC[0])  # the angle of A->C from +y, open: 49.4 deg
+# The y coordinates of A, C and the open pad centre and the components of A->C as Python
+# floats: half_opening and driver_angle run on every plant step, and numpy's scalar
+# overhead would cost several times their arithmetic (the same IEEE operations).
+_A_Y, _C_Y, _PAD_OPEN_Y, _AC_Y, _AC_Z = (float(x) for x in (A[0], C[0], PAD_CENTER_OPEN[0],
+                                                           _AC[0], _AC[1]))
 
 
 def _rotate(v, angle: float) -> np.ndarray:
@@ -75,8 +80,10 @@ def pad_center(theta: float) -> np.ndarray:
 
 
 def half_opening(theta: float) -> float:
-    """The pad face's distance from the grasp axis [m] (half the opening), on the pin."""
-    return float(pad_center(theta)[0])
+    """The pad face's distance from the grasp axis [m] (half the opening), on the pin:
+    pad_center(theta)[0] on floats."""
+    c, s = math.cos(theta), math.sin(theta)
+    return _PAD_OPEN_Y + ((_A_Y + (c * _AC_Y - s * _AC_Z)) - _C_Y)
 
 
 def pad_travel(theta: float) -> float:
@@ -88,8 +95,8 @@ def pad_travel(theta: float) -> float:
 def driver_angle(half_opening_m: float) -> float:
     """The driver angle [rad] that leaves the pad face half_opening_m [m] from the grasp
     axis (the inverse of half_opening), for 0 <= half_opening_m <= the open value."""
-    q = min(max(float(half_opening_m), 0.0), float(PAD_CENTER_OPEN[0]))
-    cosine = (q - PAD_CENTER_OPEN[0] + C[0] - A[0]) / LINK_RADIUS
+    q = min(max(float(half_opening_m), 0.0), _PAD_OPEN_Y)
+    cosine = (q - _PAD_OPEN_Y + _C_Y - _A_Y) / LINK_RADIUS
     return math.acos(min(max(cosine, -1.0), 1.0)) - _PHI_OPEN
 
 

@@ -17,25 +17,45 @@ from pydrake.systems.framework import LeafSystem
 from tegrasp_drake.rig.channels import FINGER_NAMES
 
 
-def pad_contact_force(contacts, geometry_body: dict, finger_body: int,
-                      n_out_W: np.ndarray) -> float:
-    """The net contact force on body `finger_body` [N] along n_out_W (world), positive
-    pushing the pad open. geometry_body maps collision geometry ids to body indices."""
-    total = np.zeros(3)
+def collision_geometry_bodies(plant) -> dict:
+    """{collision geometry id: the index (int) of the body it belongs to} of `plant`."""
+    bodies = {}
+    for i in range(plant.num_bodies()):
+        for geometry in plant.GetCollisionGeometriesForBody(plant.get_body(BodyIndex(i))):
+            bodies[geometry] = i
+    return bodies
+
+
+def bodies_contact_forces(contacts, geometry_body: dict, bodies) -> list[np.ndarray]:
+    """The net contact force [N, world] on each body index in `bodies`, in one walk over
+    the contacts (each body's forces summed in the contacts' order). geometry_body maps
+    collision geometry ids to body indices."""
+    totals = [np.zeros(3) for _ in bodies]
     for i in range(contacts.num_hydroelastic_contacts()):
         info = contacts.hydroelastic_contact_info(i)
         surface = info.contact_surface()
-        if geometry_body.get(surface.id_M()) == finger_body:  # F_Ac_W acts on M's body
-            total += info.F_Ac_W().translational()
-        elif geometry_body.get(surface.id_N()) == finger_body:
-            total -= info.F_Ac_W().translational()
+        body_M = geometry_body.get(surface.id_M())
+        body_N = geometry_body.get(surface.id_N())
+        if body_M not in bodies and body_N not in bodies:
+            continue
+        force = info.F_Ac_W().translational()
+        for total, body in zip(totals, bodies):
+            if body_M == body:  # F_Ac_W acts on M's body
+                total += force
+            elif body_N == body:
+                total -= force
     for i in range(contacts.num_point_pair_contacts()):
         info = contacts.point_pair_contact_info(i)
-        if int(info.bodyB_index()) == finger_body:  # contact_force acts on body B
-            total += info.contact_force()
-        elif int(info.bodyA_index()) == finger_body:
-            total -= info.contact_force()
-    return float(total @ n_out_W)
+        body_A, body_B = int(info.bodyA_index()), int(info.bodyB_index())
+        if body_A not in bodies and body_B not in bodies:
+            continue
+        force = info.contact_force()
+        for total, body in zip(totals, bodies):
+            if body_B == body:  # contact_force acts on body B
+                total += force
+            elif body_A == body:
+                total -= force
+    return totals
 
 
 class PadNormalForces(LeafSystem):
@@ -59,11 +79,10 @@ class PadNormalForces(LeafSystem):
     def __init__(self, *, plant, pads: dict):
         super().__init__()
         self._pads = [pads[finger] for finger in FINGER_NAMES]
-        self._geometry_body = {}
-        for i in range(plant.num_bodies()):
-            body = plant.get_body(BodyIndex(i))
-            for geometry in plant.GetCollisionGeometriesForBody(body):
-                self._geometry_body[geometry] = i
+        self._bodies = tuple(int(pad.body_index) for pad in self._pads)
+        # Each pad frame's z axis in its body frame (a column of R_BP).
+        self._z_BP = [pad.X_BP.rotation().matrix()[:, 2] for pad in self._pads]
+        self._geometry_body = collision_geometry_bodies(plant)
         self._contacts = self.DeclareAbstractInputPort(
             "contact_results", AbstractValue.Make(ContactResults()))
         self._poses = self.DeclareAbstractInputPort(
@@ -73,12 +92,9 @@ class PadNormalForces(LeafSystem):
             prerequisites_of_calc={self._contacts.ticket(), self._poses.ticket()})
 
     def _calc(self, context, output):
-        contacts = self._contacts.Eval(context)
         poses = self._poses.Eval(context)
-        forces = []
-        for pad in self._pads:
-            X_WB = poses[int(pad.body_index)]
-            n_out_W = -(X_WB.rotation().matrix() @ pad.X_BP.rotation().matrix()[:, 2])
-            forces.append(pad_contact_force(contacts, self._geometry_body,
-                                            int(pad.body_index), n_out_W))
-        output.SetFromVector(forces)
+        totals = bodies_contact_forces(self._contacts.Eval(context), self._geometry_body,
+                                       self._bodies)
+        output.SetFromVector([
+            float(total @ -(poses[body].rotation().matrix() @ z_BP))
+            for total, body, z_BP in zip(totals, self._bodies, self._z_BP)])

@@ -9,6 +9,7 @@ seeded by (seed, sample index), so a trial is reproducible and the Context holds
 """
 
 import dataclasses
+import functools
 
 import numpy as np
 from pydrake.common.value import AbstractValue
@@ -53,6 +54,15 @@ class PadGeometry:
     X_BP: RigidTransform
 
 
+@functools.lru_cache(maxsize=64)
+def _fan_triangles(face_data: tuple) -> np.ndarray:
+    """polygon_fan_triangles of a face_data tuple, remembered: a held grasp's surfaces keep
+    their polygons from sample to sample while their vertices move. Read-only."""
+    triangles = polygon_fan_triangles(face_data)
+    triangles.flags.writeable = False
+    return triangles
+
+
 def _pad_surfaces(contact_results: ContactResults, X_WP: RigidTransform, geometry_id):
     """[(p_PV, pressure_V, triangles, applied normal force [N])] of each hydroelastic
     contact surface of the pad with `geometry_id`, vertices in the pad frame P."""
@@ -69,7 +79,7 @@ def _pad_surfaces(contact_results: ContactResults, X_WP: RigidTransform, geometr
             triangles = np.array([[t.vertex(k) for k in range(3)] for t in mesh.triangles()])
         else:
             mesh, field = surface.poly_mesh_W(), surface.poly_e_MN()
-            triangles = polygon_fan_triangles(mesh.face_data())
+            triangles = _fan_triangles(tuple(mesh.face_data()))
         # Drake binds no bulk accessor: one call per vertex (map avoids a Python frame each).
         count = mesh.num_vertices()
         p_WV = np.array(list(map(mesh.vertex, range(count))))
