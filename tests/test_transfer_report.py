@@ -6,24 +6,15 @@ import textwrap
 
 import pytest
 from test_sweep_fake_trial import fake_trial_with_events
+from test_transfer_matrix import TWO_WORLDS
 
 from tegrasp_drake.transfer.matrix import LoadTransferSpec, cell_folder, run_transfer
 from tegrasp_drake.transfer.report import (cell_rows, heatmap_label, not_run_note,
                                            transfer_markdown, write_transfer_reports)
 from tegrasp_drake.rig import paths
 
-SPEC = """\
-    worlds:
-      ideal: {scenario: memorizing_world}
-      faithful: {scenario: faithful_world}
-    cells: [[ideal, faithful], [faithful, faithful]]
-    sweep:
-      objects: [box]
-      controllers: [memorized]
-      grid: [[0.0, 0.0]]
-      attempts: 2
-      base_seed: 600
-    """
+SPEC = TWO_WORLDS.replace("cells: [[ideal, faithful]]",
+                          "cells: [[ideal, faithful], [faithful, faithful]]")
 
 
 @pytest.fixture(scope="module")
