@@ -106,7 +106,7 @@ def step_event() -> MemorizedEvent:
                           ra_rate_hz=1000.0)
 
 
-def ra_scores_of_a_decay(height: float, sigmas: float) -> np.ndarray:
+def ra_scores_of_a_decay(height: float, sigmas: float, block_s: float = 0.0) -> np.ndarray:
     """The matcher's RA scores at 1.4 s with the event's own decay of `height` [m/s^2]
     starting at 1.15 s on a quiet RA of 0.04 +- 0.01 (the floor's quiet period: 1 s; no
     envelope, so the floor is 0.04 + k 0.01)."""
@@ -119,7 +119,8 @@ def ra_scores_of_a_decay(height: float, sigmas: float) -> np.ndarray:
         times - 1e-9, values)))
     event = step_event()
     matcher = add_event_matcher(builder, {"place_unload": event}, EventMatcherConfig(
-        sa_rate_hz=100.0, ra_noise_floor_sigmas=sigmas, ra_noise_quiet_s=1.0),
+        sa_rate_hz=100.0, ra_noise_floor_sigmas=sigmas, ra_noise_quiet_s=1.0,
+        block_s=block_s),
         channels=source.get_output_port())
     expected = builder.AddSystem(ConstantVectorSource([0.0]))
     builder.Connect(expected.get_output_port(), matcher.GetInputPort("expected_event"))
@@ -137,6 +138,11 @@ def test_an_ra_window_within_the_noise_scores_zero_and_one_above_it_counts():
     # A decay of 1.0 rises far above the floor and keeps its score.
     np.testing.assert_allclose(ra_scores_of_a_decay(1.0, 5.0), ra_scores_of_a_decay(1.0, 0.0))
     assert np.all(ra_scores_of_a_decay(1.0, 5.0) > 0.9)
+
+
+def test_the_floor_gates_a_matcher_that_takes_the_film_in_blocks_alike():
+    assert ra_scores_of_a_decay(0.03, 5.0, block_s=0.01) == pytest.approx([0.0, 0.0])
+    assert np.all(ra_scores_of_a_decay(1.0, 5.0, block_s=0.01) > 0.9)
 
 
 def test_the_floor_is_added_ahead_of_the_matcher_only_when_set():
