@@ -17,7 +17,11 @@ from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 from tegrasp_drake.runs.hardware_run import transition_message
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info, lcmt_tegrasp_tactile
 from tegrasp_drake.runs.hardware_log_reader import RunLogError, read_run_log
-from tegrasp_drake.runs.hardware_log_replay import expected_event_schedule, replay_matcher
+from tegrasp_drake.runs.hardware_log_replay import (expected_event_schedule,
+                                                    matcher_config_of_run, replay_matcher)
+from tegrasp_drake.events.event_matcher import EventMatcherConfig
+from tegrasp_drake.events.replay import live_matcher_config
+from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 
 GRASP = SyntheticGraspConfig()
 EVENTS = extract_memorized_events(synthetic_grasp(GRASP), object_name="box",
@@ -98,6 +102,42 @@ def test_replayed_matcher_matches_each_memorized_event_before_its_transition(run
     for result in results:
         assert result.match_time is not None, result
         assert -0.5 < result.delay < 0.0
+
+
+def test_the_replay_takes_the_live_runs_matcher_settings_from_its_scenario():
+    info = lcmt_tegrasp_run_info()
+    info.scenario_yaml = scenario_to_yaml(LoadScenario(name="faithful_world", overrides=(
+        "controller.ra_envelope_hz=2.0", "controller.ra_noise_floor_sigmas=5.39",
+        "controller.ra_noise_quiet_s=1.5", "controller.sa_threshold=0.85")))
+    config = matcher_config_of_run(info, EVENTS)
+    assert (config.ra_envelope_hz, config.ra_noise_floor_sigmas, config.ra_noise_quiet_s,
+            config.sa_threshold) == (2.0, 5.39, 1.5, 0.85)
+    assert (config.sa_rate_hz, config.ra_rate_hz) == (108.0, 1000.0)  # the scenario's
+    assert matcher_config_of_run(lcmt_tegrasp_run_info(), EVENTS) == live_matcher_config(
+        EVENTS, EventMatcherConfig())  # no scenario: the defaults at the events' rates
+
+
+def test_the_replayed_matcher_has_the_runs_ra_envelope(run_log_path):
+    log = read_run_log(run_log_path)
+    raw = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+                         config=live_matcher_config(EVENTS))
+    enveloped = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+                               config=live_matcher_config(EVENTS, EventMatcherConfig(
+                                   ra_envelope_hz=2.0)))
+    first_raw, first_enveloped = raw[0].best_scores, enveloped[0].best_scores
+    assert first_raw[:2] == pytest.approx(first_enveloped[:2])  # SA unchanged
+    assert abs(first_raw[2] - first_enveloped[2]) > 1e-3  # RA scored on the envelope
+
+
+def test_the_replayed_matcher_has_the_runs_ra_noise_floor(run_log_path):
+    # Until the quiet period is measured no RA window can match: a 1.5 s one hides the
+    # Reach-Load event (logged at 1.1 s) that the replay matches without a floor.
+    log = read_run_log(run_log_path)
+    results = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+                             config=live_matcher_config(EVENTS, EventMatcherConfig(
+                                 ra_noise_floor_sigmas=5.39, ra_noise_quiet_s=1.5)))
+    assert results[0].transition == "reach_load" and results[0].match_time is None
+    assert results[0].best_scores[2:] == pytest.approx([0.0, 0.0])
 
 
 def test_replay_command_reports_the_log_and_the_matches(run_log_path, tmp_path):

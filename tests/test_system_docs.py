@@ -33,8 +33,9 @@ from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetecto
 from tegrasp_drake.control.scripted_grasp import ScriptedGraspSource, plan_scripted_grasp
 from tegrasp_drake.emulators.myrio_emulator import MyRioEmulator, TactileRecording
 from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
-from tegrasp_drake.events.event_matcher import EventMatcher
+from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
 from tegrasp_drake.events.ra_envelope import RaEnvelope
+from tegrasp_drake.events.ra_noise_floor import RaNoiseFloor
 from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.events_folder import load_memorized_events
 from benchmarks.drivers import LoopTick
@@ -138,7 +139,11 @@ CONSTRUCTORS = {
     RaEnvelope: lambda: RaEnvelope(cutoff_hz=2.0, ra_rate_hz=1000.0),
     SlipVibrationBand: lambda: SlipVibrationBand(band_hz=80.0, window_s=0.01,
                                                  sample_rate_hz=1000.0),
-    EventMatcher: lambda: EventMatcher(load_memorized_events(paths.package_events_dir(), "box")),
+    EventMatcher: lambda: EventMatcher(  # with the RA noise floor: every optional port
+        load_memorized_events(paths.package_events_dir(), "box"),
+        EventMatcherConfig(ra_noise_floor_sigmas=5.39)),
+    RaNoiseFloor: lambda: RaNoiseFloor(sigmas=5.39, quiet_s=2.0, ra_rate_hz=1000.0,
+                                       envelope_hz=2.0),
     EventSequencer: lambda: EventSequencer([0, 1, 2]),
     GraspStateMachine: lambda: GraspStateMachine(
         plan=grasp_plan(box_scenario()), config=GraspControllerConfig(),

@@ -251,6 +251,14 @@ class EventTriggeredConfig(GraspControllerConfig):
     # charge amplifier's and the accelerometer's high-pass), lets events memorized with one
     # vibration transducer match on the other; 0 (the paper): Eq. 3 on the raw windows.
     ra_envelope_hz: float = 0.0
+    # The RA noise floor (events/ra_noise_floor.py, docs/transfer.md): an RA window counts
+    # only if its peak rises above its channel's noise mean + ra_noise_floor_sigmas standard
+    # deviations, the noise measured on the stream's first ra_noise_quiet_s [s]. 5.39 is
+    # the rule's k (noise alone crosses it in at most one trial of a thousand); 0 (the
+    # paper): no floor. 2 s: within the 2.8 s approach (scripted_grasp.py: settle_s 0.3 +
+    # reach_s 2.5), before the open fingers can reach the object.
+    ra_noise_floor_sigmas: float = 0.0
+    ra_noise_quiet_s: float = 2.0
 
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
         """{transition: (SA, RA)} thresholds that replace sa/ra_threshold (none)."""

@@ -89,20 +89,33 @@ def controller_events_folders(controller, events_dir=None, hand_folder: str = ""
             for folder in paths.events_search_path(events_dir, hand_folder)]
 
 
+def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
+                         rates_hz: tuple[float, float]):
+    """The EventMatcherConfig of an event-triggered controller's matcher: its Eq. 3
+    thresholds (and the hand's chosen ensemble ones), the live SA and RA rates [Hz], its
+    sample blocks, RA envelope and RA noise floor. The one mapping from a controller's
+    settings to its matcher's, which the live run and a replay of its log share."""
+    from tegrasp_drake.events import EventMatcherConfig
+    return EventMatcherConfig(
+        sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
+        event_thresholds=config.event_thresholds(
+            dict(gripper_hand(gripper_model).ensemble_thresholds)),
+        sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s,
+        ra_envelope_hz=config.ra_envelope_hz,
+        ra_noise_floor_sigmas=config.ra_noise_floor_sigmas,
+        ra_noise_quiet_s=config.ra_noise_quiet_s)
+
+
 def _add_detector(builder, config, plan, rates_hz, events, channels):
     """The detector fed by `channels` (an output port), and its trigger: the memorized
     events' matcher for an event-triggered controller, else the heuristic thresholds."""
     if isinstance(config, EventTriggeredConfig):
-        from tegrasp_drake.events import EventMatcherConfig, add_event_matcher
+        from tegrasp_drake.events import add_event_matcher
         if events is None:
             raise ValueError(f"AddGraspController: the {config.name} controller needs its "
                              "memorized events (events=load_controller_events(scenario))")
-        matcher_config = EventMatcherConfig(
-            sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
-            event_thresholds=config.event_thresholds(
-                dict(gripper_hand(plan.gripper_model).ensemble_thresholds)),
-            sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s,
-            ra_envelope_hz=config.ra_envelope_hz)
+        matcher_config = event_matcher_config(config, gripper_model=plan.gripper_model,
+                                              rates_hz=rates_hz)
         return (add_event_matcher(builder, events, matcher_config, channels=channels),
                 Trigger.MEMORIZED_EVENT)
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(

@@ -13,6 +13,7 @@ from tegrasp_drake.events.correlation import template_is_flat
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.ra_envelope import ra_enveloped
+from tegrasp_drake.events.ra_noise_floor import add_ra_noise_floor
 from tegrasp_drake.events.streaming_correlation import SlidingCorrelation
 from tegrasp_drake.events.transitions import NO_EVENT, transition_order
 from tegrasp_drake.tactile.sample_block import block_samples
@@ -44,6 +45,11 @@ class EventMatcherConfig:
     # Cutoff [Hz] of the RA envelope that add_event_matcher puts on the memorized and the
     # live RA windows alike (events/ra_envelope.py); 0: none, Eq. 3 on the raw windows.
     ra_envelope_hz: float = 0.0
+    # The RA noise floor (events/ra_noise_floor.py): an RA window whose peak is not above
+    # its channel's noise mean + ra_noise_floor_sigmas standard deviations (measured on the
+    # stream's first ra_noise_quiet_s [s], after the envelope) scores 0; 0: no floor.
+    ra_noise_floor_sigmas: float = 0.0
+    ra_noise_quiet_s: float = 2.0
 
 
 def event_templates(event: MemorizedEvent, channels: tuple[int, ...],
@@ -95,6 +101,7 @@ class EventMatcher(WindowNormalizer):
         - sa_block (optional)
         - ra_block (optional)
         - expected_event
+        - ra_floor (optional)
         output_ports:
         - sa_window
         - ra_window
@@ -108,10 +115,13 @@ class EventMatcher(WindowNormalizer):
         sa_block, ra_block: a rate's samples in blocks (WindowNormalizer); connected, with
             channels, by ConnectWindowChannels.
         expected_event: [index] of the event to check, or -1 for none.
+        ra_floor: [left, right] the RA noise floor (RaNoiseFloor; declared only with
+            config.ra_noise_floor_sigmas > 0): an RA channel whose window's peak is not
+            above it scores 0, unless its template is flat.
         sa_window, ra_window: the max-normalised windows that are scored (WindowNormalizer).
         scores: the four channels' scores in [-1, 1]; 0 when no event is expected, before
-            a full window has been sampled, or for a channel whose live window is too flat
-            to carry an event.
+            a full window has been sampled, for a channel whose live window is too flat
+            to carry an event, or for an RA channel below its noise floor.
         match: [1.0] when every channel's score exceeds its threshold and the scores are
             for the event now expected, else [0.0]. It depends directly on expected_event,
             so one tick after the expected event changes it cannot report the old event.
@@ -174,6 +184,8 @@ class EventMatcher(WindowNormalizer):
         self._event_of_value = {float(event): event
                                 for event in range(NO_EVENT, len(self._events))}
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
+        self._floor_port = (self.DeclareVectorInputPort("ra_floor", len(RA_CHANNELS))
+                            if config.ra_noise_floor_sigmas > 0 else None)
         scores_state = {self.discrete_state_ticket(window.state)
                         for window in self.rate_windows}
         self.DeclareVectorOutputPort(
@@ -254,6 +266,11 @@ class EventMatcher(WindowNormalizer):
         name = window.group.name
         expected = self._expected_event(context)
         scores = self._correlations[name].slide(state, rows, offset, full, expected, missing)
+        if self._floor_port is not None and full and expected != NO_EVENT:
+            floor = self._floor_port.Eval(context).tolist()
+            scores = self._correlations[name].gate_below(state, [
+                floor[RA_CHANNELS.index(c)] if c in RA_CHANNELS else -math.inf
+                for c in window.group.channels])
         passed = (expected != NO_EVENT and full and all(
             score > threshold for score, threshold in
             zip(scores.tolist(), self._group_thresholds[name][expected])))
@@ -349,12 +366,22 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
     for a config in blocks, to its block inputs through sample registers
     (ConnectWindowChannels); else the caller connects them. With config.ra_envelope_hz, the
     events' and the channels' RA pass through the RA envelope first (events/ra_envelope.py;
-    `channels` is then required). Its `expected_event` input and its `scores`, `match` and
-    `scored_event` outputs are the caller's to connect.
+    `channels` is then required). With config.ra_noise_floor_sigmas, a RaNoiseFloor fed by
+    the raw `channels` (events/ra_noise_floor.py; `channels` required) feeds its `ra_floor`.
+    Its `expected_event` input and its `scores`, `match` and `scored_event` outputs are the
+    caller's to connect.
     """
+    floor = None
+    if config is not None and config.ra_noise_floor_sigmas:
+        if channels is None:
+            raise ValueError("the RA noise floor needs the channels' output port to measure "
+                             "(add_event_matcher(..., channels=PORT))")
+        floor = add_ra_noise_floor(builder, channels, config)
     if config is not None and config.ra_envelope_hz:
         events, channels = ra_enveloped(builder, events, channels, config)
     matcher = builder.AddNamedSystem("event_matcher", EventMatcher(events, config))
     if channels is not None:
         ConnectWindowChannels(builder, matcher, channels)
+    if floor is not None:
+        builder.Connect(floor, matcher.GetInputPort("ra_floor"))
     return matcher

@@ -225,6 +225,20 @@ class SlidingCorrelation:
         state[self._event_at:self._missing_at] = [event] + scores + statistics
         return state[self._scores_at:self._statistics_at]
 
+    def gate_below(self, state: np.ndarray, floors: list[float]) -> np.ndarray:
+        """Scores 0, in place, each channel whose live window's peak (its largest |value|)
+        is not above its floor in `floors` (one per channel; -inf for none), unless the
+        template of the active event is flat on it (it then expects no change). Call after
+        `slide`; returns the scores view."""
+        event = int(state[self._event_at])
+        if event != NO_EVENT:
+            statistics = state[self._statistics_at:self._missing_at].tolist()
+            for i, (floor, terms) in enumerate(zip(floors, self._channel_terms[event])):
+                high, low = statistics[_STATISTICS * i:_STATISTICS * i + 2]
+                if not terms[3] and max(abs(high), abs(low)) <= floor:
+                    state[self._scores_at + i] = 0.0
+        return state[self._scores_at:self._statistics_at]
+
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
                    event: int) -> None:
         """Exact full cross-correlation of the window with the event's templates, by FFT.

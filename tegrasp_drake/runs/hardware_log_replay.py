@@ -8,7 +8,8 @@ event of the transition that left X (`X_Y`), if one is memorized. For each such 
 the replay reports when the matcher matched, next to when the transition happened.
 `replay_run_log` also replays the memorized events one after another, advanced by each
 match, as an EventSequencer does (events/replay.replay_events_in_sequence); the matcher's
-thresholds are the run's own (its scenario in TEGRASP_RUN_INFO), or the defaults.
+settings are the run's own (its scenario in TEGRASP_RUN_INFO: thresholds, rates, blocks, RA
+envelope and noise floor, as the live controller built them), or the defaults.
 """
 
 import dataclasses
@@ -20,7 +21,9 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
+from tegrasp_drake.control.controller_config import EventTriggeredConfig
+from tegrasp_drake.control.grasp_controller import event_matcher_config
+from tegrasp_drake.events.event_matcher import EventMatcherConfig, add_event_matcher
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.events.events_folder import find_memorized_events
 from tegrasp_drake.events.replay import (EventReplay, live_matcher_config,
@@ -29,7 +32,7 @@ from tegrasp_drake.events.streaming_correlation import NO_EVENT
 from tegrasp_drake.events.transitions import transition_name
 from tegrasp_drake.rig import paths
 from tegrasp_drake.runs.hardware_log_reader import RunLog, RunLogError, read_run_log
-from tegrasp_drake.scenario.scenario import scenario_from_yaml
+from tegrasp_drake.scenario.scenario import sample_rates_hz, scenario_from_yaml
 
 
 def expected_event_schedule(transitions: list[dict], event_index: dict[str, int]):
@@ -62,19 +65,19 @@ class ReplayedTransition:
 def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
                    config: EventMatcherConfig | None = None) -> list[ReplayedTransition]:
     """Runs an EventMatcher over `trial`'s channels with the expected event scheduled by
-    `transitions` (module docstring); one result per transition with a memorized event."""
-    matcher = EventMatcher(events, config)
+    `transitions` (module docstring), wired as the live controller wires it
+    (add_event_matcher: with config's RA envelope, noise floor and sample blocks); one
+    result per transition with a memorized event."""
+    builder = DiagramBuilder()
+    channels = builder.AddSystem(TrajectorySource(channels_trajectory(trial)))
+    matcher = add_event_matcher(builder, events, config, channels=channels.get_output_port())
     index = {name: matcher.event_index(name) for name in matcher.transitions}
     schedule = expected_event_schedule(transitions, index)
     end = float(max(trial.t_sa[-1], trial.t_ra[-1]))
     breaks = [t for t, _ in schedule] + [max(end, schedule[-1][0]) + 1.0]
     values = np.array([[float(i) for _, i in schedule] + [float(NO_EVENT)]])
-    builder = DiagramBuilder()
-    builder.AddSystem(matcher)
-    channels = builder.AddSystem(TrajectorySource(channels_trajectory(trial)))
     expected = builder.AddSystem(TrajectorySource(
         PiecewisePolynomial.ZeroOrderHold(breaks, values)))
-    builder.Connect(channels.get_output_port(), matcher.GetInputPort("channels"))
     builder.Connect(expected.get_output_port(), matcher.GetInputPort("expected_event"))
     period = 1e-3
     match_log = LogVectorOutput(matcher.GetOutputPort("match"), builder, period)
@@ -103,14 +106,17 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
 
 
 def matcher_config_of_run(run_info, events) -> EventMatcherConfig:
-    """The run's matcher thresholds (from its scenario in TEGRASP_RUN_INFO, else the
-    defaults), at the events' rates."""
-    config = EventMatcherConfig()
+    """The run's own matcher settings when its scenario (in TEGRASP_RUN_INFO) ran an
+    event-triggered controller: what the live controller built (event_matcher_config, at
+    the scenario's SA and RA rates: thresholds, blocks, RA envelope, RA noise floor); else
+    the defaults at the events' rates."""
     if run_info is not None and run_info.scenario_yaml:
-        controller = scenario_from_yaml(run_info.scenario_yaml).controller
-        config.sa_threshold = getattr(controller, "sa_threshold", config.sa_threshold)
-        config.ra_threshold = getattr(controller, "ra_threshold", config.ra_threshold)
-    return live_matcher_config(events, config)
+        scenario = scenario_from_yaml(run_info.scenario_yaml)
+        if isinstance(scenario.controller, EventTriggeredConfig):
+            return event_matcher_config(scenario.controller,
+                                        gripper_model=scenario.gripper.model,
+                                        rates_hz=sample_rates_hz(scenario))
+    return live_matcher_config(events, EventMatcherConfig())
 
 
 @dataclasses.dataclass

@@ -316,6 +316,14 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
             source, "controller.ra_envelope_hz", "must be 0 (no RA envelope) or lie between "
             f"0 and half the RA rate ({scenario.vibration.sample_rate_hz / 2:g} Hz)",
             envelope_hz)
+    require(getattr(scenario.controller, "ra_noise_floor_sigmas", 0.0) >= 0, source,
+            "controller.ra_noise_floor_sigmas", "must be 0 (no RA noise floor) or positive "
+            "(standard deviations of the RA noise)",
+            getattr(scenario.controller, "ra_noise_floor_sigmas", 0.0))
+    quiet_s = getattr(scenario.controller, "ra_noise_quiet_s", 2.0)
+    require(quiet_s * scenario.vibration.sample_rate_hz >= 2, source,
+            "controller.ra_noise_quiet_s", "must hold at least 2 RA samples [s] (the start of "
+            "the run, pads untouched, where the RA noise is measured)", quiet_s)
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario.controller, source)
     if len(scenario.disturbance.hit_force_n) != 3 or scenario.disturbance.hit_duration_s <= 0:

@@ -10,6 +10,8 @@ cell's finished trials:
     (the trial judge's count), per trial;
   - hold and unload success (the paper's criteria, runs/trial.py);
   - the median CPU seconds and simulated seconds of a trial.
+A cell whose sweep has not finished all its trials yet is marked with how many ran, e.g.
+"41/81 run", in the table and on the heat map; a cell with none is listed as not run.
 """
 
 import dataclasses
@@ -34,7 +36,8 @@ class CellRow:
     memorizing: str
     running: str
     controller: str
-    trials: int
+    trials: int  # finished
+    planned: int  # the spec's trials of this cell and controller
     # per REQUIRED_TRANSITIONS: (detected, trials that waited for it, median latency [s])
     transitions: tuple[tuple[int, int, float | None], ...]
     false_triggers: int
@@ -42,6 +45,14 @@ class CellRow:
     unload: int
     cpu_s: float | None  # median per trial
     sim_s: float | None
+
+    @property
+    def partly_run(self) -> bool:
+        return self.trials < self.planned
+
+    def trials_text(self) -> str:
+        """"81" for a finished cell, "41/81 run" for one with trials still to run."""
+        return f"{self.trials}/{self.planned} run" if self.partly_run else str(self.trials)
 
     def match_rate(self, k: int) -> float:
         detected, waited, _ = self.transitions[k]
@@ -56,9 +67,10 @@ def cell_rows(spec, out_dir) -> list[CellRow]:
         folder = cell_folder(out_dir, memorizing, running)
         if not (folder / "trials").is_dir():
             continue
-        ids = {trial.trial_id for trial in expand_trials(running_sweep(spec, running))}
+        planned = {trial.trial_id: trial.controller
+                   for trial in expand_trials(running_sweep(spec, running))}
         records = {trial_id: record for trial_id, record in load_records(folder).records.items()
-                   if trial_id in ids and record.get("result") is not None}
+                   if trial_id in planned and record.get("result") is not None}
         for controller in spec.sweep.controllers:
             mine = {k: r for k, r in records.items() if r["trial"]["controller"] == controller}
             if not mine:
@@ -71,7 +83,8 @@ def cell_rows(spec, out_dir) -> list[CellRow]:
             cpu = [r["cpu_time_s"] for r in results if r.get("cpu_time_s") is not None]
             sim = [r["sim_time_s"] for r in results if r.get("sim_time_s") is not None]
             rows.append(CellRow(
-                memorizing, running, controller, len(results), transitions,
+                memorizing, running, controller, len(results),
+                sum(1 for c in planned.values() if c == controller), transitions,
                 sum(int(r.get("false_triggers", 0)) for r in results),
                 sum(bool(r["hold_success"]) for r in results),
                 sum(bool(r["unload_success"]) for r in results),
@@ -90,7 +103,7 @@ def transfer_markdown(rows: list[CellRow]) -> str:
     header += ["false triggers / trial", "hold", "unload", "CPU s / trial"]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for row in rows:
-        cells = [row.memorizing, row.running, row.controller, str(row.trials)]
+        cells = [row.memorizing, row.running, row.controller, row.trials_text()]
         for detected, waited, latency in row.transitions:
             text = _percent(detected, waited)
             cells.append(text + (f" ({1000 * latency:.0f} ms)" if latency is not None else ""))
@@ -110,9 +123,17 @@ def _heatmap_panels(rows: list[CellRow]):
     return panels
 
 
+def heatmap_label(row: CellRow, value: float) -> str:
+    """A heat-map cell's text: the rate in percent, and under it "41/81 run" for a cell
+    with trials still to run."""
+    text = f"{100 * value:.0f}"
+    return f"{text}\n{row.trials_text()}" if row.partly_run else text
+
+
 def draw_transfer_heatmap(rows: list[CellRow], path) -> pathlib.Path:
     """Heat maps, memorizing world (rows) by running world (columns), of each transition's
-    match rate and of hold and unload success; blank where a cell has no trials."""
+    match rate and of hold and unload success (heatmap_label); blank where a cell has no
+    trials."""
     memorizing = list(dict.fromkeys(row.memorizing for row in rows))
     running = list(dict.fromkeys(row.running for row in rows))
     panels = _heatmap_panels(rows)
@@ -121,12 +142,15 @@ def draw_transfer_heatmap(rows: list[CellRow], path) -> pathlib.Path:
     axes = figure.subplots(1, len(panels), sharey=True)
     for ax, (title, value) in zip(np.atleast_1d(axes), panels):
         grid = np.full((len(memorizing), len(running)), np.nan)
+        labels = {}
         for row in rows:
-            grid[memorizing.index(row.memorizing), running.index(row.running)] = value(row)
+            at = (memorizing.index(row.memorizing), running.index(row.running))
+            grid[at] = value(row)
+            labels[at] = heatmap_label(row, grid[at])
         image = ax.imshow(grid, vmin=0.0, vmax=1.0, cmap="viridis", aspect="auto")
         for (i, j), v in np.ndenumerate(grid):
             if np.isfinite(v):
-                ax.text(j, i, f"{100 * v:.0f}", ha="center", va="center", fontsize=7,
+                ax.text(j, i, labels[i, j], ha="center", va="center", fontsize=7,
                         color="white" if v < 0.5 else "black")
         ax.set_title(title, fontsize=9)
         ax.set_xticks(range(len(running)), running, rotation=60, ha="right", fontsize=7)
@@ -145,6 +169,14 @@ def heatmap_rows(rows: list[CellRow]) -> list[CellRow]:
     return [row for row in rows if row.controller == chosen]
 
 
+def not_run_note(spec, rows: list[CellRow]) -> str:
+    """A line naming the spec's cells with no finished trial, or "" when every cell has
+    some (the partly run ones are marked in the table)."""
+    run = {(row.memorizing, row.running) for row in rows}
+    missing = [cell_name(a, b) for a, b in spec.cells if (a, b) not in run]
+    return f"\nNot run yet (no finished trial): {', '.join(missing)}.\n" if missing else ""
+
+
 def write_transfer_reports(spec, out_dir, *, figure_format: str = "png") -> list[pathlib.Path]:
     """Writes OUT/transfer.md and the heat map OUT/transfer_matrix.<format> from the cells'
     records; returns the paths written (none when no cell has a finished trial)."""
@@ -154,7 +186,7 @@ def write_transfer_reports(spec, out_dir, *, figure_format: str = "png") -> list
     out_dir = pathlib.Path(out_dir)
     text = ("# Transfer matrix\n\nEvents memorized in one world (row), trials run in another."
             " Cells: " + ", ".join(cell_name(a, b) for a, b in spec.cells) + ".\n\n"
-            + transfer_markdown(rows))
+            + transfer_markdown(rows) + not_run_note(spec, rows))
     written = [write_atomically(out_dir / TABLE_FILE, text)]
     written.append(draw_transfer_heatmap(heatmap_rows(rows),
                                          figure_path(out_dir, FIGURE_STEM, figure_format)))
