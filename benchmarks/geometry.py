@@ -39,6 +39,7 @@ from benchmarks.station_costs import (floor_step_breakdown, station_scenario,
 from benchmarks.trial import meshed_object
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.rig.typed_yaml import read_yaml_file
 from tegrasp_drake.scenario.scenario import resolve_object
 from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
@@ -174,7 +175,7 @@ def run_geometry_benchmark(scenario, *, objects=OBJECTS, repeats: int = 3) -> di
     base = station_scenario(scenario, "jaco2")
     with tempfile.TemporaryDirectory(prefix="tegrasp-geometry-") as folder:
         for name in objects:
-            obj = resolve_object(dataclasses.replace(base.object, name=name, shape=""))
+            obj = resolve_object(ObjectConfig(name=name))
             result["objects"][name] = run_object(dataclasses.replace(base, object=obj),
                                                  repeats=repeats, folder=pathlib.Path(folder))
     return result
@@ -219,9 +220,15 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.repeats < 1:
         parser.error(f"--repeats {args.repeats}: give at least 1 run per variant")
-    result = run_geometry_benchmark(scenario_from_arguments(args), objects=args.objects,
-                                    repeats=args.repeats)
-    print(json.dumps(result) if args.json else format_geometry_report(result))
+    scenario = scenario_from_arguments(args)
+    if args.json:
+        print(json.dumps(run_geometry_benchmark(scenario, objects=args.objects,
+                                                repeats=args.repeats)))
+        return 0
+    for k, name in enumerate(args.objects):  # each object's table as soon as it is measured
+        result = run_geometry_benchmark(scenario, objects=[name], repeats=args.repeats)
+        report = format_geometry_report(result)
+        print(report if k == 0 else report.split("\n", 2)[2], flush=True)
     return 0
 
 

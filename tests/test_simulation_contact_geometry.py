@@ -95,7 +95,7 @@ def test_the_half_space_table_is_the_box_tables_material_as_deep(reference, coar
     assert (box.GetProperty("hydroelastic", "hydroelastic_modulus")
             == half_space.GetProperty("hydroelastic", "hydroelastic_modulus"))
     # Drake's box field reaches the modulus at the mid-plane, half the 50 mm top deep.
-    assert HALF_SPACE_SLAB_THICKNESS_M == inspectors[0].GetShape(geometries[0]).depth() / 2
+    assert HALF_SPACE_SLAB_THICKNESS_M == inspectors[0].GetShape(geometries[0]).height() / 2
     assert half_space.GetProperty("hydroelastic", "slab_thickness") == HALF_SPACE_SLAB_THICKNESS_M
 
 
