@@ -124,7 +124,7 @@ def ideal_grasp_cost(scenario, *, repeats: int = 100) -> dict:
             "tactile_pad_sample_us": pad_us}
 
 
-def _meshed_object(base: ObjectConfig, resolution_m: float, folder: pathlib.Path):
+def meshed_object(base: ObjectConfig, resolution_m: float, folder: pathlib.Path):
     """`base` (a built-in cylinder) as a file object whose mesh hint is resolution_m."""
     path = folder / f"object_{resolution_m * 1000:g}mm.sdf"
     path.write_text(object_sdf(base, mesh_resolution_m=resolution_m))
@@ -140,7 +140,7 @@ def contact_face_growth(scenario, *, resolutions_m=MESH_RESOLUTIONS_M,
     rows = []
     with tempfile.TemporaryDirectory(prefix="tegrasp-mesh-") as folder:
         for resolution in resolutions_m:
-            obj = _meshed_object(BUILTIN_OBJECTS[object_name], resolution, pathlib.Path(folder))
+            obj = meshed_object(BUILTIN_OBJECTS[object_name], resolution, pathlib.Path(folder))
             cost = ideal_grasp_cost(with_controller(
                 dataclasses.replace(scenario, object=obj), "open_loop"))
             rows.append({"object_mesh_m": resolution, **cost})

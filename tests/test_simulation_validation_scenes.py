@@ -23,14 +23,22 @@ per cent low (measured 0.958 of the prediction).
 No creep. An object held still, below the friction limits, must stay still. Gravity twists a
 tilted, off-centre held cylinder in the pads' plane; under Drake's default stiction tolerance
 (1e-4 m/s) the regularised friction let it turn steadily.
+
+Each check runs on the reference geometry and on every coarser contact geometry a scenario
+can select that changes its scene (simulation/contact_geometry.py): the table as a
+half-space under the cylinder; the box as 12 triangles, with the closed forms above for the
+box (half-width 22.5 mm, its own pair friction).
 """
 
 import dataclasses
+
+import pytest
 
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig import materials
 from tegrasp_drake.rig.tactile_fingertip import PAD_WIDTH
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
 from tegrasp_drake.simulation.validation_scenes import (GRAVITY, held_tilt_rate,
                                                         push_standing_object,
                                                         slip_onset_grip_force)
@@ -46,23 +54,42 @@ TIPS_WITH_PAD_FRICTION = RADIUS * (1.0 / MU_TABLE + MU_PAD)  # 41.8 mm
 UPRIGHT_DEG = 2.0  # a cylinder that slid stays within this of vertical (measured 0.03)
 TIPPED_DEG = 10.0  # one that tipped over leans past this within the push (measured 28)
 
+# The contact geometries a scenario can select that change the cylinder's scenes, and the
+# box's (the box setting leaves a cylinder as it is; the table appears in the push only).
+CYLINDER_GEOMETRIES = pytest.mark.parametrize("geometry", [
+    ContactGeometryConfig(), ContactGeometryConfig(table="half_space")],
+    ids=["reference", "table_half_space"])
+BOX_GEOMETRIES = pytest.mark.parametrize("geometry", [
+    ContactGeometryConfig(), ContactGeometryConfig(box_triangles=12),
+    ContactGeometryConfig(box_triangles=12, table="half_space")],
+    ids=["reference", "box_12_triangles", "box_12_triangles_half_space"])
+BOX = BUILTIN_OBJECTS["box"]
+BOX_TIPS_WITHOUT_PAD_FRICTION = (BOX.width_along_stroke() / 2
+                                 / materials.pair_friction(BOX.friction, materials.TABLE_TOP))
+BOX_MU_PAD = materials.pair_friction(BOX.friction, materials.PAD_COVER)
 
-def test_a_cylinder_pushed_low_slides_upright():
+
+@CYLINDER_GEOMETRIES
+def test_a_cylinder_pushed_low_slides_upright(geometry):
     height = 0.015  # m, pad centre above the table
     assert height + PAD_WIDTH / 2 < 0.8 * TIPS_WITHOUT_PAD_FRICTION
-    result = push_standing_object(THIN_CYLINDER, push_height=height, plant_config=PLANT_CONFIG)
+    result = push_standing_object(THIN_CYLINDER, push_height=height, plant_config=PLANT_CONFIG,
+                                  contact_geometry=geometry)
     assert result.tilt_deg < UPRIGHT_DEG
     assert result.slide_m > 0.015  # of the pad's 20 mm push
 
 
-def test_a_cylinder_pushed_high_tips_over():
+@CYLINDER_GEOMETRIES
+def test_a_cylinder_pushed_high_tips_over(geometry):
     height = 0.062  # m
     assert height - PAD_WIDTH / 2 > 1.2 * TIPS_WITH_PAD_FRICTION
-    result = push_standing_object(THIN_CYLINDER, push_height=height, plant_config=PLANT_CONFIG)
+    result = push_standing_object(THIN_CYLINDER, push_height=height, plant_config=PLANT_CONFIG,
+                                  contact_geometry=geometry)
     assert result.tilt_deg > TIPPED_DEG
 
 
 def test_a_held_object_slips_at_the_coulomb_grip_force():
+    # No table in this scene: the cylinder's only geometry setting-free check.
     heavy = dataclasses.replace(THIN_CYLINDER, mass=0.5)  # kg; slips at a grip of 3.6 N
     predicted = heavy.mass * GRAVITY / (2.0 * MU_PAD)
     result = slip_onset_grip_force(heavy, plant_config=PLANT_CONFIG,
@@ -81,3 +108,23 @@ def test_a_tilted_object_held_below_the_friction_limit_does_not_creep():
                           plant_config=PLANT_CONFIG)
     assert abs(rate) < 0.05  # deg/s
 
+
+
+@BOX_GEOMETRIES
+def test_a_box_pushed_low_slides_upright(geometry):
+    height = 0.015  # m, pad centre above the table
+    assert height + PAD_WIDTH / 2 < 0.8 * BOX_TIPS_WITHOUT_PAD_FRICTION  # 54.6 mm
+    result = push_standing_object(BOX, push_height=height, plant_config=PLANT_CONFIG,
+                                  contact_geometry=geometry)
+    assert result.tilt_deg < UPRIGHT_DEG
+    assert result.slide_m > 0.015  # of the pad's 20 mm push
+
+
+@BOX_GEOMETRIES
+def test_a_held_box_slips_at_the_coulomb_grip_force(geometry):
+    heavy = dataclasses.replace(BOX, mass=0.8)  # kg; slips at a grip of 4.8 N
+    predicted = heavy.mass * GRAVITY / (2.0 * BOX_MU_PAD)
+    result = slip_onset_grip_force(heavy, plant_config=PLANT_CONFIG,
+                                   initial_force=2.0 * predicted, contact_geometry=geometry)
+    assert result.onset_force_n is not None, "the box never slipped"
+    assert 0.9 <= result.onset_force_n / predicted <= 1.1

@@ -16,10 +16,14 @@ EXPECTED_XY = (0.72, 0.0)  # m, the centre marker; the side grasp is reachable f
 STROKE_OFFSETS = (-0.015, 0.0, 0.015)  # m, along world y
 NORMAL_OFFSETS = (-0.010, 0.0, 0.010)  # m, along world x
 MODULUS = 1.0e7  # Pa
+DISSIPATION = 5.0  # s/m, Hunt-Crossley, as the pads'
+RELAXATION_TIME_S = 0.02  # as the pads'
 FRICTION = materials.TABLE_TOP
 
 
-def table_sdf() -> str:
+def table_sdf(*, collision: bool = True) -> str:
+    """The table's SDF text; without `collision`, its top and markers are visual only (the
+    station then gives it another collision shape, simulation/table_model.py)."""
     top = translation((CENTER_XY[0], CENTER_XY[1], -SIZE[2] / 2))
     size = " ".join(f"{s:g}" for s in SIZE)
     markers = []
@@ -31,15 +35,16 @@ def table_sdf() -> str:
                            "<geometry><cylinder><radius>0.003</radius><length>0.0004</length>"
                            f"</cylinder></geometry><material><diffuse>{color}</diffuse>"
                            "</material></visual>")
-    return "\n".join([
-        '<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="table">',
-        '<link name="top">',
+    collision_text = (
         f'<collision name="top">{pose_text(top)}<geometry><box><size>{size}</size></box>'
         "</geometry><drake:proximity_properties><drake:compliant_hydroelastic/>"
         f"<drake:hydroelastic_modulus>{MODULUS:g}</drake:hydroelastic_modulus>"
-        "<drake:hunt_crossley_dissipation>5</drake:hunt_crossley_dissipation>"
-        "<drake:relaxation_time>0.02</drake:relaxation_time>"
-        f"{friction_text(FRICTION)}</drake:proximity_properties></collision>",
+        f"<drake:hunt_crossley_dissipation>{DISSIPATION:g}</drake:hunt_crossley_dissipation>"
+        f"<drake:relaxation_time>{RELAXATION_TIME_S:g}</drake:relaxation_time>"
+        f"{friction_text(FRICTION)}</drake:proximity_properties></collision>")
+    return "\n".join([
+        '<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="table">',
+        '<link name="top">', *([collision_text] if collision else []),
         f'<visual name="top">{pose_text(top)}<geometry><box><size>{size}</size></box>'
         "</geometry><material><diffuse>0.82 0.74 0.6 1</diffuse></material></visual>",
         *markers, "</link>", "</model></sdf>"]) + "\n"

@@ -27,7 +27,8 @@ from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.film_dynamics import first_order_highpass
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
-from tegrasp_drake.simulation.station import TABLE_URL, AddTactileSensors, set_pd_gains
+from tegrasp_drake.simulation.station import AddTactileSensors, set_pd_gains
+from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.tactile.sampling import samples_per_window
 
@@ -117,9 +118,8 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     X_WG = RigidTransform(R_WG_SIDE_GRASP, [*GRASP_XY, config.grasp_height_m])
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", gripper),
                      X_WG @ X_BG.inverse())
-    (table,) = parser.AddModels(url=TABLE_URL)
-    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
-    obj = AddObject(parser, scenario.object)
+    AddTable(parser, scenario.contact_geometry)
+    obj = AddObject(parser, scenario.object, scenario.contact_geometry)
     plant.set_gravity_enabled(gripper, False)
     set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
     plant.Finalize()

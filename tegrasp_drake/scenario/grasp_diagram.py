@@ -76,7 +76,8 @@ def MakeSimulatedStation(scenario, *, meshcat=None):
         object=scenario.object, X_WO=object_pose(scenario), tactile=scenario.tactile,
         vibration=scenario.vibration, disturbance=scenario.disturbance,
         random_seed=scenario.random_seed, grasp_height=scenario.grasp.grasp_height,
-        carriage=station_carriage(scenario), meshcat=meshcat)
+        carriage=station_carriage(scenario), contact_geometry=scenario.contact_geometry,
+        meshcat=meshcat)
 
 
 def AddScenarioController(builder, scenario, *, station, events=None,

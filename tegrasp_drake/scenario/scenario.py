@@ -32,6 +32,8 @@ from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJE
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
 from tegrasp_drake.simulation.capacitive_taxels import CAPACITIVE_OUTPUTS, TAXEL_TRANSDUCERS
+from tegrasp_drake.simulation.contact_geometry import (ContactGeometryConfig,
+                                                       contact_geometry_problem)
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
@@ -70,6 +72,10 @@ class Scenario:
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged", stiction_tolerance=1e-6,
             contact_model="hydroelastic_with_fallback"))
+    # How finely the object and the table are meshed (simulation/contact_geometry.py); the
+    # default is the reference geometry every committed result ran on.
+    contact_geometry: ContactGeometryConfig = dataclasses.field(
+        default_factory=ContactGeometryConfig)
     simulator_config: SimulatorConfig = dataclasses.field(
         default_factory=lambda: SimulatorConfig(target_realtime_rate=0.0,
                                                 publish_every_time_step=False))
@@ -336,6 +342,9 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
             scenario.plant_config.time_step)
     require(scenario.grasp.grip_force > 0, source, "grasp.grip_force", "must be positive [N]",
             scenario.grasp.grip_force)
+    problem = contact_geometry_problem(scenario.contact_geometry)
+    if problem:
+        raise ConfigError(f"{source}: field 'contact_geometry.{problem[0]}' {problem[1]}")
     _check_transducers(scenario, source)
     require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
             f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "

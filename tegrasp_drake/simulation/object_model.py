@@ -1,20 +1,29 @@
 """Adds the scenario's object to a plant: a primitive shape written as SDF, or a model file.
 
 Primitive objects are rigid hydroelastic bodies (the pads and the table are compliant), with
-their frame O at the centre of the base face, z up, and the inertia of a uniform solid.
+their frame O at the centre of the base face, z up, and the inertia of a uniform solid. How
+finely their surfaces are meshed is the scenario's `contact_geometry` (contact_geometry.py).
 """
 
+import itertools
+
 import numpy as np
+from pydrake.geometry import (AddContactMaterial, AddRigidHydroelasticProperties, Convex,
+                              ProximityProperties)
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import CoulombFriction
 from pydrake.multibody.tree import ModelInstanceIndex
 
 from tegrasp_drake.modelgen.sdf_text import box_inertia, friction_text, inertial_text
 from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
 
 OBJECT_MODEL_NAME = "object"
 OBJECT_BODY_NAME = "object"
-# Edge length [m] of a primitive's rigid hydroelastic surface mesh (a cylinder's facets; a
-# box's mesh is 24 triangles, 14 vertices with one at each face's centre, whatever the hint:
-# counted at 50, 5 and 2 mm): 5 mm facets on the 25-50 mm cylinders.
+# Edge length [m] of a primitive's rigid hydroelastic surface mesh in the reference geometry
+# (a cylinder's facets; a box's mesh is 24 triangles, 14 vertices with one at each face's
+# centre, whatever the hint: counted at 50, 5 and 2 mm): 5 mm facets on the 25-50 mm
+# cylinders (contact_geometry.py: why not coarser).
 MESH_RESOLUTION_M = 0.005
 
 
@@ -33,36 +42,60 @@ def _inertia(config: ObjectConfig) -> np.ndarray:
     return np.diag([side, side, config.mass * radius ** 2 / 2])
 
 
-def object_sdf(config: ObjectConfig, *, mesh_resolution_m: float = MESH_RESOLUTION_M) -> str:
+def object_sdf(config: ObjectConfig, *, mesh_resolution_m: float = MESH_RESOLUTION_M,
+               collision: bool = True) -> str:
     """SDF text of a primitive (box or cylinder) object; mesh_resolution_m: its
-    drake:mesh_resolution_hint [m] (the trial benchmark varies it)."""
+    drake:mesh_resolution_hint [m]; without `collision`, its body and visual only."""
     half_height = config.height() / 2
     color = " ".join(f"{c:g}" for c in config.color)
     geometry = _geometry(config)
+    collision_text = (
+        f'<collision name="collision"><pose>0 0 {half_height:g} 0 0 0</pose>'
+        f"<geometry>{geometry}</geometry><drake:proximity_properties><drake:rigid_hydroelastic/>"
+        f"<drake:mesh_resolution_hint>{mesh_resolution_m:g}</drake:mesh_resolution_hint>"
+        f"{friction_text(config.friction)}</drake:proximity_properties></collision>")
     return (
         '<?xml version="1.0"?><sdf version="1.9">'
         f'<model name="{OBJECT_MODEL_NAME}"><link name="{OBJECT_BODY_NAME}">'
         f"{inertial_text(config.mass, (0, 0, half_height), _inertia(config))}"
-        f'<collision name="collision"><pose>0 0 {half_height:g} 0 0 0</pose>'
-        f"<geometry>{geometry}</geometry><drake:proximity_properties><drake:rigid_hydroelastic/>"
-        f"<drake:mesh_resolution_hint>{mesh_resolution_m:g}</drake:mesh_resolution_hint>"
-        f"{friction_text(config.friction)}</drake:proximity_properties></collision>"
+        f"{collision_text if collision else ''}"
         f'<visual name="visual"><pose>0 0 {half_height:g} 0 0 0</pose>'
         f"<geometry>{geometry}</geometry><material><diffuse>{color}</diffuse></material>"
         "</visual></link></model></sdf>")
 
 
-def AddObject(parser, config: ObjectConfig) -> ModelInstanceIndex:
-    """Adds the object to the parser's plant; returns its model instance."""
+def _corner_hull_collision(plant, instance, config: ObjectConfig) -> None:
+    """The box's collision shape as the convex hull of its 8 corners (12 triangles), with
+    the properties object_sdf gives its Box, in the same place."""
+    half = np.asarray(config.size, dtype=float) / 2
+    corners = np.array([signs for signs in itertools.product((-1.0, 1.0), repeat=3)]).T
+    properties = ProximityProperties()
+    AddRigidHydroelasticProperties(MESH_RESOLUTION_M, properties)
+    AddContactMaterial(properties=properties,
+                       friction=CoulombFriction(config.friction, config.friction))
+    plant.RegisterCollisionGeometry(
+        object_body(plant, instance), RigidTransform([0.0, 0.0, config.height() / 2]),
+        Convex(corners * half[:, None], "box_corner_hull"), "collision", properties)
+
+
+def AddObject(parser, config: ObjectConfig,
+              geometry: ContactGeometryConfig | None = None) -> ModelInstanceIndex:
+    """Adds the object to the parser's plant, a primitive meshed as `geometry` says (default:
+    the reference geometry); returns its model instance."""
+    geometry = geometry or ContactGeometryConfig()
+    corner_hull = config.shape == "box" and geometry.box_triangles == 12
     if config.shape == "file":
         if config.file.startswith("package://"):
             instances = parser.AddModels(url=config.file)
         else:
             instances = parser.AddModels(file_name=config.file)
     else:
-        instances = parser.AddModelsFromString(object_sdf(config), "sdf")
+        instances = parser.AddModelsFromString(object_sdf(config, collision=not corner_hull),
+                                               "sdf")
     if len(instances) != 1:
         raise ValueError(f"object.file '{config.file}' must hold exactly one model")
+    if corner_hull:
+        _corner_hull_collision(parser.plant(), instances[0], config)
     return instances[0]
 
 

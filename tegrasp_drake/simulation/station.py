@@ -49,6 +49,7 @@ from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
+from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.capacitive_taxels import AddTaxelTransducer
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
@@ -58,9 +59,8 @@ from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig,
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
 from tegrasp_drake.simulation.station_visualization import (AddStationVisualization,
                                                            grasp_camera_pose)
+from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, TactileSensorConfig
-
-TABLE_URL = "package://tegrasp/table/table.sdf"
 
 
 @dataclasses.dataclass
@@ -205,11 +205,12 @@ def side_grasp_pose(xy, height: float) -> RigidTransform:
 
 def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
                     gripper: GripperDriverConfig, object: ObjectConfig,
-                    X_WO: RigidTransform, carriage: EndpointImpedance | None = None
-                    ) -> StationPlant:
+                    X_WO: RigidTransform, carriage: EndpointImpedance | None = None,
+                    contact_geometry: ContactGeometryConfig | None = None) -> StationPlant:
     """Adds the station's plant (`plant_config`) to `builder`: the arm at its start pose, or
     with `carriage` the gripper on a Cartesian carriage of that impedance; the gripper of
-    `gripper.model` (PD gains, no gravity), the table and `object` at X_WO, finalized.
+    `gripper.model` (PD gains, no gravity), the table and `object` at X_WO meshed as
+    `contact_geometry` says (default: the reference geometry), finalized.
     MakeGraspStation builds its sensors on it; the trial benchmark's plant-alone floor
     (benchmarks/plant_floor.py) drives it alone."""
     arm_config, gripper_config, impedance = arm, gripper, carriage
@@ -231,9 +232,8 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
         weld = plant.WeldFrames(carriage.end_body.body_frame(),
                                 plant.GetFrameByName("grasp_frame", gripper),
                                 RigidTransform(R_WG_SIDE_GRASP))
-    (table,) = parser.AddModels(url=TABLE_URL)
-    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
-    obj = AddObject(parser, object)
+    AddTable(parser, contact_geometry)
+    obj = AddObject(parser, object, contact_geometry)
     plant.set_gravity_enabled(arm, False)
     plant.set_gravity_enabled(gripper, False)
     if carriage is None:
@@ -283,16 +283,19 @@ def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriv
                      object: ObjectConfig, X_WO: RigidTransform, tactile: TactileSensorConfig,
                      vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
                      random_seed: int, grasp_height: float,
-                     carriage: EndpointImpedance | None = None, meshcat=None):
+                     carriage: EndpointImpedance | None = None,
+                     contact_geometry: ContactGeometryConfig | None = None, meshcat=None):
     """Builds the simulated station Diagram (see the module docstring) from the sections it
     uses: the plant, arm and gripper configs, the object at X_WO, the taxels' and films'
-    configs (their noise seeded by `random_seed`), the hit on the object; with `carriage`,
+    configs (their noise seeded by `random_seed`), the hit on the object, the contact
+    world's meshes (`contact_geometry`, default the reference); with `carriage`,
     the gripper on a Cartesian carriage of that impedance in the arm's place; with
     `meshcat`, its visualization, the camera on the grasp at `grasp_height` [m] above the
     table."""
     builder = DiagramBuilder()
     parts = AddStationPlant(builder, plant_config=plant_config, arm=arm, gripper=gripper,
-                            object=object, X_WO=X_WO, carriage=carriage)
+                            object=object, X_WO=X_WO, carriage=carriage,
+                            contact_geometry=contact_geometry)
     gripper_config = gripper
     plant, scene_graph = parts.plant, parts.scene_graph
     arm_instance, gripper, obj = parts.arm, parts.gripper, parts.object_instance

@@ -5,7 +5,9 @@ station's table if asked for, and one object, and nothing else: no arm (the grip
 is welded to the world in the side-grasp orientation, grasp frame G at `grasp_xyz`) and no
 sensors. The fingers follow a force-limited position loop, as SimRobotiqDriver's do, but
 with the grip force given as a profile over time and allowed below the 2F-85's 20 N, so
-that slip can be provoked. The plant's settings are the scenario's (`plant_config`).
+that slip can be provoked. The plant's settings are the scenario's (`plant_config`), and so
+is how finely the object and the table are meshed (`contact_geometry`, default the
+reference geometry).
 
 The three experiments return what a closed form predicts (module docstrings of the tests in
 tests/test_simulation_validation_scenes.py give the formulas):
@@ -31,10 +33,11 @@ from tegrasp_drake.modelgen.table_sdf import EXPECTED_XY
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL, R_WG_SIDE_GRASP
 from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig,
                                                         force_limited_set_point)
-from tegrasp_drake.simulation.station import TABLE_URL
+from tegrasp_drake.simulation.table_model import AddTable
 
 GRAVITY = 9.81  # m/s^2, Drake's default
 SCENE_XY = EXPECTED_XY  # m; scenes stand at the station's expected object position
@@ -114,9 +117,11 @@ class PinchScene:
 
 def MakePinchScene(*, obj: ObjectConfig, X_WO: RigidTransform, program: GripProgram,
                    grasp_xyz, plant_config: MultibodyPlantConfig, with_table: bool,
-                   gripper: GripperDriverConfig | None = None) -> PinchScene:
+                   gripper: GripperDriverConfig | None = None,
+                   contact_geometry: ContactGeometryConfig | None = None) -> PinchScene:
     """The gripper (grasp frame at `grasp_xyz`, side grasp), the object at X_WO, and the
-    table if `with_table`; the fingers start at `program.start_q`."""
+    table if `with_table`, meshed as `contact_geometry` says; the fingers start at
+    `program.start_q`."""
     gripper = gripper or GripperDriverConfig()
     builder = DiagramBuilder()
     plant, _ = AddMultibodyPlant(plant_config, builder)
@@ -126,9 +131,8 @@ def MakePinchScene(*, obj: ObjectConfig, X_WO: RigidTransform, program: GripProg
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", hand),
                      X_WG @ RigidTransform([0.0, 0.0, -PAD_CENTER_Z]))
     if with_table:
-        (table,) = parser.AddModels(url=TABLE_URL)
-        plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("top", table))
-    body = object_body(plant, AddObject(parser, obj))
+        AddTable(parser, contact_geometry)
+    body = object_body(plant, AddObject(parser, obj, contact_geometry))
     plant.set_gravity_enabled(hand, False)  # as in the station: the arm carries the gripper
     # The gripper's one actuator (the left finger; the right one mimics it).
     plant.get_joint_actuator(JointActuatorIndex(0)).set_controller_gains(
@@ -166,7 +170,8 @@ class PushResult:
 
 def push_standing_object(obj: ObjectConfig, *, push_height: float,
                          plant_config: MultibodyPlantConfig, distance: float = 0.02,
-                         speed: float = 0.02, force_limit: float = 25.0) -> PushResult:
+                         speed: float = 0.02, force_limit: float = 25.0,
+                         contact_geometry: ContactGeometryConfig | None = None) -> PushResult:
     """Stands `obj` on the table just inside the open left pad and closes the gripper at
     `speed` until the left pad has pushed `distance` [m] past first touch, the pad's centre
     `push_height` [m] above the table. The right pad stays clear of the object throughout
@@ -179,7 +184,8 @@ def push_standing_object(obj: ObjectConfig, *, push_height: float,
                           goal_q=HALF_STROKE - gap - distance, closing_speed=speed)
     scene = MakePinchScene(obj=obj, X_WO=X_WO, program=program,
                            grasp_xyz=(SCENE_XY[0], SCENE_XY[1], push_height),
-                           plant_config=plant_config, with_table=True)
+                           plant_config=plant_config, with_table=True,
+                           contact_geometry=contact_geometry)
     simulator = Simulator(scene.diagram)
     settle = 0.2  # s after the pad reaches its goal
     simulator.AdvanceTo((gap + distance) / speed + settle)
@@ -197,7 +203,9 @@ class SlipResult:
 
 def slip_onset_grip_force(obj: ObjectConfig, *, plant_config: MultibodyPlantConfig,
                           initial_force: float = 10.0, ramp_rate: float = 2.5,
-                          hold_s: float = 0.3, falling_speed: float = 1e-3) -> SlipResult:
+                          hold_s: float = 0.3, falling_speed: float = 1e-3,
+                          contact_geometry: ContactGeometryConfig | None = None
+                          ) -> SlipResult:
     """Holds `obj` upright between the pads (no table), its centre of mass at the pads'
     centre, with `initial_force` [N] per pad for `hold_s`, then lowers the grip force at
     `ramp_rate` [N/s] to zero. The onset of slip is the first step at which the object falls
@@ -209,7 +217,8 @@ def slip_onset_grip_force(obj: ObjectConfig, *, plant_config: MultibodyPlantConf
                           force_n=(initial_force, 0.0))
     X_WO = RigidTransform(grasp - [0.0, 0.0, obj.height() / 2])
     scene = MakePinchScene(obj=obj, X_WO=X_WO, program=program, grasp_xyz=grasp,
-                           plant_config=plant_config, with_table=False)
+                           plant_config=plant_config, with_table=False,
+                           contact_geometry=contact_geometry)
     simulator = Simulator(scene.diagram)
 
     def falling(root_context):
@@ -230,7 +239,8 @@ def slip_onset_grip_force(obj: ObjectConfig, *, plant_config: MultibodyPlantConf
 
 def held_tilt_rate(obj: ObjectConfig, *, tilt_deg: float, com_offset: float, grip_force: float,
                    plant_config: MultibodyPlantConfig, settle_s: float = 0.5,
-                   measure_s: float = 1.0) -> float:
+                   measure_s: float = 1.0,
+                   contact_geometry: ContactGeometryConfig | None = None) -> float:
     """Holds `obj` (no table) with `grip_force` [N] per pad, its axis tilted by `tilt_deg`
     about the grasp axis and its centre of mass `com_offset` [m] above the pads' centre along
     its axis, so gravity twists it in the pads' plane. Returns its mean rotation rate
@@ -243,7 +253,8 @@ def held_tilt_rate(obj: ObjectConfig, *, tilt_deg: float, com_offset: float, gri
     X_WO = RigidTransform(R, grasp - R.multiply([0.0, 0.0, axis_coordinate]))
     program = GripProgram(start_q=radius - 2e-4, force_n=(grip_force,))
     scene = MakePinchScene(obj=obj, X_WO=X_WO, program=program, grasp_xyz=grasp,
-                           plant_config=plant_config, with_table=False)
+                           plant_config=plant_config, with_table=False,
+                           contact_geometry=contact_geometry)
     simulator = Simulator(scene.diagram)
     simulator.AdvanceTo(settle_s)
     start = tilt_about_grasp_axis_deg(scene.object_pose(simulator.get_context()))

@@ -1,0 +1,115 @@
+"""Pair a sweep on a coarser contact geometry with the same sweep on the reference geometry:
+outcomes by exact McNemar, every changed trial, and the event latencies.
+
+    python analysis/compare_geometry.py OUT.md REFERENCE_FOLDER COARSE_FOLDER
+
+The folders hold `tegrasp sweep` records (`trials/*.json`) of the same trials (the same spec
+and base seed; a trial id names the controller, object, marker and attempt, and its seeds
+follow from them), one run on each geometry (e.g. analysis/geometry_contract_paper.yaml
+against analysis/results_linkage/paper_grid). Per controller: held (Hold) and held and
+unloaded on each geometry, paired, with the exact McNemar p-value of each; each trial whose
+outcome changed, with both runs' failure classes and its largest latency change; and per
+transition the median detection latency on each geometry (over the trials where the event
+was detected) and the median and largest paired difference (over the trials where both
+were). The contract (docs/sweeps.md, "Coarser contact geometry"): no significant change in
+outcomes, every changed trial explained, median latencies within 10 ms.
+"""
+
+import argparse
+import pathlib
+import statistics
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).parent))
+
+from compare_hands import failure_class, load  # noqa: E402
+
+from tegrasp_drake.sweep.table import exact_mcnemar_p_value, succeeded  # noqa: E402
+
+PHASES = {"hold": "held", "unload": "held and unloaded"}
+TRANSITIONS = ("reach_load", "load_lift", "place_unload")
+
+
+def _ms(value) -> str:
+    return "–" if value is None else f"{1000 * value:+.0f}" if value else "0"
+
+
+def _median(values):
+    return statistics.median(values) if values else None
+
+
+def latency_rows(pairs) -> list[str]:
+    """Per transition: each geometry's median latency [s] and the paired differences."""
+    rows = ["| transition | reference median [s] (n) | coarse median [s] (n) | paired median "
+            "difference [ms] (n) | largest paired difference [ms] |", "|---|---|---|---|---|"]
+    for transition in TRANSITIONS:
+        sides = [[pair[side]["detection_latency_s"].get(transition) for pair in pairs]
+                 for side in (1, 2)]
+        done = [[v for v in side if v is not None] for side in sides]
+        both = [b - a for a, b in zip(*sides) if a is not None and b is not None]
+        medians = [_median(values) for values in done]
+        largest = max(both, key=abs) if both else None
+        rows.append(f"| {transition} | "
+                    + " | ".join("–" if m is None else f"{m:.3f} ({len(v)})"
+                                 for m, v in zip(medians, done))
+                    + f" | {_ms(_median(both))} ({len(both)}) | {_ms(largest)} |")
+    return rows
+
+
+def _largest_latency_change(reference, coarse) -> str:
+    changes = [(coarse["detection_latency_s"].get(t), reference["detection_latency_s"].get(t))
+               for t in TRANSITIONS]
+    differences = [b - a for b, a in changes if a is not None and b is not None]
+    return _ms(max(differences, key=abs)) if differences else "–"
+
+
+def report(reference: dict, coarse: dict) -> str:
+    common = sorted(set(reference) & set(coarse))
+    lines = [f"{len(common)} paired trials (reference {len(reference)}, coarse {len(coarse)} "
+             "records).", ""]
+    for controller in sorted({reference[t][0]["controller"] for t in common}):
+        pairs = [(reference[t][0], reference[t][1], coarse[t][1]) for t in common
+                 if reference[t][0]["controller"] == controller]
+        lines += [f"## {controller}", "", "| outcome | reference | coarse | only reference "
+                  "| only coarse | exact McNemar p |", "|---|---|---|---|---|---|"]
+        for phase, words in PHASES.items():
+            a = [succeeded(r, phase) for _, r, _ in pairs]
+            b = [succeeded(c, phase) for _, _, c in pairs]
+            only_a = sum(x and not y for x, y in zip(a, b))
+            only_b = sum(y and not x for x, y in zip(a, b))
+            lines.append(f"| {words} | {sum(a)}/{len(a)} | {sum(b)}/{len(b)} | {only_a} | "
+                         f"{only_b} | {exact_mcnemar_p_value(only_a, only_b):.3g} |")
+        lines += ["", *latency_rows(pairs), ""]
+        changed = [(t, r, c) for t, r, c in pairs
+                   if any(succeeded(r, p) != succeeded(c, p) for p in PHASES)]
+        if changed:
+            lines += ["| trial | offset [mm] (normal, stroke) | reference | coarse | largest "
+                      "latency change [ms] |", "|---|---|---|---|---|"]
+            for trial, r, c in changed:
+                offset = ", ".join(f"{1000 * v:+.0f}" for v in (trial["marker_dx_m"],
+                                                                 trial["marker_dy_m"]))
+                lines.append(f"| {trial['trial_id']} | {offset} | {failure_class(r)} | "
+                             f"{failure_class(c)} | {_largest_latency_change(r, c)} |")
+            lines.append("")
+        else:
+            lines += ["No trial changed its outcome.", ""]
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("out", type=pathlib.Path, help="the Markdown report to write")
+    parser.add_argument("reference", type=pathlib.Path, help="records on the reference geometry")
+    parser.add_argument("coarse", type=pathlib.Path, help="records on the coarser geometry")
+    args = parser.parse_args(argv)
+    for folder in (args.reference, args.coarse):
+        if not (folder / "trials").is_dir():
+            parser.error(f"{folder}: no trials/ folder of sweep records there")
+    text = report(load(args.reference), load(args.coarse))
+    args.out.write_text(text + "\n")
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
