@@ -45,13 +45,18 @@ def test_temporary_sibling_renames_on_success_and_removes_on_error(tmp_path):
 
 
 def test_ctrl_c_inside_the_block_is_acted_on_after_it():
-    finished = []
-    with pytest.raises(KeyboardInterrupt):
-        with interruptions_deferred():
-            os.kill(os.getpid(), signal.SIGINT)
-            finished.append(True)  # the block runs to its end first
-    assert finished == [True]
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    # Python's own Ctrl-C handler, whatever an earlier test left installed (restored after).
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        finished = []
+        with pytest.raises(KeyboardInterrupt):
+            with interruptions_deferred():
+                os.kill(os.getpid(), signal.SIGINT)
+                finished.append(True)  # the block runs to its end first
+        assert finished == [True]
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def test_claim_folder_is_true_once(tmp_path):
