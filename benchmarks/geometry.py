@@ -18,7 +18,7 @@ For each object, each variant of the contact world (VARIANTS) that changes its p
 
 The variants: the reference geometry; the box as its corners' convex hull (12 triangles);
 the table as a compliant half-space; the cylinder's facets at 10 and 20 mm (not a scenario
-setting: they fail the contact world's validation, contact_geometry.py; measured on the
+setting: they fail the contact world's validation, simulation/contact_meshing.py; measured on the
 same cylinder written as a model file, its events the built-in's); and `sweep_grade`, the
 preset of the chosen options. A variant that leaves an object's plant as another variant
 has it (the box setting on a cylinder) is not run again for that object.
@@ -42,7 +42,7 @@ from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.rig.typed_yaml import read_yaml_file
 from tegrasp_drake.scenario.scenario import resolve_object
-from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.station import pad_geometries
 from tegrasp_drake.simulation.tactile_pads import pads_forces_from_contacts
 

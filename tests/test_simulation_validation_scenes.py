@@ -25,7 +25,7 @@ tilted, off-centre held cylinder in the pads' plane; under Drake's default stict
 (1e-4 m/s) the regularised friction let it turn steadily.
 
 Each check runs on the reference geometry and on every coarser contact geometry a scenario
-can select that changes its scene (simulation/contact_geometry.py): the table as a
+can select that changes its scene (simulation/contact_meshing.py): the table as a
 half-space under the cylinder; the box as 12 triangles, with the closed forms above for the
 box (half-width 22.5 mm, its own pair friction).
 """
@@ -38,7 +38,7 @@ from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig import materials
 from tegrasp_drake.rig.tactile_fingertip import PAD_WIDTH
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
-from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.validation_scenes import (GRAVITY, held_tilt_rate,
                                                         push_standing_object,
                                                         slip_onset_grip_force)

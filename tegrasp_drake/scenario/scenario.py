@@ -32,7 +32,7 @@ from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJE
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
 from tegrasp_drake.simulation.capacitive_taxels import CAPACITIVE_OUTPUTS, TAXEL_TRANSDUCERS
-from tegrasp_drake.simulation.contact_geometry import (ContactGeometryConfig,
+from tegrasp_drake.simulation.contact_meshing import (ContactGeometryConfig,
                                                        contact_geometry_problem)
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
@@ -72,7 +72,7 @@ class Scenario:
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged", stiction_tolerance=1e-6,
             contact_model="hydroelastic_with_fallback"))
-    # How finely the object and the table are meshed (simulation/contact_geometry.py); the
+    # How finely the object and the table are meshed (simulation/contact_meshing.py); the
     # default is the reference geometry every committed result ran on.
     contact_geometry: ContactGeometryConfig = dataclasses.field(
         default_factory=ContactGeometryConfig)

@@ -2,7 +2,7 @@
 
 Primitive objects are rigid hydroelastic bodies (the pads and the table are compliant), with
 their frame O at the centre of the base face, z up, and the inertia of a uniform solid. How
-finely their surfaces are meshed is the scenario's `contact_geometry` (contact_geometry.py).
+finely their surfaces are meshed is the scenario's `contact_geometry` (contact_meshing.py).
 """
 
 import itertools
@@ -16,14 +16,14 @@ from pydrake.multibody.tree import ModelInstanceIndex
 
 from tegrasp_drake.modelgen.sdf_text import box_inertia, friction_text, inertial_text
 from tegrasp_drake.rig.objects import ObjectConfig
-from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 
 OBJECT_MODEL_NAME = "object"
 OBJECT_BODY_NAME = "object"
 # Edge length [m] of a primitive's rigid hydroelastic surface mesh in the reference geometry
 # (a cylinder's facets; a box's mesh is 24 triangles, 14 vertices with one at each face's
 # centre, whatever the hint: counted at 50, 5 and 2 mm): 5 mm facets on the 25-50 mm
-# cylinders (contact_geometry.py: why not coarser).
+# cylinders (contact_meshing.py: why not coarser).
 MESH_RESOLUTION_M = 0.005
 
 

@@ -49,7 +49,7 @@ from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
-from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.capacitive_taxels import AddTaxelTransducer
 from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse

@@ -1,6 +1,6 @@
 """Adds the table (models/table, modelgen/table_sdf.py) to a plant, welded with its top at the
 world's z = 0, its contact shape as the scenario's `contact_geometry.table` says
-(contact_geometry.py): the compliant box of the model file, or a compliant half-space at
+(contact_meshing.py): the compliant box of the model file, or a compliant half-space at
 the top with the box's material.
 """
 
@@ -11,7 +11,7 @@ from pydrake.multibody.plant import CoulombFriction
 from pydrake.multibody.tree import ModelInstanceIndex
 
 from tegrasp_drake.modelgen import table_sdf
-from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 
 TABLE_URL = "package://tegrasp/table/table.sdf"
 # The half-space's slab: Drake's compliant box field rises linearly from 0 at a face to the

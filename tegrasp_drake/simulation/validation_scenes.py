@@ -33,7 +33,7 @@ from tegrasp_drake.modelgen.table_sdf import EXPECTED_XY
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL, R_WG_SIDE_GRASP
 from tegrasp_drake.rig.objects import ObjectConfig
-from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig,
                                                         force_limited_set_point)

@@ -1,4 +1,4 @@
-"""The scenario's contact geometry (simulation/contact_geometry.py): each setting changes the
+"""The scenario's contact geometry (simulation/contact_meshing.py): each setting changes the
 meshes SceneGraph holds for contact, keeps the materials, and bad values are refused.
 Whether the contact world still matches closed-form mechanics with them is in
 test_simulation_validation_scenes.py."""
@@ -12,7 +12,7 @@ from pydrake.systems.framework import DiagramBuilder
 
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import LoadScenario, object_pose
-from tegrasp_drake.simulation.contact_geometry import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.object_model import object_body
 from tegrasp_drake.simulation.station import AddStationPlant
 from tegrasp_drake.simulation.table_model import HALF_SPACE_SLAB_THICKNESS_M
