@@ -24,7 +24,6 @@ preset of the chosen options. A variant that leaves an object's plant as another
 has it (the box setting on a cylinder) is not run again for that object.
 """
 
-import argparse
 import dataclasses
 import json
 import pathlib
@@ -37,7 +36,8 @@ from benchmarks.plant_floor import build_plant_floor, record_plant_inputs
 from benchmarks.station_costs import (floor_step_breakdown, station_scenario,
                                       timed_floor_by_phase, timed_trial_by_phase)
 from benchmarks.trial import meshed_object
-from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from benchmarks.arguments import benchmark_parser, parse_benchmark_arguments
+from tegrasp_drake.commands.scenario_args import scenario_from_arguments
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.rig.typed_yaml import read_yaml_file
@@ -210,16 +210,10 @@ def format_geometry_report(result: dict) -> str:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    add_scenario_arguments(parser)
+    parser = benchmark_parser(__doc__, "runs of each variant's trial and floor, alternating")
     parser.add_argument("--objects", nargs="+", default=list(OBJECTS),
                         help="built-in objects to measure (default: box thick_cylinder)")
-    parser.add_argument("--repeats", type=int, default=3,
-                        help="runs of each variant's trial and floor, alternating")
-    parser.add_argument("--json", action="store_true")
-    args = parser.parse_args(argv)
-    if args.repeats < 1:
-        parser.error(f"--repeats {args.repeats}: give at least 1 run per variant")
+    args = parse_benchmark_arguments(parser, argv)
     scenario = scenario_from_arguments(args)
     if args.json:
         print(json.dumps(run_geometry_benchmark(scenario, objects=args.objects,

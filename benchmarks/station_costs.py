@@ -21,7 +21,6 @@ reach (free motion), close (Reach touching and Load), lift, hold (and Avoid), pl
 unload (and the settling after Done).
 """
 
-import argparse
 import dataclasses
 import json
 import statistics
@@ -30,7 +29,8 @@ import time
 import numpy as np
 from pydrake.geometry import HydroelasticContactRepresentation
 
-from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from benchmarks.arguments import benchmark_parser, parse_benchmark_arguments
+from tegrasp_drake.commands.scenario_args import scenario_from_arguments
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.control.grasp_modes import Mode
 from benchmarks.plant_floor import (build_plant_floor,
@@ -260,14 +260,8 @@ def format_station_report(result: dict) -> str:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    add_scenario_arguments(parser)
-    parser.add_argument("--repeats", type=int, default=3,
-                        help="runs of each station's trial and floor, alternating")
-    parser.add_argument("--json", action="store_true")
-    args = parser.parse_args(argv)
-    if args.repeats < 1:
-        parser.error(f"--repeats {args.repeats}: give at least 1 run per variant")
+    parser = benchmark_parser(__doc__, "runs of each station's trial and floor, alternating")
+    args = parse_benchmark_arguments(parser, argv)
     result = run_station_benchmark(scenario_from_arguments(args), repeats=args.repeats)
     print(json.dumps(result) if args.json else format_station_report(result))
     return 0

@@ -20,7 +20,6 @@ with 3 repeats on a shared 2-core host: about 1 min per repeat, 3 min for the re
 trial, the profile and the growth tables.
 """
 
-import argparse
 import dataclasses
 import json
 import pathlib
@@ -30,7 +29,8 @@ import time
 
 from benchmarks.plant_floor import record_plant_inputs, run_plant_floor
 from benchmarks.system_costs import profile_trial
-from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from benchmarks.arguments import benchmark_parser, parse_benchmark_arguments
+from tegrasp_drake.commands.scenario_args import scenario_from_arguments
 from tegrasp_drake.scenario.grasp_diagram import MakeSimulator
 from tegrasp_drake.runs.ideal_grasp import END_MARGIN_S, MakeIdealGraspDiagram
 from tegrasp_drake.scenario.scenario import with_controller
@@ -222,18 +222,12 @@ def format_report(result: dict) -> str:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    add_scenario_arguments(parser)
-    parser.add_argument("--repeats", type=int, default=3,
-                        help="runs of each controller and of the floor, alternating")
+    parser = benchmark_parser(__doc__, "runs of each controller and of the floor, alternating")
     parser.add_argument("--no-growth", action="store_true",
                         help="skip the contact-face and sensor-rate tables")
     parser.add_argument("--no-profile", action="store_true",
                         help="skip the per-system profile")
-    parser.add_argument("--json", action="store_true")
-    args = parser.parse_args(argv)
-    if args.repeats < 1:
-        parser.error(f"--repeats {args.repeats}: give at least 1 run per variant")
+    args = parse_benchmark_arguments(parser, argv)
     result = run_trial_benchmark(scenario_from_arguments(args), repeats=args.repeats,
                                  growth=not args.no_growth, profile=not args.no_profile)
     print(json.dumps(result) if args.json else format_report(result))
