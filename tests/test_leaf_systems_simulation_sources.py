@@ -1,7 +1,7 @@
 """Fixed-input tests of the simulation's small LeafSystems: fix each input, evaluate each
 output, compare with the value worked out by hand here (Drake's own system-test pattern).
 
-ObjectForcePulse and PadPush put forces on the plant; FingerDrive is the validation scenes'
+BodyForcePulse puts a force on the plant (the object's hit, the bench's pad push); FingerDrive is the validation scenes'
 force-limited finger loop; PadSlipVibration turns a pad's slip speed into the texture's
 vibration, h (2 pi v / lambda)^2 sin(2 pi v t / lambda) at a constant slip speed v.
 """
@@ -15,8 +15,7 @@ from pydrake.multibody.math import SpatialVelocity
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.simulation.gripper_bench import PadPush
-from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
+from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse, DisturbanceConfig
 from tegrasp_drake.simulation.pad_slip_vibration import UPDATE_PERIOD_S, PadSlipVibration
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.simulation.tactile_pads import PadGeometry
@@ -29,12 +28,12 @@ def _forces_at(system, port_name: str, t: float) -> list:
     return system.GetOutputPort(port_name).Eval(context)
 
 
-# ObjectForcePulse ------------------------------------------------------------------------
+# BodyForcePulse --------------------------------------------------------------------------
 
 def test_object_force_pulse_acts_only_during_the_hit():
     config = DisturbanceConfig(hit_time_s=0.5, hit_force_n=[1.0, -20.0, 3.0],
                                hit_duration_s=0.02)
-    pulse = ObjectForcePulse(body_index=BodyIndex(7), config=config)
+    pulse = BodyForcePulse.object_hit(body_index=BodyIndex(7), config=config)
     for t in (0.0, 0.499, 0.52, 0.6):  # before, and from the end on (half-open interval)
         assert _forces_at(pulse, "applied_spatial_force", t) == [], t
     for t in (0.5, 0.51, 0.5199):
@@ -46,20 +45,20 @@ def test_object_force_pulse_acts_only_during_the_hit():
 
 
 def test_object_force_pulse_without_a_hit_never_pushes():
-    pulse = ObjectForcePulse(body_index=BodyIndex(1), config=DisturbanceConfig())
+    pulse = BodyForcePulse.object_hit(body_index=BodyIndex(1), config=DisturbanceConfig())
     assert all(_forces_at(pulse, "applied_spatial_force", t) == [] for t in (0.0, 1.0, 100.0))
 
 
-# PadPush ---------------------------------------------------------------------------------
-
-def test_pad_push_is_zero_before_its_start_and_the_force_along_y_after():
-    push = PadPush(body_index=BodyIndex(4), p_BP=[0.001, 0.002, 0.05], force_n=12.5,
-                   start_s=0.3)
-    for t, expected in ((0.0, 0.0), (0.2999, 0.0), (0.3, 12.5), (2.0, 12.5)):
-        (force,) = _forces_at(push, "spatial_forces", t)
+def test_a_pulse_without_an_end_pushes_at_its_point_from_its_start_on():
+    push = BodyForcePulse(body_index=BodyIndex(4), p_BQ=[0.001, 0.002, 0.05],
+                          f_W=[0.0, 12.5, 0.0], start_s=0.3)
+    for t in (0.0, 0.2999):
+        assert _forces_at(push, "applied_spatial_force", t) == [], t
+    for t in (0.3, 2.0, 1e6):
+        (force,) = _forces_at(push, "applied_spatial_force", t)
         assert force.body_index == BodyIndex(4)
         np.testing.assert_array_equal(force.p_BoBq_B, [0.001, 0.002, 0.05])
-        np.testing.assert_array_equal(force.F_Bq_W.translational(), [0.0, expected, 0.0])
+        np.testing.assert_array_equal(force.F_Bq_W.translational(), [0.0, 12.5, 0.0])
         np.testing.assert_array_equal(force.F_Bq_W.rotational(), np.zeros(3))
 
 

@@ -64,8 +64,7 @@ from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
 from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSensorConfig,
                                                            finger_force_indices)
 from tegrasp_drake.simulation.station import pad_geometries
-from tegrasp_drake.simulation.gripper_bench import PadPush
-from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
+from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.tactile_pads import TactilePads, TactileSensorConfig
 from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig, CapacitiveTaxels
@@ -172,9 +171,9 @@ CONSTRUCTORS = {
     PadAccelerometers: lambda: PadAccelerometers(sample_rate_hz=1000.0, highpass_cutoff_hz=2.0,
                                                  noise_std_mps2=0.05),
     PadNormalForces: lambda: PadNormalForces(plant=gripper_plant()[0], pads=gripper_plant()[1]),
-    PadPush: lambda: PadPush(body_index=0, p_BP=[0.0, 0.0, 0.0], force_n=50.0, start_s=1.0),
     SimRobotiqDriver: lambda: SimRobotiqDriver(config=GripperDriverConfig()),
-    ObjectForcePulse: lambda: ObjectForcePulse(body_index=BodyIndex(1), config=DisturbanceConfig()),
+    BodyForcePulse: lambda: BodyForcePulse(body_index=BodyIndex(1), p_BQ=[0.0, 0.0, 0.0],
+                                           f_W=[0.0, 50.0, 0.0], start_s=1.0),
     PadSlipVibration: lambda: PadSlipVibration(pads=gripper_plant()[1], object_body_index=0,
                                                config=VibrationSensorConfig()),
     TactilePads: lambda: TactilePads(pads=gripper_plant()[1], config=TactileSensorConfig(),

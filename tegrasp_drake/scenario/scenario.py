@@ -34,7 +34,7 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_type
 from tegrasp_drake.simulation.capacitive_taxels import CAPACITIVE_OUTPUTS, TAXEL_TRANSDUCERS
 from tegrasp_drake.simulation.contact_meshing import (ContactGeometryConfig,
                                                        contact_geometry_problem)
-from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig
+from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS

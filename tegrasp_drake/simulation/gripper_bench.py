@@ -15,15 +15,13 @@ import numpy as np
 from pydrake.geometry import Box, Cylinder, ProximityProperties
 from pydrake.geometry import AddContactMaterial, AddRigidHydroelasticProperties
 from pydrake.math import RigidTransform, RollPitchYaw
-from pydrake.multibody.math import SpatialForce
-from pydrake.multibody.plant import (AddMultibodyPlant, CoulombFriction,
-                                     ExternallyAppliedSpatialForce, MultibodyPlantConfig)
-from pydrake.common.value import AbstractValue
-from pydrake.systems.framework import DiagramBuilder, LeafSystem
+from pydrake.multibody.plant import AddMultibodyPlant, CoulombFriction, MultibodyPlantConfig
+from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource
 
 from tegrasp_drake.robotiq import linkage
 from tegrasp_drake.rig import paths
+from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse
 from tegrasp_drake.simulation.gripper_hands import actuated_state_selector, gripper_hand
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
@@ -39,38 +37,6 @@ class BenchObstacle:
     size: tuple
     z_m: float
     friction: float = 0.5
-
-
-class PadPush(LeafSystem):
-    """A constant force [N] on the left finger's pad centre along the base's +y (its
-    outward normal on the pin) from time start_s [s] on.
-
-    .. pydrake_system::
-
-        name: PadPush
-        output_ports:
-        - spatial_forces
-
-    Ports:
-        spatial_forces: (abstract list of ExternallyAppliedSpatialForce) for the plant's
-            applied_spatial_force input.
-    """
-
-    def __init__(self, *, body_index, p_BP, force_n: float, start_s: float):
-        super().__init__()
-        self._body_index, self._p_BP = body_index, np.asarray(p_BP, float)
-        self._force_n, self._start_s = force_n, start_s
-        self.DeclareAbstractOutputPort(
-            "spatial_forces", lambda: AbstractValue.Make([ExternallyAppliedSpatialForce()]),
-            self._calc)
-
-    def _calc(self, context, output):
-        push = ExternallyAppliedSpatialForce()
-        push.body_index = self._body_index
-        push.p_BoBq_B = self._p_BP
-        on = context.get_time() >= self._start_s
-        push.F_Bq_W = SpatialForce(np.zeros(3), [0.0, self._force_n if on else 0.0, 0.0])
-        output.set_value([push])
 
 
 @dataclasses.dataclass
@@ -135,9 +101,10 @@ def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConf
     builder.Connect(plant.get_body_poses_output_port(), pad_forces.GetInputPort("body_poses"))
     if push_n:
         left = pads["left"]
-        push = builder.AddSystem(PadPush(body_index=left.body_index,
-                                          p_BP=left.X_BP.translation(), force_n=push_n,
-                                          start_s=push_start_s))
+        # Along the base's +y: the left pad's outward normal on the pin.
+        push = builder.AddSystem(BodyForcePulse(body_index=left.body_index,
+                                                p_BQ=left.X_BP.translation(),
+                                                f_W=[0.0, push_n, 0.0], start_s=push_start_s))
         builder.Connect(push.get_output_port(), plant.get_applied_spatial_force_input_port())
     diagram = builder.Build()
     diagram.set_name("gripper_bench")

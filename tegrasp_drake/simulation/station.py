@@ -52,7 +52,7 @@ from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.capacitive_taxels import AddTaxelTransducer
-from tegrasp_drake.simulation.object_force_pulse import DisturbanceConfig, ObjectForcePulse
+from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse, DisturbanceConfig
 from tegrasp_drake.simulation.pad_accelerometers import AddPadAccelerometers
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
@@ -181,7 +181,8 @@ def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
     if config.hit_time_s < 0.0:
         return
     pulse = builder.AddNamedSystem("object_force_pulse",
-                                   ObjectForcePulse(body_index=body.index(), config=config))
+                                   BodyForcePulse.object_hit(body_index=body.index(),
+                                                             config=config))
     builder.Connect(pulse.get_output_port(), plant.get_applied_spatial_force_input_port())
 
 
