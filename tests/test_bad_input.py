@@ -49,6 +49,9 @@ def assert_one_line_error(code, text, *expected):
     (["controller.ra_threshold=2"], "field 'controller.ra_threshold' must lie in [-1, 1]"),
     (["controller.ra_envelope_hz=-1"], "field 'controller.ra_envelope_hz' must be 0 (no RA"),
     (["controller.ra_envelope_hz=500"], "between 0 and half the RA rate (500 Hz), got 500"),
+    (["controller.ra_noise_floor_sigmas=5.39", "controller.ra_noise_quiet_s=3"],
+     "field 'controller.ra_noise_quiet_s' must end with the approach, by grasp.settle_s + "
+     "grasp.reach_s = 2.8 s"),
     (["object_offset=[.nan,0]"], "field 'object_offset[0]' must be a finite number"),
     (["object_yaw_deg=.nan"], "field 'object_yaw_deg' must be a finite number"),
     (["plant_config.time_step=.nan"], "field 'plant_config.time_step' must be a finite"),

@@ -330,6 +330,12 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     require(quiet_s * scenario.vibration.sample_rate_hz >= 2, source,
             "controller.ra_noise_quiet_s", "must hold at least 2 RA samples [s] (the start of "
             "the run, pads untouched, where the RA noise is measured)", quiet_s)
+    approach_s = scenario.grasp.settle_s + scenario.grasp.reach_s
+    require(getattr(scenario.controller, "ra_noise_floor_sigmas", 0.0) == 0
+            or quiet_s <= approach_s, source, "controller.ra_noise_quiet_s",
+            "must end with the approach, by grasp.settle_s + grasp.reach_s = "
+            f"{approach_s:g} s, when the RA noise floor is on (the noise is measured with the "
+            "pads untouched; shorten it or lengthen the approach)", quiet_s)
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario.controller, source)
     if len(scenario.disturbance.hit_force_n) != 3 or scenario.disturbance.hit_duration_s <= 0:
