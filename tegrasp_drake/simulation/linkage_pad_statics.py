@@ -29,6 +29,7 @@ Runs on Python floats: it is evaluated on every plant step.
 
 import dataclasses
 import math
+import operator
 
 from tegrasp_drake.rig.channels import FINGER_NAMES
 
@@ -117,19 +118,21 @@ class LinkagePadStatics:
                              f"followers only; {', '.join(touching)} can touch")
         joints = [[plant.GetJointByName(f"{finger}_{link}_joint", gripper)
                    for link in CHAIN_LINKS] for finger in FINGER_NAMES]
-        self._chains = [finger_chain(plant, gripper, finger, sign)
-                        for finger, sign in zip(FINGER_NAMES, FINGER_SIGNS)]
-        self._velocity_indices = [[_instance_index(plant, gripper, j, velocity=True)
-                                   for j in chain] for chain in joints]
-        self._position_indices = [[_instance_index(plant, gripper, j, velocity=False)
-                                   for j in chain] for chain in joints]
+        chains = [finger_chain(plant, gripper, finger, sign)
+                  for finger, sign in zip(FINGER_NAMES, FINGER_SIGNS)]
+        # Per finger: its chain, and getters of its three joints' entries in the instance's
+        # generalized forces and in its state (itemgetter: read on every plant step).
+        self._fingers = tuple(
+            (chain, operator.itemgetter(*(_instance_index(plant, gripper, j, velocity=True)
+                                          for j in joint_chain)),
+             operator.itemgetter(*(_instance_index(plant, gripper, j, velocity=False)
+                                   for j in joint_chain)))
+            for chain, joint_chain in zip(chains, joints))
 
     def normal_forces(self, tau: list, state: list) -> tuple[float, float]:
         """(left, right) pad normal forces [N], positive pushing each pad open, from the
         gripper instance's generalized contact forces `tau` and its state `state` (positions
         first), as lists of floats."""
-        left, right = (finger_pad_force(chain, [tau[i] for i in velocity],
-                                        [state[i] for i in position])
-                       for chain, velocity, position in zip(
-                           self._chains, self._velocity_indices, self._position_indices))
-        return left, right
+        (left, left_tau, left_q), (right, right_tau, right_q) = self._fingers
+        return (finger_pad_force(left, left_tau(tau), left_q(state)),
+                finger_pad_force(right, right_tau(tau), right_q(state)))
