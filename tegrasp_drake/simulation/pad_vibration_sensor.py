@@ -230,8 +230,8 @@ class PadFilms(LeafSystem):
         self._forces = self.DeclareVectorInputPort(
             "generalized_contact_forces", int(self._force_indices.max()) + 1
             if pad_statics is None else pad_statics.velocities)
-        self._gripper_state = pad_statics and self.DeclareVectorInputPort(
-            "gripper_state", pad_statics.states)
+        self._gripper_state = (None if pad_statics is None else
+                               self.DeclareVectorInputPort("gripper_state", pad_statics.states))
         self._accelerations = [self.DeclareVectorInputPort(f"{f}_pad_frame_acceleration", 3)
                                for f in FINGER_NAMES]
         self._texture = (self.DeclareVectorInputPort("texture_state", 3 * len(FINGER_NAMES))
