@@ -54,15 +54,15 @@ from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.station import HardwareStation, MakeHardwareStation
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.arm_kinematics import GRIPPER_URL
 from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
 from tegrasp_drake.tactile.slip_vibration_band import SlipVibrationBand
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
 from tegrasp_drake.simulation.taxel_force_display import (TaxelForceDisplay,
                                                           TaxelForceDisplayConfig)
 from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
-from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSensorConfig,
-                                                           finger_force_indices)
+from tegrasp_drake.simulation.gripper_hands import gripper_hand
+from tegrasp_drake.simulation.linkage_pad_statics import LinkagePadStatics
+from tegrasp_drake.simulation.pad_vibration_sensor import PadFilms, VibrationSensorConfig
 from tegrasp_drake.simulation.station import pad_geometries
 from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
@@ -96,14 +96,16 @@ def gripper_plant():
 
 
 def pad_films() -> PadFilms:
-    """PadFilms of a plant that holds only the gripper, with every optional port."""
+    """PadFilms of a plant that holds only the linkage gripper, with every optional port
+    (its pad forces through LinkagePadStatics)."""
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), builder)
-    (gripper,) = paths.make_parser(plant).AddModels(url=GRIPPER_URL)
+    (gripper,) = paths.make_parser(plant).AddModels(url=gripper_hand("linkage").url)
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", gripper))
     plant.Finalize()
     return PadFilms(plant=plant, pads=pad_geometries(plant, scene_graph, gripper),
-                    force_indices=finger_force_indices(plant, gripper),
-                    config=VibrationSensorConfig(noise_std_mps2=0.05), with_texture=True)
+                    force_indices=(0, 1), config=VibrationSensorConfig(noise_std_mps2=0.05),
+                    with_texture=True, pad_statics=LinkagePadStatics(plant, gripper))
 
 
 @contextlib.contextmanager

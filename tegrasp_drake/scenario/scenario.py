@@ -35,6 +35,7 @@ from tegrasp_drake.simulation.capacitive_taxels import CAPACITIVE_OUTPUTS, TAXEL
 from tegrasp_drake.simulation.contact_meshing import (ContactGeometryConfig,
                                                        contact_geometry_problem)
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
+from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
 from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
@@ -290,6 +291,9 @@ def _check_transducers(scenario: Scenario, source: str) -> None:
             "vibration.transducer", f"must be one of {', '.join(VIBRATION_TRANSDUCERS)} "
             "(the PVDF film, or a high-passed accelerometer on the pad)",
             scenario.vibration.transducer)
+    require(scenario.vibration.pad_force_source in PAD_FORCE_SOURCES, source,
+            "vibration.pad_force_source", f"must be one of {', '.join(PAD_FORCE_SOURCES)}",
+            scenario.vibration.pad_force_source)
     capacitive = scenario.tactile.capacitive
     require(capacitive.output in CAPACITIVE_OUTPUTS, source, "tactile.capacitive.output",
             f"must be one of {', '.join(CAPACITIVE_OUTPUTS)}", capacitive.output)

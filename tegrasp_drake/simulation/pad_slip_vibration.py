@@ -113,11 +113,8 @@ class PadSlipVibration(LeafSystem):
                 f"{finger}_slip_vibration", 3,
                 lambda context, output, k=k: self._calc_vibration(context, output, k),
                 prerequisites_of_calc={self.xd_ticket(), self.time_ticket()})
-        self.DeclareVectorOutputPort(
-            "texture_state", 3 * len(FINGER_NAMES),
-            lambda context, output: output.SetFromVector(
-                context.get_discrete_state(self._state).get_value()),
-            prerequisites_of_calc={self.discrete_state_ticket(self._state)})
+        # The films read it on every plant step: a state output port, no Python call.
+        self.DeclareStateOutputPort("texture_state", self._state)
 
     def _update(self, context, discrete_state):
         state = context.get_discrete_state(self._state).get_value().copy()

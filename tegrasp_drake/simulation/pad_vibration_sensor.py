@@ -105,6 +105,10 @@ class VibrationSensorConfig:
     # (pad_accelerometers.py; the paper's simulation had one per pad). The film's own
     # settings are then unused.
     transducer: str = "film"
+    # Where the linkage hand's films get their pad forces (linkage_pad_statics.py; the same
+    # forces to round-off): "contact_results", a walk over the plant's contact results
+    # each step (PadNormalForces); "joint_forces", its joints' generalized contact forces.
+    pad_force_source: str = "contact_results"
 
 
 def film_parameters(config: VibrationSensorConfig) -> FilmParameters:
@@ -157,6 +161,7 @@ class PadFilms(LeafSystem):
         name: PadFilms
         input_ports:
         - generalized_contact_forces
+        - gripper_state (optional)
         - left_pad_frame_acceleration
         - right_pad_frame_acceleration
         - texture_state (optional)
@@ -172,7 +177,10 @@ class PadFilms(LeafSystem):
     Ports:
         generalized_contact_forces: the gripper model instance's generalized contact
             forces; entry force_indices[k] is finger k's joint, positive pushing its pad
-            outward (N); or PadNormalForces' output with force_indices (0, 1).
+            outward (N); or PadNormalForces' output with force_indices (0, 1); or, with
+            `pad_statics`, the whole instance's, which pad_statics turns into pad forces.
+        gripper_state: the gripper model instance's state; declared only with
+            `pad_statics` (linkage_pad_statics.py), which reads its joint angles.
         left_pad_frame_acceleration, right_pad_frame_acceleration: each pad frame's
             acceleration without gravity, in the pad frame (3, m/s^2; Drake Accelerometer).
         texture_state: PadSlipVibration's texture_state (6), from which the texture
@@ -187,7 +195,7 @@ class PadFilms(LeafSystem):
     """
 
     def __init__(self, *, plant, pads: dict, force_indices, config: VibrationSensorConfig,
-                 with_texture: bool = False):
+                 with_texture: bool = False, pad_statics=None):
         super().__init__()
         self._dt = plant.time_step()
         if not self._dt > 0.0:
@@ -218,8 +226,12 @@ class PadFilms(LeafSystem):
         for body in plant.GetBodiesWeldedTo(plant.world_body()):
             self._mass[int(body.index())] = math.inf
 
+        self._statics = pad_statics  # a LinkagePadStatics, or None: force_indices
         self._forces = self.DeclareVectorInputPort(
-            "generalized_contact_forces", int(self._force_indices.max()) + 1)
+            "generalized_contact_forces", int(self._force_indices.max()) + 1
+            if pad_statics is None else pad_statics.velocities)
+        self._gripper_state = (None if pad_statics is None else
+                               self.DeclareVectorInputPort("gripper_state", pad_statics.states))
         self._accelerations = [self.DeclareVectorInputPort(f"{f}_pad_frame_acceleration", 3)
                                for f in FINGER_NAMES]
         self._texture = (self.DeclareVectorInputPort("texture_state", 3 * len(FINGER_NAMES))
@@ -250,7 +262,11 @@ class PadFilms(LeafSystem):
         # would cost more than the integration itself.
         state = discrete_state.get_mutable_value(self._state)  # holds the current state
         forces = self._forces.Eval(context).tolist()
-        left, right = forces[self._left_index], forces[self._right_index]
+        if self._statics is None:
+            left, right = forces[self._left_index], forces[self._right_index]
+        else:
+            left, right = self._statics.normal_forces(
+                forces, self._gripper_state.Eval(context).tolist())
         before_left, before_right = state[_FORCE:_FORCE + 2].tolist()
         m = self._config.mode_mass_kg
         state[_LOAD:_LOAD + 2] = (left + m * self._accelerations[0].Eval(context).item(2),
@@ -388,21 +404,27 @@ def finger_force_indices(plant, gripper) -> list[int]:
 
 
 def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorConfig,
-                slip_vibration=None, pad_forces=None, name: str = "pad_films") -> PadFilms:
+                slip_vibration=None, pad_forces=None, pad_statics=None,
+                name: str = "pad_films") -> PadFilms:
     """Adds both pads' films (and the accelerometers and noise source they read) to
     `builder`, connected to `plant`; `slip_vibration`, if given, is the PadSlipVibration
-    system. The pads' normal contact forces come from the fingers' prismatic joints, or from
-    `pad_forces` (a PadNormalForces system) when given, as the linkage hand needs. Returns
-    the PadFilms system (outputs `<finger>_pad_vibration`)."""
-    if pad_forces is None:
+    system. The pads' normal contact forces come from the fingers' prismatic joints, or,
+    as the linkage hand needs, from `pad_forces` (a PadNormalForces system) or from the
+    joints' generalized contact forces through `pad_statics` (a LinkagePadStatics) when
+    given. Returns the PadFilms system (outputs `<finger>_pad_vibration`)."""
+    force_port = plant.get_generalized_contact_forces_output_port(gripper)
+    force_indices = (0, 1)  # PadNormalForces' outputs (pad_statics reads the whole vector)
+    if pad_forces is not None:
+        force_port = pad_forces.GetOutputPort("pad_normal_forces")
+    elif pad_statics is None:
         force_indices = finger_force_indices(plant, gripper)
-        force_port = plant.get_generalized_contact_forces_output_port(gripper)
-    else:
-        force_indices, force_port = (0, 1), pad_forces.GetOutputPort("pad_normal_forces")
     films = builder.AddNamedSystem(name, PadFilms(
         plant=plant, pads=pads, force_indices=force_indices,
-        config=config, with_texture=slip_vibration is not None))
+        config=config, with_texture=slip_vibration is not None, pad_statics=pad_statics))
     builder.Connect(force_port, films.GetInputPort("generalized_contact_forces"))
+    if pad_statics is not None:
+        builder.Connect(plant.get_state_output_port(gripper),
+                        films.GetInputPort("gripper_state"))
     for finger in FINGER_NAMES:
         accelerometer = AddPadFrameAccelerometer(
             builder, plant=plant, pad=pads[finger], name=f"{finger}_pad_accelerometer",

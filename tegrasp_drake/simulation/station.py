@@ -48,6 +48,7 @@ from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageW
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     gripper_hand)
+from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.object_model import AddObject, object_body
@@ -152,7 +153,8 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
                       gripper_model: str, random_seed: int):
     """Both pads' taxel arrays (TactilePads, seeded by `random_seed`), the slip texture
     (PadSlipVibration) and the films (PadFilms) of the hand `gripper_model`, connected to
-    the finalized `plant`; returns (TactilePads, PadFilms). With `vibration.transducer`
+    the finalized `plant` (the linkage's pad forces from `vibration.pad_force_source`);
+    returns (TactilePads, PadFilms). With `vibration.transducer`
     accelerometer, the pads' accelerometers (PadAccelerometers) take the films' place,
     without the slip texture."""
     pads = pad_geometries(plant, scene_graph, gripper)
@@ -164,15 +166,19 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
     if vibration.transducer == "accelerometer":
         return taxels, AddPadAccelerometers(builder, plant=plant, pads=pads, config=vibration)
     slip = _add_slip_vibration(builder, plant, pads, object_body, taxels, vibration)
-    pad_forces = None
+    pad_forces = pad_statics = None  # the prismatic fingers' joints move along the normals
     if isinstance(gripper_hand(gripper_model), LinkageHand):
-        pad_forces = builder.AddNamedSystem("pad_normal_forces",
-                                            PadNormalForces(plant=plant, pads=pads))
-        builder.Connect(plant.get_contact_results_output_port(),
-                        pad_forces.GetInputPort("contact_results"))
-        builder.Connect(plant.get_body_poses_output_port(), pad_forces.GetInputPort("body_poses"))
-    films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper,
-                        config=vibration, slip_vibration=slip, pad_forces=pad_forces)
+        if vibration.pad_force_source == JOINT_FORCES:
+            pad_statics = LinkagePadStatics(plant, gripper)
+        else:
+            pad_forces = builder.AddNamedSystem("pad_normal_forces",
+                                                PadNormalForces(plant=plant, pads=pads))
+            builder.Connect(plant.get_contact_results_output_port(),
+                            pad_forces.GetInputPort("contact_results"))
+            builder.Connect(plant.get_body_poses_output_port(),
+                            pad_forces.GetInputPort("body_poses"))
+    films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper, config=vibration,
+                        slip_vibration=slip, pad_forces=pad_forces, pad_statics=pad_statics)
     return taxels, films
 
 

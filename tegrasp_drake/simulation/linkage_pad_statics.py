@@ -1,0 +1,138 @@
+"""The linkage fingers' pad normal forces from the joints' generalized contact forces.
+
+The PVDF film (pad_vibration_sensor.py) is loaded by its pad's normal contact force. On the
+linkage hand that is the net contact force on the finger body (the follower, which carries
+the pad and its backing) along the pad's outward normal. PadNormalForces sums it from the
+plant's contact results; this module gets the same force from a compiled vector port, the
+gripper model instance's generalized contact forces (tau = J^T F of the contact forces
+alone: joint limits, the loop's ball constraint and the drivers' coupler are constraints,
+not contact), with a few floats of planar statics:
+
+Each finger is a planar chain base -A- driver -B- coupler -C- follower, its joint axes
+normal to the finger's plane (robotiq/linkage.py; the mirrored finger's axes point the
+other way, so in its own (+-y, z) coordinates both fingers read alike). A contact wrench on
+the follower, with in-plane force F and moment M_C about C, gives the three joints
+
+    tau_C = M_C,   tau_B = M_C + (C - B) x F,   tau_A = M_C + (C - A) x F
+
+(x: the planar cross product). A, B and C are not collinear, so the last two equations
+give F exactly, and the pad force is F . n, n the pad's outward normal (the pad frame's -z)
+in the open pose turned by the follower's absolute angle (the sum of the three joint
+angles). The points and the normal are read from the plant's model. Forces out
+of the plane (friction along x) turn no joint and have no normal component. The result
+equals PadNormalForces' when only the followers have collision geometry, as the linkage
+model has (modelgen/robotiq_linkage_sdf.py): `LinkagePadStatics` refuses a plant where
+another link of a finger can touch.
+
+Runs on Python floats: it is evaluated on every plant step.
+"""
+
+import dataclasses
+import math
+import operator
+
+from tegrasp_drake.rig.channels import FINGER_NAMES
+
+# VibrationSensorConfig.pad_force_source: PadNormalForces' walk over the contact results,
+# or this module's statics on the joints' generalized contact forces.
+PAD_FORCE_SOURCES = ("contact_results", "joint_forces")
+JOINT_FORCES = PAD_FORCE_SOURCES[1]
+# The chain's joints from the base, by their SDF names `<finger>_<link>_joint`.
+CHAIN_LINKS = ("driver", "coupler", "follower")
+# Each finger's side of the stroke (modelgen/robotiq_linkage_sdf.py: left on +y, its joint
+# axes +x; right on -y, its axes -x).
+FINGER_SIGNS = (1.0, -1.0)
+# The finger's links other than the follower (the spring link hangs off the base).
+OTHER_LINKS = ("driver", "coupler", "spring_link")
+
+def _instance_index(plant, instance, joint, *, velocity: bool) -> int:
+    """Where `joint`'s (single) velocity or position sits in the model instance's vector."""
+    start = joint.velocity_start() if velocity else joint.position_start()
+    size = plant.num_velocities() if velocity else plant.num_positions()
+    marker = [0.0] * size
+    marker[start] = 1.0
+    select = plant.GetVelocitiesFromArray if velocity else plant.GetPositionsFromArray
+    return int(select(instance, marker).argmax())
+
+
+@dataclasses.dataclass(frozen=True)
+class FingerChain:
+    """One finger's planar chain in its own (+-y, z) coordinates [m] of the base frame, in
+    the open pose (every link frame is then the base frame): B - A and C - B, and the pad's
+    outward normal (the pad frame's -z)."""
+    ab: tuple[float, float]
+    bc: tuple[float, float]
+    normal: tuple[float, float]
+
+
+def finger_pad_force(chain: FingerChain, tau, q) -> float:
+    """The pad's normal contact force [N], positive pushing the pad open, of one finger
+    from its (driver, coupler, follower) generalized contact forces tau [N m] and joint
+    angles q [rad] (the module docstring)."""
+    theta, beta, gamma = q
+    tau_a, tau_b, tau_c = tau
+    (ab_y, ab_z), (bc_y, bc_z), (n_y, n_z) = chain.ab, chain.bc, chain.normal
+    c1, s1 = math.cos(theta), math.sin(theta)
+    c2, s2 = math.cos(theta + beta), math.sin(theta + beta)
+    # C - B and C - A, turned with the links.
+    cb_y, cb_z = c2 * bc_y - s2 * bc_z, s2 * bc_y + c2 * bc_z
+    ca_y, ca_z = c1 * ab_y - s1 * ab_z + cb_y, s1 * ab_y + c1 * ab_z + cb_z
+    # (C - J) x F = r_y F_z - r_z F_y = tau_J - tau_C for J = B, A; Cramer's rule.
+    rhs_b, rhs_a = tau_b - tau_c, tau_a - tau_c
+    determinant = cb_y * ca_z - cb_z * ca_y
+    force_y = (ca_y * rhs_b - cb_y * rhs_a) / determinant
+    force_z = (ca_z * rhs_b - cb_z * rhs_a) / determinant
+    c3, s3 = math.cos(theta + beta + gamma), math.sin(theta + beta + gamma)
+    return force_y * (c3 * n_y - s3 * n_z) + force_z * (s3 * n_y + c3 * n_z)
+
+
+def finger_chain(plant, gripper, finger: str, sign: float) -> FingerChain:
+    """The FingerChain of `finger` (on sign * y) as the plant's model has it."""
+    def point(link):  # the joint's point, in the open pose's (+-y, z)
+        joint = plant.GetJointByName(f"{finger}_{link}_joint", gripper)
+        p = joint.frame_on_child().GetFixedPoseInBodyFrame().translation()
+        return sign * float(p[1]), float(p[2])
+
+    (a_y, a_z), (b_y, b_z), (c_y, c_z) = (point(link) for link in CHAIN_LINKS)
+    pad = plant.GetFrameByName(f"{finger}_pad", gripper)
+    z_BP = pad.GetFixedPoseInBodyFrame().rotation().matrix()[:, 2]
+    return FingerChain(ab=(b_y - a_y, b_z - a_z), bc=(c_y - b_y, c_z - b_z),
+                       normal=(-sign * float(z_BP[1]), -float(z_BP[2])))
+
+
+class LinkagePadStatics:
+    """Both linkage fingers' pad normal forces from the gripper model instance's
+    generalized contact forces and state (the module docstring)."""
+
+    def __init__(self, plant, gripper):
+        """plant: a finalized MultibodyPlant with the linkage hand as model instance
+        `gripper`. Raises ValueError when a finger link other than the follower has
+        collision geometry (its contacts would enter the joints' forces)."""
+        self.velocities = plant.num_velocities(gripper)  # generalized contact forces' size
+        self.states = plant.num_multibody_states(gripper)  # the instance's state's size
+        touching = [f"{finger}_{link}" for finger in FINGER_NAMES for link in OTHER_LINKS
+                    if plant.GetCollisionGeometriesForBody(
+                        plant.GetBodyByName(f"{finger}_{link}", gripper))]
+        if touching:
+            raise ValueError(f"the linkage pad statics need collision geometry on the "
+                             f"followers only; {', '.join(touching)} can touch")
+        joints = [[plant.GetJointByName(f"{finger}_{link}_joint", gripper)
+                   for link in CHAIN_LINKS] for finger in FINGER_NAMES]
+        chains = [finger_chain(plant, gripper, finger, sign)
+                  for finger, sign in zip(FINGER_NAMES, FINGER_SIGNS)]
+        # Per finger: its chain, and getters of its three joints' entries in the instance's
+        # generalized forces and in its state (itemgetter: read on every plant step).
+        self._fingers = tuple(
+            (chain, operator.itemgetter(*(_instance_index(plant, gripper, j, velocity=True)
+                                          for j in joint_chain)),
+             operator.itemgetter(*(_instance_index(plant, gripper, j, velocity=False)
+                                   for j in joint_chain)))
+            for chain, joint_chain in zip(chains, joints))
+
+    def normal_forces(self, tau: list, state: list) -> tuple[float, float]:
+        """(left, right) pad normal forces [N], positive pushing each pad open, from the
+        gripper instance's generalized contact forces `tau` and its state `state` (positions
+        first), as lists of floats."""
+        (left, left_tau, left_q), (right, right_tau, right_q) = self._fingers
+        return (finger_pad_force(left, left_tau(tau), left_q(state)),
+                finger_pad_force(right, right_tau(tau), right_q(state)))
