@@ -23,7 +23,8 @@ import time
 
 from benchmarks.plant_floor import build_plant_floor, record_plant_inputs
 from benchmarks.system_costs import profile_trial
-from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from benchmarks.arguments import benchmark_parser, parse_benchmark_arguments
+from tegrasp_drake.commands.scenario_args import scenario_from_arguments
 from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram, MakeSimulator
 from tegrasp_drake.scenario.scenario import with_controller
 
@@ -116,19 +117,13 @@ def format_report(result: dict) -> str:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    add_scenario_arguments(parser)
-    parser.add_argument("--repeats", type=int, default=3,
-                        help="lockstep runs of the three simulations")
+    parser = benchmark_parser(__doc__, "lockstep runs of the three simulations")
     parser.add_argument("--variant", action="append", metavar="KEY=VALUE",
                         help="an assignment of the 'after' trial (repeatable; default "
                              f"{' '.join(DEFAULT_VARIANT)})")
     parser.add_argument("--no-profile", action="store_true",
                         help="skip the per-system profile")
-    parser.add_argument("--json", action="store_true")
-    args = parser.parse_args(argv)
-    if args.repeats < 1:
-        parser.error(f"--repeats {args.repeats}: give at least 1 run")
+    args = parse_benchmark_arguments(parser, argv)
     assignments = list(args.variant or DEFAULT_VARIANT)
     before = scenario_from_arguments(args)
     after = scenario_from_arguments(argparse.Namespace(  # a bad assignment stops here
