@@ -45,6 +45,7 @@ FINGER_SIGNS = (1.0, -1.0)
 # The finger's links other than the follower (the spring link hangs off the base).
 OTHER_LINKS = ("driver", "coupler", "spring_link")
 
+
 def _instance_index(plant, instance, joint, *, velocity: bool) -> int:
     """Where `joint`'s (single) velocity or position sits in the model instance's vector."""
     start = joint.velocity_start() if velocity else joint.position_start()
