@@ -33,7 +33,7 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_type
                                           read_yaml_file, require)
 from tegrasp_drake.simulation.capacitive_taxels import CAPACITIVE_OUTPUTS, TAXEL_TRANSDUCERS
 from tegrasp_drake.simulation.contact_meshing import (ContactGeometryConfig,
-                                                       contact_geometry_problem)
+                                                      contact_geometry_problem)
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
 from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
