@@ -1,16 +1,17 @@
-"""Pair a sweep on a coarser contact geometry with the same sweep on the reference geometry:
-outcomes by exact McNemar, every changed trial, and the event latencies.
+"""Pair a sweep on a cheaper representation (a coarser contact geometry, cheaper sensing)
+with the same sweep on the reference one: outcomes by exact McNemar, every changed trial, and
+the event latencies.
 
-    python analysis/compare_geometry.py OUT.md REFERENCE_FOLDER COARSE_FOLDER
+    python analysis/compare_geometry.py [--label NAME] OUT.md REFERENCE_FOLDER VARIANT_FOLDER
 
 The folders hold `tegrasp sweep` records (`trials/*.json`) of the same trials (the same spec
 and base seed; a trial id names the controller, object, marker and attempt, and its seeds
-follow from them), one run on each geometry (e.g. analysis/geometry_contract_paper.yaml
-against analysis/results_linkage/paper_grid). Per controller: held (Hold) and held and
-unloaded on each geometry, paired, with the exact McNemar p-value of each; each trial whose
-outcome changed, with both runs' failure classes and its largest latency change; and per
-transition the median detection latency on each geometry (over the trials where the event
-was detected) and the median and largest paired difference (over the trials where both
+follow from them), one run on each representation (e.g. analysis/geometry_contract_paper.yaml
+against analysis/results_linkage/paper_grid); --label names the variant's column (default
+"coarse"). Per controller: held (Hold) and held and unloaded on each, paired, with the exact
+McNemar p-value of each; each trial whose outcome changed, with both runs' failure classes
+and its largest latency change; and per transition the median detection latency on each
+(over the trials where the event was detected) and the median and largest paired difference (over the trials where both
 were). The contract (docs/sweeps.md, "Coarser contact geometry"): no significant change in
 outcomes, every changed trial explained, median latencies within 10 ms.
 """
@@ -38,10 +39,11 @@ def _median(values):
     return statistics.median(values) if values else None
 
 
-def latency_rows(pairs) -> list[str]:
-    """Per transition: each geometry's median latency [s] and the paired differences."""
-    rows = ["| transition | reference median [s] (n) | coarse median [s] (n) | paired median "
-            "difference [ms] (n) | largest paired difference [ms] |", "|---|---|---|---|---|"]
+def latency_rows(pairs, label: str = "coarse") -> list[str]:
+    """Per transition: each side's median latency [s] and the paired differences."""
+    rows = ["| transition | reference median [s] (n) | {label} median [s] (n) | paired median "
+            "difference [ms] (n) | largest paired difference [ms] |".format(label=label),
+            "|---|---|---|---|---|"]
     for transition in TRANSITIONS:
         sides = [[pair[side]["detection_latency_s"].get(transition) for pair in pairs]
                  for side in (1, 2)]
@@ -63,15 +65,15 @@ def _largest_latency_change(reference, coarse) -> str:
     return _ms(max(differences, key=abs)) if differences else "–"
 
 
-def report(reference: dict, coarse: dict) -> str:
+def report(reference: dict, coarse: dict, label: str = "coarse") -> str:
     common = sorted(set(reference) & set(coarse))
-    lines = [f"{len(common)} paired trials (reference {len(reference)}, coarse {len(coarse)} "
+    lines = [f"{len(common)} paired trials (reference {len(reference)}, {label} {len(coarse)} "
              "records).", ""]
     for controller in sorted({reference[t][0]["controller"] for t in common}):
         pairs = [(reference[t][0], reference[t][1], coarse[t][1]) for t in common
                  if reference[t][0]["controller"] == controller]
-        lines += [f"## {controller}", "", "| outcome | reference | coarse | only reference "
-                  "| only coarse | exact McNemar p |", "|---|---|---|---|---|---|"]
+        lines += [f"## {controller}", "", f"| outcome | reference | {label} | only reference "
+                  f"| only {label} | exact McNemar p |", "|---|---|---|---|---|---|"]
         for phase, words in PHASES.items():
             a = [succeeded(r, phase) for _, r, _ in pairs]
             b = [succeeded(c, phase) for _, _, c in pairs]
@@ -79,11 +81,11 @@ def report(reference: dict, coarse: dict) -> str:
             only_b = sum(y and not x for x, y in zip(a, b))
             lines.append(f"| {words} | {sum(a)}/{len(a)} | {sum(b)}/{len(b)} | {only_a} | "
                          f"{only_b} | {exact_mcnemar_p_value(only_a, only_b):.3g} |")
-        lines += ["", *latency_rows(pairs), ""]
+        lines += ["", *latency_rows(pairs, label), ""]
         changed = [(t, r, c) for t, r, c in pairs
                    if any(succeeded(r, p) != succeeded(c, p) for p in PHASES)]
         if changed:
-            lines += ["| trial | offset [mm] (normal, stroke) | reference | coarse | largest "
+            lines += [f"| trial | offset [mm] (normal, stroke) | reference | {label} | largest "
                       "latency change [ms] |", "|---|---|---|---|---|"]
             for trial, r, c in changed:
                 offset = ", ".join(f"{1000 * v:+.0f}" for v in (trial["marker_dx_m"],
@@ -99,13 +101,17 @@ def report(reference: dict, coarse: dict) -> str:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", type=pathlib.Path, help="the Markdown report to write")
-    parser.add_argument("reference", type=pathlib.Path, help="records on the reference geometry")
-    parser.add_argument("coarse", type=pathlib.Path, help="records on the coarser geometry")
+    parser.add_argument("reference", type=pathlib.Path,
+                        help="records on the reference representation")
+    parser.add_argument("coarse", type=pathlib.Path,
+                        help="records on the cheaper representation (the variant)")
+    parser.add_argument("--label", default="coarse",
+                        help="the variant's name in the report (default: coarse)")
     args = parser.parse_args(argv)
     for folder in (args.reference, args.coarse):
         if not (folder / "trials").is_dir():
             parser.error(f"{folder}: no trials/ folder of sweep records there")
-    text = report(load(args.reference), load(args.coarse))
+    text = report(load(args.reference), load(args.coarse), args.label)
     args.out.write_text(text + "\n")
     print(text)
     return 0
