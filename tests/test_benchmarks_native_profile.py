@@ -1,0 +1,46 @@
+"""benchmarks.native_profile's sorting of py-spy's samples into the parts of a trial."""
+
+from benchmarks.native_profile import FRAMEWORK, parts_from_raw, sample_part
+
+_ADVANCE = "drake::systems::Simulator<double>::AdvanceTo (libdrake.so)"
+_TOP = "<module> (<string>:5);run_trial (tegrasp_drake/runs/trial.py:136)"
+
+
+def _stack(*frames: str) -> list[str]:
+    return [*_TOP.split(";"), _ADVANCE, *frames]
+
+
+def test_a_python_systems_callback_owns_the_sample_whatever_it_evaluates():
+    frames = _stack("drake::systems::LeafSystem<double>::DispatchDiscreteVariableUpdateHandler",
+                    "TactilePads._sample (tegrasp_drake/simulation/tactile_pads.py:173)",
+                    "pads_forces_from_contacts (tegrasp_drake/simulation/tactile_pads.py:99)",
+                    "drake::multibody::MultibodyPlant<double>::CalcContactResults (libdrake.so)")
+    assert sample_part(frames) == "Python: TactilePads"
+
+
+def test_cpp_samples_go_to_the_first_matching_part():
+    step = "drake::multibody::MultibodyPlant<double>::CalcStepUnrestricted (libdrake.so)"
+    assert sample_part(_stack(step, "drake::geometry::internal::ComputeContactSurfaces<double>"
+                              " (libdrake.so)")) == "plant step: contact surfaces"
+    assert sample_part(_stack(step, "drake::multibody::contact_solvers::internal::"
+                              "SapSolver<double>::SolveWithGuess (libdrake.so)")) \
+        == "plant step: SAP solve"
+    assert sample_part(_stack(step)) == "plant step: other"
+    assert sample_part(_stack("drake::systems::VectorLogSink<double>::WriteToLog")) == "loggers"
+    assert sample_part(_stack("drake::systems::DependencyTracker::NotifySubscribers")) \
+        == FRAMEWORK
+
+
+def test_samples_outside_advance_to_and_plain_functions_are_not_systems():
+    assert sample_part(["<module> (<string>:4)", "build (tegrasp_drake/x.py:1)"]) == ""
+    # A module-level function of the package is not a system's callback: the sample is
+    # sorted by its C++ frames.
+    assert sample_part(_stack("helper (tegrasp_drake/x.py:3)")) == FRAMEWORK
+
+
+def test_raw_lines_are_summed_per_part_and_malformed_lines_skipped():
+    python = ";".join(_stack("PadFilms._update (tegrasp_drake/simulation/pad_vibration_"
+                             "sensor.py:272)"))
+    text = "\n".join([f"{python} 3", f"{python} 4", ";".join(_stack()) + " 2",
+                      "<module> (<string>:1) 9", "garbage", ""])
+    assert parts_from_raw(text) == {"Python: PadFilms": 7, FRAMEWORK: 2}
