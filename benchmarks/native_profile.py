@@ -40,12 +40,16 @@ _PYTHON_FRAME = re.compile(r"^(?P<function>\S+) \((?P<file>[^:()]+\.py):\d+\)$")
 PARTS = (
     ("plant step: contact surfaces", "ComputeContactSurfaces"),
     ("plant step: SAP solve", "SapSolver"),
-    ("plant step: other", "MultibodyPlant<double>::CalcStep"),
-    ("plant step: other", "DiscreteUpdateManager"),
-    ("plant outputs read by Drake systems", "multibody::"),
-    ("plant outputs read by Drake systems", "geometry::"),
     ("differential IK", "DifferentialInverseKinematics"),
     ("loggers", "VectorLogSink"),
+    ("plant step: other", "MultibodyPlant<double>::CalcStep"),
+    ("plant step: other", "DiscreteUpdateManager"),
+    # The last step's results (contact surfaces among them) freed as the next is stored.
+    ("plant step: other", "DiscreteStepMemory"),
+    ("plant step: other", "~ContactSurface"),
+    ("plant step: other", "~DeformableContact"),
+    ("plant outputs read by Drake systems", "multibody::"),
+    ("plant outputs read by Drake systems", "geometry::"),
 )
 FRAMEWORK = "Drake framework and other Drake systems"
 

@@ -27,6 +27,10 @@ def test_cpp_samples_go_to_the_first_matching_part():
         == "plant step: SAP solve"
     assert sample_part(_stack(step)) == "plant step: other"
     assert sample_part(_stack("drake::systems::VectorLogSink<double>::WriteToLog")) == "loggers"
+    # Differential IK's own plant is multibody code too: the IK names the part.
+    assert sample_part(_stack("drake::multibody::DifferentialInverseKinematicsIntegrator"
+                              "::Integrate", "drake::multibody::MultibodyPlant<double>::"
+                              "CalcJacobianSpatialVelocity")) == "differential IK"
     assert sample_part(_stack("drake::systems::DependencyTracker::NotifySubscribers")) \
         == FRAMEWORK
 
