@@ -8,9 +8,10 @@ C++: the plant's step, the plant outputs that other systems evaluate, Drake's ow
 and the framework's event dispatch and cache invalidation. This command runs the scenario's
 memorized trial in a child process under py-spy (`--native`: C++ frames too; the 'bench'
 extra) and sorts every sample taken inside Simulator::AdvanceTo by the part of the diagram
-it was in (PARTS, first match from the top of the stack). A Python system's share includes
-the plant outputs its Evals computed (the taxels' contact results, say): what the system
-costs the trial. py-spy stops the child for every sample, which inflates its CPU time
+it was in: the innermost Python system whose callback Drake was running, else the first of
+PARTS that the stack shows. A Python system's share includes the plant outputs its Evals
+computed (the taxels' contact results, say) but not another Python system's calculation
+that an Eval ran (counted there). py-spy stops the child for every sample, which inflates its CPU time
 (by about a third at the default rate), so the trial runs twice: alone, for its process
 CPU time (run_trial's), and under py-spy, for the shares; each share of the first run's
 CPU time is given in milliseconds per simulated second. The host's load falls on the two
@@ -56,16 +57,24 @@ FRAMEWORK = "Drake framework and other Drake systems"
 
 def sample_part(frames: list[str]) -> str:
     """The part of the diagram one sample (its frames, outermost first) was taken in: the
-    class of the first method of this package's Python code called within AdvanceTo (a
-    system's callback), else a PARTS entry."""
+    class of the innermost callback of this package that Drake called (a method's Python
+    frame entered from C++) within AdvanceTo, else a PARTS entry."""
     inside = next((k for k, frame in enumerate(frames) if INSIDE in frame), None)
     if inside is None:
         return ""
     below = frames[inside + 1:]
+    owner, from_python = None, False
     for frame in below:
         match = _PYTHON_FRAME.match(frame)
-        if match and "tegrasp_drake" in match["file"] and "." in match["function"]:
-            return f"Python: {match['function'].split('.')[0]}"
+        if match is None:
+            from_python = False
+            continue
+        function = match["function"]
+        if not from_python and "tegrasp_drake" in match["file"] and "." in function:
+            owner = function.split(".")[0]
+        from_python = True
+    if owner is not None:
+        return f"Python: {owner}"
     text = ";".join(below)
     return next((part for part, marker in PARTS if marker in text), FRAMEWORK)
 

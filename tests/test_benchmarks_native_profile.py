@@ -18,6 +18,15 @@ def test_a_python_systems_callback_owns_the_sample_whatever_it_evaluates():
     assert sample_part(frames) == "Python: TactilePads"
 
 
+def test_another_python_system_that_an_eval_runs_owns_its_own_samples():
+    frames = _stack("PadFilms._update (tegrasp_drake/simulation/pad_vibration_sensor.py:262)",
+                    "0x7f953f127206 (pydrake/systems/framework.so)",
+                    "drake::systems::OutputPort<double>::Eval (libdrake.so)",
+                    "PadNormalForces._calc (tegrasp_drake/simulation/pad_normal_forces.py:90)",
+                    "normal_force (tegrasp_drake/simulation/pad_normal_forces.py:40)")
+    assert sample_part(frames) == "Python: PadNormalForces"
+
+
 def test_cpp_samples_go_to_the_first_matching_part():
     step = "drake::multibody::MultibodyPlant<double>::CalcStepUnrestricted (libdrake.so)"
     assert sample_part(_stack(step, "drake::geometry::internal::ComputeContactSurfaces<double>"
