@@ -1,7 +1,8 @@
 import numpy as np
 import pytest
 
-from tegrasp_drake.simulation.contact_pressure import (polygon_fan_triangles,
+from tegrasp_drake.simulation.contact_pressure import (corner_differences,
+                                                    polygon_fan_triangles,
                                                     taxel_normal_forces)
 from tegrasp_drake.rig.taxel_layout import (CELL_X, CELL_Y, PAD_LENGTH, PAD_WIDTH,
                                                 taxel_centers)
@@ -96,3 +97,11 @@ def test_surfaces_in_one_pass_give_each_surfaces_forces_bit_for_bit():
     for surface, forces in zip(surfaces, together):
         np.testing.assert_array_equal(forces, taxel_normal_forces(*surface))
         assert forces.sum() > 0.0
+
+
+def test_corner_differences_are_numpys_diffs_bit_for_bit():
+    rng = np.random.default_rng(600)
+    cumulative = rng.normal(0.0, 1.0, (40, 3, 4)) * 10.0 ** rng.integers(-12, 3, (40, 3, 4))
+    cumulative[0] = -0.0  # signed zeros keep their sign as in np.diff
+    expected = np.diff(np.diff(cumulative, axis=1, prepend=0.0), axis=2, prepend=0.0)
+    assert corner_differences(cumulative).tobytes() == expected.tobytes()

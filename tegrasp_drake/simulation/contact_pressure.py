@@ -120,6 +120,18 @@ def taxel_normal_forces(p_PV: np.ndarray, pressure_V: np.ndarray,
     return surfaces_taxel_normal_forces([(p_PV, pressure_V, triangles)])[0]
 
 
+def corner_differences(cumulative: np.ndarray) -> np.ndarray:
+    """Each cell's integral from the cumulative integrals F (T, x edge, y edge) at its upper
+    corners: F[i, j] - F[i - 1, j] - F[i, j - 1] + F[i - 1, j - 1], as
+    np.diff(np.diff(F, axis=1, prepend=0.0), axis=2, prepend=0.0) computes it (the same
+    subtractions, in place: the first column and row subtract nothing)."""
+    columns = cumulative.copy()
+    columns[:, 1:] -= cumulative[:, :-1]
+    cells = columns.copy()
+    cells[:, :, 1:] -= columns[:, :, :-1]
+    return cells
+
+
 def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
     """taxel_normal_forces of each (p_PV, pressure_V, triangles) in `surfaces`, in one pass
     over all their triangles (each triangle's arithmetic is its own, and each surface's
@@ -131,8 +143,8 @@ def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
                                for (_, p, _), t in zip(surfaces, triangles)])
     cumulative = cumulative_pressure_integrals(xy, pressure, COLUMN_UPPER_EDGES,
                                                ROW_UPPER_EDGES)
-    cells = np.diff(np.diff(cumulative, axis=1, prepend=0.0), axis=2, prepend=0.0)  # (T, col, row)
-    cells = np.maximum(cells, 0.0)
+    cells = corner_differences(cumulative)  # (T, col, row)
+    np.maximum(cells, 0.0, out=cells)
     forces, start = [], 0
     for t in triangles:
         forces.append(cells[start:start + len(t)].sum(axis=0).T.reshape(ROWS * COLUMNS))

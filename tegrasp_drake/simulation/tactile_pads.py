@@ -63,38 +63,51 @@ def _fan_triangles(face_data: tuple) -> np.ndarray:
     return triangles
 
 
-def _pad_surfaces(contact_results: ContactResults, X_WP: RigidTransform, geometry_id):
-    """[(p_PV, pressure_V, triangles, applied normal force [N])] of each hydroelastic
-    contact surface of the pad with `geometry_id`, vertices in the pad frame P."""
-    surfaces = []
-    X_PW = X_WP.inverse()
-    z_W = X_WP.rotation().matrix()[:, 2].copy()
+def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
+    """(p_PV, pressure_V, triangles, applied normal force [N]) of one hydroelastic contact,
+    vertices in the pad frame P."""
+    surface = info.contact_surface()
+    if surface.is_triangle():
+        mesh, field = surface.tri_mesh_W(), surface.tri_e_MN()
+        triangles = np.array([[t.vertex(k) for k in range(3)] for t in mesh.triangles()])
+    else:
+        mesh, field = surface.poly_mesh_W(), surface.poly_e_MN()
+        triangles = _fan_triangles(tuple(mesh.face_data()))
+    # Drake binds no bulk accessor: one call per vertex (map avoids a Python frame each).
+    count = mesh.num_vertices()
+    p_WV = np.concatenate(list(map(mesh.vertex, range(count)))).reshape(count, 3)
+    pressure = np.fromiter(map(field.EvaluateAtVertex, range(count)), float, count)
+    p_PV = X_PW.multiply(p_WV.T).T
+    applied = abs(float(info.F_Ac_W().translational() @ z_W))
+    return p_PV, pressure, triangles, applied
+
+
+def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[list]:
+    """Per pad (its geometry id in `geometry_ids`): [(p_PV, pressure_V, triangles, applied
+    normal force [N])] of each hydroelastic contact surface that involves the pad's geometry,
+    in contact order, vertices in the pad frame P. One pass over the contacts for all pads;
+    `pad_poses()` (each pad's X_WP) is called only if a pad has a contact surface."""
+    per_pad = [[] for _ in geometry_ids]
+    frames = None
     for i in range(contact_results.num_hydroelastic_contacts()):
         info = contact_results.hydroelastic_contact_info(i)
         surface = info.contact_surface()
-        if geometry_id not in (surface.id_M(), surface.id_N()):
-            continue
-        if surface.is_triangle():
-            mesh, field = surface.tri_mesh_W(), surface.tri_e_MN()
-            triangles = np.array([[t.vertex(k) for k in range(3)] for t in mesh.triangles()])
-        else:
-            mesh, field = surface.poly_mesh_W(), surface.poly_e_MN()
-            triangles = _fan_triangles(tuple(mesh.face_data()))
-        # Drake binds no bulk accessor: one call per vertex (map avoids a Python frame each).
-        count = mesh.num_vertices()
-        p_WV = np.array(list(map(mesh.vertex, range(count))))
-        pressure = np.fromiter(map(field.EvaluateAtVertex, range(count)), float, count)
-        p_PV = X_PW.multiply(p_WV.T).T
-        applied = abs(float(info.F_Ac_W().translational() @ z_W))
-        surfaces.append((p_PV, pressure, triangles, applied))
-    return surfaces
+        ids = (surface.id_M(), surface.id_N())
+        for k, geometry_id in enumerate(geometry_ids):
+            if geometry_id in ids:
+                if frames is None:
+                    frames = [(X_WP.inverse(), X_WP.rotation().matrix()[:, 2].copy())
+                              for X_WP in pad_poses()]
+                per_pad[k].append(_surface_in_frame(info, *frames[k]))
+    return per_pad
 
 
-def pads_forces_from_contacts(contact_results: ContactResults, pads) -> list[np.ndarray]:
-    """The 12 taxel normal forces [N] (noise-free) of each pad (X_WP, geometry_id) in
-    `pads`: each surface's pressure integral (contact_pressure.py, all surfaces of all pads
-    in one pass) scaled to the normal force the solver applied on it."""
-    per_pad = [_pad_surfaces(contact_results, X_WP, geometry_id) for X_WP, geometry_id in pads]
+def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[np.ndarray]:
+    """The 12 taxel normal forces [N] (noise-free) of each pad (its geometry id in
+    `geometry_ids`, its pose X_WP in what `pad_poses()` returns, called only if a pad has a
+    contact surface): each surface's pressure integral (contact_pressure.py, all surfaces
+    of all pads in one pass) scaled to the normal force the solver applied on it."""
+    per_pad = _pads_surfaces(contact_results, geometry_ids, pad_poses)
     surfaces = [surface for pad in per_pad for surface in pad]
     raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces]) if surfaces else [])
     result = []
@@ -106,6 +119,33 @@ def pads_forces_from_contacts(contact_results: ContactResults, pads) -> list[np.
                 forces += raw * (applied / total)
         result.append(forces)
     return result
+
+
+def pads_forces_from_contacts(contact_results: ContactResults, pads) -> list[np.ndarray]:
+    """pads_forces of the pads (X_WP, geometry_id) in `pads`."""
+    return pads_forces(contact_results, [geometry_id for _, geometry_id in pads],
+                       lambda: [X_WP for X_WP, _ in pads])
+
+
+def _uint32_words(n: int) -> list[int]:
+    """The 32-bit words, least significant first, that numpy's SeedSequence makes of a
+    non-negative int entropy (one word for 0)."""
+    if n < 0:
+        raise ValueError(f"a noise seed must be non-negative, got {n}")
+    words = [n & 0xFFFFFFFF]
+    n >>= 32
+    while n:
+        words.append(n & 0xFFFFFFFF)
+        n >>= 32
+    return words
+
+
+def noise_generator(seed_words: list[int]) -> np.random.Generator:
+    """np.random.default_rng(entropy) for the entropy whose words are `seed_words` (the
+    _uint32_words of each int, concatenated): the same stream, without default_rng's
+    conversion of the ints to words on every sample (about a third of its cost)."""
+    entropy = np.array(seed_words, dtype=np.uint32)
+    return np.random.Generator(np.random.PCG64(np.random.SeedSequence(entropy)))
 
 
 def apply_sensor_model(true_forces: np.ndarray, rng: np.random.Generator, noise_std: float,
@@ -143,39 +183,39 @@ class TactilePads(LeafSystem):
 
     def __init__(self, *, pads: dict, config: TactileSensorConfig, seed: int):
         super().__init__()
-        self._pads = pads  # finger name -> PadGeometry
+        self._pads = [pads[name] for name in FINGER_NAMES]  # PadGeometry of each finger
+        self._geometry_ids = [pad.geometry_id for pad in self._pads]
         self._config = config
-        self._seed = int(seed)
+        self._seed_words = _uint32_words(int(seed)) + _uint32_words(_NOISE_STREAM)
         self._period = 1.0 / config.sample_rate_hz
         self._contact_port = self.DeclareAbstractInputPort(
             "contact_results", AbstractValue.Make(ContactResults()))
         self._poses_port = self.DeclareAbstractInputPort(
             "body_poses", AbstractValue.Make([RigidTransform()]))
-        size = 2 * TAXELS_PER_PAD
-        self._state = self.DeclareDiscreteState(2 * size)  # measured then true
+        # One discrete state group per output port (the ports are Drake state output ports,
+        # read with no Python call): each finger's measured forces, then the true forces.
+        self._measured = [self.DeclareDiscreteState(TAXELS_PER_PAD) for _ in FINGER_NAMES]
+        self._true = self.DeclareDiscreteState(len(FINGER_NAMES) * TAXELS_PER_PAD)
         self.DeclarePeriodicDiscreteUpdateEvent(self._period, 0.0, self._sample)
-        for k, finger in enumerate(FINGER_NAMES):
-            self.DeclareVectorOutputPort(
-                f"{finger}_taxel_forces", TAXELS_PER_PAD,
-                lambda context, output, k=k: output.SetFromVector(
-                    context.get_discrete_state(self._state).value()[
-                        k * TAXELS_PER_PAD:(k + 1) * TAXELS_PER_PAD]),
-                prerequisites_of_calc={self.discrete_state_ticket(self._state)})
-        self.DeclareVectorOutputPort(
-            "true_taxel_forces", size,
-            lambda context, output: output.SetFromVector(
-                context.get_discrete_state(self._state).value()[size:]),
-            prerequisites_of_calc={self.discrete_state_ticket(self._state)})
+        for finger, measured in zip(FINGER_NAMES, self._measured):
+            self.DeclareStateOutputPort(f"{finger}_taxel_forces", measured)
+        self.DeclareStateOutputPort("true_taxel_forces", self._true)
+
+    def _pad_poses(self, context) -> list[RigidTransform]:
+        """X_WP of each finger's pad."""
+        poses = self._poses_port.Eval(context)
+        return [poses[int(pad.body_index)] @ pad.X_BP for pad in self._pads]
 
     def _sample(self, context, discrete_state):
         contact_results = self._contact_port.Eval(context)
-        poses = self._poses_port.Eval(context)
-        true_forces = np.concatenate(pads_forces_from_contacts(contact_results, [
-            (poses[int(pad.body_index)] @ pad.X_BP, pad.geometry_id)
-            for pad in (self._pads[name] for name in FINGER_NAMES)]))
+        true_forces = np.concatenate(pads_forces(
+            contact_results, self._geometry_ids, lambda: self._pad_poses(context)))
         sample_index = int(round(context.get_time() / self._period))
-        rng = np.random.default_rng((self._seed, _NOISE_STREAM, sample_index))
+        rng = noise_generator(self._seed_words + _uint32_words(sample_index))
         c = self._config
         measured = apply_sensor_model(true_forces, rng, c.noise_std_n, c.quantization_n,
                                       c.offset_n)
-        discrete_state.set_value(self._state, np.concatenate([measured, true_forces]))
+        for k, group in enumerate(self._measured):
+            discrete_state.set_value(
+                group, measured[k * TAXELS_PER_PAD:(k + 1) * TAXELS_PER_PAD])
+        discrete_state.set_value(self._true, true_forces)
