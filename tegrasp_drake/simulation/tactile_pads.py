@@ -127,27 +127,6 @@ def pads_forces_from_contacts(contact_results: ContactResults, pads) -> list[np.
                        lambda: [X_WP for X_WP, _ in pads])
 
 
-def _uint32_words(n: int) -> list[int]:
-    """The 32-bit words, least significant first, that numpy's SeedSequence makes of a
-    non-negative int entropy (one word for 0)."""
-    if n < 0:
-        raise ValueError(f"a noise seed must be non-negative, got {n}")
-    words = [n & 0xFFFFFFFF]
-    n >>= 32
-    while n:
-        words.append(n & 0xFFFFFFFF)
-        n >>= 32
-    return words
-
-
-def noise_generator(seed_words: list[int]) -> np.random.Generator:
-    """np.random.default_rng(entropy) for the entropy whose words are `seed_words` (the
-    _uint32_words of each int, concatenated): the same stream, without default_rng's
-    conversion of the ints to words on every sample (about a third of its cost)."""
-    entropy = np.array(seed_words, dtype=np.uint32)
-    return np.random.Generator(np.random.PCG64(np.random.SeedSequence(entropy)))
-
-
 def apply_sensor_model(true_forces: np.ndarray, rng: np.random.Generator, noise_std: float,
                        quantization: float, offset: float) -> np.ndarray:
     """Measured taxel forces: offset plus Gaussian noise, then quantised to the LSB."""
@@ -186,7 +165,7 @@ class TactilePads(LeafSystem):
         self._pads = [pads[name] for name in FINGER_NAMES]  # PadGeometry of each finger
         self._geometry_ids = [pad.geometry_id for pad in self._pads]
         self._config = config
-        self._seed_words = _uint32_words(int(seed)) + _uint32_words(_NOISE_STREAM)
+        self._seed = int(seed)
         self._period = 1.0 / config.sample_rate_hz
         self._contact_port = self.DeclareAbstractInputPort(
             "contact_results", AbstractValue.Make(ContactResults()))
@@ -211,7 +190,7 @@ class TactilePads(LeafSystem):
         true_forces = np.concatenate(pads_forces(
             contact_results, self._geometry_ids, lambda: self._pad_poses(context)))
         sample_index = int(round(context.get_time() / self._period))
-        rng = noise_generator(self._seed_words + _uint32_words(sample_index))
+        rng = np.random.default_rng((self._seed, _NOISE_STREAM, sample_index))
         c = self._config
         measured = apply_sensor_model(true_forces, rng, c.noise_std_n, c.quantization_n,
                                       c.offset_n)
