@@ -19,8 +19,7 @@ For each object, each variant of the contact world (VARIANTS) that changes its p
 The variants: the reference geometry; the box as its corners' convex hull (12 triangles);
 the table as a compliant half-space; the cylinder's facets at 10 and 20 mm (not a scenario
 setting: they fail the contact world's validation, simulation/contact_meshing.py; measured on the
-same cylinder written as a model file, its events the built-in's); and `sweep_grade`, the
-preset of the chosen options. A variant that leaves an object's plant as another variant
+same cylinder written as a model file, its events the built-in's). A variant that leaves an object's plant as another variant
 has it (the box setting on a cylinder) is not run again for that object.
 """
 
@@ -38,24 +37,15 @@ from benchmarks.station_costs import (floor_step_breakdown, station_scenario,
 from benchmarks.trial import meshed_object
 from benchmarks.arguments import benchmark_parser, parse_benchmark_arguments
 from tegrasp_drake.commands.scenario_args import scenario_from_arguments
-from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.objects import ObjectConfig
-from tegrasp_drake.rig.typed_yaml import read_yaml_file
 from tegrasp_drake.scenario.scenario import resolve_object
-from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.station import pad_geometries
 from tegrasp_drake.simulation.tactile_pads import pads_forces_from_contacts
 
 OBJECTS = ("box", "thick_cylinder")
-CHOSEN_PRESET = "sweep_grade"  # scenarios.yaml: the chosen options together
 TAXEL_PERIOD_S = 0.01  # taxel forces compared every this [s]
 CONTACT_PHASES = ("close", "lift", "hold", "place")  # from the first touch to Unload
 FACE_PHASES = ("reach", "close", "hold")
-
-
-def _chosen_geometry() -> ContactGeometryConfig:
-    preset = read_yaml_file(paths.scenarios_file(), "the scenario file")[CHOSEN_PRESET]
-    return ContactGeometryConfig(**preset["contact_geometry"])
 
 
 def _with_geometry(**fields):
@@ -83,8 +73,6 @@ VARIANTS = {
     "table_half_space": _with_geometry(table="half_space"),
     "cylinder_facets_10mm": _cylinder_facets(0.010),
     "cylinder_facets_20mm": _cylinder_facets(0.020),
-    CHOSEN_PRESET: lambda scenario, folder: dataclasses.replace(
-        scenario, contact_geometry=_chosen_geometry()),
 }
 
 

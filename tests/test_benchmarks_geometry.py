@@ -14,7 +14,6 @@ def test_the_box_setting_changes_the_box_and_not_a_cylinder(tmp_path):
     box = _keys(LoadScenario(name="box"), tmp_path)
     cylinder = _keys(LoadScenario(name="thick_cylinder"), tmp_path)
     assert box["box_12_triangles"] != box["reference"]
-    assert box["sweep_grade"] == box["box_12_triangles"]
     assert cylinder["box_12_triangles"] == cylinder["reference"]
     assert "cylinder_facets_10mm" not in box  # a box has no facets to coarsen
     assert cylinder["cylinder_facets_10mm"] != cylinder["reference"]

@@ -19,8 +19,7 @@ contact world still hold (tests/test_simulation_validation_scenes.py).
   at its thickness, so the top's stiffness per depth is the same). The box's tetrahedra are
   up to its full size; the half-space cuts the object's bottom triangles only along the
   surface. It passes the validation but gains nothing in contact (the free step is about
-  20 % cheaper, the step in contact no cheaper: docs/sweeps.md), so the `sweep_grade`
-  preset leaves it out.
+  20 % cheaper, the step in contact no cheaper: docs/sweeps.md).
 
 Cylinders keep their 5 mm facets (object_model.MESH_RESOLUTION_M: 16 round the 25 mm thin
 cylinder, 32 round the 50 mm thick one): at 10 mm the thin cylinder is an octagon and
