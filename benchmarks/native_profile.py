@@ -11,11 +11,12 @@ extra) and sorts every sample taken inside Simulator::AdvanceTo by the part of t
 it was in: the innermost Python system whose callback Drake was running, else the first of
 PARTS that the stack shows. A Python system's share includes the plant outputs its Evals
 computed (the taxels' contact results, say) but not another Python system's calculation
-that an Eval ran (counted there). py-spy stops the child for every sample, which inflates its CPU time
-(by about a third at the default rate), so the trial runs twice: alone, for its process
-CPU time (run_trial's), and under py-spy, for the shares; each share of the first run's
-CPU time is given in milliseconds per simulated second. The host's load falls on the two
-runs differently: compare shares, and CPU figures only from one run on an idle host.
+that an Eval ran (counted there). py-spy stops the child for every sample, which inflates
+its CPU time (by about a third at the default rate), so the trial runs twice: alone, for
+its process CPU time (run_trial's), and under py-spy, for the shares; each share of the
+first run's CPU time is given in milliseconds per simulated second. The host's load falls
+on the two runs differently: compare shares, and CPU figures only from one run on an idle
+host.
 """
 
 import argparse
@@ -32,12 +33,12 @@ from benchmarks.arguments import benchmark_parser
 from tegrasp_drake.commands.scenario_args import scenario_from_arguments
 from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
 
-DEFAULT_RATE_HZ = 250  # samples per second: about 3,000 samples in a 12 s trial
+DEFAULT_RATE_HZ = 250  # samples per second of the profiled run: about 10,000 a trial
 INSIDE = "Simulator<double>::AdvanceTo"
 _PYTHON_FRAME = re.compile(r"^(?P<function>\S+) \((?P<file>[^:()]+\.py):\d+\)$")
 
 # (part, a substring of some frame of the sample's stack) in order: the first match names
-# the part of a sample that has no frame of this package's Python code above AdvanceTo.
+# the part of a sample taken in no callback of this package's Python systems.
 PARTS = (
     ("plant step: contact surfaces", "ComputeContactSurfaces"),
     ("plant step: SAP solve", "SapSolver"),
@@ -151,9 +152,10 @@ def profile_native(scenario, *, rate_hz: int = DEFAULT_RATE_HZ) -> dict:
 
 def format_report(result: dict) -> str:
     """The profile as a plain-text table."""
+    real_time = result["sim_time_s"] / result["cpu_s"]
     lines = [f"memorized trial, {result['sim_time_s']:.2f} s simulated, "
-             f"{result['cpu_s']:.2f} CPU s unprofiled ({result['sim_time_s'] / result['cpu_s']:.2f}x "
-             f"real time), {result['samples']} samples inside AdvanceTo under py-spy",
+             f"{result['cpu_s']:.2f} CPU s unprofiled ({real_time:.2f}x real time), "
+             f"{result['samples']} samples inside AdvanceTo under py-spy",
              f"{'part':<44} {'share':>7} {'CPU ms per sim s':>17}"]
     for part, figures in result["parts"].items():
         lines.append(f"{part:<44} {100 * figures['share']:>6.1f}% "
@@ -162,10 +164,14 @@ def format_report(result: dict) -> str:
 
 
 def main(argv=None) -> int:
-    parser = benchmark_parser(__doc__, "unused (one profiled trial)", default_repeats=1)
+    parser = benchmark_parser(__doc__, "must be 1: one profiled trial a run",
+                              default_repeats=1)
     parser.add_argument("--rate", type=int, default=DEFAULT_RATE_HZ, metavar="HZ",
                         help=f"py-spy's samples per second (default {DEFAULT_RATE_HZ})")
     args = parser.parse_args(argv)
+    if args.repeats != 1:
+        parser.error(f"--repeats {args.repeats}: this benchmark profiles one trial a run; "
+                     "run it again for another")
     if args.rate < 1:
         parser.error(f"--rate {args.rate}: give at least 1 sample per second")
     result = profile_native(scenario_from_arguments(args), rate_hz=args.rate)

@@ -1,6 +1,8 @@
 """benchmarks.native_profile's sorting of py-spy's samples into the parts of a trial."""
 
-from benchmarks.native_profile import FRAMEWORK, parts_from_raw, sample_part
+import pytest
+
+from benchmarks.native_profile import FRAMEWORK, main, parts_from_raw, sample_part
 
 _ADVANCE = "drake::systems::Simulator<double>::AdvanceTo (libdrake.so)"
 _TOP = "<module> (<string>:5);run_trial (tegrasp_drake/runs/trial.py:136)"
@@ -57,3 +59,11 @@ def test_raw_lines_are_summed_per_part_and_malformed_lines_skipped():
     text = "\n".join([f"{python} 3", f"{python} 4", ";".join(_stack()) + " 2",
                       "<module> (<string>:1) 9", "garbage", ""])
     assert parts_from_raw(text) == {"Python: PadFilms": 7, FRAMEWORK: 2}
+
+
+def test_repeats_and_rate_are_checked_in_one_line_before_any_profiling(capsys):
+    for argv, words in ((["--repeats", "3"], "profiles one trial a run"),
+                        (["--rate", "0"], "at least 1 sample per second")):
+        with pytest.raises(SystemExit):
+            main(argv)
+        assert words in capsys.readouterr().err
