@@ -40,7 +40,7 @@ from tegrasp_drake.commands.scenario_args import scenario_from_arguments
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.scenario.scenario import resolve_object
 from tegrasp_drake.simulation.station import pad_geometries
-from tegrasp_drake.simulation.tactile_pads import pads_forces_from_contacts
+from tegrasp_drake.simulation.tactile_pads import pads_forces
 
 OBJECTS = ("box", "thick_cylinder")
 TAXEL_PERIOD_S = 0.01  # taxel forces compared every this [s]
@@ -88,16 +88,20 @@ def replayed_taxel_forces(scenario, inputs, times) -> np.ndarray:
     plant replaying `inputs`, at each of `times` [s]: shape (len(times), 24)."""
     simulator, parts = build_plant_floor(scenario, inputs)
     plant = parts.plant
-    pads = pad_geometries(plant, parts.scene_graph, parts.gripper).values()
+    pads = list(pad_geometries(plant, parts.scene_graph, parts.gripper).values())
     context = plant.GetMyContextFromRoot(simulator.get_context())
+
+    def pad_poses():
+        return [plant.EvalBodyPoseInWorld(context, plant.get_body(pad.body_index)) @ pad.X_BP
+                for pad in pads]
+
     rows = []
     simulator.Initialize()
     for t in times:
         simulator.AdvanceTo(t)
-        poses = [(plant.EvalBodyPoseInWorld(context, plant.get_body(pad.body_index)) @ pad.X_BP,
-                  pad.geometry_id) for pad in pads]
         contact = plant.get_contact_results_output_port().Eval(context)
-        rows.append(np.concatenate(pads_forces_from_contacts(contact, poses)))
+        rows.append(np.concatenate(pads_forces(
+            contact, [pad.geometry_id for pad in pads], pad_poses)))
     return np.array(rows)
 
 

@@ -15,7 +15,7 @@ def _stack(*frames: str) -> list[str]:
 def test_a_python_systems_callback_owns_the_sample_whatever_it_evaluates():
     frames = _stack("drake::systems::LeafSystem<double>::DispatchDiscreteVariableUpdateHandler",
                     "TactilePads._sample (tegrasp_drake/simulation/tactile_pads.py:173)",
-                    "pads_forces_from_contacts (tegrasp_drake/simulation/tactile_pads.py:99)",
+                    "pads_forces (tegrasp_drake/simulation/tactile_pads.py:112)",
                     "drake::multibody::MultibodyPlant<double>::CalcContactResults (libdrake.so)")
     assert sample_part(frames) == "Python: TactilePads"
 

@@ -121,12 +121,6 @@ def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses) -> lis
     return result
 
 
-def pads_forces_from_contacts(contact_results: ContactResults, pads) -> list[np.ndarray]:
-    """pads_forces of the pads (X_WP, geometry_id) in `pads`."""
-    return pads_forces(contact_results, [geometry_id for _, geometry_id in pads],
-                       lambda: [X_WP for X_WP, _ in pads])
-
-
 def apply_sensor_model(true_forces: np.ndarray, rng: np.random.Generator, noise_std: float,
                        quantization: float, offset: float) -> np.ndarray:
     """Measured taxel forces: offset plus Gaussian noise, then quantised to the LSB."""
