@@ -31,6 +31,7 @@ from tegrasp_drake.hardware.robotiq.modbus_client import MIN_PERIOD, RobotiqModb
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
 DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
@@ -171,7 +172,8 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     return config
 
 
-def LoadHardwareConfig(filename, overrides: typing.Sequence[str] = ()
+@public_api
+def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
     """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
     data = read_yaml_file(filename, "the hardware config")

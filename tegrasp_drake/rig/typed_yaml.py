@@ -31,9 +31,15 @@ import typing
 import yaml
 from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
 
+from tegrasp_drake.rig.files import InputTooLargeError, one_line, read_bounded
+
 
 class ConfigError(ValueError):
-    """A configuration file, field or value is wrong; the message names it."""
+    """A configuration file, field or value is wrong; the message names it, on one line (a
+    line break inside a value it quotes is shown as \\n)."""
+
+    def __init__(self, message: str = ""):
+        super().__init__(one_line(str(message)))
 
 
 def read_yaml_file(path: str | pathlib.Path, what: str):
@@ -41,9 +47,17 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
     file in errors, e.g. "the scenario file"."""
     path = pathlib.Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        if path.is_dir():
+            raise ConfigError(f"{path}: cannot read {what}: it is a folder; give a file")
+        text = read_bounded(path, MAX_YAML_BYTES).decode("utf-8")
     except FileNotFoundError:
         raise ConfigError(f"{path}: cannot read {what}: it does not exist") from None
+    except InputTooLargeError:
+        raise ConfigError(f"{path}: more than {MAX_YAML_BYTES} bytes of YAML; a configuration "
+                          f"is at most {MAX_YAML_BYTES} bytes") from None
+    except UnicodeDecodeError as e:
+        raise ConfigError(f"{path}: cannot read {what}: it is not UTF-8 text (byte "
+                          f"{e.start}); give a YAML file") from None
     except OSError as e:
         raise ConfigError(f"{path}: cannot read {what}: {e.strerror or e}") from None
     return parse_yaml(text, str(path)) if text else None
@@ -57,6 +71,8 @@ MAX_YAML_NODES = 100_000
 def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: int = 0):
     """The data of YAML `text` (module docstring); ConfigError "SOURCE: ..." in one line
     naming the line and column (less the offsets of text the caller put before it)."""
+    if "\x00" in text:
+        raise ConfigError(f"{source}: holds a NUL byte; it is not YAML text")
     if len(text.encode("utf-8", errors="replace")) > MAX_YAML_BYTES:
         raise ConfigError(f"{source}: {len(text.encode('utf-8', errors='replace'))} bytes of "
                           f"YAML; a configuration is at most {MAX_YAML_BYTES} bytes")

@@ -20,6 +20,9 @@ import dataclasses
 from pydrake.common import RandomGenerator
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 from pydrake.systems.framework import Diagram, DiagramBuilder
+from pydrake.systems.framework import System
+from pydrake.geometry import Meshcat
+from pydrake.lcm import DrakeLcm
 
 from tegrasp_drake.control.controller_config import EventTriggeredConfig
 from tegrasp_drake.control.grasp_controller import AddGraspController, GraspController
@@ -33,13 +36,17 @@ from tegrasp_drake.scenario.scenario import grasp_plan, object_pose, sample_rate
 from tegrasp_drake.simulation.carriage import arm_endpoint_impedance
 from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStationConfig,
                                               side_grasp_pose)
+from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.api_boundary import public_api
 
 # Beyond the ideal grasp's duration, for corrections (and the controller's own
 # extra_time_s, controller_config.py) [s].
 EXTRA_TIME_S = 10.0
 
 
-def MakeStation(scenario, *, meshcat=None, lcm=None):
+@public_api
+def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
+                lcm: DrakeLcm | None = None):
     """The station of `scenario`, simulated or real, as its `station` tag says.
 
     `station: !SimulatedStationConfig {}` (the default): MakeSimulatedStation(scenario,
@@ -68,7 +75,8 @@ def station_carriage(scenario):
         scenario.expected_object_xy, scenario.grasp.grasp_height))
 
 
-def MakeSimulatedStation(scenario, *, meshcat=None):
+@public_api
+def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
     """MakeGraspStation with the scenario's sections, whatever its `station` tag says (its
     `arm` setting when it is a simulated station's)."""
     return MakeGraspStation(
@@ -80,8 +88,10 @@ def MakeSimulatedStation(scenario, *, meshcat=None):
         meshcat=meshcat)
 
 
-def AddScenarioController(builder, scenario, *, station, events=None,
-                          corrective_events=None) -> GraspController:
+@public_api
+def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, station: System,
+                          events: dict | None = None,
+                          corrective_events: dict | None = None) -> GraspController:
     """AddGraspController with the scenario's sections: its controller, its GraspPlan
     (grasp_plan), its arm and its sample rates; the memorized events its controller needs
     default to the scenario object's (load_controller_events, load_corrective_events)."""
@@ -106,8 +116,10 @@ class GraspDiagram:
     time_limit: float            # [s] the longest the run may take (the plan plus corrections)
 
 
-def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=None,
-                     meshcat=None, log: bool = True) -> GraspDiagram:
+@public_api
+def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
+                     events: dict | None = None, corrective_events: dict | None = None,
+                     meshcat: Meshcat | None = None, log: bool = True) -> GraspDiagram:
     """Builds the station and the scenario's controller into one Diagram.
 
     station: a station Diagram with the station's ports (default: MakeStation(scenario,
@@ -138,7 +150,9 @@ def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=N
     return GraspDiagram(diagram, station, grasp, loggers, time_limit)
 
 
-def MakeSimulator(diagram, scenario, *, realtime: bool = False) -> Simulator:
+@public_api
+def MakeSimulator(diagram: Diagram, scenario: Scenario, *,
+                  realtime: bool = False) -> Simulator:
     """A Simulator of `diagram` with the scenario's SimulatorConfig and its random seed
     (sensor noise); realtime: paced at real-time rate 1 (hardware)."""
     simulator = Simulator(diagram)

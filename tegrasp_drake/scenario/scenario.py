@@ -43,6 +43,7 @@ from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
                                              SimulatedStationConfig)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
@@ -368,7 +369,8 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     return scenario
 
 
-def LoadScenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT_SCENARIO,
+@public_api
+def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                   overrides: typing.Sequence[str] = (), *,
                   controller: str | None = None) -> Scenario:
     """Loads scenario `name` from `filename` (default: the built-in file) with overrides.
@@ -406,6 +408,7 @@ def LoadScenario(filename: str | pathlib.Path | None = None, name: str = DEFAULT
     return validate(load_typed(data, Scenario, source), source)
 
 
+@public_api
 def grasp_plan(scenario: Scenario):
     """The GraspPlan of the scenario: its grasp script placed for its expected object, by
     its hand, from its arm's start pose."""
@@ -422,11 +425,13 @@ def object_pose(scenario: Scenario):
                                 scenario.object_yaw_deg)
 
 
+@public_api
 def sample_rates_hz(scenario: Scenario) -> tuple[float, float]:
     """The live SA (taxel) and RA (film) sample rates [Hz] the controller's matchers read."""
     return scenario.tactile.sample_rate_hz, scenario.vibration.sample_rate_hz
 
 
+@public_api
 def with_controller(scenario: Scenario, name: str) -> Scenario:
     """`scenario` run by the controller called `name` (controller_config.CONTROLLER_NAMES),
     keeping the settings its config class shares with the scenario's controller."""
@@ -443,6 +448,7 @@ def scenario_from_yaml(text: str) -> Scenario:
     return yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
 
 
+@public_api
 def scenario_to_yaml(scenario: Scenario) -> str:
     """The scenario as YAML text (for logs and provenance)."""
     return yaml_dump_typed(scenario)

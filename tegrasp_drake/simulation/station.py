@@ -36,6 +36,8 @@ from pydrake.multibody.plant import AddMultibodyPlant
 from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer
+from pydrake.geometry import Meshcat
+from pydrake.multibody.plant import MultibodyPlantConfig
 
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
@@ -62,6 +64,7 @@ from tegrasp_drake.simulation.station_visualization import (AddStationVisualizat
                                                            grasp_camera_pose)
 from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, TactileSensorConfig
+from tegrasp_drake.rig.api_boundary import public_api
 
 
 @dataclasses.dataclass
@@ -286,12 +289,14 @@ def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
     builder.ExportOutput(wrench.GetOutputPort("wrist_wrench"), ports.GRIPPER_WRIST_WRENCH)
 
 
-def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriverConfig,
-                     object: ObjectConfig, X_WO: RigidTransform, tactile: TactileSensorConfig,
+@public_api
+def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig,
+                     gripper: GripperDriverConfig, object: ObjectConfig, X_WO: RigidTransform, tactile: TactileSensorConfig,
                      vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
                      random_seed: int, grasp_height: float,
                      carriage: EndpointImpedance | None = None,
-                     contact_geometry: ContactGeometryConfig | None = None, meshcat=None):
+                     contact_geometry: ContactGeometryConfig | None = None,
+                     meshcat: Meshcat | None = None):
     """Builds the simulated station Diagram (see the module docstring) from the sections it
     uses: the plant, arm and gripper configs, the object at X_WO, the taxels' and films'
     configs (their noise seeded by `random_seed`), the hit on the object, the contact
