@@ -274,9 +274,26 @@ def _check_value(value, hint, path: str, source: str) -> None:
     elif hint in _SCALAR_WORDS:
         if not _is_scalar(value, hint):
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
-                              f"{_describe(value)}")
+                              f"{_describe(value)}{_number_as_text_hint(value, hint)}")
     else:
         check_fields(value, hint, source, path)
+
+
+def _number_as_text_hint(value, hint) -> str:
+    """For a number YAML 1.1 reads as text (1e9, 1E-3: no dot), how to write it."""
+    if hint in (float, int) and isinstance(value, str):
+        try:
+            number = float(value)
+        except ValueError:
+            return ""
+        if math.isfinite(number):
+            text = repr(number)
+            if "e" in text:  # YAML 1.1 wants a dot in the mantissa and a signed exponent
+                mantissa, exponent = text.split("e")
+                mantissa += "" if "." in mantissa else ".0"
+                text = f"{mantissa}e{'' if exponent[0] in '+-' else '+'}{exponent}"
+            return f" (YAML reads it as text: write {text})"
+    return ""
 
 
 def _union_member(value, members, path: str, source: str):

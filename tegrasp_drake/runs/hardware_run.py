@@ -43,6 +43,7 @@ from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
 from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
 from tegrasp_drake.scenario.trial_log_writer import package_versions
 from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.ranges import check_ranges
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
@@ -294,6 +295,7 @@ def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None 
     memorized corrective events (default: load_corrective_events's); drake_lcm: a DrakeLcm to use
     instead of one on the config's URL; out: prints a line; progress: called as
     progress(t, end) [s of Context time] as the run goes."""
+    check_ranges(scenario, "run_on_hardware: scenario")  # a config changed after loading
     config = config or scenario.station
     if not isinstance(config, HardwareStationConfig):
         raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "

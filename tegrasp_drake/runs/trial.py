@@ -21,6 +21,7 @@ from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_tim
                                               judge_grasp, table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.ranges import check_ranges
 from tegrasp_drake.rig.api_boundary import public_api
 
 HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
@@ -120,6 +121,7 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
     events, corrective_events: the memorized events (MakeGraspDiagram's defaults if None).
     progress: called as progress(t, end) [s, simulated] as the run goes (`end` shrinks to
     the state machine's end plus END_MARGIN_S once it is Done or Failed)."""
+    check_ranges(scenario, "run_trial: scenario")  # a config changed after loading
     grasp = MakeGraspDiagram(scenario, station=MakeSimulatedStation(scenario, meshcat=meshcat),
                                 events=events, corrective_events=corrective_events)
     controller, loggers = grasp.controller, grasp.loggers

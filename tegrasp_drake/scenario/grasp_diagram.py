@@ -37,6 +37,7 @@ from tegrasp_drake.simulation.carriage import arm_endpoint_impedance
 from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStationConfig,
                                               side_grasp_pose)
 from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.ranges import check_ranges
 from tegrasp_drake.rig.api_boundary import public_api
 
 # Beyond the ideal grasp's duration, for corrections (and the controller's own
@@ -57,6 +58,7 @@ def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
     the Simulator's Initialize() and simulate at real-time rate (run_on_hardware does all
     of that). Both export the same ports (simulation/station.py, hardware/station.py), so
     AddGraspController wires either one the same way."""
+    check_ranges(scenario, "MakeStation: scenario")  # a config changed after loading
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation
         return MakeHardwareStation(scenario.station, lcm=lcm)
@@ -127,6 +129,7 @@ def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
     scenario's object); corrective_events: the memorized corrective events, used when
     controller.memorized_corrective_events names some (default: load_corrective_events's);
     log: add the TrialLog loggers (simulated runs)."""
+    check_ranges(scenario, "MakeGraspDiagram: scenario")  # a config changed after loading
     builder = DiagramBuilder()
     if station is None:
         station = MakeStation(scenario, meshcat=meshcat)

@@ -22,6 +22,7 @@ import math
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
 
@@ -35,18 +36,24 @@ class GripperDriverConfig:
     limit)."""
     # The hand (gripper_hands.py): "linkage", the 2F-85's five-bar fingers, or "prismatic".
     model: str = "linkage"
-    update_rate_hz: float = 200.0  # the 2F-85 accepts commands at up to 200 Hz
+    # the 2F-85 accepts commands at up to 200 Hz
+    update_rate_hz: float = bounded(200.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
+                                    why="the 2F-85 takes commands at up to 200 Hz")
     # The prismatic hand's PD on half the opening.
-    position_gain: float = 4000.0  # N/m
-    damping_gain: float = 40.0  # N s/m
+    position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")  # N/m
+    damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")  # N s/m
     # The linkage hand's PD on the driver angle. The screw drive is stiff: 1000 N m/rad
     # gives 0.16 mm at a pad pushed with 50 N (lever 57 mm), and the damping is critical
     # for both fingers' linkage inertia about the driver axis, about 2.4e-4 kg m^2
     # (2 sqrt(1000 x 2.4e-4) = 0.98).
-    driver_position_gain: float = 1000.0  # N m/rad
-    driver_damping_gain: float = 1.0  # N m s/rad
-    acceleration: float = 0.5  # m/s^2, finger speed ramps
-    stall_speed: float = 0.002  # m/s; slower than this before the goal = object detected
+    # N m/rad
+    driver_position_gain: float = bounded(1000.0, low=0.0, low_open=True, high=1e5, unit="N m/rad")
+    driver_damping_gain: float = bounded(1.0, low=0.0, high=1e3, unit="N m s/rad")  # N m s/rad
+    # m/s^2, finger speed ramps
+    acceleration: float = bounded(0.5, low=0.0, low_open=True, high=10.0, unit="m/s^2")
+    # m/s; slower than this before the goal = object detected
+    stall_speed: float = bounded(0.002, low=0.0, low_open=True, high=0.15, unit="m/s",
+                                 why="below the 2F-85's 150 mm/s top speed, Robotiq 2F-85 manual")
 
 
 def reference_step(q: float, v: float, goal: float, max_speed: float, acceleration: float,

@@ -39,6 +39,7 @@ from pydrake.systems.primitives import Demultiplexer
 from pydrake.geometry import Meshcat
 from pydrake.multibody.plant import MultibodyPlantConfig
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
@@ -70,14 +71,17 @@ from tegrasp_drake.rig.api_boundary import public_api
 @dataclasses.dataclass
 class ArmDriverConfig:
     """The simulated JACO2 joint controller; the firmware compensates gravity."""
-    position_gain: float = 400.0  # N m/rad
-    damping_gain: float = 40.0  # N m s/rad
-    initial_gripper_xyz: list[float] = dataclasses.field(
-        default_factory=lambda: [0.69, 0.0, 0.145])  # m, grasp frame in world at t = 0;
-    # 3 cm behind and 9 cm above the grasp: further back, the Jaco nears its wrist singularity
+    position_gain: float = bounded(400.0, low=0.0, low_open=True, high=1e5, unit="N m/rad")
+    damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N m s/rad")
+    # The grasp frame in world at t = 0; 3 cm behind and 9 cm above the grasp: further back,
+    # the Jaco nears its wrist singularity.
+    initial_gripper_xyz: list[float] = bounded(
+        default_factory=lambda: [0.69, 0.0, 0.145], low=-0.9, high=0.9, unit="m",
+        why="within the JACO2's 0.9 m reach, Kinova JACO2 specifications")
     # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state;
     # the Jaco's own velocity interface runs at 100 Hz.
-    control_period_s: float = 0.005
+    control_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
+                                      why="the JACO2 is commanded at 100 Hz-1 kHz")
 
 
 ARM_MOUNTS = ("jaco2", "carriage")
@@ -291,7 +295,8 @@ def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
 
 @public_api
 def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig,
-                     gripper: GripperDriverConfig, object: ObjectConfig, X_WO: RigidTransform, tactile: TactileSensorConfig,
+                     gripper: GripperDriverConfig, object: ObjectConfig, X_WO: RigidTransform,
+                     tactile: TactileSensorConfig,
                      vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
                      random_seed: int, grasp_height: float,
                      carriage: EndpointImpedance | None = None,
