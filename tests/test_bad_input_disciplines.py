@@ -366,3 +366,13 @@ def test_a_wrong_argument_is_named_at_the_call(call, words):
     with pytest.raises(TypeError) as error:
         call()
     assert words in str(error.value)
+
+
+def test_record_events_with_object_and_set_records_that_object_with_the_setting():
+    import argparse
+    from tegrasp_drake.commands.record_events import _scenarios_to_record
+    args = argparse.Namespace(object=["thin_cylinder"], scenario=None, scenario_name=None,
+                              overrides=["random_seed=603"])
+    (name, scenario), = _scenarios_to_record(args)
+    assert name == "thin_cylinder" and scenario.object.name == "thin_cylinder"
+    assert scenario.random_seed == 603
