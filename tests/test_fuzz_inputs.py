@@ -23,7 +23,6 @@ import tracemalloc
 import types
 import typing
 import zipfile
-import zlib
 
 import numpy as np
 import numpy.lib.format as npy_format
@@ -32,6 +31,7 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from test_bad_input import _trial_log
 from tegrasp_drake.events.event_file import MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -44,8 +44,7 @@ from tegrasp_drake.robotiq import registers
 from tegrasp_drake.runs.hardware_log_reader import (LCM_SYNC, MESSAGE_TYPES, RunLogError,
                                                     read_run_log, scan_lcm_log)
 from tegrasp_drake.scenario.scenario import LoadScenario, Scenario
-from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, FORMAT_VERSION, TrialLogError,
-                                                   load_trial_log)
+from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
 from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
 from tegrasp_drake.tactile.sampling import samples_per_window
@@ -280,18 +279,10 @@ def test_any_event_file_or_index_loads_or_is_one_memorized_event_error(
 
 # --- trial logs -----------------------------------------------------------------------------------
 
-def _trial_log_bytes(n=11, **changes) -> bytes:
-    arrays = {"t_sa": np.linspace(0, 0.1, n), "taxels": np.ones((n, 24)),
-              "true_taxels": np.ones((n, 24)), "t_ra": np.linspace(0, 0.1, n),
-              "channels": np.ones((n, 4)), "pad_acceleration": np.zeros((n, 6)),
-              "t_slow": np.linspace(0, 0.1, n), "arm_q": np.zeros((n, 6)),
-              "arm_q_desired": np.zeros((n, 6)), "gripper_command": np.zeros((n, 3)),
-              "gripper_status": np.zeros((n, 8)), "phase": np.zeros(n),
-              "object_state": np.zeros((n, 13))}
-    arrays.update(changes)
+def _trial_log_bytes(**changes) -> bytes:
+    """A well-formed trial log's bytes (test_bad_input._trial_log), with `changes`."""
     buffer = io.BytesIO()
-    np.savez_compressed(buffer, meta=np.array(json.dumps({"format_version": FORMAT_VERSION})),
-                        **arrays)
+    _trial_log(buffer, **changes)
     return buffer.getvalue()
 
 
@@ -319,10 +310,12 @@ TRIAL_LOG_BYTES = st.one_of(
     st.tuples(st.lists(st.integers(0, 2**40), min_size=0, max_size=3).map(tuple),
               st.sampled_from(["<f8", "|O", "<c16", "|b1", "<U4", "V8", "<i8"])).map(
         lambda t: _header_lie(*t)),
-    st.sampled_from([_trial_log_bytes(channels=np.full((11, 4), np.nan)),
-                     _trial_log_bytes(t_sa=np.zeros(11)), _trial_log_bytes(n=1),
+    st.sampled_from([_trial_log_bytes(channels=np.full((101, 4), np.nan)),
+                     _trial_log_bytes(t_sa=np.zeros(11)),
+                     _trial_log_bytes(t_sa=np.zeros(1), taxels=np.ones((1, 24)),
+                                      true_taxels=np.ones((1, 24))),
                      _trial_log_bytes(phase=np.zeros((11, 2))),
-                     _trial_log_bytes(channels=np.array(["a"] * 44).reshape(11, 4))]))
+                     _trial_log_bytes(channels=np.array(["a"] * 404).reshape(101, 4))]))
 
 
 @fuzz(80)

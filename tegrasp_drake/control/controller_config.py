@@ -386,7 +386,7 @@ def controller_class(name: str):
     """The config class of the controller called `name` (UnknownControllerError)."""
     try:
         return _CLASS_OF_NAME[name]
-    except KeyError:
+    except (KeyError, TypeError):  # TypeError: a list or mapping given as the name
         raise UnknownControllerError(
             f"'{name}' is not one of {', '.join(CONTROLLER_NAMES)}") from None
 

@@ -78,7 +78,10 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
     zipfile and numpy raise for damage found while reading (OSError, ValueError, EOFError,
     zipfile.BadZipFile, zlib.error): the caller names the file."""
     with zipfile.ZipFile(path) as zip_file:
-        headers = npz_array_headers(zip_file)
+        try:
+            headers = npz_array_headers(zip_file)
+        except (RuntimeError, NotImplementedError) as e:  # encrypted, unknown compression
+            raise NpzHeaderError(f"a member cannot be read: {e}") from None
         missing = [name for name in names if name not in headers]
         if missing:
             raise NpzHeaderError(f"it lacks the arrays {missing}")
@@ -92,5 +95,8 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
         if total > max_bytes:
             raise NpzHeaderError(f"its arrays declare {total} bytes, more than the "
                                  f"{max_bytes} this reads")
-        with np.load(path, allow_pickle=False) as data:
-            return {name: data[name] for name in wanted}
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                return {name: data[name] for name in wanted}
+        except (RuntimeError, NotImplementedError) as e:
+            raise NpzHeaderError(f"a member cannot be read: {e}") from None

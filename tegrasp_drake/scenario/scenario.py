@@ -19,8 +19,7 @@ from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
 from tegrasp_drake.control.controller_config import (
-    ControllerConfig, GraspControllerConfig, HeuristicControllerConfig,
-    MemorizedControllerConfig, TaxelAwareControllerConfig, UnknownControllerError,
+    ControllerConfig, GraspControllerConfig, MemorizedControllerConfig, UnknownControllerError,
     controller_named, foreign_setting, select_controller_tag)
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
