@@ -9,6 +9,7 @@ whose size disagrees with the member's), and only then lets np.load read the arr
 """
 
 import math
+import tokenize
 import zipfile
 import zlib
 
@@ -51,7 +52,8 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
                         member, max_header_size=_MAX_HEADER_BYTES)
                 else:
                     raise ValueError(f"npy format version {version}")
-            except (ValueError, EOFError, OSError, SyntaxError, zlib.error) as e:
+            except (ValueError, EOFError, OSError, SyntaxError, tokenize.TokenError,
+                    zlib.error) as e:  # numpy parses the header's dict as Python
                 raise NpzHeaderError(f"'{name}' is not a numpy array ({type(e).__name__}: "
                                      f"{e})") from None
             header_bytes = member.tell()

@@ -109,6 +109,12 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int) -> Non
         if isinstance(node, yaml.MappingNode):
             seen = {}
             for key, value in node.value:
+                if key.tag not in ("tag:yaml.org,2002:str", "tag:yaml.org,2002:merge"):
+                    what = (f"{key.tag.rsplit(':', 1)[-1]} {key.value!r}; quote it"
+                            if isinstance(key, yaml.ScalarNode) else
+                            "a list" if isinstance(key, yaml.SequenceNode) else "a mapping")
+                    raise ConfigError(f"{source}: {where(key)}: a key must be a name (text), "
+                                      f"got {what}"[:300])
                 if isinstance(key, yaml.ScalarNode) and key.tag != "tag:yaml.org,2002:merge":
                     if key.value in seen:
                         raise ConfigError(
