@@ -79,7 +79,11 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
     Raises NpzHeaderError (a ValueError) for a missing array or a bad header, and what
     zipfile and numpy raise for damage found while reading (OSError, ValueError, EOFError,
     zipfile.BadZipFile, zlib.error): the caller names the file."""
-    with zipfile.ZipFile(path) as zip_file:
+    try:
+        zip_file = zipfile.ZipFile(path)
+    except (RuntimeError, NotImplementedError) as e:  # a zip feature zipfile does not read
+        raise NpzHeaderError(f"it cannot be read as a zip archive: {e}") from None
+    with zip_file:
         try:
             headers = npz_array_headers(zip_file)
         except (RuntimeError, NotImplementedError) as e:  # encrypted, unknown compression

@@ -180,7 +180,7 @@ def load_typed(data: dict, schema, source: str):
     check_fields(data, schema, source)
     try:
         return yaml_load_typed(schema=schema, data=yaml_dump(data), defaults=schema())
-    except (RuntimeError, ValueError) as e:
+    except (RuntimeError, ValueError, yaml.YAMLError) as e:
         raise ConfigError(f"{source}: {e}") from None
 
 
@@ -197,7 +197,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         _check_finite_numbers(data, source, where)
         try:
             yaml_load_typed(schema=schema, data=yaml_dump(data))
-        except (RuntimeError, ValueError) as e:
+        except (RuntimeError, ValueError, yaml.YAMLError) as e:  # YAMLError: an odd _tag
             raise ConfigError(f"{source}: field '{where}': {e}") from None
         return
     if not isinstance(data, dict):
