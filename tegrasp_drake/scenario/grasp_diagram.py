@@ -29,9 +29,9 @@ from tegrasp_drake.scenario.scenario_events import load_controller_events, load_
 from tegrasp_drake.scenario.trial_log_writer import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import station_interface as ports
-from tegrasp_drake.scenario.scenario import grasp_plan, object_pose, sample_rates_hz
+from tegrasp_drake.scenario.scenario import (grasp_plan, object_pose, ra_noise_std_mps2,
+                                             sample_rates_hz)
 from tegrasp_drake.simulation.carriage import arm_endpoint_impedance
-from tegrasp_drake.simulation.pad_vibration_sensor import ra_noise_std_mps2
 from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStationConfig,
                                               side_grasp_pose)
 

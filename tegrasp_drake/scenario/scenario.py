@@ -41,7 +41,8 @@ from tegrasp_drake.simulation.contact_meshing import (ContactGeometryConfig,
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
 from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
-from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
+                                                           ra_noise_std_mps2)
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
@@ -467,6 +468,19 @@ def object_pose(scenario: Scenario):
     from tegrasp_drake.simulation.station import object_pose_on_table
     return object_pose_on_table(scenario.expected_object_xy, scenario.object_offset,
                                 scenario.object_yaw_deg)
+
+
+def controller_in_force(scenario: Scenario):
+    """The scenario's controller config with the RA thresholds it runs with: raised to their
+    sigmas of the RA noise of the scenario's film electronics (control/noise_thresholds.py);
+    the open-loop script's as it is."""
+    controller = scenario.controller
+    if not isinstance(controller, GraspControllerConfig):
+        return controller
+    from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
+    return resolve_noise_thresholds(
+        controller, ra_noise_std_mps2=ra_noise_std_mps2(scenario.vibration),
+        ra_rate_hz=scenario.vibration.sample_rate_hz)
 
 
 def sample_rates_hz(scenario: Scenario) -> tuple[float, float]:
