@@ -15,6 +15,19 @@ from tegrasp_drake.rig.taxel_layout import taxel_centers
 GRIP_FORCE = 30.0
 
 
+def _open_station_at_rest(scenario):
+    """(station, context, gripper command port) of the scenario's simulated station, the arm
+    held at its start pose and the gripper told to open at 50 mm/s."""
+    station = MakeSimulatedStation(scenario)
+    context = station.CreateDefaultContext()
+    q0 = initial_arm_positions(scenario.arm)
+    station.GetInputPort(ports.ARM_DESIRED_STATE).FixValue(context,
+                                                            np.concatenate([q0, np.zeros(6)]))
+    command = station.GetInputPort(ports.GRIPPER_COMMAND)
+    command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))
+    return station, context, command
+
+
 def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
     """Starts with the open pads around the object, closes at GRIP_FORCE; returns samples.
     On the prismatic hand: these check the taxels' integration of the pressure field, which
@@ -23,13 +36,7 @@ def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
     scenario = LoadScenario(overrides=["gripper.model=prismatic",
         "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]",
         f"object.name={object_name}"])
-    station = MakeSimulatedStation(scenario)
-    context = station.CreateDefaultContext()
-    q0 = initial_arm_positions(scenario.arm)
-    station.GetInputPort(ports.ARM_DESIRED_STATE).FixValue(context,
-                                                            np.concatenate([q0, np.zeros(6)]))
-    command = station.GetInputPort(ports.GRIPPER_COMMAND)
-    command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))
+    station, context, command = _open_station_at_rest(scenario)
     simulator = Simulator(station, context)
     simulator.AdvanceTo(close_at)
     before = {name: station.GetOutputPort(ports.taxel_forces(name)).Eval(context).copy()
@@ -135,13 +142,7 @@ def _drive_vibration_peaks(close: bool) -> tuple[float, float]:
     station (linkage hand, JACO2) with the arm held at its start; the gripper told to stay
     open, or (close) to close at 50 mm/s from 0.2 s."""
     scenario = LoadScenario()
-    station = MakeSimulatedStation(scenario)
-    context = station.CreateDefaultContext()
-    q0 = initial_arm_positions(scenario.arm)
-    station.GetInputPort(ports.ARM_DESIRED_STATE).FixValue(context,
-                                                            np.concatenate([q0, np.zeros(6)]))
-    command = station.GetInputPort(ports.GRIPPER_COMMAND)
-    command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))
+    station, context, command = _open_station_at_rest(scenario)
     drive = station.GetSubsystemByName("pad_films_drive_vibration")
     drive_context = drive.GetMyContextFromRoot(context)
     simulator = Simulator(station, context)
