@@ -117,7 +117,8 @@ class VibrationSensorConfig:
     # "mxp" (0-5 V, 1.22 mV a code, the amplifier level-shifted to 2.5 V) or "ideal" (no
     # converter: the amplifier's voltage itself, unclipped by any input range); the
     # converter's own input noise in codes rms (half a code: a 12-bit converter's noise is
-    # below one code, or its last bit would carry noise only).
+    # below one code, or its last bit would carry noise only; NI's 12-bit boards dither with
+    # about 0.5 code rms, NI PCI-1200 User Manual).
     amplifier_swing_v: float = 13.5
     adc_input: str = "msp"
     adc_noise_lsb: float = 0.5
