@@ -339,9 +339,11 @@ def _check_film_electronics(vibration: VibrationSensorConfig, source: str) -> No
                 getattr(vibration, name))
     for name in ("gripper_drive", "arm_drive"):
         drive = getattr(vibration, name)
-        require(len(drive.amplitudes_mps2) == len(drive.orders), source,
+        require(not drive.amplitudes_mps2 or len(drive.amplitudes_mps2) == len(drive.orders),
+                source,
                 f"vibration.{name}.orders", "must give one order per amplitude "
-                f"({len(drive.amplitudes_mps2)} amplitudes)", drive.orders)
+                f"({len(drive.amplitudes_mps2)} amplitudes; amplitudes_mps2=[] switches the "
+                "drive off)", drive.orders)
         require(all(a >= 0 for a in drive.amplitudes_mps2), source,
                 f"vibration.{name}.amplitudes_mps2",
                 "must be zero (off) or positive [m/s^2]", drive.amplitudes_mps2)

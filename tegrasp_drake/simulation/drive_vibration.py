@@ -45,8 +45,8 @@ from pydrake.systems.primitives import Multiplexer, SymbolicVectorSystem
 
 @dataclasses.dataclass
 class DriveVibrationConfig:
-    """One drive's tones (module docstring). Empty `amplitudes_mps2`, or all zero, disables
-    it."""
+    """One drive's tones (module docstring). Empty `amplitudes_mps2` (`--set
+    vibration.arm_drive.amplitudes_mps2=[]`), or all zero, disables it."""
     # Base acceleration [m/s^2] at the fingertip of each tone at full speed.
     amplitudes_mps2: list[float] = dataclasses.field(default_factory=list)
     # Each tone's frequency in multiples of the motor's rotation rate.

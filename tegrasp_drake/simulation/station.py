@@ -188,13 +188,18 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
 def _drive_rates(builder, *, hand, selector, arm_velocity, vibration: VibrationSensorConfig):
     """(DriveVibrationConfig, rate port) of the gripper's drive (its half-opening rate
     [m/s]: the actuated joint's rate from `selector` times the hand's lever at mid-stroke)
-    and the arm's (`arm_velocity`, its joint rates [rad/s])."""
-    lever = abs(hand.half_opening_rate(hand.actuated(HALF_STROKE / 2)))
-    finger_rate = builder.AddNamedSystem("gripper_half_opening_rate",
-                                         MatrixGain(np.array([[0.0, lever]])))
-    builder.Connect(selector.get_output_port(), finger_rate.get_input_port())
-    return [(vibration.gripper_drive, finger_rate.get_output_port()),
-            (vibration.arm_drive, arm_velocity)]
+    and the arm's (`arm_velocity`, its joint rates [rad/s]); those the films feel (none with
+    the accelerometer transducer, none switched off)."""
+    if vibration.transducer != "film":
+        return []
+    rates = [(vibration.arm_drive, arm_velocity)] if vibration.arm_drive.enabled() else []
+    if vibration.gripper_drive.enabled():
+        lever = abs(hand.half_opening_rate(hand.actuated(HALF_STROKE / 2)))
+        finger_rate = builder.AddNamedSystem("gripper_half_opening_rate",
+                                             MatrixGain(np.array([[0.0, lever]])))
+        builder.Connect(selector.get_output_port(), finger_rate.get_input_port())
+        rates.insert(0, (vibration.gripper_drive, finger_rate.get_output_port()))
+    return rates
 
 
 def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
