@@ -105,7 +105,8 @@ def pad_films() -> PadFilms:
     plant.Finalize()
     return PadFilms(plant=plant, pads=pad_geometries(plant, scene_graph, gripper),
                     force_indices=(0, 1), config=VibrationSensorConfig(noise_std_mps2=0.05),
-                    with_texture=True, pad_statics=LinkagePadStatics(plant, gripper))
+                    with_texture=True, pad_statics=LinkagePadStatics(plant, gripper),
+                    with_drive_vibration=True)
 
 
 @contextlib.contextmanager

@@ -101,7 +101,8 @@ def strike_scenario(config: PadStrikeConfig):
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0,
                                                   quantization_n=0.0),
-            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0))
+            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0,
+                                          adc_input="ideal"))
     return scenario
 
 
