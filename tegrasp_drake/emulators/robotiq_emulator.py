@@ -17,8 +17,9 @@ The model (times from `time.monotonic()`, advanced on every access):
   stroke (gPO POSITION_OPEN_BYTE .. POSITION_CLOSED_BYTE: rPR 0 stops fully open, 255
   fully closed, both gOBJ = 3), and stop on an emulated object at `object_opening` [m]
   while closing (gOBJ = 2) or at the request (gOBJ = 3); gPR echoes the rPR of the last
-  go-to; gPO is the rounded position, gCU a current [x 10 mA] that grows with rFR while
-  gripping;
+  go-to; gPO is the rounded position, gCU the free-motion current [x 10 mA] while the
+  fingers move and 0 once they stop (the screw holds: the manual's finished grasp reads
+  0x00);
 - rGTO = 1 without rACT gives gFLT 0x07; an injected fault code >= 0x0A (major) stops the
   fingers until the next activation.
 

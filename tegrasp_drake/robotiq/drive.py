@@ -42,10 +42,10 @@ import math
 ROTOR_INERTIA_KG_M2 = 181e-7  # 181 g cm^2 (the guide, section 4.4)
 GEAR_RATIO = 30.0  # motor turns per driver turn: 26-32 over the stroke, about 30 on average
 REFLECTED_ROTOR_INERTIA_KG_M2 = ROTOR_INERTIA_KG_M2 * GEAR_RATIO ** 2  # 1.63e-2 kg m^2
-# Both fingers' linkage about the left driver's axis, the loops closed (the model's mass
-# matrix along the linkage's one free motion on the pin, open pose; the links' masses
-# from Menagerie).
-LINKAGE_INERTIA_KG_M2 = 2.4e-4
+# Both fingers' linkage about the left driver's axis, the loops closed: measured on the
+# gripper bench with no rotor (the driver's torque over its acceleration as the free
+# fingers start to close; the links' masses from Menagerie).
+LINKAGE_INERTIA_KG_M2 = 1.7e-4
 SCREW_EFFICIENCY = 0.35  # forward efficiency of the self-locking screw (module docstring)
 SCREW_EFFICIENCY_RANGE = (0.2, 0.5)  # self-locking needs < 0.5; below 0.2 is a worm drive
 POSITION_LOOP_HZ = 60.0

@@ -149,6 +149,12 @@ def drive_set_point(*, a: float, v: float, v_prev: float, set_point: tuple[float
     return a + time_step * v_next + motor / gain, v_next, phase, motor, anchor
 
 
+def held_object_status(q: float, goal: float) -> int:
+    """gOBJ of fingers the screw holds on an object at q [m] short of goal [m]."""
+    return int(ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING if goal < q
+               else ru.ObjectStatus.STOPPED_ON_CONTACT_OPENING)
+
+
 def object_status(q: float, v: float, q_ref: float, goal: float, stall_speed: float) -> int:
     """gOBJ from the finger's measured motion (see ObjectStatus)."""
     if abs(q - goal) < 5e-4:
@@ -247,9 +253,7 @@ class SimRobotiqDriver(LeafSystem):
             rate = hand.half_opening_rate(hand.actuated(s[_REF_Q]))
             s[_DIRECTION] = 1.0 if (s[_GOAL] - s[_REF_Q]) * rate > 0.0 else -1.0
         if s[_PHASE] == HELD:
-            closing = s[_GOAL] < q
-            s[_OBJECT] = int(ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING if closing
-                             else ru.ObjectStatus.STOPPED_ON_CONTACT_OPENING)
+            s[_OBJECT] = held_object_status(q, s[_GOAL])
         else:
             s[_OBJECT] = object_status(q, v * hand.half_opening_rate(a), s[_REF_Q], s[_GOAL],
                                        self._config.stall_speed)
@@ -278,6 +282,8 @@ class SimRobotiqDriver(LeafSystem):
             set_a = force_limited_set_point(a, reference, s[_FORCE], self._gain, lever)
             set_v = v_ref
             s[_MOTOR] = self._gain * (set_a - a)
+        if s[_PHASE] == HELD:  # reported at once, as the current that stops with it
+            s[_OBJECT] = held_object_status(hand.half_opening(a), s[_GOAL])
         s[_V_PREV] = v
         discrete_state.set_value(self._state, s)
         discrete_state.set_value(self._set_point, [set_a, set_v])
