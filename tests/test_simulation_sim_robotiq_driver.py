@@ -218,3 +218,22 @@ def test_the_simulated_current_follows_the_motors_torque_while_the_fingers_move(
         context.get_mutable_discrete_state(0).SetAtIndex(
             sim._MOTOR, 2 * force * -linkage.half_opening_rate(THETA))
         assert driver.GetOutputPort("status").Eval(context)[ru.STATUS_CU] == current
+
+
+def test_held_fingers_stay_held_when_the_reference_passes_its_goal_by_a_hair():
+    from tegrasp_drake.simulation import sim_robotiq_driver as sim
+    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
+    context = driver.CreateDefaultContext()
+    command = [255, 255, 0]  # close at 20 N: the goal is q = 0
+    driver.GetInputPort("command").FixValue(context, command)
+    driver.GetInputPort("finger_state").FixValue(context, [THETA, 0.0])
+    state = context.get_mutable_discrete_state(0)
+    _, goal, half_speed, force = sim.command_targets(*command)
+    for index, value in ((sim._GOAL, goal), (sim._FORCE, force), (sim._HALF_SPEED, half_speed),
+                         (sim._REF_Q, goal - 5e-5), (sim._DIRECTION, 1.0),
+                         (sim._PHASE, HELD), (sim._ANCHOR, THETA)):
+        state.SetAtIndex(index, value)
+    context.get_mutable_discrete_state(1).SetFromVector([THETA + 1.2 * LIMIT / GAIN, 0.0])
+    context = _after_one_drive_step(driver, context)
+    s = context.get_discrete_state(0).value()
+    assert s[sim._PHASE] == HELD and s[sim._DIRECTION] == 1.0

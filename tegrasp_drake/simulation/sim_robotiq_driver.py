@@ -241,17 +241,19 @@ class SimRobotiqDriver(LeafSystem):
         goal, force = s[_GOAL], s[_FORCE]
         s[_POSITION_BYTE], s[_GOAL], s[_HALF_SPEED], s[_FORCE] = command_targets(
             *self._command.Eval(context).tolist())
-        if (s[_GOAL], s[_FORCE]) != (goal, force) and s[_PHASE] != MOVING:
-            # A new command to fingers the screw holds: the motion starts where they stand.
-            s[_REF_Q], s[_REF_V], s[_PHASE] = q, 0.0, MOVING
+        if (s[_GOAL], s[_FORCE]) != (goal, force):
+            if s[_PHASE] != MOVING:
+                # Fingers the screw holds: the new motion starts where they stand.
+                s[_REF_Q], s[_REF_V], s[_PHASE] = q, 0.0, MOVING
+            if s[_GOAL] != s[_REF_Q]:
+                # The direction the command moves the nut in, in the actuated coordinate
+                # (kept until the next command: the reference may pass its goal by a hair).
+                rate = hand.half_opening_rate(hand.actuated(s[_REF_Q]))
+                s[_DIRECTION] = 1.0 if (s[_GOAL] - s[_REF_Q]) * rate > 0.0 else -1.0
         if has_arrived(s[_REF_Q], s[_REF_V], s[_GOAL], self._config.acceleration, self._dt):
             s[_REF_Q], s[_REF_V] = s[_GOAL], 0.0
         s[_REF_A] = reference_step(s[_REF_Q], s[_REF_V], s[_GOAL], s[_HALF_SPEED],
                                    self._config.acceleration, self._dt)
-        if s[_GOAL] != s[_REF_Q]:
-            # The direction the nut moves in, in the actuated coordinate.
-            rate = hand.half_opening_rate(hand.actuated(s[_REF_Q]))
-            s[_DIRECTION] = 1.0 if (s[_GOAL] - s[_REF_Q]) * rate > 0.0 else -1.0
         if s[_PHASE] == HELD:
             s[_OBJECT] = held_object_status(q, s[_GOAL])
         else:
