@@ -26,6 +26,7 @@ from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
+from tegrasp_drake.robotiq import drive
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
@@ -356,6 +357,19 @@ def _check_film_electronics(vibration: VibrationSensorConfig, source: str) -> No
                 [drive.motor_revolutions_per_unit, drive.orders])
 
 
+def _check_drive(gripper: GripperDriverConfig, source: str) -> None:
+    """The 2F-85 drive's settings within their plausible ranges (robotiq/drive.py)."""
+    low, high = drive.POSITION_LOOP_HZ_RANGE
+    require(low <= gripper.position_loop_hz <= high, source, "gripper.position_loop_hz",
+            f"must lie in [{low:g}, {high:g}] Hz (the 2F-85 firmware's position loop: slower "
+            "and the locked drive yields, faster and a 1 ms plant step cannot follow it)",
+            gripper.position_loop_hz)
+    low, high = drive.SCREW_EFFICIENCY_RANGE
+    require(low <= gripper.screw_efficiency <= high, source, "gripper.screw_efficiency",
+            f"must lie in [{low:g}, {high:g}] (a self-locking screw's forward efficiency is "
+            "below 0.5)", gripper.screw_efficiency)
+
+
 def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     """Checks values that the schema cannot; returns the scenario with its object resolved."""
     scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source))
@@ -409,6 +423,7 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
             f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "
             "prismatic fingers)", scenario.gripper.model)
+    _check_drive(scenario.gripper, source)
     if isinstance(scenario.station, HardwareStationConfig):
         validate_hardware_config(scenario.station, source, "station")
     else:

@@ -48,7 +48,7 @@ from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinemat
 from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
-                                                    gripper_hand)
+                                                    configure_drive, gripper_hand)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
@@ -265,7 +265,7 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
     plant.set_gravity_enabled(gripper, False)
     if carriage is None:
         set_pd_gains(plant, arm, arm_config.position_gain, arm_config.damping_gain)
-    set_pd_gains(plant, gripper, *hand.pd_gains(gripper_config))
+    configure_drive(plant, gripper, hand, gripper_config)
     plant.Finalize()
 
     q_arm = initial_arm_positions(arm_config)
@@ -345,7 +345,8 @@ def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriv
             ports.ARM_VELOCITY_MEASURED)
 
     # Gripper: the simulated 2F-85 controller.
-    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=gripper_config))
+    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(
+        config=gripper_config, time_step=plant.time_step()))
     selector = builder.AddNamedSystem("gripper_actuated_state", actuated_state_selector(
         plant, gripper, gripper_hand(gripper_config.model)))
     builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
