@@ -1,11 +1,11 @@
 """The two systems that let the carriage (carriage.py) stand in for the JACO2 behind the
 arm's ports: the controller keeps commanding joint states and reading joint torques.
 
-- CarriageCommand: the arm's commanded joint state -> the pose and velocity of G that the
-  arm's joints would give (the arm model's forward kinematics) -> the carriage's joint
-  set-point, recomputed when the command changes (once per controller period). It also
-  keeps the commanded joint state as the arm's measured one: the Jaco firmware's stiff joint tracking, idealised (what
-  arm.position_measured reports).
+- CarriageCommand: the arm's joint servo set-point (the velocity drive's, the same command
+  path as on the arm: simulation/jaco_velocity_drive.py) -> the pose and velocity of G that
+  the arm's joints would give (the arm model's forward kinematics) -> the carriage's joint
+  set-point. It also keeps the servo's set-point as the arm's measured joint state: the
+  Jaco's joint servos, idealised (what arm.position_measured reports).
 - CarriageWristWrench: the carriage-gripper weld's reaction (Drake's reaction forces) ->
   the wrench the gripper puts on the arm at G, and the joint torques that would hold it,
   tau = -J_WG^T w, at the reported joint angles: the arm.torque_measured that the taxel_aware
@@ -26,38 +26,44 @@ ARM_JOINTS = ports.ARM_JOINTS
 
 
 class CarriageCommand(LeafSystem):
-    """The arm's joint command as a carriage set-point, and the arm's reported joint state.
+    """The arm's joint servo set-point as a carriage set-point, and the arm's reported
+    joint state.
 
     .. pydrake_system::
 
         name: CarriageCommand
         input_ports:
-        - arm.desired_state
+        - joint_set_point
         output_ports:
         - carriage_desired_state
         - arm.position_measured
         - arm.velocity_measured
 
-    It samples the command every plant step `period_s` (on the plant's own step times: an
-    event between them would cost a step of its own) and runs the arm model's kinematics
-    only when the command changed, once per controller period; the carriage follows the
-    command one plant step late.
+    It samples the set-point every plant step `period_s` (on the plant's own step times: an
+    event between them would cost a step of its own). The set-point's rates change only
+    when a new velocity command reaches the arm (at the command rate); then it runs the arm
+    model's kinematics and takes G's pose and velocity there, and between those it moves
+    the carriage's set-point on at that velocity, as the servo's set-point moves on at the
+    joint rates (the pose's drift from the joints' over one command period is second order:
+    tens of micrometres at the arm's top speeds). The carriage follows one plant step late.
 
     Ports:
-        arm.desired_state: the arm's commanded joint positions [rad] and rates [rad/s] (12).
+        joint_set_point: the arm's joint servo set-point, positions [rad] and rates [rad/s]
+            (12).
         carriage_desired_state: the carriage joints' positions [m, rad] and rates [m/s,
-            rad/s] (12, actuator order) that put G where the commanded joints put it, moving
-            as they move it (carriage_state).
-        arm.position_measured, arm.velocity_measured: the commanded joint state at the same
-            sample: an arm that tracks its commands exactly, one plant step late. Starts
-            at `initial_positions` [rad], at rest.
+            rad/s] (12, actuator order) that put G where the set-point's joints put it,
+            moving as they move it (carriage_state).
+        arm.position_measured, arm.velocity_measured: the set-point at the same sample:
+            joints that track their servos exactly, one plant step late. Starts at
+            `initial_positions` [rad], at rest.
     """
 
     def __init__(self, carriage, *, initial_positions: np.ndarray, period_s: float):
         super().__init__()
         self._carriage = carriage
+        self._period_s = period_s
         self._kinematics = ArmGraspFrameKinematics()
-        self._command = self.DeclareVectorInputPort(ports.ARM_DESIRED_STATE, 2 * ARM_JOINTS)
+        self._command = self.DeclareVectorInputPort("joint_set_point", 2 * ARM_JOINTS)
         initial = np.concatenate([initial_positions, np.zeros(ARM_JOINTS)])
         self._arm_state = self.DeclareDiscreteState(initial)
         self._set_point = self.DeclareDiscreteState(self._carriage_set_point(initial))
@@ -76,10 +82,14 @@ class CarriageCommand(LeafSystem):
 
     def _sample_command(self, context, discrete_state):
         command = self._command.Eval(context)
-        if np.array_equal(command, context.get_discrete_state(self._arm_state).value()):
-            return
+        previous = context.get_discrete_state(self._arm_state).value()
         discrete_state.set_value(self._arm_state, command)
-        discrete_state.set_value(self._set_point, self._carriage_set_point(command))
+        if np.array_equal(command[ARM_JOINTS:], previous[ARM_JOINTS:]):
+            set_point = context.get_discrete_state(self._set_point).value().copy()
+            set_point[:ARM_JOINTS] += self._period_s * set_point[ARM_JOINTS:]
+        else:
+            set_point = self._carriage_set_point(command)
+        discrete_state.set_value(self._set_point, set_point)
 
     def _calc_positions(self, context, output):
         output.SetFromVector(context.get_discrete_state(self._arm_state).value()[:ARM_JOINTS])
