@@ -178,6 +178,16 @@ def carriage_state(carriage: Carriage, X_WG: RigidTransform, V_WG: np.ndarray) -
     return np.concatenate([q, v])
 
 
+def carriage_displacement(carriage: Carriage, positions: np.ndarray,
+                          deflection: np.ndarray) -> np.ndarray:
+    """G's small displacement [dtheta; dp] (world, [rad, m]) when the carriage's joints move
+    by `deflection` (actuator order) from `positions`."""
+    rpy = RollPitchYaw(positions[5], positions[4], positions[3])
+    dtheta = rpy.CalcAngularVelocityInParentFromRpyDt(
+        [deflection[5], deflection[4], deflection[3]])
+    return np.concatenate([dtheta, carriage.translation_axes @ deflection[:3]])
+
+
 class ArmGraspFrameKinematics:
     """G's pose, spatial velocity and Jacobian of the arm model at given joint angles: what
     the carriage needs of the arm to follow its commands and to report its torques."""

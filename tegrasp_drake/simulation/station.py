@@ -283,6 +283,7 @@ def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
                                      ports.ARM_POSITION_MEASURED))
     builder.ExportInput(drive.desired_state, ports.ARM_DESIRED_STATE)
     builder.Connect(drive.set_point, command.GetInputPort("joint_set_point"))
+    builder.Connect(plant.get_state_output_port(parts.arm), command.GetInputPort("carriage_state"))
     builder.ExportOutput(drive.commanded_state, ports.ARM_COMMANDED_STATE)
     builder.Connect(command.GetOutputPort("carriage_desired_state"),
                     plant.get_desired_state_input_port(parts.arm))
