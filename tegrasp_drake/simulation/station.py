@@ -15,15 +15,18 @@ controller's set-point of the hand's actuated joint.
 The hand is `gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
 default) or the earlier prismatic fingers.
 
-The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
-their joints track `arm.desired_state` with the plant's implicit PD.
+The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies.
+The arm is driven as the real JACO2 is (jaco_velocity_drive.py): arm.desired_state goes
+through the hardware's velocity tracker, 100 Hz commands and their latency to the arm's
+velocity servo, whose set-point the joints track with the plant's implicit PD;
+arm.commanded_state shows the commands, as on the hardware station.
 
 With `station: !SimulatedStationConfig {arm: carriage}` the gripper rides on a Cartesian
-carriage instead (carriage.py), which follows the pose the commanded joints give G; the
-arm's ports stay: arm.position_measured and arm.velocity_measured report the commanded
-joint state one controller period late (the firmware's tracking, idealised), and
-arm.torque_measured the joint torques that would hold the wrench measured at the
-carriage-gripper weld. Simulation only there: carriage.desired_state (12, the carriage
+carriage instead (carriage.py), which follows the pose the servo's set-point gives G
+(the same command path, the servos ideal); the arm's ports stay: arm.position_measured
+reports the set-point's joints moved by the carriage's deflection, arm.velocity_measured
+the set-point's rates, and arm.torque_measured the joint torques that would hold the
+wrench measured at the carriage-gripper weld. Simulation only there: carriage.desired_state (12, the carriage
 PD's set-point), gripper.wrist_wrench (6: [M; F] on the arm at G, world [N m, N]).
 """
 
