@@ -18,8 +18,9 @@ default) or the earlier prismatic fingers.
 The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies.
 The arm is driven as the real JACO2 is (jaco_velocity_drive.py): arm.desired_state goes
 through the hardware's velocity tracker, 100 Hz commands and their latency to the arm's
-velocity servo, whose set-point the joints track with the plant's implicit PD;
-arm.commanded_state shows the commands, as on the hardware station.
+velocity servo, whose set-point (arm.servo_set_point, simulation only) the joints track
+with the plant's implicit PD; arm.commanded_state shows the commands, as on the hardware
+station.
 
 With `station: !SimulatedStationConfig {arm: carriage}` the gripper rides on a Cartesian
 carriage instead (carriage.py), which follows the pose the servo's set-point gives G
@@ -340,6 +341,7 @@ def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriv
         builder.ExportInput(drive.desired_state, ports.ARM_DESIRED_STATE)
         builder.Connect(drive.set_point, plant.get_desired_state_input_port(arm_instance))
         builder.ExportOutput(drive.commanded_state, ports.ARM_COMMANDED_STATE)
+        builder.ExportOutput(drive.set_point, ports.ARM_SERVO_SET_POINT)
         builder.ExportOutput(arm_state.get_output_port(0), ports.ARM_POSITION_MEASURED)
         builder.ExportOutput(arm_state.get_output_port(1), ports.ARM_VELOCITY_MEASURED)
         builder.ExportOutput(plant.get_net_actuation_output_port(arm_instance),
