@@ -16,12 +16,13 @@ the sample (the carriage's reported joints on the carriage).
 
 Why the servo's set-point is the integral of the command: the JACO2's base DSP turns each
 10 ms velocity command into joint position set-points that the actuators' own position
-loops follow, so a joint commanded zero velocity holds its position against a load, and a
-position error the load causes is removed by the actuator, not by the host's tracker. A
-servo that only damped the velocity error (tau = kd (v_cmd - v), no position term) would let
-a steady load push the arm until the tracker's kp caught up: a compliance of
-1 / (kd kp) = 5e-3 rad/(N m) at kd 40 N m s/rad and kp 5 1/s, ten times the 400 N m/rad
-joint stiffness. The firmware compensates gravity, so the plant's arm has none.
+loops follow, so a joint commanded to stand still holds its place against a load with the
+servo's stiffness, and the host's tracker takes the deflection back (the set-point winds
+on until the measured joint is where it is wanted). A servo that only damped the velocity
+error (tau = kd (v_cmd - v), no position term) would leave a steady error under a steady
+load, tau / (kd kp): 5e-3 rad/(N m) at kd 40 N m s/rad and kp 5 1/s, twice the
+deflection of the 400 N m/rad joints, and for good. The firmware compensates gravity, so
+the plant's arm has none.
 
 The settings (ArmDriverConfig) and their sources:
 - command_rate_hz 100: the JACO2's DSP runs its control loop every 10 ms; a joint-velocity
