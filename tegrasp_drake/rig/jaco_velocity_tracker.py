@@ -14,10 +14,9 @@ the command is to hold still: zero velocity at the measured position.
 The settings (JacoVelocityTrackerConfig) and their sources:
 - kp = 5 1/s: a 0.2 s time constant for a position error. The loop is an integrator
   (the arm turns velocity into position) behind the command's sample-and-hold and
-  latency, about 15 ms together at 100 Hz and 10 ms (T/2 + L); its phase margin is
-  90 deg - kp (T/2 + L) rad: 86 deg at 5 1/s, 60 deg at 35 1/s, none at about 100 1/s.
-  Plausible 1-20 1/s: below 1 a drift takes seconds to correct, above 20 the margin
-  falls under 70 deg.
+  latency, about 15 ms together at 100 Hz and 10 ms (T/2 + L); with an ideal servo its
+  phase margin is 90 deg - kp (T/2 + L) rad: 86 deg at 5 1/s, 73 deg at 20, 60 deg at 35,
+  none at about 100. Plausible 1-20 1/s: below 1 a drift takes seconds to correct.
 - max_joint_speed: Kinova's JACO2 6-DOF specification, 36 deg/s for joints 1-3 (the large
   actuators) and 48 deg/s for joints 4-6 (Kinova, "JACO2 6 DOF" specifications / KINOVA
   Gen2 user guide, technical specifications: maximum joint speed).
