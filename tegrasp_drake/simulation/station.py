@@ -85,7 +85,8 @@ class ArmDriverConfig:
     # their latency to the arm [s], a whole number of plant steps.
     command_rate_hz: float = 100.0
     command_latency_s: float = 0.010
-    # What turns arm.desired_state into those commands, as on the hardware.
+    # What turns arm.desired_state into those commands, as on the hardware (whose own
+    # tracker settings are the hardware config's arm.tracker).
     tracker: JacoVelocityTrackerConfig = dataclasses.field(
         default_factory=JacoVelocityTrackerConfig)
 
