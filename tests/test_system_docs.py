@@ -46,7 +46,7 @@ from tegrasp_drake.hardware.device_log_messages import GripperStatusSender, Tact
 from tegrasp_drake.hardware.fault_latch import FaultLatch
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JacoCommandReceiver, JacoCommandSender, JacoStatusReceiver, JacoStatusSender)
-from tegrasp_drake.hardware.jaco.velocity_tracker import JacoVelocityTracker
+from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTracker
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusClient

@@ -45,6 +45,7 @@ from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
 from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
                                                            ra_noise_std_mps2)
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
+from tegrasp_drake.simulation.jaco_velocity_drive import drive_problem
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
                                              SimulatedStationConfig)
@@ -416,6 +417,10 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
             scenario.plant_config.time_step)
     require(scenario.grasp.grip_force > 0, source, "grasp.grip_force", "must be positive [N]",
             scenario.grasp.grip_force)
+    problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
+    if problem:
+        field, words, value = problem
+        require(False, source, f"arm.{field}", words, value)
     problem = contact_geometry_problem(scenario.contact_geometry)
     if problem:
         raise ConfigError(f"{source}: field 'contact_geometry.{problem[0]}' {problem[1]}")

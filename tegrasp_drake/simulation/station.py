@@ -15,15 +15,19 @@ controller's set-point of the hand's actuated joint.
 The hand is `gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
 default) or the earlier prismatic fingers.
 
-The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
-their joints track `arm.desired_state` with the plant's implicit PD.
+The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies.
+The arm is driven as the real JACO2 is (jaco_velocity_drive.py): arm.desired_state goes
+through the hardware's velocity tracker, 100 Hz commands and their latency to the arm's
+velocity servo, whose set-point (arm.servo_set_point, simulation only) the joints track
+with the plant's implicit PD; arm.commanded_state shows the commands, as on the hardware
+station.
 
 With `station: !SimulatedStationConfig {arm: carriage}` the gripper rides on a Cartesian
-carriage instead (carriage.py), which follows the pose the commanded joints give G; the
-arm's ports stay: arm.position_measured and arm.velocity_measured report the commanded
-joint state one controller period late (the firmware's tracking, idealised), and
-arm.torque_measured the joint torques that would hold the wrench measured at the
-carriage-gripper weld. Simulation only there: carriage.desired_state (12, the carriage
+carriage instead (carriage.py), which follows the pose the servo's set-point gives G
+(the same command path, the servos ideal); the arm's ports stay: arm.position_measured
+reports the set-point's joints moved by the carriage's deflection, arm.velocity_measured
+the set-point's rates, and arm.torque_measured the joint torques that would hold the
+wrench measured at the carriage-gripper weld. Simulation only there: carriage.desired_state (12, the carriage
 PD's set-point), gripper.wrist_wrench (6: [M; F] on the arm at G, world [N m, N]).
 """
 
@@ -42,11 +46,13 @@ from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.robotiq.dimensions import HALF_STROKE
 from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinematics, Carriage,
                                                EndpointImpedance, carriage_positions)
 from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.simulation.jaco_velocity_drive import AddJacoVelocityDrive
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     configure_drive, gripper_hand)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
@@ -67,15 +73,23 @@ from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, Tact
 
 @dataclasses.dataclass
 class ArmDriverConfig:
-    """The simulated JACO2 joint controller; the firmware compensates gravity."""
-    position_gain: float = 400.0  # N m/rad
+    """The simulated JACO2: its joint-velocity command path and joint servos
+    (jaco_velocity_drive.py gives each setting's source); the firmware compensates gravity."""
+    position_gain: float = 400.0  # N m/rad, the joint servos' stiffness (the plant's PD)
     damping_gain: float = 40.0  # N m s/rad
     initial_gripper_xyz: list[float] = dataclasses.field(
         default_factory=lambda: [0.69, 0.0, 0.145])  # m, grasp frame in world at t = 0;
     # 3 cm behind and 9 cm above the grasp: further back, the Jaco nears its wrist singularity
-    # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state;
-    # the Jaco's own velocity interface runs at 100 Hz.
+    # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state.
     control_period_s: float = 0.005
+    # The joint-velocity commands the host sends: their rate [Hz] (the JACO2's 100 Hz) and
+    # their latency to the arm [s], a whole number of plant steps.
+    command_rate_hz: float = 100.0
+    command_latency_s: float = 0.010
+    # What turns arm.desired_state into those commands, as on the hardware (whose own
+    # tracker settings are the hardware config's arm.tracker).
+    tracker: JacoVelocityTrackerConfig = dataclasses.field(
+        default_factory=JacoVelocityTrackerConfig)
 
 
 ARM_MOUNTS = ("jaco2", "carriage")
@@ -284,9 +298,18 @@ def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
     """The arm's ports on the carriage (carriage_systems.py), and `carriage.desired_state`
     (the carriage PD's set-point) and `gripper.wrist_wrench` (on the arm at G, world)."""
     plant = parts.plant
+    q0 = initial_arm_positions(arm)
     command = builder.AddNamedSystem("carriage_command", CarriageCommand(
-        parts.carriage, initial_positions=initial_arm_positions(arm), period_s=time_step))
-    builder.ExportInput(command.GetInputPort(ports.ARM_DESIRED_STATE), ports.ARM_DESIRED_STATE)
+        parts.carriage, initial_positions=q0, period_s=time_step))
+    # The arm's velocity drive as on the JACO2 mount, its servo ideal: the joints are at the
+    # servo's set-point, which the carriage follows.
+    drive = AddJacoVelocityDrive(builder, arm=arm, time_step=time_step, initial_positions=q0,
+                                 position_measured=command.GetOutputPort(
+                                     ports.ARM_POSITION_MEASURED))
+    builder.ExportInput(drive.desired_state, ports.ARM_DESIRED_STATE)
+    builder.Connect(drive.set_point, command.GetInputPort("joint_set_point"))
+    builder.Connect(plant.get_state_output_port(parts.arm), command.GetInputPort("carriage_state"))
+    builder.ExportOutput(drive.commanded_state, ports.ARM_COMMANDED_STATE)
     builder.Connect(command.GetOutputPort("carriage_desired_state"),
                     plant.get_desired_state_input_port(parts.arm))
     builder.ExportOutput(command.GetOutputPort("carriage_desired_state"),
@@ -328,12 +351,18 @@ def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriv
     arm_instance, gripper, obj = parts.arm, parts.gripper, parts.object_instance
 
     if parts.carriage is None:
-        # Arm: the desired state goes straight to the plant's PD; measured state is split.
-        builder.ExportInput(plant.get_desired_state_input_port(arm_instance),
-                            ports.ARM_DESIRED_STATE)
+        # Arm: the desired state goes through the velocity drive to the plant's PD;
+        # the measured state is split.
         arm_state = builder.AddNamedSystem("arm_state_demux",
                                            Demultiplexer([ports.ARM_JOINTS] * 2))
         builder.Connect(plant.get_state_output_port(arm_instance), arm_state.get_input_port())
+        drive = AddJacoVelocityDrive(builder, arm=arm, time_step=plant_config.time_step,
+                                     initial_positions=initial_arm_positions(arm),
+                                     position_measured=arm_state.get_output_port(0))
+        builder.ExportInput(drive.desired_state, ports.ARM_DESIRED_STATE)
+        builder.Connect(drive.set_point, plant.get_desired_state_input_port(arm_instance))
+        builder.ExportOutput(drive.commanded_state, ports.ARM_COMMANDED_STATE)
+        builder.ExportOutput(drive.set_point, ports.ARM_SERVO_SET_POINT)
         builder.ExportOutput(arm_state.get_output_port(0), ports.ARM_POSITION_MEASURED)
         builder.ExportOutput(arm_state.get_output_port(1), ports.ARM_VELOCITY_MEASURED)
         arm_velocity = arm_state.get_output_port(1)
