@@ -40,6 +40,9 @@ def spans_of_log(path, object_name, events):
     trial = tactile_trial_from_log(log)
     armed = {"reach_load": 0.0, "load_lift": physical["first_contact"],
              "place_unload": starts["place"]}
+    # Scored as the trial judge scores a closed-loop run (runs/trial.py): Load-Lift against
+    # the grip settled, the earliest a lift may start, not the script's lift start (the
+    # event's anchor), which a controller that lifts on the event cannot wait for.
     times = {"reach_load": physical["first_contact"],
              "load_lift": physical["grip_force_reached"],
              "place_unload": physical["table_touch"]}
