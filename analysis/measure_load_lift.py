@@ -2,7 +2,7 @@
 
     python analysis/measure_load_lift.py [--events events]
         [--objects box thick_cylinder thin_cylinder] [--seed 600] [--workers 2]
-        [--json OUT.json]
+        [--set KEY=VALUE ...] [--json OUT.json]
 
 Runs one trial of the memorized controller (the scenario's) per object and marker (the centre and three misplaced markers of the
 paper's grid, offsets in the scenario's object_offset [m]) on development seeds (--seed,
@@ -24,12 +24,12 @@ MARKERS_M = ((0.0, 0.0), (0.01, 0.0), (0.0, 0.015), (-0.01, -0.015))
 
 
 def trial_row(job) -> dict:
-    object_name, offset, seed, events_dir = job
+    object_name, offset, seed, events_dir, overrides = job
     from tegrasp_drake.runs.trial import run_trial
     from tegrasp_drake.scenario.scenario import LoadScenario
     from tegrasp_drake.scenario.scenario_events import load_controller_events
-    scenario = dataclasses.replace(LoadScenario(name=object_name), random_seed=seed,
-                                   object_offset=list(offset))
+    scenario = dataclasses.replace(LoadScenario(name=object_name, overrides=list(overrides)),
+                                   random_seed=seed, object_offset=list(offset))
     events = load_controller_events(scenario, events_dir)
     trial = run_trial(scenario, events=events)
     result = trial.result
@@ -55,9 +55,11 @@ def main(argv=None) -> int:
                         default=["box", "thick_cylinder", "thin_cylinder"])
     parser.add_argument("--seed", type=int, default=600)
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="KEY=VALUE", help="override a scenario field of every trial")
     parser.add_argument("--json", type=pathlib.Path, default=None)
     args = parser.parse_args(argv)
-    jobs = [(name, offset, args.seed + k, args.events)
+    jobs = [(name, offset, args.seed + k, args.events, tuple(args.overrides))
             for name in args.objects for k, offset in enumerate(MARKERS_M)]
     with ProcessPoolExecutor(args.workers) as pool:
         rows = list(pool.map(trial_row, jobs))

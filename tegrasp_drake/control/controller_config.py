@@ -259,6 +259,12 @@ class EventTriggeredConfig(GraspControllerConfig):
     # reach_s 2.5), before the open fingers can reach the object.
     ra_noise_floor_sigmas: float = 0.0
     ra_noise_quiet_s: float = 2.0
+    # Beyond the paper: a flat template channel (Load-Lift's SA, the settled grip) scores
+    # only a live window that is flat too, so Load-Lift waits until the grip has held for a
+    # window (events/correlation.py); False (the paper): Eq. 3 alone, which passes a grip
+    # still rising once 81 % of the window is on its plateau (a grip that rises over
+    # 0.8 s: lifted at 68 % of it).
+    flat_template_needs_flat_window: bool = False
 
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
         """{transition: (SA, RA)} thresholds that replace sa/ra_threshold (none)."""
