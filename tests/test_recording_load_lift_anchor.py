@@ -59,7 +59,7 @@ def test_recording_refuses_a_load_phase_that_lifts_before_the_grip_settles():
 @pytest.mark.parametrize(("object_name", "offset", "seed"), [
     ("box", (0.0, 0.0), 600), ("box", (0.0, 0.015), 602),
     # With the grip-reached anchor this one lifted 20 ms after Reach-Load, at 32 % of the
-    # grip (after a re-reach, the second contact one-sided).
+    # grip.
     ("thick_cylinder", (-0.01, -0.015), 603)])
 def test_the_closed_loop_lift_starts_with_the_grip_settled(object_name, offset, seed):
     scenario = dataclasses.replace(LoadScenario(name=object_name), random_seed=seed,
