@@ -29,11 +29,13 @@ def template_correlations(events) -> dict[str, float]:
             for name in CHANNEL_NAMES}
 
 
+@pytest.mark.parametrize("folder", ["", "ensemble"])  # the paper's events, the ensemble's
 @pytest.mark.parametrize("object_name", sorted(BUILTIN_OBJECTS))
-def test_the_load_lift_event_is_the_settled_grip_not_a_shifted_reach_load(object_name):
-    events = load_memorized_events(paths.package_events_dir(), object_name)
+def test_the_load_lift_event_is_the_settled_grip_not_a_shifted_reach_load(object_name,
+                                                                          folder):
+    events = load_memorized_events(paths.package_events_dir() / folder, object_name)
     correlations = template_correlations(events)
-    print(object_name, {name: round(r, 3) for name, r in correlations.items()})
+    print(object_name, folder, {name: round(r, 3) for name, r in correlations.items()})
     script = GraspScriptConfig()
     lift_start = script.settle_s + script.reach_s + script.load_s
     assert events["load_lift"].transition_time_s == pytest.approx(lift_start, abs=1e-9)
