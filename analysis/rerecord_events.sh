@@ -19,7 +19,9 @@
 #                           printed pairs into GraspControllerConfig
 #                           (lift_load_event_thresholds, hold_avoid_event_thresholds)
 # events/prismatic/ (the earlier prismatic hand's, kept for comparison) is not rebuilt here.
-# On a 2-core host with 2 workers it takes about 10 minutes.
+# 35 simulated grasps (3 + 24 + 8), each about 10-15 s of wall on an idle core, plus the
+# replays that choose the thresholds: with 2 workers it took 28 minutes on a 2-core host
+# shared with other jobs (load average 11-14).
 set -e
 LOGS=${1:?usage: sh analysis/rerecord_events.sh LOGS_DIR [WORKERS]}
 WORKERS=${2:-2}
