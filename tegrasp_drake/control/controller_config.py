@@ -36,6 +36,9 @@ class HeuristicTriggerConfig:
     contact_force_n: float = 1.0  # Reach-Load: each finger's SA above this [N]
     grip_fraction: float = 0.9  # Load-Lift: each finger's SA above this fraction of the grip
     place_ra_mps2: float = 3.0  # Place-Unload: either RA above this [m/s^2]
+    # ... and above this many sigmas of the RA noise (control/noise_thresholds.py: noise
+    # alone crosses it in at most one trial of a thousand); 0: the number alone.
+    place_ra_sigmas: float = 5.51
 
 
 @dataclasses.dataclass
@@ -169,6 +172,10 @@ class GraspControllerConfig:
     # 1 m/s^2 (24 mN of pad load) is the one the accelerometer model used.
     lift_load_enabled: bool = True
     slip_vibration_mps2: float = 1.0
+    # ... and above this many sigmas of the slip band's noise (control/noise_thresholds.py:
+    # the band's RMS over slip_window_s of noise alone crosses it in at most one trial of a
+    # thousand; the sigma from the film's electronics); 0: the number alone.
+    slip_vibration_sigmas: float = 2.34
     slip_band_hz: float = 80.0
     slip_window_s: float = 0.01
     slip_s: float = 0.02
@@ -186,6 +193,7 @@ class GraspControllerConfig:
     # after entering Hold (the stop of the lift rings briefly).
     avoid_enabled: bool = True
     hit_ra_mps2: float = 3.0
+    hit_ra_sigmas: float = 5.51  # ... and above this many RA noise sigmas (as the slip's)
     avoid_sense_s: float = 0.03
     avoid_sa_asymmetry_n: float = 1.0
     avoid_distance_m: float = 0.05

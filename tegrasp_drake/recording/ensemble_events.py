@@ -72,7 +72,8 @@ def ensemble_scenario(object_name: str, run: int, ranges: EnsembleRanges = ENSEM
     if not ranges.sensor_noise:
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0),
-            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0))
+            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0,
+                                          adc_noise_lsb=0.0))
     return scenario
 
 

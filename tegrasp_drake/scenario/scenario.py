@@ -26,18 +26,24 @@ from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
+from tegrasp_drake.robotiq import drive
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
-from tegrasp_drake.simulation.capacitive_taxels import CAPACITIVE_OUTPUTS, TAXEL_TRANSDUCERS
+from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
+                                                        TAXEL_TRANSDUCERS,
+                                                        ad7147_frame_rate_hz,
+                                                        frame_rate_matches)
+from tegrasp_drake.simulation.film_readout import ADC_INPUTS
 from tegrasp_drake.simulation.contact_meshing import (ContactGeometryConfig,
                                                       contact_geometry_problem)
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
 from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
-from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
+                                                           ra_noise_std_mps2)
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
@@ -162,6 +168,8 @@ _CONTROLLER_RULES = (("_s", lambda v: v >= 0, "must be zero or positive [s]"),
                      ("_n", lambda v: v >= 0, "must be zero or positive [N]"),
                      ("_mps2", lambda v: v >= 0, "must be zero or positive [m/s^2]"),
                      ("_m", lambda v: v >= 0, "must be zero or positive [m]"),
+                     ("_sigmas", lambda v: v >= 0,
+                      "must be zero (the number alone) or positive [noise sigmas]"),
                      ("_threshold", lambda v: -1.0 <= v <= 1.0,
                       "must lie in [-1, 1] (Eq. 3 scores are correlations)"))
 
@@ -304,6 +312,62 @@ def _check_transducers(scenario: Scenario, source: str) -> None:
             ("calibration_force_n", lambda v: v > 0.0, "must be positive [N]")):
         require(ok(getattr(capacitive, name)), source, f"tactile.capacitive.{name}", words,
                 getattr(capacitive, name))
+    require(capacitive.decimation in AD7147_DECIMATIONS, source, "tactile.capacitive.decimation",
+            f"must be one of {', '.join(map(str, AD7147_DECIMATIONS))} (the AD7147's)",
+            capacitive.decimation)
+    if scenario.tactile.transducer == "capacitive":
+        frame = ad7147_frame_rate_hz(capacitive.decimation)
+        require(frame_rate_matches(scenario.tactile.sample_rate_hz, capacitive.decimation),
+                source, "tactile.sample_rate_hz", f"must be the AD7147's frame rate at "
+                f"tactile.capacitive.decimation {capacitive.decimation}, {frame:.1f} Hz (12 "
+                f"stages of {1e3 / (12 * frame):.3f} ms): set both together",
+                scenario.tactile.sample_rate_hz)
+    _check_film_electronics(scenario.vibration, source)
+
+
+def _check_film_electronics(vibration: VibrationSensorConfig, source: str) -> None:
+    """The film's readout and the drives' vibration (film_readout.py, drive_vibration.py)."""
+    require(vibration.adc_input in ADC_INPUTS, source, "vibration.adc_input",
+            f"must be one of {', '.join(ADC_INPUTS)} (the myRIO's +-10 V MSP input, its "
+            "0-5 V MXP input, or no converter)", vibration.adc_input)
+    require(vibration.adc_noise_lsb >= 0, source, "vibration.adc_noise_lsb",
+            "must be zero (no noise) or positive [codes rms]", vibration.adc_noise_lsb)
+    require(vibration.amplifier_swing_v > 0, source, "vibration.amplifier_swing_v",
+            "must be positive [V]", vibration.amplifier_swing_v)
+    for name in ("film_charge_gain_c_per_m", "feedback_capacitance_f"):
+        require(getattr(vibration, name) > 0, source, f"vibration.{name}",
+                "must be positive (it sets the film's volts per m/s^2)",
+                getattr(vibration, name))
+    for name in ("gripper_drive", "arm_drive"):
+        drive = getattr(vibration, name)
+        require(not drive.amplitudes_mps2 or len(drive.amplitudes_mps2) == len(drive.orders),
+                source,
+                f"vibration.{name}.orders", "must give one order per amplitude "
+                f"({len(drive.amplitudes_mps2)} amplitudes; amplitudes_mps2=[] switches the "
+                "drive off)", drive.orders)
+        require(all(a >= 0 for a in drive.amplitudes_mps2), source,
+                f"vibration.{name}.amplitudes_mps2",
+                "must be zero (off) or positive [m/s^2]", drive.amplitudes_mps2)
+        if drive.enabled():
+            require(drive.full_speed > 0, source, f"vibration.{name}.full_speed",
+                    "must be positive (the joint rate of the amplitudes)", drive.full_speed)
+            require(drive.motor_revolutions_per_unit >= 0 and all(
+                o >= 0 for o in drive.orders), source, f"vibration.{name}",
+                "needs motor_revolutions_per_unit and orders of zero or more",
+                [drive.motor_revolutions_per_unit, drive.orders])
+
+
+def _check_drive(gripper: GripperDriverConfig, source: str) -> None:
+    """The 2F-85 drive's settings within their plausible ranges (robotiq/drive.py)."""
+    low, high = drive.POSITION_LOOP_HZ_RANGE
+    require(low <= gripper.position_loop_hz <= high, source, "gripper.position_loop_hz",
+            f"must lie in [{low:g}, {high:g}] Hz (the 2F-85 firmware's position loop: slower "
+            "and the locked drive yields, faster and a 1 ms plant step cannot follow it)",
+            gripper.position_loop_hz)
+    low, high = drive.SCREW_EFFICIENCY_RANGE
+    require(low <= gripper.screw_efficiency <= high, source, "gripper.screw_efficiency",
+            f"must lie in [{low:g}, {high:g}] (a self-locking screw's forward efficiency is "
+            "below 0.5)", gripper.screw_efficiency)
 
 
 def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
@@ -359,6 +423,7 @@ def validate(scenario: Scenario, source: str = "scenario") -> Scenario:
     require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
             f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "
             "prismatic fingers)", scenario.gripper.model)
+    _check_drive(scenario.gripper, source)
     if isinstance(scenario.station, HardwareStationConfig):
         validate_hardware_config(scenario.station, source, "station")
     else:
@@ -420,6 +485,19 @@ def object_pose(scenario: Scenario):
     from tegrasp_drake.simulation.station import object_pose_on_table
     return object_pose_on_table(scenario.expected_object_xy, scenario.object_offset,
                                 scenario.object_yaw_deg)
+
+
+def controller_in_force(scenario: Scenario):
+    """The scenario's controller config with the RA thresholds it runs with: raised to their
+    sigmas of the RA noise of the scenario's film electronics (control/noise_thresholds.py);
+    the open-loop script's as it is."""
+    controller = scenario.controller
+    if not isinstance(controller, GraspControllerConfig):
+        return controller
+    from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
+    return resolve_noise_thresholds(
+        controller, ra_noise_std_mps2=ra_noise_std_mps2(scenario.vibration),
+        ra_rate_hz=scenario.vibration.sample_rate_hz)
 
 
 def sample_rates_hz(scenario: Scenario) -> tuple[float, float]:

@@ -35,19 +35,20 @@ from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import AddMultibodyPlant
 from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.framework import DiagramBuilder
-from pydrake.systems.primitives import Demultiplexer
+from pydrake.systems.primitives import Demultiplexer, MatrixGain
 
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.robotiq.dimensions import HALF_STROKE
 from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinematics, Carriage,
                                                EndpointImpedance, carriage_positions)
 from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
-                                                    gripper_hand)
+                                                    configure_drive, gripper_hand)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
@@ -150,13 +151,14 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
 
 def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
                       tactile: TactileSensorConfig, vibration: VibrationSensorConfig,
-                      gripper_model: str, random_seed: int):
+                      gripper_model: str, random_seed: int, drive_rates=()):
     """Both pads' taxel arrays (TactilePads, seeded by `random_seed`), the slip texture
     (PadSlipVibration) and the films (PadFilms) of the hand `gripper_model`, connected to
     the finalized `plant` (the linkage's pad forces from `vibration.pad_force_source`);
     returns (TactilePads, PadFilms). With `vibration.transducer`
     accelerometer, the pads' accelerometers (PadAccelerometers) take the films' place,
-    without the slip texture."""
+    without the slip texture. `drive_rates`: (DriveVibrationConfig, joint-rate port) of the
+    drives the films feel (drive_vibration.py)."""
     pads = pad_geometries(plant, scene_graph, gripper)
     taxels = builder.AddNamedSystem(
         "tactile_pads", TactilePads(pads=pads, config=tactile, seed=random_seed))
@@ -178,8 +180,26 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
             builder.Connect(plant.get_body_poses_output_port(),
                             pad_forces.GetInputPort("body_poses"))
     films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper, config=vibration,
-                        slip_vibration=slip, pad_forces=pad_forces, pad_statics=pad_statics)
+                        slip_vibration=slip, pad_forces=pad_forces, pad_statics=pad_statics,
+                        drive_rates=drive_rates)
     return taxels, films
+
+
+def _drive_rates(builder, *, hand, selector, arm_velocity, vibration: VibrationSensorConfig):
+    """(DriveVibrationConfig, rate port) of the gripper's drive (its half-opening rate
+    [m/s]: the actuated joint's rate from `selector` times the hand's lever at mid-stroke)
+    and the arm's (`arm_velocity`, its joint rates [rad/s]); those the films feel (none with
+    the accelerometer transducer, none switched off)."""
+    if vibration.transducer != "film":
+        return []
+    rates = [(vibration.arm_drive, arm_velocity)] if vibration.arm_drive.enabled() else []
+    if vibration.gripper_drive.enabled():
+        lever = abs(hand.half_opening_rate(hand.actuated(HALF_STROKE / 2)))
+        finger_rate = builder.AddNamedSystem("gripper_half_opening_rate",
+                                             MatrixGain(np.array([[0.0, lever]])))
+        builder.Connect(selector.get_output_port(), finger_rate.get_input_port())
+        rates.insert(0, (vibration.gripper_drive, finger_rate.get_output_port()))
+    return rates
 
 
 def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
@@ -245,7 +265,7 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
     plant.set_gravity_enabled(gripper, False)
     if carriage is None:
         set_pd_gains(plant, arm, arm_config.position_gain, arm_config.damping_gain)
-    set_pd_gains(plant, gripper, *hand.pd_gains(gripper_config))
+    configure_drive(plant, gripper, hand, gripper_config)
     plant.Finalize()
 
     q_arm = initial_arm_positions(arm_config)
@@ -316,13 +336,17 @@ def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriv
         builder.Connect(plant.get_state_output_port(arm_instance), arm_state.get_input_port())
         builder.ExportOutput(arm_state.get_output_port(0), ports.ARM_POSITION_MEASURED)
         builder.ExportOutput(arm_state.get_output_port(1), ports.ARM_VELOCITY_MEASURED)
+        arm_velocity = arm_state.get_output_port(1)
         builder.ExportOutput(plant.get_net_actuation_output_port(arm_instance),
                              ports.ARM_TORQUE_MEASURED)
     else:
         _add_carriage_arm_ports(builder, parts, arm, plant_config.time_step)
+        arm_velocity = builder.GetSubsystemByName("carriage_command").GetOutputPort(
+            ports.ARM_VELOCITY_MEASURED)
 
     # Gripper: the simulated 2F-85 controller.
-    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=gripper_config))
+    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(
+        config=gripper_config, time_step=plant.time_step()))
     selector = builder.AddNamedSystem("gripper_actuated_state", actuated_state_selector(
         plant, gripper, gripper_hand(gripper_config.model)))
     builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
@@ -340,7 +364,10 @@ def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriv
                                       gripper=gripper, object_body=object_body(plant, obj),
                                       tactile=tactile, vibration=vibration,
                                       gripper_model=gripper_config.model,
-                                      random_seed=random_seed)
+                                      random_seed=random_seed, drive_rates=_drive_rates(
+                                          builder, hand=gripper_hand(gripper_config.model),
+                                          selector=selector, arm_velocity=arm_velocity,
+                                          vibration=vibration))
     readings = AddTaxelTransducer(builder, taxels=taxels, tactile_config=tactile)
     for finger in FINGER_NAMES:
         builder.ExportOutput(readings.GetOutputPort(f"{finger}_taxel_forces"),
