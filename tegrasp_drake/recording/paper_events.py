@@ -83,7 +83,8 @@ def record_events(object_name: str, scenario=None, *, progress=None):
     scenario = scenario or LoadScenario(name=object_name)
     log, _ = run_ideal_grasp(scenario, progress=progress)
     times = grasp_event_times(log, scenario)
-    logger.info("%s: physical events of the ideal grasp at %s", object_name, times)
+    logger.info("%s: physical events of the ideal grasp at %s; the lift starts with %s of "
+                "the settled grip", object_name, times, lift_grip_fraction(log, scenario))
     run = CampaignRun("the ideal grasp", scenario)
     return cut_events(log, run, times, object_name=object_name,
                       nominal_object=scenario.object, note=scenario_to_yaml(scenario),
