@@ -104,7 +104,8 @@ def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
         sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s,
         ra_envelope_hz=config.ra_envelope_hz,
         ra_noise_floor_sigmas=config.ra_noise_floor_sigmas,
-        ra_noise_quiet_s=config.ra_noise_quiet_s)
+        ra_noise_quiet_s=config.ra_noise_quiet_s,
+        flat_template_needs_flat_window=config.flat_template_needs_flat_window)
 
 
 def _add_detector(builder, config, plan, rates_hz, events, channels):

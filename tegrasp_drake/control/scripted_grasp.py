@@ -30,7 +30,15 @@ class GraspScriptConfig:
     reach_s: float = 2.5
     close_speed: float = 0.05  # m/s
     grip_force: float = 25.0  # N
-    load_s: float = 1.3  # from the close command to the start of the lift
+    # [s] from the close command to the start of the lift. It holds the close (about
+    # (85 mm - width) / close_speed: 1.24 s for the narrowest built-in object, the 25 mm
+    # cylinder) and the dwell on the object after first contact, which must outlast the
+    # drive's settling of the grip plus the half memorized window (0.25 s) that the
+    # Load-Lift event holds before the lift starts, so that window is the settled grip.
+    # 1.8 s leaves the 25 mm cylinder 0.56 s after contact (the 45 mm box 0.96 s, the
+    # 50 mm cylinder 1.06 s): 0.31 s for the grip to settle, several times a position
+    # loop's settling (tens of ms). Recording checks it (recording/paper_events.py).
+    load_s: float = 1.8
     lift_height: float = 0.06  # m
     lift_s: float = 1.5
     hold_s: float = 3.0

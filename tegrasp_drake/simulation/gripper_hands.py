@@ -76,7 +76,7 @@ class LinkageHand:
     events_folder: str = ""  # its memorized events: the package's events themselves
     # Eq. 3 thresholds [SA, RA] of its ensemble events, chosen on held-out ensemble runs
     # (analysis/choose_ensemble_thresholds.py; analysis/ensemble_thresholds.md).
-    ensemble_thresholds: tuple = (("reach_load", (0.40, 0.80)), ("load_lift", (0.50, 0.90)),
+    ensemble_thresholds: tuple = (("reach_load", (0.40, 0.80)), ("load_lift", (0.40, 0.65)),
                                   ("place_unload", (0.98, 0.70)))
 
     def half_opening(self, a: float) -> float:
