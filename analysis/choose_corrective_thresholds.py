@@ -27,7 +27,8 @@ from tegrasp_drake.recording.corrective_detection import (
     SituationSpan, choose_centred_thresholds, classify_first_firing, event_span,
     heuristic_hit_time, heuristic_slip_time, on_controller_ticks)
 from tegrasp_drake.recording.corrective_events import (
-    CORRECTIVE_FOLDER, CORRECTIVE_RUNS, corrective_event_time, corrective_scenario)
+    CORRECTIVE_FOLDER, CORRECTIVE_RUNS, HOLD_END_S, LIFT_END_S, LIFT_START_S,
+    corrective_event_time, corrective_scenario)
 from tegrasp_drake.recording.detection_quality import classify, rate_point
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
@@ -36,7 +37,7 @@ from record_corrective_events import log_path  # noqa: E402
 
 GRID = np.round(np.concatenate([[-0.05], np.arange(0.0, 0.951, 0.05), [0.98]]), 3)
 # The script's Lift and Hold (scripted_grasp.plan_scripted_grasp, default timing) [s].
-LIFT_S, HOLD_S = (4.1, 5.6), (5.6, 8.6)
+LIFT_S, HOLD_S = (LIFT_START_S, LIFT_END_S), (LIFT_END_S, HOLD_END_S)
 CONFIG = GraspControllerConfig()
 
 

@@ -40,6 +40,9 @@ def spans_of_log(path, object_name, events):
     trial = tactile_trial_from_log(log)
     armed = {"reach_load": 0.0, "load_lift": physical["first_contact"],
              "place_unload": starts["place"]}
+    # Scored as the trial judge scores a closed-loop run (runs/trial.py): Load-Lift against
+    # the grip settled, the earliest a lift may start, not the script's lift start (the
+    # event's anchor), which a controller that lifts on the event cannot wait for.
     times = {"reach_load": physical["first_contact"],
              "load_lift": physical["grip_force_reached"],
              "place_unload": physical["table_touch"]}
@@ -76,7 +79,10 @@ def main(argv=None) -> int:
              f"Chosen per transition on the held-out ensemble runs (seeds 1000000 + "
              f"{args.runs} of each object: {len(spans) // 3} spans per transition; the "
              "templates came from the other runs) by `analysis/choose_ensemble_thresholds.py`"
-             " (rule: `recording/detection_quality.py`), and set in TaxelAwareConfig:\n",
+             " (rule: `recording/detection_quality.py`), and set as the hand's "
+             "(gripper_hands.*Hand.ensemble_thresholds). Load-Lift is scored against "
+             "the grip settled (both pads at 90 % of the grip), as the trial judge scores a "
+             "closed-loop run; its event is cut at the script's start of the lift.\n",
              "| transition | SA > | RA > | detected | false | missed | median latency |",
              "|---|---|---|---|---|---|---|"]
     for t in TRANSITIONS:

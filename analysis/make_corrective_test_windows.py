@@ -3,8 +3,12 @@
 
     python analysis/make_corrective_test_windows.py CORRECTIVE_LOGS ENSEMBLE_LOGS
 
-Held-out runs only (none made a corrective template): the hit "+y 15 N at 7.4 s", the
-slip "friction 0.012", and the ensemble's normal grasp of the box, run 6.
+Held-out runs only (none made a corrective template): the hit "+y 15 N 1.3 s into Hold",
+the slip "friction 0.012", and the ensemble's normal grasp of the box, run 6; the windows
+around the script's Lift and Hold (corrective_events.LIFT_START_S ...). The committed
+file was cut from the prismatic hand's runs with the earlier 1.3 s Load phase (Lift
+4.1-5.6 s, the hit at 7.4 s): remaking it changes tests/test_recording_corrective_events.py's
+times and events folder with it.
 """
 
 import pathlib
@@ -33,17 +37,18 @@ def cut(log, name, start, end, arrays):
 
 
 def main(argv=None) -> int:
-    from tegrasp_drake.recording.corrective_events import CORRECTIVE_RUNS
+    from tegrasp_drake.recording.corrective_events import (CORRECTIVE_RUNS, HOLD_END_S,
+                                                           LIFT_END_S, LIFT_START_S)
     corrective, ensemble = map(pathlib.Path, (argv or sys.argv[1:])[:2])
     runs = {run.label: run for run in CORRECTIVE_RUNS}
     arrays = {}
-    cut(load_trial_log(log_path(corrective, "box", runs["hit +y 15 N at 7.4 s"])), "hit",
-        6.8, 8.0, arrays)
+    cut(load_trial_log(log_path(corrective, "box", runs["hit +y 15 N 1.3 s into Hold"])),
+        "hit", LIFT_END_S + 0.7, LIFT_END_S + 1.9, arrays)
     cut(load_trial_log(log_path(corrective, "box", runs["friction 0.012"])), "slip",
-        3.5, 5.6, arrays)
+        LIFT_START_S - 0.6, LIFT_END_S, arrays)
     normal = load_trial_log(ensemble / "box" / "run6.npz")
-    cut(normal, "normal_lift", 3.5, 5.6, arrays)
-    cut(normal, "normal_hold", 5.6, 8.6, arrays)
+    cut(normal, "normal_lift", LIFT_START_S - 0.6, LIFT_END_S, arrays)
+    cut(normal, "normal_hold", LIFT_END_S, HOLD_END_S, arrays)
     np.savez_compressed(OUT, **arrays)
     print(f"wrote {OUT} ({OUT.stat().st_size} bytes)")
     return 0

@@ -23,7 +23,10 @@ from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 
 def simulate(job) -> None:
-    object_name, run, log_dir = job
+    """Simulates run `k` of the object's campaign (made in the worker: a scenario holds
+    pydrake configs, which do not pickle)."""
+    object_name, k, runs, template_runs, log_dir = job
+    run = ensemble_runs(object_name, runs, template_runs)[k]
     simulate_run(run, log_path=run_log_path(log_dir, run))
     print(f"{object_name} {run.label} done", flush=True)
 
@@ -39,8 +42,8 @@ def main(argv=None) -> int:
     if not 0 < args.template_runs <= args.runs:
         raise SystemExit("record_ensemble_events: --template-runs must be 1..--runs")
     from tegrasp_drake.scenario.scenario import LoadScenario
-    jobs = [(name, run, args.logs / name) for name in sorted(BUILTIN_OBJECTS)
-            for run in ensemble_runs(name, args.runs, args.template_runs)]
+    jobs = [(name, k, args.runs, args.template_runs, args.logs / name)
+            for name in sorted(BUILTIN_OBJECTS) for k in range(args.runs)]
     with ProcessPoolExecutor(args.workers) as pool:  # the logs, in parallel
         list(pool.map(simulate, jobs))
     combined = []

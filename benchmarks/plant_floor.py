@@ -53,10 +53,10 @@ def record_plant_inputs(scenario, *, events=None) -> PlantInputs:
     builder = DiagramBuilder()
     station = builder.AddNamedSystem("station", MakeSimulatedStation(scenario))
     grasp = AddScenarioController(builder, scenario, station=station, events=events)
-    # The set-point the plant's arm PD reads: the arm's, or the carriage's on a carriage.
+    # The set-point the plant's arm PD reads: the arm's servo's, or the carriage's.
     arm_log = LogVectorOutput(station.GetOutputPort(ports.CARRIAGE_DESIRED_STATE)
                               if station.HasOutputPort(ports.CARRIAGE_DESIRED_STATE)
-                              else grasp.arm_desired_state, builder)
+                              else station.GetOutputPort(ports.ARM_SERVO_SET_POINT), builder)
     gripper_log = LogVectorOutput(station.GetOutputPort(ports.GRIPPER_PLANT_DESIRED_STATE),
                                   builder)
     object_port = station.GetOutputPort(ports.OBJECT_STATE)

@@ -47,6 +47,8 @@ def assert_one_line_error(code, text, *expected):
     (["object.friction=.inf"], "field 'object.friction' must be a finite number"),
     (["controller.sa_threshold=.nan"], "field 'controller.sa_threshold' must be a finite"),
     (["controller.ra_threshold=2"], "field 'controller.ra_threshold' must lie in [-1, 1]"),
+    (["gripper.position_loop_hz=10"], "field 'gripper.position_loop_hz' must lie in [40, 150]"),
+    (["gripper.screw_efficiency=0.9"], "field 'gripper.screw_efficiency' must lie in [0.2, 0.5]"),
     (["controller.ra_envelope_hz=-1"], "field 'controller.ra_envelope_hz' must be 0 (no RA"),
     (["controller.ra_envelope_hz=500"], "between 0 and half the RA rate (500 Hz), got 500"),
     (["controller.ra_noise_floor_sigmas=5.39", "controller.ra_noise_quiet_s=3"],

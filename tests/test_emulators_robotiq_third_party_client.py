@@ -72,7 +72,7 @@ def test_close_stops_on_the_box(activated, box_width):
     assert status["gOBJ"] == units.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
     assert status["gPO"] == round(units.position_from_opening(box_width))
     assert status["gPR"] == 255
-    assert status["gCU"] > 0
+    assert status["gCU"] == 0  # the screw holds (the manual's finished grasp reads 0x00)
 
 
 def test_move_to_60_reaches_it(activated):

@@ -93,14 +93,16 @@ def random_stream(rng, length, n_channels):
     return samples
 
 
+@pytest.mark.parametrize("flat_needs_flat", [False, True])
 @pytest.mark.parametrize("n_channels, length, slack", [(2, 50, 10), (2, 500, 100),
                                                        (4, 120, 7)])
-def test_streaming_core_equals_the_reference(n_channels, length, slack):
+def test_streaming_core_equals_the_reference(n_channels, length, slack, flat_needs_flat):
     rng = np.random.default_rng(length)
     templates = [normalize_by_max(rng.random((n_channels, length)) ** 3),
                  np.vstack([contact_step(length, length // 2, 5)] * n_channels),
                  np.vstack([np.ones(length)] + [contact_step(length, 3, 2)] * (n_channels - 1))]
-    correlator = StreamingCorrelator(templates, min_contrast=MIN_CONTRAST, slack=slack)
+    correlator = StreamingCorrelator(templates, min_contrast=MIN_CONTRAST, slack=slack,
+                                     flat_needs_flat=flat_needs_flat)
     state = correlator.initial_state()
     largest_error = 0.0
     for tick, samples in enumerate(random_stream(rng, 1300, n_channels)):
@@ -110,7 +112,8 @@ def test_streaming_core_equals_the_reference(n_channels, length, slack):
             np.testing.assert_array_equal(scores, 0.0)
             continue
         window = correlator.window(state)
-        expected = event_scores_reference(window, templates[event], MIN_CONTRAST)
+        expected = event_scores_reference(window, templates[event], MIN_CONTRAST,
+                                          flat_needs_flat)
         largest_error = max(largest_error, np.max(np.abs(scores - expected)))
         assert correlator.active_event(state) == event
     assert largest_error <= 1e-9
@@ -200,3 +203,18 @@ def test_a_non_finite_sample_is_missing_for_one_window_and_poisons_nothing(bad):
             np.testing.assert_allclose(scores, expected, atol=1e-9, err_msg=str(tick))
         if tick == at + length:  # recovered within one window of the glitch
             assert scores[0] != 0.0
+
+
+def test_a_flat_template_scores_a_rising_window_only_without_the_flat_window_option():
+    """A window whose last 85 % is a plateau against a flat template: Eq. 3 gives
+    sqrt(0.85) = 0.92; with flat_template_needs_flat_window it needs a flat window."""
+    flat = np.ones(54)
+    rising = np.concatenate([np.linspace(0.0, 1.0, 8), np.ones(46)])
+    assert event_scores_reference([rising], [flat], 0.25)[0] > 0.9
+    assert event_scores_reference([rising], [flat], 0.25, flat_needs_flat=True)[0] == 0.0
+    settled = 1.0 + 0.01 * np.sin(np.arange(54))
+    assert event_scores_reference([settled], [flat], 0.25, flat_needs_flat=True)[0] > 0.99
+    # A template with a change is gated as before.
+    step = np.concatenate([np.zeros(27), np.ones(27)])
+    assert (event_scores_reference([step], [step], 0.25, flat_needs_flat=True)[0]
+            == event_scores_reference([step], [step], 0.25)[0])

@@ -14,7 +14,7 @@ from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL, JacoCommandReceiver, JacoCommandSender,
     JacoStatusReceiver, JacoStatusSender, make_jaco_command)
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver, AddJacoLcmEmulator
-from tegrasp_drake.hardware.jaco.velocity_tracker import (
+from tegrasp_drake.rig.jaco_velocity_tracker import (
     JacoVelocityTracker, JacoVelocityTrackerConfig, velocity_command)
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling

@@ -1,7 +1,9 @@
 """Fixed-input tests of PadFilms, the pads' PVDF films: a held load and a held base
 acceleration read as themselves (F / m and a, film_dynamics.py's acceleration-equivalent
 units), each on its own pad; the charge amplifier's high-pass takes them away at its corner;
-the sample is the peak over each sensor period, plus std times the noise input.
+the sample is the peak over each sensor period, plus std times the noise input; through the
+myRIO's converter the readings lie on its code grid, a ramp steps one code at a time, and
+the amplifier's swing and the input range clip them.
 
 The films need only a discrete plant's time step and bodies here: the impact pulse (the one
 path that reads the contact inputs) is off, and film_dynamics' own tests check the pulse.
@@ -16,7 +18,8 @@ from pydrake.multibody.plant import ContactResults, MultibodyPlant
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.simulation.pad_vibration_sensor import PadFilms, VibrationSensorConfig
+from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSensorConfig,
+                                                           volts_per_mps2)
 from tegrasp_drake.simulation.tactile_pads import PadGeometry
 
 TIME_STEP = 5e-4  # s: two plant steps per 1 ms sensor period
@@ -27,7 +30,9 @@ LEFT_FORCE_N, LEFT_ACCELERATION, RIGHT_ACCELERATION = 2.0, -1.5, 3.0  # N, m/s^2
 HELD = np.array([LEFT_FORCE_N / MODAL_MASS + LEFT_ACCELERATION, RIGHT_ACCELERATION])
 
 
-def _films(highpass_hz: float, noise_std: float = 0.0) -> tuple[PadFilms, object]:
+def _films(highpass_hz: float, noise_std: float = 0.0, adc_input: str = "ideal",
+           adc_noise_lsb: float = 0.0, swing_v: float = 13.5,
+           left_force_n: float = LEFT_FORCE_N) -> tuple[PadFilms, object]:
     """Films with the left pad's force at entry 2 of the force input, the right one's at 0,
     entry 1 a distractor; the left pad pressed by LEFT_FORCE_N and its frame accelerating
     at LEFT_ACCELERATION along its inward normal z, the right one's frame at
@@ -37,11 +42,12 @@ def _films(highpass_hz: float, noise_std: float = 0.0) -> tuple[PadFilms, object
     config = VibrationSensorConfig(
         highpass_cutoff_hz=highpass_hz, noise_std_mps2=noise_std, mode_mass_kg=MODAL_MASS,
         mode_frequency_hz=MODE_HZ, mode_damping_ratio=ZETA, load_lowpass_hz=LOWPASS_HZ,
-        impact_enabled=False)
+        impact_enabled=False, adc_input=adc_input, adc_noise_lsb=adc_noise_lsb,
+        amplifier_swing_v=swing_v)
     films = PadFilms(plant=plant, pads=PADS, force_indices=(2, 0), config=config)
     context = films.CreateDefaultContext()
     films.GetInputPort("generalized_contact_forces").FixValue(context, [0.0, 100.0,
-                                                                         LEFT_FORCE_N])
+                                                                         left_force_n])
     films.GetInputPort("left_pad_frame_acceleration").FixValue(
         context, [0.0, 0.0, LEFT_ACCELERATION])
     films.GetInputPort("right_pad_frame_acceleration").FixValue(
@@ -104,3 +110,78 @@ def test_sample_is_held_over_the_sensor_period_and_carries_std_times_the_noise()
                                rtol=1e-3)
     simulator.AdvanceTo(0.0607)  # one more plant step, at 60.5 ms: no new sample
     np.testing.assert_array_equal(_vibration(films, context), sample)
+
+
+MSP_LSB_V = 20.0 / 4096
+
+
+def _lsb_mps2(films) -> float:
+    return MSP_LSB_V / volts_per_mps2(films._config)
+
+
+def test_through_the_msp_converter_a_held_reading_lies_on_the_code_grid():
+    ideal_films, ideal_context = _films(highpass_hz=0.01)
+    films, context = _films(highpass_hz=0.01, adc_input="msp")
+    for system, system_context in ((ideal_films, ideal_context), (films, context)):
+        Simulator(system, system_context).AdvanceTo(0.0602)
+    ideal = _vibration(ideal_films, ideal_context)[[2, 5]]
+    read = _vibration(films, context)[[2, 5]]
+    codes = read / _lsb_mps2(films)
+    np.testing.assert_allclose(codes, np.round(codes), atol=1e-9)
+    # The nearest code to the ideal reading (83 and 3 m/s^2: 68 and 2 codes of 1.23).
+    np.testing.assert_allclose(read, np.round(ideal / _lsb_mps2(films)) * _lsb_mps2(films),
+                               rtol=1e-12)
+    assert not np.allclose(read, ideal, rtol=1e-4)
+
+
+def test_a_slow_ramp_reads_in_steps_of_one_code():
+    # The left pad's load rises by 2 mN a sample, 0.083 m/s^2 (a code, 1.23 m/s^2, every
+    # 15 samples): once the ring of the held -1.5 m/s^2 base acceleration has died (tau
+    # 8 ms; the first 50 samples are left out), consecutive distinct readings differ by
+    # exactly one code.
+    films, context = _films(highpass_hz=0.01, adc_input="msp", left_force_n=0.0)
+    simulator = Simulator(films, context)
+    lsb = _lsb_mps2(films)
+    readings = []
+    for k in range(1, 400):
+        films.GetInputPort("generalized_contact_forces").FixValue(
+            context, [0.0, 0.0, 0.002 * k])  # +2 mN a sample: 0.083 m/s^2, 1/15 code
+        simulator.AdvanceTo(0.001 * k + 2e-4)
+        readings.append(_vibration(films, context)[2])
+    steps = np.diff(np.asarray(readings[50:]))
+    moves = steps[np.abs(steps) > 1e-12]
+    assert len(moves) >= 15  # 0.7 N of ramp after the first 50 samples: about 23 codes
+    np.testing.assert_allclose(moves, lsb, rtol=1e-9)
+
+
+@pytest.mark.parametrize("adc_input, highest_v", [("msp", 2047 * MSP_LSB_V),
+                                                  ("mxp", 4095 * 5.0 / 4096 - 2.5)])
+def test_a_reading_beyond_the_input_range_reads_its_end_code(adc_input, highest_v):
+    # 200 N on the left pad reads 8,333 m/s^2, 33 V at S: beyond both ranges.
+    films, context = _films(highpass_hz=0.01, adc_input=adc_input, left_force_n=200.0)
+    Simulator(films, context).AdvanceTo(0.0602)
+    left = _vibration(films, context)[2]
+    assert left == pytest.approx(highest_v / volts_per_mps2(films._config), rel=1e-12)
+
+
+def test_the_amplifier_swing_clips_an_ideal_readout():
+    films, context = _films(highpass_hz=0.01, swing_v=0.1, left_force_n=200.0)
+    Simulator(films, context).AdvanceTo(0.0602)
+    reading = _vibration(films, context)[[2, 5]]
+    # The left pad's 8,333 m/s^2 stops at the swing; the right's 3 m/s^2 (12 mV) passes.
+    assert reading[0] == pytest.approx(0.1 / volts_per_mps2(films._config), rel=1e-12)
+    assert reading[1] == pytest.approx(_held_reading(0.01, 0.05905)[1], rel=1e-3)
+
+
+def test_the_converter_noise_is_drawn_with_the_amplifier_noise():
+    # 0.05 m/s^2 at S (0.2 mV) and 0.5 codes (2.44 mV): one Gaussian of their
+    # root-sum-square, 2.45 mV, times the unit noise input, then rounded to a code.
+    films, context = _films(highpass_hz=0.01, noise_std=0.05, adc_input="msp",
+                            adc_noise_lsb=0.5)
+    films.GetInputPort("noise").FixValue(context, [1.0, -2.0])
+    Simulator(films, context).AdvanceTo(0.0602)
+    sensitivity = volts_per_mps2(films._config)
+    std_v = np.hypot(0.05 * sensitivity, 0.5 * MSP_LSB_V)
+    volts = _held_reading(0.01, 0.05905) * sensitivity + std_v * np.array([1.0, -2.0])
+    expected = np.round(volts / MSP_LSB_V) * MSP_LSB_V / sensitivity
+    np.testing.assert_allclose(_vibration(films, context)[[2, 5]], expected, rtol=1e-9)

@@ -30,7 +30,7 @@ EVENTS = pathlib.Path(__file__).parents[1] / "events" / "prismatic" / "correctiv
 WINDOWS = pathlib.Path(__file__).parent / "data" / "corrective_windows.npz"
 CONFIG = GraspControllerConfig()
 MEMORIZED_HIT = dataclasses.replace(CONFIG, memorized_corrective_events=["hold_avoid"])
-HELD_OUT_HIT_S = 7.4  # the held-out run "hit +y 15 N at 7.4 s"
+HELD_OUT_HIT_S = 7.4  # the held-out hit of the recorded windows (tests/data), at 7.4 s
 
 
 def decide(mode, config, **fields):
@@ -121,10 +121,11 @@ def _slow_log(name):
 
 
 def test_slip_onset_is_found_in_a_slip_run_and_not_in_a_normal_lift():
-    scenario = LoadScenario(name="box")
+    # The recorded windows' script had a 1.3 s Load phase: its Lift began at 4.1 s.
+    scenario = LoadScenario(name="box", overrides=["grasp.load_s=1.3"])
     assert slip_onset_time(_slow_log("normal_lift"), scenario) is None
     onset = slip_onset_time(_slow_log("slip"), scenario)
-    lift_start = 4.1  # the script's Lift (scripted_grasp, default timing)
+    lift_start = 4.1
     assert onset is not None and lift_start < onset < lift_start + 0.5
 
 

@@ -58,8 +58,8 @@ def test_an_object_whose_taxels_never_see_the_commanded_grip_records_at_its_plat
         tmp_path, capsys):
     """A 22 mm cylinder of 0.25 kg reads 21.4 N of 22.5 N (90 % of the
     command) on the taxels (the pad does not cover all of its contact) although the grasp
-    lifts it. Its grip-force event is at 90 % of the grip's plateau, between first contact
-    and lift-off, so record-events records it."""
+    lifts it. Its grip is judged against its plateau, so the script's lift starts with the
+    grip settled and record-events records it, Load-Lift at the start of the lift."""
     assert cli.main(["record-events", "--events", str(tmp_path),
                      "--set", "object.name=rod", "--set", "object.shape=cylinder",
                      "--set", "object.size=[0.022,0.12]", "--set", "object.mass=0.25",
@@ -67,5 +67,5 @@ def test_an_object_whose_taxels_never_see_the_commanded_grip_records_at_its_plat
     events = load_memorized_events(tmp_path, "rod")
     assert set(events) == {"reach_load", "load_lift", "place_unload"}
     contact = events["reach_load"].transition_time_s
-    grip = events["load_lift"].transition_time_s
-    assert contact < grip < contact + 1.0  # the squeeze takes a few tenths of a second
+    lift = events["load_lift"].transition_time_s
+    assert contact < lift < contact + 1.0  # the Load phase's dwell after contact

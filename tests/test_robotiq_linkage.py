@@ -9,13 +9,19 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import EventStatus
 
 from tegrasp_drake.control.scripted_grasp import gripper_command
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
+from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.robotiq import linkage
+from tegrasp_drake.robotiq.drive import grip_rise
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_bench import (BenchObstacle, MakeGripperBench,
                                                     loop_closure_error_m)
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 
 FRICTIONLESS = 1e-4  # the rod's friction: the statics of the flip height have none
+# The pad (compliant hydroelastic box, its pressure rising linearly to the modulus at half
+# its thickness) pressed flat on a rigid face: modulus x area / half thickness [N/m].
+RIGID_BOX_PAD_STIFFNESS = PAD_MODULUS * PAD_WIDTH * PAD_LENGTH / (PAD_THICKNESS / 2)
 ROD_DIAMETER = 0.030  # m: the pads stop on it at a 30 mm opening
 
 
@@ -120,7 +126,15 @@ def test_grip_force_at_the_pad_follows_the_force_setting(force_n):
     samples = _run(gripper_command(0.0, 0.05, force_n),
                    obstacle=BenchObstacle("box", (0.04, 0.045, 0.06), z))
     force_setting = float(ru.force_from_byte(ru.force_byte_from_force(force_n)))
-    np.testing.assert_allclose(samples[-1][3], force_setting, rtol=0.10)
+    # The screw holds at least what the capped motor pushed (less the spring's 0.7 N
+    # share), at most that plus all of the rotor's kinetic energy at 25 mm/s a finger
+    # pressed into the pad against the rigid box (the drive's lumped model with no
+    # dissipation: friction and damping only take energy away).
+    lossless = grip_rise(stiffness_n_per_m=RIGID_BOX_PAD_STIFFNESS, force_n=force_setting,
+                         finger_speed_mps=0.025,
+                         lever_m=-linkage.half_opening_rate(linkage.driver_angle(0.0225)))
+    assert min(samples[-1][3]) > 0.97 * force_setting
+    assert max(samples[-1][3]) < lossless.held_n
 
 
 def test_fifty_newtons_pushing_a_finger_open_moves_it_less_than_half_a_millimetre():

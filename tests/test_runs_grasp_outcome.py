@@ -1,4 +1,5 @@
-"""The judge's lifted test and the grip-force event at a plateau."""
+"""The judge's lifted test, the grip-force event at a plateau, the grip fraction and the
+scripted lift start."""
 
 import math
 import types
@@ -6,7 +7,8 @@ import types
 import numpy as np
 import pytest
 
-from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, grip_force_time, lifted_mask)
+from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, grip_force_time, grip_fraction_at,
+                                              lifted_mask, scripted_lift_start)
 from tegrasp_drake.rig.objects import ObjectConfig
 
 BOX = ObjectConfig(name="box", shape="box", size=[0.045, 0.045, 0.11], mass=0.15,
@@ -48,3 +50,19 @@ def test_the_grip_force_is_reached_at_the_command_or_at_the_plateau_below_it():
     assert grip_force_time(squeeze_log(24.0), 25.0) == pytest.approx(
         GRIP_FRACTION * 25.0 / 24.0, abs=0.011)
     assert grip_force_time(squeeze_log(0.1), 25.0) is None  # never squeezed
+
+
+def test_the_grip_fraction_is_the_weaker_pads_force_over_the_settled_grip():
+    log = squeeze_log(30.0)  # settles at the 25 N command: the command is the grip
+    assert grip_fraction_at(log, 0.5, 25.0) == pytest.approx(15.0 / 25.0, abs=0.01)
+    assert grip_fraction_at(log, -0.1, 25.0) is None  # before the first frame
+    # Taxels that never see 90 % of the command: the plateau is the grip.
+    assert grip_fraction_at(squeeze_log(21.4), 0.5, 25.0) == pytest.approx(0.5, abs=0.01)
+    assert grip_fraction_at(squeeze_log(0.1), 1.5, 25.0) is None  # never squeezed
+
+
+def test_the_lift_start_is_the_scripts_and_a_closed_loop_log_has_none():
+    scripted = types.SimpleNamespace(meta={"phase_starts": {"load": 2.8, "lift": 4.6}})
+    closed_loop = types.SimpleNamespace(meta={"phase_starts": {"Load": 3.8, "Lift": 4.2}})
+    assert scripted_lift_start(scripted) == 4.6
+    assert scripted_lift_start(closed_loop) is None

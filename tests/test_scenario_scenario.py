@@ -44,6 +44,20 @@ def test_override_changes_a_nested_field():
      "field 'tactile.capacitive.minimum_gap_fraction' must lie in"),
     (["tactile.capacitive.output=volts"], "field 'tactile.capacitive.output' must be one of "
      "calibrated, counts"),
+    (["tactile.capacitive.decimation=100"], "field 'tactile.capacitive.decimation' must be "
+     "one of 64, 128, 256"),
+    (["tactile.transducer=capacitive", "tactile.capacitive.decimation=128"],
+     "field 'tactile.sample_rate_hz' must be the AD7147's frame rate at "
+     "tactile.capacitive.decimation 128, 54.3 Hz"),
+    (["vibration.adc_input=usb"], "field 'vibration.adc_input' must be one of msp, mxp, "
+     "ideal"),
+    (["vibration.adc_noise_lsb=-1"], "field 'vibration.adc_noise_lsb' must be zero"),
+    (["vibration.amplifier_swing_v=0"], "field 'vibration.amplifier_swing_v' must be "
+     "positive"),
+    (["vibration.gripper_drive.orders=[1]"], "field 'vibration.gripper_drive.orders' must "
+     "give one order per amplitude"),
+    (["controller.slip_vibration_sigmas=-2"], "field 'controller.slip_vibration_sigmas' must "
+     "be zero"),
 ])
 def test_bad_input_names_the_field(overrides, message):
     with pytest.raises(ConfigError, match=message.replace("[", r"\[").replace("(", r"\(")):
@@ -61,3 +75,11 @@ def test_missing_file_and_scenario_are_named(tmp_path):
     (tmp_path / "s.yaml").write_text("mine: {}\n")
     with pytest.raises(ConfigError, match="no scenario named 'default'.*mine"):
         LoadScenario(tmp_path / "s.yaml")
+
+
+@pytest.mark.parametrize("decimation, rate_hz", [(64, 108.0), (128, 54.0), (256, 27.0)])
+def test_capacitive_taxels_at_each_decimation_load_at_its_frame_rate(decimation, rate_hz):
+    scenario = LoadScenario(overrides=[
+        "tactile.transducer=capacitive", f"tactile.capacitive.decimation={decimation}",
+        f"tactile.sample_rate_hz={rate_hz}"])
+    assert scenario.tactile.capacitive.decimation == decimation

@@ -6,7 +6,9 @@ import pytest
 
 from tegrasp_drake.simulation.capacitive_taxels import (CapacitiveTaxelConfig,
                                                         CapacitiveTaxels,
-                                                        calibration_gain_n_per_count)
+                                                        ad7147_frame_rate_hz, ad7147_stage_s,
+                                                        calibration_gain_n_per_count,
+                                                        frame_rate_matches)
 
 # The pad and electrode as docs/model.md gives them, written out here so that the test
 # checks the module's formula against its own numbers.
@@ -75,3 +77,24 @@ def test_the_gap_never_closes():
     limit = config.relative_permittivity * EPSILON_0 * ELECTRODE_AREA_M2 * (
         1 / (config.minimum_gap_fraction * GAP_M) - 1 / GAP_M)
     np.testing.assert_array_equal(counts, np.rint(limit * COUNTS_PER_F))
+
+
+@pytest.mark.parametrize("decimation, frame_s, rate_hz", [(64, 9.216e-3, 108.0),
+                                                          (128, 18.432e-3, 54.0),
+                                                          (256, 36.864e-3, 27.0)])
+def test_decimation_sets_the_stage_time_and_the_frame_rate(decimation, frame_s, rate_hz):
+    # The data sheet's 12 stages of 0.768 ms at decimation 64, twice and four times that.
+    assert 12 * ad7147_stage_s(decimation) == pytest.approx(frame_s)
+    assert ad7147_frame_rate_hz(decimation) == pytest.approx(1.0 / frame_s)
+    assert frame_rate_matches(rate_hz, decimation)
+    assert not frame_rate_matches(rate_hz * 2, decimation)
+    assert not frame_rate_matches(rate_hz / 2, decimation)
+
+
+@pytest.mark.parametrize("decimation, noise_counts", [(64, 4.0), (128, 4.0 / 2 ** 0.5),
+                                                      (256, 2.0)])
+def test_a_larger_decimation_averages_the_noise_down(decimation, noise_counts):
+    # A unit noise sample on every taxel reads noise_counts counts (rounded) above zero.
+    config = CapacitiveTaxelConfig(output="counts", decimation=decimation)
+    read = readings(config, np.zeros(24), noise=np.full(24, 10.0))
+    np.testing.assert_array_equal(read, np.full(24, np.rint(10.0 * noise_counts)))

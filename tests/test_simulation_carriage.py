@@ -5,7 +5,7 @@ torque port maps back to that wrench, and a closed-loop trial on it grasps and l
 
 import numpy as np
 import pytest
-from pydrake.math import RigidTransform
+from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.multibody.tree import SpatialInertia, UnitInertia
 from pydrake.systems.analysis import Simulator
@@ -21,7 +21,7 @@ from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinematics,
                                                carriage_positions, carriage_state)
-from tegrasp_drake.simulation.carriage_systems import CarriageWristWrench
+from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.scenario import MakeSimulatedStation
 from tegrasp_drake.scenario.grasp_diagram import station_carriage
@@ -69,6 +69,41 @@ def test_the_carriage_starts_where_the_arm_puts_the_grasp_frame(scenario):
     np.testing.assert_allclose(set_point[:6], default, atol=1e-9)
     np.testing.assert_allclose(set_point[6:], 0.0, atol=1e-12)
     np.testing.assert_allclose(X_WG.translation(), scenario.arm.initial_gripper_xyz, atol=1e-6)
+
+
+def _reported_pose_error(parts, q0, deflection):
+    """(position error [m], rotation error [rad], joint move [rad]) between G at the joints
+    CarriageCommand reports and G where the carriage has it, deflected by `deflection`
+    (actuator order) from its set-point at the joints q0."""
+    command = CarriageCommand(parts.carriage, initial_positions=q0, period_s=0.001)
+    context = command.CreateDefaultContext()
+    command.GetInputPort("joint_set_point").FixValue(context, np.concatenate([q0, np.zeros(6)]))
+    moved = command.GetOutputPort("carriage_desired_state").Eval(context)[:6] + deflection
+    command.GetInputPort("carriage_state").FixValue(context,
+                                                    np.concatenate([moved, np.zeros(6)]))
+    q = command.GetOutputPort("arm.position_measured").Eval(context)
+    X_WG_reported, _ = ArmGraspFrameKinematics().pose_and_jacobian(q)
+    R_WG = RollPitchYaw(moved[5], moved[4], moved[3]).ToRotationMatrix() @ R_WG_SIDE_GRASP
+    position_error = np.linalg.norm(X_WG_reported.translation()
+                                    - parts.carriage.translation_axes @ moved[:3])
+    rotation_error = abs((X_WG_reported.rotation().inverse() @ R_WG).ToAngleAxis().angle())
+    return position_error, rotation_error, np.linalg.norm(q - q0)
+
+
+def test_the_reported_joints_put_the_grasp_frame_where_the_carriage_has_it(scenario):
+    """Deflected 1 mm along each axis and 0.2 deg about each, the carriage reports joints
+    whose kinematics put G there to second order (the error falls four-fold with half the
+    deflection), so the velocity tracker sees the sag it must remove."""
+    parts = station_plant(DiagramBuilder(), scenario)
+    q0 = initial_arm_positions(scenario.arm)
+    deflection = np.array([1e-3, 1e-3, 1e-3] + [np.radians(0.2)] * 3)
+    full = _reported_pose_error(parts, q0, deflection)
+    half = _reported_pose_error(parts, q0, deflection / 2)
+    assert full[2] > 1e-3  # the joints did move
+    assert full[0] < 0.05 * np.linalg.norm(deflection[:3])  # 1.7 mm moved
+    assert full[1] < 0.05 * np.linalg.norm(deflection[3:])  # 6 mrad turned
+    for full_error, half_error in zip(full[:2], half[:2]):
+        assert 0.2 < half_error / full_error < 0.3
 
 
 def _simulate_tracking(scenario, set_point_of_t, duration_s):

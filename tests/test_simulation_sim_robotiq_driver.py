@@ -2,11 +2,37 @@ import numpy as np
 
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.robotiq import linkage
-from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig, SimRobotiqDriver,
-                                                         has_arrived, nut_set_point,
+from pydrake.systems.analysis import Simulator
+
+from tegrasp_drake.robotiq import drive
+from tegrasp_drake.simulation.sim_robotiq_driver import (HELD, MOVING, STUCK,
+                                                         GripperDriverConfig, SimRobotiqDriver,
+                                                         drive_set_point, has_arrived,
                                                          object_status, reference_step)
 
 PRISMATIC = GripperDriverConfig(model="prismatic")
+TIME_STEP = 1e-3
+# The linkage's drive at the defaults, and a driver blocked on a 45 mm object.
+INERTIA = drive.drive_inertia()
+GAIN, DAMPING = drive.loop_gains(drive.POSITION_LOOP_HZ, INERTIA)
+THETA = linkage.driver_angle(0.0225)
+LIMIT = 2 * ru.FORCE_MIN_N * -linkage.half_opening_rate(THETA)  # the cap at 20 N [N m]
+
+
+def _drive(**overrides):
+    """drive_set_point of the blocked driver closing (+1) at rest, the loop far behind its
+    reference, with `overrides`."""
+    arguments = dict(a=THETA, v=0.0, v_prev=0.0, set_point=(THETA, 0.0), phase=MOVING,
+                     anchor=THETA, reference=(THETA + 0.5, 0.0), limit=LIMIT, direction=1.0,
+                     gain=GAIN, damping=DAMPING, inertia=INERTIA, time_step=TIME_STEP)
+    return drive_set_point(**{**arguments, **overrides})
+
+
+def _after_one_drive_step(driver, context):
+    """Advances the driver alone past its first drive step (half a plant step in)."""
+    simulator = Simulator(driver, context)
+    simulator.AdvanceTo(0.75 * TIME_STEP)
+    return simulator.get_context()
 
 
 def test_reference_accelerates_toward_the_goal_then_cruises():
@@ -39,19 +65,20 @@ def test_object_status_reports_a_stall_before_the_goal_while_closing():
 
 def test_force_limit_bounds_the_setpoint_offset():
     config = PRISMATIC
-    driver = SimRobotiqDriver(config=config)
+    driver = SimRobotiqDriver(config=config, time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, 0])  # close at 20 N
     driver.GetInputPort("finger_state").FixValue(context, [0.02, 0.0])
     # Put the reference far inside the object: the set-point stays within 2 F / kp.
     state = context.get_mutable_discrete_state(0).get_mutable_value()
     state[0] = 0.0
+    context = _after_one_drive_step(driver, context)
     desired = driver.GetOutputPort("desired_state").Eval(context)
     assert np.isclose(0.02 - desired[0], 2 * ru.FORCE_MIN_N / config.position_gain)
 
 
 def test_status_reports_activation_and_position_bytes():
-    driver = SimRobotiqDriver(config=PRISMATIC)
+    driver = SimRobotiqDriver(config=PRISMATIC, time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [0, 0, 0])
     driver.GetInputPort("finger_state").FixValue(context, [0.0425, 0.0])
@@ -61,7 +88,7 @@ def test_status_reports_activation_and_position_bytes():
 
 
 def test_linkage_status_position_comes_from_the_driver_angle_through_the_linkage():
-    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"))
+    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [0, 0, 0])
     for opening in (0.085, 0.045, 0.010):
@@ -72,34 +99,49 @@ def test_linkage_status_position_comes_from_the_driver_angle_through_the_linkage
 
 
 def test_linkage_force_limit_is_the_pad_force_through_the_lever():
-    config = GripperDriverConfig(model="linkage")
-    driver = SimRobotiqDriver(config=config)
-    context = driver.CreateDefaultContext()
-    driver.GetInputPort("command").FixValue(context, [255, 255, 0])  # close at 20 N
-    theta = linkage.driver_angle(0.0225)  # blocked on a 45 mm object
-    driver.GetInputPort("finger_state").FixValue(context, [theta, 0.0])
-    state = context.get_mutable_discrete_state(0).get_mutable_value()
-    state[0] = 0.0  # the reference far inside the object
-    state[10] = 1.0  # closing
-    desired = driver.GetOutputPort("desired_state").Eval(context)
-    lever = -linkage.half_opening_rate(theta)
-    # One actuator drives both fingers: 2 F lever of torque, and no more.
-    assert np.isclose(config.driver_position_gain * (desired[0] - theta),
-                      2 * ru.FORCE_MIN_N * lever)
-    assert desired[1] == 0.0  # the nut stands
+    set_a, set_v, phase, motor, _ = _drive()
+    # One motor drives both fingers: 2 F lever of torque from the PD, and no more.
+    assert motor == LIMIT and phase == MOVING
+    assert np.isclose(GAIN * (set_a - THETA - TIME_STEP * set_v), LIMIT)
 
 
-def test_the_nut_moves_only_in_the_commanded_direction():
-    # Closing (+1): a load pushing the finger open leaves the nut where it is...
-    assert nut_set_point(0.30, limited=0.28, reference=0.50, direction=1.0) == 0.30
-    # ...and so does one pushing it further closed than the reference.
-    assert nut_set_point(0.30, limited=0.45, reference=0.30, direction=1.0) == 0.30
-    # It advances up to the force limit, never past the reference.
-    assert nut_set_point(0.30, limited=0.32, reference=0.50, direction=1.0) == 0.32
-    assert nut_set_point(0.30, limited=0.60, reference=0.50, direction=1.0) == 0.50
-    # Opening (-1) mirrors it.
-    assert nut_set_point(0.30, limited=0.33, reference=0.10, direction=-1.0) == 0.30
-    assert nut_set_point(0.30, limited=0.20, reference=0.10, direction=-1.0) == 0.20
+def test_within_the_limit_the_plants_pd_is_the_position_loop_on_its_reference():
+    reference = (THETA + 1e-3, 0.1)
+    set_a, set_v, phase, motor, _ = _drive(reference=reference)
+    assert (set_a, set_v, phase) == (*reference, MOVING)
+    assert np.isclose(motor, GAIN * 1e-3 + DAMPING * 0.1)
+
+
+def test_a_load_that_would_drive_the_rotor_back_stops_it_where_it_stands():
+    # The rotor has just turned back (v < 0) under a load above the capped motor torque:
+    # the PD's torque over the last step was 1.3 times the cap at no acceleration.
+    held_set_point = THETA + 1.3 * LIMIT / GAIN
+    set_a, set_v, phase, motor, anchor = _drive(v=-1e-4, v_prev=-1e-4,
+                                                set_point=(held_set_point, -1e-4))
+    load = 1.3 * LIMIT
+    assert phase == HELD and anchor == THETA and set_v == 0.0
+    assert np.isclose(GAIN * (set_a - THETA), load)  # the screw carries all of it
+
+
+def test_stuck_below_the_limit_the_screw_holds_until_the_motor_outpushes_the_load():
+    held_set_point = THETA + 0.5 * LIMIT / GAIN  # a load of half the cap, standing
+    weak = (THETA + 0.2 * LIMIT / GAIN, 0.0)  # the loop asks for a fifth of the cap
+    assert _drive(set_point=(held_set_point, 0.0), phase=STUCK, reference=weak)[:3] == (
+        held_set_point, 0.0, STUCK)
+    strong = (THETA + 0.8 * LIMIT / GAIN, 0.0)
+    set_a, _, phase, motor, _ = _drive(set_point=(held_set_point, 0.0), phase=STUCK,
+                                       reference=strong)
+    assert phase == MOVING and set_a == strong[0] and np.isclose(motor, 0.8 * LIMIT)
+
+
+def test_held_the_motor_draws_nothing_and_the_set_point_stays_until_the_object_is_lost():
+    held_set_point = THETA + 1.2 * LIMIT / GAIN
+    assert _drive(set_point=(held_set_point, 0.0), phase=HELD) == (
+        held_set_point, 0.0, HELD, 0.0, THETA)
+    # The object slips out: the finger closes on by more than half the held squeeze.
+    lost = THETA + 0.6 * (held_set_point - THETA)
+    set_a, _, phase, motor, _ = _drive(a=lost, set_point=(held_set_point, 0.0), phase=HELD)
+    assert phase == MOVING and motor == LIMIT
 
 
 def test_float_helpers_equal_the_numpy_forms_bit_for_bit():
@@ -142,20 +184,56 @@ def test_cached_gripper_command_equals_the_computed_one():
         assert gripper_command(*request) == gripper_command(*request)
 
 
-def test_simulated_and_emulated_grippers_report_the_same_current_when_gripping():
+def test_simulated_and_emulated_grippers_read_no_current_once_stopped_on_an_object():
+    # The manual's Modbus example of a finished grasp reads gCU = 0x00: the screw holds.
     from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulatorConfig, RobotiqGripperModel
+    from tegrasp_drake.simulation import sim_robotiq_driver as sim
     force_byte = 128
-    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"))
+    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, force_byte])
-    theta = linkage.driver_angle(0.0225)  # stopped on a 45 mm object
-    driver.GetInputPort("finger_state").FixValue(context, [theta, 0.0])
+    driver.GetInputPort("finger_state").FixValue(context, [THETA, 0.0])  # on a 45 mm object
     state = context.get_mutable_discrete_state(0).get_mutable_value()
-    state[0], state[5], state[7] = 0.0, ru.force_from_byte(force_byte), 2  # ref closed; gOBJ 2
+    state[sim._PHASE], state[sim._OBJECT] = HELD, ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
+    state[sim._MOTOR] = LIMIT
     simulated = driver.GetOutputPort("status").Eval(context)[ru.STATUS_CU]
     model = RobotiqGripperModel(RobotiqEmulatorConfig(activation_duration=0.0,
                                                       object_opening=0.045), now=0.0)
     model.write(1000, [0x0900, 255, (255 << 8) | force_byte], now=0.0)
+    moving = model.status(now=0.01)
     emulated = model.status(now=5.0)
     assert emulated[ru.STATUS_OBJ] == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
-    assert simulated == emulated[ru.STATUS_CU] > 0
+    assert simulated == emulated[ru.STATUS_CU] == 0
+    assert moving[ru.STATUS_CU] == ru.MOVING_CURRENT
+
+
+def test_the_simulated_current_follows_the_motors_torque_while_the_fingers_move():
+    from tegrasp_drake.simulation import sim_robotiq_driver as sim
+    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
+    context = driver.CreateDefaultContext()
+    driver.GetInputPort("command").FixValue(context, [255, 255, 255])
+    driver.GetInputPort("finger_state").FixValue(context, [THETA, 0.0])
+    context.get_mutable_discrete_state(0).SetAtIndex(sim._OBJECT, ru.ObjectStatus.MOVING)
+    for force, current in ((0.0, ru.MOVING_CURRENT), (ru.FORCE_MAX_N, ru.MAX_GRIPPING_CURRENT)):
+        context.get_mutable_discrete_state(0).SetAtIndex(
+            sim._MOTOR, 2 * force * -linkage.half_opening_rate(THETA))
+        assert driver.GetOutputPort("status").Eval(context)[ru.STATUS_CU] == current
+
+
+def test_held_fingers_stay_held_when_the_reference_passes_its_goal_by_a_hair():
+    from tegrasp_drake.simulation import sim_robotiq_driver as sim
+    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
+    context = driver.CreateDefaultContext()
+    command = [255, 255, 0]  # close at 20 N: the goal is q = 0
+    driver.GetInputPort("command").FixValue(context, command)
+    driver.GetInputPort("finger_state").FixValue(context, [THETA, 0.0])
+    state = context.get_mutable_discrete_state(0)
+    _, goal, half_speed, force = sim.command_targets(*command)
+    for index, value in ((sim._GOAL, goal), (sim._FORCE, force), (sim._HALF_SPEED, half_speed),
+                         (sim._REF_Q, goal - 5e-5), (sim._DIRECTION, 1.0),
+                         (sim._PHASE, HELD), (sim._ANCHOR, THETA)):
+        state.SetAtIndex(index, value)
+    context.get_mutable_discrete_state(1).SetFromVector([THETA + 1.2 * LIMIT / GAIN, 0.0])
+    context = _after_one_drive_step(driver, context)
+    s = context.get_discrete_state(0).value()
+    assert s[sim._PHASE] == HELD and s[sim._DIRECTION] == 1.0

@@ -15,6 +15,19 @@ from tegrasp_drake.rig.taxel_layout import taxel_centers
 GRIP_FORCE = 30.0
 
 
+def _open_station_at_rest(scenario):
+    """(station, context, gripper command port) of the scenario's simulated station, the arm
+    held at its start pose and the gripper told to open at 50 mm/s."""
+    station = MakeSimulatedStation(scenario)
+    context = station.CreateDefaultContext()
+    q0 = initial_arm_positions(scenario.arm)
+    station.GetInputPort(ports.ARM_DESIRED_STATE).FixValue(context,
+                                                            np.concatenate([q0, np.zeros(6)]))
+    command = station.GetInputPort(ports.GRIPPER_COMMAND)
+    command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))
+    return station, context, command
+
+
 def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
     """Starts with the open pads around the object, closes at GRIP_FORCE; returns samples.
     On the prismatic hand: these check the taxels' integration of the pressure field, which
@@ -23,13 +36,7 @@ def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
     scenario = LoadScenario(overrides=["gripper.model=prismatic",
         "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]",
         f"object.name={object_name}"])
-    station = MakeSimulatedStation(scenario)
-    context = station.CreateDefaultContext()
-    q0 = initial_arm_positions(scenario.arm)
-    station.GetInputPort(ports.ARM_DESIRED_STATE).FixValue(context,
-                                                            np.concatenate([q0, np.zeros(6)]))
-    command = station.GetInputPort(ports.GRIPPER_COMMAND)
-    command.FixValue(context, gripper_command(ru.STROKE_M, 0.05, GRIP_FORCE))
+    station, context, command = _open_station_at_rest(scenario)
     simulator = Simulator(station, context)
     simulator.AdvanceTo(close_at)
     before = {name: station.GetOutputPort(ports.taxel_forces(name)).Eval(context).copy()
@@ -128,3 +135,34 @@ def test_an_object_toward_the_fingertip_loads_the_same_row_on_both_pads(fingerti
     for finger, forces in after.items():
         rows = forces.reshape(4, 3).sum(axis=1)  # row 0 nearest the palm
         assert rows[3] > 0.5 * rows.sum(), finger  # the fingertip row carries most
+
+
+def _drive_vibration_peaks(close: bool) -> tuple[float, float]:
+    """(largest |drive vibration| [m/s^2] over 0.1-0.2 s, over 0.2-0.4 s) of the default
+    station (linkage hand, JACO2) with the arm held at its start; the gripper told to stay
+    open, or (close) to close at 50 mm/s from 0.2 s."""
+    scenario = LoadScenario()
+    station, context, command = _open_station_at_rest(scenario)
+    drive = station.GetSubsystemByName("pad_films_drive_vibration")
+    drive_context = drive.GetMyContextFromRoot(context)
+    simulator = Simulator(station, context)
+    peaks = []
+    for start, end in ((0.1, 0.2), (0.2, 0.4)):
+        if close and start == 0.2:
+            command.FixValue(context, gripper_command(0.0, 0.05, GRIP_FORCE))
+        values = []
+        for t in np.arange(start, end, 0.001):
+            simulator.AdvanceTo(t)
+            values.append(np.abs(drive.get_output_port().Eval(drive_context)).max())
+        peaks.append(max(values))
+    return peaks[0], peaks[1]
+
+
+def test_drive_vibration_is_off_while_the_joints_stand_still_and_on_while_they_move():
+    still, still_later = _drive_vibration_peaks(close=False)
+    assert still < 1e-3 and still_later < 1e-3
+    _, closing = _drive_vibration_peaks(close=True)
+    # The fingers at 25 mm/s of half opening, a third of full speed: the pinion's mesh at
+    # 400 Hz, on the fingertip's mode (gain 10), reads up to 0.3 / 3 x 10 = 1 m/s^2 once
+    # the fingers are at speed (0.05 s of ramp at 0.5 m/s^2).
+    assert closing > 0.1

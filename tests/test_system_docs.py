@@ -46,7 +46,7 @@ from tegrasp_drake.hardware.device_log_messages import GripperStatusSender, Tact
 from tegrasp_drake.hardware.fault_latch import FaultLatch
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JacoCommandReceiver, JacoCommandSender, JacoStatusReceiver, JacoStatusSender)
-from tegrasp_drake.hardware.jaco.velocity_tracker import JacoVelocityTracker
+from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTracker
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusClient
@@ -105,7 +105,8 @@ def pad_films() -> PadFilms:
     plant.Finalize()
     return PadFilms(plant=plant, pads=pad_geometries(plant, scene_graph, gripper),
                     force_indices=(0, 1), config=VibrationSensorConfig(noise_std_mps2=0.05),
-                    with_texture=True, pad_statics=LinkagePadStatics(plant, gripper))
+                    with_texture=True, pad_statics=LinkagePadStatics(plant, gripper),
+                    with_drive_vibration=True)
 
 
 @contextlib.contextmanager
@@ -173,7 +174,7 @@ CONSTRUCTORS = {
     PadAccelerometers: lambda: PadAccelerometers(sample_rate_hz=1000.0, highpass_cutoff_hz=2.0,
                                                  noise_std_mps2=0.05),
     PadNormalForces: lambda: PadNormalForces(plant=gripper_plant()[0], pads=gripper_plant()[1]),
-    SimRobotiqDriver: lambda: SimRobotiqDriver(config=GripperDriverConfig()),
+    SimRobotiqDriver: lambda: SimRobotiqDriver(config=GripperDriverConfig(), time_step=1e-3),
     BodyForcePulse: lambda: BodyForcePulse(body_index=BodyIndex(1), p_BQ=[0.0, 0.0, 0.0],
                                            f_W=[0.0, 50.0, 0.0], start_s=1.0),
     PadSlipVibration: lambda: PadSlipVibration(pads=gripper_plant()[1], object_body_index=0,

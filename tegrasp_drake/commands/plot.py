@@ -100,9 +100,11 @@ def _plot_trial(args, out) -> str:
         return plot_trial_states(log, out)
     from tegrasp_drake.figures.avoid import NoAvoidError, plot_avoid_reaction
     from tegrasp_drake.figures.trial_annotations import logged_scenario
+    from tegrasp_drake.scenario.scenario import controller_in_force
     try:
         return plot_avoid_reaction(log, out,
-                                   hit_threshold=logged_scenario(log).controller.hit_ra_mps2)
+                                   hit_threshold=controller_in_force(
+                                       logged_scenario(log)).hit_ra_mps2)
     except NoAvoidError as e:
         raise SystemExit(f"tegrasp: error: {args.source}: {e}") from None
 

@@ -24,6 +24,7 @@ from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.control.cartesian_arm_controller import AddCartesianArmController
 from tegrasp_drake.control.controller_config import (EventTriggeredConfig, OpenLoopControllerConfig,
                                                      TaxelAwareControllerConfig)
+from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
@@ -108,7 +109,8 @@ def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
         sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s,
         ra_envelope_hz=config.ra_envelope_hz,
         ra_noise_floor_sigmas=config.ra_noise_floor_sigmas,
-        ra_noise_quiet_s=config.ra_noise_quiet_s)
+        ra_noise_quiet_s=config.ra_noise_quiet_s,
+        flat_template_needs_flat_window=config.flat_template_needs_flat_window)
 
 
 def _add_detector(builder, config, plan, rates_hz, events, channels):
@@ -152,7 +154,8 @@ def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channe
 def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
                        plan: GraspPlan, station: System, arm: ArmDriverConfig,
                        sample_rates_hz: tuple[float, float], events: dict | None = None,
-                       corrective_events: dict | None = None) -> GraspController:
+                       corrective_events: dict | None = None,
+                       ra_noise_std_mps2: float = 0.0) -> GraspController:
     """Adds the controller configured by `controller` (a ControllerConfig) and connects it
     to `station`'s ports; returns its GraspController.
 
@@ -162,9 +165,14 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     MemorizedEvent}, needed by the event-triggered controllers (load_controller_events).
     corrective_events: the memorized corrective events {lift_load, hold_avoid}, needed when
     controller.memorized_corrective_events names some (load_corrective_events).
+    ra_noise_std_mps2: the RA channel's noise [m/s^2 rms], which raises the RA thresholds
+    to their sigmas (control/noise_thresholds.py); 0: the numbers alone.
     """
     from tegrasp_drake.simulation.station import initial_arm_positions
     config = controller
+    if not isinstance(config, OpenLoopControllerConfig):
+        config = resolve_noise_thresholds(config, ra_noise_std_mps2=ra_noise_std_mps2,
+                                          ra_rate_hz=sample_rates_hz[1])
     name = config.name
     channels = AddMechanoreceptorChannels(builder, station)
     X_WG_desired, arm_desired_state = AddCartesianArmController(

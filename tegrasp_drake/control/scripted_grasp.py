@@ -36,8 +36,15 @@ class GraspScriptConfig:
     grip_force: float = bounded(25.0, low=0.0, low_open=True, high=235.0, unit="N",
                                 why="the 2F-85 grips with at most 235 N, Robotiq 2F-85 manual",
                                 below="must be positive [N]")
-    # from the close command to the start of the lift
-    load_s: float = bounded(1.3, low=0.0, low_open=True, high=30.0, unit="s")
+    # [s] from the close command to the start of the lift. It holds the close (about
+    # (85 mm - width) / close_speed: 1.24 s for the narrowest built-in object, the 25 mm
+    # cylinder) and the dwell on the object after first contact, which must outlast the
+    # drive's settling of the grip plus the half memorized window (0.25 s) that the
+    # Load-Lift event holds before the lift starts, so that window is the settled grip.
+    # 1.8 s leaves the 25 mm cylinder 0.56 s after contact (the 45 mm box 0.96 s, the
+    # 50 mm cylinder 1.06 s): 0.31 s for the grip to settle, several times a position
+    # loop's settling (tens of ms). Recording checks it (recording/paper_events.py).
+    load_s: float = bounded(1.8, low=0.0, low_open=True, high=30.0, unit="s")
     lift_height: float = bounded(0.06, low=0.0, high=0.3, unit="m")  # m
     lift_s: float = bounded(1.5, low=0.0, low_open=True, high=30.0, unit="s")
     hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s",

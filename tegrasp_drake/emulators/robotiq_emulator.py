@@ -17,8 +17,9 @@ The model (times from `time.monotonic()`, advanced on every access):
   stroke (gPO POSITION_OPEN_BYTE .. POSITION_CLOSED_BYTE: rPR 0 stops fully open, 255
   fully closed, both gOBJ = 3), and stop on an emulated object at `object_opening` [m]
   while closing (gOBJ = 2) or at the request (gOBJ = 3); gPR echoes the rPR of the last
-  go-to; gPO is the rounded position, gCU a current [x 10 mA] that grows with rFR while
-  gripping;
+  go-to; gPO is the rounded position, gCU the free-motion current [x 10 mA] while the
+  fingers move and 0 once they stop (the screw holds: the manual's finished grasp reads
+  0x00);
 - rGTO = 1 without rACT gives gFLT 0x07; an injected fault code >= 0x0A (major) stops the
   fingers until the next activation.
 
@@ -64,7 +65,6 @@ class RobotiqGripperModel:
         self._position = units.POSITION_OPEN_BYTE
         self._target = self._position
         self._speed = 0.0
-        self._force = 0
         self._activation_start = None
         self._object = (None if config.object_opening is None
                         else units.position_from_opening(config.object_opening))
@@ -104,10 +104,8 @@ class RobotiqGripperModel:
             self._advance(now)
             s = self._status
             moving = s["gOBJ"] == ObjectStatus.MOVING and s["gGTO"] and self._can_move()
-            gripping = s["gOBJ"] == ObjectStatus.STOPPED_ON_CONTACT_CLOSING
-            current = (units.current_byte(0.0, moving=True) if moving else
-                       units.current_byte(float(units.force_from_byte(self._force)),
-                                          moving=False) if gripping else 0.0)
+            # Stopped, on an object or at the request, the screw holds: no current.
+            current = units.current_byte(0.0, moving=moving)
             vector = [0.0] * units.STATUS_SIZE
             vector[units.STATUS_ACT] = s["gACT"]
             vector[units.STATUS_GTO] = s["gGTO"]
@@ -151,7 +149,6 @@ class RobotiqGripperModel:
         self._target = min(max(float(command["rPR"]), units.POSITION_OPEN_BYTE),
                            units.POSITION_CLOSED_BYTE)
         self._speed = units.position_bytes_per_second(command["rSP"])
-        self._force = command["rFR"]
 
     def _advance(self, now: float):
         """Integrates the finger motion from the last access to `now`."""

@@ -19,6 +19,14 @@ for it the live contrast is not required. A constant window has contrast 0, so i
 only the channels whose template is flat; the matcher refuses events whose four channels
 are all flat, so a constant window never matches.
 
+The converse, beyond the paper (opt-in, `flat_needs_flat`): a flat template channel, such
+as Load-Lift's SA, the settled grip, scores 0 against a live window that is not flat
+itself. Without it, a window whose grip still rises scores sqrt(f) against the plateau,
+f the fraction of the window on the plateau, and passes 0.9 once f > 0.81: 0.41 to 0.55 s
+after first contact whatever the grip does, with 68 % of a grip that rises over 0.8 s.
+With it, the whole window must lie within min_contrast of its maximum: the grip has held
+for a window.
+
 The straightforward reference here uses numpy.correlate over the full lag range;
 streaming_correlation.py holds the exact per-sample update used in the control loop. Both
 go through `channel_score`.
@@ -52,16 +60,20 @@ def template_is_flat(templates: np.ndarray, min_contrast: float) -> np.ndarray:
 
 def channel_score(peak_correlation: float, live_energy: float, template_norm: float,
                   live_high: float, live_low: float, template_flat: bool,
-                  min_contrast: float) -> float:
+                  min_contrast: float, flat_needs_flat: bool = False) -> float:
     """A channel's gated score from its window statistics.
 
     peak_correlation: max over lags of R_XY(n); live_energy: R_XX(0);
-    template_norm: sqrt(R_YY(0)); live_high, live_low: the live window's extremes.
+    template_norm: sqrt(R_YY(0)); live_high, live_low: the live window's extremes;
+    flat_needs_flat: a flat template needs a flat live window (module doc).
     """
     denominator = math.sqrt(live_energy) * template_norm
     if not denominator > 0.0:
         return 0.0
-    if not template_flat and contrast(live_high, live_low) < min_contrast:
+    live_flat = contrast(live_high, live_low) < min_contrast
+    if not template_flat and live_flat:
+        return 0.0
+    if template_flat and flat_needs_flat and not live_flat:
         return 0.0
     return peak_correlation / denominator
 
@@ -79,7 +91,8 @@ def max_normalized_xcorr_reference(live: np.ndarray, template: np.ndarray) -> fl
     return float(np.correlate(live, template, mode="full").max() / denominator)
 
 
-def event_scores_reference(live, templates, min_contrast: float) -> np.ndarray:
+def event_scores_reference(live, templates, min_contrast: float,
+                           flat_needs_flat: bool = False) -> np.ndarray:
     """Gated Eq. 3 scores of live windows against templates, channel by channel.
 
     live, templates: sequences of 1-D windows, one per channel (SA and RA windows may differ
@@ -98,5 +111,5 @@ def event_scores_reference(live, templates, min_contrast: float) -> np.ndarray:
             template_norm=math.sqrt(np.dot(y, y)),
             live_high=float(x.max()), live_low=float(x.min()),
             template_flat=bool(contrast(y.max(), y.min()) < min_contrast),
-            min_contrast=min_contrast))
+            min_contrast=min_contrast, flat_needs_flat=flat_needs_flat))
     return np.array(scores)

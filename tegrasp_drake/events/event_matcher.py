@@ -36,6 +36,9 @@ class EventMatcherConfig:
     event_thresholds: Mapping[str, tuple[float, float]] = dataclasses.field(
         default_factory=dict)
     min_contrast: float = 0.25
+    # Beyond the paper: a flat template channel (the settled grip of Load-Lift's SA) scores
+    # only a flat live window (correlation.py); False: the paper's Eq. 3.
+    flat_template_needs_flat_window: bool = False
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0
     # Block [s] in which a fast rate's samples are scored, one update per block (0: one
@@ -149,7 +152,8 @@ class EventMatcher(WindowNormalizer):
             for by_channel, of_event in zip(templates_by_event, templates):
                 by_channel.update(zip(group.channels, of_event))
             correlations[group.name] = SlidingCorrelation(
-                templates, min_contrast=config.min_contrast, window=window_layout(group).window)
+                templates, min_contrast=config.min_contrast, window=window_layout(group).window,
+                flat_needs_flat=config.flat_template_needs_flat_window)
         self._check_matchable(ordered_events, templates_by_event, config.min_contrast)
         # After each rate's correlation, its pass history (PassHistory): as many samples as
         # a block holds, or, for a rate taken per sample, as many as span two blocks.

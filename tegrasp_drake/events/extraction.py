@@ -1,8 +1,8 @@
 """Cut memorized events out of a recorded ideal grasp (Sec. III-A of the paper).
 
 The record step logs the four channels of an ideal grasp (SA at the SA rate, RA at 1 kHz)
-and the time of each transition's physical event (first contact, grip force reached,
-lift-off, table touch; transitions.py). Around each of those times a window of `window_s`
+and the time of each transition's physical event (first contact, the scripted start of
+the lift, lift-off, table touch; transitions.py). Around each of those times a window of `window_s`
 is cut from every channel and divided by its maximum.
 
 Window placement: the window starts `pre_transition_s` before the physical event. The

@@ -110,10 +110,11 @@ class SlidingCorrelation:
         templates: one (channels, N) array per event, at the live sample rate.
         min_contrast: live contrast a channel needs for its score to count (correlation.py).
         window: the sliding window's layout (its channels and N must be the templates').
+        flat_needs_flat: a flat template channel needs a flat live window (correlation.py).
     """
 
     def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float,
-                 window: SlidingWindow):
+                 window: SlidingWindow, flat_needs_flat: bool = False):
         templates = _as_templates(templates)
         n_channels, length = templates[0].shape
         if (window.n_channels, window.length) != (n_channels, length):
@@ -124,6 +125,7 @@ class SlidingCorrelation:
         self._fft_length = 1 << (2 * length - 2).bit_length()  # power of two >= 2N - 1
         self._spectra = [np.conj(np.fft.rfft(y, self._fft_length)) for y in templates]
         self._min_contrast = min_contrast
+        self._flat_needs_flat = flat_needs_flat
         self._event_at = SlidingWindowState(window).size  # the window comes first
         self._scores_at = self._event_at + 1
         self._statistics_at = self._scores_at + n_channels
@@ -221,7 +223,8 @@ class SlidingCorrelation:
             high, low, energy = statistics[_STATISTICS * i:_STATISTICS * (i + 1)]
             # argmax is several times cheaper than max here, and finds the same peak.
             scores.append(channel_score(lags.item(lags.argmax()), energy, template_norm,
-                                        high, low, template_flat, self._min_contrast))
+                                        high, low, template_flat, self._min_contrast,
+                                        self._flat_needs_flat))
         state[self._event_at:self._missing_at] = [event] + scores + statistics
         return state[self._scores_at:self._statistics_at]
 
@@ -263,13 +266,16 @@ class StreamingCorrelator:
         templates: one (channels, N) array per event, at the live sample rate.
         min_contrast: live contrast a channel needs for its score to count (correlation.py).
         slack: samples between two exact recomputations of the correlation buffer.
+        flat_needs_flat: a flat template channel needs a flat live window (correlation.py).
     """
 
-    def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int):
+    def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int,
+                 flat_needs_flat: bool = False):
         templates = _as_templates(templates)
         self._window = SlidingWindowState(SlidingWindow(*templates[0].shape, slack))
         self._correlation = SlidingCorrelation(templates, min_contrast=min_contrast,
-                                               window=self._window.window)
+                                               window=self._window.window,
+                                               flat_needs_flat=flat_needs_flat)
 
     @property
     def n_events(self) -> int:

@@ -24,9 +24,9 @@ class SyntheticGraspConfig:
     contact_rise_s: float = 0.12
     touch_force_n: float = 0.8
     load_delay_s: float = 0.3  # contact to the start of loading
-    load_s: float = 0.4  # loading time; its end is load_lift
+    load_s: float = 0.4  # loading time: the grip rises to grip_force_n
     grip_force_n: float = 4.0
-    lift_delay_s: float = 0.1  # grip reached to the start of the lift motion
+    lift_delay_s: float = 0.1  # grip reached to the start of the lift motion (load_lift)
     lift_motion_s: float = 0.5
     lift_acceleration: float = 1.5
     lift_off_delay_s: float = 0.15  # start of the lift motion to lift-off (lift_hold)
@@ -49,11 +49,11 @@ class SyntheticGraspConfig:
 
     def transition_times(self) -> dict[str, float]:
         """Times of the physical events of the transitions (left finger, SA)."""
-        grip_reached = self.contact_s + self.load_delay_s + self.load_s
+        lift_start = self.contact_s + self.load_delay_s + self.load_s + self.lift_delay_s
         return {
             "reach_load": self.contact_s,
-            "load_lift": grip_reached,
-            "lift_hold": grip_reached + self.lift_delay_s + self.lift_off_delay_s,
+            "load_lift": lift_start,
+            "lift_hold": lift_start + self.lift_off_delay_s,
             "place_unload": self.place_s,
         }
 
@@ -89,7 +89,7 @@ def synthetic_ra(t: np.ndarray, config: SyntheticGraspConfig, delay_s: float = 0
     """Noise-free RA channel [m/s^2] of one finger at times t [s]."""
     c = config
     events = {name: time + delay_s for name, time in c.transition_times().items()}
-    lift_start = events["load_lift"] + c.lift_delay_s
+    lift_start = events["load_lift"]
     phase = np.clip((t - lift_start) / c.lift_motion_s, 0.0, 1.0)
     lift = c.lift_acceleration * np.abs(np.sin(2.0 * np.pi * phase))
     magnitude = (lift + _ring_down(t, events["reach_load"], c.contact_burst, c)

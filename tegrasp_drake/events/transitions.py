@@ -15,7 +15,7 @@ NO_EVENT = -1
 
 TRANSITIONS = {
     "reach_load": "first contact of the fingers with the object",
-    "load_lift": "target grip force reached",
+    "load_lift": "the lift starts (the end of the ideal grasp's Load phase)",
     "lift_hold": "the object lifts off the table",
     "place_unload": "the object touches the table",
     # Corrective events (recording/corrective_events.py): the situations that

@@ -14,7 +14,7 @@ from tegrasp_drake.figures.table1 import CONTROLLER_COLORS
 from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
 
 TRANSITION_TITLES = {"reach_load": "Reach-Load (first contact)",
-                     "load_lift": "Load-Lift (grip force reached)",
+                     "load_lift": "Load-Lift (grip settled)",
                      "place_unload": "Place-Unload (table touch)"}
 
 

@@ -26,7 +26,7 @@ TRIGGER_STYLES = {
     Trigger.FAULT: ("black", "-", "device fault"),
 }
 PHYSICAL_EVENT_STYLE = ("#117a65", (0, (6, 2)))  # colour, dash pattern
-PHYSICAL_EVENT_NAMES = {"reach_load": "first contact", "load_lift": "grip force reached",
+PHYSICAL_EVENT_NAMES = {"reach_load": "first contact", "load_lift": "grip settled",
                         "place_unload": "table touch", "hit": "hit"}
 CONTROLLER_NAMES = {"memorized": "memorized triggers", "heuristic": "heuristic thresholds",
                     "open_loop": "open loop", "taxel_aware": "taxel-aware, ensemble events"}
@@ -57,7 +57,7 @@ def logged_scenario(log):
 
 def physical_events(log) -> dict[str, float]:
     """Name -> time [s] of the physical events of the ground truth: those that mark the
-    event transitions taken (first contact, grip force reached, table touch) and the
+    event transitions taken (first contact, grip settled, table touch) and the
     scenario's hit, if it has one."""
     events = {PHYSICAL_EVENT_NAMES.get(name, name): float(t)
               for name, t in (log.meta.get("events") or {}).items() if t is not None}

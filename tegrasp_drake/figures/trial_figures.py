@@ -9,6 +9,7 @@ from tegrasp_drake.figures.figure_files import figure_path
 from tegrasp_drake.figures.signals import plot_trial_signals
 from tegrasp_drake.figures.states import plot_trial_states
 from tegrasp_drake.figures.trial_annotations import (logged_scenario, logged_transitions)
+from tegrasp_drake.scenario.scenario import controller_in_force
 
 
 def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, str]:
@@ -25,5 +26,5 @@ def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, st
     if any(t.to_mode == Mode.AVOID for t in logged_transitions(log)):
         figures["avoid_figure"] = plot_avoid_reaction(
             log, figure_path(folder, "avoid", figure_format),
-            hit_threshold=logged_scenario(log).controller.hit_ra_mps2)
+            hit_threshold=controller_in_force(logged_scenario(log)).hit_ra_mps2)
     return figures

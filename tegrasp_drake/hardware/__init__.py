@@ -22,7 +22,7 @@ from tegrasp_drake.hardware.jaco.jaco_lcm import (
     make_jaco_command, make_jaco_status)
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import (
     AddJacoLcmDriver, AddJacoLcmEmulator, JacoLcmDriverSystems, JacoLcmEmulatorSystems)
-from tegrasp_drake.hardware.jaco.velocity_tracker import (
+from tegrasp_drake.rig.jaco_velocity_tracker import (
     JacoVelocityTracker, JacoVelocityTrackerConfig, velocity_command)
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver, gripper_faults
 from tegrasp_drake.hardware.robotiq.modbus_client import (

@@ -27,7 +27,7 @@ from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
-from tegrasp_drake.hardware.jaco.velocity_tracker import JacoVelocityTrackerConfig
+from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,

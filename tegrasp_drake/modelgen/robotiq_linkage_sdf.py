@@ -6,7 +6,8 @@ paper's tactile fingertip) and `<f>_spring_link`, for f in left (+y) and right (
 is closed by a ball constraint at D between the follower and the spring link (the planar
 loop makes one of its three rows redundant; SAP takes it). Both drivers are coupled as the
 one motor drives them (the right driver joint mimics the left, a coupler constraint), and
-one actuator drives the left driver. The pin is the coupler joint's upper limit (0: on the
+one actuator drives the left driver, carrying the motor's rotor (its inertia and gear
+ratio, robotiq/drive.py; Drake adds the reflected inertia to the driver's). The pin is the coupler joint's upper limit (0: on the
 pin); the spring is a RevoluteSpring at the follower joint. Every link frame coincides with
 the base frame in the open pose, so all-zero joint angles close the loop exactly.
 
@@ -26,7 +27,7 @@ visual only (the object cannot reach them past the follower and the palm).
 
 import numpy as np
 
-from tegrasp_drake.robotiq import linkage
+from tegrasp_drake.robotiq import drive, linkage
 from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z
 from tegrasp_drake.modelgen.robotiq_sdf import (FINGER_FRICTION, FINGER_LINK_THICKNESS,
                                                 base_link_text, pad_frame_rotation, pad_text)
@@ -115,8 +116,10 @@ def _follower(finger: str, sign: float) -> str:
 
 
 def _revolute(name: str, parent: str, child: str, point, sign: float, limits=None,
-              effort: float = 0.0, spring=None, mimic: str | None = None) -> str:
-    """A revolute joint at `point` (base coordinates) about sign * x."""
+              effort: float = 0.0, spring=None, mimic: str | None = None,
+              motor: bool = False) -> str:
+    """A revolute joint at `point` (base coordinates) about sign * x; with `motor`, its
+    actuator carries the 2F-85's rotor behind its gear ratio (robotiq/drive.py)."""
     # No <limit> means an unlimited, actuated joint to Drake's parser: a free joint gets
     # infinite bounds and no actuator (effort 0).
     lower, upper = limits if limits is not None else (-np.inf, np.inf)
@@ -129,6 +132,10 @@ def _revolute(name: str, parent: str, child: str, point, sign: float, limits=Non
                     "</dynamics>")
     mimic_text = (f'<drake:mimic joint="{mimic}" multiplier="1" offset="0"/>'
                   if mimic else "")
+    if motor:
+        mimic_text += (f"<drake:rotor_inertia>{number_text(drive.ROTOR_INERTIA_KG_M2)}"
+                       f"</drake:rotor_inertia><drake:gear_ratio>"
+                       f"{number_text(drive.GEAR_RATIO)}</drake:gear_ratio>")
     return (f'<joint name="{name}" type="revolute"><parent>{parent}</parent>'
             f"<child>{child}</child>{pose_text(translation(point), child)}"
             f'<axis><xyz expressed_in="base">{number_text(sign)} 0 0</xyz>{limit}{dynamics}'
@@ -150,7 +157,7 @@ def _finger(finger: str, sign: float) -> str:
         _revolute(f"{finger}_driver_joint", "base", f"{finger}_driver", a, sign,
                   limits=(0.0, linkage.DRIVER_RANGE_RAD),
                   effort=DRIVER_EFFORT_LIMIT_NM if actuated else 0.0,
-                  mimic=None if actuated else "left_driver_joint"),
+                  mimic=None if actuated else "left_driver_joint", motor=actuated),
         _revolute(f"{finger}_coupler_joint", f"{finger}_driver", f"{finger}_coupler", b, sign,
                   limits=(-linkage.COUPLER_RANGE_RAD, 0.0)),
         _revolute(f"{finger}_follower_joint", f"{finger}_coupler", f"{finger}_finger", c,

@@ -69,7 +69,7 @@ def tube_inertia(mass: float, points: np.ndarray, radius: float):
         weights.append(np.full(20, length / 20))
     samples, weights = np.vstack(samples), np.concatenate(weights)
     weights = weights * mass / weights.sum()
-    com = weights @ samples
+    com = weights @ samples / mass  # the mass-weighted mean of the samples
     r = samples - com
     inertia = np.einsum("k,kij->ij", weights,
                         np.einsum("ki,ki->k", r, r)[:, None, None] * np.eye(3)

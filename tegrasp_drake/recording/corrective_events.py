@@ -13,7 +13,7 @@ not react, so the situation plays out in full) of a perturbed scene, CORRECTIVE_
 
   hit   the scenario's `disturbance`: a force pulse on the held object (20 N for 20 ms
         along the stroke is the paper's Fig. 10 hit; the others vary its size, direction
-        and time within the script's Hold, 5.6-8.6 s)
+        and time within the script's Hold, 6.1-9.1 s)
   slip  a lowered object friction (and once a heavier object): the grip's friction
         2 mu_pair F_grip falls below the weight m g, so the pads slide up the object from
         the start of Lift. The pad-object pair's mu_pair = 2 mu_pad mu / (mu_pad + mu)
@@ -45,6 +45,7 @@ import dataclasses
 
 import numpy as np
 
+from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.recording.campaign import (CORRECTIVE_BASE_SEED, CampaignRun,
                                               record_campaign)
 from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
@@ -54,9 +55,16 @@ PRE_TRANSITION_S = 0.45
 SLIP_DISPLACEMENT_M = 0.001  # the pads' rise over the object's that counts as slip [m]
 # The modes in which each corrective event is looked for, and its action.
 CORRECTIVE_SITUATIONS = {"lift_load": "slip during Lift", "hold_avoid": "a hit during Hold"}
-# Simulated time of a run [s]: the script's Hold ends at 8.6 s, its Lift at 5.6 s
-# (scripted_grasp.plan_scripted_grasp with the default grasp timing).
-RUN_DURATION_S = {"hold_avoid": 8.7, "lift_load": 6.0}
+# The default script's phase times [s] (scripted_grasp.plan_scripted_grasp with the default
+# GraspScriptConfig): its Lift from 4.6 s to 6.1 s, its Hold from 6.1 s to 9.1 s.
+_SCRIPT = GraspScriptConfig()
+LIFT_START_S = _SCRIPT.settle_s + _SCRIPT.reach_s + _SCRIPT.load_s
+LIFT_END_S = LIFT_START_S + _SCRIPT.lift_s
+HOLD_END_S = LIFT_END_S + _SCRIPT.hold_s
+# Simulated time of a run [s]: a hit run to just after the script's Hold, a slip run
+# 0.4 s past the end of its Lift.
+RUN_DURATION_S = {"hold_avoid": round(HOLD_END_S + 0.1, 3),
+                  "lift_load": round(LIFT_END_S + 0.4, 3)}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -73,15 +81,18 @@ class CorrectiveRun:
         return CORRECTIVE_BASE_SEED + self.seed_offset
 
 
-def _hit(force_y: float, time_s: float) -> tuple[str, ...]:
+def _hit(force_y: float, into_hold_s: float) -> tuple[str, ...]:
+    """The overrides of a hit of force_y [N] into_hold_s [s] after the script's Hold began."""
+    time_s = round(LIFT_END_S + into_hold_s, 3)
     return (f"disturbance.hit_time_s={time_s}", f"disturbance.hit_force_n=[0.0, {force_y}, 0.0]")
 
 
+# Hits 0.5 to 1.3 s into the script's Hold (the lift's ring-down has faded).
 CORRECTIVE_RUNS = (
-    CorrectiveRun("hold_avoid", "hit +y 20 N at 7.0 s", 0, _hit(20.0, 7.0), "template"),
-    CorrectiveRun("hold_avoid", "hit -y 20 N at 6.6 s", 1, _hit(-20.0, 6.6), "template"),
-    CorrectiveRun("hold_avoid", "hit +y 15 N at 7.4 s", 2, _hit(15.0, 7.4), "held_out"),
-    CorrectiveRun("hold_avoid", "hit -y 25 N at 6.8 s", 3, _hit(-25.0, 6.8), "held_out"),
+    CorrectiveRun("hold_avoid", "hit +y 20 N 0.9 s into Hold", 0, _hit(20.0, 0.9), "template"),
+    CorrectiveRun("hold_avoid", "hit -y 20 N 0.5 s into Hold", 1, _hit(-20.0, 0.5), "template"),
+    CorrectiveRun("hold_avoid", "hit +y 15 N 1.3 s into Hold", 2, _hit(15.0, 1.3), "held_out"),
+    CorrectiveRun("hold_avoid", "hit -y 25 N 0.7 s into Hold", 3, _hit(-25.0, 0.7), "held_out"),
     CorrectiveRun("lift_load", "friction 0.010", 4, ("object.friction=0.010",), "template"),
     CorrectiveRun("lift_load", "friction 0.014", 5, ("object.friction=0.014",), "template"),
     CorrectiveRun("lift_load", "friction 0.012", 6, ("object.friction=0.012",), "held_out"),

@@ -19,7 +19,9 @@ events; later runs are held out to choose the thresholds.
 Windows: Reach-Load is cut with its physical event PRE_TRANSITION_S["reach_load"] = 0.45 s
 into the 0.5 s window, so the live window looks most like it 50 ms after first contact
 (the paper's centred window matches 0.25 s after; the latency target is 60 ms). The other
-transitions keep the paper's 0.25 s.
+transitions keep the paper's 0.25 s; Load-Lift's anchor is the script's start of the lift
+(paper_events.py), so its window is the settled grip and the lift's first 0.25 s (the
+paper's events end their Load-Lift window at the lift's start instead).
 """
 
 import dataclasses
@@ -71,7 +73,8 @@ def ensemble_scenario(object_name: str, run: int, ranges: EnsembleRanges = ENSEM
     if not ranges.sensor_noise:
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0),
-            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0))
+            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0,
+                                          adc_noise_lsb=0.0))
     return scenario
 
 

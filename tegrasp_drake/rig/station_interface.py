@@ -56,6 +56,10 @@ CONTROLLER_OUTPUTS = {
     **{pad_acceleration(finger): PAD_ACCELERATION_AXES for finger in FINGER_NAMES},
 }
 
+# Both stations, for logs (no controller reads it): what the host sends the arm, the
+# desired positions and the commanded joint velocities [rad, rad/s] (12).
+ARM_COMMANDED_STATE = "arm.commanded_state"  # (12) positions and velocities sent to the arm
+
 # Simulation only: ground truth for evaluation and the plant's internals.
 OBJECT_STATE = "object.state"  # (13) quaternion wxyz, p_WO [m], w_WO [rad/s], v_WO [m/s]
 TRUE_TAXEL_FORCES = "tactile.true_taxel_forces"  # (24) both pads before noise [N]
@@ -64,14 +68,14 @@ BODY_POSES = "body_poses"  # the plant's body poses X_WB (abstract)
 QUERY_OBJECT = "query_object"  # the scene graph's QueryObject (abstract)
 GRIPPER_STATE = "gripper.state"  # the gripper model instance's joint positions, velocities
 GRIPPER_PLANT_DESIRED_STATE = "gripper.plant_desired_state"  # (2) actuated joint's set-point
+ARM_SERVO_SET_POINT = "arm.servo_set_point"  # (12) the arm joints' PD set-point (jaco_velocity_drive.py)
 CARRIAGE_DESIRED_STATE = "carriage.desired_state"  # (12) the carriage PD's set-point (carriage.py)
 GRIPPER_WRIST_WRENCH = "gripper.wrist_wrench"  # (6) the carriage-gripper weld's wrench
 
-# Hardware only: faults, what was sent, and each device's clock.
+# Hardware only: faults and each device's clock.
 FAULT = "fault"  # every fault seen, a tuple of DeviceFault (abstract); () while all is well
 DEVICE_FAULT = "device_fault"  # the same as text (abstract str); "" while all is well
 STOP = "stop"  # (1) 1 once there is any fault
-ARM_COMMANDED_STATE = "arm.commanded_state"  # (12) positions and velocities sent to the arm
 ARM_TIME_MEASURED = "arm.time_measured"  # (1) [s], each device's last message
 GRIPPER_TIME_MEASURED = "gripper.time_measured"
 TACTILE_TIME_MEASURED = "tactile.time_measured"

@@ -10,6 +10,9 @@ Here, shared by the simulation, the hardware driver, the emulator and the model 
   and the pure encode/decode between registers and those vectors;
 - `linkage`: the finger's underactuated five-bar in closed form, the one source of its
   dimensions (pad travel, opening for a driver angle, the flip height);
+- `drive`: the motor, the firmware's position loop, the current limit and the
+  self-locking screw behind the linkage, their parameters and a lumped model of the grip
+  force's rise (`grip_rise`);
 - `dimensions`: the hand's dimensions the models and the arm's grasp frame share.
 
 Each side keeps its own module in its own layer, importing from here:

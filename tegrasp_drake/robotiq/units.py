@@ -76,18 +76,22 @@ def fault_name(code: int) -> str:
     return FAULT_NAMES.get(int(code), f"unknown fault 0x{int(code):02X}")
 
 
-# gCU, the motor current [x 10 mA] (the manual's unit). Robotiq publishes no current-force
-# curve: the scale is a stated assumption, about 100 mA while the fingers move and up to
-# 600 mA holding the 235 N grip, in proportion to the force the motor carries.
-MOVING_CURRENT = 10.0
+# gCU, the motor current [x 10 mA] (the manual's unit). The manual's Modbus examples read
+# 0x10 (160 mA) while the fingers move and 0x00 once they have stopped, on an object or at
+# the requested position (the screw holds, the motor draws nothing). Robotiq publishes no
+# current-force curve: in between, the scale is a stated assumption, the current in
+# proportion to the force the motor pushes with, 600 mA at the 235 N grip.
+MOVING_CURRENT = 16.0
 MAX_GRIPPING_CURRENT = 60.0
 
 
 def current_byte(force_n: float, moving: bool) -> float:
-    """gCU [x 10 mA] of a gripper moving freely, or pushing each pad with force_n [N]."""
-    if moving:
-        return MOVING_CURRENT
-    return float(round(MAX_GRIPPING_CURRENT * min(max(force_n, 0.0), FORCE_MAX_N) / FORCE_MAX_N))
+    """gCU [x 10 mA] of a motor pushing each pad with force_n [N] while the fingers move
+    (at least the free-motion current), and 0 once they stop."""
+    if not moving:
+        return 0.0
+    pushing = MAX_GRIPPING_CURRENT * min(max(force_n, 0.0), FORCE_MAX_N) / FORCE_MAX_N
+    return float(max(MOVING_CURRENT, round(pushing)))
 
 
 def opening_from_position_byte(position_byte):

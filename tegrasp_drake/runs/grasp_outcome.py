@@ -5,7 +5,11 @@ Physical events (from noise-free simulation truth):
   first_contact        first time either pad's true normal force exceeds CONTACT_FORCE_N
   grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip
                        force, or of the grip's plateau where the taxels never see that
-                       much (grip_plateau_n: any graspable object has one)
+                       much (grip_plateau_n: any graspable object has one): the grip has
+                       settled, the earliest a lift may start
+  lift_start           when the scripted ideal grasp starts its Lift (the end of its Load
+                       phase, from the script's segment times in the log); None for a run
+                       that is not the script's (closed loop: the controller decides)
   table_touch          first time after lift-off that the object's lowest point is back
                        within TOUCH_HEIGHT_M of the table (a tilted object touches with an
                        edge while its origin is still higher)
@@ -119,6 +123,32 @@ def grip_force_time(log, grip_force: float, after: float = 0.0):
     return _first(log.t_sa, (weaker >= GRIP_FRACTION * level) & (log.t_sa >= after))
 
 
+def settled_grip_n(log, grip_force: float, after: float = 0.0) -> float:
+    """The grip [N] the weaker pad settles at: grip_force where it reaches GRIP_FRACTION of
+    it after `after` [s], else its plateau (grip_force_time's rule)."""
+    weaker = true_sa(log).min(axis=1)
+    if np.any((weaker >= GRIP_FRACTION * grip_force) & (log.t_sa >= after)):
+        return float(grip_force)
+    return grip_plateau_n(log, after)
+
+
+def grip_fraction_at(log, t: float, grip_force: float, after: float = 0.0) -> float | None:
+    """The weaker pad's true force at time t [s] (the latest taxel frame at or before t) as
+    a fraction of the settled grip (settled_grip_n); None before the first frame or when
+    the pads never grip."""
+    index = int(np.searchsorted(log.t_sa, t, side="right")) - 1
+    settled = settled_grip_n(log, grip_force, after)
+    if index < 0 or settled <= CONTACT_FORCE_N:
+        return None
+    return float(true_sa(log)[index].min() / settled)
+
+
+def scripted_lift_start(log) -> float | None:
+    """When the scripted ideal grasp starts its Lift [s] (the log's `phase_starts`, written
+    by runs/ideal_grasp.py); None for a log without the script's phases."""
+    return (log.meta.get("phase_starts") or {}).get("lift")
+
+
 def table_touch_time(log, object_config=None, after: float = 0.0):
     """First logged time > after [s] that the object's lowest point is within TOUCH_HEIGHT_M
     of where it rested at the start."""
@@ -130,6 +160,7 @@ def physical_events(log, grip_force: float, object_config=None) -> dict:
     lift_index = np.flatnonzero(lifted_mask(log, object_config))
     return {"first_contact": first_contact_time(log),
             "grip_force_reached": grip_force_time(log, grip_force),
+            "lift_start": scripted_lift_start(log),
             "table_touch": (table_touch_time(log, object_config, after=log.t_slow[lift_index[0]])
                             if lift_index.size else None)}
 

@@ -22,12 +22,13 @@ from tegrasp_drake.events.extraction import cut_window
 from tegrasp_drake.scenario.grasp_diagram import MakeSimulator
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
-from tegrasp_drake.simulation.gripper_hands import PrismaticHand, actuated_state_selector
+from tegrasp_drake.simulation.gripper_hands import (PrismaticHand, actuated_state_selector,
+                                                    configure_drive)
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.film_dynamics import first_order_highpass
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
-from tegrasp_drake.simulation.station import AddTactileSensors, set_pd_gains
+from tegrasp_drake.simulation.station import AddTactileSensors
 from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.tactile.sampling import samples_per_window
@@ -101,7 +102,8 @@ def strike_scenario(config: PadStrikeConfig):
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0,
                                                   quantization_n=0.0),
-            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0))
+            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0,
+                                          adc_input="ideal"))
     return scenario
 
 
@@ -121,7 +123,7 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     AddTable(parser, scenario.contact_geometry)
     obj = AddObject(parser, scenario.object, scenario.contact_geometry)
     plant.set_gravity_enabled(gripper, False)
-    set_pd_gains(plant, gripper, *hand.pd_gains(scenario.gripper))
+    configure_drive(plant, gripper, hand, scenario.gripper)
     plant.Finalize()
 
     speed, acceleration = config.finger_speed_mps, scenario.gripper.acceleration
@@ -133,7 +135,7 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     plant.SetDefaultFloatingBaseBodyPose(
         object_body(plant, obj), RigidTransform([GRASP_XY[0], config.object_offset_m, 0.0]))
     driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(
-        config=scenario.gripper, initial_opening=2 * q0))
+        config=scenario.gripper, time_step=plant.time_step(), initial_opening=2 * q0))
     command = builder.AddNamedSystem("command", ConstantVectorSource(
         gripper_command(0.0, 2 * speed, config.grip_force_n)))
     builder.Connect(command.get_output_port(), driver.GetInputPort("command"))

@@ -18,7 +18,8 @@ from tegrasp_drake.events.transitions import event_transition
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
                                                   MakeSimulator)
 from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
-                                              judge_grasp, table_touch_time)
+                                              grip_fraction_at, judge_grasp,
+                                              table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.ranges import check_ranges
@@ -55,8 +56,11 @@ def _event_transition(transition: Transition) -> str | None:
 def physical_event_times(log, transitions: list[Transition], grip_force: float,
                          object_config=None, hit_time_s: float = -1.0) -> dict:
     """The physical event that marks each event transition actually taken, looked for after
-    the mode was entered: first contact (Reach-Load), grip force reached (Load-Lift, after
-    the last Reach began), table touch (Place-Unload); and "hit", the scenario's hit on the
+    the mode was entered: first contact (Reach-Load), the grip settled (Load-Lift: both
+    pads at GRIP_FRACTION of the grip, after the last Reach began; a closed-loop run has no
+    scripted lift start, the ideal grasp's anchor, so the controller's lift is judged by
+    the grip it starts with: a Load-Lift before the grip settled is a false trigger),
+    table touch (Place-Unload); and "hit", the scenario's hit on the
     object (disturbance.hit_time_s [s]), when it came within the simulated time, whatever
     the controller did (the Avoid's ground truth: detection_report.hit_avoid_rows)."""
     events = {}
@@ -74,6 +78,16 @@ def physical_event_times(log, transitions: list[Transition], grip_force: float,
             events[name] = table_touch_time(log, object_config, after=since)
         entered[entry.to_mode] = entry.t
     return events
+
+
+def lift_grip_fraction(log, transitions: list[Transition], grip_force: float
+                       ) -> float | None:
+    """The grip the lift starts with: the weaker pad's true force at the first Load -> Lift
+    transition as a fraction of the settled grip (grasp_outcome.grip_fraction_at); None
+    when the trial never lifted from Load."""
+    lift = next((e.t for e in transitions
+                 if e.from_mode == Mode.LOAD and e.to_mode == Mode.LIFT), None)
+    return None if lift is None else grip_fraction_at(log, lift, grip_force)
 
 
 def judge_trial(log, transitions: list[Transition], scenario) -> dict:
@@ -108,7 +122,9 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
             "lift_height_m": outcome.lift_height_m, "final_tilt_deg": outcome.final_tilt_deg,
             "placement_error_m": outcome.placement_error_m, "released": outcome.released,
             "physical_events": physical, "detection_latency_s": latency,
-            "false_triggers": false_triggers, "corrective_actions": corrective,
+            "false_triggers": false_triggers, "lift_grip_fraction": lift_grip_fraction(
+                log, transitions, grip_force),
+            "corrective_actions": corrective,
             "failure": next((e.reason for e in transitions if e.to_mode == Mode.FAILED), "")}
 
 

@@ -32,7 +32,8 @@ from tegrasp_drake.scenario.scenario_events import load_controller_events, load_
 from tegrasp_drake.scenario.trial_log_writer import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import station_interface as ports
-from tegrasp_drake.scenario.scenario import grasp_plan, object_pose, sample_rates_hz
+from tegrasp_drake.scenario.scenario import (grasp_plan, object_pose, ra_noise_std_mps2,
+                                             sample_rates_hz)
 from tegrasp_drake.simulation.carriage import arm_endpoint_impedance
 from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStationConfig,
                                               side_grasp_pose)
@@ -96,7 +97,8 @@ def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, statio
                           corrective_events: dict | None = None) -> GraspController:
     """AddGraspController with the scenario's sections: its controller, its GraspPlan
     (grasp_plan), its arm and its sample rates; the memorized events its controller needs
-    default to the scenario object's (load_controller_events, load_corrective_events)."""
+    default to the scenario object's (load_controller_events, load_corrective_events);
+    the RA thresholds follow the noise of its film's electronics (ra_noise_std_mps2)."""
     controller = scenario.controller
     if events is None and isinstance(controller, EventTriggeredConfig):
         events = load_controller_events(scenario)
@@ -105,7 +107,8 @@ def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, statio
     return AddGraspController(builder, controller=controller, plan=grasp_plan(scenario),
                               station=station, arm=scenario.arm,
                               sample_rates_hz=sample_rates_hz(scenario), events=events,
-                              corrective_events=corrective_events)
+                              corrective_events=corrective_events,
+                              ra_noise_std_mps2=ra_noise_std_mps2(scenario.vibration))
 
 
 @dataclasses.dataclass

@@ -33,14 +33,20 @@ from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJE
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
-from tegrasp_drake.simulation.capacitive_taxels import CAPACITIVE_OUTPUTS, TAXEL_TRANSDUCERS
+from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
+                                                        TAXEL_TRANSDUCERS,
+                                                        ad7147_frame_rate_hz,
+                                                        frame_rate_matches)
+from tegrasp_drake.simulation.film_readout import ADC_INPUTS
 from tegrasp_drake.simulation.contact_meshing import (ContactGeometryConfig,
                                                       contact_geometry_problem)
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
 from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
 from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
-from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
+                                                           ra_noise_std_mps2)
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
+from tegrasp_drake.simulation.jaco_velocity_drive import drive_problem
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
                                              SimulatedStationConfig)
@@ -263,6 +269,32 @@ def _check_transducers(scenario: Scenario, source: str) -> None:
     capacitive = scenario.tactile.capacitive
     require(capacitive.output in CAPACITIVE_OUTPUTS, source, "tactile.capacitive.output",
             f"must be one of {', '.join(CAPACITIVE_OUTPUTS)}", capacitive.output)
+    require(capacitive.decimation in AD7147_DECIMATIONS, source, "tactile.capacitive.decimation",
+            f"must be one of {', '.join(map(str, AD7147_DECIMATIONS))} (the AD7147's)",
+            capacitive.decimation)
+    if scenario.tactile.transducer == "capacitive":
+        frame = ad7147_frame_rate_hz(capacitive.decimation)
+        require(frame_rate_matches(scenario.tactile.sample_rate_hz, capacitive.decimation),
+                source, "tactile.sample_rate_hz", f"must be the AD7147's frame rate at "
+                f"tactile.capacitive.decimation {capacitive.decimation}, {frame:.1f} Hz (12 "
+                f"stages of {1e3 / (12 * frame):.3f} ms): set both together",
+                scenario.tactile.sample_rate_hz)
+    _check_film_electronics(scenario.vibration, source)
+
+
+def _check_film_electronics(vibration: VibrationSensorConfig, source: str) -> None:
+    """The film's readout by name and the drives' tones in pairs (film_readout.py,
+    drive_vibration.py); their numbers' ranges are declared on their fields."""
+    require(vibration.adc_input in ADC_INPUTS, source, "vibration.adc_input",
+            f"must be one of {', '.join(ADC_INPUTS)} (the myRIO's +-10 V MSP input, its "
+            "0-5 V MXP input, or no converter)", vibration.adc_input)
+    for name in ("gripper_drive", "arm_drive"):
+        drive_tones = getattr(vibration, name)
+        require(not drive_tones.amplitudes_mps2
+                or len(drive_tones.amplitudes_mps2) == len(drive_tones.orders), source,
+                f"vibration.{name}.orders", "must give one order per amplitude "
+                f"({len(drive_tones.amplitudes_mps2)} amplitudes; amplitudes_mps2=[] switches "
+                "the drive off)", drive_tones.orders)
 
 
 def validate(scenario: Scenario, source: str = "scenario", *,
@@ -324,6 +356,10 @@ def validate(scenario: Scenario, source: str = "scenario", *,
             f"{MAX_TIME_STEP_S:g}] s (a discrete step the pads' contact and the 1 kHz "
             "sensors can use; the wall time grows as 1/step)",
             scenario.plant_config.time_step)
+    problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
+    if problem:
+        field, words, value = problem
+        require(False, source, f"arm.{field}", words, value)
     problem = contact_geometry_problem(scenario.contact_geometry)
     if problem:
         raise ConfigError(f"{source}: field 'contact_geometry.{problem[0]}' {problem[1]}")
@@ -392,6 +428,19 @@ def object_pose(scenario: Scenario):
     from tegrasp_drake.simulation.station import object_pose_on_table
     return object_pose_on_table(scenario.expected_object_xy, scenario.object_offset,
                                 scenario.object_yaw_deg)
+
+
+def controller_in_force(scenario: Scenario):
+    """The scenario's controller config with the RA thresholds it runs with: raised to their
+    sigmas of the RA noise of the scenario's film electronics (control/noise_thresholds.py);
+    the open-loop script's as it is."""
+    controller = scenario.controller
+    if not isinstance(controller, GraspControllerConfig):
+        return controller
+    from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
+    return resolve_noise_thresholds(
+        controller, ra_noise_std_mps2=ra_noise_std_mps2(scenario.vibration),
+        ra_rate_hz=scenario.vibration.sample_rate_hz)
 
 
 @public_api

@@ -49,6 +49,34 @@ CAPACITIVE_OUTPUTS = ("calibrated", "counts")
 AD7147_COUNTS_PER_PF = 65536 / 16.0
 AD7147_BASELINE_COUNTS = 32768
 AD7147_MAX_COUNTS = 65535
+# AD7147 data sheet: a conversion sequence of up to 12 stages, one stage taking 0.768 ms at
+# decimation 64 and twice or four times that at 128 or 256 (the decimation is the number
+# of the sigma-delta modulator's samples averaged into one result). A pad's 12 taxels are
+# its 12 stages, converted one after the other: a frame of 9.2 ms (108 Hz), 18.4 ms
+# (54 Hz) or 36.9 ms (27 Hz).
+AD7147_DECIMATIONS = (64, 128, 256)
+AD7147_STAGES = 12
+AD7147_STAGE_S_AT_64 = 0.768e-3
+# A sample rate within this fraction of the frame rate matches the decimation (the data
+# sheet's stage time is typical and the frame rates are quoted rounded: 108, 54, 27 Hz).
+FRAME_RATE_TOLERANCE = 0.01
+
+
+def ad7147_stage_s(decimation: int) -> float:
+    """One conversion stage [s] at `decimation` (64, 128 or 256)."""
+    return AD7147_STAGE_S_AT_64 * decimation / 64
+
+
+def ad7147_frame_rate_hz(decimation: int) -> float:
+    """Frames per second [Hz] of the 12-stage sequence at `decimation`: 108.5, 54.3, 27.1."""
+    return 1.0 / (AD7147_STAGES * ad7147_stage_s(decimation))
+
+
+def frame_rate_matches(sample_rate_hz: float, decimation: int) -> bool:
+    """Whether a taxel sample rate [Hz] is the AD7147's frame rate at `decimation`
+    (within FRAME_RATE_TOLERANCE)."""
+    frame = ad7147_frame_rate_hz(decimation)
+    return abs(sample_rate_hz - frame) <= FRAME_RATE_TOLERANCE * frame
 
 
 @dataclasses.dataclass
@@ -60,11 +88,19 @@ class CapacitiveTaxelConfig:
                                            why="elastomers lie at 2-10; 100 bounds any dielectric "
                                                "a pad is made of",
                                            below="must be at least 1 (vacuum)")
-    # Counts of noise per taxel reading, Gaussian. An assumption of the data sheet's order:
-    # the AD7147 resolves about 1 fF at decimation 64, i.e. about 4 counts.
+    # Counts of noise per taxel reading at decimation 64, Gaussian. An assumption of the
+    # data sheet's order: the AD7147 resolves about 1 fF at decimation 64, i.e. about 4
+    # counts. A larger decimation averages more modulator samples: the noise shrinks as
+    # sqrt(64 / decimation) (white noise averaged; noise_std_at_decimation).
     noise_std_counts: float = bounded(4.0, low=0.0, high=10_000.0, unit="counts",
                                       why="the AD7147's 16-bit reading",
                                       below="must be zero (no noise) or positive")
+    # The AD7147's decimation, 64, 128 or 256: its frames come at 108, 54 or 27 Hz, and
+    # tactile.sample_rate_hz must be that rate (ad7147_frame_rate_hz). The scenario also
+    # requires one of the three (AD7147_DECIMATIONS).
+    decimation: int = bounded(64, low=64, high=256,
+                              why="the AD7147's decimations are 64, 128 and 256, AD7147 data "
+                                  "sheet")
     # The elastomer stops compressing at this fraction of its thickness (the gap cannot
     # close: the fabric and the compressed rubber take the load). An assumption: pad
     # pressures of the grasps here compress it by 2-30 %, far from this.
@@ -74,6 +110,12 @@ class CapacitiveTaxelConfig:
     # taxel carries in the 25-100 N grasps.
     calibration_force_n: float = bounded(5.0, low=0.0, low_open=True, high=100.0, unit="N",
                                          below="must be positive [N]")
+
+
+def noise_std_at_decimation(config: CapacitiveTaxelConfig) -> float:
+    """Counts of noise per reading at the config's decimation: noise_std_counts (given at
+    64) times sqrt(64 / decimation)."""
+    return config.noise_std_counts * (64.0 / config.decimation) ** 0.5
 
 
 def electrode_area_m2() -> float:
@@ -144,7 +186,7 @@ class CapacitiveTaxels(LeafSystem):
         true_taxel_forces: 24 noise-free taxel normal forces [N], left then right, held at
             the taxel rate (TactilePads' output).
         noise: 24 unit Gaussian samples drawn at the taxel rate; declared only when
-            config.noise_std_counts > 0.
+            config.noise_std_counts > 0 (scaled to the decimation's noise).
         left_taxel_forces, right_taxel_forces: 12 readings each, calibrated newtons or
             counts above the baseline (config.output).
 
@@ -159,6 +201,7 @@ class CapacitiveTaxels(LeafSystem):
         self._forces = self.DeclareVectorInputPort("true_taxel_forces", size)
         self._noise = (self.DeclareVectorInputPort("noise", size)
                        if config.noise_std_counts > 0 else None)
+        self._noise_std = noise_std_at_decimation(config)
         for k, finger in enumerate(FINGER_NAMES):
             self.DeclareVectorOutputPort(
                 f"{finger}_taxel_forces", TAXELS_PER_PAD,
@@ -168,7 +211,7 @@ class CapacitiveTaxels(LeafSystem):
     def _readings(self, context) -> np.ndarray:
         noise = 0.0
         if self._noise is not None:
-            noise = self._config.noise_std_counts * self._noise.Eval(context)
+            noise = self._noise_std * self._noise.Eval(context)
         return capacitive_readings(self._forces.Eval(context), self._config, noise)
 
 

@@ -2,7 +2,9 @@
 end-point behaviour, for sweeps (`station: !SimulatedStationConfig {arm: carriage}`).
 
 For the hand and the object the arm is a stiff pose source: the Jaco's firmware tracks its
-joints stiffly and compensates gravity. The carriage keeps what the hand feels of it and
+joints stiffly and compensates gravity. The controller's commands reach the carriage through
+the arm's own command path (jaco_velocity_drive.py: tracker, 100 Hz, latency), with the
+joint servos ideal (carriage_systems.py). The carriage keeps what the hand feels of it and
 drops the rest: three prismatic joints along three orthogonal world axes (the principal
 axes of the arm's translational mobility at G, below) move the grasp frame G's origin,
 then three revolute joints about world z, y, x (yaw, pitch, roll: R = Rz Ry Rx, Drake's
@@ -26,9 +28,9 @@ the mobility's translational block, so the carriage's translational inertia is t
 with its couplings (the arm's mobility turns a vertical push at G into 0.22 of it along
 the stroke); along each axis a the joint gets what a push along a alone meets,
 1 / (a^T C a), and likewise damping and mass. Rotations, about world axes, get
-1 / C_ii. At the box's grasp pose: axes near x, (-0.12, 0.74, -0.66) and (0.01, 0.67,
-0.74), with 4.3e3 / 560 / 580 N/m and 1.0 / 0.12 / 0.078 kg; 290 / 170 / 170 N m/rad and
-2e-4 / 0.010 / 0.013 kg m^2 about x / y / z; the arm's D_q = K_q / 10 (a 0.1 s time
+1 / C_ii. At the box's grasp pose: axes near x, (-0.12, 0.77, -0.63) and (0.01, 0.63,
+0.77), with 4.3e3 / 560 / 580 N/m and 0.82 / 0.061 / 0.028 kg; 290 / 170 / 170 N m/rad and
+1.6e-4 / 3.8e-3 / 5.5e-3 kg m^2 about x / y / z; the arm's D_q = K_q / 10 (a 0.1 s time
 constant). Left out: the couplings between translation and rotation and within the
 stiffness. (The stiffness matrix's own diagonal, J^-T K_q J^-1, is the arm with the other
 five directions held: along the stroke 1.3e4 N/m against the 560 N/m a push meets.)
@@ -176,6 +178,16 @@ def carriage_state(carriage: Carriage, X_WG: RigidTransform, V_WG: np.ndarray) -
     v = np.concatenate([carriage.translation_axes.T @ V_WG[3:],
                         [rpy_dt[2], rpy_dt[1], rpy_dt[0]]])
     return np.concatenate([q, v])
+
+
+def carriage_displacement(carriage: Carriage, positions: np.ndarray,
+                          deflection: np.ndarray) -> np.ndarray:
+    """G's small displacement [dtheta; dp] (world, [rad, m]) when the carriage's joints move
+    by `deflection` (actuator order) from `positions`."""
+    rpy = RollPitchYaw(positions[5], positions[4], positions[3])
+    dtheta = rpy.CalcAngularVelocityInParentFromRpyDt(
+        [deflection[5], deflection[4], deflection[3]])
+    return np.concatenate([dtheta, carriage.translation_axes @ deflection[:3]])
 
 
 class ArmGraspFrameKinematics:

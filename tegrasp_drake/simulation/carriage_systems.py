@@ -1,11 +1,12 @@
 """The two systems that let the carriage (carriage.py) stand in for the JACO2 behind the
 arm's ports: the controller keeps commanding joint states and reading joint torques.
 
-- CarriageCommand: the arm's commanded joint state -> the pose and velocity of G that the
-  arm's joints would give (the arm model's forward kinematics) -> the carriage's joint
-  set-point, recomputed when the command changes (once per controller period). It also
-  keeps the commanded joint state as the arm's measured one: the Jaco firmware's stiff joint tracking, idealised (what
-  arm.position_measured reports).
+- CarriageCommand: the arm's joint servo set-point (the velocity drive's, the same command
+  path as on the arm: simulation/jaco_velocity_drive.py) -> the pose and velocity of G that
+  the arm's joints would give (the arm model's forward kinematics) -> the carriage's joint
+  set-point. It reports as the arm's measured joints the servo's set-point moved by the
+  carriage's deflection from its own set-point, mapped to the joints (J^-1): so the
+  velocity tracker sees, and removes, a steady sag under a load, as it does on the arm.
 - CarriageWristWrench: the carriage-gripper weld's reaction (Drake's reaction forces) ->
   the wrench the gripper puts on the arm at G, and the joint torques that would hold it,
   tau = -J_WG^T w, at the reported joint angles: the arm.torque_measured that the taxel_aware
@@ -19,70 +20,98 @@ from pydrake.multibody.math import SpatialForce
 from pydrake.systems.framework import BasicVector, LeafSystem
 
 from tegrasp_drake.rig import station_interface as ports
-from tegrasp_drake.simulation.carriage import (ArmGraspFrameKinematics, carriage_state,
-                                               wrench_on_arm)
+from tegrasp_drake.simulation.carriage import (ArmGraspFrameKinematics, carriage_displacement,
+                                               carriage_state, wrench_on_arm)
 
 ARM_JOINTS = ports.ARM_JOINTS
 
 
 class CarriageCommand(LeafSystem):
-    """The arm's joint command as a carriage set-point, and the arm's reported joint state.
+    """The arm's joint servo set-point as a carriage set-point, and the arm's reported
+    joint state.
 
     .. pydrake_system::
 
         name: CarriageCommand
         input_ports:
-        - arm.desired_state
+        - joint_set_point
+        - carriage_state
         output_ports:
         - carriage_desired_state
         - arm.position_measured
         - arm.velocity_measured
 
-    It samples the command every plant step `period_s` (on the plant's own step times: an
-    event between them would cost a step of its own) and runs the arm model's kinematics
-    only when the command changed, once per controller period; the carriage follows the
-    command one plant step late.
+    It samples the set-point every plant step `period_s` (on the plant's own step times: an
+    event between them would cost a step of its own). The set-point's rates change only
+    when a new velocity command reaches the arm (at the command rate); then it runs the arm
+    model's kinematics and takes G's pose, velocity and Jacobian there, and between those it
+    moves the carriage's set-point on at that velocity, as the servo's set-point moves on at
+    the joint rates (the pose's drift from the joints' over one command period is second
+    order: tens of micrometres at the arm's top speeds). The carriage follows one plant
+    step late.
 
     Ports:
-        arm.desired_state: the arm's commanded joint positions [rad] and rates [rad/s] (12).
+        joint_set_point: the arm's joint servo set-point, positions [rad] and rates [rad/s]
+            (12).
+        carriage_state: the carriage joints' positions and rates (12, actuator order).
         carriage_desired_state: the carriage joints' positions [m, rad] and rates [m/s,
-            rad/s] (12, actuator order) that put G where the commanded joints put it, moving
-            as they move it (carriage_state).
-        arm.position_measured, arm.velocity_measured: the commanded joint state at the same
-            sample: an arm that tracks its commands exactly, one plant step late. Starts
-            at `initial_positions` [rad], at rest.
+            rad/s] (12, actuator order) that put G where the set-point's joints put it,
+            moving as they move it (carriage_state).
+        arm.position_measured: the set-point's joint positions at the same sample [rad]
+            (6), moved by the carriage's deflection from its set-point, J^-1 [dtheta; dp]
+            (J the Jacobian of G at the last kinematics; a small-angle rotation).
+            Starts at `initial_positions` [rad].
+        arm.velocity_measured: the set-point's joint rates at the same sample [rad/s] (6):
+            servos that track their rates exactly, one plant step late.
     """
 
     def __init__(self, carriage, *, initial_positions: np.ndarray, period_s: float):
         super().__init__()
         self._carriage = carriage
+        self._period_s = period_s
         self._kinematics = ArmGraspFrameKinematics()
-        self._command = self.DeclareVectorInputPort(ports.ARM_DESIRED_STATE, 2 * ARM_JOINTS)
+        self._command = self.DeclareVectorInputPort("joint_set_point", 2 * ARM_JOINTS)
+        self._carriage_state = self.DeclareVectorInputPort("carriage_state", 2 * ARM_JOINTS)
         initial = np.concatenate([initial_positions, np.zeros(ARM_JOINTS)])
+        set_point, jacobian = self._carriage_set_point(initial)
         self._arm_state = self.DeclareDiscreteState(initial)
-        self._set_point = self.DeclareDiscreteState(self._carriage_set_point(initial))
+        self._set_point = self.DeclareDiscreteState(set_point)
+        self._jacobian = self.DeclareDiscreteState(jacobian.ravel())
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._sample_command)
         self.DeclareStateOutputPort("carriage_desired_state", self._set_point)
         self.DeclareVectorOutputPort(ports.ARM_POSITION_MEASURED, ARM_JOINTS,
                                      self._calc_positions,
-                                     prerequisites_of_calc={self.xd_ticket()})
+                                     prerequisites_of_calc={
+                                         self.xd_ticket(),
+                                         self._carriage_state.ticket()})
         self.DeclareVectorOutputPort(ports.ARM_VELOCITY_MEASURED, ARM_JOINTS,
                                      self._calc_velocities,
                                      prerequisites_of_calc={self.xd_ticket()})
 
-    def _carriage_set_point(self, command: np.ndarray) -> np.ndarray:
+    def _carriage_set_point(self, command: np.ndarray):
+        """(carriage set-point, J_WG) of the arm's joint state `command`."""
         X_WG, J = self._kinematics.pose_and_jacobian(command[:ARM_JOINTS])
-        return carriage_state(self._carriage, X_WG, J @ command[ARM_JOINTS:])
+        return carriage_state(self._carriage, X_WG, J @ command[ARM_JOINTS:]), J
 
     def _sample_command(self, context, discrete_state):
         command = self._command.Eval(context)
-        if np.array_equal(command, context.get_discrete_state(self._arm_state).value()):
-            return
+        previous = context.get_discrete_state(self._arm_state).value()
         discrete_state.set_value(self._arm_state, command)
-        discrete_state.set_value(self._set_point, self._carriage_set_point(command))
+        if np.array_equal(command[ARM_JOINTS:], previous[ARM_JOINTS:]):
+            set_point = context.get_discrete_state(self._set_point).value().copy()
+            set_point[:ARM_JOINTS] += self._period_s * set_point[ARM_JOINTS:]
+        else:
+            set_point, J = self._carriage_set_point(command)
+            discrete_state.set_value(self._jacobian, J.ravel())
+        discrete_state.set_value(self._set_point, set_point)
 
     def _calc_positions(self, context, output):
-        output.SetFromVector(context.get_discrete_state(self._arm_state).value()[:ARM_JOINTS])
+        q = context.get_discrete_state(self._arm_state).value()[:ARM_JOINTS]
+        set_point = context.get_discrete_state(self._set_point).value()
+        J = context.get_discrete_state(self._jacobian).value().reshape(6, ARM_JOINTS)
+        deflection = self._carriage_state.Eval(context)[:ARM_JOINTS] - set_point[:ARM_JOINTS]
+        output.SetFromVector(q + np.linalg.solve(J, carriage_displacement(
+            self._carriage, set_point[:ARM_JOINTS], deflection)))
 
     def _calc_velocities(self, context, output):
         output.SetFromVector(context.get_discrete_state(self._arm_state).value()[ARM_JOINTS:])

@@ -13,30 +13,35 @@ import dataclasses
 
 import numpy as np
 from pydrake.geometry import Box, Cylinder, ProximityProperties
-from pydrake.geometry import AddContactMaterial, AddRigidHydroelasticProperties
+from pydrake.geometry import (AddCompliantHydroelasticProperties, AddContactMaterial,
+                              AddRigidHydroelasticProperties)
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import AddMultibodyPlant, CoulombFriction, MultibodyPlantConfig
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource
 
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION
 from tegrasp_drake.robotiq import linkage
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse
-from tegrasp_drake.simulation.gripper_hands import actuated_state_selector, gripper_hand
+from tegrasp_drake.simulation.gripper_hands import (actuated_state_selector, configure_drive,
+                                                    gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
-from tegrasp_drake.simulation.station import pad_geometries, set_pd_gains
+from tegrasp_drake.simulation.station import pad_geometries
 
 
 @dataclasses.dataclass
 class BenchObstacle:
-    """A rigid obstacle welded between the fingers: `box` (size [m], x y z in the gripper
-    base frame) or `rod` (a cylinder across the pads, along x: size = [diameter, length])
-    centred at (0, 0, z_m) in the gripper base frame."""
+    """An obstacle welded between the fingers: `box` (size [m], x y z in the gripper base
+    frame) or `rod` (a cylinder across the pads, along x: size = [diameter, length])
+    centred at (0, 0, z_m) in the gripper base frame; rigid, or compliant hydroelastic
+    of hydroelastic_modulus [Pa] with the pads' Hunt-Crossley dissipation."""
     shape: str
     size: tuple
     z_m: float
     friction: float = 0.5
+    hydroelastic_modulus: float | None = None
 
 
 @dataclasses.dataclass
@@ -50,8 +55,16 @@ class GripperBench:
 
 def _add_obstacle(plant, obstacle: BenchObstacle) -> None:
     properties = ProximityProperties()
-    AddRigidHydroelasticProperties(resolution_hint=0.002, properties=properties)
-    AddContactMaterial(friction=CoulombFriction(obstacle.friction, obstacle.friction),
+    if obstacle.hydroelastic_modulus is None:
+        AddRigidHydroelasticProperties(resolution_hint=0.002, properties=properties)
+        dissipation = None
+    else:
+        AddCompliantHydroelasticProperties(resolution_hint=0.002,
+                                           hydroelastic_modulus=obstacle.hydroelastic_modulus,
+                                           properties=properties)
+        dissipation = PAD_DISSIPATION  # so that the pair's is the pads' whatever the moduli
+    AddContactMaterial(dissipation=dissipation,
+                       friction=CoulombFriction(obstacle.friction, obstacle.friction),
                        properties=properties)
     if obstacle.shape == "box":
         shape, X = Box(*obstacle.size), RigidTransform([0.0, 0.0, obstacle.z_m])
@@ -80,11 +93,12 @@ def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConf
     if obstacle is not None:
         _add_obstacle(plant, obstacle)
     plant.set_gravity_enabled(gripper, False)
-    set_pd_gains(plant, gripper, *hand.pd_gains(driver))
+    configure_drive(plant, gripper, hand, driver)
     plant.Finalize()
     plant.SetDefaultPositions(gripper, hand.default_positions())
 
-    sim_driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=driver))
+    sim_driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(
+        config=driver, time_step=plant.time_step()))
     selector = builder.AddSystem(actuated_state_selector(plant, gripper, hand))
     builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
     builder.Connect(selector.get_output_port(), sim_driver.GetInputPort("finger_state"))

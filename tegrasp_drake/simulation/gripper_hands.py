@@ -2,11 +2,14 @@
 
 - `linkage` (the default): the 2F-85's underactuated five-bar fingers
   (robotiq/linkage.py, modelgen/robotiq_linkage_sdf.py). The actuated coordinate is
-  the left driver's angle [rad]; the drive is a non-backdrivable screw (the motor drives
-  both fingers through a screw and nut: an object pushing the fingers open cannot turn it).
+  the left driver's angle [rad]; behind it the 2F-85's drive (robotiq/drive.py): the
+  motor's rotor (the actuator's reflected inertia), the firmware's position loop (the
+  plant's PD on the driver), the current limit and the self-locking screw (the
+  SimRobotiqDriver's set-point).
 - `prismatic`: two prismatic fingers, the right one mimicking the left
   (modelgen/robotiq_sdf.py); the actuated coordinate is half the opening [m]. Kept so that
-  results can be compared with the earlier hand; its drive is backdrivable.
+  results can be compared with the earlier hand; its drive is idealised: no rotor, a stiff
+  PD whose set-point the force limit bounds, backdrivable.
 
 Everything else (the taxels, the films, the driver's command and status bytes) is common.
 A hand maps its actuated coordinate `a` to half the pad opening q [m] on the pin: the
@@ -16,9 +19,10 @@ SimRobotiqDriver plans in q (the 2F-85's speed is a finger speed) and commands `
 import dataclasses
 
 import numpy as np
+from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.primitives import MatrixGain
 
-from tegrasp_drake.robotiq import linkage
+from tegrasp_drake.robotiq import drive, linkage
 from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
 
 GRIPPER_MODELS = ("linkage", "prismatic")
@@ -53,6 +57,10 @@ class PrismaticHand:
         """(kp [N/m], kd [N s/m]) of the PD on half the opening (GripperDriverConfig)."""
         return config.position_gain, config.damping_gain
 
+    def drive_inertia(self, config) -> float:
+        """The inertia the drive moves [kg]: none modelled (the PD is stiff)."""
+        return 0.0
+
     def pad_center_offset(self, opening_m: float) -> float:
         """How far the pads' centres lie beyond the grasp frame along the approach axis [m]
         when the pads are opening_m apart: 0, the pads move along the stroke only."""
@@ -68,7 +76,7 @@ class LinkageHand:
     events_folder: str = ""  # its memorized events: the package's events themselves
     # Eq. 3 thresholds [SA, RA] of its ensemble events, chosen on held-out ensemble runs
     # (analysis/choose_ensemble_thresholds.py; analysis/ensemble_thresholds.md).
-    ensemble_thresholds: tuple = (("reach_load", (0.40, 0.80)), ("load_lift", (0.50, 0.90)),
+    ensemble_thresholds: tuple = (("reach_load", (0.40, 0.80)), ("load_lift", (0.40, 0.65)),
                                   ("place_unload", (0.98, 0.70)))
 
     def half_opening(self, a: float) -> float:
@@ -84,8 +92,14 @@ class LinkageHand:
         return [0.0] * 8  # every joint at zero is the open pose, the loops closed
 
     def pd_gains(self, config) -> tuple[float, float]:
-        """(kp [N m/rad], kd [N m s/rad]) of the PD on the driver (GripperDriverConfig)."""
-        return config.driver_position_gain, config.driver_damping_gain
+        """(kp [N m/rad], kd [N m s/rad]) of the PD on the driver: the firmware's position
+        loop of bandwidth config.position_loop_hz on the drive's inertia."""
+        return drive.loop_gains(config.position_loop_hz, self.drive_inertia(config))
+
+    def drive_inertia(self, config) -> float:
+        """The drive's inertia about the driver [kg m^2]: the linkage and the rotor through
+        a screw of efficiency config.screw_efficiency."""
+        return drive.drive_inertia(config.screw_efficiency)
 
     def pad_center_offset(self, opening_m: float) -> float:
         """How far the pads' centres lie beyond the grasp frame along the approach axis [m]
@@ -98,6 +112,23 @@ class LinkageHand:
 def gripper_hand(model: str):
     """The hand of a `gripper.model` name (GRIPPER_MODELS)."""
     return {"linkage": LinkageHand, "prismatic": PrismaticHand}[model]()
+
+
+def configure_drive(plant, gripper, hand, config) -> None:
+    """Sets the gripper's actuator before Finalize: the PD gains of `hand` (its drive) for
+    the GripperDriverConfig `config` and, on a hand whose model carries a rotor, the rotor's
+    inertia as it weighs at the fingers through the screw (robotiq/drive.py): the model
+    holds the rotor's own, the screw's efficiency scales it."""
+    kp, kd = hand.pd_gains(config)
+    # GetJointActuatorIndices(instance) is empty before Finalize(): walk all actuators.
+    for i in range(plant.num_actuators()):
+        actuator = plant.get_joint_actuator(JointActuatorIndex(i))
+        if actuator.model_instance() != gripper:
+            continue
+        actuator.set_controller_gains(PdControllerGains(p=kp, d=kd))
+        if actuator.default_rotor_inertia() > 0.0:
+            actuator.set_default_rotor_inertia(config.screw_efficiency
+                                               * drive.ROTOR_INERTIA_KG_M2)
 
 
 def actuated_state_selector(plant, gripper, hand) -> MatrixGain:

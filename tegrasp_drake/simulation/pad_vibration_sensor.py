@@ -27,7 +27,13 @@ The whole is linear and integrated exactly at an internal rate (20 kHz) between 
 once per plant step for both pads together. The RA sample is, each sensor period (1 ms), the
 internal sample of largest magnitude, with its sign (a peak-hold: a 400 Hz ring sampled at
 1 kHz would alias, and its amplitude would depend on the phase of the contact against the
-sample grid). Gaussian noise is added to each sample.
+sample grid). The drives' vibration (drive_vibration.py: the gripper's motor and gears, the
+arm's actuators, from their joint rates) and Gaussian noise are added to each sample, which
+then passes the charge amplifier's output swing and the NI myRIO-1900's 12-bit converter
+(film_readout.py): the RA stream moves in steps of one code, 4.88 mV on the default +-10 V
+input, i.e. 1.23 m/s^2 at the default sensitivity. The readout runs inside this system's
+update (a few float operations on the sample it already computes), not as a system of its
+own: it adds no Python call per sample.
 
 Units: the film's voltage is V = -G_Q (y - z) / C_f (film_dynamics.py). It is reported in
 acceleration-equivalent units, a = -V / S with S = G_Q / (w^2 C_f) the film's mid-band
@@ -57,9 +63,13 @@ from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION, PAD_MODULUS
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.simulation.drive_vibration import (AddDriveVibration, DriveVibrationConfig,
+                                                     arm_drive_default, gripper_drive_default)
 from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, FilmParameters, advance_films,
                                                     film_sensitivity, film_step_matrices,
                                                     halfsine_mean_forces, impact_pulse)
+from tegrasp_drake.simulation.film_readout import (adc_input, noise_at_amplifier_v,
+                                                  reading_mps2, reading_noise_std)
 from tegrasp_drake.simulation.pad_accelerometers import AddPadFrameAccelerometer
 from tegrasp_drake.simulation.pad_slip_vibration import UPDATE_PERIOD_S as TEXTURE_PERIOD_S
 from tegrasp_drake.simulation.pad_slip_vibration import texture_acceleration
@@ -67,6 +77,8 @@ from tegrasp_drake.simulation.pad_slip_vibration import texture_acceleration
 # A pad's contact begins on the plant step whose normal force exceeds this [N] after a step
 # at or below it (the plant's force is exactly zero out of contact).
 CONTACT_ONSET_N = 1e-6
+# The film's gain and the amplifier's capacitor: their words for a value not positive.
+_SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
 # Slip textures weaker than this [m/s^2] are not integrated: 5e4 times below the sensor
 # noise; creep of a held object (micrometres per second) gives about 1e-7.
 TEXTURE_FLOOR_MPS2 = 1e-6
@@ -117,13 +129,38 @@ class VibrationSensorConfig:
                                              why="Hunt-Crossley dissipation of soft materials is "
                                                  "0.1-50 s/m")
     # Film charge per unit modal deflection G_Q = d31 E_film kappa A_film, and the charge
-    # amplifier's feedback capacitance: they set the volts (film_sensitivity), not the
-    # acceleration-equivalent output.
+    # amplifier's feedback capacitance: they set the film's sensitivity at the amplifier's
+    # output, S = G_Q / (w^2 C_f) [V/(m/s^2)] (volts_per_mps2; 3.96e-3 with these), and with
+    # it the volts the readout below clips and quantises. The range of G_Q (a film bonded
+    # behind the board vs a free cantilever) and why S is kept: docs/model.md.
     film_charge_gain_c_per_m: float = bounded(2.5e-5, low=0.0, low_open=True, high=1e-2,
-                                              unit="C/m")
+                                              unit="C/m", below=_SENSITIVITY_BELOW)
     feedback_capacitance_f: float = bounded(1e-9, low=0.0, low_open=True, high=1e-6, unit="F",
                                             why="a charge amplifier's feedback capacitor is pF to "
-                                                "nF")
+                                                "nF",
+                                            below=_SENSITIVITY_BELOW)
+    # The readout (film_readout.py): the amplifier's output swing [V] (an op-amp on the
+    # myRIO MSP connector's +-15 V supply swings to about +-13.5 V), and the NI myRIO-1900's
+    # 12-bit input: "msp" (+-10 V, 4.88 mV a code; the default, for the bipolar amplifier),
+    # "mxp" (0-5 V, 1.22 mV a code, the amplifier level-shifted to 2.5 V) or "ideal" (no
+    # converter: the amplifier's voltage itself, unclipped by any input range); the
+    # converter's own input noise in codes rms (half a code: a 12-bit converter's noise is
+    # below one code, or its last bit would carry noise only; NI's 12-bit boards dither with
+    # about 0.5 code rms, NI PCI-1200 User Manual).
+    amplifier_swing_v: float = bounded(13.5, low=0.0, low_open=True, high=15.0, unit="V",
+                                       why="an amplifier on the myRIO's +-15 V supply cannot "
+                                           "swing past its rails",
+                                       below="must be positive [V]")
+    adc_input: str = "msp"
+    adc_noise_lsb: float = bounded(0.5, low=0.0, high=1.0, unit="codes rms",
+                                   why="a 12-bit converter's noise is below one code, NI "
+                                       "PCI-1200 User Manual; 0: none",
+                                   below="must be zero (no noise) or positive [codes rms]")
+    # Vibration of the gripper's motor and gears while the fingers move, and of the arm's
+    # actuators while the arm moves (drive_vibration.py; amplitudes_mps2 [] disables).
+    gripper_drive: DriveVibrationConfig = dataclasses.field(
+        default_factory=gripper_drive_default)
+    arm_drive: DriveVibrationConfig = dataclasses.field(default_factory=arm_drive_default)
     # exact integration points per second
     internal_rate_hz: float = bounded(20000.0, low=0.0, low_open=True, high=200_000.0, unit="Hz",
                                       why="exact integration points per second; the wall time "
@@ -152,6 +189,22 @@ def volts_per_mps2(config: VibrationSensorConfig) -> float:
     """The film's mid-band sensitivity S [V/(m/s^2)]: its voltage is -S times the output."""
     return film_sensitivity(config.film_charge_gain_c_per_m, config.mode_frequency_hz,
                             config.feedback_capacitance_f)
+
+
+def noise_draw_std_v(config: VibrationSensorConfig) -> float:
+    """The Gaussian noise [V rms] added to each film sample ahead of the readout: the
+    amplifier's and the converter's (film_readout.py)."""
+    return noise_at_amplifier_v(config.noise_std_mps2, config.adc_noise_lsb,
+                                volts_per_mps2(config), adc_input(config.adc_input))
+
+
+def ra_noise_std_mps2(config: VibrationSensorConfig) -> float:
+    """The RA channel's noise at rest [m/s^2 rms], in closed form from the electronics:
+    the film's readout (film_readout.reading_noise_std), or the accelerometer's own noise."""
+    if config.transducer != "film":
+        return config.noise_std_mps2
+    return reading_noise_std(config.noise_std_mps2, config.adc_noise_lsb,
+                             volts_per_mps2(config), adc_input(config.adc_input))
 
 
 # The discrete state. Group 0, one vector: the films' states (5 x 2, row-major: state i of
@@ -194,6 +247,7 @@ class PadFilms(LeafSystem):
         - left_pad_frame_acceleration
         - right_pad_frame_acceleration
         - texture_state (optional)
+        - drive_vibration (optional)
         - noise (optional)
         - contact_results
         - body_poses
@@ -215,16 +269,22 @@ class PadFilms(LeafSystem):
         texture_state: PadSlipVibration's texture_state (6), from which the texture
             acceleration along each pad normal is synthesised at the internal rate; declared
             only with `with_texture`.
-        noise: unit Gaussian samples at the sensor rate (2); declared only when
-            config.noise_std_mps2 > 0.
+        drive_vibration: the drives' vibration at the fingertips (2, m/s^2,
+            drive_vibration.py), added to each sample; declared only with
+            `with_drive_vibration`.
+        noise: unit Gaussian samples at the sensor rate (2); declared only when the
+            amplifier's or the converter's noise is above zero (noise_draw_std_v).
         contact_results, body_poses, body_spatial_velocities, body_spatial_accelerations:
             the plant's; read only on the plant step where a pad's contact begins.
-        left_pad_vibration, right_pad_vibration: the film's peak-hold sample plus noise on
-            z, x and y zero (3, m/s^2-equivalent, pad frame); updated every sensor period.
+        left_pad_vibration, right_pad_vibration: the film's peak-hold sample plus the drives'
+            vibration and noise, through the amplifier's swing and the myRIO's converter
+            (film_readout.py), on z, x and y zero (3, m/s^2-equivalent, pad frame); updated
+            every sensor period.
     """
 
     def __init__(self, *, plant, pads: dict, force_indices, config: VibrationSensorConfig,
-                 with_texture: bool = False, pad_statics=None):
+                 with_texture: bool = False, pad_statics=None,
+                 with_drive_vibration: bool = False):
         super().__init__()
         self._dt = plant.time_step()
         if not self._dt > 0.0:
@@ -265,8 +325,13 @@ class PadFilms(LeafSystem):
                                for f in FINGER_NAMES]
         self._texture = (self.DeclareVectorInputPort("texture_state", 3 * len(FINGER_NAMES))
                          if with_texture else None)
+        self._drive = (self.DeclareVectorInputPort("drive_vibration", 2)
+                       if with_drive_vibration else None)
+        self._noise_std_v = noise_draw_std_v(config)
         self._noise = (self.DeclareVectorInputPort("noise", 2)
-                       if config.noise_std_mps2 > 0 else None)
+                       if self._noise_std_v > 0 else None)
+        self._readout = (volts_per_mps2(config), config.amplifier_swing_v,
+                         adc_input(config.adc_input))
         self._contacts = self.DeclareAbstractInputPort(
             "contact_results", AbstractValue.Make(ContactResults()))
         self._poses = self.DeclareAbstractInputPort(
@@ -328,11 +393,15 @@ class PadFilms(LeafSystem):
         if step % self._steps_per_sample:
             state[_PEAK] = peaks
             return
+        if self._drive is not None:
+            drive = self._drive.Eval(context).tolist()
+            peaks = [peaks[0] + drive[0], peaks[1] + drive[1]]
+        noise = (0.0, 0.0)
         if self._noise is not None:
-            noise, std = self._noise.Eval(context).tolist(), self._config.noise_std_mps2
-            peaks = [peaks[0] + std * noise[0], peaks[1] + std * noise[1]]
-        for sample, value in zip(self._samples, peaks):
-            discrete_state.get_mutable_value(sample)[_SAMPLE_AXIS] = value
+            noise = [self._noise_std_v * n for n in self._noise.Eval(context).tolist()]
+        for sample, value, n in zip(self._samples, peaks, noise):
+            discrete_state.get_mutable_value(sample)[_SAMPLE_AXIS] = reading_mps2(
+                value, n, *self._readout)
         state[_PEAK] = 0.0
 
     def _impact_loads(self, step_start: float, state: np.ndarray):
@@ -434,13 +503,20 @@ def finger_force_indices(plant, gripper) -> list[int]:
 
 def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorConfig,
                 slip_vibration=None, pad_forces=None, pad_statics=None,
-                name: str = "pad_films") -> PadFilms:
+                drive_rates=(), name: str = "pad_films") -> PadFilms:
     """Adds both pads' films (and the accelerometers and noise source they read) to
     `builder`, connected to `plant`; `slip_vibration`, if given, is the PadSlipVibration
     system. The pads' normal contact forces come from the fingers' prismatic joints, or,
     as the linkage hand needs, from `pad_forces` (a PadNormalForces system) or from the
     joints' generalized contact forces through `pad_statics` (a LinkagePadStatics) when
-    given. Returns the PadFilms system (outputs `<finger>_pad_vibration`)."""
+    given. `drive_rates`: (DriveVibrationConfig, joint-rate output port) of each drive
+    whose vibration the films read (drive_vibration.py). Returns the PadFilms system
+    (outputs `<finger>_pad_vibration`)."""
+    drive = AddDriveVibration(builder, sources=list(drive_rates),
+                              period_s=1.0 / config.sample_rate_hz,
+                              mode_frequency_hz=config.mode_frequency_hz,
+                              damping_ratio=config.mode_damping_ratio,
+                              name=f"{name}_drive_vibration")
     force_port = plant.get_generalized_contact_forces_output_port(gripper)
     force_indices = (0, 1)  # PadNormalForces' outputs (pad_statics reads the whole vector)
     if pad_forces is not None:
@@ -449,7 +525,10 @@ def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorC
         force_indices = finger_force_indices(plant, gripper)
     films = builder.AddNamedSystem(name, PadFilms(
         plant=plant, pads=pads, force_indices=force_indices,
-        config=config, with_texture=slip_vibration is not None, pad_statics=pad_statics))
+        config=config, with_texture=slip_vibration is not None, pad_statics=pad_statics,
+        with_drive_vibration=drive is not None))
+    if drive is not None:
+        builder.Connect(drive, films.GetInputPort("drive_vibration"))
     builder.Connect(force_port, films.GetInputPort("generalized_contact_forces"))
     if pad_statics is not None:
         builder.Connect(plant.get_state_output_port(gripper),
@@ -463,7 +542,7 @@ def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorC
     if slip_vibration is not None:
         builder.Connect(slip_vibration.GetOutputPort("texture_state"),
                         films.GetInputPort("texture_state"))
-    if config.noise_std_mps2 > 0:
+    if noise_draw_std_v(config) > 0:
         noise = builder.AddNamedSystem(f"{name}_noise", RandomSource(
             RandomDistribution.kGaussian, 2, 1.0 / config.sample_rate_hz))
         builder.Connect(noise.get_output_port(), films.GetInputPort("noise"))

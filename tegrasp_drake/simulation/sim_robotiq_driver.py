@@ -3,16 +3,22 @@
 It takes the same command bytes as the real gripper (rPR, rSP, rFR) and reports the same
 status bytes (robotiq/units.py). Inside, half the pad opening q [m] follows a speed- and
 acceleration-limited reference toward the requested position (the 2F-85's speed setting is a
-finger speed); the hand (gripper_hands.py) maps it to its actuated coordinate a (the left
-driver's angle on the linkage hand, q itself on the prismatic one), which the plant's
-implicit PD (SAP) tracks. The grip force limit is imposed the way a current-limited motor
-does it: the PD set-point is kept within 2 F |dq/da| / kp of the measured a, so a blocked
-finger pushes each pad with at most F in a parallel grasp (one actuator drives both fingers,
-so it carries both pads' share). On the linkage hand the drive is non-backdrivable, as the
-2F-85's screw and nut are: the set-point (the nut) moves only in the commanded direction, so
-a load pushing the fingers back meets the PD's full stiffness, not the force limit. The
-position byte gPO is computed from the measured a through the hand's linkage; a finger that
-stops short of its goal reports an object (gOBJ).
+finger speed), planned at the 2F-85's command rate; the hand (gripper_hands.py) maps it to
+its actuated coordinate a (the left driver's angle on the linkage hand, q itself on the
+prismatic one), which the plant's implicit PD (SAP) tracks.
+
+On the linkage hand the plant's PD is the 2F-85 firmware's position loop on the drive's
+inertia (the rotor is the actuator's reflected inertia; robotiq/drive.py), and the driver
+adds what a PD cannot do, once a plant step (half a step after the plant's, so that it sees
+the state the plant steps from): the current limit while the fingers move (the loop's torque
+capped at 2 F |dq/da|, both pads on the one motor: the set-point is moved so that the PD's
+torque is the cap), the self-locking screw (a load that would drive the rotor back stops it
+where it stands: the set-point then holds the rotor under the load it carries), and the stop
+(standing at the current limit, the firmware reports an object, gOBJ, and cuts the current,
+gCU = 0; the screw holds the force of that instant). A new command restarts the reference
+from where the fingers stand. The prismatic hand keeps the idealised drive: no rotor, a
+stiff PD whose set-point stays within 2 F / kp of the finger, backdrivable. The position byte
+gPO is computed from the measured a through the hand's linkage.
 """
 
 import dataclasses
@@ -23,11 +29,17 @@ import numpy as np
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.robotiq import drive
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
 
-(_REF_Q, _REF_V, _REF_A, _GOAL, _HALF_SPEED, _FORCE, _POSITION_BYTE, _OBJECT, _T, _HELD,
- _DIRECTION) = range(11)
+(_REF_Q, _REF_V, _REF_A, _GOAL, _HALF_SPEED, _FORCE, _POSITION_BYTE, _OBJECT, _T, _PHASE,
+ _DIRECTION, _V_PREV, _MOTOR, _ANCHOR) = range(14)
+# The drive's phases (the _PHASE state): moving (the loop drives, within the current
+# limit), stuck (the screw holds the rotor against a load larger than the motor's torque,
+# the motor still pushing) and held (stopped at the current limit: object reported, no
+# current).
+MOVING, STUCK, HELD = 0.0, 1.0, 2.0
 
 
 @dataclasses.dataclass
@@ -42,13 +54,19 @@ class GripperDriverConfig:
     # The prismatic hand's PD on half the opening.
     position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")  # N/m
     damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")  # N s/m
-    # The linkage hand's PD on the driver angle. The screw drive is stiff: 1000 N m/rad
-    # gives 0.16 mm at a pad pushed with 50 N (lever 57 mm), and the damping is critical
-    # for both fingers' linkage inertia about the driver axis, about 2.4e-4 kg m^2
-    # (2 sqrt(1000 x 2.4e-4) = 0.98).
-    # N m/rad
-    driver_position_gain: float = bounded(1000.0, low=0.0, low_open=True, high=1e5, unit="N m/rad")
-    driver_damping_gain: float = bounded(1.0, low=0.0, high=1e3, unit="N m s/rad")  # N m s/rad
+    # The linkage hand's drive (robotiq/drive.py has the sources and ranges): the firmware's
+    # position loop bandwidth [Hz], critically damped on the drive's inertia, and the
+    # self-locking screw's forward efficiency, which sets how much of the rotor's inertia
+    # the fingers feel while the motor drives them.
+    position_loop_hz: float = bounded(
+        drive.POSITION_LOOP_HZ, low=drive.POSITION_LOOP_HZ_RANGE[0],
+        high=drive.POSITION_LOOP_HZ_RANGE[1], unit="Hz",
+        why="the 2F-85 firmware's position loop: slower and the locked drive yields, faster "
+            "and a 1 ms plant step cannot follow it")
+    screw_efficiency: float = bounded(
+        drive.SCREW_EFFICIENCY, low=drive.SCREW_EFFICIENCY_RANGE[0],
+        high=drive.SCREW_EFFICIENCY_RANGE[1],
+        why="a self-locking screw's forward efficiency is below 0.5")
     # m/s^2, finger speed ramps
     acceleration: float = bounded(0.5, low=0.0, low_open=True, high=10.0, unit="m/s^2")
     # m/s; slower than this before the goal = object detected
@@ -105,16 +123,49 @@ def force_limited_set_point(q: float, q_ref: float, force: float, position_gain:
     return q + min(max(q_ref - q, -band), band)  # floats: called on every plant step
 
 
-def nut_set_point(held: float, limited: float, reference: float, direction: float) -> float:
-    """The set-point of a non-backdrivable drive: the nut at `held` moves only in
-    `direction` (+1 or -1; 0 when it has not moved yet), toward the force-limited set-point
-    `limited` but never past the reference. A load that pushes the finger either way
-    leaves it where it is."""
-    if direction > 0.0:
-        return max(held, min(limited, reference))
-    if direction < 0.0:
-        return min(held, max(limited, reference))
-    return limited
+def drive_set_point(*, a: float, v: float, v_prev: float, set_point: tuple[float, float],
+                    phase: float, anchor: float, reference: tuple[float, float], limit: float,
+                    direction: float, gain: float, damping: float, inertia: float,
+                    time_step: float) -> tuple[float, float, float, float, float]:
+    """One step of the 2F-85's drive on the linkage hand (module docstring): the set-point
+    (a_d [rad], v_d [rad/s]) of the plant's PD (gain, damping) for the next plant step, the
+    phase, the motor's torque [N m] and the anchor (where the screw stopped the rotor
+    [rad]), from the driver's state a, v (v_prev one step before), the set-point and phase
+    of the last step, the loop's reference (a_ref, v_ref), the torque cap `limit` [N m],
+    the direction the command moves the nut in (+1 or -1), the drive's inertia [kg m^2] and
+    the plant's time step [s]. Python floats: called once a plant step."""
+    set_a, set_v = set_point
+    # The load on the drive over the last step: the PD's torque at the step's end (SAP
+    # evaluates it there) less what accelerated the inertia.
+    load = gain * (set_a - a) + damping * (set_v - v) - inertia * (v - v_prev) / time_step
+    demand = gain * (reference[0] - a) + damping * (reference[1] - v)
+    motor = min(max(demand, -limit), limit)
+    if phase == HELD:
+        # The screw holds; the firmware watches the encoder: a finger that closes on by
+        # half the squeeze the hold carries has lost its object, and the motor drives on.
+        if direction * (a - anchor) <= 0.5 * direction * (set_a - anchor):
+            return set_a, 0.0, HELD, 0.0, anchor
+        phase = MOVING
+    elif phase == STUCK:
+        if direction * motor <= direction * load:  # the screw still carries the load
+            return set_a, 0.0, HELD if direction * motor >= limit else STUCK, motor, anchor
+        phase = MOVING
+    elif direction * v <= 0.0 and direction * load > max(direction * motor, 0.0):
+        # The load would drive the rotor back: the screw stops it where it stands.
+        set_a = a + load / gain
+        return set_a, 0.0, HELD if direction * motor >= limit else STUCK, motor, a
+    if abs(demand) <= limit:
+        return reference[0], reference[1], phase, motor, anchor
+    # At the current limit: the set-point that makes the PD's torque the cap, at the
+    # velocity the next step reaches if the last step's acceleration holds.
+    v_next = 2.0 * v - v_prev
+    return a + time_step * v_next + motor / gain, v_next, phase, motor, anchor
+
+
+def held_object_status(q: float, goal: float) -> int:
+    """gOBJ of fingers the screw holds on an object at q [m] short of goal [m]."""
+    return int(ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING if goal < q
+               else ru.ObjectStatus.STOPPED_ON_CONTACT_OPENING)
 
 
 def object_status(q: float, v: float, q_ref: float, goal: float, stall_speed: float) -> int:
@@ -146,110 +197,121 @@ class SimRobotiqDriver(LeafSystem):
         finger_state: (2) the hand's actuated coordinate a and its rate (the left driver's
             angle [rad] and [rad/s] on the linkage hand; half the opening [m], [m/s] on the
             prismatic one), from gripper_hands.actuated_state_selector.
-        desired_state: (2) a and da/dt set-points for the plant's PD on the actuated joint.
+        desired_state: (2) a and da/dt set-points for the plant's PD on the actuated joint,
+            for the plant step that follows (set half a step before it).
         status: (8) status bytes, robotiq.units order.
+
+    time_step is the plant's [s]: the drive runs once a plant step, half a step after it.
     """
 
-    def __init__(self, *, config: GripperDriverConfig, initial_opening: float = ru.STROKE_M):
+    def __init__(self, *, config: GripperDriverConfig, time_step: float,
+                 initial_opening: float = ru.STROKE_M):
         super().__init__()
         if config.model not in GRIPPER_MODELS:
             raise ValueError(f"gripper.model '{config.model}' is not one of "
                              f"{', '.join(GRIPPER_MODELS)}")
+        if not time_step > 0.0:
+            raise ValueError(f"time_step {time_step} must be the plant's positive step [s]")
         self._config = config
         self._hand = gripper_hand(config.model)
-        self._gain, _ = self._hand.pd_gains(config)
+        self._gain, self._damping = self._hand.pd_gains(config)
+        self._inertia = self._hand.drive_inertia(config)
         self._dt = 1.0 / config.update_rate_hz
+        self._time_step = time_step
         self._command = self.DeclareVectorInputPort("command", ru.COMMAND_SIZE)
         self._finger_state = self.DeclareVectorInputPort("finger_state", 2)
         q0 = initial_opening / 2
-        initial = np.zeros(11)
+        a0 = self._hand.actuated(q0)
+        initial = np.zeros(14)
         initial[[_REF_Q, _GOAL]] = q0
-        initial[_HELD] = self._hand.actuated(q0)
+        initial[_ANCHOR] = a0
         initial[_HALF_SPEED] = ru.SPEED_MIN_MPS / 2
         initial[_FORCE] = ru.FORCE_MIN_N
         initial[_POSITION_BYTE] = ru.position_byte_from_opening(initial_opening)
         initial[_OBJECT] = int(ru.ObjectStatus.AT_REQUESTED_POSITION)
         self._state = self.DeclareDiscreteState(initial)
+        self._set_point = self.DeclareDiscreteState([a0, 0.0])
         self.DeclarePeriodicDiscreteUpdateEvent(self._dt, 0.0, self._update)
-        state_ticket = {self.discrete_state_ticket(self._state), self.time_ticket(),
-                        self._finger_state.ticket()}
-        self.DeclareVectorOutputPort("desired_state", 2, self._calc_desired_state,
-                                     prerequisites_of_calc=state_ticket)
+        self.DeclarePeriodicDiscreteUpdateEvent(time_step, time_step / 2, self._drive_step)
+        self.DeclareStateOutputPort("desired_state", self._set_point)
         self.DeclareVectorOutputPort(
             "status", ru.STATUS_SIZE, self._calc_status,
             prerequisites_of_calc={self.discrete_state_ticket(self._state),
                                    self._finger_state.ticket()})
 
     def _update(self, context, discrete_state):
+        """The command intake and the reference, at the 2F-85's command rate."""
         s = context.get_discrete_state(self._state).value().copy()
         t = context.get_time()
         hand = self._hand
-        if hand.non_backdrivable:  # the nut stays where the last plant step put it
-            s[_HELD] = self._set_point(context, s,
-                                       hand.actuated(self._reference(context, s)[0]))
+        a, v = self._finger_state.Eval(context).tolist()
+        q = hand.half_opening(a)
         # Advance the reference to now with the acceleration chosen at the last update.
         h = t - s[_T]
         s[_REF_Q] += s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
         s[_REF_V] += s[_REF_A] * h
         s[_T] = t
+        goal, force = s[_GOAL], s[_FORCE]
         s[_POSITION_BYTE], s[_GOAL], s[_HALF_SPEED], s[_FORCE] = command_targets(
             *self._command.Eval(context).tolist())
+        if (s[_GOAL], s[_FORCE]) != (goal, force):
+            if s[_PHASE] != MOVING:
+                # Fingers the screw holds: the new motion starts where they stand.
+                s[_REF_Q], s[_REF_V], s[_PHASE] = q, 0.0, MOVING
+            if s[_GOAL] != s[_REF_Q]:
+                # The direction the command moves the nut in, in the actuated coordinate
+                # (kept until the next command: the reference may pass its goal by a hair).
+                rate = hand.half_opening_rate(hand.actuated(s[_REF_Q]))
+                s[_DIRECTION] = 1.0 if (s[_GOAL] - s[_REF_Q]) * rate > 0.0 else -1.0
         if has_arrived(s[_REF_Q], s[_REF_V], s[_GOAL], self._config.acceleration, self._dt):
             s[_REF_Q], s[_REF_V] = s[_GOAL], 0.0
         s[_REF_A] = reference_step(s[_REF_Q], s[_REF_V], s[_GOAL], s[_HALF_SPEED],
                                    self._config.acceleration, self._dt)
-        if hand.non_backdrivable and s[_GOAL] != s[_REF_Q]:
-            # The direction the nut moves in, in the actuated coordinate.
-            rate = hand.half_opening_rate(hand.actuated(s[_REF_Q]))
-            s[_DIRECTION] = 1.0 if (s[_GOAL] - s[_REF_Q]) * rate > 0.0 else -1.0
-        a, v = self._finger_state.Eval(context).tolist()
-        q = hand.half_opening(a)
-        s[_OBJECT] = object_status(q, v * hand.half_opening_rate(a), s[_REF_Q], s[_GOAL],
-                                   self._config.stall_speed)
+        if s[_PHASE] == HELD:
+            s[_OBJECT] = held_object_status(q, s[_GOAL])
+        else:
+            s[_OBJECT] = object_status(q, v * hand.half_opening_rate(a), s[_REF_Q], s[_GOAL],
+                                       self._config.stall_speed)
         discrete_state.set_value(self._state, s)
 
-    def _reference(self, context, s) -> tuple[float, float]:
-        """(q_ref [m], v_ref [m/s]): the reference of half the opening now, from state s."""
-        h = context.get_time() - s[_T]
-        return (s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h,
-                s[_REF_V] + s[_REF_A] * h)
-
-    def _set_point(self, context, s, reference: float) -> float:
-        """The PD set-point of the actuated coordinate now, from state s (a list or array)
-        and the reference in the actuated coordinate."""
-        a = self._finger_state.Eval(context).item(0)
-        hand = self._hand
-        limited = force_limited_set_point(a, reference, s[_FORCE], self._gain,
-                                          abs(hand.half_opening_rate(a)))
-        if hand.non_backdrivable:
-            return nut_set_point(s[_HELD], limited, reference, s[_DIRECTION])
-        return limited
-
-    def _calc_desired_state(self, context, output):
-        # Evaluated on every plant step: Python floats, not numpy scalars (a tenth of the
-        # overhead, the same IEEE arithmetic).
+    def _drive_step(self, context, discrete_state):
+        """The drive, once a plant step: the PD's set-point for the next plant step."""
         s = context.get_discrete_state(self._state).value().tolist()
-        q_ref, v_ref = self._reference(context, s)
-        reference = self._hand.actuated(q_ref)
-        v_ref = v_ref / self._hand.half_opening_rate(reference)
-        set_point = self._set_point(context, s, reference)
-        if self._hand.non_backdrivable and set_point != reference:
-            # The nut is held back by the force limit or stands: it does not move with the
-            # reference, and a PD damping term on the reference's speed would add
-            # kd v_ref to the grip (4 N at 25 mm/s with the linkage's gains).
-            v_ref = 0.0
-        output.SetFromVector([set_point, v_ref])
+        set_point = context.get_discrete_state(self._set_point).value().tolist()
+        a, v = self._finger_state.Eval(context).tolist()
+        hand = self._hand
+        # The reference at the next plant step, in the actuated coordinate.
+        h = context.get_time() + 0.5 * self._time_step - s[_T]
+        q_ref = s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
+        reference = hand.actuated(q_ref)
+        rate = hand.half_opening_rate(reference)
+        v_ref = (s[_REF_V] + s[_REF_A] * h) / rate
+        lever = abs(hand.half_opening_rate(a))
+        if hand.non_backdrivable:
+            (set_a, set_v, s[_PHASE], s[_MOTOR], s[_ANCHOR]) = drive_set_point(
+                a=a, v=v, v_prev=s[_V_PREV], set_point=set_point, phase=s[_PHASE],
+                anchor=s[_ANCHOR], reference=(reference, v_ref),
+                limit=2.0 * s[_FORCE] * lever, direction=s[_DIRECTION], gain=self._gain,
+                damping=self._damping, inertia=self._inertia, time_step=self._time_step)
+        else:
+            set_a = force_limited_set_point(a, reference, s[_FORCE], self._gain, lever)
+            set_v = v_ref
+            s[_MOTOR] = self._gain * (set_a - a)
+        if s[_PHASE] == HELD:  # reported at once, as the current that stops with it
+            s[_OBJECT] = held_object_status(hand.half_opening(a), s[_GOAL])
+        s[_V_PREV] = v
+        discrete_state.set_value(self._state, s)
+        discrete_state.set_value(self._set_point, [set_a, set_v])
 
     def _calc_status(self, context, output):
         # Python floats (round() rounds half to even, as np.round); the same bytes.
         s = context.get_discrete_state(self._state).get_value().tolist()
         a = self._finger_state.Eval(context).item(0)
         hand = self._hand
-        lever = abs(hand.half_opening_rate(a))
-        band = 2.0 * s[_FORCE] * lever / self._gain
-        # The motor's current is capped at the force limit; a held load beyond it is taken
-        # by the screw, not the motor.
-        force = self._gain * min(abs(hand.actuated(s[_REF_Q]) - a), band) / (2.0 * lever)
+        # The motor's current: the torque it gives while the fingers move, none once they
+        # stop (the screw holds) or stand at the requested position.
+        moving = s[_OBJECT] == int(ru.ObjectStatus.MOVING) and s[_PHASE] != HELD
+        force = abs(s[_MOTOR]) / (2.0 * abs(hand.half_opening_rate(a)))
         status = [0.0] * ru.STATUS_SIZE
         status[ru.STATUS_ACT] = 1.0
         status[ru.STATUS_GTO] = 1.0
@@ -257,6 +319,5 @@ class SimRobotiqDriver(LeafSystem):
         status[ru.STATUS_OBJ] = s[_OBJECT]
         status[ru.STATUS_PR] = s[_POSITION_BYTE]
         status[ru.STATUS_PO] = status_position_byte(hand.half_opening(a))
-        status[ru.STATUS_CU] = ru.current_byte(
-            force, moving=s[_OBJECT] == int(ru.ObjectStatus.MOVING))
+        status[ru.STATUS_CU] = ru.current_byte(force, moving=moving)
         output.SetFromVector(status)

@@ -15,15 +15,19 @@ controller's set-point of the hand's actuated joint.
 The hand is `gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
 default) or the earlier prismatic fingers.
 
-The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies and
-their joints track `arm.desired_state` with the plant's implicit PD.
+The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies.
+The arm is driven as the real JACO2 is (jaco_velocity_drive.py): arm.desired_state goes
+through the hardware's velocity tracker, 100 Hz commands and their latency to the arm's
+velocity servo, whose set-point (arm.servo_set_point, simulation only) the joints track
+with the plant's implicit PD; arm.commanded_state shows the commands, as on the hardware
+station.
 
 With `station: !SimulatedStationConfig {arm: carriage}` the gripper rides on a Cartesian
-carriage instead (carriage.py), which follows the pose the commanded joints give G; the
-arm's ports stay: arm.position_measured and arm.velocity_measured report the commanded
-joint state one controller period late (the firmware's tracking, idealised), and
-arm.torque_measured the joint torques that would hold the wrench measured at the
-carriage-gripper weld. Simulation only there: carriage.desired_state (12, the carriage
+carriage instead (carriage.py), which follows the pose the servo's set-point gives G
+(the same command path, the servos ideal); the arm's ports stay: arm.position_measured
+reports the set-point's joints moved by the carriage's deflection, arm.velocity_measured
+the set-point's rates, and arm.torque_measured the joint torques that would hold the
+wrench measured at the carriage-gripper weld. Simulation only there: carriage.desired_state (12, the carriage
 PD's set-point), gripper.wrist_wrench (6: [M; F] on the arm at G, world [N m, N]).
 """
 
@@ -35,7 +39,7 @@ from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import AddMultibodyPlant
 from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.framework import DiagramBuilder
-from pydrake.systems.primitives import Demultiplexer
+from pydrake.systems.primitives import Demultiplexer, MatrixGain
 from pydrake.geometry import Meshcat
 from pydrake.multibody.plant import MultibodyPlantConfig
 
@@ -45,12 +49,15 @@ from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
+from tegrasp_drake.robotiq.dimensions import HALF_STROKE
 from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinematics, Carriage,
                                                EndpointImpedance, carriage_positions)
 from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageWristWrench
 from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.simulation.jaco_velocity_drive import AddJacoVelocityDrive
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
-                                                    gripper_hand)
+                                                    configure_drive, gripper_hand)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
@@ -70,7 +77,9 @@ from tegrasp_drake.rig.api_boundary import public_api
 
 @dataclasses.dataclass
 class ArmDriverConfig:
-    """The simulated JACO2 joint controller; the firmware compensates gravity."""
+    """The simulated JACO2: its joint-velocity command path and joint servos
+    (jaco_velocity_drive.py gives each setting's source); the firmware compensates gravity."""
+    # N m/rad, the joint servos' stiffness (the plant's PD)
     position_gain: float = bounded(400.0, low=0.0, low_open=True, high=1e5, unit="N m/rad")
     damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N m s/rad")
     # The grasp frame in world at t = 0; 3 cm behind and 9 cm above the grasp: further back,
@@ -78,10 +87,25 @@ class ArmDriverConfig:
     initial_gripper_xyz: list[float] = bounded(
         default_factory=lambda: [0.69, 0.0, 0.145], low=-0.9, high=0.9, unit="m",
         why="within the JACO2's 0.9 m reach, Kinova JACO2 specifications")
-    # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state;
-    # the Jaco's own velocity interface runs at 100 Hz.
+    # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state.
     control_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
-                                      why="the JACO2 is commanded at 100 Hz-1 kHz")
+                                      why="ten periods of the JACO2's 100 Hz commands at most")
+    # The joint-velocity commands the host sends: their rate [Hz] (the JACO2's 100 Hz) and
+    # their latency to the arm [s], a whole number of plant steps (drive_problem checks
+    # both against the plant's step).
+    command_rate_hz: float = bounded(100.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
+                                     why="the JACO2 takes 100 Hz, Kinova kinova-ros README; "
+                                         "faster fills its buffer",
+                                     below="must be positive [Hz] (the JACO2 takes 100)")
+    command_latency_s: float = bounded(0.010, low=0.0, low_open=True, high=0.1, unit="s",
+                                       why="the JACO2's is about 0.01, plausible 0.005-0.03; "
+                                           "0.1 s is ten commands queued",
+                                       below="must be a whole number of plant steps, at least "
+                                             "one, e.g. 0.01 [s] (the JACO2's is about 0.01)")
+    # What turns arm.desired_state into those commands, as on the hardware (whose own
+    # tracker settings are the hardware config's arm.tracker).
+    tracker: JacoVelocityTrackerConfig = dataclasses.field(
+        default_factory=JacoVelocityTrackerConfig)
 
 
 ARM_MOUNTS = ("jaco2", "carriage")
@@ -157,13 +181,14 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
 
 def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
                       tactile: TactileSensorConfig, vibration: VibrationSensorConfig,
-                      gripper_model: str, random_seed: int):
+                      gripper_model: str, random_seed: int, drive_rates=()):
     """Both pads' taxel arrays (TactilePads, seeded by `random_seed`), the slip texture
     (PadSlipVibration) and the films (PadFilms) of the hand `gripper_model`, connected to
     the finalized `plant` (the linkage's pad forces from `vibration.pad_force_source`);
     returns (TactilePads, PadFilms). With `vibration.transducer`
     accelerometer, the pads' accelerometers (PadAccelerometers) take the films' place,
-    without the slip texture."""
+    without the slip texture. `drive_rates`: (DriveVibrationConfig, joint-rate port) of the
+    drives the films feel (drive_vibration.py)."""
     pads = pad_geometries(plant, scene_graph, gripper)
     taxels = builder.AddNamedSystem(
         "tactile_pads", TactilePads(pads=pads, config=tactile, seed=random_seed))
@@ -185,8 +210,26 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
             builder.Connect(plant.get_body_poses_output_port(),
                             pad_forces.GetInputPort("body_poses"))
     films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper, config=vibration,
-                        slip_vibration=slip, pad_forces=pad_forces, pad_statics=pad_statics)
+                        slip_vibration=slip, pad_forces=pad_forces, pad_statics=pad_statics,
+                        drive_rates=drive_rates)
     return taxels, films
+
+
+def _drive_rates(builder, *, hand, selector, arm_velocity, vibration: VibrationSensorConfig):
+    """(DriveVibrationConfig, rate port) of the gripper's drive (its half-opening rate
+    [m/s]: the actuated joint's rate from `selector` times the hand's lever at mid-stroke)
+    and the arm's (`arm_velocity`, its joint rates [rad/s]); those the films feel (none with
+    the accelerometer transducer, none switched off)."""
+    if vibration.transducer != "film":
+        return []
+    rates = [(vibration.arm_drive, arm_velocity)] if vibration.arm_drive.enabled() else []
+    if vibration.gripper_drive.enabled():
+        lever = abs(hand.half_opening_rate(hand.actuated(HALF_STROKE / 2)))
+        finger_rate = builder.AddNamedSystem("gripper_half_opening_rate",
+                                             MatrixGain(np.array([[0.0, lever]])))
+        builder.Connect(selector.get_output_port(), finger_rate.get_input_port())
+        rates.insert(0, (vibration.gripper_drive, finger_rate.get_output_port()))
+    return rates
 
 
 def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
@@ -252,7 +295,7 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
     plant.set_gravity_enabled(gripper, False)
     if carriage is None:
         set_pd_gains(plant, arm, arm_config.position_gain, arm_config.damping_gain)
-    set_pd_gains(plant, gripper, *hand.pd_gains(gripper_config))
+    configure_drive(plant, gripper, hand, gripper_config)
     plant.Finalize()
 
     q_arm = initial_arm_positions(arm_config)
@@ -271,9 +314,18 @@ def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
     """The arm's ports on the carriage (carriage_systems.py), and `carriage.desired_state`
     (the carriage PD's set-point) and `gripper.wrist_wrench` (on the arm at G, world)."""
     plant = parts.plant
+    q0 = initial_arm_positions(arm)
     command = builder.AddNamedSystem("carriage_command", CarriageCommand(
-        parts.carriage, initial_positions=initial_arm_positions(arm), period_s=time_step))
-    builder.ExportInput(command.GetInputPort(ports.ARM_DESIRED_STATE), ports.ARM_DESIRED_STATE)
+        parts.carriage, initial_positions=q0, period_s=time_step))
+    # The arm's velocity drive as on the JACO2 mount, its servo ideal: the joints are at the
+    # servo's set-point, which the carriage follows.
+    drive = AddJacoVelocityDrive(builder, arm=arm, time_step=time_step, initial_positions=q0,
+                                 position_measured=command.GetOutputPort(
+                                     ports.ARM_POSITION_MEASURED))
+    builder.ExportInput(drive.desired_state, ports.ARM_DESIRED_STATE)
+    builder.Connect(drive.set_point, command.GetInputPort("joint_set_point"))
+    builder.Connect(plant.get_state_output_port(parts.arm), command.GetInputPort("carriage_state"))
+    builder.ExportOutput(drive.commanded_state, ports.ARM_COMMANDED_STATE)
     builder.Connect(command.GetOutputPort("carriage_desired_state"),
                     plant.get_desired_state_input_port(parts.arm))
     builder.ExportOutput(command.GetOutputPort("carriage_desired_state"),
@@ -318,21 +370,31 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
     arm_instance, gripper, obj = parts.arm, parts.gripper, parts.object_instance
 
     if parts.carriage is None:
-        # Arm: the desired state goes straight to the plant's PD; measured state is split.
-        builder.ExportInput(plant.get_desired_state_input_port(arm_instance),
-                            ports.ARM_DESIRED_STATE)
+        # Arm: the desired state goes through the velocity drive to the plant's PD;
+        # the measured state is split.
         arm_state = builder.AddNamedSystem("arm_state_demux",
                                            Demultiplexer([ports.ARM_JOINTS] * 2))
         builder.Connect(plant.get_state_output_port(arm_instance), arm_state.get_input_port())
+        drive = AddJacoVelocityDrive(builder, arm=arm, time_step=plant_config.time_step,
+                                     initial_positions=initial_arm_positions(arm),
+                                     position_measured=arm_state.get_output_port(0))
+        builder.ExportInput(drive.desired_state, ports.ARM_DESIRED_STATE)
+        builder.Connect(drive.set_point, plant.get_desired_state_input_port(arm_instance))
+        builder.ExportOutput(drive.commanded_state, ports.ARM_COMMANDED_STATE)
+        builder.ExportOutput(drive.set_point, ports.ARM_SERVO_SET_POINT)
         builder.ExportOutput(arm_state.get_output_port(0), ports.ARM_POSITION_MEASURED)
         builder.ExportOutput(arm_state.get_output_port(1), ports.ARM_VELOCITY_MEASURED)
+        arm_velocity = arm_state.get_output_port(1)
         builder.ExportOutput(plant.get_net_actuation_output_port(arm_instance),
                              ports.ARM_TORQUE_MEASURED)
     else:
         _add_carriage_arm_ports(builder, parts, arm, plant_config.time_step)
+        arm_velocity = builder.GetSubsystemByName("carriage_command").GetOutputPort(
+            ports.ARM_VELOCITY_MEASURED)
 
     # Gripper: the simulated 2F-85 controller.
-    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(config=gripper_config))
+    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(
+        config=gripper_config, time_step=plant.time_step()))
     selector = builder.AddNamedSystem("gripper_actuated_state", actuated_state_selector(
         plant, gripper, gripper_hand(gripper_config.model)))
     builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())
@@ -350,7 +412,10 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
                                       gripper=gripper, object_body=object_body(plant, obj),
                                       tactile=tactile, vibration=vibration,
                                       gripper_model=gripper_config.model,
-                                      random_seed=random_seed)
+                                      random_seed=random_seed, drive_rates=_drive_rates(
+                                          builder, hand=gripper_hand(gripper_config.model),
+                                          selector=selector, arm_velocity=arm_velocity,
+                                          vibration=vibration))
     readings = AddTaxelTransducer(builder, taxels=taxels, tactile_config=tactile)
     for finger in FINGER_NAMES:
         builder.ExportOutput(readings.GetOutputPort(f"{finger}_taxel_forces"),

@@ -9,7 +9,7 @@ the commit that committed each folder's records.
 Success: Table I's average row (the mean of the objects' rates, counts pooled; table.py).
 False triggers: trials with at least one event-triggered transition more than
 FALSE_TRIGGER_MARGIN_S before its physical event (runs/trial.py), of all trials.
-Latency: the median time from the physical event (first contact, grip force reached,
+Latency: the median time from the physical event (first contact, grip settled,
 table touch) to the transition it marks, over the trials where the transition came on
 time; their number in brackets. A controller without event triggers (open loop) has
 neither.

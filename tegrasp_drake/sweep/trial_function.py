@@ -47,7 +47,8 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
             scenario, tactile=dataclasses.replace(
                 scenario.tactile, noise_std_n=0.0, capacitive=dataclasses.replace(
                     scenario.tactile.capacitive, noise_std_counts=0.0)),
-            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0))
+            vibration=dataclasses.replace(scenario.vibration, noise_std_mps2=0.0,
+                                          adc_noise_lsb=0.0))
     return validate(scenario, f"sweep trial {trial['trial_id']}")
 
 

@@ -15,7 +15,7 @@ from pydrake.systems.lcm import LcmPublisherSystem, LcmSubscriberSystem
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD, JACO_STATUS_CHANNEL, JacoCommandReceiver,
     JacoCommandSender, JacoStatusReceiver, JacoStatusSender)
-from tegrasp_drake.hardware.jaco.velocity_tracker import (
+from tegrasp_drake.rig.jaco_velocity_tracker import (
     JacoVelocityTracker, JacoVelocityTrackerConfig)
 
 

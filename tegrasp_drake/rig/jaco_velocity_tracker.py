@@ -1,14 +1,27 @@
-"""Turns a desired joint state into the joint velocities a velocity-mode Jaco executes.
+"""Turns a desired joint state into the joint velocities a velocity-mode JACO2 executes.
 
-The Kinova driver in joint-velocity mode integrates nothing, so following a desired path
-needs a position-error term:
+The JACO2 in joint-velocity mode executes joint velocities, nothing else, so following a
+desired path needs a position-error term:
 
     v_cmd = clip(v_des + kp * wrap(q_des - q_measured), -v_max, v_max)
 
-where wrap() maps the error of continuous joints into [-pi, pi). With the driver's 100 Hz
-loop and about 10 ms of latency, kp = 5 1/s (a 0.2 s time constant) keeps the loop well
-damped. When `stop` is set (the device watchdog tripped), the command is to hold still:
-zero velocity at the measured position.
+where wrap() maps the error of continuous joints into [-pi, pi). Both stations use it: the
+hardware one in front of the Kinova LCM driver (hardware/jaco/jaco_lcm_interface.py), the
+simulated one in front of its model of the arm's velocity servo
+(simulation/jaco_velocity_drive.py). When `stop` is set (the device watchdog tripped),
+the command is to hold still: zero velocity at the measured position.
+
+The settings (JacoVelocityTrackerConfig) and their sources:
+- kp = 5 1/s: a 0.2 s time constant for a position error. The loop is an integrator
+  (the arm turns velocity into position) behind the command's sample-and-hold and
+  latency, about 15 ms together at 100 Hz and 10 ms (T/2 + L); with an ideal servo its
+  phase margin is 90 deg - kp (T/2 + L) rad: 86 deg at 5 1/s, 73 deg at 20, 60 deg at 35,
+  none at about 100. Plausible 1-20 1/s: below 1 a drift takes seconds to correct.
+- max_joint_speed: Kinova's JACO2 6-DOF specification, 36 deg/s for joints 1-3 (the large
+  actuators) and 48 deg/s for joints 4-6 (Kinova, "JACO2 6 DOF" specifications / KINOVA
+  Gen2 user guide, technical specifications: maximum joint speed).
+- continuous_joints: joints 1, 4, 5 and 6 turn without limit, 2 and 3 are limited
+  (modelgen/jaco2_dh.py).
 """
 
 import dataclasses
@@ -17,15 +30,17 @@ import numpy as np
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.ranges import bounded
-from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_NUM_JOINTS
+from tegrasp_drake.rig.station_interface import ARM_JOINTS
 
 _DEG = np.pi / 180.0
 
 
 @dataclasses.dataclass
 class JacoVelocityTrackerConfig:
-    """Gains and limits of the tracker (JACO2 6-DOF datasheet speeds)."""
-    kp: float = bounded(5.0, low=0.0, low_open=True, high=100.0, unit="1/s")
+    """Gain and limits of the tracker (the module docstring gives their sources)."""
+    kp: float = bounded(5.0, low=0.0, low_open=True, high=100.0, unit="1/s",
+                        why="plausible 1-20; the loop's phase margin is gone at about 100",
+                        below="must be positive [1/s] (plausible 1-20)")
     max_joint_speed: list[float] = bounded(
         default_factory=lambda: [36 * _DEG] * 3 + [48 * _DEG] * 3, low=0.0, low_open=True,
         high=48 * _DEG, unit="rad/s",
@@ -71,14 +86,14 @@ class JacoVelocityTracker(LeafSystem):
     def __init__(self, config: JacoVelocityTrackerConfig | None = None):
         super().__init__()
         self._config = dataclasses.replace(config or JacoVelocityTrackerConfig())
-        n = JACO_NUM_JOINTS
+        n = ARM_JOINTS
         self._desired_state_port = self.DeclareVectorInputPort("desired_state", 2 * n)
         self._position_port = self.DeclareVectorInputPort("position_measured", n)
         self._stop_port = self.DeclareVectorInputPort("stop", 1)
         self.DeclareVectorOutputPort("commanded_state", 2 * n, self._calc_commanded_state)
 
     def _calc_commanded_state(self, context, output):
-        n = JACO_NUM_JOINTS
+        n = ARM_JOINTS
         q_measured = self._position_port.Eval(context)
         if self._stop_port.HasValue(context) and self._stop_port.Eval(context)[0] != 0:
             output.SetFromVector(np.concatenate([q_measured, np.zeros(n)]))

@@ -1,0 +1,101 @@
+"""The film's electronics after the film: the charge amplifier's output swing and the NI
+myRIO-1900's 12-bit analog input, as pure functions on Python floats.
+
+The paper reads each pad's PVDF film through a charge amplifier (V = -Q / C_f, Eq. 4) into
+an NI myRIO-1900 (Sec. IV-A). Per RA sample, in the order the signal meets them:
+
+  V = S a + n          S: the film's sensitivity at the amplifier's output [V/(m/s^2)],
+                       a the film's reading in acceleration-equivalent units (film_dynamics),
+                       n Gaussian noise: the amplifier's and the ADC's input noise (below)
+  V = clip(V, -swing, +swing)                       the amplifier's output swing
+  code = clip(round((V + offset) / lsb), low, high)  the myRIO's 12-bit converter
+  a_read = (code lsb - offset) / S                  what the host reads, in m/s^2
+
+The myRIO's inputs (NI myRIO-1900 User Guide and Specifications, "Converting Raw Data Values
+to Voltage"): the MSP connector's differential inputs span +-10 V, 20 V / 2^12 = 4.883 mV a
+code, codes -2048..+2047; the MXP connectors' single-ended inputs 0..5 V, 5 V / 2^12 =
+1.221 mV a code, codes 0..4095, which a bipolar amplifier reaches through a level shift to
+mid-range (2.5 V, `offset`). Voltages outside the range read the end code.
+
+The sign: the charge amplifier inverts (V = -Q / C_f); the host's calibration (hardware/
+myrio/tactile_calibration.py, a = piezo_gain V) absorbs it, so V is taken here with the
+reading's sign.
+
+Noise. The amplifier's output noise is `noise_std_mps2` (acceleration-equivalent); the
+converter adds its own input noise, `adc_noise_lsb` codes rms. The two are independent
+Gaussians, so one Gaussian of the root-sum-square is drawn; it is added ahead of the
+amplifier's clip (the converter's share belongs after it: the two differ only within a few
+noise sigmas of the rails). With noise of half a code or more the rounding error is close
+to uniform and independent of the signal (Widrow and Kollar, "Quantization Noise", 2008,
+ch. 4-5), so the reading's noise is sqrt(sigma_n^2 + lsb^2 / 12) (`reading_noise_std`).
+"""
+
+import dataclasses
+import math
+
+ADC_INPUTS = ("msp", "mxp", "ideal")
+
+
+@dataclasses.dataclass(frozen=True)
+class AdcInput:
+    """One myRIO analog input range: its codes, volts per code, and the level shift that
+    puts a bipolar amplifier's 0 V at mid-range."""
+    low_code: int
+    high_code: int
+    volts_per_code: float
+    offset_v: float
+
+    @property
+    def lowest_v(self) -> float:
+        return self.low_code * self.volts_per_code - self.offset_v
+
+    @property
+    def highest_v(self) -> float:
+        return self.high_code * self.volts_per_code - self.offset_v
+
+
+MYRIO_INPUTS = {
+    "msp": AdcInput(low_code=-2048, high_code=2047, volts_per_code=20.0 / 4096, offset_v=0.0),
+    "mxp": AdcInput(low_code=0, high_code=4095, volts_per_code=5.0 / 4096, offset_v=2.5),
+}
+
+
+def adc_input(name: str) -> AdcInput | None:
+    """The myRIO input range called `name` (ADC_INPUTS); None for "ideal" (no converter)."""
+    if name == "ideal":
+        return None
+    return MYRIO_INPUTS[name]
+
+
+def reading_mps2(value_mps2: float, noise_v: float, sensitivity_v_per_mps2: float,
+                 swing_v: float, adc: AdcInput | None) -> float:
+    """What the host reads [m/s^2] for the film's reading value_mps2 plus noise_v [V] at the
+    amplifier's output (module docstring); without a converter (adc None) the clipped
+    voltage over S."""
+    volts = sensitivity_v_per_mps2 * value_mps2 + noise_v
+    volts = min(max(volts, -swing_v), swing_v)
+    if adc is None:
+        return volts / sensitivity_v_per_mps2
+    lsb = adc.volts_per_code
+    code = math.floor((volts + adc.offset_v) / lsb + 0.5)
+    code = min(max(code, adc.low_code), adc.high_code)
+    return (code * lsb - adc.offset_v) / sensitivity_v_per_mps2
+
+
+def noise_at_amplifier_v(noise_std_mps2: float, adc_noise_lsb: float,
+                         sensitivity_v_per_mps2: float, adc: AdcInput | None) -> float:
+    """The Gaussian noise [V rms] drawn per sample: the amplifier's noise_std_mps2 at S and
+    the converter's adc_noise_lsb codes, root-sum-square."""
+    amplifier = noise_std_mps2 * sensitivity_v_per_mps2
+    converter = 0.0 if adc is None else adc_noise_lsb * adc.volts_per_code
+    return math.hypot(amplifier, converter)
+
+
+def reading_noise_std(noise_std_mps2: float, adc_noise_lsb: float,
+                      sensitivity_v_per_mps2: float, adc: AdcInput | None) -> float:
+    """The reading's noise [m/s^2 rms] at rest, in closed form: the Gaussian noise plus the
+    rounding's lsb^2 / 12 (module docstring)."""
+    gaussian = noise_at_amplifier_v(noise_std_mps2, adc_noise_lsb, sensitivity_v_per_mps2,
+                                    adc)
+    rounding = 0.0 if adc is None else adc.volts_per_code / math.sqrt(12.0)
+    return math.hypot(gaussian, rounding) / sensitivity_v_per_mps2

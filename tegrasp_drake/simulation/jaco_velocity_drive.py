@@ -1,0 +1,149 @@
+"""The simulated JACO2 driven as the real one is: by joint velocities, sampled, late.
+
+Between the station's `arm.desired_state` and the arm's joints, the same path as on the
+hardware (hardware/jaco/jaco_lcm_interface.py), with the bus and the firmware modelled:
+
+    arm.desired_state -> JacoVelocityTracker (rig/jaco_velocity_tracker.py: v_cmd)
+      -> ZeroOrderHold at the command rate (the host's 100 Hz commands)
+      -> DiscreteTimeDelay of the command latency (the bus and the arm's DSP cycle;
+         latency_register)
+      -> the arm's velocity servo set-point: q_ref = q0 + integral of v_cmd, v_ref = v_cmd
+      -> the plant's implicit PD on each joint (ArmDriverConfig position and damping gains)
+
+All but the tracker are compiled pydrake primitives; the tracker runs only when the hold
+samples it, at the command rate. Its position feedback is the plant's joint positions at
+the sample (the carriage's reported joints on the carriage).
+
+Why the servo's set-point is the integral of the command: the JACO2's base DSP turns each
+10 ms velocity command into joint position set-points that the actuators' own position
+loops follow, so a joint commanded to stand still holds its place against a load with the
+servo's stiffness, and the host's tracker takes the deflection back (the set-point winds
+on until the measured joint is where it is wanted). A servo that only damped the velocity
+error (tau = kd (v_cmd - v), no position term) would leave a steady error under a steady
+load, tau / (kd kp): 5e-3 rad/(N m) at kd 40 N m s/rad and kp 5 1/s, twice the
+deflection of the 400 N m/rad joints, and for good. The firmware compensates gravity, so
+the plant's arm has none.
+
+The settings (ArmDriverConfig) and their sources:
+- command_rate_hz 100: the JACO2's DSP runs its control loop every 10 ms; a joint-velocity
+  command must arrive at 100 Hz, faster ones only fill its buffer and slower ones do not
+  reach the commanded speed (Kinova's kinova-ros driver README, "Note on publish
+  frequency"). Plausible range: 100 Hz for the arm as sold; lower rates model a host that
+  misses its deadlines.
+- command_latency_s 0.010: from the host's command to the arm acting on it, one 10 ms DSP
+  cycle of buffering (the command waits in the buffer until the next cycle) plus the USB
+  transfer of about a millisecond; the real value is not published. Plausible 0.005-0.030 s
+  (0.030: a host that queues a command or two).
+- tracker.kp 5 1/s, tracker.max_joint_speed 36/48 deg/s: rig/jaco_velocity_tracker.py.
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.systems.framework import InputPort, OutputPort
+from pydrake.systems.primitives import AffineSystem, DiscreteTimeDelay, ZeroOrderHold
+
+from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTracker
+from tegrasp_drake.rig.station_interface import ARM_JOINTS
+
+# How far a period may be from a whole number of plant steps and still count as one [s]:
+# round-off in, e.g., 1 / 100 Hz = 0.01 = 10 x 0.001.
+STEP_TOLERANCE_S = 1e-9
+
+
+def plant_steps(duration_s: float, time_step: float) -> int | None:
+    """`duration_s` as a whole number of plant steps of `time_step` [s], or None if it is
+    not one."""
+    steps = round(duration_s / time_step)
+    return steps if abs(steps * time_step - duration_s) <= STEP_TOLERANCE_S else None
+
+
+def drive_problem(arm, time_step: float):
+    """(field, words, value) that name what is wrong with the velocity drive's settings of
+    `arm` (ArmDriverConfig) on a plant of step `time_step` [s], or None."""
+    rate, latency, tracker = arm.command_rate_hz, arm.command_latency_s, arm.tracker
+    steps = f"plant steps ({time_step:g} s)"
+    if not rate > 0:
+        return "command_rate_hz", "must be positive [Hz] (the JACO2 takes 100)", rate
+    if plant_steps(1.0 / rate, time_step) in (None, 0, 1):
+        return ("command_rate_hz", f"must make a period of a whole number of {steps}, at "
+                "least two, e.g. 100 or 50 [Hz]", rate)
+    if plant_steps(latency, time_step) in (None, 0) or latency < 0:
+        return ("command_latency_s", f"must be a whole number of {steps}, at least one, "
+                "e.g. 0.01 [s] (the JACO2's is about 0.01)", latency)
+    if not tracker.kp >= 0:
+        return "tracker.kp", "must be zero or positive [1/s] (plausible 1-20)", tracker.kp
+    speeds = tracker.max_joint_speed
+    if len(speeds) != ARM_JOINTS or not all(v > 0 for v in speeds):
+        return ("tracker.max_joint_speed", f"must be {ARM_JOINTS} positive speeds [rad/s]",
+                speeds)
+    if len(tracker.continuous_joints) != ARM_JOINTS:
+        return ("tracker.continuous_joints", f"must be {ARM_JOINTS} true/false values",
+                tracker.continuous_joints)
+    return None
+
+
+def latency_register(arm, time_step: float, size: int):
+    """The compiled system that delays each held command so that it acts on the plant
+    arm.command_latency_s L after it was sampled, or None when nothing needs to.
+
+    The discrete plant reads its set-point at the start of a step, so a value that appears
+    at t acts from t + h (h the plant step): L = h needs nothing. Every system that updates
+    at a plant step sees its input as it was before that step's updates, so a hold sampling
+    every step adds one step (L = 2h), and a DiscreteTimeDelay of m steps adds m + 1."""
+    steps = plant_steps(arm.command_latency_s, time_step)
+    if steps == 1:
+        return None
+    if steps == 2:
+        return ZeroOrderHold(time_step, size)
+    return DiscreteTimeDelay(time_step, steps - 2, size)
+
+
+def velocity_servo_set_point(initial_positions, time_step: float) -> AffineSystem:
+    """The arm's velocity servo as a set-point for the plant's PD: input the commanded state
+    [q_des; v_cmd] (12), output [q_ref; v_ref] = [q0 + integral of v_cmd; v_cmd] (12), the
+    integral by the plant's step `time_step` [s] (forward Euler: x+ = x + h v_cmd)."""
+    n = ARM_JOINTS
+    zero, one = np.zeros((n, n)), np.eye(n)
+    return AffineSystem(
+        A=one, B=np.hstack([zero, time_step * one]), f0=np.zeros(n),
+        C=np.vstack([one, zero]), D=np.block([[zero, zero], [zero, one]]),
+        y0=np.concatenate([np.asarray(initial_positions, dtype=float), np.zeros(n)]),
+        time_period=time_step)
+
+
+@dataclasses.dataclass
+class JacoVelocityDrive:
+    """The drive's systems and ends: connect the controller's desired state to
+    `desired_state`, read the servo's set-point (for the plant's PD) from `set_point` and
+    what the host sent from `commanded_state`."""
+    tracker: JacoVelocityTracker
+    desired_state: InputPort
+    commanded_state: OutputPort
+    set_point: OutputPort
+
+
+def AddJacoVelocityDrive(builder, *, arm, time_step: float, initial_positions,
+                         position_measured: OutputPort,
+                         prefix: str = "arm") -> JacoVelocityDrive:
+    """Adds the velocity drive (module docstring) of `arm` (ArmDriverConfig, settings checked
+    by drive_problem) for a plant of step `time_step` [s] whose arm starts at
+    `initial_positions` [rad]; `position_measured` (6) [rad] is the tracker's feedback."""
+    n = ARM_JOINTS
+    tracker = builder.AddNamedSystem(f"{prefix}_velocity_tracker",
+                                     JacoVelocityTracker(arm.tracker))
+    builder.Connect(position_measured, tracker.GetInputPort("position_measured"))
+    hold = builder.AddNamedSystem(f"{prefix}_command_hold",
+                                  ZeroOrderHold(1.0 / arm.command_rate_hz, 2 * n))
+    builder.Connect(tracker.GetOutputPort("commanded_state"), hold.get_input_port())
+    command = hold.get_output_port()
+    register = latency_register(arm, time_step, 2 * n)
+    if register is not None:
+        builder.AddNamedSystem(f"{prefix}_command_latency", register)
+        builder.Connect(command, register.get_input_port())
+        command = register.get_output_port()
+    servo = builder.AddNamedSystem(f"{prefix}_velocity_servo",
+                                   velocity_servo_set_point(initial_positions, time_step))
+    builder.Connect(command, servo.get_input_port())
+    return JacoVelocityDrive(tracker, tracker.GetInputPort("desired_state"),
+                             hold.get_output_port(), servo.get_output_port())
