@@ -3,11 +3,21 @@
 A command module defines `register(subparsers)`, which adds its parser and sets
 `func=run` (a function taking the parsed arguments and returning an exit code). Every
 sub-command also takes -v/-vv/--quiet (commands/verbosity.py).
+
+`main` is the one error boundary: an exception no command foresaw ends the run with one line
+on stderr (what failed, and the file its traceback was written to; `-v` prints it too) and
+EXIT_INTERNAL_ERROR; SIGTERM and SIGHUP end a run as Ctrl-C does (its staging files
+removed) with 128 + the signal's number. The exit codes are docs/user-guide.md's table.
 """
 
 import argparse
+import datetime
 import importlib
+import os
+import signal
 import sys
+import tempfile
+import traceback
 
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 
@@ -38,10 +48,62 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+# Exit codes (docs/user-guide.md, "Exit codes"); a command returns the first three itself.
+EXIT_SUCCESS = 0
+EXIT_ERROR = 1  # bad input refused, a file not writable, a device that did not come up
+EXIT_GRASP_FAILED = 2  # hardware: a fault or a Failed state machine (also argparse's usage)
+EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
+
+
 def main(argv=None) -> int:
-    args = build_parser().parse_args(argv)
-    configure_logging(args)
-    return int(args.func(args) or 0)
+    from tegrasp_drake.rig.files import one_line, termination_interrupts
+    argv = sys.argv[1:] if argv is None else list(argv)
+    with termination_interrupts():
+        try:
+            args = build_parser().parse_args(argv)
+            configure_logging(args)
+            return int(args.func(args) or 0)
+        except KeyboardInterrupt as interrupt:
+            name = str(interrupt) if str(interrupt).startswith("SIG") else "SIGINT"
+            print(f"tegrasp: interrupted ({name}); the run's unfinished files were removed",
+                  file=sys.stderr, flush=True)
+            return 128 + signal.Signals[name].value
+        except SystemExit as exit_:
+            if isinstance(exit_.code, str):  # "tegrasp: error: ...", always one line
+                raise SystemExit(one_line(exit_.code)) from None
+            raise
+        except GeneratorExit:
+            raise
+        except BaseException as error:  # noqa: BLE001: the error boundary
+            return _internal_error(error, argv)
+
+
+def _internal_error(error: BaseException, argv) -> int:
+    """One line on stderr for an exception no command foresaw; its traceback in a file."""
+    text = "".join(traceback.format_exception(error))
+    where = _write_traceback(text, argv)
+    verbose = any(a in ("-v", "-vv", "--verbose") for a in argv)
+    if verbose:
+        print(text, file=sys.stderr, end="")
+    summary = str(error).strip().splitlines()[0] if str(error).strip() else ""
+    print(f"tegrasp: internal error: {type(error).__name__}"
+          + (f": {summary[:300]}" if summary else "")
+          + (f"; traceback in {where}" if where else "; the traceback could not be written")
+          + ("" if verbose else " (-v shows it)")
+          + "; please report it", file=sys.stderr, flush=True)
+    return EXIT_INTERNAL_ERROR
+
+
+def _write_traceback(text: str, argv) -> str | None:
+    """Writes the command line and `text` to a new file in the temporary folder; its path."""
+    stamp = datetime.datetime.now().strftime("%Y%m%d-%H%M%S")
+    try:
+        descriptor, path = tempfile.mkstemp(prefix=f"tegrasp-{stamp}-", suffix=".traceback")
+        with os.fdopen(descriptor, "w", encoding="utf-8", errors="replace") as stream:
+            stream.write("tegrasp " + " ".join(argv) + "\n\n" + text)
+    except OSError:
+        return None
+    return path
 
 
 if __name__ == "__main__":

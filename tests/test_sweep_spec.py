@@ -161,8 +161,11 @@ def test_yaml_spec_with_a_list_of_markers(tmp_path):
     assert spec.objects == SweepSpec().objects
 
 
-def test_an_empty_yaml_file_is_the_papers_experiment(tmp_path):
-    assert LoadSweepSpec(write_yaml(tmp_path, "")) == SweepSpec()
+def test_an_empty_yaml_file_is_refused_not_run_as_the_papers_experiment(tmp_path):
+    """An empty file is a mistake (a truncated copy, the wrong file), not a request for the
+    243-trial experiment, which leaving out --spec gives."""
+    with pytest.raises(ConfigError, match="the sweep spec is empty"):
+        LoadSweepSpec(write_yaml(tmp_path, ""))
 
 
 @pytest.mark.parametrize("text, field, words", [

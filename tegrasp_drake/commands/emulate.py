@@ -126,6 +126,12 @@ def run(args) -> int:
     devices = EMULATED_DEVICES if args.device == "all" else (args.device,)
     inject_fault = (_parse_fault(args.inject_fault)
                     if args.inject_fault and "robotiq" in devices else None)
+    if "myrio" in devices:
+        from tegrasp_drake.emulators.myrio_emulator import load_tactile_recording
+        try:
+            load_tactile_recording(args.trial)  # checked before the process is raised
+        except TactileRecordingError as e:
+            raise SystemExit(f"tegrasp: error: {e}") from None
     # Every argument is checked above; only now is the whole process raised.
     out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     sync = args.sync or ("follow" if args.device == "all" else "none")

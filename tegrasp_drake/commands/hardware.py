@@ -10,11 +10,16 @@ fault or a Failed state machine, 1 when a device did not come up. The run's resu
 """
 
 import argparse
+import contextlib
+import dataclasses
 import datetime
+import os
 import pathlib
+import sys
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
+from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   quiet_modbus_library, scenario_from_arguments)
@@ -56,9 +61,27 @@ def register(subparsers) -> None:
                         help="LCM log to write (default: out/hardware/run-<time>.lcmlog)")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace the --log FILE (and its result) if it exists")
-    parser.add_argument("--duration", type=float, default=None,
-                        help="stop after this many seconds (default: when the grasp ends)")
+    parser.add_argument("--duration", type=duration_seconds, default=None,
+                        help="stop after this many seconds, at most "
+                        f"{MAX_DURATION_S:g} (default: when the grasp ends)")
     parser.set_defaults(func=run)
+
+
+# The longest real-time run: the scripted grasp takes about 12 s; ten minutes leaves room
+# for a slow hand-held test without a typo (a 1e7) holding the devices for days.
+MAX_DURATION_S = 600.0
+
+
+def duration_seconds(text: str) -> float:
+    """--duration: a number of seconds in (0, MAX_DURATION_S]."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
+    if not 0 < value <= MAX_DURATION_S:  # also refuses nan
+        raise argparse.ArgumentTypeError(f"{text}: give a duration in (0, {MAX_DURATION_S:g}] "
+                                         "seconds")
+    return value
 
 
 def _events_folder(events, args, scenario) -> str:
@@ -68,6 +91,31 @@ def _events_folder(events, args, scenario) -> str:
     from tegrasp_drake.events.events_folder import events_folder_of
     from tegrasp_drake.rig import paths
     return str(events_folder_of(paths.events_search_path(args.events), scenario.object.name))
+
+
+def commit_hardware_run(staged, log, result_path, result: dict) -> None:
+    """The staged log renamed over --log, then the result written beside it, Ctrl-C and
+    SIGTERM held back: the earlier run's log and result are replaced together. A run without
+    a log file (an in-process bus that recorded nothing) commits its result alone."""
+    with interruptions_deferred():
+        if pathlib.Path(staged).exists():
+            os.replace(staged, log)
+        write_result(result_path, result)
+
+
+def keep_incomplete_log(staged, log) -> pathlib.Path | None:
+    """An unfinished run's staged log, kept as LOG.incomplete-<pid>.lcmlog beside --log (never
+    over the earlier run's); None when there was none."""
+    staged, log = pathlib.Path(staged), pathlib.Path(log)
+    if not staged.exists():
+        return None
+    kept = log.with_name(f"{log.stem}.incomplete-{os.getpid()}{log.suffix}")
+    with contextlib.suppress(OSError):
+        os.replace(staged, kept)
+        return kept
+    with contextlib.suppress(OSError):
+        staged.unlink()
+    return None
 
 
 def run(args) -> int:
@@ -101,21 +149,46 @@ def run(args) -> int:
             raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
-    # The earlier result stays until this run's replaces it (write_result, at the end).
+    problem = folder_problem(pathlib.Path(log).parent)
+    if problem:
+        raise SystemExit(f"tegrasp: error: --log {log}: {problem}; give a file in a folder "
+                         "you can write")
+    pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
+    # The run logs to a hidden file beside --log; the earlier log and result stay whole
+    # until this run's replace them together at the end (commit_hardware_run).
+    staged = pathlib.Path(log).with_name(f".{pathlib.Path(log).name}.{os.getpid()}.staging")
     try:
         with SimulatedTimeBar("hardware", enabled=progress_wanted(args)) as progress:
-            result = run_on_hardware(scenario, config=config, events=events, corrective_events=corrective,
+            result = run_on_hardware(scenario, config=config, events=events,
+                                     corrective_events=corrective,
                                      events_dir=_events_folder(events, args, scenario),
-                                     log_path=log, duration=args.duration,
+                                     log_path=staged, duration=args.duration,
                                      out=progress.write, progress=progress)
     except HardwareNotReadyError as e:
-        print(f"tegrasp: error: {e}", flush=True)
+        staged.unlink(missing_ok=True)
+        print(f"tegrasp: error: {e}", file=sys.stderr, flush=True)
         return 1
-    write_result(result_path, dict(result.as_dict(), result=str(result_path)))
+    except BaseException:
+        kept = keep_incomplete_log(staged, log)
+        if kept:
+            print(f"tegrasp: the run did not finish; what its log recorded is in {kept}",
+                  file=sys.stderr, flush=True)
+        raise
+    try:
+        commit_hardware_run(staged, log, result_path,
+                            dict(result.as_dict(), log=str(log), result=str(result_path)))
+    except OSError as e:
+        kept = keep_incomplete_log(staged, log)
+        raise SystemExit(f"tegrasp: error: cannot write the run's result to {result_path}: "
+                         f"{e.strerror or e}" + (f"; its log is in {kept}" if kept else ""))
+    result = dataclasses.replace(result, log_path=pathlib.Path(log))
     print(f"ran {result.sim_time:.2f} s in {result.wall_time:.2f} s (real-time rate "
           f"{result.realtime_rate:.3f}); {len(result.transitions)} transitions, "
           f"{len(result.faults)} faults; log {result.log_path} ({result.log_messages} "
           f"messages), result {result_path}", flush=True)
-    failed = result.faults or (result.transitions
+    if result.log_fault:
+        print(f"tegrasp: error: {result.log_fault}; the run was stopped", file=sys.stderr,
+              flush=True)
+    failed = result.faults or result.log_fault or (result.transitions
                                and result.transitions[-1]["to"] == "Failed")
     return 2 if failed else 0

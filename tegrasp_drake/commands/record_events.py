@@ -70,9 +70,29 @@ def register(subparsers) -> None:
 
 
 def _scenarios_to_record(args) -> list:
-    """(object name, scenario or None for the built-in one) of each object to record."""
+    """(object name, scenario or None for the built-in one) of each object to record.
+
+    --object names built-in objects, each recorded from its own built-in scenario (with the
+    --set overrides, if any); --scenario/--scenario-name name a scenario whose object is
+    recorded. The two are refused together, and so is a --set that changes which object an
+    --object records (it would store another object's events under that name)."""
+    from tegrasp_drake.commands.scenario_args import scenario_from_arguments
+    if args.object and (args.scenario or args.scenario_name):
+        raise SystemExit("tegrasp: error: --object records a built-in object from its own "
+                         "scenario; --scenario/--scenario-name record a scenario's object: "
+                         "give one or the other")
+    if args.object and args.overrides:
+        chosen = []
+        for name in args.object:
+            scenario = scenario_from_arguments(argparse.Namespace(
+                scenario=None, scenario_name=name, overrides=list(args.overrides)))
+            if scenario.object.name != name:
+                raise SystemExit(f"tegrasp: error: --object {name} with --set "
+                                 f"{' --set '.join(args.overrides)} would record the object "
+                                 f"'{scenario.object.name}'; drop --object to record it")
+            chosen.append((name, scenario))
+        return chosen
     if args.scenario or args.scenario_name or args.overrides:
-        from tegrasp_drake.commands.scenario_args import scenario_from_arguments
         from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO
         args.scenario_name = args.scenario_name or DEFAULT_SCENARIO
         scenario = scenario_from_arguments(args)
@@ -82,7 +102,8 @@ def _scenarios_to_record(args) -> list:
 
 def _ensemble_runs(args, scenario) -> int:
     if args.ensemble_runs is None:
-        return TEMPLATE_RUNS if scenario is not None else 0
+        # A built-in object named with --object has its ensemble shipped with the package.
+        return TEMPLATE_RUNS if scenario is not None and not args.object else 0
     if not 0 <= args.ensemble_runs <= MAX_ENSEMBLE_RUNS:
         raise SystemExit(f"tegrasp: error: --ensemble-runs {args.ensemble_runs}: give 0 "
                          f"(none) to {MAX_ENSEMBLE_RUNS} ideal grasps (each about 20 s)")

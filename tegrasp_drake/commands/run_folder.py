@@ -12,7 +12,9 @@ A hardware run's result goes beside its LCM log: run.lcmlog -> run.result.json.
 
 Nothing of an earlier run is removed before the new one is complete: a run writes its files
 into a hidden staging folder inside its folder (staged_run), and they replace the earlier
-ones together at the end, result.json last, with Ctrl-C held back (commit_run); a run that
+ones together at the end, result.json last, with Ctrl-C held back (commit_run), and the
+earlier run's files it did not replace (its PNG figures under a new run's SVGs) are removed
+then; a run that
 fails or is interrupted leaves the earlier run whole and no file of its own. Without --out,
 a numbered folder is claimed with one mkdir before the run starts, so two runs started
 together never share one.
@@ -102,11 +104,37 @@ def commit_run(stage, folder, result: dict) -> dict:
                     if isinstance(value, str) and pathlib.Path(value).parent == stage
                     else value) for key, value in result.items()}
     result["result"] = str(folder / RESULT_FILE)
+    new_names = {staged.name for staged in stage.iterdir()} | {RESULT_FILE}
+    leftovers = [path for path in earlier_run_files(folder) if path.name not in new_names]
     with interruptions_deferred():
         for staged in sorted(stage.iterdir()):
             os.replace(staged, folder / staged.name)
         write_result(folder / RESULT_FILE, result)
+        for path in leftovers:  # the earlier run's files this run did not replace
+            with contextlib.suppress(OSError):
+                path.unlink()
     return result
+
+
+def earlier_run_files(folder) -> list[pathlib.Path]:
+    """The files of the run `folder` holds, as its result.json lists them (its log, figures,
+    replay page) and its run files: what a new run replaces. Files it does not list, such
+    as the user's own, are never touched."""
+    folder = pathlib.Path(folder)
+    files = [folder / name for name in RUN_FILES if (folder / name).is_file()]
+    try:
+        earlier = json.loads((folder / RESULT_FILE).read_text(encoding="utf-8"))
+    except (OSError, ValueError, RecursionError):
+        return files
+    if not isinstance(earlier, dict):
+        return files
+    for key, value in earlier.items():
+        if key == "result" or not isinstance(value, str) or not value:
+            continue
+        path = pathlib.Path(value)
+        if path.parent.resolve() == folder.resolve() and path.is_file():
+            files.append(folder / path.name)
+    return files
 
 
 def write_result(path, result: dict) -> pathlib.Path:

@@ -16,6 +16,9 @@ def add_scenario_arguments(parser) -> None:
     parser.add_argument("--set", dest="overrides", action="append", default=[],
                         metavar="KEY=VALUE",
                         help="override a scenario field, e.g. --set object.name=thin_cylinder")
+    parser.add_argument("--allow-long", action="store_true",
+                        help="run a grasp script longer than 60 s of simulated time (refused "
+                        "otherwise, with its cost)")
 
 
 def scenario_from_arguments(args):
@@ -26,7 +29,8 @@ def scenario_from_arguments(args):
                          f"'{args.scenario}' is a built-in scenario: give --scenario-name "
                          f"{args.scenario}")
     try:
-        return LoadScenario(args.scenario, args.scenario_name, args.overrides)
+        return LoadScenario(args.scenario, args.scenario_name, args.overrides,
+                            allow_long=getattr(args, "allow_long", False))
     except ConfigError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
 

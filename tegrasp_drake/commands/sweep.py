@@ -65,7 +65,10 @@ def add_runner_arguments(parser: argparse.ArgumentParser, *, default_out: str) -
     """Where and how a sweep's trials run: --workers, --out, --scheduler, --no-progress,
     and the reports' --format."""
     parser.add_argument("--workers", type=int, metavar="N",
-                        help="local worker processes (default: all cores)")
+                        help="local worker processes (default: all cores; at most the "
+                        "cores unless --oversubscribe)")
+    parser.add_argument("--oversubscribe", action="store_true",
+                        help="allow --workers above the number of cores")
     parser.add_argument("--out", default=default_out, metavar="DIR",
                         help=f"results folder; re-running resumes it (default: {default_out})")
     parser.add_argument("--scheduler", metavar="tcp://HOST:PORT",
@@ -152,10 +155,24 @@ def resolve_trial_function(text: str):
     return function
 
 
+def check_workers(args) -> None:
+    """SweepError unless --workers is at least 1 and, without --oversubscribe, at most the
+    cores this process may run on."""
+    if args.workers is None:
+        return
+    if args.workers < 1:
+        raise SweepError(f"--workers must be at least 1, got {args.workers}")
+    from tegrasp_drake.sweep.runner import default_workers
+    cores = default_workers()
+    if args.workers > cores and not getattr(args, "oversubscribe", False):
+        raise SweepError(f"--workers {args.workers}: this machine gives this process {cores} "
+                         f"core(s); give at most {cores}, or add --oversubscribe to start "
+                         f"{args.workers} workers anyway")
+
+
 def run(args) -> int:
     try:
-        if args.workers is not None and args.workers < 1:
-            raise SweepError(f"--workers must be at least 1, got {args.workers}")
+        check_workers(args)
         if args.benchmark and args.scheduler:
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
         spec = spec_from_arguments(args)

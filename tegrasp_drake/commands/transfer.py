@@ -18,7 +18,7 @@ import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          resolve_trial_function)
+                                          check_workers, resolve_trial_function)
 from tegrasp_drake.sweep.runner import SweepError, summary_text
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -56,8 +56,7 @@ def run(args) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
     from tegrasp_drake.transfer.report import write_transfer_reports
     try:
-        if args.workers is not None and args.workers < 1:
-            raise SweepError(f"--workers must be at least 1, got {args.workers}")
+        check_workers(args)
         problem = folder_problem(args.out)
         if problem:
             raise SweepError(f"--out {args.out}: {problem}; give a folder you can write")

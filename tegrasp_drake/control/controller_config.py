@@ -18,6 +18,7 @@ This module imports no Drake: the sweep spec (parsed without Drake) reads the na
 
 import dataclasses
 import typing
+from tegrasp_drake.rig.ranges import bounded
 
 
 # What triggers Lift-Load and Avoid: the heuristic thresholds below (the
@@ -27,18 +28,30 @@ import typing
 # Eq. 3.
 CORRECTIVE_EVENTS_FOLDER = "corrective"
 
+# The thresholds in sigmas of the RA noise (control/noise_thresholds.py): noise alone crosses
+# 5.51 sigmas (a raw magnitude) or 2.34 (the slip band's RMS) in one trial of a thousand;
+# a hundred is far past any noise.
+_SIGMAS_WHY = "noise alone crosses 5.51 in one trial of a thousand"
+_SIGMAS_BELOW = "must be zero (the number alone) or positive [noise sigmas]"
+
 
 @dataclasses.dataclass
 class HeuristicTriggerConfig:
     """The hand-set transition thresholds of the heuristic controller, in the style of
     Romano et al. 2011 (DRAKE-NOTES.md): tuned once on the box at its expected position and
     left alone."""
-    contact_force_n: float = 1.0  # Reach-Load: each finger's SA above this [N]
-    grip_fraction: float = 0.9  # Load-Lift: each finger's SA above this fraction of the grip
-    place_ra_mps2: float = 3.0  # Place-Unload: either RA above this [m/s^2]
+    # Reach-Load: each finger's SA above this [N]
+    contact_force_n: float = bounded(1.0, low=0.0, high=50.0, unit="N",
+                                     below="must be zero or positive [N]")
+    # Load-Lift: each finger's SA above this fraction of the grip
+    grip_fraction: float = bounded(0.9, low=0.0, low_open=True, high=1.0)
+    # Place-Unload: either RA above this [m/s^2]
+    place_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
+                                   below="must be zero or positive [m/s^2]")
     # ... and above this many sigmas of the RA noise (control/noise_thresholds.py: noise
     # alone crosses it in at most one trial of a thousand); 0: the number alone.
-    place_ra_sigmas: float = 5.51
+    place_ra_sigmas: float = bounded(5.51, low=0.0, high=100.0, unit="noise sigmas",
+                                     why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
 
 
 @dataclasses.dataclass
@@ -60,10 +73,12 @@ class FingerStrikeConfig:
     # JACO2 the port must carry gravity-free joint torques (the baseline removes only a
     # constant); no published figure of its torque sensors' noise was found: re-measure
     # it there.
-    force_n: float = 2.0
+    force_n: float = bounded(2.0, low=0.0, low_open=True, high=100.0, unit="N",
+                             below="must be positive [N]")
     # For this long [s] (three 5 ms ticks): a single sample's spike is not a strike, and
     # the stop comes 10-15 ms after contact, far inside the 0.13 s before the object moves.
-    sustain_s: float = 0.01
+    sustain_s: float = bounded(0.01, low=0.0, high=1.0, unit="s",
+                               below="must be zero or positive [s]")
     # Which finger struck: the sign of the moments about the approach axis (world x) and
     # the vertical (world z) at G, added, summed over the strike's ticks [N m] (left
     # finger, on +y: positive). A push against the approach at +-42 mm along the stroke
@@ -72,7 +87,8 @@ class FingerStrikeConfig:
     # -0.11 to -3.1 (right), never the wrong sign; each moment alone reversed for 1-3 ms
     # after impact. Below min_moment_nm in size (half the smallest strike sample), or when
     # one pad touches, the touching pad says the side.
-    min_moment_nm: float = 0.05
+    min_moment_nm: float = bounded(0.05, low=0.0, high=10.0, unit="N m",
+                                   below="must be zero or positive [N m]")
 
 
 @dataclasses.dataclass
@@ -82,23 +98,27 @@ class TaxelAwareConfig:
     # Re-Reach normal to the palm when the contact's centroid sits more than this far from
     # the pads' centres along the approach axis [m]: two thirds of a row (a line contact
     # between two rows interpolates; within this it presses the two middle rows).
-    centre_tolerance_m: float = 0.004
+    centre_tolerance_m: float = bounded(0.004, low=0.0, high=0.05, unit="m",
+                                        below="must be zero or positive [m]")
     # At most this far per Re-Reach along the approach axis [m]: the pad's half length
     # (12 mm) plus a quarter row; a contact on the edge row only says "at least this far".
-    max_approach_shift_m: float = 0.015
+    max_approach_shift_m: float = bounded(0.015, low=0.0, high=0.1, unit="m",
+                                          below="must be zero or positive [m]")
     # Re-Reaches of either direction, repeated until centred, at most this many (the
     # paper's 2 plus one for each axis the taxels add).
-    max_re_reaches: int = 4
+    max_re_reaches: int = bounded(4, low=0, high=10, below="must be zero or positive")
     # A pad touching during the approach: back off this far along the approach axis while
     # shifting along the stroke [m], then approach again; a sideways shift while still
     # pressing would drag the object over. The pad's length less its palm row (18 mm),
     # rounded up: wherever along the pad the object touched, the pad backs off it.
-    approach_retreat_m: float = 0.02
+    approach_retreat_m: float = bounded(0.02, low=0.0, high=0.1, unit="m",
+                                        below="must be zero or positive [m]")
     # One finger alone touches while the gripper has closed to within this of the
     # object's width [m]: the object is between the fingers, the other finger's contact is
     # off its pad or light; Load (the squeeze brings the second pad on) instead of another
     # Re-Reach that would shift by less than a third of a taxel row (a stall).
-    one_sided_width_margin_m: float = 0.004
+    one_sided_width_margin_m: float = bounded(0.004, low=0.0, high=0.05, unit="m",
+                                              below="must be zero or positive [m]")
     # The first touch of a close lies on a pad's distal row alone when its contact centroid
     # along the approach axis is at least this far toward the fingertips [m]: the distal
     # row's centre (9 mm) less 0.5 mm. A row-2 taxel above TAXEL_CONTACT_N (0.05 N) beside
@@ -106,23 +126,30 @@ class TaxelAwareConfig:
     # object then lies on the pad's face, not beyond its edge. With the close's push past
     # the tipping limit, the close stops and Re-Reaches forward
     # (taxel_aware/beyond_pads.py).
-    beyond_pads_centroid_m: float = 0.0085
+    beyond_pads_centroid_m: float = bounded(0.0085, low=0.0, high=0.05, unit="m",
+                                            below="must be zero or positive [m]")
     # Held tilted: re-grasp (put it down, open, close again, lift) when in Hold the
     # contact line on a pad turns more than tilt_limit_deg, or the two pads' contact
     # heights differ by more than height_mismatch_m [m] (half a column: the contacts
     # lie in different columns).
     regrasp_enabled: bool = True
-    tilt_limit_deg: float = 10.0
-    height_mismatch_m: float = 0.0033
-    tilt_sustain_s: float = 0.1  # for this long [s] (one tick of noise is not a tilt)
-    max_regrasps: int = 1
+    tilt_limit_deg: float = bounded(10.0, low=0.0, high=90.0, unit="deg")
+    height_mismatch_m: float = bounded(0.0033, low=0.0, high=0.05, unit="m",
+                                       below="must be zero or positive [m]")
+    # for this long [s] (one tick of noise is not a tilt)
+    tilt_sustain_s: float = bounded(0.1, low=0.0, high=1.0, unit="s",
+                                    below="must be zero or positive [s]")
+    max_regrasps: int = bounded(1, low=0, high=10, below="must be zero or positive")
     # Eq. 3 thresholds [SA, RA] of each ensemble event (events/ensemble); empty: the ones
     # chosen for the simulated hand's own ensemble events (gripper_hands.py), per
     # transition on held-out ensemble runs by analysis/choose_ensemble_thresholds.py, never
     # on a sweep's trials.
-    reach_load_thresholds: list[float] = dataclasses.field(default_factory=list)
-    load_lift_thresholds: list[float] = dataclasses.field(default_factory=list)
-    place_unload_thresholds: list[float] = dataclasses.field(default_factory=list)
+    reach_load_thresholds: list[float] = bounded(default_factory=list, low=-1.0, high=1.0,
+                                                 why="Eq. 3 scores are correlations")
+    load_lift_thresholds: list[float] = bounded(default_factory=list, low=-1.0, high=1.0,
+                                                why="Eq. 3 scores are correlations")
+    place_unload_thresholds: list[float] = bounded(default_factory=list, low=-1.0, high=1.0,
+                                                   why="Eq. 3 scores are correlations")
     # A finger striking the object during the approach (joint torques): stop, back off
     # approach_retreat_m, shift along the stroke toward the struck finger, approach again
     # (counted in max_re_reaches).
@@ -142,23 +169,33 @@ class TaxelAwareConfig:
 class GraspControllerConfig:
     """The grasp state machine's settings, shared by the closed-loop controllers: the tick,
     the contact force and the corrective actions' triggers and numbers."""
-    update_period_s: float = 0.005  # state machine tick [s]
+    # state machine tick [s]
+    update_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
+                                     below="must be positive [s]")
     # The tactile systems that take the 1 kHz film samples (the event matchers' RA windows,
     # the slip band) process them in blocks of this long [s], one Python update per block
     # (tactile/sample_block.py: BLOCK_PERIOD_S, 10 ms, about one AD7147 frame); 0 (the
     # default): one update per sample. Blocks save about 1 % of a trial's CPU time and act on
     # each event up to one block later (docs/sweeps.md), so results stay per-sample.
-    sensor_block_s: float = 0.0
+    sensor_block_s: float = bounded(0.0, low=0.0, high=0.1, unit="s",
+                                    below="must be zero (one update per sample) or positive [s]")
     # A finger touches when its SA exceeds contact_force_n [N].
-    contact_force_n: float = 0.3
+    contact_force_n: float = bounded(0.3, low=0.0, high=50.0, unit="N",
+                                     below="must be zero or positive [N]")
     # Re-Reach: one finger alone in contact for one_sided_contact_s [s], the gripper closed
     # on nothing, or no Reach-Load event within reach_event_timeout_s [s] of closing.
     re_reach_enabled: bool = True
-    one_sided_contact_s: float = 0.1
-    reach_event_timeout_s: float = 2.0
-    max_re_reaches: int = 2
-    re_reach_move_s: float = 0.8  # time to shift the open gripper sideways [s]
-    opened_m: float = 0.080  # the gripper counts as open beyond this opening [m]
+    one_sided_contact_s: float = bounded(0.1, low=0.0, high=10.0, unit="s",
+                                         below="must be zero or positive [s]")
+    reach_event_timeout_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
+                                           below="must be zero or positive [s]")
+    max_re_reaches: int = bounded(2, low=0, high=10, below="must be zero or positive")
+    # time to shift the open gripper sideways [s]
+    re_reach_move_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
+                                     below="must be zero or positive [s]")
+    # the gripper counts as open beyond this opening [m]
+    opened_m: float = bounded(0.080, low=0.0, high=0.085, unit="m", why="the 2F-85's 85 mm stroke",
+                              below="must be zero or positive [m]")
     # Lift-Load: during Lift, either pad's slip-band vibration (tactile/slip_vibration_band:
     # the film's signal above slip_band_hz, RMS over slip_window_s) above
     # slip_vibration_mps2 [m/s^2] for slip_s [s] means the object slips; back to Load with
@@ -171,20 +208,32 @@ class GraspControllerConfig:
     # 0.68 m/s^2, pads sliding along the object at lift speed 1.9-5.1 m/s^2; the threshold
     # 1 m/s^2 (24 mN of pad load) is the one the accelerometer model used.
     lift_load_enabled: bool = True
-    slip_vibration_mps2: float = 1.0
+    slip_vibration_mps2: float = bounded(1.0, low=0.0, high=1000.0, unit="m/s^2",
+                                         below="must be zero or positive [m/s^2]")
     # ... and above this many sigmas of the slip band's noise (control/noise_thresholds.py:
     # the band's RMS over slip_window_s of noise alone crosses it in at most one trial of a
     # thousand; the sigma from the film's electronics); 0: the number alone.
-    slip_vibration_sigmas: float = 2.34
-    slip_band_hz: float = 80.0
-    slip_window_s: float = 0.01
-    slip_s: float = 0.02
-    lift_load_force_factor: float = 2.0
-    max_lift_loads: int = 2
-    max_grip_force_n: float = 235.0  # the 2F-85's largest grip force
-    grip_fraction: float = 0.8
-    relift_settle_s: float = 0.2  # and RA quiet (the slip has stopped) before lifting again
-    load_event_timeout_s: float = 2.0  # Load without the Load-Lift event: give up [s]
+    slip_vibration_sigmas: float = bounded(2.34, low=0.0, high=100.0, unit="noise sigmas",
+                                           why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
+    slip_band_hz: float = bounded(80.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
+    slip_window_s: float = bounded(0.01, low=0.0, low_open=True, high=1.0, unit="s",
+                                   below="must be zero or positive [s]")
+    slip_s: float = bounded(0.02, low=0.0, high=1.0, unit="s",
+                            below="must be zero or positive [s]")
+    lift_load_force_factor: float = bounded(2.0, low=1.0, high=10.0, below="must be at least 1")
+    max_lift_loads: int = bounded(2, low=0, high=10, below="must be zero or positive")
+    # the 2F-85's largest grip force
+    max_grip_force_n: float = bounded(235.0, low=0.0, high=235.0, unit="N",
+                                      why="the 2F-85 grips with at most 235 N, Robotiq 2F-85 "
+                                          "manual",
+                                      below="must be zero or positive [N]")
+    grip_fraction: float = bounded(0.8, low=0.0, low_open=True, high=1.0)
+    # and RA quiet (the slip has stopped) before lifting again
+    relift_settle_s: float = bounded(0.2, low=0.0, high=10.0, unit="s",
+                                     below="must be zero or positive [s]")
+    # Load without the Load-Lift event: give up [s]
+    load_event_timeout_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
+                                          below="must be zero or positive [s]")
     # Avoid: in Hold, either RA above hit_ra_mps2 [m/s^2] is a hit. The machine stops for
     # avoid_sense_s [s] to see which way the hit pushed (the pad the object was pushed into
     # gains more than avoid_sa_asymmetry_n [N] over the other: along the stroke; else the
@@ -192,27 +241,38 @@ class GraspControllerConfig:
     # way over avoid_s [s], then Holds again. Hits are ignored for hit_refractory_s [s]
     # after entering Hold (the stop of the lift rings briefly).
     avoid_enabled: bool = True
-    hit_ra_mps2: float = 3.0
-    hit_ra_sigmas: float = 5.51  # ... and above this many RA noise sigmas (as the slip's)
-    avoid_sense_s: float = 0.03
-    avoid_sa_asymmetry_n: float = 1.0
-    avoid_distance_m: float = 0.05
-    avoid_s: float = 0.6
-    hit_refractory_s: float = 0.3
+    hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
+                                 below="must be zero or positive [m/s^2]")
+    # ... and above this many RA noise sigmas (as the slip's)
+    hit_ra_sigmas: float = bounded(5.51, low=0.0, high=100.0, unit="noise sigmas",
+                                   why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
+    avoid_sense_s: float = bounded(0.03, low=0.0, high=1.0, unit="s",
+                                   below="must be zero or positive [s]")
+    avoid_sa_asymmetry_n: float = bounded(1.0, low=0.0, high=100.0, unit="N",
+                                          below="must be zero or positive [N]")
+    avoid_distance_m: float = bounded(0.05, low=0.0, high=0.3, unit="m",
+                                      below="must be zero or positive [m]")
+    avoid_s: float = bounded(0.6, low=0.0, high=10.0, unit="s",
+                             below="must be zero or positive [s]")
+    hit_refractory_s: float = bounded(0.3, low=0.0, high=10.0, unit="s",
+                                      below="must be zero or positive [s]")
     # With the memorized hit trigger (memorized_corrective_events), the match comes after
     # the hit (15 ms measured, the target at most 60 ms), when the push has
     # already moved SA: the Avoid direction's SA baseline is the SA this long before the
     # match [s], the latency target, so that it precedes the hit.
-    memorized_hit_baseline_s: float = 0.06
+    memorized_hit_baseline_s: float = bounded(0.06, low=0.0, high=1.0, unit="s",
+                                              below="must be zero or positive [s]")
     # The memorized hit event is looked for from this long after entering Hold [s]:
     # hit_refractory_s (a stop's ringing) plus the events' 0.5 s window, so that the window
     # holds no sample of the ringing. Eq. 3 takes the best of all lags, so a transient
     # anywhere in the window can match the hit's shape whatever its size; armed after
     # hit_refractory_s alone, the stop of each Avoid move matched as a new hit 0.53 s into
     # the next Hold (14 Avoids in a row, README).
-    memorized_hit_armed_s: float = 0.8
+    memorized_hit_armed_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
+                                           below="must be zero or positive [s]")
     # Place: without the Place-Unload event, unload anyway this long after the arm stops [s].
-    place_event_timeout_s: float = 1.0
+    place_event_timeout_s: float = bounded(1.0, low=0.0, high=60.0, unit="s",
+                                           below="must be zero or positive [s]")
     # Lost object: in Lift, Hold, Avoid or Place, both SA below contact_force_n.
     drop_check_enabled: bool = True
     # The memorized events carry the object they were recorded on; the controller refuses
@@ -237,10 +297,12 @@ class GraspControllerConfig:
     # lift_load: the rule's pair finds 1 of the 2 held-out slips, 30 ms after onset, with
     # no false trigger on the 7 held-out spans (5 normal lifts); with the earlier 1.3 s
     # Load phase every pair false-triggered on normal lifts.
-    lift_load_event_thresholds: list[float] = dataclasses.field(
-        default_factory=lambda: [0.45, 0.85])
-    hold_avoid_event_thresholds: list[float] = dataclasses.field(
-        default_factory=lambda: [-0.05, 0.55])
+    lift_load_event_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.85],
+                                                      low=-1.0, high=1.0,
+                                                      why="Eq. 3 scores are correlations")
+    hold_avoid_event_thresholds: list[float] = bounded(default_factory=lambda: [-0.05, 0.55],
+                                                       low=-1.0, high=1.0,
+                                                       why="Eq. 3 scores are correlations")
 
     def corrective_event_thresholds(self) -> dict[str, tuple[float, float]]:
         """{corrective transition: (SA, RA)} for the corrective EventMatcher."""
@@ -253,21 +315,26 @@ class EventTriggeredConfig(GraspControllerConfig):
     """The settings of a state machine whose transitions memorized tactile events trigger,
     matched by Eq. 3."""
     # Eq. 3 thresholds (Sec. III-B).
-    sa_threshold: float = 0.9
-    ra_threshold: float = 0.7
+    sa_threshold: float = bounded(0.9, low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
+    ra_threshold: float = bounded(0.7, low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
     # Cutoff [Hz] of the RA envelope on the memorized and live RA windows before Eq. 3
     # (events/ra_envelope.py, docs/transfer.md): 2.0, the corner both RA chains share (the
     # charge amplifier's and the accelerometer's high-pass), lets events memorized with one
     # vibration transducer match on the other; 0 (the paper): Eq. 3 on the raw windows.
-    ra_envelope_hz: float = 0.0
+    ra_envelope_hz: float = bounded(0.0, low=0.0, high=10_000.0, unit="Hz",
+                                    below="must be 0 (no RA envelope) or lie between 0 and half "
+                                          "the RA rate")
     # The RA noise floor (events/ra_noise_floor.py, docs/transfer.md): an RA window counts
     # only if its peak rises above its channel's noise mean + ra_noise_floor_sigmas standard
     # deviations, the noise measured on the stream's first ra_noise_quiet_s [s]. 5.39 is
     # the rule's k (noise alone crosses it in at most one trial of a thousand); 0 (the
     # paper): no floor. 2 s: within the 2.8 s approach (scripted_grasp.py: settle_s 0.3 +
     # reach_s 2.5), before the open fingers can reach the object.
-    ra_noise_floor_sigmas: float = 0.0
-    ra_noise_quiet_s: float = 2.0
+    ra_noise_floor_sigmas: float = bounded(0.0, low=0.0, high=100.0,
+                                           below="must be 0 (no RA noise floor) or positive "
+                                                 "(standard deviations of the RA noise)")
+    ra_noise_quiet_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
+                                      below="must be zero or positive [s]")
     # Beyond the paper: a flat template channel (Load-Lift's SA, the settled grip) scores
     # only a live window that is flat too, so Load-Lift waits until the grip has held for a
     # window (events/correlation.py); False (the paper): Eq. 3 alone, which passes a grip
@@ -344,7 +411,7 @@ def controller_class(name: str):
     """The config class of the controller called `name` (UnknownControllerError)."""
     try:
         return _CLASS_OF_NAME[name]
-    except KeyError:
+    except (KeyError, TypeError):  # TypeError: a list or mapping given as the name
         raise UnknownControllerError(
             f"'{name}' is not one of {', '.join(CONTROLLER_NAMES)}") from None
 

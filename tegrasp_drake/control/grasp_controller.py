@@ -15,6 +15,8 @@ With the memorized events the live diagram follows the paper's Fig. 3:
 import dataclasses
 
 from pydrake.systems.primitives import Multiplexer
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.framework import System
 
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
@@ -32,6 +34,9 @@ from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
 from tegrasp_drake.tactile.sample_block import block_samples
 from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
+from tegrasp_drake.simulation.station import ArmDriverConfig
+from tegrasp_drake.control.controller_config import ControllerConfig
+from tegrasp_drake.rig.api_boundary import public_api
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
 _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
@@ -145,7 +150,9 @@ def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channe
     return matcher
 
 
-def AddGraspController(builder, *, controller, plan: GraspPlan, station, arm,
+@public_api
+def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
+                       plan: GraspPlan, station: System, arm: ArmDriverConfig,
                        sample_rates_hz: tuple[float, float], events: dict | None = None,
                        corrective_events: dict | None = None,
                        ra_noise_std_mps2: float = 0.0) -> GraspController:

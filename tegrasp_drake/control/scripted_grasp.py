@@ -14,6 +14,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
@@ -25,11 +26,16 @@ PHASES = ("settle", "reach", "load", "lift", "hold", "place", "unload", "retract
 @dataclasses.dataclass
 class GraspScriptConfig:
     """Timing and targets of the ideal open-loop grasp (side grasp, approach along +x)."""
-    grasp_height: float = 0.055  # m, pad centre above the table
-    settle_s: float = 0.3
-    reach_s: float = 2.5
-    close_speed: float = 0.05  # m/s
-    grip_force: float = 25.0  # N
+    # m, pad centre above the table
+    grasp_height: float = bounded(0.055, low=0.005, high=0.5, unit="m",
+                                  why="pad centre above the table, within the tallest object")
+    settle_s: float = bounded(0.3, low=0.0, high=10.0, unit="s")
+    reach_s: float = bounded(2.5, low=0.0, low_open=True, high=30.0, unit="s")
+    close_speed: float = bounded(0.05, low=0.02, high=0.15, unit="m/s",
+                                 why="the 2F-85 closes at 20-150 mm/s, Robotiq 2F-85 manual")
+    grip_force: float = bounded(25.0, low=0.0, low_open=True, high=235.0, unit="N",
+                                why="the 2F-85 grips with at most 235 N, Robotiq 2F-85 manual",
+                                below="must be positive [N]")
     # [s] from the close command to the start of the lift. It holds the close (about
     # (85 mm - width) / close_speed: 1.24 s for the narrowest built-in object, the 25 mm
     # cylinder) and the dwell on the object after first contact, which must outlast the
@@ -38,17 +44,21 @@ class GraspScriptConfig:
     # 1.8 s leaves the 25 mm cylinder 0.56 s after contact (the 45 mm box 0.96 s, the
     # 50 mm cylinder 1.06 s): 0.31 s for the grip to settle, several times a position
     # loop's settling (tens of ms). Recording checks it (recording/paper_events.py).
-    load_s: float = 1.8
-    lift_height: float = 0.06  # m
-    lift_s: float = 1.5
-    hold_s: float = 3.0
-    place_s: float = 1.5
-    place_press: float = 0.003  # m below the lift-off height at the end of Place
-    unload_s: float = 1.0
-    retract_s: float = 1.2
-    retract_distance: float = 0.10  # m back along the approach (state machine; no nearer
-    # than the start pose, where the wrist nears its singularity)
-    place_offset: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0])  # m
+    load_s: float = bounded(1.8, low=0.0, low_open=True, high=30.0, unit="s")
+    lift_height: float = bounded(0.06, low=0.0, high=0.3, unit="m")  # m
+    lift_s: float = bounded(1.5, low=0.0, low_open=True, high=30.0, unit="s")
+    hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s",
+                            why="the paper holds 3 s; a minute is the longest hold test")
+    place_s: float = bounded(1.5, low=0.0, low_open=True, high=30.0, unit="s")
+    # m below the lift-off height at the end of Place
+    place_press: float = bounded(0.003, low=0.0, high=0.02, unit="m")
+    unload_s: float = bounded(1.0, low=0.0, low_open=True, high=30.0, unit="s")
+    retract_s: float = bounded(1.2, low=0.0, low_open=True, high=30.0, unit="s")
+    # m back along the approach (state machine; no nearer than the start pose, where the
+    # wrist nears its singularity)
+    retract_distance: float = bounded(0.10, low=0.0, high=0.3, unit="m")
+    place_offset: list[float] = bounded(default_factory=lambda: [0.0, 0.0], low=-0.2, high=0.2,
+                                        unit="m")
 
 
 @dataclasses.dataclass(frozen=True)

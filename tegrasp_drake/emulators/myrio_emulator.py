@@ -41,6 +41,8 @@ import zlib
 import numpy as np
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.rig.files import one_line
+from tegrasp_drake.rig.npz_headers import MAX_TRIAL_LOG_BYTES, checked_npz_arrays
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
@@ -68,15 +70,19 @@ class TactileRecording:
 class TactileRecordingError(ValueError):
     """A file is not a trial log holding the pad signals; the message names it."""
 
+    def __init__(self, message: str):
+        super().__init__(one_line(message))
+
 
 def load_tactile_recording(path) -> TactileRecording:
     """The pad signals of a TrialLog .npz: taxel forces (t_sa, taxels: left then right) and
     pad accelerations (t_ra, pad_acceleration: left x, y, z then right); no other array is
     needed."""
     try:
-        with open(path, "rb") as file, np.load(file, allow_pickle=False) as data:
-            t_sa, taxels = data["t_sa"], data["taxels"]
-            t_ra, acceleration = data["t_ra"], data["pad_acceleration"]
+        arrays = checked_npz_arrays(path, ("t_sa", "taxels", "t_ra", "pad_acceleration"),
+                                    max_bytes=MAX_TRIAL_LOG_BYTES)
+        t_sa, taxels = arrays["t_sa"], arrays["taxels"]
+        t_ra, acceleration = arrays["t_ra"], arrays["pad_acceleration"]
     except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:
         raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
                                     f"and pad_acceleration (or it is truncated or corrupt): "

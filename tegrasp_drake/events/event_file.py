@@ -18,6 +18,7 @@ import pathlib
 import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
+from tegrasp_drake.rig.files import InputTooLargeError, one_line, read_bounded
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -33,13 +34,18 @@ INDEX_FILE = "index.json"
 RECORD_COMMAND = "tegrasp record-events"
 
 
+# An event file holds one 0.5 s window (about 30 kB at the paper's rates; 1 kHz RA, 2
+# channels); an index lists a few dozen files. 16 MB leaves room for 20 kHz windows.
+MAX_EVENT_FILE_BYTES = 16_000_000
+
+
 class MemorizedEventError(Exception):
     """A memorized event or index file is missing or unusable."""
 
     def __init__(self, path, problem: str, object_name: str | None = None):
         self.path = pathlib.Path(path)
         remake = f"{RECORD_COMMAND} --object {object_name}" if object_name else RECORD_COMMAND
-        super().__init__(f"{self.path}: {problem}. Remake it with `{remake}`.")
+        super().__init__(one_line(f"{self.path}: {problem}. Remake it with `{remake}`."))
 
 
 # ---- Writing -------------------------------------------------------------------------
@@ -100,12 +106,21 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
     if not path.is_file():
         raise MemorizedEventError(path, "file is missing", object_name)
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
+        data = json.loads(read_bounded(path, MAX_EVENT_FILE_BYTES).decode("utf-8"))
+    except InputTooLargeError:
+        raise MemorizedEventError(path, f"is larger than {MAX_EVENT_FILE_BYTES} bytes; an "
+                                  "event file or index is a few tens of kB", object_name) from None
+    except OSError as error:
+        raise MemorizedEventError(path, f"cannot be read ({error.strerror or error})",
+                                  object_name) from None
     except UnicodeDecodeError as error:
         raise MemorizedEventError(path, f"is not UTF-8 text ({error})", object_name) from None
     except json.JSONDecodeError as error:
         raise MemorizedEventError(
             path, f"is not valid JSON, perhaps truncated ({error})", object_name) from None
+    except RecursionError:
+        raise MemorizedEventError(path, "nests too deeply to be an event file or index",
+                                  object_name) from None
     if not isinstance(data, dict) or data.get("format") != expected_format:
         raise MemorizedEventError(path, f"is not a '{expected_format}' file", object_name)
     version = data.get("format_version")

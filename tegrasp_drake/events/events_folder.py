@@ -16,13 +16,15 @@ from tegrasp_drake.events.event_file import (
     event_json_text, event_summary, event_to_json, read_index, read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_order
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 
 def _sorted_events(events: Iterable[MemorizedEvent]) -> list[MemorizedEvent]:
     return sorted(events, key=lambda e: (e.object_name, transition_order(e.transition)))
 
 
-def save_memorized_events(events_dir, events: Iterable[MemorizedEvent], *,
+@public_api
+def save_memorized_events(events_dir: PathLike, events: Iterable[MemorizedEvent], *,
                           keep_other_objects: bool = True,
                           required: Sequence[str] = REQUIRED_TRANSITIONS) -> list[pathlib.Path]:
     """Write the events' files and the index; returns the paths written.
@@ -97,7 +99,8 @@ def _load_entry(events_dir: pathlib.Path, entry: dict) -> MemorizedEvent:
     return event
 
 
-def load_memorized_events(events_dir, object_name: str, *,
+@public_api
+def load_memorized_events(events_dir: PathLike, object_name: str, *,
                           required: Sequence[str] = REQUIRED_TRANSITIONS
                           ) -> dict[str, MemorizedEvent]:
     """The memorized events of `object_name`, by transition, in grasp order; the folder

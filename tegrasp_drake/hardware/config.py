@@ -25,12 +25,14 @@ import typing
 
 from pydrake.common.yaml import yaml_dump_typed
 
+from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
-from tegrasp_drake.hardware.robotiq.modbus_client import MIN_PERIOD, RobotiqModbusConfig
+from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
 DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
@@ -62,20 +64,26 @@ class SerialTactileDriver:
     and at most this many wait (TactileSerialReceiver), so bursts keep every piezo sample
     at a latency of at most max_backlog ms."""
     port: str = "/dev/ttyACM0"
-    baudrate: int = 921600
+    baudrate: int = bounded(921600, low=300, high=12_000_000, unit="baud")
     calibration_file: str = ""
-    stale_timeout: float = 0.05
-    max_backlog: int = 8
+    stale_timeout: float = bounded(0.05, low=0.0, low_open=True, high=10.0, unit="s",
+                                   below="must be positive [s]")
+    max_backlog: int = bounded(8, low=0, high=100_000, unit="frames",
+                               below="must be zero or a positive number of frames")
 
 
 @dataclasses.dataclass
 class DeviceWatchdogConfig:
     """Silence [s] after which a device trips the watchdog (drivers/watchdog.py), and the
     extra time a device may take to say anything at all after the start."""
-    arm_timeout: float = DEFAULT_TIMEOUTS["arm"]
-    gripper_timeout: float = DEFAULT_TIMEOUTS["gripper"]
-    tactile_timeout: float = DEFAULT_TIMEOUTS["tactile"]
-    startup_grace: float = 1.0
+    arm_timeout: float = bounded(DEFAULT_TIMEOUTS["arm"], low=0.0, low_open=True, high=10.0,
+                                 unit="s", below="must be positive [s]")
+    gripper_timeout: float = bounded(DEFAULT_TIMEOUTS["gripper"], low=0.0, low_open=True,
+                                     high=10.0, unit="s", below="must be positive [s]")
+    tactile_timeout: float = bounded(DEFAULT_TIMEOUTS["tactile"], low=0.0, low_open=True,
+                                     high=10.0, unit="s", below="must be positive [s]")
+    startup_grace: float = bounded(1.0, low=0.0, high=60.0, unit="s",
+                                   below="must be zero or positive [s]")
 
     def timeouts(self) -> dict[str, float]:
         """{device: timeout} in the watchdog's device order."""
@@ -92,13 +100,14 @@ class HardwareStationConfig:
     watchdog: DeviceWatchdogConfig = dataclasses.field(default_factory=DeviceWatchdogConfig)
     # How long [s] to wait, before the control loop starts, for the arm's first status,
     # the gripper's activation and the first tactile frame.
-    ready_timeout: float = 10.0
+    ready_timeout: float = bounded(10.0, low=0.0, low_open=True, high=600.0, unit="s",
+                                   below="must be positive [s]")
     # The control loop's scheduling (hardware/realtime.py): "fifo" (SCHED_FIFO at
     # `realtime_priority`, so that a busy host does not delay the 1 kHz loop), "nice"
     # (the highest CFS weight the OS grants) or "normal"; what the OS refuses falls back
     # to the next, and the run says which it got.
     scheduling: str = "fifo"
-    realtime_priority: int = 10
+    realtime_priority: int = bounded(10, low=1, high=99, why="SCHED_FIFO priorities, sched(7)")
 
 
 def lcm_url_problem(url: str) -> str | None:
@@ -133,37 +142,13 @@ def lcm_url_problem(url: str) -> str | None:
 
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
-    """Checks the values the schema cannot (positive timeouts, known choices, a usable LCM
-    URL); ConfigError names the field."""
+    """Checks the values the schema cannot (every number in its declared range, known
+    choices, a usable LCM URL); ConfigError names the field."""
     from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
     prefix = f"{where}." if where else ""
-
-    def positive(path, value, unit="s"):
-        require(value > 0, source, prefix + path, f"must be positive [{unit}]", value)
-
-    for device, timeout in config.watchdog.timeouts().items():
-        positive(f"watchdog.{device}_timeout", timeout)
-    require(config.watchdog.startup_grace >= 0, source, prefix + "watchdog.startup_grace",
-            "must be zero or positive [s]", config.watchdog.startup_grace)
-    positive("ready_timeout", config.ready_timeout)
-    positive("tactile.stale_timeout", config.tactile.stale_timeout)
-    require(config.tactile.max_backlog >= 0, source, prefix + "tactile.max_backlog",
-            "must be zero or a positive number of frames", config.tactile.max_backlog)
-    positive("tactile.baudrate", config.tactile.baudrate, "baud")
-    gripper = config.gripper
-    require(gripper.period >= MIN_PERIOD, source, prefix + "gripper.period",
-            f"must be at least {MIN_PERIOD} s (the 2F-85's 200 Hz)", gripper.period)
-    for name in ("request_timeout", "activation_timeout", "command_refresh_period"):
-        positive(f"gripper.{name}", getattr(gripper, name))
-    positive("gripper.baudrate", gripper.baudrate, "baud")
-    require(1 <= gripper.device_id <= 247, source, prefix + "gripper.device_id",
-            "must be a Modbus slave id 1..247", gripper.device_id)
-    require(gripper.read_function in (3, 4), source, prefix + "gripper.read_function",
-            "must be 4 (input registers) or 3 (holding registers)", gripper.read_function)
+    check_ranges(config, source, where)  # timeouts, rates, ids, priorities (rig/ranges.py)
     require(config.scheduling in SCHEDULING_POLICIES, source, prefix + "scheduling",
             f"must be one of {', '.join(SCHEDULING_POLICIES)}", config.scheduling)
-    require(1 <= config.realtime_priority <= 99, source, prefix + "realtime_priority",
-            "must be a SCHED_FIFO priority 1..99", config.realtime_priority)
     problem = lcm_url_problem(config.arm.lcm_url)
     if problem:
         raise ConfigError(f"{source}: field '{prefix}arm.lcm_url' {problem}, got "
@@ -171,7 +156,8 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     return config
 
 
-def LoadHardwareConfig(filename, overrides: typing.Sequence[str] = ()
+@public_api
+def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
     """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
     data = read_yaml_file(filename, "the hardware config")

@@ -49,6 +49,8 @@ from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialRe
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.hardware.config import HardwareStationConfig, lcm_url_problem
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
+from tegrasp_drake.rig.ranges import check_ranges
+from tegrasp_drake.rig.api_boundary import public_api
 
 
 class HardwareNotReadyError(RuntimeError):
@@ -267,8 +269,10 @@ class HardwareStation(Diagram):
         self.close()
 
 
+@public_api
 def MakeHardwareStation(config: HardwareStationConfig, *,
                         lcm: DrakeLcm | None = None) -> HardwareStation:
     """The hardware interface for `config` (module docstring); `lcm` overrides the config's
     URL (e.g. a shared memq:// instance in tests)."""
+    check_ranges(config, "MakeHardwareStation: config")  # a config changed after loading
     return HardwareStation(config, lcm=lcm)

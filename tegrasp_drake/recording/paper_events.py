@@ -16,6 +16,7 @@ settled grip on the weaker pad (grasp_outcome.grip_fraction_at), else the Load p
 """
 
 import logging
+from collections.abc import Callable
 
 from tegrasp_drake.recording.campaign import CampaignRun, RecordEventsError, cut_events
 from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time,
@@ -23,6 +24,8 @@ from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time,
                                               scripted_lift_start, true_sa)
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
+from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.api_boundary import public_api
 
 logger = logging.getLogger(__name__)
 
@@ -82,7 +85,9 @@ def missing_event_advice(transition: str, log, scenario) -> str:
             "lifts it (object.mass, object.friction, grasp.grip_force)")
 
 
-def record_events(object_name: str, scenario=None, *, progress=None):
+@public_api
+def record_events(object_name: str, scenario: Scenario | None = None, *,
+                  progress: Callable | None = None):
     """Runs the ideal grasp of one object (a built-in one by name, or the object of
     `scenario`); returns its MemorizedEvents. progress: as run_ideal_grasp's.
     RecordEventsError when a physical event is missing."""

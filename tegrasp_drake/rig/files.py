@@ -6,14 +6,33 @@
   (an object's event files and their index), so that it is all old or all new.
 - claim_folder: a fresh folder made with one mkdir, so that two runs never take the same.
 - folder_problem: what stops a folder from being written, checked before any long work.
+- read_bounded: a file's bytes, reading at most a limit plus one byte (a device, a FIFO or a
+  huge file is refused without being read to its end).
+- termination_interrupts: SIGTERM and SIGHUP end the process as Ctrl-C does, so that the
+  same `finally` blocks remove a run's staging files.
+
+Files are made with the permissions the umask gives (as `open` would), not mkstemp's 0600.
 """
 
 import contextlib
+import errno
 import os
 import pathlib
 import signal
 import tempfile
 import threading
+
+
+def _umask() -> int:
+    """The process's umask (read by setting it and setting it back)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def _honour_umask(descriptor: int) -> None:
+    """Gives a mkstemp file (made 0600) the mode a plain `open` would have made."""
+    os.fchmod(descriptor, 0o666 & ~_umask())
 
 
 def staged_file(path, data: str | bytes) -> pathlib.Path:
@@ -24,6 +43,7 @@ def staged_file(path, data: str | bytes) -> pathlib.Path:
     descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp",
                                              dir=path.parent)
     try:
+        _honour_umask(descriptor)
         with os.fdopen(descriptor, "wb") as stream:
             stream.write(payload)
             stream.flush()
@@ -55,7 +75,10 @@ def temporary_sibling(path):
     path = pathlib.Path(path)
     descriptor, temporary = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix,
                                              dir=path.parent)
-    os.close(descriptor)
+    try:
+        _honour_umask(descriptor)
+    finally:
+        os.close(descriptor)
     try:
         yield pathlib.Path(temporary)
         os.replace(temporary, path)
@@ -67,7 +90,7 @@ def temporary_sibling(path):
 
 @contextlib.contextmanager
 def interruptions_deferred():
-    """Holds SIGINT and SIGTERM back until the block ends, then acts on the first that came
+    """Holds SIGINT, SIGTERM and SIGHUP back until the block ends, then acts on the first that came
     as the handler before would have (Ctrl-C: KeyboardInterrupt). Python-level handlers, not
     a signal mask: in a process with threads the kernel may hand the signal to any of them.
     Only the main thread can set handlers; elsewhere the block runs as it is."""
@@ -76,7 +99,7 @@ def interruptions_deferred():
         return
     received = []
     previous = {number: signal.signal(number, lambda got, frame: received.append(got))
-                for number in (signal.SIGINT, signal.SIGTERM)}
+                for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
     try:
         yield
     finally:
@@ -117,3 +140,51 @@ def claim_folder(path) -> bool:
     except FileExistsError:
         return False
     return True
+
+
+class InputTooLargeError(OSError):
+    """A file is larger than its reader accepts; raised before the rest is read."""
+
+    def __init__(self, path, limit: int):
+        super().__init__(errno.EFBIG, f"more than {limit} bytes (the most this reads)")
+        self.path, self.limit = str(path), limit
+
+
+def read_bounded(path, limit: int) -> bytes:
+    """The bytes of the file at `path`, reading at most `limit` + 1 of them: InputTooLargeError
+    (an OSError) past `limit`, whatever the file is (/dev/zero, a FIFO, a 10 GB log)."""
+    with open(path, "rb") as stream:
+        data = stream.read(limit + 1)
+    if len(data) > limit:
+        raise InputTooLargeError(path, limit)
+    return data
+
+
+def _interrupt(signal_number, frame):
+    raise KeyboardInterrupt(signal.Signals(signal_number).name)
+
+
+@contextlib.contextmanager
+def termination_interrupts():
+    """SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread while the block runs, as
+    Ctrl-C does, so that every `finally` (a run's staging folder, a lock, an LCM log) runs
+    before the process ends. Signals someone already handles (not the default action) are
+    left as they are."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {}
+    for number in (signal.SIGTERM, signal.SIGHUP):
+        if signal.getsignal(number) == signal.SIG_DFL:
+            previous[number] = signal.signal(number, _interrupt)
+    try:
+        yield
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+
+
+def one_line(text: str) -> str:
+    """`text` as one line: line breaks (in a value an error message quotes) shown as \\n and
+    \\r, so that an error is always one line on the terminal."""
+    return text.replace("\r", "\\r").replace("\n", "\\n")

@@ -29,6 +29,7 @@ import dataclasses
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.station_interface import ARM_JOINTS
 
 _DEG = np.pi / 180.0
@@ -37,9 +38,13 @@ _DEG = np.pi / 180.0
 @dataclasses.dataclass
 class JacoVelocityTrackerConfig:
     """Gain and limits of the tracker (the module docstring gives their sources)."""
-    kp: float = 5.0  # [1/s]
-    max_joint_speed: list[float] = dataclasses.field(
-        default_factory=lambda: [36 * _DEG] * 3 + [48 * _DEG] * 3)  # [rad/s]
+    kp: float = bounded(5.0, low=0.0, low_open=True, high=100.0, unit="1/s",
+                        why="plausible 1-20; the loop's phase margin is gone at about 100",
+                        below="must be positive [1/s] (plausible 1-20)")
+    max_joint_speed: list[float] = bounded(
+        default_factory=lambda: [36 * _DEG] * 3 + [48 * _DEG] * 3, low=0.0, low_open=True,
+        high=48 * _DEG, unit="rad/s",
+        why="the JACO2's joint speed limits, 36-48 deg/s, Kinova JACO2 specifications")
     continuous_joints: list[bool] = dataclasses.field(
         default_factory=lambda: [True, False, False, True, True, True])
 

@@ -19,6 +19,7 @@ import re
 
 from tegrasp_drake.rig import materials
 from tegrasp_drake.robotiq.units import STROKE_M
+from tegrasp_drake.rig.ranges import bounded
 
 # The entries of an object's `size` [m] for each shape.
 OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),
@@ -42,13 +43,22 @@ class ObjectConfig:
     """
     name: str = "box"
     shape: str = ""
-    size: list[float] = dataclasses.field(default_factory=list)
-    mass: float | None = None  # kg
+    size: list[float] = bounded(default_factory=list, low=0.0, low_open=True, high=0.5, unit="m",
+                                why="an object the 2F-85 lifts from the table: at most 0.5 m in "
+                                    "any extent")
+    mass: float | None = bounded(None, low=0.0, low_open=True, high=5.0, unit="kg",
+                                 why="the 2F-85's rated payload, Robotiq 2F-85 manual",
+                                 below="must be positive (the object's mass [kg])")
     # Coulomb coefficient of the object's geometry (static = dynamic), combined with the
     # pad's and the table's by Drake's pair rule (see the module docstring).
-    friction: float | None = None
+    friction: float | None = bounded(None, low=0.0, low_open=True, high=2.0,
+                                     why="dry Coulomb coefficients of solids stay below about "
+                                         "1.5, rubber on rubber",
+                                     below="must be positive (its Coulomb friction coefficient, "
+                                           "e.g. 0.5)")
     file: str = ""
-    color: list[float] = dataclasses.field(default_factory=lambda: [0.9, 0.5, 0.1, 1.0])
+    color: list[float] = bounded(default_factory=lambda: [0.9, 0.5, 0.1, 1.0], low=0.0, high=1.0,
+                                 why="RGBA components")
 
     def width_along_stroke(self) -> float:
         """Extent along the finger stroke [m] (y of the object when placed on its marker)."""

@@ -31,9 +31,15 @@ import typing
 import yaml
 from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
 
+from tegrasp_drake.rig.files import InputTooLargeError, one_line, read_bounded
+
 
 class ConfigError(ValueError):
-    """A configuration file, field or value is wrong; the message names it."""
+    """A configuration file, field or value is wrong; the message names it, on one line (a
+    line break inside a value it quotes is shown as \\n)."""
+
+    def __init__(self, message: str = ""):
+        super().__init__(one_line(str(message)))
 
 
 def read_yaml_file(path: str | pathlib.Path, what: str):
@@ -41,9 +47,17 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
     file in errors, e.g. "the scenario file"."""
     path = pathlib.Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        if path.is_dir():
+            raise ConfigError(f"{path}: cannot read {what}: it is a folder; give a file")
+        text = read_bounded(path, MAX_YAML_BYTES).decode("utf-8")
     except FileNotFoundError:
         raise ConfigError(f"{path}: cannot read {what}: it does not exist") from None
+    except InputTooLargeError:
+        raise ConfigError(f"{path}: more than {MAX_YAML_BYTES} bytes of YAML; a configuration "
+                          f"is at most {MAX_YAML_BYTES} bytes") from None
+    except UnicodeDecodeError as e:
+        raise ConfigError(f"{path}: cannot read {what}: it is not UTF-8 text (byte "
+                          f"{e.start}); give a YAML file") from None
     except OSError as e:
         raise ConfigError(f"{path}: cannot read {what}: {e.strerror or e}") from None
     return parse_yaml(text, str(path)) if text else None
@@ -57,6 +71,8 @@ MAX_YAML_NODES = 100_000
 def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: int = 0):
     """The data of YAML `text` (module docstring); ConfigError "SOURCE: ..." in one line
     naming the line and column (less the offsets of text the caller put before it)."""
+    if "\x00" in text:
+        raise ConfigError(f"{source}: holds a NUL byte; it is not YAML text")
     if len(text.encode("utf-8", errors="replace")) > MAX_YAML_BYTES:
         raise ConfigError(f"{source}: {len(text.encode('utf-8', errors='replace'))} bytes of "
                           f"YAML; a configuration is at most {MAX_YAML_BYTES} bytes")
@@ -93,6 +109,12 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int) -> Non
         if isinstance(node, yaml.MappingNode):
             seen = {}
             for key, value in node.value:
+                if key.tag not in ("tag:yaml.org,2002:str", "tag:yaml.org,2002:merge"):
+                    what = (f"{key.tag.rsplit(':', 1)[-1]} {key.value!r}; quote it"
+                            if isinstance(key, yaml.ScalarNode) else
+                            "a list" if isinstance(key, yaml.SequenceNode) else "a mapping")
+                    raise ConfigError(f"{source}: {where(key)}: a key must be a name (text), "
+                                      f"got {what}"[:300])
                 if isinstance(key, yaml.ScalarNode) and key.tag != "tag:yaml.org,2002:merge":
                     if key.value in seen:
                         raise ConfigError(
@@ -158,7 +180,7 @@ def load_typed(data: dict, schema, source: str):
     check_fields(data, schema, source)
     try:
         return yaml_load_typed(schema=schema, data=yaml_dump(data), defaults=schema())
-    except (RuntimeError, ValueError) as e:
+    except (RuntimeError, ValueError, yaml.YAMLError) as e:
         raise ConfigError(f"{source}: {e}") from None
 
 
@@ -175,7 +197,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         _check_finite_numbers(data, source, where)
         try:
             yaml_load_typed(schema=schema, data=yaml_dump(data))
-        except (RuntimeError, ValueError) as e:
+        except (RuntimeError, ValueError, yaml.YAMLError) as e:  # YAMLError: an odd _tag
             raise ConfigError(f"{source}: field '{where}': {e}") from None
         return
     if not isinstance(data, dict):
@@ -258,9 +280,26 @@ def _check_value(value, hint, path: str, source: str) -> None:
     elif hint in _SCALAR_WORDS:
         if not _is_scalar(value, hint):
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
-                              f"{_describe(value)}")
+                              f"{_describe(value)}{_number_as_text_hint(value, hint)}")
     else:
         check_fields(value, hint, source, path)
+
+
+def _number_as_text_hint(value, hint) -> str:
+    """For a number YAML 1.1 reads as text (1e9, 1E-3: no dot), how to write it."""
+    if hint in (float, int) and isinstance(value, str):
+        try:
+            number = float(value)
+        except ValueError:
+            return ""
+        if math.isfinite(number):
+            text = repr(number)
+            if "e" in text:  # YAML 1.1 wants a dot in the mantissa and a signed exponent
+                mantissa, exponent = text.split("e")
+                mantissa += "" if "." in mantissa else ".0"
+                text = f"{mantissa}e{'' if exponent[0] in '+-' else '+'}{exponent}"
+            return f" (YAML reads it as text: write {text})"
+    return ""
 
 
 def _union_member(value, members, path: str, source: str):

@@ -15,6 +15,7 @@ import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.rig.files import one_line, read_bounded
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
     tactile_arrays)
@@ -33,6 +34,9 @@ MESSAGE_TYPES = {
 
 class RunLogError(ValueError):
     """A run log is missing, unreadable or lacks what the replay needs; names the file."""
+
+    def __init__(self, message: str):
+        super().__init__(one_line(message))
 
 
 @dataclasses.dataclass
@@ -76,6 +80,10 @@ LCM_SYNC = 0xEDA1DA01
 _EVENT_HEADER = struct.Struct(">IqqII")  # sync, event number, timestamp, channel, data sizes
 MAX_CHANNEL_LENGTH = 256
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
+# The largest run log read (whole, into memory): the bus carries about 100 kB/s (1 kHz tactile
+# messages, arm and gripper status), so a 10-minute run (hardware --duration's limit) is
+# about 60 MB; 1 GiB is far beyond any run and bounds what a file can make the reader hold.
+MAX_RUN_LOG_BYTES = 2**30
 
 
 def _plausible_header(data: bytes, position: int) -> bool:
@@ -111,7 +119,7 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
     missing in between (events lost), and an event cut short at the end of the file (a
     truncated log). The format is LCM's: per event a big-endian header (sync word
     0xEDA1DA01, event number, timestamp, channel length, data length), channel, data."""
-    data = pathlib.Path(path).read_bytes()
+    data = read_bounded(path, MAX_RUN_LOG_BYTES)
     events = []
     corrupt_regions = corrupt_bytes = lost = 0
     truncated = None

@@ -18,13 +18,16 @@ Simulator at real-time rate 1 until the state machine is done or failed. On the 
 
 import dataclasses
 import json
+import os
 import pathlib
 import signal
 import subprocess
 import time
+from collections.abc import Callable
 
 import lcm
 from pydrake.systems.framework import EventStatus
+from pydrake.lcm import DrakeLcm
 
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
@@ -39,11 +42,19 @@ from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
                                     lcmt_tegrasp_transition)
 from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
 from tegrasp_drake.scenario.trial_log_writer import package_versions
+from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.ranges import check_ranges
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
 LOGGER_SUBSCRIBE_S = 0.2  # [s] given to lcm-logger to subscribe once its file exists
 REPORT_PERIOD_S = 0.005  # [s] of Context time between looks at transitions and faults
 PROGRESS_PERIOD_S = 0.25  # [s] of Context time between calls of `progress`
+LOG_CHECK_PERIOD_S = 0.1  # [s] of Context time between looks at the LCM log's health
+# Below this much free space the log is taken as stopped: the bus carries about 100 kB/s
+# (tactile frames at 1 kHz, arm and gripper status), so 1 MB is ten seconds of it, the
+# margin for the run to stop and its result to be written.
+LOG_MIN_FREE_BYTES = 1_000_000
 
 
 class BusLogWriter:
@@ -60,6 +71,7 @@ class BusLogWriter:
         self._process = None
         self._log = None
         self._in_process_messages = 0
+        self._failure = None
         if url.startswith("memq"):
             self._log = lcm.EventLog(str(self.path), "w", overwrite=True)
             drake_lcm.SubscribeAllChannels(self._write)
@@ -77,9 +89,30 @@ class BusLogWriter:
         time.sleep(LOGGER_SUBSCRIBE_S)
 
     def _write(self, channel: str, data: bytes):
-        if self._log is not None:
-            self._log.write_event(int(time.time() * 1e6), channel, data)
+        if self._log is not None and self._failure is None:
+            try:
+                self._log.write_event(int(time.time() * 1e6), channel, data)
+            except OSError as e:
+                self._failure = f"writing it failed: {e.strerror or e}"
+                return
             self._in_process_messages += 1
+
+    def problem(self) -> str | None:
+        """Why the log has stopped recording (None while it records): its writer failed or
+        exited, or the disk holding it has less than LOG_MIN_FREE_BYTES left."""
+        if self._failure is not None:
+            return f"the LCM log {self.path} stopped: {self._failure}"
+        if self._process is not None and self._process.poll() is not None:
+            return (f"the LCM log {self.path} stopped: lcm-logger exited with code "
+                    f"{self._process.returncode}")
+        try:
+            stat = os.statvfs(self.path.parent)
+        except OSError as e:
+            return f"the LCM log {self.path} stopped: {e.strerror or e}"
+        if stat.f_bavail * stat.f_frsize < LOG_MIN_FREE_BYTES:
+            return (f"the LCM log {self.path} stopped: the disk holding it has less than "
+                    f"{LOG_MIN_FREE_BYTES // 10**6} MB free")
+        return None
 
     def close(self, linger: float = 0.1) -> int:
         """Stops after `linger` [s] more of the bus; returns the messages recorded."""
@@ -152,7 +185,7 @@ class RunReporter:
     run END_MARGIN_S after the state machine is done or failed, or after a fault."""
 
     def __init__(self, *, diagram, station, grasp, drake_lcm, out=print, progress=None,
-                 end_time: float = float("inf")):
+                 end_time: float = float("inf"), log_problem=None):
         self._diagram = diagram
         self._station = station
         self._grasp = grasp
@@ -165,6 +198,9 @@ class RunReporter:
         self.transitions = []  # Transition
         self.faults = []
         self.ended_at = None
+        self._log_problem = log_problem  # () -> str | None: the log has stopped recording
+        self._next_log_check = 0.0
+        self.log_fault = None  # why the run stopped when its log stopped recording
 
     def __call__(self, root_context) -> EventStatus:
         now = root_context.get_time()
@@ -183,6 +219,14 @@ class RunReporter:
             self.ended_at = self.ended_at or now
             self._out(format_fault(fault, now))
             self._lcm.Publish(FAULT_CHANNEL, fault_message(fault, now).encode())
+        if self._log_problem is not None and now >= self._next_log_check:
+            self._next_log_check = now + LOG_CHECK_PERIOD_S
+            problem = self._log_problem()
+            if problem is not None:
+                # A run nobody records is a run nobody can check: stop at once, as a fault.
+                self.log_fault = problem
+                self._out(f"{now:7.3f} s  FAULT  {problem}; the run stops")
+                return EventStatus.ReachedTermination(self._diagram, problem)
         if is_finished(self.transitions) and self.ended_at is None:
             self.ended_at = now
         if self._progress is not None and now >= self._next_progress:
@@ -204,6 +248,7 @@ class HardwareRunResult:
     log_path: pathlib.Path | None
     log_messages: int
     device_counters: dict      # {"gripper": RobotiqModbusCounters, "tactile": ...Counters}
+    log_fault: str | None = None  # why the run stopped early: its LCM log stopped recording
 
     @property
     def realtime_rate(self) -> float:
@@ -217,7 +262,7 @@ class HardwareRunResult:
                 "sim_time_s": self.sim_time, "wall_time_s": self.wall_time,
                 "realtime_rate": self.realtime_rate if self.wall_time > 0 else None,
                 "log": None if self.log_path is None else str(self.log_path),
-                "log_messages": self.log_messages,
+                "log_messages": self.log_messages, "log_fault": self.log_fault,
                 "device_counters": {device: dataclasses.asdict(counters) for device, counters
                                     in self.device_counters.items()}}
 
@@ -235,11 +280,13 @@ def run_info_message(scenario, config, controller: str, events_dir: str):
     return message
 
 
-def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
-                    controller: str | None = None, events=None, corrective_events=None,
-                    events_dir: str = "",
-                    log_path=None, duration: float | None = None, drake_lcm=None,
-                    out=print, progress=None) -> HardwareRunResult:
+@public_api
+def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None = None,
+                    controller: str | None = None, events: dict | None = None,
+                    corrective_events: dict | None = None, events_dir: str = "",
+                    log_path: PathLike | None = None, duration: float | None = None,
+                    drake_lcm: DrakeLcm | None = None, out: Callable = print,
+                    progress: Callable | None = None) -> HardwareRunResult:
     """Runs the grasp on the devices of `config` (default: the scenario's `station`, which
     must then be a HardwareStationConfig) in real time; see the module docstring.
 
@@ -248,6 +295,7 @@ def run_on_hardware(scenario, *, config: HardwareStationConfig | None = None,
     memorized corrective events (default: load_corrective_events's); drake_lcm: a DrakeLcm to use
     instead of one on the config's URL; out: prints a line; progress: called as
     progress(t, end) [s of Context time] as the run goes."""
+    check_ranges(scenario, "run_on_hardware: scenario")  # a config changed after loading
     config = config or scenario.station
     if not isinstance(config, HardwareStationConfig):
         raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "
@@ -279,7 +327,8 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
             reporter = RunReporter(diagram=diagram, station=parts.station,
                                    grasp=parts.controller,
                                    drake_lcm=station.lcm, out=out, progress=progress,
-                                   end_time=end_time)
+                                   end_time=end_time,
+                                   log_problem=writer.problem if writer else None)
             simulator.set_monitor(reporter)
             simulator.Initialize()
             out("devices ready; running in real time")
@@ -297,4 +346,4 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
             faults=tuple(reporter.faults),
             sim_time=context.get_time(), wall_time=wall,
             log_path=writer.path if writer else None,
-            log_messages=messages, device_counters=counters)
+            log_messages=messages, device_counters=counters, log_fault=reporter.log_fault)

@@ -7,14 +7,18 @@ control/scripted_grasp.py), simulated to the end of the script and a little beyo
 import dataclasses
 import logging
 import time
+from collections.abc import Callable
 
 from pydrake.systems.framework import EventStatus
+from pydrake.geometry import Meshcat
 
 from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.scripted_grasp import PHASES, plan_duration
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
                                                   MakeSimulator)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
+from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.api_boundary import public_api
 
 CONTROLLER_NAME = OpenLoopControllerConfig.name
 END_MARGIN_S = 0.5  # simulated after the script ends, to see the object settle
@@ -42,7 +46,9 @@ def progress_monitor(progress, end_time: float):
     return monitor
 
 
-def run_ideal_grasp(scenario, *, meshcat=None, duration=None, progress=None):
+@public_api
+def run_ideal_grasp(scenario: Scenario, *, meshcat: Meshcat | None = None,
+                    duration: float | None = None, progress: Callable | None = None):
     """Simulates the ideal grasp; returns (TrialLog, wall time [s]).
 
     progress: called as progress(t, end) [s, simulated] as the run goes."""

@@ -8,7 +8,9 @@ trial of a sweep into a scenario first, is sweep/trial_function.py.
 import dataclasses
 import logging
 import time
+from collections.abc import Callable
 
+from pydrake.geometry import Meshcat
 
 from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
@@ -19,6 +21,9 @@ from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_tim
                                               grip_fraction_at, judge_grasp,
                                               table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
+from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.ranges import check_ranges
+from tegrasp_drake.rig.api_boundary import public_api
 
 HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
 UPRIGHT_TILT_DEG = 10.0  # standing upright after Unload
@@ -123,13 +128,16 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
             "failure": next((e.reason for e in transitions if e.to_mode == Mode.FAILED), "")}
 
 
-def run_trial(scenario, *, meshcat=None, events=None, corrective_events=None,
-              max_time=None, progress=None) -> TrialResult:
+@public_api
+def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dict | None = None,
+              corrective_events: dict | None = None, max_time: float | None = None,
+              progress: Callable | None = None) -> TrialResult:
     """Simulates one trial of `scenario` with its controller; returns its TrialResult.
 
     events, corrective_events: the memorized events (MakeGraspDiagram's defaults if None).
     progress: called as progress(t, end) [s, simulated] as the run goes (`end` shrinks to
     the state machine's end plus END_MARGIN_S once it is Done or Failed)."""
+    check_ranges(scenario, "run_trial: scenario")  # a config changed after loading
     grasp = MakeGraspDiagram(scenario, station=MakeSimulatedStation(scenario, meshcat=meshcat),
                                 events=events, corrective_events=corrective_events)
     controller, loggers = grasp.controller, grasp.loggers

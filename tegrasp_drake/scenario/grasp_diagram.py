@@ -20,6 +20,9 @@ import dataclasses
 from pydrake.common import RandomGenerator
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 from pydrake.systems.framework import Diagram, DiagramBuilder
+from pydrake.systems.framework import System
+from pydrake.geometry import Meshcat
+from pydrake.lcm import DrakeLcm
 
 from tegrasp_drake.control.controller_config import EventTriggeredConfig
 from tegrasp_drake.control.grasp_controller import AddGraspController, GraspController
@@ -34,13 +37,18 @@ from tegrasp_drake.scenario.scenario import (grasp_plan, object_pose, ra_noise_s
 from tegrasp_drake.simulation.carriage import arm_endpoint_impedance
 from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStationConfig,
                                               side_grasp_pose)
+from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.ranges import check_ranges
+from tegrasp_drake.rig.api_boundary import public_api
 
 # Beyond the ideal grasp's duration, for corrections (and the controller's own
 # extra_time_s, controller_config.py) [s].
 EXTRA_TIME_S = 10.0
 
 
-def MakeStation(scenario, *, meshcat=None, lcm=None):
+@public_api
+def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
+                lcm: DrakeLcm | None = None):
     """The station of `scenario`, simulated or real, as its `station` tag says.
 
     `station: !SimulatedStationConfig {}` (the default): MakeSimulatedStation(scenario,
@@ -51,6 +59,7 @@ def MakeStation(scenario, *, meshcat=None, lcm=None):
     the Simulator's Initialize() and simulate at real-time rate (run_on_hardware does all
     of that). Both export the same ports (simulation/station.py, hardware/station.py), so
     AddGraspController wires either one the same way."""
+    check_ranges(scenario, "MakeStation: scenario")  # a config changed after loading
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation
         return MakeHardwareStation(scenario.station, lcm=lcm)
@@ -69,7 +78,8 @@ def station_carriage(scenario):
         scenario.expected_object_xy, scenario.grasp.grasp_height))
 
 
-def MakeSimulatedStation(scenario, *, meshcat=None):
+@public_api
+def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
     """MakeGraspStation with the scenario's sections, whatever its `station` tag says (its
     `arm` setting when it is a simulated station's)."""
     return MakeGraspStation(
@@ -81,8 +91,10 @@ def MakeSimulatedStation(scenario, *, meshcat=None):
         meshcat=meshcat)
 
 
-def AddScenarioController(builder, scenario, *, station, events=None,
-                          corrective_events=None) -> GraspController:
+@public_api
+def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, station: System,
+                          events: dict | None = None,
+                          corrective_events: dict | None = None) -> GraspController:
     """AddGraspController with the scenario's sections: its controller, its GraspPlan
     (grasp_plan), its arm and its sample rates; the memorized events its controller needs
     default to the scenario object's (load_controller_events, load_corrective_events);
@@ -109,8 +121,10 @@ class GraspDiagram:
     time_limit: float            # [s] the longest the run may take (the plan plus corrections)
 
 
-def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=None,
-                     meshcat=None, log: bool = True) -> GraspDiagram:
+@public_api
+def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
+                     events: dict | None = None, corrective_events: dict | None = None,
+                     meshcat: Meshcat | None = None, log: bool = True) -> GraspDiagram:
     """Builds the station and the scenario's controller into one Diagram.
 
     station: a station Diagram with the station's ports (default: MakeStation(scenario,
@@ -118,6 +132,7 @@ def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=N
     scenario's object); corrective_events: the memorized corrective events, used when
     controller.memorized_corrective_events names some (default: load_corrective_events's);
     log: add the TrialLog loggers (simulated runs)."""
+    check_ranges(scenario, "MakeGraspDiagram: scenario")  # a config changed after loading
     builder = DiagramBuilder()
     if station is None:
         station = MakeStation(scenario, meshcat=meshcat)
@@ -141,7 +156,9 @@ def MakeGraspDiagram(scenario, *, station=None, events=None, corrective_events=N
     return GraspDiagram(diagram, station, grasp, loggers, time_limit)
 
 
-def MakeSimulator(diagram, scenario, *, realtime: bool = False) -> Simulator:
+@public_api
+def MakeSimulator(diagram: Diagram, scenario: Scenario, *,
+                  realtime: bool = False) -> Simulator:
     """A Simulator of `diagram` with the scenario's SimulatorConfig and its random seed
     (sensor noise); realtime: paced at real-time rate 1 (hardware)."""
     simulator = Simulator(diagram)

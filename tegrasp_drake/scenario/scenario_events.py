@@ -11,13 +11,18 @@ import yaml
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
+from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.scenario.scenario import Scenario
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 
 def _hand_folder(scenario) -> str:
     return gripper_hand(scenario.gripper.model).events_folder
 
 
-def load_controller_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
+@public_api
+def load_controller_events(scenario: Scenario, events_dir: PathLike | None = None, *,
+                           nominal_object: ObjectConfig | None = None) -> dict:
     """The memorized events of the scenario's object for the scenario's controller, from
     `events_dir` or else the user's events folder or the package's
     (controller_events_folders).
@@ -32,7 +37,9 @@ def load_controller_events(scenario, events_dir=None, *, nominal_object=None) ->
         nominal_object=nominal_object)
 
 
-def load_corrective_events(scenario, events_dir=None, *, nominal_object=None) -> dict:
+@public_api
+def load_corrective_events(scenario: Scenario, events_dir: PathLike | None = None, *,
+                           nominal_object: ObjectConfig | None = None) -> dict:
     """The memorized corrective events (lift_load, hold_avoid) of the scenario's object,
     from the CORRECTIVE_EVENTS_FOLDER of the events search path, checked against the
     object as load_controller_events checks the transition events."""

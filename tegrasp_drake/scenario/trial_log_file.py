@@ -17,7 +17,10 @@ import zlib
 
 import numpy as np
 
-from tegrasp_drake.rig.files import temporary_sibling
+from tegrasp_drake.rig.files import one_line, temporary_sibling
+from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
+                                           checked_npz_arrays)
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 FORMAT_VERSION = 1
 ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_acceleration",
@@ -27,6 +30,9 @@ ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_accele
 
 class TrialLogError(ValueError):
     """A trial log file is missing, truncated or of another format; the message names it."""
+
+    def __init__(self, message: str):
+        super().__init__(one_line(message))
 
 
 @dataclasses.dataclass
@@ -66,22 +72,26 @@ class TrialLog:
         return self.channels[:, 2:]
 
 
-def load_trial_log(path) -> TrialLog:
+@public_api
+def load_trial_log(path: PathLike) -> TrialLog:
     """Reads a TrialLog; raises TrialLogError naming the file on any defect."""
     path = pathlib.Path(path)
     if not path.is_file():
         raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp trial "
                             "--out DIR`: DIR/trial.npz, or `tegrasp demo`: out/demo/trial.npz)")
     try:
-        with open(path, "rb") as file, np.load(file, allow_pickle=False) as data:
-            missing = [name for name in ("meta", *ARRAY_FIELDS) if name not in data.files]
-            if missing:
-                raise TrialLogError(f"trial log '{path}' lacks the arrays {missing}; it is not "
-                                    "a trial log (`tegrasp trial --out DIR` writes one)")
-            meta = json.loads(str(data["meta"]))
-            arrays = {name: data[name] for name in ARRAY_FIELDS}
-    except TrialLogError:
-        raise
+        arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
+                                    max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",))
+        meta = json.loads(str(arrays.pop("meta")))
+    except NpzHeaderError as e:
+        if "lacks the arrays" in str(e):
+            raise TrialLogError(f"trial log '{path}' {e}; it is not a trial log (`tegrasp "
+                                "trial --out DIR` writes one)") from None
+        raise TrialLogError(f"trial log '{path}' is truncated or corrupt ({e}); run the trial "
+                            "again to remake it") from None
+    except RecursionError:
+        raise TrialLogError(f"trial log '{path}': its metadata nests too deeply; it is not "
+                            "a trial log") from None
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error,
             UnicodeDecodeError) as e:
         raise TrialLogError(f"trial log '{path}' is truncated or corrupt ({type(e).__name__}: "

@@ -9,14 +9,19 @@ from pydrake.common.value import AbstractValue
 from pydrake.multibody.math import SpatialForce
 from pydrake.multibody.plant import ExternallyAppliedSpatialForce
 from pydrake.systems.framework import LeafSystem
+from tegrasp_drake.rig.ranges import bounded
 
 
 @dataclasses.dataclass
 class DisturbanceConfig:
     """An external hit on the object: a constant force pulse at its body origin."""
-    hit_time_s: float = -1.0  # simulated time of the hit [s]; negative: no hit
-    hit_force_n: list[float] = dataclasses.field(default_factory=lambda: [0.0, 20.0, 0.0])  # world
-    hit_duration_s: float = 0.02
+    # simulated time of the hit [s]; negative: no hit
+    hit_time_s: float = bounded(-1.0, low=-1e6, high=600.0, unit="s", why="negative: no hit")
+    # in world
+    hit_force_n: list[float] = bounded(default_factory=lambda: [0.0, 20.0, 0.0], low=-100.0,
+                                       high=100.0, unit="N", why="five times the paper's 20 N hit")
+    hit_duration_s: float = bounded(0.02, low=0.0, low_open=True, high=1.0, unit="s",
+                                    why="a hit, not a push", below="must be positive [s]")
 
 
 class BodyForcePulse(LeafSystem):

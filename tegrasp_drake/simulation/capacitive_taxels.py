@@ -33,6 +33,7 @@ from pydrake.common import RandomDistribution
 from pydrake.systems.framework import LeafSystem
 from pydrake.systems.primitives import RandomSource
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
 from tegrasp_drake.rig.tactile_fingertip import PAD_THICKNESS
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
@@ -83,23 +84,32 @@ class CapacitiveTaxelConfig:
     """The capacitive taxel's parameters (used when `tactile.transducer` is capacitive)."""
     # Silicone elastomer between electrode and fabric: 2.7 (PDMS, Dow Sylgard 184 data
     # sheet, 2.72 at 100 Hz-100 kHz). An assumption: the paper does not name its elastomer.
-    relative_permittivity: float = 2.7
+    relative_permittivity: float = bounded(2.7, low=1.0, high=100.0,
+                                           why="elastomers lie at 2-10; 100 bounds any dielectric "
+                                               "a pad is made of",
+                                           below="must be at least 1 (vacuum)")
     # Counts of noise per taxel reading at decimation 64, Gaussian. An assumption of the
     # data sheet's order: the AD7147 resolves about 1 fF at decimation 64, i.e. about 4
     # counts. A larger decimation averages more modulator samples: the noise shrinks as
     # sqrt(64 / decimation) (white noise averaged; noise_std_at_decimation).
-    noise_std_counts: float = 4.0
+    noise_std_counts: float = bounded(4.0, low=0.0, high=10_000.0, unit="counts",
+                                      why="the AD7147's 16-bit reading",
+                                      below="must be zero (no noise) or positive")
     # The AD7147's decimation, 64, 128 or 256: its frames come at 108, 54 or 27 Hz, and
-    # tactile.sample_rate_hz must be that rate (ad7147_frame_rate_hz).
-    decimation: int = 64
+    # tactile.sample_rate_hz must be that rate (ad7147_frame_rate_hz). The scenario also
+    # requires one of the three (AD7147_DECIMATIONS).
+    decimation: int = bounded(64, low=64, high=256,
+                              why="the AD7147's decimations are 64, 128 and 256, AD7147 data "
+                                  "sheet")
     # The elastomer stops compressing at this fraction of its thickness (the gap cannot
     # close: the fabric and the compressed rubber take the load). An assumption: pad
     # pressures of the grasps here compress it by 2-30 %, far from this.
-    minimum_gap_fraction: float = 0.1
+    minimum_gap_fraction: float = bounded(0.1, low=0.0, high=1.0, low_open=True, high_open=True)
     output: str = "calibrated"  # calibrated (newtons) or counts (above the baseline)
     # The bench calibration's one point [N on a taxel]: a 0.5 kg weight, within the 1-10 N a
     # taxel carries in the 25-100 N grasps.
-    calibration_force_n: float = 5.0
+    calibration_force_n: float = bounded(5.0, low=0.0, low_open=True, high=100.0, unit="N",
+                                         below="must be positive [N]")
 
 
 def noise_std_at_decimation(config: CapacitiveTaxelConfig) -> float:

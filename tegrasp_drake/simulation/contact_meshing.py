@@ -27,6 +27,7 @@ slips at 0.87 of the Coulomb grip force instead of 0.96, outside the validation'
 """
 
 import dataclasses
+from tegrasp_drake.rig.ranges import bounded
 
 BOX_TRIANGLES = (24, 12)
 TABLE_SHAPES = ("box", "half_space")
@@ -36,7 +37,8 @@ TABLE_SHAPES = ("box", "half_space")
 class ContactGeometryConfig:
     """How finely the contact world is meshed (module docstring); the defaults are the
     reference geometry."""
-    box_triangles: int = 24  # 24 (Drake's Box) or 12 (the convex hull of the corners)
+    # 24 (Drake's Box) or 12 (the convex hull of the corners)
+    box_triangles: int = bounded(24, low=12, high=24, why="12 or 24")
     table: str = "box"  # "box" or "half_space"
 
 

@@ -42,19 +42,37 @@ from pydrake.symbolic import abs as symbolic_abs
 from pydrake.symbolic import max as symbolic_max
 from pydrake.systems.primitives import Multiplexer, SymbolicVectorSystem
 
+from tegrasp_drake.rig.ranges import bounded
+
 
 @dataclasses.dataclass
 class DriveVibrationConfig:
     """One drive's tones (module docstring). Empty `amplitudes_mps2` (`--set
     vibration.arm_drive.amplitudes_mps2=[]`), or all zero, disables it."""
-    # Base acceleration [m/s^2] at the fingertip of each tone at full speed.
-    amplitudes_mps2: list[float] = dataclasses.field(default_factory=list)
-    # Each tone's frequency in multiples of the motor's rotation rate.
-    orders: list[float] = dataclasses.field(default_factory=list)
-    # Motor revolutions per unit of the joint's travel (rev/m or rev/rad).
-    motor_revolutions_per_unit: float = 0.0
-    # The joint rate [m/s or rad/s] at which the tones reach amplitudes_mps2.
-    full_speed: float = 1.0
+    # Base acceleration [m/s^2] at the fingertip of each tone at full speed (assumed: a
+    # gearmotor's housing shakes with 0.1-1 m/s^2; plausible at the fingertip 0.03-1 for the
+    # gripper, 0.01-0.5 for the arm; docs/model.md, "Drive vibration").
+    amplitudes_mps2: list[float] = bounded(
+        default_factory=list, low=0.0, high=1.0, unit="m/s^2",
+        why="a gearmotor's housing vibration is of order 0.1-1 m/s^2",
+        below="must be zero (off) or positive [m/s^2]")
+    # Each tone's frequency in multiples of the motor's rotation rate (a gear's tooth count
+    # per mesh; the harmonic drive's flexspline meshes 400 times a revolution).
+    orders: list[float] = bounded(default_factory=list, low=0.0, high=1000.0,
+                                  why="tones per motor revolution: a gear mesh's teeth",
+                                  below="must be zero or more")
+    # Motor revolutions per unit of the joint's travel (rev/m or rev/rad): the 2F-85's 1,333
+    # rev/m of half opening, the JACO2's 15.9 rev/rad; up to 1e5, far beyond either.
+    motor_revolutions_per_unit: float = bounded(
+        0.0, low=0.0, high=1e5, unit="rev/m or rev/rad",
+        why="the 2F-85's 1,333 rev/m, the JACO2's 15.9 rev/rad",
+        below="must be zero or more")
+    # The joint rate [m/s or rad/s] at which the tones reach amplitudes_mps2 (the 2F-85's
+    # 0.075 m/s of half opening, the JACO2's 0.628 rad/s).
+    full_speed: float = bounded(1.0, low=0.0, low_open=True, high=10.0,
+                                unit="m/s or rad/s",
+                                why="the 2F-85's 0.075 m/s, the JACO2's 0.628 rad/s",
+                                below="must be positive (the joint rate of the amplitudes)")
 
     def enabled(self) -> bool:
         return any(a != 0.0 for a in self.amplitudes_mps2)

@@ -59,6 +59,7 @@ from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import LeafSystem
 from pydrake.systems.primitives import RandomSource
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION, PAD_MODULUS
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.rig.channels import FINGER_NAMES
@@ -76,6 +77,8 @@ from tegrasp_drake.simulation.pad_slip_vibration import texture_acceleration
 # A pad's contact begins on the plant step whose normal force exceeds this [N] after a step
 # at or below it (the plant's force is exactly zero out of contact).
 CONTACT_ONSET_N = 1e-6
+# The film's gain and the amplifier's capacitor: their words for a value not positive.
+_SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
 # Slip textures weaker than this [m/s^2] are not integrated: 5e4 times below the sensor
 # noise; creep of a held object (micrometres per second) gives about 1e-7.
 TEXTURE_FLOOR_MPS2 = 1e-6
@@ -85,32 +88,57 @@ TEXTURE_FLOOR_MPS2 = 1e-6
 class VibrationSensorConfig:
     """The PVDF film of each pad (RA channel source). Sources and reasoning of every number:
     docs/model.md, "Vibration (RA) model"."""
-    sample_rate_hz: float = 1000.0  # RA output rate (peak-hold over each period)
-    noise_std_mps2: float = 0.05  # per sample, acceleration-equivalent
-    highpass_cutoff_hz: float = 2.0  # charge amplifier corner 1 / (2 pi R_f C_f)
+    # RA output rate (peak-hold over each period)
+    sample_rate_hz: float = bounded(1000.0, low=16.0, high=20_000.0, unit="Hz",
+                                    why="the 0.5 s event window needs 8 samples; the film is "
+                                        "integrated at 20 kHz")
+    # per sample, acceleration-equivalent
+    noise_std_mps2: float = bounded(0.05, low=0.0, high=100.0, unit="m/s^2",
+                                    why="the film's noise is a few hundredths; 100 would bury "
+                                        "every event",
+                                    below="must be zero (no noise) or positive [m/s^2]")
+    # charge amplifier corner 1 / (2 pi R_f C_f)
+    highpass_cutoff_hz: float = bounded(2.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
+                                        why="the charge amplifier's corner, below the RA band")
     # Texture of the pad cover that sliding drags the film over (pad_slip_vibration.py): a
     # woven fabric of about 0.5 mm pitch with a few micrometres of relief. 0 disables.
-    slip_texture_height_m: float = 5e-6
-    slip_texture_period_m: float = 5e-4
+    slip_texture_height_m: float = bounded(5e-6, low=0.0, high=1e-3, unit="m",
+                                           why="surface roughness, microns")
+    slip_texture_period_m: float = bounded(5e-4, low=0.0, low_open=True, high=0.01, unit="m",
+                                           why="texture wavelength, sub-millimetre")
     # The fingertip's first structural mode (an estimate: see docs/model.md).
-    mode_frequency_hz: float = 400.0
-    mode_damping_ratio: float = 0.05
-    mode_mass_kg: float = 0.024
+    mode_frequency_hz: float = bounded(400.0, low=0.0, low_open=True, high=10_000.0,
+                                       high_open=True, unit="Hz",
+                                       why="the fingertip's mode, below half the 20 kHz "
+                                           "integration rate; at 0 the film feels no ring")
+    mode_damping_ratio: float = bounded(0.05, low=0.0, high=10.0,
+                                        why="a lightly damped fingertip is 0.01-0.2",
+                                        below="must be zero or positive")
+    mode_mass_kg: float = bounded(0.024, low=0.0, low_open=True, high=1.0, unit="kg",
+                                  why="the fingertip's moving mass, tens of grams",
+                                  below="must be positive [kg] (the fingertip's moving mass)")
     # Corner of the low-pass on the plant's per-step load (where the plant's force converges).
-    load_lowpass_hz: float = 60.0
+    load_lowpass_hz: float = bounded(60.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
     # The impact pulse at contact onset: the pad's contact stiffness E A / (t / 2) and its
     # Hunt-Crossley dissipation, both from the pad model.
     impact_enabled: bool = True
-    pad_contact_stiffness_n_per_m: float = PAD_MODULUS * PAD_WIDTH * PAD_LENGTH / (
-        PAD_THICKNESS / 2)
-    pad_dissipation_s_per_m: float = PAD_DISSIPATION
+    pad_contact_stiffness_n_per_m: float = bounded(
+        PAD_MODULUS * PAD_WIDTH * PAD_LENGTH / (PAD_THICKNESS / 2), low=0.0, low_open=True,
+        high=1e9, unit="N/m", why="a silicone pad is about 5e5 N/m; 1e9 is steel on steel")
+    pad_dissipation_s_per_m: float = bounded(PAD_DISSIPATION, low=0.0, high=1000.0, unit="s/m",
+                                             why="Hunt-Crossley dissipation of soft materials is "
+                                                 "0.1-50 s/m")
     # Film charge per unit modal deflection G_Q = d31 E_film kappa A_film, and the charge
     # amplifier's feedback capacitance: they set the film's sensitivity at the amplifier's
     # output, S = G_Q / (w^2 C_f) [V/(m/s^2)] (volts_per_mps2; 3.96e-3 with these), and with
     # it the volts the readout below clips and quantises. The range of G_Q (a film bonded
     # behind the board vs a free cantilever) and why S is kept: docs/model.md.
-    film_charge_gain_c_per_m: float = 2.5e-5
-    feedback_capacitance_f: float = 1e-9
+    film_charge_gain_c_per_m: float = bounded(2.5e-5, low=0.0, low_open=True, high=1e-2,
+                                              unit="C/m", below=_SENSITIVITY_BELOW)
+    feedback_capacitance_f: float = bounded(1e-9, low=0.0, low_open=True, high=1e-6, unit="F",
+                                            why="a charge amplifier's feedback capacitor is pF to "
+                                                "nF",
+                                            below=_SENSITIVITY_BELOW)
     # The readout (film_readout.py): the amplifier's output swing [V] (an op-amp on the
     # myRIO MSP connector's +-15 V supply swings to about +-13.5 V), and the NI myRIO-1900's
     # 12-bit input: "msp" (+-10 V, 4.88 mV a code; the default, for the bipolar amplifier),
@@ -119,15 +147,25 @@ class VibrationSensorConfig:
     # converter's own input noise in codes rms (half a code: a 12-bit converter's noise is
     # below one code, or its last bit would carry noise only; NI's 12-bit boards dither with
     # about 0.5 code rms, NI PCI-1200 User Manual).
-    amplifier_swing_v: float = 13.5
+    amplifier_swing_v: float = bounded(13.5, low=0.0, low_open=True, high=15.0, unit="V",
+                                       why="an amplifier on the myRIO's +-15 V supply cannot "
+                                           "swing past its rails",
+                                       below="must be positive [V]")
     adc_input: str = "msp"
-    adc_noise_lsb: float = 0.5
+    adc_noise_lsb: float = bounded(0.5, low=0.0, high=1.0, unit="codes rms",
+                                   why="a 12-bit converter's noise is below one code, NI "
+                                       "PCI-1200 User Manual; 0: none",
+                                   below="must be zero (no noise) or positive [codes rms]")
     # Vibration of the gripper's motor and gears while the fingers move, and of the arm's
     # actuators while the arm moves (drive_vibration.py; amplitudes_mps2 [] disables).
     gripper_drive: DriveVibrationConfig = dataclasses.field(
         default_factory=gripper_drive_default)
     arm_drive: DriveVibrationConfig = dataclasses.field(default_factory=arm_drive_default)
-    internal_rate_hz: float = 20000.0  # exact integration points per second
+    # exact integration points per second
+    internal_rate_hz: float = bounded(20000.0, low=0.0, low_open=True, high=200_000.0, unit="Hz",
+                                      why="exact integration points per second; the wall time "
+                                          "grows with it",
+                                      below="must be positive [Hz]")
     # "film": the PVDF film above (the real pad's); "accelerometer": a rigid-body
     # accelerometer on the pad, its normal axis high-passed at highpass_cutoff_hz
     # (pad_accelerometers.py; the paper's simulation had one per pad). The film's own

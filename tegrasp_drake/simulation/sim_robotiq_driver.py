@@ -28,6 +28,7 @@ import math
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import drive
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
@@ -47,18 +48,30 @@ class GripperDriverConfig:
     limit)."""
     # The hand (gripper_hands.py): "linkage", the 2F-85's five-bar fingers, or "prismatic".
     model: str = "linkage"
-    update_rate_hz: float = 200.0  # the 2F-85 accepts commands at up to 200 Hz
+    # the 2F-85 accepts commands at up to 200 Hz
+    update_rate_hz: float = bounded(200.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
+                                    why="the 2F-85 takes commands at up to 200 Hz")
     # The prismatic hand's PD on half the opening.
-    position_gain: float = 4000.0  # N/m
-    damping_gain: float = 40.0  # N s/m
+    position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")  # N/m
+    damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")  # N s/m
     # The linkage hand's drive (robotiq/drive.py has the sources and ranges): the firmware's
     # position loop bandwidth [Hz], critically damped on the drive's inertia, and the
     # self-locking screw's forward efficiency, which sets how much of the rotor's inertia
     # the fingers feel while the motor drives them.
-    position_loop_hz: float = drive.POSITION_LOOP_HZ
-    screw_efficiency: float = drive.SCREW_EFFICIENCY
-    acceleration: float = 0.5  # m/s^2, finger speed ramps
-    stall_speed: float = 0.002  # m/s; slower than this before the goal = object detected
+    position_loop_hz: float = bounded(
+        drive.POSITION_LOOP_HZ, low=drive.POSITION_LOOP_HZ_RANGE[0],
+        high=drive.POSITION_LOOP_HZ_RANGE[1], unit="Hz",
+        why="the 2F-85 firmware's position loop: slower and the locked drive yields, faster "
+            "and a 1 ms plant step cannot follow it")
+    screw_efficiency: float = bounded(
+        drive.SCREW_EFFICIENCY, low=drive.SCREW_EFFICIENCY_RANGE[0],
+        high=drive.SCREW_EFFICIENCY_RANGE[1],
+        why="a self-locking screw's forward efficiency is below 0.5")
+    # m/s^2, finger speed ramps
+    acceleration: float = bounded(0.5, low=0.0, low_open=True, high=10.0, unit="m/s^2")
+    # m/s; slower than this before the goal = object detected
+    stall_speed: float = bounded(0.002, low=0.0, low_open=True, high=0.15, unit="m/s",
+                                 why="below the 2F-85's 150 mm/s top speed, Robotiq 2F-85 manual")
 
 
 def reference_step(q: float, v: float, goal: float, max_speed: float, acceleration: float,

@@ -40,7 +40,10 @@ from pydrake.multibody.plant import AddMultibodyPlant
 from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer, MatrixGain
+from pydrake.geometry import Meshcat
+from pydrake.multibody.plant import MultibodyPlantConfig
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
@@ -69,23 +72,36 @@ from tegrasp_drake.simulation.station_visualization import (AddStationVisualizat
                                                            grasp_camera_pose)
 from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, TactileSensorConfig
+from tegrasp_drake.rig.api_boundary import public_api
 
 
 @dataclasses.dataclass
 class ArmDriverConfig:
     """The simulated JACO2: its joint-velocity command path and joint servos
     (jaco_velocity_drive.py gives each setting's source); the firmware compensates gravity."""
-    position_gain: float = 400.0  # N m/rad, the joint servos' stiffness (the plant's PD)
-    damping_gain: float = 40.0  # N m s/rad
-    initial_gripper_xyz: list[float] = dataclasses.field(
-        default_factory=lambda: [0.69, 0.0, 0.145])  # m, grasp frame in world at t = 0;
-    # 3 cm behind and 9 cm above the grasp: further back, the Jaco nears its wrist singularity
+    # N m/rad, the joint servos' stiffness (the plant's PD)
+    position_gain: float = bounded(400.0, low=0.0, low_open=True, high=1e5, unit="N m/rad")
+    damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N m s/rad")
+    # The grasp frame in world at t = 0; 3 cm behind and 9 cm above the grasp: further back,
+    # the Jaco nears its wrist singularity.
+    initial_gripper_xyz: list[float] = bounded(
+        default_factory=lambda: [0.69, 0.0, 0.145], low=-0.9, high=0.9, unit="m",
+        why="within the JACO2's 0.9 m reach, Kinova JACO2 specifications")
     # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state.
-    control_period_s: float = 0.005
+    control_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
+                                      why="ten periods of the JACO2's 100 Hz commands at most")
     # The joint-velocity commands the host sends: their rate [Hz] (the JACO2's 100 Hz) and
-    # their latency to the arm [s], a whole number of plant steps.
-    command_rate_hz: float = 100.0
-    command_latency_s: float = 0.010
+    # their latency to the arm [s], a whole number of plant steps (drive_problem checks
+    # both against the plant's step).
+    command_rate_hz: float = bounded(100.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
+                                     why="the JACO2 takes 100 Hz, Kinova kinova-ros README; "
+                                         "faster fills its buffer",
+                                     below="must be positive [Hz] (the JACO2 takes 100)")
+    command_latency_s: float = bounded(0.010, low=0.0, low_open=True, high=0.1, unit="s",
+                                       why="the JACO2's is about 0.01, plausible 0.005-0.03; "
+                                           "0.1 s is ten commands queued",
+                                       below="must be a whole number of plant steps, at least "
+                                             "one, e.g. 0.01 [s] (the JACO2's is about 0.01)")
     # What turns arm.desired_state into those commands, as on the hardware (whose own
     # tracker settings are the hardware config's arm.tracker).
     tracker: JacoVelocityTrackerConfig = dataclasses.field(
@@ -329,12 +345,15 @@ def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
     builder.ExportOutput(wrench.GetOutputPort("wrist_wrench"), ports.GRIPPER_WRIST_WRENCH)
 
 
-def MakeGraspStation(*, plant_config, arm: ArmDriverConfig, gripper: GripperDriverConfig,
-                     object: ObjectConfig, X_WO: RigidTransform, tactile: TactileSensorConfig,
+@public_api
+def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig,
+                     gripper: GripperDriverConfig, object: ObjectConfig, X_WO: RigidTransform,
+                     tactile: TactileSensorConfig,
                      vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
                      random_seed: int, grasp_height: float,
                      carriage: EndpointImpedance | None = None,
-                     contact_geometry: ContactGeometryConfig | None = None, meshcat=None):
+                     contact_geometry: ContactGeometryConfig | None = None,
+                     meshcat: Meshcat | None = None):
     """Builds the simulated station Diagram (see the module docstring) from the sections it
     uses: the plant, arm and gripper configs, the object at X_WO, the taxels' and films'
     configs (their noise seeded by `random_seed`), the hit on the object, the contact

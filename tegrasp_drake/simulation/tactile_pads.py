@@ -17,6 +17,7 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig
 from tegrasp_drake.simulation.contact_pressure import (polygon_fan_triangles,
@@ -37,10 +38,22 @@ class TactileSensorConfig:
     parallel-plate taxels read by the AD7147 (capacitive_taxels.py, settings in
     `capacitive`; the force noise settings are then unused).
     """
-    sample_rate_hz: float = 108.0
-    noise_std_n: float = 0.005  # per taxel, Gaussian
-    quantization_n: float = 0.001  # per taxel LSB; 0 disables
-    offset_n: float = 0.0  # per taxel constant bias
+    sample_rate_hz: float = bounded(108.0, low=16.0, high=20_000.0, unit="Hz",
+                                    why="the 0.5 s event window needs 8 samples; the film is "
+                                        "integrated at 20 kHz")
+    # per taxel, Gaussian
+    noise_std_n: float = bounded(0.005, low=0.0, high=1.0, unit="N",
+                                 why="a taxel's noise is a few mN; 1 N would bury the 0.3 N "
+                                     "contact threshold",
+                                 below="must be zero (no noise) or positive [N]")
+    # per taxel LSB; 0 disables
+    quantization_n: float = bounded(0.001, low=0.0, high=1.0, unit="N",
+                                    why="an LSB of the 12-bit taxel reading, far below the 0.3 N "
+                                        "contact threshold",
+                                    below="must be zero (no noise) or positive [N]")
+    # per taxel constant bias
+    offset_n: float = bounded(0.0, low=-5.0, high=5.0, unit="N",
+                              why="a bias within the taxel's 5 N calibration point")
     transducer: str = "force"
     capacitive: CapacitiveTaxelConfig = dataclasses.field(
         default_factory=CapacitiveTaxelConfig)

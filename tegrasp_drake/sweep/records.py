@@ -28,10 +28,15 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from tegrasp_drake.rig.files import read_bounded
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
+
 RECORD_FORMAT = "tegrasp-sweep-record"
 RECORD_FORMAT_VERSION = 1
 TRIALS_FOLDER = "trials"
 _TEMP_SUFFIX = ".tmp"
+# A record is one trial's result, a few kB (its transitions and scores); more is not one.
+MAX_RECORD_BYTES = 1_000_000
 _RECORD_FIELDS = {"format", "format_version", "trial_id", "status", "trial", "result",
                   "error", "checksum"}
 
@@ -157,18 +162,21 @@ def read_record(path) -> tuple[dict | None, str | None]:
     """(record, None) for a valid record file, (None, reason) otherwise."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="ascii")
+        text = read_bounded(path, MAX_RECORD_BYTES).decode("ascii")
     except (OSError, UnicodeDecodeError) as error:
         return None, f"unreadable: {error}"
     try:
         record = json.loads(text)
     except json.JSONDecodeError as error:
         return None, f"not valid JSON (partial write?): {error}"
+    except RecursionError:
+        return None, "nests too deeply to be a trial record"
     reason = check_record(record, path.name)
     return (None, reason) if reason else (record, None)
 
 
-def load_records(out_dir) -> LoadedRecords:
+@public_api
+def load_records(out_dir: PathLike) -> LoadedRecords:
     """Reads every record under `<out_dir>/trials`; temporary files are ignored."""
     folder = Path(out_dir) / TRIALS_FOLDER
     records, corrupt = {}, {}

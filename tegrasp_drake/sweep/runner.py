@@ -29,6 +29,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import closing, contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from collections.abc import Callable
 
 from tegrasp_drake.sweep.records import (
     RecordError,
@@ -39,6 +40,7 @@ from tegrasp_drake.sweep.records import (
     write_record,
 )
 from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, expand_trials
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 LOCK_FILE_NAME = ".sweep.lock"
 DASK_CONNECT_TIMEOUT_S = 30.0
@@ -100,7 +102,9 @@ def default_workers() -> int:
     return len(os.sched_getaffinity(0))
 
 
-def run_sweep(spec: SweepSpec, trial_function, out_dir, *, workers: int | None = None,
+@public_api
+def run_sweep(spec: SweepSpec, trial_function: Callable, out_dir: PathLike, *,
+              workers: int | None = None,
               scheduler: str | None = None, progress: bool = True) -> SweepSummary:
     """Runs the trials of `spec` that have no finished record in `out_dir`.
 

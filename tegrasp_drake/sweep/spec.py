@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.control import controller_config
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
@@ -84,10 +85,18 @@ class RandomisationConfig:
     Uniform bounds, not Gaussians, so that placement jitter can never carry an object
     onto a neighbouring marker (1 cm away in the paper's grid).
     """
-    placement_xy_bound_m: float = 0.002     # jitter of x and y around the marker
-    placement_yaw_bound_deg: float = 3.0    # jitter of the yaw about the vertical
-    friction_scale_bound: float = 0.10      # friction scaled by 1 + U(-b, b)
-    mass_scale_bound: float = 0.10          # mass scaled by 1 + U(-b, b)
+    # jitter of x and y around the marker
+    placement_xy_bound_m: float = bounded(0.002, low=0.0, high=0.05, unit="m")
+    # jitter of the yaw about the vertical
+    placement_yaw_bound_deg: float = bounded(3.0, low=0.0, high=180.0, unit="deg")
+    # friction scaled by 1 + U(-b, b)
+    friction_scale_bound: float = bounded(0.10, low=0.0, high=1.0, high_open=True,
+                                          why="the friction is scaled by 1 + U(-b, b), which must "
+                                              "stay positive")
+    # mass scaled by 1 + U(-b, b)
+    mass_scale_bound: float = bounded(0.10, low=0.0, high=1.0, high_open=True,
+                                      why="the mass is scaled by 1 + U(-b, b), which must stay "
+                                          "positive")
     sensor_noise: bool = True               # the trial function adds sensor noise
 
 
@@ -100,10 +109,12 @@ class SweepSpec:
     """
     objects: tuple[str, ...] = BUILTIN_OBJECTS
     controllers: tuple[str, ...] = PAPER_CONTROLLERS
-    grid: tuple[tuple[float, float], ...] = product_grid(
-        PAPER_NORMAL_OFFSETS_M, PAPER_STROKE_OFFSETS_M)
-    attempts: int = 3
-    base_seed: int = 0
+    grid: tuple[tuple[float, float], ...] = bounded(
+        product_grid(PAPER_NORMAL_OFFSETS_M, PAPER_STROKE_OFFSETS_M), low=-0.2, high=0.2,
+        unit="m", why="marker offsets near the centre marker, within the open hand's reach")
+    attempts: int = bounded(3, low=1, high=100_000, below="expected a positive integer")
+    base_seed: int = bounded(0, low=0, high=2**32 - 1,
+                             why="Drake's random generator takes a 32-bit seed")
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
     user_objects: Mapping[str, ObjectConfig] = field(default_factory=dict)
     # `--set key=value` assignments applied to every trial's default scenario, e.g.
@@ -226,6 +237,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                  f"expected a number in [0, 1) so the scale stays positive, got {value!r}")
     if not isinstance(r.sensor_noise, bool):
         fail("randomisation.sensor_noise", f"expected true or false, got {r.sensor_noise!r}")
+    check_ranges(spec, source)  # each number in the range declared on its field
     _check_scenario_overrides(spec.scenario_overrides, spec.controllers, fail)
 
 

@@ -13,6 +13,7 @@ from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_fi
 from tegrasp_drake.sweep.spec import (BUILTIN_OBJECTS, CONTROLLER_NAMES, RENAMED_OBJECT_FIELDS,
                                       USER_OBJECT_FIELDS, RandomisationConfig, SweepSpec,
                                       is_number, product_grid, user_object, validate_spec)
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 
 @dataclass
@@ -22,7 +23,8 @@ class _ProductGrid:
     stroke_offsets_m: list[float]
 
 
-def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
+@public_api
+def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
                     controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
     """Reads and validates a YAML sweep spec; fields left out keep the paper's defaults.
 
@@ -36,7 +38,13 @@ def LoadSweepSpec(path, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
     ConfigError naming the file and the field for unknown fields, wrong types and values
     that cannot run.
     """
-    return sweep_spec_from_fields(read_yaml_file(path, "the sweep spec"), str(path),
+    fields = read_yaml_file(path, "the sweep spec")
+    if fields is None:
+        # An empty file is a mistake, not a request for the paper's 243-trial experiment
+        # (which running without --spec gives).
+        raise ConfigError(f"{path}: the sweep spec is empty; give at least one field (e.g. "
+                          "objects: [box]), or leave out --spec for the paper's experiment")
+    return sweep_spec_from_fields(fields, str(path),
                                   builtin_objects=builtin_objects, controllers=controllers)
 
 

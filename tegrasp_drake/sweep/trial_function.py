@@ -6,12 +6,15 @@ checks before a sweep starts that every trial's memorized events are there.
 """
 
 import dataclasses
+import hashlib
 import logging
 import pathlib
 
 import numpy as np
 
 from tegrasp_drake.runs.trial import run_trial
+from tegrasp_drake.sweep.records import canonical_json
+from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 logger = logging.getLogger(__name__)
 
@@ -49,9 +52,13 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     return validate(scenario, f"sweep trial {trial['trial_id']}")
 
 
-def trial_log_name(trial_id: str) -> str:
-    """The file name of a sweep trial's log: its id with '/' as '.', and .npz."""
-    return trial_id.replace("/", ".") + ".npz"
+def trial_log_name(trial: dict) -> str:
+    """The file name of a sweep trial's log: its id with '/' as '.', then the first 12 hex
+    digits of the SHA-256 of the whole trial spec (seed, offsets, perturbation, overrides),
+    and .npz. Two sweeps with other settings that share a --logs folder keep each their own
+    logs instead of one replacing the other's under the same trial id."""
+    digest = hashlib.sha256(canonical_json(trial).encode("utf-8")).hexdigest()[:12]
+    return f"{trial['trial_id'].replace('/', '.')}.{digest}.npz"
 
 
 def trial_events(trial: dict, events_dir=None) -> tuple:
@@ -100,7 +107,9 @@ def check_sweep_events(trials, events_dir=None) -> None:
             logger.warning(warning)
 
 
-def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
+@public_api
+def run_trial_from_spec(trial: dict, *, events_dir: PathLike | None = None,
+                        log_dir: PathLike | None = None) -> dict:
     """The sweep's trial function: runs the trial with its memorized events
     (trial_events); returns its result dict.
 
@@ -108,5 +117,5 @@ def run_trial_from_spec(trial: dict, *, events_dir=None, log_dir=None) -> dict:
     scenario, events, corrective_events = trial_events(trial, events_dir)
     run = run_trial(scenario, events=events, corrective_events=corrective_events)
     if log_dir is not None:
-        run.log.save(pathlib.Path(log_dir) / trial_log_name(trial["trial_id"]))
+        run.log.save(pathlib.Path(log_dir) / trial_log_name(trial))
     return run.result

@@ -8,9 +8,12 @@ import math
 
 import numpy as np
 from pydrake.systems.framework import LeafSystem
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.framework import System
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.rig import station_interface as ports
+from tegrasp_drake.rig.api_boundary import public_api
 
 
 def slowly_adapting(taxel_forces: np.ndarray) -> float:
@@ -82,7 +85,8 @@ class MechanoreceptorChannels(LeafSystem):
         output.SetFromVector(self._sa_port.Eval(context).tolist() + self._ra(context))
 
 
-def AddMechanoreceptorChannels(builder, station):
+@public_api
+def AddMechanoreceptorChannels(builder: DiagramBuilder, station: System):
     """Adds Eq. 1-2 fed by the station's tactile ports; returns the system."""
     channels = builder.AddNamedSystem("mechanoreceptor_channels", MechanoreceptorChannels())
     for finger in FINGER_NAMES:

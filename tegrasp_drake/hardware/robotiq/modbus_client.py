@@ -23,6 +23,7 @@ from pymodbus import FramerType
 from pymodbus.client import ModbusSerialClient
 from pymodbus.exceptions import ModbusException
 
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import units
 from tegrasp_drake.robotiq import registers
 
@@ -33,13 +34,18 @@ MIN_PERIOD = 1.0 / 200.0  # [s]
 class RobotiqModbusConfig:
     """Serial line, bus and timing of the client. Times in seconds."""
     port: str = "/dev/ttyUSB0"
-    baudrate: int = registers.BAUDRATE
-    device_id: int = registers.DEVICE_ID
-    period: float = MIN_PERIOD
-    request_timeout: float = 0.05
-    activation_timeout: float = 5.0
-    command_refresh_period: float = 0.1
-    read_function: int = registers.READ_FUNCTION  # 4, or 3 on some firmware
+    baudrate: int = bounded(registers.BAUDRATE, low=1200, high=115_200, unit="baud",
+                            why="the 2F-85 talks at 115200 baud, Robotiq 2F-85 manual")
+    device_id: int = bounded(registers.DEVICE_ID, low=1, high=247,
+                             why="Modbus slave addresses, Modbus over serial line specification")
+    period: float = bounded(MIN_PERIOD, low=MIN_PERIOD, high=1.0, unit="s",
+                            why="the 2F-85 takes requests at up to 200 Hz")
+    request_timeout: float = bounded(0.05, low=0.0, low_open=True, high=10.0, unit="s")
+    activation_timeout: float = bounded(5.0, low=0.0, low_open=True, high=60.0, unit="s")
+    command_refresh_period: float = bounded(0.1, low=0.0, low_open=True, high=10.0, unit="s")
+    # 4, or 3 on some firmware
+    read_function: int = bounded(registers.READ_FUNCTION, low=3, high=4,
+                                 why="Modbus function 3 or 4")
 
 
 class RobotiqActivationError(RuntimeError):

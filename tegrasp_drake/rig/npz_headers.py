@@ -1,0 +1,108 @@
+"""The arrays an .npz file declares, read from their headers before any array is loaded.
+
+np.load allocates an array of the shape its header declares before it reads the data, so a
+few-kB file whose header declares a (10^9,) float array costs 8 GB before any shape check.
+`checked_npz_arrays` reads each member's .npy header (a few hundred bytes of its start; a
+compressed member is inflated only that far), refuses what the reader does not expect (an
+array name, an object or structured dtype, more bytes than the caller allows, a header
+whose size disagrees with the member's), and only then lets np.load read the arrays.
+"""
+
+import math
+import tokenize
+import zipfile
+import zlib
+
+import numpy as np
+import numpy.lib.format as npy_format
+
+
+# The most a trial log's arrays may declare: a trial of the scripted grasp's longest allowed
+# length with both sensors at their highest allowed rate (20 kHz) holds about 11 float64
+# columns x 20,000 samples/s x 8 B = 1.8 MB per second; 512 MB is 4.8 minutes of that, far
+# beyond any trial, and a bound on what a crafted header can make the reader allocate.
+MAX_TRIAL_LOG_BYTES = 512 * 2**20
+
+
+class NpzHeaderError(ValueError):
+    """An .npz file's arrays are not what its reader accepts; the message says which."""
+
+
+# dtype kinds a numeric log or its JSON metadata may hold: bool, integers, floats, text.
+_ALLOWED_KINDS = frozenset("biufU")
+# A .npy header is at most a few hundred bytes (numpy pads it to 64-byte multiples; a
+# version 2 header may be longer, but never near this for a plain array).
+_MAX_HEADER_BYTES = 65_536
+
+
+def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dtype, int]]:
+    """{array name: (shape, dtype, bytes of data)} of every member of an open .npz, from the
+    headers alone; NpzHeaderError for a member that is not an .npy array."""
+    headers = {}
+    for info in zip_file.infolist():
+        name = info.filename[:-4] if info.filename.endswith(".npy") else info.filename
+        with zip_file.open(info) as member:
+            try:
+                version = npy_format.read_magic(member)
+                if version == (1, 0):
+                    shape, fortran, dtype = npy_format.read_array_header_1_0(
+                        member, max_header_size=_MAX_HEADER_BYTES)
+                elif version == (2, 0):
+                    shape, fortran, dtype = npy_format.read_array_header_2_0(
+                        member, max_header_size=_MAX_HEADER_BYTES)
+                else:
+                    raise ValueError(f"npy format version {version}")
+            except (ValueError, EOFError, OSError, SyntaxError, tokenize.TokenError,
+                    zlib.error) as e:  # numpy parses the header's dict as Python
+                raise NpzHeaderError(f"'{name}' is not a numpy array ({type(e).__name__}: "
+                                     f"{e})") from None
+            header_bytes = member.tell()
+        if dtype.kind not in _ALLOWED_KINDS or dtype.hasobject or dtype.fields:
+            raise NpzHeaderError(f"'{name}' holds {dtype} values; only numbers and text are "
+                                 "read")
+        if any(not isinstance(n, int) or n < 0 for n in shape):
+            raise NpzHeaderError(f"'{name}' declares the shape {shape}")
+        data_bytes = math.prod(shape) * dtype.itemsize
+        if header_bytes + data_bytes != info.file_size:
+            raise NpzHeaderError(f"'{name}' declares {shape} {dtype} ({data_bytes} bytes) but "
+                                 f"its member holds {info.file_size - header_bytes} bytes")
+        headers[name] = (tuple(shape), dtype, data_bytes)
+    return headers
+
+
+def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
+                       text=()) -> dict[str, np.ndarray]:
+    """The arrays `names` (and those of `optional` present) of the .npz at `path`, after
+    their headers (npz_array_headers) say they fit in `max_bytes` together and hold numbers
+    (bool, integers, floats), or text for those named in `text`.
+
+    Raises NpzHeaderError (a ValueError) for a missing array or a bad header, and what
+    zipfile and numpy raise for damage found while reading (OSError, ValueError, EOFError,
+    zipfile.BadZipFile, zlib.error): the caller names the file."""
+    try:
+        zip_file = zipfile.ZipFile(path)
+    except (RuntimeError, NotImplementedError) as e:  # a zip feature zipfile does not read
+        raise NpzHeaderError(f"it cannot be read as a zip archive: {e}") from None
+    with zip_file:
+        try:
+            headers = npz_array_headers(zip_file)
+        except (RuntimeError, NotImplementedError) as e:  # encrypted, unknown compression
+            raise NpzHeaderError(f"a member cannot be read: {e}") from None
+        missing = [name for name in names if name not in headers]
+        if missing:
+            raise NpzHeaderError(f"it lacks the arrays {missing}")
+        wanted = [*names, *(name for name in optional if name in headers)]
+        for name in wanted:
+            dtype = headers[name][1]
+            if dtype.kind not in ("U" if name in text else "biuf"):
+                raise NpzHeaderError(f"'{name}' holds {dtype} values, not "
+                                     f"{'text' if name in text else 'numbers'}")
+        total = sum(headers[name][2] for name in wanted)
+        if total > max_bytes:
+            raise NpzHeaderError(f"its arrays declare {total} bytes, more than the "
+                                 f"{max_bytes} this reads")
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                return {name: data[name] for name in wanted}
+        except (RuntimeError, NotImplementedError) as e:
+            raise NpzHeaderError(f"a member cannot be read: {e}") from None

@@ -1,0 +1,170 @@
+"""Every numeric setting's unit and allowed range, declared once beside the field.
+
+    @dataclasses.dataclass
+    class GraspScriptConfig:
+        hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s",
+                                why="the paper holds 3 s; a minute is the longest test")
+
+`bounded` is a `dataclasses.field` whose metadata holds a `Range`; `check_ranges` walks a
+config object (nested dataclasses, lists and mappings of them) and raises ConfigError
+"SOURCE: field 'grasp.hold_s' must lie in [0, 60] s (why), got 10000000.0" for the first
+value outside its range (each element of a list field is checked). It runs where a config is
+loaded (LoadScenario, LoadHardwareConfig, LoadSweepSpec, LoadTransferSpec) and again where a
+builder is handed one (MakeStation, MakeGraspDiagram, run_trial, run_on_hardware,
+MakeHardwareStation), so a config changed in Python after loading is caught too.
+
+A range is physically plausible or what the code supports, with the reason in `why`; a
+field's established words for a value under its range (`below`, e.g. "must be positive") are
+kept. `unranged_numeric_fields` lists the numeric fields reachable from a config class that
+declare none (tests/test_config_ranges.py fails on any).
+"""
+
+import collections.abc
+import dataclasses
+import math
+import types
+import typing
+
+_KEY = "tegrasp_range"
+
+
+@dataclasses.dataclass(frozen=True)
+class Range:
+    """[low, high] (an end None: unbounded; `low_open`/`high_open`: that end excluded) in
+    `unit`; `why` says where the ends come from; `below` replaces the words for a value
+    under `low` (a field's established message, e.g. "must be positive [kg]")."""
+    low: float | None = None
+    high: float | None = None
+    unit: str = ""
+    why: str = ""
+    low_open: bool = False
+    high_open: bool = False
+    below: str | None = None
+
+    def contains(self, value) -> bool:
+        if self.low is not None and (value < self.low or (self.low_open and value == self.low)):
+            return False
+        return self.high is None or (value < self.high or (not self.high_open
+                                                           and value == self.high))
+
+    def words(self, value) -> str:
+        return self._words(value).replace("{low}", _number(self.low)).replace(
+            "{high}", _number(self.high))
+
+    def _words(self, value) -> str:
+        """What the value must be, e.g. "must lie in [0, 60] s (why)"."""
+        if self.below is not None and self.low is not None and (
+                value < self.low or (self.low_open and value == self.low)):
+            return self.below
+        unit = f" {self.unit}" if self.unit else ""
+        why = f" ({self.why})" if self.why else ""
+        if self.high is None:
+            return f"must be {'above' if self.low_open else 'at least'} {{low}}{unit}{why}"
+        if self.low is None:
+            return f"must be {'below' if self.high_open else 'at most'} {{high}}{unit}{why}"
+        return (f"must lie in {'(' if self.low_open else '['}{{low}}, {{high}}"
+                f"{')' if self.high_open else ']'}{unit}{why}")
+
+
+def _number(value) -> str:
+    """A range end as written: integers whole (4294967295, not 4.29497e+09), others short."""
+    if value is None:
+        return ""
+    if float(value).is_integer() and abs(value) < 1e15:
+        return str(int(value))
+    return f"{value:g}"
+
+
+def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
+            why: str = "", low_open: bool = False, high_open: bool = False,
+            below: str | None = None, default_factory=dataclasses.MISSING):
+    """A dataclass field with the declared Range (module docstring); for a list field the
+    range is each element's."""
+    return dataclasses.field(default=default, default_factory=default_factory, metadata={
+        _KEY: Range(low, high, unit, why, low_open, high_open, below)})
+
+
+def range_of(field: dataclasses.Field) -> Range | None:
+    return field.metadata.get(_KEY)
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _values(value, path: str):
+    """(path, number-or-other) of a scalar or of every leaf of nested lists/tuples."""
+    if isinstance(value, (list, tuple)):
+        for k, item in enumerate(value):
+            yield from _values(item, f"{path}[{k}]")
+    else:
+        yield path, value
+
+
+def check_ranges(config, source: str, where: str = "") -> None:
+    """ConfigError naming the first field of `config` (a dataclass instance, and everything
+    it holds) whose value is not a finite number inside its declared Range."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
+    if not dataclasses.is_dataclass(config) or isinstance(config, type):
+        return
+    for field in dataclasses.fields(config):
+        value = getattr(config, field.name)
+        path = f"{where}.{field.name}" if where else field.name
+        declared = range_of(field)
+        if declared is not None and value is not None:
+            for item_path, item in _values(value, path):
+                if item is None:
+                    continue
+                if not _is_number(item) or not math.isfinite(item):
+                    raise ConfigError(f"{source}: field '{item_path}' must be a finite number, "
+                                      f"got {type(item).__name__} {item!r}")
+                if not declared.contains(item):
+                    raise ConfigError(f"{source}: field '{item_path}' {declared.words(item)}, "
+                                      f"got {item!r}")
+        _check_held(value, source, path)
+
+
+def _check_held(value, source: str, path: str) -> None:
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        check_ranges(value, source, path)
+    elif isinstance(value, collections.abc.Mapping):
+        for key, item in value.items():
+            _check_held(item, source, f"{path}.{key}")
+    elif isinstance(value, (list, tuple)):
+        for k, item in enumerate(value):
+            if dataclasses.is_dataclass(item):
+                check_ranges(item, source, f"{path}[{k}]")
+
+
+def _numeric(hint) -> bool:
+    origin = typing.get_origin(hint)
+    if origin in (typing.Union, types.UnionType, list, tuple):
+        return any(_numeric(m) for m in typing.get_args(hint) if m is not Ellipsis)
+    return hint in (int, float)
+
+
+def _config_classes(hint) -> list:
+    origin = typing.get_origin(hint)
+    if origin is not None:
+        return [c for m in typing.get_args(hint) if m is not Ellipsis
+                for c in _config_classes(m)]
+    return [hint] if dataclasses.is_dataclass(hint) else []
+
+
+def unranged_numeric_fields(*roots) -> list[str]:
+    """"Class.field" of every numeric field (int, float, lists of them, optional) of the
+    dataclasses reachable from `roots` (through fields, unions, lists and mappings) that
+    declares no Range."""
+    seen, missing, pending = set(), [], list(roots)
+    while pending:
+        cls = pending.pop()
+        if cls in seen:
+            continue
+        seen.add(cls)
+        hints = typing.get_type_hints(cls)
+        for field in dataclasses.fields(cls):
+            hint = hints[field.name]
+            if _numeric(hint) and range_of(field) is None:
+                missing.append(f"{cls.__module__}.{cls.__qualname__}.{field.name}")
+            pending.extend(_config_classes(hint))
+    return sorted(missing)

@@ -1,0 +1,172 @@
+"""Every numeric setting declares its unit and range beside its field (rig/ranges.py); one
+validator enforces them where a config is loaded and again where a builder is handed one."""
+
+import dataclasses
+
+import pytest
+
+from test_bad_input import assert_one_line_error, run_cli
+from tegrasp_drake.control import controller_config
+from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.ranges import Range, bounded, check_ranges, unranged_numeric_fields
+from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file
+from tegrasp_drake.scenario.scenario import LoadScenario, Scenario
+from tegrasp_drake.sweep.spec import SweepSpec
+from tegrasp_drake.transfer.matrix import TransferSpec
+
+CONFIG_ROOTS = (Scenario, HardwareStationConfig, SweepSpec, TransferSpec,
+                *(type(controller_config.controller_named(name))
+                  for name in controller_config.CONTROLLER_NAMES))
+
+
+def test_every_numeric_field_declares_its_range():
+    """Fails naming each int or float field (or list of them) reachable from a scenario, a
+    hardware config, a sweep or a transfer spec that has no `bounded(...)` declaration."""
+    missing = unranged_numeric_fields(*CONFIG_ROOTS)
+    assert not missing, ("declare a range beside each of these fields, e.g. "
+                         "`x_s: float = bounded(0.5, low=0.0, high=10.0, unit=\"s\", "
+                         f"why=\"...\")` (tegrasp_drake/rig/ranges.py): {missing}")
+
+
+@pytest.mark.parametrize("name", sorted(read_yaml_file(paths.scenarios_file(), "scenarios")))
+def test_every_built_in_scenario_lies_in_its_ranges(name):
+    check_ranges(LoadScenario(name=name), name)
+
+
+def test_every_default_lies_in_its_range():
+    for root in (Scenario, HardwareStationConfig, SweepSpec):
+        check_ranges(root(), root.__name__)
+
+
+def test_a_range_names_the_field_its_unit_and_why():
+    @dataclasses.dataclass
+    class Inner:
+        hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s", why="a minute at most")
+        sizes: list[float] = bounded(default_factory=lambda: [0.1], low=0.0, low_open=True,
+                                     high=0.5, unit="m", below="must be positive [m]")
+
+    @dataclasses.dataclass
+    class Outer:
+        inner: Inner = dataclasses.field(default_factory=Inner)
+        seed: int = bounded(0, low=0, high=2**32 - 1)
+    config = Outer()
+    config.inner.hold_s = 1e7
+    with pytest.raises(ConfigError, match=r"^here: field 'inner.hold_s' must lie in \[0, 60\] s "
+                       r"\(a minute at most\), got 10000000.0$"):
+        check_ranges(config, "here")
+    config.inner.hold_s, config.inner.sizes = 3.0, [0.1, -0.2]
+    with pytest.raises(ConfigError, match=r"field 'inner.sizes\[1\]' must be positive \[m\]"):
+        check_ranges(config, "here")
+    config.inner.sizes, config.seed = [0.1], 2**32
+    with pytest.raises(ConfigError, match=r"must lie in \[0, 4294967295\], got 4294967296"):
+        check_ranges(config, "here")
+    config.seed = "7"
+    with pytest.raises(ConfigError, match="field 'seed' must be a finite number, got str '7'"):
+        check_ranges(config, "here")
+    assert unranged_numeric_fields(Outer) == []
+
+
+def test_an_undeclared_numeric_field_is_listed():
+    @dataclasses.dataclass
+    class NewDrive:
+        gear_ratio: float = 1.0
+        name: str = "drive"
+        rated_n: float = bounded(10.0, low=0.0, high=100.0)
+    assert unranged_numeric_fields(NewDrive) == [f"{__name__}.{NewDrive.__qualname__}.gear_ratio"]
+
+
+def test_open_and_closed_ends():
+    assert Range(0.0, 1.0, low_open=True).contains(0.5)
+    assert not Range(0.0, 1.0, low_open=True).contains(0.0)
+    assert Range(0.0, 1.0).contains(1.0) and not Range(0.0, 1.0, high_open=True).contains(1.0)
+    assert Range(0.0, None).words(-1) == "must be at least 0"
+
+
+# --- the issue's probes: each a one-line error naming the field -------------------------------
+
+@pytest.mark.parametrize("overrides, expected", [
+    (["grasp.hold_s=1.0e+7"], "field 'grasp.hold_s' must lie in [0, 60] s"),
+    (["grasp.hold_s=-1"], "field 'grasp.hold_s' must lie in [0, 60] s"),
+    (["object_offset=[2,2]"], "field 'object_offset[0]' must lie in [-0.2, 0.2] m"),
+    (["expected_object_xy=[0.9,0.49]"], "field 'object_offset' puts the object at (0.900, "
+     "0.490) m"),
+    (["object.size=[0.045,0.045,50]"], "field 'object.size[2]' must lie in (0, 0.5] m"),
+    (["object.mass=1.0e+9"], "field 'object.mass' must lie in (0, 5] kg"),
+    (["object.friction=1.0e+9"], "field 'object.friction' must lie in (0, 2]"),
+    (["grasp.grip_force=1.0e+9"], "field 'grasp.grip_force' must lie in (0, 235] N"),
+    (["grasp.close_speed=0"], "field 'grasp.close_speed' must lie in [0.02, 0.15] m/s"),
+    (["grasp.hold_s=50", "grasp.lift_s=20"], "field 'grasp': the grasp script lasts"),
+    (["object.mass=1e9"], "got str '1e9' (YAML reads it as text: write 1000000000.0)"),
+    (["controller.update_period_s=0"], "field 'controller.update_period_s' must be positive"),
+    (["controller.slip_s=-1"], "field 'controller.slip_s' must be zero or positive [s]"),
+    (["arm.initial_gripper_xyz=[0.69,0.0,7]"],
+     "field 'arm.initial_gripper_xyz[2]' must lie in [-0.9, 0.9] m"),
+])
+def test_an_out_of_range_scenario_value_is_one_line(overrides, expected, capfd):
+    argv = ["trial"]
+    for assignment in overrides:
+        argv += ["--set", assignment]
+    code, text = run_cli(argv, capfd)
+    assert_one_line_error(code, text, expected)
+
+
+def test_a_long_script_is_accepted_when_confirmed():
+    overrides = ["grasp.hold_s=50", "grasp.lift_s=20"]
+    with pytest.raises(ConfigError, match="--allow-long"):
+        LoadScenario(name="box", overrides=overrides)
+    assert LoadScenario(name="box", overrides=overrides, allow_long=True).grasp.hold_s == 50
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("ready_timeout: 1.0e+9\n", "field 'ready_timeout' must lie in (0, 600] s"),
+    ("gripper: {device_id: 0}\n", "field 'gripper.device_id' must lie in [1, 247]"),
+    ("realtime_priority: 100\n", "field 'realtime_priority' must lie in [1, 99]"),
+    ("arm: {tracker: {max_joint_speed: [1, 1, 1, 1, 1, 1]}}\n",
+     "field 'arm.tracker.max_joint_speed[0]' must lie in (0, 0.837758] rad/s"),
+])
+def test_an_out_of_range_hardware_value_is_one_line(text, expected, tmp_path, capfd):
+    config = tmp_path / "hw.yaml"
+    config.write_text(text)
+    code, output = run_cli(["hardware", "--config", str(config)], capfd)
+    assert_one_line_error(code, output, str(config), expected)
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("randomisation: {placement_xy_bound_m: 5}\n",
+     "field 'randomisation.placement_xy_bound_m' must lie in [0, 0.05] m"),
+    ("grid: [[0.0, 3.0]]\n", "field 'grid[0][1]' must lie in [-0.2, 0.2] m"),
+    ("base_seed: 4294967296\n", "field 'base_seed' must lie in [0, 4294967295]"),
+])
+def test_an_out_of_range_sweep_value_is_one_line(text, expected, tmp_path, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(text)
+    code, output = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "o")], capfd)
+    assert_one_line_error(code, output, str(spec), expected)
+    assert not (tmp_path / "o").exists()
+
+
+# --- a config changed after loading is caught where a builder is handed it ---------------------
+
+def test_a_config_changed_after_loading_is_refused_by_the_builders():
+    from tegrasp_drake import MakeGraspDiagram, MakeStation, run_trial
+    scenario = LoadScenario(name="box")
+    scenario.object.mass = -1.0
+    for build, name in ((MakeStation, "MakeStation"), (MakeGraspDiagram, "MakeGraspDiagram"),
+                        (run_trial, "run_trial")):
+        with pytest.raises(ConfigError, match=rf"^{name}: scenario: field 'object.mass' must be "
+                           r"positive \(the object's mass \[kg\]\), got -1.0$"):
+            build(scenario)
+    scenario.object.mass = 0.15
+    scenario.grasp.hold_s = 1e7
+    with pytest.raises(ConfigError, match="field 'grasp.hold_s' must lie in"):
+        MakeStation(scenario)
+
+
+def test_a_hardware_config_changed_after_loading_is_refused():
+    from tegrasp_drake import MakeHardwareStation
+    config = HardwareStationConfig()
+    config.watchdog.arm_timeout = -5.0
+    with pytest.raises(ConfigError, match="MakeHardwareStation: config: field "
+                       r"'watchdog.arm_timeout' must be positive \[s\]"):
+        MakeHardwareStation(config)
