@@ -83,8 +83,8 @@ def test_a_slippery_object_needs_lift_load():
     assert corrected["hold_success"]
     without = run_trial(LoadScenario(
         overrides=slippery + ["controller.lift_load_enabled=false"])).result
-    # Without Lift-Load the box slides out during Lift. Whatever else the controller then
-    # does (the box striking the table under the still-touching pads can read as a hit, and
+    # Without Lift-Load the pads slide up the box, which stays on the table. Whatever else
+    # the controller then does (the pads still sliding along it in Hold can read as a hit:
     # Hold goes to Avoid), no Lift-Load is taken and nothing is held.
     assert "lift_load" not in without["corrective_actions"]
     assert not without["hold_success"]
