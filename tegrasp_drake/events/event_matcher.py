@@ -51,9 +51,9 @@ class EventMatcherConfig:
     # The RA noise floor (events/ra_noise_floor.py): an RA window whose peak is not above
     # its channel's noise mean + ra_noise_floor_sigmas standard deviations (measured on the
     # stream's first ra_noise_quiet_s [s], after the envelope) scores 0; 0: no such gate.
-    # A flat RA template (a quiet window, "expects no change") is judged against the floor
-    # whatever this is: it passes while the live window stays within the floor (k: this,
-    # or the rule's k when 0).
+    # A flat RA template (a quiet window, "expects no change") reads the floor whatever
+    # this is: it scores 1 while the live window stays within the floor, Eq. 3 above it
+    # (k: this, or the rule's k when 0).
     ra_noise_floor_sigmas: float = 0.0
     ra_noise_quiet_s: float = 2.0
 
@@ -124,13 +124,13 @@ class EventMatcher(WindowNormalizer):
         ra_floor: [left, right] the RA noise floor (RaNoiseFloor; declared with
             config.ra_noise_floor_sigmas > 0 or when an event has a flat RA template): a
             flat RA template's channel scores 1 while the live window's peak is not above
-            it, else 0; with ra_noise_floor_sigmas > 0 any other RA channel whose window's
-            peak is not above it scores 0.
+            it, its Eq. 3 score above it; with ra_noise_floor_sigmas > 0 any other RA
+            channel whose window's peak is not above it scores 0.
         sa_window, ra_window: the max-normalised windows that are scored (WindowNormalizer).
         scores: the four channels' scores in [-1, 1]; 0 when no event is expected, before
             a full window has been sampled, for a channel whose live window is too flat
-            to carry an event, or for an RA channel below its noise floor; 1 or 0 for a
-            flat RA template's channel (within the floor or not).
+            to carry an event, or for an RA channel below its noise floor; 1 for a flat
+            RA template's channel within its noise floor.
         match: [1.0] when every channel's score exceeds its threshold and the scores are
             for the event now expected, else [0.0]. It depends directly on expected_event,
             so one tick after the expected event changes it cannot report the old event.

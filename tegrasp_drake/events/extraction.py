@@ -17,8 +17,9 @@ half a window of margin for differences between the ideal and the live grasp.
 Quiet RA windows (`ra_floor`, beyond the paper): an RA window whose peak (its largest
 |value|) does not rise above its channel's noise floor, measured on the recording's own
 quiet approach (ra_noise_floor.py: m + k s), carries only the sensor's noise. It is stored
-as a constant window of ones: flat, "expects no change" (correlation.py), which the
-matcher judges against the live noise floor instead of by Eq. 3 (ra_noise_floor.py).
+as a constant window of ones: flat, "expects no change" (correlation.py); the matcher
+passes it while the live window stays within the live noise floor, and scores it by Eq. 3
+above the floor (ra_noise_floor.py).
 """
 
 import dataclasses

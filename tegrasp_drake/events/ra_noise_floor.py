@@ -44,12 +44,15 @@ memorized RA window that does not rise above its recording's floor (m + k s of t
 recording's own quiet approach, the same rule) is stored flat: "expects no change"
 (extraction.py). Such a window, a held grip before the lift for instance, is only the
 converter's noise: mostly zero codes and a few one-code samples, and Eq. 3 on two such
-sparse windows is close to chance. So a flat RA template is not scored by Eq. 3: its
-channel passes (score 1) while the live window's peak stays within the live floor, and
-fails (score 0) once it rises above it or while the floor is not yet known
-(SlidingCorrelation.gate_below). The matcher measures the live floor whenever an event has
-a flat RA template, with `rule_sigmas` unless ra_noise_floor_sigmas sets k; it gates the
-other RA channels only when ra_noise_floor_sigmas > 0.
+sparse windows is close to chance. At match time the floor is the gate above turned round:
+a live window within the live floor holds no change the sensor can tell from its noise,
+which is what a flat template expects, so the channel scores 1. Above the floor the window
+carries something and Eq. 3 judges it against the flat template as in the paper: a steady
+level (a grip that creeps, read by the film as a constant offset) scores near 1, a
+transient (a touch, the lift's first jolt) far lower. While the floor is not yet known Eq. 3
+alone judges (SlidingCorrelation.gate_below). The matcher measures the live floor whenever
+an event has a flat RA template, with `rule_sigmas` unless ra_noise_floor_sigmas sets k;
+it gates the other RA channels only when ra_noise_floor_sigmas > 0.
 """
 
 import math

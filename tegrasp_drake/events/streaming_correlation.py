@@ -234,11 +234,11 @@ class SlidingCorrelation:
         """Judges each channel with a floor in `floors` (one per channel; None for none)
         against it, in place, after `slide`; returns the scores view.
 
-        A channel whose template of the active event is flat expects no change: it scores
-        1 while its live window's peak (its largest |value|) is not above a finite floor,
-        else 0 (above it, or the floor not yet known). Any other channel keeps its Eq. 3
-        score only if its peak is above the floor, else scores 0 (gate_events False: keeps
-        its score).
+        A window whose peak (its largest |value|) is not above its finite floor holds only
+        the sensor's noise: no change. Where the template of the active event is flat (it
+        expects no change) the channel then scores 1; any other channel scores 0
+        (gate_events False: keeps its score). Above the floor, or while the floor is not
+        known (+inf), a flat template's channel keeps its Eq. 3 score.
         """
         event = int(state[self._event_at])
         if event != NO_EVENT:
@@ -249,7 +249,8 @@ class SlidingCorrelation:
                 high, low = statistics[_STATISTICS * i:_STATISTICS * i + 2]
                 quiet = max(abs(high), abs(low)) <= floor
                 if terms[3]:
-                    state[self._scores_at + i] = 1.0 if quiet and floor < math.inf else 0.0
+                    if quiet and floor < math.inf:
+                        state[self._scores_at + i] = 1.0
                 elif gate_events and quiet:
                     state[self._scores_at + i] = 0.0
         return state[self._scores_at:self._statistics_at]
