@@ -7,9 +7,9 @@
 Runs one trial of the memorized controller (the scenario's) per object and marker (the centre and three misplaced markers of the
 paper's grid, offsets in the scenario's object_offset [m]) on development seeds (--seed,
 --seed + 1, ...) and prints, per trial: the Reach-Load, Load-Lift and Place-Unload times
-and triggers, the lift's grip fraction (runs/trial.py lift_grip_fraction: the weaker pad's true force at
-the Load -> Lift transition over the settled grip), the first contact and grip-settled
-times, and the final state. The closed-loop check of the Load-Lift anchor
+and triggers, the lift's grip fraction (runs/trial.py lift_grip_fraction: the weaker pad's
+true force at the Load -> Lift transition over the settled grip), the first contact and
+grip-settled times, and the final state. The closed-loop check of the Load-Lift anchor
 (recording/paper_events.py): the lift should start with the grip settled.
 """
 

@@ -160,7 +160,7 @@ class EventMatcher(WindowNormalizer):
             correlations[group.name] = SlidingCorrelation(
                 templates, min_contrast=config.min_contrast, window=window_layout(group).window,
                 flat_needs_flat=config.flat_template_needs_flat_window)
-        self._check_matchable(ordered_events, templates_by_event, config.min_contrast)
+        self._check_matchable(ordered_events, templates_by_event)
         # After each rate's correlation, its pass history (PassHistory): as many samples as
         # a block holds, or, for a rate taken per sample, as many as span two blocks.
         block_span_s = max(block_samples(g.rate_hz, config.block_s) / g.rate_hz
@@ -195,8 +195,9 @@ class EventMatcher(WindowNormalizer):
                                 for event in range(NO_EVENT, len(self._events))}
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
         self._gate_events = config.ra_noise_floor_sigmas > 0
-        quiet_templates = any(template_is_flat(by_channel[c][np.newaxis], config.min_contrast)[0]
-                              for by_channel in templates_by_event for c in RA_CHANNELS)
+        quiet_templates = any(
+            template_is_flat(by_channel[c], config.min_contrast)[0]
+            for by_channel in templates_by_event for c in RA_CHANNELS)
         self._floor_port = (self.DeclareVectorInputPort("ra_floor", len(RA_CHANNELS))
                             if self._gate_events or quiet_templates else None)
         scores_state = {self.discrete_state_ticket(window.state)
@@ -250,8 +251,7 @@ class EventMatcher(WindowNormalizer):
 
     @staticmethod
     def _check_matchable(events: list[MemorizedEvent],
-                         templates_by_event: list[dict[int, np.ndarray]],
-                         min_contrast: float) -> None:
+                         templates_by_event: list[dict[int, np.ndarray]]) -> None:
         """Refuse events that Eq. 3 could never match (an all-zero channel)."""
         for event, by_channel in zip(events, templates_by_event):
             templates = [by_channel[c] for c in range(len(CHANNEL_NAMES))]
@@ -259,9 +259,9 @@ class EventMatcher(WindowNormalizer):
             if zero:
                 raise ValueError(f"event '{event.transition}' of '{event.object_name}' has "
                                  f"all-zero channels {zero}: Eq. 3 could never match them")
-            # Flat on every channel: then its RA channels are quiet templates, judged
-            # against the live noise floor (a live event above the floor fails them), so a
-            # steady signal matches only a steady grip with nothing moving.
+            # An event flat on every channel is not refused: its flat RA channels are
+            # quiet templates, which read the live noise floor (ra_noise_floor.py), and a
+            # live transient fails them.
 
     def _expected_event(self, context) -> int:
         value = self._expected_port.Eval(context)[0]
