@@ -6,10 +6,10 @@
 
 Runs one trial of the memorized controller (the scenario's) per object and marker (the centre and three misplaced markers of the
 paper's grid, offsets in the scenario's object_offset [m]) on development seeds (--seed,
---seed + 1, ...) and prints, per trial: the Reach-Load and Load-Lift times and triggers,
-the lift's grip fraction (runs/trial.py lift_grip_fraction: the weaker pad's true force at
-the Load -> Lift transition over the settled grip), the first contact and grip-settled
-times, and the final state. The closed-loop check of the Load-Lift anchor
+--seed + 1, ...) and prints, per trial: the Reach-Load, Load-Lift and Place-Unload times
+and triggers, the lift's grip fraction (runs/trial.py lift_grip_fraction: the weaker pad's
+true force at the Load -> Lift transition over the settled grip), the first contact and
+grip-settled times, and the final state. The closed-loop check of the Load-Lift anchor
 (recording/paper_events.py): the lift should start with the grip settled.
 """
 
@@ -38,7 +38,7 @@ def trial_row(job) -> dict:
     physical = result["physical_events"]
     row = {"object": object_name, "offset_mm": [round(1000 * v) for v in offset],
            "seed": seed, "reach_load": steps.get("Reach-Load"),
-           "load_lift": steps.get("Load-Lift"),
+           "load_lift": steps.get("Load-Lift"), "place_unload": steps.get("Place-Unload"),
            "lift_grip_fraction": result["lift_grip_fraction"],
            "first_contact": physical.get("reach_load"),
            "grip_settled": physical.get("load_lift"),
@@ -64,15 +64,16 @@ def main(argv=None) -> int:
     with ProcessPoolExecutor(args.workers) as pool:
         rows = list(pool.map(trial_row, jobs))
     print("| object | offset mm | seed | Reach-Load s | Load-Lift s (trigger) | "
-          "grip at lift | final |")
-    print("|---|---|---|---|---|---|---|")
+          "grip at lift | Place-Unload s (trigger) | final |")
+    print("|---|---|---|---|---|---|---|---|")
     for r in rows:
         rl = r["reach_load"][0] if r["reach_load"] else None
-        ll = (f"{r['load_lift'][0]:.3f} ({r['load_lift'][1]})" if r["load_lift"] else "-")
+        ll, pu = (f"{r[step][0]:.3f} ({r[step][1]})" if r[step] else "-"
+                  for step in ("load_lift", "place_unload"))
         fraction = (f"{r['lift_grip_fraction']:.2f}" if r["lift_grip_fraction"] is not None
                     else "-")
         print(f"| {r['object']} | {tuple(r['offset_mm'])} | {r['seed']} | {rl} | {ll} | "
-              f"{fraction} | {r['final_mode']} |")
+              f"{fraction} | {pu} | {r['final_mode']} |")
     if args.json:
         args.json.write_text(json.dumps(rows, indent=1))
     return 0

@@ -24,10 +24,12 @@ from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import TRANSITIONS
 
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 # Version 1 files lack `object_description`; they are read by taking it from the object
-# section of their `scenario` text (FORMAT.md, Versions).
-MIGRATED_VERSIONS = (1,)
+# section of their `scenario` text. Version 2 files are read as they are: they hold no
+# quiet RA window (a constant window of ones that expects only the sensor's noise), so
+# nothing in them reads differently (FORMAT.md, Versions).
+MIGRATED_VERSIONS = (1, 2)
 EVENT_FORMAT = "tegrasp.memorized_event"
 INDEX_FORMAT = "tegrasp.memorized_event_index"
 INDEX_FILE = "index.json"
@@ -153,7 +155,7 @@ def _description_from_scenario(scenario_text: str, path, object_name) -> dict:
 
 def _object_description(data: dict, path, object_name) -> dict:
     """The file's object description (version 2), or its migration (version 1)."""
-    if data.get("format_version") in MIGRATED_VERSIONS:
+    if data.get("format_version") == 1:
         return _description_from_scenario(
             _field(data, "scenario", "text", path, object_name), path, object_name)
     description = _field(data, "object_description", "object", path, object_name)

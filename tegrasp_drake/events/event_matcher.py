@@ -50,7 +50,10 @@ class EventMatcherConfig:
     ra_envelope_hz: float = 0.0
     # The RA noise floor (events/ra_noise_floor.py): an RA window whose peak is not above
     # its channel's noise mean + ra_noise_floor_sigmas standard deviations (measured on the
-    # stream's first ra_noise_quiet_s [s], after the envelope) scores 0; 0: no floor.
+    # stream's first ra_noise_quiet_s [s], after the envelope) scores 0; 0: no such gate.
+    # A flat RA template (a quiet window, "expects no change") reads the floor whatever
+    # this is: it scores 1 while the live window stays within the floor, Eq. 3 above it
+    # (k: this, or the rule's k when 0).
     ra_noise_floor_sigmas: float = 0.0
     ra_noise_quiet_s: float = 2.0
 
@@ -118,13 +121,16 @@ class EventMatcher(WindowNormalizer):
         sa_block, ra_block: a rate's samples in blocks (WindowNormalizer); connected, with
             channels, by ConnectWindowChannels.
         expected_event: [index] of the event to check, or -1 for none.
-        ra_floor: [left, right] the RA noise floor (RaNoiseFloor; declared only with
-            config.ra_noise_floor_sigmas > 0): an RA channel whose window's peak is not
-            above it scores 0, unless its template is flat.
+        ra_floor: [left, right] the RA noise floor (RaNoiseFloor; declared with
+            config.ra_noise_floor_sigmas > 0 or when an event has a flat RA template): a
+            flat RA template's channel scores 1 while the live window's peak is not above
+            it, its Eq. 3 score above it; with ra_noise_floor_sigmas > 0 any other RA
+            channel whose window's peak is not above it scores 0.
         sa_window, ra_window: the max-normalised windows that are scored (WindowNormalizer).
         scores: the four channels' scores in [-1, 1]; 0 when no event is expected, before
             a full window has been sampled, for a channel whose live window is too flat
-            to carry an event, or for an RA channel below its noise floor.
+            to carry an event, or for an RA channel below its noise floor; 1 for a flat
+            RA template's channel within its noise floor.
         match: [1.0] when every channel's score exceeds its threshold and the scores are
             for the event now expected, else [0.0]. It depends directly on expected_event,
             so one tick after the expected event changes it cannot report the old event.
@@ -154,7 +160,7 @@ class EventMatcher(WindowNormalizer):
             correlations[group.name] = SlidingCorrelation(
                 templates, min_contrast=config.min_contrast, window=window_layout(group).window,
                 flat_needs_flat=config.flat_template_needs_flat_window)
-        self._check_matchable(ordered_events, templates_by_event, config.min_contrast)
+        self._check_matchable(ordered_events, templates_by_event)
         # After each rate's correlation, its pass history (PassHistory): as many samples as
         # a block holds, or, for a rate taken per sample, as many as span two blocks.
         block_span_s = max(block_samples(g.rate_hz, config.block_s) / g.rate_hz
@@ -188,8 +194,12 @@ class EventMatcher(WindowNormalizer):
         self._event_of_value = {float(event): event
                                 for event in range(NO_EVENT, len(self._events))}
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
+        self._gate_events = config.ra_noise_floor_sigmas > 0
+        quiet_templates = any(
+            template_is_flat(by_channel[c], config.min_contrast)[0]
+            for by_channel in templates_by_event for c in RA_CHANNELS)
         self._floor_port = (self.DeclareVectorInputPort("ra_floor", len(RA_CHANNELS))
-                            if config.ra_noise_floor_sigmas > 0 else None)
+                            if self._gate_events or quiet_templates else None)
         scores_state = {self.discrete_state_ticket(window.state)
                         for window in self.rate_windows}
         self.DeclareVectorOutputPort(
@@ -206,6 +216,11 @@ class EventMatcher(WindowNormalizer):
         """{transition: index} for a matcher built with events of these transitions."""
         return {name: index for index, name in
                 enumerate(sorted(transitions, key=transition_order))}
+
+    @property
+    def has_ra_floor(self) -> bool:
+        """Whether the matcher reads the RA noise floor (its `ra_floor` input)."""
+        return self._floor_port is not None
 
     @property
     def transitions(self) -> tuple[str, ...]:
@@ -236,20 +251,17 @@ class EventMatcher(WindowNormalizer):
 
     @staticmethod
     def _check_matchable(events: list[MemorizedEvent],
-                         templates_by_event: list[dict[int, np.ndarray]],
-                         min_contrast: float) -> None:
-        """Refuse events that Eq. 3 could never match, or that a flat window would."""
+                         templates_by_event: list[dict[int, np.ndarray]]) -> None:
+        """Refuse events that Eq. 3 could never match (an all-zero channel)."""
         for event, by_channel in zip(events, templates_by_event):
             templates = [by_channel[c] for c in range(len(CHANNEL_NAMES))]
             zero = [CHANNEL_NAMES[c] for c, y in enumerate(templates) if not np.any(y)]
             if zero:
                 raise ValueError(f"event '{event.transition}' of '{event.object_name}' has "
                                  f"all-zero channels {zero}: Eq. 3 could never match them")
-            if all(template_is_flat(y, min_contrast)[0] for y in templates):
-                raise ValueError(
-                    f"event '{event.transition}' of '{event.object_name}' is flat on every "
-                    f"channel (contrast below {min_contrast}): it carries no "
-                    "event and a steady signal would match it")
+            # An event flat on every channel is not refused: its flat RA channels are
+            # quiet templates, which read the live noise floor (ra_noise_floor.py), and a
+            # live transient fails them.
 
     def _expected_event(self, context) -> int:
         value = self._expected_port.Eval(context)[0]
@@ -273,8 +285,8 @@ class EventMatcher(WindowNormalizer):
         if self._floor_port is not None and full and expected != NO_EVENT:
             floor = self._floor_port.Eval(context).tolist()
             scores = self._correlations[name].gate_below(state, [
-                floor[RA_CHANNELS.index(c)] if c in RA_CHANNELS else -math.inf
-                for c in window.group.channels])
+                floor[RA_CHANNELS.index(c)] if c in RA_CHANNELS else None
+                for c in window.group.channels], gate_events=self._gate_events)
         passed = (expected != NO_EVENT and full and all(
             score > threshold for score, threshold in
             zip(scores.tolist(), self._group_thresholds[name][expected])))
@@ -370,22 +382,22 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
     for a config in blocks, to its block inputs through sample registers
     (ConnectWindowChannels); else the caller connects them. With config.ra_envelope_hz, the
     events' and the channels' RA pass through the RA envelope first (events/ra_envelope.py;
-    `channels` is then required). With config.ra_noise_floor_sigmas, a RaNoiseFloor fed by
-    the raw `channels` (events/ra_noise_floor.py; `channels` required) feeds its `ra_floor`.
+    `channels` is then required). With config.ra_noise_floor_sigmas, or when an event has a
+    flat RA template, a RaNoiseFloor fed by the raw `channels` (events/ra_noise_floor.py;
+    `channels` required) feeds its `ra_floor`.
     Its `expected_event` input and its `scores`, `match` and `scored_event` outputs are the
     caller's to connect.
     """
-    floor = None
-    if config is not None and config.ra_noise_floor_sigmas:
-        if channels is None:
-            raise ValueError("the RA noise floor needs the channels' output port to measure "
-                             "(add_event_matcher(..., channels=PORT))")
-        floor = add_ra_noise_floor(builder, channels, config)
+    raw_channels = channels
     if config is not None and config.ra_envelope_hz:
         events, channels = ra_enveloped(builder, events, channels, config)
     matcher = builder.AddNamedSystem("event_matcher", EventMatcher(events, config))
     if channels is not None:
         ConnectWindowChannels(builder, matcher, channels)
-    if floor is not None:
+    if matcher.has_ra_floor:
+        if raw_channels is None:
+            raise ValueError("the RA noise floor needs the channels' output port to measure "
+                             "(add_event_matcher(..., channels=PORT))")
+        floor = add_ra_noise_floor(builder, raw_channels, config or EventMatcherConfig())
         builder.Connect(floor, matcher.GetInputPort("ra_floor"))
     return matcher

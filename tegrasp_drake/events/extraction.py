@@ -13,10 +13,17 @@ correlation.py). A live window matches best when the event sits at the same plac
 that is about window_s - pre_transition_s = 0.25 s after the physical event; the thresholds
 accept a match somewhat earlier. That stays within the 0.5 s a detection may take, with
 half a window of margin for differences between the ideal and the live grasp.
+
+Quiet RA windows (`ra_floor`, beyond the paper): an RA window whose peak (its largest
+|value|) does not rise above its channel's noise floor, measured on the recording's own
+quiet approach (ra_noise_floor.py: m + k s), carries only the sensor's noise. It is stored
+as a constant window of ones: flat, "expects no change" (correlation.py); the matcher
+passes it while the live window stays within the live noise floor, and scores it by Eq. 3
+above the floor (ra_noise_floor.py).
 """
 
 import dataclasses
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -82,12 +89,15 @@ def extract_memorized_events(
         window_s: float = DEFAULT_WINDOW_S,
         pre_transition_s: float = DEFAULT_PRE_TRANSITION_S, scenario: str = "",
         package_versions: Mapping[str, str] | None = None,
-        object_description: Mapping | None = None) -> dict[str, MemorizedEvent]:
+        object_description: Mapping | None = None,
+        ra_floor: Sequence[float] | None = None) -> dict[str, MemorizedEvent]:
     """One max-normalised MemorizedEvent per transition of `trial`, in grasp order.
 
     object_description: the object the trial grasped (rig/objects.object_description).
 
     sa_rate_hz, ra_rate_hz: rates [Hz] of the memorized windows (the live rates).
+    ra_floor: [left, right] the recording's RA noise floor [m/s^2] (`recording_ra_floor`),
+        or None: an RA window whose peak is not above it is stored flat (module doc).
     Raises ValueError for an unknown transition, a window outside the log, or a channel
     that is zero throughout its window (Eq. 3 could never match it).
     """
@@ -103,6 +113,8 @@ def extract_memorized_events(
         ra = cut_window(trial.t_ra, trial.ra, start_s=start, rate_hz=ra_rate_hz,
                         length=samples_per_window(window_s, ra_rate_hz),
                         what=f"{what} (RA)")
+        if ra_floor is not None:
+            ra = quiet_as_flat(ra, ra_floor)
         event = MemorizedEvent(
             object_name=object_name, transition=name, sa=normalize_by_max(sa),
             ra=normalize_by_max(ra), sa_rate_hz=sa_rate_hz, ra_rate_hz=ra_rate_hz,
@@ -115,3 +127,23 @@ def extract_memorized_events(
                              "Eq. 3 could never match them")
         events[name] = event
     return events
+
+
+def recording_ra_floor(trial: TactileTrial, *, quiet_s: float, sigmas: float) -> np.ndarray:
+    """[left, right] RA noise floor m + k s [m/s^2] of the raw RA samples of the trial's
+    first quiet_s [s] (the approach, pads untouched), k = sigmas (ra_noise_floor.py)."""
+    quiet = trial.ra[trial.t_ra < trial.t_ra[0] + quiet_s].T
+    if quiet.shape[1] < 2:
+        raise ValueError(f"the RA noise floor needs at least 2 samples in the first "
+                         f"{quiet_s} s of the log")
+    return quiet.mean(axis=1) + sigmas * quiet.std(axis=1)
+
+
+def quiet_as_flat(ra: np.ndarray, floor: Sequence[float]) -> np.ndarray:
+    """`ra` (channels, N) with each channel whose peak |value| is not above its `floor`
+    replaced by ones: a flat window that expects no change (module doc)."""
+    ra = np.array(ra, dtype=float)
+    for channel, level in enumerate(floor):
+        if np.max(np.abs(ra[channel])) <= level:
+            ra[channel] = 1.0
+    return ra

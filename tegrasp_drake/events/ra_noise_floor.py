@@ -37,7 +37,22 @@ of the raw magnitude, so it is near Gaussian: the raw |noise| skewness of about 
 to about 0.08). For a false-alarm probability alpha per trial, k = Q^-1(alpha / N)
 (`floor_sigmas`): alpha = 1e-3 (one trial in a thousand, about two in the 2,268 trials of
 the transfer matrix), N = 14 s x 1000 Hz x 2 channels (the trial's horizon at the RA
-rate) give k = 5.39.
+rate) give k = 5.39 (`rule_sigmas`).
+
+Quiet templates. The same floor says when a window holds no more than the noise. A
+memorized RA window that does not rise above its recording's floor (m + k s of the
+recording's own quiet approach, the same rule) is stored flat: "expects no change"
+(extraction.py). Such a window, a held grip before the lift for instance, is only the
+converter's noise: mostly zero codes and a few one-code samples, and Eq. 3 on two such
+sparse windows is close to chance. At match time the floor is the gate above turned round:
+a live window within the live floor holds no change the sensor can tell from its noise,
+which is what a flat template expects, so the channel scores 1. Above the floor the window
+carries something and Eq. 3 judges it against the flat template as in the paper: a steady
+level (a grip that creeps, read by the film as a constant offset) scores near 1, a
+transient (a touch, the lift's first jolt) far lower. While the floor is not yet known Eq. 3
+alone judges (SlidingCorrelation.gate_below). The matcher measures the live floor whenever
+an event has a flat RA template, with `rule_sigmas` unless ra_noise_floor_sigmas sets k;
+it gates the other RA channels only when ra_noise_floor_sigmas > 0.
 """
 
 import math
@@ -61,6 +76,13 @@ def floor_sigmas(false_alarm_per_trial: float, samples_per_trial: int) -> float:
         raise ValueError("the false-alarm probability must lie in (0, 1) and the samples "
                          "per trial be at least 1")
     return float(norm.isf(false_alarm_per_trial / samples_per_trial))
+
+
+def rule_sigmas(ra_rate_hz: float) -> float:
+    """The rule's k (module docstring) at an RA rate [Hz]: FALSE_ALARM_PER_TRIAL over
+    TRIAL_HORIZON_S of both RA channels' samples; 5.39 at 1 kHz."""
+    return floor_sigmas(FALSE_ALARM_PER_TRIAL,
+                        round(TRIAL_HORIZON_S * ra_rate_hz * len(RA_CHANNELS)))
 
 
 def noise_floor(quiet: np.ndarray, *, sigmas: float, envelope_hz: float,
@@ -146,9 +168,11 @@ def add_ra_noise_floor(builder, channels, config):
     returns its `ra_floor` output port.
 
     config: an EventMatcherConfig (read: ra_noise_floor_sigmas, ra_noise_quiet_s,
-    ra_rate_hz, ra_envelope_hz)."""
+    ra_rate_hz, ra_envelope_hz); with ra_noise_floor_sigmas 0 the floor uses the rule's k
+    (`rule_sigmas`: the floor that judges quiet templates)."""
     floor = builder.AddNamedSystem("ra_noise_floor", RaNoiseFloor(
-        sigmas=config.ra_noise_floor_sigmas, quiet_s=config.ra_noise_quiet_s,
+        sigmas=config.ra_noise_floor_sigmas or rule_sigmas(config.ra_rate_hz),
+        quiet_s=config.ra_noise_quiet_s,
         ra_rate_hz=config.ra_rate_hz, envelope_hz=config.ra_envelope_hz))
     builder.Connect(channels, floor.GetInputPort("channels"))
     return floor.GetOutputPort("ra_floor")

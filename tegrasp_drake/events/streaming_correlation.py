@@ -44,6 +44,7 @@ the window's (the buffer column where the window starts). `StreamingCorrelator` 
 window and slides its correlation in one call, for use outside a Diagram.
 """
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -228,17 +229,29 @@ class SlidingCorrelation:
         state[self._event_at:self._missing_at] = [event] + scores + statistics
         return state[self._scores_at:self._statistics_at]
 
-    def gate_below(self, state: np.ndarray, floors: list[float]) -> np.ndarray:
-        """Scores 0, in place, each channel whose live window's peak (its largest |value|)
-        is not above its floor in `floors` (one per channel; -inf for none), unless the
-        template of the active event is flat on it (it then expects no change). Call after
-        `slide`; returns the scores view."""
+    def gate_below(self, state: np.ndarray, floors: list[float | None], *,
+                   gate_events: bool = True) -> np.ndarray:
+        """Judges each channel with a floor in `floors` (one per channel; None for none)
+        against it, in place, after `slide`; returns the scores view.
+
+        A window whose peak (its largest |value|) is not above its finite floor holds only
+        the sensor's noise: no change. Where the template of the active event is flat (it
+        expects no change) the channel then scores 1; any other channel scores 0
+        (gate_events False: keeps its score). Above the floor, or while the floor is not
+        known (+inf), a flat template's channel keeps its Eq. 3 score.
+        """
         event = int(state[self._event_at])
         if event != NO_EVENT:
             statistics = state[self._statistics_at:self._missing_at].tolist()
             for i, (floor, terms) in enumerate(zip(floors, self._channel_terms[event])):
+                if floor is None:
+                    continue
                 high, low = statistics[_STATISTICS * i:_STATISTICS * i + 2]
-                if not terms[3] and max(abs(high), abs(low)) <= floor:
+                quiet = max(abs(high), abs(low)) <= floor
+                if terms[3]:
+                    if quiet and floor < math.inf:
+                        state[self._scores_at + i] = 1.0
+                elif gate_events and quiet:
                     state[self._scores_at + i] = 0.0
         return state[self._scores_at:self._statistics_at]
 

@@ -33,7 +33,9 @@ from collections.abc import Callable, Mapping
 import numpy as np
 
 from tegrasp_drake.events import extract_memorized_events, tactile_trial_from_log
+from tegrasp_drake.events.extraction import recording_ra_floor
 from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.events.ra_noise_floor import rule_sigmas
 from tegrasp_drake.rig.objects import object_description
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
@@ -80,12 +82,15 @@ def simulate_run(run: CampaignRun, *, log_path=None, progress=None):
 def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
                object_name: str, nominal_object,
                pre_transition_s: float | Mapping[str, float] | None = None,
-               note: str | None = None, advice: Callable[[str], str] | None = None
-               ) -> dict[str, MemorizedEvent]:
+               note: str | None = None, advice: Callable[[str], str] | None = None,
+               quiet_ra_s: float | None = None) -> dict[str, MemorizedEvent]:
     """The run's events: each transition's window cut around its physical event at
     `times`, `pre_transition_s` [s] (one for all, or per transition; None: the paper's)
     into the window, tagged with the `nominal_object`'s description (the object without
     the run's perturbation) and `note` (default: the run's label and seed).
+    quiet_ra_s: when given, the log's first quiet_ra_s [s] (the approach) measure each RA
+    channel's noise floor, and an RA window that does not rise above it is stored flat
+    (extraction.py: quiet RA windows); None: every window as cut.
     RecordEventsError naming the missing events (with `advice(transition)`, if given)."""
     missing = [name for name, time in times.items() if time is None]
     if missing:
@@ -95,6 +100,12 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
             words += ": " + "; ".join(advice(name) for name in missing)
         raise RecordEventsError(words)
     scenario = run.scenario
+    ra_floor = None
+    if quiet_ra_s is not None:
+        ra_floor = recording_ra_floor(tactile_trial_from_log(log), quiet_s=quiet_ra_s,
+                                      sigmas=rule_sigmas(scenario.vibration.sample_rate_hz))
+        logger.info("%s: RA noise floor of the recording's first %.1f s: %s m/s^2",
+                    run.label, quiet_ra_s, np.round(ra_floor, 4).tolist())
     cut = {}
     for transition, time in times.items():
         pre = (pre_transition_s.get(transition) if isinstance(pre_transition_s, Mapping)
@@ -108,7 +119,8 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
                 scenario=(note if note is not None
                           else f"{run.label} seed {scenario.random_seed}"),
                 package_versions=package_versions(),
-                object_description=object_description(nominal_object)))
+                object_description=object_description(nominal_object),
+                ra_floor=ra_floor))
         except ValueError as error:  # a window off the log, or a channel with no signal
             raise RecordEventsError(
                 f"{run.label} of '{object_name}' (seed {scenario.random_seed}): {error} (a "

@@ -39,6 +39,12 @@ EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "lift_start",
 # lift's first 0.25 s in a centred window kept a settled Load from matching in closed loop
 # (on the box, dev seed 600: RA at most 0.72 and 0.57 against the paper's 0.7).
 PRE_TRANSITION_S = {"load_lift": 0.5}
+# [s] of the ideal grasp's approach on which each RA channel's noise floor is measured; an
+# RA window that stays within it (Load-Lift's held grip: only the converter's noise) is
+# stored flat, "expects no change" (extraction.py, ra_noise_floor.py). 2 s, as the live
+# floor's controller.ra_noise_quiet_s: within the 2.8 s approach (scripted_grasp.py:
+# settle_s 0.3 + reach_s 2.5), before the open fingers can reach the object.
+QUIET_APPROACH_S = 2.0
 
 
 def lift_grip_fraction(log, scenario) -> float | None:
@@ -99,6 +105,6 @@ def record_events(object_name: str, scenario: Scenario | None = None, *,
     run = CampaignRun("the ideal grasp", scenario)
     return cut_events(log, run, times, object_name=object_name,
                       nominal_object=scenario.object, pre_transition_s=PRE_TRANSITION_S,
-                      note=scenario_to_yaml(scenario),
+                      note=scenario_to_yaml(scenario), quiet_ra_s=QUIET_APPROACH_S,
                       advice=lambda transition: missing_event_advice(transition, log,
                                                                      scenario))
