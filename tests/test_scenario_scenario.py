@@ -83,3 +83,11 @@ def test_capacitive_taxels_at_each_decimation_load_at_its_frame_rate(decimation,
         "tactile.transducer=capacitive", f"tactile.capacitive.decimation={decimation}",
         f"tactile.sample_rate_hz={rate_hz}"])
     assert scenario.tactile.capacitive.decimation == decimation
+
+
+def test_capacitive_taxels_at_a_rate_the_ad7147_cannot_give_need_the_idealised_readout():
+    at_1khz = ["tactile.transducer=capacitive", "tactile.sample_rate_hz=1000.0"]
+    with pytest.raises(ConfigError, match="tactile.sample_rate_hz.*ad7147_timing=false"):
+        LoadScenario(overrides=at_1khz)
+    idealised = LoadScenario(overrides=at_1khz + ["tactile.capacitive.ad7147_timing=false"])
+    assert idealised.tactile.sample_rate_hz == 1000.0

@@ -272,12 +272,13 @@ def _check_transducers(scenario: Scenario, source: str) -> None:
     require(capacitive.decimation in AD7147_DECIMATIONS, source, "tactile.capacitive.decimation",
             f"must be one of {', '.join(map(str, AD7147_DECIMATIONS))} (the AD7147's)",
             capacitive.decimation)
-    if scenario.tactile.transducer == "capacitive":
+    if scenario.tactile.transducer == "capacitive" and capacitive.ad7147_timing:
         frame = ad7147_frame_rate_hz(capacitive.decimation)
         require(frame_rate_matches(scenario.tactile.sample_rate_hz, capacitive.decimation),
                 source, "tactile.sample_rate_hz", f"must be the AD7147's frame rate at "
                 f"tactile.capacitive.decimation {capacitive.decimation}, {frame:.1f} Hz (12 "
-                f"stages of {1e3 / (12 * frame):.3f} ms): set both together",
+                f"stages of {1e3 / (12 * frame):.3f} ms): set both together (or "
+                f"tactile.capacitive.ad7147_timing=false for an idealised readout)",
                 scenario.tactile.sample_rate_hz)
     _check_film_electronics(scenario.vibration, source)
 

@@ -101,6 +101,10 @@ class CapacitiveTaxelConfig:
     decimation: int = bounded(64, low=64, high=256,
                               why="the AD7147's decimations are 64, 128 and 256, AD7147 data "
                                   "sheet")
+    # False: a counterfactual readout of the same taxels at any tactile.sample_rate_hz (the
+    # transfer study's one-factor worlds take the capacitive taxels at 1 kHz); the frame
+    # rate is then not held to the decimation's.
+    ad7147_timing: bool = True
     # The elastomer stops compressing at this fraction of its thickness (the gap cannot
     # close: the fabric and the compressed rubber take the load). An assumption: pad
     # pressures of the grasps here compress it by 2-30 %, far from this.
