@@ -145,7 +145,7 @@ SCENES = {
 
 # Scenes found on the ideal arm (its joints on the desired state, no latency) that the JACO2's
 # velocity command path changes: the tracker's position correction winds the set-point up
-# against a contact (with arm.tracker.kp near 0 both play out as before). The bracket scene
+# against a contact (with the tracker's kp at 0 the strike scene ends Done). The bracket scene
 # now meets the box in the approach and Re-Reaches on other rules; the strike scene strikes
 # 2.2-3.0 N again after each Re-Reach and fails after four. The rules are to be re-derived on
 # the faithful robot; until then these record the regression and fail once it is gone.
