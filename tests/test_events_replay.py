@@ -59,8 +59,10 @@ def test_each_transition_fires_once_near_its_physical_event(
 
 def settled_grip_earliest(physical, events) -> float:
     """The earliest time [s] Load-Lift can match. Its memorized window is the end of the
-    Load phase, at the scripted lift start: a settled grip (a flat SA, a quiet RA), which a
-    live window matches once it holds enough of the grip, before the scripted lift. By
+    Load phase, at the scripted lift start: a settled grip (a flat SA; RA the squeeze's
+    decaying tail, or quiet on the 50 mm cylinder), which a live window matches once it
+    holds enough of the grip, before the scripted lift (its RA, the contact's spike and
+    decay, passes on the box at 0.79, on the 25 mm cylinder at 0.98). By
     Cauchy-Schwarz a window of N samples with m non-zero ones scores at most sqrt(m / N)
     against a flat template, so SA passes its threshold tau only with m >= ceil(tau^2 N)
     samples from the first contact on (44 of 54 at 0.9 and 108 Hz: 0.40 s after it). The
