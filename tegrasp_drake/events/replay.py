@@ -20,7 +20,7 @@ from pydrake.systems.primitives import (ConstantVectorSource, LogVectorOutput, T
                                          VectorLogSink)
 from pydrake.trajectories import PiecewisePolynomial
 
-from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.rig.channels import RA_CHANNELS, TAXELS_PER_PAD
 from tegrasp_drake.events.event_matcher import (
     EventMatcher, EventMatcherConfig, add_event_matcher)
 from tegrasp_drake.events.event_sequencer import EventSequencer
@@ -73,6 +73,10 @@ class EventReplay:
         windows, (2, N_sa) and (2, N_ra), at the tick that matched it (sequence replays
         only): the windows it scored.
     scores_at_match: {transition: the matcher's scores at that tick}.
+    ra_peaks_at_match: {transition: each RA channel's largest |value| in its window, not
+        normalised, at that tick (what the quiet-template rule compares with the floor)}.
+    ra_floor_at_match: {transition: the RA noise floor the matcher read at that tick (its
+        `ra_floor` input; +inf per channel for a matcher without one)}.
     """
     transitions: tuple[str, ...]
     times: np.ndarray
@@ -82,6 +86,8 @@ class EventReplay:
     fire_times: dict[str, float | None]
     windows_at_match: dict[str, tuple[np.ndarray, np.ndarray]]
     scores_at_match: dict[str, np.ndarray]
+    ra_peaks_at_match: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    ra_floor_at_match: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
 
     def match_rises(self) -> np.ndarray:
         """Times [s] of the rows where match turns on (from off, or in the first row)."""
@@ -146,7 +152,10 @@ def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
     match_port, scores_port = matcher.GetOutputPort("match"), matcher.GetOutputPort("scores")
     expected_port = matcher.GetInputPort("expected_event")
     window_ports = {kind: matcher.GetOutputPort(f"{kind}_window") for kind in ("sa", "ra")}
-    windows_at_match, scores_at_match = {}, {}
+    windows_at_match, scores_at_match, ra_peaks_at_match, ra_floor_at_match = {}, {}, {}, {}
+    ra_window = next(window for window in matcher.rate_windows
+                     if RA_CHANNELS[0] in window.group.channels)
+    ra_rows = [ra_window.group.channels.index(c) for c in RA_CHANNELS]
 
     def capture_windows_at_match(context):
         # Called after each step, with the outputs of the tick before the step's end.
@@ -156,6 +165,14 @@ def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
                 port.Eval(matcher_context).reshape(2, matcher.window_length(kind))
                 for kind, port in window_ports.items())
             scores_at_match[transition] = scores_port.Eval(matcher_context).copy()
+            raw = ra_window.layout.current(
+                matcher_context.get_discrete_state(ra_window.state).value())
+            ra_peaks_at_match[transition] = np.abs(raw[ra_rows]).max(axis=1)
+            # The floor is fixed once its quiet period is over (ra_noise_floor.py), so its
+            # value after this tick's update is the one the matcher read at it.
+            ra_floor_at_match[transition] = (
+                matcher.GetInputPort("ra_floor").Eval(matcher_context).copy()
+                if matcher.has_ra_floor else np.full(len(RA_CHANNELS), np.inf))
         return EventStatus.Succeeded()
 
     simulator.set_monitor(capture_windows_at_match)
@@ -169,7 +186,8 @@ def _replay(trial: TactileTrial, events: Mapping[str, MemorizedEvent], *,
         transitions=matcher.transitions, times=logs["match"].sample_times().copy(),
         scores=logs["scores"].data().T.copy(), match=logs["match"].data()[0].copy(),
         expected_event=logs["expected_event"].data()[0].copy(), fire_times=fire_times,
-        windows_at_match=windows_at_match, scores_at_match=scores_at_match)
+        windows_at_match=windows_at_match, scores_at_match=scores_at_match,
+        ra_peaks_at_match=ra_peaks_at_match, ra_floor_at_match=ra_floor_at_match)
 
 
 def replay_events_in_sequence(
