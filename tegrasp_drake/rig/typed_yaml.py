@@ -13,7 +13,8 @@ Every YAML file the project reads as configuration goes through here: scenarios
 - `apply_override` applies a `--set key.sub=value` assignment to the parsed data.
 - `check_fields` walks the data against a dataclass schema and names the first field that is
   unknown, missing (a dataclass field without a default), of the wrong type or a number that
-  is not finite (`.nan`, `.inf`: no setting means "not a number") by its dotted path, e.g.
+  is not finite (`.nan`, `.inf`: no setting means "not a number") or null (`~`: only a field
+  left out takes its default) by its dotted path, e.g.
   `object.mass` or `user_objects.mug.size`.
 - `require` checks one value of a loaded config (a positive timeout, a threshold in range).
 - `load_typed` checks the data, then builds the schema with Drake's `yaml_load_typed`.
@@ -257,7 +258,10 @@ def _check_value(value, hint, path: str, source: str) -> None:
     if origin in (typing.Union, types.UnionType):
         members = [m for m in typing.get_args(hint) if m is not type(None)]
         if value is None and len(members) < len(typing.get_args(hint)):
-            return  # an optional field left empty
+            # An optional field's None means "not set" (its default, e.g. the built-in
+            # object's mass); a null the user writes is refused rather than read as that.
+            raise ConfigError(f"{source}: field '{path}' is null: give a value, or leave "
+                              "the field out to take its default")
         if len(members) == 1:
             _check_value(value, members[0], path, source)
         else:
