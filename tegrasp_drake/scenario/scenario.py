@@ -27,7 +27,8 @@ from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardwa
 from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
 from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.ranges import Choice, Range, bounded, check_ranges, declare_ranges
+from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, declare_ranges,
+                                      shorten)
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
@@ -455,7 +456,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     for assignment in overrides:
         apply_override(data, assignment)
     # A bad value given with --set is named as such, not as the file's.
-    source = f"{path} [{name}]" + "".join(f" --set {a}" for a in overrides)
+    source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
     if controller is not None:
         data.setdefault("controller", {})["name"] = controller
     try:
@@ -472,6 +473,12 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                           f"controller.name={owners[0]} (or its YAML tag "
                           f"controller: !{type(controller_named(owners[0])).__name__} {{...}})")
     return validate(load_typed(data, Scenario, source), source, allow_long=allow_long)
+
+
+def _echo(assignment: str) -> str:
+    """A --set assignment as an error's source names it, its value cut (ranges.shorten)."""
+    key, equals, value = assignment.partition("=")
+    return shorten(key) + equals + shorten(value)
 
 
 @public_api
