@@ -171,6 +171,29 @@ def test_any_set_assignment_loads_or_is_one_config_error(key, value):
         assert "\n" not in str(error)
 
 
+NUMBER_PATHS = ["object.mass", "object.friction", "grasp.hold_s", "grasp.grip_force",
+                "grasp.grasp_height", "random_seed", "vibration.highpass_cutoff_hz",
+                "controller.slip_band_hz", "plant_config.stiction_tolerance",
+                "simulator_config.start_time"]
+
+
+@fuzz(60)
+@given(key=st.sampled_from(NUMBER_PATHS), value=SCALARS)
+def test_a_set_number_runs_as_given_or_is_one_config_error(key, value):
+    """A scenario never runs with a value other than the one given: a null, text or a number
+    out of range is refused, never replaced by a default."""
+    text = yaml.safe_dump(value, default_flow_style=True).removesuffix("\n...\n").strip()
+    try:
+        scenario = LoadScenario(name="box", overrides=[f"{key}={text}"])
+    except ConfigError as error:
+        assert "\n" not in str(error)
+        return
+    section, _, name = key.rpartition(".")
+    loaded = getattr(getattr(scenario, section) if section else scenario, name)
+    assert isinstance(value, (int, float)) and not isinstance(value, bool)
+    assert loaded == value
+
+
 DRAKE_FIELD_PATHS = [f"{section}.{name}" for section, cls in (
     ("plant_config", MultibodyPlantConfig), ("simulator_config", SimulatorConfig))
     for name in declared_ranges(cls)]
