@@ -30,6 +30,9 @@ import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.analysis import ApplySimulatorConfig, Simulator, SimulatorConfig
+from pydrake.systems.framework import DiagramBuilder
 
 from test_bad_input import _trial_log
 from tegrasp_drake.events.event_file import MemorizedEventError
@@ -39,6 +42,7 @@ from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 from tegrasp_drake.hardware.config import HardwareStationConfig, LoadHardwareConfig
 from tegrasp_drake.hardware.myrio.tactile_frame import (MAX_FRAME_SIZE, TactileFrameDecoder,
                                                         encode_frame)
+from tegrasp_drake.rig.ranges import declared_ranges
 from tegrasp_drake.rig.typed_yaml import ConfigError, apply_override
 from tegrasp_drake.robotiq import registers
 from tegrasp_drake.runs.hardware_log_reader import (LCM_SYNC, MESSAGE_TYPES, RunLogError,
@@ -165,6 +169,53 @@ def test_any_set_assignment_loads_or_is_one_config_error(key, value):
         assert isinstance(LoadScenario(name="box", overrides=[f"{key}={value}"]), Scenario)
     except ConfigError as error:
         assert "\n" not in str(error)
+
+
+NUMBER_PATHS = ["object.mass", "object.friction", "grasp.hold_s", "grasp.grip_force",
+                "grasp.grasp_height", "random_seed", "vibration.highpass_cutoff_hz",
+                "controller.slip_band_hz", "plant_config.stiction_tolerance",
+                "simulator_config.start_time"]
+
+
+@fuzz(60)
+@given(key=st.sampled_from(NUMBER_PATHS), value=SCALARS)
+def test_a_set_number_runs_as_given_or_is_one_config_error(key, value):
+    """A scenario never runs with a value other than the one given: a null, text or a number
+    out of range is refused, never replaced by a default."""
+    text = yaml.safe_dump(value, default_flow_style=True).removesuffix("\n...\n").strip()
+    try:
+        scenario = LoadScenario(name="box", overrides=[f"{key}={text}"])
+    except ConfigError as error:
+        assert "\n" not in str(error)
+        return
+    section, _, name = key.rpartition(".")
+    loaded = getattr(getattr(scenario, section) if section else scenario, name)
+    assert isinstance(value, (int, float)) and not isinstance(value, bool)
+    assert loaded == value
+
+
+DRAKE_FIELD_PATHS = [f"{section}.{name}" for section, cls in (
+    ("plant_config", MultibodyPlantConfig), ("simulator_config", SimulatorConfig))
+    for name in declared_ranges(cls)]
+
+
+@fuzz(80)
+@given(key=st.sampled_from(DRAKE_FIELD_PATHS),
+       value=st.text(max_size=20) | YAML_VALUES.map(lambda v: json.dumps(v)[:60])
+       | st.floats(width=32).map(repr))
+def test_any_set_of_a_drake_setting_builds_or_is_one_config_error(key, value):
+    """Drake's own config sections: a --set of any value for any of their fields gives a
+    scenario Drake accepts (a plant and a simulator configured from it, no abort), or one
+    ConfigError naming the field."""
+    try:
+        scenario = LoadScenario(name="box", overrides=[f"{key}={value}"])
+    except ConfigError as error:
+        assert "\n" not in str(error)
+        assert f"'{key}" in str(error) or key.split(".")[0] in str(error)
+        return
+    builder = DiagramBuilder()
+    AddMultibodyPlant(scenario.plant_config, builder)[0].Finalize()
+    ApplySimulatorConfig(scenario.simulator_config, Simulator(builder.Build()))
 
 
 @fuzz(40)

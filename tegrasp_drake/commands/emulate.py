@@ -24,7 +24,8 @@ from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Emulators,
                                               FaultInjection)
-from tegrasp_drake.hardware.config import DEFAULT_LCM_URL
+from tegrasp_drake.hardware.config import DEFAULT_LCM_URL, lcm_url_problem
+from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
 from tegrasp_drake.rig.files import folder_problem
@@ -132,9 +133,14 @@ def run(args) -> int:
             load_tactile_recording(args.trial)  # checked before the process is raised
         except TactileRecordingError as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
+    sync = args.sync or ("follow" if args.device == "all" else "none")
+    if "jaco" in devices or sync == "follow":  # they open --lcm-url
+        problem = lcm_url_problem(args.lcm_url)  # the check `tegrasp hardware` makes
+        if problem:
+            raise SystemExit(f"tegrasp: error: --lcm-url {shorten(repr(args.lcm_url))} "
+                             f"{problem}")
     # Every argument is checked above; only now is the whole process raised.
     out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
-    sync = args.sync or ("follow" if args.device == "all" else "none")
     emulators = Emulators(lcm_url=args.lcm_url, out=out)
     for signal_number in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signal_number, lambda *_: emulators.stop.set())

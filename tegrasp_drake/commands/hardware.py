@@ -19,7 +19,7 @@ import sys
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
-from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
+from tegrasp_drake.rig.files import file_problem, folder_problem, interruptions_deferred
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   quiet_modbus_library, scenario_from_arguments)
@@ -145,6 +145,11 @@ def run(args) -> int:
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
     result_path = result_path_beside_log(log)
     for taken in (pathlib.Path(log), result_path):
+        # --overwrite replaces a file, never a folder (of the user's files) or a device
+        kind = file_problem(taken) if taken.exists() else None
+        if kind:
+            raise SystemExit(f"tegrasp: error: --log {log}: {taken} {kind.split(';')[0]}; "
+                             "--log names the LCM log file to write, e.g. out/run.lcmlog")
         if taken.exists() and not args.overwrite:
             raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "

@@ -21,17 +21,20 @@ together never share one.
 """
 
 import contextlib
+import fcntl
 import json
 import os
 import pathlib
 import shutil
 import tempfile
 
+from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions_deferred,
                                      write_atomically)
 
 RESULT_FILE = "result.json"
 RUN_FILES = (RESULT_FILE, "trial.npz")  # a folder with any of these holds a run
+
 
 
 class RunFolderError(Exception):
@@ -55,7 +58,10 @@ def claim_numbered_folder(default) -> pathlib.Path:
 
 
 def check_run_folder(folder) -> None:
-    """RunFolderError unless `folder` is, or can be made as, a folder this user can write."""
+    """RunFolderError unless `folder` is, or can be made as, a folder this user can write
+    (an empty name is refused: it would be the current folder)."""
+    if not str(folder).strip():
+        raise RunFolderError(f"--out {str(folder)!r} is empty; give a folder you can write")
     problem = folder_problem(folder)
     if problem:
         raise RunFolderError(f"--out {folder}: {problem}; give a folder you can write")
@@ -66,8 +72,8 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 
     Raises RunFolderError when `out` holds a run and `overwrite` is false, or cannot be
     written. The folder is created; nothing in it is removed (commit_run replaces)."""
+    check_run_folder(out if out is not None else default)
     folder = pathlib.Path(out if out is not None else default)
-    check_run_folder(folder)
     if out is not None and holds_run(folder) and not overwrite:
         present = ", ".join(name for name in RUN_FILES if (folder / name).exists())
         raise RunFolderError(f"{folder} already holds a run ({present}); give another "
@@ -85,15 +91,53 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 @contextlib.contextmanager
 def staged_run(folder):
     """A hidden staging folder inside the run folder for the run's files (removed, with
-    whatever it holds, when the block ends)."""
+    whatever it holds, when the block ends), with the run folder claimed for the block: an
+    exclusive lock on the folder itself (flock, released by the kernel when the process ends,
+    however it ends), so that a second run into the same folder is refused at once instead
+    of both running and the later one's files replacing the earlier's."""
+    with claimed_run_folder(folder):
+        try:
+            stage = pathlib.Path(tempfile.mkdtemp(prefix=".staging-", dir=folder))
+        except OSError as e:
+            raise RunFolderError(f"--out {folder}: cannot write there: "
+                                 f"{e.strerror or e}") from None
+        try:
+            yield stage
+        finally:
+            shutil.rmtree(stage, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def claimed_run_folder(folder):
+    """Holds an exclusive flock on `folder` for the block; RunFolderError at once if another
+    process holds it (a run writing there now)."""
     try:
-        stage = pathlib.Path(tempfile.mkdtemp(prefix=".staging-", dir=folder))
+        descriptor = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
     except OSError as e:
-        raise RunFolderError(f"--out {folder}: cannot write there: {e.strerror or e}") from None
+        raise RunFolderError(f"--out {folder}: cannot open it: {e.strerror or e}") from None
     try:
-        yield stage
+        try:
+            fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise RunFolderError(f"--out {folder}: another run is writing there now; wait "
+                                 "for it to end, or give another --out") from None
+        yield
     finally:
-        shutil.rmtree(stage, ignore_errors=True)
+        os.close(descriptor)  # releases the lock
+
+
+def own_file_problem(path, folder) -> str | None:
+    """Why an output path given beside a run (--html) may not be written: it names one of
+    the files the run writes into `folder` (its result, its log, its figures), which one
+    would overwrite the other. None if it does not."""
+    path, folder = pathlib.Path(path), pathlib.Path(folder)
+    if path.resolve().parent != folder.resolve():
+        return None
+    stem = path.name.split(".", 1)[0]
+    if path.name in RUN_FILES or stem in TRIAL_FIGURE_STEMS or path.name.startswith(".staging-"):
+        return (f"is one of the run's own files in {folder} ({path.name}); give another "
+                "name, e.g. replay.html")
+    return None
 
 
 def commit_run(stage, folder, result: dict) -> dict:

@@ -29,6 +29,7 @@ from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.files import folder_problem
+from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.sweep.runner import (
     SweepError,
     benchmark_text,
@@ -155,6 +156,42 @@ def resolve_trial_function(text: str):
     return function
 
 
+# The transports a Dask scheduler address may name (distributed's comm registry).
+DASK_PROTOCOLS = ("tcp", "tls", "inproc", "ucx", "ws", "wss")
+
+
+def scheduler_problem(address: str) -> str | None:
+    """Why `address` is not a Dask scheduler address PROTOCOL://HOST:PORT, or None."""
+    import urllib.parse
+    if not address.strip():
+        return "is empty"
+    try:
+        parts = urllib.parse.urlsplit(address)
+        port = parts.port
+    except ValueError as e:
+        return f"is not an address ({e})"
+    if parts.scheme not in DASK_PROTOCOLS or not parts.hostname or (
+            parts.scheme != "inproc" and port is None):
+        return (f"is not a scheduler address PROTOCOL://HOST:PORT (PROTOCOL one of "
+                f"{', '.join(DASK_PROTOCOLS)}), e.g. tcp://127.0.0.1:8786")
+    return None
+
+
+def check_runner_arguments(args) -> None:
+    """SweepError for a bad --workers (check_workers), --scheduler or --out, before any
+    trial runs."""
+    check_workers(args)
+    if args.scheduler is not None:
+        problem = scheduler_problem(args.scheduler)
+        if problem:
+            raise SweepError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
+    if not str(args.out).strip():
+        raise SweepError(f"--out {args.out!r} is empty; give a folder you can write")
+    problem = folder_problem(args.out)
+    if problem:
+        raise SweepError(f"--out {args.out}: {problem}; give a folder you can write")
+
+
 def check_workers(args) -> None:
     """SweepError unless --workers is at least 1 and, without --oversubscribe, at most the
     cores this process may run on."""
@@ -172,7 +209,7 @@ def check_workers(args) -> None:
 
 def run(args) -> int:
     try:
-        check_workers(args)
+        check_runner_arguments(args)
         if args.benchmark and args.scheduler:
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
         spec = spec_from_arguments(args)

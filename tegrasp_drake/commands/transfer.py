@@ -18,9 +18,8 @@ import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          check_workers, resolve_trial_function)
+                                          check_runner_arguments, resolve_trial_function)
 from tegrasp_drake.sweep.runner import SweepError, summary_text
-from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 DEFAULT_OUT = "results/transfer"
@@ -56,10 +55,7 @@ def run(args) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
     from tegrasp_drake.transfer.report import write_transfer_reports
     try:
-        check_workers(args)
-        problem = folder_problem(args.out)
-        if problem:
-            raise SweepError(f"--out {args.out}: {problem}; give a folder you can write")
+        check_runner_arguments(args)
         spec = LoadTransferSpec(args.spec)
         trial_function = resolve_trial_function(args.trial_function)
         summaries = run_transfer(spec, trial_function, args.out, workers=args.workers,

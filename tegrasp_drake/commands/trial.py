@@ -9,7 +9,7 @@ import json
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RunFolderError, choose_run_folder, commit_run,
-                                               staged_run)
+                                               own_file_problem, staged_run)
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
@@ -91,6 +91,9 @@ def run(args) -> int:
     events = controller_events(scenario, args.events)  # fails before anything is written
     corrective = corrective_events(scenario, args.events)
     html = check_html_path(args)
+    problem = html and own_file_problem(html, args.out or args.default_out)
+    if problem:
+        raise SystemExit(f"tegrasp: error: --html {html} {problem}")
     try:
         out = choose_run_folder(args.out, default=args.default_out,
                                 replace_default=args.replace_default_out,

@@ -298,10 +298,10 @@ class GraspControllerConfig:
     # no false trigger on the 7 held-out spans (5 normal lifts); with the earlier 1.3 s
     # Load phase every pair false-triggered on normal lifts.
     lift_load_event_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.85],
-                                                      low=-1.0, high=1.0,
+                                                      low=-1.0, high=1.0, length=2,
                                                       why="Eq. 3 scores are correlations")
     hold_avoid_event_thresholds: list[float] = bounded(default_factory=lambda: [-0.05, 0.55],
-                                                       low=-1.0, high=1.0,
+                                                       low=-1.0, high=1.0, length=2,
                                                        why="Eq. 3 scores are correlations")
 
     def corrective_event_thresholds(self) -> dict[str, tuple[float, float]]:

@@ -58,7 +58,7 @@ class GraspScriptConfig:
     # wrist nears its singularity)
     retract_distance: float = bounded(0.10, low=0.0, high=0.3, unit="m")
     place_offset: list[float] = bounded(default_factory=lambda: [0.0, 0.0], low=-0.2, high=0.2,
-                                        unit="m")
+                                        unit="m", length=2)
 
 
 @dataclasses.dataclass(frozen=True)

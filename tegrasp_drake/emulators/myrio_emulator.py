@@ -46,6 +46,7 @@ from tegrasp_drake.rig.npz_headers import MAX_TRIAL_LOG_BYTES, checked_npz_array
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
+from tegrasp_drake.scenario.trial_log_file import nonfinite_signals
 from tegrasp_drake.emulators.null_modem import open_raw_pty
 
 MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 kHz)
@@ -80,13 +81,17 @@ def load_tactile_recording(path) -> TactileRecording:
     needed."""
     try:
         arrays = checked_npz_arrays(path, ("t_sa", "taxels", "t_ra", "pad_acceleration"),
-                                    max_bytes=MAX_TRIAL_LOG_BYTES)
+                                    optional=("channels",), max_bytes=MAX_TRIAL_LOG_BYTES)
         t_sa, taxels = arrays["t_sa"], arrays["taxels"]
         t_ra, acceleration = arrays["t_ra"], arrays["pad_acceleration"]
     except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:
         raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
                                     f"and pad_acceleration (or it is truncated or corrupt): "
                                     f"{type(e).__name__}: {e}") from None
+    problem = nonfinite_signals(arrays)  # as every reader of a trial log refuses them
+    if problem:
+        raise TactileRecordingError(f"'{path}': {problem}; it cannot be streamed (run the "
+                                    "trial again to remake it)")
     for times, values, names in ((t_sa, taxels, "t_sa and taxels"),
                                  (t_ra, acceleration, "t_ra and pad_acceleration")):
         if (times.ndim != 1 or len(times) < 2 or values.ndim != 2

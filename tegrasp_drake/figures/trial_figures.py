@@ -12,19 +12,23 @@ from tegrasp_drake.figures.trial_annotations import (logged_scenario, logged_tra
 from tegrasp_drake.scenario.scenario import controller_in_force
 
 
+# The figures' file stems (STEM.FORMAT in the run folder).
+TRIAL_FIGURE_STEMS = ("states", "signals", "contact_ra", "avoid")
+
+
 def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, str]:
     """Writes the trial's figures into `folder` as states/signals/avoid.<figure_format>;
     returns their paths as the trial result's fields: figure (Fig. 9), signals_figure
     (Fig. 5a-b), contact_ra_figure (only when a pad touched) and avoid_figure (Fig. 10,
     only after a hit in Hold)."""
-    figures = {"figure": plot_trial_states(log, figure_path(folder, "states", figure_format)),
-               "signals_figure": plot_trial_signals(log, figure_path(folder, "signals",
-                                                                     figure_format))}
-    contact_ra = plot_contact_ra(log, figure_path(folder, "contact_ra", figure_format))
+    states, signals, contact_ra, avoid = (figure_path(folder, stem, figure_format)
+                                          for stem in TRIAL_FIGURE_STEMS)
+    figures = {"figure": plot_trial_states(log, states),
+               "signals_figure": plot_trial_signals(log, signals)}
+    contact_ra = plot_contact_ra(log, contact_ra)
     if contact_ra is not None:
         figures["contact_ra_figure"] = contact_ra
     if any(t.to_mode == Mode.AVOID for t in logged_transitions(log)):
         figures["avoid_figure"] = plot_avoid_reaction(
-            log, figure_path(folder, "avoid", figure_format),
-            hit_threshold=controller_in_force(logged_scenario(log)).hit_ra_mps2)
+            log, avoid, hit_threshold=controller_in_force(logged_scenario(log)).hit_ra_mps2)
     return figures

@@ -6,8 +6,9 @@
   (an object's event files and their index), so that it is all old or all new.
 - claim_folder: a fresh folder made with one mkdir, so that two runs never take the same.
 - folder_problem: what stops a folder from being written, checked before any long work.
-- read_bounded: a file's bytes, reading at most a limit plus one byte (a device, a FIFO or a
-  huge file is refused without being read to its end).
+- read_bounded: a file's bytes, reading at most a limit plus one byte (a huge file is
+  refused without being read to its end; a FIFO, socket or device before it is read).
+- file_problem: why a path is not a file to read ("does not exist", "is a named pipe"...).
 - termination_interrupts: SIGTERM and SIGHUP end the process as Ctrl-C does, so that the
   same `finally` blocks remove a run's staging files.
 
@@ -19,6 +20,7 @@ import errno
 import os
 import pathlib
 import signal
+import stat
 import tempfile
 import threading
 
@@ -35,12 +37,13 @@ def _honour_umask(descriptor: int) -> None:
     os.fchmod(descriptor, 0o666 & ~_umask())
 
 
-def staged_file(path, data: str | bytes) -> pathlib.Path:
-    """A temporary file beside `path` holding `data` (text as UTF-8), flushed to disk, for
-    a later os.replace onto `path`; the caller removes it if that never comes."""
+def staged_file(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Path:
+    """A temporary file beside `path` (named .NAME.XXXX`suffix`) holding `data` (text as
+    UTF-8), flushed to disk, for a later os.replace onto `path`; the caller removes it if
+    that never comes."""
     path = pathlib.Path(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp",
+    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix,
                                              dir=path.parent)
     try:
         _honour_umask(descriptor)
@@ -55,10 +58,11 @@ def staged_file(path, data: str | bytes) -> pathlib.Path:
     return pathlib.Path(temporary)
 
 
-def write_atomically(path, data: str | bytes) -> pathlib.Path:
-    """Writes `data` (text as UTF-8) to `path` through a temporary file in its folder and a
-    rename; the folder must exist. OSError (the target untouched) when it cannot."""
-    temporary = staged_file(path, data)
+def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Path:
+    """Writes `data` (text as UTF-8) to `path` through a temporary file in its folder (its
+    name ending in `suffix`) and a rename; the folder must exist. OSError (the target
+    untouched) when it cannot."""
+    temporary = staged_file(path, data, suffix=suffix)
     try:
         os.replace(temporary, path)
     except BaseException:
@@ -150,11 +154,64 @@ class InputTooLargeError(OSError):
         self.path, self.limit = str(path), limit
 
 
+class NotAFileError(OSError):
+    """A path names something other than a regular file (a folder, a FIFO, a socket, a
+    device); `strerror` says which, in words that follow the path."""
+
+    def __init__(self, path, words: str):
+        super().__init__(errno.EINVAL, words)
+        self.path = str(path)
+
+
+# Devices a reader may be given, as documented in docs/user-guide.md: /dev/null reads empty,
+# /dev/zero is refused by the size bound of its reader.
+READABLE_DEVICES = ("/dev/null", "/dev/zero")
+
+
+def _kind_problem(mode: int, path) -> str | None:
+    """Why a file of stat mode `mode` at `path` is not one to read (None: it is)."""
+    if stat.S_ISREG(mode):
+        return None
+    if stat.S_ISDIR(mode):
+        return "is a folder, not a file; give a file"
+    if stat.S_ISFIFO(mode):
+        return "is a named pipe (FIFO), not a file; give a regular file"
+    if stat.S_ISSOCK(mode):
+        return "is a socket, not a file; give a regular file"
+    if stat.S_ISCHR(mode) and os.path.realpath(path) in READABLE_DEVICES:
+        return None
+    return "is a device, not a file; give a regular file"
+
+
+def file_problem(path) -> str | None:
+    """Why `path` cannot be read as a file, in words that follow it ("does not exist", "is
+    a named pipe (FIFO), not a file; ..."), or None. Nothing is opened."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        return "does not exist"
+    except OSError as e:
+        return f"cannot be read: {e.strerror or e}"
+    return _kind_problem(mode, path)
+
+
 def read_bounded(path, limit: int) -> bytes:
     """The bytes of the file at `path`, reading at most `limit` + 1 of them: InputTooLargeError
-    (an OSError) past `limit`, whatever the file is (/dev/zero, a FIFO, a 10 GB log)."""
-    with open(path, "rb") as stream:
-        data = stream.read(limit + 1)
+    (an OSError) past `limit` (a 10 GB log, /dev/zero). NotAFileError (an OSError) for a
+    folder, FIFO, socket or device other than READABLE_DEVICES, found without blocking: the
+    file is opened non-blocking and checked before a byte is read."""
+    descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        problem = _kind_problem(os.fstat(descriptor).st_mode, path)
+        if problem:
+            raise NotAFileError(path, problem)
+        os.set_blocking(descriptor, True)
+        with os.fdopen(descriptor, "rb") as stream:
+            descriptor = None
+            data = stream.read(limit + 1)
+    finally:
+        if descriptor is not None:
+            os.close(descriptor)
     if len(data) > limit:
         raise InputTooLargeError(path, limit)
     return data

@@ -43,7 +43,7 @@ class JacoVelocityTrackerConfig:
                         below="must be positive [1/s] (plausible 1-20)")
     max_joint_speed: list[float] = bounded(
         default_factory=lambda: [36 * _DEG] * 3 + [48 * _DEG] * 3, low=0.0, low_open=True,
-        high=48 * _DEG, unit="rad/s",
+        high=48 * _DEG, unit="rad/s", length=6,
         why="the JACO2's joint speed limits, 36-48 deg/s, Kinova JACO2 specifications")
     continuous_joints: list[bool] = dataclasses.field(
         default_factory=lambda: [True, False, False, True, True, True])

@@ -57,7 +57,8 @@ class ObjectConfig:
                                      below="must be positive (its Coulomb friction coefficient, "
                                            "e.g. 0.5)")
     file: str = ""
-    color: list[float] = bounded(default_factory=lambda: [0.9, 0.5, 0.1, 1.0], low=0.0, high=1.0,
+    # [r, g, b, a] in [0, 1]; empty: the built-in object's colour, or DEFAULT_COLOR
+    color: list[float] = bounded(default_factory=list, low=0.0, high=1.0,
                                  why="RGBA components")
 
     def width_along_stroke(self) -> float:
@@ -67,6 +68,8 @@ class ObjectConfig:
     def height(self) -> float:
         return self.size[1] if self.shape == "cylinder" else self.size[2]
 
+
+DEFAULT_COLOR = [0.9, 0.5, 0.1, 1.0]  # your own object's, unless it gives one
 
 BUILTIN_OBJECTS = {
     "box": ObjectConfig(name="box", shape="box", size=[0.045, 0.045, 0.110], mass=0.15,

@@ -40,6 +40,7 @@ class Range:
     low_open: bool = False
     high_open: bool = False
     below: str | None = None
+    length: int | None = None  # a list field: how many elements it holds
 
     def contains(self, value) -> bool:
         if self.low is not None and (value < self.low or (self.low_open and value == self.low)):
@@ -77,11 +78,41 @@ def _number(value) -> str:
 
 def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
             why: str = "", low_open: bool = False, high_open: bool = False,
-            below: str | None = None, default_factory=dataclasses.MISSING):
+            below: str | None = None, default_factory=dataclasses.MISSING,
+            length: int | None = None):
     """A dataclass field with the declared Range (module docstring); for a list field the
-    range is each element's."""
+    range is each element's, and `length` how many elements it must hold."""
     return dataclasses.field(default=default, default_factory=default_factory, metadata={
-        _KEY: Range(low, high, unit, why, low_open, high_open, below)})
+        _KEY: Range(low, high, unit, why, low_open, high_open, below, length)})
+
+
+@dataclasses.dataclass(frozen=True)
+class Choice:
+    """A text setting's allowed values; `why` says whose they are."""
+    names: tuple[str, ...]
+    why: str = ""
+
+    def words(self) -> str:
+        why = f" ({self.why})" if self.why else ""
+        return f"must be one of {', '.join(repr(n) for n in self.names)}{why}"
+
+
+# Declared ranges and choices of config classes that are not this package's dataclasses
+# (Drake's MultibodyPlantConfig, SimulatorConfig): class -> {field name: Range | Choice}.
+# A module that holds such a class in its config declares the table with declare_ranges.
+_FOREIGN: dict[type, dict] = {}
+
+
+def declare_ranges(cls: type, table: dict) -> None:
+    """Declares the Range (numbers) or Choice (text) of fields of `cls`, a config class that
+    cannot carry `bounded` metadata (Drake's); check_ranges then checks them wherever an
+    instance is held."""
+    _FOREIGN[cls] = dict(table)
+
+
+def declared_ranges(cls: type) -> dict:
+    """The table declare_ranges holds for `cls` ({} if none)."""
+    return dict(_FOREIGN.get(cls, {}))
 
 
 def range_of(field: dataclasses.Field) -> Range | None:
@@ -104,7 +135,9 @@ def _values(value, path: str):
 def check_ranges(config, source: str, where: str = "") -> None:
     """ConfigError naming the first field of `config` (a dataclass instance, and everything
     it holds) whose value is not a finite number inside its declared Range."""
-    from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
+    if type(config) in _FOREIGN:
+        _check_foreign(config, source, where)
+        return
     if not dataclasses.is_dataclass(config) or isinstance(config, type):
         return
     for field in dataclasses.fields(config):
@@ -112,27 +145,60 @@ def check_ranges(config, source: str, where: str = "") -> None:
         path = f"{where}.{field.name}" if where else field.name
         declared = range_of(field)
         if declared is not None and value is not None:
-            for item_path, item in _values(value, path):
-                if item is None:
-                    continue
-                if not _is_number(item) or not math.isfinite(item):
-                    raise ConfigError(f"{source}: field '{item_path}' must be a finite number, "
-                                      f"got {type(item).__name__} {item!r}")
-                if not declared.contains(item):
-                    raise ConfigError(f"{source}: field '{item_path}' {declared.words(item)}, "
-                                      f"got {item!r}")
+            _check_value(value, declared, source, path)
         _check_held(value, source, path)
 
 
+def _check_value(value, declared: "Range | Choice", source: str, path: str) -> None:
+    from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
+    if isinstance(declared, Choice):
+        if value not in declared.names:
+            raise ConfigError(f"{source}: field '{path}' {declared.words()}, got "
+                              f"{type(value).__name__} {shorten(repr(value))}")
+        return
+    if declared.length is not None and (not isinstance(value, (list, tuple))
+                                        or len(value) != declared.length):
+        count = (f"{len(value)} elements" if isinstance(value, (list, tuple))
+                 else type(value).__name__)
+        raise ConfigError(f"{source}: field '{path}' must hold {declared.length} numbers"
+                          f"{' [' + declared.unit + ']' if declared.unit else ''}, got "
+                          f"{count}: {shorten(repr(value))}")
+    for item_path, item in _values(value, path):
+        if item is None:
+            continue
+        if not _is_number(item) or not math.isfinite(item):
+            raise ConfigError(f"{source}: field '{item_path}' must be a finite number, "
+                              f"got {type(item).__name__} {shorten(repr(item))}")
+        if not declared.contains(item):
+            raise ConfigError(f"{source}: field '{item_path}' {declared.words(item)}, "
+                              f"got {item!r}")
+
+
+def _check_foreign(config, source: str, where: str) -> None:
+    """A Drake config object against the table declare_ranges holds for its class."""
+    for name, declared in _FOREIGN[type(config)].items():
+        _check_value(getattr(config, name), declared, source,
+                     f"{where}.{name}" if where else name)
+
+
+def shorten(text: str, limit: int = 80) -> str:
+    """`text` cut to about `limit` characters (an echoed value in an error message), saying
+    how long it was."""
+    if len(text) <= limit:
+        return text
+    return f"{text[:limit]}... ({len(text)} characters)"
+
+
 def _check_held(value, source: str, path: str) -> None:
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+    if type(value) in _FOREIGN or (dataclasses.is_dataclass(value)
+                                   and not isinstance(value, type)):
         check_ranges(value, source, path)
     elif isinstance(value, collections.abc.Mapping):
         for key, item in value.items():
             _check_held(item, source, f"{path}.{key}")
     elif isinstance(value, (list, tuple)):
         for k, item in enumerate(value):
-            if dataclasses.is_dataclass(item):
+            if dataclasses.is_dataclass(item) or type(item) in _FOREIGN:
                 check_ranges(item, source, f"{path}[{k}]")
 
 
@@ -148,19 +214,31 @@ def _config_classes(hint) -> list:
     if origin is not None:
         return [c for m in typing.get_args(hint) if m is not Ellipsis
                 for c in _config_classes(m)]
-    return [hint] if dataclasses.is_dataclass(hint) else []
+    return [hint] if dataclasses.is_dataclass(hint) or _drake_fields(hint) else []
+
+
+def _drake_fields(cls) -> tuple:
+    """The (name, type) of a Drake config class's fields (pydrake's `__fields__`), else ()."""
+    return tuple((f.name, f.type) for f in getattr(cls, "__fields__", ()) or ()
+                 if hasattr(f, "name") and hasattr(f, "type"))
 
 
 def unranged_numeric_fields(*roots) -> list[str]:
     """"Class.field" of every numeric field (int, float, lists of them, optional) of the
     dataclasses reachable from `roots` (through fields, unions, lists and mappings) that
-    declares no Range."""
+    declares no Range, and every number or text field of Drake's config classes reachable
+    from them that has no declare_ranges entry."""
     seen, missing, pending = set(), [], list(roots)
     while pending:
         cls = pending.pop()
         if cls in seen:
             continue
         seen.add(cls)
+        if not dataclasses.is_dataclass(cls):
+            missing.extend(f"{cls.__module__}.{cls.__qualname__}.{name}"
+                           for name, kind in _drake_fields(cls)
+                           if kind in (int, float, str) and name not in _FOREIGN.get(cls, {}))
+            continue
         hints = typing.get_type_hints(cls)
         for field in dataclasses.fields(cls):
             hint = hints[field.name]

@@ -13,7 +13,8 @@ Every YAML file the project reads as configuration goes through here: scenarios
 - `apply_override` applies a `--set key.sub=value` assignment to the parsed data.
 - `check_fields` walks the data against a dataclass schema and names the first field that is
   unknown, missing (a dataclass field without a default), of the wrong type or a number that
-  is not finite (`.nan`, `.inf`: no setting means "not a number") by its dotted path, e.g.
+  is not finite (`.nan`, `.inf`: no setting means "not a number") or null (`~`: only a field
+  left out takes its default) by its dotted path, e.g.
   `object.mass` or `user_objects.mug.size`.
 - `require` checks one value of a loaded config (a positive timeout, a threshold in range).
 - `load_typed` checks the data, then builds the schema with Drake's `yaml_load_typed`.
@@ -31,7 +32,8 @@ import typing
 import yaml
 from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
 
-from tegrasp_drake.rig.files import InputTooLargeError, one_line, read_bounded
+from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, one_line, read_bounded
 
 
 class ConfigError(ValueError):
@@ -39,7 +41,26 @@ class ConfigError(ValueError):
     line break inside a value it quotes is shown as \\n)."""
 
     def __init__(self, message: str = ""):
-        super().__init__(one_line(str(message)))
+        super().__init__(_bounded_message(one_line(str(message))))
+
+
+# An error message echoes the values it names; a value pasted by mistake (a file's contents
+# in a --set) must not make it hundreds of kB. Each place that echoes a value cuts it to
+# about ECHO_CHARS (rig/ranges.py shorten); past MAX_MESSAGE_CHARS whatever is left over
+# long is cut here: first each word over twice ECHO_CHARS, then the middle.
+ECHO_CHARS = 80
+MAX_MESSAGE_CHARS = 1000
+
+
+def _bounded_message(message: str) -> str:
+    if len(message) <= MAX_MESSAGE_CHARS:
+        return message
+    message = " ".join(shorten(word, ECHO_CHARS) if len(word) > 2 * ECHO_CHARS else word
+                       for word in message.split(" "))
+    if len(message) <= MAX_MESSAGE_CHARS:
+        return message
+    half = MAX_MESSAGE_CHARS // 2
+    return f"{message[:half]} ... ({len(message) - 2 * half} characters cut) ... {message[-half:]}"
 
 
 def read_yaml_file(path: str | pathlib.Path, what: str):
@@ -52,6 +73,8 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
         text = read_bounded(path, MAX_YAML_BYTES).decode("utf-8")
     except FileNotFoundError:
         raise ConfigError(f"{path}: cannot read {what}: it does not exist") from None
+    except NotAFileError as e:
+        raise ConfigError(f"{path}: cannot read {what}: it {e.strerror}") from None
     except InputTooLargeError:
         raise ConfigError(f"{path}: more than {MAX_YAML_BYTES} bytes of YAML; a configuration "
                           f"is at most {MAX_YAML_BYTES} bytes") from None
@@ -146,19 +169,26 @@ def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: in
     return (where + problem + (f" ({context})" if context else "")).replace("\n", " ")
 
 
+def set_words(assignment: str) -> str:
+    """How an error names a --set assignment: `--set 'KEY=VALUE'`, the value cut to about
+    ECHO_CHARS."""
+    key, equals, text = assignment.partition("=")
+    return f"--set '{shorten(key)}{equals}{shorten(text)}'"
+
+
 def apply_override(data: dict, assignment: str) -> None:
     """Sets `key.sub=value` (YAML value) in nested YAML data."""
     if "=" not in assignment:
-        raise ConfigError(f"--set '{assignment}': expected key=value, e.g. object.name=box")
+        raise ConfigError(f"{set_words(assignment)}: expected key=value, e.g. object.name=box")
     key, text = assignment.split("=", 1)
     if not isinstance(data, dict):
-        raise ConfigError(f"--set '{assignment}': the document it would change is "
+        raise ConfigError(f"{set_words(assignment)}: the document it would change is "
                           f"{_describe(data)}, not a mapping of fields; fix the file")
     if "\n" in text:
-        raise ConfigError(f"--set '{assignment}': the value must be on one line")
+        raise ConfigError(f"{set_words(assignment)}: the value must be on one line")
     prefix = "value: "
     try:
-        value = (parse_yaml(prefix + text, f"--set '{assignment}'",
+        value = (parse_yaml(prefix + text, set_words(assignment),
                             column_offset=len(prefix))["value"] if text.strip() else "")
     except ConfigError as e:
         if "not valid YAML" not in str(e):
@@ -170,7 +200,7 @@ def apply_override(data: dict, assignment: str) -> None:
     for part in parts[:-1]:
         node = node.setdefault(part, {})
         if not isinstance(node, dict):
-            raise ConfigError(f"--set '{assignment}': '{part}' is not a mapping")
+            raise ConfigError(f"{set_words(assignment)}: '{shorten(part)}' is not a mapping")
     node[parts[-1]] = value
 
 
@@ -249,7 +279,7 @@ def _check_finite_numbers(data, source: str, where: str) -> None:
 def require(condition: bool, source: str, path: str, words: str, value) -> None:
     """Raises ConfigError "SOURCE: field 'PATH' WORDS, got VALUE" unless `condition`."""
     if not condition:
-        raise ConfigError(f"{source}: field '{path}' {words}, got {value!r}")
+        raise ConfigError(f"{source}: field '{path}' {words}, got {shorten(repr(value))}")
 
 
 def _check_value(value, hint, path: str, source: str) -> None:
@@ -257,7 +287,10 @@ def _check_value(value, hint, path: str, source: str) -> None:
     if origin in (typing.Union, types.UnionType):
         members = [m for m in typing.get_args(hint) if m is not type(None)]
         if value is None and len(members) < len(typing.get_args(hint)):
-            return  # an optional field left empty
+            # An optional field's None means "not set" (its default, e.g. the built-in
+            # object's mass); a null the user writes is refused rather than read as that.
+            raise ConfigError(f"{source}: field '{path}' is null: give a value, or leave "
+                              "the field out to take its default")
         if len(members) == 1:
             _check_value(value, members[0], path, source)
         else:
@@ -319,4 +352,4 @@ def _field(path: str) -> str:
 
 
 def _describe(value) -> str:
-    return f"{type(value).__name__} {value!r}"
+    return f"{type(value).__name__} {shorten(repr(value))}"

@@ -15,7 +15,7 @@ import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
-from tegrasp_drake.rig.files import one_line, read_bounded
+from tegrasp_drake.rig.files import file_problem, one_line, read_bounded
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
     tactile_arrays)
@@ -204,9 +204,13 @@ def read_run_log(path) -> RunLog:
     holds no event. A damaged log (truncated, corrupt bytes, messages that do not decode)
     is read as far as it can be, and `RunLog.damage` says what was read and what was lost."""
     path = pathlib.Path(path)
-    if not path.is_file():
+    problem = file_problem(path)
+    if problem == "does not exist":
         raise RunLogError(f"run log '{path}' does not exist (`tegrasp hardware --log FILE` "
                           "writes one)")
+    if problem or not path.is_file():  # /dev/null, /dev/zero: not a run log either
+        raise RunLogError(f"run log '{path}' {problem or 'is a device, not a file'} (a run "
+                          "log is the file `tegrasp hardware --log FILE` writes)")
     decoded = {channel: [] for channel in MESSAGE_TYPES}
     counts = {}
     try:

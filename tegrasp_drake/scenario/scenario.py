@@ -16,7 +16,7 @@ import typing
 
 from pydrake.common.yaml import yaml_dump, yaml_dump_typed, yaml_load, yaml_load_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
-from pydrake.systems.analysis import SimulatorConfig
+from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 
 from tegrasp_drake.control.controller_config import (
     ControllerConfig, GraspControllerConfig, MemorizedControllerConfig, UnknownControllerError,
@@ -27,9 +27,10 @@ from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardwa
 from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
 from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.ranges import bounded, check_ranges
+from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, declare_ranges,
+                                      shorten)
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
-from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, FINGER_CLEARANCE_M, OBJECT_SHAPES,
+from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
@@ -72,12 +73,12 @@ class Scenario:
     object: ObjectConfig = dataclasses.field(default_factory=ObjectConfig)
     # Misplacement of the object from its marker [m]: x normal to the palm, y along the stroke.
     object_offset: list[float] = bounded(default_factory=lambda: [0.0, 0.0], low=-0.2, high=0.2,
-                                         unit="m",
+                                         unit="m", length=2,
                                          why="a misplacement near its marker, within the open "
                                              "hand's reach")
     object_yaw_deg: float = bounded(0.0, low=-180.0, high=180.0, unit="deg")
     expected_object_xy: list[float] = bounded(default_factory=lambda: [0.72, 0.0], low=-0.9,
-                                              high=0.9, unit="m",
+                                              high=0.9, unit="m", length=2,
                                               why="within the JACO2's 0.9 m reach, Kinova JACO2 "
                                                   "specifications")
     # stiction_tolerance 1e-6 m/s instead of Drake's 1e-4: SAP's lagged/similar friction is
@@ -109,6 +110,45 @@ class Scenario:
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
 
 
+# Drake's own config sections cannot carry `bounded` declarations: their fields' allowed
+# values are declared here and checked by the same validator (rig/ranges.py), at load and in
+# every builder. Names: the valid strings listed in Drake's MultibodyPlantConfig and
+# SimulatorConfig documentation (pydrake 1.51); numbers: what Drake accepts (it aborts the
+# process on a non-positive penetration allowance or stiction tolerance) narrowed to what a
+# grasp of a hand-sized object can use, with the reason.
+MIN_TIME_STEP_S, MAX_TIME_STEP_S = 1e-4, 1e-3
+declare_ranges(MultibodyPlantConfig, {
+    "time_step": Range(MIN_TIME_STEP_S, MAX_TIME_STEP_S, unit="s",
+                       why="a discrete step the pads' contact and the 1 kHz sensors can use; "
+                           "the wall time grows as 1/step"),
+    "penetration_allowance": Range(0.0, 0.01, low_open=True, unit="m",
+                                   why="Drake's point-contact stiffness from it must be "
+                                       "positive; a centimetre is a third of a pad"),
+    "stiction_tolerance": Range(0.0, 0.01, low_open=True, unit="m/s",
+                                why="Drake's regularized friction needs a positive slip speed; "
+                                    "above 1 cm/s a held object slides visibly"),
+    "contact_model": Choice(("point", "hydroelastic", "hydroelastic_with_fallback"),
+                            "Drake's contact models"),
+    "discrete_contact_approximation": Choice(("tamsi", "sap", "similar", "lagged"),
+                                             "Drake's discrete contact approximations"),
+    "sap_near_rigid_threshold": Range(0.0, 10.0, why="Drake's SAP near-rigid regime, "
+                                      "non-negative, typically in [0, 1]"),
+    "contact_surface_representation": Choice(("triangle", "polygon"),
+                                             "Drake's hydroelastic surface representations"),
+})
+declare_ranges(SimulatorConfig, {
+    "integration_scheme": Choice(tuple(GetIntegrationSchemes()), "Drake's integrators"),
+    "max_step_size": Range(0.0, 1.0, low_open=True, unit="s",
+                           why="the error-controlled integrator's largest step"),
+    "accuracy": Range(0.0, 1.0, low_open=True,
+                      why="the integrator's relative error tolerance, a fraction"),
+    "start_time": Range(0.0, 0.0, unit="s",
+                        why="the grasp script's times count from the trial's start at 0 s"),
+    "target_realtime_rate": Range(0.0, 100.0, unit="x real time",
+                                  why="0 runs as fast as it can; 1 paces it to real time"),
+})
+
+
 def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConfig:
     """The full description of the scenario's object (a built-in one if shape is empty)."""
     if not config.shape:
@@ -118,19 +158,28 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
                 f"({', '.join(BUILTIN_OBJECTS)}); for your own object give object.shape "
                 f"({', '.join(OBJECT_SHAPES)}), object.size, object.mass and object.friction")
         builtin = BUILTIN_OBJECTS[config.name]
+        if config.file:
+            raise ConfigError(
+                f"{source}: field 'object.file' is for your own object (object.shape: file); "
+                f"the built-in '{config.name}' has its own model: leave object.file out, or "
+                f"give your object its own name and object.shape: file")
         # Fields the user set on a built-in object override it (and are checked below);
         # None is "not set", so that a 0 the user gave is checked, never replaced.
         config = dataclasses.replace(
             builtin, size=list(config.size or builtin.size),
             mass=builtin.mass if config.mass is None else config.mass,
             friction=builtin.friction if config.friction is None else config.friction,
-            color=list(builtin.color))
+            color=list(config.color or builtin.color))
     elif config.name in BUILTIN_OBJECTS and not _is_builtin_geometry(config):
         raise ConfigError(
             f"{source}: field 'object.name': your own object (object.shape "
             f"'{config.shape}') needs its own name, not the built-in '{config.name}': its "
             f"memorized events are stored under that name (e.g. --set object.name=my_"
             f"{config.shape})")
+    if not config.color:
+        config = dataclasses.replace(config, color=list(DEFAULT_COLOR))
+    require(len(config.color) == 4, source, "object.color",
+            "must be [r, g, b, a], each in [0, 1]", config.color)
     problem = object_problem(config)
     if problem:
         field, words = problem
@@ -193,7 +242,6 @@ def _check_controller(controller, source: str) -> None:
 
 # What relates fields, or belongs to Drake's own config classes (each number of this
 # package's classes declares its range on its field, rig/ranges.py); each message says why.
-MIN_TIME_STEP_S, MAX_TIME_STEP_S = 1e-4, 1e-3
 MAX_HIT_FORCE_N = 100.0  # five times the paper's 20 N hit, in size
 # The longest grasp script a scenario may ask for without `allow_long` (--allow-long): the
 # paper's script lasts about 12 s; a trial simulates at about WALL_S_PER_SIM_S of wall time
@@ -212,6 +260,20 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
             f"must lie in (0, {nyquist:g}) Hz (the fingertip's mode, integrated at "
             "vibration.internal_rate_hz; at 0 the film feels no ring)",
             vibration.mode_frequency_hz)
+    # The charge amplifier's high-pass runs where the film is integrated (internal_rate_hz,
+    # film_dynamics.py); the accelerometer's on its samples (pad_accelerometers.py).
+    filter_rate_hz, rate_name = ((vibration.sample_rate_hz, "vibration.sample_rate_hz")
+                                 if vibration.transducer == "accelerometer" else
+                                 (vibration.internal_rate_hz, "vibration.internal_rate_hz"))
+    require(vibration.highpass_cutoff_hz < filter_rate_hz / 2, source,
+            "vibration.highpass_cutoff_hz", f"must lie below {filter_rate_hz / 2:g} Hz, half "
+            f"the {rate_name} its {vibration.transducer} filter runs at",
+            vibration.highpass_cutoff_hz)
+    slip_band_hz = getattr(scenario.controller, "slip_band_hz", None)
+    require(slip_band_hz is None or slip_band_hz < vibration.sample_rate_hz / 2, source,
+            "controller.slip_band_hz", "must lie below half the RA rate "
+            f"({vibration.sample_rate_hz / 2:g} Hz, vibration.sample_rate_hz / 2): the slip "
+            "band's high-pass runs on the RA samples", slip_band_hz)
     block_s = getattr(scenario.controller, "sensor_block_s", 0.0)
     if block_s > 0 and vibration.sample_rate_hz > 0:
         from tegrasp_drake.tactile.sample_block import block_samples, block_update_period
@@ -325,6 +387,11 @@ def validate(scenario: Scenario, source: str = "scenario", *,
             f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "
             "prismatic fingers)", scenario.gripper.model)
     _check_on_table(scenario, source)
+    height = scenario.object.height()
+    require(scenario.grasp.grasp_height <= height, source, "grasp.grasp_height",
+            f"must lie within the object's height, {height:g} m (the pad centre above the "
+            "table, on the object's side: higher, the pads close over it)",
+            scenario.grasp.grasp_height)
     # The object must fit between the open fingers (object_problem). Offset along the
     # stroke beyond that is allowed: an open finger then meets the object on the way in, as
     # it would on a robot (the paper's thick cylinder failed most when misplaced outward).
@@ -352,11 +419,6 @@ def validate(scenario: Scenario, source: str = "scenario", *,
             "confirm with --allow-long (LoadScenario(..., allow_long=True))")
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario.controller, source)
-    require(MIN_TIME_STEP_S <= scenario.plant_config.time_step <= MAX_TIME_STEP_S, source,
-            "plant_config.time_step", f"must lie in [{MIN_TIME_STEP_S:g}, "
-            f"{MAX_TIME_STEP_S:g}] s (a discrete step the pads' contact and the 1 kHz "
-            "sensors can use; the wall time grows as 1/step)",
-            scenario.plant_config.time_step)
     problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
     if problem:
         field, words, value = problem
@@ -395,7 +457,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     for assignment in overrides:
         apply_override(data, assignment)
     # A bad value given with --set is named as such, not as the file's.
-    source = f"{path} [{name}]" + "".join(f" --set {a}" for a in overrides)
+    source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
     if controller is not None:
         data.setdefault("controller", {})["name"] = controller
     try:
@@ -412,6 +474,12 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                           f"controller.name={owners[0]} (or its YAML tag "
                           f"controller: !{type(controller_named(owners[0])).__name__} {{...}})")
     return validate(load_typed(data, Scenario, source), source, allow_long=allow_long)
+
+
+def _echo(assignment: str) -> str:
+    """A --set assignment as an error's source names it, its value cut (ranges.shorten)."""
+    key, equals, value = assignment.partition("=")
+    return shorten(key) + equals + shorten(value)
 
 
 @public_api

@@ -11,13 +11,15 @@ physical event times, controller name, package versions.
 
 import dataclasses
 import json
+import math
 import pathlib
 import zipfile
 import zlib
 
 import numpy as np
 
-from tegrasp_drake.rig.files import one_line, temporary_sibling
+from tegrasp_drake.rig.files import file_problem, one_line, temporary_sibling
+from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
@@ -76,9 +78,13 @@ class TrialLog:
 def load_trial_log(path: PathLike) -> TrialLog:
     """Reads a TrialLog; raises TrialLogError naming the file on any defect."""
     path = pathlib.Path(path)
-    if not path.is_file():
+    problem = file_problem(path)
+    if problem == "does not exist":
         raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp trial "
                             "--out DIR`: DIR/trial.npz, or `tegrasp demo`: out/demo/trial.npz)")
+    if problem or not path.is_file():  # /dev/null, /dev/zero: not a trial log either
+        raise TrialLogError(f"trial log '{path}' {problem or 'is a device, not a file'} (a "
+                            "trial log is the trial.npz that `tegrasp trial --out DIR` writes)")
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
                                     max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",))
@@ -100,10 +106,49 @@ def load_trial_log(path: PathLike) -> TrialLog:
         version = meta.get("format_version") if isinstance(meta, dict) else None
         raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
                             f"reads {FORMAT_VERSION}")
-    problem = _shape_problem(arrays)
+    problem = _shape_problem(arrays) or meta_problem(meta, arrays["phase"])
     if problem:
         raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
     return TrialLog(meta=meta, **arrays)
+
+
+def _is_time(value) -> bool:
+    return (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value))
+
+
+def meta_problem(meta: dict, phase: np.ndarray) -> str | None:
+    """What is wrong with the structure or types of a trial log's metadata (the parts a plot,
+    a replay or a report reads), or None: transitions as Transition entries, phase names as
+    text, phase start times as numbers, and the `phase` array indexing the phase names."""
+    from tegrasp_drake.control.grasp_modes import Mode, Transition
+    transitions = meta.get("transitions", [])
+    if not isinstance(transitions, list):
+        return f"meta 'transitions' must be a list, got {type(transitions).__name__}"
+    for k, entry in enumerate(transitions):
+        try:
+            if not isinstance(entry, dict) or not _is_time(entry.get("t")):
+                raise ValueError("needs a finite time 't'")
+            Transition.from_dict(entry)
+        except KeyError as e:
+            return f"meta 'transitions[{k}]' lacks the field {e}"
+        except (TypeError, ValueError) as e:
+            return f"meta 'transitions[{k}]' is not a transition ({shorten(str(e))})"
+    for key in ("mode_names", "phases"):
+        names = meta.get(key)
+        if names is not None and (not isinstance(names, list) or not names
+                                  or not all(isinstance(n, str) for n in names)):
+            return f"meta '{key}' must be a non-empty list of names, got {shorten(repr(names))}"
+    starts = meta.get("phase_starts", {})
+    if not isinstance(starts, dict) or not all(
+            isinstance(name, str) and _is_time(t) for name, t in starts.items()):
+        return (f"meta 'phase_starts' must map phase names to times [s], got "
+                f"{shorten(repr(starts))}")
+    count = len(meta.get("mode_names") or meta.get("phases") or Mode)
+    if phase.size and (not np.all(np.isfinite(phase)) or np.any(phase != np.round(phase))
+                       or phase.min() < 0 or phase.max() >= count):
+        return f"'phase' must hold indices 0 to {count - 1} of the {count} phase names"
+    return None
 
 
 # The arrays sampled at each time base, and their columns (None: a vector).
@@ -127,8 +172,18 @@ def _shape_problem(arrays: dict) -> str | None:
             if array.shape != expected:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
-    bad = [name for name in ("taxels", "channels", "pad_acceleration")
-           if not np.all(np.isfinite(arrays[name]))]
+    return nonfinite_signals(arrays)
+
+
+# The measured signals of a trial log: what a plot draws and the myRIO emulator streams.
+SIGNAL_ARRAYS = ("taxels", "channels", "pad_acceleration")
+
+
+def nonfinite_signals(arrays: dict) -> str | None:
+    """What is wrong if any signal array present in `arrays` holds NaN or infinities (a
+    trial log's, or the part of one a reader loads), else None."""
+    bad = [name for name in SIGNAL_ARRAYS
+           if name in arrays and not np.all(np.isfinite(arrays[name]))]
     if bad:
         return f"the channels {bad} hold NaN or infinite values"
     return None

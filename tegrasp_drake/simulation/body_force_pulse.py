@@ -19,7 +19,7 @@ class DisturbanceConfig:
     hit_time_s: float = bounded(-1.0, low=-1e6, high=600.0, unit="s", why="negative: no hit")
     # in world
     hit_force_n: list[float] = bounded(default_factory=lambda: [0.0, 20.0, 0.0], low=-100.0,
-                                       high=100.0, unit="N", why="five times the paper's 20 N hit")
+                                       high=100.0, unit="N", length=3, why="five times the paper's 20 N hit")
     hit_duration_s: float = bounded(0.02, low=0.0, low_open=True, high=1.0, unit="s",
                                     why="a hit, not a push", below="must be positive [s]")
 

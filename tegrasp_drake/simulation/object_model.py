@@ -15,7 +15,7 @@ from pydrake.multibody.plant import CoulombFriction
 from pydrake.multibody.tree import ModelInstanceIndex
 
 from tegrasp_drake.modelgen.sdf_text import box_inertia, friction_text, inertial_text
-from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.rig.objects import DEFAULT_COLOR, ObjectConfig
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 
 OBJECT_MODEL_NAME = "object"
@@ -47,7 +47,7 @@ def object_sdf(config: ObjectConfig, *, mesh_resolution_m: float = MESH_RESOLUTI
     """SDF text of a primitive (box or cylinder) object; mesh_resolution_m: its
     drake:mesh_resolution_hint [m]; without `collision`, its body and visual only."""
     half_height = config.height() / 2
-    color = " ".join(f"{c:g}" for c in config.color)
+    color = " ".join(f"{c:g}" for c in config.color or DEFAULT_COLOR)
     geometry = _geometry(config)
     collision_text = (
         f'<collision name="collision"><pose>0 0 {half_height:g} 0 0 0</pose>'

@@ -85,7 +85,7 @@ class ArmDriverConfig:
     # The grasp frame in world at t = 0; 3 cm behind and 9 cm above the grasp: further back,
     # the Jaco nears its wrist singularity.
     initial_gripper_xyz: list[float] = bounded(
-        default_factory=lambda: [0.69, 0.0, 0.145], low=-0.9, high=0.9, unit="m",
+        default_factory=lambda: [0.69, 0.0, 0.145], low=-0.9, high=0.9, unit="m", length=3,
         why="within the JACO2's 0.9 m reach, Kinova JACO2 specifications")
     # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state.
     control_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",

@@ -24,11 +24,10 @@ as corrupt, and the runner runs that trial again.
 import hashlib
 import json
 import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import read_bounded
+from tegrasp_drake.rig.files import read_bounded, write_atomically
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 RECORD_FORMAT = "tegrasp-sweep-record"
@@ -109,17 +108,9 @@ def write_record(out_dir, record: dict) -> Path:
     path = record_path(out_dir, record["trial_id"])
     path.parent.mkdir(parents=True, exist_ok=True)
     text = json.dumps(record, sort_keys=True, indent=1, ensure_ascii=True, allow_nan=False)
-    descriptor, temp_name = tempfile.mkstemp(prefix="." + path.name + ".",
-                                             suffix=_TEMP_SUFFIX, dir=path.parent)
-    try:
-        with os.fdopen(descriptor, "w", encoding="ascii") as file:
-            file.write(text + "\n")
-            file.flush()
-            os.fsync(file.fileno())
-        os.replace(temp_name, path)
-    except BaseException:
-        Path(temp_name).unlink(missing_ok=True)
-        raise
+    # Through rig/files.py, so that the record has the mode the umask gives (as a trial's
+    # outputs do), not mkstemp's 0600.
+    write_atomically(path, (text + "\n").encode("ascii"), suffix=_TEMP_SUFFIX)
     _fsync_folder(path.parent)
     return path
 
