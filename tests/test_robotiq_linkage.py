@@ -86,7 +86,7 @@ def test_joint_coordinates_form_the_published_parallelogram():
 
 
 def test_closed_form_pad_travel_is_the_derived_13_5_mm():
-    # DRAKE-NOTES, from the joint coordinates: 5.3-5.4 / 10.2 / 11.8 / 12.9 / 13.5 mm.
+    # Derived from the joint coordinates (Robotiq's Isaac Sim kinematics asset): 5.3-5.4 / 10.2 / 11.8 / 12.9 / 13.5 mm.
     travel = [linkage.pad_travel_at_opening(gap) * 1000 for gap in (0.07, 0.05, 0.04, 0.03, 0.02)]
     np.testing.assert_allclose(travel, [5.43, 10.24, 11.82, 12.91, 13.54], atol=0.05)
 

@@ -40,7 +40,7 @@ def test_linkage_opens_to_the_full_stroke_and_closes_as_the_driver_turns():
 
 def test_linkage_pad_centres_move_along_the_approach_axis_as_the_2f85s_do():
     # The pad centre's travel from open (gap 85 mm) along the approach axis, from the
-    # linkage's closed form (DRAKE-NOTES: 5.43 / 10.24 / 11.82 / 12.91 / 13.54 mm at gaps
+    # linkage's closed form (robotiq/linkage.py: 5.43 / 10.24 / 11.82 / 12.91 / 13.54 mm at gaps
     # 70 / 50 / 40 / 30 / 20 mm, matched by the simulated linkage within 0.01 mm).
     open_offset = LINKAGE.pad_center_offset(0.085)
     travel_mm = [1000 * (LINKAGE.pad_center_offset(gap) - open_offset)

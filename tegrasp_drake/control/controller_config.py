@@ -38,7 +38,7 @@ _SIGMAS_BELOW = "must be zero (the number alone) or positive [noise sigmas]"
 @dataclasses.dataclass
 class HeuristicTriggerConfig:
     """The hand-set transition thresholds of the heuristic controller, in the style of
-    Romano et al. 2011 (DRAKE-NOTES.md): tuned once on the box at its expected position and
+    Romano et al. 2011 (IEEE Trans. Robotics 27(6), "Human-inspired robotic grasp control with tactile sensing"): tuned once on the box at its expected position and
     left alone."""
     # Reach-Load: each finger's SA above this [N]
     contact_force_n: float = bounded(1.0, low=0.0, high=50.0, unit="N",

@@ -20,7 +20,8 @@ Frames (the gripper frame G of the whole project is `grasp_frame`):
 
 Pads are compliant hydroelastic boxes, sized as the paper's fingertip
 (rig/tactile_fingertip.py: 4 x 20 x 24 mm), E 2e6 Pa and Hunt-Crossley dissipation 5
-(DRAKE-NOTES), friction from rig/materials.py. Behind each pad a rigid aluminium finger (a
+(values that grasp, lift and place the objects stably with SAP at a 1 ms step, measured on this
+scene with pydrake 1.51), friction from rig/materials.py. Behind each pad a rigid aluminium finger (a
 collision geometry too, so that an object cannot pass through the finger's back or tip).
 """
 

@@ -5,7 +5,7 @@ projection onto the pad plane (pressure x area x |cos| of the angle between the 
 and the pad's z). The pressure is linear over each face, and the taxel cells are a
 rectangular grid, so the force each cell takes from each face triangle has a closed form:
 the pattern is exact however large the faces are. (A compliant box pad gives faces a few cm
-across, larger than a taxel, see DRAKE-NOTES; putting a face, or any fixed piece of it, into
+across, larger than a taxel: Drake ignores resolution_hint for compliant boxes; putting a face, or any fixed piece of it, into
 the taxel under its centroid gives an uneven pattern under an even press.)
 
 Method. For a triangle T with linear pressure f, the cumulative integral

@@ -11,7 +11,7 @@ C_f). Per pad, the mode is driven by (film_dynamics.py):
     plus the fingertip's inertia under the finger body's acceleration a_n along the pad's
     inward normal (a Drake Accelerometer on the pad frame, without gravity). A plant step
     resolves a contact's first millisecond into one or two force samples whose size depends
-    on the step (DRAKE-NOTES), so L passes a 60 Hz low-pass, where the plant's force history
+    on the step (measured on this scene with pydrake 1.51), so L passes a 60 Hz low-pass, where the plant's force history
     converges with the step;
   - the impact, which the plant cannot resolve: on the plant step where the pad's contact
     begins, a half-sine of impulse J = (1 + e) m_eff v_n over the contact's physical

@@ -3,7 +3,8 @@
 Each sample computes, for each pad, the normal force on each taxel from the hydroelastic
 contact surfaces that involve the pad's geometry (contact_pressure.py), scales each surface's
 taxel forces so that they sum to the normal component of the force the solver actually
-applied (`F_Ac_W`; the pressure integral differs from it, see DRAKE-NOTES), then applies the
+applied (`F_Ac_W`; the pressure integral differs from it: 15.5 N against 12 N applied, measured
+on a rigid object with pydrake 1.51), then applies the
 sensor model: constant offset, Gaussian noise, quantisation. Noise is drawn from a generator
 seeded by (seed, sample index), so a trial is reproducible and the Context holds all state.
 """

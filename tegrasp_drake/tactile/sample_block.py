@@ -18,7 +18,7 @@ the rows of y(t) the signal has had since the previous update: all B of them, ex
 update at t = 0, which takes the one sample taken at 0 (`samples_in_block`). So at every
 block boundary its state equals that of a per-sample system fed the same samples.
 
-BLOCK_PERIOD_S, 10 ms: about one AD7147 frame (9.26 ms at decimation 64, DRAKE-NOTES), the
+BLOCK_PERIOD_S, 10 ms: about one AD7147 frame (9.26 ms at decimation 64, AD7147 data sheet), the
 period at which the SA channels change anyway; a decision waits at most one block longer
 than per sample, within the 10 ms latency the project allows a cheaper representation. Ten
 1 kHz samples divide the 0.5 s event window (500) and its compaction slack (100).
