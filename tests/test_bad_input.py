@@ -2,7 +2,9 @@
 before anything runs, with one line that names the file, field or value and says what to do,
 and a non-zero exit; none runs with a value other than the one given."""
 
+import hashlib
 import json
+import pathlib
 import shutil
 
 import numpy as np
@@ -25,6 +27,13 @@ def run_cli(argv, capfd) -> tuple[int, str]:
         code, message = (1, exit_.code) if isinstance(exit_.code, str) else (exit_.code, "")
     captured = capfd.readouterr()
     return code, "\n".join(part for part in (message, captured.err, captured.out) if part)
+
+
+def folder_contents(folder: pathlib.Path) -> dict:
+    """Every regular file under `folder` (relative path -> sha256): what a refused command
+    must leave as it was."""
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file() and not p.is_symlink()}
 
 
 def assert_one_line_error(code, text, *expected):

@@ -2,7 +2,6 @@
 before anything runs with one line naming the input and what to do, a non-zero exit, and
 every file that was there before left as it was."""
 
-import hashlib
 import os
 import pathlib
 import signal
@@ -10,7 +9,7 @@ import signal
 import numpy as np
 import pytest
 
-from test_bad_input import assert_one_line_error, run_cli
+from test_bad_input import assert_one_line_error, folder_contents as _contents, run_cli
 from tegrasp_drake.events.event_file import INDEX_FILE, MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -138,11 +137,6 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["plot", "table1", "sweep", "--out", "table1.png"],
      ["1 corrupt trial record(s) in sweep", "memorized.box.m00.a0.json"]),
 ]
-
-
-def _contents(folder: pathlib.Path) -> dict:
-    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file() and not p.is_symlink()}
 
 
 @pytest.mark.parametrize("make, argv, expected", [probe[1:] for probe in PROBES],

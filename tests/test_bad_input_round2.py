@@ -4,7 +4,6 @@ fields that relate (grasp height, filters against their rates), files that are n
 a run folder two runs share, outputs that would overwrite the run's own files. Each stops
 with one line naming the input and what to do, a non-zero exit, and nothing lost."""
 
-import hashlib
 import json
 import os
 import pathlib
@@ -15,7 +14,8 @@ import numpy as np
 import pytest
 
 import tegrasp_drake
-from test_bad_input import _trial_log, assert_one_line_error, run_cli
+from test_bad_input import (_trial_log, assert_one_line_error, folder_contents as _contents,
+                            run_cli)
 from tegrasp_drake.commands import run_folder
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.rig import files
@@ -228,11 +228,6 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
     ("11 a 300 kB --set number", None, ["trial", "--set", f"random_seed={BIG}"],
      ["field 'random_seed' must be an integer"]),
 ]
-
-
-def _contents(folder: pathlib.Path) -> dict:
-    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file() and not p.is_symlink()}
 
 
 @pytest.mark.parametrize("make, argv, expected", [probe[1:] for probe in PROBES],
