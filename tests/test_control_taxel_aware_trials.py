@@ -130,9 +130,10 @@ SCENES = {
                 ("Reach", "Re-Reach", Reason.BRACKET_RECENTRE)),
                check=lambda found, r: found[0].offset_m < 0.0
                and 0.0 < found[1].offset_m < abs(found[0].offset_m))),
-    # The Load-Lift event made unmatchable (thresholds above 1): lifted after the Load
-    # timeout with both pads on the box, where the paper's rule would Re-Reach.
-    "load_timeout": (Scene("box", taxel_aware=(("load_lift_thresholds", [1.01, 1.01]),)),
+    # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
+    # threshold, and a correlation never exceeds 1): lifted after the Load timeout with both
+    # pads on the box, where the paper's rule would Re-Reach.
+    "load_timeout": (Scene("box", taxel_aware=(("load_lift_thresholds", [1.0, 1.0]),)),
                      Expect((("Load", "Lift", Reason.LOAD_TIMEOUT_BOTH_PADS),),
                             no_re_reach=True, check=_load_waited_the_timeout)),
     # A yawed box 25 mm along the stroke in the left finger's path: the strike, felt in the

@@ -62,7 +62,7 @@ def test_an_ensemble_run_with_an_untouched_noise_free_pad_stops_with_one_line(tm
         e for e in (str(repository), os.environ.get("PYTHONPATH", "")) if e)}
     done = subprocess.run(
         [sys.executable, "-m", "tegrasp_drake.cli", "record-events", "--scenario-name",
-         "memorizing_world", "--object", "box", "--ensemble-runs", "1", "--events",
+         "memorizing_world", "--ensemble-runs", "1", "--events",
          str(tmp_path / "events"), "-q"],
         env=environment, capture_output=True, text=True, timeout=900)
     assert done.returncode == 1

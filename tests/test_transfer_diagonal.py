@@ -53,8 +53,7 @@ def test_the_faithful_diagonal_is_the_ordinary_sweep_of_the_faithful_world(tmp_p
     run("transfer", spec, "--out", out, "--workers", "1", "--no-progress")
 
     events = tmp_path / "events"
-    run("record-events", "--object", "box", "--scenario-name", "faithful_world",
-        "--events", events, "-q")
+    run("record-events", "--scenario-name", "faithful_world", "--events", events, "-q")
     for recorded in (out / "events" / "faithful" / "box").glob("*.json"):
         mine = json.loads((events / "box" / recorded.name).read_text())
         theirs = json.loads(recorded.read_text())
