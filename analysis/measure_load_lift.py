@@ -20,6 +20,8 @@ import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
+from tegrasp_drake.rig.files import write_atomically
+
 MARKERS_M = ((0.0, 0.0), (0.01, 0.0), (0.0, 0.015), (-0.01, -0.015))
 
 
@@ -75,7 +77,7 @@ def main(argv=None) -> int:
         print(f"| {r['object']} | {tuple(r['offset_mm'])} | {r['seed']} | {rl} | {ll} | "
               f"{fraction} | {pu} | {r['final_mode']} |")
     if args.json:
-        args.json.write_text(json.dumps(rows, indent=1))
+        write_atomically(args.json, json.dumps(rows, indent=1))
     return 0
 
 
