@@ -34,10 +34,10 @@ class TactileSensorConfig:
     AD7147: 12 conversion stages at decimation 64 take about 9.2 ms (about 108 Hz); 1000 Hz
     is also selectable for an idealised sensor.
 
-    transducer: "force", the taxel forces with the noise, quantisation and offset below (an
-    ideal force sensor, as in the paper's simulation), or "capacitive", the real pad's
-    parallel-plate taxels read by the AD7147 (capacitive_taxels.py, settings in
-    `capacitive`; the force noise settings are then unused).
+    transducer: "capacitive" (the default), the real pad's parallel-plate taxels read by the
+    AD7147 (capacitive_taxels.py, settings in `capacitive`; the force noise settings below are
+    then unused), or "force", the taxel forces with the noise, quantisation and offset below
+    (an ideal force sensor, as in the paper's simulation).
     """
     sample_rate_hz: float = bounded(108.0, low=16.0, high=20_000.0, unit="Hz",
                                     why="the 0.5 s event window needs 8 samples; the film is "
@@ -55,7 +55,7 @@ class TactileSensorConfig:
     # per taxel constant bias
     offset_n: float = bounded(0.0, low=-5.0, high=5.0, unit="N",
                               why="a bias within the taxel's 5 N calibration point")
-    transducer: str = "force"
+    transducer: str = "capacitive"
     capacitive: CapacitiveTaxelConfig = dataclasses.field(
         default_factory=CapacitiveTaxelConfig)
 
