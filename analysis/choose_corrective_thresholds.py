@@ -111,7 +111,8 @@ def main(argv=None) -> int:
             best = choose_centred_thresholds(choosing, GRID, GRID)
             verdict = (f"**SA > {best.sa_threshold:g}, RA > {best.ra_threshold:g}** "
                        f"(detected {best.detected}, false {best.false}, missed {best.missed}, "
-                       f"median latency {1000 * best.median_latency_s:.0f} ms).")
+                       + (f"median latency {1000 * best.median_latency_s:.0f} ms)."
+                          if best.median_latency_s is not None else "none detected)."))
         except ValueError:
             # No pair without a false trigger: show the pair with the fewest (then the most
             # detected, then the highest thresholds); the event is not usable as a trigger.

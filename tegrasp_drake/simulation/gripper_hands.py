@@ -76,8 +76,8 @@ class LinkageHand:
     events_folder: str = ""  # its memorized events: the package's events themselves
     # Eq. 3 thresholds [SA, RA] of its ensemble events, chosen on held-out ensemble runs
     # (analysis/choose_ensemble_thresholds.py; analysis/ensemble_thresholds.md).
-    ensemble_thresholds: tuple = (("reach_load", (0.40, 0.80)), ("load_lift", (0.40, 0.65)),
-                                  ("place_unload", (0.98, 0.70)))
+    ensemble_thresholds: tuple = (("reach_load", (0.88, 0.55)), ("load_lift", (0.48, 0.75)),
+                                  ("place_unload", (0.98, 0.65)))
 
     def half_opening(self, a: float) -> float:
         return linkage.half_opening(a)
