@@ -86,10 +86,10 @@ def event_waits(transitions: Sequence[Mapping]) -> list[EventWait]:
 class MissedWait:
     """A wait's replay (module docstring).
 
-    thresholds: (SA, RA) the matcher used for the event. best_sa: [left, right] SA scores
-    at the tick whose lower SA score is highest. best_tick_s: the SA-passing tick whose
-    lower RA score is highest, None when SA never passed; best_ra: [left, right] RA scores
-    there (None likewise). ra_peak: [left, right] peak |RA| [m/s^2] of the window ending at
+    thresholds: (SA, RA) the matcher used for the event. best_tick_s: the SA-passing tick
+    whose lower RA score is highest, None when SA never passed; best_sa, best_ra: [left,
+    right] SA and RA scores there (best_sa without one: at the tick whose lower SA score is
+    highest; best_ra None). ra_peak: [left, right] peak |RA| [m/s^2] of the window ending at
     best_tick_s; ra_noise_mean, ra_noise_std: [left, right] the RA noise [m/s^2]
     (None without a best tick)."""
     wait: EventWait
@@ -163,16 +163,16 @@ def classify_missed_wait(trial: TactileTrial, events: Mapping[str, MemorizedEven
     sa, ra = scores[:, :2], scores[:, 2:]
     sa_pass = np.all(sa > sa_threshold, axis=1)
     all_pass = sa_pass & np.all(ra > ra_threshold, axis=1)
-    best_sa = sa[int(np.argmax(sa.min(axis=1)))]
     thresholds = (sa_threshold, ra_threshold)
     if not sa_pass.any():
-        return MissedWait(wait, SA_DID_NOT_MATCH, thresholds, best_sa)
+        return MissedWait(wait, SA_DID_NOT_MATCH, thresholds,
+                          sa[int(np.argmax(sa.min(axis=1)))])
     candidates = np.flatnonzero(sa_pass)
     best = candidates[int(np.argmax(ra[candidates].min(axis=1)))]
     window_s = next(iter(events.values())).window_s
     mean, std = ra_noise(trial, config.ra_noise_quiet_s)
     return MissedWait(
         wait, MATCHED_IN_REPLAY if all_pass.any() else WEAK_DYNAMIC_STIMULUS, thresholds,
-        best_sa, best_tick_s=float(times[best]), best_ra=ra[best],
+        sa[best], best_tick_s=float(times[best]), best_ra=ra[best],
         ra_peak=ra_window_peak(trial, float(times[best]), window_s),
         ra_noise_mean=mean, ra_noise_std=std)

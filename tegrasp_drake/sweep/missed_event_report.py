@@ -145,13 +145,14 @@ def report_markdown(misses: list[TrialMiss], without_log: list[str], trials: int
              f"{trials} {controller} trials; {len(misses)} waits for a memorized event "
              f"ended on its timeout, in {len({m.trial_id for m in misses})} trials.", "",
              "Each wait is replayed through the controller's EventMatcher with the event "
-             "held expected. Best SA: the SA scores at the tick closest to both passing. "
-             "Best RA: the RA scores at the SA-passing tick closest to both passing (its "
-             "time), and each RA window's peak there in m/s², noise sigmas above the "
-             "channel's mean over the first quiet seconds, and converter codes; \"within "
-             "floor\" when an RA channel that failed peaked no higher than the RA noise "
-             f"floor's mean + {_floor_sigmas_text(misses)} σ (noise alone crosses it in one "
-             "trial of a thousand; events/ra_noise_floor.py). "
+             "held expected. Best: the scores at the tick where both SA passed and the "
+             "lower RA score is highest (its time), or, where SA never passed, the SA "
+             "scores at the tick closest to both passing. RA peak: each RA window's peak "
+             "at that tick in m/s², in noise sigmas above the channel's mean over the "
+             "first quiet seconds, and in converter codes; \"within floor\" when an RA "
+             "channel that failed peaked no higher than the RA noise floor's mean + "
+             f"{_floor_sigmas_text(misses)} σ (noise alone crosses it in one trial of a "
+             "thousand; events/ra_noise_floor.py). "
              f"Class \"{WEAK_DYNAMIC_STIMULUS}\": both SA passed at some tick but an RA "
              "channel stayed below its threshold at every such tick.", ""]
     if without_log:
