@@ -24,10 +24,12 @@ With the class go the scores closest to passing and, for a weak dynamic stimulus
 large the RA window was at its best tick (the SA-passing tick whose lower RA score is
 highest): each RA channel's peak |value| over the window ending there [m/s^2], against
 that channel's noise, the mean and standard deviation of its raw samples over the
-stream's first quiet_s (the arm's approach, pads untouched; ra_noise_floor.py), and
-whether a failing RA channel stayed within the noise floor's m + k s (k = 5.39 at 1 kHz,
-ra_noise_floor.rule_sigmas: noise alone crosses it in one trial of a thousand), i.e. the
-film's reading could not be told from its noise.
+stream's first quiet_s (the arm's approach, pads untouched; ra_noise_floor.py); the
+largest |RA| over the whole wait besides (the tick that scored best may lie before the
+stimulus; the wait's largest reading says whether the film read it at all); and whether
+a failing RA channel stayed within the noise floor's m + k s over the whole wait (k =
+5.39 at 1 kHz, ra_noise_floor.rule_sigmas: noise alone crosses it in one trial of a
+thousand), i.e. the film read nothing it could tell from its noise.
 """
 
 import dataclasses
@@ -90,35 +92,44 @@ class MissedWait:
     whose lower RA score is highest, None when SA never passed; best_sa, best_ra: [left,
     right] SA and RA scores there (best_sa without one: at the tick whose lower SA score is
     highest; best_ra None). ra_peak: [left, right] peak |RA| [m/s^2] of the window ending at
-    best_tick_s; ra_noise_mean, ra_noise_std: [left, right] the RA noise [m/s^2]
-    (None without a best tick)."""
+    best_tick_s (None without a best tick); ra_noise_mean, ra_noise_std: [left, right] the
+    RA noise [m/s^2]. ra_wait_peak: [left, right] peak |RA| [m/s^2] over the
+    whole wait, the strongest vibration the channel read while the event was expected."""
     wait: EventWait
     miss_class: str
     thresholds: tuple[float, float]
     best_sa: np.ndarray
+    ra_wait_peak: np.ndarray
+    ra_noise_mean: np.ndarray
+    ra_noise_std: np.ndarray
     best_tick_s: float | None = None
     best_ra: np.ndarray | None = None
     ra_peak: np.ndarray | None = None
-    ra_noise_mean: np.ndarray | None = None
-    ra_noise_std: np.ndarray | None = None
 
     def ra_peak_sigmas(self) -> np.ndarray | None:
         """[left, right] (peak - noise mean) / noise std; inf for a channel without
         noise."""
-        if self.ra_peak is None:
-            return None
+        return None if self.ra_peak is None else self._sigmas(self.ra_peak)
+
+    def _sigmas(self, peak: np.ndarray) -> np.ndarray:
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(self.ra_noise_std > 0.0,
-                            (self.ra_peak - self.ra_noise_mean) / self.ra_noise_std, np.inf)
+                            (peak - self.ra_noise_mean) / self.ra_noise_std, np.inf)
+
+    def ra_wait_peak_sigmas(self) -> np.ndarray:
+        """[left, right] (ra_wait_peak - noise mean) / noise std; inf for a channel
+        without noise."""
+        return self._sigmas(self.ra_wait_peak)
 
     def failing_ra_within_floor(self, sigmas: float) -> bool | None:
-        """Whether an RA channel that stayed below its threshold at the best tick peaked
-        there no higher than its noise mean + `sigmas` standard deviations (the RA noise
-        floor's rule, ra_noise_floor.py); None without a best tick."""
+        """Whether an RA channel that stayed below its threshold at the best tick read no
+        more than its noise mean + `sigmas` standard deviations (the RA noise floor's rule,
+        ra_noise_floor.py) over the whole wait: it never read the stimulus; None without a
+        best tick."""
         if self.best_ra is None:
             return None
         failing = self.best_ra <= self.thresholds[1]
-        return bool(np.any(failing & (self.ra_peak_sigmas() <= sigmas)))
+        return bool(np.any(failing & (self.ra_wait_peak_sigmas() <= sigmas)))
 
 
 def event_thresholds(config: EventMatcherConfig, transition: str) -> tuple[float, float]:
@@ -164,15 +175,15 @@ def classify_missed_wait(trial: TactileTrial, events: Mapping[str, MemorizedEven
     sa_pass = np.all(sa > sa_threshold, axis=1)
     all_pass = sa_pass & np.all(ra > ra_threshold, axis=1)
     thresholds = (sa_threshold, ra_threshold)
+    wait_peak = ra_window_peak(trial, wait.end_s, wait.end_s - wait.start_s)
+    mean, std = ra_noise(trial, config.ra_noise_quiet_s)
     if not sa_pass.any():
         return MissedWait(wait, SA_DID_NOT_MATCH, thresholds,
-                          sa[int(np.argmax(sa.min(axis=1)))])
+                          sa[int(np.argmax(sa.min(axis=1)))], wait_peak, mean, std)
     candidates = np.flatnonzero(sa_pass)
     best = candidates[int(np.argmax(ra[candidates].min(axis=1)))]
     window_s = next(iter(events.values())).window_s
-    mean, std = ra_noise(trial, config.ra_noise_quiet_s)
     return MissedWait(
         wait, MATCHED_IN_REPLAY if all_pass.any() else WEAK_DYNAMIC_STIMULUS, thresholds,
-        sa[best], best_tick_s=float(times[best]), best_ra=ra[best],
-        ra_peak=ra_window_peak(trial, float(times[best]), window_s),
-        ra_noise_mean=mean, ra_noise_std=std)
+        sa[best], wait_peak, mean, std, best_tick_s=float(times[best]), best_ra=ra[best],
+        ra_peak=ra_window_peak(trial, float(times[best]), window_s))

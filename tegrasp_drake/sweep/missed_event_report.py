@@ -101,18 +101,20 @@ def _pair(values, digits: int = 2) -> str:
     return "–" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
 
 
-def _ra_size(miss: TrialMiss) -> str:
-    """Each RA channel's window peak: m/s^2, converter codes, noise sigmas."""
-    m = miss.missed
-    if m.ra_peak is None:
+def _ra_size(miss: TrialMiss, peaks, sigmas) -> str:
+    """Each RA channel's peak: m/s^2, noise sigmas, converter codes."""
+    if peaks is None:
         return "–"
-    sigmas = m.ra_peak_sigmas()
     parts = []
-    for side, peak, sigma in zip("LR", m.ra_peak, sigmas):
+    for side, peak, sigma in zip("LR", peaks, sigmas):
         codes = "" if miss.ra_code_mps2 is None else f", {peak / miss.ra_code_mps2:.1f} codes"
         parts.append(f"{side} {peak:.3g} m/s² ({sigma:.1f} σ{codes})")
-    floor = "within" if miss.within_noise_floor() else "above"
-    return "; ".join(parts) + f"; {floor} floor"
+    return "; ".join(parts)
+
+
+def _floor_text(miss: TrialMiss) -> str:
+    within = miss.within_noise_floor()
+    return "–" if within is None else ("within" if within else "above")
 
 
 # The count of the weak dynamic stimuli whose failing RA stayed within the noise floor.
@@ -147,27 +149,30 @@ def report_markdown(misses: list[TrialMiss], without_log: list[str], trials: int
              "Each wait is replayed through the controller's EventMatcher with the event "
              "held expected. Best: the scores at the tick where both SA passed and the "
              "lower RA score is highest (its time), or, where SA never passed, the SA "
-             "scores at the tick closest to both passing. RA peak: each RA window's peak "
-             "at that tick in m/s², in noise sigmas above the channel's mean over the "
-             "first quiet seconds, and in converter codes; \"within floor\" when an RA "
-             "channel that failed peaked no higher than the RA noise floor's mean + "
-             f"{_floor_sigmas_text(misses)} σ (noise alone crosses it in one trial of a "
-             "thousand; events/ra_noise_floor.py). "
+             "scores at the tick closest to both passing. RA peak at best: each RA "
+             "window's peak at that tick in m/s², in noise sigmas above the channel's "
+             "mean over the first quiet seconds, and in converter codes; RA peak in wait: "
+             "the same over the whole wait. Floor: \"within\" when an RA channel that "
+             "failed at the best tick read no more than the RA noise floor's mean + "
+             f"{_floor_sigmas_text(misses)} σ over the whole wait (noise alone crosses it "
+             "in one trial of a thousand; events/ra_noise_floor.py). "
              f"Class \"{WEAK_DYNAMIC_STIMULUS}\": both SA passed at some tick but an RA "
              "channel stayed below its threshold at every such tick.", ""]
     if without_log:
         lines += [f"No log for {len(without_log)} trials with waits (not counted): "
                   + ", ".join(without_log), ""]
     lines += ["| Trial | Wait | Reason | Thresholds SA / RA | Best SA L / R | "
-              "Best RA L / R (at) | RA peak / noise | Class |",
-              "|---|---|---|---|---|---|---|---|"]
+              "Best RA L / R (at) | RA peak at best | RA peak in wait | Floor | Class |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
     for miss in misses:
         m = miss.missed
         at = "" if m.best_tick_s is None else f" ({m.best_tick_s:.3f} s)"
         lines.append(
             f"| {miss.trial_id} | {m.wait.transition} {m.wait.start_s:.2f}–{m.wait.end_s:.2f} "
             f"s | {m.wait.reason} | {_pair(m.thresholds)} | {_pair(m.best_sa, 3)} | "
-            f"{_pair(m.best_ra, 3)}{at} | {_ra_size(miss)} | {m.miss_class} |")
+            f"{_pair(m.best_ra, 3)}{at} | {_ra_size(miss, m.ra_peak, m.ra_peak_sigmas())} | "
+            f"{_ra_size(miss, m.ra_wait_peak, m.ra_wait_peak_sigmas())} | {_floor_text(miss)} "
+            f"| {m.miss_class} |")
     lines += ["", "## Missed waits per object and class", "",
               "| Object | " + " | ".join(COUNT_COLUMNS) + " |",
               "|---|" + "---|" * len(COUNT_COLUMNS)]
