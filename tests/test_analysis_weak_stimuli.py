@@ -5,6 +5,8 @@ grasps whose vibration is buried in noise (a weak dynamic stimulus) or whose sec
 touches too late (SA fails)."""
 
 import dataclasses
+import importlib.util
+import pathlib
 
 import numpy as np
 import pytest
@@ -14,14 +16,32 @@ from tegrasp_drake.control.corrective_actions import Counters
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.events.event_matcher import EventMatcherConfig
+from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.missed_waits import (
     MATCHED_IN_REPLAY, SA_DID_NOT_MATCH, WEAK_DYNAMIC_STIMULUS, EventWait,
     classify_missed_wait, event_waits)
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
 from tegrasp_drake.events.ra_noise_floor import rule_sigmas
+from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.rig.objects import object_description
+from tegrasp_drake.scenario.scenario import sample_rates_hz
+from tegrasp_drake.scenario.trial_log_file import TrialLog
 from tegrasp_drake.sweep.missed_event_report import (
     WITHIN_FLOOR, TrialMiss, class_counts, report_markdown)
+from tegrasp_drake.sweep.records import make_record, write_record
+from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
+from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec, trial_log_name
+
+
+
+def load_command():
+    """analysis/weak_stimuli.py as a module."""
+    path = pathlib.Path(__file__).resolve().parents[1] / "analysis" / "weak_stimuli.py"
+    spec = importlib.util.spec_from_file_location("weak_stimuli", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 IDEAL = SyntheticGraspConfig()
 EVENTS = extract_memorized_events(synthetic_grasp(IDEAL), object_name="box",
@@ -143,3 +163,66 @@ def test_a_wait_outside_the_trial_is_refused():
     wait = dataclasses.replace(REACH_WAIT, start_s=50.0, end_s=51.0)
     with pytest.raises(ValueError, match="not within the log"):
         classify_missed_wait(synthetic_grasp(IDEAL), EVENTS, wait, CONFIG)
+
+
+# ---- The command, on a sweep record and its trial log -----------------------------------
+
+# A synthetic grasp on the sweep's timeline: the first 2 s quiet (the matcher's RA noise
+# period, controller.ra_noise_quiet_s), contact at 2.5 s, the table at 4.8 s.
+SWEEP_GRASP = SyntheticGraspConfig(duration_s=6.0, contact_s=2.5, place_s=4.8, ra_noise=0.2,
+                                   sa_noise_n=0.005, seed=5)
+
+
+def synthetic_trial_log(trial) -> TrialLog:
+    """A TrialLog of `trial`: SA on one taxel of each pad, RA as the channels' film."""
+    def zeros(times, width):
+        return np.zeros((len(times), width))
+    t_slow = np.array([0.0, trial.t_ra[-1]])
+    taxels = zeros(trial.t_sa, 2 * TAXELS_PER_PAD)
+    taxels[:, 0], taxels[:, TAXELS_PER_PAD] = trial.sa[:, 0], trial.sa[:, 1]
+    sa_at_ra = trial.sa[np.searchsorted(trial.t_sa, trial.t_ra, side="right") - 1]
+    return TrialLog(t_sa=trial.t_sa, taxels=taxels, true_taxels=taxels, t_ra=trial.t_ra,
+                    channels=np.hstack([sa_at_ra, trial.ra]),
+                    pad_acceleration=zeros(trial.t_ra, 6), t_slow=t_slow,
+                    arm_q=zeros(t_slow, 6), arm_q_desired=zeros(t_slow, 6),
+                    gripper_command=zeros(t_slow, 3), gripper_status=zeros(t_slow, 8),
+                    phase=np.zeros(2), object_state=zeros(t_slow, 13), meta={})
+
+
+def test_the_command_classes_a_sweeps_missed_waits_from_its_records_and_logs(tmp_path):
+    spec = SweepSpec(objects=("thin_cylinder",), controllers=("memorized",), attempts=1,
+                     base_seed=601, grid=((0.0, 0.0), (0.0, 0.015)))
+    trials = [t.to_dict() for t in expand_trials(spec)]
+    scenario = scenario_from_trial_spec(trials[0], nominal=True)
+    sa_rate, ra_rate = sample_rates_hz(scenario)
+    events = extract_memorized_events(
+        synthetic_grasp(dataclasses.replace(SWEEP_GRASP, ra_noise=0.0, sa_noise_n=0.0)),
+        object_name="thin_cylinder", sa_rate_hz=sa_rate, ra_rate_hz=ra_rate,
+        package_versions={}, object_description=object_description(scenario.object))
+    save_memorized_events(tmp_path / "events", events.values())
+    place = reason_of(Mode.PLACE, Observation(motion_done=True, time_since_motion_done=10.0,
+                                              contact=(True, True)))
+    reach = reason_of(Mode.REACH, Observation(closing_s=10.0))
+    # The first trial waits in Place from 4.3 s, past the table at 4.8 s, and reads the
+    # table through a film 100 times weaker; the second waits in Reach until 3.4 s, past the
+    # left finger's contact at 2.5 s, and its right finger touches 1 s late, at 3.5 s.
+    cases = [(dataclasses.replace(SWEEP_GRASP, ra_scale=0.01),
+              [entry(2.5, Mode.REACH, Mode.LOAD, "Reach-Load event", Trigger.MEMORIZED_EVENT),
+               entry(3.0, Mode.LOAD, Mode.LIFT, "Load-Lift event", Trigger.MEMORIZED_EVENT),
+               entry(4.3, Mode.HOLD, Mode.PLACE, "held 3 s", Trigger.TIMER),
+               entry(5.5, Mode.PLACE, place.mode, place.reason, Trigger.TIMER)]),
+             (dataclasses.replace(SWEEP_GRASP, right_delay_s=1.0),
+              [entry(3.4, Mode.REACH, reach.mode, reach.reason)])]
+    for trial, (config, transitions) in zip(trials, cases):
+        write_record(tmp_path / "results", make_record(trial, result={
+            "transitions": transitions, "unload_success": True}))
+        synthetic_trial_log(synthetic_grasp(config)).save(
+            tmp_path / "logs" / trial_log_name(trial))
+    out = tmp_path / "weak_stimuli.md"
+    assert load_command().main([str(tmp_path / "results"), str(tmp_path / "logs"), "--events",
+                                str(tmp_path / "events"), "--out", str(out)]) == 0
+    rows = [line.split("|") for line in out.read_text().splitlines()
+            if line.startswith("| memorized/")]
+    assert [(row[1].strip(), row[2].split()[0], row[-2].strip()) for row in rows] == [
+        (trials[0]["trial_id"], "place_unload", WEAK_DYNAMIC_STIMULUS),
+        (trials[1]["trial_id"], "reach_load", SA_DID_NOT_MATCH)]
