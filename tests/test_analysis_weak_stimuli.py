@@ -144,9 +144,11 @@ def test_a_finger_that_touches_too_late_is_an_sa_miss(classified):
 
 
 def test_the_report_counts_each_class_per_object(classified):
-    misses = [TrialMiss("memorized/box/m00/a0", "box", classified["weak film"], None),
-              TrialMiss("memorized/box/m01/a0", "box", classified["late right finger"], None),
-              TrialMiss("memorized/mug/m00/a0", "mug", classified["weak film"], 0.01)]
+    rate = CONFIG.ra_rate_hz
+    misses = [TrialMiss("memorized/box/m00/a0", "box", classified["weak film"], None, rate),
+              TrialMiss("memorized/box/m01/a0", "box", classified["late right finger"], None,
+                        rate),
+              TrialMiss("memorized/mug/m00/a0", "mug", classified["weak film"], 0.01, rate)]
     assert class_counts(misses) == {
         "box": {WEAK_DYNAMIC_STIMULUS: 1, WITHIN_FLOOR: 1, SA_DID_NOT_MATCH: 1,
                 MATCHED_IN_REPLAY: 0},

@@ -27,12 +27,13 @@ from tegrasp_drake.sweep.trial_function import trial_events, trial_log_name
 @dataclasses.dataclass(frozen=True)
 class TrialMiss:
     """One missed wait of one trial; ra_code_mps2: the m/s^2 of one converter code of the
-    trial's film readout (None without a converter or film)."""
+    trial's film readout (None without a converter or film); ra_rate_hz: the matcher's RA
+    rate [Hz] (it sets the noise floor's k)."""
     trial_id: str
     object_name: str
     missed: MissedWait
     ra_code_mps2: float | None
-    ra_rate_hz: float = 1000.0
+    ra_rate_hz: float
 
     def within_noise_floor(self) -> bool | None:
         """Whether a failing RA channel stayed within the RA noise floor's rule
