@@ -8,7 +8,8 @@ WindowNormalizer (tactile/window_normalizer.py: the live 0.5 s windows) that sco
 windows against the expected event with Eq. 3 (correlation.py, streaming_correlation.py) in
 the update that takes each sample; `add_event_matcher` adds it to a diagram. The
 EventSequencer expects an object's events one after another. replay.py runs a logged trial
-through them offline.
+through them offline; missed_waits.py replays the waits for an event that never came and
+says why.
 
 Not re-exported here, so that the control loop does not import matplotlib:
 `plot.plot_memorized_events` (the Fig. 5c-like figure), `benchmark` (the matcher's cost
@@ -30,6 +31,8 @@ from tegrasp_drake.events.event_file import (
 from tegrasp_drake.events.events_folder import (
     load_all_memorized_events, load_memorized_events, save_memorized_events)
 from tegrasp_drake.events.memorized_event import MemorizedEvent, current_package_versions
+from tegrasp_drake.events.missed_waits import (
+    EventWait, MissedWait, classify_missed_wait, event_waits)
 from tegrasp_drake.events.replay import (
     EventReplay, channels_trajectory, live_matcher_config, replay_event_held,
     replay_events_in_sequence, tactile_trial_from_log)
@@ -42,10 +45,11 @@ from tegrasp_drake.tactile.max_normalization import normalize_by_max
 __all__ = [
     "DEFAULT_PRE_TRANSITION_S", "DEFAULT_WINDOW_S", "FORMAT_VERSION", "INDEX_FILE",
     "NO_EVENT", "RECORD_COMMAND", "REQUIRED_TRANSITIONS", "TRANSITIONS", "EventMatcher",
-    "EventMatcherConfig", "EventReplay", "EventSequencer", "MemorizedEvent", "MemorizedEventError", "SlidingCorrelation",
+    "EventMatcherConfig", "EventReplay", "EventSequencer", "EventWait", "MemorizedEvent",
+    "MemorizedEventError", "MissedWait", "SlidingCorrelation",
     "StreamingCorrelator", "TactileTrial", "add_event_matcher", "channel_score",
-    "channels_trajectory", "current_package_versions", "cut_window",
-    "event_scores_reference", "event_templates", "event_transition",
+    "channels_trajectory", "classify_missed_wait", "current_package_versions", "cut_window",
+    "event_scores_reference", "event_templates", "event_transition", "event_waits",
     "extract_memorized_events", "live_matcher_config", "load_all_memorized_events",
     "load_memorized_events", "max_normalized_xcorr_reference", "next_sequence_step",
     "normalize_by_max", "read_index", "read_memorized_event",

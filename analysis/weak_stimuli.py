@@ -1,0 +1,70 @@
+"""Count the memorized events a sweep's controller waited for in vain, and why: the paper's
+"very weak dynamic stimuli" that the piezoelectric film failed to pick up (Sec. V) among
+them (tegrasp_drake/events/missed_waits.py, sweep/missed_event_report.py).
+
+    python analysis/weak_stimuli.py RESULTS LOGS [--events DIR] [--out OUT.md]
+        [--controller memorized]
+
+RESULTS: a sweep's results folder (its records under trials/); LOGS: the same sweep's
+`tegrasp sweep --logs` folder; --events: the memorized events folder the sweep ran with
+(as `tegrasp sweep --events`); --out: also write the report there. Every wait of a
+controller trial that ended on its event's timeout (Re-Reach after "no Reach-Load event
+...", "no Load-Lift event within ...", "no Place-Unload event after the arm stopped") is
+replayed from the log through Eq. 3 and classed:
+
+  weak dynamic stimulus  both SA channels passed their threshold at some tick of the wait,
+                         but at every such tick an RA channel stayed below its threshold
+  SA did not match       no tick of the wait where both SA channels passed
+  matched in replay      the replay matched where the run did not (other events/settings)
+
+The report lists each wait (scores, each RA window's peak in m/s^2, noise sigmas and
+converter codes) and the counts per object and class.
+"""
+
+import argparse
+import pathlib
+import sys
+
+from tegrasp_drake.sweep.missed_event_report import report_markdown, sweep_misses
+from tegrasp_drake.sweep.records import load_records
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("results", type=pathlib.Path, help="a sweep's results folder")
+    parser.add_argument("logs", type=pathlib.Path, help="the sweep's --logs folder")
+    parser.add_argument("--events", type=pathlib.Path, default=None,
+                        help="the memorized events folder the sweep ran with")
+    parser.add_argument("--out", type=pathlib.Path, default=None, help="write the report here")
+    parser.add_argument("--controller", default="memorized",
+                        help="the event-triggered controller whose trials to look at")
+    args = parser.parse_args(argv)
+    for folder, what in ((args.results, "results"), (args.logs, "logs")):
+        if not folder.is_dir():
+            raise SystemExit(f"weak_stimuli: {what} folder {folder} does not exist")
+    loaded = load_records(args.results)
+    if not loaded.records:
+        raise SystemExit(f"weak_stimuli: {args.results} holds no trial records (trials/*.json)")
+    for path, problem in loaded.corrupt.items():
+        print(f"weak_stimuli: skipped corrupt record {path}: {problem}", file=sys.stderr)
+    try:
+        misses, without_log, trials = sweep_misses(
+            loaded.records, args.logs, controller=args.controller, events_dir=args.events)
+    except ValueError as error:  # a log, events folder or record the replay cannot use
+        raise SystemExit(f"weak_stimuli: {error}") from None
+    if not trials:
+        raise SystemExit(f"weak_stimuli: {args.results} holds no '{args.controller}' trials "
+                         "that ran; see --controller")
+    text = report_markdown(misses, without_log, trials, args.controller,
+                           f"Missed memorized events of `{args.results.name}`")
+    for trial_id in without_log:
+        print(f"weak_stimuli: no log for {trial_id} in {args.logs}; not counted",
+              file=sys.stderr)
+    if args.out is not None:
+        args.out.write_text(text)
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,189 @@
+"""Why a memorized event did not come in time: a logged wait replayed through Eq. 3.
+
+A wait is the time the grasp state machine spent in a mode expecting that mode's memorized
+event (grasp_state_machine.EXPECTED_TRANSITION) until the mode gave up on it: the
+transition out of the mode whose reason is the event's timeout ("no Reach-Load event 3 s
+after closing", "no Load-Lift event within 2 s", "no Place-Unload event after the arm
+stopped"; control/transition_logic.py). `event_waits` finds them in a trial's
+transitions.
+
+`classify_missed_wait` replays the trial's channels with the event held expected
+(replay.replay_event_held: the EventMatcher the controller ran, with its settings) and
+looks at the scores over the wait, with the matcher's own thresholds (SA > 0.9, RA > 0.7
+in the paper):
+
+  weak dynamic stimulus  both SA channels passed at some tick, and at each such tick an RA
+                         channel did not: the pads felt the event's quasi-static shape but
+                         the vibration channel did not carry its dynamic part (the paper's
+                         Sec. V: the film "failed to identify very weak dynamic stimuli")
+  SA did not match       no tick where both SA channels passed
+  matched in replay      a tick where all four passed: the replay disagrees with the run
+                         (another events folder or matcher setting than the run's)
+
+With the class go the scores closest to passing and, for a weak dynamic stimulus, how
+large the RA window was at its best tick (the SA-passing tick whose lower RA score is
+highest): each RA channel's peak |value| over the window ending there [m/s^2], against
+that channel's noise, the mean and standard deviation of its raw samples over the
+stream's first quiet_s (the arm's approach, pads untouched; ra_noise_floor.py); the
+largest |RA| over the whole wait besides (the tick that scored best may lie before the
+stimulus; the wait's largest reading says whether the film read it at all); and whether
+a failing RA channel stayed within the noise floor's m + k s over the whole wait (k =
+5.39 at 1 kHz, ra_noise_floor.rule_sigmas: noise alone crosses it in one trial of a
+thousand), i.e. the film read nothing it could tell from its noise.
+"""
+
+import dataclasses
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from tegrasp_drake.events.event_matcher import EventMatcherConfig
+from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.events.replay import replay_event_held
+from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
+
+WEAK_DYNAMIC_STIMULUS = "weak dynamic stimulus"
+SA_DID_NOT_MATCH = "SA did not match"
+MATCHED_IN_REPLAY = "matched in replay"
+MISS_CLASSES = (WEAK_DYNAMIC_STIMULUS, SA_DID_NOT_MATCH, MATCHED_IN_REPLAY)
+
+# The mode that waits for each event-triggered transition (its from-state), by label.
+_WAITING_MODE = {transition_states(name)[0]: name for name in REQUIRED_TRANSITIONS}
+
+
+@dataclasses.dataclass(frozen=True)
+class EventWait:
+    """The machine expected `transition`'s event from start_s to end_s [s] (trial clock)
+    and gave up at end_s for `reason`."""
+    transition: str
+    start_s: float
+    end_s: float
+    reason: str
+
+
+def timeout_reason_prefix(transition: str) -> str:
+    """The start of every reason the machine gives when `transition`'s event did not come
+    in time, e.g. "no Reach-Load event" (transition_logic.py)."""
+    return "no {}-{} event".format(*transition_states(transition))
+
+
+def event_waits(transitions: Sequence[Mapping]) -> list[EventWait]:
+    """The waits of a trial's transitions (their JSON form, Transition.as_dict, in time
+    order) that ended on their event's timeout; each wait starts at the last entry into the
+    waiting mode, or at 0 for the first Reach."""
+    waits, entered = [], {"Reach": 0.0}  # the machine starts in Reach at 0
+    for entry in transitions:
+        transition = _WAITING_MODE.get(entry["from"])
+        if transition is not None and entry["reason"].startswith(
+                timeout_reason_prefix(transition)):
+            start = entered.get(entry["from"], 0.0)
+            waits.append(EventWait(transition, float(start), float(entry["t"]),
+                                   entry["reason"]))
+        entered[entry["to"]] = float(entry["t"])
+    return waits
+
+
+@dataclasses.dataclass(frozen=True)
+class MissedWait:
+    """A wait's replay (module docstring).
+
+    thresholds: (SA, RA) the matcher used for the event. best_tick_s: the SA-passing tick
+    whose lower RA score is highest, None when SA never passed; best_sa, best_ra: [left,
+    right] SA and RA scores there (best_sa without one: at the tick whose lower SA score is
+    highest; best_ra None). ra_peak: [left, right] peak |RA| [m/s^2] of the window ending at
+    best_tick_s (None without a best tick); ra_noise_mean, ra_noise_std: [left, right] the
+    RA noise [m/s^2]. ra_wait_peak: [left, right] peak |RA| [m/s^2] over the
+    whole wait, the strongest vibration the channel read while the event was expected."""
+    wait: EventWait
+    miss_class: str
+    thresholds: tuple[float, float]
+    best_sa: np.ndarray
+    ra_wait_peak: np.ndarray
+    ra_noise_mean: np.ndarray
+    ra_noise_std: np.ndarray
+    best_tick_s: float | None = None
+    best_ra: np.ndarray | None = None
+    ra_peak: np.ndarray | None = None
+
+    def ra_peak_sigmas(self) -> np.ndarray | None:
+        """[left, right] (peak - noise mean) / noise std; inf for a channel without
+        noise."""
+        return None if self.ra_peak is None else self._sigmas(self.ra_peak)
+
+    def _sigmas(self, peak: np.ndarray) -> np.ndarray:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.ra_noise_std > 0.0,
+                            (peak - self.ra_noise_mean) / self.ra_noise_std, np.inf)
+
+    def ra_wait_peak_sigmas(self) -> np.ndarray:
+        """[left, right] (ra_wait_peak - noise mean) / noise std; inf for a channel
+        without noise."""
+        return self._sigmas(self.ra_wait_peak)
+
+    def failing_ra_within_floor(self, sigmas: float) -> bool | None:
+        """Whether an RA channel that stayed below its threshold at the best tick read no
+        more than its noise mean + `sigmas` standard deviations (the RA noise floor's rule,
+        ra_noise_floor.py) over the whole wait: it never read the stimulus; None without a
+        best tick."""
+        if self.best_ra is None:
+            return None
+        failing = self.best_ra <= self.thresholds[1]
+        return bool(np.any(failing & (self.ra_wait_peak_sigmas() <= sigmas)))
+
+
+def event_thresholds(config: EventMatcherConfig, transition: str) -> tuple[float, float]:
+    """The (SA, RA) thresholds the matcher applies to `transition`'s event."""
+    return tuple(config.event_thresholds.get(transition,
+                                             (config.sa_threshold, config.ra_threshold)))
+
+
+def ra_noise(trial: TactileTrial, quiet_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """[left, right] mean and standard deviation [m/s^2] of the raw RA samples of the
+    trial's first quiet_s [s]."""
+    quiet = trial.ra[trial.t_ra < trial.t_ra[0] + quiet_s]
+    if len(quiet) < 2:
+        raise ValueError(f"the trial holds fewer than 2 RA samples in its first {quiet_s} s")
+    return quiet.mean(axis=0), quiet.std(axis=0)
+
+
+def ra_window_peak(trial: TactileTrial, end_s: float, window_s: float) -> np.ndarray:
+    """[left, right] largest |RA| [m/s^2] of the samples in (end_s - window_s, end_s]."""
+    inside = (trial.t_ra > end_s - window_s) & (trial.t_ra <= end_s + 1e-9)
+    return np.abs(trial.ra[inside]).max(axis=0) if inside.any() else np.zeros(2)
+
+
+def classify_missed_wait(trial: TactileTrial, events: Mapping[str, MemorizedEvent],
+                         wait: EventWait, config: EventMatcherConfig) -> MissedWait:
+    """Replays `trial` from its start to wait.end_s with wait.transition's event held
+    expected by an EventMatcher of `config` (the run's: event_matcher_config), and
+    classifies the wait by the scores of its ticks in [start_s, end_s] (module docstring).
+    """
+    if not trial.t_ra[0] <= wait.start_s <= wait.end_s <= trial.t_ra[-1] + 1e-9:
+        raise ValueError(f"the wait {wait.start_s:.3f}-{wait.end_s:.3f} s is not within the "
+                         f"log's {trial.t_ra[0]:.3f}-{trial.t_ra[-1]:.3f} s: the log is not "
+                         "this trial's")
+    replay = replay_event_held(trial, events, wait.transition, config=config,
+                               t_end=wait.end_s)
+    inside = (replay.times >= wait.start_s) & (replay.times <= wait.end_s)
+    if not inside.any():
+        raise ValueError(f"the wait {wait.start_s:.3f}-{wait.end_s:.3f} s holds no control "
+                         "tick of the replay: it is shorter than a tick")
+    times, scores = replay.times[inside], replay.scores[inside]
+    sa_threshold, ra_threshold = event_thresholds(config, wait.transition)
+    sa, ra = scores[:, :2], scores[:, 2:]
+    sa_pass = np.all(sa > sa_threshold, axis=1)
+    all_pass = sa_pass & np.all(ra > ra_threshold, axis=1)
+    thresholds = (sa_threshold, ra_threshold)
+    wait_peak = ra_window_peak(trial, wait.end_s, wait.end_s - wait.start_s)
+    mean, std = ra_noise(trial, config.ra_noise_quiet_s)
+    if not sa_pass.any():
+        return MissedWait(wait, SA_DID_NOT_MATCH, thresholds,
+                          sa[int(np.argmax(sa.min(axis=1)))], wait_peak, mean, std)
+    candidates = np.flatnonzero(sa_pass)
+    best = candidates[int(np.argmax(ra[candidates].min(axis=1)))]
+    window_s = next(iter(events.values())).window_s
+    return MissedWait(
+        wait, MATCHED_IN_REPLAY if all_pass.any() else WEAK_DYNAMIC_STIMULUS, thresholds,
+        sa[best], wait_peak, mean, std, best_tick_s=float(times[best]), best_ra=ra[best],
+        ra_peak=ra_window_peak(trial, float(times[best]), window_s))
