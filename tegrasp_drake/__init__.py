@@ -40,7 +40,10 @@ _PUBLIC = {
     "HeuristicControllerConfig": "tegrasp_drake.control.controller_config",
     "OpenLoopControllerConfig": "tegrasp_drake.control.controller_config",
     "TaxelAwareControllerConfig": "tegrasp_drake.control.controller_config",
-    "CONTROLLER_NAMES": "tegrasp_drake.control.controller_config",
+    "CONTROLLER_NAMES": "tegrasp_drake.control.controller_registry",
+    "CONTROLLERS": "tegrasp_drake.control.controller_registry",
+    "ControllerEntry": "tegrasp_drake.control.controller_registry",
+    "controller_entry": "tegrasp_drake.control.controller_registry",
     "with_controller": "tegrasp_drake.scenario.scenario",
     # Stations: the simulation and the real devices behind the same ports.
     "MakeGraspStation": "tegrasp_drake.simulation.station",

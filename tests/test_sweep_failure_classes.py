@@ -59,6 +59,6 @@ def test_counts_per_controller_and_object_and_the_table():
     assert counts["memorized"]["box"]["toppled at release"] == 1
     assert sum(counts["memorized"]["box"].values()) == 1
     assert set(counts["open_loop"]["thin_cylinder"]) == set(FAILURE_CLASSES)
-    table = failure_classes_markdown(counts, {"memorized": "memorized triggers"})
+    table = failure_classes_markdown(counts)
     assert "| box | 1 |" in table and "toppled at release" in table
     assert "not lifted" not in table  # only the classes that occur

@@ -16,7 +16,7 @@ from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scena
 from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
                                                 start_viewer, wait_for_viewer,
                                                 write_replay_html)
-from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 
 DESCRIPTION = """\
@@ -40,9 +40,9 @@ def add_trial_arguments(parser, *, out_help: str) -> None:
     add_scenario_arguments(parser)
     add_events_argument(parser)
     parser.add_argument("--controller", choices=CONTROLLER_NAMES, default=None,
-                        help="memorized: the paper's memorized tactile events; heuristic: "
-                             "hand-set thresholds (Romano et al. style); open_loop: the ideal "
-                             "scripted grasp (default: the scenario's controller.name)")
+                        help=f"{controllers_help()}. Default: the scenario's controller; "
+                             "another runs with the settings it shares with it and names "
+                             "those it ignores")
     parser.add_argument("--out", metavar="DIR", default=None, help=out_help)
     parser.add_argument("--overwrite", action="store_true",
                         help="replace the run that the --out folder holds")
@@ -83,10 +83,6 @@ def print_result(result: dict) -> None:
 
 
 def run(args) -> int:
-    overrides = list(args.overrides)
-    if args.controller:
-        overrides.append(f"controller.name={args.controller}")
-    args.overrides = overrides
     scenario = scenario_from_arguments(args)
     events = controller_events(scenario, args.events)  # fails before anything is written
     corrective = corrective_events(scenario, args.events)

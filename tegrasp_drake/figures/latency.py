@@ -10,8 +10,7 @@ import numpy as np
 
 from tegrasp_drake.events.transitions import TRANSITIONS
 from tegrasp_drake.figures.figure_files import new_figure, save_figure
-from tegrasp_drake.figures.table1 import CONTROLLER_COLORS
-from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_color
 
 TRANSITION_TITLES = {"reach_load": "Reach-Load (first contact)",
                      "load_lift": "Load-Lift (grip settled)",
@@ -62,7 +61,7 @@ def plot_latency_distributions(records, path) -> str:
         labels = []
         for i, controller in enumerate(controllers):
             values_ms = 1000.0 * np.asarray(samples[transition].get(controller, []))
-            color = CONTROLLER_COLORS.get(controller, f"C{i}")
+            color = controller_color(controller, f"C{i}")
             if len(values_ms):
                 axis.boxplot([values_ms], positions=[i], widths=0.5, showfliers=False,
                              medianprops={"color": color, "lw": 1.5})

@@ -11,7 +11,8 @@ from pathlib import Path
 import numpy as np
 
 from tegrasp_drake.figures.figure_files import new_figure, save_figure
-from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
+from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 from tegrasp_drake.sweep.table import succeeded
 
 PHASES = ("hold", "unload")

@@ -11,6 +11,7 @@ import dataclasses
 import numpy as np
 from matplotlib.lines import Line2D
 
+from tegrasp_drake.control.controller_registry import controller_label
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 
 STATE_COLORS = {"Reach": "#d9e8f5", "Re-Reach": "#f7d6d0", "Load": "#dcefd9",
@@ -28,8 +29,6 @@ TRIGGER_STYLES = {
 PHYSICAL_EVENT_STYLE = ("#117a65", (0, (6, 2)))  # colour, dash pattern
 PHYSICAL_EVENT_NAMES = {"reach_load": "first contact", "load_lift": "grip settled",
                         "place_unload": "table touch", "hit": "hit"}
-CONTROLLER_NAMES = {"memorized": "memorized triggers", "heuristic": "heuristic thresholds",
-                    "open_loop": "open loop", "taxel_aware": "taxel-aware, ensemble events"}
 SCORE_THRESHOLDS = "match: SA > 0.9 and RA > 0.7 on all four channels"
 
 
@@ -72,7 +71,7 @@ def run_description(log) -> str:
     result = log.meta.get("result", {})
     offset_mm = [1000.0 * v for v in result.get("offset_m", [0.0, 0.0])]
     controller = result.get("controller", log.meta.get("controller", ""))
-    return (f"{result.get('object', '?')}, {CONTROLLER_NAMES.get(controller, controller)}, "
+    return (f"{result.get('object', '?')}, {controller_label(controller)}, "
             f"offset ({offset_mm[0]:.0f}, {offset_mm[1]:.0f}) mm, "
             f"seed {result.get('seed', '?')}")
 

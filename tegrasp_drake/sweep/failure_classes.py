@@ -19,6 +19,7 @@ Checked in this order (the first that applies):
   other                  a Failed reason none of the above names (see the record)
 """
 
+from tegrasp_drake.control.controller_registry import controller_title
 from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
 from tegrasp_drake.runs.trial import UPRIGHT_TILT_DEG
 
@@ -75,7 +76,7 @@ def failure_class_counts(records) -> dict:
     return counts
 
 
-def failure_classes_markdown(counts: dict, controller_titles: dict) -> str:
+def failure_classes_markdown(counts: dict) -> str:
     """A table per controller: objects by the failure classes that occur in the sweep."""
     present = [name for name in FAILURE_CLASSES
                if any(per_object[name] for objects in counts.values()
@@ -85,7 +86,7 @@ def failure_classes_markdown(counts: dict, controller_titles: dict) -> str:
     if not present:
         return "\n".join(lines + ["No trial failed.", ""])
     for controller, objects in counts.items():
-        lines += [f"### {controller_titles.get(controller, controller)}", "",
+        lines += [f"### {controller_title(controller)}", "",
                   "| Object | " + " | ".join(present) + " |",
                   "|---|" + "---|" * len(present)]
         for name, per_object in objects.items():

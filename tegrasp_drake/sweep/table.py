@@ -19,7 +19,8 @@ from pathlib import Path
 import numpy as np
 
 from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_classes_markdown
-from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
+from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 
 # (placement, phase) columns of Table I, in the paper's order.
 TABLE1_COLUMNS = (("well_placed", "hold"), ("well_placed", "unload"),
@@ -31,12 +32,6 @@ PAPER_TABLE1 = {
     "thick_cylinder": (100, 100, 83, 83),
     "thin_cylinder": (100, 67, 75, 25),
     AVERAGE: (100, 89, 86, 69),
-}
-CONTROLLER_TITLES = {
-    "memorized": "memorized triggers (the paper's method)",
-    "heuristic": "heuristic thresholds (Romano et al. 2011 style)",
-    "open_loop": "open loop",
-    "taxel_aware": "taxel-aware corrections, ensemble events",
 }
 _OBJECT_TITLES = {"box": "Box", "thick_cylinder": "Thick cylinder",
                   "thin_cylinder": "Thin cylinder", AVERAGE: "Average"}
@@ -134,7 +129,7 @@ def table1_markdown(rows) -> str:
         header += [title, "paper"]
     header.append("Errors")
     for controller in ordered_names({row.controller for row in rows}, CONTROLLER_NAMES):
-        lines += ["", f"## {CONTROLLER_TITLES.get(controller, controller)}", "",
+        lines += ["", f"## {controller_title(controller)}", "",
                   "| " + " | ".join(header) + " |",
                   "|" + "---|" * len(header)]
         for row in rows:
@@ -282,7 +277,7 @@ def _number_text(value, unit="") -> str:
 def statistics_markdown(statistics, comparisons) -> str:
     lines = ["# Trial statistics", ""]
     for controller, s in statistics.items():
-        lines += [f"## {CONTROLLER_TITLES.get(controller, controller)}", "",
+        lines += [f"## {controller_title(controller)}", "",
                   f"Trials: {s['trials']}, errors (not counted): {s['errors']}.", "",
                   "| Transition | Detected | Not detected | Latency median | Latency p90 |",
                   "|---|---|---|---|---|"]
@@ -320,7 +315,7 @@ def write_statistics(records, out_dir) -> list[Path]:
     failures = {controller: counted[controller] for controller in statistics
                 if controller in counted}
     markdown_path.write_text(statistics_markdown(statistics, comparisons) + "\n"
-                             + failure_classes_markdown(failures, CONTROLLER_TITLES),
+                             + failure_classes_markdown(failures),
                              encoding="utf-8")
     json_path.write_text(json.dumps({"controllers": statistics,
                                      "paired_comparisons": comparisons,
