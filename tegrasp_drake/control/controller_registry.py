@@ -109,6 +109,13 @@ _ENTRY_OF_NAME = {entry.name: entry for entry in CONTROLLERS}
 _ENTRY_OF_CLASS = {entry.config: entry for entry in CONTROLLERS}
 if len(_ENTRY_OF_NAME) != len(CONTROLLERS) or len(_ENTRY_OF_CLASS) != len(CONTROLLERS):
     raise ImportError("controller_registry: two entries share a name or a config class")
+# Drake's yaml_dump_typed writes a Union member as the first class it is an instance of: a
+# config class derived from another entry's would be saved (in logs) as that one.
+_DERIVED = [(a.name, b.name) for a in CONTROLLERS for b in CONTROLLERS
+            if a is not b and issubclass(a.config, b.config)]
+if _DERIVED:
+    raise ImportError(f"controller_registry: config classes derived from another entry's "
+                      f"(derive from its base instead): {_DERIVED}")
 
 
 class UnknownControllerError(ValueError):
