@@ -19,6 +19,7 @@ from tegrasp_drake.control.controller_config import (HeuristicControllerConfig,
                                                      MemorizedControllerConfig,
                                                      OpenLoopControllerConfig,
                                                      TaxelAwareControllerConfig)
+from tegrasp_drake.control.fixed_load_time import FixedLoadTimeControllerConfig
 
 _BUILDERS = "tegrasp_drake.control.grasp_controller"
 STATE_MACHINE = f"{_BUILDERS}:AddStateMachineController"  # channels, detector, state machine
@@ -96,6 +97,9 @@ CONTROLLERS = (
                     rules="tegrasp_drake.control.taxel_aware:next_mode",
                     estimator="tegrasp_drake.control.taxel_aware:estimator_for_plan",
                     senses_finger_strike=True),
+    ControllerEntry(FixedLoadTimeControllerConfig, label="fixed Load time",
+                    title="the paper's, Load-Lift after a fixed time", color="#d35400",
+                    rules="tegrasp_drake.control.fixed_load_time:next_mode"),
 )
 
 # The scenario's `controller` field: the first (the default) when untagged.
