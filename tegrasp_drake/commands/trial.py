@@ -63,23 +63,23 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run, default_out="out/trial", replace_default_out=False)
 
 
-def print_result(result: dict) -> None:
-    from tegrasp_drake.control.grasp_modes import Transition
-    print(f"object {result['object']} offset {result['offset_m']} m, controller "
-          f"{result['controller']}, seed {result['seed']}")
-    for transition in map(Transition.from_dict, result["transitions"]):
+def print_result(result) -> None:
+    """The trial's result (a TrialResult) as text: its scene, its timeline, its success."""
+    print(f"object {result.object} offset {result.offset_m} m, controller "
+          f"{result.controller}, seed {result.seed}")
+    for transition in result.transitions:
         scores = None if transition.scores is None else list(transition.scores)
         extra = f"  scores {scores}" if transition.trigger.is_event else ""
         print(f"  {transition.t:7.3f} s  {transition.from_mode.label:>8} -> "
               f"{transition.to_mode.label:<8} [{transition.trigger.value}] "
               f"{transition.reason}{extra}")
-    print(f"hold {'SUCCESS' if result['hold_success'] else 'FAIL'} (held "
-          f"{result['hold_time_s']:.2f} s), unload "
-          f"{'SUCCESS' if result['unload_success'] else 'FAIL'} (tilt "
-          f"{result['final_tilt_deg']:.1f} deg, {'released' if result['released'] else 'held'})"
-          + (f"; failed: {result['failure']}" if result["failure"] else ""))
-    print(f"simulated {result['sim_time_s']:.2f} s in {result['wall_time_s']:.2f} s wall "
-          f"(real-time factor {result['real_time_factor']:.2f})")
+    print(f"hold {'SUCCESS' if result.hold_success else 'FAIL'} (held "
+          f"{result.hold_time_s:.2f} s), unload "
+          f"{'SUCCESS' if result.unload_success else 'FAIL'} (tilt "
+          f"{result.final_tilt_deg:.1f} deg, {'released' if result.released else 'held'})"
+          + (f"; failed: {result.failure}" if result.failure else ""))
+    print(f"simulated {result.sim_time_s:.2f} s in {result.wall_time_s:.2f} s wall "
+          f"(real-time factor {result.real_time_factor:.2f})")
 
 
 def run(args) -> int:
@@ -105,7 +105,7 @@ def run(args) -> int:
                 trial = run_trial(scenario, meshcat=meshcat, events=events,
                                   corrective_events=corrective, progress=progress)
             try:
-                result = dict(trial.result, log=str(trial.log.save(stage / "trial.npz")),
+                result = dict(trial.to_dict(), log=str(trial.log.save(stage / "trial.npz")),
                               **write_trial_figures(trial.log, stage, args.format))
                 if html is not None:
                     result["replay_html"] = str(write_replay_html(meshcat, html))
@@ -118,7 +118,7 @@ def run(args) -> int:
     if args.json:
         print(json.dumps(result, sort_keys=True), flush=True)
     else:
-        print_result(result)
+        print_result(trial)
         print(f"log {result['log']}, result {result['result']}, figures {result['figure']} "
               f"(Fig. 9), {result['signals_figure']} (Fig. 5a-b)"
               + (f", {result['contact_ra_figure']} (RA at first contact)"

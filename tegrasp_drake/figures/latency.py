@@ -11,6 +11,7 @@ import numpy as np
 from tegrasp_drake.events.transitions import TRANSITIONS
 from tegrasp_drake.figures.figure_files import new_figure, save_figure
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_color
+from tegrasp_drake.sweep.records import record_result
 
 TRANSITION_TITLES = {"reach_load": "Reach-Load (first contact)",
                      "load_lift": "Load-Lift (grip settled)",
@@ -24,7 +25,7 @@ def latency_samples(records) -> dict[str, dict[str, list[float]]]:
         if record["status"] != "ok":
             continue
         controller = record["trial"]["controller"]
-        for transition, latency in record["result"].get("detection_latency_s", {}).items():
+        for transition, latency in record_result(record).detection_latency_s.items():
             if latency is not None:
                 samples[transition][controller].append(float(latency))
     return samples
@@ -36,7 +37,7 @@ def false_trigger_counts(records) -> dict[str, tuple[int, int]]:
     for record in records:
         if record["status"] == "ok":
             count = counts[record["trial"]["controller"]]
-            count[0] += int(record["result"].get("false_triggers", 0))
+            count[0] += int(record_result(record).false_triggers)
             count[1] += 1
     return {controller: tuple(count) for controller, count in counts.items()}
 

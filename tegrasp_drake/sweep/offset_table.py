@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
+from tegrasp_drake.sweep.records import record_result
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 from tegrasp_drake.sweep.table import (ordered_names, succeeded,
                                        write_markdown_and_csv)
@@ -43,7 +44,7 @@ def offset_rows(records) -> list[OffsetRow]:
             continue
         count["trials"] += 1
         for phase in PHASES:
-            count[phase] += succeeded(record["result"], phase)
+            count[phase] += succeeded(record_result(record), phase)
     controllers = ordered_names({k[0] for k in counts}, CONTROLLER_NAMES)
     objects = ordered_names({k[1] for k in counts}, BUILTIN_OBJECTS)
     rows = []

@@ -20,6 +20,7 @@ import numpy as np
 
 from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_classes_markdown
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
+from tegrasp_drake.sweep.records import record_result
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 
 # (placement, phase) columns of Table I, in the paper's order.
@@ -55,11 +56,12 @@ class Table1Row:
     errors: int
 
 
-def succeeded(result: dict, phase: str) -> bool:
-    """A trial's success in a phase: "hold", or "unload" (held, then placed upright)."""
+def succeeded(result, phase: str) -> bool:
+    """A trial's (a TrialResult's) success in a phase: "hold", or "unload" (held, then
+    placed upright)."""
     if phase == "hold":
-        return result["hold_success"]
-    return result["hold_success"] and result["unload_success"]
+        return result.hold_success
+    return result.hold_success and result.unload_success
 
 
 def ordered_names(names, preferred) -> list:
@@ -84,7 +86,7 @@ def table1_rows(records) -> list[Table1Row]:
         for column in TABLE1_COLUMNS:
             if column[0] == placement:
                 cell = counts[(*key, column)]
-                cell[0] += succeeded(record["result"], column[1])
+                cell[0] += succeeded(record_result(record), column[1])
                 cell[1] += 1
 
     rows = []
@@ -199,22 +201,22 @@ def controller_statistics(records) -> dict:
         by_controller[record["trial"]["controller"]].append(record)
     statistics = {}
     for controller in ordered_names(by_controller, CONTROLLER_NAMES):
-        results = [r["result"] for r in by_controller[controller] if r["status"] == "ok"]
+        results = [record_result(r) for r in by_controller[controller] if r["status"] == "ok"]
         latencies = defaultdict(list)
         missed = Counter()
         actions = Counter()
         trials_with_actions = 0
         for result in results:
-            for transition, latency in result.get("detection_latency_s", {}).items():
+            for transition, latency in result.detection_latency_s.items():
                 if latency is None:
                     missed[transition] += 1
                 else:
                     latencies[transition].append(latency)
             # A list of action names, or a mapping from name to count.
-            taken = Counter(result.get("corrective_actions", []))
+            taken = Counter(result.corrective_actions)
             actions.update({str(k): v for k, v in taken.items()})
             trials_with_actions += sum(taken.values()) > 0
-        false_triggers = [result.get("false_triggers", 0) for result in results]
+        false_triggers = [result.false_triggers for result in results]
         statistics[controller] = {
             "trials": len(results),
             "errors": len(by_controller[controller]) - len(results),
@@ -228,10 +230,10 @@ def controller_statistics(records) -> dict:
                                "trials_with_any": sum(f > 0 for f in false_triggers),
                                "mean_per_trial": (float(np.mean(false_triggers))
                                                   if false_triggers else None)},
-            "sim_time_s": _distribution([r["sim_time_s"] for r in results
-                                         if "sim_time_s" in r]),
-            "wall_time_s": _distribution([r["wall_time_s"] for r in results
-                                          if "wall_time_s" in r]),
+            "sim_time_s": _distribution([r.sim_time_s for r in results
+                                         if r.sim_time_s is not None]),
+            "wall_time_s": _distribution([r.wall_time_s for r in results
+                                          if r.wall_time_s is not None]),
         }
     return statistics
 
@@ -251,7 +253,7 @@ def paired_comparisons(records) -> list[dict]:
     for record in records:
         if record["status"] == "ok":
             outcomes[record["trial"]["controller"]][record["trial"]["pair_id"]] = \
-                record["result"]
+                record_result(record)
     controllers = ordered_names(outcomes, CONTROLLER_NAMES)
     comparisons = []
     for i, a in enumerate(controllers):
