@@ -20,6 +20,7 @@ from tegrasp_drake.control.controller_config import (HeuristicControllerConfig,
                                                      OpenLoopControllerConfig,
                                                      TaxelAwareControllerConfig)
 from tegrasp_drake.control.fixed_load_time import FixedLoadTimeControllerConfig
+from tegrasp_drake.rig.api_boundary import public_api
 
 _BUILDERS = "tegrasp_drake.control.grasp_controller"
 STATE_MACHINE = f"{_BUILDERS}:AddStateMachineController"  # channels, detector, state machine
@@ -126,7 +127,8 @@ class UnknownControllerError(ValueError):
     """A controller name that names no controller config class."""
 
 
-def controller_entry(controller) -> ControllerEntry:
+@public_api
+def controller_entry(controller: typing.Any) -> ControllerEntry:
     """The entry of a controller given by its name, its config or its config class
     (UnknownControllerError)."""
     if isinstance(controller, str):

@@ -192,6 +192,7 @@ def remove_temporary_files(out_dir) -> list[Path]:
     return removed
 
 
+@public_api
 def record_result(record: dict):
     """The TrialResult of a record's "result" (its JSON form), None for a record without
     one (an error)."""
