@@ -1,6 +1,9 @@
 """The example controller of docs/controller.md ("Adding a controller"): the paper's state
 machine whose Load-Lift fires by the clock; its rule alone, then a closed-loop trial."""
 
+import pathlib
+import re
+
 import pytest
 
 from tegrasp_drake.control.corrective_actions import Counters
@@ -8,6 +11,7 @@ from tegrasp_drake.control.fixed_load_time import FixedLoadTimeControllerConfig,
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.transition_logic import Observation
 
+ROOT = pathlib.Path(__file__).resolve().parent.parent
 CONFIG = FixedLoadTimeControllerConfig()
 EVENT = Trigger.MEMORIZED_EVENT
 
@@ -60,3 +64,14 @@ def test_a_closed_loop_box_trial_lifts_by_the_clock_and_holds():
     assert 0.0 <= lift.t - load.t - CONFIG.load_time_s <= CONFIG.update_period_s + 1e-9
     assert Mode.HOLD in [t.to_mode for t in transitions]
     assert Mode.FAILED not in [t.to_mode for t in transitions]
+
+
+def test_the_docs_show_the_examples_code_as_it_is():
+    page = (ROOT / "docs" / "controller.md").read_text()
+    section = page[page.index("## Adding a controller"):page.index("## Judging a trial")]
+    blocks = re.findall(r"```\n(.*?)```", section, re.DOTALL)
+    code = "".join((ROOT / "tegrasp_drake" / "control" / name).read_text()
+                   for name in ("fixed_load_time.py", "controller_registry.py"))
+    assert len(blocks) == 3
+    for block in blocks:
+        assert block in code, f"docs/controller.md shows code the package does not hold:\n{block}"
