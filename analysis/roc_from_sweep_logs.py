@@ -18,7 +18,7 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.control.controller_config import controller_named
+from tegrasp_drake.control.controller_registry import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.events import EventMatcherConfig, tactile_trial_from_log

@@ -31,6 +31,7 @@ from benchmarks.plant_floor import record_plant_inputs, run_plant_floor
 from benchmarks.system_costs import profile_trial
 from benchmarks.arguments import benchmark_parser, parse_benchmark_arguments
 from tegrasp_drake.commands.scenario_args import scenario_from_arguments
+from tegrasp_drake.control.controller_registry import PAPER_CONTROLLERS
 from tegrasp_drake.scenario.grasp_diagram import MakeSimulator
 from tegrasp_drake.runs.ideal_grasp import END_MARGIN_S, MakeIdealGraspDiagram
 from tegrasp_drake.scenario.scenario import with_controller
@@ -38,8 +39,8 @@ from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, ObjectConfig
 from tegrasp_drake.simulation.object_model import object_sdf
 
-# The paper's controllers, by name (controller_config.CONTROLLER_NAMES).
-PAPER_CONTROLLER_NAMES = ("memorized", "heuristic", "open_loop")
+# The paper's controllers, by name (Table I).
+PAPER_CONTROLLER_NAMES = PAPER_CONTROLLERS
 FLOOR = "plant_alone"
 MESH_RESOLUTIONS_M = (0.01, 0.005, 0.0025)  # object mesh hints of the contact-face curve
 TAXEL_RATES_HZ = (108.0, 500.0, 1000.0)

@@ -40,7 +40,10 @@ _PUBLIC = {
     "HeuristicControllerConfig": "tegrasp_drake.control.controller_config",
     "OpenLoopControllerConfig": "tegrasp_drake.control.controller_config",
     "TaxelAwareControllerConfig": "tegrasp_drake.control.controller_config",
-    "CONTROLLER_NAMES": "tegrasp_drake.control.controller_config",
+    "CONTROLLER_NAMES": "tegrasp_drake.control.controller_registry",
+    "CONTROLLERS": "tegrasp_drake.control.controller_registry",
+    "ControllerEntry": "tegrasp_drake.control.controller_registry",
+    "controller_entry": "tegrasp_drake.control.controller_registry",
     "with_controller": "tegrasp_drake.scenario.scenario",
     # Stations: the simulation and the real devices behind the same ports.
     "MakeGraspStation": "tegrasp_drake.simulation.station",
@@ -77,7 +80,7 @@ _PUBLIC = {
     # Runs: a simulated trial, the ideal grasp, a run on the devices, a sweep.
     "run_trial": "tegrasp_drake.runs.trial",
     "run_trial_from_spec": "tegrasp_drake.sweep.trial_function",
-    "TrialResult": "tegrasp_drake.runs.trial",
+    "TrialResult": "tegrasp_drake.runs.trial_result",
     "run_ideal_grasp": "tegrasp_drake.runs.ideal_grasp",
     "TrialLog": "tegrasp_drake.scenario.trial_log_file",
     "load_trial_log": "tegrasp_drake.scenario.trial_log_file",
@@ -87,6 +90,7 @@ _PUBLIC = {
     "run_sweep": "tegrasp_drake.sweep.runner",
     "write_reports": "tegrasp_drake.reports",
     "load_records": "tegrasp_drake.sweep.records",
+    "record_result": "tegrasp_drake.sweep.records",
 }
 
 __all__ = sorted(_PUBLIC)

@@ -6,7 +6,7 @@ import dataclasses
 import pytest
 
 from test_bad_input import assert_one_line_error, run_cli
-from tegrasp_drake.control import controller_config
+from tegrasp_drake.control import controller_registry
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.ranges import Range, bounded, check_ranges, unranged_numeric_fields
@@ -16,8 +16,8 @@ from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.transfer.matrix import TransferSpec
 
 CONFIG_ROOTS = (Scenario, HardwareStationConfig, SweepSpec, TransferSpec,
-                *(type(controller_config.controller_named(name))
-                  for name in controller_config.CONTROLLER_NAMES))
+                *(type(controller_registry.controller_named(name))
+                  for name in controller_registry.CONTROLLER_NAMES))
 
 
 def test_every_numeric_field_declares_its_range():

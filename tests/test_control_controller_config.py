@@ -4,15 +4,17 @@ scenario's `controller` field (or the shorthand controller.name)."""
 import pytest
 
 from tegrasp_drake.control.controller_config import (
-    CONTROLLER_CLASSES, CONTROLLER_NAMES, HeuristicControllerConfig, MemorizedControllerConfig,
-    OpenLoopControllerConfig, TaxelAwareControllerConfig, controller_named)
+    HeuristicControllerConfig, MemorizedControllerConfig, OpenLoopControllerConfig,
+    TaxelAwareControllerConfig)
+from tegrasp_drake.control.controller_registry import (CONTROLLER_CLASSES, CONTROLLER_NAMES,
+                                                       controller_named)
 from tegrasp_drake.scenario.scenario import (LoadScenario, scenario_from_yaml, scenario_to_yaml,
                                              with_controller)
 
 
 def test_the_default_is_the_papers_algorithm():
     assert isinstance(LoadScenario().controller, MemorizedControllerConfig)
-    assert CONTROLLER_NAMES == ("memorized", "heuristic", "open_loop", "taxel_aware")
+    assert CONTROLLER_NAMES[:4] == ("memorized", "heuristic", "open_loop", "taxel_aware")
 
 
 def test_a_yaml_tag_selects_the_controller_and_its_settings(tmp_path):
@@ -52,3 +54,53 @@ def test_switching_controllers_keeps_the_settings_they_share():
     scenario = with_controller(LoadScenario(), "open_loop")
     assert scenario.controller == OpenLoopControllerConfig()
     assert with_controller(scenario, "memorized").controller == MemorizedControllerConfig()
+
+
+def _memorized_scenario_file(tmp_path, settings="{event_object_may_differ: [mass], "
+                                              "sa_threshold: 0.8}"):
+    path = tmp_path / "scenarios.yaml"
+    path.write_text(f"tuned:\n  controller: !MemorizedControllerConfig {settings}\n")
+    return path
+
+
+def test_another_controller_runs_a_scenario_with_the_settings_it_shares(tmp_path):
+    ignored = []
+    scenario = LoadScenario(_memorized_scenario_file(tmp_path), "tuned",
+                            controller="heuristic", on_ignored=ignored.append)
+    assert isinstance(scenario.controller, HeuristicControllerConfig)
+    assert scenario.controller.event_object_may_differ == ["mass"]  # shared: kept
+    assert ignored == [["sa_threshold"]]  # the memorized controllers' own: named
+
+
+def test_the_open_loop_controller_ignores_every_closed_loop_setting(tmp_path):
+    ignored = []
+    scenario = LoadScenario(_memorized_scenario_file(tmp_path), "tuned",
+                            controller="open_loop", on_ignored=ignored.append)
+    assert scenario.controller == OpenLoopControllerConfig()
+    assert ignored == [["event_object_may_differ", "sa_threshold"]]
+
+
+def test_nothing_is_named_when_nothing_is_ignored(tmp_path):
+    ignored = []
+    LoadScenario(_memorized_scenario_file(tmp_path, "{sa_threshold: 0.8}"), "tuned",
+                 controller="taxel_aware", on_ignored=ignored.append)
+    assert ignored == []
+
+
+def test_a_setting_of_no_controller_is_still_refused_with_another_controller(tmp_path):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    path = _memorized_scenario_file(tmp_path, "{sa_treshold: 0.8}")
+    with pytest.raises(ConfigError, match="controller.sa_treshold"):
+        LoadScenario(path, "tuned", controller="open_loop")
+
+
+def test_the_command_line_names_the_ignored_settings_in_one_line(tmp_path, capsys):
+    import argparse
+    from tegrasp_drake.commands.scenario_args import scenario_from_arguments
+    args = argparse.Namespace(scenario=str(_memorized_scenario_file(tmp_path)),
+                              scenario_name="tuned", overrides=[], controller="open_loop")
+    assert scenario_from_arguments(args).controller == OpenLoopControllerConfig()
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1
+    assert "--controller open_loop ignores" in lines[0]
+    assert "event_object_may_differ, sa_threshold" in lines[0]

@@ -29,8 +29,7 @@ def test_override_changes_a_nested_field():
      "field 'object.size' makes the object 90.0 mm wide"),
     (["controller.name=magic"], "field 'controller.name': 'magic' is not one of"),
     (["controller.name=heuristic", "controller.sa_threshold=0.5"],
-     "field 'controller.sa_threshold' is a setting of the memorized and taxel_aware "
-     "controllers: select one with --set controller.name=memorized"),
+     "field 'controller.sa_threshold' is a setting of the memorized and taxel_aware"),
     (["disturbance.hit_force_n=[1, 2]"], "field 'disturbance'"),
     (["object.mass=-1"], "field 'object.mass' must be positive"),
     (["object.name=model", "object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",

@@ -8,9 +8,10 @@ from tegrasp_drake.sweep.detection_report import (
 
 def record(controller, pair, *, hold=True, unload=True, reach_t=4.05, well_placed=False,
            actions=()):
-    transitions = [{"t": 3.0, "from": "Reach", "to": "Re-Reach", "trigger": "corrective"},
+    transitions = [{"t": 3.0, "from": "Reach", "to": "Re-Reach", "trigger": "corrective",
+                    "reason": "only the left finger touched"},
                    {"t": reach_t, "from": "Reach", "to": "Load",
-                    "trigger": "memorized_event"}]
+                    "trigger": "memorized_event", "reason": "Reach-Load event"}]
     return {"trial_id": f"{controller}/{pair}",
             "trial": {"controller": controller, "pair_id": pair, "well_placed": well_placed},
             "result": {"transitions": transitions, "hold_success": hold,
@@ -48,12 +49,17 @@ def test_corrective_actions_are_counted_once_per_trial():
 def hit_record(controller, pair, *, hit, avoids=(), trigger="corrective_event",
                hold_at=5.5):
     """A trial in Hold from hold_at [s], hit at `hit` (None: no hit), Avoids at `avoids`."""
-    transitions = [{"t": 4.0, "from": "Reach", "to": "Load", "trigger": "memorized_event"},
-                   {"t": 4.5, "from": "Load", "to": "Lift", "trigger": "memorized_event"},
-                   {"t": hold_at, "from": "Lift", "to": "Hold", "trigger": "timer"}]
+    transitions = [{"t": 4.0, "from": "Reach", "to": "Load", "trigger": "memorized_event",
+                    "reason": "Reach-Load event"},
+                   {"t": 4.5, "from": "Load", "to": "Lift", "trigger": "memorized_event",
+                    "reason": "Load-Lift event"},
+                   {"t": hold_at, "from": "Lift", "to": "Hold", "trigger": "timer",
+                    "reason": "lift motion ended"}]
     for t in avoids:
-        transitions += [{"t": t, "from": "Hold", "to": "Avoid", "trigger": trigger},
-                        {"t": t + 0.6, "from": "Avoid", "to": "Hold", "trigger": "timer"}]
+        transitions += [{"t": t, "from": "Hold", "to": "Avoid", "trigger": trigger,
+                         "reason": "hit"},
+                        {"t": t + 0.6, "from": "Avoid", "to": "Hold", "trigger": "timer",
+                         "reason": "avoiding motion ended"}]
     events = {"reach_load": 3.95} if hit is None else {"reach_load": 3.95, "hit": hit}
     return {"trial": {"controller": controller, "pair_id": pair, "well_placed": True},
             "result": {"transitions": transitions, "hold_success": True,

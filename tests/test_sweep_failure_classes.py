@@ -1,5 +1,6 @@
 import pytest
 
+from tegrasp_drake.runs.trial_result import TrialResult
 from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASSES, failure_class,
                                                  failure_class_counts, failure_classes_markdown)
 
@@ -32,7 +33,8 @@ FAILED = dict(hold_success=False, unload_success=False, final_mode="Failed",
      "object lost"),
     ({**FAILED, "failure": "gripper fault overcurrent"}, "device fault"),
     ({**FAILED, "failure": "tactile: no new data for more than 500 ms",
-      "transitions": [{"trigger": "fault", "reason": "tactile: ..."}]}, "device fault"),
+      "transitions": [{"t": 5.0, "from": "Hold", "to": "Failed", "trigger": "fault",
+                       "reason": "tactile: ..."}]}, "device fault"),
     ({**FAILED, "failure": "something new"}, "other"),
     ({"hold_success": False, "unload_success": False, "lift_height_m": 0.001}, "not lifted"),
     ({"hold_success": False, "unload_success": False, "lift_height_m": 0.05},
@@ -41,7 +43,7 @@ FAILED = dict(hold_success=False, unload_success=False, final_mode="Failed",
     ({"unload_success": False, "final_tilt_deg": 2.0}, "not placed"),
 ])
 def test_each_failure_has_its_class(changes, expected):
-    assert failure_class(result(**changes)) == expected
+    assert failure_class(TrialResult.from_dict(result(**changes))) == expected
 
 
 def test_counts_per_controller_and_object_and_the_table():
@@ -59,6 +61,6 @@ def test_counts_per_controller_and_object_and_the_table():
     assert counts["memorized"]["box"]["toppled at release"] == 1
     assert sum(counts["memorized"]["box"].values()) == 1
     assert set(counts["open_loop"]["thin_cylinder"]) == set(FAILURE_CLASSES)
-    table = failure_classes_markdown(counts, {"memorized": "memorized triggers"})
+    table = failure_classes_markdown(counts)
     assert "| box | 1 |" in table and "toppled at release" in table
     assert "not lifted" not in table  # only the classes that occur

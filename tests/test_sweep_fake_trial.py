@@ -32,7 +32,8 @@ def fake_trial(trial):
     return {
         "hold_success": hold,
         "unload_success": unload,
-        "transitions": [{"t": 1.0, "from": "reach", "to": "load", "trigger": "memorized"}],
+        "transitions": [{"t": 1.0, "from": "Reach", "to": "Load", "trigger": "memorized_event",
+                         "reason": "Reach-Load event"}],
         "corrective_actions": ["regrasp"] if not trial["well_placed"] and hold else [],
         "detection_latency_s": {"reach->load": latency, "lift->hold": latency},
         "false_triggers": int(u_false < 0.2),
@@ -92,7 +93,7 @@ def fake_trial_with_events(trial, *, events_dir):
     folder: the result names that folder, so a test can check which events a cell used."""
     result = fake_trial(trial)
     result["transitions"] = [{"t": 1.0, "from": "Reach", "to": "Load",
-                              "trigger": "memorized_event"}]
+                              "trigger": "memorized_event", "reason": "Reach-Load event"}]
     result["physical_events"] = {"reach_load": 0.97}
     result["events_dir"] = str(events_dir)
     return result

@@ -7,7 +7,7 @@ import pytest
 
 from tegrasp_drake.scenario.scenario import LoadScenario, validate
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
-from tegrasp_drake.runs.trial import TrialResult
+from tegrasp_drake.runs.trial_result import TrialResult
 from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
@@ -81,13 +81,13 @@ def test_a_sweep_trial_with_memorized_corrective_triggers_gets_their_events(monk
 
     def capture(scenario, *, events=None, corrective_events=None):
         handed.update(events=events, corrective_events=corrective_events)
-        return TrialResult({"hold_success": True}, None)
+        return TrialResult(hold_success=True)
 
     monkeypatch.setattr(trial_module, "run_trial", capture)
     overrides = ("controller.memorized_corrective_events=[hold_avoid]",)
     box = _first_trial(objects=("box",), controllers=("memorized",), grid=((0.0, 0.0),),
                        scenario_overrides=overrides)
-    assert trial_module.run_trial_from_spec(box) == {"hold_success": True}
+    assert trial_module.run_trial_from_spec(box)["hold_success"] is True
     assert set(handed["corrective_events"]) >= {"hold_avoid"}
     assert handed["events"] is not None
     plain = _first_trial(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),))

@@ -23,7 +23,7 @@ from tegrasp_drake.rig.files import file_problem, folder_problem, interruptions_
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   quiet_modbus_library, scenario_from_arguments)
-from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
 
 
 DESCRIPTION = """\
@@ -56,7 +56,8 @@ def register(subparsers) -> None:
     add_scenario_arguments(parser)
     add_events_argument(parser)
     parser.add_argument("--controller", default=None, choices=CONTROLLER_NAMES,
-                        help="default: the scenario's (its controller tag, memorized)")
+                        help=f"{controllers_help()} (default: the scenario's, its "
+                             "controller tag, memorized)")
     parser.add_argument("--log", metavar="FILE", default=None,
                         help="LCM log to write (default: out/hardware/run-<time>.lcmlog)")
     parser.add_argument("--overwrite", action="store_true",
@@ -126,9 +127,6 @@ def run(args) -> int:
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.hardware.config import HardwareStationConfig
     scenario = scenario_from_arguments(args)
-    if args.controller:
-        from tegrasp_drake.scenario.scenario import with_controller
-        scenario = with_controller(scenario, args.controller)
     if args.config:
         try:
             config = LoadHardwareConfig(args.config, args.config_overrides)

@@ -2,6 +2,7 @@
 
 import logging
 import pathlib
+import sys
 
 from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.rig import paths
@@ -22,14 +23,23 @@ def add_scenario_arguments(parser) -> None:
 
 
 def scenario_from_arguments(args):
-    """Loads the scenario, or exits with the error message (no traceback)."""
+    """Loads the scenario, with the controller of `--controller` if the command has it
+    (naming on stderr, in one line, the scenario's controller settings that it ignores), or
+    exits with the error message (no traceback)."""
     if args.scenario and not pathlib.Path(args.scenario).exists() and \
             args.scenario in (read_yaml_file(paths.scenarios_file(), "the scenario file") or {}):
         raise SystemExit(f"tegrasp: error: --scenario takes a file of scenarios; "
                          f"'{args.scenario}' is a built-in scenario: give --scenario-name "
                          f"{args.scenario}")
+    controller = getattr(args, "controller", None)
+
+    def say_ignored(settings: list[str]) -> None:
+        print(f"tegrasp: --controller {controller} ignores the scenario's controller "
+              f"settings that it lacks: {', '.join(settings)}", file=sys.stderr, flush=True)
+
     try:
         return LoadScenario(args.scenario, args.scenario_name, args.overrides,
+                            controller=controller, on_ignored=say_ignored,
                             allow_long=getattr(args, "allow_long", False))
     except ConfigError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None

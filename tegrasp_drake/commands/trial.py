@@ -16,7 +16,7 @@ from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scena
 from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
                                                 start_viewer, wait_for_viewer,
                                                 write_replay_html)
-from tegrasp_drake.control.controller_config import CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 
 DESCRIPTION = """\
@@ -40,9 +40,9 @@ def add_trial_arguments(parser, *, out_help: str) -> None:
     add_scenario_arguments(parser)
     add_events_argument(parser)
     parser.add_argument("--controller", choices=CONTROLLER_NAMES, default=None,
-                        help="memorized: the paper's memorized tactile events; heuristic: "
-                             "hand-set thresholds (Romano et al. style); open_loop: the ideal "
-                             "scripted grasp (default: the scenario's controller.name)")
+                        help=f"{controllers_help()}. Default: the scenario's controller; "
+                             "another runs with the settings it shares with it and names "
+                             "those it ignores")
     parser.add_argument("--out", metavar="DIR", default=None, help=out_help)
     parser.add_argument("--overwrite", action="store_true",
                         help="replace the run that the --out folder holds")
@@ -63,30 +63,26 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run, default_out="out/trial", replace_default_out=False)
 
 
-def print_result(result: dict) -> None:
-    from tegrasp_drake.control.grasp_modes import Transition
-    print(f"object {result['object']} offset {result['offset_m']} m, controller "
-          f"{result['controller']}, seed {result['seed']}")
-    for transition in map(Transition.from_dict, result["transitions"]):
+def print_result(result) -> None:
+    """The trial's result (a TrialResult) as text: its scene, its timeline, its success."""
+    print(f"object {result.object} offset {result.offset_m} m, controller "
+          f"{result.controller}, seed {result.seed}")
+    for transition in result.transitions:
         scores = None if transition.scores is None else list(transition.scores)
         extra = f"  scores {scores}" if transition.trigger.is_event else ""
         print(f"  {transition.t:7.3f} s  {transition.from_mode.label:>8} -> "
               f"{transition.to_mode.label:<8} [{transition.trigger.value}] "
               f"{transition.reason}{extra}")
-    print(f"hold {'SUCCESS' if result['hold_success'] else 'FAIL'} (held "
-          f"{result['hold_time_s']:.2f} s), unload "
-          f"{'SUCCESS' if result['unload_success'] else 'FAIL'} (tilt "
-          f"{result['final_tilt_deg']:.1f} deg, {'released' if result['released'] else 'held'})"
-          + (f"; failed: {result['failure']}" if result["failure"] else ""))
-    print(f"simulated {result['sim_time_s']:.2f} s in {result['wall_time_s']:.2f} s wall "
-          f"(real-time factor {result['real_time_factor']:.2f})")
+    print(f"hold {'SUCCESS' if result.hold_success else 'FAIL'} (held "
+          f"{result.hold_time_s:.2f} s), unload "
+          f"{'SUCCESS' if result.unload_success else 'FAIL'} (tilt "
+          f"{result.final_tilt_deg:.1f} deg, {'released' if result.released else 'held'})"
+          + (f"; failed: {result.failure}" if result.failure else ""))
+    print(f"simulated {result.sim_time_s:.2f} s in {result.wall_time_s:.2f} s wall "
+          f"(real-time factor {result.real_time_factor:.2f})")
 
 
 def run(args) -> int:
-    overrides = list(args.overrides)
-    if args.controller:
-        overrides.append(f"controller.name={args.controller}")
-    args.overrides = overrides
     scenario = scenario_from_arguments(args)
     events = controller_events(scenario, args.events)  # fails before anything is written
     corrective = corrective_events(scenario, args.events)
@@ -109,7 +105,7 @@ def run(args) -> int:
                 trial = run_trial(scenario, meshcat=meshcat, events=events,
                                   corrective_events=corrective, progress=progress)
             try:
-                result = dict(trial.result, log=str(trial.log.save(stage / "trial.npz")),
+                result = dict(trial.to_dict(), log=str(trial.log.save(stage / "trial.npz")),
                               **write_trial_figures(trial.log, stage, args.format))
                 if html is not None:
                     result["replay_html"] = str(write_replay_html(meshcat, html))
@@ -122,7 +118,7 @@ def run(args) -> int:
     if args.json:
         print(json.dumps(result, sort_keys=True), flush=True)
     else:
-        print_result(result)
+        print_result(trial)
         print(f"log {result['log']}, result {result['result']}, figures {result['figure']} "
               f"(Fig. 9), {result['signals_figure']} (Fig. 5a-b)"
               + (f", {result['contact_ra_figure']} (RA at first contact)"

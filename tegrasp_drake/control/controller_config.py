@@ -7,13 +7,13 @@ tag of the scenario's `controller` field as `station:` selects its station:
     controller: !TaxelAwareControllerConfig {taxel_aware: {max_re_reaches: 4}}
 
 `controller: {name: heuristic, ...}` and `--set controller.name=heuristic` are shorthands
-for the tag (select_controller_tag). The closed-loop controllers share the state machine's
-settings (GraspControllerConfig: the trigger thresholds and the numbers of the corrective
-actions, Sec. III-C, with their units) and add their own; what a controller is, beyond its
-settings, is said by its class (ClassVars): its name in results and sweeps, the events
-folder it reads, the extra time its corrections may take.
+for the tag. The closed-loop controllers share the state machine's settings
+(GraspControllerConfig: the trigger thresholds and the numbers of the corrective actions,
+Sec. III-C, with their units) and add their own; a class's ClassVars say its name in
+results and sweeps, the events folder it reads and the extra time its corrections may
+take. Everything else about a controller is its entry in controller_registry.py.
 
-This module imports no Drake: the sweep spec (parsed without Drake) reads the names here.
+This module imports no Drake: the registry, which the command line reads, imports it.
 """
 
 import dataclasses
@@ -392,72 +392,3 @@ class TaxelAwareControllerConfig(EventTriggeredConfig):
         """{transition: (SA, RA)}: the ensemble events' own (TaxelAwareConfig), else the
         ones `chosen` for the hand's ensemble events."""
         return self.taxel_aware.event_thresholds(chosen)
-
-
-# The scenario's `controller` field: the first (the default) when untagged.
-ControllerConfig = typing.Union[MemorizedControllerConfig, HeuristicControllerConfig,
-                                OpenLoopControllerConfig, TaxelAwareControllerConfig]
-CONTROLLER_CLASSES = typing.get_args(ControllerConfig)
-# Their names (results, sweeps, --controller), in the tables' order.
-CONTROLLER_NAMES = tuple(cls.name for cls in CONTROLLER_CLASSES)
-_CLASS_OF_NAME = {cls.name: cls for cls in CONTROLLER_CLASSES}
-
-
-class UnknownControllerError(ValueError):
-    """A controller name that names no controller config class."""
-
-
-def controller_class(name: str):
-    """The config class of the controller called `name` (UnknownControllerError)."""
-    try:
-        return _CLASS_OF_NAME[name]
-    except (KeyError, TypeError):  # TypeError: a list or mapping given as the name
-        raise UnknownControllerError(
-            f"'{name}' is not one of {', '.join(CONTROLLER_NAMES)}") from None
-
-
-def controller_named(name: str, like=None):
-    """The config of the controller called `name`, with the settings of `like` (another
-    controller's config) that its class also has; the defaults otherwise."""
-    cls = controller_class(name)
-    settings = {f.name for f in dataclasses.fields(like)} if like is not None else set()
-    return cls(**{f.name: getattr(like, f.name) for f in dataclasses.fields(cls)
-                  if f.name in settings})
-
-
-def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
-    """A setting of a scenario's YAML `controller` section (tagged or not) that its
-    controller lacks but others have: (setting, the names of those that have it)."""
-    if not isinstance(section, dict):
-        return None
-    tag = section.get("_tag")
-    cls = next((c for c in CONTROLLER_CLASSES if tag == f"!{c.__name__}"),
-               CONTROLLER_CLASSES[0] if tag is None else None)
-    if cls is None:
-        return None
-    own = {f.name for f in dataclasses.fields(cls)}
-    for key in section:
-        owners = tuple(other.name for other in CONTROLLER_CLASSES
-                       if key in {f.name for f in dataclasses.fields(other)})
-        if key not in own and owners:
-            return key, owners
-    return None
-
-
-def select_controller_tag(data: dict, *, drop_others: bool = False) -> None:
-    """Turns the shorthand `controller: {name: NAME, ...}` of YAML data (a scenario's, in
-    place) into the tag of NAME's config class (`_tag`, as Drake's yaml_load keeps it).
-    drop_others: drop the settings of other controllers that NAME's class lacks (a sweep's
-    overrides, which apply to each of its controllers; a log written when one flat config
-    served every controller); a setting no controller has stays, to be refused.
-    UnknownControllerError for an unknown name."""
-    section = data.get("controller") if isinstance(data, dict) else None
-    if not isinstance(section, dict) or "name" not in section:
-        return
-    cls = controller_class(section.pop("name"))
-    section["_tag"] = f"!{cls.__name__}"
-    if drop_others:
-        own = {f.name for f in dataclasses.fields(cls)}
-        others = {f.name for other in CONTROLLER_CLASSES for f in dataclasses.fields(other)}
-        for key in [key for key in section if key in others - own]:
-            del section[key]

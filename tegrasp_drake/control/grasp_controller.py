@@ -22,8 +22,7 @@ from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.control.cartesian_arm_controller import AddCartesianArmController
-from tegrasp_drake.control.controller_config import (EventTriggeredConfig, OpenLoopControllerConfig,
-                                                     TaxelAwareControllerConfig)
+from tegrasp_drake.control.controller_config import EventTriggeredConfig
 from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
@@ -35,7 +34,8 @@ from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorCha
 from tegrasp_drake.tactile.sample_block import block_samples
 from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 from tegrasp_drake.simulation.station import ArmDriverConfig
-from tegrasp_drake.control.controller_config import ControllerConfig
+from tegrasp_drake.control.controller_registry import (ControllerConfig, ControllerEntry,
+                                                       controller_entry)
 from tegrasp_drake.rig.api_boundary import public_api
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
@@ -113,18 +113,22 @@ def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
         flat_template_needs_flat_window=config.flat_template_needs_flat_window)
 
 
-def _add_detector(builder, config, plan, rates_hz, events, channels):
-    """The detector fed by `channels` (an output port), and its trigger: the memorized
-    events' matcher for an event-triggered controller, else the heuristic thresholds."""
-    if isinstance(config, EventTriggeredConfig):
-        from tegrasp_drake.events import add_event_matcher
-        if events is None:
-            raise ValueError(f"AddGraspController: the {config.name} controller needs its "
-                             "memorized events (events=load_controller_events(scenario))")
-        matcher_config = event_matcher_config(config, gripper_model=plan.gripper_model,
-                                              rates_hz=rates_hz)
-        return (add_event_matcher(builder, events, matcher_config, channels=channels),
-                Trigger.MEMORIZED_EVENT)
+def add_event_matcher_detector(builder, *, config, plan, rates_hz, events, channels):
+    """The memorized events' EventMatcher fed by `channels` (an output port), and its
+    trigger: the detector of an event-triggered controller."""
+    from tegrasp_drake.events import add_event_matcher
+    if events is None:
+        raise ValueError(f"AddGraspController: the {config.name} controller needs its "
+                         "memorized events (events=load_controller_events(scenario))")
+    matcher_config = event_matcher_config(config, gripper_model=plan.gripper_model,
+                                          rates_hz=rates_hz)
+    return (add_event_matcher(builder, events, matcher_config, channels=channels),
+            Trigger.MEMORIZED_EVENT)
+
+
+def add_heuristic_detector(builder, *, config, plan, rates_hz, events, channels):
+    """The heuristic thresholds' detector fed by `channels` (an output port), and its
+    trigger."""
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
         config.heuristic, grip_force_n=plan.grip_force))
     builder.Connect(channels, detector.GetInputPort("channels"))
@@ -156,8 +160,9 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
                        sample_rates_hz: tuple[float, float], events: dict | None = None,
                        corrective_events: dict | None = None,
                        ra_noise_std_mps2: float = 0.0) -> GraspController:
-    """Adds the controller configured by `controller` (a ControllerConfig) and connects it
-    to `station`'s ports; returns its GraspController.
+    """Adds the controller configured by `controller` (a ControllerConfig), as its entry in
+    control/controller_registry.py says, and connects it to `station`'s ports; returns its
+    GraspController.
 
     plan: the grasp it follows (GraspPlan.make); arm: the arm's settings (ArmDriverConfig:
     its start pose and the Cartesian controller's period); sample_rates_hz: the live SA
@@ -168,40 +173,71 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     ra_noise_std_mps2: the RA channel's noise [m/s^2 rms], which raises the RA thresholds
     to their sigmas (control/noise_thresholds.py); 0: the numbers alone.
     """
+    entry = controller_entry(controller)  # how this controller adds its systems
+    return entry.load("add_systems")(
+        builder, entry=entry, controller=controller, plan=plan,
+        station=station, arm=arm, sample_rates_hz=sample_rates_hz, events=events,
+        corrective_events=corrective_events, ra_noise_std_mps2=ra_noise_std_mps2)
+
+
+def _add_arm_controller(builder, *, station: System, arm: ArmDriverConfig):
+    """The Cartesian arm controller on the station's arm ports: (its X_WG_desired input,
+    its arm.desired_state output)."""
     from tegrasp_drake.simulation.station import initial_arm_positions
-    config = controller
-    if not isinstance(config, OpenLoopControllerConfig):
-        config = resolve_noise_thresholds(config, ra_noise_std_mps2=ra_noise_std_mps2,
-                                          ra_rate_hz=sample_rates_hz[1])
-    name = config.name
-    channels = AddMechanoreceptorChannels(builder, station)
     X_WG_desired, arm_desired_state = AddCartesianArmController(
         builder, position_measured=station.GetOutputPort(ports.ARM_POSITION_MEASURED),
         velocity_measured=station.GetOutputPort(ports.ARM_VELOCITY_MEASURED),
         q_nominal=initial_arm_positions(arm), time_step=arm.control_period_s)
     builder.Connect(arm_desired_state, station.GetInputPort(ports.ARM_DESIRED_STATE))
-    if isinstance(config, OpenLoopControllerConfig):
-        segments = plan_scripted_grasp(plan)
-        script = builder.AddNamedSystem("scripted_grasp", ScriptedGraspSource(segments))
-        builder.Connect(script.GetOutputPort("X_WG_desired"), X_WG_desired)
-        builder.Connect(script.GetOutputPort("gripper_command"),
-                        station.GetInputPort(ports.GRIPPER_COMMAND))
-        return GraspController(name, channels, None, script,
-                               script.GetOutputPort("gripper_command"), arm_desired_state,
-                               script.GetOutputPort("phase"), segments)
-    detector, event_trigger = _add_detector(builder, config, plan, sample_rates_hz, events,
-                                            channels.GetOutputPort("channels"))
+    return X_WG_desired, arm_desired_state
+
+
+def AddScriptedGraspController(builder: DiagramBuilder, *, entry: ControllerEntry,
+                               controller, plan: GraspPlan, station: System,
+                               arm: ArmDriverConfig, **unused) -> GraspController:
+    """The open-loop controller: the scripted grasp of `plan` (control/scripted_grasp.py)
+    driving the arm and the gripper; the channels are added for the logs only."""
+    channels = AddMechanoreceptorChannels(builder, station)
+    X_WG_desired, arm_desired_state = _add_arm_controller(builder, station=station, arm=arm)
+    segments = plan_scripted_grasp(plan)
+    script = builder.AddNamedSystem("scripted_grasp", ScriptedGraspSource(segments))
+    builder.Connect(script.GetOutputPort("X_WG_desired"), X_WG_desired)
+    builder.Connect(script.GetOutputPort("gripper_command"),
+                    station.GetInputPort(ports.GRIPPER_COMMAND))
+    return GraspController(controller.name, channels, None, script,
+                           script.GetOutputPort("gripper_command"), arm_desired_state,
+                           script.GetOutputPort("phase"), segments)
+
+
+def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry,
+                              controller, plan: GraspPlan, station: System,
+                              arm: ArmDriverConfig, sample_rates_hz: tuple[float, float],
+                              events: dict | None, corrective_events: dict | None,
+                              ra_noise_std_mps2: float) -> GraspController:
+    """A closed-loop controller: the channels, the detector of `entry`, the
+    GraspStateMachine with the entry's rules and estimator, and the Cartesian arm
+    controller (AddGraspController's arguments)."""
+    config = resolve_noise_thresholds(controller, ra_noise_std_mps2=ra_noise_std_mps2,
+                                      ra_rate_hz=sample_rates_hz[1])
+    channels = AddMechanoreceptorChannels(builder, station)
+    X_WG_desired, arm_desired_state = _add_arm_controller(builder, station=station, arm=arm)
+    detector, event_trigger = entry.load("detector")(
+        builder, config=config, plan=plan, rates_hz=sample_rates_hz, events=events,
+        channels=channels.GetOutputPort("channels"))
     corrective = None
     if config.memorized_corrective_events:
         corrective = _add_corrective_matcher(builder, config, sample_rates_hz,
                                              corrective_events,
                                              channels.GetOutputPort("channels"))
+    make_estimator = entry.load("estimator")
     machine = builder.AddNamedSystem("grasp_state_machine", GraspStateMachine(
         plan=plan, config=config,
         event_indices={t: detector.event_index(t) for t in detector.transitions},
         event_trigger=event_trigger,
         corrective_event_indices=({t: corrective.event_index(t)
-                                   for t in corrective.transitions} if corrective else None)))
+                                   for t in corrective.transitions} if corrective else None),
+        rules=entry.load("rules"),
+        estimator=make_estimator(config, plan) if make_estimator else None))
     if corrective is not None:
         builder.Connect(machine.GetOutputPort("corrective_expected_event"),
                         corrective.GetInputPort("expected_event"))
@@ -236,8 +272,7 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
         builder.Connect(station.GetOutputPort(ports.taxel_forces(finger)),
                         taxels.get_input_port(k))
     builder.Connect(taxels.get_output_port(), machine.GetInputPort("taxel_forces"))
-    if isinstance(config, TaxelAwareControllerConfig) and station.HasOutputPort(
-            ports.ARM_TORQUE_MEASURED):
+    if entry.senses_finger_strike and station.HasOutputPort(ports.ARM_TORQUE_MEASURED):
         # The finger-strike sense: the wrench the arm's joint torques hold at the grasp frame.
         wrench = builder.AddNamedSystem("grasp_wrench_estimator", GraspWrenchEstimator())
         builder.Connect(station.GetOutputPort(ports.ARM_POSITION_MEASURED),
@@ -248,6 +283,6 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     builder.Connect(machine.GetOutputPort("X_WG_desired"), X_WG_desired)
     builder.Connect(machine.GetOutputPort("gripper_command"),
                     station.GetInputPort(ports.GRIPPER_COMMAND))
-    return GraspController(name, channels, detector, machine,
+    return GraspController(config.name, channels, detector, machine,
                            machine.GetOutputPort("gripper_command"), arm_desired_state,
                            machine.GetOutputPort("mode"))

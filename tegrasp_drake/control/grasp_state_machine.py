@@ -31,7 +31,6 @@ from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.control import taxel_aware, transition_logic
-from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.corrective_actions import (
     avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
     pad_accelerations_in_world, re_reach_shift, re_reach_target)
@@ -43,7 +42,6 @@ from tegrasp_drake.control.transition_logic import Observation, memorized_correc
 from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
                                               REQUIRED_TRANSITIONS, transition_states)
 from tegrasp_drake.robotiq import units as ru
-from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, TAXELS_PER_PAD
@@ -113,10 +111,16 @@ class GraspStateMachine(LeafSystem):
         corrective_expected_event: [index] of the corrective event the corrective matcher
             should check (slip in Lift, a hit in Hold), -1 for none or without memorized
             corrective triggers; depends only on the state.
+
+    rules: its next_mode(mode, observation, counters, config, *, event_trigger, hold_s)
+    (default: the paper's, transition_logic.next_mode); estimator: what senses the contact
+    for them each tick (a taxel_aware ContactEstimator), or None. The controller's entry
+    in controller_registry.py gives both.
     """
 
     def __init__(self, *, plan: GraspPlan, config, event_indices: dict,
-                 event_trigger: Trigger, corrective_event_indices: dict | None = None):
+                 event_trigger: Trigger, corrective_event_indices: dict | None = None,
+                 rules=transition_logic.next_mode, estimator=None):
         super().__init__()
         self._plan = plan
         self._config = config
@@ -144,15 +148,10 @@ class GraspStateMachine(LeafSystem):
         self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
         self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
         self._grasp_wrench = self.DeclareVectorInputPort("grasp_wrench", 6)
-        # The taxel_aware controller: its rule table, over what its ContactEstimator senses.
-        self._estimator = (taxel_aware.ContactEstimator(
-            taxel_config=config.taxel_aware, geometry=taxel_aware.ObjectGeometry(
-                width_m=plan.object_width, height_m=plan.object_height,
-                grasp_height_m=plan.grasp_height,
-                pad_center_offset=gripper_hand(plan.gripper_model).pad_center_offset))
-            if isinstance(config, TaxelAwareControllerConfig) else None)
-        self._next_mode = (transition_logic.next_mode if self._estimator is None
-                           else taxel_aware.next_mode)
+        # The controller's rules (its registry entry's), over the Observation and what its
+        # estimator, if any, senses (the taxel_aware controller's ContactEstimator).
+        self._estimator = estimator
+        self._next_mode = rules
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
         state_only = {self.abstract_state_ticket(self._state)}

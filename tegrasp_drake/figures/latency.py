@@ -10,8 +10,8 @@ import numpy as np
 
 from tegrasp_drake.events.transitions import TRANSITIONS
 from tegrasp_drake.figures.figure_files import new_figure, save_figure
-from tegrasp_drake.figures.table1 import CONTROLLER_COLORS
-from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_color
+from tegrasp_drake.sweep.records import record_result
 
 TRANSITION_TITLES = {"reach_load": "Reach-Load (first contact)",
                      "load_lift": "Load-Lift (grip settled)",
@@ -25,7 +25,7 @@ def latency_samples(records) -> dict[str, dict[str, list[float]]]:
         if record["status"] != "ok":
             continue
         controller = record["trial"]["controller"]
-        for transition, latency in record["result"].get("detection_latency_s", {}).items():
+        for transition, latency in record_result(record).detection_latency_s.items():
             if latency is not None:
                 samples[transition][controller].append(float(latency))
     return samples
@@ -37,7 +37,7 @@ def false_trigger_counts(records) -> dict[str, tuple[int, int]]:
     for record in records:
         if record["status"] == "ok":
             count = counts[record["trial"]["controller"]]
-            count[0] += int(record["result"].get("false_triggers", 0))
+            count[0] += int(record_result(record).false_triggers)
             count[1] += 1
     return {controller: tuple(count) for controller, count in counts.items()}
 
@@ -62,7 +62,7 @@ def plot_latency_distributions(records, path) -> str:
         labels = []
         for i, controller in enumerate(controllers):
             values_ms = 1000.0 * np.asarray(samples[transition].get(controller, []))
-            color = CONTROLLER_COLORS.get(controller, f"C{i}")
+            color = controller_color(controller, f"C{i}")
             if len(values_ms):
                 axis.boxplot([values_ms], positions=[i], widths=0.5, showfliers=False,
                              medianprops={"color": color, "lw": 1.5})

@@ -11,7 +11,9 @@ from pathlib import Path
 import numpy as np
 
 from tegrasp_drake.figures.figure_files import new_figure, save_figure
-from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
+from tegrasp_drake.sweep.records import record_result
+from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 from tegrasp_drake.sweep.table import succeeded
 
 PHASES = ("hold", "unload")
@@ -30,12 +32,12 @@ def success_grids(records):
     grids = defaultdict(lambda: (np.zeros((len(xs), len(ys)), int),
                                  np.zeros((len(xs), len(ys)), int)))
     for record in ok:
-        trial = record["trial"]
+        trial, result = record["trial"], record_result(record)
         i = xs.index(round(trial["marker_dx_m"] * 1e6))
         j = ys.index(round(trial["marker_dy_m"] * 1e6))
         for phase in PHASES:
             successes, trials = grids[(trial["controller"], trial["object_name"], phase)]
-            successes[i, j] += succeeded(record["result"], phase)
+            successes[i, j] += succeeded(result, phase)
             trials[i, j] += 1
     return np.array(xs) / 1000.0, np.array(ys) / 1000.0, dict(grids)
 

@@ -4,11 +4,10 @@ of a sweep beside the paper's rate (the real robot with memorized triggers)."""
 
 import numpy as np
 
+from tegrasp_drake.control.controller_registry import controller_color
 from tegrasp_drake.figures.figure_files import new_figure, save_figure
 from tegrasp_drake.sweep.table import AVERAGE, PAPER_TABLE1, TABLE1_COLUMNS, table1_rows
 
-CONTROLLER_COLORS = {"memorized": "#c0392b", "heuristic": "#8e44ad", "open_loop": "#7f8c8d",
-                     "taxel_aware": "#1f77b4"}
 PAPER_COLOR = "#2c3e50"
 COLUMN_TITLES = {("well_placed", "hold"): "well placed, ~Hold",
                  ("well_placed", "unload"): "well placed, ~Unload",
@@ -37,7 +36,7 @@ def plot_table1(records, path) -> str:
             cells = [by_key[(controller, o)].cells[column] for o in objects]
             heights = [np.nan if c.percent is None else c.percent for c in cells]
             bars = axis.bar(x + (s - (series - 1) / 2) * width, heights, width,
-                            color=CONTROLLER_COLORS.get(controller, f"C{s}"), label=controller)
+                            color=controller_color(controller, f"C{s}"), label=controller)
             axis.bar_label(bars, labels=[f"{c.successes}/{c.trials}" if c.trials else ""
                                          for c in cells], fontsize=6.5, rotation=90,
                            padding=2)

@@ -11,7 +11,9 @@ import dataclasses
 import numpy as np
 from matplotlib.lines import Line2D
 
+from tegrasp_drake.control.controller_registry import controller_label
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+from tegrasp_drake.runs.trial_result import TrialResult
 
 STATE_COLORS = {"Reach": "#d9e8f5", "Re-Reach": "#f7d6d0", "Load": "#dcefd9",
                 "Lift": "#fff2cc", "Hold": "#e8e0f0", "Avoid": "#f4c7c3", "Place": "#d0ece7",
@@ -28,8 +30,6 @@ TRIGGER_STYLES = {
 PHYSICAL_EVENT_STYLE = ("#117a65", (0, (6, 2)))  # colour, dash pattern
 PHYSICAL_EVENT_NAMES = {"reach_load": "first contact", "load_lift": "grip settled",
                         "place_unload": "table touch", "hit": "hit"}
-CONTROLLER_NAMES = {"memorized": "memorized triggers", "heuristic": "heuristic thresholds",
-                    "open_loop": "open loop", "taxel_aware": "taxel-aware, ensemble events"}
 SCORE_THRESHOLDS = "match: SA > 0.9 and RA > 0.7 on all four channels"
 
 
@@ -67,25 +67,33 @@ def physical_events(log) -> dict[str, float]:
     return events
 
 
+def logged_result(log):
+    """The TrialResult a trial's log holds (run_trial's), None for a log without one."""
+    result = log.meta.get("result")
+    return TrialResult.from_dict(result) if result else None
+
+
 def run_description(log) -> str:
-    """'box, memorized triggers, offset (0, 15) mm, seed 0' for the figures' titles."""
-    result = log.meta.get("result", {})
-    offset_mm = [1000.0 * v for v in result.get("offset_m", [0.0, 0.0])]
-    controller = result.get("controller", log.meta.get("controller", ""))
-    return (f"{result.get('object', '?')}, {CONTROLLER_NAMES.get(controller, controller)}, "
-            f"offset ({offset_mm[0]:.0f}, {offset_mm[1]:.0f}) mm, "
-            f"seed {result.get('seed', '?')}")
+    """'box, memorized triggers, offset (0, 15) mm, seed 0' for the figures' titles ('?'
+    for what a log without a trial result does not say)."""
+    result = logged_result(log)
+    if result is None:
+        return (f"?, {controller_label(log.meta.get('controller', ''))}, "
+                "offset (0, 0) mm, seed ?")
+    offset_mm = [1000.0 * v for v in result.offset_m]
+    return (f"{result.object}, {controller_label(result.controller)}, "
+            f"offset ({offset_mm[0]:.0f}, {offset_mm[1]:.0f}) mm, seed {result.seed}")
 
 
 def outcome_description(log) -> str:
     """'hold succeeded (6.65 s), unload succeeded' or what failed."""
-    result = log.meta.get("result", {})
-    if "hold_success" not in result:
+    result = logged_result(log)
+    if result is None:
         return ""
-    hold = "succeeded" if result["hold_success"] else "failed"
-    unload = "succeeded" if result["unload_success"] else "failed"
-    text = f"hold {hold} ({result['hold_time_s']:.2f} s held), unload {unload}"
-    return text + (f"; {result['failure']}" if result.get("failure") else "")
+    hold = "succeeded" if result.hold_success else "failed"
+    unload = "succeeded" if result.unload_success else "failed"
+    text = f"hold {hold} ({result.hold_time_s:.2f} s held), unload {unload}"
+    return text + (f"; {result.failure}" if result.failure else "")
 
 
 def draw_state_bands(axis, spans) -> None:

@@ -21,7 +21,7 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from tegrasp_drake.control.controller_config import EventTriggeredConfig
+from tegrasp_drake.control.controller_registry import controller_entry
 from tegrasp_drake.control.grasp_controller import event_matcher_config
 from tegrasp_drake.events.event_matcher import EventMatcherConfig, add_event_matcher
 from tegrasp_drake.events.extraction import TactileTrial
@@ -112,7 +112,7 @@ def matcher_config_of_run(run_info, events) -> EventMatcherConfig:
     the defaults at the events' rates."""
     if run_info is not None and run_info.scenario_yaml:
         scenario = scenario_from_yaml(run_info.scenario_yaml)
-        if isinstance(scenario.controller, EventTriggeredConfig):
+        if controller_entry(scenario.controller).event_triggered:
             return event_matcher_config(scenario.controller,
                                         gripper_model=scenario.gripper.model,
                                         rates_hz=sample_rates_hz(scenario))

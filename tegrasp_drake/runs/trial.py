@@ -17,6 +17,7 @@ from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
                                                   MakeSimulator)
+from tegrasp_drake.runs.trial_result import TrialResult
 from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
                                               grip_fraction_at, judge_grasp,
                                               table_touch_time)
@@ -36,16 +37,6 @@ CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
 FALSE_TRIGGER_MARGIN_S = 0.01
 
 logger = logging.getLogger(__name__)
-
-
-@dataclasses.dataclass
-class TrialResult:
-    """What one trial did (result), its full log, and the state machine's transitions
-    (each with the structured reason code of the rule that decided it, if any)."""
-    result: dict
-    log: object  # TrialLog
-    transitions: tuple[Transition, ...] = ()
-
 
 
 def _event_transition(transition: Transition) -> str | None:
@@ -181,15 +172,17 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
             "mode_names": [m.label for m in Mode], "grip_force": scenario.grasp.grip_force,
             "wall_time_s": wall, "sim_time_s": sim_time}
     log = collect_trial_log(loggers, context, scenario=scenario, meta=meta)
-    result = {"object": scenario.object.name, "offset_m": list(scenario.object_offset),
-              "controller": controller.name, "seed": scenario.random_seed,
-              "transitions": timeline, **judge_trial(log, transitions, scenario),
-              "sim_time_s": sim_time, "wall_time_s": wall, "cpu_time_s": cpu,
-              "real_time_factor": sim_time / wall if wall > 0 else None}
-    log.meta["result"] = result
+    judged = judge_trial(log, transitions, scenario)
+    judged["final_mode"] = Mode.from_label(judged["final_mode"])
+    result = TrialResult(
+        object=scenario.object.name, offset_m=list(scenario.object_offset),
+        controller=controller.name, seed=scenario.random_seed, transitions=tuple(transitions),
+        **judged, sim_time_s=sim_time, wall_time_s=wall, cpu_time_s=cpu,
+        real_time_factor=sim_time / wall if wall > 0 else None, log=log)
+    log.meta["result"] = result.to_dict()
     # For the Fig. 5a-b plot (figures.py): when each state began, and the physical events.
     log.meta["phase_starts"] = {e.to_mode.label: e.t for e in reversed(transitions)}
-    log.meta["events"] = result["physical_events"]
+    log.meta["events"] = result.physical_events
     logger.info("trial: simulated %.2f s in %.2f s wall; hold %s, unload %s", sim_time, wall,
-                result["hold_success"], result["unload_success"])
-    return TrialResult(result, log, tuple(transitions))
+                result.hold_success, result.unload_success)
+    return result

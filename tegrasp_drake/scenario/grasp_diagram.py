@@ -24,7 +24,7 @@ from pydrake.systems.framework import System
 from pydrake.geometry import Meshcat
 from pydrake.lcm import DrakeLcm
 
-from tegrasp_drake.control.controller_config import EventTriggeredConfig
+from tegrasp_drake.control.controller_registry import controller_entry
 from tegrasp_drake.control.grasp_controller import AddGraspController, GraspController
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
 from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
@@ -100,7 +100,7 @@ def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, statio
     default to the scenario object's (load_controller_events, load_corrective_events);
     the RA thresholds follow the noise of its film's electronics (ra_noise_std_mps2)."""
     controller = scenario.controller
-    if events is None and isinstance(controller, EventTriggeredConfig):
+    if events is None and controller_entry(controller).event_triggered:
         events = load_controller_events(scenario)
     if corrective_events is None and getattr(controller, "memorized_corrective_events", ()):
         corrective_events = load_corrective_events(scenario)

@@ -18,8 +18,8 @@ from pydrake.common.yaml import yaml_dump, yaml_dump_typed, yaml_load, yaml_load
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 
-from tegrasp_drake.control.controller_config import (
-    ControllerConfig, GraspControllerConfig, MemorizedControllerConfig, UnknownControllerError,
+from tegrasp_drake.control.controller_registry import (
+    CONTROLLER_CLASSES, ControllerConfig, UnknownControllerError, controller_entry,
     controller_named, foreign_setting, select_controller_tag)
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
@@ -105,7 +105,7 @@ class Scenario:
     grasp: GraspScriptConfig = dataclasses.field(default_factory=GraspScriptConfig)
     disturbance: DisturbanceConfig = dataclasses.field(default_factory=DisturbanceConfig)
     # Which controller, with its settings, selected by the YAML tag (controller_config.py).
-    controller: ControllerConfig = dataclasses.field(default_factory=MemorizedControllerConfig)
+    controller: ControllerConfig = dataclasses.field(default_factory=CONTROLLER_CLASSES[0])
     # Simulated (default) or real devices, selected by the YAML tag (hardware/config.py).
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
 
@@ -225,7 +225,7 @@ def _check_model_file(file: str, source: str) -> None:
 
 def _check_controller(controller, source: str) -> None:
     """The controller's names and pairs; its numbers' ranges are declared on its fields."""
-    if not isinstance(controller, GraspControllerConfig):
+    if not controller_entry(controller).closed_loop:
         return
     for k, name in enumerate(controller.memorized_corrective_events):
         require(name in CORRECTIVE_TRANSITIONS, source,
@@ -439,12 +439,15 @@ def validate(scenario: Scenario, source: str = "scenario", *,
 @public_api
 def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                   overrides: typing.Sequence[str] = (), *,
-                  controller: str | None = None, allow_long: bool = False) -> Scenario:
+                  controller: str | None = None, allow_long: bool = False,
+                  on_ignored: typing.Callable[[list[str]], None] | None = None) -> Scenario:
     """Loads scenario `name` from `filename` (default: the built-in file) with overrides.
 
-    controller: run it with the controller of this name (a sweep's trial), keeping the
-    overrides' settings that controller has and dropping those of the others. allow_long:
-    accept a grasp script longer than MAX_SCRIPT_S (validate)."""
+    controller: run it with the controller of this name (a sweep's trial, `--controller`),
+    keeping the controller settings (the file's and the overrides') that it has and
+    dropping those of the other controllers; on_ignored, if given, is called with the
+    names of the dropped settings, when there are any. allow_long: accept a grasp script
+    longer than MAX_SCRIPT_S (validate)."""
     path = pathlib.Path(filename) if filename else paths.scenarios_file()
     document = read_yaml_file(path, "the scenario file")
     if not isinstance(document, dict) or name not in document:
@@ -461,7 +464,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     if controller is not None:
         data.setdefault("controller", {})["name"] = controller
     try:
-        select_controller_tag(data, drop_others=controller is not None)
+        ignored = select_controller_tag(data, drop_others=controller is not None)
     except UnknownControllerError as e:
         raise ConfigError(f"{source}: field 'controller.name': {e} (or select it by its "
                           "tag, e.g. controller: !TaxelAwareControllerConfig {})") from None
@@ -473,7 +476,10 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                           "select one with --set "
                           f"controller.name={owners[0]} (or its YAML tag "
                           f"controller: !{type(controller_named(owners[0])).__name__} {{...}})")
-    return validate(load_typed(data, Scenario, source), source, allow_long=allow_long)
+    scenario = validate(load_typed(data, Scenario, source), source, allow_long=allow_long)
+    if ignored and on_ignored is not None:
+        on_ignored(ignored)
+    return scenario
 
 
 def _echo(assignment: str) -> str:
@@ -504,7 +510,7 @@ def controller_in_force(scenario: Scenario):
     sigmas of the RA noise of the scenario's film electronics (control/noise_thresholds.py);
     the open-loop script's as it is."""
     controller = scenario.controller
-    if not isinstance(controller, GraspControllerConfig):
+    if not controller_entry(controller).closed_loop:
         return controller
     from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
     return resolve_noise_thresholds(

@@ -30,7 +30,9 @@ import dataclasses
 
 import numpy as np
 
+from tegrasp_drake.control.grasp_modes import Mode
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
+from tegrasp_drake.sweep.records import record_result
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
 FALSE_TRIGGER_MARGIN_S = 0.01
@@ -53,32 +55,33 @@ class TriggerRow:
 
 def _event_entries(result, transition):
     source, target = transition_states(transition)
-    return [t for t in result["transitions"] if t["from"] == source and t["to"] == target]
+    return [t for t in result.transitions
+            if t.from_mode.label == source and t.to_mode.label == target]
 
 
 def event_trigger_rows(records) -> list[TriggerRow]:
     """One TriggerRow per (controller, event transition) of the records (module doc)."""
     outcomes = collections.defaultdict(list)
     for record in records.values():
-        result = record.get("result")
-        if not result:
+        if not record.get("result"):
             continue
+        result = record_result(record)
         controller = record["trial"]["controller"]
         for transition in REQUIRED_TRANSITIONS:
             source = transition_states(transition)[0]
-            if not any(t["to"] == source for t in result["transitions"]) and \
+            if not any(t.to_mode.label == source for t in result.transitions) and \
                     source != "Reach":
                 continue  # never reached the mode that waits for this event
             taken = [t for t in _event_entries(result, transition)
-                     if t["trigger"] in EVENT_TRIGGERS]
-            physical = result["physical_events"].get(transition)
+                     if t.trigger.value in EVENT_TRIGGERS]
+            physical = result.physical_events.get(transition)
             if not taken:
                 outcomes[(controller, transition)].append(("other", None))
-            elif physical is None or taken[-1]["t"] < physical - FALSE_TRIGGER_MARGIN_S:
+            elif physical is None or taken[-1].t < physical - FALSE_TRIGGER_MARGIN_S:
                 outcomes[(controller, transition)].append(("false", None))
             else:
                 outcomes[(controller, transition)].append(("detected",
-                                                           taken[-1]["t"] - physical))
+                                                           taken[-1].t - physical))
     rows = []
     for (controller, transition), items in sorted(outcomes.items()):
         latencies = [lat for kind, lat in items if kind == "detected"]
@@ -107,9 +110,9 @@ def _mode_at(transitions, t: float) -> str:
     """The mode the timeline was in at time t [s] (Reach before the first transition)."""
     mode = "Reach"
     for entry in transitions:
-        if entry["t"] > t:
+        if entry.t > t:
             break
-        mode = entry["to"]
+        mode = entry.to_mode.label
     return mode
 
 
@@ -119,21 +122,21 @@ def hit_avoid_rows(records) -> list[HitAvoidRow]:
                                             "missed": 0, "false": 0, "reached": 0,
                                             "latencies": []})
     for record in records.values():
-        result = record.get("result")
-        if not result or not any(t["to"] == "Hold" for t in result["transitions"]):
+        result = record_result(record) if record.get("result") else None
+        if not result or not result.entered(Mode.HOLD):
             continue
         row = rows[record["trial"]["controller"]]
         row["reached"] += 1
-        avoids = [t for t in result["transitions"] if t["to"] == "Avoid"]
-        row["triggers"].update(t["trigger"] for t in avoids)
-        hit = result["physical_events"].get("hit")
-        in_hold = hit is not None and _mode_at(result["transitions"], hit) == "Hold"
-        if any(hit is None or t["t"] < hit - FALSE_TRIGGER_MARGIN_S for t in avoids):
+        avoids = [t for t in result.transitions if t.to_mode == Mode.AVOID]
+        row["triggers"].update(t.trigger.value for t in avoids)
+        hit = result.physical_events.get("hit")
+        in_hold = hit is not None and _mode_at(result.transitions, hit) == "Hold"
+        if any(hit is None or t.t < hit - FALSE_TRIGGER_MARGIN_S for t in avoids):
             row["false"] += 1
         if not in_hold:
             continue
         row["hits"] += 1
-        after = [t["t"] for t in avoids if t["t"] >= hit - FALSE_TRIGGER_MARGIN_S]
+        after = [t.t for t in avoids if t.t >= hit - FALSE_TRIGGER_MARGIN_S]
         if after:
             row["detected"] += 1
             row["latencies"].append(after[0] - hit)
@@ -150,15 +153,15 @@ def corrective_counts(records) -> dict[str, collections.Counter]:
     """{controller: Counter(action: trials in which it started)}."""
     counts = collections.defaultdict(collections.Counter)
     for record in records.values():
-        result = record.get("result")
-        if result:
-            counts[record["trial"]["controller"]].update(set(result["corrective_actions"]))
+        if record.get("result"):
+            counts[record["trial"]["controller"]].update(
+                set(record_result(record).corrective_actions))
     return counts
 
 
 def _success(record, column: str) -> bool:
-    result = record["result"]
-    return bool(result["hold_success"] if column == "hold" else result["unload_success"])
+    result = record_result(record)
+    return bool(result.hold_success if column == "hold" else result.unload_success)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -19,20 +19,23 @@ Checked in this order (the first that applies):
   other                  a Failed reason none of the above names (see the record)
 """
 
+from tegrasp_drake.control.controller_registry import controller_title
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
 from tegrasp_drake.runs.trial import UPRIGHT_TILT_DEG
+from tegrasp_drake.sweep.records import record_result
 
 FAILURE_CLASSES = ("closed on nothing", "one finger only", "slipped in Lift",
                    "event never matched", "object lost", "device fault", "not lifted",
                    "dropped in Hold", "toppled at release", "not placed", "other")
 
 
-def failure_class(result: dict) -> str | None:
-    """The failure class of a trial's result (a sweep record's "result"), None when it held
-    and unloaded."""
-    if result["unload_success"]:
+def failure_class(result) -> str | None:
+    """The failure class of a trial's result (a TrialResult), None when it held and
+    unloaded."""
+    if result.unload_success:
         return None
-    failure = result.get("failure", "")
+    failure = result.failure
     if failure:
         if "closed on nothing" in failure:
             return "closed on nothing"
@@ -44,17 +47,17 @@ def failure_class(result: dict) -> str | None:
             return "event never matched"
         if failure.startswith("object lost"):
             return "object lost"
-        if failure.startswith("gripper fault") or result.get("final_mode") == "Failed" \
-                and any(entry.get("trigger") == "fault" for entry in result["transitions"]):
+        if failure.startswith("gripper fault") or result.final_mode == Mode.FAILED \
+                and any(entry.trigger == Trigger.FAULT for entry in result.transitions):
             return "device fault"
         return "other"
-    if result.get("lift_height_m") is None or result.get("final_tilt_deg") is None:
+    if result.lift_height_m is None or result.final_tilt_deg is None:
         return "other"  # a record without the ground truth (not written by run_trial)
-    if not result["hold_success"]:
-        if result["lift_height_m"] < LIFTED_HEIGHT_M:
+    if not result.hold_success:
+        if result.lift_height_m < LIFTED_HEIGHT_M:
             return "not lifted"
         return "dropped in Hold"
-    if result["final_tilt_deg"] >= UPRIGHT_TILT_DEG:
+    if result.final_tilt_deg >= UPRIGHT_TILT_DEG:
         return "toppled at release"
     return "not placed"
 
@@ -69,13 +72,13 @@ def failure_class_counts(records) -> dict:
         trial = record["trial"]
         per_object = counts.setdefault(trial["controller"], {}).setdefault(
             trial["object_name"], dict.fromkeys(FAILURE_CLASSES, 0))
-        name = failure_class(record["result"])
+        name = failure_class(record_result(record))
         if name is not None:
             per_object[name] += 1
     return counts
 
 
-def failure_classes_markdown(counts: dict, controller_titles: dict) -> str:
+def failure_classes_markdown(counts: dict) -> str:
     """A table per controller: objects by the failure classes that occur in the sweep."""
     present = [name for name in FAILURE_CLASSES
                if any(per_object[name] for objects in counts.values()
@@ -85,7 +88,7 @@ def failure_classes_markdown(counts: dict, controller_titles: dict) -> str:
     if not present:
         return "\n".join(lines + ["No trial failed.", ""])
     for controller, objects in counts.items():
-        lines += [f"### {controller_titles.get(controller, controller)}", "",
+        lines += [f"### {controller_title(controller)}", "",
                   "| Object | " + " | ".join(present) + " |",
                   "|---|" + "---|" * len(present)]
         for name, per_object in objects.items():

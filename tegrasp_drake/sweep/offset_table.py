@@ -10,8 +10,10 @@ from collections import defaultdict
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
-from tegrasp_drake.sweep.table import (CONTROLLER_TITLES, ordered_names, succeeded,
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
+from tegrasp_drake.sweep.records import record_result
+from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
+from tegrasp_drake.sweep.table import (ordered_names, succeeded,
                                        write_markdown_and_csv)
 
 PHASES = ("hold", "unload")
@@ -42,7 +44,7 @@ def offset_rows(records) -> list[OffsetRow]:
             continue
         count["trials"] += 1
         for phase in PHASES:
-            count[phase] += succeeded(record["result"], phase)
+            count[phase] += succeeded(record_result(record), phase)
     controllers = ordered_names({k[0] for k in counts}, CONTROLLER_NAMES)
     objects = ordered_names({k[1] for k in counts}, BUILTIN_OBJECTS)
     rows = []
@@ -73,7 +75,7 @@ def offset_markdown(rows: list[OffsetRow]) -> str:
         for object_name in objects:
             header += [f"{object_name} ~Hold", f"{object_name} ~Unload"]
         header.append("errors")
-        lines += ["", f"## {CONTROLLER_TITLES.get(controller, controller)}", "",
+        lines += ["", f"## {controller_title(controller)}", "",
                   "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
         for dx, dy in markers:
             cells = [f"{dx:+g}" if dx else "0", f"{dy:+g}" if dy else "0"]

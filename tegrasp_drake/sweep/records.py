@@ -190,3 +190,12 @@ def remove_temporary_files(out_dir) -> list[Path]:
             path.unlink(missing_ok=True)
             removed.append(path)
     return removed
+
+
+@public_api
+def record_result(record: dict):
+    """The TrialResult of a record's "result" (its JSON form), None for a record without
+    one (an error)."""
+    from tegrasp_drake.runs.trial_result import TrialResult
+    result = record.get("result")
+    return None if result is None else TrialResult.from_dict(result)

@@ -78,6 +78,18 @@ def check_result(result) -> str | None:
     for name, types in expected_types.items():
         if name in result and not isinstance(result[name], types):
             return f"result field {name!r} has type {type(result[name]).__name__}"
+    from tegrasp_drake.control.grasp_modes import Mode, Transition
+    for k, entry in enumerate(result.get("transitions", [])):
+        try:
+            Transition.from_dict(entry)
+        except (KeyError, ValueError, TypeError, AttributeError) as e:
+            return (f"result field 'transitions'[{k}] is not a transition (t, from, to, "
+                    f"trigger, reason; as Transition.as_dict writes it): {e!r}")
+    if "final_mode" in result:
+        try:
+            Mode.from_label(result["final_mode"])
+        except ValueError as e:
+            return f"result field 'final_mode': {e}"
     return None
 
 

@@ -27,16 +27,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tegrasp_drake.rig.ranges import bounded, check_ranges
-from tegrasp_drake.control import controller_config
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
-# The controllers the trial function knows: the paper's memorized triggers, heuristic
-# thresholds in the style of Romano et al. 2011, open loop, and taxel_aware.
-CONTROLLER_NAMES = controller_config.CONTROLLER_NAMES
-# A spec that names no controllers runs the paper's comparison (Table I): these three.
-PAPER_CONTROLLERS = ("memorized", "heuristic", "open_loop")
+# The controllers the trial function knows (CONTROLLER_NAMES, control/controller_registry.py);
+# a spec that names none runs the paper's comparison (Table I, PAPER_CONTROLLERS).
 
 # The paper's three objects (Fig. 8a), as the scenario knows them (rig/objects.py);
 # a sweep spec can add user-defined objects (`user_objects`, the scenario's ObjectConfig).

@@ -19,14 +19,12 @@ import re
 import subprocess
 from pathlib import Path
 
+from tegrasp_drake.control.controller_registry import controller_label
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.table import AVERAGE, PAPER_TABLE1, controller_statistics, table1_rows
 
 SUMMARY_FILE = "summary.md"
-CONTROLLER_NAMES = {"memorized": "memorized triggers", "heuristic": "heuristic thresholds",
-                    "open_loop": "open loop",
-                    "taxel_aware": "taxel-aware, ensemble events"}
 PAPER_ROW_NAME = "the paper (real robot, memorized)"
 _SUCCESS_HEADERS = ("well-placed ~Hold", "~Unload", "misplaced ~Hold", "~Unload")
 _NONE = "–"
@@ -74,7 +72,7 @@ def summary_rows(records) -> tuple[list[str], list[list[str]]]:
             continue
         paper_compares = row.paper_percent is not None  # the paper's three objects
         s = statistics.get(row.controller)
-        cells = [CONTROLLER_NAMES.get(row.controller, row.controller)]
+        cells = [controller_label(row.controller)]
         cells += [_percent(c.successes, c.trials, c.percent) for c in row.cells]
         detects = s is not None and (s["detection_latency_s"] or s["false_triggers"]["total"])
         if detects:

@@ -19,7 +19,9 @@ from pathlib import Path
 import numpy as np
 
 from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_classes_markdown
-from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS, CONTROLLER_NAMES
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
+from tegrasp_drake.sweep.records import record_result
+from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 
 # (placement, phase) columns of Table I, in the paper's order.
 TABLE1_COLUMNS = (("well_placed", "hold"), ("well_placed", "unload"),
@@ -31,12 +33,6 @@ PAPER_TABLE1 = {
     "thick_cylinder": (100, 100, 83, 83),
     "thin_cylinder": (100, 67, 75, 25),
     AVERAGE: (100, 89, 86, 69),
-}
-CONTROLLER_TITLES = {
-    "memorized": "memorized triggers (the paper's method)",
-    "heuristic": "heuristic thresholds (Romano et al. 2011 style)",
-    "open_loop": "open loop",
-    "taxel_aware": "taxel-aware corrections, ensemble events",
 }
 _OBJECT_TITLES = {"box": "Box", "thick_cylinder": "Thick cylinder",
                   "thin_cylinder": "Thin cylinder", AVERAGE: "Average"}
@@ -60,11 +56,12 @@ class Table1Row:
     errors: int
 
 
-def succeeded(result: dict, phase: str) -> bool:
-    """A trial's success in a phase: "hold", or "unload" (held, then placed upright)."""
+def succeeded(result, phase: str) -> bool:
+    """A trial's (a TrialResult's) success in a phase: "hold", or "unload" (held, then
+    placed upright)."""
     if phase == "hold":
-        return result["hold_success"]
-    return result["hold_success"] and result["unload_success"]
+        return result.hold_success
+    return result.hold_success and result.unload_success
 
 
 def ordered_names(names, preferred) -> list:
@@ -89,7 +86,7 @@ def table1_rows(records) -> list[Table1Row]:
         for column in TABLE1_COLUMNS:
             if column[0] == placement:
                 cell = counts[(*key, column)]
-                cell[0] += succeeded(record["result"], column[1])
+                cell[0] += succeeded(record_result(record), column[1])
                 cell[1] += 1
 
     rows = []
@@ -134,7 +131,7 @@ def table1_markdown(rows) -> str:
         header += [title, "paper"]
     header.append("Errors")
     for controller in ordered_names({row.controller for row in rows}, CONTROLLER_NAMES):
-        lines += ["", f"## {CONTROLLER_TITLES.get(controller, controller)}", "",
+        lines += ["", f"## {controller_title(controller)}", "",
                   "| " + " | ".join(header) + " |",
                   "|" + "---|" * len(header)]
         for row in rows:
@@ -204,22 +201,22 @@ def controller_statistics(records) -> dict:
         by_controller[record["trial"]["controller"]].append(record)
     statistics = {}
     for controller in ordered_names(by_controller, CONTROLLER_NAMES):
-        results = [r["result"] for r in by_controller[controller] if r["status"] == "ok"]
+        results = [record_result(r) for r in by_controller[controller] if r["status"] == "ok"]
         latencies = defaultdict(list)
         missed = Counter()
         actions = Counter()
         trials_with_actions = 0
         for result in results:
-            for transition, latency in result.get("detection_latency_s", {}).items():
+            for transition, latency in result.detection_latency_s.items():
                 if latency is None:
                     missed[transition] += 1
                 else:
                     latencies[transition].append(latency)
             # A list of action names, or a mapping from name to count.
-            taken = Counter(result.get("corrective_actions", []))
+            taken = Counter(result.corrective_actions)
             actions.update({str(k): v for k, v in taken.items()})
             trials_with_actions += sum(taken.values()) > 0
-        false_triggers = [result.get("false_triggers", 0) for result in results]
+        false_triggers = [result.false_triggers for result in results]
         statistics[controller] = {
             "trials": len(results),
             "errors": len(by_controller[controller]) - len(results),
@@ -233,10 +230,10 @@ def controller_statistics(records) -> dict:
                                "trials_with_any": sum(f > 0 for f in false_triggers),
                                "mean_per_trial": (float(np.mean(false_triggers))
                                                   if false_triggers else None)},
-            "sim_time_s": _distribution([r["sim_time_s"] for r in results
-                                         if "sim_time_s" in r]),
-            "wall_time_s": _distribution([r["wall_time_s"] for r in results
-                                          if "wall_time_s" in r]),
+            "sim_time_s": _distribution([r.sim_time_s for r in results
+                                         if r.sim_time_s is not None]),
+            "wall_time_s": _distribution([r.wall_time_s for r in results
+                                          if r.wall_time_s is not None]),
         }
     return statistics
 
@@ -256,7 +253,7 @@ def paired_comparisons(records) -> list[dict]:
     for record in records:
         if record["status"] == "ok":
             outcomes[record["trial"]["controller"]][record["trial"]["pair_id"]] = \
-                record["result"]
+                record_result(record)
     controllers = ordered_names(outcomes, CONTROLLER_NAMES)
     comparisons = []
     for i, a in enumerate(controllers):
@@ -282,7 +279,7 @@ def _number_text(value, unit="") -> str:
 def statistics_markdown(statistics, comparisons) -> str:
     lines = ["# Trial statistics", ""]
     for controller, s in statistics.items():
-        lines += [f"## {CONTROLLER_TITLES.get(controller, controller)}", "",
+        lines += [f"## {controller_title(controller)}", "",
                   f"Trials: {s['trials']}, errors (not counted): {s['errors']}.", "",
                   "| Transition | Detected | Not detected | Latency median | Latency p90 |",
                   "|---|---|---|---|---|"]
@@ -320,7 +317,7 @@ def write_statistics(records, out_dir) -> list[Path]:
     failures = {controller: counted[controller] for controller in statistics
                 if controller in counted}
     markdown_path.write_text(statistics_markdown(statistics, comparisons) + "\n"
-                             + failure_classes_markdown(failures, CONTROLLER_TITLES),
+                             + failure_classes_markdown(failures),
                              encoding="utf-8")
     json_path.write_text(json.dumps({"controllers": statistics,
                                      "paired_comparisons": comparisons,

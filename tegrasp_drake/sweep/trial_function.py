@@ -118,4 +118,4 @@ def run_trial_from_spec(trial: dict, *, events_dir: PathLike | None = None,
     run = run_trial(scenario, events=events, corrective_events=corrective_events)
     if log_dir is not None:
         run.log.save(pathlib.Path(log_dir) / trial_log_name(trial))
-    return run.result
+    return run.to_dict()

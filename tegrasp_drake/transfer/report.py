@@ -22,7 +22,7 @@ import numpy as np
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 from tegrasp_drake.figures.figure_files import figure_path, new_figure, save_figure
 from tegrasp_drake.sweep.detection_report import event_trigger_rows
-from tegrasp_drake.sweep.records import load_records
+from tegrasp_drake.sweep.records import load_records, record_result
 from tegrasp_drake.sweep.spec import expand_trials
 from tegrasp_drake.transfer.matrix import cell_folder, cell_name, running_sweep
 from tegrasp_drake.rig.files import write_atomically
@@ -79,15 +79,15 @@ def cell_rows(spec, out_dir) -> list[CellRow]:
             transitions = tuple(
                 (triggers[t].detected, triggers[t].trials, triggers[t].median_latency_s)
                 if t in triggers else (0, 0, None) for t in REQUIRED_TRANSITIONS)
-            results = [r["result"] for r in mine.values()]
-            cpu = [r["cpu_time_s"] for r in results if r.get("cpu_time_s") is not None]
-            sim = [r["sim_time_s"] for r in results if r.get("sim_time_s") is not None]
+            results = [record_result(r) for r in mine.values()]
+            cpu = [r.cpu_time_s for r in results if r.cpu_time_s is not None]
+            sim = [r.sim_time_s for r in results if r.sim_time_s is not None]
             rows.append(CellRow(
                 memorizing, running, controller, len(results),
                 sum(1 for c in planned.values() if c == controller), transitions,
-                sum(int(r.get("false_triggers", 0)) for r in results),
-                sum(bool(r["hold_success"]) for r in results),
-                sum(bool(r["unload_success"]) for r in results),
+                sum(int(r.false_triggers) for r in results),
+                sum(bool(r.hold_success) for r in results),
+                sum(bool(r.unload_success) for r in results),
                 float(np.median(cpu)) if cpu else None, float(np.median(sim)) if sim else None))
     return rows
 

@@ -244,3 +244,13 @@ class ContactEstimator:
 def _since(since: float, t: float, on: bool) -> float:
     """A timer's start: kept while `on` (started now if it was not running), else -1."""
     return (since if since >= 0 else t) if on else -1.0
+
+
+def estimator_for_plan(config, plan) -> ContactEstimator:
+    """The ContactEstimator of the taxel_aware controller `config` for the grasp `plan`
+    (a GraspPlan): its expected object and its hand's pads."""
+    from tegrasp_drake.simulation.gripper_hands import gripper_hand
+    return ContactEstimator(taxel_config=config.taxel_aware, geometry=ObjectGeometry(
+        width_m=plan.object_width, height_m=plan.object_height,
+        grasp_height_m=plan.grasp_height,
+        pad_center_offset=gripper_hand(plan.gripper_model).pad_center_offset))

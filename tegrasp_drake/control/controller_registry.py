@@ -1,0 +1,229 @@
+"""The controllers, one entry each: everything the package asks about "which controller?".
+
+An entry names its config class (the scenario's YAML tag, `controller: !<class> {...}`,
+whose `name` is the controller's name in results, sweeps and `--controller`), how it adds
+its systems to a DiagramBuilder, the rules and estimator its state machine runs, and how
+tables and figures show it. Adding a controller is one module (its config class and its
+rules) and one entry in CONTROLLERS; docs/controllers.md walks through an example.
+
+The entries name their behaviour as "module:function" and load it on use, so that this
+module imports no Drake: the command line's help and the sweep spec read the names here.
+"""
+
+import dataclasses
+import importlib
+import typing
+from collections.abc import Callable
+
+from tegrasp_drake.control.controller_config import (HeuristicControllerConfig,
+                                                     MemorizedControllerConfig,
+                                                     OpenLoopControllerConfig,
+                                                     TaxelAwareControllerConfig)
+from tegrasp_drake.control.fixed_load_time import FixedLoadTimeControllerConfig
+from tegrasp_drake.rig.api_boundary import public_api
+
+_BUILDERS = "tegrasp_drake.control.grasp_controller"
+STATE_MACHINE = f"{_BUILDERS}:AddStateMachineController"  # channels, detector, state machine
+SCRIPTED_GRASP = f"{_BUILDERS}:AddScriptedGraspController"  # the open-loop script
+EVENT_MATCHER = f"{_BUILDERS}:add_event_matcher_detector"  # memorized events, Eq. 3
+HEURISTIC_THRESHOLDS = f"{_BUILDERS}:add_heuristic_detector"  # hand-set thresholds
+PAPER_RULES = "tegrasp_drake.control.transition_logic:next_mode"
+
+
+@dataclasses.dataclass(frozen=True)
+class ControllerEntry:
+    """One controller.
+
+    config: its config class; `!<config.__name__>` is its YAML tag, config.name its name.
+    label: how tables and figures name it; title: what it is, in a few words (the sweep
+    tables' headings, --help); color: its colour in figures.
+    add_systems: "module:function" that adds its systems to a builder and connects them to
+    the station, called as AddGraspController's keywords plus `entry` (this entry); returns
+    a GraspController. The state-machine controllers share STATE_MACHINE.
+    detector: "module:function" adding the event detector a state machine reads
+    (EVENT_MATCHER or HEURISTIC_THRESHOLDS); rules: "module:function" of the state
+    machine's next_mode(mode, observation, counters, config, *, event_trigger, hold_s);
+    estimator: "module:function" of estimator(config, plan) -> a ContactEstimator (or
+    None: none); all None for a controller without a state machine.
+    senses_finger_strike: its state machine reads the arm's wrench at the grasp frame.
+    in_paper: one of the paper's comparison (Table I), the sweep's default.
+    """
+    config: type
+    label: str
+    title: str
+    color: str
+    add_systems: str = STATE_MACHINE
+    detector: str | None = EVENT_MATCHER
+    rules: str | None = PAPER_RULES
+    estimator: str | None = None
+    senses_finger_strike: bool = False
+    in_paper: bool = False
+
+    @property
+    def name(self) -> str:
+        return self.config.name
+
+    @property
+    def closed_loop(self) -> bool:
+        """It runs a state machine on the tactile signals (the open-loop script does not)."""
+        return self.rules is not None
+
+    @property
+    def event_triggered(self) -> bool:
+        """It reads memorized events (its config's events_folder is not None)."""
+        return self.config.events_folder is not None
+
+    def load(self, field: str) -> Callable | None:
+        """The function that `field` (add_systems, detector, rules, estimator) names."""
+        reference = getattr(self, field)
+        if reference is None:
+            return None
+        module, _, attribute = reference.partition(":")
+        return getattr(importlib.import_module(module), attribute)
+
+
+# In the tables' order; the first is the scenario's default controller.
+CONTROLLERS = (
+    ControllerEntry(MemorizedControllerConfig, label="memorized triggers",
+                    title="memorized triggers (the paper's method)", color="#c0392b",
+                    in_paper=True),
+    ControllerEntry(HeuristicControllerConfig, label="heuristic thresholds",
+                    title="heuristic thresholds (Romano et al. 2011 style)", color="#8e44ad",
+                    detector=HEURISTIC_THRESHOLDS, in_paper=True),
+    ControllerEntry(OpenLoopControllerConfig, label="open loop", title="open loop",
+                    color="#7f8c8d", add_systems=SCRIPTED_GRASP, detector=None, rules=None,
+                    in_paper=True),
+    ControllerEntry(TaxelAwareControllerConfig, label="taxel-aware, ensemble events",
+                    title="taxel-aware corrections, ensemble events", color="#1f77b4",
+                    rules="tegrasp_drake.control.taxel_aware:next_mode",
+                    estimator="tegrasp_drake.control.taxel_aware:estimator_for_plan",
+                    senses_finger_strike=True),
+    ControllerEntry(FixedLoadTimeControllerConfig, label="fixed Load time",
+                    title="the paper's, Load-Lift after a fixed time", color="#d35400",
+                    rules="tegrasp_drake.control.fixed_load_time:next_mode"),
+)
+
+# The scenario's `controller` field: the first (the default) when untagged.
+ControllerConfig = typing.Union[tuple(entry.config for entry in CONTROLLERS)]
+CONTROLLER_CLASSES = tuple(entry.config for entry in CONTROLLERS)
+# Their names (results, sweeps, --controller), in the tables' order.
+CONTROLLER_NAMES = tuple(entry.name for entry in CONTROLLERS)
+# The paper's comparison (Table I).
+PAPER_CONTROLLERS = tuple(entry.name for entry in CONTROLLERS if entry.in_paper)
+_ENTRY_OF_NAME = {entry.name: entry for entry in CONTROLLERS}
+_ENTRY_OF_CLASS = {entry.config: entry for entry in CONTROLLERS}
+if len(_ENTRY_OF_NAME) != len(CONTROLLERS) or len(_ENTRY_OF_CLASS) != len(CONTROLLERS):
+    raise ImportError("controller_registry: two entries share a name or a config class")
+# Drake's yaml_dump_typed writes a Union member as the first class it is an instance of: a
+# config class derived from another entry's would be saved (in logs) as that one.
+_DERIVED = [(a.name, b.name) for a in CONTROLLERS for b in CONTROLLERS
+            if a is not b and issubclass(a.config, b.config)]
+if _DERIVED:
+    raise ImportError(f"controller_registry: config classes derived from another entry's "
+                      f"(derive from its base instead): {_DERIVED}")
+
+
+class UnknownControllerError(ValueError):
+    """A controller name that names no controller config class."""
+
+
+@public_api
+def controller_entry(controller: typing.Any) -> ControllerEntry:
+    """The entry of a controller given by its name, its config or its config class
+    (UnknownControllerError)."""
+    if isinstance(controller, str):
+        entry = _ENTRY_OF_NAME.get(controller)
+    elif isinstance(controller, type):
+        entry = _ENTRY_OF_CLASS.get(controller)
+    else:
+        entry = _ENTRY_OF_CLASS.get(type(controller))
+    if entry is None:
+        raise UnknownControllerError(
+            f"'{controller}' is not one of {', '.join(CONTROLLER_NAMES)}")
+    return entry
+
+
+def controller_label(name: str) -> str:
+    """How tables and figures name the controller called `name` (the name itself for one
+    not registered, e.g. an old result's)."""
+    entry = _ENTRY_OF_NAME.get(name)
+    return entry.label if entry is not None else name
+
+
+def controller_title(name: str) -> str:
+    """The heading of the controller called `name` in the sweep's tables (the name itself
+    for one not registered)."""
+    entry = _ENTRY_OF_NAME.get(name)
+    return entry.title if entry is not None else name
+
+
+def controller_color(name: str, default: str) -> str:
+    """The colour of the controller called `name` in figures; `default` for one not
+    registered."""
+    entry = _ENTRY_OF_NAME.get(name)
+    return entry.color if entry is not None else default
+
+
+def controllers_help() -> str:
+    """The controllers for --help: "name: title" each."""
+    return "; ".join(f"{entry.name}: {entry.title}" for entry in CONTROLLERS)
+
+
+def controller_class(name: str):
+    """The config class of the controller called `name` (UnknownControllerError)."""
+    if not isinstance(name, str):  # a list or mapping given as the name
+        raise UnknownControllerError(
+            f"'{name}' is not one of {', '.join(CONTROLLER_NAMES)}")
+    return controller_entry(name).config
+
+
+def _fields(cls) -> set[str]:
+    return {f.name for f in dataclasses.fields(cls)}
+
+
+def controller_named(name: str, like=None):
+    """The config of the controller called `name`, with the settings of `like` (another
+    controller's config) that its class also has; the defaults otherwise."""
+    cls = controller_class(name)
+    settings = _fields(like) if like is not None else set()
+    return cls(**{field: getattr(like, field) for field in _fields(cls) if field in settings})
+
+
+def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
+    """A setting of a scenario's YAML `controller` section (tagged or not) that its
+    controller lacks but others have: (setting, the names of those that have it)."""
+    if not isinstance(section, dict):
+        return None
+    tag = section.get("_tag")
+    cls = next((c for c in CONTROLLER_CLASSES if tag == f"!{c.__name__}"),
+               CONTROLLER_CLASSES[0] if tag is None else None)
+    if cls is None:
+        return None
+    own = _fields(cls)
+    for key in section:
+        owners = tuple(other.name for other in CONTROLLER_CLASSES if key in _fields(other))
+        if key not in own and owners:
+            return key, owners
+    return None
+
+
+def select_controller_tag(data: dict, *, drop_others: bool = False) -> list[str]:
+    """Turns the shorthand `controller: {name: NAME, ...}` of YAML data (a scenario's, in
+    place) into the tag of NAME's config class (`_tag`, as Drake's yaml_load keeps it).
+    drop_others: drop the settings of other controllers that NAME's class lacks (a sweep's
+    overrides or `--controller` on a scenario written for another controller); a setting no
+    controller has stays, to be refused. Returns the settings dropped.
+    UnknownControllerError for an unknown name."""
+    section = data.get("controller") if isinstance(data, dict) else None
+    if not isinstance(section, dict) or "name" not in section:
+        return []
+    cls = controller_class(section.pop("name"))
+    section["_tag"] = f"!{cls.__name__}"
+    if not drop_others:
+        return []
+    own = _fields(cls)
+    others = set().union(*(_fields(other) for other in CONTROLLER_CLASSES))
+    dropped = [key for key in section if key in others - own]
+    for key in dropped:
+        del section[key]
+    return dropped

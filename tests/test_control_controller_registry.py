@@ -1,0 +1,81 @@
+"""The controller registry is the one place that says which controller is which: every entry
+is complete, and no other module asks a controller config its class."""
+
+import pathlib
+import re
+import subprocess
+import sys
+
+import pytest
+
+import tegrasp_drake
+from tegrasp_drake.control import controller_config
+from tegrasp_drake.control.controller_registry import (CONTROLLER_NAMES, CONTROLLERS,
+                                                       UnknownControllerError,
+                                                       controller_entry, controller_label)
+
+PACKAGE = pathlib.Path(tegrasp_drake.__file__).parent
+REGISTRY = PACKAGE / "control" / "controller_registry.py"
+# The names of the controller config classes (those with a ClassVar `name`, and the bases
+# they share): an isinstance on any of them asks "which controller?".
+CONTROLLER_CONFIG_NAMES = sorted(
+    name for name, value in vars(controller_config).items()
+    if isinstance(value, type) and name.endswith("Config")
+    and (hasattr(value, "name") or name in ("GraspControllerConfig", "EventTriggeredConfig")))
+
+
+def test_the_config_class_names_are_found():
+    # The grep below is only as good as this list.
+    assert {"MemorizedControllerConfig", "OpenLoopControllerConfig", "GraspControllerConfig",
+            "EventTriggeredConfig", "TaxelAwareControllerConfig"} <= set(CONTROLLER_CONFIG_NAMES)
+
+
+def test_no_module_but_the_registry_asks_a_controller_config_its_class():
+    pattern = re.compile(r"isinstance\([^)]*\b(" + "|".join(CONTROLLER_CONFIG_NAMES) + r")\b")
+    offenders = [f"{path.relative_to(PACKAGE)}:{number}: {line.strip()}"
+                 for path in sorted(PACKAGE.rglob("*.py")) if path != REGISTRY
+                 for number, line in enumerate(path.read_text().splitlines(), 1)
+                 if pattern.search(line)]
+    assert not offenders, "ask controller_registry.controller_entry instead:\n" + "\n".join(
+        offenders)
+
+
+def test_no_module_but_the_registry_keeps_a_table_of_controller_names():
+    # A dict literal keyed by two controller names is a second registry.
+    names = "|".join(CONTROLLER_NAMES)
+    pattern = re.compile(rf'"({names})"\s*:.*"({names})"\s*:')
+    offenders = [str(path.relative_to(PACKAGE)) for path in sorted(PACKAGE.rglob("*.py"))
+                 if path != REGISTRY and pattern.search(path.read_text().replace("\n", " "))]
+    assert not offenders
+
+
+@pytest.mark.parametrize("entry", CONTROLLERS, ids=lambda entry: entry.name)
+def test_every_entry_names_functions_that_exist(entry):
+    assert callable(entry.load("add_systems"))
+    for field in ("detector", "rules", "estimator"):
+        reference = getattr(entry, field)
+        assert reference is None or callable(entry.load(field))
+    assert entry.closed_loop == (entry.detector is not None)
+    assert re.fullmatch(r"#[0-9a-f]{6}", entry.color)
+
+
+def test_an_entry_is_found_by_name_config_or_class():
+    entry = CONTROLLERS[0]
+    assert controller_entry(entry.name) is entry
+    assert controller_entry(entry.config) is entry
+    assert controller_entry(entry.config()) is entry
+    with pytest.raises(UnknownControllerError, match="not one of"):
+        controller_entry("no_such_controller")
+
+
+def test_an_unregistered_name_is_shown_as_it_is():
+    assert controller_label("an_old_controller") == "an_old_controller"
+    assert controller_label("memorized") == "memorized triggers"
+
+
+def test_the_registry_imports_no_drake():
+    code = ("import sys; import tegrasp_drake.control.controller_registry; "
+            "print('pydrake' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert out == "False"
