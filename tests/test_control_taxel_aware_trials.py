@@ -1,7 +1,7 @@
 """The taxel_aware controller's rules in closed-loop trials, one scene per row: the scene,
 the rules that must decide its transitions (structured Reason codes, in order), and what
-the grasp must achieve. Scenes on the faithful world with the controller's ensemble
-events, on the prismatic hand: the scenes were found on it, each to exercise its rule, and
+the grasp must achieve. Scenes on the prismatic hand with its ensemble events, in the world
+they were recorded in (ideal force taxels): the scenes were found on it, each to exercise its rule, and
 the same placement plays out otherwise on the linkage hand (its pads sweep along the
 approach axis and curl); the rules run on the linkage hand in the sweeps
 (docs/results.md)."""
@@ -43,16 +43,18 @@ class Expect:
     check: object = None
 
 
-HAND = "gripper.model=prismatic"
+# The prismatic hand in the world its events were recorded in (events/prismatic: ideal
+# force taxels, the default before the capacitive pad).
+HAND = ("gripper.model=prismatic", "tactile.transducer=force")
 
 
 def _run(scene: Scene):
     if scene.spec is not None:
-        spec = dataclasses.replace(scene.spec, scenario_overrides=(HAND,))
+        spec = dataclasses.replace(scene.spec, scenario_overrides=HAND)
         (trial,) = [t.to_dict() for t in expand_trials(spec)]
         scenario, events, corrective = trial_events(trial)
         return run_trial(scenario, events=events, corrective_events=corrective)
-    base = LoadScenario(name=scene.object_name, controller="taxel_aware", overrides=[HAND])
+    base = LoadScenario(name=scene.object_name, controller="taxel_aware", overrides=list(HAND))
     controller = dataclasses.replace(base.controller, taxel_aware=dataclasses.replace(
         base.controller.taxel_aware, **dict(scene.taxel_aware)))
     changes = dict(object_offset=list(scene.offset), object_yaw_deg=scene.yaw_deg,

@@ -45,34 +45,41 @@ def in_sequence(grasp):
 
 def test_each_transition_fires_once_near_its_physical_event(
         grasp, in_sequence):
-    _, physical, _, events = grasp
+    log, physical, _, events = grasp
     assert list(in_sequence.fire_times) == list(REQUIRED_TRANSITIONS)
     fire_times = np.array([in_sequence.fire_times[t] for t in REQUIRED_TRANSITIONS],
                           dtype=float)
     np.testing.assert_allclose(in_sequence.match_rises(), fire_times, rtol=0, atol=1e-9)
-    earliest = {"load_lift": settled_grip_earliest(physical, events)}
+    earliest = {"load_lift": settled_grip_earliest(log, physical, events)}
     for transition, fire_time in zip(REQUIRED_TRANSITIONS, fire_times):
         event_time = physical[EVENT_OF_TRANSITION[transition]]
         assert earliest.get(transition, event_time) < fire_time, transition
         assert fire_time <= event_time + DETECTION_DEADLINE_S, transition
 
 
-def settled_grip_earliest(physical, events) -> float:
+def settled_grip_earliest(log, physical, events) -> float:
     """The earliest time [s] Load-Lift can match. Its memorized window is the end of the
     Load phase, at the scripted lift start: a settled grip (a flat SA; RA the squeeze's
     decaying tail, or quiet on the 50 mm cylinder), which a live window matches once it
-    holds enough of the grip, before the scripted lift (its RA, the contact's spike and
-    decay, passes on the box at 0.79, on the 25 mm cylinder at 0.98). By
-    Cauchy-Schwarz a window of N samples with m non-zero ones scores at most sqrt(m / N)
-    against a flat template, so SA passes its threshold tau only with m >= ceil(tau^2 N)
-    samples from the first contact on (44 of 54 at 0.9 and 108 Hz: 0.40 s after it). The
-    samples before the contact read the taxels' noise, 0.06 N at most against a 25 N
-    grip: they would need 0.2 N each to make up the missing sample."""
+    holds enough of the grip, before the scripted lift. A window of N samples, m of them
+    at the grip g and N - m at most r g (the taxels' reading before the contact: the
+    capacitive pad's rectified noise), scores at most
+    (m + (N - m) r) / sqrt(N (m + (N - m) r^2)) against a flat template (Cauchy-Schwarz;
+    r = 0 gives sqrt(m / N)), so SA passes its threshold tau only with the smallest m for
+    which that exceeds tau, counted from the first contact on."""
     event = events["load_lift"]
     config = live_matcher_config(events)
     tau = config.event_thresholds.get("load_lift", (config.sa_threshold,))[0]
     samples = int(round(event.window_s * event.sa_rate_hz))
-    needed = int(np.ceil(tau * tau * samples))
+    sa = log.taxels.reshape(len(log.t_sa), 2, 12).sum(axis=2)
+    before = log.t_sa < physical["first_contact"]
+    held = (log.t_sa >= physical["first_contact"] + 0.1) & (log.t_sa <= physical["first_contact"]
+                                                             + event.window_s)
+    grip = np.median(sa[held].min(axis=1))
+    r = float(sa[before].max() / grip) if before.any() else 0.0
+    m = np.arange(1, samples + 1)
+    bound = (m + (samples - m) * r) / np.sqrt(samples * (m + (samples - m) * r * r))
+    needed = int(m[np.argmax(bound > tau)])
     return physical["first_contact"] + (needed - 1) / event.sa_rate_hz
 
 
