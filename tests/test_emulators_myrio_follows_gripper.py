@@ -10,7 +10,8 @@ import pytest
 from tegrasp_drake.emulators.gripper_link import GripperRequestFollower
 from tegrasp_drake.emulators.myrio_emulator import (
     GripperCommandChange, MyRioEmulator, MyRioEmulatorConfig, TactileRecording,
-    gripper_command_changes, gripper_followed, load_tactile_recording, save_tactile_recording)
+    TactileRecordingError, gripper_command_changes, gripper_followed, load_tactile_recording,
+    save_tactile_recording)
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper
 from tegrasp_drake.robotiq import units
@@ -113,3 +114,13 @@ def test_a_gripper_that_opened_before_the_recorded_release_holds_nothing():
         wait_for(lambda: emulator.sent() and emulator.sent()[-1].trial_time >= 0.6,
                  "frames up to the clock")
         assert emulator.counters().held_frames == 0
+
+
+def test_a_log_with_unreadable_gripper_commands_is_refused_naming_them(tmp_path):
+    path = save_tactile_recording(tmp_path / "r.npz", released_trial())
+    arrays = dict(np.load(path))
+    arrays["gripper_command"][3, 0] = np.nan
+    np.savez(path, **arrays)
+    with pytest.raises(TactileRecordingError, match="r.npz.*gripper_command") as error:
+        load_tactile_recording(path)
+    assert "\n" not in str(error.value)
