@@ -7,14 +7,11 @@ import time
 import numpy as np
 import pytest
 
-from tegrasp_drake.emulators.gripper_link import GripperRequestFollower
 from tegrasp_drake.emulators.myrio_emulator import (
     GripperCommandChange, MyRioEmulator, MyRioEmulatorConfig, TactileRecording,
     TactileRecordingError, gripper_command_changes, gripper_followed, load_tactile_recording,
     save_tactile_recording)
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
-from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper
-from tegrasp_drake.robotiq import units
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
 
@@ -62,17 +59,6 @@ def test_the_gripper_requests_of_a_saved_recording_load_back(tmp_path):
     loaded = load_tactile_recording(save_tactile_recording(tmp_path / "r.npz", trial))
     np.testing.assert_array_equal(loaded.gripper_times, trial.gripper_times)
     np.testing.assert_array_equal(loaded.gripper_requests, trial.gripper_requests)
-
-
-def test_the_follower_reads_the_position_request_of_the_published_status():
-    follower = GripperRequestFollower()
-    assert follower() is None
-    message = lcmt_tegrasp_gripper()
-    status = [0] * units.STATUS_SIZE
-    status[units.STATUS_PR], status[units.STATUS_PO] = OPEN, 110
-    message.command, message.status = [OPEN, 157, 6], status
-    follower.on_message(message.encode())
-    assert follower() == OPEN
 
 
 def test_the_replay_holds_before_the_release_until_the_gripper_is_commanded_open():
