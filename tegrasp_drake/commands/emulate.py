@@ -3,7 +3,8 @@
 
 - jaco: the JACO2 simulation on LCM (`--lcm-url`);
 - robotiq: the Robotiq 2F-85 on a pseudo-terminal, the scenario's object between its
-  fingers (`--inject-fault CODE@SECONDS` for a fault); its state goes on `--lcm-url`;
+  fingers (`--inject-fault CODE@SECONDS` for a fault); its state goes on `--lcm-url`
+  for a myRIO emulator to follow;
 - myrio: the myRIO tactile stream on a pseudo-terminal, replaying `--trial NPZ` (a
   TrialLog .npz: `tegrasp demo --out DIR` writes one), `--sync none|start|follow`,
   `--follow-gripper` to wait at the trial's gripper commands for the emulated gripper's;

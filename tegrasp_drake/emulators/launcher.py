@@ -5,8 +5,9 @@
   lcmt_jaco_status at 100 Hz on KINOVA_JACO_COMMAND / KINOVA_JACO_STATUS.
 - robotiq: a Robotiq 2F-85 answering Modbus RTU (slave 9, 115200 8N1) on a pseudo-terminal,
   with the scenario's object between its fingers (robotiq_emulator.py), optionally with a
-  fault code injected some time after its activation; it publishes its command and status
-  on EMULATED_ROBOTIQ of `lcm_url` (gripper_link.py) for a myRIO emulator elsewhere.
+  fault code injected some time after its activation. Without a myRIO in this process, it
+  publishes its command and status on EMULATED_ROBOTIQ of `lcm_url` (gripper_link.py), for
+  a myRIO emulator elsewhere to follow.
 - myrio: the myRIO tactile stream (hardware/myrio/TACTILE_FRAME.md) on a pseudo-terminal,
   replaying a recorded trial (load_tactile_recording) at its real rate, then holding its
   last values. Sync "start" streams quiet pads until the first KINOVA_JACO_COMMAND, so the
@@ -94,7 +95,7 @@ class Emulators:
         if "jaco" in devices:
             self._start_jaco(scenario)
         if "robotiq" in devices:
-            self._start_robotiq(scenario, inject_fault)
+            self._start_robotiq(scenario, inject_fault, publish="myrio" not in devices)
         if "myrio" in devices:
             self._start_myrio(trial, sync, follow_gripper)
         return self
@@ -161,7 +162,7 @@ class Emulators:
         self._out(f"jaco: JACO2 simulation on {self.lcm_url}: executes {JACO_COMMAND_CHANNEL}, "
                   f"answers {JACO_STATUS_CHANNEL} at 100 Hz")
 
-    def _start_robotiq(self, scenario, inject_fault: FaultInjection | None):
+    def _start_robotiq(self, scenario, inject_fault: FaultInjection | None, publish: bool):
         from tegrasp_drake.emulators.robotiq_emulator import (
             RobotiqEmulator, RobotiqEmulatorConfig)
         from tegrasp_drake.emulators.gripper_link import (GRIPPER_STATE_CHANNEL,
@@ -171,10 +172,12 @@ class Emulators:
         self._closers.append(emulator.stop)
         self._robotiq = emulator
         self._devices["gripper"] = {"port": emulator.port}
-        publish_gripper_state(self.lcm_url, emulator.model, self.stop)
+        if publish:
+            publish_gripper_state(self.lcm_url, emulator.model, self.stop)
         self._out(f"robotiq: Robotiq 2F-85 (Modbus RTU, slave 9, 115200 8N1) on "
-                  f"{emulator.port}, object {width * 1000:.1f} mm wide between the fingers; "
-                  f"its state on {GRIPPER_STATE_CHANNEL} of {self.lcm_url}")
+                  f"{emulator.port}, object {width * 1000:.1f} mm wide between the fingers"
+                  + (f"; its state on {GRIPPER_STATE_CHANNEL} of {self.lcm_url}" if publish
+                     else ""))
         if inject_fault is not None:
             threading.Thread(target=self._inject_fault_after_activation,
                              args=(emulator, inject_fault), daemon=True).start()
