@@ -41,12 +41,6 @@ def test_the_walkthrough_is_demo_emulate_in_the_background_hardware_replay():
 
 
 @pytest.mark.slow
-# The emulated myRIO replays the demo's closed loop, whose gripper opens at once at its
-# Place-Unload; the controller on the emulated devices matches Place-Unload 10-20 ms later by
-# a margin of about 0.005 and, when later than the replayed release, ends Failed ("object
-# lost" in Place). A race on the host's timing (tests/test_runs_hardware_hil.py): not strict.
-@pytest.mark.xfail(strict=False, reason="race: the replayed recording may release the box "
-                   "before the controller on the emulated devices matches Place-Unload")
 def test_the_readme_emulator_walkthrough_ends_done(tmp_path):
     demo, emulate, hardware, replay = walkthrough_lines()
     env = dict(os.environ, PATH=f"{pathlib.Path(sys.executable).parent}:{os.environ['PATH']}",

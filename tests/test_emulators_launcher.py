@@ -47,3 +47,18 @@ def test_hardware_config_for_sets_only_the_given_fields():
     assert config.tactile.port == "/dev/pts/9"
     assert config.gripper == default.gripper
     assert config.tactile.baudrate == default.tactile.baudrate
+
+
+def test_a_myrio_following_the_gripper_here_says_at_which_commands_it_waits(tmp_path):
+    recording = quiet_recording()
+    recording.gripper_times = np.array([0.0, 0.05, 0.1, 0.15])
+    recording.gripper_requests = np.array([3, 230, 230, 3])
+    trial = save_tactile_recording(tmp_path / "trial.npz", recording)
+    lines = []
+    with Emulators(lcm_url="memq://", out=lines.append).start(
+            ("robotiq", "myrio"), LoadScenario(name="box"), trial=trial, follow_gripper=True):
+        pass
+    waits = [line for line in lines if "waits for the gripper" in line]
+    assert len(waits) == 1
+    assert "close after 0.00 s, open after 0.10 s" in waits[0]
+    assert "the Robotiq emulator here" in waits[0]

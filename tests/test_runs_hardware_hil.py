@@ -1,7 +1,8 @@
 """Hardware in the loop: the unchanged controller diagram on MakeHardwareStation against the
 three emulators, each in its own process (`tegrasp emulate jaco`: the Jaco simulation on
-a loopback LCM bus; `robotiq`: the 2F-85 on a pty; `myrio --sync follow`: a recorded
-simulated trial of the box replayed on a pty) picks and places the box with the
+a loopback LCM bus; `robotiq`: the 2F-85 on a pty; `myrio --sync follow --follow-gripper`:
+a recorded simulated trial of the box replayed on a pty, waiting at its grip and release
+for the emulated gripper to be commanded likewise) picks and places the box with the
 transitions of the pure simulation.
 
 This machine is shared and not real-time: pty data can arrive 50-100 ms late when it is
@@ -41,18 +42,6 @@ TRANSITION_TOLERANCE_S = 0.25
 UNLOAD_TOLERANCE_S = 0.75
 
 
-# A race these tests do not control yet. The replayed recording is the simulation's closed
-# loop: its gripper opens at once at the simulation's Place-Unload (the drive's screw lets
-# go with no delay), and the myRIO emulator replays that release whatever the controller
-# under test does. The controller on the emulated devices reaches Place-Unload 10-20 ms
-# behind the simulation, with the right film's score crossing 0.70 by about 0.005; when it
-# is later than the replayed release (about 40 ms), it fails in Place with "object lost".
-# Seen both ways on an idle host. Not strict: the outcome depends on the host's timing.
-REPLAYED_RELEASE_RACE = pytest.mark.xfail(
-    strict=False, reason="race: the replayed recording may release the box before the "
-    "controller on the emulated devices matches Place-Unload")
-
-
 def unique_lcm_url(offset: int = 0) -> str:
     return f"udpm://239.255.76.67:{7800 + (os.getpid() * 7 + offset) % 1000}?ttl=0"
 
@@ -85,7 +74,6 @@ def transitions_of(entries):
     return [(t["from"], t["to"], t["trigger"]) for t in entries]
 
 
-@REPLAYED_RELEASE_RACE
 def test_hil_box_makes_the_transitions_of_the_pure_simulation(simulated_box, hil_box):
     _, simulated, _ = simulated_box
     result, _, lines = hil_box
@@ -102,7 +90,6 @@ def test_hil_box_makes_the_transitions_of_the_pure_simulation(simulated_box, hil
     assert result.transitions[-1]["to"] == "Done"
 
 
-@REPLAYED_RELEASE_RACE
 def test_hil_box_is_picked_and_placed_by_the_emulated_devices(simulated_box, hil_box):
     _, simulated, _ = simulated_box
     result, log, _ = hil_box
@@ -125,7 +112,6 @@ def test_hil_box_is_picked_and_placed_by_the_emulated_devices(simulated_box, hil
                                simulated.log.channels[:, 2:].max(axis=0), rtol=0.05)
 
 
-@REPLAYED_RELEASE_RACE
 def test_hil_log_holds_every_channel_and_replays(hil_box):
     result, log, _ = hil_box
     for channel in ("TEGRASP_RUN_INFO", "TEGRASP_TACTILE", "TEGRASP_GRIPPER",
@@ -141,3 +127,15 @@ def test_hil_log_holds_every_channel_and_replays(hil_box):
         "reach_load", "load_lift", "place_unload"]
     # Stale: no frame for the receiver's 50 ms (a loaded host's pty, see the docstring).
     assert summary["stale_ticks"] < 0.05 * log.message_counts["TEGRASP_TACTILE"]
+
+
+def test_hil_pads_let_go_only_after_the_controller_commands_the_release(hil_box):
+    result, log, _ = hil_box
+    unload = next(t["t"] for t in result.transitions if t["to"] == "Unload")
+    place = next(t["t"] for t in result.transitions if t["to"] == "Place")
+    replayed = log.tactile_trial()
+    gripped = replayed.sa[np.searchsorted(replayed.t_sa, place)]
+    after_place = replayed.t_sa > place
+    let_go = after_place & np.any(replayed.sa < 0.5 * gripped, axis=1)
+    assert let_go.any()
+    assert replayed.t_sa[let_go][0] > unload

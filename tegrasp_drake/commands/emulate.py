@@ -3,10 +3,12 @@
 
 - jaco: the JACO2 simulation on LCM (`--lcm-url`);
 - robotiq: the Robotiq 2F-85 on a pseudo-terminal, the scenario's object between its
-  fingers (`--inject-fault CODE@SECONDS` for a fault);
+  fingers (`--inject-fault CODE@SECONDS` for a fault); its state goes on `--lcm-url`
+  for a myRIO emulator to follow;
 - myrio: the myRIO tactile stream on a pseudo-terminal, replaying `--trial NPZ` (a
-  TrialLog .npz: `tegrasp demo --out DIR` writes one), `--sync none|start|follow`;
-- all: the three in one process, with --sync follow by default.
+  TrialLog .npz: `tegrasp demo --out DIR` writes one), `--sync none|start|follow`,
+  `--follow-gripper` to wait at the trial's gripper commands for the emulated gripper's;
+- all: the three in one process, with --sync follow and --follow-gripper by default.
 
 Each prints where it listens, `--write-config FILE` writes the hardware config that
 points `tegrasp hardware --config FILE` at them, a line "devices: {JSON}" (the same for
@@ -51,13 +53,21 @@ def register(subparsers) -> None:
     parser.add_argument("device", choices=DEVICES)
     add_scenario_arguments(parser)
     parser.add_argument("--lcm-url", default=DEFAULT_LCM_URL,
-                        help="the arm's LCM bus (default: %(default)s)")
+                        help="the arm's LCM bus, which also carries the emulated gripper's "
+                        "state (default: %(default)s)")
     parser.add_argument("--trial", metavar="NPZ",
                         help="myrio/all: the recorded trial to replay (a TrialLog .npz)")
     parser.add_argument("--sync", choices=SYNC_MODES, default=None,
                         help="myrio: replay at once (none), from the first "
                         "KINOVA_JACO_COMMAND on --lcm-url (start), or on the commands' "
                         "clock (follow; the default with `all`, else none)")
+    parser.add_argument("--follow-gripper", action=argparse.BooleanOptionalAction,
+                        default=None,
+                        help="myrio: at each gripper command of the trial (its grip, its "
+                        "release), hold the replay until the emulated gripper is commanded "
+                        "likewise (`emulate robotiq` on --lcm-url, or the one of `all`), so "
+                        "the pads never show a release the controller has not commanded "
+                        "(default: on with `all`, else off)")
     parser.add_argument("--inject-fault", metavar="CODE@SECONDS",
                         help="robotiq/all: set gFLT to CODE (e.g. 0x0E) SECONDS after the "
                         "gripper's activation completes")
@@ -134,7 +144,10 @@ def run(args) -> int:
         except TactileRecordingError as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
     sync = args.sync or ("follow" if args.device == "all" else "none")
-    if "jaco" in devices or sync == "follow":  # they open --lcm-url
+    follow_gripper = (args.follow_gripper if args.follow_gripper is not None
+                      else args.device == "all")
+    if "jaco" in devices or "robotiq" in devices or sync == "follow" or (
+            follow_gripper and "myrio" in devices):  # they open --lcm-url
         problem = lcm_url_problem(args.lcm_url)  # the check `tegrasp hardware` makes
         if problem:
             raise SystemExit(f"tegrasp: error: --lcm-url {shorten(repr(args.lcm_url))} "
@@ -146,6 +159,7 @@ def run(args) -> int:
         signal.signal(signal_number, lambda *_: emulators.stop.set())
     try:
         emulators.start(devices, scenario, trial=args.trial, sync=sync,
+                        follow_gripper=follow_gripper and "myrio" in devices,
                         inject_fault=inject_fault)
         if args.write_config:
             emulators.write_hardware_config(args.write_config)

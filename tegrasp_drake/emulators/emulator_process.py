@@ -105,9 +105,9 @@ class EmulatorProcess:
 
 class EmulatedDevices:
     """The three devices, each emulated in its own process (`tegrasp emulate jaco`,
-    `robotiq` and `myrio --sync <myrio_sync>`), started together; `config` points a hardware
-    station at them. Use as a context manager; `myrio`, `robotiq` and `jaco` are the
-    EmulatorProcess of each (e.g. to kill one).
+    `robotiq` and `myrio --sync <myrio_sync> --follow-gripper`, all on `lcm_url`), started
+    together; `config` points a hardware station at them. Use as a context manager; `myrio`,
+    `robotiq` and `jaco` are the EmulatorProcess of each (e.g. to kill one).
 
     scheduling: the emulators' `--scheduling`. Real devices have processors of their own;
     on a shared host the default, "fifo", keeps their stand-ins on time when the host is
@@ -121,11 +121,12 @@ class EmulatedDevices:
         try:
             self.jaco = EmulatorProcess("jaco", *scenario_args, "--lcm-url", lcm_url,
                                         *common, wait=False, scheduling=scheduling)
-            self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args, *common,
-                                           wait=False, scheduling=scheduling)
+            self.robotiq = EmulatorProcess("robotiq", *scenario_args, *robotiq_args,
+                                           "--lcm-url", lcm_url, *common, wait=False,
+                                           scheduling=scheduling)
             self.myrio = EmulatorProcess("myrio", "--trial", str(trial), "--sync", myrio_sync,
-                                         "--lcm-url", lcm_url, *common, wait=False,
-                                         scheduling=scheduling)
+                                         "--follow-gripper", "--lcm-url", lcm_url, *common,
+                                         wait=False, scheduling=scheduling)
             for process in self.processes:
                 process.wait_until_ready(timeout)
         except BaseException:

@@ -5,13 +5,18 @@
   lcmt_jaco_status at 100 Hz on KINOVA_JACO_COMMAND / KINOVA_JACO_STATUS.
 - robotiq: a Robotiq 2F-85 answering Modbus RTU (slave 9, 115200 8N1) on a pseudo-terminal,
   with the scenario's object between its fingers (robotiq_emulator.py), optionally with a
-  fault code injected some time after its activation.
+  fault code injected some time after its activation. Without a myRIO in this process, it
+  publishes its command and status on EMULATED_ROBOTIQ of `lcm_url` (gripper_link.py), for
+  a myRIO emulator elsewhere to follow.
 - myrio: the myRIO tactile stream (hardware/myrio/TACTILE_FRAME.md) on a pseudo-terminal,
   replaying a recorded trial (load_tactile_recording) at its real rate, then holding its
   last values. Sync "start" streams quiet pads until the first KINOVA_JACO_COMMAND, so the
   replay starts with the controller; "follow" also follows the controller's clock (the
   commands' utime, ControllerClock), so the replay stays in step with a controller that
-  runs behind real time.
+  runs behind real time. With `follow_gripper`, the replay also waits at each of the
+  recording's gripper commands for the emulated gripper to be commanded likewise (the
+  Robotiq emulator of this process, else EMULATED_ROBOTIQ on `lcm_url`), so the pads never
+  show a grip or release before the controller under test asks for it.
 
 `Emulators.start` says where each device listens, in words, through `out`. As data,
 `hardware_config()` points a hardware station at them, and `devices_line()` is one line
@@ -73,8 +78,10 @@ class Emulators:
         self._devices = {}
         self._closers = []
         self._jaco = None  # (DrakeLcm, emulator Diagram)
+        self._robotiq = None  # RobotiqEmulator
 
     def start(self, devices, scenario, *, trial=None, sync: str = "none",
+              follow_gripper: bool = False,
               inject_fault: FaultInjection | None = None) -> "Emulators":
         """Starts `devices` (names in DEVICES, in that order) with the scenario's arm start
         pose and object; `trial` is the recording the myRIO replays (a TrialLog .npz)."""
@@ -88,9 +95,9 @@ class Emulators:
         if "jaco" in devices:
             self._start_jaco(scenario)
         if "robotiq" in devices:
-            self._start_robotiq(scenario, inject_fault)
+            self._start_robotiq(scenario, inject_fault, publish="myrio" not in devices)
         if "myrio" in devices:
-            self._start_myrio(trial, sync)
+            self._start_myrio(trial, sync, follow_gripper)
         return self
 
     @property
@@ -155,15 +162,22 @@ class Emulators:
         self._out(f"jaco: JACO2 simulation on {self.lcm_url}: executes {JACO_COMMAND_CHANNEL}, "
                   f"answers {JACO_STATUS_CHANNEL} at 100 Hz")
 
-    def _start_robotiq(self, scenario, inject_fault: FaultInjection | None):
+    def _start_robotiq(self, scenario, inject_fault: FaultInjection | None, publish: bool):
         from tegrasp_drake.emulators.robotiq_emulator import (
             RobotiqEmulator, RobotiqEmulatorConfig)
+        from tegrasp_drake.emulators.gripper_link import (GRIPPER_STATE_CHANNEL,
+                                                          publish_gripper_state)
         width = scenario.object.width_along_stroke()
         emulator = RobotiqEmulator(RobotiqEmulatorConfig(object_opening=width)).start()
         self._closers.append(emulator.stop)
+        self._robotiq = emulator
         self._devices["gripper"] = {"port": emulator.port}
+        if publish:
+            publish_gripper_state(self.lcm_url, emulator.model, self.stop)
         self._out(f"robotiq: Robotiq 2F-85 (Modbus RTU, slave 9, 115200 8N1) on "
-                  f"{emulator.port}, object {width * 1000:.1f} mm wide between the fingers")
+                  f"{emulator.port}, object {width * 1000:.1f} mm wide between the fingers"
+                  + (f"; its state on {GRIPPER_STATE_CHANNEL} of {self.lcm_url}" if publish
+                     else ""))
         if inject_fault is not None:
             threading.Thread(target=self._inject_fault_after_activation,
                              args=(emulator, inject_fault), daemon=True).start()
@@ -178,15 +192,17 @@ class Emulators:
             emulator.inject_fault(fault.code)
             self._out(f"robotiq: injected fault 0x{fault.code:02X}")
 
-    def _start_myrio(self, trial_path, sync: str):
+    def _start_myrio(self, trial_path, sync: str, follow_gripper: bool):
         from tegrasp_drake.emulators.controller_clock import ControllerClock
         from tegrasp_drake.emulators.myrio_emulator import (
-            MyRioEmulator, MyRioEmulatorConfig, load_tactile_recording)
+            MyRioEmulator, MyRioEmulatorConfig, gripper_command_changes, load_tactile_recording)
         recording = load_tactile_recording(trial_path)
         clock = ControllerClock() if sync in ("start", "follow") else None
+        gripper_request = self._gripper_request() if follow_gripper else None
         emulator = MyRioEmulator(recording, MyRioEmulatorConfig(
             start_on_trigger=clock is not None, hold_at_end=True),
-            trial_clock=clock if sync == "follow" else None).start()
+            trial_clock=clock if sync == "follow" else None,
+            gripper_request=gripper_request).start()
         self._closers.append(emulator.stop)
         self._devices["tactile"] = {"port": emulator.port}
         if clock is not None:
@@ -198,6 +214,25 @@ class Emulators:
         self._out(f"myrio: tactile stream (1 kHz frames) on {emulator.port}, replaying "
                   f"{trial_path} ({recording.duration:.2f} s) {when}, then holding its last "
                   "values")
+        if follow_gripper:
+            changes = gripper_command_changes(recording.gripper_times,
+                                              recording.gripper_requests)
+            source = ("the Robotiq emulator here" if self._robotiq is not None
+                      else f"EMULATED_ROBOTIQ on {self.lcm_url}")
+            self._out("myrio: " + (
+                "the trial holds no gripper command; nothing to follow" if not changes else
+                "at the recording's gripper commands (" + ", ".join(
+                    f"{'open' if c.after < c.before else 'close'} after {c.hold_time:.2f} s"
+                    for c in changes) + f") the replay waits for the gripper ({source}) "
+                "to be commanded likewise"))
+
+    def _gripper_request(self):
+        """The emulated gripper's position request: from the model when it runs here, else
+        from EMULATED_ROBOTIQ on `lcm_url`."""
+        from tegrasp_drake.emulators.gripper_link import follow_gripper_state, request_of_model
+        if self._robotiq is not None:
+            return request_of_model(self._robotiq.model)
+        return follow_gripper_state(self.lcm_url, self.stop)
 
     def _feed_controller_clock(self, clock):
         """Feeds `clock` the arm's commands: through the emulated arm's DrakeLcm when it

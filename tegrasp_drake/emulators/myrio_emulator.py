@@ -22,12 +22,23 @@ the controller's commands), frame n goes out once that clock reaches its time in
 that a controller that falls behind real time still gets every sample once, in step with
 its own clock (the sensor as if slaved to the controller).
 
+Given a `gripper_request` (a callable returning the emulated gripper's position request
+gPR [byte], or None while unknown; gripper_link.py), the replay follows the gripper: the
+recording's own gripper commands (its position requests rPR at their times, e.g. the trial
+log's gripper_command) say when its gripper was told to close and to open, and at each such
+change the replay holds the recording's last frame before it (the last sample at or before
+the last time the old request was logged) until the emulated gripper's request is nearer
+the new one than the old, then plays on from there. So the pads never show a grip or a
+release the controller under test has not commanded: if the controller asks later than the
+recorded one did, the trial's time runs behind the stream's (or the clock's) by the wait;
+if it asks earlier, nothing waits. Without a recorded gripper command, nothing is held.
+
 Faults, each per frame with a given probability, from a seeded generator: a flipped bit,
 a dropped byte, a frame cut short. `stop_talking()` silences it (to trip a watchdog);
 `resume_talking()` resumes with the frame due then. The master end is non-blocking: if the
 reader does not read and the pty buffer fills, frames are dropped and counted, never
 blocking the emulator. `sent()` lists every frame written (sequence, timestamp, write time,
-injected faults), for latency measurements and tests.
+injected faults, the recording's time it carried), for latency measurements and tests.
 """
 
 import collections
@@ -55,13 +66,16 @@ MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 
 @dataclasses.dataclass
 class TactileRecording:
     """The raw pad signals of a recorded trial, as the myRIO replays them. Times [s]
-    ascending; forces (n, 12) [N]; accelerations (m,) or (m, 3) [m/s^2]."""
+    ascending; forces (n, 12) [N]; accelerations (m,) or (m, 3) [m/s^2]. Optionally the
+    recorded gripper's position requests (k,) [rPR byte] at their times (k,) [s]."""
     force_times: np.ndarray
     left_forces: np.ndarray
     right_forces: np.ndarray
     acceleration_times: np.ndarray
     left_acceleration: np.ndarray
     right_acceleration: np.ndarray
+    gripper_times: np.ndarray | None = None
+    gripper_requests: np.ndarray | None = None
 
     @property
     def duration(self) -> float:
@@ -77,11 +91,13 @@ class TactileRecordingError(ValueError):
 
 def load_tactile_recording(path) -> TactileRecording:
     """The pad signals of a TrialLog .npz: taxel forces (t_sa, taxels: left then right) and
-    pad accelerations (t_ra, pad_acceleration: left x, y, z then right); no other array is
-    needed."""
+    pad accelerations (t_ra, pad_acceleration: left x, y, z then right), and the gripper's
+    position requests (t_slow, gripper_command's rPR) when the file holds them; no other
+    array is needed."""
     try:
         arrays = checked_npz_arrays(path, ("t_sa", "taxels", "t_ra", "pad_acceleration"),
-                                    optional=("channels",), max_bytes=MAX_TRIAL_LOG_BYTES)
+                                    optional=("channels", "t_slow", "gripper_command"),
+                                    max_bytes=MAX_TRIAL_LOG_BYTES)
         t_sa, taxels = arrays["t_sa"], arrays["taxels"]
         t_ra, acceleration = arrays["t_ra"], arrays["pad_acceleration"]
     except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:
@@ -104,8 +120,26 @@ def load_tactile_recording(path) -> TactileRecording:
         raise TactileRecordingError(f"'{path}': taxels must have {2 * TAXELS_PER_PAD} columns "
                                     f"and pad_acceleration 6 (got {taxels.shape[1]} and "
                                     f"{acceleration.shape[1]})")
+    gripper_times, gripper_requests = _gripper_requests(path, arrays)
     return TactileRecording(t_sa, taxels[:, :TAXELS_PER_PAD], taxels[:, TAXELS_PER_PAD:],
-                            t_ra, acceleration[:, :3], acceleration[:, 3:])
+                            t_ra, acceleration[:, :3], acceleration[:, 3:],
+                            gripper_times, gripper_requests)
+
+
+def _gripper_requests(path, arrays) -> tuple:
+    """(t_slow, gripper_command's rPR column) of a trial log's arrays, or (None, None)
+    without them."""
+    if "t_slow" not in arrays or "gripper_command" not in arrays:
+        return None, None
+    times, command = arrays["t_slow"], arrays["gripper_command"]
+    if (times.ndim != 1 or len(times) < 1 or command.ndim != 2 or command.shape[0] != len(times)
+            or command.shape[1] < 1 or not np.all(np.isfinite(times))
+            or not np.all(np.isfinite(command)) or np.any(np.diff(times) <= 0)):
+        raise TactileRecordingError(
+            f"'{path}': t_slow and gripper_command must be increasing finite times and as "
+            f"many rows of finite gripper commands (got {times.shape} and {command.shape}); "
+            "remake the trial log")
+    return times, command[:, 0]
 
 
 def save_tactile_recording(path, recording: TactileRecording):
@@ -116,11 +150,17 @@ def save_tactile_recording(path, recording: TactileRecording):
         if acceleration.ndim == 2:
             return acceleration
         return np.column_stack([acceleration, np.zeros((len(acceleration), 2))])
+    gripper = {}
+    if recording.gripper_times is not None:  # rPR, with rSP and rFR zero
+        requests = np.asarray(recording.gripper_requests, dtype=float)
+        gripper = dict(t_slow=recording.gripper_times, gripper_command=np.column_stack(
+            [requests, np.zeros((len(requests), 2))]))
     np.savez(path, t_sa=recording.force_times,
              taxels=np.hstack([recording.left_forces, recording.right_forces]),
              t_ra=recording.acceleration_times,
              pad_acceleration=np.hstack([three_axes(recording.left_acceleration),
-                                         three_axes(recording.right_acceleration)]))
+                                         three_axes(recording.right_acceleration)]),
+             **gripper)
     return path
 
 
@@ -144,6 +184,30 @@ class MyRioEmulatorConfig:
     hold_at_end: bool = False
     calibration: TactileCalibration = dataclasses.field(default_factory=TactileCalibration)
     faults: StreamFaults = dataclasses.field(default_factory=StreamFaults)
+
+
+@dataclasses.dataclass(frozen=True)
+class GripperCommandChange:
+    """A change of the recorded gripper's position request, from `before` to `after`
+    [rPR bytes], made after `hold_time` [s] (the last time the old request was logged)."""
+    hold_time: float
+    before: int
+    after: int
+
+
+def gripper_command_changes(times, requests) -> list[GripperCommandChange]:
+    """Each change of the recorded position requests (none for None)."""
+    if times is None:
+        return []
+    requests = np.asarray(requests)
+    return [GripperCommandChange(float(times[i - 1]), int(requests[i - 1]), int(requests[i]))
+            for i in np.flatnonzero(np.diff(requests) != 0) + 1]
+
+
+def gripper_followed(change: GripperCommandChange, request: int | None) -> bool:
+    """Whether the emulated gripper's request [byte] (None: not known yet) is nearer the
+    change's new request than its old one."""
+    return request is not None and abs(request - change.after) < abs(request - change.before)
 
 
 def held_sample(times, values, t):
@@ -194,6 +258,8 @@ class TactileFrameSource:
                       film_signal(trial.right_acceleration, config.piezo_axis)]
         self._forces = [np.asarray(trial.left_forces, dtype=float),
                         np.asarray(trial.right_forces, dtype=float)]
+        self.gripper_changes = gripper_command_changes(trial.gripper_times,
+                                                       trial.gripper_requests)
         self.lead_in_frames = int(round(config.lead_in / config.frame_period))
         self.trial_frames = int(np.ceil(trial.duration / config.frame_period))
         self.frame_count = self.lead_in_frames + self.trial_frames
@@ -235,6 +301,7 @@ class SentFrame:
     timestamp_us: int
     write_time: float     # time.monotonic() [s] after the write returned
     faults: tuple = ()    # names of the faults injected into it
+    trial_time: float = -1.0  # [s] the recording's time it carried (< 0: a quiet frame)
 
 
 @dataclasses.dataclass
@@ -242,6 +309,7 @@ class MyRioEmulatorCounters:
     frames_sent: int = 0
     faulted_frames: int = 0   # frames sent with at least one injected fault
     tx_overruns: int = 0   # frames not written because the pty buffer was full
+    held_frames: int = 0   # frames that held the replay until the gripper followed
     injected: dict = dataclasses.field(default_factory=lambda: collections.Counter())
 
 
@@ -249,9 +317,10 @@ class MyRioEmulator:
     """Streams a trial on a pseudo-terminal; the reader opens `port`. Use with `with`."""
 
     def __init__(self, trial: TactileRecording, config: MyRioEmulatorConfig | None = None, *,
-                 trial_clock=None):
+                 trial_clock=None, gripper_request=None):
         self._config = dataclasses.replace(config or MyRioEmulatorConfig())
         self._trial_clock = trial_clock
+        self._gripper_request = gripper_request
         self._source = TactileFrameSource(trial, self._config)
         self._rng = np.random.default_rng(self._config.faults.seed)
         self._master, self._slave, self._port = open_raw_pty()
@@ -328,6 +397,9 @@ class MyRioEmulator:
         period = self._config.frame_period
         start = time.monotonic()
         trial_start = None if self._config.start_on_trigger else self._source.lead_in_frames
+        changes = self._source.gripper_changes if self._gripper_request is not None else []
+        next_change = 0  # the first of `changes` the gripper has not followed yet
+        held = 0  # frames by which the trial runs behind the stream, waiting for the gripper
         k = 0
         while not self._stop.is_set():
             if trial_start is None and self._trigger.is_set():
@@ -339,7 +411,7 @@ class MyRioEmulator:
                             time.monotonic() if self._trial_clock is not None
                             else start + trial_start * period)
                 if (not self._config.hold_at_end
-                        and k >= trial_start + self._source.trial_frames):
+                        and k - held >= trial_start + self._source.trial_frames):
                     break
             if self._trial_clock is not None and trial_start is not None:
                 # Paced by the clock: trial sample n goes out once the clock reached it.
@@ -359,17 +431,32 @@ class MyRioEmulator:
                     self._talking.wait(0.05)
                     k = int((time.monotonic() - start) / period)  # silent frames are not sent
                     continue
-            frame = self._source.frame(k, trial_start)
+            holding = False
+            if trial_start is None:
+                t = -1.0
+            else:
+                n = k - trial_start - held  # the trial sample due
+                while next_change < len(changes):
+                    last_before = int(np.floor(changes[next_change].hold_time / period + 1e-9))
+                    if n <= last_before:
+                        break
+                    if not gripper_followed(changes[next_change], self._gripper_request()):
+                        held, n, holding = held + n - last_before, last_before, True
+                        break
+                    next_change += 1
+                t = n * period
+            frame = self._source.frame_at(k, t)
             data, injected = inject_faults(frame, self._config.faults, self._rng)
             try:
                 written = os.write(self._master, data)
             except BlockingIOError:
                 written = 0
             with self._lock:
+                self._counters.held_frames += holding
                 if written:
                     self._counters.frames_sent += 1
                     self._sent.append(SentFrame(k, int(round(k * period * 1e6)),
-                                                time.monotonic(), tuple(injected)))
+                                                time.monotonic(), tuple(injected), t))
                     self._counters.injected.update(injected)
                     self._counters.faulted_frames += bool(injected)
                 else:

@@ -98,6 +98,12 @@ class RobotiqGripperModel:
             self._command[offset:offset + len(values)] = [int(v) for v in values]
             self._apply(registers.decode_command_registers(self._command), now)
 
+    def command(self) -> list[int]:
+        """rPR, rSP, rFR [bytes] as last written."""
+        with self._lock:
+            fields = registers.decode_command_registers(self._command)
+        return [fields["rPR"], fields["rSP"], fields["rFR"]]
+
     def status(self, now: float) -> list[float]:
         """The `gripper.status` vector now."""
         with self._lock:

@@ -1,0 +1,86 @@
+"""The emulated 2F-85's go-to request, shared with the emulated myRIO: what couples the
+replayed pads to the emulated fingers.
+
+A replayed trial shows the pads as its own gripper moved them. The emulated myRIO holds
+its replay at each of the recording's gripper commands until the emulated gripper has been
+commanded the same way (MyRioEmulator's `gripper_request`), so the replayed pads never
+show a grip or a release before the controller under test has asked for it.
+
+The request is the gripper's gPR (the echo of the position request rPR it is carrying out,
+0-255 bytes). In one process (`tegrasp emulate all`) the myRIO reads it from the gripper
+model; across processes the Robotiq emulator publishes its command and status on the bus
+(GRIPPER_STATE_CHANNEL, lcmt_tegrasp_gripper with `utime` and `status_arrival_s` the
+emulator's time.monotonic(), every GRIPPER_STATE_PERIOD_S) and the myRIO follows it. The
+latest state is all that counts, so a lost message only delays the next by a period.
+"""
+
+import threading
+import time
+
+from tegrasp_drake.robotiq import units
+
+GRIPPER_STATE_CHANNEL = "EMULATED_ROBOTIQ"
+# [s] the status rate the driver polls (100 Hz); a request reaches the myRIO within it.
+GRIPPER_STATE_PERIOD_S = 0.01
+
+
+def request_of_model(model):
+    """A callable: the gripper model's gPR now [byte]."""
+    return lambda: int(model.status(time.monotonic())[units.STATUS_PR])
+
+
+def publish_gripper_state(lcm_url: str, model, stop: threading.Event):
+    """A thread publishing the RobotiqGripperModel's command (rPR, rSP, rFR) and status on
+    GRIPPER_STATE_CHANNEL of `lcm_url` every GRIPPER_STATE_PERIOD_S until `stop`."""
+    import lcm
+
+    from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper
+
+    bus = lcm.LCM(lcm_url)
+
+    def run():
+        while not stop.wait(GRIPPER_STATE_PERIOD_S):
+            now = time.monotonic()
+            message = lcmt_tegrasp_gripper()
+            message.utime = int(now * 1e6)
+            message.status_arrival_s = now
+            message.command = model.command()
+            message.status = [int(round(v)) for v in model.status(now)]
+            bus.publish(GRIPPER_STATE_CHANNEL, message.encode())
+    thread = threading.Thread(target=run, name="gripper state", daemon=True)
+    thread.start()
+    return thread
+
+
+class GripperRequestFollower:
+    """The newest gPR [byte] published on GRIPPER_STATE_CHANNEL (None before the first);
+    call it. Thread-safe."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._request = None
+
+    def on_message(self, data: bytes):
+        from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper
+        request = int(lcmt_tegrasp_gripper.decode(data).status[units.STATUS_PR])
+        with self._lock:
+            self._request = request
+
+    def __call__(self) -> int | None:
+        with self._lock:
+            return self._request
+
+
+def follow_gripper_state(lcm_url: str, stop: threading.Event) -> GripperRequestFollower:
+    """A GripperRequestFollower fed from `lcm_url` by a thread until `stop`."""
+    import lcm
+
+    follower = GripperRequestFollower()
+    bus = lcm.LCM(lcm_url)
+    bus.subscribe(GRIPPER_STATE_CHANNEL, lambda channel, data: follower.on_message(data))
+
+    def run():
+        while not stop.is_set():
+            bus.handle_timeout(20)
+    threading.Thread(target=run, name="gripper follower", daemon=True).start()
+    return follower
