@@ -25,10 +25,17 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 
 from compare_hands import failure_class, load  # noqa: E402
 
-from tegrasp_drake.sweep.table import exact_mcnemar_p_value, succeeded  # noqa: E402
+from tegrasp_drake.runs.trial_result import TrialResult  # noqa: E402
+from tegrasp_drake.sweep.table import exact_mcnemar_p_value  # noqa: E402
+from tegrasp_drake.sweep.table import succeeded as _succeeded  # noqa: E402
 
 PHASES = {"hold": "held", "unload": "held and unloaded"}
 TRANSITIONS = ("reach_load", "load_lift", "place_unload")
+
+
+def succeeded(result: dict, phase: str) -> bool:
+    """A record's result (its JSON form) succeeded in `phase` (sweep.table.succeeded)."""
+    return _succeeded(TrialResult.from_dict(result), phase)
 
 
 def _ms(value) -> str:
