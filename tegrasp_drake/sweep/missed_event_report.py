@@ -10,7 +10,7 @@ and the matcher settings the live controller built (event_matcher_config).
 import dataclasses
 import pathlib
 
-from tegrasp_drake.control.controller_config import EventTriggeredConfig
+from tegrasp_drake.control.controller_registry import controller_entry
 from tegrasp_drake.control.grasp_controller import event_matcher_config
 from tegrasp_drake.events.event_file import MemorizedEventError
 from tegrasp_drake.events.missed_waits import (
@@ -63,7 +63,7 @@ def trial_misses(record: dict, log_path, events_dir=None) -> list[TrialMiss]:
     """The classified missed waits of one sweep record, its log at `log_path`."""
     trial = record["trial"]
     scenario, events, _ = trial_events(trial, events_dir)
-    if not isinstance(scenario.controller, EventTriggeredConfig) or events is None:
+    if not controller_entry(scenario.controller).event_triggered or events is None:
         return []
     config = event_matcher_config(scenario.controller, gripper_model=scenario.gripper.model,
                                   rates_hz=sample_rates_hz(scenario))
