@@ -143,7 +143,8 @@ def lcm_url_problem(url: str) -> str | None:
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
     """Checks the values the schema cannot (every number in its declared range, known
-    choices, a usable LCM URL); ConfigError names the field."""
+    choices, a usable LCM URL, a readable tactile calibration file); ConfigError names the
+    field."""
     from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
     prefix = f"{where}." if where else ""
     check_ranges(config, source, where)  # timeouts, rates, ids, priorities (rig/ranges.py)
@@ -153,6 +154,13 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     if problem:
         raise ConfigError(f"{source}: field '{prefix}arm.lcm_url' {problem}, got "
                           f"{config.arm.lcm_url!r}")
+    if config.tactile.calibration_file:  # read now, not when the devices start
+        from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
+        try:
+            LoadTactileCalibration(config.tactile.calibration_file)
+        except ConfigError as e:
+            raise ConfigError(f"{source}: field '{prefix}tactile.calibration_file': "
+                              f"{e}") from None
     return config
 
 
