@@ -27,8 +27,8 @@ from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardwa
 from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
 from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, declare_ranges,
-                                      shorten)
+from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, check_times_resolved,
+                                      declare_ranges, shorten)
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
@@ -383,6 +383,10 @@ def validate(scenario: Scenario, source: str = "scenario", *,
             f"must be at most {MAX_HIT_FORCE_N:g} N in size (five times the paper's 20 N "
             "hit; the simulated grasp is not made for more)", disturbance.hit_force_n)
     check_ranges(scenario, source)
+    check_times_resolved(  # a hardware station's timeouts are the devices', not the plant's
+        dataclasses.replace(scenario, station=SimulatedStationConfig())
+        if isinstance(scenario.station, HardwareStationConfig) else scenario,
+        scenario.plant_config.time_step, source)
     require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
             f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "
             "prismatic fingers)", scenario.gripper.model)
