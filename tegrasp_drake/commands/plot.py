@@ -146,7 +146,11 @@ def run(args) -> int:
                              f"(got {args.source!r}); give the events folder as --events DIR")
         print(_plot_events(args, out))
     elif args.what in TRIAL_FIGURES:
-        print(_plot_trial(args, out))
+        from tegrasp_drake.rig.typed_yaml import ConfigError
+        try:
+            print(_plot_trial(args, out))
+        except ConfigError as e:  # the log's scenario, damaged or edited
+            raise SystemExit(f"tegrasp: error: trial log '{args.source}': {e}") from None
     else:
         print(_plot_sweep(args, out))
     return 0

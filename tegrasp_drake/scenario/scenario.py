@@ -14,6 +14,7 @@ import math
 import pathlib
 import typing
 
+import yaml
 from pydrake.common.yaml import yaml_dump, yaml_dump_typed, yaml_load, yaml_load_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
@@ -536,13 +537,26 @@ def with_controller(scenario: Scenario, name: str) -> Scenario:
         name, like=scenario.controller))
 
 
-def scenario_from_yaml(text: str) -> Scenario:
+def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenario:
     """The Scenario of YAML text that scenario_to_yaml wrote (a log's), also when written
     with a flat controller section naming its controller (the settings its class lacks are
-    dropped)."""
-    data = yaml_load(data=text) or {}
-    select_controller_tag(data, drop_others=True)
-    return yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
+    dropped). A log can be damaged or edited: its values are checked as a loaded scenario's
+    are (every number finite and in its declared range, no time below the plant step), and
+    ConfigError names `source` and the field."""
+    try:
+        data = yaml_load(data=text) or {}
+        select_controller_tag(data, drop_others=True)
+        scenario = yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
+    except (RuntimeError, ValueError, TypeError, AttributeError, yaml.YAMLError) as e:
+        if isinstance(e, ConfigError):
+            raise
+        raise ConfigError(f"{source}: is not a scenario: {e}") from None
+    check_ranges(scenario, source)
+    check_times_resolved(
+        dataclasses.replace(scenario, station=SimulatedStationConfig())
+        if isinstance(scenario.station, HardwareStationConfig) else scenario,
+        scenario.plant_config.time_step, source)
+    return scenario
 
 
 @public_api
