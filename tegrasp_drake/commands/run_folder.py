@@ -131,6 +131,8 @@ def own_file_problem(path, folder) -> str | None:
     the files the run writes into `folder` (its result, its log, its figures), which one
     would overwrite the other. None if it does not."""
     path, folder = pathlib.Path(path), pathlib.Path(folder)
+    if path.resolve() == folder.resolve() or path.resolve() in folder.resolve().parents:
+        return f"is the run's folder {folder} (or holds it); give a file name, e.g. replay.html"
     if path.resolve().parent != folder.resolve():
         return None
     stem = path.name.split(".", 1)[0]

@@ -123,7 +123,9 @@ def interruptions_deferred():
 
 def folder_problem(path) -> str | None:
     """Why `path` cannot be, or be made as, a folder this user writes in (None if it can):
-    its nearest existing part must be a writable folder."""
+    its nearest existing part must be a folder in which an entry can be made, which is
+    proven by making one (a hidden folder, removed at once): permission bits do not tell
+    of /proc, a read-only mount or a full inode table, and root passes every access check."""
     path = pathlib.Path(path)
     for place in (path, *path.parents):
         try:
@@ -135,6 +137,10 @@ def folder_problem(path) -> str | None:
                 return f"{place} is not a folder"
             if not os.access(place, os.W_OK | os.X_OK):
                 return f"{place} is not writable"
+            try:
+                os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
+            except OSError as e:
+                return f"{place} is not writable ({e.strerror or e})"
             return None
     return None
 
