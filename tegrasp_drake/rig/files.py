@@ -253,6 +253,7 @@ def termination_interrupts():
         yield
         return
     previous = {}
+    _received_interrupts.clear()  # a new run (tests call cli.main many times)
     for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         if signal.getsignal(number) in (signal.SIG_DFL, signal.default_int_handler):
             previous[number] = signal.signal(number, _interrupt)
