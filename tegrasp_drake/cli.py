@@ -59,10 +59,9 @@ def refuse_empty_paths(parser: argparse.ArgumentParser, args) -> None:
     command = subparsers.choices[args.command]
     for action in command._actions:
         if action.dest in PATH_ARGUMENTS and getattr(args, action.dest, None) == "":
-            if action.option_strings:
-                command.error(f"{action.option_strings[0]} '' is empty; give a file or "
-                              "folder name, or leave the option out")
-            command.error(f"{action.metavar} '' is empty; give a file or folder name")
+            name = action.option_strings[0] if action.option_strings else action.metavar
+            command.exit(2, f"{command.prog}: error: {name} '' is empty; give a file or "
+                            "folder name\n")  # one line, as a command's own refusals
 
 
 def build_parser() -> argparse.ArgumentParser:
