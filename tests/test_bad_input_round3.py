@@ -107,6 +107,16 @@ def test_a_sweep_spec_refuses_a_string_for_a_list():
     assert tegrasp_drake.SweepSpec(objects=["box"]).objects == ["box"]
 
 
+PUBLIC_DATACLASSES = [name for name in tegrasp_drake.__all__
+                      if dataclasses.is_dataclass(getattr(tegrasp_drake, name))]
+
+
+@pytest.mark.parametrize("name", PUBLIC_DATACLASSES)
+def test_every_public_dataclass_checks_its_collections(name):
+    cls = getattr(tegrasp_drake, name)
+    assert getattr(cls.__init__, "__checked_arguments__", False), f"{name} lacks @public_dataclass"
+
+
 @pytest.mark.parametrize("assignment", ["controller.update_period_s=0.000000001",
                                         "arm.control_period_s=0.0001",
                                         "disturbance.hit_duration_s=0.0005"])

@@ -32,7 +32,7 @@ from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
 DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
@@ -91,6 +91,7 @@ class DeviceWatchdogConfig:
                 "tactile": self.tactile_timeout}
 
 
+@public_dataclass
 @dataclasses.dataclass
 class HardwareStationConfig:
     """The real devices (or their emulators): MakeHardwareStation."""

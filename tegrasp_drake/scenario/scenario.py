@@ -53,7 +53,7 @@ from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
                                              SimulatedStationConfig)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
@@ -65,6 +65,7 @@ __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
 StationConfig = typing.Union[SimulatedStationConfig, HardwareStationConfig]
 
 
+@public_dataclass
 @dataclasses.dataclass
 class Scenario:
     """One simulated trial: scene, sensors, drivers, the scripted grasp and the seed."""

@@ -22,7 +22,7 @@ from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
                                            checked_npz_arrays)
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 FORMAT_VERSION = 1
 ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_acceleration",
@@ -37,6 +37,7 @@ class TrialLogError(ValueError):
         super().__init__(one_line(message))
 
 
+@public_dataclass
 @dataclasses.dataclass
 class TrialLog:
     t_sa: np.ndarray
