@@ -16,6 +16,7 @@ characters). An unannotated parameter, or one annotated `typing.Any`, is not che
 """
 
 import collections.abc
+import dataclasses
 import functools
 import inspect
 import os
@@ -136,7 +137,11 @@ def public_dataclass(cls):
         nonlocal fields
         init(self, *args, **kwargs)
         if fields is None:
-            hints = typing.get_type_hints(cls)
+            try:
+                hints = typing.get_type_hints(cls)
+            except Exception:  # noqa: BLE001: an annotation typing cannot resolve
+                hints = {f.name: f.type for f in dataclasses.fields(cls)
+                         if not isinstance(f.type, str)}
             fields = [name for name in getattr(cls, "__dataclass_fields__", {})
                       if _expects_collection(hints.get(name))]
         for name in fields:
