@@ -176,6 +176,22 @@ def test_a_figure_that_cannot_be_written_is_one_line(tmp_path, capfd):
     assert code == cli.EXIT_ERROR and list(tmp_path.iterdir()) == []
 
 
+def test_a_figure_on_a_full_disk_is_one_line_and_the_old_one_kept(tmp_path):
+    import errno
+    from tegrasp_drake.figures.figure_files import new_figure, save_figure
+    old = tmp_path / "fig.png"
+    old.write_bytes(b"the earlier figure")
+    figure = new_figure(2, 2)
+
+    def disk_full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    figure.savefig = disk_full
+    with pytest.raises(files.UserPathError, match="cannot write the figure .*fig.png: No space"):
+        save_figure(figure, old)
+    assert old.read_bytes() == b"the earlier figure" and len(list(tmp_path.iterdir())) == 1
+
+
 def test_a_public_function_checks_the_items_of_a_list(tmp_path):
     with pytest.raises(TypeError, match="save_memorized_events: argument 'events' must be an "
                                         "iterable of MemorizedEvent"):
