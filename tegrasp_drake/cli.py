@@ -36,8 +36,36 @@ COMMAND_MODULES = (
 )
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, whose usage errors quote the user's text safely (rig/files.py
+    one_line: no raw control character reaches the terminal). Sub-command parsers are made
+    of the same class."""
+
+    def error(self, message):
+        from tegrasp_drake.rig.files import one_line
+        super().error(one_line(message))
+
+
+# The arguments that name a file or folder, by their `dest`: an empty one ('' from an unset
+# shell variable) is refused, never taken as "not given" or as the current folder.
+PATH_ARGUMENTS = ("scenario", "events", "out", "html", "spec", "logs", "trial",
+                  "write_config", "config", "log", "source")
+
+
+def refuse_empty_paths(parser: argparse.ArgumentParser, args) -> None:
+    """Exits with a usage error naming the first path argument of `args` given as ''."""
+    subparsers = next(a for a in parser._actions
+                      if isinstance(a, argparse._SubParsersAction))
+    command = subparsers.choices[args.command]
+    for action in command._actions:
+        if action.dest in PATH_ARGUMENTS and getattr(args, action.dest, None) == "":
+            name = action.option_strings[0] if action.option_strings else action.metavar
+            command.exit(2, f"{command.prog}: error: {name} '' is empty; give a file or "
+                            "folder name\n")  # one line, as a command's own refusals
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="tegrasp",
         description="Tactile-event grasping with memorized triggers, on Drake.")
     subparsers = parser.add_subparsers(dest="command", required=True)
@@ -56,26 +84,40 @@ EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTW
 
 
 def main(argv=None) -> int:
-    from tegrasp_drake.rig.files import one_line, termination_interrupts
+    from tegrasp_drake.rig.files import (UserPathError, interrupt_received, one_line,
+                                         termination_interrupts)
     argv = sys.argv[1:] if argv is None else list(argv)
     with termination_interrupts():
         try:
-            args = build_parser().parse_args(argv)
+            parser = build_parser()
+            args = parser.parse_args(argv)
+            refuse_empty_paths(parser, args)
             configure_logging(args)
             return int(args.func(args) or 0)
         except KeyboardInterrupt as interrupt:
             name = str(interrupt) if str(interrupt).startswith("SIG") else "SIGINT"
-            print(f"tegrasp: interrupted ({name}); the run's unfinished files were removed",
-                  file=sys.stderr, flush=True)
-            return 128 + signal.Signals[name].value
+            return _interrupted(name)
         except SystemExit as exit_:
             if isinstance(exit_.code, str):  # "tegrasp: error: ...", always one line
                 raise SystemExit(one_line(exit_.code)) from None
             raise
         except GeneratorExit:
             raise
+        except UserPathError as error:  # a file or folder the user named, said in one line
+            if interrupt_received():
+                return _interrupted(interrupt_received())
+            print(f"tegrasp: error: {error}", file=sys.stderr, flush=True)
+            return EXIT_ERROR
         except BaseException as error:  # noqa: BLE001: the error boundary
+            if interrupt_received():  # a Ctrl-C that Drake wrapped in another exception
+                return _interrupted(interrupt_received())
             return _internal_error(error, argv)
+
+
+def _interrupted(name: str) -> int:
+    print(f"tegrasp: interrupted ({name}); the run's unfinished files were removed",
+          file=sys.stderr, flush=True)
+    return 128 + signal.Signals[name].value
 
 
 def _internal_error(error: BaseException, argv) -> int:
@@ -85,7 +127,8 @@ def _internal_error(error: BaseException, argv) -> int:
     verbose = any(a in ("-v", "-vv", "--verbose") for a in argv)
     if verbose:
         print(text, file=sys.stderr, end="")
-    summary = str(error).strip().splitlines()[0] if str(error).strip() else ""
+    from tegrasp_drake.rig.files import one_line
+    summary = one_line(str(error).strip().splitlines()[0]) if str(error).strip() else ""
     print(f"tegrasp: internal error: {type(error).__name__}"
           + (f": {summary[:300]}" if summary else "")
           + (f"; traceback in {where}" if where else "; the traceback could not be written")

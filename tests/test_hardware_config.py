@@ -16,7 +16,11 @@ def write(tmp_path, name, text):
     return path
 
 
-def test_hardware_config_loads_ports_url_and_timeouts_with_overrides(tmp_path):
+def test_hardware_config_loads_ports_url_and_timeouts_with_overrides(tmp_path, monkeypatch):
+    from tegrasp_drake.hardware.myrio.tactile_calibration import (SaveTactileCalibration,
+                                                                  TactileCalibration)
+    monkeypatch.chdir(tmp_path)  # calibration_file is read (at load) from the working folder
+    SaveTactileCalibration(TactileCalibration(), tmp_path / "pads.yaml")
     path = write(tmp_path, "hw.yaml", """
 arm: {lcm_url: "udpm://239.255.76.67:7700?ttl=0"}
 gripper: {port: /dev/ttyUSB3, device_id: 9}

@@ -97,3 +97,17 @@ def fake_trial_with_events(trial, *, events_dir):
     result["physical_events"] = {"reach_load": 0.97}
     result["events_dir"] = str(events_dir)
     return result
+
+
+def stuck_fake_trial(trial):
+    """fake_trial, except for a trial carrying a "marker" path: it writes MARKER.started
+    (its process id), runs for two minutes, then writes MARKER.finished: a long simulation
+    that an interrupted sweep must abandon rather than wait for."""
+    marker = trial.get("marker")
+    if marker:
+        with open(marker + ".started", "w") as stream:
+            stream.write(str(os.getpid()))
+        time.sleep(120.0)
+        with open(marker + ".finished", "w") as stream:
+            stream.write("finished")
+    return fake_trial(trial)

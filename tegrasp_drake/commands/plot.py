@@ -141,9 +141,16 @@ def _plot_sweep(args, out) -> str:
 def run(args) -> int:
     out = output_path(args)
     if args.what == "events":
+        if args.source is not None:
+            raise SystemExit(f"tegrasp: error: `tegrasp plot events` takes no LOG or RESULTS "
+                             f"(got {args.source!r}); give the events folder as --events DIR")
         print(_plot_events(args, out))
     elif args.what in TRIAL_FIGURES:
-        print(_plot_trial(args, out))
+        from tegrasp_drake.rig.typed_yaml import ConfigError
+        try:
+            print(_plot_trial(args, out))
+        except ConfigError as e:  # the log's scenario, damaged or edited
+            raise SystemExit(f"tegrasp: error: trial log '{args.source}': {e}") from None
     else:
         print(_plot_sweep(args, out))
     return 0

@@ -85,7 +85,8 @@ def _scenarios_to_record(args) -> list:
         chosen = []
         for name in args.object:
             scenario = scenario_from_arguments(argparse.Namespace(
-                scenario=None, scenario_name=name, overrides=list(args.overrides)))
+                scenario=None, scenario_name=name, overrides=list(args.overrides)),
+                simulates="events")
             if scenario.object.name != name:
                 raise SystemExit(f"tegrasp: error: --object {name} with --set "
                                  f"{' --set '.join(args.overrides)} would record the object "
@@ -95,7 +96,7 @@ def _scenarios_to_record(args) -> list:
     if args.scenario or args.scenario_name or args.overrides:
         from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO
         args.scenario_name = args.scenario_name or DEFAULT_SCENARIO
-        scenario = scenario_from_arguments(args)
+        scenario = scenario_from_arguments(args, simulates="events")
         return [(scenario.object.name, scenario)]
     return [(name, None) for name in args.object or sorted(BUILTIN_OBJECTS)]
 

@@ -30,7 +30,7 @@ import tempfile
 
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions_deferred,
-                                     write_atomically)
+                                     load_json, write_atomically)
 
 RESULT_FILE = "result.json"
 RUN_FILES = (RESULT_FILE, "trial.npz")  # a folder with any of these holds a run
@@ -131,6 +131,8 @@ def own_file_problem(path, folder) -> str | None:
     the files the run writes into `folder` (its result, its log, its figures), which one
     would overwrite the other. None if it does not."""
     path, folder = pathlib.Path(path), pathlib.Path(folder)
+    if path.resolve() == folder.resolve() or path.resolve() in folder.resolve().parents:
+        return f"is the run's folder {folder} (or holds it); give a file name, e.g. replay.html"
     if path.resolve().parent != folder.resolve():
         return None
     stem = path.name.split(".", 1)[0]
@@ -167,7 +169,7 @@ def earlier_run_files(folder) -> list[pathlib.Path]:
     folder = pathlib.Path(folder)
     files = [folder / name for name in RUN_FILES if (folder / name).is_file()]
     try:
-        earlier = json.loads((folder / RESULT_FILE).read_text(encoding="utf-8"))
+        earlier = load_json((folder / RESULT_FILE).read_text(encoding="utf-8"))
     except (OSError, ValueError, RecursionError):
         return files
     if not isinstance(earlier, dict):

@@ -4,6 +4,7 @@ import logging
 import pathlib
 import sys
 
+from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file
@@ -22,10 +23,12 @@ def add_scenario_arguments(parser) -> None:
                         "otherwise, with its cost)")
 
 
-def scenario_from_arguments(args):
+def scenario_from_arguments(args, *, simulates: str = ""):
     """Loads the scenario, with the controller of `--controller` if the command has it
     (naming on stderr, in one line, the scenario's controller settings that it ignores), or
-    exits with the error message (no traceback)."""
+    exits with the error message (no traceback). `simulates`: the command simulates the
+    scenario ("trial": a scenario for the real devices, `station: !HardwareStationConfig`,
+    is refused; "events": one line on stderr says that its simulation is used)."""
     if args.scenario and not pathlib.Path(args.scenario).exists() and \
             args.scenario in (read_yaml_file(paths.scenarios_file(), "the scenario file") or {}):
         raise SystemExit(f"tegrasp: error: --scenario takes a file of scenarios; "
@@ -38,11 +41,22 @@ def scenario_from_arguments(args):
               f"settings that it lacks: {', '.join(settings)}", file=sys.stderr, flush=True)
 
     try:
-        return LoadScenario(args.scenario, args.scenario_name, args.overrides,
-                            controller=controller, on_ignored=say_ignored,
-                            allow_long=getattr(args, "allow_long", False))
+        scenario = LoadScenario(args.scenario, args.scenario_name, args.overrides,
+                                controller=controller, on_ignored=say_ignored,
+                                allow_long=getattr(args, "allow_long", False))
     except ConfigError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
+    if simulates and isinstance(scenario.station, HardwareStationConfig):
+        where = f"{args.scenario or 'scenario'} [{args.scenario_name}]"
+        if simulates == "trial":
+            raise SystemExit(f"tegrasp: error: {where}: its station is !HardwareStationConfig "
+                             "(the real arm, gripper and pads); this command simulates: run "
+                             "it on the devices with `tegrasp hardware`, or give a scenario "
+                             "without that station")
+        print(f"tegrasp: {where}: its station is !HardwareStationConfig; this command "
+              "simulates the scenario's object, sensors and controller (the devices' settings "
+              "are not used)", file=sys.stderr, flush=True)
+    return scenario
 
 
 def quiet_modbus_library() -> None:

@@ -83,7 +83,7 @@ def print_result(result) -> None:
 
 
 def run(args) -> int:
-    scenario = scenario_from_arguments(args)
+    scenario = scenario_from_arguments(args, simulates="trial")
     events = controller_events(scenario, args.events)  # fails before anything is written
     corrective = corrective_events(scenario, args.events)
     html = check_html_path(args)

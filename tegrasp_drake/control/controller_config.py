@@ -18,6 +18,7 @@ This module imports no Drake: the registry, which the command line reads, import
 
 import dataclasses
 import typing
+from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.ranges import bounded
 
 
@@ -165,6 +166,7 @@ class TaxelAwareConfig:
         return {t: tuple(pair) if pair else tuple(chosen[t]) for t, pair in given.items()}
 
 
+@public_dataclass
 @dataclasses.dataclass
 class GraspControllerConfig:
     """The grasp state machine's settings, shared by the closed-loop controllers: the tick,
@@ -347,6 +349,7 @@ class EventTriggeredConfig(GraspControllerConfig):
         return {}
 
 
+@public_dataclass
 @dataclasses.dataclass
 class MemorizedControllerConfig(EventTriggeredConfig):
     """The paper's algorithm: transitions triggered by the memorized tactile events."""
@@ -356,6 +359,7 @@ class MemorizedControllerConfig(EventTriggeredConfig):
     extra_time_s: typing.ClassVar[float] = 0.0
 
 
+@public_dataclass
 @dataclasses.dataclass
 class HeuristicControllerConfig(GraspControllerConfig):
     """Hand-set transition thresholds in the style of Romano et al. 2011."""
@@ -365,6 +369,7 @@ class HeuristicControllerConfig(GraspControllerConfig):
     heuristic: HeuristicTriggerConfig = dataclasses.field(default_factory=HeuristicTriggerConfig)
 
 
+@public_dataclass
 @dataclasses.dataclass
 class OpenLoopControllerConfig:
     """The ideal scripted grasp (control/scripted_grasp.py, from the scenario's `grasp`
@@ -375,6 +380,7 @@ class OpenLoopControllerConfig:
     memorized_corrective_events: typing.ClassVar[tuple] = ()  # it matches none
 
 
+@public_dataclass
 @dataclasses.dataclass
 class TaxelAwareControllerConfig(EventTriggeredConfig):
     """The paper's algorithm with corrections from the whole taxel array (the rule table of

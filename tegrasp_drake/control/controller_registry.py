@@ -20,7 +20,7 @@ from tegrasp_drake.control.controller_config import (HeuristicControllerConfig,
                                                      OpenLoopControllerConfig,
                                                      TaxelAwareControllerConfig)
 from tegrasp_drake.control.fixed_load_time import FixedLoadTimeControllerConfig
-from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
 
 _BUILDERS = "tegrasp_drake.control.grasp_controller"
 STATE_MACHINE = f"{_BUILDERS}:AddStateMachineController"  # channels, detector, state machine
@@ -30,6 +30,7 @@ HEURISTIC_THRESHOLDS = f"{_BUILDERS}:add_heuristic_detector"  # hand-set thresho
 PAPER_RULES = "tegrasp_drake.control.transition_logic:next_mode"
 
 
+@public_dataclass
 @dataclasses.dataclass(frozen=True)
 class ControllerEntry:
     """One controller.

@@ -36,7 +36,7 @@ from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 from tegrasp_drake.simulation.station import ArmDriverConfig
 from tegrasp_drake.control.controller_registry import (ControllerConfig, ControllerEntry,
                                                        controller_entry)
-from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
 _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
@@ -44,6 +44,7 @@ _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
                   "unload": Mode.UNLOAD, "retract": Mode.UNLOAD, "done": Mode.DONE}
 
 
+@public_dataclass
 @dataclasses.dataclass
 class GraspController:
     """The controller's systems and its ports of interest."""

@@ -4,6 +4,8 @@ the record of each change (the state machine's timeline)."""
 import dataclasses
 import enum
 
+from tegrasp_drake.rig.api_boundary import public_dataclass
+
 
 class Mode(enum.IntEnum):
     """The state machine's modes; the value is what the `mode` output port carries."""
@@ -78,6 +80,7 @@ class Decision:
     code: enum.Enum | None = None
 
 
+@public_dataclass
 @dataclasses.dataclass(frozen=True)
 class Transition:
     """One entry of the state machine's timeline: at t [s] (simulated, or the hardware

@@ -3,6 +3,7 @@ plan it follows (GraspPlan: the grasp script placed for the expected object)."""
 
 import dataclasses
 
+from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.control.corrective_actions import Counters
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition
 from tegrasp_drake.control.motion_profiles import MotionSegment
@@ -53,6 +54,7 @@ class MachineState:
         return self
 
 
+@public_dataclass
 @dataclasses.dataclass(frozen=True)
 class GraspPlan:
     """Where and how far to move [m, s, N]: the grasp script's timing and targets

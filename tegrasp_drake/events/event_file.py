@@ -18,7 +18,8 @@ import pathlib
 import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
-from tegrasp_drake.rig.files import InputTooLargeError, one_line, read_bounded
+from tegrasp_drake.rig.files import (DuplicateKeyError, InputTooLargeError, load_json,
+                                     one_line, read_bounded)
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -108,7 +109,7 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
     if not path.is_file():
         raise MemorizedEventError(path, "file is missing", object_name)
     try:
-        data = json.loads(read_bounded(path, MAX_EVENT_FILE_BYTES).decode("utf-8"))
+        data = load_json(read_bounded(path, MAX_EVENT_FILE_BYTES).decode("utf-8"))
     except InputTooLargeError:
         raise MemorizedEventError(path, f"is larger than {MAX_EVENT_FILE_BYTES} bytes; an "
                                   "event file or index is a few tens of kB", object_name) from None
@@ -120,6 +121,8 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
     except json.JSONDecodeError as error:
         raise MemorizedEventError(
             path, f"is not valid JSON, perhaps truncated ({error})", object_name) from None
+    except DuplicateKeyError as error:
+        raise MemorizedEventError(path, str(error), object_name) from None
     except RecursionError:
         raise MemorizedEventError(path, "nests too deeply to be an event file or index",
                                   object_name) from None
@@ -261,6 +264,7 @@ def read_index(events_dir) -> list[dict]:
     path = pathlib.Path(events_dir) / INDEX_FILE
     data = _read_json(path, INDEX_FORMAT, None)
     entries = _field(data, "events", "list", path, None)
+    listed = {}  # (object, transition) and file -> the entry that listed it first
     for number, entry in enumerate(entries):
         if not isinstance(entry, dict):
             raise MemorizedEventError(path, f"entry {number} of 'events' is not an object")
@@ -269,4 +273,11 @@ def read_index(events_dir) -> list[dict]:
         file = pathlib.PurePosixPath(entry["file"])
         if file.is_absolute() or ".." in file.parts:
             raise MemorizedEventError(path, f"entry {number} points outside the folder")
+        for key, words in (((entry["object"], entry["transition"]),
+                            f"the {entry['object']} {entry['transition']} event"),
+                           (str(file), f"the file {file}")):
+            if key in listed:
+                raise MemorizedEventError(path, f"entries {listed[key]} and {number} both "
+                                          f"list {words}; an index lists each event once")
+            listed[key] = number
     return entries

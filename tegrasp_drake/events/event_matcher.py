@@ -8,6 +8,7 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
+from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import template_is_flat
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
@@ -22,6 +23,7 @@ from tegrasp_drake.tactile.window_normalizer import (
     ConnectWindowChannels, RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
 
 
+@public_dataclass
 @dataclasses.dataclass
 class EventMatcherConfig:
     """Thresholds of Sec. III-B and the live sample rates [Hz].

@@ -12,6 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 
 import tegrasp_drake
+from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
 from tegrasp_drake.tactile.sampling import samples_per_window
@@ -22,6 +23,7 @@ _NAME_PATTERN = OBJECT_NAME_PATTERN
 _NORMALIZATION_TOLERANCE = 1e-9
 
 
+@public_dataclass
 @dataclasses.dataclass(frozen=True, eq=False)
 class MemorizedEvent:
     """The four channels of one object's tactile event around one grasp transition.

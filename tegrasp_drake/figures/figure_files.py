@@ -7,7 +7,7 @@ Agg canvas renders PNG, and matplotlib picks its PDF or SVG backend from the fil
 
 import pathlib
 
-from tegrasp_drake.rig.files import temporary_sibling
+from tegrasp_drake.rig.files import UserPathError, temporary_sibling
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 PNG_DPI = 150  # about 1800 px across a 12 in figure: sharp on screens and in a PDF viewer
@@ -44,11 +44,17 @@ def check_figure_path(path) -> pathlib.Path:
 
 
 def save_figure(figure, path) -> pathlib.Path:
-    """Writes `figure` to `path` in the format its suffix names; returns the path."""
+    """Writes `figure` to `path` in the format its suffix names; returns the path.
+    UserPathError (an OSError naming the file) when it cannot be written: a read-only or
+    full disk, a name too long; the old file, if any, is left whole."""
     path = check_figure_path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with temporary_sibling(path) as temporary:  # a full disk leaves the old figure whole
-        figure.savefig(temporary, dpi=PNG_DPI, metadata=_metadata(path))
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with temporary_sibling(path) as temporary:  # a full disk leaves the old figure whole
+            figure.savefig(temporary, dpi=PNG_DPI, metadata=_metadata(path))
+    except OSError as error:
+        raise UserPathError(f"cannot write the figure {path}: {error.strerror or error}; "
+                            "give a file in a folder you can write, with room", error) from None
     return path
 
 

@@ -52,7 +52,7 @@ def state_spans(log) -> list[tuple[str, float, float]]:
 def logged_scenario(log):
     """The Scenario the trial ran (from the YAML in the log's meta)."""
     from tegrasp_drake.scenario.scenario import scenario_from_yaml  # the figures' only use
-    return scenario_from_yaml(log.meta["scenario"])
+    return scenario_from_yaml(log.meta["scenario"], "its scenario")
 
 
 def physical_events(log) -> dict[str, float]:

@@ -32,7 +32,7 @@ from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           read_yaml_file, require)
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
 DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
@@ -91,6 +91,7 @@ class DeviceWatchdogConfig:
                 "tactile": self.tactile_timeout}
 
 
+@public_dataclass
 @dataclasses.dataclass
 class HardwareStationConfig:
     """The real devices (or their emulators): MakeHardwareStation."""
@@ -143,7 +144,8 @@ def lcm_url_problem(url: str) -> str | None:
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
     """Checks the values the schema cannot (every number in its declared range, known
-    choices, a usable LCM URL); ConfigError names the field."""
+    choices, a usable LCM URL, a readable tactile calibration file); ConfigError names the
+    field."""
     from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
     prefix = f"{where}." if where else ""
     check_ranges(config, source, where)  # timeouts, rates, ids, priorities (rig/ranges.py)
@@ -153,6 +155,13 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     if problem:
         raise ConfigError(f"{source}: field '{prefix}arm.lcm_url' {problem}, got "
                           f"{config.arm.lcm_url!r}")
+    if config.tactile.calibration_file:  # read now, not when the devices start
+        from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
+        try:
+            LoadTactileCalibration(config.tactile.calibration_file)
+        except ConfigError as e:
+            raise ConfigError(f"{source}: field '{prefix}tactile.calibration_file': "
+                              f"{e}") from None
     return config
 
 

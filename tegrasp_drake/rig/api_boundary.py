@@ -8,13 +8,15 @@ against its annotations when it is called, and names the wrong one.
 got NoneType None` at the call, instead of an AttributeError deep inside. What is checked:
 classes (an int is a float; a bool is neither an int nor a float), `X | Y` and Optional,
 `list[T]`, `tuple[T, ...]` and `tuple[A, B]`, `Sequence[T]` and `Collection[T]` (their items
-too), `Iterable[T]` (not consumed: only that it is iterable), `Mapping`/`dict`, `Callable`;
+too), `Iterable[T]` (its items when it is a collection such as a list; a one-shot iterator
+is not consumed: only that it is iterable), `Mapping`/`dict`, `Callable`;
 a text string is never taken where a collection is expected (it would be iterated as
 characters). An unannotated parameter, or one annotated `typing.Any`, is not checked; a test
 (tests/test_bad_input_disciplines.py) holds every public function to annotating all of them.
 """
 
 import collections.abc
+import dataclasses
 import functools
 import inspect
 import os
@@ -90,8 +92,9 @@ def _matches(value, hint) -> bool:
     if isinstance(value, _TEXT) and origin not in (str, bytes):
         return False  # text where a collection is expected
     arguments = typing.get_args(hint)
-    if not arguments or not issubclass(origin, _ITEM_CHECKED) or issubclass(
-            origin, collections.abc.Mapping):
+    items_checked = issubclass(origin, _ITEM_CHECKED) or (
+        origin is collections.abc.Iterable and isinstance(value, collections.abc.Collection))
+    if not arguments or not items_checked or issubclass(origin, collections.abc.Mapping):
         return True
     if origin is tuple and not (len(arguments) == 2 and arguments[1] is Ellipsis):
         return len(value) == len(arguments) and all(
@@ -111,10 +114,55 @@ def _describe_hint(hint) -> str:
     name = getattr(origin, "__name__", str(origin))
     if name in ("Sequence", "Collection", "list", "Iterable", "Set", "set", "frozenset"):
         items = _describe_hint(arguments[0]) if arguments else "values"
-        return f"a {name.lower()} of {items} (not a single string)"
+        article = "an" if name[0] in "AEIOUaeiou" else "a"
+        return f"{article} {name.lower()} of {items} (not a single string)"
     return str(hint).replace("typing.", "").replace("collections.abc.", "")
 
 
 def _short_repr(value) -> str:
     text = repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
+
+
+def public_dataclass(cls):
+    """Class decorator (above @dataclass) for a public dataclass a user builds by hand: its
+    constructor refuses a text string in a field annotated as a collection (`objects='box'`
+    where `objects: tuple[str, ...]` is meant; it would be iterated as characters), naming
+    the class and field."""
+    init = cls.__init__
+    fields = None
+
+    @functools.wraps(init)
+    def checked_init(self, *args, **kwargs):
+        nonlocal fields
+        init(self, *args, **kwargs)
+        if fields is None:
+            try:
+                hints = typing.get_type_hints(cls)
+            except Exception:  # noqa: BLE001: an annotation typing cannot resolve
+                hints = {f.name: f.type for f in dataclasses.fields(cls)
+                         if not isinstance(f.type, str)}
+            fields = [name for name in getattr(cls, "__dataclass_fields__", {})
+                      if _expects_collection(hints.get(name))]
+        for name in fields:
+            value = getattr(self, name)
+            if isinstance(value, _TEXT):
+                raise TypeError(f"{cls.__name__}: field '{name}' must be a collection "
+                                f"(not a single string), got {type(value).__name__} "
+                                f"{_short_repr(value)}; e.g. {name}=[{_short_repr(value)}]")
+
+    cls.__init__ = checked_init
+    cls.__init__.__checked_arguments__ = True
+    return cls
+
+
+def _expects_collection(hint) -> bool:
+    """True for an annotation that takes only collections (tuple[...], list[...], Sequence)."""
+    if hint is None:
+        return False
+    origin = typing.get_origin(hint)
+    if origin in (typing.Union, types.UnionType):
+        members = [m for m in typing.get_args(hint) if m is not type(None)]
+        return bool(members) and all(_expects_collection(m) for m in members)
+    return (origin is not None and isinstance(origin, type)
+            and issubclass(origin, _ITEM_CHECKED) and not issubclass(origin, _TEXT))

@@ -11,6 +11,10 @@
 - file_problem: why a path is not a file to read ("does not exist", "is a named pipe"...).
 - termination_interrupts: SIGTERM and SIGHUP end the process as Ctrl-C does, so that the
   same `finally` blocks remove a run's staging files.
+- UserPathError: a file or folder the user named cannot be used; its message is one line
+  naming it and what to do, and the CLI boundary (cli.py) prints it as an error.
+- load_json: the one way a user's JSON file becomes data (a duplicate key is refused).
+- one_line: how an error message quotes user text (control characters escaped).
 
 Files are made with the permissions the umask gives (as `open` would), not mkstemp's 0600.
 """
@@ -119,7 +123,9 @@ def interruptions_deferred():
 
 def folder_problem(path) -> str | None:
     """Why `path` cannot be, or be made as, a folder this user writes in (None if it can):
-    its nearest existing part must be a writable folder."""
+    its nearest existing part must be a folder in which an entry can be made, which is
+    proven by making one (a hidden folder, removed at once): permission bits do not tell
+    of /proc, a read-only mount or a full inode table, and root passes every access check."""
     path = pathlib.Path(path)
     for place in (path, *path.parents):
         try:
@@ -131,6 +137,10 @@ def folder_problem(path) -> str | None:
                 return f"{place} is not a folder"
             if not os.access(place, os.W_OK | os.X_OK):
                 return f"{place} is not writable"
+            try:
+                os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
+            except OSError as e:
+                return f"{place} is not writable ({e.strerror or e})"
             return None
     return None
 
@@ -217,22 +227,35 @@ def read_bounded(path, limit: int) -> bytes:
     return data
 
 
+_received_interrupts = []  # the names of the signals _interrupt has raised, first first
+
+
 def _interrupt(signal_number, frame):
-    raise KeyboardInterrupt(signal.Signals(signal_number).name)
+    name = signal.Signals(signal_number).name
+    _received_interrupts.append(name)
+    raise KeyboardInterrupt(name)
+
+
+def interrupt_received() -> str | None:
+    """The name of the first signal ("SIGINT", "SIGTERM") that interrupted the process inside
+    termination_interrupts, or None. A KeyboardInterrupt raised inside a Drake callback (a
+    LeafSystem's calc) may come out wrapped in another exception; this says it was one."""
+    return _received_interrupts[0] if _received_interrupts else None
 
 
 @contextlib.contextmanager
 def termination_interrupts():
-    """SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread while the block runs, as
-    Ctrl-C does, so that every `finally` (a run's staging folder, a lock, an LCM log) runs
-    before the process ends. Signals someone already handles (not the default action) are
-    left as they are."""
+    """SIGINT (Ctrl-C), SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread while the
+    block runs, so that every `finally` (a run's staging folder, a lock, an LCM log) runs
+    before the process ends, and interrupt_received() remembers it. Signals someone already
+    handles (not Python's default action) are left as they are."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     previous = {}
-    for number in (signal.SIGTERM, signal.SIGHUP):
-        if signal.getsignal(number) == signal.SIG_DFL:
+    _received_interrupts.clear()  # a new run (tests call cli.main many times)
+    for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        if signal.getsignal(number) in (signal.SIG_DFL, signal.default_int_handler):
             previous[number] = signal.signal(number, _interrupt)
     try:
         yield
@@ -241,7 +264,52 @@ def termination_interrupts():
             signal.signal(number, handler)
 
 
+_ESCAPES = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
+
+
 def one_line(text: str) -> str:
-    """`text` as one line: line breaks (in a value an error message quotes) shown as \\n and
-    \\r, so that an error is always one line on the terminal."""
-    return text.replace("\r", "\\r").replace("\n", "\\n")
+    """`text` as one safe line: every character that is not printable (line breaks, ESC and
+    the other control characters that would move the cursor or recolour the terminal) shown
+    escaped as Python would (\\n, \\x1b, \\u2028), so that an error quoting a user's value
+    is always one line of plain text."""
+    if text.isprintable():
+        return text
+    return "".join(
+        ch if ch.isprintable() or ch == " " else
+        _ESCAPES.get(ch) or repr(ch)[1:-1] for ch in text)
+
+
+class UserPathError(OSError):
+    """A file or folder the user named cannot be used (not writable, a file where a folder is
+    needed, a disk that filled up): str() is one line naming it and what to do; `strerror`
+    stays the system's words (for callers that quote only those)."""
+
+    def __init__(self, message: str, error: OSError | None = None):
+        super().__init__(getattr(error, "errno", None) or errno.EINVAL,
+                         getattr(error, "strerror", None) or message)
+        self.message = one_line(message)
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class DuplicateKeyError(ValueError):
+    """A JSON object names the same key twice (json would keep the last one silently)."""
+
+
+def _refuse_duplicate_keys(pairs):
+    data = {}
+    for key, value in pairs:
+        if key in data:
+            raise DuplicateKeyError(f"key {one_line(repr(key))} appears twice in one object; "
+                                    "keep one")
+        data[key] = value
+    return data
+
+
+def load_json(text: str | bytes):
+    """The data of a user's JSON text: json.loads, refusing a duplicate key
+    (DuplicateKeyError, a ValueError) as YAML files do; json.JSONDecodeError and
+    RecursionError as json.loads raises them."""
+    import json
+    return json.loads(text, object_pairs_hook=_refuse_duplicate_keys)

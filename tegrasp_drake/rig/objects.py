@@ -17,6 +17,7 @@ import dataclasses
 import math
 import re
 
+from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig import materials
 from tegrasp_drake.robotiq.units import STROKE_M
 from tegrasp_drake.rig.ranges import bounded
@@ -30,6 +31,7 @@ MAX_WIDTH_M = STROKE_M - 2 * FINGER_CLEARANCE_M  # widest object the open finger
 OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")  # it names a folder
 
 
+@public_dataclass
 @dataclasses.dataclass
 class ObjectConfig:
     """An object to grasp.

@@ -52,10 +52,16 @@ events_dir = package_events_dir  # the old name (read-only: never write there)
 
 def user_events_dir() -> pathlib.Path:
     """Where the user's recorded events go: $TEGRASP_EVENTS_DIR, else the user's data
-    folder ($XDG_DATA_HOME or ~/.local/share) / tegrasp / events."""
+    folder ($XDG_DATA_HOME or ~/.local/share) / tegrasp / events. UserPathError when
+    $TEGRASP_EVENTS_DIR names something that is not a folder (a file, a broken link)."""
     chosen = os.environ.get(EVENTS_ENV, "").strip()
     if chosen:
-        return pathlib.Path(chosen).expanduser()
+        folder = pathlib.Path(chosen).expanduser()
+        if os.path.lexists(folder) and not folder.is_dir():
+            from tegrasp_drake.rig.files import UserPathError
+            raise UserPathError(f"{EVENTS_ENV}={chosen!r} is not a folder; point it at an "
+                                "events folder, or unset it")
+        return folder
     data_home = os.environ.get("XDG_DATA_HOME", "").strip()
     base = pathlib.Path(data_home) if data_home else pathlib.Path.home() / ".local" / "share"
     return base / "tegrasp" / "events"

@@ -246,3 +246,31 @@ def unranged_numeric_fields(*roots) -> list[str]:
                 missing.append(f"{cls.__module__}.{cls.__qualname__}.{field.name}")
             pending.extend(_config_classes(hint))
     return sorted(missing)
+
+
+def check_times_resolved(config, step_s: float, source: str, where: str = "",
+                         step_name: str = "plant_config.time_step") -> None:
+    """ConfigError naming the first positive time of `config` (a field declared in seconds
+    that must be positive: a period, a window, a duration, a latency) shorter than the
+    simulation's step `step_s` [s]: a discrete update or a window between two plant steps
+    sees nothing new, and a 1 ns period makes a trial crawl. Walks what check_ranges walks."""
+    if not dataclasses.is_dataclass(config) or isinstance(config, type):
+        return
+    for field in dataclasses.fields(config):
+        value = getattr(config, field.name)
+        path = f"{where}.{field.name}" if where else field.name
+        declared = range_of(field)
+        if (isinstance(declared, Range) and declared.unit == "s" and declared.low == 0
+                and declared.low_open and value is not None):
+            for item_path, item in _values(value, path):
+                if _is_number(item) and 0 < item < step_s:
+                    from tegrasp_drake.rig.typed_yaml import ConfigError
+                    raise ConfigError(
+                        f"{source}: field '{item_path}' must be at least the simulation's "
+                        f"time step {step_name} = {_number(step_s)} s (a time shorter than "
+                        f"one step cannot be resolved), got {item!r}")
+        if dataclasses.is_dataclass(value) and not isinstance(value, type):
+            check_times_resolved(value, step_s, source, path, step_name)
+        elif isinstance(value, (list, tuple)):
+            for k, item in enumerate(value):
+                check_times_resolved(item, step_s, source, f"{path}[{k}]", step_name)

@@ -105,13 +105,14 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
     return results
 
 
-def matcher_config_of_run(run_info, events) -> EventMatcherConfig:
+def matcher_config_of_run(run_info, events, source: str = "the run's scenario"
+                          ) -> EventMatcherConfig:
     """The run's own matcher settings when its scenario (in TEGRASP_RUN_INFO) ran an
     event-triggered controller: what the live controller built (event_matcher_config, at
     the scenario's SA and RA rates: thresholds, blocks, RA envelope, RA noise floor); else
     the defaults at the events' rates."""
     if run_info is not None and run_info.scenario_yaml:
-        scenario = scenario_from_yaml(run_info.scenario_yaml)
+        scenario = scenario_from_yaml(run_info.scenario_yaml, source)
         if controller_entry(scenario.controller).event_triggered:
             return event_matcher_config(scenario.controller,
                                         gripper_model=scenario.gripper.model,
@@ -166,7 +167,8 @@ def replay_run_log(path, *, object_name: str | None = None,
         events_dir = info.events_dir
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
     events_dir = str(folder)
-    config = matcher_config_of_run(info, events)
+    config = matcher_config_of_run(info, events,
+                                   f"run log '{path}': its TEGRASP_RUN_INFO scenario")
     trial = log.tactile_trial()
     return RunLogReplay(
         log=log, object_name=object_name, events_dir=events_dir,

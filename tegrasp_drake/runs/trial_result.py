@@ -7,9 +7,11 @@ written before a field existed gets that field's default).
 
 import dataclasses
 
+from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
 
+@public_dataclass
 @dataclasses.dataclass
 class TrialResult:
     """One trial's outcome. Times in seconds of simulated time unless said, lengths in

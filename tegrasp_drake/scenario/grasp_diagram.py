@@ -39,7 +39,7 @@ from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStation
                                               side_grasp_pose)
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.ranges import check_ranges
-from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
 
 # Beyond the ideal grasp's duration, for corrections (and the controller's own
 # extra_time_s, controller_config.py) [s].
@@ -111,6 +111,7 @@ def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, statio
                               ra_noise_std_mps2=ra_noise_std_mps2(scenario.vibration))
 
 
+@public_dataclass
 @dataclasses.dataclass
 class GraspDiagram:
     """A built grasp diagram and the parts that a run reads."""

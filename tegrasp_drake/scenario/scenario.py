@@ -14,6 +14,7 @@ import math
 import pathlib
 import typing
 
+import yaml
 from pydrake.common.yaml import yaml_dump, yaml_dump_typed, yaml_load, yaml_load_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
@@ -27,8 +28,8 @@ from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardwa
 from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
 from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, declare_ranges,
-                                      shorten)
+from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, check_times_resolved,
+                                      declare_ranges, shorten)
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
@@ -52,7 +53,7 @@ from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
                                              SimulatedStationConfig)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
@@ -64,6 +65,7 @@ __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
 StationConfig = typing.Union[SimulatedStationConfig, HardwareStationConfig]
 
 
+@public_dataclass
 @dataclasses.dataclass
 class Scenario:
     """One simulated trial: scene, sensors, drivers, the scripted grasp and the seed."""
@@ -383,6 +385,10 @@ def validate(scenario: Scenario, source: str = "scenario", *,
             f"must be at most {MAX_HIT_FORCE_N:g} N in size (five times the paper's 20 N "
             "hit; the simulated grasp is not made for more)", disturbance.hit_force_n)
     check_ranges(scenario, source)
+    check_times_resolved(  # a hardware station's timeouts are the devices', not the plant's
+        dataclasses.replace(scenario, station=SimulatedStationConfig())
+        if isinstance(scenario.station, HardwareStationConfig) else scenario,
+        scenario.plant_config.time_step, source)
     require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
             f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "
             "prismatic fingers)", scenario.gripper.model)
@@ -532,13 +538,26 @@ def with_controller(scenario: Scenario, name: str) -> Scenario:
         name, like=scenario.controller))
 
 
-def scenario_from_yaml(text: str) -> Scenario:
+def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenario:
     """The Scenario of YAML text that scenario_to_yaml wrote (a log's), also when written
     with a flat controller section naming its controller (the settings its class lacks are
-    dropped)."""
-    data = yaml_load(data=text) or {}
-    select_controller_tag(data, drop_others=True)
-    return yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
+    dropped). A log can be damaged or edited: its values are checked as a loaded scenario's
+    are (every number finite and in its declared range, no time below the plant step), and
+    ConfigError names `source` and the field."""
+    try:
+        data = yaml_load(data=text) or {}
+        select_controller_tag(data, drop_others=True)
+        scenario = yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
+    except (RuntimeError, ValueError, TypeError, AttributeError, yaml.YAMLError) as e:
+        if isinstance(e, ConfigError):
+            raise
+        raise ConfigError(f"{source}: is not a scenario: {e}") from None
+    check_ranges(scenario, source)
+    check_times_resolved(
+        dataclasses.replace(scenario, station=SimulatedStationConfig())
+        if isinstance(scenario.station, HardwareStationConfig) else scenario,
+        scenario.plant_config.time_step, source)
+    return scenario
 
 
 @public_api

@@ -18,11 +18,11 @@ import zlib
 
 import numpy as np
 
-from tegrasp_drake.rig.files import file_problem, one_line, temporary_sibling
+from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary_sibling
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
                                            checked_npz_arrays)
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 FORMAT_VERSION = 1
 ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_acceleration",
@@ -37,6 +37,7 @@ class TrialLogError(ValueError):
         super().__init__(one_line(message))
 
 
+@public_dataclass
 @dataclasses.dataclass
 class TrialLog:
     t_sa: np.ndarray
@@ -88,7 +89,7 @@ def load_trial_log(path: PathLike) -> TrialLog:
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
                                     max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",))
-        meta = json.loads(str(arrays.pop("meta")))
+        meta = load_json(str(arrays.pop("meta")))
     except NpzHeaderError as e:
         if "lacks the arrays" in str(e):
             raise TrialLogError(f"trial log '{path}' {e}; it is not a trial log (`tegrasp "

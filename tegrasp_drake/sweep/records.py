@@ -27,7 +27,8 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import read_bounded, write_atomically
+from tegrasp_drake.rig.files import (DuplicateKeyError, UserPathError, load_json, read_bounded,
+                                     write_atomically)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 RECORD_FORMAT = "tegrasp-sweep-record"
@@ -157,9 +158,11 @@ def read_record(path) -> tuple[dict | None, str | None]:
     except (OSError, UnicodeDecodeError) as error:
         return None, f"unreadable: {error}"
     try:
-        record = json.loads(text)
+        record = load_json(text)
     except json.JSONDecodeError as error:
         return None, f"not valid JSON (partial write?): {error}"
+    except DuplicateKeyError as error:
+        return None, str(error)
     except RecursionError:
         return None, "nests too deeply to be a trial record"
     reason = check_record(record, path.name)
@@ -168,7 +171,12 @@ def read_record(path) -> tuple[dict | None, str | None]:
 
 @public_api
 def load_records(out_dir: PathLike) -> LoadedRecords:
-    """Reads every record under `<out_dir>/trials`; temporary files are ignored."""
+    """Reads every record under `<out_dir>/trials`; temporary files are ignored. A folder
+    that does not exist yet holds no records; UserPathError (an OSError) for a path that is
+    something else than a folder (a trial log, a record file)."""
+    if os.path.lexists(out_dir) and not Path(out_dir).is_dir():
+        raise UserPathError(f"{out_dir} is not a results folder (it is a file); give the "
+                            "--out folder of `tegrasp sweep`")
     folder = Path(out_dir) / TRIALS_FOLDER
     records, corrupt = {}, {}
     if folder.is_dir():

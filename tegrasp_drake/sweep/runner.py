@@ -26,7 +26,7 @@ import tempfile
 import time
 import traceback
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from contextlib import closing, contextmanager
+from contextlib import closing, contextmanager, suppress
 from dataclasses import dataclass
 from pathlib import Path
 from collections.abc import Callable
@@ -243,7 +243,10 @@ def _progress_bar_factory(enabled):
 
 
 def _run_on_process_pool(trial_function, pending, workers):
-    """Yields (trial_id, outcome) as trials finish; outcome None if the worker died."""
+    """Yields (trial_id, outcome) as trials finish; outcome None if the worker died. When
+    the caller stops early (Ctrl-C, SIGTERM: an exception in its loop, or closing this
+    generator), the workers are ended at once and their running trials abandoned (no record:
+    a resumed sweep runs them), instead of waiting for each to finish."""
     if not pending:
         return
     start_method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
@@ -251,6 +254,7 @@ def _run_on_process_pool(trial_function, pending, workers):
     executor = ProcessPoolExecutor(max_workers=workers,
                                    mp_context=multiprocessing.get_context(start_method),
                                    initializer=end_with_parent, initargs=(os.getpid(),))
+    finished = False
     try:
         futures = {executor.submit(run_trial_safely, trial_function, trial): trial["trial_id"]
                    for trial in pending}
@@ -260,8 +264,19 @@ def _run_on_process_pool(trial_function, pending, workers):
             except Exception:  # BrokenProcessPool: a worker died; no trial result.
                 outcome = None
             yield futures[future], outcome
+        finished = True
     finally:
+        if not finished:
+            _end_workers(executor)
         executor.shutdown(wait=True, cancel_futures=True)
+
+
+def _end_workers(executor: ProcessPoolExecutor) -> None:
+    """Ends a pool's worker processes now (SIGKILL: a trial's simulation holds no file of
+    the sweep's open; records are written by the main process only)."""
+    for process in list((getattr(executor, "_processes", None) or {}).values()):
+        with suppress(OSError, ValueError):
+            process.kill()
 
 
 PARENT_CHECK_PERIOD_S = 0.5

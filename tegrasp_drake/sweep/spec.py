@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
@@ -97,6 +98,7 @@ class RandomisationConfig:
     sensor_noise: bool = True               # the trial function adds sensor noise
 
 
+@public_dataclass
 @dataclass(frozen=True)
 class SweepSpec:
     """A sweep: objects x grid markers x attempts, once per controller.

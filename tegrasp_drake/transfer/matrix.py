@@ -200,13 +200,13 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
     from tegrasp_drake.recording.campaign import RecordEventsError
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError
-    from tegrasp_drake.rig.files import write_atomically
+    from tegrasp_drake.rig.files import load_json, write_atomically
     folder = pathlib.Path(folder)
     assignments = list(world_assignments(spec.worlds[world])
                        + tuple(spec.sweep.scenario_overrides))
     marker = folder / WORLD_FILE
     if marker.is_file():
-        recorded = json.loads(marker.read_text(encoding="utf-8"))
+        recorded = load_json(marker.read_text(encoding="utf-8"))
         if recorded != assignments:
             raise SweepError(f"{folder} holds the events of world '{world}' recorded with "
                              f"other settings ({recorded}); give another output folder or "

@@ -34,7 +34,7 @@ and read the voltage.
 import dataclasses
 
 import numpy as np
-from pydrake.common.yaml import yaml_dump_typed, yaml_load_typed
+from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.hardware.myrio.tactile_frame import PIEZO_VOLTS_PER_COUNT
@@ -68,8 +68,22 @@ class TactileCalibration:
 
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
-    """Reads a TactileCalibration from YAML (fields as in the dataclasses)."""
-    return yaml_load_typed(schema=TactileCalibration, filename=filename)
+    """Reads a TactileCalibration from YAML (fields as in the dataclasses). ConfigError, one
+    line naming the file and the field, for anything that is not one: a missing or empty
+    file, a FIFO or device (refused before a byte is read), a file too large, bad YAML, an
+    unknown or non-finite field."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, read_yaml_file
+    data = read_yaml_file(filename, "the tactile calibration")
+    if data is None:
+        raise ConfigError(f"{filename}: the tactile calibration is empty; give the pads' "
+                          "gains and offsets (left, right, zero_samples), or no file for "
+                          "the defaults")
+    if not isinstance(data, dict):
+        raise ConfigError(f"{filename}: the tactile calibration must be a mapping of "
+                          "fields (left, right, zero_samples, piezo_volts_per_count), got "
+                          f"a {type(data).__name__}")
+    data.pop("_tag", None)
+    return load_typed(data, TactileCalibration, str(filename))
 
 
 def SaveTactileCalibration(calibration: TactileCalibration, filename: str):
