@@ -32,8 +32,11 @@ def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
     """Starts with the open pads around the object, closes at GRIP_FORCE; returns samples.
     On the prismatic hand: these check the taxels' integration of the pressure field, which
     needs pads that stay exactly parallel (the linkage's constraints tilt a pressed pad by
-    a few hundredths of a degree, a 3 % gradient across a 4 mm elastomer)."""
-    scenario = LoadScenario(overrides=["gripper.model=prismatic",
+    a few hundredths of a degree, a 3 % gradient across a 4 mm elastomer); read by the
+    ideal force taxels, since the capacitive pad's 4-count noise and nonlinear reading
+    would hide the integration's percent (tests/test_simulation_capacitive_taxels.py
+    checks that reading)."""
+    scenario = LoadScenario(overrides=["gripper.model=prismatic", "tactile.transducer=force",
         "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]",
         f"object.name={object_name}"])
     station, context, command = _open_station_at_rest(scenario)
