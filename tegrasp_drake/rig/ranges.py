@@ -140,13 +140,18 @@ def check_ranges(config, source: str, where: str = "") -> None:
         return
     if not dataclasses.is_dataclass(config) or isinstance(config, type):
         return
-    for field in dataclasses.fields(config):
-        value = getattr(config, field.name)
-        path = f"{where}.{field.name}" if where else field.name
-        declared = range_of(field)
+    for path, value, declared in _declared_fields(config, where):
         if declared is not None and value is not None:
             _check_value(value, declared, source, path)
         _check_held(value, source, path)
+
+
+def _declared_fields(config, where: str):
+    """(path, value, declared Range or Choice or None) of each field of the dataclass
+    instance `config`, its path under `where`."""
+    for field in dataclasses.fields(config):
+        path = f"{where}.{field.name}" if where else field.name
+        yield path, getattr(config, field.name), range_of(field)
 
 
 def _check_value(value, declared: "Range | Choice", source: str, path: str) -> None:
@@ -256,10 +261,7 @@ def check_times_resolved(config, step_s: float, source: str, where: str = "",
     sees nothing new, and a 1 ns period makes a trial crawl. Walks what check_ranges walks."""
     if not dataclasses.is_dataclass(config) or isinstance(config, type):
         return
-    for field in dataclasses.fields(config):
-        value = getattr(config, field.name)
-        path = f"{where}.{field.name}" if where else field.name
-        declared = range_of(field)
+    for path, value, declared in _declared_fields(config, where):
         if (isinstance(declared, Range) and declared.unit == "s" and declared.low == 0
                 and declared.low_open and value is not None):
             for item_path, item in _values(value, path):
