@@ -36,6 +36,18 @@ def folder_contents(folder: pathlib.Path) -> dict:
             for p in sorted(folder.rglob("*")) if p.is_file() and not p.is_symlink()}
 
 
+def run_probe(make, argv, folder: pathlib.Path, monkeypatch, capfd):
+    """Runs `tegrasp ARGV` in `folder`, after `make(folder)` (when given) laid out its
+    hostile inputs; returns (the folder's files before, its entries before, exit code,
+    what it printed)."""
+    monkeypatch.chdir(folder)
+    if make:
+        make(folder)
+    before, entries = folder_contents(folder), sorted(folder.iterdir())
+    code, text = run_cli(argv, capfd)
+    return before, entries, code, text
+
+
 def assert_one_line_error(code, text, *expected):
     assert code != 0, text
     assert "Traceback" not in text, text

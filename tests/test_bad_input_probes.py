@@ -9,7 +9,7 @@ import signal
 import numpy as np
 import pytest
 
-from test_bad_input import assert_one_line_error, folder_contents as _contents, run_cli
+from test_bad_input import assert_one_line_error, folder_contents as _contents, run_probe
 from tegrasp_drake.events.event_file import INDEX_FILE, MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -143,11 +143,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
                          ids=[probe[0] for probe in PROBES])
 def test_a_probe_stops_with_one_line_and_loses_nothing(make, argv, expected, tmp_path,
                                                        monkeypatch, capfd):
-    monkeypatch.chdir(tmp_path)
-    if make:
-        make(tmp_path)
-    before = _contents(tmp_path)
-    code, text = run_cli(argv, capfd)
+    before, _, code, text = run_probe(make, argv, tmp_path, monkeypatch, capfd)
     assert_one_line_error(code, text, *expected)
     after = _contents(tmp_path)
     assert {name: after.get(name) for name in before} == before  # nothing lost or changed

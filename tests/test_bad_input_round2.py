@@ -15,7 +15,7 @@ import pytest
 
 import tegrasp_drake
 from test_bad_input import (_trial_log, assert_one_line_error, folder_contents as _contents,
-                            run_cli)
+                            run_cli, run_probe)
 from tegrasp_drake.commands import run_folder
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.rig import files
@@ -234,11 +234,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
                          ids=[probe[0] for probe in PROBES])
 def test_a_probe_stops_with_one_line_and_loses_nothing(make, argv, expected, tmp_path,
                                                        monkeypatch, capfd):
-    monkeypatch.chdir(tmp_path)
-    if make:
-        make(tmp_path)
-    before, entries = _contents(tmp_path), sorted(tmp_path.iterdir())
-    code, text = run_cli(argv, capfd)
+    before, entries, code, text = run_probe(make, argv, tmp_path, monkeypatch, capfd)
     assert_one_line_error(code, text, *expected)
     assert len(text) < 1200  # an echoed value is cut (typed_yaml.MAX_MESSAGE_CHARS)
     after = _contents(tmp_path)
