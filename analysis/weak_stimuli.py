@@ -26,6 +26,7 @@ import pathlib
 import sys
 
 from tegrasp_drake.sweep.missed_event_report import report_markdown, sweep_misses
+from tegrasp_drake.rig.files import folder_problem, write_atomically
 from tegrasp_drake.sweep.records import load_records
 
 
@@ -42,6 +43,13 @@ def main(argv=None) -> int:
     for folder, what in ((args.results, "results"), (args.logs, "logs")):
         if not folder.is_dir():
             raise SystemExit(f"weak_stimuli: {what} folder {folder} does not exist")
+    out_problem = None if args.out is None else (
+        "is a folder" if args.out.is_dir() else
+        None if args.out.parent.is_dir() and folder_problem(args.out.parent) is None
+        else f"its folder {args.out.parent} is not one you can write in")
+    if out_problem:  # before the replays, which take minutes
+        raise SystemExit(f"weak_stimuli: --out {args.out} {out_problem}; give a file path in "
+                         "a folder you can write")
     loaded = load_records(args.results)
     if not loaded.records:
         raise SystemExit(f"weak_stimuli: {args.results} holds no trial records (trials/*.json)")
@@ -61,7 +69,11 @@ def main(argv=None) -> int:
         print(f"weak_stimuli: no log for {trial_id} in {args.logs}; not counted",
               file=sys.stderr)
     if args.out is not None:
-        args.out.write_text(text)
+        try:
+            write_atomically(args.out, text)
+        except OSError as error:
+            raise SystemExit(f"weak_stimuli: cannot write --out {args.out}: {error.strerror}; "
+                             "give a path in a folder you can write") from None
     print(text)
     return 0
 
