@@ -215,7 +215,7 @@ class GraspControllerConfig:
     # the contact patch spreading past the taxels; hence 0.8.) The band: the squeeze, the
     # lift's load and the amplifier's decay lie below about 10 Hz; texture slip at 40 mm/s
     # (a lift's speed) rings at 80 Hz. Measured in open-loop grasps of the three objects
-    # (README, "Vibration (RA) model"): at 80 Hz and 10 ms a normal lift reads at most
+    # (docs/model.md, "Vibration (RA) model"): at 80 Hz and 10 ms a normal lift reads at most
     # 0.68 m/s^2, pads sliding along the object at lift speed 1.9-5.1 m/s^2; the threshold
     # 1 m/s^2 (24 mN of pad load) is the one the accelerometer model used.
     lift_load_enabled: bool = True
