@@ -12,7 +12,9 @@ from pydrake.systems.primitives import ConstantVectorSource
 
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL, JacoCommandReceiver, JacoCommandSender,
-    JacoStatusReceiver, JacoStatusSender, make_jaco_command)
+    WRONG_JOINT_COUNT, JacoStatusReceiver, JacoStatusSender, check_jaco_status,
+    make_jaco_command, make_jaco_status)
+from tegrasp_drake.hardware.message_boundary import RejectedMessage
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver, AddJacoLcmEmulator
 from tegrasp_drake.rig.jaco_velocity_tracker import (
     JacoVelocityTracker, JacoVelocityTrackerConfig, velocity_command)
@@ -94,14 +96,15 @@ def test_status_receiver_outputs_zeros_before_the_first_message():
     assert receiver.GetOutputPort("time_measured").Eval(context)[0] == 0.0
 
 
-def test_status_receiver_rejects_a_message_with_the_wrong_joint_count():
-    receiver = JacoStatusReceiver()
-    context = receiver.CreateDefaultContext()
-    message = lcmt_jaco_status()
+def test_the_status_check_rejects_a_message_with_the_wrong_joint_count():
+    message = make_jaco_status(5, Q, V, TAU)
     message.num_joints = 7
-    receiver.GetInputPort("lcmt_jaco_status").FixValue(context, message)
-    with pytest.raises(ValueError, match="num_joints = 7"):
-        receiver.GetOutputPort("position_measured").Eval(context)
+    message.joint_position = list(Q) + [0.0]
+    for name in ("joint_velocity", "joint_torque", "joint_torque_external", "joint_current"):
+        setattr(message, name, list(getattr(message, name)) + [0.0])
+    with pytest.raises(RejectedMessage, match="num_joints = 7") as refused:
+        check_jaco_status(message.encode())
+    assert refused.value.reason == WRONG_JOINT_COUNT
 
 
 def _command_receiver_simulator(message):

@@ -12,7 +12,10 @@ RATE_SMOOTHING commands) for at most one command period.
 import threading
 import time
 
-from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD
+from tegrasp_drake.hardware.jaco.jaco_lcm import (
+    JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD, check_jaco_command)
+from tegrasp_drake.hardware.lcm_boundary import checked_handler
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 
 RATE_SMOOTHING = 10  # commands
 
@@ -55,14 +58,25 @@ class ControllerClock:
             return self._last_value
 
 
-def follow_jaco_commands(lcm_url: str, clock: ControllerClock, stop: threading.Event):
-    """A thread feeding `clock` from KINOVA_JACO_COMMAND on `lcm_url` until `stop`."""
+def command_boundary(device: str = "myrio") -> MessageBoundary:
+    """The boundary a clock's commands cross (check_jaco_command): a malformed command is
+    counted there, and the clock does not move on it."""
+    return MessageBoundary(f"{device}: {JACO_COMMAND_CHANNEL}", check_jaco_command)
+
+
+def feed_clock(clock: ControllerClock, boundary: MessageBoundary):
+    """A subscription callback (DrakeLcm's or lcm's) feeding `clock` checked commands."""
+    return checked_handler(boundary, lambda command: clock.on_command(command.utime))
+
+
+def follow_jaco_commands(lcm_url: str, clock: ControllerClock, stop: threading.Event,
+                         boundary: MessageBoundary | None = None):
+    """A thread feeding `clock` from KINOVA_JACO_COMMAND on `lcm_url` until `stop`; the
+    commands cross `boundary` (command_boundary() by default)."""
     import lcm
-    from drake import lcmt_jaco_command
 
     bus = lcm.LCM(lcm_url)
-    bus.subscribe(JACO_COMMAND_CHANNEL,
-                  lambda channel, data: clock.on_command(lcmt_jaco_command.decode(data).utime))
+    bus.subscribe(JACO_COMMAND_CHANNEL, feed_clock(clock, boundary or command_boundary()))
 
     def run():
         while not stop.is_set():

@@ -11,12 +11,15 @@ The request is the gripper's gPR (the echo of the position request rPR it is car
 model; across processes the Robotiq emulator publishes its command and status on the bus
 (GRIPPER_STATE_CHANNEL, lcmt_tegrasp_gripper with `utime` and `status_arrival_s` the
 emulator's time.monotonic(), every GRIPPER_STATE_PERIOD_S) and the myRIO follows it. The
-latest state is all that counts, so a lost message only delays the next by a period.
+latest state is all that counts, so a lost message only delays the next by a period; a
+malformed one is counted and skipped (GripperRequestFollower's `boundary`).
 """
 
 import threading
 import time
 
+from tegrasp_drake.hardware.lcm_boundary import decode_lcm
+from tegrasp_drake.hardware.message_boundary import MessageBoundary, RejectedMessage
 from tegrasp_drake.robotiq import units
 
 GRIPPER_STATE_CHANNEL = "EMULATED_ROBOTIQ"
@@ -52,17 +55,31 @@ def publish_gripper_state(lcm_url: str, model, stop: threading.Event):
     return thread
 
 
+def check_gripper_request(data: bytes) -> int:
+    """The gPR [byte] of a GRIPPER_STATE_CHANNEL message's bytes, or RejectedMessage."""
+    from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper
+    message = decode_lcm(lcmt_tegrasp_gripper, data)
+    request = message.status[units.STATUS_PR]
+    if not 0 <= request <= 255:
+        raise RejectedMessage("out of range", f"gPR = {request}, not a byte")
+    return int(request)
+
+
 class GripperRequestFollower:
     """The newest gPR [byte] published on GRIPPER_STATE_CHANNEL (None before the first);
-    call it. Thread-safe."""
+    call it. Thread-safe. Messages cross `boundary` (check_gripper_request): a malformed
+    one is counted there and the last good request kept."""
 
     def __init__(self):
         self._lock = threading.Lock()
         self._request = None
+        self.boundary = MessageBoundary(f"myrio: {GRIPPER_STATE_CHANNEL}",
+                                        check_gripper_request)
 
     def on_message(self, data: bytes):
-        from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper
-        request = int(lcmt_tegrasp_gripper.decode(data).status[units.STATUS_PR])
+        request = self.boundary.accept(data)
+        if request is None:
+            return
         with self._lock:
             self._request = request
 

@@ -28,6 +28,7 @@ from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.arm_kinematics import ARM_URL, X_FLANGE_GRIPPER
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_NUM_JOINTS
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmEmulator
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 
 PLANT_TIME_STEP = 1e-3  # [s]
 # The joints' velocity servos [N m s / rad]: the arm reaches a commanded speed, or stops,
@@ -43,9 +44,13 @@ GRIPPER_COM_Z = 0.06      # [m] from the flange along its z
 
 
 def MakeJacoArmEmulator(*, lcm, initial_positions, damping_gain: float = SERVO_DAMPING_GAIN,
-                        command_timeout: float = 0.05):
+                        command_timeout: float = 0.05,
+                        command_boundary: MessageBoundary | None = None):
     """The emulator Diagram (module docstring) on `lcm` (a DrakeLcm, which the diagram's
-    LcmInterfaceSystem pumps); the arm starts at `initial_positions` [rad].
+    LcmInterfaceSystem pumps); the arm starts at `initial_positions` [rad]. Commands cross
+    `command_boundary` (check_jaco_command; pass one to read its counts): a malformed one
+    is counted and skipped, so the arm never executes it and stops when no good command
+    follows within `command_timeout` [s].
 
     Output ports: position_measured (6), velocity_measured (6) [rad, rad/s], for tests."""
     builder = DiagramBuilder()
@@ -76,7 +81,7 @@ def MakeJacoArmEmulator(*, lcm, initial_positions, damping_gain: float = SERVO_D
                        position_output=state.get_output_port(0),
                        velocity_output=state.get_output_port(1),
                        torque_output=plant.get_net_actuation_output_port(arm),
-                       command_timeout=command_timeout)
+                       command_timeout=command_timeout, boundary=command_boundary)
     builder.ExportOutput(state.get_output_port(0), "position_measured")
     builder.ExportOutput(state.get_output_port(1), "velocity_measured")
     diagram = builder.Build()

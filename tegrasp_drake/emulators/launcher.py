@@ -18,6 +18,11 @@
   Robotiq emulator of this process, else EMULATED_ROBOTIQ on `lcm_url`), so the pads never
   show a grip or release before the controller under test asks for it.
 
+What the devices receive crosses a MessageBoundary (hardware/message_boundary.py): the arm's
+commands, the gripper's Modbus requests, the bus messages the myRIO follows. A malformed
+message is counted and skipped, never executed: `Emulators` says so through `out` the first
+time each kind is seen, and gives the counts when it closes.
+
 `Emulators.start` says where each device listens, in words, through `out`. As data,
 `hardware_config()` points a hardware station at them, and `devices_line()` is one line
 for programs (emulator_process.py reads it back with `devices_from_line`): the
@@ -79,6 +84,7 @@ class Emulators:
         self._closers = []
         self._jaco = None  # (DrakeLcm, emulator Diagram)
         self._robotiq = None  # RobotiqEmulator
+        self._boundaries = []  # MessageBoundary of every inbound path, for the counts
 
     def start(self, devices, scenario, *, trial=None, sync: str = "none",
               follow_gripper: bool = False,
@@ -122,10 +128,11 @@ class Emulators:
                          + hardware_config_to_yaml(self.hardware_config()))
 
     def run_until_stopped(self) -> None:
-        """Runs the arm's simulation in real time (or just waits) until `stop` is set."""
+        """Runs the arm's simulation in real time (or just waits) until `stop` is set,
+        saying the first time each kind of malformed message arrives."""
         if self._jaco is None:
             while not self.stop.wait(0.2):
-                pass
+                self.report_rejections()
             return
         from pydrake.systems.analysis import Simulator
         simulator = Simulator(self._jaco[1])
@@ -134,12 +141,29 @@ class Emulators:
         context = simulator.get_context()
         while not self.stop.is_set():
             simulator.AdvanceTo(context.get_time() + 0.05)
+            self.report_rejections()
+
+    def report_rejections(self) -> None:
+        """One line through `out` for each kind of message a device skipped, the first
+        time it is seen."""
+        for boundary in self._boundaries:
+            for rejection in boundary.new_rejections():
+                self._out(boundary.describe(rejection))
+
+    def message_counts(self) -> list[str]:
+        """One line per inbound path: what it accepted and what it skipped, by reason."""
+        return [f"{boundary.source}: {boundary.counters().summary()}"
+                for boundary in self._boundaries]
 
     def close(self) -> None:
         self.stop.set()
         for closer in reversed(self._closers):
             closer()
         self._closers.clear()
+        self.report_rejections()
+        for line in self.message_counts():
+            self._out(line)
+        self._boundaries.clear()
 
     def __enter__(self):
         return self
@@ -150,13 +174,16 @@ class Emulators:
     def _start_jaco(self, scenario):
         from pydrake.lcm import DrakeLcm
 
+        from tegrasp_drake.emulators.controller_clock import command_boundary
         from tegrasp_drake.emulators.jaco_arm_emulator import MakeJacoArmEmulator
         from tegrasp_drake.hardware.jaco.jaco_lcm import (
             JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL)
         from tegrasp_drake.simulation.station import initial_arm_positions
         drake_lcm = DrakeLcm(self.lcm_url)
-        diagram = MakeJacoArmEmulator(lcm=drake_lcm,
+        boundary = command_boundary("jaco")
+        diagram = MakeJacoArmEmulator(lcm=drake_lcm, command_boundary=boundary,
                                       initial_positions=initial_arm_positions(scenario.arm))
+        self._boundaries.append(boundary)
         self._jaco = (drake_lcm, diagram)
         self._devices["arm"] = {"lcm_url": self.lcm_url}
         self._out(f"jaco: JACO2 simulation on {self.lcm_url}: executes {JACO_COMMAND_CHANNEL}, "
@@ -170,6 +197,7 @@ class Emulators:
         width = scenario.object.width_along_stroke()
         emulator = RobotiqEmulator(RobotiqEmulatorConfig(object_opening=width)).start()
         self._closers.append(emulator.stop)
+        self._boundaries.append(emulator.request_boundary)
         self._robotiq = emulator
         self._devices["gripper"] = {"port": emulator.port}
         if publish:
@@ -232,20 +260,24 @@ class Emulators:
         from tegrasp_drake.emulators.gripper_link import follow_gripper_state, request_of_model
         if self._robotiq is not None:
             return request_of_model(self._robotiq.model)
-        return follow_gripper_state(self.lcm_url, self.stop)
+        follower = follow_gripper_state(self.lcm_url, self.stop)
+        self._boundaries.append(follower.boundary)
+        return follower
 
     def _feed_controller_clock(self, clock):
         """Feeds `clock` the arm's commands: through the emulated arm's DrakeLcm when it
         runs here, else from a thread listening on `lcm_url`."""
+        from tegrasp_drake.emulators.controller_clock import (
+            command_boundary, feed_clock, follow_jaco_commands)
+        boundary = command_boundary()
         if self._jaco is None:
-            from tegrasp_drake.emulators.controller_clock import follow_jaco_commands
-            follow_jaco_commands(self.lcm_url, clock, self.stop)
+            follow_jaco_commands(self.lcm_url, clock, self.stop, boundary)
+            self._boundaries.append(boundary)
             return
-        from drake import lcmt_jaco_command
-
         from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL
-        self._jaco[0].Subscribe(JACO_COMMAND_CHANNEL, lambda data: clock.on_command(
-            lcmt_jaco_command.decode(data).utime))
+        # The arm's own boundary counts and reports these commands; this one only guards
+        # the clock.
+        self._jaco[0].Subscribe(JACO_COMMAND_CHANNEL, feed_clock(clock, boundary))
 
     def _start_trial_on_first_command(self, emulator, clock):
         while not clock.started.wait(0.2):

@@ -4,6 +4,8 @@ An emulated serial device opens one end by its tty name (as a real device server
 open a port) and the driver under test opens the other, so both sides use the ordinary
 pyserial path, like `socat pty pty`. `connected = False` unplugs the cable: bytes are
 discarded in both directions, so the device "stops talking" without either side knowing.
+`to_device`, when given, takes every chunk the host sends and returns what reaches the
+device (the device's own receiver: e.g. a framer that drops what a real device would).
 """
 
 import os
@@ -27,8 +29,9 @@ class NullModem:
     `close()` is called. Use as a context manager.
     """
 
-    def __init__(self, *, poll_interval: float = 0.02):
+    def __init__(self, *, poll_interval: float = 0.02, to_device=None):
         self._poll_interval = poll_interval
+        self._to_device = to_device
         self._device = open_raw_pty()
         self._host = open_raw_pty()
         self._stop = threading.Event()
@@ -56,7 +59,10 @@ class NullModem:
                 except OSError:  # nothing after all, or the tty is being reopened
                     continue
                 if data and self.connected:
-                    self._forward(masters[source], data)
+                    if source == self._host[0] and self._to_device is not None:
+                        data = self._to_device(data)
+                    if data:
+                        self._forward(masters[source], data)
 
     def _forward(self, master, data):
         try:

@@ -23,6 +23,11 @@ The model (times from `time.monotonic()`, advanced on every access):
 - rGTO = 1 without rACT gives gFLT 0x07; an injected fault code >= 0x0A (major) stops the
   fingers until the next activation.
 
+The requests reach the server through a ModbusRequestFramer (modbus_request_framer.py) on
+the cable, as they would reach a real 2F-85's receiver: noise, a bad CRC or a malformed
+header is dropped and counted in `request_boundary`, and the next valid request is
+answered.
+
 Every command write (function 16, or the write half of function 23, which pymodbus does
 before its read half) and every status read (function 4, or 3, or 23's read half) runs the
 model, so a status read in the same transaction as a command already reflects it.
@@ -39,7 +44,9 @@ from pymodbus.simulator import DataType, SimData, SimDevice
 
 from tegrasp_drake.robotiq import units
 from tegrasp_drake.robotiq import registers
+from tegrasp_drake.emulators.modbus_request_framer import ModbusRequestFramer
 from tegrasp_drake.emulators.null_modem import NullModem
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 
 ObjectStatus = units.ObjectStatus
 ActivationStatus = units.ActivationStatus
@@ -203,6 +210,8 @@ class RobotiqEmulator:
         self._stop_serving = None
         self._ready = threading.Event()
         self._error = None
+        self.request_boundary = MessageBoundary("robotiq: Modbus requests")
+        self._framer = ModbusRequestFramer(self.request_boundary)
 
     @property
     def port(self) -> str:
@@ -222,7 +231,7 @@ class RobotiqEmulator:
         self._cable.connected = True
 
     def start(self, timeout: float = 5.0) -> "RobotiqEmulator":
-        self._cable = NullModem()
+        self._cable = NullModem(to_device=lambda data: b"".join(self._framer.feed(data)))
         self._thread = threading.Thread(target=self._serve, name="robotiq emulator",
                                         daemon=True)
         self._thread.start()

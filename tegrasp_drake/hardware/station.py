@@ -21,6 +21,11 @@ FaultLatch whose `stop` makes the tracker hold the arm still (zero joint velocit
 tactile and gripper data also go out on the bus (TEGRASP_TACTILE, TEGRASP_GRIPPER;
 device_log_messages.py), so a bus log holds everything the controller saw.
 
+Every message a device sends crosses a MessageBoundary (hardware/message_boundary.py) before
+a receiver sees it: a malformed one is counted by reason and skipped, the receiver keeps its
+last good value and the watchdog handles a device that sends nothing usable.
+`message_boundaries()` gives them, for the run's live lines and final counts.
+
 The station owns the device threads: use it as a context manager (or call close()), and
 call `wait_until_ready()` before the Simulator's Initialize(), so that the controller
 starts from the arm's measured pose. Run the Simulator at real-time rate 1.
@@ -39,8 +44,9 @@ from tegrasp_drake.hardware.device_log_messages import (
     GRIPPER_CHANNEL, GRIPPER_PUBLISH_PERIOD, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
     GripperStatusSender, TactileStatusSender)
 from tegrasp_drake.hardware.fault_latch import FaultLatch
-from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL, check_jaco_status
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
+from tegrasp_drake.hardware.message_boundary import MessageBoundary, RejectedMessage
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError, RobotiqModbusClient
 from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration, TactileCalibration
@@ -128,6 +134,16 @@ class HardwareStation(Diagram):
     def tactile_reader(self) -> TactileSerialReader:
         return self._tactile_reader
 
+    @property
+    def arm_status_boundary(self) -> MessageBoundary:
+        """Where the arm's KINOVA_JACO_STATUS messages are checked and counted."""
+        return self._arm_status_boundary
+
+    def message_boundaries(self) -> dict:
+        """{device: MessageBoundary} of the devices whose messages cross one (the myRIO
+        stream's decoder counts its own: tactile_reader.counters())."""
+        return {"arm": self._arm_status_boundary, "gripper": self._gripper_client.boundary}
+
     def _open_devices(self):
         config = self._config
         self._gripper_client = RobotiqModbusClient(config.gripper).start()
@@ -155,6 +171,7 @@ class HardwareStation(Diagram):
         builder.ExportOutput(jaco.tracker.GetOutputPort("commanded_state"),
                              ports.ARM_COMMANDED_STATE)
         self._status_subscriber = jaco.status_subscriber
+        self._arm_status_boundary = jaco.status_boundary
 
         # Gripper.
         gripper = builder.AddNamedSystem("gripper_driver", RobotiqDriver(
@@ -228,7 +245,14 @@ class HardwareStation(Diagram):
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
         heard = [False]
-        self._lcm.Subscribe(JACO_STATUS_CHANNEL, lambda data: heard.__setitem__(0, True))
+
+        def on_status(data):  # only a good status counts as heard (the subscriber's
+            try:              # boundary counts the others)
+                check_jaco_status(data)
+            except RejectedMessage:
+                return
+            heard[0] = True
+        self._lcm.Subscribe(JACO_STATUS_CHANNEL, on_status)
         while not heard[0] and time.monotonic() < deadline:
             self._lcm.HandleSubscriptions(10)
         if not heard[0]:

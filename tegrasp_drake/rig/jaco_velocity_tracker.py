@@ -5,7 +5,8 @@ desired path needs a position-error term:
 
     v_cmd = clip(v_des + kp * wrap(q_des - q_measured), -v_max, v_max)
 
-where wrap() maps the error of continuous joints into [-pi, pi). Both stations use it: the
+where wrap() maps the error of continuous joints into [-pi, pi); a joint whose desired
+state is not finite gets zero velocity. Both stations use it: the
 hardware one in front of the Kinova LCM driver (hardware/jaco/jaco_lcm_interface.py), the
 simulated one in front of its model of the arm's velocity servo
 (simulation/jaco_velocity_drive.py). When `stop` is set (the device watchdog tripped),
@@ -33,6 +34,10 @@ from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.station_interface import ARM_JOINTS
 
 _DEG = np.pi / 180.0
+# [rad/s] the fastest any JACO2 joint turns (joints 4-6; the specification above): the
+# tracker's limits stay under it, and the arm's message check (hardware/jaco/jaco_lcm.py)
+# refuses a command beyond it.
+JACO2_MAX_JOINT_SPEED = 48 * _DEG
 
 
 @dataclasses.dataclass
@@ -43,7 +48,7 @@ class JacoVelocityTrackerConfig:
                         below="must be positive [1/s] (plausible 1-20)")
     max_joint_speed: list[float] = bounded(
         default_factory=lambda: [36 * _DEG] * 3 + [48 * _DEG] * 3, low=0.0, low_open=True,
-        high=48 * _DEG, unit="rad/s", length=6,
+        high=JACO2_MAX_JOINT_SPEED, unit="rad/s", length=6,
         why="the JACO2's joint speed limits, 36-48 deg/s, Kinova JACO2 specifications")
     continuous_joints: list[bool] = dataclasses.field(
         default_factory=lambda: [True, False, False, True, True, True])
@@ -59,7 +64,9 @@ def velocity_command(q_desired, v_desired, q_measured, config: JacoVelocityTrack
     error = np.asarray(q_desired, dtype=float) - np.asarray(q_measured, dtype=float)
     error = np.where(config.continuous_joints, wrap_to_pi(error), error)
     v_max = np.asarray(config.max_joint_speed)
-    return np.clip(np.asarray(v_desired) + config.kp * error, -v_max, v_max)
+    command = np.clip(np.asarray(v_desired) + config.kp * error, -v_max, v_max)
+    # A joint whose desired state is not finite holds still: NaN never reaches the arm.
+    return np.where(np.isfinite(command), command, 0.0)
 
 
 class JacoVelocityTracker(LeafSystem):

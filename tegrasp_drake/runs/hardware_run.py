@@ -7,6 +7,9 @@ Simulator at real-time rate 1 until the state machine is done or failed. On the 
 - every device fault is printed (which device, what, since when) and published on
   TEGRASP_FAULT; the station holds the arm still at once, and the state machine goes to
   Failed naming it (its `device_fault` input);
+- the first malformed message of each kind a device sends (the station's message
+  boundaries: a status that does not decode, a NaN joint, a Modbus answer of another
+  function) is printed once; all are counted, and the counts close the run's report;
 - the run ends END_MARGIN_S after the state machine is done or failed, or after a
   fault (holding still meanwhile), or at the controller's time limit;
 - every message on the bus (the arm's KINOVA_JACO_*, the station's TEGRASP_TACTILE and
@@ -169,11 +172,15 @@ def format_transition(transition: Transition) -> str:
 def format_counters(counters: dict) -> str:
     gripper, tactile = counters["gripper"], counters["tactile"]
     decoder = tactile.decoder
+    reasons = ", ".join(f"{reason} {count}" for reason, count
+                        in sorted(gripper.rejected.items()))
+    arm = counters.get("arm")
     return (f"gripper: {gripper.reads} status reads, {gripper.writes} writes, "
             f"{gripper.errors} failed transactions"
-            + (f" (last: {gripper.last_error})" if gripper.errors else "")
+            + (f" ({reasons}; last: {gripper.last_error})" if gripper.errors else "")
             + f"; tactile: {decoder.frames} frames, {decoder.rejected} rejected, "
-            f"{decoder.dropped_frames} dropped, {tactile.queue_overflows} overflowed")
+            f"{decoder.dropped_frames} dropped, {tactile.queue_overflows} overflowed"
+            + (f"; arm: {arm.summary('status messages')}" if arm is not None else ""))
 
 
 def format_fault(fault, now: float) -> str:
@@ -185,7 +192,7 @@ class RunReporter:
     run END_MARGIN_S after the state machine is done or failed, or after a fault."""
 
     def __init__(self, *, diagram, station, grasp, drake_lcm, out=print, progress=None,
-                 end_time: float = float("inf"), log_problem=None):
+                 end_time: float = float("inf"), log_problem=None, boundaries=()):
         self._diagram = diagram
         self._station = station
         self._grasp = grasp
@@ -198,6 +205,7 @@ class RunReporter:
         self.transitions = []  # Transition
         self.faults = []
         self.ended_at = None
+        self._boundaries = tuple(boundaries)  # MessageBoundary: said once per new reason
         self._log_problem = log_problem  # () -> str | None: the log has stopped recording
         self._next_log_check = 0.0
         self.log_fault = None  # why the run stopped when its log stopped recording
@@ -219,6 +227,9 @@ class RunReporter:
             self.ended_at = self.ended_at or now
             self._out(format_fault(fault, now))
             self._lcm.Publish(FAULT_CHANNEL, fault_message(fault, now).encode())
+        for boundary in self._boundaries:
+            for rejection in boundary.new_rejections():
+                self._out(f"[{now:8.3f} s] {boundary.describe(rejection)}")
         if self._log_problem is not None and now >= self._next_log_check:
             self._next_log_check = now + LOG_CHECK_PERIOD_S
             problem = self._log_problem()
@@ -247,7 +258,8 @@ class HardwareRunResult:
     wall_time: float           # [s] from Initialize to the end
     log_path: pathlib.Path | None
     log_messages: int
-    device_counters: dict      # {"gripper": RobotiqModbusCounters, "tactile": ...Counters}
+    device_counters: dict      # {"gripper": RobotiqModbusCounters, "tactile": ...Counters,
+                               #  "arm": MessageCounters}
     log_fault: str | None = None  # why the run stopped early: its LCM log stopped recording
 
     @property
@@ -256,7 +268,8 @@ class HardwareRunResult:
 
     def as_dict(self) -> dict:
         """The JSON form (the result.json beside the log): times in s, faults and device
-        counters as dicts (DeviceFault, RobotiqModbusCounters, TactileReaderCounters)."""
+        counters as dicts (DeviceFault, RobotiqModbusCounters, TactileReaderCounters,
+        MessageCounters)."""
         return {"transitions": self.transitions,
                 "faults": [dataclasses.asdict(fault) for fault in self.faults],
                 "sim_time_s": self.sim_time, "wall_time_s": self.wall_time,
@@ -328,7 +341,8 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
                                    grasp=parts.controller,
                                    drake_lcm=station.lcm, out=out, progress=progress,
                                    end_time=end_time,
-                                   log_problem=writer.problem if writer else None)
+                                   log_problem=writer.problem if writer else None,
+                                   boundaries=station.message_boundaries().values())
             simulator.set_monitor(reporter)
             simulator.Initialize()
             out("devices ready; running in real time")
@@ -336,7 +350,8 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
             simulator.AdvanceTo(end_time)
             wall = time.monotonic() - start
             counters = {"gripper": station.gripper_client.counters(),
-                        "tactile": station.tactile_reader.counters()}
+                        "tactile": station.tactile_reader.counters(),
+                        "arm": station.arm_status_boundary.counters()}
             out(format_counters(counters))
         finally:
             messages = writer.close() if writer is not None else 0

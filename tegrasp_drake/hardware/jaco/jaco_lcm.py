@@ -10,23 +10,41 @@ error must therefore be turned into velocity before the sender (see
 All angles are in radians, velocities in rad/s, torques in N m, `utime` in microseconds.
 The gripper is a Robotiq 2F-85 on its own bus, so every message has num_fingers = 0.
 
+Messages arrive through the message boundary (hardware/message_boundary.py):
+`check_jaco_status` and `check_jaco_command` decode a message's bytes and refuse, by
+reason, another type, a cut-short message, a joint count other than 6, values that are
+not finite and (commands) joint speeds beyond the arm's, so that the receivers here only
+ever see checked messages (or the default one, num_joints = 0, before the first).
+
 Hardware side: JacoVelocityTracker -> JacoCommandSender -> LcmPublisherSystem,
 LcmSubscriberSystem -> JacoStatusReceiver.
 Emulator side: LcmSubscriberSystem -> JacoCommandReceiver -> station,
 station -> JacoStatusSender -> LcmPublisherSystem.
 """
 
+import math
+
 import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import BasicVector, LeafSystem
 
+from tegrasp_drake.hardware.lcm_boundary import decode_lcm
 from tegrasp_drake.hardware.lcm_time import utime_from_time
+from tegrasp_drake.hardware.message_boundary import RejectedMessage
+from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_MAX_JOINT_SPEED
 
 JACO_NUM_JOINTS = 6
 JACO_COMMAND_CHANNEL = "KINOVA_JACO_COMMAND"
 JACO_STATUS_CHANNEL = "KINOVA_JACO_STATUS"
 JACO_LCM_PERIOD = 0.01  # [s], the driver's 100 Hz
+# [rad/s] the fastest any JACO2 joint turns (joints 4-6, 48 deg/s; Kinova's specification,
+# rig/jaco_velocity_tracker.py): a command beyond it is not one the arm can carry out.
+JACO_MAX_JOINT_SPEED = JACO2_MAX_JOINT_SPEED
+
+WRONG_JOINT_COUNT = "wrong joint count"
+NOT_FINITE = "not finite"
+TOO_FAST = "beyond the joint speed limit"
 
 
 def make_jaco_command(utime, position, velocity) -> lcmt_jaco_command:
@@ -59,14 +77,47 @@ def make_jaco_status(utime, position, velocity, torque) -> lcmt_jaco_status:
     return message
 
 
-def has_joints(message) -> bool:
-    """False for the default (never received) message; raises on a wrong joint count."""
-    if message.num_joints == 0:
-        return False
+def _check_joints(message, fields) -> None:
+    """RejectedMessage unless `message` holds JACO_NUM_JOINTS finite values in each of
+    `fields`."""
+    name = type(message).__name__
     if message.num_joints != JACO_NUM_JOINTS:
-        raise ValueError(f"expected a {JACO_NUM_JOINTS}-joint Jaco message, got "
-                         f"num_joints = {message.num_joints}")
-    return True
+        raise RejectedMessage(WRONG_JOINT_COUNT, f"{name} with num_joints = "
+                              f"{message.num_joints}; the JACO2 has {JACO_NUM_JOINTS}")
+    for field in fields:
+        values = getattr(message, field)
+        bad = [k for k, value in enumerate(values) if not math.isfinite(value)]
+        if bad:
+            raise RejectedMessage(NOT_FINITE, f"{name} {field}[{bad[0]}] is "
+                                  f"{values[bad[0]]}")
+
+
+def check_jaco_status(data: bytes) -> lcmt_jaco_status:
+    """The bytes of a KINOVA_JACO_STATUS message decoded and checked: 6 joints, finite
+    joint positions, velocities and torques; else RejectedMessage naming the defect."""
+    message = decode_lcm(lcmt_jaco_status, data)
+    _check_joints(message, ("joint_position", "joint_velocity", "joint_torque"))
+    return message
+
+
+def check_jaco_command(data: bytes) -> lcmt_jaco_command:
+    """The bytes of a KINOVA_JACO_COMMAND message decoded and checked: 6 joints, finite
+    positions and velocities, no joint faster than JACO_MAX_JOINT_SPEED; else
+    RejectedMessage naming the defect (such a command never reaches the arm)."""
+    message = decode_lcm(lcmt_jaco_command, data)
+    _check_joints(message, ("joint_position", "joint_velocity"))
+    fast = [k for k, v in enumerate(message.joint_velocity) if abs(v) > JACO_MAX_JOINT_SPEED]
+    if fast:
+        raise RejectedMessage(TOO_FAST, f"joint_velocity[{fast[0]}] = "
+                              f"{message.joint_velocity[fast[0]]:.6g} rad/s; the JACO2 turns "
+                              f"at most {JACO_MAX_JOINT_SPEED:.3f} rad/s")
+    return message
+
+
+def has_joints(message) -> bool:
+    """False for the default (never received) message. Messages come through the checks
+    above, so any other has JACO_NUM_JOINTS joints."""
+    return message.num_joints == JACO_NUM_JOINTS
 
 
 class JacoCommandSender(LeafSystem):

@@ -3,7 +3,9 @@
 `AddJacoLcmDriver` is the hardware side (controller -> KINOVA_JACO_COMMAND,
 KINOVA_JACO_STATUS -> measured state); `AddJacoLcmEmulator` is the simulator answering
 commands with status, as Drake's hardware_sim does. Both need an `LcmInterfaceSystem` for
-the same `lcm` in the diagram (or another pump of its subscriptions).
+the same `lcm` in the diagram (or another pump of its subscriptions). What each receives
+crosses a MessageBoundary (hardware/message_boundary.py, jaco_lcm's checks): a malformed
+message is counted in `boundary` and skipped, and the receiver keeps the last good one.
 """
 
 import dataclasses
@@ -14,7 +16,10 @@ from pydrake.systems.lcm import LcmPublisherSystem, LcmSubscriberSystem
 
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD, JACO_STATUS_CHANNEL, JacoCommandReceiver,
-    JacoCommandSender, JacoStatusReceiver, JacoStatusSender)
+    JacoCommandSender, JacoStatusReceiver, JacoStatusSender, check_jaco_command,
+    check_jaco_status)
+from tegrasp_drake.hardware.lcm_boundary import CheckedLcmSubscriber
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.rig.jaco_velocity_tracker import (
     JacoVelocityTracker, JacoVelocityTrackerConfig)
 
@@ -29,6 +34,7 @@ class JacoLcmDriverSystems:
     command_publisher: LcmPublisherSystem
     status_subscriber: LcmSubscriberSystem
     status_receiver: JacoStatusReceiver
+    status_boundary: MessageBoundary  # the KINOVA_JACO_STATUS messages' counts
 
 
 @dataclasses.dataclass
@@ -38,21 +44,25 @@ class JacoLcmEmulatorSystems:
     command_receiver: JacoCommandReceiver
     status_sender: JacoStatusSender
     status_publisher: LcmPublisherSystem
+    command_boundary: MessageBoundary  # the KINOVA_JACO_COMMAND messages' counts
 
 
 def AddJacoLcmDriver(builder: DiagramBuilder, *, lcm, prefix: str = "jaco",
                      tracker_config: JacoVelocityTrackerConfig | None = None,
-                     publish_period: float = JACO_LCM_PERIOD) -> JacoLcmDriverSystems:
+                     publish_period: float = JACO_LCM_PERIOD,
+                     boundary: MessageBoundary | None = None) -> JacoLcmDriverSystems:
     """Adds tracker -> command sender -> publisher and subscriber -> status receiver;
-    the tracker's position feedback comes from the status receiver."""
+    the tracker's position feedback comes from the status receiver. The status messages
+    cross `boundary` (a new one by default), checked by check_jaco_status."""
     tracker = builder.AddNamedSystem(f"{prefix}_velocity_tracker",
                                      JacoVelocityTracker(tracker_config))
     sender = builder.AddNamedSystem(f"{prefix}_command_sender", JacoCommandSender())
     publisher = builder.AddNamedSystem(f"{prefix}_command_publisher", LcmPublisherSystem.Make(
         channel=JACO_COMMAND_CHANNEL, lcm_type=lcmt_jaco_command, lcm=lcm,
         publish_period=publish_period))
-    subscriber = builder.AddNamedSystem(f"{prefix}_status_subscriber", LcmSubscriberSystem.Make(
-        channel=JACO_STATUS_CHANNEL, lcm_type=lcmt_jaco_status, lcm=lcm))
+    boundary = boundary or MessageBoundary(f"arm: {JACO_STATUS_CHANNEL}", check_jaco_status)
+    subscriber = builder.AddNamedSystem(f"{prefix}_status_subscriber", CheckedLcmSubscriber(
+        channel=JACO_STATUS_CHANNEL, lcm_type=lcmt_jaco_status, boundary=boundary, lcm=lcm))
     receiver = builder.AddNamedSystem(f"{prefix}_status_receiver", JacoStatusReceiver())
     builder.Connect(subscriber.get_output_port(), receiver.GetInputPort("lcmt_jaco_status"))
     builder.Connect(receiver.GetOutputPort("position_measured"),
@@ -60,18 +70,23 @@ def AddJacoLcmDriver(builder: DiagramBuilder, *, lcm, prefix: str = "jaco",
     builder.Connect(tracker.GetOutputPort("commanded_state"),
                     sender.GetInputPort("desired_state"))
     builder.Connect(sender.GetOutputPort("lcmt_jaco_command"), publisher.get_input_port())
-    return JacoLcmDriverSystems(tracker, sender, publisher, subscriber, receiver)
+    return JacoLcmDriverSystems(tracker, sender, publisher, subscriber, receiver, boundary)
 
 
 def AddJacoLcmEmulator(builder: DiagramBuilder, *, lcm, desired_state_input: InputPort,
                        position_output: OutputPort, velocity_output: OutputPort,
                        torque_output: OutputPort, prefix: str = "jaco_emulator",
                        command_timeout: float = 0.05,
-                       publish_period: float = JACO_LCM_PERIOD) -> JacoLcmEmulatorSystems:
+                       publish_period: float = JACO_LCM_PERIOD,
+                       boundary: MessageBoundary | None = None) -> JacoLcmEmulatorSystems:
     """Adds subscriber -> command receiver -> `desired_state_input` and the measured
-    outputs -> status sender -> publisher (the simulated arm's side of the bus)."""
-    subscriber = builder.AddNamedSystem(f"{prefix}_command_subscriber", LcmSubscriberSystem.Make(
-        channel=JACO_COMMAND_CHANNEL, lcm_type=lcmt_jaco_command, lcm=lcm))
+    outputs -> status sender -> publisher (the simulated arm's side of the bus). The
+    commands cross `boundary` (a new one by default), checked by check_jaco_command."""
+    boundary = boundary or MessageBoundary(f"jaco: {JACO_COMMAND_CHANNEL}",
+                                           check_jaco_command)
+    subscriber = builder.AddNamedSystem(f"{prefix}_command_subscriber", CheckedLcmSubscriber(
+        channel=JACO_COMMAND_CHANNEL, lcm_type=lcmt_jaco_command, boundary=boundary,
+        lcm=lcm))
     receiver = builder.AddNamedSystem(f"{prefix}_command_receiver",
                                       JacoCommandReceiver(command_timeout=command_timeout))
     sender = builder.AddNamedSystem(f"{prefix}_status_sender", JacoStatusSender())
@@ -85,4 +100,4 @@ def AddJacoLcmEmulator(builder: DiagramBuilder, *, lcm, desired_state_input: Inp
     builder.Connect(velocity_output, sender.GetInputPort("velocity_measured"))
     builder.Connect(torque_output, sender.GetInputPort("torque_measured"))
     builder.Connect(sender.GetOutputPort("lcmt_jaco_status"), publisher.get_input_port())
-    return JacoLcmEmulatorSystems(subscriber, receiver, sender, publisher)
+    return JacoLcmEmulatorSystems(subscriber, receiver, sender, publisher, boundary)

@@ -10,8 +10,12 @@ The thread owns a pymodbus serial RTU client (115200 8N1, slave 9) and:
 
 The caller only exchanges values under a lock: `set_command()` stores the request,
 `latest_status()` returns the newest status with its arrival time (`time.monotonic()`
-[s]). Failed transactions are counted and skipped; a gripper that stops answering shows as
-a status whose arrival time stops advancing.
+[s]). Every answer crosses a MessageBoundary (hardware/message_boundary.py) before it is
+used: `check_answer` refuses, by reason, no answer, an exception response, an answer of
+another function (a function-3 answer to a function-4 read, a read answering a write), a
+status of other than 3 registers, and a write echo of another address or count. A failed
+transaction is counted and skipped, the newest good status kept; a gripper that stops
+answering shows as a status whose arrival time stops advancing.
 """
 
 import dataclasses
@@ -23,6 +27,8 @@ from pymodbus import FramerType
 from pymodbus.client import ModbusSerialClient
 from pymodbus.exceptions import ModbusException
 
+from tegrasp_drake.hardware.message_boundary import (
+    UNDECODABLE, MessageBoundary, RejectedMessage)
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import units
 from tegrasp_drake.robotiq import registers
@@ -62,12 +68,39 @@ class RobotiqStatusSample:
 
 @dataclasses.dataclass
 class RobotiqModbusCounters:
-    """Transaction counters (read them with `RobotiqModbusClient.counters()`)."""
+    """Transaction counters (read them with `RobotiqModbusClient.counters()`); `errors`
+    is every failed transaction, `rejected` the same by reason."""
     writes: int = 0
     reads: int = 0
     errors: int = 0
     overruns: int = 0  # loop iterations that started late by more than one period
     last_error: str = ""
+    rejected: dict = dataclasses.field(default_factory=dict)  # reason -> count
+
+
+NO_ANSWER = "no answer"
+EXCEPTION_RESPONSE = "exception response"
+WRONG_FUNCTION = "wrong function"
+WRONG_REGISTER_COUNT = "wrong register count"
+WRONG_ECHO = "wrong write echo"
+
+
+def check_answer(response, function: int, address: int, count: int):
+    """`response` (pymodbus's, to a request of `function` for `count` registers at
+    `address`) when it answers that request, else RejectedMessage naming why."""
+    if response.isError():
+        raise RejectedMessage(EXCEPTION_RESPONSE, str(response))
+    if response.function_code != function:
+        raise RejectedMessage(WRONG_FUNCTION, f"a function {response.function_code} answer "
+                              f"to a function {function} request")
+    if function == 16:
+        if (response.address, response.count) != (address, count):
+            raise RejectedMessage(WRONG_ECHO, f"the write of {count} registers at {address} "
+                                  f"echoed as {response.count} at {response.address}")
+    elif len(response.registers) != count:
+        raise RejectedMessage(WRONG_REGISTER_COUNT, f"{len(response.registers)} registers "
+                              f"answering a read of {count}")
+    return response
 
 
 class RobotiqModbusClient:
@@ -86,6 +119,7 @@ class RobotiqModbusClient:
         self._sample = None
         self._error = None
         self._counters = RobotiqModbusCounters()
+        self.boundary = MessageBoundary(f"gripper: {config.port}", check_answer)
 
     @property
     def port(self) -> str:
@@ -124,8 +158,11 @@ class RobotiqModbusClient:
             return self._sample
 
     def counters(self) -> RobotiqModbusCounters:
+        answers = self.boundary.counters()
         with self._lock:
-            return dataclasses.replace(self._counters)
+            return dataclasses.replace(self._counters, errors=answers.rejected_total,
+                                       last_error=answers.last_rejection,
+                                       rejected=answers.rejected)
 
     @property
     def error(self) -> str | None:
@@ -169,23 +206,23 @@ class RobotiqModbusClient:
             client.close()
             self._finished.set()
 
-    def _transaction(self, function, *args, **kwargs):
-        """One request; returns the response or None (counted as an error)."""
+    def _transaction(self, request, function: int, address: int, register_count: int,
+                     **kwargs):
+        """One request (of `function` for `register_count` registers at `address`);
+        returns the checked answer, or None (counted by the boundary)."""
         try:
-            response = function(*args, device_id=self._config.device_id, **kwargs)
+            response = request(address, device_id=self._config.device_id, **kwargs)
         except ModbusException as exc:
-            response, message = None, str(exc)
-        else:
-            message = str(response) if response.isError() else ""
-        if message:
-            with self._lock:
-                self._counters.errors += 1
-                self._counters.last_error = message
+            self.boundary.reject(NO_ANSWER, str(exc))
             return None
-        return response
+        except Exception as exc:  # noqa: BLE001: bytes pymodbus could not make sense of
+            self.boundary.reject(UNDECODABLE, f"{type(exc).__name__}: {exc}")
+            return None
+        return self.boundary.accept(response, function, address, register_count)
 
     def _write(self, client, words) -> bool:
-        ok = self._transaction(client.write_registers, registers.COMMAND_ADDRESS, words)
+        ok = self._transaction(client.write_registers, 16, registers.COMMAND_ADDRESS,
+                               len(words), values=words)
         if ok is not None:
             with self._lock:
                 self._counters.writes += 1
@@ -194,9 +231,10 @@ class RobotiqModbusClient:
     def _read(self, client) -> RobotiqStatusSample | None:
         read = (client.read_input_registers if self._config.read_function == 4
                 else client.read_holding_registers)
-        response = self._transaction(read, registers.STATUS_ADDRESS,
+        response = self._transaction(read, self._config.read_function,
+                                     registers.STATUS_ADDRESS, registers.REGISTER_COUNT,
                                      count=registers.REGISTER_COUNT)
-        if response is None or len(response.registers) != registers.REGISTER_COUNT:
+        if response is None:
             return None
         with self._lock:
             self._counters.reads += 1

@@ -1,0 +1,123 @@
+"""The one boundary every message from a device crosses: decode, check, count, skip.
+
+What a device sends is untrusted: a bus carries other programs' messages and stray bytes,
+a serial line carries noise, firmware can report NaN. Every inbound path goes through a
+`MessageBoundary`: the arm's KINOVA_JACO_STATUS (hardware/jaco), the emulated arm's
+KINOVA_JACO_COMMAND and the other emulators' bus messages, the gripper's Modbus answers
+(hardware/robotiq) and the emulated gripper's requests (emulators/robotiq_emulator.py).
+The myRIO frame decoder (hardware/myrio/tactile_frame.py) follows the same rule with its own
+counters. The rule:
+
+- a boundary's `check(message, ...)` returns the decoded value, already checked (size,
+  type, counts, finite values, physical ranges), or raises `RejectedMessage(reason,
+  detail)`; any other exception a check raises on untrusted bytes (a generated decoder's
+  struct.error, say) is a rejection too, counted as "undecodable";
+- a rejected message is counted under its reason, and skipped: `accept` returns None and
+  the receiver keeps its last good value. A device that sends nothing usable therefore
+  looks like a silent device, which the watchdog (hardware/watchdog.py) handles; a
+  message never raises out of a boundary, so a device stream never ends a run;
+- the counts are surfaced as the myRIO decoder's are: `counters()` snapshots go into the
+  run's final report and its result.json, and `new_rejections()` hands over each reason
+  the first time it is seen, for one live line per reason.
+
+Thread-safe: a reader thread may accept while the control loop reads the counters.
+"""
+
+import dataclasses
+import threading
+from collections.abc import Callable
+
+# Reasons shared by several boundaries (a check may name others).
+UNDECODABLE = "undecodable"
+
+
+class RejectedMessage(ValueError):
+    """A message a boundary refuses: `reason` is the short name it is counted under
+    ("wrong type", "not finite"), `detail` what exactly was wrong."""
+
+    def __init__(self, reason: str, detail: str):
+        super().__init__(f"{reason}: {detail}")
+        self.reason = reason
+        self.detail = detail
+
+
+@dataclasses.dataclass
+class MessageCounters:
+    """What a boundary let through and what it threw away, by reason."""
+    accepted: int = 0
+    rejected: dict = dataclasses.field(default_factory=dict)  # reason -> count
+    last_rejection: str = ""
+
+    @property
+    def rejected_total(self) -> int:
+        return sum(self.rejected.values())
+
+    def summary(self, noun: str = "messages") -> str:
+        """E.g. "2001 messages, 3 rejected (wrong type 2, not finite 1)"."""
+        text = f"{self.accepted} {noun}, {self.rejected_total} rejected"
+        if self.rejected:
+            text += " (" + ", ".join(f"{reason} {count}" for reason, count
+                                     in sorted(self.rejected.items())) + ")"
+        return text
+
+
+class MessageBoundary:
+    """Checks messages from one source (module docstring).
+
+    source: who sends them, as a log line names it ("arm: KINOVA_JACO_STATUS");
+    check: check(message, *args) -> the checked value, or raises RejectedMessage."""
+
+    def __init__(self, source: str, check: Callable | None = None):
+        self.source = source
+        self._check = check
+        self._lock = threading.Lock()
+        self._counters = MessageCounters()
+        self._unreported = []  # RejectedMessage of reasons not yet handed to new_rejections
+
+    def accept(self, message, *args):
+        """The checked value of `message`, or None (counted) when it is rejected."""
+        try:
+            value = self._check(message, *args)
+        except RejectedMessage as rejection:
+            self._count(rejection)
+            return None
+        except Exception as e:  # noqa: BLE001: untrusted bytes must never raise out
+            self._count(RejectedMessage(UNDECODABLE, f"{type(e).__name__}: {e}"))
+            return None
+        self.count_accepted()
+        return value
+
+    def count_accepted(self, count: int = 1) -> None:
+        """Counts messages accepted outside `accept` (a framer that checks on its own)."""
+        with self._lock:
+            self._counters.accepted += count
+
+    def reject(self, reason: str, detail: str) -> None:
+        """Counts a rejection found outside `check` (e.g. a transaction with no answer)."""
+        self._count(RejectedMessage(reason, detail))
+
+    def _count(self, rejection: RejectedMessage) -> None:
+        with self._lock:
+            counts = self._counters.rejected
+            if rejection.reason not in counts:
+                self._unreported.append(rejection)
+            counts[rejection.reason] = counts.get(rejection.reason, 0) + 1
+            self._counters.last_rejection = str(rejection)
+
+    def counters(self) -> MessageCounters:
+        """A snapshot of the counts."""
+        with self._lock:
+            return dataclasses.replace(self._counters,
+                                       rejected=dict(self._counters.rejected))
+
+    def new_rejections(self) -> list[RejectedMessage]:
+        """The first rejection of each reason seen since the last call (each reason once
+        in the boundary's life), for a live line; the counts hold the rest."""
+        with self._lock:
+            new, self._unreported = self._unreported, []
+        return new
+
+    def describe(self, rejection: RejectedMessage) -> str:
+        """One line for the first rejection of a reason."""
+        return (f"{self.source}: skipped a message ({rejection}); messages like it are "
+                "skipped and counted")
