@@ -52,16 +52,23 @@ PATH_ARGUMENTS = ("scenario", "events", "out", "html", "spec", "logs", "trial",
                   "write_config", "config", "log", "source")
 
 
-def refuse_empty_paths(parser: argparse.ArgumentParser, args) -> None:
-    """Exits with a usage error naming the first path argument of `args` given as ''."""
+def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
+    """Exits with a usage error naming the first argument of `args` given as '' (alone or
+    in a repeated option's list): an empty path, object or scenario name is a mistake (an
+    unset shell variable), never taken as "not given", the default or the current folder."""
     subparsers = next(a for a in parser._actions
                       if isinstance(a, argparse._SubParsersAction))
     command = subparsers.choices[args.command]
     for action in command._actions:
-        if action.dest in PATH_ARGUMENTS and getattr(args, action.dest, None) == "":
-            name = action.option_strings[0] if action.option_strings else action.metavar
-            command.exit(2, f"{command.prog}: error: {name} '' is empty; give a file or "
-                            "folder name\n")  # one line, as a command's own refusals
+        value = getattr(args, action.dest, None)
+        if action.default == "" or not (value == "" or (isinstance(value, list)
+                                                         and "" in value)):
+            continue
+        name = (action.option_strings[0] if action.option_strings
+                else action.metavar or action.dest)
+        what = ("a file or folder name" if action.dest in PATH_ARGUMENTS else
+                f"a value, or leave {name} out" if action.option_strings else "a value")
+        command.exit(2, f"{command.prog}: error: {name} '' is empty; give {what}\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -91,7 +98,7 @@ def main(argv=None) -> int:
         try:
             parser = build_parser()
             args = parser.parse_args(argv)
-            refuse_empty_paths(parser, args)
+            refuse_empty_values(parser, args)
             configure_logging(args)
             return int(args.func(args) or 0)
         except KeyboardInterrupt as interrupt:

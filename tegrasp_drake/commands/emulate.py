@@ -34,6 +34,11 @@ from tegrasp_drake.rig.files import folder_problem
 
 DEVICES = (*EMULATED_DEVICES, "all")
 GFLT_MAX = 0xF  # the Robotiq status register's fault field is 4 bits
+# The options only some devices use, by `dest`: given to a device that does not use them,
+# they are refused rather than ignored.
+DEVICE_OPTIONS = {"trial": ("--trial", "myrio"), "sync": ("--sync", "myrio"),
+                  "follow_gripper": ("--follow-gripper", "myrio"),
+                  "inject_fault": ("--inject-fault", "robotiq")}
 
 
 EPILOG = """\
@@ -122,12 +127,22 @@ def _check_config_target(path) -> None:
                          "a folder you can write")
 
 
+def _refuse_unused_options(args, devices) -> None:
+    """Exits naming the first option given that none of `devices` uses (DEVICE_OPTIONS)."""
+    for dest, (option, device) in DEVICE_OPTIONS.items():
+        if getattr(args, dest) is not None and device not in devices:
+            raise SystemExit(f"tegrasp: error: {option} applies to `emulate {device}` and "
+                             f"`emulate all`; `emulate {args.device}` does not use it, so "
+                             f"leave {option} out")
+
+
 def run(args) -> int:
     from tegrasp_drake.emulators.myrio_emulator import TactileRecordingError
     quiet_modbus_library()
     def out(line):
         print(line, flush=True)
 
+    _refuse_unused_options(args, EMULATED_DEVICES if args.device == "all" else (args.device,))
     scenario = scenario_from_arguments(args)
     if args.write_config:
         _check_config_target(args.write_config)

@@ -57,7 +57,8 @@ from tegrasp_drake.rig.npz_headers import MAX_TRIAL_LOG_BYTES, checked_npz_array
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
-from tegrasp_drake.scenario.trial_log_file import nonfinite_signals
+from tegrasp_drake.scenario.trial_log_file import (TrialLogError, load_trial_log,
+                                                   trial_arrays_problem)
 from tegrasp_drake.emulators.null_modem import open_raw_pty
 
 MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 kHz)
@@ -92,34 +93,31 @@ class TactileRecordingError(ValueError):
 def load_tactile_recording(path) -> TactileRecording:
     """The pad signals of a TrialLog .npz: taxel forces (t_sa, taxels: left then right) and
     pad accelerations (t_ra, pad_acceleration: left x, y, z then right), and the gripper's
-    position requests (t_slow, gripper_command's rPR) when the file holds them; no other
-    array is needed."""
+    position requests (t_slow, gripper_command's rPR) when the file holds them. A whole
+    trial log (one with its `meta`) is read by load_trial_log, the reader of every other
+    command; a recording of these arrays alone (save_tactile_recording) meets the same
+    rules for the arrays it holds (trial_arrays_problem)."""
+    wanted = ("t_sa", "taxels", "t_ra", "pad_acceleration")
     try:
-        arrays = checked_npz_arrays(path, ("t_sa", "taxels", "t_ra", "pad_acceleration"),
-                                    optional=("channels", "t_slow", "gripper_command"),
-                                    max_bytes=MAX_TRIAL_LOG_BYTES)
-        t_sa, taxels = arrays["t_sa"], arrays["taxels"]
-        t_ra, acceleration = arrays["t_ra"], arrays["pad_acceleration"]
+        arrays = checked_npz_arrays(path, wanted, optional=(
+            "meta", "channels", "t_slow", "gripper_command"), max_bytes=MAX_TRIAL_LOG_BYTES,
+            text=("meta",))
     except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:
         raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
                                     f"and pad_acceleration (or it is truncated or corrupt): "
                                     f"{type(e).__name__}: {e}") from None
-    problem = nonfinite_signals(arrays)  # as every reader of a trial log refuses them
+    if "meta" in arrays:
+        try:
+            log = load_trial_log(path)
+        except TrialLogError as e:
+            raise TactileRecordingError(str(e)) from None
+        arrays = {name: getattr(log, name) for name in (*wanted, "t_slow", "gripper_command")}
+    t_sa, taxels = arrays["t_sa"], arrays["taxels"]
+    t_ra, acceleration = arrays["t_ra"], arrays["pad_acceleration"]
+    problem = trial_arrays_problem(arrays)
     if problem:
         raise TactileRecordingError(f"'{path}': {problem}; it cannot be streamed (run the "
                                     "trial again to remake it)")
-    for times, values, names in ((t_sa, taxels, "t_sa and taxels"),
-                                 (t_ra, acceleration, "t_ra and pad_acceleration")):
-        if (times.ndim != 1 or len(times) < 2 or values.ndim != 2
-                or len(values) != len(times) or not np.all(np.isfinite(values))
-                or not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0)):
-            raise TactileRecordingError(
-                f"'{path}': {names} must be increasing finite times and as many rows of "
-                f"finite values (got {times.shape} and {values.shape})")
-    if taxels.shape[1] != 2 * TAXELS_PER_PAD or acceleration.shape[1] != 6:
-        raise TactileRecordingError(f"'{path}': taxels must have {2 * TAXELS_PER_PAD} columns "
-                                    f"and pad_acceleration 6 (got {taxels.shape[1]} and "
-                                    f"{acceleration.shape[1]})")
     gripper_times, gripper_requests = _gripper_requests(path, arrays)
     return TactileRecording(t_sa, taxels[:, :TAXELS_PER_PAD], taxels[:, TAXELS_PER_PAD:],
                             t_ra, acceleration[:, :3], acceleration[:, 3:],

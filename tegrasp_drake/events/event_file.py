@@ -18,8 +18,8 @@ import pathlib
 import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
-from tegrasp_drake.rig.files import (DuplicateKeyError, InputTooLargeError, load_json,
-                                     one_line, read_bounded)
+from tegrasp_drake.rig.files import (DuplicateKeyError, InputTooLargeError, JsonValueError,
+                                     load_json, one_line, read_bounded)
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -121,7 +121,7 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
     except json.JSONDecodeError as error:
         raise MemorizedEventError(
             path, f"is not valid JSON, perhaps truncated ({error})", object_name) from None
-    except DuplicateKeyError as error:
+    except (DuplicateKeyError, JsonValueError) as error:
         raise MemorizedEventError(path, str(error), object_name) from None
     except RecursionError:
         raise MemorizedEventError(path, "nests too deeply to be an event file or index",

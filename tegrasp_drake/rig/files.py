@@ -13,7 +13,8 @@
   same `finally` blocks remove a run's staging files.
 - UserPathError: a file or folder the user named cannot be used; its message is one line
   naming it and what to do, and the CLI boundary (cli.py) prints it as an error.
-- load_json: the one way a user's JSON file becomes data (a duplicate key is refused).
+- load_json: the one way a user's JSON file becomes data (a duplicate key, NaN, Infinity
+  and an integer no float holds are refused).
 - one_line: how an error message quotes user text (control characters escaped).
 
 Files are made with the permissions the umask gives (as `open` would), not mkstemp's 0600.
@@ -25,6 +26,7 @@ import os
 import pathlib
 import signal
 import stat
+import sys
 import tempfile
 import threading
 
@@ -307,9 +309,33 @@ def _refuse_duplicate_keys(pairs):
     return data
 
 
+class JsonValueError(ValueError):
+    """A JSON text holds a value that is not JSON or not a number this package can hold:
+    NaN or Infinity (Python's json writes and reads them; the JSON standard, RFC 8259 6,
+    has no such numbers), or an integer beyond the range of a float."""
+
+
+def _refuse_nonstandard_constant(name: str):
+    raise JsonValueError(f"holds {name}, which is not a JSON number (RFC 8259); write a "
+                         "finite number")
+
+
+def _float_ranged_int(text: str) -> int:
+    """A JSON integer, refused when no float holds it (every number this package reads is
+    a float64; Python's own limit on integer text, 4300 digits, is beyond that)."""
+    digits = len(text.lstrip("-"))
+    if digits > sys.float_info.max_10_exp + 1 or abs(int(text)) > sys.float_info.max:
+        raise JsonValueError(f"holds an integer of {digits} digits, beyond the range of a "
+                             "float; write a finite number")
+    return int(text)
+
+
 def load_json(text: str | bytes):
     """The data of a user's JSON text: json.loads, refusing a duplicate key
-    (DuplicateKeyError, a ValueError) as YAML files do; json.JSONDecodeError and
-    RecursionError as json.loads raises them."""
+    (DuplicateKeyError, a ValueError) as YAML files do, and NaN, Infinity or an integer no
+    float holds (JsonValueError, a ValueError); json.JSONDecodeError and RecursionError as
+    json.loads raises them."""
     import json
-    return json.loads(text, object_pairs_hook=_refuse_duplicate_keys)
+    return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
+                      parse_constant=_refuse_nonstandard_constant,
+                      parse_int=_float_ranged_int)

@@ -28,6 +28,7 @@ from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardwa
 from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
 from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.files import file_problem
 from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, check_times_resolved,
                                       declare_ranges, shorten)
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
@@ -205,8 +206,14 @@ def _check_model_file(file: str, source: str) -> None:
     from pydrake.multibody.plant import MultibodyPlant
     if not file:
         raise ConfigError(f"{source}: field 'object.file' is required for shape 'file'")
-    if not file.startswith("package://") and not pathlib.Path(file).is_file():
-        raise ConfigError(f"{source}: field 'object.file': model file '{file}' does not exist")
+    if not file.startswith("package://"):
+        # What the path is, in words: "does not exist", "is a folder, not a file", "is a
+        # named pipe (FIFO)", "is a device" (a model file is never /dev/null or /dev/zero).
+        problem = file_problem(file) or (None if pathlib.Path(file).is_file() else
+                                         "is a device, not a file; give a regular file")
+        if problem:
+            raise ConfigError(f"{source}: field 'object.file': model file '{file}' "
+                              f"{problem}")
     plant = MultibodyPlant(time_step=0.0)
     parser = paths.make_parser(plant)
     try:

@@ -107,7 +107,7 @@ def load_trial_log(path: PathLike) -> TrialLog:
         version = meta.get("format_version") if isinstance(meta, dict) else None
         raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
                             f"reads {FORMAT_VERSION}")
-    problem = _shape_problem(arrays) or meta_problem(meta, arrays["phase"])
+    problem = trial_arrays_problem(arrays) or meta_problem(meta, arrays["phase"])
     if problem:
         raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
     return TrialLog(meta=meta, **arrays)
@@ -159,15 +159,23 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
                           "gripper_status": 8, "phase": None, "object_state": 13}}
 
 
-def _shape_problem(arrays: dict) -> str | None:
-    """What is wrong with the shapes or values of a trial log's arrays, or None."""
+def trial_arrays_problem(arrays: dict) -> str | None:
+    """What is wrong with the shapes or values of the trial-log arrays present in `arrays`
+    (a whole log's, or the part of one a reader loads, such as the myRIO emulator's), or
+    None: each time base at least two finite, increasing times, each array sampled at it
+    one row per time with its columns, and the signals finite. The one rule set for the
+    arrays of a trial log: every reader applies it, so that a log one refuses none takes."""
     for time_name, columns in _TIME_BASES.items():
+        if time_name not in arrays:
+            continue
         times = arrays[time_name]
         if times.ndim != 1 or len(times) < 2:
             return f"'{time_name}' holds {times.size} time(s); a trial needs at least two"
         if not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
             return f"'{time_name}' is not a finite, increasing list of times"
         for name, width in columns.items():
+            if name not in arrays:
+                continue
             array = arrays[name]
             expected = (len(times),) if width is None else (len(times), width)
             if array.shape != expected:

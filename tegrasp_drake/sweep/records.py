@@ -27,8 +27,8 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import (DuplicateKeyError, UserPathError, load_json, read_bounded,
-                                     write_atomically)
+from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, UserPathError,
+                                     load_json, read_bounded, write_atomically)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 RECORD_FORMAT = "tegrasp-sweep-record"
@@ -161,7 +161,7 @@ def read_record(path) -> tuple[dict | None, str | None]:
         record = load_json(text)
     except json.JSONDecodeError as error:
         return None, f"not valid JSON (partial write?): {error}"
-    except DuplicateKeyError as error:
+    except (DuplicateKeyError, JsonValueError) as error:
         return None, str(error)
     except RecursionError:
         return None, "nests too deeply to be a trial record"
