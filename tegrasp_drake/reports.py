@@ -4,17 +4,21 @@ detection latencies)."""
 
 from pathlib import Path
 from collections.abc import Sequence
+from typing import Annotated
 
 from tegrasp_drake.sweep.offset_table import write_offset_table
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.summary import write_summary
 from tegrasp_drake.sweep.table import write_statistics, write_table1
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.rig.api_boundary import UPDATED_FOLDER, PathLike, public_api
+from tegrasp_drake.rig.ranges import Choice
 
 
 @public_api
-def write_reports(out_dir: PathLike, trial_ids: Sequence[str] | None = None, *,
-                  figure_format: str = "png") -> list[Path]:
+def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
+                  trial_ids: Sequence[str] | None = None, *,
+                  figure_format: Annotated[str, Choice(FIGURE_FORMATS)] = "png") -> list[Path]:
     """Writes table1.md/.csv, statistics.md/.json, summary.md, success_by_offset.md/.csv and
     the figures success_maps, table1_vs_paper and latency (in `figure_format`: png, pdf or
     svg) into `out_dir`.

@@ -93,12 +93,14 @@ def test_a_log_given_to_plot_events_is_refused(tmp_path, capfd):
     assert_one_line_error(code, text, "takes no LOG", "--events DIR")
 
 
-def test_records_of_a_file_are_refused(tmp_path):
+def test_records_of_a_file_or_of_no_folder_are_refused(tmp_path):
     log = tmp_path / "trial.npz"
     log.write_bytes(b"PK")
-    with pytest.raises(files.UserPathError, match="is not a results folder"):
+    with pytest.raises(files.UserPathError, match="'out_dir'.*is a file, not a folder"):
         tegrasp_drake.load_records(log)
-    assert tegrasp_drake.load_records(tmp_path / "not yet").records == {}
+    with pytest.raises(files.UserPathError, match="'out_dir'.*does not exist"):
+        tegrasp_drake.load_records(tmp_path / "not yet")
+    assert tegrasp_drake.load_records(tmp_path).records == {}
 
 
 def test_a_sweep_spec_refuses_a_string_for_a_list():

@@ -29,7 +29,10 @@ def test_started_devices_are_reported_as_hardware_config_fields(tmp_path):
         assert config.tactile.port == devices["tactile"]["port"]
         assert config.arm.lcm_url == "memq://"
         assert devices_from_line(emulators.devices_line()) == devices
-    assert [line.split(":")[0] for line in lines] == ["robotiq", "myrio"]
+    started, closed = lines[:2], lines[2:]
+    assert [line.split(":")[0] for line in started] == ["robotiq", "myrio"]
+    # On closing, what the gripper received: its requests, none of them malformed.
+    assert closed == ["robotiq: Modbus requests: 0 messages, 0 rejected"]
 
 
 def test_devices_line_is_the_only_line_read_as_data():

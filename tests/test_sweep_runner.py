@@ -138,7 +138,7 @@ def test_bad_input_stops_before_anything_runs(tmp_path):
         run_sweep(SweepSpec(grid=()), fake_trial, out_dir, progress=False)
     with pytest.raises(SweepError, match="module-level"):
         run_sweep(SMALL, lambda trial: fake_trial(trial), out_dir, progress=False)
-    with pytest.raises(SweepError, match="at least 1"):
+    with pytest.raises(ValueError, match="argument 'workers' must be at least 1"):
         run_sweep(SMALL, fake_trial, out_dir, workers=0, progress=False)
     assert not out_dir.exists()
 

@@ -13,6 +13,7 @@ With the memorized events the live diagram follows the paper's Fig. 3:
 """
 
 import dataclasses
+from typing import Annotated
 
 from pydrake.systems.primitives import Multiplexer
 from pydrake.systems.framework import DiagramBuilder
@@ -38,6 +39,7 @@ from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.control.controller_registry import (ControllerConfig, ControllerEntry,
                                                        controller_entry)
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
+from tegrasp_drake.rig.ranges import Range
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
 _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
@@ -159,9 +161,10 @@ def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channe
 @public_api
 def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
                        plan: GraspPlan, station: System, arm: ArmDriverConfig,
-                       sample_rates_hz: tuple[float, float], events: dict | None = None,
-                       corrective_events: dict | None = None,
-                       ra_noise_std_mps2: float = 0.0,
+                       sample_rates_hz: Annotated[tuple[float, float], Range(
+                           low=0.0, low_open=True, unit="Hz")],
+                       events: dict | None = None, corrective_events: dict | None = None,
+                       ra_noise_std_mps2: Annotated[float, Range(low=0.0, unit="m/s^2")] = 0.0,
                        tactile: TactileSensorConfig | None = None) -> GraspController:
     """Adds the controller configured by `controller` (a ControllerConfig), as its entry in
     control/controller_registry.py says, and connects it to `station`'s ports; returns its

@@ -8,7 +8,9 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import check_field_values, public_api, public_dataclass
+from tegrasp_drake.rig.ranges import Range, bounded
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import template_is_flat
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
@@ -22,6 +24,9 @@ from tegrasp_drake.tactile.sampling import resample_window
 from tegrasp_drake.tactile.window_normalizer import (
     ConnectWindowChannels, RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
 
+# Eq. 3 scores are correlations, in [-1, 1]: a threshold outside never or always passes.
+SCORE_RANGE = dict(low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
+
 
 @public_dataclass
 @dataclasses.dataclass
@@ -31,33 +36,49 @@ class EventMatcherConfig:
     A channel passes when its score is greater than its threshold; min_contrast is the
     live contrast a channel needs for its score to count (correlation.py), > 0.
     """
-    sa_threshold: float = 0.9
-    ra_threshold: float = 0.7
+    sa_threshold: float = bounded(0.9, **SCORE_RANGE)
+    ra_threshold: float = bounded(0.7, **SCORE_RANGE)
     # {transition: (sa, ra)} thresholds of single events, in place of the two above (the
-    # taxel_aware controller's ensemble events, chosen per transition); {}: none.
+    # taxel_aware controller's ensemble events, chosen per transition); {}: none. Each in
+    # SCORE_RANGE (checked by EventMatcher).
     event_thresholds: Mapping[str, tuple[float, float]] = dataclasses.field(
         default_factory=dict)
-    min_contrast: float = 0.25
+    min_contrast: float = bounded(0.25, low=0.0, low_open=True, below="must be positive")
     # Beyond the paper: a flat template channel (the settled grip of Load-Lift's SA) scores
     # only a flat live window (correlation.py); False: the paper's Eq. 3.
     flat_template_needs_flat_window: bool = False
-    sa_rate_hz: float = 100.0
-    ra_rate_hz: float = 1000.0
+    sa_rate_hz: float = bounded(100.0, low=0.0, low_open=True, unit="Hz")
+    ra_rate_hz: float = bounded(1000.0, low=0.0, low_open=True, unit="Hz")
     # Block [s] in which a fast rate's samples are scored, one update per block (0: one
     # per sample; WindowNormalizerConfig.block_s). A match then shows at the block's end,
     # at most one block later than per sample.
-    block_s: float = 0.0
+    block_s: float = bounded(0.0, low=0.0, unit="s")
     # Cutoff [Hz] of the RA envelope that add_event_matcher puts on the memorized and the
     # live RA windows alike (events/ra_envelope.py); 0: none, Eq. 3 on the raw windows.
-    ra_envelope_hz: float = 0.0
+    ra_envelope_hz: float = bounded(0.0, low=0.0, unit="Hz")
     # The RA noise floor (events/ra_noise_floor.py): an RA window whose peak is not above
     # its channel's noise mean + ra_noise_floor_sigmas standard deviations (measured on the
     # stream's first ra_noise_quiet_s [s], after the envelope) scores 0; 0: no such gate.
     # A flat RA template (a quiet window, "expects no change") reads the floor whatever
     # this is: it scores 1 while the live window stays within the floor, Eq. 3 above it
     # (k: this, or the rule's k when 0).
-    ra_noise_floor_sigmas: float = 0.0
-    ra_noise_quiet_s: float = 2.0
+    ra_noise_floor_sigmas: float = bounded(0.0, low=0.0)
+    ra_noise_quiet_s: float = bounded(2.0, low=0.0, unit="s")
+
+
+def check_matcher_config(config: EventMatcherConfig) -> None:
+    """ConfigError or TypeError naming the first field of `config` that is not a number in
+    its range (check_field_values), or an event threshold that is not a pair in
+    SCORE_RANGE."""
+    check_field_values(config, "EventMatcher: config")
+    score = Range(**SCORE_RANGE)
+    for transition, pair in dict(config.event_thresholds).items():
+        if (not isinstance(pair, (tuple, list)) or len(pair) != 2 or not all(
+                isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+                and score.contains(x) for x in pair)):
+            raise ConfigError(f"EventMatcher: config: field 'event_thresholds.{transition}' "
+                              f"must be a pair (SA, RA) of numbers in [-1, 1] "
+                              f"({SCORE_RANGE['why']}), got {pair!r}")
 
 
 def event_templates(event: MemorizedEvent, channels: tuple[int, ...],
@@ -144,11 +165,11 @@ class EventMatcher(WindowNormalizer):
             SA and RA scores refer to different events.
     """
 
+    @public_api
     def __init__(self, events: Mapping[str, MemorizedEvent],
                  config: EventMatcherConfig | None = None):
         config = dataclasses.replace(config or EventMatcherConfig())
-        if not 0.0 < config.min_contrast:
-            raise ValueError(f"min_contrast {config.min_contrast} must be positive")
+        check_matcher_config(config)
         ordered_events = self._ordered_events(events)
         normalizer_config = window_normalizer_config(events, config)
         # One correlation per rate window, its state after the window in the rate's state.

@@ -8,6 +8,7 @@ layout).
 
 import os
 import pathlib
+from typing import Annotated
 from collections.abc import Iterable, Sequence
 
 from tegrasp_drake.rig.files import interruptions_deferred, staged_file
@@ -16,7 +17,7 @@ from tegrasp_drake.events.event_file import (
     event_json_text, event_summary, event_to_json, read_index, read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_order
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 
 
 def _sorted_events(events: Iterable[MemorizedEvent]) -> list[MemorizedEvent]:
@@ -24,7 +25,8 @@ def _sorted_events(events: Iterable[MemorizedEvent]) -> list[MemorizedEvent]:
 
 
 @public_api
-def save_memorized_events(events_dir: PathLike, events: Iterable[MemorizedEvent], *,
+def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
+                          events: Iterable[MemorizedEvent], *,
                           keep_other_objects: bool = True,
                           required: Sequence[str] = REQUIRED_TRANSITIONS) -> list[pathlib.Path]:
     """Write the events' files and the index; returns the paths written.

@@ -12,7 +12,8 @@ from collections.abc import Mapping
 import numpy as np
 
 import tegrasp_drake
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import check_field_values, public_dataclass
+from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
 from tegrasp_drake.tactile.sampling import samples_per_window
@@ -37,11 +38,12 @@ class MemorizedEvent:
     transition: str
     sa: np.ndarray
     ra: np.ndarray
-    sa_rate_hz: float  # [Hz]
-    ra_rate_hz: float  # [Hz]
-    window_s: float = 0.5  # [s]
-    pre_transition_s: float = 0.25  # [s]
-    transition_time_s: float = 0.0  # [s] in the source trial
+    sa_rate_hz: float = bounded(low=0.0, low_open=True, unit="Hz")
+    ra_rate_hz: float = bounded(low=0.0, low_open=True, unit="Hz")
+    window_s: float = bounded(0.5, low=0.0, low_open=True, unit="s")
+    # [s] from the window's start to the transition, within the window
+    pre_transition_s: float = bounded(0.25, low=0.0, unit="s")
+    transition_time_s: float = bounded(0.0, unit="s")  # in the source trial
     scenario: str = ""  # name or text of the scenario that produced the trial
     package_versions: Mapping[str, str] = dataclasses.field(default_factory=dict)
     # The object the event was felt on: {shape, size, mass, friction, file}
@@ -51,6 +53,7 @@ class MemorizedEvent:
     channel_names: tuple[str, ...] = CHANNEL_NAMES
 
     def __post_init__(self):
+        check_field_values(self)  # types of the text fields, ranges of the numbers
         if not _NAME_PATTERN.match(self.object_name):
             raise ValueError(f"object name '{self.object_name}' must match "
                              f"{_NAME_PATTERN.pattern} (it names a folder)")

@@ -7,9 +7,11 @@ finite values) follows it.
 
 Two ways in, for the two kinds of subscriber:
 - `CheckedLcmSubscriber`: Drake's LcmSubscriberSystem with a serializer that decodes
-  through a boundary. A rejected message leaves the subscriber's value as it was, so its
-  output keeps the last good message (whose unchanged utime the watchdog sees as
-  silence);
+  through a boundary's check. A rejected message leaves the subscriber's value as it was,
+  so its output keeps the last good message (whose unchanged utime the watchdog sees as
+  silence). The subscriber system keeps only the newest message that arrived between two
+  of its updates (its queue holds one), so the counting is done by a second subscription
+  to the channel that sees every message;
 - `checked_handler`: a callback for DrakeLcm.Subscribe or lcm.LCM.subscribe that calls
   `on_message` with checked messages only.
 """
@@ -44,8 +46,9 @@ def decode_lcm(lcm_type, data: bytes):
 
 
 class CheckedLcmSerializer(SerializerInterface):
-    """An LcmSubscriberSystem serializer that decodes through `boundary` (whose check
-    takes the bytes); a rejected message leaves the value unchanged (the last good one)."""
+    """An LcmSubscriberSystem serializer that decodes through `boundary`'s check (which
+    takes the bytes), counting nothing; a rejected message leaves the value unchanged
+    (the last good one)."""
 
     def __init__(self, lcm_type, boundary: MessageBoundary):
         SerializerInterface.__init__(self)
@@ -56,7 +59,7 @@ class CheckedLcmSerializer(SerializerInterface):
         return AbstractValue.Make(self._lcm_type())
 
     def Deserialize(self, data, abstract_value):
-        message = self._boundary.accept(data)
+        message = self._boundary.check_quietly(data)
         if message is not None:
             abstract_value.set_value(message)
 
@@ -66,7 +69,9 @@ class CheckedLcmSerializer(SerializerInterface):
 
 def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
                          lcm) -> LcmSubscriberSystem:
-    """Drake's LcmSubscriberSystem on `channel`, its messages through `boundary`."""
+    """Drake's LcmSubscriberSystem on `channel`, its messages checked by `boundary`, which
+    counts every message on the channel (module docstring)."""
+    lcm.Subscribe(channel, checked_handler(boundary, lambda message: None))
     return LcmSubscriberSystem(channel, CheckedLcmSerializer(lcm_type, boundary), lcm)
 
 

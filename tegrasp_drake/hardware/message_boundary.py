@@ -87,6 +87,14 @@ class MessageBoundary:
         self.count_accepted()
         return value
 
+    def check_quietly(self, message, *args):
+        """The checked value of `message`, or None, counting nothing: for a second reader
+        of messages this boundary already counts (lcm_boundary.CheckedLcmSubscriber)."""
+        try:
+            return self._check(message, *args)
+        except Exception:  # noqa: BLE001: as accept, a rejection (counted by accept)
+            return None
+
     def count_accepted(self, count: int = 1) -> None:
         """Counts messages accepted outside `accept` (a framer that checks on its own)."""
         with self._lock:

@@ -9,17 +9,39 @@ got NoneType None` at the call, instead of an AttributeError deep inside. What i
 classes (an int is a float; a bool is neither an int nor a float), `X | Y` and Optional,
 `list[T]`, `tuple[T, ...]` and `tuple[A, B]`, `Sequence[T]` and `Collection[T]` (their items
 too), `Iterable[T]` (its items when it is a collection such as a list; a one-shot iterator
-is not consumed: only that it is iterable), `Mapping`/`dict`, `Callable`;
+is not consumed: only that it is iterable), `Mapping[K, V]`/`dict[K, V]` (keys and values),
+`Callable`;
 a text string is never taken where a collection is expected (it would be iterated as
 characters). An unannotated parameter, or one annotated `typing.Any`, is not checked; a test
 (tests/test_bad_input_disciplines.py) holds every public function to annotating all of them.
+
+What a value may be, beyond its type, is declared once beside the parameter with
+`typing.Annotated`, and checked at the call after every type (so nothing is written before
+all arguments are known good):
+
+    def run_trial(scenario: Scenario, *,
+                  max_time: Annotated[float | None, Range(low=0.0, unit="s")] = None):
+    def write_reports(out_dir: Annotated[PathLike, SWEEP_FOLDER], *,
+                      figure_format: Annotated[str, Choice(FIGURE_FORMATS)] = "png"):
+
+- a `Range` (rig/ranges.py): a finite number inside it (None passes when the type allows
+  it), else ValueError "run_trial: argument 'max_time' must be at least 0 s, got -1.0";
+- a `Choice`: one of its names, else ValueError;
+- a `Folder`: a path that is a folder, must already exist (`exists`), and that this user
+  can write in or make (`writable`), else UserPathError (an OSError) naming the argument
+  and the path ("... is a file, not a folder; give a folder").
+A test (tests/test_bad_input_round4.py) holds every public function's numeric parameters to
+a Range and its folder parameters to a Folder.
 """
 
 import collections.abc
 import dataclasses
 import functools
 import inspect
+import math
 import os
+import pathlib
+import re
 import types
 import typing
 
@@ -27,6 +49,39 @@ import typing
 PathLike = str | os.PathLike
 
 _TEXT = (str, bytes, bytearray)
+
+
+@dataclasses.dataclass(frozen=True)
+class Folder:
+    """What a folder argument must be (module docstring): `exists`, already there (an input
+    or a folder updated in place); `writable`, one this user can write in, or make."""
+    exists: bool = True
+    writable: bool = False
+
+    def problem(self, path) -> str | None:
+        """Why `path` is not such a folder, in words that follow it, or None."""
+        from tegrasp_drake.rig.files import folder_problem
+        path = pathlib.Path(path)
+        try:
+            there = path.exists()
+        except OSError as e:  # a name too long, a symlink loop
+            return f"cannot be used ({e.strerror or e})"
+        if not there:
+            if self.exists:
+                return "does not exist; give an existing folder"
+        elif not path.is_dir():
+            what = "a file" if path.is_file() else "a device, pipe or socket"
+            return f"is {what}, not a folder; give a folder"
+        if self.writable:
+            problem = folder_problem(path)
+            if problem:
+                return f"cannot be written ({problem}); give a folder you can write"
+        return None
+
+
+INPUT_FOLDER = Folder(exists=True)                    # read from
+OUTPUT_FOLDER = Folder(exists=False, writable=True)   # written to, made if need be
+UPDATED_FOLDER = Folder(exists=True, writable=True)   # read from and written to
 _ITEM_CHECKED = (list, tuple, collections.abc.Sequence, collections.abc.Collection,
                  collections.abc.Set, set, frozenset)
 
@@ -35,21 +90,24 @@ def public_api(function):
     """Wraps `function` so that each call checks its arguments (module docstring)."""
     signature = inspect.signature(function)
     hints = None
+    # How errors name it: a constructor by its class ("EventMatcher: argument 'events'").
+    name = function.__qualname__.removesuffix(".__init__").split(".<locals>.")[-1]
 
     @functools.wraps(function)
     def checked(*args, **kwargs):
         nonlocal hints
         if hints is None:  # resolved at the first call: annotations may name later classes
-            hints = typing.get_type_hints(function)
+            hints = typing.get_type_hints(function, include_extras=True)
         try:
             bound = signature.bind(*args, **kwargs)
         except TypeError as e:
-            raise TypeError(f"{function.__name__}: {e}") from None
-        for name, value in bound.arguments.items():
-            hint = hints.get(name)
+            raise TypeError(f"{name}: {e}") from None
+        for argument, value in bound.arguments.items():
+            hint = hints.get(argument)
             if hint is None:
                 continue
-            parameter = signature.parameters[name]
+            hint, _ = _constraints(hint)
+            parameter = signature.parameters[argument]
             if parameter.kind is parameter.VAR_POSITIONAL:
                 values = value
             elif parameter.kind is parameter.VAR_KEYWORD:
@@ -58,13 +116,62 @@ def public_api(function):
                 values = (value,)
             for item in values:
                 if not _matches(item, hint):
-                    raise TypeError(f"{function.__name__}: argument '{name}' must be "
+                    raise TypeError(f"{name}: argument '{argument}' must be "
                                     f"{_describe_hint(hint)}, got {type(item).__name__} "
                                     f"{_short_repr(item)}")
+        for argument, value in bound.arguments.items():  # every type is right: the values
+            for constraint in _constraints(hints.get(argument))[1]:
+                _check_constraint(name, argument, value, constraint)
         return function(*args, **kwargs)
 
     checked.__checked_arguments__ = True
     return checked
+
+
+def _constraints(hint) -> tuple:
+    """(the type of `hint`, the constraints its Annotated metadata declares)."""
+    if hint is None or typing.get_origin(hint) is not typing.Annotated:
+        return hint, ()
+    from tegrasp_drake.rig.ranges import Choice, Range
+    return hint.__origin__, tuple(m for m in hint.__metadata__
+                                  if isinstance(m, (Range, Choice, Folder)))
+
+
+def _check_constraint(function: str, name: str, value, constraint) -> None:
+    """Raises naming `function`'s argument `name` when `value` breaks `constraint`."""
+    from tegrasp_drake.rig.ranges import Choice
+    if value is None:
+        return  # None passed the type check: "not given"
+    where = f"{function}: argument '{name}'"
+    if isinstance(constraint, Folder):
+        problem = constraint.problem(value)
+        if problem:
+            from tegrasp_drake.rig.files import UserPathError
+            raise UserPathError(f"{where}: {os.fspath(value)!r} {problem}")
+    elif isinstance(constraint, Choice):
+        if value not in constraint.names:
+            raise ValueError(f"{where} {constraint.words()}, got {_short_repr(value)}")
+    else:  # a Range: of the number, or of each number of a sequence
+        items = value if isinstance(value, (list, tuple)) else (value,)
+        for k, item in enumerate(items):
+            at = where if items is not value else f"{where}[{k}]"
+            if not isinstance(item, (int, float)) or isinstance(item, bool):
+                continue  # the type check said what the items may be
+            if not math.isfinite(item):
+                raise ValueError(f"{at} must be a finite number, got {item!r}")
+            if not constraint.contains(item):
+                raise ValueError(f"{at} {constraint.words(item)}, got {item!r}")
+
+
+def value_matches(value, hint) -> bool:
+    """Whether `value` is of the type `hint` as a public function's argument must be (a
+    record's or a spec's fields are checked by the same rules)."""
+    return _matches(value, hint)
+
+
+def describe_hint(hint) -> str:
+    """The type `hint` in words, as an argument error says it."""
+    return _describe_hint(hint)
 
 
 def _matches(value, hint) -> bool:
@@ -73,6 +180,8 @@ def _matches(value, hint) -> bool:
     if hint is None or hint is type(None):
         return value is None
     origin = typing.get_origin(hint)
+    if origin is typing.Annotated:
+        return _matches(value, hint.__origin__)
     if origin in (typing.Union, types.UnionType):
         return any(_matches(value, member) for member in typing.get_args(hint))
     if origin is typing.Literal:
@@ -94,7 +203,11 @@ def _matches(value, hint) -> bool:
     arguments = typing.get_args(hint)
     items_checked = issubclass(origin, _ITEM_CHECKED) or (
         origin is collections.abc.Iterable and isinstance(value, collections.abc.Collection))
-    if not arguments or not items_checked or issubclass(origin, collections.abc.Mapping):
+    if issubclass(origin, collections.abc.Mapping):
+        return len(arguments) != 2 or all(
+            _matches(key, arguments[0]) and _matches(item, arguments[1])
+            for key, item in value.items())
+    if not arguments or not items_checked:
         return True
     if origin is tuple and not (len(arguments) == 2 and arguments[1] is Ellipsis):
         return len(value) == len(arguments) and all(
@@ -104,6 +217,8 @@ def _matches(value, hint) -> bool:
 
 def _describe_hint(hint) -> str:
     origin = typing.get_origin(hint)
+    if origin is typing.Annotated:
+        return _describe_hint(hint.__origin__)
     if origin in (typing.Union, types.UnionType):
         return " or ".join(_describe_hint(member) for member in typing.get_args(hint))
     if hint is type(None) or hint is None:
@@ -116,7 +231,8 @@ def _describe_hint(hint) -> str:
         items = _describe_hint(arguments[0]) if arguments else "values"
         article = "an" if name[0] in "AEIOUaeiou" else "a"
         return f"{article} {name.lower()} of {items} (not a single string)"
-    return str(hint).replace("typing.", "").replace("collections.abc.", "")
+    # Class names without their modules: Mapping[str, MemorizedEvent].
+    return re.sub(r"\b(?:[a-z_]\w*\.)+([A-Za-z_]\w*)", r"\1", str(hint))
 
 
 def _short_repr(value) -> str:
@@ -154,6 +270,28 @@ def public_dataclass(cls):
     cls.__init__ = checked_init
     cls.__init__.__checked_arguments__ = True
     return cls
+
+
+def check_field_values(instance, source: str | None = None) -> None:
+    """Checks a dataclass instance's fields as public_api checks a function's arguments:
+    TypeError naming the first field not of its annotated type (scalars and Optional
+    scalars: str, int, float, bool), then ConfigError (rig/ranges.check_ranges) naming the
+    first number outside its declared range. For a value object checked when it is made
+    (MemorizedEvent) and a config checked where it is used (EventMatcher's)."""
+    from tegrasp_drake.rig.ranges import check_ranges
+    cls = type(instance)
+    source = source or cls.__name__
+    hints = typing.get_type_hints(cls)
+    for field in dataclasses.fields(instance):
+        hint = hints.get(field.name)
+        scalars = [m for m in (typing.get_args(hint) or (hint,)) if m is not type(None)]
+        if not scalars or not all(m in (str, int, float, bool) for m in scalars):
+            continue
+        value = getattr(instance, field.name)
+        if not _matches(value, hint):
+            raise TypeError(f"{source}: field '{field.name}' must be {_describe_hint(hint)}, "
+                            f"got {type(value).__name__} {_short_repr(value)}")
+    check_ranges(instance, source)
 
 
 def _expects_collection(hint) -> bool:

@@ -119,6 +119,16 @@ def range_of(field: dataclasses.Field) -> Range | None:
     return field.metadata.get(_KEY)
 
 
+def field_range(cls: type, name: str) -> Range:
+    """The Range declared on the field `name` of the dataclass `cls`: for a function
+    parameter that takes that field's value (`Annotated[int, field_range(Scenario,
+    "random_seed")]`), so that the range is declared once."""
+    declared = range_of(next(f for f in dataclasses.fields(cls) if f.name == name))
+    if declared is None:
+        raise LookupError(f"{cls.__name__}.{name} declares no range")
+    return declared
+
+
 def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 

@@ -8,6 +8,7 @@ import dataclasses
 import logging
 import time
 from collections.abc import Callable
+from typing import Annotated
 
 from pydrake.systems.framework import EventStatus
 from pydrake.geometry import Meshcat
@@ -19,6 +20,11 @@ from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulate
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.ranges import Range
+
+# A run's simulated duration [s]: positive and finite (Drake's simulator cannot advance to
+# a time before its start).
+SIMULATED_DURATION = Range(low=0.0, low_open=True, unit="s")
 
 CONTROLLER_NAME = OpenLoopControllerConfig.name
 END_MARGIN_S = 0.5  # simulated after the script ends, to see the object settle
@@ -48,8 +54,11 @@ def progress_monitor(progress, end_time: float):
 
 @public_api
 def run_ideal_grasp(scenario: Scenario, *, meshcat: Meshcat | None = None,
-                    duration: float | None = None, progress: Callable | None = None):
+                    duration: Annotated[float | None, SIMULATED_DURATION] = None,
+                    progress: Callable | None = None):
     """Simulates the ideal grasp; returns (TrialLog, wall time [s]).
+
+    duration: [s] of simulated time (default: the plan's, plus END_MARGIN_S).
 
     progress: called as progress(t, end) [s, simulated] as the run goes."""
     grasp = MakeIdealGraspDiagram(scenario, meshcat=meshcat)

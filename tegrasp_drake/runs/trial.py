@@ -9,6 +9,7 @@ import dataclasses
 import logging
 import time
 from collections.abc import Callable
+from typing import Annotated
 
 from pydrake.geometry import Meshcat
 
@@ -23,7 +24,7 @@ from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_tim
                                               table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario
-from tegrasp_drake.rig.ranges import check_ranges
+from tegrasp_drake.rig.ranges import Range, check_ranges
 from tegrasp_drake.rig.api_boundary import public_api
 
 HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
@@ -121,9 +122,12 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
 
 @public_api
 def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dict | None = None,
-              corrective_events: dict | None = None, max_time: float | None = None,
+              corrective_events: dict | None = None,
+              max_time: Annotated[float | None, Range(low=0.0, unit="s")] = None,
               progress: Callable | None = None) -> TrialResult:
     """Simulates one trial of `scenario` with its controller; returns its TrialResult.
+
+    max_time: [s] of simulated time at most (default: the controller's time limit).
 
     events, corrective_events: the memorized events (MakeGraspDiagram's defaults if None).
     progress: called as progress(t, end) [s, simulated] as the run goes (`end` shrinks to

@@ -33,6 +33,7 @@ PD's set-point), gripper.wrist_wrench (6: [M; F] on the arm at G, world [N m, N]
 
 import dataclasses
 import math
+from typing import Annotated
 
 import numpy as np
 from pydrake.math import RigidTransform, RollPitchYaw
@@ -43,7 +44,8 @@ from pydrake.systems.primitives import Demultiplexer, MatrixGain
 from pydrake.geometry import Meshcat
 from pydrake.multibody.plant import MultibodyPlantConfig
 
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
+from tegrasp_drake.rig.ranges import Range, bounded, field_range
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
@@ -73,6 +75,9 @@ from tegrasp_drake.simulation.station_visualization import (AddStationVisualizat
 from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, TactileSensorConfig
 from tegrasp_drake.rig.api_boundary import public_api
+
+# Drake's random generator takes a 32-bit seed (as the scenario's random_seed says).
+SEED_RANGE = Range(low=0, high=2**32 - 1, why="a 32-bit seed")
 
 
 @dataclasses.dataclass
@@ -350,7 +355,9 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
                      gripper: GripperDriverConfig, object: ObjectConfig, X_WO: RigidTransform,
                      tactile: TactileSensorConfig,
                      vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
-                     random_seed: int, grasp_height: float,
+                     random_seed: Annotated[int, SEED_RANGE],
+                     grasp_height: Annotated[float, field_range(GraspScriptConfig,
+                                                                "grasp_height")],
                      carriage: EndpointImpedance | None = None,
                      contact_geometry: ContactGeometryConfig | None = None,
                      meshcat: Meshcat | None = None):

@@ -24,12 +24,13 @@ as corrupt, and the runner runs that trial again.
 import hashlib
 import json
 import os
+from typing import Annotated
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, UserPathError,
-                                     load_json, read_bounded, write_atomically)
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, load_json,
+                                     read_bounded, write_atomically)
+from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
 
 RECORD_FORMAT = "tegrasp-sweep-record"
 RECORD_FORMAT_VERSION = 1
@@ -170,13 +171,10 @@ def read_record(path) -> tuple[dict | None, str | None]:
 
 
 @public_api
-def load_records(out_dir: PathLike) -> LoadedRecords:
-    """Reads every record under `<out_dir>/trials`; temporary files are ignored. A folder
-    that does not exist yet holds no records; UserPathError (an OSError) for a path that is
-    something else than a folder (a trial log, a record file)."""
-    if os.path.lexists(out_dir) and not Path(out_dir).is_dir():
-        raise UserPathError(f"{out_dir} is not a results folder (it is a file); give the "
-                            "--out folder of `tegrasp sweep`")
+def load_records(out_dir: Annotated[PathLike, INPUT_FOLDER]) -> LoadedRecords:
+    """Reads every record under `<out_dir>/trials`; temporary files are ignored. A results
+    folder without a trials folder holds no records; UserPathError (an OSError) for a path
+    that does not exist or is something else than a folder (a trial log, a record file)."""
     folder = Path(out_dir) / TRIALS_FOLDER
     records, corrupt = {}, {}
     if folder.is_dir():

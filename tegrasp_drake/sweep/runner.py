@@ -25,6 +25,7 @@ import pickle
 import tempfile
 import time
 import traceback
+from typing import Annotated
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import closing, contextmanager, suppress
 from dataclasses import dataclass
@@ -40,7 +41,8 @@ from tegrasp_drake.sweep.records import (
     write_record,
 )
 from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, expand_trials
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
+from tegrasp_drake.rig.ranges import Range
 
 LOCK_FILE_NAME = ".sweep.lock"
 DASK_CONNECT_TIMEOUT_S = 30.0
@@ -115,8 +117,9 @@ def default_workers() -> int:
 
 
 @public_api
-def run_sweep(spec: SweepSpec, trial_function: Callable, out_dir: PathLike, *,
-              workers: int | None = None,
+def run_sweep(spec: SweepSpec, trial_function: Callable,
+              out_dir: Annotated[PathLike, OUTPUT_FOLDER], *,
+              workers: Annotated[int | None, Range(low=1)] = None,
               scheduler: str | None = None, progress: bool = True) -> SweepSummary:
     """Runs the trials of `spec` that have no finished record in `out_dir`.
 
@@ -128,8 +131,6 @@ def run_sweep(spec: SweepSpec, trial_function: Callable, out_dir: PathLike, *,
     """
     start = time.perf_counter()
     trials = [trial.to_dict() for trial in expand_trials(spec)]
-    if workers is not None and workers < 1:
-        raise SweepError(f"workers must be at least 1, got {workers}")
     progress_bar = _progress_bar_factory(progress)
     try:
         pickle.dumps(trial_function)

@@ -20,13 +20,14 @@ A spec file is read by `LoadSweepSpec` (spec_file.py).
 import dataclasses
 import math
 import re
+import typing
 import zlib
 from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import describe_hint, public_dataclass, value_matches
 from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
@@ -176,6 +177,37 @@ class TrialSpec:
         return cls(**{**d, "object_definition": definition,
                       "perturbation": Perturbation(**d["perturbation"]),
                       "scenario_overrides": tuple(d.get("scenario_overrides", ()))})
+
+
+def trial_dict_problem(trial: Mapping) -> str | None:
+    """What keeps `trial` from being a sweep trial (a TrialSpec.to_dict()), in words naming
+    the keys missing, unknown or of the wrong type (unknown ones with their values), or
+    None."""
+    parts = []
+    for name, fields, given in (
+            ("trial", TrialSpec, trial),
+            ("trial 'perturbation'", Perturbation, trial.get("perturbation"))):
+        if not isinstance(given, Mapping):
+            if given is not None:
+                parts.append(f"{name} must be a mapping, got {type(given).__name__}")
+            continue
+        hints = typing.get_type_hints(fields)
+        optional = {f.name for f in dataclasses.fields(fields)
+                    if f.default is not dataclasses.MISSING}
+        missing = [key for key in hints if key not in given and key not in optional]
+        unknown = [f"{key}={given[key]!r}" for key in given if key not in hints]
+        wrong = [f"{key} must be {describe_hint(hints[key])}, got {given[key]!r}"
+                 for key in hints if key in given and key != "perturbation"
+                 and key != "object_definition" and not value_matches(given[key], hints[key])]
+        if missing:
+            parts.append(f"{name} lacks {', '.join(missing)}")
+        if unknown:
+            parts.append(f"{name} has unknown keys {', '.join(unknown)}")
+        parts += [f"{name}: {text}" for text in wrong]
+    if not parts:
+        return None
+    return ("; ".join(parts) + " (a sweep trial is a TrialSpec.to_dict(), as expand_trials "
+            "makes them)")
 
 
 # ---------------------------------------------------------------------------------

@@ -111,6 +111,9 @@ def readme_with_summaries(text: str, root) -> str:
     is no block."""
     def regenerate(match):
         folder = Path(root) / match["folder"]
+        if not folder.is_dir():
+            raise ValueError(f"{folder}: no trial records for the page's results table (no "
+                             "such folder)")
         records = load_records(folder).records.values()
         if not records:
             raise ValueError(f"{folder}: no trial records for the page's results table")

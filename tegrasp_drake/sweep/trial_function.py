@@ -9,12 +9,13 @@ import dataclasses
 import hashlib
 import logging
 import pathlib
+from typing import Annotated
 
 import numpy as np
 
 from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.sweep.records import canonical_json
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, OUTPUT_FOLDER, PathLike, public_api
 
 logger = logging.getLogger(__name__)
 
@@ -108,12 +109,19 @@ def check_sweep_events(trials, events_dir=None) -> None:
 
 
 @public_api
-def run_trial_from_spec(trial: dict, *, events_dir: PathLike | None = None,
-                        log_dir: PathLike | None = None) -> dict:
+def run_trial_from_spec(trial: dict, *,
+                        events_dir: Annotated[PathLike | None, INPUT_FOLDER] = None,
+                        log_dir: Annotated[PathLike | None, OUTPUT_FOLDER] = None) -> dict:
     """The sweep's trial function: runs the trial with its memorized events
-    (trial_events); returns its result dict.
+    (trial_events); returns its result dict. ConfigError naming the keys when `trial` is
+    not a sweep trial (a TrialSpec.to_dict()).
 
     log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.sweep.spec import trial_dict_problem
+    problem = trial_dict_problem(trial)
+    if problem:
+        raise ConfigError(f"run_trial_from_spec: argument 'trial': {problem}")
     scenario, events, corrective_events = trial_events(trial, events_dir)
     run = run_trial(scenario, events=events, corrective_events=corrective_events)
     if log_dir is not None:
