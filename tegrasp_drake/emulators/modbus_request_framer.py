@@ -8,10 +8,13 @@ V1.1b3, section 6; Modbus over Serial Line V1.02, 2.5.1: at most 256 bytes a fra
 framer here applies those rules to the bytes the emulated 2F-85 receives:
 
 - a request is passed on only whole, its CRC valid;
-- a header that cannot start a request (an unknown function with no CRC-valid frame
-  after it, a byte count beyond the frame maximum or other than its register count
-  says) is a framing error: the first byte is dropped and the search resumes at the next
-  (never a wait for bytes the header promised: the next valid request is answered);
+- a header that cannot start a request (a function whose length the specification does
+  not fix, a byte count beyond the frame maximum or other than its register count says)
+  is a framing error: the first byte is dropped and the search resumes at the next (never
+  a wait for bytes the header promised: the next valid request is answered). Without the
+  line's silent intervals, a frame of another function has no length to check its CRC
+  at: searching every length up to 256 bytes would take one in about 260 positions of
+  noise for a request, which pymodbus's framer behind would then misread;
 - a frame of the right length whose CRC fails is dropped the same way.
 
 Each run of dropped bytes between two requests is counted once in a MessageBoundary
@@ -107,11 +110,7 @@ class ModbusRequestFramer:
             return FIXED_SIZES[function]
         if function in (15, 16, 23):
             return _write_size(function, self._buffer)
-        # Another function: whatever its length, a whole request has a valid CRC.
-        for size in range(4, min(len(self._buffer), MAX_FRAME_SIZE) + 1):
-            if _crc_valid(bytes(self._buffer[:size])):
-                return size
-        return f"function {function} is not one this device takes, and no valid frame follows"
+        return f"function {function} is not one whose request length is known"
 
     def _drop(self, reason: str, detail: str):
         if not self._dropping:
