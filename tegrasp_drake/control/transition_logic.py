@@ -14,6 +14,7 @@ up. `python -m tegrasp_drake.control.rule_docs` prints the table.
 """
 
 import dataclasses
+from collections.abc import Callable
 
 from tegrasp_drake.control.corrective_actions import (
     avoid_on_hit, avoid_on_hit_event, lift_load_on_slip_event, lift_load_or_fail,
@@ -109,7 +110,6 @@ def _object_lost(s: Situation) -> bool:
 
 
 def _load_timeout(s: Situation) -> Decision:
-    # After a Lift-Load the memorized events, which describe the ideal grasp, cannot come.
     if s.counters.lift_loads:
         return decide(Failed(), Trigger.CORRECTIVE, f"{load_timeout_reason(s)} after Lift-Load")
     return s.re_reach_or_fail(load_timeout_reason(s), limit=s.config.max_re_reaches)
@@ -133,7 +133,7 @@ def _avoid(s: Situation) -> Decision | None:
     return avoid_on_hit(s.obs.hit, s.config)
 
 
-def _decides(decision) -> bool:
+def _decides(decision: Callable[[Situation], Decision | None]) -> Callable[[Situation], bool]:
     """The condition of a rule whose action is a corrective decision (None: none)."""
     return lambda s: decision(s) is not None
 
@@ -152,6 +152,9 @@ def _event(s: Situation) -> bool:
     """The detector matches the mode's expected event."""
     return s.obs.event_matched
 
+
+# Priorities: the rules of every mode first (1-3); then in each mode its rules by 100s,
+# leaving room for other tables' rules between them.
 PAPER_RULES = (
     # Any mode: the devices, the object.
     Rule("device_fault", None, 1, lambda s: bool(s.obs.device_fault), _fault,
