@@ -10,14 +10,15 @@ scene (a judging record under analysis/results_*) is run with each controller on
 record's own trial spec and seed, once with the package at --base (extracted with
 `git archive` into DIR/tree-COMMIT) and once with this checkout's, each in its own Python
 process. The two result dicts must be equal but for the timing fields (TIMING_FIELDS).
-Runs are kept in DIR (default out/rule_engine_equivalence) by commit and reused unless
---fresh (this checkout's only when its package has no uncommitted change), so the base
-runs are made once. Prints, per trial, the rules that decided its
+Runs are kept in DIR (default out/rule_engine_equivalence), the base's by commit, this
+checkout's by its package, events and models, and reused unless --fresh (this checkout's
+only when those have no uncommitted change), so each side's runs are made once. Prints, per trial, the rules that decided its
 transitions (from this checkout's run) and whether the two agree; exits 1 on a difference.
 The records themselves are not compared: the package has changed since they were made.
 """
 
 import argparse
+import hashlib
 import json
 import os
 import pathlib
@@ -29,10 +30,9 @@ import tempfile
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 # Measured on the machine, not decided by the controller.
 TIMING_FIELDS = ("cpu_time_s", "wall_time_s", "real_time_factor")
-# Eight committed scenes whose transitions, between the two controllers, exercise the
-# paper's rows (events, timers, Re-Reach, Lift-Load, Avoid, the lost object) and the
-# taxel_aware rows (approach contact, finger strike, the timeouts with both pads, the
-# off-centre and one-sided-at-width loads, the tilted re-grasp, the touch beyond the pads).
+# Eight committed scenes (the judging grids' records on the robot and on the linkage hand),
+# chosen for the variety of rules their records show; which rules decide the runs now is
+# printed with each.
 SCENES = (
     "results_robot/paper_grid/trials/{controller}.box.m00.a0.json",
     "results_robot/paper_grid/trials/{controller}.thick_cylinder.m02.a0.json",
@@ -67,11 +67,18 @@ def git(*args: str) -> str:
                           check=True).stdout.strip()
 
 
+# What a run depends on: the package, its memorized events and its models.
+RUN_INPUTS = ("tegrasp_drake", "events", "models")
+
+
 def tip_label() -> tuple[str, bool]:
-    """This checkout's cache folder name, and whether its runs may be cached (the package,
-    events and models committed)."""
-    dirty = bool(git("status", "--porcelain", "--", "tegrasp_drake", "events", "models"))
-    return ("tip-uncommitted", False) if dirty else (f"tip-{git('rev-parse', 'HEAD')[:12]}", True)
+    """This checkout's cache folder name, named by the committed trees of RUN_INPUTS (a
+    commit that changes none of them keeps it), and whether its runs may be cached (none
+    of them has an uncommitted change)."""
+    dirty = bool(git("status", "--porcelain", "--", *RUN_INPUTS))
+    trees = hashlib.sha256(" ".join(git("rev-parse", f"HEAD:{path}")
+                                    for path in RUN_INPUTS).encode()).hexdigest()
+    return ("tip-uncommitted", False) if dirty else (f"tip-{trees[:12]}", True)
 
 
 def extract_tree(commit: str, out: pathlib.Path) -> pathlib.Path:
