@@ -13,6 +13,7 @@ from tegrasp_drake.control import controller_config
 from tegrasp_drake.control.controller_registry import (CONTROLLER_NAMES, CONTROLLERS,
                                                        UnknownControllerError,
                                                        controller_entry, controller_label)
+from tegrasp_drake.control.rule_engine import RuleTable
 
 PACKAGE = pathlib.Path(tegrasp_drake.__file__).parent
 REGISTRY = PACKAGE / "control" / "controller_registry.py"
@@ -56,6 +57,7 @@ def test_every_entry_names_functions_that_exist(entry):
         reference = getattr(entry, field)
         assert reference is None or callable(entry.load(field))
     assert entry.closed_loop == (entry.detector is not None)
+    assert entry.rules is None or isinstance(entry.rule_table(), RuleTable)
     assert re.fullmatch(r"#[0-9a-f]{6}", entry.color)
 
 

@@ -8,8 +8,8 @@ import pytest
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.control.corrective_actions import (
     Counters, avoid_direction, avoid_move, avoid_on_hit, corrective_action_of, is_hit,
-    lift_load_grip_force, lift_load_or_fail, pad_accelerations_in_world, re_reach_or_fail,
-    re_reach_shift, re_reach_target, relift_after_lift_load)
+    lift_load_grip_force, lift_load_or_fail, pad_accelerations_in_world, re_reach_shift,
+    re_reach_target, relift_after_lift_load)
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 
 CONFIG = GraspControllerConfig()
@@ -44,22 +44,6 @@ def test_re_reach_never_shifts_away_when_the_opening_is_narrower_than_the_object
 def test_re_reach_target_moves_along_world_y_only():
     target = re_reach_target(np.array([0.72, 0.0, 0.06]), 0.0125)
     np.testing.assert_array_equal(target, [0.72, 0.0125, 0.06])
-
-
-def test_re_reach_until_its_attempts_are_used_up():
-    decision = re_reach_or_fail(Counters(re_reaches=1), CONFIG, "only the left finger touched")
-    assert decision.mode == Mode.RE_REACH and decision.trigger == Trigger.CORRECTIVE
-    assert decision.reason == "only the left finger touched"
-    used_up = re_reach_or_fail(Counters(re_reaches=2), CONFIG, "closed on nothing")
-    assert (used_up.mode, used_up.trigger) == (Mode.FAILED, Trigger.CORRECTIVE)
-    assert used_up.reason == "closed on nothing, after 2 Re-Reach attempts"
-
-
-def test_re_reach_switched_off_fails_at_once():
-    off = dataclasses.replace(CONFIG, re_reach_enabled=False)
-    decision = re_reach_or_fail(Counters(), off, "closed on nothing")
-    assert decision.mode == Mode.FAILED
-    assert decision.reason == "closed on nothing; Re-Reach is switched off"
 
 
 # ---- Lift-Load ------------------------------------------------------------------------

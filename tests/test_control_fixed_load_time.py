@@ -1,5 +1,6 @@
-"""The example controller of docs/controller.md ("Adding a controller"): the paper's state
-machine whose Load-Lift fires by the clock; its rule alone, then a closed-loop trial."""
+"""The example controller of docs/controller.md ("Adding a controller"): the paper's rule
+table with a Load-Lift by the clock; the rule and the guard it adds (fires, does not
+fire), then a closed-loop trial."""
 
 import pathlib
 import re
@@ -7,18 +8,40 @@ import re
 import pytest
 
 from tegrasp_drake.control.corrective_actions import Counters
-from tegrasp_drake.control.fixed_load_time import FixedLoadTimeControllerConfig, next_mode
+from tegrasp_drake.control.fixed_load_time import FixedLoadTimeControllerConfig, rule_table
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.transition_logic import Observation
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 CONFIG = FixedLoadTimeControllerConfig()
 EVENT = Trigger.MEMORIZED_EVENT
+TABLE = rule_table()
 
 
 def decide(mode, counters=Counters(), **observed):
-    return next_mode(mode, Observation(**observed), counters, CONFIG, event_trigger=EVENT,
-                     hold_s=3.0)
+    return TABLE.next_mode(mode, Observation(**observed), counters, CONFIG, event_trigger=EVENT,
+                           hold_s=3.0)
+
+
+def test_the_load_time_lifts_by_the_clock_not_before():
+    assert decide(Mode.LOAD, time_in_mode=CONFIG.load_time_s).code == "load_time"
+    assert decide(Mode.LOAD, time_in_mode=0.9 * CONFIG.load_time_s) is None
+
+
+def test_the_guard_holds_the_load_lift_event_back_in_the_first_load_only():
+    assert decide(Mode.LOAD, event_matched=True) is None
+    assert decide(Mode.LOAD, Counters(lift_loads=1), event_matched=True).code == \
+        "load_lift_event"
+
+
+# The rules and guards the table adds to the paper's, and their fires / does-not-fire tests.
+CASES = {"load_time": test_the_load_time_lifts_by_the_clock_not_before,
+         "no_load_lift_event": test_the_guard_holds_the_load_lift_event_back_in_the_first_load_only}
+
+
+def test_every_rule_and_guard_it_adds_has_a_case():
+    assert {item.name for item in (*TABLE.rules, *TABLE.guards)} == set(CASES)
+    assert TABLE.base.name == "paper"
 
 
 def test_the_load_lift_event_does_not_lift():

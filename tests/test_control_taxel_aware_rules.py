@@ -1,5 +1,7 @@
 """The taxel-aware rule table, one pure test per rule: the rule fires on the situation it
-is written for and does not on a near miss; and what its action carries."""
+is written for and does not on a near miss (the paper's rules too, read with the
+ContactEstimate); one per guard: it holds back each of its rules, and only while its
+condition holds; and what the actions carry."""
 
 import dataclasses
 
@@ -10,11 +12,10 @@ from tegrasp_drake.control.controller_config import (MemorizedControllerConfig,
                                                      TaxelAwareControllerConfig)
 from tegrasp_drake.control.corrective_actions import Counters
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
-from tegrasp_drake.control.taxel_aware import (ANY_MODE, TABLE, Failed, Reason, Regrasp,
-                                               ReReach, Situation, next_mode, rows)
+from tegrasp_drake.control.rule_actions import Failed, Regrasp, ReReach
+from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
 from tegrasp_drake.control.taxel_aware.estimator import ContactEstimate
-from tegrasp_drake.control.taxel_aware.table import first_match
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.transition_logic import Observation
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
@@ -45,8 +46,8 @@ def situation(*, contact=(False, False), shape=None, estimate=None, **observatio
 
 
 def decide(mode, obs, counters=Counters(), config=CONFIG):
-    return next_mode(mode, obs, counters, config, event_trigger=Trigger.MEMORIZED_EVENT,
-                     hold_s=3.0)
+    return TAXEL_AWARE_TABLE.next_mode(mode, obs, counters, config,
+                                       event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
 
 
 def code(mode, obs, counters=Counters(), config=CONFIG):
@@ -59,109 +60,137 @@ REACH_LATE = dict(closing_s=CONFIG.reach_event_timeout_s)
 LOAD_LATE = dict(time_in_mode=CONFIG.load_event_timeout_s)
 # (rule, mode, the situation it fires on, a near miss, counters)
 CASES = [
-    (Reason.DEVICE_FAULT, Mode.HOLD, dict(device_fault="arm silent"), dict(), Counters()),
-    (Reason.GRIPPER_FAULT, Mode.REACH, dict(gripper_fault="gFLT_0x08"), dict(), Counters()),
-    (Reason.OBJECT_LOST, Mode.HOLD, dict(), dict(contact=(True, True)), Counters()),
-    (Reason.FINGER_STRIKE, Mode.REACH,
+    ("device_fault", Mode.HOLD, dict(device_fault="arm silent"), dict(), Counters()),
+    ("gripper_fault", Mode.REACH, dict(gripper_fault="gFLT_0x08"), dict(), Counters()),
+    ("object_lost", Mode.HOLD, dict(), dict(contact=(True, True)), Counters()),
+    ("finger_strike", Mode.REACH,
      dict(estimate=dict(strike_s=TAXEL.finger_strike.sustain_s, strike_finger="left")),
      dict(estimate=dict(strike_s=0.5 * TAXEL.finger_strike.sustain_s)), Counters()),
-    (Reason.APPROACH_CONTACT, Mode.REACH,
+    ("approach_contact", Mode.REACH,
      dict(contact=(False, True), estimate=dict(approach_contact_s=CONFIG.one_sided_contact_s,
                                                approaching=True)),
      dict(contact=(False, True), estimate=dict(approach_contact_s=0.02, approaching=True)),
      Counters()),
-    (Reason.BEYOND_PADS, Mode.REACH,
+    ("beyond_pads", Mode.REACH,
      dict(estimate=dict(touched_beyond_pads=True, first_touch_finger="right",
                         first_touch_opening_m=0.0719)),
      dict(estimate=dict(touched_beyond_pads=False)), Counters()),
-    (Reason.TIPPING_GUARD, Mode.REACH,
-     dict(contact=(True, True), shape=pads(3, 3), event_matched=True,
-          estimate=dict(topples_if_released=True)),
-     dict(contact=(True, True), shape=pads(3, 3), event_matched=False,
-          estimate=dict(topples_if_released=True)), Counters()),
-    (Reason.OFF_CENTRE, Mode.REACH,
+    ("off_centre", Mode.REACH,
      dict(contact=(True, True), shape=pads(3, 3), event_matched=True),
      dict(contact=(True, True), shape=pads(1, 2), event_matched=True), Counters()),
-    (Reason.REACH_EVENT, Mode.REACH, dict(contact=(True, True), event_matched=True),
+    ("reach_event", Mode.REACH, dict(contact=(True, True), event_matched=True),
      dict(contact=(True, True)), Counters()),
-    (Reason.ONE_SIDED_AT_WIDTH, Mode.REACH, dict(**ONE_SIDED, estimate=dict(opening_m=0.0452)),
+    ("one_sided_at_width", Mode.REACH, dict(**ONE_SIDED, estimate=dict(opening_m=0.0452)),
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0530)), Counters()),
-    (Reason.BRACKETED_AT_EXTENT, Mode.REACH,
+    ("bracketed_at_extent", Mode.REACH,
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0530, bracket=(0.0, 0.0514))),
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=(0.0, 0.0514))), Counters()),
-    (Reason.BRACKET_RECENTRE, Mode.REACH,
+    ("bracket_recentre", Mode.REACH,
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=(0.01, 0.0514))),
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0577)), Counters()),
-    (Reason.ONE_SIDED, Mode.REACH, dict(**ONE_SIDED),
+    ("one_sided", Mode.REACH, dict(**ONE_SIDED),
      dict(contact=(False, True), one_sided_s=0.02), Counters()),
-    (Reason.CLOSED_ON_NOTHING, Mode.REACH, dict(closed_on_nothing=True), dict(closing_s=0.5),
+    ("closed_on_nothing", Mode.REACH, dict(closed_on_nothing=True), dict(closing_s=0.5),
      Counters()),
-    (Reason.REACH_TIMEOUT_BOTH_PADS, Mode.REACH, dict(contact=(True, True), **REACH_LATE),
+    ("reach_timeout_both_pads", Mode.REACH, dict(contact=(True, True), **REACH_LATE),
      dict(contact=(True, True), closing_s=0.5), Counters()),
-    (Reason.REACH_TIMEOUT_CAGED, Mode.REACH,
+    ("reach_timeout_caged", Mode.REACH,
      dict(**REACH_LATE, estimate=dict(caged_behind_pads=True)),
      dict(closing_s=0.5, estimate=dict(caged_behind_pads=True)), Counters()),
-    (Reason.REACH_TIMEOUT, Mode.REACH, dict(**REACH_LATE), dict(closing_s=0.5), Counters()),
-    (Reason.RE_CENTRED, Mode.RE_REACH, dict(motion_done=True), dict(), Counters()),
-    (Reason.LOAD_LIFT_EVENT, Mode.LOAD, dict(contact=(True, True), event_matched=True),
+    ("reach_timeout", Mode.REACH, dict(**REACH_LATE), dict(closing_s=0.5), Counters()),
+    ("re_centred", Mode.RE_REACH, dict(motion_done=True), dict(), Counters()),
+    ("load_lift_event", Mode.LOAD, dict(contact=(True, True), event_matched=True),
      dict(contact=(True, True)), Counters()),
-    (Reason.RELIFT, Mode.LOAD,
+    ("relift", Mode.LOAD,
      dict(contact=(True, True), grip_reached=True, time_in_mode=CONFIG.relift_settle_s),
      dict(contact=(True, True), grip_reached=True, time_in_mode=0.5 * CONFIG.relift_settle_s),
      Counters(lift_loads=1)),
-    (Reason.LOAD_TIMEOUT_BOTH_PADS, Mode.LOAD, dict(contact=(True, True), **LOAD_LATE),
+    ("load_timeout_both_pads", Mode.LOAD, dict(contact=(True, True), **LOAD_LATE),
      dict(contact=(True, False), **LOAD_LATE), Counters()),
-    (Reason.LOAD_TIMEOUT_CAGED, Mode.LOAD, dict(**LOAD_LATE, estimate=dict(
+    ("load_timeout_caged", Mode.LOAD, dict(**LOAD_LATE, estimate=dict(
         caged_behind_pads=True)), dict(estimate=dict(caged_behind_pads=True)), Counters()),
-    (Reason.LOAD_TIMEOUT, Mode.LOAD, dict(contact=(True, False), **LOAD_LATE),
+    ("load_timeout", Mode.LOAD, dict(contact=(True, False), **LOAD_LATE),
      dict(contact=(True, False)), Counters()),
-    (Reason.CAGED_LIFT_ENDED, Mode.LIFT,
-     dict(motion_done=True, estimate=dict(caged_behind_pads=True)),
-     dict(contact=(True, True), motion_done=True), Counters()),
-    (Reason.LIFT, Mode.LIFT, dict(contact=(True, True), motion_done=True),
+    ("lift_load", Mode.LIFT, dict(contact=(True, True), slip_s=CONFIG.slip_s),
+     dict(contact=(True, True), slip_s=0.5 * CONFIG.slip_s), Counters()),
+    ("lift_ended", Mode.LIFT, dict(contact=(True, True), motion_done=True),
      dict(contact=(True, True)), Counters()),
-    (Reason.AVOID_HIT, Mode.HOLD, dict(contact=(True, True), hit=True),
-     dict(hit=True, estimate=dict(caged_behind_pads=True)), Counters()),
-    (Reason.HELD_TILTED, Mode.HOLD,
+    ("avoid_hit", Mode.HOLD, dict(contact=(True, True), hit=True), dict(contact=(True, True)),
+     Counters()),
+    ("held_tilted", Mode.HOLD,
      dict(contact=(True, True), estimate=dict(tilted_s=TAXEL.tilt_sustain_s)),
      dict(contact=(True, True), estimate=dict(tilted_s=0.5 * TAXEL.tilt_sustain_s)),
      Counters()),
-    (Reason.HOLD_TIME, Mode.HOLD, dict(contact=(True, True), time_in_mode=3.0),
+    ("hold_time", Mode.HOLD, dict(contact=(True, True), time_in_mode=3.0),
      dict(contact=(True, True), time_in_mode=2.9), Counters()),
-    (Reason.AVOID_ENDED, Mode.AVOID, dict(contact=(True, True), motion_done=True),
+    ("avoid_ended", Mode.AVOID, dict(contact=(True, True), motion_done=True),
      dict(contact=(True, True)), Counters()),
-    (Reason.REGRASP_AFTER_PLACE, Mode.PLACE,
+    ("regrasp_after_place", Mode.PLACE,
      dict(contact=(True, True), event_matched=True, regrasp_pending=True),
      dict(contact=(True, True), regrasp_pending=True), Counters(regrasps=1)),
-    (Reason.PLACE, Mode.PLACE, dict(contact=(True, True), event_matched=True),
+    ("place_event", Mode.PLACE, dict(contact=(True, True), event_matched=True),
      dict(contact=(True, True)), Counters()),
-    (Reason.RELEASED, Mode.UNLOAD, dict(motion_done=True), dict(), Counters()),
+    ("place_timeout", Mode.PLACE,
+     dict(contact=(True, True), motion_done=True,
+          time_since_motion_done=CONFIG.place_event_timeout_s),
+     dict(contact=(True, True), motion_done=True), Counters()),
+    ("released", Mode.UNLOAD, dict(motion_done=True), dict(), Counters()),
 ]
 
 
 @pytest.mark.parametrize("rule,mode,fires,misses,counters", CASES,
-                         ids=[case[0].value for case in CASES])
+                         ids=[case[0] for case in CASES])
 def test_the_rule_fires_on_its_situation_and_not_on_a_near_miss(rule, mode, fires, misses,
                                                                 counters):
     assert code(mode, situation(**fires), counters) == rule
     assert code(mode, situation(**misses), counters) != rule
 
 
-def test_every_rule_of_the_table_has_a_case():
-    tested = {case[0] for case in CASES} | {Reason.CAGED_NO_LIFT_LOAD}
-    assert {rule.code for rules in (ANY_MODE, *TABLE.values()) for rule in rules} == tested
+# (guard, a rule it holds back, mode, the situation in which that rule fires, the estimate
+# fields under which the guard holds)
+GUARD_CASES = [
+    ("caged", "object_lost", Mode.HOLD, dict(), dict(caged_behind_pads=True)),
+    ("caged", "avoid_hit", Mode.HOLD, dict(contact=(True, True), hit=True),
+     dict(caged_behind_pads=True)),
+    ("caged", "lift_load", Mode.LIFT, dict(contact=(True, True), slip_s=1.0),
+     dict(caged_behind_pads=True)),
+    ("tipping_guard", "off_centre", Mode.REACH,
+     dict(contact=(True, True), shape=pads(3, 3), event_matched=True),
+     dict(topples_if_released=True)),
+]
 
 
-def test_a_caged_object_in_lift_stays_however_it_slips():
-    """caged_no_lift_load: it holds back Lift-Load, whose squeeze cannot reach it."""
-    caged = situation(slip_s=1.0, estimate=dict(caged_behind_pads=True))
-    rule, decision = first_match(Mode.LIFT, Situation(
-        mode=Mode.LIFT, obs=caged, counters=Counters(), config=CONFIG,
-        event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0))
-    assert (rule.code, decision) == (Reason.CAGED_NO_LIFT_LOAD, None)
-    slipping = situation(contact=(True, True), slip_s=1.0)
-    assert code(Mode.LIFT, slipping) == Reason.LIFT
-    assert decide(Mode.LIFT, slipping).mode == Mode.LOAD
+@pytest.mark.parametrize("guard,rule,mode,fires,holds", GUARD_CASES,
+                         ids=[f"{case[0]}-{case[1]}" for case in GUARD_CASES])
+def test_the_guard_holds_back_its_rule_only_while_its_condition_holds(guard, rule, mode, fires,
+                                                                      holds):
+    assert code(mode, situation(**fires)) == rule
+    assert code(mode, situation(**fires, estimate=holds)) != rule
+
+
+def test_every_rule_and_guard_of_the_table_has_a_case():
+    assert {rule.name for rule in TAXEL_AWARE_TABLE.all_rules()} == {case[0] for case in CASES}
+    guards = {guard.name: set(guard.holds_back) for guard in TAXEL_AWARE_TABLE.all_guards()}
+    assert guards == {name: {case[1] for case in GUARD_CASES if case[0] == name}
+                      for name in guards}
+
+
+def test_a_caged_object_in_lift_stays_however_it_slips_and_holds_when_lifted():
+    """The guard holds back Lift-Load, whose squeeze cannot reach it; the paper's end of the
+    lift still decides."""
+    slipping = dict(slip_s=1.0, estimate=dict(caged_behind_pads=True))
+    assert decide(Mode.LIFT, situation(**slipping)) is None
+    lifted = decide(Mode.LIFT, situation(**slipping, motion_done=True))
+    assert (lifted.code, lifted.mode) == ("lift_ended", Mode.HOLD)
+    assert decide(Mode.LIFT, situation(contact=(True, True), slip_s=1.0)).mode == Mode.LOAD
+
+
+def test_the_tipping_guard_loads_the_pushed_object_where_it_is_by_the_event():
+    decision = decide(Mode.REACH, situation(contact=(True, True), shape=pads(3, 3),
+                                            event_matched=True,
+                                            estimate=dict(topples_if_released=True)))
+    assert (decision.code, decision.mode, decision.trigger) == (
+        "reach_event", Mode.LOAD, Trigger.MEMORIZED_EVENT)
 
 
 def test_the_strike_backs_off_and_shifts_toward_the_struck_finger():
@@ -198,7 +227,7 @@ def test_an_off_centre_contact_is_centred_along_both_axes():
                                             event_matched=True))
     assert decision.action.shift == Shift(pytest.approx(1.5 * CELL_Y), 0.0)
     assert decide(Mode.REACH, situation(contact=(True, True), shape=pads(3, 3),
-                                        event_matched=True), USED_UP).code == Reason.REACH_EVENT
+                                        event_matched=True), USED_UP).code == "reach_event"
 
 
 def test_the_bracket_re_centres_on_the_middle_of_the_two_faces():
@@ -232,12 +261,12 @@ def test_corrections_used_up_fail(obs, counters):
     assert decision.mode == Mode.FAILED and decision.action == Failed()
 
 
-def test_the_table_lists_every_mode_but_the_terminal_ones_in_order():
-    table = rows()
-    assert table[0][:3] == ("any", 1, "device_fault")
-    reach = [name for mode, _, name, _, _ in table if mode == "Reach"]
-    assert reach[:3] == ["finger_strike", "approach_contact", "beyond_pads"]
-    assert {mode for mode, *_ in table} == {"any"} | {m.label for m in TABLE}
+def test_the_table_asks_the_devices_first_and_the_approach_before_the_papers_reach():
+    reach = [rule.name for rule, _ in TAXEL_AWARE_TABLE.ordered(Mode.REACH)]
+    assert reach[:6] == ["device_fault", "gripper_fault", "object_lost", "finger_strike",
+                         "approach_contact", "beyond_pads"]
+    assert reach.index("off_centre") < reach.index("reach_event") < reach.index("one_sided")
+    assert TAXEL_AWARE_TABLE.ordered(Mode.DONE) == ()
     assert decide(Mode.DONE, situation(device_fault="x")) is None
 
 
@@ -249,14 +278,14 @@ def test_a_one_sided_re_reach_centres_along_both_axes():
     shift = decide(Mode.REACH, obs).action.shift
     assert shift == Shift(pytest.approx(1.5 * CELL_Y), pytest.approx(0.0075))
     wide = decide(Mode.REACH, obs, Counters(re_reaches=TAXEL.max_re_reaches - 1))
-    assert wide.code == Reason.ONE_SIDED and wide.mode == Mode.RE_REACH
+    assert wide.code == "one_sided" and wide.mode == Mode.RE_REACH
     assert decide(Mode.REACH, obs, USED_UP).mode == Mode.FAILED
 
 
 def test_an_empty_pad_is_no_lost_object_while_the_fingers_cage_it():
     caged = situation(hit=True, estimate=dict(caged_behind_pads=True))
     assert decide(Mode.HOLD, caged) is None  # and its rattle is no hit
-    assert code(Mode.HOLD, situation(hit=True)) == Reason.OBJECT_LOST
+    assert code(Mode.HOLD, situation(hit=True)) == "object_lost"
 
 
 def test_the_papers_controller_reads_no_estimate():
@@ -266,8 +295,8 @@ def test_the_papers_controller_reads_no_estimate():
                                                caged_behind_pads=True))
     reach = paper_next_mode(Mode.REACH, obs, Counters(), paper,
                             event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
-    assert reach.mode == Mode.RE_REACH and reach.code is None
-    assert code(Mode.REACH, obs) == Reason.ONE_SIDED_AT_WIDTH
+    assert (reach.mode, reach.code, reach.action) == (Mode.RE_REACH, "one_sided", ReReach())
+    assert code(Mode.REACH, obs) == "one_sided_at_width"
     hold = situation(contact=(True, True), estimate=dict(tilted_s=1.0))
     assert paper_next_mode(Mode.HOLD, hold, Counters(), paper,
                            event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None

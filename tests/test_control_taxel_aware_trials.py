@@ -1,5 +1,5 @@
 """The taxel_aware controller's rules in closed-loop trials, one scene per row: the scene,
-the rules that must decide its transitions (structured Reason codes, in order), and what
+the rules that must decide its transitions (their names, in order), and what
 the grasp must achieve. Scenes on the prismatic hand with its ensemble events, in the world
 they were recorded in (ideal force taxels): the scenes were found on it, each to exercise its rule, and
 the same placement plays out otherwise on the linkage hand (its pads sweep along the
@@ -10,7 +10,7 @@ import dataclasses
 
 import pytest
 
-from tegrasp_drake.control.taxel_aware import Reason
+from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
 from tegrasp_drake.runs.trial import run_trial
@@ -33,7 +33,7 @@ class Scene:
 
 @dataclasses.dataclass(frozen=True)
 class Expect:
-    """The (from, to, Reason) transitions that must occur in this order (others may come
+    """The (from, to, rule name) transitions that must occur in this order (others may come
     between), `first`: the first of them is the trial's first transition; `check`: a
     further assertion on (the matched transitions, the result dict)."""
     steps: tuple
@@ -83,44 +83,45 @@ def _load_waited_the_timeout(found, result):
 SCENES = {
     # 12 mm farther than expected: the contact sits on the fingertip rows.
     "off_centre": (Scene("thick_cylinder", (0.012, 0.0)), Expect(
-        (("Reach", "Re-Reach", Reason.OFF_CENTRE),),
+        (("Reach", "Re-Reach", "off_centre"),),
         check=lambda found, r: found[0].approach_offset_m > 0.004)),
     # The paper's controller stalled on one-sided contact 2 cm along the stroke.
     "one_sided": (Scene("box", (0.0, 0.02)), Expect(
-        (("Reach", "Re-Reach", Reason.ONE_SIDED), ("Reach", "Load", Reason.REACH_EVENT)))),
+        (("Reach", "Re-Reach", "one_sided"), ("Reach", "Load", "reach_event")))),
     # 16 mm beyond and 24 mm along the stroke: the right pad meets the box in the approach;
     # back off, shift toward it (-y), approach again.
     "approach_contact": (Scene("box", (0.016, -0.024), -2.0), Expect(
-        (("Reach", "Re-Reach", Reason.APPROACH_CONTACT),), first=True,
+        (("Reach", "Re-Reach", "approach_contact"),), first=True,
         check=lambda found, r: found[0].offset_m < 0.0 and found[0].approach_offset_m < 0.0)),
     # 14 mm toward the palm, yawed 4.7 deg: closed to the width with the left pad alone.
     "one_sided_at_width": (Scene("box", (-0.014, 0.001), 4.7), Expect(
-        (("Reach", "Load", Reason.ONE_SIDED_AT_WIDTH),), first=True, no_re_reach=True)),
+        (("Reach", "Load", "one_sided_at_width"),), first=True, no_re_reach=True)),
     # A box yawed 10 deg, whose events the paper's controller never matched.
     "yawed_box": (Scene("box", yaw_deg=10.0), Expect(
-        (("Reach", "Load", Reason.REACH_EVENT), ("Load", "Lift", Reason.LOAD_LIFT_EVENT)))),
+        (("Reach", "Load", "reach_event"), ("Load", "Lift", "load_lift_event")))),
     # The thin cylinder pushed along the stroke is held 3-5 deg tilted; its taxels read
     # 0.4-0.9 deg of line tilt, so the limit is lowered below that to run the re-grasp.
     "regrasp": (Scene("thin_cylinder", (0.0, 0.015), taxel_aware=(("tilt_limit_deg", 0.2),)),
-                Expect((("Hold", "Place", Reason.HELD_TILTED),
-                        ("Place", "Re-Reach", Reason.REGRASP_AFTER_PLACE),
-                        ("Load", "Lift", Reason.LOAD_LIFT_EVENT)), unload=False,
+                Expect((("Hold", "Place", "held_tilted"),
+                        ("Place", "Re-Reach", "regrasp_after_place"),
+                        ("Load", "Lift", "load_lift_event")), unload=False,
                        check=lambda found, r: found[1].offset_m == 0.0
                        and "regrasp" in r["corrective_actions"]
                        and [(t["from"], t["to"]) for t in r["transitions"]].count(
                            ("Load", "Lift")) == 2)),
-    # The rod pushed 15 mm along the stroke past its tipping limit: loaded where it is,
-    # not let go to re-centre (it would fall).
+    # The rod pushed 15 mm along the stroke past its tipping limit: loaded where it is by
+    # the event (the tipping guard holds off_centre back), not let go to re-centre (it
+    # would fall).
     "tipping_guard": (Scene("thin_cylinder", (-0.01, -0.015)), Expect(
-        (("Reach", "Load", Reason.TIPPING_GUARD),), no_re_reach=True)),
+        (("Reach", "Load", "reach_event"),), no_re_reach=True)),
     # The rod 15 mm toward the palm is pushed behind the pads and caged there.
     "caged": (Scene("thin_cylinder", (-0.015, -0.025), -10.0), Expect(
-        (("Reach", "Load", Reason.REACH_TIMEOUT_CAGED),
-         ("Load", "Lift", Reason.LOAD_TIMEOUT_CAGED)), first=True, no_re_reach=True)),
+        (("Reach", "Load", "reach_timeout_caged"),
+         ("Load", "Lift", "load_timeout_caged")), first=True, no_re_reach=True)),
     # The rod's axis beyond the pads' distal edge: stop at the first touch, move forward
     # and toward the right pad.
     "beyond_pads": (Scene("thin_cylinder", (0.0139, -0.0246), 7.8), Expect(
-        (("Reach", "Re-Reach", Reason.BEYOND_PADS),), first=True,
+        (("Reach", "Re-Reach", "beyond_pads"),), first=True,
         check=lambda found, r: found[0].approach_offset_m > 0.0 and found[0].offset_m < -0.015)),
     # Box m20 of the second grid (15 mm beyond, 25 mm along the stroke) with seed 700,
     # yawed to 32 deg by the approach's push: the right finger alone, then the left; the
@@ -128,20 +129,20 @@ SCENES = {
     "bracket": (Scene(spec=SweepSpec(
         objects=("box",), controllers=("taxel_aware",), attempts=1, base_seed=700,
         grid=((0.015, -0.025),), randomisation=RandomisationConfig(placement_yaw_bound_deg=15.0))),
-        Expect((("Reach", "Re-Reach", Reason.ONE_SIDED),
-                ("Reach", "Re-Reach", Reason.BRACKET_RECENTRE)),
+        Expect((("Reach", "Re-Reach", "one_sided"),
+                ("Reach", "Re-Reach", "bracket_recentre")),
                check=lambda found, r: found[0].offset_m < 0.0
                and 0.0 < found[1].offset_m < abs(found[0].offset_m))),
     # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
     # threshold, and a correlation never exceeds 1): lifted after the Load timeout with both
     # pads on the box, where the paper's rule would Re-Reach.
     "load_timeout": (Scene("box", taxel_aware=(("load_lift_thresholds", [1.0, 1.0]),)),
-                     Expect((("Load", "Lift", Reason.LOAD_TIMEOUT_BOTH_PADS),),
+                     Expect((("Load", "Lift", "load_timeout_both_pads"),),
                             no_re_reach=True, check=_load_waited_the_timeout)),
     # A yawed box 25 mm along the stroke in the left finger's path: the strike, felt in the
     # joint torques, backs the approach off and shifts it toward the left finger (+y).
     "finger_strike": (Scene("box", (0.0, 0.025), -11.8, seed=700), Expect(
-        (("Reach", "Re-Reach", Reason.FINGER_STRIKE),), first=True,
+        (("Reach", "Re-Reach", "finger_strike"),), first=True,
         check=lambda found, r: found[0].offset_m > 0.01 and found[0].approach_offset_m < 0)),
 }
 
@@ -162,6 +163,8 @@ ARM_PATH_REGRESSIONS = {"bracket", "finger_strike"}
     for name in SCENES])
 def test_the_scene_is_decided_by_its_rules_and_grasped(name):
     scene, expect = SCENES[name]
+    for _, _, rule in expect.steps:
+        TAXEL_AWARE_TABLE.rule(rule)  # KeyError: no such rule
     run = _run(scene)
     result = run.result
     codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]

@@ -1,4 +1,6 @@
-"""The state machine's pure transition rule, exhaustively over its observations."""
+"""The paper's rule table (transition_logic.PAPER_TABLE): each rule fires on the situation
+it is written for and not on a near miss, and the table exhaustively over its
+observations."""
 
 import dataclasses
 import itertools
@@ -6,9 +8,10 @@ import itertools
 import pytest
 
 from tegrasp_drake.control.controller_config import GraspControllerConfig
-from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Trigger
-from tegrasp_drake.control.transition_logic import (HOLDING_MODES, Counters, Observation,
-                                                    next_mode)
+from tegrasp_drake.control.corrective_actions import Counters
+from tegrasp_drake.control.grasp_modes import HOLDING_MODES, TERMINAL_MODES, Mode, Trigger
+from tegrasp_drake.control.rule_actions import ReReach
+from tegrasp_drake.control.transition_logic import PAPER_TABLE, Observation, next_mode
 
 HOLD_S = 3.0
 # Fig. 6b: where each mode may go.
@@ -26,6 +29,74 @@ EVENT_TRANSITIONS = {(Mode.REACH, Mode.LOAD), (Mode.LOAD, Mode.LIFT), (Mode.PLAC
 def decide(mode, config=None, counters=Counters(), **fields):
     return next_mode(mode, Observation(**fields), counters, config or GraspControllerConfig(),
                      event_trigger=Trigger.MEMORIZED_EVENT, hold_s=HOLD_S)
+
+
+CONFIG = GraspControllerConfig()
+ONE_SIDED = dict(contact=(False, True), one_sided_s=CONFIG.one_sided_contact_s)
+HELD = dict(contact=(True, True))
+# (rule, mode, the observation it fires on, a near miss, counters, config changes)
+CASES = [
+    ("device_fault", Mode.HOLD, dict(device_fault="arm silent", **HELD), HELD, Counters(), {}),
+    ("gripper_fault", Mode.REACH, dict(gripper_fault="gFLT_0x08"), {}, Counters(), {}),
+    ("object_lost", Mode.LIFT, dict(contact=(False, False)), dict(contact=(True, False)),
+     Counters(), {}),
+    ("reach_event", Mode.REACH, dict(event_matched=True), dict(closing_s=0.5), Counters(), {}),
+    ("one_sided", Mode.REACH, ONE_SIDED,
+     dict(contact=(False, True), one_sided_s=0.5 * CONFIG.one_sided_contact_s), Counters(), {}),
+    ("closed_on_nothing", Mode.REACH, dict(closed_on_nothing=True, closing_s=0.5),
+     dict(closing_s=0.5), Counters(), {}),
+    ("reach_timeout", Mode.REACH, dict(closing_s=CONFIG.reach_event_timeout_s),
+     dict(closing_s=0.9 * CONFIG.reach_event_timeout_s), Counters(), {}),
+    ("re_centred", Mode.RE_REACH, dict(motion_done=True), {}, Counters(), {}),
+    ("load_lift_event", Mode.LOAD, dict(event_matched=True, **HELD), HELD, Counters(), {}),
+    ("relift", Mode.LOAD,
+     dict(grip_reached=True, time_in_mode=CONFIG.relift_settle_s, **HELD),
+     dict(grip_reached=False, time_in_mode=CONFIG.relift_settle_s, **HELD),
+     Counters(lift_loads=1), {}),
+    ("load_timeout", Mode.LOAD, dict(time_in_mode=CONFIG.load_event_timeout_s, **HELD),
+     dict(time_in_mode=0.9 * CONFIG.load_event_timeout_s, **HELD), Counters(), {}),
+    ("lift_load", Mode.LIFT, dict(slip_s=CONFIG.slip_s, **HELD),
+     dict(slip_s=0.5 * CONFIG.slip_s, **HELD), Counters(), {}),
+    ("lift_load", Mode.LIFT, dict(corrective_event_matched=True, slip_s=0.0, **HELD),
+     dict(slip_s=CONFIG.slip_s, **HELD), Counters(),
+     dict(memorized_corrective_events=("lift_load",))),
+    ("lift_ended", Mode.LIFT, dict(motion_done=True, **HELD), HELD, Counters(), {}),
+    ("avoid_hit", Mode.HOLD, dict(hit=True, **HELD), HELD, Counters(), {}),
+    ("avoid_hit", Mode.HOLD,
+     dict(corrective_event_matched=True, time_in_mode=CONFIG.memorized_hit_armed_s, **HELD),
+     dict(corrective_event_matched=True, hit=True,
+          time_in_mode=0.5 * CONFIG.memorized_hit_armed_s, **HELD), Counters(),
+     dict(memorized_corrective_events=("hold_avoid",))),
+    ("hold_time", Mode.HOLD, dict(time_in_mode=HOLD_S, **HELD),
+     dict(time_in_mode=HOLD_S - 0.01, **HELD), Counters(), {}),
+    ("avoid_ended", Mode.AVOID, dict(motion_done=True, **HELD), HELD, Counters(), {}),
+    ("place_event", Mode.PLACE, dict(event_matched=True, **HELD), HELD, Counters(), {}),
+    ("place_timeout", Mode.PLACE,
+     dict(motion_done=True, time_since_motion_done=CONFIG.place_event_timeout_s, **HELD),
+     dict(motion_done=True, time_since_motion_done=0.5 * CONFIG.place_event_timeout_s,
+          **HELD), Counters(), {}),
+    ("released", Mode.UNLOAD, dict(motion_done=True), {}, Counters(), {}),
+]
+
+
+@pytest.mark.parametrize("rule,mode,fires,misses,counters,changes", CASES,
+                         ids=[case[0] for case in CASES])
+def test_the_rule_fires_on_its_situation_and_not_on_a_near_miss(rule, mode, fires, misses,
+                                                                counters, changes):
+    config = dataclasses.replace(CONFIG, **changes)
+    assert decide(mode, config, counters, **fires).code == rule
+    near_miss = decide(mode, config, counters, **misses)
+    assert near_miss is None or near_miss.code != rule
+
+
+def test_every_rule_of_the_table_has_a_case():
+    assert {rule.name for rule in PAPER_TABLE.all_rules()} == {case[0] for case in CASES}
+    assert PAPER_TABLE.all_guards() == ()
+
+
+def test_the_papers_re_reach_leaves_its_shift_to_the_state_machine():
+    decision = decide(Mode.REACH, **ONE_SIDED)
+    assert decision.action == ReReach(shift=None, counted=True)
 
 
 def all_observations():

@@ -2,9 +2,10 @@
 
 An entry names its config class (the scenario's YAML tag, `controller: !<class> {...}`,
 whose `name` is the controller's name in results, sweeps and `--controller`), how it adds
-its systems to a DiagramBuilder, the rules and estimator its state machine runs, and how
-tables and figures show it. Adding a controller is one module (its config class and its
-rules) and one entry in CONTROLLERS; docs/controller.md ("Adding a controller") walks through an example.
+its systems to a DiagramBuilder, the rule table and estimator its state machine runs, and
+how tables and figures show it. Adding a controller is one module (its config class and
+its rule table, the paper's extended) and one entry in CONTROLLERS; docs/controller.md
+("Adding a controller") walks through an example.
 
 The entries name their behaviour as "module:function" and load it on use, so that this
 module imports no Drake: the command line's help and the sweep spec read the names here.
@@ -27,7 +28,7 @@ STATE_MACHINE = f"{_BUILDERS}:AddStateMachineController"  # channels, detector, 
 SCRIPTED_GRASP = f"{_BUILDERS}:AddScriptedGraspController"  # the open-loop script
 EVENT_MATCHER = f"{_BUILDERS}:add_event_matcher_detector"  # memorized events, Eq. 3
 HEURISTIC_THRESHOLDS = f"{_BUILDERS}:add_heuristic_detector"  # hand-set thresholds
-PAPER_RULES = "tegrasp_drake.control.transition_logic:next_mode"
+PAPER_RULES = "tegrasp_drake.control.transition_logic:rule_table"  # the paper's state machine
 
 
 @public_dataclass
@@ -42,8 +43,8 @@ class ControllerEntry:
     the station, called as AddGraspController's keywords plus `entry` (this entry); returns
     a GraspController. The state-machine controllers share STATE_MACHINE.
     detector: "module:function" adding the event detector a state machine reads
-    (EVENT_MATCHER or HEURISTIC_THRESHOLDS); rules: "module:function" of the state
-    machine's next_mode(mode, observation, counters, config, *, event_trigger, hold_s);
+    (EVENT_MATCHER or HEURISTIC_THRESHOLDS); rules: "module:function" of rules() -> the
+    state machine's RuleTable (control/rule_engine.py; PAPER_RULES: the paper's);
     estimator: "module:function" of estimator(config, plan) -> a ContactEstimator (or
     None: none); all None for a controller without a state machine.
     senses_finger_strike: its state machine reads the arm's wrench at the grasp frame.
@@ -74,6 +75,12 @@ class ControllerEntry:
         """It reads memorized events (its config's events_folder is not None)."""
         return self.config.events_folder is not None
 
+    def rule_table(self):
+        """The RuleTable its state machine runs (control/rule_engine.py); None for a
+        controller without a state machine."""
+        rules = self.load("rules")
+        return None if rules is None else rules()
+
     def load(self, field: str) -> Callable | None:
         """The function that `field` (add_systems, detector, rules, estimator) names."""
         reference = getattr(self, field)
@@ -96,12 +103,12 @@ CONTROLLERS = (
                     in_paper=True),
     ControllerEntry(TaxelAwareControllerConfig, label="taxel-aware, ensemble events",
                     title="taxel-aware corrections, ensemble events", color="#1f77b4",
-                    rules="tegrasp_drake.control.taxel_aware:next_mode",
+                    rules="tegrasp_drake.control.taxel_aware:rule_table",
                     estimator="tegrasp_drake.control.taxel_aware:estimator_for_plan",
                     senses_finger_strike=True),
     ControllerEntry(FixedLoadTimeControllerConfig, label="fixed Load time",
                     title="the paper's, Load-Lift after a fixed time", color="#d35400",
-                    rules="tegrasp_drake.control.fixed_load_time:next_mode"),
+                    rules="tegrasp_drake.control.fixed_load_time:rule_table"),
 )
 
 # The scenario's `controller` field: the first (the default) when untagged.

@@ -1,7 +1,8 @@
 """The corrective actions (Sec. III-C): Re-Reach, Lift-Load and Avoid, each as a decision
 (take it, or give up) and an action (where to move, how hard to grip), in pure functions.
 
-The transition rule (transition_logic.py) calls the decisions; the GraspStateMachine
+The rules of the rule tables (transition_logic.py) call the decisions (Re-Reach's is
+rule_actions.re_reach_or_fail, shared by every table); the GraspStateMachine
 (grasp_state_machine.py) calls the actions when it enters the mode. The thresholds and
 distances come from the GraspControllerConfig (controller_config.py).
 
@@ -70,19 +71,6 @@ def corrective_action_of(from_mode: Mode, to_mode: Mode,
 
 
 # ---- Re-Reach -------------------------------------------------------------------------
-
-
-def re_reach_or_fail(counters: Counters, config: GraspControllerConfig, reason: str, *,
-                     max_re_reaches: int | None = None) -> Decision:
-    """Re-Reach for `reason`, or Failed when Re-Reach is switched off or max_re_reaches
-    attempts (default: config.max_re_reaches, the paper's controllers') are used up."""
-    limit = config.max_re_reaches if max_re_reaches is None else max_re_reaches
-    if not config.re_reach_enabled:
-        return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason}; Re-Reach is switched off")
-    if counters.re_reaches >= limit:
-        return Decision(Mode.FAILED, Trigger.CORRECTIVE,
-                        f"{reason}, after {counters.re_reaches} Re-Reach attempts")
-    return Decision(Mode.RE_REACH, Trigger.CORRECTIVE, reason)
 
 
 def re_reach_shift(sa_n, opening_m: float, object_width_m: float,

@@ -1,11 +1,12 @@
 """The paper's state machine with a fixed Load time: Load-Lift fires load_time_s after
 entering Load, by the clock, instead of on the memorized Load-Lift event. Every other
-transition is the paper's (transition_logic.next_mode), the Reach-Load and Place-Unload
+transition is the paper's (transition_logic.PAPER_TABLE), the Reach-Load and Place-Unload
 events included.
 
 A controller in two parts, as docs/controller.md ("Adding a controller") shows: its config
-class (the YAML tag `!FixedLoadTimeControllerConfig`) and its rules; its entry in
-controller_registry.py says how it is built (the shared state machine and event matcher).
+class (the YAML tag `!FixedLoadTimeControllerConfig`) and its rule table, the paper's with
+a rule and a guard added; its entry in controller_registry.py says how it is built (the
+shared state machine and event matcher).
 """
 
 import dataclasses
@@ -13,6 +14,7 @@ import typing
 
 from tegrasp_drake.control.controller_config import EventTriggeredConfig
 from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
+from tegrasp_drake.control.rule_engine import Guard, Rule, RuleTable
 from tegrasp_drake.rig.ranges import bounded
 
 
@@ -32,16 +34,24 @@ class FixedLoadTimeControllerConfig(EventTriggeredConfig):
                                  below="must be positive [s]")
 
 
-def next_mode(mode: Mode, obs, counters, config, *, event_trigger: Trigger,
-              hold_s: float) -> Decision | None:
-    """The paper's next_mode, except that the first Load ends by the clock: Lift once
-    obs.time_in_mode reaches config.load_time_s, unless a device fails; the Load-Lift event
-    is not read. A re-load after a Lift-Load is the paper's."""
-    from tegrasp_drake.control import transition_logic  # loads Drake: on use, not import
-    if mode == Mode.LOAD and not counters.lift_loads:
-        failure = transition_logic.device_failure(obs)
-        if failure is None and obs.time_in_mode >= config.load_time_s:
-            return Decision(Mode.LIFT, Trigger.TIMER, f"loaded for {config.load_time_s:g} s")
-        obs = dataclasses.replace(obs, event_matched=False)
-    return transition_logic.next_mode(mode, obs, counters, config, event_trigger=event_trigger,
-                                      hold_s=hold_s)
+def _first_load(situation) -> bool:
+    """The first Load: no Lift-Load has re-loaded the object."""
+    return not situation.counters.lift_loads
+
+
+LOAD_TIME = Rule(
+    "load_time", (Mode.LOAD,), 90,
+    lambda s: _first_load(s) and s.obs.time_in_mode >= s.config.load_time_s,
+    lambda s: Decision(Mode.LIFT, Trigger.TIMER, f"loaded for {s.config.load_time_s:g} s"),
+    when="load_time_s in the first Load", then="Lift (timer)")
+NO_LOAD_LIFT_EVENT = Guard(
+    "no_load_lift_event", ("load_lift_event",), _first_load,
+    when="the first Load (the Load-Lift event is not read)")
+
+
+def rule_table() -> RuleTable:
+    """The paper's rule table with the first Load ended by the clock, before the Load-Lift
+    event could (priority 90 against its 100), which is not read there."""
+    from tegrasp_drake.control.transition_logic import PAPER_TABLE  # loads Drake: on use
+    return PAPER_TABLE.extended("fixed_load_time", rules=(LOAD_TIME,),
+                                guards=(NO_LOAD_LIFT_EVENT,))

@@ -247,7 +247,7 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
         event_trigger=event_trigger,
         corrective_event_indices=({t: corrective.event_index(t)
                                    for t in corrective.transitions} if corrective else None),
-        rules=entry.load("rules"),
+        rules=entry.rule_table(),
         estimator=make_estimator(config, plan) if make_estimator else None))
     if corrective is not None:
         builder.Connect(machine.GetOutputPort("corrective_expected_event"),

@@ -70,14 +70,14 @@ class Stage(enum.StrEnum):
 class Decision:
     """The next mode, what triggered it and a human-readable reason.
 
-    A rule table's decision (control/taxel_aware) also carries its action (e.g. a
-    ReReach with its shift), which the state machine carries out, and the structured
-    reason code of the rule that decided it."""
+    A rule table's decision (control/rule_engine.py) also carries its action
+    (control/rule_actions.py, e.g. a ReReach with its shift), which the state machine
+    carries out, and the name of the rule that decided it (its structured reason code)."""
     mode: Mode
     trigger: Trigger
     reason: str
     action: object | None = None
-    code: enum.Enum | None = None
+    code: str | None = None
 
 
 @public_dataclass
@@ -99,9 +99,9 @@ class Transition:
     grip_force_n: float | None = None  # Lift-Load: the raised grip force [N]
     direction: tuple[float, float, float] | None = None  # Avoid: unit direction, world
     delta_sa_n: tuple[float, float] | None = None  # Avoid: (left, right) SA gain of the hit [N]
-    # The structured reason code of the rule that decided it (taxel_aware's Reason), for
-    # code that asks which rule fired; not part of the JSON form, which keeps the text.
-    code: enum.Enum | None = None
+    # The name of the rule that decided it (its rule table's), for code that asks which
+    # rule fired; not part of the JSON form, which keeps the text.
+    code: str | None = None
 
     def as_dict(self) -> dict:
         """The JSON form (trial results, logs): t, from, to, trigger, reason, then the

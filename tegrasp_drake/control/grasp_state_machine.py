@@ -2,11 +2,11 @@
 Drake LeafSystem.
 
 Each tick (config.update_period_s) it summarises its inputs into an Observation (with the
-taxel_aware controller, the ContactEstimator's estimate of the contact), asks the pure
-rule (transition_logic.next_mode, or the taxel_aware rule table) for the next mode, and
-carries out the decision and the motion of the mode it is in: smooth (minimum-jerk)
-translations of the grasp frame at the side-grasp orientation, and Robotiq-style gripper
-requests. Everything it remembers is in one abstract
+taxel_aware controller, the ContactEstimator's estimate of the contact), asks its
+controller's rule table (control/rule_engine.py; the paper's: transition_logic.PAPER_TABLE)
+for the next mode, and carries out the decision and the motion of the mode it is in:
+smooth (minimum-jerk) translations of the grasp frame at the side-grasp orientation, and
+Robotiq-style gripper requests. Everything it remembers is in one abstract
 state value (MachineState), so a Context holds the whole run, timeline included.
 
 Motion of each mode (world frame, grasp frame G; the stroke is world y; the corrective
@@ -37,6 +37,7 @@ from tegrasp_drake.control.corrective_actions import (
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.machine_state import GraspPlan, MachineState, ModeTimers
 from tegrasp_drake.control.motion_profiles import MotionSegment
+from tegrasp_drake.control.rule_actions import Regrasp, ReReach
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.control.transition_logic import Observation, memorized_corrective_trigger
 from tegrasp_drake.events.transitions import (CORRECTIVE_TRANSITIONS, NO_EVENT,
@@ -112,15 +113,15 @@ class GraspStateMachine(LeafSystem):
             should check (slip in Lift, a hit in Hold), -1 for none or without memorized
             corrective triggers; depends only on the state.
 
-    rules: its next_mode(mode, observation, counters, config, *, event_trigger, hold_s)
-    (default: the paper's, transition_logic.next_mode); estimator: what senses the contact
-    for them each tick (a taxel_aware ContactEstimator), or None. The controller's entry
-    in controller_registry.py gives both.
+    rules: its RuleTable (control/rule_engine.py; default: the paper's,
+    transition_logic.PAPER_TABLE); estimator: what senses the contact for them each tick (a
+    taxel_aware ContactEstimator), or None. The controller's entry in
+    controller_registry.py gives both.
     """
 
     def __init__(self, *, plan: GraspPlan, config, event_indices: dict,
                  event_trigger: Trigger, corrective_event_indices: dict | None = None,
-                 rules=transition_logic.next_mode, estimator=None):
+                 rules=transition_logic.PAPER_TABLE, estimator=None):
         super().__init__()
         self._plan = plan
         self._config = config
@@ -148,10 +149,10 @@ class GraspStateMachine(LeafSystem):
         self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
         self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
         self._grasp_wrench = self.DeclareVectorInputPort("grasp_wrench", 6)
-        # The controller's rules (its registry entry's), over the Observation and what its
-        # estimator, if any, senses (the taxel_aware controller's ContactEstimator).
+        # The controller's rule table (its registry entry's), over the Observation and what
+        # its estimator, if any, senses (the taxel_aware controller's ContactEstimator).
         self._estimator = estimator
-        self._next_mode = rules
+        self._rules = rules
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
         state_only = {self.abstract_state_ticket(self._state)}
@@ -218,8 +219,9 @@ class GraspStateMachine(LeafSystem):
         t = context.get_time()
         s = self._advance_stage(self.state(context), t, context)
         observation, s = self._observe(s, t, context)
-        decision = self._next_mode(s.mode, observation, s.counters, self._config,
-                                   event_trigger=self._event_trigger, hold_s=self._plan.hold_s)
+        decision = self._rules.next_mode(s.mode, observation, s.counters, self._config,
+                                         event_trigger=self._event_trigger,
+                                         hold_s=self._plan.hold_s)
         if decision is not None:
             s = self._enter(s, decision, observation, t, context)
         state.get_mutable_abstract_state(self._state).set_value(s)
@@ -397,13 +399,14 @@ class GraspStateMachine(LeafSystem):
             return new(stage=Stage.CLOSING, timers=ModeTimers(closing_since=t),
                        gripper_request_time=t, gripper=(0.0, p.close_speed, s.grip_force))
         if mode == Mode.RE_REACH:
-            action = decision.action
-            if isinstance(action, taxel_aware.ReReach):  # the rule's own move
-                dx, dy, counted = action.shift.dx_m, action.shift.dy_m, action.counted
+            action = decision.action if isinstance(decision.action, ReReach) else ReReach()
+            counted = action.counted
+            if action.shift is not None:  # the rule's own move
+                dx, dy = action.shift.dx_m, action.shift.dy_m
                 logged = dataclasses.replace(entry, offset_m=round(dy, 5),
                                              approach_offset_m=round(dx, 5))
             else:  # the paper's shift along the stroke
-                dx, counted = 0.0, True
+                dx = 0.0
                 dy = re_reach_shift(self._channels.Eval(context), self._opening(context),
                                     p.object_width, self._config.contact_force_n)
                 logged = dataclasses.replace(entry, offset_m=round(dy, 5))
@@ -430,7 +433,7 @@ class GraspStateMachine(LeafSystem):
             return new(stage=Stage.SENSING)
         if mode == Mode.PLACE:
             target = (here[0], here[1], p.grasp_height - p.place_press)
-            regrasp = isinstance(decision.action, taxel_aware.Regrasp)  # a tilted object
+            regrasp = isinstance(decision.action, Regrasp)  # a tilted object
             return new(segment=MotionSegment(t, p.place_s, tuple(here), target),
                        regrasp_pending=regrasp,
                        counters=dataclasses.replace(

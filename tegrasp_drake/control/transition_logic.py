@@ -1,44 +1,27 @@
-"""The grasp state machine's transition rule as a pure function (Sec. II-B, III-C, Fig. 6).
+"""The paper's grasp state machine (Sec. II-B, III-C, Fig. 6b) as a rule table: what the
+machine observes each tick (Observation) and PAPER_TABLE, the rules of the rule engine
+(rule_engine.py) that decide the next mode from it, for the memorized and heuristic
+controllers; the other controllers' tables extend it. The LeafSystem
+(grasp_state_machine.py) builds the Observation each tick and carries out the decision.
 
-`next_mode(mode, observation, counters, config)` says which mode comes next and why, from a
-summary of what the machine observes; it keeps no state and has no side effects, so it is
-tested exhaustively. The LeafSystem (grasp_state_machine.py) builds the observation each
-tick and carries out the motion of each mode.
-
-  Reach    -> Load       the Reach-Load event                    (memorized/heuristic event)
-  Reach    -> Re-Reach   one finger alone in contact, closed on nothing, or no event in time
-  Re-Reach -> Reach      the gripper is open and re-centred      (corrective)
-  Load     -> Lift       the Load-Lift event                     (memorized/heuristic event)
-  Load     -> Lift       after a Lift-Load: both SA at the raised grip force, RA quiet,
-                         relift_settle_s in Load (corrective; the memorized events describe
-                         the ideal grasp, not a re-load)
-  Load     -> Re-Reach   no Load-Lift event in time (first load only)
-  Lift     -> Load       the object slips (Lift-Load)            (corrective; or the
-                         memorized slip event: corrective_event)
-  Lift     -> Hold       the lift motion ended                   (timer)
-  Hold     -> Avoid      a hit: RA above the hit threshold       (threshold; or the
-                         memorized hit event: corrective_event)
-  Hold     -> Place      hold_s in Hold                          (timer)
-  Avoid    -> Hold       the avoiding motion ended               (timer)
-  Place    -> Unload     the Place-Unload event                  (memorized/heuristic event)
-  Place    -> Unload     no event place_event_timeout_s after the arm stopped (timer)
-  Unload   -> Done       the gripper is open and the arm retracted (timer)
-  any      -> Failed     a device fault, the object lost (no pad contact), or corrections
-                         used up
-A corrective action whose retries are used up goes to Failed with the reason; those
-decisions (take the action, or give up) are in corrective_actions.py.
-
-The taxel_aware controller keeps these rules and adds its own, as a rule table
-(control/taxel_aware/table.py) over the same Observation and its ContactEstimate.
+The transitions (Fig. 6b): Reach -> Load, Load -> Lift and Place -> Unload on their events
+(memorized or heuristic); Lift -> Hold, Hold -> Place, Avoid -> Hold and Unload -> Done by
+the clock or the end of a motion; the corrective actions Re-Reach (Reach or Load ->
+Re-Reach -> Reach), Lift-Load (Lift -> Load -> Lift) and Avoid (Hold -> Avoid -> Hold),
+whose decisions (take the action, or give up) are in corrective_actions.py and
+rule_actions.py; and Failed from any mode on a fault, a lost object or corrections used
+up. `python -m tegrasp_drake.control.rule_docs` prints the table.
 """
 
 import dataclasses
+from collections.abc import Callable
 
 from tegrasp_drake.control.corrective_actions import (
-    Counters, avoid_on_hit, avoid_on_hit_event, lift_load_on_slip_event, lift_load_or_fail,
-    re_reach_or_fail, relift_after_lift_load)
-from tegrasp_drake.control.grasp_modes import (HOLDING_MODES, TERMINAL_MODES, Decision, Mode,
-                                               Trigger)
+    avoid_on_hit, avoid_on_hit_event, lift_load_on_slip_event, lift_load_or_fail,
+    relift_after_lift_load)
+from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Decision, Mode, Trigger
+from tegrasp_drake.control.rule_actions import Failed, Lift, Load, decide
+from tegrasp_drake.control.rule_engine import ReReachMove, Rule, RuleTable, Situation
 
 
 @dataclasses.dataclass(frozen=True)
@@ -68,138 +51,209 @@ class Observation:
     estimate: object | None = None
 
 
-def _reach(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if obs.event_matched:
-        return Decision(Mode.LOAD, event_trigger, "Reach-Load event")
-    if obs.one_sided_s >= config.one_sided_contact_s:
-        finger = "left" if obs.contact[0] else "right"
-        return re_reach_or_fail(counters, config, f"only the {finger} finger touched")
-    if obs.closed_on_nothing:
-        return re_reach_or_fail(counters, config, "the gripper closed on nothing")
-    if obs.closing_s >= config.reach_event_timeout_s:
-        return re_reach_or_fail(
-            counters, config, f"no Reach-Load event {config.reach_event_timeout_s:g} s after "
-            "closing")
-    return None
-
-
-def _load(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if obs.event_matched:
-        return Decision(Mode.LIFT, event_trigger, "Load-Lift event")
-    relift = relift_after_lift_load(grip_reached=obs.grip_reached, slip_quiet=obs.slip_quiet,
-                                    time_in_load_s=obs.time_in_mode, counters=counters,
-                                    config=config)
-    if relift is not None:
-        return relift
-    if obs.time_in_mode >= config.load_event_timeout_s:
-        reason = f"no Load-Lift event within {config.load_event_timeout_s:g} s"
-        if counters.lift_loads:
-            return Decision(Mode.FAILED, Trigger.CORRECTIVE, f"{reason} after Lift-Load")
-        return re_reach_or_fail(counters, config, reason)
-    return None
-
-
 def memorized_corrective_trigger(config, transition: str) -> bool:
     """True when the corrective `transition` (lift_load, hold_avoid) is triggered by its
     memorized corrective event (controller.memorized_corrective_events)."""
     return transition in getattr(config, "memorized_corrective_events", ())
 
 
-def _lift(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if memorized_corrective_trigger(config, "lift_load"):
-        lift_load = lift_load_on_slip_event(obs.corrective_event_matched, counters, config)
-    else:
-        lift_load = lift_load_or_fail(obs.slip_s, counters, config)
-    if lift_load is not None:
-        return lift_load
-    if obs.motion_done:
-        return Decision(Mode.HOLD, Trigger.TIMER, "lift motion ended")
-    return None
-
-
-def hold_avoid(obs: Observation, counters: Counters, config, event_trigger: Trigger,
-               hold_s: float) -> Decision | None:
-    """In Hold: Avoid a hit, from the heuristic threshold or the memorized hit event."""
-    if memorized_corrective_trigger(config, "hold_avoid"):
-        return avoid_on_hit_event(obs.corrective_event_matched, obs.time_in_mode, config)
-    return avoid_on_hit(obs.hit, config)
-
-
-def hold_time(obs: Observation, counters: Counters, config, event_trigger: Trigger,
-              hold_s: float) -> Decision | None:
-    """In Hold: Place after hold_s [s]."""
-    if obs.time_in_mode >= hold_s:
-        return Decision(Mode.PLACE, Trigger.TIMER, f"held {hold_s:g} s")
-    return None
-
-
-def _hold(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    return (hold_avoid(obs, counters, config, event_trigger, hold_s)
-            or hold_time(obs, counters, config, event_trigger, hold_s))
-
-
-def _avoid(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if obs.motion_done:
-        return Decision(Mode.HOLD, Trigger.TIMER, "avoiding motion ended")
-    return None
-
-
-def _place(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if obs.event_matched:
-        return Decision(Mode.UNLOAD, event_trigger, "Place-Unload event")
-    if placed(obs, config):
-        return Decision(Mode.UNLOAD, Trigger.TIMER, "no Place-Unload event after the arm stopped")
-    return None
-
-
 def placed(obs: Observation, config) -> bool:
     """In Place: the object stands on the table (the Place-Unload event, or
     place_event_timeout_s [s] after the arm stopped)."""
-    return obs.event_matched or (obs.motion_done and obs.time_since_motion_done
-                                 >= config.place_event_timeout_s)
+    return obs.event_matched or place_timed_out(obs, config)
 
 
-def _re_reach(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if obs.motion_done:
-        return Decision(Mode.REACH, Trigger.CORRECTIVE, "re-centred")
-    return None
+def place_timed_out(obs: Observation, config) -> bool:
+    """In Place: place_event_timeout_s [s] have passed since the arm stopped."""
+    return obs.motion_done and obs.time_since_motion_done >= config.place_event_timeout_s
 
 
-def _unload(obs: Observation, counters: Counters, config, event_trigger: Trigger, hold_s: float):
-    if obs.motion_done:
-        return Decision(Mode.DONE, Trigger.TIMER, "released and retracted")
-    return None
+def touching_finger(s: Situation) -> str:
+    """The finger in contact when one alone is ("left" or "right")."""
+    return "left" if s.obs.contact[0] else "right"
 
 
-PAPER_RULES = {Mode.REACH: _reach, Mode.RE_REACH: _re_reach, Mode.LOAD: _load,
-               Mode.LIFT: _lift, Mode.HOLD: _hold, Mode.AVOID: _avoid, Mode.PLACE: _place,
-               Mode.UNLOAD: _unload}
+def one_sided(s: Situation) -> bool:
+    """One finger alone has touched for one_sided_contact_s while closing."""
+    return s.obs.one_sided_s >= s.config.one_sided_contact_s
 
 
-def device_failure(obs: Observation) -> Decision | None:
-    """Failed on a device fault (a watchdog's, or the gripper's)."""
-    if obs.device_fault:
-        return Decision(Mode.FAILED, Trigger.FAULT, obs.device_fault)
-    if obs.gripper_fault:
-        return Decision(Mode.FAILED, Trigger.FAULT, f"gripper fault {obs.gripper_fault}")
-    return None
+def reach_timed_out(s: Situation) -> bool:
+    """No Reach-Load event reach_event_timeout_s after closing."""
+    return s.obs.closing_s >= s.config.reach_event_timeout_s
 
 
-def object_lost(mode: Mode, obs: Observation, config) -> Decision | None:
-    """Failed when, holding the object, no finger touches it."""
-    if config.drop_check_enabled and mode in HOLDING_MODES and not any(obs.contact):
-        return Decision(Mode.FAILED, Trigger.THRESHOLD, "object lost: no finger in contact")
-    return None
+def reach_timeout_reason(s: Situation) -> str:
+    return f"no Reach-Load event {s.config.reach_event_timeout_s:g} s after closing"
 
 
-def next_mode(mode: Mode, obs: Observation, counters: Counters, config, *,
-              event_trigger: Trigger, hold_s: float) -> Decision | None:
-    """The transition out of `mode` this tick, or None to stay.
+def load_timed_out(s: Situation) -> bool:
+    """No Load-Lift event load_event_timeout_s in Load."""
+    return s.obs.time_in_mode >= s.config.load_event_timeout_s
+
+
+def load_timeout_reason(s: Situation) -> str:
+    return f"no Load-Lift event within {s.config.load_event_timeout_s:g} s"
+
+
+def _fault(s: Situation) -> Decision:
+    return Decision(Mode.FAILED, Trigger.FAULT, s.obs.device_fault)
+
+
+def _gripper_fault(s: Situation) -> Decision:
+    return Decision(Mode.FAILED, Trigger.FAULT, f"gripper fault {s.obs.gripper_fault}")
+
+
+def _object_lost(s: Situation) -> bool:
+    return (s.config.drop_check_enabled and s.mode in HOLDING_MODES
+            and not any(s.obs.contact))
+
+
+def _load_timeout(s: Situation) -> Decision:
+    if s.counters.lift_loads:
+        return decide(Failed(), Trigger.CORRECTIVE, f"{load_timeout_reason(s)} after Lift-Load")
+    return s.re_reach_or_fail(load_timeout_reason(s), limit=s.config.max_re_reaches)
+
+
+def _relift(s: Situation) -> Decision | None:
+    return relift_after_lift_load(grip_reached=s.obs.grip_reached, slip_quiet=s.obs.slip_quiet,
+                                  time_in_load_s=s.obs.time_in_mode, counters=s.counters,
+                                  config=s.config)
+
+
+def _lift_load(s: Situation) -> Decision | None:
+    if memorized_corrective_trigger(s.config, "lift_load"):
+        return lift_load_on_slip_event(s.obs.corrective_event_matched, s.counters, s.config)
+    return lift_load_or_fail(s.obs.slip_s, s.counters, s.config)
+
+
+def _avoid(s: Situation) -> Decision | None:
+    if memorized_corrective_trigger(s.config, "hold_avoid"):
+        return avoid_on_hit_event(s.obs.corrective_event_matched, s.obs.time_in_mode, s.config)
+    return avoid_on_hit(s.obs.hit, s.config)
+
+
+def _decides(decision: Callable[[Situation], Decision | None]) -> Callable[[Situation], bool]:
+    """The condition of a rule whose action is a corrective decision (None: none)."""
+    return lambda s: decision(s) is not None
+
+
+def _when_done(mode: Mode, trigger: Trigger, reason: str):
+    """The action of a rule that ends a motion: `mode` by `trigger`, for `reason`."""
+    return lambda s: Decision(mode, trigger, reason)
+
+
+def _done(s: Situation) -> bool:
+    """The mode's motion (and gripper stage) has ended."""
+    return s.obs.motion_done
+
+
+def _event(s: Situation) -> bool:
+    """The detector matches the mode's expected event."""
+    return s.obs.event_matched
+
+
+# Priorities: the rules of every mode first (1-3); then in each mode its rules by 100s,
+# leaving room for other tables' rules between them.
+PAPER_RULES = (
+    # Any mode: the devices, the object.
+    Rule("device_fault", None, 1, lambda s: bool(s.obs.device_fault), _fault,
+         when="a watchdog reports a device fault", then="Failed (fault), its message"),
+    Rule("gripper_fault", None, 2, lambda s: bool(s.obs.gripper_fault), _gripper_fault,
+         when="the gripper reports a fault", then="Failed (fault)"),
+    Rule("object_lost", None, 3, _object_lost,
+         lambda s: Decision(Mode.FAILED, Trigger.THRESHOLD, "object lost: no finger in contact"),
+         when="holding (Lift, Hold, Avoid, Place), no pad's SA above contact_force_n "
+         "(drop_check_enabled)", then="Failed"),
+    # Reach.
+    Rule("reach_event", (Mode.REACH,), 100, _event,
+         lambda s: decide(Load(), s.event_trigger, "Reach-Load event"),
+         when="the object's Reach-Load event (heuristic: each SA above "
+         "heuristic.contact_force_n)", then="Load (event): close at the grip force"),
+    Rule("one_sided", (Mode.REACH,), 200, one_sided,
+         lambda s: s.re_reach_or_fail(f"only the {touching_finger(s)} finger touched"),
+         when="one finger alone in contact for one_sided_contact_s while closing",
+         then="{re_reach}, else Failed"),
+    Rule("closed_on_nothing", (Mode.REACH,), 300, lambda s: s.obs.closed_on_nothing,
+         lambda s: s.re_reach_or_fail("the gripper closed on nothing"),
+         when="the gripper closed to its request with no object (gOBJ 3)",
+         then="{re_reach}, else Failed"),
+    Rule("reach_timeout", (Mode.REACH,), 400, reach_timed_out,
+         lambda s: s.re_reach_or_fail(reach_timeout_reason(s)),
+         when="no Reach-Load event reach_event_timeout_s after closing",
+         then="{re_reach}, else Failed"),
+    # Re-Reach.
+    Rule("re_centred", (Mode.RE_REACH,), 100, _done,
+         _when_done(Mode.REACH, Trigger.CORRECTIVE, "re-centred"),
+         when="the gripper opened and moved", then="Reach (close again)"),
+    # Load.
+    Rule("load_lift_event", (Mode.LOAD,), 100, _event,
+         lambda s: decide(Lift(), s.event_trigger, "Load-Lift event"),
+         when="the Load-Lift event: the settled grip (heuristic: each SA above "
+         "heuristic.grip_fraction of the grip force)", then="Lift (event)"),
+    Rule("relift", (Mode.LOAD,), 200, _decides(_relift), _relift,
+         when="after a Lift-Load: both SA at grip_fraction of the raised grip force, the "
+         "slip band quiet, relift_settle_s in Load", then="Lift"),
+    Rule("load_timeout", (Mode.LOAD,), 400, load_timed_out, _load_timeout,
+         when="no Load-Lift event load_event_timeout_s in Load",
+         then="Failed after a Lift-Load, else Re-Reach ({re_reach_shift}; at most "
+         "max_re_reaches), else Failed"),
+    # Lift.
+    Rule("lift_load", (Mode.LIFT,), 100, _decides(_lift_load), _lift_load,
+         when="either slip band above slip_vibration_mps2 for slip_s (or the memorized "
+         "slip event: memorized_corrective_events); lift_load_enabled",
+         then="Load at lift_load_force_factor times the grip force (Lift-Load), Failed "
+         "after max_lift_loads"),
+    Rule("lift_ended", (Mode.LIFT,), 200, _done,
+         _when_done(Mode.HOLD, Trigger.TIMER, "lift motion ended"),
+         when="the lift motion ended", then="Hold"),
+    # Hold.
+    Rule("avoid_hit", (Mode.HOLD,), 100, _decides(_avoid), _avoid,
+         when="a hit: either RA above hit_ra_mps2 from hit_refractory_s in Hold (or the "
+         "memorized hit event: memorized_corrective_events); avoid_enabled",
+         then="Avoid: sense the hit's direction, move avoid_distance_m away"),
+    Rule("hold_time", (Mode.HOLD,), 200, lambda s: s.obs.time_in_mode >= s.hold_s,
+         lambda s: Decision(Mode.PLACE, Trigger.TIMER, f"held {s.hold_s:g} s"),
+         when="hold_s in Hold (the grasp script's)", then="Place"),
+    # Avoid.
+    Rule("avoid_ended", (Mode.AVOID,), 100, _done,
+         _when_done(Mode.HOLD, Trigger.TIMER, "avoiding motion ended"),
+         when="the avoiding motion ended", then="Hold"),
+    # Place.
+    Rule("place_event", (Mode.PLACE,), 100, _event,
+         lambda s: Decision(Mode.UNLOAD, s.event_trigger, "Place-Unload event"),
+         when="the Place-Unload event: the table touch (heuristic: either RA above "
+         "heuristic.place_ra_mps2)", then="Unload (event): open, retract"),
+    Rule("place_timeout", (Mode.PLACE,), 200, lambda s: place_timed_out(s.obs, s.config),
+         lambda s: Decision(Mode.UNLOAD, Trigger.TIMER,
+                            "no Place-Unload event after the arm stopped"),
+         when="no Place-Unload event place_event_timeout_s after the arm stopped",
+         then="Unload: open, retract"),
+    # Unload.
+    Rule("released", (Mode.UNLOAD,), 100, _done,
+         _when_done(Mode.DONE, Trigger.TIMER, "released and retracted"),
+         when="the gripper opened and the arm retracted", then="Done"),
+)
+
+# The paper's Re-Reach: along the stroke toward the finger touching alone, by half the gap
+# between the opening and the object's width (corrective_actions.re_reach_shift).
+PAPER_RE_REACH = ReReachMove(shift_label="the paper's shift along the stroke",
+                             limit_label="max_re_reaches",
+                             limit=lambda s: s.config.max_re_reaches)
+PAPER_TABLE = RuleTable(name="paper", rules=PAPER_RULES, re_reach_move=PAPER_RE_REACH)
+
+
+def rule_table() -> RuleTable:
+    """The memorized and heuristic controllers' rule table (their registry entries')."""
+    return PAPER_TABLE
+
+
+def next_mode(mode: Mode, obs: Observation, counters, config, *, event_trigger: Trigger,
+              hold_s: float) -> Decision | None:
+    """The paper's transition out of `mode` this tick, or None to stay (PAPER_TABLE).
 
     config: a GraspControllerConfig; event_trigger: the trigger name of this controller's
     event detector (memorized or heuristic); hold_s: how long to hold [s] (the paper: 3 s).
     """
-    if mode in TERMINAL_MODES:
-        return None
-    return (device_failure(obs) or object_lost(mode, obs, config)
-            or PAPER_RULES[mode](obs, counters, config, event_trigger, hold_s))
+    return PAPER_TABLE.next_mode(mode, obs, counters, config, event_trigger=event_trigger,
+                                 hold_s=hold_s)

@@ -89,7 +89,7 @@ class Scenario:
     # tau creeps at tau eps / (2 mu N r_g^2) whatever the time step (a held object slowly
     # rotating). 1e-6 brings eps down to the solver's own O(time_step) floor, about 4e-5 m/s
     # at 1 ms: creep 0.161 -> 0.048 deg/s at 17 % of the torsional friction limit, slip
-    # onset moved by 2 %, no measurable cost (docs/model.md, "No creep").
+    # onset moved by 2 %, no measurable cost (docs/model.md, "Friction creep").
     plant_config: MultibodyPlantConfig = dataclasses.field(
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged", stiction_tolerance=1e-6,

@@ -5,7 +5,9 @@ off approach_retreat_m while shifting along the stroke toward the touching finge
 paper's shift, moves.centring_shift), and resume the approach; Failed once the
 Re-Reaches are used up."""
 
-from tegrasp_drake.control.taxel_aware.decision import Reason, Rule, re_reach_or_fail
+from tegrasp_drake.control.grasp_modes import Mode
+from tegrasp_drake.control.rule_actions import re_reach_or_fail
+from tegrasp_drake.control.rule_engine import Rule
 from tegrasp_drake.control.taxel_aware.moves import centring_shift
 
 
@@ -21,6 +23,6 @@ def stop_back_off_and_shift(situation):
 
 
 APPROACH_CONTACT = Rule(
-    Reason.APPROACH_CONTACT, touches_in_approach, stop_back_off_and_shift,
+    "approach_contact", (Mode.REACH,), 20, touches_in_approach, stop_back_off_and_shift,
     when="a pad touched for one_sided_contact_s in the approach",
     then="ReReach(back off, the paper's shift) or Failed")

@@ -7,10 +7,10 @@ push the close would have made (contact_geometry.beyond_pads_shift). With no Re-
 left the rule stands aside: the close goes on under the rules below (a pushed grasp may
 still hold the object, a Failed cannot)."""
 
-from tegrasp_drake.control.grasp_modes import Trigger
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_aware.contact_geometry import beyond_pads_shift
-from tegrasp_drake.control.taxel_aware.decision import (Reason, ReReach, Rule, decide,
-                                                        re_reach_allowed)
+from tegrasp_drake.control.rule_actions import ReReach, decide, re_reach_allowed
+from tegrasp_drake.control.rule_engine import Rule
 
 
 def touched_beyond(situation) -> bool:
@@ -21,14 +21,15 @@ def stop_move_forward_and_centre(situation):
     e = situation.estimate
     shift = beyond_pads_shift(finger=e.first_touch_finger,
                               first_touch_opening_m=e.first_touch_opening_m,
-                              object_width_m=e.object_width_m, taxel_config=situation.taxel)
+                              object_width_m=e.object_width_m,
+                              taxel_config=situation.config.taxel_aware)
     return decide(ReReach(shift), Trigger.CORRECTIVE,
                   f"the {e.first_touch_finger} pad's distal row alone touched first, the "
                   "close would push the object over: stop, move forward and centre")
 
 
 BEYOND_PADS = Rule(
-    Reason.BEYOND_PADS, touched_beyond, stop_move_forward_and_centre,
+    "beyond_pads", (Mode.REACH, Mode.LOAD), 30, touched_beyond, stop_move_forward_and_centre,
     when="the first touch on one pad's distal row alone, the close would topple the "
     "object; Re-Reaches left",
     then="ReReach(forward half a pad, the push toward the pad)")

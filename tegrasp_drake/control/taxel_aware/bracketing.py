@@ -12,18 +12,18 @@ touched from opposite sides bound the object whatever its yaw.
   bracket_recentre     otherwise Re-Reach to the faces' midpoint (moves.centring_shift)
 """
 
-from tegrasp_drake.control.grasp_modes import Trigger
-from tegrasp_drake.control.taxel_aware.decision import (Load, Reason, Rule, decide,
-                                                        re_reach_or_fail)
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.rule_actions import Load, decide, re_reach_or_fail
+from tegrasp_drake.control.rule_engine import Rule
 from tegrasp_drake.control.taxel_aware.moves import centring_shift
-from tegrasp_drake.control.taxel_aware.one_sided_at_width import one_sided, touching_finger
+from tegrasp_drake.control.transition_logic import one_sided, touching_finger
 
 
 def closed_to_extent(situation) -> bool:
     e = situation.estimate
     extent = e.bracketed_width_m
     return (one_sided(situation) and extent > e.object_width_m
-            and e.opening_m <= extent + situation.taxel.one_sided_width_margin_m)
+            and e.opening_m <= extent + situation.config.taxel_aware.one_sided_width_margin_m)
 
 
 def load(situation):
@@ -46,10 +46,10 @@ def recentre(situation):
 
 
 BRACKETED_AT_EXTENT = Rule(
-    Reason.BRACKETED_AT_EXTENT, closed_to_extent, load,
+    "bracketed_at_extent", (Mode.REACH,), 180, closed_to_extent, load,
     when="one finger alone, the other's face remembered, closed to their extent + margin",
     then="Load")
 BRACKET_RECENTRE = Rule(
-    Reason.BRACKET_RECENTRE, bracketed, recentre,
+    "bracket_recentre", (Mode.REACH,), 190, bracketed, recentre,
     when="one finger alone, the other's face remembered",
     then="ReReach(to the faces' midpoint) or Failed")

@@ -6,16 +6,17 @@ and lifting carries it; no event comes (no taxel sees it), and a Re-Reach learns
 
   reach_timeout_caged  Reach, no Reach-Load event in time: Load it there
   load_timeout_caged   Load, no Load-Lift event in time: Lift it
-  caged_lift_ended     Lift: Hold when the lift motion ends ...
-  caged_no_lift_load   ... and no Lift-Load before: squeezing harder cannot stop a slip
-                       of an object no pad touches
-The object_lost and avoid_hit rules also stand aside for a caged object (its pads'
-contact and RA say nothing about it)."""
+  guard caged          holds back the paper's object_lost (no pad touches a caged object,
+                       yet it is held), avoid_hit (its pads feel it rattle in the cage, not
+                       a hit) and lift_load (squeezing harder cannot stop a slip of an
+                       object no pad touches): the lift ends in Hold as the paper's does
+"""
 
-from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
-from tegrasp_drake.control.taxel_aware.decision import Lift, Load, Reason, Rule, decide
-from tegrasp_drake.control.taxel_aware.no_event_in_time import (
-    load_timeout_reason, load_timed_out, reach_timed_out, reach_timeout_reason)
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.rule_actions import Lift, Load, decide
+from tegrasp_drake.control.rule_engine import Guard, Rule
+from tegrasp_drake.control.transition_logic import (load_timed_out, load_timeout_reason,
+                                                    reach_timed_out, reach_timeout_reason)
 
 
 def caged(situation) -> bool:
@@ -23,23 +24,17 @@ def caged(situation) -> bool:
 
 
 REACH_TIMEOUT_CAGED = Rule(
-    Reason.REACH_TIMEOUT_CAGED, lambda s: reach_timed_out(s) and caged(s),
+    "reach_timeout_caged", (Mode.REACH,), 390, lambda s: reach_timed_out(s) and caged(s),
     lambda s: decide(Load(), Trigger.CORRECTIVE, f"{reach_timeout_reason(s)}, the fingers "
                      "closed on the object behind the pads: load it there"),
     when="no Reach-Load event in time, the object caged behind the pads",
     then="Load")
 LOAD_TIMEOUT_CAGED = Rule(
-    Reason.LOAD_TIMEOUT_CAGED, lambda s: load_timed_out(s) and caged(s),
+    "load_timeout_caged", (Mode.LOAD,), 390, lambda s: load_timed_out(s) and caged(s),
     lambda s: decide(Lift(), Trigger.CORRECTIVE, f"{load_timeout_reason(s)}, the fingers "
                      "hold the object behind the pads: lift"),
     when="no Load-Lift event in time, the object caged behind the pads",
     then="Lift")
-CAGED_LIFT_ENDED = Rule(
-    Reason.CAGED_LIFT_ENDED, lambda s: caged(s) and s.obs.motion_done,
-    lambda s: Decision(Mode.HOLD, Trigger.TIMER, "lift motion ended"),
-    when="caged, the lift motion ended",
-    then="Hold")
-CAGED_NO_LIFT_LOAD = Rule(
-    Reason.CAGED_NO_LIFT_LOAD, caged, lambda s: None,
-    when="caged",
-    then="Stay (no Lift-Load)")
+CAGED = Guard(
+    "caged", ("object_lost", "avoid_hit", "lift_load"), caged,
+    when="the object caged behind the pads")

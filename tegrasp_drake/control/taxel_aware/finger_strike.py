@@ -7,11 +7,13 @@ Re-Reaches are used up."""
 
 from tegrasp_drake.control.finger_strike import strike_shift
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
-from tegrasp_drake.control.taxel_aware.decision import Reason, Rule, re_reach_or_fail
+from tegrasp_drake.control.grasp_modes import Mode
+from tegrasp_drake.control.rule_actions import re_reach_or_fail
+from tegrasp_drake.control.rule_engine import Rule
 
 
 def strikes(situation) -> bool:
-    strike = situation.taxel.finger_strike
+    strike = situation.config.taxel_aware.finger_strike
     return strike.enabled and situation.estimate.strike_s >= strike.sustain_s
 
 
@@ -19,13 +21,13 @@ def back_off_and_shift(situation):
     e = situation.estimate
     finger = e.strike_finger or None
     who = f"the {finger} finger" if finger else "a finger (side unknown)"
-    shift = Shift(-situation.taxel.approach_retreat_m,
+    shift = Shift(-situation.config.taxel_aware.approach_retreat_m,
                   strike_shift(finger, e.opening_m, e.object_width_m))
     return re_reach_or_fail(situation, shift, f"{who} struck the object during the "
                             f"approach ({e.strike_force_n:.1f} N at the wrist)")
 
 
 FINGER_STRIKE = Rule(
-    Reason.FINGER_STRIKE, strikes, back_off_and_shift,
+    "finger_strike", (Mode.REACH,), 10, strikes, back_off_and_shift,
     when="the wrist force exceeded finger_strike.force_n for sustain_s in the approach",
     then="ReReach(back off, toward the struck finger) or Failed")

@@ -3,16 +3,16 @@ along the approach axis by more than centre_tolerance_m (contact_geometry.approa
 not 0) and Re-Reaches are left: Re-Reach to centre it along both axes
 (moves.centring_shift) before loading, repeated until centred."""
 
-from tegrasp_drake.control.grasp_modes import Trigger
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_aware.contact_geometry import approach_shift
-from tegrasp_drake.control.taxel_aware.decision import (Reason, ReReach, Rule, decide,
-                                                        re_reach_allowed)
+from tegrasp_drake.control.rule_actions import ReReach, decide, re_reach_allowed
+from tegrasp_drake.control.rule_engine import Rule
 from tegrasp_drake.control.taxel_aware.moves import centring_shift
 
 
 def event_off_centre(situation) -> bool:
     return (situation.obs.event_matched and re_reach_allowed(situation)
-            and approach_shift(situation.estimate.shape, situation.taxel,
+            and approach_shift(situation.estimate.shape, situation.config.taxel_aware,
                                situation.estimate.pad_travel_to_grasp_m) != 0.0)
 
 
@@ -24,7 +24,7 @@ def centre_first(situation):
 
 
 OFF_CENTRE = Rule(
-    Reason.OFF_CENTRE, event_off_centre, centre_first,
+    "off_centre", (Mode.REACH,), 90, event_off_centre, centre_first,
     when="Reach-Load event, the contact off the pads' centres along the approach axis; "
     "Re-Reaches left",
     then="ReReach(centring, both axes)")

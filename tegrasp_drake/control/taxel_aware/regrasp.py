@@ -2,17 +2,19 @@
 grasp (contact_geometry.held_tilted: a pad's contact line turned more than tilt_limit_deg,
 or the two pads' contacts at different heights) for tilt_sustain_s: put it down (Place),
 then, once it stands on the table again (the Place-Unload event or its timeout), open and
-close again through a Re-Reach without a shift, and lift it again; at most max_regrasps."""
+close again through a Re-Reach without a shift, and lift it again; at most max_regrasps.
+A hit is avoided first (the paper's avoid_hit, priority 100); the re-grasp's Place ends
+before the paper's Unload (place_event, 100)."""
 
-from tegrasp_drake.control.grasp_modes import Trigger
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.rule_actions import Regrasp, ReReach, decide
+from tegrasp_drake.control.rule_engine import Rule
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
-from tegrasp_drake.control.taxel_aware.decision import (Reason, Regrasp, ReReach, Rule,
-                                                        decide)
 from tegrasp_drake.control.transition_logic import placed
 
 
 def tilted_for_long(situation) -> bool:
-    taxel = situation.taxel
+    taxel = situation.config.taxel_aware
     return (taxel.regrasp_enabled and situation.estimate.tilted_s >= taxel.tilt_sustain_s
             and situation.counters.regrasps < taxel.max_regrasps)
 
@@ -31,10 +33,10 @@ def open_and_close_again(situation):
 
 
 HELD_TILTED = Rule(
-    Reason.HELD_TILTED, tilted_for_long, put_down,
+    "held_tilted", (Mode.HOLD,), 150, tilted_for_long, put_down,
     when="held tilted for tilt_sustain_s; re-grasps left",
     then="Regrasp (Place)")
-REGRASP_AFTER_PLACE = Rule(Reason.REGRASP_AFTER_PLACE, placed_to_regrasp,
-                           open_and_close_again,
+REGRASP_AFTER_PLACE = Rule(
+    "regrasp_after_place", (Mode.PLACE,), 50, placed_to_regrasp, open_and_close_again,
     when="a re-grasp's Place: the object stands again",
     then="ReReach(no shift, not counted)")

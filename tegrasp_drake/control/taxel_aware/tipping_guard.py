@@ -1,21 +1,16 @@
-"""Rule tipping_guard (Reach, at the Reach-Load event): the close has pushed the object past
-its tipping limit (contact_geometry.release_topples); both pads hold it tilted on them, and
-opening to re-centre it would let it fall. Load where it is, by the event: grasping it
-off-centre holds it (open loop does), re-centring it knocks it over. It stands before
-off_centre, which it holds back."""
+"""Guard tipping_guard (Reach, at the Reach-Load event): the close has pushed the object
+past its tipping limit (contact_geometry.release_topples); both pads hold it tilted on
+them, and opening to re-centre it would let it fall. It holds back off_centre: the
+paper's reach_event loads it where it is, since grasping it off-centre holds it (open
+loop does) and re-centring it knocks it over."""
 
-from tegrasp_drake.control.taxel_aware.decision import Load, Reason, Rule, decide
-
-
-def event_with_object_pushed_over(situation) -> bool:
-    return situation.obs.event_matched and situation.estimate.topples_if_released
+from tegrasp_drake.control.rule_engine import Guard
 
 
-def load_where_it_is(situation):
-    return decide(Load(), situation.event_trigger, "Reach-Load event")
+def pushed_over(situation) -> bool:
+    return situation.estimate.topples_if_released
 
 
-TIPPING_GUARD = Rule(
-    Reason.TIPPING_GUARD, event_with_object_pushed_over, load_where_it_is,
-    when="Reach-Load event, the close pushed the object past its tipping limit",
-    then="Load (event)")
+TIPPING_GUARD = Guard(
+    "tipping_guard", ("off_centre",), pushed_over,
+    when="the close pushed the object past its tipping limit")

@@ -1,0 +1,128 @@
+"""The docs' rule tables, generated from the rule engine (rule_engine.py): each state-machine
+controller's RuleTable, from its controller_registry entry, as Markdown.
+
+    python -m tegrasp_drake.control.rule_docs                             # print them
+    python -m tegrasp_drake.control.rule_docs --write docs/controller.md  # update the page
+    python -m tegrasp_drake.control.rule_docs --check docs/controller.md  # exit 1 if stale
+
+In a page a table lies between the lines `<!-- rule table: NAME -->` (`<!-- rule table:
+NAME, added -->`: only the rules and guards that NAME adds to its base table) and
+`<!-- end of rule table -->`; --write replaces what lies between, through a temporary file
+and a rename.
+"""
+
+import argparse
+import pathlib
+import re
+import sys
+
+from tegrasp_drake.control.rule_engine import LIVE_MODES, RuleTable
+
+BEGIN = re.compile(r"^<!-- rule table: (?P<name>\w+)(?P<added>, added)? -->$", re.MULTILINE)
+END = "<!-- end of rule table -->"
+
+
+def registered_tables() -> dict[str, RuleTable]:
+    """The state-machine controllers' rule tables by their names, in the registry's order."""
+    from tegrasp_drake.control.controller_registry import CONTROLLERS
+    tables = {}
+    for entry in CONTROLLERS:
+        table = entry.rule_table()
+        if table is not None:
+            tables.setdefault(table.name, table)
+    return tables
+
+
+def _rows(table: RuleTable, added_only: bool) -> list[tuple[str, object]]:
+    """(mode label, rule) in the order the docs list them: the rules of every mode first,
+    then each mode's by priority (a rule of two modes under both)."""
+    def shown(rule) -> bool:
+        return not added_only or table.origin(rule.name) == table.name
+    rows = [("any", rule) for rule in sorted(table.all_rules(), key=lambda r: r.priority)
+            if rule.modes is None and shown(rule)]
+    for mode in LIVE_MODES:
+        rows += [(mode.label, rule) for rule, _ in table.ordered(mode)
+                 if rule.modes is not None and shown(rule)]
+    return rows
+
+
+def markdown(table: RuleTable, *, added_only: bool = False) -> str:
+    """The table as Markdown: its rules (mode, priority, name, the table that added it
+    (extended tables), the guards that can hold it back (tables with guards), when, then),
+    then its guards; `added_only`: only those that `table` adds to its base."""
+    move = table.re_reach_move
+    guards = table.all_guards() if not added_only else table.guards
+    held = {rule.name: [g.name for g in table.all_guards() if rule.name in g.holds_back]
+            for rule in table.all_rules()}
+    # The columns "from" for an extended table, "held back by" for one with guards.
+    columns = ["mode", "priority", "rule"] + ["from"] * (table.base is not None) + [
+        "held back by"] * bool(table.all_guards()) + ["when", "then"]
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    for mode, rule in _rows(table, added_only):
+        cells = {"mode": mode, "priority": str(rule.priority), "rule": f"`{rule.name}`",
+                 "from": table.origin(rule.name),
+                 "held back by": ", ".join(f"`{g}`" for g in held[rule.name]) or "-",
+                 "when": rule.when,
+                 "then": rule.then.format(re_reach=move.label, re_reach_shift=move.shift_label)}
+        lines.append("| " + " | ".join(cells[column] for column in columns) + " |")
+    if guards:
+        lines += ["", "| guard | from | holds back | while |", "|---|---|---|---|"]
+        lines += [f"| `{g.name}` | {table.origin(g.name)} | "
+                  f"{', '.join(f'`{name}`' for name in g.holds_back)} | {g.when} |"
+                  for g in guards]
+    return "\n".join(lines) + "\n"
+
+
+def updated_page(page: str, tables: dict[str, RuleTable]) -> tuple[str, list[str]]:
+    """`page` with every rule table between its markers generated anew, and the names of
+    the tables it holds. ValueError for a table the registry lacks or a missing end."""
+    out, position, names = [], 0, []
+    for begin in BEGIN.finditer(page):
+        name = begin["name"]
+        if name not in tables:
+            raise ValueError(f"the page shows a rule table '{name}'; the controllers' tables "
+                             f"are {', '.join(tables)}")
+        end = page.find(END, begin.end())
+        if end < 0:
+            raise ValueError(f"the rule table '{name}' has no '{END}' line after it")
+        out += [page[position:begin.end()], "\n",
+                markdown(tables[name], added_only=bool(begin["added"]))]
+        position, names = end, names + [name]
+    return "".join(out) + page[position:], names
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m tegrasp_drake.control.rule_docs",
+                                     description="The controllers' rule tables as Markdown.")
+    action = parser.add_mutually_exclusive_group()
+    action.add_argument("--write", type=pathlib.Path, metavar="PAGE",
+                        help="regenerate the tables between their markers in PAGE")
+    action.add_argument("--check", type=pathlib.Path, metavar="PAGE",
+                        help="exit 1 when PAGE's tables differ from the engine's")
+    args = parser.parse_args(argv)
+    tables = registered_tables()
+    path = args.write or args.check
+    if path is None:
+        for name, table in tables.items():
+            print(f"{name}:\n\n{markdown(table)}")
+        return 0
+    try:
+        page = path.read_text()
+        updated, names = updated_page(page, tables)
+    except (OSError, ValueError) as error:
+        raise SystemExit(f"rule_docs: {path}: {error}") from None
+    if args.check:
+        if updated != page:
+            print(f"{path}: its rule tables differ from the engine's; run `python -m "
+                  f"tegrasp_drake.control.rule_docs --write {path}`")
+            return 1
+        print(f"{path}: the rule tables {', '.join(names)} agree with the engine")
+        return 0
+    from tegrasp_drake.rig.files import write_atomically
+    write_atomically(path, updated)
+    print(f"{path}: wrote the rule tables {', '.join(names)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
