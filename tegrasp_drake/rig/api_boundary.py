@@ -21,7 +21,7 @@ all arguments are known good):
 
     def run_trial(scenario: Scenario, *,
                   max_time: Annotated[float | None, Range(low=0.0, unit="s")] = None):
-    def write_reports(out_dir: Annotated[PathLike, SWEEP_FOLDER], *,
+    def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER], *,
                       figure_format: Annotated[str, Choice(FIGURE_FORMATS)] = "png"):
 
 - a `Range` (rig/ranges.py): a finite number inside it (None passes when the type allows
@@ -49,6 +49,8 @@ import typing
 PathLike = str | os.PathLike
 
 _TEXT = (str, bytes, bytearray)
+_ITEM_CHECKED = (list, tuple, collections.abc.Sequence, collections.abc.Collection,
+                 collections.abc.Set, set, frozenset)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -82,8 +84,6 @@ class Folder:
 INPUT_FOLDER = Folder(exists=True)                    # read from
 OUTPUT_FOLDER = Folder(exists=False, writable=True)   # written to, made if need be
 UPDATED_FOLDER = Folder(exists=True, writable=True)   # read from and written to
-_ITEM_CHECKED = (list, tuple, collections.abc.Sequence, collections.abc.Collection,
-                 collections.abc.Set, set, frozenset)
 
 
 def public_api(function):
