@@ -209,33 +209,37 @@ class FilmLoads(LeafSystem):
         # Scalars are handled as Python floats: per plant step, numpy's scalar overhead
         # would cost more than the arithmetic itself.
         signals = self._signals.Eval(context)
+        values = signals.tolist()
         if self._statics is None:
-            left, right = signals.item(self._left_force), signals.item(self._right_force)
+            left, right = values[self._left_force], values[self._right_force]
         else:
-            left, right = self._statics.normal_forces(
-                signals[self._forces].tolist(), signals[self._gripper_state].tolist())
+            left, right = self._statics.normal_forces(values[self._forces],
+                                                      values[self._gripper_state])
         time = context.get_time()
-        if int(round(time / self._dt)) == 0:  # no plant step has ended yet
+        if time < 0.5 * self._dt:  # no plant step has ended yet
             output.SetFromVector([0.0, 0.0, left, right, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
                                  + self._no_direct)
             return
-        before_left, before_right = signals[self._previous_forces].tolist()
-        pulses = signals[self._previous_pulses].tolist()  # onsets, impulses, durations
+        before_left, before_right = values[self._previous_forces]
+        pulses = values[self._previous_pulses]  # onsets, impulses, durations
         m = self._config.mode_mass_kg
-        loads = [left + m * signals.item(self._normal_accelerations[0]),
-                 right + m * signals.item(self._normal_accelerations[1]), left, right]
+        loads = [left + m * values[self._normal_accelerations[0]],
+                 right + m * values[self._normal_accelerations[1]], left, right]
         onsets = (abs(left) > CONTACT_ONSET_N >= abs(before_left),
                   abs(right) > CONTACT_ONSET_N >= abs(before_right))
         step_start = time - self._dt
         if self._config.impact_enabled and (onsets[0] or onsets[1]):
             self._start_impacts(context, onsets, step_start, pulses)
-        direct = self._impact_loads(step_start, pulses)
+        direct = None
+        if pulses[2] > 0.0 or pulses[3] > 0.0:  # an impulse is under way
+            direct = self._impact_loads(step_start, pulses)
         if self._texture is not None and (left != 0.0 or right != 0.0):
             texture = self._texture_loads(signals[self._texture], step_start)
             if texture is not None:
                 direct = texture if direct is None else direct + texture
-        output.SetFromVector(loads + pulses + (self._no_direct if direct is None
-                                               else direct.T.ravel().tolist()))
+        written = output.get_mutable_value()
+        written[:DIRECT_START] = loads + pulses
+        written[DIRECT_START:] = 0.0 if direct is None else direct.T.ravel()
 
     def _impact_loads(self, step_start: float, pulses: list):
         """(n, 2) impact forces [N] over this step's internal steps, or None; marks an
