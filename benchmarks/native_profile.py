@@ -12,8 +12,9 @@ it was in: the innermost Python system whose callback Drake was running, else th
 the plant step's PARTS that the stack shows, else the innermost of Drake's own systems that
 the package builds its compiled chains from (COMPILED_SYSTEMS, by class), else the rest of
 PARTS. A system's share includes the plant outputs its Evals computed (the taxels' contact
-results, say) but not another Python system's calculation that an Eval ran (counted there). py-spy stops the child for every sample, which inflates
-its CPU time (by about a third at the default rate), so the trial runs twice: alone, for
+results, say) but not another Python system's calculation that an Eval ran (counted
+there). py-spy stops the child for every sample, which inflates its CPU time (by about a
+third at the default rate), so the trial runs twice: alone, for
 its process CPU time (run_trial's), and under py-spy, for the shares; each share of the
 first run's CPU time is given in milliseconds per simulated second. The host's load falls
 on the two runs differently: compare shares, and CPU figures only from one run on an idle

@@ -218,8 +218,9 @@ _OPTIONAL = re.compile(r"\s*\(optional\)$")
 
 
 def pydrake_system_block(cls) -> dict | None:
-    """The `.. pydrake_system::` block of cls's own docstring (or a function's) as {name, input_ports,
-    output_ports} (port names without their "(optional)" note); None without one."""
+    """The `.. pydrake_system::` block of cls's own docstring (a function's: its docstring)
+    as {name, input_ports, output_ports} (port names without their "(optional)" note);
+    None without one."""
     doc = cls.__dict__.get("__doc__") if inspect.isclass(cls) else cls.__doc__
     lines = inspect.cleandoc(doc or "").splitlines()
     starts = [i for i, line in enumerate(lines) if line.strip() == ".. pydrake_system::"]

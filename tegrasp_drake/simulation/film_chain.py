@@ -16,10 +16,11 @@ The MatrixGain is film_dynamics.FilmStepMatrices for both pads (`advance_films` 
 form, film_step_matrix); the films' states live in the ZeroOrderHold, not in a
 LinearSystem, because a LinearSystem with state draws from the random generator that seeds
 the station's noise sources (Drake's TimeVaryingAffineSystem::SetRandomState), which would
-change every noise stream seeded after it. The readout's expressions are film_readout.reading_mps2 itself, written with
-pydrake.symbolic's min, max and floor, on the signed peak of the step's n outputs
-(film_dynamics.symbolic_signed_peak). Nothing in the chain calls Python per plant step but
-FilmLoads' one output.
+change every noise stream seeded after it. The readout's expressions are
+film_readout.reading_mps2 itself, written with pydrake.symbolic's min, max and floor, on
+the signed peak of the step's n outputs (film_dynamics.symbolic_signed_peak): the same
+arithmetic bit for bit. Nothing in the chain calls Python per plant step but FilmLoads'
+one output.
 """
 
 import numpy as np
