@@ -7,7 +7,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from tegrasp_drake.control.controller_config import TaxelAwareConfig
+from tegrasp_drake.control.controller_config import GraspControllerConfig, TaxelAwareConfig
 from tegrasp_drake.control.taxel_aware.contact_geometry import (
     FaceTouch, Shift, approach_shift, beyond_pads_shift, bracketed_object, caged_behind_pads,
     held_tilted, opposite_face, pushed_distance_m, release_topples, remembered_faces,
@@ -17,6 +17,7 @@ from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
 
 TAXEL = TaxelAwareConfig()
+CONTACT_N = GraspControllerConfig().taxel_contact_n  # the ideal force taxels' number
 
 
 def line_on_row(row, force=1.0):
@@ -28,7 +29,7 @@ def line_on_row(row, force=1.0):
 def both(row_left, row_right=None):
     return grasp_contact(np.concatenate([line_on_row(row_left),
                                          line_on_row(row_left if row_right is None
-                                                     else row_right)]))
+                                                     else row_right)]), CONTACT_N)
 
 
 def test_a_contact_on_the_fingertip_row_moves_the_gripper_forward_by_its_offset():
@@ -39,7 +40,7 @@ def test_a_contact_on_the_fingertip_row_moves_the_gripper_forward_by_its_offset(
 
 def test_a_centred_contact_or_none_needs_no_approach_shift():
     assert approach_shift(both(1, 2), TAXEL) == 0.0  # between the middle rows
-    assert approach_shift(grasp_contact(np.zeros(24)), TAXEL) == 0.0
+    assert approach_shift(grasp_contact(np.zeros(24), CONTACT_N), TAXEL) == 0.0
 
 
 def test_the_linkage_pads_travel_still_to_come_is_taken_off_the_approach_shift():
@@ -101,7 +102,8 @@ def test_fingers_closed_past_an_object_first_touched_on_the_palm_side_cage_it():
 def test_a_diagonal_contact_line_is_a_tilted_hold():
     diagonal = np.zeros((ROWS, COLUMNS))
     diagonal[[0, 1, 2], [0, 1, 2]] = 1.0
-    tilted = grasp_contact(np.concatenate([diagonal.reshape(-1), diagonal.reshape(-1)]))
+    tilted = grasp_contact(np.concatenate([diagonal.reshape(-1), diagonal.reshape(-1)]),
+                           CONTACT_N)
     assert held_tilted(tilted, TAXEL)
     assert not held_tilted(both(1), TAXEL)
 
@@ -112,7 +114,7 @@ def test_the_taxel_aware_settings_are_reasoned_in_pad_units():
 
 
 def _beyond(first_touch_offset_m=grasp_contact(
-        np.concatenate([np.zeros(12), line_on_row(3, 0.1)])).approach_offset_m,
+        np.concatenate([np.zeros(12), line_on_row(3, 0.1)]), CONTACT_N).approach_offset_m,
         one_pad=True, first_touch_opening_m=0.0719):
     # The thin cylinder 1.5 cm beyond the nominal grasp and 2.5 cm
     # along the stroke; the right pad's distal row alone touched at 71.9 mm.
@@ -128,7 +130,7 @@ def test_a_first_touch_on_one_pads_distal_row_that_would_push_the_object_over_st
     assert _beyond()
     # Force above the taxel threshold on the third row too: the object lies on the face.
     face = grasp_contact(np.concatenate([np.zeros(12), line_on_row(3, 0.15)
-                                         + line_on_row(2, 0.06)]))
+                                         + line_on_row(2, 0.06)]), CONTACT_N)
     assert not _beyond(first_touch_offset_m=face.approach_offset_m)
     assert not _beyond(one_pad=False)  # both pads at once: centred along the stroke
     # A push within the tipping limit (11.5 mm): the paper's rule grasps it.

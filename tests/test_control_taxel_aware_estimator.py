@@ -4,7 +4,7 @@ to tick and across a change of mode."""
 import numpy as np
 import pytest
 
-from tegrasp_drake.control.controller_config import TaxelAwareConfig
+from tegrasp_drake.control.controller_config import GraspControllerConfig, TaxelAwareConfig
 from tegrasp_drake.control.grasp_modes import Mode, Stage
 from tegrasp_drake.control.taxel_aware import (ContactEstimator, ContactMemory,
                                                ContactReading, ObjectGeometry)
@@ -14,8 +14,10 @@ from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS
 
 TAXEL = TaxelAwareConfig()
 THIN = BUILTIN_OBJECTS["thin_cylinder"]
-ESTIMATOR = ContactEstimator(taxel_config=TAXEL, geometry=ObjectGeometry(
-    width_m=THIN.width_along_stroke(), height_m=THIN.height(), grasp_height_m=0.055))
+CONTACT_N = GraspControllerConfig().taxel_contact_n  # the ideal force taxels' number
+ESTIMATOR = ContactEstimator(
+    taxel_config=TAXEL, taxel_contact_n=CONTACT_N, geometry=ObjectGeometry(
+        width_m=THIN.width_along_stroke(), height_m=THIN.height(), grasp_height_m=0.055))
 
 
 def taxels(left_row=None, right_row=None, force=0.15):
@@ -64,7 +66,8 @@ def test_a_sustained_force_on_the_wrist_in_the_approach_is_a_strike():
     assert estimates[0].strike_s == 0.0 and estimates[-1].strike_s == pytest.approx(0.01)
     assert estimates[-1].strike_finger == "left"  # the moment about z is positive
     off = ContactEstimator(taxel_config=TaxelAwareConfig(finger_strike=type(
-        TAXEL.finger_strike)(enabled=False)), geometry=ESTIMATOR._geometry)
+        TAXEL.finger_strike)(enabled=False)), taxel_contact_n=CONTACT_N,
+        geometry=ESTIMATOR._geometry)
     assert off.update(memory, reading(stage=Stage.MOVING, wrench=tuple(push)))[1].strike_s == 0
 
 

@@ -31,7 +31,7 @@ def pads(left_row=None, right_row=None, force=1.0):
     for k, row in enumerate((left_row, right_row)):
         if row is not None:
             taxels[k, row, :] = force
-    return grasp_contact(taxels.reshape(-1))
+    return grasp_contact(taxels.reshape(-1), CONFIG.taxel_contact_n)
 
 
 def situation(*, contact=(False, False), shape=None, estimate=None, **observation):

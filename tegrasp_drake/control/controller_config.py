@@ -122,7 +122,7 @@ class TaxelAwareConfig:
                                               below="must be zero or positive [m]")
     # The first touch of a close lies on a pad's distal row alone when its contact centroid
     # along the approach axis is at least this far toward the fingertips [m]: the distal
-    # row's centre (9 mm) less 0.5 mm. A row-2 taxel above TAXEL_CONTACT_N (0.05 N) beside
+    # row's centre (9 mm) less 0.5 mm. A row-2 taxel above taxel_contact_n (0.05 N) beside
     # a first touch of 0.15 N (the measured edge touch) pulls the centroid to 7.5 mm; the
     # object then lies on the pad's face, not beyond its edge. With the close's push past
     # the tipping limit, the close stops and Re-Reaches forward
@@ -181,9 +181,18 @@ class GraspControllerConfig:
     # each event up to one block later (docs/sweeps.md), so results stay per-sample.
     sensor_block_s: float = bounded(0.0, low=0.0, high=0.1, unit="s",
                                     below="must be zero (one update per sample) or positive [s]")
-    # A finger touches when its SA exceeds contact_force_n [N].
+    # A finger touches when its SA exceeds contact_force_n [N]; a taxel counts toward a
+    # contact's shape above taxel_contact_n [N] (0.05: ten times an ideal force taxel's
+    # 5 mN noise).
     contact_force_n: float = bounded(0.3, low=0.0, high=50.0, unit="N",
                                      below="must be zero or positive [N]")
+    taxel_contact_n: float = bounded(0.05, low=0.0, high=50.0, unit="N",
+                                     below="must be zero or positive [N]")
+    # Each SA threshold (contact_force_n, taxel_contact_n, avoid_sa_asymmetry_n, the
+    # heuristic's contact_force_n) raised to the force that the taxels' noise alone exceeds
+    # in at most one trial of a thousand, from the scenario's taxel electronics
+    # (control/noise_thresholds.py); False: the numbers alone.
+    sa_noise_floor: bool = True
     # Re-Reach: one finger alone in contact for one_sided_contact_s [s], the gripper closed
     # on nothing, or no Reach-Load event within reach_event_timeout_s [s] of closing.
     re_reach_enabled: bool = True
@@ -206,7 +215,7 @@ class GraspControllerConfig:
     # the contact patch spreading past the taxels; hence 0.8.) The band: the squeeze, the
     # lift's load and the amplifier's decay lie below about 10 Hz; texture slip at 40 mm/s
     # (a lift's speed) rings at 80 Hz. Measured in open-loop grasps of the three objects
-    # (README, "Vibration (RA) model"): at 80 Hz and 10 ms a normal lift reads at most
+    # (docs/model.md, "Vibration (RA) model"): at 80 Hz and 10 ms a normal lift reads at most
     # 0.68 m/s^2, pads sliding along the object at lift speed 1.9-5.1 m/s^2; the threshold
     # 1 m/s^2 (24 mN of pad load) is the one the accelerometer model used.
     lift_load_enabled: bool = True

@@ -4,7 +4,7 @@ An entry names its config class (the scenario's YAML tag, `controller: !<class> 
 whose `name` is the controller's name in results, sweeps and `--controller`), how it adds
 its systems to a DiagramBuilder, the rules and estimator its state machine runs, and how
 tables and figures show it. Adding a controller is one module (its config class and its
-rules) and one entry in CONTROLLERS; docs/controllers.md walks through an example.
+rules) and one entry in CONTROLLERS; docs/controller.md ("Adding a controller") walks through an example.
 
 The entries name their behaviour as "module:function" and load it on use, so that this
 module imports no Drake: the command line's help and the sweep spec read the names here.

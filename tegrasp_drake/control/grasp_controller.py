@@ -34,6 +34,7 @@ from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorCha
 from tegrasp_drake.tactile.sample_block import block_samples
 from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 from tegrasp_drake.simulation.station import ArmDriverConfig
+from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.control.controller_registry import (ControllerConfig, ControllerEntry,
                                                        controller_entry)
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
@@ -160,7 +161,8 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
                        plan: GraspPlan, station: System, arm: ArmDriverConfig,
                        sample_rates_hz: tuple[float, float], events: dict | None = None,
                        corrective_events: dict | None = None,
-                       ra_noise_std_mps2: float = 0.0) -> GraspController:
+                       ra_noise_std_mps2: float = 0.0,
+                       tactile: TactileSensorConfig | None = None) -> GraspController:
     """Adds the controller configured by `controller` (a ControllerConfig), as its entry in
     control/controller_registry.py says, and connects it to `station`'s ports; returns its
     GraspController.
@@ -172,13 +174,16 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     corrective_events: the memorized corrective events {lift_load, hold_avoid}, needed when
     controller.memorized_corrective_events names some (load_corrective_events).
     ra_noise_std_mps2: the RA channel's noise [m/s^2 rms], which raises the RA thresholds
-    to their sigmas (control/noise_thresholds.py); 0: the numbers alone.
+    to their sigmas (control/noise_thresholds.py); 0: the numbers alone. tactile: the
+    taxels' electronics (TactileSensorConfig), whose noise raises the SA thresholds
+    (noise_thresholds.sa_noise_floors); None: the numbers alone.
     """
     entry = controller_entry(controller)  # how this controller adds its systems
     return entry.load("add_systems")(
         builder, entry=entry, controller=controller, plan=plan,
         station=station, arm=arm, sample_rates_hz=sample_rates_hz, events=events,
-        corrective_events=corrective_events, ra_noise_std_mps2=ra_noise_std_mps2)
+        corrective_events=corrective_events, ra_noise_std_mps2=ra_noise_std_mps2,
+        tactile=tactile)
 
 
 def _add_arm_controller(builder, *, station: System, arm: ArmDriverConfig):
@@ -214,12 +219,14 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
                               controller, plan: GraspPlan, station: System,
                               arm: ArmDriverConfig, sample_rates_hz: tuple[float, float],
                               events: dict | None, corrective_events: dict | None,
-                              ra_noise_std_mps2: float) -> GraspController:
+                              ra_noise_std_mps2: float,
+                              tactile: TactileSensorConfig | None) -> GraspController:
     """A closed-loop controller: the channels, the detector of `entry`, the
     GraspStateMachine with the entry's rules and estimator, and the Cartesian arm
     controller (AddGraspController's arguments)."""
     config = resolve_noise_thresholds(controller, ra_noise_std_mps2=ra_noise_std_mps2,
-                                      ra_rate_hz=sample_rates_hz[1])
+                                      ra_rate_hz=sample_rates_hz[1], tactile=tactile,
+                                      sa_rate_hz=sample_rates_hz[0])
     channels = AddMechanoreceptorChannels(builder, station)
     X_WG_desired, arm_desired_state = _add_arm_controller(builder, station=station, arm=arm)
     detector, event_trigger = entry.load("detector")(

@@ -1,4 +1,6 @@
-"""The RA thresholds in units of the channel's noise, so that they follow the electronics.
+"""The thresholds in units of the channels' noise, so that they follow the electronics.
+
+RA, in sigmas of the film's noise:
 
 Three triggers compare the film's reading with a number: the hit that starts Avoid
 (`hit_ra_mps2`, raw RA magnitude), the heuristic controller's Place-Unload
@@ -32,6 +34,23 @@ trial's horizon at the RA rate, both pads:
     samples at 80 Hz and 1 kHz), so k = sqrt(chi2^-1(1 - alpha / N; W) / W) = 2.34 for
     W = 10 (`window_rms_sigmas`); the rule also asks the band to stay above for slip_s,
     which only lowers the false alarms further.
+
+SA, by the same rule on the exact distribution of the taxels' noise
+(simulation/taxel_rest_noise.py; `sa_noise_floor` switches it off). Four settings compare
+taxel readings with a force; each is raised to the force that noise alone exceeds with the
+rule's probability:
+
+  - a pad touches (`contact_force_n`, and the heuristic's Reach-Load
+    `heuristic.contact_force_n`): Eq. 1's sum of a pad's 12 readings at rest, over the
+    trial's SA samples of both pads. The capacitive pad's calibration clips each reading at
+    zero, so its sum at rest has a mean of 1.46 N and noise alone reaches 5.5 N once a
+    trial of a thousand, against 0.3 N asked;
+  - a taxel counts toward a contact's shape (`taxel_contact_n`): one reading at rest, over
+    the trial's samples of all 24 taxels;
+  - the Avoid move's side (`avoid_sa_asymmetry_n`): the difference of the two pads' SA
+    gains, each a loaded pad's sum now less its sum before the hit (48 loaded readings'
+    noise, unclipped: Gaussian to within the lattice), once per Avoid: both tails,
+    probability FALSE_ALARM_PER_TRIAL.
 """
 
 import dataclasses
@@ -41,6 +60,8 @@ from scipy import signal
 from scipy.stats import chi2, norm
 
 from tegrasp_drake.events.ra_noise_floor import FALSE_ALARM_PER_TRIAL, TRIAL_HORIZON_S
+from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.simulation.taxel_rest_noise import loaded_noise, rest_reading
 from tegrasp_drake.tactile.slip_vibration_band import highpass_biquad
 
 PADS = 2
@@ -77,10 +98,44 @@ def default_rule_sigmas(ra_rate_hz: float = 1000.0, window_samples: int = 10):
             window_rms_sigmas(FALSE_ALARM_PER_TRIAL, samples, window_samples))
 
 
-def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: float):
+@dataclasses.dataclass(frozen=True)
+class SaNoiseFloors:
+    """The forces noise alone exceeds by the rule [N, or counts for a counts output]."""
+    pad_sum: float        # Eq. 1's sum of one pad at rest
+    taxel: float          # one taxel's reading at rest
+    pad_asymmetry: float  # |difference of the two pads' SA gains|, both pads loaded
+
+
+def sa_noise_floors(tactile_config, sa_rate_hz: float) -> SaNoiseFloors:
+    """SaNoiseFloors of a TactileSensorConfig read at sa_rate_hz [Hz] (module docstring)."""
+    samples = int(TRIAL_HORIZON_S * sa_rate_hz)
+    reading = rest_reading(tactile_config)
+    asymmetry_std = np.sqrt(4 * TAXELS_PER_PAD) * loaded_noise(tactile_config).std()
+    return SaNoiseFloors(
+        pad_sum=reading.sum_of(TAXELS_PER_PAD).exceeded_with(
+            FALSE_ALARM_PER_TRIAL / (samples * PADS)),
+        taxel=reading.exceeded_with(FALSE_ALARM_PER_TRIAL / (samples * PADS * TAXELS_PER_PAD)),
+        pad_asymmetry=float(norm.isf(FALSE_ALARM_PER_TRIAL / 2.0) * asymmetry_std))
+
+
+def _sa_changes(config, floors: SaNoiseFloors) -> dict:
+    changes = {"contact_force_n": max(config.contact_force_n, floors.pad_sum),
+               "taxel_contact_n": max(config.taxel_contact_n, floors.taxel),
+               "avoid_sa_asymmetry_n": max(config.avoid_sa_asymmetry_n, floors.pad_asymmetry)}
+    heuristic = getattr(config, "heuristic", None)
+    if heuristic is not None:
+        changes["heuristic"] = dataclasses.replace(
+            heuristic, contact_force_n=max(heuristic.contact_force_n, floors.pad_sum))
+    return changes
+
+
+def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: float,
+                             tactile=None, sa_rate_hz: float | None = None):
     """`config` (a GraspControllerConfig, perhaps with a `heuristic` section) with its RA
     thresholds raised to max(number, sigmas x sigma) for RA noise ra_noise_std_mps2
-    [m/s^2 rms] at ra_rate_hz [Hz]; a new config, the caller's untouched."""
+    [m/s^2 rms] at ra_rate_hz [Hz], and, given the taxels' TactileSensorConfig `tactile`
+    read at sa_rate_hz [Hz] and config.sa_noise_floor, its SA thresholds raised to the
+    noise's (sa_noise_floors); a new config, the caller's untouched."""
     band = slip_band_noise_std(ra_noise_std_mps2, config.slip_band_hz, ra_rate_hz)
     changes = {
         "hit_ra_mps2": max(config.hit_ra_mps2, config.hit_ra_sigmas * ra_noise_std_mps2),
@@ -90,4 +145,10 @@ def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: fl
     if heuristic is not None:
         changes["heuristic"] = dataclasses.replace(heuristic, place_ra_mps2=max(
             heuristic.place_ra_mps2, heuristic.place_ra_sigmas * ra_noise_std_mps2))
+    if tactile is not None and config.sa_noise_floor:
+        sa = _sa_changes(config, sa_noise_floors(tactile, sa_rate_hz))
+        if "heuristic" in changes:
+            sa["heuristic"] = dataclasses.replace(
+                changes["heuristic"], contact_force_n=sa["heuristic"].contact_force_n)
+        changes.update(sa)
     return dataclasses.replace(config, **changes)

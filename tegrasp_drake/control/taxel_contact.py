@@ -6,13 +6,19 @@ axis, normal to the palm) and +x = world -z (down); so a taxel's row says where 
 approach axis the contact sits, its column how high.
 
   PadContact                 one pad's total force and force-weighted centroid [m, pad frame]
-  pad_contact(taxels)        PadContact of one pad's 12 taxel forces
+  pad_contact(taxels, contact_n)
+                             PadContact of one pad's 12 taxel forces
   contact_line_tilt_deg      the angle of the contact line on a pad from the pad's x axis
                              (a line contact of an upright cylinder is 0; an object leaning
                              toward or away from the palm turns the line on the pad)
   GraspContact               both pads: the approach-axis offset of the contact from the
                              pads' centres, the in-pad tilt, the vertical mismatch
-  grasp_contact(taxels24)    GraspContact of the two pads' 24 taxel forces [left 12, right 12]
+  grasp_contact(taxels24, contact_n)
+                             GraspContact of the two pads' 24 taxel forces [left 12, right 12]
+
+A taxel counts toward a contact above contact_n [N], the controller's taxel_contact_n:
+raised above the taxels' noise (control/noise_thresholds.py) so that noise alone never
+draws a line.
 """
 
 import dataclasses
@@ -23,15 +29,12 @@ import numpy as np
 from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS, taxel_centers
 
 TAXELS_PER_PAD = ROWS * COLUMNS
-# A taxel counts toward a contact's shape above this force [N]: ten times the taxel noise
-# (tactile_pads.TactilePadsConfig.noise_std_n = 5 mN), so noise alone never draws a line.
-TAXEL_CONTACT_N = 0.05
 _CENTERS = taxel_centers()
 
 
 @dataclasses.dataclass(frozen=True)
 class PadContact:
-    """One pad's contact: total force [N] of its taxels above TAXEL_CONTACT_N, and their
+    """One pad's contact: total force [N] of its taxels above the contact force, and their
     force-weighted centroid [m, pad frame] (0, 0 with no contact)."""
     force_n: float
     x_m: float  # across the pad (world -z at the side grasp)
@@ -42,14 +45,15 @@ class PadContact:
         return self.force_n > 0.0
 
 
-def _pad_forces(taxels) -> np.ndarray:
+def _pad_forces(taxels, contact_n: float) -> np.ndarray:
     forces = np.asarray(taxels, dtype=float).reshape(TAXELS_PER_PAD)
-    return np.where(forces > TAXEL_CONTACT_N, forces, 0.0)
+    return np.where(forces > contact_n, forces, 0.0)
 
 
-def pad_contact(taxels) -> PadContact:
-    """PadContact of one pad's 12 taxel forces [N] (taxel_layout's order)."""
-    forces = _pad_forces(taxels)
+def pad_contact(taxels, contact_n: float) -> PadContact:
+    """PadContact of one pad's 12 taxel forces [N] (taxel_layout's order), counting the
+    taxels above contact_n [N]."""
+    forces = _pad_forces(taxels, contact_n)
     total = float(forces.sum())
     if total <= 0.0:
         return PadContact(0.0, 0.0, 0.0)
@@ -57,12 +61,12 @@ def pad_contact(taxels) -> PadContact:
     return PadContact(total, float(x), float(y))
 
 
-def contact_line_tilt_deg(taxels) -> float | None:
+def contact_line_tilt_deg(taxels, contact_n: float) -> float | None:
     """The angle [deg] between the contact line and the pad's x axis (across the pad),
     from the force-weighted row centroid of each column: the least-squares slope of
     centroid y against column x. Positive: the line runs toward the fingertip at +x.
     None when fewer than two columns carry contact (no line to fit)."""
-    forces = _pad_forces(taxels).reshape(ROWS, COLUMNS)
+    forces = _pad_forces(taxels, contact_n).reshape(ROWS, COLUMNS)
     column_force = forces.sum(axis=0)
     columns = np.flatnonzero(column_force > 0.0)
     if len(columns) < 2:
@@ -97,14 +101,16 @@ class GraspContact:
     height_mismatch_m: float
 
 
-def grasp_contact(taxels24) -> GraspContact:
-    """GraspContact of [left 12, right 12] taxel forces [N]."""
+def grasp_contact(taxels24, contact_n: float) -> GraspContact:
+    """GraspContact of [left 12, right 12] taxel forces [N], counting the taxels above
+    contact_n [N]."""
     taxels = np.asarray(taxels24, dtype=float).reshape(2, TAXELS_PER_PAD)
-    pads = [pad_contact(taxels[k]) for k in range(2)]
+    pads = [pad_contact(taxels[k], contact_n) for k in range(2)]
     total = pads[0].force_n + pads[1].force_n
     offset = ((pads[0].force_n * pads[0].y_m + pads[1].force_n * pads[1].y_m) / total
               if total > 0.0 else 0.0)
-    tilts = [contact_line_tilt_deg(taxels[k]) for k in range(2) if pads[k].touching]
+    tilts = [contact_line_tilt_deg(taxels[k], contact_n) for k in range(2)
+             if pads[k].touching]
     tilts = [t for t in tilts if t is not None]
     tilt = max(tilts, key=abs) if tilts else None
     mismatch = pads[0].x_m - pads[1].x_m if pads[0].touching and pads[1].touching else 0.0

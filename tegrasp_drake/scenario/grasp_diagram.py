@@ -98,7 +98,8 @@ def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, statio
     """AddGraspController with the scenario's sections: its controller, its GraspPlan
     (grasp_plan), its arm and its sample rates; the memorized events its controller needs
     default to the scenario object's (load_controller_events, load_corrective_events);
-    the RA thresholds follow the noise of its film's electronics (ra_noise_std_mps2)."""
+    the RA and SA thresholds follow the noise of its film's and taxels' electronics
+    (ra_noise_std_mps2, scenario.tactile)."""
     controller = scenario.controller
     if events is None and controller_entry(controller).event_triggered:
         events = load_controller_events(scenario)
@@ -108,7 +109,8 @@ def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, statio
                               station=station, arm=scenario.arm,
                               sample_rates_hz=sample_rates_hz(scenario), events=events,
                               corrective_events=corrective_events,
-                              ra_noise_std_mps2=ra_noise_std_mps2(scenario.vibration))
+                              ra_noise_std_mps2=ra_noise_std_mps2(scenario.vibration),
+                              tactile=scenario.tactile)
 
 
 @public_dataclass

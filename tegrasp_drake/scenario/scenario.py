@@ -88,7 +88,7 @@ class Scenario:
     # tau creeps at tau eps / (2 mu N r_g^2) whatever the time step (a held object slowly
     # rotating). 1e-6 brings eps down to the solver's own O(time_step) floor, about 4e-5 m/s
     # at 1 ms: creep 0.161 -> 0.048 deg/s at 17 % of the torsional friction limit, slip
-    # onset moved by 2 %, no measurable cost (docs/model.md, "No creep").
+    # onset moved by 2 %, no measurable cost (docs/model.md, "Friction creep").
     plant_config: MultibodyPlantConfig = dataclasses.field(
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged", stiction_tolerance=1e-6,
@@ -512,8 +512,8 @@ def object_pose(scenario: Scenario):
 
 
 def controller_in_force(scenario: Scenario):
-    """The scenario's controller config with the RA thresholds it runs with: raised to their
-    sigmas of the RA noise of the scenario's film electronics (control/noise_thresholds.py);
+    """The scenario's controller config with the RA and SA thresholds it runs with: raised
+    to the noise of the scenario's film and taxel electronics (control/noise_thresholds.py);
     the open-loop script's as it is."""
     controller = scenario.controller
     if not controller_entry(controller).closed_loop:
@@ -521,7 +521,8 @@ def controller_in_force(scenario: Scenario):
     from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
     return resolve_noise_thresholds(
         controller, ra_noise_std_mps2=ra_noise_std_mps2(scenario.vibration),
-        ra_rate_hz=scenario.vibration.sample_rate_hz)
+        ra_rate_hz=scenario.vibration.sample_rate_hz, tactile=scenario.tactile,
+        sa_rate_hz=scenario.tactile.sample_rate_hz)
 
 
 @public_api

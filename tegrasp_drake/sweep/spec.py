@@ -347,7 +347,7 @@ def draw_perturbation(rng: np.random.Generator,
 
 
 # What one sweep may ask for: a trial is a simulation of about TRIAL_CORE_SECONDS of one core
-# (README, "Simulation cost"); the paper's Table I sweep is 81 trials per controller.
+# (docs/sweeps.md, "What a trial costs"); the paper's Table I sweep is 81 trials per controller.
 MAX_TRIALS = 100_000
 TRIAL_CORE_SECONDS = 30
 

@@ -145,16 +145,18 @@ class ObjectGeometry:
 
 class ContactEstimator:
     """Estimates the contact each tick (see the module docstring). taxel_config:
-    TaxelAwareConfig; geometry: ObjectGeometry."""
+    TaxelAwareConfig; geometry: ObjectGeometry; taxel_contact_n: a taxel counts toward a
+    contact's shape above this [N] (the controller's, raised to the taxels' noise)."""
 
-    def __init__(self, *, taxel_config, geometry: ObjectGeometry):
+    def __init__(self, *, taxel_config, geometry: ObjectGeometry, taxel_contact_n: float):
         self._config = taxel_config
         self._geometry = geometry
+        self._taxel_contact_n = taxel_contact_n
 
     def update(self, memory: ContactMemory, r: ContactReading
                ) -> tuple[ContactMemory, ContactEstimate]:
         t, g = r.t, self._geometry
-        shape = grasp_contact(r.taxel_forces)
+        shape = grasp_contact(r.taxel_forces, self._taxel_contact_n)
         tilted = r.mode == Mode.HOLD and held_tilted(shape, self._config)
         tilted_since = _since(memory.tilted_since, t, tilted)
         touching_in_approach = r.approaching and any(r.contact)
@@ -218,7 +220,7 @@ class ContactEstimator:
     def _first_touch(self, memory: ContactMemory, r: ContactReading, shape: GraspContact,
                      first_load: bool) -> tuple[ContactMemory, bool]:
         """While the close goes on: remember the opening, the contact's offset and the pad
-        alone (if one) at the first pad's first touch (any taxel above TAXEL_CONTACT_N: a
+        alone (if one) at the first pad's first touch (any taxel above taxel_contact_n: a
         light object slides under a push below contact_force_n), and say whether the push
         since then would topple the object if the gripper let go (release_topples). In
         the first Load, where the close goes on after a Reach-Load event that matched the
@@ -250,7 +252,9 @@ def estimator_for_plan(config, plan) -> ContactEstimator:
     """The ContactEstimator of the taxel_aware controller `config` for the grasp `plan`
     (a GraspPlan): its expected object and its hand's pads."""
     from tegrasp_drake.simulation.gripper_hands import gripper_hand
-    return ContactEstimator(taxel_config=config.taxel_aware, geometry=ObjectGeometry(
-        width_m=plan.object_width, height_m=plan.object_height,
-        grasp_height_m=plan.grasp_height,
-        pad_center_offset=gripper_hand(plan.gripper_model).pad_center_offset))
+    return ContactEstimator(
+        taxel_config=config.taxel_aware, taxel_contact_n=config.taxel_contact_n,
+        geometry=ObjectGeometry(
+            width_m=plan.object_width, height_m=plan.object_height,
+            grasp_height_m=plan.grasp_height,
+            pad_center_offset=gripper_hand(plan.gripper_model).pad_center_offset))
