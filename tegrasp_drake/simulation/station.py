@@ -44,12 +44,12 @@ from pydrake.systems.primitives import Demultiplexer, MatrixGain
 from pydrake.geometry import Meshcat
 from pydrake.multibody.plant import MultibodyPlantConfig
 
-from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
-from tegrasp_drake.rig.ranges import Range, bounded, field_range
+from tegrasp_drake.rig.ranges import Range, bounded
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
-from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
-                                              make_arm_control_plant, solve_grasp_frame_ik)
+from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP,
+                                              X_FLANGE_GRIPPER, make_arm_control_plant,
+                                              solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.robotiq.dimensions import HALF_STROKE
@@ -357,8 +357,7 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
                      tactile: TactileSensorConfig,
                      vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
                      random_seed: Annotated[int, SEED_RANGE],
-                     grasp_height: Annotated[float, field_range(GraspScriptConfig,
-                                                                "grasp_height")],
+                     grasp_height: Annotated[float, GRASP_HEIGHT_RANGE],
                      carriage: EndpointImpedance | None = None,
                      contact_geometry: ContactGeometryConfig | None = None,
                      meshcat: Meshcat | None = None):
