@@ -179,6 +179,14 @@ class TrialSpec:
                       "scenario_overrides": tuple(d.get("scenario_overrides", ()))})
 
 
+def _from_json(value, hint):
+    """`value` as TrialSpec.from_dict takes it: JSON has no tuples, so a record's list stands
+    for a tuple field."""
+    if typing.get_origin(hint) is tuple and isinstance(value, list):
+        return tuple(value)
+    return value
+
+
 def trial_dict_problem(trial: Mapping) -> str | None:
     """What keeps `trial` from being a sweep trial (a TrialSpec.to_dict()), in words naming
     the keys missing, unknown or of the wrong type (unknown ones with their values), or
@@ -198,7 +206,8 @@ def trial_dict_problem(trial: Mapping) -> str | None:
         unknown = [f"{key}={given[key]!r}" for key in given if key not in hints]
         wrong = [f"{key} must be {describe_hint(hints[key])}, got {given[key]!r}"
                  for key in hints if key in given and key != "perturbation"
-                 and key != "object_definition" and not value_matches(given[key], hints[key])]
+                 and key != "object_definition"
+                 and not value_matches(_from_json(given[key], hints[key]), hints[key])]
         if missing:
             parts.append(f"{name} lacks {', '.join(missing)}")
         if unknown:
