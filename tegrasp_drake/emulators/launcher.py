@@ -160,8 +160,6 @@ class Emulators:
         for closer in reversed(self._closers):
             closer()
         self._closers.clear()
-        for boundary in self._boundaries:
-            boundary.close()
         self.report_rejections()
         for line in self.message_counts():
             self._out(line)

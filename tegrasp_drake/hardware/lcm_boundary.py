@@ -9,17 +9,13 @@ Two ways in, for the two kinds of subscriber:
 - `CheckedLcmSubscriber`: Drake's LcmSubscriberSystem with a serializer that decodes
   through a boundary's check. A rejected message leaves the subscriber's value as it was,
   so its output keeps the last good message (whose unchanged utime the watchdog sees as
-  silence). A DrakeLcm subscription holds one message between two of the diagram's calls
-  to HandleSubscriptions and drops the others (on a loaded host, or when a stray message
-  lands just after a good one), so the counting is done by a listener of its own that sees
-  every message: an lcm.LCM on the same URL, on a thread, its queue deep enough for a
-  second of the channel (a memq:// bus lives inside its DrakeLcm, which delivers every
-  message: there the DrakeLcm is subscribed). `boundary.close()` stops it;
+  silence). The subscriber system keeps only the newest message that arrived between two
+  of its updates (its queue holds one), so the counting is done by a second subscription
+  to the channel that sees every message;
 - `checked_handler`: a callback for DrakeLcm.Subscribe or lcm.LCM.subscribe that calls
   `on_message` with checked messages only.
 """
 
-import threading
 from collections.abc import Callable
 
 from pydrake.common.value import AbstractValue
@@ -74,39 +70,9 @@ class CheckedLcmSerializer(SerializerInterface):
 def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
                          lcm) -> LcmSubscriberSystem:
     """Drake's LcmSubscriberSystem on `channel`, its messages checked by `boundary`, which
-    counts every message on the channel (module docstring; `boundary.close()` stops the
-    counting listener)."""
-    count_every_message(lcm, channel, boundary)
+    counts every message on the channel (module docstring)."""
+    lcm.Subscribe(channel, checked_handler(boundary, lambda message: None))
     return LcmSubscriberSystem(channel, CheckedLcmSerializer(lcm_type, boundary), lcm)
-
-
-# Messages a counting listener holds between two reads: a second of a 1 kHz channel.
-COUNTING_QUEUE_CAPACITY = 1000
-
-
-def count_every_message(drake_lcm, channel: str, boundary: MessageBoundary) -> None:
-    """Feeds every message on `channel` of `drake_lcm`'s bus to `boundary.accept`
-    (module docstring): a listener thread on the same URL, stopped by boundary.close()."""
-    url = drake_lcm.get_lcm_url()
-    if url.startswith("memq"):
-        drake_lcm.Subscribe(channel, checked_handler(boundary, lambda message: None))
-        return
-    import lcm
-    bus = lcm.LCM(url)
-    bus.subscribe(channel, checked_handler(boundary, lambda message: None)
-                  ).set_queue_capacity(COUNTING_QUEUE_CAPACITY)
-    stop = threading.Event()
-
-    def listen():
-        while not stop.is_set():
-            bus.handle_timeout(50)
-    thread = threading.Thread(target=listen, name=f"count {channel}", daemon=True)
-    thread.start()
-
-    def close():
-        stop.set()
-        thread.join(1.0)
-    boundary.on_close(close)
 
 
 def checked_handler(boundary: MessageBoundary, on_message: Callable) -> Callable:

@@ -73,7 +73,6 @@ class MessageBoundary:
         self._lock = threading.Lock()
         self._counters = MessageCounters()
         self._unreported = []  # RejectedMessage of reasons not yet handed to new_rejections
-        self._closers = []  # what feeds this boundary from its own thread (close() stops it)
 
     def accept(self, message, *args):
         """The checked value of `message`, or None (counted) when it is rejected."""
@@ -125,15 +124,6 @@ class MessageBoundary:
         with self._lock:
             new, self._unreported = self._unreported, []
         return new
-
-    def on_close(self, closer: Callable) -> None:
-        """Registers what close() calls: a reader that feeds this boundary on a thread."""
-        self._closers.append(closer)
-
-    def close(self) -> None:
-        """Stops the readers that feed this boundary (idempotent); the counts remain."""
-        while self._closers:
-            self._closers.pop()()
 
     def describe(self, rejection: RejectedMessage) -> str:
         """One line for the first rejection of a reason."""

@@ -111,7 +111,6 @@ class HardwareStation(Diagram):
         self._lcm = lcm or DrakeLcm(config.arm.lcm_url)
         self._gripper_client = None
         self._tactile_reader = None
-        self._arm_status_boundary = None
         try:
             self._open_devices()
             self._build()
@@ -280,8 +279,6 @@ class HardwareStation(Diagram):
 
     def close(self):
         """Stops the device threads and closes their ports (idempotent)."""
-        if self._arm_status_boundary is not None:
-            self._arm_status_boundary.close()
         if self._tactile_reader is not None:
             self._tactile_reader.close()
             self._tactile_reader = None
