@@ -9,10 +9,12 @@ and the framework's event dispatch and cache invalidation. This command runs the
 memorized trial in a child process under py-spy (`--native`: C++ frames too; the 'bench'
 extra) and sorts every sample taken inside Simulator::AdvanceTo by the part of the diagram
 it was in: the innermost Python system whose callback Drake was running, else the first of
-PARTS that the stack shows. A Python system's share includes the plant outputs its Evals
-computed (the taxels' contact results, say) but not another Python system's calculation
-that an Eval ran (counted there). py-spy stops the child for every sample, which inflates
-its CPU time (by about a third at the default rate), so the trial runs twice: alone, for
+the plant step's PARTS that the stack shows, else the innermost of Drake's own systems that
+the package builds its compiled chains from (COMPILED_SYSTEMS, by class), else the rest of
+PARTS. A system's share includes the plant outputs its Evals computed (the taxels' contact
+results, say) but not another Python system's calculation that an Eval ran (counted
+there). py-spy stops the child for every sample, which inflates its CPU time (by about a
+third at the default rate), so the trial runs twice: alone, for
 its process CPU time (run_trial's), and under py-spy, for the shares; each share of the
 first run's CPU time is given in milliseconds per simulated second. The host's load falls
 on the two runs differently: compare shares, and CPU figures only from one run on an idle
@@ -54,6 +56,25 @@ PARTS = (
     ("plant outputs read by Drake systems", "geometry::"),
 )
 FRAMEWORK = "Drake framework and other Drake systems"
+# Drake's systems of the compiled chains (film_chain.py, the channels, the slip band, the
+# drives' vibration, the sample registers), by the class a sample's C++ frame names, and the
+# part each is counted in. A MatrixGain or LinearSystem runs AffineSystem's code.
+COMPILED_SYSTEMS = {
+    "SymbolicVectorSystem": "SymbolicVectorSystem",
+    "TimeVaryingAffineSystem": "LinearSystem, MatrixGain",
+    "AffineSystem": "LinearSystem, MatrixGain",
+    "LinearSystem": "LinearSystem, MatrixGain",
+    "MatrixGain": "LinearSystem, MatrixGain",
+    "ZeroOrderHold": "ZeroOrderHold, DiscreteTimeDelay",
+    "DiscreteTimeDelay": "ZeroOrderHold, DiscreteTimeDelay",
+    "Multiplexer": "Multiplexer, Demultiplexer",
+    "Demultiplexer": "Multiplexer, Demultiplexer",
+    "Accelerometer": "Accelerometer",
+    "RandomSource": "RandomSource",
+}
+_DRAKE_SYSTEM_FRAME = re.compile(r"drake::systems::(?:sensors::)?(?P<name>\w+?)(?:<double>)?::")
+# PARTS ahead of the compiled systems: all but the plant outputs, which a system's Eval runs.
+_STEP_PARTS = PARTS[:-2]
 
 
 def sample_part(frames: list[str]) -> str:
@@ -77,6 +98,13 @@ def sample_part(frames: list[str]) -> str:
     if owner is not None:
         return f"Python: {owner}"
     text = ";".join(below)
+    step = next((part for part, marker in _STEP_PARTS if marker in text), None)
+    if step is not None:
+        return step
+    for frame in reversed(below):
+        match = _DRAKE_SYSTEM_FRAME.match(frame)
+        if match is not None and match["name"] in COMPILED_SYSTEMS:
+            return f"Drake system: {COMPILED_SYSTEMS[match['name']]}"
     return next((part for part, marker in PARTS if marker in text), FRAMEWORK)
 
 

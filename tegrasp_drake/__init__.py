@@ -66,7 +66,7 @@ _PUBLIC = {
     "Transition": "tegrasp_drake.control.grasp_modes",
     "Trigger": "tegrasp_drake.control.grasp_modes",
     # The tactile chain of Fig. 3: Eq. 1-2, the 0.5 s window, Eq. 3.
-    "MechanoreceptorChannels": "tegrasp_drake.tactile.mechanoreceptor_channels",
+    "MakeMechanoreceptorChannels": "tegrasp_drake.tactile.mechanoreceptor_channels",
     "AddMechanoreceptorChannels": "tegrasp_drake.tactile.mechanoreceptor_channels",
     "WindowNormalizer": "tegrasp_drake.tactile.window_normalizer",
     "EventMatcher": "tegrasp_drake.events.event_matcher",

@@ -129,13 +129,19 @@ def test_read_bounded_stops_at_its_limit_on_an_endless_file():
 
 @pytest.mark.parametrize("signal_number", [signal.SIGTERM, signal.SIGHUP])
 def test_sigterm_and_sighup_remove_a_runs_staging_folder(signal_number, tmp_path):
-    with pytest.raises(KeyboardInterrupt, match=signal.Signals(signal_number).name):
-        with files.termination_interrupts():
-            with run_folder.staged_run(tmp_path) as stage:
-                (stage / "trial.npz").write_bytes(b"half a log")
-                os.kill(os.getpid(), signal_number)
-    assert list(tmp_path.iterdir()) == []
-    assert signal.getsignal(signal_number) == signal.SIG_DFL
+    # The signal's default disposition, as a terminal's process has it (a suite started
+    # under nohup inherits SIGHUP ignored, which termination_interrupts leaves alone).
+    inherited = signal.signal(signal_number, signal.SIG_DFL)
+    try:
+        with pytest.raises(KeyboardInterrupt, match=signal.Signals(signal_number).name):
+            with files.termination_interrupts():
+                with run_folder.staged_run(tmp_path) as stage:
+                    (stage / "trial.npz").write_bytes(b"half a log")
+                    os.kill(os.getpid(), signal_number)
+        assert list(tmp_path.iterdir()) == []
+        assert signal.getsignal(signal_number) == signal.SIG_DFL
+    finally:
+        signal.signal(signal_number, inherited)
 
 
 def test_cli_main_reports_a_sigterm_as_an_interruption(monkeypatch, capfd):

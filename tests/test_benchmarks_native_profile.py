@@ -46,6 +46,23 @@ def test_cpp_samples_go_to_the_first_matching_part():
         == FRAMEWORK
 
 
+def test_the_innermost_compiled_drake_system_owns_a_sample_outside_python_and_the_step():
+    update = "drake::systems::LeafSystem<double>::DispatchDiscreteVariableUpdateHandler"
+    symbolic = "drake::systems::SymbolicVectorSystem<double>::EvaluateWithContext (libdrake.so)"
+    gain = "drake::systems::AffineSystem<double>::CalcOutputY (libdrake.so)"
+    accelerometer = "drake::systems::sensors::Accelerometer<double>::CalcOutput (libdrake.so)"
+    outputs = "drake::multibody::MultibodyPlant<double>::CalcBodySpatialAccelerationsOutput"
+    assert sample_part(_stack(update, symbolic, gain)) == \
+        "Drake system: LinearSystem, MatrixGain"
+    assert sample_part(_stack(update, symbolic)) == "Drake system: SymbolicVectorSystem"
+    # The plant outputs an Eval computes count with the system that asked for them.
+    assert sample_part(_stack(update, gain, accelerometer, outputs)) == \
+        "Drake system: Accelerometer"
+    assert sample_part(_stack(outputs)) == "plant outputs read by Drake systems"
+    # Framework classes are not systems of a chain.
+    assert sample_part(_stack("drake::systems::Diagram<double>::CalcOutput")) == FRAMEWORK
+
+
 def test_samples_outside_advance_to_and_plain_functions_are_not_systems():
     assert sample_part(["<module> (<string>:4)", "build (tegrasp_drake/x.py:1)"]) == ""
     # A module-level function of the package is not a system's callback: the sample is

@@ -1,4 +1,4 @@
-"""Fixed-input tests of PadFilms, the pads' PVDF films: a held load and a held base
+"""Fixed-input tests of the pads' PVDF films (MakePadFilms): a held load and a held base
 acceleration read as themselves (F / m and a, film_dynamics.py's acceleration-equivalent
 units), each on its own pad; the charge amplifier's high-pass takes them away at its corner;
 the sample is the peak over each sensor period, plus std times the noise input; through the
@@ -18,8 +18,8 @@ from pydrake.multibody.plant import ContactResults, MultibodyPlant
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.analysis import Simulator
 
-from tegrasp_drake.simulation.pad_vibration_sensor import (PadFilms, VibrationSensorConfig,
-                                                           volts_per_mps2)
+from tegrasp_drake.simulation.film_chain import MakePadFilms
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, volts_per_mps2
 from tegrasp_drake.simulation.tactile_pads import PadGeometry
 
 TIME_STEP = 5e-4  # s: two plant steps per 1 ms sensor period
@@ -32,7 +32,7 @@ HELD = np.array([LEFT_FORCE_N / MODAL_MASS + LEFT_ACCELERATION, RIGHT_ACCELERATI
 
 def _films(highpass_hz: float, noise_std: float = 0.0, adc_input: str = "ideal",
            adc_noise_lsb: float = 0.0, swing_v: float = 13.5,
-           left_force_n: float = LEFT_FORCE_N) -> tuple[PadFilms, object]:
+           left_force_n: float = LEFT_FORCE_N) -> tuple[object, object]:
     """Films with the left pad's force at entry 2 of the force input, the right one's at 0,
     entry 1 a distractor; the left pad pressed by LEFT_FORCE_N and its frame accelerating
     at LEFT_ACCELERATION along its inward normal z, the right one's frame at
@@ -44,7 +44,7 @@ def _films(highpass_hz: float, noise_std: float = 0.0, adc_input: str = "ideal",
         mode_frequency_hz=MODE_HZ, mode_damping_ratio=ZETA, load_lowpass_hz=LOWPASS_HZ,
         impact_enabled=False, adc_input=adc_input, adc_noise_lsb=adc_noise_lsb,
         amplifier_swing_v=swing_v)
-    films = PadFilms(plant=plant, pads=PADS, force_indices=(2, 0), config=config)
+    films = MakePadFilms(plant=plant, pads=PADS, force_indices=(2, 0), config=config)
     context = films.CreateDefaultContext()
     films.GetInputPort("generalized_contact_forces").FixValue(context, [0.0, 100.0,
                                                                          left_force_n])
@@ -115,8 +115,12 @@ def test_sample_is_held_over_the_sensor_period_and_carries_std_times_the_noise()
 MSP_LSB_V = 20.0 / 4096
 
 
-def _lsb_mps2(films) -> float:
-    return MSP_LSB_V / volts_per_mps2(films._config)
+# The film's sensitivity [V/(m/s^2)]: the tests change none of the settings it depends on.
+SENSITIVITY = volts_per_mps2(VibrationSensorConfig(mode_frequency_hz=MODE_HZ))
+
+
+def _lsb_mps2() -> float:
+    return MSP_LSB_V / SENSITIVITY
 
 
 def test_through_the_msp_converter_a_held_reading_lies_on_the_code_grid():
@@ -126,10 +130,10 @@ def test_through_the_msp_converter_a_held_reading_lies_on_the_code_grid():
         Simulator(system, system_context).AdvanceTo(0.0602)
     ideal = _vibration(ideal_films, ideal_context)[[2, 5]]
     read = _vibration(films, context)[[2, 5]]
-    codes = read / _lsb_mps2(films)
+    codes = read / _lsb_mps2()
     np.testing.assert_allclose(codes, np.round(codes), atol=1e-9)
     # The nearest code to the ideal reading (83 and 3 m/s^2: 68 and 2 codes of 1.23).
-    np.testing.assert_allclose(read, np.round(ideal / _lsb_mps2(films)) * _lsb_mps2(films),
+    np.testing.assert_allclose(read, np.round(ideal / _lsb_mps2()) * _lsb_mps2(),
                                rtol=1e-12)
     assert not np.allclose(read, ideal, rtol=1e-4)
 
@@ -141,7 +145,7 @@ def test_a_slow_ramp_reads_in_steps_of_one_code():
     # exactly one code.
     films, context = _films(highpass_hz=0.01, adc_input="msp", left_force_n=0.0)
     simulator = Simulator(films, context)
-    lsb = _lsb_mps2(films)
+    lsb = _lsb_mps2()
     readings = []
     for k in range(1, 400):
         films.GetInputPort("generalized_contact_forces").FixValue(
@@ -161,7 +165,7 @@ def test_a_reading_beyond_the_input_range_reads_its_end_code(adc_input, highest_
     films, context = _films(highpass_hz=0.01, adc_input=adc_input, left_force_n=200.0)
     Simulator(films, context).AdvanceTo(0.0602)
     left = _vibration(films, context)[2]
-    assert left == pytest.approx(highest_v / volts_per_mps2(films._config), rel=1e-12)
+    assert left == pytest.approx(highest_v / SENSITIVITY, rel=1e-12)
 
 
 def test_the_amplifier_swing_clips_an_ideal_readout():
@@ -169,7 +173,7 @@ def test_the_amplifier_swing_clips_an_ideal_readout():
     Simulator(films, context).AdvanceTo(0.0602)
     reading = _vibration(films, context)[[2, 5]]
     # The left pad's 8,333 m/s^2 stops at the swing; the right's 3 m/s^2 (12 mV) passes.
-    assert reading[0] == pytest.approx(0.1 / volts_per_mps2(films._config), rel=1e-12)
+    assert reading[0] == pytest.approx(0.1 / SENSITIVITY, rel=1e-12)
     assert reading[1] == pytest.approx(_held_reading(0.01, 0.05905)[1], rel=1e-3)
 
 
@@ -180,7 +184,7 @@ def test_the_converter_noise_is_drawn_with_the_amplifier_noise():
                             adc_noise_lsb=0.5)
     films.GetInputPort("noise").FixValue(context, [1.0, -2.0])
     Simulator(films, context).AdvanceTo(0.0602)
-    sensitivity = volts_per_mps2(films._config)
+    sensitivity = SENSITIVITY
     std_v = np.hypot(0.05 * sensitivity, 0.5 * MSP_LSB_V)
     volts = _held_reading(0.01, 0.05905) * sensitivity + std_v * np.array([1.0, -2.0])
     expected = np.round(volts / MSP_LSB_V) * MSP_LSB_V / sensitivity

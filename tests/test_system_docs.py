@@ -1,5 +1,6 @@
 """Every system's docstring has a `.. pydrake_system::` block naming its real ports, in
-order.
+order; so has every function that builds a Diagram of compiled systems in place of a
+system (`Make<Name>`, its block named <Name>).
 
 The block is Drake's (YAML: name, input_ports, output_ports); a port name may carry an
 " (optional)" note, as in GraspStateMachine. Systems whose ports depend on constructor
@@ -54,7 +55,9 @@ from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.station import HardwareStation, MakeHardwareStation
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.rig import paths
-from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
+from tegrasp_drake.tactile.mechanoreceptor_channels import (MakeMechanoreceptorChannels,
+                                                           SlowlyAdapting)
+from tegrasp_drake.tactile.slip_band_diagram import MakeSlipVibrationBand
 from tegrasp_drake.tactile.slip_vibration_band import SlipVibrationBand
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer
 from tegrasp_drake.simulation.taxel_force_display import (TaxelForceDisplay,
@@ -62,7 +65,10 @@ from tegrasp_drake.simulation.taxel_force_display import (TaxelForceDisplay,
 from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.simulation.linkage_pad_statics import LinkagePadStatics
-from tegrasp_drake.simulation.pad_vibration_sensor import PadFilms, VibrationSensorConfig
+from tegrasp_drake.simulation.film_chain import MakePadFilms
+from tegrasp_drake.simulation.film_dynamics import film_step_matrices
+from tegrasp_drake.simulation.film_loads import FilmLoads
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, film_parameters
 from tegrasp_drake.simulation.station import pad_geometries
 from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
@@ -95,18 +101,34 @@ def gripper_plant():
     return plant, pad_geometries(plant, scene_graph, gripper)
 
 
-def pad_films() -> PadFilms:
-    """PadFilms of a plant that holds only the linkage gripper, with every optional port
-    (its pad forces through LinkagePadStatics)."""
+@functools.cache
+def welded_linkage_gripper():
+    """A finalized plant that holds only the linkage gripper, welded to the world, its
+    gripper instance and its pads."""
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), builder)
     (gripper,) = paths.make_parser(plant).AddModels(url=gripper_hand("linkage").url)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", gripper))
     plant.Finalize()
-    return PadFilms(plant=plant, pads=pad_geometries(plant, scene_graph, gripper),
-                    force_indices=(0, 1), config=VibrationSensorConfig(noise_std_mps2=0.05),
-                    with_texture=True, pad_statics=LinkagePadStatics(plant, gripper),
-                    with_drive_vibration=True)
+    return plant, gripper, pad_geometries(plant, scene_graph, gripper)
+
+
+def pad_films():
+    """The films' Diagram (MakePadFilms) with every optional port (the pad forces through
+    LinkagePadStatics)."""
+    plant, gripper, pads = welded_linkage_gripper()
+    return MakePadFilms(plant=plant, pads=pads, force_indices=(0, 1),
+                        config=VibrationSensorConfig(noise_std_mps2=0.05), with_texture=True,
+                        pad_statics=LinkagePadStatics(plant, gripper),
+                        with_drive_vibration=True)
+
+
+def film_loads() -> FilmLoads:
+    plant, gripper, pads = welded_linkage_gripper()
+    config = VibrationSensorConfig()
+    return FilmLoads(plant=plant, pads=pads, force_indices=(0, 1), config=config,
+                     matrices=film_step_matrices(film_parameters(config), 1e-3, 20000.0),
+                     with_texture=True, pad_statics=LinkagePadStatics(plant, gripper))
 
 
 @contextlib.contextmanager
@@ -136,7 +158,7 @@ def carriage():
 # Class -> a zero-argument factory of a real instance, or of a context manager yielding one.
 # The device drivers get their real I/O objects unstarted: their constructors open nothing.
 CONSTRUCTORS = {
-    MechanoreceptorChannels: MechanoreceptorChannels,
+    SlowlyAdapting: SlowlyAdapting,
     WindowNormalizer: WindowNormalizer,
     RaEnvelope: lambda: RaEnvelope(cutoff_hz=2.0, ra_rate_hz=1000.0),
     SlipVibrationBand: lambda: SlipVibrationBand(band_hz=80.0, window_s=0.01,
@@ -169,7 +191,7 @@ CONSTRUCTORS = {
     RobotiqDriver: lambda: RobotiqDriver(RobotiqModbusClient(HardwareStationConfig().gripper)),
     HardwareStation: hardware_station,
     FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
-    PadFilms: pad_films,
+    FilmLoads: film_loads,
     CapacitiveTaxels: lambda: CapacitiveTaxels(config=CapacitiveTaxelConfig()),
     PadAccelerometers: lambda: PadAccelerometers(sample_rate_hz=1000.0, highpass_cutoff_hz=2.0,
                                                  noise_std_mps2=0.05),
@@ -196,9 +218,11 @@ _OPTIONAL = re.compile(r"\s*\(optional\)$")
 
 
 def pydrake_system_block(cls) -> dict | None:
-    """The `.. pydrake_system::` block of cls's own docstring as {name, input_ports,
-    output_ports} (port names without their "(optional)" note); None without one."""
-    lines = inspect.cleandoc(cls.__dict__.get("__doc__") or "").splitlines()
+    """The `.. pydrake_system::` block of cls's own docstring (a function's: its docstring)
+    as {name, input_ports, output_ports} (port names without their "(optional)" note);
+    None without one."""
+    doc = cls.__dict__.get("__doc__") if inspect.isclass(cls) else cls.__doc__
+    lines = inspect.cleandoc(doc or "").splitlines()
     starts = [i for i, line in enumerate(lines) if line.strip() == ".. pydrake_system::"]
     if not starts:
         return None
@@ -255,6 +279,47 @@ def test_every_system_class_has_a_block():
     missing = [_qualified(cls) for cls in system_classes()
                if pydrake_system_block(cls) is None]
     assert missing == []
+
+
+# Builder function -> a zero-argument factory of the Diagram it builds.
+BUILDERS = {
+    MakePadFilms: pad_films,
+    MakeMechanoreceptorChannels: MakeMechanoreceptorChannels,
+    MakeSlipVibrationBand: lambda: MakeSlipVibrationBand(band_hz=80.0, window_s=0.01,
+                                                         sample_rate_hz=1000.0),
+}
+
+
+@functools.cache
+def documented_builders() -> tuple:
+    """Every function of the package named Make<Name> whose docstring has a block."""
+    found = []
+    for module_info in pkgutil.walk_packages(tegrasp_drake.__path__, "tegrasp_drake."):
+        if module_info.name.rsplit(".", 1)[-1] == "__main__":
+            continue
+        module = importlib.import_module(module_info.name)
+        found += [function for name, function in vars(module).items()
+                  if name.startswith("Make") and inspect.isfunction(function)
+                  and inspect.unwrap(function).__module__ == module.__name__
+                  and pydrake_system_block(function) is not None]
+    return tuple(found)
+
+
+@pytest.mark.parametrize("builder", list(BUILDERS), ids=lambda f: f.__name__)
+def test_builder_block_lists_the_built_diagrams_ports_in_order(builder):
+    block = pydrake_system_block(builder)
+    assert block is not None, f"{builder.__name__} has no .. pydrake_system:: block"
+    assert block["name"] == builder.__name__.removeprefix("Make")
+    diagram = BUILDERS[builder]()
+    assert isinstance(diagram, Diagram)
+    assert {key: block[key] for key in ("input_ports", "output_ports")} == \
+        port_names(diagram)
+
+
+def test_every_documented_builder_is_checked_against_its_ports():
+    unchecked = [f"{f.__module__}.{f.__name__}" for f in documented_builders()
+                 if inspect.unwrap(f) not in {inspect.unwrap(b) for b in BUILDERS}]
+    assert unchecked == [], "add them to BUILDERS"
 
 
 def test_every_documented_system_is_checked_against_its_ports():

@@ -1,10 +1,10 @@
 import numpy as np
 
-from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
+from tegrasp_drake.tactile.mechanoreceptor_channels import MakeMechanoreceptorChannels
 
 
 def _evaluate(left_taxels, right_taxels, left_acceleration, right_acceleration):
-    system = MechanoreceptorChannels()
+    system = MakeMechanoreceptorChannels()
     context = system.CreateDefaultContext()
     system.GetInputPort("left_taxel_forces").FixValue(context, left_taxels)
     system.GetInputPort("right_taxel_forces").FixValue(context, right_taxels)
@@ -14,7 +14,7 @@ def _evaluate(left_taxels, right_taxels, left_acceleration, right_acceleration):
 
 
 def test_ports_have_stable_names_and_sizes():
-    system = MechanoreceptorChannels()
+    system = MakeMechanoreceptorChannels()
     assert [system.get_input_port(i).get_name() for i in range(4)] == [
         "left_taxel_forces", "right_taxel_forces", "left_pad_acceleration",
         "right_pad_acceleration"]
@@ -51,7 +51,7 @@ def test_the_channels_equal_numpys_sum_and_norm_bit_for_bit():
 def test_channels_follow_the_taxels_and_the_vibration_when_either_changes_alone():
     # channels reads SA from the sa port's cache: a new taxel sample must reach it, and a
     # new vibration sample alone must not leave a stale SA or RA.
-    system = MechanoreceptorChannels()
+    system = MakeMechanoreceptorChannels()
     context = system.CreateDefaultContext()
     ports = {name: system.GetInputPort(name) for name in (
         "left_taxel_forces", "right_taxel_forces", "left_pad_acceleration",

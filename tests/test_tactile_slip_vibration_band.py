@@ -1,3 +1,5 @@
+import pathlib
+
 import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
@@ -10,11 +12,15 @@ from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, advance_films,
                                                     film_step_matrices, signed_peak)
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, film_parameters
+from tegrasp_drake.tactile.slip_band_diagram import MakeSlipVibrationBand
 from tegrasp_drake.tactile.slip_vibration_band import (AddSlipVibrationBand, SlipVibrationBand,
                                                        biquad_block_map,
                                                        highpass_biquad, highpass_step_floats)
 
 RATE_HZ = 1000.0
+# The per-tick band: the Python system (the hardware station's) and the compiled Diagram (a
+# simulated station's, slip_band_diagram.py); the fixed-input tests run on both.
+BANDS = {"python": SlipVibrationBand, "compiled": MakeSlipVibrationBand}
 
 
 def highpass_step(coefficients: np.ndarray, x: np.ndarray, z1: np.ndarray,
@@ -26,10 +32,11 @@ def highpass_step(coefficients: np.ndarray, x: np.ndarray, z1: np.ndarray,
     return y, b1 * x - a1 * y + z2, b2 * x - a2 * y
 
 
-def band_output(samples: np.ndarray, *, band_hz=80.0, window_s=0.01) -> np.ndarray:
+def band_output(samples: np.ndarray, *, band_hz=80.0, window_s=0.01,
+                make=SlipVibrationBand) -> np.ndarray:
     """The system's slip_vibration after each row of `samples` (n x 6) is fed, one per
-    sample period."""
-    system = SlipVibrationBand(band_hz=band_hz, window_s=window_s, sample_rate_hz=RATE_HZ)
+    sample period; `make` builds the band (a BANDS value)."""
+    system = make(band_hz=band_hz, window_s=window_s, sample_rate_hz=RATE_HZ)
     simulator = Simulator(system)
     context = simulator.get_mutable_context()
     outputs = []
@@ -55,11 +62,12 @@ def test_biquad_equals_scipys_butterworth_filter():
     np.testing.assert_allclose(ours, signal.sosfilt(sos, x, axis=0), atol=1e-12)
 
 
-def test_texture_vibration_reads_its_rms_and_stays_on_its_pad():
+@pytest.mark.parametrize("make", BANDS.values(), ids=BANDS.keys())
+def test_texture_vibration_reads_its_rms_and_stays_on_its_pad(make):
     t = np.arange(400) / RATE_HZ
     samples = np.zeros((len(t), 6))
     samples[:, 2] = 3.0 * np.sin(2 * np.pi * 200.0 * t)  # left film, 200 Hz, 3 m/s^2
-    out = band_output(samples)
+    out = band_output(samples, make=make)
     # 200 Hz lies 2.5 octaves above the corner: the gain is 1 / sqrt(1 + (80/200)^4) = 0.987;
     # 10 ms hold two periods.
     assert out[-1, 0] == pytest.approx(0.987 * 3.0 / np.sqrt(2), rel=0.02)
@@ -81,14 +89,15 @@ def film_reading_of_a_squeeze(grip_n: float, ramp_s: float, duration_s: float) -
     return np.array(samples)
 
 
-def test_the_films_reading_of_a_squeeze_stays_below_the_slip_threshold():
+@pytest.mark.parametrize("make", BANDS.values(), ids=BANDS.keys())
+def test_the_films_reading_of_a_squeeze_stays_below_the_slip_threshold(make):
     # The default grip, 25 N reached in about 0.45 s (docs/model.md, "Vibration (RA) model"): the
     # film reads about 180 m/s^2; the slip band reads 0.75 m/s^2 at the ramp's corners.
     film = film_reading_of_a_squeeze(25.0, 0.45, 1.5)
     assert film.max() > 150.0
     samples = np.zeros((len(film), 6))
     samples[:, 2] = film
-    out = band_output(samples)
+    out = band_output(samples, make=make)
     assert out.max() < 0.8 * GraspControllerConfig().slip_vibration_mps2
 
 
@@ -230,3 +239,37 @@ def test_block_map_equals_the_biquad_run_sample_by_sample_from_any_delays():
     # Sums of about 12 terms of up to |x| 60: round-off.
     np.testing.assert_allclose(stacked[:10], outputs, rtol=0.0, atol=1e-12)
     np.testing.assert_allclose(stacked[10:], [z1, z2], rtol=0.0, atol=1e-12)
+
+
+def recorded_film_samples() -> np.ndarray:
+    """The films' samples of a recorded trial through a touch (tests/data/film_recording.npz,
+    see test_simulation_film_chain.py) as pad_acceleration rows (n x 6), z axes."""
+    recording = np.load(pathlib.Path(__file__).parent / "data" / "film_recording.npz")
+    touch = recording["touch_samples"]
+    samples = np.zeros((len(touch), 6))
+    samples[:, 2], samples[:, 5] = touch[:, 0], touch[:, 1]
+    return samples
+
+
+def test_compiled_band_equals_the_python_band_on_a_recorded_touch_and_on_noise():
+    # The same equations; the compiled system sums the biquad's terms and the window in
+    # another order: round-off of the largest sample.
+    rng = np.random.default_rng(7)
+    for samples in (recorded_film_samples(),
+                    rng.normal(size=(300, 6)) * 10.0 ** rng.uniform(-2, 2, size=(300, 6))):
+        python = band_output(samples, make=SlipVibrationBand)
+        compiled = band_output(samples, make=MakeSlipVibrationBand)
+        assert python.max() > 1.0
+        np.testing.assert_allclose(compiled, python, rtol=1e-12,
+                                   atol=1e-14 * np.abs(samples).max())
+
+
+def test_add_slip_vibration_band_builds_the_compiled_band_per_tick_only():
+    def built(**kwargs):
+        builder = DiagramBuilder()
+        stream = AddSampleStream(builder, np.zeros((3, 6)), 1.0 / RATE_HZ)
+        AddSlipVibrationBand(builder, stream, band_hz=80.0, window_s=0.01,
+                             sample_rate_hz=RATE_HZ, **kwargs)
+        return builder.GetSubsystemByName("slip_vibration_band")
+    assert not isinstance(built(), SlipVibrationBand)  # the compiled Diagram
+    assert isinstance(built(block_samples=10), SlipVibrationBand)

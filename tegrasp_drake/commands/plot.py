@@ -114,6 +114,10 @@ def _plot_sweep(args, out) -> str:
     if not args.source:
         raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a sweep's results "
                          "folder (e.g. analysis/results_seed0)")
+    if not pathlib.Path(args.source).is_dir():
+        raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
+                         f"({args.source} is not a folder; give the --out folder of "
+                         "`tegrasp sweep`)")
     loaded = load_records(args.source)
     if loaded.corrupt:
         path, reason = next(iter(loaded.corrupt.items()))

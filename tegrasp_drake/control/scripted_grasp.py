@@ -16,7 +16,7 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import units as ru
-from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.rig.arm_kinematics import GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP
 from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 
@@ -27,8 +27,7 @@ PHASES = ("settle", "reach", "load", "lift", "hold", "place", "unload", "retract
 class GraspScriptConfig:
     """Timing and targets of the ideal open-loop grasp (side grasp, approach along +x)."""
     # m, pad centre above the table
-    grasp_height: float = bounded(0.055, low=0.005, high=0.5, unit="m",
-                                  why="pad centre above the table, within the tallest object")
+    grasp_height: float = bounded(0.055, **dataclasses.asdict(GRASP_HEIGHT_RANGE))
     settle_s: float = bounded(0.3, low=0.0, high=10.0, unit="s")
     reach_s: float = bounded(2.5, low=0.0, low_open=True, high=30.0, unit="s")
     close_speed: float = bounded(0.05, low=0.02, high=0.15, unit="m/s",

@@ -13,6 +13,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import FixedOffsetFrame
 from pydrake.solvers import Solve
 
+from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig import paths
 from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z
 
@@ -24,6 +25,10 @@ R_WG_SIDE_GRASP = RotationMatrix(np.array([[0.0, 0.0, 1.0],
                                            [0.0, 1.0, 0.0],
                                            [-1.0, 0.0, 0.0]]))
 # A configuration near the side grasp in front of the robot, to seed IK [rad].
+# The grasp frame's height, the pad centre above the table [m]: declared once for the grasp
+# script's setting and the station that takes it.
+GRASP_HEIGHT_RANGE = Range(low=0.005, high=0.5, unit="m",
+                           why="pad centre above the table, within the tallest object")
 IK_SEED = np.array([3.324, 4.531, 1.126, 2.483, 2.31, 3.913])
 
 

@@ -25,6 +25,7 @@ from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
 from tegrasp_drake.simulation.gripper_hands import (PrismaticHand, actuated_state_selector,
                                                     configure_drive)
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
+from tegrasp_drake.simulation.film_chain import finger_force_indices
 from tegrasp_drake.simulation.film_dynamics import first_order_highpass
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
@@ -179,7 +180,7 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     sa = np.column_stack([taxel_forces[:, :TAXELS_PER_PAD].sum(axis=1),
                           taxel_forces[:, TAXELS_PER_PAD:].sum(axis=1)])
     t_force, forces = data("force")
-    indices = films.force_indices
+    indices = finger_force_indices(plant, gripper)
     contact_times = np.array([
         t_force[np.argmax(np.abs(forces[:, i]) > 0)] if np.any(np.abs(forces[:, i]) > 0)
         else np.nan for i in indices])

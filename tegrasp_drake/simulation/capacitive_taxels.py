@@ -206,11 +206,15 @@ class CapacitiveTaxels(LeafSystem):
         self._noise = (self.DeclareVectorInputPort("noise", size)
                        if config.noise_std_counts > 0 else None)
         self._noise_std = noise_std_at_decimation(config)
+        # The readings depend on the inputs alone: computed again when a taxel sample (or
+        # its noise) changes, not on every plant step that reads them.
+        inputs = {port.ticket() for port in (self._forces, self._noise) if port is not None}
         for k, finger in enumerate(FINGER_NAMES):
             self.DeclareVectorOutputPort(
                 f"{finger}_taxel_forces", TAXELS_PER_PAD,
                 lambda context, output, k=k: output.SetFromVector(
-                    self._readings(context)[k * TAXELS_PER_PAD:(k + 1) * TAXELS_PER_PAD]))
+                    self._readings(context)[k * TAXELS_PER_PAD:(k + 1) * TAXELS_PER_PAD]),
+                prerequisites_of_calc=inputs)
 
     def _readings(self, context) -> np.ndarray:
         noise = 0.0

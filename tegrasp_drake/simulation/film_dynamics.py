@@ -28,6 +28,9 @@ import dataclasses
 import math
 
 import numpy as np
+from pydrake.symbolic import if_then_else
+from pydrake.symbolic import max as symbolic_max
+from pydrake.symbolic import min as symbolic_min
 from scipy.linalg import expm
 
 STATE_SIZE = 5
@@ -133,6 +136,17 @@ def signed_peak(samples: np.ndarray) -> np.ndarray:
     """Per column, the sample of largest magnitude, with its sign."""
     rows = np.abs(samples).argmax(axis=0)
     return samples[rows, np.arange(samples.shape[1])]
+
+
+def symbolic_signed_peak(samples):
+    """signed_peak of one column, as a pydrake.symbolic expression of `samples` (a list of
+    expressions): the largest sample if it is at least as large as the smallest is
+    negative, else the smallest (the two differ only on a tie of equal magnitudes and
+    opposite signs, where signed_peak takes the earlier)."""
+    highest = lowest = samples[0]
+    for sample in samples[1:]:
+        highest, lowest = symbolic_max(highest, sample), symbolic_min(lowest, sample)
+    return if_then_else(highest >= -lowest, highest, lowest)
 
 
 def halfsine_mean_forces(step_start: float, substep_starts: np.ndarray, h: float,

@@ -32,6 +32,7 @@ ch. 4-5), so the reading's noise is sqrt(sigma_n^2 + lsb^2 / 12) (`reading_noise
 
 import dataclasses
 import math
+import typing
 
 ADC_INPUTS = ("msp", "mxp", "ideal")
 
@@ -67,18 +68,32 @@ def adc_input(name: str) -> AdcInput | None:
     return MYRIO_INPUTS[name]
 
 
-def reading_mps2(value_mps2: float, noise_v: float, sensitivity_v_per_mps2: float,
-                 swing_v: float, adc: AdcInput | None) -> float:
+@dataclasses.dataclass(frozen=True)
+class Arithmetic:
+    """The min, max and floor that `reading_mps2` uses: Python's on floats (FLOATS), or
+    pydrake.symbolic's, so that the same function writes the readout as an expression of a
+    compiled system (film_chain.py)."""
+    min: typing.Callable
+    max: typing.Callable
+    floor: typing.Callable
+
+
+FLOATS = Arithmetic(min=min, max=max, floor=math.floor)
+
+
+def reading_mps2(value_mps2, noise_v, sensitivity_v_per_mps2: float, swing_v: float,
+                 adc: AdcInput | None, arithmetic: Arithmetic = FLOATS):
     """What the host reads [m/s^2] for the film's reading value_mps2 plus noise_v [V] at the
     amplifier's output (module docstring); without a converter (adc None) the clipped
-    voltage over S."""
+    voltage over S. Floats by default; symbolic expressions with a symbolic `arithmetic`."""
+    low, high, floor = arithmetic.min, arithmetic.max, arithmetic.floor
     volts = sensitivity_v_per_mps2 * value_mps2 + noise_v
-    volts = min(max(volts, -swing_v), swing_v)
+    volts = low(high(volts, -swing_v), swing_v)
     if adc is None:
         return volts / sensitivity_v_per_mps2
     lsb = adc.volts_per_code
-    code = math.floor((volts + adc.offset_v) / lsb + 0.5)
-    code = min(max(code, adc.low_code), adc.high_code)
+    code = floor((volts + adc.offset_v) / lsb + 0.5)
+    code = low(high(code, adc.low_code), adc.high_code)
     return (code * lsb - adc.offset_v) / sensitivity_v_per_mps2
 
 

@@ -44,12 +44,12 @@ from pydrake.systems.primitives import Demultiplexer, MatrixGain
 from pydrake.geometry import Meshcat
 from pydrake.multibody.plant import MultibodyPlantConfig
 
-from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
-from tegrasp_drake.rig.ranges import Range, bounded, field_range
+from tegrasp_drake.rig.ranges import Range, bounded
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
-from tegrasp_drake.rig.arm_kinematics import (ARM_URL, R_WG_SIDE_GRASP, X_FLANGE_GRIPPER,
-                                              make_arm_control_plant, solve_grasp_frame_ik)
+from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP,
+                                              X_FLANGE_GRIPPER, make_arm_control_plant,
+                                              solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.robotiq.dimensions import HALF_STROKE
@@ -68,7 +68,8 @@ from tegrasp_drake.simulation.capacitive_taxels import AddTaxelTransducer
 from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse, DisturbanceConfig
 from tegrasp_drake.simulation.pad_accelerometers import AddPadAccelerometers
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
-from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, AddPadFilms
+from tegrasp_drake.simulation.film_chain import AddPadFilms
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
 from tegrasp_drake.simulation.station_visualization import (AddStationVisualization,
                                                            grasp_camera_pose)
@@ -188,9 +189,9 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
                       tactile: TactileSensorConfig, vibration: VibrationSensorConfig,
                       gripper_model: str, random_seed: int, drive_rates=()):
     """Both pads' taxel arrays (TactilePads, seeded by `random_seed`), the slip texture
-    (PadSlipVibration) and the films (PadFilms) of the hand `gripper_model`, connected to
+    (PadSlipVibration) and the films (MakePadFilms) of the hand `gripper_model`, connected to
     the finalized `plant` (the linkage's pad forces from `vibration.pad_force_source`);
-    returns (TactilePads, PadFilms). With `vibration.transducer`
+    returns (TactilePads, the films' Diagram). With `vibration.transducer`
     accelerometer, the pads' accelerometers (PadAccelerometers) take the films' place,
     without the slip texture. `drive_rates`: (DriveVibrationConfig, joint-rate port) of the
     drives the films feel (drive_vibration.py)."""
@@ -356,8 +357,7 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
                      tactile: TactileSensorConfig,
                      vibration: VibrationSensorConfig, disturbance: DisturbanceConfig,
                      random_seed: Annotated[int, SEED_RANGE],
-                     grasp_height: Annotated[float, field_range(GraspScriptConfig,
-                                                                "grasp_height")],
+                     grasp_height: Annotated[float, GRASP_HEIGHT_RANGE],
                      carriage: EndpointImpedance | None = None,
                      contact_geometry: ContactGeometryConfig | None = None,
                      meshcat: Meshcat | None = None):

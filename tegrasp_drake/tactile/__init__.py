@@ -3,6 +3,6 @@ the 0.5 s sliding window (sliding_window) and its max-normalisation (window_norm
 the sample rates and window lengths they share (sampling), the slip band
 (slip_vibration_band) and the blocks in which the fast samples are taken (sample_block)."""
 
-from tegrasp_drake.tactile.mechanoreceptor_channels import MechanoreceptorChannels
+from tegrasp_drake.tactile.mechanoreceptor_channels import MakeMechanoreceptorChannels
 from tegrasp_drake.tactile.sampling import rate_groups, resample_window, samples_per_window
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig

@@ -1,19 +1,27 @@
-"""MechanoreceptorChannels: the paper's Eq. 1 (SA) and Eq. 2 (RA) for both fingers.
+"""The paper's Eq. 1 (SA) and Eq. 2 (RA) for both fingers, as one Diagram.
 
 SA_i = sum over finger i's 12 taxels of the normal force F_z,k [N]          (Eq. 1)
 RA_i = sqrt(a_x^2 + a_y^2 + a_z^2) of finger i's pad vibration [m/s^2]      (Eq. 2)
+
+RA changes with every vibration sample (1 kHz) and is a compiled SymbolicVectorSystem. SA
+changes only with a taxel sample (108 Hz on the AD7147) and is summed in Python
+(SlowlyAdapting), with numpy's pairwise order: a compiled sum (MatrixGain) adds in another
+order and would move SA by a rounding now and then, while the Python call costs nothing
+between taxel samples (its output is cached).
 """
 
 import math
 
 import numpy as np
-from pydrake.systems.framework import LeafSystem
-from pydrake.systems.framework import DiagramBuilder
-from pydrake.systems.framework import System
+from pydrake.symbolic import Variable, sqrt
+from pydrake.systems.framework import DiagramBuilder, LeafSystem, System
+from pydrake.systems.primitives import Multiplexer, SymbolicVectorSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.api_boundary import public_api
+
+_AXES = ports.PAD_ACCELERATION_AXES
 
 
 def slowly_adapting(taxel_forces: np.ndarray) -> float:
@@ -27,8 +35,45 @@ def rapidly_adapting(acceleration: np.ndarray) -> float:
     return math.sqrt(a.dot(a))  # what np.linalg.norm computes for a vector
 
 
-class MechanoreceptorChannels(LeafSystem):
-    """The four channels SA_left, SA_right, RA_left, RA_right.
+class SlowlyAdapting(LeafSystem):
+    """Eq. 1 of both fingers.
+
+    .. pydrake_system::
+
+        name: SlowlyAdapting
+        input_ports:
+        - left_taxel_forces
+        - right_taxel_forces
+        output_ports:
+        - sa
+
+    Ports:
+        left_taxel_forces, right_taxel_forces: (12) each taxel's normal force F_z [N].
+        sa: (2) [left, right] Eq. 1 [N].
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._taxels = [self.DeclareVectorInputPort(f"{f}_taxel_forces", TAXELS_PER_PAD)
+                        for f in FINGER_NAMES]
+        self.DeclareVectorOutputPort("sa", len(FINGER_NAMES), self._calc,
+                                     prerequisites_of_calc={p.ticket() for p in self._taxels})
+
+    def _calc(self, context, output):
+        output.SetFromVector([slowly_adapting(p.Eval(context)) for p in self._taxels])
+
+
+def rapidly_adapting_system() -> SymbolicVectorSystem:
+    """Eq. 2 of both fingers: input [left x, y, z, right x, y, z] [m/s^2], output
+    [RA_left, RA_right] [m/s^2] (no state)."""
+    axes = [[Variable(f"{finger}_{axis}") for axis in "xyz"] for finger in FINGER_NAMES]
+    return SymbolicVectorSystem(input=[a for pad in axes for a in pad],
+                                output=[sqrt(x * x + y * y + z * z) for x, y, z in axes])
+
+
+@public_api
+def MakeMechanoreceptorChannels():
+    """The four channels SA_left, SA_right, RA_left, RA_right as a Diagram.
 
     .. pydrake_system::
 
@@ -52,43 +97,33 @@ class MechanoreceptorChannels(LeafSystem):
         channels: (4) [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), in
             tegrasp_drake.rig.channels.CHANNEL_NAMES order.
     """
-
-    def __init__(self):
-        super().__init__()
-        self._taxels = [self.DeclareVectorInputPort(f"{f}_taxel_forces", TAXELS_PER_PAD)
-                        for f in FINGER_NAMES]
-        self._accelerations = [self.DeclareVectorInputPort(f"{f}_pad_acceleration", 3)
-                               for f in FINGER_NAMES]
-        sa_tickets = {p.ticket() for p in self._taxels}
-        ra_tickets = {p.ticket() for p in self._accelerations}
-        self._sa_port = self.DeclareVectorOutputPort("sa", 2, self._calc_sa,
-                                                     prerequisites_of_calc=sa_tickets)
-        self.DeclareVectorOutputPort("ra", 2, self._calc_ra, prerequisites_of_calc=ra_tickets)
-        self.DeclareVectorOutputPort("channels", 4, self._calc_channels,
-                                     prerequisites_of_calc=sa_tickets | ra_tickets)
-
-    def _sa(self, context):
-        return [slowly_adapting(p.Eval(context)) for p in self._taxels]
-
-    def _ra(self, context):
-        return [rapidly_adapting(p.Eval(context)) for p in self._accelerations]
-
-    def _calc_sa(self, context, output):
-        output.SetFromVector(self._sa(context))
-
-    def _calc_ra(self, context, output):
-        output.SetFromVector(self._ra(context))
-
-    def _calc_channels(self, context, output):
-        # SA from the sa port's cache: the taxels change at their own rate (108 Hz), RA at
-        # every film sample (1 kHz), when this port is evaluated.
-        output.SetFromVector(self._sa_port.Eval(context).tolist() + self._ra(context))
+    builder = DiagramBuilder()
+    sa = builder.AddNamedSystem("slowly_adapting", SlowlyAdapting())
+    accelerations = builder.AddNamedSystem("pad_accelerations",
+                                           Multiplexer([_AXES] * len(FINGER_NAMES)))
+    ra = builder.AddNamedSystem("rapidly_adapting", rapidly_adapting_system())
+    builder.Connect(accelerations.get_output_port(), ra.get_input_port())
+    channels = builder.AddNamedSystem("channels", Multiplexer([len(FINGER_NAMES)] * 2))
+    builder.Connect(sa.get_output_port(), channels.get_input_port(0))
+    builder.Connect(ra.get_output_port(), channels.get_input_port(1))
+    for finger in FINGER_NAMES:
+        builder.ExportInput(sa.GetInputPort(f"{finger}_taxel_forces"),
+                            f"{finger}_taxel_forces")
+    for k, finger in enumerate(FINGER_NAMES):
+        builder.ExportInput(accelerations.get_input_port(k), f"{finger}_pad_acceleration")
+    builder.ExportOutput(sa.get_output_port(), "sa")
+    builder.ExportOutput(ra.get_output_port(), "ra")
+    builder.ExportOutput(channels.get_output_port(), "channels")
+    diagram = builder.Build()
+    diagram.set_name("mechanoreceptor_channels")
+    return diagram
 
 
 @public_api
 def AddMechanoreceptorChannels(builder: DiagramBuilder, station: System):
-    """Adds Eq. 1-2 fed by the station's tactile ports; returns the system."""
-    channels = builder.AddNamedSystem("mechanoreceptor_channels", MechanoreceptorChannels())
+    """Adds Eq. 1-2 (MakeMechanoreceptorChannels) fed by the station's tactile ports;
+    returns the system."""
+    channels = builder.AddNamedSystem("mechanoreceptor_channels", MakeMechanoreceptorChannels())
     for finger in FINGER_NAMES:
         builder.Connect(station.GetOutputPort(ports.taxel_forces(finger)),
                         channels.GetInputPort(f"{finger}_taxel_forces"))

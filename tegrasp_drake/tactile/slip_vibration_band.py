@@ -39,23 +39,13 @@ speed), not creep.
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import BasicVector, LeafSystem
-from scipy import signal
 
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.tactile.slip_band_diagram import MakeSlipVibrationBand, highpass_biquad
 from tegrasp_drake.tactile.sample_block import (AddSampleRegister, block_update_period,
                                                samples_in_block)
 
 _AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
-
-
-def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
-    """[b0, b1, b2, a1, a2] of the second-order Butterworth high-pass at band_hz [Hz] for
-    samples at sample_rate_hz [Hz] (a0 = 1)."""
-    if not 0.0 < band_hz < sample_rate_hz / 2:
-        raise ValueError(f"slip band {band_hz} Hz must lie between 0 and the Nyquist "
-                         f"frequency {sample_rate_hz / 2} Hz of the RA samples")
-    sos = signal.butter(2, band_hz, "highpass", fs=sample_rate_hz, output="sos")[0]
-    return np.array([sos[0], sos[1], sos[2], sos[4], sos[5]])
 
 
 def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
@@ -214,13 +204,19 @@ def filter_block(block_map: np.ndarray, block: np.ndarray, s: np.ndarray,
 def AddSlipVibrationBand(builder, pad_acceleration, *, band_hz: float, window_s: float,
                          sample_rate_hz: float, pad_acceleration_samples=None,
                          block_samples: int = 1):
-    """Adds a SlipVibrationBand fed by `pad_acceleration` (an output port, 6) and, when
-    given, `pad_acceleration_samples` (an abstract output port, see the class: the band
-    then runs per tick on the device's samples); else, with block_samples > 1, in blocks
-    of that many samples, kept by a sample register (`slip_vibration_block`) on
-    `pad_acceleration`. Returns its slip_vibration output port."""
+    """Adds the slip band fed by `pad_acceleration` (an output port, 6): per tick, the
+    compiled band (slip_band_diagram.py); with `pad_acceleration_samples` (an abstract
+    output port, see the class) a SlipVibrationBand that runs per tick on the device's
+    samples; else, with block_samples > 1, a SlipVibrationBand in blocks of that many
+    samples, kept by a sample register (`slip_vibration_block`) on `pad_acceleration`.
+    Returns its slip_vibration output port."""
     if pad_acceleration_samples is not None:
         block_samples = 1
+    elif block_samples == 1:
+        band = builder.AddNamedSystem("slip_vibration_band", MakeSlipVibrationBand(
+            band_hz=band_hz, window_s=window_s, sample_rate_hz=sample_rate_hz))
+        builder.Connect(pad_acceleration, band.GetInputPort("pad_acceleration"))
+        return band.GetOutputPort("slip_vibration")
     band = builder.AddNamedSystem("slip_vibration_band", SlipVibrationBand(
         band_hz=band_hz, window_s=window_s, sample_rate_hz=sample_rate_hz,
         block_samples=block_samples))

@@ -1,0 +1,326 @@
+"""FilmLoads: what loads each pad's film over one plant step, the part of the film chain that
+reads the plant's contacts (film_chain.py builds the rest from compiled Drake systems).
+
+Per plant step of length dt ending now (pad_vibration_sensor.py gives the physics):
+
+  - the slow modal load L = F + m a_n [N], held over the step: the pad's normal contact force
+    F and the fingertip's inertia under the pad frame's acceleration a_n along its inward
+    normal;
+  - the direct loads d [N] at each of the step's n internal instants (film_dynamics.py): the
+    impact's half-sine on the step where the pad's contact begins, and the slip texture
+    (pad_slip_vibration.py) while the pad touches and the texture is above
+    TEXTURE_FLOOR_MPS2.
+
+The impact needs the contact's point, the struck body and the two bodies' velocities there,
+which only the plant's abstract ports (contact results, body poses, velocities and
+accelerations) give: no compiled Drake system reads them, so this system stays in Python.
+It is evaluated once per plant step and does no more than read two forces and compare them
+with the last step's unless a contact begins or an impulse or a texture is under way. It
+keeps no state: what it must remember from one step to the next (its memory: the pads'
+forces and the impulses under way) is in its own output, which the chain holds for a plant
+step (film_chain.py) and feeds back with the films' states (`held`).
+
+The output, `film_loads` (10 + 2 n):
+
+  [0:2]   L of the left and right pads [N] (0 at t = 0, where no step has ended yet)
+  [2:4]   F of the left and right pads [N]
+  [4:6]   onset of each pad's impact [s], [6:8] its impulse [N s] (0: none under way),
+  [8:10]  its duration [s]
+  [10:10+n], [10+n:10+2n]  d of the left, then the right pad, oldest instant first [N]
+"""
+
+import dataclasses
+import math
+import typing
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform
+from pydrake.multibody.math import SpatialAcceleration, SpatialVelocity
+from pydrake.multibody.plant import ContactResults
+from pydrake.multibody.tree import BodyIndex
+from pydrake.systems.framework import LeafSystem
+
+from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, FilmStepMatrices,
+                                                    halfsine_mean_forces, impact_pulse)
+from tegrasp_drake.simulation.pad_slip_vibration import UPDATE_PERIOD_S as TEXTURE_PERIOD_S
+from tegrasp_drake.simulation.pad_slip_vibration import texture_acceleration
+
+if typing.TYPE_CHECKING:  # the films' config lives with the station's sensor settings
+    from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+
+# A pad's contact begins on the plant step whose normal force exceeds this [N] after a step
+# at or below it (the plant's force is exactly zero out of contact).
+CONTACT_ONSET_N = 1e-6
+# Slip textures weaker than this [m/s^2] are not integrated: 5e4 times below the sensor
+# noise; creep of a held object (micrometres per second) gives about 1e-7.
+TEXTURE_FLOOR_MPS2 = 1e-6
+
+# film_loads' layout (module docstring).
+LOADS = slice(0, 2)
+FORCES = slice(2, 4)
+ONSETS, IMPULSES, DURATIONS = slice(4, 6), slice(6, 8), slice(8, 10)
+PULSES = slice(4, 10)
+MEMORY = slice(2, 10)  # what the next step reads back: FORCES and PULSES
+DIRECT_START = 10
+# The chain's hold: MEMORY one plant step ago, then both films' states.
+HELD_SIZE = MEMORY.stop - MEMORY.start + 2 * STATE_SIZE
+
+
+def film_loads_size(substeps: int) -> int:
+    """The size of film_loads for `substeps` internal instants per plant step."""
+    return DIRECT_START + 2 * substeps
+
+
+def _point_velocity_before_step(X_WB: RigidTransform, V_WB: SpatialVelocity,
+                                A_WB: SpatialAcceleration, p_WQ: np.ndarray,
+                                time_step: float) -> np.ndarray:
+    """Velocity [m/s] of body B's material point at p_WQ one plant step earlier, from its
+    velocity and the step's acceleration now."""
+    r = p_WQ - X_WB.translation()
+    w, alpha = V_WB.rotational(), A_WB.rotational()
+    velocity = V_WB.translational() + np.cross(w, r)
+    acceleration = A_WB.translational() + np.cross(alpha, r) + np.cross(w, np.cross(w, r))
+    return velocity - time_step * acceleration
+
+
+@dataclasses.dataclass(frozen=True)
+class SignalLayout:
+    """Where FilmLoads finds each of its vector signals in its `signals` input: the sizes,
+    in order, of the gripper's generalized contact forces, its state (0 without pad
+    statics), the left and right pad frames' accelerations, the texture state (0 without a
+    texture) and the chain's hold (HELD_SIZE)."""
+    forces: int
+    gripper_state: int
+    texture: int
+    substeps: int
+
+    @property
+    def sizes(self) -> list[int]:
+        return [self.forces, self.gripper_state, 3, 3, self.texture, HELD_SIZE]
+
+    @property
+    def names(self) -> list[str]:
+        return ["generalized_contact_forces", "gripper_state", "left_pad_frame_acceleration",
+                "right_pad_frame_acceleration", "texture_state", "held"]
+
+    def slices(self) -> dict[str, slice]:
+        starts = np.concatenate([[0], np.cumsum(self.sizes)]).tolist()
+        return {name: slice(start, start + size)
+                for name, start, size in zip(self.names, starts, self.sizes)}
+
+
+class FilmLoads(LeafSystem):
+    """Both pads' film loads over the plant step that ends now (see the module docstring).
+
+    .. pydrake_system::
+
+        name: FilmLoads
+        input_ports:
+        - signals
+        - contact_results
+        - body_poses
+        - body_spatial_velocities
+        - body_spatial_accelerations
+        output_ports:
+        - film_loads
+
+    Ports:
+        signals: the vector inputs, one after the other (SignalLayout; one port, so that a
+            step costs one read from Python):
+            generalized_contact_forces: the gripper model instance's generalized contact
+                forces; entry force_indices[k] is finger k's joint, positive pushing its
+                pad outward (N); or PadNormalForces' output with force_indices (0, 1); or,
+                with `pad_statics`, the whole instance's, which pad_statics turns into pad
+                forces;
+            gripper_state: the gripper model instance's state, with `pad_statics` only
+                (linkage_pad_statics.py reads its joint angles);
+            left_pad_frame_acceleration, right_pad_frame_acceleration: each pad frame's
+                acceleration without gravity, in the pad frame (3, m/s^2; Drake
+                Accelerometer);
+            texture_state: PadSlipVibration's texture_state (6), from which the texture
+                acceleration along each pad normal is synthesised at the internal instants,
+                with `with_texture` only;
+            held: the chain's hold: film_loads' MEMORY (forces, pulses) one plant step
+                ago, then the films' states (HELD_SIZE; the states are not read here).
+        contact_results, body_poses, body_spatial_velocities, body_spatial_accelerations:
+            the plant's; read only on the plant step where a pad's contact begins.
+        film_loads: (10 + 2 n) the loads of the step that ends now (module docstring).
+    """
+
+    def __init__(self, *, plant, pads: dict, force_indices, config: "VibrationSensorConfig",
+                 matrices: FilmStepMatrices, with_texture: bool = False, pad_statics=None):
+        """matrices: the film's step (film_step_matrices) whose internal instants d is
+        given at; pad_statics: a LinkagePadStatics, or None."""
+        super().__init__()
+        self._dt = plant.time_step()
+        self._pads = [pads[finger] for finger in FINGER_NAMES]
+        self._config = config
+        self._matrices = matrices
+        self._midpoints = matrices.substep_starts + 0.5 * matrices.h
+        self._texture_period_m = config.slip_texture_period_m
+        # What a contact onset needs to know about the other body: which body a collision
+        # geometry belongs to, its mass, and whether it is welded to the world.
+        self._geometry_body = {}
+        self._mass = {}
+        for i in range(plant.num_bodies()):
+            body = plant.get_body(BodyIndex(i))
+            self._mass[i] = body.default_mass()
+            for geometry in plant.GetCollisionGeometriesForBody(body):
+                self._geometry_body[geometry] = i
+        for body in plant.GetBodiesWeldedTo(plant.world_body()):
+            self._mass[int(body.index())] = math.inf
+
+        self._statics = pad_statics
+        left_index, right_index = (int(i) for i in force_indices)
+        self.layout = SignalLayout(
+            forces=(max(left_index, right_index) + 1 if pad_statics is None
+                    else pad_statics.velocities),
+            gripper_state=0 if pad_statics is None else pad_statics.states,
+            texture=3 * len(FINGER_NAMES) if with_texture else 0, substeps=matrices.substeps)
+        where = self.layout.slices()
+        self._forces, self._gripper_state = where["generalized_contact_forces"], \
+            where["gripper_state"]
+        self._left_force, self._right_force = (self._forces.start + left_index,
+                                               self._forces.start + right_index)
+        # The normal (z) entries of the accelerations, and the memory entries of the last
+        # step's film_loads: its forces and pulses.
+        self._normal_accelerations = (where["left_pad_frame_acceleration"].start + 2,
+                                      where["right_pad_frame_acceleration"].start + 2)
+        held = where["held"].start - MEMORY.start  # film_loads' index i is at held + i
+        self._previous_forces = slice(held + FORCES.start, held + FORCES.stop)
+        self._previous_pulses = slice(held + PULSES.start, held + PULSES.stop)
+        self._texture = where["texture_state"] if with_texture else None
+        self._signals = self.DeclareVectorInputPort("signals", sum(self.layout.sizes))
+        self._contacts = self.DeclareAbstractInputPort(
+            "contact_results", AbstractValue.Make(ContactResults()))
+        self._poses = self.DeclareAbstractInputPort(
+            "body_poses", AbstractValue.Make([RigidTransform()]))
+        self._velocities = self.DeclareAbstractInputPort(
+            "body_spatial_velocities", AbstractValue.Make([SpatialVelocity()]))
+        self._body_accelerations = self.DeclareAbstractInputPort(
+            "body_spatial_accelerations", AbstractValue.Make([SpatialAcceleration()]))
+        self._no_direct = [0.0] * (2 * matrices.substeps)
+        self.DeclareVectorOutputPort("film_loads", film_loads_size(matrices.substeps),
+                                     self._calc)
+
+    def _calc(self, context, output):
+        # Scalars are handled as Python floats: per plant step, numpy's scalar overhead
+        # would cost more than the arithmetic itself.
+        signals = self._signals.Eval(context)
+        values = signals.tolist()
+        if self._statics is None:
+            left, right = values[self._left_force], values[self._right_force]
+        else:
+            left, right = self._statics.normal_forces(values[self._forces],
+                                                      values[self._gripper_state])
+        time = context.get_time()
+        if time < 0.5 * self._dt:  # no plant step has ended yet
+            output.SetFromVector([0.0, 0.0, left, right, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+                                 + self._no_direct)
+            return
+        before_left, before_right = values[self._previous_forces]
+        pulses = values[self._previous_pulses]  # onsets, impulses, durations
+        m = self._config.mode_mass_kg
+        loads = [left + m * values[self._normal_accelerations[0]],
+                 right + m * values[self._normal_accelerations[1]], left, right]
+        onsets = (abs(left) > CONTACT_ONSET_N >= abs(before_left),
+                  abs(right) > CONTACT_ONSET_N >= abs(before_right))
+        step_start = time - self._dt
+        if self._config.impact_enabled and (onsets[0] or onsets[1]):
+            self._start_impacts(context, onsets, step_start, pulses)
+        direct = None
+        if pulses[2] > 0.0 or pulses[3] > 0.0:  # an impulse is under way
+            direct = self._impact_loads(step_start, pulses)
+        if self._texture is not None and (left != 0.0 or right != 0.0):
+            texture = self._texture_loads(signals[self._texture], step_start)
+            if texture is not None:
+                direct = texture if direct is None else direct + texture
+        written = output.get_mutable_value()
+        written[:DIRECT_START] = loads + pulses
+        written[DIRECT_START:] = 0.0 if direct is None else direct.T.ravel()
+
+    def _impact_loads(self, step_start: float, pulses: list):
+        """(n, 2) impact forces [N] over this step's internal steps, or None; marks an
+        impulse delivered (0) in `pulses` on its last step."""
+        impulses = pulses[2:4]
+        if impulses[0] <= 0.0 and impulses[1] <= 0.0:
+            return None
+        direct = None
+        for k in (0, 1):
+            onset, duration = pulses[k], pulses[4 + k]
+            if impulses[k] <= 0.0 or step_start >= onset + duration:
+                continue
+            if direct is None:
+                direct = np.zeros((self._matrices.substeps, 2))
+            direct[:, k] = halfsine_mean_forces(step_start, self._matrices.substep_starts,
+                                                self._matrices.h, onset, impulses[k], duration)
+            if step_start + self._dt >= onset + duration:
+                pulses[2 + k] = 0.0  # delivered
+        return direct
+
+    def _texture_loads(self, texture: np.ndarray, step_start: float):
+        """(n, 2) the texture's inertial load [N] on each fingertip over this step's internal
+        steps from the texture state (6), or None when neither pad's texture is above
+        TEXTURE_FLOOR_MPS2."""
+        if (abs(texture.item(1)) <= TEXTURE_FLOOR_MPS2
+                and abs(texture.item(4)) <= TEXTURE_FLOOR_MPS2):
+            return None
+        phase, amplitude, speed = texture[0::3], texture[1::3], texture[2::3]
+        # The texture sample in force now is the one taken at the last multiple of its
+        # period before this update (an update at that same instant is not applied yet).
+        sampled_at = TEXTURE_PERIOD_S * math.floor((step_start + 0.5 * self._dt)
+                                                   / TEXTURE_PERIOD_S)
+        elapsed = (step_start - sampled_at + self._midpoints)[:, np.newaxis]
+        return self._config.mode_mass_kg * texture_acceleration(
+            phase, amplitude, speed, elapsed, self._texture_period_m)
+
+    def _start_impacts(self, context, onsets, step_start: float, pulses: list):
+        """Sets, in `pulses`, the impact pulse of each pad whose contact began on this
+        plant step."""
+        contacts = self._contacts.Eval(context)
+        poses = self._poses.Eval(context)
+        velocities = self._velocities.Eval(context)
+        accelerations = self._body_accelerations.Eval(context)
+        for k in (k for k in range(2) if onsets[k]):
+            touch = self._strongest_contact(contacts, self._pads[k].geometry_id)
+            if touch is None:
+                continue
+            other, p_WC = touch
+            pad_body = int(self._pads[k].body_index)
+            X_WP = poses[pad_body] @ self._pads[k].X_BP
+            normal = X_WP.rotation().matrix()[:, 2].copy()  # inward
+            v_pad, v_other = (_point_velocity_before_step(
+                poses[b], velocities[b], accelerations[b], p_WC, self._dt)
+                for b in (pad_body, other))
+            impulse, duration = impact_pulse(
+                float(np.dot(v_pad - v_other, normal)), self._config.mode_mass_kg,
+                self._mass[other], self._config.pad_contact_stiffness_n_per_m,
+                self._config.pad_dissipation_s_per_m)
+            pulses[k], pulses[2 + k], pulses[4 + k] = step_start, impulse, duration
+
+    def _strongest_contact(self, contacts: ContactResults, pad_geometry):
+        """(other body index, contact point in world) of the pad's largest contact force,
+        or None when the pad has no contact."""
+        best, best_force = None, -1.0
+        for i in range(contacts.num_hydroelastic_contacts()):
+            info = contacts.hydroelastic_contact_info(i)
+            surface = info.contact_surface()
+            ids = (surface.id_M(), surface.id_N())
+            if pad_geometry not in ids:
+                continue
+            other = ids[1] if ids[0] == pad_geometry else ids[0]
+            force = float(np.linalg.norm(info.F_Ac_W().translational()))
+            if force > best_force:
+                best, best_force = (self._geometry_body[other], surface.centroid()), force
+        for i in range(contacts.num_point_pair_contacts()):
+            info = contacts.point_pair_contact_info(i)
+            ids = (info.point_pair().id_A, info.point_pair().id_B)
+            if pad_geometry not in ids:
+                continue
+            other = ids[1] if ids[0] == pad_geometry else ids[0]
+            force = float(np.linalg.norm(info.contact_force()))
+            if force > best_force:
+                best, best_force = (self._geometry_body[other], info.contact_point()), force
+        return best
