@@ -9,9 +9,14 @@ Two ways in, for the two kinds of subscriber:
 - `CheckedLcmSubscriber`: Drake's LcmSubscriberSystem with a serializer that decodes
   through a boundary's check. A rejected message leaves the subscriber's value as it was,
   so its output keeps the last good message (whose unchanged utime the watchdog sees as
-  silence). The subscriber system keeps only the newest message that arrived between two
-  of its updates (its queue holds one), so the counting is done by a second subscription
-  to the channel that sees every message;
+  silence). The counting is done by a second subscription to the channel on the same
+  DrakeLcm, which sees every message the diagram's LcmInterfaceSystem hands over. (A
+  DrakeLcm subscription holds one message between two calls of HandleSubscriptions, one
+  per step of the diagram: on a real bus, a message that arrives in the same step as
+  another is dropped by the transport before any subscriber, good or bad alike. A
+  listener of its own with a deeper queue would see those too, but LCM's Python binding
+  on a thread of the hardware process crashed it, and a second DrakeLcm has the same
+  one-message queue);
 - `checked_handler`: a callback for DrakeLcm.Subscribe or lcm.LCM.subscribe that calls
   `on_message` with checked messages only.
 """
