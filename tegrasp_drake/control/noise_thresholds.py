@@ -145,10 +145,8 @@ def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: fl
     if heuristic is not None:
         changes["heuristic"] = dataclasses.replace(heuristic, place_ra_mps2=max(
             heuristic.place_ra_mps2, heuristic.place_ra_sigmas * ra_noise_std_mps2))
-    if tactile is not None and config.sa_noise_floor:
-        sa = _sa_changes(config, sa_noise_floors(tactile, sa_rate_hz))
-        if "heuristic" in changes:
-            sa["heuristic"] = dataclasses.replace(
-                changes["heuristic"], contact_force_n=sa["heuristic"].contact_force_n)
-        changes.update(sa)
-    return dataclasses.replace(config, **changes)
+    resolved = dataclasses.replace(config, **changes)
+    if tactile is None or not config.sa_noise_floor:
+        return resolved
+    return dataclasses.replace(resolved, **_sa_changes(resolved,
+                                                       sa_noise_floors(tactile, sa_rate_hz)))
