@@ -62,13 +62,15 @@ def test_the_readme_emulator_walkthrough_ends_done(tmp_path):
                 lines.append(line)
             assert any(line.startswith("scheduling: ") for line in lines)
             run = shell(hardware)
-            assert run.returncode == 0, run.stdout + run.stderr
-            assert re.search(r"-> Done\b", run.stdout), run.stdout
-            assert shell(replay).returncode == 0
         finally:
             emulators.send_signal(signal.SIGINT)
             try:
-                emulators.communicate(timeout=60)
+                emulated, _ = emulators.communicate(timeout=60)
             except subprocess.TimeoutExpired:
                 emulators.kill()
-                emulators.communicate()
+                emulated, _ = emulators.communicate()
+        said = (run.stdout + run.stderr + "\n--- tegrasp emulate printed:\n"
+                + "".join(lines) + (emulated or ""))
+        assert run.returncode == 0, said
+        assert re.search(r"-> Done\b", run.stdout), said
+        assert shell(replay).returncode == 0
