@@ -1,24 +1,13 @@
 """LCM messages through the message boundary (message_boundary.py).
 
-`decode_lcm` turns a message's bytes into an LCM type or raises RejectedMessage: too short
-for a fingerprint, another type's fingerprint (a message of another type on the channel),
-or bytes that end before the fields do. A type's own check (e.g. jaco_lcm's joint count and
-finite values) follows it.
-
-Two ways in, for the two kinds of subscriber:
-- `CheckedLcmSubscriber`: Drake's LcmSubscriberSystem with a serializer that decodes
-  through a boundary's check. A rejected message leaves the subscriber's value as it was,
-  so its output keeps the last good message (whose unchanged utime the watchdog sees as
-  silence). The counting is done by a second subscription to the channel on the same
-  DrakeLcm, which sees every message the diagram's LcmInterfaceSystem hands over. (A
-  DrakeLcm subscription holds one message between two calls of HandleSubscriptions, one
-  per step of the diagram: on a real bus, a message that arrives in the same step as
-  another is dropped by the transport before any subscriber, good or bad alike. A
-  listener of its own with a deeper queue would see those too, but LCM's Python binding
-  on a thread of the hardware process crashed it, and a second DrakeLcm has the same
-  one-message queue);
-- `checked_handler`: a callback for DrakeLcm.Subscribe or lcm.LCM.subscribe that calls
-  `on_message` with checked messages only.
+`decode_lcm` refuses, by reason, bytes too short for a fingerprint, another type's
+fingerprint and bytes that end before the fields; a type's own check follows it.
+`CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding through a boundary's check
+(a rejected message leaves the last good one, whose unchanged utime the watchdog sees as
+silence), counted by a second subscription on the same DrakeLcm. A DrakeLcm subscription
+holds one message per HandleSubscriptions, so two messages in one diagram step lose the
+first, good or bad, before any count. `checked_handler` is a plain callback that passes on
+checked messages only.
 """
 
 from collections.abc import Callable
@@ -51,9 +40,9 @@ def decode_lcm(lcm_type, data: bytes):
 
 
 class CheckedLcmSerializer(SerializerInterface):
-    """An LcmSubscriberSystem serializer that decodes through `boundary`'s check (which
-    takes the bytes), counting nothing; a rejected message leaves the value unchanged
-    (the last good one)."""
+    """An LcmSubscriberSystem serializer that decodes through `boundary`'s check, counting
+    nothing; a rejected message leaves the value (the last good one) unchanged.
+    """
 
     def __init__(self, lcm_type, boundary: MessageBoundary):
         SerializerInterface.__init__(self)
@@ -74,8 +63,8 @@ class CheckedLcmSerializer(SerializerInterface):
 
 def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
                          lcm) -> LcmSubscriberSystem:
-    """Drake's LcmSubscriberSystem on `channel`, its messages checked by `boundary`, which
-    counts every message on the channel (module docstring)."""
+    """Drake's LcmSubscriberSystem on `channel`, checked by `boundary`, which counts every
+    message on the channel."""
     lcm.Subscribe(channel, checked_handler(boundary, lambda message: None))
     return LcmSubscriberSystem(channel, CheckedLcmSerializer(lcm_type, boundary), lcm)
 
