@@ -1,13 +1,10 @@
 """The one boundary every message from a device crosses: decode, check, count, skip.
 
-What a device sends is untrusted (other programs' messages, line noise, NaN from firmware).
 A `MessageBoundary`'s check returns the decoded, checked value or raises
-`RejectedMessage(reason, detail)`; any other exception on untrusted bytes counts as
-"undecodable". A rejected message is counted by reason and skipped, the receiver keeps its
-last good value, and a device that sends nothing usable looks silent to the watchdog: a
-device stream never ends a run. `counters()` feeds the run's report; `new_rejections()`
-gives each reason once, for a live line. Thread-safe. The myRIO decoder
-(hardware/myrio/tactile_frame.py) follows the same rule with its own counters.
+`RejectedMessage(reason, detail)` (any other exception on untrusted bytes counts as
+"undecodable"). A rejected message is counted and skipped and the receiver keeps its last
+good value, so a device that sends nothing usable looks silent to the watchdog and never
+ends a run. `new_rejections()` gives each reason once, for a live line. Thread-safe.
 """
 
 import dataclasses

@@ -1,11 +1,9 @@
 """Scheduling of the real-time control loop, so that a busy host does not delay it.
 
-`realtime_scheduling(policy, priority)` raises the calling thread's scheduling for a block
-and restores it after; threads started inside (the device readers) inherit it, not higher,
-as they share Python's interpreter lock with the loop. Policies fall back to the next when
-the OS refuses: "fifo" (SCHED_FIFO; the kernel's real-time throttling keeps a runaway loop
-from locking a core), "nice" (NICE_LEVEL), "normal". Emulators raise their whole process
-with `raise_scheduling` at EMULATOR_PRIORITY. Why and measured effect: docs/hardware.md,
+`realtime_scheduling(policy, priority)` raises the calling thread for a block (the device
+threads started inside inherit it); a refused policy falls back to the next: "fifo"
+(SCHED_FIFO), "nice" (NICE_LEVEL), "normal". Emulators raise their whole process with
+`raise_scheduling` at EMULATOR_PRIORITY. Why and measured effect: docs/hardware.md,
 "The real-time loop on a busy host".
 """
 

@@ -1,14 +1,10 @@
-"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b).
-
-The controller connects to the same exported ports as on MakeGraspStation
-(rig/station_interface.py), so it runs unchanged on either; the hardware-only ports are
-listed on HardwareStation. Inside: the JACO2 on LCM (AddJacoLcmDriver), the 2F-85 on Modbus
-RTU (RobotiqDriver on a RobotiqModbusClient thread), the myRIO stream (TactileSerialReceiver
-on a TactileSerialReader thread), the DeviceWatchdog and a FaultLatch whose `stop` holds the
-arm still. Tactile and gripper data also go on the bus (device_log_messages.py), so a log
-holds all the controller saw. Every device message crosses a MessageBoundary first
-(message_boundary.py). The station owns threads: use it in a `with` block, call
-`wait_until_ready()` before the Simulator's Initialize() and run at real-time rate 1.
+"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b), so
+the controller runs unchanged on either (rig/station_interface.py). Inside: the JACO2 on
+LCM, the 2F-85 on Modbus RTU and the myRIO stream, each on its own thread, every message
+through a MessageBoundary; a DeviceWatchdog and a FaultLatch whose `stop` holds the arm
+still; tactile and gripper data republished on the bus, so a log holds all the controller
+saw. Use it in a `with` block, call `wait_until_ready()` before the Simulator's
+Initialize() and run at real-time rate 1.
 """
 
 import time
@@ -215,7 +211,8 @@ class HardwareStation(Diagram):
 
     def wait_until_ready(self, timeout: float | None = None):
         """Blocks, before the Simulator starts, until the arm's status arrived, the gripper is
-        active and the (untouched) pads are zeroed; else HardwareNotReadyError naming what is missing.
+        active and the (untouched) pads are zeroed; else HardwareNotReadyError naming what is
+        missing.
         """
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout

@@ -66,13 +66,10 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
 
 def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
                        text=()) -> dict[str, np.ndarray]:
-    """The arrays `names` (and those of `optional` present) of the .npz at `path`, after
-    their headers (npz_array_headers) say they fit in `max_bytes` together and hold numbers
-    (bool, integers, floats), or text for those named in `text`.
-
-    Raises NpzHeaderError (a ValueError) for a missing array or a bad header, and what
-    zipfile and numpy raise for damage found while reading (OSError, ValueError, EOFError,
-    zipfile.BadZipFile, zlib.error): the caller names the file."""
+    """The arrays `names` (and those of `optional` present) of the .npz at `path`, once their
+    headers say they fit in `max_bytes` together and hold numbers (text for those in `text`).
+    NpzHeaderError (a ValueError) for a missing array or a bad header; damage found while
+    reading raises what zipfile and numpy raise. The caller names the file."""
     try:
         zip_file = zipfile.ZipFile(path)
     except (RuntimeError, NotImplementedError) as e:  # a zip feature zipfile does not read
