@@ -74,7 +74,7 @@ class DeviceWatchdogConfig:
                                      high=10.0, unit="s", below="must be positive [s]")
     tactile_timeout: float = bounded(DEFAULT_TIMEOUTS["tactile"], low=0.0, low_open=True,
                                      high=10.0, unit="s", below="must be positive [s]")
-    # a device's first message may take this long after the start (e.g. gripper activation)
+    # [s] extra time a device may take to be first heard from after the start
     startup_grace: float = bounded(1.0, low=0.0, high=60.0, unit="s",
                                    below="must be zero or positive [s]")
 

@@ -212,8 +212,7 @@ class HardwareStation(Diagram):
     def wait_until_ready(self, timeout: float | None = None):
         """Blocks, before the Simulator starts, until the arm's status arrived, the gripper is
         active and the (untouched) pads are zeroed; else HardwareNotReadyError naming what is
-        missing.
-        """
+        missing."""
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
         heard = [False]

@@ -4,8 +4,8 @@ electrodes, so sensing area and contact geometry agree. The paper gives no dimen
 reasoning: docs/model.md, "The fingertip and its taxels".
 """
 
-# [m] along the approach axis (pad frame y, rows): the paper's +-1 cm misplacement normal to
-# the palm "considering the dimensions of the tactile sensor" (Sec. IV-B), plus 2 mm: 2 x 12.
+# [m] along the approach axis (pad frame y, rows): holds the contact line through the paper's
+# +-1 cm misplacement normal to the palm (Sec. IV-B) with 2 mm margin: 2 x (10 + 2) mm.
 PAD_LENGTH = 0.024
 # [m] across (pad frame x, columns): 3 electrodes at the 6-7 mm pitch of AD7147 arrays; fits
 # the 2F-85 finger, about 22 mm wide.

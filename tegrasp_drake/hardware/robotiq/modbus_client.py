@@ -35,7 +35,7 @@ class RobotiqModbusConfig:
                              why="Modbus slave addresses, Modbus over serial line specification")
     period: float = bounded(MIN_PERIOD, low=MIN_PERIOD, high=1.0, unit="s",
                             why="the 2F-85 takes requests at up to 200 Hz")
-    # an answer is 11 bytes, < 1 ms at 115200 baud; 50 ms is ample
+    # a status answer is 11 bytes, about 1 ms at 115200 baud; 50 ms is ample
     request_timeout: float = bounded(0.05, low=0.0, low_open=True, high=10.0, unit="s")
     # activation strokes the fingers (the emulator takes 1.5 s); 5 s leaves margin
     activation_timeout: float = bounded(5.0, low=0.0, low_open=True, high=60.0, unit="s")
