@@ -61,7 +61,7 @@ def command_boundary(device: str = "myrio") -> MessageBoundary:
 
 
 def feed_clock(clock: ControllerClock, boundary: MessageBoundary):
-    """A subscription callback (DrakeLcm's or lcm's) feeding `clock` checked commands."""
+    """A callback for an `lcm` package subscription feeding `clock` checked commands."""
     return checked_handler(boundary, lambda command: clock.on_command(command.utime))
 
 

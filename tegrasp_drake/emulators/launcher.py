@@ -62,7 +62,7 @@ class Emulators:
         self._out = out
         self._devices = {}
         self._closers = []
-        self._jaco = None  # (DrakeLcm, emulator Diagram)
+        self._jaco = None  # (DrakeLcm, emulator Diagram, its command boundary)
         self._robotiq = None  # RobotiqEmulator
         self._boundaries = []  # MessageBoundary of every inbound path, for the counts
 
@@ -159,7 +159,7 @@ class Emulators:
         diagram = MakeJacoArmEmulator(lcm=drake_lcm, command_boundary=boundary,
                                       initial_positions=initial_arm_positions(scenario.arm))
         self._boundaries.append(boundary)
-        self._jaco = (drake_lcm, diagram)
+        self._jaco = (drake_lcm, diagram, boundary)
         self._devices["arm"] = {"lcm_url": self.lcm_url}
         self._out(f"jaco: JACO2 simulation on {self.lcm_url}: executes {JACO_COMMAND_CHANNEL}, "
                   f"answers {JACO_STATUS_CHANNEL} at 100 Hz")
@@ -239,17 +239,17 @@ class Emulators:
         return follower
 
     def _feed_controller_clock(self, clock):
-        """Feeds `clock` the arm's commands, from the emulated arm's DrakeLcm when it runs here."""
-        from tegrasp_drake.emulators.controller_clock import (
-            command_boundary, feed_clock, follow_jaco_commands)
-        boundary = command_boundary()
-        if self._jaco is None:
-            follow_jaco_commands(self.lcm_url, clock, self.stop, boundary)
-            self._boundaries.append(boundary)
+        """Feeds `clock` the arm's commands: those the emulated arm takes when it runs here
+        (its command boundary's listener: no second subscription on its DrakeLcm, see
+        hardware/lcm_boundary.py), else from a thread listening on `lcm_url`."""
+        if self._jaco is not None:
+            self._jaco[2].add_listener(lambda command: clock.on_command(command.utime))
             return
-        from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL
-        # The arm's own boundary counts these commands; this one only guards the clock.
-        self._jaco[0].Subscribe(JACO_COMMAND_CHANNEL, feed_clock(clock, boundary))
+        from tegrasp_drake.emulators.controller_clock import (
+            command_boundary, follow_jaco_commands)
+        boundary = command_boundary()
+        follow_jaco_commands(self.lcm_url, clock, self.stop, boundary)
+        self._boundaries.append(boundary)
 
     def _start_trial_on_first_command(self, emulator, clock):
         while not clock.started.wait(0.2):

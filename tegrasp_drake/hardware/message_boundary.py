@@ -55,9 +55,17 @@ class MessageBoundary:
         self._lock = threading.Lock()
         self._counters = MessageCounters()
         self._unreported = []  # RejectedMessage of reasons not yet handed to new_rejections
+        self._listeners = []
+
+    def add_listener(self, listener: Callable) -> None:
+        """Calls listener(value) with each value `accept` lets through, after counting it:
+        a second reader of the same messages (the emulated myRIO's clock reads the
+        emulated arm's commands)."""
+        self._listeners.append(listener)
 
     def accept(self, message, *args):
-        """The checked value of `message`, or None (counted) when it is rejected."""
+        """The checked value of `message`, or None (counted) when it is rejected; the
+        listeners see each checked value."""
         try:
             value = self._check(message, *args)
         except RejectedMessage as rejection:
@@ -67,11 +75,13 @@ class MessageBoundary:
             self._count(RejectedMessage(UNDECODABLE, f"{type(e).__name__}: {e}"))
             return None
         self.count_accepted()
+        for listener in self._listeners:
+            listener(value)
         return value
 
     def check_quietly(self, message, *args):
-        """The checked value of `message`, or None, counting nothing: for a second reader of
-        messages this boundary already counts (lcm_boundary.CheckedLcmSubscriber)."""
+        """The checked value of `message`, or None, counting nothing (a look at a message
+        that will be counted when it is taken: lcm_boundary.wait_for_checked_message)."""
         try:
             return self._check(message, *args)
         except Exception:  # noqa: BLE001: as accept, a rejection (counted by accept)

@@ -20,9 +20,10 @@ from tegrasp_drake.hardware.device_log_messages import (
     GRIPPER_CHANNEL, GRIPPER_PUBLISH_PERIOD, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
     GripperStatusSender, TactileStatusSender)
 from tegrasp_drake.hardware.fault_latch import FaultLatch
-from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL, check_jaco_status
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
-from tegrasp_drake.hardware.message_boundary import MessageBoundary, RejectedMessage
+from tegrasp_drake.hardware.lcm_boundary import wait_for_checked_message
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError, RobotiqModbusClient
 from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration, TactileCalibration
@@ -215,18 +216,7 @@ class HardwareStation(Diagram):
         missing."""
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
-        heard = [False]
-
-        def on_status(data):  # only a good status counts as heard
-            try:
-                check_jaco_status(data)
-            except RejectedMessage:
-                return
-            heard[0] = True
-        self._lcm.Subscribe(JACO_STATUS_CHANNEL, on_status)
-        while not heard[0] and time.monotonic() < deadline:
-            self._lcm.HandleSubscriptions(10)
-        if not heard[0]:
+        if not wait_for_checked_message(self._lcm, self._status_subscriber, deadline):
             raise HardwareNotReadyError(
                 f"arm: no lcmt_jaco_status on {JACO_STATUS_CHANNEL} at "
                 f"{self._lcm.get_lcm_url()} within {timeout:g} s (is the Kinova driver, or "

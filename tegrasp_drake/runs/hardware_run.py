@@ -66,19 +66,19 @@ class BusLogWriter:
     LCM package's own logger, in its own process: in this one, a Python subscriber to
     all channels would compete with the control loop for the interpreter (it cost the
     loop a third of its speed), and DrakeLcm's all-channel subscription drops messages
-    when it is pumped in step with its own publications. A memq:// bus lives inside one
-    LCM instance, so there `drake_lcm` is subscribed instead."""
+    when it is pumped in step with its own publications (and a Python callback on the
+    DrakeLcm the Simulator pumps is unsafe: hardware/lcm_boundary.py). A memq:// bus lives
+    inside this process, where no logger can hear it: nothing is recorded, and `unrecorded`
+    says so."""
 
-    def __init__(self, url: str, path, *, drake_lcm=None, start_timeout: float = 5.0):
+    def __init__(self, url: str, path, *, start_timeout: float = 5.0):
         self.path = pathlib.Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._process = None
-        self._log = None
-        self._in_process_messages = 0
-        self._failure = None
+        self.unrecorded = None
         if url.startswith("memq"):
-            self._log = lcm.EventLog(str(self.path), "w", overwrite=True)
-            drake_lcm.SubscribeAllChannels(self._write)
+            self.unrecorded = (f"no LCM log: the bus {url} lives inside this process, where "
+                               "lcm-logger cannot hear it (a udpm:// URL can be logged)")
             return
         self.path.unlink(missing_ok=True)
         self._process = subprocess.Popen(
@@ -92,21 +92,13 @@ class BusLogWriter:
             time.sleep(0.01)
         time.sleep(LOGGER_SUBSCRIBE_S)
 
-    def _write(self, channel: str, data: bytes):
-        if self._log is not None and self._failure is None:
-            try:
-                self._log.write_event(int(time.time() * 1e6), channel, data)
-            except OSError as e:
-                self._failure = f"writing it failed: {e.strerror or e}"
-                return
-            self._in_process_messages += 1
-
     def problem(self) -> str | None:
-        """Why the log has stopped recording (None while it records): its writer failed or
-        exited, or the disk holding it has less than LOG_MIN_FREE_BYTES left."""
-        if self._failure is not None:
-            return f"the LCM log {self.path} stopped: {self._failure}"
-        if self._process is not None and self._process.poll() is not None:
+        """Why the log has stopped recording (None while it records, or when it records
+        nothing): lcm-logger exited, or the disk holding it has less than
+        LOG_MIN_FREE_BYTES left."""
+        if self._process is None:
+            return None
+        if self._process.poll() is not None:
             return (f"the LCM log {self.path} stopped: lcm-logger exited with code "
                     f"{self._process.returncode}")
         try:
@@ -128,15 +120,12 @@ class BusLogWriter:
             except subprocess.TimeoutExpired:
                 self._process.kill()
                 self._process.wait()
-        if self._log is not None:
-            self._log.close()
-            self._log = None
         return self.messages
 
     @property
     def messages(self) -> int:
         if self._process is None:
-            return self._in_process_messages
+            return 0
         log = lcm.EventLog(str(self.path), "r")
         count = sum(1 for _ in log)
         log.close()
@@ -330,8 +319,10 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
         parts = MakeGraspDiagram(scenario, station=station, events=events,
                                  corrective_events=corrective_events, log=False)
         diagram = parts.diagram
-        writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path, drake_lcm=station.lcm)
+        writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path)
                   if log_path else None)
+        if writer is not None and writer.unrecorded:
+            out(writer.unrecorded)
         try:
             station.lcm.Publish(RUN_INFO_CHANNEL, run_info_message(
                 scenario, config, scenario.controller.name, events_dir).encode())
