@@ -1,26 +1,12 @@
-"""How well the corrective triggers detect their situations, from recorded logs:
-the memorized corrective events (Eq. 3 at any thresholds, recording/detection_quality.py)
-and the heuristic triggers they would replace, on the same spans; and the rule that
-chooses a corrective event's thresholds (choose_centred_thresholds).
-
-Why not detection_quality.choose_thresholds (the highest admissible thresholds, the rule
-of the ensemble events): for the hit it chose SA and RA > 0.98, which the held-out hits
-passed (their RA peaked at 0.98-0.999) but two closed-loop hits did not (the right pad's
-RA peaked at 0.969): it leaves no margin below the situation's scores. The hit's spans
-separate widely (RA at most 0.28 without a hit), so the centre of the admissible range
-keeps a margin on both sides.
-
-A span is the part of a logged run in which the state machine would look for the
-corrective event: Lift for the slip (lift_load), Hold after hit_refractory_s for the hit
-(hold_avoid). A run without the situation (a normal grasp) gives a span whose physical
-event never comes: any match in it is a false trigger.
-
-Heuristic triggers replayed offline from the same log (controller_config.py):
-  hit   either RA above hit_ra_mps2 (the controller's tick reads the channels every 5 ms;
-        the RA here at every 1 kHz sample, so it fires at most one tick earlier)
-  slip  either pad's slip-band vibration (tactile/slip_vibration_band.py: the film's
-        vibration high-passed at slip_band_hz, RMS over slip_window_s) above
-        slip_vibration_mps2 for slip_s
+"""How well the corrective triggers detect their situations, from recorded logs: the
+memorized corrective events (Eq. 3 at any thresholds, detection_quality.py) and the
+heuristic triggers they would replace, on the same spans, and the rule that chooses a
+corrective event's thresholds (choose_centred_thresholds: the centre of the admissible
+range, a margin on both sides; the highest admissible pair sits at the edge and misses
+real hits). A span is where the state machine would look for the event: Lift for the
+slip, Hold after hit_refractory_s for the hit; in a normal grasp's span any match is false.
+The heuristic triggers are replayed at every 1 kHz RA sample (the controller reads every
+5 ms tick, so they fire at most one tick early).
 """
 
 import dataclasses
@@ -69,12 +55,10 @@ def on_controller_ticks(span: ScoredSpan, period_s: float) -> ScoredSpan:
 
 
 def choose_centred_thresholds(spans, sa_grid, ra_grid):
-    """The threshold pair for a corrective event: among the grid's pairs with no false
-    trigger and the most detections (and, if any, a median latency within
-    LATENCY_TARGET_S), the one nearest the centre of that admissible set (per threshold,
-    the midpoint of its range): the widest margin both above what the spans scored
-    without the situation and below what they scored with it. ValueError when every pair
-    has a false trigger."""
+    """The threshold pair for a corrective event: among the grid's pairs with no false trigger
+    and the most detections (and, if any, a median latency within LATENCY_TARGET_S), the one
+    nearest the centre of that set (per threshold, the midpoint of its range). ValueError when
+    every pair has a false trigger."""
     candidates = most_detecting_clean_points(spans, sa_grid, ra_grid)
     on_target = [p for p in candidates
                  if p.median_latency_s is not None and p.median_latency_s <= LATENCY_TARGET_S]

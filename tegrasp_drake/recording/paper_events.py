@@ -1,18 +1,10 @@
 """Memorizing the tactile events of the ideal grasp (Sec. III-A): the paper's campaign.
 
-For one object, the ideal open-loop grasp is simulated once on its scenario, the SA (Eq. 1,
-at the taxel rate) and RA (Eq. 2, at 1 kHz) channels are cut into 0.5 s windows around the
-physical events that mark the transitions (EVENT_OF_TRANSITION: first contact ->
-reach_load, the scripted start of the lift -> load_lift, table touch -> place_unload) and
-normalised by their maxima (format: tegrasp_drake/events/FORMAT.md; the cutting:
-campaign.py).
-
-Load-Lift is anchored where the paper cuts it: at a transition point of the pre-programmed
-grasp, the end of its Load phase (the script's segment times), not at a force threshold.
-The grip must have settled by then: the lift must start with at least GRIP_FRACTION of the
-settled grip on the weaker pad (grasp_outcome.grip_fraction_at), else the Load phase
-(grasp.load_s) is too short for the gripper's drive and the recording stops and says so.
-`tegrasp record-events` stores them in the events folder with an index.
+The ideal open-loop grasp of one object is simulated once and its SA and RA channels are
+cut into 0.5 s windows around the physical events of EVENT_OF_TRANSITION (campaign.py,
+events/FORMAT.md). Load-Lift is anchored where the paper cuts it, at the end of the
+script's Load phase; the lift must start with GRIP_FRACTION of the settled grip on the
+weaker pad, else the recording stops and says to lengthen grasp.load_s.
 """
 
 import logging
@@ -33,17 +25,11 @@ __all__ = ["EVENT_OF_TRANSITION", "RecordEventsError", "grasp_event_times", "rec
 
 EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "lift_start",
                        "place_unload": "table_touch"}
-# [s] of the 0.5 s window before the physical event (extraction.py; the paper's centred
-# 0.25 s where not given). Load-Lift's window ends at the start of the lift: the controller
-# triggers the lift on this event, so it cannot feel the lift before it matches, and the
-# lift's first 0.25 s in a centred window kept a settled Load from matching in closed loop
-# (on the box, dev seed 600: RA at most 0.72 and 0.57 against the paper's 0.7).
+# [s] of the window before the physical event (else the paper's centred 0.25 s). Load-Lift's
+# ends at the lift's start: the controller lifts on it, so cannot feel the lift first.
 PRE_TRANSITION_S = {"load_lift": 0.5}
-# [s] of the ideal grasp's approach on which each RA channel's noise floor is measured; an
-# RA window that stays within it (Load-Lift's held grip: only the converter's noise) is
-# stored flat, "expects no change" (extraction.py, ra_noise_floor.py). 2 s, as the live
-# floor's controller.ra_noise_quiet_s: within the 2.8 s approach (scripted_grasp.py:
-# settle_s 0.3 + reach_s 2.5), before the open fingers can reach the object.
+# [s] of the approach that measures the RA noise floor for quiet templates: as the live
+# ra_noise_quiet_s, within the 2.8 s approach (settle_s 0.3 + reach_s 2.5), pads untouched.
 QUIET_APPROACH_S = 2.0
 
 
@@ -57,9 +43,8 @@ def lift_grip_fraction(log, scenario) -> float | None:
 
 
 def grasp_event_times(log, scenario) -> dict[str, float | None]:
-    """When the grasp's transitions' physical events happened in a run [s] (None: not
-    seen), from the simulation's truth (grasp_outcome.physical_events). Load-Lift counts as
-    not seen when the lift starts before the grip has settled (module doc)."""
+    """When the transitions' physical events happened in a run [s] (None: not seen), from the
+    simulation's truth; Load-Lift is not seen when the lift starts before the grip settled."""
     events = physical_events(log, scenario.grasp.grip_force, scenario.object)
     times = {transition: events[event] for transition, event in EVENT_OF_TRANSITION.items()}
     fraction = lift_grip_fraction(log, scenario)
