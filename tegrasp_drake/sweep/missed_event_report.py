@@ -1,10 +1,6 @@
-"""Missed memorized events of a sweep, from its records and trial logs: every wait of an
-event-triggered controller that ended on its event's timeout, replayed and classified
-(events/missed_waits.py), as a markdown report with the counts per object and class.
-
-A record's log is `LOGS/trial_log_name(trial)` (`tegrasp sweep --logs LOGS`). Each trial
-is replayed with the memorized events its controller ran with (trial_function.trial_events)
-and the matcher settings the live controller built (event_matcher_config).
+"""Missed memorized events of a sweep: every wait that ended on its event's timeout, replayed
+from the trial's log (`tegrasp sweep --logs LOGS`) with the events and matcher settings the
+controller ran with, classified (events/missed_waits.py) and counted per object and class.
 """
 
 import dataclasses
