@@ -36,21 +36,18 @@ class EventMatcherConfig:
     """
     sa_threshold: float = bounded(0.9, **SCORE_RANGE)
     ra_threshold: float = bounded(0.7, **SCORE_RANGE)
-    # {transition: (sa, ra)} per-event thresholds in place of the two above (taxel_aware's
-    # ensemble events); {}: none.
+    # {transition: (sa, ra)} per-event thresholds in place of the two above (taxel_aware)
     event_thresholds: Mapping[str, tuple[float, float]] = dataclasses.field(
         default_factory=dict)
     min_contrast: float = bounded(0.25, low=0.0, low_open=True, below="must be positive")
-    # Beyond the paper: a flat template channel (the settled grip of Load-Lift's SA) scores
-    # only a flat live window (correlation.py); False: the paper's Eq. 3.
+    # Beyond the paper: a flat template channel scores only a flat live window (correlation.py)
     flat_template_needs_flat_window: bool = False
     sa_rate_hz: float = bounded(100.0, low=0.0, low_open=True, unit="Hz")
     ra_rate_hz: float = bounded(1000.0, low=0.0, low_open=True, unit="Hz")
     # Block [s] in which a fast rate's samples are scored in one update (0: per sample); a
     # match shows at most one block late (WindowNormalizerConfig.block_s).
     block_s: float = bounded(0.0, low=0.0, unit="s")
-    # Cutoff [Hz] of the RA envelope that add_event_matcher puts on the memorized and the
-    # live RA windows alike (events/ra_envelope.py); 0: none, Eq. 3 on the raw windows.
+    # Cutoff [Hz] of the RA envelope on memorized and live RA alike (ra_envelope.py); 0: none
     ra_envelope_hz: float = bounded(0.0, low=0.0, unit="Hz")
     # The RA noise floor (events/ra_noise_floor.py): k of the floor m + k s measured on the
     # first ra_noise_quiet_s [s]; an RA window not above it scores 0 (0: no gate; quiet
@@ -89,15 +86,14 @@ def window_normalizer_config(events: Mapping[str, MemorizedEvent],
 
 
 class EventMatcher(WindowNormalizer):
-    """Eq. 3 scores of the live channels' windows against the expected memorized event, and
-    its match: the paper's Fig. 3 path, channels -> WindowNormalizer (last window_s per
-    channel, max-normalised) -> Eq. 3 against the expected event -> scores, match.
+    """The paper's Fig. 3 path: channels -> WindowNormalizer (last window_s per channel,
+    max-normalised) -> Eq. 3 against the expected event -> scores, match.
 
-    Each rate's state vector holds the window, its streaming correlation (SlidingCorrelation)
-    and a pass history (time, expected event, passed) of its last samples. Events are numbered
-    in grasp order (`transition_indices`). A rate in blocks (config.block_s) slides through a
-    block in one update; `match` asks whether the per-sample matcher would have matched after
-    any of its samples.
+    Each rate's state holds its window, the streaming correlation (SlidingCorrelation) and a
+    pass history of its last samples. Events are numbered in grasp order
+    (`transition_indices`). A rate in blocks (config.block_s) slides through a block in one
+    update; `match` asks whether the per-sample matcher would have matched after any of its
+    samples.
 
     .. pydrake_system::
 
@@ -116,19 +112,16 @@ class EventMatcher(WindowNormalizer):
         - scored_event
 
     Ports:
-        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2) at
-            config.sa_rate_hz (SA) and config.ra_rate_hz (RA).
-        sa_block, ra_block: a rate's samples in blocks (ConnectWindowChannels).
+        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2) at the config's
+            SA and RA rates; sa_block, ra_block: in blocks (ConnectWindowChannels).
         expected_event: [index] of the event to check, or -1 for none.
-        ra_floor: [left, right] RA noise floor (RaNoiseFloor), with ra_noise_floor_sigmas > 0
-            or a flat RA template.
+        ra_floor: [left, right] RA noise floor [m/s^2], declared with ra_noise_floor_sigmas
+            > 0 or a quiet template.
         sa_window, ra_window: the max-normalised windows that are scored.
-        scores: the four channels' scores in [-1, 1]; 0 with no event expected, before a
-            full window, for a too flat live window or an RA window below its floor; 1 for a
-            flat RA template's channel within its floor.
-        match: [1.0] when every channel exceeds its threshold for the event now expected
-            (never the previous one); in blocks, held to the next block end, at most one
-            block late.
+        scores: the four scores in [-1, 1]; 0 with no event, before a full window, for a too
+            flat window or an RA window below its floor; 1 for a quiet template within it.
+        match: [1.0] when every channel passes for the event now expected (never the previous
+            one); in blocks, held to the next block end, at most one block late.
         scored_event: [index] the scores refer to; -1 for none or while SA and RA disagree.
     """
 
@@ -151,8 +144,7 @@ class EventMatcher(WindowNormalizer):
                 templates, min_contrast=config.min_contrast, window=window_layout(group).window,
                 flat_needs_flat=config.flat_template_needs_flat_window)
         self._check_matchable(ordered_events, templates_by_event)
-        # After each rate's correlation, its pass history (PassHistory): as many samples as
-        # a block holds, or, for a rate taken per sample, as many as span two blocks.
+        # After each correlation its PassHistory: a block's samples, or per sample two blocks'.
         block_span_s = max(block_samples(g.rate_hz, config.block_s) / g.rate_hz
                            for g in normalizer_config.rate_groups())
         self._histories = {}

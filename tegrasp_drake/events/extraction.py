@@ -25,11 +25,9 @@ DEFAULT_PRE_TRANSITION_S = 0.25
 
 @dataclasses.dataclass(frozen=True)
 class TactileTrial:
-    """The channels logged during one grasp, and its transitions' physical-event times.
-
-    t_sa (N,) [s], sa (N, 2) [N] for [left, right]; t_ra (M,) [s], ra (M, 2) [m/s^2];
-    transition_times: {transition name: time [s] of its physical event}.
-    Each logged value holds until the next one (zero-order hold).
+    """The channels logged during one grasp (each value held until the next), and its
+    transitions' physical-event times: t_sa (N,) [s], sa (N, 2) [N] [left, right]; t_ra (M,)
+    [s], ra (M, 2) [m/s^2]; transition_times: {transition: time [s]}.
     """
     t_sa: np.ndarray
     sa: np.ndarray
@@ -55,10 +53,8 @@ class TactileTrial:
 
 def cut_window(times: np.ndarray, values: np.ndarray, *, start_s: float, rate_hz: float,
                length: int, what: str) -> np.ndarray:
-    """Sample a log at start_s + k / rate_hz, k = 0..length-1, holding the latest value.
-
-    times (N,), values (N, channels) -> (channels, length). The window must lie within the
-    log; `what` names it in the error otherwise.
+    """Samples a log (times (N,), values (N, channels)) at start_s + k / rate_hz, k < length,
+    holding the latest value -> (channels, length); ValueError naming `what` outside the log.
     """
     grid = start_s + np.arange(length) / rate_hz
     tolerance = 1e-6 / rate_hz  # of a sample period: float noise in the time stamps

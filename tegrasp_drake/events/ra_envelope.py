@@ -1,15 +1,10 @@
-"""The RA envelope: both RA windows, memorized and live, through the same low-pass before
-Eq. 3, so that events memorized with one vibration transducer match on another.
-
-The idealised accelerometer reads a contact as a one-sample spike, the PVDF film as a ring
-held up by the rising grip; below both transducers' bandwidths each becomes a pulse of the
-filter's time constant, so Eq. 3 compares when the pads were touched, not each transducer's
-impulse response. The cutoff both chains share is 2 Hz (the film's charge amplifier and
-the accelerometer's high-pass, `vibration.highpass_cutoff_hz`, tau 80 ms); docs/transfer.md,
-"A remedy: the RA envelope". The filter is y[k] = y[k-1] + a (u[k] - y[k-1]),
-a = 1 - exp(-2 pi f_c / f_s) (impulse-invariant 1 / (1 + s / (2 pi f_c))). A memorized
-window starts from its first sample as the steady state (event windows open on a quiet
-pad), the live filter from zero, as the channels do. SA passes unchanged.
+"""The RA envelope (beyond the paper): memorized and live RA windows through the same
+first-order low-pass before Eq. 3, so that events memorized with one vibration transducer
+match on another: below both transducers' bandwidths a contact reads as a pulse of the
+filter's time constant, whatever the transducer made of it (docs/transfer.md, "A remedy:
+the RA envelope": why 2 Hz). y[k] = y[k-1] + a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s)
+(impulse-invariant 1 / (1 + s / (2 pi f_c))); a memorized window starts from its first
+sample as the steady state (event windows open on a quiet pad), the live filter from zero.
 """
 
 import dataclasses
@@ -95,7 +90,7 @@ class RaEnvelope(LeafSystem):
 
 def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
     """Adds an RaEnvelope (`ra_envelope`) fed by the output port `channels`; returns its
-    output port."""
+    output."""
     envelope = builder.AddNamedSystem("ra_envelope", RaEnvelope(
         cutoff_hz=cutoff_hz, ra_rate_hz=ra_rate_hz))
     builder.Connect(channels, envelope.GetInputPort("channels"))
@@ -104,10 +99,8 @@ def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
 
 def ra_enveloped(builder, events, channels, config):
     """(events, channels) with the RA envelope at config.ra_envelope_hz [Hz] on both: the
-    events' RA windows low-passed (enveloped_event), and `channels`, an output port of the
-    four channels, through an RaEnvelope at config.ra_rate_hz added to `builder`.
-
-    config: an EventMatcherConfig (read: ra_envelope_hz, ra_rate_hz)."""
+    events' RA windows low-passed, and `channels` (an output port) through an RaEnvelope added
+    to `builder`. config: an EventMatcherConfig."""
     if channels is None:
         raise ValueError("the RA envelope needs the channels' output port to filter "
                          "(add_event_matcher(..., channels=PORT))")

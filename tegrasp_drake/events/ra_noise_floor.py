@@ -1,16 +1,12 @@
-"""The RA noise floor: an RA window carries no event unless its peak rises above its
-channel's noise, measured on the live stream while the pads are untouched.
+"""The RA noise floor (beyond the paper): an RA window carries no event unless its peak rises
+above its channel's noise, measured on the live stream while the pads are untouched.
 
-During the first `quiet_s` (the approach) each RA channel passes through the envelope's
-low-pass (ra_envelope.py, started from its first sample as the steady state); the filtered
-samples' mean m_w and standard deviation s_w give the floor m_w + k s_w (+inf before).
-k = Q^-1(alpha / N) (`floor_sigmas`): a union bound over a trial's N RA samples with a
-Gaussian tail, so that noise alone crosses the floor in at most alpha of the trials; 5.39
-for alpha = 1e-3 over 14 s of two channels at 1 kHz (`rule_sigmas`). The same floor marks
-quiet templates: a flat RA template scores 1 while the live window stays within it
-(extraction.py, SlidingCorrelation.gate_below). Reasoning and measurements:
-docs/transfer.md, "The RA noise floor"; quiet templates: docs/controller.md, "The paper's
-state machine".
+During the first `quiet_s` each RA channel passes through the envelope's low-pass (from its
+first sample as the steady state); the values' mean m_w and std s_w give the floor
+m_w + k s_w (+inf before). k = Q^-1(alpha / N) (`floor_sigmas`): a union bound over a
+trial's N RA samples with a Gaussian tail; 5.39 for alpha = 1e-3, 14 s of two channels at
+1 kHz (`rule_sigmas`). Quiet templates read the same floor (extraction.py). Reasoning:
+docs/transfer.md, "The RA noise floor"; docs/controller.md, "The paper's state machine".
 """
 
 import math

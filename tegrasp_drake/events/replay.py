@@ -56,16 +56,14 @@ def tactile_trial_from_log(log, transition_times: Mapping[str, float] | None = N
 
 @dataclasses.dataclass(frozen=True)
 class EventReplay:
-    """The event systems' outputs over a replayed trial, one row per control tick.
+    """The event systems' outputs over a replayed trial, one row per control tick (as they
+    stood just before the tick's updates, so a match shows in the row of the sequencer's fire
+    time).
 
-    A row at t holds the outputs just before the updates at t, so a match first shows in the
-    row of the time the sequencer fires for it. transitions: the matcher's events by index;
-    times (T,) [s]; scores (T, 4); match (T,) 0 or 1; expected_event (T,) index or -1.
-    fire_times: {transition: time [s] the sequencer passed it, or None} (empty when held).
-    At the tick that matched each transition (sequence replays only): windows_at_match, the
-    max-normalised (sa, ra) windows scored, (2, N_sa) and (2, N_ra); scores_at_match;
-    ra_peaks_at_match, each RA channel's largest raw |value| in its window; ra_floor_at_match,
-    the RA noise floor read (+inf without one).
+    times (T,) [s]; scores (T, 4); match (T,) 0 or 1; expected_event (T,) index or -1;
+    fire_times: {transition: time [s] the sequencer passed it, or None}. At each matching tick
+    (sequence replays only): windows_at_match, the scored (sa, ra) windows; scores_at_match;
+    ra_peaks_at_match, each RA channel's largest raw |value|; ra_floor_at_match (+inf: none).
     """
     transitions: tuple[str, ...]
     times: np.ndarray

@@ -1,16 +1,14 @@
 """Exact streaming update of the Eq. 3 scores: O(lags) work per new sample.
 
-The full cross-correlation C(n) = sum_k x[k+n] y[k] of a live window x (N samples) with a
-template y changes by two rank-one terms when the window slides one sample; indexed by the
-buffer column where the template starts, both land on one contiguous slice of 2N entries,
-applied by two in-place BLAS axpy calls per channel. Extremes and energy are kept exactly
-(energy reset to 0 for an all-zero window, which scores 0); everything is recomputed by FFT
-when the expected event changes or the buffer compacts (every `slack` samples), which bounds
-round-off to about 1e-16 of the signal's range. Scores stay 0 until the window is full. A
-missing sample (NaN, lost frame) enters as the channel's previous one and scores its
-channel 0 for N slides. State (one flat vector, after the SlidingWindowState window):
-[active_event, scores, [high, low, energy] per channel, missing slides (sum, per channel),
-correlation rows: channels x (2N - 1 + slack)]; column j holds lag j - offset - (N - 1).
+C(n) = sum_k x[k+n] y[k] changes by two rank-one terms when the window slides one sample;
+indexed by the buffer column where the template starts, both land on one contiguous slice,
+applied by two BLAS axpy calls per channel. Extremes and energy are kept exactly; all is
+recomputed by FFT when the expected event changes or the buffer compacts (every `slack`
+samples), bounding round-off to ~1e-16 of the signal's range. A missing sample enters as the
+channel's previous one and scores its channel 0 for N slides. State, after the
+SlidingWindowState window: [active_event, scores, [high, low, energy] per channel, missing
+slides (sum, per channel), rows: channels x (2N - 1 + slack)]; column j: lag j - offset - (N -
+1).
 """
 
 import math
@@ -28,9 +26,9 @@ _STATISTICS = 3  # high, low, energy
 
 def slide_statistics(statistics: list[float], dropped_and_new: list[list[float]],
                      window: np.ndarray) -> list[float]:
-    """[high, low, energy] per channel after one sample per channel left the window and one
-    entered (dropped_and_new: [[dropped, new], ...]), from `statistics` before; `window`
-    (channels, N), new included, is read only when an extreme left or round-off ate the energy.
+    """[high, low, energy] per channel after one sample per channel left and one entered
+    (dropped_and_new), from `statistics`; `window` (new included) is read only when an extreme
+    left or round-off ate the energy.
     """
     updated = []
     for channel, (dropped, new) in enumerate(dropped_and_new):
@@ -101,9 +99,8 @@ class SlidingCorrelation:
         self._rows_at = self._missing_at + 1 + n_channels
         self._row_length = 2 * length - 1 + window.slack
         self._size = self._rows_at + n_channels * self._row_length
-        # Per event and channel, what an update needs: where the channel's correlation
-        # buffer starts in the state, its template reversed (contiguous: the axpy operand),
-        # the template's norm and whether it is flat.
+        # Per event and channel: its buffer's start, the template reversed (the contiguous axpy
+        # operand), its norm, whether it is flat.
         correlation_starts = [self._rows_at + channel * self._row_length
                               for channel in range(n_channels)]
         self._channel_terms = [
@@ -144,13 +141,11 @@ class SlidingCorrelation:
     def slide(self, state: np.ndarray, rows: np.ndarray, offset: int, full: bool,
               event: int, missing: list[bool] | None = None) -> np.ndarray:
         """Slides the correlations by the samples the window just took (one per channel) and
-        scores the window against `event` (an index or NO_EVENT, checked by the caller), in
-        place.
-
-        state: C-contiguous float64 (the BLAS calls write into it); rows, offset, full: the
-        window just after SlidingWindowState.push; missing: None, or per channel whether its
-        sample was missing (its channel then scores 0 for N slides). Returns the scores view, 0
-        until full.
+        scores the window against `event` (index or NO_EVENT, checked by the caller), in place.
+        state: C-contiguous float64 (BLAS writes into it); rows, offset, full: the window after
+        SlidingWindowState.push; missing: per channel whether its sample was missing (its
+        channel then scores 0 for N slides). Returns the scores view, 0 until the window is
+        full.
         """
         length = self._length
         left = None  # slides left per channel, read only while a missing sample is around
@@ -195,13 +190,10 @@ class SlidingCorrelation:
 
     def gate_below(self, state: np.ndarray, floors: list[float | None], *,
                    gate_events: bool = True) -> np.ndarray:
-        """Judges each channel that has a floor (`floors`, None for none) against it, in place,
-        after `slide`; returns the scores view.
-
-        A window whose peak |value| is not above a finite floor holds only noise: a flat
-        template's channel then scores 1, any other 0 (gate_events False: keeps its score).
-        Above the floor, or while it is unknown (+inf), a flat template's channel keeps its Eq.
-        3 score.
+        """Judges each channel that has a floor (`floors`, None for none) after `slide`, in
+        place: a window whose peak |value| is not above a finite floor holds only noise, so a
+        flat template's channel scores 1 and any other 0 (gate_events False: kept). Returns the
+        scores view.
         """
         event = int(state[self._event_at])
         if event != NO_EVENT:
@@ -220,9 +212,8 @@ class SlidingCorrelation:
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
                    event: int) -> None:
-        """Exact full cross-correlation of the window with the event's templates, by FFT.
-
-        Columns after the valid lags are zeroed: later updates start new lags there.
+        """Exact full cross-correlation of the window with the event's templates, by FFT;
+        columns after the valid lags are zeroed (later updates start new lags there).
         """
         length = self._length
         rows = state[self._rows_at:self._size].reshape(self._n_channels, self._row_length)
@@ -235,8 +226,7 @@ class SlidingCorrelation:
 
 class StreamingCorrelator:
     """A sliding window and its SlidingCorrelation in one flat vector: push a sample, get the
-    scores, outside a Diagram (tests, benchmarks).
-
+    scores, outside a Diagram (tests, benchmarks); the accessors are SlidingCorrelation's.
     Args: templates, min_contrast, flat_needs_flat as SlidingCorrelation's; slack: samples
     between two exact recomputations of the correlation buffer.
     """
@@ -255,19 +245,15 @@ class StreamingCorrelator:
 
     @property
     def size(self) -> int:
-        """Length of the flat state vector."""
         return self._correlation.size
 
     def initial_state(self) -> np.ndarray:
-        """An all-zero window, no active event, scores 0."""
         return self._correlation.initial_state()
 
     def active_event(self, state: np.ndarray) -> int:
-        """The event the scores in `state` refer to (NO_EVENT for none)."""
         return self._correlation.active_event(state)
 
     def scores(self, state: np.ndarray) -> np.ndarray:
-        """View of the channels' scores held in `state`."""
         return self._correlation.scores(state)
 
     def window(self, state: np.ndarray) -> np.ndarray:

@@ -41,8 +41,7 @@ class CampaignRun:
     """One open-loop grasp of a campaign."""
     label: str                      # names the run (and its log file)
     scenario: typing.Any            # the run's Scenario (its random_seed is the run's seed)
-    role: str = "template"          # "template" runs make the events; "held_out" runs
-                                    # only choose thresholds
+    role: str = "template"          # "template": makes the events; "held_out": thresholds
     duration_s: float | None = None  # simulated time [s]; None: the script and a margin
 
 
@@ -51,8 +50,7 @@ EventTimes = Callable[[typing.Any, typing.Any], Mapping[str, float | None]]
 
 
 def simulate_run(run: CampaignRun, *, log_path=None, progress=None):
-    """The run's TrialLog: simulated (and saved to `log_path` when given), or read from
-    `log_path` when a log is already there."""
+    """The run's TrialLog: read from `log_path` if there, else simulated (and saved there)."""
     if log_path is not None and pathlib.Path(log_path).is_file():
         return load_trial_log(log_path)
     log, wall = run_ideal_grasp(run.scenario, duration=run.duration_s, progress=progress)
@@ -113,8 +111,7 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
 
 def combine_runs(runs: list[Mapping[str, MemorizedEvent]], *, note: str
                  ) -> dict[str, MemorizedEvent]:
-    """Per transition, the mean of the runs' windows, max-normalised (module doc); its
-    transition time is the runs' mean."""
+    """Per transition, the runs' windows' mean, max-normalised; its time is the runs' mean."""
     if not runs:
         raise ValueError("a campaign needs at least one template run")
     combined = {}

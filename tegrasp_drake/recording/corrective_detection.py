@@ -33,9 +33,8 @@ class SituationSpan:
 
 
 def event_span(trial, events, span: SituationSpan) -> ScoredSpan:
-    """The corrective event's Eq. 3 scores over `span` of `trial` (a TactileTrial), with
-    the event held expected (detection_quality.scored_span); a span without a physical
-    event has physical_s = inf (every match in it is false)."""
+    """The corrective event's Eq. 3 scores over `span` of `trial`, held expected; a span
+    without a physical event has physical_s = inf (every match in it is false)."""
     if span.physical_s is not None:
         return scored_span(span.label, trial, events, span.transition,
                            armed_from_s=span.armed_from_s, physical_s=span.physical_s)
@@ -48,8 +47,8 @@ def event_span(trial, events, span: SituationSpan) -> ScoredSpan:
 
 
 def on_controller_ticks(span: ScoredSpan, period_s: float) -> ScoredSpan:
-    """`span` at the state machine's ticks only (every period_s [s]): the machine reads the
-    matcher's `match` once a tick, so a match shorter than a tick between two is missed."""
+    """`span` at the state machine's ticks (every period_s [s]), which read `match` once
+    each."""
     ticks = np.abs(span.times / period_s - np.round(span.times / period_s)) < 1e-6
     return dataclasses.replace(span, times=span.times[ticks], scores=span.scores[ticks])
 
@@ -90,8 +89,7 @@ def heuristic_hit_time(log, span: SituationSpan, hit_ra_mps2: float) -> float | 
 
 
 def slip_band(log, band_hz: float, window_s: float, sample_rate_hz: float) -> np.ndarray:
-    """(M, 2) the pads' slip-band vibration [m/s^2] at the log's RA times, as
-    SlipVibrationBand computes it from the pad vibration samples (6 per row)."""
+    """(M, 2) the pads' slip band [m/s^2] at the log's RA times (SlipVibrationBand's)."""
     b0, b1, b2, a1, a2 = highpass_biquad(band_hz, sample_rate_hz)
     high = signal.lfilter([b0, b1, b2], [1.0, a1, a2], np.asarray(log.pad_acceleration),
                           axis=0)
@@ -105,8 +103,7 @@ def slip_band(log, band_hz: float, window_s: float, sample_rate_hz: float) -> np
 
 def heuristic_slip_time(log, span: SituationSpan, config,
                         sample_rate_hz: float) -> float | None:
-    """The time [s] in `span` at which either pad's slip band has stayed above
-    config.slip_vibration_mps2 for config.slip_s (the heuristic Lift-Load)."""
+    """When in `span` either slip band has stayed above slip_vibration_mps2 for slip_s [s]."""
     band = slip_band(log, config.slip_band_hz, config.slip_window_s, sample_rate_hz)
     t = np.asarray(log.t_ra)
     above = band.max(axis=1) > config.slip_vibration_mps2

@@ -26,14 +26,12 @@ PRE_TRANSITION_S = 0.45  # the live window looks most like it ~50 ms after the e
 SLIP_DISPLACEMENT_M = 0.001  # the pads' rise over the object's that counts as slip [m]
 # The modes in which each corrective event is looked for, and its action.
 CORRECTIVE_SITUATIONS = {"lift_load": "slip during Lift", "hold_avoid": "a hit during Hold"}
-# The default script's phase times [s] (scripted_grasp.plan_scripted_grasp with the default
-# GraspScriptConfig): its Lift from 4.6 s to 6.1 s, its Hold from 6.1 s to 9.1 s.
+# The default script's phase times [s]: Lift from 4.6 s to 6.1 s, Hold from 6.1 s to 9.1 s.
 _SCRIPT = GraspScriptConfig()
 LIFT_START_S = _SCRIPT.settle_s + _SCRIPT.reach_s + _SCRIPT.load_s
 LIFT_END_S = LIFT_START_S + _SCRIPT.lift_s
 HOLD_END_S = LIFT_END_S + _SCRIPT.hold_s
-# Simulated time of a run [s]: a hit run to just after the script's Hold, a slip run
-# 0.4 s past the end of its Lift.
+# Simulated time of a run [s]: a hit just past the script's Hold, a slip 0.4 s past its Lift.
 RUN_DURATION_S = {"hold_avoid": round(HOLD_END_S + 0.1, 3),
                   "lift_load": round(LIFT_END_S + 0.4, 3)}
 
@@ -80,8 +78,7 @@ def corrective_scenario(object_name: str, run: CorrectiveRun):
 
 
 def campaign_run(object_name: str, run: CorrectiveRun) -> CampaignRun:
-    """`run` as a run of the recording campaign, simulated only as long as its situation
-    needs (RUN_DURATION_S)."""
+    """`run` as a campaign run, simulated only as long as its situation needs."""
     return CampaignRun(run.label, corrective_scenario(object_name, run), role=run.role,
                        duration_s=RUN_DURATION_S[run.transition])
 
@@ -101,9 +98,8 @@ def grasp_frame_heights(arm_q: np.ndarray) -> np.ndarray:
 
 
 def slip_onset_time(log, scenario) -> float | None:
-    """The first time [s] in the script's Lift that the pads (the grasp frame, from the
-    measured arm joints) have risen more than SLIP_DISPLACEMENT_M further than the object
-    since Lift began; None if they never do."""
+    """The first time [s] in the script's Lift that the pads (the grasp frame) have risen
+    SLIP_DISPLACEMENT_M more than the object since Lift began; None if they never do."""
     from tegrasp_drake.control.scripted_grasp import plan_scripted_grasp
     lift = next(s for s in plan_scripted_grasp(grasp_plan(scenario)) if s.phase == "lift")
     t = np.asarray(log.t_slow)

@@ -109,8 +109,8 @@ def most_detecting_clean_points(spans: Sequence[ScoredSpan], sa_grid: Iterable[f
 
 def choose_thresholds(spans: Sequence[ScoredSpan], sa_grid: Iterable[float],
                       ra_grid: Iterable[float]) -> RatePoint:
-    """The threshold pair of the grids chosen by the module doc's rule; ValueError when
-    every pair has a false trigger."""
+    """The pair of the grids chosen by the module doc's rule; ValueError if all have a false
+    trigger."""
     candidates = most_detecting_clean_points(spans, sa_grid, ra_grid)
     if candidates[0].detected:
         on_target = [p for p in candidates if p.median_latency_s <= LATENCY_TARGET_S]
@@ -133,9 +133,8 @@ def _trial_from(trial, start_s: float):
 
 def scored_span(label: str, trial, events, transition: str, *, armed_from_s: float,
                 physical_s: float) -> ScoredSpan:
-    """Replays `trial` (a TactileTrial) with `events`[transition] held expected, from one
-    window before armed_from_s to the physical event + DEADLINE_S; its ScoredSpan (times
-    in the trial's clock)."""
+    """Replays `trial` with `events`[transition] held expected, from one window before
+    armed_from_s to the physical event + DEADLINE_S; its ScoredSpan (the trial's clock)."""
     from tegrasp_drake.events.replay import replay_event_held
     window_s = next(iter(events.values())).window_s
     start = max(0.0, armed_from_s - window_s - 0.05)

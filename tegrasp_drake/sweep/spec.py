@@ -194,7 +194,6 @@ def trial_dict_problem(trial: Mapping) -> str | None:
             "makes them)")
 
 
-# ---------------------------------------------------------------------------------
 # Validation
 
 
@@ -314,7 +313,6 @@ def _offset_key(offset) -> tuple[int, int]:
     return (round(offset[0] * 1e6), round(offset[1] * 1e6))
 
 
-# ---------------------------------------------------------------------------------
 # Expansion into trials
 
 

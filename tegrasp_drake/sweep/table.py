@@ -178,7 +178,6 @@ def write_table1(records, out_dir) -> list[Path]:
                                   csv_rows)
 
 
-# ---------------------------------------------------------------------------------
 # Statistics
 
 
