@@ -114,7 +114,8 @@ def slip_onset_time(log, scenario) -> float | None:
 
 
 def corrective_event_time(log, scenario, transition: str) -> float | None:
-    """The physical event's time [s] of `transition` in a run (module doc)."""
+    """The physical event's time [s] of `transition` in a run: the hit's start
+    (disturbance.hit_time_s) or the slip's onset (slip_onset_time)."""
     if transition == "hold_avoid":
         hit = scenario.disturbance.hit_time_s
         return float(hit) if hit >= 0.0 else None
