@@ -17,8 +17,13 @@ SPEC = SweepSpec(objects=("box", "thick_cylinder"), controllers=("memorized", "h
 
 @pytest.fixture(scope="module")
 def scheduler_address():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
+    import dask
+    # Dask's 30 s connection timeouts are hang guards; a busy host can take longer to
+    # start two worker processes, which is no failure of the sweep.
+    with dask.config.set({"distributed.comm.timeouts.connect": "600s",
+                          "distributed.comm.timeouts.tcp": "600s"}), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=None) as cluster:
         yield cluster.scheduler_address
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 TESTS = Path(__file__).resolve().parent
 REPOSITORY = TESTS.parent
 TRIALS_TOTAL = 2 * 9 * 3  # two objects, nine markers, three attempts, one controller
-TIMEOUT_S = 120
+TIMEOUT_S = 600  # [s] a hang guard on a busy host, not a performance criterion
 
 
 def sweep_command(out_dir):
