@@ -10,7 +10,7 @@ analysis/record_ensemble_events.py's (normal grasps: <object>/run<k>.npz). Chose
 held-out corrective runs (role "held_out") as the situations, the ensemble's runs 5-7 as
 normal grasps (none made a corrective template). Also reported, not used to choose: the
 template runs and the ensemble's runs 0-4. The closed-loop trials that judge the choice
-(tests/test_runs_corrective_trials.py) use other seeds.
+(tests/runs/test_corrective_trials.py) use other seeds.
 """
 
 import argparse

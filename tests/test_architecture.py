@@ -26,3 +26,16 @@ def test_every_sub_package_is_installed():
     found = {".".join(init.parent.relative_to(root).parts)
              for init in (root / "tegrasp_drake").rglob("__init__.py")}
     assert found <= listed, sorted(found - listed)
+
+
+def test_tests_mirror_the_package():
+    """A module's tests live in tests/<package>/test_<module>.py; tests/ itself keeps the
+    checks that span packages, none named after one package."""
+    packages = {init.parent.name for init in (ROOT / "tegrasp_drake").glob("*/__init__.py")}
+    packages.add("benchmarks")
+    misplaced = [test.name for test in (ROOT / "tests").glob("test_*.py")
+                 if any(test.stem.startswith(f"test_{package}_") for package in packages)]
+    assert misplaced == []
+    for folder in (ROOT / "tests").iterdir():
+        if folder.is_dir() and (folder / "__init__.py").exists():
+            assert folder.name in packages, folder.name

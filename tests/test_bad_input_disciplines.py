@@ -13,7 +13,7 @@ import numpy.lib.format as npy_format
 import pytest
 
 import tegrasp_drake
-from test_bad_input import assert_one_line_error, run_cli
+from tests.test_bad_input import assert_one_line_error, run_cli
 from tegrasp_drake import cli
 from tegrasp_drake.commands import hardware as hardware_command
 from tegrasp_drake.commands import run_folder

@@ -9,7 +9,7 @@ import signal
 import numpy as np
 import pytest
 
-from test_bad_input import assert_one_line_error, folder_contents as _contents, run_probe
+from tests.test_bad_input import assert_one_line_error, folder_contents as _contents, run_probe
 from tegrasp_drake.events.event_file import INDEX_FILE, MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import tegrasp_drake
-from test_bad_input import (_trial_log, assert_one_line_error, folder_contents as _contents,
+from tests.test_bad_input import (_trial_log, assert_one_line_error, folder_contents as _contents,
                             run_cli, run_probe)
 from tegrasp_drake.commands import run_folder
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml

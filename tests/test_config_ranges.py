@@ -5,7 +5,7 @@ import dataclasses
 
 import pytest
 
-from test_bad_input import assert_one_line_error, run_cli
+from tests.test_bad_input import assert_one_line_error, run_cli
 from tegrasp_drake.control import controller_registry
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import paths

@@ -34,7 +34,7 @@ from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator, SimulatorConfig
 from pydrake.systems.framework import DiagramBuilder
 
-from test_bad_input import _trial_log
+from tests.test_bad_input import _trial_log
 from tegrasp_drake.events.event_file import MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent

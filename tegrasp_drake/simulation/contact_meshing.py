@@ -4,7 +4,7 @@ Each hydroelastic contact-surface face is one SAP contact constraint and a share
 SceneGraph's surface query (docs/sweeps.md, "What a trial costs"), so coarser meshes make a
 trial cheaper. The defaults are the reference geometry, the one every committed result
 ran on; each coarser choice is opt-in, and kept only where the closed-form checks of the
-contact world still hold (tests/test_simulation_validation_scenes.py).
+contact world still hold (tests/simulation/test_validation_scenes.py).
 
 - `box_triangles`: the surface mesh of a rigid primitive box object. 24 (Drake's Box: two
   triangles from each face's centre to each edge, 14 vertices, whatever the resolution
