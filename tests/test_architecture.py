@@ -39,3 +39,25 @@ def test_tests_mirror_the_package():
     for folder in (ROOT / "tests").iterdir():
         if folder.is_dir() and (folder / "__init__.py").exists():
             assert folder.name in packages, folder.name
+
+
+def test_every_named_test_file_exists():
+    """A test file named in the CI script, the docs or the code exists: CI runs some by path,
+    and a moved test must not leave a path that runs nothing."""
+    import re
+    tracked = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True,
+                             text=True).stdout.split()
+    if not tracked:  # not a git checkout: the files under the checkout's top folders
+        tracked = [str(path.relative_to(ROOT)) for top in (".ci", "docs", "tegrasp_drake",
+                   "analysis", "benchmarks", "tests") for path in (ROOT / top).rglob("*")
+                   if path.is_file()] + ["README.md", "pyproject.toml"]
+    named = set()
+    for name in tracked:
+        path = ROOT / name
+        if path.suffix not in {"", ".py", ".md", ".toml", ".sh", ".yaml"} or not path.is_file():
+            continue
+        named |= {(name, found) for found in
+                  re.findall(r"tests/[A-Za-z0-9_/]+\.py", path.read_text(errors="replace"))}
+    missing = sorted(f"{name} names {found}" for name, found in named
+                     if not (ROOT / found).exists())
+    assert missing == []
