@@ -170,7 +170,7 @@ def test_a_wait_outside_the_trial_is_refused():
 # ---- The command, on a sweep record and its trial log -----------------------------------
 
 # A synthetic grasp on the sweep's timeline: the first 2 s quiet (the matcher's RA noise
-# period, controller.ra_noise_quiet_s), contact at 2.5 s, the table at 4.8 s.
+# period, controller.matching.ra_noise_quiet_s), contact at 2.5 s, the table at 4.8 s.
 SWEEP_GRASP = SyntheticGraspConfig(duration_s=6.0, contact_s=2.5, place_s=4.8, ra_noise=0.2,
                                    sa_noise_n=0.005, seed=5)
 

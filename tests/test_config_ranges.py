@@ -88,9 +88,9 @@ def test_open_and_closed_ends():
 @pytest.mark.parametrize("overrides, expected", [
     (["grasp.hold_s=1.0e+7"], "field 'grasp.hold_s' must lie in [0, 60] s"),
     (["grasp.hold_s=-1"], "field 'grasp.hold_s' must lie in [0, 60] s"),
-    (["object_offset=[2,2]"], "field 'object_offset[0]' must lie in [-0.2, 0.2] m"),
-    (["expected_object_xy=[0.9,0.49]"], "field 'object_offset' puts the object at (0.900, "
-     "0.490) m"),
+    (["placement.offset=[2,2]"], "field 'placement.offset[0]' must lie in [-0.2, 0.2] m"),
+    (["placement.expected_xy=[0.9,0.49]"], "field 'placement.offset' puts the object at "
+     "(0.900, 0.490) m"),
     (["object.size=[0.045,0.045,50]"], "field 'object.size[2]' must lie in (0, 0.5] m"),
     (["object.mass=1.0e+9"], "field 'object.mass' must lie in (0, 5] kg"),
     (["object.friction=1.0e+9"], "field 'object.friction' must lie in (0, 2]"),
@@ -99,7 +99,7 @@ def test_open_and_closed_ends():
     (["grasp.hold_s=50", "grasp.lift_s=20"], "field 'grasp': the grasp script lasts"),
     (["object.mass=1e9"], "got str '1e9' (YAML reads it as text: write 1000000000.0)"),
     (["controller.update_period_s=0"], "field 'controller.update_period_s' must be positive"),
-    (["controller.slip_s=-1"], "field 'controller.slip_s' must be zero or positive [s]"),
+    (["controller.lift_load.slip_s=-1"], "field 'controller.lift_load.slip_s' must be zero or positive [s]"),
     (["arm.initial_gripper_xyz=[0.69,0.0,7]"],
      "field 'arm.initial_gripper_xyz[2]' must lie in [-0.9, 0.9] m"),
 ])

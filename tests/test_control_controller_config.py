@@ -4,7 +4,7 @@ scenario's `controller` field (or the shorthand controller.name)."""
 import pytest
 
 from tegrasp_drake.control.controller_config import (
-    HeuristicControllerConfig, MemorizedControllerConfig, OpenLoopControllerConfig,
+    AvoidConfig, HeuristicControllerConfig, MemorizedControllerConfig, OpenLoopControllerConfig,
     TaxelAwareControllerConfig)
 from tegrasp_drake.control.controller_registry import (CONTROLLER_CLASSES, CONTROLLER_NAMES,
                                                        controller_named)
@@ -49,15 +49,18 @@ def test_a_log_with_one_flat_controller_section_loads_as_its_controller():
 
 
 def test_switching_controllers_keeps_the_settings_they_share():
-    taxel = controller_named("taxel_aware", like=HeuristicControllerConfig(hit_ra_mps2=5.0))
-    assert isinstance(taxel, TaxelAwareControllerConfig) and taxel.hit_ra_mps2 == 5.0
+    heuristic = HeuristicControllerConfig(avoid=AvoidConfig(hit_ra_mps2=5.0))
+    taxel = controller_named("taxel_aware", like=heuristic)
+    assert isinstance(taxel, TaxelAwareControllerConfig) and taxel.avoid.hit_ra_mps2 == 5.0
+    taxel.avoid.hit_ra_mps2 = 4.0  # its own section, not the one it was made like
+    assert heuristic.avoid.hit_ra_mps2 == 5.0
     scenario = with_controller(LoadScenario(), "open_loop")
     assert scenario.controller == OpenLoopControllerConfig()
     assert with_controller(scenario, "memorized").controller == MemorizedControllerConfig()
 
 
 def _memorized_scenario_file(tmp_path, settings="{event_object_may_differ: [mass], "
-                                              "sa_threshold: 0.8}"):
+                                              "matching: {sa_threshold: 0.8}}"):
     path = tmp_path / "scenarios.yaml"
     path.write_text(f"tuned:\n  controller: !MemorizedControllerConfig {settings}\n")
     return path
@@ -69,7 +72,7 @@ def test_another_controller_runs_a_scenario_with_the_settings_it_shares(tmp_path
                             controller="heuristic", on_ignored=ignored.append)
     assert isinstance(scenario.controller, HeuristicControllerConfig)
     assert scenario.controller.event_object_may_differ == ["mass"]  # shared: kept
-    assert ignored == [["sa_threshold"]]  # the memorized controllers' own: named
+    assert ignored == [["matching.sa_threshold"]]  # the memorized controllers' own: named
 
 
 def test_the_open_loop_controller_ignores_every_closed_loop_setting(tmp_path):
@@ -77,13 +80,13 @@ def test_the_open_loop_controller_ignores_every_closed_loop_setting(tmp_path):
     scenario = LoadScenario(_memorized_scenario_file(tmp_path), "tuned",
                             controller="open_loop", on_ignored=ignored.append)
     assert scenario.controller == OpenLoopControllerConfig()
-    assert ignored == [["event_object_may_differ", "sa_threshold"]]
+    assert ignored == [["event_object_may_differ", "matching.sa_threshold"]]
 
 
 def test_nothing_is_named_when_nothing_is_ignored(tmp_path):
     ignored = []
-    LoadScenario(_memorized_scenario_file(tmp_path, "{sa_threshold: 0.8}"), "tuned",
-                 controller="taxel_aware", on_ignored=ignored.append)
+    LoadScenario(_memorized_scenario_file(tmp_path, "{matching: {sa_threshold: 0.8}}"),
+                 "tuned", controller="taxel_aware", on_ignored=ignored.append)
     assert ignored == []
 
 
@@ -103,4 +106,4 @@ def test_the_command_line_names_the_ignored_settings_in_one_line(tmp_path, capsy
     lines = capsys.readouterr().err.strip().splitlines()
     assert len(lines) == 1
     assert "--controller open_loop ignores" in lines[0]
-    assert "event_object_may_differ, sa_threshold" in lines[0]
+    assert "event_object_may_differ, matching.sa_threshold" in lines[0]

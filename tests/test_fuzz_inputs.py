@@ -156,9 +156,9 @@ def test_any_scenario_file_loads_or_is_one_config_error(data, folder):
 
 
 FIELD_PATHS = ["object.mass", "object.size", "object.name", "object.shape", "grasp.hold_s",
-               "object_offset", "random_seed", "controller.name", "plant_config.time_step",
+               "placement.offset", "random_seed", "controller.name", "plant_config.time_step",
                "tactile.sample_rate_hz", "disturbance.hit_force_n", "station", "gripper.model",
-               "controller.sa_threshold", "vibration.mode_frequency_hz", "object"]
+               "controller.matching.sa_threshold", "vibration.film.mode_frequency_hz", "object"]
 
 
 @fuzz(80)
@@ -173,7 +173,7 @@ def test_any_set_assignment_loads_or_is_one_config_error(key, value):
 
 NUMBER_PATHS = ["object.mass", "object.friction", "grasp.hold_s", "grasp.grip_force",
                 "grasp.grasp_height", "random_seed", "vibration.highpass_cutoff_hz",
-                "controller.slip_band_hz", "plant_config.stiction_tolerance",
+                "controller.lift_load.slip_band_hz", "plant_config.stiction_tolerance",
                 "simulator_config.start_time"]
 
 

@@ -9,7 +9,8 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 from tegrasp_drake.rig.api_boundary import check_field_values, public_api, public_dataclass
-from tegrasp_drake.rig.ranges import Range, bounded
+from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
+from tegrasp_drake.rig.ranges import Range, bounded, declared_field
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import template_is_flat
@@ -24,20 +25,19 @@ from tegrasp_drake.tactile.sampling import resample_window
 from tegrasp_drake.tactile.window_normalizer import (
     ConnectWindowChannels, RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
 
-# Eq. 3 scores are correlations, in [-1, 1]: a threshold outside never or always passes.
-SCORE_RANGE = dict(low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
 
 
 @public_dataclass
 @dataclasses.dataclass
 class EventMatcherConfig:
-    """Thresholds of Sec. III-B and the live sample rates [Hz].
+    """Thresholds of Sec. III-B and the live sample rates [Hz]; the settings a controller
+    gives it (rig/event_matching.EventMatchingConfig) are declared there, once.
 
     A channel passes when its score is greater than its threshold; min_contrast is the
     live contrast a channel needs for its score to count (correlation.py), > 0.
     """
-    sa_threshold: float = bounded(0.9, **SCORE_RANGE)
-    ra_threshold: float = bounded(0.7, **SCORE_RANGE)
+    sa_threshold: float = declared_field(EventMatchingConfig, "sa_threshold")
+    ra_threshold: float = declared_field(EventMatchingConfig, "ra_threshold")
     # {transition: (sa, ra)} thresholds of single events, in place of the two above (the
     # taxel_aware controller's ensemble events, chosen per transition); {}: none. Each in
     # SCORE_RANGE (checked by EventMatcher).
@@ -46,7 +46,8 @@ class EventMatcherConfig:
     min_contrast: float = bounded(0.25, low=0.0, low_open=True, below="must be positive")
     # Beyond the paper: a flat template channel (the settled grip of Load-Lift's SA) scores
     # only a flat live window (correlation.py); False: the paper's Eq. 3.
-    flat_template_needs_flat_window: bool = False
+    flat_template_needs_flat_window: bool = declared_field(EventMatchingConfig,
+                                                           "flat_template_needs_flat_window")
     sa_rate_hz: float = bounded(100.0, low=0.0, low_open=True, unit="Hz")
     ra_rate_hz: float = bounded(1000.0, low=0.0, low_open=True, unit="Hz")
     # Block [s] in which a fast rate's samples are scored, one update per block (0: one
@@ -55,15 +56,15 @@ class EventMatcherConfig:
     block_s: float = bounded(0.0, low=0.0, unit="s")
     # Cutoff [Hz] of the RA envelope that add_event_matcher puts on the memorized and the
     # live RA windows alike (events/ra_envelope.py); 0: none, Eq. 3 on the raw windows.
-    ra_envelope_hz: float = bounded(0.0, low=0.0, unit="Hz")
+    ra_envelope_hz: float = declared_field(EventMatchingConfig, "ra_envelope_hz")
     # The RA noise floor (events/ra_noise_floor.py): an RA window whose peak is not above
     # its channel's noise mean + ra_noise_floor_sigmas standard deviations (measured on the
     # stream's first ra_noise_quiet_s [s], after the envelope) scores 0; 0: no such gate.
     # A flat RA template (a quiet window, "expects no change") reads the floor whatever
     # this is: it scores 1 while the live window stays within the floor, Eq. 3 above it
     # (k: this, or the rule's k when 0).
-    ra_noise_floor_sigmas: float = bounded(0.0, low=0.0)
-    ra_noise_quiet_s: float = bounded(2.0, low=0.0, unit="s")
+    ra_noise_floor_sigmas: float = declared_field(EventMatchingConfig, "ra_noise_floor_sigmas")
+    ra_noise_quiet_s: float = declared_field(EventMatchingConfig, "ra_noise_quiet_s")
 
 
 def check_matcher_config(config: EventMatcherConfig) -> None:

@@ -119,19 +119,20 @@ def slip_band(log, band_hz: float, window_s: float, sample_rate_hz: float) -> np
     return np.sqrt(mean)
 
 
-def heuristic_slip_time(log, span: SituationSpan, config,
+def heuristic_slip_time(log, span: SituationSpan, lift_load,
                         sample_rate_hz: float) -> float | None:
     """The time [s] in `span` at which either pad's slip band has stayed above
-    config.slip_vibration_mps2 for config.slip_s (the heuristic Lift-Load)."""
-    band = slip_band(log, config.slip_band_hz, config.slip_window_s, sample_rate_hz)
+    lift_load.slip_vibration_mps2 for lift_load.slip_s (the heuristic Lift-Load; lift_load:
+    a controller's LiftLoadConfig)."""
+    band = slip_band(log, lift_load.slip_band_hz, lift_load.slip_window_s, sample_rate_hz)
     t = np.asarray(log.t_ra)
-    above = band.max(axis=1) > config.slip_vibration_mps2
+    above = band.max(axis=1) > lift_load.slip_vibration_mps2
     since = None
     for k in np.flatnonzero((t >= span.armed_from_s) & (t <= span.armed_until_s)):
         if not above[k]:
             since = None
             continue
         since = t[k] if since is None else since
-        if t[k] - since >= config.slip_s:
+        if t[k] - since >= lift_load.slip_s:
             return float(t[k])
     return None

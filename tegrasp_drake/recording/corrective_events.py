@@ -1,7 +1,7 @@
 """Memorized corrective events: the tactile events of the situations that call
 for a corrective action, recorded in simulation and matched by the same Eq. 3 machinery as
 the grasp transitions, so that Lift-Load and Avoid can be triggered by a memorized event
-instead of the heuristic thresholds (controller.memorized_corrective_events).
+instead of the heuristic thresholds (controller.memorized_corrective.events).
 
 Each corrective event is a transition named as the grasp's are (transitions.py):
 

@@ -47,7 +47,7 @@ PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
 
 # The scenario fields a sweep sets per trial (scenario_from_trial_spec): a spec's
 # scenario_overrides may not assign them.
-PER_TRIAL_SCENARIO_FIELDS = ("object", "object_offset", "object_yaw_deg", "random_seed",
+PER_TRIAL_SCENARIO_FIELDS = ("object", "placement.offset", "placement.yaw_deg", "random_seed",
                              "controller.name")
 
 # Names become parts of trial ids and file names: keep them to a safe alphabet.
@@ -118,7 +118,7 @@ class SweepSpec:
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
     user_objects: Mapping[str, ObjectConfig] = field(default_factory=dict)
     # `--set key=value` assignments applied to every trial's default scenario, e.g.
-    # "controller.memorized_corrective_events=[hold_avoid]" (not the per-trial fields,
+    # "controller.memorized_corrective.events=[hold_avoid]" (not the per-trial fields,
     # PER_TRIAL_SCENARIO_FIELDS).
     scenario_overrides: tuple[str, ...] = ()
 

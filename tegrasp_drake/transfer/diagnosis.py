@@ -7,7 +7,7 @@ waited: "best" is each channel's highest score over those ticks, "together" the 
 at the tick where all four came nearest their thresholds (the largest of the smallest
 margins score - threshold), "match" whether that tick passes every threshold. With an RA
 envelope cutoff, both the live RA and the events' RA windows are low-passed first
-(events/ra_envelope.py), as the matcher does with `controller.ra_envelope_hz`.
+(events/ra_envelope.py), as the matcher does with `controller.matching.ra_envelope_hz`.
 """
 
 import dataclasses
