@@ -2,11 +2,16 @@
 validator enforces them where a config is loaded and again where a builder is handed one."""
 
 import dataclasses
+import typing
 
 import pytest
 
 from test_bad_input import assert_one_line_error, run_cli
 from tegrasp_drake.control import controller_registry
+from tegrasp_drake.control.controller_config import AvoidConfig
+from tegrasp_drake.events import EventMatcherConfig
+from tegrasp_drake.events.synthetic import SyntheticGraspConfig
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.ranges import Range, bounded, check_ranges, unranged_numeric_fields
@@ -27,6 +32,33 @@ def test_every_numeric_field_declares_its_range():
     assert not missing, ("declare a range beside each of these fields, e.g. "
                          "`x_s: float = bounded(0.5, low=0.0, high=10.0, unit=\"s\", "
                          f"why=\"...\")` (tegrasp_drake/rig/ranges.py): {missing}")
+
+
+def _reachable_config_classes(*roots) -> set:
+    """The dataclasses reachable from `roots` through their fields (unions, lists, maps)."""
+    seen, pending = set(), list(roots)
+    while pending:
+        cls = pending.pop()
+        if cls in seen or not dataclasses.is_dataclass(cls):
+            continue
+        seen.add(cls)
+        for hint in typing.get_type_hints(cls).values():
+            stack = [hint]
+            while stack:
+                member = stack.pop()
+                stack.extend(typing.get_args(member))
+                if dataclasses.is_dataclass(member):
+                    pending.append(member)
+    return seen
+
+
+def test_no_config_class_holds_more_than_15_fields():
+    """A config class nests its settings by concern rather than growing flat."""
+    classes = _reachable_config_classes(*CONFIG_ROOTS, SyntheticGraspConfig, EventMatcherConfig)
+    assert {Scenario, AvoidConfig, VibrationSensorConfig} <= classes
+    crowded = {cls.__qualname__: len(dataclasses.fields(cls)) for cls in classes
+               if len(dataclasses.fields(cls)) > 15}
+    assert not crowded, crowded
 
 
 @pytest.mark.parametrize("name", sorted(read_yaml_file(paths.scenarios_file(), "scenarios")))
