@@ -13,6 +13,7 @@ The examples are bounded for CI (the whole module about a minute on a loaded 2-c
 """
 
 import dataclasses
+import functools
 import io
 import json
 import os
@@ -188,8 +189,7 @@ def test_a_set_number_runs_as_given_or_is_one_config_error(key, value):
     except ConfigError as error:
         assert "\n" not in str(error)
         return
-    section, _, name = key.rpartition(".")
-    loaded = getattr(getattr(scenario, section) if section else scenario, name)
+    loaded = functools.reduce(getattr, key.split("."), scenario)
     assert isinstance(value, (int, float)) and not isinstance(value, bool)
     assert loaded == value
 

@@ -276,8 +276,9 @@ class MemorizedCorrectiveConfig:
     # Any of "hold_avoid" (a hit in Hold -> Avoid; Avoid still waits
     # avoid.hit_refractory_s after entering Hold) and "lift_load" (slip in Lift ->
     # Lift-Load), each matched in its mode. [] (the default): the heuristic triggers, the
-    # baseline. lift_load is measured to match every normal lift (README, "Memorized
-    # corrective triggers"): recorded for comparison, not for use.
+    # baseline. lift_load is measured to match every normal lift
+    # (docs/controller.md, "Memorized corrective triggers"): recorded for comparison, not
+    # for use.
     events: list[str] = dataclasses.field(default_factory=list)
     # Eq. 3 thresholds [SA, RA] of each event, chosen on held-out recorded runs by
     # analysis/choose_corrective_thresholds.py (analysis/corrective_thresholds.md: the rule

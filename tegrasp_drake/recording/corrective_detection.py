@@ -11,15 +11,15 @@ separate widely (RA at most 0.28 without a hit), so the centre of the admissible
 keeps a margin on both sides.
 
 A span is the part of a logged run in which the state machine would look for the
-corrective event: Lift for the slip (lift_load), Hold after hit_refractory_s for the hit
+corrective event: Lift for the slip (lift_load), Hold after avoid.hit_refractory_s for the hit
 (hold_avoid). A run without the situation (a normal grasp) gives a span whose physical
 event never comes: any match in it is a false trigger.
 
 Heuristic triggers replayed offline from the same log (controller_config.py):
-  hit   either RA above hit_ra_mps2 (the controller's tick reads the channels every 5 ms;
-        the RA here at every 1 kHz sample, so it fires at most one tick earlier)
+  hit   either RA above avoid.hit_ra_mps2 (the controller's tick reads the channels every
+        5 ms; the RA here at every 1 kHz sample, so it fires at most one tick earlier)
   slip  either pad's slip-band vibration (tactile/slip_vibration_band.py: the film's
-        vibration high-passed at slip_band_hz, RMS over slip_window_s) above
+        vibration high-passed at lift_load.slip_band_hz, RMS over slip_window_s) above
         slip_vibration_mps2 for slip_s
 """
 
