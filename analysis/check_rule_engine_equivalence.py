@@ -153,8 +153,10 @@ def main(argv=None) -> int:
         # This checkout reads the stored record through its migration; the base as stored.
         trials = {"base": trial, "tip": migrate_stored_trial(trial)}
         name = record.stem
-        runs = {side: run_scene(trees[side], trials[side],
-                                args.out / folders[side] / f"{name}.json", fresh[side])
+        # Cached by the record's path: two results folders hold records of the same name.
+        cache = "--".join(record.relative_to(ROOT / "analysis").parts)
+        runs = {side: run_scene(trees[side], trials[side], args.out / folders[side] / cache,
+                                fresh[side])
                 for side in sides}
         rules = sorted({rule for rule in runs[sides[-1]]["rules"] if rule})
         if len(runs) < 2:

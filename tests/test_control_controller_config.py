@@ -9,7 +9,7 @@ import pytest
 from tegrasp_drake.control.controller_config import (
     AvoidConfig, HeuristicControllerConfig, LiftLoadConfig, MemorizedControllerConfig,
     MemorizedCorrectiveConfig, OpenLoopControllerConfig, PlaceConfig, ReReachConfig,
-    TaxelAwareControllerConfig)
+    TaxelAwareConfig, TaxelAwareControllerConfig)
 from tegrasp_drake.control.controller_registry import (CONTROLLER_CLASSES, CONTROLLER_NAMES,
                                                        controller_class, controller_named)
 from tegrasp_drake.rig.event_matching import EventMatchingConfig
@@ -185,3 +185,10 @@ def test_no_controller_config_class_holds_more_than_15_fields():
                 if dataclasses.is_dataclass(hint)}
     for cls in [*classes, *sections]:
         assert len(dataclasses.fields(cls)) <= 15, cls.__name__
+
+
+def test_the_taxel_aware_event_thresholds_are_empty_or_pairs():
+    assert TaxelAwareConfig(load_lift_thresholds=[0.8, 0.5]).problem() is None
+    config = TaxelAwareControllerConfig(taxel_aware=TaxelAwareConfig(load_lift_thresholds=[0.8]))
+    field, words, value = config.problem(ra_rate_hz=1000.0, approach_s=2.8)
+    assert (field, value) == ("taxel_aware.load_lift_thresholds", [0.8]) and "[SA, RA]" in words

@@ -154,6 +154,17 @@ class TaxelAwareConfig:
     # (counted in max_re_reaches).
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
+    def problem(self) -> tuple[str, str, object] | None:
+        """(field, what it must be, its value) of the first event's thresholds that are
+        neither empty nor a pair; None when all are."""
+        for name in ("reach_load_thresholds", "load_lift_thresholds",
+                     "place_unload_thresholds"):
+            pair = getattr(self, name)
+            if len(pair) not in (0, 2):
+                return (name, "must be [] (the hand's chosen thresholds) or [SA, RA], each in "
+                        "[-1, 1] (Eq. 3 scores)", pair)
+        return None
+
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
         """{transition: (SA, RA)} for the EventMatcher: the ones set here, else `chosen`'s
         (the hand's, gripper_hands.py)."""
@@ -474,3 +485,11 @@ class TaxelAwareControllerConfig(EventTriggeredConfig):
         """{transition: (SA, RA)}: the ensemble events' own (TaxelAwareConfig), else the
         ones `chosen` for the hand's ensemble events."""
         return self.taxel_aware.event_thresholds(chosen)
+
+    def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:
+        found = super().problem(ra_rate_hz=ra_rate_hz, approach_s=approach_s)
+        if found is None:
+            found = self.taxel_aware.problem()
+            if found is not None:
+                found = (f"taxel_aware.{found[0]}",) + found[1:]
+        return found
