@@ -93,14 +93,14 @@ def controller_events(scenario, events_dir):
 
 def corrective_events(scenario, events_dir):
     """The memorized corrective events the controller matches (None when
-    controller.memorized_corrective_events is empty), `events_dir` first, or exits saying
+    controller.memorized_corrective.events is empty), `events_dir` first, or exits saying
     why."""
-    if not scenario.controller.memorized_corrective_events:
+    if not scenario.controller.memorized_corrective.events:
         return None
     from tegrasp_drake.scenario.scenario_events import load_corrective_events
     from tegrasp_drake.events import MemorizedEventError
     try:
         return load_corrective_events(scenario, events_dir)
     except MemorizedEventError as e:
-        raise SystemExit("tegrasp: error: controller.memorized_corrective_events needs the "
+        raise SystemExit("tegrasp: error: controller.memorized_corrective.events needs the "
                          f"corrective events of '{scenario.object.name}': {e}") from None

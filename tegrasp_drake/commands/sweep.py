@@ -43,7 +43,7 @@ examples:
   tegrasp sweep --out results/sweep            # Table I: 3 objects x 9 markers x 3, 3 controllers
   tegrasp sweep --objects box --controllers memorized --attempts 1 --workers 2 --out out/box
   tegrasp sweep --spec analysis/example_sweep.yaml --scheduler tcp://10.0.0.5:8786
-  tegrasp sweep --objects box --set controller.memorized_corrective_events=[hold_avoid] \
+  tegrasp sweep --objects box --set controller.memorized_corrective.events=[hold_avoid] \
       --set disturbance.hit_time_s=7.0 --out out/hit   # memorized Avoid against a hit
 
 Re-running a command into the same --out resumes the sweep: finished trials are kept and
@@ -95,7 +95,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         metavar="KEY=VALUE",
                         help="override a field of every trial's scenario, after the spec's "
                         "scenario_overrides, e.g. --set "
-                        "controller.memorized_corrective_events=[hold_avoid]")
+                        "controller.memorized_corrective.events=[hold_avoid]")
     parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
                         help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
 

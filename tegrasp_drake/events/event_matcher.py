@@ -9,7 +9,8 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 from tegrasp_drake.rig.api_boundary import check_field_values, public_api, public_dataclass
-from tegrasp_drake.rig.ranges import Range, bounded
+from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
+from tegrasp_drake.rig.ranges import Range, bounded, declared_field
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import template_is_flat
@@ -24,36 +25,36 @@ from tegrasp_drake.tactile.sampling import resample_window
 from tegrasp_drake.tactile.window_normalizer import (
     ConnectWindowChannels, RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
 
-# Eq. 3 scores are correlations, in [-1, 1]: a threshold outside never or always passes.
-SCORE_RANGE = dict(low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
 
 
 @public_dataclass
 @dataclasses.dataclass
 class EventMatcherConfig:
     """Thresholds of Sec. III-B (a channel passes above its threshold) and the live rates [Hz];
-    min_contrast: live contrast a channel needs for its score to count (correlation.py).
+    min_contrast: live contrast a channel needs for its score to count (correlation.py). The
+    settings a controller gives it are declared once, in rig/event_matching.EventMatchingConfig.
     """
-    sa_threshold: float = bounded(0.9, **SCORE_RANGE)
-    ra_threshold: float = bounded(0.7, **SCORE_RANGE)
+    sa_threshold: float = declared_field(EventMatchingConfig, "sa_threshold")
+    ra_threshold: float = declared_field(EventMatchingConfig, "ra_threshold")
     # {transition: (sa, ra)} per-event thresholds in place of the two above (taxel_aware)
     event_thresholds: Mapping[str, tuple[float, float]] = dataclasses.field(
         default_factory=dict)
     min_contrast: float = bounded(0.25, low=0.0, low_open=True, below="must be positive")
     # Beyond the paper: a flat template channel scores only a flat live window (correlation.py)
-    flat_template_needs_flat_window: bool = False
+    flat_template_needs_flat_window: bool = declared_field(EventMatchingConfig,
+                                                           "flat_template_needs_flat_window")
     sa_rate_hz: float = bounded(100.0, low=0.0, low_open=True, unit="Hz")
     ra_rate_hz: float = bounded(1000.0, low=0.0, low_open=True, unit="Hz")
     # Block [s] in which a fast rate's samples are scored in one update (0: per sample); a
     # match shows at most one block late (WindowNormalizerConfig.block_s).
     block_s: float = bounded(0.0, low=0.0, unit="s")
     # Cutoff [Hz] of the RA envelope on memorized and live RA alike (ra_envelope.py); 0: none
-    ra_envelope_hz: float = bounded(0.0, low=0.0, unit="Hz")
+    ra_envelope_hz: float = declared_field(EventMatchingConfig, "ra_envelope_hz")
     # The RA noise floor (events/ra_noise_floor.py): k of the floor m + k s measured on the
     # first ra_noise_quiet_s [s]; an RA window not above it scores 0 (0: no gate; quiet
     # templates then read the floor with the rule's k).
-    ra_noise_floor_sigmas: float = bounded(0.0, low=0.0)
-    ra_noise_quiet_s: float = bounded(2.0, low=0.0, unit="s")
+    ra_noise_floor_sigmas: float = declared_field(EventMatchingConfig, "ra_noise_floor_sigmas")
+    ra_noise_quiet_s: float = declared_field(EventMatchingConfig, "ra_noise_quiet_s")
 
 
 def check_matcher_config(config: EventMatcherConfig) -> None:

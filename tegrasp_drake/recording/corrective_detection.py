@@ -4,7 +4,7 @@ heuristic triggers they would replace, on the same spans, and the rule that choo
 corrective event's thresholds (choose_centred_thresholds: the centre of the admissible
 range, a margin on both sides; the highest admissible pair sits at the edge and misses
 real hits). A span is where the state machine would look for the event: Lift for the
-slip, Hold after hit_refractory_s for the hit; in a normal grasp's span any match is false.
+slip, Hold after avoid.hit_refractory_s for the hit; in a normal grasp's span any match is false.
 The heuristic triggers are replayed at every 1 kHz RA sample (the controller reads every
 5 ms tick, so they fire at most one tick early).
 """
@@ -101,18 +101,19 @@ def slip_band(log, band_hz: float, window_s: float, sample_rate_hz: float) -> np
     return np.sqrt(mean)
 
 
-def heuristic_slip_time(log, span: SituationSpan, config,
+def heuristic_slip_time(log, span: SituationSpan, lift_load,
                         sample_rate_hz: float) -> float | None:
-    """When in `span` either slip band has stayed above slip_vibration_mps2 for slip_s [s]."""
-    band = slip_band(log, config.slip_band_hz, config.slip_window_s, sample_rate_hz)
+    """When in `span` either slip band has stayed above lift_load.slip_vibration_mps2 for
+    lift_load.slip_s [s] (lift_load: a controller's LiftLoadConfig)."""
+    band = slip_band(log, lift_load.slip_band_hz, lift_load.slip_window_s, sample_rate_hz)
     t = np.asarray(log.t_ra)
-    above = band.max(axis=1) > config.slip_vibration_mps2
+    above = band.max(axis=1) > lift_load.slip_vibration_mps2
     since = None
     for k in np.flatnonzero((t >= span.armed_from_s) & (t <= span.armed_until_s)):
         if not above[k]:
             since = None
             continue
         since = t[k] if since is None else since
-        if t[k] - since >= config.slip_s:
+        if t[k] - since >= lift_load.slip_s:
             return float(t[k])
     return None

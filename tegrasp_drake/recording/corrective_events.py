@@ -1,6 +1,6 @@
 """Memorized corrective events: the tactile events of the situations that call for a
 corrective action, matched by the same Eq. 3 machinery as the grasp transitions, so that
-Lift-Load and Avoid can fire on a memorized event (controller.memorized_corrective_events).
+Lift-Load and Avoid can fire on a memorized event (controller.memorized_corrective.events).
 
   lift_load   slip during Lift (Lift -> Load): the pads slide up along the object
   hold_avoid  a hit during Hold (Hold -> Avoid): an external force pulse on the object

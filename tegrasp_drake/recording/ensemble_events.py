@@ -48,10 +48,11 @@ def ensemble_scenario(object_name: str, run: int, ranges: EnsembleRanges = ENSEM
                                                           ranges.friction_scale_bound)
     obj = dataclasses.replace(base.object, mass=base.object.mass * mass,
                               friction=base.object.friction * friction)
+    placement = base.placement
     scenario = dataclasses.replace(
-        base, object=obj, random_seed=seed,
-        object_offset=[base.object_offset[0] + dx, base.object_offset[1] + dy],
-        object_yaw_deg=base.object_yaw_deg + yaw)
+        base, object=obj, random_seed=seed, placement=dataclasses.replace(
+            placement, offset=[placement.offset[0] + dx, placement.offset[1] + dy],
+            yaw_deg=placement.yaw_deg + yaw))
     if not ranges.sensor_noise:
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0),

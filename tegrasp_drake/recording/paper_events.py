@@ -18,6 +18,7 @@ from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.event_matching import EventMatchingConfig
 
 logger = logging.getLogger(__name__)
 
@@ -28,9 +29,11 @@ EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "lift_start",
 # [s] of the window before the physical event (else the paper's centred 0.25 s). Load-Lift's
 # ends at the lift's start: the controller lifts on it, so cannot feel the lift first.
 PRE_TRANSITION_S = {"load_lift": 0.5}
-# [s] of the approach that measures the RA noise floor for quiet templates: as the live
-# ra_noise_quiet_s, within the 2.8 s approach (settle_s 0.3 + reach_s 2.5), pads untouched.
-QUIET_APPROACH_S = 2.0
+# [s] of the ideal grasp's approach on which each RA channel's noise floor is measured; an
+# RA window that stays within it (Load-Lift's held grip: only the converter's noise) is
+# stored flat, "expects no change" (extraction.py, ra_noise_floor.py): the live floor's
+# default quiet period (controller.matching.ra_noise_quiet_s), within the approach.
+QUIET_APPROACH_S = EventMatchingConfig().ra_noise_quiet_s
 
 
 def lift_grip_fraction(log, scenario) -> float | None:
@@ -68,10 +71,10 @@ def missing_event_advice(transition: str, log, scenario) -> str:
         peak = float(sa.min(axis=1).max()) if len(sa) else 0.0
         return (f"the weaker pad's force peaked at {peak:.2f} N (commanded grasp.grip_force = "
                 f"{grip:g} N): the fingers never squeezed the object with both pads, so "
-                "check object.size against the gripper's 85 mm stroke and object_offset")
+                "check object.size against the gripper's 85 mm stroke and placement.offset")
     if transition == "reach_load":
-        return ("the fingers never touched the object: check object.size, object_offset and "
-                "expected_object_xy")
+        return ("the fingers never touched the object: check object.size, placement.offset and "
+                "placement.expected_xy")
     return ("the object never came back to the table after a lift: check that the grasp "
             "lifts it (object.mass, object.friction, grasp.grip_force)")
 

@@ -77,6 +77,15 @@ def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
         _KEY: Range(low, high, unit, why, low_open, high_open, below, length)})
 
 
+def declared_field(cls: type, name: str) -> dataclasses.Field:
+    """A new dataclass field with the default and the declared Range of the field `name` of
+    the dataclass `cls`: a config that repeats another's setting takes its declaration, so
+    that the default and the range are written once."""
+    field = next(f for f in dataclasses.fields(cls) if f.name == name)
+    return dataclasses.field(default=field.default, default_factory=field.default_factory,
+                             metadata=field.metadata)
+
+
 @dataclasses.dataclass(frozen=True)
 class Choice:
     """A text setting's allowed values; `why` says whose they are."""

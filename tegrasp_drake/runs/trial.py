@@ -79,7 +79,7 @@ def lift_grip_fraction(log, transitions: list[Transition], grip_force: float
 def judge_trial(log, transitions: list[Transition], scenario) -> dict:
     """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
     at least 3 s; unload = after Unload, upright on the table, released, gripper retracted."""
-    outcome = judge_grasp(log, target_xy=scenario.expected_object_xy,
+    outcome = judge_grasp(log, target_xy=scenario.placement.expected_xy,
                           grip_force=scenario.grasp.grip_force, object_config=scenario.object)
     hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
     reached = [entry.to_mode for entry in transitions]
@@ -132,7 +132,7 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
     context = simulator.get_mutable_context()
     limit = max_time if max_time is not None else grasp.time_limit
     logger.info("trial: %s at offset %s m, controller %s, seed %d; simulating up to %.1f s",
-                scenario.object.name, list(scenario.object_offset), controller.name,
+                scenario.object.name, list(scenario.placement.offset), controller.name,
                 scenario.random_seed, limit)
     if logger.isEnabledFor(logging.DEBUG):
         from tegrasp_drake.scenario.scenario import scenario_to_yaml
@@ -171,7 +171,7 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
     judged = judge_trial(log, transitions, scenario)
     judged["final_mode"] = Mode.from_label(judged["final_mode"])
     result = TrialResult(
-        object=scenario.object.name, offset_m=list(scenario.object_offset),
+        object=scenario.object.name, offset_m=list(scenario.placement.offset),
         controller=controller.name, seed=scenario.random_seed, transitions=tuple(transitions),
         **judged, sim_time_s=sim_time, wall_time_s=wall, cpu_time_s=cpu,
         real_time_factor=sim_time / wall if wall > 0 else None, log=log)

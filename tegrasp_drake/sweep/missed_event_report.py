@@ -13,6 +13,7 @@ from tegrasp_drake.events.missed_waits import (
     MISS_CLASSES, WEAK_DYNAMIC_STIMULUS, MissedWait, classify_missed_wait, event_waits)
 from tegrasp_drake.events.ra_noise_floor import rule_sigmas
 from tegrasp_drake.events.replay import tactile_trial_from_log
+from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
 from tegrasp_drake.scenario.scenario import sample_rates_hz
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.simulation.film_readout import adc_input
@@ -58,7 +59,7 @@ def record_has_waits(record: dict, controller: str) -> bool:
 def trial_misses(record: dict, log_path, events_dir=None) -> list[TrialMiss]:
     """The classified missed waits of one sweep record, its log at `log_path`."""
     trial = record["trial"]
-    scenario, events, _ = trial_events(trial, events_dir)
+    scenario, events, _ = trial_events(migrate_stored_trial(trial), events_dir)
     if not controller_entry(scenario.controller).event_triggered or events is None:
         return []
     config = event_matcher_config(scenario.controller, gripper_model=scenario.gripper.model,

@@ -170,12 +170,15 @@ def _exclusive_lock(out_dir: Path):
 
 def _check_same_sweep(trials, records, out_dir):
     """Refuses a folder whose records were made with other settings for the same ids."""
+    from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
     for trial in trials:
         record = records.get(trial["trial_id"])
         recorded = None if record is None else record["trial"]
         if recorded is not None and recorded.get("object_definition"):
             # A user object recorded with its old field names (spec.user_object).
             recorded = TrialSpec.from_dict(recorded).to_dict()
+        if recorded is not None:  # scenario_overrides recorded with keys since moved
+            recorded = migrate_stored_trial(recorded)
         if recorded is not None and canonical_json(recorded) != canonical_json(trial):
             raise SweepError(
                 f"{out_dir} holds a record of trial {trial['trial_id']} made with other "

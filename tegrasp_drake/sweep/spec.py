@@ -33,7 +33,7 @@ PAPER_NORMAL_OFFSETS_M = (-0.010, 0.0, 0.010)
 PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
 
 # The scenario fields a sweep sets per trial; a spec's scenario_overrides may not set them.
-PER_TRIAL_SCENARIO_FIELDS = ("object", "object_offset", "object_yaw_deg", "random_seed",
+PER_TRIAL_SCENARIO_FIELDS = ("object", "placement.offset", "placement.yaw_deg", "random_seed",
                              "controller.name")
 
 # Names become parts of trial ids and file names: keep them to a safe alphabet.

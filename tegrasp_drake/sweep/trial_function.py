@@ -37,10 +37,10 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
         obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),
                                   friction=obj.friction * float(p["friction_scale"]))
     scenario = dataclasses.replace(
-        base, object=obj, random_seed=int(trial["seed"]),
-        object_offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
-                       float(trial["marker_dy_m"]) + float(p["dy_m"])],
-        object_yaw_deg=float(np.degrees(p["yaw_rad"])))
+        base, object=obj, random_seed=int(trial["seed"]), placement=dataclasses.replace(
+            base.placement, offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
+                                    float(trial["marker_dy_m"]) + float(p["dy_m"])],
+            yaw_deg=float(np.degrees(p["yaw_rad"]))))
     if not trial.get("sensor_noise", True):
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(
@@ -71,7 +71,7 @@ def trial_events(trial: dict, events_dir=None) -> tuple:
     events = corrective_events = None
     if scenario.controller.events_folder is not None:
         events = load_controller_events(scenario, events_dir, nominal_object=nominal)
-    if scenario.controller.memorized_corrective_events:
+    if scenario.controller.memorized_corrective.events:
         corrective_events = load_corrective_events(scenario, events_dir,
                                                    nominal_object=nominal)
     return scenario, events, corrective_events

@@ -12,6 +12,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.event_matcher import EventMatcherConfig, event_templates
 from tegrasp_drake.events.extraction import TactileTrial
@@ -22,7 +23,7 @@ from tegrasp_drake.tactile.sampling import samples_per_window
 
 # The mode that waits for each event transition's memorized event.
 WAITING_MODE = {"reach_load": "Reach", "load_lift": "Load", "place_unload": "Place"}
-STEP_S = 0.005  # [s] the matcher's tick (controller.update_period_s)
+STEP_S = GraspControllerConfig().update_period_s  # [s] the state machine's tick
 
 
 @dataclasses.dataclass(frozen=True)

@@ -56,14 +56,14 @@ def test_set_options_follow_the_spec_files_overrides_into_every_record(tmp_path)
                     "scenario_overrides: ['disturbance.hit_time_s=7.0']\n")
     out = tmp_path / "out"
     assert command.main(["--spec", str(spec), "--set",
-                         "controller.memorized_corrective_events=[hold_avoid]",
+                         "controller.memorized_corrective.events=[hold_avoid]",
                          "--out", str(out), "--workers", "1", *FAKE]) == 0
     records = load_records(out).records
     assert len(records) == 9
     for record in records.values():
         assert record["trial"]["scenario_overrides"] == [
             "disturbance.hit_time_s=7.0",
-            "controller.memorized_corrective_events=[hold_avoid]"]
+            "controller.memorized_corrective.events=[hold_avoid]"]
     # The same folder with other settings is refused, not mixed.
     assert command.main(["--spec", str(spec), "--out", str(out), "--workers", "1",
                          *FAKE]) == 2
@@ -83,7 +83,7 @@ def test_trial_errors_give_exit_code_1(tmp_path, capsys):
     (["--attempts", "0"], "field 'attempts'"),
     (["--workers", "0"], "--workers must be at least 1"),
     (["--benchmark", "--scheduler", "tcp://127.0.0.1:8786"], "drop --scheduler"),
-    (["--set", "controller.memorized_corrective_events=[hold_smash]"],
+    (["--set", "controller.memorized_corrective.events=[hold_smash]"],
      "field 'scenario_overrides'"),
     (["--set", "object.name=box"], "set per trial by the sweep"),
 ])
@@ -112,7 +112,7 @@ def test_bad_spec_file_stops_before_any_trial(tmp_path, capsys, text, message):
 
 @pytest.mark.parametrize("arguments, spec_text, message", [
     (["--objects", "thick_cylinder", "--set",
-      "controller.memorized_corrective_events=[hold_avoid]"], None,
+      "controller.memorized_corrective.events=[hold_avoid]"], None,
      "no memorized events of object 'thick_cylinder'"),
     ([], "objects: [cup]\ncontrollers: [open_loop, memorized]\nuser_objects:\n"
          "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n",

@@ -58,27 +58,28 @@ def test_lift_load_grip_force_stops_at_the_grippers_largest():
 
 
 def test_a_slip_shorter_than_slip_s_keeps_lifting():
-    assert lift_load_or_fail(0.5 * CONFIG.slip_s, Counters(), CONFIG) is None
+    assert lift_load_or_fail(0.5 * CONFIG.lift_load.slip_s, Counters(), CONFIG) is None
 
 
 def test_a_slip_of_slip_s_goes_back_to_load():
-    decision = lift_load_or_fail(CONFIG.slip_s, Counters(lift_loads=1), CONFIG)
+    decision = lift_load_or_fail(CONFIG.lift_load.slip_s, Counters(lift_loads=1), CONFIG)
     assert (decision.mode, decision.trigger) == (Mode.LOAD, Trigger.CORRECTIVE)
 
 
 def test_a_slip_after_max_lift_loads_fails():
-    decision = lift_load_or_fail(CONFIG.slip_s, Counters(lift_loads=2), CONFIG)
+    decision = lift_load_or_fail(CONFIG.lift_load.slip_s, Counters(lift_loads=2), CONFIG)
     assert decision.mode == Mode.FAILED
     assert decision.reason == "the object still slips after 2 Lift-Load corrections"
 
 
 def test_lift_load_switched_off_ignores_a_slip():
-    off = dataclasses.replace(CONFIG, lift_load_enabled=False)
+    off = dataclasses.replace(CONFIG,
+                              lift_load=dataclasses.replace(CONFIG.lift_load, enabled=False))
     assert lift_load_or_fail(1.0, Counters(), off) is None
 
 
 def test_relift_waits_for_the_raised_force_quiet_ra_and_settling():
-    ready = dict(grip_reached=True, slip_quiet=True, time_in_load_s=CONFIG.relift_settle_s,
+    ready = dict(grip_reached=True, slip_quiet=True, time_in_load_s=CONFIG.lift_load.relift_settle_s,
                  counters=Counters(lift_loads=1), config=CONFIG)
     decision = relift_after_lift_load(**ready)
     assert (decision.mode, decision.trigger) == (Mode.LIFT, Trigger.CORRECTIVE)
@@ -105,7 +106,8 @@ def test_a_hit_starts_avoid_unless_switched_off():
     decision = avoid_on_hit(True, CONFIG)
     assert (decision.mode, decision.trigger) == (Mode.AVOID, Trigger.THRESHOLD)
     assert avoid_on_hit(False, CONFIG) is None
-    assert avoid_on_hit(True, dataclasses.replace(CONFIG, avoid_enabled=False)) is None
+    off = dataclasses.replace(CONFIG, avoid=dataclasses.replace(CONFIG.avoid, enabled=False))
+    assert avoid_on_hit(True, off) is None
 
 
 def test_pad_frames_and_hit_direction():

@@ -168,13 +168,13 @@ def test_slip_band_vibration_for_slip_s_is_a_lift_load():
     simulator, context, inputs = start(machine)
     lift(simulator, machine, context, inputs, scenario)
     config = MemorizedControllerConfig()
-    inputs.set(slip_vibration=[0.0, 2.0 * config.slip_vibration_mps2])
+    inputs.set(slip_vibration=[0.0, 2.0 * config.lift_load.slip_vibration_mps2])
     began = context.get_time()
     t = run_until_mode(simulator, machine, Mode.LOAD, 0.1)
-    assert config.slip_s <= t - began <= config.slip_s + 2 * config.update_period_s
+    assert config.lift_load.slip_s <= t - began <= config.lift_load.slip_s + 2 * config.update_period_s
     command = machine.GetOutputPort("gripper_command").Eval(context)
     assert command[ru.COMMAND_FORCE] == ru.force_byte_from_force(
-        scenario.grasp.grip_force * config.lift_load_force_factor)
+        scenario.grasp.grip_force * config.lift_load.force_factor)
 
 
 def test_one_sided_contact_re_reaches_toward_the_touching_finger():
@@ -192,7 +192,7 @@ def test_one_sided_contact_re_reaches_toward_the_touching_finger():
     inputs.set(channels=[0.0, 0.0, 0.0, 0.0],
                status=status(ru.STROKE_M, ru.ObjectStatus.AT_REQUESTED_POSITION))
     t_reach = run_until_mode(simulator, machine, Mode.REACH, 1.2)
-    assert t_reach > entry["t"] + 0.8  # opening, then the shift of re_reach_move_s
+    assert t_reach > entry["t"] + 0.8  # opening, then the shift of re_reach.move_s
     y1 = machine.GetOutputPort("X_WG_desired").Eval(context).translation()[1]
     assert y1 - y0 == pytest.approx(entry["offset_m"], abs=1e-5)  # toward +y, the left finger
 

@@ -84,11 +84,11 @@ def test_thresholds_in_force_are_the_larger_of_the_number_and_k_sigma(noise):
     sigma = ra_noise_std_mps2(vibration)
     config = HeuristicControllerConfig()
     resolved = resolve_noise_thresholds(config, ra_noise_std_mps2=sigma, ra_rate_hz=RATE_HZ)
-    band = slip_band_noise_std(sigma, config.slip_band_hz, RATE_HZ)
-    assert resolved.hit_ra_mps2 == pytest.approx(
-        max(config.hit_ra_mps2, config.hit_ra_sigmas * sigma))
-    assert resolved.slip_vibration_mps2 == pytest.approx(
-        max(config.slip_vibration_mps2, config.slip_vibration_sigmas * band))
+    band = slip_band_noise_std(sigma, config.lift_load.slip_band_hz, RATE_HZ)
+    assert resolved.avoid.hit_ra_mps2 == pytest.approx(
+        max(config.avoid.hit_ra_mps2, config.avoid.hit_ra_sigmas * sigma))
+    assert resolved.lift_load.slip_vibration_mps2 == pytest.approx(
+        max(config.lift_load.slip_vibration_mps2, config.lift_load.slip_vibration_sigmas * band))
     assert resolved.heuristic.place_ra_mps2 == pytest.approx(
         max(config.heuristic.place_ra_mps2, config.heuristic.place_ra_sigmas * sigma))
     assert config == HeuristicControllerConfig()  # the caller's config untouched
@@ -103,8 +103,8 @@ def test_thresholds_follow_the_noise_above_the_numbers():
     config = MemorizedControllerConfig()
     resolved = [resolve_noise_thresholds(config, ra_noise_std_mps2=s, ra_rate_hz=RATE_HZ)
                 for s in (low, high)]
-    assert resolved[1].hit_ra_mps2 / resolved[0].hit_ra_mps2 == pytest.approx(high / low)
-    assert resolved[1].slip_vibration_mps2 / resolved[0].slip_vibration_mps2 == \
+    assert resolved[1].avoid.hit_ra_mps2 / resolved[0].avoid.hit_ra_mps2 == pytest.approx(high / low)
+    assert resolved[1].lift_load.slip_vibration_mps2 / resolved[0].lift_load.slip_vibration_mps2 == \
         pytest.approx(high / low)
 
 
@@ -113,13 +113,13 @@ def test_an_ideal_quiet_channel_keeps_the_numbers():
     sigma = ra_noise_std_mps2(VibrationSensorConfig(adc_input="ideal"))
     assert sigma == pytest.approx(0.05)
     resolved = resolve_noise_thresholds(config, ra_noise_std_mps2=sigma, ra_rate_hz=RATE_HZ)
-    assert resolved.hit_ra_mps2 == config.hit_ra_mps2
-    assert resolved.slip_vibration_mps2 == config.slip_vibration_mps2
+    assert resolved.avoid.hit_ra_mps2 == config.avoid.hit_ra_mps2
+    assert resolved.lift_load.slip_vibration_mps2 == config.lift_load.slip_vibration_mps2
 
 
 def test_the_configs_sigmas_are_the_rules():
     magnitude_k, band_k = default_rule_sigmas(RATE_HZ, window_samples=10)
     config = HeuristicControllerConfig()
-    assert config.hit_ra_sigmas == pytest.approx(magnitude_k, abs=0.005)
+    assert config.avoid.hit_ra_sigmas == pytest.approx(magnitude_k, abs=0.005)
     assert config.heuristic.place_ra_sigmas == pytest.approx(magnitude_k, abs=0.005)
-    assert config.slip_vibration_sigmas == pytest.approx(band_k, abs=0.005)
+    assert config.lift_load.slip_vibration_sigmas == pytest.approx(band_k, abs=0.005)

@@ -9,7 +9,7 @@ from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Failed, ReReach, re_reach_allowed, re_reach_or_fail
 from tegrasp_drake.control.transition_logic import PAPER_RE_REACH
 
-CONFIG = GraspControllerConfig()  # max_re_reaches 2
+CONFIG = GraspControllerConfig()  # re_reach.max_re_reaches 2
 
 
 @dataclasses.dataclass(frozen=True)
@@ -39,7 +39,8 @@ def test_a_limit_given_overrides_the_tables():
 
 
 def test_re_reach_switched_off_fails_at_once():
-    off = Situation(config=dataclasses.replace(CONFIG, re_reach_enabled=False))
+    off = Situation(config=dataclasses.replace(
+        CONFIG, re_reach=dataclasses.replace(CONFIG.re_reach, enabled=False)))
     decision = re_reach_or_fail(off, None, "closed on nothing")
     assert decision.mode == Mode.FAILED
     assert decision.reason == "closed on nothing; Re-Reach is switched off"

@@ -70,16 +70,16 @@ def test_ideal_force_taxels_keep_the_numbers_and_noisy_ones_raise_them():
     config = HeuristicControllerConfig()
     kept = resolve_noise_thresholds(config, ra_noise_std_mps2=0.0, ra_rate_hz=1000.0,
                                     tactile=FORCE, sa_rate_hz=SA_RATE_HZ)
-    assert (kept.contact_force_n, kept.taxel_contact_n, kept.avoid_sa_asymmetry_n,
+    assert (kept.contact_force_n, kept.taxel_contact_n, kept.avoid.sa_asymmetry_n,
             kept.heuristic.contact_force_n) == (
-        config.contact_force_n, config.taxel_contact_n, config.avoid_sa_asymmetry_n,
+        config.contact_force_n, config.taxel_contact_n, config.avoid.sa_asymmetry_n,
         config.heuristic.contact_force_n)
     raised = resolve_noise_thresholds(config, ra_noise_std_mps2=0.0, ra_rate_hz=1000.0,
                                       tactile=CAPACITIVE, sa_rate_hz=SA_RATE_HZ)
     floors = sa_noise_floors(CAPACITIVE, SA_RATE_HZ)
     assert raised.contact_force_n == raised.heuristic.contact_force_n == floors.pad_sum
     assert raised.taxel_contact_n == floors.taxel
-    assert raised.avoid_sa_asymmetry_n == floors.pad_asymmetry
+    assert raised.avoid.sa_asymmetry_n == floors.pad_asymmetry
     assert config.contact_force_n == MemorizedControllerConfig().contact_force_n  # untouched
 
 

@@ -55,8 +55,8 @@ def code(mode, obs, counters=Counters(), config=CONFIG):
     return None if decision is None else decision.code
 
 
-ONE_SIDED = dict(contact=(False, True), one_sided_s=CONFIG.one_sided_contact_s)
-REACH_LATE = dict(closing_s=CONFIG.reach_event_timeout_s)
+ONE_SIDED = dict(contact=(False, True), one_sided_s=CONFIG.re_reach.one_sided_contact_s)
+REACH_LATE = dict(closing_s=CONFIG.re_reach.reach_event_timeout_s)
 LOAD_LATE = dict(time_in_mode=CONFIG.load_event_timeout_s)
 # (rule, mode, the situation it fires on, a near miss, counters)
 CASES = [
@@ -67,7 +67,7 @@ CASES = [
      dict(estimate=dict(strike_s=TAXEL.finger_strike.sustain_s, strike_finger="left")),
      dict(estimate=dict(strike_s=0.5 * TAXEL.finger_strike.sustain_s)), Counters()),
     ("approach_contact", Mode.REACH,
-     dict(contact=(False, True), estimate=dict(approach_contact_s=CONFIG.one_sided_contact_s,
+     dict(contact=(False, True), estimate=dict(approach_contact_s=CONFIG.re_reach.one_sided_contact_s,
                                                approaching=True)),
      dict(contact=(False, True), estimate=dict(approach_contact_s=0.02, approaching=True)),
      Counters()),
@@ -102,8 +102,8 @@ CASES = [
     ("load_lift_event", Mode.LOAD, dict(contact=(True, True), event_matched=True),
      dict(contact=(True, True)), Counters()),
     ("relift", Mode.LOAD,
-     dict(contact=(True, True), grip_reached=True, time_in_mode=CONFIG.relift_settle_s),
-     dict(contact=(True, True), grip_reached=True, time_in_mode=0.5 * CONFIG.relift_settle_s),
+     dict(contact=(True, True), grip_reached=True, time_in_mode=CONFIG.lift_load.relift_settle_s),
+     dict(contact=(True, True), grip_reached=True, time_in_mode=0.5 * CONFIG.lift_load.relift_settle_s),
      Counters(lift_loads=1)),
     ("load_timeout_both_pads", Mode.LOAD, dict(contact=(True, True), **LOAD_LATE),
      dict(contact=(True, False), **LOAD_LATE), Counters()),
@@ -111,8 +111,8 @@ CASES = [
         caged_behind_pads=True)), dict(estimate=dict(caged_behind_pads=True)), Counters()),
     ("load_timeout", Mode.LOAD, dict(contact=(True, False), **LOAD_LATE),
      dict(contact=(True, False)), Counters()),
-    ("lift_load", Mode.LIFT, dict(contact=(True, True), slip_s=CONFIG.slip_s),
-     dict(contact=(True, True), slip_s=0.5 * CONFIG.slip_s), Counters()),
+    ("lift_load", Mode.LIFT, dict(contact=(True, True), slip_s=CONFIG.lift_load.slip_s),
+     dict(contact=(True, True), slip_s=0.5 * CONFIG.lift_load.slip_s), Counters()),
     ("lift_ended", Mode.LIFT, dict(contact=(True, True), motion_done=True),
      dict(contact=(True, True)), Counters()),
     ("avoid_hit", Mode.HOLD, dict(contact=(True, True), hit=True), dict(contact=(True, True)),
@@ -132,7 +132,7 @@ CASES = [
      dict(contact=(True, True)), Counters()),
     ("place_timeout", Mode.PLACE,
      dict(contact=(True, True), motion_done=True,
-          time_since_motion_done=CONFIG.place_event_timeout_s),
+          time_since_motion_done=CONFIG.place.event_timeout_s),
      dict(contact=(True, True), motion_done=True), Counters()),
     ("released", Mode.UNLOAD, dict(motion_done=True), dict(), Counters()),
 ]
@@ -204,7 +204,7 @@ def test_the_strike_backs_off_and_shifts_toward_the_struck_finger():
 
 def test_the_approach_contact_backs_off_with_the_papers_shift_along_the_stroke():
     decision = decide(Mode.REACH, situation(contact=(False, True), estimate=dict(
-        approach_contact_s=CONFIG.one_sided_contact_s, approaching=True)))
+        approach_contact_s=CONFIG.re_reach.one_sided_contact_s, approaching=True)))
     assert decision.action.shift == Shift(-TAXEL.approach_retreat_m,
                                           pytest.approx(-(0.080 - WIDTH_M) / 2))
 
@@ -253,7 +253,7 @@ def test_the_regrasp_puts_down_and_re_reaches_without_a_shift_or_a_count():
 
 @pytest.mark.parametrize("obs,counters", [
     (situation(**REACH_LATE), Counters(re_reaches=TAXEL.max_re_reaches)),
-    (situation(contact=(True, False), **LOAD_LATE), Counters(re_reaches=CONFIG.max_re_reaches)),
+    (situation(contact=(True, False), **LOAD_LATE), Counters(re_reaches=CONFIG.re_reach.max_re_reaches)),
     (situation(contact=(True, False), **LOAD_LATE), Counters(lift_loads=1))])
 def test_corrections_used_up_fail(obs, counters):
     mode = Mode.REACH if obs.closing_s >= 0 else Mode.LOAD
@@ -273,7 +273,7 @@ def test_the_table_asks_the_devices_first_and_the_approach_before_the_papers_rea
 def test_a_one_sided_re_reach_centres_along_both_axes():
     """The left finger alone touches, on its fingertip row; the gripper stopped 60 mm open
     on the 45 mm box: 7.5 mm toward the left (+y), 9 mm forward (+x)."""
-    obs = situation(contact=(True, False), one_sided_s=CONFIG.one_sided_contact_s,
+    obs = situation(contact=(True, False), one_sided_s=CONFIG.re_reach.one_sided_contact_s,
                     shape=pads(3, None), estimate=dict(opening_m=0.060))
     shift = decide(Mode.REACH, obs).action.shift
     assert shift == Shift(pytest.approx(1.5 * CELL_Y), pytest.approx(0.0075))

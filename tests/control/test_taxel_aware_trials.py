@@ -57,7 +57,8 @@ def _run(scene: Scene):
     base = LoadScenario(name=scene.object_name, controller="taxel_aware", overrides=list(HAND))
     controller = dataclasses.replace(base.controller, taxel_aware=dataclasses.replace(
         base.controller.taxel_aware, **dict(scene.taxel_aware)))
-    changes = dict(object_offset=list(scene.offset), object_yaw_deg=scene.yaw_deg,
+    changes = dict(placement=dataclasses.replace(base.placement, offset=list(scene.offset),
+                                                 yaw_deg=scene.yaw_deg),
                    controller=controller)
     if scene.seed is not None:
         changes["random_seed"] = scene.seed

@@ -12,7 +12,8 @@ from tegrasp_drake.events.event_file import (
 from tegrasp_drake.events.events_folder import (
     load_all_memorized_events, load_memorized_events, save_memorized_events)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
-from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
+from tegrasp_drake.events.synthetic import (SyntheticGraspConfig, SyntheticSignalsConfig,
+                                             synthetic_grasp)
 
 VERSIONS = {"drake": "1.51.1", "numpy": "2.4.6", "tegrasp-drake": "0.1.0"}
 
@@ -83,7 +84,7 @@ def test_index_lists_each_event_with_its_metadata(saved):
 def test_recording_one_object_keeps_the_others(saved):
     events_dir, _ = saved
     save_memorized_events(events_dir, make_events("thin_cylinder").values())
-    louder = make_events(grip_force_n=6.0, contact_rise_s=0.2)
+    louder = make_events(signals=SyntheticSignalsConfig(grip_force_n=6.0), contact_rise_s=0.2)
     save_memorized_events(events_dir, louder.values())
     everything = load_all_memorized_events(events_dir)
     assert sorted(everything) == ["box", "thin_cylinder"]

@@ -13,14 +13,16 @@ from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.event_matcher import EventMatcher, EventMatcherConfig
 from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.replay import channels_trajectory
-from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
+from tegrasp_drake.events.synthetic import (SyntheticGraspConfig, SyntheticSensorsConfig,
+                                             synthetic_grasp)
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 from tegrasp_drake.tactile.window_normalizer import ConnectWindowChannels
 
 from tests.one_system_matcher import replay_both
 
 IDEAL = SyntheticGraspConfig()
-NOISY = SyntheticGraspConfig(sa_noise_n=0.05, ra_noise=0.2, seed=7)  # N, m/s^2 per axis
+# N, m/s^2 per axis
+NOISY = SyntheticGraspConfig(sensors=SyntheticSensorsConfig(sa_noise_n=0.05, ra_noise=0.2, seed=7))
 EVENTS = extract_memorized_events(synthetic_grasp(IDEAL), object_name="box",
                                   sa_rate_hz=100.0, ra_rate_hz=1000.0,
                                   package_versions={})
@@ -104,8 +106,10 @@ LIVE_VARIANTS = {
     "sensor noise": (NOISY, 100.0),
     "time shifted, RA 30 ms late, right finger 20 ms late": (
         dataclasses.replace(NOISY, contact_s=1.3, place_s=3.3, duration_s=4.5,
-                            ra_delay_s=0.03, right_delay_s=0.02), 100.0),
-    "scaled": (dataclasses.replace(NOISY, sa_scale=2.5, ra_scale=0.4), 100.0),
+                            sensors=dataclasses.replace(NOISY.sensors, ra_delay_s=0.03,
+                                                        right_delay_s=0.02)), 100.0),
+    "scaled": (dataclasses.replace(NOISY, sensors=dataclasses.replace(
+        NOISY.sensors, sa_scale=2.5, ra_scale=0.4)), 100.0),
     "SA at 1 kHz against 100 Hz templates": (NOISY, 1000.0),
 }
 
@@ -123,7 +127,8 @@ def test_each_event_matches_within_half_a_second_of_its_physical_event(variant):
 
 
 def test_a_contact_without_impact_does_not_match_first_contact():
-    harness = Harness(replay(dataclasses.replace(NOISY, contact_burst=0.0)))
+    harness = Harness(replay(dataclasses.replace(
+        NOISY, signals=dataclasses.replace(NOISY.signals, contact_burst=0.0))))
     harness.expect("reach_load")
     scores = np.array([s for _, s, match in harness.run(1.5) if not match])
     assert len(scores) == 1500  # never matched

@@ -76,7 +76,8 @@ def test_blocks_equal_the_per_sample_matcher_at_every_block_boundary(sa_rate_hz,
 
 @pytest.mark.parametrize("sa_rate_hz", [100.0, 1000.0])
 @pytest.mark.parametrize("live", [NOISY, dataclasses.replace(
-    NOISY, contact_s=1.3, place_s=3.3, duration_s=4.5, ra_delay_s=0.03, right_delay_s=0.02)],
+    NOISY, contact_s=1.3, place_s=3.3, duration_s=4.5,
+    sensors=dataclasses.replace(NOISY.sensors, ra_delay_s=0.03, right_delay_s=0.02))],
     ids=["noisy", "shifted"])
 def test_blocks_match_each_event_at_most_one_block_after_the_per_sample_matcher(
         sa_rate_hz, live):

@@ -31,7 +31,7 @@ def test_the_controllers_documented_k_follows_the_rule():
     # The value the controller's comment and the remedy spec carry (docs/transfer.md).
     assert floor_sigmas(FALSE_ALARM_PER_TRIAL, int(TRIAL_HORIZON_S * 1000.0 * 2)) == \
         pytest.approx(5.39, abs=0.005)
-    assert EventTriggeredConfig().ra_noise_floor_sigmas == 0.0  # off by default
+    assert EventTriggeredConfig().matching.ra_noise_floor_sigmas == 0.0  # off by default
 
 
 def test_the_floor_is_the_enveloped_quiet_mean_plus_k_deviations():

@@ -10,7 +10,8 @@ import types
 import numpy as np
 import pytest
 
-from tegrasp_drake.control.controller_config import GraspControllerConfig
+from tegrasp_drake.control.controller_config import (GraspControllerConfig,
+                                                     MemorizedCorrectiveConfig)
 from tegrasp_drake.control.corrective_actions import (Counters, avoid_on_hit_event,
                                                       lift_load_on_slip_event)
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
@@ -29,7 +30,8 @@ from tegrasp_drake.rig.typed_yaml import ConfigError
 EVENTS = pathlib.Path(__file__).parents[2] / "events" / "prismatic" / "corrective"
 WINDOWS = pathlib.Path(__file__).parents[1] / "data" / "corrective_windows.npz"
 CONFIG = GraspControllerConfig()
-MEMORIZED_HIT = dataclasses.replace(CONFIG, memorized_corrective_events=["hold_avoid"])
+MEMORIZED_HIT = dataclasses.replace(CONFIG, memorized_corrective=MemorizedCorrectiveConfig(
+    events=["hold_avoid"]))
 HELD_OUT_HIT_S = 7.4  # the held-out hit of the recorded windows (tests/data), at 7.4 s
 
 
@@ -39,22 +41,24 @@ def decide(mode, config, **fields):
 
 
 def test_a_memorized_hit_event_avoids_once_the_window_is_clear_of_the_stop():
-    decision = avoid_on_hit_event(True, CONFIG.memorized_hit_armed_s, CONFIG)
+    decision = avoid_on_hit_event(True, CONFIG.memorized_corrective.hit_armed_s, CONFIG)
     assert (decision.mode, decision.trigger) == (Mode.AVOID, Trigger.CORRECTIVE_EVENT)
     # The heuristic's refractory time is not enough: the window still holds the stop.
-    assert avoid_on_hit_event(True, CONFIG.hit_refractory_s + 0.2, CONFIG) is None
+    assert avoid_on_hit_event(True, CONFIG.avoid.hit_refractory_s + 0.2, CONFIG) is None
     assert avoid_on_hit_event(False, 1.0, CONFIG) is None
-    assert avoid_on_hit_event(True, 1.0, dataclasses.replace(CONFIG, avoid_enabled=False)) is None
+    no_avoid = dataclasses.replace(CONFIG, avoid=dataclasses.replace(CONFIG.avoid, enabled=False))
+    assert avoid_on_hit_event(True, 1.0, no_avoid) is None
 
 
 def test_a_memorized_slip_event_lift_loads_until_they_are_used_up():
     decision = lift_load_on_slip_event(True, Counters(), CONFIG)
     assert (decision.mode, decision.trigger) == (Mode.LOAD, Trigger.CORRECTIVE_EVENT)
     assert lift_load_on_slip_event(False, Counters(), CONFIG) is None
-    used_up = lift_load_on_slip_event(True, Counters(lift_loads=CONFIG.max_lift_loads), CONFIG)
+    used_up = lift_load_on_slip_event(True, Counters(lift_loads=CONFIG.lift_load.max_lift_loads), CONFIG)
     assert used_up.mode == Mode.FAILED
     assert lift_load_on_slip_event(
-        True, Counters(), dataclasses.replace(CONFIG, lift_load_enabled=False)) is None
+        True, Counters(), dataclasses.replace(
+            CONFIG, lift_load=dataclasses.replace(CONFIG.lift_load, enabled=False))) is None
 
 
 def test_the_switch_selects_the_trigger_of_each_corrective_event():
@@ -65,16 +69,17 @@ def test_the_switch_selects_the_trigger_of_each_corrective_event():
     assert decide(Mode.HOLD, MEMORIZED_HIT, time_in_mode=1.0, hit=True) is None
     assert decide(Mode.HOLD, MEMORIZED_HIT, time_in_mode=1.0,
                   corrective_event_matched=True).trigger == Trigger.CORRECTIVE_EVENT
-    assert decide(Mode.LIFT, MEMORIZED_HIT, slip_s=CONFIG.slip_s).trigger == Trigger.CORRECTIVE
-    memorized_slip = dataclasses.replace(CONFIG, memorized_corrective_events=["lift_load"])
-    assert decide(Mode.LIFT, memorized_slip, slip_s=CONFIG.slip_s) is None
+    assert decide(Mode.LIFT, MEMORIZED_HIT, slip_s=CONFIG.lift_load.slip_s).trigger == Trigger.CORRECTIVE
+    memorized_slip = dataclasses.replace(CONFIG, memorized_corrective=MemorizedCorrectiveConfig(
+        events=["lift_load"]))
+    assert decide(Mode.LIFT, memorized_slip, slip_s=CONFIG.lift_load.slip_s) is None
     assert decide(Mode.LIFT, memorized_slip,
                   corrective_event_matched=True).trigger == Trigger.CORRECTIVE_EVENT
 
 
 def test_the_switch_names_a_bad_event_and_needs_the_events():
-    with pytest.raises(ConfigError, match=r"controller.memorized_corrective_events\[0\]"):
-        LoadScenario(overrides=["controller.memorized_corrective_events=[hold_hit]"])
+    with pytest.raises(ConfigError, match=r"controller.memorized_corrective.events\[0\]"):
+        LoadScenario(overrides=["controller.memorized_corrective.events=[hold_hit]"])
     with pytest.raises(ValueError, match="hold_avoid"):
         GraspStateMachine(plan=grasp_plan(LoadScenario()), config=MEMORIZED_HIT,
                           event_indices={"reach_load": 0, "load_lift": 1, "place_unload": 2},
@@ -102,16 +107,16 @@ def _match_rises(name, transition, thresholds):
 
 
 def test_the_hit_event_matches_a_held_out_hit_and_no_normal_hold():
-    rises = _match_rises("hit", "hold_avoid", CONFIG.hold_avoid_event_thresholds)
+    rises = _match_rises("hit", "hold_avoid", CONFIG.memorized_corrective.hold_avoid_thresholds)
     assert rises.size >= 1
     assert 0.0 <= rises[0] - HELD_OUT_HIT_S <= 0.06  # the hit matched within 60 ms
-    assert _match_rises("normal_hold", "hold_avoid", CONFIG.hold_avoid_event_thresholds).size == 0
+    assert _match_rises("normal_hold", "hold_avoid", CONFIG.memorized_corrective.hold_avoid_thresholds).size == 0
 
 
 def test_the_slip_event_also_matches_a_normal_lift():
     # Why lift_load stays heuristic (docs/controller.md): Eq. 3 is scale invariant, and the film's
     # signal around a slip has the shape of any lift's; the slip differs in amplitude.
-    assert _match_rises("normal_lift", "lift_load", CONFIG.lift_load_event_thresholds).size
+    assert _match_rises("normal_lift", "lift_load", CONFIG.memorized_corrective.lift_load_thresholds).size
 
 
 def _slow_log(name):
@@ -149,7 +154,7 @@ def test_an_object_without_corrective_events_names_the_command(tmp_path):
     from tegrasp_drake.scenario.scenario_events import load_corrective_events
     from tegrasp_drake.events import MemorizedEventError
     scenario = LoadScenario(name="custom_can", overrides=[
-        "controller.name=heuristic", "controller.memorized_corrective_events=[hold_avoid]"])
+        "controller.name=heuristic", "controller.memorized_corrective.events=[hold_avoid]"])
     with pytest.raises(MemorizedEventError, match="record_corrective_events.py"):
         load_corrective_events(scenario, tmp_path)
 

@@ -40,14 +40,14 @@ def test_each_run_is_perturbed_within_its_ranges_from_its_own_seed():
     draws = [ensemble_scenario("box", run) for run in range(20)]
     for run, scenario in enumerate(draws):
         assert scenario.random_seed == ENSEMBLE_BASE_SEED + run
-        assert abs(scenario.object_offset[0]) <= ENSEMBLE_RANGES.placement_xy_bound_m
-        assert abs(scenario.object_offset[1]) <= ENSEMBLE_RANGES.placement_xy_bound_m
-        assert abs(scenario.object_yaw_deg) <= ENSEMBLE_RANGES.yaw_bound_deg
+        assert abs(scenario.placement.offset[0]) <= ENSEMBLE_RANGES.placement_xy_bound_m
+        assert abs(scenario.placement.offset[1]) <= ENSEMBLE_RANGES.placement_xy_bound_m
+        assert abs(scenario.placement.yaw_deg) <= ENSEMBLE_RANGES.yaw_bound_deg
         assert abs(scenario.object.mass / base.object.mass - 1) <= ENSEMBLE_RANGES.mass_scale_bound
         assert abs(scenario.object.friction / base.object.friction - 1) <= (
             ENSEMBLE_RANGES.friction_scale_bound)
-    assert len({s.object_yaw_deg for s in draws}) == 20  # each its own draw
-    assert ensemble_scenario("box", 3).object_offset == draws[3].object_offset  # repeatable
+    assert len({s.placement.yaw_deg for s in draws}) == 20  # each its own draw
+    assert ensemble_scenario("box", 3).placement.offset == draws[3].placement.offset  # repeatable
     quiet = ensemble_scenario("box", 0, dataclasses.replace(ENSEMBLE_RANGES, sensor_noise=False))
     assert quiet.tactile.noise_std_n == 0.0
 

@@ -74,8 +74,9 @@ def test_recording_refuses_a_load_phase_that_lifts_before_the_grip_settles():
     # grip.
     ("thick_cylinder", (-0.01, -0.015), 603)])
 def test_the_closed_loop_lift_starts_with_the_grip_settled(object_name, offset, seed):
-    scenario = dataclasses.replace(LoadScenario(name=object_name), random_seed=seed,
-                                   object_offset=list(offset))
+    base = LoadScenario(name=object_name)
+    scenario = dataclasses.replace(base, random_seed=seed, placement=dataclasses.replace(
+        base.placement, offset=list(offset)))
     result = run_trial(scenario).result
     lifts = [e for e in result["transitions"] if (e["from"], e["to"]) == ("Load", "Lift")]
     assert lifts and lifts[0]["trigger"] == "memorized_event"

@@ -52,7 +52,7 @@ def test_tegrasp_trial_json_at_the_expected_position(tmp_path, capsys):
                                        "floor (5.5 N): one pad alone never reads contact")
 @pytest.mark.parametrize("offset_y", [0.015, -0.015])
 def test_misplaced_along_the_stroke_re_reaches_and_succeeds(offset_y):
-    result = run_trial(LoadScenario(overrides=[f"object_offset=[0.0, {offset_y}]"])).result
+    result = run_trial(LoadScenario(overrides=[f"placement.offset=[0.0, {offset_y}]"])).result
     assert result["corrective_actions"] == ["re_reach"]
     re_reach = next(e for e in result["transitions"] if e["to"] == "Re-Reach")
     toward = "left" if offset_y > 0 else "right"  # the left finger is on the +y side
@@ -89,7 +89,7 @@ def test_a_slippery_object_needs_lift_load():
     assert "lift_load" in corrected["corrective_actions"]
     assert corrected["hold_success"]
     without = run_trial(LoadScenario(
-        overrides=slippery + ["controller.lift_load_enabled=false"])).result
+        overrides=slippery + ["controller.lift_load.enabled=false"])).result
     # Without Lift-Load the pads slide up the box, which stays on the table. Whatever else
     # the controller then does (the pads still sliding along it in Hold can read as a hit:
     # Hold goes to Avoid), no Lift-Load is taken and nothing is held.

@@ -13,7 +13,7 @@ pytestmark = pytest.mark.slow
 def test_a_hit_in_hold_is_avoided_by_the_memorized_hit_event():
     hit_time = 6.9
     result = run_trial(LoadScenario(overrides=[
-        "controller.memorized_corrective_events=[hold_avoid]",
+        "controller.memorized_corrective.events=[hold_avoid]",
         f"disturbance.hit_time_s={hit_time}", "disturbance.hit_force_n=[0.0, -22.0, 0.0]"])
     ).result
     avoids = [e for e in result["transitions"] if e["to"] == "Avoid"]

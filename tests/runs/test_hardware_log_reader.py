@@ -107,8 +107,9 @@ def test_replayed_matcher_matches_each_memorized_event_before_its_transition(run
 def test_the_replay_takes_the_live_runs_matcher_settings_from_its_scenario():
     info = lcmt_tegrasp_run_info()
     info.scenario_yaml = scenario_to_yaml(LoadScenario(name="faithful_world", overrides=(
-        "controller.ra_envelope_hz=2.0", "controller.ra_noise_floor_sigmas=5.39",
-        "controller.ra_noise_quiet_s=1.5", "controller.sa_threshold=0.85")))
+        "controller.matching.ra_envelope_hz=2.0",
+        "controller.matching.ra_noise_floor_sigmas=5.39",
+        "controller.matching.ra_noise_quiet_s=1.5", "controller.matching.sa_threshold=0.85")))
     config = matcher_config_of_run(info, EVENTS)
     assert (config.ra_envelope_hz, config.ra_noise_floor_sigmas, config.ra_noise_quiet_s,
             config.sa_threshold) == (2.0, 5.39, 1.5, 0.85)

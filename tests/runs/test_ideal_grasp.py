@@ -23,7 +23,7 @@ pytestmark = pytest.mark.slow
 def trial(request, ideal_grasp_log):
     scenario = LoadScenario(name=request.param)
     log = ideal_grasp_log(request.param)
-    target = np.add(scenario.expected_object_xy, scenario.grasp.place_offset)
+    target = np.add(scenario.placement.expected_xy, scenario.grasp.place_offset)
     return scenario, log, judge_grasp(log, target_xy=target, grip_force=scenario.grasp.grip_force)
 
 
@@ -96,7 +96,7 @@ def drive_vibration_peak(drive_config, vibration) -> float:
     rates = np.linspace(0.0, drive_config.full_speed, 10_001)
     motor = drive_config.motor_revolutions_per_unit * rates
     reading = sum(amplitude * rates / drive_config.full_speed * np.array([
-        mode_gain(order * n, vibration.mode_frequency_hz, vibration.mode_damping_ratio)
+        mode_gain(order * n, vibration.film.mode_frequency_hz, vibration.film.mode_damping_ratio)
         for n in motor]) for amplitude, order in zip(drive_config.amplitudes_mps2,
                                                      drive_config.orders))
     return float(np.max(reading)) if drive_config.enabled() else 0.0

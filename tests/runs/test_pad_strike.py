@@ -54,13 +54,14 @@ def test_the_contact_rings_for_several_ms_at_the_mode_damping():
     after the strike is the impact's ring: its 1 ms peak-hold decays as exp(-zeta w t)."""
     config = PadStrikeConfig(**SHORT)
     scenario = strike_scenario(config)
-    vibration = dataclasses.replace(scenario.vibration, load_lowpass_hz=1e-3,
-                                    slip_texture_height_m=0.0)
+    vibration = dataclasses.replace(
+        scenario.vibration, slip_texture_height_m=0.0,
+        film=dataclasses.replace(scenario.vibration.film, load_lowpass_hz=1e-3))
     strike = run_pad_strike(config, dataclasses.replace(scenario, vibration=vibration))
     first = np.searchsorted(strike.t_ra, strike.contact_times[0])
     envelope = np.abs(strike.ra[first:first + 20, 0])
     t = strike.t_ra[first:first + 20]
     rate = -np.polyfit(t, np.log(envelope), 1)[0]
-    zeta_w = vibration.mode_damping_ratio * 2 * math.pi * vibration.mode_frequency_hz
+    zeta_w = vibration.film.mode_damping_ratio * 2 * math.pi * vibration.film.mode_frequency_hz
     assert rate == pytest.approx(zeta_w, rel=0.15)
     assert np.all(envelope[:6] > envelope[0] / math.e)  # more than 1/e for 5 ms

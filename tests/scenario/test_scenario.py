@@ -28,8 +28,8 @@ def test_override_changes_a_nested_field():
       "object.mass=0.1", "object.friction=0.5"],
      "field 'object.size' makes the object 90.0 mm wide"),
     (["controller.name=magic"], "field 'controller.name': 'magic' is not one of"),
-    (["controller.name=heuristic", "controller.sa_threshold=0.5"],
-     "field 'controller.sa_threshold' is a setting of the memorized and taxel_aware"),
+    (["controller.name=heuristic", "controller.matching.sa_threshold=0.5"],
+     "field 'controller.matching.sa_threshold' is a setting of the memorized and taxel_aware"),
     (["disturbance.hit_force_n=[1, 2]"], "field 'disturbance'"),
     (["object.mass=-1"], "field 'object.mass' must be positive"),
     (["object.name=model", "object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",
@@ -55,7 +55,7 @@ def test_override_changes_a_nested_field():
      "positive"),
     (["vibration.gripper_drive.orders=[1]"], "field 'vibration.gripper_drive.orders' must "
      "give one order per amplitude"),
-    (["controller.slip_vibration_sigmas=-2"], "field 'controller.slip_vibration_sigmas' must "
+    (["controller.lift_load.slip_vibration_sigmas=-2"], "field 'controller.lift_load.slip_vibration_sigmas' must "
      "be zero"),
 ])
 def test_bad_input_names_the_field(overrides, message):

@@ -150,7 +150,7 @@ ROD_DIAMETER = THICK_CYLINDER.width_along_stroke()  # 50 mm
 PAD_CENTRE_AT_ROD = linkage.PAD_CENTER_OPEN[1] + linkage.pad_travel_at_opening(ROD_DIAMETER)
 FILM = VibrationSensorConfig()
 # The grip rate [N/s] the film reads at its own noise: (dF/dt) / (2 pi f_c m) = noise.
-QUIET_GRIP_RATE = (ra_noise_std_mps2(FILM) * FILM.mode_mass_kg
+QUIET_GRIP_RATE = (ra_noise_std_mps2(FILM) * FILM.film.mode_mass_kg
                    * 2 * np.pi * FILM.highpass_cutoff_hz)
 
 

@@ -37,7 +37,7 @@ def _squeeze(offset_x=0.0, close_at=0.3, until=2.2, object_name="box"):
     would hide the integration's percent (tests/simulation/test_capacitive_taxels.py
     checks that reading)."""
     scenario = LoadScenario(overrides=["gripper.model=prismatic", "tactile.transducer=force",
-        "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"object_offset=[{offset_x}, 0.0]",
+        "arm.initial_gripper_xyz=[0.72, 0.0, 0.055]", f"placement.offset=[{offset_x}, 0.0]",
         f"object.name={object_name}"])
     station, context, command = _open_station_at_rest(scenario)
     simulator = Simulator(station, context)

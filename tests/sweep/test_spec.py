@@ -202,15 +202,15 @@ def test_an_empty_yaml_file_is_refused_not_run_as_the_papers_experiment(tmp_path
      "user_objects.cup.size_m", "rename size_m to size, mass_kg to mass"),
     ("user_objects: {cup: {shape: box, file: cup.sdf}}\n",
      "user_objects.cup.file", "unknown field"),
-    ("scenario_overrides: [controller.memorized_corrective_events]\n",
+    ("scenario_overrides: [controller.memorized_corrective.events]\n",
      "scenario_overrides[0]", "key=value"),
     ("scenario_overrides: ['object.name=thin_cylinder']\n",
      "scenario_overrides[0]", "set per trial"),
     ("scenario_overrides: ['controller.name=heuristic']\n",
      "scenario_overrides[0]", "set per trial"),
-    ("scenario_overrides: ['object_offset=[0.0, 0.01]']\n",
+    ("scenario_overrides: ['placement.offset=[0.0, 0.01]']\n",
      "scenario_overrides[0]", "set per trial"),
-    ("scenario_overrides: ['controller.memorized_corrective_events=[hold_smash]']\n",
+    ("scenario_overrides: ['controller.memorized_corrective.events=[hold_smash]']\n",
      "scenario_overrides", "hold_smash"),
     ("scenario_overrides: ['controller.wobble=1']\n", "scenario_overrides", "wobble"),
 ])
@@ -260,9 +260,9 @@ def test_scenario_overrides_reach_every_trial_and_survive_a_round_trip(tmp_path)
     says which settings made it."""
     path = write_yaml(tmp_path, "objects: [box]\ncontrollers: [memorized, heuristic]\n"
                       "attempts: 1\nscenario_overrides:\n"
-                      "  - controller.memorized_corrective_events=[hold_avoid]\n")
+                      "  - controller.memorized_corrective.events=[hold_avoid]\n")
     spec = LoadSweepSpec(path)
-    assert spec.scenario_overrides == ("controller.memorized_corrective_events=[hold_avoid]",)
+    assert spec.scenario_overrides == ("controller.memorized_corrective.events=[hold_avoid]",)
     trials = expand_trials(spec)
     assert len(trials) == 18
     for trial in trials:

@@ -30,8 +30,8 @@ def test_a_built_in_objects_trial_is_that_object_with_its_perturbed_mass_and_fri
     assert scenario.object.mass == pytest.approx(nominal.object.mass * p["mass_scale"])
     assert scenario.object.friction == pytest.approx(
         nominal.object.friction * p["friction_scale"])
-    assert scenario.object_offset == pytest.approx([trial["marker_dx_m"] + p["dx_m"],
-                                                    trial["marker_dy_m"] + p["dy_m"]])
+    assert scenario.placement.offset == pytest.approx([trial["marker_dx_m"] + p["dx_m"],
+                                                       trial["marker_dy_m"] + p["dy_m"]])
     assert scenario.controller.name == "memorized"
     assert scenario.random_seed == trial["seed"]
 
@@ -39,20 +39,20 @@ def test_a_built_in_objects_trial_is_that_object_with_its_perturbed_mass_and_fri
 def test_a_sweeps_scenario_overrides_set_the_trials_controller_settings():
     """`--set` assignments of the sweep (scenario_overrides) apply to every trial's
     scenario, under the trial's own object, placement, seed and controller."""
-    overrides = ("controller.memorized_corrective_events=[hold_avoid]",
+    overrides = ("controller.memorized_corrective.events=[hold_avoid]",
                  "controller.taxel_aware.finger_strike.enabled=false")
     trial = _first_trial(objects=("box",), controllers=("taxel_aware",),
                          grid=((0.01, 0.0),), scenario_overrides=overrides)
     scenario = scenario_from_trial_spec(trial)
-    assert scenario.controller.memorized_corrective_events == ["hold_avoid"]
+    assert scenario.controller.memorized_corrective.events == ["hold_avoid"]
     assert not scenario.controller.taxel_aware.finger_strike.enabled
     assert scenario.controller.name == "taxel_aware"
     assert scenario.random_seed == trial["seed"]
-    assert scenario.object_offset[0] == pytest.approx(0.01 + trial["perturbation"]["dx_m"])
+    assert scenario.placement.offset[0] == pytest.approx(0.01 + trial["perturbation"]["dx_m"])
     plain = scenario_from_trial_spec(_first_trial(objects=("box",),
                                                   controllers=("taxel_aware",),
                                                   grid=((0.01, 0.0),)))
-    assert plain.controller.memorized_corrective_events == []
+    assert plain.controller.memorized_corrective.events == []
     assert plain.controller.taxel_aware.finger_strike.enabled
 
 
@@ -84,7 +84,7 @@ def test_a_sweep_trial_with_memorized_corrective_triggers_gets_their_events(monk
         return TrialResult(hold_success=True)
 
     monkeypatch.setattr(trial_module, "run_trial", capture)
-    overrides = ("controller.memorized_corrective_events=[hold_avoid]",)
+    overrides = ("controller.memorized_corrective.events=[hold_avoid]",)
     box = _first_trial(objects=("box",), controllers=("memorized",), grid=((0.0, 0.0),),
                        scenario_overrides=overrides)
     assert trial_module.run_trial_from_spec(box)["hold_success"] is True

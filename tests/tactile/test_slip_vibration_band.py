@@ -98,7 +98,7 @@ def test_the_films_reading_of_a_squeeze_stays_below_the_slip_threshold(make):
     samples = np.zeros((len(film), 6))
     samples[:, 2] = film
     out = band_output(samples, make=make)
-    assert out.max() < 0.8 * GraspControllerConfig().slip_vibration_mps2
+    assert out.max() < 0.8 * GraspControllerConfig().lift_load.slip_vibration_mps2
 
 
 def test_a_corner_beyond_nyquist_is_refused():

@@ -8,10 +8,12 @@ from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.events.replay import channels_trajectory
-from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
+from tegrasp_drake.events.synthetic import (SyntheticGraspConfig, SyntheticSensorsConfig,
+                                             synthetic_grasp)
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig
 
-NOISY_GRASP = SyntheticGraspConfig(sa_noise_n=0.05, ra_noise=0.2, seed=4)
+NOISY_GRASP = SyntheticGraspConfig(sensors=SyntheticSensorsConfig(sa_noise_n=0.05, ra_noise=0.2,
+                                                                 seed=4))
 
 
 def simulate(source, config, t_end):

@@ -80,7 +80,7 @@ def test_the_remedy_spec_is_cells_of_the_matrix_with_the_envelope_and_floor_in_e
     assert ends <= set(remedy.cells)
     k = floor_sigmas(FALSE_ALARM_PER_TRIAL, int(TRIAL_HORIZON_S * 1000.0 * 2))
     assert remedy.sweep == dataclasses.replace(plain.sweep, scenario_overrides=(
-        "controller.ra_envelope_hz=2.0", f"controller.ra_noise_floor_sigmas={k:.2f}"))
+        "controller.matching.ra_envelope_hz=2.0", f"controller.matching.ra_noise_floor_sigmas={k:.2f}"))
 
 
 @pytest.mark.parametrize("text, words", [
