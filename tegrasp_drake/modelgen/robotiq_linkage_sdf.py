@@ -58,9 +58,10 @@ def _bar(name: str, p0, p1, mass: float, color: str) -> str:
             "</visual>")
 
 
-def _follower(finger: str, sign: float) -> str:
+def _follower(finger: str, sign: float, pad_mesh_uri: str | None) -> str:
     """The follower: its bar, the tactile fingertip (pad and rigid backing) and the frame
-    `<finger>_pad` at the pad face's centre."""
+    `<finger>_pad` at the pad face's centre; the pad's collision geometry the mesh at
+    pad_mesh_uri if given, else its box."""
     pad_face = _point(linkage.PAD_CENTER_OPEN, sign)
     c, d = _point(linkage.C, sign), _point(linkage.D, sign)
     # The bar along C-D and the fingertip box, by the parallel-axis theorem.
@@ -81,7 +82,7 @@ def _follower(finger: str, sign: float) -> str:
                    f"{number_text(top - bottom)}</size></box></geometry>")
     link = (f'<link name="{finger}_finger">'
             + inertial_text(mass, com, inertia)
-            + pad_text(sign, relative_to=frame)
+            + pad_text(sign, relative_to=frame, mesh_uri=pad_mesh_uri)
             + f'<collision name="backing">{pose_text(backing_center, frame)}{backing_box}'
             "<drake:proximity_properties><drake:rigid_hydroelastic/>"
             f"{friction_text(FINGER_FRICTION)}</drake:proximity_properties></collision>"
@@ -124,7 +125,7 @@ def _revolute(name: str, parent: str, child: str, point, sign: float, limits=Non
             f"</axis>{mimic_text}</joint>")
 
 
-def _finger(finger: str, sign: float) -> str:
+def _finger(finger: str, sign: float, pad_mesh_uri: str | None) -> str:
     a, b, c = (_point(p, sign) for p in (linkage.A, linkage.B, linkage.C))
     d, e = _point(linkage.D, sign), _point(linkage.E, sign)
     actuated = finger == "left"
@@ -135,7 +136,7 @@ def _finger(finger: str, sign: float) -> str:
         f'{_bar("coupler", b, c, COUPLER_MASS, "0.15 0.15 0.15 1")}</link>',
         f'<link name="{finger}_spring_link">'
         f'{_bar("spring_link", e, d, SPRING_LINK_MASS, "0.15 0.15 0.15 1")}</link>',
-        _follower(finger, sign),
+        _follower(finger, sign, pad_mesh_uri),
         _revolute(f"{finger}_driver_joint", "base", f"{finger}_driver", a, sign,
                   limits=(0.0, linkage.DRIVER_RANGE_RAD),
                   effort=DRIVER_EFFORT_LIMIT_NM if actuated else 0.0,
@@ -156,13 +157,21 @@ def _finger(finger: str, sign: float) -> str:
         "</drake:ball_constraint_p_BQ></drake:ball_constraint>"])
 
 
-def robotiq_linkage_sdf() -> str:
-    """The SDF text of the tactile 2F-85 with its finger linkage."""
+def pad_mesh_url(refinement: int) -> str:
+    """The package URL of the pad's mesh split `refinement` times (modelgen/pad_mesh.py)."""
+    return f"package://tegrasp/robotiq_2f85/pad_refined_{refinement}.vtk"
+
+
+def robotiq_linkage_sdf(pad_refinement: int = 0) -> str:
+    """The SDF text of the tactile 2F-85 with its finger linkage; with pad_refinement > 0
+    the pads' collision geometry is their box's mesh split that many times (pad_mesh_url),
+    else the box itself."""
+    uri = pad_mesh_url(pad_refinement) if pad_refinement else None
     parts = ['<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="robotiq_2f85">',
              base_link_text(),
              # Where the prismatic hand has it, so the arm's tool frame does not depend on
              # the hand; the pad centres pass through it at a 54 mm opening.
              f'<frame name="grasp_frame" attached_to="base"><pose>0 0 {PAD_CENTER_Z} 0 0 0'
              "</pose></frame>",
-             _finger("left", 1.0), _finger("right", -1.0), "</model></sdf>"]
+             _finger("left", 1.0, uri), _finger("right", -1.0, uri), "</model></sdf>"]
     return "\n".join(parts) + "\n"

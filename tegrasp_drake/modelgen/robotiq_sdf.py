@@ -32,12 +32,16 @@ FINGER_FRICTION = materials.ALUMINIUM  # the finger behind the pad and the palm
 FINGER_LINK_THICKNESS = 0.010  # m, rigid finger behind the pad
 
 
-def pad_text(sign: float, relative_to: str | None = None) -> str:
+def pad_text(sign: float, relative_to: str | None = None, mesh_uri: str | None = None) -> str:
     """The pad's collision and visual boxes, its contact face on the origin of the link
-    frame or of the frame `relative_to` (sign +1: the finger on +y)."""
+    frame or of the frame `relative_to` (sign +1: the finger on +y). With `mesh_uri`, the
+    collision box is that tetrahedral mesh of it (modelgen/pad_mesh.py)."""
     center = pose_text(translation((0, sign * PAD_THICKNESS / 2, 0)), relative_to)
+    box = f"<box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
+    shape = f"<mesh><uri>{mesh_uri}</uri></mesh>" if mesh_uri else box
+    # (Drake meshes a compliant box from its medial axis whatever the resolution hint.)
     return (f'<collision name="pad">{center}'
-            f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
+            f"<geometry>{shape}"
             "</geometry><drake:proximity_properties><drake:compliant_hydroelastic/>"
             f"<drake:hydroelastic_modulus>{PAD_MODULUS:g}</drake:hydroelastic_modulus>"
             "<drake:mesh_resolution_hint>0.004</drake:mesh_resolution_hint>"
@@ -45,9 +49,8 @@ def pad_text(sign: float, relative_to: str | None = None) -> str:
             "</drake:hunt_crossley_dissipation>"
             "<drake:relaxation_time>0.02</drake:relaxation_time>"
             f"{friction_text(PAD_FRICTION)}</drake:proximity_properties></collision>"
-            f'<visual name="pad">{center}'
-            f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
-            "</geometry><material><diffuse>0.1 0.1 0.1 1</diffuse></material></visual>")
+            f'<visual name="pad">{center}<geometry>{box}</geometry>'
+            "<material><diffuse>0.1 0.1 0.1 1</diffuse></material></visual>")
 
 
 def _finger_link(sign: float) -> str:

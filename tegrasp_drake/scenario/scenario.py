@@ -335,6 +335,11 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     problem = contact_geometry_problem(scenario.contact_geometry)
     if problem:
         raise ConfigError(f"{source}: field 'contact_geometry.{problem[0]}' {problem[1]}")
+    require(scenario.contact_geometry.pad_refinement == 0 or scenario.gripper.model == "linkage",
+            source, "contact_geometry.pad_refinement", "must be 0 with gripper.model prismatic "
+            "(the refined pad meshes are the linkage hand's: set gripper.model=linkage, or "
+            "leave pad_refinement at 0)",
+            scenario.contact_geometry.pad_refinement)
     _check_transducers(scenario, source)
     if isinstance(scenario.station, HardwareStationConfig):
         validate_hardware_config(scenario.station, source, "station")
