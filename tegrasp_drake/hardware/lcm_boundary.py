@@ -6,7 +6,8 @@ fingerprint and bytes that end before the fields; a type's own check follows it.
 boundary (a rejected message leaves the last good one; two in one diagram step lose the
 first). `wait_for_checked_message` waits for a good message before a Simulator runs;
 `checked_handler` is a callback for the `lcm` package's own subscriptions. No Python callback
-is subscribed on a DrakeLcm a diagram pumps: docs/hardware.md, "Threads and the station's bus".
+is subscribed on a DrakeLcm a diagram pumps (it would run without the GIL): docs/hardware.md,
+"The real-time loop on a busy host".
 """
 
 import time

@@ -2,7 +2,8 @@
 corrective events and the heuristic triggers they would replace, on the same spans (Lift for
 the slip, Hold after the hit refractory time; any match in a normal grasp's span is false),
 and the threshold rule: the centre of the admissible range, with a margin on both sides (the
-highest admissible pair sits at its edge and misses real hits).
+highest admissible pair sits at its edge and misses real hits). The heuristic triggers are
+replayed at every 1 kHz RA sample, so they fire at most one 5 ms tick early.
 """
 
 import dataclasses
