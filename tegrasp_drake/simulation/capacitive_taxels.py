@@ -88,8 +88,7 @@ class CapacitiveTaxelConfig:
 
 
 def noise_std_at_decimation(config: CapacitiveTaxelConfig) -> float:
-    """Counts of noise per reading at the config's decimation: noise_std_counts (given at
-    64) times sqrt(64 / decimation)."""
+    """Counts of noise per reading at the config's decimation (sqrt(64 / decimation) x)."""
     return config.noise_std_counts * (64.0 / config.decimation) ** 0.5
 
 
@@ -107,8 +106,7 @@ def taxel_compression_m(forces_n, config: CapacitiveTaxelConfig) -> np.ndarray:
 
 
 def capacitance_change_f(compression_m, relative_permittivity: float) -> np.ndarray:
-    """Delta C = eps_r eps_0 A (1/d1 - 1/d0) [F], d0 the elastomer's thickness and
-    d1 = d0 - compression."""
+    """Delta C = eps_r eps_0 A (1/d1 - 1/d0) [F], d1 = d0 - compression."""
     d0 = PAD_THICKNESS
     d1 = d0 - np.asarray(compression_m, dtype=float)
     return (relative_permittivity * VACUUM_PERMITTIVITY_F_PER_M * electrode_area_m2()
@@ -127,8 +125,7 @@ def counts_above_baseline(forces_n, config: CapacitiveTaxelConfig,
 
 
 def calibration_gain_n_per_count(config: CapacitiveTaxelConfig) -> float:
-    """The calibration line's gain [N/count]: the bench force over the (noise-free,
-    unrounded) counts it gives."""
+    """The calibration line's gain [N/count]: the bench force over its noise-free counts."""
     delta_c = capacitance_change_f(taxel_compression_m(config.calibration_force_n, config),
                                    config.relative_permittivity)
     return config.calibration_force_n / float(delta_c * 1e12 * AD7147_COUNTS_PER_PF)
@@ -157,15 +154,9 @@ class CapacitiveTaxels(LeafSystem):
         - left_taxel_forces
         - right_taxel_forces
 
-    Ports:
-        true_taxel_forces: 24 noise-free taxel normal forces [N], left then right, held at
-            the taxel rate (TactilePads' output).
-        noise: 24 unit Gaussian samples drawn at the taxel rate; declared only when
-            config.noise_std_counts > 0 (scaled to the decimation's noise).
-        left_taxel_forces, right_taxel_forces: 12 readings each, calibrated newtons or
-            counts above the baseline (config.output).
-
-    No state: the readings change exactly when a taxel sample is taken.
+    Ports: true_taxel_forces (24, N, left then right, held at the taxel rate); noise (24 unit
+    Gaussians at the taxel rate, when noise_std_counts > 0); the outputs: 12 readings each,
+    newtons or counts (config.output). No state: they change when a taxel sample is taken.
     """
 
     def __init__(self, *, config: CapacitiveTaxelConfig):
@@ -193,10 +184,9 @@ class CapacitiveTaxels(LeafSystem):
 
 
 def AddTaxelTransducer(builder, *, taxels, tactile_config, name: str = "capacitive_taxels"):
-    """The system whose `<finger>_taxel_forces` outputs are the station's taxel readings:
-    `taxels` (TactilePads) itself for the ideal force transducer, else a CapacitiveTaxels
-    fed by its true forces and, with noise, a RandomSource at the taxel rate (seeded with
-    the diagram's random context)."""
+    """The system whose `<finger>_taxel_forces` are the station's taxel readings: `taxels`
+    (TactilePads) for the force transducer, else a CapacitiveTaxels fed by its true forces
+    (and a RandomSource at the taxel rate)."""
     if tactile_config.transducer == "force":
         return taxels
     config = tactile_config.capacitive

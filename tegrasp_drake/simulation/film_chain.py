@@ -42,8 +42,7 @@ SAMPLE_AXIS = 2  # the film's axis, the pad frame's z, in each 3-vector sample
 
 
 def steps_per_sample(time_step: float, sample_rate_hz: float) -> int:
-    """Plant steps per RA sample (1 when a plant step is longer than the RA period); raises
-    ValueError when the RA period is not a whole number of plant steps."""
+    """Plant steps per RA sample (at least 1); ValueError unless a whole number."""
     steps = 1.0 / (sample_rate_hz * time_step)
     if steps > 1.0 and abs(steps - round(steps)) > 1e-6:
         raise ValueError(f"the RA period 1/{sample_rate_hz:g} s must be a whole "
@@ -221,8 +220,7 @@ def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool
 
 
 def finger_force_indices(plant, gripper) -> list[int]:
-    """Where each finger's `<finger>_finger_joint` sits in the gripper instance's
-    generalized contact forces (FINGER_NAMES order)."""
+    """Where each finger's joint sits in the gripper instance's generalized forces."""
     indices = []
     for finger in FINGER_NAMES:
         joint = plant.GetJointByName(f"{finger}_finger_joint", gripper)

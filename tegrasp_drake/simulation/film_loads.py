@@ -62,8 +62,7 @@ def film_loads_size(substeps: int) -> int:
 def _point_velocity_before_step(X_WB: RigidTransform, V_WB: SpatialVelocity,
                                 A_WB: SpatialAcceleration, p_WQ: np.ndarray,
                                 time_step: float) -> np.ndarray:
-    """Velocity [m/s] of body B's material point at p_WQ one plant step earlier, from its
-    velocity and the step's acceleration now."""
+    """Velocity [m/s] of body B's material point at p_WQ one plant step earlier."""
     r = p_WQ - X_WB.translation()
     w, alpha = V_WB.rotational(), A_WB.rotational()
     velocity = V_WB.translational() + np.cross(w, r)
@@ -96,7 +95,7 @@ class SignalLayout:
 
 
 class FilmLoads(LeafSystem):
-    """Both pads' film loads over the plant step that ends now (see the module docstring).
+    """Both pads' film loads over the plant step that ends now.
 
     .. pydrake_system::
 
@@ -125,8 +124,7 @@ class FilmLoads(LeafSystem):
 
     def __init__(self, *, plant, pads: dict, force_indices, config: "VibrationSensorConfig",
                  matrices: FilmStepMatrices, with_texture: bool = False, pad_statics=None):
-        """matrices: the film's step (film_step_matrices) whose internal instants d is
-        given at; pad_statics: a LinkagePadStatics, or None."""
+        """matrices: the film's step (film_step_matrices); pad_statics: or None."""
         super().__init__()
         self._dt = plant.time_step()
         self._pads = [pads[finger] for finger in FINGER_NAMES]
@@ -233,8 +231,7 @@ class FilmLoads(LeafSystem):
 
     def _texture_loads(self, texture: np.ndarray, step_start: float):
         """(n, 2) the texture's inertial load [N] on each fingertip over this step's internal
-        steps from the texture state (6), or None when neither pad's texture is above
-        TEXTURE_FLOOR_MPS2."""
+        steps, or None when neither pad's texture is above TEXTURE_FLOOR_MPS2."""
         if (abs(texture.item(1)) <= TEXTURE_FLOOR_MPS2
                 and abs(texture.item(4)) <= TEXTURE_FLOOR_MPS2):
             return None
@@ -247,8 +244,7 @@ class FilmLoads(LeafSystem):
             phase, amplitude, speed, elapsed, self._texture_period_m)
 
     def _start_impacts(self, context, onsets, step_start: float, pulses: list):
-        """Sets, in `pulses`, the impact pulse of each pad whose contact began on this
-        plant step."""
+        """Sets, in `pulses`, the impact pulse of each pad whose contact began this step."""
         contacts = self._contacts.Eval(context)
         poses = self._poses.Eval(context)
         velocities = self._velocities.Eval(context)

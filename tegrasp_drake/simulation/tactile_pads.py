@@ -69,8 +69,7 @@ def _fan_triangles(face_data: tuple) -> np.ndarray:
 
 
 def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
-    """(p_PV, pressure_V, triangles, applied normal force [N]) of one hydroelastic contact,
-    vertices in the pad frame P."""
+    """(p_PV, pressure_V, triangles, applied normal force [N]) of one contact, in frame P."""
     surface = info.contact_surface()
     if surface.is_triangle():
         mesh, field = surface.tri_mesh_W(), surface.tri_e_MN()
@@ -148,11 +147,9 @@ class TactilePads(LeafSystem):
         - right_taxel_forces
         - true_taxel_forces
 
-    Ports (outputs updated at `sample_rate_hz`, held in between):
-        contact_results, body_poses: the plant's.
-        left_taxel_forces, right_taxel_forces: (12) measured normal forces [N], taxel order
-            of taxel_layout.py.
-        true_taxel_forces: (24) noise-free forces [N], left then right.
+    Ports: contact_results, body_poses: the plant's; left_taxel_forces, right_taxel_forces:
+    (12) measured forces [N] (rig/taxel_layout.py's order); true_taxel_forces: (24)
+    noise-free, left then right; each output updated at `sample_rate_hz`.
     """
 
     def __init__(self, *, pads: dict, config: TactileSensorConfig, seed: int):

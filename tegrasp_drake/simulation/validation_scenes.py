@@ -109,9 +109,8 @@ def MakePinchScene(*, obj: ObjectConfig, X_WO: RigidTransform, program: GripProg
                    grasp_xyz, plant_config: MultibodyPlantConfig, with_table: bool,
                    gripper: GripperDriverConfig | None = None,
                    contact_geometry: ContactGeometryConfig | None = None) -> PinchScene:
-    """The gripper (grasp frame at `grasp_xyz`, side grasp), the object at X_WO, and the
-    table if `with_table`, meshed as `contact_geometry` says; the fingers start at
-    `program.start_q`."""
+    """The gripper (grasp frame at `grasp_xyz`, side grasp), the object at X_WO and the
+    table if `with_table`; the fingers start at `program.start_q`."""
     gripper = gripper or GripperDriverConfig()
     builder = DiagramBuilder()
     plant, _ = AddMultibodyPlant(plant_config, builder)
@@ -146,8 +145,7 @@ def tilt_from_vertical_deg(X_WO: RigidTransform) -> float:
 
 
 def tilt_about_grasp_axis_deg(X_WO: RigidTransform) -> float:
-    """Signed angle [deg] of the object's z axis from vertical about world y (the grasp axis
-    of the side grasp), in the pads' plane."""
+    """Signed angle [deg] of the object's z axis from vertical about world y (the grasp axis)."""
     z = X_WO.rotation().matrix()[:, 2].copy()
     return math.degrees(math.atan2(float(z[0]), float(z[2])))
 
@@ -195,10 +193,9 @@ def slip_onset_grip_force(obj: ObjectConfig, *, plant_config: MultibodyPlantConf
                           hold_s: float = 0.3, falling_speed: float = 1e-3,
                           contact_geometry: ContactGeometryConfig | None = None
                           ) -> SlipResult:
-    """Holds `obj` upright between the pads (no table), its centre of mass at the pads'
-    centre, with `initial_force` [N] per pad for `hold_s`, then lowers the grip force at
-    `ramp_rate` [N/s] to zero. The onset of slip is the first step at which the object falls
-    faster than `falling_speed` [m/s]."""
+    """Holds `obj` upright between the pads (no table) with `initial_force` [N] per pad for
+    `hold_s`, then lowers it at `ramp_rate` [N/s]; slip begins where the object falls faster
+    than `falling_speed` [m/s]."""
     radius = obj.width_along_stroke() / 2
     grasp = np.array([SCENE_XY[0], SCENE_XY[1], 0.3])
     ramp_s = initial_force / ramp_rate
