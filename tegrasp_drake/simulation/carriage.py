@@ -3,13 +3,10 @@ end-point impedance at the grasp frame G, for sweeps (`station.arm: carriage`).
 
 Three prismatic joints along the principal axes of the arm's translational mobility at G
 move G's origin, then yaw, pitch and roll about world z, y, x (Drake's RollPitchYaw) turn
-it; the gripper is welded to the last body, side-grasp oriented with all joints at zero.
-Each joint is on the plant's implicit PD, which SAP keeps stable at 1 ms for any gains with
-no Python in the loop (a spatial PD as an external force would be explicit). The impedance
-and its values at the box's grasp pose: docs/model.md, "The carriage".
-
-Frames: world W; G the grasp frame (origin between the pads' centres, z the approach).
-Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G's origin, expressed in W.
+it; the gripper is welded to the last body. Each joint is on the plant's implicit PD, which
+SAP keeps stable at 1 ms for any gains (a spatial PD as an external force would be explicit).
+The impedance: docs/model.md, "The carriage". Frames: world W; G the grasp frame (between
+the pads' centres, z the approach); wrenches [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G, in W.
 """
 
 import dataclasses

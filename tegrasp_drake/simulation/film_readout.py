@@ -1,16 +1,12 @@
 """The film's electronics after the film: the charge amplifier's output swing and the NI
-myRIO-1900's 12-bit analog input (paper, Sec. IV-A), as pure functions on Python floats.
-Per RA sample, in the order the signal meets them:
+myRIO-1900's 12-bit analog input (paper, Sec. IV-A), as pure functions. Per RA sample:
 
-  V = S a + n          S the film's sensitivity [V/(m/s^2)], a its reading (film_dynamics),
-                       n Gaussian noise: the amplifier's and the converter's, root-sum-square
-  V = clip(V, -swing, +swing)                       the amplifier's output swing
-  code = clip(round((V + offset) / lsb), low, high)  the myRIO's converter
-  a_read = (code lsb - offset) / S                  what the host reads, in m/s^2
+  V = clip(S a + n, -swing, +swing)   S [V/(m/s^2)], a the film's reading, n Gaussian noise
+  code = clip(round((V + offset) / lsb), low, high),   a_read = (code lsb - offset) / S
 
-The amplifier's inversion is absorbed by the host's calibration, so V has the reading's sign.
-With noise of half a code or more the rounding error is near uniform and independent of the
-signal (Widrow and Kollar, "Quantization Noise", 2008), so the reading's noise is
+V has the reading's sign (the host's calibration absorbs the amplifier's inversion). With
+noise of half a code or more the rounding error is near uniform and independent of the
+signal (Widrow and Kollar, "Quantization Noise", 2008): the reading's noise is
 sqrt(sigma_n^2 + lsb^2 / 12). docs/model.md, "Vibration (RA) model" (Readout).
 """
 

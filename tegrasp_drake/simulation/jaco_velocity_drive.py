@@ -1,17 +1,11 @@
 """The simulated JACO2 driven as the real one is: by joint velocities, sampled, late.
 
-Between the station's `arm.desired_state` and the arm's joints, the hardware's path
-(hardware/jaco/jaco_lcm_interface.py) with the bus and the firmware modelled:
-
-    arm.desired_state -> JacoVelocityTracker (rig/jaco_velocity_tracker.py: v_cmd)
-      -> ZeroOrderHold at the command rate -> DiscreteTimeDelay of the command latency
-      -> the velocity servo's set-point q_ref = q0 + integral of v_cmd, v_ref = v_cmd
-      -> the plant's implicit PD on each joint (ArmDriverConfig's gains)
-
-The set-point integrates the command because the JACO2's DSP turns velocity commands into
-position set-points: a still joint holds its place under a load and the tracker takes the
-sag back. Why, and the settings' sources (100 Hz commands, Kinova's kinova-ros README; the
-latency, one 10 ms DSP cycle plus USB, unpublished): docs/model.md, "The arm".
+`arm.desired_state` -> JacoVelocityTracker (rig/jaco_velocity_tracker.py) -> ZeroOrderHold
+at the command rate -> DiscreteTimeDelay of the latency -> the velocity servo's set-point
+q_ref = q0 + integral of v_cmd, v_ref = v_cmd -> the plant's implicit PD on each joint. The
+set-point integrates the command as the JACO2's DSP turns velocity commands into position
+set-points. Why, and the settings' sources (100 Hz commands, Kinova's kinova-ros README;
+the latency, one 10 ms DSP cycle plus USB, unpublished): docs/model.md, "The arm".
 """
 
 import dataclasses

@@ -1,17 +1,12 @@
-"""The linkage fingers' pad normal forces from the joints' generalized contact forces: the
-film's pad force (`vibration.pad_force_source: joint_forces`) from a compiled port, without
-PadNormalForces' walk over the contact results.
-
-Each finger is a planar chain base -A- driver -B- coupler -C- follower (robotiq/linkage.py;
-the mirrored finger read in its own (+-y, z) coordinates). A contact wrench on the follower,
-in-plane force F and moment M_C about C, gives the joints tau = J^T F of the contact alone:
+"""The linkage fingers' pad normal forces from the joints' generalized contact forces (a
+compiled port; `vibration.pad_force_source: joint_forces`). Each finger is a planar chain
+base -A- driver -B- coupler -C- follower (robotiq/linkage.py); a contact wrench on the
+follower, in-plane force F and moment M_C about C, gives
 
     tau_C = M_C,   tau_B = M_C + (C - B) x F,   tau_A = M_C + (C - A) x F
 
-A, B, C are not collinear, so the last two give F, and the pad force is F . n (n the pad's
-outward normal turned by the follower's absolute angle). It equals PadNormalForces' when only
-the followers can touch, as in the model (`LinkagePadStatics` refuses another plant). Python
-floats: it runs every plant step.
+so the last two give F, and the pad force is F . n, n the pad's outward normal. It equals
+PadNormalForces' when only the followers can touch (`LinkagePadStatics` checks).
 """
 
 import dataclasses
