@@ -52,8 +52,7 @@ __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
            "grasp_plan", "object_pose", "resolve_object", "sample_rates_hz", "scenario_from_yaml",
            "scenario_to_yaml", "validate", "with_controller"]
 
-# Which station a scenario runs on, selected by the YAML tag of its `station` field
-# (hardware/config.py): the simulation (the default, untagged) or the real devices.
+# The station, selected by the YAML tag of `station` (hardware/config.py); untagged: simulated.
 StationConfig = typing.Union[SimulatedStationConfig, HardwareStationConfig]
 
 
@@ -169,8 +168,7 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
 
 def _is_builtin_geometry(config: ObjectConfig) -> bool:
     """Whether `config` has the shape, size and model file of the built-in object of its
-    name (a resolved built-in, perhaps with its mass or friction set): resolving is
-    idempotent."""
+    name (a resolved built-in, its mass or friction perhaps set): resolving is idempotent."""
     builtin = BUILTIN_OBJECTS[config.name]
     return (config.shape == builtin.shape and list(config.size) == list(builtin.size)
             and config.file == builtin.file)
