@@ -22,8 +22,7 @@ _NORMAL_AXIS = 2  # the pad frame's z, its inward normal
 
 
 def highpass_coefficient(cutoff_hz: float, period_s: float) -> float:
-    """a = RC / (RC + T) of the first-order high-pass with corner cutoff_hz, sampled every
-    period_s."""
+    """a = RC / (RC + T) of the first-order high-pass at cutoff_hz sampled every period_s."""
     rc = 1.0 / (2.0 * math.pi * cutoff_hz)
     return rc / (rc + period_s)
 
@@ -42,12 +41,9 @@ class PadAccelerometers(LeafSystem):
         - left_pad_vibration
         - right_pad_vibration
 
-    Ports:
-        left_pad_frame_acceleration, right_pad_frame_acceleration: each pad frame's proper
-            acceleration in the pad frame (3, m/s^2; Drake Accelerometer).
-        noise: 2 unit Gaussian samples at the RA rate; only with noise_std_mps2 > 0.
-        left_pad_vibration, right_pad_vibration: [0, 0, y] (m/s^2, pad frame), the
-            high-passed normal acceleration plus noise, every RA period.
+    Ports: *_pad_frame_acceleration (3, m/s^2, pad frame; a Drake Accelerometer's); noise (2
+    unit Gaussians at the RA rate, when noise_std_mps2 > 0); *_pad_vibration: [0, 0, y]
+    (m/s^2, pad frame), the high-passed normal acceleration plus noise, every RA period.
     """
 
     def __init__(self, *, sample_rate_hz: float, highpass_cutoff_hz: float,

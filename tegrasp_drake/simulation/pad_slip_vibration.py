@@ -73,13 +73,9 @@ class PadSlipVibration(LeafSystem):
         - right_slip_vibration
         - texture_state
 
-    Ports:
-        body_poses, body_spatial_velocities: the plant's; read only while a pad touches.
-        true_taxel_forces: (24) noise-free taxel forces [N], left then right (TactilePads).
-        left_slip_vibration, right_slip_vibration: (3) the texture's acceleration [m/s^2]
-            on the pad frame's z (the normal).
-        texture_state: (6) per pad the texture phase [rad], amplitude [m/s^2] and slip speed
-            [m/s] of the last sample, from which the films synthesise the texture.
+    Ports: body_poses, body_spatial_velocities (the plant's, read while a pad touches);
+    true_taxel_forces (24, N, TactilePads'); *_slip_vibration (3, m/s^2 on the pad frame's z);
+    texture_state (6: per pad the phase [rad], amplitude [m/s^2] and slip speed [m/s]).
     """
 
     def __init__(self, *, pads: dict, object_body_index, config: "VibrationSensorConfig"):

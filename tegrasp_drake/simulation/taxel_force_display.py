@@ -34,8 +34,7 @@ class TaxelForceDisplayConfig:
     meters_per_newton: float = 0.0025
     full_scale_n: float = 8.0  # the darkest colour
     visible_threshold_n: float = 0.05  # 10 x the taxels' noise (TactileSensorConfig)
-    back_offset_m: float = 0.015  # pad contact face to the finger's back (4 mm pad, 10 mm
-    # finger, 1 mm clearance)
+    back_offset_m: float = 0.015  # pad face to finger back: 4 mm pad, 10 mm finger, 1 mm gap
     publish_period_s: float = 1.0 / 32.0  # as Drake's ContactVisualizer
 
 
@@ -65,9 +64,7 @@ class TaxelForceDisplay(LeafSystem):
         - left_taxel_forces
         - right_taxel_forces
 
-    Ports:
-        body_poses: the plant's body poses X_WB (to place each pad's frame P).
-        left_taxel_forces, right_taxel_forces: (12) taxel normal forces [N].
+    Ports: body_poses (the plant's X_WB); *_taxel_forces (12, N).
     """
 
     def __init__(self, *, meshcat, pads: dict, config: TaxelForceDisplayConfig,
