@@ -2,17 +2,12 @@
 
 `decode_lcm` refuses, by reason, bytes too short for a fingerprint, another type's
 fingerprint and bytes that end before the fields; a type's own check follows it.
-`CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding, and counting, through a
-boundary (a rejected message leaves the last good one, whose unchanged utime the watchdog
-sees as silence). Its subscription holds one message per HandleSubscriptions, so two
-messages in one diagram step lose the first, good or bad, before any count.
-`wait_for_checked_message` waits for a good message before a Simulator runs.
-`checked_handler` is a callback for the `lcm` package's own subscriptions.
-
-No Python callback is subscribed on a DrakeLcm that a diagram pumps: pydrake's
-`DrakeLcm.Subscribe` builds the handler's bytes object before taking Python's GIL, and
-`Simulator.AdvanceTo` runs with the GIL released, so such a callback corrupts the
-interpreter's heap while other Python threads run (the emulators' and drivers' threads).
+`CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding and counting through a
+boundary (a rejected message leaves the last good one; two in one diagram step lose the
+first). `wait_for_checked_message` waits for a good message before a Simulator runs;
+`checked_handler` is a callback for the `lcm` package's own subscriptions. No Python callback
+is subscribed on a DrakeLcm a diagram pumps (it would run without the GIL): docs/hardware.md,
+"The real-time loop on a busy host".
 """
 
 import time

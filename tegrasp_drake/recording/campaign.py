@@ -1,11 +1,8 @@
 """One event-recording campaign: open-loop grasps of one object, each cut into memorized
-events around its physical events, the template runs' windows combined into one event per
-transition by their mean (docs/controller.md, "Events from an ensemble of grasps": why).
-
-The paper's, the ensemble and the corrective events are campaigns that differ only in
-their runs (`CampaignRun`), when their physical events happen (`event_times(log,
-scenario)`) and where the window sits (`pre_transition_s`). Run k is seeded base + k, each
-campaign's base at or above 1_000_000, apart from every sweep's seeds.
+events around its physical events, the template runs' windows combined per transition by
+their mean (docs/controller.md, "Events from an ensemble of grasps"). The paper's, ensemble
+and corrective campaigns differ only in their runs, event times and windows. Run k is seeded
+base + k, each campaign's base at or above 1_000_000, apart from every sweep's seeds.
 """
 
 import dataclasses
@@ -66,11 +63,10 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
                pre_transition_s: float | Mapping[str, float] | None = None,
                note: str | None = None, advice: Callable[[str], str] | None = None,
                quiet_ra_s: float | None = None) -> dict[str, MemorizedEvent]:
-    """The run's events, each transition's window cut around its physical event at `times`,
-    `pre_transition_s` [s] into it (one, per transition, or None: the paper's), tagged with
-    the `nominal_object` (unperturbed) and `note`. quiet_ra_s: the log's first quiet_ra_s [s]
-    measure the RA noise floor and quiet RA windows are stored flat (extraction.py); None: as
-    cut. RecordEventsError names missing events (with `advice(transition)`, if given)."""
+    """The run's events, each window cut around its physical event at `times`,
+    `pre_transition_s` [s] into it (per transition, or None: the paper's), tagged with
+    `nominal_object` and `note`; quiet_ra_s: the log's first seconds that measure the RA
+    noise floor (None: as cut). RecordEventsError names missing events."""
     missing = [name for name, time in times.items() if time is None]
     if missing:
         words = (f"{run.label} of '{object_name}' (seed {run.scenario.random_seed}) shows "

@@ -1,12 +1,9 @@
-"""How well the corrective triggers detect their situations, from recorded logs: the
-memorized corrective events (Eq. 3 at any thresholds, detection_quality.py) and the
-heuristic triggers they would replace, on the same spans, and the rule that chooses a
-corrective event's thresholds (choose_centred_thresholds: the centre of the admissible
-range, a margin on both sides; the highest admissible pair sits at the edge and misses
-real hits). A span is where the state machine would look for the event: Lift for the
-slip, Hold after avoid.hit_refractory_s for the hit; in a normal grasp's span any match is false.
-The heuristic triggers are replayed at every 1 kHz RA sample (the controller reads every
-5 ms tick, so they fire at most one tick early).
+"""How well the corrective triggers detect their situations, from recorded logs: the memorized
+corrective events and the heuristic triggers they would replace, on the same spans (Lift for
+the slip, Hold after the hit refractory time; any match in a normal grasp's span is false),
+and the threshold rule: the centre of the admissible range, with a margin on both sides (the
+highest admissible pair sits at its edge and misses real hits). The heuristic triggers are
+replayed at every 1 kHz RA sample, so they fire at most one 5 ms tick early.
 """
 
 import dataclasses
@@ -47,17 +44,15 @@ def event_span(trial, events, span: SituationSpan) -> ScoredSpan:
 
 
 def on_controller_ticks(span: ScoredSpan, period_s: float) -> ScoredSpan:
-    """`span` at the state machine's ticks (every period_s [s]), which read `match` once
-    each."""
+    """`span` at the state machine's ticks (every period_s [s]), each reading `match` once."""
     ticks = np.abs(span.times / period_s - np.round(span.times / period_s)) < 1e-6
     return dataclasses.replace(span, times=span.times[ticks], scores=span.scores[ticks])
 
 
 def choose_centred_thresholds(spans, sa_grid, ra_grid):
-    """The threshold pair for a corrective event: among the grid's pairs with no false trigger
-    and the most detections (and, if any, a median latency within LATENCY_TARGET_S), the one
-    nearest the centre of that set (per threshold, the midpoint of its range). ValueError when
-    every pair has a false trigger."""
+    """The threshold pair for a corrective event: of the grid's pairs with no false trigger
+    and the most detections (median latency within LATENCY_TARGET_S, if any), the one
+    nearest the centre of that set. ValueError when every pair has a false trigger."""
     candidates = most_detecting_clean_points(spans, sa_grid, ra_grid)
     on_target = [p for p in candidates
                  if p.median_latency_s is not None and p.median_latency_s <= LATENCY_TARGET_S]

@@ -1,15 +1,8 @@
-"""Memorized corrective events: the tactile events of the situations that call for a
-corrective action, matched by the same Eq. 3 machinery as the grasp transitions, so that
-Lift-Load and Avoid can fire on a memorized event (controller.memorized_corrective.events).
-
-  lift_load   slip during Lift (Lift -> Load): the pads slide up along the object
-  hold_avoid  a hit during Hold (Hold -> Avoid): an external force pulse on the object
-
-Recorded from open-loop grasps (the script does not react, so the situation plays out) of
-a perturbed scene, CORRECTIVE_RUNS; "template" runs make the events (their mean),
-"held_out" runs choose the thresholds (analysis/choose_corrective_thresholds.py). The
-runs, their physical events and the window: docs/controller.md, "Memorized corrective
-triggers".
+"""Memorized corrective events: the tactile events of a slip during Lift (`lift_load`) and of
+a hit during Hold (`hold_avoid`), matched by the same Eq. 3 machinery as the grasp
+transitions (controller.memorized_corrective.events). Recorded from open-loop grasps of
+perturbed scenes (CORRECTIVE_RUNS): "template" runs make the events, "held_out" runs choose
+the thresholds. docs/controller.md, "Memorized corrective triggers".
 """
 
 import dataclasses
@@ -56,8 +49,7 @@ def _hit(force_y: float, into_hold_s: float) -> tuple[str, ...]:
     return (f"disturbance.hit_time_s={time_s}", f"disturbance.hit_force_n=[0.0, {force_y}, 0.0]")
 
 
-# Hits 0.5 to 1.3 s into the script's Hold (the lift's ring-down has faded); frictions low
-# enough that the grip's friction falls below the box's weight (docs/controller.md).
+# Hits after the lift's ring-down has faded; frictions whose grip cannot hold the box.
 CORRECTIVE_RUNS = (
     CorrectiveRun("hold_avoid", "hit +y 20 N 0.9 s into Hold", 0, _hit(20.0, 0.9), "template"),
     CorrectiveRun("hold_avoid", "hit -y 20 N 0.5 s into Hold", 1, _hit(-20.0, 0.5), "template"),

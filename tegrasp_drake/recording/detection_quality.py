@@ -1,14 +1,9 @@
 """How well a memorized event detects its transition, from recorded logs: detection, false
-triggers and latency at any pair of Eq. 3 thresholds, without simulating again.
-
-The scores do not depend on the thresholds, so each logged trial is replayed once per
-transition with its event held expected (events/replay.py) over its armed span (from the
-mode's start to the physical event + DEADLINE_S). A span is `false` when all four scores
-pass earlier than FALSE_TRIGGER_MARGIN_S before the physical event (the trial judge's
-rule), `detected` at the first passing tick within DEADLINE_S after it, else `missed`.
-choose_thresholds, per transition: of the pairs with no false trigger and the most
-detections, those with a median latency within LATENCY_TARGET_S (else the lowest), and of
-these the highest (SA + RA: the widest margin above the spans' scores before their events).
+triggers and latency at any pair of Eq. 3 thresholds, without simulating again. The scores do
+not depend on the thresholds, so each trial is replayed once per transition with its event
+held expected (events/replay.py) over its armed span. choose_thresholds takes, of the pairs
+with no false trigger and the most detections (and a median latency within target), the
+highest: the widest margin above the spans' scores before their events.
 """
 
 import dataclasses
@@ -16,17 +11,15 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
-FALSE_TRIGGER_MARGIN_S = 0.01
-DEADLINE_S = 0.5
-LATENCY_TARGET_S = 0.06
+FALSE_TRIGGER_MARGIN_S = 0.01  # a match this much before the event is false (the judge's rule)
+DEADLINE_S = 0.5  # a match later than this after the event is missed
+LATENCY_TARGET_S = 0.06  # the median latency choose_thresholds prefers
 
 
 @dataclasses.dataclass(frozen=True)
 class ScoredSpan:
-    """One transition of one logged trial: the held event's scores over its armed span.
-
-    times (T,) [s]; scores (T, 4) [sa_left, sa_right, ra_left, ra_right]; armed_from_s,
-    physical_s [s]; label names the trial."""
+    """One transition of one logged trial: the held event's scores over its armed span;
+    times (T,) [s], scores (T, 4) [sa_left, sa_right, ra_left, ra_right]."""
     label: str
     transition: str
     times: np.ndarray
@@ -109,8 +102,7 @@ def most_detecting_clean_points(spans: Sequence[ScoredSpan], sa_grid: Iterable[f
 
 def choose_thresholds(spans: Sequence[ScoredSpan], sa_grid: Iterable[float],
                       ra_grid: Iterable[float]) -> RatePoint:
-    """The pair of the grids chosen by the module doc's rule; ValueError if all have a false
-    trigger."""
+    """The pair of the grids chosen by the module doc's rule; ValueError if all are false."""
     candidates = most_detecting_clean_points(spans, sa_grid, ra_grid)
     if candidates[0].detected:
         on_target = [p for p in candidates if p.median_latency_s <= LATENCY_TARGET_S]

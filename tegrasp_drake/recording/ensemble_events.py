@@ -1,9 +1,7 @@
 """Memorized events from an ensemble of randomised ideal grasps, for the taxel_aware
-controller: a campaign (campaign.py) of the object's ideal grasp, each run with its own
-draw of ENSEMBLE_RANGES and its own sensor-noise seed, cut around the paper's physical
-events (paper_events.py) and combined by their mean. The first TEMPLATE_RUNS runs make the
-events, later ones choose the thresholds. Ranges, windows and why: docs/controller.md,
-"Events from an ensemble of grasps".
+controller: a campaign of the object's ideal grasp, each run its own draw of ENSEMBLE_RANGES
+and noise seed, combined by their mean; the first TEMPLATE_RUNS make the events, the rest
+choose the thresholds. docs/controller.md, "Events from an ensemble of grasps".
 """
 
 import dataclasses

@@ -1,10 +1,7 @@
-"""Memorizing the tactile events of the ideal grasp (Sec. III-A): the paper's campaign.
-
-The ideal open-loop grasp of one object is simulated once and its SA and RA channels are
-cut into 0.5 s windows around the physical events of EVENT_OF_TRANSITION (campaign.py,
-events/FORMAT.md). Load-Lift is anchored where the paper cuts it, at the end of the
-script's Load phase; the lift must start with GRIP_FRACTION of the settled grip on the
-weaker pad, else the recording stops and says to lengthen grasp.load_s.
+"""Memorizing the tactile events of the ideal grasp (Sec. III-A): the paper's campaign. The
+ideal open-loop grasp of one object is cut into 0.5 s windows around the physical events of
+EVENT_OF_TRANSITION (campaign.py, events/FORMAT.md); the lift must start with GRIP_FRACTION
+of the settled grip on the weaker pad, else the recording says to lengthen grasp.load_s.
 """
 
 import logging
@@ -26,13 +23,11 @@ __all__ = ["EVENT_OF_TRANSITION", "RecordEventsError", "grasp_event_times", "rec
 
 EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "lift_start",
                        "place_unload": "table_touch"}
-# [s] of the window before the physical event (else the paper's centred 0.25 s). Load-Lift's
-# ends at the lift's start: the controller lifts on it, so cannot feel the lift first.
+# [s] of the window before the physical event (else the paper's centred 0.25 s): Load-Lift's
+# ends at the lift's start, on which the controller lifts.
 PRE_TRANSITION_S = {"load_lift": 0.5}
-# [s] of the ideal grasp's approach on which each RA channel's noise floor is measured; an
-# RA window that stays within it (Load-Lift's held grip: only the converter's noise) is
-# stored flat, "expects no change" (extraction.py, ra_noise_floor.py): the live floor's
-# default quiet period (controller.matching.ra_noise_quiet_s), within the approach.
+# [s] of the approach that measures each RA channel's noise floor (the live floor's quiet
+# period); an RA window within it is stored flat, "expects no change" (ra_noise_floor.py).
 QUIET_APPROACH_S = EventMatchingConfig().ra_noise_quiet_s
 
 

@@ -1,8 +1,14 @@
-"""What every user imports first: the typed Scenario loaded from YAML, the station it
-names, the grasp diagram around that station, its simulator, and the trial log its
-loggers write.
+"""What every user imports first: the typed Scenario loaded from YAML, the station it names,
+the grasp diagram around it, its simulator, and the trial log its loggers write.
 
     from tegrasp_drake.scenario import LoadScenario, MakeGraspDiagram, MakeSimulator
+
+scenario.py: Scenario, LoadScenario and validate, the checks that relate fields.
+grasp_diagram.py: MakeStation, MakeGraspDiagram, MakeSimulator.
+scenario_events.py: the memorized events a scenario's controller reads.
+object_placement.py: the object's pose from its marker, offset and yaw.
+moved_keys.py: settings' old paths, refused in input and migrated in stored records.
+trial_log_writer.py, trial_log_file.py: the trial's loggers and its TrialLog .npz file.
 """
 
 from tegrasp_drake.scenario.grasp_diagram import (AddScenarioController, GraspDiagram,

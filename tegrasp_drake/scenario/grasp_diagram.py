@@ -1,18 +1,12 @@
 """The grasp diagram: a station and the grasp controller, built one way for every run.
 
-    station (MakeStation: MakeSimulatedStation or MakeHardwareStation, by the scenario's
-             `station` tag, or one the caller built)
-      -> AddGraspController (control/grasp_controller.py) with the scenario's sections
-         (AddScenarioController): Eq. 1-2 channels, the event
-         detector, the state machine (or the open-loop script) and Cartesian control;
-         arm.desired_state and gripper.command from the measured arm, gripper and tactile
-         ports; the hardware station's `device_fault` goes to the state machine
-      -> the trial's loggers (scenario/trial_log_writer.py), unless `log=False`.
+    station (MakeStation: simulated or hardware, by the scenario's `station` tag)
+      -> AddGraspController (control/grasp_controller.py) with the scenario's sections:
+         arm.desired_state and gripper.command from the measured ports
+      -> the trial's loggers (scenario/trial_log_writer.py), unless `log=False`
 
-The controller cannot tell the simulated station from the hardware one: both export the
-same ports. trial.py runs the diagram on the simulated station in simulated time,
-ideal_grasp.py runs it with the open-loop script, hardware_run.py runs it on the devices in
-real time. `MakeSimulator` is the one simulator set-up for all of them.
+Both stations export the same ports, so the controller cannot tell them apart. `MakeSimulator`
+is the one simulator set-up for simulated, open-loop and hardware runs.
 """
 
 import dataclasses
@@ -41,24 +35,17 @@ from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.ranges import check_ranges
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
 
-# Beyond the ideal grasp's duration, for corrections (and the controller's own
-# extra_time_s, controller_config.py) [s].
+# Beyond the ideal grasp's duration, for corrections [s] (and the controller's extra_time_s).
 EXTRA_TIME_S = 10.0
 
 
 @public_api
 def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
                 lcm: DrakeLcm | None = None):
-    """The station of `scenario`, simulated or real, as its `station` tag says.
-
-    `station: !SimulatedStationConfig {}` (the default): MakeSimulatedStation(scenario,
-    meshcat=meshcat), the simulated arm, gripper, object and sensors.
-    `station: !HardwareStationConfig {...}`: MakeHardwareStation(scenario.station, lcm=lcm),
-    the devices (the Jaco on LCM, the 2F-85 on Modbus RTU, the myRIO tactile stream); it
-    owns device threads, so use it in a `with` block, call its wait_until_ready() before
-    the Simulator's Initialize() and simulate at real-time rate (run_on_hardware does all
-    of that). Both export the same ports (simulation/station.py, hardware/station.py), so
-    AddGraspController wires either one the same way."""
+    """The station of `scenario` as its `station` tag says: MakeSimulatedStation (the
+    default) or MakeHardwareStation, which owns device threads: use it in a `with` block,
+    call wait_until_ready() before the Simulator's Initialize() and run at real-time rate
+    (run_on_hardware does). Both export the same ports."""
     check_ranges(scenario, "MakeStation: scenario")  # a config changed after loading
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation
@@ -95,11 +82,9 @@ def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
 def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, station: System,
                           events: dict | None = None,
                           corrective_events: dict | None = None) -> GraspController:
-    """AddGraspController with the scenario's sections: its controller, its GraspPlan
-    (grasp_plan), its arm and its sample rates; the memorized events its controller needs
-    default to the scenario object's (load_controller_events, load_corrective_events);
-    the RA and SA thresholds follow the noise of its film's and taxels' electronics
-    (ra_noise_std_mps2, scenario.tactile)."""
+    """AddGraspController with the scenario's sections (controller, GraspPlan, arm, sample
+    rates); the memorized events default to the scenario object's, and the RA and SA
+    thresholds follow the noise of its films' and taxels' electronics."""
     controller = scenario.controller
     if events is None and controller_entry(controller).event_triggered:
         events = load_controller_events(scenario)
@@ -128,13 +113,10 @@ class GraspDiagram:
 def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
                      events: dict | None = None, corrective_events: dict | None = None,
                      meshcat: Meshcat | None = None, log: bool = True) -> GraspDiagram:
-    """Builds the station and the scenario's controller into one Diagram.
-
-    station: a station Diagram with the station's ports (default: MakeStation(scenario,
-    meshcat=meshcat)); events: the memorized events (default: the package's for the
-    scenario's object); corrective_events: the memorized corrective events, used when
-    controller.memorized_corrective.events names some (default: load_corrective_events's);
-    log: add the TrialLog loggers (simulated runs)."""
+    """Builds the station and the scenario's controller into one Diagram. station: a Diagram
+    with the station's ports (default MakeStation's); events, corrective_events: the
+    memorized events (default: the package's for the scenario's object); log: add the
+    TrialLog loggers (simulated runs)."""
     check_ranges(scenario, "MakeGraspDiagram: scenario")  # a config changed after loading
     builder = DiagramBuilder()
     if station is None:

@@ -1,11 +1,8 @@
 """Scenario keys that moved when the settings were nested by concern, old dotted path -> new.
 
-User input (a scenario file, `--set`, a sweep's or a transfer's overrides) that names an old
-key is refused, naming the key and its new path (`refuse_moved_keys`): nothing is read
-silently in its place. Records and events that the project stored before the move (sweep
-records' scenario_overrides, the scenario text of trial logs, events and hardware runs) are
-read through the stored-record migration (`migrate_stored_scenario`,
-`migrate_stored_overrides`), used only where stored records are read.
+User input naming an old key is refused with its new path (`refuse_moved_keys`); records the
+project stored in the old layout are read through `migrate_stored_scenario` and
+`migrate_stored_overrides`, only where stored records are read.
 """
 
 import copy

@@ -1,12 +1,8 @@
-"""The typed scenario: everything a simulated trial needs, loaded from YAML.
-
-Scenarios live in a YAML file as a mapping from scenario name to fields of `Scenario`; the
-built-in file is tegrasp_drake/scenarios/scenarios.yaml. Loading goes through Drake's
-`yaml_load_typed` after a walk that names any unknown or mistyped field by its dotted path
-(rig/typed_yaml.py). `--set key=value` overrides (e.g. `--set object.name=thin_cylinder`) are
-applied to the YAML data before loading, so they are checked the same way. Each section's
-config class lives beside the system that uses it; a bad file, field or value raises
-ConfigError.
+"""The typed scenario: everything a simulated trial needs, loaded from YAML (the built-in
+file: tegrasp_drake/scenarios/scenarios.yaml). Loading goes through Drake's `yaml_load_typed`
+after a walk that names any unknown or mistyped field by its dotted path (rig/typed_yaml.py);
+`--set key=value` overrides are applied to the YAML data first, so they are checked the same
+way. A bad file, field or value raises ConfigError.
 """
 
 import dataclasses
@@ -56,8 +52,7 @@ __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
            "grasp_plan", "object_pose", "resolve_object", "sample_rates_hz", "scenario_from_yaml",
            "scenario_to_yaml", "validate", "with_controller"]
 
-# Which station a scenario runs on, selected by the YAML tag of its `station` field
-# (hardware/config.py): the simulation (the default, untagged) or the real devices.
+# The station, selected by the YAML tag of `station` (hardware/config.py); untagged: simulated.
 StationConfig = typing.Union[SimulatedStationConfig, HardwareStationConfig]
 
 
@@ -71,18 +66,13 @@ class Scenario:
     object: ObjectConfig = dataclasses.field(default_factory=ObjectConfig)
     # Where it stands: its marker, the misplacement from it, its yaw.
     placement: ObjectPlacementConfig = dataclasses.field(default_factory=ObjectPlacementConfig)
-    # stiction_tolerance 1e-6 m/s instead of Drake's 1e-4: SAP's lagged/similar friction is
-    # viscous below eps = max(stiction_tolerance, mu R_t n0), so a held object under a torque
-    # tau creeps at tau eps / (2 mu N r_g^2) whatever the time step (a held object slowly
-    # rotating). 1e-6 brings eps down to the solver's own O(time_step) floor, about 4e-5 m/s
-    # at 1 ms: creep 0.161 -> 0.048 deg/s at 17 % of the torsional friction limit, slip
-    # onset moved by 2 %, no measurable cost (docs/model.md, "Friction creep").
+    # stiction_tolerance 1e-6 m/s, not Drake's 1e-4: SAP's friction is viscous below it, so a
+    # held object creeps; 1e-6 reaches the solver's own floor (docs/model.md, "Friction creep").
     plant_config: MultibodyPlantConfig = dataclasses.field(
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged", stiction_tolerance=1e-6,
             contact_model="hydroelastic_with_fallback"))
-    # How finely the object and the table are meshed (simulation/contact_meshing.py); the
-    # default is the reference geometry every committed result ran on.
+    # How finely the object and the table are meshed (simulation/contact_meshing.py).
     contact_geometry: ContactGeometryConfig = dataclasses.field(
         default_factory=ContactGeometryConfig)
     simulator_config: SimulatorConfig = dataclasses.field(
@@ -100,12 +90,9 @@ class Scenario:
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
 
 
-# Drake's own config sections cannot carry `bounded` declarations: their fields' allowed
-# values are declared here and checked by the same validator (rig/ranges.py), at load and in
-# every builder. Names: the valid strings listed in Drake's MultibodyPlantConfig and
-# SimulatorConfig documentation (pydrake 1.51); numbers: what Drake accepts (it aborts the
-# process on a non-positive penetration allowance or stiction tolerance) narrowed to what a
-# grasp of a hand-sized object can use, with the reason.
+# Drake's own config sections cannot carry `bounded` declarations: their allowed values are
+# declared here (Drake's documented names, pydrake 1.51; numbers Drake accepts, narrowed to a
+# hand-sized grasp) and checked by the same validator (rig/ranges.py).
 MIN_TIME_STEP_S, MAX_TIME_STEP_S = 1e-4, 1e-3
 declare_ranges(MultibodyPlantConfig, {
     "time_step": Range(MIN_TIME_STEP_S, MAX_TIME_STEP_S, unit="s",
@@ -181,8 +168,7 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
 
 def _is_builtin_geometry(config: ObjectConfig) -> bool:
     """Whether `config` has the shape, size and model file of the built-in object of its
-    name (a resolved built-in, perhaps with its mass or friction set): resolving is
-    idempotent."""
+    name (a resolved built-in, its mass or friction perhaps set): resolving is idempotent."""
     builtin = BUILTIN_OBJECTS[config.name]
     return (config.shape == builtin.shape and list(config.size) == list(builtin.size)
             and config.file == builtin.file)
@@ -232,13 +218,10 @@ def _check_controller(scenario: Scenario, source: str) -> None:
         require(False, source, f"controller.{field}", words, value)
 
 
-# What relates fields, or belongs to Drake's own config classes (each number of this
-# package's classes declares its range on its field, rig/ranges.py); each message says why.
+# What relates fields, or belongs to Drake's own config classes; each message says why.
 MAX_HIT_FORCE_N = 100.0  # five times the paper's 20 N hit, in size
-# The longest grasp script a scenario may ask for without `allow_long` (--allow-long): the
-# paper's script lasts about 12 s; a trial simulates at about WALL_S_PER_SIM_S of wall time
-# per simulated second on one core (measured: `tegrasp trial` simulated 12.25 s in 9.97 s on
-# a shared 2-core host, 0.81 s/s; rounded up to 1).
+# The longest grasp script without `allow_long`: the paper's lasts about 12 s; a trial takes
+# about WALL_S_PER_SIM_S of one core per simulated second (12.25 s in 9.97 s, rounded up).
 MAX_SCRIPT_S = 60.0
 WALL_S_PER_SIM_S = 1.0
 
@@ -286,11 +269,8 @@ def _check_transducers(scenario: Scenario, source: str) -> None:
 
 def validate(scenario: Scenario, source: str = "scenario", *,
              allow_long: bool = False) -> Scenario:
-    """Checks values that the schema cannot; returns the scenario with its object resolved.
-
-    Every number against the range declared on its field (rig/ranges.py), then what relates
-    fields: the object on the table and within the stroke, the sensors' rates and filters,
-    the hit within the script, a script no longer than MAX_SCRIPT_S unless `allow_long`."""
+    """Checks what the schema cannot (each number's declared range, then what relates
+    fields); returns the scenario with its object resolved."""
     scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source))
     disturbance = scenario.disturbance
     if len(disturbance.hit_force_n) != 3:
@@ -316,9 +296,8 @@ def validate(scenario: Scenario, source: str = "scenario", *,
             f"must lie within the object's height, {height:g} m (the pad centre above the "
             "table, on the object's side: higher, the pads close over it)",
             scenario.grasp.grasp_height)
-    # The object must fit between the open fingers (object_problem). Offset along the
-    # stroke beyond that is allowed: an open finger then meets the object on the way in, as
-    # it would on a robot (the paper's thick cylinder failed most when misplaced outward).
+    # The object must fit between the open fingers; an offset beyond that is allowed (a finger
+    # then meets it on the way in, as on a robot).
     duration = script_duration(scenario)
     if duration > MAX_SCRIPT_S and not allow_long:
         raise ConfigError(
@@ -356,12 +335,9 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                   controller: str | None = None, allow_long: bool = False,
                   on_ignored: typing.Callable[[list[str]], None] | None = None) -> Scenario:
     """Loads scenario `name` from `filename` (default: the built-in file) with overrides.
-
-    controller: run it with the controller of this name (a sweep's trial, `--controller`),
-    keeping the controller settings (the file's and the overrides') that it has and
-    dropping those of the other controllers; on_ignored, if given, is called with the
-    names of the dropped settings, when there are any. allow_long: accept a grasp script
-    longer than MAX_SCRIPT_S (validate)."""
+    controller: run it with this controller, keeping the controller settings it has and
+    dropping the others' (on_ignored, if given, is called with their names); allow_long:
+    accept a grasp script longer than MAX_SCRIPT_S."""
     path = pathlib.Path(filename) if filename else paths.scenarios_file()
     document = read_yaml_file(path, "the scenario file")
     if not isinstance(document, dict) or name not in document:
@@ -449,13 +425,9 @@ def with_controller(scenario: Scenario, name: str) -> Scenario:
 
 
 def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenario:
-    """The Scenario of YAML text that scenario_to_yaml wrote (a log's, stored), also when
-    written before the settings were nested (read through the stored-record migration,
-    moved_keys.migrate_stored_scenario) or with a flat controller section naming its
-    controller (the settings its class lacks are dropped). A log can be damaged or edited:
-    its values are checked as a loaded scenario's are (every number finite and in its
-    declared range, no time below the plant step), and ConfigError names `source` and the
-    field."""
+    """The Scenario of YAML text that scenario_to_yaml wrote (a log's, stored), also in the
+    flat layout of older records (moved_keys.migrate_stored_scenario). Its values are checked
+    as a loaded scenario's are; ConfigError names `source` and the field."""
     try:
         data = migrate_stored_scenario(yaml_load(data=text) or {})
         select_controller_tag(data, drop_others=True)

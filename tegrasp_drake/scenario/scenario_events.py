@@ -1,9 +1,7 @@
 """The memorized events a scenario's controller reads: its object's, for its controller and
-its hand, from the events search path (an explicit folder, else the user's events folder,
-else the package's; rig/paths.py), checked against the object they were recorded on.
-
-These read the whole Scenario (its object, controller and hand), so they live with it; the
-controller itself (control/grasp_controller.AddGraspController) takes the events given.
+its hand, from the events search path (rig/paths.py), checked against the object they were
+recorded on. They read the whole Scenario, so they live with it; the controller itself takes
+the events given.
 """
 
 import yaml
@@ -23,14 +21,11 @@ def _hand_folder(scenario) -> str:
 @public_api
 def load_controller_events(scenario: Scenario, events_dir: PathLike | None = None, *,
                            nominal_object: ObjectConfig | None = None) -> dict:
-    """The memorized events of the scenario's object for the scenario's controller, from
-    `events_dir` or else the user's events folder or the package's
-    (controller_events_folders).
-
-    MemorizedEventError (naming the folders, the file and the command that records them)
-    when they are missing, or when they were recorded on an object that differs from the
-    scenario's (`nominal_object`, e.g. a sweep's unperturbed object, if given) in a field
-    not listed in controller.event_object_may_differ."""
+    """The memorized events of the scenario's object for its controller, from `events_dir`
+    or else the user's events folder or the package's. MemorizedEventError (naming the
+    folders, the file and the command that records them) when they are missing or were
+    recorded on an object that differs from the scenario's (or `nominal_object`) in a field
+    not in controller.event_object_may_differ."""
     return _load_checked_events(
         scenario, controller_events_folders(scenario.controller, events_dir,
                                             _hand_folder(scenario)),
@@ -99,8 +94,7 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
     return events
 
 
-# The hand of a scenario whose gripper section has no `model`: it was recorded before the
-# linkage hand existed, when the prismatic fingers were the only hand.
+# The hand of a scenario whose gripper section has no `model` (the prismatic one).
 HAND_BEFORE_THE_MODEL_SETTING = "prismatic"
 
 

@@ -160,11 +160,9 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 
 
 def trial_arrays_problem(arrays: dict) -> str | None:
-    """What is wrong with the shapes or values of the trial-log arrays present in `arrays`
-    (a whole log's, or the part of one a reader loads, such as the myRIO emulator's), or
-    None: each time base at least two finite, increasing times, each array sampled at it
-    one row per time with its columns, and the signals finite. The one rule set for the
-    arrays of a trial log: every reader applies it, so that a log one refuses none takes."""
+    """What is wrong with the shapes or values of the trial-log arrays in `arrays` (a whole
+    log's or part of one), or None: each time base at least two finite, increasing times,
+    each array one row per time with its columns, the signals finite. Every reader applies it."""
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue

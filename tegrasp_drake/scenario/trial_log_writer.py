@@ -1,7 +1,5 @@
-"""Wires a controller to the station with the Eq. 1-2 channels and the trial's loggers.
-
-Any controller that provides `X_WG_desired` and `gripper_command` output ports (and a
-`phase` port) can be run through `AddTrialLogging` and `collect_trial_log`.
+"""Wires a controller to the station with the Eq. 1-2 channels and the trial's loggers: any
+controller with `X_WG_desired`, `gripper_command` (and `phase`) outputs can be logged.
 """
 
 import dataclasses

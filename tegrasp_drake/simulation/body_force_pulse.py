@@ -35,9 +35,8 @@ class BodyForcePulse(LeafSystem):
         - applied_spatial_force
 
     Ports:
-        applied_spatial_force: (abstract list of ExternallyAppliedSpatialForce) the force
-            during the interval, an empty list otherwise; for the plant's
-            applied_spatial_force input.
+        applied_spatial_force: (list of ExternallyAppliedSpatialForce) the force during the
+            interval, else empty; for the plant's applied_spatial_force input.
     """
 
     def __init__(self, *, body_index, p_BQ, f_W, start_s: float, end_s: float = math.inf):

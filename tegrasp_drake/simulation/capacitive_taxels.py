@@ -1,29 +1,12 @@
 """The real pad's SA transducer: each taxel a parallel-plate capacitor read by an AD7147.
 
-The paper's electrodes (Sec. IV-A, Fig. 7c) form a parallel-plate capacitor with the
-conductive fabric over the pad's elastomer; pressing the pad compresses the elastomer and
-the capacitance grows (the paper's Eq. 3 of Sec. IV-A):
-
-    Delta C = eps_r eps_0 A (1/d1 - 1/d0),    d1 = d0 - compression.
-
-Per taxel, the compression comes from the taxel's mean pressure p = F / A through the
-elastomer's modulus, as a thin layer under uniaxial stress: compression = d0 p / E, with
-d0 the elastomer's thickness and E its modulus, the pad model's own (PAD_THICKNESS,
-PAD_MODULUS; docs/model.md). The AD7147 turns Delta C into 16-bit counts around its
-mid-scale baseline; noise is added in counts and the counts are whole numbers.
-
-What the station then reports (`CapacitiveTaxelConfig.output`):
-  - "calibrated": newtons through the per-taxel straight line the hardware side uses
-    (hardware/myrio/tactile_calibration.py: F = max(0, gain (counts - baseline))), the gain
-    from one bench point, `calibration_force_n` on a taxel. The paper says only that "the
-    pressure applied on the finger is inferred from Delta C"; this project's hardware path
-    has that line, so it is the default. Because 1/d1 grows faster than the compression,
-    the calibrated force is nonlinear in the true force (below the calibration point it
-    reads low, above it high).
-  - "counts": the counts above the baseline, uncalibrated.
-
-Either way the SA channel (Eq. 1) sums the 12 readings, and the window normalisation
-divides out the scale but not the nonlinearity.
+Pressing the pad compresses the elastomer between an electrode and the conductive fabric
+(paper, Sec. IV-A): Delta C = eps_r eps_0 A (1/d1 - 1/d0), d1 = d0 - compression, the
+compression d0 p / E of a thin layer under the taxel's mean pressure p = F / A (d0, E the pad
+model's thickness and modulus). The AD7147 reports Delta C in whole 16-bit counts with noise.
+The station reports them as counts above the baseline or, by default, as newtons through the
+hardware's per-taxel calibration line (hardware/myrio/tactile_calibration.py), nonlinear in
+the true force. The numbers and their sources: docs/model.md, "The capacitive taxel".
 """
 
 import dataclasses
@@ -42,23 +25,18 @@ from tegrasp_drake.rig.taxel_layout import CELL_X, CELL_Y
 VACUUM_PERMITTIVITY_F_PER_M = 8.8541878128e-12
 TAXEL_TRANSDUCERS = ("force", "capacitive")
 CAPACITIVE_OUTPUTS = ("calibrated", "counts")
-# AD7147 data sheet: a 16-bit CDC over a +-8 pF input range, 65536 codes / 16 pF = 4096
-# counts per pF (0.244 fF a count); the no-touch reading sits at mid-scale, 32768, once the
-# stray capacitance is trimmed with the chip's offset DACs (Analog Devices' application
-# support says the same: 0.244 fF per count, zero at 32k).
+# AD7147 data sheet: a 16-bit CDC over +-8 pF, 4096 counts per pF (0.244 fF a count); no
+# touch reads mid-scale once the offset DACs trim the stray capacitance.
 AD7147_COUNTS_PER_PF = 65536 / 16.0
 AD7147_BASELINE_COUNTS = 32768
 AD7147_MAX_COUNTS = 65535
-# AD7147 data sheet: a conversion sequence of up to 12 stages, one stage taking 0.768 ms at
-# decimation 64 and twice or four times that at 128 or 256 (the decimation is the number
-# of the sigma-delta modulator's samples averaged into one result). A pad's 12 taxels are
-# its 12 stages, converted one after the other: a frame of 9.2 ms (108 Hz), 18.4 ms
-# (54 Hz) or 36.9 ms (27 Hz).
+# AD7147 data sheet: up to 12 conversion stages, each 0.768 ms at decimation 64 and twice or
+# four times that at 128 or 256; a pad's 12 taxels are its 12 stages, one after the other.
 AD7147_DECIMATIONS = (64, 128, 256)
 AD7147_STAGES = 12
 AD7147_STAGE_S_AT_64 = 0.768e-3
 # A sample rate within this fraction of the frame rate matches the decimation (the data
-# sheet's stage time is typical and the frame rates are quoted rounded: 108, 54, 27 Hz).
+# sheet's stage time is typical and the rates are quoted rounded).
 FRAME_RATE_TOLERANCE = 0.01
 
 
@@ -82,43 +60,35 @@ def frame_rate_matches(sample_rate_hz: float, decimation: int) -> bool:
 @dataclasses.dataclass
 class CapacitiveTaxelConfig:
     """The capacitive taxel's parameters (used when `tactile.transducer` is capacitive)."""
-    # Silicone elastomer between electrode and fabric: 2.7 (PDMS, Dow Sylgard 184 data
-    # sheet, 2.72 at 100 Hz-100 kHz). An assumption: the paper does not name its elastomer.
+    # PDMS (Dow Sylgard 184 data sheet, 2.72); assumed: the paper does not name its elastomer.
     relative_permittivity: float = bounded(2.7, low=1.0, high=100.0,
                                            why="elastomers lie at 2-10; 100 bounds any dielectric "
                                                "a pad is made of",
                                            below="must be at least 1 (vacuum)")
-    # Counts of noise per taxel reading at decimation 64, Gaussian. An assumption of the
-    # data sheet's order: the AD7147 resolves about 1 fF at decimation 64, i.e. about 4
-    # counts. A larger decimation averages more modulator samples: the noise shrinks as
-    # sqrt(64 / decimation) (white noise averaged; noise_std_at_decimation).
+    # Noise per reading at decimation 64 (assumed, of the AD7147 data sheet's order: about
+    # 1 fF resolved, 4 counts); it shrinks as sqrt(64 / decimation).
     noise_std_counts: float = bounded(4.0, low=0.0, high=10_000.0, unit="counts",
                                       why="the AD7147's 16-bit reading",
                                       below="must be zero (no noise) or positive")
-    # The AD7147's decimation, 64, 128 or 256: its frames come at 108, 54 or 27 Hz, and
-    # tactile.sample_rate_hz must be that rate (ad7147_frame_rate_hz). The scenario also
-    # requires one of the three (AD7147_DECIMATIONS).
+    # The AD7147's decimation: frames at 108, 54 or 27 Hz (ad7147_frame_rate_hz), which
+    # tactile.sample_rate_hz must match unless ad7147_timing is false (a counterfactual
+    # readout at any rate, as the transfer study's 1 kHz worlds use).
     decimation: int = bounded(64, low=64, high=256,
                               why="the AD7147's decimations are 64, 128 and 256, AD7147 data "
                                   "sheet")
-    # False: a counterfactual readout of the same taxels at any tactile.sample_rate_hz (the
-    # transfer study's one-factor worlds take the capacitive taxels at 1 kHz); the frame
-    # rate is then not held to the decimation's.
     ad7147_timing: bool = True
-    # The elastomer stops compressing at this fraction of its thickness (the gap cannot
-    # close: the fabric and the compressed rubber take the load). An assumption: pad
-    # pressures of the grasps here compress it by 2-30 %, far from this.
+    # The elastomer stops compressing at this fraction of its thickness (assumed: the
+    # grasps here compress it by 2-30 %).
     minimum_gap_fraction: float = bounded(0.1, low=0.0, high=1.0, low_open=True, high_open=True)
     output: str = "calibrated"  # calibrated (newtons) or counts (above the baseline)
     # The bench calibration's one point [N on a taxel]: a 0.5 kg weight, within the 1-10 N a
-    # taxel carries in the 25-100 N grasps.
+    # taxel carries in 25-100 N grasps.
     calibration_force_n: float = bounded(5.0, low=0.0, low_open=True, high=100.0, unit="N",
                                          below="must be positive [N]")
 
 
 def noise_std_at_decimation(config: CapacitiveTaxelConfig) -> float:
-    """Counts of noise per reading at the config's decimation: noise_std_counts (given at
-    64) times sqrt(64 / decimation)."""
+    """Counts of noise per reading at the config's decimation (sqrt(64 / decimation) x)."""
     return config.noise_std_counts * (64.0 / config.decimation) ** 0.5
 
 
@@ -136,8 +106,7 @@ def taxel_compression_m(forces_n, config: CapacitiveTaxelConfig) -> np.ndarray:
 
 
 def capacitance_change_f(compression_m, relative_permittivity: float) -> np.ndarray:
-    """Delta C = eps_r eps_0 A (1/d1 - 1/d0) [F], d0 the elastomer's thickness and
-    d1 = d0 - compression."""
+    """Delta C = eps_r eps_0 A (1/d1 - 1/d0) [F], d1 = d0 - compression."""
     d0 = PAD_THICKNESS
     d1 = d0 - np.asarray(compression_m, dtype=float)
     return (relative_permittivity * VACUUM_PERMITTIVITY_F_PER_M * electrode_area_m2()
@@ -156,8 +125,7 @@ def counts_above_baseline(forces_n, config: CapacitiveTaxelConfig,
 
 
 def calibration_gain_n_per_count(config: CapacitiveTaxelConfig) -> float:
-    """The calibration line's gain [N/count]: the bench force over the (noise-free,
-    unrounded) counts it gives."""
+    """The calibration line's gain [N/count]: the bench force over its noise-free counts."""
     delta_c = capacitance_change_f(taxel_compression_m(config.calibration_force_n, config),
                                    config.relative_permittivity)
     return config.calibration_force_n / float(delta_c * 1e12 * AD7147_COUNTS_PER_PF)
@@ -186,16 +154,9 @@ class CapacitiveTaxels(LeafSystem):
         - left_taxel_forces
         - right_taxel_forces
 
-    Ports:
-        true_taxel_forces: 24 noise-free taxel normal forces [N], left then right, held at
-            the taxel rate (TactilePads' output).
-        noise: 24 unit Gaussian samples drawn at the taxel rate; declared only when
-            config.noise_std_counts > 0 (scaled to the decimation's noise).
-        left_taxel_forces, right_taxel_forces: 12 readings each, calibrated newtons or
-            counts above the baseline (config.output).
-
-    No state: the outputs follow the held inputs, so the readings change exactly when a
-    taxel sample is taken.
+    Ports: true_taxel_forces (24, N, left then right, held at the taxel rate); noise (24 unit
+    Gaussians at the taxel rate, when noise_std_counts > 0); the outputs: 12 readings each,
+    newtons or counts (config.output). No state: they change when a taxel sample is taken.
     """
 
     def __init__(self, *, config: CapacitiveTaxelConfig):
@@ -206,8 +167,7 @@ class CapacitiveTaxels(LeafSystem):
         self._noise = (self.DeclareVectorInputPort("noise", size)
                        if config.noise_std_counts > 0 else None)
         self._noise_std = noise_std_at_decimation(config)
-        # The readings depend on the inputs alone: computed again when a taxel sample (or
-        # its noise) changes, not on every plant step that reads them.
+        # The readings depend on the inputs alone: recomputed only when a sample changes.
         inputs = {port.ticket() for port in (self._forces, self._noise) if port is not None}
         for k, finger in enumerate(FINGER_NAMES):
             self.DeclareVectorOutputPort(
@@ -224,10 +184,9 @@ class CapacitiveTaxels(LeafSystem):
 
 
 def AddTaxelTransducer(builder, *, taxels, tactile_config, name: str = "capacitive_taxels"):
-    """The system whose `<finger>_taxel_forces` outputs are the station's taxel readings:
-    `taxels` (TactilePads) itself for the ideal force transducer, else a CapacitiveTaxels
-    fed by its true forces and, with noise, a RandomSource at the taxel rate (seeded with
-    the diagram's random context)."""
+    """The system whose `<finger>_taxel_forces` are the station's taxel readings: `taxels`
+    (TactilePads) for the force transducer, else a CapacitiveTaxels fed by its true forces
+    (and a RandomSource at the taxel rate)."""
     if tactile_config.transducer == "force":
         return taxels
     config = tactile_config.capacitive

@@ -1,42 +1,12 @@
 """The Cartesian carriage: the gripper on six actuated joints that reproduce the JACO2's
-end-point behaviour, for sweeps (`station: !SimulatedStationConfig {arm: carriage}`).
+end-point impedance at the grasp frame G, for sweeps (`station.arm: carriage`).
 
-For the hand and the object the arm is a stiff pose source: the Jaco's firmware tracks its
-joints stiffly and compensates gravity. The controller's commands reach the carriage through
-the arm's own command path (jaco_velocity_drive.py: tracker, 100 Hz, latency), with the
-joint servos ideal (carriage_systems.py). The carriage keeps what the hand feels of it and
-drops the rest: three prismatic joints along three orthogonal world axes (the principal
-axes of the arm's translational mobility at G, below) move the grasp frame G's origin,
-then three revolute joints about world z, y, x (yaw, pitch, roll: R = Rz Ry Rx, Drake's
-RollPitchYaw) turn G about its own origin, and the gripper is welded on the last one in
-the side-grasp orientation R_WG_SIDE_GRASP (all joint angles zero). The gimbal's
-singularity (pitch +-90 deg) is far from the grasp's few degrees of tilt.
-
-Why joints with the plant's implicit PD and not a floating gripper pushed by a spatial PD:
-SAP treats PD-controlled actuators as implicit constraints, stable at the 1 ms step for any
-gains, with no Python in the loop and no extra state; a spatial PD applied as an external
-force is explicit (stable only while k dt^2 / m and d dt / m stay well below 1, which the
-arm's 2e-4 kg m^2 about the approach axis does not promise) and would be a Python system
-evaluated every step.
-
-Stiffness, damping and inertia (`arm_endpoint_impedance`): what the arm's joint PD
-(ArmDriverConfig: kp, kd per joint) and its links give at G at the grasp pose. With J the
-arm model's 6 x 6 Jacobian of G in world (rig/arm_kinematics.py), the arm's end-point
-compliance is C = J K_q^-1 J^T, the inverse of its damping J D_q^-1 J^T, and its mobility
-(inverse operational-space inertia) J M^-1 J^T. The prismatic axes are the eigenvectors of
-the mobility's translational block, so the carriage's translational inertia is the arm's
-with its couplings (the arm's mobility turns a vertical push at G into 0.22 of it along
-the stroke); along each axis a the joint gets what a push along a alone meets,
-1 / (a^T C a), and likewise damping and mass. Rotations, about world axes, get
-1 / C_ii. At the box's grasp pose: axes near x, (-0.12, 0.77, -0.63) and (0.01, 0.63,
-0.77), with 4.3e3 / 560 / 580 N/m and 0.82 / 0.061 / 0.028 kg; 290 / 170 / 170 N m/rad and
-1.6e-4 / 3.8e-3 / 5.5e-3 kg m^2 about x / y / z; the arm's D_q = K_q / 10 (a 0.1 s time
-constant). Left out: the couplings between translation and rotation and within the
-stiffness. (The stiffness matrix's own diagonal, J^-T K_q J^-1, is the arm with the other
-five directions held: along the stroke 1.3e4 N/m against the 560 N/m a push meets.)
-
-Frames: world W; G the grasp frame (origin between the pads' centres, z the approach).
-Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G's origin, expressed in W.
+Three prismatic joints along the principal axes of the arm's translational mobility at G
+move G's origin, then yaw, pitch and roll about world z, y, x (Drake's RollPitchYaw) turn
+it; the gripper is welded to the last body. Each joint is on the plant's implicit PD, which
+SAP keeps stable at 1 ms for any gains (a spatial PD as an external force would be explicit).
+The impedance: docs/model.md, "The carriage". Frames: world W; G the grasp frame (between
+the pads' centres, z the approach); wrenches [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G, in W.
 """
 
 import dataclasses
@@ -51,8 +21,7 @@ from tegrasp_drake.rig.arm_kinematics import (R_WG_SIDE_GRASP, make_arm_control_
 
 AXES = np.eye(3)
 ROTATION_AXES = (2, 1, 0)  # the gimbal: yaw about z, then pitch about y, then roll about x
-# Each gimbal body's own mass [kg]: the arm's inertia is in the translation bodies; a body
-# with none is not allowed, and 10 g at G's origin adds no moment about it.
+# Each gimbal body's own mass [kg]: a body needs some; 10 g at G's origin adds no moment.
 GIMBAL_BODY_MASS_KG = 0.01
 MIN_INERTIA_KG_M2 = 1e-6  # floor of a gimbal body's inertia step (a body needs some)
 
@@ -74,10 +43,8 @@ def _along(inverse: np.ndarray, axes: np.ndarray) -> np.ndarray:
 
 
 def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedance:
-    """The JACO2's end-point impedance at G when G is at X_WG (see the module docstring):
-    its joint PD `arm_config` (ArmDriverConfig) and its inertia as a push along each
-    carriage axis at G alone meets them; the translation axes are the principal axes of
-    the arm's translational mobility at G."""
+    """The JACO2's end-point impedance at G when G is at X_WG: its joint PD `arm_config`
+    (ArmDriverConfig) and its inertia as a push along each carriage axis alone meets them."""
     plant = make_arm_control_plant()
     context = plant.CreateDefaultContext()
     plant.SetPositions(context, solve_grasp_frame_ik(plant, X_WG))
@@ -129,10 +96,8 @@ def _body_inertia(mass_kg: float, inertia_kg_m2: float) -> SpatialInertia:
 
 
 def AddCarriage(plant, impedance: EndpointImpedance, name: str = "carriage") -> Carriage:
-    """Adds the six-joint carriage (see the module docstring) to the unfinalized `plant`,
-    with implicit PD gains from `impedance` and gravity off (the arm's firmware compensates
-    it); returns the Carriage. All joints at zero put G at W's origin in the side-grasp
-    orientation."""
+    """Adds the six-joint carriage to the unfinalized `plant`, with implicit PD gains from
+    `impedance` and gravity off; all joints at zero put G at W's origin, side-grasp oriented."""
     instance = plant.AddModelInstance(name)
     parent, joints = plant.world_body(), []
     axes = impedance.translation_axes

@@ -1,16 +1,8 @@
 """The two systems that let the carriage (carriage.py) stand in for the JACO2 behind the
 arm's ports: the controller keeps commanding joint states and reading joint torques.
-
-- CarriageCommand: the arm's joint servo set-point (the velocity drive's, the same command
-  path as on the arm: simulation/jaco_velocity_drive.py) -> the pose and velocity of G that
-  the arm's joints would give (the arm model's forward kinematics) -> the carriage's joint
-  set-point. It reports as the arm's measured joints the servo's set-point moved by the
-  carriage's deflection from its own set-point, mapped to the joints (J^-1): so the
-  velocity tracker sees, and removes, a steady sag under a load, as it does on the arm.
-- CarriageWristWrench: the carriage-gripper weld's reaction (Drake's reaction forces) ->
-  the wrench the gripper puts on the arm at G, and the joint torques that would hold it,
-  tau = -J_WG^T w, at the reported joint angles: the arm.torque_measured that the taxel_aware
-  controller's GraspWrenchEstimator maps back to the same wrench.
+CarriageCommand turns the arm's servo set-point into the carriage's and reports the arm's
+joints (with the carriage's deflection, so the tracker removes a sag as on the arm);
+CarriageWristWrench reports the weld's wrench and the joint torques that would hold it.
 """
 
 import numpy as np
@@ -41,28 +33,19 @@ class CarriageCommand(LeafSystem):
         - arm.position_measured
         - arm.velocity_measured
 
-    It samples the set-point every plant step `period_s` (on the plant's own step times: an
-    event between them would cost a step of its own). The set-point's rates change only
-    when a new velocity command reaches the arm (at the command rate); then it runs the arm
-    model's kinematics and takes G's pose, velocity and Jacobian there, and between those it
-    moves the carriage's set-point on at that velocity, as the servo's set-point moves on at
-    the joint rates (the pose's drift from the joints' over one command period is second
-    order: tens of micrometres at the arm's top speeds). The carriage follows one plant
-    step late.
+    It samples the set-point every plant step `period_s`. When the set-point's rates change
+    (a new command reaches the arm) it runs the arm model's kinematics for G's pose,
+    velocity and Jacobian; in between it moves the carriage's set-point on at that velocity
+    (second-order drift: tens of micrometres at top speed). The carriage follows a step late.
 
     Ports:
-        joint_set_point: the arm's joint servo set-point, positions [rad] and rates [rad/s]
-            (12).
+        joint_set_point: the arm's joint servo set-point [rad, rad/s] (12).
         carriage_state: the carriage joints' positions and rates (12, actuator order).
-        carriage_desired_state: the carriage joints' positions [m, rad] and rates [m/s,
-            rad/s] (12, actuator order) that put G where the set-point's joints put it,
-            moving as they move it (carriage_state).
-        arm.position_measured: the set-point's joint positions at the same sample [rad]
-            (6), moved by the carriage's deflection from its set-point, J^-1 [dtheta; dp]
-            (J the Jacobian of G at the last kinematics; a small-angle rotation).
-            Starts at `initial_positions` [rad].
-        arm.velocity_measured: the set-point's joint rates at the same sample [rad/s] (6):
-            servos that track their rates exactly, one plant step late.
+        carriage_desired_state: the carriage joints' state [m, rad, m/s, rad/s] (12) that
+            puts G where the set-point's joints put it, moving as they move it.
+        arm.position_measured: the set-point's joints [rad] (6) moved by the carriage's
+            deflection from its set-point, J^-1 [dtheta; dp]; starts at `initial_positions`.
+        arm.velocity_measured: the set-point's joint rates [rad/s] (6): ideal servos.
     """
 
     def __init__(self, carriage, *, initial_positions: np.ndarray, period_s: float):
@@ -132,14 +115,11 @@ class CarriageWristWrench(LeafSystem):
         - arm.torque_measured
 
     Ports:
-        reaction_forces: the plant's reaction forces (one SpatialForce per joint).
-        body_poses: the plant's body poses (one RigidTransform per body).
+        reaction_forces, body_poses: the plant's.
         arm.position_measured: the arm's reported joint angles [rad] (6).
         wrist_wrench: [Mx, My, Mz, Fx, Fy, Fz] [N m, N], the wrench the gripper puts on the
-            arm at G, in world: contact forces on the hand and the hand's own inertia (its
-            gravity is off, as the firmware compensates it).
-        arm.torque_measured: the joint torques [N m] (6) that hold wrist_wrench statically,
-            tau = -J_WG(q)^T w.
+            arm at G, in world (contact forces and the hand's inertia; its gravity is off).
+        arm.torque_measured: the joint torques [N m] (6) that hold it, -J_WG(q)^T w.
     """
 
     def __init__(self, *, weld_index, gripper_body_index):

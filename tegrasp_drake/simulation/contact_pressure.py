@@ -1,25 +1,14 @@
 """Per-taxel normal force from a hydroelastic contact surface: the pure numpy core.
 
-A contact face's normal force on the pad is the integral of its pressure over the face's
-projection onto the pad plane (pressure x area x |cos| of the angle between the face normal
-and the pad's z). The pressure is linear over each face, and the taxel cells are a
-rectangular grid, so the force each cell takes from each face triangle has a closed form:
-the pattern is exact however large the faces are. (A compliant box pad gives faces a few cm
-across, larger than a taxel: Drake ignores resolution_hint for compliant boxes; putting a face, or any fixed piece of it, into
-the taxel under its centroid gives an uneven pattern under an even press.)
-
-Method. For a triangle T with linear pressure f, the cumulative integral
-F(a, b) = integral of f over T intersected with {x < a, y < b} is summed from T's edges:
-each edge sweeps the column between y = 0 and the edge, cut off at y = b, and weighted by
-f; the columns under T's upper edges count positive, those under its lower edges negative,
-so what remains is T below b (Green's theorem). Restricting the sweep to x < a gives
-F(a, b). Along an edge the swept integral g(x) = integral from 0 to min(y_edge(x), b) of
-f(x, y) dy is quadratic in x on each side of the point where the edge crosses y = b, so the
-midpoint rule with its curvature term integrates it exactly. A cell's force is then the
-inclusion-exclusion of F at its corners.
-
-Points beyond the pad's edge count to the nearest edge taxel: the outer cells are open
-toward the outside.
+A face's normal force on the pad is its pressure integrated over its projection on the pad
+plane. The pressure is linear over each face and the taxels are a rectangular grid, so each
+cell's share of each triangle has a closed form, exact however large the faces (a compliant
+box pad's faces are centimetres across: a face put whole into one taxel would give an uneven
+pattern under an even press). The cumulative integral F(a, b) over T and {x < a, y < b} is
+summed from T's edges (Green's theorem): along an edge the swept integral is quadratic on
+each side of where it crosses y = b, so the midpoint rule with its curvature term is exact.
+A cell's force is the inclusion-exclusion of F at its corners; points beyond the pad's edge
+count to the nearest edge taxel.
 """
 
 import numpy as np
@@ -36,10 +25,8 @@ _FLAT_TRIANGLE = 1e-9
 
 
 def polygon_fan_triangles(face_data) -> np.ndarray:
-    """Vertex indices (T, 3) of a fan triangulation of a flat polygon list.
-
-    `face_data` is Drake's PolygonSurfaceMesh.face_data(): [n, v0 .. v(n-1), n, ...].
-    """
+    """Vertex indices (T, 3) of a fan triangulation of Drake's PolygonSurfaceMesh.face_data()
+    ([n, v0 .. v(n-1), n, ...])."""
     data = np.asarray(face_data, dtype=np.intp)
     headers = data.tolist()  # Python ints: the walk below reads one per face
     starts, counts = [], []
@@ -61,11 +48,7 @@ def polygon_fan_triangles(face_data) -> np.ndarray:
 def cumulative_pressure_integrals(xy: np.ndarray, pressure: np.ndarray, x_edges: np.ndarray,
                                   y_edges: np.ndarray) -> np.ndarray:
     """F[t, i, j] = integral of triangle t's linear pressure over t and {x < x_edges[i],
-    y < y_edges[j]} [N when pressure is in Pa and lengths in m].
-
-    xy: triangle corners (T, 3, 2); pressure: the pressure at them (T, 3). Either
-    orientation of a triangle gives a positive area. See the module docstring for the method.
-    """
+    y < y_edges[j]} [N for Pa and m]; xy: corners (T, 3, 2), pressure: at them (T, 3)."""
     origin = xy[:, :1]
     corner = xy - origin  # coordinates relative to each triangle's first corner
     e1, e2 = corner[:, 1], corner[:, 2]
@@ -110,21 +93,15 @@ def cumulative_pressure_integrals(xy: np.ndarray, pressure: np.ndarray, x_edges:
 
 def taxel_normal_forces(p_PV: np.ndarray, pressure_V: np.ndarray,
                         triangles: np.ndarray) -> np.ndarray:
-    """Normal force on each of the 12 taxels [N] from one contact surface, exactly.
-
-    p_PV: vertex positions in the pad frame (V, 3) [m]; pressure_V: pressure at each vertex
-    [Pa]; triangles: (T, 3) vertex indices. Each triangle's pressure is integrated over its
-    projection onto the pad plane, cell by cell; a triangle's share of a cell is clipped at
-    zero (only rounding can make it negative when pressures are non-negative).
-    """
+    """Normal force on each of the 12 taxels [N] from one contact surface, exactly: p_PV
+    vertices in the pad frame (V, 3) [m], pressure_V at each [Pa], triangles (T, 3) indices.
+    A triangle's share of a cell is clipped at zero (only rounding can make it negative)."""
     return surfaces_taxel_normal_forces([(p_PV, pressure_V, triangles)])[0]
 
 
 def corner_differences(cumulative: np.ndarray) -> np.ndarray:
     """Each cell's integral from the cumulative integrals F (T, x edge, y edge) at its upper
-    corners: F[i, j] - F[i - 1, j] - F[i, j - 1] + F[i - 1, j - 1], as
-    np.diff(np.diff(F, axis=1, prepend=0.0), axis=2, prepend=0.0) computes it (the same
-    subtractions, in place: the first column and row subtract nothing)."""
+    corners, F[i, j] - F[i - 1, j] - F[i, j - 1] + F[i - 1, j - 1], in place."""
     columns = cumulative.copy()
     columns[:, 1:] -= cumulative[:, :-1]
     cells = columns.copy()
@@ -134,8 +111,7 @@ def corner_differences(cumulative: np.ndarray) -> np.ndarray:
 
 def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
     """taxel_normal_forces of each (p_PV, pressure_V, triangles) in `surfaces`, in one pass
-    over all their triangles (each triangle's arithmetic is its own, and each surface's
-    triangles are summed in order: the numbers are those of one call per surface)."""
+    over all their triangles (the same numbers as one call per surface)."""
     triangles = [np.asarray(t, dtype=np.intp).reshape(-1, 3) for _, _, t in surfaces]
     xy = np.concatenate([np.asarray(p_PV, dtype=float)[t][:, :, :2]
                          for (p_PV, _, _), t in zip(surfaces, triangles)])

@@ -1,37 +1,13 @@
 """Vibration of the gripper's motor and gears and of the arm's actuators, as the films read it.
 
-While a drive turns, its motor and gears shake the structure at frequencies set by the
-motor's speed: the motor's rotation (imbalance, commutation) and the gear teeth's meshing.
-The fingertip's films feel that shaking as a base acceleration of the finger. Each drive
-here is a sum of tones, one per `orders` entry, at
-
-    f_k = order_k n,       n = motor_revolutions_per_unit |v|   [rev/s]
-
-v the drive's joint rate (the gripper: its half-opening rate [m/s]; the arm: its joints'
-rates [rad/s]), with amplitude, at the fingertip,
-
-    A_k |v| / full_speed  |H(f_k)|,    |H(f)| = 1 / sqrt((1 - r^2)^2 + (2 zeta r)^2),
-                                        r = f / f_mode
-
-A_k the base acceleration at full speed (`amplitudes_mps2`), growing with speed (the
-teeth's impacts grow with the mesh's velocity) and nil when the drive stands still; |H| the
-fingertip mode's gain from base acceleration to the film's reading (film_dynamics.py: a
-second-order mode of frequency f_mode and damping zeta, read in acceleration-equivalent
-units, so 1 well below the mode, its resonance peak near it, (f_mode / f)^2 above it).
-
-A drive of several joints (the arm's six) is lumped into one set of tones: amplitude from
-the norm of the joint rates, sqrt(sum v_i^2) (each joint's tones carry power in proportion
-to v_i^2, so the lumped tone has the power of them all), frequency from the fastest joint.
-One set of tones per drive costs 4 tones in all instead of 14: each tone costs about 7 us
-of symbolic evaluation per RA sample (measured), so the lumping keeps the drives' cost
-near a tenth of the film's own update.
-
-Each tone's phase is integrated at the RA sample rate from the joint rate; the readings are
-point samples of the tones at the sample instants (the myRIO has no anti-aliasing filter:
-a tone above 500 Hz folds into the 0-500 Hz band as it would on the real channel). The
-spectra and amplitudes assumed are in docs/model.md, "Drive vibration".
-
-The whole is one compiled Drake system (a SymbolicVectorSystem): no Python runs per sample.
+Each drive is a sum of tones at f_k = order_k n, n = motor_revolutions_per_unit |v| [rev/s]
+(v the drive's joint rate: the gripper's half-opening rate [m/s], the arm's joint rates
+[rad/s]), each of amplitude A_k |v| / full_speed |H(f_k)|, |H(f)| = 1 / sqrt((1 - r^2)^2 +
+(2 zeta r)^2), r = f / f_mode, the fingertip mode's gain (film_dynamics.py). A drive of
+several joints is lumped into one set of tones (amplitude from the norm of the rates,
+frequency from the fastest) to keep the symbolic evaluation cheap. The tones are point
+samples at the RA rate: the myRIO has no anti-aliasing filter. One compiled
+SymbolicVectorSystem; the spectra assumed: docs/model.md, "Drive vibration".
 """
 
 import dataclasses
@@ -47,28 +23,23 @@ from tegrasp_drake.rig.ranges import bounded
 
 @dataclasses.dataclass
 class DriveVibrationConfig:
-    """One drive's tones (module docstring). Empty `amplitudes_mps2` (`--set
-    vibration.arm_drive.amplitudes_mps2=[]`), or all zero, disables it."""
-    # Base acceleration [m/s^2] at the fingertip of each tone at full speed (assumed: a
-    # gearmotor's housing shakes with 0.1-1 m/s^2; plausible at the fingertip 0.03-1 for the
-    # gripper, 0.01-0.5 for the arm; docs/model.md, "Drive vibration").
+    """One drive's tones; empty or all-zero `amplitudes_mps2` disables it. The spectra assumed
+    and their reasoning: docs/model.md, "Drive vibration"."""
+    # Each tone's base acceleration at the fingertip at full speed [m/s^2] (assumed).
     amplitudes_mps2: list[float] = bounded(
         default_factory=list, low=0.0, high=1.0, unit="m/s^2",
         why="a gearmotor's housing vibration is of order 0.1-1 m/s^2",
         below="must be zero (off) or positive [m/s^2]")
-    # Each tone's frequency in multiples of the motor's rotation rate (a gear's tooth count
-    # per mesh; the harmonic drive's flexspline meshes 400 times a revolution).
+    # Each tone's frequency in motor revolutions (a gear mesh's teeth per revolution).
     orders: list[float] = bounded(default_factory=list, low=0.0, high=1000.0,
                                   why="tones per motor revolution: a gear mesh's teeth",
                                   below="must be zero or more")
-    # Motor revolutions per unit of the joint's travel (rev/m or rev/rad): the 2F-85's 1,333
-    # rev/m of half opening, the JACO2's 15.9 rev/rad; up to 1e5, far beyond either.
+    # Motor revolutions per unit of the joint's travel.
     motor_revolutions_per_unit: float = bounded(
         0.0, low=0.0, high=1e5, unit="rev/m or rev/rad",
         why="the 2F-85's 1,333 rev/m, the JACO2's 15.9 rev/rad",
         below="must be zero or more")
-    # The joint rate [m/s or rad/s] at which the tones reach amplitudes_mps2 (the 2F-85's
-    # 0.075 m/s of half opening, the JACO2's 0.628 rad/s).
+    # The joint rate [m/s or rad/s] at which the tones reach amplitudes_mps2.
     full_speed: float = bounded(1.0, low=0.0, low_open=True, high=10.0,
                                 unit="m/s or rad/s",
                                 why="the 2F-85's 0.075 m/s, the JACO2's 0.628 rad/s",
@@ -79,21 +50,17 @@ class DriveVibrationConfig:
 
 
 def gripper_drive_default() -> DriveVibrationConfig:
-    """The 2F-85's motor and gear (assumptions; docs/model.md, "Drive vibration"): a small
-    motor at about 6,000 rpm (100 rev/s) when the fingers close at full speed, 150 mm/s pad
-    to pad, i.e. 75 mm/s of half opening: 100 / 0.075 = 1,333 rev per metre; its rotation
-    (order 1) and a 12-tooth pinion's mesh (order 12, 1.2 kHz at full speed)."""
+    """The 2F-85's motor and gear (assumed): about 100 rev/s at full speed, 75 mm/s of half
+    opening (Robotiq 2F-85 specifications), so 1,333 rev/m; its rotation (order 1) and a
+    12-tooth pinion's mesh (order 12)."""
     return DriveVibrationConfig(amplitudes_mps2=[0.1, 0.3], orders=[1.0, 12.0],
                                 motor_revolutions_per_unit=100.0 / 0.075, full_speed=0.075)
 
 
 def arm_drive_default() -> DriveVibrationConfig:
-    """The JACO2's actuators (assumptions; docs/model.md, "Drive vibration"): a 100:1
-    harmonic drive per joint, 100 / (2 pi) motor revolutions per radian; the wave
-    generator's two lobes (order 2: the drive's dominant kinematic error and torque ripple,
-    Tuttle and Seering 1996) and the flexspline's 200 teeth meshing twice per revolution
-    (order 400); full speed 36 deg/s (0.628 rad/s), the large joints' limit (Kinova JACO2
-    specifications)."""
+    """The JACO2's actuators (assumed): a 100:1 harmonic drive per joint, its wave generator's
+    two lobes (order 2, Tuttle and Seering 1996) and 200 flexspline teeth meshing twice a
+    revolution (order 400); full speed 36 deg/s (Kinova JACO2 specifications)."""
     return DriveVibrationConfig(amplitudes_mps2=[0.05, 0.05], orders=[2.0, 400.0],
                                 motor_revolutions_per_unit=100.0 / (2.0 * math.pi),
                                 full_speed=math.radians(36.0))
@@ -113,8 +80,8 @@ def _symbolic_mode_gain(frequency_hz, mode_frequency_hz: float, damping_ratio: f
 
 def drive_tones(drives, period_s: float, mode_frequency_hz: float, damping_ratio: float):
     """(inputs, states, next states, reading) of the symbolic system: `drives` is a list of
-    (DriveVibrationConfig, number of joints) in input order; one phase [revolutions, in
-    [0, 1)] per drive and tone, the joints of a drive lumped (module docstring)."""
+    (DriveVibrationConfig, number of joints) in input order; one phase [rev, in [0, 1)] per
+    drive and tone."""
     inputs, states, updates, reading = [], [], [], 0.0
     for d, (config, joints) in enumerate(drives):
         rates = [Variable(f"v{d}_{j}") for j in range(joints)]
@@ -139,10 +106,9 @@ def drive_tones(drives, period_s: float, mode_frequency_hz: float, damping_ratio
 
 def AddDriveVibration(builder, *, sources, period_s: float, mode_frequency_hz: float,
                       damping_ratio: float, name: str = "drive_vibration"):
-    """Adds the drives' vibration (module docstring) to `builder`: `sources` is a list of
-    (DriveVibrationConfig, joint-rate output port); the disabled ones are left out.
-    Returns its output port, [left, right] (2, m/s^2: both pads read the same base
-    acceleration), or None when every drive is disabled."""
+    """Adds the drives' vibration to `builder`: `sources` is a list of (DriveVibrationConfig,
+    joint-rate output port), the disabled ones left out. Returns its output port, [left,
+    right] (2, m/s^2, the same base acceleration), or None when every drive is disabled."""
     sources = [(config, port) for config, port in sources if config.enabled()]
     if not sources:
         return None

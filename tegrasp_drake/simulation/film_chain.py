@@ -1,26 +1,14 @@
-"""The pads' PVDF films as one Diagram (pad_vibration_sensor.py gives the physics): the
-per-step work in compiled Drake systems, Python only where the plant's contacts are read.
+"""The pads' PVDF films as one Diagram, compiled Drake systems but for FilmLoads:
 
-    film_signals (Multiplexer) -> film_loads (FilmLoads, Python; film_loads.py): L and
-        the direct loads d of the step, and its memory (the pads' forces, the impulses)
-    film_inputs (Multiplexer: the hold, film_loads, the drive vibration, the noise)
-      -> film_dynamics (MatrixGain): both films over the step (exact, n internal instants)
-      -> film_step (Demultiplexer): the hold's next value | the internal outputs, the drive
-         vibration and the noise
-      -> film_hold (ZeroOrderHold): FilmLoads' memory and the films' states, one plant step
-      -> film_readout (SymbolicVectorSystem): peak-hold, + drive vibration, + noise,
-         amplifier swing, myRIO converter
-      -> film_samples (Demultiplexer): [0, 0, a] per pad
+    film_signals -> film_loads (FilmLoads, Python: the step's loads)
+    film_inputs (the hold, film_loads, drive vibration, noise) -> film_dynamics (MatrixGain:
+      both films over the step, exactly) -> film_step -> film_hold (ZeroOrderHold: FilmLoads'
+      memory and the films' states) | film_readout (SymbolicVectorSystem: peak-hold, drive,
+      noise, swing, converter) -> film_samples ([0, 0, a] per pad)
 
-The MatrixGain is film_dynamics.FilmStepMatrices for both pads (`advance_films` in matrix
-form, film_step_matrix); the films' states live in the ZeroOrderHold, not in a
-LinearSystem, because a LinearSystem with state draws from the random generator that seeds
-the station's noise sources (Drake's TimeVaryingAffineSystem::SetRandomState), which would
-change every noise stream seeded after it. The readout's expressions are
-film_readout.reading_mps2 itself, written with pydrake.symbolic's min, max and floor, on
-the signed peak of the step's n outputs (film_dynamics.symbolic_signed_peak): the same
-arithmetic bit for bit. Nothing in the chain calls Python per plant step but FilmLoads'
-one output.
+The states live in a ZeroOrderHold, not a LinearSystem, whose state would draw from the
+random generator and change every noise stream seeded after it. The readout's expressions
+are film_readout.reading_mps2's, the same arithmetic bit for bit.
 """
 
 import numpy as np
@@ -51,8 +39,7 @@ SAMPLE_AXIS = 2  # the film's axis, the pad frame's z, in each 3-vector sample
 
 
 def steps_per_sample(time_step: float, sample_rate_hz: float) -> int:
-    """Plant steps per RA sample (1 when a plant step is longer than the RA period); raises
-    ValueError when the RA period is not a whole number of plant steps."""
+    """Plant steps per RA sample (at least 1); ValueError unless a whole number."""
     steps = 1.0 / (sample_rate_hz * time_step)
     if steps > 1.0 and abs(steps - round(steps)) > 1e-6:
         raise ValueError(f"the RA period 1/{sample_rate_hz:g} s must be a whole "
@@ -61,15 +48,10 @@ def steps_per_sample(time_step: float, sample_rate_hz: float) -> int:
 
 
 def film_step_matrix(matrices: FilmStepMatrices, passed_through: int) -> np.ndarray:
-    """Both films over one plant step as one matrix M:
-
-        [m; s'; y; p] = M [h; film_loads; p]
-
-    h: the chain's hold, FilmLoads' memory (film_loads.py) one step ago and s, the left
-    film's five states, then the right's, at the step's start; m: film_loads' memory now
-    and s' the states at the step's end (the hold's next value); y: the left film's n
-    internal outputs [m/s^2], then the right's (advance_films in matrix form); p:
-    `passed_through` entries that come out unchanged."""
+    """Both films over one plant step as one matrix M: [m; s'; y; p] = M [h; film_loads; p],
+    h the chain's hold (FilmLoads' memory one step ago, then both films' five states), m the
+    memory now and s' the states at the step's end, y each film's n internal outputs [m/s^2]
+    (advance_films in matrix form), p `passed_through` entries unchanged."""
     n = matrices.substeps
     held, direct = matrices.held, matrices.direct
     memory = MEMORY.stop - MEMORY.start
@@ -92,13 +74,11 @@ def film_step_matrix(matrices: FilmStepMatrices, passed_through: int) -> np.ndar
 
 def film_readout_system(*, config, substeps: int, time_step: float, steps: int,
                         with_drive: bool, noise_std_v: float) -> SymbolicVectorSystem:
-    """The readout of both films as a SymbolicVectorSystem of period time_step.
-
-    Input: each film's n internal outputs (left, then right), then the drive vibration (2,
-    with_drive) and unit noise (2, noise_std_v > 0). Each `steps` plant steps (one RA
-    period) a pad's sample becomes reading_mps2 of its peak over the period plus the
-    drive, with noise_std_v [V] times the noise; the plant step at t = 0 takes no sample.
-    Output: [0, 0, left sample, 0, 0, right sample] [m/s^2]."""
+    """Both films' readout as a SymbolicVectorSystem of period time_step. Input: each film's
+    n internal outputs (left, then right), the drive vibration (2, with_drive) and unit noise
+    (2, noise_std_v > 0). Every `steps` plant steps a pad's sample becomes reading_mps2 of
+    its peak plus the drive, with noise_std_v [V] of noise (none at t = 0). Output: [0, 0,
+    left, 0, 0, right] [m/s^2]."""
     readout = (volts_per_mps2(config), config.amplifier_swing_v, adc_input(config.adc_input))
     t = Variable("t")
     outputs = [[Variable(f"{finger}_output_{j}") for j in range(substeps)]
@@ -140,13 +120,10 @@ def film_readout_system(*, config, substeps: int, time_step: float, steps: int,
 
 def AddFilmSamples(builder, *, film_loads, config: VibrationSensorConfig, time_step: float,
                    with_drive_vibration: bool, with_noise: bool):
-    """Adds the compiled part of the films (the module docstring's film_hold, film_inputs,
-    film_dynamics, film_step, film_readout and film_samples) to `builder`, fed by
-    `film_loads` (an output port of FilmLoads' layout), for a plant step of time_step [s].
-    Returns ((left, right) output ports of the samples, [0, 0, a] each [m/s^2], the hold's
-    output port (FilmLoads' `held`), {name: input port} of what is still to connect:
-    `drive_vibration` (2, m/s^2) with with_drive_vibration, `noise` (2 unit Gaussians at
-    the RA rate) with with_noise)."""
+    """Adds the compiled part of the films to `builder`, fed by `film_loads` (FilmLoads'
+    output), for plant steps of time_step [s]. Returns ((left, right) sample ports, [0, 0, a]
+    [m/s^2]; the hold's output, FilmLoads' `held`; {name: input port} still to connect:
+    `drive_vibration` (2, m/s^2) and `noise` (2 unit Gaussians) when asked for)."""
     matrices = film_step_matrices(film_parameters(config), time_step, config.internal_rate_hz)
     extra = [name for name, wanted in (("drive_vibration", with_drive_vibration),
                                        ("noise", with_noise)) if wanted]
@@ -156,7 +133,6 @@ def AddFilmSamples(builder, *, film_loads, config: VibrationSensorConfig, time_s
         film_step_matrix(matrices, 2 * len(extra))))
     split = builder.AddNamedSystem("film_step", Demultiplexer(
         [HELD_SIZE, 2 * matrices.substeps + 2 * len(extra)]))
-    # FilmLoads' memory and the films' states, held from one plant step to the next.
     hold = builder.AddNamedSystem("film_hold", ZeroOrderHold(time_step, HELD_SIZE))
     builder.Connect(hold.get_output_port(), gather.get_input_port(0))
     builder.Connect(film_loads, gather.get_input_port(1))
@@ -178,7 +154,7 @@ def AddFilmSamples(builder, *, film_loads, config: VibrationSensorConfig, time_s
 
 def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool = False,
                  pad_statics=None, with_drive_vibration: bool = False):
-    """Both pads' films as a Diagram (the module docstring), for the discrete `plant`.
+    """Both pads' films as a Diagram for the discrete `plant`.
 
     .. pydrake_system::
 
@@ -199,18 +175,11 @@ def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool
         - left_pad_vibration
         - right_pad_vibration
 
-    Ports: FilmLoads' inputs (film_loads.py), and
-        drive_vibration: the drives' vibration at the fingertips (2, m/s^2,
-            drive_vibration.py), added to each sample; declared only with
-            `with_drive_vibration`.
-        noise: unit Gaussian samples at the sensor rate (2); declared only when the
-            amplifier's or the converter's noise is above zero (noise_draw_std_v).
-        left_pad_vibration, right_pad_vibration: the film's peak-hold sample plus the drives'
-            vibration and noise, through the amplifier's swing and the myRIO's converter
-            (film_readout.py), on z, x and y zero (3, m/s^2-equivalent, pad frame); updated
-            every sensor period.
-
-    config: the VibrationSensorConfig; force_indices, pad_statics: as FilmLoads takes them.
+    Ports: FilmLoads' inputs (film_loads.py); drive_vibration (2, m/s^2, with
+    `with_drive_vibration`) and unit Gaussian noise (2, when noise_draw_std_v > 0) added to
+    each sample; the outputs are the read-out sample on z (3, m/s^2-equivalent, pad frame),
+    every sensor period. config: the VibrationSensorConfig; force_indices, pad_statics: as
+    FilmLoads takes them.
     """
     time_step = plant.time_step()
     if not time_step > 0.0:
@@ -221,7 +190,6 @@ def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool
     loads = builder.AddNamedSystem("film_loads", FilmLoads(
         plant=plant, pads=pads, force_indices=force_indices, config=config,
         matrices=matrices, with_texture=with_texture, pad_statics=pad_statics))
-    # FilmLoads' vector signals, gathered into its one input.
     signals = [(name, size) for name, size in zip(loads.layout.names, loads.layout.sizes)
                if size > 0]
     gather = builder.AddNamedSystem("film_signals", Multiplexer([size for _, size in signals]))
@@ -235,7 +203,6 @@ def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool
     for name in ("contact_results", "body_poses", "body_spatial_velocities",
                  "body_spatial_accelerations"):
         inputs[name] = loads.GetInputPort(name)
-    # PadFilms' ports, in its order.
     for name in ("generalized_contact_forces", "gripper_state", "left_pad_frame_acceleration",
                  "right_pad_frame_acceleration", "texture_state", "drive_vibration", "noise",
                  "contact_results", "body_poses", "body_spatial_velocities",
@@ -250,8 +217,7 @@ def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool
 
 
 def finger_force_indices(plant, gripper) -> list[int]:
-    """Where each finger's joint (FINGER_NAMES order, `<finger>_finger_joint`) sits in the
-    gripper model instance's generalized contact forces."""
+    """Where each finger's joint sits in the gripper instance's generalized forces."""
     indices = []
     for finger in FINGER_NAMES:
         joint = plant.GetJointByName(f"{finger}_finger_joint", gripper)
@@ -264,14 +230,11 @@ def finger_force_indices(plant, gripper) -> list[int]:
 def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorConfig,
                 slip_vibration=None, pad_forces=None, pad_statics=None,
                 drive_rates=(), name: str = "pad_films"):
-    """Adds both pads' films (and the accelerometers and noise source they read) to
-    `builder`, connected to `plant`; `slip_vibration`, if given, is the PadSlipVibration
-    system. The pads' normal contact forces come from the fingers' prismatic joints, or,
-    as the linkage hand needs, from `pad_forces` (a PadNormalForces system) or from the
-    joints' generalized contact forces through `pad_statics` (a LinkagePadStatics) when
-    given. `drive_rates`: (DriveVibrationConfig, joint-rate output port) of each drive
-    whose vibration the films read (drive_vibration.py). Returns the films' Diagram
-    (MakePadFilms; outputs `<finger>_pad_vibration`)."""
+    """Adds both pads' films (with the accelerometers and noise source they read) to
+    `builder`, connected to `plant`. The pad forces come from the fingers' prismatic joints,
+    or from `pad_forces` (PadNormalForces) or `pad_statics` (LinkagePadStatics) when given;
+    `slip_vibration`: the PadSlipVibration system or None; `drive_rates`:
+    (DriveVibrationConfig, joint-rate output port) per drive. Returns MakePadFilms' Diagram."""
     drive = AddDriveVibration(builder, sources=list(drive_rates),
                               period_s=1.0 / config.sample_rate_hz,
                               mode_frequency_hz=config.film.mode_frequency_hz,

@@ -1,27 +1,13 @@
 """The numerical core of the pad's PVDF film (the RA source): pure numpy functions.
 
-One pad is a linear system of five states, s = [l1, l2, y, y', z]:
-
-  - l1, l2: a critically damped second-order low-pass (corner w_l) of the slow modal load
-    L [N], the plant's per-step pad force plus the finger's inertia (pad_vibration_sensor.py);
-  - y [m]: the fingertip's structural mode, deflected outward (away from the object) by
-    y'' + 2 zeta w y' + w^2 y = (l2 + d) / m, with d [N] a direct load that bypasses the
-    low-pass (the impact pulse and the slip texture);
-  - z [m]: the charge amplifier's first-order low-pass of y (corner w_h), so that the film
-    reads the high-passed deflection y - z (V = -G_Q (y - z) / C_f).
-
-The output is that reading in acceleration-equivalent units, a = w^2 (y - z) [m/s^2]: the
-film's voltage divided by its mid-band sensitivity to base acceleration,
-S = G_Q m / (k C_f) = G_Q / (w^2 C_f) [V/(m/s^2)] (`film_sensitivity`). So a static base
-acceleration a0 of the finger along the pad normal reads a0, and a load F pushing the pad
-out reads F / m, before the high-pass takes them away.
-
-A plant step of length dt is split into n internal steps of h = dt / n (20 kHz by default).
-L is held over the plant step; d is held per internal step. Both are integrated exactly
-(matrix exponential), so the result does not depend on n except through how finely d is
-sampled. `FilmStepMatrices` holds, for one plant step, the map from [s; L] and d to the n
-internal outputs and the state at the end of the step; `advance_films` applies it to any
-number of pads at once (one column per pad).
+One pad is a linear system of five states, s = [l1, l2, y, y', z]: l1, l2 a critically
+damped low-pass (corner w_l) of the slow load L [N]; y [m] the fingertip's mode, deflected
+outward by y'' + 2 zeta w y' + w^2 y = (l2 + d) / m, d [N] a direct load that bypasses the
+low-pass (impact, slip texture); z the charge amplifier's low-pass of y (corner w_h), so the
+film reads y - z. The output is in acceleration-equivalent units, a = w^2 (y - z) [m/s^2]
+(the voltage over the sensitivity S = G_Q / (w^2 C_f)). A plant step is split into n
+internal steps (20 kHz); L is held over the plant step, d per internal step, both integrated
+exactly (matrix exponential). docs/model.md, "Vibration (RA) model".
 """
 
 import dataclasses
@@ -78,12 +64,8 @@ def exact_discretization(A: np.ndarray, B: np.ndarray, h: float):
 
 @dataclasses.dataclass(frozen=True)
 class FilmStepMatrices:
-    """One plant step of `substeps` internal steps of `h` [s] (see the module docstring).
-
-    held: (n + 5, 6) maps [s; L] to the n internal outputs (rows 0..n-1) and the state at the
-    end of the step (rows n..n+4). direct: (n + 5, n) maps the n held values of d the same
-    way. substep_starts: (n,) start of each internal step from the plant step's start [s].
-    """
+    """One plant step of `substeps` internal steps of `h` [s]. held (n + 5, 6) maps [s; L] to
+    the n internal outputs and the end state; direct (n + 5, n) maps the n values of d."""
     held: np.ndarray
     direct: np.ndarray
     h: float
@@ -120,12 +102,8 @@ def film_step_matrices(p: FilmParameters, time_step: float,
 
 def advance_films(m: FilmStepMatrices, states_and_loads: np.ndarray,
                   direct: np.ndarray | None = None):
-    """One plant step of several pads.
-
-    states_and_loads (6, P): each pad's state (rows 0..4) and its load L [N] held over the
-    step (row 5); direct (n, P) [N], held per internal step, or None. Returns (new states
-    (5, P), outputs (n, P) [m/s^2] at the end of each internal step), views of one array.
-    """
+    """One plant step of P pads: states_and_loads (6, P), each pad's state and its held load
+    L [N]; direct (n, P) [N] or None. Returns (new states (5, P), outputs (n, P) [m/s^2])."""
     stacked = m.held @ states_and_loads
     if direct is not None:
         stacked += m.direct @ direct
@@ -139,10 +117,9 @@ def signed_peak(samples: np.ndarray) -> np.ndarray:
 
 
 def symbolic_signed_peak(samples):
-    """signed_peak of one column, as a pydrake.symbolic expression of `samples` (a list of
-    expressions): the largest sample if it is at least as large as the smallest is
-    negative, else the smallest (the two differ only on a tie of equal magnitudes and
-    opposite signs, where signed_peak takes the earlier)."""
+    """signed_peak of one column of expressions, symbolically: the largest sample if it is at
+    least as large as the smallest is negative, else the smallest (ties of opposite sign
+    differ from signed_peak)."""
     highest = lowest = samples[0]
     for sample in samples[1:]:
         highest, lowest = symbolic_max(highest, sample), symbolic_min(lowest, sample)
@@ -165,10 +142,9 @@ def effective_mass(tip_mass: float, other_mass: float) -> float:
 
 
 def restitution(closing_speed: float, dissipation: float) -> float:
-    """Coefficient of restitution of a Hunt-Crossley contact, F = k x (1 + d x'), struck at
-    `closing_speed` [m/s] with `dissipation` d [s/m]: 1 / (1 + 2/3 d v). Its small-dv limit
-    is Hunt & Crossley's 1 - 2/3 d v; it is within 0.3 % of the value found by integrating
-    the contact up to d v = 0.5 (1.1 % at 1). e depends on d v alone."""
+    """Restitution of a Hunt-Crossley contact F = k x (1 + d x') struck at `closing_speed`
+    [m/s], d [s/m]: 1 / (1 + 2/3 d v), whose small-dv limit is Hunt & Crossley's 1 - 2/3 d v;
+    within 0.3 % of the integrated contact up to d v = 0.5."""
     return 1.0 / (1.0 + 2.0 / 3.0 * dissipation * max(closing_speed, 0.0))
 
 
@@ -186,17 +162,15 @@ def impact_pulse(closing_speed: float, tip_mass: float, other_mass: float,
 
 def film_sensitivity(charge_gain: float, mode_frequency_hz: float,
                      feedback_capacitance: float) -> float:
-    """Mid-band sensitivity [V/(m/s^2)] of the film to base acceleration of the finger:
-    S = G_Q m / (k C_f) = G_Q / (w^2 C_f), G_Q [C/m] the charge per unit modal deflection,
-    C_f [F] the charge amplifier's feedback capacitance."""
+    """Mid-band sensitivity [V/(m/s^2)] to base acceleration: S = G_Q / (w^2 C_f), G_Q [C/m]
+    the charge per unit modal deflection, C_f [F] the amplifier's feedback capacitance."""
     w = 2.0 * math.pi * mode_frequency_hz
     return charge_gain / (w * w * feedback_capacitance)
 
 
 def first_order_highpass(samples: np.ndarray, cutoff_hz: float, dt: float) -> np.ndarray:
-    """y[k] = a (y[k-1] + u[k] - u[k-1]), a = RC / (RC + dt), along axis 0, from rest
-    (u[-1] = y[-1] = 0): the filter of the rigid-body accelerometer chain that the film
-    replaced, kept to compare the two (analysis/compare_ra_transients.py)."""
+    """y[k] = a (y[k-1] + u[k] - u[k-1]), a = RC / (RC + dt), along axis 0, from rest: the
+    rigid-body accelerometer's filter, kept to compare (analysis/compare_ra_transients.py)."""
     samples = np.asarray(samples, dtype=float)
     rc = 1.0 / (2.0 * math.pi * cutoff_hz)
     a = rc / (rc + dt)

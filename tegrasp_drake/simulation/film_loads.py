@@ -1,32 +1,14 @@
-"""FilmLoads: what loads each pad's film over one plant step, the part of the film chain that
-reads the plant's contacts (film_chain.py builds the rest from compiled Drake systems).
+"""FilmLoads: what loads each pad's film over one plant step: the slow modal load L = F + m a_n
+[N] (the pad's normal force, the fingertip's inertia) and the direct loads d [N] at the step's
+n internal instants (the impact's half-sine at a contact's onset, the slip texture). The
+impact needs the plant's abstract ports, so this is the chain's one Python system; its memory
+(the last forces, the pulses under way) is in its output, which the chain holds and feeds
+back (`held`). docs/model.md, "Vibration (RA) model".
 
-Per plant step of length dt ending now (pad_vibration_sensor.py gives the physics):
-
-  - the slow modal load L = F + m a_n [N], held over the step: the pad's normal contact force
-    F and the fingertip's inertia under the pad frame's acceleration a_n along its inward
-    normal;
-  - the direct loads d [N] at each of the step's n internal instants (film_dynamics.py): the
-    impact's half-sine on the step where the pad's contact begins, and the slip texture
-    (pad_slip_vibration.py) while the pad touches and the texture is above
-    TEXTURE_FLOOR_MPS2.
-
-The impact needs the contact's point, the struck body and the two bodies' velocities there,
-which only the plant's abstract ports (contact results, body poses, velocities and
-accelerations) give: no compiled Drake system reads them, so this system stays in Python.
-It is evaluated once per plant step and does no more than read two forces and compare them
-with the last step's unless a contact begins or an impulse or a texture is under way. It
-keeps no state: what it must remember from one step to the next (its memory: the pads'
-forces and the impulses under way) is in its own output, which the chain holds for a plant
-step (film_chain.py) and feeds back with the films' states (`held`).
-
-The output, `film_loads` (10 + 2 n):
-
-  [0:2]   L of the left and right pads [N] (0 at t = 0, where no step has ended yet)
-  [2:4]   F of the left and right pads [N]
-  [4:6]   onset of each pad's impact [s], [6:8] its impulse [N s] (0: none under way),
-  [8:10]  its duration [s]
-  [10:10+n], [10+n:10+2n]  d of the left, then the right pad, oldest instant first [N]
+The output, `film_loads` (10 + 2 n): [0:2] L of the left and right pads [N] (0 at t = 0);
+[2:4] F [N]; each pad's impact onset [s] [4:6], impulse [N s] [6:8] (0: none under way) and
+duration [s] [8:10]; [10:10+n], [10+n:10+2n] d of the left, then the right pad, oldest
+instant first [N].
 """
 
 import dataclasses
@@ -50,11 +32,11 @@ from tegrasp_drake.simulation.pad_slip_vibration import texture_acceleration
 if typing.TYPE_CHECKING:  # the films' config lives with the station's sensor settings
     from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 
-# A pad's contact begins on the plant step whose normal force exceeds this [N] after a step
-# at or below it (the plant's force is exactly zero out of contact).
+# A pad's contact begins on the step whose normal force exceeds this [N] after one at or below
+# it (the plant's force is exactly zero out of contact).
 CONTACT_ONSET_N = 1e-6
 # Slip textures weaker than this [m/s^2] are not integrated: 5e4 times below the sensor
-# noise; creep of a held object (micrometres per second) gives about 1e-7.
+# noise (a held object's creep gives about 1e-7).
 TEXTURE_FLOOR_MPS2 = 1e-6
 
 # film_loads' layout (module docstring).
@@ -76,8 +58,7 @@ def film_loads_size(substeps: int) -> int:
 def _point_velocity_before_step(X_WB: RigidTransform, V_WB: SpatialVelocity,
                                 A_WB: SpatialAcceleration, p_WQ: np.ndarray,
                                 time_step: float) -> np.ndarray:
-    """Velocity [m/s] of body B's material point at p_WQ one plant step earlier, from its
-    velocity and the step's acceleration now."""
+    """Velocity [m/s] of body B's material point at p_WQ one plant step earlier."""
     r = p_WQ - X_WB.translation()
     w, alpha = V_WB.rotational(), A_WB.rotational()
     velocity = V_WB.translational() + np.cross(w, r)
@@ -87,10 +68,8 @@ def _point_velocity_before_step(X_WB: RigidTransform, V_WB: SpatialVelocity,
 
 @dataclasses.dataclass(frozen=True)
 class SignalLayout:
-    """Where FilmLoads finds each of its vector signals in its `signals` input: the sizes,
-    in order, of the gripper's generalized contact forces, its state (0 without pad
-    statics), the left and right pad frames' accelerations, the texture state (0 without a
-    texture) and the chain's hold (HELD_SIZE)."""
+    """Where FilmLoads finds each vector signal in its `signals` input: their sizes in order
+    (FilmLoads' ports; 0 for a signal not used)."""
     forces: int
     gripper_state: int
     texture: int
@@ -112,7 +91,7 @@ class SignalLayout:
 
 
 class FilmLoads(LeafSystem):
-    """Both pads' film loads over the plant step that ends now (see the module docstring).
+    """Both pads' film loads over the plant step that ends now.
 
     .. pydrake_system::
 
@@ -127,23 +106,13 @@ class FilmLoads(LeafSystem):
         - film_loads
 
     Ports:
-        signals: the vector inputs, one after the other (SignalLayout; one port, so that a
-            step costs one read from Python):
-            generalized_contact_forces: the gripper model instance's generalized contact
-                forces; entry force_indices[k] is finger k's joint, positive pushing its
-                pad outward (N); or PadNormalForces' output with force_indices (0, 1); or,
-                with `pad_statics`, the whole instance's, which pad_statics turns into pad
-                forces;
-            gripper_state: the gripper model instance's state, with `pad_statics` only
-                (linkage_pad_statics.py reads its joint angles);
-            left_pad_frame_acceleration, right_pad_frame_acceleration: each pad frame's
-                acceleration without gravity, in the pad frame (3, m/s^2; Drake
-                Accelerometer);
-            texture_state: PadSlipVibration's texture_state (6), from which the texture
-                acceleration along each pad normal is synthesised at the internal instants,
-                with `with_texture` only;
-            held: the chain's hold: film_loads' MEMORY (forces, pulses) one plant step
-                ago, then the films' states (HELD_SIZE; the states are not read here).
+        signals: the vector inputs, one after the other (SignalLayout; one port, one read
+            from Python a step): the gripper's generalized contact forces (entry
+            force_indices[k] finger k's, positive pushing its pad outward [N]; or
+            PadNormalForces' output; or, with `pad_statics`, the whole instance's), its
+            state (with `pad_statics` only), each pad frame's acceleration without gravity
+            (3, m/s^2, pad frame), PadSlipVibration's texture_state (6, with `with_texture`
+            only) and the chain's hold (HELD_SIZE).
         contact_results, body_poses, body_spatial_velocities, body_spatial_accelerations:
             the plant's; read only on the plant step where a pad's contact begins.
         film_loads: (10 + 2 n) the loads of the step that ends now (module docstring).
@@ -151,8 +120,7 @@ class FilmLoads(LeafSystem):
 
     def __init__(self, *, plant, pads: dict, force_indices, config: "VibrationSensorConfig",
                  matrices: FilmStepMatrices, with_texture: bool = False, pad_statics=None):
-        """matrices: the film's step (film_step_matrices) whose internal instants d is
-        given at; pad_statics: a LinkagePadStatics, or None."""
+        """matrices: the film's step (film_step_matrices); pad_statics: or None."""
         super().__init__()
         self._dt = plant.time_step()
         self._pads = [pads[finger] for finger in FINGER_NAMES]
@@ -160,8 +128,7 @@ class FilmLoads(LeafSystem):
         self._matrices = matrices
         self._midpoints = matrices.substep_starts + 0.5 * matrices.h
         self._texture_period_m = config.slip_texture_period_m
-        # What a contact onset needs to know about the other body: which body a collision
-        # geometry belongs to, its mass, and whether it is welded to the world.
+        # For a contact onset: each collision geometry's body, its mass, inf if welded.
         self._geometry_body = {}
         self._mass = {}
         for i in range(plant.num_bodies()):
@@ -184,8 +151,7 @@ class FilmLoads(LeafSystem):
             where["gripper_state"]
         self._left_force, self._right_force = (self._forces.start + left_index,
                                                self._forces.start + right_index)
-        # The normal (z) entries of the accelerations, and the memory entries of the last
-        # step's film_loads: its forces and pulses.
+        # The accelerations' normal (z) entries; the last step's forces and pulses.
         self._normal_accelerations = (where["left_pad_frame_acceleration"].start + 2,
                                       where["right_pad_frame_acceleration"].start + 2)
         held = where["held"].start - MEMORY.start  # film_loads' index i is at held + i
@@ -206,8 +172,7 @@ class FilmLoads(LeafSystem):
                                      self._calc)
 
     def _calc(self, context, output):
-        # Scalars are handled as Python floats: per plant step, numpy's scalar overhead
-        # would cost more than the arithmetic itself.
+        # Python floats: per plant step numpy's scalar overhead would exceed the arithmetic.
         signals = self._signals.Eval(context)
         values = signals.tolist()
         if self._statics is None:
@@ -262,14 +227,12 @@ class FilmLoads(LeafSystem):
 
     def _texture_loads(self, texture: np.ndarray, step_start: float):
         """(n, 2) the texture's inertial load [N] on each fingertip over this step's internal
-        steps from the texture state (6), or None when neither pad's texture is above
-        TEXTURE_FLOOR_MPS2."""
+        steps, or None when neither pad's texture is above TEXTURE_FLOOR_MPS2."""
         if (abs(texture.item(1)) <= TEXTURE_FLOOR_MPS2
                 and abs(texture.item(4)) <= TEXTURE_FLOOR_MPS2):
             return None
         phase, amplitude, speed = texture[0::3], texture[1::3], texture[2::3]
-        # The texture sample in force now is the one taken at the last multiple of its
-        # period before this update (an update at that same instant is not applied yet).
+        # The texture sample in force was taken at the last multiple of its period before now.
         sampled_at = TEXTURE_PERIOD_S * math.floor((step_start + 0.5 * self._dt)
                                                    / TEXTURE_PERIOD_S)
         elapsed = (step_start - sampled_at + self._midpoints)[:, np.newaxis]
@@ -277,8 +240,7 @@ class FilmLoads(LeafSystem):
             phase, amplitude, speed, elapsed, self._texture_period_m)
 
     def _start_impacts(self, context, onsets, step_start: float, pulses: list):
-        """Sets, in `pulses`, the impact pulse of each pad whose contact began on this
-        plant step."""
+        """Sets, in `pulses`, the impact pulse of each pad whose contact began this step."""
         contacts = self._contacts.Eval(context)
         poses = self._poses.Eval(context)
         velocities = self._velocities.Eval(context)

@@ -1,33 +1,13 @@
 """The film's electronics after the film: the charge amplifier's output swing and the NI
-myRIO-1900's 12-bit analog input, as pure functions on Python floats.
+myRIO-1900's 12-bit analog input (paper, Sec. IV-A), as pure functions. Per RA sample:
 
-The paper reads each pad's PVDF film through a charge amplifier (V = -Q / C_f, Eq. 4) into
-an NI myRIO-1900 (Sec. IV-A). Per RA sample, in the order the signal meets them:
+  V = clip(S a + n, -swing, +swing)   S [V/(m/s^2)], a the film's reading, n Gaussian noise
+  code = clip(round((V + offset) / lsb), low, high),   a_read = (code lsb - offset) / S
 
-  V = S a + n          S: the film's sensitivity at the amplifier's output [V/(m/s^2)],
-                       a the film's reading in acceleration-equivalent units (film_dynamics),
-                       n Gaussian noise: the amplifier's and the ADC's input noise (below)
-  V = clip(V, -swing, +swing)                       the amplifier's output swing
-  code = clip(round((V + offset) / lsb), low, high)  the myRIO's 12-bit converter
-  a_read = (code lsb - offset) / S                  what the host reads, in m/s^2
-
-The myRIO's inputs (NI myRIO-1900 User Guide and Specifications, "Converting Raw Data Values
-to Voltage"): the MSP connector's differential inputs span +-10 V, 20 V / 2^12 = 4.883 mV a
-code, codes -2048..+2047; the MXP connectors' single-ended inputs 0..5 V, 5 V / 2^12 =
-1.221 mV a code, codes 0..4095, which a bipolar amplifier reaches through a level shift to
-mid-range (2.5 V, `offset`). Voltages outside the range read the end code.
-
-The sign: the charge amplifier inverts (V = -Q / C_f); the host's calibration (hardware/
-myrio/tactile_calibration.py, a = piezo_gain V) absorbs it, so V is taken here with the
-reading's sign.
-
-Noise. The amplifier's output noise is `noise_std_mps2` (acceleration-equivalent); the
-converter adds its own input noise, `adc_noise_lsb` codes rms. The two are independent
-Gaussians, so one Gaussian of the root-sum-square is drawn; it is added ahead of the
-amplifier's clip (the converter's share belongs after it: the two differ only within a few
-noise sigmas of the rails). With noise of half a code or more the rounding error is close
-to uniform and independent of the signal (Widrow and Kollar, "Quantization Noise", 2008,
-ch. 4-5), so the reading's noise is sqrt(sigma_n^2 + lsb^2 / 12) (`reading_noise_std`).
+V has the reading's sign (the host's calibration absorbs the amplifier's inversion). With
+noise of half a code or more the rounding error is near uniform and independent of the
+signal (Widrow and Kollar, "Quantization Noise", 2008): the reading's noise is
+sqrt(sigma_n^2 + lsb^2 / 12). docs/model.md, "Vibration (RA) model" (Readout).
 """
 
 import dataclasses
@@ -55,6 +35,8 @@ class AdcInput:
         return self.high_code * self.volts_per_code - self.offset_v
 
 
+# NI myRIO-1900 User Guide and Specifications, "Converting Raw Data Values to Voltage": the MSP
+# connector's differential +-10 V input, the MXP connectors' single-ended 0-5 V one.
 MYRIO_INPUTS = {
     "msp": AdcInput(low_code=-2048, high_code=2047, volts_per_code=20.0 / 4096, offset_v=0.0),
     "mxp": AdcInput(low_code=0, high_code=4095, volts_per_code=5.0 / 4096, offset_v=2.5),

@@ -1,40 +1,11 @@
 """The simulated JACO2 driven as the real one is: by joint velocities, sampled, late.
 
-Between the station's `arm.desired_state` and the arm's joints, the same path as on the
-hardware (hardware/jaco/jaco_lcm_interface.py), with the bus and the firmware modelled:
-
-    arm.desired_state -> JacoVelocityTracker (rig/jaco_velocity_tracker.py: v_cmd)
-      -> ZeroOrderHold at the command rate (the host's 100 Hz commands)
-      -> DiscreteTimeDelay of the command latency (the bus and the arm's DSP cycle;
-         latency_register)
-      -> the arm's velocity servo set-point: q_ref = q0 + integral of v_cmd, v_ref = v_cmd
-      -> the plant's implicit PD on each joint (ArmDriverConfig position and damping gains)
-
-All but the tracker are compiled pydrake primitives; the tracker runs only when the hold
-samples it, at the command rate. Its position feedback is the plant's joint positions at
-the sample (the carriage's reported joints on the carriage).
-
-Why the servo's set-point is the integral of the command: the JACO2's base DSP turns each
-10 ms velocity command into joint position set-points that the actuators' own position
-loops follow, so a joint commanded to stand still holds its place against a load with the
-servo's stiffness, and the host's tracker takes the deflection back (the set-point winds
-on until the measured joint is where it is wanted). A servo that only damped the velocity
-error (tau = kd (v_cmd - v), no position term) would leave a steady error under a steady
-load, tau / (kd kp): 5e-3 rad/(N m) at kd 40 N m s/rad and kp 5 1/s, twice the
-deflection of the 400 N m/rad joints, and for good. The firmware compensates gravity, so
-the plant's arm has none.
-
-The settings (ArmDriverConfig) and their sources:
-- command_rate_hz 100: the JACO2's DSP runs its control loop every 10 ms; a joint-velocity
-  command must arrive at 100 Hz, faster ones only fill its buffer and slower ones do not
-  reach the commanded speed (Kinova's kinova-ros driver README, "Note on publish
-  frequency"). Plausible range: 100 Hz for the arm as sold; lower rates model a host that
-  misses its deadlines.
-- command_latency_s 0.010: from the host's command to the arm acting on it, one 10 ms DSP
-  cycle of buffering (the command waits in the buffer until the next cycle) plus the USB
-  transfer of about a millisecond; the real value is not published. Plausible 0.005-0.030 s
-  (0.030: a host that queues a command or two).
-- tracker.kp 5 1/s, tracker.max_joint_speed 36/48 deg/s: rig/jaco_velocity_tracker.py.
+`arm.desired_state` -> JacoVelocityTracker (rig/jaco_velocity_tracker.py) -> ZeroOrderHold
+at the command rate -> DiscreteTimeDelay of the latency -> the velocity servo's set-point
+q_ref = q0 + integral of v_cmd, v_ref = v_cmd -> the plant's implicit PD on each joint. The
+set-point integrates the command as the JACO2's DSP turns velocity commands into position
+set-points. Why, and the settings' sources (100 Hz commands, Kinova's kinova-ros README;
+the latency, one 10 ms DSP cycle plus USB, unpublished): docs/model.md, "The arm".
 """
 
 import dataclasses
@@ -46,8 +17,8 @@ from pydrake.systems.primitives import AffineSystem, DiscreteTimeDelay, ZeroOrde
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTracker
 from tegrasp_drake.rig.station_interface import ARM_JOINTS
 
-# How far a period may be from a whole number of plant steps and still count as one [s]:
-# round-off in, e.g., 1 / 100 Hz = 0.01 = 10 x 0.001.
+# How far a period may be from a whole number of plant steps and still count as one [s]
+# (round-off in 1 / 100 Hz = 10 x 0.001).
 STEP_TOLERANCE_S = 1e-9
 
 
@@ -85,12 +56,9 @@ def drive_problem(arm, time_step: float):
 
 def latency_register(arm, time_step: float, size: int):
     """The compiled system that delays each held command so that it acts on the plant
-    arm.command_latency_s L after it was sampled, or None when nothing needs to.
-
-    The discrete plant reads its set-point at the start of a step, so a value that appears
-    at t acts from t + h (h the plant step): L = h needs nothing. Every system that updates
-    at a plant step sees its input as it was before that step's updates, so a hold sampling
-    every step adds one step (L = 2h), and a DiscreteTimeDelay of m steps adds m + 1."""
+    arm.command_latency_s L after it was sampled, or None when nothing needs to: the plant
+    reads a set-point a step h late (L = h needs nothing), a hold sampling every step adds one
+    step and a DiscreteTimeDelay of m steps m + 1, as each sees its input before the step."""
     steps = plant_steps(arm.command_latency_s, time_step)
     if steps == 1:
         return None
@@ -126,9 +94,9 @@ class JacoVelocityDrive:
 def AddJacoVelocityDrive(builder, *, arm, time_step: float, initial_positions,
                          position_measured: OutputPort,
                          prefix: str = "arm") -> JacoVelocityDrive:
-    """Adds the velocity drive (module docstring) of `arm` (ArmDriverConfig, settings checked
-    by drive_problem) for a plant of step `time_step` [s] whose arm starts at
-    `initial_positions` [rad]; `position_measured` (6) [rad] is the tracker's feedback."""
+    """Adds the velocity drive of `arm` (ArmDriverConfig, checked by drive_problem) for a plant
+    of step `time_step` [s] whose arm starts at `initial_positions` [rad];
+    `position_measured` (6) [rad] is the tracker's feedback."""
     n = ARM_JOINTS
     tracker = builder.AddNamedSystem(f"{prefix}_velocity_tracker",
                                      JacoVelocityTracker(arm.tracker))

@@ -1,30 +1,12 @@
-"""The linkage fingers' pad normal forces from the joints' generalized contact forces.
-
-The PVDF film (pad_vibration_sensor.py) is loaded by its pad's normal contact force. On the
-linkage hand that is the net contact force on the finger body (the follower, which carries
-the pad and its backing) along the pad's outward normal. PadNormalForces sums it from the
-plant's contact results; this module gets the same force from a compiled vector port, the
-gripper model instance's generalized contact forces (tau = J^T F of the contact forces
-alone: joint limits, the loop's ball constraint and the drivers' coupler are constraints,
-not contact), with a few floats of planar statics:
-
-Each finger is a planar chain base -A- driver -B- coupler -C- follower, its joint axes
-normal to the finger's plane (robotiq/linkage.py; the mirrored finger's axes point the
-other way, so in its own (+-y, z) coordinates both fingers read alike). A contact wrench on
-the follower, with in-plane force F and moment M_C about C, gives the three joints
+"""The linkage fingers' pad normal forces from the joints' generalized contact forces (a
+compiled port; `vibration.pad_force_source: joint_forces`). Each finger is a planar chain
+base -A- driver -B- coupler -C- follower (robotiq/linkage.py); a contact wrench on the
+follower, in-plane force F and moment M_C about C, gives
 
     tau_C = M_C,   tau_B = M_C + (C - B) x F,   tau_A = M_C + (C - A) x F
 
-(x: the planar cross product). A, B and C are not collinear, so the last two equations
-give F exactly, and the pad force is F . n, n the pad's outward normal (the pad frame's -z)
-in the open pose turned by the follower's absolute angle (the sum of the three joint
-angles). The points and the normal are read from the plant's model. Forces out
-of the plane (friction along x) turn no joint and have no normal component. The result
-equals PadNormalForces' when only the followers have collision geometry, as the linkage
-model has (modelgen/robotiq_linkage_sdf.py): `LinkagePadStatics` refuses a plant where
-another link of a finger can touch.
-
-Runs on Python floats: it is evaluated on every plant step.
+so the last two give F, and the pad force is F . n, n the pad's outward normal. It equals
+PadNormalForces' when only the followers can touch (`LinkagePadStatics` checks).
 """
 
 import dataclasses
@@ -106,9 +88,8 @@ class LinkagePadStatics:
     generalized contact forces and state (the module docstring)."""
 
     def __init__(self, plant, gripper):
-        """plant: a finalized MultibodyPlant with the linkage hand as model instance
-        `gripper`. Raises ValueError when a finger link other than the follower has
-        collision geometry (its contacts would enter the joints' forces)."""
+        """plant: finalized, with the linkage hand as model instance `gripper`. Raises
+        ValueError when a finger link other than the follower has collision geometry."""
         self.velocities = plant.num_velocities(gripper)  # generalized contact forces' size
         self.states = plant.num_multibody_states(gripper)  # the instance's state's size
         touching = [f"{finger}_{link}" for finger in FINGER_NAMES for link in OTHER_LINKS
@@ -121,8 +102,8 @@ class LinkagePadStatics:
                    for link in CHAIN_LINKS] for finger in FINGER_NAMES]
         chains = [finger_chain(plant, gripper, finger, sign)
                   for finger, sign in zip(FINGER_NAMES, FINGER_SIGNS)]
-        # Per finger: its chain, and getters of its three joints' entries in the instance's
-        # generalized forces and in its state (itemgetter: read on every plant step).
+        # Per finger: its chain and getters of its joints' entries in the instance's
+        # generalized forces and state.
         self._fingers = tuple(
             (chain, operator.itemgetter(*(_instance_index(plant, gripper, j, velocity=True)
                                           for j in joint_chain)),

@@ -20,10 +20,9 @@ from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 
 OBJECT_MODEL_NAME = "object"
 OBJECT_BODY_NAME = "object"
-# Edge length [m] of a primitive's rigid hydroelastic surface mesh in the reference geometry
-# (a cylinder's facets; a box's mesh is 24 triangles, 14 vertices with one at each face's
-# centre, whatever the hint: counted at 50, 5 and 2 mm): 5 mm facets on the 25-50 mm
-# cylinders (contact_meshing.py: why not coarser).
+# Edge length [m] of a primitive's rigid surface mesh (a cylinder's facets; a box is 24
+# triangles whatever the hint): at 10 mm the thin cylinder slips at 0.87 of the Coulomb grip,
+# outside the validation's 10 % (docs/sweeps.md, "Coarser contact geometry").
 MESH_RESOLUTION_M = 0.005
 
 

@@ -1,20 +1,10 @@
-"""The idealised RA transducer: a rigid-body accelerometer on each pad, high-passed.
+"""The idealised RA transducer: a rigid-body accelerometer on each pad, high-passed, as in the
+paper's simulation (Sec. III-A, Fig. 4c; `vibration.transducer: accelerometer`).
 
-The paper memorized its events in a simulation with an accelerometer on each finger pad
-(Sec. III-A, Fig. 4c). Here, per pad, a Drake `Accelerometer` on the pad frame (with the
-plant's gravity: a real accelerometer feels it, and the high-pass removes it) gives the
-pad's proper acceleration in the pad frame; its component along the pad's inward normal
-(z) passes a first-order high-pass at the RA chain's corner, sampled at the RA rate:
-
-    y[k] = a (y[k-1] + u[k] - u[k-1]),   a = RC / (RC + T),   RC = 1 / (2 pi f_c),
-
-the filter of the accelerometer chain that the film model replaced
-(film_dynamics.first_order_highpass, used offline by runs/pad_strike.py), here as a
-discrete-time system. The filter starts from its first sample (u[-1] = u[0]), so the
-gravity already there at t = 0 is not a step. Gaussian noise is added to each sample.
-
-The output ports are those of the film (`PadFilms`): a 3-vector per pad with the sample on
-z and zeros on x and y, so that Eq. 2's magnitude is |y|.
+Per pad a Drake `Accelerometer` on the pad frame, with gravity, gives the proper acceleration;
+its inward-normal (z) component passes the first-order high-pass y[k] = a (y[k-1] + u[k] -
+u[k-1]), a = RC / (RC + T), at the RA rate, started on its first sample (gravity at t = 0 is
+no step), plus Gaussian noise. The outputs are the film's: [0, 0, y] per pad.
 """
 
 import math
@@ -32,8 +22,7 @@ _NORMAL_AXIS = 2  # the pad frame's z, its inward normal
 
 
 def highpass_coefficient(cutoff_hz: float, period_s: float) -> float:
-    """a = RC / (RC + T) of the first-order high-pass with corner cutoff_hz, sampled every
-    period_s."""
+    """a = RC / (RC + T) of the first-order high-pass at cutoff_hz sampled every period_s."""
     rc = 1.0 / (2.0 * math.pi * cutoff_hz)
     return rc / (rc + period_s)
 
@@ -52,12 +41,9 @@ class PadAccelerometers(LeafSystem):
         - left_pad_vibration
         - right_pad_vibration
 
-    Ports:
-        left_pad_frame_acceleration, right_pad_frame_acceleration: each pad frame's proper
-            acceleration in the pad frame (3, m/s^2; a Drake Accelerometer's measurement).
-        noise: 2 unit Gaussian samples at the RA rate; declared only with noise_std_mps2 > 0.
-        left_pad_vibration, right_pad_vibration: [0, 0, y] (m/s^2, pad frame), y the
-            high-passed normal acceleration plus noise; updated every RA period.
+    Ports: *_pad_frame_acceleration (3, m/s^2, pad frame; a Drake Accelerometer's); noise (2
+    unit Gaussians at the RA rate, when noise_std_mps2 > 0); *_pad_vibration: [0, 0, y]
+    (m/s^2, pad frame), the high-passed normal acceleration plus noise, every RA period.
     """
 
     def __init__(self, *, sample_rate_hz: float, highpass_cutoff_hz: float,
@@ -106,10 +92,8 @@ def AddPadFrameAccelerometer(builder, *, plant, pad, name: str, gravity) -> Acce
 
 def AddPadAccelerometers(builder, *, plant, pads: dict, config,
                          name: str = "pad_accelerometers") -> PadAccelerometers:
-    """Adds both pads' accelerometers, their high-pass (PadAccelerometers) and its noise
-    source to `builder`; `config` is the scenario's VibrationSensorConfig (its
-    sample_rate_hz, highpass_cutoff_hz, noise_std_mps2). Returns the PadAccelerometers
-    system (outputs `<finger>_pad_vibration`)."""
+    """Adds both pads' accelerometers, their high-pass and its noise source to `builder`;
+    `config`: the scenario's VibrationSensorConfig. Returns the PadAccelerometers system."""
     system = builder.AddNamedSystem(name, PadAccelerometers(
         sample_rate_hz=config.sample_rate_hz, highpass_cutoff_hz=config.highpass_cutoff_hz,
         noise_std_mps2=config.noise_std_mps2))

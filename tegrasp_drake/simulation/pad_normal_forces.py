@@ -1,10 +1,7 @@
-"""PadNormalForces: each finger's net contact force along its pad's outward normal.
-
-The PVDF film (pad_vibration_sensor.py) is loaded by the pad's normal contact force. On the
-prismatic hand the finger joint moves along the pad normal, so its generalized contact force
-is that force; a linkage finger's joints turn, so this system sums the contact forces on the
-finger body (the follower: pad and backing) from the plant's contact results and projects
-them on the pad's outward normal.
+"""PadNormalForces: each finger's net contact force along its pad's outward normal, the
+film's load on the linkage hand, whose finger joints turn (on the prismatic hand the finger
+joint's generalized contact force is that force): the contact forces on the finger body
+summed from the plant's contact results.
 """
 
 import numpy as np
@@ -72,8 +69,8 @@ class PadNormalForces(LeafSystem):
 
     Ports:
         contact_results, body_poses: the plant's.
-        pad_normal_forces: (2, N) left, right: the net contact force on each finger body
-            along its pad's outward normal (the pad frame's -z), positive pushing it open.
+        pad_normal_forces: (2, N) each finger body's net contact force along its pad's
+            outward normal (the pad frame's -z), positive pushing it open.
     """
 
     def __init__(self, *, plant, pads: dict):

@@ -1,16 +1,10 @@
 """Vibration that sliding excites in a pad's piezo film (the RA response to slip).
 
-A rigid-body accelerometer sees nothing while a pad slides smoothly along an object, yet a
-real PVDF film does: the pad's cover (the paper's conductive fabric) is a surface texture,
-and dragging it along the object makes the film follow that texture. Modelled as a
-sinusoidal texture of height h and spatial period lambda along the slip direction: at slip
-speed v the film is driven at f = v / lambda with an acceleration amplitude
-h (2 pi v / lambda)^2 along the pad normal. The phase is the integrated slip distance, so the
-signal is deterministic (no random numbers) and vanishes when nothing slides.
-
-The slip speed of a pad is the tangential speed, in the pad plane, of the object's material
-point at the pad centre relative to the pad; it counts only while the pad's true normal
-force exceeds CONTACT_FORCE_N.
+The pad's cover (the paper's conductive fabric) is a texture of height h and period lambda:
+at slip speed v the film is driven at f = v / lambda with an acceleration amplitude
+h (2 pi v / lambda)^2 along the pad normal, its phase the integrated slip distance (no random
+numbers; nothing when nothing slides). v is the tangential speed, in the pad plane, of the
+object's point at the pad centre relative to the pad, while the pad touches.
 """
 
 import math
@@ -27,7 +21,7 @@ from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 if typing.TYPE_CHECKING:  # the films (pad_vibration_sensor.py) read this module's texture
     from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 
-CONTACT_FORCE_N = 0.2
+CONTACT_FORCE_N = 0.2  # a pad's summed true force [N] above which it slides on the object
 UPDATE_PERIOD_S = 0.005  # slip speed sampling; the vibration itself is output at any time
 
 
@@ -39,14 +33,12 @@ def texture_acceleration_amplitude(slip_speed: float, height_m: float, period_m:
 
 def texture_acceleration(phase, amplitude, speed, elapsed, period_m: float):
     """The texture's acceleration [m/s^2] `elapsed` [s] after a sample of (phase [rad],
-    amplitude [m/s^2], slip speed [m/s]): the phase advances at the sampled speed. numpy
-    arrays broadcast."""
+    amplitude [m/s^2], slip speed [m/s]); numpy arrays broadcast."""
     return amplitude * np.sin(phase + 2.0 * np.pi * speed * elapsed / period_m)
 
 
 def cross_product(a, b) -> np.ndarray:
-    """a x b of two 3-vectors: numpy's np.cross arithmetic (each component a difference of
-    two products), without its general-shape set-up, which costs 30 times the products."""
+    """a x b of two 3-vectors, numpy's arithmetic without np.cross's set-up (30 times the cost)."""
     a0, a1, a2 = a.tolist()
     b0, b1, b2 = b.tolist()
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
@@ -81,16 +73,9 @@ class PadSlipVibration(LeafSystem):
         - right_slip_vibration
         - texture_state
 
-    Ports:
-        body_poses, body_spatial_velocities: the plant's; read only while a pad touches.
-        true_taxel_forces: (24) noise-free taxel forces [N], left then right (TactilePads).
-        left_slip_vibration, right_slip_vibration: (3) the texture's acceleration [m/s^2]
-            in the pad frame; only z, the pad normal, is non-zero.
-        texture_state: (6) the discrete state, from which the films synthesise the texture
-            at their internal rate with texture_acceleration: per pad (left, right), the
-            texture phase [rad], the acceleration amplitude [m/s^2] and the slip speed
-            [m/s], sampled every UPDATE_PERIOD_S; between samples the phase advances at
-            the sampled speed.
+    Ports: body_poses, body_spatial_velocities (the plant's, read while a pad touches);
+    true_taxel_forces (24, N, TactilePads'); *_slip_vibration (3, m/s^2 on the pad frame's z);
+    texture_state (6: per pad the phase [rad], amplitude [m/s^2] and slip speed [m/s]).
     """
 
     def __init__(self, *, pads: dict, object_body_index, config: "VibrationSensorConfig"):

@@ -1,49 +1,12 @@
-"""The PVDF film on each pad and its charge amplifier (the RA source), from the plant's physics.
+"""The PVDF film on each pad and its charge amplifier (the RA source): the settings
+(`VibrationSensorConfig`, the scenario's `vibration` section) and the sensitivity and noise
+that follow from them.
 
-What the film measures is the bending strain of the fingertip's printed circuit board, which
-it is glued to (the paper's Sec. IV-A): the deflection of the fingertip's first structural
-mode. A charge amplifier turns its charge into a voltage and high-passes it at 1/(2 pi R_f
-C_f). Per pad, the mode is driven by (film_dynamics.py):
-
-  - the slow load L = F + m a_n: the pad's normal contact force F from the plant (the
-    prismatic finger joint's generalized contact force, which moves along the pad normal;
-    on the linkage hand the finger body's contact force along the pad normal)
-    plus the fingertip's inertia under the finger body's acceleration a_n along the pad's
-    inward normal (a Drake Accelerometer on the pad frame, without gravity). A plant step
-    resolves a contact's first millisecond into one or two force samples whose size depends
-    on the step (measured on this scene with pydrake 1.51), so L passes a 60 Hz low-pass, where the plant's force history
-    converges with the step;
-  - the impact, which the plant cannot resolve: on the plant step where the pad's contact
-    begins, a half-sine of impulse J = (1 + e) m_eff v_n over the contact's physical
-    duration T_c = pi sqrt(m_eff / k_c), with v_n the closing speed of the pad and the
-    struck body's material points at the contact, before that step; m_eff the reduced mass
-    of the fingertip's modal mass and the struck body (the rest of the finger lies behind the
-    mode's spring, which is softer than the contact, so it takes no part in the first
-    half millisecond); e the Hunt-Crossley restitution of the pad's dissipation;
-  - the slip texture (pad_slip_vibration.py) as a base acceleration of the film, directly
-    (it is smooth in time and converges with the step).
-
-The whole is linear and integrated exactly at an internal rate (20 kHz) between plant steps,
-once per plant step for both pads together. The RA sample is, each sensor period (1 ms), the
-internal sample of largest magnitude, with its sign (a peak-hold: a 400 Hz ring sampled at
-1 kHz would alias, and its amplitude would depend on the phase of the contact against the
-sample grid). The drives' vibration (drive_vibration.py: the gripper's motor and gears, the
-arm's actuators, from their joint rates) and Gaussian noise are added to each sample, which
-then passes the charge amplifier's output swing and the NI myRIO-1900's 12-bit converter
-(film_readout.py): the RA stream moves in steps of one code, 4.88 mV on the default +-10 V
-input, i.e. 1.23 m/s^2 at the default sensitivity. This module holds the films' settings;
-film_chain.py builds them as one Diagram of compiled Drake systems (film_loads.py, the one
-Python system, reads the plant's contacts for the impact).
-
-Units: the film's voltage is V = -G_Q (y - z) / C_f (film_dynamics.py). It is reported in
-acceleration-equivalent units, a = -V / S with S = G_Q / (w^2 C_f) the film's mid-band
-sensitivity to base acceleration (`film_sensitivity`; 3.96e-3 V per m/s^2 with the defaults,
-i.e. 253 (m/s^2)/V, the hardware's `PadCalibration.piezo_gain`), so that a slow base
-acceleration of the finger reads as itself and a load F on the pad reads F / m. The station
-keeps the 3-vector ports of an accelerometer; the film has one axis, which is put on the pad
-frame's z (the inward normal), x and y stay zero, so Eq. 2's magnitude is |a|.
-
-Seed the noise with `diagram.SetRandomContext(context, RandomGenerator(seed))`.
+The film reads the bending of the fingertip's first structural mode, driven by the pad's
+load, the impact at contact onset and the slip texture (film_dynamics.py, film_loads.py);
+film_chain.py builds both films as one Diagram, film_readout.py is the myRIO's converter.
+The RA output is in acceleration-equivalent units, a = -V / S, on the pad frame's z (the
+inward normal). The model and every number: docs/model.md, "Vibration (RA) model".
 """
 
 import dataclasses
@@ -63,10 +26,9 @@ _SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
 
 @dataclasses.dataclass
 class FilmConfig:
-    """The fingertip's first structural mode that bends the film, the impact that rings it
-    at contact onset, and the film's charge per deflection with its amplifier's capacitor
-    (film_dynamics.py, film_loads.py). Sources and reasoning of every number:
-    docs/model.md, "Vibration (RA) model"."""
+    """The fingertip's first structural mode, the impact that rings it, and the film's charge
+    per deflection with its amplifier's capacitor. Sources: docs/model.md, "Vibration (RA)
+    model"."""
     # The fingertip's first structural mode (an estimate: see docs/model.md).
     mode_frequency_hz: float = bounded(400.0, low=0.0, low_open=True, high=10_000.0,
                                        high_open=True, unit="Hz",
@@ -80,8 +42,7 @@ class FilmConfig:
                                   below="must be positive [kg] (the fingertip's moving mass)")
     # Corner of the low-pass on the plant's per-step load (where the plant's force converges).
     load_lowpass_hz: float = bounded(60.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
-    # The impact pulse at contact onset: the pad's contact stiffness E A / (t / 2) and its
-    # Hunt-Crossley dissipation, both from the pad model.
+    # Impact at contact onset: the pad's stiffness E A / (t / 2), its Hunt-Crossley dissipation.
     impact_enabled: bool = True
     pad_contact_stiffness_n_per_m: float = bounded(
         PAD_MODULUS * PAD_WIDTH * PAD_LENGTH / (PAD_THICKNESS / 2), low=0.0, low_open=True,
@@ -89,11 +50,7 @@ class FilmConfig:
     pad_dissipation_s_per_m: float = bounded(PAD_DISSIPATION, low=0.0, high=1000.0, unit="s/m",
                                              why="Hunt-Crossley dissipation of soft materials is "
                                                  "0.1-50 s/m")
-    # Film charge per unit modal deflection G_Q = d31 E_film kappa A_film, and the charge
-    # amplifier's feedback capacitance: they set the film's sensitivity at the amplifier's
-    # output, S = G_Q / (w^2 C_f) [V/(m/s^2)] (volts_per_mps2; 3.96e-3 with these), and with
-    # it the volts the readout below clips and quantises. The range of G_Q (a film bonded
-    # behind the board vs a free cantilever) and why S is kept: docs/model.md.
+    # G_Q = d31 E_film kappa A_film (PVDF film data) and C_f set S = G_Q / (w^2 C_f) [V/(m/s^2)].
     film_charge_gain_c_per_m: float = bounded(2.5e-5, low=0.0, low_open=True, high=1e-2,
                                               unit="C/m", below=_SENSITIVITY_BELOW)
     feedback_capacitance_f: float = bounded(1e-9, low=0.0, low_open=True, high=1e-6, unit="F",
@@ -106,11 +63,9 @@ class FilmConfig:
 class VibrationSensorConfig:
     """The PVDF film of each pad (RA channel source). Sources and reasoning of every number:
     docs/model.md, "Vibration (RA) model"."""
-    # RA output rate (peak-hold over each period)
     sample_rate_hz: float = bounded(1000.0, low=16.0, high=20_000.0, unit="Hz",
                                     why="the 0.5 s event window needs 8 samples; the film is "
                                         "integrated at 20 kHz")
-    # per sample, acceleration-equivalent
     noise_std_mps2: float = bounded(0.05, low=0.0, high=100.0, unit="m/s^2",
                                     why="the film's noise is a few hundredths; 100 would bury "
                                         "every event",
@@ -118,22 +73,14 @@ class VibrationSensorConfig:
     # charge amplifier corner 1 / (2 pi R_f C_f)
     highpass_cutoff_hz: float = bounded(2.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
                                         why="the charge amplifier's corner, below the RA band")
-    # Texture of the pad cover that sliding drags the film over (pad_slip_vibration.py): a
-    # woven fabric of about 0.5 mm pitch with a few micrometres of relief. 0 disables.
+    # The pad cover's texture (pad_slip_vibration.py): woven fabric, 0.5 mm pitch; 0 disables.
     slip_texture_height_m: float = bounded(5e-6, low=0.0, high=1e-3, unit="m",
                                            why="surface roughness, microns")
     slip_texture_period_m: float = bounded(5e-4, low=0.0, low_open=True, high=0.01, unit="m",
                                            why="texture wavelength, sub-millimetre")
-    # The film's mechanics and charge.
     film: FilmConfig = dataclasses.field(default_factory=FilmConfig)
-    # The readout (film_readout.py): the amplifier's output swing [V] (an op-amp on the
-    # myRIO MSP connector's +-15 V supply swings to about +-13.5 V), and the NI myRIO-1900's
-    # 12-bit input: "msp" (+-10 V, 4.88 mV a code; the default, for the bipolar amplifier),
-    # "mxp" (0-5 V, 1.22 mV a code, the amplifier level-shifted to 2.5 V) or "ideal" (no
-    # converter: the amplifier's voltage itself, unclipped by any input range); the
-    # converter's own input noise in codes rms (half a code: a 12-bit converter's noise is
-    # below one code, or its last bit would carry noise only; NI's 12-bit boards dither with
-    # about 0.5 code rms, NI PCI-1200 User Manual).
+    # The readout (film_readout.py): the amplifier's swing on the myRIO's +-15 V supply, and
+    # the NI myRIO-1900's 12-bit input: "msp" (+-10 V), "mxp" (0-5 V) or "ideal" (none).
     amplifier_swing_v: float = bounded(13.5, low=0.0, low_open=True, high=15.0, unit="V",
                                        why="an amplifier on the myRIO's +-15 V supply cannot "
                                            "swing past its rails",
@@ -143,30 +90,24 @@ class VibrationSensorConfig:
                                    why="a 12-bit converter's noise is below one code, NI "
                                        "PCI-1200 User Manual; 0: none",
                                    below="must be zero (no noise) or positive [codes rms]")
-    # Vibration of the gripper's motor and gears while the fingers move, and of the arm's
-    # actuators while the arm moves (drive_vibration.py; amplitudes_mps2 [] disables).
+    # The gripper's and the arm's drive vibration (drive_vibration.py; [] amplitudes: off).
     gripper_drive: DriveVibrationConfig = dataclasses.field(
         default_factory=gripper_drive_default)
     arm_drive: DriveVibrationConfig = dataclasses.field(default_factory=arm_drive_default)
-    # exact integration points per second
     internal_rate_hz: float = bounded(20000.0, low=0.0, low_open=True, high=200_000.0, unit="Hz",
                                       why="exact integration points per second; the wall time "
                                           "grows with it",
                                       below="must be positive [Hz]")
-    # "film": the PVDF film above (the real pad's); "accelerometer": a rigid-body
-    # accelerometer on the pad, its normal axis high-passed at highpass_cutoff_hz
-    # (pad_accelerometers.py; the paper's simulation had one per pad). The film's own
-    # settings (`film`, the readout's) are then unused.
+    # "film", or "accelerometer": a high-passed rigid-body accelerometer on the pad, as in the
+    # paper's simulation (pad_accelerometers.py); the film's own settings are then unused.
     transducer: str = "film"
-    # Where the linkage hand's films get their pad forces (linkage_pad_statics.py; the same
-    # forces to round-off): "contact_results", a walk over the plant's contact results
-    # each step (PadNormalForces); "joint_forces", its joints' generalized contact forces.
+    # The linkage hand's pad forces: "contact_results" (PadNormalForces) or "joint_forces"
+    # (linkage_pad_statics.py, cheaper); the same forces to round-off.
     pad_force_source: str = "contact_results"
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) of the first name that is not one of its
-        choices or setting that does not fit another (each number's own range is declared
-        on its field); None when all fit."""
+        """(field, what it must be, its value) of the first choice or cross-field setting that
+        does not fit (each number's range is declared on its field); None when all fit."""
         from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
         from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
         choices = (("transducer", VIBRATION_TRANSDUCERS, "(the PVDF film, or a high-passed "
@@ -183,9 +124,7 @@ class VibrationSensorConfig:
             return ("film.mode_frequency_hz", f"must lie in (0, {nyquist:g}) Hz (the "
                     "fingertip's mode, integrated at vibration.internal_rate_hz; at 0 the film "
                     "feels no ring)", self.film.mode_frequency_hz)
-        # The charge amplifier's high-pass runs where the film is integrated
-        # (internal_rate_hz, film_dynamics.py); the accelerometer's on its samples
-        # (pad_accelerometers.py).
+        # The film's high-pass runs at its integration rate, the accelerometer's on its samples.
         filter_rate_hz, rate_name = ((self.sample_rate_hz, "vibration.sample_rate_hz")
                                      if self.transducer == "accelerometer" else
                                      (self.internal_rate_hz, "vibration.internal_rate_hz"))

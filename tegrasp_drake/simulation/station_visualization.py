@@ -1,9 +1,6 @@
-"""What the simulated station shows in Meshcat: the scene (Drake's illustration and proximity
-geometry), the contact forces (Drake's ContactVisualizer), each taxel's force on the pads
-(TaxelForceDisplay) and a camera framed on the gripper and the object.
-
-Everything it draws goes into Meshcat's recording when one is running, so a replay
-(`Meshcat.PublishRecording()`, `Meshcat.StaticHtml()`) shows the same.
+"""What the simulated station shows in Meshcat: the scene, the contact forces (Drake's
+ContactVisualizer), each taxel's force (TaxelForceDisplay) and a camera framed on the grasp;
+all of it also into Meshcat's recording when one runs.
 """
 
 import numpy as np
@@ -16,10 +13,8 @@ from tegrasp_drake.simulation.taxel_force_display import TaxelForceDisplay, Taxe
 # it 2.5 m, far outside the view); moments at 1 cm per 0.01 N m.
 CONTACT_NEWTONS_PER_METER = 500.0
 CONTACT_NEWTON_METERS_PER_METER = 1.0
-# Camera: above, in front of the fingertips and to the +y side, looking at the point between
-# the palm and the object, half the lift above the grasp (world frame, from the object's
-# position at the grasp height) [m]: both fingers, their taxel bars and the contact forces
-# in view, the gripper a quarter to a half of the view through the grasp.
+# Camera: above, in front of the fingertips and to +y, looking between the palm and the
+# object, half the lift above the grasp (world) [m]: both fingers and the bars in view.
 CAMERA_TARGET_FROM_OBJECT_M = (-0.03, 0.0, 0.03)
 CAMERA_FROM_TARGET_M = (0.08, 0.10, 0.18)
 
@@ -33,11 +28,8 @@ def grasp_camera_pose(p_WO, grasp_height: float) -> tuple[np.ndarray, np.ndarray
 
 
 def AddStationVisualization(builder, *, plant, scene_graph, taxels, pads, meshcat, camera):
-    """Adds the Meshcat visualizers to the station's builder and frames the camera
-    (`camera`: grasp_camera_pose's (p_WC, p_WT)).
-
-    taxels: the TactilePads system (its `{finger}_taxel_forces` outputs); pads: finger name
-    -> PadGeometry."""
+    """Adds the Meshcat visualizers to the station's builder and frames the camera (`camera`:
+    grasp_camera_pose's (p_WC, p_WT)); taxels: the TactilePads; pads: finger -> PadGeometry."""
     ApplyVisualizationConfig(VisualizationConfig(publish_contacts=False), builder,
                              meshcat=meshcat)
     ContactVisualizer.AddToBuilder(

@@ -1,7 +1,5 @@
-"""Adds the table (models/table, modelgen/table_sdf.py) to a plant, welded with its top at the
-world's z = 0, its contact shape as the scenario's `contact_geometry.table` says
-(contact_meshing.py): the compliant box of the model file, or a compliant half-space at
-the top with the box's material.
+"""Adds the table (models/table) to a plant, its top at the world's z = 0, as the compliant
+box of the model file or a compliant half-space with its material (`contact_geometry.table`).
 """
 
 from pydrake.geometry import (AddCompliantHydroelasticPropertiesForHalfSpace,
@@ -14,15 +12,12 @@ from tegrasp_drake.modelgen import table_sdf
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 
 TABLE_URL = "package://tegrasp/table/table.sdf"
-# The half-space's slab: Drake's compliant box field rises linearly from 0 at a face to the
-# modulus at the box's mid-plane, half its 50 mm thickness deep; a slab that deep gives the
-# top the same pressure per depth of penetration.
+# The half-space's slab: Drake's box field reaches the modulus at its mid-plane, half its
+# thickness deep, so a slab that deep gives the top the same pressure per depth.
 HALF_SPACE_SLAB_THICKNESS_M = table_sdf.SIZE[2] / 2
-# Drake 1.51 aborts (a DRAKE_DEMAND in mesh_half_space_intersection.cc) when it clips a rigid
-# triangle with two vertices exactly on a soft half-space's plane and the third outside:
-# every object starts with its base exactly at z = 0. The plane sits this far above the
-# top [m] so that no vertex starts exactly on it; the pressure this adds at rest is
-# modulus x 1e-9 / slab, 0.4 Pa, against the object's weight's kPa.
+# Drake 1.51 aborts (mesh_half_space_intersection.cc) clipping a rigid triangle with two
+# vertices exactly on a soft half-space's plane, as an object's base at z = 0 starts: the
+# plane sits this far above the top [m] (0.4 Pa more at rest).
 HALF_SPACE_LIFT_M = 1e-9
 
 

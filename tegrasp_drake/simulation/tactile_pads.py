@@ -1,12 +1,10 @@
-"""TactilePads: the 12-taxel capacitive arrays of both fingertip pads, sampled like an AD7147.
+"""TactilePads: the 12-taxel arrays of both fingertip pads, sampled at the taxel rate.
 
-Each sample computes, for each pad, the normal force on each taxel from the hydroelastic
-contact surfaces that involve the pad's geometry (contact_pressure.py), scales each surface's
-taxel forces so that they sum to the normal component of the force the solver actually
-applied (`F_Ac_W`; the pressure integral differs from it: 15.5 N against 12 N applied, measured
-on a rigid object with pydrake 1.51), then applies the
-sensor model: constant offset, Gaussian noise, quantisation. Noise is drawn from a generator
-seeded by (seed, sample index), so a trial is reproducible and the Context holds all state.
+Each sample integrates the pressure of each hydroelastic contact surface on a pad over its
+taxels (contact_pressure.py), scales the surface's taxel forces to the normal force the
+solver applied (docs/model.md, "Taxel forces from the contact surface"), then adds offset,
+Gaussian noise and quantisation. The noise is seeded by (seed, sample index), so the Context
+holds all state.
 """
 
 import dataclasses
@@ -29,16 +27,10 @@ _NOISE_STREAM = 7001  # separates this sensor's random stream from others seeded
 
 @dataclasses.dataclass
 class TactileSensorConfig:
-    """The capacitive taxel array of each pad (SA channel source).
-
-    AD7147: 12 conversion stages at decimation 64 take about 9.2 ms (about 108 Hz); 1000 Hz
-    is also selectable for an idealised sensor.
-
-    transducer: "capacitive" (the default), the real pad's parallel-plate taxels read by the
-    AD7147 (capacitive_taxels.py, settings in `capacitive`; the force noise settings below are
-    then unused), or "force", the taxel forces with the noise, quantisation and offset below
-    (an ideal force sensor, as in the paper's simulation).
-    """
+    """The taxel array of each pad (SA channel source); the numbers' sources: docs/model.md,
+    "The fingertip and its taxels". transducer: "capacitive" (the real pad, read by an
+    AD7147; settings in `capacitive`, the force noise below unused) or "force" (an ideal
+    force sensor with the noise, quantisation and offset below, as the paper's simulation)."""
     sample_rate_hz: float = bounded(108.0, low=16.0, high=20_000.0, unit="Hz",
                                     why="the 0.5 s event window needs 8 samples; the film is "
                                         "integrated at 20 kHz")
@@ -70,16 +62,14 @@ class PadGeometry:
 
 @functools.lru_cache(maxsize=64)
 def _fan_triangles(face_data: tuple) -> np.ndarray:
-    """polygon_fan_triangles of a face_data tuple, remembered: a held grasp's surfaces keep
-    their polygons from sample to sample while their vertices move. Read-only."""
+    """polygon_fan_triangles remembered (a held grasp's polygons persist); read-only."""
     triangles = polygon_fan_triangles(face_data)
     triangles.flags.writeable = False
     return triangles
 
 
 def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
-    """(p_PV, pressure_V, triangles, applied normal force [N]) of one hydroelastic contact,
-    vertices in the pad frame P."""
+    """(p_PV, pressure_V, triangles, applied normal force [N]) of one contact, in frame P."""
     surface = info.contact_surface()
     if surface.is_triangle():
         mesh, field = surface.tri_mesh_W(), surface.tri_e_MN()
@@ -97,10 +87,8 @@ def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
 
 
 def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[list]:
-    """Per pad (its geometry id in `geometry_ids`): [(p_PV, pressure_V, triangles, applied
-    normal force [N])] of each hydroelastic contact surface that involves the pad's geometry,
-    in contact order, vertices in the pad frame P. One pass over the contacts for all pads;
-    `pad_poses()` (each pad's X_WP) is called only if a pad has a contact surface."""
+    """Per pad: [(p_PV, pressure_V, triangles, applied normal force [N])] of each
+    hydroelastic contact surface on its geometry, vertices in the pad frame P."""
     per_pad = [[] for _ in geometry_ids]
     frames = None
     for i in range(contact_results.num_hydroelastic_contacts()):
@@ -117,10 +105,9 @@ def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> 
 
 
 def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[np.ndarray]:
-    """The 12 taxel normal forces [N] (noise-free) of each pad (its geometry id in
-    `geometry_ids`, its pose X_WP in what `pad_poses()` returns, called only if a pad has a
-    contact surface): each surface's pressure integral (contact_pressure.py, all surfaces
-    of all pads in one pass) scaled to the normal force the solver applied on it."""
+    """The 12 noise-free taxel normal forces [N] of each pad (by geometry id; `pad_poses()`
+    gives each X_WP, called only if a pad has a contact surface): each surface's pressure
+    integral scaled to the normal force the solver applied on it."""
     per_pad = _pads_surfaces(contact_results, geometry_ids, pad_poses)
     surfaces = [surface for pad in per_pad for surface in pad]
     raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces]) if surfaces else [])
@@ -160,12 +147,9 @@ class TactilePads(LeafSystem):
         - right_taxel_forces
         - true_taxel_forces
 
-    Ports (the outputs are updated at `sample_rate_hz` and held in between):
-        contact_results: the plant's ContactResults.
-        body_poses: the plant's body poses (X_WB per body index).
-        left_taxel_forces, right_taxel_forces: (12) measured normal forces [N] each, taxel
-            order of taxel_layout.py.
-        true_taxel_forces: (24) noise-free forces [N] (left then right), for evaluation.
+    Ports: contact_results, body_poses: the plant's; left_taxel_forces, right_taxel_forces:
+    (12) measured forces [N] (rig/taxel_layout.py's order); true_taxel_forces: (24)
+    noise-free, left then right; each output updated at `sample_rate_hz`.
     """
 
     def __init__(self, *, pads: dict, config: TactileSensorConfig, seed: int):
@@ -179,8 +163,7 @@ class TactilePads(LeafSystem):
             "contact_results", AbstractValue.Make(ContactResults()))
         self._poses_port = self.DeclareAbstractInputPort(
             "body_poses", AbstractValue.Make([RigidTransform()]))
-        # One discrete state group per output port (the ports are Drake state output ports,
-        # read with no Python call): each finger's measured forces, then the true forces.
+        # One state group per output port (state output ports need no Python call).
         self._measured = [self.DeclareDiscreteState(TAXELS_PER_PAD) for _ in FINGER_NAMES]
         self._true = self.DeclareDiscreteState(len(FINGER_NAMES) * TAXELS_PER_PAD)
         self.DeclarePeriodicDiscreteUpdateEvent(self._period, 0.0, self._sample)

@@ -1,18 +1,10 @@
 """TaxelForceDisplay: each pad's 12 taxel forces drawn in Meshcat, live and in the recording.
 
-Each taxel is a bar on the back of its finger, over the taxel (the pad's contact face is
-hidden by the object while grasping): the bar grows outward, along the force the object
-puts on the pad, by `meters_per_newton`, and its colour runs from yellow to dark red
-over 0..`full_scale_n`; a taxel below `visible_threshold_n` is a thin grey tile, so the
-3 x 4 layout stays visible. The bars of a pad hang from one Meshcat group posed at the pad
-frame P, so they follow the finger.
-
-Length and pose go through Meshcat.SetProperty/SetTransform with the publish time (live, and
-into the recording when recording). The colour is set live on the bar's group ("color",
-which Meshcat applies to the material) and written into the recording as the mesh's
-"material.color" directly: Meshcat.SetProperty(..., "material.color", ...) would also send
-the value live, where Meshcat's viewer replaces the material's Color with a plain array
-(the bar turns black), and the group's "color" cannot be animated.
+Each taxel is a bar on the back of its finger (the object hides the pad's face), growing
+outward with the force and coloured yellow to dark red; a taxel below the threshold is a thin
+grey tile. The colour is set live on the bar's group ("color") and written into the
+recording as the mesh's "material.color": Meshcat's SetProperty of "material.color" would
+also reach the live viewer, which turns the bar black, and "color" cannot be animated.
 """
 
 import dataclasses
@@ -37,15 +29,12 @@ _TILE_LENGTH_M = 0.0005  # the grey tile of an idle taxel
 
 @dataclasses.dataclass
 class TaxelForceDisplayConfig:
-    """How the taxel forces are drawn. Display scales, not physical parameters: chosen so
-    that the default 25 N grip on a cylinder's line contact (the whole grip on one row of 3
-    taxels, about 8 N each) gives the longest bars (2 cm) and the darkest colour, and a flat
-    face's 2 N per taxel reads as a 5 mm orange-yellow bar."""
+    """How the taxel forces are drawn; display scales, chosen so that a 25 N grip on one row
+    of 3 taxels (about 8 N each) gives the longest bars (2 cm) and the darkest colour."""
     meters_per_newton: float = 0.0025
     full_scale_n: float = 8.0  # the darkest colour
     visible_threshold_n: float = 0.05  # 10 x the taxels' noise (TactileSensorConfig)
-    back_offset_m: float = 0.015  # pad contact face to the finger's back (4 mm pad, 10 mm
-    # finger, 1 mm clearance)
+    back_offset_m: float = 0.015  # pad face to finger back: 4 mm pad, 10 mm finger, 1 mm gap
     publish_period_s: float = 1.0 / 32.0  # as Drake's ContactVisualizer
 
 
@@ -75,10 +64,7 @@ class TaxelForceDisplay(LeafSystem):
         - left_taxel_forces
         - right_taxel_forces
 
-    Ports:
-        body_poses: the plant's body poses X_WB (to place each pad's frame P).
-        left_taxel_forces, right_taxel_forces: (12) each taxel's normal force [N], taxel
-            order of rig/taxel_layout.py.
+    Ports: body_poses (the plant's X_WB); *_taxel_forces (12, N).
     """
 
     def __init__(self, *, meshcat, pads: dict, config: TaxelForceDisplayConfig,
@@ -100,9 +86,8 @@ class TaxelForceDisplay(LeafSystem):
         return f"{self._prefix}/{finger}/taxel_{k:02d}"
 
     def _add_bars(self):
-        """One unit-length bar per taxel, its base on the finger's back over the taxel; the
-        group's z scale is the bar's length [m] (pad frame z points into the object, so the
-        bar grows along -z, outward)."""
+        """One unit-length bar per taxel on the finger's back, its group's z scale the bar's
+        length [m], growing along the pad frame's -z (outward)."""
         bar = Box(_BAR_FILL * CELL_X, _BAR_FILL * CELL_Y, 1.0)
         for finger in FINGER_NAMES:
             for k, p_PoTk_P in enumerate(taxel_centers()):

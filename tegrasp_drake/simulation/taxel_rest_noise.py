@@ -1,21 +1,10 @@
 """What a taxel reads from noise alone, as an exact distribution of the transducer's model:
-the SA thresholds are set against it (control/noise_thresholds.py).
-
-A reading's noise is a lattice distribution (a value every `step`), because every path
-ends in a quantiser:
-
-  - capacitive, calibrated (capacitive_taxels.py): the AD7147's counts are whole numbers,
-    rint(sigma_c Z) above the baseline with nothing touching (Z standard normal, sigma_c the
-    counts' noise at the decimation), and the calibration line clips at zero:
-    reading = gain max(0, rint(sigma_c Z)) [N]. The clip gives the noise a positive mean:
-    12 taxels of 4 counts at 0.077 N a count sum to 1.46 N on average at rest.
-  - capacitive, counts: rint(sigma_c Z) [counts], not clipped.
-  - force (tactile_pads.apply_sensor_model): q rint((offset + sigma Z) / q) [N], q the
-    quantisation; with q = 0, the lattice is sigma / 64 (the rounding then moves a quantile
-    by at most that).
-
-Under load (every taxel reading far above zero) the clip is not reached: the noise is the
-same lattice unclipped, about the true reading (`loaded_noise`).
+the SA thresholds are set against it (control/noise_thresholds.py; docs/model.md, "SA
+thresholds against the taxels' noise"). Every path ends in a quantiser, so the noise is a
+lattice distribution: the calibrated capacitive reading gain max(0, rint(sigma_c Z)) [N]
+(clipped at zero: a positive mean at rest), its counts rint(sigma_c Z) unclipped, the force
+taxel q rint((offset + sigma Z) / q) (a lattice of sigma / 64 when q = 0). Under load the
+clip is not reached (`loaded_noise`).
 """
 
 import dataclasses

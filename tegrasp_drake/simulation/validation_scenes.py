@@ -1,21 +1,12 @@
-"""Minimal scenes of the station's contact world, to check it against closed-form mechanics.
+"""Minimal scenes of the station's contact world, to check it against closed-form mechanics
+(docs/model.md, "Validation against closed form").
 
-A scene holds the station's own gripper model (pads, fingers and their materials), the
-station's table if asked for, and one object, and nothing else: no arm (the gripper's base
-is welded to the world in the side-grasp orientation, grasp frame G at `grasp_xyz`) and no
-sensors. The fingers follow a force-limited position loop, as SimRobotiqDriver's do, but
-with the grip force given as a profile over time and allowed below the 2F-85's 20 N, so
-that slip can be provoked. The plant's settings are the scenario's (`plant_config`), and so
-is how finely the object and the table are meshed (`contact_geometry`, default the
-reference geometry).
-
-The three experiments return what a closed form predicts (module docstrings of the tests in
-tests/simulation/test_validation_scenes.py give the formulas):
-- push_standing_object: one pad pushes a standing object sideways at a height; it slides
-  or tips over.
-- slip_onset_grip_force: a held object, the grip force ramped down; the force at which it
-  starts to fall.
-- held_tilt_rate: a tilted object held still; how fast it rotates in the grasp.
+A scene holds the station's gripper model welded to the world (side grasp, no arm, no
+sensors), the table if asked for and one object, with the scenario's `plant_config` and
+`contact_geometry`. The fingers follow a force-limited position loop, as SimRobotiqDriver's
+do, with a grip-force profile allowed below the 2F-85's 20 N so that slip can be provoked.
+The experiments: push_standing_object (slides or tips over), slip_onset_grip_force (the grip
+at which a held object falls) and held_tilt_rate (how fast a tilted held object turns).
 """
 
 import dataclasses
@@ -78,8 +69,7 @@ class FingerDrive(LeafSystem):
 
     Ports:
         finger_state: [q_left, q_right, v_left, v_right] (m, m, m/s, m/s).
-        desired_state: [q, v] of the actuated left finger (m, m/s), for the plant's
-            implicit PD.
+        desired_state: [q, v] of the actuated left finger (m, m/s), for the plant's PD.
     """
 
     def __init__(self, *, program: GripProgram, position_gain: float):
@@ -119,9 +109,8 @@ def MakePinchScene(*, obj: ObjectConfig, X_WO: RigidTransform, program: GripProg
                    grasp_xyz, plant_config: MultibodyPlantConfig, with_table: bool,
                    gripper: GripperDriverConfig | None = None,
                    contact_geometry: ContactGeometryConfig | None = None) -> PinchScene:
-    """The gripper (grasp frame at `grasp_xyz`, side grasp), the object at X_WO, and the
-    table if `with_table`, meshed as `contact_geometry` says; the fingers start at
-    `program.start_q`."""
+    """The gripper (grasp frame at `grasp_xyz`, side grasp), the object at X_WO and the
+    table if `with_table`; the fingers start at `program.start_q`."""
     gripper = gripper or GripperDriverConfig()
     builder = DiagramBuilder()
     plant, _ = AddMultibodyPlant(plant_config, builder)
@@ -156,8 +145,7 @@ def tilt_from_vertical_deg(X_WO: RigidTransform) -> float:
 
 
 def tilt_about_grasp_axis_deg(X_WO: RigidTransform) -> float:
-    """Signed angle [deg] of the object's z axis from vertical about world y (the grasp axis
-    of the side grasp), in the pads' plane."""
+    """Signed angle [deg] of the object's z axis from vertical about world y (the grasp axis)."""
     z = X_WO.rotation().matrix()[:, 2].copy()
     return math.degrees(math.atan2(float(z[0]), float(z[2])))
 
@@ -173,9 +161,8 @@ def push_standing_object(obj: ObjectConfig, *, push_height: float,
                          speed: float = 0.02, force_limit: float = 25.0,
                          contact_geometry: ContactGeometryConfig | None = None) -> PushResult:
     """Stands `obj` on the table just inside the open left pad and closes the gripper at
-    `speed` until the left pad has pushed `distance` [m] past first touch, the pad's centre
-    `push_height` [m] above the table. The right pad stays clear of the object throughout
-    as long as distance < the open gap (85 mm - the object's width) / 2."""
+    `speed` until the left pad, its centre `push_height` [m] above the table, has pushed
+    `distance` [m] past first touch (the right pad stays clear while distance < the open gap)."""
     half_width = obj.width_along_stroke() / 2
     gap = 0.001  # m between the open left pad and the object
     y_object = SCENE_XY[1] + HALF_STROKE - gap - half_width
@@ -206,10 +193,9 @@ def slip_onset_grip_force(obj: ObjectConfig, *, plant_config: MultibodyPlantConf
                           hold_s: float = 0.3, falling_speed: float = 1e-3,
                           contact_geometry: ContactGeometryConfig | None = None
                           ) -> SlipResult:
-    """Holds `obj` upright between the pads (no table), its centre of mass at the pads'
-    centre, with `initial_force` [N] per pad for `hold_s`, then lowers the grip force at
-    `ramp_rate` [N/s] to zero. The onset of slip is the first step at which the object falls
-    faster than `falling_speed` [m/s]."""
+    """Holds `obj` upright between the pads (no table) with `initial_force` [N] per pad for
+    `hold_s`, then lowers it at `ramp_rate` [N/s]; slip begins where the object falls faster
+    than `falling_speed` [m/s]."""
     radius = obj.width_along_stroke() / 2
     grasp = np.array([SCENE_XY[0], SCENE_XY[1], 0.3])
     ramp_s = initial_force / ramp_rate
@@ -241,10 +227,10 @@ def held_tilt_rate(obj: ObjectConfig, *, tilt_deg: float, com_offset: float, gri
                    plant_config: MultibodyPlantConfig, settle_s: float = 0.5,
                    measure_s: float = 1.0,
                    contact_geometry: ContactGeometryConfig | None = None) -> float:
-    """Holds `obj` (no table) with `grip_force` [N] per pad, its axis tilted by `tilt_deg`
-    about the grasp axis and its centre of mass `com_offset` [m] above the pads' centre along
-    its axis, so gravity twists it in the pads' plane. Returns its mean rotation rate
-    [deg/s] about the grasp axis over `measure_s` after `settle_s`."""
+    """Holds `obj` (no table) with `grip_force` [N] per pad, tilted by `tilt_deg` about the
+    grasp axis, its centre of mass `com_offset` [m] above the pads' centre along its axis;
+    returns its mean rotation rate [deg/s] about the grasp axis over `measure_s` after
+    `settle_s`."""
     radius = obj.width_along_stroke() / 2
     grasp = np.array([SCENE_XY[0], SCENE_XY[1], 0.3])
     R = RotationMatrix.MakeYRotation(math.radians(tilt_deg))

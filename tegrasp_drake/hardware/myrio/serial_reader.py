@@ -33,13 +33,9 @@ class TactileReaderCounters:
 
 class TactileSerialReader:
     """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
-
-    `port` is a device path or a pyserial URL; use as a context manager, or start()/close().
-    After a burst's first bytes the thread waits `batch_period` [s] for the rest, so it takes
-    Python's interpreter lock a few hundred times a second instead of once per 1 ms frame (each
-    hand-over costs the control loop time), adding at most `batch_period` of latency. The
-    queue holds `queue_size` frames (1 s at 1 kHz).
-    """
+    `port`: a device path or a pyserial URL; a context manager, or start()/close(). A burst
+    is batched for `batch_period` [s], so the thread takes Python's interpreter lock a few
+    hundred times a second, not per 1 ms frame; the queue holds `queue_size` frames."""
 
     def __init__(self, port: str, *, baudrate: int = DEFAULT_BAUDRATE, queue_size: int = 1024,
                  read_timeout: float = 0.005, batch_period: float = 0.002):

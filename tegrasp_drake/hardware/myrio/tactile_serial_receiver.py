@@ -1,13 +1,11 @@
 """The myRIO tactile stream as a Drake system with the simulated pads' ports.
 
-Every `period` (1 ms) an unrestricted update drains the frames the reader thread decoded
-(never blocking), calibrates them and keeps the result in the Context; taxel forces change
-with each count sequence (~108 Hz), accelerations with each frame (1 kHz). A burst of frames
-is played one per tick, two per tick while more than two wait, and all but `max_backlog` at
-once beyond that; frames played together keep the newest counts and the largest-magnitude
-piezo sample, so an impact is never lost. Filters that need the device's own sample sequence
-read `pad_acceleration_samples` (docs/hardware.md, "Serial bursts and the slip band"). The
-pads are zeroed before the Simulator starts (docs/hardware.md, "Zeroing the pads").
+Every `period` (1 ms) an unrestricted update drains the reader thread's frames (never
+blocking), calibrates them and keeps the result in the Context. A burst is played one frame
+per tick, two while more than two wait, all but `max_backlog` beyond that, keeping the
+newest counts and the largest piezo sample (an impact is never lost); filters that need
+every device sample read `pad_acceleration_samples` (docs/hardware.md, "Serial bursts and
+the slip band").
 """
 
 import dataclasses
