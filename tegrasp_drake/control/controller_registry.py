@@ -1,15 +1,8 @@
-"""The controllers, one entry each: everything the package asks about "which controller?".
-
-An entry names its config class (the scenario's YAML tag, `controller: !<class> {...}`,
-whose `name` is the controller's name in results, sweeps and `--controller`), how it adds
-its systems to a DiagramBuilder, the rule table and estimator its state machine runs, and
-how tables and figures show it. Adding a controller is one module (its config class and
-its rule table, the paper's extended) and one entry in CONTROLLERS; docs/controller.md
-("Adding a controller") walks through an example.
-
-The entries name their behaviour as "module:function" and load it on use, so that this
-module imports no Drake: the command line's help and the sweep spec read the names here.
-"""
+"""The controllers, one entry each: everything the package asks about "which controller?"
+(config class and YAML tag, builder, rule table, estimator, label and colour). Adding one is
+a module and an entry in CONTROLLERS (docs/controller.md, "Adding a controller"). Entries
+name their behaviour as "module:function", loaded on use, so this module imports no Drake
+(the command line's help reads it)."""
 
 import copy
 import dataclasses
@@ -35,22 +28,12 @@ PAPER_RULES = "tegrasp_drake.control.transition_logic:rule_table"  # the paper's
 @public_dataclass
 @dataclasses.dataclass(frozen=True)
 class ControllerEntry:
-    """One controller.
-
-    config: its config class; `!<config.__name__>` is its YAML tag, config.name its name.
-    label: how tables and figures name it; title: what it is, in a few words (the sweep
-    tables' headings, --help); color: its colour in figures.
-    add_systems: "module:function" that adds its systems to a builder and connects them to
-    the station, called as AddGraspController's keywords plus `entry` (this entry); returns
-    a GraspController. The state-machine controllers share STATE_MACHINE.
-    detector: "module:function" adding the event detector a state machine reads
-    (EVENT_MATCHER or HEURISTIC_THRESHOLDS); rules: "module:function" of rules() -> the
-    state machine's RuleTable (control/rule_engine.py; PAPER_RULES: the paper's);
-    estimator: "module:function" of estimator(config, plan) -> a ContactEstimator (or
-    None: none); all None for a controller without a state machine.
-    senses_finger_strike: its state machine reads the arm's wrench at the grasp frame.
-    in_paper: one of the paper's comparison (Table I), the sweep's default.
-    """
+    """One controller. config: its config class (YAML tag `!<class>`, config.name its
+    name); label, title (--help, table headings), color: how tables and figures show it.
+    add_systems, detector, rules, estimator: "module:function" references (AddGraspController's
+    keywords plus `entry` -> a GraspController; the event detector; () -> RuleTable;
+    (config, plan) -> ContactEstimator), None when absent. senses_finger_strike: reads the
+    arm's wrench at G; in_paper: in Table I's comparison."""
     config: type
     label: str
     title: str
@@ -123,8 +106,7 @@ _ENTRY_OF_NAME = {entry.name: entry for entry in CONTROLLERS}
 _ENTRY_OF_CLASS = {entry.config: entry for entry in CONTROLLERS}
 if len(_ENTRY_OF_NAME) != len(CONTROLLERS) or len(_ENTRY_OF_CLASS) != len(CONTROLLERS):
     raise ImportError("controller_registry: two entries share a name or a config class")
-# Drake's yaml_dump_typed writes a Union member as the first class it is an instance of: a
-# config class derived from another entry's would be saved (in logs) as that one.
+# yaml_dump_typed would save a class derived from another entry's as that one.
 _DERIVED = [(a.name, b.name) for a in CONTROLLERS for b in CONTROLLERS
             if a is not b and issubclass(a.config, b.config)]
 if _DERIVED:

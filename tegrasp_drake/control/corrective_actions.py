@@ -1,28 +1,9 @@
-"""The corrective actions (Sec. III-C): Re-Reach, Lift-Load and Avoid, each as a decision
-(take it, or give up) and an action (where to move, how hard to grip), in pure functions.
-
-The rules of the rule tables (transition_logic.py) call the decisions (Re-Reach's is
-rule_actions.re_reach_or_fail, shared by every table); the GraspStateMachine
-(grasp_state_machine.py) calls the actions when it enters the mode. The thresholds and
-distances come from the GraspControllerConfig's sections (controller_config.py).
-
-Frames: world W; the grasp frame G at the side-grasp orientation (arm_kinematics.py)
-approaches along world +x with the finger stroke along world y, the left finger on the +y
-side; each pad's frame has its z axis, the pad normal, pointing at the other finger.
-
-  Re-Reach   one finger alone touched (or none, or no event in time): open, shift along
-             world y toward the touching finger by half the gap between the opening and
-             the object's width, and reach again (at most re_reach.max_re_reaches times)
-  Lift-Load  the object slips during Lift: back to Load at lift_load.force_factor times
-             the grip force, and lift again once both SA reach it (at most
-             lift_load.max_lift_loads)
-  Avoid      a hit in Hold: stop, sense which way the hit pushed, move avoid.distance_m
-             that way
-
-Lift-Load's and Avoid's triggers are the heuristic thresholds (lift_load_or_fail,
-avoid_on_hit) or, for the events named in controller.memorized_corrective.events, the
-memorized corrective events matched by Eq. 3 (lift_load_on_slip_event, avoid_on_hit_event).
-"""
+"""The corrective actions of Sec. III-C (Re-Reach, Lift-Load, Avoid) as pure functions: a
+decision (take it, or give up), called by the rules of transition_logic.py, and an action
+(where to move, how hard to grip), called by the GraspStateMachine on entering the mode.
+Triggers are heuristic thresholds or memorized corrective events (docs/controller.md,
+"Corrective actions"). Frames: world W; the grasp frame G approaches along +x, the stroke
+along y, the left finger on +y; each pad's z axis (its normal) points at the other finger."""
 
 import dataclasses
 import math
@@ -39,8 +20,7 @@ CORRECTIVE_ACTIONS = {(Mode.REACH, Mode.RE_REACH): "re_reach",
                       (Mode.LOAD, Mode.RE_REACH): "re_reach",
                       (Mode.LIFT, Mode.LOAD): "lift_load",
                       (Mode.HOLD, Mode.AVOID): "avoid"}
-# The pads' frames in the grasp frame G (the fingers are parallel to the gripper base, which
-# is G's orientation): each pad's z axis, its normal, points at the other finger.
+# The pads' frames in G: each pad's z axis points at the other finger.
 R_G_PAD = (RotationMatrix.MakeXRotation(math.pi / 2),  # left pad
            RotationMatrix.MakeXRotation(-math.pi / 2))  # right pad
 
@@ -53,8 +33,7 @@ class Counters:
     regrasps: int = 0  # the taxel_aware controller's re-grasps of a tilted object
 
 
-# Taken by a corrective trigger, these transitions start the taxel_aware controller's
-# actions (control/taxel_aware); by their usual trigger they start none.
+# The taxel_aware actions these transitions start when a corrective trigger takes them.
 CORRECTIVE_ONLY_ACTIONS = {(Mode.HOLD, Mode.PLACE): "regrasp",
                            (Mode.REACH, Mode.LOAD): "load_without_event"}
 
@@ -76,15 +55,9 @@ def corrective_action_of(from_mode: Mode, to_mode: Mode,
 
 def re_reach_shift(sa_n, opening_m: float, object_width_m: float,
                    contact_force_n: float) -> float:
-    """The shift [m, along world y] that centres the gripper on the object: the finger
-    still touching it marks its near face, half the object's width from its centre.
-
-    sa_n: (left, right) SA [N] (more entries are ignored); a finger touches above
-    contact_force_n [N]. opening_m: the gripper's opening [m] where it stopped;
-    object_width_m: the object's width along the stroke [m]. Toward the touching finger
-    (the left finger is on +y) by (opening - width) / 2, never negative; 0 when both or
-    neither finger touch.
-    """
+    """The shift [m, world y] that centres the gripper on the object: toward the finger
+    touching alone (SA of sa_n[:2] above contact_force_n [N]) by (opening_m -
+    object_width_m) / 2, never negative; 0 when both or neither touch."""
     contact = np.asarray(sa_n)[:2] > contact_force_n
     if contact[0] == contact[1]:
         return 0.0
@@ -199,14 +172,10 @@ def pad_accelerations_in_world(pad_acceleration: np.ndarray) -> np.ndarray:
 
 
 def avoid_direction(delta_sa, acceleration_sum_W, sa_asymmetry_n: float) -> np.ndarray:
-    """Unit world direction to move away from a hit.
-
-    delta_sa: the (left, right) SA change [N] since just before the hit; the pad the object
-    was pushed into gains: along the stroke (world y, the left finger on +y) when the gain
-    differs by more than sa_asymmetry_n. Otherwise the horizontal part of
-    acceleration_sum_W (the pads' accelerations in world, summed over the sensing time: the
-    common motion of object and gripper); straight up when that is negligible too.
-    """
+    """Unit world direction away from a hit: along the stroke toward the pad whose SA
+    gained more (delta_sa, (left, right) [N]) when the gains differ by more than
+    sa_asymmetry_n; else the horizontal part of acceleration_sum_W (the pads' common
+    motion); else straight up."""
     difference = float(delta_sa[0] - delta_sa[1])
     if abs(difference) > sa_asymmetry_n:
         return np.array([0.0, math.copysign(1.0, difference), 0.0])
@@ -226,13 +195,9 @@ class AvoidMove:
 
 def avoid_move(p_WG, sa_gain_sum_n, acceleration_sum_W,
                config: GraspControllerConfig) -> AvoidMove:
-    """The Avoid move from p_WG [m, world] after sensing for avoid.sense_s [s].
-
-    sa_gain_sum_n: the (left, right) SA gain over the last Hold tick [N], summed over the
-    sensing ticks (update_period_s apart); acceleration_sum_W: the pads' world
-    accelerations [m/s^2] summed over those ticks. Moves avoid.distance_m [m] along
-    avoid_direction of the mean gain.
-    """
+    """The Avoid move from p_WG [m, world]: avoid.distance_m along avoid_direction of the
+    mean SA gain (sa_gain_sum_n [N] and acceleration_sum_W [m/s^2], summed over the
+    sensing ticks)."""
     ticks = max(1, round(config.avoid.sense_s / config.update_period_s))
     delta_sa = np.asarray(sa_gain_sum_n) / ticks
     direction = avoid_direction(delta_sa, acceleration_sum_W, config.avoid.sa_asymmetry_n)

@@ -1,17 +1,9 @@
-"""The paper's grasp state machine (Sec. II-B, III-C, Fig. 6b) as a rule table: what the
-machine observes each tick (Observation) and PAPER_TABLE, the rules of the rule engine
-(rule_engine.py) that decide the next mode from it, for the memorized and heuristic
-controllers; the other controllers' tables extend it. The LeafSystem
-(grasp_state_machine.py) builds the Observation each tick and carries out the decision.
-
-The transitions (Fig. 6b): Reach -> Load, Load -> Lift and Place -> Unload on their events
-(memorized or heuristic); Lift -> Hold, Hold -> Place, Avoid -> Hold and Unload -> Done by
-the clock or the end of a motion; the corrective actions Re-Reach (Reach or Load ->
-Re-Reach -> Reach), Lift-Load (Lift -> Load -> Lift) and Avoid (Hold -> Avoid -> Hold),
-whose decisions (take the action, or give up) are in corrective_actions.py and
-rule_actions.py; and Failed from any mode on a fault, a lost object or corrections used
-up. `python -m tegrasp_drake.control.rule_docs` prints the table.
-"""
+"""The paper's grasp state machine (Sec. II-B, III-C, Fig. 6b) as a rule table: the tick's
+Observation and PAPER_TABLE, the rules (rule_engine.py) that decide the next mode from it;
+other controllers' tables extend it. Event transitions on memorized or heuristic events,
+timed ones on the clock or a motion's end, the corrective actions (corrective_actions.py),
+and Failed on a fault, a lost object or corrections used up. `python -m
+tegrasp_drake.control.rule_docs` prints the table."""
 
 import dataclasses
 from collections.abc import Callable
@@ -39,14 +31,10 @@ class Observation:
     slip_quiet: bool = True  # both slip-band vibrations below the slip threshold
     slip_s: float = 0.0  # how long either RA has been above the slip threshold
     hit: bool = False  # either RA above the hit threshold (after the refractory time)
-    # The corrective EventMatcher matches the mode's memorized corrective event (slip in
-    # Lift, a hit in Hold); read for the events in controller.memorized_corrective.events.
     corrective_event_matched: bool = False
     gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
     device_fault: str = ""  # a watchdog's message, "" for none
-    # Whether the Place is a re-grasp's (taxel_aware), and what the taxel_aware
-    # controller's ContactEstimator sensed this tick (taxel_aware/estimator.py; None for
-    # the other controllers).
+    # a re-grasp's Place, and the taxel_aware ContactEstimate (None for other controllers)
     regrasp_pending: bool = False
     estimate: object | None = None
 
