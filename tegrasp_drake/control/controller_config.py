@@ -45,27 +45,22 @@ class FingerStrikeConfig:
     finger's front striking the object during the approach, seen in the arm's joint torques
     as a force on the grasp frame G. Measured figures: docs/controller.md, "Finger strike"."""
     enabled: bool = True
-    # Force on G above its approach-start value [N]: 2.5x the Reach's own 0.81 N, half a
-    # strike's 3.9 N (measured, simulated torques; re-measure on the JACO2).
+    # force on G over its approach-start value [N]: 2.5x the Reach's 0.81 N, half a strike's 3.9
     force_n: float = bounded(2.0, low=0.0, low_open=True, high=100.0, unit="N",
                              below="must be positive [N]")
-    # for this long [s]: two ticks, so one spike is no strike; far inside the 0.13 s before
-    # the object moves
+    # for this long [s]: no single spike, still far inside the 0.13 s before the object moves
     sustain_s: float = bounded(0.01, low=0.0, high=1.0, unit="s",
                                below="must be zero or positive [s]")
-    # Which finger: the sign of the moments about world x and z at G, summed over the
-    # strike (left, +y: positive); below this size [N m] (half the smallest measured
-    # strike's 0.11 N m) the touching pad says the side.
+    # the summed side moment [N m] (left: +) tells the finger above half the smallest strike's
     min_moment_nm: float = bounded(0.05, low=0.0, high=10.0, unit="N m",
                                    below="must be zero or positive [N m]")
 
 
 @dataclasses.dataclass
 class TaxelAwareConfig:
-    """The taxel-aware corrections (control/taxel_aware). Lengths in the pad's terms: a row
-    is 6 mm along the approach axis, a column 6.7 mm high."""
-    # Re-Reach along the approach axis when the contact centroid is this far off the pads'
-    # centres [m]: two thirds of a row (within it the two middle rows press).
+    """The taxel-aware corrections (control/taxel_aware); a pad row is 6 mm along the
+    approach axis, a column 6.7 mm high."""
+    # Re-Reach along the approach when the contact is this far off centre [m]: 2/3 of a row
     centre_tolerance_m: float = bounded(0.004, low=0.0, high=0.05, unit="m",
                                         below="must be zero or positive [m]")
     # at most this far per such Re-Reach [m]: the pad's half length (12 mm) plus a quarter row
@@ -73,20 +68,16 @@ class TaxelAwareConfig:
                                           below="must be zero or positive [m]")
     # Re-Reaches of either axis: the paper's 2 plus one per axis the taxels add
     max_re_reaches: int = bounded(4, low=0, high=10, below="must be zero or positive")
-    # A pad touching in the approach: back off this far [m] while shifting, then approach
-    # again: the pad's length less its palm row (18 mm), rounded up, clears any touch.
+    # back off this far after a touch in the approach [m]: the pad less its palm row, 18 mm, up
     approach_retreat_m: float = bounded(0.02, low=0.0, high=0.1, unit="m",
                                         below="must be zero or positive [m]")
-    # One finger alone, closed to within this of the object's width [m]: Load, since a
-    # Re-Reach would shift by under a third of a taxel row.
+    # one finger alone within this of the width loads [m]: a Re-Reach would shift < 1/3 row
     one_sided_width_margin_m: float = bounded(0.004, low=0.0, high=0.05, unit="m",
                                               below="must be zero or positive [m]")
-    # A first touch on the distal row alone: centroid at least this far toward the
-    # fingertips [m], the distal row's centre (9 mm) less 0.5 mm (taxel_aware/beyond_pads.py).
+    # a first touch on the distal row alone, centroid beyond [m]: the row's 9 mm less 0.5 mm
     beyond_pads_centroid_m: float = bounded(0.0085, low=0.0, high=0.05, unit="m",
                                             below="must be zero or positive [m]")
-    # Held tilted: re-grasp when in Hold a contact line turns more than tilt_limit_deg or the
-    # pads' contact heights differ by height_mismatch_m [m] (half a column).
+    # held tilted: re-grasp (height_mismatch_m: half a column)
     regrasp_enabled: bool = True
     tilt_limit_deg: float = bounded(10.0, low=0.0, high=90.0, unit="deg")
     height_mismatch_m: float = bounded(0.0033, low=0.0, high=0.05, unit="m",
@@ -95,16 +86,14 @@ class TaxelAwareConfig:
     tilt_sustain_s: float = bounded(0.1, low=0.0, high=1.0, unit="s",
                                     below="must be zero or positive [s]")
     max_regrasps: int = bounded(1, low=0, high=10, below="must be zero or positive")
-    # Eq. 3 thresholds [SA, RA] of each ensemble event; empty: the hand's own, chosen on
-    # held-out ensemble runs (analysis/choose_ensemble_thresholds.py).
+    # Eq. 3 [SA, RA] per ensemble event; empty: the hand's (analysis/choose_ensemble_thresholds.py)
     reach_load_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
     load_lift_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
     place_unload_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) of the first event's thresholds that are
-        neither empty nor a pair; None when all are."""
+        """(field, must, value) of thresholds neither empty nor a pair; None if none."""
         for name in ("reach_load_thresholds", "load_lift_thresholds",
                      "place_unload_thresholds"):
             pair = getattr(self, name)
@@ -114,8 +103,7 @@ class TaxelAwareConfig:
         return None
 
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
-        """{transition: (SA, RA)} for the EventMatcher: the ones set here, else `chosen`'s
-        (the hand's, gripper_hands.py)."""
+        """{transition: (SA, RA)}: the ones set here, else `chosen` (the hand's)."""
         chosen = chosen or {}
         given = {"reach_load": self.reach_load_thresholds,
                  "load_lift": self.load_lift_thresholds,
@@ -125,9 +113,7 @@ class TaxelAwareConfig:
 
 @dataclasses.dataclass
 class ReReachConfig:
-    """Re-Reach (Sec. III-C): one finger alone in contact for one_sided_contact_s, the gripper
-    closed on nothing, or no Reach-Load event within reach_event_timeout_s of closing: open,
-    shift along the stroke toward the touching finger, close again."""
+    """Re-Reach (Sec. III-C): open, shift toward the touching finger, close again."""
     enabled: bool = True
     one_sided_contact_s: float = bounded(0.1, low=0.0, high=10.0, unit="s",
                                          below="must be zero or positive [s]")
@@ -145,20 +131,16 @@ class ReReachConfig:
 
 @dataclasses.dataclass
 class LiftLoadConfig:
-    """Lift-Load (Sec. III-C): during Lift, either pad's slip-band vibration
-    (tactile/slip_vibration_band: the film's signal above slip_band_hz, RMS over
-    slip_window_s) above slip_vibration_mps2 [m/s^2] for slip_s [s] means the object slips;
-    back to Load with the grip force times force_factor, and lift again once both SA reach
-    grip_fraction of that force."""
+    """Lift-Load (Sec. III-C): the slip band above slip_vibration_mps2 for slip_s in Lift:
+    Load at force_factor times the grip, lift again at grip_fraction of it."""
     enabled: bool = True
-    # A normal lift's band reads at most 0.68 m/s^2, sliding pads 1.9-5.1 (docs/model.md,
-    # "Slip: the texture and the slip band").
+    # a lift reads <= 0.68 m/s^2, sliding pads 1.9-5.1 (docs/model.md, "Slip: the texture")
     slip_vibration_mps2: float = bounded(1.0, low=0.0, high=1000.0, unit="m/s^2",
                                          below="must be zero or positive [m/s^2]")
     # ... and above this many sigmas of the band's noise (0: the number alone)
     slip_vibration_sigmas: float = bounded(2.34, low=0.0, high=100.0, unit="noise sigmas",
                                            why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
-    # texture slip at a lift's 40 mm/s rings at 80 Hz; squeeze and load lie below 10 Hz
+    # texture slip at a lift's 40 mm/s rings at 80 Hz, the squeeze below 10 Hz
     slip_band_hz: float = bounded(80.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
     slip_window_s: float = bounded(0.01, low=0.0, low_open=True, high=1.0, unit="s",
                                    below="must be zero or positive [s]")
@@ -222,21 +204,17 @@ class PlaceConfig:
 class MemorizedCorrectiveConfig:
     """Corrective triggers from memorized corrective events matched by Eq. 3 instead of the
     heuristic thresholds (docs/controller.md, "Memorized corrective triggers")."""
-    # Any of "hold_avoid" and "lift_load" ([]: the heuristic triggers); lift_load matches
-    # every normal lift: for comparison only.
+    # of "hold_avoid", "lift_load" (matches every normal lift: comparison only); []: heuristic
     events: list[str] = dataclasses.field(default_factory=list)
-    # Eq. 3 thresholds [SA, RA], chosen on held-out runs by
-    # analysis/choose_corrective_thresholds.py (analysis/corrective_thresholds.md)
+    # Eq. 3 [SA, RA], chosen on held-out runs: analysis/corrective_thresholds.md
     lift_load_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.85],
                                                 length=2, **SCORE_RANGE)
     hold_avoid_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.40],
                                                  length=2, **SCORE_RANGE)
-    # Avoid's SA baseline this long before the match [s]: the 60 ms latency target, so it
-    # precedes the hit
+    # Avoid's SA baseline this long before the match [s]: the 60 ms latency target
     hit_baseline_s: float = bounded(0.06, low=0.0, high=1.0, unit="s",
                                     below="must be zero or positive [s]")
-    # armed this long into Hold [s]: hit_refractory_s plus the 0.5 s window, so no sample of
-    # a stop's ringing is in it
+    # armed this long into Hold [s]: hit_refractory_s plus the 0.5 s window (no stop's ring)
     hit_armed_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
                                  below="must be zero or positive [s]")
 
@@ -264,12 +242,10 @@ class GraspControllerConfig:
     # state machine tick [s]
     update_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
                                      below="must be positive [s]")
-    # Film samples taken in blocks of this long [s] (tactile/sample_block.py); 0: one update
-    # per sample (docs/controller.md, "The paper's state machine")
+    # film samples in blocks of this long [s] (tactile/sample_block.py); 0: per sample
     sensor_block_s: float = bounded(0.0, low=0.0, high=0.1, unit="s",
                                     below="must be zero (one update per sample) or positive [s]")
-    # A finger touches above contact_force_n [N]; a taxel counts above taxel_contact_n [N]
-    # (ten times an ideal force taxel's 5 mN noise).
+    # contact of a finger, of a taxel [N] (10x a force taxel's 5 mN noise)
     contact_force_n: float = bounded(0.3, low=0.0, high=50.0, unit="N",
                                      below="must be zero or positive [N]")
     taxel_contact_n: float = bounded(0.05, low=0.0, high=50.0, unit="N",
@@ -281,8 +257,7 @@ class GraspControllerConfig:
                                           below="must be zero or positive [s]")
     # Lost object: in Lift, Hold, Avoid or Place, both SA below contact_force_n.
     drop_check_enabled: bool = True
-    # Object fields in which the memorized events' object may differ from the scenario's,
-    # e.g. [friction] to grasp a slippery box with the box's events
+    # object fields the events' object may differ in, e.g. [friction] (a slippery box)
     event_object_may_differ: list[str] = dataclasses.field(default_factory=list)
     re_reach: ReReachConfig = dataclasses.field(default_factory=ReReachConfig)
     lift_load: LiftLoadConfig = dataclasses.field(default_factory=LiftLoadConfig)
@@ -330,8 +305,7 @@ def _block_problem(block_s: float, ra_rate_hz: float) -> tuple[str, str, object]
 
 @dataclasses.dataclass
 class EventTriggeredConfig(GraspControllerConfig):
-    """The settings of a state machine whose transitions memorized tactile events trigger,
-    matched by Eq. 3."""
+    """A state machine triggered by memorized events matched by Eq. 3."""
     matching: EventMatchingConfig = dataclasses.field(default_factory=EventMatchingConfig)
 
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
@@ -370,8 +344,7 @@ class HeuristicControllerConfig(GraspControllerConfig):
 @public_dataclass
 @dataclasses.dataclass
 class OpenLoopControllerConfig:
-    """The ideal scripted grasp (control/scripted_grasp.py, from the scenario's `grasp`
-    section): no settings of its own."""
+    """The ideal scripted grasp (the scenario's `grasp` section); no settings of its own."""
     name: typing.ClassVar[str] = "open_loop"
     events_folder: typing.ClassVar[str | None] = None
     extra_time_s: typing.ClassVar[float] = 0.0
@@ -382,9 +355,7 @@ class OpenLoopControllerConfig:
 @public_dataclass
 @dataclasses.dataclass
 class TaxelAwareControllerConfig(EventTriggeredConfig):
-    """The paper's algorithm with corrections from the whole taxel array (the rule table of
-    control/taxel_aware), its transitions triggered by the memorized events of an ensemble
-    of ideal grasps."""
+    """The paper's algorithm with taxel-array corrections and ensemble events."""
     name: typing.ClassVar[str] = "taxel_aware"
     events_folder: typing.ClassVar[str | None] = "ensemble"
     # two more Re-Reaches (about 2.5 s each) and a re-grasp (about 9 s), rounded up [s]
@@ -392,8 +363,7 @@ class TaxelAwareControllerConfig(EventTriggeredConfig):
     taxel_aware: TaxelAwareConfig = dataclasses.field(default_factory=TaxelAwareConfig)
 
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
-        """{transition: (SA, RA)}: the ensemble events' own (TaxelAwareConfig), else the
-        ones `chosen` for the hand's ensemble events."""
+        """{transition: (SA, RA)}: TaxelAwareConfig's, else `chosen`."""
         return self.taxel_aware.event_thresholds(chosen)
 
     def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:

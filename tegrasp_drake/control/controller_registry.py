@@ -60,8 +60,7 @@ class ControllerEntry:
         return self.config.events_folder is not None
 
     def rule_table(self):
-        """The RuleTable its state machine runs (control/rule_engine.py); None for a
-        controller without a state machine."""
+        """Its state machine's RuleTable; None without one."""
         rules = self.load("rules")
         return None if rules is None else rules()
 
@@ -120,8 +119,7 @@ class UnknownControllerError(ValueError):
 
 @public_api
 def controller_entry(controller: typing.Any) -> ControllerEntry:
-    """The entry of a controller given by its name, its config or its config class
-    (UnknownControllerError)."""
+    """The entry of a controller's name, config or config class (UnknownControllerError)."""
     if isinstance(controller, str):
         entry = _ENTRY_OF_NAME.get(controller)
     elif isinstance(controller, type):
@@ -135,22 +133,19 @@ def controller_entry(controller: typing.Any) -> ControllerEntry:
 
 
 def controller_label(name: str) -> str:
-    """How tables and figures name the controller called `name` (the name itself for one
-    not registered, e.g. an old result's)."""
+    """The controller's label (an unregistered name: itself)."""
     entry = _ENTRY_OF_NAME.get(name)
     return entry.label if entry is not None else name
 
 
 def controller_title(name: str) -> str:
-    """The heading of the controller called `name` in the sweep's tables (the name itself
-    for one not registered)."""
+    """The controller's title (an unregistered name: itself)."""
     entry = _ENTRY_OF_NAME.get(name)
     return entry.title if entry is not None else name
 
 
 def controller_color(name: str, default: str) -> str:
-    """The colour of the controller called `name` in figures; `default` for one not
-    registered."""
+    """The controller's colour (an unregistered name: `default`)."""
     entry = _ENTRY_OF_NAME.get(name)
     return entry.color if entry is not None else default
 
@@ -182,8 +177,7 @@ def controller_named(name: str, like=None):
 
 
 def _leaf_paths(key: str, value) -> list[str]:
-    """The dotted paths of the settings a YAML `controller` entry sets: `key` itself, or
-    for a section (a mapping) each setting inside it, e.g. matching.ra_envelope_hz."""
+    """The dotted paths a YAML `controller` entry sets (a section: each setting in it)."""
     if isinstance(value, dict) and value:
         return [path for sub, item in value.items()
                 for path in _leaf_paths(f"{key}.{sub}", item)]
@@ -209,12 +203,9 @@ def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
 
 
 def select_controller_tag(data: dict, *, drop_others: bool = False) -> list[str]:
-    """Turns the shorthand `controller: {name: NAME, ...}` of YAML data (a scenario's, in
-    place) into the tag of NAME's config class (`_tag`, as Drake's yaml_load keeps it).
-    drop_others: drop the settings of other controllers that NAME's class lacks (a sweep's
-    overrides or `--controller` on a scenario written for another controller); a setting no
-    controller has stays, to be refused. Returns the dotted paths of the settings dropped
-    (each setting of a dropped section). UnknownControllerError for an unknown name."""
+    """Turns `controller: {name: NAME, ...}` of YAML data, in place, into NAME's tag
+    (`_tag`); drop_others: drop the other controllers' settings NAME lacks (one no
+    controller has stays, to be refused) and return their dotted paths."""
     section = data.get("controller") if isinstance(data, dict) else None
     if not isinstance(section, dict) or "name" not in section:
         return []

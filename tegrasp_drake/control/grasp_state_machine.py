@@ -34,12 +34,10 @@ __all__ = ["GraspPlan", "GraspStateMachine", "MachineState"]
 
 OPENING_SPEED_MPS = 0.1  # when opening to re-reach or unload
 GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
-# The event each mode checks for (the expected event): the event-triggered transition that
-# leaves it.
+# The event each mode expects: the event-triggered transition that leaves it.
 EXPECTED_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                        for name in REQUIRED_TRANSITIONS}
-# The memorized corrective event each mode checks for (when named in
-# controller.memorized_corrective.events): the corrective transition that leaves it.
+# The memorized corrective event each mode expects (if memorized_corrective.events names it).
 EXPECTED_CORRECTIVE_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                                   for name in CORRECTIVE_TRANSITIONS}
 
@@ -127,8 +125,6 @@ class GraspStateMachine(LeafSystem):
                                      self._calc_corrective_expected_event,
                                      prerequisites_of_calc=state_only)
 
-    # ---- construction helpers -------------------------------------------------------
-
     def initial_state(self) -> MachineState:
         p = self._plan
         grasp = (*p.object_xy, p.grasp_height)
@@ -150,8 +146,6 @@ class GraspStateMachine(LeafSystem):
         from, to, trigger, reason, scores."""
         return [transition.as_dict() for transition in self.transitions(context)]
 
-    # ---- outputs -----------------------------------------------------------------------
-
     def _calc_pose(self, context, output):
         position = self.state(context).segment.position(context.get_time())
         output.set_value(RigidTransform(R_WG_SIDE_GRASP, position))
@@ -170,8 +164,6 @@ class GraspStateMachine(LeafSystem):
 
     def _calc_mode(self, context, output):
         output.SetAtIndex(0, float(self.state(context).mode))
-
-    # ---- the tick ----------------------------------------------------------------------
 
     def _update(self, context, state):
         t = context.get_time()
@@ -256,8 +248,8 @@ class GraspStateMachine(LeafSystem):
         motion_done_since = _since(timers.motion_done_since, t, motion_done)
         status = self._status.Eval(context)
         closing = s.mode == Mode.REACH and s.stage == Stage.CLOSING
-        # Only a status that echoes the close request (gPR = rPR) says where the fingers
-        # stopped: a late status from the open request also reads "at requested position".
+        # only a status echoing the close request (gPR = rPR): a late one of the open reads
+        # "at requested position" too
         at_request = int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION
         closed_on_nothing = (
             closing and self._gripper_settled(s, t) and not any(contact)

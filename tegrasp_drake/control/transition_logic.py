@@ -40,14 +40,12 @@ class Observation:
 
 
 def memorized_corrective_trigger(config, transition: str) -> bool:
-    """True when the corrective `transition` (lift_load, hold_avoid) is triggered by its
-    memorized corrective event (controller.memorized_corrective.events)."""
+    """Whether the corrective `transition` is triggered by its memorized event."""
     return transition in config.memorized_corrective.events
 
 
 def placed(obs: Observation, config) -> bool:
-    """In Place: the object stands on the table (the Place-Unload event, or
-    place.event_timeout_s [s] after the arm stopped)."""
+    """In Place: the Place-Unload event, or its timeout."""
     return obs.event_matched or place_timed_out(obs, config)
 
 
@@ -141,8 +139,7 @@ def _event(s: Situation) -> bool:
     return s.obs.event_matched
 
 
-# Priorities: the rules of every mode first (1-3); then in each mode its rules by 100s,
-# leaving room for other tables' rules between them.
+# Priorities: every mode's rules first (1-3), then each mode's by 100s, room between.
 PAPER_RULES = (
     # Any mode: the devices, the object.
     Rule("device_fault", None, 1, lambda s: bool(s.obs.device_fault), _fault,
@@ -223,8 +220,7 @@ PAPER_RULES = (
          when="the gripper opened and the arm retracted", then="Done"),
 )
 
-# The paper's Re-Reach: along the stroke toward the finger touching alone, by half the gap
-# between the opening and the object's width (corrective_actions.re_reach_shift).
+# The paper's Re-Reach: corrective_actions.re_reach_shift, worked out as the gripper opens.
 PAPER_RE_REACH = ReReachMove(shift_label="the paper's shift along the stroke",
                              limit_label="re_reach.max_re_reaches",
                              limit=lambda s: s.config.re_reach.max_re_reaches)
@@ -238,10 +234,6 @@ def rule_table() -> RuleTable:
 
 def next_mode(mode: Mode, obs: Observation, counters, config, *, event_trigger: Trigger,
               hold_s: float) -> Decision | None:
-    """The paper's transition out of `mode` this tick, or None to stay (PAPER_TABLE).
-
-    config: a GraspControllerConfig; event_trigger: the trigger name of this controller's
-    event detector (memorized or heuristic); hold_s: how long to hold [s] (the paper: 3 s).
-    """
+    """The paper's transition out of `mode` this tick (PAPER_TABLE), or None to stay."""
     return PAPER_TABLE.next_mode(mode, obs, counters, config, event_trigger=event_trigger,
                                  hold_s=hold_s)

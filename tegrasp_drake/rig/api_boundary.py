@@ -24,9 +24,7 @@ _ITEM_CHECKED = (list, tuple, collections.abc.Sequence, collections.abc.Collecti
 
 @dataclasses.dataclass(frozen=True)
 class Folder:
-    """What a folder argument must be: `exists`, already there; `writable`, one this user can
-    write in, or make.
-    """
+    """A folder argument: `exists`, already there; `writable`, this user can write in or make."""
     exists: bool = True
     writable: bool = False
 

@@ -251,9 +251,8 @@ def one_line(text: str) -> str:
 
 
 class UserPathError(OSError):
-    """A file or folder the user named cannot be used: str() is one line naming it and what to do;
-    `strerror` stays the system's words.
-    """
+    """A file or folder the user named cannot be used: str() is one line naming it and what to
+    do; `strerror` stays the system's words."""
 
     def __init__(self, message: str, error: OSError | None = None):
         super().__init__(getattr(error, "errno", None) or errno.EINVAL,
@@ -279,9 +278,7 @@ def _refuse_duplicate_keys(pairs):
 
 
 class JsonValueError(ValueError):
-    """A JSON value this package cannot hold: NaN or Infinity (not JSON, RFC 8259 6) or an integer
-    beyond a float's range.
-    """
+    """NaN or Infinity (not JSON, RFC 8259 6), or an integer beyond a float's range."""
 
 
 def _refuse_nonstandard_constant(name: str):

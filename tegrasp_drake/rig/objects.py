@@ -71,9 +71,8 @@ BUILTIN_OBJECTS = {
 
 
 def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, str] | None:
-    """The first field of a user-defined object (its shape given) that cannot make an object, and
-    what is wrong, in words that follow "field 'x'"; None when all can. `shapes` narrows the
-    shapes allowed; a model file is not looked for."""
+    """(field, what is wrong) of the first field of a user-defined object that cannot make
+    one, in words that follow "field 'x'"; None when all can (a model file is not sought)."""
     if not OBJECT_NAME_PATTERN.match(config.name):
         return "name", (f"'{config.name}' must be letters, digits, '_' or '-' (not first): "
                         "it names the folder of the object's events")

@@ -94,9 +94,8 @@ _FOREIGN: dict[type, dict] = {}
 
 
 def declare_ranges(cls: type, table: dict) -> None:
-    """Declares the Range (numbers) or Choice (text) of fields of `cls`, a config class that
-    cannot carry `bounded` metadata (Drake's); check_ranges then checks them wherever an
-    instance is held."""
+    """Declares the Range or Choice of fields of `cls`, a Drake config class that cannot carry
+    `bounded` metadata, for check_ranges."""
     _FOREIGN[cls] = dict(table)
 
 

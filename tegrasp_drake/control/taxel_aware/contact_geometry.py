@@ -22,11 +22,9 @@ class Shift:
 
 def approach_shift(contact: GraspContact, taxel_config,
                    pad_travel_to_grasp_m: float = 0.0) -> float:
-    """The shift along world x [m] that puts the pads' centres on the contact once closed
-    on the object: the contact's approach_offset_m (pad +y is world +x at the side grasp)
-    less the pads' travel along the approach axis still to come as they close to the
-    object's width (pad_travel_to_grasp_m [m]: 0 on the prismatic hand), clipped to
-    +-max_approach_shift_m; 0 without contact or within centre_tolerance_m."""
+    """The shift along world x [m] that puts the pads' centres on the contact once closed:
+    its approach_offset_m less the pads' travel still to come (pad_travel_to_grasp_m),
+    clipped to max_approach_shift_m; 0 without contact or within centre_tolerance_m."""
     touching = contact.left.touching or contact.right.touching
     offset = contact.approach_offset_m - pad_travel_to_grasp_m
     if not touching or abs(offset) <= taxel_config.centre_tolerance_m:
@@ -37,16 +35,14 @@ def approach_shift(contact: GraspContact, taxel_config,
 
 @dataclasses.dataclass(frozen=True)
 class FaceTouch:
-    """A finger that touched the object alone while closing, and where: finger "left"
-    (on world +y) or "right"; face_y_m [m, world y] the object's face under its pad."""
+    """A finger ("left", on +y, or "right") that touched alone, at face_y_m [m, world y]."""
     finger: str
     face_y_m: float
 
 
 def touched_face(finger: str, gripper_y_m: float, opening_m: float) -> FaceTouch:
-    """The face a finger touching alone presses [m, world y]: the fingers close
-    symmetrically about the grasp frame's origin gripper_y_m [m, world y], so the pad of
-    a gripper open opening_m [m] sits opening_m / 2 from it, the left one on +y."""
+    """The face a finger touching alone presses [m, world y]: opening_m / 2 from the grasp
+    frame's gripper_y_m, about which the fingers close symmetrically."""
     sign = 1.0 if finger == "left" else -1.0
     return FaceTouch(finger, gripper_y_m + sign * opening_m / 2.0)
 
@@ -58,9 +54,8 @@ def touched_faces(contact: tuple, gripper_y_m: float, opening_m: float) -> tuple
 
 
 def remembered_faces(kept: tuple, touched: tuple) -> tuple:
-    """The faces to remember when a Re-Reach begins from a close: the ones touched now
-    replace those of the same finger (the object may have moved since); none touched (the
-    gripper closed on nothing: the object is not where they were) forgets them all."""
+    """The faces to remember at a Re-Reach: `touched` replaces the same finger's; none
+    touched (closed on nothing) forgets them all."""
     if not touched:
         return ()
     fingers = {face.finger for face in touched}
@@ -89,11 +84,8 @@ def bracketed_object(previous: FaceTouch | None, current: FaceTouch,
 
 
 def pushed_distance_m(first_touch_opening_m: float, object_width_m: float) -> float:
-    """How far [m, along the stroke] the first pad to touch pushed the object across the
-    table before the other pad met it: the fingers close symmetrically, so the first one
-    travels half of what the opening closes from its first touch to the object's width
-    (the paper's Re-Reach shift, read at the first touch). 0 when no pad has touched
-    (first_touch_opening_m < 0) or the first touch came at the object's width."""
+    """How far [m, along the stroke] the first pad pushes the object before the other meets
+    it: half the closing from the first touch to the object's width; 0 without a touch."""
     if first_touch_opening_m < 0.0:
         return 0.0
     return max(first_touch_opening_m - object_width_m, 0.0) / 2.0
@@ -147,9 +139,7 @@ def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,
 
 
 def held_tilted(contact: GraspContact, taxel_config) -> bool:
-    """The object sits tilted in the grasp: a pad's contact line turned more than
-    tilt_limit_deg, or the two pads' contacts more than height_mismatch_m apart in
-    height."""
+    """A contact line turned past tilt_limit_deg, or contacts height_mismatch_m apart."""
     tilted_line = contact.tilt_deg is not None and abs(contact.tilt_deg) > \
         taxel_config.tilt_limit_deg
     return tilted_line or abs(contact.height_mismatch_m) > taxel_config.height_mismatch_m
