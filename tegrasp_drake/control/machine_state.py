@@ -53,8 +53,7 @@ class MachineState:
 @public_dataclass
 @dataclasses.dataclass(frozen=True)
 class GraspPlan:
-    """Where and how far to move [m, s, N]: the grasp script's timing and targets
-    (GraspScriptConfig) placed for the expected object, from the arm's start pose."""
+    """The grasp script's timing and targets placed for the expected object [m, s, N]."""
     start_xyz: tuple
     object_xy: tuple  # the grasp frame's target for the expected object (grasp_frame_xy)
     object_width: float  # along the stroke, for the Re-Reach shift

@@ -122,8 +122,7 @@ class RuleTable:
     def extended(self, name: str, *, rules: tuple[Rule, ...] = (),
                  guards: tuple[Guard, ...] = (),
                  re_reach_move: ReReachMove | None = None) -> "RuleTable":
-        """This table with `rules` and `guards` added (and another Re-Reach move), as the
-        table called `name`."""
+        """This table with `rules` and `guards` added, as the table called `name`."""
         return RuleTable(name=name, rules=tuple(rules), guards=tuple(guards),
                          re_reach_move=re_reach_move or self.re_reach_move, base=self)
 
@@ -151,13 +150,11 @@ class RuleTable:
         raise KeyError(f"rule table '{self.name}' has no rule '{name}'")
 
     def ordered(self, mode: Mode) -> tuple[tuple[Rule, tuple[Guard, ...]], ...]:
-        """The rules that apply in `mode`, in the order they are asked, each with the
-        guards that can hold it back; () in Done and Failed."""
+        """The rules of `mode` in the order asked, each with its guards."""
         return self._ordered.get(mode, ())
 
     def first_match(self, situation: Situation) -> tuple[Rule, Decision] | None:
-        """The first rule of the situation's mode whose condition holds and that no guard
-        holds back, and its decision; None when none does."""
+        """(rule, decision) of the first rule that holds and is not held back, or None."""
         for rule, guards in self.ordered(situation.mode):
             if rule.condition(situation) and not any(guard.condition(situation)
                                                      for guard in guards):

@@ -52,8 +52,7 @@ class GraspScriptConfig:
 
 @dataclasses.dataclass(frozen=True)
 class ScriptSegment:
-    """One phase of the script: the grasp frame moves from X_start to X_end over
-    [t_start, t_end] [s] while the gripper holds one (rPR, rSP, rFR) command."""
+    """One phase: G moves from X_start to X_end over [t_start, t_end] [s], one gripper command."""
     phase: str
     t_start: float
     t_end: float

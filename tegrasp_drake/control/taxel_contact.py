@@ -34,8 +34,7 @@ def _pad_forces(taxels, contact_n: float) -> np.ndarray:
 
 
 def pad_contact(taxels, contact_n: float) -> PadContact:
-    """PadContact of one pad's 12 taxel forces [N] (taxel_layout's order), counting the
-    taxels above contact_n [N]."""
+    """PadContact of one pad's 12 taxel forces [N], counting those above contact_n [N]."""
     forces = _pad_forces(taxels, contact_n)
     total = float(forces.sum())
     if total <= 0.0:
@@ -78,8 +77,7 @@ class GraspContact:
 
 
 def grasp_contact(taxels24, contact_n: float) -> GraspContact:
-    """GraspContact of [left 12, right 12] taxel forces [N], counting the taxels above
-    contact_n [N]."""
+    """GraspContact of [left 12, right 12] taxel forces [N], those above contact_n counted."""
     taxels = np.asarray(taxels24, dtype=float).reshape(2, TAXELS_PER_PAD)
     pads = [pad_contact(taxels[k], contact_n) for k in range(2)]
     total = pads[0].force_n + pads[1].force_n

@@ -15,9 +15,8 @@ BLOCK_PERIOD_S = 0.010
 
 
 def block_samples(rate_hz: float, block_s: float = BLOCK_PERIOD_S) -> int:
-    """Samples of a signal at `rate_hz` [Hz] per block of `block_s` [s]: the whole samples
-    that fit (a slower signal, such as the 108 Hz taxels, gets 1: it is processed per
-    sample, its own frame being about a block); block_s = 0 gives 1 (per sample)."""
+    """Whole samples at `rate_hz` [Hz] per block of `block_s` [s], at least 1 (the 108 Hz
+    taxels, and block_s 0: per sample)."""
     if not (rate_hz > 0.0 and block_s >= 0.0):
         raise ValueError(f"rate_hz ({rate_hz}) must be positive and block_s ({block_s}) "
                          "non-negative")
@@ -43,9 +42,8 @@ def block_update_period(sample_period_s: float, samples: int) -> float:
 
 
 def samples_in_block(time_s: float, sample_period_s: float, samples: int) -> int:
-    """How many of the register's rows a block update at `time_s` takes: the samples taken
-    since the previous update (every update is at a multiple of samples x the period; the
-    one at 0 has only the sample taken at 0)."""
+    """The register's rows a block update at `time_s` takes: those since the last update
+    (at 0, one)."""
     return min(samples, int(round(time_s / sample_period_s)) + 1)
 
 

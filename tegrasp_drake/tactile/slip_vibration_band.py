@@ -21,10 +21,8 @@ _AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
 
 
 def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
-    """The biquad (transposed direct form II, [b0, b1, b2, a1, a2]) over `samples` samples
-    as one matrix M ((samples + 2) x (samples + 2)): [y; z_after] = M [x; z_before], with x
-    and y the block's inputs and outputs (oldest first) and z = [z1, z2] its delays (each
-    column an axis)."""
+    """The biquad (transposed direct form II) over `samples` samples as one matrix M:
+    [y; z_after] = M [x; z_before], x and y oldest first, z = [z1, z2] (a column per axis)."""
     b0, b1, b2, a1, a2 = coefficients
     A = np.array([[-a1, 1.0], [-a2, 0.0]])  # the delays' update, [z1, z2]' = A z + B x
     B = np.array([b1 - a1 * b0, b2 - a2 * b0])
@@ -45,9 +43,8 @@ def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
 
 def highpass_step_floats(coefficients: tuple[float, ...], x: list[float],
                          delays: list[float]) -> tuple[list[float], list[float]]:
-    """One sample of the biquad (transposed direct form II) on n axes at once, on Python
-    floats (numpy's per-call overhead on 6-vectors costs several times the arithmetic):
-    x the samples, delays [z1 (n), z2 (n)]; returns (y, the next [z1, z2])."""
+    """One biquad sample on n axes in Python floats (cheaper than numpy on 6-vectors):
+    returns (y, the next delays [z1 (n), z2 (n)])."""
     b0, b1, b2, a1, a2 = coefficients
     n = len(x)
     y = [b0 * u + z1 for u, z1 in zip(x, delays[:n])]

@@ -34,10 +34,8 @@ class ContactMemory:
 
     def after_transition(self, from_mode: Mode, to_mode: Mode,
                          touched_now: tuple) -> "ContactMemory":
-        """The memory on entering `to_mode` from `from_mode`: the timers start again; the
-        first touch is kept while the close goes on into Load; its offset is kept until a
-        Re-Reach, which remembers the faces touched now (touched_now: those of a close,
-        else ())."""
+        """The memory on entering `to_mode`: timers restart; the first touch is kept into
+        Load, its offset until a Re-Reach, which remembers the faces `touched_now`."""
         close_goes_on = to_mode == Mode.LOAD and from_mode != Mode.LIFT
         re_reach = to_mode == Mode.RE_REACH
         return ContactMemory(
@@ -108,9 +106,8 @@ class ContactEstimate:
 
 @dataclasses.dataclass(frozen=True)
 class ObjectGeometry:
-    """The expected object and grasp [m]: its width along the stroke and height, the
-    grasp height, and where the hand's pads' centres lie beyond the grasp frame along the
-    approach axis at an opening (gripper_hands.pad_center_offset; 0 without a hand)."""
+    """The expected object and grasp [m], and the hand's pads' centres beyond G along the
+    approach at an opening (gripper_hands.pad_center_offset)."""
     width_m: float
     height_m: float
     grasp_height_m: float
@@ -171,8 +168,7 @@ class ContactEstimator:
         return memory, estimate
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):
-        """The finger-strike sense in the approach: the memory with its baseline, timer and
-        moment sum updated, and the estimate's strike fields."""
+        """The finger-strike sense: the updated memory and the estimate's strike fields."""
         config = self._config.finger_strike
         if not (config.enabled and r.approaching and r.wrench is not None):
             return memory, {}
@@ -216,8 +212,7 @@ def _since(since: float, t: float, on: bool) -> float:
 
 
 def estimator_for_plan(config, plan) -> ContactEstimator:
-    """The ContactEstimator of the taxel_aware controller `config` for the grasp `plan`
-    (a GraspPlan): its expected object and its hand's pads."""
+    """The ContactEstimator of taxel_aware `config` for the GraspPlan `plan`."""
     from tegrasp_drake.simulation.gripper_hands import gripper_hand
     return ContactEstimator(
         taxel_config=config.taxel_aware, taxel_contact_n=config.taxel_contact_n,
