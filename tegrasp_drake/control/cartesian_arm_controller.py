@@ -1,10 +1,6 @@
-"""Cartesian arm control: the grasp frame's desired pose to Jaco joint commands.
-
-Drake's DifferentialInverseKinematicsIntegrator (on the arm-only controller plant, within the
-JACO2's joint position and speed limits) turns X_WG_desired into joint positions each
-control step; a DiscreteDerivative supplies the matching joint velocities. Together they
-form `arm.desired_state`, the port both the simulated station and the Jaco driver take.
-"""
+"""Cartesian arm control: X_WG_desired to `arm.desired_state` (the port the simulated
+station and the Jaco driver take), by Drake's DifferentialInverseKinematicsIntegrator within
+the JACO2's joint limits and a DiscreteDerivative for the velocities."""
 
 import numpy as np
 from pydrake.multibody.inverse_kinematics import (DifferentialInverseKinematicsIntegrator,
@@ -28,12 +24,9 @@ def jaco_joint_limits():
 def AddCartesianArmController(builder, *, position_measured, velocity_measured,
                                  q_nominal: np.ndarray, time_step: float,
                                  name: str = "arm_controller"):
-    """Adds the controller; returns (X_WG_desired input port, arm.desired_state output port).
-
-    position_measured, velocity_measured: the arm's measured joint state output ports (6
-    each); the integrator starts from them at initialization. q_nominal: the joint angles
-    [rad] that joint centering pulls toward (resolves the arm's redundancy in the nullspace).
-    """
+    """Adds the controller; returns (X_WG_desired input, arm.desired_state output). The
+    integrator starts from the measured joint state; q_nominal [rad]: joint centering's
+    target."""
     plant = make_arm_control_plant()
     lower, upper, speed = jaco_joint_limits()
     parameters = DifferentialInverseKinematicsParameters(6, 6)

@@ -1,15 +1,8 @@
-"""The controllers, one entry each: everything the package asks about "which controller?".
-
-An entry names its config class (the scenario's YAML tag, `controller: !<class> {...}`,
-whose `name` is the controller's name in results, sweeps and `--controller`), how it adds
-its systems to a DiagramBuilder, the rule table and estimator its state machine runs, and
-how tables and figures show it. Adding a controller is one module (its config class and
-its rule table, the paper's extended) and one entry in CONTROLLERS; docs/controller.md
-("Adding a controller") walks through an example.
-
-The entries name their behaviour as "module:function" and load it on use, so that this
-module imports no Drake: the command line's help and the sweep spec read the names here.
-"""
+"""The controllers, one entry each: everything the package asks about "which controller?"
+(config class and YAML tag, builder, rule table, estimator, label and colour). Adding one is
+a module and an entry in CONTROLLERS (docs/controller.md, "Adding a controller"). Entries
+name their behaviour as "module:function", loaded on use, so this module imports no Drake
+(the command line's help reads it)."""
 
 import copy
 import dataclasses
@@ -35,22 +28,12 @@ PAPER_RULES = "tegrasp_drake.control.transition_logic:rule_table"  # the paper's
 @public_dataclass
 @dataclasses.dataclass(frozen=True)
 class ControllerEntry:
-    """One controller.
-
-    config: its config class; `!<config.__name__>` is its YAML tag, config.name its name.
-    label: how tables and figures name it; title: what it is, in a few words (the sweep
-    tables' headings, --help); color: its colour in figures.
-    add_systems: "module:function" that adds its systems to a builder and connects them to
-    the station, called as AddGraspController's keywords plus `entry` (this entry); returns
-    a GraspController. The state-machine controllers share STATE_MACHINE.
-    detector: "module:function" adding the event detector a state machine reads
-    (EVENT_MATCHER or HEURISTIC_THRESHOLDS); rules: "module:function" of rules() -> the
-    state machine's RuleTable (control/rule_engine.py; PAPER_RULES: the paper's);
-    estimator: "module:function" of estimator(config, plan) -> a ContactEstimator (or
-    None: none); all None for a controller without a state machine.
-    senses_finger_strike: its state machine reads the arm's wrench at the grasp frame.
-    in_paper: one of the paper's comparison (Table I), the sweep's default.
-    """
+    """One controller. config: its config class (YAML tag `!<class>`, config.name its
+    name); label, title (--help, table headings), color: how tables and figures show it.
+    add_systems, detector, rules, estimator: "module:function" references (AddGraspController's
+    keywords plus `entry` -> a GraspController; the event detector; () -> RuleTable;
+    (config, plan) -> ContactEstimator), None when absent. senses_finger_strike: reads the
+    arm's wrench at G; in_paper: in Table I's comparison."""
     config: type
     label: str
     title: str
@@ -77,8 +60,7 @@ class ControllerEntry:
         return self.config.events_folder is not None
 
     def rule_table(self):
-        """The RuleTable its state machine runs (control/rule_engine.py); None for a
-        controller without a state machine."""
+        """Its state machine's RuleTable; None without one."""
         rules = self.load("rules")
         return None if rules is None else rules()
 
@@ -123,8 +105,7 @@ _ENTRY_OF_NAME = {entry.name: entry for entry in CONTROLLERS}
 _ENTRY_OF_CLASS = {entry.config: entry for entry in CONTROLLERS}
 if len(_ENTRY_OF_NAME) != len(CONTROLLERS) or len(_ENTRY_OF_CLASS) != len(CONTROLLERS):
     raise ImportError("controller_registry: two entries share a name or a config class")
-# Drake's yaml_dump_typed writes a Union member as the first class it is an instance of: a
-# config class derived from another entry's would be saved (in logs) as that one.
+# yaml_dump_typed would save a class derived from another entry's as that one.
 _DERIVED = [(a.name, b.name) for a in CONTROLLERS for b in CONTROLLERS
             if a is not b and issubclass(a.config, b.config)]
 if _DERIVED:
@@ -138,8 +119,7 @@ class UnknownControllerError(ValueError):
 
 @public_api
 def controller_entry(controller: typing.Any) -> ControllerEntry:
-    """The entry of a controller given by its name, its config or its config class
-    (UnknownControllerError)."""
+    """The entry of a controller's name, config or config class (UnknownControllerError)."""
     if isinstance(controller, str):
         entry = _ENTRY_OF_NAME.get(controller)
     elif isinstance(controller, type):
@@ -153,22 +133,19 @@ def controller_entry(controller: typing.Any) -> ControllerEntry:
 
 
 def controller_label(name: str) -> str:
-    """How tables and figures name the controller called `name` (the name itself for one
-    not registered, e.g. an old result's)."""
+    """The controller's label (an unregistered name: itself)."""
     entry = _ENTRY_OF_NAME.get(name)
     return entry.label if entry is not None else name
 
 
 def controller_title(name: str) -> str:
-    """The heading of the controller called `name` in the sweep's tables (the name itself
-    for one not registered)."""
+    """The controller's title (an unregistered name: itself)."""
     entry = _ENTRY_OF_NAME.get(name)
     return entry.title if entry is not None else name
 
 
 def controller_color(name: str, default: str) -> str:
-    """The colour of the controller called `name` in figures; `default` for one not
-    registered."""
+    """The controller's colour (an unregistered name: `default`)."""
     entry = _ENTRY_OF_NAME.get(name)
     return entry.color if entry is not None else default
 
@@ -200,8 +177,7 @@ def controller_named(name: str, like=None):
 
 
 def _leaf_paths(key: str, value) -> list[str]:
-    """The dotted paths of the settings a YAML `controller` entry sets: `key` itself, or
-    for a section (a mapping) each setting inside it, e.g. matching.ra_envelope_hz."""
+    """The dotted paths a YAML `controller` entry sets (a section: each setting in it)."""
     if isinstance(value, dict) and value:
         return [path for sub, item in value.items()
                 for path in _leaf_paths(f"{key}.{sub}", item)]
@@ -227,12 +203,9 @@ def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
 
 
 def select_controller_tag(data: dict, *, drop_others: bool = False) -> list[str]:
-    """Turns the shorthand `controller: {name: NAME, ...}` of YAML data (a scenario's, in
-    place) into the tag of NAME's config class (`_tag`, as Drake's yaml_load keeps it).
-    drop_others: drop the settings of other controllers that NAME's class lacks (a sweep's
-    overrides or `--controller` on a scenario written for another controller); a setting no
-    controller has stays, to be refused. Returns the dotted paths of the settings dropped
-    (each setting of a dropped section). UnknownControllerError for an unknown name."""
+    """Turns `controller: {name: NAME, ...}` of YAML data, in place, into NAME's tag
+    (`_tag`); drop_others: drop the other controllers' settings NAME lacks (one no
+    controller has stays, to be refused) and return their dotted paths."""
     section = data.get("controller") if isinstance(data, dict) else None
     if not isinstance(section, dict) or "name" not in section:
         return []

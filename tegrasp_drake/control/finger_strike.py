@@ -1,18 +1,8 @@
-"""The taxel_aware controller's finger-strike sense, as pure functions: a finger's front
-striking the object while the open gripper approaches it, seen in the arm's joint torques,
-and where the gripper moves after it (stop, back off, shift along the stroke, approach
-again: the rule taxel_aware/finger_strike.py).
-
-The taxels cannot see it: a 45 mm box 25 mm along the 85 mm stroke lies in the path of the
-finger's front, not its pad, and the moving finger knocks it over. The joints feel it: the
-arm's measured joint torques, mapped onto the grasp frame G (J_G^-T), give the force on the
-gripper (grasp_wrench_from_torques); a force above force_n for sustain_s is a strike
-(FingerStrikeConfig, controller_config.py: the measured numbers and the reasoning).
-
-Frames: world W; the side grasp approaches along world +x with the stroke along world y,
-the left finger on +y (corrective_actions.py). Wrenches are [Mx, My, Mz, Fx, Fy, Fz]
-[N m, N], on the arm at G's origin, expressed in W.
-"""
+"""The taxel_aware finger-strike sense as pure functions: a finger's front striking the
+object in the approach, which the taxels barely see, read from the arm's joint torques
+mapped onto the grasp frame G, and the shift after it (docs/controller.md, "Finger
+strike"). Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] on the arm at G, in world W
+(approach +x, stroke y, left finger on +y)."""
 
 import numpy as np
 
@@ -20,10 +10,9 @@ FINGERS = ("left", "right")
 
 
 def grasp_wrench_from_torques(J_WG: np.ndarray, torques_nm) -> np.ndarray:
-    """The wrench on the arm at G [N m, N; W] that the joint torques `torques_nm` [N m]
-    hold statically: the actuators' torques balance it, tau = -J^T w, so w = -J^-T tau.
-    J_WG: G's spatial velocity Jacobian (6 x 6, [w; v] in W) with respect to the joint
-    velocities; the least-squares solution near a singularity."""
+    """The wrench on the arm at G [N m, N; W] that joint torques `torques_nm` [N m] hold
+    statically: w = -J_WG^-T tau (J_WG: G's 6 x 6 spatial velocity Jacobian; least squares
+    near a singularity)."""
     solution, *_ = np.linalg.lstsq(np.asarray(J_WG, dtype=float).T,
                                    -np.asarray(torques_nm, dtype=float), rcond=None)
     return solution
@@ -53,13 +42,8 @@ def struck_finger(moment_sum_nm: float, contact: tuple, config) -> str | None:
 
 
 def strike_shift(finger: str | None, opening_m: float, object_width_m: float) -> float:
-    """The shift along the stroke [m, world y] after a strike: toward the struck finger by
-    (opening - width) / 2, never negative; 0 for an unknown finger.
-
-    The struck finger's front overlaps the object, so the object's centre lies at least
-    opening/2 - width/2 toward that finger; moving the gripper that far puts the object
-    between the fingers (a shift away from the finger would leave its front in the
-    object's path)."""
+    """The shift [m, world y] after a strike: toward the struck finger (whose front overlaps
+    the object) by (opening - width) / 2, never negative; 0 for an unknown finger."""
     if finger is None:
         return 0.0
     sign = 1.0 if finger == FINGERS[0] else -1.0

@@ -1,13 +1,6 @@
-"""The paper's state machine with a fixed Load time: Load-Lift fires load_time_s after
-entering Load, by the clock, instead of on the memorized Load-Lift event. Every other
-transition is the paper's (transition_logic.PAPER_TABLE), the Reach-Load and Place-Unload
-events included.
-
-A controller in two parts, as docs/controller.md ("Adding a controller") shows: its config
-class (the YAML tag `!FixedLoadTimeControllerConfig`) and its rule table, the paper's with
-a rule and a guard added; its entry in controller_registry.py says how it is built (the
-shared state machine and event matcher).
-"""
+"""The example controller of docs/controller.md, "Adding a controller": the paper's state
+machine lifting load_time_s after entering Load, by the clock, instead of on the Load-Lift
+event; its config class and its rule table (the paper's with a rule and a guard added)."""
 
 import dataclasses
 import typing
@@ -25,11 +18,8 @@ class FixedLoadTimeControllerConfig(EventTriggeredConfig):
     name: typing.ClassVar[str] = "fixed_load_time"
     events_folder: typing.ClassVar[str | None] = ""  # the paper's memorized events
     extra_time_s: typing.ClassVar[float] = 0.0
-    # Lift this long after entering Load [s]. 1.0 s: the open-loop script's dwell on the
-    # object after first contact is 0.56-1.06 s on the built-in objects
-    # (scripted_grasp.GraspScriptConfig.load_s), and Load is entered on the Reach-Load
-    # event, after that contact; the grip has settled by then. At or beyond
-    # load_event_timeout_s the paper's give-up (Re-Reach) comes first.
+    # Lift this long after entering Load [s]: the script's dwell after first contact is
+    # 0.56-1.06 s (GraspScriptConfig.load_s), so the grip has settled.
     load_time_s: float = bounded(1.0, low=0.0, low_open=True, high=10.0, unit="s",
                                  below="must be positive [s]")
 

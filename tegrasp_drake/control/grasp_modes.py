@@ -47,9 +47,7 @@ class Trigger(enum.StrEnum):
     TIMER = "timer"  # a planned motion or a timed phase ended
     CORRECTIVE = "corrective"  # a corrective action (Re-Reach, Lift-Load) started or ended
     FAULT = "fault"  # a device fault
-    # A memorized corrective event matched (slip in Lift, a hit in Hold;
-    # controller.memorized_corrective.events).
-    CORRECTIVE_EVENT = "corrective_event"
+    CORRECTIVE_EVENT = "corrective_event"  # a memorized corrective event matched
 
     @property
     def is_event(self) -> bool:
@@ -68,11 +66,8 @@ class Stage(enum.StrEnum):
 
 @dataclasses.dataclass(frozen=True)
 class Decision:
-    """The next mode, what triggered it and a human-readable reason.
-
-    A rule table's decision (control/rule_engine.py) also carries its action
-    (control/rule_actions.py, e.g. a ReReach with its shift), which the state machine
-    carries out, and the name of the rule that decided it (its structured reason code)."""
+    """The next mode, its trigger and reason; a rule's decision also carries its action
+    (rule_actions.py) and the rule's name as its reason code."""
     mode: Mode
     trigger: Trigger
     reason: str
@@ -83,11 +78,8 @@ class Decision:
 @public_dataclass
 @dataclasses.dataclass(frozen=True)
 class Transition:
-    """One entry of the state machine's timeline: at t [s] (simulated, or the hardware
-    run's Context time) the machine went from from_mode to to_mode.
-
-    The corrective fields are set only on the transition that starts that action.
-    """
+    """One timeline entry: at t [s] (Context time) from_mode -> to_mode; the corrective
+    fields are set only on the transition that starts that action."""
     t: float
     from_mode: Mode
     to_mode: Mode
@@ -99,14 +91,11 @@ class Transition:
     grip_force_n: float | None = None  # Lift-Load: the raised grip force [N]
     direction: tuple[float, float, float] | None = None  # Avoid: unit direction, world
     delta_sa_n: tuple[float, float] | None = None  # Avoid: (left, right) SA gain of the hit [N]
-    # The name of the rule that decided it (its rule table's), for code that asks which
-    # rule fired; not part of the JSON form, which keeps the text.
     code: str | None = None
 
     def as_dict(self) -> dict:
-        """The JSON form (trial results, logs): t, from, to, trigger, reason, then the
-        fields that are set (scores, offset_m, approach_offset_m, grip_force_n, direction, delta_sa_n) with
-        tuples as lists. Modes by their labels (Mode.label)."""
+        """The JSON form (trial results, logs): t, from, to (Mode.label), trigger, reason,
+        then the _OPTIONAL_FIELDS that are set, tuples as lists (not `code`)."""
         entry = {"t": self.t, "from": self.from_mode.label, "to": self.to_mode.label,
                  "trigger": self.trigger.value, "reason": self.reason}
         for key in _OPTIONAL_FIELDS:

@@ -1,27 +1,10 @@
 """GraspStateMachine: the tactile-event grasping algorithm (Sec. II-B, III-C, Fig. 6b) as a
-Drake LeafSystem.
-
-Each tick (config.update_period_s) it summarises its inputs into an Observation (with the
-taxel_aware controller, the ContactEstimator's estimate of the contact), asks its
-controller's rule table (control/rule_engine.py; the paper's: transition_logic.PAPER_TABLE)
-for the next mode, and carries out the decision and the motion of the mode it is in:
-smooth (minimum-jerk) translations of the grasp frame at the side-grasp orientation, and
-Robotiq-style gripper requests. Everything it remembers is in one abstract
-state value (MachineState), so a Context holds the whole run, timeline included.
-
-Motion of each mode (world frame, grasp frame G; the stroke is world y; the corrective
-actions' decisions and moves are in corrective_actions.py):
-  Reach     move to the expected object position at grasp height, then close
-  Re-Reach  open, shift along the stroke toward the finger that touched first by the offset
-            its contact implies, (then Reach closes again); the taxel_aware controller's
-            rules say the shift along both axes in their ReReach action
-            (control/taxel_aware)
-  Load      keep closing at the grip force (raised by each Lift-Load)
-  Lift      rise by lift_height;  Hold: stay;  Avoid: move avoid_distance along the hit
-  Place     descend to place_press below the lift-off height (stops at the Place-Unload event)
-  Unload    open where it is, then retract along the approach and up
-  Done      stay;  Failed: stay, the gripper keeps its last request (the object is not dropped)
-"""
+Drake LeafSystem. Each tick it summarises its inputs into an Observation, asks its rule
+table (control/rule_engine.py) for the next mode, and carries out the mode's motion:
+minimum-jerk translations of the grasp frame G (world frame, stroke along y) and 2F-85
+requests. Reach moves to grasp height and closes; Re-Reach opens and shifts; Load squeezes;
+Lift rises; Avoid moves off a hit; Place descends; Unload opens and retracts; Failed keeps
+the last gripper request. All memory is one abstract state (MachineState)."""
 
 import dataclasses
 
@@ -51,12 +34,10 @@ __all__ = ["GraspPlan", "GraspStateMachine", "MachineState"]
 
 OPENING_SPEED_MPS = 0.1  # when opening to re-reach or unload
 GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
-# The event each mode checks for (the expected event): the event-triggered transition that
-# leaves it.
+# The event each mode expects: the event-triggered transition that leaves it.
 EXPECTED_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                        for name in REQUIRED_TRANSITIONS}
-# The memorized corrective event each mode checks for (when named in
-# controller.memorized_corrective.events): the corrective transition that leaves it.
+# The memorized corrective event each mode expects (if memorized_corrective.events names it).
 EXPECTED_CORRECTIVE_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                                   for name in CORRECTIVE_TRANSITIONS}
 
@@ -85,38 +66,15 @@ class GraspStateMachine(LeafSystem):
         - mode
         - corrective_expected_event
 
-    Ports:
-        match: [1] when the detector matches the expected event, else [0].
-        scores: the detector's four channel scores (logged with each transition).
-        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), Eq. 1-2.
-        gripper.status: the 2F-85 status bytes (robotiq.units order).
-        pad_acceleration: [left xyz, right xyz] (m/s^2, pad frames), for the Avoid
-            direction; unconnected: Avoid moves straight up.
-        slip_vibration: [left, right] the pads' vibration in the slip band (m/s^2,
-            tactile.slip_vibration_band), for Lift-Load.
-        device_fault: an abstract str, "" when all devices are alive, else the watchdog's
-            message; unconnected: no faults.
-        taxel_forces: [left 12, right 12] taxel forces (N, taxel_layout order); read by
-            the taxel_aware controller only, which needs it connected.
-        corrective_match: [1] when the corrective EventMatcher matches the mode's
-            memorized corrective event, else [0]; read with memorized corrective triggers
-            only (controller.memorized_corrective.events), which need it connected.
-        grasp_wrench: [Mx, My, Mz, Fx, Fy, Fz] (N m, N; world) on the arm at the grasp
-            frame, from the arm's joint torques (GraspWrenchEstimator); read by the
-            taxel_aware controller's finger-strike sense; unconnected: no such sense.
-        X_WG_desired: RigidTransform, the grasp frame's desired pose in world.
-        gripper_command: [rPR, rSP, rFR] bytes.
-        expected_event: [index] of the event the detector should check, -1 for none. It
-            depends only on the state (the detector's `match` feeds back to this system).
-        mode: [Mode value].
-        corrective_expected_event: [index] of the corrective event the corrective matcher
-            should check (slip in Lift, a hit in Hold), -1 for none or without memorized
-            corrective triggers; depends only on the state.
-
-    rules: its RuleTable (control/rule_engine.py; default: the paper's,
-    transition_logic.PAPER_TABLE); estimator: what senses the contact for them each tick (a
-    taxel_aware ContactEstimator), or None. The controller's entry in
-    controller_registry.py gives both.
+    match, corrective_match: [1] when the (corrective) matcher matches; scores: its four
+    Eq. 3 scores; channels: [sa_l, sa_r, ra_l, ra_r] [N, N, m/s^2, m/s^2]; gripper.status:
+    2F-85 bytes; pad_acceleration: [left xyz, right xyz] [m/s^2, pad frames] (unconnected:
+    Avoid moves up); slip_vibration: [left, right] slip band [m/s^2]; device_fault: "" or
+    the watchdog's message; taxel_forces: [left 12, right 12] [N] (taxel_aware);
+    grasp_wrench: [M, F] at G [N m, N, world] (finger strike). Outputs: X_WG_desired;
+    gripper_command [rPR, rSP, rFR]; expected_event and corrective_expected_event (index,
+    -1 none; state only, since the matchers feed back); mode. rules: the RuleTable;
+    estimator: a taxel_aware ContactEstimator or None (both from the registry entry).
     """
 
     def __init__(self, *, plan: GraspPlan, config, event_indices: dict,
@@ -149,8 +107,6 @@ class GraspStateMachine(LeafSystem):
         self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
         self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
         self._grasp_wrench = self.DeclareVectorInputPort("grasp_wrench", 6)
-        # The controller's rule table (its registry entry's), over the Observation and what
-        # its estimator, if any, senses (the taxel_aware controller's ContactEstimator).
         self._estimator = estimator
         self._rules = rules
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
@@ -168,8 +124,6 @@ class GraspStateMachine(LeafSystem):
         self.DeclareVectorOutputPort("corrective_expected_event", 1,
                                      self._calc_corrective_expected_event,
                                      prerequisites_of_calc=state_only)
-
-    # ---- construction helpers -------------------------------------------------------
 
     def initial_state(self) -> MachineState:
         p = self._plan
@@ -192,8 +146,6 @@ class GraspStateMachine(LeafSystem):
         from, to, trigger, reason, scores."""
         return [transition.as_dict() for transition in self.transitions(context)]
 
-    # ---- outputs -----------------------------------------------------------------------
-
     def _calc_pose(self, context, output):
         position = self.state(context).segment.position(context.get_time())
         output.set_value(RigidTransform(R_WG_SIDE_GRASP, position))
@@ -212,8 +164,6 @@ class GraspStateMachine(LeafSystem):
 
     def _calc_mode(self, context, output):
         output.SetAtIndex(0, float(self.state(context).mode))
-
-    # ---- the tick ----------------------------------------------------------------------
 
     def _update(self, context, state):
         t = context.get_time()
@@ -298,8 +248,8 @@ class GraspStateMachine(LeafSystem):
         motion_done_since = _since(timers.motion_done_since, t, motion_done)
         status = self._status.Eval(context)
         closing = s.mode == Mode.REACH and s.stage == Stage.CLOSING
-        # Only a status that echoes the close request (gPR = rPR) says where the fingers
-        # stopped: a late status from the open request also reads "at requested position".
+        # only a status echoing the close request (gPR = rPR): a late one of the open reads
+        # "at requested position" too
         at_request = int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION
         closed_on_nothing = (
             closing and self._gripper_settled(s, t) and not any(contact)

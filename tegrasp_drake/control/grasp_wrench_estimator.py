@@ -22,13 +22,9 @@ class GraspWrenchEstimator(LeafSystem):
         output_ports:
         - wrench
 
-    Ports:
-        arm.position_measured: the arm's joint angles [rad] (6).
-        arm.torque_measured: the arm's joint torques [N m] (6): simulated, the plant's net
-            actuation; on the JACO2 its joint torque sensors (gravity-free).
-        wrench: [Mx, My, Mz, Fx, Fy, Fz] [N m, N] on the arm at G's origin, in world
-            (grasp_wrench_from_torques); it ignores the arm's inertia, which the
-            approach's slow motion keeps below 0.81 N (FingerStrikeConfig).
+    Joint angles [rad] and torques [N m] (simulated: net actuation; JACO2: gravity-free
+    sensor torques) in; wrench [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G in world out,
+    ignoring the arm's inertia (below 0.81 N in the slow approach).
     """
 
     def __init__(self):

@@ -1,11 +1,6 @@
-"""The heuristic controller's transition triggers: hand-set thresholds in the style of
-Romano et al. 2011, behind the same ports as the EventMatcher so the state machine cannot
-tell which detector drives it.
-
-  reach_load    each finger's SA above contact_force_n (both fingers in contact)
-  load_lift     each finger's SA above grip_fraction of the grip force
-  place_unload  either RA above place_ra_mps2 (the table-contact transient)
-"""
+"""The heuristic controller's triggers, hand-set thresholds in the style of Romano et al.
+2011 behind the EventMatcher's ports: reach_load, each SA above contact_force_n; load_lift,
+each SA above grip_fraction of the grip force; place_unload, either RA above place_ra_mps2."""
 
 import numpy as np
 from pydrake.systems.framework import LeafSystem
@@ -15,10 +10,8 @@ from tegrasp_drake.rig.channels import CHANNEL_NAMES
 
 
 class HeuristicEventDetector(LeafSystem):
-    """Threshold triggers for the expected transition.
-
-    `grip_force_n` is the Load force; the state machine's Lift-Load raises it, so the
-    load_lift rule accepts any SA above grip_fraction of the *initial* grip force.
+    """Threshold triggers for the expected transition; load_lift compares with the
+    initial `grip_force_n` [N] (a Lift-Load's raised force passes too).
 
     .. pydrake_system::
 
@@ -31,13 +24,9 @@ class HeuristicEventDetector(LeafSystem):
         - match
         - scored_event
 
-    Ports:
-        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2).
-        expected_event: [index] into REQUIRED_TRANSITIONS, -1 for none.
-        scores: (4) each channel's value divided by its threshold (unitless); 0 for a
-            channel the rule ignores and when no event is expected.
-        match: [1.0] when the expected transition's rule holds, else [0.0].
-        scored_event: [index] the scores refer to (= expected_event).
+    channels: [sa_l, sa_r, ra_l, ra_r] [N, N, m/s^2, m/s^2]; expected_event and
+    scored_event: index into REQUIRED_TRANSITIONS (-1 none); scores: each channel over its
+    threshold (0 when ignored); match: [1] when the expected rule holds.
     """
 
     def __init__(self, config, *, grip_force_n: float):

@@ -13,11 +13,9 @@ from tegrasp_drake.control.taxel_aware.estimator import ContactMemory
 
 @dataclasses.dataclass(frozen=True)
 class ModeTimers:
-    """What a mode measures while it lasts; every transition starts a fresh one (times in
-    s of simulated time, -1: not running). sa_history: the last Hold ticks' SA, for the
-    memorized hit's baseline (hit_baseline_history); acceleration_sum, sa_gain_sum: Avoid's
-    sensing of the hit's direction (the pads' world acceleration, the SA gain over
-    MachineState.sa_before, summed over its ticks)."""
+    """What a mode measures while it lasts, fresh at each transition (times [s], -1: not
+    running); sa_history: Hold's SA for a memorized hit's baseline; the sums: Avoid's
+    sensing of the hit's direction."""
     closing_since: float = -1.0
     one_sided_since: float = -1.0
     slip_since: float = -1.0
@@ -39,7 +37,6 @@ class MachineState:
     stage: Stage = Stage.NONE  # the step within a mode
     counters: Counters = Counters()
     timers: ModeTimers = ModeTimers()
-    # The taxel_aware controller's ContactEstimator's memory (the default for the others).
     contact: ContactMemory = ContactMemory()
     reentry_shift: tuple = (0.0, 0.0)  # Re-Reach shift along world x and y [m]
     regrasp_pending: bool = False  # the Place puts a tilted object down to re-grasp it
@@ -49,16 +46,14 @@ class MachineState:
     failure: str = ""
 
     def __deepcopy__(self, memo):
-        # Never mutated once stored (each tick stores a new one), so a copy can share it;
-        # Drake copies abstract state often, and a deep copy of the timeline is costly.
+        # immutable: Drake copies abstract state often, and the timeline is costly to copy
         return self
 
 
 @public_dataclass
 @dataclasses.dataclass(frozen=True)
 class GraspPlan:
-    """Where and how far to move [m, s, N]: the grasp script's timing and targets
-    (GraspScriptConfig) placed for the expected object, from the arm's start pose."""
+    """The grasp script's timing and targets placed for the expected object [m, s, N]."""
     start_xyz: tuple
     object_xy: tuple  # the grasp frame's target for the expected object (grasp_frame_xy)
     object_width: float  # along the stroke, for the Re-Reach shift
@@ -83,9 +78,8 @@ class GraspPlan:
     @staticmethod
     def make(grasp, *, start_xyz, expected_object_xy, object, gripper_model: str
              ) -> "GraspPlan":
-        """The plan of the grasp script `grasp` (GraspScriptConfig) for `object`
-        (ObjectConfig) expected at `expected_object_xy` [m, world], by the hand
-        `gripper_model`, from the grasp frame's start position `start_xyz` [m, world]."""
+        """The plan of GraspScriptConfig `grasp` for `object` expected at
+        `expected_object_xy` [m, world], from `start_xyz` [m, world]."""
         g = grasp
         return GraspPlan(
             start_xyz=tuple(start_xyz),

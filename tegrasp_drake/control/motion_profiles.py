@@ -1,9 +1,5 @@
-"""Smooth point-to-point motion: minimum-jerk timing, pose interpolation and the state
-machine's straight moves (MotionSegment).
-
-A minimum-jerk segment starts and ends with zero velocity and acceleration, so phase
-boundaries put no velocity jumps (and no false RA spikes) into the pad accelerometers.
-"""
+"""Minimum-jerk timing, pose interpolation and the state machine's straight moves: zero
+velocity and acceleration at both ends, so phase boundaries ring no false RA spikes."""
 
 import dataclasses
 
@@ -13,8 +9,7 @@ from pydrake.common.eigen_geometry import Quaternion
 
 
 def minimum_jerk(tau):
-    """s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5 for tau clipped to [0, 1] (a float or an
-    array; a float is clipped on floats, np.clip's overhead being most of the cost)."""
+    """s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5, tau clipped to [0, 1] (float or array)."""
     tau = min(max(tau, 0.0), 1.0) if isinstance(tau, float) else np.clip(tau, 0.0, 1.0)
     return tau ** 3 * (10.0 + tau * (-15.0 + 6.0 * tau))
 

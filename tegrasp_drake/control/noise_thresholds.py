@@ -1,58 +1,11 @@
-"""The thresholds in units of the channels' noise, so that they follow the electronics.
-
-RA, in sigmas of the film's noise:
-
-Three triggers compare the film's reading with a number: the hit that starts Avoid
-(`avoid.hit_ra_mps2`, raw RA magnitude), the heuristic controller's Place-Unload
-(`heuristic.place_ra_mps2`, raw RA magnitude) and the slip that starts Lift-Load
-(`lift_load.slip_vibration_mps2`, the slip band's RMS over
-`lift_load.slip_window_s`). Each also has a setting in
-sigmas of the noise it reads, and the threshold in force is the larger of the two:
-
-    threshold = max(number, sigmas x sigma)
-
-The number is what the signals need (the table touch, the hit, a normal lift's own band
-reading); the sigmas keep noise alone from crossing it when the electronics are noisier
-than those numbers allow.
-
-sigma. The RA channel's noise at rest, sigma_RA, in closed form from the electronics
-(simulation/pad_vibration_sensor.ra_noise_std_mps2: the amplifier's and the converter's
-Gaussian noise and the converter's rounding, lsb^2 / 12); the slip band's, per sample,
-sigma_RA times the band's white-noise gain sqrt(sum h_k^2), h the high-pass's impulse
-response (`slip_band_noise_std`). Closed form rather than measured on the stream's first
-seconds: what the pads read during the approach is the electronics' noise plus the arm's
-motion and drive vibration (docs/model.md, "Drive vibration"), whose level depends on the
-motion, not on the electronics; and the closed form is exact for the white part.
-
-sigmas, by the rule of the RA noise floor (events/ra_noise_floor.py): noise alone crosses
-the threshold in at most `FALSE_ALARM_PER_TRIAL` (1e-3) of trials, union-bounded over the
-trial's horizon at the RA rate, both pads:
-
-  - the raw magnitude |a| (hit, place): P(|n| > k sigma) = 2 Q(k) over N = 14 s x 1000 Hz
-    x 2 samples: k = Q^-1(alpha / 2N) = 5.51 (`magnitude_sigmas`);
-  - the band's RMS over W samples: W RMS^2 / sigma_band^2 is chi-square with W degrees of
-    freedom (the band's samples taken as independent: its impulse response lasts about 3
-    samples at 80 Hz and 1 kHz), so k = sqrt(chi2^-1(1 - alpha / N; W) / W) = 2.34 for
-    W = 10 (`window_rms_sigmas`); the rule also asks the band to stay above for
-    lift_load.slip_s, which only lowers the false alarms further.
-
-SA, by the same rule on the exact distribution of the taxels' noise
-(simulation/taxel_rest_noise.py; `sa_noise_floor` switches it off). Four settings compare
-taxel readings with a force; each is raised to the force that noise alone exceeds with the
-rule's probability:
-
-  - a pad touches (`contact_force_n`, and the heuristic's Reach-Load
-    `heuristic.contact_force_n`): Eq. 1's sum of a pad's 12 readings at rest, over the
-    trial's SA samples of both pads. The capacitive pad's calibration clips each reading at
-    zero, so its sum at rest has a mean of 1.46 N and noise alone reaches 5.5 N once a
-    trial of a thousand, against 0.3 N asked;
-  - a taxel counts toward a contact's shape (`taxel_contact_n`): one reading at rest, over
-    the trial's samples of all 24 taxels;
-  - the Avoid move's side (`avoid.sa_asymmetry_n`): the difference of the two pads' SA
-    gains, each a loaded pad's sum now less its sum before the hit (48 loaded readings'
-    noise, unclipped: Gaussian to within the lattice), once per Avoid: both tails,
-    probability FALSE_ALARM_PER_TRIAL.
-"""
+"""The RA and SA thresholds raised to the channels' noise, so that they follow the
+electronics: each threshold in force is max(number, sigmas x sigma), where sigma is the
+channel's noise at rest in closed form from the electronics and the sigmas are chosen so
+that noise alone crosses it in at most FALSE_ALARM_PER_TRIAL of trials (union bound over
+the trial's samples, both pads): 5.51 for a raw RA magnitude, 2.34 for the slip band's RMS
+over 10 samples (chi-square), and the exact distribution of the clipped taxel readings for
+the SA thresholds. The reasoning and the values at the defaults: docs/model.md, "Thresholds
+in noise sigmas" and "SA thresholds against the taxels' noise"."""
 
 import dataclasses
 
@@ -133,11 +86,9 @@ def _sa_changes(config, floors: SaNoiseFloors) -> dict:
 
 def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: float,
                              tactile=None, sa_rate_hz: float | None = None):
-    """`config` (a GraspControllerConfig, perhaps with a `heuristic` section) with its RA
-    thresholds raised to max(number, sigmas x sigma) for RA noise ra_noise_std_mps2
-    [m/s^2 rms] at ra_rate_hz [Hz], and, given the taxels' TactileSensorConfig `tactile`
-    read at sa_rate_hz [Hz] and config.sa_noise_floor, its SA thresholds raised to the
-    noise's (sa_noise_floors); a new config, the caller's untouched."""
+    """A copy of `config` with its RA thresholds raised to max(number, sigmas x sigma) for RA
+    noise ra_noise_std_mps2 [m/s^2 rms] at ra_rate_hz [Hz], and, given the taxels'
+    `tactile` config and config.sa_noise_floor, its SA thresholds to sa_noise_floors."""
     avoid, lift_load = config.avoid, config.lift_load
     band = slip_band_noise_std(ra_noise_std_mps2, lift_load.slip_band_hz, ra_rate_hz)
     changes = {

@@ -1,10 +1,5 @@
-"""What a rule of a rule table (rule_engine.py) decides: an action, carried by its
-Decision, which the state machine only carries out. A ReReach holds its shift (or none:
-the paper's), a Regrasp marks the Place as a re-grasp's.
-
-Imports no Drake (the controller registry, read at the command line's start, imports the
-modules that define rule tables).
-"""
+"""The actions a rule decides (rule_engine.py), carried by its Decision and only carried
+out by the state machine; Drake-free."""
 
 import dataclasses
 
@@ -13,11 +8,8 @@ from tegrasp_drake.control.grasp_modes import Decision, Mode, Trigger
 
 @dataclasses.dataclass(frozen=True)
 class ReReach:
-    """Open, move the open gripper by `shift` [m, world; a taxel_aware contact_geometry
-    Shift], close again. shift None: the paper's shift along the stroke, which the state
-    machine works out from the SA and the opening where the gripper stopped
-    (corrective_actions.re_reach_shift). `counted`: the Re-Reach counts toward the Re-Reach
-    limits (a re-grasp's does not)."""
+    """Open, move by `shift` [m, world; a contact_geometry.Shift; None: the paper's shift
+    along the stroke], close again; `counted` toward the limits (a re-grasp's is not)."""
     shift: object | None = None
     counted: bool = True
     mode = Mode.RE_REACH
@@ -64,9 +56,8 @@ def re_reach_allowed(situation, limit: int | None = None) -> bool:
 
 
 def re_reach_or_fail(situation, shift, reason: str, *, limit: int | None = None) -> Decision:
-    """ReReach by `shift` (None: the paper's) for `reason`, or Failed when Re-Reach is
-    switched off (config.re_reach.enabled) or `limit` (default: the table's) Re-Reaches are
-    made."""
+    """ReReach by `shift` for `reason`, or Failed when Re-Reach is off or `limit` (default:
+    the table's) are made."""
     limit = re_reach_limit(situation, limit)
     re_reaches = situation.counters.re_reaches
     if not situation.config.re_reach.enabled:

@@ -1,15 +1,7 @@
-"""The docs' rule tables, generated from the rule engine (rule_engine.py): each state-machine
-controller's RuleTable, from its controller_registry entry, as Markdown.
-
-    python -m tegrasp_drake.control.rule_docs                             # print them
-    python -m tegrasp_drake.control.rule_docs --write docs/controller.md  # update the page
-    python -m tegrasp_drake.control.rule_docs --check docs/controller.md  # exit 1 if stale
-
-In a page a table lies between the lines `<!-- rule table: NAME -->` (`<!-- rule table:
-NAME, added -->`: only the rules and guards that NAME adds to its base table) and
-`<!-- end of rule table -->`; --write replaces what lies between, through a temporary file
-and a rename.
-"""
+"""The docs' rule tables as Markdown, generated from each registered controller's RuleTable
+(`python -m tegrasp_drake.control.rule_docs [--write|--check docs/controller.md]`). A table
+lies between `<!-- rule table: NAME -->` (`NAME, added`: only what NAME adds) and
+`<!-- end of rule table -->`; --write replaces it atomically."""
 
 import argparse
 import pathlib
@@ -47,9 +39,8 @@ def _rows(table: RuleTable, added_only: bool) -> list[tuple[str, object]]:
 
 
 def markdown(table: RuleTable, *, added_only: bool = False) -> str:
-    """The table as Markdown: its rules (mode, priority, name, the table that added it
-    (extended tables), the guards that can hold it back (tables with guards), when, then),
-    then its guards; `added_only`: only those that `table` adds to its base."""
+    """The table's rules, then its guards, as Markdown (`from` and `held back by` columns
+    when it has a base or guards); `added_only`: only what it adds to its base."""
     move = table.re_reach_move
     guards = table.all_guards() if not added_only else table.guards
     held = {rule.name: [g.name for g in table.all_guards() if rule.name in g.holds_back]

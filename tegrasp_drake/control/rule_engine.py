@@ -1,19 +1,9 @@
-"""The grasp state machine's rule engine: a controller's transitions as a table of rules.
-
-A Rule applies in some modes (or in every mode), has a priority, a condition and an action
-(rule_actions.py); a Guard holds named rules back while its condition holds; a
-ReReachMove says how the table's Re-Reaches move and how many it allows. The paper's state
-machine is one table (transition_logic.PAPER_TABLE); another controller's table extends it
-(RuleTable.extended) by adding rules and guards, never by restating the paper's rules.
-
-Each tick the state machine asks `table.next_mode(mode, observation, counters, config,
-event_trigger=..., hold_s=...)`: of the rules that apply in the mode, lowest priority
-first, the first whose condition holds and that no guard holds back decides. Its Decision
-carries its action and the rule's name (Decision.code). Pure: no state, no side effects.
-
-Imports no Drake (the controller registry, read at the command line's start, imports the
-modules that define tables).
-"""
+"""The grasp state machine's rule engine, pure and Drake-free: a Rule applies in some modes,
+has a priority, a condition and an action; a Guard holds named rules back; a ReReachMove
+says how the table's Re-Reaches move. Other tables extend the paper's
+(transition_logic.PAPER_TABLE) with RuleTable.extended. Each tick, of the mode's rules,
+lowest priority first, the first that holds and is not held back decides; its Decision
+carries the rule's name (Decision.code)."""
 
 import dataclasses
 from collections.abc import Callable
@@ -27,12 +17,9 @@ LIVE_MODES = tuple(mode for mode in Mode if mode not in TERMINAL_MODES)
 
 @dataclasses.dataclass(frozen=True)
 class ReReachMove:
-    """How a table's Re-Reaches move and how many a grasp may make.
-
-    limit(situation): the most Re-Reaches; shift(situation): where the open gripper moves
-    [m, world; a contact_geometry.Shift], None for the paper's shift along the stroke (the
-    state machine works it out as it opens). shift_label, limit_label: both in words (the
-    docs' tables)."""
+    """How a table's Re-Reaches move: limit(situation), the most Re-Reaches; shift(situation),
+    a contact_geometry.Shift [m, world] or None for the paper's shift along the stroke; the
+    labels say both in words for the docs."""
     shift_label: str
     limit_label: str
     limit: Callable[["Situation"], int]
@@ -45,10 +32,8 @@ class ReReachMove:
 
 @dataclasses.dataclass(frozen=True)
 class Situation:
-    """What a rule reads: the mode, the tick's Observation (transition_logic.py; its
-    `estimate`, what the controller's estimator sensed, or None), the corrections made so
-    far (Counters), the controller's settings (its config), the event detector's trigger,
-    how long to hold [s] and the table's Re-Reach move."""
+    """What a rule reads: the mode, the tick's Observation, the Counters, the controller's
+    config, the detector's trigger, the hold time [s] and the table's Re-Reach move."""
     mode: Mode
     obs: object
     counters: object
@@ -71,12 +56,10 @@ class Situation:
 
 @dataclasses.dataclass(frozen=True)
 class Rule:
-    """One row of a table: in `modes` (None: every mode but Done and Failed), when
-    condition(situation) holds and no guard holds it back, action(situation) is the
-    Decision. Rules with a lower `priority` are asked first; no two rules of a table that
-    apply in one mode share a priority. `when` and `then` say the condition and the action
-    in words for the docs (`then` may name the table's Re-Reach move as {re_reach}, its
-    shift as {re_reach_shift})."""
+    """One row: in `modes` (None: every live mode), when condition(situation) holds and no
+    guard holds it back, action(situation) is the Decision; lower `priority` first, unique
+    per mode. `when` and `then` word it for the docs ({re_reach}, {re_reach_shift} name the
+    table's Re-Reach move)."""
     name: str
     modes: tuple[Mode, ...] | None
     priority: int
@@ -139,8 +122,7 @@ class RuleTable:
     def extended(self, name: str, *, rules: tuple[Rule, ...] = (),
                  guards: tuple[Guard, ...] = (),
                  re_reach_move: ReReachMove | None = None) -> "RuleTable":
-        """This table with `rules` and `guards` added (and another Re-Reach move), as the
-        table called `name`."""
+        """This table with `rules` and `guards` added, as the table called `name`."""
         return RuleTable(name=name, rules=tuple(rules), guards=tuple(guards),
                          re_reach_move=re_reach_move or self.re_reach_move, base=self)
 
@@ -168,13 +150,11 @@ class RuleTable:
         raise KeyError(f"rule table '{self.name}' has no rule '{name}'")
 
     def ordered(self, mode: Mode) -> tuple[tuple[Rule, tuple[Guard, ...]], ...]:
-        """The rules that apply in `mode`, in the order they are asked, each with the
-        guards that can hold it back; () in Done and Failed."""
+        """The rules of `mode` in the order asked, each with its guards."""
         return self._ordered.get(mode, ())
 
     def first_match(self, situation: Situation) -> tuple[Rule, Decision] | None:
-        """The first rule of the situation's mode whose condition holds and that no guard
-        holds back, and its decision; None when none does."""
+        """(rule, decision) of the first rule that holds and is not held back, or None."""
         for rule, guards in self.ordered(situation.mode):
             if rule.condition(situation) and not any(guard.condition(situation)
                                                      for guard in guards):
@@ -183,10 +163,8 @@ class RuleTable:
 
     def next_mode(self, mode: Mode, obs, counters, config, *, event_trigger: Trigger,
                   hold_s: float) -> Decision | None:
-        """The transition out of `mode` this tick, or None to stay: the first matching
-        rule's decision, with the rule's name as its code. obs: an Observation; counters:
-        the Counters; config: the controller's config; event_trigger: its event detector's
-        trigger; hold_s: how long to hold [s]."""
+        """The transition out of `mode` this tick (the first matching rule's decision, its
+        name as the code), or None to stay."""
         if mode in TERMINAL_MODES:
             return None
         situation = Situation(mode=mode, obs=obs, counters=counters, config=config,

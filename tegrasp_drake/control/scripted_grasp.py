@@ -1,10 +1,6 @@
-"""The ideal open-loop grasp (Sec. III-A): a timed script of smooth arm moves and gripper
-commands, planned for the object at its expected position (the script never sees where the
-object really is).
-
-Phases, in order: settle, reach, load, lift, hold, place, unload, retract, done. The side
-grasp approaches along world +x with the stroke along world y (arm_kinematics.py).
-"""
+"""The ideal open-loop grasp (Sec. III-A): a timed script of minimum-jerk arm moves and
+gripper commands (PHASES), planned for the object's expected position, which it never
+checks. The side grasp approaches along world +x, the stroke along world y."""
 
 import dataclasses
 import functools
@@ -35,14 +31,8 @@ class GraspScriptConfig:
     grip_force: float = bounded(25.0, low=0.0, low_open=True, high=235.0, unit="N",
                                 why="the 2F-85 grips with at most 235 N, Robotiq 2F-85 manual",
                                 below="must be positive [N]")
-    # [s] from the close command to the start of the lift. It holds the close (about
-    # (85 mm - width) / close_speed: 1.24 s for the narrowest built-in object, the 25 mm
-    # cylinder) and the dwell on the object after first contact, which must outlast the
-    # drive's settling of the grip plus the half memorized window (0.25 s) that the
-    # Load-Lift event holds before the lift starts, so that window is the settled grip.
-    # 1.8 s leaves the 25 mm cylinder 0.56 s after contact (the 45 mm box 0.96 s, the
-    # 50 mm cylinder 1.06 s): 0.31 s for the grip to settle, several times a position
-    # loop's settling (tens of ms). Recording checks it (recording/paper_events.py).
+    # close command to lift [s]: the close (1.24 s for the 25 mm cylinder) plus 0.56 s on the
+    # object, the grip's settling and half a memorized window (recording/paper_events.py checks)
     load_s: float = bounded(1.8, low=0.0, low_open=True, high=30.0, unit="s")
     lift_height: float = bounded(0.06, low=0.0, high=0.3, unit="m")  # m
     lift_s: float = bounded(1.5, low=0.0, low_open=True, high=30.0, unit="s")
@@ -62,8 +52,7 @@ class GraspScriptConfig:
 
 @dataclasses.dataclass(frozen=True)
 class ScriptSegment:
-    """One phase of the script: the grasp frame moves from X_start to X_end over
-    [t_start, t_end] [s] while the gripper holds one (rPR, rSP, rFR) command."""
+    """One phase: G moves from X_start to X_end over [t_start, t_end] [s], one gripper command."""
     phase: str
     t_start: float
     t_end: float
@@ -74,8 +63,8 @@ class ScriptSegment:
 
 @functools.lru_cache(maxsize=256)
 def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple:
-    """The (rPR, rSP, rFR) bytes for a target opening, speed and force. Cached: the state
-    machine asks for the same few requests on every tick (a pure function of its scalars)."""
+    """The (rPR, rSP, rFR) bytes for a target opening, speed and force (cached: asked each
+    tick)."""
     return (float(ru.position_byte_from_opening(opening_m)),
             float(ru.speed_byte_from_speed(speed_mps)),
             float(ru.force_byte_from_force(force_n)))
@@ -83,11 +72,9 @@ def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple
 
 def grasp_frame_xy(expected_object_xy, object_width: float, gripper_model: str
                    ) -> tuple[float, float]:
-    """Where the grasp frame goes [m], world (x, y), so that the closing pads meet an object
-    `object_width` [m] wide along the stroke at its expected position [m, world] with their
-    centres on its centre line: the linkage hand's pads travel along the approach axis
-    (world +x) as they close, so the frame stops short by the pads' offset at the object's
-    width (gripper_hands.pad_center_offset)."""
+    """Where the grasp frame goes [m, world (x, y)] so that the pads' centres close on the
+    object's centre line: short of it by the pads' offset at the object's width (the
+    linkage's pads travel along +x as they close)."""
     x0, y0 = expected_object_xy
     offset = gripper_hand(gripper_model).pad_center_offset(object_width)
     return x0 - offset, y0

@@ -1,25 +1,8 @@
-"""Where a contact sits on the pads, from the whole 3 x 4 taxel pattern (not Eq. 1's sum).
-
-Pad frame P (rig/taxel_layout.py): +y along the pad's 24 mm length toward the fingertip,
-+x across its 20 mm width. At the side grasp both pads have +y = world +x (the approach
-axis, normal to the palm) and +x = world -z (down); so a taxel's row says where along the
-approach axis the contact sits, its column how high.
-
-  PadContact                 one pad's total force and force-weighted centroid [m, pad frame]
-  pad_contact(taxels, contact_n)
-                             PadContact of one pad's 12 taxel forces
-  contact_line_tilt_deg      the angle of the contact line on a pad from the pad's x axis
-                             (a line contact of an upright cylinder is 0; an object leaning
-                             toward or away from the palm turns the line on the pad)
-  GraspContact               both pads: the approach-axis offset of the contact from the
-                             pads' centres, the in-pad tilt, the vertical mismatch
-  grasp_contact(taxels24, contact_n)
-                             GraspContact of the two pads' 24 taxel forces [left 12, right 12]
-
-A taxel counts toward a contact above contact_n [N], the controller's taxel_contact_n:
-raised above the taxels' noise (control/noise_thresholds.py) so that noise alone never
-draws a line.
-"""
+"""Where a contact sits on the pads, from the whole 3 x 4 taxel pattern (not Eq. 1's sum):
+each pad's force-weighted centroid, the contact line's tilt, and both pads' approach-axis
+offset and height mismatch. Pad frame P (rig/taxel_layout.py): +y toward the fingertip
+(world +x at the side grasp), +x across the pad (world -z). A taxel counts above contact_n
+[N], the controller's taxel_contact_n, raised above the taxels' noise."""
 
 import dataclasses
 import math
@@ -51,8 +34,7 @@ def _pad_forces(taxels, contact_n: float) -> np.ndarray:
 
 
 def pad_contact(taxels, contact_n: float) -> PadContact:
-    """PadContact of one pad's 12 taxel forces [N] (taxel_layout's order), counting the
-    taxels above contact_n [N]."""
+    """PadContact of one pad's 12 taxel forces [N], counting those above contact_n [N]."""
     forces = _pad_forces(taxels, contact_n)
     total = float(forces.sum())
     if total <= 0.0:
@@ -62,10 +44,9 @@ def pad_contact(taxels, contact_n: float) -> PadContact:
 
 
 def contact_line_tilt_deg(taxels, contact_n: float) -> float | None:
-    """The angle [deg] between the contact line and the pad's x axis (across the pad),
-    from the force-weighted row centroid of each column: the least-squares slope of
-    centroid y against column x. Positive: the line runs toward the fingertip at +x.
-    None when fewer than two columns carry contact (no line to fit)."""
+    """The angle [deg] of the contact line from the pad's x axis: the weighted least-squares
+    slope of each column's row centroid y against column x (an upright cylinder: 0);
+    positive toward the fingertip at +x; None with fewer than two columns in contact."""
     forces = _pad_forces(taxels, contact_n).reshape(ROWS, COLUMNS)
     column_force = forces.sum(axis=0)
     columns = np.flatnonzero(column_force > 0.0)
@@ -84,16 +65,10 @@ def contact_line_tilt_deg(taxels, contact_n: float) -> float | None:
 
 @dataclasses.dataclass(frozen=True)
 class GraspContact:
-    """Both pads' contact, in the grasp's terms.
-
-    left, right: PadContact. approach_offset_m: where the contact sits along the approach
-    axis from the pads' centres [m, world +x = toward the fingertips], the force-weighted
-    mean of the touching pads' y centroids (0 without contact). tilt_deg: the larger
-    |contact_line_tilt_deg| of the touching pads, with its sign (None without a line).
-    height_mismatch_m: left minus right x centroid [m] (pad x = world -z), when both touch:
-    a side parallel to both pads presses both at the same height; an object tilted in the
-    stroke plane presses one pad high and the other low.
-    """
+    """Both pads' contact: approach_offset_m, the force-weighted y centroid from the pads'
+    centres [m, world +x]; tilt_deg, the larger-magnitude pad tilt (None: no line);
+    height_mismatch_m, left minus right x centroid [m] when both touch (an object tilted
+    in the stroke plane presses one pad high, the other low)."""
     left: PadContact
     right: PadContact
     approach_offset_m: float
@@ -102,8 +77,7 @@ class GraspContact:
 
 
 def grasp_contact(taxels24, contact_n: float) -> GraspContact:
-    """GraspContact of [left 12, right 12] taxel forces [N], counting the taxels above
-    contact_n [N]."""
+    """GraspContact of [left 12, right 12] taxel forces [N], those above contact_n counted."""
     taxels = np.asarray(taxels24, dtype=float).reshape(2, TAXELS_PER_PAD)
     pads = [pad_contact(taxels[k], contact_n) for k in range(2)]
     total = pads[0].force_n + pads[1].force_n

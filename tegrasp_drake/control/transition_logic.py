@@ -1,17 +1,9 @@
-"""The paper's grasp state machine (Sec. II-B, III-C, Fig. 6b) as a rule table: what the
-machine observes each tick (Observation) and PAPER_TABLE, the rules of the rule engine
-(rule_engine.py) that decide the next mode from it, for the memorized and heuristic
-controllers; the other controllers' tables extend it. The LeafSystem
-(grasp_state_machine.py) builds the Observation each tick and carries out the decision.
-
-The transitions (Fig. 6b): Reach -> Load, Load -> Lift and Place -> Unload on their events
-(memorized or heuristic); Lift -> Hold, Hold -> Place, Avoid -> Hold and Unload -> Done by
-the clock or the end of a motion; the corrective actions Re-Reach (Reach or Load ->
-Re-Reach -> Reach), Lift-Load (Lift -> Load -> Lift) and Avoid (Hold -> Avoid -> Hold),
-whose decisions (take the action, or give up) are in corrective_actions.py and
-rule_actions.py; and Failed from any mode on a fault, a lost object or corrections used
-up. `python -m tegrasp_drake.control.rule_docs` prints the table.
-"""
+"""The paper's grasp state machine (Sec. II-B, III-C, Fig. 6b) as a rule table: the tick's
+Observation and PAPER_TABLE, the rules (rule_engine.py) that decide the next mode from it;
+other controllers' tables extend it. Event transitions on memorized or heuristic events,
+timed ones on the clock or a motion's end, the corrective actions (corrective_actions.py),
+and Failed on a fault, a lost object or corrections used up. `python -m
+tegrasp_drake.control.rule_docs` prints the table."""
 
 import dataclasses
 from collections.abc import Callable
@@ -39,27 +31,21 @@ class Observation:
     slip_quiet: bool = True  # both slip-band vibrations below the slip threshold
     slip_s: float = 0.0  # how long either RA has been above the slip threshold
     hit: bool = False  # either RA above the hit threshold (after the refractory time)
-    # The corrective EventMatcher matches the mode's memorized corrective event (slip in
-    # Lift, a hit in Hold); read for the events in controller.memorized_corrective.events.
     corrective_event_matched: bool = False
     gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
     device_fault: str = ""  # a watchdog's message, "" for none
-    # Whether the Place is a re-grasp's (taxel_aware), and what the taxel_aware
-    # controller's ContactEstimator sensed this tick (taxel_aware/estimator.py; None for
-    # the other controllers).
+    # a re-grasp's Place, and the taxel_aware ContactEstimate (None for other controllers)
     regrasp_pending: bool = False
     estimate: object | None = None
 
 
 def memorized_corrective_trigger(config, transition: str) -> bool:
-    """True when the corrective `transition` (lift_load, hold_avoid) is triggered by its
-    memorized corrective event (controller.memorized_corrective.events)."""
+    """Whether the corrective `transition` is triggered by its memorized event."""
     return transition in config.memorized_corrective.events
 
 
 def placed(obs: Observation, config) -> bool:
-    """In Place: the object stands on the table (the Place-Unload event, or
-    place.event_timeout_s [s] after the arm stopped)."""
+    """In Place: the Place-Unload event, or its timeout."""
     return obs.event_matched or place_timed_out(obs, config)
 
 
@@ -153,8 +139,7 @@ def _event(s: Situation) -> bool:
     return s.obs.event_matched
 
 
-# Priorities: the rules of every mode first (1-3); then in each mode its rules by 100s,
-# leaving room for other tables' rules between them.
+# Priorities: every mode's rules first (1-3), then each mode's by 100s, room between.
 PAPER_RULES = (
     # Any mode: the devices, the object.
     Rule("device_fault", None, 1, lambda s: bool(s.obs.device_fault), _fault,
@@ -235,8 +220,7 @@ PAPER_RULES = (
          when="the gripper opened and the arm retracted", then="Done"),
 )
 
-# The paper's Re-Reach: along the stroke toward the finger touching alone, by half the gap
-# between the opening and the object's width (corrective_actions.re_reach_shift).
+# The paper's Re-Reach: corrective_actions.re_reach_shift, worked out as the gripper opens.
 PAPER_RE_REACH = ReReachMove(shift_label="the paper's shift along the stroke",
                              limit_label="re_reach.max_re_reaches",
                              limit=lambda s: s.config.re_reach.max_re_reaches)
@@ -250,10 +234,6 @@ def rule_table() -> RuleTable:
 
 def next_mode(mode: Mode, obs: Observation, counters, config, *, event_trigger: Trigger,
               hold_s: float) -> Decision | None:
-    """The paper's transition out of `mode` this tick, or None to stay (PAPER_TABLE).
-
-    config: a GraspControllerConfig; event_trigger: the trigger name of this controller's
-    event detector (memorized or heuristic); hold_s: how long to hold [s] (the paper: 3 s).
-    """
+    """The paper's transition out of `mode` this tick (PAPER_TABLE), or None to stay."""
     return PAPER_TABLE.next_mode(mode, obs, counters, config, event_trigger=event_trigger,
                                  hold_s=hold_s)

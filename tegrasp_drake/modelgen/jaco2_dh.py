@@ -1,12 +1,7 @@
-"""Kinematics of the Kinova JACO2 6-DOF arm (j2n6s300) from Kinova's DH parameters.
-
-Source: Kinova, "DH parameters of Kinova robots" (JACO2 6-DOF curved wrist, 60 degree wrist
-angle): D1 0.2755, D2 0.410, D3 0.2073, D4 0.0741, D5 0.0741, D6 0.160, e2 0.0098 m, and the
-classic DH table below. The derived lengths d4b, d5b, d6b follow Kinova's definitions.
-Joint angles here are Kinova's "physical" angles q; the DH angle is theta_i = s_i q_i + o_i
-with the signs and offsets of Kinova's convention, so a command in these angles means the same
-thing to the real arm.
-"""
+"""Kinematics of the Kinova JACO2 6-DOF arm (j2n6s300) from Kinova, "DH parameters of
+Kinova robots" (curved wrist, 60 degree wrist angle; D1 0.2755, D2 0.410, D3 0.2073, D4 D5
+0.0741, D6 0.160, e2 0.0098 m). Angles are Kinova's physical q, theta_i = s_i q_i + o_i, so a
+command means the same to the real arm."""
 
 import dataclasses
 import math

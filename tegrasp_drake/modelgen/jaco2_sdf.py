@@ -1,10 +1,6 @@
-"""Writes models/jaco2/j2n6s300.sdf from the DH table in jaco2_dh.py.
-
-Each link frame is its DH frame. Joint i rotates about z of link i-1 at its origin. Links
-are chains of capsules joining the DH origins (visual only: the arm has no collision
-geometry; only the gripper touches the world). Masses are those of Kinova's j2n6s300
-description; inertias are those of the capsule chains.
-"""
+"""Writes models/jaco2/j2n6s300.sdf from jaco2_dh.py: link frames are DH frames, links
+visual-only capsule chains (only the gripper touches the world), masses Kinova's j2n6s300
+description's."""
 
 import numpy as np
 

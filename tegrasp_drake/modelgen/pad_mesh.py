@@ -1,19 +1,8 @@
-"""Writes models/robotiq_2f85/pad_refined_<k>.vtk: the pad's compliant box as a finer
-tetrahedral mesh with the same pressure field.
-
-Drake meshes a compliant Box from its medial axis (44 tetrahedra for the 20 x 4 x 24 mm
-pad, whatever its resolution hint): the coarsest mesh on which the box's pressure field,
-E times the distance to the surface over the half-thickness, is linear in every
-tetrahedron. A hydroelastic contact surface has one face per tetrahedron it crosses (per
-triangle of a rigid partner), and each face is one SAP contact constraint, so this mesh
-gives a pad few faces (docs/model.md, "Friction creep"). Here that same mesh is split k
-times into eight (each tetrahedron at its edges' midpoints: four corner tetrahedra and the
-inner octahedron cut along one diagonal), which multiplies the faces a contact surface
-crosses by about 4^k. Drake loads a compliant .vtk mesh with the pressure E d / d_max,
-d each vertex's distance to the mesh's surface: the new vertices lie inside the old
-tetrahedra, where the distance is linear, and the deepest vertices stay on the medial
-plane at half the thickness, so the field is the box's own, value for value.
-"""
+"""Writes models/robotiq_2f85/pad_refined_<k>.vtk: Drake's 44-tetrahedron
+medial-axis mesh of the compliant pad box split k times into eight (at the edges'
+midpoints), giving a contact surface about 4^k more faces (docs/model.md, "Friction
+creep"). The new vertices lie where the box's pressure field E d / d_max is linear, so
+Drake's field on the .vtk is the box's own, value for value."""
 
 import numpy as np
 from pydrake.geometry import (AddCompliantHydroelasticProperties, Box, GeometryInstance,
@@ -25,9 +14,7 @@ from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_W
 
 # The pad box in its collision frame (x across, y through, z along: modelgen/robotiq_sdf.py).
 PAD_SIZE = (PAD_WIDTH, PAD_THICKNESS, PAD_LENGTH)
-# The levels a scenario can select (0: Drake's own mesh of the box); each level multiplies
-# the faces of the pads' contact surfaces by about 4, and the CPU time of a step in contact
-# with them (docs/model.md, "Friction creep").
+# the levels a scenario can select (0: Drake's own mesh); each costs about 4x in contact
 PAD_REFINEMENTS = (0, 1, 2)
 
 

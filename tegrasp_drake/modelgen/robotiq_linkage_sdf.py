@@ -1,14 +1,9 @@
-"""Writes models/robotiq_2f85/robotiq_2f85_linkage.sdf: the 2F-85 with its real finger linkage
-(dimensions and sources: robotiq/linkage.py; docs/model.md, "The hand: the 2F-85 finger linkage").
-
-Per finger f (left +y, right -y): links `<f>_driver`, `<f>_coupler`, `<f>_finger` (the
-follower, with the tactile fingertip) and `<f>_spring_link`; a ball constraint at D closes
-the loop; the pin is the coupler joint's upper limit (0); the spring is a RevoluteSpring at
-the follower joint. The right driver mimics the left, whose actuator carries the motor's
-rotor (robotiq/drive.py). Every link frame is the base frame in the open pose, so zero
-angles close the loop; axes are +x on +y and -x on its mirror (positive driver angles close,
-negative coupler angles curl the fingertip in). Only the pad and its rigid backing collide.
-"""
+"""Writes models/robotiq_2f85/robotiq_2f85_linkage.sdf: the 2F-85 with its real finger
+linkage (robotiq/linkage.py; docs/model.md, "The hand: the 2F-85 finger linkage"). Per
+finger a driver, coupler, follower (with the fingertip) and spring link; a ball constraint
+closes each loop, the right driver mimics the left, whose actuator carries the rotor
+(robotiq/drive.py). Link frames are the base frame in the open pose; only the pad and its
+backing collide."""
 
 import numpy as np
 
@@ -59,9 +54,8 @@ def _bar(name: str, p0, p1, mass: float, color: str) -> str:
 
 
 def _follower(finger: str, sign: float, pad_mesh_uri: str | None) -> str:
-    """The follower: its bar, the tactile fingertip (pad and rigid backing) and the frame
-    `<finger>_pad` at the pad face's centre; the pad's collision geometry the mesh at
-    pad_mesh_uri if given, else its box."""
+    """The follower: its bar, the fingertip (pad and backing), the frame `<finger>_pad` at
+    the pad face's centre; the pad collides as the mesh at pad_mesh_uri, else its box."""
     pad_face = _point(linkage.PAD_CENTER_OPEN, sign)
     c, d = _point(linkage.C, sign), _point(linkage.D, sign)
     # The bar along C-D and the fingertip box, by the parallel-axis theorem.
@@ -163,9 +157,8 @@ def pad_mesh_url(refinement: int) -> str:
 
 
 def robotiq_linkage_sdf(pad_refinement: int = 0) -> str:
-    """The SDF text of the tactile 2F-85 with its finger linkage; with pad_refinement > 0
-    the pads' collision geometry is their box's mesh split that many times (pad_mesh_url),
-    else the box itself."""
+    """The SDF text of the tactile 2F-85 with its finger linkage (pads as the box's mesh
+    split pad_refinement times, 0: the box)."""
     uri = pad_mesh_url(pad_refinement) if pad_refinement else None
     parts = ['<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="robotiq_2f85">',
              base_link_text(),

@@ -1,14 +1,9 @@
-"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like gripper with prismatic
-fingers (`gripper.model: prismatic`): the right finger mimics the left (a coupler
-constraint), so an off-centre object is pushed to the centre as on the real gripper; one
-actuator drives the left finger, q [m] being its pad face's distance from the grasp axis.
-
-Frames: `base` at the mounting face, +z the approach, y the stroke; `grasp_frame` (the
-project's G) on the approach axis at the pads' centre; `<f>_pad` at each pad face's centre,
-+z the inward normal, +y toward the fingertip on both pads, so their x axes point opposite
-ways; the taxel layout (rig/taxel_layout.py) is given in these frames. Pads are compliant
-hydroelastic boxes of the paper's fingertip size, backed by a rigid aluminium finger.
-"""
+"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like gripper with
+prismatic fingers (`gripper.model: prismatic`), the right mimicking the left so an
+off-centre object is pushed to the centre. Frames: `base` at the mounting face (+z the
+approach, y the stroke), `grasp_frame` (G) at the pads' centre, `<f>_pad` at each pad face
+(+z inward, +y toward the fingertip), in which rig/taxel_layout.py is given. Pads are
+compliant hydroelastic boxes on rigid aluminium fingers."""
 
 import numpy as np
 
@@ -33,9 +28,8 @@ FINGER_LINK_THICKNESS = 0.010  # m, rigid finger behind the pad
 
 
 def pad_text(sign: float, relative_to: str | None = None, mesh_uri: str | None = None) -> str:
-    """The pad's collision and visual boxes, its contact face on the origin of the link
-    frame or of the frame `relative_to` (sign +1: the finger on +y). With `mesh_uri`, the
-    collision box is that tetrahedral mesh of it (modelgen/pad_mesh.py)."""
+    """The pad's collision (or the tetrahedral mesh at `mesh_uri`) and visual boxes, its
+    contact face at the frame's origin (sign +1: the finger on +y)."""
     center = pose_text(translation((0, sign * PAD_THICKNESS / 2, 0)), relative_to)
     box = f"<box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
     shape = f"<mesh><uri>{mesh_uri}</uri></mesh>" if mesh_uri else box
@@ -54,8 +48,7 @@ def pad_text(sign: float, relative_to: str | None = None, mesh_uri: str | None =
 
 
 def _finger_link(sign: float) -> str:
-    """The rigid finger behind the pad, reaching back to the palm; rigid hydroelastic, so a rigid
-    object meets it in point contact, the compliant table or other pad hydroelastically."""
+    """The rigid hydroelastic finger behind the pad, reaching back to the palm."""
     length = PAD_CENTER_Z + PAD_LENGTH / 2 - PALM_Z
     center = pose_text(translation((0, sign * (PAD_THICKNESS + FINGER_LINK_THICKNESS / 2),
                                     PAD_LENGTH / 2 - length / 2)))

@@ -4,8 +4,7 @@ import numpy as np
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 
 
-# Below this magnitude a generated number is floating-point round-off (e.g. 1e-19 m from a
-# rotation's cosine): it is written as 0 so that the text does not depend on the CPU's libm.
+# round-off below this is written as 0, so the text does not depend on the CPU's libm
 ROUND_OFF = 1e-12
 
 

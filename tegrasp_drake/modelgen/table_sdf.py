@@ -1,11 +1,7 @@
-"""Writes models/table/table.sdf: the table with the 9 object markers of the paper (Fig. 8a).
-
-The table top is the world's z = 0 plane; the arm's base stands on it at the origin. Markers
-are thin visual discs at the expected object position (EXPECTED_XY) and at the 8
-misplacements, +-1.5 cm along the finger stroke (world y in the side grasp) and +-1 cm
-normal to the palm (world x). The top is a compliant hydroelastic box, so the rigid objects
-rest on it with area contact. Its friction is a melamine-faced wood top's (materials.py).
-"""
+"""Writes models/table/table.sdf: the table (top at world z = 0, the arm's base at the
+origin) with the paper's 9 object markers (Fig. 8a): EXPECTED_XY and +-1.5 cm along the
+stroke (y), +-1 cm normal to the palm (x). A compliant hydroelastic top with a melamine
+top's friction (materials.py)."""
 
 from tegrasp_drake.rig import materials
 from tegrasp_drake.modelgen.sdf_text import friction_text, pose_text, translation

@@ -1,16 +1,7 @@
-"""The public API's boundary: `@public_api` makes a function of `tegrasp_drake.__all__`
-check its arguments against its annotations at the call and name the wrong one
-(`LoadScenario: argument 'name' must be str, got NoneType None`), instead of failing deep
-inside. Checked: classes (a bool is neither int nor float), unions and Optional, the items
-of list, tuple, Sequence, Collection, Mapping and of an Iterable that is a collection, and
-Callable; a text string is never taken as a collection. `typing.Any` and unannotated
-parameters are not checked.
-
-What a value may be beyond its type is declared once beside the parameter with
-`typing.Annotated` and checked after every type, so nothing is written before all arguments
-are known good: a `Range` (rig/ranges.py) or `Choice` (ValueError), a `Folder` (UserPathError
-naming the argument and path), e.g. `max_time: Annotated[float | None, Range(low=0.0, unit="s")]`.
-"""
+"""The public API's boundary: `@public_api` checks a public function's arguments
+against their annotations at the call and names the wrong one (classes, unions, the items
+of collections, Callable; text is never a collection), then the `typing.Annotated`
+constraints declared beside them: a Range or Choice (rig/ranges.py), a Folder."""
 
 import collections.abc
 import dataclasses
@@ -33,9 +24,7 @@ _ITEM_CHECKED = (list, tuple, collections.abc.Sequence, collections.abc.Collecti
 
 @dataclasses.dataclass(frozen=True)
 class Folder:
-    """What a folder argument must be: `exists`, already there; `writable`, one this user can
-    write in, or make.
-    """
+    """A folder argument: `exists`, already there; `writable`, this user can write in or make."""
     exists: bool = True
     writable: bool = False
 

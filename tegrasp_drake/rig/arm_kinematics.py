@@ -1,7 +1,6 @@
-"""The arm as the controller sees it: the JACO2's six joints (the gripper rigid), so IK works
-on exactly the joints the driver commands, with the grasp frame G (origin between the pads'
-centres, +z the approach, +y toward the left finger).
-"""
+"""The arm as the controller sees it: the JACO2's six joints (the gripper rigid) with
+the grasp frame G (origin between the pads' centres, +z the approach, +y toward the left
+finger), and IK on it."""
 
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix

@@ -1,10 +1,7 @@
-"""The user's files: written so an interruption never leaves a half-made one, read so a bad one
-is refused in one line. Atomic writes (a temporary file in the same folder, then a rename,
-made with the umask's permissions), signals deferred while several renames commit one
-result, a fresh folder claimed with one mkdir, bounded reads that refuse FIFOs and devices
-before reading, SIGTERM and SIGHUP ending a run as Ctrl-C does, UserPathError (one line the
-CLI prints), strict JSON and `one_line` for quoting user text.
-"""
+"""The user's files: atomic writes (a temporary file beside the target, then a
+rename), signals deferred while renames commit one result, a folder claimed with one mkdir,
+bounded reads that refuse FIFOs and devices, SIGTERM and SIGHUP ending a run as Ctrl-C does,
+one-line UserPathError, and strict JSON."""
 
 import contextlib
 import errno
@@ -85,8 +82,7 @@ def temporary_sibling(path):
 @contextlib.contextmanager
 def interruptions_deferred():
     """Holds SIGINT, SIGTERM and SIGHUP back until the block ends, then acts on the first as the
-    previous handler would. Python-level handlers (the kernel may signal any thread), so only in
-    the main thread; elsewhere the block runs as it is."""
+    previous handler would (main thread only)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -107,9 +103,8 @@ def interruptions_deferred():
 
 
 def folder_problem(path) -> str | None:
-    """Why `path` cannot be, or be made as, a folder this user writes in (None if it can): its
-    nearest existing part must take a new entry, proven by making one (permission bits do not
-    tell of /proc, a read-only mount or a full inode table, and root passes every check)."""
+    """Why `path` cannot be, or be made as, a folder this user writes in (None if it can),
+    proven by making an entry in its nearest existing part (permission bits do not tell)."""
     path = pathlib.Path(path)
     for place in (path, *path.parents):
         try:
@@ -189,9 +184,8 @@ def file_problem(path) -> str | None:
 
 
 def read_bounded(path, limit: int) -> bytes:
-    """The bytes of the file at `path`, reading at most `limit` + 1: InputTooLargeError past
-    `limit`; NotAFileError for a folder, FIFO, socket or device other than READABLE_DEVICES,
-    checked on a non-blocking open before a byte is read."""
+    """The bytes of the file at `path`: InputTooLargeError past `limit`; NotAFileError for a
+    folder, FIFO, socket or device, checked before a byte is read."""
     descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
         problem = _kind_problem(os.fstat(descriptor).st_mode, path)
@@ -226,9 +220,8 @@ def interrupt_received() -> str | None:
 
 @contextlib.contextmanager
 def termination_interrupts():
-    """SIGINT, SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread during the block, so
-    every `finally` (staging folder, lock, LCM log) runs; signals someone already handles are
-    left alone."""
+    """SIGINT, SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread during the block,
+    so every `finally` runs; signals someone already handles are left alone."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -258,9 +251,8 @@ def one_line(text: str) -> str:
 
 
 class UserPathError(OSError):
-    """A file or folder the user named cannot be used: str() is one line naming it and what to do;
-    `strerror` stays the system's words.
-    """
+    """A file or folder the user named cannot be used: str() is one line naming it and what to
+    do; `strerror` stays the system's words."""
 
     def __init__(self, message: str, error: OSError | None = None):
         super().__init__(getattr(error, "errno", None) or errno.EINVAL,
@@ -286,9 +278,7 @@ def _refuse_duplicate_keys(pairs):
 
 
 class JsonValueError(ValueError):
-    """A JSON value this package cannot hold: NaN or Infinity (not JSON, RFC 8259 6) or an integer
-    beyond a float's range.
-    """
+    """NaN or Infinity (not JSON, RFC 8259 6), or an integer beyond a float's range."""
 
 
 def _refuse_nonstandard_constant(name: str):

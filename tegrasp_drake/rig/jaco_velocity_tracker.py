@@ -1,12 +1,6 @@
-"""Turns a desired joint state into the joint velocities a velocity-mode JACO2 executes:
-
-    v_cmd = clip(v_des + kp * wrap(q_des - q_measured), -v_max, v_max)
-
-wrap() taking continuous joints' errors into [-pi, pi); a joint whose desired state is not
-finite gets zero velocity, and `stop` (the watchdog tripped) holds the arm still at the
-measured position. Both stations use it, in front of the Kinova LCM driver or of the
-simulated arm's velocity servo. Settings and sources: docs/hardware.md, "The devices".
-"""
+"""The joint velocities a velocity-mode JACO2 executes for a desired joint state,
+v = clip(v_des + kp wrap(q_des - q), +-v_max), zero for a non-finite desired state and
+while `stop`; both stations use it (docs/hardware.md, "The devices")."""
 
 import dataclasses
 

@@ -1,12 +1,7 @@
-"""Friction by material pair: the coefficient each geometry carries, and why
-(docs/model.md, "Friction by material pair").
-
-Drake combines two geometries' coefficients as mu = 2 mu_A mu_B / (mu_A + mu_B), and its
-discrete solvers use only the combined dynamic one, for sticking too. So each geometry gets
-one value (as mu_dynamic and mu_static), fitted by weighted least squares in reciprocals so
-that the pairs meet their intended *static* coefficients (handbook ranges, MATERIAL_PAIRS):
-holding, slipping and tipping are decided at the onset of slip.
-"""
+"""Friction by material pair (docs/model.md, "Friction by material pair"): Drake
+combines two geometries' coefficients as 2 mu_A mu_B / (mu_A + mu_B) and its discrete solvers
+use the dynamic one for sticking too, so each geometry gets one value, fitted by weighted
+least squares so the pairs meet their handbook static coefficients (MATERIAL_PAIRS)."""
 
 import dataclasses
 

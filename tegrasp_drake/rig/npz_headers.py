@@ -1,9 +1,5 @@
-"""The arrays an .npz file declares, read from their headers before any array is loaded:
-np.load allocates the shape a header declares, so a few-kB file could cost gigabytes.
-`checked_npz_arrays` reads each member's .npy header, refuses an unexpected name, an object
-or structured dtype, more bytes than the caller allows or a size that disagrees with the
-member's, and only then lets np.load read the arrays.
-"""
+"""The arrays an .npz declares, checked from their .npy headers (names, dtypes, sizes)
+before np.load, which would allocate whatever shape a few-kB file declares."""
 
 import math
 import tokenize
@@ -14,8 +10,7 @@ import numpy as np
 import numpy.lib.format as npy_format
 
 
-# A trial log at the highest sensor rate (20 kHz) holds about 11 float64 columns, 1.8 MB/s:
-# 512 MB is 4.8 minutes, far beyond any trial.
+# 11 float64 columns at 20 kHz: 512 MB is 4.8 minutes, far beyond any trial
 MAX_TRIAL_LOG_BYTES = 512 * 2**20
 
 
@@ -66,10 +61,8 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
 
 def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
                        text=()) -> dict[str, np.ndarray]:
-    """The arrays `names` (and those of `optional` present) of the .npz at `path`, once their
-    headers say they fit in `max_bytes` together and hold numbers (text for those in `text`).
-    NpzHeaderError (a ValueError) for a missing array or a bad header; damage found while
-    reading raises what zipfile and numpy raise. The caller names the file."""
+    """The arrays `names` (and `optional` ones present) of the .npz at `path`, once their
+    headers fit `max_bytes` and hold numbers (text for `text`); NpzHeaderError otherwise."""
     try:
         zip_file = zipfile.ZipFile(path)
     except (RuntimeError, NotImplementedError) as e:  # a zip feature zipfile does not read

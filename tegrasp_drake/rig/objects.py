@@ -1,10 +1,8 @@
-"""The objects to grasp: the paper's three (Fig. 8a) and user-defined ones; frame O at the
-centre of the object's base, z up. The paper gives no sizes: the built-in ones fit the
-2F-85's 85 mm stroke with the +-1.5 cm misplacement and at least 2.5 mm finger clearance
-(width + 2 x 15 mm <= 85 mm - 2 x 2.5 mm); masses are those of plastic or cardboard objects
-of that size. `friction` is the object geometry's own coefficient (rig/materials.py): for a
-pair value P against the pad, give P mu_pad / (2 mu_pad - P), mu_pad = materials.PAD_COVER.
-"""
+"""The objects to grasp: the paper's three (Fig. 8a) and user-defined ones; frame O at
+the centre of the base, z up. The paper gives no sizes: the built-in ones fit the 85 mm
+stroke with the +-1.5 cm misplacement and 2.5 mm finger clearance; masses are those of
+plastic or cardboard objects of that size. `friction` is the geometry's own coefficient: for
+a pair value P against the pad give P mu_pad / (2 mu_pad - P) (rig/materials.py)."""
 
 import dataclasses
 import math
@@ -27,12 +25,9 @@ OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")  # it names a 
 @public_dataclass
 @dataclasses.dataclass
 class ObjectConfig:
-    """An object to grasp. With `shape` empty, the built-in object `name`, whose size, mass and
-    friction may be changed (None keeps the built-in value). Otherwise your own, under its own
-    `name` (its events are stored under it): "box" with size [x, y, z] m, "cylinder" with
-    [diameter, height] m, or "file" (an SDF/URDF path or package:// URL of a one-body model)
-    with [width along the stroke, depth, height] m for planning; and mass and friction.
-    """
+    """An object to grasp: with `shape` empty the built-in object `name` (None keeps its
+    values); else your own "box", "cylinder" or "file" (a one-body SDF/URDF) with the sizes
+    of OBJECT_SIZES [m], mass and friction, its events stored under `name`."""
     name: str = "box"
     shape: str = ""
     size: list[float] = bounded(default_factory=list, low=0.0, low_open=True, high=0.5, unit="m",
@@ -76,9 +71,8 @@ BUILTIN_OBJECTS = {
 
 
 def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, str] | None:
-    """The first field of a user-defined object (its shape given) that cannot make an object, and
-    what is wrong, in words that follow "field 'x'"; None when all can. `shapes` narrows the
-    shapes allowed; a model file is not looked for."""
+    """(field, what is wrong) of the first field of a user-defined object that cannot make
+    one, in words that follow "field 'x'"; None when all can (a model file is not sought)."""
     if not OBJECT_NAME_PATTERN.match(config.name):
         return "name", (f"'{config.name}' must be letters, digits, '_' or '-' (not first): "
                         "it names the folder of the object's events")

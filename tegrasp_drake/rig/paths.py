@@ -1,12 +1,7 @@
-"""Where the package's data and the user's data live, for editable and non-editable installs.
-
-The package's models and memorized events (installed as `tegrasp_drake.models_data` and
-`events_data`, found by importlib.resources; from a source checkout, that checkout's own
-folders) are read-only. Events the user records go to `user_events_dir()`:
-$TEGRASP_EVENTS_DIR, else $XDG_DATA_HOME/tegrasp/events, else ~/.local/share/tegrasp/events.
-Readers search a folder given with --events alone, else the user's folder, then the
-package's.
-"""
+"""Where the package's data (read-only models and events, from importlib.resources or
+a source checkout) and the user's recorded events live ($TEGRASP_EVENTS_DIR, else
+$XDG_DATA_HOME/tegrasp/events, else ~/.local/share/tegrasp/events). Readers search --events
+alone, else the user's folder, then the package's."""
 
 import importlib.resources
 import os
@@ -43,9 +38,8 @@ events_dir = package_events_dir  # the old name (read-only: never write there)
 
 
 def user_events_dir() -> pathlib.Path:
-    """Where the user's recorded events go: $TEGRASP_EVENTS_DIR, else the user's data
-    folder ($XDG_DATA_HOME or ~/.local/share) / tegrasp / events. UserPathError when
-    $TEGRASP_EVENTS_DIR names something that is not a folder (a file, a broken link)."""
+    """Where the user's recorded events go (module docstring); UserPathError when
+    $TEGRASP_EVENTS_DIR names something that is not a folder."""
     chosen = os.environ.get(EVENTS_ENV, "").strip()
     if chosen:
         folder = pathlib.Path(chosen).expanduser()
@@ -60,10 +54,8 @@ def user_events_dir() -> pathlib.Path:
 
 
 def events_search_path(explicit=None, hand_folder: str = "") -> list[pathlib.Path]:
-    """The folders to read events from, first first: [explicit] if given, else the
-    user's folder and the package's; the package keeps each simulated hand's own events,
-    the linkage's at its top and the prismatic hand's in `hand_folder` "prismatic"
-    (gripper_hands.py)."""
+    """The folders to read events from, first first: [explicit], else the user's and the
+    package's (its `hand_folder` for a hand's own events, e.g. "prismatic")."""
     if explicit:
         return [pathlib.Path(explicit).expanduser()]
     package = package_events_dir()

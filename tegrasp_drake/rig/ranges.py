@@ -1,14 +1,7 @@
-"""Every numeric setting's unit and allowed range, declared once beside the field:
-
-    hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s",
-                            why="the paper holds 3 s; a minute is the longest test")
-
-`check_ranges` walks a config (nested dataclasses, lists and mappings of them) and raises
-ConfigError "SOURCE: field 'grasp.hold_s' must lie in [0, 60] s (why), got 1e7" for the
-first value outside its range, where a config is loaded and again where a builder is handed
-one (a config changed in Python is caught too). A range is what is physically plausible or
-what the code supports, the reason in `why`.
-"""
+"""Every numeric setting's unit and allowed range, declared once beside the field
+(`hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s", why=...)`). `check_ranges` walks a
+config where it is loaded and where a builder is handed one, and raises a one-line
+ConfigError for the first value outside its range."""
 
 import collections.abc
 import dataclasses
@@ -78,9 +71,8 @@ def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
 
 
 def declared_field(cls: type, name: str) -> dataclasses.Field:
-    """A new dataclass field with the default and the declared Range of the field `name` of
-    the dataclass `cls`: a config that repeats another's setting takes its declaration, so
-    that the default and the range are written once."""
+    """A new field with the default and Range of the field `name` of `cls`, so a repeated
+    setting is declared once."""
     field = next(f for f in dataclasses.fields(cls) if f.name == name)
     return dataclasses.field(default=field.default, default_factory=field.default_factory,
                              metadata=field.metadata)
@@ -97,16 +89,13 @@ class Choice:
         return f"must be one of {', '.join(repr(n) for n in self.names)}{why}"
 
 
-# Declared ranges and choices of config classes that are not this package's dataclasses
-# (Drake's MultibodyPlantConfig, SimulatorConfig): class -> {field name: Range | Choice}.
-# A module that holds such a class in its config declares the table with declare_ranges.
+# Ranges and choices of Drake's config classes: class -> {field: Range | Choice}.
 _FOREIGN: dict[type, dict] = {}
 
 
 def declare_ranges(cls: type, table: dict) -> None:
-    """Declares the Range (numbers) or Choice (text) of fields of `cls`, a config class that
-    cannot carry `bounded` metadata (Drake's); check_ranges then checks them wherever an
-    instance is held."""
+    """Declares the Range or Choice of fields of `cls`, a Drake config class that cannot carry
+    `bounded` metadata, for check_ranges."""
     _FOREIGN[cls] = dict(table)
 
 
@@ -120,9 +109,7 @@ def range_of(field: dataclasses.Field) -> Range | None:
 
 
 def field_range(cls: type, name: str) -> Range:
-    """The Range declared on the field `name` of the dataclass `cls`: for a function
-    parameter that takes that field's value (`Annotated[int, field_range(Scenario,
-    "random_seed")]`), so that the range is declared once."""
+    """The Range declared on the field `name` of `cls`, for a parameter taking its value."""
     declared = range_of(next(f for f in dataclasses.fields(cls) if f.name == name))
     if declared is None:
         raise LookupError(f"{cls.__name__}.{name} declares no range")
@@ -239,10 +226,8 @@ def _drake_fields(cls) -> tuple:
 
 
 def unranged_numeric_fields(*roots) -> list[str]:
-    """"Class.field" of every numeric field (int, float, lists of them, optional) of the
-    dataclasses reachable from `roots` (through fields, unions, lists and mappings) that
-    declares no Range, and every number or text field of Drake's config classes reachable
-    from them that has no declare_ranges entry."""
+    """"Class.field" of every numeric field reachable from `roots` without a Range, and of
+    every Drake config field without a declare_ranges entry."""
     seen, missing, pending = set(), [], list(roots)
     while pending:
         cls = pending.pop()
@@ -265,10 +250,8 @@ def unranged_numeric_fields(*roots) -> list[str]:
 
 def check_times_resolved(config, step_s: float, source: str, where: str = "",
                          step_name: str = "plant_config.time_step") -> None:
-    """ConfigError naming the first positive time of `config` (a field declared in seconds
-    that must be positive: a period, a window, a duration, a latency) shorter than the
-    simulation's step `step_s` [s]: a discrete update or a window between two plant steps
-    sees nothing new, and a 1 ns period makes a trial crawl. Walks what check_ranges walks."""
+    """ConfigError naming the first positive time of `config` [s] shorter than the plant step
+    `step_s`: it would see nothing new between steps, and a 1 ns period makes a trial crawl."""
     if not dataclasses.is_dataclass(config) or isinstance(config, type):
         return
     for path, value, declared in _declared_fields(config, where):

@@ -1,9 +1,7 @@
 """The station's ports: the one contract between a station and the controller. The
-simulated (MakeGraspStation) and real (MakeHardwareStation) stations export these names, so
-the controller connects to either without knowing which; name a port by its constant, never
-a string literal. `CONTROLLER_INPUTS` and `CONTROLLER_OUTPUTS` are the ports every station
-has, with their sizes; the rest belong to one station only.
-"""
+simulated and real stations export these names, so the controller connects to either; name
+a port by its constant. CONTROLLER_INPUTS and CONTROLLER_OUTPUTS are the ports every station
+has."""
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.robotiq import units

@@ -1,12 +1,9 @@
-"""The 3 x 4 taxel layout of a fingertip pad, in the pad frame P (`left_pad`/`right_pad`:
-origin at the contact face's centre, +z the inward normal, +x across the 20 mm width, +y
-along the 24 mm length toward the fingertip). Taxel index = 3 * row + column, row 0
-nearest the palm: a regular grid over the pad, like the paper's 12 electrodes (Fig. 7c).
-"""
+"""The 3 x 4 taxel layout in the pad frame P (origin at the contact face's centre, +z
+the inward normal, +x across, +y toward the fingertip); taxel index = 3 row + column, row 0
+nearest the palm."""
 
 import numpy as np
 
-# The pad's size is part of the layout's interface (contact_pressure.py reads it from here).
 from tegrasp_drake.rig.tactile_fingertip import (PAD_LENGTH, PAD_WIDTH, TAXEL_COLUMNS,
                                                       TAXEL_ROWS)
 

@@ -1,13 +1,8 @@
-"""Typed configuration from YAML files (scenarios, the hardware config, sweep specs), with
-errors that name the field.
-
-`parse_yaml` is the one way YAML text becomes data, for files and `--set` values alike:
-Drake's `yaml_load` (safe: a tag such as `!HardwareStationConfig` becomes the mapping's
-`_tag`), after refusing duplicate keys, text over MAX_YAML_BYTES and aliases that expand past
-MAX_YAML_NODES. `check_fields` names, by dotted path (`object.mass`), the first field that is
-unknown, missing, mistyped, not finite or null; `load_typed` then builds the dataclass with
-`yaml_load_typed`. Every problem is a one-line ConfigError beginning with its source.
-"""
+"""Typed configuration from YAML (scenarios, the hardware config, sweep specs) with
+one-line errors that name the field. `parse_yaml` is Drake's safe `yaml_load` after refusing
+duplicate keys, oversized text and alias bombs; `check_fields` names the first unknown,
+missing, mistyped, non-finite or null field by its dotted path; `load_typed` then builds the
+dataclass with `yaml_load_typed`."""
 
 import collections.abc
 import dataclasses
@@ -31,8 +26,7 @@ class ConfigError(ValueError):
         super().__init__(_bounded_message(one_line(str(message))))
 
 
-# A value pasted by mistake (a file in a --set) must not make an error hundreds of kB: each
-# echoed value is cut to about ECHO_CHARS, and a message past MAX_MESSAGE_CHARS is cut here.
+# a value pasted by mistake must not make an error hundreds of kB long
 ECHO_CHARS = 80
 MAX_MESSAGE_CHARS = 1000
 
@@ -200,10 +194,9 @@ def load_typed(data: dict, schema, source: str):
 
 
 def check_fields(data, schema, source: str, where: str = "") -> None:
-    """Walks YAML data against a dataclass schema (at the dotted path `where`); ConfigError
-    names the first unknown, missing or mistyped field. Understood: dataclasses, scalars,
-    list[T], tuple[T, ...], dict/Mapping[str, T], T | None, a Union of dataclasses selected by
-    a YAML tag (the first member untagged) and Drake's config classes (checked by Drake)."""
+    """Walks YAML data against a dataclass schema; ConfigError names the first unknown,
+    missing or mistyped field (dataclasses, scalars, lists, tuples, mappings, optionals,
+    tagged Unions; Drake's config classes are checked by Drake)."""
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         _check_finite_numbers(data, source, where)

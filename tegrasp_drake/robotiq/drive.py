@@ -1,13 +1,8 @@
-"""The 2F-85's drive in closed form, the one source of its parameters: the motor's rotor, the
-firmware's position loop, the current limit and the self-locking screw, in the left
-driver joint's angle a [rad] (docs/model.md, "The drive: rotor, position loop").
-
-Position loop: a critically damped PD of bandwidth f on the drive inertia J,
-tau = K (a_ref - a) + D (v_ref - v), K = J (2 pi f)^2, D = 2 J (2 pi f). While moving,
-|tau| <= 2 F |dy/da| (F the force setting per pad, both pads on one motor). The screw never
-backdrives and, standing at the limit, the firmware cuts the current: the screw holds the
-force of that instant. `grip_rise` integrates this against a linear contact.
-"""
+"""The 2F-85's drive in closed form, the one source of its parameters, in the left driver's
+angle a [rad]: a critically damped position loop (K = J (2 pi f)^2, D = 2 J (2 pi f)) capped
+at 2 F |dy/da| while moving, and a self-locking screw that holds the force at the stop;
+`grip_rise` integrates it against a linear contact (docs/model.md, "The drive: rotor,
+position loop")."""
 
 import dataclasses
 import math
@@ -16,24 +11,22 @@ import math
 ROTOR_INERTIA_KG_M2 = 181e-7  # 181 g cm^2
 GEAR_RATIO = 30.0  # motor turns per driver turn: 26-32 over the stroke, about 30 on average
 REFLECTED_ROTOR_INERTIA_KG_M2 = ROTOR_INERTIA_KG_M2 * GEAR_RATIO ** 2  # 1.63e-2 kg m^2
-# Both fingers' linkage about the left driver, loops closed: measured on the gripper bench
-# with no rotor (torque over acceleration, free fingers; link masses from MuJoCo Menagerie).
+# both fingers' linkage about the left driver: measured on the gripper bench, no rotor
 LINKAGE_INERTIA_KG_M2 = 1.7e-4
 # Forward efficiency tan(lead) / tan(lead + atan(mu)): 0.26-0.47 for 3-8 deg leads, steel on
 # bronze mu = 0.15 (Shigley's Mechanical Engineering Design, power screws).
 SCREW_EFFICIENCY = 0.35
 SCREW_EFFICIENCY_RANGE = (0.2, 0.5)  # self-locking needs < 0.5; below 0.2 is a worm drive
-# [Hz], not published: commands come at up to 200 Hz, and a faster loop than half that
-# follows none faster; from 40 Hz a held pad yields < 0.5 mm under 50 N; above 150 Hz a
-# 1 ms plant step no longer resolves it (2 pi f h > 1).
+# [Hz], not published: 40 Hz holds a pad within 0.5 mm under 50 N, above 150 Hz a 1 ms
+# step does not resolve it, and 200 Hz commands need no more than half that
 POSITION_LOOP_HZ = 60.0
 POSITION_LOOP_HZ_RANGE = (40.0, 150.0)
 POSITION_LOOP_DAMPING_RATIO = 1.0  # the 2F-85 does not overshoot a requested position
 
 
 def drive_inertia(screw_efficiency: float = SCREW_EFFICIENCY) -> float:
-    """The drive's inertia about the driver joint [kg m^2] as the motor moves the fingers: the
-    linkage plus the rotor through the screw."""
+    """The drive's inertia about the driver joint [kg m^2]: linkage plus rotor through the
+    screw."""
     return LINKAGE_INERTIA_KG_M2 + screw_efficiency * REFLECTED_ROTOR_INERTIA_KG_M2
 
 
@@ -58,11 +51,9 @@ def grip_rise(*, stiffness_n_per_m: float, force_n: float, finger_speed_mps: flo
               screw_efficiency: float = SCREW_EFFICIENCY, dissipation_s_per_m: float = 0.0,
               damping_ratio: float = POSITION_LOOP_DAMPING_RATIO, dt: float = 2e-6,
               t_max: float = 2.0) -> GripRise:
-    """The grip force per pad from the first touch, by the drive model: both pads meet a contact
-    of stiffness_n_per_m [N/m per pad] (force k x (1 + d dx/dt), d the Hunt-Crossley
-    dissipation [s/m]) while the fingers close at finger_speed_mps [m/s each]; force_n [N] is
-    the force setting, lever_m [m] the pad's |dy/da| at the contact. Semi-implicit Euler, step
-    dt [s]."""
+    """The grip force per pad from the first touch: both pads meet a Hunt-Crossley contact
+    (stiffness_n_per_m per pad, dissipation [s/m]) at finger_speed_mps each, force setting
+    force_n [N], lever_m the pad's |dy/da| [m]; semi-implicit Euler of step dt [s]."""
     inertia = drive_inertia(screw_efficiency)
     gain, damping = loop_gains(position_loop_hz, inertia, damping_ratio)
     limit = 2.0 * force_n * lever_m  # the motor's torque cap [N m]

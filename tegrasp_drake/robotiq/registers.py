@@ -1,12 +1,6 @@
-"""Robotiq 2F-85 Modbus RTU register map and pure encode/decode (manual, "Control").
-Registers are 16 bits, first byte in the high half.
-
-Command, 3 registers written with function 16 at 1000: byte 0 action (bit0 rACT, bit3
-rGTO, bit4 rATR, bit5 rARD), bytes 1-2 reserved, then rPR, rSP, rFR.
-Status, 3 registers read with function 4 (some firmware: 3) at 2000: byte 0 (bit0 gACT,
-bit3 gGTO, bits 4-5 gSTA, bits 6-7 gOBJ), byte 1 reserved, byte 2 gFLT (low nibble), then
-gPR, gPO, gCU (x 10 mA).
-"""
+"""Robotiq 2F-85 Modbus RTU register map and pure encode/decode (manual, "Control"):
+3 command registers written at 1000 (function 16), 3 status registers read at 2000
+(function 4; some firmware 3), 16 bits each, first byte high; the bit fields below."""
 
 import numpy as np
 

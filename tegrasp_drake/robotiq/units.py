@@ -1,8 +1,5 @@
-"""Conversions between Robotiq 2F-85 register bytes and SI units, shared by sim and hardware.
-The station's `gripper.command` [rPR, rSP, rFR] and `gripper.status` [gACT, gGTO, gSTA,
-gOBJ, gFLT, gPR, gPO, gCU] carry these bytes as floats, as the instruction manual's
-"Control" section defines them.
-"""
+"""Robotiq 2F-85 register bytes (manual, "Control") and SI units, shared by sim and
+hardware; `gripper.command` and `gripper.status` carry the bytes as floats."""
 
 import enum
 

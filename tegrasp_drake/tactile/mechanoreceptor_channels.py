@@ -1,14 +1,8 @@
-"""The paper's Eq. 1 (SA) and Eq. 2 (RA) for both fingers, as one Diagram.
-
-SA_i = sum over finger i's 12 taxels of the normal force F_z,k [N]          (Eq. 1)
-RA_i = sqrt(a_x^2 + a_y^2 + a_z^2) of finger i's pad vibration [m/s^2]      (Eq. 2)
-
-RA changes with every vibration sample (1 kHz) and is a compiled SymbolicVectorSystem. SA
-changes only with a taxel sample (108 Hz on the AD7147) and is summed in Python
-(SlowlyAdapting), with numpy's pairwise order: a compiled sum (MatrixGain) adds in another
-order and would move SA by a rounding now and then, while the Python call costs nothing
-between taxel samples (its output is cached).
-"""
+"""The paper's Eq. 1 (SA_i, the sum of finger i's 12 taxel normal forces [N]) and
+Eq. 2 (RA_i, the magnitude of its pad's vibration [m/s^2]) for both fingers, as one
+Diagram. RA is compiled (SymbolicVectorSystem); SA is summed in Python in numpy's pairwise
+order, which a compiled MatrixGain would change by a rounding, and costs nothing between
+108 Hz taxel samples (cached)."""
 
 import math
 
@@ -47,9 +41,7 @@ class SlowlyAdapting(LeafSystem):
         output_ports:
         - sa
 
-    Ports:
-        left_taxel_forces, right_taxel_forces: (12) each taxel's normal force F_z [N].
-        sa: (2) [left, right] Eq. 1 [N].
+    Each taxel's normal force (12) [N] per finger in; sa [left, right] [N] out.
     """
 
     def __init__(self):
@@ -88,14 +80,8 @@ def MakeMechanoreceptorChannels():
         - ra
         - channels
 
-    Ports:
-        left_taxel_forces, right_taxel_forces: (12) each taxel's normal force F_z [N].
-        left_pad_acceleration, right_pad_acceleration: (3) the pad's vibration [m/s^2],
-            pad frame.
-        sa: (2) [left, right] Eq. 1 [N].
-        ra: (2) [left, right] Eq. 2 [m/s^2].
-        channels: (4) [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), in
-            tegrasp_drake.rig.channels.CHANNEL_NAMES order.
+    Taxel forces (12) [N] and pad vibration (3) [m/s^2, pad frame] per finger in; sa
+    [N], ra [m/s^2] ([left, right]) and channels (CHANNEL_NAMES order) out.
     """
     builder = DiagramBuilder()
     sa = builder.AddNamedSystem("slowly_adapting", SlowlyAdapting())

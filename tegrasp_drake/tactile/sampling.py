@@ -1,10 +1,5 @@
-"""Sample rates, window lengths and template resampling for the tactile event windows.
-
-SA channels arrive at the capacitance converter's rate (about 100 Hz, or 1 kHz), RA
-channels at 1 kHz. A window of `window_s` seconds at `rate_hz` holds
-`samples_per_window(window_s, rate_hz)` samples; channels that share a rate are grouped so
-that one periodic update serves all of them.
-"""
+"""Sample rates, window lengths and template resampling for the tactile event
+windows; channels that share a rate form one RateGroup, served by one periodic update."""
 
 import dataclasses
 import functools
@@ -17,10 +12,8 @@ _INTEGER_TOLERANCE = 1e-9
 
 
 def samples_per_window(window_s: float, rate_hz: float) -> int:
-    """Number of samples in a window of `window_s` [s] at `rate_hz` [Hz].
-
-    Raises ValueError unless the product is a positive integer (0.5 s x 100 Hz = 50).
-    """
+    """Samples in a window of `window_s` [s] at `rate_hz` [Hz]; ValueError unless an
+    integer of 2 or more."""
     if not (window_s > 0.0 and rate_hz > 0.0):
         raise ValueError(f"window_s ({window_s}) and rate_hz ({rate_hz}) must be positive")
     exact = window_s * rate_hz
@@ -57,13 +50,9 @@ def rate_groups(*, sa_rate_hz: float, ra_rate_hz: float,
 
 
 def resample_window(window: np.ndarray, length: int) -> np.ndarray:
-    """Resample each row of `window` (channels x samples) to `length` samples.
-
-    Each sample is taken as the signal's value over its sampling interval (a zero-order
-    hold, as the live channels are held between samples); every output sample is the mean
-    of that piecewise-constant signal over its own interval. Upsampling repeats values,
-    downsampling averages them (no aliasing of RA bursts), and the area is preserved.
-    """
+    """Resample each row of `window` to `length` samples: each output is the mean of the
+    zero-order-hold signal over its interval (as the live channels are held), so the area
+    is kept and RA bursts do not alias."""
     window = np.atleast_2d(np.asarray(window, dtype=float))
     length_in = window.shape[-1]
     if length == length_in:

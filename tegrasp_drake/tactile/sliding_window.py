@@ -1,14 +1,7 @@
-"""The last N samples of a few channels, kept in a buffer inside a Context's state.
-
-The buffer has N + slack columns per channel (row-major). The window is the contiguous
-slice buffer[:, offset:offset + N], oldest sample first, so reading it copies nothing. A
-push writes one column and advances the offset; when the offset reaches `slack`, the newest
-N - 1 samples move back to the buffer's start (one copy every `slack` pushes instead of a
-roll every push). A zero buffer with offset 0 is an all-zero window.
-
-In a Context the window starts a state vector, [offset, held, buffer | ...], where `held`
-counts the samples pushed up to N (SlidingWindowState).
-"""
+"""The last N samples of a few channels in a Context's state vector, [offset, held,
+buffer | ...]: the buffer has N + slack columns per channel and the window is the view
+buffer[:, offset:offset + N], oldest first; a push writes a column, and every `slack`
+pushes the newest N - 1 samples move back to the start."""
 
 import dataclasses
 import functools
@@ -16,9 +9,7 @@ import math
 
 import numpy as np
 
-# Pushes between two compactions, as a fraction of the window length: each compaction
-# copies N - 1 samples (and makes the matcher recompute its correlations), while each
-# column of slack lengthens the state that Drake copies at every update.
+# slack per window length: a compaction copies N - 1 samples, slack lengthens the state
 SLACK_FRACTION = 0.2
 
 _BUFFER_AT = 2  # a window's state: [offset, held | buffer]
@@ -44,14 +35,8 @@ class SlidingWindow:
 
 @dataclasses.dataclass(frozen=True)
 class SlidingWindowState:
-    """A SlidingWindow at the start of a flat vector (a Context's discrete state group),
-
-        [offset, held, buffer: channels x (N + slack), row-major | anything else]
-
-    `held` counts the samples pushed, up to N: the window is full once it holds N. While it
-    is not, its older part is zero. The vector may go on after the window's `size` entries
-    (with what a system keeps about the window, such as the EventMatcher's correlations).
-    """
+    """A SlidingWindow at the start of a flat state vector; `held` counts pushes up to N
+    (until full the older part is zero); entries after `size` are the system's own."""
     window: SlidingWindow
 
     @functools.cached_property
@@ -70,14 +55,9 @@ class SlidingWindowState:
 
     def entering_samples(self, state: np.ndarray, samples: np.ndarray
                          ) -> tuple[np.ndarray, list[bool] | None]:
-        """The samples a push of `samples` (one per channel) should take into the window
-        held in `state`, and which of them are missing.
-
-        A non-finite sample (NaN or inf: a sensor glitch, a lost frame) is missing: the
-        channel's newest sample in the window enters in its place, so that the window and
-        the sums kept over it stay finite. Returns (samples, missing: a bool per channel,
-        or None when none is, the common case, checked at a fraction of isfinite's cost).
-        """
+        """(samples to push, missing): a non-finite sample (a glitch, a lost frame) is
+        replaced by the channel's newest, so the window's sums stay finite; missing is a
+        bool per channel, or None when all are finite."""
         if math.isfinite(sum(samples.tolist())):
             return samples, None
         missing = ~np.isfinite(samples)
@@ -89,12 +69,8 @@ class SlidingWindowState:
         return self.rows(state)[:, offset:offset + self.window.length]
 
     def push(self, state: np.ndarray, samples) -> tuple[np.ndarray, int, bool]:
-        """Append one sample per channel to the window held in `state`, in place (the
-        module docstring says how).
-
-        Returns, after the push, the buffer (a view, as `rows`), the window's offset in it
-        (0 exactly when the push compacted) and whether the window is full.
-        """
+        """Append one sample per channel in place; returns the buffer view, the offset (0
+        exactly when the push compacted) and whether the window is full."""
         length = self.window.length
         rows = self.rows(state)
         offset = int(state.item(0))

@@ -1,13 +1,7 @@
-"""The slip band (slip_vibration_band.py) of a simulated station as compiled Drake systems.
-
-One discrete SymbolicVectorSystem of the sample period holds what SlipVibrationBand's
-per-tick update holds, the biquad's two delays per axis and each pad's last window of
-squared magnitudes, and updates them with the same equations (transposed direct form II,
-highpass_biquad's coefficients); its output is the RMS over the window. No Python runs per
-sample. The hardware station's bursts of device samples (`pad_acceleration_samples`) and
-the blocks of `block_samples` stay with SlipVibrationBand: a burst's length varies from tick
-to tick, which no fixed-size compiled system takes.
-"""
+"""The per-tick slip band (slip_vibration_band.py) as one compiled discrete
+SymbolicVectorSystem (the biquad's delays and each pad's window of squares in its state),
+so no Python runs per sample; bursts and blocks, of varying length, stay with
+SlipVibrationBand."""
 
 import numpy as np
 from pydrake.symbolic import Variable, sqrt
@@ -33,9 +27,8 @@ def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
 
 def slip_band_system(*, band_hz: float, window_s: float,
                      sample_rate_hz: float) -> SymbolicVectorSystem:
-    """The slip band as a SymbolicVectorSystem (module docstring): input the pads'
-    vibration (6) [m/s^2], output [left, right] RMS of the high-passed vibration over the
-    last window_s [m/s^2]."""
+    """The slip band as a SymbolicVectorSystem: pads' vibration (6) [m/s^2] in, [left,
+    right] RMS [m/s^2] out."""
     b0, b1, b2, a1, a2 = highpass_biquad(band_hz, sample_rate_hz).tolist()
     window = max(1, round(window_s * sample_rate_hz))
     x = [Variable(f"x{i}") for i in range(_AXES)]
@@ -66,11 +59,7 @@ def MakeSlipVibrationBand(*, band_hz: float, window_s: float, sample_rate_hz: fl
         output_ports:
         - slip_vibration
 
-    Ports:
-        pad_acceleration: (6) [left x, y, z, right x, y, z] the pads' vibration [m/s^2],
-            pad frames, sampled every 1 / sample_rate_hz.
-        slip_vibration: (2) [left, right] RMS of the high-passed vibration over the last
-            window_s [m/s^2], updated every sample period.
+    pad_acceleration (6) [m/s^2, pad frames] in; slip_vibration [left, right] [m/s^2] out.
     """
     builder = DiagramBuilder()
     band = builder.AddNamedSystem("slip_band", slip_band_system(

@@ -1,40 +1,12 @@
-"""SlipVibrationBand: the pads' vibration in the band where slip rings, for Lift-Load.
-
-The PVDF film reads the rate of change of the pad's stress (docs/model.md, "Vibration (RA)
-model"), so a grip that is still rising, the lift's load and the charge amplifier's decay
-after them read too: several m/s^2 to 165 m/s^2, below about 10 Hz (a 0.45 s squeeze, a
-0.3 s lift acceleration, the 2 Hz high-pass's 80 ms decay). Slip rings higher: the pad
-cover's texture (0.5 mm pitch) sliding at v reads at v / 0.5 mm, 80 Hz at 40 mm/s, a lift's
-speed. Slip detectors on vibration sensors read such a band (Howe and Cutkosky 1989, "Sensing
-skin acceleration for slip and texture perception"; Romano et al. 2011 high-pass their
-signals for the same reason). This system high-passes each pad's vibration vector and gives
-its RMS over a short window, the amplitude the Lift-Load trigger compares with its
-threshold.
-
-    y = HP(a), per axis: a second-order Butterworth high-pass at `band_hz`
-    slip_vibration_i = sqrt(mean over the last `window_s` of |y_i|^2)   [m/s^2]
-
-The filter runs once per device sample, in one of three modes:
-
-- per tick (`block_samples` 1): each update reads `pad_acceleration`;
-- in blocks (`block_samples` B > 1, simulation): every B samples one update filters the
-  block of the last B samples that a sample register (tactile/sample_block.py) kept on
-  `pad_acceleration_block`, by one matrix product: the biquad is linear, so its B outputs
-  and its delays after the block are a fixed matrix times the block's samples and the
-  delays before it (`biquad_block_map`); at each block boundary the band equals the
-  per-tick band (to round-off), between boundaries it holds the last block's value, at
-  most B - 1 samples old;
-- device samples (hardware): the samples arrive in bursts and the receiver holds or merges
-  them to give one value per tick, and a held value followed by a jump is a step the
-  high-pass rings on (beside a CPU hog, bursts of a few ticks rang above the slip threshold
-  during a smooth lift). So when the `pad_acceleration_samples` input is connected (the
-  hardware station's port of that name), each tick filters exactly the samples the device
-  sent since the last one, in order, and a tick with none leaves the band as it was.
-
-A slip slower than band_hz x 0.5 mm (40 mm/s at 80 Hz) is attenuated at 12 dB per octave:
-the trigger sees fast slips (the object falling or the pads sliding along it at lift
-speed), not creep.
-"""
+"""SlipVibrationBand: the pads' vibration in the band where slip rings, for Lift-Load
+(docs/model.md, "Slip: the texture and the slip band"): per axis a second-order
+Butterworth high-pass at band_hz, then each pad's RMS of |y| over window_s [m/s^2]. The
+film's squeeze and lift readings lie below about 10 Hz; texture slip at a lift's 40 mm/s
+rings at 80 Hz (Howe and Cutkosky 1989). It filters one sample per tick; in blocks of B
+samples from a sample register (one matrix product, biquad_block_map; equal to per-tick
+at block ends); or, on hardware, exactly the device samples sent since the last tick, as
+held samples would ring the high-pass (docs/hardware.md, "Serial bursts and the slip
+band")."""
 
 import numpy as np
 from pydrake.common.value import AbstractValue
@@ -49,10 +21,8 @@ _AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
 
 
 def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
-    """The biquad (transposed direct form II, [b0, b1, b2, a1, a2]) over `samples` samples
-    as one matrix M ((samples + 2) x (samples + 2)): [y; z_after] = M [x; z_before], with x
-    and y the block's inputs and outputs (oldest first) and z = [z1, z2] its delays (each
-    column an axis)."""
+    """The biquad (transposed direct form II) over `samples` samples as one matrix M:
+    [y; z_after] = M [x; z_before], x and y oldest first, z = [z1, z2] (a column per axis)."""
     b0, b1, b2, a1, a2 = coefficients
     A = np.array([[-a1, 1.0], [-a2, 0.0]])  # the delays' update, [z1, z2]' = A z + B x
     B = np.array([b1 - a1 * b0, b2 - a2 * b0])
@@ -73,9 +43,8 @@ def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
 
 def highpass_step_floats(coefficients: tuple[float, ...], x: list[float],
                          delays: list[float]) -> tuple[list[float], list[float]]:
-    """One sample of the biquad (transposed direct form II) on n axes at once, on Python
-    floats (numpy's per-call overhead on 6-vectors costs several times the arithmetic):
-    x the samples, delays [z1 (n), z2 (n)]; returns (y, the next [z1, z2])."""
+    """One biquad sample on n axes in Python floats (cheaper than numpy on 6-vectors):
+    returns (y, the next delays [z1 (n), z2 (n)])."""
     b0, b1, b2, a1, a2 = coefficients
     n = len(x)
     y = [b0 * u + z1 for u, z1 in zip(x, delays[:n])]
@@ -96,20 +65,10 @@ class SlipVibrationBand(LeafSystem):
         output_ports:
         - slip_vibration
 
-    Ports:
-        pad_acceleration: (6) [left x, y, z, right x, y, z] the pads' vibration [m/s^2],
-            pad frames, sampled every 1 / sample_rate_hz.
-        pad_acceleration_samples: (abstract, an (n, 6) array) when connected, the rows of
-            pad_acceleration the device sampled since the last tick, oldest first; then
-            pad_acceleration is not read.
-        pad_acceleration_block: (block_samples x 6) the last block_samples rows of
-            pad_acceleration, oldest first (a sample register's output); read, in place of
-            pad_acceleration, when block_samples > 1.
-        slip_vibration: (2) [left, right] RMS of the high-passed vibration over the last
-            window_s [m/s^2].
-
-    State (discrete, updated every block_samples / sample_rate_hz): the filter's two delays
-    per axis (12) and the last window_s of squared magnitudes per pad (2 x n).
+    pad_acceleration: (6) [left xyz, right xyz] [m/s^2, pad frames]; read instead, when
+    connected, pad_acceleration_samples ((n, 6), the device's samples since the last tick)
+    or, with block_samples > 1, pad_acceleration_block (the register's last rows).
+    slip_vibration: [left, right] RMS [m/s^2]. State: the biquad's delays and the windows.
     """
 
     def __init__(self, *, band_hz: float, window_s: float, sample_rate_hz: float,
@@ -163,13 +122,10 @@ class SlipVibrationBand(LeafSystem):
         filter_block(self._block_maps[taken], block, s, self._window)
 
     def _filter_sample(self, s: np.ndarray, x: list[float]):
-        """Advances the state vector s by one sample x (6) [m/s^2], in place. The filter
-        runs on Python floats (highpass_step_floats)."""
+        """Advances the state vector s by one sample x (6) [m/s^2], in place."""
         y, delays = highpass_step_floats(self._coefficient_floats, x, s[:2 * _AXES].tolist())
         s[:2 * _AXES] = delays
-        # The oldest squared magnitude of each pad leaves, the newest enters at the end
-        # (numpy copies overlapping slices safely; |y|^2 summed x, y, z from the left, as
-        # np.add.reduce does over 3 entries).
+        # |y|^2 summed from the left, as np.add.reduce does, so both paths round alike
         squares = s[2 * _AXES:].reshape(len(FINGER_NAMES), self._window)
         squares[:, :-1] = squares[:, 1:]
         squares[:, -1] = [(y[i] * y[i] + y[i + 1] * y[i + 1]) + y[i + 2] * y[i + 2]
@@ -177,8 +133,6 @@ class SlipVibrationBand(LeafSystem):
 
     def _calc(self, context, output):
         squares = context.get_discrete_state(self._state).get_value()[2 * _AXES:]
-        # The mean as ndarray.mean computes it (its sum, then divided by the count),
-        # without the Python wrapper that costs more than the sum.
         sums = np.add.reduce(squares.reshape(len(FINGER_NAMES), self._window), axis=1)
         output.SetFromVector(np.sqrt(sums / self._window))
 
@@ -186,9 +140,7 @@ class SlipVibrationBand(LeafSystem):
 def filter_block(block_map: np.ndarray, block: np.ndarray, s: np.ndarray,
                  window: int) -> None:
     """Advances a SlipVibrationBand's state vector s by the rows of `block` (k x 6, oldest
-    first) [m/s^2], in place: the biquad over the block (block_map: biquad_block_map of k
-    samples) from the delays in s, then each row's squared magnitude per pad into the
-    window of the last `window`."""
+    first) [m/s^2] in place, block_map being biquad_block_map of k samples."""
     k = len(block)
     stacked = block_map @ np.vstack([block, s[:2 * _AXES].reshape(2, _AXES)])
     y = stacked[:k]
@@ -204,12 +156,9 @@ def filter_block(block_map: np.ndarray, block: np.ndarray, s: np.ndarray,
 def AddSlipVibrationBand(builder, pad_acceleration, *, band_hz: float, window_s: float,
                          sample_rate_hz: float, pad_acceleration_samples=None,
                          block_samples: int = 1):
-    """Adds the slip band fed by `pad_acceleration` (an output port, 6): per tick, the
-    compiled band (slip_band_diagram.py); with `pad_acceleration_samples` (an abstract
-    output port, see the class) a SlipVibrationBand that runs per tick on the device's
-    samples; else, with block_samples > 1, a SlipVibrationBand in blocks of that many
-    samples, kept by a sample register (`slip_vibration_block`) on `pad_acceleration`.
-    Returns its slip_vibration output port."""
+    """Adds the slip band fed by `pad_acceleration` (6): compiled per tick; on the device's
+    samples when `pad_acceleration_samples` is given; else in blocks of block_samples from
+    a sample register. Returns its slip_vibration output port."""
     if pad_acceleration_samples is not None:
         block_samples = 1
     elif block_samples == 1:

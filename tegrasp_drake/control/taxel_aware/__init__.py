@@ -1,6 +1,20 @@
-"""The taxel-aware controller: the paper's rule table extended by rules that read the whole
-taxel array (table.py, one module per rule), over what one ContactEstimator senses
-(estimator.py)."""
+"""The taxel-aware controller: the paper's rule table extended by rules that read
+the whole taxel array, over what one ContactEstimator senses.
+
+  table.py               the rule table (the paper's plus the rules below)
+  estimator.py           ContactEstimator: what the rules sense, each tick
+  contact_geometry.py    the geometry the estimator computes (pure functions)
+  moves.py               the centring Re-Reach
+  finger_strike.py       rule: a finger's front struck the object in the approach
+  approach_contact.py    rule: a pad touched in the approach
+  beyond_pads.py         rule: a first touch beyond the pads stops the close
+  off_centre.py          rule: re-centre along the approach axis
+  one_sided_at_width.py  rule: one finger alone at the object's width loads
+  bracketing.py          rules: faces touched in turn bracket the object
+  no_event_in_time.py    rules: both pads on, no event in time
+  caged.py               rules and guard: an object caged behind the pads
+  regrasp.py             rules: re-grasp an object held tilted
+  tipping_guard.py       guard: no re-centring after a push past the tipping limit"""
 
 from tegrasp_drake.control.taxel_aware.estimator import (ContactEstimate, ContactEstimator,
                                                          ContactMemory, ContactReading,

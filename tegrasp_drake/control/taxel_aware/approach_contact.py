@@ -1,9 +1,6 @@
-"""Rule approach_contact (Reach, in the approach): a pad has touched the object for
-re_reach.one_sided_contact_s while the open gripper still moves toward it (a misplaced or
-yawed object in the finger's path: left alone, the moving finger pushes it over). Stop,
-back off approach_retreat_m while shifting along the stroke toward the touching finger (the
-paper's shift, moves.centring_shift), and resume the approach; Failed once the
-Re-Reaches are used up."""
+"""Rule approach_contact (Reach, in the approach): a pad touched the object for
+re_reach.one_sided_contact_s before the close: back off and shift (moves.centring_shift),
+approach again (docs/controller.md, "Approach contact")."""
 
 from tegrasp_drake.control.grasp_modes import Mode
 from tegrasp_drake.control.rule_actions import re_reach_or_fail

@@ -1,11 +1,7 @@
-"""Rule beyond_pads (Reach while closing, and the first Load, where the close goes on):
-the close's first touch came on one pad's distal row alone and closing on would push the
-object past its tipping limit (contact_geometry.touched_beyond_pads: a thin object
-standing beyond the fingertips, pushed at the pad's edge, tips and escapes past them).
-Stop at once and Re-Reach forward by the pad's half length and along the stroke by the
-push the close would have made (contact_geometry.beyond_pads_shift). With no Re-Reach
-left the rule stands aside: the close goes on under the rules below (a pushed grasp may
-still hold the object, a Failed cannot)."""
+"""Rule beyond_pads (closing, and the first Load): the first touch on one pad's
+distal row alone and the close would topple the object: stop and Re-Reach forward
+(contact_geometry.beyond_pads_shift). With no Re-Reach left it stands aside (docs/controller.md,
+"A first touch beyond the pads stops the close")."""
 
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_aware.contact_geometry import beyond_pads_shift

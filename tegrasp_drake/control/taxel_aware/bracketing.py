@@ -1,16 +1,7 @@
-"""Rules bracketed_at_extent and bracket_recentre (Reach while closing): one finger touches
-alone, and the other touched at an earlier close: the object lies between the two faces
-(contact_geometry.bracketed_object, ContactEstimate.bracket). The paper's shift assumes
-the object's nominal width; a box yawed by a pushing pad is wider, the shift overshoots
-and the fingers take turns touching alone until the Re-Reaches are used up. Two faces
-touched from opposite sides bound the object whatever its yaw.
-
-  bracketed_at_extent  the gripper has closed to within one_sided_width_margin_m of the
-                       extent between the faces (wider than the object's width): the
-                       touching pad can push at most half the margin before the other pad
-                       meets the other face: Load
-  bracket_recentre     otherwise Re-Reach to the faces' midpoint (moves.centring_shift)
-"""
+"""Rules bracketed_at_extent (closed to within one_sided_width_margin_m of the
+faces' extent: Load) and bracket_recentre (else Re-Reach to the faces' midpoint): one finger
+touches alone after the other touched at an earlier close (docs/controller.md, "Fingers
+touching alone in turn bracket the object")."""
 
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Load, decide, re_reach_or_fail

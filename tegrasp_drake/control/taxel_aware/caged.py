@@ -1,16 +1,6 @@
-"""Rules of an object caged behind the pads (contact_geometry.caged_behind_pads): the
-fingers closed past an object that the first touch put on the pads' palm side and stopped
-short on it, no pad touching it. It stands between the fingers' inner links and the palm,
-and lifting carries it; no event comes (no taxel sees it), and a Re-Reach learns nothing
-(its shift is zero, it closes the same way again).
-
-  reach_timeout_caged  Reach, no Reach-Load event in time: Load it there
-  load_timeout_caged   Load, no Load-Lift event in time: Lift it
-  guard caged          holds back the paper's object_lost (no pad touches a caged object,
-                       yet it is held), avoid_hit (its pads feel it rattle in the cage, not
-                       a hit) and lift_load (squeezing harder cannot stop a slip of an
-                       object no pad touches): the lift ends in Hold as the paper's does
-"""
+"""Rules of an object caged behind the pads (contact_geometry.caged_behind_pads):
+Load, then Lift, at the event timeouts; the guard `caged` holds back object_lost, avoid_hit
+and lift_load, which a caged object would trip (docs/controller.md, "Caged behind the pads")."""
 
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Lift, Load, decide

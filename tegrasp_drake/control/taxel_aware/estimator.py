@@ -1,15 +1,8 @@
-"""What the taxel-aware rules sense, estimated in one place, apart from the decisions: the
-contact's shape on the pads, the close's first touch (its opening, offset and pad), the
-faces the fingers touched at earlier closes and the object they bracket, a finger
-striking the object in the approach, a pad touching it in the approach, the push of the
-close and whether it would topple the object, a touch beyond the pads, an object caged
-behind them, a tilted hold.
-
-`ContactEstimator.update(memory, reading)` is pure: the GraspStateMachine keeps the
-ContactMemory in its abstract state, hands in the tick's ContactReading and gets the
-ContactEstimate the rules read (Observation.estimate) and the memory to keep. What the
-memory keeps across a change of mode is said once, in ContactMemory.after_transition.
-"""
+"""What the taxel-aware rules sense, estimated in one place apart from the decisions (the
+contact's shape, the close's first touch, the faces touched, a finger strike, the push and
+its tipping, a touch beyond the pads, a cage, a tilted hold). `ContactEstimator.update(
+memory, reading)` is pure: the GraspStateMachine keeps the ContactMemory in its abstract
+state and the rules read the ContactEstimate (Observation.estimate)."""
 
 import dataclasses
 import typing
@@ -24,14 +17,10 @@ from tegrasp_drake.control.taxel_contact import GraspContact, grasp_contact
 
 @dataclasses.dataclass(frozen=True)
 class ContactMemory:
-    """What the estimator remembers between ticks (times in s; -1: not running).
-
-    first_touch_*: the close's first pad touch: the opening then [m; -1 none], the
-    contact's offset along the approach axis [m, pad +y] and the pad alone then ("left",
-    "right"; "" both or none). touched_faces: the faces (FaceTouch) the fingers in
-    contact pressed when the last Re-Reaches began from a close. strike_*: the wrench on
-    G at the approach's start, since when the force beyond it exceeds the threshold, the
-    side moment summed over those ticks and the finger it points to."""
+    """What the estimator remembers between ticks (times in s; -1: not running):
+    first_touch_* (opening [m; -1 none], approach-axis offset [m], the pad alone or ""),
+    the faces touched when the last Re-Reaches began, and the finger strike's baseline
+    wrench, timer, summed side moment and finger."""
     first_touch_opening_m: float = -1.0
     first_touch_offset_m: float = 0.0
     first_touch_finger: str = ""
@@ -45,10 +34,8 @@ class ContactMemory:
 
     def after_transition(self, from_mode: Mode, to_mode: Mode,
                          touched_now: tuple) -> "ContactMemory":
-        """The memory on entering `to_mode` from `from_mode`: the timers start again; the
-        first touch is kept while the close goes on into Load; its offset is kept until a
-        Re-Reach, which remembers the faces touched now (touched_now: those of a close,
-        else ())."""
+        """The memory on entering `to_mode`: timers restart; the first touch is kept into
+        Load, its offset until a Re-Reach, which remembers the faces `touched_now`."""
         close_goes_on = to_mode == Mode.LOAD and from_mode != Mode.LIFT
         re_reach = to_mode == Mode.RE_REACH
         return ContactMemory(
@@ -61,10 +48,8 @@ class ContactMemory:
 
 @dataclasses.dataclass(frozen=True)
 class ContactReading:
-    """The tick's inputs to the estimator [s, N, m; world]: the machine's mode, stage and
-    Lift-Load count, the 24 taxel forces, the SA sums and which pads exceed the contact
-    force, the opening, whether the gripper reports it stopped at its request, the wrench
-    on G (None: no finger-strike sense) and the grasp frame's commanded y."""
+    """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike
+    sense."""
     t: float
     mode: Mode
     stage: object
@@ -88,23 +73,10 @@ class ContactReading:
 
 @dataclasses.dataclass(frozen=True)
 class ContactEstimate:
-    """What the rules read [s, N, m; world].
-
-    shape: the contact on the pads (GraspContact). sa_n, contact, opening_m,
-    gripper_y_m, approaching: the reading's. approach_contact_s: how long a pad has
-    touched while approaching. strike_s, strike_force_n, strike_finger: how long the force
-    on G has exceeded the strike threshold in the approach, that force and the struck
-    finger ("" unknown). topples_if_released: the close pushed the object past its
-    tipping limit (release_topples). touched_beyond_pads: the first touch lay on one pad's
-    distal row alone and the close would push the object over. first_touch_finger,
-    first_touch_opening_m: that touch's. pad_travel_to_grasp_m: how much further along the
-    approach axis the pads' centres will lie when closed on the object than now (0 on the
-    prismatic hand; the linkage's pads move out as they close). caged_behind_pads: the
-    closed fingers hold the
-    object behind the pads. bracket: (centre [m, world y], extent [m]) of the object
-    between the face a finger touching alone presses now and the other finger's
-    remembered face, or None. touched_now: the faces pressed now while closing. tilted_s:
-    how long the object has sat tilted in Hold."""
+    """What the rules read [s, N, m; world]; each field is named for what
+    contact_geometry.py computes. pad_travel_to_grasp_m: how much further along the
+    approach axis the pads' centres lie once closed on the object (the linkage's pads move
+    out as they close; 0 on the prismatic hand); bracket: (centre y, extent) or None."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -134,9 +106,8 @@ class ContactEstimate:
 
 @dataclasses.dataclass(frozen=True)
 class ObjectGeometry:
-    """The expected object and grasp [m]: its width along the stroke and height, the
-    grasp height, and where the hand's pads' centres lie beyond the grasp frame along the
-    approach axis at an opening (gripper_hands.pad_center_offset; 0 without a hand)."""
+    """The expected object and grasp [m], and the hand's pads' centres beyond G along the
+    approach at an opening (gripper_hands.pad_center_offset)."""
     width_m: float
     height_m: float
     grasp_height_m: float
@@ -144,9 +115,7 @@ class ObjectGeometry:
 
 
 class ContactEstimator:
-    """Estimates the contact each tick (see the module docstring). taxel_config:
-    TaxelAwareConfig; geometry: ObjectGeometry; taxel_contact_n: a taxel counts toward a
-    contact's shape above this [N] (the controller's, raised to the taxels' noise)."""
+    """Estimates the contact each tick; a taxel counts above taxel_contact_n [N]."""
 
     def __init__(self, *, taxel_config, geometry: ObjectGeometry, taxel_contact_n: float):
         self._config = taxel_config
@@ -164,8 +133,7 @@ class ContactEstimator:
         memory = dataclasses.replace(memory, tilted_since=tilted_since,
                                      approach_contact_since=approach_since)
         memory, strike = self._sense_strike(memory, r)
-        # The close goes on in the first Load: a Reach-Load event can match the impact of
-        # the first touch a taxel sample (9.3 ms) before the taxels show it.
+        # a Reach-Load event can match a taxel sample (9.3 ms) before the taxels show it
         first_load = r.mode == Mode.LOAD and r.lift_loads == 0
         memory, topples = self._first_touch(memory, r, shape, first_load)
         touch = (touched_face("left" if r.contact[0] else "right", r.gripper_y_m, r.opening_m)
@@ -200,8 +168,7 @@ class ContactEstimator:
         return memory, estimate
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):
-        """The finger-strike sense in the approach: the memory with its baseline, timer and
-        moment sum updated, and the estimate's strike fields."""
+        """The finger-strike sense: the updated memory and the estimate's strike fields."""
         config = self._config.finger_strike
         if not (config.enabled and r.approaching and r.wrench is not None):
             return memory, {}
@@ -219,14 +186,10 @@ class ContactEstimator:
 
     def _first_touch(self, memory: ContactMemory, r: ContactReading, shape: GraspContact,
                      first_load: bool) -> tuple[ContactMemory, bool]:
-        """While the close goes on: remember the opening, the contact's offset and the pad
-        alone (if one) at the first pad's first touch (any taxel above taxel_contact_n: a
-        light object slides under a push below contact_force_n), and say whether the push
-        since then would topple the object if the gripper let go (release_topples). In
-        the first Load, where the close goes on after a Reach-Load event that matched the
-        first touch's impact before the taxels showed it, a first touch is remembered only
-        on the fingertip side (offset >= 0), for touched_beyond_pads: caged_behind_pads
-        reads a palm-side first touch, and sees in Load only the Reach's."""
+        """While the close goes on: remember the first touch (any taxel above
+        taxel_contact_n) and say whether the push since would topple the object if
+        released. In the first Load only a fingertip-side touch is remembered (for
+        touched_beyond_pads; caged_behind_pads reads the Reach's palm-side one)."""
         g = self._geometry
         recording = r.closing or (first_load and shape.approach_offset_m >= 0.0)
         if (recording and memory.first_touch_opening_m < 0.0
@@ -249,8 +212,7 @@ def _since(since: float, t: float, on: bool) -> float:
 
 
 def estimator_for_plan(config, plan) -> ContactEstimator:
-    """The ContactEstimator of the taxel_aware controller `config` for the grasp `plan`
-    (a GraspPlan): its expected object and its hand's pads."""
+    """The ContactEstimator of taxel_aware `config` for the GraspPlan `plan`."""
     from tegrasp_drake.simulation.gripper_hands import gripper_hand
     return ContactEstimator(
         taxel_config=config.taxel_aware, taxel_contact_n=config.taxel_contact_n,

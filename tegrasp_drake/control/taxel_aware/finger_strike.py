@@ -1,9 +1,6 @@
-"""Rule finger_strike (Reach, in the approach): a finger's front has struck the object for
-finger_strike.sustain_s, seen in the arm's joint torques (control/finger_strike.py). Left
-alone, the moving finger knocks the object over; the taxels cannot see it (the object lies
-in the finger's path, not on its pad). Stop, back off approach_retreat_m, shift along the
-stroke toward the struck finger (strike_shift) and approach again; Failed once the
-Re-Reaches are used up."""
+"""Rule finger_strike (Reach, in the approach): a finger's front struck the
+object (control/finger_strike.py): back off approach_retreat_m, shift toward the struck
+finger, approach again (docs/controller.md, "Finger strike")."""
 
 from tegrasp_drake.control.finger_strike import strike_shift
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift

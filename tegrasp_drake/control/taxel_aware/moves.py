@@ -1,13 +1,6 @@
-"""Where a taxel-aware Re-Reach moves the open gripper when the rule that decided it has
-no move of its own: centred on the contact.
-
-Along the stroke the paper's shift (corrective_actions.re_reach_shift: toward the finger
-touching alone, by half the gap between the opening and the object's width), or, once both
-fingers have touched in turn, to the middle of the two faces they touched (the bracket,
-contact_geometry.bracketed_object). Along the approach axis the contact's offset from the
-pads' centres (contact_geometry.approach_shift); in the approach a back-off of
-approach_retreat_m instead, before the approach resumes.
-"""
+"""The centring Re-Reach of the taxel-aware table: along the stroke the paper's
+shift, or the midpoint of two bracketing faces; along the approach axis the contact's offset
+(contact_geometry.approach_shift), or a back-off of approach_retreat_m in the approach."""
 
 from tegrasp_drake.control.corrective_actions import re_reach_shift
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift, approach_shift

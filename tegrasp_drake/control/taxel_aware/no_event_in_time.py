@@ -1,8 +1,6 @@
-"""Rules reach_timeout_both_pads and load_timeout_both_pads: no event came in time, yet
-both pads hold the object. The paper's rule would Re-Reach a grasp that is already made (a
-yawed box may never match the Reach-Load event): instead Load (after the Reach-Load
-timeout, re_reach.reach_event_timeout_s after closing) or Lift (after the Load-Lift timeout,
-load_event_timeout_s in Load). Both come before the paper's timeouts (priority 400)."""
+"""Rules reach_timeout_both_pads (Load) and load_timeout_both_pads (Lift): no
+event came in time, yet both pads hold the object; before the paper's timeouts, which
+would Re-Reach a grasp already made."""
 
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Lift, Load, decide

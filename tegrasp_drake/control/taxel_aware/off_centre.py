@@ -1,7 +1,6 @@
-"""Rule off_centre (Reach, at the Reach-Load event): the contact sits off the pads' centres
-along the approach axis by more than centre_tolerance_m (contact_geometry.approach_shift
-not 0) and Re-Reaches are left: Re-Reach to centre it along both axes
-(moves.centring_shift) before loading, repeated until centred."""
+"""Rule off_centre (Reach, at the Reach-Load event): the contact is more than
+centre_tolerance_m off the pads' centres along the approach axis: Re-Reach to centre it
+along both axes before loading (docs/controller.md, "Re-Reach along both axes")."""
 
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.taxel_aware.contact_geometry import approach_shift

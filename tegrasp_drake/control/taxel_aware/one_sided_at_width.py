@@ -1,9 +1,6 @@
-"""Rule one_sided_at_width (Reach while closing): one finger alone has touched for
-re_reach.one_sided_contact_s while the gripper has closed to within
-one_sided_width_margin_m of the object's width. The object is between the fingers already,
-the other finger's contact off its pad or light: Load (the squeeze brings the second pad
-on), never a Re-Reach that would shift by almost nothing and close on the same contact. It
-comes before the paper's one_sided (priority 200)."""
+"""Rule one_sided_at_width (closing): one finger alone, the gripper closed to within
+one_sided_width_margin_m of the object's width: Load, before the paper's one_sided
+(docs/controller.md, "One finger alone at the object's width loads")."""
 
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Load, decide

@@ -1,10 +1,6 @@
-"""Rules held_tilted (Hold) and regrasp_after_place (Place): the object sits tilted in the
-grasp (contact_geometry.held_tilted: a pad's contact line turned more than tilt_limit_deg,
-or the two pads' contacts at different heights) for tilt_sustain_s: put it down (Place),
-then, once it stands on the table again (the Place-Unload event or its timeout), open and
-close again through a Re-Reach without a shift, and lift it again; at most max_regrasps.
-A hit is avoided first (the paper's avoid_hit, priority 100); the re-grasp's Place ends
-before the paper's Unload (place_event, 100)."""
+"""Rules held_tilted (Hold: tilted for tilt_sustain_s, put it down) and
+regrasp_after_place (Place: open and close again without a shift), at most max_regrasps
+(docs/controller.md, "Held tilted: re-grasp")."""
 
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Regrasp, ReReach, decide

@@ -1,10 +1,6 @@
-"""The taxel-aware controller's rule table: the paper's (transition_logic.PAPER_TABLE) with
-the rules and guards of this package's modules added, one module per rule, and its
-Re-Reaches centred on the contact (moves.centring_shift) within taxel_aware.max_re_reaches.
-What the rules read is the tick's Observation and the ContactEstimator's ContactEstimate
-(estimator.py); each rule module's docstring says why, its Rule where it stands among the
-paper's (its priority). `python -m tegrasp_drake.control.rule_docs` prints the table.
-"""
+"""The taxel-aware rule table: the paper's (transition_logic.PAPER_TABLE) with one
+module's rules and guards per correction added, its Re-Reaches centred on the contact
+within taxel_aware.max_re_reaches."""
 
 from tegrasp_drake.control.rule_engine import ReReachMove, RuleTable
 from tegrasp_drake.control.taxel_aware.approach_contact import APPROACH_CONTACT

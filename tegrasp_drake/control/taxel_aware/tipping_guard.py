@@ -1,8 +1,6 @@
-"""Guard tipping_guard (Reach, at the Reach-Load event): the close has pushed the object
-past its tipping limit (contact_geometry.release_topples); both pads hold it tilted on
-them, and opening to re-centre it would let it fall. It holds back off_centre: the
-paper's reach_event loads it where it is, since grasping it off-centre holds it (open
-loop does) and re-centring it knocks it over."""
+"""Guard tipping_guard: the close pushed the object past its tipping limit
+(contact_geometry.release_topples), so off_centre is held back and the paper's reach_event
+loads it where it is (docs/controller.md, "Not after a push past the tipping limit")."""
 
 from tegrasp_drake.control.rule_engine import Guard
 
