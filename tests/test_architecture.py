@@ -61,3 +61,18 @@ def test_every_named_test_file_exists():
     missing = sorted(f"{name} names {found}" for name, found in named
                      if not (ROOT / found).exists())
     assert missing == []
+
+
+def test_every_package_docstring_maps_its_modules():
+    """Each package's __init__ docstring names every module and sub-package it holds (the
+    reader's map of the package)."""
+    import ast
+    unmapped = []
+    for init in sorted((ROOT / "tegrasp_drake").rglob("__init__.py")):
+        folder = init.parent
+        doc = ast.get_docstring(ast.parse(init.read_text())) or ""
+        held = {path.stem for path in folder.glob("*.py") if not path.stem.startswith("_")}
+        held |= {path.name for path in folder.iterdir() if (path / "__init__.py").exists()}
+        unmapped += [f"{folder.relative_to(ROOT)}: {name}" for name in sorted(held)
+                     if name not in doc]
+    assert unmapped == []
