@@ -53,6 +53,13 @@ class EventMatcherConfig:
     # per sample; WindowNormalizerConfig.block_s). A match then shows at the block's end,
     # at most one block later than per sample.
     block_s: float = bounded(0.0, low=0.0, unit="s")
+    # The tick [s] of the one system that reads the outputs, in its update at multiples of
+    # it (the grasp state machine's); 0: read at any time. A rate taken per sample then
+    # takes each tick's samples in one update just before it (tactile/read_batch.py): the
+    # reader sees the per-sample matcher's outputs, a read at another instant (a logger,
+    # a replay's per-sample rows) up to a tick old. Not with an RA noise floor, which the
+    # matcher reads at each sample.
+    read_period_s: float = bounded(0.0, low=0.0, unit="s")
     # Cutoff [Hz] of the RA envelope that add_event_matcher puts on the memorized and the
     # live RA windows alike (events/ra_envelope.py); 0: none, Eq. 3 on the raw windows.
     ra_envelope_hz: float = bounded(0.0, low=0.0, unit="Hz")
@@ -93,7 +100,7 @@ def window_normalizer_config(events: Mapping[str, MemorizedEvent],
     """The windows an EventMatcher scores: the events' window_s at the config's rates."""
     return WindowNormalizerConfig(window_s=next(iter(events.values())).window_s,
                                   sa_rate_hz=config.sa_rate_hz, ra_rate_hz=config.ra_rate_hz,
-                                  block_s=config.block_s)
+                                  block_s=config.block_s, read_period_s=config.read_period_s)
 
 
 class EventMatcher(WindowNormalizer):
@@ -112,7 +119,9 @@ class EventMatcher(WindowNormalizer):
     (config.block_s) slides its scores sample by sample through the block in one update;
     `match` then asks whether the per-sample matcher would have matched after any of the
     block's samples: each of those samples passed and every other rate's latest sample at
-    or before it passed too.
+    or before it passed too. With config.read_period_s, a rate taken per sample slides
+    through each reader's tick's samples in one update just before the tick (read batches,
+    WindowNormalizer): the reader's update sees the per-sample matcher's outputs.
 
     Constructed with one object's memorized events; their grasp order (transitions.py)
     numbers them 0, 1, ... (see `transition_indices`). Every tick of a channel's rate, the
@@ -184,6 +193,11 @@ class EventMatcher(WindowNormalizer):
                 templates, min_contrast=config.min_contrast, window=window_layout(group).window,
                 flat_needs_flat=config.flat_template_needs_flat_window)
         self._check_matchable(ordered_events, templates_by_event)
+        reads_floor = config.ra_noise_floor_sigmas > 0 or any(
+            template_is_flat(by_channel[c], config.min_contrast)[0]
+            for by_channel in templates_by_event for c in RA_CHANNELS)
+        if reads_floor:  # the floor is read at each sample: no read batches
+            normalizer_config = dataclasses.replace(normalizer_config, read_period_s=0.0)
         # After each rate's correlation, its pass history (PassHistory): as many samples as
         # a block holds, or, for a rate taken per sample, as many as span two blocks.
         block_span_s = max(block_samples(g.rate_hz, config.block_s) / g.rate_hz
@@ -218,11 +232,8 @@ class EventMatcher(WindowNormalizer):
                                 for event in range(NO_EVENT, len(self._events))}
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
         self._gate_events = config.ra_noise_floor_sigmas > 0
-        quiet_templates = any(
-            template_is_flat(by_channel[c], config.min_contrast)[0]
-            for by_channel in templates_by_event for c in RA_CHANNELS)
         self._floor_port = (self.DeclareVectorInputPort("ra_floor", len(RA_CHANNELS))
-                            if self._gate_events or quiet_templates else None)
+                            if reads_floor else None)
         scores_state = {self.discrete_state_ticket(window.state)
                         for window in self.rate_windows}
         self.DeclareVectorOutputPort(
