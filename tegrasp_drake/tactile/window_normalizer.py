@@ -224,22 +224,18 @@ class WindowNormalizer(LeafSystem):
 
 def ConnectWindowChannels(builder, normalizer: WindowNormalizer, channels) -> None:
     """Connects `channels` (an output port of the four channels) to a WindowNormalizer (or
-    EventMatcher) already in `builder`: to its `channels` input and, for each rate in blocks,
-    through a sample register of the rate's channels (`<system name>_<group>_block`) to its
+    EventMatcher) already in `builder`: to its `channels` input and, for each rate in blocks
+    or in read batches, through a register of the rate's channels (a sample register,
+    `<system name>_<group>_block`, or a held one, `<system name>_<group>_batch`) to its
     `<group>_block` input."""
     builder.Connect(channels, normalizer.GetInputPort("channels"))
     for window in normalizer.rate_windows:
-        if window.before_read:
-            builder.Connect(
-                AddHeldSampleRegister(builder, channels, samples=window.block_samples,
-                                      sample_period_s=1.0 / window.group.rate_hz,
-                                      entries=window.group.channels,
-                                      name=f"{normalizer.get_name()}_{window.group.name}_batch"),
-                window.block)
-        elif window.block_samples > 1:
-            builder.Connect(
-                AddSampleRegister(builder, channels, samples=window.block_samples,
-                                  sample_period_s=1.0 / window.group.rate_hz,
-                                  entries=window.group.channels,
-                                  name=f"{normalizer.get_name()}_{window.group.name}_block"),
-                window.block)
+        if window.block_samples == 1:
+            continue
+        add, kind = ((AddHeldSampleRegister, "batch") if window.before_read
+                     else (AddSampleRegister, "block"))
+        builder.Connect(add(builder, channels, samples=window.block_samples,
+                            sample_period_s=1.0 / window.group.rate_hz,
+                            entries=window.group.channels,
+                            name=f"{normalizer.get_name()}_{window.group.name}_{kind}"),
+                        window.block)
