@@ -3,13 +3,15 @@ formula on floats: the same IEEE operations on the same operands, in the same or
 
 pydrake.symbolic keeps an expression in a canonical form: a sum is one node of all its
 terms (x + y + z, in the node's own order), a product one node of its factors (and x * x
-becomes pow(x, 2)), like terms merge (2 x + 3 x = 5 x). Evaluated, such a node rounds
-differently from Python's left-to-right (x + y) + z. `Ordered` wraps each result of a
-binary operation in an opaque node, max(result, -inf), which equals the result (NaN
-included) and which no later sum or product looks into: every sum and product node then has
-two operands, whose order does not change the rounding (IEEE addition and multiplication
-commute), and a squared operand stays a product. Subtraction is a sum with a -1 coefficient
-and negation a product with -1, both exact.
+becomes pow(x, 2)), like terms merge (2 x + 3 x = 5 x) and constants fold ((x + 1) - 1 =
+x). Evaluated, such a node rounds differently from Python's left-to-right (x + y) + z.
+`Ordered` builds each binary operation and checks that pydrake kept it as that one
+operation on its two operands (a sum node of the two terms, a product node of the two
+factors, a quotient); where it did not, it wraps the operands in an opaque node,
+max(operand, -inf), which equals the operand (NaN included) and which no sum or product
+looks into, and builds it again. A sum or product node of two operands rounds as Python
+does in either order (IEEE addition and multiplication commute); subtraction is a sum with
+a -1 coefficient and negation a product with -1, both exact.
 
 Write the formula as Python would evaluate it (operator precedence and left-to-right order
 are Python's: `a + b * c` is a + (b * c)); compare a system built this way with the Python
@@ -19,7 +21,7 @@ how a sum node starts, so a -0.0 result may come out +0.0).
 
 import math
 
-from pydrake.symbolic import Expression, Formula, Variable
+from pydrake.symbolic import Expression, ExpressionKind, Formula, Variable
 from pydrake.symbolic import abs as symbolic_abs
 from pydrake.symbolic import acos as symbolic_acos
 from pydrake.symbolic import cos as symbolic_cos
@@ -38,8 +40,68 @@ def _expression(value) -> Expression:
 
 
 def _opaque(expression: Expression) -> Expression:
-    """The expression as one node that sums and products do not merge into."""
+    """The expression as one node that sums and products do not merge into (a variable or
+    a constant is one already)."""
+    if expression.get_kind() in (ExpressionKind.Var, ExpressionKind.Constant):
+        return expression
     return symbolic_max(expression, -math.inf)
+
+
+def _same(a: Expression, b: Expression) -> bool:
+    return a.EqualTo(b)
+
+
+def _constant(e: Expression):
+    return e.Evaluate() if e.get_kind() == ExpressionKind.Constant else None
+
+
+def _kept_sum(result: Expression, left: Expression, right: Expression) -> bool:
+    """Whether `result` (left + right, right negated for a difference) is one sum node of
+    exactly those two operands: no flattened, merged or folded term."""
+    if result.get_kind() != ExpressionKind.Add:
+        return False
+    _, (constant, *terms) = result.Unapply()
+    left_constant, right_constant = _constant(left), _constant(right)
+    if len(terms) == 2 and constant == 0.0:
+        return ((_same(terms[0], left) and _same(terms[1], right))
+                or (_same(terms[0], right) and _same(terms[1], left)))
+    if len(terms) == 1:
+        return ((left_constant == constant and _same(terms[0], right))
+                or (right_constant == constant and _same(terms[0], left)))
+    return False
+
+
+def _kept_product(result: Expression, left: Expression, right: Expression) -> bool:
+    """Whether `result` (left * right) is one product node of exactly those two factors."""
+    if result.get_kind() != ExpressionKind.Mul:
+        return False
+    _, (constant, *factors) = result.Unapply()
+    if len(factors) == 2 and constant == 1.0:
+        return ((_same(factors[0], left) and _same(factors[1], right))
+                or (_same(factors[0], right) and _same(factors[1], left)))
+    if len(factors) == 1:
+        return ((_constant(left) == constant and _same(factors[0], right))
+                or (_constant(right) == constant and _same(factors[0], left)))
+    return False
+
+
+def _build(operation, left: Expression, right: Expression) -> Expression:
+    """operation(left, right) as that one operation: as pydrake builds it when it keeps
+    it so, else on opaque operands (module docstring)."""
+    result = operation(left, right)
+    if operation is _divide:
+        kept = (result.get_kind() == ExpressionKind.Div
+                and all(map(_same, result.Unapply()[1], (left, right))))
+    elif operation is _multiply:
+        kept = _kept_product(result, left, right)
+    else:
+        kept = _kept_sum(result, left, -right if operation is _subtract else right)
+    if kept:
+        return result
+    left, right = _opaque(left), _opaque(right)
+    if operation is _multiply and left.EqualTo(right):
+        right = symbolic_max(right, -math.inf)  # x * x, not pow(x, 2)
+    return operation(left, right)
 
 
 class Ordered:
@@ -55,9 +117,7 @@ class Ordered:
         left, right = _expression(self), _expression(other)
         if reverse:
             left, right = right, left
-        if operation is _multiply and left.EqualTo(right):
-            right = _opaque(right)  # x * x, not pow(x, 2)
-        return Ordered(_opaque(operation(left, right)))
+        return Ordered(_build(operation, left, right))
 
     def __add__(self, other):
         return self._binary(other, _add)
