@@ -33,9 +33,9 @@ def test_a_tick_of_five_ms_takes_five_1khz_samples_and_none_of_the_taxels():
     assert samples_per_read(1000.0, 0.0025) == 1  # not a whole number of samples
 
 
-def test_the_batch_update_falls_half_a_sample_before_each_tick_and_starts_at_its_first():
+def test_the_batch_update_falls_just_before_each_tick_and_starts_at_its_first():
     offset = batch_update_offset(1000.0, TICK_S)
-    assert offset == pytest.approx(TICK_S - 0.0005)
+    assert offset == pytest.approx(TICK_S - 0.00025)
     for k in range(4):
         assert batch_first_sample(offset + k * TICK_S, 1000.0, TICK_S, 5) == 5 * k
 
@@ -107,7 +107,7 @@ def matcher_read_by_ticks(read_period_s: float, patience: int, t_end: float):
     root = simulator.get_mutable_context()
     outputs = []
     for k in range(1, int(round(t_end / TICK_S))):
-        simulator.AdvanceTo(k * TICK_S - 0.25 * RA_PERIOD_S)  # the state the tick reads
+        simulator.AdvanceTo(k * TICK_S - 0.1 * RA_PERIOD_S)  # the state the tick reads
         context = matcher.GetMyContextFromRoot(root)
         outputs.append([matcher.GetOutputPort(name).Eval(context).copy() for name in OUTPUTS])
     return machine.readings(machine.GetMyContextFromRoot(root)), outputs

@@ -3,20 +3,22 @@
 A system that takes every 1 kHz RA sample in a Python update (the event matcher's window)
 calls Python a thousand times a second, although its outputs are read only at the grasp
 state machine's tick (5 ms). It can take the samples of each tick period in one update
-instead, half a sample period before the next tick, from a shift register of C++ systems
-that holds them: a reader at the tick then finds the same state as with one update per
-sample. Unlike the sample blocks (sample_block.py), which act on their samples up to a
+instead, a quarter sample period before the next tick, from a shift register of C++
+systems that holds them: a reader at the tick then finds the same state as with one update
+per sample. (Not half a period before: the simulated 2F-85's drive steps there, mid plant
+step, and an instant a rounding away from one of those would make the simulator stop twice,
+a hair apart.) Unlike the sample blocks (sample_block.py), which act on their samples up to a
 block late, nothing the reader sees changes.
 
 Why the reader sees the same state, with S samples of period T per read period P = S T:
-  - the batch update at k P - T / 2 pushes the samples taken at (k - 1) P, ..., k P - T,
+  - the batch update at k P - T / 4 pushes the samples taken at (k - 1) P, ..., k P - T,
     each at its own time stamp, as the per-sample updates at those instants would;
   - a reader whose update is at k P reads the state before any discrete update at k P: in
     both cases the samples up to k P - T;
   - what the samples are scored against (the expected event) is an output of the reader's
     state. The reader changes it in an unrestricted update at k P, which Drake's simulator
     applies before the discrete updates at k P, so the per-sample updates at k P, ...,
-    k P + (S - 1) T all see the new value, and so does the batch update at (k + 1) P - T / 2.
+    k P + (S - 1) T all see the new value, and so does the batch update at (k + 1) P - T / 4.
 Exact only for that reader: a publish event, or an update at another instant, may find the
 batched state up to P old.
 
@@ -52,9 +54,9 @@ def samples_per_read(rate_hz: float, read_period_s: float) -> int:
 
 
 def batch_update_offset(rate_hz: float, read_period_s: float) -> float:
-    """When [s] the batch update of each read period falls: half a sample period before
-    each read (the updates are at this offset plus multiples of read_period_s)."""
-    return read_period_s - 0.5 / rate_hz
+    """When [s] the batch update of each read period falls: a quarter sample period
+    before each read (the updates are at this offset plus multiples of read_period_s)."""
+    return read_period_s - 0.25 / rate_hz
 
 
 def batch_first_sample(time_s: float, rate_hz: float, read_period_s: float,

@@ -69,7 +69,7 @@ class WindowNormalizer(LeafSystem):
     pushes the block's samples in order, so at each block boundary the windows equal the
     per-sample windows; between boundaries they are up to one block old. With
     config.read_period_s, a rate taken per sample with several samples per reader's tick
-    is updated once per tick instead, half a sample before it, from a held register of the
+    is updated once per tick instead, just before it, from a held register of the
     tick's samples (tactile/read_batch.py): the reader's update at the tick sees the
     per-sample windows. Before a full window has been sampled, the older part of the window
     is zero. A non-finite sample is missing: the channel's previous sample enters instead
