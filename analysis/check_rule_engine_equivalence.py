@@ -27,6 +27,8 @@ import sys
 import tarfile
 import tempfile
 
+from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 # Measured on the machine, not decided by the controller.
 TIMING_FIELDS = ("cpu_time_s", "wall_time_s", "real_time_factor")
@@ -148,9 +150,14 @@ def main(argv=None) -> int:
     failures = 0
     for scene, controller, record in records:
         trial = json.loads(record.read_text())["trial"]
+        # This checkout reads the stored record through its migration; the base as stored.
+        trials = {"base": trial, "tip": migrate_stored_trial(trial)}
         name = record.stem
-        runs = {side: run_scene(trees[side], trial, args.out / folders[side] / f"{name}.json",
-                                fresh[side]) for side in sides}
+        # Cached by the record's path: two results folders hold records of the same name.
+        cache = "--".join(record.relative_to(ROOT / "analysis").parts)
+        runs = {side: run_scene(trees[side], trials[side], args.out / folders[side] / cache,
+                                fresh[side])
+                for side in sides}
         rules = sorted({rule for rule in runs[sides[-1]]["rules"] if rule})
         if len(runs) < 2:
             print(f"{name}: ran ({', '.join(rules) or 'no rule names'})", flush=True)

@@ -10,7 +10,7 @@ analysis/record_ensemble_events.py's (normal grasps: <object>/run<k>.npz). Chose
 held-out corrective runs (role "held_out") as the situations, the ensemble's runs 5-7 as
 normal grasps (none made a corrective template). Also reported, not used to choose: the
 template runs and the ensemble's runs 0-4. The closed-loop trials that judge the choice
-(tests/test_runs_corrective_trials.py) use other seeds.
+(tests/runs/test_corrective_trials.py) use other seeds.
 """
 
 import argparse
@@ -44,7 +44,7 @@ CONFIG = GraspControllerConfig()
 def armed(transition):
     if transition == "lift_load":
         return LIFT_S
-    return HOLD_S[0] + CONFIG.hit_refractory_s, HOLD_S[1]
+    return HOLD_S[0] + CONFIG.avoid.hit_refractory_s, HOLD_S[1]
 
 
 def spans(args):
@@ -136,9 +136,9 @@ def main(argv=None) -> int:
             paper = [classify(s, 0.9, 0.7) for _, _, s in part]
             heuristic = []
             for span, log, _ in part:
-                fire = (heuristic_slip_time(log, span, CONFIG, 1000.0)
+                fire = (heuristic_slip_time(log, span, CONFIG.lift_load, 1000.0)
                         if transition == "lift_load"
-                        else heuristic_hit_time(log, span, CONFIG.hit_ra_mps2))
+                        else heuristic_hit_time(log, span, CONFIG.avoid.hit_ra_mps2))
                 if fire is not None:  # read at the state machine's next tick
                     fire = CONFIG.update_period_s * np.ceil(fire / CONFIG.update_period_s - 1e-6)
                 heuristic.append(classify_first_firing(fire, span.physical_s))

@@ -34,7 +34,7 @@ LIFT_S = (4.1, 5.6)  # the script's Lift [s]
 
 
 def band_window(log, start):
-    band = slip_band(log, CONFIG.slip_band_hz, CONFIG.slip_window_s, 1000.0)
+    band = slip_band(log, CONFIG.lift_load.slip_band_hz, CONFIG.lift_load.slip_window_s, 1000.0)
     return cut_window(log.t_ra, band, start_s=start, rate_hz=1000.0, length=500, what="band")
 
 

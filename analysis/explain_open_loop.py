@@ -22,13 +22,13 @@ def run_corner(job):
     from tegrasp_drake.scenario.scenario import LoadScenario
     from tegrasp_drake.runs.trial import run_trial
     name, (dx, dy) = job
-    scenario = LoadScenario(name=name, overrides=[f"object_offset=[{dx},{dy}]",
+    scenario = LoadScenario(name=name, overrides=[f"placement.offset=[{dx},{dy}]",
                                                   "controller.name=open_loop"])
     trial = run_trial(scenario)
     log = trial.log
     tilt = np.array([tilt_deg(row) for row in log.object_state])
     return name, (dx, dy), log.t_slow, log.object_state[:, 4:7], tilt, trial.result, \
-        list(scenario.expected_object_xy)
+        list(scenario.placement.expected_xy)
 
 
 def main(argv=None) -> int:

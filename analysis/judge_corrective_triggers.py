@@ -14,7 +14,7 @@ from concurrent.futures import ProcessPoolExecutor
 # +y 18 N at 7.2 s and -y 22 N at 6.9 s.)
 HITS = (("hit +y 17 N at 7.1 s", 17.0, 7.1), ("hit -y 21 N at 7.3 s", -21.0, 7.3),
         ("no hit", None, None))
-TRIGGERS = {"memorized": ["controller.memorized_corrective_events=[hold_avoid]"],
+TRIGGERS = {"memorized": ["controller.memorized_corrective.events=[hold_avoid]"],
             "heuristic": []}
 
 

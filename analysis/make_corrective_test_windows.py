@@ -1,4 +1,4 @@
-"""Cut the recorded channels that tests/test_recording_corrective_events.py replays
+"""Cut the recorded channels that tests/recording/test_corrective_events.py replays
 (tests/data/corrective_windows.npz) from the corrective and ensemble logs.
 
     python analysis/make_corrective_test_windows.py CORRECTIVE_LOGS ENSEMBLE_LOGS
@@ -7,7 +7,7 @@ Held-out runs only (none made a corrective template): the hit "+y 15 N 1.3 s int
 the slip "friction 0.012", and the ensemble's normal grasp of the box, run 6; the windows
 around the script's Lift and Hold (corrective_events.LIFT_START_S ...). The committed
 file was cut from the prismatic hand's runs with the earlier 1.3 s Load phase (Lift
-4.1-5.6 s, the hit at 7.4 s): remaking it changes tests/test_recording_corrective_events.py's
+4.1-5.6 s, the hit at 7.4 s): remaking it changes tests/recording/test_corrective_events.py's
 times and events folder with it.
 """
 

@@ -39,7 +39,7 @@ def reach_log(object_name, dx, dy, yaw_deg):
     base = LoadScenario()
     scenario = validate(dataclasses.replace(
         base, object=resolve_object(ObjectConfig(name=object_name)), random_seed=700,
-        object_offset=[dx, dy], object_yaw_deg=yaw_deg,
+        placement=dataclasses.replace(base.placement, offset=[dx, dy], yaw_deg=yaw_deg),
         controller=OpenLoopControllerConfig()), "measure")
     builder = DiagramBuilder()
     station = builder.AddNamedSystem("station", MakeStation(scenario))

@@ -5,7 +5,7 @@
         [--set KEY=VALUE ...] [--json OUT.json]
 
 Runs one trial of the memorized controller (the scenario's) per object and marker (the centre and three misplaced markers of the
-paper's grid, offsets in the scenario's object_offset [m]) on development seeds (--seed,
+paper's grid, offsets in the scenario's placement.offset [m]) on development seeds (--seed,
 --seed + 1, ...) and prints, per trial: the Reach-Load, Load-Lift and Place-Unload times
 and triggers, the lift's grip fraction (runs/trial.py lift_grip_fraction: the weaker pad's
 true force at the Load -> Lift transition over the settled grip), the first contact and
@@ -30,8 +30,9 @@ def trial_row(job) -> dict:
     from tegrasp_drake.runs.trial import run_trial
     from tegrasp_drake.scenario.scenario import LoadScenario
     from tegrasp_drake.scenario.scenario_events import load_controller_events
-    scenario = dataclasses.replace(LoadScenario(name=object_name, overrides=list(overrides)),
-                                   random_seed=seed, object_offset=list(offset))
+    base = LoadScenario(name=object_name, overrides=list(overrides))
+    scenario = dataclasses.replace(base, random_seed=seed, placement=dataclasses.replace(
+        base.placement, offset=list(offset)))
     events = load_controller_events(scenario, events_dir)
     trial = run_trial(scenario, events=events)
     result = trial.result

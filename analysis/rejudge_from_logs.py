@@ -18,6 +18,7 @@ from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.sweep.records import (TRIALS_FOLDER, load_records, make_record, write_record)
 from tegrasp_drake.runs.trial import judge_trial
 from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec, trial_log_name
+from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 
@@ -35,7 +36,7 @@ def main(argv=None) -> int:
         path = args.logs / trial_log_name(record["trial"])
         result = record.get("result")
         if result is not None and path.is_file():
-            scenario = scenario_from_trial_spec(record["trial"])
+            scenario = scenario_from_trial_spec(migrate_stored_trial(record["trial"]))
             transitions = [Transition.from_dict(t) for t in result["transitions"]]
             judged = judge_trial(load_trial_log(path), transitions, scenario)
             new = dict(result, **judged)

@@ -59,10 +59,9 @@ def main(argv=None) -> int:
     if not paths:
         raise SystemExit(f"roc_from_sweep_logs: no {args.controller}.*.npz in {args.logs}")
     controller = controller_named(args.controller)
-    default = EventMatcherConfig()  # the paper's 0.9 / 0.7, for controllers without events
-    thresholds = {t: (getattr(controller, "sa_threshold", default.sa_threshold),
-                      getattr(controller, "ra_threshold", default.ra_threshold))
-                  for t in TRANSITIONS}
+    # the paper's 0.9 / 0.7 for controllers without events
+    matching = getattr(controller, "matching", EventMatcherConfig())
+    thresholds = {t: (matching.sa_threshold, matching.ra_threshold) for t in TRANSITIONS}
     chosen = dict(gripper_hand(args.gripper_model).ensemble_thresholds)
     if hasattr(controller, "event_thresholds"):
         thresholds.update(controller.event_thresholds(chosen))

@@ -40,12 +40,13 @@ from tegrasp_drake.tactile.sampling import rate_groups
 from tegrasp_drake.tactile.sliding_window import SLACK_FRACTION
 from tegrasp_drake.events.streaming_correlation import StreamingCorrelator
 from tegrasp_drake.events.transitions import NO_EVENT
-from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
+from tegrasp_drake.events.synthetic import (SyntheticGraspConfig, SyntheticSensorsConfig,
+                                             synthetic_grasp)
 from tegrasp_drake.tactile.window_normalizer import WindowNormalizer, WindowNormalizerConfig
 
 RA_RATE_HZ = 1000.0
 WINDOW_S = 0.5
-_LIVE = SyntheticGraspConfig(sa_noise_n=0.05, ra_noise=0.2, seed=1)
+_LIVE = SyntheticGraspConfig(sensors=SyntheticSensorsConfig(sa_noise_n=0.05, ra_noise=0.2, seed=1))
 
 
 def _memorized_events(sa_rate_hz: float):

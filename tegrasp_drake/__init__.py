@@ -1,10 +1,8 @@
-"""tegrasp-drake: tactile-event grasping with memorized triggers on Drake.
+"""tegrasp-drake: Kim and Kim, "Tactile Event Based Grasping Algorithm using Memorized
+Triggers and Mechanoreceptive Sensors", on Drake's systems framework.
 
-A Python implementation of Kim and Kim, "Tactile Event Based Grasping Algorithm using
-Memorized Triggers and Mechanoreceptive Sensors", on Drake's systems framework.
-
-The public API is importable from here; builders of systems and diagrams follow Drake's
-CamelCase (Make*, Load*, Add*), everything else is snake_case:
+The public API is importable from here (builders in Drake's CamelCase: Make*, Load*, Add*),
+each name imported on first use so that `import tegrasp_drake` does not load pydrake:
 
     from tegrasp_drake import LoadScenario, MakeGraspDiagram, MakeSimulator
     scenario = LoadScenario(name="box")
@@ -13,11 +11,17 @@ CamelCase (Make*, Load*, Add*), everything else is snake_case:
     simulator.AdvanceTo(12.0)
     print(grasp.controller.transitions(simulator.get_context()))
 
-The README's "From Python" section has a complete DiagramBuilder example, and
-docs/sweeps.md a sweep; tests/test_readme_examples.py runs both.
-
-Names are imported on first use, so that `import tegrasp_drake` (and the command line's
-help) does not load pydrake.
+- scenario/: the typed Scenario, the grasp diagram, trial logs.
+- rig/: shared plumbing: objects, channels, paths, typed YAML, ranges.
+- simulation/: the simulated station (plant, hand, pads, sensors).
+- hardware/, emulators/, lcmtypes/: the real devices, their emulators, the log's LCM types.
+- robotiq/, modelgen/: the 2F-85's kinematics and registers; the SDF model generators.
+- tactile/: the live tactile chain of Fig. 3 (Eq. 1-2, the 0.5 s window).
+- events/, recording/: memorized events and their matching; recording them.
+- control/: the state machine, rule tables and controllers.
+- runs/, sweep/, transfer/: a trial and its judgement; sweeps; the transfer study.
+- figures/, reports.py: the paper's figures; a results folder's reports.
+- cli.py, commands/: the `tegrasp` command line.
 """
 
 import importlib

@@ -1,13 +1,10 @@
-"""The `tegrasp` command line: one sub-command per module, each with a `register` function.
+"""The `tegrasp` command line: one sub-command per module, each with a
+`register(subparsers)` that adds its parser and sets `func=run` (args -> exit code).
 
-A command module defines `register(subparsers)`, which adds its parser and sets
-`func=run` (a function taking the parsed arguments and returning an exit code). Every
-sub-command also takes -v/-vv/--quiet (commands/verbosity.py).
-
-`main` is the one error boundary: an exception no command foresaw ends the run with one line
-on stderr (what failed, and the file its traceback was written to; `-v` prints it too) and
-EXIT_INTERNAL_ERROR; SIGTERM and SIGHUP end a run as Ctrl-C does (its staging files
-removed) with 128 + the signal's number. The exit codes are docs/user-guide.md's table.
+`main` is the one error boundary: an exception no command foresaw ends the run with one
+line on stderr (its traceback written to a file; `-v` prints it) and EXIT_INTERNAL_ERROR;
+SIGTERM and SIGHUP end a run as Ctrl-C does, with 128 + the signal's number. The exit
+codes: docs/user-guide.md, "Exit codes".
 """
 
 import argparse
@@ -53,9 +50,9 @@ PATH_ARGUMENTS = ("scenario", "events", "out", "html", "spec", "logs", "trial",
 
 
 def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
-    """Exits with a usage error naming the first argument of `args` given as '' (alone or
-    in a repeated option's list): an empty path, object or scenario name is a mistake (an
-    unset shell variable), never taken as "not given", the default or the current folder."""
+    """Exits with a usage error naming the first argument of `args` given as '' (alone or in
+    a repeated option's list): an unset shell variable, never "not given" or the current
+    folder."""
     subparsers = next(a for a in parser._actions
                       if isinstance(a, argparse._SubParsersAction))
     command = subparsers.choices[args.command]

@@ -20,14 +20,9 @@ def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
                   trial_ids: Sequence[str] | None = None, *,
                   figure_format: Annotated[str, Choice(FIGURE_FORMATS)] = "png") -> list[Path]:
     """Writes table1.md/.csv, statistics.md/.json, summary.md, success_by_offset.md/.csv and
-    the figures success_maps, table1_vs_paper and latency (in `figure_format`: png, pdf or
-    svg) into `out_dir`.
-
-    Reads only the records, so it reproduces the reports of any results folder; with
-    `trial_ids` (a sweep's own trials), only theirs: records another spec left in the
-    folder are not counted.
-    Corrupt records are skipped (the next sweep run re-runs their trials); the figures are
-    left out when no trial has finished, the latency figure when no trial detected an event.
+    the figures (success_maps, table1_vs_paper, latency; `figure_format` png, pdf or svg) into
+    `out_dir`, from the records only (with `trial_ids`, only those trials'). Corrupt records
+    are skipped; no figures without a finished trial, no latency figure without a detection.
     """
     # Imported here: matplotlib loads only when a report is written.
     from tegrasp_drake.figures.figure_files import figure_path

@@ -21,7 +21,8 @@ from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.missed_waits import (
     MATCHED_IN_REPLAY, SA_DID_NOT_MATCH, WEAK_DYNAMIC_STIMULUS, EventWait,
     classify_missed_wait, event_waits)
-from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
+from tegrasp_drake.events.synthetic import (SyntheticGraspConfig, SyntheticSensorsConfig,
+                                             synthetic_grasp)
 from tegrasp_drake.events.ra_noise_floor import rule_sigmas
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_description
@@ -52,11 +53,13 @@ CONFIG = EventMatcherConfig(ra_noise_quiet_s=0.5)
 REACH_WAIT = EventWait("reach_load", 0.0, 1.6, "no Reach-Load event 2 s after closing")
 # A grasp with sensor noise, 0.2 m/s^2 per RA axis: the contact's ring-down peaks at
 # 20 m/s^2, a hundred times the noise.
-CLEAR_FILM = SyntheticGraspConfig(ra_noise=0.2, sa_noise_n=0.005, seed=3)
+CLEAR_FILM = SyntheticGraspConfig(sensors=SyntheticSensorsConfig(ra_noise=0.2, sa_noise_n=0.005,
+                                                                seed=3))
 # The same with the vibration 100 times weaker: the ring-down no higher than the noise.
-WEAK_FILM = dataclasses.replace(CLEAR_FILM, ra_scale=0.01)
+WEAK_FILM = dataclasses.replace(CLEAR_FILM, sensors=dataclasses.replace(CLEAR_FILM.sensors,
+                                                                       ra_scale=0.01))
 # The right finger touches 1 s after the left: within the wait only the left SA rises.
-LATE_RIGHT_FINGER = SyntheticGraspConfig(right_delay_s=1.0)
+LATE_RIGHT_FINGER = SyntheticGraspConfig(sensors=SyntheticSensorsConfig(right_delay_s=1.0))
 
 
 def reason_of(mode: Mode, observation: Observation, counters=Counters()) -> Transition:
@@ -170,9 +173,10 @@ def test_a_wait_outside_the_trial_is_refused():
 # ---- The command, on a sweep record and its trial log -----------------------------------
 
 # A synthetic grasp on the sweep's timeline: the first 2 s quiet (the matcher's RA noise
-# period, controller.ra_noise_quiet_s), contact at 2.5 s, the table at 4.8 s.
-SWEEP_GRASP = SyntheticGraspConfig(duration_s=6.0, contact_s=2.5, place_s=4.8, ra_noise=0.2,
-                                   sa_noise_n=0.005, seed=5)
+# period, controller.matching.ra_noise_quiet_s), contact at 2.5 s, the table at 4.8 s.
+SWEEP_GRASP = SyntheticGraspConfig(duration_s=6.0, contact_s=2.5, place_s=4.8,
+                                   sensors=SyntheticSensorsConfig(ra_noise=0.2,
+                                                                  sa_noise_n=0.005, seed=5))
 
 
 def synthetic_trial_log(trial) -> TrialLog:
@@ -198,7 +202,7 @@ def test_the_command_classes_a_sweeps_missed_waits_from_its_records_and_logs(tmp
     scenario = scenario_from_trial_spec(trials[0], nominal=True)
     sa_rate, ra_rate = sample_rates_hz(scenario)
     events = extract_memorized_events(
-        synthetic_grasp(dataclasses.replace(SWEEP_GRASP, ra_noise=0.0, sa_noise_n=0.0)),
+        synthetic_grasp(dataclasses.replace(SWEEP_GRASP, sensors=SyntheticSensorsConfig())),
         object_name="thin_cylinder", sa_rate_hz=sa_rate, ra_rate_hz=ra_rate,
         package_versions={}, object_description=object_description(scenario.object))
     save_memorized_events(tmp_path / "events", events.values())
@@ -208,12 +212,14 @@ def test_the_command_classes_a_sweeps_missed_waits_from_its_records_and_logs(tmp
     # The first trial waits in Place from 4.3 s, past the table at 4.8 s, and reads the
     # table through a film 100 times weaker; the second waits in Reach until 3.4 s, past the
     # left finger's contact at 2.5 s, and its right finger touches 1 s late, at 3.5 s.
-    cases = [(dataclasses.replace(SWEEP_GRASP, ra_scale=0.01),
+    cases = [(dataclasses.replace(SWEEP_GRASP, sensors=dataclasses.replace(SWEEP_GRASP.sensors,
+                                                                           ra_scale=0.01)),
               [entry(2.5, Mode.REACH, Mode.LOAD, "Reach-Load event", Trigger.MEMORIZED_EVENT),
                entry(3.0, Mode.LOAD, Mode.LIFT, "Load-Lift event", Trigger.MEMORIZED_EVENT),
                entry(4.3, Mode.HOLD, Mode.PLACE, "held 3 s", Trigger.TIMER),
                entry(5.5, Mode.PLACE, place.mode, place.reason, Trigger.TIMER)]),
-             (dataclasses.replace(SWEEP_GRASP, right_delay_s=1.0),
+             (dataclasses.replace(SWEEP_GRASP, sensors=dataclasses.replace(SWEEP_GRASP.sensors,
+                                                                           right_delay_s=1.0)),
               [entry(3.4, Mode.REACH, reach.mode, reach.reason)])]
     for trial, (config, transitions) in zip(trials, cases):
         write_record(tmp_path / "results", make_record(trial, result={

@@ -26,3 +26,38 @@ def test_every_sub_package_is_installed():
     found = {".".join(init.parent.relative_to(root).parts)
              for init in (root / "tegrasp_drake").rglob("__init__.py")}
     assert found <= listed, sorted(found - listed)
+
+
+def test_tests_mirror_the_package():
+    """A module's tests live in tests/<package>/test_<module>.py; tests/ itself keeps the
+    checks that span packages, none named after one package."""
+    packages = {init.parent.name for init in (ROOT / "tegrasp_drake").glob("*/__init__.py")}
+    packages.add("benchmarks")
+    misplaced = [test.name for test in (ROOT / "tests").glob("test_*.py")
+                 if any(test.stem.startswith(f"test_{package}_") for package in packages)]
+    assert misplaced == []
+    for folder in (ROOT / "tests").iterdir():
+        if folder.is_dir() and (folder / "__init__.py").exists():
+            assert folder.name in packages, folder.name
+
+
+def test_every_named_test_file_exists():
+    """A test file named in the CI script, the docs or the code exists: CI runs some by path,
+    and a moved test must not leave a path that runs nothing."""
+    import re
+    tracked = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True,
+                             text=True).stdout.split()
+    if not tracked:  # not a git checkout: the files under the checkout's top folders
+        tracked = [str(path.relative_to(ROOT)) for top in (".ci", "docs", "tegrasp_drake",
+                   "analysis", "benchmarks", "tests") for path in (ROOT / top).rglob("*")
+                   if path.is_file()] + ["README.md", "pyproject.toml"]
+    named = set()
+    for name in tracked:
+        path = ROOT / name
+        if path.suffix not in {"", ".py", ".md", ".toml", ".sh", ".yaml"} or not path.is_file():
+            continue
+        named |= {(name, found) for found in
+                  re.findall(r"tests/[A-Za-z0-9_/]+\.py", path.read_text(errors="replace"))}
+    missing = sorted(f"{name} names {found}" for name, found in named
+                     if not (ROOT / found).exists())
+    assert missing == []

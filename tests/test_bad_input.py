@@ -66,17 +66,17 @@ def assert_one_line_error(code, text, *expected):
     (["object.mass=.nan"], "field 'object.mass' must be a finite number, got float nan"),
     (["object.mass=.inf"], "field 'object.mass' must be a finite number, got float inf"),
     (["object.friction=.inf"], "field 'object.friction' must be a finite number"),
-    (["controller.sa_threshold=.nan"], "field 'controller.sa_threshold' must be a finite"),
-    (["controller.ra_threshold=2"], "field 'controller.ra_threshold' must lie in [-1, 1]"),
+    (["controller.matching.sa_threshold=.nan"], "field 'controller.matching.sa_threshold' must be a finite"),
+    (["controller.matching.ra_threshold=2"], "field 'controller.matching.ra_threshold' must lie in [-1, 1]"),
     (["gripper.position_loop_hz=10"], "field 'gripper.position_loop_hz' must lie in [40, 150]"),
     (["gripper.screw_efficiency=0.9"], "field 'gripper.screw_efficiency' must lie in [0.2, 0.5]"),
-    (["controller.ra_envelope_hz=-1"], "field 'controller.ra_envelope_hz' must be 0 (no RA"),
-    (["controller.ra_envelope_hz=500"], "between 0 and half the RA rate (500 Hz), got 500"),
-    (["controller.ra_noise_floor_sigmas=5.39", "controller.ra_noise_quiet_s=3"],
-     "field 'controller.ra_noise_quiet_s' must end with the approach, by grasp.settle_s + "
+    (["controller.matching.ra_envelope_hz=-1"], "field 'controller.matching.ra_envelope_hz' must be 0 (no RA"),
+    (["controller.matching.ra_envelope_hz=500"], "between 0 and half the RA rate (500 Hz), got 500"),
+    (["controller.matching.ra_noise_floor_sigmas=5.39", "controller.matching.ra_noise_quiet_s=3"],
+     "field 'controller.matching.ra_noise_quiet_s' must end with the approach, by grasp.settle_s + "
      "grasp.reach_s = 2.8 s"),
-    (["object_offset=[.nan,0]"], "field 'object_offset[0]' must be a finite number"),
-    (["object_yaw_deg=.nan"], "field 'object_yaw_deg' must be a finite number"),
+    (["placement.offset=[.nan,0]"], "field 'placement.offset[0]' must be a finite number"),
+    (["placement.yaw_deg=.nan"], "field 'placement.yaw_deg' must be a finite number"),
     (["plant_config.time_step=.nan"], "field 'plant_config.time_step' must be a finite"),
     (["controller.event_object_may_differ=[colour]"],
      "field 'controller.event_object_may_differ[0]' must name a field"),
@@ -213,7 +213,7 @@ def test_the_corrective_events_are_read_from_the_events_folder_given(events_copy
     _edit(events_copy / "corrective" / "box" / "hold_avoid.json",
           lambda data: data["samples"].update(ra_left=[0.0] * len(data["samples"]["ra_left"])))
     code, text = run_cli(["trial", "--events", str(events_copy), "--set",
-                          "controller.memorized_corrective_events=[hold_avoid]"], capfd)
+                          "controller.memorized_corrective.events=[hold_avoid]"], capfd)
     assert_one_line_error(code, text, str(events_copy / "corrective"),
                           "channels ['ra_left'] are zero throughout the window")
 

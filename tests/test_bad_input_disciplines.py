@@ -13,7 +13,7 @@ import numpy.lib.format as npy_format
 import pytest
 
 import tegrasp_drake
-from test_bad_input import assert_one_line_error, run_cli
+from tests.test_bad_input import assert_one_line_error, run_cli
 from tegrasp_drake import cli
 from tegrasp_drake.commands import hardware as hardware_command
 from tegrasp_drake.commands import run_folder
@@ -213,10 +213,9 @@ def test_an_unfinished_hardware_runs_log_is_kept_beside_not_over_the_earlier(tmp
 
 
 def test_a_log_on_a_full_disk_is_a_problem_that_names_it(tmp_path, monkeypatch):
-    from pydrake.lcm import DrakeLcm
     from tegrasp_drake.runs import hardware_run
-    bus = DrakeLcm("memq://")
-    writer = hardware_run.BusLogWriter("memq://", tmp_path / "run.lcmlog", drake_lcm=bus)
+    writer = hardware_run.BusLogWriter(f"udpm://239.255.76.67:{7700 + os.getpid() % 100}?ttl=0",
+                                       tmp_path / "run.lcmlog")
     try:
         assert writer.problem() is None
 
@@ -226,6 +225,14 @@ def test_a_log_on_a_full_disk_is_a_problem_that_names_it(tmp_path, monkeypatch):
         assert "the disk holding it has less than 1 MB free" in writer.problem()
     finally:
         writer.close()
+
+
+def test_a_bus_inside_the_process_is_said_not_to_be_logged(tmp_path):
+    from tegrasp_drake.runs import hardware_run
+    writer = hardware_run.BusLogWriter("memq://", tmp_path / "run.lcmlog")
+    assert "lives inside this process" in writer.unrecorded
+    assert writer.problem() is None and writer.close() == 0
+    assert not (tmp_path / "run.lcmlog").exists()
 
 
 def test_a_log_that_stops_recording_stops_the_run_as_a_fault():

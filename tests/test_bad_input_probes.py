@@ -9,7 +9,7 @@ import signal
 import numpy as np
 import pytest
 
-from test_bad_input import assert_one_line_error, folder_contents as _contents, run_probe
+from tests.test_bad_input import assert_one_line_error, folder_contents as _contents, run_probe
 from tegrasp_drake.events.event_file import INDEX_FILE, MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -62,8 +62,8 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
     ("1 hardware result beside --log", _hardware_result,
      ["hardware", "--config", "hw.yaml", "--log", "run.lcmlog"],
      ["run.result.json already holds a run's result", "--overwrite"]),
-    ("2 --set unclosed list", None, ["trial", "--set", "object_offset=[0.0,0.015"],
-     ["--set 'object_offset=[0.0,0.015'", "not valid YAML", "quote"]),
+    ("2 --set unclosed list", None, ["trial", "--set", "placement.offset=[0.0,0.015"],
+     ["--set 'placement.offset=[0.0,0.015'", "not valid YAML", "quote"]),
     ("2 --set mapping in a name", None, ["trial", "--set", "object.name=a: b"],
      ["--set 'object.name=a: b'", "not valid YAML", "object.name='a: b'"]),
     ("2 --set undefined alias", None, ["trial", "--set", "random_seed=*foo"],
@@ -87,8 +87,8 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["field 'tactile.noise_std_n' must be zero (no noise) or positive"]),
     ("7 negative film noise", None, ["trial", "--set", "vibration.noise_std_mps2=-0.05"],
      ["field 'vibration.noise_std_mps2' must be zero (no noise) or positive"]),
-    ("7 mode frequency 0", None, ["trial", "--set", "vibration.mode_frequency_hz=0"],
-     ["field 'vibration.mode_frequency_hz' must lie in (0, "]),
+    ("7 mode frequency 0", None, ["trial", "--set", "vibration.film.mode_frequency_hz=0"],
+     ["field 'vibration.film.mode_frequency_hz' must lie in (0, "]),
     ("7 hit after the trial", None, ["trial", "--set", "disturbance.hit_time_s=100"],
      ["field 'disturbance.hit_time_s' must come before the grasp's script ends"]),
     ("9 --overwrite with a bad --html", _earlier_run,
@@ -108,8 +108,8 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["field 'plant_config.time_step' must lie in"]),
     ("10 a 1e6 N hit", None, ["trial", "--set", "disturbance.hit_force_n=[0.0,1000000.0,0.0]"],
      ["field 'disturbance.hit_force_n' must be at most 100 N"]),
-    ("10 mode mass 0", None, ["trial", "--set", "vibration.mode_mass_kg=0"],
-     ["field 'vibration.mode_mass_kg' must be positive"]),
+    ("10 mode mass 0", None, ["trial", "--set", "vibration.film.mode_mass_kg=0"],
+     ["field 'vibration.film.mode_mass_kg' must be positive"]),
     ("10 taxel rate 0.001 Hz", None, ["trial", "--set", "tactile.sample_rate_hz=0.001"],
      ["field 'tactile.sample_rate_hz' must lie in [16, 20000] Hz"]),
     ("10 taxel rate 1e6 Hz", None, ["trial", "--set", "tactile.sample_rate_hz=1000000.0"],

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import tegrasp_drake
-from test_bad_input import (_trial_log, assert_one_line_error, folder_contents as _contents,
+from tests.test_bad_input import (_trial_log, assert_one_line_error, folder_contents as _contents,
                             run_cli, run_probe)
 from tegrasp_drake.commands import run_folder
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
@@ -48,7 +48,7 @@ DRAKE_SECTION_PROBES = [  # (--set assignment, words the one error line holds)
 ]
 
 RELATED_FIELD_PROBES = [
-    ("controller.slip_band_hz=900.0", "field 'controller.slip_band_hz' must lie below half"),
+    ("controller.lift_load.slip_band_hz=900.0", "field 'controller.lift_load.slip_band_hz' must lie below half"),
     ("grasp.grasp_height=0.5", "field 'grasp.grasp_height' must lie within the object's height"),
     ("object.mass=~", "field 'object.mass' is null"),
     ("object.friction=~", "field 'object.friction' is null"),
@@ -99,10 +99,10 @@ def test_a_transfer_world_with_a_bad_drake_setting_is_refused_up_front(tmp_path,
      "field 'plant_config.contact_model' must be one of"),
     (lambda s: setattr(s.simulator_config, "start_time", 100.0),
      "field 'simulator_config.start_time' must lie in"),
-    (lambda s: setattr(s, "object_offset", [0.0, 0.0, 0.0]),
-     "field 'object_offset' must hold 2 numbers [m], got 3 elements"),
-    (lambda s: setattr(s, "expected_object_xy", [0.7]),
-     "field 'expected_object_xy' must hold 2 numbers"),
+    (lambda s: setattr(s.placement, "offset", [0.0, 0.0, 0.0]),
+     "field 'placement.offset' must hold 2 numbers [m], got 3 elements"),
+    (lambda s: setattr(s.placement, "expected_xy", [0.7]),
+     "field 'placement.expected_xy' must hold 2 numbers"),
     (lambda s: setattr(s.disturbance, "hit_force_n", [0.0, 1.0]),
      "field 'disturbance.hit_force_n' must hold 3 numbers"),
     (lambda s: setattr(s.arm, "initial_gripper_xyz", [0.7, 0.0]),

@@ -17,7 +17,7 @@ import signal
 import pytest
 
 import tegrasp_drake
-from test_bad_input import assert_one_line_error, run_cli
+from tests.test_bad_input import assert_one_line_error, run_cli
 from tegrasp_drake import cli
 from tegrasp_drake.events.event_file import MemorizedEventError, read_index
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
@@ -237,7 +237,7 @@ def test_a_fifo_calibration_is_refused_without_blocking(tmp_path):
 
 
 def test_an_interrupted_sweep_abandons_its_running_trial(tmp_path):
-    from test_sweep_fake_trial import stuck_fake_trial
+    from tests.fake_trials import stuck_fake_trial
     from tegrasp_drake.sweep.runner import _run_on_process_pool
     marker = str(tmp_path / "second")
     outcomes = _run_on_process_pool(stuck_fake_trial, [{"trial_id": "first"},

@@ -33,7 +33,7 @@ from pymodbus.pdu.register_message import (ReadHoldingRegistersResponse,
 
 import tegrasp_drake
 from tegrasp_drake.emulators.controller_clock import command_boundary
-from test_bad_input import assert_one_line_error, folder_contents, run_cli
+from tests.test_bad_input import assert_one_line_error, folder_contents, run_cli
 from tegrasp_drake.emulators.jaco_arm_emulator import MakeJacoArmEmulator
 from tegrasp_drake.emulators.modbus_request_framer import (BAD_CRC, FRAMING,
                                                            ModbusRequestFramer)

@@ -2,11 +2,16 @@
 validator enforces them where a config is loaded and again where a builder is handed one."""
 
 import dataclasses
+import typing
 
 import pytest
 
-from test_bad_input import assert_one_line_error, run_cli
+from tests.test_bad_input import assert_one_line_error, run_cli
 from tegrasp_drake.control import controller_registry
+from tegrasp_drake.control.controller_config import AvoidConfig
+from tegrasp_drake.events import EventMatcherConfig
+from tegrasp_drake.events.synthetic import SyntheticGraspConfig
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.ranges import Range, bounded, check_ranges, unranged_numeric_fields
@@ -27,6 +32,33 @@ def test_every_numeric_field_declares_its_range():
     assert not missing, ("declare a range beside each of these fields, e.g. "
                          "`x_s: float = bounded(0.5, low=0.0, high=10.0, unit=\"s\", "
                          f"why=\"...\")` (tegrasp_drake/rig/ranges.py): {missing}")
+
+
+def _reachable_config_classes(*roots) -> set:
+    """The dataclasses reachable from `roots` through their fields (unions, lists, maps)."""
+    seen, pending = set(), list(roots)
+    while pending:
+        cls = pending.pop()
+        if cls in seen or not dataclasses.is_dataclass(cls):
+            continue
+        seen.add(cls)
+        for hint in typing.get_type_hints(cls).values():
+            stack = [hint]
+            while stack:
+                member = stack.pop()
+                stack.extend(typing.get_args(member))
+                if dataclasses.is_dataclass(member):
+                    pending.append(member)
+    return seen
+
+
+def test_no_config_class_holds_more_than_15_fields():
+    """A config class nests its settings by concern rather than growing flat."""
+    classes = _reachable_config_classes(*CONFIG_ROOTS, SyntheticGraspConfig, EventMatcherConfig)
+    assert {Scenario, AvoidConfig, VibrationSensorConfig} <= classes
+    crowded = {cls.__qualname__: len(dataclasses.fields(cls)) for cls in classes
+               if len(dataclasses.fields(cls)) > 15}
+    assert not crowded, crowded
 
 
 @pytest.mark.parametrize("name", sorted(read_yaml_file(paths.scenarios_file(), "scenarios")))
@@ -88,9 +120,9 @@ def test_open_and_closed_ends():
 @pytest.mark.parametrize("overrides, expected", [
     (["grasp.hold_s=1.0e+7"], "field 'grasp.hold_s' must lie in [0, 60] s"),
     (["grasp.hold_s=-1"], "field 'grasp.hold_s' must lie in [0, 60] s"),
-    (["object_offset=[2,2]"], "field 'object_offset[0]' must lie in [-0.2, 0.2] m"),
-    (["expected_object_xy=[0.9,0.49]"], "field 'object_offset' puts the object at (0.900, "
-     "0.490) m"),
+    (["placement.offset=[2,2]"], "field 'placement.offset[0]' must lie in [-0.2, 0.2] m"),
+    (["placement.expected_xy=[0.9,0.49]"], "field 'placement.offset' puts the object at "
+     "(0.900, 0.490) m"),
     (["object.size=[0.045,0.045,50]"], "field 'object.size[2]' must lie in (0, 0.5] m"),
     (["object.mass=1.0e+9"], "field 'object.mass' must lie in (0, 5] kg"),
     (["object.friction=1.0e+9"], "field 'object.friction' must lie in (0, 2]"),
@@ -99,7 +131,7 @@ def test_open_and_closed_ends():
     (["grasp.hold_s=50", "grasp.lift_s=20"], "field 'grasp': the grasp script lasts"),
     (["object.mass=1e9"], "got str '1e9' (YAML reads it as text: write 1000000000.0)"),
     (["controller.update_period_s=0"], "field 'controller.update_period_s' must be positive"),
-    (["controller.slip_s=-1"], "field 'controller.slip_s' must be zero or positive [s]"),
+    (["controller.lift_load.slip_s=-1"], "field 'controller.lift_load.slip_s' must be zero or positive [s]"),
     (["arm.initial_gripper_xyz=[0.69,0.0,7]"],
      "field 'arm.initial_gripper_xyz[2]' must lie in [-0.9, 0.9] m"),
 ])

@@ -69,7 +69,8 @@ def test_the_readme_emulator_walkthrough_ends_done(tmp_path):
             except subprocess.TimeoutExpired:
                 emulators.kill()
                 emulated, _ = emulators.communicate()
-        said = (run.stdout + run.stderr + "\n--- tegrasp emulate printed:\n"
+        said = (run.stdout + run.stderr + f"\n--- tegrasp emulate (exit {emulators.returncode}) "
+                "printed:\n"
                 + "".join(lines) + (emulated or ""))
         assert run.returncode == 0, said
         assert re.search(r"-> Done\b", run.stdout), said

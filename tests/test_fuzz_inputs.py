@@ -13,6 +13,7 @@ The examples are bounded for CI (the whole module about a minute on a loaded 2-c
 """
 
 import dataclasses
+import functools
 import io
 import json
 import os
@@ -34,7 +35,7 @@ from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator, SimulatorConfig
 from pydrake.systems.framework import DiagramBuilder
 
-from test_bad_input import _trial_log
+from tests.test_bad_input import _trial_log
 from tegrasp_drake.events.event_file import MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -156,9 +157,9 @@ def test_any_scenario_file_loads_or_is_one_config_error(data, folder):
 
 
 FIELD_PATHS = ["object.mass", "object.size", "object.name", "object.shape", "grasp.hold_s",
-               "object_offset", "random_seed", "controller.name", "plant_config.time_step",
+               "placement.offset", "random_seed", "controller.name", "plant_config.time_step",
                "tactile.sample_rate_hz", "disturbance.hit_force_n", "station", "gripper.model",
-               "controller.sa_threshold", "vibration.mode_frequency_hz", "object"]
+               "controller.matching.sa_threshold", "vibration.film.mode_frequency_hz", "object"]
 
 
 @fuzz(80)
@@ -173,7 +174,7 @@ def test_any_set_assignment_loads_or_is_one_config_error(key, value):
 
 NUMBER_PATHS = ["object.mass", "object.friction", "grasp.hold_s", "grasp.grip_force",
                 "grasp.grasp_height", "random_seed", "vibration.highpass_cutoff_hz",
-                "controller.slip_band_hz", "plant_config.stiction_tolerance",
+                "controller.lift_load.slip_band_hz", "plant_config.stiction_tolerance",
                 "simulator_config.start_time"]
 
 
@@ -188,8 +189,7 @@ def test_a_set_number_runs_as_given_or_is_one_config_error(key, value):
     except ConfigError as error:
         assert "\n" not in str(error)
         return
-    section, _, name = key.rpartition(".")
-    loaded = getattr(getattr(scenario, section) if section else scenario, name)
+    loaded = functools.reduce(getattr, key.split("."), scenario)
     assert isinstance(value, (int, float)) and not isinstance(value, bool)
     assert loaded == value
 

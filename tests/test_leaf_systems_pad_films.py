@@ -19,7 +19,8 @@ from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.simulation.film_chain import MakePadFilms
-from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig, volts_per_mps2
+from tegrasp_drake.simulation.pad_vibration_sensor import (FilmConfig, VibrationSensorConfig,
+                                                           volts_per_mps2)
 from tegrasp_drake.simulation.tactile_pads import PadGeometry
 
 TIME_STEP = 5e-4  # s: two plant steps per 1 ms sensor period
@@ -40,10 +41,10 @@ def _films(highpass_hz: float, noise_std: float = 0.0, adc_input: str = "ideal",
     plant = MultibodyPlant(TIME_STEP)
     plant.Finalize()
     config = VibrationSensorConfig(
-        highpass_cutoff_hz=highpass_hz, noise_std_mps2=noise_std, mode_mass_kg=MODAL_MASS,
-        mode_frequency_hz=MODE_HZ, mode_damping_ratio=ZETA, load_lowpass_hz=LOWPASS_HZ,
-        impact_enabled=False, adc_input=adc_input, adc_noise_lsb=adc_noise_lsb,
-        amplifier_swing_v=swing_v)
+        highpass_cutoff_hz=highpass_hz, noise_std_mps2=noise_std, film=FilmConfig(
+            mode_mass_kg=MODAL_MASS, mode_frequency_hz=MODE_HZ, mode_damping_ratio=ZETA,
+            load_lowpass_hz=LOWPASS_HZ, impact_enabled=False),
+        adc_input=adc_input, adc_noise_lsb=adc_noise_lsb, amplifier_swing_v=swing_v)
     films = MakePadFilms(plant=plant, pads=PADS, force_indices=(2, 0), config=config)
     context = films.CreateDefaultContext()
     films.GetInputPort("generalized_contact_forces").FixValue(context, [0.0, 100.0,
@@ -116,7 +117,7 @@ MSP_LSB_V = 20.0 / 4096
 
 
 # The film's sensitivity [V/(m/s^2)]: the tests change none of the settings it depends on.
-SENSITIVITY = volts_per_mps2(VibrationSensorConfig(mode_frequency_hz=MODE_HZ))
+SENSITIVITY = volts_per_mps2(VibrationSensorConfig(film=FilmConfig(mode_frequency_hz=MODE_HZ)))
 
 
 def _lsb_mps2() -> float:

@@ -1,1 +1,9 @@
-"""Sub-commands of the tegrasp command line, one module each."""
+"""Sub-commands of the tegrasp command line (cli.py), one module each, with their helpers.
+
+- demo.py, trial.py: one closed-loop trial (the demo: the default scenario, a figure).
+- record_events.py: memorize the events of the ideal grasp.
+- sweep.py, transfer.py: the grasping experiment; the transfer study.
+- emulate.py, hardware.py, replay.py: emulated devices; the run on them; its log replayed.
+- plot.py: the paper's figures from a log or a results folder.
+- scenario_args.py, viewer_args.py, verbosity.py: options shared by the commands.
+- run_folder.py, progress.py: where a run's files go; the progress bar."""

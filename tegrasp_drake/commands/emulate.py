@@ -1,19 +1,11 @@
 """`tegrasp emulate {jaco,robotiq,myrio,all}`: the devices, emulated on this host
 (tegrasp_drake/emulators/launcher.py says what each does).
 
-- jaco: the JACO2 simulation on LCM (`--lcm-url`);
-- robotiq: the Robotiq 2F-85 on a pseudo-terminal, the scenario's object between its
-  fingers (`--inject-fault CODE@SECONDS` for a fault); its state goes on `--lcm-url`
-  for a myRIO emulator to follow;
-- myrio: the myRIO tactile stream on a pseudo-terminal, replaying `--trial NPZ` (a
-  TrialLog .npz: `tegrasp demo --out DIR` writes one), `--sync none|start|follow`,
-  `--follow-gripper` to wait at the trial's gripper commands for the emulated gripper's;
-- all: the three in one process, with --sync follow and --follow-gripper by default.
-
-Each prints where it listens, `--write-config FILE` writes the hardware config that
-points `tegrasp hardware --config FILE` at them, a line "devices: {JSON}" (the same for
-programs: emulators/emulator_process.py reads it) and the line "ready" when they are up.
-They run until Ctrl-C (SIGINT) or SIGTERM.
+jaco: the JACO2 simulation on LCM; robotiq: the 2F-85 on a pseudo-terminal, the scenario's
+object between its fingers; myrio: the tactile stream on a pseudo-terminal replaying
+`--trial NPZ`; all: the three in one process (--sync follow, --follow-gripper). Each prints
+where it listens, a line "devices: {JSON}" (emulators/emulator_process.py reads it) and
+"ready"; `--write-config FILE` writes the hardware config. They run until SIGINT or SIGTERM.
 """
 
 import argparse
@@ -34,8 +26,7 @@ from tegrasp_drake.rig.files import folder_problem
 
 DEVICES = (*EMULATED_DEVICES, "all")
 GFLT_MAX = 0xF  # the Robotiq status register's fault field is 4 bits
-# The options only some devices use, by `dest`: given to a device that does not use them,
-# they are refused rather than ignored.
+# The options only some devices use, by `dest`: refused, not ignored, for the others.
 DEVICE_OPTIONS = {"trial": ("--trial", "myrio"), "sync": ("--sync", "myrio"),
                   "follow_gripper": ("--follow-gripper", "myrio"),
                   "inject_fault": ("--inject-fault", "robotiq")}

@@ -1,12 +1,7 @@
-"""`tegrasp hardware --config FILE`: the grasp on the real devices (or their emulators).
-
-The controller diagram runs unchanged on MakeHardwareStation, in real time, against the
-devices the config names (hardware/config.py; `tegrasp emulate ... --write-config FILE`
-writes one for the emulators). State transitions and device faults are printed as they
-happen; everything on the bus goes to an LCM log (runs/hardware_log_reader.py; `tegrasp replay
-LOG`, `lcm-logplayer LOG`). Exit code: 0 when the grasp finished without a fault, 2 after a
-fault or a Failed state machine, 1 when a device did not come up. The run's result
-(transitions, faults, times, device counters) goes beside the log: run.result.json.
+"""`tegrasp hardware --config FILE`: the grasp on the real devices (or their emulators), the
+controller diagram unchanged on MakeHardwareStation in real time (runs/hardware_run.py).
+Exit code: 0 finished without a fault, 2 after a fault or Failed, 1 a device did not come
+up. The run's result goes beside its LCM log: run.result.json.
 """
 
 import argparse
@@ -68,8 +63,8 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
-# The longest real-time run: the scripted grasp takes about 12 s; ten minutes leaves room
-# for a slow hand-held test without a typo (a 1e7) holding the devices for days.
+# The longest real-time run [s]: the grasp takes about 12 s; ten minutes leaves room for a
+# slow hand-held test without a typo (a 1e7) holding the devices for days.
 MAX_DURATION_S = 600.0
 
 
@@ -95,9 +90,9 @@ def _events_folder(events, args, scenario) -> str:
 
 
 def commit_hardware_run(staged, log, result_path, result: dict) -> None:
-    """The staged log renamed over --log, then the result written beside it, Ctrl-C and
-    SIGTERM held back: the earlier run's log and result are replaced together. A run without
-    a log file (an in-process bus that recorded nothing) commits its result alone."""
+    """Renames the staged log over --log and writes the result beside it, Ctrl-C and SIGTERM
+    held back, so the earlier run's log and result are replaced together (a run without a
+    log file commits its result alone)."""
     with interruptions_deferred():
         if pathlib.Path(staged).exists():
             os.replace(staged, log)

@@ -104,7 +104,7 @@ def _plot_trial(args, out) -> str:
     try:
         return plot_avoid_reaction(log, out,
                                    hit_threshold=controller_in_force(
-                                       logged_scenario(log)).hit_ra_mps2)
+                                       logged_scenario(log)).avoid.hit_ra_mps2)
     except NoAvoidError as e:
         raise SystemExit(f"tegrasp: error: {args.source}: {e}") from None
 

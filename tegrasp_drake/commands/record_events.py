@@ -1,17 +1,10 @@
 """`tegrasp record-events`: memorize the tactile events of the ideal grasp (Sec. III-A).
 
-For each object (its built-in scenario, or the object of a scenario given), the events
-of its ideal grasp (recording/paper_events.py) are stored in the events folder with an
-index (format: tegrasp_drake/events/FORMAT.md): `--events DIR`, else the user's events
-folder (TEGRASP_EVENTS_DIR, else ~/.local/share/tegrasp/events; rig/paths.py), never the
-installed package's, which `pip install` replaces. From a source checkout,
-`--events events` remakes the package's own events.
-
-Every controller's events: the paper's (one clean ideal grasp; `memorized`) and, for an
-object whose ensemble the package does not ship (your own), the taxel_aware controller's
-ensemble events (recording/ensemble_events.py: --ensemble-runs randomised ideal grasps,
-in the folder's `ensemble/`). An object's new events replace its old ones only once all of
-them are made, all together.
+For each object (built-in, or a scenario's), the paper's events (recording/paper_events.py)
+and, for an object whose ensemble the package does not ship, the taxel_aware ensemble
+(recording/ensemble_events.py), stored together in `--events DIR` or the user's events
+folder, never the installed package (docs/user-guide.md, "Your recorded events live
+outside the package").
 """
 
 import argparse
@@ -70,12 +63,10 @@ def register(subparsers) -> None:
 
 
 def _scenarios_to_record(args) -> list:
-    """(object name, scenario or None for the built-in one) of each object to record.
-
-    --object names built-in objects, each recorded from its own built-in scenario (with the
-    --set overrides, if any); --scenario/--scenario-name name a scenario whose object is
-    recorded. The two are refused together, and so is a --set that changes which object an
-    --object records (it would store another object's events under that name)."""
+    """(object name, scenario or None for the built-in one) of each object to record:
+    --object names built-in objects (with --set), --scenario/--scenario-name a scenario's
+    object; the two are refused together, and so is a --set that changes which object an
+    --object records."""
     from tegrasp_drake.commands.scenario_args import scenario_from_arguments
     if args.object and (args.scenario or args.scenario_name):
         raise SystemExit("tegrasp: error: --object records a built-in object from its own "

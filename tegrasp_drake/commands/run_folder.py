@@ -1,23 +1,11 @@
-"""Where a run's files go, and which earlier run they may replace.
+"""Where a run's files go, and which earlier run they may replace (docs/user-guide.md,
+"`tegrasp trial` and `tegrasp demo`").
 
-A run folder holds one run: its log (trial.npz), its figures and `result.json` (the object
-that `--json` prints), written last. A new run never replaces an earlier one unasked:
-- a folder named with `--out` that already holds a run (result.json or trial.npz) is
-  refused with one line, unless `--overwrite` is given;
-- without `--out`, `tegrasp trial` writes out/trial, or the first of out/trial-2,
-  out/trial-3, ... that is not there yet, so that every trial is kept;
-- `tegrasp demo` writes out/demo and replaces the last demo there: it is the README's
-  demonstration, run again as it stands (give `--out DIR` to keep one).
-A hardware run's result goes beside its LCM log: run.lcmlog -> run.result.json.
-
-Nothing of an earlier run is removed before the new one is complete: a run writes its files
-into a hidden staging folder inside its folder (staged_run), and they replace the earlier
-ones together at the end, result.json last, with Ctrl-C held back (commit_run), and the
-earlier run's files it did not replace (its PNG figures under a new run's SVGs) are removed
-then; a run that
-fails or is interrupted leaves the earlier run whole and no file of its own. Without --out,
-a numbered folder is claimed with one mkdir before the run starts, so two runs started
-together never share one.
+A run folder holds one run: trial.npz, its figures and `result.json`, written last. An
+`--out` folder holding a run is refused unless `--overwrite`; without `--out`, `tegrasp
+trial` claims out/trial, out/trial-2, ... with one mkdir each; `tegrasp demo` replaces
+out/demo. Files are staged in a hidden folder and replace the earlier run's together at the
+end, Ctrl-C held back (commit_run): a failed or interrupted run leaves the earlier one whole.
 """
 
 import contextlib
@@ -68,10 +56,8 @@ def check_run_folder(folder) -> None:
 
 
 def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -> pathlib.Path:
-    """The folder for a new run (module docstring); out: the `--out` given, or None.
-
-    Raises RunFolderError when `out` holds a run and `overwrite` is false, or cannot be
-    written. The folder is created; nothing in it is removed (commit_run replaces)."""
+    """The folder for a new run (module docstring), created; out: the `--out` given, or None.
+    RunFolderError when `out` holds a run without `overwrite`, or cannot be written."""
     check_run_folder(out if out is not None else default)
     folder = pathlib.Path(out if out is not None else default)
     if out is not None and holds_run(folder) and not overwrite:
@@ -90,11 +76,9 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 
 @contextlib.contextmanager
 def staged_run(folder):
-    """A hidden staging folder inside the run folder for the run's files (removed, with
-    whatever it holds, when the block ends), with the run folder claimed for the block: an
-    exclusive lock on the folder itself (flock, released by the kernel when the process ends,
-    however it ends), so that a second run into the same folder is refused at once instead
-    of both running and the later one's files replacing the earlier's."""
+    """A hidden staging folder for the run's files inside the run folder (removed when the
+    block ends), with the run folder locked for the block (flock, released by the kernel
+    however the process ends), so a second run into it is refused at once."""
     with claimed_run_folder(folder):
         try:
             stage = pathlib.Path(tempfile.mkdtemp(prefix=".staging-", dir=folder))
@@ -127,9 +111,8 @@ def claimed_run_folder(folder):
 
 
 def own_file_problem(path, folder) -> str | None:
-    """Why an output path given beside a run (--html) may not be written: it names one of
-    the files the run writes into `folder` (its result, its log, its figures), which one
-    would overwrite the other. None if it does not."""
+    """Why an output path given beside a run (--html) may not be written: it is one of the
+    files the run writes into `folder`. None if not."""
     path, folder = pathlib.Path(path), pathlib.Path(folder)
     if path.resolve() == folder.resolve() or path.resolve() in folder.resolve().parents:
         return f"is the run's folder {folder} (or holds it); give a file name, e.g. replay.html"
@@ -163,9 +146,8 @@ def commit_run(stage, folder, result: dict) -> dict:
 
 
 def earlier_run_files(folder) -> list[pathlib.Path]:
-    """The files of the run `folder` holds, as its result.json lists them (its log, figures,
-    replay page) and its run files: what a new run replaces. Files it does not list, such
-    as the user's own, are never touched."""
+    """The files of the run `folder` holds, as its result.json lists them, and its run files:
+    what a new run replaces (the user's own files are never touched)."""
     folder = pathlib.Path(folder)
     files = [folder / name for name in RUN_FILES if (folder / name).is_file()]
     try:

@@ -24,11 +24,10 @@ def add_scenario_arguments(parser) -> None:
 
 
 def scenario_from_arguments(args, *, simulates: str = ""):
-    """Loads the scenario, with the controller of `--controller` if the command has it
-    (naming on stderr, in one line, the scenario's controller settings that it ignores), or
-    exits with the error message (no traceback). `simulates`: the command simulates the
-    scenario ("trial": a scenario for the real devices, `station: !HardwareStationConfig`,
-    is refused; "events": one line on stderr says that its simulation is used)."""
+    """Loads the scenario, with `--controller`'s controller if the command has it (naming on
+    stderr the scenario's settings it ignores), or exits with the error. `simulates`:
+    "trial" refuses a scenario for the real devices; "events" says on stderr that its
+    simulation is used."""
     if args.scenario and not pathlib.Path(args.scenario).exists() and \
             args.scenario in (read_yaml_file(paths.scenarios_file(), "the scenario file") or {}):
         raise SystemExit(f"tegrasp: error: --scenario takes a file of scenarios; "
@@ -93,15 +92,15 @@ def controller_events(scenario, events_dir):
 
 
 def corrective_events(scenario, events_dir):
-    """The memorized corrective events the scenario's controller matches (None when
-    controller.memorized_corrective_events is empty), from `events_dir` first, or exits
-    with the message."""
-    if not scenario.controller.memorized_corrective_events:
+    """The memorized corrective events the controller matches (None when
+    controller.memorized_corrective.events is empty), `events_dir` first, or exits saying
+    why."""
+    if not scenario.controller.memorized_corrective.events:
         return None
     from tegrasp_drake.scenario.scenario_events import load_corrective_events
     from tegrasp_drake.events import MemorizedEventError
     try:
         return load_corrective_events(scenario, events_dir)
     except MemorizedEventError as e:
-        raise SystemExit("tegrasp: error: controller.memorized_corrective_events needs the "
+        raise SystemExit("tegrasp: error: controller.memorized_corrective.events needs the "
                          f"corrective events of '{scenario.object.name}': {e}") from None

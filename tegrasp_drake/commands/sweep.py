@@ -1,21 +1,10 @@
 """`tegrasp sweep`: the paper's grasping experiment over objects, markers and controllers.
 
-    tegrasp sweep [--spec FILE.yaml] [--objects NAME ...] [--controllers NAME ...]
-                  [--attempts N] [--base-seed N] [--workers N] [--out DIR]
-                  [--scheduler tcp://HOST:PORT] [--no-progress] [--format png|pdf|svg]
-                  [--benchmark] [--set KEY=VALUE ...] [-v | -q]
-
-Runs every trial without a finished record in `--out` (so the same command resumes a
-killed sweep), then writes table1.md/.csv, statistics.md/.json, success_by_offset.md/.csv
-and the figures success_maps, table1_vs_paper and latency (--format) there. Options
-given on the command line override the spec file.
-Exit codes: 0 all trials finished, 1 some trials raised or were left unfinished
-(run again to retry them), 2 bad input (nothing was run). The progress bar (trials done,
-rate, ETA) is shown on a terminal only, and not with --no-progress or --quiet.
-
-Testing hook: `--trial-function MODULE:ATTR` (hidden from --help) replaces the real
-trial function, `tegrasp_drake.sweep.trial_function:run_trial_from_spec`; the tests use it to run
-the command with a cheap deterministic trial.
+Runs every trial without a finished record in `--out` (so the same command resumes), then
+writes the reports and figures there (docs/sweeps.md); options override the spec file.
+Exit codes: 0 all trials finished, 1 some raised or were left unfinished, 2 bad input.
+Testing hook: `--trial-function MODULE:ATTR` (hidden from --help) replaces the real trial
+function, so the tests run the command with a cheap deterministic trial.
 """
 
 import argparse
@@ -54,7 +43,7 @@ examples:
   tegrasp sweep --out results/sweep            # Table I: 3 objects x 9 markers x 3, 3 controllers
   tegrasp sweep --objects box --controllers memorized --attempts 1 --workers 2 --out out/box
   tegrasp sweep --spec analysis/example_sweep.yaml --scheduler tcp://10.0.0.5:8786
-  tegrasp sweep --objects box --set controller.memorized_corrective_events=[hold_avoid] \
+  tegrasp sweep --objects box --set controller.memorized_corrective.events=[hold_avoid] \
       --set disturbance.hit_time_s=7.0 --out out/hit   # memorized Avoid against a hit
 
 Re-running a command into the same --out resumes the sweep: finished trials are kept and
@@ -106,7 +95,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         metavar="KEY=VALUE",
                         help="override a field of every trial's scenario, after the spec's "
                         "scenario_overrides, e.g. --set "
-                        "controller.memorized_corrective_events=[hold_avoid]")
+                        "controller.memorized_corrective.events=[hold_avoid]")
     parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
                         help=argparse.SUPPRESS)  # Testing hook, see the module docstring.
 

@@ -1,16 +1,9 @@
 """`tegrasp transfer SPEC.yaml`: events memorized in one world, trials run in another.
 
-    tegrasp transfer SPEC.yaml [--out DIR] [--workers N] [--scheduler tcp://HOST:PORT]
-                     [--no-progress] [--format png|pdf|svg] [-v | -q]
-
-Records each memorizing world's events into DIR/events/<world>, runs each cell as an
-ordinary sweep into DIR/cells/<memorizing>-in-<running> (durable, resumable, process pool
-or Dask), then writes DIR/transfer.md and the heat map DIR/transfer_matrix.png
-(transfer/matrix.py, transfer/report.py). The same command into
-the same DIR resumes it. Exit codes: 0 every trial finished, 1 some raised or were left
-unfinished (run again to retry them), 2 bad input (nothing was run).
-
-Testing hook: `--trial-function MODULE:ATTR` (hidden from --help), as `tegrasp sweep`'s.
+Records each memorizing world's events into DIR/events/<world>, runs each cell as a sweep
+into DIR/cells/<memorizing>-in-<running>, then writes DIR/transfer.md and the heat map
+(transfer/matrix.py, transfer/report.py); the same command resumes. Exit codes as `tegrasp
+sweep`'s; so is the hidden testing hook `--trial-function MODULE:ATTR`.
 """
 
 import argparse

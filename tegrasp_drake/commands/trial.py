@@ -28,7 +28,7 @@ prints), states.png (Fig. 9) and signals.png (Fig. 5a-b)."""
 
 EPILOG = """\
 examples:
-  tegrasp trial --set object_offset=[0.0,0.015]    # misplaced along the stroke: Re-Reach
+  tegrasp trial --set placement.offset=[0.0,0.015]    # misplaced along the stroke: Re-Reach
   tegrasp trial --set disturbance.hit_time_s=7.0 --out out/hit    # a hit in Hold: Avoid
   tegrasp trial --scenario-name thin_cylinder --controller heuristic --json
 

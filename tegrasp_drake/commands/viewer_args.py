@@ -1,12 +1,6 @@
-"""The Meshcat options of the run commands (trial, demo): a live viewer and a standalone HTML
-replay of the run.
-
-  --meshcat    serve the run live; the URL is printed (on stderr) as soon as the viewer starts,
-               and at the end the command waits for Enter so the viewer stays up (with --json
-               too: the JSON goes to stdout, the prompt to stderr)
-  --html FILE  write the run's recording as one HTML file (Meshcat.StaticHtml(): the scene,
-               the animation and the viewer's JavaScript with three.js inlined; no server, no
-               network); works without --meshcat
+"""The Meshcat options of the run commands (trial, demo): `--meshcat` serves the run live
+(its URL printed on stderr; at the end the command waits for Enter), `--html FILE` writes
+the run's recording as one standalone HTML file (Meshcat.StaticHtml: no server, no network).
 """
 
 import pathlib

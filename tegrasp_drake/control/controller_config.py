@@ -8,10 +8,13 @@ tag of the scenario's `controller` field as `station:` selects its station:
 
 `controller: {name: heuristic, ...}` and `--set controller.name=heuristic` are shorthands
 for the tag. The closed-loop controllers share the state machine's settings
-(GraspControllerConfig: the trigger thresholds and the numbers of the corrective actions,
-Sec. III-C, with their units) and add their own; a class's ClassVars say its name in
-results and sweeps, the events folder it reads and the extra time its corrections may
-take. Everything else about a controller is its entry in controller_registry.py.
+(GraspControllerConfig: the tick and the contact force, and a section per corrective action
+of Sec. III-C, e.g. `controller.avoid.hit_ra_mps2`) and add their own (`matching`, the
+Eq. 3 settings of those that read memorized events); every number declares its unit and
+range on its field, and each class checks what relates its fields (`problem`). A class's
+ClassVars say its name in results and sweeps, the events folder it reads and the extra time
+its corrections may take. Everything else about a controller is its entry in
+controller_registry.py.
 
 This module imports no Drake: the registry, which the command line reads, imports it.
 """
@@ -19,14 +22,12 @@ This module imports no Drake: the registry, which the command line reads, import
 import dataclasses
 import typing
 from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.ranges import bounded
 
 
-# What triggers Lift-Load and Avoid: the heuristic thresholds below (the
-# paper's, the default) or, for each corrective event named in
-# controller.memorized_corrective_events, its memorized event (recording/
-# corrective_events.py, read from the events folder's CORRECTIVE_EVENTS_FOLDER) matched by
-# Eq. 3.
+# The folder of an events folder that holds the memorized corrective events
+# (MemorizedCorrectiveConfig).
 CORRECTIVE_EVENTS_FOLDER = "corrective"
 
 # The thresholds in sigmas of the RA noise (control/noise_thresholds.py): noise alone crosses
@@ -145,16 +146,24 @@ class TaxelAwareConfig:
     # chosen for the simulated hand's own ensemble events (gripper_hands.py), per
     # transition on held-out ensemble runs by analysis/choose_ensemble_thresholds.py, never
     # on a sweep's trials.
-    reach_load_thresholds: list[float] = bounded(default_factory=list, low=-1.0, high=1.0,
-                                                 why="Eq. 3 scores are correlations")
-    load_lift_thresholds: list[float] = bounded(default_factory=list, low=-1.0, high=1.0,
-                                                why="Eq. 3 scores are correlations")
-    place_unload_thresholds: list[float] = bounded(default_factory=list, low=-1.0, high=1.0,
-                                                   why="Eq. 3 scores are correlations")
+    reach_load_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
+    load_lift_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
+    place_unload_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
     # A finger striking the object during the approach (joint torques): stop, back off
     # approach_retreat_m, shift along the stroke toward the struck finger, approach again
     # (counted in max_re_reaches).
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
+
+    def problem(self) -> tuple[str, str, object] | None:
+        """(field, what it must be, its value) of the first event's thresholds that are
+        neither empty nor a pair; None when all are."""
+        for name in ("reach_load_thresholds", "load_lift_thresholds",
+                     "place_unload_thresholds"):
+            pair = getattr(self, name)
+            if len(pair) not in (0, 2):
+                return (name, "must be [] (the hand's chosen thresholds) or [SA, RA], each in "
+                        "[-1, 1] (Eq. 3 scores)", pair)
+        return None
 
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
         """{transition: (SA, RA)} for the EventMatcher: the ones set here, else `chosen`'s
@@ -166,11 +175,171 @@ class TaxelAwareConfig:
         return {t: tuple(pair) if pair else tuple(chosen[t]) for t, pair in given.items()}
 
 
+@dataclasses.dataclass
+class ReReachConfig:
+    """Re-Reach (Sec. III-C): one finger alone in contact for one_sided_contact_s, the gripper
+    closed on nothing, or no Reach-Load event within reach_event_timeout_s of closing: open,
+    shift along the stroke toward the touching finger, close again."""
+    enabled: bool = True
+    one_sided_contact_s: float = bounded(0.1, low=0.0, high=10.0, unit="s",
+                                         below="must be zero or positive [s]")
+    reach_event_timeout_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
+                                           below="must be zero or positive [s]")
+    max_re_reaches: int = bounded(2, low=0, high=10, below="must be zero or positive")
+    # time to shift the open gripper sideways [s]
+    move_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
+                            below="must be zero or positive [s]")
+    # the gripper counts as open beyond this opening [m]
+    opened_m: float = bounded(0.080, low=0.0, high=0.085, unit="m",
+                              why="the 2F-85's 85 mm stroke",
+                              below="must be zero or positive [m]")
+
+
+@dataclasses.dataclass
+class LiftLoadConfig:
+    """Lift-Load (Sec. III-C): during Lift, either pad's slip-band vibration
+    (tactile/slip_vibration_band: the film's signal above slip_band_hz, RMS over
+    slip_window_s) above slip_vibration_mps2 [m/s^2] for slip_s [s] means the object slips;
+    back to Load with the grip force times force_factor, and lift again once both SA reach
+    grip_fraction of that force."""
+    enabled: bool = True
+    # The band: the squeeze, the lift's load and the amplifier's decay lie below about
+    # 10 Hz; texture slip at 40 mm/s (a lift's speed) rings at 80 Hz. Measured in open-loop
+    # grasps of the three objects (docs/model.md, "Vibration (RA) model"): at 80 Hz and
+    # 10 ms a normal lift reads at most 0.68 m/s^2, pads sliding along the object at lift
+    # speed 1.9-5.1 m/s^2; the threshold 1 m/s^2 (24 mN of pad load) is the one the
+    # accelerometer model used.
+    slip_vibration_mps2: float = bounded(1.0, low=0.0, high=1000.0, unit="m/s^2",
+                                         below="must be zero or positive [m/s^2]")
+    # ... and above this many sigmas of the slip band's noise (control/noise_thresholds.py:
+    # the band's RMS over slip_window_s of noise alone crosses it in at most one trial of a
+    # thousand; the sigma from the film's electronics); 0: the number alone.
+    slip_vibration_sigmas: float = bounded(2.34, low=0.0, high=100.0, unit="noise sigmas",
+                                           why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
+    slip_band_hz: float = bounded(80.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
+    slip_window_s: float = bounded(0.01, low=0.0, low_open=True, high=1.0, unit="s",
+                                   below="must be zero or positive [s]")
+    slip_s: float = bounded(0.02, low=0.0, high=1.0, unit="s",
+                            below="must be zero or positive [s]")
+    force_factor: float = bounded(2.0, low=1.0, high=10.0, below="must be at least 1")
+    max_lift_loads: int = bounded(2, low=0, high=10, below="must be zero or positive")
+    # the 2F-85's largest grip force
+    max_grip_force_n: float = bounded(235.0, low=0.0, high=235.0, unit="N",
+                                      why="the 2F-85 grips with at most 235 N, Robotiq 2F-85 "
+                                          "manual",
+                                      below="must be zero or positive [N]")
+    # Measured: a 50 N request reads 44.9 N of SA on the box, the contact patch spreading
+    # past the taxels; hence 0.8.
+    grip_fraction: float = bounded(0.8, low=0.0, low_open=True, high=1.0)
+    # and RA quiet (the slip has stopped) before lifting again [s]
+    relift_settle_s: float = bounded(0.2, low=0.0, high=10.0, unit="s",
+                                     below="must be zero or positive [s]")
+
+    def problem(self, *, ra_rate_hz: float) -> tuple[str, str, object] | None:
+        """(field, what it must be, its value) when the slip band does not fit the RA
+        stream read at ra_rate_hz [Hz]; None when it does."""
+        if self.slip_band_hz >= ra_rate_hz / 2:
+            return ("slip_band_hz", "must lie below half the RA rate "
+                    f"({ra_rate_hz / 2:g} Hz, vibration.sample_rate_hz / 2): the slip band's "
+                    "high-pass runs on the RA samples", self.slip_band_hz)
+        return None
+
+
+@dataclasses.dataclass
+class AvoidConfig:
+    """Avoid (Sec. III-C): in Hold, either RA above hit_ra_mps2 [m/s^2] is a hit. The
+    machine stops for sense_s [s] to see which way the hit pushed (the pad the object was
+    pushed into gains more than sa_asymmetry_n [N] over the other: along the stroke; else
+    the pads' common acceleration in the horizontal plane), moves distance_m [m] that way
+    over move_s [s], then Holds again. Hits are ignored for hit_refractory_s [s] after
+    entering Hold (the stop of the lift rings briefly)."""
+    enabled: bool = True
+    hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
+                                 below="must be zero or positive [m/s^2]")
+    # ... and above this many RA noise sigmas (as the slip's)
+    hit_ra_sigmas: float = bounded(5.51, low=0.0, high=100.0, unit="noise sigmas",
+                                   why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
+    hit_refractory_s: float = bounded(0.3, low=0.0, high=10.0, unit="s",
+                                      below="must be zero or positive [s]")
+    sense_s: float = bounded(0.03, low=0.0, high=1.0, unit="s",
+                             below="must be zero or positive [s]")
+    sa_asymmetry_n: float = bounded(1.0, low=0.0, high=100.0, unit="N",
+                                    below="must be zero or positive [N]")
+    distance_m: float = bounded(0.05, low=0.0, high=0.3, unit="m",
+                                below="must be zero or positive [m]")
+    move_s: float = bounded(0.6, low=0.0, high=10.0, unit="s",
+                            below="must be zero or positive [s]")
+
+
+@dataclasses.dataclass
+class PlaceConfig:
+    """Place: the object set down on the table, Unload on the Place-Unload event."""
+    # without the Place-Unload event, unload anyway this long after the arm stops [s]
+    event_timeout_s: float = bounded(1.0, low=0.0, high=60.0, unit="s",
+                                     below="must be zero or positive [s]")
+
+
+@dataclasses.dataclass
+class MemorizedCorrectiveConfig:
+    """The corrective triggers taken from memorized corrective events (recording/
+    corrective_events.py, read from the events folder's CORRECTIVE_EVENTS_FOLDER) matched by
+    Eq. 3, instead of the heuristic thresholds of lift_load and avoid."""
+    # Any of "hold_avoid" (a hit in Hold -> Avoid; Avoid still waits
+    # avoid.hit_refractory_s after entering Hold) and "lift_load" (slip in Lift ->
+    # Lift-Load), each matched in its mode. [] (the default): the heuristic triggers, the
+    # baseline. lift_load is measured to match every normal lift
+    # (docs/controller.md, "Memorized corrective triggers"): recorded for comparison, not
+    # for use.
+    events: list[str] = dataclasses.field(default_factory=list)
+    # Eq. 3 thresholds [SA, RA] of each event, chosen on held-out recorded runs by
+    # analysis/choose_corrective_thresholds.py (analysis/corrective_thresholds.md: the rule
+    # and the tables), never on the closed-loop trials that judge them.
+    # lift_load: no pair finds a held-out slip without a false trigger on a normal lift
+    # (RA > 0.55 finds both, with 3 false of 7); the rule's pair finds none. Not usable as a
+    # trigger on this robot: leave lift_load out of events.
+    lift_load_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.85],
+                                                length=2, **SCORE_RANGE)
+    # hold_avoid: every held-out hit found and no false trigger from RA > -0.05 up to 0.85;
+    # the rule takes the admissible region's centre (SA does not tell: a held grip's SA is
+    # flat with or without a hit), median latency 25 ms.
+    hold_avoid_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.40],
+                                                 length=2, **SCORE_RANGE)
+    # The match comes after the hit (15 ms measured, the target at most 60 ms), when the
+    # push has already moved SA: the Avoid direction's SA baseline is the SA this long
+    # before the match [s], the latency target, so that it precedes the hit.
+    hit_baseline_s: float = bounded(0.06, low=0.0, high=1.0, unit="s",
+                                    below="must be zero or positive [s]")
+    # The hit event is looked for from this long after entering Hold [s]:
+    # avoid.hit_refractory_s (a stop's ringing) plus the events' 0.5 s window, so that the
+    # window holds no sample of the ringing. Eq. 3 takes the best of all lags, so a
+    # transient anywhere in the window can match the hit's shape whatever its size; armed
+    # after hit_refractory_s alone, the stop of each Avoid move matched as a new hit 0.53 s
+    # into the next Hold (14 Avoids in a row, README).
+    hit_armed_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
+                                 below="must be zero or positive [s]")
+
+    def thresholds(self) -> dict[str, tuple[float, float]]:
+        """{corrective transition: (SA, RA)} for the corrective EventMatcher."""
+        return {"lift_load": tuple(self.lift_load_thresholds),
+                "hold_avoid": tuple(self.hold_avoid_thresholds)}
+
+    def problem(self) -> tuple[str, str, object] | None:
+        """(field, what it must be, its value) of the first event that is not a corrective
+        event; None when all are."""
+        from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS  # Drake: on use
+        for k, name in enumerate(self.events):
+            if name not in CORRECTIVE_TRANSITIONS:
+                return (f"events[{k}]", "must name a corrective event "
+                        f"({', '.join(CORRECTIVE_TRANSITIONS)})", name)
+        return None
+
+
 @public_dataclass
 @dataclasses.dataclass
 class GraspControllerConfig:
     """The grasp state machine's settings, shared by the closed-loop controllers: the tick,
-    the contact force and the corrective actions' triggers and numbers."""
+    the contact force, and each corrective action's triggers and numbers (Sec. III-C) in
+    its own section."""
     # state machine tick [s]
     update_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
                                      below="must be positive [s]")
@@ -188,102 +357,14 @@ class GraspControllerConfig:
                                      below="must be zero or positive [N]")
     taxel_contact_n: float = bounded(0.05, low=0.0, high=50.0, unit="N",
                                      below="must be zero or positive [N]")
-    # Each SA threshold (contact_force_n, taxel_contact_n, avoid_sa_asymmetry_n, the
+    # Each SA threshold (contact_force_n, taxel_contact_n, avoid.sa_asymmetry_n, the
     # heuristic's contact_force_n) raised to the force that the taxels' noise alone exceeds
     # in at most one trial of a thousand, from the scenario's taxel electronics
     # (control/noise_thresholds.py); False: the numbers alone.
     sa_noise_floor: bool = True
-    # Re-Reach: one finger alone in contact for one_sided_contact_s [s], the gripper closed
-    # on nothing, or no Reach-Load event within reach_event_timeout_s [s] of closing.
-    re_reach_enabled: bool = True
-    one_sided_contact_s: float = bounded(0.1, low=0.0, high=10.0, unit="s",
-                                         below="must be zero or positive [s]")
-    reach_event_timeout_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
-                                           below="must be zero or positive [s]")
-    max_re_reaches: int = bounded(2, low=0, high=10, below="must be zero or positive")
-    # time to shift the open gripper sideways [s]
-    re_reach_move_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
-                                     below="must be zero or positive [s]")
-    # the gripper counts as open beyond this opening [m]
-    opened_m: float = bounded(0.080, low=0.0, high=0.085, unit="m", why="the 2F-85's 85 mm stroke",
-                              below="must be zero or positive [m]")
-    # Lift-Load: during Lift, either pad's slip-band vibration (tactile/slip_vibration_band:
-    # the film's signal above slip_band_hz, RMS over slip_window_s) above
-    # slip_vibration_mps2 [m/s^2] for slip_s [s] means the object slips; back to Load with
-    # the grip force times lift_load_force_factor, and lift again once both SA reach
-    # grip_fraction of that force. (Measured: a 50 N request reads 44.9 N of SA on the box,
-    # the contact patch spreading past the taxels; hence 0.8.) The band: the squeeze, the
-    # lift's load and the amplifier's decay lie below about 10 Hz; texture slip at 40 mm/s
-    # (a lift's speed) rings at 80 Hz. Measured in open-loop grasps of the three objects
-    # (docs/model.md, "Vibration (RA) model"): at 80 Hz and 10 ms a normal lift reads at most
-    # 0.68 m/s^2, pads sliding along the object at lift speed 1.9-5.1 m/s^2; the threshold
-    # 1 m/s^2 (24 mN of pad load) is the one the accelerometer model used.
-    lift_load_enabled: bool = True
-    slip_vibration_mps2: float = bounded(1.0, low=0.0, high=1000.0, unit="m/s^2",
-                                         below="must be zero or positive [m/s^2]")
-    # ... and above this many sigmas of the slip band's noise (control/noise_thresholds.py:
-    # the band's RMS over slip_window_s of noise alone crosses it in at most one trial of a
-    # thousand; the sigma from the film's electronics); 0: the number alone.
-    slip_vibration_sigmas: float = bounded(2.34, low=0.0, high=100.0, unit="noise sigmas",
-                                           why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
-    slip_band_hz: float = bounded(80.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
-    slip_window_s: float = bounded(0.01, low=0.0, low_open=True, high=1.0, unit="s",
-                                   below="must be zero or positive [s]")
-    slip_s: float = bounded(0.02, low=0.0, high=1.0, unit="s",
-                            below="must be zero or positive [s]")
-    lift_load_force_factor: float = bounded(2.0, low=1.0, high=10.0, below="must be at least 1")
-    max_lift_loads: int = bounded(2, low=0, high=10, below="must be zero or positive")
-    # the 2F-85's largest grip force
-    max_grip_force_n: float = bounded(235.0, low=0.0, high=235.0, unit="N",
-                                      why="the 2F-85 grips with at most 235 N, Robotiq 2F-85 "
-                                          "manual",
-                                      below="must be zero or positive [N]")
-    grip_fraction: float = bounded(0.8, low=0.0, low_open=True, high=1.0)
-    # and RA quiet (the slip has stopped) before lifting again
-    relift_settle_s: float = bounded(0.2, low=0.0, high=10.0, unit="s",
-                                     below="must be zero or positive [s]")
     # Load without the Load-Lift event: give up [s]
     load_event_timeout_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
                                           below="must be zero or positive [s]")
-    # Avoid: in Hold, either RA above hit_ra_mps2 [m/s^2] is a hit. The machine stops for
-    # avoid_sense_s [s] to see which way the hit pushed (the pad the object was pushed into
-    # gains more than avoid_sa_asymmetry_n [N] over the other: along the stroke; else the
-    # pads' common acceleration in the horizontal plane), moves avoid_distance_m [m] that
-    # way over avoid_s [s], then Holds again. Hits are ignored for hit_refractory_s [s]
-    # after entering Hold (the stop of the lift rings briefly).
-    avoid_enabled: bool = True
-    hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
-                                 below="must be zero or positive [m/s^2]")
-    # ... and above this many RA noise sigmas (as the slip's)
-    hit_ra_sigmas: float = bounded(5.51, low=0.0, high=100.0, unit="noise sigmas",
-                                   why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
-    avoid_sense_s: float = bounded(0.03, low=0.0, high=1.0, unit="s",
-                                   below="must be zero or positive [s]")
-    avoid_sa_asymmetry_n: float = bounded(1.0, low=0.0, high=100.0, unit="N",
-                                          below="must be zero or positive [N]")
-    avoid_distance_m: float = bounded(0.05, low=0.0, high=0.3, unit="m",
-                                      below="must be zero or positive [m]")
-    avoid_s: float = bounded(0.6, low=0.0, high=10.0, unit="s",
-                             below="must be zero or positive [s]")
-    hit_refractory_s: float = bounded(0.3, low=0.0, high=10.0, unit="s",
-                                      below="must be zero or positive [s]")
-    # With the memorized hit trigger (memorized_corrective_events), the match comes after
-    # the hit (15 ms measured, the target at most 60 ms), when the push has
-    # already moved SA: the Avoid direction's SA baseline is the SA this long before the
-    # match [s], the latency target, so that it precedes the hit.
-    memorized_hit_baseline_s: float = bounded(0.06, low=0.0, high=1.0, unit="s",
-                                              below="must be zero or positive [s]")
-    # The memorized hit event is looked for from this long after entering Hold [s]:
-    # hit_refractory_s (a stop's ringing) plus the events' 0.5 s window, so that the window
-    # holds no sample of the ringing. Eq. 3 takes the best of all lags, so a transient
-    # anywhere in the window can match the hit's shape whatever its size; armed after
-    # hit_refractory_s alone, the stop of each Avoid move matched as a new hit 0.53 s into
-    # the next Hold (14 Avoids in a row, README).
-    memorized_hit_armed_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
-                                           below="must be zero or positive [s]")
-    # Place: without the Place-Unload event, unload anyway this long after the arm stops [s].
-    place_event_timeout_s: float = bounded(1.0, low=0.0, high=60.0, unit="s",
-                                           below="must be zero or positive [s]")
     # Lost object: in Lift, Hold, Avoid or Place, both SA below contact_force_n.
     drop_check_enabled: bool = True
     # The memorized events carry the object they were recorded on; the controller refuses
@@ -291,71 +372,67 @@ class GraspControllerConfig:
     # here (of shape, size, mass, friction, file), e.g. [friction] to grasp a slippery box
     # with the box's events.
     event_object_may_differ: list[str] = dataclasses.field(default_factory=list)
-    # The corrective triggers taken from memorized corrective events instead of the
-    # heuristic thresholds above: any of "hold_avoid" (a hit in Hold -> Avoid; Avoid still
-    # waits hit_refractory_s after entering Hold) and "lift_load" (slip in Lift ->
-    # Lift-Load), each matched by Eq. 3 in its mode. [] (the default): the heuristic
-    # triggers, the baseline. lift_load is measured to match every normal lift (README,
-    # "Memorized corrective triggers"): recorded for comparison, not for use.
-    memorized_corrective_events: list[str] = dataclasses.field(default_factory=list)
-    # Eq. 3 thresholds [SA, RA] of the memorized corrective events, chosen on held-out
-    # recorded runs by analysis/choose_corrective_thresholds.py
-    # (analysis/corrective_thresholds.md: the rule and the tables), never on the
-    # closed-loop trials that judge them.
-    # hold_avoid: every held-out hit found and no false trigger from RA > -0.05 up to 0.85;
-    # the rule takes the admissible region's centre (SA does not tell: a held grip's SA is
-    # flat with or without a hit), median latency 25 ms.
-    # lift_load: no pair finds a held-out slip without a false trigger on a normal lift
-    # (RA > 0.55 finds both, with 3 false of 7); the rule's pair finds none. Not usable as a
-    # trigger on this robot: leave lift_load out of memorized_corrective_events.
-    lift_load_event_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.85],
-                                                      low=-1.0, high=1.0, length=2,
-                                                      why="Eq. 3 scores are correlations")
-    hold_avoid_event_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.40],
-                                                       low=-1.0, high=1.0, length=2,
-                                                       why="Eq. 3 scores are correlations")
+    re_reach: ReReachConfig = dataclasses.field(default_factory=ReReachConfig)
+    lift_load: LiftLoadConfig = dataclasses.field(default_factory=LiftLoadConfig)
+    avoid: AvoidConfig = dataclasses.field(default_factory=AvoidConfig)
+    place: PlaceConfig = dataclasses.field(default_factory=PlaceConfig)
+    memorized_corrective: MemorizedCorrectiveConfig = dataclasses.field(
+        default_factory=MemorizedCorrectiveConfig)
 
-    def corrective_event_thresholds(self) -> dict[str, tuple[float, float]]:
-        """{corrective transition: (SA, RA)} for the corrective EventMatcher."""
-        return {"lift_load": tuple(self.lift_load_event_thresholds),
-                "hold_avoid": tuple(self.hold_avoid_event_thresholds)}
+    def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:
+        """(field, what it must be, its value) of the first setting that does not fit
+        another or the scenario's RA stream, read at ra_rate_hz [Hz] with its approach
+        ending at approach_s [s] (each number's own range is declared on its field); the
+        field as a path under the controller; None when all fit."""
+        from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
+        for k, name in enumerate(self.event_object_may_differ):
+            if name not in DESCRIPTION_FIELDS:
+                return (f"event_object_may_differ[{k}]", "must name a field of the object "
+                        f"({', '.join(DESCRIPTION_FIELDS)})", name)
+        problem = _block_problem(self.sensor_block_s, ra_rate_hz)
+        if problem is not None:
+            return problem
+        for section, found in (("lift_load", self.lift_load.problem(ra_rate_hz=ra_rate_hz)),
+                               ("memorized_corrective", self.memorized_corrective.problem())):
+            if found is not None:
+                return (f"{section}.{found[0]}",) + found[1:]
+        return None
+
+
+def _block_problem(block_s: float, ra_rate_hz: float) -> tuple[str, str, object] | None:
+    """sensor_block_s's problem when its blocks of RA samples do not fall on the sample
+    times in floating point."""
+    if not (block_s > 0 and ra_rate_hz > 0):
+        return None
+    from tegrasp_drake.tactile.sample_block import block_samples, block_update_period
+    samples = block_samples(ra_rate_hz, block_s)
+    try:
+        if samples > 1:
+            block_update_period(1.0 / ra_rate_hz, samples)
+    except ValueError:
+        return ("sensor_block_s", f"gives blocks of {samples} samples at "
+                f"vibration.sample_rate_hz {ra_rate_hz:g}, which do not fall on the sample "
+                "times in floating point; choose a block such as 0.01 or 0.016 s", block_s)
+    return None
 
 
 @dataclasses.dataclass
 class EventTriggeredConfig(GraspControllerConfig):
     """The settings of a state machine whose transitions memorized tactile events trigger,
     matched by Eq. 3."""
-    # Eq. 3 thresholds (Sec. III-B).
-    sa_threshold: float = bounded(0.9, low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
-    ra_threshold: float = bounded(0.7, low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
-    # Cutoff [Hz] of the RA envelope on the memorized and live RA windows before Eq. 3
-    # (events/ra_envelope.py, docs/transfer.md): 2.0, the corner both RA chains share (the
-    # charge amplifier's and the accelerometer's high-pass), lets events memorized with one
-    # vibration transducer match on the other; 0 (the paper): Eq. 3 on the raw windows.
-    ra_envelope_hz: float = bounded(0.0, low=0.0, high=10_000.0, unit="Hz",
-                                    below="must be 0 (no RA envelope) or lie between 0 and half "
-                                          "the RA rate")
-    # The RA noise floor (events/ra_noise_floor.py, docs/transfer.md): an RA window counts
-    # only if its peak rises above its channel's noise mean + ra_noise_floor_sigmas standard
-    # deviations, the noise measured on the stream's first ra_noise_quiet_s [s]. 5.39 is
-    # the rule's k (noise alone crosses it in at most one trial of a thousand); 0 (the
-    # paper): no floor. 2 s: within the 2.8 s approach (scripted_grasp.py: settle_s 0.3 +
-    # reach_s 2.5), before the open fingers can reach the object.
-    ra_noise_floor_sigmas: float = bounded(0.0, low=0.0, high=100.0,
-                                           below="must be 0 (no RA noise floor) or positive "
-                                                 "(standard deviations of the RA noise)")
-    ra_noise_quiet_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
-                                      below="must be zero or positive [s]")
-    # Beyond the paper: a flat template channel (Load-Lift's SA, the settled grip) scores
-    # only a live window that is flat too, so Load-Lift waits until the grip has held for a
-    # window (events/correlation.py); False (the paper): Eq. 3 alone, which passes a grip
-    # still rising once 81 % of the window is on its plateau (a grip that rises over
-    # 0.8 s: lifted at 68 % of it).
-    flat_template_needs_flat_window: bool = False
+    matching: EventMatchingConfig = dataclasses.field(default_factory=EventMatchingConfig)
 
     def event_thresholds(self, chosen: dict | None = None) -> dict[str, tuple[float, float]]:
-        """{transition: (SA, RA)} thresholds that replace sa/ra_threshold (none)."""
+        """{transition: (SA, RA)} thresholds that replace matching's (none)."""
         return {}
+
+    def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:
+        found = super().problem(ra_rate_hz=ra_rate_hz, approach_s=approach_s)
+        if found is None:
+            found = self.matching.problem(ra_rate_hz=ra_rate_hz, approach_s=approach_s)
+            if found is not None:
+                found = (f"matching.{found[0]}",) + found[1:]
+        return found
 
 
 @public_dataclass
@@ -386,7 +463,8 @@ class OpenLoopControllerConfig:
     name: typing.ClassVar[str] = "open_loop"
     events_folder: typing.ClassVar[str | None] = None
     extra_time_s: typing.ClassVar[float] = 0.0
-    memorized_corrective_events: typing.ClassVar[tuple] = ()  # it matches none
+    # it matches no memorized corrective event
+    memorized_corrective: typing.ClassVar[MemorizedCorrectiveConfig] = MemorizedCorrectiveConfig()
 
 
 @public_dataclass
@@ -407,3 +485,11 @@ class TaxelAwareControllerConfig(EventTriggeredConfig):
         """{transition: (SA, RA)}: the ensemble events' own (TaxelAwareConfig), else the
         ones `chosen` for the hand's ensemble events."""
         return self.taxel_aware.event_thresholds(chosen)
+
+    def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:
+        found = super().problem(ra_rate_hz=ra_rate_hz, approach_s=approach_s)
+        if found is None:
+            found = self.taxel_aware.problem()
+            if found is not None:
+                found = (f"taxel_aware.{found[0]}",) + found[1:]
+        return found

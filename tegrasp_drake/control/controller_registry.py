@@ -11,6 +11,7 @@ The entries name their behaviour as "module:function" and load it on use, so tha
 module imports no Drake: the command line's help and the sweep spec read the names here.
 """
 
+import copy
 import dataclasses
 import importlib
 import typing
@@ -194,12 +195,22 @@ def controller_named(name: str, like=None):
     controller's config) that its class also has; the defaults otherwise."""
     cls = controller_class(name)
     settings = _fields(like) if like is not None else set()
-    return cls(**{field: getattr(like, field) for field in _fields(cls) if field in settings})
+    return cls(**{field: copy.deepcopy(getattr(like, field)) for field in _fields(cls)
+                  if field in settings})
+
+
+def _leaf_paths(key: str, value) -> list[str]:
+    """The dotted paths of the settings a YAML `controller` entry sets: `key` itself, or
+    for a section (a mapping) each setting inside it, e.g. matching.ra_envelope_hz."""
+    if isinstance(value, dict) and value:
+        return [path for sub, item in value.items()
+                for path in _leaf_paths(f"{key}.{sub}", item)]
+    return [key]
 
 
 def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
     """A setting of a scenario's YAML `controller` section (tagged or not) that its
-    controller lacks but others have: (setting, the names of those that have it)."""
+    controller lacks but others have: (its dotted path, the names of those that have it)."""
     if not isinstance(section, dict):
         return None
     tag = section.get("_tag")
@@ -208,10 +219,10 @@ def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
     if cls is None:
         return None
     own = _fields(cls)
-    for key in section:
+    for key, value in section.items():
         owners = tuple(other.name for other in CONTROLLER_CLASSES if key in _fields(other))
         if key not in own and owners:
-            return key, owners
+            return _leaf_paths(key, value)[0], owners
     return None
 
 
@@ -220,8 +231,8 @@ def select_controller_tag(data: dict, *, drop_others: bool = False) -> list[str]
     place) into the tag of NAME's config class (`_tag`, as Drake's yaml_load keeps it).
     drop_others: drop the settings of other controllers that NAME's class lacks (a sweep's
     overrides or `--controller` on a scenario written for another controller); a setting no
-    controller has stays, to be refused. Returns the settings dropped.
-    UnknownControllerError for an unknown name."""
+    controller has stays, to be refused. Returns the dotted paths of the settings dropped
+    (each setting of a dropped section). UnknownControllerError for an unknown name."""
     section = data.get("controller") if isinstance(data, dict) else None
     if not isinstance(section, dict) or "name" not in section:
         return []
@@ -232,6 +243,4 @@ def select_controller_tag(data: dict, *, drop_others: bool = False) -> list[str]
     own = _fields(cls)
     others = set().union(*(_fields(other) for other in CONTROLLER_CLASSES))
     dropped = [key for key in section if key in others - own]
-    for key in dropped:
-        del section[key]
-    return dropped
+    return [path for key in dropped for path in _leaf_paths(key, section.pop(key))]

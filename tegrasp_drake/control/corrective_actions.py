@@ -4,7 +4,7 @@
 The rules of the rule tables (transition_logic.py) call the decisions (Re-Reach's is
 rule_actions.re_reach_or_fail, shared by every table); the GraspStateMachine
 (grasp_state_machine.py) calls the actions when it enters the mode. The thresholds and
-distances come from the GraspControllerConfig (controller_config.py).
+distances come from the GraspControllerConfig's sections (controller_config.py).
 
 Frames: world W; the grasp frame G at the side-grasp orientation (arm_kinematics.py)
 approaches along world +x with the finger stroke along world y, the left finger on the +y
@@ -12,14 +12,15 @@ side; each pad's frame has its z axis, the pad normal, pointing at the other fin
 
   Re-Reach   one finger alone touched (or none, or no event in time): open, shift along
              world y toward the touching finger by half the gap between the opening and
-             the object's width, and reach again (at most max_re_reaches times)
-  Lift-Load  the object slips during Lift: back to Load at lift_load_force_factor times
-             the grip force, and lift again once both SA reach it (at most max_lift_loads)
-  Avoid      a hit in Hold: stop, sense which way the hit pushed, move avoid_distance_m
+             the object's width, and reach again (at most re_reach.max_re_reaches times)
+  Lift-Load  the object slips during Lift: back to Load at lift_load.force_factor times
+             the grip force, and lift again once both SA reach it (at most
+             lift_load.max_lift_loads)
+  Avoid      a hit in Hold: stop, sense which way the hit pushed, move avoid.distance_m
              that way
 
 Lift-Load's and Avoid's triggers are the heuristic thresholds (lift_load_or_fail,
-avoid_on_hit) or, for the events named in controller.memorized_corrective_events, the
+avoid_on_hit) or, for the events named in controller.memorized_corrective.events, the
 memorized corrective events matched by Eq. 3 (lift_load_on_slip_event, avoid_on_hit_event).
 """
 
@@ -103,7 +104,7 @@ def re_reach_target(p_WG, shift_m: float) -> np.ndarray:
 
 def _lift_load_for_slip(counters: Counters, config: GraspControllerConfig, trigger: Trigger,
                         reason: str) -> Decision:
-    if counters.lift_loads >= config.max_lift_loads:
+    if counters.lift_loads >= config.lift_load.max_lift_loads:
         return Decision(Mode.FAILED, trigger,
                         f"the object still slips after {counters.lift_loads} Lift-Load "
                         "corrections")
@@ -112,10 +113,10 @@ def _lift_load_for_slip(counters: Counters, config: GraspControllerConfig, trigg
 
 def lift_load_or_fail(slip_s: float, counters: Counters,
                       config: GraspControllerConfig) -> Decision | None:
-    """In Lift: back to Load when the object has slipped for slip_s [s] (slip-band
-    vibration above slip_vibration_mps2) and Lift-Load is on; Failed once max_lift_loads
-    are used up; None to go on lifting."""
-    if not (config.lift_load_enabled and slip_s >= config.slip_s):
+    """In Lift: back to Load when the object has slipped for lift_load.slip_s [s]
+    (slip-band vibration above lift_load.slip_vibration_mps2) and Lift-Load is on; Failed
+    once lift_load.max_lift_loads are used up; None to go on lifting."""
+    if not (config.lift_load.enabled and slip_s >= config.lift_load.slip_s):
         return None
     return _lift_load_for_slip(counters, config, Trigger.CORRECTIVE,
                                "slip during Lift (Lift-Load)")
@@ -124,9 +125,9 @@ def lift_load_or_fail(slip_s: float, counters: Counters,
 def lift_load_on_slip_event(slip_event: bool, counters: Counters,
                             config: GraspControllerConfig) -> Decision | None:
     """In Lift, with memorized corrective triggers: back to Load when the memorized slip
-    event (lift_load) matches and Lift-Load is on; Failed once max_lift_loads are used up;
-    None to go on lifting."""
-    if not (config.lift_load_enabled and slip_event):
+    event (lift_load) matches and Lift-Load is on; Failed once lift_load.max_lift_loads
+    are used up; None to go on lifting."""
+    if not (config.lift_load.enabled and slip_event):
         return None
     return _lift_load_for_slip(counters, config, Trigger.CORRECTIVE_EVENT,
                                "memorized slip event during Lift (Lift-Load)")
@@ -134,19 +135,20 @@ def lift_load_on_slip_event(slip_event: bool, counters: Counters,
 
 def lift_load_grip_force(grip_force_n: float, config: GraspControllerConfig) -> float:
     """The grip force [N] of the Load after a slip: grip_force_n times
-    lift_load_force_factor, at most max_grip_force_n (the 2F-85's largest)."""
-    return min(grip_force_n * config.lift_load_force_factor, config.max_grip_force_n)
+    lift_load.force_factor, at most lift_load.max_grip_force_n (the 2F-85's largest)."""
+    return min(grip_force_n * config.lift_load.force_factor, config.lift_load.max_grip_force_n)
 
 
 def relift_after_lift_load(*, grip_reached: bool, slip_quiet: bool, time_in_load_s: float,
                            counters: Counters,
                            config: GraspControllerConfig) -> Decision | None:
     """In Load after a Lift-Load: lift again once both SA reach the raised grip force
-    (grip_reached), the slip band is quiet (the slip has stopped) and relift_settle_s [s] have
-    passed in Load; None otherwise, and always in the first Load (it waits for its
-    memorized event: those describe the ideal grasp, not a re-load)."""
+    (grip_reached), the slip band is quiet (the slip has stopped) and
+    lift_load.relift_settle_s [s] have passed in Load; None otherwise, and always in the
+    first Load (it waits for its memorized event: those describe the ideal grasp, not a
+    re-load)."""
     if (counters.lift_loads and grip_reached and slip_quiet
-            and time_in_load_s >= config.relift_settle_s):
+            and time_in_load_s >= config.lift_load.relift_settle_s):
         return Decision(Mode.LIFT, Trigger.CORRECTIVE, "raised grip force reached (Lift-Load)")
     return None
 
@@ -155,14 +157,15 @@ def relift_after_lift_load(*, grip_reached: bool, slip_quiet: bool, time_in_load
 
 
 def is_hit(ra_mps2: float, time_in_hold_s: float, config: GraspControllerConfig) -> bool:
-    """In Hold: the larger RA [m/s^2] above hit_ra_mps2, hit_refractory_s [s] or more
-    after entering Hold (the stop of the lift rings briefly)."""
-    return time_in_hold_s >= config.hit_refractory_s and ra_mps2 > config.hit_ra_mps2
+    """In Hold: the larger RA [m/s^2] above avoid.hit_ra_mps2, avoid.hit_refractory_s [s] or
+    more after entering Hold (the stop of the lift rings briefly)."""
+    avoid = config.avoid
+    return time_in_hold_s >= avoid.hit_refractory_s and ra_mps2 > avoid.hit_ra_mps2
 
 
 def avoid_on_hit(hit: bool, config: GraspControllerConfig) -> Decision | None:
     """In Hold: Avoid a hit (is_hit) when Avoid is on; None otherwise."""
-    if config.avoid_enabled and hit:
+    if config.avoid.enabled and hit:
         return Decision(Mode.AVOID, Trigger.THRESHOLD, "hit: RA above the hit threshold")
     return None
 
@@ -170,11 +173,11 @@ def avoid_on_hit(hit: bool, config: GraspControllerConfig) -> Decision | None:
 def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
                        config: GraspControllerConfig) -> Decision | None:
     """In Hold, with memorized corrective triggers: Avoid when the memorized hit event
-    (hold_avoid) matches memorized_hit_armed_s [s] or more after entering Hold (the stop of
-    the lift or of an Avoid rings briefly, and stays in the matcher's window) and Avoid is
-    on; None otherwise."""
-    if (config.avoid_enabled and hit_event
-            and time_in_hold_s >= config.memorized_hit_armed_s):
+    (hold_avoid) matches memorized_corrective.hit_armed_s [s] or more after entering Hold
+    (the stop of the lift or of an Avoid rings briefly, and stays in the matcher's window)
+    and Avoid is on; None otherwise."""
+    if (config.avoid.enabled and hit_event
+            and time_in_hold_s >= config.memorized_corrective.hit_armed_s):
         return Decision(Mode.AVOID, Trigger.CORRECTIVE_EVENT, "memorized hit event in Hold")
     return None
 
@@ -223,15 +226,15 @@ class AvoidMove:
 
 def avoid_move(p_WG, sa_gain_sum_n, acceleration_sum_W,
                config: GraspControllerConfig) -> AvoidMove:
-    """The Avoid move from p_WG [m, world] after sensing for avoid_sense_s [s].
+    """The Avoid move from p_WG [m, world] after sensing for avoid.sense_s [s].
 
     sa_gain_sum_n: the (left, right) SA gain over the last Hold tick [N], summed over the
     sensing ticks (update_period_s apart); acceleration_sum_W: the pads' world
-    accelerations [m/s^2] summed over those ticks. Moves avoid_distance_m [m] along
+    accelerations [m/s^2] summed over those ticks. Moves avoid.distance_m [m] along
     avoid_direction of the mean gain.
     """
-    ticks = max(1, round(config.avoid_sense_s / config.update_period_s))
+    ticks = max(1, round(config.avoid.sense_s / config.update_period_s))
     delta_sa = np.asarray(sa_gain_sum_n) / ticks
-    direction = avoid_direction(delta_sa, acceleration_sum_W, config.avoid_sa_asymmetry_n)
+    direction = avoid_direction(delta_sa, acceleration_sum_W, config.avoid.sa_asymmetry_n)
     return AvoidMove(delta_sa_n=delta_sa, direction_W=direction,
-                     p_end_W=p_WG + config.avoid_distance_m * direction)
+                     p_end_W=p_WG + config.avoid.distance_m * direction)

@@ -109,14 +109,10 @@ def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
     reads: tactile/read_batch.py)."""
     from tegrasp_drake.events import EventMatcherConfig
     return EventMatcherConfig(
-        sa_threshold=config.sa_threshold, ra_threshold=config.ra_threshold,
+        **dataclasses.asdict(config.matching),
         event_thresholds=config.event_thresholds(
             dict(gripper_hand(gripper_model).ensemble_thresholds)),
-        sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s,
-        ra_envelope_hz=config.ra_envelope_hz,
-        ra_noise_floor_sigmas=config.ra_noise_floor_sigmas,
-        ra_noise_quiet_s=config.ra_noise_quiet_s,
-        flat_template_needs_flat_window=config.flat_template_needs_flat_window)
+        sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s)
 
 
 def add_event_matcher_detector(builder, *, config, plan, rates_hz, events, channels):
@@ -144,17 +140,17 @@ def add_heuristic_detector(builder, *, config, plan, rates_hz, events, channels)
 
 def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channels):
     """The corrective EventMatcher (`corrective_matcher`) of the memorized corrective
-    events, fed by `channels`, with their thresholds (controller.*_event_thresholds)."""
+    events, fed by `channels`, with their thresholds (controller.memorized_corrective)."""
     from tegrasp_drake.events import EventMatcher, EventMatcherConfig
     if corrective_events is None:
-        raise ValueError("AddGraspController: controller.memorized_corrective_events names "
-                         f"{list(config.memorized_corrective_events)}: give their events "
+        raise ValueError("AddGraspController: controller.memorized_corrective.events names "
+                         f"{list(config.memorized_corrective.events)}: give their events "
                          "(corrective_events=load_corrective_events(scenario))")
     from tegrasp_drake.tactile.window_normalizer import ConnectWindowChannels
-    events = {t: corrective_events[t] for t in config.memorized_corrective_events}
+    events = {t: corrective_events[t] for t in config.memorized_corrective.events}
     matcher = builder.AddNamedSystem("corrective_matcher", EventMatcher(
         events, EventMatcherConfig(event_thresholds={
-            t: pair for t, pair in config.corrective_event_thresholds().items()
+            t: pair for t, pair in config.memorized_corrective.thresholds().items()
             if t in events}, sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1],
             block_s=config.sensor_block_s, read_period_s=config.update_period_s)))
     ConnectWindowChannels(builder, matcher, channels)
@@ -178,7 +174,7 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     (taxel) and RA (film) rates [Hz] the matchers read. events: {transition:
     MemorizedEvent}, needed by the event-triggered controllers (load_controller_events).
     corrective_events: the memorized corrective events {lift_load, hold_avoid}, needed when
-    controller.memorized_corrective_events names some (load_corrective_events).
+    controller.memorized_corrective.events names some (load_corrective_events).
     ra_noise_std_mps2: the RA channel's noise [m/s^2 rms], which raises the RA thresholds
     to their sigmas (control/noise_thresholds.py); 0: the numbers alone. tactile: the
     taxels' electronics (TactileSensorConfig), whose noise raises the SA thresholds
@@ -239,7 +235,7 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
         builder, config=config, plan=plan, rates_hz=sample_rates_hz, events=events,
         channels=channels.GetOutputPort("channels"))
     corrective = None
-    if config.memorized_corrective_events:
+    if config.memorized_corrective.events:
         corrective = _add_corrective_matcher(builder, config, sample_rates_hz,
                                              corrective_events,
                                              channels.GetOutputPort("channels"))
@@ -274,8 +270,8 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
     samples = (station.GetOutputPort(ports.TACTILE_PAD_ACCELERATION_SAMPLES)
                if station.HasOutputPort(ports.TACTILE_PAD_ACCELERATION_SAMPLES) else None)
     builder.Connect(AddSlipVibrationBand(builder, accelerations.get_output_port(),
-                                         band_hz=config.slip_band_hz,
-                                         window_s=config.slip_window_s,
+                                         band_hz=config.lift_load.slip_band_hz,
+                                         window_s=config.lift_load.slip_window_s,
                                          sample_rate_hz=sample_rates_hz[1],
                                          pad_acceleration_samples=samples,
                                          block_samples=block_samples(

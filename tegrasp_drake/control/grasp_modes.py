@@ -48,7 +48,7 @@ class Trigger(enum.StrEnum):
     CORRECTIVE = "corrective"  # a corrective action (Re-Reach, Lift-Load) started or ended
     FAULT = "fault"  # a device fault
     # A memorized corrective event matched (slip in Lift, a hit in Hold;
-    # controller.memorized_corrective_events).
+    # controller.memorized_corrective.events).
     CORRECTIVE_EVENT = "corrective_event"
 
     @property

@@ -56,7 +56,7 @@ GRIPPER_STATUS_LAG_S = 0.1  # gOBJ is trusted this long after a new request
 EXPECTED_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                        for name in REQUIRED_TRANSITIONS}
 # The memorized corrective event each mode checks for (when named in
-# controller.memorized_corrective_events): the corrective transition that leaves it.
+# controller.memorized_corrective.events): the corrective transition that leaves it.
 EXPECTED_CORRECTIVE_TRANSITION = {Mode.from_label(transition_states(name)[0]): name
                                   for name in CORRECTIVE_TRANSITIONS}
 
@@ -100,7 +100,7 @@ class GraspStateMachine(LeafSystem):
             the taxel_aware controller only, which needs it connected.
         corrective_match: [1] when the corrective EventMatcher matches the mode's
             memorized corrective event, else [0]; read with memorized corrective triggers
-            only (controller.memorized_corrective_events), which need it connected.
+            only (controller.memorized_corrective.events), which need it connected.
         grasp_wrench: [Mx, My, Mz, Fx, Fy, Fz] (N m, N; world) on the arm at the grasp
             frame, from the arm's joint torques (GraspWrenchEstimator); read by the
             taxel_aware controller's finger-strike sense; unconnected: no such sense.
@@ -243,13 +243,13 @@ class GraspStateMachine(LeafSystem):
         if s.mode == Mode.AVOID and s.stage == Stage.SENSING:
             return self._sense_hit(s, t, context)
         if s.mode in (Mode.RE_REACH, Mode.UNLOAD) and s.stage == Stage.OPENING:
-            opened = self._opening(context) >= self._config.opened_m
+            opened = self._opening(context) >= self._config.re_reach.opened_m
             if opened and self._gripper_settled(s, t):
                 here = s.segment.position(t)
                 if s.mode == Mode.RE_REACH:
                     dx, dy = s.reentry_shift
                     target = re_reach_target(here, dy) + np.array([dx, 0.0, 0.0])
-                    duration = self._config.re_reach_move_s
+                    duration = self._config.re_reach.move_s
                 else:
                     # Back to the start pose's distance (nearer, the wrist nears its singularity).
                     target = np.array([max(here[0] - p.retract_distance, p.start_xyz[0]),
@@ -270,7 +270,7 @@ class GraspStateMachine(LeafSystem):
         # The push shows in SA for a few samples and then rings: sum it over the sensing.
         gain = np.asarray(timers.sa_gain_sum) + (self._channels.Eval(context)[:2]
                                                  - np.asarray(s.sa_before))
-        if t - s.mode_start < config.avoid_sense_s:
+        if t - s.mode_start < config.avoid.sense_s:
             return dataclasses.replace(s, timers=dataclasses.replace(
                 timers, acceleration_sum=tuple(total), sa_gain_sum=tuple(gain)))
         here = s.segment.position(t)
@@ -280,7 +280,7 @@ class GraspStateMachine(LeafSystem):
             delta_sa_n=tuple(round(float(x), 3) for x in move.delta_sa_n))
         return dataclasses.replace(
             s, stage=Stage.MOVING, timeline=s.timeline[:-1] + (entry,),
-            segment=MotionSegment(t, config.avoid_s, tuple(here), tuple(move.p_end_W)))
+            segment=MotionSegment(t, config.avoid.move_s, tuple(here), tuple(move.p_end_W)))
 
     def _observe(self, s: MachineState, t: float, context):
         """The tick's Observation, and the state with its running timers updated."""
@@ -291,7 +291,7 @@ class GraspStateMachine(LeafSystem):
         one_sided_since = _since(timers.one_sided_since, t, one_sided)
         ra = float(max(channels[2], channels[3]))
         slip_vibration = float(max(self._slip_vibration.Eval(context)))
-        slipping = s.mode == Mode.LIFT and slip_vibration > config.slip_vibration_mps2
+        slipping = s.mode == Mode.LIFT and slip_vibration > config.lift_load.slip_vibration_mps2
         slip_since = _since(timers.slip_since, t, slipping)
         moving_stage = s.stage in (Stage.MOVING, Stage.NONE)
         motion_done = moving_stage and s.segment.done(t)
@@ -327,9 +327,9 @@ class GraspStateMachine(LeafSystem):
             one_sided_s=t - one_sided_since if one_sided and closing else 0.0,
             closed_on_nothing=closed_on_nothing,
             grip_reached=bool(min(channels[0], channels[1])
-                              >= config.grip_fraction * s.grip_force),
+                              >= config.lift_load.grip_fraction * s.grip_force),
             slip_s=t - slip_since if slipping else 0.0,
-            slip_quiet=slip_vibration <= config.slip_vibration_mps2,
+            slip_quiet=slip_vibration <= config.lift_load.slip_vibration_mps2,
             hit=s.mode == Mode.HOLD and is_hit(ra, time_in_mode, config),
             corrective_event_matched=bool(self._memorized_corrective) and bool(
                 self._corrective_match.Eval(context)[0] > 0.5),
@@ -340,7 +340,7 @@ class GraspStateMachine(LeafSystem):
             # The match comes after the hit: the baseline is the SA before it.
             if s.mode == Mode.HOLD and not observation.corrective_event_matched:
                 sa_history = hit_baseline_history(timers.sa_history, channels,
-                                                  config.memorized_hit_baseline_s,
+                                                  config.memorized_corrective.hit_baseline_s,
                                                   config.update_period_s)
                 sa_before = sa_history[0]
         elif s.mode == Mode.HOLD and not observation.hit:
@@ -392,7 +392,8 @@ class GraspStateMachine(LeafSystem):
             start_to_grasp = np.linalg.norm(np.subtract((*p.object_xy, p.grasp_height),
                                                         p.start_xyz))
             remaining = np.linalg.norm(np.subtract(target, here))
-            duration = max(self._config.re_reach_move_s, p.reach_s * remaining / start_to_grasp)
+            duration = max(self._config.re_reach.move_s,
+                           p.reach_s * remaining / start_to_grasp)
             return new(stage=Stage.MOVING, resume_approach=False,
                        segment=MotionSegment(t, duration, tuple(here), target))
         if mode == Mode.REACH:  # back from Re-Reach: close again where we are

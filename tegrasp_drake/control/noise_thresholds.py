@@ -3,9 +3,10 @@
 RA, in sigmas of the film's noise:
 
 Three triggers compare the film's reading with a number: the hit that starts Avoid
-(`hit_ra_mps2`, raw RA magnitude), the heuristic controller's Place-Unload
+(`avoid.hit_ra_mps2`, raw RA magnitude), the heuristic controller's Place-Unload
 (`heuristic.place_ra_mps2`, raw RA magnitude) and the slip that starts Lift-Load
-(`slip_vibration_mps2`, the slip band's RMS over `slip_window_s`). Each also has a setting in
+(`lift_load.slip_vibration_mps2`, the slip band's RMS over
+`lift_load.slip_window_s`). Each also has a setting in
 sigmas of the noise it reads, and the threshold in force is the larger of the two:
 
     threshold = max(number, sigmas x sigma)
@@ -32,8 +33,8 @@ trial's horizon at the RA rate, both pads:
   - the band's RMS over W samples: W RMS^2 / sigma_band^2 is chi-square with W degrees of
     freedom (the band's samples taken as independent: its impulse response lasts about 3
     samples at 80 Hz and 1 kHz), so k = sqrt(chi2^-1(1 - alpha / N; W) / W) = 2.34 for
-    W = 10 (`window_rms_sigmas`); the rule also asks the band to stay above for slip_s,
-    which only lowers the false alarms further.
+    W = 10 (`window_rms_sigmas`); the rule also asks the band to stay above for
+    lift_load.slip_s, which only lowers the false alarms further.
 
 SA, by the same rule on the exact distribution of the taxels' noise
 (simulation/taxel_rest_noise.py; `sa_noise_floor` switches it off). Four settings compare
@@ -47,7 +48,7 @@ rule's probability:
     trial of a thousand, against 0.3 N asked;
   - a taxel counts toward a contact's shape (`taxel_contact_n`): one reading at rest, over
     the trial's samples of all 24 taxels;
-  - the Avoid move's side (`avoid_sa_asymmetry_n`): the difference of the two pads' SA
+  - the Avoid move's side (`avoid.sa_asymmetry_n`): the difference of the two pads' SA
     gains, each a loaded pad's sum now less its sum before the hit (48 loaded readings'
     noise, unclipped: Gaussian to within the lattice), once per Avoid: both tails,
     probability FALSE_ALARM_PER_TRIAL.
@@ -121,7 +122,8 @@ def sa_noise_floors(tactile_config, sa_rate_hz: float) -> SaNoiseFloors:
 def _sa_changes(config, floors: SaNoiseFloors) -> dict:
     changes = {"contact_force_n": max(config.contact_force_n, floors.pad_sum),
                "taxel_contact_n": max(config.taxel_contact_n, floors.taxel),
-               "avoid_sa_asymmetry_n": max(config.avoid_sa_asymmetry_n, floors.pad_asymmetry)}
+               "avoid": dataclasses.replace(config.avoid, sa_asymmetry_n=max(
+                   config.avoid.sa_asymmetry_n, floors.pad_asymmetry))}
     heuristic = getattr(config, "heuristic", None)
     if heuristic is not None:
         changes["heuristic"] = dataclasses.replace(
@@ -136,11 +138,13 @@ def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: fl
     [m/s^2 rms] at ra_rate_hz [Hz], and, given the taxels' TactileSensorConfig `tactile`
     read at sa_rate_hz [Hz] and config.sa_noise_floor, its SA thresholds raised to the
     noise's (sa_noise_floors); a new config, the caller's untouched."""
-    band = slip_band_noise_std(ra_noise_std_mps2, config.slip_band_hz, ra_rate_hz)
+    avoid, lift_load = config.avoid, config.lift_load
+    band = slip_band_noise_std(ra_noise_std_mps2, lift_load.slip_band_hz, ra_rate_hz)
     changes = {
-        "hit_ra_mps2": max(config.hit_ra_mps2, config.hit_ra_sigmas * ra_noise_std_mps2),
-        "slip_vibration_mps2": max(config.slip_vibration_mps2,
-                                   config.slip_vibration_sigmas * band)}
+        "avoid": dataclasses.replace(avoid, hit_ra_mps2=max(
+            avoid.hit_ra_mps2, avoid.hit_ra_sigmas * ra_noise_std_mps2)),
+        "lift_load": dataclasses.replace(lift_load, slip_vibration_mps2=max(
+            lift_load.slip_vibration_mps2, lift_load.slip_vibration_sigmas * band))}
     heuristic = getattr(config, "heuristic", None)
     if heuristic is not None:
         changes["heuristic"] = dataclasses.replace(heuristic, place_ra_mps2=max(

@@ -59,17 +59,17 @@ def re_reach_limit(situation, limit: int | None = None) -> int:
 
 def re_reach_allowed(situation, limit: int | None = None) -> bool:
     """Re-Reach is on and fewer than `limit` (default: the table's) Re-Reaches are made."""
-    return (situation.config.re_reach_enabled
+    return (situation.config.re_reach.enabled
             and situation.counters.re_reaches < re_reach_limit(situation, limit))
 
 
 def re_reach_or_fail(situation, shift, reason: str, *, limit: int | None = None) -> Decision:
     """ReReach by `shift` (None: the paper's) for `reason`, or Failed when Re-Reach is
-    switched off (config.re_reach_enabled) or `limit` (default: the table's) Re-Reaches are
+    switched off (config.re_reach.enabled) or `limit` (default: the table's) Re-Reaches are
     made."""
     limit = re_reach_limit(situation, limit)
     re_reaches = situation.counters.re_reaches
-    if not situation.config.re_reach_enabled:
+    if not situation.config.re_reach.enabled:
         return decide(Failed(), Trigger.CORRECTIVE, f"{reason}; Re-Reach is switched off")
     if re_reaches >= limit:
         return decide(Failed(), Trigger.CORRECTIVE,

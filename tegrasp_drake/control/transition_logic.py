@@ -40,7 +40,7 @@ class Observation:
     slip_s: float = 0.0  # how long either RA has been above the slip threshold
     hit: bool = False  # either RA above the hit threshold (after the refractory time)
     # The corrective EventMatcher matches the mode's memorized corrective event (slip in
-    # Lift, a hit in Hold); read for the events in controller.memorized_corrective_events.
+    # Lift, a hit in Hold); read for the events in controller.memorized_corrective.events.
     corrective_event_matched: bool = False
     gripper_fault: str = ""  # the 2F-85 fault's name, "" for none
     device_fault: str = ""  # a watchdog's message, "" for none
@@ -53,19 +53,19 @@ class Observation:
 
 def memorized_corrective_trigger(config, transition: str) -> bool:
     """True when the corrective `transition` (lift_load, hold_avoid) is triggered by its
-    memorized corrective event (controller.memorized_corrective_events)."""
-    return transition in getattr(config, "memorized_corrective_events", ())
+    memorized corrective event (controller.memorized_corrective.events)."""
+    return transition in config.memorized_corrective.events
 
 
 def placed(obs: Observation, config) -> bool:
     """In Place: the object stands on the table (the Place-Unload event, or
-    place_event_timeout_s [s] after the arm stopped)."""
+    place.event_timeout_s [s] after the arm stopped)."""
     return obs.event_matched or place_timed_out(obs, config)
 
 
 def place_timed_out(obs: Observation, config) -> bool:
-    """In Place: place_event_timeout_s [s] have passed since the arm stopped."""
-    return obs.motion_done and obs.time_since_motion_done >= config.place_event_timeout_s
+    """In Place: place.event_timeout_s [s] have passed since the arm stopped."""
+    return obs.motion_done and obs.time_since_motion_done >= config.place.event_timeout_s
 
 
 def touching_finger(s: Situation) -> str:
@@ -74,17 +74,17 @@ def touching_finger(s: Situation) -> str:
 
 
 def one_sided(s: Situation) -> bool:
-    """One finger alone has touched for one_sided_contact_s while closing."""
-    return s.obs.one_sided_s >= s.config.one_sided_contact_s
+    """One finger alone has touched for re_reach.one_sided_contact_s while closing."""
+    return s.obs.one_sided_s >= s.config.re_reach.one_sided_contact_s
 
 
 def reach_timed_out(s: Situation) -> bool:
-    """No Reach-Load event reach_event_timeout_s after closing."""
-    return s.obs.closing_s >= s.config.reach_event_timeout_s
+    """No Reach-Load event re_reach.reach_event_timeout_s after closing."""
+    return s.obs.closing_s >= s.config.re_reach.reach_event_timeout_s
 
 
 def reach_timeout_reason(s: Situation) -> str:
-    return f"no Reach-Load event {s.config.reach_event_timeout_s:g} s after closing"
+    return f"no Reach-Load event {s.config.re_reach.reach_event_timeout_s:g} s after closing"
 
 
 def load_timed_out(s: Situation) -> bool:
@@ -112,7 +112,7 @@ def _object_lost(s: Situation) -> bool:
 def _load_timeout(s: Situation) -> Decision:
     if s.counters.lift_loads:
         return decide(Failed(), Trigger.CORRECTIVE, f"{load_timeout_reason(s)} after Lift-Load")
-    return s.re_reach_or_fail(load_timeout_reason(s), limit=s.config.max_re_reaches)
+    return s.re_reach_or_fail(load_timeout_reason(s), limit=s.config.re_reach.max_re_reaches)
 
 
 def _relift(s: Situation) -> Decision | None:
@@ -172,7 +172,7 @@ PAPER_RULES = (
          "heuristic.contact_force_n)", then="Load (event): close at the grip force"),
     Rule("one_sided", (Mode.REACH,), 200, one_sided,
          lambda s: s.re_reach_or_fail(f"only the {touching_finger(s)} finger touched"),
-         when="one finger alone in contact for one_sided_contact_s while closing",
+         when="one finger alone in contact for re_reach.one_sided_contact_s while closing",
          then="{re_reach}, else Failed"),
     Rule("closed_on_nothing", (Mode.REACH,), 300, lambda s: s.obs.closed_on_nothing,
          lambda s: s.re_reach_or_fail("the gripper closed on nothing"),
@@ -180,7 +180,7 @@ PAPER_RULES = (
          then="{re_reach}, else Failed"),
     Rule("reach_timeout", (Mode.REACH,), 400, reach_timed_out,
          lambda s: s.re_reach_or_fail(reach_timeout_reason(s)),
-         when="no Reach-Load event reach_event_timeout_s after closing",
+         when="no Reach-Load event re_reach.reach_event_timeout_s after closing",
          then="{re_reach}, else Failed"),
     # Re-Reach.
     Rule("re_centred", (Mode.RE_REACH,), 100, _done,
@@ -192,26 +192,26 @@ PAPER_RULES = (
          when="the Load-Lift event: the settled grip (heuristic: each SA above "
          "heuristic.grip_fraction of the grip force)", then="Lift (event)"),
     Rule("relift", (Mode.LOAD,), 200, _decides(_relift), _relift,
-         when="after a Lift-Load: both SA at grip_fraction of the raised grip force, the "
-         "slip band quiet, relift_settle_s in Load", then="Lift"),
+         when="after a Lift-Load: both SA at lift_load.grip_fraction of the raised grip "
+         "force, the slip band quiet, lift_load.relift_settle_s in Load", then="Lift"),
     Rule("load_timeout", (Mode.LOAD,), 400, load_timed_out, _load_timeout,
          when="no Load-Lift event load_event_timeout_s in Load",
          then="Failed after a Lift-Load, else Re-Reach ({re_reach_shift}; at most "
-         "max_re_reaches), else Failed"),
+         "re_reach.max_re_reaches), else Failed"),
     # Lift.
     Rule("lift_load", (Mode.LIFT,), 100, _decides(_lift_load), _lift_load,
-         when="either slip band above slip_vibration_mps2 for slip_s (or the memorized "
-         "slip event: memorized_corrective_events); lift_load_enabled",
-         then="Load at lift_load_force_factor times the grip force (Lift-Load), Failed "
-         "after max_lift_loads"),
+         when="either slip band above lift_load.slip_vibration_mps2 for lift_load.slip_s "
+         "(or the memorized slip event: memorized_corrective.events); lift_load.enabled",
+         then="Load at lift_load.force_factor times the grip force (Lift-Load), Failed "
+         "after lift_load.max_lift_loads"),
     Rule("lift_ended", (Mode.LIFT,), 200, _done,
          _when_done(Mode.HOLD, Trigger.TIMER, "lift motion ended"),
          when="the lift motion ended", then="Hold"),
     # Hold.
     Rule("avoid_hit", (Mode.HOLD,), 100, _decides(_avoid), _avoid,
-         when="a hit: either RA above hit_ra_mps2 from hit_refractory_s in Hold (or the "
-         "memorized hit event: memorized_corrective_events); avoid_enabled",
-         then="Avoid: sense the hit's direction, move avoid_distance_m away"),
+         when="a hit: either RA above avoid.hit_ra_mps2 from avoid.hit_refractory_s in Hold "
+         "(or the memorized hit event: memorized_corrective.events); avoid.enabled",
+         then="Avoid: sense the hit's direction, move avoid.distance_m away"),
     Rule("hold_time", (Mode.HOLD,), 200, lambda s: s.obs.time_in_mode >= s.hold_s,
          lambda s: Decision(Mode.PLACE, Trigger.TIMER, f"held {s.hold_s:g} s"),
          when="hold_s in Hold (the grasp script's)", then="Place"),
@@ -227,7 +227,7 @@ PAPER_RULES = (
     Rule("place_timeout", (Mode.PLACE,), 200, lambda s: place_timed_out(s.obs, s.config),
          lambda s: Decision(Mode.UNLOAD, Trigger.TIMER,
                             "no Place-Unload event after the arm stopped"),
-         when="no Place-Unload event place_event_timeout_s after the arm stopped",
+         when="no Place-Unload event place.event_timeout_s after the arm stopped",
          then="Unload: open, retract"),
     # Unload.
     Rule("released", (Mode.UNLOAD,), 100, _done,
@@ -238,8 +238,8 @@ PAPER_RULES = (
 # The paper's Re-Reach: along the stroke toward the finger touching alone, by half the gap
 # between the opening and the object's width (corrective_actions.re_reach_shift).
 PAPER_RE_REACH = ReReachMove(shift_label="the paper's shift along the stroke",
-                             limit_label="max_re_reaches",
-                             limit=lambda s: s.config.max_re_reaches)
+                             limit_label="re_reach.max_re_reaches",
+                             limit=lambda s: s.config.re_reach.max_re_reaches)
 PAPER_TABLE = RuleTable(name="paper", rules=PAPER_RULES, re_reach_move=PAPER_RE_REACH)
 
 

@@ -1,11 +1,15 @@
-"""Emulated devices that speak the real protocols on this host: the JACO2 as a Drake
-simulation on LCM, the Robotiq 2F-85 on a pseudo-terminal (Modbus RTU), the myRIO tactile
-stream on a pseudo-terminal (its replay following the emulated gripper's commands), the
-launcher that starts them together (`tegrasp emulate`) and the one that runs that command
-in a child process.
+"""Emulated devices that speak the real protocols on this host; imported only by tests,
+commands and benchmarks, never by the controller or the hardware station.
 
-Imported only by tests, commands and benchmarks: the controller and the hardware station
-never depend on them.
+launcher.py: Emulators, the devices of one `tegrasp emulate` started together.
+emulator_process.py: EmulatorProcess, `tegrasp emulate` in a child process.
+jaco_arm_emulator.py: the JACO2 as a Drake simulation on LCM.
+robotiq_emulator.py: the 2F-85 model served over Modbus RTU.
+modbus_request_framer.py: whole, CRC-valid Modbus requests out of a byte stream.
+null_modem.py: two joined pseudo-terminals.
+myrio_emulator.py: the myRIO replaying a recorded trial as tactile frames.
+controller_clock.py: the controller's clock from its arm commands, to pace the replay.
+gripper_link.py: the emulated gripper's request, for the replay to follow.
 """
 
 from tegrasp_drake.emulators.controller_clock import ControllerClock, follow_jaco_commands

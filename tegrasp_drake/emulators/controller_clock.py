@@ -1,12 +1,8 @@
-"""The controller's clock as its arm commands carry it: a time base for replaying emulators.
-
-Every lcmt_jaco_command is stamped with the controller diagram's Context time (`utime`).
-An emulator that replays a recorded trial (MyRioEmulator's `trial_clock`) can follow that
-clock instead of its own, so that the replay stays in step with the controller even when
-the controller runs slower than real time (a loaded host): the trial starts with the
-first command, and its time is the newest command's time since the first, extrapolated at
-the controller's recent rate (Context time per wall time, smoothed over about
-RATE_SMOOTHING commands) for at most one command period.
+"""The controller's clock as its arm commands carry it (each lcmt_jaco_command's `utime` is
+Context time): a time base for a replaying emulator (MyRioEmulator's `trial_clock`), so
+the replay stays in step with a controller that runs slower than real time. The trial
+starts with the first command; its time is the newest command's since the first,
+extrapolated at the controller's recent rate for at most one command period.
 """
 
 import threading
@@ -17,7 +13,7 @@ from tegrasp_drake.hardware.jaco.jaco_lcm import (
 from tegrasp_drake.hardware.lcm_boundary import checked_handler
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
 
-RATE_SMOOTHING = 10  # commands
+RATE_SMOOTHING = 10  # [commands] rate averaging, 0.1 s at 100 Hz: smooth, yet quick
 
 
 class ControllerClock:
@@ -59,20 +55,20 @@ class ControllerClock:
 
 
 def command_boundary(device: str = "myrio") -> MessageBoundary:
-    """The boundary a clock's commands cross (check_jaco_command): a malformed command is
-    counted there, and the clock does not move on it."""
+    """The boundary a clock's commands cross (check_jaco_command); the clock ignores a rejected
+    one."""
     return MessageBoundary(f"{device}: {JACO_COMMAND_CHANNEL}", check_jaco_command)
 
 
 def feed_clock(clock: ControllerClock, boundary: MessageBoundary):
-    """A subscription callback (DrakeLcm's or lcm's) feeding `clock` checked commands."""
+    """A callback for an `lcm` package subscription feeding `clock` checked commands."""
     return checked_handler(boundary, lambda command: clock.on_command(command.utime))
 
 
 def follow_jaco_commands(lcm_url: str, clock: ControllerClock, stop: threading.Event,
                          boundary: MessageBoundary | None = None):
-    """A thread feeding `clock` from KINOVA_JACO_COMMAND on `lcm_url` until `stop`; the
-    commands cross `boundary` (command_boundary() by default)."""
+    """A thread feeding `clock` from KINOVA_JACO_COMMAND on `lcm_url` until `stop`, the commands
+    crossing `boundary` (command_boundary() by default)."""
     import lcm
 
     bus = lcm.LCM(lcm_url)

@@ -1,8 +1,5 @@
-"""`tegrasp emulate ...` in a child process, as the real devices are outside the controller's
-process: start it, read where it listens, stop or kill it (tests, benchmarks, scripts).
-
-Where the child's devices listen comes as data: the launcher's "devices: {JSON}" line,
-decoded by `launcher.devices_from_line`; the rest of its output is for people.
+"""`tegrasp emulate ...` in a child process, as real devices are outside the controller's
+process: start it, read where it listens (its "devices: {JSON}" line), stop or kill it.
 """
 
 import os
@@ -23,11 +20,9 @@ class EmulatorProcessError(RuntimeError):
 
 
 class EmulatorProcess:
-    """`python -m tegrasp_drake emulate DEVICE ARGS...`; use as a context manager.
-
-    `devices` holds the HardwareStationConfig fields of the devices it emulates (e.g.
-    {"gripper": {"port": "/dev/pts/3"}}) once it is ready; `output` is all it printed so
-    far (read_output() collects more)."""
+    """`python -m tegrasp_drake emulate DEVICE ARGS...`; use as a context manager. `devices`:
+    the HardwareStationConfig fields of its devices once ready; `output`: all it printed so far.
+    """
 
     def __init__(self, device: str, *args: str, wait: bool = True, timeout: float = 30.0,
                  env=None, scheduling: str = "normal"):
@@ -39,8 +34,7 @@ class EmulatorProcess:
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
             env=env or dict(os.environ))
         if scheduling != "normal":
-            # The child's own --scheduling applies once it has started; this covers its
-            # start-up too (where the OS refuses, the child says so in its output).
+            # Covers the child's start-up too; its own --scheduling applies after.
             raise_scheduling(scheduling, EMULATOR_PRIORITY, pid=self._process.pid)
         os.set_blocking(self._process.stdout.fileno(), False)
         self._buffer = ""
@@ -104,14 +98,11 @@ class EmulatorProcess:
 
 
 class EmulatedDevices:
-    """The three devices, each emulated in its own process (`tegrasp emulate jaco`,
-    `robotiq` and `myrio --sync <myrio_sync> --follow-gripper`, all on `lcm_url`), started
-    together; `config` points a hardware station at them. Use as a context manager; `myrio`,
-    `robotiq` and `jaco` are the EmulatorProcess of each (e.g. to kill one).
-
-    scheduling: the emulators' `--scheduling`. Real devices have processors of their own;
-    on a shared host the default, "fifo", keeps their stand-ins on time when the host is
-    busy, so that what a busy host delays is the controller under test."""
+    """The three devices, each in its own process (jaco, robotiq, myrio with `--sync myrio_sync
+    --follow-gripper`, all on `lcm_url`); `config` points a hardware station at them. Use as a
+    context manager. `scheduling` defaults to "fifo": real devices have processors of their
+    own, so on a busy host what is delayed should be the controller under test.
+    """
 
     def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),
                  robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0,

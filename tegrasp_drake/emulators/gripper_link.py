@@ -1,18 +1,10 @@
-"""The emulated 2F-85's go-to request, shared with the emulated myRIO: what couples the
-replayed pads to the emulated fingers.
+"""The emulated 2F-85's go-to request gPR [byte], shared with the emulated myRIO, whose
+replay holds at each recorded grip or release until the gripper is commanded likewise.
 
-A replayed trial shows the pads as its own gripper moved them. The emulated myRIO holds
-its replay at each of the recording's gripper commands until the emulated gripper has been
-commanded the same way (MyRioEmulator's `gripper_request`), so the replayed pads never
-show a grip or a release before the controller under test has asked for it.
-
-The request is the gripper's gPR (the echo of the position request rPR it is carrying out,
-0-255 bytes). In one process (`tegrasp emulate all`) the myRIO reads it from the gripper
-model; across processes the Robotiq emulator publishes its command and status on the bus
-(GRIPPER_STATE_CHANNEL, lcmt_tegrasp_gripper with `utime` and `status_arrival_s` the
-emulator's time.monotonic(), every GRIPPER_STATE_PERIOD_S) and the myRIO follows it. The
-latest state is all that counts, so a lost message only delays the next by a period; a
-malformed one is counted and skipped (GripperRequestFollower's `boundary`).
+In one process (`tegrasp emulate all`) the myRIO reads gPR from the gripper model; across
+processes the Robotiq emulator publishes its command and status on GRIPPER_STATE_CHANNEL
+(lcmt_tegrasp_gripper, times from its time.monotonic()) and the myRIO follows the latest,
+so a lost message only delays it by a period.
 """
 
 import threading
@@ -33,7 +25,7 @@ def request_of_model(model):
 
 
 def publish_gripper_state(lcm_url: str, model, stop: threading.Event):
-    """A thread publishing the RobotiqGripperModel's command (rPR, rSP, rFR) and status on
+    """A thread publishing the model's command (rPR, rSP, rFR) and status on
     GRIPPER_STATE_CHANNEL of `lcm_url` every GRIPPER_STATE_PERIOD_S until `stop`."""
     import lcm
 
@@ -66,9 +58,9 @@ def check_gripper_request(data: bytes) -> int:
 
 
 class GripperRequestFollower:
-    """The newest gPR [byte] published on GRIPPER_STATE_CHANNEL (None before the first);
-    call it. Thread-safe. Messages cross `boundary` (check_gripper_request): a malformed
-    one is counted there and the last good request kept."""
+    """The newest gPR [byte] on GRIPPER_STATE_CHANNEL (None before the first), when called;
+    thread-safe. A malformed message is counted in `boundary` and the last good request kept.
+    """
 
     def __init__(self):
         self._lock = threading.Lock()

@@ -1,20 +1,11 @@
 """An emulated JACO2 on LCM: a Drake simulation of the arm answering the Kinova driver's
-messages, as Drake's hardware_sim does for its arms.
+messages, as Drake's hardware_sim does (KINOVA_JACO_COMMAND -> joint velocity servos,
+plant state -> KINOVA_JACO_STATUS at 100 Hz).
 
-    KINOVA_JACO_COMMAND -> JacoCommandReceiver -> the plant's joint velocity servos
-    plant state -> JacoStatusSender -> KINOVA_JACO_STATUS (100 Hz)
-
-The plant is the JACO2 model of the station with the gripper as one rigid body on its
-flange (gravity off, as the firmware compensates it). Like the real arm in joint-velocity
-mode it executes only the commanded joint velocities: each joint is a velocity servo,
-tau = kd (v_cmd - v) within the joint's effort limit (the plant's implicit PD with kp = 0),
-so the positions in the command are ignored and a position error must be corrected by
-the host (JacoVelocityTracker); when commands stop for `command_timeout`, the command is
-zero velocity and the arm stops within a few milliseconds. It runs well faster than real
-time; the gripper's fingers and the tactile pads have their own emulators.
-
-Run it with `tegrasp emulate jaco` (or `all`), or build it with `MakeJacoArmEmulator` and
-step it in real time.
+As the real arm in joint-velocity mode, it executes only the commanded velocities: each
+joint is a servo tau = kd (v_cmd - v) within its effort limit (the plant's implicit PD,
+kp = 0), and it stops when commands stop for `command_timeout`. The gripper is one rigid
+body on the flange, gravity is off (the firmware compensates it). `tegrasp emulate jaco`.
 """
 
 import numpy as np
@@ -31,12 +22,10 @@ from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmEmulator
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
 
 PLANT_TIME_STEP = 1e-3  # [s]
-# The joints' velocity servos [N m s / rad]: the arm reaches a commanded speed, or stops,
-# within a few milliseconds. (A position gain as well, stiff enough for that, makes SAP
-# fail to converge once the arm is at rest; velocity mode needs none.)
+# [N m s / rad]: a commanded speed is reached, or the arm stops, within a few milliseconds.
 SERVO_DAMPING_GAIN = 50.0
-# The 2F-85 as a solid cylinder (the tactile gripper model's 0.8 kg base and two 0.05 kg
-# fingers); without it, the bare wrist's tiny inertias make SAP fail to converge at rest.
+# The 2F-85 as a solid cylinder (the gripper model's 0.8 kg base, two 0.05 kg fingers); the
+# bare wrist's tiny inertias alone make SAP fail to converge at rest.
 GRIPPER_MASS = 0.9        # [kg]
 GRIPPER_RADIUS = 0.04     # [m]
 GRIPPER_LENGTH = 0.15     # [m]
@@ -46,13 +35,9 @@ GRIPPER_COM_Z = 0.06      # [m] from the flange along its z
 def MakeJacoArmEmulator(*, lcm, initial_positions, damping_gain: float = SERVO_DAMPING_GAIN,
                         command_timeout: float = 0.05,
                         command_boundary: MessageBoundary | None = None):
-    """The emulator Diagram (module docstring) on `lcm` (a DrakeLcm, which the diagram's
-    LcmInterfaceSystem pumps); the arm starts at `initial_positions` [rad]. Commands cross
-    `command_boundary` (check_jaco_command; pass one to read its counts): a malformed one
-    is counted and skipped, so the arm never executes it and stops when no good command
-    follows within `command_timeout` [s].
-
-    Output ports: position_measured (6), velocity_measured (6) [rad, rad/s], for tests."""
+    """The emulator Diagram on `lcm` (a DrakeLcm its LcmInterfaceSystem pumps), starting at
+    `initial_positions` [rad]; commands cross `command_boundary` (check_jaco_command). Output
+    ports, for tests: position_measured, velocity_measured (6 each) [rad, rad/s]."""
     builder = DiagramBuilder()
     builder.AddNamedSystem("lcm", LcmInterfaceSystem(lcm))
     plant, _ = AddMultibodyPlant(MultibodyPlantConfig(
@@ -60,8 +45,7 @@ def MakeJacoArmEmulator(*, lcm, initial_positions, damping_gain: float = SERVO_D
     parser = paths.make_parser(plant)
     (arm,) = parser.AddModels(url=ARM_URL)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
-    # The gripper as one rigid body of its mass and inertia on the flange: its fingers
-    # are the Robotiq emulator's business, and without their joints a step is 5x cheaper.
+    # One rigid body: the fingers are the Robotiq emulator's, and a step is 5x cheaper.
     gripper = plant.AddRigidBody("gripper", arm, SpatialInertia.SolidCylinderWithMass(
         GRIPPER_MASS, GRIPPER_RADIUS, GRIPPER_LENGTH, [0.0, 0.0, 1.0]).Shift(
             [0.0, 0.0, -GRIPPER_COM_Z]))

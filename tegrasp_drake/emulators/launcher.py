@@ -1,32 +1,13 @@
-"""The emulated devices of one `tegrasp emulate`, started together in this process.
+"""The emulated devices of one `tegrasp emulate`, started together in this process:
+the JACO2 as a real-time Drake simulation on LCM (jaco_arm_emulator.py), the 2F-85 on a
+pseudo-terminal with the scenario's object between its fingers (robotiq_emulator.py; it
+publishes its state for a myRIO emulator elsewhere when none runs here, gripper_link.py)
+and the myRIO replaying a recorded trial (myrio_emulator.py), synced to the arm's commands
+and optionally following the emulated gripper (docs/hardware.md, "The commands").
 
-- jaco: a Drake simulation of the JACO2 on LCM (jaco_arm_emulator.py) at the scenario's
-  start pose, in real time: it executes lcmt_jaco_command joint velocities and answers
-  lcmt_jaco_status at 100 Hz on KINOVA_JACO_COMMAND / KINOVA_JACO_STATUS.
-- robotiq: a Robotiq 2F-85 answering Modbus RTU (slave 9, 115200 8N1) on a pseudo-terminal,
-  with the scenario's object between its fingers (robotiq_emulator.py), optionally with a
-  fault code injected some time after its activation. Without a myRIO in this process, it
-  publishes its command and status on EMULATED_ROBOTIQ of `lcm_url` (gripper_link.py), for
-  a myRIO emulator elsewhere to follow.
-- myrio: the myRIO tactile stream (hardware/myrio/TACTILE_FRAME.md) on a pseudo-terminal,
-  replaying a recorded trial (load_tactile_recording) at its real rate, then holding its
-  last values. Sync "start" streams quiet pads until the first KINOVA_JACO_COMMAND, so the
-  replay starts with the controller; "follow" also follows the controller's clock (the
-  commands' utime, ControllerClock), so the replay stays in step with a controller that
-  runs behind real time. With `follow_gripper`, the replay also waits at each of the
-  recording's gripper commands for the emulated gripper to be commanded likewise (the
-  Robotiq emulator of this process, else EMULATED_ROBOTIQ on `lcm_url`), so the pads never
-  show a grip or release before the controller under test asks for it.
-
-What the devices receive crosses a MessageBoundary (hardware/message_boundary.py): the arm's
-commands, the gripper's Modbus requests, the bus messages the myRIO follows. A malformed
-message is counted and skipped, never executed: `Emulators` says so through `out` the first
-time each kind is seen, and gives the counts when it closes.
-
-`Emulators.start` says where each device listens, in words, through `out`. As data,
-`hardware_config()` points a hardware station at them, and `devices_line()` is one line
-for programs (emulator_process.py reads it back with `devices_from_line`): the
-HardwareStationConfig fields of the devices emulated, as JSON.
+What the devices receive crosses a MessageBoundary; `Emulators` reports each kind of
+rejected message once and the counts at close. `devices_line()` gives the devices'
+HardwareStationConfig fields as one JSON line for programs (`devices_from_line`).
 """
 
 import dataclasses
@@ -71,10 +52,9 @@ class FaultInjection:
 
 
 class Emulators:
-    """The emulated devices (module docstring); close() stops them all.
-
-    lcm_url: the arm's bus (the jaco emulator's, and the commands the myRIO syncs to);
-    out: a function taking each line that says where a device listens or what it does."""
+    """The emulated devices (module docstring); close() stops them all. lcm_url: the arm's bus;
+    out: takes each line saying where a device listens or what it does.
+    """
 
     def __init__(self, *, lcm_url: str, out=print):
         self.lcm_url = lcm_url
@@ -82,15 +62,15 @@ class Emulators:
         self._out = out
         self._devices = {}
         self._closers = []
-        self._jaco = None  # (DrakeLcm, emulator Diagram)
+        self._jaco = None  # (DrakeLcm, emulator Diagram, its command boundary)
         self._robotiq = None  # RobotiqEmulator
         self._boundaries = []  # MessageBoundary of every inbound path, for the counts
 
     def start(self, devices, scenario, *, trial=None, sync: str = "none",
               follow_gripper: bool = False,
               inject_fault: FaultInjection | None = None) -> "Emulators":
-        """Starts `devices` (names in DEVICES, in that order) with the scenario's arm start
-        pose and object; `trial` is the recording the myRIO replays (a TrialLog .npz)."""
+        """Starts `devices` (in DEVICES order) at the scenario's arm start pose and object; `trial`
+        is the TrialLog .npz the myRIO replays."""
         unknown = set(devices) - set(DEVICES)
         if unknown:
             raise ValueError(f"unknown devices {sorted(unknown)}; known: {DEVICES}")
@@ -108,8 +88,7 @@ class Emulators:
 
     @property
     def devices(self) -> dict:
-        """The HardwareStationConfig fields of the devices emulated: {section: {field:
-        value}}."""
+        """The HardwareStationConfig fields of the devices emulated: {section: {field: value}}."""
         return {section: dict(fields) for section, fields in self._devices.items()}
 
     def devices_line(self) -> str:
@@ -117,19 +96,16 @@ class Emulators:
         return DEVICES_LINE_PREFIX + json.dumps(self.devices, sort_keys=True)
 
     def hardware_config(self) -> HardwareStationConfig:
-        """The config of a station on these devices, the arm on `lcm_url` (emulated or
-        not)."""
+        """The config of a station on these devices, the arm on `lcm_url`."""
         return hardware_config_for({**self.devices, "arm": {"lcm_url": self.lcm_url}})
 
     def write_hardware_config(self, path) -> None:
-        """Writes `hardware_config()` for `tegrasp hardware --config`, atomically, under the
-        first line WRITTEN_BY_EMULATE (what may be replaced by the next emulate)."""
+        """Writes `hardware_config()` atomically, under the first line WRITTEN_BY_EMULATE."""
         write_atomically(path, f"{WRITTEN_BY_EMULATE}\n"
                          + hardware_config_to_yaml(self.hardware_config()))
 
     def run_until_stopped(self) -> None:
-        """Runs the arm's simulation in real time (or just waits) until `stop` is set,
-        saying the first time each kind of malformed message arrives."""
+        """Runs the arm's simulation in real time (or waits) until `stop`, reporting rejections."""
         if self._jaco is None:
             while not self.stop.wait(0.2):
                 self.report_rejections()
@@ -144,8 +120,7 @@ class Emulators:
             self.report_rejections()
 
     def report_rejections(self) -> None:
-        """One line through `out` for each kind of message a device skipped, the first
-        time it is seen."""
+        """One line through `out` for each new kind of message a device skipped."""
         for boundary in self._boundaries:
             for rejection in boundary.new_rejections():
                 self._out(boundary.describe(rejection))
@@ -184,7 +159,7 @@ class Emulators:
         diagram = MakeJacoArmEmulator(lcm=drake_lcm, command_boundary=boundary,
                                       initial_positions=initial_arm_positions(scenario.arm))
         self._boundaries.append(boundary)
-        self._jaco = (drake_lcm, diagram)
+        self._jaco = (drake_lcm, diagram, boundary)
         self._devices["arm"] = {"lcm_url": self.lcm_url}
         self._out(f"jaco: JACO2 simulation on {self.lcm_url}: executes {JACO_COMMAND_CHANNEL}, "
                   f"answers {JACO_STATUS_CHANNEL} at 100 Hz")
@@ -255,8 +230,7 @@ class Emulators:
                 "to be commanded likewise"))
 
     def _gripper_request(self):
-        """The emulated gripper's position request: from the model when it runs here, else
-        from EMULATED_ROBOTIQ on `lcm_url`."""
+        """The emulated gripper's position request: from the model here, else EMULATED_ROBOTIQ."""
         from tegrasp_drake.emulators.gripper_link import follow_gripper_state, request_of_model
         if self._robotiq is not None:
             return request_of_model(self._robotiq.model)
@@ -265,19 +239,17 @@ class Emulators:
         return follower
 
     def _feed_controller_clock(self, clock):
-        """Feeds `clock` the arm's commands: through the emulated arm's DrakeLcm when it
-        runs here, else from a thread listening on `lcm_url`."""
-        from tegrasp_drake.emulators.controller_clock import (
-            command_boundary, feed_clock, follow_jaco_commands)
-        boundary = command_boundary()
-        if self._jaco is None:
-            follow_jaco_commands(self.lcm_url, clock, self.stop, boundary)
-            self._boundaries.append(boundary)
+        """Feeds `clock` the arm's commands: those the emulated arm takes when it runs here
+        (its command boundary's listener: no second subscription on its DrakeLcm, see
+        hardware/lcm_boundary.py), else from a thread listening on `lcm_url`."""
+        if self._jaco is not None:
+            self._jaco[2].add_listener(lambda command: clock.on_command(command.utime))
             return
-        from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL
-        # The arm's own boundary counts and reports these commands; this one only guards
-        # the clock.
-        self._jaco[0].Subscribe(JACO_COMMAND_CHANNEL, feed_clock(clock, boundary))
+        from tegrasp_drake.emulators.controller_clock import (
+            command_boundary, follow_jaco_commands)
+        boundary = command_boundary()
+        follow_jaco_commands(self.lcm_url, clock, self.stop, boundary)
+        self._boundaries.append(boundary)
 
     def _start_trial_on_first_command(self, emulator, clock):
         while not clock.started.wait(0.2):

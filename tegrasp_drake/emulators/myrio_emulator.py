@@ -1,44 +1,14 @@
 """An emulated myRIO streaming tactile frames on a pseudo-terminal, at the real rate.
 
-It replays a TactileRecording, a trial's raw pad signals as plain arrays (e.g. from the
-simulator's trial log, `load_tactile_recording`): taxel forces [N] at their own times and
-pad accelerations [m/s^2] at theirs. Frame k (every
-`frame_period`, 1 ms) is written at start + k * frame_period (a deadline loop: a late
-thread catches up, it does not slow the stream) and carries:
-- the piezo samples: the acceleration at the frame's time (sample-and-hold), reduced to
-  the film's one axis (`piezo_axis`; None takes the Euclidean norm, so the RA channel of
-  Eq. 2 replays as recorded), converted to counts through the calibration;
-- a finger's 12 counts when its AD7147 completes a sequence (every `cdc_period`, the right
-  chip half a period after the left), from the forces at that time through the
-  calibration's inverse.
-A quiet `lead_in` (no contact, no vibration) precedes the trial so the receiver can zero.
-With `start_on_trigger`, the quiet stream goes on until `start_trial()` (e.g. on the arm's
-first command, so that a replayed trial lines up with the controller's clock); with
-`hold_at_end`, the last values keep streaming after the trial until `stop()`, as a real
-device keeps streaming. Frame n after the trial's start carries trial time n x
-frame_period; by default frames go out at the real rate (the stream's own clock). Given a
-`trial_clock` (a callable returning the trial time [s], e.g. a ControllerClock following
-the controller's commands), frame n goes out once that clock reaches its time instead, so
-that a controller that falls behind real time still gets every sample once, in step with
-its own clock (the sensor as if slaved to the controller).
-
-Given a `gripper_request` (a callable returning the emulated gripper's position request
-gPR [byte], or None while unknown; gripper_link.py), the replay follows the gripper: the
-recording's own gripper commands (its position requests rPR at their times, e.g. the trial
-log's gripper_command) say when its gripper was told to close and to open, and at each such
-change the replay holds the recording's last frame before it (the last sample at or before
-the last time the old request was logged) until the emulated gripper's request is nearer
-the new one than the old, then plays on from there. So the pads never show a grip or a
-release the controller under test has not commanded: if the controller asks later than the
-recorded one did, the trial's time runs behind the stream's (or the clock's) by the wait;
-if it asks earlier, nothing waits. Without a recorded gripper command, nothing is held.
-
-Faults, each per frame with a given probability, from a seeded generator: a flipped bit,
-a dropped byte, a frame cut short. `stop_talking()` silences it (to trip a watchdog);
-`resume_talking()` resumes with the frame due then. The master end is non-blocking: if the
-reader does not read and the pty buffer fills, frames are dropped and counted, never
-blocking the emulator. `sent()` lists every frame written (sequence, timestamp, write time,
-injected faults, the recording's time it carried), for latency measurements and tests.
+It replays a TactileRecording (a trial's raw pad signals): frame k carries the film's
+acceleration at its time (sample-and-hold, `piezo_axis` or the norm, through the inverse
+calibration) and, when a finger's AD7147 completes a sequence, its 12 counts. A quiet
+`lead_in` lets the receiver zero. Frames go out on the stream's own clock or, given a
+`trial_clock` (e.g. a ControllerClock), once that clock reaches them. Given a
+`gripper_request`, the replay holds at each recorded grip or release until the emulated
+gripper has been commanded the same way (docs/hardware.md, "The commands"). Injected faults
+(flipped bit, dropped byte, truncation) are drawn per frame from a seeded generator; a full
+pty buffer drops frames (counted) and never blocks. `sent()` lists what was written.
 """
 
 import collections
@@ -66,9 +36,10 @@ MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 
 
 @dataclasses.dataclass
 class TactileRecording:
-    """The raw pad signals of a recorded trial, as the myRIO replays them. Times [s]
-    ascending; forces (n, 12) [N]; accelerations (m,) or (m, 3) [m/s^2]. Optionally the
-    recorded gripper's position requests (k,) [rPR byte] at their times (k,) [s]."""
+    """The raw pad signals of a recorded trial: times [s] ascending; forces (n, 12) [N];
+    accelerations (m,) or (m, 3) [m/s^2]; optionally the recorded gripper's position requests
+    (k,) [rPR byte] at their times (k,) [s].
+    """
     force_times: np.ndarray
     left_forces: np.ndarray
     right_forces: np.ndarray
@@ -91,12 +62,10 @@ class TactileRecordingError(ValueError):
 
 
 def load_tactile_recording(path) -> TactileRecording:
-    """The pad signals of a TrialLog .npz: taxel forces (t_sa, taxels: left then right) and
-    pad accelerations (t_ra, pad_acceleration: left x, y, z then right), and the gripper's
-    position requests (t_slow, gripper_command's rPR) when the file holds them. A whole
-    trial log (one with its `meta`) is read by load_trial_log, the reader of every other
-    command; a recording of these arrays alone (save_tactile_recording) meets the same
-    rules for the arrays it holds (trial_arrays_problem)."""
+    """The pad signals of a TrialLog .npz (t_sa, taxels, t_ra, pad_acceleration; left then
+    right) and the gripper's position requests (t_slow, gripper_command's rPR) when present. A
+    whole trial log is read by load_trial_log; a bare recording (save_tactile_recording) meets
+    the same rules for its arrays."""
     wanted = ("t_sa", "taxels", "t_ra", "pad_acceleration")
     try:
         arrays = checked_npz_arrays(path, wanted, optional=(
@@ -125,8 +94,7 @@ def load_tactile_recording(path) -> TactileRecording:
 
 
 def _gripper_requests(path, arrays) -> tuple:
-    """(t_slow, gripper_command's rPR column) of a trial log's arrays, or (None, None)
-    without them."""
+    """(t_slow, gripper_command's rPR column) of a trial log's arrays, or (None, None)."""
     if "t_slow" not in arrays or "gripper_command" not in arrays:
         return None, None
     times, command = arrays["t_slow"], arrays["gripper_command"]
@@ -174,9 +142,9 @@ class StreamFaults:
 @dataclasses.dataclass
 class MyRioEmulatorConfig:
     """Stream timing [s], the calibration to invert, faults."""
-    frame_period: float = 1e-3
-    cdc_period: float = 9.2e-3
-    lead_in: float = 0.5
+    frame_period: float = 1e-3  # one frame per ms (hardware/myrio/TACTILE_FRAME.md)
+    cdc_period: float = 9.2e-3  # AD7147: 12 stages at decimation 64 (TACTILE_FRAME.md)
+    lead_in: float = 0.5  # longer than zeroing's 32 sequences (0.3 s)
     piezo_axis: int | None = None
     start_on_trigger: bool = False
     hold_at_end: bool = False
@@ -186,8 +154,9 @@ class MyRioEmulatorConfig:
 
 @dataclasses.dataclass(frozen=True)
 class GripperCommandChange:
-    """A change of the recorded gripper's position request, from `before` to `after`
-    [rPR bytes], made after `hold_time` [s] (the last time the old request was logged)."""
+    """A change of the recorded position request from `before` to `after` [rPR bytes], made after
+    `hold_time` [s] (the last time the old request was logged).
+    """
     hold_time: float
     before: int
     after: int
@@ -203,8 +172,8 @@ def gripper_command_changes(times, requests) -> list[GripperCommandChange]:
 
 
 def gripper_followed(change: GripperCommandChange, request: int | None) -> bool:
-    """Whether the emulated gripper's request [byte] (None: not known yet) is nearer the
-    change's new request than its old one."""
+    """Whether the emulated gripper's request [byte] (None: unknown yet) is nearer the change's
+    new request than its old one."""
     return request is not None and abs(request - change.after) < abs(request - change.before)
 
 
@@ -268,7 +237,6 @@ class TactileFrameSource:
         c = self._config
         if trial_start_frame == -1:
             trial_start_frame = self.lead_in_frames
-        # trial time of this frame
         t = -1.0 if trial_start_frame is None else (k - trial_start_frame) * c.frame_period
         return self.frame_at(k, t)
 

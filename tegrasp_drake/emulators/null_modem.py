@@ -1,11 +1,7 @@
-"""A virtual null-modem cable: two pseudo-terminals whose masters are joined by a thread.
-
-An emulated serial device opens one end by its tty name (as a real device server would
-open a port) and the driver under test opens the other, so both sides use the ordinary
-pyserial path, like `socat pty pty`. `connected = False` unplugs the cable: bytes are
-discarded in both directions, so the device "stops talking" without either side knowing.
-`to_device`, when given, takes every chunk the host sends and returns what reaches the
-device (the device's own receiver: e.g. a framer that drops what a real device would).
+"""A virtual null-modem cable (like `socat pty pty`): two pseudo-terminals whose masters a
+thread joins, so an emulated device and the driver under test both open a tty by name.
+`connected = False` unplugs it (bytes discarded both ways); `to_device` maps what the host
+sends to what reaches the device (e.g. a framer that drops what a real receiver would).
 """
 
 import os
@@ -23,10 +19,8 @@ def open_raw_pty() -> tuple[int, int, str]:
 
 
 class NullModem:
-    """Joins two pseudo-terminals; `device_port` and `host_port` are their tty names.
-
-    The relay thread wakes at least every `poll_interval` [s] and stops by itself when
-    `close()` is called. Use as a context manager.
+    """Joins two pseudo-terminals, `device_port` and `host_port`; the relay wakes at least every
+    `poll_interval` [s]. Use as a context manager.
     """
 
     def __init__(self, *, poll_interval: float = 0.02, to_device=None):

@@ -1,36 +1,11 @@
 """An emulated Robotiq 2F-85 answering Modbus RTU on a pseudo-terminal.
 
-pymodbus's `ModbusSerialServer` (RTU framer) serves a `SimDevice` (slave 9) with the
-command registers at 1000-1002 and read-only status registers at 2000-2002; its `action`
-hook runs `RobotiqGripperModel` on every access. pymodbus opens its port by name through
-pyserial, and a pseudo-terminal has only one named end, so the server and the driver sit
-on the two ends of a `NullModem` (two ptys joined by a relay thread); the driver opens
-`RobotiqEmulator.port`.
-
-The model (times from `time.monotonic()`, advanced on every access):
-- a rising edge of rACT starts activation (gSTA = 1) which completes (gSTA = 3, fingers
-  open) after `activation_duration`; rACT = 0 resets everything, faults included;
-- gGTO is the echo of rGTO (manual, "Gripper status"), 0 while activation runs: rGTO = 1
-  during activation (as in one write of rACT and rGTO) is the manual's fault 0x05, "action
-  delayed", and the go-to is carried out when activation completes (gGTO = 1, gFLT = 0);
-- with rGTO = 1 the fingers move towards rPR at the rSP speed (robotiq.units), within the
-  stroke (gPO POSITION_OPEN_BYTE .. POSITION_CLOSED_BYTE: rPR 0 stops fully open, 255
-  fully closed, both gOBJ = 3), and stop on an emulated object at `object_opening` [m]
-  while closing (gOBJ = 2) or at the request (gOBJ = 3); gPR echoes the rPR of the last
-  go-to; gPO is the rounded position, gCU the free-motion current [x 10 mA] while the
-  fingers move and 0 once they stop (the screw holds: the manual's finished grasp reads
-  0x00);
-- rGTO = 1 without rACT gives gFLT 0x07; an injected fault code >= 0x0A (major) stops the
-  fingers until the next activation.
-
-The requests reach the server through a ModbusRequestFramer (modbus_request_framer.py) on
-the cable, as they would reach a real 2F-85's receiver: noise, a bad CRC or a malformed
-header is dropped and counted in `request_boundary`, and the next valid request is
-answered.
-
-Every command write (function 16, or the write half of function 23, which pymodbus does
-before its read half) and every status read (function 4, or 3, or 23's read half) runs the
-model, so a status read in the same transaction as a command already reflects it.
+pymodbus's `ModbusSerialServer` serves a `SimDevice` (command registers 1000-1002,
+read-only status 2000-2002) whose `action` hook runs `RobotiqGripperModel` on every access,
+so a status read in the same transaction as a command already reflects it. pymodbus opens
+its port by name and a pty has one named end, so server and driver sit on the two ends of a
+`NullModem`; requests cross a ModbusRequestFramer on the way, as on a real receiver. What
+the model does: docs/hardware.md, "The emulated 2F-85".
 """
 
 import asyncio
@@ -54,14 +29,16 @@ ActivationStatus = units.ActivationStatus
 
 @dataclasses.dataclass
 class RobotiqEmulatorConfig:
-    """Emulated gripper. Times in seconds, openings in metres (pad to pad)."""
+    """Emulated gripper: its slave id, activation time [s], object width [m] pad to pad."""
     device_id: int = registers.DEVICE_ID
-    activation_duration: float = 1.5
+    activation_duration: float = 1.5  # a stand-in: clients wait for gSTA = 3, not a time
     object_opening: float | None = None
 
 
 class RobotiqGripperModel:
-    """The gripper's state and behaviour (module docstring); thread-safe."""
+    """The gripper's state and behaviour, advanced on every access (time.monotonic()) and
+    thread-safe.
+    """
 
     def __init__(self, config: RobotiqEmulatorConfig, now: float):
         self._config = config
@@ -117,7 +94,7 @@ class RobotiqGripperModel:
             self._advance(now)
             s = self._status
             moving = s["gOBJ"] == ObjectStatus.MOVING and s["gGTO"] and self._can_move()
-            # Stopped, on an object or at the request, the screw holds: no current.
+            # Stopped, the screw holds: no current (the manual's finished grasp reads 0x00).
             current = units.current_byte(0.0, moving=moving)
             vector = [0.0] * units.STATUS_SIZE
             vector[units.STATUS_ACT] = s["gACT"]
@@ -148,7 +125,7 @@ class RobotiqGripperModel:
             s["gGTO"] = 0
             return
         if s["gSTA"] != ActivationStatus.ACTIVE:
-            # Carried out when activation completes (_advance), as the manual's 0x05 says.
+            # Carried out when activation completes, as the manual's 0x05 says.
             s["gFLT"] = max(s["gFLT"], units.FAULT_ACTION_DELAYED)
             return
         self._go_to(command)
@@ -195,10 +172,8 @@ class RobotiqGripperModel:
 
 
 class RobotiqEmulator:
-    """Serves `RobotiqGripperModel` over Modbus RTU; the driver opens `port`.
-
-    Start and stop with a `with` block (or start()/stop()); `disconnect()` makes the
-    gripper stop talking, `reconnect()` brings it back.
+    """Serves `RobotiqGripperModel` over Modbus RTU on `port`; start and stop with a `with` block;
+    `disconnect()` silences the gripper, `reconnect()` brings it back.
     """
 
     def __init__(self, config: RobotiqEmulatorConfig | None = None):

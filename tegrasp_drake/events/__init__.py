@@ -1,20 +1,20 @@
-"""Memorized tactile events: extraction, file format, live windows and matching.
+"""Memorized tactile events: extraction, file format, live windows and matching (Fig. 3).
 
-The record step cuts max-normalised 0.5 s windows of the four channels around each grasp
-transition of an ideal grasp (extraction.py); each is a MemorizedEvent (memorized_event.py),
-stored as JSON files (event_file.py, FORMAT.md) in an events folder with an index
-(events_folder.py). In the control loop (the paper's Fig. 3), the EventMatcher is a
-WindowNormalizer (tactile/window_normalizer.py: the live 0.5 s windows) that scores its
-windows against the expected event with Eq. 3 (correlation.py, streaming_correlation.py) in
-the update that takes each sample; `add_event_matcher` adds it to a diagram. The
-EventSequencer expects an object's events one after another. replay.py runs a logged trial
-through them offline; missed_waits.py replays the waits for an event that never came and
-says why.
-
-Not re-exported here, so that the control loop does not import matplotlib:
-`plot.plot_memorized_events` (the Fig. 5c-like figure), `benchmark` (the matcher's cost
-per tick; `python -m benchmarks.matcher`) and `synthetic` (synthetic grasps
-for tests).
+- transitions.py: the grasp transitions events can trigger, in grasp order.
+- memorized_event.py: MemorizedEvent, one object's four max-normalised windows.
+- extraction.py: cuts the events out of a recorded ideal grasp.
+- event_file.py: one event's JSON file and the folder's index (FORMAT.md).
+- events_folder.py: save, load and find an events folder.
+- correlation.py: Eq. 3 and the contrast gate, the reference implementation.
+- streaming_correlation.py: the exact per-sample update of the Eq. 3 scores.
+- event_matcher.py: EventMatcher, the live windows scored against the expected event.
+- ra_envelope.py: the RA envelope (a low-pass of both RA windows, beyond the paper).
+- ra_noise_floor.py: the RA noise floor measured on the quiet approach.
+- event_sequencer.py: EventSequencer, an object's events one after another.
+- replay.py: a logged trial through the matcher, offline.
+- missed_waits.py: why a memorized event did not come in time.
+- synthetic.py: synthetic grasps for tests (not re-exported).
+The figure of the events is figures/events.py (kept out, so the loop needs no matplotlib).
 """
 
 from tegrasp_drake.events.correlation import (

@@ -1,35 +1,12 @@
-"""Eq. 3 of the paper: the maximum over lags of the normalised cross-correlation.
-
-For a live window x and a memorized window y (same sample rate, N samples each),
+"""Eq. 3 of the paper: the maximum over lags of the normalised cross-correlation,
 
     R_XY,normalized(n) = R_XY(n) / sqrt(R_XX(0) R_YY(0)),   R_XY(n) = sum_k x[k+n] y[k],
 
-and a channel's score is the maximum over all lags n = -(N-1)..N-1 (the paper leaves the
-timing free). As in the paper, no mean is removed. The score is scale invariant, so
-normalising either window by its maximum changes nothing, except that an all-zero window
-must be guarded: its score is 0, never NaN.
-
-A flat window carries no event, yet without mean removal it can score high against a
-template that is mostly a plateau (a constant window against a step whose plateau fills a
-fraction f of the window scores sqrt(f): 0.95 for f = 0.9). Holding a steady grip would
-then look like first contact. So a channel's score counts only when its live window has a
-contrast, (max - min) / max|x|, of at least `min_contrast`; otherwise the score is 0. A
-template channel that is itself flat (contrast below `min_contrast`) expects no change, and
-for it the live contrast is not required. A constant window has contrast 0, so it can pass
-only the channels whose template is flat; the matcher refuses events whose four channels
-are all flat, so a constant window never matches.
-
-The converse, beyond the paper (opt-in, `flat_needs_flat`): a flat template channel, such
-as Load-Lift's SA, the settled grip, scores 0 against a live window that is not flat
-itself. Without it, a window whose grip still rises scores sqrt(f) against the plateau,
-f the fraction of the window on the plateau, and passes 0.9 once f > 0.81: 0.41 to 0.55 s
-after first contact whatever the grip does, with 68 % of a grip that rises over 0.8 s.
-With it, the whole window must lie within min_contrast of its maximum: the grip has held
-for a window.
-
-The straightforward reference here uses numpy.correlate over the full lag range;
-streaming_correlation.py holds the exact per-sample update used in the control loop. Both
-go through `channel_score`.
+over n = -(N-1)..N-1, no mean removed (as the paper); an all-zero window scores 0. A
+channel's score counts only when its live window's contrast (max - min) / max|x| reaches
+`min_contrast`, unless its template is flat too; opt-in `flat_needs_flat` makes a flat
+template score only a flat window (docs/controller.md, "The contrast gate"). The reference
+here uses numpy.correlate; streaming_correlation.py the loop's update; both `channel_score`.
 """
 
 import math

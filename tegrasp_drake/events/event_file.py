@@ -3,12 +3,9 @@
     events/index.json                      the list of events, with their metadata
     events/<object>/<transition>.json      one event: four max-normalised windows
 
-Files are plain JSON, written with sorted keys, one-space indent, each window on one line
-and Python's shortest round-trip float repr, so that a file reads back to the same float64
-values and re-running the record step on the same data produces identical bytes. Any
-problem when reading (a missing, truncated or invalid file, a wrong format_version, a
-missing field, a window of the wrong length) raises MemorizedEventError, whose message
-names the file and the command that remakes it. FORMAT.md describes every field.
+Sorted keys, one window a line, shortest round-trip floats: a file reads back to the same
+float64 values, and recording the same data again gives identical bytes. A bad file raises
+MemorizedEventError naming the file and the command that remakes it (FORMAT.md).
 """
 
 import json
@@ -26,10 +23,8 @@ from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import TRANSITIONS
 
 FORMAT_VERSION = 3
-# Version 1 files lack `object_description`; they are read by taking it from the object
-# section of their `scenario` text. Version 2 files are read as they are: they hold no
-# quiet RA window (a constant window of ones that expects only the sensor's noise), so
-# nothing in them reads differently (FORMAT.md, Versions).
+# Version 1 takes `object_description` from its `scenario` text; version 2 (no quiet RA
+# windows) reads as it is (FORMAT.md, Versions).
 MIGRATED_VERSIONS = (1, 2)
 EVENT_FORMAT = "tegrasp.memorized_event"
 INDEX_FORMAT = "tegrasp.memorized_event_index"
@@ -37,8 +32,8 @@ INDEX_FILE = "index.json"
 RECORD_COMMAND = "tegrasp record-events"
 
 
-# An event file holds one 0.5 s window (about 30 kB at the paper's rates; 1 kHz RA, 2
-# channels); an index lists a few dozen files. 16 MB leaves room for 20 kHz windows.
+# An event file is about 30 kB at the paper's rates (0.5 s, 1 kHz RA); 16 MB leaves room
+# for 20 kHz windows.
 MAX_EVENT_FILE_BYTES = 16_000_000
 
 

@@ -9,7 +9,8 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 from tegrasp_drake.rig.api_boundary import check_field_values, public_api, public_dataclass
-from tegrasp_drake.rig.ranges import Range, bounded
+from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
+from tegrasp_drake.rig.ranges import Range, bounded, declared_field
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import template_is_flat
@@ -24,59 +25,45 @@ from tegrasp_drake.tactile.sampling import resample_window
 from tegrasp_drake.tactile.window_normalizer import (
     ConnectWindowChannels, RateWindow, WindowNormalizer, WindowNormalizerConfig, window_layout)
 
-# Eq. 3 scores are correlations, in [-1, 1]: a threshold outside never or always passes.
-SCORE_RANGE = dict(low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
 
 
 @public_dataclass
 @dataclasses.dataclass
 class EventMatcherConfig:
-    """Thresholds of Sec. III-B and the live sample rates [Hz].
-
-    A channel passes when its score is greater than its threshold; min_contrast is the
-    live contrast a channel needs for its score to count (correlation.py), > 0.
+    """Thresholds of Sec. III-B (a channel passes above its threshold) and the live rates [Hz];
+    min_contrast: live contrast a channel needs for its score to count (correlation.py). The
+    settings a controller gives it are declared once, in rig/event_matching.EventMatchingConfig.
     """
-    sa_threshold: float = bounded(0.9, **SCORE_RANGE)
-    ra_threshold: float = bounded(0.7, **SCORE_RANGE)
-    # {transition: (sa, ra)} thresholds of single events, in place of the two above (the
-    # taxel_aware controller's ensemble events, chosen per transition); {}: none. Each in
-    # SCORE_RANGE (checked by EventMatcher).
+    sa_threshold: float = declared_field(EventMatchingConfig, "sa_threshold")
+    ra_threshold: float = declared_field(EventMatchingConfig, "ra_threshold")
+    # {transition: (sa, ra)} per-event thresholds in place of the two above (taxel_aware)
     event_thresholds: Mapping[str, tuple[float, float]] = dataclasses.field(
         default_factory=dict)
     min_contrast: float = bounded(0.25, low=0.0, low_open=True, below="must be positive")
-    # Beyond the paper: a flat template channel (the settled grip of Load-Lift's SA) scores
-    # only a flat live window (correlation.py); False: the paper's Eq. 3.
-    flat_template_needs_flat_window: bool = False
+    # Beyond the paper: a flat template channel scores only a flat live window (correlation.py)
+    flat_template_needs_flat_window: bool = declared_field(EventMatchingConfig,
+                                                           "flat_template_needs_flat_window")
     sa_rate_hz: float = bounded(100.0, low=0.0, low_open=True, unit="Hz")
     ra_rate_hz: float = bounded(1000.0, low=0.0, low_open=True, unit="Hz")
-    # Block [s] in which a fast rate's samples are scored, one update per block (0: one
-    # per sample; WindowNormalizerConfig.block_s). A match then shows at the block's end,
-    # at most one block later than per sample.
+    # Block [s] in which a fast rate's samples are scored in one update (0: per sample); a
+    # match shows at most one block late (WindowNormalizerConfig.block_s).
     block_s: float = bounded(0.0, low=0.0, unit="s")
-    # The tick [s] of the one system that reads the outputs, in its update at multiples of
-    # it (the grasp state machine's); 0: read at any time. A rate taken per sample then
-    # takes each tick's samples in one update just before it (tactile/read_batch.py): the
-    # reader sees the per-sample matcher's outputs, a read at another instant (a logger,
-    # a replay's per-sample rows) up to a tick old. Not with an RA noise floor, which the
-    # matcher reads at each sample.
+    # The tick [s] of the one reader (the state machine's update); a rate taken per sample
+    # then takes each tick's samples in one update just before it (tactile/read_batch.py).
+    # 0: read at any time. Not with an RA noise floor (read at each sample).
     read_period_s: float = bounded(0.0, low=0.0, unit="s")
-    # Cutoff [Hz] of the RA envelope that add_event_matcher puts on the memorized and the
-    # live RA windows alike (events/ra_envelope.py); 0: none, Eq. 3 on the raw windows.
-    ra_envelope_hz: float = bounded(0.0, low=0.0, unit="Hz")
-    # The RA noise floor (events/ra_noise_floor.py): an RA window whose peak is not above
-    # its channel's noise mean + ra_noise_floor_sigmas standard deviations (measured on the
-    # stream's first ra_noise_quiet_s [s], after the envelope) scores 0; 0: no such gate.
-    # A flat RA template (a quiet window, "expects no change") reads the floor whatever
-    # this is: it scores 1 while the live window stays within the floor, Eq. 3 above it
-    # (k: this, or the rule's k when 0).
-    ra_noise_floor_sigmas: float = bounded(0.0, low=0.0)
-    ra_noise_quiet_s: float = bounded(2.0, low=0.0, unit="s")
+    # Cutoff [Hz] of the RA envelope on memorized and live RA alike (ra_envelope.py); 0: none
+    ra_envelope_hz: float = declared_field(EventMatchingConfig, "ra_envelope_hz")
+    # The RA noise floor (events/ra_noise_floor.py): k of the floor m + k s measured on the
+    # first ra_noise_quiet_s [s]; an RA window not above it scores 0 (0: no gate; quiet
+    # templates then read the floor with the rule's k).
+    ra_noise_floor_sigmas: float = declared_field(EventMatchingConfig, "ra_noise_floor_sigmas")
+    ra_noise_quiet_s: float = declared_field(EventMatchingConfig, "ra_noise_quiet_s")
 
 
 def check_matcher_config(config: EventMatcherConfig) -> None:
-    """ConfigError or TypeError naming the first field of `config` that is not a number in
-    its range (check_field_values), or an event threshold that is not a pair in
-    SCORE_RANGE."""
+    """ConfigError or TypeError naming the first field out of its range, or an event threshold
+    that is not a pair in SCORE_RANGE."""
     check_field_values(config, "EventMatcher: config")
     score = Range(**SCORE_RANGE)
     for transition, pair in dict(config.event_thresholds).items():
@@ -104,32 +91,15 @@ def window_normalizer_config(events: Mapping[str, MemorizedEvent],
 
 
 class EventMatcher(WindowNormalizer):
-    """Eq. 3 scores of the live channels' windows against the expected memorized event; its
-    match: the paper's Fig. 3 path from the channels to the state machine,
+    """The paper's Fig. 3 path: channels -> WindowNormalizer (last window_s per channel,
+    max-normalised) -> Eq. 3 against the expected event -> scores, match.
 
-        channels -> WindowNormalizer (the last window_s of each channel, max-normalised)
-                 -> Eq. 3 against the expected event -> scores, match.
-
-    The matcher is a WindowNormalizer that also scores its windows: the windows it scores
-    are the normaliser's, held once in the Context, each followed in its rate's state vector
-    by the streaming correlation of the window (SlidingCorrelation); each tick of a rate
-    takes the sample into the window and slides the scores in one update (`_after_push`).
-    After each sample a rate keeps whether its channels passed their thresholds (its pass
-    history: the last samples' time, expected event and pass). A rate in blocks
-    (config.block_s) slides its scores sample by sample through the block in one update;
-    `match` then asks whether the per-sample matcher would have matched after any of the
-    block's samples: each of those samples passed and every other rate's latest sample at
-    or before it passed too. With config.read_period_s, a rate taken per sample slides
-    through each reader's tick's samples in one update just before the tick (read batches,
-    WindowNormalizer): the reader's update sees the per-sample matcher's outputs.
-
-    Constructed with one object's memorized events; their grasp order (transitions.py)
-    numbers them 0, 1, ... (see `transition_indices`). Every tick of a channel's rate, the
-    channel's window of the events' window_s slides by one sample and is scored, by an
-    exact streaming update, against the event selected by `expected_event`; only that event
-    is checked. The update reads the samples that left and entered the window, and the
-    whole window only to recompute the correlations (when the expected event changes, and
-    when the window's buffer compacts) or when an extreme left it.
+    Each rate's state holds its window, the streaming correlation (SlidingCorrelation) and a
+    pass history of its last samples. Events are numbered in grasp order
+    (`transition_indices`). A rate in blocks (config.block_s) slides through a block in one
+    update; `match` asks whether the per-sample matcher would have matched after any of its
+    samples. With config.read_period_s, a rate taken per sample slides through each reader's
+    tick's samples in one update just before the tick (tactile/read_batch.py).
 
     .. pydrake_system::
 
@@ -148,30 +118,17 @@ class EventMatcher(WindowNormalizer):
         - scored_event
 
     Ports:
-        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2), sampled at
-            config.sa_rate_hz (SA) and config.ra_rate_hz (RA).
-        sa_block, ra_block: a rate's samples in blocks (WindowNormalizer); connected, with
-            channels, by ConnectWindowChannels.
+        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2) at the config's
+            SA and RA rates; sa_block, ra_block: in blocks (ConnectWindowChannels).
         expected_event: [index] of the event to check, or -1 for none.
-        ra_floor: [left, right] the RA noise floor (RaNoiseFloor; declared with
-            config.ra_noise_floor_sigmas > 0 or when an event has a flat RA template): a
-            flat RA template's channel scores 1 while the live window's peak is not above
-            it, its Eq. 3 score above it; with ra_noise_floor_sigmas > 0 any other RA
-            channel whose window's peak is not above it scores 0.
-        sa_window, ra_window: the max-normalised windows that are scored (WindowNormalizer).
-        scores: the four channels' scores in [-1, 1]; 0 when no event is expected, before
-            a full window has been sampled, for a channel whose live window is too flat
-            to carry an event, or for an RA channel below its noise floor; 1 for a flat
-            RA template's channel within its noise floor.
-        match: [1.0] when every channel's score exceeds its threshold and the scores are
-            for the event now expected, else [0.0]. It depends directly on expected_event,
-            so one tick after the expected event changes it cannot report the old event.
-            With a rate in blocks, [1.0] when the per-sample matcher would have matched
-            after any sample of the last block (scored against the event expected at the
-            block's end), held until the next block: a match is reported at most one block
-            after the per-sample matcher's and none is missed between two block ends.
-        scored_event: [index] of the event the scores refer to, -1 for none or while the
-            SA and RA scores refer to different events.
+        ra_floor: [left, right] RA noise floor [m/s^2], declared with ra_noise_floor_sigmas
+            > 0 or a quiet template.
+        sa_window, ra_window: the max-normalised windows that are scored.
+        scores: the four scores in [-1, 1]; 0 with no event, before a full window, for a too
+            flat window or an RA window below its floor; 1 for a quiet template within it.
+        match: [1.0] when every channel passes for the event now expected (never the previous
+            one); in blocks, held to the next block end, at most one block late.
+        scored_event: [index] the scores refer to; -1 for none or while SA and RA disagree.
     """
 
     @public_api
@@ -198,8 +155,7 @@ class EventMatcher(WindowNormalizer):
             for by_channel in templates_by_event for c in RA_CHANNELS)
         if reads_floor:  # the floor is read at each sample: no read batches
             normalizer_config = dataclasses.replace(normalizer_config, read_period_s=0.0)
-        # After each rate's correlation, its pass history (PassHistory): as many samples as
-        # a block holds, or, for a rate taken per sample, as many as span two blocks.
+        # After each correlation its PassHistory: a block's samples, or per sample two blocks'.
         block_span_s = max(block_samples(g.rate_hz, config.block_s) / g.rate_hz
                            for g in normalizer_config.rate_groups())
         self._histories = {}
@@ -293,9 +249,7 @@ class EventMatcher(WindowNormalizer):
             if zero:
                 raise ValueError(f"event '{event.transition}' of '{event.object_name}' has "
                                  f"all-zero channels {zero}: Eq. 3 could never match them")
-            # An event flat on every channel is not refused: its flat RA channels are
-            # quiet templates, which read the live noise floor (ra_noise_floor.py), and a
-            # live transient fails them.
+            # An all-flat event is allowed: its flat RA channels are quiet templates.
 
     def _expected_event(self, context) -> int:
         value = self._expected_port.Eval(context)[0]
@@ -309,9 +263,8 @@ class EventMatcher(WindowNormalizer):
     def _after_push(self, window: RateWindow, state: np.ndarray,
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
                     context, sample_time: float) -> None:
-        """Slides the window's correlation, after the window in `state`, by the samples the
-        WindowNormalizer just pushed (a missing one scores its channel 0 for one window),
-        and adds whether the group's channels passed to its pass history."""
+        """Slides the rate's correlation by the samples just pushed and adds whether its
+        channels passed to its pass history."""
         rows, offset, full = pushed  # (a star call costs more than this unpacking)
         name = window.group.name
         expected = self._expected_event(context)
@@ -353,9 +306,8 @@ class EventMatcher(WindowNormalizer):
         output.SetAtIndex(0, 1.0 if matched else 0.0)
 
     def _matched_at_a_sample(self, context, expected: int) -> bool:
-        """Whether every rate passed for `expected` at one instant: a sample of the last
-        block of a rate in blocks (every other rate's latest sample at or before it), or,
-        with no rate in blocks, the latest samples of all."""
+        """Whether every rate passed for `expected` at one instant: a sample of the last block
+        of a rate in blocks, or else the latest samples of all."""
         entries = {window.group.name: self._histories[window.group.name].entries(state)
                    for window, _, state in self._correlation_states(context)}
         if not all(entries.values()):
@@ -412,15 +364,10 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
                       channels=None) -> EventMatcher:
     """Adds the paper's Fig. 3 comparison to `builder`: an EventMatcher (`event_matcher`).
 
-    channels: an output port of the four channels, connected to its `channels` input and,
-    for a config in blocks, to its block inputs through sample registers
-    (ConnectWindowChannels); else the caller connects them. With config.ra_envelope_hz, the
-    events' and the channels' RA pass through the RA envelope first (events/ra_envelope.py;
-    `channels` is then required). With config.ra_noise_floor_sigmas, or when an event has a
-    flat RA template, a RaNoiseFloor fed by the raw `channels` (events/ra_noise_floor.py;
-    `channels` required) feeds its `ra_floor`.
-    Its `expected_event` input and its `scores`, `match` and `scored_event` outputs are the
-    caller's to connect.
+    channels: an output port of the four channels, connected to its inputs (through sample
+    registers in blocks); None: the caller connects them. With config.ra_envelope_hz the
+    events' and channels' RA pass through the RA envelope first; with a noise floor a
+    RaNoiseFloor on the raw `channels` feeds `ra_floor`. Both need `channels`.
     """
     raw_channels = channels
     if config is not None and config.ra_envelope_hz:

@@ -1,12 +1,8 @@
 """EventSequencer: expects memorized events one after another, in grasp order.
 
-The smallest state machine over the EventMatcher: it puts the first event of its sequence
-on `expected_event`, and each time the matcher reports a match, moves on to the next one
-and notes the time. After the last event it expects none (-1). An event may be armed from a
-time on (`armed_from_s`), as the grasp's state machine expects Place-Unload only in Place:
-before that time the sequencer expects none. The grasp controller's
-state machine does the same while also commanding the arm and gripper; offline replays of
-logged trials (`replay.py`, `tegrasp replay LOG`) use this one alone.
+The smallest state machine over the EventMatcher: it expects each event of its sequence in
+turn (one armed from a time on, as the grasp expects Place-Unload only in Place), moving on
+at each match and noting its time. Offline replays (`replay.py`, `tegrasp replay LOG`) use it.
 """
 
 import math
@@ -28,12 +24,9 @@ def next_sequence_step(step: int, matched: bool, n_events: int) -> int:
 class EventSequencer(LeafSystem):
     """Expects `event_indices` in turn; advances on each match and records when.
 
-    A periodic update every `period_s` reads `match`; when it is 1, the sequencer advances
-    and stores the update's time as that event's fire time. The matcher's match at a tick
-    therefore becomes a fire time one period later, as for any sampled state machine, and
-    the new expected event reaches the matcher at the tick after that. Outputs depend only
-    on the discrete state, so the loop matcher -> sequencer -> matcher has no algebraic
-    loop.
+    A periodic update every `period_s` reads `match` and advances, so a match becomes a fire
+    time one period later; outputs depend only on the state, so matcher -> sequencer ->
+    matcher is no algebraic loop. State: [step (events fired), fire time per event].
 
     .. pydrake_system::
 
@@ -46,11 +39,9 @@ class EventSequencer(LeafSystem):
 
     Ports:
         match: [1.0] when the expected event matched (EventMatcher's `match`), else [0.0].
-        expected_event: [index] of the event now expected (EventMatcher's
-            `expected_event`), -1 before it is armed and once every event has fired.
-        fire_times: one time [s] per event of the sequence, when it fired; NaN until then.
-
-    State: [step, fire time per event], step = number of events fired so far.
+        expected_event: [index] of the event now expected, -1 before it is armed and after
+            the last.
+        fire_times: one time [s] per event of the sequence, NaN until it fires.
     """
 
     def __init__(self, event_indices: Sequence[int], *, period_s: float = DEFAULT_PERIOD_S,

@@ -1,9 +1,6 @@
 """An events folder: save an object's memorized events with the index, load them back,
-find the folder that holds an object's events.
-
-Saving is all or nothing: every file is staged beside its target, then all are renamed
-into place together with Ctrl-C held back, the index last (event_file.py has the files'
-layout).
+find the folder that holds an object's events. Saving is all or nothing (staged files
+renamed together with Ctrl-C held back, the index last).
 """
 
 import os
@@ -31,11 +28,8 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
                           required: Sequence[str] = REQUIRED_TRANSITIONS) -> list[pathlib.Path]:
     """Write the events' files and the index; returns the paths written.
 
-    Each object given replaces that object's previous events (stale files of that object
-    are removed). With keep_other_objects, the index keeps the entries of objects not given
-    (so recording one object keeps the others); otherwise the index lists only `events`.
-    Every object must have the `required` transitions (REQUIRED_TRANSITIONS; a corrective
-    events folder: CORRECTIVE_TRANSITIONS).
+    Each object given replaces its previous events (stale files removed); keep_other_objects
+    keeps the other objects' index entries. Every object needs the `required` transitions.
     """
     events_dir = pathlib.Path(events_dir)
     events = _sorted_events(events)

@@ -1,25 +1,10 @@
 """Cut memorized events out of a recorded ideal grasp (Sec. III-A of the paper).
 
-The record step logs the four channels of an ideal grasp (SA at the SA rate, RA at 1 kHz)
-and the time of each transition's physical event (first contact, the scripted start of
-the lift, lift-off, table touch; transitions.py). Around each of those times a window of `window_s`
-is cut from every channel and divided by its maximum.
-
-Window placement: the window starts `pre_transition_s` before the physical event. The
-default, 0.25 s of a 0.5 s window, puts the event in the middle: the memorized event holds
-as much of the state before the event as after it, so it describes the change rather than
-the state (a mostly-plateau window would let a steady grip look like contact; see
-correlation.py). A live window matches best when the event sits at the same place in it,
-that is about window_s - pre_transition_s = 0.25 s after the physical event; the thresholds
-accept a match somewhat earlier. That stays within the 0.5 s a detection may take, with
-half a window of margin for differences between the ideal and the live grasp.
-
-Quiet RA windows (`ra_floor`, beyond the paper): an RA window whose peak (its largest
-|value|) does not rise above its channel's noise floor, measured on the recording's own
-quiet approach (ra_noise_floor.py: m + k s), carries only the sensor's noise. It is stored
-as a constant window of ones: flat, "expects no change" (correlation.py); the matcher
-passes it while the live window stays within the live noise floor, and scores it by Eq. 3
-above the floor (ra_noise_floor.py).
+Around each transition's physical event (transitions.py) a `window_s` window of every
+channel is cut, starting `pre_transition_s` before the event, and divided by its maximum.
+An RA window whose peak does not rise above the recording's own noise floor (m + k s of its
+quiet approach, ra_noise_floor.py) is stored as ones: a quiet template, flat, "expects no
+change" (beyond the paper; docs/controller.md, "The paper's state machine").
 """
 
 import dataclasses
@@ -32,17 +17,17 @@ from tegrasp_drake.events.memorized_event import MemorizedEvent, current_package
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import transition_order
 
-DEFAULT_WINDOW_S = 0.5
+DEFAULT_WINDOW_S = 0.5  # the paper's window (Sec. III-A)
+# The event mid-window: as much of the state before it as after, so the event describes the
+# change, not the state (a plateau-filled window would let a steady grip look like contact).
 DEFAULT_PRE_TRANSITION_S = 0.25
 
 
 @dataclasses.dataclass(frozen=True)
 class TactileTrial:
-    """The channels logged during one grasp, and its transitions' physical-event times.
-
-    t_sa (N,) [s], sa (N, 2) [N] for [left, right]; t_ra (M,) [s], ra (M, 2) [m/s^2];
-    transition_times: {transition name: time [s] of its physical event}.
-    Each logged value holds until the next one (zero-order hold).
+    """The channels logged during one grasp (each value held until the next), and its
+    transitions' physical-event times: t_sa (N,) [s], sa (N, 2) [N] [left, right]; t_ra (M,)
+    [s], ra (M, 2) [m/s^2]; transition_times: {transition: time [s]}.
     """
     t_sa: np.ndarray
     sa: np.ndarray
@@ -68,10 +53,8 @@ class TactileTrial:
 
 def cut_window(times: np.ndarray, values: np.ndarray, *, start_s: float, rate_hz: float,
                length: int, what: str) -> np.ndarray:
-    """Sample a log at start_s + k / rate_hz, k = 0..length-1, holding the latest value.
-
-    times (N,), values (N, channels) -> (channels, length). The window must lie within the
-    log; `what` names it in the error otherwise.
+    """Samples a log (times (N,), values (N, channels)) at start_s + k / rate_hz, k < length,
+    holding the latest value -> (channels, length); ValueError naming `what` outside the log.
     """
     grid = start_s + np.arange(length) / rate_hz
     tolerance = 1e-6 / rate_hz  # of a sample period: float noise in the time stamps
@@ -93,13 +76,10 @@ def extract_memorized_events(
         ra_floor: Sequence[float] | None = None) -> dict[str, MemorizedEvent]:
     """One max-normalised MemorizedEvent per transition of `trial`, in grasp order.
 
-    object_description: the object the trial grasped (rig/objects.object_description).
-
-    sa_rate_hz, ra_rate_hz: rates [Hz] of the memorized windows (the live rates).
-    ra_floor: [left, right] the recording's RA noise floor [m/s^2] (`recording_ra_floor`),
-        or None: an RA window whose peak is not above it is stored flat (module doc).
-    Raises ValueError for an unknown transition, a window outside the log, or a channel
-    that is zero throughout its window (Eq. 3 could never match it).
+    sa_rate_hz, ra_rate_hz: the memorized (= live) rates [Hz]; object_description: the object
+    grasped (rig/objects.object_description); ra_floor: [left, right] the recording's RA noise
+    floor [m/s^2] (`recording_ra_floor`) or None. Raises ValueError for an unknown transition,
+    a window outside the log, or a channel zero throughout its window.
     """
     versions = current_package_versions() if package_versions is None else package_versions
     events = {}

@@ -1,8 +1,5 @@
 """A memorized tactile event: one object's four max-normalised channel windows around one
-grasp transition, checked on construction (shapes, normalisation, names).
-
-Its files are in event_file.py (one event, the index) and events_folder.py (an events
-folder: save, load, find); FORMAT.md describes every field.
+grasp transition, checked on construction. Files: event_file.py, events_folder.py, FORMAT.md.
 """
 
 import dataclasses

@@ -1,35 +1,14 @@
 """Why a memorized event did not come in time: a logged wait replayed through Eq. 3.
 
-A wait is the time the grasp state machine spent in a mode expecting that mode's memorized
-event (grasp_state_machine.EXPECTED_TRANSITION) until the mode gave up on it: the
-transition out of the mode whose reason is the event's timeout ("no Reach-Load event 3 s
-after closing", "no Load-Lift event within 2 s", "no Place-Unload event after the arm
-stopped"; control/transition_logic.py). `event_waits` finds them in a trial's
-transitions.
-
-`classify_missed_wait` replays the trial's channels with the event held expected
-(replay.replay_event_held: the EventMatcher the controller ran, with its settings) and
-looks at the scores over the wait, with the matcher's own thresholds (SA > 0.9, RA > 0.7
-in the paper):
-
-  weak dynamic stimulus  both SA channels passed at some tick, and at each such tick an RA
-                         channel did not: the pads felt the event's quasi-static shape but
-                         the vibration channel did not carry its dynamic part (the paper's
-                         Sec. V: the film "failed to identify very weak dynamic stimuli")
-  SA did not match       no tick where both SA channels passed
-  matched in replay      a tick where all four passed: the replay disagrees with the run
-                         (another events folder or matcher setting than the run's)
-
-With the class go the scores closest to passing and, for a weak dynamic stimulus, how
-large the RA window was at its best tick (the SA-passing tick whose lower RA score is
-highest): each RA channel's peak |value| over the window ending there [m/s^2], against
-that channel's noise, the mean and standard deviation of its raw samples over the
-stream's first quiet_s (the arm's approach, pads untouched; ra_noise_floor.py); the
-largest |RA| over the whole wait besides (the tick that scored best may lie before the
-stimulus; the wait's largest reading says whether the film read it at all); and whether
-a failing RA channel stayed within the noise floor's m + k s over the whole wait (k =
-5.39 at 1 kHz, ra_noise_floor.rule_sigmas: noise alone crosses it in one trial of a
-thousand), i.e. the film read nothing it could tell from its noise.
+A wait is the time the state machine spent in a mode expecting its memorized event until it
+gave up (the transition whose reason is the event's timeout, control/transition_logic.py);
+`event_waits` finds them in a trial's transitions. `classify_missed_wait` replays the
+trial's channels with the event held expected (replay.replay_event_held, the run's matcher
+settings) and classifies the wait by its ticks' scores: a weak dynamic stimulus (both SA
+passed at some tick, an RA channel did not: the paper's Sec. V "very weak dynamic
+stimuli"), SA did not match, or matched in replay (the replay disagrees with the run). With
+it go the best scores and the RA peaks against the channel's noise on the stream's first
+quiet_s (docs/sweeps.md, "A sweep": the missed-events report).
 """
 
 import dataclasses
@@ -88,13 +67,11 @@ def event_waits(transitions: Sequence[Mapping]) -> list[EventWait]:
 class MissedWait:
     """A wait's replay (module docstring).
 
-    thresholds: (SA, RA) the matcher used for the event. best_tick_s: the SA-passing tick
-    whose lower RA score is highest, None when SA never passed; best_sa, best_ra: [left,
-    right] SA and RA scores there (best_sa without one: at the tick whose lower SA score is
-    highest; best_ra None). ra_peak: [left, right] peak |RA| [m/s^2] of the window ending at
-    best_tick_s (None without a best tick); ra_noise_mean, ra_noise_std: [left, right] the
-    RA noise [m/s^2]. ra_wait_peak: [left, right] peak |RA| [m/s^2] over the
-    whole wait, the strongest vibration the channel read while the event was expected."""
+    thresholds: (SA, RA) of the event. best_tick_s: the SA-passing tick whose lower RA score is
+    highest (None when SA never passed); best_sa, best_ra: [left, right] scores there (without
+    it, best_sa at the tick of highest lower SA score). ra_peak: [left, right] peak |RA|
+    [m/s^2] of the window ending at best_tick_s; ra_wait_peak: over the whole wait;
+    ra_noise_mean, ra_noise_std: the RA noise [m/s^2] of the quiet approach."""
     wait: EventWait
     miss_class: str
     thresholds: tuple[float, float]
@@ -122,10 +99,9 @@ class MissedWait:
         return self._sigmas(self.ra_wait_peak)
 
     def failing_ra_within_floor(self, sigmas: float) -> bool | None:
-        """Whether an RA channel that stayed below its threshold at the best tick read no
-        more than its noise mean + `sigmas` standard deviations (the RA noise floor's rule,
-        ra_noise_floor.py) over the whole wait: it never read the stimulus; None without a
-        best tick."""
+        """Whether an RA channel below its threshold at the best tick read no more than its
+        noise mean + `sigmas` std over the whole wait (it never read the stimulus); None
+        without a best tick."""
         if self.best_ra is None:
             return None
         failing = self.best_ra <= self.thresholds[1]
@@ -155,9 +131,8 @@ def ra_window_peak(trial: TactileTrial, end_s: float, window_s: float) -> np.nda
 
 def classify_missed_wait(trial: TactileTrial, events: Mapping[str, MemorizedEvent],
                          wait: EventWait, config: EventMatcherConfig) -> MissedWait:
-    """Replays `trial` from its start to wait.end_s with wait.transition's event held
-    expected by an EventMatcher of `config` (the run's: event_matcher_config), and
-    classifies the wait by the scores of its ticks in [start_s, end_s] (module docstring).
+    """Replays `trial` to wait.end_s with wait.transition's event held expected by an
+    EventMatcher of `config` (the run's) and classifies the wait by its ticks' scores.
     """
     if not trial.t_ra[0] <= wait.start_s <= wait.end_s <= trial.t_ra[-1] + 1e-9:
         raise ValueError(f"the wait {wait.start_s:.3f}-{wait.end_s:.3f} s is not within the "

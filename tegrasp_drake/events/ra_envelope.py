@@ -1,33 +1,10 @@
-"""The RA envelope: both RA windows, memorized and live, through the same low-pass before
-Eq. 3, so that events memorized with one vibration transducer match on another.
-
-Why. The two RA transducers of the paper's pipeline read a contact differently. The
-idealised simulation's accelerometer reads the pad's rigid-body acceleration: a contact is a
-one-sample spike (the contact's one-step change of velocity), nothing while the grip
-squeezes. The real pad's PVDF film reads the load on the pad through its charge amplifier:
-a contact rings at the fingertip's mode and the rising grip holds the reading up until the
-force stops rising. Eq. 3 of a spike against such a window is the window's peak over its
-energy, far below the RA threshold (docs/transfer.md, "What breaks transfer"), although both
-windows say the same thing: the pad was touched at this moment and the reading then decayed.
-
-What. A first-order low-pass of each RA channel (Eq. 2's magnitude, so an envelope of the
-vibration) at `cutoff_hz`, applied alike to the memorized event's RA windows (at their
-rate, then max-normalised again) and to the live RA samples ahead of the matcher's window.
-At a cutoff below both transducers' own bandwidths, each one's contact reading becomes a
-pulse of the filter's time constant, whatever the transducer made of it; Eq. 3 then compares
-when and how often the pads were touched, not the transducer's impulse response.
-
-The cutoff to use is the one corner the two RA chains share: both the film's charge
-amplifier and the accelerometer's high-pass forget a reading with the 2 Hz corner
-(`vibration.highpass_cutoff_hz`, tau = 80 ms), the longest memory in either chain; below it
-neither transducer has a bandwidth of its own (docs/transfer.md). The SA channels pass
-unchanged.
-
-The filter is y[k] = y[k-1] + a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s): the
-impulse-invariant discretisation of 1 / (1 + s / (2 pi f_c)) at the sample rate f_s. A
-memorized window starts from its first sample as the filter's steady state (the reading
-before the window is unknown; the event windows open on a quiet pad); the live filter starts
-at zero, as the channels do.
+"""The RA envelope (beyond the paper): memorized and live RA windows through the same
+first-order low-pass before Eq. 3, so that events memorized with one vibration transducer
+match on another: below both transducers' bandwidths a contact reads as a pulse of the
+filter's time constant, whatever the transducer made of it (docs/transfer.md, "A remedy:
+the RA envelope": why 2 Hz). y[k] = y[k-1] + a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s)
+(impulse-invariant 1 / (1 + s / (2 pi f_c))); a memorized window starts from its first
+sample as the steady state (event windows open on a quiet pad), the live filter from zero.
 """
 
 import dataclasses
@@ -71,10 +48,9 @@ def enveloped_event(event: MemorizedEvent, cutoff_hz: float) -> MemorizedEvent:
 class RaEnvelope(LeafSystem):
     """The live side of the RA envelope: the four channels with the RA ones low-passed.
 
-    Every 1 / ra_rate_hz it takes the RA samples into a first-order low-pass at cutoff_hz
-    (module docstring); its output is the filter's value at that tick, computed from the
-    previous value and the present input, so that a matcher sampling at the same ticks reads
-    the envelope of the same samples it would have read raw.
+    Every 1 / ra_rate_hz it updates the low-pass at cutoff_hz; the output is the filter's value
+    from the previous value and the present input, so a matcher sampling at the same ticks
+    reads the envelope of the samples it would have read raw.
 
     .. pydrake_system::
 
@@ -114,7 +90,7 @@ class RaEnvelope(LeafSystem):
 
 def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
     """Adds an RaEnvelope (`ra_envelope`) fed by the output port `channels`; returns its
-    output port."""
+    output."""
     envelope = builder.AddNamedSystem("ra_envelope", RaEnvelope(
         cutoff_hz=cutoff_hz, ra_rate_hz=ra_rate_hz))
     builder.Connect(channels, envelope.GetInputPort("channels"))
@@ -123,10 +99,8 @@ def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
 
 def ra_enveloped(builder, events, channels, config):
     """(events, channels) with the RA envelope at config.ra_envelope_hz [Hz] on both: the
-    events' RA windows low-passed (enveloped_event), and `channels`, an output port of the
-    four channels, through an RaEnvelope at config.ra_rate_hz added to `builder`.
-
-    config: an EventMatcherConfig (read: ra_envelope_hz, ra_rate_hz)."""
+    events' RA windows low-passed, and `channels` (an output port) through an RaEnvelope added
+    to `builder`. config: an EventMatcherConfig."""
     if channels is None:
         raise ValueError("the RA envelope needs the channels' output port to filter "
                          "(add_event_matcher(..., channels=PORT))")

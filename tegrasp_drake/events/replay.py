@@ -1,13 +1,10 @@
 """Replay a logged (or synthetic) trial through the tactile event systems, offline.
 
-`channels_trajectory(trial)` is a zero-order-hold trajectory of the four channels in
-CHANNEL_NAMES order, each logged value held until the next one, as the station's channel
-output holds SA at the SA rate and RA at 1 kHz. `replay_events_in_sequence` feeds it
-through a TrajectorySource into an EventMatcher (add_event_matcher, as the grasp controller
-wires it) whose expected event an EventSequencer advances in grasp order, as the grasp
-state machine would;
-`replay_event_held` keeps one event expected for the whole trial instead (to see where
-else it would match). Both report the outputs at every control tick.
+`channels_trajectory` holds each logged value until the next (as the station holds SA at
+the SA rate, RA at 1 kHz) and feeds an EventMatcher wired as the grasp controller wires it;
+`replay_events_in_sequence` advances its expected event with an EventSequencer, as the
+state machine would, `replay_event_held` keeps one event expected throughout (where else
+would it match?). Both report the outputs at every control tick.
 """
 
 import dataclasses
@@ -59,24 +56,14 @@ def tactile_trial_from_log(log, transition_times: Mapping[str, float] | None = N
 
 @dataclasses.dataclass(frozen=True)
 class EventReplay:
-    """The event systems' outputs over a replayed trial, one row per control tick.
+    """The event systems' outputs over a replayed trial, one row per control tick (as they
+    stood just before the tick's updates, so a match shows in the row of the sequencer's fire
+    time).
 
-    The row at time t holds the outputs as they stood just before the updates at t, i.e.
-    after the tick at t - tick period; a match therefore first shows in the row of the
-    time at which the sequencer fires for it.
-
-    transitions: the matcher's events, by index. times (T,) [s]; scores (T, 4);
-    match (T,) 0 or 1; expected_event (T,) index or -1.
-    fire_times: {transition: time [s] the sequencer advanced past it, or None}, in the
-        sequence's order (empty for a held event).
-    windows_at_match: {transition: (sa_window, ra_window)}, the matcher's max-normalised
-        windows, (2, N_sa) and (2, N_ra), at the tick that matched it (sequence replays
-        only): the windows it scored.
-    scores_at_match: {transition: the matcher's scores at that tick}.
-    ra_peaks_at_match: {transition: each RA channel's largest |value| in its window, not
-        normalised, at that tick (what the quiet-template rule compares with the floor)}.
-    ra_floor_at_match: {transition: the RA noise floor the matcher read at that tick (its
-        `ra_floor` input; +inf per channel for a matcher without one)}.
+    times (T,) [s]; scores (T, 4); match (T,) 0 or 1; expected_event (T,) index or -1;
+    fire_times: {transition: time [s] the sequencer passed it, or None}. At each matching tick
+    (sequence replays only): windows_at_match, the scored (sa, ra) windows; scores_at_match;
+    ra_peaks_at_match, each RA channel's largest raw |value|; ra_floor_at_match (+inf: none).
     """
     transitions: tuple[str, ...]
     times: np.ndarray
@@ -197,10 +184,9 @@ def replay_events_in_sequence(
         armed_from_s: Mapping[str, float] | None = None) -> EventReplay:
     """Replays `trial`, expecting the events of `sequence` one after another.
 
-    events: one object's memorized events ({transition: event}); config: the matcher's
-    thresholds (its rates are set to the events'); t_end: default the trial's end;
-    armed_from_s: {transition: time [s]} before which that event is not looked for (as the
-    state machine looks for Place-Unload only in Place); default: each from the start.
+    events: one object's {transition: event}; config: the matcher's thresholds (rates set to
+    the events'); t_end: default the trial's end; armed_from_s: {transition: time [s]} before
+    which it is not looked for (default: from the start).
     """
     return _replay(trial, events, sequence=tuple(sequence), held=None, config=config,
                    t_end=t_end, armed_from_s=armed_from_s)

@@ -1,47 +1,14 @@
 """Exact streaming update of the Eq. 3 scores: O(lags) work per new sample.
 
-For a live window x of N samples and a template y, the full cross-correlation
-C(n) = sum_k x[k+n] y[k], n = -(N-1)..N-1, changes by two rank-one terms when the window
-slides by one sample: the dropped sample's products leave and the new sample's enter.
-Indexing C by the window buffer's column where the template starts (instead of by lag)
-makes both terms land on one contiguous slice of 2N entries per channel: the dropped
-sample's N products on its first half, the new one's on its second half; two in-place BLAS
-axpy calls on the state vector per channel apply them (numpy's temporaries and broadcasting
-cost several times the arithmetic at this size). The window's extremes are kept exactly (a
-new extreme replaces the old; the window is searched again only when its extreme leaves
-it), its energy by a running sum that is reset to exactly 0 when the window is all zero (so
-an all-zero window scores 0, never NaN). Correlations, extremes and energies are recomputed
-exactly (the correlations by FFT, with the templates' spectra cached) whenever the expected
-event changes or the sliding buffer compacts, every `slack` samples; that bounds the
-round-off of the running sums: the scores equal the reference's to about 1e-16 times the
-signal's dynamic range over the last `slack` samples.
-
-The window is not pushed here. `SlidingCorrelation.slide` follows a sliding window
-(tactile/sliding_window.py) push by push: just after a push, the sample that left the
-window is still in the buffer's column before the window (a compaction overwrites it, and
-then the correlations are recomputed anyway), so the slide reads that sample and the new
-one, and the whole window only to recompute or when an extreme left it. In the control
-loop the window is the EventMatcher's, i.e. its WindowNormalizer's. Until the window is
-full (its older part is zero padding, which would make a few noise samples look like an
-onset) the scores stay 0.
-
-Missing samples: a NaN or infinite sample (a sensor glitch, a lost frame) enters the window
-as the channel's previous one (SlidingWindowState.entering_samples), so that the sums stay
-finite and exact; the slide is told which samples were missing and scores their channel 0
-for the next N slides, until the made-up sample has left the window. A channel recovers
-within one window and is never poisoned.
-
-The correlation's history follows the window's in one flat float vector (a Context's
-discrete state group):
-
-    [window (SlidingWindowState) | active_event, scores (channels),
-     [high, low, energy] per channel,
-     slides left until a missing sample leaves the window: their sum, then per channel,
-     correlation buffers: channels x (2N - 1 + slack)]
-
-Correlation column j of a channel holds the lag n = j - offset - (N - 1), where offset is
-the window's (the buffer column where the window starts). `StreamingCorrelator` pushes the
-window and slides its correlation in one call, for use outside a Diagram.
+C(n) = sum_k x[k+n] y[k] changes by two rank-one terms when the window slides one sample;
+indexed by the buffer column where the template starts, both land on one contiguous slice,
+applied by two BLAS axpy calls per channel. Extremes and energy are kept exactly; all is
+recomputed by FFT when the expected event changes or the buffer compacts (every `slack`
+samples), bounding round-off to ~1e-16 of the signal's range. A missing sample enters as the
+channel's previous one and scores its channel 0 for N slides. State, after the
+SlidingWindowState window: [active_event, scores, [high, low, energy] per channel, missing
+slides (sum, per channel), rows: channels x (2N - 1 + slack)]; column j: lag j - offset - (N -
+1).
 """
 
 import math
@@ -59,11 +26,9 @@ _STATISTICS = 3  # high, low, energy
 
 def slide_statistics(statistics: list[float], dropped_and_new: list[list[float]],
                      window: np.ndarray) -> list[float]:
-    """[high, low, energy] per channel of a window after one sample per channel left it
-    and one entered, from their values before (statistics, flattened by channel).
-
-    dropped_and_new: [[dropped, new], ...] per channel; window: the window (channels, N),
-    new included, read only when an extreme left it or round-off ate its energy.
+    """[high, low, energy] per channel after one sample per channel left and one entered
+    (dropped_and_new), from `statistics`; `window` (new included) is read only when an extreme
+    left or round-off ate the energy.
     """
     updated = []
     for channel, (dropped, new) in enumerate(dropped_and_new):
@@ -104,8 +69,8 @@ def _as_templates(templates: Sequence[np.ndarray]) -> list[np.ndarray]:
 
 
 class SlidingCorrelation:
-    """Gated Eq. 3 scores of a sliding window of channels sharing one rate, against one
-    event chosen per slide, kept after the window in its state vector (module docstring).
+    """Gated Eq. 3 scores of a sliding window of channels sharing one rate, against one event
+    chosen per slide, kept after the window in its state vector (module docstring).
 
     Args:
         templates: one (channels, N) array per event, at the live sample rate.
@@ -134,9 +99,8 @@ class SlidingCorrelation:
         self._rows_at = self._missing_at + 1 + n_channels
         self._row_length = 2 * length - 1 + window.slack
         self._size = self._rows_at + n_channels * self._row_length
-        # Per event and channel, what an update needs: where the channel's correlation
-        # buffer starts in the state, its template reversed (contiguous: the axpy operand),
-        # the template's norm and whether it is flat.
+        # Per event and channel: its buffer's start, the template reversed (the contiguous axpy
+        # operand), its norm, whether it is flat.
         correlation_starts = [self._rows_at + channel * self._row_length
                               for channel in range(n_channels)]
         self._channel_terms = [
@@ -176,17 +140,12 @@ class SlidingCorrelation:
 
     def slide(self, state: np.ndarray, rows: np.ndarray, offset: int, full: bool,
               event: int, missing: list[bool] | None = None) -> np.ndarray:
-        """Slide the correlations by the samples that the window just took (one per
-        channel) and score the window against `event`, in place.
-
-        state: the window's and correlation's vector, C-contiguous float64 (the BLAS calls
-            write into it directly).
-        rows, offset, full: the window just after a push (SlidingWindowState.push).
-        event: index of the expected event, or NO_EVENT (scores 0), as check_event accepts
-        (the caller checks it). Returns the scores view, all 0 until the window is full.
-        missing: None, or per channel whether its sample was missing
-            (SlidingWindowState.entering_samples: it entered as the channel's previous
-            one); such a channel scores 0 for N slides.
+        """Slides the correlations by the samples the window just took (one per channel) and
+        scores the window against `event` (index or NO_EVENT, checked by the caller), in place.
+        state: C-contiguous float64 (BLAS writes into it); rows, offset, full: the window after
+        SlidingWindowState.push; missing: per channel whether its sample was missing (its
+        channel then scores 0 for N slides). Returns the scores view, 0 until the window is
+        full.
         """
         length = self._length
         left = None  # slides left per channel, read only while a missing sample is around
@@ -231,14 +190,10 @@ class SlidingCorrelation:
 
     def gate_below(self, state: np.ndarray, floors: list[float | None], *,
                    gate_events: bool = True) -> np.ndarray:
-        """Judges each channel with a floor in `floors` (one per channel; None for none)
-        against it, in place, after `slide`; returns the scores view.
-
-        A window whose peak (its largest |value|) is not above its finite floor holds only
-        the sensor's noise: no change. Where the template of the active event is flat (it
-        expects no change) the channel then scores 1; any other channel scores 0
-        (gate_events False: keeps its score). Above the floor, or while the floor is not
-        known (+inf), a flat template's channel keeps its Eq. 3 score.
+        """Judges each channel that has a floor (`floors`, None for none) after `slide`, in
+        place: a window whose peak |value| is not above a finite floor holds only noise, so a
+        flat template's channel scores 1 and any other 0 (gate_events False: kept). Returns the
+        scores view.
         """
         event = int(state[self._event_at])
         if event != NO_EVENT:
@@ -257,9 +212,8 @@ class SlidingCorrelation:
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
                    event: int) -> None:
-        """Exact full cross-correlation of the window with the event's templates, by FFT.
-
-        Columns after the valid lags are zeroed: later updates start new lags there.
+        """Exact full cross-correlation of the window with the event's templates, by FFT;
+        columns after the valid lags are zeroed (later updates start new lags there).
         """
         length = self._length
         rows = state[self._rows_at:self._size].reshape(self._n_channels, self._row_length)
@@ -271,15 +225,10 @@ class SlidingCorrelation:
 
 
 class StreamingCorrelator:
-    """A sliding window and its SlidingCorrelation in one flat vector, [window | correlation]:
-    push a sample, get the scores (tests and benchmarks use it outside a Diagram, as the
-    EventMatcher's update does inside).
-
-    Args:
-        templates: one (channels, N) array per event, at the live sample rate.
-        min_contrast: live contrast a channel needs for its score to count (correlation.py).
-        slack: samples between two exact recomputations of the correlation buffer.
-        flat_needs_flat: a flat template channel needs a flat live window (correlation.py).
+    """A sliding window and its SlidingCorrelation in one flat vector: push a sample, get the
+    scores, outside a Diagram (tests, benchmarks); the accessors are SlidingCorrelation's.
+    Args: templates, min_contrast, flat_needs_flat as SlidingCorrelation's; slack: samples
+    between two exact recomputations of the correlation buffer.
     """
 
     def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int,
@@ -296,19 +245,15 @@ class StreamingCorrelator:
 
     @property
     def size(self) -> int:
-        """Length of the flat state vector."""
         return self._correlation.size
 
     def initial_state(self) -> np.ndarray:
-        """An all-zero window, no active event, scores 0."""
         return self._correlation.initial_state()
 
     def active_event(self, state: np.ndarray) -> int:
-        """The event the scores in `state` refer to (NO_EVENT for none)."""
         return self._correlation.active_event(state)
 
     def scores(self, state: np.ndarray) -> np.ndarray:
-        """View of the channels' scores held in `state`."""
         return self._correlation.scores(state)
 
     def window(self, state: np.ndarray) -> np.ndarray:
@@ -316,11 +261,8 @@ class StreamingCorrelator:
         return self._window.current(state)
 
     def push(self, state: np.ndarray, samples, event: int) -> np.ndarray:
-        """Append one sample per channel and score the window against `event`, in place.
-
-        state: a C-contiguous float64 vector (the BLAS calls write into it directly).
-        event: index of the expected event, or NO_EVENT (scores 0). Returns the scores view,
-        all 0 until the window is full.
+        """Appends one sample per channel and scores the window against `event` (or NO_EVENT),
+        in place in `state` (C-contiguous float64); returns the scores view, 0 until full.
         """
         self._correlation.check_event(event)
         samples, missing = self._window.entering_samples(

@@ -1,13 +1,8 @@
 """The grasp transitions that memorized tactile events can trigger, in grasp order.
 
-Each transition is anchored on a physical event of the ideal grasp; the memorized window
-is cut around the time of that physical event (extraction.py). The paper triggers
-Reach-Load, Load-Lift and Place-Unload by tactile events (its Fig. 9); every object's
-memorized events include those three. Lift-Hold is optional: record it where the lift-off
-leaves a clear tactile trace.
-
-A transition's name is its two states, `from_to` in lower case (Reach -> Load:
-reach_load); transition_name and transition_states convert between the two.
+Each is anchored on a physical event of the ideal grasp, around which its window is cut
+(extraction.py). The paper triggers Reach-Load, Load-Lift and Place-Unload by events (its
+Fig. 9); Lift-Hold is optional. A name is `from_to` in lower case (reach_load).
 """
 
 # The value of an `expected_event` or `scored_event` port when no event is expected.

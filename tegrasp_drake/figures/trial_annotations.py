@@ -143,12 +143,10 @@ class Label:
 
 def stack_labels(axis, labels: list[Label], *, fontsize: float = 7.5, bottom: float = 0.0,
                  gap_px: float = 4.0) -> int:
-    """Places `labels` in `axis` (x in seconds, y from `bottom` to 1) centred on their times,
-    each on the lowest level where it overlaps no other; levels share the height equally.
-    Labels off level 0 get a leader line down to their time. Returns the number of levels.
-
-    Call it after the figure's layout is done (`figure.draw_without_rendering()`) and the
-    axis's time limits are set: it measures the labels on the canvas."""
+    """Places `labels` in `axis` (x in seconds, y from `bottom` to 1) on their times, each on the
+    lowest level where it overlaps none, with a leader line down from higher levels; returns the
+    number of levels. Call it once the layout is done and the time limits set (it measures the
+    labels on the canvas)."""
     figure = axis.figure
     renderer = figure.canvas.get_renderer()
     texts, right_edges, levels = [], [], []

@@ -30,5 +30,6 @@ def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, st
         figures["contact_ra_figure"] = contact_ra
     if any(t.to_mode == Mode.AVOID for t in logged_transitions(log)):
         figures["avoid_figure"] = plot_avoid_reaction(
-            log, avoid, hit_threshold=controller_in_force(logged_scenario(log)).hit_ra_mps2)
+            log, avoid,
+            hit_threshold=controller_in_force(logged_scenario(log)).avoid.hit_ra_mps2)
     return figures

@@ -1,12 +1,18 @@
-"""The real devices behind the station's ports (Fig. 7b): the JACO2 on LCM (jaco/), the
-Robotiq 2F-85 on Modbus RTU (robotiq/: the Modbus client and the driver system; the registers
-and units are in tegrasp_drake.robotiq), the myRIO tactile stream on a serial port (myrio/),
-the device watchdog and fault latch, the device data as LCM messages for logs, the typed
-hardware config and MakeHardwareStation.
+"""The real devices behind the station's ports (Fig. 7b); each receiver has its simulated
+twin's ports plus `time_measured`, and blocking I/O lives on reader threads. The emulators
+(tegrasp_drake.emulators) are never imported from here.
 
-Each receiver exposes the same ports as its simulated twin in the station, plus
-`time_measured` and a staleness flag; blocking I/O lives on reader threads. The emulators
-that stand in for the devices are in tegrasp_drake.emulators, never imported from here.
+station.py: MakeHardwareStation, the devices wired to the controller's ports.
+config.py: HardwareStationConfig and LoadHardwareConfig (the `station:` tag's schema).
+jaco/: the JACO2 on LCM. robotiq/: the 2F-85 on Modbus RTU. myrio/: the tactile stream.
+watchdog.py: DeviceWatchdog, which trips on a silent device.
+fault_latch.py: FaultLatch, every fault kept and the arm's stop.
+device_fault.py: DeviceFault, a named fault with its time.
+message_boundary.py: decode, check, count and skip what a device sends.
+lcm_boundary.py: LCM messages through that boundary.
+device_log_messages.py: tactile and gripper data as LCM messages for logs.
+realtime.py: real-time scheduling of the control loop.
+lcm_time.py, state_outputs.py: utime conversion; scalar ports from a receiver's state.
 """
 
 from tegrasp_drake.hardware.device_fault import (

@@ -1,20 +1,13 @@
-"""Which station a scenario runs on: the simulation, or the real devices (typed config).
-
-A scenario's `station` field is a tagged variant (scenario/scenario.py `StationConfig`),
-as in Drake's hardware_sim:
-
-    station: !SimulatedStationConfig {}          # the default: MakeGraspStation
+"""Which station a scenario runs on (typed config): `station: !SimulatedStationConfig {}`
+(the default, MakeGraspStation) or the real devices, as in Drake's hardware_sim:
 
     station: !HardwareStationConfig              # MakeHardwareStation
       arm: {lcm_url: "udpm://239.255.76.67:7667?ttl=0"}
       gripper: {port: /dev/ttyUSB0, device_id: 9}
       tactile: {port: /dev/ttyACM0, calibration_file: pads.yaml}
-      watchdog: {arm_timeout: 0.05, gripper_timeout: 0.1, tactile_timeout: 0.05}
 
-`tegrasp hardware --config FILE` reads a file holding only the HardwareStationConfig
-mapping (the lines under `station:` above, untagged) with `LoadHardwareConfig`, checked
-field by field like a scenario (rig/typed_yaml.py) and with the same `--set key=value`
-overrides; `tegrasp emulate ... --write-config FILE` writes one for the emulators it started.
+`tegrasp hardware --config FILE` reads the untagged mapping with `LoadHardwareConfig`,
+checked field by field like a scenario; `tegrasp emulate --write-config` writes one.
 """
 
 import dataclasses
@@ -41,10 +34,9 @@ DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
 
 @dataclasses.dataclass
 class JacoLcmDriver:
-    """The JACO2 through the Kinova LCM driver (joint-velocity mode, 100 Hz).
-
-    lcm_url: the bus; `?ttl=0` keeps multicast on this host. The channels are Drake's
-    KINOVA_JACO_COMMAND and KINOVA_JACO_STATUS."""
+    """The JACO2 through the Kinova LCM driver (joint-velocity mode, 100 Hz) on `lcm_url`
+    (`?ttl=0` keeps multicast on this host), Drake's KINOVA_JACO_{COMMAND,STATUS} channels.
+    """
     lcm_url: str = DEFAULT_LCM_URL
     tracker: JacoVelocityTrackerConfig = dataclasses.field(
         default_factory=JacoVelocityTrackerConfig)
@@ -56,32 +48,33 @@ class JacoLcmDriver:
 
 @dataclasses.dataclass
 class SerialTactileDriver:
-    """The myRIO tactile stream (drivers/TACTILE_FRAME.md) on a serial port.
-
-    calibration_file: a TactileCalibration YAML (LoadTactileCalibration); empty for the
-    defaults. stale_timeout [s]: the receiver's `stale` flag (the watchdog trips on its own
-    timeout). max_backlog [frames]: the receiver plays received frames one per 1 ms tick
-    and at most this many wait (TactileSerialReceiver), so bursts keep every piezo sample
-    at a latency of at most max_backlog ms."""
+    """The myRIO tactile stream (hardware/myrio/TACTILE_FRAME.md) on a serial port, with an
+    optional TactileCalibration YAML ("" for the defaults).
+    """
     port: str = "/dev/ttyACM0"
+    # 23 kB/s of frames is 25 % of 921600 baud (TACTILE_FRAME.md)
     baudrate: int = bounded(921600, low=300, high=12_000_000, unit="baud")
     calibration_file: str = ""
+    # the receiver's `stale` flag: 50 frame periods (the watchdog has its own timeout)
     stale_timeout: float = bounded(0.05, low=0.0, low_open=True, high=10.0, unit="s",
                                    below="must be positive [s]")
+    # frames left waiting in a burst, so the latency is at most 8 ms with no sample lost
     max_backlog: int = bounded(8, low=0, high=100_000, unit="frames",
                                below="must be zero or a positive number of frames")
 
 
 @dataclasses.dataclass
 class DeviceWatchdogConfig:
-    """Silence [s] after which a device trips the watchdog (drivers/watchdog.py), and the
-    extra time a device may take to say anything at all after the start."""
+    """Silence [s] after which a device trips the watchdog (hardware/watchdog.py), and the
+    extra time a device may take to say anything after the start.
+    """
     arm_timeout: float = bounded(DEFAULT_TIMEOUTS["arm"], low=0.0, low_open=True, high=10.0,
                                  unit="s", below="must be positive [s]")
     gripper_timeout: float = bounded(DEFAULT_TIMEOUTS["gripper"], low=0.0, low_open=True,
                                      high=10.0, unit="s", below="must be positive [s]")
     tactile_timeout: float = bounded(DEFAULT_TIMEOUTS["tactile"], low=0.0, low_open=True,
                                      high=10.0, unit="s", below="must be positive [s]")
+    # [s] extra time a device may take to be first heard from after the start
     startup_grace: float = bounded(1.0, low=0.0, high=60.0, unit="s",
                                    below="must be zero or positive [s]")
 
@@ -99,24 +92,17 @@ class HardwareStationConfig:
     gripper: RobotiqModbusConfig = dataclasses.field(default_factory=RobotiqModbusConfig)
     tactile: SerialTactileDriver = dataclasses.field(default_factory=SerialTactileDriver)
     watchdog: DeviceWatchdogConfig = dataclasses.field(default_factory=DeviceWatchdogConfig)
-    # How long [s] to wait, before the control loop starts, for the arm's first status,
-    # the gripper's activation and the first tactile frame.
+    # [s] before the loop starts, for the arm's status, gripper activation and pad zeroing
     ready_timeout: float = bounded(10.0, low=0.0, low_open=True, high=600.0, unit="s",
                                    below="must be positive [s]")
-    # The control loop's scheduling (hardware/realtime.py): "fifo" (SCHED_FIFO at
-    # `realtime_priority`, so that a busy host does not delay the 1 kHz loop), "nice"
-    # (the highest CFS weight the OS grants) or "normal"; what the OS refuses falls back
-    # to the next, and the run says which it got.
+    # "fifo", "nice" or "normal", each falling back to the next (hardware/realtime.py)
     scheduling: str = "fifo"
     realtime_priority: int = bounded(10, low=1, high=99, why="SCHED_FIFO priorities, sched(7)")
 
 
 def lcm_url_problem(url: str) -> str | None:
-    """Why the LCM library cannot open `url`, or None (an empty URL is LCM's default).
-
-    The library prints its reason on the process's stderr (file descriptor 2, below
-    Python); it is caught there and becomes part of the answer, so that a bad URL is one
-    line."""
+    """Why LCM cannot open `url`, or None (an empty URL is LCM's default). The library's reason,
+    printed on file descriptor 2, is captured so a bad URL is one line."""
     import lcm
     with tempfile.TemporaryFile() as captured:
         sys.stderr.flush()
@@ -143,12 +129,11 @@ def lcm_url_problem(url: str) -> str | None:
 
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
-    """Checks the values the schema cannot (every number in its declared range, known
-    choices, a usable LCM URL, a readable tactile calibration file); ConfigError names the
-    field."""
+    """Checks what the schema cannot (ranges, choices, a usable LCM URL, a readable tactile
+    calibration); ConfigError names the field."""
     from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
     prefix = f"{where}." if where else ""
-    check_ranges(config, source, where)  # timeouts, rates, ids, priorities (rig/ranges.py)
+    check_ranges(config, source, where)
     require(config.scheduling in SCHEDULING_POLICIES, source, prefix + "scheduling",
             f"must be one of {', '.join(SCHEDULING_POLICIES)}", config.scheduling)
     problem = lcm_url_problem(config.arm.lcm_url)

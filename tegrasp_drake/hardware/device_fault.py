@@ -1,9 +1,6 @@
-"""A named fault reported by a driver or by the device watchdog.
-
-The controller's state machine goes to Failed on any fault and reports `str(fault)`, so a
-fault carries which device, what went wrong (with the device's own code where it has one)
-and since when, on both clocks: simulation time [s] (the diagram's Context time) and wall
-time [s since the epoch] (for matching against operator logs).
+"""A named fault reported by a driver or by the device watchdog: which device, what (with
+the device's own code where it has one) and since when, on both clocks (Context time and
+wall time, to match operator logs). The state machine reports `str(fault)` on Failed.
 """
 
 import dataclasses
@@ -17,16 +14,9 @@ DRIVER_ERROR = "driver"      # the driver could not bring the device up (e.g. ac
 
 @dataclasses.dataclass(frozen=True)
 class DeviceFault:
-    """One fault of one device.
-
-    Attributes:
-        device: the device name ("arm", "gripper", "tactile").
-        kind: SILENT, DEVICE_FAULT or DRIVER_ERROR.
-        description: human-readable cause, e.g. the Robotiq manual's name of a gFLT code.
-        code: the device's fault code, or -1 when it has none.
-        since_sim_time: Context time [s] of the last good data (SILENT) or of the first
-            sighting of the fault.
-        since_wall_time: the same instant as `time.time()` [s since the epoch].
+    """One fault of one device ("arm", "gripper", "tactile"); `code` is the device's fault code
+    or -1; `since_*` is the last good data (SILENT) or the first sighting, as Context time [s]
+    and time.time() [s].
     """
     device: str
     kind: str

@@ -1,11 +1,7 @@
-"""The hardware station's device data as LCM messages (tegrasp_drake/lcmtypes), so that a
-bus log holds everything the control loop saw: Sender systems (vectors -> message) in
-Drake's driver pattern, and pure decoders back to arrays for replay.
-
-Channels: TEGRASP_TACTILE (1 kHz), TEGRASP_GRIPPER (100 Hz); the run adds
-TEGRASP_TRANSITION, TEGRASP_FAULT and TEGRASP_RUN_INFO (hardware_run.py). The arm is on
-Drake's KINOVA_JACO_COMMAND / KINOVA_JACO_STATUS already. `utime` is the diagram's
-Context time [us] in all of them.
+"""The hardware station's device data as LCM messages (tegrasp_drake/lcmtypes), so a bus log
+holds all the control loop saw: Sender systems (vectors -> message) and pure decoders back
+to arrays. Channels: TEGRASP_TACTILE (1 kHz), TEGRASP_GRIPPER (100 Hz); the run adds
+TEGRASP_TRANSITION, TEGRASP_FAULT and TEGRASP_RUN_INFO. `utime` is Context time [us].
 """
 
 import time
@@ -29,7 +25,9 @@ GRIPPER_PUBLISH_PERIOD = 0.01   # [s]
 
 
 class TactileStatusSender(LeafSystem):
-    """The tactile receiver's outputs as an `lcmt_tegrasp_tactile`.
+    """TactileSerialReceiver's outputs of the same names [N, m/s^2, s] as an
+    `lcmt_tegrasp_tactile`; it adds the host time it was built (tick_s), so a log gives each
+    frame's latency from arrival_time.
 
     .. pydrake_system::
 
@@ -45,15 +43,6 @@ class TactileStatusSender(LeafSystem):
         - arrival_time
         output_ports:
         - lcmt_tegrasp_tactile
-
-    Ports (the inputs are TactileSerialReceiver's outputs of the same names):
-        left_taxel_forces, right_taxel_forces: (12) taxel normal forces [N].
-        left_pad_acceleration, right_pad_acceleration: (3) [m/s^2], pad frame.
-        time_measured: (1) device timestamp [s]. stale, zeroing: (1) flags.
-        arrival_time: (1) host monotonic time [s] the shown frame arrived; the message
-            adds the time it was built, so that a log gives each frame's latency to the
-            control loop.
-        lcmt_tegrasp_tactile: (abstract) utime = Context time [us].
     """
 
     def __init__(self):
@@ -87,7 +76,8 @@ class TactileStatusSender(LeafSystem):
 
 
 class GripperStatusSender(LeafSystem):
-    """The gripper's command and status as an `lcmt_tegrasp_gripper`.
+    """The gripper's command (3 bytes [rPR, rSP, rFR]; zeros if unconnected), status (8 bytes,
+    robotiq.units order) and time_measured (host monotonic [s]) as an `lcmt_tegrasp_gripper`.
 
     .. pydrake_system::
 
@@ -98,12 +88,6 @@ class GripperStatusSender(LeafSystem):
         - time_measured
         output_ports:
         - lcmt_tegrasp_gripper
-
-    Ports:
-        command: (3) [rPR, rSP, rFR] bytes; unconnected: logged as zeros.
-        status: (8) the status bytes, robotiq.units order.
-        time_measured: (1) host monotonic time of the status read [s].
-        lcmt_tegrasp_gripper: (abstract) utime = Context time [us].
     """
 
     def __init__(self):

@@ -1,10 +1,8 @@
 """FaultLatch: the faults of every source, kept once seen, and the arm's stop signal.
 
-The watchdog latches silent devices itself; a Robotiq fault code can clear (e.g. after an
-automatic release), but the run that saw it must not carry on as if nothing happened: the
-state machine goes to Failed on any fault and the operator decides. So every fault seen
-is kept, with its own `since`, in order of first sighting, and `stop` (holding the arm
-still through JacoVelocityTracker) stays set.
+A Robotiq fault code can clear (e.g. after an automatic release), but the run that saw it
+must not carry on: every fault is kept, with its own `since`, in order of first sighting,
+and `stop` (holding the arm still through JacoVelocityTracker) stays set.
 """
 
 from pydrake.common.value import AbstractValue
@@ -21,10 +19,10 @@ def latched_faults(latched: tuple, current) -> tuple:
 
 
 class FaultLatch(LeafSystem):
-    """Keeps every fault of its sources (module docstring).
-
-    One input per name in `sources`, in its order; with sources ["watchdog", "gripper"]
-    (as MakeHardwareStation builds it):
+    """Keeps every fault of its sources (module docstring), shown one `period` [s] after the
+    source reported it: one `{source}_fault` input (tuple of DeviceFault) per name in
+    `sources` (here as MakeHardwareStation builds it). fault: every fault seen; message: ""
+    or one line per fault (the state machine's `device_fault`); stop: 1 once any was seen.
 
     .. pydrake_system::
 
@@ -36,15 +34,6 @@ class FaultLatch(LeafSystem):
         - fault
         - message
         - stop
-
-    Ports:
-        {source}_fault: (abstract tuple of DeviceFault) the source's current faults.
-        fault: (abstract tuple of DeviceFault) every fault seen, in order of sighting.
-        message: (abstract str) "" while there is none, else one line per fault (which
-            device, what, since when), for the state machine's `device_fault` input.
-        stop: (1) 1 once any fault was seen.
-
-    A fault shows on the outputs one `period` [s] after its source reported it.
     """
 
     def __init__(self, sources, *, period: float = 1e-3):

@@ -1,26 +1,21 @@
 """LCM messages through the message boundary (message_boundary.py).
 
-`decode_lcm` turns a message's bytes into an LCM type or raises RejectedMessage: too short
-for a fingerprint, another type's fingerprint (a message of another type on the channel),
-or bytes that end before the fields do. A type's own check (e.g. jaco_lcm's joint count and
-finite values) follows it.
+`decode_lcm` refuses, by reason, bytes too short for a fingerprint, another type's
+fingerprint and bytes that end before the fields; a type's own check follows it.
+`CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding, and counting, through a
+boundary (a rejected message leaves the last good one, whose unchanged utime the watchdog
+sees as silence). Its subscription holds one message per HandleSubscriptions, so two
+messages in one diagram step lose the first, good or bad, before any count.
+`wait_for_checked_message` waits for a good message before a Simulator runs.
+`checked_handler` is a callback for the `lcm` package's own subscriptions.
 
-Two ways in, for the two kinds of subscriber:
-- `CheckedLcmSubscriber`: Drake's LcmSubscriberSystem with a serializer that decodes
-  through a boundary's check. A rejected message leaves the subscriber's value as it was,
-  so its output keeps the last good message (whose unchanged utime the watchdog sees as
-  silence). The counting is done by a second subscription to the channel on the same
-  DrakeLcm, which sees every message the diagram's LcmInterfaceSystem hands over. (A
-  DrakeLcm subscription holds one message between two calls of HandleSubscriptions, one
-  per step of the diagram: on a real bus, a message that arrives in the same step as
-  another is dropped by the transport before any subscriber, good or bad alike. A
-  listener of its own with a deeper queue would see those too, but LCM's Python binding
-  on a thread of the hardware process crashed it, and a second DrakeLcm has the same
-  one-message queue);
-- `checked_handler`: a callback for DrakeLcm.Subscribe or lcm.LCM.subscribe that calls
-  `on_message` with checked messages only.
+No Python callback is subscribed on a DrakeLcm that a diagram pumps: pydrake's
+`DrakeLcm.Subscribe` builds the handler's bytes object before taking Python's GIL, and
+`Simulator.AdvanceTo` runs with the GIL released, so such a callback corrupts the
+interpreter's heap while other Python threads run (the emulators' and drivers' threads).
 """
 
+import time
 from collections.abc import Callable
 
 from pydrake.common.value import AbstractValue
@@ -51,20 +46,24 @@ def decode_lcm(lcm_type, data: bytes):
 
 
 class CheckedLcmSerializer(SerializerInterface):
-    """An LcmSubscriberSystem serializer that decodes through `boundary`'s check (which
-    takes the bytes), counting nothing; a rejected message leaves the value unchanged
-    (the last good one)."""
+    """An LcmSubscriberSystem serializer that decodes through `boundary`, which counts
+    each message the subscriber takes (nothing while `counting` is False); a rejected
+    message leaves the value unchanged (the last good one)."""
 
     def __init__(self, lcm_type, boundary: MessageBoundary):
         SerializerInterface.__init__(self)
         self._lcm_type = lcm_type
         self._boundary = boundary
+        self.counting = True
+        self.last_accepted = False  # whether the last message decoded passed the check
 
     def CreateDefaultValue(self):
         return AbstractValue.Make(self._lcm_type())
 
     def Deserialize(self, data, abstract_value):
-        message = self._boundary.check_quietly(data)
+        message = (self._boundary.accept(data) if self.counting
+                   else self._boundary.check_quietly(data))
+        self.last_accepted = message is not None
         if message is not None:
             abstract_value.set_value(message)
 
@@ -74,15 +73,40 @@ class CheckedLcmSerializer(SerializerInterface):
 
 def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
                          lcm) -> LcmSubscriberSystem:
-    """Drake's LcmSubscriberSystem on `channel`, its messages checked by `boundary`, which
-    counts every message on the channel (module docstring)."""
-    lcm.Subscribe(channel, checked_handler(boundary, lambda message: None))
-    return LcmSubscriberSystem(channel, CheckedLcmSerializer(lcm_type, boundary), lcm)
+    """Drake's LcmSubscriberSystem on `channel`, its messages checked and counted by
+    `boundary` (module docstring); `lcm` is the DrakeLcm its LcmInterfaceSystem pumps.
+    The serializer stays reachable as `checked_serializer`."""
+    serializer = CheckedLcmSerializer(lcm_type, boundary)
+    subscriber = LcmSubscriberSystem(channel, serializer, lcm)
+    subscriber.checked_serializer = serializer
+    return subscriber
+
+
+def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: float) -> bool:
+    """Pumps `lcm` from this thread until `subscriber` (a CheckedLcmSubscriber on it) has
+    received a message its boundary accepts, or time.monotonic() passes `deadline`;
+    whether one came. Counts nothing: the Simulator's initialization takes, and counts,
+    the newest message. Call it before the Simulator runs, never inside it."""
+    serializer = subscriber.checked_serializer
+    probe = serializer.CreateDefaultValue()
+    received = subscriber.WaitForMessage(0, None, 1e-6)
+    while time.monotonic() < deadline:
+        lcm.HandleSubscriptions(10)
+        serializer.counting = False
+        try:
+            count = subscriber.WaitForMessage(received, probe, 1e-6)
+        finally:
+            serializer.counting = True
+        if count > received:
+            received = count
+            if serializer.last_accepted:
+                return True
+    return False
 
 
 def checked_handler(boundary: MessageBoundary, on_message: Callable) -> Callable:
-    """A subscription callback (DrakeLcm's `handler(data)` or lcm's `handler(channel,
-    data)`) that passes `on_message` the messages `boundary` accepts."""
+    """A callback for the `lcm` package's subscriptions (`handler(channel, data)`) that
+    passes `on_message` the messages `boundary` accepts."""
     def handler(*arguments):
         message = boundary.accept(arguments[-1])
         if message is not None:

@@ -1,26 +1,10 @@
 """The one boundary every message from a device crosses: decode, check, count, skip.
 
-What a device sends is untrusted: a bus carries other programs' messages and stray bytes,
-a serial line carries noise, firmware can report NaN. Every inbound path goes through a
-`MessageBoundary`: the arm's KINOVA_JACO_STATUS (hardware/jaco), the emulated arm's
-KINOVA_JACO_COMMAND and the other emulators' bus messages, the gripper's Modbus answers
-(hardware/robotiq) and the emulated gripper's requests (emulators/robotiq_emulator.py).
-The myRIO frame decoder (hardware/myrio/tactile_frame.py) follows the same rule with its own
-counters. The rule:
-
-- a boundary's `check(message, ...)` returns the decoded value, already checked (size,
-  type, counts, finite values, physical ranges), or raises `RejectedMessage(reason,
-  detail)`; any other exception a check raises on untrusted bytes (a generated decoder's
-  struct.error, say) is a rejection too, counted as "undecodable";
-- a rejected message is counted under its reason, and skipped: `accept` returns None and
-  the receiver keeps its last good value. A device that sends nothing usable therefore
-  looks like a silent device, which the watchdog (hardware/watchdog.py) handles; a
-  message never raises out of a boundary, so a device stream never ends a run;
-- the counts are surfaced as the myRIO decoder's are: `counters()` snapshots go into the
-  run's final report and its result.json, and `new_rejections()` hands over each reason
-  the first time it is seen, for one live line per reason.
-
-Thread-safe: a reader thread may accept while the control loop reads the counters.
+A `MessageBoundary`'s check returns the decoded, checked value or raises
+`RejectedMessage(reason, detail)` (any other exception on untrusted bytes counts as
+"undecodable"). A rejected message is counted and skipped and the receiver keeps its last
+good value, so a device that sends nothing usable looks silent to the watchdog and never
+ends a run. `new_rejections()` gives each reason once, for a live line. Thread-safe.
 """
 
 import dataclasses
@@ -32,8 +16,7 @@ UNDECODABLE = "undecodable"
 
 
 class RejectedMessage(ValueError):
-    """A message a boundary refuses: `reason` is the short name it is counted under
-    ("wrong type", "not finite"), `detail` what exactly was wrong."""
+    """A refused message: `reason`, the short name it is counted under; `detail`, what was wrong."""
 
     def __init__(self, reason: str, detail: str):
         super().__init__(f"{reason}: {detail}")
@@ -62,10 +45,9 @@ class MessageCounters:
 
 
 class MessageBoundary:
-    """Checks messages from one source (module docstring).
-
-    source: who sends them, as a log line names it ("arm: KINOVA_JACO_STATUS");
-    check: check(message, *args) -> the checked value, or raises RejectedMessage."""
+    """Checks messages from one `source` ("arm: KINOVA_JACO_STATUS") with
+    check(message, *args) -> the checked value, or RejectedMessage.
+    """
 
     def __init__(self, source: str, check: Callable | None = None):
         self.source = source
@@ -73,9 +55,17 @@ class MessageBoundary:
         self._lock = threading.Lock()
         self._counters = MessageCounters()
         self._unreported = []  # RejectedMessage of reasons not yet handed to new_rejections
+        self._listeners = []
+
+    def add_listener(self, listener: Callable) -> None:
+        """Calls listener(value) with each value `accept` lets through, after counting it:
+        a second reader of the same messages (the emulated myRIO's clock reads the
+        emulated arm's commands)."""
+        self._listeners.append(listener)
 
     def accept(self, message, *args):
-        """The checked value of `message`, or None (counted) when it is rejected."""
+        """The checked value of `message`, or None (counted) when it is rejected; the
+        listeners see each checked value."""
         try:
             value = self._check(message, *args)
         except RejectedMessage as rejection:
@@ -85,11 +75,13 @@ class MessageBoundary:
             self._count(RejectedMessage(UNDECODABLE, f"{type(e).__name__}: {e}"))
             return None
         self.count_accepted()
+        for listener in self._listeners:
+            listener(value)
         return value
 
     def check_quietly(self, message, *args):
-        """The checked value of `message`, or None, counting nothing: for a second reader
-        of messages this boundary already counts (lcm_boundary.CheckedLcmSubscriber)."""
+        """The checked value of `message`, or None, counting nothing (a look at a message
+        that will be counted when it is taken: lcm_boundary.wait_for_checked_message)."""
         try:
             return self._check(message, *args)
         except Exception:  # noqa: BLE001: as accept, a rejection (counted by accept)
@@ -119,8 +111,8 @@ class MessageBoundary:
                                        rejected=dict(self._counters.rejected))
 
     def new_rejections(self) -> list[RejectedMessage]:
-        """The first rejection of each reason seen since the last call (each reason once
-        in the boundary's life), for a live line; the counts hold the rest."""
+        """The first rejection of each reason not yet handed over (each reason once), for a live
+        line."""
         with self._lock:
             new, self._unreported = self._unreported, []
         return new

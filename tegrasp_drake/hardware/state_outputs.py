@@ -1,14 +1,9 @@
-"""Scalar output ports read straight from a driver system's abstract state.
-
-The device receivers keep what they know in one immutable abstract state value and
-compute every output from it (`time_measured`, `stale`, ...); each such port depends on
-that state only.
-"""
+"""Scalar output ports read straight from a device receiver's immutable abstract state."""
 
 
 def declare_scalar_state_outputs(system, state_index, values: dict) -> None:
-    """Declares on `system` one 1-element output port per entry of `values`, in order:
-    {port name: function of the state's value (at `state_index`) -> number}."""
+    """One 1-element output port on `system` per entry {port name: function of the state's value
+    -> number}, each depending on that state only."""
     ticket = {system.abstract_state_ticket(state_index)}
     for name, value_of in values.items():
         def calc(context, output, value_of=value_of):

@@ -1,34 +1,10 @@
-"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b).
-
-The controller diagram connects to the same exported ports as on MakeGraspStation
-(rig/station_interface.py: its CONTROLLER_INPUTS and CONTROLLER_OUTPUTS, with their sizes),
-so it runs unchanged on either. The hardware also exports the ports station_interface lists
-as hardware only:
-
-  fault (abstract tuple of DeviceFault): every fault seen (FaultLatch), empty while all is
-      well; device_fault (abstract str): the same as text, "" while all is well (the state
-      machine's `device_fault` input); stop (1): 1 once there is any fault;
-  arm.commanded_state (12): positions and the joint velocities sent to the arm;
-  {arm,gripper,tactile}.time_measured (1), tactile.stale (1), tactile.zeroing (1);
-  tactile.pad_acceleration_samples (abstract (n, 6) array, m/s^2): every film sample
-      played in the tick, in device order (TactileSerialReceiver).
-
-Inside: the Jaco on LCM (AddJacoLcmDriver: JacoVelocityTracker -> KINOVA_JACO_COMMAND at
-100 Hz, KINOVA_JACO_STATUS -> measured state), the Robotiq 2F-85 on Modbus RTU
-(RobotiqDriver on a RobotiqModbusClient thread), the myRIO tactile stream
-(TactileSerialReceiver on a TactileSerialReader thread), the DeviceWatchdog and a
-FaultLatch whose `stop` makes the tracker hold the arm still (zero joint velocity). The
-tactile and gripper data also go out on the bus (TEGRASP_TACTILE, TEGRASP_GRIPPER;
-device_log_messages.py), so a bus log holds everything the controller saw.
-
-Every message a device sends crosses a MessageBoundary (hardware/message_boundary.py) before
-a receiver sees it: a malformed one is counted by reason and skipped, the receiver keeps its
-last good value and the watchdog handles a device that sends nothing usable.
-`message_boundaries()` gives them, for the run's live lines and final counts.
-
-The station owns the device threads: use it as a context manager (or call close()), and
-call `wait_until_ready()` before the Simulator's Initialize(), so that the controller
-starts from the arm's measured pose. Run the Simulator at real-time rate 1.
+"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b), so
+the controller runs unchanged on either (rig/station_interface.py). Inside: the JACO2 on
+LCM, the 2F-85 on Modbus RTU and the myRIO stream, each on its own thread, every message
+through a MessageBoundary; a DeviceWatchdog and a FaultLatch whose `stop` holds the arm
+still; tactile and gripper data republished on the bus, so a log holds all the controller
+saw. Use it in a `with` block, call `wait_until_ready()` before the Simulator's
+Initialize() and run at real-time rate 1.
 """
 
 import time
@@ -44,9 +20,10 @@ from tegrasp_drake.hardware.device_log_messages import (
     GRIPPER_CHANNEL, GRIPPER_PUBLISH_PERIOD, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
     GripperStatusSender, TactileStatusSender)
 from tegrasp_drake.hardware.fault_latch import FaultLatch
-from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL, check_jaco_status
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
-from tegrasp_drake.hardware.message_boundary import MessageBoundary, RejectedMessage
+from tegrasp_drake.hardware.lcm_boundary import wait_for_checked_message
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError, RobotiqModbusClient
 from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration, TactileCalibration
@@ -92,14 +69,11 @@ class HardwareStation(Diagram):
         - device_fault
         - stop
 
-    Ports (sizes and units in rig/station_interface.py and the module docstring):
-        arm.*: joint space of the Jaco [rad, rad/s, N m]; arm.time_measured is the
-            status message's utime [s].
-        gripper.*: Robotiq bytes (robotiq.units order); gripper.time_measured is host
-            monotonic time [s].
-        tactile.*: taxel forces [N] and pad-frame accelerations [m/s^2], as the
-            simulated station's; tactile.time_measured is the myRIO timestamp [s].
-        fault, device_fault, stop: FaultLatch's fault, message and stop.
+    Ports (sizes in rig/station_interface.py): arm.* in joint space [rad, rad/s, N m],
+    arm.commanded_state (12) what the tracker sent; gripper.* Robotiq bytes; tactile.* as the
+    simulated station's [N, m/s^2], with pad_acceleration_samples every film sample of the tick
+    (TactileSerialReceiver); *.time_measured the device's time [s] (gripper: host monotonic);
+    fault, device_fault, stop: the FaultLatch's (empty, "" and 0 while all is well).
     """
 
     def __init__(self, config: HardwareStationConfig, *, lcm: DrakeLcm | None = None):
@@ -140,8 +114,7 @@ class HardwareStation(Diagram):
         return self._arm_status_boundary
 
     def message_boundaries(self) -> dict:
-        """{device: MessageBoundary} of the devices whose messages cross one (the myRIO
-        stream's decoder counts its own: tactile_reader.counters())."""
+        """{device: MessageBoundary}; the myRIO decoder counts its own (its reader's counters)."""
         return {"arm": self._arm_status_boundary, "gripper": self._gripper_client.boundary}
 
     def _open_devices(self):
@@ -238,24 +211,12 @@ class HardwareStation(Diagram):
         self.set_name("hardware_station")
 
     def wait_until_ready(self, timeout: float | None = None):
-        """Blocks (before the Simulator starts, never inside it) until the arm's status has
-        arrived, the gripper's activation is complete and the tactile pads are zeroed on the
-        frames arriving (the pads must be untouched); raises HardwareNotReadyError naming
-        what is missing."""
+        """Blocks, before the Simulator starts, until the arm's status arrived, the gripper is
+        active and the (untouched) pads are zeroed; else HardwareNotReadyError naming what is
+        missing."""
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
-        heard = [False]
-
-        def on_status(data):  # only a good status counts as heard (the subscriber's
-            try:              # boundary counts the others)
-                check_jaco_status(data)
-            except RejectedMessage:
-                return
-            heard[0] = True
-        self._lcm.Subscribe(JACO_STATUS_CHANNEL, on_status)
-        while not heard[0] and time.monotonic() < deadline:
-            self._lcm.HandleSubscriptions(10)
-        if not heard[0]:
+        if not wait_for_checked_message(self._lcm, self._status_subscriber, deadline):
             raise HardwareNotReadyError(
                 f"arm: no lcmt_jaco_status on {JACO_STATUS_CHANNEL} at "
                 f"{self._lcm.get_lcm_url()} within {timeout:g} s (is the Kinova driver, or "

@@ -1,18 +1,9 @@
 """A watchdog that names the device that stopped talking, and since when, and stops the arm.
 
-Each watched device feeds its receiver's `time_measured`, which advances whenever a new
-sample arrives (the Jaco status's utime, the myRIO timestamp, the Robotiq status's arrival
-time): the watchdog only looks for *changes*, so the devices' clocks need not match the
-diagram's. A device is silent when its value has not changed for longer than its timeout
-of Context time (wall time, when the simulator runs at real-time rate 1); a device never
-heard from gets `startup_grace` more, counted from the start. A trip latches: a device
-that comes back does not silently restart the arm; the state machine decides.
-
-Default timeouts (`DEFAULT_TIMEOUTS`), each several missed samples at the device's rate
-yet short against the 0.5 s event windows of the matcher:
-- arm 50 ms: five 100 Hz status messages;
-- gripper 100 ms: 10-20 status reads at 100-200 Hz (the gripper's own comm-loss fault is 1 s);
-- tactile 50 ms: 50 frames at 1 kHz, five AD7147 sequences.
+Each device feeds its receiver's `time_measured`; only its changes count, so device clocks
+need not match the diagram's. A device is silent when the value has not changed for longer
+than its timeout of Context time (wall time at real-time rate 1); one never heard from gets
+`startup_grace` more. A trip latches: a device that comes back does not restart the arm.
 """
 
 import dataclasses
@@ -23,13 +14,14 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.hardware.device_fault import SILENT, DeviceFault
 
+# [s] several missed samples, short against the matcher's 0.5 s windows: arm five 100 Hz
+# statuses; gripper 10-20 reads (its own comm-loss fault is 1 s); tactile 50 frames at 1 kHz.
 DEFAULT_TIMEOUTS = {"arm": 0.050, "gripper": 0.100, "tactile": 0.050}
 
 
 @dataclasses.dataclass(frozen=True)
 class DeviceActivity:
-    """When one device's time_measured last changed (None: never heard from, since the
-    start)."""
+    """When one device's time_measured last changed (None: never heard from)."""
     last_value: float | None = None
     since_sim_time: float = 0.0
     since_wall_time: float = 0.0
@@ -40,8 +32,9 @@ class DeviceActivity:
 
 
 class DeviceActivities(tuple):
-    """The watchdog's state, ((device, DeviceActivity), ...): immutable, so the copies Drake
-    makes of the Context's state at every 1 kHz update share it rather than walk it."""
+    """The watchdog's state, ((device, DeviceActivity), ...); immutable, so Drake's 1 kHz
+    Context copies share it.
+    """
 
     def __deepcopy__(self, memo):
         return self
@@ -49,9 +42,8 @@ class DeviceActivities(tuple):
 
 def next_activity(activity: DeviceActivity, value: float, *, device: str, timeout: float,
                   startup_grace: float, sim_time: float, wall_time: float) -> DeviceActivity:
-    """The activity after seeing `value` at `sim_time`; trips (latched) once silent.
-
-    A value of 0 before any other means "not heard from yet" (receivers' initial output)."""
+    """The activity after seeing `value` at `sim_time`; trips (latched) once silent. A value
+    of 0 before any other means "not heard from yet" (the receivers' initial output)."""
     if activity.fault is not None:
         return activity
     never_heard = activity.last_value is None
@@ -68,10 +60,10 @@ def next_activity(activity: DeviceActivity, value: float, *, device: str, timeou
 
 
 class DeviceWatchdog(LeafSystem):
-    """Watches devices' `time_measured` (module docstring).
-
-    One input per device of `timeouts`, in its order; with DEFAULT_TIMEOUTS (as
-    MakeHardwareStation builds it):
+    """Watches devices' `time_measured` [s, device clock] (module docstring): one input per
+    device of `timeouts`, in order; shown with DEFAULT_TIMEOUTS, as MakeHardwareStation builds
+    it. fault: the silent devices (tuple of DeviceFault) in trip order; stop: 1 once any
+    tripped (JacoVelocityTracker's `stop`).
 
     .. pydrake_system::
 
@@ -83,12 +75,6 @@ class DeviceWatchdog(LeafSystem):
         output_ports:
         - fault
         - stop
-
-    Ports:
-        {device}_time_measured: (1) the device receiver's `time_measured` [s], in the
-            device's clock; only its changes matter.
-        fault: (abstract tuple of DeviceFault) the silent devices, in trip order.
-        stop: (1) 1 once any device tripped (connect to JacoVelocityTracker's `stop`).
     """
 
     def __init__(self, timeouts: dict[str, float] | None = None, *, period: float = 1e-3,
@@ -98,7 +84,6 @@ class DeviceWatchdog(LeafSystem):
         self._startup_grace = startup_grace
         self._ports = {device: self.DeclareVectorInputPort(f"{device}_time_measured", 1)
                        for device in self._timeouts}
-        # DeviceActivities: immutable, so cheap for Drake to copy.
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(
             DeviceActivities((device, DeviceActivity()) for device in self._timeouts)))
         self.DeclareInitializationUnrestrictedUpdateEvent(self._initialize)

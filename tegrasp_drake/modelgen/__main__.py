@@ -1,9 +1,10 @@
-"""Regenerates the SDF files in models/ from the generators (run from the repository root)."""
+"""Regenerates the model files in models/ from the generators (run from the repository root)."""
 
 import pathlib
 import sys
 
 from tegrasp_drake.modelgen.jaco2_sdf import jaco2_sdf
+from tegrasp_drake.modelgen.pad_mesh import PAD_REFINEMENTS, pad_vtk
 from tegrasp_drake.modelgen.robotiq_linkage_sdf import robotiq_linkage_sdf
 from tegrasp_drake.modelgen.robotiq_sdf import robotiq_sdf
 from tegrasp_drake.modelgen.table_sdf import table_sdf
@@ -13,6 +14,9 @@ GENERATED = {
     "robotiq_2f85/robotiq_2f85_tactile.sdf": robotiq_sdf,
     "robotiq_2f85/robotiq_2f85_linkage.sdf": robotiq_linkage_sdf,
     "table/table.sdf": table_sdf,
+    # The pads' finer meshes (contact_geometry.pad_refinement): one file per level.
+    **{f"robotiq_2f85/pad_refined_{k}.vtk": (lambda k=k: pad_vtk(k))
+       for k in PAD_REFINEMENTS if k},
 }
 
 

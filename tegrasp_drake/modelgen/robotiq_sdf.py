@@ -1,28 +1,13 @@
-"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like parallel gripper.
+"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like gripper with prismatic
+fingers (`gripper.model: prismatic`): the right finger mimics the left (a coupler
+constraint), so an off-centre object is pushed to the centre as on the real gripper; one
+actuator drives the left finger, q [m] being its pad face's distance from the grasp axis.
 
-Figures from Robotiq's 2F-85 datasheet: stroke 85 mm, mass 0.9 kg, body about 75 mm across,
-fingertip about 0.16 m from the coupling. The real finger linkage keeps the fingertips
-parallel and couples both fingers to one motor; here each finger is a prismatic joint along
-the stroke and the right one mimics the left (a coupler constraint), so an off-centre object
-is pushed to the centre as on the real gripper. One actuator drives the left finger.
-
-Frames (the gripper frame G of the whole project is `grasp_frame`):
-- `base`: origin at the mounting face, +z out of the gripper (approach), y the stroke axis.
-- `grasp_frame`: on the approach axis at the centre of the pads; y toward the left finger.
-- Finger joint coordinate q [m]: the distance of that finger's pad surface from the
-  grasp axis (half the opening), 0 .. 0.0425.
-- `left_pad` / `right_pad` frames: at the centre of each pad's contact surface, +z along the
-  pad's inward normal (toward the object), +y along its length toward the fingertip (the
-  approach direction, the same for both pads), x across its width. The two pads are one
-  sensor design mounted facing each other (the right one turned 180 degrees about the
-  approach axis), so their x axes point opposite ways. The taxel layout
-  (rig/taxel_layout.py) is given in these frames: row 0 is nearest the palm on both pads.
-
-Pads are compliant hydroelastic boxes, sized as the paper's fingertip
-(rig/tactile_fingertip.py: 4 x 20 x 24 mm), E 2e6 Pa and Hunt-Crossley dissipation 5
-(values that grasp, lift and place the objects stably with SAP at a 1 ms step, measured on this
-scene with pydrake 1.51), friction from rig/materials.py. Behind each pad a rigid aluminium finger (a
-collision geometry too, so that an object cannot pass through the finger's back or tip).
+Frames: `base` at the mounting face, +z the approach, y the stroke; `grasp_frame` (the
+project's G) on the approach axis at the pads' centre; `<f>_pad` at each pad face's centre,
++z the inward normal, +y toward the fingertip on both pads, so their x axes point opposite
+ways; the taxel layout (rig/taxel_layout.py) is given in these frames. Pads are compliant
+hydroelastic boxes of the paper's fingertip size, backed by a rigid aluminium finger.
 """
 
 import numpy as np
@@ -33,11 +18,13 @@ from tegrasp_drake.modelgen.sdf_text import (box_inertia, friction_text, inertia
                                              translation)
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 
-BASE_RADIUS = 0.0375  # m
+BASE_RADIUS = 0.0375  # m, the datasheet's body about 75 mm across
 PALM_Z = 0.095  # m, mounting face to palm
-JOINT_LIMIT_MARGIN = 0.001  # m; the joint limit lies beyond the stroke, so full opening never
-# strikes it (a limit strike is a false RA event)
-BASE_MASS, FINGER_MASS = 0.80, 0.05  # kg
+# [m] beyond the stroke, so full opening never strikes the limit (a false RA event)
+JOINT_LIMIT_MARGIN = 0.001
+BASE_MASS, FINGER_MASS = 0.80, 0.05  # kg, the datasheet's 0.9 kg in all
+# Pad E and Hunt-Crossley dissipation: grasp, lift and place the objects stably with SAP at
+# a 1 ms step (measured on this scene).
 PAD_MODULUS = 2.0e6  # Pa
 PAD_DISSIPATION = 5.0  # s/m
 PAD_FRICTION = materials.PAD_COVER
@@ -45,12 +32,16 @@ FINGER_FRICTION = materials.ALUMINIUM  # the finger behind the pad and the palm
 FINGER_LINK_THICKNESS = 0.010  # m, rigid finger behind the pad
 
 
-def pad_text(sign: float, relative_to: str | None = None) -> str:
+def pad_text(sign: float, relative_to: str | None = None, mesh_uri: str | None = None) -> str:
     """The pad's collision and visual boxes, its contact face on the origin of the link
-    frame or of the frame `relative_to` (sign +1: the finger on +y)."""
+    frame or of the frame `relative_to` (sign +1: the finger on +y). With `mesh_uri`, the
+    collision box is that tetrahedral mesh of it (modelgen/pad_mesh.py)."""
     center = pose_text(translation((0, sign * PAD_THICKNESS / 2, 0)), relative_to)
+    box = f"<box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
+    shape = f"<mesh><uri>{mesh_uri}</uri></mesh>" if mesh_uri else box
+    # (Drake meshes a compliant box from its medial axis whatever the resolution hint.)
     return (f'<collision name="pad">{center}'
-            f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
+            f"<geometry>{shape}"
             "</geometry><drake:proximity_properties><drake:compliant_hydroelastic/>"
             f"<drake:hydroelastic_modulus>{PAD_MODULUS:g}</drake:hydroelastic_modulus>"
             "<drake:mesh_resolution_hint>0.004</drake:mesh_resolution_hint>"
@@ -58,15 +49,13 @@ def pad_text(sign: float, relative_to: str | None = None) -> str:
             "</drake:hunt_crossley_dissipation>"
             "<drake:relaxation_time>0.02</drake:relaxation_time>"
             f"{friction_text(PAD_FRICTION)}</drake:proximity_properties></collision>"
-            f'<visual name="pad">{center}'
-            f"<geometry><box><size>{PAD_WIDTH} {PAD_THICKNESS} {PAD_LENGTH}</size></box>"
-            "</geometry><material><diffuse>0.1 0.1 0.1 1</diffuse></material></visual>")
+            f'<visual name="pad">{center}<geometry>{box}</geometry>'
+            "<material><diffuse>0.1 0.1 0.1 1</diffuse></material></visual>")
 
 
 def _finger_link(sign: float) -> str:
-    """The rigid finger behind the pad, reaching back to the palm (rigid hydroelastic, so a
-    rigid object meets it with point contact and the compliant table or the other pad with
-    hydroelastic contact)."""
+    """The rigid finger behind the pad, reaching back to the palm; rigid hydroelastic, so a rigid
+    object meets it in point contact, the compliant table or other pad hydroelastically."""
     length = PAD_CENTER_Z + PAD_LENGTH / 2 - PALM_Z
     center = pose_text(translation((0, sign * (PAD_THICKNESS + FINGER_LINK_THICKNESS / 2),
                                     PAD_LENGTH / 2 - length / 2)))
@@ -92,9 +81,8 @@ def _finger(name: str, sign: float) -> str:
 
 
 def pad_frame_rotation(sign: float) -> np.ndarray:
-    """The pad frame in its finger's frame (4x4, no translation). Columns: y toward the
-    fingertip (z_G) on both pads, z along the inward normal (-sign * y_G), x = y x z =
-    sign * x_G."""
+    """The pad frame in its finger's frame (4x4, no translation): y toward the fingertip (z_G)
+    on both pads, z the inward normal (-sign * y_G), x = y x z = sign * x_G."""
     X_pad = np.eye(4)
     X_pad[:3, :3] = np.array([[sign, 0, 0], [0, 0, -sign], [0, 1, 0]], dtype=float)
     return X_pad

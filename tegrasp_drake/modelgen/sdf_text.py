@@ -54,11 +54,8 @@ def box_inertia(mass: float, size) -> np.ndarray:
 
 
 def tube_inertia(mass: float, points: np.ndarray, radius: float):
-    """COM and inertia of mass spread evenly over the segments joining `points`.
-
-    Each segment is a solid rod of the given radius; returns (com, I_com) in the points'
-    frame. Used for the arm links, whose geometry is a chain of capsules.
-    """
+    """COM and inertia about it of mass spread evenly over solid rods of `radius` joining `points`
+    (the arm links' capsule chains), in the points' frame."""
     samples, weights = [], []
     for p0, p1 in zip(points[:-1], points[1:]):
         length = np.linalg.norm(p1 - p0)

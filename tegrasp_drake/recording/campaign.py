@@ -1,27 +1,11 @@
 """One event-recording campaign: open-loop grasps of one object, each cut into memorized
-events around its physical events, and the template runs' windows combined into one event
-per transition.
+events around its physical events, the template runs' windows combined into one event per
+transition by their mean (docs/controller.md, "Events from an ensemble of grasps": why).
 
-The paper's events (paper_events.py: one clean ideal grasp), the ensemble events
-(ensemble_events.py: randomised ideal grasps) and the corrective events
-(corrective_events.py: hits and slips in a scripted grasp) are campaigns that differ only
-in their runs (`CampaignRun`: a scenario, its seed and its role), in when their physical
-events happen (an `event_times(log, scenario)` function) and in where the window sits
-around them (`pre_transition_s`).
-
-Seeds: a campaign's run k is seeded `base_seed + k`; each campaign has its own base
-(ENSEMBLE_BASE_SEED, CORRECTIVE_BASE_SEED), at or above 1_000_000, apart from one another
-and from every sweep's seeds (a sweep's seed is a CRC of its base seed, object, marker and
-attempt).
-
-Combination rule: the mean of the template runs' max-normalised windows of a transition,
-aligned on the physical event, max-normalised again. Eq. 3 is a normalised correlation;
-under a signal-plus-independent-noise model of the runs the mean is the template whose
-expected correlation with a new run is largest (the matched filter of the average shape),
-and the noise of the template falls as 1/sqrt(runs). Several templates with the max score
-would raise the false-trigger rate with each template added (the max of K noisy scores) and
-cost K correlations per sample in the control loop; one mean costs the matcher nothing
-more.
+The paper's, the ensemble and the corrective events are campaigns that differ only in
+their runs (`CampaignRun`), when their physical events happen (`event_times(log,
+scenario)`) and where the window sits (`pre_transition_s`). Run k is seeded base + k, each
+campaign's base at or above 1_000_000, apart from every sweep's seeds.
 """
 
 import dataclasses
@@ -57,8 +41,7 @@ class CampaignRun:
     """One open-loop grasp of a campaign."""
     label: str                      # names the run (and its log file)
     scenario: typing.Any            # the run's Scenario (its random_seed is the run's seed)
-    role: str = "template"          # "template" runs make the events; "held_out" runs
-                                    # only choose thresholds
+    role: str = "template"          # "template": makes the events; "held_out": thresholds
     duration_s: float | None = None  # simulated time [s]; None: the script and a margin
 
 
@@ -67,8 +50,7 @@ EventTimes = Callable[[typing.Any, typing.Any], Mapping[str, float | None]]
 
 
 def simulate_run(run: CampaignRun, *, log_path=None, progress=None):
-    """The run's TrialLog: simulated (and saved to `log_path` when given), or read from
-    `log_path` when a log is already there."""
+    """The run's TrialLog: read from `log_path` if there, else simulated (and saved there)."""
     if log_path is not None and pathlib.Path(log_path).is_file():
         return load_trial_log(log_path)
     log, wall = run_ideal_grasp(run.scenario, duration=run.duration_s, progress=progress)
@@ -84,14 +66,11 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
                pre_transition_s: float | Mapping[str, float] | None = None,
                note: str | None = None, advice: Callable[[str], str] | None = None,
                quiet_ra_s: float | None = None) -> dict[str, MemorizedEvent]:
-    """The run's events: each transition's window cut around its physical event at
-    `times`, `pre_transition_s` [s] (one for all, or per transition; None: the paper's)
-    into the window, tagged with the `nominal_object`'s description (the object without
-    the run's perturbation) and `note` (default: the run's label and seed).
-    quiet_ra_s: when given, the log's first quiet_ra_s [s] (the approach) measure each RA
-    channel's noise floor, and an RA window that does not rise above it is stored flat
-    (extraction.py: quiet RA windows); None: every window as cut.
-    RecordEventsError naming the missing events (with `advice(transition)`, if given)."""
+    """The run's events, each transition's window cut around its physical event at `times`,
+    `pre_transition_s` [s] into it (one, per transition, or None: the paper's), tagged with
+    the `nominal_object` (unperturbed) and `note`. quiet_ra_s: the log's first quiet_ra_s [s]
+    measure the RA noise floor and quiet RA windows are stored flat (extraction.py); None: as
+    cut. RecordEventsError names missing events (with `advice(transition)`, if given)."""
     missing = [name for name, time in times.items() if time is None]
     if missing:
         words = (f"{run.label} of '{object_name}' (seed {run.scenario.random_seed}) shows "
@@ -132,8 +111,7 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
 
 def combine_runs(runs: list[Mapping[str, MemorizedEvent]], *, note: str
                  ) -> dict[str, MemorizedEvent]:
-    """Per transition, the mean of the runs' windows, max-normalised (module doc: why the
-    mean); its transition time is the runs' mean."""
+    """Per transition, the runs' windows' mean, max-normalised; its time is the runs' mean."""
     if not runs:
         raise ValueError("a campaign needs at least one template run")
     combined = {}
@@ -152,8 +130,8 @@ def record_campaign(runs: typing.Sequence[CampaignRun], event_times: EventTimes,
                     pre_transition_s: float | Mapping[str, float] | None = None, note: str,
                     log_dir=None, progress_of_run=None) -> dict[str, MemorizedEvent]:
     """The campaign's events: every run simulated (its log kept in, or reused from,
-    `log_dir`/<label>.npz), its events cut (cut_events), and the template runs combined
-    (combine_runs). progress_of_run(k) gives run k's progress callback (or None)."""
+    `log_dir`/<label>.npz), cut (cut_events) and combined (combine_runs).
+    progress_of_run(k): run k's progress callback or None."""
     templates = []
     for k, run in enumerate(runs):
         log = simulate_run(run, log_path=run_log_path(log_dir, run),

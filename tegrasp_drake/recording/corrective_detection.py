@@ -1,26 +1,12 @@
-"""How well the corrective triggers detect their situations, from recorded logs:
-the memorized corrective events (Eq. 3 at any thresholds, recording/detection_quality.py)
-and the heuristic triggers they would replace, on the same spans; and the rule that
-chooses a corrective event's thresholds (choose_centred_thresholds).
-
-Why not detection_quality.choose_thresholds (the highest admissible thresholds, the rule
-of the ensemble events): for the hit it chose SA and RA > 0.98, which the held-out hits
-passed (their RA peaked at 0.98-0.999) but two closed-loop hits did not (the right pad's
-RA peaked at 0.969): it leaves no margin below the situation's scores. The hit's spans
-separate widely (RA at most 0.28 without a hit), so the centre of the admissible range
-keeps a margin on both sides.
-
-A span is the part of a logged run in which the state machine would look for the
-corrective event: Lift for the slip (lift_load), Hold after hit_refractory_s for the hit
-(hold_avoid). A run without the situation (a normal grasp) gives a span whose physical
-event never comes: any match in it is a false trigger.
-
-Heuristic triggers replayed offline from the same log (controller_config.py):
-  hit   either RA above hit_ra_mps2 (the controller's tick reads the channels every 5 ms;
-        the RA here at every 1 kHz sample, so it fires at most one tick earlier)
-  slip  either pad's slip-band vibration (tactile/slip_vibration_band.py: the film's
-        vibration high-passed at slip_band_hz, RMS over slip_window_s) above
-        slip_vibration_mps2 for slip_s
+"""How well the corrective triggers detect their situations, from recorded logs: the
+memorized corrective events (Eq. 3 at any thresholds, detection_quality.py) and the
+heuristic triggers they would replace, on the same spans, and the rule that chooses a
+corrective event's thresholds (choose_centred_thresholds: the centre of the admissible
+range, a margin on both sides; the highest admissible pair sits at the edge and misses
+real hits). A span is where the state machine would look for the event: Lift for the
+slip, Hold after avoid.hit_refractory_s for the hit; in a normal grasp's span any match is false.
+The heuristic triggers are replayed at every 1 kHz RA sample (the controller reads every
+5 ms tick, so they fire at most one tick early).
 """
 
 import dataclasses
@@ -47,9 +33,8 @@ class SituationSpan:
 
 
 def event_span(trial, events, span: SituationSpan) -> ScoredSpan:
-    """The corrective event's Eq. 3 scores over `span` of `trial` (a TactileTrial), with
-    the event held expected (detection_quality.scored_span); a span without a physical
-    event has physical_s = inf (every match in it is false)."""
+    """The corrective event's Eq. 3 scores over `span` of `trial`, held expected; a span
+    without a physical event has physical_s = inf (every match in it is false)."""
     if span.physical_s is not None:
         return scored_span(span.label, trial, events, span.transition,
                            armed_from_s=span.armed_from_s, physical_s=span.physical_s)
@@ -62,19 +47,17 @@ def event_span(trial, events, span: SituationSpan) -> ScoredSpan:
 
 
 def on_controller_ticks(span: ScoredSpan, period_s: float) -> ScoredSpan:
-    """`span` at the state machine's ticks only (every period_s [s]): the machine reads the
-    matcher's `match` once a tick, so a match shorter than a tick between two is missed."""
+    """`span` at the state machine's ticks (every period_s [s]), which read `match` once
+    each."""
     ticks = np.abs(span.times / period_s - np.round(span.times / period_s)) < 1e-6
     return dataclasses.replace(span, times=span.times[ticks], scores=span.scores[ticks])
 
 
 def choose_centred_thresholds(spans, sa_grid, ra_grid):
-    """The threshold pair for a corrective event: among the grid's pairs with no false
-    trigger and the most detections (and, if any, a median latency within
-    LATENCY_TARGET_S), the one nearest the centre of that admissible set (per threshold,
-    the midpoint of its range): the widest margin both above what the spans scored
-    without the situation and below what they scored with it. ValueError when every pair
-    has a false trigger."""
+    """The threshold pair for a corrective event: among the grid's pairs with no false trigger
+    and the most detections (and, if any, a median latency within LATENCY_TARGET_S), the one
+    nearest the centre of that set (per threshold, the midpoint of its range). ValueError when
+    every pair has a false trigger."""
     candidates = most_detecting_clean_points(spans, sa_grid, ra_grid)
     on_target = [p for p in candidates
                  if p.median_latency_s is not None and p.median_latency_s <= LATENCY_TARGET_S]
@@ -106,8 +89,7 @@ def heuristic_hit_time(log, span: SituationSpan, hit_ra_mps2: float) -> float | 
 
 
 def slip_band(log, band_hz: float, window_s: float, sample_rate_hz: float) -> np.ndarray:
-    """(M, 2) the pads' slip-band vibration [m/s^2] at the log's RA times, as
-    SlipVibrationBand computes it from the pad vibration samples (6 per row)."""
+    """(M, 2) the pads' slip band [m/s^2] at the log's RA times (SlipVibrationBand's)."""
     b0, b1, b2, a1, a2 = highpass_biquad(band_hz, sample_rate_hz)
     high = signal.lfilter([b0, b1, b2], [1.0, a1, a2], np.asarray(log.pad_acceleration),
                           axis=0)
@@ -119,19 +101,19 @@ def slip_band(log, band_hz: float, window_s: float, sample_rate_hz: float) -> np
     return np.sqrt(mean)
 
 
-def heuristic_slip_time(log, span: SituationSpan, config,
+def heuristic_slip_time(log, span: SituationSpan, lift_load,
                         sample_rate_hz: float) -> float | None:
-    """The time [s] in `span` at which either pad's slip band has stayed above
-    config.slip_vibration_mps2 for config.slip_s (the heuristic Lift-Load)."""
-    band = slip_band(log, config.slip_band_hz, config.slip_window_s, sample_rate_hz)
+    """When in `span` either slip band has stayed above lift_load.slip_vibration_mps2 for
+    lift_load.slip_s [s] (lift_load: a controller's LiftLoadConfig)."""
+    band = slip_band(log, lift_load.slip_band_hz, lift_load.slip_window_s, sample_rate_hz)
     t = np.asarray(log.t_ra)
-    above = band.max(axis=1) > config.slip_vibration_mps2
+    above = band.max(axis=1) > lift_load.slip_vibration_mps2
     since = None
     for k in np.flatnonzero((t >= span.armed_from_s) & (t <= span.armed_until_s)):
         if not above[k]:
             since = None
             continue
         since = t[k] if since is None else since
-        if t[k] - since >= config.slip_s:
+        if t[k] - since >= lift_load.slip_s:
             return float(t[k])
     return None

@@ -1,47 +1,15 @@
-"""Memorized corrective events: the tactile events of the situations that call
-for a corrective action, recorded in simulation and matched by the same Eq. 3 machinery as
-the grasp transitions, so that Lift-Load and Avoid can be triggered by a memorized event
-instead of the heuristic thresholds (controller.memorized_corrective_events).
+"""Memorized corrective events: the tactile events of the situations that call for a
+corrective action, matched by the same Eq. 3 machinery as the grasp transitions, so that
+Lift-Load and Avoid can fire on a memorized event (controller.memorized_corrective.events).
 
-Each corrective event is a transition named as the grasp's are (transitions.py):
-
-  lift_load   slip during Lift  (Lift -> Load): the pads slide up along the object
+  lift_load   slip during Lift (Lift -> Load): the pads slide up along the object
   hold_avoid  a hit during Hold (Hold -> Avoid): an external force pulse on the object
 
-Recorded from open-loop grasps (the ideal grasp's script, scripted_grasp.py: the script does
-not react, so the situation plays out in full) of a perturbed scene, CORRECTIVE_RUNS:
-
-  hit   the scenario's `disturbance`: a force pulse on the held object (20 N for 20 ms
-        along the stroke is the paper's Fig. 10 hit; the others vary its size, direction
-        and time within the script's Hold, 6.1-9.1 s)
-  slip  a lowered object friction (and once a heavier object): the grip's friction
-        2 mu_pair F_grip falls below the weight m g, so the pads slide up the object from
-        the start of Lift. The pad-object pair's mu_pair = 2 mu_pad mu / (mu_pad + mu)
-        with the pad's mu_pad = 4.42 (docs/model.md, "Friction by material pair"), and
-        F_grip the grip the drive holds on the box, about 27.6 N at the 25 N setting (the
-        rotor's overshoot locked in by the screw; 26.8-28.2 N over the box's ensemble):
-        object friction 0.008 -> mu_pair 0.016, 0.88 N of friction against the box's
-        1.47 N; 0.010 -> 1.10 N; 0.012 -> 1.32 N; 0.020 with 0.25 kg -> 2.20 N against
-        2.45 N. (0.014 -> 1.54 N holds the box: it slipped only on a grip held at 25 N.)
-
-Physical events (simulation truth, like grasp_outcome.physical_events):
-  hold_avoid  the pulse's start, disturbance.hit_time_s
-  lift_load   the first time in the script's Lift that the pads have risen more than
-              SLIP_DISPLACEMENT_M further than the object: the grasp frame's rise (forward
-              kinematics of the logged arm joints) minus the object's (its pose), both
-              from the start of Lift; a normal grasp stays below it (the pads' compliance
-              under the object's weight)
-
-Window: PRE_TRANSITION_S = 0.45 s into the 0.5 s window, as the ensemble's Reach-Load
-(ensemble_events.py): the live window looks most like it about 50 ms after the physical
-event, within the 60 ms latency target (LATENCY_TARGET_S, detection_quality.py).
-Combination: the mean of the template runs (campaign.py). The two hit directions (+y, -y)
-mirror each other between the pads; their mean matches either side's hit.
-
-Role of the runs: "template" runs make the events; "held_out" runs (and the ensemble's
-held-out normal grasps, runs 5-7) choose the thresholds (analysis/choose_corrective_
-thresholds.py); the closed-loop trials judge them. The seeds are CORRECTIVE_BASE_SEED + k
-(campaign.py).
+Recorded from open-loop grasps (the script does not react, so the situation plays out) of
+a perturbed scene, CORRECTIVE_RUNS; "template" runs make the events (their mean),
+"held_out" runs choose the thresholds (analysis/choose_corrective_thresholds.py). The
+runs, their physical events and the window: docs/controller.md, "Memorized corrective
+triggers".
 """
 
 import dataclasses
@@ -54,18 +22,16 @@ from tegrasp_drake.recording.campaign import (CORRECTIVE_BASE_SEED, CampaignRun,
 from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 
 CORRECTIVE_FOLDER = "corrective"
-PRE_TRANSITION_S = 0.45
+PRE_TRANSITION_S = 0.45  # the live window looks most like it ~50 ms after the event
 SLIP_DISPLACEMENT_M = 0.001  # the pads' rise over the object's that counts as slip [m]
 # The modes in which each corrective event is looked for, and its action.
 CORRECTIVE_SITUATIONS = {"lift_load": "slip during Lift", "hold_avoid": "a hit during Hold"}
-# The default script's phase times [s] (scripted_grasp.plan_scripted_grasp with the default
-# GraspScriptConfig): its Lift from 4.6 s to 6.1 s, its Hold from 6.1 s to 9.1 s.
+# The default script's phase times [s]: Lift from 4.6 s to 6.1 s, Hold from 6.1 s to 9.1 s.
 _SCRIPT = GraspScriptConfig()
 LIFT_START_S = _SCRIPT.settle_s + _SCRIPT.reach_s + _SCRIPT.load_s
 LIFT_END_S = LIFT_START_S + _SCRIPT.lift_s
 HOLD_END_S = LIFT_END_S + _SCRIPT.hold_s
-# Simulated time of a run [s]: a hit run to just after the script's Hold, a slip run
-# 0.4 s past the end of its Lift.
+# Simulated time of a run [s]: a hit just past the script's Hold, a slip 0.4 s past its Lift.
 RUN_DURATION_S = {"hold_avoid": round(HOLD_END_S + 0.1, 3),
                   "lift_load": round(LIFT_END_S + 0.4, 3)}
 
@@ -90,7 +56,8 @@ def _hit(force_y: float, into_hold_s: float) -> tuple[str, ...]:
     return (f"disturbance.hit_time_s={time_s}", f"disturbance.hit_force_n=[0.0, {force_y}, 0.0]")
 
 
-# Hits 0.5 to 1.3 s into the script's Hold (the lift's ring-down has faded).
+# Hits 0.5 to 1.3 s into the script's Hold (the lift's ring-down has faded); frictions low
+# enough that the grip's friction falls below the box's weight (docs/controller.md).
 CORRECTIVE_RUNS = (
     CorrectiveRun("hold_avoid", "hit +y 20 N 0.9 s into Hold", 0, _hit(20.0, 0.9), "template"),
     CorrectiveRun("hold_avoid", "hit -y 20 N 0.5 s into Hold", 1, _hit(-20.0, 0.5), "template"),
@@ -111,8 +78,7 @@ def corrective_scenario(object_name: str, run: CorrectiveRun):
 
 
 def campaign_run(object_name: str, run: CorrectiveRun) -> CampaignRun:
-    """`run` as a run of the recording campaign, simulated only as long as its situation
-    needs (RUN_DURATION_S)."""
+    """`run` as a campaign run, simulated only as long as its situation needs."""
     return CampaignRun(run.label, corrective_scenario(object_name, run), role=run.role,
                        duration_s=RUN_DURATION_S[run.transition])
 
@@ -132,9 +98,8 @@ def grasp_frame_heights(arm_q: np.ndarray) -> np.ndarray:
 
 
 def slip_onset_time(log, scenario) -> float | None:
-    """The first time [s] in the script's Lift that the pads (the grasp frame, from the
-    measured arm joints) have risen more than SLIP_DISPLACEMENT_M further than the object
-    since Lift began; None if they never do."""
+    """The first time [s] in the script's Lift that the pads (the grasp frame) have risen
+    SLIP_DISPLACEMENT_M more than the object since Lift began; None if they never do."""
     from tegrasp_drake.control.scripted_grasp import plan_scripted_grasp
     lift = next(s for s in plan_scripted_grasp(grasp_plan(scenario)) if s.phase == "lift")
     t = np.asarray(log.t_slow)
@@ -149,7 +114,8 @@ def slip_onset_time(log, scenario) -> float | None:
 
 
 def corrective_event_time(log, scenario, transition: str) -> float | None:
-    """The physical event's time [s] of `transition` in a run (module doc)."""
+    """The physical event's time [s] of `transition` in a run: the hit's start
+    (disturbance.hit_time_s) or the slip's onset (slip_onset_time)."""
     if transition == "hold_avoid":
         hit = scenario.disturbance.hit_time_s
         return float(hit) if hit >= 0.0 else None
@@ -160,9 +126,8 @@ def corrective_event_time(log, scenario, transition: str) -> float | None:
 
 
 def record_corrective_events(object_name: str, transition: str, *, log_dir=None):
-    """The memorized corrective event of `transition` on `object_name`: the campaign of its
-    CORRECTIVE_RUNS (the held-out runs' logs are kept in `log_dir` for choosing the
-    thresholds), the template runs combined by their mean."""
+    """The memorized corrective event of `transition` on `object_name`: the template runs of
+    its CORRECTIVE_RUNS combined by their mean (held-out logs kept in `log_dir`)."""
     runs = [campaign_run(object_name, run) for run in CORRECTIVE_RUNS
             if run.transition == transition]
     return record_campaign(

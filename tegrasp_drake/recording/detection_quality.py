@@ -1,25 +1,14 @@
-"""How well a memorized event detects its transition, from recorded logs:
-detection, false triggers and latency at any pair of Eq. 3 thresholds, without simulating
-again.
+"""How well a memorized event detects its transition, from recorded logs: detection, false
+triggers and latency at any pair of Eq. 3 thresholds, without simulating again.
 
-The EventMatcher's scores do not depend on its thresholds, so each logged trial is
-replayed once per transition with that event held expected (events/replay.py), and any
-threshold pair is then applied to the logged scores:
-
-  armed span   from when the state machine would start looking for the event (the mode's
-               start) to the physical event's time + DEADLINE_S
-  false        all four scores above their thresholds earlier than FALSE_TRIGGER_MARGIN_S
-               before the physical event (the trial judge's rule, runs/trial.py)
-  detected     otherwise, the first such tick within DEADLINE_S after it; latency = its
-               time minus the physical event's
-  missed       neither
-
-ROC-style curve: the rates of detected and false spans over a range of thresholds (the SA
-and RA thresholds scaled together from the paper's 0.9 / 0.7). Threshold choice
-(choose_thresholds), per transition: among the pairs with no false trigger on the spans
-given and the highest detection rate, those whose median latency meets LATENCY_TARGET_S
-(60 ms) if any, else those of the lowest median latency; of these, the highest
-thresholds (SA + RA: the widest margin above what the spans scored before their events).
+The scores do not depend on the thresholds, so each logged trial is replayed once per
+transition with its event held expected (events/replay.py) over its armed span (from the
+mode's start to the physical event + DEADLINE_S). A span is `false` when all four scores
+pass earlier than FALSE_TRIGGER_MARGIN_S before the physical event (the trial judge's
+rule), `detected` at the first passing tick within DEADLINE_S after it, else `missed`.
+choose_thresholds, per transition: of the pairs with no false trigger and the most
+detections, those with a median latency within LATENCY_TARGET_S (else the lowest), and of
+these the highest (SA + RA: the widest margin above the spans' scores before their events).
 """
 
 import dataclasses
@@ -120,8 +109,8 @@ def most_detecting_clean_points(spans: Sequence[ScoredSpan], sa_grid: Iterable[f
 
 def choose_thresholds(spans: Sequence[ScoredSpan], sa_grid: Iterable[float],
                       ra_grid: Iterable[float]) -> RatePoint:
-    """The threshold pair of the grids chosen by the module doc's rule; ValueError when
-    every pair has a false trigger."""
+    """The pair of the grids chosen by the module doc's rule; ValueError if all have a false
+    trigger."""
     candidates = most_detecting_clean_points(spans, sa_grid, ra_grid)
     if candidates[0].detected:
         on_target = [p for p in candidates if p.median_latency_s <= LATENCY_TARGET_S]
@@ -144,9 +133,8 @@ def _trial_from(trial, start_s: float):
 
 def scored_span(label: str, trial, events, transition: str, *, armed_from_s: float,
                 physical_s: float) -> ScoredSpan:
-    """Replays `trial` (a TactileTrial) with `events`[transition] held expected, from one
-    window before armed_from_s to the physical event + DEADLINE_S; its ScoredSpan (times
-    in the trial's clock)."""
+    """Replays `trial` with `events`[transition] held expected, from one window before
+    armed_from_s to the physical event + DEADLINE_S; its ScoredSpan (the trial's clock)."""
     from tegrasp_drake.events.replay import replay_event_held
     window_s = next(iter(events.values())).window_s
     start = max(0.0, armed_from_s - window_s - 0.05)

@@ -1,27 +1,9 @@
 """Memorized events from an ensemble of randomised ideal grasps, for the taxel_aware
-controller: a campaign (campaign.py) whose runs are the object's ideal grasp, each with its
-own draw of the perturbations below and its own sensor-noise seed, cut around the same
-physical events as the paper's one clean run (paper_events.py) and combined by their mean.
-
-Ranges (uniform on +-bound; ENSEMBLE_RANGES), and why:
-  placement +-2 mm, yaw +-5 deg   the sweep's placement jitter (sweep/spec.py
-                                  RandomisationConfig: an object set by hand on a marker) for
-                                  x and y; yaw widened from the sweep's 3 deg toward a
-                                  yawed box (10 deg) while keeping each run an ideal,
-                                  centred grasp
-  mass, friction +-10 %           the sweep's bounds: the spread between nominally equal
-                                  objects and of a friction estimate from handbook ranges
-                                  (docs/model.md, "Friction by material pair")
-  sensor noise                    on: the taxels' 5 mN and the film's noise, each run its seed
-Seeds: ENSEMBLE_BASE_SEED + run (campaign.py). The first TEMPLATE_RUNS runs make the
-events; later runs are held out to choose the thresholds.
-
-Windows: Reach-Load is cut with its physical event PRE_TRANSITION_S["reach_load"] = 0.45 s
-into the 0.5 s window, so the live window looks most like it 50 ms after first contact
-(the paper's centred window matches 0.25 s after; the latency target is 60 ms). The other
-transitions keep the paper's 0.25 s; Load-Lift's anchor is the script's start of the lift
-(paper_events.py), so its window is the settled grip and the lift's first 0.25 s (the
-paper's events end their Load-Lift window at the lift's start instead).
+controller: a campaign (campaign.py) of the object's ideal grasp, each run with its own
+draw of ENSEMBLE_RANGES and its own sensor-noise seed, cut around the paper's physical
+events (paper_events.py) and combined by their mean. The first TEMPLATE_RUNS runs make the
+events, later ones choose the thresholds. Ranges, windows and why: docs/controller.md,
+"Events from an ensemble of grasps".
 """
 
 import dataclasses
@@ -33,21 +15,21 @@ from tegrasp_drake.recording.campaign import (ENSEMBLE_BASE_SEED, CampaignRun,
 from tegrasp_drake.recording.paper_events import grasp_event_times
 from tegrasp_drake.scenario.scenario import LoadScenario
 
+# Reach-Load 0.45 s in: it matches ~50 ms after contact (target 60 ms); else the paper's.
 PRE_TRANSITION_S = {"reach_load": 0.45, "load_lift": 0.25, "place_unload": 0.25}
 ENSEMBLE_FOLDER = "ensemble"
-# The runs whose mean makes the events (the package's ensembles: analysis/
-# record_ensemble_events.py --template-runs 5).
+# The runs whose mean makes the events (analysis/record_ensemble_events.py --template-runs 5).
 TEMPLATE_RUNS = 5
 
 
 @dataclasses.dataclass(frozen=True)
 class EnsembleRanges:
-    """Bounds of the uniform perturbations of an ensemble run (module doc: the sources)."""
-    placement_xy_bound_m: float = 0.002
-    yaw_bound_deg: float = 5.0
-    mass_scale_bound: float = 0.10
-    friction_scale_bound: float = 0.10
-    sensor_noise: bool = True
+    """Bounds of the uniform perturbations of an ensemble run."""
+    placement_xy_bound_m: float = 0.002  # the sweep's jitter: an object set by hand
+    yaw_bound_deg: float = 5.0  # the sweep's 3 deg widened toward a yawed box, still centred
+    mass_scale_bound: float = 0.10  # the sweep's: nominally equal objects' spread
+    friction_scale_bound: float = 0.10  # the sweep's: a friction estimate from handbooks
+    sensor_noise: bool = True  # each run its own noise seed
 
 
 ENSEMBLE_RANGES = EnsembleRanges()
@@ -66,10 +48,11 @@ def ensemble_scenario(object_name: str, run: int, ranges: EnsembleRanges = ENSEM
                                                           ranges.friction_scale_bound)
     obj = dataclasses.replace(base.object, mass=base.object.mass * mass,
                               friction=base.object.friction * friction)
+    placement = base.placement
     scenario = dataclasses.replace(
-        base, object=obj, random_seed=seed,
-        object_offset=[base.object_offset[0] + dx, base.object_offset[1] + dy],
-        object_yaw_deg=base.object_yaw_deg + yaw)
+        base, object=obj, random_seed=seed, placement=dataclasses.replace(
+            placement, offset=[placement.offset[0] + dx, placement.offset[1] + dy],
+            yaw_deg=placement.yaw_deg + yaw))
     if not ranges.sensor_noise:
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(scenario.tactile, noise_std_n=0.0),
@@ -90,9 +73,8 @@ def ensemble_runs(object_name: str, runs: int, template_runs: int = TEMPLATE_RUN
 def record_object_ensemble(object_name: str, scenario, runs: int = TEMPLATE_RUNS, *,
                            template_runs: int | None = None, log_dir=None,
                            progress_of_run=None):
-    """The ensemble events of the object of `scenario` (a user's own object, or a built-in
-    one): `runs` randomised ideal grasps around that scenario, the first `template_runs`
-    (default: all) combined by the mean. log_dir, progress_of_run: as record_campaign's.
+    """The ensemble events of the object of `scenario` (a user's or a built-in one): `runs`
+    randomised ideal grasps, the first `template_runs` (default: all) combined by the mean.
     RecordEventsError when a run shows no physical event."""
     template_runs = runs if template_runs is None else template_runs
     return record_campaign(

@@ -1,18 +1,10 @@
 """Memorizing the tactile events of the ideal grasp (Sec. III-A): the paper's campaign.
 
-For one object, the ideal open-loop grasp is simulated once on its scenario, the SA (Eq. 1,
-at the taxel rate) and RA (Eq. 2, at 1 kHz) channels are cut into 0.5 s windows around the
-physical events that mark the transitions (EVENT_OF_TRANSITION: first contact ->
-reach_load, the scripted start of the lift -> load_lift, table touch -> place_unload) and
-normalised by their maxima (format: tegrasp_drake/events/FORMAT.md; the cutting:
-campaign.py).
-
-Load-Lift is anchored where the paper cuts it: at a transition point of the pre-programmed
-grasp, the end of its Load phase (the script's segment times), not at a force threshold.
-The grip must have settled by then: the lift must start with at least GRIP_FRACTION of the
-settled grip on the weaker pad (grasp_outcome.grip_fraction_at), else the Load phase
-(grasp.load_s) is too short for the gripper's drive and the recording stops and says so.
-`tegrasp record-events` stores them in the events folder with an index.
+The ideal open-loop grasp of one object is simulated once and its SA and RA channels are
+cut into 0.5 s windows around the physical events of EVENT_OF_TRANSITION (campaign.py,
+events/FORMAT.md). Load-Lift is anchored where the paper cuts it, at the end of the
+script's Load phase; the lift must start with GRIP_FRACTION of the settled grip on the
+weaker pad, else the recording stops and says to lengthen grasp.load_s.
 """
 
 import logging
@@ -26,6 +18,7 @@ from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.event_matching import EventMatchingConfig
 
 logger = logging.getLogger(__name__)
 
@@ -33,18 +26,14 @@ __all__ = ["EVENT_OF_TRANSITION", "RecordEventsError", "grasp_event_times", "rec
 
 EVENT_OF_TRANSITION = {"reach_load": "first_contact", "load_lift": "lift_start",
                        "place_unload": "table_touch"}
-# [s] of the 0.5 s window before the physical event (extraction.py; the paper's centred
-# 0.25 s where not given). Load-Lift's window ends at the start of the lift: the controller
-# triggers the lift on this event, so it cannot feel the lift before it matches, and the
-# lift's first 0.25 s in a centred window kept a settled Load from matching in closed loop
-# (on the box, dev seed 600: RA at most 0.72 and 0.57 against the paper's 0.7).
+# [s] of the window before the physical event (else the paper's centred 0.25 s). Load-Lift's
+# ends at the lift's start: the controller lifts on it, so cannot feel the lift first.
 PRE_TRANSITION_S = {"load_lift": 0.5}
 # [s] of the ideal grasp's approach on which each RA channel's noise floor is measured; an
 # RA window that stays within it (Load-Lift's held grip: only the converter's noise) is
-# stored flat, "expects no change" (extraction.py, ra_noise_floor.py). 2 s, as the live
-# floor's controller.ra_noise_quiet_s: within the 2.8 s approach (scripted_grasp.py:
-# settle_s 0.3 + reach_s 2.5), before the open fingers can reach the object.
-QUIET_APPROACH_S = 2.0
+# stored flat, "expects no change" (extraction.py, ra_noise_floor.py): the live floor's
+# default quiet period (controller.matching.ra_noise_quiet_s), within the approach.
+QUIET_APPROACH_S = EventMatchingConfig().ra_noise_quiet_s
 
 
 def lift_grip_fraction(log, scenario) -> float | None:
@@ -57,9 +46,8 @@ def lift_grip_fraction(log, scenario) -> float | None:
 
 
 def grasp_event_times(log, scenario) -> dict[str, float | None]:
-    """When the grasp's transitions' physical events happened in a run [s] (None: not
-    seen), from the simulation's truth (grasp_outcome.physical_events). Load-Lift counts as
-    not seen when the lift starts before the grip has settled (module doc)."""
+    """When the transitions' physical events happened in a run [s] (None: not seen), from the
+    simulation's truth; Load-Lift is not seen when the lift starts before the grip settled."""
     events = physical_events(log, scenario.grasp.grip_force, scenario.object)
     times = {transition: events[event] for transition, event in EVENT_OF_TRANSITION.items()}
     fraction = lift_grip_fraction(log, scenario)
@@ -83,10 +71,10 @@ def missing_event_advice(transition: str, log, scenario) -> str:
         peak = float(sa.min(axis=1).max()) if len(sa) else 0.0
         return (f"the weaker pad's force peaked at {peak:.2f} N (commanded grasp.grip_force = "
                 f"{grip:g} N): the fingers never squeezed the object with both pads, so "
-                "check object.size against the gripper's 85 mm stroke and object_offset")
+                "check object.size against the gripper's 85 mm stroke and placement.offset")
     if transition == "reach_load":
-        return ("the fingers never touched the object: check object.size, object_offset and "
-                "expected_object_xy")
+        return ("the fingers never touched the object: check object.size, placement.offset and "
+                "placement.expected_xy")
     return ("the object never came back to the table after a lift: check that the grasp "
             "lifts it (object.mass, object.friction, grasp.grip_force)")
 

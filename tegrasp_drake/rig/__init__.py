@@ -1,1 +1,16 @@
-"""rig."""
+"""What every layer shares about the rig and the user's files (no Drake systems but one).
+
+station_interface.py: the station's port names, the controller's contract.
+channels.py: the four SA/RA channel names and the finger order.
+tactile_fingertip.py, taxel_layout.py: the pad's dimensions and its 12 taxels.
+objects.py: the objects to grasp (built-in and user-defined).
+materials.py: friction by material pair.
+arm_kinematics.py: the arm's control plant, grasp frame and IK.
+jaco_velocity_tracker.py: JacoVelocityTracker, position error to joint velocity.
+paths.py: where models and events live.
+typed_yaml.py: YAML configuration with errors naming the field.
+ranges.py: each numeric setting's unit and range.
+api_boundary.py: argument checks at the public API.
+files.py: atomic writes, bounded reads, signals, strict JSON.
+npz_headers.py: .npz arrays checked from their headers.
+"""

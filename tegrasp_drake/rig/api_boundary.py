@@ -1,37 +1,15 @@
-"""The public API's boundary: a function of `tegrasp_drake.__all__` checks its arguments
-against its annotations when it is called, and names the wrong one.
+"""The public API's boundary: `@public_api` makes a function of `tegrasp_drake.__all__`
+check its arguments against its annotations at the call and name the wrong one
+(`LoadScenario: argument 'name' must be str, got NoneType None`), instead of failing deep
+inside. Checked: classes (a bool is neither int nor float), unions and Optional, the items
+of list, tuple, Sequence, Collection, Mapping and of an Iterable that is a collection, and
+Callable; a text string is never taken as a collection. `typing.Any` and unannotated
+parameters are not checked.
 
-    @public_api
-    def LoadScenario(filename: str | os.PathLike | None = None, name: str = "default", ...):
-
-`LoadScenario(name=None)` then raises `TypeError: LoadScenario: argument 'name' must be str,
-got NoneType None` at the call, instead of an AttributeError deep inside. What is checked:
-classes (an int is a float; a bool is neither an int nor a float), `X | Y` and Optional,
-`list[T]`, `tuple[T, ...]` and `tuple[A, B]`, `Sequence[T]` and `Collection[T]` (their items
-too), `Iterable[T]` (its items when it is a collection such as a list; a one-shot iterator
-is not consumed: only that it is iterable), `Mapping[K, V]`/`dict[K, V]` (keys and values),
-`Callable`;
-a text string is never taken where a collection is expected (it would be iterated as
-characters). An unannotated parameter, or one annotated `typing.Any`, is not checked; a test
-(tests/test_bad_input_disciplines.py) holds every public function to annotating all of them.
-
-What a value may be, beyond its type, is declared once beside the parameter with
-`typing.Annotated`, and checked at the call after every type (so nothing is written before
-all arguments are known good):
-
-    def run_trial(scenario: Scenario, *,
-                  max_time: Annotated[float | None, Range(low=0.0, unit="s")] = None):
-    def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER], *,
-                      figure_format: Annotated[str, Choice(FIGURE_FORMATS)] = "png"):
-
-- a `Range` (rig/ranges.py): a finite number inside it (None passes when the type allows
-  it), else ValueError "run_trial: argument 'max_time' must be at least 0 s, got -1.0";
-- a `Choice`: one of its names, else ValueError;
-- a `Folder`: a path that is a folder, must already exist (`exists`), and that this user
-  can write in or make (`writable`), else UserPathError (an OSError) naming the argument
-  and the path ("... is a file, not a folder; give a folder").
-A test (tests/test_bad_input_round4.py) holds every public function's numeric parameters to
-a Range and its folder parameters to a Folder.
+What a value may be beyond its type is declared once beside the parameter with
+`typing.Annotated` and checked after every type, so nothing is written before all arguments
+are known good: a `Range` (rig/ranges.py) or `Choice` (ValueError), a `Folder` (UserPathError
+naming the argument and path), e.g. `max_time: Annotated[float | None, Range(low=0.0, unit="s")]`.
 """
 
 import collections.abc
@@ -55,8 +33,9 @@ _ITEM_CHECKED = (list, tuple, collections.abc.Sequence, collections.abc.Collecti
 
 @dataclasses.dataclass(frozen=True)
 class Folder:
-    """What a folder argument must be (module docstring): `exists`, already there (an input
-    or a folder updated in place); `writable`, one this user can write in, or make."""
+    """What a folder argument must be: `exists`, already there; `writable`, one this user can
+    write in, or make.
+    """
     exists: bool = True
     writable: bool = False
 
@@ -164,8 +143,7 @@ def _check_constraint(function: str, name: str, value, constraint) -> None:
 
 
 def value_matches(value, hint) -> bool:
-    """Whether `value` is of the type `hint` as a public function's argument must be (a
-    record's or a spec's fields are checked by the same rules)."""
+    """Whether `value` is of the type `hint` by the rules of a public function's arguments."""
     return _matches(value, hint)
 
 
@@ -241,10 +219,8 @@ def _short_repr(value) -> str:
 
 
 def public_dataclass(cls):
-    """Class decorator (above @dataclass) for a public dataclass a user builds by hand: its
-    constructor refuses a text string in a field annotated as a collection (`objects='box'`
-    where `objects: tuple[str, ...]` is meant; it would be iterated as characters), naming
-    the class and field."""
+    """Class decorator (above @dataclass): the constructor refuses a text string in a field
+    annotated as a collection (`objects='box'` for `tuple[str, ...]`), naming class and field."""
     init = cls.__init__
     fields = None
 
@@ -273,11 +249,8 @@ def public_dataclass(cls):
 
 
 def check_field_values(instance, source: str | None = None) -> None:
-    """Checks a dataclass instance's fields as public_api checks a function's arguments:
-    TypeError naming the first field not of its annotated type (scalars and Optional
-    scalars: str, int, float, bool), then ConfigError (rig/ranges.check_ranges) naming the
-    first number outside its declared range. For a value object checked when it is made
-    (MemorizedEvent) and a config checked where it is used (EventMatcher's)."""
+    """Checks a dataclass instance's fields as public_api checks arguments: TypeError for the first
+    field not of its (scalar) type, then ConfigError for the first number outside its range."""
     from tegrasp_drake.rig.ranges import check_ranges
     cls = type(instance)
     source = source or cls.__name__

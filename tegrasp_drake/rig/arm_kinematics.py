@@ -1,9 +1,6 @@
-"""The arm as the controller sees it: JACO2 with the gripper's grasp frame, and IK on it.
-
-The controller plant holds only the six arm joints (the gripper is rigid in it), so
-differential IK and inverse kinematics work on exactly the joints the Jaco driver commands.
-The grasp frame G is the gripper model's `grasp_frame`: origin between the pads' centres,
-+z the approach direction, +y toward the left finger along the stroke.
+"""The arm as the controller sees it: the JACO2's six joints (the gripper rigid), so IK works
+on exactly the joints the driver commands, with the grasp frame G (origin between the pads'
+centres, +z the approach, +y toward the left finger).
 """
 
 import numpy as np
@@ -24,11 +21,10 @@ X_FLANGE_GRIPPER = RigidTransform()  # the gripper's mounting face on the Jaco's
 R_WG_SIDE_GRASP = RotationMatrix(np.array([[0.0, 0.0, 1.0],
                                            [0.0, 1.0, 0.0],
                                            [-1.0, 0.0, 0.0]]))
-# A configuration near the side grasp in front of the robot, to seed IK [rad].
-# The grasp frame's height, the pad centre above the table [m]: declared once for the grasp
-# script's setting and the station that takes it.
+# The pad centre above the table [m], for the grasp script's setting and the station.
 GRASP_HEIGHT_RANGE = Range(low=0.005, high=0.5, unit="m",
                            why="pad centre above the table, within the tallest object")
+# A configuration near the side grasp in front of the robot, to seed IK [rad].
 IK_SEED = np.array([3.324, 4.531, 1.126, 2.483, 2.31, 3.913])
 
 

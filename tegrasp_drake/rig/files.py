@@ -1,23 +1,9 @@
-"""Writing the user's files so that an interruption never leaves a half-made one.
-
-- write_atomically: a temporary file in the same folder, then a rename over the target; a
-  crash, Ctrl-C or a full disk leaves the old file whole (and no temporary behind).
-- interruptions_deferred: Ctrl-C and SIGTERM wait while several renames commit one result
-  (an object's event files and their index), so that it is all old or all new.
-- claim_folder: a fresh folder made with one mkdir, so that two runs never take the same.
-- folder_problem: what stops a folder from being written, checked before any long work.
-- read_bounded: a file's bytes, reading at most a limit plus one byte (a huge file is
-  refused without being read to its end; a FIFO, socket or device before it is read).
-- file_problem: why a path is not a file to read ("does not exist", "is a named pipe"...).
-- termination_interrupts: SIGTERM and SIGHUP end the process as Ctrl-C does, so that the
-  same `finally` blocks remove a run's staging files.
-- UserPathError: a file or folder the user named cannot be used; its message is one line
-  naming it and what to do, and the CLI boundary (cli.py) prints it as an error.
-- load_json: the one way a user's JSON file becomes data (a duplicate key, NaN, Infinity
-  and an integer no float holds are refused).
-- one_line: how an error message quotes user text (control characters escaped).
-
-Files are made with the permissions the umask gives (as `open` would), not mkstemp's 0600.
+"""The user's files: written so an interruption never leaves a half-made one, read so a bad one
+is refused in one line. Atomic writes (a temporary file in the same folder, then a rename,
+made with the umask's permissions), signals deferred while several renames commit one
+result, a fresh folder claimed with one mkdir, bounded reads that refuse FIFOs and devices
+before reading, SIGTERM and SIGHUP ending a run as Ctrl-C does, UserPathError (one line the
+CLI prints), strict JSON and `one_line` for quoting user text.
 """
 
 import contextlib
@@ -44,9 +30,8 @@ def _honour_umask(descriptor: int) -> None:
 
 
 def staged_file(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Path:
-    """A temporary file beside `path` (named .NAME.XXXX`suffix`) holding `data` (text as
-    UTF-8), flushed to disk, for a later os.replace onto `path`; the caller removes it if
-    that never comes."""
+    """A flushed temporary file beside `path` (.NAME.XXXX`suffix`) holding `data` (text as UTF-8),
+    for a later os.replace onto `path`; the caller removes it if that never comes."""
     path = pathlib.Path(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
     descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix,
@@ -65,9 +50,8 @@ def staged_file(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Pat
 
 
 def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Path:
-    """Writes `data` (text as UTF-8) to `path` through a temporary file in its folder (its
-    name ending in `suffix`) and a rename; the folder must exist. OSError (the target
-    untouched) when it cannot."""
+    """Writes `data` (text as UTF-8) to `path` through a temporary file in its (existing) folder
+    and a rename; OSError, the target untouched, when it cannot."""
     temporary = staged_file(path, data, suffix=suffix)
     try:
         os.replace(temporary, path)
@@ -100,10 +84,9 @@ def temporary_sibling(path):
 
 @contextlib.contextmanager
 def interruptions_deferred():
-    """Holds SIGINT, SIGTERM and SIGHUP back until the block ends, then acts on the first that came
-    as the handler before would have (Ctrl-C: KeyboardInterrupt). Python-level handlers, not
-    a signal mask: in a process with threads the kernel may hand the signal to any of them.
-    Only the main thread can set handlers; elsewhere the block runs as it is."""
+    """Holds SIGINT, SIGTERM and SIGHUP back until the block ends, then acts on the first as the
+    previous handler would. Python-level handlers (the kernel may signal any thread), so only in
+    the main thread; elsewhere the block runs as it is."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -124,10 +107,9 @@ def interruptions_deferred():
 
 
 def folder_problem(path) -> str | None:
-    """Why `path` cannot be, or be made as, a folder this user writes in (None if it can):
-    its nearest existing part must be a folder in which an entry can be made, which is
-    proven by making one (a hidden folder, removed at once): permission bits do not tell
-    of /proc, a read-only mount or a full inode table, and root passes every access check."""
+    """Why `path` cannot be, or be made as, a folder this user writes in (None if it can): its
+    nearest existing part must take a new entry, proven by making one (permission bits do not
+    tell of /proc, a read-only mount or a full inode table, and root passes every check)."""
     path = pathlib.Path(path)
     for place in (path, *path.parents):
         try:
@@ -167,8 +149,7 @@ class InputTooLargeError(OSError):
 
 
 class NotAFileError(OSError):
-    """A path names something other than a regular file (a folder, a FIFO, a socket, a
-    device); `strerror` says which, in words that follow the path."""
+    """A path names a folder, FIFO, socket or device; `strerror` says which, after the path."""
 
     def __init__(self, path, words: str):
         super().__init__(errno.EINVAL, words)
@@ -196,8 +177,8 @@ def _kind_problem(mode: int, path) -> str | None:
 
 
 def file_problem(path) -> str | None:
-    """Why `path` cannot be read as a file, in words that follow it ("does not exist", "is
-    a named pipe (FIFO), not a file; ..."), or None. Nothing is opened."""
+    """Why `path` cannot be read as a file, in words that follow it ("does not exist", "is a named
+    pipe (FIFO), not a file; ..."), or None; nothing is opened."""
     try:
         mode = os.stat(path).st_mode
     except FileNotFoundError:
@@ -208,10 +189,9 @@ def file_problem(path) -> str | None:
 
 
 def read_bounded(path, limit: int) -> bytes:
-    """The bytes of the file at `path`, reading at most `limit` + 1 of them: InputTooLargeError
-    (an OSError) past `limit` (a 10 GB log, /dev/zero). NotAFileError (an OSError) for a
-    folder, FIFO, socket or device other than READABLE_DEVICES, found without blocking: the
-    file is opened non-blocking and checked before a byte is read."""
+    """The bytes of the file at `path`, reading at most `limit` + 1: InputTooLargeError past
+    `limit`; NotAFileError for a folder, FIFO, socket or device other than READABLE_DEVICES,
+    checked on a non-blocking open before a byte is read."""
     descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
         problem = _kind_problem(os.fstat(descriptor).st_mode, path)
@@ -239,18 +219,16 @@ def _interrupt(signal_number, frame):
 
 
 def interrupt_received() -> str | None:
-    """The name of the first signal ("SIGINT", "SIGTERM") that interrupted the process inside
-    termination_interrupts, or None. A KeyboardInterrupt raised inside a Drake callback (a
-    LeafSystem's calc) may come out wrapped in another exception; this says it was one."""
+    """The name of the first signal that interrupted the process inside termination_interrupts, or
+    None (a KeyboardInterrupt raised in a Drake callback may come out wrapped in another)."""
     return _received_interrupts[0] if _received_interrupts else None
 
 
 @contextlib.contextmanager
 def termination_interrupts():
-    """SIGINT (Ctrl-C), SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread while the
-    block runs, so that every `finally` (a run's staging folder, a lock, an LCM log) runs
-    before the process ends, and interrupt_received() remembers it. Signals someone already
-    handles (not Python's default action) are left as they are."""
+    """SIGINT, SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread during the block, so
+    every `finally` (staging folder, lock, LCM log) runs; signals someone already handles are
+    left alone."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -270,10 +248,8 @@ _ESCAPES = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
 
 
 def one_line(text: str) -> str:
-    """`text` as one safe line: every character that is not printable (line breaks, ESC and
-    the other control characters that would move the cursor or recolour the terminal) shown
-    escaped as Python would (\\n, \\x1b, \\u2028), so that an error quoting a user's value
-    is always one line of plain text."""
+    """`text` as one plain line: characters that are not printable (line breaks, ESC, ...) shown
+    escaped as Python would (\\n, \\x1b, \\u2028)."""
     if text.isprintable():
         return text
     return "".join(
@@ -282,9 +258,9 @@ def one_line(text: str) -> str:
 
 
 class UserPathError(OSError):
-    """A file or folder the user named cannot be used (not writable, a file where a folder is
-    needed, a disk that filled up): str() is one line naming it and what to do; `strerror`
-    stays the system's words (for callers that quote only those)."""
+    """A file or folder the user named cannot be used: str() is one line naming it and what to do;
+    `strerror` stays the system's words.
+    """
 
     def __init__(self, message: str, error: OSError | None = None):
         super().__init__(getattr(error, "errno", None) or errno.EINVAL,
@@ -310,9 +286,9 @@ def _refuse_duplicate_keys(pairs):
 
 
 class JsonValueError(ValueError):
-    """A JSON text holds a value that is not JSON or not a number this package can hold:
-    NaN or Infinity (Python's json writes and reads them; the JSON standard, RFC 8259 6,
-    has no such numbers), or an integer beyond the range of a float."""
+    """A JSON value this package cannot hold: NaN or Infinity (not JSON, RFC 8259 6) or an integer
+    beyond a float's range.
+    """
 
 
 def _refuse_nonstandard_constant(name: str):
@@ -321,8 +297,7 @@ def _refuse_nonstandard_constant(name: str):
 
 
 def _float_ranged_int(text: str) -> int:
-    """A JSON integer, refused when no float holds it (every number this package reads is
-    a float64; Python's own limit on integer text, 4300 digits, is beyond that)."""
+    """A JSON integer, refused when no float64 holds it."""
     digits = len(text.lstrip("-"))
     if digits > sys.float_info.max_10_exp + 1 or abs(int(text)) > sys.float_info.max:
         raise JsonValueError(f"holds an integer of {digits} digits, beyond the range of a "
@@ -331,10 +306,8 @@ def _float_ranged_int(text: str) -> int:
 
 
 def load_json(text: str | bytes):
-    """The data of a user's JSON text: json.loads, refusing a duplicate key
-    (DuplicateKeyError, a ValueError) as YAML files do, and NaN, Infinity or an integer no
-    float holds (JsonValueError, a ValueError); json.JSONDecodeError and RecursionError as
-    json.loads raises them."""
+    """The data of a user's JSON text: json.loads, refusing a duplicate key (DuplicateKeyError) and
+    NaN, Infinity or an integer no float holds (JsonValueError), both ValueErrors."""
     import json
     return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
                       parse_constant=_refuse_nonstandard_constant,

@@ -1,39 +1,18 @@
-"""Friction by material pair: the coefficient each geometry carries, and why.
+"""Friction by material pair: the coefficient each geometry carries, and why
+(docs/model.md, "Friction by material pair").
 
-Drake gives every collision geometry its own coefficients and combines the two of a contact
-as mu = 2 mu_A mu_B / (mu_A + mu_B) (`CalcContactFrictionFromSurfaceProperties`), so a
-geometry's value is not the friction of any pair. The discrete solvers (SAP, "lagged",
-"similar") read only the combined *dynamic* coefficient, for sticking as well as sliding
-(`GetCombinedDynamicCoulombFriction` in multibody/plant/contact_properties.h; measured too: a
-pad mu_s 1.0 / mu_d 0.5 on an object mu_s 1.0 / mu_d 0.5 slipped at the grip the dynamic pair
-predicts, not the static one). So every geometry gets one value, written as both mu_dynamic
-and mu_static, and the value aims at the pair's *static* coefficient: holding, slipping and
-tipping over are all decided at the onset of slip. Sliding friction is then about 20-25 %
-too high.
-
-Intended pair values (static / kinetic) are handbook ranges for these materials, reasoned
-estimates rather than measurements: conductive fabric over a compliant elastomer on paper
-or polymer 0.5-0.9; paper on wood 0.4-0.5; polymers on laminate or aluminium 0.3-0.4; paper
-on paper 0.4-0.6; PP on PP 0.3-0.4. Materials: the pad cover is the paper's silver-plated
-nylon conductive fabric over silicone elastomer; the box is cardboard; the cylinders are
-rigid plastic (ABS/PP); the table top is melamine-faced wood; the finger and palm are
-anodised aluminium.
-
-Not every pair can be met. In reciprocals the rule is linear, 2 / mu_pair = 1/mu_A + 1/mu_B,
-so two objects' pairs must differ by the same reciprocal step against every partner; the
-intended values ask for 2/0.80 - 2/0.70 = -0.36 against the pad but -1.27 against the table.
-The geometry values below are the weighted least-squares fit in reciprocals (weights:
-pad-object 10, object-table 3, finger-object 1, object-object 0.3), rounded to 3 digits:
-the grasp pairs (pad-object) land within 2 %, the others within about 10 % (the worst,
-cardboard on cardboard, 10.4 % low). `MATERIAL_PAIRS` lists every pair with its intended
-value; docs/model.md, "Friction by material pair", shows the table with the results.
+Drake combines two geometries' coefficients as mu = 2 mu_A mu_B / (mu_A + mu_B), and its
+discrete solvers use only the combined dynamic one, for sticking too. So each geometry gets
+one value (as mu_dynamic and mu_static), fitted by weighted least squares in reciprocals so
+that the pairs meet their intended *static* coefficients (handbook ranges, MATERIAL_PAIRS):
+holding, slipping and tipping are decided at the onset of slip.
 """
 
 import dataclasses
 
 import numpy as np
 
-# Per-geometry coefficients (mu_dynamic = mu_static), from fit_geometry_friction() rounded.
+# Per-geometry coefficients (mu_dynamic = mu_static): fit_geometry_friction() to 3 digits.
 PAD_COVER = 4.42  # not a physical coefficient: the pad's share of its pairs (0.69-0.81)
 CARDBOARD = 0.448  # the built-in box
 PLASTIC = 0.374  # the built-in cylinders

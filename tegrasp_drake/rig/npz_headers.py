@@ -1,11 +1,8 @@
-"""The arrays an .npz file declares, read from their headers before any array is loaded.
-
-np.load allocates an array of the shape its header declares before it reads the data, so a
-few-kB file whose header declares a (10^9,) float array costs 8 GB before any shape check.
-`checked_npz_arrays` reads each member's .npy header (a few hundred bytes of its start; a
-compressed member is inflated only that far), refuses what the reader does not expect (an
-array name, an object or structured dtype, more bytes than the caller allows, a header
-whose size disagrees with the member's), and only then lets np.load read the arrays.
+"""The arrays an .npz file declares, read from their headers before any array is loaded:
+np.load allocates the shape a header declares, so a few-kB file could cost gigabytes.
+`checked_npz_arrays` reads each member's .npy header, refuses an unexpected name, an object
+or structured dtype, more bytes than the caller allows or a size that disagrees with the
+member's, and only then lets np.load read the arrays.
 """
 
 import math
@@ -17,10 +14,8 @@ import numpy as np
 import numpy.lib.format as npy_format
 
 
-# The most a trial log's arrays may declare: a trial of the scripted grasp's longest allowed
-# length with both sensors at their highest allowed rate (20 kHz) holds about 11 float64
-# columns x 20,000 samples/s x 8 B = 1.8 MB per second; 512 MB is 4.8 minutes of that, far
-# beyond any trial, and a bound on what a crafted header can make the reader allocate.
+# A trial log at the highest sensor rate (20 kHz) holds about 11 float64 columns, 1.8 MB/s:
+# 512 MB is 4.8 minutes, far beyond any trial.
 MAX_TRIAL_LOG_BYTES = 512 * 2**20
 
 
@@ -30,8 +25,7 @@ class NpzHeaderError(ValueError):
 
 # dtype kinds a numeric log or its JSON metadata may hold: bool, integers, floats, text.
 _ALLOWED_KINDS = frozenset("biufU")
-# A .npy header is at most a few hundred bytes (numpy pads it to 64-byte multiples; a
-# version 2 header may be longer, but never near this for a plain array).
+# A plain array's .npy header is a few hundred bytes (64-byte multiples).
 _MAX_HEADER_BYTES = 65_536
 
 
@@ -72,13 +66,10 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
 
 def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
                        text=()) -> dict[str, np.ndarray]:
-    """The arrays `names` (and those of `optional` present) of the .npz at `path`, after
-    their headers (npz_array_headers) say they fit in `max_bytes` together and hold numbers
-    (bool, integers, floats), or text for those named in `text`.
-
-    Raises NpzHeaderError (a ValueError) for a missing array or a bad header, and what
-    zipfile and numpy raise for damage found while reading (OSError, ValueError, EOFError,
-    zipfile.BadZipFile, zlib.error): the caller names the file."""
+    """The arrays `names` (and those of `optional` present) of the .npz at `path`, once their
+    headers say they fit in `max_bytes` together and hold numbers (text for those in `text`).
+    NpzHeaderError (a ValueError) for a missing array or a bad header; damage found while
+    reading raises what zipfile and numpy raise. The caller names the file."""
     try:
         zip_file = zipfile.ZipFile(path)
     except (RuntimeError, NotImplementedError) as e:  # a zip feature zipfile does not read

@@ -1,16 +1,9 @@
-"""The objects to grasp: the paper's three (Fig. 8a) and user-defined ones.
-
-The paper does not give its objects' sizes; these are chosen to fit the 2F-85's 85 mm stroke
-with the +-1.5 cm misplacement along the stroke and a finger clearance of 2.5 mm or more:
-width along the stroke + 2 x 15 mm <= 85 mm - 2 x 2.5 mm. Masses are those of plastic or
-cardboard objects of that size. Frame of an object O: origin at the centre of its base (the
-face resting on the table), z up.
-
-An object's `friction` is the coefficient of its own collision geometry, not of any pair:
-Drake combines it with the other geometry's as 2 mu_A mu_B / (mu_A + mu_B)
-(rig/materials.py). The built-in box is cardboard (0.448: pad 0.814, table 0.412),
-the cylinders rigid plastic (0.374: pad 0.690, table 0.377). For a pair value P against the
-pad, give the object P mu_pad / (2 mu_pad - P) with mu_pad = materials.PAD_COVER.
+"""The objects to grasp: the paper's three (Fig. 8a) and user-defined ones; frame O at the
+centre of the object's base, z up. The paper gives no sizes: the built-in ones fit the
+2F-85's 85 mm stroke with the +-1.5 cm misplacement and at least 2.5 mm finger clearance
+(width + 2 x 15 mm <= 85 mm - 2 x 2.5 mm); masses are those of plastic or cardboard objects
+of that size. `friction` is the object geometry's own coefficient (rig/materials.py): for a
+pair value P against the pad, give P mu_pad / (2 mu_pad - P), mu_pad = materials.PAD_COVER.
 """
 
 import dataclasses
@@ -34,14 +27,11 @@ OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")  # it names a 
 @public_dataclass
 @dataclasses.dataclass
 class ObjectConfig:
-    """An object to grasp.
-
-    Leave `shape` empty to take the built-in object called `name`; its size, mass and
-    friction can be changed (a field left out, None, keeps the built-in value). Otherwise
-    the object is your own and needs its own `name` (its memorized events are stored
-    under it): shape "box" with size [x, y, z] m; "cylinder" with size [diameter, height]
-    m; or "file" with `file` an SDF/URDF path or package:// URL whose model has one body,
-    and size [width along the stroke, depth, height] m for planning; and mass and friction.
+    """An object to grasp. With `shape` empty, the built-in object `name`, whose size, mass and
+    friction may be changed (None keeps the built-in value). Otherwise your own, under its own
+    `name` (its events are stored under it): "box" with size [x, y, z] m, "cylinder" with
+    [diameter, height] m, or "file" (an SDF/URDF path or package:// URL of a one-body model)
+    with [width along the stroke, depth, height] m for planning; and mass and friction.
     """
     name: str = "box"
     shape: str = ""
@@ -51,8 +41,7 @@ class ObjectConfig:
     mass: float | None = bounded(None, low=0.0, low_open=True, high=5.0, unit="kg",
                                  why="the 2F-85's rated payload, Robotiq 2F-85 manual",
                                  below="must be positive (the object's mass [kg])")
-    # Coulomb coefficient of the object's geometry (static = dynamic), combined with the
-    # pad's and the table's by Drake's pair rule (see the module docstring).
+    # Coulomb coefficient of the object's geometry (static = dynamic; module docstring)
     friction: float | None = bounded(None, low=0.0, low_open=True, high=2.0,
                                      why="dry Coulomb coefficients of solids stay below about "
                                          "1.5, rubber on rubber",
@@ -87,11 +76,9 @@ BUILTIN_OBJECTS = {
 
 
 def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, str] | None:
-    """The first field of a user-defined object (its shape given) that cannot make an
-    object, and what is wrong, in words that follow "field 'x'"; None when all can.
-
-    `shapes` narrows the shapes allowed. A model file is not looked for.
-    """
+    """The first field of a user-defined object (its shape given) that cannot make an object, and
+    what is wrong, in words that follow "field 'x'"; None when all can. `shapes` narrows the
+    shapes allowed; a model file is not looked for."""
     if not OBJECT_NAME_PATTERN.match(config.name):
         return "name", (f"'{config.name}' must be letters, digits, '_' or '-' (not first): "
                         "it names the folder of the object's events")
@@ -121,8 +108,8 @@ DESCRIPTION_FIELDS = ("shape", "size", "mass", "friction", "file")
 
 
 def object_description(config: ObjectConfig) -> dict:
-    """What the physics sees of a resolved object: {shape, size, mass, friction, file}
-    (memorized events carry it, so that they are used only for the object they felt)."""
+    """What the physics sees of a resolved object: {shape, size, mass, friction, file} (memorized
+    events carry it, so they are used only for the object they felt)."""
     return {"shape": config.shape, "size": [float(v) for v in config.size],
             "mass": float(config.mass), "friction": float(config.friction),
             "file": config.file}

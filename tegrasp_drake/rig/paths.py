@@ -1,19 +1,11 @@
-"""Where the package's data and the user's data live, for editable and non-editable
-installs alike.
+"""Where the package's data and the user's data live, for editable and non-editable installs.
 
-Memorized events: the package's own (`package_events_dir()`) are read-only; events the user
-records go to the user's events folder (`user_events_dir()`): the environment variable
-TEGRASP_EVENTS_DIR, else $XDG_DATA_HOME/tegrasp/events, else
-~/.local/share/tegrasp/events, which `pip install` never touches. Readers look in
-`events_search_path()`: a folder given on the command line (--events DIR) alone, else the
-user's folder first, then the package's.
-
-models/ and events/ at the repository top level are installed as the packages
-`tegrasp_drake.models_data` and `tegrasp_drake.events_data`; importlib.resources finds them
-in either install. When the package is imported from a source checkout (its parent folder
-holds pyproject.toml), that checkout's own folders are used: an editable install of another
-checkout (a shared venv, with this checkout first on PYTHONPATH) would otherwise hand out
-the other checkout's models and events.
+The package's models and memorized events (installed as `tegrasp_drake.models_data` and
+`events_data`, found by importlib.resources; from a source checkout, that checkout's own
+folders) are read-only. Events the user records go to `user_events_dir()`:
+$TEGRASP_EVENTS_DIR, else $XDG_DATA_HOME/tegrasp/events, else ~/.local/share/tegrasp/events.
+Readers search a folder given with --events alone, else the user's folder, then the
+package's.
 """
 
 import importlib.resources

@@ -1,22 +1,13 @@
-"""Every numeric setting's unit and allowed range, declared once beside the field.
+"""Every numeric setting's unit and allowed range, declared once beside the field:
 
-    @dataclasses.dataclass
-    class GraspScriptConfig:
-        hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s",
-                                why="the paper holds 3 s; a minute is the longest test")
+    hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s",
+                            why="the paper holds 3 s; a minute is the longest test")
 
-`bounded` is a `dataclasses.field` whose metadata holds a `Range`; `check_ranges` walks a
-config object (nested dataclasses, lists and mappings of them) and raises ConfigError
-"SOURCE: field 'grasp.hold_s' must lie in [0, 60] s (why), got 10000000.0" for the first
-value outside its range (each element of a list field is checked). It runs where a config is
-loaded (LoadScenario, LoadHardwareConfig, LoadSweepSpec, LoadTransferSpec) and again where a
-builder is handed one (MakeStation, MakeGraspDiagram, run_trial, run_on_hardware,
-MakeHardwareStation), so a config changed in Python after loading is caught too.
-
-A range is physically plausible or what the code supports, with the reason in `why`; a
-field's established words for a value under its range (`below`, e.g. "must be positive") are
-kept. `unranged_numeric_fields` lists the numeric fields reachable from a config class that
-declare none (tests/test_config_ranges.py fails on any).
+`check_ranges` walks a config (nested dataclasses, lists and mappings of them) and raises
+ConfigError "SOURCE: field 'grasp.hold_s' must lie in [0, 60] s (why), got 1e7" for the
+first value outside its range, where a config is loaded and again where a builder is handed
+one (a config changed in Python is caught too). A range is what is physically plausible or
+what the code supports, the reason in `why`.
 """
 
 import collections.abc
@@ -84,6 +75,15 @@ def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
     range is each element's, and `length` how many elements it must hold."""
     return dataclasses.field(default=default, default_factory=default_factory, metadata={
         _KEY: Range(low, high, unit, why, low_open, high_open, below, length)})
+
+
+def declared_field(cls: type, name: str) -> dataclasses.Field:
+    """A new dataclass field with the default and the declared Range of the field `name` of
+    the dataclass `cls`: a config that repeats another's setting takes its declaration, so
+    that the default and the range are written once."""
+    field = next(f for f in dataclasses.fields(cls) if f.name == name)
+    return dataclasses.field(default=field.default, default_factory=field.default_factory,
+                             metadata=field.metadata)
 
 
 @dataclasses.dataclass(frozen=True)

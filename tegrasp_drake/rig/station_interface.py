@@ -1,16 +1,8 @@
-"""The station's ports: the one contract between a station and the controller.
-
-Both stations export these names, the simulated one (simulation/station.py,
-MakeGraspStation) and the real devices (hardware/station.py, MakeHardwareStation), so the
-controller (control/grasp_controller.py, AddGraspController) connects to either without
-knowing which it has. Import this module as `ports` and name a port by its constant, never
-by a string literal:
-
-    builder.Connect(arm_desired_state, station.GetInputPort(ports.ARM_DESIRED_STATE))
-
-`CONTROLLER_INPUTS` and `CONTROLLER_OUTPUTS` are the ports every station has, with their
-vector sizes; the other names are exported by one station only (the simulation's ground
-truth, the hardware's faults and clocks).
+"""The station's ports: the one contract between a station and the controller. The
+simulated (MakeGraspStation) and real (MakeHardwareStation) stations export these names, so
+the controller connects to either without knowing which; name a port by its constant, never
+a string literal. `CONTROLLER_INPUTS` and `CONTROLLER_OUTPUTS` are the ports every station
+has, with their sizes; the rest belong to one station only.
 """
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
@@ -56,8 +48,7 @@ CONTROLLER_OUTPUTS = {
     **{pad_acceleration(finger): PAD_ACCELERATION_AXES for finger in FINGER_NAMES},
 }
 
-# Both stations, for logs (no controller reads it): what the host sends the arm, the
-# desired positions and the commanded joint velocities [rad, rad/s] (12).
+# Both stations, for logs (no controller reads it).
 ARM_COMMANDED_STATE = "arm.commanded_state"  # (12) positions and velocities sent to the arm
 
 # Simulation only: ground truth for evaluation and the plant's internals.

@@ -1,11 +1,7 @@
-"""The 3 x 4 taxel layout of a fingertip pad, in the pad frame P.
-
-Pad frame P (frames `left_pad` / `right_pad` of the gripper model): origin at the centre of
-the pad's contact surface, +z the inward normal (toward the object), +x across the pad's
-20 mm width, +y along its 24 mm length toward the fingertip (on both pads). Taxel index =
-3 * row + column, row 0..3 along +y (row 0 nearest the palm), column 0..2 along +x. Each
-taxel is one cell of a regular 3 x 4 grid covering the pad, like the 12 electrodes of the
-paper's Fig. 7c; the sizes are the gripper model's own (rig/tactile_fingertip.py).
+"""The 3 x 4 taxel layout of a fingertip pad, in the pad frame P (`left_pad`/`right_pad`:
+origin at the contact face's centre, +z the inward normal, +x across the 20 mm width, +y
+along the 24 mm length toward the fingertip). Taxel index = 3 * row + column, row 0
+nearest the palm: a regular grid over the pad, like the paper's 12 electrodes (Fig. 7c).
 """
 
 import numpy as np

@@ -1,25 +1,12 @@
-"""Typed configuration from YAML files, with errors that name the field.
+"""Typed configuration from YAML files (scenarios, the hardware config, sweep specs), with
+errors that name the field.
 
-Every YAML file the project reads as configuration goes through here: scenarios
-(scenario/scenario.py), the hardware config (hardware/config.py) and sweep specs
-(sweep/spec.py).
-
-- `parse_yaml` is the one way YAML text becomes data, for files and `--set` values alike:
-  Drake's `yaml_load` (PyYAML's safe loader: no Python objects; a tag such as
-  `!HardwareStationConfig` is kept as the mapping's `_tag`), after refusing a duplicate key
-  (PyYAML would keep the last silently), text over MAX_YAML_BYTES and aliases that expand
-  past MAX_YAML_NODES (nested aliases multiply: a few lines can stand for billions).
-- `read_yaml_file` parses a file with it.
-- `apply_override` applies a `--set key.sub=value` assignment to the parsed data.
-- `check_fields` walks the data against a dataclass schema and names the first field that is
-  unknown, missing (a dataclass field without a default), of the wrong type or a number that
-  is not finite (`.nan`, `.inf`: no setting means "not a number") or null (`~`: only a field
-  left out takes its default) by its dotted path, e.g.
-  `object.mass` or `user_objects.mug.size`.
-- `require` checks one value of a loaded config (a positive timeout, a threshold in range).
-- `load_typed` checks the data, then builds the schema with Drake's `yaml_load_typed`.
-
-Every problem is a ConfigError whose message begins with the file (and section) it came from.
+`parse_yaml` is the one way YAML text becomes data, for files and `--set` values alike:
+Drake's `yaml_load` (safe: a tag such as `!HardwareStationConfig` becomes the mapping's
+`_tag`), after refusing duplicate keys, text over MAX_YAML_BYTES and aliases that expand past
+MAX_YAML_NODES. `check_fields` names, by dotted path (`object.mass`), the first field that is
+unknown, missing, mistyped, not finite or null; `load_typed` then builds the dataclass with
+`yaml_load_typed`. Every problem is a one-line ConfigError beginning with its source.
 """
 
 import collections.abc
@@ -44,10 +31,8 @@ class ConfigError(ValueError):
         super().__init__(_bounded_message(one_line(str(message))))
 
 
-# An error message echoes the values it names; a value pasted by mistake (a file's contents
-# in a --set) must not make it hundreds of kB. Each place that echoes a value cuts it to
-# about ECHO_CHARS (rig/ranges.py shorten); past MAX_MESSAGE_CHARS whatever is left over
-# long is cut here: first each word over twice ECHO_CHARS, then the middle.
+# A value pasted by mistake (a file in a --set) must not make an error hundreds of kB: each
+# echoed value is cut to about ECHO_CHARS, and a message past MAX_MESSAGE_CHARS is cut here.
 ECHO_CHARS = 80
 MAX_MESSAGE_CHARS = 1000
 
@@ -215,13 +200,10 @@ def load_typed(data: dict, schema, source: str):
 
 
 def check_fields(data, schema, source: str, where: str = "") -> None:
-    """Walks YAML data against a dataclass schema (at the dotted path `where`); raises
-    ConfigError naming the first unknown, missing or mistyped field.
-
-    Understood in the schema: dataclasses, float, int, str, bool, list[T], tuple[T, ...],
-    dict[str, T] and Mapping[str, T], T | None, a Union of dataclasses selected by a YAML tag
-    (the first member without one), and Drake's own config classes (checked by Drake).
-    """
+    """Walks YAML data against a dataclass schema (at the dotted path `where`); ConfigError
+    names the first unknown, missing or mistyped field. Understood: dataclasses, scalars,
+    list[T], tuple[T, ...], dict/Mapping[str, T], T | None, a Union of dataclasses selected by
+    a YAML tag (the first member untagged) and Drake's config classes (checked by Drake)."""
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         _check_finite_numbers(data, source, where)

@@ -1,18 +1,12 @@
-"""The 2F-85's dimensions that the hand models and the arm's grasp frame share [m].
-
-Base frame as in the model generators (modelgen/robotiq_sdf.py): origin at the mounting
-face, +z out of the gripper along the approach axis, y along the stroke.
-
-- PAD_CENTER_Z: the grasp frame G's height above the mounting face, at the centre of the
-  pads of the prismatic hand. The datasheet puts the fingertip about 0.16 m from the
-  coupling; the 24 mm pad (rig/tactile_fingertip.py) centred 140 mm out ends 8 mm short of
-  it. The linkage hand puts its grasp frame here too, so both hands and the arm's IK
-  (rig/arm_kinematics.py) meet the object at the same point.
-- HALF_STROKE: a pad face's distance from the grasp axis with the gripper open, half the
-  datasheet's 85 mm stroke (units.STROKE_M).
+"""The 2F-85's dimensions that the hand models and the arm's grasp frame share [m], in the
+model generators' base frame (origin at the mounting face, +z along the approach axis, y
+along the stroke). Both hands and the arm's IK meet the object at the same point.
 """
 
 from tegrasp_drake.robotiq.units import STROKE_M
 
+# The grasp frame G above the mounting face, at the prismatic hand's pad centres: the
+# datasheet's fingertip is ~0.16 m out; a 24 mm pad (rig/tactile_fingertip.py) centred here
+# ends 8 mm short of it.
 PAD_CENTER_Z = 0.140
-HALF_STROKE = STROKE_M / 2
+HALF_STROKE = STROKE_M / 2  # a pad face from the grasp axis, open

@@ -1,33 +1,14 @@
-"""The Robotiq 2F-85 finger linkage in closed form: the one source of its dimensions.
+"""The Robotiq 2F-85 finger linkage in closed form: the one source of its dimensions
+(docs/model.md, "The hand: the 2F-85 finger linkage").
 
-Each finger is an underactuated five-bar in the gripper base's y-z plane (y along the
-stroke toward this finger, z out of the palm along the approach axis; metres):
-
-- A: the driver's pivot on the base; the motor turns the driver A-B;
-- B: driver-coupler joint; a pin stops the coupler turning one way against the driver;
-- C: coupler-follower joint, with the torsional spring that holds B on its pin;
-- D: follower-spring link joint; the follower carries the fingertip;
-- E: the spring link's pivot on the base.
-
-Open-pose joint coordinates from Robotiq's own kinematics asset for Isaac Sim
-(robotiq/isaacsim_assets, `Robotiq_2F_85_kinematics_physics.usda` and
-`grippers/GRIPPER_SIMULATION_GUIDE.md`, sections 4.1-4.5); MuJoCo Menagerie's
-`robotiq_2f85/2f85.xml` agrees within 0.5 mm (its driver pivot: (30.6, 54.9) mm).
-On the pin, A-C-D-E is a parallelogram (|AC| = |ED| = 57.16 mm, |AE| = |CD| = 19.05 mm):
-the follower translates on a circle of radius |AC| and the pad stays parallel.
-
-Angles are the SDF joint coordinates of the finger on +y (the other finger is its mirror):
-theta, the driver's turn from the open pose, positive closing; beta, the coupler's turn
-against the driver from its pin, 0 on the pin and negative off it, where the fingertip curls
-toward the object (the encompassing grasp). A contact force on the pad pushes B off its pin
-when it acts below the finger's flip height: about the height of the follower's
-instantaneous centre with the driver held (where lines B-C and E-D cross), lowered by the
-spring's share (`flip_height`).
-
-The fingertip is the paper's tactile pad (rig/tactile_fingertip.py), mounted where Robotiq's
-stock pad sits on the follower: Menagerie's pad boxes span 111.9-149.4 mm from the base in
-the open pose, so the pad centre is at z = 130.7 mm; its contact face lies at y = 42.5 mm,
-half the 85 mm stroke.
+Each finger is an underactuated five-bar in the base's y-z plane (y along the stroke
+toward this finger, z along the approach axis; metres): the motor turns driver A-B about
+A; a pin stops coupler B-C turning one way against the driver; C carries the torsional
+spring and the follower (with the fingertip); spring link D-E pivots on the base at E. On
+the pin A-C-D-E is a parallelogram, so the pad translates on a circle and stays parallel.
+Angles are the SDF joint coordinates of the +y finger: theta, the driver's turn from open
+(positive closing); beta, the coupler's turn off its pin (0 on it, negative off it, the
+fingertip curling toward the object).
 """
 
 import dataclasses
@@ -37,39 +18,39 @@ import typing
 import numpy as np
 from scipy.optimize import brentq
 
-# Open-pose joint coordinates [m], (y, z) in the gripper base frame, finger on +y.
+# Open-pose joint coordinates [m], (y, z), finger on +y: Robotiq's Isaac Sim kinematics asset
+# (Robotiq_2F_85_kinematics_physics.usda); MuJoCo Menagerie's 2f85.xml agrees within 0.5 mm.
 A = np.array([0.03060, 0.05466])
 B = np.array([0.06213, 0.05090])
 C = np.array([0.06776, 0.09809])
 D = np.array([0.04986, 0.10460])
 E = np.array([0.01270, 0.06118])
 
-PAD_CENTER_OPEN = np.array([0.0425, 0.1307])  # m, the pad face's centre, open pose
+# [m] the pad face's centre, open: where Menagerie's stock pad sits (z 111.9-149.4 mm), the
+# face at half the 85 mm stroke; the pad is the paper's (rig/tactile_fingertip.py).
+PAD_CENTER_OPEN = np.array([0.0425, 0.1307])
 DRIVER_RANGE_RAD = math.radians(47.0)  # the driver's travel (Isaac asset; Menagerie 0.8 rad)
 COUPLER_RANGE_RAD = 1.57  # the coupler's travel off its pin (Menagerie: -1.57..0)
 FOLLOWER_RANGE_RAD = 0.872664  # the follower's travel against the coupler (Menagerie)
-# The torsional spring at C: 0.0004 N m/deg = 0.0229 N m/rad, preloaded by 90 deg: 37 N mm
-# in the open pose (GRIPPER_SIMULATION_GUIDE.md, section 4.2). It turns the follower back
-# (uncurls it) against the coupler, which holds B on its pin: its rest angle is -90 deg.
+# The spring at C, 0.0004 N m/deg preloaded by 90 deg (GRIPPER_SIMULATION_GUIDE.md, 4.2): it
+# uncurls the follower against the coupler, holding B on its pin.
 SPRING_STIFFNESS_NM_PER_RAD = 0.0004 * 180.0 / math.pi
 SPRING_REST_ANGLE_RAD = -math.pi / 2.0
 
 _AC = C - A
 LINK_RADIUS = float(np.linalg.norm(_AC))  # m, 57.16 mm: the follower's circle on the pin
 _PHI_OPEN = math.atan2(_AC[1], _AC[0])  # the angle of A->C from +y, open: 49.4 deg
-# The y coordinates of A, C and the open pad centre and the components of A->C as Python
-# floats: half_opening and driver_angle run on every plant step, and numpy's scalar
-# overhead would cost several times their arithmetic (the same IEEE operations).
+# As Python floats: half_opening and driver_angle run every plant step, and numpy's scalar
+# overhead would cost several times their arithmetic.
 _A_Y, _C_Y, _PAD_OPEN_Y, _AC_Y, _AC_Z = (float(x) for x in (A[0], C[0], PAD_CENTER_OPEN[0],
                                                            _AC[0], _AC[1]))
 
 
 @dataclasses.dataclass(frozen=True)
 class Functions:
-    """What half_opening, driver_angle and half_opening_rate compute with: math's functions
-    on Python floats (FLOATS), or symbolic ones (simulation/ordered_expressions.py's
-    SYMBOLIC), with which the same functions write their formula as an expression that a
-    compiled system evaluates with the same operations. `number` takes the argument in."""
+    """The math functions half_opening, driver_angle and half_opening_rate use: math's on
+    floats (FLOATS) or symbolic ones (simulation/ordered_expressions.py's SYMBOLIC), so one
+    formula serves floats and compiled expressions. `number` takes the argument in."""
     cos: typing.Callable
     sin: typing.Callable
     acos: typing.Callable
@@ -99,7 +80,7 @@ def pad_center(theta: float) -> np.ndarray:
 
 def half_opening(theta: float, f: Functions = FLOATS) -> float:
     """The pad face's distance from the grasp axis [m] (half the opening), on the pin:
-    pad_center(theta)[0] on floats (with f, Functions)."""
+    pad_center(theta)[0] on floats or, with f, on expressions."""
     c, s = f.cos(theta), f.sin(theta)
     return _PAD_OPEN_Y + ((_A_Y + (c * _AC_Y - s * _AC_Z)) - _C_Y)
 
@@ -111,9 +92,8 @@ def pad_travel(theta: float) -> float:
 
 
 def driver_angle(half_opening_m: float, f: Functions = FLOATS) -> float:
-    """The driver angle [rad] that leaves the pad face half_opening_m [m] from the grasp
-    axis (the inverse of half_opening), for 0 <= half_opening_m <= the open value (with
-    f, Functions)."""
+    """The driver angle [rad] leaving the pad face half_opening_m [m] from the grasp axis (the
+    inverse of half_opening), for 0 <= half_opening_m <= the open value."""
     q = f.min(f.max(f.number(half_opening_m), 0.0), _PAD_OPEN_Y)
     cosine = (q - _PAD_OPEN_Y + _C_Y - _A_Y) / LINK_RADIUS
     return f.acos(f.min(f.max(cosine, -1.0), 1.0)) - _PHI_OPEN
@@ -123,8 +103,7 @@ THETA_PADS_MEET = driver_angle(0.0)  # rad, 45.96 deg: the pad faces touch
 
 
 def half_opening_rate(theta: float, f: Functions = FLOATS) -> float:
-    """d(half opening)/d(theta) [m/rad] on the pin: minus the pad's lever arm about A
-    (with f, Functions)."""
+    """d(half opening)/d(theta) [m/rad] on the pin: minus the pad's lever arm about A."""
     return -LINK_RADIUS * f.sin(_PHI_OPEN + theta)
 
 
@@ -135,8 +114,9 @@ def pad_travel_at_opening(opening_m: float) -> float:
 
 @dataclasses.dataclass(frozen=True)
 class FingerPose:
-    """The five-bar's moving joint points [m], (y, z) in the base frame, and the follower's
-    turn from the open pose [rad] (positive: the fingertip tilts toward the object)."""
+    """The five-bar's moving joints [m], (y, z) in the base frame, and the follower's turn from
+    open [rad] (positive: the fingertip tilts toward the object).
+    """
     b: np.ndarray
     c: np.ndarray
     d: np.ndarray
@@ -182,10 +162,9 @@ def _spring_joint_angle(theta: float, beta: float) -> float:
 
 def coupler_generalized_force(theta: float, contact_height_m: float, force_n: float,
                               step: float = 1e-6) -> float:
-    """The generalized force on beta [N m] with the driver held at theta and B on its pin,
-    of a contact force force_n [N] pushing the pad face outward (along +y), acting
-    contact_height_m [m] above the pad centre along the pad, plus the spring's. Negative:
-    B leaves its pin. Virtual work by central differences of the closed-form five-bar."""
+    """The generalized force on beta [N m], the driver held at theta and B on its pin, of a
+    force force_n [N] pushing the pad face outward (+y) contact_height_m [m] above the pad
+    centre, plus the spring's; negative: B leaves its pin. Virtual work by central differences."""
     p_open = PAD_CENTER_OPEN + np.array([0.0, contact_height_m])
     dp = (point_on_follower(theta, step, p_open)
           - point_on_follower(theta, -step, p_open)) / (2.0 * step)
@@ -197,7 +176,7 @@ def coupler_generalized_force(theta: float, contact_height_m: float, force_n: fl
 
 
 def flip_height(theta: float, force_n: float) -> float:
-    """The contact height [m] above the pad centre (negative: toward the palm) below which
-    a pad force force_n [N] lifts B off its pin, the driver held at theta [rad]."""
+    """The contact height [m] above the pad centre (negative: toward the palm) below which a pad
+    force force_n [N] lifts B off its pin, the driver held at theta [rad]."""
     return brentq(lambda h: coupler_generalized_force(theta, h, force_n), -0.1, 0.1,
                   xtol=1e-7)

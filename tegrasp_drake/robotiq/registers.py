@@ -1,26 +1,19 @@
 """Robotiq 2F-85 Modbus RTU register map and pure encode/decode (manual, "Control").
+Registers are 16 bits, first byte in the high half.
 
-Serial line: 115200 baud, 8N1, slave (device) id 9. Registers are 16 bits, two bytes
-each, first byte in the high half (big-endian).
-
-Command: 3 registers written with function 16 at 1000 (0x03E8):
-    byte 0 action request (bit0 rACT, bit3 rGTO, bit4 rATR, bit5 rARD), bytes 1-2 reserved,
-    byte 3 rPR position request, byte 4 rSP speed, byte 5 rFR force.
-Status: 3 registers read with function 4 at 2000 (0x07D0) (some firmware answers 3 too):
-    byte 0 gripper status (bit0 gACT, bit3 gGTO, bits 4-5 gSTA, bits 6-7 gOBJ),
-    byte 1 reserved, byte 2 fault (gFLT low nibble, kFLT high nibble), byte 3 gPR echo,
-    byte 4 gPO position, byte 5 gCU current (x 10 mA).
-
-The status vector is the project's `gripper.status` port:
-[gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO, gCU] (robotiq.units).
+Command, 3 registers written with function 16 at 1000: byte 0 action (bit0 rACT, bit3
+rGTO, bit4 rATR, bit5 rARD), bytes 1-2 reserved, then rPR, rSP, rFR.
+Status, 3 registers read with function 4 (some firmware: 3) at 2000: byte 0 (bit0 gACT,
+bit3 gGTO, bits 4-5 gSTA, bits 6-7 gOBJ), byte 1 reserved, byte 2 gFLT (low nibble), then
+gPR, gPO, gCU (x 10 mA).
 """
 
 import numpy as np
 
 from tegrasp_drake.robotiq import units
 
-BAUDRATE = 115200
-DEVICE_ID = 9
+BAUDRATE = 115200  # 8N1 (manual)
+DEVICE_ID = 9  # the manual's default slave id
 COMMAND_ADDRESS = 1000
 STATUS_ADDRESS = 2000
 REGISTER_COUNT = 3

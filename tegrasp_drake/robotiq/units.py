@@ -1,19 +1,15 @@
 """Conversions between Robotiq 2F-85 register bytes and SI units, shared by sim and hardware.
-
-The gripper is commanded and read the way the real one is (Robotiq 2F-85 instruction
-manual, "Control" section): position request rPR, speed rSP and force rFR are bytes 0..255,
-and the status reports gACT, gGTO, gSTA, gOBJ, gFLT, the position echo gPR, the encoder
-position gPO and the motor current gCU. The `gripper.command` and `gripper.status` ports of
-the station and of the hardware interface carry exactly these bytes (as floats).
-
-Datasheet figures: stroke 85 mm, closing speed 20-150 mm/s, grip force 20-235 N; the
-encoder reads about 3 fully open and about 230 fully closed.
+The station's `gripper.command` [rPR, rSP, rFR] and `gripper.status` [gACT, gGTO, gSTA,
+gOBJ, gFLT, gPR, gPO, gCU] carry these bytes as floats, as the instruction manual's
+"Control" section defines them.
 """
 
 import enum
 
 import numpy as np
 
+# Datasheet: stroke 85 mm, closing speed 20-150 mm/s, grip force 20-235 N; the encoder reads
+# about 3 fully open and about 230 fully closed.
 STROKE_M = 0.085
 SPEED_MIN_MPS = 0.020
 SPEED_MAX_MPS = 0.150
@@ -49,8 +45,7 @@ class ActivationStatus(enum.IntEnum):
     ACTIVE = 3
 
 
-# gFLT codes the gripper's behaviour depends on; from FIRST_MAJOR_FAULT on, a fault is
-# major: the fingers stop until the next activation.
+# gFLT codes; from FIRST_MAJOR_FAULT on the fingers stop until the next activation (manual).
 FAULT_ACTION_DELAYED = 0x05
 FAULT_NOT_ACTIVATED = 0x07
 FIRST_MAJOR_FAULT = 0x0A
@@ -76,11 +71,8 @@ def fault_name(code: int) -> str:
     return FAULT_NAMES.get(int(code), f"unknown fault 0x{int(code):02X}")
 
 
-# gCU, the motor current [x 10 mA] (the manual's unit). The manual's Modbus examples read
-# 0x10 (160 mA) while the fingers move and 0x00 once they have stopped, on an object or at
-# the requested position (the screw holds, the motor draws nothing). Robotiq publishes no
-# current-force curve: in between, the scale is a stated assumption, the current in
-# proportion to the force the motor pushes with, 600 mA at the 235 N grip.
+# gCU [x 10 mA]: the manual's examples read 0x10 moving and 0x00 stopped (the screw holds);
+# no current-force curve is published, so 600 mA at 235 N, in proportion, is an assumption.
 MOVING_CURRENT = 16.0
 MAX_GRIPPING_CURRENT = 60.0
 
@@ -102,8 +94,8 @@ def opening_from_position_byte(position_byte):
 
 
 def position_from_opening(opening_m):
-    """The finger position on the rPR/gPO byte scale for a finger opening [m] (pad to pad),
-    not rounded (a finger stands between two bytes); linear between open and closed."""
+    """The finger position on the rPR/gPO byte scale for an opening [m] (pad to pad), unrounded
+    (a finger stands between two bytes); linear between open and closed."""
     fraction = np.clip(np.asarray(opening_m) / STROKE_M, 0.0, 1.0)
     return POSITION_CLOSED_BYTE - fraction * POSITION_SPAN_BYTES
 

@@ -1,4 +1,10 @@
-"""Runs of the grasp and their judgement: a simulated closed-loop trial (`run_trial`), the
-ideal open-loop grasp (`run_ideal_grasp`), the grasp on the devices in real time
-(`run_on_hardware`) and its LCM log read back and replayed, the ground-truth judge
-(grasp_outcome), and the pad-strike scene of the first-contact RA transient."""
+"""Runs of the grasp and their judgement.
+
+- trial.py: run_trial, a simulated closed-loop trial, judged.
+- trial_result.py: TrialResult, a trial's outcome and its JSON form.
+- grasp_outcome.py: the ground-truth judge and the physical events' times.
+- ideal_grasp.py: run_ideal_grasp, the scripted open-loop grasp (Sec. III-A).
+- hardware_run.py: run_on_hardware, the grasp on the devices in real time, logged.
+- hardware_log_reader.py: a hardware run's LCM log read back.
+- hardware_log_replay.py: the event matcher re-run on that log.
+- pad_strike.py: the pad-strike scene of the first-contact RA transient."""

@@ -1,18 +1,12 @@
 """Ground-truth judgement of a trial from its TrialLog: lift, hold, placement, release, and
-the times of the physical events that mark the transitions.
+the times of the physical events that mark the transitions (noise-free simulation truth):
 
-Physical events (from noise-free simulation truth):
-  first_contact        first time either pad's true normal force exceeds CONTACT_FORCE_N
-  grip_force_reached   first time both pads' true force reaches GRIP_FRACTION of the grip
-                       force, or of the grip's plateau where the taxels never see that
-                       much (grip_plateau_n: any graspable object has one): the grip has
-                       settled, the earliest a lift may start
-  lift_start           when the scripted ideal grasp starts its Lift (the end of its Load
-                       phase, from the script's segment times in the log); None for a run
-                       that is not the script's (closed loop: the controller decides)
-  table_touch          first time after lift-off that the object's lowest point is back
-                       within TOUCH_HEIGHT_M of the table (a tilted object touches with an
-                       edge while its origin is still higher)
+  first_contact        either pad's true normal force first exceeds CONTACT_FORCE_N
+  grip_force_reached   both pads reach GRIP_FRACTION of the grip force (or of the grip's
+                       plateau, grip_plateau_n): the grip has settled, the earliest lift
+  lift_start           the scripted ideal grasp's start of Lift (None in closed loop)
+  table_touch          the object's lowest point back within TOUCH_HEIGHT_M of the table
+                       after lift-off (a tilted object touches with an edge)
 """
 
 import dataclasses
@@ -112,11 +106,9 @@ def grip_plateau_n(log, after: float = 0.0) -> float:
 
 
 def grip_force_time(log, grip_force: float, after: float = 0.0):
-    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the
-    grip force; where it never does, GRIP_FRACTION of grip_plateau_n instead (the taxels
-    do not see all of the contact force of a thin object: a 22 mm cylinder's plateau is
-    21.4 N of a 25 N command). A plateau below the command but above its fraction changes
-    nothing (the built-in objects' events were recorded so). None when the force never
+    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the grip
+    force, or else of grip_plateau_n (the taxels do not see all of a thin object's contact
+    force: a 22 mm cylinder's plateau is 21.4 N of a 25 N command); None when the force never
     rises above CONTACT_FORCE_N."""
     weaker = true_sa(log).min(axis=1)
     level = grip_force
@@ -128,13 +120,11 @@ def grip_force_time(log, grip_force: float, after: float = 0.0):
 
 
 def settled_grip_n(log, grip_force: float, after: float = 0.0) -> float:
-    """The grip [N] the weaker pad settles at: its median true force over the
-    SETTLE_WINDOW_S after the grip force is reached (grip_force_time, after `after` [s]);
-    0 when it never is. The held level, not the command or the rise's peak: the 2F-85's
-    rotor carries the fingers past the current limit's force and the self-locking screw
-    holds what is left once the object has settled between the pads, above or below the
-    setting (a thick cylinder pushed off-centre by the first finger peaked at 29 N and
-    held 20 N of a 25 N setting)."""
+    """The grip [N] the weaker pad settles at: its median true force over SETTLE_WINDOW_S after
+    the grip force is reached (grip_force_time, after `after` [s]); 0 if never. The held level,
+    not the command or the peak: the 2F-85's rotor overshoots the current limit's force and the
+    self-locking screw holds what is left (a thick cylinder pushed off-centre peaked at 29 N
+    and held 20 N of a 25 N setting)."""
     start = grip_force_time(log, grip_force, after)
     if start is None:
         return 0.0
@@ -177,9 +167,9 @@ def physical_events(log, grip_force: float, object_config=None) -> dict:
 
 
 def lifted_mask(log, object_config=None) -> np.ndarray:
-    """At each logged state: the object's lowest point (lowest_point_heights) is more than
-    LIFTED_HEIGHT_M above where it rested at the start. By the lowest point, not the origin:
-    a 45 mm box knocked onto its side raises its origin 22.5 mm while lying on the table."""
+    """At each logged state: the object's lowest point is more than LIFTED_HEIGHT_M above
+    where it rested (not the origin: a 45 mm box knocked on its side raises its origin 22.5
+    mm)."""
     low = lowest_point_heights(log.object_state, object_config)
     return low - low[0] > LIFTED_HEIGHT_M
 

@@ -1,10 +1,7 @@
-"""The log of a hardware run (an LCM log file) read back: `read_run_log` -> RunLog.
-
-Format: an LCM event log (lcm-logger's), one channel per kind of message; the channels,
-types and fields are in tegrasp_drake/lcmtypes/README.md (`lcm-logplayer FILE` plays it
-back on a bus, `lcm-spy` shows it with the types generated from the .lcm files). A damaged
-log is read as far as it goes (RunLog.damage says what was lost). The matcher re-run on a
-log is hardware_log_replay.py.
+"""The log of a hardware run (an LCM event log, lcm-logger's) read back: `read_run_log` ->
+RunLog. Channels, types and fields: tegrasp_drake/lcmtypes/README.md. A damaged log is read
+as far as it goes (RunLog.damage says what was lost); hardware_log_replay.py re-runs the
+matcher on it.
 """
 
 import dataclasses
@@ -80,9 +77,8 @@ LCM_SYNC = 0xEDA1DA01
 _EVENT_HEADER = struct.Struct(">IqqII")  # sync, event number, timestamp, channel, data sizes
 MAX_CHANNEL_LENGTH = 256
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
-# The largest run log read (whole, into memory): the bus carries about 100 kB/s (1 kHz tactile
-# messages, arm and gripper status), so a 10-minute run (hardware --duration's limit) is
-# about 60 MB; 1 GiB is far beyond any run and bounds what a file can make the reader hold.
+# The largest run log read into memory: a 10-minute run (hardware --duration's limit) at the
+# bus's ~100 kB/s is about 60 MB; 1 GiB bounds what a file can make the reader hold.
 MAX_RUN_LOG_BYTES = 2**30
 
 
@@ -115,10 +111,9 @@ def _next_event_number(data: bytes, position: int) -> int | None:
 
 def scan_lcm_log(path) -> tuple[list, list[str]]:
     """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
-    words: bytes that are not events (skipped up to the next event header), event numbers
-    missing in between (events lost), and an event cut short at the end of the file (a
-    truncated log). The format is LCM's: per event a big-endian header (sync word
-    0xEDA1DA01, event number, timestamp, channel length, data length), channel, data."""
+    words: bytes that are no events (skipped to the next header), event numbers missing, an
+    event cut short at the end. LCM's format: per event a big-endian header (sync 0xEDA1DA01,
+    number, timestamp, channel and data lengths), channel, data."""
     data = read_bounded(path, MAX_RUN_LOG_BYTES)
     events = []
     corrupt_regions = corrupt_bytes = lost = 0
@@ -176,10 +171,9 @@ MAX_TIME_OUTLIER_S = 1.0
 
 def _plausible_tactile(messages: list) -> tuple[list, int]:
     """The (wall time, lcmt_tegrasp_tactile) messages whose values can be real, and how many
-    were not. LCM logs carry no checksum, so a flipped byte inside a number is found only
-    when it makes the value impossible: not finite, beyond MAX_TACTILE_VALUE, a taxel count
-    other than 12, or a time more than MAX_TIME_OUTLIER_S from the median of its
-    neighbours' (ticks are 1 ms apart) or earlier than the message before."""
+    were not. LCM logs carry no checksum, so a flipped byte shows only as an impossible value:
+    not finite, beyond MAX_TACTILE_VALUE, not 12 taxels, a time more than MAX_TIME_OUTLIER_S
+    from its neighbours' median (1 ms ticks) or before the previous message's."""
     values_ok = []
     for _, message in messages:
         values = np.array([*message.left_taxel_forces, *message.right_taxel_forces,
@@ -201,8 +195,7 @@ def _plausible_tactile(messages: list) -> tuple[list, int]:
 
 def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
-    holds no event. A damaged log (truncated, corrupt bytes, messages that do not decode)
-    is read as far as it can be, and `RunLog.damage` says what was read and what was lost."""
+    holds no event; a damaged log is read as far as it can be (`RunLog.damage`)."""
     path = pathlib.Path(path)
     problem = file_problem(path)
     if problem == "does not exist":

@@ -1,15 +1,10 @@
 """The event matcher re-run offline on a hardware run's LCM log (`tegrasp replay LOG`).
 
-The SA (Eq. 1) and RA (Eq. 2) channels are computed from TEGRASP_TACTILE as the
-controller's MechanoreceptorChannels did (hardware_log_reader.py reads them), and fed
-through an EventMatcher with the object's memorized events. The expected event comes from
-the logged transitions: while the state machine was in mode X, the matcher expects the
-event of the transition that left X (`X_Y`), if one is memorized. For each such transition
-the replay reports when the matcher matched, next to when the transition happened.
-`replay_run_log` also replays the memorized events one after another, advanced by each
-match, as an EventSequencer does (events/replay.replay_events_in_sequence); the matcher's
-settings are the run's own (its scenario in TEGRASP_RUN_INFO: thresholds, rates, blocks, RA
-envelope and noise floor, as the live controller built them), or the defaults.
+The SA and RA channels are computed from TEGRASP_TACTILE as the controller did and fed
+through an EventMatcher with the object's memorized events, two ways: expecting, while in
+mode X, the event of the logged transition that left X (reporting each match beside the
+transition), and expecting the events in grasp order (events/replay.py). The matcher's
+settings are the run's own (its scenario in TEGRASP_RUN_INFO), else the defaults.
 """
 
 import dataclasses
@@ -64,10 +59,8 @@ class ReplayedTransition:
 
 def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
                    config: EventMatcherConfig | None = None) -> list[ReplayedTransition]:
-    """Runs an EventMatcher over `trial`'s channels with the expected event scheduled by
-    `transitions` (module docstring), wired as the live controller wires it
-    (add_event_matcher: with config's RA envelope, noise floor and sample blocks); one
-    result per transition with a memorized event."""
+    """Runs an EventMatcher over `trial`'s channels, wired as the live controller wires it,
+    with the expected event scheduled by `transitions`; one result per memorized transition."""
     builder = DiagramBuilder()
     channels = builder.AddSystem(TrajectorySource(channels_trajectory(trial)))
     matcher = add_event_matcher(builder, events, config, channels=channels.get_output_port())
@@ -107,10 +100,9 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
 
 def matcher_config_of_run(run_info, events, source: str = "the run's scenario"
                           ) -> EventMatcherConfig:
-    """The run's own matcher settings when its scenario (in TEGRASP_RUN_INFO) ran an
-    event-triggered controller: what the live controller built (event_matcher_config, at
-    the scenario's SA and RA rates: thresholds, blocks, RA envelope, RA noise floor); else
-    the defaults at the events' rates."""
+    """The matcher the live controller built (event_matcher_config at the scenario's rates)
+    when the run's scenario ran an event-triggered controller; else the defaults at the
+    events' rates."""
     if run_info is not None and run_info.scenario_yaml:
         scenario = scenario_from_yaml(run_info.scenario_yaml, source)
         if controller_entry(scenario.controller).event_triggered:
@@ -152,12 +144,10 @@ class RunLogReplay:
 
 def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
-    """Reads a run's log and re-runs the matcher on it, both ways (module docstring), with
-    the memorized events of `object_name` (default: the run's object) in `events_dir`
-    (default: the folder the run used if it still exists, else the user's events folder,
-    then the package's).
-
-    Raises RunLogError, MemorizedEventError or ValueError, each naming what is wrong."""
+    """Reads a run's log and re-runs the matcher on it both ways, with the events of
+    `object_name` (default the run's) in `events_dir` (default the run's folder if it still
+    exists, else the user's, then the package's). RunLogError, MemorizedEventError or
+    ValueError, each naming what is wrong."""
     log = read_run_log(path)
     info = log.run_info
     object_name = object_name or (info.object_name if info else None)

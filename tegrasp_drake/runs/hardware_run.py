@@ -1,22 +1,13 @@
 """A grasp on the real devices (or their emulators) in real time, with a replayable log.
 
-`run_on_hardware` builds the controller diagram around MakeHardwareStation exactly as
-around the simulated station (grasp_diagram.py), waits for the devices, and runs the
-Simulator at real-time rate 1 until the state machine is done or failed. On the way:
-- every state transition is printed as it happens and published on TEGRASP_TRANSITION;
-- every device fault is printed (which device, what, since when) and published on
-  TEGRASP_FAULT; the station holds the arm still at once, and the state machine goes to
-  Failed naming it (its `device_fault` input);
-- the first malformed message of each kind a device sends (the station's message
-  boundaries: a status that does not decode, a NaN joint, a Modbus answer of another
-  function) is printed once; all are counted, and the counts close the run's report;
-- the run ends END_MARGIN_S after the state machine is done or failed, or after a
-  fault (holding still meanwhile), or at the controller's time limit;
-- every message on the bus (the arm's KINOVA_JACO_*, the station's TEGRASP_TACTILE and
-  TEGRASP_GRIPPER, the run's own) is written to an LCM log file, which lcm-logplayer
-  plays back, hardware_log_reader.py reads and `tegrasp replay` re-runs the event matcher
-  on (hardware_log_replay.py). The first message is TEGRASP_RUN_INFO: the scenario, the
-  hardware config and the controller.
+`run_on_hardware` builds the controller diagram around MakeHardwareStation as around the
+simulated station (grasp_diagram.py), waits for the devices and runs the Simulator at
+real-time rate 1. It prints and publishes each transition (TEGRASP_TRANSITION) and device
+fault (TEGRASP_FAULT: the station holds the arm still, the state machine goes to Failed),
+prints each device's first malformed message of a kind and counts them all, and ends
+END_MARGIN_S after Done, Failed or a fault, or at the time limit. A udpm:// bus is logged
+whole (first TEGRASP_RUN_INFO: scenario, hardware config, controller), which
+hardware_log_reader.py reads and `tegrasp replay` re-runs (hardware_log_replay.py).
 """
 
 import dataclasses
@@ -55,30 +46,27 @@ LOGGER_SUBSCRIBE_S = 0.2  # [s] given to lcm-logger to subscribe once its file e
 REPORT_PERIOD_S = 0.005  # [s] of Context time between looks at transitions and faults
 PROGRESS_PERIOD_S = 0.25  # [s] of Context time between calls of `progress`
 LOG_CHECK_PERIOD_S = 0.1  # [s] of Context time between looks at the LCM log's health
-# Below this much free space the log is taken as stopped: the bus carries about 100 kB/s
-# (tactile frames at 1 kHz, arm and gripper status), so 1 MB is ten seconds of it, the
-# margin for the run to stop and its result to be written.
+# Free space [bytes] below which the log counts as stopped: ten seconds of the ~100 kB/s bus
+# (1 kHz tactile frames, arm and gripper status), the margin to stop and write the result.
 LOG_MIN_FREE_BYTES = 1_000_000
 
 
 class BusLogWriter:
-    """Records every message on the bus at `url` to an LCM log file with lcm-logger, the
-    LCM package's own logger, in its own process: in this one, a Python subscriber to
-    all channels would compete with the control loop for the interpreter (it cost the
-    loop a third of its speed), and DrakeLcm's all-channel subscription drops messages
-    when it is pumped in step with its own publications. A memq:// bus lives inside one
-    LCM instance, so there `drake_lcm` is subscribed instead."""
+    """Records every message on the bus at `url` to an LCM log with lcm-logger in its own
+    process: a Python all-channel subscriber here would slow the control loop (by a third),
+    DrakeLcm's all-channel subscription drops messages when pumped in step with its own
+    publications, and a Python callback on the DrakeLcm the Simulator pumps is unsafe
+    (hardware/lcm_boundary.py). A memq:// bus lives inside this process, where no logger
+    can hear it: nothing is recorded, and `unrecorded` says so."""
 
-    def __init__(self, url: str, path, *, drake_lcm=None, start_timeout: float = 5.0):
+    def __init__(self, url: str, path, *, start_timeout: float = 5.0):
         self.path = pathlib.Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._process = None
-        self._log = None
-        self._in_process_messages = 0
-        self._failure = None
+        self.unrecorded = None
         if url.startswith("memq"):
-            self._log = lcm.EventLog(str(self.path), "w", overwrite=True)
-            drake_lcm.SubscribeAllChannels(self._write)
+            self.unrecorded = (f"no LCM log: the bus {url} lives inside this process, where "
+                               "lcm-logger cannot hear it (a udpm:// URL can be logged)")
             return
         self.path.unlink(missing_ok=True)
         self._process = subprocess.Popen(
@@ -92,21 +80,13 @@ class BusLogWriter:
             time.sleep(0.01)
         time.sleep(LOGGER_SUBSCRIBE_S)
 
-    def _write(self, channel: str, data: bytes):
-        if self._log is not None and self._failure is None:
-            try:
-                self._log.write_event(int(time.time() * 1e6), channel, data)
-            except OSError as e:
-                self._failure = f"writing it failed: {e.strerror or e}"
-                return
-            self._in_process_messages += 1
-
     def problem(self) -> str | None:
-        """Why the log has stopped recording (None while it records): its writer failed or
-        exited, or the disk holding it has less than LOG_MIN_FREE_BYTES left."""
-        if self._failure is not None:
-            return f"the LCM log {self.path} stopped: {self._failure}"
-        if self._process is not None and self._process.poll() is not None:
+        """Why the log has stopped recording (None while it records, or when it records
+        nothing): lcm-logger exited, or the disk holding it has less than
+        LOG_MIN_FREE_BYTES left."""
+        if self._process is None:
+            return None
+        if self._process.poll() is not None:
             return (f"the LCM log {self.path} stopped: lcm-logger exited with code "
                     f"{self._process.returncode}")
         try:
@@ -128,15 +108,12 @@ class BusLogWriter:
             except subprocess.TimeoutExpired:
                 self._process.kill()
                 self._process.wait()
-        if self._log is not None:
-            self._log.close()
-            self._log = None
         return self.messages
 
     @property
     def messages(self) -> int:
         if self._process is None:
-            return self._in_process_messages
+            return 0
         log = lcm.EventLog(str(self.path), "r")
         count = sum(1 for _ in log)
         log.close()
@@ -268,9 +245,8 @@ class HardwareRunResult:
         return self.sim_time / self.wall_time if self.wall_time > 0 else float("nan")
 
     def as_dict(self) -> dict:
-        """The JSON form (the result.json beside the log): times in s, faults and device
-        counters as dicts (DeviceFault, RobotiqModbusCounters, TactileReaderCounters,
-        MessageCounters)."""
+        """The JSON form (the result.json beside the log): times in s, faults and counters
+        as dicts."""
         return {"transitions": self.transitions,
                 "faults": [dataclasses.asdict(fault) for fault in self.faults],
                 "sim_time_s": self.sim_time, "wall_time_s": self.wall_time,
@@ -303,14 +279,12 @@ def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None 
                                                             unit="s")] = None,
                     drake_lcm: DrakeLcm | None = None, out: Callable = print,
                     progress: Callable | None = None) -> HardwareRunResult:
-    """Runs the grasp on the devices of `config` (default: the scenario's `station`, which
-    must then be a HardwareStationConfig) in real time; see the module docstring.
+    """Runs the grasp on the devices of `config` (default: the scenario's `station`, then a
+    HardwareStationConfig) in real time (module docstring).
 
-    controller: the controller's name (default: the scenario's); events: its memorized
-    events (default: the package's for the scenario's object); corrective_events: the
-    memorized corrective events (default: load_corrective_events's); drake_lcm: a DrakeLcm to use
-    instead of one on the config's URL; out: prints a line; progress: called as
-    progress(t, end) [s of Context time] as the run goes."""
+    controller, events, corrective_events: default the scenario's and the package's; drake_lcm:
+    a DrakeLcm instead of one on the config's URL; out: prints a line; progress: progress(t,
+    end) [s of Context time]."""
     check_ranges(scenario, "run_on_hardware: scenario")  # a config changed after loading
     config = config or scenario.station
     if not isinstance(config, HardwareStationConfig):
@@ -330,8 +304,10 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
         parts = MakeGraspDiagram(scenario, station=station, events=events,
                                  corrective_events=corrective_events, log=False)
         diagram = parts.diagram
-        writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path, drake_lcm=station.lcm)
+        writer = (BusLogWriter(station.lcm.get_lcm_url(), log_path)
                   if log_path else None)
+        if writer is not None and writer.unrecorded:
+            out(writer.unrecorded)
         try:
             station.lcm.Publish(RUN_INFO_CHANNEL, run_info_message(
                 scenario, config, scenario.controller.name, events_dir).encode())

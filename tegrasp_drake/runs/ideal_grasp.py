@@ -1,7 +1,5 @@
-"""The ideal open-loop grasp as a runnable trial: build, simulate, log (Sec. III-A).
-
-The grasp diagram with the open-loop controller (the scripted grasp of
-control/scripted_grasp.py), simulated to the end of the script and a little beyond.
+"""The ideal open-loop grasp as a runnable trial (Sec. III-A): the grasp diagram with the
+scripted grasp (control/scripted_grasp.py), simulated to the script's end and a little beyond.
 """
 
 import dataclasses

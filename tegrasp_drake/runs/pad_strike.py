@@ -1,11 +1,9 @@
 """A pad strike: the smallest scene with the station's first-contact RA transient.
 
-The tactile gripper welded in the side-grasp pose above the table, the scenario's object
-standing between its pads, offset toward the left finger, and the simulated 2F-85 closing
-at a constant finger speed with the station's sensors (station.AddTactileSensors). The
-left pad strikes the object first and pushes it on; the right pad meets it later. Used by
-the RA tests (time-step convergence, approach speed, the finger that does not touch, the
-ring) and by analysis/compare_ra_transients.py.
+The tactile gripper welded in the side-grasp pose above the table, the object standing
+between its pads toward the left finger, the 2F-85 closing at a constant finger speed with
+the station's sensors: the left pad strikes first and pushes the object on. Used by the RA
+tests and analysis/compare_ra_transients.py.
 """
 
 import dataclasses
@@ -53,11 +51,10 @@ class PadStrikeConfig:
 
 @dataclasses.dataclass(frozen=True)
 class PadStrike:
-    """What a strike logged. t_ra (M,) [s] and ra (M, 2): each film's sample (z, signed,
-    m/s^2-equivalent, left then right); pad_acceleration (M, 2): each pad frame's rigid-body
-    acceleration along its normal at the same instants (what the old accelerometer chain
-    read); t_sa (N,), sa (N, 2) [N]: each pad's noise-free taxel sum; contact_times (2,):
-    the first plant step with contact force on each pad [s] (nan if none)."""
+    """What a strike logged. t_ra (M,) [s], ra (M, 2): each film's sample (z, signed,
+    m/s^2-equivalent, left, right); pad_acceleration (M, 2): each pad's rigid-body acceleration
+    along its normal; t_sa (N,), sa (N, 2) [N]: noise-free taxel sums; contact_times (2,): each
+    pad's first step with contact force [s] (nan if none)."""
     t_ra: np.ndarray
     ra: np.ndarray
     pad_acceleration: np.ndarray

@@ -1,8 +1,6 @@
 """One closed-loop grasp trial: build the station and controller, simulate until the state
-machine ends (Done or Failed) or time runs out, log, and judge it against the ground truth.
-
-`run_trial(scenario)` returns a TrialResult; the sweep's trial function, which turns a
-trial of a sweep into a scenario first, is sweep/trial_function.py.
+machine ends or time runs out, log, and judge it against the ground truth. `run_trial`
+returns a TrialResult (a sweep's trial function: sweep/trial_function.py).
 """
 
 import dataclasses
@@ -32,9 +30,8 @@ UPRIGHT_TILT_DEG = 10.0  # standing upright after Unload
 RESTING_HEIGHT_M = 0.005  # back on the table: within this of its starting height
 END_MARGIN_S = 0.5  # simulated after the machine ends, to see the object settle
 CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
-# An event transition earlier than its physical event by more than this is a false trigger;
-# within it, it is the taxel sampling (one 108 Hz sample) and noise around a threshold equal
-# to the ground truth's (the heuristic Load-Lift rule), and its latency is kept as measured.
+# An event transition earlier than its physical event by more than this [s] is a false
+# trigger; within it lie one 108 Hz taxel sample and noise around the truth's threshold.
 FALSE_TRIGGER_MARGIN_S = 0.01
 
 logger = logging.getLogger(__name__)
@@ -47,14 +44,11 @@ def _event_transition(transition: Transition) -> str | None:
 
 def physical_event_times(log, transitions: list[Transition], grip_force: float,
                          object_config=None, hit_time_s: float = -1.0) -> dict:
-    """The physical event that marks each event transition actually taken, looked for after
-    the mode was entered: first contact (Reach-Load), the grip settled (Load-Lift: both
-    pads at GRIP_FRACTION of the grip, after the last Reach began; a closed-loop run has no
-    scripted lift start, the ideal grasp's anchor, so the controller's lift is judged by
-    the grip it starts with: a Load-Lift before the grip settled is a false trigger),
-    table touch (Place-Unload); and "hit", the scenario's hit on the
-    object (disturbance.hit_time_s [s]), when it came within the simulated time, whatever
-    the controller did (the Avoid's ground truth: detection_report.hit_avoid_rows)."""
+    """The physical event behind each event transition taken, looked for after its mode was
+    entered: first contact (Reach-Load), the grip settled (Load-Lift: GRIP_FRACTION of the grip
+    after the last Reach; closed loop has no scripted lift, so a Load-Lift before the grip
+    settled is false), table touch (Place-Unload); and "hit", the scenario's hit
+    (disturbance.hit_time_s) when it came within the simulated time."""
     events = {}
     if 0.0 <= hit_time_s <= float(log.t_slow[-1]):
         events["hit"] = float(hit_time_s)
@@ -85,7 +79,7 @@ def lift_grip_fraction(log, transitions: list[Transition], grip_force: float
 def judge_trial(log, transitions: list[Transition], scenario) -> dict:
     """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
     at least 3 s; unload = after Unload, upright on the table, released, gripper retracted."""
-    outcome = judge_grasp(log, target_xy=scenario.expected_object_xy,
+    outcome = judge_grasp(log, target_xy=scenario.placement.expected_xy,
                           grip_force=scenario.grasp.grip_force, object_config=scenario.object)
     hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
     reached = [entry.to_mode for entry in transitions]
@@ -127,11 +121,9 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
               progress: Callable | None = None) -> TrialResult:
     """Simulates one trial of `scenario` with its controller; returns its TrialResult.
 
-    max_time: [s] of simulated time at most (default: the controller's time limit).
-
-    events, corrective_events: the memorized events (MakeGraspDiagram's defaults if None).
-    progress: called as progress(t, end) [s, simulated] as the run goes (`end` shrinks to
-    the state machine's end plus END_MARGIN_S once it is Done or Failed)."""
+    max_time: [s] simulated at most (default: the controller's time limit); events,
+    corrective_events: default MakeGraspDiagram's; progress: progress(t, end) [s, simulated],
+    `end` shrinking to the machine's end + END_MARGIN_S once it is Done or Failed."""
     check_ranges(scenario, "run_trial: scenario")  # a config changed after loading
     grasp = MakeGraspDiagram(scenario, station=MakeSimulatedStation(scenario, meshcat=meshcat),
                                 events=events, corrective_events=corrective_events)
@@ -140,7 +132,7 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
     context = simulator.get_mutable_context()
     limit = max_time if max_time is not None else grasp.time_limit
     logger.info("trial: %s at offset %s m, controller %s, seed %d; simulating up to %.1f s",
-                scenario.object.name, list(scenario.object_offset), controller.name,
+                scenario.object.name, list(scenario.placement.offset), controller.name,
                 scenario.random_seed, limit)
     if logger.isEnabledFor(logging.DEBUG):
         from tegrasp_drake.scenario.scenario import scenario_to_yaml
@@ -179,7 +171,7 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
     judged = judge_trial(log, transitions, scenario)
     judged["final_mode"] = Mode.from_label(judged["final_mode"])
     result = TrialResult(
-        object=scenario.object.name, offset_m=list(scenario.object_offset),
+        object=scenario.object.name, offset_m=list(scenario.placement.offset),
         controller=controller.name, seed=scenario.random_seed, transitions=tuple(transitions),
         **judged, sim_time_s=sim_time, wall_time_s=wall, cpu_time_s=cpu,
         real_time_factor=sim_time / wall if wall > 0 else None, log=log)

@@ -1,8 +1,6 @@
 """TrialResult: what one simulated trial did, judged against the ground truth (Sec. IV-C).
-
-run_trial (runs/trial.py) makes it; its JSON form (`to_dict`) is what result.json, `tegrasp
-trial --json` and a sweep record's "result" hold, and `from_dict` reads one back (a record
-written before a field existed gets that field's default).
+Its JSON form (`to_dict`) is what result.json, `tegrasp trial --json` and a sweep record's
+"result" hold; `from_dict` reads one back (a missing field takes its default).
 """
 
 import dataclasses

@@ -75,7 +75,7 @@ def station_carriage(scenario):
     if not (isinstance(station, SimulatedStationConfig) and station.uses_carriage()):
         return None
     return arm_endpoint_impedance(scenario.arm, side_grasp_pose(
-        scenario.expected_object_xy, scenario.grasp.grasp_height))
+        scenario.placement.expected_xy, scenario.grasp.grasp_height))
 
 
 @public_api
@@ -103,7 +103,7 @@ def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, statio
     controller = scenario.controller
     if events is None and controller_entry(controller).event_triggered:
         events = load_controller_events(scenario)
-    if corrective_events is None and getattr(controller, "memorized_corrective_events", ()):
+    if corrective_events is None and controller.memorized_corrective.events:
         corrective_events = load_corrective_events(scenario)
     return AddGraspController(builder, controller=controller, plan=grasp_plan(scenario),
                               station=station, arm=scenario.arm,
@@ -133,7 +133,7 @@ def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
     station: a station Diagram with the station's ports (default: MakeStation(scenario,
     meshcat=meshcat)); events: the memorized events (default: the package's for the
     scenario's object); corrective_events: the memorized corrective events, used when
-    controller.memorized_corrective_events names some (default: load_corrective_events's);
+    controller.memorized_corrective.events names some (default: load_corrective_events's);
     log: add the TrialLog loggers (simulated runs)."""
     check_ranges(scenario, "MakeGraspDiagram: scenario")  # a config changed after loading
     builder = DiagramBuilder()

@@ -22,16 +22,12 @@ from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 from tegrasp_drake.control.controller_registry import (
     CONTROLLER_CLASSES, ControllerConfig, UnknownControllerError, controller_entry,
     controller_named, foreign_setting, select_controller_tag)
-from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
-from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
-from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.files import file_problem
 from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, check_times_resolved,
                                       declare_ranges, shorten)
-from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
@@ -40,12 +36,9 @@ from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPA
                                                         TAXEL_TRANSDUCERS,
                                                         ad7147_frame_rate_hz,
                                                         frame_rate_matches)
-from tegrasp_drake.simulation.film_readout import ADC_INPUTS
 from tegrasp_drake.simulation.contact_meshing import (ContactGeometryConfig,
                                                       contact_geometry_problem)
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
-from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
-from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
 from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
                                                            ra_noise_std_mps2)
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
@@ -55,6 +48,8 @@ from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
                                              SimulatedStationConfig)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
+from tegrasp_drake.scenario.moved_keys import migrate_stored_scenario, refuse_moved_keys
+from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
@@ -74,16 +69,8 @@ class Scenario:
                                why="Drake's random generator takes a 32-bit seed; a larger one "
                                    "would repeat a smaller one's noise")
     object: ObjectConfig = dataclasses.field(default_factory=ObjectConfig)
-    # Misplacement of the object from its marker [m]: x normal to the palm, y along the stroke.
-    object_offset: list[float] = bounded(default_factory=lambda: [0.0, 0.0], low=-0.2, high=0.2,
-                                         unit="m", length=2,
-                                         why="a misplacement near its marker, within the open "
-                                             "hand's reach")
-    object_yaw_deg: float = bounded(0.0, low=-180.0, high=180.0, unit="deg")
-    expected_object_xy: list[float] = bounded(default_factory=lambda: [0.72, 0.0], low=-0.9,
-                                              high=0.9, unit="m", length=2,
-                                              why="within the JACO2's 0.9 m reach, Kinova JACO2 "
-                                                  "specifications")
+    # Where it stands: its marker, the misplacement from it, its yaw.
+    placement: ObjectPlacementConfig = dataclasses.field(default_factory=ObjectPlacementConfig)
     # stiction_tolerance 1e-6 m/s instead of Drake's 1e-4: SAP's lagged/similar friction is
     # viscous below eps = max(stiction_tolerance, mu R_t n0), so a held object under a torque
     # tau creeps at tau eps / (2 mu N r_g^2) whatever the time step (a held object slowly
@@ -232,21 +219,17 @@ def _check_model_file(file: str, source: str) -> None:
             f"(the object), it holds {len(instances)} model(s) with bodies {bodies}")
 
 
-def _check_controller(controller, source: str) -> None:
-    """The controller's names and pairs; its numbers' ranges are declared on its fields."""
+def _check_controller(scenario: Scenario, source: str) -> None:
+    """What the controller's config class checks of its settings (`problem`), against the
+    scenario's RA rate and approach; its numbers' ranges are declared on its fields."""
+    controller = scenario.controller
     if not controller_entry(controller).closed_loop:
         return
-    for k, name in enumerate(controller.memorized_corrective_events):
-        require(name in CORRECTIVE_TRANSITIONS, source,
-                f"controller.memorized_corrective_events[{k}]",
-                f"must name a corrective event ({', '.join(CORRECTIVE_TRANSITIONS)})", name)
-    for name in ("lift_load_event_thresholds", "hold_avoid_event_thresholds"):
-        pair = getattr(controller, name)
-        require(len(pair) == 2, source, f"controller.{name}",
-                "must be [SA, RA], each in [-1, 1] (Eq. 3 scores)", pair)
-    for k, name in enumerate(controller.event_object_may_differ):
-        require(name in DESCRIPTION_FIELDS, source, f"controller.event_object_may_differ[{k}]",
-                f"must name a field of the object ({', '.join(DESCRIPTION_FIELDS)})", name)
+    problem = controller.problem(ra_rate_hz=scenario.vibration.sample_rate_hz,
+                                 approach_s=scenario.grasp.settle_s + scenario.grasp.reach_s)
+    if problem is not None:
+        field, words, value = problem
+        require(False, source, f"controller.{field}", words, value)
 
 
 # What relates fields, or belongs to Drake's own config classes (each number of this
@@ -261,40 +244,11 @@ WALL_S_PER_SIM_S = 1.0
 
 
 def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
-    """Values that relate a sensor's settings, or put the hit outside the trial (each
-    number's own range is declared on its field)."""
-    vibration = scenario.vibration
-    nyquist = vibration.internal_rate_hz / 2
-    require(0 < vibration.mode_frequency_hz < nyquist, source, "vibration.mode_frequency_hz",
-            f"must lie in (0, {nyquist:g}) Hz (the fingertip's mode, integrated at "
-            "vibration.internal_rate_hz; at 0 the film feels no ring)",
-            vibration.mode_frequency_hz)
-    # The charge amplifier's high-pass runs where the film is integrated (internal_rate_hz,
-    # film_dynamics.py); the accelerometer's on its samples (pad_accelerometers.py).
-    filter_rate_hz, rate_name = ((vibration.sample_rate_hz, "vibration.sample_rate_hz")
-                                 if vibration.transducer == "accelerometer" else
-                                 (vibration.internal_rate_hz, "vibration.internal_rate_hz"))
-    require(vibration.highpass_cutoff_hz < filter_rate_hz / 2, source,
-            "vibration.highpass_cutoff_hz", f"must lie below {filter_rate_hz / 2:g} Hz, half "
-            f"the {rate_name} its {vibration.transducer} filter runs at",
-            vibration.highpass_cutoff_hz)
-    slip_band_hz = getattr(scenario.controller, "slip_band_hz", None)
-    require(slip_band_hz is None or slip_band_hz < vibration.sample_rate_hz / 2, source,
-            "controller.slip_band_hz", "must lie below half the RA rate "
-            f"({vibration.sample_rate_hz / 2:g} Hz, vibration.sample_rate_hz / 2): the slip "
-            "band's high-pass runs on the RA samples", slip_band_hz)
-    block_s = getattr(scenario.controller, "sensor_block_s", 0.0)
-    if block_s > 0 and vibration.sample_rate_hz > 0:
-        from tegrasp_drake.tactile.sample_block import block_samples, block_update_period
-        samples = block_samples(vibration.sample_rate_hz, block_s)
-        try:
-            if samples > 1:
-                block_update_period(1.0 / vibration.sample_rate_hz, samples)
-        except ValueError:
-            require(False, source, "controller.sensor_block_s",
-                    f"gives blocks of {samples} samples at vibration.sample_rate_hz "
-                    f"{vibration.sample_rate_hz:g}, which do not fall on the sample times in "
-                    "floating point; choose a block such as 0.01 or 0.016 s", block_s)
+    """Values that relate a sensor's settings (its config class's `problem`), or put the
+    hit outside the trial (each number's own range is declared on its field)."""
+    problem = scenario.vibration.problem()
+    if problem is not None:
+        require(False, source, f"vibration.{problem[0]}", problem[1], problem[2])
     disturbance = scenario.disturbance
     if disturbance.hit_time_s >= 0:
         end = script_duration(scenario)
@@ -309,34 +263,11 @@ def script_duration(scenario: Scenario) -> float:
     return plan_duration(plan_scripted_grasp(grasp_plan(scenario)))
 
 
-def _check_on_table(scenario: Scenario, source: str) -> None:
-    """The object's footprint, at its marker moved by its offset, lies on the table top."""
-    x, y = (a + b for a, b in zip(scenario.expected_object_xy, scenario.object_offset))
-    size = scenario.object.size
-    radius = (size[0] / 2 if scenario.object.shape == "cylinder"
-              else math.hypot(size[0], size[1]) / 2)
-    (cx, cy), (half_x, half_y) = TABLE_CENTER_XY, (TABLE_SIZE[0] / 2, TABLE_SIZE[1] / 2)
-    if abs(x - cx) + radius > half_x or abs(y - cy) + radius > half_y:
-        raise ConfigError(
-            f"{source}: field 'object_offset' puts the object at ({x:.3f}, {y:.3f}) m "
-            f"(expected_object_xy {list(scenario.expected_object_xy)} + object_offset "
-            f"{list(scenario.object_offset)}), off the table top (x {cx - half_x:g} to "
-            f"{cx + half_x:g} m, y {cy - half_y:g} to {cy + half_y:g} m); place it on the "
-            "table")
-
-
 def _check_transducers(scenario: Scenario, source: str) -> None:
-    """The SA and RA transducers by name, and the capacitive taxel's numbers."""
+    """The SA transducer by name, and the capacitive taxel's numbers."""
     require(scenario.tactile.transducer in TAXEL_TRANSDUCERS, source, "tactile.transducer",
             f"must be one of {', '.join(TAXEL_TRANSDUCERS)} (ideal force taxels, or the "
             "AD7147's parallel-plate taxels)", scenario.tactile.transducer)
-    require(scenario.vibration.transducer in VIBRATION_TRANSDUCERS, source,
-            "vibration.transducer", f"must be one of {', '.join(VIBRATION_TRANSDUCERS)} "
-            "(the PVDF film, or a high-passed accelerometer on the pad)",
-            scenario.vibration.transducer)
-    require(scenario.vibration.pad_force_source in PAD_FORCE_SOURCES, source,
-            "vibration.pad_force_source", f"must be one of {', '.join(PAD_FORCE_SOURCES)}",
-            scenario.vibration.pad_force_source)
     capacitive = scenario.tactile.capacitive
     require(capacitive.output in CAPACITIVE_OUTPUTS, source, "tactile.capacitive.output",
             f"must be one of {', '.join(CAPACITIVE_OUTPUTS)}", capacitive.output)
@@ -351,22 +282,6 @@ def _check_transducers(scenario: Scenario, source: str) -> None:
                 f"stages of {1e3 / (12 * frame):.3f} ms): set both together (or "
                 f"tactile.capacitive.ad7147_timing=false for an idealised readout)",
                 scenario.tactile.sample_rate_hz)
-    _check_film_electronics(scenario.vibration, source)
-
-
-def _check_film_electronics(vibration: VibrationSensorConfig, source: str) -> None:
-    """The film's readout by name and the drives' tones in pairs (film_readout.py,
-    drive_vibration.py); their numbers' ranges are declared on their fields."""
-    require(vibration.adc_input in ADC_INPUTS, source, "vibration.adc_input",
-            f"must be one of {', '.join(ADC_INPUTS)} (the myRIO's +-10 V MSP input, its "
-            "0-5 V MXP input, or no converter)", vibration.adc_input)
-    for name in ("gripper_drive", "arm_drive"):
-        drive_tones = getattr(vibration, name)
-        require(not drive_tones.amplitudes_mps2
-                or len(drive_tones.amplitudes_mps2) == len(drive_tones.orders), source,
-                f"vibration.{name}.orders", "must give one order per amplitude "
-                f"({len(drive_tones.amplitudes_mps2)} amplitudes; amplitudes_mps2=[] switches "
-                "the drive off)", drive_tones.orders)
 
 
 def validate(scenario: Scenario, source: str = "scenario", *,
@@ -377,12 +292,6 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     fields: the object on the table and within the stroke, the sensors' rates and filters,
     the hit within the script, a script no longer than MAX_SCRIPT_S unless `allow_long`."""
     scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source))
-    if len(scenario.object_offset) != 2:
-        raise ConfigError(f"{source}: field 'object_offset' must be [x, y] in metres, got "
-                          f"{scenario.object_offset}")
-    if len(scenario.expected_object_xy) != 2:
-        raise ConfigError(f"{source}: field 'expected_object_xy' must be [x, y] in metres, "
-                          f"got {scenario.expected_object_xy}")
     disturbance = scenario.disturbance
     if len(disturbance.hit_force_n) != 3:
         raise ConfigError(f"{source}: field 'disturbance': hit_force_n must be [x, y, z] in "
@@ -399,7 +308,9 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     require(scenario.gripper.model in GRIPPER_MODELS, source, "gripper.model",
             f"must be one of {', '.join(GRIPPER_MODELS)} (the 2F-85's finger linkage, or "
             "prismatic fingers)", scenario.gripper.model)
-    _check_on_table(scenario, source)
+    problem = scenario.placement.problem(scenario.object.shape, scenario.object.size)
+    if problem is not None:
+        require(False, source, f"placement.{problem[0]}", problem[1], problem[2])
     height = scenario.object.height()
     require(scenario.grasp.grasp_height <= height, source, "grasp.grasp_height",
             f"must lie within the object's height, {height:g} m (the pad centre above the "
@@ -408,21 +319,6 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     # The object must fit between the open fingers (object_problem). Offset along the
     # stroke beyond that is allowed: an open finger then meets the object on the way in, as
     # it would on a robot (the paper's thick cylinder failed most when misplaced outward).
-    envelope_hz = getattr(scenario.controller, "ra_envelope_hz", 0.0)
-    require(envelope_hz == 0 or 0 < envelope_hz < scenario.vibration.sample_rate_hz / 2,
-            source, "controller.ra_envelope_hz", "must be 0 (no RA envelope) or lie between "
-            f"0 and half the RA rate ({scenario.vibration.sample_rate_hz / 2:g} Hz)",
-            envelope_hz)
-    quiet_s = getattr(scenario.controller, "ra_noise_quiet_s", 2.0)
-    require(quiet_s * scenario.vibration.sample_rate_hz >= 2, source,
-            "controller.ra_noise_quiet_s", "must hold at least 2 RA samples [s] (the start of "
-            "the run, pads untouched, where the RA noise is measured)", quiet_s)
-    approach_s = scenario.grasp.settle_s + scenario.grasp.reach_s
-    require(getattr(scenario.controller, "ra_noise_floor_sigmas", 0.0) == 0
-            or quiet_s <= approach_s, source, "controller.ra_noise_quiet_s",
-            "must end with the approach, by grasp.settle_s + grasp.reach_s = "
-            f"{approach_s:g} s, when the RA noise floor is on (the noise is measured with the "
-            "pads untouched; shorten it or lengthen the approach)", quiet_s)
     duration = script_duration(scenario)
     if duration > MAX_SCRIPT_S and not allow_long:
         raise ConfigError(
@@ -431,7 +327,7 @@ def validate(scenario: Scenario, source: str = "scenario", *,
             f"{MAX_SCRIPT_S:g} s (the paper's lasts about 12 s): shorten its phases, or "
             "confirm with --allow-long (LoadScenario(..., allow_long=True))")
     _check_sensors_and_scene(scenario, source)
-    _check_controller(scenario.controller, source)
+    _check_controller(scenario, source)
     problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
     if problem:
         field, words, value = problem
@@ -439,6 +335,11 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     problem = contact_geometry_problem(scenario.contact_geometry)
     if problem:
         raise ConfigError(f"{source}: field 'contact_geometry.{problem[0]}' {problem[1]}")
+    require(scenario.contact_geometry.pad_refinement == 0 or scenario.gripper.model == "linkage",
+            source, "contact_geometry.pad_refinement", "must be 0 with gripper.model prismatic "
+            "(the refined pad meshes are the linkage hand's: set gripper.model=linkage, or "
+            "leave pad_refinement at 0)",
+            scenario.contact_geometry.pad_refinement)
     _check_transducers(scenario, source)
     if isinstance(scenario.station, HardwareStationConfig):
         validate_hardware_config(scenario.station, source, "station")
@@ -474,6 +375,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
         apply_override(data, assignment)
     # A bad value given with --set is named as such, not as the file's.
     source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
+    refuse_moved_keys(data, source)
     if controller is not None:
         data.setdefault("controller", {})["name"] = controller
     try:
@@ -507,15 +409,15 @@ def grasp_plan(scenario: Scenario):
     its hand, from its arm's start pose."""
     from tegrasp_drake.control.machine_state import GraspPlan
     return GraspPlan.make(scenario.grasp, start_xyz=scenario.arm.initial_gripper_xyz,
-                          expected_object_xy=scenario.expected_object_xy,
+                          expected_object_xy=scenario.placement.expected_xy,
                           object=scenario.object, gripper_model=scenario.gripper.model)
 
 
 def object_pose(scenario: Scenario):
     """X_WO of the scenario's object: on its marker, moved by its offset, yawed."""
     from tegrasp_drake.simulation.station import object_pose_on_table
-    return object_pose_on_table(scenario.expected_object_xy, scenario.object_offset,
-                                scenario.object_yaw_deg)
+    placement = scenario.placement
+    return object_pose_on_table(placement.expected_xy, placement.offset, placement.yaw_deg)
 
 
 def controller_in_force(scenario: Scenario):
@@ -547,13 +449,15 @@ def with_controller(scenario: Scenario, name: str) -> Scenario:
 
 
 def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenario:
-    """The Scenario of YAML text that scenario_to_yaml wrote (a log's), also when written
-    with a flat controller section naming its controller (the settings its class lacks are
-    dropped). A log can be damaged or edited: its values are checked as a loaded scenario's
-    are (every number finite and in its declared range, no time below the plant step), and
-    ConfigError names `source` and the field."""
+    """The Scenario of YAML text that scenario_to_yaml wrote (a log's, stored), also when
+    written before the settings were nested (read through the stored-record migration,
+    moved_keys.migrate_stored_scenario) or with a flat controller section naming its
+    controller (the settings its class lacks are dropped). A log can be damaged or edited:
+    its values are checked as a loaded scenario's are (every number finite and in its
+    declared range, no time below the plant step), and ConfigError names `source` and the
+    field."""
     try:
-        data = yaml_load(data=text) or {}
+        data = migrate_stored_scenario(yaml_load(data=text) or {})
         select_controller_tag(data, drop_others=True)
         scenario = yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
     except (RuntimeError, ValueError, TypeError, AttributeError, yaml.YAMLError) as e:

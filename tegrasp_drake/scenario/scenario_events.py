@@ -51,7 +51,7 @@ def load_corrective_events(scenario: Scenario, events_dir: PathLike | None = Non
                                 required=CORRECTIVE_TRANSITIONS,
                                 record_hint="`python analysis/record_corrective_events.py "
                                 "LOGS --object NAME`, or --set "
-                                "controller.memorized_corrective_events=[]")
+                                "controller.memorized_corrective.events=[]")
 
 
 def _load_checked_events(scenario, folders, *, nominal_object=None, required=None,

@@ -274,8 +274,8 @@ def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorC
     (MakePadFilms; outputs `<finger>_pad_vibration`)."""
     drive = AddDriveVibration(builder, sources=list(drive_rates),
                               period_s=1.0 / config.sample_rate_hz,
-                              mode_frequency_hz=config.mode_frequency_hz,
-                              damping_ratio=config.mode_damping_ratio,
+                              mode_frequency_hz=config.film.mode_frequency_hz,
+                              damping_ratio=config.film.mode_damping_ratio,
                               name=f"{name}_drive_vibration")
     force_port = plant.get_generalized_contact_forces_output_port(gripper)
     force_indices = (0, 1)  # PadNormalForces' outputs (pad_statics reads the whole vector)

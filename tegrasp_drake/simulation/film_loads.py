@@ -222,13 +222,13 @@ class FilmLoads(LeafSystem):
             return
         before_left, before_right = values[self._previous_forces]
         pulses = values[self._previous_pulses]  # onsets, impulses, durations
-        m = self._config.mode_mass_kg
+        m = self._config.film.mode_mass_kg
         loads = [left + m * values[self._normal_accelerations[0]],
                  right + m * values[self._normal_accelerations[1]], left, right]
         onsets = (abs(left) > CONTACT_ONSET_N >= abs(before_left),
                   abs(right) > CONTACT_ONSET_N >= abs(before_right))
         step_start = time - self._dt
-        if self._config.impact_enabled and (onsets[0] or onsets[1]):
+        if self._config.film.impact_enabled and (onsets[0] or onsets[1]):
             self._start_impacts(context, onsets, step_start, pulses)
         direct = None
         if pulses[2] > 0.0 or pulses[3] > 0.0:  # an impulse is under way
@@ -273,7 +273,7 @@ class FilmLoads(LeafSystem):
         sampled_at = TEXTURE_PERIOD_S * math.floor((step_start + 0.5 * self._dt)
                                                    / TEXTURE_PERIOD_S)
         elapsed = (step_start - sampled_at + self._midpoints)[:, np.newaxis]
-        return self._config.mode_mass_kg * texture_acceleration(
+        return self._config.film.mode_mass_kg * texture_acceleration(
             phase, amplitude, speed, elapsed, self._texture_period_m)
 
     def _start_impacts(self, context, onsets, step_start: float, pulses: list):
@@ -295,9 +295,9 @@ class FilmLoads(LeafSystem):
                 poses[b], velocities[b], accelerations[b], p_WC, self._dt)
                 for b in (pad_body, other))
             impulse, duration = impact_pulse(
-                float(np.dot(v_pad - v_other, normal)), self._config.mode_mass_kg,
-                self._mass[other], self._config.pad_contact_stiffness_n_per_m,
-                self._config.pad_dissipation_s_per_m)
+                float(np.dot(v_pad - v_other, normal)), self._config.film.mode_mass_kg,
+                self._mass[other], self._config.film.pad_contact_stiffness_n_per_m,
+                self._config.film.pad_dissipation_s_per_m)
             pulses[k], pulses[2 + k], pulses[4 + k] = step_start, impulse, duration
 
     def _strongest_contact(self, contacts: ContactResults, pad_geometry):

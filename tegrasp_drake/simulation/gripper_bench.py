@@ -24,8 +24,8 @@ from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION
 from tegrasp_drake.robotiq import linkage
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse
-from tegrasp_drake.simulation.gripper_hands import (actuated_state_selector, configure_drive,
-                                                    gripper_hand)
+from tegrasp_drake.simulation.gripper_hands import (actuated_state_selector, add_gripper_model,
+                                                    configure_drive, gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig,
                                                          MakeSimRobotiqDriver)
@@ -37,12 +37,14 @@ class BenchObstacle:
     """An obstacle welded between the fingers: `box` (size [m], x y z in the gripper base
     frame) or `rod` (a cylinder across the pads, along x: size = [diameter, length])
     centred at (0, 0, z_m) in the gripper base frame; rigid, or compliant hydroelastic
-    of hydroelastic_modulus [Pa] with the pads' Hunt-Crossley dissipation."""
+    of hydroelastic_modulus [Pa] with the pads' Hunt-Crossley dissipation; a rod's facets
+    about resolution_hint_m [m] long."""
     shape: str
     size: tuple
     z_m: float
     friction: float = 0.5
     hydroelastic_modulus: float | None = None
+    resolution_hint_m: float = 0.002
 
 
 @dataclasses.dataclass
@@ -57,10 +59,11 @@ class GripperBench:
 def _add_obstacle(plant, obstacle: BenchObstacle) -> None:
     properties = ProximityProperties()
     if obstacle.hydroelastic_modulus is None:
-        AddRigidHydroelasticProperties(resolution_hint=0.002, properties=properties)
+        AddRigidHydroelasticProperties(resolution_hint=obstacle.resolution_hint_m,
+                                       properties=properties)
         dissipation = None
     else:
-        AddCompliantHydroelasticProperties(resolution_hint=0.002,
+        AddCompliantHydroelasticProperties(resolution_hint=obstacle.resolution_hint_m,
                                            hydroelastic_modulus=obstacle.hydroelastic_modulus,
                                            properties=properties)
         dissipation = PAD_DISSIPATION  # so that the pair's is the pads' whatever the moduli
@@ -80,16 +83,18 @@ def _add_obstacle(plant, obstacle: BenchObstacle) -> None:
 def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConfig(),
                      obstacle: BenchObstacle | None = None, push_n: float = 0.0,
                      push_start_s: float = 0.0,
-                     plant_config: MultibodyPlantConfig | None = None) -> GripperBench:
+                     plant_config: MultibodyPlantConfig | None = None,
+                     pad_refinement: int = 0) -> GripperBench:
     """The gripper of `driver.model` playing `command` (rPR, rSP, rFR bytes) from the open
-    pose; see the module docstring."""
+    pose, its pads meshed as `pad_refinement` says (ContactGeometryConfig); see the module
+    docstring."""
     plant_config = plant_config or MultibodyPlantConfig(
         time_step=1e-3, discrete_contact_approximation="lagged",
         contact_model="hydroelastic_with_fallback")
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(plant_config, builder)
     hand = gripper_hand(driver.model)
-    (gripper,) = paths.make_parser(plant).AddModels(url=hand.url)
+    gripper = add_gripper_model(paths.make_parser(plant), hand, pad_refinement)
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", gripper))
     if obstacle is not None:
         _add_obstacle(plant, obstacle)

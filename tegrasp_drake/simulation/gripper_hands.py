@@ -22,6 +22,7 @@ import numpy as np
 from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.primitives import MatrixGain
 
+from tegrasp_drake.modelgen.robotiq_linkage_sdf import robotiq_linkage_sdf
 from tegrasp_drake.robotiq import drive, linkage
 from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
 
@@ -107,6 +108,19 @@ class LinkageHand:
         +4.0 mm at 25 mm."""
         return (float(linkage.PAD_CENTER_OPEN[1]) - PAD_CENTER_Z
                 + linkage.pad_travel_at_opening(opening_m))
+
+
+def add_gripper_model(parser, hand, pad_refinement: int = 0):
+    """Adds the model of `hand` to the parser's plant and returns its model instance; with
+    pad_refinement > 0 (the linkage hand only) its pads' collision geometry is their box's
+    mesh split that many times (modelgen/pad_mesh.py), the rest of the model the same."""
+    if not pad_refinement:
+        (gripper,) = parser.AddModels(url=hand.url)
+        return gripper
+    if not isinstance(hand, LinkageHand):
+        raise ValueError("a refined pad mesh is for the linkage hand only")
+    (gripper,) = parser.AddModelsFromString(robotiq_linkage_sdf(pad_refinement), "sdf")
+    return gripper
 
 
 def gripper_hand(model: str):

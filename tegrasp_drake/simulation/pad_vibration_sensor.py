@@ -54,7 +54,7 @@ from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_W
 from tegrasp_drake.simulation.drive_vibration import (DriveVibrationConfig, arm_drive_default,
                                                      gripper_drive_default)
 from tegrasp_drake.simulation.film_dynamics import FilmParameters, film_sensitivity
-from tegrasp_drake.simulation.film_readout import (adc_input, noise_at_amplifier_v,
+from tegrasp_drake.simulation.film_readout import (ADC_INPUTS, adc_input, noise_at_amplifier_v,
                                                   reading_noise_std)
 
 # The film's gain and the amplifier's capacitor: their words for a value not positive.
@@ -62,27 +62,11 @@ _SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
 
 
 @dataclasses.dataclass
-class VibrationSensorConfig:
-    """The PVDF film of each pad (RA channel source). Sources and reasoning of every number:
+class FilmConfig:
+    """The fingertip's first structural mode that bends the film, the impact that rings it
+    at contact onset, and the film's charge per deflection with its amplifier's capacitor
+    (film_dynamics.py, film_loads.py). Sources and reasoning of every number:
     docs/model.md, "Vibration (RA) model"."""
-    # RA output rate (peak-hold over each period)
-    sample_rate_hz: float = bounded(1000.0, low=16.0, high=20_000.0, unit="Hz",
-                                    why="the 0.5 s event window needs 8 samples; the film is "
-                                        "integrated at 20 kHz")
-    # per sample, acceleration-equivalent
-    noise_std_mps2: float = bounded(0.05, low=0.0, high=100.0, unit="m/s^2",
-                                    why="the film's noise is a few hundredths; 100 would bury "
-                                        "every event",
-                                    below="must be zero (no noise) or positive [m/s^2]")
-    # charge amplifier corner 1 / (2 pi R_f C_f)
-    highpass_cutoff_hz: float = bounded(2.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
-                                        why="the charge amplifier's corner, below the RA band")
-    # Texture of the pad cover that sliding drags the film over (pad_slip_vibration.py): a
-    # woven fabric of about 0.5 mm pitch with a few micrometres of relief. 0 disables.
-    slip_texture_height_m: float = bounded(5e-6, low=0.0, high=1e-3, unit="m",
-                                           why="surface roughness, microns")
-    slip_texture_period_m: float = bounded(5e-4, low=0.0, low_open=True, high=0.01, unit="m",
-                                           why="texture wavelength, sub-millimetre")
     # The fingertip's first structural mode (an estimate: see docs/model.md).
     mode_frequency_hz: float = bounded(400.0, low=0.0, low_open=True, high=10_000.0,
                                        high_open=True, unit="Hz",
@@ -116,6 +100,32 @@ class VibrationSensorConfig:
                                             why="a charge amplifier's feedback capacitor is pF to "
                                                 "nF",
                                             below=_SENSITIVITY_BELOW)
+
+
+@dataclasses.dataclass
+class VibrationSensorConfig:
+    """The PVDF film of each pad (RA channel source). Sources and reasoning of every number:
+    docs/model.md, "Vibration (RA) model"."""
+    # RA output rate (peak-hold over each period)
+    sample_rate_hz: float = bounded(1000.0, low=16.0, high=20_000.0, unit="Hz",
+                                    why="the 0.5 s event window needs 8 samples; the film is "
+                                        "integrated at 20 kHz")
+    # per sample, acceleration-equivalent
+    noise_std_mps2: float = bounded(0.05, low=0.0, high=100.0, unit="m/s^2",
+                                    why="the film's noise is a few hundredths; 100 would bury "
+                                        "every event",
+                                    below="must be zero (no noise) or positive [m/s^2]")
+    # charge amplifier corner 1 / (2 pi R_f C_f)
+    highpass_cutoff_hz: float = bounded(2.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
+                                        why="the charge amplifier's corner, below the RA band")
+    # Texture of the pad cover that sliding drags the film over (pad_slip_vibration.py): a
+    # woven fabric of about 0.5 mm pitch with a few micrometres of relief. 0 disables.
+    slip_texture_height_m: float = bounded(5e-6, low=0.0, high=1e-3, unit="m",
+                                           why="surface roughness, microns")
+    slip_texture_period_m: float = bounded(5e-4, low=0.0, low_open=True, high=0.01, unit="m",
+                                           why="texture wavelength, sub-millimetre")
+    # The film's mechanics and charge.
+    film: FilmConfig = dataclasses.field(default_factory=FilmConfig)
     # The readout (film_readout.py): the amplifier's output swing [V] (an op-amp on the
     # myRIO MSP connector's +-15 V supply swings to about +-13.5 V), and the NI myRIO-1900's
     # 12-bit input: "msp" (+-10 V, 4.88 mV a code; the default, for the bipolar amplifier),
@@ -146,26 +156,65 @@ class VibrationSensorConfig:
     # "film": the PVDF film above (the real pad's); "accelerometer": a rigid-body
     # accelerometer on the pad, its normal axis high-passed at highpass_cutoff_hz
     # (pad_accelerometers.py; the paper's simulation had one per pad). The film's own
-    # settings are then unused.
+    # settings (`film`, the readout's) are then unused.
     transducer: str = "film"
     # Where the linkage hand's films get their pad forces (linkage_pad_statics.py; the same
     # forces to round-off): "contact_results", a walk over the plant's contact results
     # each step (PadNormalForces); "joint_forces", its joints' generalized contact forces.
     pad_force_source: str = "contact_results"
 
+    def problem(self) -> tuple[str, str, object] | None:
+        """(field, what it must be, its value) of the first name that is not one of its
+        choices or setting that does not fit another (each number's own range is declared
+        on its field); None when all fit."""
+        from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
+        from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
+        choices = (("transducer", VIBRATION_TRANSDUCERS, "(the PVDF film, or a high-passed "
+                    "accelerometer on the pad)"),
+                   ("pad_force_source", PAD_FORCE_SOURCES, ""),
+                   ("adc_input", ADC_INPUTS, "(the myRIO's +-10 V MSP input, its 0-5 V MXP "
+                    "input, or no converter)"))
+        for field, names, what in choices:
+            if getattr(self, field) not in names:
+                return (field, f"must be one of {', '.join(names)}{' ' * bool(what)}{what}",
+                        getattr(self, field))
+        nyquist = self.internal_rate_hz / 2
+        if not 0 < self.film.mode_frequency_hz < nyquist:
+            return ("film.mode_frequency_hz", f"must lie in (0, {nyquist:g}) Hz (the "
+                    "fingertip's mode, integrated at vibration.internal_rate_hz; at 0 the film "
+                    "feels no ring)", self.film.mode_frequency_hz)
+        # The charge amplifier's high-pass runs where the film is integrated
+        # (internal_rate_hz, film_dynamics.py); the accelerometer's on its samples
+        # (pad_accelerometers.py).
+        filter_rate_hz, rate_name = ((self.sample_rate_hz, "vibration.sample_rate_hz")
+                                     if self.transducer == "accelerometer" else
+                                     (self.internal_rate_hz, "vibration.internal_rate_hz"))
+        if not self.highpass_cutoff_hz < filter_rate_hz / 2:
+            return ("highpass_cutoff_hz", f"must lie below {filter_rate_hz / 2:g} Hz, half the "
+                    f"{rate_name} its {self.transducer} filter runs at", self.highpass_cutoff_hz)
+        for name in ("gripper_drive", "arm_drive"):
+            tones = getattr(self, name)
+            if tones.amplitudes_mps2 and len(tones.amplitudes_mps2) != len(tones.orders):
+                return (f"{name}.orders", "must give one order per amplitude "
+                        f"({len(tones.amplitudes_mps2)} amplitudes; amplitudes_mps2=[] switches "
+                        "the drive off)", tones.orders)
+        return None
+
 
 def film_parameters(config: VibrationSensorConfig) -> FilmParameters:
-    return FilmParameters(mode_frequency_hz=config.mode_frequency_hz,
-                          damping_ratio=config.mode_damping_ratio,
-                          modal_mass_kg=config.mode_mass_kg,
-                          load_lowpass_hz=config.load_lowpass_hz,
+    film = config.film
+    return FilmParameters(mode_frequency_hz=film.mode_frequency_hz,
+                          damping_ratio=film.mode_damping_ratio,
+                          modal_mass_kg=film.mode_mass_kg,
+                          load_lowpass_hz=film.load_lowpass_hz,
                           highpass_hz=config.highpass_cutoff_hz)
 
 
 def volts_per_mps2(config: VibrationSensorConfig) -> float:
     """The film's mid-band sensitivity S [V/(m/s^2)]: its voltage is -S times the output."""
-    return film_sensitivity(config.film_charge_gain_c_per_m, config.mode_frequency_hz,
-                            config.feedback_capacitance_f)
+    film = config.film
+    return film_sensitivity(film.film_charge_gain_c_per_m, film.mode_frequency_hz,
+                            film.feedback_capacitance_f)
 
 
 def noise_draw_std_v(config: VibrationSensorConfig) -> float:

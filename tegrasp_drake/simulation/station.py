@@ -59,6 +59,7 @@ from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageW
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.jaco_velocity_drive import AddJacoVelocityDrive
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
+                                                    add_gripper_model,
                                                     configure_drive, gripper_hand)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
@@ -288,7 +289,8 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
         (arm,) = parser.AddModels(url=ARM_URL)
         plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
     hand = gripper_hand(gripper_config.model)
-    (gripper,) = parser.AddModels(url=hand.url)
+    gripper = add_gripper_model(parser, hand, (contact_geometry or ContactGeometryConfig()
+                                               ).pad_refinement)
     if carriage is None:
         weld = plant.WeldFrames(plant.GetFrameByName("flange", arm),
                                 plant.GetFrameByName("base", gripper), X_FLANGE_GRIPPER)

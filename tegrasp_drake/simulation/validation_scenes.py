@@ -10,7 +10,7 @@ is how finely the object and the table are meshed (`contact_geometry`, default t
 reference geometry).
 
 The three experiments return what a closed form predicts (module docstrings of the tests in
-tests/test_simulation_validation_scenes.py give the formulas):
+tests/simulation/test_validation_scenes.py give the formulas):
 - push_standing_object: one pad pushes a standing object sideways at a height; it slides
   or tips over.
 - slip_onset_grip_force: a held object, the grip force ramped down; the force at which it

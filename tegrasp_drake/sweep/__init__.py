@@ -1,9 +1,17 @@
 """The grasping experiment as a sweep: specs, durable trial records, runner, Table I.
 
-`tegrasp sweep` runs every object at every marker of a grid, a few attempts each, once
-per controller, with paired seeds; records each trial durably; resumes after a kill; and
-writes Table I, statistics and success per offset (the figures and the whole results
-folder: tegrasp_drake/reports.py).
+- spec.py: the sweep specification, its validation and the trial list (paired seeds).
+- spec_file.py: LoadSweepSpec, a spec from a YAML file.
+- trial_function.py: one sweep trial turned into a scenario and run.
+- runner.py: runs the trials in parallel, records each durably, resumes after a kill.
+- records.py: one checksummed JSON record per trial.
+- table.py: Table I and the trials' statistics (paired McNemar tests).
+- summary.py: the results table of docs/results.md.
+- offset_table.py: success per placement offset.
+- failure_classes.py: why each failed trial failed.
+- detection_report.py: detection quality per trigger, paired comparisons.
+- missed_event_report.py: the memorized events that did not come, replayed.
+The figures and the whole results folder: tegrasp_drake/reports.py.
 """
 
 from tegrasp_drake.sweep.offset_table import offset_rows, write_offset_table

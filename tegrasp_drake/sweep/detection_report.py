@@ -1,28 +1,13 @@
 """Detection quality per trigger and controller, and paired comparisons of controllers, from
-a sweep's records.
+a sweep's records (docs/sweeps.md, "A sweep": the definitions).
 
-Per event transition (Reach-Load, Load-Lift, Place-Unload) and controller, over the trials
-that reached the transition's source mode:
-  detected   taken by the controller's event trigger on time (not more than the judge's
-             10 ms before its physical event)
-  false      taken by the event trigger more than 10 ms before the physical event (or with
-             no physical event at all)
-  other      left by another trigger (a timer, a corrective action, a fault) or never left
-  latency    median and 90th percentile of the detected ones [s after the physical event]
-Corrective triggers: the number of trials in which each corrective action started. The
-hit in Hold (a sweep with `--set disturbance.hit_time_s=...`), per controller, over the
-trials that were in Hold when the hit came (physical event "hit"):
-  detected   Hold -> Avoid at or after the hit (less than 10 ms before it counts, as above)
-  missed     no Avoid after the hit
-  false      trials that reached Hold with an Avoid before the hit, or without a hit
-  latency    of the detected ones [s after the hit's start]
-  trigger    what made the Avoids (memorized: corrective_event; the threshold: threshold)
-
-Paired comparison (McNemar's exact test): for one success marker (well-placed or
-misplaced, hold or unload), the scenes both controllers ran (same pair_id: the same
-perturbed scene and noise seed), b = scenes only the first succeeded on, c = only the
-second; p = the two-sided binomial test of b against c at p = 0.5 (table.py
-exact_mcnemar_p_value).
+Per event transition and controller, over the trials that reached its source mode:
+detected, false (taken by the event trigger more than FALSE_TRIGGER_MARGIN_S before its
+physical event, or without one), other, and the detected ones' latency [s]. The hit in
+Hold (a sweep with `disturbance.hit_time_s`), over the trials in Hold when it came:
+detected (Hold -> Avoid at or after it), missed, false (an Avoid before it or without a
+hit), latency and the Avoids' trigger. Paired comparison: McNemar's exact test on the
+scenes both controllers ran (table.exact_mcnemar_p_value).
 """
 
 import collections
@@ -35,7 +20,7 @@ from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_st
 from tegrasp_drake.sweep.records import record_result
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
-FALSE_TRIGGER_MARGIN_S = 0.01
+FALSE_TRIGGER_MARGIN_S = 0.01  # [s] the trial judge's margin (runs/trial.py)
 EVENT_TRIGGERS = ("memorized_event", "heuristic_event")
 MARKERS = (("well_placed", "hold"), ("well_placed", "unload"), ("misplaced", "hold"),
            ("misplaced", "unload"))

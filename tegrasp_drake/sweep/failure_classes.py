@@ -1,22 +1,6 @@
-"""Why a trial failed: one class per failed trial, from its sweep record's result.
-
-The classes follow the paper's failure modes (Sec. IV-C: the thick cylinder not held when
-misplaced outward, the thin cylinder not standing upright after placing) and the
-controller's own reasons for giving up. A trial that held and unloaded has no class.
-Checked in this order (the first that applies):
-
-  closed on nothing      the gripper closed without touching the object (Re-Reach used up)
-  one finger only        one finger touched and the other never did (Re-Reach used up)
-  slipped in Lift        Lift-Load used up: the object still slipping, or no Load-Lift
-                         event after it
-  event never matched    no memorized/heuristic event within its timeout (Re-Reach used up)
-  object lost            the controller saw both pads empty in Lift, Hold, Avoid or Place
-  device fault           a gripper or watchdog fault
-  not lifted             the grasp went on but the object never rose 2 cm
-  dropped in Hold        lifted, but held for less than the paper's 3 s
-  toppled at release     held, then left tilted by 10 deg or more after Unload
-  not placed             held, upright, but not released, not resting or not retracted
-  other                  a Failed reason none of the above names (see the record)
+"""Why a trial failed: one class per failed trial (FAILURE_CLASSES, the first that applies),
+from its sweep record's result, after the paper's failure modes (Sec. IV-C) and the
+controller's own reasons for giving up; the classes: docs/sweeps.md, "A sweep".
 """
 
 from tegrasp_drake.control.controller_registry import controller_title

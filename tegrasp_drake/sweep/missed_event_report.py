@@ -1,10 +1,6 @@
-"""Missed memorized events of a sweep, from its records and trial logs: every wait of an
-event-triggered controller that ended on its event's timeout, replayed and classified
-(events/missed_waits.py), as a markdown report with the counts per object and class.
-
-A record's log is `LOGS/trial_log_name(trial)` (`tegrasp sweep --logs LOGS`). Each trial
-is replayed with the memorized events its controller ran with (trial_function.trial_events)
-and the matcher settings the live controller built (event_matcher_config).
+"""Missed memorized events of a sweep: every wait that ended on its event's timeout, replayed
+from the trial's log (`tegrasp sweep --logs LOGS`) with the events and matcher settings the
+controller ran with, classified (events/missed_waits.py) and counted per object and class.
 """
 
 import dataclasses
@@ -17,6 +13,7 @@ from tegrasp_drake.events.missed_waits import (
     MISS_CLASSES, WEAK_DYNAMIC_STIMULUS, MissedWait, classify_missed_wait, event_waits)
 from tegrasp_drake.events.ra_noise_floor import rule_sigmas
 from tegrasp_drake.events.replay import tactile_trial_from_log
+from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
 from tegrasp_drake.scenario.scenario import sample_rates_hz
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.simulation.film_readout import adc_input
@@ -62,7 +59,7 @@ def record_has_waits(record: dict, controller: str) -> bool:
 def trial_misses(record: dict, log_path, events_dir=None) -> list[TrialMiss]:
     """The classified missed waits of one sweep record, its log at `log_path`."""
     trial = record["trial"]
-    scenario, events, _ = trial_events(trial, events_dir)
+    scenario, events, _ = trial_events(migrate_stored_trial(trial), events_dir)
     if not controller_entry(scenario.controller).event_triggered or events is None:
         return []
     config = event_matcher_config(scenario.controller, gripper_model=scenario.gripper.model,

@@ -1,9 +1,6 @@
-"""Success per placement offset: Table I split by marker, so that a reader sees where each
-controller fails (the markers 1.5 cm along the stroke, say, where Re-Reach acts).
-
-One table per controller: a row per marker (its nominal offset from the expected position:
-dx normal to the palm, dy along the stroke, mm; the attempts add jitter), a column pair
-(~Hold, ~Unload) per object, as successes/trials of the finished trials.
+"""Success per placement offset: Table I split by marker, so a reader sees where each
+controller fails. One table per controller: a row per marker (nominal dx normal to the
+palm, dy along the stroke, mm), a (~Hold, ~Unload) column pair per object.
 """
 
 from collections import defaultdict

@@ -1,8 +1,6 @@
 """Durable per-trial records: one checksummed JSON file per trial.
 
-A record lives at `<out>/trials/<controller>.<object>.<marker>.a<k>.json` (the trial
-id with '/' turned into '.'; names cannot contain '.', so the mapping is one to one)
-and holds:
+`<out>/trials/<controller>.<object>.<marker>.a<k>.json` (the trial id, '/' as '.') holds:
 
     format          "tegrasp-sweep-record"
     format_version  1
@@ -13,12 +11,9 @@ and holds:
     error           null, or {"type", "message", "traceback"} for an error
     checksum        "sha256:" + hex digest of the canonical JSON of all other fields
 
-Canonical JSON: sorted keys, no spaces, ASCII, no NaN/Infinity. A record is written to
-a temporary file in the same folder, flushed and fsync'ed, renamed over the final name
-(atomic on POSIX) and the folder fsync'ed, so a crash leaves either no record or a
-whole one. A record that fails to parse or whose checksum does not match (a partial
-write on a filesystem without atomic rename, a flipped bit, a hand edit) is reported
-as corrupt, and the runner runs that trial again.
+Canonical JSON: sorted keys, no spaces, ASCII, no NaN/Infinity. Written to a temporary file,
+fsync'ed, renamed into place, the folder fsync'ed: a crash leaves no record or a whole one.
+A record that fails to parse or to checksum is corrupt, and its trial runs again.
 """
 
 import hashlib
@@ -62,10 +57,8 @@ def record_path(out_dir, trial_id: str) -> Path:
 
 
 def canonical_json(value) -> str:
-    """The one JSON text of `value` that checksums are taken over.
-
-    numpy scalars and arrays become Python numbers and lists (through `tolist`).
-    Raises RecordError for values JSON cannot hold, NaN and infinities included.
+    """The one JSON text of `value` that checksums are taken over (numpy through `tolist`);
+    RecordError for values JSON cannot hold, NaN and infinities included.
     """
     try:
         return json.dumps(value, sort_keys=True, separators=(",", ":"), ensure_ascii=True,
@@ -110,8 +103,7 @@ def write_record(out_dir, record: dict) -> Path:
     path = record_path(out_dir, record["trial_id"])
     path.parent.mkdir(parents=True, exist_ok=True)
     text = json.dumps(record, sort_keys=True, indent=1, ensure_ascii=True, allow_nan=False)
-    # Through rig/files.py, so that the record has the mode the umask gives (as a trial's
-    # outputs do), not mkstemp's 0600.
+    # Through rig/files.py: the umask's mode, as a trial's outputs, not mkstemp's 0600.
     write_atomically(path, (text + "\n").encode("ascii"), suffix=_TEMP_SUFFIX)
     _fsync_folder(path.parent)
     return path
@@ -172,9 +164,8 @@ def read_record(path) -> tuple[dict | None, str | None]:
 
 @public_api
 def load_records(out_dir: Annotated[PathLike, INPUT_FOLDER]) -> LoadedRecords:
-    """Reads every record under `<out_dir>/trials`; temporary files are ignored. A results
-    folder without a trials folder holds no records; UserPathError (an OSError) for a path
-    that does not exist or is something else than a folder (a trial log, a record file)."""
+    """Reads every record under `<out_dir>/trials` (temporary files ignored; no trials folder:
+    no records); UserPathError for a path that is not a folder."""
     folder = Path(out_dir) / TRIALS_FOLDER
     records, corrupt = {}, {}
     if folder.is_dir():

@@ -1,19 +1,11 @@
 """Runs a sweep's trials in parallel and records each one durably as it finishes.
 
-Resume: `run_sweep` skips every trial whose valid "ok" record exists, so killing a sweep
-and running the same call again finishes it, with nothing run twice that had finished
-and nothing lost that had not. Trials are run again when their record is missing,
-corrupt (see `records`), or an error record: a trial function that raised is recorded
-with its traceback (counted apart in the table), and given another chance on the next
-run, since most errors are bugs or resource trouble that get fixed between runs.
-
-Backends: a local process pool (forkserver, never fork: the real trial function uses
-pydrake, and forking a process that has started threads is unsafe), or a Dask
-distributed cluster when `scheduler` names one (the optional `dask` extra). Either way
-the workers only compute; the parent writes every record.
-
-A worker that dies (a crash, out of memory) leaves its trial unfinished, not recorded:
-the summary lists those trials and the next run picks them up.
+`run_sweep` skips every trial with a valid "ok" record, so a killed sweep resumes with
+nothing lost or run twice; a missing, corrupt or error record (a trial function that
+raised, recorded with its traceback) runs again. Backends: a local process pool
+(forkserver, never fork: pydrake has started threads) or a Dask cluster (`scheduler`, the
+`dask` extra); the workers only compute, the parent writes every record. A worker that
+dies leaves its trial unrecorded, for the next run.
 """
 
 import dataclasses
@@ -96,10 +88,8 @@ def check_result(result) -> str | None:
 
 
 def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict]:
-    """Runs one trial in a worker: ("ok", result) or ("error", error dict), never raises.
-
-    The result goes through canonical JSON here, so numpy scalars and arrays arrive as
-    plain numbers and lists, and a result that cannot be stored fails with a traceback.
+    """Runs one trial in a worker: ("ok", result) or ("error", error dict), never raises; the
+    result goes through canonical JSON here (numpy to plain numbers, unstorable results fail).
     """
     try:
         result = json.loads(canonical_json(trial_function(trial)))
@@ -123,11 +113,10 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
               scheduler: str | None = None, progress: bool = True) -> SweepSummary:
     """Runs the trials of `spec` that have no finished record in `out_dir`.
 
-    `trial_function(trial_dict) -> result_dict` must be a picklable module-level
-    callable importable by the workers. `workers` defaults to all cores of the local
-    pool; `scheduler` ("tcp://host:port") runs on that Dask cluster instead. Raises
-    ConfigError or SweepError before any trial runs when the spec is invalid,
-    the folder holds records of a different sweep, or another sweep is writing there.
+    `trial_function(trial_dict) -> result_dict`: a picklable module-level callable. `workers`
+    defaults to all local cores; `scheduler` ("tcp://host:port") runs on that Dask cluster.
+    ConfigError or SweepError before any trial runs for an invalid spec, a folder holding
+    another sweep's records, or another sweep writing there.
     """
     start = time.perf_counter()
     trials = [trial.to_dict() for trial in expand_trials(spec)]
@@ -181,12 +170,15 @@ def _exclusive_lock(out_dir: Path):
 
 def _check_same_sweep(trials, records, out_dir):
     """Refuses a folder whose records were made with other settings for the same ids."""
+    from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
     for trial in trials:
         record = records.get(trial["trial_id"])
         recorded = None if record is None else record["trial"]
         if recorded is not None and recorded.get("object_definition"):
             # A user object recorded with its old field names (spec.user_object).
             recorded = TrialSpec.from_dict(recorded).to_dict()
+        if recorded is not None:  # scenario_overrides recorded with keys since moved
+            recorded = migrate_stored_trial(recorded)
         if recorded is not None and canonical_json(recorded) != canonical_json(trial):
             raise SweepError(
                 f"{out_dir} holds a record of trial {trial['trial_id']} made with other "
@@ -244,10 +236,9 @@ def _progress_bar_factory(enabled):
 
 
 def _run_on_process_pool(trial_function, pending, workers):
-    """Yields (trial_id, outcome) as trials finish; outcome None if the worker died. When
-    the caller stops early (Ctrl-C, SIGTERM: an exception in its loop, or closing this
-    generator), the workers are ended at once and their running trials abandoned (no record:
-    a resumed sweep runs them), instead of waiting for each to finish."""
+    """Yields (trial_id, outcome) as trials finish (None if the worker died). When the caller
+    stops early (Ctrl-C, SIGTERM, closing this generator) the workers end at once and their
+    trials are abandoned without a record, for the resumed sweep."""
     if not pending:
         return
     start_method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
@@ -273,8 +264,7 @@ def _run_on_process_pool(trial_function, pending, workers):
 
 
 def _end_workers(executor: ProcessPoolExecutor) -> None:
-    """Ends a pool's worker processes now (SIGKILL: a trial's simulation holds no file of
-    the sweep's open; records are written by the main process only)."""
+    """Ends a pool's workers now (SIGKILL: only the main process writes records)."""
     for process in list((getattr(executor, "_processes", None) or {}).values()):
         with suppress(OSError, ValueError):
             process.kill()
@@ -284,10 +274,9 @@ PARENT_CHECK_PERIOD_S = 0.5
 
 
 def end_with_parent(parent_pid: int) -> None:
-    """A pool worker's initializer: the worker ends (os._exit) as soon as the sweep's main
-    process `parent_pid` is gone, however it died (SIGKILL included), instead of running
-    its trial to no one and idling forever. Linux also gets PR_SET_PDEATHSIG, which kills
-    the worker when its own parent (the fork server) exits with the main process."""
+    """A pool worker's initializer: the worker exits (os._exit) once the main process
+    `parent_pid` is gone, however it died; on Linux PR_SET_PDEATHSIG also kills it when the
+    fork server exits."""
     import ctypes
     import threading
     try:
@@ -370,12 +359,9 @@ class BenchmarkRun:
 
 def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
                   progress: bool = True) -> tuple[list[BenchmarkRun], bool]:
-    """Runs the memorized-trigger sweep of `spec` once per worker count, each into a
-    fresh temporary folder, timing the whole run (pool start-up included).
-
-    Returns the runs and whether every trial's result was the same in all runs
-    (ignoring the timing fields TIMING_FIELDS): with deterministic trials the worker
-    count must not change any result.
+    """Runs the memorized sweep of `spec` once per worker count, each into a fresh temporary
+    folder, timed whole (pool start-up included); returns the runs and whether every result
+    was the same in all (TIMING_FIELDS aside): the worker count must not change a result.
     """
     spec = dataclasses.replace(spec, controllers=("memorized",))
     runs, results = [], []

@@ -1,20 +1,11 @@
 """What a sweep runs: the typed sweep specification, its validation, and the trial list.
 
-A sweep is the paper's grasping experiment (Sec. IV-B): every object placed at every
-marker of a grid around its expected position, a few attempts per marker, run once per
-controller. `expand_trials` turns a `SweepSpec` into the list of `TrialSpec`s, one per
-(controller, object, marker, attempt).
-
-Frames: marker offsets are given in the gripper's frame at the expected grasp. `x` is the
-approach axis (normal to the palm), `y` the finger-stroke axis. The paper's grid is
-+-1 cm along x and +-1.5 cm along y; the marker at (0, 0) is "well placed", every other
-marker "misplaced".
-
-Paired comparison: a trial's random numbers come from a seed derived from
-(base_seed, object, marker offset, attempt) and never from the controller, so every
-controller meets exactly the same perturbed scene and sensor-noise seed.
-
-A spec file is read by `LoadSweepSpec` (spec_file.py).
+The paper's experiment (Sec. IV-B): every object at every marker of a grid, a few attempts
+per marker, once per controller; `expand_trials` lists one `TrialSpec` per (controller,
+object, marker, attempt). Marker offsets are in the gripper's frame at the expected grasp:
+x the approach axis (normal to the palm), y the finger stroke; (0, 0) is well placed. A
+trial's random numbers come from (base_seed, object, marker, attempt), never from the
+controller, so every controller meets the same scene and noise (paired comparison).
 """
 
 import dataclasses
@@ -34,26 +25,20 @@ from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
-# The controllers the trial function knows (CONTROLLER_NAMES, control/controller_registry.py);
-# a spec that names none runs the paper's comparison (Table I, PAPER_CONTROLLERS).
-
-# The paper's three objects (Fig. 8a), as the scenario knows them (rig/objects.py);
-# a sweep spec can add user-defined objects (`user_objects`, the scenario's ObjectConfig).
+# The paper's three objects (Fig. 8a); a spec can add its own (`user_objects`).
 BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
 
 # The paper's grid (Sec. IV-B): +-1 cm normal to the palm, +-1.5 cm along the stroke.
 PAPER_NORMAL_OFFSETS_M = (-0.010, 0.0, 0.010)
 PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
 
-# The scenario fields a sweep sets per trial (scenario_from_trial_spec): a spec's
-# scenario_overrides may not assign them.
-PER_TRIAL_SCENARIO_FIELDS = ("object", "object_offset", "object_yaw_deg", "random_seed",
+# The scenario fields a sweep sets per trial; a spec's scenario_overrides may not set them.
+PER_TRIAL_SCENARIO_FIELDS = ("object", "placement.offset", "placement.yaw_deg", "random_seed",
                              "controller.name")
 
 # Names become parts of trial ids and file names: keep them to a safe alphabet.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
-# A sweep's own object is a primitive shape given by these fields of ObjectConfig (its name
-# is its key in `user_objects`).
+# A sweep's own object: a primitive shape given by these fields of ObjectConfig.
 _OBJECT_SHAPES = tuple(shape for shape in objects.OBJECT_SHAPES if shape != "file")
 USER_OBJECT_FIELDS = ("shape", "size", "mass", "friction", "color")
 # The field names of sweep specs written before the sweep used ObjectConfig.
@@ -69,8 +54,8 @@ def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float
 
 def user_object(name: str, fields: Mapping) -> ObjectConfig:
     """The ObjectConfig called `name` of a sweep's own object (its `fields` from a spec or a
-    trial record). A record written before the sweep used ObjectConfig names its fields
-    size_m, mass_kg and friction_coefficient: they are read as size, mass and friction."""
+    record; older records' size_m, mass_kg, friction_coefficient read as size, mass,
+    friction)."""
     fields = {RENAMED_OBJECT_FIELDS.get(key, key): value for key, value in fields.items()}
     fields = {key: value for key, value in fields.items() if key != "name"}
     return ObjectConfig(name=name, **{**fields,
@@ -79,20 +64,17 @@ def user_object(name: str, fields: Mapping) -> ObjectConfig:
 
 @dataclass(frozen=True)
 class RandomisationConfig:
-    """How much attempts differ, as on a real robot. Every draw is uniform on +-bound.
-
-    Uniform bounds, not Gaussians, so that placement jitter can never carry an object
-    onto a neighbouring marker (1 cm away in the paper's grid).
-    """
-    # jitter of x and y around the marker
+    """How much attempts differ, as on a real robot: each draw uniform on +-bound (not
+    Gaussian, so jitter never carries an object onto a neighbouring marker, 1 cm away)."""
+    # x, y jitter around the marker: an object set by hand on a marker
     placement_xy_bound_m: float = bounded(0.002, low=0.0, high=0.05, unit="m")
-    # jitter of the yaw about the vertical
+    # yaw jitter about the vertical, likewise
     placement_yaw_bound_deg: float = bounded(3.0, low=0.0, high=180.0, unit="deg")
-    # friction scaled by 1 + U(-b, b)
+    # friction scaled by 1 + U(-b, b): a friction estimate from handbook ranges
     friction_scale_bound: float = bounded(0.10, low=0.0, high=1.0, high_open=True,
                                           why="the friction is scaled by 1 + U(-b, b), which must "
                                               "stay positive")
-    # mass scaled by 1 + U(-b, b)
+    # mass scaled by 1 + U(-b, b): the spread between nominally equal objects
     mass_scale_bound: float = bounded(0.10, low=0.0, high=1.0, high_open=True,
                                       why="the mass is scaled by 1 + U(-b, b), which must stay "
                                           "positive")
@@ -102,10 +84,8 @@ class RandomisationConfig:
 @public_dataclass
 @dataclass(frozen=True)
 class SweepSpec:
-    """A sweep: objects x grid markers x attempts, once per controller.
-
-    `grid` holds the marker offsets (dx_m, dy_m), x normal to the palm, y along the
-    stroke; (0, 0) is the well-placed marker.
+    """A sweep: objects x grid markers x attempts, once per controller; `grid` holds the marker
+    offsets (dx_m, dy_m), x normal to the palm, y along the stroke.
     """
     objects: tuple[str, ...] = BUILTIN_OBJECTS
     controllers: tuple[str, ...] = PAPER_CONTROLLERS
@@ -117,9 +97,7 @@ class SweepSpec:
                              why="Drake's random generator takes a 32-bit seed")
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
     user_objects: Mapping[str, ObjectConfig] = field(default_factory=dict)
-    # `--set key=value` assignments applied to every trial's default scenario, e.g.
-    # "controller.memorized_corrective_events=[hold_avoid]" (not the per-trial fields,
-    # PER_TRIAL_SCENARIO_FIELDS).
+    # `--set key=value` assignments for every trial's scenario (not PER_TRIAL_SCENARIO_FIELDS)
     scenario_overrides: tuple[str, ...] = ()
 
 
@@ -137,10 +115,9 @@ class Perturbation:
 class TrialSpec:
     """One trial; `to_dict()` is what the trial function receives.
 
-    The object is placed at expected position + (marker_dx_m + dx_m, marker_dy_m + dy_m)
-    in the gripper's x (normal) / y (stroke) axes, yawed by `perturbation.yaw_rad`.
-    `seed` is the entropy for the trial function's own randomness (sensor noise, when
-    `sensor_noise`); it is independent of the stream the perturbation was drawn from.
+    The object sits at the expected position + (marker_dx_m + dx_m, marker_dy_m + dy_m) in the
+    gripper's x (normal) / y (stroke) axes, yawed by `perturbation.yaw_rad`. `seed` seeds the
+    trial function's own randomness (sensor noise), independent of the perturbation's stream;
     `pair_id` names the same scene for every controller.
     """
     trial_id: str
@@ -161,8 +138,7 @@ class TrialSpec:
 
     def to_dict(self) -> dict:
         d = dataclasses.asdict(self)
-        # Left out when empty: a sweep without overrides keeps the records it always wrote,
-        # so folders made before the field existed still resume.
+        # Left out when empty, so older folders without the field still resume.
         if self.scenario_overrides:
             d["scenario_overrides"] = list(self.scenario_overrides)
         else:
@@ -188,9 +164,8 @@ def _from_json(value, hint):
 
 
 def trial_dict_problem(trial: Mapping) -> str | None:
-    """What keeps `trial` from being a sweep trial (a TrialSpec.to_dict()), in words naming
-    the keys missing, unknown or of the wrong type (unknown ones with their values), or
-    None."""
+    """What keeps `trial` (a TrialSpec.to_dict()) from being a sweep trial, naming the keys
+    missing, unknown or mistyped; or None."""
     parts = []
     for name, fields, given in (
             ("trial", TrialSpec, trial),
@@ -219,17 +194,14 @@ def trial_dict_problem(trial: Mapping) -> str | None:
             "makes them)")
 
 
-# ---------------------------------------------------------------------------------
 # Validation
 
 
 def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                   builtin_objects: Collection[str] = BUILTIN_OBJECTS,
                   controllers: Collection[str] = CONTROLLER_NAMES) -> None:
-    """Raises ConfigError naming `source` and the field when `spec` cannot run.
-
-    Objects are checked against `builtin_objects` plus the spec's own `user_objects`,
-    controllers against `controllers`.
+    """Raises ConfigError naming `source` and the field when `spec` cannot run (objects against
+    `builtin_objects` and the spec's `user_objects`, controllers against `controllers`).
     """
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
@@ -282,8 +254,8 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
 
 
 def _check_scenario_overrides(assignments, controllers, fail):
-    """Each a `key=value` the default scenario accepts with each of the `controllers` (one
-    controller's setting is dropped for the others), none of the per-trial fields."""
+    """Each a `key=value` the default scenario accepts with each of the `controllers`, none of
+    the per-trial fields."""
     from tegrasp_drake.scenario.scenario import LoadScenario
     for k, assignment in enumerate(assignments):
         field_name = f"scenario_overrides[{k}]"
@@ -341,15 +313,12 @@ def _offset_key(offset) -> tuple[int, int]:
     return (round(offset[0] * 1e6), round(offset[1] * 1e6))
 
 
-# ---------------------------------------------------------------------------------
 # Expansion into trials
 
 
 def marker_names(grid) -> list[str]:
-    """`m{i}{j}`: i indexes the sorted distinct x offsets, j the sorted distinct y offsets.
-
-    The paper's grid gives m00 .. m22 with m11 the well-placed marker. Indices are
-    zero-padded to a common width when an axis has more than ten values.
+    """`m{i}{j}`: i, j index the sorted distinct x and y offsets (zero-padded past ten values);
+    the paper's grid gives m00 .. m22, m11 well placed.
     """
     xs = sorted({_offset_key(o)[0] for o in grid})
     ys = sorted({_offset_key(o)[1] for o in grid})
@@ -360,11 +329,9 @@ def marker_names(grid) -> list[str]:
 
 def trial_seed_sequence(base_seed: int, object_name: str, marker_offset,
                         attempt: int) -> np.random.SeedSequence:
-    """The seed of one scene, from (base_seed, object, marker offset, attempt) only.
-
-    Names and offsets enter through CRC-32 of their text (stable across processes,
-    unlike `hash`); the offset in whole micrometres, so a marker keeps its seed when
-    the grid around it changes.
+    """The seed of one scene, from (base_seed, object, marker offset, attempt) only: CRC-32 of
+    their text (stable across processes), the offset in whole micrometres (a marker keeps its
+    seed when the grid around it changes).
     """
     dx_um, dy_um = _offset_key(marker_offset)
     return np.random.SeedSequence(
@@ -395,10 +362,8 @@ TRIAL_CORE_SECONDS = 30
 
 def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
                   controllers: Collection[str] = CONTROLLER_NAMES) -> list[TrialSpec]:
-    """Validates `spec` and lists its trials, controller-major, deterministically.
-
-    Each scene's seed sequence (`trial_seed_sequence`) spawns two children: the first
-    seeds a numpy PCG64 Generator for `draw_perturbation`, the second gives the
+    """Validates `spec` and lists its trials, controller-major, deterministically. Each scene's
+    seed sequence spawns two children: a PCG64 Generator for `draw_perturbation`, and the
     trial's 32-bit `seed`. Trial ids read `{controller}/{object}/{marker}/a{attempt}`.
     """
     validate_spec(spec, builtin_objects=builtin_objects, controllers=controllers)

@@ -1,9 +1,6 @@
-"""Reading a sweep spec from a YAML file: `LoadSweepSpec`.
-
-A spec file is read like every other configuration file (rig/typed_yaml.py): the same YAML
-parser, the same walk that names an unknown, missing or mistyped field, and ConfigError. The
-spec's types are frozen dataclasses, which Drake's `yaml_load_typed` cannot build, so
-`LoadSweepSpec` builds them from the checked data and validates them (spec.validate_spec).
+"""Reading a sweep spec from a YAML file: `LoadSweepSpec`, with the same parser and field
+checks as every configuration file (rig/typed_yaml.py); the spec's frozen dataclasses are
+built from the checked data, since Drake's `yaml_load_typed` cannot build them.
 """
 
 from collections.abc import Collection
@@ -28,15 +25,10 @@ def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_
                     controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
     """Reads and validates a YAML sweep spec; fields left out keep the paper's defaults.
 
-    Fields: objects, controllers (lists of names), attempts, base_seed (integers),
-    grid (either a list of [dx_m, dy_m] marker offsets, or a mapping with
-    normal_offsets_m and stroke_offsets_m lists whose product is the grid),
-    randomisation (a mapping of `RandomisationConfig` fields), user_objects (a mapping
-    from name to the object's shape, size, mass and friction, as the scenario's
-    `object`), scenario_overrides (a list of `--set`
-    assignments for every trial's scenario, e.g. the controller's settings). Raises
-    ConfigError naming the file and the field for unknown fields, wrong types and values
-    that cannot run.
+    Fields (analysis/example_sweep.yaml shows each): objects, controllers, attempts, base_seed,
+    grid (a list of [dx_m, dy_m], or normal_offsets_m and stroke_offsets_m lists whose product
+    is the grid), randomisation, user_objects, scenario_overrides. ConfigError naming the file
+    and the field for unknown fields, wrong types and values that cannot run.
     """
     fields = read_yaml_file(path, "the sweep spec")
     if fields is None:

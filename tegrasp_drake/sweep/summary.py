@@ -1,18 +1,12 @@
 """The results table of a sweep: per controller, Table I's average success rates beside its
-false-trigger rate and its detection latencies, and the paper's row.
+false-trigger rate and detection latencies, and the paper's row.
 
-It is made from a results folder's records only (`write_summary`, called by write_reports),
-so re-running a sweep regenerates it; `analysis/update_results_page.py` copies it into the
-results page (docs/results.md) between the markers that name the folder, and names there
-the commit that committed each folder's records.
-
-Success: Table I's average row (the mean of the objects' rates, counts pooled; table.py).
-False triggers: trials with at least one event-triggered transition more than
-FALSE_TRIGGER_MARGIN_S before its physical event (runs/trial.py), of all trials.
-Latency: the median time from the physical event (first contact, grip settled,
-table touch) to the transition it marks, over the trials where the transition came on
-time; their number in brackets. A controller without event triggers (open loop) has
-neither.
+Made from a results folder's records only (`write_summary`); analysis/update_results_page.py
+copies it into docs/results.md between the markers that name the folder, with the commit of
+each folder's records. False triggers: trials with an event transition more than
+FALSE_TRIGGER_MARGIN_S before its physical event. Latency: the median time from the physical
+event (first contact, grip settled, table touch) to its transition, over the trials where
+it came on time (their number in brackets).
 """
 
 import re

@@ -1,12 +1,8 @@
 """Table I of the paper from sweep records, and statistics of the trials.
 
-Success (Sec. IV-C): "~Hold" counts trials that held the object for 3 s, "~Unload"
-trials that held it and then placed it upright (hold_success and unload_success).
-Well placed is the marker at (0, 0), misplaced every other marker. An object's rate is
-successes / trials over its records with status "ok"; trials whose trial function
-raised are left out of the rates and counted under "errors". The average row is the
-mean of the objects' rates, which is how the paper's average row is computed (e.g.
-(100 + 100 + 67) / 3 = 89), with the counts pooled beside it.
+"~Hold": held 3 s; "~Unload": held, then placed upright (Sec. IV-C). An object's rate is
+over its "ok" records (errors counted apart); the average row is the mean of the objects'
+rates, as the paper's, the counts pooled beside it (docs/sweeps.md, "A sweep").
 """
 
 import csv
@@ -182,7 +178,6 @@ def write_table1(records, out_dir) -> list[Path]:
                                   csv_rows)
 
 
-# ---------------------------------------------------------------------------------
 # Statistics
 
 

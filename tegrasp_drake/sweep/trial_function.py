@@ -1,8 +1,6 @@
-"""The sweep's trial function: one trial of a sweep (a TrialSpec.to_dict()) turned into its
-scenario, given its memorized events, run (runs/trial.py) and returned as its result dict.
-
-`run_trial_from_spec` is what `tegrasp sweep` hands to the runner; `check_sweep_events`
-checks before a sweep starts that every trial's memorized events are there.
+"""The sweep's trial function: a sweep trial (a TrialSpec.to_dict()) turned into its
+scenario, run with its memorized events (runs/trial.py) and returned as its result dict;
+`check_sweep_events` checks before a sweep starts that every trial's events are there.
 """
 
 import dataclasses
@@ -39,10 +37,10 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
         obj = dataclasses.replace(obj, mass=obj.mass * float(p["mass_scale"]),
                                   friction=obj.friction * float(p["friction_scale"]))
     scenario = dataclasses.replace(
-        base, object=obj, random_seed=int(trial["seed"]),
-        object_offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
-                       float(trial["marker_dy_m"]) + float(p["dy_m"])],
-        object_yaw_deg=float(np.degrees(p["yaw_rad"])))
+        base, object=obj, random_seed=int(trial["seed"]), placement=dataclasses.replace(
+            base.placement, offset=[float(trial["marker_dx_m"]) + float(p["dx_m"]),
+                                    float(trial["marker_dy_m"]) + float(p["dy_m"])],
+            yaw_deg=float(np.degrees(p["yaw_rad"]))))
     if not trial.get("sensor_noise", True):
         scenario = dataclasses.replace(
             scenario, tactile=dataclasses.replace(
@@ -54,23 +52,18 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
 
 
 def trial_log_name(trial: dict) -> str:
-    """The file name of a sweep trial's log: its id with '/' as '.', then the first 12 hex
-    digits of the SHA-256 of the whole trial spec (seed, offsets, perturbation, overrides),
-    and .npz. Two sweeps with other settings that share a --logs folder keep each their own
-    logs instead of one replacing the other's under the same trial id."""
+    """A sweep trial's log file name: its id ('/' as '.'), the first 12 hex digits of the
+    SHA-256 of the whole trial spec, .npz; sweeps with other settings sharing a --logs folder
+    keep each their own logs."""
     digest = hashlib.sha256(canonical_json(trial).encode("utf-8")).hexdigest()[:12]
     return f"{trial['trial_id'].replace('/', '.')}.{digest}.npz"
 
 
 def trial_events(trial: dict, events_dir=None) -> tuple:
-    """A sweep trial's scenario (scenario_from_trial_spec) and the memorized events its
-    controller needs: (scenario, transition events or None for the controllers without
-    them, corrective events or None unless the sweep's scenario_overrides name some in
-    controller.memorized_corrective_events).
-
-    Both come from `events_dir`, else the user's folder, then the package's, and must have
-    been recorded on the trial's unperturbed object: the sweep's mass and friction
-    perturbations are the experiment's, not a mismatch. Raises MemorizedEventError."""
+    """A sweep trial's scenario and the memorized events its controller needs: (scenario,
+    transition events or None, corrective events or None unless the overrides name some).
+    From `events_dir`, else the user's folder, then the package's; recorded on the trial's
+    unperturbed object (the sweep's perturbations are not a mismatch). MemorizedEventError."""
     from tegrasp_drake.scenario.scenario_events import (load_controller_events,
                                                        load_corrective_events)
     scenario = scenario_from_trial_spec(trial)
@@ -78,17 +71,16 @@ def trial_events(trial: dict, events_dir=None) -> tuple:
     events = corrective_events = None
     if scenario.controller.events_folder is not None:
         events = load_controller_events(scenario, events_dir, nominal_object=nominal)
-    if scenario.controller.memorized_corrective_events:
+    if scenario.controller.memorized_corrective.events:
         corrective_events = load_corrective_events(scenario, events_dir,
                                                    nominal_object=nominal)
     return scenario, events, corrective_events
 
 
 def check_sweep_events(trials, events_dir=None) -> None:
-    """Raises ConfigError, naming the trial, the file and what to do, when some trial's
-    memorized events (trial_events) are missing or were recorded on another object:
-    checked once per (object, controller), before the sweep runs anything. Logs a warning
-    when the events were recorded on another hand (another_hands_events)."""
+    """ConfigError, naming the trial, the file and what to do, when some trial's memorized
+    events are missing or of another object (checked once per object and controller, before
+    anything runs); a warning when they were recorded on another hand."""
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.scenario.scenario_events import another_hands_events
     from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -112,11 +104,9 @@ def check_sweep_events(trials, events_dir=None) -> None:
 def run_trial_from_spec(trial: dict, *,
                         events_dir: Annotated[PathLike | None, INPUT_FOLDER] = None,
                         log_dir: Annotated[PathLike | None, OUTPUT_FOLDER] = None) -> dict:
-    """The sweep's trial function: runs the trial with its memorized events
-    (trial_events); returns its result dict. ConfigError naming the keys when `trial` is
-    not a sweep trial (a TrialSpec.to_dict()).
-
-    log_dir: also save the trial's log there (trial_log_name), for offline re-scoring."""
+    """The sweep's trial function: runs `trial` (a TrialSpec.to_dict()) with its memorized
+    events and returns its result dict; ConfigError naming the keys when it is no sweep trial.
+    log_dir: also save the trial's log there (trial_log_name)."""
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.sweep.spec import trial_dict_problem
     problem = trial_dict_problem(trial)

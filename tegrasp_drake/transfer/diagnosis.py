@@ -1,13 +1,10 @@
 """Which channel's Eq. 3 score falls short, per transition, in a trial run with events
 memorized elsewhere (docs/transfer.md, "What breaks transfer").
 
-For every memorized event and every mode that waited for it, the trial's channels are
-scored offline by the reference Eq. 3 (events/correlation.py) every `step_s` while the mode
-waited: "best" is each channel's highest score over those ticks, "together" the four scores
-at the tick where all four came nearest their thresholds (the largest of the smallest
-margins score - threshold), "match" whether that tick passes every threshold. With an RA
-envelope cutoff, both the live RA and the events' RA windows are low-passed first
-(events/ra_envelope.py), as the matcher does with `controller.ra_envelope_hz`.
+Each event is scored offline (events/correlation.py) every `step_s` while a mode waited for
+it: "best" is each channel's highest score, "together" the four scores at the tick where
+the smallest margin (score - threshold) is largest, "match" whether that tick passes. With
+an RA envelope both the live and the memorized RA are low-passed first.
 """
 
 import dataclasses
@@ -15,6 +12,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.event_matcher import EventMatcherConfig, event_templates
 from tegrasp_drake.events.extraction import TactileTrial
@@ -25,7 +23,7 @@ from tegrasp_drake.tactile.sampling import samples_per_window
 
 # The mode that waits for each event transition's memorized event.
 WAITING_MODE = {"reach_load": "Reach", "load_lift": "Load", "place_unload": "Place"}
-STEP_S = 0.005  # [s] the matcher's tick (controller.update_period_s)
+STEP_S = GraspControllerConfig().update_period_s  # [s] the state machine's tick
 
 
 @dataclasses.dataclass(frozen=True)

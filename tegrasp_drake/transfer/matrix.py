@@ -1,20 +1,11 @@
 """Do memorized events transfer? Events memorized in one world, trials run in another.
 
-A world is a scenario preset (tegrasp_drake/scenarios/scenarios.yaml, e.g.
-`memorizing_world`, `faithful_world`) plus `--set` assignments: a hand, its SA and RA
-transducers, their rates, the grip force. A transfer spec (YAML, `LoadTransferSpec`) names
-the worlds, the cells (memorizing world, running world) and one ordinary sweep (objects,
-grid, attempts, seeds: the fields of a sweep spec, sweep/spec.py).
-
-`run_transfer` first records each memorizing world's events (the ideal grasp of each object,
-recording/paper_events.py) into that world's events folder, then runs each cell as an
-ordinary sweep (sweep/runner.py: durable records, resume, process pool or
-Dask) of the running world's scenario with the memorizing world's events, into
-OUT/cells/<memorizing>-in-<running>/. Running the same call again resumes it: recorded
-events are kept, finished trials are not run again.
-
-A world's preset sets the scenario's sections; its `object` is ignored (the sweep sets each
-trial's object), so a preset can name an object for `tegrasp record-events`.
+A world is a scenario preset (tegrasp_drake/scenarios/scenarios.yaml) plus `--set`
+assignments (its `object` ignored: the sweep sets each trial's). A transfer spec
+(`LoadTransferSpec`) names the worlds, the cells (memorizing, running world) and one sweep.
+`run_transfer` records each memorizing world's events, then runs each cell as an ordinary
+sweep into OUT/cells/<memorizing>-in-<running>/; the same call resumes (docs/transfer.md,
+"A transfer sweep").
 """
 
 import dataclasses
@@ -89,10 +80,8 @@ def LoadTransferSpec(path) -> TransferSpec:
     """Reads and checks a transfer spec. Fields:
 
     worlds: {name: {scenario: PRESET, overrides: [KEY=VALUE, ...]}}
-    cells: a list of [memorizing world, running world] pairs, or
-        {memorize_in: [worlds], run_in: [worlds]} for every pair of the two lists
-    sweep: the fields of a sweep spec (analysis/example_sweep.yaml); the paper's sweep
-        when left out
+    cells: [[memorizing, running], ...], or {memorize_in: [worlds], run_in: [worlds]}
+    sweep: the fields of a sweep spec (the paper's sweep when left out)
 
     ConfigError names the file and the field of anything that cannot run."""
     source = str(path)
@@ -192,9 +181,8 @@ def world_scenario(spec: TransferSpec, world: str, object_name: str):
 
 
 def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) -> int:
-    """Records the events of every object of the sweep in `world` into `folder`, skipping
-    the objects already there; returns how many objects it recorded. A folder recorded with
-    other world settings is refused (SweepError)."""
+    """Records the events of every object of the sweep in `world` into `folder`, skipping those
+    there; returns how many it recorded. SweepError for a folder of other world settings."""
     from tegrasp_drake.events import save_memorized_events
     from tegrasp_drake.events.event_file import INDEX_FILE, read_index
     from tegrasp_drake.recording.campaign import RecordEventsError
@@ -239,9 +227,8 @@ def cell_folder(out_dir, memorizing: str, running: str) -> pathlib.Path:
 
 def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
                  scheduler=None, progress: bool = True, log=print) -> dict:
-    """Records the memorizing worlds' events (record_world_events) and runs every cell's
-    sweep (run_sweep with the memorizing world's events); returns {cell name:
-    SweepSummary}. Resumable (module docstring)."""
+    """Records the memorizing worlds' events and runs every cell's sweep with them; returns
+    {cell name: SweepSummary}. Resumable."""
     from tegrasp_drake.sweep.runner import run_sweep
     from tegrasp_drake.sweep.spec import expand_trials
     from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec

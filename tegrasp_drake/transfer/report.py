@@ -1,17 +1,9 @@
 """The transfer matrix's table and heat map, from the records of its cells' sweeps.
 
-Per cell (events memorized in world A, trials run in world B) and controller, over the
-cell's finished trials:
-  - each event transition's match rate: the trials whose transition was taken by the event
-    trigger on time, over the trials that reached the mode waiting for it (the sweep's
-    detection report, sweep/detection_report.py), and the median latency after
-    its physical event;
-  - false triggers: event transitions taken more than 10 ms before their physical event
-    (the trial judge's count), per trial;
-  - hold and unload success (the paper's criteria, runs/trial.py);
-  - the median CPU seconds and simulated seconds of a trial.
-A cell whose sweep has not finished all its trials yet is marked with how many ran, e.g.
-"41/81 run", in the table and on the heat map; a cell with none is listed as not run.
+Per cell and controller, over its finished trials: each event transition's match rate (the
+sweep's detection report) and median latency, false triggers per trial, hold and unload
+success, median CPU and simulated seconds. A cell still running shows how many ran ("41/81
+run"); one with none is listed as not run (docs/transfer.md, "A transfer sweep").
 """
 
 import dataclasses

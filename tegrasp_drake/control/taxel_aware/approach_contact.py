@@ -1,7 +1,7 @@
 """Rule approach_contact (Reach, in the approach): a pad has touched the object for
-one_sided_contact_s while the open gripper still moves toward it (a misplaced or yawed
-object in the finger's path: left alone, the moving finger pushes it over). Stop, back
-off approach_retreat_m while shifting along the stroke toward the touching finger (the
+re_reach.one_sided_contact_s while the open gripper still moves toward it (a misplaced or
+yawed object in the finger's path: left alone, the moving finger pushes it over). Stop,
+back off approach_retreat_m while shifting along the stroke toward the touching finger (the
 paper's shift, moves.centring_shift), and resume the approach; Failed once the
 Re-Reaches are used up."""
 
@@ -12,7 +12,8 @@ from tegrasp_drake.control.taxel_aware.moves import centring_shift
 
 
 def touches_in_approach(situation) -> bool:
-    return situation.estimate.approach_contact_s >= situation.config.one_sided_contact_s
+    return (situation.estimate.approach_contact_s
+            >= situation.config.re_reach.one_sided_contact_s)
 
 
 def stop_back_off_and_shift(situation):
@@ -24,5 +25,5 @@ def stop_back_off_and_shift(situation):
 
 APPROACH_CONTACT = Rule(
     "approach_contact", (Mode.REACH,), 20, touches_in_approach, stop_back_off_and_shift,
-    when="a pad touched for one_sided_contact_s in the approach",
+    when="a pad touched for re_reach.one_sided_contact_s in the approach",
     then="ReReach(back off, the paper's shift) or Failed")

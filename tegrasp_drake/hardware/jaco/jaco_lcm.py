@@ -1,25 +1,11 @@
-"""Conversions between Kinova JACO2 LCM messages and vectors, in Drake's driver pattern.
+"""Kinova JACO2 LCM messages (Drake's `lcmt_jaco_command`, `lcmt_jaco_status`) to and from
+vectors; the four systems only convert, in Drake's driver pattern.
 
-The Kinova LCM driver (Drake's `lcmt_jaco_command` / `lcmt_jaco_status`) listens on
-`KINOVA_JACO_COMMAND` and publishes `KINOVA_JACO_STATUS` at 100 Hz. In joint-velocity mode
-it sends only `joint_velocity` to the arm and integrates nothing: `joint_position` in the
-command is carried for logs and for the emulator, but the real arm ignores it. A position
-error must therefore be turned into velocity before the sender (see
-`JacoVelocityTracker`); the four systems here only convert between messages and vectors.
-
-All angles are in radians, velocities in rad/s, torques in N m, `utime` in microseconds.
-The gripper is a Robotiq 2F-85 on its own bus, so every message has num_fingers = 0.
-
-Messages arrive through the message boundary (hardware/message_boundary.py):
-`check_jaco_status` and `check_jaco_command` decode a message's bytes and refuse, by
-reason, another type, a cut-short message, a joint count other than 6, values that are
-not finite and (commands) joint speeds beyond the arm's, so that the receivers here only
-ever see checked messages (or the default one, num_joints = 0, before the first).
-
-Hardware side: JacoVelocityTracker -> JacoCommandSender -> LcmPublisherSystem,
-LcmSubscriberSystem -> JacoStatusReceiver.
-Emulator side: LcmSubscriberSystem -> JacoCommandReceiver -> station,
-station -> JacoStatusSender -> LcmPublisherSystem.
+The Kinova driver runs the arm in joint-velocity mode at 100 Hz and ignores a command's
+`joint_position` (kept for logs and the emulator), so JacoVelocityTracker turns a position
+error into velocity before the sender. Units: rad, rad/s, N m, `utime` in us; num_fingers = 0
+(the 2F-85 is on its own bus). `check_jaco_status` and `check_jaco_command` are the arm's
+message-boundary checks (hardware/message_boundary.py).
 """
 
 import math
@@ -38,8 +24,7 @@ JACO_NUM_JOINTS = 6
 JACO_COMMAND_CHANNEL = "KINOVA_JACO_COMMAND"
 JACO_STATUS_CHANNEL = "KINOVA_JACO_STATUS"
 JACO_LCM_PERIOD = 0.01  # [s], the driver's 100 Hz
-# [rad/s] the fastest any JACO2 joint turns (joints 4-6, 48 deg/s; Kinova's specification,
-# rig/jaco_velocity_tracker.py): a command beyond it is not one the arm can carry out.
+# [rad/s] the fastest JACO2 joint, 48 deg/s (Kinova's specification): no faster command is sane.
 JACO_MAX_JOINT_SPEED = JACO2_MAX_JOINT_SPEED
 
 WRONG_JOINT_COUNT = "wrong joint count"
@@ -115,13 +100,14 @@ def check_jaco_command(data: bytes) -> lcmt_jaco_command:
 
 
 def has_joints(message) -> bool:
-    """False for the default (never received) message. Messages come through the checks
-    above, so any other has JACO_NUM_JOINTS joints."""
+    """False for the default (never received) message; a checked message has 6 joints."""
     return message.num_joints == JACO_NUM_JOINTS
 
 
 class JacoCommandSender(LeafSystem):
-    """Converts a desired joint state into an `lcmt_jaco_command` (no feedback, no state).
+    """desired_state (12: q [rad], then v [rad/s]) as an `lcmt_jaco_command`, utime = Context time.
+    The arm executes v, so it must hold the position-error term (JacoVelocityTracker's
+    `commanded_state`).
 
     .. pydrake_system::
 
@@ -130,12 +116,6 @@ class JacoCommandSender(LeafSystem):
         - desired_state
         output_ports:
         - lcmt_jaco_command
-
-    Ports:
-        desired_state: (12) joint positions [rad] then joint velocities [rad/s]. In
-            velocity mode the velocities are what the arm executes, so they must already
-            contain the position-error term (JacoVelocityTracker's `commanded_state`).
-        lcmt_jaco_command: (abstract) utime = Context time [us], num_fingers = 0.
     """
 
     def __init__(self):
@@ -154,11 +134,11 @@ class JacoCommandSender(LeafSystem):
 
 
 class JacoCommandReceiver(LeafSystem):
-    """Converts `lcmt_jaco_command` into the station's `desired_state` (emulator side).
+    """`lcmt_jaco_command` as desired_state (12: q [rad], then v [rad/s]), on the emulator side.
 
-    Like the real driver, the emulated arm stops when commands stop: if no new command
-    (a new `utime`) has arrived for `command_timeout` [s] of Context time, or none ever
-    did, the output holds the last measured position with zero velocity.
+    As the real driver does, the arm stops when commands stop: with no new `utime` for
+    `command_timeout` [s] (or none yet), the output holds the last sampled position_measured
+    (6, rad) at zero velocity.
 
     .. pydrake_system::
 
@@ -168,12 +148,6 @@ class JacoCommandReceiver(LeafSystem):
         - position_measured
         output_ports:
         - desired_state
-
-    Ports:
-        lcmt_jaco_command: (abstract) the newest command message.
-        position_measured: (6) the arm's measured joint positions [rad]; sampled into
-            state, so the output has no direct feedthrough from it.
-        desired_state: (12) joint positions [rad] then joint velocities [rad/s].
     """
 
     def __init__(self, *, command_timeout: float = 0.05, period: float = JACO_LCM_PERIOD / 2):
@@ -183,7 +157,7 @@ class JacoCommandReceiver(LeafSystem):
             "lcmt_jaco_command", AbstractValue.Make(lcmt_jaco_command()))
         self._position_port = self.DeclareVectorInputPort(
             "position_measured", JACO_NUM_JOINTS)
-        # [last utime seen, Context time it was first seen, hold position (6)]
+        # [last utime seen, Context time first seen, hold position (6)]
         self._state_index = self.DeclareDiscreteState(
             np.concatenate([[-1.0, -np.inf], np.zeros(JACO_NUM_JOINTS)]))
         self.DeclareInitializationDiscreteUpdateEvent(self._update)
@@ -219,7 +193,8 @@ class JacoCommandReceiver(LeafSystem):
 
 
 class JacoStatusSender(LeafSystem):
-    """Converts the measured arm state into an `lcmt_jaco_status` (emulator side).
+    """The measured joint state ([rad], [rad/s], [N m]) as an `lcmt_jaco_status`, utime = Context
+    time (emulator side).
 
     .. pydrake_system::
 
@@ -230,11 +205,6 @@ class JacoStatusSender(LeafSystem):
         - torque_measured
         output_ports:
         - lcmt_jaco_status
-
-    Ports:
-        position_measured (6) [rad], velocity_measured (6) [rad/s],
-        torque_measured (6) [N m]: the arm's measured joint state.
-        lcmt_jaco_status: (abstract) utime = Context time [us], num_fingers = 0.
     """
 
     def __init__(self):
@@ -253,10 +223,8 @@ class JacoStatusSender(LeafSystem):
 
 
 class JacoStatusReceiver(LeafSystem):
-    """Converts `lcmt_jaco_status` into measured-state vectors (hardware side).
-
-    Before the first message every output is zero (time_measured too), which the device
-    watchdog treats as "not heard from yet".
+    """`lcmt_jaco_status` as joint vectors [rad, rad/s, N m] and time_measured (utime [s]).
+    Before the first message every output is zero, which the watchdog reads as "not heard".
 
     .. pydrake_system::
 
@@ -268,12 +236,6 @@ class JacoStatusReceiver(LeafSystem):
         - velocity_measured
         - torque_measured
         - time_measured
-
-    Ports:
-        lcmt_jaco_status: (abstract) the newest status message.
-        position_measured (6) [rad], velocity_measured (6) [rad/s],
-        torque_measured (6) [N m]: the message's joint state.
-        time_measured: (1) the message's utime [s].
     """
 
     def __init__(self):

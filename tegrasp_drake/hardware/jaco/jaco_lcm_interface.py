@@ -1,11 +1,8 @@
-"""Builders that wire the Jaco LCM systems into a diagram, for either end of the bus.
-
-`AddJacoLcmDriver` is the hardware side (controller -> KINOVA_JACO_COMMAND,
-KINOVA_JACO_STATUS -> measured state); `AddJacoLcmEmulator` is the simulator answering
-commands with status, as Drake's hardware_sim does. Both need an `LcmInterfaceSystem` for
-the same `lcm` in the diagram (or another pump of its subscriptions). What each receives
-crosses a MessageBoundary (hardware/message_boundary.py, jaco_lcm's checks): a malformed
-message is counted in `boundary` and skipped, and the receiver keeps the last good one.
+"""Builders that wire the JACO2 LCM systems into a diagram, for either end of the bus:
+`AddJacoLcmDriver` (hardware: controller -> KINOVA_JACO_COMMAND, KINOVA_JACO_STATUS ->
+measured state) and `AddJacoLcmEmulator` (a simulation answering commands with status, as
+Drake's hardware_sim does). Both need an `LcmInterfaceSystem` for the same `lcm`. What each
+receives crosses a MessageBoundary with jaco_lcm's checks.
 """
 
 import dataclasses
@@ -26,9 +23,9 @@ from tegrasp_drake.rig.jaco_velocity_tracker import (
 
 @dataclasses.dataclass
 class JacoLcmDriverSystems:
-    """The hardware-side systems. Connect the controller's desired state to
-    `tracker.GetInputPort("desired_state")` and optionally the watchdog's stop to
-    `tracker.GetInputPort("stop")`; read `status_receiver`'s *_measured outputs."""
+    """The hardware-side systems: feed `tracker`'s desired_state (and stop), read
+    `status_receiver`'s *_measured outputs.
+    """
     tracker: JacoVelocityTracker
     command_sender: JacoCommandSender
     command_publisher: LcmPublisherSystem
@@ -51,9 +48,8 @@ def AddJacoLcmDriver(builder: DiagramBuilder, *, lcm, prefix: str = "jaco",
                      tracker_config: JacoVelocityTrackerConfig | None = None,
                      publish_period: float = JACO_LCM_PERIOD,
                      boundary: MessageBoundary | None = None) -> JacoLcmDriverSystems:
-    """Adds tracker -> command sender -> publisher and subscriber -> status receiver;
-    the tracker's position feedback comes from the status receiver. The status messages
-    cross `boundary` (a new one by default), checked by check_jaco_status."""
+    """Adds tracker -> command sender -> publisher and subscriber -> status receiver, the
+    tracker's feedback from the receiver; status messages cross `boundary` (new by default)."""
     tracker = builder.AddNamedSystem(f"{prefix}_velocity_tracker",
                                      JacoVelocityTracker(tracker_config))
     sender = builder.AddNamedSystem(f"{prefix}_command_sender", JacoCommandSender())
@@ -79,9 +75,8 @@ def AddJacoLcmEmulator(builder: DiagramBuilder, *, lcm, desired_state_input: Inp
                        command_timeout: float = 0.05,
                        publish_period: float = JACO_LCM_PERIOD,
                        boundary: MessageBoundary | None = None) -> JacoLcmEmulatorSystems:
-    """Adds subscriber -> command receiver -> `desired_state_input` and the measured
-    outputs -> status sender -> publisher (the simulated arm's side of the bus). The
-    commands cross `boundary` (a new one by default), checked by check_jaco_command."""
+    """Adds subscriber -> command receiver -> `desired_state_input` and the measured outputs ->
+    status sender -> publisher; commands cross `boundary` (new by default)."""
     boundary = boundary or MessageBoundary(f"jaco: {JACO_COMMAND_CHANNEL}",
                                            check_jaco_command)
     subscriber = builder.AddNamedSystem(f"{prefix}_command_subscriber", CheckedLcmSubscriber(

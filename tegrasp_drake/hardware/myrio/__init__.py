@@ -1,1 +1,7 @@
-"""hardware.myrio."""
+"""The myRIO tactile stream on a serial port (frame: TACTILE_FRAME.md).
+
+tactile_frame.py: the binary frame, its encoder and the streaming decoder.
+serial_reader.py: TactileSerialReader, the reader thread with a bounded queue.
+tactile_calibration.py: counts to newtons, piezo samples to m/s^2, zeroing sums.
+tactile_serial_receiver.py: TactileSerialReceiver, the pads as a Drake system.
+"""

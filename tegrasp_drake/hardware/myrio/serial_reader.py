@@ -1,9 +1,8 @@
 """A reader thread for the myRIO tactile stream: serial port -> decoder -> bounded queue.
 
-The thread blocks on the serial port (for at most `read_timeout` at a time, so it notices
-`close()` quickly); the diagram only calls `drain()`, which never blocks. The queue holds
-at most `queue_size` frames: if the consumer falls behind, the oldest are dropped and
-counted (fresh data wins). A serial error is counted and the thread keeps trying, so a
+The thread blocks on the port (at most `read_timeout` at a time, so it notices `close()`);
+the diagram calls only `drain()`, which never blocks. When the consumer falls behind, the
+oldest frames are dropped and counted; a serial error is counted and retried, so a
 replugged adapter comes back.
 """
 
@@ -35,14 +34,11 @@ class TactileReaderCounters:
 class TactileSerialReader:
     """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
 
-    `port` is a device path or a pyserial URL. Use as a context manager, or start()/close().
-
-    After the first bytes of a burst the thread waits `batch_period` [s] for the rest, so
-    it takes Python's interpreter lock a few hundred times a second rather than once per
-    1 ms frame; every lock hand-over costs the control loop's thread time. The receiver
-    plays frames one per tick, so this adds at most `batch_period` to their latency. The
-    queue holds `queue_size` frames (1 s at 1 kHz): a loop that stalls that long loses the
-    oldest, counted.
+    `port` is a device path or a pyserial URL; use as a context manager, or start()/close().
+    After a burst's first bytes the thread waits `batch_period` [s] for the rest, so it takes
+    Python's interpreter lock a few hundred times a second instead of once per 1 ms frame (each
+    hand-over costs the control loop time), adding at most `batch_period` of latency. The
+    queue holds `queue_size` frames (1 s at 1 kHz).
     """
 
     def __init__(self, port: str, *, baudrate: int = DEFAULT_BAUDRATE, queue_size: int = 1024,
@@ -93,9 +89,8 @@ class TactileSerialReader:
         return frames
 
     def discard_pending(self) -> int:
-        """Drops the frames received so far (before the control loop starts: a start-up
-        backlog would only delay the first ticks) and forgets their overflows; returns how
-        many were dropped in all."""
+        """Drops the frames received so far (a start-up backlog would only delay the first ticks)
+        and forgets their overflows; returns how many were dropped."""
         with self._lock:
             dropped = len(self._queue) + self._counters.queue_overflows
             self._queue.clear()

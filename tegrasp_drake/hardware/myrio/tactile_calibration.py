@@ -1,34 +1,12 @@
-"""Calibration of the tactile pads: AD7147 counts to newtons, piezo samples to m/s^2.
+"""Calibration of the tactile pads: AD7147 counts to taxel forces [N], piezo samples to an
+acceleration-equivalent [m/s^2] (the film's one axis, put in x of the pad frame):
 
-Capacitive taxels (SA): a pressed pad brings the fabric closer to the electrodes, so
-Delta C = eps A (1/d1 - 1/d0) grows and the AD7147 count moves from its baseline. Over the
-working range we use a per-taxel line,
+    F_k = max(0, gain_k * (counts_k - offset_k))
+    a = piezo_gain * (counts * volts_per_count - piezo_offset)
 
-    F_k = max(0, gain_k * (counts_k - offset_k))        [N]
-
-with `gain` [N/count] from a bench calibration (weights on each taxel) and `offset`
-[counts] the no-contact baseline, which drifts with temperature and mounting and is
-therefore re-estimated at start ("zeroing": the mean of the first `zero_samples` count
-sequences per finger, taken with nothing touching the pads).
-
-Piezo film (RA): the charge amplifier gives V = -Q / C_f, proportional to the film's
-strain rate, a high-pass image of the pad's vibration. It is scaled into an
-acceleration-equivalent so that Eq. 2 and the memorized events see the units they were
-recorded in:
-
-    a = piezo_gain * (counts * volts_per_count - piezo_offset)   [m/s^2]
-
-with `piezo_offset` [V] zeroed at start like the taxels. The film has one axis: the
-receiver puts `a` in x of the pad's 3-vector and zeros in y, z, so Eq. 2 gives |a|.
-
-The default gains are placeholders of the right order (1 mN per count, 30000-count
-baseline); a real pad's numbers go in a YAML file loaded with `LoadTactileCalibration`. The
-default piezo gain is the simulated film's, 1 / S = 253 (m/s^2)/V with S = G_Q / (w^2 C_f)
-its mid-band sensitivity to base acceleration (simulation/pad_vibration_sensor.py,
-docs/model.md "Vibration (RA) model"), so that a recorded simulation replays through the emulated myRIO
-within the +-10 V input range. For a real pad, S is measured: shake the finger at a known
-acceleration between the amplifier's high-pass and the fingertip's mode (e.g. 10-100 Hz)
-and read the voltage.
+The offsets drift, so they are re-estimated at start (zeroing, nothing touching the pads).
+A real pad's gains go in a YAML file (`LoadTactileCalibration`); how to measure them:
+hardware/myrio/TACTILE_FRAME.md, "Calibration".
 """
 
 import dataclasses
@@ -47,10 +25,10 @@ PIEZO_COUNT_LIMIT = 32767
 class PadCalibration:
     """One finger's pad."""
     gain: list[float] = dataclasses.field(
-        default_factory=lambda: [1e-3] * TAXELS_PER_PAD)          # [N/count]
+        default_factory=lambda: [1e-3] * TAXELS_PER_PAD)  # [N/count] placeholder; bench-calibrate
     offset: list[float] = dataclasses.field(
-        default_factory=lambda: [30000.0] * TAXELS_PER_PAD)       # [counts]
-    piezo_gain: float = 253.0   # [(m/s^2)/V], 1 / S of the simulated film
+        default_factory=lambda: [30000.0] * TAXELS_PER_PAD)  # [counts] mid-range; zeroed at start
+    piezo_gain: float = 253.0   # [(m/s^2)/V], 1 / S of the simulated film (docs/model.md)
     piezo_offset: float = 0.0   # [V]
 
 
@@ -68,10 +46,9 @@ class TactileCalibration:
 
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
-    """Reads a TactileCalibration from YAML (fields as in the dataclasses). ConfigError, one
-    line naming the file and the field, for anything that is not one: a missing or empty
-    file, a FIFO or device (refused before a byte is read), a file too large, bad YAML, an
-    unknown or non-finite field."""
+    """Reads a TactileCalibration from YAML (the dataclasses' fields); a ConfigError naming the
+    file and field for anything else (missing, empty, FIFO or device, too large, bad YAML, an
+    unknown or non-finite field)."""
     from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, read_yaml_file
     data = read_yaml_file(filename, "the tactile calibration")
     if data is None:

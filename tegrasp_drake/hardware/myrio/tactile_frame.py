@@ -1,39 +1,11 @@
-"""The myRIO tactile stream's binary frame: encoder and a resynchronising streaming decoder.
+"""The myRIO tactile stream's binary frame: `encode_frame` and a resynchronising streaming
+decoder. Layout, rates and decoding rules: hardware/myrio/TACTILE_FRAME.md.
 
-One frame per millisecond carries one piezo sample per finger (the 1 kHz RA signal) and,
-in the millisecond in which a finger's AD7147 finished a 12-stage sequence (every ~9.2 ms,
-~108 Hz, the two chips unsynchronised), that finger's 12 capacitance counts. Little-endian:
-
-    offset size  field
-    0      2     sync 0xA5 0x5A
-    2      1     version (1)
-    3      1     flags: bit0 left counts present, bit1 right counts present, others 0
-    4      2     sequence number u16 (+1 per frame, wraps)
-    6      4     device timestamp u32 [us] of the piezo samples (wraps after 71.6 min)
-    10     2     left piezo i16, charge-amplifier output, LSB = 10 V / 32768
-    12     2     right piezo i16
-    14     24    left counts, 12 x u16 (only if bit0)
-    ..     24    right counts, 12 x u16 (only if bit1)
-    end    4     CRC-32 (zlib.crc32) of every byte from `version` to the last count
-
-18 bytes without counts, 66 with both; on average 1000 x 18 + 2 x 108 x 24 ~ 23 kB/s,
-so the link runs at 921600 baud (25 % load) or is a USB CDC-ACM port. Why 1 ms frames
-rather than 10 ms batches (which would fit 230400 baud): a piezo sample waits at most one
-frame period before it is sent, a lost frame costs 1 ms of signal rather than 10, and
-each CDC sequence has its own frame, whereas 10 ms frames sometimes see two sequences
-complete and would have to merge or drop one. See TACTILE_FRAME.md.
-
-The decoder accepts arbitrary chunks and keeps only what the CRC vouches for: bytes
-outside accepted frames are skipped and counted; a frame with a bad CRC, a corrupt header
-or cut short by the next frame's sync is counted and skipped, and the search resumes one
-byte after its sync; sequence gaps are counted as dropped frames. A frame is passed on
-only if it follows the last one: a newer sequence number whose timestamp advanced by the
-gap's frame periods (a CRC-valid frame with absurd content, e.g. sequence 30000 in a
-stream at 500 or a timestamp near 2^32, is discarded and counted as `implausible`; a
-repeated or older sequence as `repeated`), unless RESTART_RUN frames that follow each other
-arrive in a row: then the device restarted, and the decoder follows it. Device time is
-unwrapped by adding each frame's forward distance (mod 2^32), so a real wrap is
-continuous and one absurd timestamp shifts nothing.
+A 1 ms frame carries each finger's piezo sample (i16, LSB = 10 V / 32768) and, when that
+finger's AD7147 finished a 12-stage sequence (~108 Hz), its 12 counts, then a CRC-32. The
+decoder passes on only CRC-valid frames that follow the last one (a newer sequence whose
+timestamp advanced by the gap's frame periods), counts what it skips, follows a restarted
+device after RESTART_RUN frames and unwraps device time frame by frame.
 """
 
 import dataclasses
@@ -67,14 +39,9 @@ TIME_TOLERANCE_FRACTION = 0.05
 
 @dataclasses.dataclass(frozen=True)
 class TactileFrame:
-    """One decoded frame.
-
-    Attributes:
-        sequence: u16 sequence number.
-        timestamp_us: device timestamp [us], unwrapped by the decoder (u32 as encoded).
-        piezo: (left, right) piezo samples [counts].
-        left_counts, right_counts: 12 AD7147 counts, or None when no new sequence.
-        arrival_time: host `time.monotonic()` [s] of the chunk that completed the frame.
+    """One decoded frame: u16 sequence; device timestamp [us] (unwrapped by the decoder);
+    (left, right) piezo samples [counts]; 12 AD7147 counts per finger or None; arrival_time:
+    host `time.monotonic()` [s] of the chunk that completed it.
     """
     sequence: int
     timestamp_us: int
@@ -198,9 +165,9 @@ class TactileFrameDecoder:
 
     def _follows(self, sequence: int, raw_timestamp: int, last_sequence: int,
                  last_raw: int) -> str:
-        """How a frame relates to the frame (last_sequence, last_raw) before it: "next"
-        (newer, its time advanced by its sequence gap's frame periods, within
-        TIME_TOLERANCE), "old" (a repeated or older sequence number) or "implausible"."""
+        """How a frame relates to the one before it: "next" (newer, its time advanced by its
+        sequence gap's frame periods within TIME_TOLERANCE), "old" (repeated or older) or
+        "implausible"."""
         gap = (sequence - last_sequence) % SEQUENCE_MODULUS
         if gap == 0 or gap > SEQUENCE_MODULUS // 2:
             return "old"
@@ -224,10 +191,8 @@ class TactileFrameDecoder:
                 device_time_us = self._device_time_us + (
                     raw_timestamp - self._last_raw_timestamp) % TIMESTAMP_MODULUS
             else:
-                # A frame that does not follow is held back: a damaged one (the stream
-                # goes on after it, and it is counted) or the first of a new stream (a
-                # restarted device), which is followed once RESTART_RUN frames in a row
-                # follow each other. Device time never jumps on one frame.
+                # Held back: damaged, or the first of a restarted device's stream, followed
+                # once RESTART_RUN frames in a row follow each other.
                 run = 1
                 if self._candidate is not None and self._follows(
                         sequence, raw_timestamp, *self._candidate[:2]) == "next":

@@ -1,39 +1,13 @@
-"""The tactile pads on the myRIO stream, as a Drake system with the simulated pads' ports.
+"""The myRIO tactile stream as a Drake system with the simulated pads' ports.
 
-Every `period` (1 ms) an unrestricted update takes the frames the reader thread decoded
-since the last tick (`TactileSerialReader.drain()`, which never blocks), calibrates them
-(tactile_calibration) and stores the values in the Context; outputs are computed from
-that state only. A value changes only when a frame carrying it is played: taxel forces
-when a count sequence arrives (~108 Hz), accelerations with every frame (1 kHz).
-
-Playout: a serial port delivers frames in bursts (two or three in one tick are common, tens
-when the host is loaded), but the RA channel (Eq. 2) and the event matcher need one piezo
-sample per tick, an impact lasting one sample included. So the received frames wait in the
-state and are played one per tick, in order; while more than two wait, two are played
-per tick until the backlog is gone (the latency returns to a millisecond once a burst has
-passed), and when more than `max_backlog` wait, the oldest are played together in one
-tick, so the latency stays at most `max_backlog` ticks. Frames played together keep the
-newest counts and the piezo sample of largest magnitude, so an impact is never dropped.
-`max_backlog = 0` plays everything that arrived at once.
-
-Filters that must see the device's sample sequence (the slip band's high-pass: a held or
-skipped sample is a step it would ring on) read `pad_acceleration_samples` instead: every
-piezo sample played in the tick, in device order, none merged or repeated (empty in a tick
-that played none).
-
-When nothing arrived for `stale_timeout` the outputs keep the last values,
-`time_measured` (the played frame's timestamp) stops advancing and `stale` is 1, so old
-data is never passed on as fresh.
-
-Zeroing: until `zero_samples` count sequences per finger have arrived the outputs are zero
-and `zeroing` is 1 (keep the pads untouched at start); then the taxel offsets and piezo
-offsets are the means seen (TactileCalibration.zero_samples = 0 skips this). A run zeroes
-before the Simulator starts (`zero_before_start`, called by the hardware station's
-`wait_until_ready`): the Simulator's initialization then starts the receiver zeroed, so
-that no window the event matcher scores holds the zeroing stretch. Those exact zeros
-followed by the zeroed pads' noise, whose negative half is clipped away (forces_from_counts),
-form a step: a step-shaped memorized event scores up to 0.95 (SA) and 0.76 (RA) against it
-before any contact.
+Every `period` (1 ms) an unrestricted update drains the frames the reader thread decoded
+(never blocking), calibrates them and keeps the result in the Context; taxel forces change
+with each count sequence (~108 Hz), accelerations with each frame (1 kHz). A burst of frames
+is played one per tick, two per tick while more than two wait, and all but `max_backlog` at
+once beyond that; frames played together keep the newest counts and the largest-magnitude
+piezo sample, so an impact is never lost. Filters that need the device's own sample sequence
+read `pad_acceleration_samples` (docs/hardware.md, "Serial bursts and the slip band"). The
+pads are zeroed before the Simulator starts (docs/hardware.md, "Zeroing the pads").
 """
 
 import dataclasses
@@ -70,8 +44,7 @@ class TactileReceiverState:
         default_factory=lambda: _NO_SAMPLES)  # noqa: the one empty array, never changed
 
     def __deepcopy__(self, memo):
-        # Immutable (replaced, never changed in place): the copies Drake makes of the
-        # Context's abstract state at every 1 kHz update can share it.
+        # Immutable (replaced, never changed), so Drake's 1 kHz Context copies can share it.
         return self
 
 
@@ -119,9 +92,8 @@ def receiver_state_after_frames(state: TactileReceiverState, frames,
 
 def receiver_state_after_tick(state: TactileReceiverState, received, calibration:
                               TactileCalibration, max_backlog: int) -> TactileReceiverState:
-    """The state after a tick that received these frames (oldest first): one frame is
-    played, two while more than two wait, more when over `max_backlog` wait (module docstring);
-    during zeroing, all. Pure."""
+    """The state after a tick that received these frames (oldest first): one frame played, two
+    while more than two wait, more when over `max_backlog` wait; all while zeroing. Pure."""
     pending = state.pending + tuple(received)
     if not pending:
         return (state if not len(state.played_samples) else
@@ -135,7 +107,7 @@ def receiver_state_after_tick(state: TactileReceiverState, received, calibration
 
 
 class TactileSerialReceiver(LeafSystem):
-    """Both tactile pads from a `TactileSerialReader` (see module docstring).
+    """Both tactile pads from a `TactileSerialReader` (module docstring).
 
     .. pydrake_system::
 
@@ -151,18 +123,10 @@ class TactileSerialReceiver(LeafSystem):
         - arrival_time
         - zeroing
 
-    Ports:
-        left_taxel_forces, right_taxel_forces: (12) taxel normal forces [N].
-        left_pad_acceleration, right_pad_acceleration: (3) the piezo film's
-            acceleration-equivalent [m/s^2] along the pad frame's x, zeros in y and z.
-        pad_acceleration_samples: (abstract, an (n, 6) array) every piezo sample played in
-            the last tick, oldest first, as rows [left x, y, z, right x, y, z] [m/s^2]
-            (zeros in y and z); no rows when none was played.
-        time_measured: (1) device timestamp [s] of the played frame (0 before any).
-        stale: (1) 1 when no frame arrived for `stale_timeout` [s] of wall time.
-        arrival_time: (1) host time.monotonic() [s] when the played frame arrived (for
-            latency measurements; -inf before any).
-        zeroing: (1) 1 until the start-up zeroing is complete.
+    Ports: taxel forces (12) [N]; pad accelerations (3) [m/s^2], the film's value in the pad
+    frame's x; samples: (n, 6) rows [left xyz, right xyz] played in the tick; time_measured:
+    the played frame's device time [s]; stale: 1 after `stale_timeout` [s] without a frame;
+    arrival_time: its host time.monotonic() [s]; zeroing: 1 until zeroed.
     """
 
     def __init__(self, reader, *, calibration: TactileCalibration | None = None,
@@ -200,11 +164,9 @@ class TactileSerialReceiver(LeafSystem):
         return self._reader
 
     def zero_before_start(self, deadline: float) -> bool:
-        """Zeroes the pads on the frames arriving now, before the Simulator starts (the pads
-        untouched): blocks until `zero_samples` count sequences per finger have arrived or
-        time.monotonic() passes `deadline` [s]. True when zeroed; the Simulator's
-        initialization then starts the receiver from the zeroed state (its outputs carry the
-        newest frame's values from the first tick)."""
+        """Zeroes the pads (untouched) on the frames arriving now, before the Simulator starts;
+        blocks until `zero_samples` count sequences per finger arrived or time.monotonic() passes
+        `deadline` [s]. True when zeroed; initialization then starts the receiver zeroed."""
         state = initial_receiver_state(self._calibration)
         while not state.zeroed and time.monotonic() < deadline:
             frames = self._reader.drain()

@@ -1,21 +1,10 @@
-"""A Robotiq 2F-85 Modbus RTU client that runs on its own thread and never blocks its caller.
+"""A Robotiq 2F-85 Modbus RTU client on its own thread, never blocking its caller.
 
-The thread owns a pymodbus serial RTU client (115200 8N1, slave 9) and:
-1. activates the gripper as the manual prescribes: write zeros, write rACT = 1, poll the
-   status until gSTA = 3 (activation complete); if that takes longer than
-   `activation_timeout`, it stops with an error naming the port;
-2. then loops at most every `period` (>= 5 ms: the gripper's 200 Hz limit) writing the
-   latest requested command when it changed or every `command_refresh_period`, and
-   reading the status.
-
-The caller only exchanges values under a lock: `set_command()` stores the request,
-`latest_status()` returns the newest status with its arrival time (`time.monotonic()`
-[s]). Every answer crosses a MessageBoundary (hardware/message_boundary.py) before it is
-used: `check_answer` refuses, by reason, no answer, an exception response, an answer of
-another function (a function-3 answer to a function-4 read, a read answering a write), a
-status of other than 3 registers, and a write echo of another address or count. A failed
-transaction is counted and skipped, the newest good status kept; a gripper that stops
-answering shows as a status whose arrival time stops advancing.
+The thread activates the gripper as the manual prescribes (zeros, then rACT = 1, then poll
+until gSTA = 3), then every `period` (the gripper's 200 Hz limit at most) writes the newest
+command when it changed or every `command_refresh_period`, and reads the status. Every
+answer crosses a MessageBoundary (`check_answer`); a failed transaction is counted and
+skipped, so a silent gripper shows as a status whose arrival time stops advancing.
 """
 
 import dataclasses
@@ -46,8 +35,11 @@ class RobotiqModbusConfig:
                              why="Modbus slave addresses, Modbus over serial line specification")
     period: float = bounded(MIN_PERIOD, low=MIN_PERIOD, high=1.0, unit="s",
                             why="the 2F-85 takes requests at up to 200 Hz")
+    # a status answer is 11 bytes, about 1 ms at 115200 baud; 50 ms is ample
     request_timeout: float = bounded(0.05, low=0.0, low_open=True, high=10.0, unit="s")
+    # activation strokes the fingers (the emulator takes 1.5 s); 5 s leaves margin
     activation_timeout: float = bounded(5.0, low=0.0, low_open=True, high=60.0, unit="s")
+    # a lost write is repeated within 0.1 s
     command_refresh_period: float = bounded(0.1, low=0.0, low_open=True, high=10.0, unit="s")
     # 4, or 3 on some firmware
     read_function: int = bounded(registers.READ_FUNCTION, low=3, high=4,
@@ -68,8 +60,7 @@ class RobotiqStatusSample:
 
 @dataclasses.dataclass
 class RobotiqModbusCounters:
-    """Transaction counters (read them with `RobotiqModbusClient.counters()`); `errors`
-    is every failed transaction, `rejected` the same by reason."""
+    """Transaction counters; `errors` counts every failed transaction, `rejected` by reason."""
     writes: int = 0
     reads: int = 0
     errors: int = 0
@@ -86,8 +77,8 @@ WRONG_ECHO = "wrong write echo"
 
 
 def check_answer(response, function: int, address: int, count: int):
-    """`response` (pymodbus's, to a request of `function` for `count` registers at
-    `address`) when it answers that request, else RejectedMessage naming why."""
+    """`response` (pymodbus's, to a request of `function` for `count` registers at `address`)
+    when it answers that request, else RejectedMessage naming why."""
     if response.isError():
         raise RejectedMessage(EXCEPTION_RESPONSE, str(response))
     if response.function_code != function:
@@ -176,9 +167,8 @@ class RobotiqModbusClient:
         return self._active.is_set()
 
     def wait_until_active(self, timeout: float) -> RobotiqStatusSample:
-        """Blocks (for start-up code, never inside a diagram) until activation is complete.
-
-        Raises RobotiqActivationError with the thread's error, or on timeout."""
+        """Blocks (start-up code, never in a diagram) until activation is complete; raises
+        RobotiqActivationError with the thread's error, or on timeout."""
         deadline = time.monotonic() + timeout
         while not self._active.wait(0.01):
             if self._finished.is_set() or time.monotonic() > deadline:
@@ -208,8 +198,8 @@ class RobotiqModbusClient:
 
     def _transaction(self, request, function: int, address: int, register_count: int,
                      **kwargs):
-        """One request (of `function` for `register_count` registers at `address`);
-        returns the checked answer, or None (counted by the boundary)."""
+        """One request of `function` for `register_count` registers at `address`: the checked
+        answer, or None (counted by the boundary)."""
         try:
             response = request(address, device_id=self._config.device_id, **kwargs)
         except ModbusException as exc:

@@ -1,12 +1,9 @@
 """The Robotiq 2F-85 over Modbus RTU as a Drake system with the simulated gripper's ports.
 
-A periodic publish event hands the `command` input to the `RobotiqModbusClient` (which
-stores it; its thread does the I/O), and a periodic unrestricted update copies the
-client's newest status into the Context. Nothing here waits on the serial line. The
-status output changes only when a new status read arrived; `stale` says when the newest
-is older than `stale_timeout` of wall time. `fault` names every problem: a nonzero gFLT
-(by the manual's name, robotiq.units.fault_name) or the client's error (e.g. activation
-failed on a named port).
+A periodic publish event hands `command` to the RobotiqModbusClient (its thread does the
+I/O) and a periodic unrestricted update copies the client's newest status into the Context;
+nothing here waits on the serial line. `fault` names a nonzero gFLT (by the manual's name)
+or the client's error.
 """
 
 import dataclasses
@@ -51,7 +48,10 @@ def gripper_faults(status, count: int, driver_error: str | None, previous: tuple
 
 
 class RobotiqDriver(LeafSystem):
-    """Wraps a started `RobotiqModbusClient` (module docstring).
+    """Wraps a started `RobotiqModbusClient` (module docstring). command: (3) [rPR, rSP, rFR]
+    bytes, nothing sent while unconnected; status: (8) [gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO,
+    gCU]; time_measured: host time.monotonic() [s] of its arrival (0 before); stale: 1 when
+    older than `stale_timeout` [s]; fault: tuple of DeviceFault, empty when all is well.
 
     .. pydrake_system::
 
@@ -63,14 +63,6 @@ class RobotiqDriver(LeafSystem):
         - time_measured
         - stale
         - fault
-
-    Ports:
-        command: (3) [rPR, rSP, rFR] bytes, as the station's `gripper.command`;
-            unconnected: nothing is sent.
-        status: (8) [gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO, gCU], as `gripper.status`.
-        time_measured: (1) host `time.monotonic()` [s] when `status` arrived (0 before).
-        stale: (1) 1 when the newest status is older than `stale_timeout` [s].
-        fault: (abstract tuple of DeviceFault) empty when all is well.
     """
 
     def __init__(self, client, *, period: float = 0.005, stale_timeout: float = 0.1,

@@ -1,0 +1,42 @@
+"""Where a scenario's object stands: on its marker, where the robot expects it, moved by a
+misplacement and yawed (the paper's grid of misplacements, Sec. IV-B)."""
+
+import dataclasses
+import math
+
+from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
+from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
+from tegrasp_drake.rig.ranges import bounded
+
+
+@dataclasses.dataclass
+class ObjectPlacementConfig:
+    """The object's marker and its misplacement from it [m, world; deg]."""
+    # The marker, where the robot expects the object (the grasp is planned for it).
+    expected_xy: list[float] = bounded(default_factory=lambda: [0.72, 0.0], low=-0.9, high=0.9,
+                                       unit="m", length=2,
+                                       why="within the JACO2's 0.9 m reach, Kinova JACO2 "
+                                           "specifications")
+    # Misplacement from the marker: x normal to the palm, y along the stroke.
+    offset: list[float] = bounded(default_factory=lambda: [0.0, 0.0], low=-0.2, high=0.2,
+                                  unit="m", length=2,
+                                  why="a misplacement near its marker, within the open hand's "
+                                      "reach")
+    yaw_deg: float = bounded(0.0, low=-180.0, high=180.0, unit="deg")
+
+    def xy(self) -> tuple[float, float]:
+        """Where the object's centre stands [m, world]: the marker moved by the offset."""
+        return tuple(a + b for a, b in zip(self.expected_xy, self.offset))
+
+    def problem(self, shape: str, size) -> tuple[str, str, object] | None:
+        """(field, what it must be, its value) when an object of `shape` and `size` [m]
+        placed here would stand off the table top; None when it stands on it."""
+        x, y = self.xy()
+        radius = size[0] / 2 if shape == "cylinder" else math.hypot(size[0], size[1]) / 2
+        (cx, cy), (half_x, half_y) = TABLE_CENTER_XY, (TABLE_SIZE[0] / 2, TABLE_SIZE[1] / 2)
+        if abs(x - cx) + radius <= half_x and abs(y - cy) + radius <= half_y:
+            return None
+        return ("offset", f"puts the object at ({x:.3f}, {y:.3f}) m (placement.expected_xy "
+                f"{list(self.expected_xy)} + placement.offset), off the table top (x "
+                f"{cx - half_x:g} to {cx + half_x:g} m, y {cy - half_y:g} to {cy + half_y:g} m); "
+                "place it on the table", list(self.offset))

@@ -1,0 +1,68 @@
+"""`tegrasp plot`: every figure of the sweep (Table I against the paper, latency
+distributions, success maps) from the committed results, Fig. 5c from the package's events,
+in each format; and one-line errors for bad input."""
+
+import pathlib
+
+import numpy as np
+import pytest
+from matplotlib.image import imread
+
+from tegrasp_drake.cli import main
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.runs.trial import run_trial
+
+RESULTS = pathlib.Path(__file__).resolve().parents[2] / "analysis" / "results_seed0"
+
+
+def _is_figure(path: pathlib.Path) -> bool:
+    data = path.read_bytes()
+    if path.suffix == ".png":
+        image = imread(path)
+        return min(image.shape[:2]) > 600 and np.ptp(image[..., :3]) > 0.5
+    if path.suffix == ".pdf":
+        return data.startswith(b"%PDF") and len(data) > 10_000
+    return b"<svg" in data[:1000] and len(data) > 10_000
+
+
+@pytest.mark.parametrize("what, source, name", [
+    ("table1", RESULTS, "table1_vs_paper.png"),
+    ("latency", RESULTS, "latency.pdf"),
+    ("success-maps", RESULTS, "success_maps.svg"),
+    ("events", None, "memorized_events.png"),
+])
+def test_plot_writes_the_figure(what, source, name, tmp_path, capsys):
+    out = tmp_path / name
+    assert main(["plot", what] + ([str(source)] if source else []) + ["--out", str(out)]) == 0
+    assert capsys.readouterr().out.strip() == str(out)
+    assert _is_figure(out)
+
+
+def test_plot_format_names_the_default_file(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["plot", "table1", str(RESULTS), "--format", "svg"]) == 0
+    assert _is_figure(tmp_path / "out" / "table1_vs_paper.svg")
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["table1", str(RESULTS), "--out", "figure.jpg"], "must end in one of .png, .pdf, .svg"),
+    (["table1", str(RESULTS), "--out", "figure.png", "--format", "pdf"],
+     "is a .png file but --format is pdf"),
+    (["latency", "no/such/folder"], "no trial records under no/such/folder/trials"),
+    (["table1"], "needs a sweep's results folder"),
+    (["avoid"], "needs a trial log"),
+])
+def test_bad_input_is_one_line(arguments, message, capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        main(["plot"] + arguments)
+    assert message in str(exit_info.value)
+    assert "\n" not in str(exit_info.value)
+
+
+def test_avoid_on_a_trial_without_a_hit_names_the_scenario_that_has_one(tmp_path):
+    log = run_trial(LoadScenario(), max_time=1.0).log.save(tmp_path / "trial.npz")
+    with pytest.raises(SystemExit) as exit_info:
+        main(["plot", "avoid", str(log), "--out", str(tmp_path / "avoid.png")])
+    assert "no Avoid transition" in str(exit_info.value)
+    assert "box_hit_in_hold" in str(exit_info.value)
+    assert not (tmp_path / "avoid.png").exists()

@@ -1,0 +1,212 @@
+"""The `sweep` sub-command: options, bad input, reports, benchmark."""
+
+import argparse
+import json
+from statistics import median as statistics_median
+
+import pytest
+
+from tegrasp_drake.commands import sweep as command
+from tegrasp_drake.sweep.records import load_records
+
+FAKE = ["--trial-function", "tests.fake_trials:fake_trial", "--no-progress"]
+
+
+def test_register_adds_the_sweep_subcommand():
+    parser = argparse.ArgumentParser(prog="tegrasp")
+    command.register(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(["sweep", "--objects", "box", "--workers", "2"])
+    assert args.func is command.run
+    assert (args.objects, args.workers, args.out) == (["box"], 2, "results/sweep")
+    assert args.trial_function == "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
+
+
+def test_sweep_writes_records_and_reports(tmp_path, capsys):
+    out = tmp_path / "out"
+    code = command.main(["--objects", "box", "--controllers", "memorized", "heuristic",
+                         "--attempts", "1", "--workers", "2", "--base-seed", "3",
+                         "--out", str(out), *FAKE])
+    assert code == 0
+    records = load_records(out).records
+    assert len(records) == 18
+    assert {r["trial"]["base_seed"] for r in records.values()} == {3}
+    for name in ("table1.md", "table1.csv", "statistics.md", "statistics.json",
+                 "success_maps.png"):
+        assert (out / name).is_file(), name
+    stdout = capsys.readouterr().out
+    assert "sweep: 18 trials, 0 already finished, 18 run now on processes:2" in stdout
+    assert "heuristic thresholds" in (out / "table1.md").read_text()
+
+
+def test_spec_file_with_command_line_overrides(tmp_path):
+    spec = tmp_path / "grid.yaml"
+    spec.write_text("objects: [thin_cylinder]\ncontrollers: [open_loop]\nattempts: 3\n"
+                    "grid: [[0.0, 0.0], [0.0, 0.02]]\n")
+    out = tmp_path / "out"
+    assert command.main(["--spec", str(spec), "--attempts", "2", "--out", str(out),
+                         "--workers", "1", *FAKE]) == 0
+    records = load_records(out).records
+    assert sorted(records) == [f"open_loop/thin_cylinder/m0{j}/a{k}"
+                               for j in range(2) for k in range(2)]
+
+
+def test_set_options_follow_the_spec_files_overrides_into_every_record(tmp_path):
+    spec = tmp_path / "hit.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [memorized]\nattempts: 1\n"
+                    "scenario_overrides: ['disturbance.hit_time_s=7.0']\n")
+    out = tmp_path / "out"
+    assert command.main(["--spec", str(spec), "--set",
+                         "controller.memorized_corrective.events=[hold_avoid]",
+                         "--out", str(out), "--workers", "1", *FAKE]) == 0
+    records = load_records(out).records
+    assert len(records) == 9
+    for record in records.values():
+        assert record["trial"]["scenario_overrides"] == [
+            "disturbance.hit_time_s=7.0",
+            "controller.memorized_corrective.events=[hold_avoid]"]
+    # The same folder with other settings is refused, not mixed.
+    assert command.main(["--spec", str(spec), "--out", str(out), "--workers", "1",
+                         *FAKE]) == 2
+
+
+def test_trial_errors_give_exit_code_1(tmp_path, capsys):
+    code = command.main(["--objects", "box", "--controllers", "memorized", "--attempts", "2",
+                         "--out", str(tmp_path), "--workers", "2", "--no-progress",
+                         "--trial-function", "tests.fake_trials:failing_fake_trial"])
+    assert code == 1
+    assert "9 trial(s) raised" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["--objects", "box", "teapot"], "field 'objects': unknown object 'teapot'"),
+    (["--controllers", "pid"], "field 'controllers': unknown controller 'pid'"),
+    (["--attempts", "0"], "field 'attempts'"),
+    (["--workers", "0"], "--workers must be at least 1"),
+    (["--benchmark", "--scheduler", "tcp://127.0.0.1:8786"], "drop --scheduler"),
+    (["--set", "controller.memorized_corrective.events=[hold_smash]"],
+     "field 'scenario_overrides'"),
+    (["--set", "object.name=box"], "set per trial by the sweep"),
+])
+def test_bad_options_stop_before_any_trial(tmp_path, capsys, arguments, message):
+    out = tmp_path / "out"
+    assert command.main([*arguments, "--out", str(out), *FAKE]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("text, message", [
+    ("grid: []\n", "field 'grid': is empty"),
+    ("grid: {normal_offsets_m: [0.0], stroke_offsets_m: []}\n",
+     "field 'grid.stroke_offsets_m': is empty"),
+    ("grid: [[0.0, zero]]\n", "field 'grid'"),
+    ("objects: [box]\nspeed: 3\n", "field 'speed': unknown field"),
+])
+def test_bad_spec_file_stops_before_any_trial(tmp_path, capsys, text, message):
+    spec, out = tmp_path / "bad.yaml", tmp_path / "out"
+    spec.write_text(text)
+    assert command.main(["--spec", str(spec), "--out", str(out), *FAKE]) == 2
+    err = capsys.readouterr().err
+    assert str(spec) in err and message in err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("arguments, spec_text, message", [
+    (["--objects", "thick_cylinder", "--set",
+      "controller.memorized_corrective.events=[hold_avoid]"], None,
+     "no memorized events of object 'thick_cylinder'"),
+    ([], "objects: [cup]\ncontrollers: [open_loop, memorized]\nuser_objects:\n"
+         "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n",
+     "trial memorized/cup/m00/a0"),
+])
+def test_missing_memorized_events_stop_the_real_sweep_before_any_trial(
+        tmp_path, capsys, arguments, spec_text, message):
+    """The real trial function's events are checked once per object and controller
+    before anything runs: one line naming the trial, the folders and what to do, exit 2,
+    no results folder (not one error record per trial)."""
+    out = tmp_path / "out"
+    if spec_text is not None:
+        spec = tmp_path / "cup.yaml"
+        spec.write_text(spec_text)
+        arguments = ["--spec", str(spec)]
+    assert command.main([*arguments, "--out", str(out), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err and "\n" not in err and "Traceback" not in err
+    assert not out.exists()
+
+
+def test_a_missing_trial_function_is_reported(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert command.main(["--out", str(out), "--no-progress",
+                         "--trial-function", "no_such_module_xyz:run"]) == 2
+    assert "cannot load the trial function no_such_module_xyz:run" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_benchmark_prints_wall_times_and_speed_up(tmp_path, capsys):
+    code = command.main(["--benchmark", "--objects", "box", "--attempts", "1",
+                         "--out", str(tmp_path / "unused"), "--no-progress",
+                         "--trial-function", "tests.fake_trials:slow_fake_trial"])
+    assert code == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "1 worker(s): 9 trials" in lines[1] and "speed-up 1.00x" in lines[1]
+    assert "2 worker(s): 9 trials" in lines[2] and "speed-up" in lines[2]
+    assert lines[3].endswith("results identical across worker counts: yes")
+    assert not (tmp_path / "unused").exists()
+
+
+def test_statistics_json_is_valid(tmp_path):
+    command.main(["--objects", "box", "--attempts", "1", "--workers", "2",
+                  "--out", str(tmp_path), *FAKE])
+    statistics = json.loads((tmp_path / "statistics.json").read_text())
+    records = [json.loads(path.read_text()) for path in (tmp_path / "trials").glob("*.json")]
+    by_controller = {}
+    for record in records:
+        by_controller.setdefault(record["trial"]["controller"], {})[
+            record["trial"]["pair_id"]] = record["result"]
+    assert set(statistics["controllers"]) == set(by_controller) == {
+        "memorized", "heuristic", "open_loop"}
+    for name, results in by_controller.items():  # each figure recomputed from the records
+        figures = statistics["controllers"][name]
+        assert figures["trials"] == len(results) == 9
+        assert figures["false_triggers"]["total"] == sum(
+            r["false_triggers"] for r in results.values())
+        assert figures["corrective_actions"]["trials_with_any"] == sum(
+            bool(r["corrective_actions"]) for r in results.values())
+        latencies = [r["detection_latency_s"]["reach->load"] for r in results.values()]
+        detected = [value for value in latencies if value is not None]
+        latency = figures["detection_latency_s"]["reach->load"]
+        assert latency["n"] == len(detected)
+        assert latency["not_detected"] == len(latencies) - len(detected)
+        if detected:
+            assert latency["median"] == pytest.approx(statistics_median(detected))
+    comparisons = statistics["paired_comparisons"]
+    assert len(comparisons) == 6  # 3 controller pairs x (hold, unload)
+    for comparison in comparisons:
+        key = "hold_success" if comparison["phase"] == "hold" else "unload_success"
+        a = by_controller[comparison["controller_a"]]
+        b = by_controller[comparison["controller_b"]]
+        assert comparison["pairs"] == len(a.keys() & b.keys()) == 9
+        assert comparison["a_success"] == sum(a[pair][key] for pair in a)
+        assert comparison["b_success"] == sum(b[pair][key] for pair in b)
+        assert comparison["a_only"] == sum(a[pair][key] and not b[pair][key] for pair in a)
+        assert comparison["b_only"] == sum(b[pair][key] and not a[pair][key] for pair in a)
+        assert 0.0 <= comparison["p_value"] <= 1.0
+
+
+def test_a_smaller_spec_in_a_reused_folder_counts_only_its_own_trials(tmp_path, capsys):
+    """--attempts 2, then --attempts 1 into the same folder: the second run counts and
+    tabulates its own 9 trials, not all 18 in the folder."""
+    out = tmp_path / "out"
+    common = ["--objects", "box", "--controllers", "memorized", "--workers", "2",
+              "--out", str(out), *FAKE]
+    assert command.main([*common, "--attempts", "2"]) == 0
+    capsys.readouterr()
+    assert command.main([*common, "--attempts", "1"]) == 0
+    stdout = capsys.readouterr().out
+    assert "sweep: 9 trials, 9 already finished" in stdout
+    assert "9 record(s) of trials not in this spec are in" in stdout
+    rows = (out / "table1.csv").read_text().splitlines()
+    header, box = rows[0].split(","), rows[1].split(",")
+    trials = sum(int(box[header.index(f"{placement}_hold_trials")])
+                 for placement in ("well_placed", "misplaced"))
+    assert trials == 9

@@ -1,0 +1,231 @@
+"""GraspStateMachine through its ports, with hand-set inputs (no plant)."""
+
+import numpy as np
+import pytest
+from pydrake.common.value import AbstractValue
+from pydrake.systems.analysis import Simulator
+
+from tegrasp_drake.robotiq import units as ru
+from tegrasp_drake.rig import station_interface as ports
+from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.control.controller_config import MemorizedControllerConfig
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
+from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
+
+EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
+
+
+def make_machine(**config_changes):
+    scenario = LoadScenario(name="box")
+    config = MemorizedControllerConfig(**config_changes)
+    machine = GraspStateMachine(plan=grasp_plan(scenario), config=config,
+                                event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT)
+    return machine, scenario
+
+
+def status(opening_m=ru.STROKE_M, obj=ru.ObjectStatus.MOVING, fault=0, request_byte=None):
+    values = np.zeros(ru.STATUS_SIZE)
+    values[ru.STATUS_PR] = (ru.position_byte_from_opening(opening_m) if request_byte is None
+                            else request_byte)
+    values[ru.STATUS_ACT], values[ru.STATUS_GTO], values[ru.STATUS_STA] = 1, 1, 3
+    values[ru.STATUS_OBJ], values[ru.STATUS_FLT] = obj, fault
+    values[ru.STATUS_PO] = ru.position_byte_from_opening(opening_m)
+    return values
+
+
+class Inputs:
+    """Fixed values on the machine's input ports, changeable between AdvanceTo calls."""
+
+    def __init__(self, machine, context):
+        self.machine, self.context = machine, context
+        self.set(match=0.0, channels=[0.0, 0.0, 0.0, 0.0], status=status(),
+                 slip_vibration=[0.0, 0.0])
+        machine.GetInputPort("scores").FixValue(context, np.zeros(4))
+
+    def set(self, *, match=None, channels=None, status=None, pad_acceleration=None,
+            slip_vibration=None):
+        for name, value in (("match", [match] if match is not None else None),
+                            ("channels", channels), (ports.GRIPPER_STATUS, status),
+                            ("pad_acceleration", pad_acceleration),
+                            ("slip_vibration", slip_vibration)):
+            if value is not None:
+                self.machine.GetInputPort(name).FixValue(self.context, np.asarray(value, float))
+
+
+def start(machine):
+    simulator = Simulator(machine)
+    context = simulator.get_mutable_context()
+    inputs = Inputs(machine, context)
+    simulator.Initialize()
+    return simulator, context, inputs
+
+
+def mode(machine, context):
+    return Mode(int(machine.GetOutputPort("mode").Eval(context)[0]))
+
+
+def run_until_mode(simulator, machine, wanted: Mode, limit_s: float) -> float:
+    """Advances tick by tick until the machine is in `wanted`; returns the time."""
+    context = simulator.get_context()
+    end = context.get_time() + limit_s
+    while mode(machine, context) != wanted:
+        assert context.get_time() < end, f"still {mode(machine, context)}, never {wanted}"
+        simulator.AdvanceTo(context.get_time() + 0.001)
+    return context.get_time()
+
+
+def test_expected_event_does_not_feed_through_from_match():
+    machine, _ = make_machine()
+    for port in ("match", "channels", ports.GRIPPER_STATUS):
+        assert not machine.HasDirectFeedthrough(machine.GetInputPort(port).get_index(),
+                                                machine.GetOutputPort("expected_event").get_index())
+
+
+def test_reach_moves_then_closes_and_asks_for_contact():
+    machine, scenario = make_machine()
+    simulator, context, _ = start(machine)
+    pose = machine.GetOutputPort("X_WG_desired").Eval(context)
+    np.testing.assert_allclose(pose.translation(), scenario.arm.initial_gripper_xyz)
+    np.testing.assert_array_equal(pose.rotation().matrix(), R_WG_SIDE_GRASP.matrix())
+    assert machine.GetOutputPort("expected_event").Eval(context)[0] == EVENT_INDICES["reach_load"]
+    command = machine.GetOutputPort("gripper_command").Eval(context)
+    assert command[ru.COMMAND_POSITION] <= ru.POSITION_OPEN_BYTE + 1  # open while reaching
+    g = scenario.grasp
+    simulator.AdvanceTo(g.settle_s + g.reach_s + 0.01)
+    pose = machine.GetOutputPort("X_WG_desired").Eval(context)
+    # The frame stops short of the expected object (0.72, 0) by the linkage pads' offset
+    # along the approach at the box's width, 1.79 mm: the closing pads meet its centre line.
+    np.testing.assert_allclose(pose.translation(), [0.72 - 0.00179, 0.0, g.grasp_height],
+                               atol=1e-5)
+    command = machine.GetOutputPort("gripper_command").Eval(context)
+    assert command[ru.COMMAND_POSITION] >= ru.POSITION_CLOSED_BYTE - 1  # closing
+    assert command[ru.COMMAND_FORCE] == ru.force_byte_from_force(g.grip_force)
+    assert mode(machine, context) == Mode.REACH
+
+
+def test_a_full_grasp_driven_through_the_ports():
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    g = scenario.grasp
+    simulator.AdvanceTo(g.settle_s + g.reach_s + 0.2)
+    inputs.set(channels=[10.0, 10.0, 0.1, 0.1], match=1.0)
+    run_until_mode(simulator, machine, Mode.LOAD, 0.01)
+    assert machine.GetOutputPort("expected_event").Eval(context)[0] == EVENT_INDICES["load_lift"]
+    run_until_mode(simulator, machine, Mode.LIFT, 0.01)
+    inputs.set(match=0.0)
+    z0 = machine.GetOutputPort("X_WG_desired").Eval(context).translation()[2]
+    simulator.AdvanceTo(context.get_time() + g.lift_s + 0.01)
+    assert mode(machine, context) == Mode.HOLD
+    z1 = machine.GetOutputPort("X_WG_desired").Eval(context).translation()[2]
+    assert z1 - z0 == pytest.approx(g.lift_height, abs=1e-3)
+    assert machine.GetOutputPort("expected_event").Eval(context)[0] == -1
+    simulator.AdvanceTo(context.get_time() + g.hold_s + 0.01)
+    assert mode(machine, context) == Mode.PLACE
+    simulator.AdvanceTo(context.get_time() + 0.5)
+    inputs.set(match=1.0)
+    simulator.AdvanceTo(context.get_time() + 0.01)
+    assert mode(machine, context) == Mode.UNLOAD
+    stopped = machine.GetOutputPort("X_WG_desired").Eval(context).translation()
+    simulator.AdvanceTo(context.get_time() + 0.3)
+    np.testing.assert_allclose(machine.GetOutputPort("X_WG_desired").Eval(context).translation(),
+                               stopped, atol=1e-12)  # the descent stops at the event
+    inputs.set(match=0.0, channels=[0.0, 0.0, 0.1, 0.1],
+               status=status(ru.STROKE_M, ru.ObjectStatus.AT_REQUESTED_POSITION))
+    simulator.AdvanceTo(context.get_time() + g.retract_s + 0.2)
+    assert mode(machine, context) == Mode.DONE
+    timeline = machine.timeline(context)
+    assert [(e["from"], e["to"], e["trigger"]) for e in timeline] == [
+        ("Reach", "Load", "memorized_event"), ("Load", "Lift", "memorized_event"),
+        ("Lift", "Hold", "timer"), ("Hold", "Place", "timer"),
+        ("Place", "Unload", "memorized_event"), ("Unload", "Done", "timer")]
+
+
+def lift(simulator, machine, context, inputs, scenario):
+    """Drives the machine from Reach into Lift; returns the time Lift began [s]."""
+    g = scenario.grasp
+    simulator.AdvanceTo(g.settle_s + g.reach_s + 0.2)
+    inputs.set(channels=[10.0, 10.0, 0.1, 0.1], match=1.0)
+    run_until_mode(simulator, machine, Mode.LOAD, 0.01)
+    started = run_until_mode(simulator, machine, Mode.LIFT, 0.01)
+    inputs.set(match=0.0)
+    return started
+
+
+def test_a_squeeze_in_the_ra_channel_is_not_a_slip():
+    # The film reads a rising grip as RA of about 165 m/s^2 (README, "Vibration (RA)
+    # model"); only the slip band's vibration may trigger Lift-Load.
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    lift(simulator, machine, context, inputs, scenario)
+    inputs.set(channels=[10.0, 10.0, 165.0, 165.0], slip_vibration=[0.5, 0.5])
+    simulator.AdvanceTo(context.get_time() + 0.2)
+    assert mode(machine, context) == Mode.LIFT
+
+
+def test_slip_band_vibration_for_slip_s_is_a_lift_load():
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    lift(simulator, machine, context, inputs, scenario)
+    config = MemorizedControllerConfig()
+    inputs.set(slip_vibration=[0.0, 2.0 * config.lift_load.slip_vibration_mps2])
+    began = context.get_time()
+    t = run_until_mode(simulator, machine, Mode.LOAD, 0.1)
+    assert config.lift_load.slip_s <= t - began <= config.lift_load.slip_s + 2 * config.update_period_s
+    command = machine.GetOutputPort("gripper_command").Eval(context)
+    assert command[ru.COMMAND_FORCE] == ru.force_byte_from_force(
+        scenario.grasp.grip_force * config.lift_load.force_factor)
+
+
+def test_one_sided_contact_re_reaches_toward_the_touching_finger():
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    g = scenario.grasp
+    simulator.AdvanceTo(g.settle_s + g.reach_s + 0.1)
+    opening = 0.070  # the left finger meets a 45 mm box 12.5 mm off centre
+    inputs.set(channels=[2.0, 0.0, 0.5, 0.5], status=status(opening))
+    simulator.AdvanceTo(context.get_time() + 0.15)
+    assert mode(machine, context) == Mode.RE_REACH
+    entry = machine.timeline(context)[-1]
+    assert entry["offset_m"] == pytest.approx((opening - 0.045) / 2, abs=1e-4)
+    y0 = machine.GetOutputPort("X_WG_desired").Eval(context).translation()[1]
+    inputs.set(channels=[0.0, 0.0, 0.0, 0.0],
+               status=status(ru.STROKE_M, ru.ObjectStatus.AT_REQUESTED_POSITION))
+    t_reach = run_until_mode(simulator, machine, Mode.REACH, 1.2)
+    assert t_reach > entry["t"] + 0.8  # opening, then the shift of re_reach.move_s
+    y1 = machine.GetOutputPort("X_WG_desired").Eval(context).translation()[1]
+    assert y1 - y0 == pytest.approx(entry["offset_m"], abs=1e-5)  # toward +y, the left finger
+
+
+def test_gripper_fault_fails_with_its_name():
+    machine, _ = make_machine()
+    simulator, context, inputs = start(machine)
+    inputs.set(status=status(fault=0x08))
+    simulator.AdvanceTo(0.02)
+    assert mode(machine, context) == Mode.FAILED
+    assert ru.fault_name(0x08) in machine.timeline(context)[-1]["reason"]
+
+
+def test_device_fault_input_fails_with_the_message():
+    machine, _ = make_machine()
+    simulator, context, _ = start(machine)
+    machine.GetInputPort(ports.DEVICE_FAULT).FixValue(context, AbstractValue.Make(
+        "tactile: no frame since 1.234 s"))
+    simulator.AdvanceTo(0.02)
+    assert mode(machine, context) == Mode.FAILED
+    assert machine.timeline(context)[-1]["reason"] == "tactile: no frame since 1.234 s"
+
+
+def test_closed_on_nothing_needs_a_status_that_echoes_the_close_request():
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    g = scenario.grasp
+    simulator.AdvanceTo(g.settle_s + g.reach_s + 0.05)
+    # A late status of the open request: "at requested position", echo = the open byte.
+    inputs.set(status=status(ru.STROKE_M, ru.ObjectStatus.AT_REQUESTED_POSITION))
+    simulator.AdvanceTo(context.get_time() + 0.3)
+    assert mode(machine, context) == Mode.REACH
+    closed = machine.GetOutputPort("gripper_command").Eval(context)[ru.COMMAND_POSITION]
+    inputs.set(status=status(0.0, ru.ObjectStatus.AT_REQUESTED_POSITION, request_byte=closed))
+    run_until_mode(simulator, machine, Mode.RE_REACH, 0.2)
+    assert machine.timeline(context)[-1]["reason"] == "the gripper closed on nothing"

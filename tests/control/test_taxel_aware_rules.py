@@ -1,0 +1,302 @@
+"""The taxel-aware rule table, one pure test per rule: the rule fires on the situation it
+is written for and does not on a near miss (the paper's rules too, read with the
+ContactEstimate); one per guard: it holds back each of its rules, and only while its
+condition holds; and what the actions carry."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from tegrasp_drake.control.controller_config import (MemorizedControllerConfig,
+                                                     TaxelAwareControllerConfig)
+from tegrasp_drake.control.corrective_actions import Counters
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.rule_actions import Failed, Regrasp, ReReach
+from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
+from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
+from tegrasp_drake.control.taxel_aware.estimator import ContactEstimate
+from tegrasp_drake.control.taxel_contact import grasp_contact
+from tegrasp_drake.control.transition_logic import Observation
+from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
+
+CONFIG = TaxelAwareControllerConfig()
+TAXEL = CONFIG.taxel_aware
+WIDTH_M = 0.045  # the box
+USED_UP = Counters(re_reaches=TAXEL.max_re_reaches)
+
+
+def pads(left_row=None, right_row=None, force=1.0):
+    """The GraspContact of a line contact across the given row of each pad (None: off)."""
+    taxels = np.zeros((2, ROWS, COLUMNS))
+    for k, row in enumerate((left_row, right_row)):
+        if row is not None:
+            taxels[k, row, :] = force
+    return grasp_contact(taxels.reshape(-1), CONFIG.taxel_contact_n)
+
+
+def situation(*, contact=(False, False), shape=None, estimate=None, **observation):
+    """An Observation with a ContactEstimate: the contact (SA) and the shape as given, the
+    gripper 80 mm open on the 45 mm box; `estimate`: further ContactEstimate fields."""
+    sensed = ContactEstimate(shape=shape or pads(), sa_n=tuple(3.0 * c for c in contact),
+                             contact=contact, opening_m=0.080, object_width_m=WIDTH_M,
+                             gripper_y_m=0.0, approaching=False)
+    sensed = dataclasses.replace(sensed, **(estimate or {}))
+    return Observation(contact=contact, estimate=sensed, **observation)
+
+
+def decide(mode, obs, counters=Counters(), config=CONFIG):
+    return TAXEL_AWARE_TABLE.next_mode(mode, obs, counters, config,
+                                       event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+
+
+def code(mode, obs, counters=Counters(), config=CONFIG):
+    decision = decide(mode, obs, counters, config)
+    return None if decision is None else decision.code
+
+
+ONE_SIDED = dict(contact=(False, True), one_sided_s=CONFIG.re_reach.one_sided_contact_s)
+REACH_LATE = dict(closing_s=CONFIG.re_reach.reach_event_timeout_s)
+LOAD_LATE = dict(time_in_mode=CONFIG.load_event_timeout_s)
+# (rule, mode, the situation it fires on, a near miss, counters)
+CASES = [
+    ("device_fault", Mode.HOLD, dict(device_fault="arm silent"), dict(), Counters()),
+    ("gripper_fault", Mode.REACH, dict(gripper_fault="gFLT_0x08"), dict(), Counters()),
+    ("object_lost", Mode.HOLD, dict(), dict(contact=(True, True)), Counters()),
+    ("finger_strike", Mode.REACH,
+     dict(estimate=dict(strike_s=TAXEL.finger_strike.sustain_s, strike_finger="left")),
+     dict(estimate=dict(strike_s=0.5 * TAXEL.finger_strike.sustain_s)), Counters()),
+    ("approach_contact", Mode.REACH,
+     dict(contact=(False, True), estimate=dict(approach_contact_s=CONFIG.re_reach.one_sided_contact_s,
+                                               approaching=True)),
+     dict(contact=(False, True), estimate=dict(approach_contact_s=0.02, approaching=True)),
+     Counters()),
+    ("beyond_pads", Mode.REACH,
+     dict(estimate=dict(touched_beyond_pads=True, first_touch_finger="right",
+                        first_touch_opening_m=0.0719)),
+     dict(estimate=dict(touched_beyond_pads=False)), Counters()),
+    ("off_centre", Mode.REACH,
+     dict(contact=(True, True), shape=pads(3, 3), event_matched=True),
+     dict(contact=(True, True), shape=pads(1, 2), event_matched=True), Counters()),
+    ("reach_event", Mode.REACH, dict(contact=(True, True), event_matched=True),
+     dict(contact=(True, True)), Counters()),
+    ("one_sided_at_width", Mode.REACH, dict(**ONE_SIDED, estimate=dict(opening_m=0.0452)),
+     dict(**ONE_SIDED, estimate=dict(opening_m=0.0530)), Counters()),
+    ("bracketed_at_extent", Mode.REACH,
+     dict(**ONE_SIDED, estimate=dict(opening_m=0.0530, bracket=(0.0, 0.0514))),
+     dict(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=(0.0, 0.0514))), Counters()),
+    ("bracket_recentre", Mode.REACH,
+     dict(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=(0.01, 0.0514))),
+     dict(**ONE_SIDED, estimate=dict(opening_m=0.0577)), Counters()),
+    ("one_sided", Mode.REACH, dict(**ONE_SIDED),
+     dict(contact=(False, True), one_sided_s=0.02), Counters()),
+    ("closed_on_nothing", Mode.REACH, dict(closed_on_nothing=True), dict(closing_s=0.5),
+     Counters()),
+    ("reach_timeout_both_pads", Mode.REACH, dict(contact=(True, True), **REACH_LATE),
+     dict(contact=(True, True), closing_s=0.5), Counters()),
+    ("reach_timeout_caged", Mode.REACH,
+     dict(**REACH_LATE, estimate=dict(caged_behind_pads=True)),
+     dict(closing_s=0.5, estimate=dict(caged_behind_pads=True)), Counters()),
+    ("reach_timeout", Mode.REACH, dict(**REACH_LATE), dict(closing_s=0.5), Counters()),
+    ("re_centred", Mode.RE_REACH, dict(motion_done=True), dict(), Counters()),
+    ("load_lift_event", Mode.LOAD, dict(contact=(True, True), event_matched=True),
+     dict(contact=(True, True)), Counters()),
+    ("relift", Mode.LOAD,
+     dict(contact=(True, True), grip_reached=True, time_in_mode=CONFIG.lift_load.relift_settle_s),
+     dict(contact=(True, True), grip_reached=True, time_in_mode=0.5 * CONFIG.lift_load.relift_settle_s),
+     Counters(lift_loads=1)),
+    ("load_timeout_both_pads", Mode.LOAD, dict(contact=(True, True), **LOAD_LATE),
+     dict(contact=(True, False), **LOAD_LATE), Counters()),
+    ("load_timeout_caged", Mode.LOAD, dict(**LOAD_LATE, estimate=dict(
+        caged_behind_pads=True)), dict(estimate=dict(caged_behind_pads=True)), Counters()),
+    ("load_timeout", Mode.LOAD, dict(contact=(True, False), **LOAD_LATE),
+     dict(contact=(True, False)), Counters()),
+    ("lift_load", Mode.LIFT, dict(contact=(True, True), slip_s=CONFIG.lift_load.slip_s),
+     dict(contact=(True, True), slip_s=0.5 * CONFIG.lift_load.slip_s), Counters()),
+    ("lift_ended", Mode.LIFT, dict(contact=(True, True), motion_done=True),
+     dict(contact=(True, True)), Counters()),
+    ("avoid_hit", Mode.HOLD, dict(contact=(True, True), hit=True), dict(contact=(True, True)),
+     Counters()),
+    ("held_tilted", Mode.HOLD,
+     dict(contact=(True, True), estimate=dict(tilted_s=TAXEL.tilt_sustain_s)),
+     dict(contact=(True, True), estimate=dict(tilted_s=0.5 * TAXEL.tilt_sustain_s)),
+     Counters()),
+    ("hold_time", Mode.HOLD, dict(contact=(True, True), time_in_mode=3.0),
+     dict(contact=(True, True), time_in_mode=2.9), Counters()),
+    ("avoid_ended", Mode.AVOID, dict(contact=(True, True), motion_done=True),
+     dict(contact=(True, True)), Counters()),
+    ("regrasp_after_place", Mode.PLACE,
+     dict(contact=(True, True), event_matched=True, regrasp_pending=True),
+     dict(contact=(True, True), regrasp_pending=True), Counters(regrasps=1)),
+    ("place_event", Mode.PLACE, dict(contact=(True, True), event_matched=True),
+     dict(contact=(True, True)), Counters()),
+    ("place_timeout", Mode.PLACE,
+     dict(contact=(True, True), motion_done=True,
+          time_since_motion_done=CONFIG.place.event_timeout_s),
+     dict(contact=(True, True), motion_done=True), Counters()),
+    ("released", Mode.UNLOAD, dict(motion_done=True), dict(), Counters()),
+]
+
+
+@pytest.mark.parametrize("rule,mode,fires,misses,counters", CASES,
+                         ids=[case[0] for case in CASES])
+def test_the_rule_fires_on_its_situation_and_not_on_a_near_miss(rule, mode, fires, misses,
+                                                                counters):
+    assert code(mode, situation(**fires), counters) == rule
+    assert code(mode, situation(**misses), counters) != rule
+
+
+# (guard, a rule it holds back, mode, the situation in which that rule fires, the estimate
+# fields under which the guard holds)
+GUARD_CASES = [
+    ("caged", "object_lost", Mode.HOLD, dict(), dict(caged_behind_pads=True)),
+    ("caged", "avoid_hit", Mode.HOLD, dict(contact=(True, True), hit=True),
+     dict(caged_behind_pads=True)),
+    ("caged", "lift_load", Mode.LIFT, dict(contact=(True, True), slip_s=1.0),
+     dict(caged_behind_pads=True)),
+    ("tipping_guard", "off_centre", Mode.REACH,
+     dict(contact=(True, True), shape=pads(3, 3), event_matched=True),
+     dict(topples_if_released=True)),
+]
+
+
+@pytest.mark.parametrize("guard,rule,mode,fires,holds", GUARD_CASES,
+                         ids=[f"{case[0]}-{case[1]}" for case in GUARD_CASES])
+def test_the_guard_holds_back_its_rule_only_while_its_condition_holds(guard, rule, mode, fires,
+                                                                      holds):
+    assert code(mode, situation(**fires)) == rule
+    assert code(mode, situation(**fires, estimate=holds)) != rule
+
+
+def test_every_rule_and_guard_of_the_table_has_a_case():
+    assert {rule.name for rule in TAXEL_AWARE_TABLE.all_rules()} == {case[0] for case in CASES}
+    guards = {guard.name: set(guard.holds_back) for guard in TAXEL_AWARE_TABLE.all_guards()}
+    assert guards == {name: {case[1] for case in GUARD_CASES if case[0] == name}
+                      for name in guards}
+
+
+def test_a_caged_object_in_lift_stays_however_it_slips_and_holds_when_lifted():
+    """The guard holds back Lift-Load, whose squeeze cannot reach it; the paper's end of the
+    lift still decides."""
+    slipping = dict(slip_s=1.0, estimate=dict(caged_behind_pads=True))
+    assert decide(Mode.LIFT, situation(**slipping)) is None
+    lifted = decide(Mode.LIFT, situation(**slipping, motion_done=True))
+    assert (lifted.code, lifted.mode) == ("lift_ended", Mode.HOLD)
+    assert decide(Mode.LIFT, situation(contact=(True, True), slip_s=1.0)).mode == Mode.LOAD
+
+
+def test_the_tipping_guard_loads_the_pushed_object_where_it_is_by_the_event():
+    decision = decide(Mode.REACH, situation(contact=(True, True), shape=pads(3, 3),
+                                            event_matched=True,
+                                            estimate=dict(topples_if_released=True)))
+    assert (decision.code, decision.mode, decision.trigger) == (
+        "reach_event", Mode.LOAD, Trigger.MEMORIZED_EVENT)
+
+
+def test_the_strike_backs_off_and_shifts_toward_the_struck_finger():
+    decision = decide(Mode.REACH, situation(estimate=dict(
+        strike_s=TAXEL.finger_strike.sustain_s, strike_finger="left", strike_force_n=6.3)))
+    assert decision.reason == ("the left finger struck the object during the approach "
+                               "(6.3 N at the wrist)")
+    assert decision.action == ReReach(Shift(-TAXEL.approach_retreat_m,
+                                            pytest.approx((0.080 - WIDTH_M) / 2)))
+
+
+def test_the_approach_contact_backs_off_with_the_papers_shift_along_the_stroke():
+    decision = decide(Mode.REACH, situation(contact=(False, True), estimate=dict(
+        approach_contact_s=CONFIG.re_reach.one_sided_contact_s, approaching=True)))
+    assert decision.action.shift == Shift(-TAXEL.approach_retreat_m,
+                                          pytest.approx(-(0.080 - WIDTH_M) / 2))
+
+
+def test_beyond_the_pads_moves_forward_by_half_a_pad_and_by_the_push_toward_the_pad():
+    decision = decide(Mode.REACH, situation(estimate=dict(
+        touched_beyond_pads=True, first_touch_finger="right", first_touch_opening_m=0.0719)))
+    assert decision.action.shift == Shift(pytest.approx(2 * CELL_Y),
+                                          pytest.approx(-(0.0719 - WIDTH_M) / 2))
+
+
+def test_beyond_the_pads_with_no_re_reach_left_lets_the_close_go_on():
+    obs = situation(closing_s=0.2, estimate=dict(touched_beyond_pads=True,
+                                                 first_touch_finger="right"))
+    assert decide(Mode.REACH, obs, USED_UP) is None
+
+
+def test_an_off_centre_contact_is_centred_along_both_axes():
+    decision = decide(Mode.REACH, situation(contact=(True, True), shape=pads(3, 3),
+                                            event_matched=True))
+    assert decision.action.shift == Shift(pytest.approx(1.5 * CELL_Y), 0.0)
+    assert decide(Mode.REACH, situation(contact=(True, True), shape=pads(3, 3),
+                                        event_matched=True), USED_UP).code == "reach_event"
+
+
+def test_the_bracket_re_centres_on_the_middle_of_the_two_faces():
+    obs = situation(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=(-0.0348, 0.0514),
+                                               gripper_y_m=-0.0379))
+    decision = decide(Mode.REACH, obs, Counters(re_reaches=3))
+    assert decision.action.shift.dy_m == pytest.approx(-0.0348 + 0.0379)
+    assert decide(Mode.REACH, obs, USED_UP).action == Failed()
+
+
+def test_the_regrasp_puts_down_and_re_reaches_without_a_shift_or_a_count():
+    hold = decide(Mode.HOLD, situation(contact=(True, True),
+                                       estimate=dict(tilted_s=TAXEL.tilt_sustain_s)))
+    assert (hold.mode, hold.trigger, hold.action) == (Mode.PLACE, Trigger.CORRECTIVE,
+                                                      Regrasp())
+    place = decide(Mode.PLACE, situation(contact=(True, True), event_matched=True,
+                                         regrasp_pending=True), Counters(regrasps=1))
+    assert place.action == ReReach(Shift(0.0, 0.0), counted=False)
+    once = decide(Mode.HOLD, situation(contact=(True, True), estimate=dict(
+        tilted_s=TAXEL.tilt_sustain_s)), Counters(regrasps=TAXEL.max_regrasps))
+    assert once is None  # at most max_regrasps
+
+
+@pytest.mark.parametrize("obs,counters", [
+    (situation(**REACH_LATE), Counters(re_reaches=TAXEL.max_re_reaches)),
+    (situation(contact=(True, False), **LOAD_LATE), Counters(re_reaches=CONFIG.re_reach.max_re_reaches)),
+    (situation(contact=(True, False), **LOAD_LATE), Counters(lift_loads=1))])
+def test_corrections_used_up_fail(obs, counters):
+    mode = Mode.REACH if obs.closing_s >= 0 else Mode.LOAD
+    decision = decide(mode, obs, counters)
+    assert decision.mode == Mode.FAILED and decision.action == Failed()
+
+
+def test_the_table_asks_the_devices_first_and_the_approach_before_the_papers_reach():
+    reach = [rule.name for rule, _ in TAXEL_AWARE_TABLE.ordered(Mode.REACH)]
+    assert reach[:6] == ["device_fault", "gripper_fault", "object_lost", "finger_strike",
+                         "approach_contact", "beyond_pads"]
+    assert reach.index("off_centre") < reach.index("reach_event") < reach.index("one_sided")
+    assert TAXEL_AWARE_TABLE.ordered(Mode.DONE) == ()
+    assert decide(Mode.DONE, situation(device_fault="x")) is None
+
+
+def test_a_one_sided_re_reach_centres_along_both_axes():
+    """The left finger alone touches, on its fingertip row; the gripper stopped 60 mm open
+    on the 45 mm box: 7.5 mm toward the left (+y), 9 mm forward (+x)."""
+    obs = situation(contact=(True, False), one_sided_s=CONFIG.re_reach.one_sided_contact_s,
+                    shape=pads(3, None), estimate=dict(opening_m=0.060))
+    shift = decide(Mode.REACH, obs).action.shift
+    assert shift == Shift(pytest.approx(1.5 * CELL_Y), pytest.approx(0.0075))
+    wide = decide(Mode.REACH, obs, Counters(re_reaches=TAXEL.max_re_reaches - 1))
+    assert wide.code == "one_sided" and wide.mode == Mode.RE_REACH
+    assert decide(Mode.REACH, obs, USED_UP).mode == Mode.FAILED
+
+
+def test_an_empty_pad_is_no_lost_object_while_the_fingers_cage_it():
+    caged = situation(hit=True, estimate=dict(caged_behind_pads=True))
+    assert decide(Mode.HOLD, caged) is None  # and its rattle is no hit
+    assert code(Mode.HOLD, situation(hit=True)) == "object_lost"
+
+
+def test_the_papers_controller_reads_no_estimate():
+    from tegrasp_drake.control.transition_logic import next_mode as paper_next_mode
+    paper = MemorizedControllerConfig()
+    obs = situation(**ONE_SIDED, estimate=dict(opening_m=0.0452, tilted_s=1.0,
+                                               caged_behind_pads=True))
+    reach = paper_next_mode(Mode.REACH, obs, Counters(), paper,
+                            event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (reach.mode, reach.code, reach.action) == (Mode.RE_REACH, "one_sided", ReReach())
+    assert code(Mode.REACH, obs) == "one_sided_at_width"
+    hold = situation(contact=(True, True), estimate=dict(tilted_s=1.0))
+    assert paper_next_mode(Mode.HOLD, hold, Counters(), paper,
+                           event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None

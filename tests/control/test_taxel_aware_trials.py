@@ -1,0 +1,181 @@
+"""The taxel_aware controller's rules in closed-loop trials, one scene per row: the scene,
+the rules that must decide its transitions (their names, in order), and what
+the grasp must achieve. Scenes on the prismatic hand with its ensemble events, in the world
+they were recorded in (ideal force taxels): the scenes were found on it, each to exercise its rule, and
+the same placement plays out otherwise on the linkage hand (its pads sweep along the
+approach axis and curl); the rules run on the linkage hand in the sweeps
+(docs/results.md)."""
+
+import dataclasses
+
+import pytest
+
+from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
+from tegrasp_drake.runs.trial import run_trial
+from tegrasp_drake.sweep.trial_function import trial_events
+
+pytestmark = pytest.mark.slow
+
+
+@dataclasses.dataclass(frozen=True)
+class Scene:
+    """A trial: the object placed `offset` [m] (approach axis, stroke) and `yaw_deg` from its
+    marker, the taxel_aware settings changed by `taxel_aware`, or a sweep spec's trial."""
+    object_name: str = "box"
+    offset: tuple = (0.0, 0.0)
+    yaw_deg: float = 0.0
+    seed: int | None = None
+    taxel_aware: tuple = ()  # (setting, value) pairs
+    spec: SweepSpec | None = None
+
+
+@dataclasses.dataclass(frozen=True)
+class Expect:
+    """The (from, to, rule name) transitions that must occur in this order (others may come
+    between), `first`: the first of them is the trial's first transition; `check`: a
+    further assertion on (the matched transitions, the result dict)."""
+    steps: tuple
+    first: bool = False
+    no_re_reach: bool = False
+    unload: bool = True
+    check: object = None
+
+
+# The prismatic hand in the world its events were recorded in (events/prismatic: ideal
+# force taxels, the default before the capacitive pad).
+HAND = ("gripper.model=prismatic", "tactile.transducer=force")
+
+
+def _run(scene: Scene):
+    if scene.spec is not None:
+        spec = dataclasses.replace(scene.spec, scenario_overrides=HAND)
+        (trial,) = [t.to_dict() for t in expand_trials(spec)]
+        scenario, events, corrective = trial_events(trial)
+        return run_trial(scenario, events=events, corrective_events=corrective)
+    base = LoadScenario(name=scene.object_name, controller="taxel_aware", overrides=list(HAND))
+    controller = dataclasses.replace(base.controller, taxel_aware=dataclasses.replace(
+        base.controller.taxel_aware, **dict(scene.taxel_aware)))
+    changes = dict(placement=dataclasses.replace(base.placement, offset=list(scene.offset),
+                                                 yaw_deg=scene.yaw_deg),
+                   controller=controller)
+    if scene.seed is not None:
+        changes["random_seed"] = scene.seed
+    return run_trial(dataclasses.replace(base, **changes))
+
+
+def _matched(transitions, steps):
+    """The transitions matching `steps` in order, or None."""
+    found, k = [], 0
+    for t in transitions:
+        if k < len(steps) and (t.from_mode.label, t.to_mode.label, t.code) == steps[k]:
+            found.append(t)
+            k += 1
+    return found if k == len(steps) else None
+
+
+def _load_waited_the_timeout(found, result):
+    entered = [t["t"] for t in result["transitions"] if t["to"] == "Load"][0]
+    timeout = LoadScenario(name="box").controller.load_event_timeout_s
+    return found[0].t - entered >= timeout - 1e-9 and found[0].trigger == "corrective"
+
+
+SCENES = {
+    # 12 mm farther than expected: the contact sits on the fingertip rows.
+    "off_centre": (Scene("thick_cylinder", (0.012, 0.0)), Expect(
+        (("Reach", "Re-Reach", "off_centre"),),
+        check=lambda found, r: found[0].approach_offset_m > 0.004)),
+    # The paper's controller stalled on one-sided contact 2 cm along the stroke.
+    "one_sided": (Scene("box", (0.0, 0.02)), Expect(
+        (("Reach", "Re-Reach", "one_sided"), ("Reach", "Load", "reach_event")))),
+    # 16 mm beyond and 24 mm along the stroke: the right pad meets the box in the approach;
+    # back off, shift toward it (-y), approach again.
+    "approach_contact": (Scene("box", (0.016, -0.024), -2.0), Expect(
+        (("Reach", "Re-Reach", "approach_contact"),), first=True,
+        check=lambda found, r: found[0].offset_m < 0.0 and found[0].approach_offset_m < 0.0)),
+    # 14 mm toward the palm, yawed 4.7 deg: closed to the width with the left pad alone.
+    "one_sided_at_width": (Scene("box", (-0.014, 0.001), 4.7), Expect(
+        (("Reach", "Load", "one_sided_at_width"),), first=True, no_re_reach=True)),
+    # A box yawed 10 deg, whose events the paper's controller never matched.
+    "yawed_box": (Scene("box", yaw_deg=10.0), Expect(
+        (("Reach", "Load", "reach_event"), ("Load", "Lift", "load_lift_event")))),
+    # The thin cylinder pushed along the stroke is held 3-5 deg tilted; its taxels read
+    # 0.4-0.9 deg of line tilt, so the limit is lowered below that to run the re-grasp.
+    "regrasp": (Scene("thin_cylinder", (0.0, 0.015), taxel_aware=(("tilt_limit_deg", 0.2),)),
+                Expect((("Hold", "Place", "held_tilted"),
+                        ("Place", "Re-Reach", "regrasp_after_place"),
+                        ("Load", "Lift", "load_lift_event")), unload=False,
+                       check=lambda found, r: found[1].offset_m == 0.0
+                       and "regrasp" in r["corrective_actions"]
+                       and [(t["from"], t["to"]) for t in r["transitions"]].count(
+                           ("Load", "Lift")) == 2)),
+    # The rod pushed 15 mm along the stroke past its tipping limit: loaded where it is by
+    # the event (the tipping guard holds off_centre back), not let go to re-centre (it
+    # would fall).
+    "tipping_guard": (Scene("thin_cylinder", (-0.01, -0.015)), Expect(
+        (("Reach", "Load", "reach_event"),), no_re_reach=True)),
+    # The rod 15 mm toward the palm is pushed behind the pads and caged there.
+    "caged": (Scene("thin_cylinder", (-0.015, -0.025), -10.0), Expect(
+        (("Reach", "Load", "reach_timeout_caged"),
+         ("Load", "Lift", "load_timeout_caged")), first=True, no_re_reach=True)),
+    # The rod's axis beyond the pads' distal edge: stop at the first touch, move forward
+    # and toward the right pad.
+    "beyond_pads": (Scene("thin_cylinder", (0.0139, -0.0246), 7.8), Expect(
+        (("Reach", "Re-Reach", "beyond_pads"),), first=True,
+        check=lambda found, r: found[0].approach_offset_m > 0.0 and found[0].offset_m < -0.015)),
+    # Box m20 of the second grid (15 mm beyond, 25 mm along the stroke) with seed 700,
+    # yawed to 32 deg by the approach's push: the right finger alone, then the left; the
+    # Re-Reach goes between the two faces, back by less than it came.
+    "bracket": (Scene(spec=SweepSpec(
+        objects=("box",), controllers=("taxel_aware",), attempts=1, base_seed=700,
+        grid=((0.015, -0.025),), randomisation=RandomisationConfig(placement_yaw_bound_deg=15.0))),
+        Expect((("Reach", "Re-Reach", "one_sided"),
+                ("Reach", "Re-Reach", "bracket_recentre")),
+               check=lambda found, r: found[0].offset_m < 0.0
+               and 0.0 < found[1].offset_m < abs(found[0].offset_m))),
+    # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
+    # threshold, and a correlation never exceeds 1): lifted after the Load timeout with both
+    # pads on the box, where the paper's rule would Re-Reach.
+    "load_timeout": (Scene("box", taxel_aware=(("load_lift_thresholds", [1.0, 1.0]),)),
+                     Expect((("Load", "Lift", "load_timeout_both_pads"),),
+                            no_re_reach=True, check=_load_waited_the_timeout)),
+    # A yawed box 25 mm along the stroke in the left finger's path: the strike, felt in the
+    # joint torques, backs the approach off and shifts it toward the left finger (+y).
+    "finger_strike": (Scene("box", (0.0, 0.025), -11.8, seed=700), Expect(
+        (("Reach", "Re-Reach", "finger_strike"),), first=True,
+        check=lambda found, r: found[0].offset_m > 0.01 and found[0].approach_offset_m < 0)),
+}
+
+
+# Scenes found on the ideal arm (its joints on the desired state, no latency) that the JACO2's
+# velocity command path changes: the tracker's position correction winds the set-point up
+# against a contact (with the tracker's kp at 0 the strike scene ends Done). The bracket scene
+# now meets the box in the approach and Re-Reaches on other rules; the strike scene strikes
+# 2.2-3.0 N again after each Re-Reach and fails after four. The rules are to be re-derived on
+# the faithful robot; until then these record the regression and fail once it is gone.
+ARM_PATH_REGRESSIONS = {"bracket", "finger_strike"}
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(name, marks=pytest.mark.xfail(
+        strict=True, reason="the scene was found on the ideal arm; the JACO2's velocity "
+        "command path plays it out otherwise")) if name in ARM_PATH_REGRESSIONS else name
+    for name in SCENES])
+def test_the_scene_is_decided_by_its_rules_and_grasped(name):
+    scene, expect = SCENES[name]
+    for _, _, rule in expect.steps:
+        TAXEL_AWARE_TABLE.rule(rule)  # KeyError: no such rule
+    run = _run(scene)
+    result = run.result
+    codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]
+    found = _matched(run.transitions, expect.steps)
+    assert found is not None, codes
+    if expect.first:
+        assert found[0] is run.transitions[0], codes
+    if expect.no_re_reach:
+        assert "re_reach" not in result["corrective_actions"]
+    if expect.check is not None:
+        assert expect.check(found, result), codes
+    assert result["final_mode"] == "Done" and result["hold_success"]
+    assert result["unload_success"] or not expect.unload

@@ -1,0 +1,196 @@
+"""A hardware run's LCM log read back, and the event matcher re-run on it (`tegrasp replay`),
+on a log written here from a synthetic grasp."""
+
+import contextlib
+import io
+import json
+
+import lcm
+import numpy as np
+import pytest
+
+from tegrasp_drake import cli
+from tegrasp_drake.hardware.device_log_messages import (RUN_INFO_CHANNEL, TACTILE_CHANNEL,
+                                                        TRANSITION_CHANNEL)
+from tegrasp_drake.events import extract_memorized_events, save_memorized_events
+from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
+from tegrasp_drake.runs.hardware_run import transition_message
+from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info, lcmt_tegrasp_tactile
+from tegrasp_drake.runs.hardware_log_reader import RunLogError, read_run_log
+from tegrasp_drake.runs.hardware_log_replay import (expected_event_schedule,
+                                                    matcher_config_of_run, replay_matcher)
+from tegrasp_drake.events.event_matcher import EventMatcherConfig
+from tegrasp_drake.events.replay import live_matcher_config
+from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
+
+GRASP = SyntheticGraspConfig()
+EVENTS = extract_memorized_events(synthetic_grasp(GRASP), object_name="box",
+                                  sa_rate_hz=100.0, ra_rate_hz=1000.0, package_versions={})
+LATE = 0.3  # [s] the logged transitions come this long after the physical events
+
+
+def logged_transitions():
+    times = GRASP.transition_times()
+    return [{"t": times["reach_load"] + LATE, "from": "Reach", "to": "Load",
+             "trigger": "memorized_event", "reason": "Reach-Load event"},
+            {"t": times["load_lift"] + LATE, "from": "Load", "to": "Lift",
+             "trigger": "memorized_event", "reason": "Load-Lift event"},
+            {"t": times["lift_hold"] + LATE, "from": "Lift", "to": "Hold",
+             "trigger": "timer", "reason": "lift motion ended"},
+            {"t": times["place_unload"] - 0.2, "from": "Hold", "to": "Place",
+             "trigger": "timer", "reason": "held"},
+            {"t": times["place_unload"] + LATE, "from": "Place", "to": "Unload",
+             "trigger": "memorized_event", "reason": "Place-Unload event"}]
+
+
+def tactile_message(t, sa, ra):
+    message = lcmt_tegrasp_tactile()
+    message.utime = message.device_utime = int(round(t * 1e6))
+    message.num_taxels = 12
+    message.left_taxel_forces = [sa[0] / 12] * 12
+    message.right_taxel_forces = [sa[1] / 12] * 12
+    message.left_pad_acceleration = [ra[0], 0.0, 0.0]
+    message.right_pad_acceleration = [ra[1], 0.0, 0.0]
+    message.arrival_s, message.tick_s = t, t + 0.001
+    return message
+
+
+@pytest.fixture(scope="module")
+def run_log_path(tmp_path_factory):
+    """A run's log as `tegrasp hardware` writes it, from the synthetic grasp at 1 kHz."""
+    trial = synthetic_grasp(GRASP)
+    path = tmp_path_factory.mktemp("run") / "run.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name = "memorized", "box"
+    log.write_event(0, RUN_INFO_CHANNEL, info.encode())
+    transitions = iter(logged_transitions())
+    pending = next(transitions, None)
+    for k, t in enumerate(trial.t_ra):
+        sa = trial.sa[min(np.searchsorted(trial.t_sa, t, side="right") - 1, len(trial.sa) - 1)]
+        log.write_event(k, TACTILE_CHANNEL, tactile_message(t, sa, trial.ra[k]).encode())
+        if pending is not None and pending["t"] <= t:
+            log.write_event(k, TRANSITION_CHANNEL, transition_message(pending).encode())
+            pending = next(transitions, None)
+    log.close()
+    return path
+
+
+def test_run_log_reads_back_channels_and_transitions(run_log_path):
+    log = read_run_log(run_log_path)
+    assert log.run_info.object_name == "box"
+    assert [(t["from"], t["to"]) for t in log.transitions] == [
+        (t["from"], t["to"]) for t in logged_transitions()]
+    trial = log.tactile_trial()
+    reference = synthetic_grasp(GRASP)
+    np.testing.assert_allclose(trial.ra, reference.ra, atol=1e-12)
+    assert trial.sa.max() == pytest.approx(reference.sa.max())
+
+
+def test_expected_event_follows_the_mode_the_logged_transitions_left():
+    index = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
+    schedule = expected_event_schedule(logged_transitions(), index)
+    assert [event for _, event in schedule] == [0, 1, -1, -1, 2, -1]
+    assert schedule[1][0] == logged_transitions()[0]["t"]
+
+
+def test_replayed_matcher_matches_each_memorized_event_before_its_transition(run_log_path):
+    log = read_run_log(run_log_path)
+    results = replay_matcher(log.tactile_trial(), log.transitions, EVENTS)
+    assert [r.transition for r in results] == ["reach_load", "load_lift", "lift_hold",
+                                                "place_unload"]
+    for result in results:
+        assert result.match_time is not None, result
+        assert -0.5 < result.delay < 0.0
+
+
+def test_the_replay_takes_the_live_runs_matcher_settings_from_its_scenario():
+    info = lcmt_tegrasp_run_info()
+    info.scenario_yaml = scenario_to_yaml(LoadScenario(name="faithful_world", overrides=(
+        "controller.matching.ra_envelope_hz=2.0",
+        "controller.matching.ra_noise_floor_sigmas=5.39",
+        "controller.matching.ra_noise_quiet_s=1.5", "controller.matching.sa_threshold=0.85")))
+    config = matcher_config_of_run(info, EVENTS)
+    assert (config.ra_envelope_hz, config.ra_noise_floor_sigmas, config.ra_noise_quiet_s,
+            config.sa_threshold) == (2.0, 5.39, 1.5, 0.85)
+    assert (config.sa_rate_hz, config.ra_rate_hz) == (108.0, 1000.0)  # the scenario's
+    assert matcher_config_of_run(lcmt_tegrasp_run_info(), EVENTS) == live_matcher_config(
+        EVENTS, EventMatcherConfig())  # no scenario: the defaults at the events' rates
+
+
+def test_the_replayed_matcher_has_the_runs_ra_envelope(run_log_path):
+    log = read_run_log(run_log_path)
+    raw = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+                         config=live_matcher_config(EVENTS))
+    enveloped = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+                               config=live_matcher_config(EVENTS, EventMatcherConfig(
+                                   ra_envelope_hz=2.0)))
+    first_raw, first_enveloped = raw[0].best_scores, enveloped[0].best_scores
+    assert first_raw[:2] == pytest.approx(first_enveloped[:2])  # SA unchanged
+    assert abs(first_raw[2] - first_enveloped[2]) > 1e-3  # RA scored on the envelope
+
+
+def test_the_replayed_matcher_has_the_runs_ra_noise_floor(run_log_path):
+    # Until the quiet period is measured no RA window can match: a 1.5 s one hides the
+    # Reach-Load event (logged at 1.1 s) that the replay matches without a floor.
+    log = read_run_log(run_log_path)
+    results = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+                             config=live_matcher_config(EVENTS, EventMatcherConfig(
+                                 ra_noise_floor_sigmas=5.39, ra_noise_quiet_s=1.5)))
+    assert results[0].transition == "reach_load" and results[0].match_time is None
+    assert results[0].best_scores[2:] == pytest.approx([0.0, 0.0])
+
+
+def test_replay_command_reports_the_log_and_the_matches(run_log_path, tmp_path):
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert cli.main(["replay", str(run_log_path), "--events", str(tmp_path / "events"),
+                         "--json"]) == 0
+    summary = json.loads(out.getvalue())
+    assert summary["object"] == "box" and summary["controller"] == "memorized"
+    assert all(r["match_time"] is not None for r in summary["replay"])
+    assert all(t is not None for t in summary["sequence_fire_times"].values())
+
+
+def test_a_missing_log_is_named(tmp_path):
+    with pytest.raises(RunLogError, match="run log '.*none.lcmlog' does not exist"):
+        read_run_log(tmp_path / "none.lcmlog")
+
+
+def test_an_intact_log_reports_no_damage(run_log_path):
+    assert read_run_log(run_log_path).damage == []
+
+
+def _truncated(data: bytes) -> bytes:
+    return data[:len(data) // 2 + 7]  # mid-message
+
+
+def _bit_flipped(data: bytes) -> bytes:
+    damaged = bytearray(data)
+    for k in range(len(damaged) // 3, len(damaged) // 3 + 20000, 97):
+        damaged[k] ^= 0x5A
+    return bytes(damaged)
+
+
+@pytest.mark.parametrize("damage, words", [(_truncated, "truncated: the last message is cut"),
+                                           (_bit_flipped, "corrupt bytes in")])
+def test_a_damaged_log_is_replayed_as_far_as_it_goes_and_says_what_was_lost(
+        damage, words, run_log_path, tmp_path, capsys):
+    """A log truncated mid-message or with flipped bytes is replayed as far as it goes,
+    with one warning that names the damage and the messages read, and exit code 3 (never
+    exit 0 with the rest silently dropped)."""
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    path = tmp_path / "damaged.lcmlog"
+    path.write_bytes(damage(run_log_path.read_bytes()))
+    total = sum(read_run_log(run_log_path).message_counts.values())
+    log = read_run_log(path)
+    read = sum(log.message_counts.values())
+    assert 0 < read < total
+    code = cli.main(["replay", str(path), "--events", str(tmp_path / "events"), "--json"])
+    captured = capsys.readouterr()
+    assert code == 3
+    warning = [line for line in captured.err.splitlines() if "warning" in line]
+    assert len(warning) == 1 and str(path) in warning[0] and words in warning[0]
+    assert f"read {read} messages" in warning[0]
+    assert json.loads(captured.out)["damage"] == log.damage

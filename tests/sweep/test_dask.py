@@ -1,0 +1,68 @@
+"""The same sweep on a Dask distributed cluster (a local one here)."""
+
+import pytest
+
+from tegrasp_drake.sweep import runner
+from tegrasp_drake.sweep.records import load_records
+from tegrasp_drake.sweep.runner import SweepError, run_sweep
+from tegrasp_drake.sweep.spec import SweepSpec
+from tests.fake_trials import failing_fake_trial, fake_trial, process_reporting_fake_trial
+
+distributed = pytest.importorskip(
+    "distributed", reason="the optional 'dask' extra (dask, distributed) is not installed")
+
+SPEC = SweepSpec(objects=("box", "thick_cylinder"), controllers=("memorized", "heuristic"),
+                 attempts=1)
+
+
+@pytest.fixture(scope="module")
+def scheduler_address():
+    import dask
+    # Dask's 30 s connection timeouts are hang guards; a busy host can take longer to
+    # start two worker processes, which is no failure of the sweep.
+    with dask.config.set({"distributed.comm.timeouts.connect": "600s",
+                          "distributed.comm.timeouts.tcp": "600s"}), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=None) as cluster:
+        yield cluster.scheduler_address
+
+
+def test_dask_cluster_records_the_same_as_the_process_pool(tmp_path, scheduler_address):
+    dask_dir, pool_dir = tmp_path / "dask", tmp_path / "pool"
+    summary = run_sweep(SPEC, fake_trial, dask_dir, scheduler=scheduler_address,
+                        progress=False)
+    assert summary.backend == f"dask:{scheduler_address}"
+    assert (summary.ran, summary.errors, summary.unfinished) == (36, (), ())
+    run_sweep(SPEC, fake_trial, pool_dir, workers=2, progress=False)
+    assert load_records(dask_dir).records == load_records(pool_dir).records
+
+
+def test_dask_run_records_errors_and_reruns_them_on_resume(tmp_path, scheduler_address):
+    spec = SweepSpec(objects=("box",), controllers=("memorized",), attempts=2)
+    summary = run_sweep(spec, failing_fake_trial, tmp_path, scheduler=scheduler_address,
+                        progress=False)
+    assert len(summary.errors) == 9 and summary.ran == 18
+    summary = run_sweep(spec, fake_trial, tmp_path, scheduler=scheduler_address,
+                        progress=False)
+    assert (summary.ran, summary.skipped, summary.errors) == (9, 9, ())
+
+
+def test_an_unreachable_scheduler_is_reported(tmp_path, monkeypatch):
+    monkeypatch.setattr(runner, "DASK_CONNECT_TIMEOUT_S", 1.0)
+    with pytest.raises(SweepError, match="cannot reach the Dask scheduler"):
+        run_sweep(SPEC, fake_trial, tmp_path, scheduler="tcp://127.0.0.1:9", progress=False)
+    assert not (tmp_path / "trials").exists()
+
+
+def test_a_cluster_with_more_workers_than_cores_runs_every_trial_once(tmp_path):
+    workers = runner.default_workers() + 2
+    spec = SweepSpec(objects=("box",), controllers=("memorized", "heuristic"), attempts=2)
+    # Its own dashboard port (":0", any free one): the module's cluster may still hold 8787.
+    with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster:
+        summary = run_sweep(spec, process_reporting_fake_trial, tmp_path,
+                            scheduler=cluster.scheduler_address, progress=False)
+    assert (summary.ran, summary.errors, summary.unfinished) == (36, (), ())
+    records = load_records(tmp_path).records
+    assert len(records) == 36
+    assert len({r["result"]["worker_pid"] for r in records.values()}) > runner.default_workers()

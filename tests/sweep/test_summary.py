@@ -1,0 +1,119 @@
+"""The results table from sweep records: success beside false triggers and latency, made
+by the reports; the results page (docs/results.md) kept equal to its results folders and
+naming the commit of each folder's records."""
+
+import pathlib
+
+import pytest
+
+from tegrasp_drake.reports import write_reports
+from tegrasp_drake.sweep import SweepSpec, expand_trials, make_record
+from tegrasp_drake.sweep.summary import (PAPER_ROW_NAME, RESULTS_BLOCK, RECORDS_LINE, last_commit,
+                                         page_with_record_commits, readme_with_summaries,
+                                         summary_rows)
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+RESULTS_PAGE = ROOT / "docs" / "results.md"
+
+
+def result(hold, *, latency=None, false_triggers=0):
+    return {"hold_success": hold, "unload_success": hold, "transitions": [],
+            "corrective_actions": [], "detection_latency_s": latency or {},
+            "false_triggers": false_triggers, "sim_time_s": 12.0, "wall_time_s": 25.0}
+
+
+def records(objects=("box", "thick_cylinder", "thin_cylinder")):
+    """Memorized: the well-placed trial of each object fails, latencies 0.1-0.3 s, one false
+    trigger in every fourth trial; heuristic: all succeed with a false Load-Lift each;
+    open loop: no event triggers."""
+    made = []
+    spec = SweepSpec(objects=objects, attempts=1)
+    for k, trial in enumerate(expand_trials(spec)):
+        index = k % 9  # the trial's marker, per (controller, object)
+        if trial.controller == "memorized":
+            r = result(not trial.well_placed, latency={"reach_load": 0.1 + 0.01 * index,
+                                            "load_lift": 0.2, "place_unload": 0.3},
+                       false_triggers=int(index % 4 == 0))
+        elif trial.controller == "heuristic":
+            r = result(True, latency={"reach_load": 0.05, "place_unload": 0.01},
+                       false_triggers=1)
+        else:
+            r = result(True)
+        made.append(make_record(trial.to_dict(), result=r))
+    return made
+
+
+def by_controller(rows):
+    return {cells[0]: cells for cells in rows}
+
+
+def test_success_false_triggers_and_latency_per_controller():
+    header, rows = summary_rows(records())
+    assert header == ["controller", "well-placed ~Hold", "~Unload", "misplaced ~Hold",
+                      "~Unload", "false triggers", "Reach-Load latency",
+                      "Load-Lift latency", "Place-Unload latency"]
+    table = by_controller(rows)
+    memorized = table["memorized triggers"]
+    assert memorized[1] == "0 % (0/3)"  # the centre marker's trial fails on every object
+    assert memorized[3] == "100 % (24/24)"
+    assert memorized[5] == "33 % (9/27)"      # markers 0, 4 and 8 of each object
+    assert memorized[6] == "0.140 s (27)"     # median of 0.10 ... 0.18
+    heuristic = table["heuristic thresholds"]
+    assert heuristic[5] == "100 % (27/27)" and heuristic[7] == "–"  # no on-time Load-Lift
+    assert table["open loop"][5:] == ["–"] * 4  # no event triggers: neither rate nor latency
+    assert table[PAPER_ROW_NAME] == [PAPER_ROW_NAME, "100 %", "89 %", "86 %", "69 %",
+                                     "–", "–", "–", "–"]
+
+
+def test_the_papers_row_only_beside_the_papers_three_objects():
+    _, rows = summary_rows(records(objects=("box",)))
+    assert PAPER_ROW_NAME not in by_controller(rows)
+
+
+def test_the_reports_write_the_summary(tmp_path):
+    from tegrasp_drake.sweep.records import write_record
+    for record in records(objects=("box",)):
+        write_record(tmp_path, record)
+    paths = write_reports(tmp_path)
+    assert tmp_path / "summary.md" in paths
+    assert "| memorized triggers | 0 % (0/1) |" in (tmp_path / "summary.md").read_text()
+
+
+def test_the_results_pages_tables_are_those_of_their_results_folders():
+    text = RESULTS_PAGE.read_text(encoding="utf-8")
+    folders = [m["folder"] for m in RESULTS_BLOCK.finditer(text)]
+    assert "../analysis/results_seed0" in folders and len(folders) >= 7
+    assert readme_with_summaries(text, RESULTS_PAGE.parent) == text, (
+        "a table of docs/results.md differs from its folder's records: run "
+        "`python analysis/update_results_page.py`")
+
+
+def test_the_results_page_names_the_commit_of_each_tables_records():
+    text = RESULTS_PAGE.read_text(encoding="utf-8")
+    named = {m["path"] for m in RECORDS_LINE.finditer(text)}
+    for match in RESULTS_BLOCK.finditer(text):
+        assert match["folder"].removeprefix("../") + "/trials" in named, match["folder"]
+    if last_commit(ROOT, "analysis/results_seed0/trials") is None:
+        pytest.skip("not a git checkout: the commits cannot be read")
+    assert page_with_record_commits(text, ROOT) == text, (
+        "docs/results.md names another commit than the last one of some records: run "
+        "`python analysis/update_results_page.py`")
+
+
+def test_a_stale_commit_is_replaced_and_an_abbreviation_of_the_right_one_kept():
+    def commit_of(root, path):
+        return {"a/trials": ("0123456789abcdef", "0123456", "2026-11-24")}.get(path)
+    stale = "Records `a/trials`, commit `fedcba9` (2026-01-01).\nrecords `b/trials`, commit\n`1234567` (2026-01-02)."
+    assert page_with_record_commits(stale, ".", commit_of) == (
+        "Records `a/trials`, commit `0123456` (2026-11-24).\n"
+        "records `b/trials`, commit\n`1234567` (2026-01-02).")
+    kept = "Records `a/trials`, commit `01234567` (2026-11-24)"
+    assert page_with_record_commits(kept, ".", commit_of) == kept
+
+
+def test_a_readme_without_the_block_or_records_is_an_error(tmp_path):
+    with pytest.raises(ValueError, match="results table from FOLDER"):
+        readme_with_summaries("# no table here\n", tmp_path)
+    block = "<!-- results table from empty -->\nold\n<!-- end of results table -->\n"
+    with pytest.raises(ValueError, match="no trial records"):
+        readme_with_summaries(block, tmp_path)

@@ -1,0 +1,214 @@
+"""The transfer matrix: its spec, its worlds as scenarios, and `tegrasp transfer` end to end
+(a fake trial for the machinery; two real trials, interrupted and resumed)."""
+
+import dataclasses
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+
+from tegrasp_drake.events.ra_noise_floor import (FALSE_ALARM_PER_TRIAL, TRIAL_HORIZON_S,
+                                                  floor_sigmas)
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.transfer.matrix import (LoadTransferSpec, TransferWorld,
+                                                       world_assignments)
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.typed_yaml import ConfigError
+
+TESTS = Path(__file__).resolve().parents[1]
+REPOSITORY = TESTS.parent
+TIMEOUT_S = 900
+
+
+def write_spec(folder, text):
+    path = Path(folder) / "transfer.yaml"
+    path.write_text(textwrap.dedent(text))
+    return path
+
+
+TWO_WORLDS = """\
+    worlds:
+      ideal: {scenario: memorizing_world}
+      faithful: {scenario: faithful_world}
+    cells: [[ideal, faithful]]
+    sweep:
+      objects: [box]
+      controllers: [memorized]
+      grid: [[0.0, 0.0]]
+      attempts: 2
+      base_seed: 600
+    """
+
+
+def test_the_two_worlds_are_the_presets_as_scenarios():
+    ideal = LoadScenario(overrides=world_assignments(TransferWorld("memorizing_world")))
+    assert ideal.gripper.model == "prismatic"
+    assert (ideal.tactile.transducer, ideal.tactile.sample_rate_hz) == ("force", 1000.0)
+    assert ideal.tactile.noise_std_n == 0.0 and ideal.tactile.quantization_n == 0.0
+    assert ideal.vibration.transducer == "accelerometer"
+    faithful = LoadScenario(overrides=world_assignments(
+        TransferWorld("faithful_world", ("grasp.grip_force=50",))))
+    assert faithful.gripper.model == "linkage"
+    assert (faithful.tactile.transducer, faithful.tactile.sample_rate_hz) == ("capacitive",
+                                                                             108.0)
+    assert faithful.vibration.transducer == "film"
+    assert faithful.grasp.grip_force == 50.0
+    assert LoadScenario(name="faithful_world").tactile.transducer == "capacitive"
+
+
+def test_the_committed_matrix_spec_loads_with_both_ends_and_one_factor_worlds():
+    spec = LoadTransferSpec(REPOSITORY / "analysis" / "transfer_matrix.yaml")
+    assert {"ideal", "faithful"} <= set(spec.worlds)
+    assert ("ideal", "faithful") in spec.cells and ("faithful", "ideal") in spec.cells
+    assert ("ideal", "ideal") in spec.cells and ("faithful", "faithful") in spec.cells
+    assert len(spec.sweep.objects) * len(spec.sweep.grid) * spec.sweep.attempts == 81
+
+
+def test_the_remedy_spec_is_cells_of_the_matrix_with_the_envelope_and_floor_in_every_world():
+    plain = LoadTransferSpec(REPOSITORY / "analysis" / "transfer_matrix.yaml")
+    remedy = LoadTransferSpec(REPOSITORY / "analysis" / "transfer_matrix_remedy.yaml")
+    assert remedy.worlds == {name: plain.worlds[name] for name in remedy.worlds}
+    assert set(remedy.cells) <= set(plain.cells)
+    ends = {(a, b) for a in ("ideal", "faithful") for b in ("ideal", "faithful")}
+    assert ends <= set(remedy.cells)
+    k = floor_sigmas(FALSE_ALARM_PER_TRIAL, int(TRIAL_HORIZON_S * 1000.0 * 2))
+    assert remedy.sweep == dataclasses.replace(plain.sweep, scenario_overrides=(
+        "controller.matching.ra_envelope_hz=2.0", f"controller.matching.ra_noise_floor_sigmas={k:.2f}"))
+
+
+@pytest.mark.parametrize("text, words", [
+    ("worlds: {ideal: {scenario: nowhere}}\ncells: [[ideal, ideal]]\n",
+     "field 'worlds.ideal.scenario': scenario 'nowhere' is not in"),
+    ("worlds: {ideal: {scenario: memorizing_world}}\ncells: [[ideal, other]]\n",
+     "unknown world 'other'"),
+    ("worlds: {ideal: {scenario: memorizing_world, overrides: [object.name=box]}}\n"
+     "cells: [[ideal, ideal]]\n", "'object.name' is set per trial"),
+    ("worlds: {ideal: {scenario: memorizing_world, overrides: [tactile.transducer=piezo]}}\n"
+     "cells: [[ideal, ideal]]\n", "tactile.transducer"),
+    ("worlds: {ideal/x: {scenario: memorizing_world}}\ncells: [[ideal/x, ideal/x]]\n",
+     "letters, digits and '_'"),
+    ("worlds: {ideal: {scenario: memorizing_world}}\ncells: [[ideal, ideal]]\n"
+     "sweep: {attempts: 0}\n", "field 'attempts'"),
+])
+def test_a_bad_spec_is_refused_naming_the_field(tmp_path, text, words):
+    with pytest.raises(ConfigError) as error:
+        LoadTransferSpec(write_spec(tmp_path, text))
+    assert words in str(error.value)
+    assert "\n" not in str(error.value)
+
+
+def environment():
+    entries = [str(REPOSITORY), str(TESTS), os.environ.get("PYTHONPATH", "")]
+    return {**os.environ, "PYTHONPATH": os.pathsep.join(e for e in entries if e)}
+
+
+def transfer_command(spec, out, *extra):
+    return [sys.executable, "-m", "tegrasp_drake.cli", "transfer", str(spec), "--out",
+            str(out), "--workers", "1", "--no-progress", *extra]
+
+
+def test_each_cell_is_a_sweep_with_its_memorizing_worlds_events_and_resumes(tmp_path):
+    spec = write_spec(tmp_path, TWO_WORLDS.replace("cells: [[ideal, faithful]]",
+                                                   "cells: {memorize_in: [ideal, faithful], "
+                                                   "run_in: [faithful]}"))
+    out = tmp_path / "out"
+    for world in ("ideal", "faithful"):  # events there already: nothing is recorded
+        shutil.copytree(paths.package_events_dir(), out / "events" / world,
+                        ignore=shutil.ignore_patterns("ensemble", "corrective", "prismatic"))
+    command = transfer_command(spec, out, "--trial-function",
+                               "tests.fake_trials:fake_trial_with_events")
+    first = subprocess.run(command, env=environment(), capture_output=True, text=True,
+                           timeout=120)
+    assert first.returncode == 0, first.stderr
+    for world in ("ideal", "faithful"):
+        records = sorted((out / "cells" / f"{world}-in-faithful" / "trials").glob("*.json"))
+        assert len(records) == 2
+        for record in records:
+            result = json.loads(record.read_text())["result"]
+            assert result["events_dir"] == str(out / "events" / world)
+    assert "recording" not in first.stdout
+    table = (out / "transfer.md").read_text()
+    assert "| ideal | faithful | memorized | 2 | 100 % (2/2) (30 ms) |" in table
+    assert "| faithful | faithful | memorized | 2 | 100 % (2/2) (30 ms) |" in table
+    assert (out / "transfer_matrix.png").stat().st_size > 0
+
+    again = subprocess.run(command, env=environment(), capture_output=True, text=True,
+                           timeout=120)
+    assert again.returncode == 0, again.stderr
+    assert again.stdout.count("2 already finished, 0 run now") == 2
+
+
+def test_a_folder_of_another_worlds_events_is_refused(tmp_path):
+    spec = write_spec(tmp_path, TWO_WORLDS)
+    out = tmp_path / "out"
+    (out / "events" / "ideal").mkdir(parents=True)
+    (out / "events" / "ideal" / "world.json").write_text(json.dumps(["gripper.model=1"]))
+    done = subprocess.run(transfer_command(spec, out), env=environment(),
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert "holds the events of world 'ideal' recorded with other settings" in done.stderr
+
+
+def wait_for(condition, process, what):
+    deadline = time.monotonic() + TIMEOUT_S
+    while not condition():
+        assert process.poll() is None, f"the command ended before {what}"
+        assert time.monotonic() < deadline, f"no {what} in time"
+        time.sleep(0.2)
+
+
+@pytest.mark.slow
+def test_two_real_trials_run_end_to_end_and_resume_after_a_kill(tmp_path):
+    """Memorize in the idealised world, run in the faithful one: the events are recorded,
+    the first trial finishes, the command is killed, and the rerun runs only the second."""
+    spec = write_spec(tmp_path, TWO_WORLDS)
+    out = tmp_path / "out"
+    trials = out / "cells" / "ideal-in-faithful" / "trials"
+    process = subprocess.Popen(transfer_command(spec, out), env=environment(),
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               start_new_session=True)
+    try:
+        wait_for(lambda: trials.is_dir() and any(trials.glob("*.json")), process,
+                 "first trial record")
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait(timeout=60)
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait(timeout=60)
+    (finished,) = sorted(trials.glob("*.json"))
+    before = finished.read_bytes()
+    assert (out / "events" / "ideal" / "index.json").is_file()
+
+    resumed = subprocess.run(transfer_command(spec, out), env=environment(),
+                             capture_output=True, text=True, timeout=TIMEOUT_S)
+    assert resumed.returncode == 0, resumed.stderr
+    assert "1 already finished, 1 run now" in resumed.stdout
+    assert "recording" not in resumed.stdout
+    assert finished.read_bytes() == before
+    assert len(list(trials.glob("*.json"))) == 2
+    for record in trials.glob("*.json"):
+        result = json.loads(record.read_text())["result"]
+        assert isinstance(result["hold_success"], bool) and result["transitions"]
+    assert "| ideal | faithful | memorized | 2 |" in (out / "transfer.md").read_text()
+
+
+def test_missing_events_of_a_cell_are_named_before_any_trial_runs(tmp_path):
+    spec = write_spec(tmp_path, TWO_WORLDS.replace("controllers: [memorized]",
+                                                   "controllers: [taxel_aware]"))
+    out = tmp_path / "out"
+    shutil.copytree(paths.package_events_dir(), out / "events" / "ideal",
+                    ignore=shutil.ignore_patterns("ensemble", "corrective", "prismatic"))
+    done = subprocess.run(transfer_command(spec, out), env=environment(),
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert done.stderr.startswith("tegrasp transfer: error: trial taxel_aware/box/")
+    assert done.stderr.count("\n") == 1
+    assert not (out / "cells").exists()
