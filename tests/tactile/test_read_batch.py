@@ -18,7 +18,7 @@ from tegrasp_drake.tactile.read_batch import (AddHeldSampleRegister, batch_first
 from tegrasp_drake.tactile.window_normalizer import ConnectWindowChannels
 
 from tests.sample_stream import AddSampleStream
-from test_events_matcher import EVENTS, NOISY
+from tests.events.test_matcher import EVENTS, NOISY
 
 RA_PERIOD_S = 0.001
 TICK_S = 0.005  # the state machine's default tick
