@@ -1,22 +1,12 @@
-"""Symbolic expressions that a compiled system evaluates as Python evaluates the same
-formula on floats: the same IEEE operations on the same operands, in the same order.
+"""Symbolic expressions that a compiled system evaluates as Python evaluates the same formula
+on floats: the same IEEE operations on the same operands, in the same order.
 
-pydrake.symbolic keeps an expression in a canonical form: a sum is one node of all its
-terms (x + y + z, in the node's own order), a product one node of its factors (and x * x
-becomes pow(x, 2)), like terms merge (2 x + 3 x = 5 x) and constants fold ((x + 1) - 1 =
-x). Evaluated, such a node rounds differently from Python's left-to-right (x + y) + z.
-`Ordered` builds each binary operation and checks that pydrake kept it as that one
-operation on its two operands (a sum node of the two terms, a product node of the two
-factors, a quotient); where it did not, it wraps the operands in an opaque node,
-max(operand, -inf), which equals the operand (NaN included) and which no sum or product
-looks into, and builds it again. A sum or product node of two operands rounds as Python
-does in either order (IEEE addition and multiplication commute); subtraction is a sum with
-a -1 coefficient and negation a product with -1, both exact.
-
-Write the formula as Python would evaluate it (operator precedence and left-to-right order
-are Python's: `a + b * c` is a + (b * c)); compare a system built this way with the Python
-function on floats bit for bit in its tests (floating-point signed zeros aside: 0.0 + x is
-how a sum node starts, so a -0.0 result may come out +0.0).
+pydrake.symbolic keeps canonical forms (n-ary sums and products, merged like terms, folded
+constants, x * x as pow), which round differently from Python's left-to-right order.
+`Ordered` builds each binary operation and, where pydrake did not keep it as one node of
+its two operands, wraps the operands in max(operand, -inf), which equals the operand and
+which no sum or product looks into. Write the formula as Python evaluates it and test the
+system against the Python function bit for bit (a -0.0 may come out +0.0).
 """
 
 import math

@@ -1,32 +1,10 @@
-"""The simulated 2F-85's drive, once a plant step, as compiled Drake systems: the part of the
-SimRobotiqDriver (sim_robotiq_driver.py, which has the physics) that runs at the plant's
-rate. Its planner (Python) takes the commands and plans the reference at the 2F-85's
-command rate; this takes the planner's state and sets the plant's PD every plant step:
-
-    drive_inputs (Multiplexer): the hand's (a, da/dt), the planner's state (PLANNER), the
-        drive's memory (MEMORY)
-      -> drive_step (SymbolicVectorSystem, no state): the memory after one step of
-         drive_set_point (the linkage hand) or force_limited_set_point (the prismatic one)
-      -> drive_memory (ZeroOrderHold): sampled every plant step half a step after the
-         plant's (so that it sees the state the plant steps from), held until the next
-      -> drive_set_point (SymbolicVectorSystem): the PD's set-point (a, da/dt), the hand's
-         initial a until the first drive step
-
-The step's expressions are the Python functions' own arithmetic, in the same order
-(ordered_expressions.py), so the drive sets the same set-points bit for bit. The memory
-starts at zero (a ZeroOrderHold's initial value) with STARTED 0, which stands for the
-planner's initial set-point and anchor.
-
-What the planner and the drive share, in order:
-  PLANNER (the planner's state): the reference (q [m], dq/dt [m/s], its acceleration
-    [m/s^2]), the goal q [m], half the closing speed [m/s], the force limit [N], the
-    position byte, gOBJ as the planner last set it, the reference's time [s], the
-    direction the command moves the nut in (+1 or -1), how many times a new command has
-    restarted held or stuck fingers, how many planner updates have run.
-  MEMORY (the drive's): whether a step has run, the PD's set-point (a, da/dt), the phase
-    (MOVING, STUCK, HELD), the motor's torque [N m], the anchor [rad], the last step's
-    da/dt, the restarts the drive has seen, gOBJ of fingers held, and 1 + the planner
-    updates that had run when the drive last set it (0: never).
+"""The simulated 2F-85's drive, once a plant step, as compiled Drake systems (the physics is in
+sim_robotiq_driver.py): a SymbolicVectorSystem evaluates drive_set_point (linkage hand) or
+force_limited_set_point (prismatic) on the hand's (a, da/dt), the planner's state (PLANNER)
+and the drive's memory (MEMORY); a ZeroOrderHold samples the new memory half a plant step
+after the plant's; a second SymbolicVectorSystem gives the PD's set-point (a, da/dt), the
+hand's initial a until the first step (memory starts at zero, STARTED 0). The expressions
+keep Python's float order (ordered_expressions.py): the same set-points bit for bit.
 """
 
 from pydrake.symbolic import Variable, logical_and, logical_or
@@ -42,8 +20,14 @@ from tegrasp_drake.simulation.ordered_expressions import (SYMBOLIC, Ordered, exp
 # pushing) and held (stopped at the current limit: object reported, no current).
 MOVING, STUCK, HELD = 0.0, 1.0, 2.0
 
+# The planner's state: reference q [m], dq/dt [m/s], d2q/dt2 [m/s^2], goal q [m], half the
+# closing speed [m/s], force limit [N], position byte, gOBJ as last set, reference time [s],
+# the command's nut direction (+-1), restarts of held or stuck fingers, planner updates.
 PLANNER = ("ref_q", "ref_v", "ref_a", "goal", "half_speed", "force", "position_byte",
            "object", "time", "direction", "restarts", "updates")
+# The drive's memory: a step has run, set-point (a [rad], da/dt [rad/s]), phase, motor
+# torque [N m], anchor [rad], last da/dt, restarts seen, gOBJ of held fingers, 1 + the
+# planner updates when the drive last set it (0: never).
 MEMORY = ("started", "set_a", "set_v", "phase", "motor", "anchor", "v_prev",
           "restarts_seen", "held_object", "held_object_since")
 (REF_Q, REF_V, REF_A, GOAL, HALF_SPEED, FORCE, POSITION_BYTE, OBJECT, TIME, DIRECTION,

@@ -20,11 +20,8 @@ from where the fingers stand. The prismatic hand keeps the idealised drive: no r
 stiff PD whose set-point stays within 2 F / kp of the finger, backdrivable. The position byte
 gPO is computed from the measured a through the hand's linkage.
 
-The driver is a Diagram (MakeSimRobotiqDriver): SimRobotiqPlanner, in Python, takes the
-commands, plans the reference and reports the status at the command rate; the drive, once a
-plant step, is built from compiled Drake systems (robotiq_drive_step.py) on this module's
-drive_set_point and force_limited_set_point, the same arithmetic, so no Python runs at the
-plant's rate.
+MakeSimRobotiqDriver: SimRobotiqPlanner (Python, command rate) and the per-plant-step drive
+compiled from this module's set-point functions (robotiq_drive_step.py).
 """
 
 import dataclasses

@@ -1,31 +1,12 @@
 """Read batches: a fast signal's samples taken in one update just before its reader's tick.
 
-A system that takes every 1 kHz RA sample in a Python update (the event matcher's window)
-calls Python a thousand times a second, although its outputs are read only at the grasp
-state machine's tick (5 ms). It can take the samples of each tick period in one update
-instead, a quarter sample period before the next tick, from a shift register of C++
-systems that holds them: a reader at the tick then finds the same state as with one update
-per sample. (Not half a period before: the simulated 2F-85's drive steps there, mid plant
-step, and an instant a rounding away from one of those would make the simulator stop twice,
-a hair apart.) Unlike the sample blocks (sample_block.py), which act on their samples up to a
-block late, nothing the reader sees changes.
-
-Why the reader sees the same state, with S samples of period T per read period P = S T:
-  - the batch update at k P - T / 4 pushes the samples taken at (k - 1) P, ..., k P - T,
-    each at its own time stamp, as the per-sample updates at those instants would;
-  - a reader whose update is at k P reads the state before any discrete update at k P: in
-    both cases the samples up to k P - T;
-  - what the samples are scored against (the expected event) is an output of the reader's
-    state. The reader changes it in an unrestricted update at k P, which Drake's simulator
-    applies before the discrete updates at k P, so the per-sample updates at k P, ...,
-    k P + (S - 1) T all see the new value, and so does the batch update at (k + 1) P - T / 4.
-Exact only for that reader: a publish event, or an update at another instant, may find the
-batched state up to P old.
-
-The register (AddHeldSampleRegister) is a ZeroOrderHold of the last S samples, shifted by a
-MatrixGain: no Python, and, unlike a discrete LinearSystem, nothing drawn from the random
-generator when the diagram's context is randomised (TimeVaryingAffineSystem draws its
-states' initial values, which would shift every noise stream seeded after it).
+A system that takes every 1 kHz RA sample in a Python update, but whose outputs only the
+state machine reads at its 5 ms tick, takes each tick's samples in one update a quarter
+sample period before the tick, each at its own time stamp, from a register that holds them
+(AddHeldSampleRegister: a ZeroOrderHold shifted by a MatrixGain, C++ only, nothing drawn
+when the context is randomised). The reader at the tick finds the per-sample state; a read
+at another instant may find it up to one tick old. Why it is exact, and why a quarter
+period: docs/controller.md (read batches).
 """
 
 import numpy as np
