@@ -80,7 +80,8 @@ from tegrasp_drake.simulation.carriage_systems import CarriageCommand, CarriageW
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.scenario.grasp_diagram import station_carriage
 from tegrasp_drake.simulation.station import initial_arm_positions
-from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
+from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig,
+                                                         MakeSimRobotiqDriver, SimRobotiqPlanner)
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 
@@ -196,7 +197,7 @@ CONSTRUCTORS = {
     PadAccelerometers: lambda: PadAccelerometers(sample_rate_hz=1000.0, highpass_cutoff_hz=2.0,
                                                  noise_std_mps2=0.05),
     PadNormalForces: lambda: PadNormalForces(plant=gripper_plant()[0], pads=gripper_plant()[1]),
-    SimRobotiqDriver: lambda: SimRobotiqDriver(config=GripperDriverConfig(), time_step=1e-3),
+    SimRobotiqPlanner: lambda: SimRobotiqPlanner(config=GripperDriverConfig()),
     BodyForcePulse: lambda: BodyForcePulse(body_index=BodyIndex(1), p_BQ=[0.0, 0.0, 0.0],
                                            f_W=[0.0, 50.0, 0.0], start_s=1.0),
     PadSlipVibration: lambda: PadSlipVibration(pads=gripper_plant()[1], object_body_index=0,
@@ -285,6 +286,8 @@ def test_every_system_class_has_a_block():
 BUILDERS = {
     MakePadFilms: pad_films,
     MakeMechanoreceptorChannels: MakeMechanoreceptorChannels,
+    MakeSimRobotiqDriver: lambda: MakeSimRobotiqDriver(config=GripperDriverConfig(),
+                                                       time_step=1e-3),
     MakeSlipVibrationBand: lambda: MakeSlipVibrationBand(band_hz=80.0, window_s=0.01,
                                                          sample_rate_hz=1000.0),
 }

@@ -104,7 +104,9 @@ def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
     """The EventMatcherConfig of an event-triggered controller's matcher: its Eq. 3
     thresholds (and the hand's chosen ensemble ones), the live SA and RA rates [Hz], its
     sample blocks, RA envelope and RA noise floor. The one mapping from a controller's
-    settings to its matcher's, which the live run and a replay of its log share."""
+    settings to its matcher's, which the live run and a replay of its log share (the live
+    run adds its state machine's tick as read_period_s, which changes nothing the machine
+    reads: tactile/read_batch.py)."""
     from tegrasp_drake.events import EventMatcherConfig
     return EventMatcherConfig(
         **dataclasses.asdict(config.matching),
@@ -120,8 +122,9 @@ def add_event_matcher_detector(builder, *, config, plan, rates_hz, events, chann
     if events is None:
         raise ValueError(f"AddGraspController: the {config.name} controller needs its "
                          "memorized events (events=load_controller_events(scenario))")
-    matcher_config = event_matcher_config(config, gripper_model=plan.gripper_model,
-                                          rates_hz=rates_hz)
+    matcher_config = dataclasses.replace(
+        event_matcher_config(config, gripper_model=plan.gripper_model, rates_hz=rates_hz),
+        read_period_s=config.update_period_s)
     return (add_event_matcher(builder, events, matcher_config, channels=channels),
             Trigger.MEMORIZED_EVENT)
 
@@ -149,7 +152,7 @@ def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channe
         events, EventMatcherConfig(event_thresholds={
             t: pair for t, pair in config.memorized_corrective.thresholds().items()
             if t in events}, sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1],
-            block_s=config.sensor_block_s)))
+            block_s=config.sensor_block_s, read_period_s=config.update_period_s)))
     ConnectWindowChannels(builder, matcher, channels)
     return matcher
 

@@ -48,6 +48,10 @@ class EventMatcherConfig:
     # Block [s] in which a fast rate's samples are scored in one update (0: per sample); a
     # match shows at most one block late (WindowNormalizerConfig.block_s).
     block_s: float = bounded(0.0, low=0.0, unit="s")
+    # The tick [s] of the one reader (the state machine's update); a rate taken per sample
+    # then takes each tick's samples in one update just before it (tactile/read_batch.py).
+    # 0: read at any time. Not with an RA noise floor (read at each sample).
+    read_period_s: float = bounded(0.0, low=0.0, unit="s")
     # Cutoff [Hz] of the RA envelope on memorized and live RA alike (ra_envelope.py); 0: none
     ra_envelope_hz: float = declared_field(EventMatchingConfig, "ra_envelope_hz")
     # The RA noise floor (events/ra_noise_floor.py): k of the floor m + k s measured on the
@@ -83,7 +87,7 @@ def window_normalizer_config(events: Mapping[str, MemorizedEvent],
     """The windows an EventMatcher scores: the events' window_s at the config's rates."""
     return WindowNormalizerConfig(window_s=next(iter(events.values())).window_s,
                                   sa_rate_hz=config.sa_rate_hz, ra_rate_hz=config.ra_rate_hz,
-                                  block_s=config.block_s)
+                                  block_s=config.block_s, read_period_s=config.read_period_s)
 
 
 class EventMatcher(WindowNormalizer):
@@ -94,7 +98,8 @@ class EventMatcher(WindowNormalizer):
     pass history of its last samples. Events are numbered in grasp order
     (`transition_indices`). A rate in blocks (config.block_s) slides through a block in one
     update; `match` asks whether the per-sample matcher would have matched after any of its
-    samples.
+    samples. With config.read_period_s, a rate taken per sample slides through each reader's
+    tick's samples in one update just before the tick (tactile/read_batch.py).
 
     .. pydrake_system::
 
@@ -145,6 +150,11 @@ class EventMatcher(WindowNormalizer):
                 templates, min_contrast=config.min_contrast, window=window_layout(group).window,
                 flat_needs_flat=config.flat_template_needs_flat_window)
         self._check_matchable(ordered_events, templates_by_event)
+        reads_floor = config.ra_noise_floor_sigmas > 0 or any(
+            template_is_flat(by_channel[c], config.min_contrast)[0]
+            for by_channel in templates_by_event for c in RA_CHANNELS)
+        if reads_floor:  # the floor is read at each sample: no read batches
+            normalizer_config = dataclasses.replace(normalizer_config, read_period_s=0.0)
         # After each correlation its PassHistory: a block's samples, or per sample two blocks'.
         block_span_s = max(block_samples(g.rate_hz, config.block_s) / g.rate_hz
                            for g in normalizer_config.rate_groups())
@@ -178,11 +188,8 @@ class EventMatcher(WindowNormalizer):
                                 for event in range(NO_EVENT, len(self._events))}
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
         self._gate_events = config.ra_noise_floor_sigmas > 0
-        quiet_templates = any(
-            template_is_flat(by_channel[c], config.min_contrast)[0]
-            for by_channel in templates_by_event for c in RA_CHANNELS)
         self._floor_port = (self.DeclareVectorInputPort("ra_floor", len(RA_CHANNELS))
-                            if self._gate_events or quiet_templates else None)
+                            if reads_floor else None)
         scores_state = {self.discrete_state_ticket(window.state)
                         for window in self.rate_windows}
         self.DeclareVectorOutputPort(

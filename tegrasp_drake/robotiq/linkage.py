@@ -13,6 +13,7 @@ fingertip curling toward the object).
 
 import dataclasses
 import math
+import typing
 
 import numpy as np
 from scipy.optimize import brentq
@@ -45,6 +46,22 @@ _A_Y, _C_Y, _PAD_OPEN_Y, _AC_Y, _AC_Z = (float(x) for x in (A[0], C[0], PAD_CENT
                                                            _AC[0], _AC[1]))
 
 
+@dataclasses.dataclass(frozen=True)
+class Functions:
+    """The math functions half_opening, driver_angle and half_opening_rate use: math's on
+    floats (FLOATS) or symbolic ones (simulation/ordered_expressions.py's SYMBOLIC), so one
+    formula serves floats and compiled expressions. `number` takes the argument in."""
+    cos: typing.Callable
+    sin: typing.Callable
+    acos: typing.Callable
+    min: typing.Callable
+    max: typing.Callable
+    number: typing.Callable
+
+
+FLOATS = Functions(cos=math.cos, sin=math.sin, acos=math.acos, min=min, max=max, number=float)
+
+
 def _rotate(v, angle: float) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
@@ -61,10 +78,10 @@ def pad_center(theta: float) -> np.ndarray:
     return PAD_CENTER_OPEN + follower_offset(theta)
 
 
-def half_opening(theta: float) -> float:
-    """The pad face's distance from the grasp axis [m] (half the opening), on the pin: a float
-    version of pad_center(theta)[0]."""
-    c, s = math.cos(theta), math.sin(theta)
+def half_opening(theta: float, f: Functions = FLOATS) -> float:
+    """The pad face's distance from the grasp axis [m] (half the opening), on the pin:
+    pad_center(theta)[0] on floats or, with f, on expressions."""
+    c, s = f.cos(theta), f.sin(theta)
     return _PAD_OPEN_Y + ((_A_Y + (c * _AC_Y - s * _AC_Z)) - _C_Y)
 
 
@@ -74,20 +91,20 @@ def pad_travel(theta: float) -> float:
     return float(follower_offset(theta)[1])
 
 
-def driver_angle(half_opening_m: float) -> float:
+def driver_angle(half_opening_m: float, f: Functions = FLOATS) -> float:
     """The driver angle [rad] leaving the pad face half_opening_m [m] from the grasp axis (the
     inverse of half_opening), for 0 <= half_opening_m <= the open value."""
-    q = min(max(float(half_opening_m), 0.0), _PAD_OPEN_Y)
+    q = f.min(f.max(f.number(half_opening_m), 0.0), _PAD_OPEN_Y)
     cosine = (q - _PAD_OPEN_Y + _C_Y - _A_Y) / LINK_RADIUS
-    return math.acos(min(max(cosine, -1.0), 1.0)) - _PHI_OPEN
+    return f.acos(f.min(f.max(cosine, -1.0), 1.0)) - _PHI_OPEN
 
 
 THETA_PADS_MEET = driver_angle(0.0)  # rad, 45.96 deg: the pad faces touch
 
 
-def half_opening_rate(theta: float) -> float:
+def half_opening_rate(theta: float, f: Functions = FLOATS) -> float:
     """d(half opening)/d(theta) [m/rad] on the pin: minus the pad's lever arm about A."""
-    return -LINK_RADIUS * math.sin(_PHI_OPEN + theta)
+    return -LINK_RADIUS * f.sin(_PHI_OPEN + theta)
 
 
 def pad_travel_at_opening(opening_m: float) -> float:

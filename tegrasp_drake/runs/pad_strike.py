@@ -26,7 +26,7 @@ from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.film_chain import finger_force_indices
 from tegrasp_drake.simulation.film_dynamics import first_order_highpass
 from tegrasp_drake.simulation.object_model import AddObject, object_body
-from tegrasp_drake.simulation.sim_robotiq_driver import SimRobotiqDriver
+from tegrasp_drake.simulation.sim_robotiq_driver import MakeSimRobotiqDriver
 from tegrasp_drake.simulation.station import AddTactileSensors
 from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
@@ -132,7 +132,7 @@ def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -
     plant.SetDefaultPositions(gripper, [q0, q0])
     plant.SetDefaultFloatingBaseBodyPose(
         object_body(plant, obj), RigidTransform([GRASP_XY[0], config.object_offset_m, 0.0]))
-    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(
+    driver = builder.AddNamedSystem("gripper_driver", MakeSimRobotiqDriver(
         config=scenario.gripper, time_step=plant.time_step(), initial_opening=2 * q0))
     command = builder.AddNamedSystem("command", ConstantVectorSource(
         gripper_command(0.0, 2 * speed, config.grip_force_n)))

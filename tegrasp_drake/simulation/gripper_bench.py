@@ -27,7 +27,8 @@ from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse
 from tegrasp_drake.simulation.gripper_hands import (actuated_state_selector, add_gripper_model,
                                                     configure_drive, gripper_hand)
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
-from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
+from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig,
+                                                         MakeSimRobotiqDriver)
 from tegrasp_drake.simulation.station import pad_geometries
 
 
@@ -102,7 +103,7 @@ def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConf
     plant.Finalize()
     plant.SetDefaultPositions(gripper, hand.default_positions())
 
-    sim_driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(
+    sim_driver = builder.AddNamedSystem("gripper_driver", MakeSimRobotiqDriver(
         config=driver, time_step=plant.time_step()))
     selector = builder.AddSystem(actuated_state_selector(plant, gripper, hand))
     builder.Connect(plant.get_state_output_port(gripper), selector.get_input_port())

@@ -41,13 +41,13 @@ class PrismaticHand:
     ensemble_thresholds: tuple = (("reach_load", (0.44, 0.65)), ("load_lift", (0.94, 0.90)),
                                   ("place_unload", (0.98, 0.90)))
 
-    def half_opening(self, a: float) -> float:
+    def half_opening(self, a: float, f: linkage.Functions = linkage.FLOATS) -> float:
         return a
 
-    def actuated(self, half_opening_m: float) -> float:
+    def actuated(self, half_opening_m: float, f: linkage.Functions = linkage.FLOATS) -> float:
         return half_opening_m
 
-    def half_opening_rate(self, a: float) -> float:
+    def half_opening_rate(self, a: float, f: linkage.Functions = linkage.FLOATS) -> float:
         """d(half opening)/da."""
         return 1.0
 
@@ -80,14 +80,14 @@ class LinkageHand:
     ensemble_thresholds: tuple = (("reach_load", (0.88, 0.55)), ("load_lift", (0.48, 0.75)),
                                   ("place_unload", (0.98, 0.65)))
 
-    def half_opening(self, a: float) -> float:
-        return linkage.half_opening(a)
+    def half_opening(self, a: float, f: linkage.Functions = linkage.FLOATS) -> float:
+        return linkage.half_opening(a, f)
 
-    def actuated(self, half_opening_m: float) -> float:
-        return linkage.driver_angle(half_opening_m)
+    def actuated(self, half_opening_m: float, f: linkage.Functions = linkage.FLOATS) -> float:
+        return linkage.driver_angle(half_opening_m, f)
 
-    def half_opening_rate(self, a: float) -> float:
-        return linkage.half_opening_rate(a)
+    def half_opening_rate(self, a: float, f: linkage.Functions = linkage.FLOATS) -> float:
+        return linkage.half_opening_rate(a, f)
 
     def default_positions(self) -> list[float]:
         return [0.0] * 8  # every joint at zero is the open pose, the loops closed

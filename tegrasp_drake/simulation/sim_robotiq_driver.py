@@ -19,6 +19,9 @@ gCU = 0; the screw holds the force of that instant). A new command restarts the 
 from where the fingers stand. The prismatic hand keeps the idealised drive: no rotor, a
 stiff PD whose set-point stays within 2 F / kp of the finger, backdrivable. The position byte
 gPO is computed from the measured a through the hand's linkage.
+
+MakeSimRobotiqDriver: SimRobotiqPlanner (Python, command rate) and the per-plant-step drive
+compiled from this module's set-point functions (robotiq_drive_step.py).
 """
 
 import dataclasses
@@ -26,20 +29,18 @@ import functools
 import math
 
 import numpy as np
-from pydrake.systems.framework import LeafSystem
+from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import drive
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
+from tegrasp_drake.simulation.robotiq_drive_step import (
+    DIRECTION, FORCE, GOAL, HALF_SPEED, HELD, MEMORY, MOTOR, MOVING, OBJECT, PLANNER,
+    POSITION_BYTE, REF_A, REF_Q, REF_V, RESTARTS, STUCK, TIME, UPDATES, AddDriveStep,
+    effective_phase, object_status_now)
 
-(_REF_Q, _REF_V, _REF_A, _GOAL, _HALF_SPEED, _FORCE, _POSITION_BYTE, _OBJECT, _T, _PHASE,
- _DIRECTION, _V_PREV, _MOTOR, _ANCHOR) = range(14)
-# The drive's phases (the _PHASE state): moving (the loop drives, within the current
-# limit), stuck (the screw holds the rotor against a load larger than the motor's torque,
-# the motor still pushing) and held (stopped at the current limit: object reported, no
-# current).
-MOVING, STUCK, HELD = 0.0, 1.0, 2.0
+_PLANNER_SIZE = len(PLANNER)  # the planner's state (robotiq_drive_step.PLANNER)
 
 
 @dataclasses.dataclass
@@ -179,8 +180,124 @@ def object_status(q: float, v: float, q_ref: float, goal: float, stall_speed: fl
     return int(ru.ObjectStatus.MOVING)
 
 
-class SimRobotiqDriver(LeafSystem):
-    """The simulated 2F-85 controller.
+class SimRobotiqPlanner(LeafSystem):
+    """The simulated 2F-85 controller's command intake, reference and status bytes, at the
+    2F-85's command rate; its drive (robotiq_drive_step.py) sets the plant's PD every
+    plant step from this system's state. MakeSimRobotiqDriver joins the two.
+
+    .. pydrake_system::
+
+        name: SimRobotiqPlanner
+        input_ports:
+        - command
+        - finger_state
+        - drive_memory
+        output_ports:
+        - planner_state
+        - status
+
+    Ports:
+        command: (3) rPR, rSP, rFR bytes.
+        finger_state: (2) the hand's actuated coordinate a and its rate, as
+            MakeSimRobotiqDriver's.
+        drive_memory: the drive's memory (robotiq_drive_step.MEMORY).
+        planner_state: this system's state (robotiq_drive_step.PLANNER), for the drive.
+        status: (8) status bytes, robotiq.units order.
+    """
+
+    def __init__(self, *, config: GripperDriverConfig, initial_opening: float = ru.STROKE_M):
+        super().__init__()
+        if config.model not in GRIPPER_MODELS:
+            raise ValueError(f"gripper.model '{config.model}' is not one of "
+                             f"{', '.join(GRIPPER_MODELS)}")
+        self._config = config
+        self._hand = gripper_hand(config.model)
+        self._dt = 1.0 / config.update_rate_hz
+        self._command = self.DeclareVectorInputPort("command", ru.COMMAND_SIZE)
+        self._finger_state = self.DeclareVectorInputPort("finger_state", 2)
+        self._memory = self.DeclareVectorInputPort("drive_memory", len(MEMORY))
+        q0 = initial_opening / 2
+        initial = np.zeros(_PLANNER_SIZE)
+        initial[[REF_Q, GOAL]] = q0
+        initial[HALF_SPEED] = ru.SPEED_MIN_MPS / 2
+        initial[FORCE] = ru.FORCE_MIN_N
+        initial[POSITION_BYTE] = ru.position_byte_from_opening(initial_opening)
+        initial[OBJECT] = int(ru.ObjectStatus.AT_REQUESTED_POSITION)
+        self._state = self.DeclareDiscreteState(initial)
+        self.DeclarePeriodicDiscreteUpdateEvent(self._dt, 0.0, self._update)
+        self.DeclareStateOutputPort("planner_state", self._state)
+        self.DeclareVectorOutputPort(
+            "status", ru.STATUS_SIZE, self._calc_status,
+            prerequisites_of_calc={self.discrete_state_ticket(self._state),
+                                   self._finger_state.ticket(), self._memory.ticket()})
+
+    def _update(self, context, discrete_state):
+        """The command intake and the reference, at the 2F-85's command rate."""
+        s = context.get_discrete_state(self._state).value().copy()
+        t = context.get_time()
+        hand = self._hand
+        a, v = self._finger_state.Eval(context).tolist()
+        phase = effective_phase(s, self._memory.Eval(context))
+        q = hand.half_opening(a)
+        # Advance the reference to now with the acceleration chosen at the last update.
+        h = t - s[TIME]
+        s[REF_Q] += s[REF_V] * h + 0.5 * s[REF_A] * h * h
+        s[REF_V] += s[REF_A] * h
+        s[TIME] = t
+        goal, force = s[GOAL], s[FORCE]
+        s[POSITION_BYTE], s[GOAL], s[HALF_SPEED], s[FORCE] = command_targets(
+            *self._command.Eval(context).tolist())
+        if (s[GOAL], s[FORCE]) != (goal, force):
+            if phase != MOVING:
+                # Fingers the screw holds: the new motion starts where they stand, and the
+                # drive moves again (it counts the restarts).
+                s[REF_Q], s[REF_V], phase = q, 0.0, MOVING
+                s[RESTARTS] += 1.0
+            if s[GOAL] != s[REF_Q]:
+                # The direction the command moves the nut in, in the actuated coordinate
+                # (kept until the next command: the reference may pass its goal by a hair).
+                rate = hand.half_opening_rate(hand.actuated(s[REF_Q]))
+                s[DIRECTION] = 1.0 if (s[GOAL] - s[REF_Q]) * rate > 0.0 else -1.0
+        if has_arrived(s[REF_Q], s[REF_V], s[GOAL], self._config.acceleration, self._dt):
+            s[REF_Q], s[REF_V] = s[GOAL], 0.0
+        s[REF_A] = reference_step(s[REF_Q], s[REF_V], s[GOAL], s[HALF_SPEED],
+                                  self._config.acceleration, self._dt)
+        if phase == HELD:
+            s[OBJECT] = held_object_status(q, s[GOAL])
+        else:
+            s[OBJECT] = object_status(q, v * hand.half_opening_rate(a), s[REF_Q], s[GOAL],
+                                      self._config.stall_speed)
+        s[UPDATES] += 1.0
+        discrete_state.set_value(self._state, s)
+
+    def _calc_status(self, context, output):
+        # Python floats (round() rounds half to even, as np.round); the same bytes.
+        s = context.get_discrete_state(self._state).get_value().tolist()
+        memory = self._memory.Eval(context).tolist()
+        a = self._finger_state.Eval(context).item(0)
+        hand = self._hand
+        # The motor's current: the torque it gives while the fingers move, none once they
+        # stop (the screw holds) or stand at the requested position.
+        gripper_object = object_status_now(s, memory)
+        moving = (gripper_object == int(ru.ObjectStatus.MOVING)
+                  and effective_phase(s, memory) != HELD)
+        force = abs(memory[MOTOR]) / (2.0 * abs(hand.half_opening_rate(a)))
+        status = [0.0] * ru.STATUS_SIZE
+        status[ru.STATUS_ACT] = 1.0
+        status[ru.STATUS_GTO] = 1.0
+        status[ru.STATUS_STA] = float(ru.ActivationStatus.ACTIVE)
+        status[ru.STATUS_OBJ] = gripper_object
+        status[ru.STATUS_PR] = s[POSITION_BYTE]
+        status[ru.STATUS_PO] = status_position_byte(hand.half_opening(a))
+        status[ru.STATUS_CU] = ru.current_byte(force, moving=moving)
+        output.SetFromVector(status)
+
+
+def MakeSimRobotiqDriver(*, config: GripperDriverConfig, time_step: float,
+                         initial_opening: float = ru.STROKE_M):
+    """The simulated 2F-85 controller (the module docstring) as a Diagram: its planner
+    (SimRobotiqPlanner, Python, at the command rate) and its drive (robotiq_drive_step.py,
+    compiled, once a plant step).
 
     .. pydrake_system::
 
@@ -203,121 +320,23 @@ class SimRobotiqDriver(LeafSystem):
 
     time_step is the plant's [s]: the drive runs once a plant step, half a step after it.
     """
-
-    def __init__(self, *, config: GripperDriverConfig, time_step: float,
-                 initial_opening: float = ru.STROKE_M):
-        super().__init__()
-        if config.model not in GRIPPER_MODELS:
-            raise ValueError(f"gripper.model '{config.model}' is not one of "
-                             f"{', '.join(GRIPPER_MODELS)}")
-        if not time_step > 0.0:
-            raise ValueError(f"time_step {time_step} must be the plant's positive step [s]")
-        self._config = config
-        self._hand = gripper_hand(config.model)
-        self._gain, self._damping = self._hand.pd_gains(config)
-        self._inertia = self._hand.drive_inertia(config)
-        self._dt = 1.0 / config.update_rate_hz
-        self._time_step = time_step
-        self._command = self.DeclareVectorInputPort("command", ru.COMMAND_SIZE)
-        self._finger_state = self.DeclareVectorInputPort("finger_state", 2)
-        q0 = initial_opening / 2
-        a0 = self._hand.actuated(q0)
-        initial = np.zeros(14)
-        initial[[_REF_Q, _GOAL]] = q0
-        initial[_ANCHOR] = a0
-        initial[_HALF_SPEED] = ru.SPEED_MIN_MPS / 2
-        initial[_FORCE] = ru.FORCE_MIN_N
-        initial[_POSITION_BYTE] = ru.position_byte_from_opening(initial_opening)
-        initial[_OBJECT] = int(ru.ObjectStatus.AT_REQUESTED_POSITION)
-        self._state = self.DeclareDiscreteState(initial)
-        self._set_point = self.DeclareDiscreteState([a0, 0.0])
-        self.DeclarePeriodicDiscreteUpdateEvent(self._dt, 0.0, self._update)
-        self.DeclarePeriodicDiscreteUpdateEvent(time_step, time_step / 2, self._drive_step)
-        self.DeclareStateOutputPort("desired_state", self._set_point)
-        self.DeclareVectorOutputPort(
-            "status", ru.STATUS_SIZE, self._calc_status,
-            prerequisites_of_calc={self.discrete_state_ticket(self._state),
-                                   self._finger_state.ticket()})
-
-    def _update(self, context, discrete_state):
-        """The command intake and the reference, at the 2F-85's command rate."""
-        s = context.get_discrete_state(self._state).value().copy()
-        t = context.get_time()
-        hand = self._hand
-        a, v = self._finger_state.Eval(context).tolist()
-        q = hand.half_opening(a)
-        # Advance the reference to now with the acceleration chosen at the last update.
-        h = t - s[_T]
-        s[_REF_Q] += s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
-        s[_REF_V] += s[_REF_A] * h
-        s[_T] = t
-        goal, force = s[_GOAL], s[_FORCE]
-        s[_POSITION_BYTE], s[_GOAL], s[_HALF_SPEED], s[_FORCE] = command_targets(
-            *self._command.Eval(context).tolist())
-        if (s[_GOAL], s[_FORCE]) != (goal, force):
-            if s[_PHASE] != MOVING:
-                # Fingers the screw holds: the new motion starts where they stand.
-                s[_REF_Q], s[_REF_V], s[_PHASE] = q, 0.0, MOVING
-            if s[_GOAL] != s[_REF_Q]:
-                # The direction the command moves the nut in, in the actuated coordinate
-                # (kept until the next command: the reference may pass its goal by a hair).
-                rate = hand.half_opening_rate(hand.actuated(s[_REF_Q]))
-                s[_DIRECTION] = 1.0 if (s[_GOAL] - s[_REF_Q]) * rate > 0.0 else -1.0
-        if has_arrived(s[_REF_Q], s[_REF_V], s[_GOAL], self._config.acceleration, self._dt):
-            s[_REF_Q], s[_REF_V] = s[_GOAL], 0.0
-        s[_REF_A] = reference_step(s[_REF_Q], s[_REF_V], s[_GOAL], s[_HALF_SPEED],
-                                   self._config.acceleration, self._dt)
-        if s[_PHASE] == HELD:
-            s[_OBJECT] = held_object_status(q, s[_GOAL])
-        else:
-            s[_OBJECT] = object_status(q, v * hand.half_opening_rate(a), s[_REF_Q], s[_GOAL],
-                                       self._config.stall_speed)
-        discrete_state.set_value(self._state, s)
-
-    def _drive_step(self, context, discrete_state):
-        """The drive, once a plant step: the PD's set-point for the next plant step."""
-        s = context.get_discrete_state(self._state).value().tolist()
-        set_point = context.get_discrete_state(self._set_point).value().tolist()
-        a, v = self._finger_state.Eval(context).tolist()
-        hand = self._hand
-        # The reference at the next plant step, in the actuated coordinate.
-        h = context.get_time() + 0.5 * self._time_step - s[_T]
-        q_ref = s[_REF_Q] + s[_REF_V] * h + 0.5 * s[_REF_A] * h * h
-        reference = hand.actuated(q_ref)
-        rate = hand.half_opening_rate(reference)
-        v_ref = (s[_REF_V] + s[_REF_A] * h) / rate
-        lever = abs(hand.half_opening_rate(a))
-        if hand.non_backdrivable:
-            (set_a, set_v, s[_PHASE], s[_MOTOR], s[_ANCHOR]) = drive_set_point(
-                a=a, v=v, v_prev=s[_V_PREV], set_point=set_point, phase=s[_PHASE],
-                anchor=s[_ANCHOR], reference=(reference, v_ref),
-                limit=2.0 * s[_FORCE] * lever, direction=s[_DIRECTION], gain=self._gain,
-                damping=self._damping, inertia=self._inertia, time_step=self._time_step)
-        else:
-            set_a = force_limited_set_point(a, reference, s[_FORCE], self._gain, lever)
-            set_v = v_ref
-            s[_MOTOR] = self._gain * (set_a - a)
-        if s[_PHASE] == HELD:  # reported at once, as the current that stops with it
-            s[_OBJECT] = held_object_status(hand.half_opening(a), s[_GOAL])
-        s[_V_PREV] = v
-        discrete_state.set_value(self._state, s)
-        discrete_state.set_value(self._set_point, [set_a, set_v])
-
-    def _calc_status(self, context, output):
-        # Python floats (round() rounds half to even, as np.round); the same bytes.
-        s = context.get_discrete_state(self._state).get_value().tolist()
-        a = self._finger_state.Eval(context).item(0)
-        hand = self._hand
-        # The motor's current: the torque it gives while the fingers move, none once they
-        # stop (the screw holds) or stand at the requested position.
-        moving = s[_OBJECT] == int(ru.ObjectStatus.MOVING) and s[_PHASE] != HELD
-        force = abs(s[_MOTOR]) / (2.0 * abs(hand.half_opening_rate(a)))
-        status = [0.0] * ru.STATUS_SIZE
-        status[ru.STATUS_ACT] = 1.0
-        status[ru.STATUS_GTO] = 1.0
-        status[ru.STATUS_STA] = float(ru.ActivationStatus.ACTIVE)
-        status[ru.STATUS_OBJ] = s[_OBJECT]
-        status[ru.STATUS_PR] = s[_POSITION_BYTE]
-        status[ru.STATUS_PO] = status_position_byte(hand.half_opening(a))
-        status[ru.STATUS_CU] = ru.current_byte(force, moving=moving)
-        output.SetFromVector(status)
+    if not time_step > 0.0:
+        raise ValueError(f"time_step {time_step} must be the plant's positive step [s]")
+    builder = DiagramBuilder()
+    planner = builder.AddNamedSystem("planner", SimRobotiqPlanner(
+        config=config, initial_opening=initial_opening))
+    hand = gripper_hand(config.model)
+    gain, damping = hand.pd_gains(config)
+    builder.ExportInput(planner.GetInputPort("command"), "command")
+    finger_state = builder.ExportInput(planner.GetInputPort("finger_state"), "finger_state")
+    drive_finger_state, memory, set_point = AddDriveStep(
+        builder, hand=hand, gain=gain, damping=damping, inertia=hand.drive_inertia(config),
+        time_step=time_step, initial_actuated=hand.actuated(initial_opening / 2),
+        planner_state=planner.GetOutputPort("planner_state"))
+    builder.ConnectInput(finger_state, drive_finger_state)
+    builder.Connect(memory, planner.GetInputPort("drive_memory"))
+    builder.ExportOutput(set_point, "desired_state")
+    builder.ExportOutput(planner.GetOutputPort("status"), "status")
+    diagram = builder.Build()
+    diagram.set_name("sim_robotiq_driver")
+    return diagram

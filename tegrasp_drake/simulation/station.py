@@ -71,7 +71,8 @@ from tegrasp_drake.simulation.pad_accelerometers import AddPadAccelerometers
 from tegrasp_drake.simulation.pad_slip_vibration import PadSlipVibration
 from tegrasp_drake.simulation.film_chain import AddPadFilms
 from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
-from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, SimRobotiqDriver
+from tegrasp_drake.simulation.sim_robotiq_driver import (GripperDriverConfig,
+                                                         MakeSimRobotiqDriver)
 from tegrasp_drake.simulation.station_visualization import (AddStationVisualization,
                                                            grasp_camera_pose)
 from tegrasp_drake.simulation.table_model import AddTable
@@ -402,7 +403,7 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
             ports.ARM_VELOCITY_MEASURED)
 
     # Gripper: the simulated 2F-85 controller.
-    driver = builder.AddNamedSystem("gripper_driver", SimRobotiqDriver(
+    driver = builder.AddNamedSystem("gripper_driver", MakeSimRobotiqDriver(
         config=gripper_config, time_step=plant.time_step()))
     selector = builder.AddNamedSystem("gripper_actuated_state", actuated_state_selector(
         plant, gripper, gripper_hand(gripper_config.model)))

@@ -9,6 +9,8 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
+from tegrasp_drake.tactile.read_batch import (AddHeldSampleRegister, batch_first_sample,
+                                              batch_update_offset, samples_per_read)
 from tegrasp_drake.tactile.sample_block import (AddSampleRegister, block_samples,
                                                block_update_period, samples_in_block)
 from tegrasp_drake.tactile.sampling import RateGroup, rate_groups
@@ -19,11 +21,18 @@ from tegrasp_drake.tactile.sliding_window import SlidingWindowState, default_sli
 class WindowNormalizerConfig:
     """Window length [s], the rates [Hz] at which SA and RA channels are sampled, and the
     block [s] in which a rate's samples are taken (0: one update per sample; else each rate
-    takes block_samples(rate, block_s) samples per update, tactile/sample_block.py)."""
+    takes block_samples(rate, block_s) samples per update, tactile/sample_block.py).
+
+    read_period_s: the tick [s] of the one reader of the outputs (the grasp state machine,
+    which reads them in its update at multiples of it); 0: read at any time. A rate taken
+    per sample that has 2 or more samples per tick (read_batch.samples_per_read) then takes
+    them in one update just before each tick (tactile/read_batch.py): the reader sees what
+    the per-sample system would show, a read at any other instant up to a tick old."""
     window_s: float = 0.5
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0
     block_s: float = 0.0
+    read_period_s: float = 0.0
 
     def rate_groups(self) -> tuple[RateGroup, ...]:
         """The channels sampled together, one periodic update per group."""
@@ -45,6 +54,7 @@ class RateWindow:
     channels: slice  # the group's entries of the four channels
     block_samples: int  # samples per update (1: one per sample period)
     block: object  # the `<group>_block` input port (the last block_samples samples)
+    before_read: bool = False  # the samples are a read batch (read_batch.py), not a block
 
 
 class WindowNormalizer(LeafSystem):
@@ -57,9 +67,12 @@ class WindowNormalizer(LeafSystem):
     channels in 10 ms blocks) is instead updated once per block from the `<group>_block`
     input, which a sample register on `channels` feeds (ConnectWindowChannels): each update
     pushes the block's samples in order, so at each block boundary the windows equal the
-    per-sample windows; between boundaries they are up to one block old. Before a full
-    window has been sampled, the older part of the window is zero. A non-finite sample is
-    missing: the channel's previous sample enters instead
+    per-sample windows; between boundaries they are up to one block old. With
+    config.read_period_s, a rate taken per sample with several samples per reader's tick
+    is updated once per tick instead, just before it, from a held register of the
+    tick's samples (tactile/read_batch.py): the reader's update at the tick sees the
+    per-sample windows. Before a full window has been sampled, the older part of the window
+    is zero. A non-finite sample is missing: the channel's previous sample enters instead
     (SlidingWindowState.entering_samples).
 
     Each rate's window is one discrete state vector. A subclass that works on the windows
@@ -82,7 +95,8 @@ class WindowNormalizer(LeafSystem):
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2).
         sa_block, ra_block (sa_ra_block when the rates match): the last block_samples
             samples of the rate's channels, oldest first (block_samples x channels, in
-            channels' order); read instead of `channels` by a rate in blocks.
+            channels' order); read instead of `channels` by a rate in blocks or in read
+            batches.
         sa_window: 2 * N_sa values, [sa_left window, sa_right window], oldest first, each
             divided by its max |value| (an all-zero window stays zero); unitless.
         ra_window: 2 * N_ra values, likewise for ra_left, ra_right.
@@ -108,11 +122,20 @@ class WindowNormalizer(LeafSystem):
                 raise ValueError(f"the initial '{group.name}' state must start with an empty "
                                  f"window of {layout.size} entries")
             samples = block_samples(group.rate_hz, config.block_s)
+            batch = (samples_per_read(group.rate_hz, config.read_period_s) if samples == 1
+                     else 1)
+            samples = max(samples, batch)
             window = RateWindow(group, layout, self.DeclareDiscreteState(initial),
                                 slice(group.channels[0], group.channels[-1] + 1), samples,
                                 self.DeclareVectorInputPort(f"{group.name}_block",
-                                                            samples * len(group.channels)))
-            if samples > 1:
+                                                            samples * len(group.channels)),
+                                before_read=batch > 1)
+            if batch > 1:
+                self.DeclarePeriodicDiscreteUpdateEvent(
+                    config.read_period_s,
+                    batch_update_offset(group.rate_hz, config.read_period_s),
+                    functools.partial(self._sample_batch, window))
+            elif samples > 1:
                 self.DeclarePeriodicDiscreteUpdateEvent(
                     block_update_period(1.0 / group.rate_hz, samples), 0.0,
                     functools.partial(self._sample_block, window))
@@ -169,6 +192,22 @@ class WindowNormalizer(LeafSystem):
             self._after_push(window, state, pushed, missing, context,
                              now - (window.block_samples - 1 - k) * period)
 
+    def _sample_batch(self, window: RateWindow, context, discrete_state) -> None:
+        """The periodic update of a `window` in read batches (read_batch.py): pushes the
+        samples of its channels taken since the last batch (the rows of its block input,
+        oldest first), each as `_sample` pushes one at its own time."""
+        state = discrete_state.get_mutable_value(window.state)
+        rate, read_period = window.group.rate_hz, self._config.read_period_s
+        period = 1.0 / rate
+        first = batch_first_sample(context.get_time(), rate, read_period,
+                                   window.block_samples)
+        block = window.block.Eval(context).reshape(window.block_samples, -1)
+        for k in range(window.block_samples):
+            samples, missing = window.layout.entering_samples(state, block[k])
+            pushed = window.layout.push(state, samples)
+            # The time stamp the simulator gives the per-sample update: index x period.
+            self._after_push(window, state, pushed, missing, context, (first + k) * period)
+
     def _after_push(self, window: RateWindow, state: np.ndarray,
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
                     context, sample_time: float) -> None:
@@ -185,15 +224,18 @@ class WindowNormalizer(LeafSystem):
 
 def ConnectWindowChannels(builder, normalizer: WindowNormalizer, channels) -> None:
     """Connects `channels` (an output port of the four channels) to a WindowNormalizer (or
-    EventMatcher) already in `builder`: to its `channels` input and, for each rate in blocks,
-    through a sample register of the rate's channels (`<system name>_<group>_block`) to its
+    EventMatcher) already in `builder`: to its `channels` input and, for each rate in blocks
+    or in read batches, through a register of the rate's channels (a sample register,
+    `<system name>_<group>_block`, or a held one, `<system name>_<group>_batch`) to its
     `<group>_block` input."""
     builder.Connect(channels, normalizer.GetInputPort("channels"))
     for window in normalizer.rate_windows:
-        if window.block_samples > 1:
-            builder.Connect(
-                AddSampleRegister(builder, channels, samples=window.block_samples,
-                                  sample_period_s=1.0 / window.group.rate_hz,
-                                  entries=window.group.channels,
-                                  name=f"{normalizer.get_name()}_{window.group.name}_block"),
-                window.block)
+        if window.block_samples == 1:
+            continue
+        add, kind = ((AddHeldSampleRegister, "batch") if window.before_read
+                     else (AddSampleRegister, "block"))
+        builder.Connect(add(builder, channels, samples=window.block_samples,
+                            sample_period_s=1.0 / window.group.rate_hz,
+                            entries=window.group.channels,
+                            name=f"{normalizer.get_name()}_{window.group.name}_{kind}"),
+                        window.block)

@@ -5,8 +5,10 @@ from tegrasp_drake.robotiq import linkage
 from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.robotiq import drive
+from tegrasp_drake.simulation import robotiq_drive_step as step
 from tegrasp_drake.simulation.sim_robotiq_driver import (HELD, MOVING, STUCK,
-                                                         GripperDriverConfig, SimRobotiqDriver,
+                                                         GripperDriverConfig,
+                                                         MakeSimRobotiqDriver,
                                                          drive_set_point, has_arrived,
                                                          object_status, reference_step)
 
@@ -33,6 +35,17 @@ def _after_one_drive_step(driver, context):
     simulator = Simulator(driver, context)
     simulator.AdvanceTo(0.75 * TIME_STEP)
     return simulator.get_context()
+
+
+def _states(driver, context):
+    """The planner's state and the drive's memory (mutable vectors) in a driver's context
+    (MakeSimRobotiqDriver: robotiq_drive_step.PLANNER, MEMORY)."""
+    planner = driver.GetSubsystemByName("planner")
+    memory = driver.GetSubsystemByName("drive_memory")
+    return (planner.GetMyMutableContextFromRoot(context).get_mutable_discrete_state(0)
+            .get_mutable_value(),
+            memory.GetMyMutableContextFromRoot(context).get_mutable_discrete_state(0)
+            .get_mutable_value())
 
 
 def test_reference_accelerates_toward_the_goal_then_cruises():
@@ -65,20 +78,20 @@ def test_object_status_reports_a_stall_before_the_goal_while_closing():
 
 def test_force_limit_bounds_the_setpoint_offset():
     config = PRISMATIC
-    driver = SimRobotiqDriver(config=config, time_step=TIME_STEP)
+    driver = MakeSimRobotiqDriver(config=config, time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, 0])  # close at 20 N
     driver.GetInputPort("finger_state").FixValue(context, [0.02, 0.0])
     # Put the reference far inside the object: the set-point stays within 2 F / kp.
-    state = context.get_mutable_discrete_state(0).get_mutable_value()
-    state[0] = 0.0
+    planner, _ = _states(driver, context)
+    planner[step.REF_Q] = 0.0
     context = _after_one_drive_step(driver, context)
     desired = driver.GetOutputPort("desired_state").Eval(context)
     assert np.isclose(0.02 - desired[0], 2 * ru.FORCE_MIN_N / config.position_gain)
 
 
 def test_status_reports_activation_and_position_bytes():
-    driver = SimRobotiqDriver(config=PRISMATIC, time_step=TIME_STEP)
+    driver = MakeSimRobotiqDriver(config=PRISMATIC, time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [0, 0, 0])
     driver.GetInputPort("finger_state").FixValue(context, [0.0425, 0.0])
@@ -88,7 +101,7 @@ def test_status_reports_activation_and_position_bytes():
 
 
 def test_linkage_status_position_comes_from_the_driver_angle_through_the_linkage():
-    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
+    driver = MakeSimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [0, 0, 0])
     for opening in (0.085, 0.045, 0.010):
@@ -189,13 +202,13 @@ def test_simulated_and_emulated_grippers_read_no_current_once_stopped_on_an_obje
     from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulatorConfig, RobotiqGripperModel
     from tegrasp_drake.simulation import sim_robotiq_driver as sim
     force_byte = 128
-    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
+    driver = MakeSimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, force_byte])
     driver.GetInputPort("finger_state").FixValue(context, [THETA, 0.0])  # on a 45 mm object
-    state = context.get_mutable_discrete_state(0).get_mutable_value()
-    state[sim._PHASE], state[sim._OBJECT] = HELD, ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
-    state[sim._MOTOR] = LIMIT
+    planner, memory = _states(driver, context)
+    planner[step.OBJECT] = ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING
+    memory[step.PHASE], memory[step.MOTOR] = HELD, LIMIT
     simulated = driver.GetOutputPort("status").Eval(context)[ru.STATUS_CU]
     model = RobotiqGripperModel(RobotiqEmulatorConfig(activation_duration=0.0,
                                                       object_opening=0.045), now=0.0)
@@ -209,31 +222,32 @@ def test_simulated_and_emulated_grippers_read_no_current_once_stopped_on_an_obje
 
 def test_the_simulated_current_follows_the_motors_torque_while_the_fingers_move():
     from tegrasp_drake.simulation import sim_robotiq_driver as sim
-    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
+    driver = MakeSimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, 255])
     driver.GetInputPort("finger_state").FixValue(context, [THETA, 0.0])
-    context.get_mutable_discrete_state(0).SetAtIndex(sim._OBJECT, ru.ObjectStatus.MOVING)
     for force, current in ((0.0, ru.MOVING_CURRENT), (ru.FORCE_MAX_N, ru.MAX_GRIPPING_CURRENT)):
-        context.get_mutable_discrete_state(0).SetAtIndex(
-            sim._MOTOR, 2 * force * -linkage.half_opening_rate(THETA))
+        planner, memory = _states(driver, context)  # (getting them marks the outputs stale)
+        planner[step.OBJECT] = ru.ObjectStatus.MOVING
+        memory[step.MOTOR] = 2 * force * -linkage.half_opening_rate(THETA)
         assert driver.GetOutputPort("status").Eval(context)[ru.STATUS_CU] == current
 
 
 def test_held_fingers_stay_held_when_the_reference_passes_its_goal_by_a_hair():
     from tegrasp_drake.simulation import sim_robotiq_driver as sim
-    driver = SimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
+    driver = MakeSimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     command = [255, 255, 0]  # close at 20 N: the goal is q = 0
     driver.GetInputPort("command").FixValue(context, command)
     driver.GetInputPort("finger_state").FixValue(context, [THETA, 0.0])
-    state = context.get_mutable_discrete_state(0)
+    planner, memory = _states(driver, context)
     _, goal, half_speed, force = sim.command_targets(*command)
-    for index, value in ((sim._GOAL, goal), (sim._FORCE, force), (sim._HALF_SPEED, half_speed),
-                         (sim._REF_Q, goal - 5e-5), (sim._DIRECTION, 1.0),
-                         (sim._PHASE, HELD), (sim._ANCHOR, THETA)):
-        state.SetAtIndex(index, value)
-    context.get_mutable_discrete_state(1).SetFromVector([THETA + 1.2 * LIMIT / GAIN, 0.0])
+    for index, value in ((step.GOAL, goal), (step.FORCE, force), (step.HALF_SPEED, half_speed),
+                         (step.REF_Q, goal - 5e-5), (step.DIRECTION, 1.0)):
+        planner[index] = value
+    for index, value in ((step.STARTED, 1.0), (step.PHASE, HELD), (step.ANCHOR, THETA),
+                         (step.SET_A, THETA + 1.2 * LIMIT / GAIN), (step.SET_V, 0.0)):
+        memory[index] = value
     context = _after_one_drive_step(driver, context)
-    s = context.get_discrete_state(0).value()
-    assert s[sim._PHASE] == HELD and s[sim._DIRECTION] == 1.0
+    planner, memory = _states(driver, context)
+    assert memory[step.PHASE] == HELD and planner[step.DIRECTION] == 1.0

@@ -1,0 +1,155 @@
+"""The simulated 2F-85's drive, once a plant step, as compiled Drake systems (the physics is in
+sim_robotiq_driver.py): a SymbolicVectorSystem evaluates drive_set_point (linkage hand) or
+force_limited_set_point (prismatic) on the hand's (a, da/dt), the planner's state (PLANNER)
+and the drive's memory (MEMORY); a ZeroOrderHold samples the new memory half a plant step
+after the plant's; a second SymbolicVectorSystem gives the PD's set-point (a, da/dt), the
+hand's initial a until the first step (memory starts at zero, STARTED 0). The expressions
+keep Python's float order (ordered_expressions.py): the same set-points bit for bit.
+"""
+
+from pydrake.symbolic import Variable, logical_and, logical_or
+from pydrake.systems.primitives import Multiplexer, SymbolicVectorSystem, ZeroOrderHold
+
+from tegrasp_drake.robotiq import units as ru
+from tegrasp_drake.simulation.ordered_expressions import (SYMBOLIC, Ordered, expressions,
+                                                         ordered_max, ordered_min, variable_of,
+                                                         variables, where)
+
+# The drive's phases: moving (the loop drives, within the current limit), stuck (the
+# screw holds the rotor against a load larger than the motor's torque, the motor still
+# pushing) and held (stopped at the current limit: object reported, no current).
+MOVING, STUCK, HELD = 0.0, 1.0, 2.0
+
+# The planner's state: reference q [m], dq/dt [m/s], d2q/dt2 [m/s^2], goal q [m], half the
+# closing speed [m/s], force limit [N], position byte, gOBJ as last set, reference time [s],
+# the command's nut direction (+-1), restarts of held or stuck fingers, planner updates.
+PLANNER = ("ref_q", "ref_v", "ref_a", "goal", "half_speed", "force", "position_byte",
+           "object", "time", "direction", "restarts", "updates")
+# The drive's memory: a step has run, set-point (a [rad], da/dt [rad/s]), phase, motor
+# torque [N m], anchor [rad], last da/dt, restarts seen, gOBJ of held fingers, 1 + the
+# planner updates when the drive last set it (0: never).
+MEMORY = ("started", "set_a", "set_v", "phase", "motor", "anchor", "v_prev",
+          "restarts_seen", "held_object", "held_object_since")
+(REF_Q, REF_V, REF_A, GOAL, HALF_SPEED, FORCE, POSITION_BYTE, OBJECT, TIME, DIRECTION,
+ RESTARTS, UPDATES) = range(len(PLANNER))
+(STARTED, SET_A, SET_V, PHASE, MOTOR, ANCHOR, V_PREV, RESTARTS_SEEN, HELD_OBJECT,
+ HELD_OBJECT_SINCE) = range(len(MEMORY))
+
+_CLOSING = float(ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING)
+_OPENING = float(ru.ObjectStatus.STOPPED_ON_CONTACT_OPENING)
+
+
+def effective_phase(planner_state, memory) -> float:
+    """The drive's phase as the planner's last update left it: MOVING after a restart the
+    drive has not stepped since, else the memory's (floats)."""
+    if planner_state[RESTARTS] != memory[RESTARTS_SEEN]:
+        return MOVING
+    return memory[PHASE]
+
+
+def object_status_now(planner_state, memory) -> float:
+    """gOBJ: the drive's, if it held the fingers since the planner's last update, else the
+    planner's (floats)."""
+    if memory[HELD_OBJECT_SINCE] == planner_state[UPDATES] + 1.0:
+        return memory[HELD_OBJECT]
+    return planner_state[OBJECT]
+
+
+def _linkage_drive(*, a, v, v_prev, set_a, set_v, phase, anchor, reference, v_ref, limit,
+                   direction, gain, damping, inertia, time_step):
+    """sim_robotiq_driver.drive_set_point on Ordered values: (set_a, set_v, phase, motor,
+    anchor) after the step, its branches as nested conditions (first match wins)."""
+    load = gain * (set_a - a) + damping * (set_v - v) - inertia * (v - v_prev) / time_step
+    demand = gain * (reference - a) + damping * (v_ref - v)
+    motor = ordered_min(ordered_max(demand, -limit), limit)
+    locked = where(direction * motor >= limit, HELD, STUCK)
+    held_stays = logical_and(phase.equals(HELD), direction * (a - anchor)
+                             <= 0.5 * direction * (set_a - anchor))
+    stuck_stays = logical_and(phase.equals(STUCK), direction * motor <= direction * load)
+    locks = logical_and(phase.equals(MOVING), logical_and(
+        direction * v <= 0.0, direction * load > ordered_max(direction * motor, 0.0)))
+    within = abs(demand) <= limit
+    v_next = 2.0 * v - v_prev
+    stays = logical_or(held_stays, stuck_stays)
+    new_a = where(stays, set_a, where(locks, a + load / gain, where(
+        within, reference, a + time_step * v_next + motor / gain)))
+    new_v = where(logical_or(stays, locks), 0.0, where(within, v_ref, v_next))
+    new_phase = where(held_stays, HELD, where(logical_or(stuck_stays, locks), locked, MOVING))
+    return (new_a, new_v, new_phase, where(held_stays, 0.0, motor),
+            where(locks, a, anchor))
+
+
+def drive_step_system(hand, *, gain: float, damping: float, inertia: float,
+                      time_step: float, initial_actuated: float) -> SymbolicVectorSystem:
+    """The drive_step SymbolicVectorSystem (module docstring) of `hand` (gripper_hands.py)
+    with the plant's PD gains, the drive's inertia [kg m^2] and the plant's time_step [s]:
+    input [a, da/dt, PLANNER, MEMORY], output the MEMORY after a step at its time (half a
+    plant step before the plant's); `_drive_step` of the SimRobotiqDriver as it was in
+    Python, line by line."""
+    t = Variable("t")
+    a, v = variables(["a", "v"])
+    planner = variables([f"planner_{name}" for name in PLANNER])
+    memory = variables([f"memory_{name}" for name in MEMORY])
+    started = memory[STARTED].differs(0.0)
+    set_a = where(started, memory[SET_A], initial_actuated)
+    anchor = where(started, memory[ANCHOR], initial_actuated)
+    phase = where(planner[RESTARTS].differs(memory[RESTARTS_SEEN]), MOVING, memory[PHASE])
+    # The reference at the next plant step, in the actuated coordinate.
+    h = Ordered(t) + 0.5 * time_step - planner[TIME]
+    q_ref = planner[REF_Q] + planner[REF_V] * h + 0.5 * planner[REF_A] * h * h
+    reference = hand.actuated(q_ref, SYMBOLIC)
+    rate = hand.half_opening_rate(reference, SYMBOLIC)
+    v_ref = (planner[REF_V] + planner[REF_A] * h) / rate
+    lever = abs(hand.half_opening_rate(a, SYMBOLIC))
+    force = planner[FORCE]
+    if hand.non_backdrivable:
+        new_a, new_v, new_phase, motor, new_anchor = _linkage_drive(
+            a=a, v=v, v_prev=memory[V_PREV], set_a=set_a, set_v=memory[SET_V], phase=phase,
+            anchor=anchor, reference=reference, v_ref=v_ref, limit=2.0 * force * lever,
+            direction=planner[DIRECTION], gain=gain, damping=damping, inertia=inertia,
+            time_step=time_step)
+    else:  # force_limited_set_point
+        band = 2.0 * force * lever / gain
+        new_a = a + ordered_min(ordered_max(reference - a, -band), band)
+        new_v, new_phase, new_anchor = v_ref, phase, anchor
+        motor = gain * (new_a - a)
+    held = new_phase.equals(HELD)
+    held_object = where(held, where(planner[GOAL] < hand.half_opening(a, SYMBOLIC), _CLOSING,
+                                    _OPENING), memory[HELD_OBJECT])
+    since = where(held, planner[UPDATES] + 1.0, memory[HELD_OBJECT_SINCE])
+    outputs = [1.0, new_a, new_v, new_phase, motor, new_anchor, v, planner[RESTARTS],
+               held_object, since]
+    inputs = [variable_of(x) for x in [a, v, *planner, *memory]]
+    return SymbolicVectorSystem(time=t, input=inputs, output=expressions(outputs))
+
+
+def set_point_system(initial_actuated: float) -> SymbolicVectorSystem:
+    """drive_set_point (module docstring): input MEMORY, output the PD's set-point
+    [a, da/dt]."""
+    memory = variables([f"memory_{name}" for name in MEMORY])
+    started = memory[STARTED].differs(0.0)
+    return SymbolicVectorSystem(
+        input=[variable_of(x) for x in memory],
+        output=expressions([where(started, memory[SET_A], initial_actuated),
+                            memory[SET_V]]))
+
+
+def AddDriveStep(builder, *, hand, gain: float, damping: float, inertia: float,
+                 time_step: float, initial_actuated: float, planner_state):
+    """Adds the drive's systems (module docstring) to `builder`, fed by the planner's
+    `planner_state` (an output port). Returns (the input port of the hand's (a, da/dt),
+    for the caller to connect, the memory's output port, the set-point's output port)."""
+    gather = builder.AddNamedSystem("drive_inputs", Multiplexer([2, len(PLANNER),
+                                                                len(MEMORY)]))
+    step = builder.AddNamedSystem("drive_step", drive_step_system(
+        hand, gain=gain, damping=damping, inertia=inertia, time_step=time_step,
+        initial_actuated=initial_actuated))
+    memory = builder.AddNamedSystem("drive_memory", ZeroOrderHold(
+        time_step, len(MEMORY), offset_sec=0.5 * time_step))
+    set_point = builder.AddNamedSystem("drive_set_point", set_point_system(initial_actuated))
+    builder.Connect(planner_state, gather.get_input_port(1))
+    builder.Connect(memory.get_output_port(), gather.get_input_port(2))
+    builder.Connect(gather.get_output_port(), step.get_input_port())
+    builder.Connect(step.get_output_port(), memory.get_input_port())
+    builder.Connect(memory.get_output_port(), set_point.get_input_port())
+    return gather.get_input_port(0), memory.get_output_port(), set_point.get_output_port()
