@@ -6,6 +6,7 @@
   max_normalization.py         the paper's normalisation of a window by its maximum
   sampling.py                  sample rates, window lengths and template resampling
   sample_block.py              fast samples kept in C++ and read once per block
+  read_batch.py                a tick's fast samples read in one update before the tick
   slip_vibration_band.py       the pads' vibration in the slip band, for Lift-Load
   slip_band_diagram.py         the per-tick slip band as compiled Drake systems"""
 
