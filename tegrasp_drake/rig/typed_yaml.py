@@ -3,8 +3,9 @@ errors that name the field.
 
 `parse_yaml` is the one way YAML text becomes data, for files and `--set` values alike:
 Drake's `yaml_load` (safe: a tag such as `!HardwareStationConfig` becomes the mapping's
-`_tag`), after refusing duplicate keys, text over MAX_YAML_BYTES and aliases that expand past
-MAX_YAML_NODES. `check_fields` names, by dotted path (`object.mass`), the first field that is
+`_tag`), after refusing duplicate keys, text over MAX_YAML_BYTES, aliases that expand past
+MAX_YAML_NODES and an integer past the one bounded reader's range (integer_text.py), named
+by its field. `check_fields` names, by dotted path (`object.mass`), the first field that is
 unknown, missing, mistyped, not finite or null; `load_typed` then builds the dataclass with
 `yaml_load_typed`. Every problem is a one-line ConfigError beginning with its source.
 """
