@@ -162,6 +162,7 @@ def test_record_events_refuses_a_destination_it_could_not_save_into_before_simul
 @pytest.mark.parametrize("make, words", [
     (lambda path: path.mkdir(), "is a folder, not a file"),
     (lambda path: os.mkfifo(path), "is a named pipe (FIFO)"),
+    (lambda path: path.symlink_to("/dev/zero"), "is a device"),
 ])
 def test_an_index_that_is_not_a_file_is_named_for_what_it_is(make, words, tmp_path):
     make(tmp_path / event_file.INDEX_FILE)

@@ -102,7 +102,8 @@ def event_json_text(data: dict) -> str:
 
 
 def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None) -> dict:
-    problem = file_problem(path)
+    problem = file_problem(path) or (None if path.is_file() else  # /dev/null, /dev/zero
+                                     "is a device, not a file; give a regular file")
     if problem:  # missing, or a folder, FIFO, socket or device in the file's place
         raise MemorizedEventError(path, "file is missing" if problem == "does not exist"
                                   else problem, object_name)
