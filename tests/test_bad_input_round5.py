@@ -241,3 +241,19 @@ def test_write_config_through_a_file_is_still_refused(tmp_path):
     from tegrasp_drake.commands.emulate import _check_config_target
     with pytest.raises(SystemExit, match="is not a folder"):
         _check_config_target(a_file / "hw.yaml")
+
+
+def test_a_log_that_stops_is_reported_once_by_the_run_and_named_by_its_closing_error():
+    from types import SimpleNamespace
+
+    from tegrasp_drake.runs.hardware_run import RunReporter
+    station = SimpleNamespace(GetOutputPort=lambda name: SimpleNamespace(Eval=lambda c: []),
+                              GetMyContextFromRoot=lambda context: context)
+    lines = []
+    reporter = RunReporter(diagram=None, station=station,
+                           grasp=SimpleNamespace(transitions=lambda context: []),
+                           drake_lcm=SimpleNamespace(Publish=lambda channel, data: None),
+                           out=lines.append, log_problem=lambda: "the LCM log x stopped")
+    reporter(SimpleNamespace(get_time=lambda: 1.0))
+    assert reporter.log_fault == "the LCM log x stopped"  # the closing error's words
+    assert len(lines) == 1 and "FAULT" in lines[0] and "log x" not in lines[0]
