@@ -111,8 +111,7 @@ def _check_config_target(path) -> None:
             raise SystemExit(f"tegrasp: error: --write-config {path} exists and was not "
                              "written by `tegrasp emulate` (its first line is not the one "
                              "emulate writes); give another file name, or remove it yourself")
-    problem = folder_problem(path.parent) or (None if path.parent.is_dir() else
-                                              f"{path.parent} does not exist")
+    problem = folder_problem(path.parent)  # a missing folder is made, as plot --out's is
     if problem:
         raise SystemExit(f"tegrasp: error: --write-config {path}: {problem}; give a file in "
                          "a folder you can write")

@@ -180,10 +180,12 @@ def run(args) -> int:
         raise SystemExit(f"tegrasp: error: cannot write the run's result to {result_path}: "
                          f"{e.strerror or e}" + (f"; its log is in {kept}" if kept else ""))
     result = dataclasses.replace(result, log_path=pathlib.Path(log))
+    faults = len(result.faults) + bool(result.log_fault)  # a log that stops is a fault
     print(f"ran {result.sim_time:.2f} s in {result.wall_time:.2f} s (real-time rate "
           f"{result.realtime_rate:.3f}); {len(result.transitions)} transitions, "
-          f"{len(result.faults)} faults; log {result.log_path} ({result.log_messages} "
-          f"messages), result {result_path}", flush=True)
+          f"{faults} fault{'' if faults == 1 else 's'}"
+          f"{' (the log stopped)' if result.log_fault else ''}; log {result.log_path} "
+          f"({result.log_messages} messages), result {result_path}", flush=True)
     if result.log_fault:
         print(f"tegrasp: error: {result.log_fault}; the run was stopped", file=sys.stderr,
               flush=True)

@@ -13,6 +13,7 @@ import pathlib
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
@@ -54,7 +55,7 @@ def register(subparsers) -> None:
                         help="which scenario of --scenario (its object is recorded)")
     parser.add_argument("--set", dest="overrides", action="append", default=[],
                         metavar="KEY=VALUE", help="override a field of that scenario")
-    parser.add_argument("--ensemble-runs", type=int, default=None, metavar="N",
+    parser.add_argument("--ensemble-runs", type=integer_option, default=None, metavar="N",
                         help="also record the taxel_aware controller's ensemble events from "
                         f"N randomised ideal grasps (default {TEMPLATE_RUNS} for your own "
                         "object, 0 for a built-in one, whose ensemble ships with the "
@@ -104,6 +105,7 @@ def _ensemble_runs(args, scenario) -> int:
 
 def run(args) -> int:
     from tegrasp_drake.events import save_memorized_events
+    from tegrasp_drake.events.events_folder import EventsDestinationError
     from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, record_object_ensemble)
     from tegrasp_drake.recording.paper_events import RecordEventsError, record_events
     out = args.events or paths.user_events_dir()
@@ -117,6 +119,7 @@ def run(args) -> int:
                          "write")
     to_record = _scenarios_to_record(args)
     runs = _ensemble_runs(args, to_record[0][1])
+    _check_destination(out, [name for name, _ in to_record], runs)
     for object_name, scenario in to_record:
         try:
             with SimulatedTimeBar(object_name, enabled=progress_wanted(args)) as progress:
@@ -138,7 +141,7 @@ def run(args) -> int:
                 if ensemble:
                     written += save_memorized_events(pathlib.Path(out) / ENSEMBLE_FOLDER,
                                                      ensemble.values())
-        except RecordEventsError as e:
+        except (RecordEventsError, EventsDestinationError) as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
         except OSError as e:
             raise SystemExit(f"tegrasp: error: cannot write the events to {out}: "
@@ -147,6 +150,20 @@ def run(args) -> int:
         made = ", ".join(events) + (f"; ensemble of {runs} runs" if ensemble else "")
         print(f"{object_name}: {made} -> {len(written)} files in {out}")
     return 0
+
+
+def _check_destination(out, object_names, runs: int) -> None:
+    """Refuses, before anything is simulated, an events folder the new events could not be
+    saved into (events_folder.check_events_destination; the ensemble's folder too)."""
+    from tegrasp_drake.events.events_folder import (EventsDestinationError,
+                                                    check_events_destination)
+    from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER
+    folders = [pathlib.Path(out)] + ([pathlib.Path(out) / ENSEMBLE_FOLDER] if runs else [])
+    try:
+        for folder in folders:
+            check_events_destination(folder, object_names)
+    except EventsDestinationError as e:
+        raise SystemExit(f"tegrasp: error: --events {out}: {e}; nothing was recorded") from None
 
 
 def _builtin_scenario(object_name: str):

@@ -17,6 +17,7 @@ from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.sweep.runner import (
@@ -54,7 +55,7 @@ README's results table) and success_maps.png."""
 def add_runner_arguments(parser: argparse.ArgumentParser, *, default_out: str) -> None:
     """Where and how a sweep's trials run: --workers, --out, --scheduler, --no-progress,
     and the reports' --format."""
-    parser.add_argument("--workers", type=int, metavar="N",
+    parser.add_argument("--workers", type=integer_option, metavar="N",
                         help="local worker processes (default: all cores; at most the "
                         "cores unless --oversubscribe)")
     parser.add_argument("--oversubscribe", action="store_true",
@@ -77,9 +78,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"objects to grasp (built in: {', '.join(BUILTIN_OBJECTS)})")
     parser.add_argument("--controllers", nargs="+", metavar="NAME",
                         help=f"controllers to compare ({', '.join(CONTROLLER_NAMES)})")
-    parser.add_argument("--attempts", type=int, metavar="N",
+    parser.add_argument("--attempts", type=integer_option, metavar="N",
                         help="attempts per marker position (paper: 3)")
-    parser.add_argument("--base-seed", type=int, metavar="N",
+    parser.add_argument("--base-seed", type=integer_option, metavar="N",
                         help="seed all trials' randomisation derives from")
     add_runner_arguments(parser, default_out=DEFAULT_OUT)
     parser.add_argument("--benchmark", action="store_true",

@@ -12,6 +12,7 @@ HardwareStationConfig fields as one JSON line for programs (`devices_from_line`)
 
 import dataclasses
 import json
+import pathlib
 import threading
 import time
 
@@ -100,7 +101,9 @@ class Emulators:
         return hardware_config_for({**self.devices, "arm": {"lcm_url": self.lcm_url}})
 
     def write_hardware_config(self, path) -> None:
-        """Writes `hardware_config()` atomically, under the first line WRITTEN_BY_EMULATE."""
+        """Writes `hardware_config()` atomically, under the first line WRITTEN_BY_EMULATE, making
+        its folder if need be (as `plot --out` and `trial --html` do)."""
+        pathlib.Path(path).parent.mkdir(parents=True, exist_ok=True)
         write_atomically(path, f"{WRITTEN_BY_EMULATE}\n"
                          + hardware_config_to_yaml(self.hardware_config()))
 

@@ -4,10 +4,20 @@ A request is passed on only whole with a valid CRC; its length follows from its 
 code and, for writes, its byte count (Modbus Application Protocol V1.1b3, section 6). A
 header that cannot start a request (a function of unknown length, a byte count beyond the
 frame or other than its register count says) or a bad CRC drops one byte and the search
-resumes: the next valid request is answered, never a wait for promised bytes. Each run of
+resumes: the next valid request is answered, never a wait for promised bytes. A header
+that promises more bytes than have come is given up as soon as a whole CRC-valid request
+follows it in what has come (the CRC scan a slave uses to find the frame boundaries when it
+cannot time the silent interval, Modbus over Serial Line V1.02, 2.5.1.1): a burst of
+plausible headers costs the one request behind it, not the bytes they promised. Each run of
 dropped bytes counts once in a MessageBoundary. pymodbus's own framer waits for the bytes
 a byte count promises, so one malformed write would swallow the requests behind it; this
 one stands in front of it.
+
+Addressing (Modbus over Serial Line V1.02, 2.1): a slave answers only requests addressed to
+it. A request for another slave address, or for the broadcast address 0, is framed (so the
+stream stays in step) and not passed on: on a shared RS-485 line an answer would collide with
+the addressed slave's, and a broadcast is never answered. The emulated gripper does not
+carry out broadcast writes either (the driver never sends one).
 """
 
 from pymodbus.framer.rtu import FramerRTU
@@ -24,6 +34,7 @@ MAX_WRITE_COILS = 1968      # function 15
 
 BAD_CRC = "bad CRC"
 FRAMING = "framing error"
+BROADCAST_ADDRESS = 0
 
 
 def _write_size(function: int, header: bytes) -> int | str | None:
@@ -55,25 +66,33 @@ def _crc_valid(frame: bytes) -> bool:
 class ModbusRequestFramer:
     """Bytes in, whole CRC-valid requests out (module docstring); one reader owns it."""
 
-    def __init__(self, boundary: MessageBoundary):
+    def __init__(self, boundary: MessageBoundary, address: int | None = None):
+        """address: the slave's own (1 to 247); None passes on a request for any slave but the
+        broadcast address."""
         self._buffer = bytearray()
         self._dropping = False  # inside a run of dropped bytes
         self.boundary = boundary
+        self.address = address
         self.skipped_bytes = 0
+        self.other_addresses = 0  # whole requests for another slave or for all (broadcast)
 
     def feed(self, data: bytes) -> list[bytes]:
-        """Adds received bytes; returns the requests they completed, in order."""
+        """Adds received bytes; returns the requests for this slave they completed, in order."""
         self._buffer += data
         requests = []
         while len(self._buffer) >= 2:
             size = self._size()
-            if size is None:
-                break
+            if size is None or (isinstance(size, int) and len(self._buffer) < size):
+                # Waiting for bytes; unless a whole request follows: then they never come.
+                start = self._whole_request_after(1)
+                if start is None:
+                    break
+                self._drop(FRAMING, f"a function {self._buffer[1]} header whose bytes did not "
+                           "come before a whole request", count=start)
+                continue
             if isinstance(size, str):
                 self._drop(FRAMING, size)
                 continue
-            if len(self._buffer) < size:
-                break
             frame = bytes(self._buffer[:size])
             if not _crc_valid(frame):
                 self._drop(BAD_CRC, f"a {size}-byte function {frame[1]} request")
@@ -81,22 +100,40 @@ class ModbusRequestFramer:
             del self._buffer[:size]
             self._dropping = False
             self.boundary.count_accepted()
-            requests.append(frame)
+            if self._for_this_slave(frame[0]):
+                requests.append(frame)
+            else:
+                self.other_addresses += 1
         return requests
 
-    def _size(self) -> int | str | None:
-        """The size of the request at the buffer's start; a str if none starts there; None if more
-        bytes are needed."""
-        function = self._buffer[1]
+    def _for_this_slave(self, address: int) -> bool:
+        if address == BROADCAST_ADDRESS:
+            return False
+        return self.address is None or address == self.address
+
+    def _whole_request_after(self, first: int) -> int | None:
+        """The offset (at least `first`) of the first whole CRC-valid request in the buffer, or
+        None."""
+        for start in range(first, len(self._buffer) - 1):
+            size = self._size(start)
+            if (isinstance(size, int) and start + size <= len(self._buffer)
+                    and _crc_valid(bytes(self._buffer[start:start + size]))):
+                return start
+        return None
+
+    def _size(self, start: int = 0) -> int | str | None:
+        """The size of the request at offset `start` of the buffer; a str if none starts there;
+        None if more bytes are needed."""
+        function = self._buffer[start + 1]
         if function in FIXED_SIZES:
             return FIXED_SIZES[function]
         if function in (15, 16, 23):
-            return _write_size(function, self._buffer)
+            return _write_size(function, self._buffer[start:])
         return f"function {function} is not one whose request length is known"
 
-    def _drop(self, reason: str, detail: str):
+    def _drop(self, reason: str, detail: str, count: int = 1):
         if not self._dropping:
             self.boundary.reject(reason, f"{detail}; dropped until a valid request")
             self._dropping = True
-        self.skipped_bytes += 1
-        del self._buffer[:1]
+        self.skipped_bytes += count
+        del self._buffer[:count]

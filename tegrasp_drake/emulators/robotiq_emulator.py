@@ -186,7 +186,7 @@ class RobotiqEmulator:
         self._ready = threading.Event()
         self._error = None
         self.request_boundary = MessageBoundary("robotiq: Modbus requests")
-        self._framer = ModbusRequestFramer(self.request_boundary)
+        self._framer = ModbusRequestFramer(self.request_boundary, address=self._config.device_id)
 
     @property
     def port(self) -> str:

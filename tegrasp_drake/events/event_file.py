@@ -16,7 +16,7 @@ import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.files import (DuplicateKeyError, InputTooLargeError, JsonValueError,
-                                     load_json, one_line, read_bounded)
+                                     file_problem, load_json, one_line, read_bounded)
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -42,6 +42,7 @@ class MemorizedEventError(Exception):
 
     def __init__(self, path, problem: str, object_name: str | None = None):
         self.path = pathlib.Path(path)
+        self.problem = one_line(problem)  # what is wrong, without the path and the remedy
         remake = f"{RECORD_COMMAND} --object {object_name}" if object_name else RECORD_COMMAND
         super().__init__(one_line(f"{self.path}: {problem}. Remake it with `{remake}`."))
 
@@ -101,8 +102,11 @@ def event_json_text(data: dict) -> str:
 
 
 def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None) -> dict:
-    if not path.is_file():
-        raise MemorizedEventError(path, "file is missing", object_name)
+    problem = file_problem(path) or (None if path.is_file() else  # /dev/null, /dev/zero
+                                     "is a device, not a file; give a regular file")
+    if problem:  # missing, or a folder, FIFO, socket or device in the file's place
+        raise MemorizedEventError(path, "file is missing" if problem == "does not exist"
+                                  else problem, object_name)
     try:
         data = load_json(read_bounded(path, MAX_EVENT_FILE_BYTES).decode("utf-8"))
     except InputTooLargeError:

@@ -8,17 +8,47 @@ import pathlib
 from typing import Annotated
 from collections.abc import Iterable, Sequence
 
-from tegrasp_drake.rig.files import interruptions_deferred, staged_file
+from tegrasp_drake.rig.files import interruptions_deferred, replace_problem, staged_file
 from tegrasp_drake.events.event_file import (
     FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
     event_json_text, event_summary, event_to_json, read_index, read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
-from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_order
+from tegrasp_drake.events.transitions import (REQUIRED_TRANSITIONS, TRANSITIONS,
+                                              transition_order)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 
 
 def _sorted_events(events: Iterable[MemorizedEvent]) -> list[MemorizedEvent]:
     return sorted(events, key=lambda e: (e.object_name, transition_order(e.transition)))
+
+
+class EventsDestinationError(ValueError):
+    """An events folder cannot take an object's new events; the message names the path, what
+    is there, and what to do."""
+
+
+def check_events_destination(events_dir, object_names: Iterable[str], *,
+                             keep_other_objects: bool = True) -> None:
+    """EventsDestinationError unless save_memorized_events can put `object_names`' events and
+    the index into `events_dir`: no folder (nor a part of the path that is not a folder) where
+    a file belongs and, when the other objects' entries are kept, an index there is one that
+    reads. Asked before the events are recorded (minutes of simulation), and by the save."""
+    events_dir = pathlib.Path(events_dir)
+    index = events_dir / INDEX_FILE
+    targets = [index] + [events_dir / object_name / f"{transition}.json"
+                         for object_name in object_names for transition in TRANSITIONS]
+    for path in targets:
+        problem = replace_problem(path)
+        if problem:
+            raise EventsDestinationError(f"{path} {problem}, or give another events folder")
+    if keep_other_objects and os.path.lexists(index):
+        try:
+            read_index(events_dir)
+        except MemorizedEventError as e:
+            raise EventsDestinationError(
+                f"{index}: {e.problem}; it lists the other objects' events, which the new "
+                "recording keeps: repair it or move it away, or give another events "
+                "folder") from None
 
 
 @public_api
@@ -41,6 +71,7 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
         missing = [t for t in required if (object_name, t) not in keys]
         if missing:
             raise ValueError(f"object '{object_name}' lacks transitions {missing}")
+    check_events_destination(events_dir, objects, keep_other_objects=keep_other_objects)
     kept_entries = []
     if keep_other_objects and (events_dir / INDEX_FILE).exists():
         kept_entries = [entry for entry in read_index(events_dir)
@@ -130,7 +161,7 @@ def load_memorized_events(events_dir: PathLike, object_name: str, *,
 def events_folder_of(folders, object_name: str) -> pathlib.Path | None:
     """The first of `folders` whose index lists `object_name` (None if none does)."""
     for folder in map(pathlib.Path, folders):
-        if (folder / INDEX_FILE).is_file() and any(
+        if os.path.lexists(folder / INDEX_FILE) and any(
                 e["object"] == object_name for e in read_index(folder)):
             return folder
     return None
@@ -144,7 +175,7 @@ def find_memorized_events(folders, object_name: str, *,
     folders = [pathlib.Path(f) for f in folders]
     looked = []
     for folder in folders:
-        if not (folder / INDEX_FILE).is_file():
+        if not os.path.lexists(folder / INDEX_FILE):
             looked.append(f"{folder} (no {INDEX_FILE})")
             continue
         if any(e["object"] == object_name for e in read_index(folder)):

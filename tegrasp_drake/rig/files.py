@@ -9,7 +9,6 @@ import os
 import pathlib
 import signal
 import stat
-import sys
 import tempfile
 import threading
 
@@ -121,6 +120,33 @@ def folder_problem(path) -> str | None:
             except OSError as e:
                 return f"{place} is not writable ({e.strerror or e})"
             return None
+    return None
+
+
+def replace_problem(path) -> str | None:
+    """Why an atomic write (a temporary file renamed onto `path`) cannot put a file at `path`,
+    in words that follow it, or None: a folder in its place (a rename never replaces one), or
+    a part of its folder path that is not a folder; checked before the work whose result it
+    is, so that result is never made only to be lost. (A FIFO, socket or device entry at
+    `path` is replaced as a file is.)"""
+    path = pathlib.Path(path)
+    try:
+        mode = os.lstat(path).st_mode
+    except (FileNotFoundError, NotADirectoryError):  # the latter: a file on its folder path
+        mode = None
+    except OSError as e:
+        return f"cannot be used ({e.strerror or e})"
+    if mode is not None and stat.S_ISDIR(mode):
+        return "is a folder where a file belongs (no file can replace a folder); move it away"
+    for place in path.parents:
+        try:
+            if not (place.exists() or place.is_symlink()):
+                continue
+        except OSError as e:
+            return f"cannot be used ({place}: {e.strerror or e})"
+        if not place.is_dir():
+            return f"cannot be written: {place} is not a folder"
+        break
     return None
 
 
@@ -287,12 +313,13 @@ def _refuse_nonstandard_constant(name: str):
 
 
 def _float_ranged_int(text: str) -> int:
-    """A JSON integer, refused when no float64 holds it."""
-    digits = len(text.lstrip("-"))
-    if digits > sys.float_info.max_10_exp + 1 or abs(int(text)) > sys.float_info.max:
-        raise JsonValueError(f"holds an integer of {digits} digits, beyond the range of a "
-                             "float; write a finite number")
-    return int(text)
+    """A JSON integer, through the one bounded integer reader (integer_text.py): refused when
+    no float64 holds it."""
+    from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
+    try:
+        return read_integer(text, yaml11=False)
+    except IntegerTextError as e:
+        raise JsonValueError(f"holds a number that {e}; write a finite number") from None
 
 
 def load_json(text: str | bytes):

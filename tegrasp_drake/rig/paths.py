@@ -38,19 +38,40 @@ events_dir = package_events_dir  # the old name (read-only: never write there)
 
 
 def user_events_dir() -> pathlib.Path:
-    """Where the user's recorded events go (module docstring); UserPathError when
-    $TEGRASP_EVENTS_DIR names something that is not a folder."""
+    """Where the user's recorded events go (module docstring); UserPathError naming the
+    variable when $TEGRASP_EVENTS_DIR names something that is not a folder or cannot be one."""
     chosen = os.environ.get(EVENTS_ENV, "").strip()
     if chosen:
         folder = pathlib.Path(chosen).expanduser()
-        if os.path.lexists(folder) and not folder.is_dir():
-            from tegrasp_drake.rig.files import UserPathError
-            raise UserPathError(f"{EVENTS_ENV}={chosen!r} is not a folder; point it at an "
-                                "events folder, or unset it")
+        _check_folder_path(folder, f"{EVENTS_ENV}={chosen!r}", "an events folder")
         return folder
     data_home = os.environ.get("XDG_DATA_HOME", "").strip()
     base = pathlib.Path(data_home) if data_home else pathlib.Path.home() / ".local" / "share"
-    return base / "tegrasp" / "events"
+    folder = base / "tegrasp" / "events"
+    if data_home:
+        _check_folder_path(folder, f"XDG_DATA_HOME={data_home!r} (events in {folder})",
+                           "your data folder")
+    return folder
+
+
+def _check_folder_path(folder: pathlib.Path, named: str, meant: str) -> None:
+    """UserPathError naming the environment setting `named` (which should point at `meant`)
+    unless `folder` is a folder, or could be made as one: its nearest existing part must be a
+    folder."""
+    from tegrasp_drake.rig.files import UserPathError
+    for place in (folder, *folder.parents):
+        try:
+            there = os.path.lexists(place)
+            is_folder = place.is_dir()
+        except OSError as e:  # a name too long, a symlink loop
+            raise UserPathError(f"{named} cannot be used ({e.strerror or e}); point it at "
+                                f"{meant}, or unset it") from None
+        if there:
+            if not is_folder:
+                what = "is not a folder" if place == folder else f"passes through {place}, " \
+                    "which is not a folder"
+                raise UserPathError(f"{named} {what}; point it at {meant}, or unset it")
+            return
 
 
 def events_search_path(explicit=None, hand_folder: str = "") -> list[pathlib.Path]:

@@ -1,8 +1,9 @@
 """Typed configuration from YAML (scenarios, the hardware config, sweep specs) with
-one-line errors that name the field. `parse_yaml` is Drake's safe `yaml_load` after refusing
-duplicate keys, oversized text and alias bombs; `check_fields` names the first unknown,
-missing, mistyped, non-finite or null field by its dotted path; `load_typed` then builds the
-dataclass with `yaml_load_typed`."""
+one-line errors that name the field. `parse_yaml`, the one way YAML text becomes data (files
+and `--set` alike), is Drake's safe `yaml_load` after refusing duplicate keys, oversized
+text, alias bombs and integers past the bounded reader's range (integer_text.py);
+`check_fields` names the first unknown, missing, mistyped, non-finite or null field by its
+dotted path; `load_typed` then builds the dataclass with `yaml_load_typed`."""
 
 import collections.abc
 import dataclasses
@@ -14,6 +15,7 @@ import typing
 import yaml
 from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
 
+from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, one_line, read_bounded
 
@@ -70,9 +72,12 @@ MAX_YAML_BYTES = 1_000_000
 MAX_YAML_NODES = 100_000
 
 
-def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: int = 0):
+def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: int = 0,
+               root_key: str | None = None):
     """The data of YAML `text` (module docstring); ConfigError "SOURCE: ..." in one line
-    naming the line and column (less the offsets of text the caller put before it)."""
+    naming the line and column (less the offsets of text the caller put before it), or the
+    field by its dotted path (`root_key`: the name to give the top-level key, for a --set
+    value the caller wrapped in one)."""
     if "\x00" in text:
         raise ConfigError(f"{source}: holds a NUL byte; it is not YAML text")
     if len(text.encode("utf-8", errors="replace")) > MAX_YAML_BYTES:
@@ -81,7 +86,7 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
         if root is not None:
-            _check_nodes(root, source, line_offset, column_offset)
+            _check_nodes(root, source, line_offset, column_offset, root_key)
         return yaml_load(data=text)
     except yaml.YAMLError as e:
         raise ConfigError(f"{source}: not valid YAML: "
@@ -90,8 +95,10 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
         raise ConfigError(f"{source}: the YAML nests too deeply") from None
 
 
-def _check_nodes(root, source: str, line_offset: int, column_offset: int) -> None:
-    """Refuses duplicate mapping keys and an alias expansion past MAX_YAML_NODES."""
+def _check_nodes(root, source: str, line_offset: int, column_offset: int,
+                 root_key: str | None = None) -> None:
+    """Refuses duplicate mapping keys, an alias expansion past MAX_YAML_NODES and an integer
+    the bounded reader refuses (integer_text.py: Python would not convert it)."""
     sizes = {}  # id(node) -> its size with every alias expanded
 
     def where(node) -> str:
@@ -99,7 +106,7 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int) -> Non
         column = mark.column + 1 - (column_offset if mark.line == 0 else 0)
         return f"line {mark.line + 1 - line_offset}, column {column}"
 
-    def size(node) -> int:
+    def size(node, path: str) -> int:
         if id(node) in sizes:
             return sizes[id(node)]
         sizes[id(node)] = 1  # a node that holds itself counts once
@@ -107,6 +114,13 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int) -> Non
             raise ConfigError(f"{source}: {where(node)}: a Python object tag "
                               f"(!!{node.tag.split(':', 2)[2]}) is never loaded; give a "
                               "plain value")
+        if node.tag == "tag:yaml.org,2002:int" and isinstance(node, yaml.ScalarNode):
+            try:
+                read_integer(node.value)
+            except IntegerTextError as e:
+                field = f"field '{path}' " if path else ""
+                raise ConfigError(f"{source}: {field}({where(node)}) {e}; write a number in "
+                                  "the field's range") from None
         total = 1
         if isinstance(node, yaml.MappingNode):
             seen = {}
@@ -123,9 +137,12 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int) -> Non
                             f"{source}: key '{key.value}' appears twice ({seen[key.value]} "
                             f"and {where(key)}); keep one")
                     seen[key.value] = where(key)
-                total += size(key) + size(value)
+                name = str(key.value) if isinstance(key, yaml.ScalarNode) else "<<"
+                if not path and root_key is not None:
+                    name = root_key
+                total += size(key, path) + size(value, f"{path}.{name}" if path else name)
         elif isinstance(node, yaml.SequenceNode):
-            total += sum(size(item) for item in node.value)
+            total += sum(size(item, f"{path}[{k}]") for k, item in enumerate(node.value))
         if total > MAX_YAML_NODES:
             raise ConfigError(f"{source}: the YAML's aliases expand to more than "
                               f"{MAX_YAML_NODES} values ({where(node)}); write the values "
@@ -133,7 +150,7 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int) -> Non
         sizes[id(node)] = total
         return total
 
-    size(root)
+    size(root, "")
 
 
 def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: int = 0) -> str:
@@ -167,8 +184,8 @@ def apply_override(data: dict, assignment: str) -> None:
         raise ConfigError(f"{set_words(assignment)}: the value must be on one line")
     prefix = "value: "
     try:
-        value = (parse_yaml(prefix + text, set_words(assignment),
-                            column_offset=len(prefix))["value"] if text.strip() else "")
+        value = (parse_yaml(prefix + text, set_words(assignment), column_offset=len(prefix),
+                            root_key=key.strip())["value"] if text.strip() else "")
     except ConfigError as e:
         if "not valid YAML" not in str(e):
             raise
@@ -294,19 +311,26 @@ def _check_value(value, hint, path: str, source: str) -> None:
 
 
 def _number_as_text_hint(value, hint) -> str:
-    """For a number YAML 1.1 reads as text (1e9, 1E-3: no dot), how to write it."""
+    """For a number YAML 1.1 reads as text (1e9, 1E-3: no dot; "3": quoted), how to write it
+    as a value of the field's type: a float field's with a dot and a signed exponent, an
+    integer field's as plain digits (an integer field takes no 3.0)."""
     if hint in (float, int) and isinstance(value, str):
         try:
             number = float(value)
         except ValueError:
             return ""
-        if math.isfinite(number):
-            text = repr(number)
-            if "e" in text:  # YAML 1.1 wants a dot in the mantissa and a signed exponent
-                mantissa, exponent = text.split("e")
-                mantissa += "" if "." in mantissa else ".0"
-                text = f"{mantissa}e{'' if exponent[0] in '+-' else '+'}{exponent}"
-            return f" (YAML reads it as text: write {text})"
+        if not math.isfinite(number):
+            return ""
+        if hint is int:
+            if not number.is_integer() or abs(number) > 1e18:
+                return " (an integer field takes whole numbers, written as digits, e.g. 3)"
+            return f" (YAML reads it as text: write {int(number)}, digits without quotes)"
+        text = repr(number)
+        if "e" in text:  # YAML 1.1 wants a dot in the mantissa and a signed exponent
+            mantissa, exponent = text.split("e")
+            mantissa += "" if "." in mantissa else ".0"
+            text = f"{mantissa}e{'' if exponent[0] in '+-' else '+'}{exponent}"
+        return f" (YAML reads it as text: write {text})"
     return ""
 
 

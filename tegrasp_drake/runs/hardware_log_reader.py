@@ -63,7 +63,11 @@ class RunLog:
         at the receiver's ticks (repeated ticks dropped)."""
         t, keep = np.unique(self.tactile["t"], return_index=True)
         if len(t) < 2:
-            raise RunLogError(f"run log '{self.path}' has fewer than 2 tactile messages")
+            logged = self.message_counts.get(TACTILE_CHANNEL, 0)
+            why = f": {'; '.join(self.damage)}" if self.damage else ""
+            raise RunLogError(f"run log '{self.path}' has fewer than 2 tactile messages to "
+                              f"replay ({len(t)} usable of {logged} on {TACTILE_CHANNEL})"
+                              + why)
         taxels = self.tactile["taxels"][keep]
         acceleration = self.tactile["pad_acceleration"][keep]
         sa = np.column_stack([taxels[:, :TAXELS_PER_PAD].sum(axis=1),

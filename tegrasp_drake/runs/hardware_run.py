@@ -214,7 +214,8 @@ class RunReporter:
             if problem is not None:
                 # A run nobody records is a run nobody can check: stop at once, as a fault.
                 self.log_fault = problem
-                self._out(f"{now:7.3f} s  FAULT  {problem}; the run stops")
+                # The problem itself is the run's closing error (result.log_fault), said once.
+                self._out(f"{now:7.3f} s  FAULT  the LCM log stopped recording; the run stops")
                 return EventStatus.ReachedTermination(self._diagram, problem)
         if is_finished(self.transitions) and self.ended_at is None:
             self.ended_at = now

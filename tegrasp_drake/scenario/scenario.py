@@ -11,7 +11,7 @@ import pathlib
 import typing
 
 import yaml
-from pydrake.common.yaml import yaml_dump, yaml_dump_typed, yaml_load, yaml_load_typed
+from pydrake.common.yaml import yaml_dump, yaml_dump_typed, yaml_load_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 
@@ -27,7 +27,7 @@ from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, chec
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          read_yaml_file, require)
+                                          parse_yaml, read_yaml_file, require)
 from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
                                                         TAXEL_TRANSDUCERS,
                                                         ad7147_frame_rate_hz,
@@ -429,7 +429,7 @@ def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenar
     flat layout of older records (moved_keys.migrate_stored_scenario). Its values are checked
     as a loaded scenario's are; ConfigError names `source` and the field."""
     try:
-        data = migrate_stored_scenario(yaml_load(data=text) or {})
+        data = migrate_stored_scenario(parse_yaml(text, source) or {})
         select_controller_tag(data, drop_others=True)
         scenario = yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
     except (RuntimeError, ValueError, TypeError, AttributeError, yaml.YAMLError) as e:

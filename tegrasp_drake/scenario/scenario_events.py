@@ -103,7 +103,7 @@ def recorded_hand(event) -> str | None:
     scenario text is not a scenario (a note, e.g. an ensemble's combined runs)."""
     try:
         recorded = yaml.safe_load(event.scenario)
-    except yaml.YAMLError:
+    except (yaml.YAMLError, ValueError):  # ValueError: an integer Python will not convert
         return None
     gripper = recorded.get("gripper") if isinstance(recorded, dict) else None
     if not isinstance(gripper, dict):

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, load_json,
-                                     read_bounded, write_atomically)
+                                     read_bounded, replace_problem, write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
 
 RECORD_FORMAT = "tegrasp-sweep-record"
@@ -54,6 +54,19 @@ def record_file_name(trial_id: str) -> str:
 
 def record_path(out_dir, trial_id: str) -> Path:
     return Path(out_dir) / TRIALS_FOLDER / record_file_name(trial_id)
+
+
+def unwritable_records(out_dir, trial_ids) -> list[tuple[Path, str]]:
+    """(path, why) of each of these trials' records that write_record could not put in place
+    (a folder where the record belongs): asked before the trials run, whose results would
+    otherwise be lost."""
+    problems = []
+    for trial_id in trial_ids:
+        path = record_path(out_dir, trial_id)
+        problem = replace_problem(path)
+        if problem:
+            problems.append((path, problem))
+    return problems
 
 
 def canonical_json(value) -> str:

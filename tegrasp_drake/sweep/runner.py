@@ -30,6 +30,7 @@ from tegrasp_drake.sweep.records import (
     load_records,
     make_record,
     remove_temporary_files,
+    unwritable_records,
     write_record,
 )
 from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, expand_trials
@@ -135,6 +136,11 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
         _check_same_sweep(trials, loaded.records, out_dir)
         pending = [trial for trial in trials
                    if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
+        unwritable = unwritable_records(out_dir, [trial["trial_id"] for trial in pending])
+        if unwritable:
+            path, problem = unwritable[0]
+            more = f" (and {len(unwritable) - 1} more)" if len(unwritable) > 1 else ""
+            raise SweepError(f"the record {path} {problem}{more}; nothing was run")
         if scheduler is None:
             n = min(workers or default_workers(), max(len(pending), 1))
             backend = f"processes:{n}"

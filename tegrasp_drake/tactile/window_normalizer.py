@@ -7,6 +7,7 @@ from collections.abc import Mapping
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.rig.api_boundary import public_api
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.tactile.read_batch import (AddHeldSampleRegister, batch_first_sample,
@@ -103,6 +104,7 @@ class WindowNormalizer(LeafSystem):
     with N_sa = window_s * sa_rate_hz and N_ra = window_s * ra_rate_hz.
     """
 
+    @public_api
     def __init__(self, config: WindowNormalizerConfig | None = None, *,
                  window_states: Mapping[str, np.ndarray] | None = None):
         """window_states: for a subclass, {rate group name: the initial state vector of the

@@ -71,3 +71,20 @@ def test_folder_problem_names_a_file_in_the_way(tmp_path):
     blocker.write_text("a file")
     assert folder_problem(blocker / "sweep") == f"{blocker} is not a folder"
     assert folder_problem(tmp_path / "new" / "deeper") is None
+
+
+def test_replace_problem_names_a_folder_in_a_files_place_and_a_file_on_its_path(tmp_path):
+    from tegrasp_drake.rig.files import replace_problem
+    (tmp_path / "record.json").mkdir()
+    assert "is a folder" in replace_problem(tmp_path / "record.json")
+    (tmp_path / "plain").write_text("")
+    assert f"{tmp_path / 'plain'} is not a folder" in replace_problem(tmp_path / "plain" / "x")
+    os.mkfifo(tmp_path / "fifo")  # an atomic rename replaces a FIFO as it does a file
+    assert replace_problem(tmp_path / "fifo") is None
+    assert replace_problem(tmp_path / "new" / "deeper" / "x.json") is None
+
+
+def test_a_json_integer_beyond_a_float_is_refused_without_converting_it():
+    from tegrasp_drake.rig.files import JsonValueError, load_json
+    with pytest.raises(JsonValueError, match="5000 digits"):
+        load_json('{"a": ' + "9" * 5000 + "}")

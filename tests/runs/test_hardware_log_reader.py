@@ -194,3 +194,17 @@ def test_a_damaged_log_is_replayed_as_far_as_it_goes_and_says_what_was_lost(
     assert len(warning) == 1 and str(path) in warning[0] and words in warning[0]
     assert f"read {read} messages" in warning[0]
     assert json.loads(captured.out)["damage"] == log.damage
+
+
+def test_a_log_whose_tactile_messages_are_all_rejected_says_why_it_cannot_be_replayed(tmp_path):
+    path = tmp_path / "nan.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    for k in range(5):
+        message = tactile_message(0.001 * k, [float("nan"), 0.0], [0.0, 0.0])
+        log.write_event(k, TACTILE_CHANNEL, message.encode())
+    log.close()
+    with pytest.raises(RunLogError) as refused:
+        read_run_log(path).tactile_trial()
+    words = str(refused.value)
+    assert "fewer than 2 tactile messages" in words and "0 usable of 5" in words
+    assert "impossible values" in words
