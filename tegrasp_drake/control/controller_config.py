@@ -22,6 +22,7 @@ _SIGMAS_WHY = "noise alone crosses 5.51 in one trial of a thousand"
 _SIGMAS_BELOW = "must be zero (the number alone) or positive [noise sigmas]"
 
 
+@public_dataclass
 @dataclasses.dataclass
 class HeuristicTriggerConfig:
     """The heuristic controller's hand-set thresholds, in the style of Romano et al. 2011
@@ -39,6 +40,7 @@ class HeuristicTriggerConfig:
                                      why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
 
 
+@public_dataclass
 @dataclasses.dataclass
 class FingerStrikeConfig:
     """The taxel_aware controller's finger-strike sense (control/finger_strike.py): a
@@ -56,6 +58,7 @@ class FingerStrikeConfig:
                                    below="must be zero or positive [N m]")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class TaxelAwareConfig:
     """The taxel-aware corrections (control/taxel_aware); a pad row is 6 mm along the
@@ -111,6 +114,7 @@ class TaxelAwareConfig:
         return {t: tuple(pair) if pair else tuple(chosen[t]) for t, pair in given.items()}
 
 
+@public_dataclass
 @dataclasses.dataclass
 class ReReachConfig:
     """Re-Reach (Sec. III-C): open, shift toward the touching finger, close again."""
@@ -129,6 +133,7 @@ class ReReachConfig:
                               below="must be zero or positive [m]")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class LiftLoadConfig:
     """Lift-Load (Sec. III-C): the slip band above slip_vibration_mps2 for slip_s in Lift:
@@ -168,6 +173,7 @@ class LiftLoadConfig:
         return None
 
 
+@public_dataclass
 @dataclasses.dataclass
 class AvoidConfig:
     """Avoid (Sec. III-C): in Hold, either RA above hit_ra_mps2 is a hit; stop sense_s to see
@@ -192,6 +198,7 @@ class AvoidConfig:
                             below="must be zero or positive [s]")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class PlaceConfig:
     """Place: the object set down on the table, Unload on the Place-Unload event."""
@@ -200,6 +207,7 @@ class PlaceConfig:
                                      below="must be zero or positive [s]")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class MemorizedCorrectiveConfig:
     """Corrective triggers from memorized corrective events matched by Eq. 3 instead of the

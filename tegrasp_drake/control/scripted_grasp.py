@@ -15,10 +15,12 @@ from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig.arm_kinematics import GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP
 from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 PHASES = ("settle", "reach", "load", "lift", "hold", "place", "unload", "retract", "done")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class GraspScriptConfig:
     """Timing and targets of the ideal open-loop grasp (side grasp, approach along +x)."""

@@ -32,6 +32,7 @@ DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
                    or "udpm://239.255.76.67:7667?ttl=0")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class JacoLcmDriver:
     """The JACO2 through the Kinova LCM driver (joint-velocity mode, 100 Hz) on `lcm_url`
@@ -46,6 +47,7 @@ class JacoLcmDriver:
         return JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 
 
+@public_dataclass
 @dataclasses.dataclass
 class SerialTactileDriver:
     """The myRIO tactile stream (hardware/myrio/TACTILE_FRAME.md) on a serial port, with an
@@ -63,6 +65,7 @@ class SerialTactileDriver:
                                below="must be zero or a positive number of frames")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class DeviceWatchdogConfig:
     """Silence [s] after which a device trips the watchdog (hardware/watchdog.py), and the

@@ -11,8 +11,9 @@
   jaco_velocity_tracker.py  JacoVelocityTracker, position error to joint velocity
   paths.py                  where models and events live
   typed_yaml.py             YAML configuration with errors naming the field
+  integer_text.py           the one bounded reader of integers from text
   ranges.py                 each numeric setting's unit and range
-  api_boundary.py           argument checks at the public API
+  api_boundary.py           argument checks at the public API; dataclasses take fields only
   files.py                  atomic writes, bounded reads, signals, strict JSON
   npz_headers.py            .npz arrays checked from their headers
 """

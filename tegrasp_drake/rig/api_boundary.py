@@ -5,6 +5,7 @@ constraints declared beside them: a Range or Choice (rig/ranges.py), a Folder.""
 
 import collections.abc
 import dataclasses
+import difflib
 import functools
 import inspect
 import math
@@ -234,7 +235,31 @@ def public_dataclass(cls):
 
     cls.__init__ = checked_init
     cls.__init__.__checked_arguments__ = True
+    if not cls.__dataclass_params__.frozen:
+        cls.__setattr__ = _set_field_only
     return cls
+
+
+def _set_field_only(self, name: str, value) -> None:
+    """Assigns a field; an attribute that is not one (a misspelt or moved setting, which would
+    otherwise be kept and ignored) is an AttributeError naming its class and what to write."""
+    fields = type(self).__dataclass_fields__
+    if name not in fields and not name.startswith("_"):
+        moved = getattr(type(self), "__moved_fields__", {}).get(name)
+        if moved:
+            advice = f"it is now '{moved}'"
+        else:
+            close = difflib.get_close_matches(name, fields, n=1)
+            advice = (f"did you mean '{close[0]}'?" if close
+                      else f"its fields: {', '.join(fields)}")
+        raise AttributeError(f"{type(self).__name__} has no field '{name}': {advice}")
+    object.__setattr__(self, name, value)
+
+
+def register_moved_fields(cls, moved: dict[str, str]) -> None:
+    """Names, for a public dataclass's refused attributes, the new paths of settings that
+    moved (old field name -> new dotted path relative to the instance)."""
+    cls.__moved_fields__ = dict(moved)
 
 
 def check_field_values(instance, source: str | None = None) -> None:

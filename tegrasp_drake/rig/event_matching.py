@@ -5,11 +5,13 @@ EventMatcher; Drake-free, so the command line reads it without loading Drake."""
 import dataclasses
 
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 # Eq. 3 scores are correlations, in [-1, 1]: a threshold outside never or always passes.
 SCORE_RANGE = dict(low=-1.0, high=1.0, why="Eq. 3 scores are correlations")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class EventMatchingConfig:
     """The Eq. 3 thresholds and the RA channel's envelope and noise floor."""

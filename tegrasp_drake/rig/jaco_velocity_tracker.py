@@ -9,12 +9,14 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.station_interface import ARM_JOINTS
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 _DEG = np.pi / 180.0
 # [rad/s] the fastest JACO2 joints (4-6), Kinova's JACO2 6-DOF specification.
 JACO2_MAX_JOINT_SPEED = 48 * _DEG
 
 
+@public_dataclass
 @dataclasses.dataclass
 class JacoVelocityTrackerConfig:
     """Gain and limits of the tracker."""

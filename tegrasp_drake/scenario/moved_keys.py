@@ -129,3 +129,16 @@ def migrate_stored_trial(trial: dict) -> dict:
     if not overrides:
         return trial
     return {**trial, "scenario_overrides": migrate_stored_overrides(overrides)}
+
+
+def _register_moved_attributes() -> None:
+    """Script assignments of a moved setting (`config.re_reach_enabled = False`) are refused
+    naming the new path (api_boundary.public_dataclass)."""
+    from tegrasp_drake.control.controller_config import GraspControllerConfig
+    from tegrasp_drake.rig.api_boundary import register_moved_fields
+    from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+    register_moved_fields(GraspControllerConfig, _CONTROLLER)
+    register_moved_fields(VibrationSensorConfig, {name: f"film.{name}" for name in _FILM})
+
+
+_register_moved_attributes()

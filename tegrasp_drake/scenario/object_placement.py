@@ -7,8 +7,10 @@ import math
 from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
 from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 
+@public_dataclass
 @dataclasses.dataclass
 class ObjectPlacementConfig:
     """The object's marker and its misplacement from it [m, world; deg]."""

@@ -43,8 +43,10 @@ from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
                                              SimulatedStationConfig)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
-from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
-from tegrasp_drake.scenario.moved_keys import migrate_stored_scenario, refuse_moved_keys
+from tegrasp_drake.rig.api_boundary import (PathLike, public_api, public_dataclass,
+                                         register_moved_fields)
+from tegrasp_drake.scenario.moved_keys import (MOVED_KEYS, migrate_stored_scenario,
+                                                refuse_moved_keys)
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 
 DEFAULT_SCENARIO = "default"
@@ -88,6 +90,10 @@ class Scenario:
     controller: ControllerConfig = dataclasses.field(default_factory=CONTROLLER_CLASSES[0])
     # Simulated (default) or real devices, selected by the YAML tag (hardware/config.py).
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
+
+
+register_moved_fields(Scenario, {old: new for old, new in MOVED_KEYS.items()
+                                 if "." not in old})
 
 
 # Drake's own config sections cannot carry `bounded` declarations: their allowed values are

@@ -10,8 +10,10 @@ from pydrake.multibody.math import SpatialForce
 from pydrake.multibody.plant import ExternallyAppliedSpatialForce
 from pydrake.systems.framework import LeafSystem
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 
+@public_dataclass
 @dataclasses.dataclass
 class DisturbanceConfig:
     """An external hit on the object: a constant force pulse at its body origin."""

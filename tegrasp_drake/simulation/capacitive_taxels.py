@@ -21,6 +21,7 @@ from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
 from tegrasp_drake.rig.tactile_fingertip import PAD_THICKNESS
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.rig.taxel_layout import CELL_X, CELL_Y
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 VACUUM_PERMITTIVITY_F_PER_M = 8.8541878128e-12
 TAXEL_TRANSDUCERS = ("force", "capacitive")
@@ -57,6 +58,7 @@ def frame_rate_matches(sample_rate_hz: float, decimation: int) -> bool:
     return abs(sample_rate_hz - frame) <= FRAME_RATE_TOLERANCE * frame
 
 
+@public_dataclass
 @dataclasses.dataclass
 class CapacitiveTaxelConfig:
     """The capacitive taxel's parameters (used when `tactile.transducer` is capacitive)."""

@@ -12,11 +12,13 @@ docs/sweeps.md, "Coarser contact geometry".
 import dataclasses
 from tegrasp_drake.modelgen.pad_mesh import PAD_REFINEMENTS
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 BOX_TRIANGLES = (24, 12)
 TABLE_SHAPES = ("box", "half_space")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class ContactGeometryConfig:
     """How finely the contact world is meshed; the defaults are the reference geometry."""

@@ -19,8 +19,10 @@ from pydrake.symbolic import max as symbolic_max
 from pydrake.systems.primitives import Multiplexer, SymbolicVectorSystem
 
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 
+@public_dataclass
 @dataclasses.dataclass
 class DriveVibrationConfig:
     """One drive's tones; empty or all-zero `amplitudes_mps2` disables it. The spectra assumed

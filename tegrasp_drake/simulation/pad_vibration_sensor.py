@@ -19,11 +19,13 @@ from tegrasp_drake.simulation.drive_vibration import (DriveVibrationConfig, arm_
 from tegrasp_drake.simulation.film_dynamics import FilmParameters, film_sensitivity
 from tegrasp_drake.simulation.film_readout import (ADC_INPUTS, adc_input, noise_at_amplifier_v,
                                                   reading_noise_std)
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 # The film's gain and the amplifier's capacitor: their words for a value not positive.
 _SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
 
 
+@public_dataclass
 @dataclasses.dataclass
 class FilmConfig:
     """The fingertip's first structural mode, the impact that rings it, and the film's charge
@@ -59,6 +61,7 @@ class FilmConfig:
                                             below=_SENSITIVITY_BELOW)
 
 
+@public_dataclass
 @dataclasses.dataclass
 class VibrationSensorConfig:
     """The PVDF film of each pad (RA channel source). Sources and reasoning of every number:

@@ -39,10 +39,12 @@ from tegrasp_drake.simulation.robotiq_drive_step import (
     DIRECTION, FORCE, GOAL, HALF_SPEED, HELD, MEMORY, MOTOR, MOVING, OBJECT, PLANNER,
     POSITION_BYTE, REF_A, REF_Q, REF_V, RESTARTS, STUCK, TIME, UPDATES, AddDriveStep,
     effective_phase, object_status_now)
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 _PLANNER_SIZE = len(PLANNER)  # the planner's state (robotiq_drive_step.PLANNER)
 
 
+@public_dataclass
 @dataclasses.dataclass
 class GripperDriverConfig:
     """The simulated 2F-85: which hand, and its controller (a position loop with a force

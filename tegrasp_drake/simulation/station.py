@@ -77,12 +77,13 @@ from tegrasp_drake.simulation.station_visualization import (AddStationVisualizat
                                                            grasp_camera_pose)
 from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, TactileSensorConfig
-from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
 
 # Drake's random generator takes a 32-bit seed (as the scenario's random_seed says).
 SEED_RANGE = Range(low=0, high=2**32 - 1, why="a 32-bit seed")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class ArmDriverConfig:
     """The simulated JACO2: its joint-velocity command path and joint servos
@@ -119,6 +120,7 @@ class ArmDriverConfig:
 ARM_MOUNTS = ("jaco2", "carriage")
 
 
+@public_dataclass
 @dataclasses.dataclass
 class SimulatedStationConfig:
     """The simulated station (MakeGraspStation); its other settings are the scenario's

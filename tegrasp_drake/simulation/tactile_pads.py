@@ -21,10 +21,12 @@ from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig
 from tegrasp_drake.simulation.contact_pressure import (polygon_fan_triangles,
                                                        surfaces_taxel_normal_forces)
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 _NOISE_STREAM = 7001  # separates this sensor's random stream from others seeded alike
 
 
+@public_dataclass
 @dataclasses.dataclass
 class TactileSensorConfig:
     """The taxel array of each pad (SA channel source); the numbers' sources: docs/model.md,

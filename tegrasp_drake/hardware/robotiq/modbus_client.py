@@ -21,10 +21,12 @@ from tegrasp_drake.hardware.message_boundary import (
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import units
 from tegrasp_drake.robotiq import registers
+from tegrasp_drake.rig.api_boundary import public_dataclass
 
 MIN_PERIOD = 1.0 / 200.0  # [s]
 
 
+@public_dataclass
 @dataclasses.dataclass
 class RobotiqModbusConfig:
     """Serial line, bus and timing of the client. Times in seconds."""

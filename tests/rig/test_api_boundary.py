@@ -1,0 +1,53 @@
+"""Public dataclasses accept their fields only: a misspelt or moved setting assigned in a
+script is refused naming its class and what to write, never kept and ignored."""
+
+import dataclasses
+import typing
+
+import pytest
+
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_class
+from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.scenario.scenario import Scenario, scenario_to_yaml
+
+
+def _reachable_dataclasses():
+    """Every dataclass a scenario can hold, whichever controller and station it names."""
+    roots = [Scenario, HardwareStationConfig] + [controller_class(name)
+                                                 for name in CONTROLLER_NAMES]
+    found = []
+    pending = list(roots)
+    while pending:
+        cls = pending.pop()
+        if cls in found:
+            continue
+        found.append(cls)
+        hints = typing.get_type_hints(cls)
+        for field in dataclasses.fields(cls):
+            hint = hints.get(field.name)
+            pending += [member for member in (hint, *typing.get_args(hint))
+                        if isinstance(member, type) and dataclasses.is_dataclass(member)]
+    return found
+
+
+@pytest.mark.parametrize("cls", _reachable_dataclasses(), ids=lambda cls: cls.__name__)
+def test_a_setting_that_is_not_a_field_is_refused(cls):
+    instance = cls()
+    with pytest.raises(AttributeError, match=f"{cls.__name__} has no field 'no_such_setting'"):
+        instance.no_such_setting = 1.0
+    for field in dataclasses.fields(cls)[:1]:  # a field is assigned as ever
+        setattr(instance, field.name, getattr(instance, field.name))
+
+
+@pytest.mark.parametrize("statement, advice", [
+    ("scenario.object_offset = (0.01, 0.0)", "it is now 'placement.offset'"),
+    ("scenario.controller.re_reach_enabled = False", "it is now 're_reach.enabled'"),
+    ("scenario.vibration.mode_mass_kg = 0.03", "it is now 'film.mode_mass_kg'"),
+    ("scenario.controller.re_reach.enabld = False", "did you mean 'enabled'?"),
+])
+def test_a_moved_or_misspelt_setting_names_what_to_write(statement, advice):
+    scenario = Scenario()
+    with pytest.raises(AttributeError) as raised:
+        exec(statement, {"scenario": scenario})
+    assert str(raised.value).endswith(advice)
+    assert scenario_to_yaml(scenario) == scenario_to_yaml(Scenario())
