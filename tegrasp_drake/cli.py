@@ -1,10 +1,8 @@
 """The `tegrasp` command line: one sub-command per module, each with a
 `register(subparsers)` that adds its parser and sets `func=run` (args -> exit code).
-
-`main` is the one error boundary: an exception no command foresaw ends the run with one
-line on stderr (its traceback written to a file; `-v` prints it) and EXIT_INTERNAL_ERROR;
-SIGTERM and SIGHUP end a run as Ctrl-C does, with 128 + the signal's number. The exit
-codes: docs/user-guide.md, "Exit codes".
+`main` is the one error boundary: an unforeseen exception ends the run with one line on
+stderr (traceback to a file; `-v` prints it); SIGTERM and SIGHUP end a run as Ctrl-C does.
+Exit codes: docs/user-guide.md, "Exit codes".
 """
 
 import argparse

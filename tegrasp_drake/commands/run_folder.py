@@ -1,11 +1,7 @@
 """Where a run's files go, and which earlier run they may replace (docs/user-guide.md,
-"`tegrasp trial` and `tegrasp demo`").
-
-A run folder holds one run: trial.npz, its figures and `result.json`, written last. An
-`--out` folder holding a run is refused unless `--overwrite`; without `--out`, `tegrasp
-trial` claims out/trial, out/trial-2, ... with one mkdir each; `tegrasp demo` replaces
-out/demo. Files are staged in a hidden folder and replace the earlier run's together at the
-end, Ctrl-C held back (commit_run): a failed or interrupted run leaves the earlier one whole.
+"`tegrasp trial` and `tegrasp demo`"). Files are staged in a hidden folder and replace the
+earlier run's together at the end (commit_run), so a failed or interrupted run leaves the
+earlier one whole.
 """
 
 import contextlib

@@ -1,11 +1,8 @@
 """The grasp controllers' settings, one config class per controller, selected by the YAML
-tag of the scenario's `controller` field (`controller: !HeuristicControllerConfig {...}`;
-`controller.name` is a shorthand). The closed-loop controllers share GraspControllerConfig
-(the tick, the contact force, a section per corrective action of Sec. III-C); every number
-declares its unit and range on its field, and `problem` checks what relates fields.
-ClassVars give the name in results, the events folder and the extra time allowed; the rest
-of a controller is its entry in controller_registry.py. Imports no Drake (the command line
-reads it)."""
+tag of the scenario's `controller` field (`controller.name` is a shorthand). Every number
+declares its unit and range on its field; `problem` checks what relates fields. ClassVars
+give the name in results, the events folder and the extra time allowed; the rest of a
+controller is its entry in controller_registry.py. Imports no Drake (the command line reads it)."""
 
 import dataclasses
 import typing

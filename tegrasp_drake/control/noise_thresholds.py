@@ -1,11 +1,8 @@
-"""The RA and SA thresholds raised to the channels' noise, so that they follow the
-electronics: each threshold in force is max(number, sigmas x sigma), where sigma is the
-channel's noise at rest in closed form from the electronics and the sigmas are chosen so
-that noise alone crosses it in at most FALSE_ALARM_PER_TRIAL of trials (union bound over
-the trial's samples, both pads): 5.51 for a raw RA magnitude, 2.34 for the slip band's RMS
-over 10 samples (chi-square), and the exact distribution of the clipped taxel readings for
-the SA thresholds. The reasoning and the values at the defaults: docs/model.md, "Thresholds
-in noise sigmas" and "SA thresholds against the taxels' noise"."""
+"""The RA and SA thresholds raised to the channels' noise: each threshold in force is
+max(number, sigmas x sigma), sigma the channel's noise at rest in closed form, the sigmas
+chosen so that noise alone crosses it in at most FALSE_ALARM_PER_TRIAL of trials. Reasoning
+and values: docs/model.md, "Thresholds in noise sigmas" and "SA thresholds against the
+taxels' noise"."""
 
 import dataclasses
 

@@ -1,11 +1,8 @@
-"""An emulated JACO2 on LCM: a Drake simulation of the arm answering the Kinova driver's
-messages, as Drake's hardware_sim does (KINOVA_JACO_COMMAND -> joint velocity servos,
-plant state -> KINOVA_JACO_STATUS at 100 Hz).
-
-As the real arm in joint-velocity mode, it executes only the commanded velocities: each
-joint is a servo tau = kd (v_cmd - v) within its effort limit (the plant's implicit PD,
-kp = 0), and it stops when commands stop for `command_timeout`. The gripper is one rigid
-body on the flange, gravity is off (the firmware compensates it). `tegrasp emulate jaco`.
+"""An emulated JACO2 on LCM (`tegrasp emulate jaco`), as Drake's hardware_sim does:
+KINOVA_JACO_COMMAND -> joint velocity servos, plant state -> KINOVA_JACO_STATUS at 100 Hz.
+Like the real arm in joint-velocity mode it executes only the commanded velocities (servo
+tau = kd (v_cmd - v), the plant's implicit PD with kp = 0) and stops when commands stop.
+The gripper is one rigid body on the flange; gravity is off (the firmware compensates it).
 """
 
 import numpy as np

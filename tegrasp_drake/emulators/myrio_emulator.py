@@ -1,14 +1,11 @@
 """An emulated myRIO streaming tactile frames on a pseudo-terminal, at the real rate.
 
-It replays a TactileRecording (a trial's raw pad signals): frame k carries the film's
-acceleration at its time (sample-and-hold, `piezo_axis` or the norm, through the inverse
-calibration) and, when a finger's AD7147 completes a sequence, its 12 counts. A quiet
-`lead_in` lets the receiver zero. Frames go out on the stream's own clock or, given a
-`trial_clock` (e.g. a ControllerClock), once that clock reaches them. Given a
-`gripper_request`, the replay holds at each recorded grip or release until the emulated
-gripper has been commanded the same way (docs/hardware.md, "The commands"). Injected faults
-(flipped bit, dropped byte, truncation) are drawn per frame from a seeded generator; a full
-pty buffer drops frames (counted) and never blocks. `sent()` lists what was written.
+It replays a TactileRecording: frame k carries the film's acceleration at its time (through
+the inverse calibration) and, when a finger's AD7147 completes a sequence, its 12 counts.
+Frames follow the stream's own clock or a given `trial_clock`; with a `gripper_request` the
+replay holds at each recorded grip or release until the emulated gripper is commanded alike
+(docs/hardware.md, "The commands"). Faults are drawn per frame from a seeded generator; a
+full pty buffer drops frames (counted) and never blocks.
 """
 
 import collections

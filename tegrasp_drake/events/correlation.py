@@ -1,12 +1,8 @@
-"""Eq. 3 of the paper: the maximum over lags of the normalised cross-correlation,
-
-    R_XY,normalized(n) = R_XY(n) / sqrt(R_XX(0) R_YY(0)),   R_XY(n) = sum_k x[k+n] y[k],
-
-over n = -(N-1)..N-1, no mean removed (as the paper); an all-zero window scores 0. A
-channel's score counts only when its live window's contrast (max - min) / max|x| reaches
-`min_contrast`, unless its template is flat too; opt-in `flat_needs_flat` makes a flat
-template score only a flat window (docs/controller.md, "The contrast gate"). The reference
-here uses numpy.correlate; streaming_correlation.py the loop's update; both `channel_score`.
+"""Eq. 3 of the paper: the maximum over lags n = -(N-1)..N-1 of the normalised
+cross-correlation R_XY(n) / sqrt(R_XX(0) R_YY(0)), R_XY(n) = sum_k x[k+n] y[k], no mean
+removed (as the paper); an all-zero window scores 0. A channel scores only when its window's
+contrast reaches `min_contrast` (docs/controller.md, "The contrast gate"). The reference
+here uses numpy.correlate; streaming_correlation.py the loop's update.
 """
 
 import math

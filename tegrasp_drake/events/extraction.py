@@ -1,10 +1,8 @@
-"""Cut memorized events out of a recorded ideal grasp (Sec. III-A of the paper).
-
-Around each transition's physical event (transitions.py) a `window_s` window of every
-channel is cut, starting `pre_transition_s` before the event, and divided by its maximum.
-An RA window whose peak does not rise above the recording's own noise floor (m + k s of its
-quiet approach, ra_noise_floor.py) is stored as ones: a quiet template, flat, "expects no
-change" (beyond the paper; docs/controller.md, "The paper's state machine").
+"""Cut memorized events out of a recorded ideal grasp (Sec. III-A of the paper): a
+`window_s` window of every channel from `pre_transition_s` before each transition's physical
+event, divided by its maximum. An RA window whose peak stays below the recording's noise
+floor (ra_noise_floor.py) is stored as ones, a quiet template (beyond the paper;
+docs/controller.md, "The paper's state machine").
 """
 
 import dataclasses

@@ -1,14 +1,10 @@
 """Why a memorized event did not come in time: a logged wait replayed through Eq. 3.
 
-A wait is the time the state machine spent in a mode expecting its memorized event until it
-gave up (the transition whose reason is the event's timeout, control/transition_logic.py);
+A wait is the time a mode spent expecting its event until the event's timeout;
 `event_waits` finds them in a trial's transitions. `classify_missed_wait` replays the
-trial's channels with the event held expected (replay.replay_event_held, the run's matcher
-settings) and classifies the wait by its ticks' scores: a weak dynamic stimulus (both SA
-passed at some tick, an RA channel did not: the paper's Sec. V "very weak dynamic
-stimuli"), SA did not match, or matched in replay (the replay disagrees with the run). With
-it go the best scores and the RA peaks against the channel's noise on the stream's first
-quiet_s (docs/sweeps.md, "A sweep": the missed-events report).
+channels with the event held expected (the run's matcher settings) and names the cause: a
+weak dynamic stimulus (SA passed, an RA channel did not: the paper's Sec. V), SA did not
+match, or matched in replay. Definitions: docs/sweeps.md, "A sweep".
 """
 
 import dataclasses

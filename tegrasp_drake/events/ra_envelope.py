@@ -1,10 +1,8 @@
 """The RA envelope (beyond the paper): memorized and live RA windows through the same
 first-order low-pass before Eq. 3, so that events memorized with one vibration transducer
-match on another: below both transducers' bandwidths a contact reads as a pulse of the
-filter's time constant, whatever the transducer made of it (docs/transfer.md, "A remedy:
-the RA envelope": why 2 Hz). y[k] = y[k-1] + a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s)
-(impulse-invariant 1 / (1 + s / (2 pi f_c))); a memorized window starts from its first
-sample as the steady state (event windows open on a quiet pad), the live filter from zero.
+match on another (docs/transfer.md, "A remedy: the RA envelope"). y[k] = y[k-1] +
+a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s); a memorized window starts from its first
+sample as the steady state, the live filter from zero.
 """
 
 import dataclasses

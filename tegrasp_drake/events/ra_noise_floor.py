@@ -1,12 +1,7 @@
-"""The RA noise floor (beyond the paper): an RA window carries no event unless its peak rises
-above its channel's noise, measured on the live stream while the pads are untouched.
-
-During the first `quiet_s` each RA channel passes through the envelope's low-pass (from its
-first sample as the steady state); the values' mean m_w and std s_w give the floor
-m_w + k s_w (+inf before). k = Q^-1(alpha / N) (`floor_sigmas`): a union bound over a
-trial's N RA samples with a Gaussian tail; 5.39 for alpha = 1e-3, 14 s of two channels at
-1 kHz (`rule_sigmas`). Quiet templates read the same floor (extraction.py). Reasoning:
-docs/transfer.md, "The RA noise floor"; docs/controller.md, "The paper's state machine".
+"""The RA noise floor (beyond the paper): an RA window carries no event unless its peak
+rises above its channel's noise, measured while the pads are untouched. Over the first
+`quiet_s` each low-passed RA channel gives the floor m + k s (+inf before), k = Q^-1(alpha / N)
+a union bound over a trial's N RA samples. Reasoning: docs/transfer.md, "The RA noise floor".
 """
 
 import math

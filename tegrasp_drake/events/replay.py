@@ -1,10 +1,7 @@
 """Replay a logged (or synthetic) trial through the tactile event systems, offline.
-
-`channels_trajectory` holds each logged value until the next (as the station holds SA at
-the SA rate, RA at 1 kHz) and feeds an EventMatcher wired as the grasp controller wires it;
-`replay_events_in_sequence` advances its expected event with an EventSequencer, as the
-state machine would, `replay_event_held` keeps one event expected throughout (where else
-would it match?). Both report the outputs at every control tick.
+`channels_trajectory` holds each logged value until the next and feeds an EventMatcher wired
+as the grasp controller wires it; `replay_events_in_sequence` advances the expected event
+as the state machine would, `replay_event_held` keeps one event expected throughout.
 """
 
 import dataclasses

@@ -1,14 +1,10 @@
 """Exact streaming update of the Eq. 3 scores: O(lags) work per new sample.
 
 C(n) = sum_k x[k+n] y[k] changes by two rank-one terms when the window slides one sample;
-indexed by the buffer column where the template starts, both land on one contiguous slice,
-applied by two BLAS axpy calls per channel. Extremes and energy are kept exactly; all is
-recomputed by FFT when the expected event changes or the buffer compacts (every `slack`
-samples), bounding round-off to ~1e-16 of the signal's range. A missing sample enters as the
-channel's previous one and scores its channel 0 for N slides. State, after the
-SlidingWindowState window: [active_event, scores, [high, low, energy] per channel, missing
-slides (sum, per channel), rows: channels x (2N - 1 + slack)]; column j: lag j - offset - (N -
-1).
+indexed by the buffer column where the template starts, both land on one contiguous slice
+(two BLAS axpy calls per channel). All is recomputed by FFT when the expected event changes
+or the buffer compacts (every `slack` samples), bounding round-off. A missing sample enters
+as the channel's previous one and scores its channel 0 for N slides.
 """
 
 import math

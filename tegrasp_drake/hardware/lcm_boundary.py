@@ -1,13 +1,8 @@
-"""LCM messages through the message boundary (message_boundary.py).
-
-`decode_lcm` refuses, by reason, bytes too short for a fingerprint, another type's
-fingerprint and bytes that end before the fields; a type's own check follows it.
-`CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding and counting through a
-boundary (a rejected message leaves the last good one; two in one diagram step lose the
-first). `wait_for_checked_message` waits for a good message before a Simulator runs;
-`checked_handler` is a callback for the `lcm` package's own subscriptions. No Python callback
-is subscribed on a DrakeLcm a diagram pumps (it would run without the GIL): docs/hardware.md,
-"The real-time loop on a busy host".
+"""LCM messages through the message boundary (message_boundary.py). `decode_lcm`
+refuses, by reason, short bytes, another type's fingerprint and truncated fields;
+`CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding through a boundary (a rejected
+message leaves the last good one). No Python callback is subscribed on a DrakeLcm a diagram
+pumps: docs/hardware.md, "The real-time loop on a busy host".
 """
 
 import time

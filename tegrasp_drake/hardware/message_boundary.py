@@ -1,10 +1,8 @@
 """The one boundary every message from a device crosses: decode, check, count, skip.
-
-A `MessageBoundary`'s check returns the decoded, checked value or raises
-`RejectedMessage(reason, detail)` (any other exception on untrusted bytes counts as
-"undecodable"). A rejected message is counted and skipped and the receiver keeps its last
-good value, so a device that sends nothing usable looks silent to the watchdog and never
-ends a run. `new_rejections()` gives each reason once, for a live line. Thread-safe.
+A check returns the checked value or raises `RejectedMessage(reason, detail)` (any other
+exception counts as "undecodable"). A rejected message is counted and skipped and the
+receiver keeps its last good value, so a device sending nothing usable looks silent to the
+watchdog. Thread-safe.
 """
 
 import dataclasses

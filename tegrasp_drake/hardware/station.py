@@ -1,10 +1,8 @@
-"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b), so
-the controller runs unchanged on either (rig/station_interface.py). Inside: the JACO2 on
-LCM, the 2F-85 on Modbus RTU and the myRIO stream, each on its own thread, every message
-through a MessageBoundary; a DeviceWatchdog and a FaultLatch whose `stop` holds the arm
-still; tactile and gripper data republished on the bus, so a log holds all the controller
-saw. Use it in a `with` block, call `wait_until_ready()` before the Simulator's
-Initialize() and run at real-time rate 1.
+"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b),
+so the controller runs unchanged on either: the JACO2 on LCM, the 2F-85 on Modbus RTU and
+the myRIO stream, each on its own thread; a DeviceWatchdog and a FaultLatch that hold the arm
+still; tactile and gripper data republished on the bus for the log. Use it in a `with`
+block, call `wait_until_ready()` before Initialize() and run at real-time rate 1.
 """
 
 import time

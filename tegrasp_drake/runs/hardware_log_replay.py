@@ -1,10 +1,7 @@
-"""The event matcher re-run offline on a hardware run's LCM log (`tegrasp replay LOG`).
-
-The SA and RA channels are computed from TEGRASP_TACTILE as the controller did and fed
-through an EventMatcher with the object's memorized events, two ways: expecting, while in
-mode X, the event of the logged transition that left X (reporting each match beside the
-transition), and expecting the events in grasp order (events/replay.py). The matcher's
-settings are the run's own (its scenario in TEGRASP_RUN_INFO), else the defaults.
+"""The event matcher re-run offline on a hardware run's LCM log (`tegrasp replay LOG`):
+the SA and RA channels computed from TEGRASP_TACTILE as the controller did, matched against
+the object's memorized events two ways (per logged mode, and in grasp order; events/replay.py),
+with the run's own matcher settings (TEGRASP_RUN_INFO), else the defaults.
 """
 
 import dataclasses

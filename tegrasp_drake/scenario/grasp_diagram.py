@@ -1,12 +1,7 @@
-"""The grasp diagram: a station and the grasp controller, built one way for every run.
-
-    station (MakeStation: simulated or hardware, by the scenario's `station` tag)
-      -> AddGraspController (control/grasp_controller.py) with the scenario's sections:
-         arm.desired_state and gripper.command from the measured ports
-      -> the trial's loggers (scenario/trial_log_writer.py), unless `log=False`
-
-Both stations export the same ports, so the controller cannot tell them apart. `MakeSimulator`
-is the one simulator set-up for simulated, open-loop and hardware runs.
+"""The grasp diagram: a station (simulated or hardware, by the scenario's `station` tag),
+the grasp controller wired to its measured ports, and the trial's loggers unless
+`log=False`. Both stations export the same ports, so the controller cannot tell them apart.
+`MakeSimulator` is the one simulator set-up for simulated, open-loop and hardware runs.
 """
 
 import dataclasses

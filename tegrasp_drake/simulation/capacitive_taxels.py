@@ -1,12 +1,9 @@
-"""The real pad's SA transducer: each taxel a parallel-plate capacitor read by an AD7147.
-
-Pressing the pad compresses the elastomer between an electrode and the conductive fabric
-(paper, Sec. IV-A): Delta C = eps_r eps_0 A (1/d1 - 1/d0), d1 = d0 - compression, the
-compression d0 p / E of a thin layer under the taxel's mean pressure p = F / A (d0, E the pad
-model's thickness and modulus). The AD7147 reports Delta C in whole 16-bit counts with noise.
-The station reports them as counts above the baseline or, by default, as newtons through the
-hardware's per-taxel calibration line (hardware/myrio/tactile_calibration.py), nonlinear in
-the true force. The numbers and their sources: docs/model.md, "The capacitive taxel".
+"""The real pad's SA transducer: each taxel a parallel-plate capacitor read by an AD7147
+(paper, Sec. IV-A): Delta C = eps_r eps_0 A (1/d1 - 1/d0), d1 = d0 - d0 p / E under the
+taxel's mean pressure p = F / A. The AD7147 reports Delta C in whole 16-bit counts with
+noise; the station reports counts above baseline or, by default, newtons through the
+hardware's per-taxel calibration (hardware/myrio/tactile_calibration.py). Numbers and
+sources: docs/model.md, "The capacitive taxel".
 """
 
 import dataclasses

@@ -1,12 +1,9 @@
 """The Cartesian carriage: the gripper on six actuated joints that reproduce the JACO2's
-end-point impedance at the grasp frame G, for sweeps (`station.arm: carriage`).
-
-Three prismatic joints along the principal axes of the arm's translational mobility at G
-move G's origin, then yaw, pitch and roll about world z, y, x (Drake's RollPitchYaw) turn
-it; the gripper is welded to the last body. Each joint is on the plant's implicit PD, which
-SAP keeps stable at 1 ms for any gains (a spatial PD as an external force would be explicit).
-The impedance: docs/model.md, "The carriage". Frames: world W; G the grasp frame (between
-the pads' centres, z the approach); wrenches [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G, in W.
+end-point impedance at the grasp frame G, for sweeps (`station.arm: carriage`). Three
+prismatic joints along the principal axes of the arm's translational mobility at G, then
+yaw, pitch and roll about world z, y, x; each on the plant's implicit PD (stable under SAP at
+1 ms for any gains). docs/model.md, "The carriage". Frames: world W; G between the pads'
+centres, z the approach; wrenches [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G, in W.
 """
 
 import dataclasses

@@ -1,14 +1,11 @@
 """Per-taxel normal force from a hydroelastic contact surface: the pure numpy core.
 
-A face's normal force on the pad is its pressure integrated over its projection on the pad
-plane. The pressure is linear over each face and the taxels are a rectangular grid, so each
-cell's share of each triangle has a closed form, exact however large the faces (a compliant
-box pad's faces are centimetres across: a face put whole into one taxel would give an uneven
-pattern under an even press). The cumulative integral F(a, b) over T and {x < a, y < b} is
-summed from T's edges (Green's theorem): along an edge the swept integral is quadratic on
-each side of where it crosses y = b, so the midpoint rule with its curvature term is exact.
-A cell's force is the inclusion-exclusion of F at its corners; points beyond the pad's edge
-count to the nearest edge taxel.
+A face's force on the pad is its pressure integrated over its projection on the pad plane.
+The pressure is linear over each face and the taxels form a grid, so each cell's share of
+each triangle has a closed form, exact however large the faces: the cumulative integral over
+{x < a, y < b} summed from the triangle's edges (Green's theorem), a cell's force by
+inclusion-exclusion at its corners. Points beyond the pad's edge count to the nearest edge
+taxel.
 """
 
 import numpy as np

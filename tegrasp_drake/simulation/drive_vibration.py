@@ -1,13 +1,9 @@
-"""Vibration of the gripper's motor and gears and of the arm's actuators, as the films read it.
-
-Each drive is a sum of tones at f_k = order_k n, n = motor_revolutions_per_unit |v| [rev/s]
-(v the drive's joint rate: the gripper's half-opening rate [m/s], the arm's joint rates
-[rad/s]), each of amplitude A_k |v| / full_speed |H(f_k)|, |H(f)| = 1 / sqrt((1 - r^2)^2 +
-(2 zeta r)^2), r = f / f_mode, the fingertip mode's gain (film_dynamics.py). A drive of
-several joints is lumped into one set of tones (amplitude from the norm of the rates,
-frequency from the fastest) to keep the symbolic evaluation cheap. The tones are point
-samples at the RA rate: the myRIO has no anti-aliasing filter. One compiled
-SymbolicVectorSystem; the spectra assumed: docs/model.md, "Drive vibration".
+"""Vibration of the gripper's and the arm's drives as the films read it: per drive a sum of
+tones at f_k = order_k n, n = motor_revolutions_per_unit |v| [rev/s] (v the gripper's
+half-opening rate [m/s] or the arm's joint rates [rad/s]), amplitude A_k |v| / full_speed
+|H(f_k)|, H the fingertip mode's gain (film_dynamics.py). A drive of several joints is one set
+of tones; tones are point samples at the RA rate (the myRIO has no anti-aliasing filter). One
+compiled SymbolicVectorSystem; spectra: docs/model.md, "Drive vibration".
 """
 
 import dataclasses

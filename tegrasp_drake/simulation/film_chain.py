@@ -1,14 +1,11 @@
 """The pads' PVDF films as one Diagram, compiled Drake systems but for FilmLoads:
 
-    film_signals -> film_loads (FilmLoads, Python: the step's loads)
-    film_inputs (the hold, film_loads, drive vibration, noise) -> film_dynamics (MatrixGain:
-      both films over the step, exactly) -> film_step -> film_hold (ZeroOrderHold: FilmLoads'
-      memory and the films' states) | film_readout (SymbolicVectorSystem: peak-hold, drive,
-      noise, swing, converter) -> film_samples ([0, 0, a] per pad)
+    film_signals -> film_loads (FilmLoads, Python) -> film_dynamics (MatrixGain: both films
+      over the step, exactly) -> film_step -> film_hold (ZeroOrderHold: the loads' memory and
+      the films' states) | film_readout (SymbolicVectorSystem) -> film_samples ([0, 0, a] per pad)
 
 The states live in a ZeroOrderHold, not a LinearSystem, whose state would draw from the
-random generator and change every noise stream seeded after it. The readout's expressions
-are film_readout.reading_mps2's, the same arithmetic bit for bit.
+random generator and shift every noise stream seeded after it.
 """
 
 import numpy as np

@@ -1,13 +1,9 @@
 """The numerical core of the pad's PVDF film (the RA source): pure numpy functions.
-
-One pad is a linear system of five states, s = [l1, l2, y, y', z]: l1, l2 a critically
-damped low-pass (corner w_l) of the slow load L [N]; y [m] the fingertip's mode, deflected
-outward by y'' + 2 zeta w y' + w^2 y = (l2 + d) / m, d [N] a direct load that bypasses the
-low-pass (impact, slip texture); z the charge amplifier's low-pass of y (corner w_h), so the
-film reads y - z. The output is in acceleration-equivalent units, a = w^2 (y - z) [m/s^2]
-(the voltage over the sensitivity S = G_Q / (w^2 C_f)). A plant step is split into n
-internal steps (20 kHz); L is held over the plant step, d per internal step, both integrated
-exactly (matrix exponential). docs/model.md, "Vibration (RA) model".
+One pad has five states s = [l1, l2, y, y', z]: l1, l2 a critically damped low-pass of the
+slow load L [N]; y [m] the fingertip's mode, y'' + 2 zeta w y' + w^2 y = (l2 + d) / m with d
+[N] a direct load (impact, slip texture); z the charge amplifier's low-pass of y. The output
+is a = w^2 (y - z) [m/s^2], integrated exactly over 20 kHz internal steps. docs/model.md,
+"Vibration (RA) model".
 """
 
 import dataclasses

@@ -1,14 +1,8 @@
-"""FilmLoads: what loads each pad's film over one plant step: the slow modal load L = F + m a_n
-[N] (the pad's normal force, the fingertip's inertia) and the direct loads d [N] at the step's
-n internal instants (the impact's half-sine at a contact's onset, the slip texture). The
-impact needs the plant's abstract ports, so this is the chain's one Python system; its memory
-(the last forces, the pulses under way) is in its output, which the chain holds and feeds
-back (`held`). docs/model.md, "Vibration (RA) model".
-
-The output, `film_loads` (10 + 2 n): [0:2] L of the left and right pads [N] (0 at t = 0);
-[2:4] F [N]; each pad's impact onset [s] [4:6], impulse [N s] [6:8] (0: none under way) and
-duration [s] [8:10]; [10:10+n], [10+n:10+2n] d of the left, then the right pad, oldest
-instant first [N].
+"""FilmLoads: what loads each pad's film over one plant step: the slow modal load
+L = F + m a_n [N] and the direct loads d [N] at the step's n internal instants (the impact's
+half-sine at a contact's onset, the slip texture). The impact needs the plant's abstract
+ports, so this is the chain's one Python system; its memory is in its output, which the
+chain holds and feeds back (`held`). docs/model.md, "Vibration (RA) model".
 """
 
 import dataclasses

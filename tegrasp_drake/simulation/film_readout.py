@@ -1,13 +1,10 @@
-"""The film's electronics after the film: the charge amplifier's output swing and the NI
-myRIO-1900's 12-bit analog input (paper, Sec. IV-A), as pure functions. Per RA sample:
+"""The film's electronics: the charge amplifier's output swing and the myRIO-1900's 12-bit
+analog input (paper, Sec. IV-A), as pure functions. Per RA sample:
 
-  V = clip(S a + n, -swing, +swing)   S [V/(m/s^2)], a the film's reading, n Gaussian noise
+  V = clip(S a + n, -swing, +swing)   S [V/(m/s^2)], n Gaussian noise
   code = clip(round((V + offset) / lsb), low, high),   a_read = (code lsb - offset) / S
 
-V has the reading's sign (the host's calibration absorbs the amplifier's inversion). With
-noise of half a code or more the rounding error is near uniform and independent of the
-signal (Widrow and Kollar, "Quantization Noise", 2008): the reading's noise is
-sqrt(sigma_n^2 + lsb^2 / 12). docs/model.md, "Vibration (RA) model" (Readout).
+docs/model.md, "Vibration (RA) model" (Readout).
 """
 
 import dataclasses

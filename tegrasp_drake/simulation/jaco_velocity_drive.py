@@ -1,11 +1,8 @@
 """The simulated JACO2 driven as the real one is: by joint velocities, sampled, late.
-
-`arm.desired_state` -> JacoVelocityTracker (rig/jaco_velocity_tracker.py) -> ZeroOrderHold
-at the command rate -> DiscreteTimeDelay of the latency -> the velocity servo's set-point
-q_ref = q0 + integral of v_cmd, v_ref = v_cmd -> the plant's implicit PD on each joint. The
-set-point integrates the command as the JACO2's DSP turns velocity commands into position
-set-points. Why, and the settings' sources (100 Hz commands, Kinova's kinova-ros README;
-the latency, one 10 ms DSP cycle plus USB, unpublished): docs/model.md, "The arm".
+`arm.desired_state` -> JacoVelocityTracker -> ZeroOrderHold at the command rate ->
+DiscreteTimeDelay -> the servo set-point q_ref = q0 + integral of v_cmd (as the JACO2's DSP
+does) -> the plant's implicit PD per joint. Why, and the settings' sources: docs/model.md,
+"The arm".
 """
 
 import dataclasses

@@ -1,12 +1,10 @@
-"""The linkage fingers' pad normal forces from the joints' generalized contact forces (a
-compiled port; `vibration.pad_force_source: joint_forces`). Each finger is a planar chain
-base -A- driver -B- coupler -C- follower (robotiq/linkage.py); a contact wrench on the
-follower, in-plane force F and moment M_C about C, gives
+"""The linkage fingers' pad normal forces from the joints' generalized contact forces
+(`vibration.pad_force_source: joint_forces`). A contact wrench on the follower of the chain
+base -A- driver -B- coupler -C- follower, in-plane force F and moment M_C about C, gives
 
     tau_C = M_C,   tau_B = M_C + (C - B) x F,   tau_A = M_C + (C - A) x F
 
-so the last two give F, and the pad force is F . n, n the pad's outward normal. It equals
-PadNormalForces' when only the followers can touch (`LinkagePadStatics` checks).
+so the last two give F, and the pad force is F . n, n the pad's outward normal.
 """
 
 import dataclasses

@@ -1,10 +1,8 @@
-"""Vibration that sliding excites in a pad's piezo film (the RA response to slip).
-
-The pad's cover (the paper's conductive fabric) is a texture of height h and period lambda:
-at slip speed v the film is driven at f = v / lambda with an acceleration amplitude
-h (2 pi v / lambda)^2 along the pad normal, its phase the integrated slip distance (no random
-numbers; nothing when nothing slides). v is the tangential speed, in the pad plane, of the
-object's point at the pad centre relative to the pad, while the pad touches.
+"""Vibration that sliding excites in a pad's piezo film (the RA response to slip). The
+pad's cover is a texture of height h and period lambda: at slip speed v (the object's point
+at the pad centre relative to the pad, in the pad plane) the film is driven at
+f = v / lambda with amplitude h (2 pi v / lambda)^2 along the pad normal, its phase the
+integrated slip distance.
 """
 
 import math

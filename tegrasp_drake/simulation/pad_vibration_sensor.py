@@ -1,12 +1,8 @@
 """The PVDF film on each pad and its charge amplifier (the RA source): the settings
 (`VibrationSensorConfig`, the scenario's `vibration` section) and the sensitivity and noise
-that follow from them.
-
-The film reads the bending of the fingertip's first structural mode, driven by the pad's
-load, the impact at contact onset and the slip texture (film_dynamics.py, film_loads.py);
-film_chain.py builds both films as one Diagram, film_readout.py is the myRIO's converter.
-The RA output is in acceleration-equivalent units, a = -V / S, on the pad frame's z (the
-inward normal). The model and every number: docs/model.md, "Vibration (RA) model".
+that follow from them. The RA output is in acceleration-equivalent units, a = -V / S, on the
+pad frame's z (the inward normal). The model and every number: docs/model.md, "Vibration
+(RA) model".
 """
 
 import dataclasses

@@ -1,10 +1,8 @@
 """TactilePads: the 12-taxel arrays of both fingertip pads, sampled at the taxel rate.
-
-Each sample integrates the pressure of each hydroelastic contact surface on a pad over its
-taxels (contact_pressure.py), scales the surface's taxel forces to the normal force the
-solver applied (docs/model.md, "Taxel forces from the contact surface"), then adds offset,
-Gaussian noise and quantisation. The noise is seeded by (seed, sample index), so the Context
-holds all state.
+Each sample integrates each contact surface's pressure over the taxels
+(contact_pressure.py), scales it to the solver's normal force (docs/model.md, "Taxel forces
+from the contact surface"), then adds offset, noise seeded by (seed, sample index) and
+quantisation.
 """
 
 import dataclasses

@@ -1,10 +1,7 @@
-"""What a taxel reads from noise alone, as an exact distribution of the transducer's model:
-the SA thresholds are set against it (control/noise_thresholds.py; docs/model.md, "SA
-thresholds against the taxels' noise"). Every path ends in a quantiser, so the noise is a
-lattice distribution: the calibrated capacitive reading gain max(0, rint(sigma_c Z)) [N]
-(clipped at zero: a positive mean at rest), its counts rint(sigma_c Z) unclipped, the force
-taxel q rint((offset + sigma Z) / q) (a lattice of sigma / 64 when q = 0). Under load the
-clip is not reached (`loaded_noise`).
+"""What a taxel reads from noise alone, as an exact distribution of the transducer's model,
+for the SA thresholds (docs/model.md, "SA thresholds against the taxels' noise"). Every path
+ends in a quantiser, so the noise is a lattice distribution; the calibrated reading is
+clipped at zero (a positive mean at rest), which under load is not reached (`loaded_noise`).
 """
 
 import dataclasses

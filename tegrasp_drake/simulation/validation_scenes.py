@@ -1,12 +1,8 @@
 """Minimal scenes of the station's contact world, to check it against closed-form mechanics
-(docs/model.md, "Validation against closed form").
-
-A scene holds the station's gripper model welded to the world (side grasp, no arm, no
-sensors), the table if asked for and one object, with the scenario's `plant_config` and
-`contact_geometry`. The fingers follow a force-limited position loop, as SimRobotiqDriver's
-do, with a grip-force profile allowed below the 2F-85's 20 N so that slip can be provoked.
-The experiments: push_standing_object (slides or tips over), slip_onset_grip_force (the grip
-at which a held object falls) and held_tilt_rate (how fast a tilted held object turns).
+(docs/model.md, "Validation against closed form"): the station's gripper welded to the world,
+the table if asked for and one object, with the scenario's `plant_config` and
+`contact_geometry`; the fingers on a force-limited position loop allowed below the 2F-85's
+20 N so that slip can be provoked.
 """
 
 import dataclasses

@@ -1,13 +1,7 @@
 """Detection quality per trigger and controller, and paired comparisons of controllers, from
-a sweep's records (docs/sweeps.md, "A sweep": the definitions).
-
-Per event transition and controller, over the trials that reached its source mode:
-detected, false (taken by the event trigger more than FALSE_TRIGGER_MARGIN_S before its
-physical event, or without one), other, and the detected ones' latency [s]. The hit in
-Hold (a sweep with `disturbance.hit_time_s`), over the trials in Hold when it came:
-detected (Hold -> Avoid at or after it), missed, false (an Avoid before it or without a
-hit), latency and the Avoids' trigger. Paired comparison: McNemar's exact test on the
-scenes both controllers ran (table.exact_mcnemar_p_value).
+a sweep's records (docs/sweeps.md, "A sweep": the definitions): per event transition,
+detected, false, other and latency [s]; the hit in Hold likewise; McNemar's exact test on
+the scenes both controllers ran.
 """
 
 import collections

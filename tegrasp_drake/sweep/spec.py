@@ -1,11 +1,8 @@
-"""What a sweep runs: the typed sweep specification, its validation, and the trial list.
-
+"""What a sweep runs: the typed sweep specification, its validation and the trial list.
 The paper's experiment (Sec. IV-B): every object at every marker of a grid, a few attempts
-per marker, once per controller; `expand_trials` lists one `TrialSpec` per (controller,
-object, marker, attempt). Marker offsets are in the gripper's frame at the expected grasp:
-x the approach axis (normal to the palm), y the finger stroke; (0, 0) is well placed. A
-trial's random numbers come from (base_seed, object, marker, attempt), never from the
-controller, so every controller meets the same scene and noise (paired comparison).
+each, once per controller. Marker offsets are in the gripper's frame at the expected grasp
+(x the approach axis, y the finger stroke). A trial's random numbers come from (base_seed,
+object, marker, attempt), never the controller, so controllers meet the same scenes.
 """
 
 import dataclasses

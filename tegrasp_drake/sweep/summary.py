@@ -1,12 +1,7 @@
 """The results table of a sweep: per controller, Table I's average success rates beside its
-false-trigger rate and detection latencies, and the paper's row.
-
-Made from a results folder's records only (`write_summary`); analysis/update_results_page.py
-copies it into docs/results.md between the markers that name the folder, with the commit of
-each folder's records. False triggers: trials with an event transition more than
-FALSE_TRIGGER_MARGIN_S before its physical event. Latency: the median time from the physical
-event (first contact, grip settled, table touch) to its transition, over the trials where
-it came on time (their number in brackets).
+false-trigger rate and detection latencies (median, over the trials where the event came on
+time), and the paper's row. Made from a results folder's records only (`write_summary`);
+analysis/update_results_page.py copies it into docs/results.md.
 """
 
 import re

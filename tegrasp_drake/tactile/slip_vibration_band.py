@@ -1,12 +1,8 @@
 """SlipVibrationBand: the pads' vibration in the band where slip rings, for Lift-Load
-(docs/model.md, "Slip: the texture and the slip band"): per axis a second-order
-Butterworth high-pass at band_hz, then each pad's RMS of |y| over window_s [m/s^2]. The
-film's squeeze and lift readings lie below about 10 Hz; texture slip at a lift's 40 mm/s
-rings at 80 Hz (Howe and Cutkosky 1989). It filters one sample per tick; in blocks of B
-samples from a sample register (one matrix product, biquad_block_map; equal to per-tick
-at block ends); or, on hardware, exactly the device samples sent since the last tick, as
-held samples would ring the high-pass (docs/hardware.md, "Serial bursts and the slip
-band")."""
+(docs/model.md, "Slip: the texture and the slip band"): per axis a second-order Butterworth
+high-pass at band_hz, then each pad's RMS of |y| over window_s [m/s^2]. It filters one sample
+per tick, blocks of samples, or on hardware exactly the device samples since the last tick
+(docs/hardware.md, "Serial bursts and the slip band")."""
 
 import numpy as np
 from pydrake.common.value import AbstractValue

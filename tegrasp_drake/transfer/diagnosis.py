@@ -1,10 +1,7 @@
 """Which channel's Eq. 3 score falls short, per transition, in a trial run with events
-memorized elsewhere (docs/transfer.md, "What breaks transfer").
-
-Each event is scored offline (events/correlation.py) every `step_s` while a mode waited for
-it: "best" is each channel's highest score, "together" the four scores at the tick where
-the smallest margin (score - threshold) is largest, "match" whether that tick passes. With
-an RA envelope both the live and the memorized RA are low-passed first.
+memorized elsewhere (docs/transfer.md, "What breaks transfer"): each event scored offline
+every `step_s` while a mode waited for it; "best" per channel, "together" at the tick with
+the largest smallest margin, "match" whether that tick passes.
 """
 
 import dataclasses

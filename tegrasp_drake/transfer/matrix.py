@@ -1,11 +1,8 @@
 """Do memorized events transfer? Events memorized in one world, trials run in another.
-
-A world is a scenario preset (tegrasp_drake/scenarios/scenarios.yaml) plus `--set`
-assignments (its `object` ignored: the sweep sets each trial's). A transfer spec
-(`LoadTransferSpec`) names the worlds, the cells (memorizing, running world) and one sweep.
-`run_transfer` records each memorizing world's events, then runs each cell as an ordinary
-sweep into OUT/cells/<memorizing>-in-<running>/; the same call resumes (docs/transfer.md,
-"A transfer sweep").
+A world is a scenario preset plus `--set` assignments; a transfer spec names the worlds, the
+cells (memorizing, running world) and one sweep. `run_transfer` records each memorizing
+world's events, then runs each cell as an ordinary, resumable sweep (docs/transfer.md, "A
+transfer sweep").
 """
 
 import dataclasses

@@ -1,11 +1,8 @@
-"""Kinova JACO2 LCM messages (Drake's `lcmt_jaco_command`, `lcmt_jaco_status`) to and from
-vectors; the four systems only convert, in Drake's driver pattern.
-
-The Kinova driver runs the arm in joint-velocity mode at 100 Hz and ignores a command's
-`joint_position` (kept for logs and the emulator), so JacoVelocityTracker turns a position
-error into velocity before the sender. Units: rad, rad/s, N m, `utime` in us; num_fingers = 0
-(the 2F-85 is on its own bus). `check_jaco_status` and `check_jaco_command` are the arm's
-message-boundary checks (hardware/message_boundary.py).
+"""Kinova JACO2 LCM messages (`lcmt_jaco_command`, `lcmt_jaco_status`) to and from
+vectors, in Drake's driver pattern, and the arm's message-boundary checks. The driver runs
+the arm in joint-velocity mode at 100 Hz and ignores `joint_position` (kept for logs), so
+JacoVelocityTracker turns position error into velocity first. Units: rad, rad/s, N m, `utime`
+in us; num_fingers = 0 (the 2F-85 is on its own bus).
 """
 
 import math

@@ -1,11 +1,7 @@
-"""The myRIO tactile stream as a Drake system with the simulated pads' ports.
-
-Every `period` (1 ms) an unrestricted update drains the reader thread's frames (never
-blocking), calibrates them and keeps the result in the Context. A burst is played one frame
-per tick, two while more than two wait, all but `max_backlog` beyond that, keeping the
-newest counts and the largest piezo sample (an impact is never lost); filters that need
-every device sample read `pad_acceleration_samples` (docs/hardware.md, "Serial bursts and
-the slip band").
+"""The myRIO tactile stream as a Drake system with the simulated pads' ports. Every
+`period` (1 ms) an update drains the reader thread's frames without blocking and calibrates
+them. A burst plays out a frame or two per tick, keeping the newest counts and the largest
+piezo sample (docs/hardware.md, "Serial bursts and the slip band").
 """
 
 import dataclasses
