@@ -1,8 +1,7 @@
-"""The `tegrasp` command line: one sub-command per module, each with a
-`register(subparsers)` that adds its parser and sets `func=run` (args -> exit code).
-`main` is the one error boundary: an unforeseen exception ends the run with one line on
-stderr (traceback to a file; `-v` prints it); SIGTERM and SIGHUP end a run as Ctrl-C does.
-Exit codes: docs/user-guide.md, "Exit codes".
+"""The `tegrasp` command line: one sub-command per module, each with a `register(subparsers)` that
+adds its parser and sets `func=run` (args -> exit code). `main` is the one error boundary: an
+unforeseen exception ends the run with one line on stderr (traceback to a file; `-v` prints it);
+SIGTERM and SIGHUP end a run as Ctrl-C does. Exit codes: docs/user-guide.md, "Exit codes".
 """
 
 import argparse
@@ -48,9 +47,8 @@ PATH_ARGUMENTS = ("scenario", "events", "out", "html", "spec", "logs", "trial",
 
 
 def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
-    """Exits with a usage error naming the first argument of `args` given as '' (alone or in
-    a repeated option's list): an unset shell variable, never "not given" or the current
-    folder."""
+    """Exits with a usage error naming the first argument of `args` given as '' (alone or in a
+    repeated option's list): an unset shell variable, never "not given" or the current folder."""
     subparsers = next(a for a in parser._actions
                       if isinstance(a, argparse._SubParsersAction))
     command = subparsers.choices[args.command]

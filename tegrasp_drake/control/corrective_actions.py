@@ -1,7 +1,6 @@
 """The corrective actions of Sec. III-C (Re-Reach, Lift-Load, Avoid) as pure functions: the
-decisions the rules call and the moves the state machine makes (docs/controller.md,
-"Corrective actions"). Frames: world W; G approaches along +x, the stroke along y, the left
-finger on +y."""
+decisions the rules call and the moves the state machine makes (docs/controller.md, "Corrective
+actions"). Frames: world W; G approaches along +x, the stroke along y, the left finger on +y."""
 
 import dataclasses
 import math
@@ -81,8 +80,7 @@ def _lift_load_for_slip(counters: Counters, config: GraspControllerConfig, trigg
 
 def lift_load_or_fail(slip_s: float, counters: Counters,
                       config: GraspControllerConfig) -> Decision | None:
-    """In Lift: Load after slip_s [s] of slip (Failed once max_lift_loads are used), else
-    None."""
+    """In Lift: Load after slip_s [s] of slip (Failed once max_lift_loads are used), else None."""
     if not (config.lift_load.enabled and slip_s >= config.lift_load.slip_s):
         return None
     return _lift_load_for_slip(counters, config, Trigger.CORRECTIVE,
@@ -134,8 +132,7 @@ def avoid_on_hit(hit: bool, config: GraspControllerConfig) -> Decision | None:
 
 def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
                        config: GraspControllerConfig) -> Decision | None:
-    """In Hold: Avoid on the memorized hit event from hit_armed_s [s] in Hold on, else
-    None."""
+    """In Hold: Avoid on the memorized hit event from hit_armed_s [s] in Hold on, else None."""
     if (config.avoid.enabled and hit_event
             and time_in_hold_s >= config.memorized_corrective.hit_armed_s):
         return Decision(Mode.AVOID, Trigger.CORRECTIVE_EVENT, "memorized hit event in Hold")
@@ -157,10 +154,9 @@ def pad_accelerations_in_world(pad_acceleration: np.ndarray) -> np.ndarray:
 
 
 def avoid_direction(delta_sa, acceleration_sum_W, sa_asymmetry_n: float) -> np.ndarray:
-    """Unit world direction away from a hit: along the stroke toward the pad whose SA
-    gained more (delta_sa, (left, right) [N]) when the gains differ by more than
-    sa_asymmetry_n; else the horizontal part of acceleration_sum_W (the pads' common
-    motion); else straight up."""
+    """Unit world direction away from a hit: along the stroke toward the pad whose SA gained more
+    (delta_sa, (left, right) [N]) when the gains differ by more than sa_asymmetry_n; else the
+    horizontal part of acceleration_sum_W (the pads' common motion); else straight up."""
     difference = float(delta_sa[0] - delta_sa[1])
     if abs(difference) > sa_asymmetry_n:
         return np.array([0.0, math.copysign(1.0, difference), 0.0])
@@ -180,9 +176,8 @@ class AvoidMove:
 
 def avoid_move(p_WG, sa_gain_sum_n, acceleration_sum_W,
                config: GraspControllerConfig) -> AvoidMove:
-    """The Avoid move from p_WG [m, world]: avoid.distance_m along avoid_direction of the
-    mean SA gain (sa_gain_sum_n [N] and acceleration_sum_W [m/s^2], summed over the
-    sensing ticks)."""
+    """The Avoid move from p_WG [m, world]: avoid.distance_m along avoid_direction of the mean SA
+    gain (sa_gain_sum_n [N] and acceleration_sum_W [m/s^2], summed over the sensing ticks)."""
     ticks = max(1, round(config.avoid.sense_s / config.update_period_s))
     delta_sa = np.asarray(sa_gain_sum_n) / ticks
     direction = avoid_direction(delta_sa, acceleration_sum_W, config.avoid.sa_asymmetry_n)

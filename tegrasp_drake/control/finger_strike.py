@@ -1,8 +1,7 @@
-"""The taxel_aware finger-strike sense as pure functions: a finger's front striking the
-object in the approach, which the taxels barely see, read from the arm's joint torques
-mapped onto the grasp frame G, and the shift after it (docs/controller.md, "Finger
-strike"). Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] on the arm at G, in world W
-(approach +x, stroke y, left finger on +y)."""
+"""The taxel_aware finger-strike sense as pure functions: a finger's front striking the object in
+the approach, which the taxels barely see, read from the arm's joint torques mapped onto the grasp
+frame G, and the shift after it (docs/controller.md, "Finger strike"). Wrenches are [Mx, My, Mz,
+Fx, Fy, Fz] [N m, N] on the arm at G, in world W (approach +x, stroke y, left finger on +y)."""
 
 import numpy as np
 

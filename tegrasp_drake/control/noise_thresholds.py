@@ -1,8 +1,7 @@
-"""The RA and SA thresholds raised to the channels' noise: each threshold in force is
-max(number, sigmas x sigma), sigma the channel's noise at rest in closed form, the sigmas
-chosen so that noise alone crosses it in at most FALSE_ALARM_PER_TRIAL of trials. Reasoning
-and values: docs/model.md, "Thresholds in noise sigmas" and "SA thresholds against the
-taxels' noise"."""
+"""The RA and SA thresholds raised to the channels' noise: each threshold in force is max(number,
+sigmas x sigma), sigma the channel's noise at rest in closed form, the sigmas chosen so that noise
+alone crosses it in at most FALSE_ALARM_PER_TRIAL of trials. Reasoning and values: docs/model.md,
+"Thresholds in noise sigmas" and "SA thresholds against the taxels' noise"."""
 
 import dataclasses
 

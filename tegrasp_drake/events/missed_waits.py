@@ -80,8 +80,7 @@ class MissedWait:
     ra_peak: np.ndarray | None = None
 
     def ra_peak_sigmas(self) -> np.ndarray | None:
-        """[left, right] (peak - noise mean) / noise std; inf for a channel without
-        noise."""
+        """[left, right] (peak - noise mean) / noise std; inf for a channel without noise."""
         return None if self.ra_peak is None else self._sigmas(self.ra_peak)
 
     def _sigmas(self, peak: np.ndarray) -> np.ndarray:

@@ -87,8 +87,7 @@ class RaEnvelope(LeafSystem):
 
 
 def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
-    """Adds an RaEnvelope (`ra_envelope`) fed by the output port `channels`; returns its
-    output."""
+    """Adds an RaEnvelope (`ra_envelope`) fed by the output port `channels`; returns its output."""
     envelope = builder.AddNamedSystem("ra_envelope", RaEnvelope(
         cutoff_hz=cutoff_hz, ra_rate_hz=ra_rate_hz))
     builder.Connect(channels, envelope.GetInputPort("channels"))

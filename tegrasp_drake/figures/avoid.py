@@ -1,7 +1,6 @@
-"""Fig. 10 of the paper for one trial: a hit on the held object, seen by RA, and the Avoid
-state's reaction. Around the first Hold -> Avoid transition: RA of both fingers with the hit
-threshold, SA, and the object's displacement (the gripper carries it along the avoiding
-direction)."""
+"""Fig. 10 of the paper for one trial: a hit on the held object, seen by RA, and the Avoid state's
+reaction. Around the first Hold -> Avoid transition: RA of both fingers with the hit threshold, SA,
+and the object's displacement (the gripper carries it along the avoiding direction)."""
 
 import numpy as np
 

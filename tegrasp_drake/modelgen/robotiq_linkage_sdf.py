@@ -1,9 +1,8 @@
-"""Writes models/robotiq_2f85/robotiq_2f85_linkage.sdf: the 2F-85 with its real finger
-linkage (robotiq/linkage.py; docs/model.md, "The hand: the 2F-85 finger linkage"). Per
-finger a driver, coupler, follower (with the fingertip) and spring link; a ball constraint
-closes each loop, the right driver mimics the left, whose actuator carries the rotor
-(robotiq/drive.py). Link frames are the base frame in the open pose; only the pad and its
-backing collide."""
+"""Writes models/robotiq_2f85/robotiq_2f85_linkage.sdf: the 2F-85 with its real finger linkage
+(robotiq/linkage.py; docs/model.md, "The hand: the 2F-85 finger linkage"). Per finger a driver,
+coupler, follower (with the fingertip) and spring link; a ball constraint closes each loop, the
+right driver mimics the left, whose actuator carries the rotor (robotiq/drive.py). Link frames are
+the base frame in the open pose; only the pad and its backing collide."""
 
 import numpy as np
 

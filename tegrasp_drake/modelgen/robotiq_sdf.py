@@ -1,9 +1,8 @@
-"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like gripper with
-prismatic fingers (`gripper.model: prismatic`), the right mimicking the left so an
-off-centre object is pushed to the centre. Frames: `base` at the mounting face (+z the
-approach, y the stroke), `grasp_frame` (G) at the pads' centre, `<f>_pad` at each pad face
-(+z inward, +y toward the fingertip), in which rig/taxel_layout.py is given. Pads are
-compliant hydroelastic boxes on rigid aluminium fingers."""
+"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like gripper with prismatic fingers
+(`gripper.model: prismatic`), the right mimicking the left so an off-centre object is pushed to the
+centre. Frames: `base` at the mounting face (+z the approach, y the stroke), `grasp_frame` (G) at
+the pads' centre, `<f>_pad` at each pad face (+z inward, +y toward the fingertip), in which
+rig/taxel_layout.py is given. Pads are compliant hydroelastic boxes on rigid aluminium fingers."""
 
 import numpy as np
 

@@ -1,7 +1,6 @@
-"""The station's ports: the one contract between a station and the controller. The
-simulated and real stations export these names, so the controller connects to either; name
-a port by its constant. CONTROLLER_INPUTS and CONTROLLER_OUTPUTS are the ports every station
-has."""
+"""The station's ports: the one contract between a station and the controller. The simulated and
+real stations export these names, so the controller connects to either; name a port by its
+constant. CONTROLLER_INPUTS and CONTROLLER_OUTPUTS are the ports every station has."""
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.robotiq import units

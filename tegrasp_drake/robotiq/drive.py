@@ -1,8 +1,7 @@
-"""The 2F-85's drive in closed form, the one source of its parameters, in the left driver's
-angle a [rad]: a critically damped position loop (K = J (2 pi f)^2, D = 2 J (2 pi f)) capped
-at 2 F |dy/da| while moving, and a self-locking screw that holds the force at the stop;
-`grip_rise` integrates it against a linear contact (docs/model.md, "The drive: rotor,
-position loop")."""
+"""The 2F-85's drive in closed form, the one source of its parameters, in the left driver's angle a
+[rad]: a critically damped position loop (K = J (2 pi f)^2, D = 2 J (2 pi f)) capped at 2 F |dy/da|
+while moving, and a self-locking screw that holds the force at the stop; `grip_rise` integrates it
+against a linear contact (docs/model.md, "The drive: rotor, position loop")."""
 
 import dataclasses
 import math

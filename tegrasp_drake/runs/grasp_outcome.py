@@ -98,9 +98,8 @@ def first_contact_time(log, after: float = 0.0):
 
 
 def grip_plateau_n(log, after: float = 0.0) -> float:
-    """The level [N] the weaker pad's true force settles at after `after` [s]: its
-    maximum (the squeeze rises monotonically to it and the lift only redistributes it).
-    0 without samples."""
+    """The level [N] the weaker pad's true force settles at after `after` [s]: its maximum (the
+    squeeze rises monotonically to it and the lift only redistributes it). 0 without samples."""
     weaker = true_sa(log).min(axis=1)[log.t_sa >= after]
     return float(weaker.max()) if weaker.size else 0.0
 
@@ -167,9 +166,8 @@ def physical_events(log, grip_force: float, object_config=None) -> dict:
 
 
 def lifted_mask(log, object_config=None) -> np.ndarray:
-    """At each logged state: the object's lowest point is more than LIFTED_HEIGHT_M above
-    where it rested (not the origin: a 45 mm box knocked on its side raises its origin 22.5
-    mm)."""
+    """At each logged state: the object's lowest point is more than LIFTED_HEIGHT_M above where it
+    rested (not the origin: a 45 mm box knocked on its side raises its origin 22.5 mm)."""
     low = lowest_point_heights(log.object_state, object_config)
     return low - low[0] > LIFTED_HEIGHT_M
 

@@ -111,9 +111,8 @@ def migrate_stored_scenario(data):
 
 
 def migrate_stored_overrides(assignments) -> list[str]:
-    """Stored-record migration: a sweep record's scenario_overrides (`key=value`) written
-    before the move, each old key replaced by its new path. Only for reading stored
-    records."""
+    """Stored-record migration: a sweep record's scenario_overrides (`key=value`) written before
+    the move, each old key replaced by its new path. Only for reading stored records."""
     migrated = []
     for assignment in assignments:
         key, equals, value = str(assignment).partition("=")

@@ -1,8 +1,7 @@
 """The PVDF film on each pad and its charge amplifier (the RA source): the settings
-(`VibrationSensorConfig`, the scenario's `vibration` section) and the sensitivity and noise
-that follow from them. The RA output is in acceleration-equivalent units, a = -V / S, on the
-pad frame's z (the inward normal). The model and every number: docs/model.md, "Vibration
-(RA) model".
+(`VibrationSensorConfig`, the scenario's `vibration` section) and the sensitivity and noise that
+follow from them. The RA output is in acceleration-equivalent units, a = -V / S, on the pad frame's
+z (the inward normal). The model and every number: docs/model.md, "Vibration (RA) model".
 """
 
 import dataclasses
@@ -22,9 +21,8 @@ _SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
 
 @dataclasses.dataclass
 class FilmConfig:
-    """The fingertip's first structural mode, the impact that rings it, and the film's charge
-    per deflection with its amplifier's capacitor. Sources: docs/model.md, "Vibration (RA)
-    model"."""
+    """The fingertip's first structural mode, the impact that rings it, and the film's charge per
+    deflection with its amplifier's capacitor. Sources: docs/model.md, "Vibration (RA) model"."""
     # The fingertip's first structural mode (an estimate: see docs/model.md).
     mode_frequency_hz: float = bounded(400.0, low=0.0, low_open=True, high=10_000.0,
                                        high_open=True, unit="Hz",

@@ -223,10 +223,9 @@ def held_tilt_rate(obj: ObjectConfig, *, tilt_deg: float, com_offset: float, gri
                    plant_config: MultibodyPlantConfig, settle_s: float = 0.5,
                    measure_s: float = 1.0,
                    contact_geometry: ContactGeometryConfig | None = None) -> float:
-    """Holds `obj` (no table) with `grip_force` [N] per pad, tilted by `tilt_deg` about the
-    grasp axis, its centre of mass `com_offset` [m] above the pads' centre along its axis;
-    returns its mean rotation rate [deg/s] about the grasp axis over `measure_s` after
-    `settle_s`."""
+    """Holds `obj` (no table) with `grip_force` [N] per pad, tilted by `tilt_deg` about the grasp
+    axis, its centre of mass `com_offset` [m] above the pads' centre along its axis; returns its
+    mean rotation rate [deg/s] about the grasp axis over `measure_s` after `settle_s`."""
     radius = obj.width_along_stroke() / 2
     grasp = np.array([SCENE_XY[0], SCENE_XY[1], 0.3])
     R = RotationMatrix.MakeYRotation(math.radians(tilt_deg))

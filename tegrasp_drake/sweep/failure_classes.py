@@ -15,8 +15,7 @@ FAILURE_CLASSES = ("closed on nothing", "one finger only", "slipped in Lift",
 
 
 def failure_class(result) -> str | None:
-    """The failure class of a trial's result (a TrialResult), None when it held and
-    unloaded."""
+    """The failure class of a trial's result (a TrialResult), None when it held and unloaded."""
     if result.unload_success:
         return None
     failure = result.failure

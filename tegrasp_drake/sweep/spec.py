@@ -51,8 +51,7 @@ def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float
 
 def user_object(name: str, fields: Mapping) -> ObjectConfig:
     """The ObjectConfig called `name` of a sweep's own object (its `fields` from a spec or a
-    record; older records' size_m, mass_kg, friction_coefficient read as size, mass,
-    friction)."""
+    record; older records' size_m, mass_kg, friction_coefficient read as size, mass, friction)."""
     fields = {RENAMED_OBJECT_FIELDS.get(key, key): value for key, value in fields.items()}
     fields = {key: value for key, value in fields.items() if key != "name"}
     return ObjectConfig(name=name, **{**fields,

@@ -95,9 +95,8 @@ def write_summary(records, out_dir) -> list[Path]:
 
 
 def readme_with_summaries(text: str, root) -> str:
-    """`text` (a Markdown page) with each results-table block regenerated from the results
-    folder its marker names (relative to `root`, the page's folder). ValueError when there
-    is no block."""
+    """`text` (a Markdown page) with each results-table block regenerated from the results folder
+    its marker names (relative to `root`, the page's folder). ValueError when there is no block."""
     def regenerate(match):
         folder = Path(root) / match["folder"]
         if not folder.is_dir():

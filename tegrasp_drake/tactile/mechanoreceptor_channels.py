@@ -1,8 +1,7 @@
-"""The paper's Eq. 1 (SA_i, the sum of finger i's 12 taxel normal forces [N]) and
-Eq. 2 (RA_i, the magnitude of its pad's vibration [m/s^2]) for both fingers, as one
-Diagram. RA is compiled (SymbolicVectorSystem); SA is summed in Python in numpy's pairwise
-order, which a compiled MatrixGain would change by a rounding, and costs nothing between
-108 Hz taxel samples (cached)."""
+"""The paper's Eq. 1 (SA_i, the sum of finger i's 12 taxel normal forces [N]) and Eq. 2 (RA_i, the
+magnitude of its pad's vibration [m/s^2]) for both fingers, as one Diagram. RA is compiled
+(SymbolicVectorSystem); SA is summed in Python in numpy's pairwise order, which a compiled
+MatrixGain would change by a rounding, and costs nothing between 108 Hz taxel samples (cached)."""
 
 import math
 

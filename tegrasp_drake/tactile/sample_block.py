@@ -1,10 +1,9 @@
-"""Sample blocks: the last B samples of a signal, kept in C++ by a discrete LinearSystem
-shift register, y(t) = [u(t - (B-1) T), ..., u(t)], and read by a Python system once per
-block, since one Python call costs several times one sample's arithmetic. A block system
-updates every B T from 0 and takes the samples since its last update
-(`samples_in_block`), so at each block end it equals a per-sample system.
-BLOCK_PERIOD_S, 10 ms: about one AD7147 frame (9.26 ms at decimation 64, AD7147 data sheet),
-and ten 1 kHz samples divide the 0.5 s event window."""
+"""Sample blocks: the last B samples of a signal, kept in C++ by a discrete LinearSystem shift
+register, y(t) = [u(t - (B-1) T), ..., u(t)], and read by a Python system once per block, since one
+Python call costs several times one sample's arithmetic. A block system updates every B T from 0
+and takes the samples since its last update (`samples_in_block`), so at each block end it equals a
+per-sample system. BLOCK_PERIOD_S, 10 ms: about one AD7147 frame (9.26 ms at decimation 64, AD7147
+data sheet), and ten 1 kHz samples divide the 0.5 s event window."""
 
 import math
 

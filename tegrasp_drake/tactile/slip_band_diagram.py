@@ -1,7 +1,6 @@
-"""The per-tick slip band (slip_vibration_band.py) as one compiled discrete
-SymbolicVectorSystem (the biquad's delays and each pad's window of squares in its state),
-so no Python runs per sample; bursts and blocks, of varying length, stay with
-SlipVibrationBand."""
+"""The per-tick slip band (slip_vibration_band.py) as one compiled discrete SymbolicVectorSystem
+(the biquad's delays and each pad's window of squares in its state), so no Python runs per sample;
+bursts and blocks, of varying length, stay with SlipVibrationBand."""
 
 import numpy as np
 from pydrake.symbolic import Variable, sqrt

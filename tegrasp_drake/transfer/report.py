@@ -123,9 +123,8 @@ def heatmap_label(row: CellRow, value: float) -> str:
 
 
 def draw_transfer_heatmap(rows: list[CellRow], path) -> pathlib.Path:
-    """Heat maps, memorizing world (rows) by running world (columns), of each transition's
-    match rate and of hold and unload success (heatmap_label); blank where a cell has no
-    trials."""
+    """Heat maps, memorizing world (rows) by running world (columns), of each transition's match
+    rate and of hold and unload success (heatmap_label); blank where a cell has no trials."""
     memorizing = list(dict.fromkeys(row.memorizing for row in rows))
     running = list(dict.fromkeys(row.running for row in rows))
     panels = _heatmap_panels(rows)

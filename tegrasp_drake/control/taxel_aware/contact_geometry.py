@@ -93,11 +93,10 @@ def pushed_distance_m(first_touch_opening_m: float, object_width_m: float) -> fl
 
 def release_topples(pushed_m: float, *, grasp_height_m: float, object_width_m: float,
                     object_height_m: float) -> bool:
-    """Whether opening the gripper would let a pushed object fall over: a push of pushed_m
-    [m] at grasp_height_m tips it by up to atan(push / grasp height) (base sticking); it
-    stands again only below atan(width / height), so it topples when
-    pushed_m * object_height_m > grasp_height_m * object_width_m (docs/controller.md,
-    "Not after a push past the tipping limit")."""
+    """Whether opening the gripper would let a pushed object fall over: a push of pushed_m [m] at
+    grasp_height_m tips it by up to atan(push / grasp height) (base sticking); it stands again only
+    below atan(width / height), so it topples when pushed_m * object_height_m > grasp_height_m *
+    object_width_m (docs/controller.md, "Not after a push past the tipping limit")."""
     return pushed_m * object_height_m > grasp_height_m * object_width_m
 
 

@@ -48,8 +48,7 @@ class ContactMemory:
 
 @dataclasses.dataclass(frozen=True)
 class ContactReading:
-    """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike
-    sense."""
+    """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike sense."""
     t: float
     mode: Mode
     stage: object

@@ -60,8 +60,7 @@ def make_jaco_status(utime, position, velocity, torque) -> lcmt_jaco_status:
 
 
 def _check_joints(message, fields) -> None:
-    """RejectedMessage unless `message` holds JACO_NUM_JOINTS finite values in each of
-    `fields`."""
+    """RejectedMessage unless `message` holds JACO_NUM_JOINTS finite values in each of `fields`."""
     name = type(message).__name__
     if message.num_joints != JACO_NUM_JOINTS:
         raise RejectedMessage(WRONG_JOINT_COUNT, f"{name} with num_joints = "
