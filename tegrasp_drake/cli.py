@@ -31,9 +31,7 @@ COMMAND_MODULES = (
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse's parser, whose usage errors quote the user's text safely (rig/files.py
-    one_line: no raw control character reaches the terminal). Sub-command parsers are made
-    of the same class."""
+    """argparse's parser, quoting the user's text safely in usage errors (rig/files.py)."""
 
     def error(self, message):
         from tegrasp_drake.rig.files import one_line

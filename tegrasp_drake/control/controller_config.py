@@ -90,7 +90,8 @@ class TaxelAwareConfig:
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field, must, value) of thresholds neither empty nor a pair; None if none."""
+        """(field path under the controller, what it must be, its value) of the first setting
+        that does not fit another or the RA stream at ra_rate_hz [Hz]; None when all fit."""
         for name in ("reach_load_thresholds", "load_lift_thresholds",
                      "place_unload_thresholds"):
             pair = getattr(self, name)

@@ -22,11 +22,9 @@ def next_sequence_step(step: int, matched: bool, n_events: int) -> int:
 
 
 class EventSequencer(LeafSystem):
-    """Expects `event_indices` in turn; advances on each match and records when.
-
-    A periodic update every `period_s` reads `match` and advances, so a match becomes a fire
-    time one period later; outputs depend only on the state, so matcher -> sequencer ->
-    matcher is no algebraic loop. State: [step (events fired), fire time per event].
+    """Expects `event_indices` in turn; advances on each match and records when. A periodic
+    update every `period_s` reads `match`, so a fire time comes one period after its match, and
+    the outputs depend only on the state (no algebraic loop with the matcher).
 
     .. pydrake_system::
 

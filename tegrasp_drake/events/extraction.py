@@ -72,12 +72,9 @@ def extract_memorized_events(
         package_versions: Mapping[str, str] | None = None,
         object_description: Mapping | None = None,
         ra_floor: Sequence[float] | None = None) -> dict[str, MemorizedEvent]:
-    """One max-normalised MemorizedEvent per transition of `trial`, in grasp order.
-
-    sa_rate_hz, ra_rate_hz: the memorized (= live) rates [Hz]; object_description: the object
-    grasped (rig/objects.object_description); ra_floor: [left, right] the recording's RA noise
-    floor [m/s^2] (`recording_ra_floor`) or None. Raises ValueError for an unknown transition,
-    a window outside the log, or a channel zero throughout its window.
+    """One max-normalised MemorizedEvent per transition of `trial`, in grasp order, at the
+    memorized (= live) rates [Hz]; ra_floor: the recording's RA noise floor [m/s^2] or None.
+    ValueError for an unknown transition, a window outside the log, or an all-zero channel.
     """
     versions = current_package_versions() if package_versions is None else package_versions
     events = {}

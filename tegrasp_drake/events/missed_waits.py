@@ -94,9 +94,8 @@ class MissedWait:
         return self._sigmas(self.ra_wait_peak)
 
     def failing_ra_within_floor(self, sigmas: float) -> bool | None:
-        """Whether an RA channel below its threshold at the best tick read no more than its
-        noise mean + `sigmas` std over the whole wait (it never read the stimulus); None
-        without a best tick."""
+        """Whether an RA channel failing at the best tick never read above its noise mean +
+        `sigmas` std over the wait; None without a best tick."""
         if self.best_ra is None:
             return None
         failing = self.best_ra <= self.thresholds[1]

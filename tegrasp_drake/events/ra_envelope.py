@@ -44,11 +44,9 @@ def enveloped_event(event: MemorizedEvent, cutoff_hz: float) -> MemorizedEvent:
 
 
 class RaEnvelope(LeafSystem):
-    """The live side of the RA envelope: the four channels with the RA ones low-passed.
-
-    Every 1 / ra_rate_hz it updates the low-pass at cutoff_hz; the output is the filter's value
-    from the previous value and the present input, so a matcher sampling at the same ticks
-    reads the envelope of the samples it would have read raw.
+    """The live side of the RA envelope: the four channels with the RA ones low-passed at
+    cutoff_hz, updated every 1 / ra_rate_hz; the output uses the present input, so a matcher on
+    the same ticks reads the envelope of the samples it would have read raw.
 
     .. pydrake_system::
 

@@ -45,11 +45,9 @@ def noise_floor(quiet: np.ndarray, *, sigmas: float, envelope_hz: float,
 
 
 class RaNoiseFloor(LeafSystem):
-    """Each RA channel's noise floor, measured on the live stream's first quiet_s [s].
-
-    Every 1 / ra_rate_hz during quiet_s it low-passes the raw RA as the envelope does and adds
-    the values to running sums (count, sum, sum of squares); the output is +inf until then, the
-    floor m_w + k s_w of those values (`noise_floor`) afterwards.
+    """Each RA channel's noise floor, measured on the live stream's first quiet_s [s]: the
+    low-passed RA's running count, sum and sum of squares; the output is +inf until then, the
+    floor (`noise_floor`) afterwards.
 
     .. pydrake_system::
 

@@ -19,10 +19,9 @@ def latched_faults(latched: tuple, current) -> tuple:
 
 
 class FaultLatch(LeafSystem):
-    """Keeps every fault of its sources (module docstring), shown one `period` [s] after the
-    source reported it: one `{source}_fault` input (tuple of DeviceFault) per name in
-    `sources` (here as MakeHardwareStation builds it). fault: every fault seen; message: ""
-    or one line per fault (the state machine's `device_fault`); stop: 1 once any was seen.
+    """Keeps every fault of its sources, shown one `period` [s] after reported: one
+    `{source}_fault` input per name in `sources`. fault: every fault seen; message: "" or one
+    line per fault; stop: 1 once any was seen.
 
     .. pydrake_system::
 

@@ -36,9 +36,8 @@ def decode_lcm(lcm_type, data: bytes):
 
 
 class CheckedLcmSerializer(SerializerInterface):
-    """An LcmSubscriberSystem serializer that decodes through `boundary`, which counts
-    each message the subscriber takes (nothing while `counting` is False); a rejected
-    message leaves the value unchanged (the last good one)."""
+    """An LcmSubscriberSystem serializer decoding through `boundary` (counting while
+    `counting`); a rejected message leaves the last good value."""
 
     def __init__(self, lcm_type, boundary: MessageBoundary):
         SerializerInterface.__init__(self)
@@ -73,10 +72,9 @@ def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
 
 
 def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: float) -> bool:
-    """Pumps `lcm` from this thread until `subscriber` (a CheckedLcmSubscriber on it) has
-    received a message its boundary accepts, or time.monotonic() passes `deadline`;
-    whether one came. Counts nothing: the Simulator's initialization takes, and counts,
-    the newest message. Call it before the Simulator runs, never inside it."""
+    """Pumps `lcm` until `subscriber` received a message its boundary accepts or
+    time.monotonic() passes `deadline`; whether one came. Counts nothing; call it before the
+    Simulator runs, never inside it."""
     serializer = subscriber.checked_serializer
     probe = serializer.CreateDefaultValue()
     received = subscriber.WaitForMessage(0, None, 1e-6)

@@ -60,10 +60,8 @@ def next_activity(activity: DeviceActivity, value: float, *, device: str, timeou
 
 
 class DeviceWatchdog(LeafSystem):
-    """Watches devices' `time_measured` [s, device clock] (module docstring): one input per
-    device of `timeouts`, in order; shown with DEFAULT_TIMEOUTS, as MakeHardwareStation builds
-    it. fault: the silent devices (tuple of DeviceFault) in trip order; stop: 1 once any
-    tripped (JacoVelocityTracker's `stop`).
+    """Watches devices' `time_measured` [s, device clock]: one input per device of
+    `timeouts`. fault: the silent devices (DeviceFault) in trip order; stop: 1 once any tripped.
 
     .. pydrake_system::
 

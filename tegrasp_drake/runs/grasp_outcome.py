@@ -20,9 +20,7 @@ GRIP_FRACTION = 0.9
 TOUCH_HEIGHT_M = 0.0005
 LIFTED_HEIGHT_M = 0.02  # above its resting height, the object counts as lifted
 RELEASED_FORCE_N = 0.5
-# [s] after the grip force is reached over which the held grip is measured (settled_grip_n):
-# longer than the drive's overshoot and relaxation (about 60 ms) and than a soft contact's
-# rise (25-80 ms, docs/model.md), shorter than the scripted Load (1.8 s).
+# [s] over which the held grip is measured (docs/controller.md, "The grip a trial holds")
 SETTLE_WINDOW_S = 0.2
 
 
@@ -106,9 +104,8 @@ def grip_plateau_n(log, after: float = 0.0) -> float:
 
 def grip_force_time(log, grip_force: float, after: float = 0.0):
     """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the grip
-    force, or else of grip_plateau_n (the taxels do not see all of a thin object's contact
-    force: a 22 mm cylinder's plateau is 21.4 N of a 25 N command); None when the force never
-    rises above CONTACT_FORCE_N."""
+    force, or else of grip_plateau_n (thin objects); None when the force never rises above
+    CONTACT_FORCE_N."""
     weaker = true_sa(log).min(axis=1)
     level = grip_force
     if not np.any((weaker >= GRIP_FRACTION * grip_force) & (log.t_sa >= after)):
@@ -119,11 +116,8 @@ def grip_force_time(log, grip_force: float, after: float = 0.0):
 
 
 def settled_grip_n(log, grip_force: float, after: float = 0.0) -> float:
-    """The grip [N] the weaker pad settles at: its median true force over SETTLE_WINDOW_S after
-    the grip force is reached (grip_force_time, after `after` [s]); 0 if never. The held level,
-    not the command or the peak: the 2F-85's rotor overshoots the current limit's force and the
-    self-locking screw holds what is left (a thick cylinder pushed off-centre peaked at 29 N
-    and held 20 N of a 25 N setting)."""
+    """The grip [N] the weaker pad holds: its median true force over SETTLE_WINDOW_S after
+    the grip force is reached (grip_force_time, after `after` [s]); 0 if never."""
     start = grip_force_time(log, grip_force, after)
     if start is None:
         return 0.0

@@ -47,9 +47,8 @@ class FingerChain:
 
 
 def finger_pad_force(chain: FingerChain, tau, q) -> float:
-    """The pad's normal contact force [N], positive pushing the pad open, of one finger
-    from its (driver, coupler, follower) generalized contact forces tau [N m] and joint
-    angles q [rad] (the module docstring)."""
+    """The pad's normal contact force [N], positive pushing the pad open, from one finger's
+    (driver, coupler, follower) generalized contact forces tau [N m] and angles q [rad]."""
     theta, beta, gamma = q
     tau_a, tau_b, tau_c = tau
     (ab_y, ab_z), (bc_y, bc_z), (n_y, n_z) = chain.ab, chain.bc, chain.normal
@@ -110,9 +109,8 @@ class LinkagePadStatics:
             for chain, joint_chain in zip(chains, joints))
 
     def normal_forces(self, tau: list, state: list) -> tuple[float, float]:
-        """(left, right) pad normal forces [N], positive pushing each pad open, from the
-        gripper instance's generalized contact forces `tau` and its state `state` (positions
-        first), as lists of floats."""
+        """(left, right) pad normal forces [N], positive pushing each pad open, from the gripper's
+        generalized contact forces `tau` and state `state` (positions first)."""
         (left, left_tau, left_q), (right, right_tau, right_q) = self._fingers
         return (finger_pad_force(left, left_tau(tau), left_q(state)),
                 finger_pad_force(right, right_tau(tau), right_q(state)))

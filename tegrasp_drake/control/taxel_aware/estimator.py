@@ -185,10 +185,7 @@ class ContactEstimator:
 
     def _first_touch(self, memory: ContactMemory, r: ContactReading, shape: GraspContact,
                      first_load: bool) -> tuple[ContactMemory, bool]:
-        """While the close goes on: remember the first touch (any taxel above
-        taxel_contact_n) and say whether the push since would topple the object if
-        released. In the first Load only a fingertip-side touch is remembered (for
-        touched_beyond_pads; caged_behind_pads reads the Reach's palm-side one)."""
+        """Remembers the close's first touch and whether the push since would topple the object."""
         g = self._geometry
         recording = r.closing or (first_load and shape.approach_offset_m >= 0.0)
         if (recording and memory.first_touch_opening_m < 0.0

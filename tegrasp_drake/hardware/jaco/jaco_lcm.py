@@ -82,9 +82,8 @@ def check_jaco_status(data: bytes) -> lcmt_jaco_status:
 
 
 def check_jaco_command(data: bytes) -> lcmt_jaco_command:
-    """The bytes of a KINOVA_JACO_COMMAND message decoded and checked: 6 joints, finite
-    positions and velocities, no joint faster than JACO_MAX_JOINT_SPEED; else
-    RejectedMessage naming the defect (such a command never reaches the arm)."""
+    """A KINOVA_JACO_COMMAND message decoded and checked (6 joints, finite, no joint faster
+    than JACO_MAX_JOINT_SPEED); else RejectedMessage naming the defect."""
     message = decode_lcm(lcmt_jaco_command, data)
     _check_joints(message, ("joint_position", "joint_velocity"))
     fast = [k for k, v in enumerate(message.joint_velocity) if abs(v) > JACO_MAX_JOINT_SPEED]
@@ -131,10 +130,8 @@ class JacoCommandSender(LeafSystem):
 
 class JacoCommandReceiver(LeafSystem):
     """`lcmt_jaco_command` as desired_state (12: q [rad], then v [rad/s]), on the emulator side.
-
-    As the real driver does, the arm stops when commands stop: with no new `utime` for
-    `command_timeout` [s] (or none yet), the output holds the last sampled position_measured
-    (6, rad) at zero velocity.
+    With no new `utime` for `command_timeout` [s] (or none yet) the arm stops, as with the real
+    driver: the last sampled position_measured [rad] at zero velocity.
 
     .. pydrake_system::
 

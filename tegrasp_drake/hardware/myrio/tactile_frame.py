@@ -161,9 +161,7 @@ class TactileFrameDecoder:
 
     def _follows(self, sequence: int, raw_timestamp: int, last_sequence: int,
                  last_raw: int) -> str:
-        """How a frame relates to the one before it: "next" (newer, its time advanced by its
-        sequence gap's frame periods within TIME_TOLERANCE), "old" (repeated or older) or
-        "implausible"."""
+        """"next", "old" or "implausible": how a frame relates to the one before it."""
         gap = (sequence - last_sequence) % SEQUENCE_MODULUS
         if gap == 0 or gap > SEQUENCE_MODULUS // 2:
             return "old"
