@@ -59,10 +59,8 @@ class TactileRecordingError(ValueError):
 
 
 def load_tactile_recording(path) -> TactileRecording:
-    """The pad signals of a TrialLog .npz (t_sa, taxels, t_ra, pad_acceleration; left then
-    right) and the gripper's position requests (t_slow, gripper_command's rPR) when present. A
-    whole trial log is read by load_trial_log; a bare recording (save_tactile_recording) meets
-    the same rules for its arrays."""
+    """The pad signals of a TrialLog .npz (left then right) and the gripper's position
+    requests when present; a bare recording (save_tactile_recording) is checked alike."""
     wanted = ("t_sa", "taxels", "t_ra", "pad_acceleration")
     try:
         arrays = checked_npz_arrays(path, wanted, optional=(

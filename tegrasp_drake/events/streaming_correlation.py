@@ -66,7 +66,9 @@ def _as_templates(templates: Sequence[np.ndarray]) -> list[np.ndarray]:
 
 class SlidingCorrelation:
     """Gated Eq. 3 scores of a sliding window of channels sharing one rate, against one event
-    chosen per slide, kept after the window in its state vector (module docstring).
+    chosen per slide. State, after the window's: [active_event, scores, [high, low, energy]
+    per channel, missing slides (sum, per channel), rows: channels x (2N - 1 + slack)];
+    column j holds lag j - offset - (N - 1).
 
     Args:
         templates: one (channels, N) array per event, at the live sample rate.

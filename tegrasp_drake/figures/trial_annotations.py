@@ -56,9 +56,8 @@ def logged_scenario(log):
 
 
 def physical_events(log) -> dict[str, float]:
-    """Name -> time [s] of the physical events of the ground truth: those that mark the
-    event transitions taken (first contact, grip settled, table touch) and the
-    scenario's hit, if it has one."""
+    """Name -> time [s] of the ground truth's physical events behind the event transitions
+    taken, and the scenario's hit, if any."""
     events = {PHYSICAL_EVENT_NAMES.get(name, name): float(t)
               for name, t in (log.meta.get("events") or {}).items() if t is not None}
     hit_time = logged_scenario(log).disturbance.hit_time_s
@@ -143,10 +142,9 @@ class Label:
 
 def stack_labels(axis, labels: list[Label], *, fontsize: float = 7.5, bottom: float = 0.0,
                  gap_px: float = 4.0) -> int:
-    """Places `labels` in `axis` (x in seconds, y from `bottom` to 1) on their times, each on the
-    lowest level where it overlaps none, with a leader line down from higher levels; returns the
-    number of levels. Call it once the layout is done and the time limits set (it measures the
-    labels on the canvas)."""
+    """Places `labels` on their times in `axis`, each on the lowest level where it overlaps
+    none (leader lines from higher levels); returns the number of levels. Call it once the
+    layout and time limits are set."""
     figure = axis.figure
     renderer = figure.canvas.get_renderer()
     texts, right_edges, levels = [], [], []

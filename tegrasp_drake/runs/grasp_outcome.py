@@ -127,9 +127,8 @@ def settled_grip_n(log, grip_force: float, after: float = 0.0) -> float:
 
 
 def grip_fraction_at(log, t: float, grip_force: float, after: float = 0.0) -> float | None:
-    """The weaker pad's true force at time t [s] (the latest taxel frame at or before t) as
-    a fraction of the settled grip (settled_grip_n); None before the first frame or when
-    the pads never grip."""
+    """The weaker pad's true force at t [s] (latest taxel frame) as a fraction of
+    settled_grip_n; None before the first frame or when the pads never grip."""
     index = int(np.searchsorted(log.t_sa, t, side="right")) - 1
     settled = settled_grip_n(log, grip_force, after)
     if index < 0 or settled <= CONTACT_FORCE_N:

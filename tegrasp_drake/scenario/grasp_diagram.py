@@ -38,9 +38,8 @@ EXTRA_TIME_S = 10.0
 def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
                 lcm: DrakeLcm | None = None):
     """The station of `scenario` as its `station` tag says: MakeSimulatedStation (the
-    default) or MakeHardwareStation, which owns device threads: use it in a `with` block,
-    call wait_until_ready() before the Simulator's Initialize() and run at real-time rate
-    (run_on_hardware does). Both export the same ports."""
+    default) or MakeHardwareStation (use it in a `with` block; run_on_hardware does). Both
+    export the same ports."""
     check_ranges(scenario, "MakeStation: scenario")  # a config changed after loading
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation
@@ -49,10 +48,8 @@ def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
 
 
 def station_carriage(scenario):
-    """The carriage's impedance when the scenario's simulated station rides the gripper on
-    one (`station.arm: carriage`): the arm's at the side grasp over the object's marker, at
-    the grasp height, where the hand meets the object; None for the arm itself (and for a
-    hardware station)."""
+    """The carriage's impedance when the simulated station rides the gripper on one
+    (`station.arm: carriage`): the arm's at the side grasp over the object's marker; else None."""
     station = scenario.station
     if not (isinstance(station, SimulatedStationConfig) and station.uses_carriage()):
         return None
@@ -108,10 +105,9 @@ class GraspDiagram:
 def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
                      events: dict | None = None, corrective_events: dict | None = None,
                      meshcat: Meshcat | None = None, log: bool = True) -> GraspDiagram:
-    """Builds the station and the scenario's controller into one Diagram. station: a Diagram
-    with the station's ports (default MakeStation's); events, corrective_events: the
-    memorized events (default: the package's for the scenario's object); log: add the
-    TrialLog loggers (simulated runs)."""
+    """Builds the station and the scenario's controller into one Diagram. station: default
+    MakeStation's; events, corrective_events: default the package's for the scenario's object;
+    log: add the TrialLog loggers."""
     check_ranges(scenario, "MakeGraspDiagram: scenario")  # a config changed after loading
     builder = DiagramBuilder()
     if station is None:

@@ -99,9 +99,8 @@ def _move(data: dict, old: str, new: str) -> None:
 
 
 def migrate_stored_scenario(data):
-    """Stored-record migration: a copy of a scenario's YAML data as a record or an event
-    written before the move stored it (scenario_to_yaml's dump), its old keys moved to
-    their new paths; other data unchanged. Only for reading stored records."""
+    """A copy of a stored record's scenario YAML data with its old keys moved to their new
+    paths; only for reading stored records."""
     if not isinstance(data, dict):
         return data
     data = copy.deepcopy(data)

@@ -182,8 +182,7 @@ class CapacitiveTaxels(LeafSystem):
 
 def AddTaxelTransducer(builder, *, taxels, tactile_config, name: str = "capacitive_taxels"):
     """The system whose `<finger>_taxel_forces` are the station's taxel readings: `taxels`
-    (TactilePads) for the force transducer, else a CapacitiveTaxels fed by its true forces
-    (and a RandomSource at the taxel rate)."""
+    for the force transducer, else a CapacitiveTaxels fed by its true forces."""
     if tactile_config.transducer == "force":
         return taxels
     config = tactile_config.capacitive

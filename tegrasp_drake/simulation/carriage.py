@@ -70,9 +70,8 @@ def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedanc
 
 @dataclasses.dataclass(frozen=True)
 class Carriage:
-    """The carriage in a plant: its model instance, its joints in actuator order (the order
-    of its desired-state input), its prismatic joints' unit axes in world (3 x 3, columns
-    in joint order) and the body the gripper is welded to."""
+    """The carriage in a plant: its model instance, joints in actuator order, prismatic
+    joints' unit axes in world (3 x 3, columns in joint order) and the body holding the gripper."""
     instance: object
     joints: tuple
     translation_axes: np.ndarray

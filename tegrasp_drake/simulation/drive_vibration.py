@@ -75,9 +75,8 @@ def _symbolic_mode_gain(frequency_hz, mode_frequency_hz: float, damping_ratio: f
 
 
 def drive_tones(drives, period_s: float, mode_frequency_hz: float, damping_ratio: float):
-    """(inputs, states, next states, reading) of the symbolic system: `drives` is a list of
-    (DriveVibrationConfig, number of joints) in input order; one phase [rev, in [0, 1)] per
-    drive and tone."""
+    """(inputs, states, next states, reading) of the symbolic system for `drives`, a list of
+    (DriveVibrationConfig, number of joints); one phase [rev, in [0, 1)] per drive and tone."""
     inputs, states, updates, reading = [], [], [], 0.0
     for d, (config, joints) in enumerate(drives):
         rates = [Variable(f"v{d}_{j}") for j in range(joints)]

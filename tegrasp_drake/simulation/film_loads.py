@@ -33,7 +33,7 @@ CONTACT_ONSET_N = 1e-6
 # noise (a held object's creep gives about 1e-7).
 TEXTURE_FLOOR_MPS2 = 1e-6
 
-# film_loads' layout (module docstring).
+# film_loads' layout (FilmLoads' ports).
 LOADS = slice(0, 2)
 FORCES = slice(2, 4)
 ONSETS, IMPULSES, DURATIONS = slice(4, 6), slice(6, 8), slice(8, 10)
@@ -109,7 +109,10 @@ class FilmLoads(LeafSystem):
             only) and the chain's hold (HELD_SIZE).
         contact_results, body_poses, body_spatial_velocities, body_spatial_accelerations:
             the plant's; read only on the plant step where a pad's contact begins.
-        film_loads: (10 + 2 n) the loads of the step that ends now (module docstring).
+        film_loads: (10 + 2 n) the loads of the step that ends now: [0:2] L of the left
+            and right pads [N]; [2:4] F [N]; each pad's impact onset [s] [4:6], impulse
+            [N s] [6:8] (0: none) and duration [s] [8:10]; then d of the left, then the
+            right pad at the n instants, oldest first [N].
     """
 
     def __init__(self, *, plant, pads: dict, force_indices, config: "VibrationSensorConfig",

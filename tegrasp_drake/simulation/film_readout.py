@@ -62,9 +62,8 @@ FLOATS = Arithmetic(min=min, max=max, floor=math.floor)
 
 def reading_mps2(value_mps2, noise_v, sensitivity_v_per_mps2: float, swing_v: float,
                  adc: AdcInput | None, arithmetic: Arithmetic = FLOATS):
-    """What the host reads [m/s^2] for the film's reading value_mps2 plus noise_v [V] at the
-    amplifier's output (module docstring); without a converter (adc None) the clipped
-    voltage over S. Floats by default; symbolic expressions with a symbolic `arithmetic`."""
+    """What the host reads [m/s^2] for the film's value_mps2 plus noise_v [V] at the
+    amplifier (module docstring); without a converter (adc None) the clipped voltage over S."""
     low, high, floor = arithmetic.min, arithmetic.max, arithmetic.floor
     volts = sensitivity_v_per_mps2 * value_mps2 + noise_v
     volts = low(high(volts, -swing_v), swing_v)

@@ -78,9 +78,8 @@ def velocity_servo_set_point(initial_positions, time_step: float) -> AffineSyste
 
 @dataclasses.dataclass
 class JacoVelocityDrive:
-    """The drive's systems and ends: connect the controller's desired state to
-    `desired_state`, read the servo's set-point (for the plant's PD) from `set_point` and
-    what the host sent from `commanded_state`."""
+    """The drive's ends: `desired_state` (from the controller), `set_point` (for the plant's
+    PD) and `commanded_state` (what the host sent)."""
     tracker: JacoVelocityTracker
     desired_state: InputPort
     commanded_state: OutputPort

@@ -38,9 +38,8 @@ def _instance_index(plant, instance, joint, *, velocity: bool) -> int:
 
 @dataclasses.dataclass(frozen=True)
 class FingerChain:
-    """One finger's planar chain in its own (+-y, z) coordinates [m] of the base frame, in
-    the open pose (every link frame is then the base frame): B - A and C - B, and the pad's
-    outward normal (the pad frame's -z)."""
+    """One finger's planar chain in the open pose, in the base frame's (+-y, z) [m]: B - A,
+    C - B and the pad's outward normal."""
     ab: tuple[float, float]
     bc: tuple[float, float]
     normal: tuple[float, float]

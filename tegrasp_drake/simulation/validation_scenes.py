@@ -32,9 +32,9 @@ SCENE_XY = EXPECTED_XY  # m; scenes stand at the station's expected object posit
 
 @dataclasses.dataclass(frozen=True)
 class GripProgram:
-    """How the fingers move: from `start_q` toward `goal_q` (finger coordinates, m: the pad
-    surface's distance from the grasp axis) at `closing_speed` [m/s], pushing each pad with
-    at most the force interpolated from (`force_times_s`, `force_n`) [s, N]."""
+    """How the fingers move: from `start_q` toward `goal_q` [m, the pad surface's distance
+    from the grasp axis] at `closing_speed` [m/s], each pad's force at most the one interpolated
+    from (`force_times_s` [s], `force_n` [N])."""
     start_q: float
     force_times_s: tuple = (0.0,)
     force_n: tuple = (25.0,)

@@ -39,9 +39,8 @@ class TrialMiss:
 
 
 def ra_code_mps2(vibration) -> float | None:
-    """The acceleration [m/s^2] of one code of the myRIO converter behind the film's charge
-    amplifier (film_readout.py), for a VibrationSensorConfig; None for an accelerometer or
-    the "ideal" readout."""
+    """The acceleration [m/s^2] of one myRIO converter code behind the film's amplifier;
+    None for an accelerometer or the "ideal" readout."""
     adc = adc_input(vibration.adc_input)
     if vibration.transducer != "film" or adc is None:
         return None

@@ -113,9 +113,8 @@ def readme_with_summaries(text: str, root) -> str:
 
 
 def last_commit(root, path) -> tuple[str, str, str] | None:
-    """(full hash, short hash, date YYYY-MM-DD) of the last commit that changed `path`
-    (relative to `root`, a git checkout); None without git, outside a checkout, or for a
-    path no commit holds."""
+    """(full hash, short hash, YYYY-MM-DD) of the last commit that changed `path` (relative to
+    the git checkout `root`); None without one."""
     try:
         done = subprocess.run(["git", "-C", str(root), "log", "-1", "--format=%H %h %ad",
                                "--date=short", "--", str(path)],

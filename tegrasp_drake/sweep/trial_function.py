@@ -20,8 +20,8 @@ logger = logging.getLogger(__name__)
 
 def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
-    sweep's scenario_overrides, and the trial's object (perturbed in mass and friction;
-    unperturbed with `nominal`), placement, seed and controller."""
+    sweep's overrides and the trial's object (perturbed unless `nominal`), placement, seed and
+    controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
     from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.sweep.spec import user_object
@@ -52,9 +52,8 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
 
 
 def trial_log_name(trial: dict) -> str:
-    """A sweep trial's log file name: its id ('/' as '.'), the first 12 hex digits of the
-    SHA-256 of the whole trial spec, .npz; sweeps with other settings sharing a --logs folder
-    keep each their own logs."""
+    """A sweep trial's log file name: its id ('/' as '.') and the first 12 hex digits of the
+    trial spec's SHA-256, so sweeps sharing a --logs folder keep their own logs."""
     digest = hashlib.sha256(canonical_json(trial).encode("utf-8")).hexdigest()[:12]
     return f"{trial['trial_id'].replace('/', '.')}.{digest}.npz"
 

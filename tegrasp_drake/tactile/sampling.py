@@ -50,9 +50,8 @@ def rate_groups(*, sa_rate_hz: float, ra_rate_hz: float,
 
 
 def resample_window(window: np.ndarray, length: int) -> np.ndarray:
-    """Resample each row of `window` to `length` samples: each output is the mean of the
-    zero-order-hold signal over its interval (as the live channels are held), so the area
-    is kept and RA bursts do not alias."""
+    """Resample each row of `window` to `length` samples, each the mean of the held signal over
+    its interval: the area is kept and RA bursts do not alias."""
     window = np.atleast_2d(np.asarray(window, dtype=float))
     length_in = window.shape[-1]
     if length == length_in:

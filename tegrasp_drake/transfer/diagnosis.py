@@ -97,9 +97,8 @@ def diagnose_trial(trial: TactileTrial, transitions: Sequence[Mapping],
                    events: Mapping[str, MemorizedEvent], *, ra_envelope_hz: float = 0.0,
                    config: EventMatcherConfig | None = None,
                    step_s: float = STEP_S) -> dict[str, TransitionDiagnosis]:
-    """{transition: its TransitionDiagnosis} for each event of `events` that has a waiting
-    mode and a tick to score; `transitions` the trial's logged ones (mode_periods);
-    ra_envelope_hz: the RA envelope's cutoff [Hz] on both sides, 0 for none."""
+    """{transition: TransitionDiagnosis} for each event of `events` with a waiting mode and a
+    tick to score; ra_envelope_hz: the RA envelope's cutoff [Hz], 0 for none."""
     if ra_envelope_hz:
         ra_rate = 1.0 / float(np.median(np.diff(trial.t_ra)))
         trial = dataclasses.replace(trial, ra=ra_envelope(
