@@ -1,10 +1,8 @@
 """GraspStateMachine: the tactile-event grasping algorithm (Sec. II-B, III-C, Fig. 6b) as a
-Drake LeafSystem. Each tick it summarises its inputs into an Observation, asks its rule
-table (control/rule_engine.py) for the next mode, and carries out the mode's motion:
-minimum-jerk translations of the grasp frame G (world frame, stroke along y) and 2F-85
-requests. Reach moves to grasp height and closes; Re-Reach opens and shifts; Load squeezes;
-Lift rises; Avoid moves off a hit; Place descends; Unload opens and retracts; Failed keeps
-the last gripper request. All memory is one abstract state (MachineState)."""
+Drake LeafSystem. Each tick it summarises its inputs into an Observation, asks its rule table
+(rule_engine.py) for the next mode, and carries out the mode's motion: minimum-jerk moves of
+the grasp frame G (world frame, stroke along y) and 2F-85 requests. All memory is one
+abstract state (MachineState)."""
 
 import dataclasses
 

@@ -1,8 +1,7 @@
-"""The grasp state machine's rule engine, pure and Drake-free: a Rule applies in some modes, has a
-priority, a condition and an action; a Guard holds named rules back; a ReReachMove says how the
-table's Re-Reaches move. Other tables extend the paper's (transition_logic.PAPER_TABLE) with
-RuleTable.extended. Each tick, of the mode's rules, lowest priority first, the first that holds and
-is not held back decides; its Decision carries the rule's name (Decision.code)."""
+"""The grasp state machine's rule engine, pure and Drake-free: Rules (modes, priority,
+condition, action), Guards that hold named rules back, and RuleTables that extend another.
+Each tick, of the mode's rules, lowest priority first, the first that holds and is not held
+back decides; its Decision carries the rule's name."""
 
 import dataclasses
 from collections.abc import Callable

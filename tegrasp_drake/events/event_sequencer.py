@@ -1,8 +1,5 @@
-"""EventSequencer: expects memorized events one after another, in grasp order.
-
-The smallest state machine over the EventMatcher: it expects each event of its sequence in
-turn (one armed from a time on, as the grasp expects Place-Unload only in Place), moving on
-at each match and noting its time. Offline replays (`replay.py`, `tegrasp replay LOG`) use it.
+"""EventSequencer: expects memorized events one after another, in grasp order (one armed
+from a time on, as Place-Unload only in Place), for offline replays (replay.py).
 """
 
 import math

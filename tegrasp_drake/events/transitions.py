@@ -1,8 +1,6 @@
-"""The grasp transitions that memorized tactile events can trigger, in grasp order.
-
-Each is anchored on a physical event of the ideal grasp, around which its window is cut
-(extraction.py). The paper triggers Reach-Load, Load-Lift and Place-Unload by events (its
-Fig. 9); Lift-Hold is optional. A name is `from_to` in lower case (reach_load).
+"""The grasp transitions that memorized tactile events can trigger, in grasp order, each
+anchored on a physical event of the ideal grasp (extraction.py). A name is `from_to` in
+lower case (reach_load).
 """
 
 # The value of an `expected_event` or `scored_event` port when no event is expected.

@@ -1,8 +1,6 @@
-"""Fig. 5c of the paper: the memorized predicted tactile events.
-
-One row per transition (grasp order), one column per channel (SA_L, SA_R, RA_L, RA_R),
-one line per object; each window normalised by its maximum (so unitless), time relative to
-the transition's physical event (dashed line).
+"""Fig. 5c of the paper: the memorized events, one row per transition, one column per
+channel, one line per object; each window max-normalised, time relative to the physical
+event (dashed line).
 """
 
 import pathlib

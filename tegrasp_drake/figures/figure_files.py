@@ -1,8 +1,6 @@
 """A figure, its file and its format: every figure module makes its Figure with `new_figure`
-and writes it with `save_figure`, as PNG (for screens), PDF or SVG (vector, for papers).
-
-Figures are drawn with matplotlib's object API (no pyplot, no global backend state); the
-Agg canvas renders PNG, and matplotlib picks its PDF or SVG backend from the file's suffix.
+and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib's object API
+(no pyplot, no global backend state).
 """
 
 import pathlib

@@ -1,8 +1,6 @@
-"""Per-position success maps: where on the marker grid each controller succeeds.
-
-One panel per (controller, object, phase): the marker grid seen from above, the stroke
-axis y across and the palm normal x upwards, each marker coloured by its success rate
-and annotated with successes/trials; the well-placed marker is outlined.
+"""Per-position success maps: one panel per (controller, object, phase), the marker grid
+seen from above (stroke y across, palm normal x up), each marker coloured by its success
+rate; the well-placed marker outlined.
 """
 
 from collections import defaultdict

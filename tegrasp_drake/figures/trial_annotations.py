@@ -1,9 +1,6 @@
-"""What the figures of a trial (Fig. 5a-b, 9, 10) draw over its signals: the states, the
-transitions by trigger, the physical events of the ground truth, the matcher's scores at
-each event-triggered transition, and a title naming the run.
-
-Labels are stacked so that none overlaps another (`stack_labels`): a label that does not fit
-beside its neighbours goes one level up, with a leader line to its time.
+"""What the figures of a trial (Fig. 5a-b, 9, 10) draw over its signals: states,
+transitions by trigger, the ground truth's physical events, the matcher's scores and a
+title; labels stacked so that none overlaps another (`stack_labels`).
 """
 
 import dataclasses

@@ -1,8 +1,6 @@
-"""FaultLatch: the faults of every source, kept once seen, and the arm's stop signal.
-
-A Robotiq fault code can clear (e.g. after an automatic release), but the run that saw it
-must not carry on: every fault is kept, with its own `since`, in order of first sighting,
-and `stop` (holding the arm still through JacoVelocityTracker) stays set.
+"""FaultLatch: the faults of every source, kept once seen, and the arm's stop signal. A
+Robotiq fault code can clear, but the run that saw it must not carry on: every fault stays,
+with its own `since`, and `stop` stays set.
 """
 
 from pydrake.common.value import AbstractValue

@@ -1,9 +1,6 @@
 """A watchdog that names the device that stopped talking, and since when, and stops the arm.
-
-Each device feeds its receiver's `time_measured`; only its changes count, so device clocks
-need not match the diagram's. A device is silent when the value has not changed for longer
-than its timeout of Context time (wall time at real-time rate 1); one never heard from gets
-`startup_grace` more. A trip latches: a device that comes back does not restart the arm.
+A device is silent when its `time_measured` has not changed for longer than its timeout
+(Context time), with `startup_grace` more before it is first heard. A trip latches.
 """
 
 import dataclasses

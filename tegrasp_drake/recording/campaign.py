@@ -1,8 +1,7 @@
 """One event-recording campaign: open-loop grasps of one object, each cut into memorized
-events around its physical events, the template runs' windows combined per transition by
-their mean (docs/controller.md, "Events from an ensemble of grasps"). The paper's, ensemble
-and corrective campaigns differ only in their runs, event times and windows. Run k is seeded
-base + k, each campaign's base at or above 1_000_000, apart from every sweep's seeds.
+events, the template runs' windows combined per transition by their mean (docs/controller.md,
+"Events from an ensemble of grasps"). Run k is seeded base + k, each base at or above
+1_000_000, apart from every sweep's seeds.
 """
 
 import dataclasses

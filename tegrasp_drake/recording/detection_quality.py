@@ -1,8 +1,6 @@
 """How well a memorized event detects its transition, from recorded logs: detection, false
-triggers and latency at any pair of Eq. 3 thresholds, without simulating again. The scores do
-not depend on the thresholds, so each trial is replayed once per transition with its event
-held expected (events/replay.py) over its armed span. choose_thresholds takes, of the pairs
-with no false trigger and the most detections (and a median latency within target), the
+triggers and latency at any Eq. 3 threshold pair, each trial replayed once per transition.
+choose_thresholds takes, of the pairs with no false trigger and the most detections, the
 highest: the widest margin above the spans' scores before their events.
 """
 

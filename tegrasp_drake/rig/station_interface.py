@@ -56,7 +56,7 @@ BODY_POSES = "body_poses"  # the plant's body poses X_WB (abstract)
 QUERY_OBJECT = "query_object"  # the scene graph's QueryObject (abstract)
 GRIPPER_STATE = "gripper.state"  # the gripper model instance's joint positions, velocities
 GRIPPER_PLANT_DESIRED_STATE = "gripper.plant_desired_state"  # (2) actuated joint's set-point
-ARM_SERVO_SET_POINT = "arm.servo_set_point"  # (12) the arm joints' PD set-point (jaco_velocity_drive.py)
+ARM_SERVO_SET_POINT = "arm.servo_set_point"  # (12) the arm joints' PD set-point
 CARRIAGE_DESIRED_STATE = "carriage.desired_state"  # (12) the carriage PD's set-point (carriage.py)
 GRIPPER_WRIST_WRENCH = "gripper.wrist_wrench"  # (6) the carriage-gripper weld's wrench
 

@@ -1,8 +1,6 @@
 """Scenario keys that moved when the settings were nested by concern, old dotted path -> new.
-
-User input naming an old key is refused with its new path (`refuse_moved_keys`); records the
-project stored in the old layout are read through `migrate_stored_scenario` and
-`migrate_stored_overrides`, only where stored records are read.
+User input naming an old key is refused with its new path (`refuse_moved_keys`); stored
+records are read through `migrate_stored_scenario` and `migrate_stored_overrides`.
 """
 
 import copy

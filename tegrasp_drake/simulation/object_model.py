@@ -1,8 +1,6 @@
 """Adds the scenario's object to a plant: a primitive shape written as SDF, or a model file.
-
-Primitive objects are rigid hydroelastic bodies (the pads and the table are compliant), with
-their frame O at the centre of the base face, z up, and the inertia of a uniform solid. How
-finely their surfaces are meshed is the scenario's `contact_geometry` (contact_meshing.py).
+Primitive objects are rigid hydroelastic bodies with frame O at the centre of the base face,
+z up, and the inertia of a uniform solid.
 """
 
 import itertools

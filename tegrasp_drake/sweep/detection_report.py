@@ -174,7 +174,8 @@ def paired_comparison(records, first: str, second: str,
     n = len(pairs)
     return PairedComparison(first, second, marker, n,
                             sum(x for x, _ in pairs) / n if n else 0.0,
-                            sum(y for _, y in pairs) / n if n else 0.0, a, b, exact_mcnemar_p_value(a, b))
+                            sum(y for _, y in pairs) / n if n else 0.0, a, b,
+                            exact_mcnemar_p_value(a, b))
 
 
 def report_markdown(records, controllers, reference: str, title: str) -> str:

@@ -1,8 +1,6 @@
-"""Table I of the paper from sweep records, and statistics of the trials.
-
-"~Hold": held 3 s; "~Unload": held, then placed upright (Sec. IV-C). An object's rate is
-over its "ok" records (errors counted apart); the average row is the mean of the objects'
-rates, as the paper's, the counts pooled beside it (docs/sweeps.md, "A sweep").
+"""Table I of the paper from sweep records, and statistics of the trials. "~Hold": held 3 s;
+"~Unload": held, then placed upright (Sec. IV-C); the average row is the mean of the
+objects' rates, as the paper's (docs/sweeps.md, "A sweep").
 """
 
 import csv
@@ -287,7 +285,8 @@ def statistics_markdown(statistics, comparisons) -> str:
         lines += ["", f"Corrective actions: in {actions['trials_with_any']} trials; {counts}.",
                   f"False triggers: {ft['total']} in {ft['trials_with_any']} trials "
                   f"(mean {_number_text(ft['mean_per_trial'])} per trial).",
-                  f"Simulated time per trial: median {_number_text(s['sim_time_s']['median'], ' s')}; "
+                  "Simulated time per trial: median "
+                  f"{_number_text(s['sim_time_s']['median'], ' s')}; "
                   f"wall time per trial: median {_number_text(s['wall_time_s']['median'], ' s')}, "
                   f"p90 {_number_text(s['wall_time_s']['p90'], ' s')}.", ""]
     if comparisons:

@@ -1,9 +1,6 @@
-"""The transfer matrix's table and heat map, from the records of its cells' sweeps.
-
-Per cell and controller, over its finished trials: each event transition's match rate (the
-sweep's detection report) and median latency, false triggers per trial, hold and unload
-success, median CPU and simulated seconds. A cell still running shows how many ran ("41/81
-run"); one with none is listed as not run (docs/transfer.md, "A transfer sweep").
+"""The transfer matrix's table and heat map, from its cells' sweep records: per cell and
+controller, match rates and latencies per event transition, false triggers, hold and unload
+success and cost (docs/transfer.md, "A transfer sweep").
 """
 
 import dataclasses

@@ -1,9 +1,7 @@
 """A reader thread for the myRIO tactile stream: serial port -> decoder -> bounded queue.
-
-The thread blocks on the port (at most `read_timeout` at a time, so it notices `close()`);
-the diagram calls only `drain()`, which never blocks. When the consumer falls behind, the
-oldest frames are dropped and counted; a serial error is counted and retried, so a
-replugged adapter comes back.
+The diagram calls only `drain()`, which never blocks; when it falls behind the oldest frames
+are dropped and counted; a serial error is counted and retried (a replugged adapter comes
+back).
 """
 
 import collections
