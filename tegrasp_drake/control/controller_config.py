@@ -285,8 +285,7 @@ class GraspControllerConfig:
 
 
 def _block_problem(block_s: float, ra_rate_hz: float) -> tuple[str, str, object] | None:
-    """sensor_block_s's problem when its blocks of RA samples do not fall on the sample
-    times in floating point."""
+    """sensor_block_s's problem when its blocks miss the RA sample times in floating point."""
     if not (block_s > 0 and ra_rate_hz > 0):
         return None
     from tegrasp_drake.tactile.sample_block import block_samples, block_update_period

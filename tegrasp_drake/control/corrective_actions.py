@@ -89,8 +89,7 @@ def lift_load_or_fail(slip_s: float, counters: Counters,
 
 def lift_load_on_slip_event(slip_event: bool, counters: Counters,
                             config: GraspControllerConfig) -> Decision | None:
-    """In Lift: Load on the memorized slip event (Failed once max_lift_loads are used),
-    else None."""
+    """In Lift: Load on the memorized slip event (Failed after max_lift_loads), else None."""
     if not (config.lift_load.enabled and slip_event):
         return None
     return _lift_load_for_slip(counters, config, Trigger.CORRECTIVE_EVENT,

@@ -181,8 +181,7 @@ class GraspStateMachine(LeafSystem):
         return t - s.gripper_request_time >= GRIPPER_STATUS_LAG_S
 
     def _advance_stage(self, s: MachineState, t: float, context) -> MachineState:
-        """Steps within a mode: close after the reach, shift after opening, retract after
-        releasing."""
+        """Steps within a mode: close after reaching, shift after opening, retract after release."""
         p = self._plan
         if s.mode == Mode.REACH and s.stage == Stage.MOVING and s.segment.done(t):
             return dataclasses.replace(

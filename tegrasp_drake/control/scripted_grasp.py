@@ -63,8 +63,7 @@ class ScriptSegment:
 
 @functools.lru_cache(maxsize=256)
 def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple:
-    """The (rPR, rSP, rFR) bytes for a target opening, speed and force (cached: asked each
-    tick)."""
+    """The (rPR, rSP, rFR) bytes for a target opening, speed and force (cached: asked per tick)."""
     return (float(ru.position_byte_from_opening(opening_m)),
             float(ru.speed_byte_from_speed(speed_mps)),
             float(ru.force_byte_from_force(force_n)))

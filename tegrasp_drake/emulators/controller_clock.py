@@ -54,8 +54,7 @@ class ControllerClock:
 
 
 def command_boundary(device: str = "myrio") -> MessageBoundary:
-    """The boundary a clock's commands cross (check_jaco_command); the clock ignores a rejected
-    one."""
+    """The boundary a clock's commands cross (check_jaco_command); rejected ones are ignored."""
     return MessageBoundary(f"{device}: {JACO_COMMAND_CHANNEL}", check_jaco_command)
 
 

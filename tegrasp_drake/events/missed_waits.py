@@ -89,8 +89,7 @@ class MissedWait:
                             (peak - self.ra_noise_mean) / self.ra_noise_std, np.inf)
 
     def ra_wait_peak_sigmas(self) -> np.ndarray:
-        """[left, right] (ra_wait_peak - noise mean) / noise std; inf for a channel
-        without noise."""
+        """[left, right] (ra_wait_peak - noise mean) / noise std; inf for a noiseless channel."""
         return self._sigmas(self.ra_wait_peak)
 
     def failing_ra_within_floor(self, sigmas: float) -> bool | None:
@@ -109,8 +108,7 @@ def event_thresholds(config: EventMatcherConfig, transition: str) -> tuple[float
 
 
 def ra_noise(trial: TactileTrial, quiet_s: float) -> tuple[np.ndarray, np.ndarray]:
-    """[left, right] mean and standard deviation [m/s^2] of the raw RA samples of the
-    trial's first quiet_s [s]."""
+    """[left, right] mean and std [m/s^2] of the raw RA over the trial's first quiet_s [s]."""
     quiet = trial.ra[trial.t_ra < trial.t_ra[0] + quiet_s]
     if len(quiet) < 2:
         raise ValueError(f"the trial holds fewer than 2 RA samples in its first {quiet_s} s")

@@ -19,8 +19,7 @@ _TRANSITION_TITLES = {"reach_load": "Reach-Load", "load_lift": "Load-Lift",
 
 def plot_memorized_events(events_by_object: Mapping[str, Mapping[str, MemorizedEvent]],
                           path) -> pathlib.Path:
-    """Writes the grid of every object's memorized events to `path` (.png, .pdf or .svg);
-    returns the path."""
+    """Writes every object's memorized events to `path` (.png, .pdf or .svg); returns it."""
     transitions = sorted({t for events in events_by_object.values() for t in events},
                          key=transition_order)
     if not transitions:

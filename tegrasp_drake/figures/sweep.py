@@ -85,6 +85,5 @@ def plot_success_maps(records):
 
 
 def write_success_maps(records, out_dir, file_name="success_maps.png") -> Path:
-    """Saves the success-map figure in `out_dir` (.png, .pdf or .svg, by `file_name`);
-    returns its path."""
+    """Saves the success maps in `out_dir` (format by `file_name`'s suffix); returns the path."""
     return save_figure(plot_success_maps(list(records)), Path(out_dir) / file_name)

@@ -113,8 +113,7 @@ def draw_physical_events(axis, events: dict) -> None:
 
 
 def marker_legend_handles(transitions, events: dict) -> list:
-    """Legend entries for the transition lines by trigger (those present) and the physical
-    events."""
+    """Legend entries for the transition lines by trigger (those present) and physical events."""
     handles = []
     for trigger in TRIGGER_STYLES:
         if any(t.trigger == trigger for t in transitions):

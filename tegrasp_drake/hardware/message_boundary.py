@@ -61,8 +61,7 @@ class MessageBoundary:
         self._listeners.append(listener)
 
     def accept(self, message, *args):
-        """The checked value of `message`, or None (counted) when it is rejected; the
-        listeners see each checked value."""
+        """The checked value of `message`, or None (counted) when rejected; listeners see it."""
         try:
             value = self._check(message, *args)
         except RejectedMessage as rejection:
@@ -108,8 +107,7 @@ class MessageBoundary:
                                        rejected=dict(self._counters.rejected))
 
     def new_rejections(self) -> list[RejectedMessage]:
-        """The first rejection of each reason not yet handed over (each reason once), for a live
-        line."""
+        """The first rejection of each reason not yet handed over, for a live line."""
         with self._lock:
             new, self._unreported = self._unreported, []
         return new

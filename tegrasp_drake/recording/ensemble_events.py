@@ -61,8 +61,7 @@ def ensemble_scenario(object_name: str, run: int, ranges: EnsembleRanges = ENSEM
 
 def ensemble_runs(object_name: str, runs: int, template_runs: int = TEMPLATE_RUNS,
                   base=None) -> list[CampaignRun]:
-    """The campaign's runs `run0`..: the first `template_runs` make the events, the rest
-    are held out."""
+    """The campaign's runs: the first `template_runs` make the events, the rest are held out."""
     return [CampaignRun(f"run{k}", ensemble_scenario(object_name, k, base=base),
                         role="template" if k < template_runs else "held_out")
             for k in range(runs)]

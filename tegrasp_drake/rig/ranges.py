@@ -71,8 +71,7 @@ def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
 
 
 def declared_field(cls: type, name: str) -> dataclasses.Field:
-    """A new field with the default and Range of the field `name` of `cls`, so a repeated
-    setting is declared once."""
+    """A new field with the default and Range of `cls`'s field `name` (declared once)."""
     field = next(f for f in dataclasses.fields(cls) if f.name == name)
     return dataclasses.field(default=field.default, default_factory=field.default_factory,
                              metadata=field.metadata)
@@ -184,8 +183,7 @@ def _check_foreign(config, source: str, where: str) -> None:
 
 
 def shorten(text: str, limit: int = 80) -> str:
-    """`text` cut to about `limit` characters (an echoed value in an error message), saying
-    how long it was."""
+    """`text` cut to about `limit` characters, saying how long it was (echoed values)."""
     if len(text) <= limit:
         return text
     return f"{text[:limit]}... ({len(text)} characters)"

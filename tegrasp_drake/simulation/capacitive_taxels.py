@@ -48,8 +48,7 @@ def ad7147_frame_rate_hz(decimation: int) -> float:
 
 
 def frame_rate_matches(sample_rate_hz: float, decimation: int) -> bool:
-    """Whether a taxel sample rate [Hz] is the AD7147's frame rate at `decimation`
-    (within FRAME_RATE_TOLERANCE)."""
+    """Whether `sample_rate_hz` is the AD7147's frame rate at `decimation` (within tolerance)."""
     frame = ad7147_frame_rate_hz(decimation)
     return abs(sample_rate_hz - frame) <= FRAME_RATE_TOLERANCE * frame
 

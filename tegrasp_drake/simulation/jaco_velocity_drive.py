@@ -19,8 +19,7 @@ STEP_TOLERANCE_S = 1e-9
 
 
 def plant_steps(duration_s: float, time_step: float) -> int | None:
-    """`duration_s` as a whole number of plant steps of `time_step` [s], or None if it is
-    not one."""
+    """`duration_s` as a whole number of plant steps of `time_step` [s], or None if not one."""
     steps = round(duration_s / time_step)
     return steps if abs(steps * time_step - duration_s) <= STEP_TOLERANCE_S else None
 

@@ -91,6 +91,5 @@ def rest_reading(tactile_config) -> LatticeDistribution:
 
 
 def loaded_noise(tactile_config) -> LatticeDistribution:
-    """One loaded taxel's reading less its noise-free value [N, or counts]: the noise with
-    no clip and no offset."""
+    """A loaded taxel's reading less its noise-free value [N, or counts]: unclipped, no offset."""
     return _reading_noise(tactile_config, at_rest=False)

@@ -152,8 +152,7 @@ class TrialSpec:
 
 
 def _from_json(value, hint):
-    """`value` as TrialSpec.from_dict takes it: JSON has no tuples, so a record's list stands
-    for a tuple field."""
+    """`value` as TrialSpec.from_dict takes it: a record's list for a tuple field."""
     if typing.get_origin(hint) is tuple and isinstance(value, list):
         return tuple(value)
     return value

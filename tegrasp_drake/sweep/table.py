@@ -51,8 +51,7 @@ class Table1Row:
 
 
 def succeeded(result, phase: str) -> bool:
-    """A trial's (a TrialResult's) success in a phase: "hold", or "unload" (held, then
-    placed upright)."""
+    """A TrialResult's success in a phase: "hold", or "unload" (held, then placed upright)."""
     if phase == "hold":
         return result.hold_success
     return result.hold_success and result.unload_success

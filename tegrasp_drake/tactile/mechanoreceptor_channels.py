@@ -106,8 +106,7 @@ def MakeMechanoreceptorChannels():
 
 @public_api
 def AddMechanoreceptorChannels(builder: DiagramBuilder, station: System):
-    """Adds Eq. 1-2 (MakeMechanoreceptorChannels) fed by the station's tactile ports;
-    returns the system."""
+    """Adds Eq. 1-2 (MakeMechanoreceptorChannels) fed by the station's tactile ports."""
     channels = builder.AddNamedSystem("mechanoreceptor_channels", MakeMechanoreceptorChannels())
     for finger in FINGER_NAMES:
         builder.Connect(station.GetOutputPort(ports.taxel_forces(finger)),

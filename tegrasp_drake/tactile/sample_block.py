@@ -41,8 +41,7 @@ def block_update_period(sample_period_s: float, samples: int) -> float:
 
 
 def samples_in_block(time_s: float, sample_period_s: float, samples: int) -> int:
-    """The register's rows a block update at `time_s` takes: those since the last update
-    (at 0, one)."""
+    """The register's rows a block update at `time_s` takes: those since the last (at 0, one)."""
     return min(samples, int(round(time_s / sample_period_s)) + 1)
 
 

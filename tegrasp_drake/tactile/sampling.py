@@ -12,8 +12,7 @@ _INTEGER_TOLERANCE = 1e-9
 
 
 def samples_per_window(window_s: float, rate_hz: float) -> int:
-    """Samples in a window of `window_s` [s] at `rate_hz` [Hz]; ValueError unless an
-    integer of 2 or more."""
+    """Samples in `window_s` [s] at `rate_hz` [Hz]; ValueError unless an integer >= 2."""
     if not (window_s > 0.0 and rate_hz > 0.0):
         raise ValueError(f"window_s ({window_s}) and rate_hz ({rate_hz}) must be positive")
     exact = window_s * rate_hz

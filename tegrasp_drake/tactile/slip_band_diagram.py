@@ -26,8 +26,7 @@ def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
 
 def slip_band_system(*, band_hz: float, window_s: float,
                      sample_rate_hz: float) -> SymbolicVectorSystem:
-    """The slip band as a SymbolicVectorSystem: pads' vibration (6) [m/s^2] in, [left,
-    right] RMS [m/s^2] out."""
+    """The slip band as a SymbolicVectorSystem: vibration (6) in, RMS [left, right] out [m/s^2]."""
     b0, b1, b2, a1, a2 = highpass_biquad(band_hz, sample_rate_hz).tolist()
     window = max(1, round(window_s * sample_rate_hz))
     x = [Variable(f"x{i}") for i in range(_AXES)]

@@ -113,8 +113,7 @@ def _heatmap_panels(rows: list[CellRow]):
 
 
 def heatmap_label(row: CellRow, value: float) -> str:
-    """A heat-map cell's text: the rate in percent, and under it "41/81 run" for a cell
-    with trials still to run."""
+    """A heat-map cell's text: the rate in percent, and "41/81 run" while trials remain."""
     text = f"{100 * value:.0f}"
     return f"{text}\n{row.trials_text()}" if row.partly_run else text
 

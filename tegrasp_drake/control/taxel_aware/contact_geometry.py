@@ -14,8 +14,7 @@ from tegrasp_drake.rig.taxel_layout import PAD_LENGTH
 
 @dataclasses.dataclass(frozen=True)
 class Shift:
-    """A Re-Reach move of the open gripper [m, world]: dx along the approach axis, dy along
-    the stroke."""
+    """A Re-Reach move of the open gripper [m, world]: dx along the approach, dy the stroke."""
     dx_m: float
     dy_m: float
 
