@@ -71,9 +71,8 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 
 @contextlib.contextmanager
 def staged_run(folder):
-    """A hidden staging folder for the run's files inside the run folder (removed when the
-    block ends), with the run folder locked for the block (flock, released by the kernel
-    however the process ends), so a second run into it is refused at once."""
+    """A hidden staging folder inside the run folder (removed when the block ends), the run
+    folder locked (flock) for the block, so a second run into it is refused at once."""
     with claimed_run_folder(folder):
         try:
             stage = pathlib.Path(tempfile.mkdtemp(prefix=".staging-", dir=folder))

@@ -38,9 +38,9 @@ class HeuristicTriggerConfig:
 
 @dataclasses.dataclass
 class FingerStrikeConfig:
-    """The taxel_aware controller's finger-strike sense (control/finger_strike.py): a
-    finger's front striking the object during the approach, seen in the arm's joint torques
-    as a force on the grasp frame G. Measured figures: docs/controller.md, "Finger strike"."""
+    """The taxel_aware controller's finger-strike sense (control/finger_strike.py): a finger's
+    front striking the object in the approach, seen in the joint torques as a force on G.
+    Measured figures: docs/controller.md, "Finger strike"."""
     enabled: bool = True
     # force on G over its approach-start value [N]: 2.5x the Reach's 0.81 N, half a strike's 3.9
     force_n: float = bounded(2.0, low=0.0, low_open=True, high=100.0, unit="N",

@@ -203,9 +203,8 @@ def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
 
 
 def select_controller_tag(data: dict, *, drop_others: bool = False) -> list[str]:
-    """Turns `controller: {name: NAME, ...}` of YAML data, in place, into NAME's tag
-    (`_tag`); drop_others: drop the other controllers' settings NAME lacks (one no
-    controller has stays, to be refused) and return their dotted paths."""
+    """Turns `controller: {name: NAME, ...}` of YAML data, in place, into NAME's tag; with
+    drop_others, drops the other controllers' settings NAME lacks and returns their paths."""
     section = data.get("controller") if isinstance(data, dict) else None
     if not isinstance(section, dict) or "name" not in section:
         return []

@@ -51,8 +51,7 @@ def corrective_action_of(from_mode: Mode, to_mode: Mode,
 def re_reach_shift(sa_n, opening_m: float, object_width_m: float,
                    contact_force_n: float) -> float:
     """The shift [m, world y] that centres the gripper on the object: toward the finger
-    touching alone (SA of sa_n[:2] above contact_force_n [N]) by (opening_m -
-    object_width_m) / 2, never negative; 0 when both or neither touch."""
+    touching alone by (opening_m - object_width_m) / 2, never negative; 0 unless one touches."""
     contact = np.asarray(sa_n)[:2] > contact_force_n
     if contact[0] == contact[1]:
         return 0.0
@@ -105,8 +104,7 @@ def relift_after_lift_load(*, grip_reached: bool, slip_quiet: bool, time_in_load
                            counters: Counters,
                            config: GraspControllerConfig) -> Decision | None:
     """In Load after a Lift-Load: Lift once the raised grip is reached, the slip band is
-    quiet and relift_settle_s [s] have passed; None otherwise and in the first Load (which
-    waits for its event)."""
+    quiet and relift_settle_s [s] have passed; None otherwise and in the first Load."""
     if (counters.lift_loads and grip_reached and slip_quiet
             and time_in_load_s >= config.lift_load.relift_settle_s):
         return Decision(Mode.LIFT, Trigger.CORRECTIVE, "raised grip force reached (Lift-Load)")

@@ -16,8 +16,7 @@ LIVE_MODES = tuple(mode for mode in Mode if mode not in TERMINAL_MODES)
 @dataclasses.dataclass(frozen=True)
 class ReReachMove:
     """How a table's Re-Reaches move: limit(situation), the most Re-Reaches; shift(situation),
-    a contact_geometry.Shift [m, world] or None for the paper's shift along the stroke; the
-    labels say both in words for the docs."""
+    a Shift [m, world] or None for the paper's; the labels word both for the docs."""
     shift_label: str
     limit_label: str
     limit: Callable[["Situation"], int]
@@ -82,9 +81,9 @@ class Guard:
 
 @dataclasses.dataclass(frozen=True)
 class RuleTable:
-    """A controller's rules: its own `rules` and `guards` added to those of `base` (None:
-    none), and how its Re-Reaches move. ValueError on two rules of one name, two rules of
-    one mode with one priority, or a guard of a rule the table lacks."""
+    """A controller's rules and guards added to those of `base` (None: none), and how its
+    Re-Reaches move. ValueError on a repeated rule name, two rules of one mode with one
+    priority, or a guard of a rule the table lacks."""
     name: str
     rules: tuple[Rule, ...]
     re_reach_move: ReReachMove

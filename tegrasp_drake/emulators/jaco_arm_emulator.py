@@ -32,9 +32,8 @@ GRIPPER_COM_Z = 0.06      # [m] from the flange along its z
 def MakeJacoArmEmulator(*, lcm, initial_positions, damping_gain: float = SERVO_DAMPING_GAIN,
                         command_timeout: float = 0.05,
                         command_boundary: MessageBoundary | None = None):
-    """The emulator Diagram on `lcm` (a DrakeLcm its LcmInterfaceSystem pumps), starting at
-    `initial_positions` [rad]; commands cross `command_boundary` (check_jaco_command). Output
-    ports, for tests: position_measured, velocity_measured (6 each) [rad, rad/s]."""
+    """The emulator Diagram on `lcm`, starting at `initial_positions` [rad]; commands cross
+    `command_boundary`. Outputs for tests: position_measured, velocity_measured [rad, rad/s]."""
     builder = DiagramBuilder()
     builder.AddNamedSystem("lcm", LcmInterfaceSystem(lcm))
     plant, _ = AddMultibodyPlant(MultibodyPlantConfig(

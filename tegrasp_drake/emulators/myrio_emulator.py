@@ -34,8 +34,7 @@ MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 
 @dataclasses.dataclass
 class TactileRecording:
     """The raw pad signals of a recorded trial: times [s] ascending; forces (n, 12) [N];
-    accelerations (m,) or (m, 3) [m/s^2]; optionally the recorded gripper's position requests
-    (k,) [rPR byte] at their times (k,) [s].
+    accelerations (m,) or (m, 3) [m/s^2]; optionally the gripper's rPR requests at their times.
     """
     force_times: np.ndarray
     left_forces: np.ndarray

@@ -44,9 +44,8 @@ def timeout_reason_prefix(transition: str) -> str:
 
 
 def event_waits(transitions: Sequence[Mapping]) -> list[EventWait]:
-    """The waits of a trial's transitions (their JSON form, Transition.as_dict, in time
-    order) that ended on their event's timeout; each wait starts at the last entry into the
-    waiting mode, or at 0 for the first Reach."""
+    """The waits in a trial's transitions (JSON form, in time order) that ended on their event's
+    timeout, each from the last entry into the waiting mode (0 for the first Reach)."""
     waits, entered = [], {"Reach": 0.0}  # the machine starts in Reach at 0
     for entry in transitions:
         transition = _WAITING_MODE.get(entry["from"])

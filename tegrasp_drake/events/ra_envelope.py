@@ -94,8 +94,7 @@ def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
 
 def ra_enveloped(builder, events, channels, config):
     """(events, channels) with the RA envelope at config.ra_envelope_hz [Hz] on both: the
-    events' RA windows low-passed, and `channels` (an output port) through an RaEnvelope added
-    to `builder`. config: an EventMatcherConfig."""
+    events' RA windows low-passed, `channels` through an RaEnvelope added to `builder`."""
     if channels is None:
         raise ValueError("the RA envelope needs the channels' output port to filter "
                          "(add_event_matcher(..., channels=PORT))")

@@ -107,9 +107,8 @@ class RaNoiseFloor(LeafSystem):
 
 
 def add_ra_noise_floor(builder, channels, config):
-    """Adds a RaNoiseFloor (`ra_noise_floor`) fed by the output port `channels` (raw RA);
-    returns its `ra_floor` output port. config: an EventMatcherConfig; with
-    ra_noise_floor_sigmas 0 the floor uses the rule's k (`rule_sigmas`)."""
+    """Adds a RaNoiseFloor fed by the output port `channels` (raw RA); returns its `ra_floor`
+    port. With ra_noise_floor_sigmas 0 the floor uses the rule's k."""
     floor = builder.AddNamedSystem("ra_noise_floor", RaNoiseFloor(
         sigmas=config.ra_noise_floor_sigmas or rule_sigmas(config.ra_rate_hz),
         quiet_s=config.ra_noise_quiet_s,

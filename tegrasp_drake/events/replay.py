@@ -179,11 +179,9 @@ def replay_events_in_sequence(
         sequence: Sequence[str] = REQUIRED_TRANSITIONS, *,
         config: EventMatcherConfig | None = None, t_end: float | None = None,
         armed_from_s: Mapping[str, float] | None = None) -> EventReplay:
-    """Replays `trial`, expecting the events of `sequence` one after another.
-
-    events: one object's {transition: event}; config: the matcher's thresholds (rates set to
-    the events'); t_end: default the trial's end; armed_from_s: {transition: time [s]} before
-    which it is not looked for (default: from the start).
+    """Replays `trial`, expecting the events of `sequence` one after another. events: one
+    object's {transition: event}; config: the matcher's thresholds; armed_from_s: {transition:
+    time [s]} before which it is not looked for.
     """
     return _replay(trial, events, sequence=tuple(sequence), held=None, config=config,
                    t_end=t_end, armed_from_s=armed_from_s)

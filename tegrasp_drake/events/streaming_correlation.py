@@ -187,10 +187,8 @@ class SlidingCorrelation:
 
     def gate_below(self, state: np.ndarray, floors: list[float | None], *,
                    gate_events: bool = True) -> np.ndarray:
-        """Judges each channel that has a floor (`floors`, None for none) after `slide`, in
-        place: a window whose peak |value| is not above a finite floor holds only noise, so a
-        flat template's channel scores 1 and any other 0 (gate_events False: kept). Returns the
-        scores view.
+        """Scores, after `slide` and in place, each channel with a finite floor whose window peak is
+        not above it as noise: 1 for a flat template, else 0. Returns the scores view.
         """
         event = int(state[self._event_at])
         if event != NO_EVENT:
@@ -222,10 +220,9 @@ class SlidingCorrelation:
 
 
 class StreamingCorrelator:
-    """A sliding window and its SlidingCorrelation in one flat vector: push a sample, get the
-    scores, outside a Diagram (tests, benchmarks); the accessors are SlidingCorrelation's.
-    Args: templates, min_contrast, flat_needs_flat as SlidingCorrelation's; slack: samples
-    between two exact recomputations of the correlation buffer.
+    """A sliding window and its SlidingCorrelation in one flat vector, outside a Diagram
+    (tests, benchmarks): push a sample, get the scores. slack: samples between exact
+    recomputations.
     """
 
     def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int,

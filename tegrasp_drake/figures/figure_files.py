@@ -43,8 +43,7 @@ def check_figure_path(path) -> pathlib.Path:
 
 def save_figure(figure, path) -> pathlib.Path:
     """Writes `figure` to `path` in the format its suffix names; returns the path.
-    UserPathError (an OSError naming the file) when it cannot be written: a read-only or
-    full disk, a name too long; the old file, if any, is left whole."""
+    UserPathError when it cannot be written (the old file, if any, is left whole)."""
     path = check_figure_path(path)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -18,9 +18,8 @@ PHASES = ("hold", "unload")
 
 
 def success_grids(records):
-    """Success counts per marker position, error records left out as in Table I:
-    (normal_offsets_mm, stroke_offsets_mm, {(controller, object, phase): (successes, trials)}),
-    arrays indexed [x, y]."""
+    """Success counts per marker, errors left out as in Table I: (normal_offsets_mm,
+    stroke_offsets_mm, {(controller, object, phase): (successes, trials)}) indexed [x, y]."""
     ok = [r for r in records if r["status"] == "ok"]
     xs = sorted({round(r["trial"]["marker_dx_m"] * 1e6) for r in ok})
     ys = sorted({round(r["trial"]["marker_dy_m"] * 1e6) for r in ok})

@@ -63,8 +63,7 @@ class CheckedLcmSerializer(SerializerInterface):
 def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
                          lcm) -> LcmSubscriberSystem:
     """Drake's LcmSubscriberSystem on `channel`, its messages checked and counted by
-    `boundary` (module docstring); `lcm` is the DrakeLcm its LcmInterfaceSystem pumps.
-    The serializer stays reachable as `checked_serializer`."""
+    `boundary`; `lcm` is the DrakeLcm its LcmInterfaceSystem pumps."""
     serializer = CheckedLcmSerializer(lcm_type, boundary)
     subscriber = LcmSubscriberSystem(channel, serializer, lcm)
     subscriber.checked_serializer = serializer

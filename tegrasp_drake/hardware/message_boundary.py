@@ -55,9 +55,8 @@ class MessageBoundary:
         self._listeners = []
 
     def add_listener(self, listener: Callable) -> None:
-        """Calls listener(value) with each value `accept` lets through, after counting it:
-        a second reader of the same messages (the emulated myRIO's clock reads the
-        emulated arm's commands)."""
+        """Calls listener(value) with each value `accept` lets through, after counting it (a
+        second reader of the same messages)."""
         self._listeners.append(listener)
 
     def accept(self, message, *args):

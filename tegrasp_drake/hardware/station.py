@@ -211,8 +211,7 @@ class HardwareStation(Diagram):
 
     def wait_until_ready(self, timeout: float | None = None):
         """Blocks, before the Simulator starts, until the arm's status arrived, the gripper is
-        active and the (untouched) pads are zeroed; else HardwareNotReadyError naming what is
-        missing."""
+        active and the pads are zeroed; else HardwareNotReadyError naming what is missing."""
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
         if not wait_for_checked_message(self._lcm, self._status_subscriber, deadline):

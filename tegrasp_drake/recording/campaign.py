@@ -124,9 +124,8 @@ def record_campaign(runs: typing.Sequence[CampaignRun], event_times: EventTimes,
                     object_name: str, nominal_object,
                     pre_transition_s: float | Mapping[str, float] | None = None, note: str,
                     log_dir=None, progress_of_run=None) -> dict[str, MemorizedEvent]:
-    """The campaign's events: every run simulated (its log kept in, or reused from,
-    `log_dir`/<label>.npz), cut (cut_events) and combined (combine_runs).
-    progress_of_run(k): run k's progress callback or None."""
+    """The campaign's events: every run simulated (its log kept in or reused from
+    `log_dir`/<label>.npz), cut and combined. progress_of_run(k): run k's callback or None."""
     templates = []
     for k, run in enumerate(runs):
         log = simulate_run(run, log_path=run_log_path(log_dir, run),

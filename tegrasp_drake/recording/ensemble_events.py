@@ -70,9 +70,8 @@ def ensemble_runs(object_name: str, runs: int, template_runs: int = TEMPLATE_RUN
 def record_object_ensemble(object_name: str, scenario, runs: int = TEMPLATE_RUNS, *,
                            template_runs: int | None = None, log_dir=None,
                            progress_of_run=None):
-    """The ensemble events of the object of `scenario` (a user's or a built-in one): `runs`
-    randomised ideal grasps, the first `template_runs` (default: all) combined by the mean.
-    RecordEventsError when a run shows no physical event."""
+    """The ensemble events of `scenario`'s object: `runs` randomised ideal grasps, the first
+    `template_runs` combined by the mean; RecordEventsError when a run lacks an event."""
     template_runs = runs if template_runs is None else template_runs
     return record_campaign(
         ensemble_runs(object_name, runs, template_runs, base=scenario), grasp_event_times,

@@ -77,9 +77,8 @@ def missing_event_advice(transition: str, log, scenario) -> str:
 @public_api
 def record_events(object_name: str, scenario: Scenario | None = None, *,
                   progress: Callable | None = None):
-    """Runs the ideal grasp of one object (a built-in one by name, or the object of
-    `scenario`); returns its MemorizedEvents. progress: as run_ideal_grasp's.
-    RecordEventsError when a physical event is missing."""
+    """Runs the ideal grasp of one object (built-in by name, or `scenario`'s); returns its
+    MemorizedEvents; RecordEventsError when a physical event is missing."""
     scenario = scenario or LoadScenario(name=object_name)
     log, _ = run_ideal_grasp(scenario, progress=progress)
     times = grasp_event_times(log, scenario)

@@ -74,9 +74,8 @@ def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
 def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, station: System,
                           events: dict | None = None,
                           corrective_events: dict | None = None) -> GraspController:
-    """AddGraspController with the scenario's sections (controller, GraspPlan, arm, sample
-    rates); the memorized events default to the scenario object's, and the RA and SA
-    thresholds follow the noise of its films' and taxels' electronics."""
+    """AddGraspController with the scenario's sections; events default to the scenario
+    object's, and the thresholds follow its films' and taxels' noise."""
     controller = scenario.controller
     if events is None and controller_entry(controller).event_triggered:
         events = load_controller_events(scenario)

@@ -171,8 +171,7 @@ class ArmGraspFrameKinematics:
 
 
 def wrench_on_arm(F_GJ_G: np.ndarray, R_WG: RotationMatrix) -> np.ndarray:
-    """The wrench the gripper puts on the arm at G, in world [Mx, My, Mz, Fx, Fy, Fz]
-    [N m, N], from the weld's reaction F_GJ_G = [torque; force] that the carriage exerts on
-    the gripper at G, in G (Drake's reaction forces at the joint's child frame)."""
+    """The wrench the gripper puts on the arm at G, in world [Mx, My, Mz, Fx, Fy, Fz] [N m, N],
+    from the weld's reaction F_GJ_G (Drake's, at the joint's child frame, in G)."""
     R = R_WG.matrix()
     return -np.concatenate([R @ F_GJ_G[:3], R @ F_GJ_G[3:]])

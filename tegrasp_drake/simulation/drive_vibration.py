@@ -101,9 +101,8 @@ def drive_tones(drives, period_s: float, mode_frequency_hz: float, damping_ratio
 
 def AddDriveVibration(builder, *, sources, period_s: float, mode_frequency_hz: float,
                       damping_ratio: float, name: str = "drive_vibration"):
-    """Adds the drives' vibration to `builder`: `sources` is a list of (DriveVibrationConfig,
-    joint-rate output port), the disabled ones left out. Returns its output port, [left,
-    right] (2, m/s^2, the same base acceleration), or None when every drive is disabled."""
+    """Adds the drives' vibration to `builder` from `sources`, (DriveVibrationConfig,
+    joint-rate port) pairs; returns its [left, right] output [m/s^2], or None when all are off."""
     sources = [(config, port) for config, port in sources if config.enabled()]
     if not sources:
         return None

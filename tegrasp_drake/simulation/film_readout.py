@@ -49,9 +49,8 @@ def adc_input(name: str) -> AdcInput | None:
 
 @dataclasses.dataclass(frozen=True)
 class Arithmetic:
-    """The min, max and floor that `reading_mps2` uses: Python's on floats (FLOATS), or
-    pydrake.symbolic's, so that the same function writes the readout as an expression of a
-    compiled system (film_chain.py)."""
+    """The min, max and floor that `reading_mps2` uses: Python's on floats (FLOATS) or
+    pydrake.symbolic's, so one function also writes the compiled readout."""
     min: typing.Callable
     max: typing.Callable
     floor: typing.Callable

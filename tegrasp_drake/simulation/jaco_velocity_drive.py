@@ -88,9 +88,8 @@ class JacoVelocityDrive:
 def AddJacoVelocityDrive(builder, *, arm, time_step: float, initial_positions,
                          position_measured: OutputPort,
                          prefix: str = "arm") -> JacoVelocityDrive:
-    """Adds the velocity drive of `arm` (ArmDriverConfig, checked by drive_problem) for a plant
-    of step `time_step` [s] whose arm starts at `initial_positions` [rad];
-    `position_measured` (6) [rad] is the tracker's feedback."""
+    """Adds the velocity drive of `arm` (ArmDriverConfig) for a plant of step `time_step` [s]
+    starting at `initial_positions` [rad]; `position_measured` is the tracker's feedback."""
     n = ARM_JOINTS
     tracker = builder.AddNamedSystem(f"{prefix}_velocity_tracker",
                                      JacoVelocityTracker(arm.tracker))

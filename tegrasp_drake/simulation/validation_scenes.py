@@ -189,9 +189,9 @@ def slip_onset_grip_force(obj: ObjectConfig, *, plant_config: MultibodyPlantConf
                           hold_s: float = 0.3, falling_speed: float = 1e-3,
                           contact_geometry: ContactGeometryConfig | None = None
                           ) -> SlipResult:
-    """Holds `obj` upright between the pads (no table) with `initial_force` [N] per pad for
-    `hold_s`, then lowers it at `ramp_rate` [N/s]; slip begins where the object falls faster
-    than `falling_speed` [m/s]."""
+    """Holds `obj` between the pads (no table) at `initial_force` [N] per pad for `hold_s`,
+    then lowers it at `ramp_rate` [N/s]; slip begins where it falls faster than
+    `falling_speed` [m/s]."""
     radius = obj.width_along_stroke() / 2
     grasp = np.array([SCENE_XY[0], SCENE_XY[1], 0.3])
     ramp_s = initial_force / ramp_rate

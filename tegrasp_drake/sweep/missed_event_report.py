@@ -23,9 +23,8 @@ from tegrasp_drake.sweep.trial_function import trial_events, trial_log_name
 
 @dataclasses.dataclass(frozen=True)
 class TrialMiss:
-    """One missed wait of one trial; ra_code_mps2: the m/s^2 of one converter code of the
-    trial's film readout (None without a converter or film); ra_rate_hz: the matcher's RA
-    rate [Hz] (it sets the noise floor's k)."""
+    """One missed wait of one trial; ra_code_mps2: one converter code [m/s^2] (None without
+    one); ra_rate_hz: the matcher's RA rate [Hz]."""
     trial_id: str
     object_name: str
     missed: MissedWait

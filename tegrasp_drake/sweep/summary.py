@@ -127,8 +127,7 @@ def last_commit(root, path) -> tuple[str, str, str] | None:
 
 def page_with_record_commits(text: str, root, commit_of=last_commit) -> str:
     """`text` with each "Records `PATH`, commit `HASH` (DATE)" naming the last commit that
-    changed PATH (`commit_of(root, PATH)`); a HASH that abbreviates that commit is kept, and
-    a PATH without one (no git) is left as it is."""
+    changed PATH; a HASH abbreviating it is kept, a PATH without one is left as it is."""
     def renamed(match):
         found = commit_of(root, match["path"])
         if found is None:

@@ -103,9 +103,8 @@ def check_sweep_events(trials, events_dir=None) -> None:
 def run_trial_from_spec(trial: dict, *,
                         events_dir: Annotated[PathLike | None, INPUT_FOLDER] = None,
                         log_dir: Annotated[PathLike | None, OUTPUT_FOLDER] = None) -> dict:
-    """The sweep's trial function: runs `trial` (a TrialSpec.to_dict()) with its memorized
-    events and returns its result dict; ConfigError naming the keys when it is no sweep trial.
-    log_dir: also save the trial's log there (trial_log_name)."""
+    """The sweep's trial function: runs `trial` (a TrialSpec.to_dict()) and returns its result
+    dict (its log also in `log_dir`); ConfigError when it is no sweep trial."""
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.sweep.spec import trial_dict_problem
     problem = trial_dict_problem(trial)

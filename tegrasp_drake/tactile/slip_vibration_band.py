@@ -152,9 +152,8 @@ def filter_block(block_map: np.ndarray, block: np.ndarray, s: np.ndarray,
 def AddSlipVibrationBand(builder, pad_acceleration, *, band_hz: float, window_s: float,
                          sample_rate_hz: float, pad_acceleration_samples=None,
                          block_samples: int = 1):
-    """Adds the slip band fed by `pad_acceleration` (6): compiled per tick; on the device's
-    samples when `pad_acceleration_samples` is given; else in blocks of block_samples from
-    a sample register. Returns its slip_vibration output port."""
+    """Adds the slip band fed by `pad_acceleration` (6): per tick, on the device's samples
+    when `pad_acceleration_samples` is given, else in blocks. Returns its output port."""
     if pad_acceleration_samples is not None:
         block_samples = 1
     elif block_samples == 1:

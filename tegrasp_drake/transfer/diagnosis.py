@@ -25,11 +25,9 @@ STEP_S = GraspControllerConfig().update_period_s  # [s] the state machine's tick
 
 @dataclasses.dataclass(frozen=True)
 class TransitionDiagnosis:
-    """The offline Eq. 3 scores of one event over the modes that waited for it.
-
-    best: per channel [sa_left, sa_right, ra_left, ra_right], the highest score;
-    at_s: the tick [s] where the four scores came nearest their thresholds together;
-    together: the four scores at that tick; match: whether all four passed there.
+    """The offline Eq. 3 scores of one event over the modes that waited for it: best, each
+    channel's highest; at_s, the tick [s] where the four came nearest their thresholds;
+    together, the scores there; match, whether all four passed.
     """
     best: tuple[float, ...]
     at_s: float

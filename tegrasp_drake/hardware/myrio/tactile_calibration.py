@@ -45,9 +45,8 @@ class TactileCalibration:
 
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
-    """Reads a TactileCalibration from YAML (the dataclasses' fields); a ConfigError naming the
-    file and field for anything else (missing, empty, FIFO or device, too large, bad YAML, an
-    unknown or non-finite field)."""
+    """Reads a TactileCalibration from YAML; a ConfigError naming the file and field for
+    anything else (missing, too large, bad YAML, an unknown or non-finite field)."""
     from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, read_yaml_file
     data = read_yaml_file(filename, "the tactile calibration")
     if data is None:

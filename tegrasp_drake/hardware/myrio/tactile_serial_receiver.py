@@ -159,9 +159,8 @@ class TactileSerialReceiver(LeafSystem):
         return self._reader
 
     def zero_before_start(self, deadline: float) -> bool:
-        """Zeroes the pads (untouched) on the frames arriving now, before the Simulator starts;
-        blocks until `zero_samples` count sequences per finger arrived or time.monotonic() passes
-        `deadline` [s]. True when zeroed; initialization then starts the receiver zeroed."""
+        """Zeroes the untouched pads before the Simulator starts, blocking until `zero_samples`
+        sequences per finger arrived or `deadline` [s, monotonic] passes; True when zeroed."""
         state = initial_receiver_state(self._calibration)
         while not state.zeroed and time.monotonic() < deadline:
             frames = self._reader.drain()
