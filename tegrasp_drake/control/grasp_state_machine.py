@@ -303,8 +303,7 @@ class GraspStateMachine(LeafSystem):
                              dataclasses.replace(s, sa_before=sa_before, timers=timers))
 
     def _approach_wrench(self, s: MachineState, context):
-        """The wrench on G [N m, N] while the approach moves, for the finger-strike sense;
-        None otherwise or without the grasp_wrench input."""
+        """The wrench on G [N m, N] during the approach's move (finger strike), else None."""
         approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING
         return (self._grasp_wrench.Eval(context)
                 if approaching and self._grasp_wrench.HasValue(context) else None)

@@ -207,8 +207,7 @@ class SlidingCorrelation:
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
                    event: int) -> None:
-        """Exact full cross-correlation of the window with the event's templates, by FFT;
-        columns after the valid lags are zeroed (later updates start new lags there).
+        """The window's exact cross-correlation with the event's templates, by FFT; later lags zeroed.
         """
         length = self._length
         rows = state[self._rows_at:self._size].reshape(self._n_channels, self._row_length)
@@ -220,9 +219,8 @@ class SlidingCorrelation:
 
 
 class StreamingCorrelator:
-    """A sliding window and its SlidingCorrelation in one flat vector, outside a Diagram
-    (tests, benchmarks): push a sample, get the scores. slack: samples between exact
-    recomputations.
+    """A sliding window and its SlidingCorrelation in one flat vector, outside a Diagram (tests,
+    benchmarks): push a sample, get the scores. slack: samples between exact recomputations.
     """
 
     def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int,

@@ -143,8 +143,7 @@ def check_ranges(config, source: str, where: str = "") -> None:
 
 
 def _declared_fields(config, where: str):
-    """(path, value, declared Range or Choice or None) of each field of the dataclass
-    instance `config`, its path under `where`."""
+    """(path under `where`, value, declared Range or Choice or None) of each field of `config`."""
     for field in dataclasses.fields(config):
         path = f"{where}.{field.name}" if where else field.name
         yield path, getattr(config, field.name), range_of(field)

@@ -79,8 +79,7 @@ class Carriage:
 
 
 def _translation_masses(inertia: np.ndarray) -> list:
-    """Each prismatic body's own mass [kg], heaviest axis first, so that joint k moves the
-    arm's mass along its axis (a joint moves its own body and all after it)."""
+    """Each prismatic body's own mass [kg], heaviest axis first, so joint k moves the arm's mass."""
     masses = list(inertia[3:]) + [GIMBAL_BODY_MASS_KG * 3]
     return [max(masses[k] - masses[k + 1], GIMBAL_BODY_MASS_KG) for k in range(3)]
 

@@ -204,8 +204,7 @@ class FilmLoads(LeafSystem):
         written[DIRECT_START:] = 0.0 if direct is None else direct.T.ravel()
 
     def _impact_loads(self, step_start: float, pulses: list):
-        """(n, 2) impact forces [N] over this step's internal steps, or None; marks an
-        impulse delivered (0) in `pulses` on its last step."""
+        """(n, 2) impact forces [N] over the step's instants, or None; marks delivered pulses."""
         impulses = pulses[2:4]
         if impulses[0] <= 0.0 and impulses[1] <= 0.0:
             return None
@@ -223,8 +222,7 @@ class FilmLoads(LeafSystem):
         return direct
 
     def _texture_loads(self, texture: np.ndarray, step_start: float):
-        """(n, 2) the texture's inertial load [N] on each fingertip over this step's internal
-        steps, or None when neither pad's texture is above TEXTURE_FLOOR_MPS2."""
+        """(n, 2) texture inertial loads [N] over the step's instants, or None below the floor."""
         if (abs(texture.item(1)) <= TEXTURE_FLOOR_MPS2
                 and abs(texture.item(4)) <= TEXTURE_FLOOR_MPS2):
             return None
@@ -260,8 +258,7 @@ class FilmLoads(LeafSystem):
             pulses[k], pulses[2 + k], pulses[4 + k] = step_start, impulse, duration
 
     def _strongest_contact(self, contacts: ContactResults, pad_geometry):
-        """(other body index, contact point in world) of the pad's largest contact force,
-        or None when the pad has no contact."""
+        """(other body index, point in world) of the pad's largest contact force, or None."""
         best, best_force = None, -1.0
         for i in range(contacts.num_hydroelastic_contacts()):
             info = contacts.hydroelastic_contact_info(i)

@@ -62,8 +62,7 @@ def object_sdf(config: ObjectConfig, *, mesh_resolution_m: float = MESH_RESOLUTI
 
 
 def _corner_hull_collision(plant, instance, config: ObjectConfig) -> None:
-    """The box's collision shape as the convex hull of its 8 corners (12 triangles), with
-    the properties object_sdf gives its Box, in the same place."""
+    """The box's collision shape as its 8 corners' convex hull, with its Box's properties."""
     half = np.asarray(config.size, dtype=float) / 2
     corners = np.array([signs for signs in itertools.product((-1.0, 1.0), repeat=3)]).T
     properties = ProximityProperties()

@@ -84,8 +84,7 @@ def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
 
 
 def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[list]:
-    """Per pad: [(p_PV, pressure_V, triangles, applied normal force [N])] of each
-    hydroelastic contact surface on its geometry, vertices in the pad frame P."""
+    """Per pad: [(p_PV [m, pad frame], pressure_V, triangles, applied normal force [N])]."""
     per_pad = [[] for _ in geometry_ids]
     frames = None
     for i in range(contact_results.num_hydroelastic_contacts()):

@@ -83,8 +83,7 @@ class TaxelForceDisplay(LeafSystem):
         return f"{self._prefix}/{finger}/taxel_{k:02d}"
 
     def _add_bars(self):
-        """One unit-length bar per taxel on the finger's back, its group's z scale the bar's
-        length [m], growing along the pad frame's -z (outward)."""
+        """One unit bar per taxel on the finger's back, scaled in z [m] outward (pad frame -z)."""
         bar = Box(_BAR_FILL * CELL_X, _BAR_FILL * CELL_Y, 1.0)
         for finger in FINGER_NAMES:
             for k, p_PoTk_P in enumerate(taxel_centers()):

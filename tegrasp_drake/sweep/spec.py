@@ -249,8 +249,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
 
 
 def _check_scenario_overrides(assignments, controllers, fail):
-    """Each a `key=value` the default scenario accepts with each of the `controllers`, none of
-    the per-trial fields."""
+    """Each override a `key=value` every controller's scenario accepts, no per-trial field."""
     from tegrasp_drake.scenario.scenario import LoadScenario
     for k, assignment in enumerate(assignments):
         field_name = f"scenario_overrides[{k}]"

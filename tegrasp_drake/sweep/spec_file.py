@@ -96,8 +96,7 @@ def _parse_grid(value, source, fail) -> tuple[tuple[float, float], ...]:
 
 
 def _check_user_object_fields(user_objects, fail):
-    """Each user object's YAML fields are ObjectConfig's USER_OBJECT_FIELDS; the old
-    names (RENAMED_OBJECT_FIELDS) are named with what to rename them to."""
+    """User objects' fields are USER_OBJECT_FIELDS; an old name is refused with its new one."""
     if not isinstance(user_objects, dict):
         return  # check_fields names the type
     for name, fields in user_objects.items():

@@ -55,9 +55,8 @@ class SlidingWindowState:
 
     def entering_samples(self, state: np.ndarray, samples: np.ndarray
                          ) -> tuple[np.ndarray, list[bool] | None]:
-        """(samples to push, missing): a non-finite sample is replaced by the channel's newest,
-        so the window's sums stay finite; missing: a bool per channel, or None when all are
-        finite."""
+        """(samples to push, missing): a non-finite sample is replaced by the channel's newest, so
+        the window's sums stay finite; missing: a bool per channel, or None when all are finite."""
         if math.isfinite(sum(samples.tolist())):
             return samples, None
         missing = ~np.isfinite(samples)

@@ -111,9 +111,8 @@ def touched_beyond_pads(*, first_touch_offset_m: float, one_pad: bool, pushed_m:
 
 def beyond_pads_shift(*, finger: str, first_touch_opening_m: float, object_width_m: float,
                       taxel_config) -> Shift:
-    """The Re-Reach after touched_beyond_pads [m, world]: forward by half the pad's length
-    (at most max_approach_shift_m), sideways toward `finger` by the push the close would have
-    made."""
+    """The Re-Reach after touched_beyond_pads [m, world]: forward by half the pad's length (at most
+    max_approach_shift_m), sideways toward `finger` by the push the close would have made."""
     dy = pushed_distance_m(first_touch_opening_m, object_width_m)
     dx = min(PAD_LENGTH / 2, taxel_config.max_approach_shift_m)
     return Shift(dx, dy if finger == "left" else -dy)

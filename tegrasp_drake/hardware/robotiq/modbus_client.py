@@ -196,8 +196,7 @@ class RobotiqModbusClient:
 
     def _transaction(self, request, function: int, address: int, register_count: int,
                      **kwargs):
-        """One request of `function` for `register_count` registers at `address`: the checked
-        answer, or None (counted by the boundary)."""
+        """One request's checked answer, or None (counted by the boundary)."""
         try:
             response = request(address, device_id=self._config.device_id, **kwargs)
         except ModbusException as exc:
