@@ -207,7 +207,7 @@ class SlidingCorrelation:
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
                    event: int) -> None:
-        """The window's exact cross-correlation with the event's templates, by FFT; later lags zeroed.
+        """Exact cross-correlation of window and event templates by FFT; later lags zeroed.
         """
         length = self._length
         rows = state[self._rows_at:self._size].reshape(self._n_channels, self._row_length)
