@@ -24,9 +24,9 @@ def add_scenario_arguments(parser) -> None:
 
 
 def scenario_from_arguments(args, *, simulates: str = ""):
-    """Loads the scenario, with `--controller`'s controller if the command has it (naming on stderr
-    the scenario's settings it ignores), or exits with the error. `simulates`: "trial" refuses a
-    scenario for the real devices; "events" says on stderr that its simulation is used."""
+    """Loads the scenario with `--controller`'s controller if given (naming the settings it
+    ignores), or exits with the error. `simulates`: "trial" refuses a hardware scenario;
+    "events" notes that its simulation is used."""
     if args.scenario and not pathlib.Path(args.scenario).exists() and \
             args.scenario in (read_yaml_file(paths.scenarios_file(), "the scenario file") or {}):
         raise SystemExit(f"tegrasp: error: --scenario takes a file of scenarios; "

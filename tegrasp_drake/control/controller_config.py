@@ -168,10 +168,9 @@ class LiftLoadConfig:
 
 @dataclasses.dataclass
 class AvoidConfig:
-    """Avoid (Sec. III-C): in Hold, either RA above hit_ra_mps2 is a hit; stop sense_s to see
-    which way it pushed (SA asymmetry above sa_asymmetry_n, else the pads' common
-    acceleration), move distance_m that way over move_s, Hold again. Hits are ignored for
-    hit_refractory_s after entering Hold (the lift's stop rings)."""
+    """Avoid (Sec. III-C): in Hold, either RA above hit_ra_mps2 (after hit_refractory_s: the
+    lift's stop rings) is a hit; stop sense_s to see which way it pushed, move distance_m that
+    way over move_s, Hold again."""
     enabled: bool = True
     hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
                                  below="must be zero or positive [m/s^2]")
@@ -265,10 +264,9 @@ class GraspControllerConfig:
         default_factory=MemorizedCorrectiveConfig)
 
     def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) of the first setting that does not fit
-        another or the scenario's RA stream, read at ra_rate_hz [Hz] with its approach
-        ending at approach_s [s] (each number's own range is declared on its field); the
-        field as a path under the controller; None when all fit."""
+        """(field path under the controller, what it must be, its value) of the first setting that
+        does not fit another or the RA stream (ra_rate_hz [Hz], approach ending at approach_s [s]);
+        None when all fit."""
         from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
         for k, name in enumerate(self.event_object_may_differ):
             if name not in DESCRIPTION_FIELDS:

@@ -54,9 +54,8 @@ class Situation:
 @dataclasses.dataclass(frozen=True)
 class Rule:
     """One row: in `modes` (None: every live mode), when condition(situation) holds and no
-    guard holds it back, action(situation) is the Decision; lower `priority` first, unique
-    per mode. `when` and `then` word it for the docs ({re_reach}, {re_reach_shift} name the
-    table's Re-Reach move)."""
+    guard holds it back, action(situation) is the Decision; lower `priority` first, unique per
+    mode. `when` and `then` word it for the docs."""
     name: str
     modes: tuple[Mode, ...] | None
     priority: int

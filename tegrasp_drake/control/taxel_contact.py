@@ -65,9 +65,8 @@ def contact_line_tilt_deg(taxels, contact_n: float) -> float | None:
 @dataclasses.dataclass(frozen=True)
 class GraspContact:
     """Both pads' contact: approach_offset_m, the force-weighted y centroid from the pads'
-    centres [m, world +x]; tilt_deg, the larger-magnitude pad tilt (None: no line);
-    height_mismatch_m, left minus right x centroid [m] when both touch (an object tilted
-    in the stroke plane presses one pad high, the other low)."""
+    centres [m, world +x]; tilt_deg, the larger pad tilt (None: no line); height_mismatch_m,
+    left minus right x centroid [m] when both touch (an object tilted in the stroke plane)."""
     left: PadContact
     right: PadContact
     approach_offset_m: float

@@ -138,11 +138,10 @@ class SlidingCorrelation:
 
     def slide(self, state: np.ndarray, rows: np.ndarray, offset: int, full: bool,
               event: int, missing: list[bool] | None = None) -> np.ndarray:
-        """Slides the correlations by the samples the window just took (one per channel) and scores
-        the window against `event` (index or NO_EVENT, checked by the caller), in place. state:
-        C-contiguous float64 (BLAS writes into it); rows, offset, full: the window after
-        SlidingWindowState.push; missing: per channel whether its sample was missing (its channel
-        then scores 0 for N slides). Returns the scores view, 0 until the window is full.
+        """Slides the correlations by the window's new samples and scores the window against
+        `event` (index or NO_EVENT), in place. state: C-contiguous float64 (BLAS writes into it);
+        rows, offset, full: the window after SlidingWindowState.push; missing: per channel (it then
+        scores 0 for N slides). Returns the scores view, 0 until the window is full.
         """
         length = self._length
         left = None  # slides left per channel, read only while a missing sample is around

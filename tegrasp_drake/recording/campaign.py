@@ -62,10 +62,9 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
                pre_transition_s: float | Mapping[str, float] | None = None,
                note: str | None = None, advice: Callable[[str], str] | None = None,
                quiet_ra_s: float | None = None) -> dict[str, MemorizedEvent]:
-    """The run's events, each window cut around its physical event at `times`,
-    `pre_transition_s` [s] into it (per transition, or None: the paper's), tagged with
-    `nominal_object` and `note`; quiet_ra_s: the log's first seconds that measure the RA
-    noise floor (None: as cut). RecordEventsError names missing events."""
+    """The run's events cut `pre_transition_s` [s] before each physical event at `times` (None:
+    the paper's), tagged with `nominal_object` and `note`; quiet_ra_s: the log's start that
+    measures the RA noise floor. RecordEventsError names missing events."""
     missing = [name for name, time in times.items() if time is None]
     if missing:
         words = (f"{run.label} of '{object_name}' (seed {run.scenario.random_seed}) shows "

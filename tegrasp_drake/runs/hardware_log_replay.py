@@ -141,9 +141,8 @@ class RunLogReplay:
 def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
     """Reads a run's log and re-runs the matcher on it both ways, with the events of
-    `object_name` (default the run's) in `events_dir` (default the run's folder if it still
-    exists, else the user's, then the package's). RunLogError, MemorizedEventError or
-    ValueError, each naming what is wrong."""
+    `object_name` (default the run's) from `events_dir` (default the run's folder, the user's,
+    then the package's). RunLogError, MemorizedEventError or ValueError naming what is wrong."""
     log = read_run_log(path)
     info = log.run_info
     object_name = object_name or (info.object_name if info else None)

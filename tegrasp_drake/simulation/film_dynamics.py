@@ -138,8 +138,7 @@ def effective_mass(tip_mass: float, other_mass: float) -> float:
 
 def restitution(closing_speed: float, dissipation: float) -> float:
     """Restitution of a Hunt-Crossley contact F = k x (1 + d x') struck at `closing_speed`
-    [m/s], d [s/m]: 1 / (1 + 2/3 d v), whose small-dv limit is Hunt & Crossley's 1 - 2/3 d v;
-    within 0.3 % of the integrated contact up to d v = 0.5."""
+    [m/s], d [s/m]: 1 / (1 + 2/3 d v), whose small-dv limit is Hunt & Crossley's 1 - 2/3 d v."""
     return 1.0 / (1.0 + 2.0 / 3.0 * dissipation * max(closing_speed, 0.0))
 
 

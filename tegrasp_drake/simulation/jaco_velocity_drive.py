@@ -50,10 +50,9 @@ def drive_problem(arm, time_step: float):
 
 
 def latency_register(arm, time_step: float, size: int):
-    """The compiled system that delays each held command so that it acts on the plant
-    arm.command_latency_s L after it was sampled, or None when nothing needs to: the plant
-    reads a set-point a step h late (L = h needs nothing), a hold sampling every step adds one
-    step and a DiscreteTimeDelay of m steps m + 1, as each sees its input before the step."""
+    """The compiled system that delays each held command to act arm.command_latency_s after
+    it was sampled, or None when nothing needs to (the plant reads a set-point one step late, a
+    hold adds one step, a DiscreteTimeDelay of m steps m + 1)."""
     steps = plant_steps(arm.command_latency_s, time_step)
     if steps == 1:
         return None

@@ -24,10 +24,9 @@ _NOISE_STREAM = 7001  # separates this sensor's random stream from others seeded
 
 @dataclasses.dataclass
 class TactileSensorConfig:
-    """The taxel array of each pad (SA channel source); the numbers' sources: docs/model.md,
-    "The fingertip and its taxels". transducer: "capacitive" (the real pad, read by an
-    AD7147; settings in `capacitive`, the force noise below unused) or "force" (an ideal
-    force sensor with the noise, quantisation and offset below, as the paper's simulation)."""
+    """The taxel array of each pad (docs/model.md, "The fingertip and its taxels"). transducer:
+    "capacitive" (the real pad's AD7147, settings in `capacitive`) or "force" (an ideal force
+    sensor with the noise, quantisation and offset below, as the paper's simulation)."""
     sample_rate_hz: float = bounded(108.0, low=16.0, high=20_000.0, unit="Hz",
                                     why="the 0.5 s event window needs 8 samples; the film is "
                                         "integrated at 20 kHz")

@@ -72,9 +72,8 @@ def trial_misses(record: dict, log_path, events_dir=None) -> list[TrialMiss]:
 
 def sweep_misses(records: dict, logs_dir, *, controller: str = "memorized",
                  events_dir=None) -> tuple[list[TrialMiss], list[str], int]:
-    """(misses, trial ids of records with waits but no log, trials of `controller` looked
-    at) over a results folder's records (load_records(...).records). ValueError, naming the
-    trial and its log, when a log cannot be read or replayed or its events are missing."""
+    """(misses, ids of records with waits but no log, trials of `controller` looked at) over a
+    results folder's records; ValueError naming the trial when its log or events fail."""
     misses, without_log, trials = [], [], 0
     for trial_id, record in sorted(records.items()):
         if record.get("status") != "ok" or record["trial"]["controller"] != controller:

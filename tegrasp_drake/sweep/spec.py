@@ -109,11 +109,9 @@ class Perturbation:
 
 @dataclass(frozen=True)
 class TrialSpec:
-    """One trial; `to_dict()` is what the trial function receives.
-
-    The object sits at the expected position + (marker_dx_m + dx_m, marker_dy_m + dy_m) in the
-    gripper's x (normal) / y (stroke) axes, yawed by `perturbation.yaw_rad`. `seed` seeds the
-    trial function's own randomness (sensor noise), independent of the perturbation's stream;
+    """One trial; `to_dict()` is what the trial function receives. The object sits at the
+    expected position + marker offset + jitter (gripper's x normal, y stroke), yawed by
+    `perturbation.yaw_rad`; `seed` seeds the sensor noise, apart from the perturbation's stream;
     `pair_id` names the same scene for every controller.
     """
     trial_id: str

@@ -59,10 +59,9 @@ def trial_log_name(trial: dict) -> str:
 
 
 def trial_events(trial: dict, events_dir=None) -> tuple:
-    """A sweep trial's scenario and the memorized events its controller needs: (scenario,
-    transition events or None, corrective events or None unless the overrides name some).
-    From `events_dir`, else the user's folder, then the package's; recorded on the trial's
-    unperturbed object (the sweep's perturbations are not a mismatch). MemorizedEventError."""
+    """(scenario, transition events or None, corrective events or None) of a sweep trial,
+    from `events_dir`, else the user's folder, then the package's; recorded on the trial's
+    unperturbed object. MemorizedEventError."""
     from tegrasp_drake.scenario.scenario_events import (load_controller_events,
                                                        load_corrective_events)
     scenario = scenario_from_trial_spec(trial)

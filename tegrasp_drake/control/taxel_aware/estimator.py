@@ -72,10 +72,9 @@ class ContactReading:
 
 @dataclasses.dataclass(frozen=True)
 class ContactEstimate:
-    """What the rules read [s, N, m; world]; each field is named for what
-    contact_geometry.py computes. pad_travel_to_grasp_m: how much further along the
-    approach axis the pads' centres lie once closed on the object (the linkage's pads move
-    out as they close; 0 on the prismatic hand); bracket: (centre y, extent) or None."""
+    """What the rules read [s, N, m; world], each field named for what contact_geometry.py
+    computes. pad_travel_to_grasp_m: how much further along the approach the pads' centres lie
+    once closed (0 on the prismatic hand); bracket: (centre y, extent) or None."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple

@@ -30,9 +30,8 @@ class TactileReaderCounters:
 
 class TactileSerialReader:
     """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
-    `port`: a device path or a pyserial URL; a context manager, or start()/close(). A burst
-    is batched for `batch_period` [s], so the thread takes Python's interpreter lock a few
-    hundred times a second, not per 1 ms frame; the queue holds `queue_size` frames."""
+    `port`: a device path or pyserial URL; a context manager. Bursts are batched for
+    `batch_period` [s], so the thread takes the interpreter lock a few hundred times a second."""
 
     def __init__(self, port: str, *, baudrate: int = DEFAULT_BAUDRATE, queue_size: int = 1024,
                  read_timeout: float = 0.005, batch_period: float = 0.002):
