@@ -55,8 +55,7 @@ class FingerStrikeConfig:
 
 @dataclasses.dataclass
 class TaxelAwareConfig:
-    """The taxel-aware corrections (control/taxel_aware); a pad row is 6 mm along the
-    approach axis, a column 6.7 mm high."""
+    """The taxel-aware corrections; a pad row is 6 mm along the approach, a column 6.7 mm."""
     # Re-Reach along the approach when the contact is this far off centre [m]: 2/3 of a row
     centre_tolerance_m: float = bounded(0.004, low=0.0, high=0.05, unit="m",
                                         below="must be zero or positive [m]")
@@ -157,8 +156,7 @@ class LiftLoadConfig:
                                      below="must be zero or positive [s]")
 
     def problem(self, *, ra_rate_hz: float) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) when the slip band does not fit the RA
-        stream read at ra_rate_hz [Hz]; None when it does."""
+        """(field, must, value) when the slip band does not fit RA at ra_rate_hz [Hz]; else None."""
         if self.slip_band_hz >= ra_rate_hz / 2:
             return ("slip_band_hz", "must lie below half the RA rate "
                     f"({ra_rate_hz / 2:g} Hz, vibration.sample_rate_hz / 2): the slip band's "
@@ -221,8 +219,7 @@ class MemorizedCorrectiveConfig:
                 "hold_avoid": tuple(self.hold_avoid_thresholds)}
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) of the first event that is not a corrective
-        event; None when all are."""
+        """(field, must, value) of the first event that is not a corrective event; None if none."""
         from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS  # Drake: on use
         for k, name in enumerate(self.events):
             if name not in CORRECTIVE_TRANSITIONS:

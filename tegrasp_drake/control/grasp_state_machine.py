@@ -140,8 +140,7 @@ class GraspStateMachine(LeafSystem):
         return self.state(context).timeline
 
     def timeline(self, context) -> list[dict]:
-        """The transitions so far in their JSON form (Transition.as_dict): dicts with t,
-        from, to, trigger, reason, scores."""
+        """The transitions so far in their JSON form (Transition.as_dict)."""
         return [transition.as_dict() for transition in self.transitions(context)]
 
     def _calc_pose(self, context, output):

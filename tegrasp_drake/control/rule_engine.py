@@ -159,8 +159,7 @@ class RuleTable:
 
     def next_mode(self, mode: Mode, obs, counters, config, *, event_trigger: Trigger,
                   hold_s: float) -> Decision | None:
-        """The transition out of `mode` this tick (the first matching rule's decision, its
-        name as the code), or None to stay."""
+        """The first matching rule's decision out of `mode` this tick, or None to stay."""
         if mode in TERMINAL_MODES:
             return None
         situation = Situation(mode=mode, obs=obs, counters=counters, config=config,

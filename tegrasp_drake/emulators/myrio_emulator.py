@@ -166,8 +166,7 @@ def gripper_command_changes(times, requests) -> list[GripperCommandChange]:
 
 
 def gripper_followed(change: GripperCommandChange, request: int | None) -> bool:
-    """Whether the emulated gripper's request [byte] (None: unknown yet) is nearer the change's
-    new request than its old one."""
+    """Whether the gripper's request [byte] is nearer the new request than the old."""
     return request is not None and abs(request - change.after) < abs(request - change.before)
 
 

@@ -29,8 +29,7 @@ _WAITING_MODE = {transition_states(name)[0]: name for name in REQUIRED_TRANSITIO
 
 @dataclasses.dataclass(frozen=True)
 class EventWait:
-    """The machine expected `transition`'s event from start_s to end_s [s] (trial clock)
-    and gave up at end_s for `reason`."""
+    """The machine expected `transition`'s event from start_s [s], gave up at end_s for `reason`."""
     transition: str
     start_s: float
     end_s: float

@@ -81,8 +81,7 @@ class EventReplay:
 
 def live_matcher_config(events: Mapping[str, MemorizedEvent],
                         config: EventMatcherConfig | None = None) -> EventMatcherConfig:
-    """`config` (default thresholds if None) at the events' sample rates, which a replay of
-    the trial they came from shares."""
+    """`config` (default thresholds if None) at the events' sample rates."""
     event = next(iter(events.values()))
     return dataclasses.replace(config or EventMatcherConfig(), sa_rate_hz=event.sa_rate_hz,
                                ra_rate_hz=event.ra_rate_hz)

@@ -53,8 +53,7 @@ def logged_scenario(log):
 
 
 def physical_events(log) -> dict[str, float]:
-    """Name -> time [s] of the ground truth's physical events behind the event transitions
-    taken, and the scenario's hit, if any."""
+    """Name -> time [s] of the physical events behind the transitions taken, and the hit, if any."""
     events = {PHYSICAL_EVENT_NAMES.get(name, name): float(t)
               for name, t in (log.meta.get("events") or {}).items() if t is not None}
     hit_time = logged_scenario(log).disturbance.hit_time_s
@@ -179,8 +178,7 @@ def _extent(text, renderer):
 
 
 def draw_state_strip(axis, spans) -> None:
-    """A strip of the states over time: a coloured bar per state, its name on it when it
-    fits, else stacked above it."""
+    """A strip of the states over time: a coloured bar per state, its name on it or above it."""
     axis.set_ylim(0.0, 1.0)
     axis.set_yticks([])
     for side in ("left", "right", "top"):

@@ -126,8 +126,7 @@ def lcm_url_problem(url: str) -> str | None:
 
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
-    """Checks what the schema cannot (ranges, choices, a usable LCM URL, a readable tactile
-    calibration); ConfigError names the field."""
+    """Checks what the schema cannot (ranges, LCM URL, calibration); ConfigError names the field."""
     from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
     prefix = f"{where}." if where else ""
     check_ranges(config, source, where)

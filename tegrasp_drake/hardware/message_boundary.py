@@ -55,8 +55,7 @@ class MessageBoundary:
         self._listeners = []
 
     def add_listener(self, listener: Callable) -> None:
-        """Calls listener(value) with each value `accept` lets through, after counting it (a
-        second reader of the same messages)."""
+        """Calls listener(value) with each value `accept` lets through, after counting it."""
         self._listeners.append(listener)
 
     def accept(self, message, *args):

@@ -255,7 +255,6 @@ class HardwareStation(Diagram):
 @public_api
 def MakeHardwareStation(config: HardwareStationConfig, *,
                         lcm: DrakeLcm | None = None) -> HardwareStation:
-    """The hardware interface for `config` (module docstring); `lcm` overrides the config's
-    URL (e.g. a shared memq:// instance in tests)."""
+    """The hardware interface for `config`; `lcm` overrides its URL (e.g. memq:// in tests)."""
     check_ranges(config, "MakeHardwareStation: config")  # a config changed after loading
     return HardwareStation(config, lcm=lcm)

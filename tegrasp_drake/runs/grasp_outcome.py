@@ -143,8 +143,7 @@ def scripted_lift_start(log) -> float | None:
 
 
 def table_touch_time(log, object_config=None, after: float = 0.0):
-    """First logged time > after [s] that the object's lowest point is within TOUCH_HEIGHT_M
-    of where it rested at the start."""
+    """First time > after [s] that the object's lowest point is within TOUCH_HEIGHT_M of rest."""
     low = lowest_point_heights(log.object_state, object_config)
     return _first(log.t_slow, (low - low[0] < TOUCH_HEIGHT_M) & (log.t_slow > after))
 

@@ -58,8 +58,7 @@ class TrialResult:
 
     @classmethod
     def from_dict(cls, data: dict) -> "TrialResult":
-        """The TrialResult of its JSON form; keys it does not know are ignored, fields
-        missing from `data` take their defaults."""
+        """The TrialResult of its JSON form; unknown keys ignored, missing fields defaulted."""
         known = {field.name for field in dataclasses.fields(cls)} - {"log"}
         values = {key: value for key, value in data.items() if key in known}
         values["transitions"] = tuple(map(Transition.from_dict, data.get("transitions", ())))

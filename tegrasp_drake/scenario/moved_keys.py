@@ -97,8 +97,7 @@ def _move(data: dict, old: str, new: str) -> None:
 
 
 def migrate_stored_scenario(data):
-    """A copy of a stored record's scenario YAML data with its old keys moved to their new
-    paths; only for reading stored records."""
+    """A copy of a stored record's scenario YAML data with its old keys moved to the new paths."""
     if not isinstance(data, dict):
         return data
     data = copy.deepcopy(data)

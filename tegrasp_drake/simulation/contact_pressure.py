@@ -22,8 +22,7 @@ _FLAT_TRIANGLE = 1e-9
 
 
 def polygon_fan_triangles(face_data) -> np.ndarray:
-    """Vertex indices (T, 3) of a fan triangulation of Drake's PolygonSurfaceMesh.face_data()
-    ([n, v0 .. v(n-1), n, ...])."""
+    """Vertex indices (T, 3) of a fan triangulation of PolygonSurfaceMesh.face_data()."""
     data = np.asarray(face_data, dtype=np.intp)
     headers = data.tolist()  # Python ints: the walk below reads one per face
     starts, counts = [], []

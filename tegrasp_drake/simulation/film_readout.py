@@ -85,8 +85,7 @@ def noise_at_amplifier_v(noise_std_mps2: float, adc_noise_lsb: float,
 
 def reading_noise_std(noise_std_mps2: float, adc_noise_lsb: float,
                       sensitivity_v_per_mps2: float, adc: AdcInput | None) -> float:
-    """The reading's noise [m/s^2 rms] at rest, in closed form: the Gaussian noise plus the
-    rounding's lsb^2 / 12 (module docstring)."""
+    """The reading's noise at rest [m/s^2 rms]: Gaussian noise plus rounding's lsb^2 / 12."""
     gaussian = noise_at_amplifier_v(noise_std_mps2, adc_noise_lsb, sensitivity_v_per_mps2,
                                     adc)
     rounding = 0.0 if adc is None else adc.volts_per_code / math.sqrt(12.0)

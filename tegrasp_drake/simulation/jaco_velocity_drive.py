@@ -76,8 +76,7 @@ def velocity_servo_set_point(initial_positions, time_step: float) -> AffineSyste
 
 @dataclasses.dataclass
 class JacoVelocityDrive:
-    """The drive's ends: `desired_state` (from the controller), `set_point` (for the plant's
-    PD) and `commanded_state` (what the host sent)."""
+    """The drive's ends: `desired_state` in; `set_point` (plant PD) and `commanded_state` out."""
     tracker: JacoVelocityTracker
     desired_state: InputPort
     commanded_state: OutputPort

@@ -38,8 +38,7 @@ def _instance_index(plant, instance, joint, *, velocity: bool) -> int:
 
 @dataclasses.dataclass(frozen=True)
 class FingerChain:
-    """One finger's planar chain in the open pose, in the base frame's (+-y, z) [m]: B - A,
-    C - B and the pad's outward normal."""
+    """One finger's planar chain in the open pose [m, base frame (+-y, z)]: B - A, C - B, normal."""
     ab: tuple[float, float]
     bc: tuple[float, float]
     normal: tuple[float, float]

@@ -55,8 +55,7 @@ class FilmConfig:
 
 @dataclasses.dataclass
 class VibrationSensorConfig:
-    """The PVDF film of each pad (RA channel source). Sources and reasoning of every number:
-    docs/model.md, "Vibration (RA) model"."""
+    """The PVDF film of each pad (RA source); each number: docs/model.md, "Vibration (RA) model"."""
     sample_rate_hz: float = bounded(1000.0, low=16.0, high=20_000.0, unit="Hz",
                                     why="the 0.5 s event window needs 8 samples; the film is "
                                         "integrated at 20 kHz")

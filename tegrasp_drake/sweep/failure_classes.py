@@ -46,8 +46,7 @@ def failure_class(result) -> str | None:
 
 
 def failure_class_counts(records) -> dict:
-    """{controller: {object: {class: trials}}} over the records that ran (status ok), with
-    every failure class present (0 when none)."""
+    """{controller: {object: {class: trials}}} over the records that ran, every class present."""
     counts = {}
     for record in records:
         if record["status"] != "ok":

@@ -157,8 +157,7 @@ def _from_json(value, hint):
 
 
 def trial_dict_problem(trial: Mapping) -> str | None:
-    """What keeps `trial` (a TrialSpec.to_dict()) from being a sweep trial, naming the keys
-    missing, unknown or mistyped; or None."""
+    """What keeps `trial` (a TrialSpec.to_dict()) from being a sweep trial; or None."""
     parts = []
     for name, fields, given in (
             ("trial", TrialSpec, trial),

@@ -186,8 +186,7 @@ def _distribution(values) -> dict:
 
 
 def controller_statistics(records) -> dict:
-    """Per controller: detection latency per transition, corrective actions, false
-    triggers, errors, simulated and wall time."""
+    """Per controller: latencies, corrective actions, false triggers, errors, run times."""
     by_controller = defaultdict(list)
     for record in records:
         by_controller[record["trial"]["controller"]].append(record)

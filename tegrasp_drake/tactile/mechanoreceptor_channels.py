@@ -55,8 +55,7 @@ class SlowlyAdapting(LeafSystem):
 
 
 def rapidly_adapting_system() -> SymbolicVectorSystem:
-    """Eq. 2 of both fingers: input [left x, y, z, right x, y, z] [m/s^2], output
-    [RA_left, RA_right] [m/s^2] (no state)."""
+    """Eq. 2 of both fingers: [left xyz, right xyz] in, [RA_left, RA_right] out [m/s^2]."""
     axes = [[Variable(f"{finger}_{axis}") for axis in "xyz"] for finger in FINGER_NAMES]
     return SymbolicVectorSystem(input=[a for pad in axes for a in pad],
                                 output=[sqrt(x * x + y * y + z * z) for x, y, z in axes])

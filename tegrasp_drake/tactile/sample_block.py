@@ -14,8 +14,7 @@ BLOCK_PERIOD_S = 0.010
 
 
 def block_samples(rate_hz: float, block_s: float = BLOCK_PERIOD_S) -> int:
-    """Whole samples at `rate_hz` [Hz] per block of `block_s` [s], at least 1 (the 108 Hz
-    taxels, and block_s 0: per sample)."""
+    """Whole samples at `rate_hz` [Hz] per `block_s` [s] block, at least 1 (0: per sample)."""
     if not (rate_hz > 0.0 and block_s >= 0.0):
         raise ValueError(f"rate_hz ({rate_hz}) must be positive and block_s ({block_s}) "
                          "non-negative")

@@ -14,8 +14,7 @@ _AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
 
 
 def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
-    """[b0, b1, b2, a1, a2] of the second-order Butterworth high-pass at band_hz [Hz] for
-    samples at sample_rate_hz [Hz] (a0 = 1)."""
+    """[b0, b1, b2, a1, a2] of the Butterworth high-pass at band_hz, sample_rate_hz [Hz]."""
     if not 0.0 < band_hz < sample_rate_hz / 2:
         raise ValueError(f"slip band {band_hz} Hz must lie between 0 and the Nyquist "
                          f"frequency {sample_rate_hz / 2} Hz of the RA samples")

@@ -223,8 +223,7 @@ def cell_folder(out_dir, memorizing: str, running: str) -> pathlib.Path:
 
 def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
                  scheduler=None, progress: bool = True, log=print) -> dict:
-    """Records the memorizing worlds' events and runs every cell's sweep with them; returns
-    {cell name: SweepSummary}. Resumable."""
+    """Records the memorizing worlds' events, runs each cell's sweep; {cell: summary}. Resumable."""
     from tegrasp_drake.sweep.runner import run_sweep
     from tegrasp_drake.sweep.spec import expand_trials
     from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec

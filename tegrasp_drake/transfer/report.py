@@ -149,8 +149,7 @@ def draw_transfer_heatmap(rows: list[CellRow], path) -> pathlib.Path:
 
 
 def heatmap_rows(rows: list[CellRow]) -> list[CellRow]:
-    """The rows the heat map shows: the memorized controller's, or the first controller's
-    when the sweep did not run it."""
+    """The heat map's rows: the memorized controller's, else the first controller's."""
     controllers = list(dict.fromkeys(row.controller for row in rows))
     chosen = "memorized" if "memorized" in controllers else controllers[0]
     return [row for row in rows if row.controller == chosen]

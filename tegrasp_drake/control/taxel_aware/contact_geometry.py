@@ -53,8 +53,7 @@ def touched_faces(contact: tuple, gripper_y_m: float, opening_m: float) -> tuple
 
 
 def remembered_faces(kept: tuple, touched: tuple) -> tuple:
-    """The faces to remember at a Re-Reach: `touched` replaces the same finger's; none
-    touched (closed on nothing) forgets them all."""
+    """The faces kept at a Re-Reach: `touched` replaces the same finger's; none forgets all."""
     if not touched:
         return ()
     fingers = {face.finger for face in touched}
