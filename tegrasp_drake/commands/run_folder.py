@@ -87,8 +87,7 @@ def staged_run(folder):
 
 @contextlib.contextmanager
 def claimed_run_folder(folder):
-    """Holds an exclusive flock on `folder` for the block; RunFolderError at once if another
-    process holds it (a run writing there now)."""
+    """Holds an exclusive flock on `folder` for the block; RunFolderError if another holds it."""
     try:
         descriptor = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
     except OSError as e:

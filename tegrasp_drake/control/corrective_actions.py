@@ -37,8 +37,7 @@ CORRECTIVE_ONLY_ACTIONS = {(Mode.HOLD, Mode.PLACE): "regrasp",
 
 def corrective_action_of(from_mode: Mode, to_mode: Mode,
                          trigger: Trigger | None = None) -> str | None:
-    """The corrective action the transition from_mode -> to_mode starts (the taxel_aware
-    ones only by a corrective `trigger`), else None."""
+    """The corrective action from_mode -> to_mode starts (taxel_aware's by `trigger`), or None."""
     action = CORRECTIVE_ACTIONS.get((from_mode, to_mode))
     if action is None and trigger == Trigger.CORRECTIVE:
         action = CORRECTIVE_ONLY_ACTIONS.get((from_mode, to_mode))
@@ -138,8 +137,7 @@ def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
 
 def hit_baseline_history(history: tuple, sa_n, baseline_s: float,
                          period_s: float) -> tuple:
-    """`history` of (left, right) SA [N] with sa_n appended, kept to baseline_s [s]: its
-    first entry is a memorized hit's baseline."""
+    """`history` of (left, right) SA [N] plus sa_n, kept to baseline_s [s]; first: the baseline."""
     keep = max(1, round(baseline_s / period_s)) + 1
     return (history + (tuple(float(x) for x in sa_n[:2]),))[-keep:]
 

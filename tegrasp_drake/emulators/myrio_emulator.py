@@ -103,8 +103,7 @@ def _gripper_requests(path, arrays) -> tuple:
 
 
 def save_tactile_recording(path, recording: TactileRecording):
-    """Writes the arrays `load_tactile_recording` reads; a one-axis (m,) acceleration is
-    stored as x, with y and z zero. Returns `path`."""
+    """Writes what `load_tactile_recording` reads (a one-axis acceleration as x); returns `path`."""
     def three_axes(acceleration):
         acceleration = np.asarray(acceleration, dtype=float)
         if acceleration.ndim == 2:

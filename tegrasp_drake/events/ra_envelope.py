@@ -37,8 +37,7 @@ def ra_envelope(windows: np.ndarray, cutoff_hz: float, rate_hz: float) -> np.nda
 
 
 def enveloped_event(event: MemorizedEvent, cutoff_hz: float) -> MemorizedEvent:
-    """`event` with its RA windows low-passed at cutoff_hz [Hz] (at the event's RA rate)
-    and max-normalised again; its SA windows unchanged."""
+    """`event` with its RA windows low-passed at cutoff_hz [Hz] and max-normalised again."""
     return dataclasses.replace(event, ra=normalize_by_max(
         ra_envelope(event.ra, cutoff_hz, event.ra_rate_hz)))
 

@@ -92,8 +92,7 @@ def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: flo
 
 
 def checked_handler(boundary: MessageBoundary, on_message: Callable) -> Callable:
-    """A callback for the `lcm` package's subscriptions (`handler(channel, data)`) that
-    passes `on_message` the messages `boundary` accepts."""
+    """An `lcm` subscription callback passing `on_message` the messages `boundary` accepts."""
     def handler(*arguments):
         message = boundary.accept(arguments[-1])
         if message is not None:

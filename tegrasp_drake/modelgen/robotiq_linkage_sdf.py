@@ -153,8 +153,7 @@ def pad_mesh_url(refinement: int) -> str:
 
 
 def robotiq_linkage_sdf(pad_refinement: int = 0) -> str:
-    """The SDF text of the tactile 2F-85 with its finger linkage (pads as the box's mesh
-    split pad_refinement times, 0: the box)."""
+    """The SDF text of the tactile linkage 2F-85 (pads as the box split pad_refinement times)."""
     uri = pad_mesh_url(pad_refinement) if pad_refinement else None
     parts = ['<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="robotiq_2f85">',
              base_link_text(),

@@ -93,8 +93,7 @@ _FOREIGN: dict[type, dict] = {}
 
 
 def declare_ranges(cls: type, table: dict) -> None:
-    """Declares the Range or Choice of fields of `cls`, a Drake config class that cannot carry
-    `bounded` metadata, for check_ranges."""
+    """Declares Ranges or Choices of fields of `cls`, a Drake config class, for check_ranges."""
     _FOREIGN[cls] = dict(table)
 
 

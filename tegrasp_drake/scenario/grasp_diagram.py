@@ -59,8 +59,7 @@ def station_carriage(scenario):
 
 @public_api
 def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
-    """MakeGraspStation with the scenario's sections, whatever its `station` tag says (its
-    `arm` setting when it is a simulated station's)."""
+    """MakeGraspStation with the scenario's sections, whatever its `station` tag says."""
     return MakeGraspStation(
         plant_config=scenario.plant_config, arm=scenario.arm, gripper=scenario.gripper,
         object=scenario.object, X_WO=object_pose(scenario), tactile=scenario.tactile,

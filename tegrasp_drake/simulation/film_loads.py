@@ -62,8 +62,7 @@ def _point_velocity_before_step(X_WB: RigidTransform, V_WB: SpatialVelocity,
 
 @dataclasses.dataclass(frozen=True)
 class SignalLayout:
-    """Where FilmLoads finds each vector signal in its `signals` input: their sizes in order
-    (FilmLoads' ports; 0 for a signal not used)."""
+    """Where FilmLoads finds each vector signal in `signals`: their sizes in order (0: unused)."""
     forces: int
     gripper_state: int
     texture: int

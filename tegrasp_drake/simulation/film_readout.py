@@ -16,8 +16,7 @@ ADC_INPUTS = ("msp", "mxp", "ideal")
 
 @dataclasses.dataclass(frozen=True)
 class AdcInput:
-    """One myRIO analog input range: its codes, volts per code, and the level shift that
-    puts a bipolar amplifier's 0 V at mid-range."""
+    """One myRIO analog input range: codes, volts per code, and the shift to mid-range 0 V."""
     low_code: int
     high_code: int
     volts_per_code: float

@@ -79,8 +79,7 @@ def finger_chain(plant, gripper, finger: str, sign: float) -> FingerChain:
 
 
 class LinkagePadStatics:
-    """Both linkage fingers' pad normal forces from the gripper model instance's
-    generalized contact forces and state (the module docstring)."""
+    """Both linkage pads' normal forces from the gripper's generalized contact forces and state."""
 
     def __init__(self, plant, gripper):
         """plant: finalized, with the linkage hand as model instance `gripper`. Raises

@@ -43,8 +43,7 @@ def cross_product(a, b) -> np.ndarray:
 
 def tangential_slip_speed(X_WP: RigidTransform, V_WPad: SpatialVelocity, p_WPad_origin,
                           V_WObj: SpatialVelocity, p_WObj_origin) -> float:
-    """Speed [m/s] of the object's point at the pad centre P relative to the pad, in the pad
-    plane (the pad frame's z axis is the pad normal)."""
+    """Speed [m/s] of the object's point at pad centre P relative to the pad, in the pad plane."""
     p_WP = X_WP.translation()
 
     def point_velocity(V, origin):

@@ -150,8 +150,7 @@ def volts_per_mps2(config: VibrationSensorConfig) -> float:
 
 
 def noise_draw_std_v(config: VibrationSensorConfig) -> float:
-    """The Gaussian noise [V rms] added to each film sample ahead of the readout: the
-    amplifier's and the converter's (film_readout.py)."""
+    """The Gaussian noise [V rms] added to each film sample ahead of the readout."""
     return noise_at_amplifier_v(config.noise_std_mps2, config.adc_noise_lsb,
                                 volts_per_mps2(config), adc_input(config.adc_input))
 

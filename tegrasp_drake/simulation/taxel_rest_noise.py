@@ -85,8 +85,7 @@ def _reading_noise(tactile_config, *, at_rest: bool) -> LatticeDistribution:
 
 
 def rest_reading(tactile_config) -> LatticeDistribution:
-    """One taxel's reading with nothing touching it [N, or counts for the capacitive counts
-    output], tactile_config a TactileSensorConfig."""
+    """One untouched taxel's reading [N, or counts], for a TactileSensorConfig."""
     return _reading_noise(tactile_config, at_rest=True)
 
 

@@ -23,8 +23,7 @@ from tegrasp_drake.sweep.trial_function import trial_events, trial_log_name
 
 @dataclasses.dataclass(frozen=True)
 class TrialMiss:
-    """One missed wait of one trial; ra_code_mps2: one converter code [m/s^2] (None without
-    one); ra_rate_hz: the matcher's RA rate [Hz]."""
+    """One missed wait of a trial; ra_code_mps2 [m/s^2] (None: no converter); ra_rate_hz [Hz]."""
     trial_id: str
     object_name: str
     missed: MissedWait
@@ -38,8 +37,7 @@ class TrialMiss:
 
 
 def ra_code_mps2(vibration) -> float | None:
-    """The acceleration [m/s^2] of one myRIO converter code behind the film's amplifier;
-    None for an accelerometer or the "ideal" readout."""
+    """One myRIO converter code behind the film's amplifier [m/s^2]; None without one."""
     adc = adc_input(vibration.adc_input)
     if vibration.transducer != "film" or adc is None:
         return None

@@ -113,8 +113,7 @@ def readme_with_summaries(text: str, root) -> str:
 
 
 def last_commit(root, path) -> tuple[str, str, str] | None:
-    """(full hash, short hash, YYYY-MM-DD) of the last commit that changed `path` (relative to
-    the git checkout `root`); None without one."""
+    """(full hash, short hash, YYYY-MM-DD) of the last commit changing `path` in `root`, or None."""
     try:
         done = subprocess.run(["git", "-C", str(root), "log", "-1", "--format=%H %h %ad",
                                "--date=short", "--", str(path)],

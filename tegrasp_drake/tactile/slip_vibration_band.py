@@ -39,8 +39,7 @@ def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
 
 def highpass_step_floats(coefficients: tuple[float, ...], x: list[float],
                          delays: list[float]) -> tuple[list[float], list[float]]:
-    """One biquad sample on n axes in Python floats (cheaper than numpy on 6-vectors):
-    returns (y, the next delays [z1 (n), z2 (n)])."""
+    """One biquad sample on n axes in floats (cheaper than numpy): (y, next delays [z1, z2])."""
     b0, b1, b2, a1, a2 = coefficients
     n = len(x)
     y = [b0 * u + z1 for u, z1 in zip(x, delays[:n])]

@@ -156,8 +156,7 @@ def heatmap_rows(rows: list[CellRow]) -> list[CellRow]:
 
 
 def not_run_note(spec, rows: list[CellRow]) -> str:
-    """A line naming the spec's cells with no finished trial, or "" when every cell has
-    some (the partly run ones are marked in the table)."""
+    """A line naming the spec's cells with no finished trial, or "" when none is missing."""
     run = {(row.memorizing, row.running) for row in rows}
     missing = [cell_name(a, b) for a, b in spec.cells if (a, b) not in run]
     return f"\nNot run yet (no finished trial): {', '.join(missing)}.\n" if missing else ""
