@@ -41,8 +41,7 @@ def claim_numbered_folder(default) -> pathlib.Path:
 
 
 def check_run_folder(folder) -> None:
-    """RunFolderError unless `folder` is, or can be made as, a folder this user can write
-    (an empty name is refused: it would be the current folder)."""
+    """RunFolderError unless `folder` is, or can be made as, a folder this user can write."""
     if not str(folder).strip():
         raise RunFolderError(f"--out {str(folder)!r} is empty; give a folder you can write")
     problem = folder_problem(folder)

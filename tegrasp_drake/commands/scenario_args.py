@@ -58,8 +58,7 @@ def scenario_from_arguments(args, *, simulates: str = ""):
 
 
 def quiet_modbus_library() -> None:
-    """pymodbus logs every timed-out request; the Robotiq client counts them instead
-    (RobotiqModbusClient.counters()), so keep its log to what is critical."""
+    """Keeps pymodbus's log to what is critical: the Robotiq client counts timed-out requests."""
     logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
 
 

@@ -21,8 +21,7 @@ _SIGMAS_BELOW = "must be zero (the number alone) or positive [noise sigmas]"
 
 @dataclasses.dataclass
 class HeuristicTriggerConfig:
-    """The heuristic controller's hand-set thresholds, in the style of Romano et al. 2011
-    (IEEE Trans. Robotics 27(6)): tuned once on the box at its expected position."""
+    """Hand-set thresholds (Romano et al. 2011, IEEE Trans. Robotics 27(6)), tuned on the box."""
     # Reach-Load: each finger's SA above this [N]
     contact_force_n: float = bounded(1.0, low=0.0, high=50.0, unit="N",
                                      below="must be zero or positive [N]")
@@ -197,8 +196,7 @@ class PlaceConfig:
 
 @dataclasses.dataclass
 class MemorizedCorrectiveConfig:
-    """Corrective triggers from memorized corrective events matched by Eq. 3 instead of the
-    heuristic thresholds (docs/controller.md, "Memorized corrective triggers")."""
+    """Corrective events matched by Eq. 3 (docs/controller.md, "Memorized corrective triggers")."""
     # of "hold_avoid", "lift_load" (matches every normal lift: comparison only); []: heuristic
     events: list[str] = dataclasses.field(default_factory=list)
     # Eq. 3 [SA, RA], chosen on held-out runs: analysis/corrective_thresholds.md
@@ -231,8 +229,7 @@ class MemorizedCorrectiveConfig:
 @public_dataclass
 @dataclasses.dataclass
 class GraspControllerConfig:
-    """The grasp state machine's settings, shared by the closed-loop controllers: the tick,
-    the contact force, and a section per corrective action (Sec. III-C)."""
+    """The closed-loop controllers' settings: tick, contact force, a section per correction."""
     # state machine tick [s]
     update_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
                                      below="must be positive [s]")

@@ -28,8 +28,7 @@ def floor_sigmas(false_alarm_per_trial: float, samples_per_trial: int) -> float:
 
 
 def rule_sigmas(ra_rate_hz: float) -> float:
-    """The rule's k (module docstring) at an RA rate [Hz]: FALSE_ALARM_PER_TRIAL over
-    TRIAL_HORIZON_S of both RA channels' samples; 5.39 at 1 kHz."""
+    """The rule's k at an RA rate [Hz], over TRIAL_HORIZON_S of both channels; 5.39 at 1 kHz."""
     return floor_sigmas(FALSE_ALARM_PER_TRIAL,
                         round(TRIAL_HORIZON_S * ra_rate_hz * len(RA_CHANNELS)))
 

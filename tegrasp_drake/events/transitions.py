@@ -43,7 +43,6 @@ def transition_states(name: str) -> tuple[str, str]:
 
 
 def event_transition(from_state: str, to_state: str) -> str | None:
-    """The event-triggered transition (REQUIRED_TRANSITIONS) from `from_state` to
-    `to_state`, e.g. ("Place", "Unload") -> place_unload; None for any other step."""
+    """The REQUIRED_TRANSITIONS name of from_state -> to_state (e.g. place_unload), else None."""
     name = transition_name(from_state, to_state)
     return name if name in REQUIRED_TRANSITIONS else None

@@ -31,8 +31,7 @@ def _hit_text(log) -> str:
 
 
 def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=1.2) -> str:
-    """Writes the figure to `path` (.png, .pdf or .svg); returns the path as text.
-    hit_threshold: the controller's RA hit threshold [m/s^2], drawn when given."""
+    """Writes the figure to `path`, returns it; hit_threshold [m/s^2] is drawn when given."""
     transitions, spans = logged_transitions(log), state_spans(log)
     avoid = [e for e in transitions if e.to_mode == Mode.AVOID]
     if not avoid:

@@ -42,8 +42,7 @@ def check_figure_path(path) -> pathlib.Path:
 
 
 def save_figure(figure, path) -> pathlib.Path:
-    """Writes `figure` to `path` in the format its suffix names; returns the path.
-    UserPathError when it cannot be written (the old file, if any, is left whole)."""
+    """Writes `figure` in the format `path`'s suffix names; returns the path, or UserPathError."""
     path = check_figure_path(path)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)

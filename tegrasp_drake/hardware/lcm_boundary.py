@@ -36,8 +36,7 @@ def decode_lcm(lcm_type, data: bytes):
 
 
 class CheckedLcmSerializer(SerializerInterface):
-    """An LcmSubscriberSystem serializer decoding through `boundary` (counting while
-    `counting`); a rejected message leaves the last good value."""
+    """A subscriber's serializer decoding via `boundary`; a rejected message keeps the last."""
 
     def __init__(self, lcm_type, boundary: MessageBoundary):
         SerializerInterface.__init__(self)
@@ -62,8 +61,7 @@ class CheckedLcmSerializer(SerializerInterface):
 
 def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
                          lcm) -> LcmSubscriberSystem:
-    """Drake's LcmSubscriberSystem on `channel`, its messages checked and counted by
-    `boundary`; `lcm` is the DrakeLcm its LcmInterfaceSystem pumps."""
+    """Drake's LcmSubscriberSystem on `channel` through `boundary`, on the DrakeLcm `lcm`."""
     serializer = CheckedLcmSerializer(lcm_type, boundary)
     subscriber = LcmSubscriberSystem(channel, serializer, lcm)
     subscriber.checked_serializer = serializer

@@ -165,8 +165,7 @@ def lifted_mask(log, object_config=None) -> np.ndarray:
 
 
 def judge_grasp(log, *, target_xy, grip_force: float, object_config=None) -> GraspOutcome:
-    """Evaluates a trial against the ground truth (object_config: the object's shape and
-    size, for its lowest point; without it, its origin's height)."""
+    """Evaluates a trial against the ground truth (object_config: for the object's lowest point)."""
     z = log.object_state[:, 6]
     lifted = lifted_mask(log, object_config)
     final = log.object_state[-1]

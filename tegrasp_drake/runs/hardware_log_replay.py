@@ -97,8 +97,7 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
 
 def matcher_config_of_run(run_info, events, source: str = "the run's scenario"
                           ) -> EventMatcherConfig:
-    """The matcher the live controller built, when the run's scenario ran an event-triggered
-    controller; else the defaults at the events' rates."""
+    """The live matcher of an event-triggered run; else the defaults at the events' rates."""
     if run_info is not None and run_info.scenario_yaml:
         scenario = scenario_from_yaml(run_info.scenario_yaml, source)
         if controller_entry(scenario.controller).event_triggered:

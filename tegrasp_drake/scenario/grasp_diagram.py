@@ -73,8 +73,7 @@ def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
 def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, station: System,
                           events: dict | None = None,
                           corrective_events: dict | None = None) -> GraspController:
-    """AddGraspController with the scenario's sections; events default to the scenario
-    object's, and the thresholds follow its films' and taxels' noise."""
+    """AddGraspController with the scenario's sections, events and noise-following thresholds."""
     controller = scenario.controller
     if events is None and controller_entry(controller).event_triggered:
         events = load_controller_events(scenario)

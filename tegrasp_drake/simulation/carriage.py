@@ -142,8 +142,7 @@ def carriage_state(carriage: Carriage, X_WG: RigidTransform, V_WG: np.ndarray) -
 
 def carriage_displacement(carriage: Carriage, positions: np.ndarray,
                           deflection: np.ndarray) -> np.ndarray:
-    """G's small displacement [dtheta; dp] (world, [rad, m]) when the carriage's joints move
-    by `deflection` (actuator order) from `positions`."""
+    """G's small displacement [dtheta; dp] [rad, m; world] for joint `deflection` at `positions`."""
     rpy = RollPitchYaw(positions[5], positions[4], positions[3])
     dtheta = rpy.CalcAngularVelocityInParentFromRpyDt(
         [deflection[5], deflection[4], deflection[3]])

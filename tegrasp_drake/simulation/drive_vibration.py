@@ -19,8 +19,7 @@ from tegrasp_drake.rig.ranges import bounded
 
 @dataclasses.dataclass
 class DriveVibrationConfig:
-    """One drive's tones; empty or all-zero `amplitudes_mps2` disables it. The spectra assumed
-    and their reasoning: docs/model.md, "Drive vibration"."""
+    """One drive's tones (all-zero amplitudes: off); docs/model.md, "Drive vibration"."""
     # Each tone's base acceleration at the fingertip at full speed [m/s^2] (assumed).
     amplitudes_mps2: list[float] = bounded(
         default_factory=list, low=0.0, high=1.0, unit="m/s^2",

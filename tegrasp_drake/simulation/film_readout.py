@@ -75,8 +75,7 @@ def reading_mps2(value_mps2, noise_v, sensitivity_v_per_mps2: float, swing_v: fl
 
 def noise_at_amplifier_v(noise_std_mps2: float, adc_noise_lsb: float,
                          sensitivity_v_per_mps2: float, adc: AdcInput | None) -> float:
-    """The Gaussian noise [V rms] drawn per sample: the amplifier's noise_std_mps2 at S and
-    the converter's adc_noise_lsb codes, root-sum-square."""
+    """The Gaussian noise [V rms] per sample: amplifier's and converter's, root-sum-square."""
     amplifier = noise_std_mps2 * sensitivity_v_per_mps2
     converter = 0.0 if adc is None else adc_noise_lsb * adc.volts_per_code
     return math.hypot(amplifier, converter)

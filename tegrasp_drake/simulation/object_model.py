@@ -76,8 +76,7 @@ def _corner_hull_collision(plant, instance, config: ObjectConfig) -> None:
 
 def AddObject(parser, config: ObjectConfig,
               geometry: ContactGeometryConfig | None = None) -> ModelInstanceIndex:
-    """Adds the object to the parser's plant, a primitive meshed as `geometry` says (default:
-    the reference geometry); returns its model instance."""
+    """Adds the object to the parser's plant, meshed as `geometry` says; returns its instance."""
     geometry = geometry or ContactGeometryConfig()
     corner_hull = config.shape == "box" and geometry.box_triangles == 12
     if config.shape == "file":

@@ -76,8 +76,7 @@ class PadAccelerometers(LeafSystem):
 
 
 def AddPadFrameAccelerometer(builder, *, plant, pad, name: str, gravity) -> Accelerometer:
-    """A Drake Accelerometer on `pad`'s frame (a PadGeometry), connected to `plant`;
-    `gravity`: the gravity vector it adds (zeros: the acceleration without gravity)."""
+    """A Drake Accelerometer on `pad`'s frame of `plant`, adding `gravity` (zeros: none)."""
     accelerometer = builder.AddNamedSystem(name, Accelerometer(
         plant.get_body(pad.body_index), pad.X_BP, np.asarray(gravity, dtype=float)))
     builder.Connect(plant.get_body_poses_output_port(), accelerometer.get_body_poses_input_port())

@@ -164,8 +164,7 @@ class _CellProduct:
 
 
 def world_scenario(spec: TransferSpec, world: str, object_name: str):
-    """The nominal Scenario of `object_name` (built in, or one of the sweep's user_objects)
-    in `world`: what that world's events are recorded on."""
+    """The nominal Scenario of `object_name` in `world`: what its events are recorded on."""
     from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.rig.objects import ObjectConfig
     base = LoadScenario(overrides=world_assignments(spec.worlds[world])

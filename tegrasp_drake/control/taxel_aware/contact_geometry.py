@@ -40,8 +40,7 @@ class FaceTouch:
 
 
 def touched_face(finger: str, gripper_y_m: float, opening_m: float) -> FaceTouch:
-    """The face a finger touching alone presses [m, world y]: opening_m / 2 from the grasp
-    frame's gripper_y_m, about which the fingers close symmetrically."""
+    """The face a finger touching alone presses [m, world y]: opening_m / 2 from gripper_y_m."""
     sign = 1.0 if finger == "left" else -1.0
     return FaceTouch(finger, gripper_y_m + sign * opening_m / 2.0)
 

@@ -74,8 +74,7 @@ def _check_joints(message, fields) -> None:
 
 
 def check_jaco_status(data: bytes) -> lcmt_jaco_status:
-    """The bytes of a KINOVA_JACO_STATUS message decoded and checked: 6 joints, finite
-    joint positions, velocities and torques; else RejectedMessage naming the defect."""
+    """A KINOVA_JACO_STATUS message decoded and checked (6 joints, finite); else RejectedMessage."""
     message = decode_lcm(lcmt_jaco_status, data)
     _check_joints(message, ("joint_position", "joint_velocity", "joint_torque"))
     return message

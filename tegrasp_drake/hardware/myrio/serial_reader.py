@@ -81,8 +81,7 @@ class TactileSerialReader:
         return frames
 
     def discard_pending(self) -> int:
-        """Drops the frames received so far (a start-up backlog would only delay the first ticks)
-        and forgets their overflows; returns how many were dropped."""
+        """Drops the frames received so far (a start-up backlog) and overflows; returns how many."""
         with self._lock:
             dropped = len(self._queue) + self._counters.queue_overflows
             self._queue.clear()

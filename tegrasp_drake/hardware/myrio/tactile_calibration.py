@@ -45,8 +45,7 @@ class TactileCalibration:
 
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
-    """Reads a TactileCalibration from YAML; a ConfigError naming the file and field for
-    anything else (missing, too large, bad YAML, an unknown or non-finite field)."""
+    """Reads a TactileCalibration from YAML; otherwise a ConfigError naming the file and field."""
     from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, read_yaml_file
     data = read_yaml_file(filename, "the tactile calibration")
     if data is None:
