@@ -167,8 +167,7 @@ def _fields(cls) -> set[str]:
 
 
 def controller_named(name: str, like=None):
-    """The config of the controller called `name`, with the settings of `like` (another
-    controller's config) that its class also has; the defaults otherwise."""
+    """The config of controller `name`, with the settings of `like` its class also has."""
     cls = controller_class(name)
     settings = _fields(like) if like is not None else set()
     return cls(**{field: copy.deepcopy(getattr(like, field)) for field in _fields(cls)

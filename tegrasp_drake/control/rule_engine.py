@@ -70,8 +70,7 @@ class Rule:
 
 @dataclasses.dataclass(frozen=True)
 class Guard:
-    """While condition(situation) holds, the rules named in `holds_back` do not fire (the
-    rules after them are asked). `when` says the condition in words for the docs."""
+    """While condition(situation) holds, the rules in `holds_back` do not fire; `when` words it."""
     name: str
     holds_back: tuple[str, ...]
     condition: Callable[[Situation], bool]

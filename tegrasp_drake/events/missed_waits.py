@@ -37,8 +37,7 @@ class EventWait:
 
 
 def timeout_reason_prefix(transition: str) -> str:
-    """The start of every reason the machine gives when `transition`'s event did not come
-    in time, e.g. "no Reach-Load event" (transition_logic.py)."""
+    """How the reasons start when `transition`'s event timed out ("no Reach-Load event")."""
     return "no {}-{} event".format(*transition_states(transition))
 
 

@@ -42,8 +42,7 @@ def channels_trajectory(trial: TactileTrial) -> PiecewisePolynomial:
 
 def tactile_trial_from_log(log, transition_times: Mapping[str, float] | None = None
                            ) -> TactileTrial:
-    """The measured channels of a TrialLog: SA (Eq. 1, each pad's taxel sum) at the taxel
-    times, RA at the vibration times; transition_times as given (default none)."""
+    """The TrialLog's channels: SA (Eq. 1) at the taxel times, RA at the vibration times."""
     taxels = np.asarray(log.taxels)
     sa = np.column_stack([taxels[:, :TAXELS_PER_PAD].sum(axis=1),
                           taxels[:, TAXELS_PER_PAD:].sum(axis=1)])

@@ -35,8 +35,7 @@ ENSEMBLE_RANGES = EnsembleRanges()
 
 def ensemble_scenario(object_name: str, run: int, ranges: EnsembleRanges = ENSEMBLE_RANGES,
                       base=None):
-    """The scenario of ensemble run `run` of `object_name`: the object's scenario (or
-    `base`) perturbed by a draw from seed ENSEMBLE_BASE_SEED + run."""
+    """Run `run`'s scenario: the object's (or `base`), perturbed from ENSEMBLE_BASE_SEED + run."""
     base = base or LoadScenario(name=object_name)
     seed = ENSEMBLE_BASE_SEED + run
     rng = np.random.default_rng(seed)

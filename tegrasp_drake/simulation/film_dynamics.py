@@ -20,8 +20,7 @@ _L1, _L2, _Y, _YDOT, _Z = range(STATE_SIZE)
 
 @dataclasses.dataclass(frozen=True)
 class FilmParameters:
-    """The film's dynamics (SI units): mode frequency [Hz], damping ratio, modal mass [kg],
-    load low-pass corner [Hz], charge amplifier high-pass corner [Hz]."""
+    """The film: mode [Hz], damping ratio, modal mass [kg], load and amplifier corners [Hz]."""
     mode_frequency_hz: float
     damping_ratio: float
     modal_mass_kg: float

@@ -31,8 +31,7 @@ class TrialMiss:
     ra_rate_hz: float
 
     def within_noise_floor(self) -> bool | None:
-        """Whether a failing RA channel stayed within the RA noise floor's rule
-        (MissedWait.failing_ra_within_floor at rule_sigmas); None without a best tick."""
+        """Whether a failing RA channel stayed within the rule's floor; None without a best tick."""
         return self.missed.failing_ra_within_floor(rule_sigmas(self.ra_rate_hz))
 
 

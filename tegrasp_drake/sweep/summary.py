@@ -48,8 +48,7 @@ def _percent(successes: int, trials: int, percent=None) -> str:
 
 
 def summary_rows(records) -> tuple[list[str], list[list[str]]]:
-    """(header, rows of cells) of the results table; the paper's row last when the sweep
-    ran the paper's three objects (its average compares with no other)."""
+    """(header, rows) of the results table; the paper's row last when the sweep ran its objects."""
     records = list(records)
     statistics = controller_statistics(records)
     latency_columns = _latency_columns(statistics)

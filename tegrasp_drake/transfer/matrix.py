@@ -66,8 +66,7 @@ def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tu
 
 
 def running_sweep(spec: TransferSpec, running: str) -> SweepSpec:
-    """The ordinary sweep of a cell that runs in world `running`: the spec's sweep with the
-    world's assignments before the sweep's own scenario_overrides."""
+    """A cell's sweep in world `running`: the world's assignments before the sweep's overrides."""
     return dataclasses.replace(spec.sweep, scenario_overrides=(
         world_assignments(spec.worlds[running]) + tuple(spec.sweep.scenario_overrides)))
 
