@@ -18,8 +18,7 @@ from tegrasp_drake.tactile.max_normalization import normalize_by_max
 
 
 def envelope_coefficient(cutoff_hz: float, rate_hz: float) -> float:
-    """a of y[k] = y[k-1] + a (u[k] - y[k-1]) for a first-order low-pass at cutoff_hz [Hz]
-    sampled at rate_hz [Hz]; the cutoff must lie in (0, rate_hz / 2)."""
+    """a of y[k] = y[k-1] + a (u[k] - y[k-1]) for cutoff_hz in (0, rate_hz / 2) [Hz]."""
     if not 0.0 < cutoff_hz < rate_hz / 2.0:
         raise ValueError(f"RA envelope cutoff {cutoff_hz} Hz must lie between 0 and half the "
                          f"RA rate ({rate_hz / 2.0} Hz); 0 switches the envelope off")

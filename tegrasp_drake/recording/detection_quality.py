@@ -16,8 +16,7 @@ LATENCY_TARGET_S = 0.06  # the median latency choose_thresholds prefers
 
 @dataclasses.dataclass(frozen=True)
 class ScoredSpan:
-    """One transition of one logged trial: the held event's scores over its armed span;
-    times (T,) [s], scores (T, 4) [sa_left, sa_right, ra_left, ra_right]."""
+    """One transition of one trial: the held event's scores (T, 4) at its armed span's times [s]."""
     label: str
     transition: str
     times: np.ndarray

@@ -32,8 +32,7 @@ QUIET_APPROACH_S = EventMatchingConfig().ra_noise_quiet_s
 
 
 def lift_grip_fraction(log, scenario) -> float | None:
-    """The weaker pad's true force when the script starts the lift, as a fraction of the
-    settled grip (grasp_outcome.grip_fraction_at); None without a scripted lift."""
+    """The weaker pad's force at the script's lift as a fraction of the settled grip, or None."""
     lift = scripted_lift_start(log)
     if lift is None:
         return None

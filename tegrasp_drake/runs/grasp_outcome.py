@@ -137,8 +137,7 @@ def grip_fraction_at(log, t: float, grip_force: float, after: float = 0.0) -> fl
 
 
 def scripted_lift_start(log) -> float | None:
-    """When the scripted ideal grasp starts its Lift [s] (the log's `phase_starts`, written
-    by runs/ideal_grasp.py); None for a log without the script's phases."""
+    """When the scripted ideal grasp starts its Lift [s] (`phase_starts`), else None."""
     return (log.meta.get("phase_starts") or {}).get("lift")
 
 

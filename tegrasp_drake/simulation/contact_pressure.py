@@ -106,8 +106,7 @@ def corner_differences(cumulative: np.ndarray) -> np.ndarray:
 
 
 def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
-    """taxel_normal_forces of each (p_PV, pressure_V, triangles) in `surfaces`, in one pass
-    over all their triangles (the same numbers as one call per surface)."""
+    """taxel_normal_forces of each surface in `surfaces`, in one pass over all triangles."""
     triangles = [np.asarray(t, dtype=np.intp).reshape(-1, 3) for _, _, t in surfaces]
     xy = np.concatenate([np.asarray(p_PV, dtype=float)[t][:, :, :2]
                          for (p_PV, _, _), t in zip(surfaces, triangles)])

@@ -29,8 +29,7 @@ def texture_acceleration_amplitude(slip_speed: float, height_m: float, period_m:
 
 
 def texture_acceleration(phase, amplitude, speed, elapsed, period_m: float):
-    """The texture's acceleration [m/s^2] `elapsed` [s] after a sample of (phase [rad],
-    amplitude [m/s^2], slip speed [m/s]); numpy arrays broadcast."""
+    """The texture's acceleration [m/s^2] `elapsed` [s] after a (phase, amplitude, speed) sample."""
     return amplitude * np.sin(phase + 2.0 * np.pi * speed * elapsed / period_m)
 
 

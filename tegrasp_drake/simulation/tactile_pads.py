@@ -100,8 +100,7 @@ def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> 
 
 
 def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[np.ndarray]:
-    """The 12 noise-free taxel normal forces [N] of each pad (by geometry id): each surface's
-    pressure integral scaled to the normal force the solver applied on it."""
+    """Each pad's 12 noise-free taxel forces [N]: pressure integrals scaled to the solver's."""
     per_pad = _pads_surfaces(contact_results, geometry_ids, pad_poses)
     surfaces = [surface for pad in per_pad for surface in pad]
     raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces]) if surfaces else [])

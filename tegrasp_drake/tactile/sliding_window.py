@@ -68,8 +68,7 @@ class SlidingWindowState:
         return self.rows(state)[:, offset:offset + self.window.length]
 
     def push(self, state: np.ndarray, samples) -> tuple[np.ndarray, int, bool]:
-        """Append one sample per channel in place; returns the buffer view, the offset (0
-        exactly when the push compacted) and whether the window is full."""
+        """Appends a sample per channel in place: (buffer view, offset (0 on compaction), full)."""
         length = self.window.length
         rows = self.rows(state)
         offset = int(state.item(0))

@@ -41,8 +41,7 @@ class TransitionDiagnosis:
 
 
 def mode_periods(transitions: Sequence[Mapping]) -> list[tuple[str, float, float]]:
-    """(mode, entered, left) [s] of each mode a trial passed through, from Reach at 0 s,
-    from its logged transitions ({"t", "to"}, result.json's `transitions`)."""
+    """(mode, entered, left) [s] of each mode a trial passed, from its logged transitions."""
     periods, mode, entered = [], "Reach", 0.0
     for transition in transitions:
         periods.append((mode, entered, float(transition["t"])))

@@ -45,8 +45,7 @@ def cell_name(memorizing: str, running: str) -> str:
 
 
 def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tuple[str, ...]:
-    """The world as `--set` assignments on the default scenario: its preset's fields
-    (flattened to dotted keys, `object` left out) and then its own overrides."""
+    """The world as `--set` assignments: its preset's dotted fields but `object`, then overrides."""
     document = read_yaml_file(paths.scenarios_file(), "the scenario file")
     if world.scenario not in document:
         raise ConfigError(f"{source}: scenario '{world.scenario}' is not in "
