@@ -36,7 +36,7 @@ def channel_score(peak_correlation: float, live_energy: float, template_norm: fl
                   min_contrast: float, flat_needs_flat: bool = False) -> float:
     """A channel's gated score from its window statistics: peak_correlation (max over lags
     of R_XY), live_energy R_XX(0), template_norm sqrt(R_YY(0)), the live window's extremes;
-    flat_needs_flat as the module says.
+    flat_needs_flat: a flat template scores only a flat window.
     """
     denominator = math.sqrt(live_energy) * template_norm
     if not denominator > 0.0:

@@ -63,7 +63,7 @@ def sample_register(input_size: int, samples: int, sample_period_s: float,
 
 def AddSampleRegister(builder, port, *, samples: int, sample_period_s: float, entries=None,
                       name: str):
-    """Adds a sample_register fed by `port`; returns its output (samples x entries, oldest 1st)."""
+    """Adds a sample_register fed by `port`; returns its output, samples x entries, oldest first."""
     register = builder.AddNamedSystem(name, sample_register(
         port.size(), samples, sample_period_s, entries))
     builder.Connect(port, register.get_input_port())

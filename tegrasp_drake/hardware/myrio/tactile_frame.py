@@ -161,7 +161,7 @@ class TactileFrameDecoder:
 
     def _follows(self, sequence: int, raw_timestamp: int, last_sequence: int,
                  last_raw: int) -> str:
-        """"next", "old" or "implausible": how a frame relates to the one before it."""
+        """How a frame relates to the one before it: "next", "old" or "implausible"."""
         gap = (sequence - last_sequence) % SEQUENCE_MODULUS
         if gap == 0 or gap > SEQUENCE_MODULUS // 2:
             return "old"
