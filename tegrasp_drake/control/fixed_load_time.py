@@ -13,7 +13,8 @@ from tegrasp_drake.rig.ranges import bounded
 
 @dataclasses.dataclass
 class FixedLoadTimeControllerConfig(EventTriggeredConfig):
-    """The memorized controller's settings (it reads the same events) and the fixed Load time."""
+    """The memorized controller's settings (it reads the same events) and the fixed Load
+    time."""
     name: typing.ClassVar[str] = "fixed_load_time"
     events_folder: typing.ClassVar[str | None] = ""  # the paper's memorized events
     extra_time_s: typing.ClassVar[float] = 0.0
