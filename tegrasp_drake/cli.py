@@ -1,10 +1,7 @@
-"""The `tegrasp` command line: one sub-command per module, each with a
-`register(subparsers)` that adds its parser and sets `func=run` (args -> exit code).
-
-`main` is the one error boundary: an exception no command foresaw ends the run with one
-line on stderr (its traceback written to a file; `-v` prints it) and EXIT_INTERNAL_ERROR;
-SIGTERM and SIGHUP end a run as Ctrl-C does, with 128 + the signal's number. The exit
-codes: docs/user-guide.md, "Exit codes".
+"""The `tegrasp` command line: one sub-command per module, each with a `register(subparsers)` that
+adds its parser and sets `func=run` (args -> exit code). `main` is the one error boundary: an
+unforeseen exception ends the run with one line on stderr (traceback to a file; `-v` prints it);
+SIGTERM and SIGHUP end a run as Ctrl-C does. Exit codes: docs/user-guide.md, "Exit codes".
 """
 
 import argparse
@@ -34,9 +31,7 @@ COMMAND_MODULES = (
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse's parser, whose usage errors quote the user's text safely (rig/files.py
-    one_line: no raw control character reaches the terminal). Sub-command parsers are made
-    of the same class."""
+    """argparse's parser, quoting the user's text safely in usage errors (rig/files.py)."""
 
     def error(self, message):
         from tegrasp_drake.rig.files import one_line
@@ -50,9 +45,8 @@ PATH_ARGUMENTS = ("scenario", "events", "out", "html", "spec", "logs", "trial",
 
 
 def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
-    """Exits with a usage error naming the first argument of `args` given as '' (alone or in
-    a repeated option's list): an unset shell variable, never "not given" or the current
-    folder."""
+    """Exits with a usage error naming the first argument of `args` given as '' (alone or in a
+    repeated option's list): an unset shell variable, never "not given" or the current folder."""
     subparsers = next(a for a in parser._actions
                       if isinstance(a, argparse._SubParsersAction))
     command = subparsers.choices[args.command]

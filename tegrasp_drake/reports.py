@@ -19,10 +19,9 @@ from tegrasp_drake.rig.ranges import Choice
 def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
                   trial_ids: Sequence[str] | None = None, *,
                   figure_format: Annotated[str, Choice(FIGURE_FORMATS)] = "png") -> list[Path]:
-    """Writes table1.md/.csv, statistics.md/.json, summary.md, success_by_offset.md/.csv and
-    the figures (success_maps, table1_vs_paper, latency; `figure_format` png, pdf or svg) into
-    `out_dir`, from the records only (with `trial_ids`, only those trials'). Corrupt records
-    are skipped; no figures without a finished trial, no latency figure without a detection.
+    """Writes Table I, the statistics, the summary, success by offset and the figures
+    (`figure_format`) into `out_dir`, from the records only (with `trial_ids`, those trials');
+    corrupt records are skipped, figures need a finished trial.
     """
     # Imported here: matplotlib loads only when a report is written.
     from tegrasp_drake.figures.figure_files import figure_path

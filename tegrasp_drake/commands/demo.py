@@ -1,8 +1,6 @@
 """`tegrasp demo`: the README's main job, a closed-loop tactile-event grasp on the default
-scenario (memorized events), with its timeline, success and a Fig. 9-like figure.
-
-`--controller open_loop` runs the ideal scripted grasp of Sec. III-A instead. The demo
-writes out/demo and replaces the last demo there (commands/run_folder.py).
+scenario, with its timeline, success and a Fig. 9-like figure (`--controller open_loop`: the
+ideal scripted grasp of Sec. III-A). It replaces the last demo in out/demo.
 """
 
 import argparse

@@ -1,8 +1,5 @@
-"""A progress bar in simulated seconds, on stderr, only when stderr is a terminal.
-
-The runs (run_trial, run_ideal_grasp, run_on_hardware) call `progress(t, end)` with the
-simulated time and the run's current end [s]; a SimulatedTimeBar is such a callable. Log
-records and the lines a run prints while the bar is shown are written above it.
+"""A progress bar in simulated seconds, on stderr, only when stderr is a terminal: the runs
+call `progress(t, end)` [s]; lines printed meanwhile are written above the bar.
 """
 
 import sys

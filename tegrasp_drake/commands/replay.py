@@ -1,11 +1,6 @@
 """`tegrasp replay LOG`: what a hardware run's log holds, and the event matcher re-run on
-its tactile data offline, two ways (runs/hardware_log_replay.replay_run_log): expecting the
-event of the mode the logged transitions show, and expecting the memorized events one
-after another, as an EventSequencer does.
-
-Exit codes: 0 replayed; 1 nothing to replay (a missing or empty log, no events); 3 the
-log is damaged (truncated, corrupt bytes): the replay used what was readable, and a line
-on stderr says what was read and what was lost."""
+its tactile data offline (runs/hardware_log_replay.py). Exit codes: 0 replayed; 1 nothing to
+replay; 3 the log is damaged (the readable part was replayed; stderr says what was lost)."""
 
 import argparse
 import json

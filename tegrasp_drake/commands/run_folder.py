@@ -1,11 +1,6 @@
-"""Where a run's files go, and which earlier run they may replace (docs/user-guide.md,
-"`tegrasp trial` and `tegrasp demo`").
-
-A run folder holds one run: trial.npz, its figures and `result.json`, written last. An
-`--out` folder holding a run is refused unless `--overwrite`; without `--out`, `tegrasp
-trial` claims out/trial, out/trial-2, ... with one mkdir each; `tegrasp demo` replaces
-out/demo. Files are staged in a hidden folder and replace the earlier run's together at the
-end, Ctrl-C held back (commit_run): a failed or interrupted run leaves the earlier one whole.
+"""Where a run's files go, and which earlier run they may replace (docs/user-guide.md, "`tegrasp
+trial` and `tegrasp demo`"). Files are staged in a hidden folder and replace the earlier run's
+together at the end (commit_run), so a failed or interrupted run leaves the earlier one whole.
 """
 
 import contextlib
@@ -46,8 +41,7 @@ def claim_numbered_folder(default) -> pathlib.Path:
 
 
 def check_run_folder(folder) -> None:
-    """RunFolderError unless `folder` is, or can be made as, a folder this user can write
-    (an empty name is refused: it would be the current folder)."""
+    """RunFolderError unless `folder` is, or can be made as, a folder this user can write."""
     if not str(folder).strip():
         raise RunFolderError(f"--out {str(folder)!r} is empty; give a folder you can write")
     problem = folder_problem(folder)
@@ -76,9 +70,8 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 
 @contextlib.contextmanager
 def staged_run(folder):
-    """A hidden staging folder for the run's files inside the run folder (removed when the
-    block ends), with the run folder locked for the block (flock, released by the kernel
-    however the process ends), so a second run into it is refused at once."""
+    """A hidden staging folder inside the run folder (removed when the block ends), the run
+    folder locked (flock) for the block, so a second run into it is refused at once."""
     with claimed_run_folder(folder):
         try:
             stage = pathlib.Path(tempfile.mkdtemp(prefix=".staging-", dir=folder))
@@ -93,8 +86,7 @@ def staged_run(folder):
 
 @contextlib.contextmanager
 def claimed_run_folder(folder):
-    """Holds an exclusive flock on `folder` for the block; RunFolderError at once if another
-    process holds it (a run writing there now)."""
+    """Holds an exclusive flock on `folder` for the block; RunFolderError if another holds it."""
     try:
         descriptor = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
     except OSError as e:

@@ -24,10 +24,9 @@ def add_scenario_arguments(parser) -> None:
 
 
 def scenario_from_arguments(args, *, simulates: str = ""):
-    """Loads the scenario, with `--controller`'s controller if the command has it (naming on
-    stderr the scenario's settings it ignores), or exits with the error. `simulates`:
-    "trial" refuses a scenario for the real devices; "events" says on stderr that its
-    simulation is used."""
+    """Loads the scenario with `--controller`'s controller if given (naming the settings it
+    ignores), or exits with the error. `simulates`: "trial" refuses a hardware scenario;
+    "events" notes that its simulation is used."""
     if args.scenario and not pathlib.Path(args.scenario).exists() and \
             args.scenario in (read_yaml_file(paths.scenarios_file(), "the scenario file") or {}):
         raise SystemExit(f"tegrasp: error: --scenario takes a file of scenarios; "
@@ -59,8 +58,7 @@ def scenario_from_arguments(args, *, simulates: str = ""):
 
 
 def quiet_modbus_library() -> None:
-    """pymodbus logs every timed-out request; the Robotiq client counts them instead
-    (RobotiqModbusClient.counters()), so keep its log to what is critical."""
+    """Keeps pymodbus's log to what is critical: the Robotiq client counts timed-out requests."""
     logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
 
 
@@ -93,8 +91,7 @@ def controller_events(scenario, events_dir):
 
 def corrective_events(scenario, events_dir):
     """The memorized corrective events the controller matches (None when
-    controller.memorized_corrective.events is empty), `events_dir` first, or exits saying
-    why."""
+    controller.memorized_corrective.events is empty), `events_dir` first, or exits saying why."""
     if not scenario.controller.memorized_corrective.events:
         return None
     from tegrasp_drake.scenario.scenario_events import load_corrective_events

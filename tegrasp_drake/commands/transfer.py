@@ -1,9 +1,6 @@
-"""`tegrasp transfer SPEC.yaml`: events memorized in one world, trials run in another.
-
-Records each memorizing world's events into DIR/events/<world>, runs each cell as a sweep
-into DIR/cells/<memorizing>-in-<running>, then writes DIR/transfer.md and the heat map
-(transfer/matrix.py, transfer/report.py); the same command resumes. Exit codes as `tegrasp
-sweep`'s; so is the hidden testing hook `--trial-function MODULE:ATTR`.
+"""`tegrasp transfer SPEC.yaml`: events memorized in one world, trials run in another
+(transfer/matrix.py, transfer/report.py): writes DIR/events, DIR/cells, DIR/transfer.md and
+the heat map; the same command resumes. Exit codes as `tegrasp sweep`'s.
 """
 
 import argparse

@@ -37,8 +37,7 @@ def check_html_path(args) -> pathlib.Path | None:
 
 
 def start_viewer(args):
-    """A Meshcat for --meshcat or --html (None without either); prints its URL for
-    --meshcat at once."""
+    """A Meshcat for --meshcat or --html (None without either); prints its URL for --meshcat."""
     if not (args.meshcat or args.html):
         return None
     from pydrake.geometry import Meshcat

@@ -24,9 +24,8 @@ def jaco_joint_limits():
 def AddCartesianArmController(builder, *, position_measured, velocity_measured,
                                  q_nominal: np.ndarray, time_step: float,
                                  name: str = "arm_controller"):
-    """Adds the controller; returns (X_WG_desired input, arm.desired_state output). The
-    integrator starts from the measured joint state; q_nominal [rad]: joint centering's
-    target."""
+    """Adds the controller; returns (X_WG_desired input, arm.desired_state output). The integrator
+    starts from the measured joint state; q_nominal [rad]: joint centering's target."""
     plant = make_arm_control_plant()
     lower, upper, speed = jaco_joint_limits()
     parameters = DifferentialInverseKinematicsParameters(6, 6)

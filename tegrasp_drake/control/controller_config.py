@@ -1,11 +1,8 @@
 """The grasp controllers' settings, one config class per controller, selected by the YAML
-tag of the scenario's `controller` field (`controller: !HeuristicControllerConfig {...}`;
-`controller.name` is a shorthand). The closed-loop controllers share GraspControllerConfig
-(the tick, the contact force, a section per corrective action of Sec. III-C); every number
-declares its unit and range on its field, and `problem` checks what relates fields.
-ClassVars give the name in results, the events folder and the extra time allowed; the rest
-of a controller is its entry in controller_registry.py. Imports no Drake (the command line
-reads it)."""
+tag of the scenario's `controller` field (`controller.name` is a shorthand). Every number
+declares its unit and range on its field; `problem` checks what relates fields. ClassVars
+give the name in results, the events folder and the extra time allowed; the rest of a
+controller is its entry in controller_registry.py. Imports no Drake (the command line reads it)."""
 
 import dataclasses
 import typing
@@ -25,8 +22,7 @@ _SIGMAS_BELOW = "must be zero (the number alone) or positive [noise sigmas]"
 @public_dataclass
 @dataclasses.dataclass
 class HeuristicTriggerConfig:
-    """The heuristic controller's hand-set thresholds, in the style of Romano et al. 2011
-    (IEEE Trans. Robotics 27(6)): tuned once on the box at its expected position."""
+    """Hand-set thresholds (Romano et al. 2011, IEEE Trans. Robotics 27(6)), tuned on the box."""
     # Reach-Load: each finger's SA above this [N]
     contact_force_n: float = bounded(1.0, low=0.0, high=50.0, unit="N",
                                      below="must be zero or positive [N]")
@@ -43,9 +39,9 @@ class HeuristicTriggerConfig:
 @public_dataclass
 @dataclasses.dataclass
 class FingerStrikeConfig:
-    """The taxel_aware controller's finger-strike sense (control/finger_strike.py): a
-    finger's front striking the object during the approach, seen in the arm's joint torques
-    as a force on the grasp frame G. Measured figures: docs/controller.md, "Finger strike"."""
+    """The taxel_aware controller's finger-strike sense (control/finger_strike.py): a finger's
+    front striking the object in the approach, seen in the joint torques as a force on G.
+    Measured figures: docs/controller.md, "Finger strike"."""
     enabled: bool = True
     # force on G over its approach-start value [N]: 2.5x the Reach's 0.81 N, half a strike's 3.9
     force_n: float = bounded(2.0, low=0.0, low_open=True, high=100.0, unit="N",
@@ -61,8 +57,7 @@ class FingerStrikeConfig:
 @public_dataclass
 @dataclasses.dataclass
 class TaxelAwareConfig:
-    """The taxel-aware corrections (control/taxel_aware); a pad row is 6 mm along the
-    approach axis, a column 6.7 mm high."""
+    """The taxel-aware corrections; a pad row is 6 mm along the approach, a column 6.7 mm."""
     # Re-Reach along the approach when the contact is this far off centre [m]: 2/3 of a row
     centre_tolerance_m: float = bounded(0.004, low=0.0, high=0.05, unit="m",
                                         below="must be zero or positive [m]")
@@ -96,7 +91,8 @@ class TaxelAwareConfig:
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field, must, value) of thresholds neither empty nor a pair; None if none."""
+        """(field path under the controller, what it must be, its value) of the first setting
+        that does not fit another or the RA stream at ra_rate_hz [Hz]; None when all fit."""
         for name in ("reach_load_thresholds", "load_lift_thresholds",
                      "place_unload_thresholds"):
             pair = getattr(self, name)
@@ -164,8 +160,7 @@ class LiftLoadConfig:
                                      below="must be zero or positive [s]")
 
     def problem(self, *, ra_rate_hz: float) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) when the slip band does not fit the RA
-        stream read at ra_rate_hz [Hz]; None when it does."""
+        """(field, must, value) when the slip band does not fit RA at ra_rate_hz [Hz]; else None."""
         if self.slip_band_hz >= ra_rate_hz / 2:
             return ("slip_band_hz", "must lie below half the RA rate "
                     f"({ra_rate_hz / 2:g} Hz, vibration.sample_rate_hz / 2): the slip band's "
@@ -176,10 +171,9 @@ class LiftLoadConfig:
 @public_dataclass
 @dataclasses.dataclass
 class AvoidConfig:
-    """Avoid (Sec. III-C): in Hold, either RA above hit_ra_mps2 is a hit; stop sense_s to see
-    which way it pushed (SA asymmetry above sa_asymmetry_n, else the pads' common
-    acceleration), move distance_m that way over move_s, Hold again. Hits are ignored for
-    hit_refractory_s after entering Hold (the lift's stop rings)."""
+    """Avoid (Sec. III-C): in Hold, either RA above hit_ra_mps2 (after hit_refractory_s: the
+    lift's stop rings) is a hit; stop sense_s to see which way it pushed, move distance_m that
+    way over move_s, Hold again."""
     enabled: bool = True
     hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
                                  below="must be zero or positive [m/s^2]")
@@ -210,8 +204,7 @@ class PlaceConfig:
 @public_dataclass
 @dataclasses.dataclass
 class MemorizedCorrectiveConfig:
-    """Corrective triggers from memorized corrective events matched by Eq. 3 instead of the
-    heuristic thresholds (docs/controller.md, "Memorized corrective triggers")."""
+    """Corrective events matched by Eq. 3 (docs/controller.md, "Memorized corrective triggers")."""
     # of "hold_avoid", "lift_load" (matches every normal lift: comparison only); []: heuristic
     events: list[str] = dataclasses.field(default_factory=list)
     # Eq. 3 [SA, RA], chosen on held-out runs: analysis/corrective_thresholds.md
@@ -232,8 +225,7 @@ class MemorizedCorrectiveConfig:
                 "hold_avoid": tuple(self.hold_avoid_thresholds)}
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) of the first event that is not a corrective
-        event; None when all are."""
+        """(field, must, value) of the first event that is not a corrective event; None if none."""
         from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS  # Drake: on use
         for k, name in enumerate(self.events):
             if name not in CORRECTIVE_TRANSITIONS:
@@ -245,8 +237,7 @@ class MemorizedCorrectiveConfig:
 @public_dataclass
 @dataclasses.dataclass
 class GraspControllerConfig:
-    """The grasp state machine's settings, shared by the closed-loop controllers: the tick,
-    the contact force, and a section per corrective action (Sec. III-C)."""
+    """The closed-loop controllers' settings: tick, contact force, a section per correction."""
     # state machine tick [s]
     update_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
                                      below="must be positive [s]")
@@ -275,10 +266,9 @@ class GraspControllerConfig:
         default_factory=MemorizedCorrectiveConfig)
 
     def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) of the first setting that does not fit
-        another or the scenario's RA stream, read at ra_rate_hz [Hz] with its approach
-        ending at approach_s [s] (each number's own range is declared on its field); the
-        field as a path under the controller; None when all fit."""
+        """(field path under the controller, what it must be, its value) of the first setting that
+        does not fit another or the RA stream (ra_rate_hz [Hz], approach ending at approach_s [s]);
+        None when all fit."""
         from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
         for k, name in enumerate(self.event_object_may_differ):
             if name not in DESCRIPTION_FIELDS:
@@ -295,8 +285,7 @@ class GraspControllerConfig:
 
 
 def _block_problem(block_s: float, ra_rate_hz: float) -> tuple[str, str, object] | None:
-    """sensor_block_s's problem when its blocks of RA samples do not fall on the sample
-    times in floating point."""
+    """sensor_block_s's problem when its blocks miss the RA sample times in floating point."""
     if not (block_s > 0 and ra_rate_hz > 0):
         return None
     from tegrasp_drake.tactile.sample_block import block_samples, block_update_period

@@ -28,12 +28,11 @@ PAPER_RULES = "tegrasp_drake.control.transition_logic:rule_table"  # the paper's
 @public_dataclass
 @dataclasses.dataclass(frozen=True)
 class ControllerEntry:
-    """One controller. config: its config class (YAML tag `!<class>`, config.name its
-    name); label, title (--help, table headings), color: how tables and figures show it.
-    add_systems, detector, rules, estimator: "module:function" references (AddGraspController's
-    keywords plus `entry` -> a GraspController; the event detector; () -> RuleTable;
-    (config, plan) -> ContactEstimator), None when absent. senses_finger_strike: reads the
-    arm's wrench at G; in_paper: in Table I's comparison."""
+    """One controller. config: its config class (YAML tag `!<class>`); label, title, color:
+    how tables and figures show it. add_systems, detector, rules, estimator: "module:function"
+    references (the builder, the event detector, () -> RuleTable, (config, plan) ->
+    ContactEstimator), None when absent. senses_finger_strike: reads the arm's wrench at G;
+    in_paper: in Table I's comparison."""
     config: type
     label: str
     title: str
@@ -168,8 +167,7 @@ def _fields(cls) -> set[str]:
 
 
 def controller_named(name: str, like=None):
-    """The config of the controller called `name`, with the settings of `like` (another
-    controller's config) that its class also has; the defaults otherwise."""
+    """The config of controller `name`, with the settings of `like` its class also has."""
     cls = controller_class(name)
     settings = _fields(like) if like is not None else set()
     return cls(**{field: copy.deepcopy(getattr(like, field)) for field in _fields(cls)
@@ -203,9 +201,8 @@ def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
 
 
 def select_controller_tag(data: dict, *, drop_others: bool = False) -> list[str]:
-    """Turns `controller: {name: NAME, ...}` of YAML data, in place, into NAME's tag
-    (`_tag`); drop_others: drop the other controllers' settings NAME lacks (one no
-    controller has stays, to be refused) and return their dotted paths."""
+    """Turns `controller: {name: NAME, ...}` of YAML data, in place, into NAME's tag; with
+    drop_others, drops the other controllers' settings NAME lacks and returns their paths."""
     section = data.get("controller") if isinstance(data, dict) else None
     if not isinstance(section, dict) or "name" not in section:
         return []

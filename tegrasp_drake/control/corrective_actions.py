@@ -1,7 +1,6 @@
 """The corrective actions of Sec. III-C (Re-Reach, Lift-Load, Avoid) as pure functions: the
-decisions the rules call and the moves the state machine makes (docs/controller.md,
-"Corrective actions"). Frames: world W; G approaches along +x, the stroke along y, the left
-finger on +y."""
+decisions the rules call and the moves the state machine makes (docs/controller.md, "Corrective
+actions"). Frames: world W; G approaches along +x, the stroke along y, the left finger on +y."""
 
 import dataclasses
 import math
@@ -38,8 +37,7 @@ CORRECTIVE_ONLY_ACTIONS = {(Mode.HOLD, Mode.PLACE): "regrasp",
 
 def corrective_action_of(from_mode: Mode, to_mode: Mode,
                          trigger: Trigger | None = None) -> str | None:
-    """The corrective action the transition from_mode -> to_mode starts (the taxel_aware
-    ones only by a corrective `trigger`), else None."""
+    """The corrective action from_mode -> to_mode starts (taxel_aware's by `trigger`), or None."""
     action = CORRECTIVE_ACTIONS.get((from_mode, to_mode))
     if action is None and trigger == Trigger.CORRECTIVE:
         action = CORRECTIVE_ONLY_ACTIONS.get((from_mode, to_mode))
@@ -52,8 +50,7 @@ def corrective_action_of(from_mode: Mode, to_mode: Mode,
 def re_reach_shift(sa_n, opening_m: float, object_width_m: float,
                    contact_force_n: float) -> float:
     """The shift [m, world y] that centres the gripper on the object: toward the finger
-    touching alone (SA of sa_n[:2] above contact_force_n [N]) by (opening_m -
-    object_width_m) / 2, never negative; 0 when both or neither touch."""
+    touching alone by (opening_m - object_width_m) / 2, never negative; 0 unless one touches."""
     contact = np.asarray(sa_n)[:2] > contact_force_n
     if contact[0] == contact[1]:
         return 0.0
@@ -81,8 +78,7 @@ def _lift_load_for_slip(counters: Counters, config: GraspControllerConfig, trigg
 
 def lift_load_or_fail(slip_s: float, counters: Counters,
                       config: GraspControllerConfig) -> Decision | None:
-    """In Lift: Load after slip_s [s] of slip (Failed once max_lift_loads are used), else
-    None."""
+    """In Lift: Load after slip_s [s] of slip (Failed once max_lift_loads are used), else None."""
     if not (config.lift_load.enabled and slip_s >= config.lift_load.slip_s):
         return None
     return _lift_load_for_slip(counters, config, Trigger.CORRECTIVE,
@@ -91,8 +87,7 @@ def lift_load_or_fail(slip_s: float, counters: Counters,
 
 def lift_load_on_slip_event(slip_event: bool, counters: Counters,
                             config: GraspControllerConfig) -> Decision | None:
-    """In Lift: Load on the memorized slip event (Failed once max_lift_loads are used),
-    else None."""
+    """In Lift: Load on the memorized slip event (Failed after max_lift_loads), else None."""
     if not (config.lift_load.enabled and slip_event):
         return None
     return _lift_load_for_slip(counters, config, Trigger.CORRECTIVE_EVENT,
@@ -108,8 +103,7 @@ def relift_after_lift_load(*, grip_reached: bool, slip_quiet: bool, time_in_load
                            counters: Counters,
                            config: GraspControllerConfig) -> Decision | None:
     """In Load after a Lift-Load: Lift once the raised grip is reached, the slip band is
-    quiet and relift_settle_s [s] have passed; None otherwise and in the first Load (which
-    waits for its event)."""
+    quiet and relift_settle_s [s] have passed; None otherwise and in the first Load."""
     if (counters.lift_loads and grip_reached and slip_quiet
             and time_in_load_s >= config.lift_load.relift_settle_s):
         return Decision(Mode.LIFT, Trigger.CORRECTIVE, "raised grip force reached (Lift-Load)")
@@ -134,8 +128,7 @@ def avoid_on_hit(hit: bool, config: GraspControllerConfig) -> Decision | None:
 
 def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
                        config: GraspControllerConfig) -> Decision | None:
-    """In Hold: Avoid on the memorized hit event from hit_armed_s [s] in Hold on, else
-    None."""
+    """In Hold: Avoid on the memorized hit event from hit_armed_s [s] in Hold on, else None."""
     if (config.avoid.enabled and hit_event
             and time_in_hold_s >= config.memorized_corrective.hit_armed_s):
         return Decision(Mode.AVOID, Trigger.CORRECTIVE_EVENT, "memorized hit event in Hold")
@@ -144,8 +137,7 @@ def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
 
 def hit_baseline_history(history: tuple, sa_n, baseline_s: float,
                          period_s: float) -> tuple:
-    """`history` of (left, right) SA [N] with sa_n appended, kept to baseline_s [s]: its
-    first entry is a memorized hit's baseline."""
+    """`history` of (left, right) SA [N] plus sa_n, kept to baseline_s [s]; first: the baseline."""
     keep = max(1, round(baseline_s / period_s)) + 1
     return (history + (tuple(float(x) for x in sa_n[:2]),))[-keep:]
 
@@ -157,10 +149,9 @@ def pad_accelerations_in_world(pad_acceleration: np.ndarray) -> np.ndarray:
 
 
 def avoid_direction(delta_sa, acceleration_sum_W, sa_asymmetry_n: float) -> np.ndarray:
-    """Unit world direction away from a hit: along the stroke toward the pad whose SA
-    gained more (delta_sa, (left, right) [N]) when the gains differ by more than
-    sa_asymmetry_n; else the horizontal part of acceleration_sum_W (the pads' common
-    motion); else straight up."""
+    """Unit world direction away from a hit: along the stroke toward the pad whose SA gained more
+    (delta_sa, (left, right) [N]) when the gains differ by more than sa_asymmetry_n; else the
+    horizontal part of acceleration_sum_W (the pads' common motion); else straight up."""
     difference = float(delta_sa[0] - delta_sa[1])
     if abs(difference) > sa_asymmetry_n:
         return np.array([0.0, math.copysign(1.0, difference), 0.0])
@@ -180,9 +171,8 @@ class AvoidMove:
 
 def avoid_move(p_WG, sa_gain_sum_n, acceleration_sum_W,
                config: GraspControllerConfig) -> AvoidMove:
-    """The Avoid move from p_WG [m, world]: avoid.distance_m along avoid_direction of the
-    mean SA gain (sa_gain_sum_n [N] and acceleration_sum_W [m/s^2], summed over the
-    sensing ticks)."""
+    """The Avoid move from p_WG [m, world]: avoid.distance_m along avoid_direction of the mean SA
+    gain (sa_gain_sum_n [N] and acceleration_sum_W [m/s^2], summed over the sensing ticks)."""
     ticks = max(1, round(config.avoid.sense_s / config.update_period_s))
     delta_sa = np.asarray(sa_gain_sum_n) / ticks
     direction = avoid_direction(delta_sa, acceleration_sum_W, config.avoid.sa_asymmetry_n)

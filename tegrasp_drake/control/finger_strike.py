@@ -1,8 +1,7 @@
-"""The taxel_aware finger-strike sense as pure functions: a finger's front striking the
-object in the approach, which the taxels barely see, read from the arm's joint torques
-mapped onto the grasp frame G, and the shift after it (docs/controller.md, "Finger
-strike"). Wrenches are [Mx, My, Mz, Fx, Fy, Fz] [N m, N] on the arm at G, in world W
-(approach +x, stroke y, left finger on +y)."""
+"""The taxel_aware finger-strike sense as pure functions: a finger's front striking the object in
+the approach, which the taxels barely see, read from the arm's joint torques mapped onto the grasp
+frame G, and the shift after it (docs/controller.md, "Finger strike"). Wrenches are [Mx, My, Mz,
+Fx, Fy, Fz] [N m, N] on the arm at G, in world W (approach +x, stroke y, left finger on +y)."""
 
 import numpy as np
 
@@ -11,8 +10,7 @@ FINGERS = ("left", "right")
 
 def grasp_wrench_from_torques(J_WG: np.ndarray, torques_nm) -> np.ndarray:
     """The wrench on the arm at G [N m, N; W] that joint torques `torques_nm` [N m] hold
-    statically: w = -J_WG^-T tau (J_WG: G's 6 x 6 spatial velocity Jacobian; least squares
-    near a singularity)."""
+    statically: w = -J_WG^-T tau (least squares near a singularity)."""
     solution, *_ = np.linalg.lstsq(np.asarray(J_WG, dtype=float).T,
                                    -np.asarray(torques_nm, dtype=float), rcond=None)
     return solution
@@ -31,9 +29,8 @@ def side_moment_nm(wrench, baseline) -> float:
 
 
 def struck_finger(moment_sum_nm: float, contact: tuple, config) -> str | None:
-    """Which finger struck: the one pad touching (the taxels see it directly), else the
-    sign of side_moment_nm summed over the strike's ticks, when at least min_moment_nm in
-    size; None when neither tells. config: FingerStrikeConfig."""
+    """Which finger struck: the one pad touching, else the sign of side_moment_nm summed over
+    the strike, when at least min_moment_nm; None when neither tells."""
     if contact[0] != contact[1]:
         return FINGERS[0] if contact[0] else FINGERS[1]
     if abs(moment_sum_nm) < config.min_moment_nm:

@@ -66,8 +66,7 @@ class Stage(enum.StrEnum):
 
 @dataclasses.dataclass(frozen=True)
 class Decision:
-    """The next mode, its trigger and reason; a rule's decision also carries its action
-    (rule_actions.py) and the rule's name as its reason code."""
+    """The next mode, its trigger and reason; a rule's also carries its action and name (`code`)."""
     mode: Mode
     trigger: Trigger
     reason: str
@@ -114,4 +113,5 @@ class Transition:
                           trigger=Trigger(entry["trigger"]), reason=entry["reason"], **optional)
 
 
-_OPTIONAL_FIELDS = ("scores", "offset_m", "approach_offset_m", "grip_force_n", "direction", "delta_sa_n")
+_OPTIONAL_FIELDS = ("scores", "offset_m", "approach_offset_m", "grip_force_n", "direction",
+                    "delta_sa_n")

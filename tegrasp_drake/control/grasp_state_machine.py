@@ -1,10 +1,8 @@
 """GraspStateMachine: the tactile-event grasping algorithm (Sec. II-B, III-C, Fig. 6b) as a
-Drake LeafSystem. Each tick it summarises its inputs into an Observation, asks its rule
-table (control/rule_engine.py) for the next mode, and carries out the mode's motion:
-minimum-jerk translations of the grasp frame G (world frame, stroke along y) and 2F-85
-requests. Reach moves to grasp height and closes; Re-Reach opens and shifts; Load squeezes;
-Lift rises; Avoid moves off a hit; Place descends; Unload opens and retracts; Failed keeps
-the last gripper request. All memory is one abstract state (MachineState)."""
+Drake LeafSystem. Each tick it summarises its inputs into an Observation, asks its rule table
+(rule_engine.py) for the next mode, and carries out the mode's motion: minimum-jerk moves of
+the grasp frame G (world frame, stroke along y) and 2F-85 requests. All memory is one
+abstract state (MachineState)."""
 
 import dataclasses
 
@@ -142,8 +140,7 @@ class GraspStateMachine(LeafSystem):
         return self.state(context).timeline
 
     def timeline(self, context) -> list[dict]:
-        """The transitions so far in their JSON form (Transition.as_dict): dicts with t,
-        from, to, trigger, reason, scores."""
+        """The transitions so far in their JSON form (Transition.as_dict)."""
         return [transition.as_dict() for transition in self.transitions(context)]
 
     def _calc_pose(self, context, output):
@@ -183,8 +180,7 @@ class GraspStateMachine(LeafSystem):
         return t - s.gripper_request_time >= GRIPPER_STATUS_LAG_S
 
     def _advance_stage(self, s: MachineState, t: float, context) -> MachineState:
-        """Steps within a mode: close after the reach, shift after opening, retract after
-        releasing."""
+        """Steps within a mode: close after reaching, shift after opening, retract after release."""
         p = self._plan
         if s.mode == Mode.REACH and s.stage == Stage.MOVING and s.segment.done(t):
             return dataclasses.replace(
@@ -306,8 +302,7 @@ class GraspStateMachine(LeafSystem):
                              dataclasses.replace(s, sa_before=sa_before, timers=timers))
 
     def _approach_wrench(self, s: MachineState, context):
-        """The wrench on G [N m, N] while the approach moves, for the finger-strike sense;
-        None otherwise or without the grasp_wrench input."""
+        """The wrench on G [N m, N] during the approach's move (finger strike), else None."""
         approaching = s.mode == Mode.REACH and s.stage == Stage.MOVING
         return (self._grasp_wrench.Eval(context)
                 if approaching and self._grasp_wrench.HasValue(context) else None)

@@ -14,8 +14,7 @@ from tegrasp_drake.control.taxel_aware.estimator import ContactMemory
 @dataclasses.dataclass(frozen=True)
 class ModeTimers:
     """What a mode measures while it lasts, fresh at each transition (times [s], -1: not
-    running); sa_history: Hold's SA for a memorized hit's baseline; the sums: Avoid's
-    sensing of the hit's direction."""
+    running); sa_history: Hold's SA for a memorized hit; the sums: Avoid's sensing."""
     closing_since: float = -1.0
     one_sided_since: float = -1.0
     slip_since: float = -1.0

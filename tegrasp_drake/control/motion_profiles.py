@@ -25,8 +25,7 @@ def interpolate_pose(X_start: RigidTransform, X_end: RigidTransform, s: float) -
 
 @dataclasses.dataclass(frozen=True)
 class MotionSegment:
-    """A straight move of the grasp frame origin from p_start to p_end [m, world] over
-    [t_start, t_start + duration] [s] with a minimum-jerk profile."""
+    """A minimum-jerk straight move of G's origin from p_start to p_end [m, world]; times [s]."""
     t_start: float
     duration: float
     p_start: tuple

@@ -1,11 +1,7 @@
-"""The RA and SA thresholds raised to the channels' noise, so that they follow the
-electronics: each threshold in force is max(number, sigmas x sigma), where sigma is the
-channel's noise at rest in closed form from the electronics and the sigmas are chosen so
-that noise alone crosses it in at most FALSE_ALARM_PER_TRIAL of trials (union bound over
-the trial's samples, both pads): 5.51 for a raw RA magnitude, 2.34 for the slip band's RMS
-over 10 samples (chi-square), and the exact distribution of the clipped taxel readings for
-the SA thresholds. The reasoning and the values at the defaults: docs/model.md, "Thresholds
-in noise sigmas" and "SA thresholds against the taxels' noise"."""
+"""The RA and SA thresholds raised to the channels' noise: each threshold in force is max(number,
+sigmas x sigma), sigma the channel's noise at rest in closed form, the sigmas chosen so that noise
+alone crosses it in at most FALSE_ALARM_PER_TRIAL of trials. Reasoning and values: docs/model.md,
+"Thresholds in noise sigmas" and "SA thresholds against the taxels' noise"."""
 
 import dataclasses
 
@@ -86,9 +82,9 @@ def _sa_changes(config, floors: SaNoiseFloors) -> dict:
 
 def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: float,
                              tactile=None, sa_rate_hz: float | None = None):
-    """A copy of `config` with its RA thresholds raised to max(number, sigmas x sigma) for RA
-    noise ra_noise_std_mps2 [m/s^2 rms] at ra_rate_hz [Hz], and, given the taxels'
-    `tactile` config and config.sa_noise_floor, its SA thresholds to sa_noise_floors."""
+    """A copy of `config` with its RA thresholds raised for RA noise ra_noise_std_mps2
+    [m/s^2 rms] at ra_rate_hz [Hz], and, given the taxels' `tactile` config and
+    config.sa_noise_floor, its SA thresholds to sa_noise_floors."""
     avoid, lift_load = config.avoid, config.lift_load
     band = slip_band_noise_std(ra_noise_std_mps2, lift_load.slip_band_hz, ra_rate_hz)
     changes = {

@@ -56,8 +56,7 @@ def re_reach_allowed(situation, limit: int | None = None) -> bool:
 
 
 def re_reach_or_fail(situation, shift, reason: str, *, limit: int | None = None) -> Decision:
-    """ReReach by `shift` for `reason`, or Failed when Re-Reach is off or `limit` (default:
-    the table's) are made."""
+    """ReReach by `shift`, or Failed when Re-Reach is off or `limit` Re-Reaches are made."""
     limit = re_reach_limit(situation, limit)
     re_reaches = situation.counters.re_reaches
     if not situation.config.re_reach.enabled:

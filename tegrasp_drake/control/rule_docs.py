@@ -26,8 +26,7 @@ def registered_tables() -> dict[str, RuleTable]:
 
 
 def _rows(table: RuleTable, added_only: bool) -> list[tuple[str, object]]:
-    """(mode label, rule) in the order the docs list them: the rules of every mode first,
-    then each mode's by priority (a rule of two modes under both)."""
+    """(mode label, rule) in the docs' order: all modes' rules first, then by mode and priority."""
     def shown(rule) -> bool:
         return not added_only or table.origin(rule.name) == table.name
     rows = [("any", rule) for rule in sorted(table.all_rules(), key=lambda r: r.priority)

@@ -1,9 +1,7 @@
-"""The grasp state machine's rule engine, pure and Drake-free: a Rule applies in some modes,
-has a priority, a condition and an action; a Guard holds named rules back; a ReReachMove
-says how the table's Re-Reaches move. Other tables extend the paper's
-(transition_logic.PAPER_TABLE) with RuleTable.extended. Each tick, of the mode's rules,
-lowest priority first, the first that holds and is not held back decides; its Decision
-carries the rule's name (Decision.code)."""
+"""The grasp state machine's rule engine, pure and Drake-free: Rules (modes, priority,
+condition, action), Guards that hold named rules back, and RuleTables that extend another.
+Each tick, of the mode's rules, lowest priority first, the first that holds and is not held
+back decides; its Decision carries the rule's name."""
 
 import dataclasses
 from collections.abc import Callable
@@ -18,8 +16,7 @@ LIVE_MODES = tuple(mode for mode in Mode if mode not in TERMINAL_MODES)
 @dataclasses.dataclass(frozen=True)
 class ReReachMove:
     """How a table's Re-Reaches move: limit(situation), the most Re-Reaches; shift(situation),
-    a contact_geometry.Shift [m, world] or None for the paper's shift along the stroke; the
-    labels say both in words for the docs."""
+    a Shift [m, world] or None for the paper's; the labels word both for the docs."""
     shift_label: str
     limit_label: str
     limit: Callable[["Situation"], int]
@@ -57,9 +54,8 @@ class Situation:
 @dataclasses.dataclass(frozen=True)
 class Rule:
     """One row: in `modes` (None: every live mode), when condition(situation) holds and no
-    guard holds it back, action(situation) is the Decision; lower `priority` first, unique
-    per mode. `when` and `then` word it for the docs ({re_reach}, {re_reach_shift} name the
-    table's Re-Reach move)."""
+    guard holds it back, action(situation) is the Decision; lower `priority` first, unique per
+    mode. `when` and `then` word it for the docs."""
     name: str
     modes: tuple[Mode, ...] | None
     priority: int
@@ -74,8 +70,7 @@ class Rule:
 
 @dataclasses.dataclass(frozen=True)
 class Guard:
-    """While condition(situation) holds, the rules named in `holds_back` do not fire (the
-    rules after them are asked). `when` says the condition in words for the docs."""
+    """While condition(situation) holds, the rules in `holds_back` do not fire; `when` words it."""
     name: str
     holds_back: tuple[str, ...]
     condition: Callable[[Situation], bool]
@@ -84,9 +79,9 @@ class Guard:
 
 @dataclasses.dataclass(frozen=True)
 class RuleTable:
-    """A controller's rules: its own `rules` and `guards` added to those of `base` (None:
-    none), and how its Re-Reaches move. ValueError on two rules of one name, two rules of
-    one mode with one priority, or a guard of a rule the table lacks."""
+    """A controller's rules and guards added to those of `base` (None: none), and how its
+    Re-Reaches move. ValueError on a repeated rule name, two rules of one mode with one
+    priority, or a guard of a rule the table lacks."""
     name: str
     rules: tuple[Rule, ...]
     re_reach_move: ReReachMove
@@ -163,8 +158,7 @@ class RuleTable:
 
     def next_mode(self, mode: Mode, obs, counters, config, *, event_trigger: Trigger,
                   hold_s: float) -> Decision | None:
-        """The transition out of `mode` this tick (the first matching rule's decision, its
-        name as the code), or None to stay."""
+        """The first matching rule's decision out of `mode` this tick, or None to stay."""
         if mode in TERMINAL_MODES:
             return None
         situation = Situation(mode=mode, obs=obs, counters=counters, config=config,

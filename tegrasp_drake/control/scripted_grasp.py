@@ -65,8 +65,7 @@ class ScriptSegment:
 
 @functools.lru_cache(maxsize=256)
 def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple:
-    """The (rPR, rSP, rFR) bytes for a target opening, speed and force (cached: asked each
-    tick)."""
+    """The (rPR, rSP, rFR) bytes for a target opening, speed and force (cached: asked per tick)."""
     return (float(ru.position_byte_from_opening(opening_m)),
             float(ru.speed_byte_from_speed(speed_mps)),
             float(ru.force_byte_from_force(force_n)))
@@ -75,8 +74,7 @@ def gripper_command(opening_m: float, speed_mps: float, force_n: float) -> tuple
 def grasp_frame_xy(expected_object_xy, object_width: float, gripper_model: str
                    ) -> tuple[float, float]:
     """Where the grasp frame goes [m, world (x, y)] so that the pads' centres close on the
-    object's centre line: short of it by the pads' offset at the object's width (the
-    linkage's pads travel along +x as they close)."""
+    object's centre line (the linkage's pads travel along +x as they close)."""
     x0, y0 = expected_object_xy
     offset = gripper_hand(gripper_model).pad_center_offset(object_width)
     return x0 - offset, y0

@@ -44,9 +44,8 @@ def pad_contact(taxels, contact_n: float) -> PadContact:
 
 
 def contact_line_tilt_deg(taxels, contact_n: float) -> float | None:
-    """The angle [deg] of the contact line from the pad's x axis: the weighted least-squares
-    slope of each column's row centroid y against column x (an upright cylinder: 0);
-    positive toward the fingertip at +x; None with fewer than two columns in contact."""
+    """The angle [deg] of the contact line from the pad's x axis (least-squares slope of each
+    column's row centroid; positive toward the fingertip); None with under two columns."""
     forces = _pad_forces(taxels, contact_n).reshape(ROWS, COLUMNS)
     column_force = forces.sum(axis=0)
     columns = np.flatnonzero(column_force > 0.0)
@@ -66,9 +65,8 @@ def contact_line_tilt_deg(taxels, contact_n: float) -> float | None:
 @dataclasses.dataclass(frozen=True)
 class GraspContact:
     """Both pads' contact: approach_offset_m, the force-weighted y centroid from the pads'
-    centres [m, world +x]; tilt_deg, the larger-magnitude pad tilt (None: no line);
-    height_mismatch_m, left minus right x centroid [m] when both touch (an object tilted
-    in the stroke plane presses one pad high, the other low)."""
+    centres [m, world +x]; tilt_deg, the larger pad tilt (None: no line); height_mismatch_m,
+    left minus right x centroid [m] when both touch (an object tilted in the stroke plane)."""
     left: PadContact
     right: PadContact
     approach_offset_m: float

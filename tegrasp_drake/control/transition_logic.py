@@ -1,8 +1,6 @@
 """The paper's grasp state machine (Sec. II-B, III-C, Fig. 6b) as a rule table: the tick's
-Observation and PAPER_TABLE, the rules (rule_engine.py) that decide the next mode from it;
-other controllers' tables extend it. Event transitions on memorized or heuristic events,
-timed ones on the clock or a motion's end, the corrective actions (corrective_actions.py),
-and Failed on a fault, a lost object or corrections used up. `python -m
+Observation and PAPER_TABLE, which other controllers' tables extend. Event transitions,
+timed ones, the corrective actions (corrective_actions.py) and Failed. `python -m
 tegrasp_drake.control.rule_docs` prints the table."""
 
 import dataclasses

@@ -1,8 +1,7 @@
-"""The controller's clock as its arm commands carry it (each lcmt_jaco_command's `utime` is
-Context time): a time base for a replaying emulator (MyRioEmulator's `trial_clock`), so
-the replay stays in step with a controller that runs slower than real time. The trial
-starts with the first command; its time is the newest command's since the first,
-extrapolated at the controller's recent rate for at most one command period.
+"""The controller's clock as its arm commands carry it (each command's `utime` is Context
+time), to pace a replaying emulator (MyRioEmulator's `trial_clock`) with a controller slower
+than real time: the newest command's time since the first, extrapolated at the recent rate
+for at most one command period.
 """
 
 import threading
@@ -55,8 +54,7 @@ class ControllerClock:
 
 
 def command_boundary(device: str = "myrio") -> MessageBoundary:
-    """The boundary a clock's commands cross (check_jaco_command); the clock ignores a rejected
-    one."""
+    """The boundary a clock's commands cross (check_jaco_command); rejected ones are ignored."""
     return MessageBoundary(f"{device}: {JACO_COMMAND_CHANNEL}", check_jaco_command)
 
 

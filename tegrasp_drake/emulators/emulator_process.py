@@ -98,10 +98,9 @@ class EmulatorProcess:
 
 
 class EmulatedDevices:
-    """The three devices, each in its own process (jaco, robotiq, myrio with `--sync myrio_sync
-    --follow-gripper`, all on `lcm_url`); `config` points a hardware station at them. Use as a
-    context manager. `scheduling` defaults to "fifo": real devices have processors of their
-    own, so on a busy host what is delayed should be the controller under test.
+    """The three devices, each in its own process on `lcm_url`; `config` points a hardware
+    station at them. A context manager. `scheduling` defaults to "fifo": real devices have
+    processors of their own, so on a busy host the controller under test should be delayed.
     """
 
     def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),

@@ -1,10 +1,7 @@
 """The emulated 2F-85's go-to request gPR [byte], shared with the emulated myRIO, whose
 replay holds at each recorded grip or release until the gripper is commanded likewise.
-
-In one process (`tegrasp emulate all`) the myRIO reads gPR from the gripper model; across
-processes the Robotiq emulator publishes its command and status on GRIPPER_STATE_CHANNEL
-(lcmt_tegrasp_gripper, times from its time.monotonic()) and the myRIO follows the latest,
-so a lost message only delays it by a period.
+In one process the myRIO reads gPR from the gripper model; across processes it follows the
+latest message on GRIPPER_STATE_CHANNEL, so a lost message only delays it by a period.
 """
 
 import threading

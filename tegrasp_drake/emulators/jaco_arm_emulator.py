@@ -1,11 +1,8 @@
-"""An emulated JACO2 on LCM: a Drake simulation of the arm answering the Kinova driver's
-messages, as Drake's hardware_sim does (KINOVA_JACO_COMMAND -> joint velocity servos,
-plant state -> KINOVA_JACO_STATUS at 100 Hz).
-
-As the real arm in joint-velocity mode, it executes only the commanded velocities: each
-joint is a servo tau = kd (v_cmd - v) within its effort limit (the plant's implicit PD,
-kp = 0), and it stops when commands stop for `command_timeout`. The gripper is one rigid
-body on the flange, gravity is off (the firmware compensates it). `tegrasp emulate jaco`.
+"""An emulated JACO2 on LCM (`tegrasp emulate jaco`), as Drake's hardware_sim does:
+KINOVA_JACO_COMMAND -> joint velocity servos, plant state -> KINOVA_JACO_STATUS at 100 Hz.
+Like the real arm in joint-velocity mode it executes only the commanded velocities (servo
+tau = kd (v_cmd - v), the plant's implicit PD with kp = 0) and stops when commands stop.
+The gripper is one rigid body on the flange; gravity is off (the firmware compensates it).
 """
 
 import numpy as np
@@ -35,9 +32,8 @@ GRIPPER_COM_Z = 0.06      # [m] from the flange along its z
 def MakeJacoArmEmulator(*, lcm, initial_positions, damping_gain: float = SERVO_DAMPING_GAIN,
                         command_timeout: float = 0.05,
                         command_boundary: MessageBoundary | None = None):
-    """The emulator Diagram on `lcm` (a DrakeLcm its LcmInterfaceSystem pumps), starting at
-    `initial_positions` [rad]; commands cross `command_boundary` (check_jaco_command). Output
-    ports, for tests: position_measured, velocity_measured (6 each) [rad, rad/s]."""
+    """The emulator Diagram on `lcm`, starting at `initial_positions` [rad]; commands cross
+    `command_boundary`. Outputs for tests: position_measured, velocity_measured [rad, rad/s]."""
     builder = DiagramBuilder()
     builder.AddNamedSystem("lcm", LcmInterfaceSystem(lcm))
     plant, _ = AddMultibodyPlant(MultibodyPlantConfig(

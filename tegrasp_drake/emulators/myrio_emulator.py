@@ -1,14 +1,11 @@
 """An emulated myRIO streaming tactile frames on a pseudo-terminal, at the real rate.
 
-It replays a TactileRecording (a trial's raw pad signals): frame k carries the film's
-acceleration at its time (sample-and-hold, `piezo_axis` or the norm, through the inverse
-calibration) and, when a finger's AD7147 completes a sequence, its 12 counts. A quiet
-`lead_in` lets the receiver zero. Frames go out on the stream's own clock or, given a
-`trial_clock` (e.g. a ControllerClock), once that clock reaches them. Given a
-`gripper_request`, the replay holds at each recorded grip or release until the emulated
-gripper has been commanded the same way (docs/hardware.md, "The commands"). Injected faults
-(flipped bit, dropped byte, truncation) are drawn per frame from a seeded generator; a full
-pty buffer drops frames (counted) and never blocks. `sent()` lists what was written.
+It replays a TactileRecording: frame k carries the film's acceleration at its time (through
+the inverse calibration) and, when a finger's AD7147 completes a sequence, its 12 counts.
+Frames follow the stream's own clock or a given `trial_clock`; with a `gripper_request` the
+replay holds at each recorded grip or release until the emulated gripper is commanded alike
+(docs/hardware.md, "The commands"). Faults are drawn per frame from a seeded generator; a
+full pty buffer drops frames (counted) and never blocks.
 """
 
 import collections
@@ -37,8 +34,7 @@ MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 
 @dataclasses.dataclass
 class TactileRecording:
     """The raw pad signals of a recorded trial: times [s] ascending; forces (n, 12) [N];
-    accelerations (m,) or (m, 3) [m/s^2]; optionally the recorded gripper's position requests
-    (k,) [rPR byte] at their times (k,) [s].
+    accelerations (m,) or (m, 3) [m/s^2]; optionally the gripper's rPR requests at their times.
     """
     force_times: np.ndarray
     left_forces: np.ndarray
@@ -62,10 +58,8 @@ class TactileRecordingError(ValueError):
 
 
 def load_tactile_recording(path) -> TactileRecording:
-    """The pad signals of a TrialLog .npz (t_sa, taxels, t_ra, pad_acceleration; left then
-    right) and the gripper's position requests (t_slow, gripper_command's rPR) when present. A
-    whole trial log is read by load_trial_log; a bare recording (save_tactile_recording) meets
-    the same rules for its arrays."""
+    """The pad signals of a TrialLog .npz (left then right) and the gripper's position
+    requests when present; a bare recording (save_tactile_recording) is checked alike."""
     wanted = ("t_sa", "taxels", "t_ra", "pad_acceleration")
     try:
         arrays = checked_npz_arrays(path, wanted, optional=(
@@ -109,8 +103,7 @@ def _gripper_requests(path, arrays) -> tuple:
 
 
 def save_tactile_recording(path, recording: TactileRecording):
-    """Writes the arrays `load_tactile_recording` reads; a one-axis (m,) acceleration is
-    stored as x, with y and z zero. Returns `path`."""
+    """Writes what `load_tactile_recording` reads (a one-axis acceleration as x); returns `path`."""
     def three_axes(acceleration):
         acceleration = np.asarray(acceleration, dtype=float)
         if acceleration.ndim == 2:
@@ -172,8 +165,7 @@ def gripper_command_changes(times, requests) -> list[GripperCommandChange]:
 
 
 def gripper_followed(change: GripperCommandChange, request: int | None) -> bool:
-    """Whether the emulated gripper's request [byte] (None: unknown yet) is nearer the change's
-    new request than its old one."""
+    """Whether the gripper's request [byte] is nearer the new request than the old."""
     return request is not None and abs(request - change.after) < abs(request - change.before)
 
 

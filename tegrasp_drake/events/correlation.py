@@ -1,12 +1,8 @@
-"""Eq. 3 of the paper: the maximum over lags of the normalised cross-correlation,
-
-    R_XY,normalized(n) = R_XY(n) / sqrt(R_XX(0) R_YY(0)),   R_XY(n) = sum_k x[k+n] y[k],
-
-over n = -(N-1)..N-1, no mean removed (as the paper); an all-zero window scores 0. A
-channel's score counts only when its live window's contrast (max - min) / max|x| reaches
-`min_contrast`, unless its template is flat too; opt-in `flat_needs_flat` makes a flat
-template score only a flat window (docs/controller.md, "The contrast gate"). The reference
-here uses numpy.correlate; streaming_correlation.py the loop's update; both `channel_score`.
+"""Eq. 3 of the paper: the maximum over lags n = -(N-1)..N-1 of the normalised
+cross-correlation R_XY(n) / sqrt(R_XX(0) R_YY(0)), R_XY(n) = sum_k x[k+n] y[k], no mean
+removed (as the paper); an all-zero window scores 0. A channel scores only when its window's
+contrast reaches `min_contrast` (docs/controller.md, "The contrast gate"). The reference
+here uses numpy.correlate; streaming_correlation.py the loop's update.
 """
 
 import math
@@ -38,11 +34,9 @@ def template_is_flat(templates: np.ndarray, min_contrast: float) -> np.ndarray:
 def channel_score(peak_correlation: float, live_energy: float, template_norm: float,
                   live_high: float, live_low: float, template_flat: bool,
                   min_contrast: float, flat_needs_flat: bool = False) -> float:
-    """A channel's gated score from its window statistics.
-
-    peak_correlation: max over lags of R_XY(n); live_energy: R_XX(0);
-    template_norm: sqrt(R_YY(0)); live_high, live_low: the live window's extremes;
-    flat_needs_flat: a flat template needs a flat live window (module doc).
+    """A channel's gated score from its window statistics: peak_correlation (max over lags
+    of R_XY), live_energy R_XX(0), template_norm sqrt(R_YY(0)), the live window's extremes;
+    flat_needs_flat: a flat template scores only a flat window.
     """
     denominator = math.sqrt(live_energy) * template_norm
     if not denominator > 0.0:
@@ -56,9 +50,7 @@ def channel_score(peak_correlation: float, live_energy: float, template_norm: fl
 
 
 def max_normalized_xcorr_reference(live: np.ndarray, template: np.ndarray) -> float:
-    """Maximum over all lags of Eq. 3 for two 1-D windows; 0.0 if either is all zero.
-
-    The ungated score, straight from the definition.
+    """Ungated Eq. 3 of two 1-D windows, from the definition; 0.0 if either is all zero.
     """
     live = np.asarray(live, dtype=float)
     template = np.asarray(template, dtype=float)
@@ -70,11 +62,8 @@ def max_normalized_xcorr_reference(live: np.ndarray, template: np.ndarray) -> fl
 
 def event_scores_reference(live, templates, min_contrast: float,
                            flat_needs_flat: bool = False) -> np.ndarray:
-    """Gated Eq. 3 scores of live windows against templates, channel by channel.
-
-    live, templates: sequences of 1-D windows, one per channel (SA and RA windows may differ
-    in length; a channel's live window and its template share a sample rate). Returns one
-    score per channel, in [-1, 1]; all-zero or flat live windows give 0 (module doc).
+    """Gated Eq. 3 scores, one per channel in [-1, 1], of live windows against templates
+    (sequences of 1-D windows; a channel's pair shares a sample rate).
     """
     live = [np.asarray(x, dtype=float) for x in live]
     templates = [np.asarray(y, dtype=float) for y in templates]

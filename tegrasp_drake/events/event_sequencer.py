@@ -1,8 +1,5 @@
-"""EventSequencer: expects memorized events one after another, in grasp order.
-
-The smallest state machine over the EventMatcher: it expects each event of its sequence in
-turn (one armed from a time on, as the grasp expects Place-Unload only in Place), moving on
-at each match and noting its time. Offline replays (`replay.py`, `tegrasp replay LOG`) use it.
+"""EventSequencer: expects memorized events one after another, in grasp order (one armed
+from a time on, as Place-Unload only in Place), for offline replays (replay.py).
 """
 
 import math
@@ -22,11 +19,9 @@ def next_sequence_step(step: int, matched: bool, n_events: int) -> int:
 
 
 class EventSequencer(LeafSystem):
-    """Expects `event_indices` in turn; advances on each match and records when.
-
-    A periodic update every `period_s` reads `match` and advances, so a match becomes a fire
-    time one period later; outputs depend only on the state, so matcher -> sequencer ->
-    matcher is no algebraic loop. State: [step (events fired), fire time per event].
+    """Expects `event_indices` in turn; advances on each match and records when. A periodic
+    update every `period_s` reads `match`, so a fire time comes one period after its match, and
+    the outputs depend only on the state (no algebraic loop with the matcher).
 
     .. pydrake_system::
 

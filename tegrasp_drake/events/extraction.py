@@ -1,10 +1,8 @@
-"""Cut memorized events out of a recorded ideal grasp (Sec. III-A of the paper).
-
-Around each transition's physical event (transitions.py) a `window_s` window of every
-channel is cut, starting `pre_transition_s` before the event, and divided by its maximum.
-An RA window whose peak does not rise above the recording's own noise floor (m + k s of its
-quiet approach, ra_noise_floor.py) is stored as ones: a quiet template, flat, "expects no
-change" (beyond the paper; docs/controller.md, "The paper's state machine").
+"""Cut memorized events out of a recorded ideal grasp (Sec. III-A of the paper): a
+`window_s` window of every channel from `pre_transition_s` before each transition's physical
+event, divided by its maximum. An RA window whose peak stays below the recording's noise
+floor (ra_noise_floor.py) is stored as ones, a quiet template (beyond the paper;
+docs/controller.md, "The paper's state machine").
 """
 
 import dataclasses
@@ -74,12 +72,9 @@ def extract_memorized_events(
         package_versions: Mapping[str, str] | None = None,
         object_description: Mapping | None = None,
         ra_floor: Sequence[float] | None = None) -> dict[str, MemorizedEvent]:
-    """One max-normalised MemorizedEvent per transition of `trial`, in grasp order.
-
-    sa_rate_hz, ra_rate_hz: the memorized (= live) rates [Hz]; object_description: the object
-    grasped (rig/objects.object_description); ra_floor: [left, right] the recording's RA noise
-    floor [m/s^2] (`recording_ra_floor`) or None. Raises ValueError for an unknown transition,
-    a window outside the log, or a channel zero throughout its window.
+    """One max-normalised MemorizedEvent per transition of `trial`, in grasp order, at the
+    memorized (= live) rates [Hz]; ra_floor: the recording's RA noise floor [m/s^2] or None.
+    ValueError for an unknown transition, a window outside the log, or an all-zero channel.
     """
     versions = current_package_versions() if package_versions is None else package_versions
     events = {}

@@ -24,12 +24,9 @@ _NORMALIZATION_TOLERANCE = 1e-9
 @public_dataclass
 @dataclasses.dataclass(frozen=True, eq=False)
 class MemorizedEvent:
-    """The four channels of one object's tactile event around one grasp transition.
-
-    sa: (2, window_s * sa_rate_hz) SA windows [left, right], each divided by its max |value|.
-    ra: (2, window_s * ra_rate_hz) RA windows [left, right], likewise.
-    The window starts `pre_transition_s` [s] before the transition's physical event, which
-    happened at `transition_time_s` [s] in the source trial.
+    """The four channels of one object's tactile event around one grasp transition: sa, ra
+    (2, window_s * rate) windows [left, right], each divided by its max |value|, starting
+    `pre_transition_s` [s] before the physical event (at `transition_time_s` [s] in its trial).
     """
     object_name: str
     transition: str

@@ -1,14 +1,10 @@
 """Why a memorized event did not come in time: a logged wait replayed through Eq. 3.
 
-A wait is the time the state machine spent in a mode expecting its memorized event until it
-gave up (the transition whose reason is the event's timeout, control/transition_logic.py);
+A wait is the time a mode spent expecting its event until the event's timeout;
 `event_waits` finds them in a trial's transitions. `classify_missed_wait` replays the
-trial's channels with the event held expected (replay.replay_event_held, the run's matcher
-settings) and classifies the wait by its ticks' scores: a weak dynamic stimulus (both SA
-passed at some tick, an RA channel did not: the paper's Sec. V "very weak dynamic
-stimuli"), SA did not match, or matched in replay (the replay disagrees with the run). With
-it go the best scores and the RA peaks against the channel's noise on the stream's first
-quiet_s (docs/sweeps.md, "A sweep": the missed-events report).
+channels with the event held expected (the run's matcher settings) and names the cause: a
+weak dynamic stimulus (SA passed, an RA channel did not: the paper's Sec. V), SA did not
+match, or matched in replay. Definitions: docs/sweeps.md, "A sweep".
 """
 
 import dataclasses
@@ -33,8 +29,7 @@ _WAITING_MODE = {transition_states(name)[0]: name for name in REQUIRED_TRANSITIO
 
 @dataclasses.dataclass(frozen=True)
 class EventWait:
-    """The machine expected `transition`'s event from start_s to end_s [s] (trial clock)
-    and gave up at end_s for `reason`."""
+    """The machine expected `transition`'s event from start_s [s], gave up at end_s for `reason`."""
     transition: str
     start_s: float
     end_s: float
@@ -42,15 +37,13 @@ class EventWait:
 
 
 def timeout_reason_prefix(transition: str) -> str:
-    """The start of every reason the machine gives when `transition`'s event did not come
-    in time, e.g. "no Reach-Load event" (transition_logic.py)."""
+    """How the reasons start when `transition`'s event timed out ("no Reach-Load event")."""
     return "no {}-{} event".format(*transition_states(transition))
 
 
 def event_waits(transitions: Sequence[Mapping]) -> list[EventWait]:
-    """The waits of a trial's transitions (their JSON form, Transition.as_dict, in time
-    order) that ended on their event's timeout; each wait starts at the last entry into the
-    waiting mode, or at 0 for the first Reach."""
+    """The waits in a trial's transitions (JSON form, in time order) that ended on their event's
+    timeout, each from the last entry into the waiting mode (0 for the first Reach)."""
     waits, entered = [], {"Reach": 0.0}  # the machine starts in Reach at 0
     for entry in transitions:
         transition = _WAITING_MODE.get(entry["from"])
@@ -84,8 +77,7 @@ class MissedWait:
     ra_peak: np.ndarray | None = None
 
     def ra_peak_sigmas(self) -> np.ndarray | None:
-        """[left, right] (peak - noise mean) / noise std; inf for a channel without
-        noise."""
+        """[left, right] (peak - noise mean) / noise std; inf for a channel without noise."""
         return None if self.ra_peak is None else self._sigmas(self.ra_peak)
 
     def _sigmas(self, peak: np.ndarray) -> np.ndarray:
@@ -94,14 +86,12 @@ class MissedWait:
                             (peak - self.ra_noise_mean) / self.ra_noise_std, np.inf)
 
     def ra_wait_peak_sigmas(self) -> np.ndarray:
-        """[left, right] (ra_wait_peak - noise mean) / noise std; inf for a channel
-        without noise."""
+        """[left, right] (ra_wait_peak - noise mean) / noise std; inf for a noiseless channel."""
         return self._sigmas(self.ra_wait_peak)
 
     def failing_ra_within_floor(self, sigmas: float) -> bool | None:
-        """Whether an RA channel below its threshold at the best tick read no more than its
-        noise mean + `sigmas` std over the whole wait (it never read the stimulus); None
-        without a best tick."""
+        """Whether an RA channel failing at the best tick never read above its noise mean +
+        `sigmas` std over the wait; None without a best tick."""
         if self.best_ra is None:
             return None
         failing = self.best_ra <= self.thresholds[1]
@@ -115,8 +105,7 @@ def event_thresholds(config: EventMatcherConfig, transition: str) -> tuple[float
 
 
 def ra_noise(trial: TactileTrial, quiet_s: float) -> tuple[np.ndarray, np.ndarray]:
-    """[left, right] mean and standard deviation [m/s^2] of the raw RA samples of the
-    trial's first quiet_s [s]."""
+    """[left, right] mean and std [m/s^2] of the raw RA over the trial's first quiet_s [s]."""
     quiet = trial.ra[trial.t_ra < trial.t_ra[0] + quiet_s]
     if len(quiet) < 2:
         raise ValueError(f"the trial holds fewer than 2 RA samples in its first {quiet_s} s")

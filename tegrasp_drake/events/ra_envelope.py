@@ -1,10 +1,8 @@
 """The RA envelope (beyond the paper): memorized and live RA windows through the same
 first-order low-pass before Eq. 3, so that events memorized with one vibration transducer
-match on another: below both transducers' bandwidths a contact reads as a pulse of the
-filter's time constant, whatever the transducer made of it (docs/transfer.md, "A remedy:
-the RA envelope": why 2 Hz). y[k] = y[k-1] + a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s)
-(impulse-invariant 1 / (1 + s / (2 pi f_c))); a memorized window starts from its first
-sample as the steady state (event windows open on a quiet pad), the live filter from zero.
+match on another (docs/transfer.md, "A remedy: the RA envelope"). y[k] = y[k-1] +
+a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s); a memorized window starts from its first
+sample as the steady state, the live filter from zero.
 """
 
 import dataclasses
@@ -20,8 +18,7 @@ from tegrasp_drake.tactile.max_normalization import normalize_by_max
 
 
 def envelope_coefficient(cutoff_hz: float, rate_hz: float) -> float:
-    """a of y[k] = y[k-1] + a (u[k] - y[k-1]) for a first-order low-pass at cutoff_hz [Hz]
-    sampled at rate_hz [Hz]; the cutoff must lie in (0, rate_hz / 2)."""
+    """a of y[k] = y[k-1] + a (u[k] - y[k-1]) for cutoff_hz in (0, rate_hz / 2) [Hz]."""
     if not 0.0 < cutoff_hz < rate_hz / 2.0:
         raise ValueError(f"RA envelope cutoff {cutoff_hz} Hz must lie between 0 and half the "
                          f"RA rate ({rate_hz / 2.0} Hz); 0 switches the envelope off")
@@ -39,18 +36,15 @@ def ra_envelope(windows: np.ndarray, cutoff_hz: float, rate_hz: float) -> np.nda
 
 
 def enveloped_event(event: MemorizedEvent, cutoff_hz: float) -> MemorizedEvent:
-    """`event` with its RA windows low-passed at cutoff_hz [Hz] (at the event's RA rate)
-    and max-normalised again; its SA windows unchanged."""
+    """`event` with its RA windows low-passed at cutoff_hz [Hz] and max-normalised again."""
     return dataclasses.replace(event, ra=normalize_by_max(
         ra_envelope(event.ra, cutoff_hz, event.ra_rate_hz)))
 
 
 class RaEnvelope(LeafSystem):
-    """The live side of the RA envelope: the four channels with the RA ones low-passed.
-
-    Every 1 / ra_rate_hz it updates the low-pass at cutoff_hz; the output is the filter's value
-    from the previous value and the present input, so a matcher sampling at the same ticks
-    reads the envelope of the samples it would have read raw.
+    """The live side of the RA envelope: the four channels with the RA ones low-passed at
+    cutoff_hz, updated every 1 / ra_rate_hz; the output uses the present input, so a matcher on
+    the same ticks reads the envelope of the samples it would have read raw.
 
     .. pydrake_system::
 
@@ -89,8 +83,7 @@ class RaEnvelope(LeafSystem):
 
 
 def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
-    """Adds an RaEnvelope (`ra_envelope`) fed by the output port `channels`; returns its
-    output."""
+    """Adds an RaEnvelope (`ra_envelope`) fed by the output port `channels`; returns its output."""
     envelope = builder.AddNamedSystem("ra_envelope", RaEnvelope(
         cutoff_hz=cutoff_hz, ra_rate_hz=ra_rate_hz))
     builder.Connect(channels, envelope.GetInputPort("channels"))
@@ -99,8 +92,7 @@ def add_ra_envelope(builder, channels, *, cutoff_hz: float, ra_rate_hz: float):
 
 def ra_enveloped(builder, events, channels, config):
     """(events, channels) with the RA envelope at config.ra_envelope_hz [Hz] on both: the
-    events' RA windows low-passed, and `channels` (an output port) through an RaEnvelope added
-    to `builder`. config: an EventMatcherConfig."""
+    events' RA windows low-passed, `channels` through an RaEnvelope added to `builder`."""
     if channels is None:
         raise ValueError("the RA envelope needs the channels' output port to filter "
                          "(add_event_matcher(..., channels=PORT))")

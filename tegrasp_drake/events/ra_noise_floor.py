@@ -1,12 +1,7 @@
-"""The RA noise floor (beyond the paper): an RA window carries no event unless its peak rises
-above its channel's noise, measured on the live stream while the pads are untouched.
-
-During the first `quiet_s` each RA channel passes through the envelope's low-pass (from its
-first sample as the steady state); the values' mean m_w and std s_w give the floor
-m_w + k s_w (+inf before). k = Q^-1(alpha / N) (`floor_sigmas`): a union bound over a
-trial's N RA samples with a Gaussian tail; 5.39 for alpha = 1e-3, 14 s of two channels at
-1 kHz (`rule_sigmas`). Quiet templates read the same floor (extraction.py). Reasoning:
-docs/transfer.md, "The RA noise floor"; docs/controller.md, "The paper's state machine".
+"""The RA noise floor (beyond the paper): an RA window carries no event unless its peak
+rises above its channel's noise, measured while the pads are untouched. Over the first
+`quiet_s` each low-passed RA channel gives the floor m + k s (+inf before), k = Q^-1(alpha / N)
+a union bound over a trial's N RA samples. Reasoning: docs/transfer.md, "The RA noise floor".
 """
 
 import math
@@ -33,8 +28,7 @@ def floor_sigmas(false_alarm_per_trial: float, samples_per_trial: int) -> float:
 
 
 def rule_sigmas(ra_rate_hz: float) -> float:
-    """The rule's k (module docstring) at an RA rate [Hz]: FALSE_ALARM_PER_TRIAL over
-    TRIAL_HORIZON_S of both RA channels' samples; 5.39 at 1 kHz."""
+    """The rule's k at an RA rate [Hz], over TRIAL_HORIZON_S of both channels; 5.39 at 1 kHz."""
     return floor_sigmas(FALSE_ALARM_PER_TRIAL,
                         round(TRIAL_HORIZON_S * ra_rate_hz * len(RA_CHANNELS)))
 
@@ -50,11 +44,9 @@ def noise_floor(quiet: np.ndarray, *, sigmas: float, envelope_hz: float,
 
 
 class RaNoiseFloor(LeafSystem):
-    """Each RA channel's noise floor, measured on the live stream's first quiet_s [s].
-
-    Every 1 / ra_rate_hz during quiet_s it low-passes the raw RA as the envelope does and adds
-    the values to running sums (count, sum, sum of squares); the output is +inf until then, the
-    floor m_w + k s_w of those values (`noise_floor`) afterwards.
+    """Each RA channel's noise floor, measured on the live stream's first quiet_s [s]: the
+    low-passed RA's running count, sum and sum of squares; the output is +inf until then, the
+    floor (`noise_floor`) afterwards.
 
     .. pydrake_system::
 
@@ -114,9 +106,8 @@ class RaNoiseFloor(LeafSystem):
 
 
 def add_ra_noise_floor(builder, channels, config):
-    """Adds a RaNoiseFloor (`ra_noise_floor`) fed by the output port `channels` (raw RA);
-    returns its `ra_floor` output port. config: an EventMatcherConfig; with
-    ra_noise_floor_sigmas 0 the floor uses the rule's k (`rule_sigmas`)."""
+    """Adds a RaNoiseFloor fed by the output port `channels` (raw RA); returns its `ra_floor`
+    port. With ra_noise_floor_sigmas 0 the floor uses the rule's k."""
     floor = builder.AddNamedSystem("ra_noise_floor", RaNoiseFloor(
         sigmas=config.ra_noise_floor_sigmas or rule_sigmas(config.ra_rate_hz),
         quiet_s=config.ra_noise_quiet_s,

@@ -1,10 +1,7 @@
 """Replay a logged (or synthetic) trial through the tactile event systems, offline.
-
-`channels_trajectory` holds each logged value until the next (as the station holds SA at
-the SA rate, RA at 1 kHz) and feeds an EventMatcher wired as the grasp controller wires it;
-`replay_events_in_sequence` advances its expected event with an EventSequencer, as the
-state machine would, `replay_event_held` keeps one event expected throughout (where else
-would it match?). Both report the outputs at every control tick.
+`channels_trajectory` holds each logged value until the next and feeds an EventMatcher wired
+as the grasp controller wires it; `replay_events_in_sequence` advances the expected event
+as the state machine would, `replay_event_held` keeps one event expected throughout.
 """
 
 import dataclasses
@@ -45,8 +42,7 @@ def channels_trajectory(trial: TactileTrial) -> PiecewisePolynomial:
 
 def tactile_trial_from_log(log, transition_times: Mapping[str, float] | None = None
                            ) -> TactileTrial:
-    """The measured channels of a TrialLog: SA (Eq. 1, each pad's taxel sum) at the taxel
-    times, RA at the vibration times; transition_times as given (default none)."""
+    """The TrialLog's channels: SA (Eq. 1) at the taxel times, RA at the vibration times."""
     taxels = np.asarray(log.taxels)
     sa = np.column_stack([taxels[:, :TAXELS_PER_PAD].sum(axis=1),
                           taxels[:, TAXELS_PER_PAD:].sum(axis=1)])
@@ -84,8 +80,7 @@ class EventReplay:
 
 def live_matcher_config(events: Mapping[str, MemorizedEvent],
                         config: EventMatcherConfig | None = None) -> EventMatcherConfig:
-    """`config` (default thresholds if None) at the events' sample rates, which a replay of
-    the trial they came from shares."""
+    """`config` (default thresholds if None) at the events' sample rates."""
     event = next(iter(events.values()))
     return dataclasses.replace(config or EventMatcherConfig(), sa_rate_hz=event.sa_rate_hz,
                                ra_rate_hz=event.ra_rate_hz)
@@ -182,11 +177,9 @@ def replay_events_in_sequence(
         sequence: Sequence[str] = REQUIRED_TRANSITIONS, *,
         config: EventMatcherConfig | None = None, t_end: float | None = None,
         armed_from_s: Mapping[str, float] | None = None) -> EventReplay:
-    """Replays `trial`, expecting the events of `sequence` one after another.
-
-    events: one object's {transition: event}; config: the matcher's thresholds (rates set to
-    the events'); t_end: default the trial's end; armed_from_s: {transition: time [s]} before
-    which it is not looked for (default: from the start).
+    """Replays `trial`, expecting the events of `sequence` one after another. events: one
+    object's {transition: event}; config: the matcher's thresholds; armed_from_s: {transition:
+    time [s]} before which it is not looked for.
     """
     return _replay(trial, events, sequence=tuple(sequence), held=None, config=config,
                    t_end=t_end, armed_from_s=armed_from_s)

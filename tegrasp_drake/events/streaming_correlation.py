@@ -1,14 +1,10 @@
 """Exact streaming update of the Eq. 3 scores: O(lags) work per new sample.
 
 C(n) = sum_k x[k+n] y[k] changes by two rank-one terms when the window slides one sample;
-indexed by the buffer column where the template starts, both land on one contiguous slice,
-applied by two BLAS axpy calls per channel. Extremes and energy are kept exactly; all is
-recomputed by FFT when the expected event changes or the buffer compacts (every `slack`
-samples), bounding round-off to ~1e-16 of the signal's range. A missing sample enters as the
-channel's previous one and scores its channel 0 for N slides. State, after the
-SlidingWindowState window: [active_event, scores, [high, low, energy] per channel, missing
-slides (sum, per channel), rows: channels x (2N - 1 + slack)]; column j: lag j - offset - (N -
-1).
+indexed by the buffer column where the template starts, both land on one contiguous slice
+(two BLAS axpy calls per channel). All is recomputed by FFT when the expected event changes
+or the buffer compacts (every `slack` samples), bounding round-off. A missing sample enters
+as the channel's previous one and scores its channel 0 for N slides.
 """
 
 import math
@@ -70,7 +66,9 @@ def _as_templates(templates: Sequence[np.ndarray]) -> list[np.ndarray]:
 
 class SlidingCorrelation:
     """Gated Eq. 3 scores of a sliding window of channels sharing one rate, against one event
-    chosen per slide, kept after the window in its state vector (module docstring).
+    chosen per slide. State, after the window's: [active_event, scores, [high, low, energy]
+    per channel, missing slides (sum, per channel), rows: channels x (2N - 1 + slack)];
+    column j holds lag j - offset - (N - 1).
 
     Args:
         templates: one (channels, N) array per event, at the live sample rate.
@@ -140,12 +138,10 @@ class SlidingCorrelation:
 
     def slide(self, state: np.ndarray, rows: np.ndarray, offset: int, full: bool,
               event: int, missing: list[bool] | None = None) -> np.ndarray:
-        """Slides the correlations by the samples the window just took (one per channel) and
-        scores the window against `event` (index or NO_EVENT, checked by the caller), in place.
-        state: C-contiguous float64 (BLAS writes into it); rows, offset, full: the window after
-        SlidingWindowState.push; missing: per channel whether its sample was missing (its
-        channel then scores 0 for N slides). Returns the scores view, 0 until the window is
-        full.
+        """Slides the correlations by the window's new samples and scores the window against
+        `event` (index or NO_EVENT), in place. state: C-contiguous float64 (BLAS writes into it);
+        rows, offset, full: the window after SlidingWindowState.push; missing: per channel (it then
+        scores 0 for N slides). Returns the scores view, 0 until the window is full.
         """
         length = self._length
         left = None  # slides left per channel, read only while a missing sample is around
@@ -190,10 +186,8 @@ class SlidingCorrelation:
 
     def gate_below(self, state: np.ndarray, floors: list[float | None], *,
                    gate_events: bool = True) -> np.ndarray:
-        """Judges each channel that has a floor (`floors`, None for none) after `slide`, in
-        place: a window whose peak |value| is not above a finite floor holds only noise, so a
-        flat template's channel scores 1 and any other 0 (gate_events False: kept). Returns the
-        scores view.
+        """Scores, after `slide` and in place, each channel with a finite floor whose window peak is
+        not above it as noise: 1 for a flat template, else 0. Returns the scores view.
         """
         event = int(state[self._event_at])
         if event != NO_EVENT:
@@ -212,8 +206,7 @@ class SlidingCorrelation:
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
                    event: int) -> None:
-        """Exact full cross-correlation of the window with the event's templates, by FFT;
-        columns after the valid lags are zeroed (later updates start new lags there).
+        """Exact cross-correlation of window and event templates by FFT; later lags zeroed.
         """
         length = self._length
         rows = state[self._rows_at:self._size].reshape(self._n_channels, self._row_length)
@@ -225,10 +218,8 @@ class SlidingCorrelation:
 
 
 class StreamingCorrelator:
-    """A sliding window and its SlidingCorrelation in one flat vector: push a sample, get the
-    scores, outside a Diagram (tests, benchmarks); the accessors are SlidingCorrelation's.
-    Args: templates, min_contrast, flat_needs_flat as SlidingCorrelation's; slack: samples
-    between two exact recomputations of the correlation buffer.
+    """A sliding window and its SlidingCorrelation in one flat vector, outside a Diagram (tests,
+    benchmarks): push a sample, get the scores. slack: samples between exact recomputations.
     """
 
     def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int,

@@ -1,12 +1,7 @@
 """Synthetic tactile channels of a grasp, shaped like the simulated ones, for tests.
-
-SA (per finger, [N]): 0 until contact, a smooth rise to a light touch force over about
-0.1 s, a smooth rise to the grip force while loading, a small dip when the object touches
-the table, a smooth fall to 0 when unloading. RA (per finger, [m/s^2]): the magnitude of
-the pad's acceleration: a decaying ring-down at contact and at table touch, a small one at
-lift-off, and the smooth acceleration-then-deceleration of the lift motion. Sensor noise is
-white: Gaussian on SA; on RA, Gaussian on each of three axes before the magnitude is taken,
-which gives the positive noise floor of a real |a|.
+SA per finger [N]: contact, load, a dip at table touch, unload, as smooth steps. RA per
+finger [m/s^2]: ring-downs at contact, lift-off and table touch plus the lift's motion.
+Noise is Gaussian on SA and on each RA axis before the magnitude (a positive floor, as |a|).
 """
 
 import dataclasses

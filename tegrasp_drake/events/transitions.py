@@ -1,8 +1,6 @@
-"""The grasp transitions that memorized tactile events can trigger, in grasp order.
-
-Each is anchored on a physical event of the ideal grasp, around which its window is cut
-(extraction.py). The paper triggers Reach-Load, Load-Lift and Place-Unload by events (its
-Fig. 9); Lift-Hold is optional. A name is `from_to` in lower case (reach_load).
+"""The grasp transitions that memorized tactile events can trigger, in grasp order, each
+anchored on a physical event of the ideal grasp (extraction.py). A name is `from_to` in
+lower case (reach_load).
 """
 
 # The value of an `expected_event` or `scored_event` port when no event is expected.
@@ -45,7 +43,6 @@ def transition_states(name: str) -> tuple[str, str]:
 
 
 def event_transition(from_state: str, to_state: str) -> str | None:
-    """The event-triggered transition (REQUIRED_TRANSITIONS) from `from_state` to
-    `to_state`, e.g. ("Place", "Unload") -> place_unload; None for any other step."""
+    """The REQUIRED_TRANSITIONS name of from_state -> to_state (e.g. place_unload), else None."""
     name = transition_name(from_state, to_state)
     return name if name in REQUIRED_TRANSITIONS else None

@@ -1,7 +1,6 @@
-"""Fig. 10 of the paper for one trial: a hit on the held object, seen by RA, and the Avoid
-state's reaction. Around the first Hold -> Avoid transition: RA of both fingers with the hit
-threshold, SA, and the object's displacement (the gripper carries it along the avoiding
-direction)."""
+"""Fig. 10 of the paper for one trial: a hit on the held object, seen by RA, and the Avoid state's
+reaction. Around the first Hold -> Avoid transition: RA of both fingers with the hit threshold, SA,
+and the object's displacement (the gripper carries it along the avoiding direction)."""
 
 import numpy as np
 
@@ -32,8 +31,7 @@ def _hit_text(log) -> str:
 
 
 def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=1.2) -> str:
-    """Writes the figure to `path` (.png, .pdf or .svg); returns the path as text.
-    hit_threshold: the controller's RA hit threshold [m/s^2], drawn when given."""
+    """Writes the figure to `path`, returns it; hit_threshold [m/s^2] is drawn when given."""
     transitions, spans = logged_transitions(log), state_spans(log)
     avoid = [e for e in transitions if e.to_mode == Mode.AVOID]
     if not avoid:

@@ -12,8 +12,7 @@ CONTACT_ZOOM_S = (-0.04, 0.06)  # the window around first contact [s]
 
 
 def plot_contact_ra(log, path) -> str | None:
-    """Writes the figure to `path` (.png, .pdf or .svg) and returns the path as text; None
-    (and no file) when no pad ever touched."""
+    """Writes the figure to `path` and returns it as text; None (no file) if no pad touched."""
     contact = first_contact_time(log)
     if contact is None:
         return None

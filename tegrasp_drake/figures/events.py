@@ -1,8 +1,5 @@
-"""Fig. 5c of the paper: the memorized predicted tactile events.
-
-One row per transition (grasp order), one column per channel (SA_L, SA_R, RA_L, RA_R),
-one line per object; each window normalised by its maximum (so unitless), time relative to
-the transition's physical event (dashed line).
+"""Fig. 5c of the paper: the memorized events, one row per transition, one column per channel, one
+line per object; each window max-normalised, time relative to the physical event (dashed line).
 """
 
 import pathlib
@@ -21,8 +18,7 @@ _TRANSITION_TITLES = {"reach_load": "Reach-Load", "load_lift": "Load-Lift",
 
 def plot_memorized_events(events_by_object: Mapping[str, Mapping[str, MemorizedEvent]],
                           path) -> pathlib.Path:
-    """Writes the grid of every object's memorized events to `path` (.png, .pdf or .svg);
-    returns the path."""
+    """Writes every object's memorized events to `path` (.png, .pdf or .svg); returns it."""
     transitions = sorted({t for events in events_by_object.values() for t in events},
                          key=transition_order)
     if not transitions:

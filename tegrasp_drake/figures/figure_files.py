@@ -1,8 +1,6 @@
 """A figure, its file and its format: every figure module makes its Figure with `new_figure`
-and writes it with `save_figure`, as PNG (for screens), PDF or SVG (vector, for papers).
-
-Figures are drawn with matplotlib's object API (no pyplot, no global backend state); the
-Agg canvas renders PNG, and matplotlib picks its PDF or SVG backend from the file's suffix.
+and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib's object API
+(no pyplot, no global backend state).
 """
 
 import pathlib
@@ -44,9 +42,7 @@ def check_figure_path(path) -> pathlib.Path:
 
 
 def save_figure(figure, path) -> pathlib.Path:
-    """Writes `figure` to `path` in the format its suffix names; returns the path.
-    UserPathError (an OSError naming the file) when it cannot be written: a read-only or
-    full disk, a name too long; the old file, if any, is left whole."""
+    """Writes `figure` in the format `path`'s suffix names; returns the path, or UserPathError."""
     path = check_figure_path(path)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -1,8 +1,7 @@
 """Detection latency distributions from sweep records: for each event-triggered transition
-(Reach-Load, Load-Lift, Place-Unload), each controller's latencies (the transition's time
-minus its physical event's, runs/trial.py) as a box plot with every trial's value
-beside it; false triggers (a transition before its physical event) have no latency and are
-counted under the axis."""
+(Reach-Load, Load-Lift, Place-Unload), each controller's latencies (the transition's time minus its
+physical event's, runs/trial.py) as a box plot with every trial's value beside it; false triggers
+(a transition before its physical event) have no latency and are counted under the axis."""
 
 from collections import defaultdict
 

@@ -28,10 +28,9 @@ def _panel(axis, strikes, pad: int, contact_pad: int, values_of, title: str):
 
 def plot_ra_transients(strikes: Mapping[float, object], path,
                        highpass_hz: float = 2.0) -> pathlib.Path:
-    """Saves a PNG: rows are the left pad at its contact, the right pad while only the left
-    touches, the right pad at its own contact; columns the old chain's RA (|high-passed
-    rigid-body acceleration|) and the film's RA. `strikes` maps plant steps [s] to
-    PadStrikes of the same strike."""
+    """Saves a PNG: rows the left pad at contact, the right pad while only the left touches,
+    the right pad at its contact; columns the accelerometer chain's RA and the film's.
+    `strikes` maps plant steps [s] to PadStrikes of one strike."""
     figure = Figure(figsize=(12, 10), layout="constrained")
     FigureCanvasAgg(figure)
     axes = figure.subplots(3, 2)

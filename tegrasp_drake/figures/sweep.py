@@ -1,8 +1,6 @@
-"""Per-position success maps: where on the marker grid each controller succeeds.
-
-One panel per (controller, object, phase): the marker grid seen from above, the stroke
-axis y across and the palm normal x upwards, each marker coloured by its success rate
-and annotated with successes/trials; the well-placed marker is outlined.
+"""Per-position success maps: one panel per (controller, object, phase), the marker grid
+seen from above (stroke y across, palm normal x up), each marker coloured by its success
+rate; the well-placed marker outlined.
 """
 
 from collections import defaultdict
@@ -20,9 +18,8 @@ PHASES = ("hold", "unload")
 
 
 def success_grids(records):
-    """Success counts per marker position, error records left out as in Table I:
-    (normal_offsets_mm, stroke_offsets_mm, {(controller, object, phase): (successes, trials)}),
-    arrays indexed [x, y]."""
+    """Success counts per marker, errors left out as in Table I: (normal_offsets_mm,
+    stroke_offsets_mm, {(controller, object, phase): (successes, trials)}) indexed [x, y]."""
     ok = [r for r in records if r["status"] == "ok"]
     xs = sorted({round(r["trial"]["marker_dx_m"] * 1e6) for r in ok})
     ys = sorted({round(r["trial"]["marker_dy_m"] * 1e6) for r in ok})
@@ -87,6 +84,5 @@ def plot_success_maps(records):
 
 
 def write_success_maps(records, out_dir, file_name="success_maps.png") -> Path:
-    """Saves the success-map figure in `out_dir` (.png, .pdf or .svg, by `file_name`);
-    returns its path."""
+    """Saves the success maps in `out_dir` (format by `file_name`'s suffix); returns the path."""
     return save_figure(plot_success_maps(list(records)), Path(out_dir) / file_name)

@@ -18,8 +18,7 @@ OBJECT_TITLES = {"box": "box", "thick_cylinder": "thick\ncylinder",
 
 
 def plot_table1(records, path) -> str:
-    """Writes the figure for sweep `records` to `path` (.png, .pdf or .svg); returns the
-    path as text. ValueError when no record has finished."""
+    """Writes the figure of sweep `records` to `path`, returns it; ValueError if none finished."""
     rows = table1_rows([r for r in records])
     if not any(cell.trials for row in rows for cell in row.cells):
         raise ValueError("no finished trials to draw: no record has status 'ok'")

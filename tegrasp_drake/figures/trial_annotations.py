@@ -1,9 +1,6 @@
-"""What the figures of a trial (Fig. 5a-b, 9, 10) draw over its signals: the states, the
-transitions by trigger, the physical events of the ground truth, the matcher's scores at
-each event-triggered transition, and a title naming the run.
-
-Labels are stacked so that none overlaps another (`stack_labels`): a label that does not fit
-beside its neighbours goes one level up, with a leader line to its time.
+"""What the figures of a trial (Fig. 5a-b, 9, 10) draw over its signals: states,
+transitions by trigger, the ground truth's physical events, the matcher's scores and a
+title; labels stacked so that none overlaps another (`stack_labels`).
 """
 
 import dataclasses
@@ -56,9 +53,7 @@ def logged_scenario(log):
 
 
 def physical_events(log) -> dict[str, float]:
-    """Name -> time [s] of the physical events of the ground truth: those that mark the
-    event transitions taken (first contact, grip settled, table touch) and the
-    scenario's hit, if it has one."""
+    """Name -> time [s] of the physical events behind the transitions taken, and the hit, if any."""
     events = {PHYSICAL_EVENT_NAMES.get(name, name): float(t)
               for name, t in (log.meta.get("events") or {}).items() if t is not None}
     hit_time = logged_scenario(log).disturbance.hit_time_s
@@ -117,8 +112,7 @@ def draw_physical_events(axis, events: dict) -> None:
 
 
 def marker_legend_handles(transitions, events: dict) -> list:
-    """Legend entries for the transition lines by trigger (those present) and the physical
-    events."""
+    """Legend entries for the transition lines by trigger (those present) and physical events."""
     handles = []
     for trigger in TRIGGER_STYLES:
         if any(t.trigger == trigger for t in transitions):
@@ -143,10 +137,9 @@ class Label:
 
 def stack_labels(axis, labels: list[Label], *, fontsize: float = 7.5, bottom: float = 0.0,
                  gap_px: float = 4.0) -> int:
-    """Places `labels` in `axis` (x in seconds, y from `bottom` to 1) on their times, each on the
-    lowest level where it overlaps none, with a leader line down from higher levels; returns the
-    number of levels. Call it once the layout is done and the time limits set (it measures the
-    labels on the canvas)."""
+    """Places `labels` on their times in `axis`, each on the lowest level where it overlaps
+    none (leader lines from higher levels); returns the number of levels. Call it once the
+    layout and time limits are set."""
     figure = axis.figure
     renderer = figure.canvas.get_renderer()
     texts, right_edges, levels = [], [], []
@@ -185,8 +178,7 @@ def _extent(text, renderer):
 
 
 def draw_state_strip(axis, spans) -> None:
-    """A strip of the states over time: a coloured bar per state, its name on it when it
-    fits, else stacked above it."""
+    """A strip of the states over time: a coloured bar per state, its name on it or above it."""
     axis.set_ylim(0.0, 1.0)
     axis.set_yticks([])
     for side in ("left", "right", "top"):

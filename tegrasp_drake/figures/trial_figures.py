@@ -17,10 +17,9 @@ TRIAL_FIGURE_STEMS = ("states", "signals", "contact_ra", "avoid")
 
 
 def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, str]:
-    """Writes the trial's figures into `folder` as states/signals/avoid.<figure_format>;
-    returns their paths as the trial result's fields: figure (Fig. 9), signals_figure
-    (Fig. 5a-b), contact_ra_figure (only when a pad touched) and avoid_figure (Fig. 10,
-    only after a hit in Hold)."""
+    """Writes the trial's figures into `folder`; returns their paths as the result's fields:
+    figure (Fig. 9), signals_figure (Fig. 5a-b), contact_ra_figure (when a pad touched) and
+    avoid_figure (Fig. 10, after a hit in Hold)."""
     states, signals, contact_ra, avoid = (figure_path(folder, stem, figure_format)
                                           for stem in TRIAL_FIGURE_STEMS)
     figures = {"figure": plot_trial_states(log, states),

@@ -1,13 +1,10 @@
-"""Which station a scenario runs on (typed config): `station: !SimulatedStationConfig {}`
-(the default, MakeGraspStation) or the real devices, as in Drake's hardware_sim:
+"""Which station a scenario runs on (typed config), as in Drake's hardware_sim:
+`station: !SimulatedStationConfig {}` (the default) or the real devices:
 
     station: !HardwareStationConfig              # MakeHardwareStation
       arm: {lcm_url: "udpm://239.255.76.67:7667?ttl=0"}
       gripper: {port: /dev/ttyUSB0, device_id: 9}
       tactile: {port: /dev/ttyACM0, calibration_file: pads.yaml}
-
-`tegrasp hardware --config FILE` reads the untagged mapping with `LoadHardwareConfig`,
-checked field by field like a scenario; `tegrasp emulate --write-config` writes one.
 """
 
 import dataclasses
@@ -132,8 +129,7 @@ def lcm_url_problem(url: str) -> str | None:
 
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
-    """Checks what the schema cannot (ranges, choices, a usable LCM URL, a readable tactile
-    calibration); ConfigError names the field."""
+    """Checks what the schema cannot (ranges, LCM URL, calibration); ConfigError names the field."""
     from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
     prefix = f"{where}." if where else ""
     check_ranges(config, source, where)

@@ -14,9 +14,8 @@ DRIVER_ERROR = "driver"      # the driver could not bring the device up (e.g. ac
 
 @dataclasses.dataclass(frozen=True)
 class DeviceFault:
-    """One fault of one device ("arm", "gripper", "tactile"); `code` is the device's fault code
-    or -1; `since_*` is the last good data (SILENT) or the first sighting, as Context time [s]
-    and time.time() [s].
+    """One fault of one device; `code` the device's fault code or -1; `since_*` the last good
+    data (SILENT) or the first sighting, as Context time and time.time() [s].
     """
     device: str
     kind: str

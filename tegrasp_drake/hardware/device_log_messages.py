@@ -111,9 +111,8 @@ class GripperStatusSender(LeafSystem):
 
 
 def tactile_arrays(messages) -> dict:
-    """Arrays of a sequence of lcmt_tegrasp_tactile: t (n,) [s], device_t (n,) [s],
-    taxels (n, 24) [N] left then right, pad_acceleration (n, 6), stale (n,), zeroing (n,),
-    arrival_s (n,), tick_s (n,) [s, host monotonic clock]."""
+    """Arrays of lcmt_tegrasp_tactile messages: t, device_t [s]; taxels (n, 24) [N];
+    pad_acceleration (n, 6); stale, zeroing; arrival_s, tick_s [s, host monotonic]."""
     messages = list(messages)
     return {
         "t": np.array([m.utime * 1e-6 for m in messages]),

@@ -1,8 +1,6 @@
-"""FaultLatch: the faults of every source, kept once seen, and the arm's stop signal.
-
-A Robotiq fault code can clear (e.g. after an automatic release), but the run that saw it
-must not carry on: every fault is kept, with its own `since`, in order of first sighting,
-and `stop` (holding the arm still through JacoVelocityTracker) stays set.
+"""FaultLatch: the faults of every source, kept once seen, and the arm's stop signal. A
+Robotiq fault code can clear, but the run that saw it must not carry on: every fault stays,
+with its own `since`, and `stop` stays set.
 """
 
 from pydrake.common.value import AbstractValue
@@ -19,10 +17,9 @@ def latched_faults(latched: tuple, current) -> tuple:
 
 
 class FaultLatch(LeafSystem):
-    """Keeps every fault of its sources (module docstring), shown one `period` [s] after the
-    source reported it: one `{source}_fault` input (tuple of DeviceFault) per name in
-    `sources` (here as MakeHardwareStation builds it). fault: every fault seen; message: ""
-    or one line per fault (the state machine's `device_fault`); stop: 1 once any was seen.
+    """Keeps every fault of its sources, shown one `period` [s] after reported: one
+    `{source}_fault` input per name in `sources`. fault: every fault seen; message: "" or one
+    line per fault; stop: 1 once any was seen.
 
     .. pydrake_system::
 

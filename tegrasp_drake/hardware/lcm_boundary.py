@@ -1,13 +1,8 @@
-"""LCM messages through the message boundary (message_boundary.py).
-
-`decode_lcm` refuses, by reason, bytes too short for a fingerprint, another type's
-fingerprint and bytes that end before the fields; a type's own check follows it.
-`CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding and counting through a
-boundary (a rejected message leaves the last good one; two in one diagram step lose the
-first). `wait_for_checked_message` waits for a good message before a Simulator runs;
-`checked_handler` is a callback for the `lcm` package's own subscriptions. No Python callback
-is subscribed on a DrakeLcm a diagram pumps (it would run without the GIL): docs/hardware.md,
-"The real-time loop on a busy host".
+"""LCM messages through the message boundary (message_boundary.py). `decode_lcm`
+refuses, by reason, short bytes, another type's fingerprint and truncated fields;
+`CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding through a boundary (a rejected
+message leaves the last good one). No Python callback is subscribed on a DrakeLcm a diagram
+pumps: docs/hardware.md, "The real-time loop on a busy host".
 """
 
 import time
@@ -41,9 +36,7 @@ def decode_lcm(lcm_type, data: bytes):
 
 
 class CheckedLcmSerializer(SerializerInterface):
-    """An LcmSubscriberSystem serializer that decodes through `boundary`, which counts
-    each message the subscriber takes (nothing while `counting` is False); a rejected
-    message leaves the value unchanged (the last good one)."""
+    """A subscriber's serializer decoding via `boundary`; a rejected message keeps the last."""
 
     def __init__(self, lcm_type, boundary: MessageBoundary):
         SerializerInterface.__init__(self)
@@ -68,9 +61,7 @@ class CheckedLcmSerializer(SerializerInterface):
 
 def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
                          lcm) -> LcmSubscriberSystem:
-    """Drake's LcmSubscriberSystem on `channel`, its messages checked and counted by
-    `boundary` (module docstring); `lcm` is the DrakeLcm its LcmInterfaceSystem pumps.
-    The serializer stays reachable as `checked_serializer`."""
+    """Drake's LcmSubscriberSystem on `channel` through `boundary`, on the DrakeLcm `lcm`."""
     serializer = CheckedLcmSerializer(lcm_type, boundary)
     subscriber = LcmSubscriberSystem(channel, serializer, lcm)
     subscriber.checked_serializer = serializer
@@ -78,10 +69,9 @@ def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
 
 
 def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: float) -> bool:
-    """Pumps `lcm` from this thread until `subscriber` (a CheckedLcmSubscriber on it) has
-    received a message its boundary accepts, or time.monotonic() passes `deadline`;
-    whether one came. Counts nothing: the Simulator's initialization takes, and counts,
-    the newest message. Call it before the Simulator runs, never inside it."""
+    """Pumps `lcm` until `subscriber` received a message its boundary accepts or
+    time.monotonic() passes `deadline`; whether one came. Counts nothing; call it before the
+    Simulator runs, never inside it."""
     serializer = subscriber.checked_serializer
     probe = serializer.CreateDefaultValue()
     received = subscriber.WaitForMessage(0, None, 1e-6)
@@ -100,8 +90,7 @@ def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: flo
 
 
 def checked_handler(boundary: MessageBoundary, on_message: Callable) -> Callable:
-    """A callback for the `lcm` package's subscriptions (`handler(channel, data)`) that
-    passes `on_message` the messages `boundary` accepts."""
+    """An `lcm` subscription callback passing `on_message` the messages `boundary` accepts."""
     def handler(*arguments):
         message = boundary.accept(arguments[-1])
         if message is not None:

@@ -1,10 +1,7 @@
-"""The one boundary every message from a device crosses: decode, check, count, skip.
-
-A `MessageBoundary`'s check returns the decoded, checked value or raises
-`RejectedMessage(reason, detail)` (any other exception on untrusted bytes counts as
-"undecodable"). A rejected message is counted and skipped and the receiver keeps its last
-good value, so a device that sends nothing usable looks silent to the watchdog and never
-ends a run. `new_rejections()` gives each reason once, for a live line. Thread-safe.
+"""The one boundary every message from a device crosses: decode, check, count, skip. A check
+returns the checked value or raises `RejectedMessage(reason, detail)` (any other exception counts
+as "undecodable"). A rejected message is counted and skipped and the receiver keeps its last good
+value, so a device sending nothing usable looks silent to the watchdog. Thread-safe.
 """
 
 import dataclasses
@@ -58,14 +55,11 @@ class MessageBoundary:
         self._listeners = []
 
     def add_listener(self, listener: Callable) -> None:
-        """Calls listener(value) with each value `accept` lets through, after counting it:
-        a second reader of the same messages (the emulated myRIO's clock reads the
-        emulated arm's commands)."""
+        """Calls listener(value) with each value `accept` lets through, after counting it."""
         self._listeners.append(listener)
 
     def accept(self, message, *args):
-        """The checked value of `message`, or None (counted) when it is rejected; the
-        listeners see each checked value."""
+        """The checked value of `message`, or None (counted) when rejected; listeners see it."""
         try:
             value = self._check(message, *args)
         except RejectedMessage as rejection:
@@ -111,8 +105,7 @@ class MessageBoundary:
                                        rejected=dict(self._counters.rejected))
 
     def new_rejections(self) -> list[RejectedMessage]:
-        """The first rejection of each reason not yet handed over (each reason once), for a live
-        line."""
+        """The first rejection of each reason not yet handed over, for a live line."""
         with self._lock:
             new, self._unreported = self._unreported, []
         return new

@@ -1,10 +1,7 @@
-"""Scheduling of the real-time control loop, so that a busy host does not delay it.
-
-`realtime_scheduling(policy, priority)` raises the calling thread for a block (the device
-threads started inside inherit it); a refused policy falls back to the next: "fifo"
-(SCHED_FIFO), "nice" (NICE_LEVEL), "normal". Emulators raise their whole process with
-`raise_scheduling` at EMULATOR_PRIORITY. Why and measured effect: docs/hardware.md,
-"The real-time loop on a busy host".
+"""Scheduling of the real-time control loop, so that a busy host does not delay it:
+`realtime_scheduling` raises the calling thread for a block, falling back from "fifo" to
+"nice" to "normal"; emulators use `raise_scheduling`. Why: docs/hardware.md, "The real-time
+loop on a busy host".
 """
 
 import contextlib

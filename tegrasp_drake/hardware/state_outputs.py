@@ -2,8 +2,7 @@
 
 
 def declare_scalar_state_outputs(system, state_index, values: dict) -> None:
-    """One 1-element output port on `system` per entry {port name: function of the state's value
-    -> number}, each depending on that state only."""
+    """One 1-element output per {port name: state value -> number}, depending on that state."""
     ticket = {system.abstract_state_ticket(state_index)}
     for name, value_of in values.items():
         def calc(context, output, value_of=value_of):

@@ -1,10 +1,8 @@
-"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b), so
-the controller runs unchanged on either (rig/station_interface.py). Inside: the JACO2 on
-LCM, the 2F-85 on Modbus RTU and the myRIO stream, each on its own thread, every message
-through a MessageBoundary; a DeviceWatchdog and a FaultLatch whose `stop` holds the arm
-still; tactile and gripper data republished on the bus, so a log holds all the controller
-saw. Use it in a `with` block, call `wait_until_ready()` before the Simulator's
-Initialize() and run at real-time rate 1.
+"""MakeHardwareStation: the real devices behind the simulated station's ports (Fig. 7b),
+so the controller runs unchanged on either: the JACO2 on LCM, the 2F-85 on Modbus RTU and
+the myRIO stream, each on its own thread; a DeviceWatchdog and a FaultLatch that hold the arm
+still; tactile and gripper data republished on the bus for the log. Use it in a `with`
+block, call `wait_until_ready()` before Initialize() and run at real-time rate 1.
 """
 
 import time
@@ -26,7 +24,8 @@ from tegrasp_drake.hardware.lcm_boundary import wait_for_checked_message
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError, RobotiqModbusClient
-from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration, TactileCalibration
+from tegrasp_drake.hardware.myrio.tactile_calibration import (LoadTactileCalibration,
+                                                              TactileCalibration)
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
@@ -212,8 +211,7 @@ class HardwareStation(Diagram):
 
     def wait_until_ready(self, timeout: float | None = None):
         """Blocks, before the Simulator starts, until the arm's status arrived, the gripper is
-        active and the (untouched) pads are zeroed; else HardwareNotReadyError naming what is
-        missing."""
+        active and the pads are zeroed; else HardwareNotReadyError naming what is missing."""
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
         if not wait_for_checked_message(self._lcm, self._status_subscriber, deadline):
@@ -257,7 +255,6 @@ class HardwareStation(Diagram):
 @public_api
 def MakeHardwareStation(config: HardwareStationConfig, *,
                         lcm: DrakeLcm | None = None) -> HardwareStation:
-    """The hardware interface for `config` (module docstring); `lcm` overrides the config's
-    URL (e.g. a shared memq:// instance in tests)."""
+    """The hardware interface for `config`; `lcm` overrides its URL (e.g. memq:// in tests)."""
     check_ranges(config, "MakeHardwareStation: config")  # a config changed after loading
     return HardwareStation(config, lcm=lcm)

@@ -1,9 +1,6 @@
 """A watchdog that names the device that stopped talking, and since when, and stops the arm.
-
-Each device feeds its receiver's `time_measured`; only its changes count, so device clocks
-need not match the diagram's. A device is silent when the value has not changed for longer
-than its timeout of Context time (wall time at real-time rate 1); one never heard from gets
-`startup_grace` more. A trip latches: a device that comes back does not restart the arm.
+A device is silent when its `time_measured` has not changed for longer than its timeout
+(Context time), with `startup_grace` more before it is first heard. A trip latches.
 """
 
 import dataclasses
@@ -60,10 +57,8 @@ def next_activity(activity: DeviceActivity, value: float, *, device: str, timeou
 
 
 class DeviceWatchdog(LeafSystem):
-    """Watches devices' `time_measured` [s, device clock] (module docstring): one input per
-    device of `timeouts`, in order; shown with DEFAULT_TIMEOUTS, as MakeHardwareStation builds
-    it. fault: the silent devices (tuple of DeviceFault) in trip order; stop: 1 once any
-    tripped (JacoVelocityTracker's `stop`).
+    """Watches devices' `time_measured` [s, device clock]: one input per device of
+    `timeouts`. fault: the silent devices (DeviceFault) in trip order; stop: 1 once any tripped.
 
     .. pydrake_system::
 

@@ -1,6 +1,5 @@
-"""Writes models/jaco2/j2n6s300.sdf from jaco2_dh.py: link frames are DH frames, links
-visual-only capsule chains (only the gripper touches the world), masses Kinova's j2n6s300
-description's."""
+"""Writes models/jaco2/j2n6s300.sdf from jaco2_dh.py: link frames are DH frames, links visual-only
+capsule chains (only the gripper touches the world), masses Kinova's j2n6s300 description's."""
 
 import numpy as np
 

@@ -1,9 +1,8 @@
-"""Writes models/robotiq_2f85/robotiq_2f85_linkage.sdf: the 2F-85 with its real finger
-linkage (robotiq/linkage.py; docs/model.md, "The hand: the 2F-85 finger linkage"). Per
-finger a driver, coupler, follower (with the fingertip) and spring link; a ball constraint
-closes each loop, the right driver mimics the left, whose actuator carries the rotor
-(robotiq/drive.py). Link frames are the base frame in the open pose; only the pad and its
-backing collide."""
+"""Writes models/robotiq_2f85/robotiq_2f85_linkage.sdf: the 2F-85 with its real finger linkage
+(robotiq/linkage.py; docs/model.md, "The hand: the 2F-85 finger linkage"). Per finger a driver,
+coupler, follower (with the fingertip) and spring link; a ball constraint closes each loop, the
+right driver mimics the left, whose actuator carries the rotor (robotiq/drive.py). Link frames are
+the base frame in the open pose; only the pad and its backing collide."""
 
 import numpy as np
 
@@ -40,8 +39,7 @@ def _bar_inertia(p0, p1, mass: float) -> np.ndarray:
 
 
 def _bar(name: str, p0, p1, mass: float, color: str) -> str:
-    """Inertia and visual of a slender bar of `mass` from p0 to p1 (base coordinates = the link
-    frame in the open pose)."""
+    """Inertia and visual of a slender bar of `mass` from p0 to p1 [m, base frame, open pose]."""
     length = float(np.linalg.norm(np.subtract(p1, p0)))
     X = segment_pose(p0, p1)
     size = (LINK_BAR_SIZE, LINK_BAR_SIZE, length)
@@ -54,8 +52,7 @@ def _bar(name: str, p0, p1, mass: float, color: str) -> str:
 
 
 def _follower(finger: str, sign: float, pad_mesh_uri: str | None) -> str:
-    """The follower: its bar, the fingertip (pad and backing), the frame `<finger>_pad` at
-    the pad face's centre; the pad collides as the mesh at pad_mesh_uri, else its box."""
+    """The follower: bar, fingertip, `<finger>_pad` frame; the pad collides as its mesh or box."""
     pad_face = _point(linkage.PAD_CENTER_OPEN, sign)
     c, d = _point(linkage.C, sign), _point(linkage.D, sign)
     # The bar along C-D and the fingertip box, by the parallel-axis theorem.
@@ -96,8 +93,7 @@ def _follower(finger: str, sign: float, pad_mesh_uri: str | None) -> str:
 def _revolute(name: str, parent: str, child: str, point, sign: float, limits=None,
               effort: float = 0.0, spring=None, mimic: str | None = None,
               motor: bool = False) -> str:
-    """A revolute joint at `point` (base coordinates) about sign * x; with `motor`, its
-    actuator carries the 2F-85's rotor behind its gear ratio (robotiq/drive.py)."""
+    """A revolute joint at `point` [m, base frame] about sign * x; a `motor` carries the rotor."""
     # Drake's parser reads no <limit> as actuated: a free joint gets infinite bounds, effort 0.
     lower, upper = limits if limits is not None else (-np.inf, np.inf)
     limit = (f"<limit><lower>{number_text(lower)}</lower><upper>{number_text(upper)}</upper>"
@@ -157,8 +153,7 @@ def pad_mesh_url(refinement: int) -> str:
 
 
 def robotiq_linkage_sdf(pad_refinement: int = 0) -> str:
-    """The SDF text of the tactile 2F-85 with its finger linkage (pads as the box's mesh
-    split pad_refinement times, 0: the box)."""
+    """The SDF text of the tactile linkage 2F-85 (pads as the box split pad_refinement times)."""
     uri = pad_mesh_url(pad_refinement) if pad_refinement else None
     parts = ['<?xml version="1.0"?>', '<sdf version="1.9">', '<model name="robotiq_2f85">',
              base_link_text(),

@@ -1,9 +1,8 @@
-"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like gripper with
-prismatic fingers (`gripper.model: prismatic`), the right mimicking the left so an
-off-centre object is pushed to the centre. Frames: `base` at the mounting face (+z the
-approach, y the stroke), `grasp_frame` (G) at the pads' centre, `<f>_pad` at each pad face
-(+z inward, +y toward the fingertip), in which rig/taxel_layout.py is given. Pads are
-compliant hydroelastic boxes on rigid aluminium fingers."""
+"""Writes models/robotiq_2f85/robotiq_2f85_tactile.sdf: a 2F-85-like gripper with prismatic fingers
+(`gripper.model: prismatic`), the right mimicking the left so an off-centre object is pushed to the
+centre. Frames: `base` at the mounting face (+z the approach, y the stroke), `grasp_frame` (G) at
+the pads' centre, `<f>_pad` at each pad face (+z inward, +y toward the fingertip), in which
+rig/taxel_layout.py is given. Pads are compliant hydroelastic boxes on rigid aluminium fingers."""
 
 import numpy as np
 
@@ -108,12 +107,14 @@ def robotiq_sdf() -> str:
         '<joint name="left_finger_joint" type="prismatic"><parent>base</parent>'
         '<child>left_finger</child><pose relative_to="left_finger">0 0 0 0 0 0</pose>'
         '<axis><xyz expressed_in="base">0 1 0</xyz><limit><lower>0</lower>'
-        f"<upper>{HALF_STROKE + JOINT_LIMIT_MARGIN}</upper><effort>{2 * 235.0:g}</effort><velocity>0.15</velocity>"
+        f"<upper>{HALF_STROKE + JOINT_LIMIT_MARGIN}</upper><effort>{2 * 235.0:g}</effort>"
+        "<velocity>0.15</velocity>"
         "</limit><dynamics><damping>0.0</damping></dynamics></axis></joint>",
         '<joint name="right_finger_joint" type="prismatic"><parent>base</parent>'
         '<child>right_finger</child><pose relative_to="right_finger">0 0 0 0 0 0</pose>'
         '<axis><xyz expressed_in="base">0 -1 0</xyz><limit><lower>0</lower>'
-        f"<upper>{HALF_STROKE + JOINT_LIMIT_MARGIN}</upper><effort>0</effort><velocity>0.15</velocity></limit>"
+        f"<upper>{HALF_STROKE + JOINT_LIMIT_MARGIN}</upper><effort>0</effort>"
+        "<velocity>0.15</velocity></limit>"
         "</axis>"
         '<drake:mimic joint="left_finger_joint" multiplier="1" offset="0"/></joint>',
         "</model></sdf>"]

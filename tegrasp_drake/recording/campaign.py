@@ -1,8 +1,7 @@
 """One event-recording campaign: open-loop grasps of one object, each cut into memorized
-events around its physical events, the template runs' windows combined per transition by
-their mean (docs/controller.md, "Events from an ensemble of grasps"). The paper's, ensemble
-and corrective campaigns differ only in their runs, event times and windows. Run k is seeded
-base + k, each campaign's base at or above 1_000_000, apart from every sweep's seeds.
+events, the template runs' windows combined per transition by their mean (docs/controller.md,
+"Events from an ensemble of grasps"). Run k is seeded base + k, each base at or above
+1_000_000, apart from every sweep's seeds.
 """
 
 import dataclasses
@@ -63,10 +62,9 @@ def cut_events(log, run: CampaignRun, times: Mapping[str, float | None], *,
                pre_transition_s: float | Mapping[str, float] | None = None,
                note: str | None = None, advice: Callable[[str], str] | None = None,
                quiet_ra_s: float | None = None) -> dict[str, MemorizedEvent]:
-    """The run's events, each window cut around its physical event at `times`,
-    `pre_transition_s` [s] into it (per transition, or None: the paper's), tagged with
-    `nominal_object` and `note`; quiet_ra_s: the log's first seconds that measure the RA
-    noise floor (None: as cut). RecordEventsError names missing events."""
+    """The run's events cut `pre_transition_s` [s] before each physical event at `times` (None:
+    the paper's), tagged with `nominal_object` and `note`; quiet_ra_s: the log's start that
+    measures the RA noise floor. RecordEventsError names missing events."""
     missing = [name for name, time in times.items() if time is None]
     if missing:
         words = (f"{run.label} of '{object_name}' (seed {run.scenario.random_seed}) shows "
@@ -125,9 +123,8 @@ def record_campaign(runs: typing.Sequence[CampaignRun], event_times: EventTimes,
                     object_name: str, nominal_object,
                     pre_transition_s: float | Mapping[str, float] | None = None, note: str,
                     log_dir=None, progress_of_run=None) -> dict[str, MemorizedEvent]:
-    """The campaign's events: every run simulated (its log kept in, or reused from,
-    `log_dir`/<label>.npz), cut (cut_events) and combined (combine_runs).
-    progress_of_run(k): run k's progress callback or None."""
+    """The campaign's events: every run simulated (its log kept in or reused from
+    `log_dir`/<label>.npz), cut and combined. progress_of_run(k): run k's callback or None."""
     templates = []
     for k, run in enumerate(runs):
         log = simulate_run(run, log_path=run_log_path(log_dir, run),

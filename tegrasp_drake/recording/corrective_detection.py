@@ -1,9 +1,7 @@
-"""How well the corrective triggers detect their situations, from recorded logs: the memorized
-corrective events and the heuristic triggers they would replace, on the same spans (Lift for
-the slip, Hold after the hit refractory time; any match in a normal grasp's span is false),
-and the threshold rule: the centre of the admissible range, with a margin on both sides (the
-highest admissible pair sits at its edge and misses real hits). The heuristic triggers are
-replayed at every 1 kHz RA sample, so they fire at most one 5 ms tick early.
+"""How well the corrective triggers detect their situations, from recorded logs: the
+memorized corrective events and the heuristic triggers they would replace, on the same spans,
+and the threshold rule: the centre of the admissible range (the highest admissible pair sits
+at its edge and misses real hits).
 """
 
 import dataclasses

@@ -1,8 +1,7 @@
-"""Memorized corrective events: the tactile events of a slip during Lift (`lift_load`) and of
-a hit during Hold (`hold_avoid`), matched by the same Eq. 3 machinery as the grasp
-transitions (controller.memorized_corrective.events). Recorded from open-loop grasps of
-perturbed scenes (CORRECTIVE_RUNS): "template" runs make the events, "held_out" runs choose
-the thresholds. docs/controller.md, "Memorized corrective triggers".
+"""Memorized corrective events: a slip during Lift (`lift_load`) and a hit during Hold
+(`hold_avoid`), matched by Eq. 3 like the grasp transitions, recorded from open-loop grasps
+of perturbed scenes ("template" runs make the events, "held_out" runs choose the thresholds).
+docs/controller.md, "Memorized corrective triggers".
 """
 
 import dataclasses

@@ -1,8 +1,6 @@
 """How well a memorized event detects its transition, from recorded logs: detection, false
-triggers and latency at any pair of Eq. 3 thresholds, without simulating again. The scores do
-not depend on the thresholds, so each trial is replayed once per transition with its event
-held expected (events/replay.py) over its armed span. choose_thresholds takes, of the pairs
-with no false trigger and the most detections (and a median latency within target), the
+triggers and latency at any Eq. 3 threshold pair, each trial replayed once per transition.
+choose_thresholds takes, of the pairs with no false trigger and the most detections, the
 highest: the widest margin above the spans' scores before their events.
 """
 
@@ -18,8 +16,7 @@ LATENCY_TARGET_S = 0.06  # the median latency choose_thresholds prefers
 
 @dataclasses.dataclass(frozen=True)
 class ScoredSpan:
-    """One transition of one logged trial: the held event's scores over its armed span;
-    times (T,) [s], scores (T, 4) [sa_left, sa_right, ra_left, ra_right]."""
+    """One transition of one trial: the held event's scores (T, 4) at its armed span's times [s]."""
     label: str
     transition: str
     times: np.ndarray

@@ -35,8 +35,7 @@ ENSEMBLE_RANGES = EnsembleRanges()
 
 def ensemble_scenario(object_name: str, run: int, ranges: EnsembleRanges = ENSEMBLE_RANGES,
                       base=None):
-    """The scenario of ensemble run `run` of `object_name`: the object's scenario (or
-    `base`) perturbed by a draw from seed ENSEMBLE_BASE_SEED + run."""
+    """Run `run`'s scenario: the object's (or `base`), perturbed from ENSEMBLE_BASE_SEED + run."""
     base = base or LoadScenario(name=object_name)
     seed = ENSEMBLE_BASE_SEED + run
     rng = np.random.default_rng(seed)
@@ -61,8 +60,7 @@ def ensemble_scenario(object_name: str, run: int, ranges: EnsembleRanges = ENSEM
 
 def ensemble_runs(object_name: str, runs: int, template_runs: int = TEMPLATE_RUNS,
                   base=None) -> list[CampaignRun]:
-    """The campaign's runs `run0`..: the first `template_runs` make the events, the rest
-    are held out."""
+    """The campaign's runs: the first `template_runs` make the events, the rest are held out."""
     return [CampaignRun(f"run{k}", ensemble_scenario(object_name, k, base=base),
                         role="template" if k < template_runs else "held_out")
             for k in range(runs)]
@@ -71,9 +69,8 @@ def ensemble_runs(object_name: str, runs: int, template_runs: int = TEMPLATE_RUN
 def record_object_ensemble(object_name: str, scenario, runs: int = TEMPLATE_RUNS, *,
                            template_runs: int | None = None, log_dir=None,
                            progress_of_run=None):
-    """The ensemble events of the object of `scenario` (a user's or a built-in one): `runs`
-    randomised ideal grasps, the first `template_runs` (default: all) combined by the mean.
-    RecordEventsError when a run shows no physical event."""
+    """The ensemble events of `scenario`'s object: `runs` randomised ideal grasps, the first
+    `template_runs` combined by the mean; RecordEventsError when a run lacks an event."""
     template_runs = runs if template_runs is None else template_runs
     return record_campaign(
         ensemble_runs(object_name, runs, template_runs, base=scenario), grasp_event_times,

@@ -32,8 +32,7 @@ QUIET_APPROACH_S = EventMatchingConfig().ra_noise_quiet_s
 
 
 def lift_grip_fraction(log, scenario) -> float | None:
-    """The weaker pad's true force when the script starts the lift, as a fraction of the
-    settled grip (grasp_outcome.grip_fraction_at); None without a scripted lift."""
+    """The weaker pad's force at the script's lift as a fraction of the settled grip, or None."""
     lift = scripted_lift_start(log)
     if lift is None:
         return None
@@ -77,9 +76,8 @@ def missing_event_advice(transition: str, log, scenario) -> str:
 @public_api
 def record_events(object_name: str, scenario: Scenario | None = None, *,
                   progress: Callable | None = None):
-    """Runs the ideal grasp of one object (a built-in one by name, or the object of
-    `scenario`); returns its MemorizedEvents. progress: as run_ideal_grasp's.
-    RecordEventsError when a physical event is missing."""
+    """Runs the ideal grasp of one object (built-in by name, or `scenario`'s); returns its
+    MemorizedEvents; RecordEventsError when a physical event is missing."""
     scenario = scenario or LoadScenario(name=object_name)
     log, _ = run_ideal_grasp(scenario, progress=progress)
     times = grasp_event_times(log, scenario)

@@ -49,9 +49,9 @@ def velocity_command(q_desired, v_desired, q_measured, config: JacoVelocityTrack
 
 
 class JacoVelocityTracker(LeafSystem):
-    """Adds the position-error term to a desired joint state (module docstring): desired_state
-    and commanded_state (12: q [rad], then v [rad/s]); position_measured (6) [rad]; stop (1):
-    nonzero holds the arm still (measured positions, zero velocity), unconnected never stops.
+    """Adds the position-error term to a desired joint state: desired_state and
+    commanded_state (12: q [rad], then v [rad/s]); position_measured (6) [rad]; stop: nonzero
+    holds the arm still, unconnected never stops.
 
     .. pydrake_system::
 

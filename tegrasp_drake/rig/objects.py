@@ -1,8 +1,8 @@
-"""The objects to grasp: the paper's three (Fig. 8a) and user-defined ones; frame O at
-the centre of the base, z up. The paper gives no sizes: the built-in ones fit the 85 mm
-stroke with the +-1.5 cm misplacement and 2.5 mm finger clearance; masses are those of
-plastic or cardboard objects of that size. `friction` is the geometry's own coefficient: for
-a pair value P against the pad give P mu_pad / (2 mu_pad - P) (rig/materials.py)."""
+"""The objects to grasp: the paper's three (Fig. 8a) and user-defined ones; frame O at the
+centre of the base, z up. The paper gives no sizes: the built-in ones fit the 85 mm stroke
+with the +-1.5 cm misplacement and 2.5 mm finger clearance; masses are those of plastic or
+cardboard objects that size. `friction` is the geometry's own coefficient, not a pair's
+(docs/model.md, "Friction by material pair")."""
 
 import dataclasses
 import math

@@ -71,8 +71,7 @@ def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
 
 
 def declared_field(cls: type, name: str) -> dataclasses.Field:
-    """A new field with the default and Range of the field `name` of `cls`, so a repeated
-    setting is declared once."""
+    """A new field with the default and Range of `cls`'s field `name` (declared once)."""
     field = next(f for f in dataclasses.fields(cls) if f.name == name)
     return dataclasses.field(default=field.default, default_factory=field.default_factory,
                              metadata=field.metadata)
@@ -94,8 +93,7 @@ _FOREIGN: dict[type, dict] = {}
 
 
 def declare_ranges(cls: type, table: dict) -> None:
-    """Declares the Range or Choice of fields of `cls`, a Drake config class that cannot carry
-    `bounded` metadata, for check_ranges."""
+    """Declares Ranges or Choices of fields of `cls`, a Drake config class, for check_ranges."""
     _FOREIGN[cls] = dict(table)
 
 
@@ -144,8 +142,7 @@ def check_ranges(config, source: str, where: str = "") -> None:
 
 
 def _declared_fields(config, where: str):
-    """(path, value, declared Range or Choice or None) of each field of the dataclass
-    instance `config`, its path under `where`."""
+    """(path under `where`, value, declared Range or Choice or None) of each field of `config`."""
     for field in dataclasses.fields(config):
         path = f"{where}.{field.name}" if where else field.name
         yield path, getattr(config, field.name), range_of(field)
@@ -184,8 +181,7 @@ def _check_foreign(config, source: str, where: str) -> None:
 
 
 def shorten(text: str, limit: int = 80) -> str:
-    """`text` cut to about `limit` characters (an echoed value in an error message), saying
-    how long it was."""
+    """`text` cut to about `limit` characters, saying how long it was (echoed values)."""
     if len(text) <= limit:
         return text
     return f"{text[:limit]}... ({len(text)} characters)"

@@ -1,7 +1,6 @@
-"""The station's ports: the one contract between a station and the controller. The
-simulated and real stations export these names, so the controller connects to either; name
-a port by its constant. CONTROLLER_INPUTS and CONTROLLER_OUTPUTS are the ports every station
-has."""
+"""The station's ports: the one contract between a station and the controller. The simulated and
+real stations export these names, so the controller connects to either; name a port by its
+constant. CONTROLLER_INPUTS and CONTROLLER_OUTPUTS are the ports every station has."""
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.robotiq import units
@@ -57,7 +56,7 @@ BODY_POSES = "body_poses"  # the plant's body poses X_WB (abstract)
 QUERY_OBJECT = "query_object"  # the scene graph's QueryObject (abstract)
 GRIPPER_STATE = "gripper.state"  # the gripper model instance's joint positions, velocities
 GRIPPER_PLANT_DESIRED_STATE = "gripper.plant_desired_state"  # (2) actuated joint's set-point
-ARM_SERVO_SET_POINT = "arm.servo_set_point"  # (12) the arm joints' PD set-point (jaco_velocity_drive.py)
+ARM_SERVO_SET_POINT = "arm.servo_set_point"  # (12) the arm joints' PD set-point
 CARRIAGE_DESIRED_STATE = "carriage.desired_state"  # (12) the carriage PD's set-point (carriage.py)
 GRIPPER_WRIST_WRENCH = "gripper.wrist_wrench"  # (6) the carriage-gripper weld's wrench
 

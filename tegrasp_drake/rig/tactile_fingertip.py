@@ -1,6 +1,5 @@
-"""The paper's tactile fingertip (Sec. IV-A, Fig. 7c): the one source of its
-dimensions, for the pad's collision box and its 12 electrodes alike (docs/model.md, "The
-fingertip and its taxels")."""
+"""The paper's tactile fingertip (Sec. IV-A, Fig. 7c): the one source of its dimensions, for the
+pad's collision box and its 12 electrodes alike (docs/model.md, "The fingertip and its taxels")."""
 
 # [m] along the approach (pad y): the paper's +-1 cm misplacement plus 2 mm, 2 x (10 + 2) mm
 PAD_LENGTH = 0.024

@@ -1,8 +1,7 @@
-"""The 2F-85's drive in closed form, the one source of its parameters, in the left driver's
-angle a [rad]: a critically damped position loop (K = J (2 pi f)^2, D = 2 J (2 pi f)) capped
-at 2 F |dy/da| while moving, and a self-locking screw that holds the force at the stop;
-`grip_rise` integrates it against a linear contact (docs/model.md, "The drive: rotor,
-position loop")."""
+"""The 2F-85's drive in closed form, the one source of its parameters, in the left driver's angle a
+[rad]: a critically damped position loop (K = J (2 pi f)^2, D = 2 J (2 pi f)) capped at 2 F |dy/da|
+while moving, and a self-locking screw that holds the force at the stop; `grip_rise` integrates it
+against a linear contact (docs/model.md, "The drive: rotor, position loop")."""
 
 import dataclasses
 import math
@@ -25,15 +24,13 @@ POSITION_LOOP_DAMPING_RATIO = 1.0  # the 2F-85 does not overshoot a requested po
 
 
 def drive_inertia(screw_efficiency: float = SCREW_EFFICIENCY) -> float:
-    """The drive's inertia about the driver joint [kg m^2]: linkage plus rotor through the
-    screw."""
+    """The drive's inertia about the driver joint [kg m^2]: linkage plus rotor through screw."""
     return LINKAGE_INERTIA_KG_M2 + screw_efficiency * REFLECTED_ROTOR_INERTIA_KG_M2
 
 
 def loop_gains(position_loop_hz: float, inertia: float,
                damping_ratio: float = POSITION_LOOP_DAMPING_RATIO) -> tuple[float, float]:
-    """(K [N m/rad], D [N m s/rad]) of a position loop of bandwidth position_loop_hz on
-    `inertia` [kg m^2]."""
+    """(K [N m/rad], D [N m s/rad]) of a position_loop_hz position loop on `inertia` [kg m^2]."""
     omega = 2.0 * math.pi * position_loop_hz
     return inertia * omega * omega, 2.0 * damping_ratio * inertia * omega
 

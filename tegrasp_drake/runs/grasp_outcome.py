@@ -20,9 +20,7 @@ GRIP_FRACTION = 0.9
 TOUCH_HEIGHT_M = 0.0005
 LIFTED_HEIGHT_M = 0.02  # above its resting height, the object counts as lifted
 RELEASED_FORCE_N = 0.5
-# [s] after the grip force is reached over which the held grip is measured (settled_grip_n):
-# longer than the drive's overshoot and relaxation (about 60 ms) and than a soft contact's
-# rise (25-80 ms, docs/model.md), shorter than the scripted Load (1.8 s).
+# [s] over which the held grip is measured (docs/controller.md, "The grip a trial holds")
 SETTLE_WINDOW_S = 0.2
 
 
@@ -98,18 +96,16 @@ def first_contact_time(log, after: float = 0.0):
 
 
 def grip_plateau_n(log, after: float = 0.0) -> float:
-    """The level [N] the weaker pad's true force settles at after `after` [s]: its
-    maximum (the squeeze rises monotonically to it and the lift only redistributes it).
-    0 without samples."""
+    """The level [N] the weaker pad's true force settles at after `after` [s]: its maximum (the
+    squeeze rises monotonically to it and the lift only redistributes it). 0 without samples."""
     weaker = true_sa(log).min(axis=1)[log.t_sa >= after]
     return float(weaker.max()) if weaker.size else 0.0
 
 
 def grip_force_time(log, grip_force: float, after: float = 0.0):
     """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the grip
-    force, or else of grip_plateau_n (the taxels do not see all of a thin object's contact
-    force: a 22 mm cylinder's plateau is 21.4 N of a 25 N command); None when the force never
-    rises above CONTACT_FORCE_N."""
+    force, or else of grip_plateau_n (thin objects); None when the force never rises above
+    CONTACT_FORCE_N."""
     weaker = true_sa(log).min(axis=1)
     level = grip_force
     if not np.any((weaker >= GRIP_FRACTION * grip_force) & (log.t_sa >= after)):
@@ -120,11 +116,8 @@ def grip_force_time(log, grip_force: float, after: float = 0.0):
 
 
 def settled_grip_n(log, grip_force: float, after: float = 0.0) -> float:
-    """The grip [N] the weaker pad settles at: its median true force over SETTLE_WINDOW_S after
-    the grip force is reached (grip_force_time, after `after` [s]); 0 if never. The held level,
-    not the command or the peak: the 2F-85's rotor overshoots the current limit's force and the
-    self-locking screw holds what is left (a thick cylinder pushed off-centre peaked at 29 N
-    and held 20 N of a 25 N setting)."""
+    """The grip [N] the weaker pad holds: its median true force over SETTLE_WINDOW_S after
+    the grip force is reached (grip_force_time, after `after` [s]); 0 if never."""
     start = grip_force_time(log, grip_force, after)
     if start is None:
         return 0.0
@@ -134,9 +127,8 @@ def settled_grip_n(log, grip_force: float, after: float = 0.0) -> float:
 
 
 def grip_fraction_at(log, t: float, grip_force: float, after: float = 0.0) -> float | None:
-    """The weaker pad's true force at time t [s] (the latest taxel frame at or before t) as
-    a fraction of the settled grip (settled_grip_n); None before the first frame or when
-    the pads never grip."""
+    """The weaker pad's true force at t [s] (latest taxel frame) as a fraction of
+    settled_grip_n; None before the first frame or when the pads never grip."""
     index = int(np.searchsorted(log.t_sa, t, side="right")) - 1
     settled = settled_grip_n(log, grip_force, after)
     if index < 0 or settled <= CONTACT_FORCE_N:
@@ -145,14 +137,12 @@ def grip_fraction_at(log, t: float, grip_force: float, after: float = 0.0) -> fl
 
 
 def scripted_lift_start(log) -> float | None:
-    """When the scripted ideal grasp starts its Lift [s] (the log's `phase_starts`, written
-    by runs/ideal_grasp.py); None for a log without the script's phases."""
+    """When the scripted ideal grasp starts its Lift [s] (`phase_starts`), else None."""
     return (log.meta.get("phase_starts") or {}).get("lift")
 
 
 def table_touch_time(log, object_config=None, after: float = 0.0):
-    """First logged time > after [s] that the object's lowest point is within TOUCH_HEIGHT_M
-    of where it rested at the start."""
+    """First time > after [s] that the object's lowest point is within TOUCH_HEIGHT_M of rest."""
     low = lowest_point_heights(log.object_state, object_config)
     return _first(log.t_slow, (low - low[0] < TOUCH_HEIGHT_M) & (log.t_slow > after))
 
@@ -167,16 +157,14 @@ def physical_events(log, grip_force: float, object_config=None) -> dict:
 
 
 def lifted_mask(log, object_config=None) -> np.ndarray:
-    """At each logged state: the object's lowest point is more than LIFTED_HEIGHT_M above
-    where it rested (not the origin: a 45 mm box knocked on its side raises its origin 22.5
-    mm)."""
+    """At each logged state: the object's lowest point is more than LIFTED_HEIGHT_M above where it
+    rested (not the origin: a 45 mm box knocked on its side raises its origin 22.5 mm)."""
     low = lowest_point_heights(log.object_state, object_config)
     return low - low[0] > LIFTED_HEIGHT_M
 
 
 def judge_grasp(log, *, target_xy, grip_force: float, object_config=None) -> GraspOutcome:
-    """Evaluates a trial against the ground truth (object_config: the object's shape and
-    size, for its lowest point; without it, its origin's height)."""
+    """Evaluates a trial against the ground truth (object_config: for the object's lowest point)."""
     z = log.object_state[:, 6]
     lifted = lifted_mask(log, object_config)
     final = log.object_state[-1]

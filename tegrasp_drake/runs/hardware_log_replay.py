@@ -1,10 +1,7 @@
-"""The event matcher re-run offline on a hardware run's LCM log (`tegrasp replay LOG`).
-
-The SA and RA channels are computed from TEGRASP_TACTILE as the controller did and fed
-through an EventMatcher with the object's memorized events, two ways: expecting, while in
-mode X, the event of the logged transition that left X (reporting each match beside the
-transition), and expecting the events in grasp order (events/replay.py). The matcher's
-settings are the run's own (its scenario in TEGRASP_RUN_INFO), else the defaults.
+"""The event matcher re-run offline on a hardware run's LCM log (`tegrasp replay LOG`):
+the SA and RA channels computed from TEGRASP_TACTILE as the controller did, matched against
+the object's memorized events two ways (per logged mode, and in grasp order; events/replay.py),
+with the run's own matcher settings (TEGRASP_RUN_INFO), else the defaults.
 """
 
 import dataclasses
@@ -100,9 +97,7 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
 
 def matcher_config_of_run(run_info, events, source: str = "the run's scenario"
                           ) -> EventMatcherConfig:
-    """The matcher the live controller built (event_matcher_config at the scenario's rates)
-    when the run's scenario ran an event-triggered controller; else the defaults at the
-    events' rates."""
+    """The live matcher of an event-triggered run; else the defaults at the events' rates."""
     if run_info is not None and run_info.scenario_yaml:
         scenario = scenario_from_yaml(run_info.scenario_yaml, source)
         if controller_entry(scenario.controller).event_triggered:
@@ -145,9 +140,8 @@ class RunLogReplay:
 def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
     """Reads a run's log and re-runs the matcher on it both ways, with the events of
-    `object_name` (default the run's) in `events_dir` (default the run's folder if it still
-    exists, else the user's, then the package's). RunLogError, MemorizedEventError or
-    ValueError, each naming what is wrong."""
+    `object_name` (default the run's) from `events_dir` (default the run's folder, the user's,
+    then the package's). RunLogError, MemorizedEventError or ValueError naming what is wrong."""
     log = read_run_log(path)
     info = log.run_info
     object_name = object_name or (info.object_name if info else None)

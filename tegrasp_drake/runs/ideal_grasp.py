@@ -54,11 +54,8 @@ def progress_monitor(progress, end_time: float):
 def run_ideal_grasp(scenario: Scenario, *, meshcat: Meshcat | None = None,
                     duration: Annotated[float | None, SIMULATED_DURATION] = None,
                     progress: Callable | None = None):
-    """Simulates the ideal grasp; returns (TrialLog, wall time [s]).
-
-    duration: [s] of simulated time (default: the plan's, plus END_MARGIN_S).
-
-    progress: called as progress(t, end) [s, simulated] as the run goes."""
+    """Simulates the ideal grasp for `duration` [s] (default: the plan's plus END_MARGIN_S);
+    returns (TrialLog, wall time [s]). progress: progress(t, end) [s, simulated]."""
     grasp = MakeIdealGraspDiagram(scenario, meshcat=meshcat)
     segments = grasp.controller.segments
     simulator = MakeSimulator(grasp.diagram, scenario)

@@ -45,10 +45,8 @@ def _event_transition(transition: Transition) -> str | None:
 def physical_event_times(log, transitions: list[Transition], grip_force: float,
                          object_config=None, hit_time_s: float = -1.0) -> dict:
     """The physical event behind each event transition taken, looked for after its mode was
-    entered: first contact (Reach-Load), the grip settled (Load-Lift: GRIP_FRACTION of the grip
-    after the last Reach; closed loop has no scripted lift, so a Load-Lift before the grip
-    settled is false), table touch (Place-Unload); and "hit", the scenario's hit
-    (disturbance.hit_time_s) when it came within the simulated time."""
+    entered: first contact, the grip settled (after the last Reach), table touch, and "hit"
+    when the scenario's hit came within the simulated time."""
     events = {}
     if 0.0 <= hit_time_s <= float(log.t_slow[-1]):
         events["hit"] = float(hit_time_s)
@@ -68,9 +66,8 @@ def physical_event_times(log, transitions: list[Transition], grip_force: float,
 
 def lift_grip_fraction(log, transitions: list[Transition], grip_force: float
                        ) -> float | None:
-    """The grip the lift starts with: the weaker pad's true force at the first Load -> Lift
-    transition as a fraction of the settled grip (grasp_outcome.grip_fraction_at); None
-    when the trial never lifted from Load."""
+    """The weaker pad's true force at the first Load -> Lift as a fraction of the settled
+    grip (grasp_outcome.grip_fraction_at); None when the trial never lifted from Load."""
     lift = next((e.t for e in transitions
                  if e.from_mode == Mode.LOAD and e.to_mode == Mode.LIFT), None)
     return None if lift is None else grip_fraction_at(log, lift, grip_force)
@@ -120,10 +117,8 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
               max_time: Annotated[float | None, Range(low=0.0, unit="s")] = None,
               progress: Callable | None = None) -> TrialResult:
     """Simulates one trial of `scenario` with its controller; returns its TrialResult.
-
-    max_time: [s] simulated at most (default: the controller's time limit); events,
-    corrective_events: default MakeGraspDiagram's; progress: progress(t, end) [s, simulated],
-    `end` shrinking to the machine's end + END_MARGIN_S once it is Done or Failed."""
+    max_time: [s] simulated at most (default: the controller's limit); events,
+    corrective_events: default MakeGraspDiagram's; progress: progress(t, end) [s, simulated]."""
     check_ranges(scenario, "run_trial: scenario")  # a config changed after loading
     grasp = MakeGraspDiagram(scenario, station=MakeSimulatedStation(scenario, meshcat=meshcat),
                                 events=events, corrective_events=corrective_events)

@@ -43,8 +43,7 @@ class TrialResult:
     log: object = dataclasses.field(default=None, compare=False, repr=False)
 
     def to_dict(self) -> dict:
-        """The JSON form: every field but `log`, in order; transitions as their JSON form
-        (Transition.as_dict), the final mode by its label."""
+        """The JSON form: all fields but `log`; transitions as dicts, the final mode by label."""
         data = {field.name: getattr(self, field.name) for field in dataclasses.fields(self)
                 if field.name != "log"}
         data["transitions"] = [transition.as_dict() for transition in self.transitions]
@@ -58,8 +57,7 @@ class TrialResult:
 
     @classmethod
     def from_dict(cls, data: dict) -> "TrialResult":
-        """The TrialResult of its JSON form; keys it does not know are ignored, fields
-        missing from `data` take their defaults."""
+        """The TrialResult of its JSON form; unknown keys ignored, missing fields defaulted."""
         known = {field.name for field in dataclasses.fields(cls)} - {"log"}
         values = {key: value for key, value in data.items() if key in known}
         values["transitions"] = tuple(map(Transition.from_dict, data.get("transitions", ())))

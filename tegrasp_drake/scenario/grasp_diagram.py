@@ -1,12 +1,7 @@
-"""The grasp diagram: a station and the grasp controller, built one way for every run.
-
-    station (MakeStation: simulated or hardware, by the scenario's `station` tag)
-      -> AddGraspController (control/grasp_controller.py) with the scenario's sections:
-         arm.desired_state and gripper.command from the measured ports
-      -> the trial's loggers (scenario/trial_log_writer.py), unless `log=False`
-
-Both stations export the same ports, so the controller cannot tell them apart. `MakeSimulator`
-is the one simulator set-up for simulated, open-loop and hardware runs.
+"""The grasp diagram: a station (simulated or hardware, by the scenario's `station` tag),
+the grasp controller wired to its measured ports, and the trial's loggers unless
+`log=False`. Both stations export the same ports, so the controller cannot tell them apart.
+`MakeSimulator` is the one simulator set-up for simulated, open-loop and hardware runs.
 """
 
 import dataclasses
@@ -43,9 +38,8 @@ EXTRA_TIME_S = 10.0
 def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
                 lcm: DrakeLcm | None = None):
     """The station of `scenario` as its `station` tag says: MakeSimulatedStation (the
-    default) or MakeHardwareStation, which owns device threads: use it in a `with` block,
-    call wait_until_ready() before the Simulator's Initialize() and run at real-time rate
-    (run_on_hardware does). Both export the same ports."""
+    default) or MakeHardwareStation (use it in a `with` block; run_on_hardware does). Both
+    export the same ports."""
     check_ranges(scenario, "MakeStation: scenario")  # a config changed after loading
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation
@@ -54,10 +48,8 @@ def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
 
 
 def station_carriage(scenario):
-    """The carriage's impedance when the scenario's simulated station rides the gripper on
-    one (`station.arm: carriage`): the arm's at the side grasp over the object's marker, at
-    the grasp height, where the hand meets the object; None for the arm itself (and for a
-    hardware station)."""
+    """The carriage's impedance when the simulated station rides the gripper on one
+    (`station.arm: carriage`): the arm's at the side grasp over the object's marker; else None."""
     station = scenario.station
     if not (isinstance(station, SimulatedStationConfig) and station.uses_carriage()):
         return None
@@ -67,8 +59,7 @@ def station_carriage(scenario):
 
 @public_api
 def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
-    """MakeGraspStation with the scenario's sections, whatever its `station` tag says (its
-    `arm` setting when it is a simulated station's)."""
+    """MakeGraspStation with the scenario's sections, whatever its `station` tag says."""
     return MakeGraspStation(
         plant_config=scenario.plant_config, arm=scenario.arm, gripper=scenario.gripper,
         object=scenario.object, X_WO=object_pose(scenario), tactile=scenario.tactile,
@@ -82,9 +73,7 @@ def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
 def AddScenarioController(builder: DiagramBuilder, scenario: Scenario, *, station: System,
                           events: dict | None = None,
                           corrective_events: dict | None = None) -> GraspController:
-    """AddGraspController with the scenario's sections (controller, GraspPlan, arm, sample
-    rates); the memorized events default to the scenario object's, and the RA and SA
-    thresholds follow the noise of its films' and taxels' electronics."""
+    """AddGraspController with the scenario's sections, events and noise-following thresholds."""
     controller = scenario.controller
     if events is None and controller_entry(controller).event_triggered:
         events = load_controller_events(scenario)
@@ -113,10 +102,9 @@ class GraspDiagram:
 def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
                      events: dict | None = None, corrective_events: dict | None = None,
                      meshcat: Meshcat | None = None, log: bool = True) -> GraspDiagram:
-    """Builds the station and the scenario's controller into one Diagram. station: a Diagram
-    with the station's ports (default MakeStation's); events, corrective_events: the
-    memorized events (default: the package's for the scenario's object); log: add the
-    TrialLog loggers (simulated runs)."""
+    """Builds the station and the scenario's controller into one Diagram. station: default
+    MakeStation's; events, corrective_events: default the package's for the scenario's object;
+    log: add the TrialLog loggers."""
     check_ranges(scenario, "MakeGraspDiagram: scenario")  # a config changed after loading
     builder = DiagramBuilder()
     if station is None:

@@ -1,8 +1,6 @@
 """Scenario keys that moved when the settings were nested by concern, old dotted path -> new.
-
-User input naming an old key is refused with its new path (`refuse_moved_keys`); records the
-project stored in the old layout are read through `migrate_stored_scenario` and
-`migrate_stored_overrides`, only where stored records are read.
+User input naming an old key is refused with its new path (`refuse_moved_keys`); stored
+records are read through `migrate_stored_scenario` and `migrate_stored_overrides`.
 """
 
 import copy
@@ -99,9 +97,7 @@ def _move(data: dict, old: str, new: str) -> None:
 
 
 def migrate_stored_scenario(data):
-    """Stored-record migration: a copy of a scenario's YAML data as a record or an event
-    written before the move stored it (scenario_to_yaml's dump), its old keys moved to
-    their new paths; other data unchanged. Only for reading stored records."""
+    """A copy of a stored record's scenario YAML data with its old keys moved to the new paths."""
     if not isinstance(data, dict):
         return data
     data = copy.deepcopy(data)
@@ -111,9 +107,8 @@ def migrate_stored_scenario(data):
 
 
 def migrate_stored_overrides(assignments) -> list[str]:
-    """Stored-record migration: a sweep record's scenario_overrides (`key=value`) written
-    before the move, each old key replaced by its new path. Only for reading stored
-    records."""
+    """Stored-record migration: a sweep record's scenario_overrides (`key=value`) written before
+    the move, each old key replaced by its new path. Only for reading stored records."""
     migrated = []
     for assignment in assignments:
         key, equals, value = str(assignment).partition("=")

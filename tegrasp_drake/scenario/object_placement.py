@@ -31,8 +31,7 @@ class ObjectPlacementConfig:
         return tuple(a + b for a, b in zip(self.expected_xy, self.offset))
 
     def problem(self, shape: str, size) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) when an object of `shape` and `size` [m]
-        placed here would stand off the table top; None when it stands on it."""
+        """(field, must, value) when a `shape` of `size` [m] here is off the table; else None."""
         x, y = self.xy()
         radius = size[0] / 2 if shape == "cylinder" else math.hypot(size[0], size[1]) / 2
         (cx, cy), (half_x, half_y) = TABLE_CENTER_XY, (TABLE_SIZE[0] / 2, TABLE_SIZE[1] / 2)

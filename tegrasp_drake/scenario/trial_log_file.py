@@ -119,9 +119,8 @@ def _is_time(value) -> bool:
 
 
 def meta_problem(meta: dict, phase: np.ndarray) -> str | None:
-    """What is wrong with the structure or types of a trial log's metadata (the parts a plot,
-    a replay or a report reads), or None: transitions as Transition entries, phase names as
-    text, phase start times as numbers, and the `phase` array indexing the phase names."""
+    """What is wrong with a trial log's metadata, or None: transitions as Transition entries,
+    phase names as text, phase start times as numbers, `phase` indexing the phase names."""
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):
@@ -160,9 +159,8 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 
 
 def trial_arrays_problem(arrays: dict) -> str | None:
-    """What is wrong with the shapes or values of the trial-log arrays in `arrays` (a whole
-    log's or part of one), or None: each time base at least two finite, increasing times,
-    each array one row per time with its columns, the signals finite. Every reader applies it."""
+    """What is wrong with the trial-log arrays in `arrays`, or None: each time base at least
+    two finite, increasing times, one row per time, finite signals. Every reader applies it."""
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue

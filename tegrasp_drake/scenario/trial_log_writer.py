@@ -35,8 +35,7 @@ class TrialLoggers:
 
 def AddTrialLogging(builder, *, scenario, station, channels, arm_desired_state,
                       gripper_command, phase) -> TrialLoggers:
-    """Adds the loggers of a TrialLog (taxels at the SA rate, channels and accelerations at
-    the RA rate, the rest every SLOW_LOG_PERIOD)."""
+    """Adds a TrialLog's loggers: taxels at the SA rate, signals at the RA rate, the rest slower."""
     sa_period = 1.0 / scenario.tactile.sample_rate_hz
     ra_period = 1.0 / scenario.vibration.sample_rate_hz
     taxel_mux = builder.AddNamedSystem("taxel_log_mux", Multiplexer([12, 12]))

@@ -1,12 +1,9 @@
-"""The real pad's SA transducer: each taxel a parallel-plate capacitor read by an AD7147.
-
-Pressing the pad compresses the elastomer between an electrode and the conductive fabric
-(paper, Sec. IV-A): Delta C = eps_r eps_0 A (1/d1 - 1/d0), d1 = d0 - compression, the
-compression d0 p / E of a thin layer under the taxel's mean pressure p = F / A (d0, E the pad
-model's thickness and modulus). The AD7147 reports Delta C in whole 16-bit counts with noise.
-The station reports them as counts above the baseline or, by default, as newtons through the
-hardware's per-taxel calibration line (hardware/myrio/tactile_calibration.py), nonlinear in
-the true force. The numbers and their sources: docs/model.md, "The capacitive taxel".
+"""The real pad's SA transducer: each taxel a parallel-plate capacitor read by an AD7147
+(paper, Sec. IV-A): Delta C = eps_r eps_0 A (1/d1 - 1/d0), d1 = d0 - d0 p / E under the
+taxel's mean pressure p = F / A. The AD7147 reports Delta C in whole 16-bit counts with
+noise; the station reports counts above baseline or, by default, newtons through the
+hardware's per-taxel calibration (hardware/myrio/tactile_calibration.py). Numbers and
+sources: docs/model.md, "The capacitive taxel".
 """
 
 import dataclasses
@@ -52,8 +49,7 @@ def ad7147_frame_rate_hz(decimation: int) -> float:
 
 
 def frame_rate_matches(sample_rate_hz: float, decimation: int) -> bool:
-    """Whether a taxel sample rate [Hz] is the AD7147's frame rate at `decimation`
-    (within FRAME_RATE_TOLERANCE)."""
+    """Whether `sample_rate_hz` is the AD7147's frame rate at `decimation` (within tolerance)."""
     frame = ad7147_frame_rate_hz(decimation)
     return abs(sample_rate_hz - frame) <= FRAME_RATE_TOLERANCE * frame
 
@@ -187,8 +183,7 @@ class CapacitiveTaxels(LeafSystem):
 
 def AddTaxelTransducer(builder, *, taxels, tactile_config, name: str = "capacitive_taxels"):
     """The system whose `<finger>_taxel_forces` are the station's taxel readings: `taxels`
-    (TactilePads) for the force transducer, else a CapacitiveTaxels fed by its true forces
-    (and a RandomSource at the taxel rate)."""
+    for the force transducer, else a CapacitiveTaxels fed by its true forces."""
     if tactile_config.transducer == "force":
         return taxels
     config = tactile_config.capacitive

@@ -1,12 +1,9 @@
 """The Cartesian carriage: the gripper on six actuated joints that reproduce the JACO2's
-end-point impedance at the grasp frame G, for sweeps (`station.arm: carriage`).
-
-Three prismatic joints along the principal axes of the arm's translational mobility at G
-move G's origin, then yaw, pitch and roll about world z, y, x (Drake's RollPitchYaw) turn
-it; the gripper is welded to the last body. Each joint is on the plant's implicit PD, which
-SAP keeps stable at 1 ms for any gains (a spatial PD as an external force would be explicit).
-The impedance: docs/model.md, "The carriage". Frames: world W; G the grasp frame (between
-the pads' centres, z the approach); wrenches [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G, in W.
+end-point impedance at the grasp frame G, for sweeps (`station.arm: carriage`). Three
+prismatic joints along the principal axes of the arm's translational mobility at G, then
+yaw, pitch and roll about world z, y, x; each on the plant's implicit PD (stable under SAP at
+1 ms for any gains). docs/model.md, "The carriage". Frames: world W; G between the pads'
+centres, z the approach; wrenches [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G, in W.
 """
 
 import dataclasses
@@ -73,9 +70,8 @@ def arm_endpoint_impedance(arm_config, X_WG: RigidTransform) -> EndpointImpedanc
 
 @dataclasses.dataclass(frozen=True)
 class Carriage:
-    """The carriage in a plant: its model instance, its joints in actuator order (the order
-    of its desired-state input), its prismatic joints' unit axes in world (3 x 3, columns
-    in joint order) and the body the gripper is welded to."""
+    """The carriage in a plant: its model instance, joints in actuator order, prismatic
+    joints' unit axes in world (3 x 3, columns in joint order) and the body holding the gripper."""
     instance: object
     joints: tuple
     translation_axes: np.ndarray
@@ -83,8 +79,7 @@ class Carriage:
 
 
 def _translation_masses(inertia: np.ndarray) -> list:
-    """Each prismatic body's own mass [kg], heaviest axis first, so that joint k moves the
-    arm's mass along its axis (a joint moves its own body and all after it)."""
+    """Each prismatic body's own mass [kg], heaviest axis first, so joint k moves the arm's mass."""
     masses = list(inertia[3:]) + [GIMBAL_BODY_MASS_KG * 3]
     return [max(masses[k] - masses[k + 1], GIMBAL_BODY_MASS_KG) for k in range(3)]
 
@@ -147,8 +142,7 @@ def carriage_state(carriage: Carriage, X_WG: RigidTransform, V_WG: np.ndarray) -
 
 def carriage_displacement(carriage: Carriage, positions: np.ndarray,
                           deflection: np.ndarray) -> np.ndarray:
-    """G's small displacement [dtheta; dp] (world, [rad, m]) when the carriage's joints move
-    by `deflection` (actuator order) from `positions`."""
+    """G's small displacement [dtheta; dp] [rad, m; world] for joint `deflection` at `positions`."""
     rpy = RollPitchYaw(positions[5], positions[4], positions[3])
     dtheta = rpy.CalcAngularVelocityInParentFromRpyDt(
         [deflection[5], deflection[4], deflection[3]])
@@ -175,8 +169,7 @@ class ArmGraspFrameKinematics:
 
 
 def wrench_on_arm(F_GJ_G: np.ndarray, R_WG: RotationMatrix) -> np.ndarray:
-    """The wrench the gripper puts on the arm at G, in world [Mx, My, Mz, Fx, Fy, Fz]
-    [N m, N], from the weld's reaction F_GJ_G = [torque; force] that the carriage exerts on
-    the gripper at G, in G (Drake's reaction forces at the joint's child frame)."""
+    """The wrench the gripper puts on the arm at G, in world [Mx, My, Mz, Fx, Fy, Fz] [N m, N],
+    from the weld's reaction F_GJ_G (Drake's, at the joint's child frame, in G)."""
     R = R_WG.matrix()
     return -np.concatenate([R @ F_GJ_G[:3], R @ F_GJ_G[3:]])

@@ -1,8 +1,6 @@
 """The two systems that let the carriage (carriage.py) stand in for the JACO2 behind the
-arm's ports: the controller keeps commanding joint states and reading joint torques.
-CarriageCommand turns the arm's servo set-point into the carriage's and reports the arm's
-joints (with the carriage's deflection, so the tracker removes a sag as on the arm);
-CarriageWristWrench reports the weld's wrench and the joint torques that would hold it.
+arm's ports: CarriageCommand (the arm's servo set-point to the carriage's, and the arm's
+joints) and CarriageWristWrench (the weld's wrench and the joint torques that would hold it).
 """
 
 import numpy as np

@@ -1,12 +1,9 @@
 """How finely the contact world is meshed: the scenario's `contact_geometry` section.
-
 Each hydroelastic contact-surface face is one SAP constraint, so coarser meshes make a trial
-cheaper; the defaults are the reference geometry every committed result ran on, and each
-other choice is opt-in and kept only where the closed-form checks of the contact world hold
-(validation_scenes.py): a box object as its corners' convex hull, the table top as a
-compliant half-space (table_model.py). `pad_refinement` splits the pads' meshes finer
-against the friction creep (docs/model.md, "Friction creep"). The choices and their costs:
-docs/sweeps.md, "Coarser contact geometry".
+cheaper. The defaults are the reference geometry; each coarser choice is opt-in and kept only
+where validation_scenes.py's closed-form checks hold. `pad_refinement` meshes the pads finer
+against friction creep (docs/model.md, "Friction creep"). Costs: docs/sweeps.md, "Coarser
+contact geometry".
 """
 
 import dataclasses

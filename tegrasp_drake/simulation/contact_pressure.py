@@ -1,14 +1,11 @@
 """Per-taxel normal force from a hydroelastic contact surface: the pure numpy core.
 
-A face's normal force on the pad is its pressure integrated over its projection on the pad
-plane. The pressure is linear over each face and the taxels are a rectangular grid, so each
-cell's share of each triangle has a closed form, exact however large the faces (a compliant
-box pad's faces are centimetres across: a face put whole into one taxel would give an uneven
-pattern under an even press). The cumulative integral F(a, b) over T and {x < a, y < b} is
-summed from T's edges (Green's theorem): along an edge the swept integral is quadratic on
-each side of where it crosses y = b, so the midpoint rule with its curvature term is exact.
-A cell's force is the inclusion-exclusion of F at its corners; points beyond the pad's edge
-count to the nearest edge taxel.
+A face's force on the pad is its pressure integrated over its projection on the pad plane.
+The pressure is linear over each face and the taxels form a grid, so each cell's share of
+each triangle has a closed form, exact however large the faces: the cumulative integral over
+{x < a, y < b} summed from the triangle's edges (Green's theorem), a cell's force by
+inclusion-exclusion at its corners. Points beyond the pad's edge count to the nearest edge
+taxel.
 """
 
 import numpy as np
@@ -25,8 +22,7 @@ _FLAT_TRIANGLE = 1e-9
 
 
 def polygon_fan_triangles(face_data) -> np.ndarray:
-    """Vertex indices (T, 3) of a fan triangulation of Drake's PolygonSurfaceMesh.face_data()
-    ([n, v0 .. v(n-1), n, ...])."""
+    """Vertex indices (T, 3) of a fan triangulation of PolygonSurfaceMesh.face_data()."""
     data = np.asarray(face_data, dtype=np.intp)
     headers = data.tolist()  # Python ints: the walk below reads one per face
     starts, counts = [], []
@@ -110,8 +106,7 @@ def corner_differences(cumulative: np.ndarray) -> np.ndarray:
 
 
 def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
-    """taxel_normal_forces of each (p_PV, pressure_V, triangles) in `surfaces`, in one pass
-    over all their triangles (the same numbers as one call per surface)."""
+    """taxel_normal_forces of each surface in `surfaces`, in one pass over all triangles."""
     triangles = [np.asarray(t, dtype=np.intp).reshape(-1, 3) for _, _, t in surfaces]
     xy = np.concatenate([np.asarray(p_PV, dtype=float)[t][:, :, :2]
                          for (p_PV, _, _), t in zip(surfaces, triangles)])

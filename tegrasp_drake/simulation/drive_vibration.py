@@ -1,13 +1,9 @@
-"""Vibration of the gripper's motor and gears and of the arm's actuators, as the films read it.
-
-Each drive is a sum of tones at f_k = order_k n, n = motor_revolutions_per_unit |v| [rev/s]
-(v the drive's joint rate: the gripper's half-opening rate [m/s], the arm's joint rates
-[rad/s]), each of amplitude A_k |v| / full_speed |H(f_k)|, |H(f)| = 1 / sqrt((1 - r^2)^2 +
-(2 zeta r)^2), r = f / f_mode, the fingertip mode's gain (film_dynamics.py). A drive of
-several joints is lumped into one set of tones (amplitude from the norm of the rates,
-frequency from the fastest) to keep the symbolic evaluation cheap. The tones are point
-samples at the RA rate: the myRIO has no anti-aliasing filter. One compiled
-SymbolicVectorSystem; the spectra assumed: docs/model.md, "Drive vibration".
+"""Vibration of the gripper's and the arm's drives as the films read it: per drive a sum of
+tones at f_k = order_k n, n = motor_revolutions_per_unit |v| [rev/s] (v the gripper's
+half-opening rate [m/s] or the arm's joint rates [rad/s]), amplitude A_k |v| / full_speed
+|H(f_k)|, H the fingertip mode's gain (film_dynamics.py). A drive of several joints is one set
+of tones; tones are point samples at the RA rate (the myRIO has no anti-aliasing filter). One
+compiled SymbolicVectorSystem; spectra: docs/model.md, "Drive vibration".
 """
 
 import dataclasses
@@ -25,8 +21,7 @@ from tegrasp_drake.rig.api_boundary import public_dataclass
 @public_dataclass
 @dataclasses.dataclass
 class DriveVibrationConfig:
-    """One drive's tones; empty or all-zero `amplitudes_mps2` disables it. The spectra assumed
-    and their reasoning: docs/model.md, "Drive vibration"."""
+    """One drive's tones (all-zero amplitudes: off); docs/model.md, "Drive vibration"."""
     # Each tone's base acceleration at the fingertip at full speed [m/s^2] (assumed).
     amplitudes_mps2: list[float] = bounded(
         default_factory=list, low=0.0, high=1.0, unit="m/s^2",
@@ -81,9 +76,8 @@ def _symbolic_mode_gain(frequency_hz, mode_frequency_hz: float, damping_ratio: f
 
 
 def drive_tones(drives, period_s: float, mode_frequency_hz: float, damping_ratio: float):
-    """(inputs, states, next states, reading) of the symbolic system: `drives` is a list of
-    (DriveVibrationConfig, number of joints) in input order; one phase [rev, in [0, 1)] per
-    drive and tone."""
+    """(inputs, states, next states, reading) of the symbolic system for `drives`, a list of
+    (DriveVibrationConfig, number of joints); one phase [rev, in [0, 1)] per drive and tone."""
     inputs, states, updates, reading = [], [], [], 0.0
     for d, (config, joints) in enumerate(drives):
         rates = [Variable(f"v{d}_{j}") for j in range(joints)]
@@ -108,9 +102,8 @@ def drive_tones(drives, period_s: float, mode_frequency_hz: float, damping_ratio
 
 def AddDriveVibration(builder, *, sources, period_s: float, mode_frequency_hz: float,
                       damping_ratio: float, name: str = "drive_vibration"):
-    """Adds the drives' vibration to `builder`: `sources` is a list of (DriveVibrationConfig,
-    joint-rate output port), the disabled ones left out. Returns its output port, [left,
-    right] (2, m/s^2, the same base acceleration), or None when every drive is disabled."""
+    """Adds the drives' vibration to `builder` from `sources`, (DriveVibrationConfig,
+    joint-rate port) pairs; returns its [left, right] output [m/s^2], or None when all are off."""
     sources = [(config, port) for config, port in sources if config.enabled()]
     if not sources:
         return None

@@ -1,14 +1,11 @@
 """The pads' PVDF films as one Diagram, compiled Drake systems but for FilmLoads:
 
-    film_signals -> film_loads (FilmLoads, Python: the step's loads)
-    film_inputs (the hold, film_loads, drive vibration, noise) -> film_dynamics (MatrixGain:
-      both films over the step, exactly) -> film_step -> film_hold (ZeroOrderHold: FilmLoads'
-      memory and the films' states) | film_readout (SymbolicVectorSystem: peak-hold, drive,
-      noise, swing, converter) -> film_samples ([0, 0, a] per pad)
+    film_signals -> film_loads (FilmLoads, Python) -> film_dynamics (MatrixGain: both films
+      over the step, exactly) -> film_step -> film_hold (ZeroOrderHold: the loads' memory and
+      the films' states) | film_readout (SymbolicVectorSystem) -> film_samples ([0, 0, a] per pad)
 
 The states live in a ZeroOrderHold, not a LinearSystem, whose state would draw from the
-random generator and change every noise stream seeded after it. The readout's expressions
-are film_readout.reading_mps2's, the same arithmetic bit for bit.
+random generator and shift every noise stream seeded after it.
 """
 
 import numpy as np
@@ -74,11 +71,10 @@ def film_step_matrix(matrices: FilmStepMatrices, passed_through: int) -> np.ndar
 
 def film_readout_system(*, config, substeps: int, time_step: float, steps: int,
                         with_drive: bool, noise_std_v: float) -> SymbolicVectorSystem:
-    """Both films' readout as a SymbolicVectorSystem of period time_step. Input: each film's
-    n internal outputs (left, then right), the drive vibration (2, with_drive) and unit noise
-    (2, noise_std_v > 0). Every `steps` plant steps a pad's sample becomes reading_mps2 of
-    its peak plus the drive, with noise_std_v [V] of noise (none at t = 0). Output: [0, 0,
-    left, 0, 0, right] [m/s^2]."""
+    """Both films' readout as a SymbolicVectorSystem of period time_step: inputs each film's
+    n internal outputs, the drive vibration and unit noise (when used); every `steps` plant
+    steps a pad's sample is reading_mps2 of its peak plus drive and noise. Output: [0, 0, left,
+    0, 0, right] [m/s^2]."""
     readout = (volts_per_mps2(config), config.amplifier_swing_v, adc_input(config.adc_input))
     t = Variable("t")
     outputs = [[Variable(f"{finger}_output_{j}") for j in range(substeps)]
@@ -230,11 +226,9 @@ def finger_force_indices(plant, gripper) -> list[int]:
 def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorConfig,
                 slip_vibration=None, pad_forces=None, pad_statics=None,
                 drive_rates=(), name: str = "pad_films"):
-    """Adds both pads' films (with the accelerometers and noise source they read) to
-    `builder`, connected to `plant`. The pad forces come from the fingers' prismatic joints,
-    or from `pad_forces` (PadNormalForces) or `pad_statics` (LinkagePadStatics) when given;
-    `slip_vibration`: the PadSlipVibration system or None; `drive_rates`:
-    (DriveVibrationConfig, joint-rate output port) per drive. Returns MakePadFilms' Diagram."""
+    """Adds both pads' films (with their accelerometers and noise source) to `builder`,
+    connected to `plant`; pad forces from the fingers' joints, `pad_forces` or `pad_statics`;
+    `slip_vibration` and `drive_rates` optional. Returns MakePadFilms' Diagram."""
     drive = AddDriveVibration(builder, sources=list(drive_rates),
                               period_s=1.0 / config.sample_rate_hz,
                               mode_frequency_hz=config.film.mode_frequency_hz,

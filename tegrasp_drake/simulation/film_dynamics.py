@@ -1,13 +1,8 @@
-"""The numerical core of the pad's PVDF film (the RA source): pure numpy functions.
-
-One pad is a linear system of five states, s = [l1, l2, y, y', z]: l1, l2 a critically
-damped low-pass (corner w_l) of the slow load L [N]; y [m] the fingertip's mode, deflected
-outward by y'' + 2 zeta w y' + w^2 y = (l2 + d) / m, d [N] a direct load that bypasses the
-low-pass (impact, slip texture); z the charge amplifier's low-pass of y (corner w_h), so the
-film reads y - z. The output is in acceleration-equivalent units, a = w^2 (y - z) [m/s^2]
-(the voltage over the sensitivity S = G_Q / (w^2 C_f)). A plant step is split into n
-internal steps (20 kHz); L is held over the plant step, d per internal step, both integrated
-exactly (matrix exponential). docs/model.md, "Vibration (RA) model".
+"""The numerical core of the pad's PVDF film (the RA source): pure numpy functions. One pad has
+five states s = [l1, l2, y, y', z]: l1, l2 a critically damped low-pass of the slow load L [N]; y
+[m] the fingertip's mode, y'' + 2 zeta w y' + w^2 y = (l2 + d) / m with d [N] a direct load
+(impact, slip texture); z the charge amplifier's low-pass of y. The output is a = w^2 (y - z)
+[m/s^2], integrated exactly over 20 kHz internal steps. docs/model.md, "Vibration (RA) model".
 """
 
 import dataclasses
@@ -25,8 +20,7 @@ _L1, _L2, _Y, _YDOT, _Z = range(STATE_SIZE)
 
 @dataclasses.dataclass(frozen=True)
 class FilmParameters:
-    """The film's dynamics (SI units): mode frequency [Hz], damping ratio, modal mass [kg],
-    load low-pass corner [Hz], charge amplifier high-pass corner [Hz]."""
+    """The film: mode [Hz], damping ratio, modal mass [kg], load and amplifier corners [Hz]."""
     mode_frequency_hz: float
     damping_ratio: float
     modal_mass_kg: float
@@ -143,8 +137,7 @@ def effective_mass(tip_mass: float, other_mass: float) -> float:
 
 def restitution(closing_speed: float, dissipation: float) -> float:
     """Restitution of a Hunt-Crossley contact F = k x (1 + d x') struck at `closing_speed`
-    [m/s], d [s/m]: 1 / (1 + 2/3 d v), whose small-dv limit is Hunt & Crossley's 1 - 2/3 d v;
-    within 0.3 % of the integrated contact up to d v = 0.5."""
+    [m/s], d [s/m]: 1 / (1 + 2/3 d v), whose small-dv limit is Hunt & Crossley's 1 - 2/3 d v."""
     return 1.0 / (1.0 + 2.0 / 3.0 * dissipation * max(closing_speed, 0.0))
 
 

@@ -1,14 +1,8 @@
-"""FilmLoads: what loads each pad's film over one plant step: the slow modal load L = F + m a_n
-[N] (the pad's normal force, the fingertip's inertia) and the direct loads d [N] at the step's
-n internal instants (the impact's half-sine at a contact's onset, the slip texture). The
-impact needs the plant's abstract ports, so this is the chain's one Python system; its memory
-(the last forces, the pulses under way) is in its output, which the chain holds and feeds
-back (`held`). docs/model.md, "Vibration (RA) model".
-
-The output, `film_loads` (10 + 2 n): [0:2] L of the left and right pads [N] (0 at t = 0);
-[2:4] F [N]; each pad's impact onset [s] [4:6], impulse [N s] [6:8] (0: none under way) and
-duration [s] [8:10]; [10:10+n], [10+n:10+2n] d of the left, then the right pad, oldest
-instant first [N].
+"""FilmLoads: what loads each pad's film over one plant step: the slow modal load
+L = F + m a_n [N] and the direct loads d [N] at the step's n internal instants (the impact's
+half-sine at a contact's onset, the slip texture). The impact needs the plant's abstract
+ports, so this is the chain's one Python system; its memory is in its output, which the
+chain holds and feeds back (`held`). docs/model.md, "Vibration (RA) model".
 """
 
 import dataclasses
@@ -39,7 +33,7 @@ CONTACT_ONSET_N = 1e-6
 # noise (a held object's creep gives about 1e-7).
 TEXTURE_FLOOR_MPS2 = 1e-6
 
-# film_loads' layout (module docstring).
+# film_loads' layout (FilmLoads' ports).
 LOADS = slice(0, 2)
 FORCES = slice(2, 4)
 ONSETS, IMPULSES, DURATIONS = slice(4, 6), slice(6, 8), slice(8, 10)
@@ -68,8 +62,7 @@ def _point_velocity_before_step(X_WB: RigidTransform, V_WB: SpatialVelocity,
 
 @dataclasses.dataclass(frozen=True)
 class SignalLayout:
-    """Where FilmLoads finds each vector signal in its `signals` input: their sizes in order
-    (FilmLoads' ports; 0 for a signal not used)."""
+    """Where FilmLoads finds each vector signal in `signals`: their sizes in order (0: unused)."""
     forces: int
     gripper_state: int
     texture: int
@@ -115,7 +108,10 @@ class FilmLoads(LeafSystem):
             only) and the chain's hold (HELD_SIZE).
         contact_results, body_poses, body_spatial_velocities, body_spatial_accelerations:
             the plant's; read only on the plant step where a pad's contact begins.
-        film_loads: (10 + 2 n) the loads of the step that ends now (module docstring).
+        film_loads: (10 + 2 n) the loads of the step that ends now: [0:2] L of the left
+            and right pads [N]; [2:4] F [N]; each pad's impact onset [s] [4:6], impulse
+            [N s] [6:8] (0: none) and duration [s] [8:10]; then d of the left, then the
+            right pad at the n instants, oldest first [N].
     """
 
     def __init__(self, *, plant, pads: dict, force_indices, config: "VibrationSensorConfig",
@@ -207,8 +203,7 @@ class FilmLoads(LeafSystem):
         written[DIRECT_START:] = 0.0 if direct is None else direct.T.ravel()
 
     def _impact_loads(self, step_start: float, pulses: list):
-        """(n, 2) impact forces [N] over this step's internal steps, or None; marks an
-        impulse delivered (0) in `pulses` on its last step."""
+        """(n, 2) impact forces [N] over the step's instants, or None; marks delivered pulses."""
         impulses = pulses[2:4]
         if impulses[0] <= 0.0 and impulses[1] <= 0.0:
             return None
@@ -226,8 +221,7 @@ class FilmLoads(LeafSystem):
         return direct
 
     def _texture_loads(self, texture: np.ndarray, step_start: float):
-        """(n, 2) the texture's inertial load [N] on each fingertip over this step's internal
-        steps, or None when neither pad's texture is above TEXTURE_FLOOR_MPS2."""
+        """(n, 2) texture inertial loads [N] over the step's instants, or None below the floor."""
         if (abs(texture.item(1)) <= TEXTURE_FLOOR_MPS2
                 and abs(texture.item(4)) <= TEXTURE_FLOOR_MPS2):
             return None
@@ -263,8 +257,7 @@ class FilmLoads(LeafSystem):
             pulses[k], pulses[2 + k], pulses[4 + k] = step_start, impulse, duration
 
     def _strongest_contact(self, contacts: ContactResults, pad_geometry):
-        """(other body index, contact point in world) of the pad's largest contact force,
-        or None when the pad has no contact."""
+        """(other body index, point in world) of the pad's largest contact force, or None."""
         best, best_force = None, -1.0
         for i in range(contacts.num_hydroelastic_contacts()):
             info = contacts.hydroelastic_contact_info(i)

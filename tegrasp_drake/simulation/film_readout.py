@@ -1,13 +1,10 @@
-"""The film's electronics after the film: the charge amplifier's output swing and the NI
-myRIO-1900's 12-bit analog input (paper, Sec. IV-A), as pure functions. Per RA sample:
+"""The film's electronics: the charge amplifier's output swing and the myRIO-1900's 12-bit
+analog input (paper, Sec. IV-A), as pure functions. Per RA sample:
 
-  V = clip(S a + n, -swing, +swing)   S [V/(m/s^2)], a the film's reading, n Gaussian noise
+  V = clip(S a + n, -swing, +swing)   S [V/(m/s^2)], n Gaussian noise
   code = clip(round((V + offset) / lsb), low, high),   a_read = (code lsb - offset) / S
 
-V has the reading's sign (the host's calibration absorbs the amplifier's inversion). With
-noise of half a code or more the rounding error is near uniform and independent of the
-signal (Widrow and Kollar, "Quantization Noise", 2008): the reading's noise is
-sqrt(sigma_n^2 + lsb^2 / 12). docs/model.md, "Vibration (RA) model" (Readout).
+docs/model.md, "Vibration (RA) model" (Readout).
 """
 
 import dataclasses
@@ -19,8 +16,7 @@ ADC_INPUTS = ("msp", "mxp", "ideal")
 
 @dataclasses.dataclass(frozen=True)
 class AdcInput:
-    """One myRIO analog input range: its codes, volts per code, and the level shift that
-    puts a bipolar amplifier's 0 V at mid-range."""
+    """One myRIO analog input range: codes, volts per code, and the shift to mid-range 0 V."""
     low_code: int
     high_code: int
     volts_per_code: float
@@ -52,9 +48,8 @@ def adc_input(name: str) -> AdcInput | None:
 
 @dataclasses.dataclass(frozen=True)
 class Arithmetic:
-    """The min, max and floor that `reading_mps2` uses: Python's on floats (FLOATS), or
-    pydrake.symbolic's, so that the same function writes the readout as an expression of a
-    compiled system (film_chain.py)."""
+    """The min, max and floor that `reading_mps2` uses: Python's on floats (FLOATS) or
+    pydrake.symbolic's, so one function also writes the compiled readout."""
     min: typing.Callable
     max: typing.Callable
     floor: typing.Callable
@@ -65,9 +60,8 @@ FLOATS = Arithmetic(min=min, max=max, floor=math.floor)
 
 def reading_mps2(value_mps2, noise_v, sensitivity_v_per_mps2: float, swing_v: float,
                  adc: AdcInput | None, arithmetic: Arithmetic = FLOATS):
-    """What the host reads [m/s^2] for the film's reading value_mps2 plus noise_v [V] at the
-    amplifier's output (module docstring); without a converter (adc None) the clipped
-    voltage over S. Floats by default; symbolic expressions with a symbolic `arithmetic`."""
+    """What the host reads [m/s^2] for the film's value_mps2 plus noise_v [V] at the
+    amplifier (module docstring); without a converter (adc None) the clipped voltage over S."""
     low, high, floor = arithmetic.min, arithmetic.max, arithmetic.floor
     volts = sensitivity_v_per_mps2 * value_mps2 + noise_v
     volts = low(high(volts, -swing_v), swing_v)
@@ -81,8 +75,7 @@ def reading_mps2(value_mps2, noise_v, sensitivity_v_per_mps2: float, swing_v: fl
 
 def noise_at_amplifier_v(noise_std_mps2: float, adc_noise_lsb: float,
                          sensitivity_v_per_mps2: float, adc: AdcInput | None) -> float:
-    """The Gaussian noise [V rms] drawn per sample: the amplifier's noise_std_mps2 at S and
-    the converter's adc_noise_lsb codes, root-sum-square."""
+    """The Gaussian noise [V rms] per sample: amplifier's and converter's, root-sum-square."""
     amplifier = noise_std_mps2 * sensitivity_v_per_mps2
     converter = 0.0 if adc is None else adc_noise_lsb * adc.volts_per_code
     return math.hypot(amplifier, converter)
@@ -90,8 +83,7 @@ def noise_at_amplifier_v(noise_std_mps2: float, adc_noise_lsb: float,
 
 def reading_noise_std(noise_std_mps2: float, adc_noise_lsb: float,
                       sensitivity_v_per_mps2: float, adc: AdcInput | None) -> float:
-    """The reading's noise [m/s^2 rms] at rest, in closed form: the Gaussian noise plus the
-    rounding's lsb^2 / 12 (module docstring)."""
+    """The reading's noise at rest [m/s^2 rms]: Gaussian noise plus rounding's lsb^2 / 12."""
     gaussian = noise_at_amplifier_v(noise_std_mps2, adc_noise_lsb, sensitivity_v_per_mps2,
                                     adc)
     rounding = 0.0 if adc is None else adc.volts_per_code / math.sqrt(12.0)

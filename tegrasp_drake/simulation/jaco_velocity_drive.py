@@ -1,11 +1,7 @@
 """The simulated JACO2 driven as the real one is: by joint velocities, sampled, late.
-
-`arm.desired_state` -> JacoVelocityTracker (rig/jaco_velocity_tracker.py) -> ZeroOrderHold
-at the command rate -> DiscreteTimeDelay of the latency -> the velocity servo's set-point
-q_ref = q0 + integral of v_cmd, v_ref = v_cmd -> the plant's implicit PD on each joint. The
-set-point integrates the command as the JACO2's DSP turns velocity commands into position
-set-points. Why, and the settings' sources (100 Hz commands, Kinova's kinova-ros README;
-the latency, one 10 ms DSP cycle plus USB, unpublished): docs/model.md, "The arm".
+`arm.desired_state` -> JacoVelocityTracker -> ZeroOrderHold at the command rate ->
+DiscreteTimeDelay -> the servo set-point q_ref = q0 + integral of v_cmd (as the JACO2's DSP does)
+-> the plant's implicit PD per joint. Why, and the settings' sources: docs/model.md, "The arm".
 """
 
 import dataclasses
@@ -23,8 +19,7 @@ STEP_TOLERANCE_S = 1e-9
 
 
 def plant_steps(duration_s: float, time_step: float) -> int | None:
-    """`duration_s` as a whole number of plant steps of `time_step` [s], or None if it is
-    not one."""
+    """`duration_s` as a whole number of plant steps of `time_step` [s], or None if not one."""
     steps = round(duration_s / time_step)
     return steps if abs(steps * time_step - duration_s) <= STEP_TOLERANCE_S else None
 
@@ -55,10 +50,9 @@ def drive_problem(arm, time_step: float):
 
 
 def latency_register(arm, time_step: float, size: int):
-    """The compiled system that delays each held command so that it acts on the plant
-    arm.command_latency_s L after it was sampled, or None when nothing needs to: the plant
-    reads a set-point a step h late (L = h needs nothing), a hold sampling every step adds one
-    step and a DiscreteTimeDelay of m steps m + 1, as each sees its input before the step."""
+    """The compiled system that delays each held command to act arm.command_latency_s after
+    it was sampled, or None when nothing needs to (the plant reads a set-point one step late, a
+    hold adds one step, a DiscreteTimeDelay of m steps m + 1)."""
     steps = plant_steps(arm.command_latency_s, time_step)
     if steps == 1:
         return None
@@ -82,9 +76,7 @@ def velocity_servo_set_point(initial_positions, time_step: float) -> AffineSyste
 
 @dataclasses.dataclass
 class JacoVelocityDrive:
-    """The drive's systems and ends: connect the controller's desired state to
-    `desired_state`, read the servo's set-point (for the plant's PD) from `set_point` and
-    what the host sent from `commanded_state`."""
+    """The drive's ends: `desired_state` in; `set_point` (plant PD) and `commanded_state` out."""
     tracker: JacoVelocityTracker
     desired_state: InputPort
     commanded_state: OutputPort
@@ -94,9 +86,8 @@ class JacoVelocityDrive:
 def AddJacoVelocityDrive(builder, *, arm, time_step: float, initial_positions,
                          position_measured: OutputPort,
                          prefix: str = "arm") -> JacoVelocityDrive:
-    """Adds the velocity drive of `arm` (ArmDriverConfig, checked by drive_problem) for a plant
-    of step `time_step` [s] whose arm starts at `initial_positions` [rad];
-    `position_measured` (6) [rad] is the tracker's feedback."""
+    """Adds the velocity drive of `arm` (ArmDriverConfig) for a plant of step `time_step` [s]
+    starting at `initial_positions` [rad]; `position_measured` is the tracker's feedback."""
     n = ARM_JOINTS
     tracker = builder.AddNamedSystem(f"{prefix}_velocity_tracker",
                                      JacoVelocityTracker(arm.tracker))

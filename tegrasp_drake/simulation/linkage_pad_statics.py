@@ -1,12 +1,10 @@
-"""The linkage fingers' pad normal forces from the joints' generalized contact forces (a
-compiled port; `vibration.pad_force_source: joint_forces`). Each finger is a planar chain
-base -A- driver -B- coupler -C- follower (robotiq/linkage.py); a contact wrench on the
-follower, in-plane force F and moment M_C about C, gives
+"""The linkage fingers' pad normal forces from the joints' generalized contact forces
+(`vibration.pad_force_source: joint_forces`). A contact wrench on the follower of the chain
+base -A- driver -B- coupler -C- follower, in-plane force F and moment M_C about C, gives
 
     tau_C = M_C,   tau_B = M_C + (C - B) x F,   tau_A = M_C + (C - A) x F
 
-so the last two give F, and the pad force is F . n, n the pad's outward normal. It equals
-PadNormalForces' when only the followers can touch (`LinkagePadStatics` checks).
+so the last two give F, and the pad force is F . n, n the pad's outward normal.
 """
 
 import dataclasses
@@ -40,18 +38,15 @@ def _instance_index(plant, instance, joint, *, velocity: bool) -> int:
 
 @dataclasses.dataclass(frozen=True)
 class FingerChain:
-    """One finger's planar chain in its own (+-y, z) coordinates [m] of the base frame, in
-    the open pose (every link frame is then the base frame): B - A and C - B, and the pad's
-    outward normal (the pad frame's -z)."""
+    """One finger's planar chain in the open pose [m, base frame (+-y, z)]: B - A, C - B, normal."""
     ab: tuple[float, float]
     bc: tuple[float, float]
     normal: tuple[float, float]
 
 
 def finger_pad_force(chain: FingerChain, tau, q) -> float:
-    """The pad's normal contact force [N], positive pushing the pad open, of one finger
-    from its (driver, coupler, follower) generalized contact forces tau [N m] and joint
-    angles q [rad] (the module docstring)."""
+    """The pad's normal contact force [N], positive pushing the pad open, from one finger's
+    (driver, coupler, follower) generalized contact forces tau [N m] and angles q [rad]."""
     theta, beta, gamma = q
     tau_a, tau_b, tau_c = tau
     (ab_y, ab_z), (bc_y, bc_z), (n_y, n_z) = chain.ab, chain.bc, chain.normal
@@ -84,8 +79,7 @@ def finger_chain(plant, gripper, finger: str, sign: float) -> FingerChain:
 
 
 class LinkagePadStatics:
-    """Both linkage fingers' pad normal forces from the gripper model instance's
-    generalized contact forces and state (the module docstring)."""
+    """Both linkage pads' normal forces from the gripper's generalized contact forces and state."""
 
     def __init__(self, plant, gripper):
         """plant: finalized, with the linkage hand as model instance `gripper`. Raises
@@ -112,9 +106,8 @@ class LinkagePadStatics:
             for chain, joint_chain in zip(chains, joints))
 
     def normal_forces(self, tau: list, state: list) -> tuple[float, float]:
-        """(left, right) pad normal forces [N], positive pushing each pad open, from the
-        gripper instance's generalized contact forces `tau` and its state `state` (positions
-        first), as lists of floats."""
+        """(left, right) pad normal forces [N], positive pushing each pad open, from the gripper's
+        generalized contact forces `tau` and state `state` (positions first)."""
         (left, left_tau, left_q), (right, right_tau, right_q) = self._fingers
         return (finger_pad_force(left, left_tau(tau), left_q(state)),
                 finger_pad_force(right, right_tau(tau), right_q(state)))

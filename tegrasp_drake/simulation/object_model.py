@@ -1,8 +1,6 @@
 """Adds the scenario's object to a plant: a primitive shape written as SDF, or a model file.
-
-Primitive objects are rigid hydroelastic bodies (the pads and the table are compliant), with
-their frame O at the centre of the base face, z up, and the inertia of a uniform solid. How
-finely their surfaces are meshed is the scenario's `contact_geometry` (contact_meshing.py).
+Primitive objects are rigid hydroelastic bodies with frame O at the centre of the base face,
+z up, and the inertia of a uniform solid.
 """
 
 import itertools
@@ -64,8 +62,7 @@ def object_sdf(config: ObjectConfig, *, mesh_resolution_m: float = MESH_RESOLUTI
 
 
 def _corner_hull_collision(plant, instance, config: ObjectConfig) -> None:
-    """The box's collision shape as the convex hull of its 8 corners (12 triangles), with
-    the properties object_sdf gives its Box, in the same place."""
+    """The box's collision shape as its 8 corners' convex hull, with its Box's properties."""
     half = np.asarray(config.size, dtype=float) / 2
     corners = np.array([signs for signs in itertools.product((-1.0, 1.0), repeat=3)]).T
     properties = ProximityProperties()
@@ -79,8 +76,7 @@ def _corner_hull_collision(plant, instance, config: ObjectConfig) -> None:
 
 def AddObject(parser, config: ObjectConfig,
               geometry: ContactGeometryConfig | None = None) -> ModelInstanceIndex:
-    """Adds the object to the parser's plant, a primitive meshed as `geometry` says (default:
-    the reference geometry); returns its model instance."""
+    """Adds the object to the parser's plant, meshed as `geometry` says; returns its instance."""
     geometry = geometry or ContactGeometryConfig()
     corner_hull = config.shape == "box" and geometry.box_triangles == 12
     if config.shape == "file":

@@ -1,10 +1,8 @@
-"""The idealised RA transducer: a rigid-body accelerometer on each pad, high-passed, as in the
-paper's simulation (Sec. III-A, Fig. 4c; `vibration.transducer: accelerometer`).
-
-Per pad a Drake `Accelerometer` on the pad frame, with gravity, gives the proper acceleration;
-its inward-normal (z) component passes the first-order high-pass y[k] = a (y[k-1] + u[k] -
-u[k-1]), a = RC / (RC + T), at the RA rate, started on its first sample (gravity at t = 0 is
-no step), plus Gaussian noise. The outputs are the film's: [0, 0, y] per pad.
+"""The idealised RA transducer of the paper's simulation (Sec. III-A, Fig. 4c;
+`vibration.transducer: accelerometer`): per pad a Drake `Accelerometer` on the pad frame
+(with gravity), its inward-normal (z) component through the first-order high-pass
+y[k] = a (y[k-1] + u[k] - u[k-1]), a = RC / (RC + T), at the RA rate, plus Gaussian noise.
+The outputs are the film's: [0, 0, y] per pad.
 """
 
 import math
@@ -78,8 +76,7 @@ class PadAccelerometers(LeafSystem):
 
 
 def AddPadFrameAccelerometer(builder, *, plant, pad, name: str, gravity) -> Accelerometer:
-    """A Drake Accelerometer on `pad`'s frame (a PadGeometry), connected to `plant`;
-    `gravity`: the gravity vector it adds (zeros: the acceleration without gravity)."""
+    """A Drake Accelerometer on `pad`'s frame of `plant`, adding `gravity` (zeros: none)."""
     accelerometer = builder.AddNamedSystem(name, Accelerometer(
         plant.get_body(pad.body_index), pad.X_BP, np.asarray(gravity, dtype=float)))
     builder.Connect(plant.get_body_poses_output_port(), accelerometer.get_body_poses_input_port())

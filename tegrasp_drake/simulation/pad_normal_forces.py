@@ -24,9 +24,8 @@ def collision_geometry_bodies(plant) -> dict:
 
 
 def bodies_contact_forces(contacts, geometry_body: dict, bodies) -> list[np.ndarray]:
-    """The net contact force [N, world] on each body index in `bodies`, in one walk over
-    the contacts (each body's forces summed in the contacts' order). geometry_body maps
-    collision geometry ids to body indices."""
+    """The net contact force [N, world] on each body index in `bodies`, in one walk over the
+    contacts; geometry_body maps collision geometry ids to body indices."""
     totals = [np.zeros(3) for _ in bodies]
     for i in range(contacts.num_hydroelastic_contacts()):
         info = contacts.hydroelastic_contact_info(i)

@@ -1,10 +1,7 @@
-"""Vibration that sliding excites in a pad's piezo film (the RA response to slip).
-
-The pad's cover (the paper's conductive fabric) is a texture of height h and period lambda:
-at slip speed v the film is driven at f = v / lambda with an acceleration amplitude
-h (2 pi v / lambda)^2 along the pad normal, its phase the integrated slip distance (no random
-numbers; nothing when nothing slides). v is the tangential speed, in the pad plane, of the
-object's point at the pad centre relative to the pad, while the pad touches.
+"""Vibration that sliding excites in a pad's piezo film (the RA response to slip). The pad's cover
+is a texture of height h and period lambda: at slip speed v (the object's point at the pad centre
+relative to the pad, in the pad plane) the film is driven at f = v / lambda with amplitude h (2 pi
+v / lambda)^2 along the pad normal, its phase the integrated slip distance.
 """
 
 import math
@@ -32,8 +29,7 @@ def texture_acceleration_amplitude(slip_speed: float, height_m: float, period_m:
 
 
 def texture_acceleration(phase, amplitude, speed, elapsed, period_m: float):
-    """The texture's acceleration [m/s^2] `elapsed` [s] after a sample of (phase [rad],
-    amplitude [m/s^2], slip speed [m/s]); numpy arrays broadcast."""
+    """The texture's acceleration [m/s^2] `elapsed` [s] after a (phase, amplitude, speed) sample."""
     return amplitude * np.sin(phase + 2.0 * np.pi * speed * elapsed / period_m)
 
 
@@ -46,8 +42,7 @@ def cross_product(a, b) -> np.ndarray:
 
 def tangential_slip_speed(X_WP: RigidTransform, V_WPad: SpatialVelocity, p_WPad_origin,
                           V_WObj: SpatialVelocity, p_WObj_origin) -> float:
-    """Speed [m/s] of the object's point at the pad centre P relative to the pad, in the pad
-    plane (the pad frame's z axis is the pad normal)."""
+    """Speed [m/s] of the object's point at pad centre P relative to the pad, in the pad plane."""
     p_WP = X_WP.translation()
 
     def point_velocity(V, origin):

@@ -1,12 +1,7 @@
 """The PVDF film on each pad and its charge amplifier (the RA source): the settings
-(`VibrationSensorConfig`, the scenario's `vibration` section) and the sensitivity and noise
-that follow from them.
-
-The film reads the bending of the fingertip's first structural mode, driven by the pad's
-load, the impact at contact onset and the slip texture (film_dynamics.py, film_loads.py);
-film_chain.py builds both films as one Diagram, film_readout.py is the myRIO's converter.
-The RA output is in acceleration-equivalent units, a = -V / S, on the pad frame's z (the
-inward normal). The model and every number: docs/model.md, "Vibration (RA) model".
+(`VibrationSensorConfig`, the scenario's `vibration` section) and the sensitivity and noise that
+follow from them. The RA output is in acceleration-equivalent units, a = -V / S, on the pad frame's
+z (the inward normal). The model and every number: docs/model.md, "Vibration (RA) model".
 """
 
 import dataclasses
@@ -28,9 +23,8 @@ _SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
 @public_dataclass
 @dataclasses.dataclass
 class FilmConfig:
-    """The fingertip's first structural mode, the impact that rings it, and the film's charge
-    per deflection with its amplifier's capacitor. Sources: docs/model.md, "Vibration (RA)
-    model"."""
+    """The fingertip's first structural mode, the impact that rings it, and the film's charge per
+    deflection with its amplifier's capacitor. Sources: docs/model.md, "Vibration (RA) model"."""
     # The fingertip's first structural mode (an estimate: see docs/model.md).
     mode_frequency_hz: float = bounded(400.0, low=0.0, low_open=True, high=10_000.0,
                                        high_open=True, unit="Hz",
@@ -64,8 +58,7 @@ class FilmConfig:
 @public_dataclass
 @dataclasses.dataclass
 class VibrationSensorConfig:
-    """The PVDF film of each pad (RA channel source). Sources and reasoning of every number:
-    docs/model.md, "Vibration (RA) model"."""
+    """The PVDF film of each pad (RA source); each number: docs/model.md, "Vibration (RA) model"."""
     sample_rate_hz: float = bounded(1000.0, low=16.0, high=20_000.0, unit="Hz",
                                     why="the 0.5 s event window needs 8 samples; the film is "
                                         "integrated at 20 kHz")
@@ -160,8 +153,7 @@ def volts_per_mps2(config: VibrationSensorConfig) -> float:
 
 
 def noise_draw_std_v(config: VibrationSensorConfig) -> float:
-    """The Gaussian noise [V rms] added to each film sample ahead of the readout: the
-    amplifier's and the converter's (film_readout.py)."""
+    """The Gaussian noise [V rms] added to each film sample ahead of the readout."""
     return noise_at_amplifier_v(config.noise_std_mps2, config.adc_noise_lsb,
                                 volts_per_mps2(config), adc_input(config.adc_input))
 

@@ -33,8 +33,7 @@ def _half_space_properties() -> ProximityProperties:
 
 
 def AddTable(parser, geometry: ContactGeometryConfig | None = None) -> ModelInstanceIndex:
-    """Adds the table to the parser's plant, welded to the world, its contact shape as
-    `geometry.table` says (default: the reference box); returns its model instance."""
+    """Adds the table, welded, shaped as `geometry.table` says; returns its model instance."""
     plant = parser.plant()
     if geometry is None or geometry.table == "box":
         (table,) = parser.AddModels(url=TABLE_URL)

@@ -1,10 +1,7 @@
-"""TactilePads: the 12-taxel arrays of both fingertip pads, sampled at the taxel rate.
-
-Each sample integrates the pressure of each hydroelastic contact surface on a pad over its
-taxels (contact_pressure.py), scales the surface's taxel forces to the normal force the
-solver applied (docs/model.md, "Taxel forces from the contact surface"), then adds offset,
-Gaussian noise and quantisation. The noise is seeded by (seed, sample index), so the Context
-holds all state.
+"""TactilePads: the 12-taxel arrays of both fingertip pads, sampled at the taxel rate. Each sample
+integrates each contact surface's pressure over the taxels (contact_pressure.py), scales it to the
+solver's normal force (docs/model.md, "Taxel forces from the contact surface"), then adds offset,
+noise seeded by (seed, sample index) and quantisation.
 """
 
 import dataclasses
@@ -29,10 +26,9 @@ _NOISE_STREAM = 7001  # separates this sensor's random stream from others seeded
 @public_dataclass
 @dataclasses.dataclass
 class TactileSensorConfig:
-    """The taxel array of each pad (SA channel source); the numbers' sources: docs/model.md,
-    "The fingertip and its taxels". transducer: "capacitive" (the real pad, read by an
-    AD7147; settings in `capacitive`, the force noise below unused) or "force" (an ideal
-    force sensor with the noise, quantisation and offset below, as the paper's simulation)."""
+    """The taxel array of each pad (docs/model.md, "The fingertip and its taxels"). transducer:
+    "capacitive" (the real pad's AD7147, settings in `capacitive`) or "force" (an ideal force
+    sensor with the noise, quantisation and offset below, as the paper's simulation)."""
     sample_rate_hz: float = bounded(108.0, low=16.0, high=20_000.0, unit="Hz",
                                     why="the 0.5 s event window needs 8 samples; the film is "
                                         "integrated at 20 kHz")
@@ -89,8 +85,7 @@ def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
 
 
 def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[list]:
-    """Per pad: [(p_PV, pressure_V, triangles, applied normal force [N])] of each
-    hydroelastic contact surface on its geometry, vertices in the pad frame P."""
+    """Per pad: [(p_PV [m, pad frame], pressure_V, triangles, applied normal force [N])]."""
     per_pad = [[] for _ in geometry_ids]
     frames = None
     for i in range(contact_results.num_hydroelastic_contacts()):
@@ -107,9 +102,7 @@ def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> 
 
 
 def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[np.ndarray]:
-    """The 12 noise-free taxel normal forces [N] of each pad (by geometry id; `pad_poses()`
-    gives each X_WP, called only if a pad has a contact surface): each surface's pressure
-    integral scaled to the normal force the solver applied on it."""
+    """Each pad's 12 noise-free taxel forces [N]: pressure integrals scaled to the solver's."""
     per_pad = _pads_surfaces(contact_results, geometry_ids, pad_poses)
     surfaces = [surface for pad in per_pad for surface in pad]
     raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces]) if surfaces else [])

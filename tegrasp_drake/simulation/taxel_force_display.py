@@ -1,10 +1,7 @@
-"""TaxelForceDisplay: each pad's 12 taxel forces drawn in Meshcat, live and in the recording.
-
-Each taxel is a bar on the back of its finger (the object hides the pad's face), growing
-outward with the force and coloured yellow to dark red; a taxel below the threshold is a thin
-grey tile. The colour is set live on the bar's group ("color") and written into the
-recording as the mesh's "material.color": Meshcat's SetProperty of "material.color" would
-also reach the live viewer, which turns the bar black, and "color" cannot be animated.
+"""TaxelForceDisplay: each pad's 12 taxel forces drawn in Meshcat, live and in the
+recording: a bar per taxel on the back of its finger, growing with the force, yellow to dark
+red; below the threshold a thin grey tile. The recording gets "material.color" and the live
+viewer "color": Meshcat's SetProperty of "material.color" turns the live bar black.
 """
 
 import dataclasses
@@ -86,8 +83,7 @@ class TaxelForceDisplay(LeafSystem):
         return f"{self._prefix}/{finger}/taxel_{k:02d}"
 
     def _add_bars(self):
-        """One unit-length bar per taxel on the finger's back, its group's z scale the bar's
-        length [m], growing along the pad frame's -z (outward)."""
+        """One unit bar per taxel on the finger's back, scaled in z [m] outward (pad frame -z)."""
         bar = Box(_BAR_FILL * CELL_X, _BAR_FILL * CELL_Y, 1.0)
         for finger in FINGER_NAMES:
             for k, p_PoTk_P in enumerate(taxel_centers()):

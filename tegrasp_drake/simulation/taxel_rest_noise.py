@@ -1,10 +1,7 @@
-"""What a taxel reads from noise alone, as an exact distribution of the transducer's model:
-the SA thresholds are set against it (control/noise_thresholds.py; docs/model.md, "SA
-thresholds against the taxels' noise"). Every path ends in a quantiser, so the noise is a
-lattice distribution: the calibrated capacitive reading gain max(0, rint(sigma_c Z)) [N]
-(clipped at zero: a positive mean at rest), its counts rint(sigma_c Z) unclipped, the force
-taxel q rint((offset + sigma Z) / q) (a lattice of sigma / 64 when q = 0). Under load the
-clip is not reached (`loaded_noise`).
+"""What a taxel reads from noise alone, as an exact distribution of the transducer's model,
+for the SA thresholds (docs/model.md, "SA thresholds against the taxels' noise"). Every path
+ends in a quantiser, so the noise is a lattice distribution; the calibrated reading is
+clipped at zero (a positive mean at rest), which under load is not reached (`loaded_noise`).
 """
 
 import dataclasses
@@ -88,12 +85,10 @@ def _reading_noise(tactile_config, *, at_rest: bool) -> LatticeDistribution:
 
 
 def rest_reading(tactile_config) -> LatticeDistribution:
-    """One taxel's reading with nothing touching it [N, or counts for the capacitive counts
-    output], tactile_config a TactileSensorConfig."""
+    """One untouched taxel's reading [N, or counts], for a TactileSensorConfig."""
     return _reading_noise(tactile_config, at_rest=True)
 
 
 def loaded_noise(tactile_config) -> LatticeDistribution:
-    """One loaded taxel's reading less its noise-free value [N, or counts]: the noise with
-    no clip and no offset."""
+    """A loaded taxel's reading less its noise-free value [N, or counts]: unclipped, no offset."""
     return _reading_noise(tactile_config, at_rest=False)

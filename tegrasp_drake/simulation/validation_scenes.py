@@ -1,12 +1,8 @@
 """Minimal scenes of the station's contact world, to check it against closed-form mechanics
-(docs/model.md, "Validation against closed form").
-
-A scene holds the station's gripper model welded to the world (side grasp, no arm, no
-sensors), the table if asked for and one object, with the scenario's `plant_config` and
-`contact_geometry`. The fingers follow a force-limited position loop, as SimRobotiqDriver's
-do, with a grip-force profile allowed below the 2F-85's 20 N so that slip can be provoked.
-The experiments: push_standing_object (slides or tips over), slip_onset_grip_force (the grip
-at which a held object falls) and held_tilt_rate (how fast a tilted held object turns).
+(docs/model.md, "Validation against closed form"): the station's gripper welded to the world,
+the table if asked for and one object, with the scenario's `plant_config` and
+`contact_geometry`; the fingers on a force-limited position loop allowed below the 2F-85's
+20 N so that slip can be provoked.
 """
 
 import dataclasses
@@ -36,9 +32,9 @@ SCENE_XY = EXPECTED_XY  # m; scenes stand at the station's expected object posit
 
 @dataclasses.dataclass(frozen=True)
 class GripProgram:
-    """How the fingers move: from `start_q` toward `goal_q` (finger coordinates, m: the pad
-    surface's distance from the grasp axis) at `closing_speed` [m/s], pushing each pad with
-    at most the force interpolated from (`force_times_s`, `force_n`) [s, N]."""
+    """How the fingers move: from `start_q` toward `goal_q` [m, the pad surface's distance
+    from the grasp axis] at `closing_speed` [m/s], each pad's force at most the one interpolated
+    from (`force_times_s` [s], `force_n` [N])."""
     start_q: float
     force_times_s: tuple = (0.0,)
     force_n: tuple = (25.0,)
@@ -193,9 +189,9 @@ def slip_onset_grip_force(obj: ObjectConfig, *, plant_config: MultibodyPlantConf
                           hold_s: float = 0.3, falling_speed: float = 1e-3,
                           contact_geometry: ContactGeometryConfig | None = None
                           ) -> SlipResult:
-    """Holds `obj` upright between the pads (no table) with `initial_force` [N] per pad for
-    `hold_s`, then lowers it at `ramp_rate` [N/s]; slip begins where the object falls faster
-    than `falling_speed` [m/s]."""
+    """Holds `obj` between the pads (no table) at `initial_force` [N] per pad for `hold_s`,
+    then lowers it at `ramp_rate` [N/s]; slip begins where it falls faster than
+    `falling_speed` [m/s]."""
     radius = obj.width_along_stroke() / 2
     grasp = np.array([SCENE_XY[0], SCENE_XY[1], 0.3])
     ramp_s = initial_force / ramp_rate
@@ -227,10 +223,9 @@ def held_tilt_rate(obj: ObjectConfig, *, tilt_deg: float, com_offset: float, gri
                    plant_config: MultibodyPlantConfig, settle_s: float = 0.5,
                    measure_s: float = 1.0,
                    contact_geometry: ContactGeometryConfig | None = None) -> float:
-    """Holds `obj` (no table) with `grip_force` [N] per pad, tilted by `tilt_deg` about the
-    grasp axis, its centre of mass `com_offset` [m] above the pads' centre along its axis;
-    returns its mean rotation rate [deg/s] about the grasp axis over `measure_s` after
-    `settle_s`."""
+    """Holds `obj` (no table) with `grip_force` [N] per pad, tilted by `tilt_deg` about the grasp
+    axis, its centre of mass `com_offset` [m] above the pads' centre along its axis; returns its
+    mean rotation rate [deg/s] about the grasp axis over `measure_s` after `settle_s`."""
     radius = obj.width_along_stroke() / 2
     grasp = np.array([SCENE_XY[0], SCENE_XY[1], 0.3])
     R = RotationMatrix.MakeYRotation(math.radians(tilt_deg))

@@ -1,13 +1,7 @@
 """Detection quality per trigger and controller, and paired comparisons of controllers, from
-a sweep's records (docs/sweeps.md, "A sweep": the definitions).
-
-Per event transition and controller, over the trials that reached its source mode:
-detected, false (taken by the event trigger more than FALSE_TRIGGER_MARGIN_S before its
-physical event, or without one), other, and the detected ones' latency [s]. The hit in
-Hold (a sweep with `disturbance.hit_time_s`), over the trials in Hold when it came:
-detected (Hold -> Avoid at or after it), missed, false (an Avoid before it or without a
-hit), latency and the Avoids' trigger. Paired comparison: McNemar's exact test on the
-scenes both controllers ran (table.exact_mcnemar_p_value).
+a sweep's records (docs/sweeps.md, "A sweep": the definitions): per event transition,
+detected, false, other and latency [s]; the hit in Hold likewise; McNemar's exact test on
+the scenes both controllers ran.
 """
 
 import collections
@@ -180,7 +174,8 @@ def paired_comparison(records, first: str, second: str,
     n = len(pairs)
     return PairedComparison(first, second, marker, n,
                             sum(x for x, _ in pairs) / n if n else 0.0,
-                            sum(y for _, y in pairs) / n if n else 0.0, a, b, exact_mcnemar_p_value(a, b))
+                            sum(y for _, y in pairs) / n if n else 0.0, a, b,
+                            exact_mcnemar_p_value(a, b))
 
 
 def report_markdown(records, controllers, reference: str, title: str) -> str:

@@ -15,8 +15,7 @@ FAILURE_CLASSES = ("closed on nothing", "one finger only", "slipped in Lift",
 
 
 def failure_class(result) -> str | None:
-    """The failure class of a trial's result (a TrialResult), None when it held and
-    unloaded."""
+    """The failure class of a trial's result (a TrialResult), None when it held and unloaded."""
     if result.unload_success:
         return None
     failure = result.failure
@@ -47,8 +46,7 @@ def failure_class(result) -> str | None:
 
 
 def failure_class_counts(records) -> dict:
-    """{controller: {object: {class: trials}}} over the records that ran (status ok), with
-    every failure class present (0 when none)."""
+    """{controller: {object: {class: trials}}} over the records that ran, every class present."""
     counts = {}
     for record in records:
         if record["status"] != "ok":

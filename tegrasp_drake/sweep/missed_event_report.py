@@ -23,9 +23,7 @@ from tegrasp_drake.sweep.trial_function import trial_events, trial_log_name
 
 @dataclasses.dataclass(frozen=True)
 class TrialMiss:
-    """One missed wait of one trial; ra_code_mps2: the m/s^2 of one converter code of the
-    trial's film readout (None without a converter or film); ra_rate_hz: the matcher's RA
-    rate [Hz] (it sets the noise floor's k)."""
+    """One missed wait of a trial; ra_code_mps2 [m/s^2] (None: no converter); ra_rate_hz [Hz]."""
     trial_id: str
     object_name: str
     missed: MissedWait
@@ -33,15 +31,12 @@ class TrialMiss:
     ra_rate_hz: float
 
     def within_noise_floor(self) -> bool | None:
-        """Whether a failing RA channel stayed within the RA noise floor's rule
-        (MissedWait.failing_ra_within_floor at rule_sigmas); None without a best tick."""
+        """Whether a failing RA channel stayed within the rule's floor; None without a best tick."""
         return self.missed.failing_ra_within_floor(rule_sigmas(self.ra_rate_hz))
 
 
 def ra_code_mps2(vibration) -> float | None:
-    """The acceleration [m/s^2] of one code of the myRIO converter behind the film's charge
-    amplifier (film_readout.py), for a VibrationSensorConfig; None for an accelerometer or
-    the "ideal" readout."""
+    """One myRIO converter code behind the film's amplifier [m/s^2]; None without one."""
     adc = adc_input(vibration.adc_input)
     if vibration.transducer != "film" or adc is None:
         return None
@@ -74,9 +69,8 @@ def trial_misses(record: dict, log_path, events_dir=None) -> list[TrialMiss]:
 
 def sweep_misses(records: dict, logs_dir, *, controller: str = "memorized",
                  events_dir=None) -> tuple[list[TrialMiss], list[str], int]:
-    """(misses, trial ids of records with waits but no log, trials of `controller` looked
-    at) over a results folder's records (load_records(...).records). ValueError, naming the
-    trial and its log, when a log cannot be read or replayed or its events are missing."""
+    """(misses, ids of records with waits but no log, trials of `controller` looked at) over a
+    results folder's records; ValueError naming the trial when its log or events fail."""
     misses, without_log, trials = [], [], 0
     for trial_id, record in sorted(records.items()):
         if record.get("status") != "ok" or record["trial"]["controller"] != controller:

@@ -1,11 +1,8 @@
-"""What a sweep runs: the typed sweep specification, its validation, and the trial list.
-
+"""What a sweep runs: the typed sweep specification, its validation and the trial list.
 The paper's experiment (Sec. IV-B): every object at every marker of a grid, a few attempts
-per marker, once per controller; `expand_trials` lists one `TrialSpec` per (controller,
-object, marker, attempt). Marker offsets are in the gripper's frame at the expected grasp:
-x the approach axis (normal to the palm), y the finger stroke; (0, 0) is well placed. A
-trial's random numbers come from (base_seed, object, marker, attempt), never from the
-controller, so every controller meets the same scene and noise (paired comparison).
+each, once per controller. Marker offsets are in the gripper's frame at the expected grasp
+(x the approach axis, y the finger stroke). A trial's random numbers come from (base_seed,
+object, marker, attempt), never the controller, so controllers meet the same scenes.
 """
 
 import dataclasses
@@ -54,8 +51,7 @@ def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float
 
 def user_object(name: str, fields: Mapping) -> ObjectConfig:
     """The ObjectConfig called `name` of a sweep's own object (its `fields` from a spec or a
-    record; older records' size_m, mass_kg, friction_coefficient read as size, mass,
-    friction)."""
+    record; older records' size_m, mass_kg, friction_coefficient read as size, mass, friction)."""
     fields = {RENAMED_OBJECT_FIELDS.get(key, key): value for key, value in fields.items()}
     fields = {key: value for key, value in fields.items() if key != "name"}
     return ObjectConfig(name=name, **{**fields,
@@ -113,11 +109,9 @@ class Perturbation:
 
 @dataclass(frozen=True)
 class TrialSpec:
-    """One trial; `to_dict()` is what the trial function receives.
-
-    The object sits at the expected position + (marker_dx_m + dx_m, marker_dy_m + dy_m) in the
-    gripper's x (normal) / y (stroke) axes, yawed by `perturbation.yaw_rad`. `seed` seeds the
-    trial function's own randomness (sensor noise), independent of the perturbation's stream;
+    """One trial; `to_dict()` is what the trial function receives. The object sits at the
+    expected position + marker offset + jitter (gripper's x normal, y stroke), yawed by
+    `perturbation.yaw_rad`; `seed` seeds the sensor noise, apart from the perturbation's stream;
     `pair_id` names the same scene for every controller.
     """
     trial_id: str
@@ -156,16 +150,14 @@ class TrialSpec:
 
 
 def _from_json(value, hint):
-    """`value` as TrialSpec.from_dict takes it: JSON has no tuples, so a record's list stands
-    for a tuple field."""
+    """`value` as TrialSpec.from_dict takes it: a record's list for a tuple field."""
     if typing.get_origin(hint) is tuple and isinstance(value, list):
         return tuple(value)
     return value
 
 
 def trial_dict_problem(trial: Mapping) -> str | None:
-    """What keeps `trial` (a TrialSpec.to_dict()) from being a sweep trial, naming the keys
-    missing, unknown or mistyped; or None."""
+    """What keeps `trial` (a TrialSpec.to_dict()) from being a sweep trial; or None."""
     parts = []
     for name, fields, given in (
             ("trial", TrialSpec, trial),
@@ -254,8 +246,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
 
 
 def _check_scenario_overrides(assignments, controllers, fail):
-    """Each a `key=value` the default scenario accepts with each of the `controllers`, none of
-    the per-trial fields."""
+    """Each override a `key=value` every controller's scenario accepts, no per-trial field."""
     from tegrasp_drake.scenario.scenario import LoadScenario
     for k, assignment in enumerate(assignments):
         field_name = f"scenario_overrides[{k}]"

@@ -23,12 +23,9 @@ class _ProductGrid:
 @public_api
 def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,
                     controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
-    """Reads and validates a YAML sweep spec; fields left out keep the paper's defaults.
-
-    Fields (analysis/example_sweep.yaml shows each): objects, controllers, attempts, base_seed,
-    grid (a list of [dx_m, dy_m], or normal_offsets_m and stroke_offsets_m lists whose product
-    is the grid), randomisation, user_objects, scenario_overrides. ConfigError naming the file
-    and the field for unknown fields, wrong types and values that cannot run.
+    """Reads and validates a YAML sweep spec (analysis/example_sweep.yaml shows each field);
+    fields left out keep the paper's defaults. `grid` is a list of [dx_m, dy_m] or the product
+    of normal_offsets_m and stroke_offsets_m. ConfigError names the file and the field.
     """
     fields = read_yaml_file(path, "the sweep spec")
     if fields is None:
@@ -96,8 +93,7 @@ def _parse_grid(value, source, fail) -> tuple[tuple[float, float], ...]:
 
 
 def _check_user_object_fields(user_objects, fail):
-    """Each user object's YAML fields are ObjectConfig's USER_OBJECT_FIELDS; the old
-    names (RENAMED_OBJECT_FIELDS) are named with what to rename them to."""
+    """User objects' fields are USER_OBJECT_FIELDS; an old name is refused with its new one."""
     if not isinstance(user_objects, dict):
         return  # check_fields names the type
     for name, fields in user_objects.items():

@@ -1,12 +1,7 @@
 """The results table of a sweep: per controller, Table I's average success rates beside its
-false-trigger rate and detection latencies, and the paper's row.
-
-Made from a results folder's records only (`write_summary`); analysis/update_results_page.py
-copies it into docs/results.md between the markers that name the folder, with the commit of
-each folder's records. False triggers: trials with an event transition more than
-FALSE_TRIGGER_MARGIN_S before its physical event. Latency: the median time from the physical
-event (first contact, grip settled, table touch) to its transition, over the trials where
-it came on time (their number in brackets).
+false-trigger rate and detection latencies (median, over the trials where the event came on
+time), and the paper's row. Made from a results folder's records only (`write_summary`);
+analysis/update_results_page.py copies it into docs/results.md.
 """
 
 import re
@@ -53,8 +48,7 @@ def _percent(successes: int, trials: int, percent=None) -> str:
 
 
 def summary_rows(records) -> tuple[list[str], list[list[str]]]:
-    """(header, rows of cells) of the results table; the paper's row last when the sweep
-    ran the paper's three objects (its average compares with no other)."""
+    """(header, rows) of the results table; the paper's row last when the sweep ran its objects."""
     records = list(records)
     statistics = controller_statistics(records)
     latency_columns = _latency_columns(statistics)
@@ -100,9 +94,8 @@ def write_summary(records, out_dir) -> list[Path]:
 
 
 def readme_with_summaries(text: str, root) -> str:
-    """`text` (a Markdown page) with each results-table block regenerated from the results
-    folder its marker names (relative to `root`, the page's folder). ValueError when there
-    is no block."""
+    """`text` (a Markdown page) with each results-table block regenerated from the results folder
+    its marker names (relative to `root`, the page's folder). ValueError when there is no block."""
     def regenerate(match):
         folder = Path(root) / match["folder"]
         if not folder.is_dir():
@@ -119,9 +112,7 @@ def readme_with_summaries(text: str, root) -> str:
 
 
 def last_commit(root, path) -> tuple[str, str, str] | None:
-    """(full hash, short hash, date YYYY-MM-DD) of the last commit that changed `path`
-    (relative to `root`, a git checkout); None without git, outside a checkout, or for a
-    path no commit holds."""
+    """(full hash, short hash, YYYY-MM-DD) of the last commit changing `path` in `root`, or None."""
     try:
         done = subprocess.run(["git", "-C", str(root), "log", "-1", "--format=%H %h %ad",
                                "--date=short", "--", str(path)],
@@ -134,8 +125,7 @@ def last_commit(root, path) -> tuple[str, str, str] | None:
 
 def page_with_record_commits(text: str, root, commit_of=last_commit) -> str:
     """`text` with each "Records `PATH`, commit `HASH` (DATE)" naming the last commit that
-    changed PATH (`commit_of(root, PATH)`); a HASH that abbreviates that commit is kept, and
-    a PATH without one (no git) is left as it is."""
+    changed PATH; a HASH abbreviating it is kept, a PATH without one is left as it is."""
     def renamed(match):
         found = commit_of(root, match["path"])
         if found is None:

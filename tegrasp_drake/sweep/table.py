@@ -1,8 +1,6 @@
-"""Table I of the paper from sweep records, and statistics of the trials.
-
-"~Hold": held 3 s; "~Unload": held, then placed upright (Sec. IV-C). An object's rate is
-over its "ok" records (errors counted apart); the average row is the mean of the objects'
-rates, as the paper's, the counts pooled beside it (docs/sweeps.md, "A sweep").
+"""Table I of the paper from sweep records, and statistics of the trials. "~Hold": held 3 s;
+"~Unload": held, then placed upright (Sec. IV-C); the average row is the mean of the
+objects' rates, as the paper's (docs/sweeps.md, "A sweep").
 """
 
 import csv
@@ -53,8 +51,7 @@ class Table1Row:
 
 
 def succeeded(result, phase: str) -> bool:
-    """A trial's (a TrialResult's) success in a phase: "hold", or "unload" (held, then
-    placed upright)."""
+    """A TrialResult's success in a phase: "hold", or "unload" (held, then placed upright)."""
     if phase == "hold":
         return result.hold_success
     return result.hold_success and result.unload_success
@@ -189,8 +186,7 @@ def _distribution(values) -> dict:
 
 
 def controller_statistics(records) -> dict:
-    """Per controller: detection latency per transition, corrective actions, false
-    triggers, errors, simulated and wall time."""
+    """Per controller: latencies, corrective actions, false triggers, errors, run times."""
     by_controller = defaultdict(list)
     for record in records:
         by_controller[record["trial"]["controller"]].append(record)
@@ -287,7 +283,8 @@ def statistics_markdown(statistics, comparisons) -> str:
         lines += ["", f"Corrective actions: in {actions['trials_with_any']} trials; {counts}.",
                   f"False triggers: {ft['total']} in {ft['trials_with_any']} trials "
                   f"(mean {_number_text(ft['mean_per_trial'])} per trial).",
-                  f"Simulated time per trial: median {_number_text(s['sim_time_s']['median'], ' s')}; "
+                  "Simulated time per trial: median "
+                  f"{_number_text(s['sim_time_s']['median'], ' s')}; "
                   f"wall time per trial: median {_number_text(s['wall_time_s']['median'], ' s')}, "
                   f"p90 {_number_text(s['wall_time_s']['p90'], ' s')}.", ""]
     if comparisons:

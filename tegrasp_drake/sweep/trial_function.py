@@ -20,8 +20,8 @@ logger = logging.getLogger(__name__)
 
 def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     """The Scenario of one sweep trial (a TrialSpec.to_dict()): the default scenario with the
-    sweep's scenario_overrides, and the trial's object (perturbed in mass and friction;
-    unperturbed with `nominal`), placement, seed and controller."""
+    sweep's overrides and the trial's object (perturbed unless `nominal`), placement, seed and
+    controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
     from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.sweep.spec import user_object
@@ -52,18 +52,16 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
 
 
 def trial_log_name(trial: dict) -> str:
-    """A sweep trial's log file name: its id ('/' as '.'), the first 12 hex digits of the
-    SHA-256 of the whole trial spec, .npz; sweeps with other settings sharing a --logs folder
-    keep each their own logs."""
+    """A sweep trial's log file name: its id ('/' as '.') and the first 12 hex digits of the
+    trial spec's SHA-256, so sweeps sharing a --logs folder keep their own logs."""
     digest = hashlib.sha256(canonical_json(trial).encode("utf-8")).hexdigest()[:12]
     return f"{trial['trial_id'].replace('/', '.')}.{digest}.npz"
 
 
 def trial_events(trial: dict, events_dir=None) -> tuple:
-    """A sweep trial's scenario and the memorized events its controller needs: (scenario,
-    transition events or None, corrective events or None unless the overrides name some).
-    From `events_dir`, else the user's folder, then the package's; recorded on the trial's
-    unperturbed object (the sweep's perturbations are not a mismatch). MemorizedEventError."""
+    """(scenario, transition events or None, corrective events or None) of a sweep trial,
+    from `events_dir`, else the user's folder, then the package's; recorded on the trial's
+    unperturbed object. MemorizedEventError."""
     from tegrasp_drake.scenario.scenario_events import (load_controller_events,
                                                        load_corrective_events)
     scenario = scenario_from_trial_spec(trial)
@@ -104,9 +102,8 @@ def check_sweep_events(trials, events_dir=None) -> None:
 def run_trial_from_spec(trial: dict, *,
                         events_dir: Annotated[PathLike | None, INPUT_FOLDER] = None,
                         log_dir: Annotated[PathLike | None, OUTPUT_FOLDER] = None) -> dict:
-    """The sweep's trial function: runs `trial` (a TrialSpec.to_dict()) with its memorized
-    events and returns its result dict; ConfigError naming the keys when it is no sweep trial.
-    log_dir: also save the trial's log there (trial_log_name)."""
+    """The sweep's trial function: runs `trial` (a TrialSpec.to_dict()) and returns its result
+    dict (its log also in `log_dir`); ConfigError when it is no sweep trial."""
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.sweep.spec import trial_dict_problem
     problem = trial_dict_problem(trial)

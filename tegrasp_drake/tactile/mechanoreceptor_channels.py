@@ -1,8 +1,7 @@
-"""The paper's Eq. 1 (SA_i, the sum of finger i's 12 taxel normal forces [N]) and
-Eq. 2 (RA_i, the magnitude of its pad's vibration [m/s^2]) for both fingers, as one
-Diagram. RA is compiled (SymbolicVectorSystem); SA is summed in Python in numpy's pairwise
-order, which a compiled MatrixGain would change by a rounding, and costs nothing between
-108 Hz taxel samples (cached)."""
+"""The paper's Eq. 1 (SA_i, the sum of finger i's 12 taxel normal forces [N]) and Eq. 2 (RA_i, the
+magnitude of its pad's vibration [m/s^2]) for both fingers, as one Diagram. RA is compiled
+(SymbolicVectorSystem); SA is summed in Python in numpy's pairwise order, which a compiled
+MatrixGain would change by a rounding, and costs nothing between 108 Hz taxel samples (cached)."""
 
 import math
 
@@ -56,8 +55,7 @@ class SlowlyAdapting(LeafSystem):
 
 
 def rapidly_adapting_system() -> SymbolicVectorSystem:
-    """Eq. 2 of both fingers: input [left x, y, z, right x, y, z] [m/s^2], output
-    [RA_left, RA_right] [m/s^2] (no state)."""
+    """Eq. 2 of both fingers: [left xyz, right xyz] in, [RA_left, RA_right] out [m/s^2]."""
     axes = [[Variable(f"{finger}_{axis}") for axis in "xyz"] for finger in FINGER_NAMES]
     return SymbolicVectorSystem(input=[a for pad in axes for a in pad],
                                 output=[sqrt(x * x + y * y + z * z) for x, y, z in axes])
@@ -107,8 +105,7 @@ def MakeMechanoreceptorChannels():
 
 @public_api
 def AddMechanoreceptorChannels(builder: DiagramBuilder, station: System):
-    """Adds Eq. 1-2 (MakeMechanoreceptorChannels) fed by the station's tactile ports;
-    returns the system."""
+    """Adds Eq. 1-2 (MakeMechanoreceptorChannels) fed by the station's tactile ports."""
     channels = builder.AddNamedSystem("mechanoreceptor_channels", MakeMechanoreceptorChannels())
     for finger in FINGER_NAMES:
         builder.Connect(station.GetOutputPort(ports.taxel_forces(finger)),

@@ -1,10 +1,9 @@
-"""Sample blocks: the last B samples of a signal, kept in C++ by a discrete LinearSystem
-shift register, y(t) = [u(t - (B-1) T), ..., u(t)], and read by a Python system once per
-block, since one Python call costs several times one sample's arithmetic. A block system
-updates every B T from 0 and takes the samples since its last update
-(`samples_in_block`), so at each block end it equals a per-sample system.
-BLOCK_PERIOD_S, 10 ms: about one AD7147 frame (9.26 ms at decimation 64, AD7147 data sheet),
-and ten 1 kHz samples divide the 0.5 s event window."""
+"""Sample blocks: the last B samples of a signal, kept in C++ by a discrete LinearSystem shift
+register, y(t) = [u(t - (B-1) T), ..., u(t)], and read by a Python system once per block, since one
+Python call costs several times one sample's arithmetic. A block system updates every B T from 0
+and takes the samples since its last update (`samples_in_block`), so at each block end it equals a
+per-sample system. BLOCK_PERIOD_S, 10 ms: about one AD7147 frame (9.26 ms at decimation 64, AD7147
+data sheet), and ten 1 kHz samples divide the 0.5 s event window."""
 
 import math
 
@@ -15,8 +14,7 @@ BLOCK_PERIOD_S = 0.010
 
 
 def block_samples(rate_hz: float, block_s: float = BLOCK_PERIOD_S) -> int:
-    """Whole samples at `rate_hz` [Hz] per block of `block_s` [s], at least 1 (the 108 Hz
-    taxels, and block_s 0: per sample)."""
+    """Whole samples at `rate_hz` [Hz] per `block_s` [s] block, at least 1 (0: per sample)."""
     if not (rate_hz > 0.0 and block_s >= 0.0):
         raise ValueError(f"rate_hz ({rate_hz}) must be positive and block_s ({block_s}) "
                          "non-negative")
@@ -42,8 +40,7 @@ def block_update_period(sample_period_s: float, samples: int) -> float:
 
 
 def samples_in_block(time_s: float, sample_period_s: float, samples: int) -> int:
-    """The register's rows a block update at `time_s` takes: those since the last update
-    (at 0, one)."""
+    """The register's rows a block update at `time_s` takes: those since the last (at 0, one)."""
     return min(samples, int(round(time_s / sample_period_s)) + 1)
 
 
@@ -66,8 +63,7 @@ def sample_register(input_size: int, samples: int, sample_period_s: float,
 
 def AddSampleRegister(builder, port, *, samples: int, sample_period_s: float, entries=None,
                       name: str):
-    """Adds a sample_register named `name` fed by `port` (an output port); returns its
-    output port (samples x entries, oldest first)."""
+    """Adds a sample_register fed by `port`; returns its output, samples x entries, oldest first."""
     register = builder.AddNamedSystem(name, sample_register(
         port.size(), samples, sample_period_s, entries))
     builder.Connect(port, register.get_input_port())

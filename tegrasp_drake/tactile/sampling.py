@@ -12,8 +12,7 @@ _INTEGER_TOLERANCE = 1e-9
 
 
 def samples_per_window(window_s: float, rate_hz: float) -> int:
-    """Samples in a window of `window_s` [s] at `rate_hz` [Hz]; ValueError unless an
-    integer of 2 or more."""
+    """Samples in `window_s` [s] at `rate_hz` [Hz]; ValueError unless an integer >= 2."""
     if not (window_s > 0.0 and rate_hz > 0.0):
         raise ValueError(f"window_s ({window_s}) and rate_hz ({rate_hz}) must be positive")
     exact = window_s * rate_hz
@@ -50,9 +49,8 @@ def rate_groups(*, sa_rate_hz: float, ra_rate_hz: float,
 
 
 def resample_window(window: np.ndarray, length: int) -> np.ndarray:
-    """Resample each row of `window` to `length` samples: each output is the mean of the
-    zero-order-hold signal over its interval (as the live channels are held), so the area
-    is kept and RA bursts do not alias."""
+    """Resample each row of `window` to `length` samples, each the mean of the held signal over
+    its interval: the area is kept and RA bursts do not alias."""
     window = np.atleast_2d(np.asarray(window, dtype=float))
     length_in = window.shape[-1]
     if length == length_in:

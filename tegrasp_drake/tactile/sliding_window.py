@@ -55,9 +55,8 @@ class SlidingWindowState:
 
     def entering_samples(self, state: np.ndarray, samples: np.ndarray
                          ) -> tuple[np.ndarray, list[bool] | None]:
-        """(samples to push, missing): a non-finite sample (a glitch, a lost frame) is
-        replaced by the channel's newest, so the window's sums stay finite; missing is a
-        bool per channel, or None when all are finite."""
+        """(samples to push, missing): a non-finite sample is replaced by the channel's newest, so
+        the window's sums stay finite; missing: a bool per channel, or None when all are finite."""
         if math.isfinite(sum(samples.tolist())):
             return samples, None
         missing = ~np.isfinite(samples)
@@ -69,8 +68,7 @@ class SlidingWindowState:
         return self.rows(state)[:, offset:offset + self.window.length]
 
     def push(self, state: np.ndarray, samples) -> tuple[np.ndarray, int, bool]:
-        """Append one sample per channel in place; returns the buffer view, the offset (0
-        exactly when the push compacted) and whether the window is full."""
+        """Appends a sample per channel in place: (buffer view, offset (0 on compaction), full)."""
         length = self.window.length
         rows = self.rows(state)
         offset = int(state.item(0))

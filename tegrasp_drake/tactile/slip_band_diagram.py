@@ -1,7 +1,6 @@
-"""The per-tick slip band (slip_vibration_band.py) as one compiled discrete
-SymbolicVectorSystem (the biquad's delays and each pad's window of squares in its state),
-so no Python runs per sample; bursts and blocks, of varying length, stay with
-SlipVibrationBand."""
+"""The per-tick slip band (slip_vibration_band.py) as one compiled discrete SymbolicVectorSystem
+(the biquad's delays and each pad's window of squares in its state), so no Python runs per sample;
+bursts and blocks, of varying length, stay with SlipVibrationBand."""
 
 import numpy as np
 from pydrake.symbolic import Variable, sqrt
@@ -15,8 +14,7 @@ _AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
 
 
 def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
-    """[b0, b1, b2, a1, a2] of the second-order Butterworth high-pass at band_hz [Hz] for
-    samples at sample_rate_hz [Hz] (a0 = 1)."""
+    """[b0, b1, b2, a1, a2] of the Butterworth high-pass at band_hz, sample_rate_hz [Hz]."""
     if not 0.0 < band_hz < sample_rate_hz / 2:
         raise ValueError(f"slip band {band_hz} Hz must lie between 0 and the Nyquist "
                          f"frequency {sample_rate_hz / 2} Hz of the RA samples")
@@ -27,8 +25,7 @@ def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
 
 def slip_band_system(*, band_hz: float, window_s: float,
                      sample_rate_hz: float) -> SymbolicVectorSystem:
-    """The slip band as a SymbolicVectorSystem: pads' vibration (6) [m/s^2] in, [left,
-    right] RMS [m/s^2] out."""
+    """The slip band as a SymbolicVectorSystem: vibration (6) in, RMS [left, right] out [m/s^2]."""
     b0, b1, b2, a1, a2 = highpass_biquad(band_hz, sample_rate_hz).tolist()
     window = max(1, round(window_s * sample_rate_hz))
     x = [Variable(f"x{i}") for i in range(_AXES)]

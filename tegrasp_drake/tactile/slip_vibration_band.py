@@ -1,12 +1,8 @@
 """SlipVibrationBand: the pads' vibration in the band where slip rings, for Lift-Load
-(docs/model.md, "Slip: the texture and the slip band"): per axis a second-order
-Butterworth high-pass at band_hz, then each pad's RMS of |y| over window_s [m/s^2]. The
-film's squeeze and lift readings lie below about 10 Hz; texture slip at a lift's 40 mm/s
-rings at 80 Hz (Howe and Cutkosky 1989). It filters one sample per tick; in blocks of B
-samples from a sample register (one matrix product, biquad_block_map; equal to per-tick
-at block ends); or, on hardware, exactly the device samples sent since the last tick, as
-held samples would ring the high-pass (docs/hardware.md, "Serial bursts and the slip
-band")."""
+(docs/model.md, "Slip: the texture and the slip band"): per axis a second-order Butterworth
+high-pass at band_hz, then each pad's RMS of |y| over window_s [m/s^2]. It filters one sample
+per tick, blocks of samples, or on hardware exactly the device samples since the last tick
+(docs/hardware.md, "Serial bursts and the slip band")."""
 
 import numpy as np
 from pydrake.common.value import AbstractValue
@@ -43,8 +39,7 @@ def biquad_block_map(coefficients: np.ndarray, samples: int) -> np.ndarray:
 
 def highpass_step_floats(coefficients: tuple[float, ...], x: list[float],
                          delays: list[float]) -> tuple[list[float], list[float]]:
-    """One biquad sample on n axes in Python floats (cheaper than numpy on 6-vectors):
-    returns (y, the next delays [z1 (n), z2 (n)])."""
+    """One biquad sample on n axes in floats (cheaper than numpy): (y, next delays [z1, z2])."""
     b0, b1, b2, a1, a2 = coefficients
     n = len(x)
     y = [b0 * u + z1 for u, z1 in zip(x, delays[:n])]
@@ -156,9 +151,8 @@ def filter_block(block_map: np.ndarray, block: np.ndarray, s: np.ndarray,
 def AddSlipVibrationBand(builder, pad_acceleration, *, band_hz: float, window_s: float,
                          sample_rate_hz: float, pad_acceleration_samples=None,
                          block_samples: int = 1):
-    """Adds the slip band fed by `pad_acceleration` (6): compiled per tick; on the device's
-    samples when `pad_acceleration_samples` is given; else in blocks of block_samples from
-    a sample register. Returns its slip_vibration output port."""
+    """Adds the slip band fed by `pad_acceleration` (6): per tick, on the device's samples
+    when `pad_acceleration_samples` is given, else in blocks. Returns its output port."""
     if pad_acceleration_samples is not None:
         block_samples = 1
     elif block_samples == 1:

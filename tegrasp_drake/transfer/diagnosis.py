@@ -1,10 +1,7 @@
 """Which channel's Eq. 3 score falls short, per transition, in a trial run with events
-memorized elsewhere (docs/transfer.md, "What breaks transfer").
-
-Each event is scored offline (events/correlation.py) every `step_s` while a mode waited for
-it: "best" is each channel's highest score, "together" the four scores at the tick where
-the smallest margin (score - threshold) is largest, "match" whether that tick passes. With
-an RA envelope both the live and the memorized RA are low-passed first.
+memorized elsewhere (docs/transfer.md, "What breaks transfer"): each event scored offline
+every `step_s` while a mode waited for it; "best" per channel, "together" at the tick with
+the largest smallest margin, "match" whether that tick passes.
 """
 
 import dataclasses
@@ -28,11 +25,9 @@ STEP_S = GraspControllerConfig().update_period_s  # [s] the state machine's tick
 
 @dataclasses.dataclass(frozen=True)
 class TransitionDiagnosis:
-    """The offline Eq. 3 scores of one event over the modes that waited for it.
-
-    best: per channel [sa_left, sa_right, ra_left, ra_right], the highest score;
-    at_s: the tick [s] where the four scores came nearest their thresholds together;
-    together: the four scores at that tick; match: whether all four passed there.
+    """The offline Eq. 3 scores of one event over the modes that waited for it: best, each
+    channel's highest; at_s, the tick [s] where the four came nearest their thresholds;
+    together, the scores there; match, whether all four passed.
     """
     best: tuple[float, ...]
     at_s: float
@@ -46,8 +41,7 @@ class TransitionDiagnosis:
 
 
 def mode_periods(transitions: Sequence[Mapping]) -> list[tuple[str, float, float]]:
-    """(mode, entered, left) [s] of each mode a trial passed through, from Reach at 0 s,
-    from its logged transitions ({"t", "to"}, result.json's `transitions`)."""
+    """(mode, entered, left) [s] of each mode a trial passed, from its logged transitions."""
     periods, mode, entered = [], "Reach", 0.0
     for transition in transitions:
         periods.append((mode, entered, float(transition["t"])))
@@ -100,9 +94,8 @@ def diagnose_trial(trial: TactileTrial, transitions: Sequence[Mapping],
                    events: Mapping[str, MemorizedEvent], *, ra_envelope_hz: float = 0.0,
                    config: EventMatcherConfig | None = None,
                    step_s: float = STEP_S) -> dict[str, TransitionDiagnosis]:
-    """{transition: its TransitionDiagnosis} for each event of `events` that has a waiting
-    mode and a tick to score; `transitions` the trial's logged ones (mode_periods);
-    ra_envelope_hz: the RA envelope's cutoff [Hz] on both sides, 0 for none."""
+    """{transition: TransitionDiagnosis} for each event of `events` with a waiting mode and a
+    tick to score; ra_envelope_hz: the RA envelope's cutoff [Hz], 0 for none."""
     if ra_envelope_hz:
         ra_rate = 1.0 / float(np.median(np.diff(trial.t_ra)))
         trial = dataclasses.replace(trial, ra=ra_envelope(

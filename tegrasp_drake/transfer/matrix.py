@@ -1,11 +1,7 @@
-"""Do memorized events transfer? Events memorized in one world, trials run in another.
-
-A world is a scenario preset (tegrasp_drake/scenarios/scenarios.yaml) plus `--set`
-assignments (its `object` ignored: the sweep sets each trial's). A transfer spec
-(`LoadTransferSpec`) names the worlds, the cells (memorizing, running world) and one sweep.
-`run_transfer` records each memorizing world's events, then runs each cell as an ordinary
-sweep into OUT/cells/<memorizing>-in-<running>/; the same call resumes (docs/transfer.md,
-"A transfer sweep").
+"""Do memorized events transfer? Events memorized in one world, trials run in another. A world is a
+scenario preset plus `--set` assignments; a transfer spec names the worlds, the cells (memorizing,
+running world) and one sweep. `run_transfer` records each memorizing world's events, then runs each
+cell as an ordinary, resumable sweep (docs/transfer.md, "A transfer sweep").
 """
 
 import dataclasses
@@ -49,8 +45,7 @@ def cell_name(memorizing: str, running: str) -> str:
 
 
 def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tuple[str, ...]:
-    """The world as `--set` assignments on the default scenario: its preset's fields
-    (flattened to dotted keys, `object` left out) and then its own overrides."""
+    """The world as `--set` assignments: its preset's dotted fields but `object`, then overrides."""
     document = read_yaml_file(paths.scenarios_file(), "the scenario file")
     if world.scenario not in document:
         raise ConfigError(f"{source}: scenario '{world.scenario}' is not in "
@@ -70,8 +65,7 @@ def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tu
 
 
 def running_sweep(spec: TransferSpec, running: str) -> SweepSpec:
-    """The ordinary sweep of a cell that runs in world `running`: the spec's sweep with the
-    world's assignments before the sweep's own scenario_overrides."""
+    """A cell's sweep in world `running`: the world's assignments before the sweep's overrides."""
     return dataclasses.replace(spec.sweep, scenario_overrides=(
         world_assignments(spec.worlds[running]) + tuple(spec.sweep.scenario_overrides)))
 
@@ -168,8 +162,7 @@ class _CellProduct:
 
 
 def world_scenario(spec: TransferSpec, world: str, object_name: str):
-    """The nominal Scenario of `object_name` (built in, or one of the sweep's user_objects)
-    in `world`: what that world's events are recorded on."""
+    """The nominal Scenario of `object_name` in `world`: what its events are recorded on."""
     from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.rig.objects import ObjectConfig
     base = LoadScenario(overrides=world_assignments(spec.worlds[world])
@@ -227,8 +220,7 @@ def cell_folder(out_dir, memorizing: str, running: str) -> pathlib.Path:
 
 def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
                  scheduler=None, progress: bool = True, log=print) -> dict:
-    """Records the memorizing worlds' events and runs every cell's sweep with them; returns
-    {cell name: SweepSummary}. Resumable."""
+    """Records the memorizing worlds' events, runs each cell's sweep; {cell: summary}. Resumable."""
     from tegrasp_drake.sweep.runner import run_sweep
     from tegrasp_drake.sweep.spec import expand_trials
     from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec

@@ -1,9 +1,6 @@
-"""The transfer matrix's table and heat map, from the records of its cells' sweeps.
-
-Per cell and controller, over its finished trials: each event transition's match rate (the
-sweep's detection report) and median latency, false triggers per trial, hold and unload
-success, median CPU and simulated seconds. A cell still running shows how many ran ("41/81
-run"); one with none is listed as not run (docs/transfer.md, "A transfer sweep").
+"""The transfer matrix's table and heat map, from its cells' sweep records: per cell and
+controller, match rates and latencies per event transition, false triggers, hold and unload
+success and cost (docs/transfer.md, "A transfer sweep").
 """
 
 import dataclasses
@@ -116,16 +113,14 @@ def _heatmap_panels(rows: list[CellRow]):
 
 
 def heatmap_label(row: CellRow, value: float) -> str:
-    """A heat-map cell's text: the rate in percent, and under it "41/81 run" for a cell
-    with trials still to run."""
+    """A heat-map cell's text: the rate in percent, and "41/81 run" while trials remain."""
     text = f"{100 * value:.0f}"
     return f"{text}\n{row.trials_text()}" if row.partly_run else text
 
 
 def draw_transfer_heatmap(rows: list[CellRow], path) -> pathlib.Path:
-    """Heat maps, memorizing world (rows) by running world (columns), of each transition's
-    match rate and of hold and unload success (heatmap_label); blank where a cell has no
-    trials."""
+    """Heat maps, memorizing world (rows) by running world (columns), of each transition's match
+    rate and of hold and unload success (heatmap_label); blank where a cell has no trials."""
     memorizing = list(dict.fromkeys(row.memorizing for row in rows))
     running = list(dict.fromkeys(row.running for row in rows))
     panels = _heatmap_panels(rows)
@@ -154,16 +149,14 @@ def draw_transfer_heatmap(rows: list[CellRow], path) -> pathlib.Path:
 
 
 def heatmap_rows(rows: list[CellRow]) -> list[CellRow]:
-    """The rows the heat map shows: the memorized controller's, or the first controller's
-    when the sweep did not run it."""
+    """The heat map's rows: the memorized controller's, else the first controller's."""
     controllers = list(dict.fromkeys(row.controller for row in rows))
     chosen = "memorized" if "memorized" in controllers else controllers[0]
     return [row for row in rows if row.controller == chosen]
 
 
 def not_run_note(spec, rows: list[CellRow]) -> str:
-    """A line naming the spec's cells with no finished trial, or "" when every cell has
-    some (the partly run ones are marked in the table)."""
+    """A line naming the spec's cells with no finished trial, or "" when none is missing."""
     run = {(row.memorizing, row.running) for row in rows}
     missing = [cell_name(a, b) for a, b in spec.cells if (a, b) not in run]
     return f"\nNot run yet (no finished trial): {', '.join(missing)}.\n" if missing else ""

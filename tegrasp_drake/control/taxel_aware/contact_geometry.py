@@ -14,8 +14,7 @@ from tegrasp_drake.rig.taxel_layout import PAD_LENGTH
 
 @dataclasses.dataclass(frozen=True)
 class Shift:
-    """A Re-Reach move of the open gripper [m, world]: dx along the approach axis, dy along
-    the stroke."""
+    """A Re-Reach move of the open gripper [m, world]: dx along the approach, dy the stroke."""
     dx_m: float
     dy_m: float
 
@@ -41,8 +40,7 @@ class FaceTouch:
 
 
 def touched_face(finger: str, gripper_y_m: float, opening_m: float) -> FaceTouch:
-    """The face a finger touching alone presses [m, world y]: opening_m / 2 from the grasp
-    frame's gripper_y_m, about which the fingers close symmetrically."""
+    """The face a finger touching alone presses [m, world y]: opening_m / 2 from gripper_y_m."""
     sign = 1.0 if finger == "left" else -1.0
     return FaceTouch(finger, gripper_y_m + sign * opening_m / 2.0)
 
@@ -54,8 +52,7 @@ def touched_faces(contact: tuple, gripper_y_m: float, opening_m: float) -> tuple
 
 
 def remembered_faces(kept: tuple, touched: tuple) -> tuple:
-    """The faces to remember at a Re-Reach: `touched` replaces the same finger's; none
-    touched (closed on nothing) forgets them all."""
+    """The faces kept at a Re-Reach: `touched` replaces the same finger's; none forgets all."""
     if not touched:
         return ()
     fingers = {face.finger for face in touched}
@@ -69,12 +66,10 @@ def opposite_face(faces: tuple, finger: str) -> FaceTouch | None:
 
 def bracketed_object(previous: FaceTouch | None, current: FaceTouch,
                      object_width_m: float) -> tuple[float, float] | None:
-    """(centre [m, world y], extent [m]) of an object touched by both fingers in turn:
-    previous (the other finger's remembered face) and current (the finger touching alone
-    now); None unless they are different fingers. Two faces bound the object whatever its
-    yaw (docs/controller.md, "Fingers touching alone in turn bracket the object"). The
-    centre is read from the fresh face, half the extent away, the extent never below
-    object_width_m (closer faces mean the object moved: the paper's shift)."""
+    """(centre [m, world y], extent [m]) of an object touched by both fingers in turn
+    (`previous` remembered, `current` touching alone now); None unless different fingers. The
+    centre lies half the extent from the fresh face, the extent at least object_width_m
+    (docs/controller.md, "Fingers touching alone in turn bracket the object")."""
     if previous is None or previous.finger == current.finger:
         return None
     left, right = (current, previous) if current.finger == "left" else (previous, current)
@@ -93,11 +88,9 @@ def pushed_distance_m(first_touch_opening_m: float, object_width_m: float) -> fl
 
 def release_topples(pushed_m: float, *, grasp_height_m: float, object_width_m: float,
                     object_height_m: float) -> bool:
-    """Whether opening the gripper would let a pushed object fall over: a push of pushed_m
-    [m] at grasp_height_m tips it by up to atan(push / grasp height) (base sticking); it
-    stands again only below atan(width / height), so it topples when
-    pushed_m * object_height_m > grasp_height_m * object_width_m (docs/controller.md,
-    "Not after a push past the tipping limit")."""
+    """Whether opening would let an object pushed pushed_m [m] at grasp_height_m fall over:
+    pushed_m * object_height_m > grasp_height_m * object_width_m (docs/controller.md, "Not after
+    a push past the tipping limit")."""
     return pushed_m * object_height_m > grasp_height_m * object_width_m
 
 
@@ -105,10 +98,9 @@ def touched_beyond_pads(*, first_touch_offset_m: float, one_pad: bool, pushed_m:
                         grasp_height_m: float, object_width_m: float, object_height_m: float,
                         taxel_config) -> bool:
     """Whether the close must stop at its first touch: one pad alone touched, on its distal
-    row alone (first_touch_offset_m [m, approach axis, toward the fingertips] at least
-    beyond_pads_centroid_m), and closing on would push the object pushed_m [m] past its
-    tipping limit (release_topples). Why and what the stop costs: docs/controller.md, "A
-    first touch beyond the pads stops the close"."""
+    row alone (first_touch_offset_m [m, toward the fingertips] >= beyond_pads_centroid_m), and
+    closing on would topple the object (release_topples). docs/controller.md, "A first touch
+    beyond the pads stops the close"."""
     return (one_pad and first_touch_offset_m >= taxel_config.beyond_pads_centroid_m
             and release_topples(pushed_m, grasp_height_m=grasp_height_m,
                                 object_width_m=object_width_m,
@@ -117,10 +109,8 @@ def touched_beyond_pads(*, first_touch_offset_m: float, one_pad: bool, pushed_m:
 
 def beyond_pads_shift(*, finger: str, first_touch_opening_m: float, object_width_m: float,
                       taxel_config) -> Shift:
-    """The Re-Reach after touched_beyond_pads [m, world]: forward by the pad's half length
-    (12 mm, the pads' centres onto their distal edge; at most max_approach_shift_m), and
-    toward the touching `finger` by the push the close would have made (the object has
-    barely moved, so that centres it)."""
+    """The Re-Reach after touched_beyond_pads [m, world]: forward by half the pad's length (at most
+    max_approach_shift_m), sideways toward `finger` by the push the close would have made."""
     dy = pushed_distance_m(first_touch_opening_m, object_width_m)
     dx = min(PAD_LENGTH / 2, taxel_config.max_approach_shift_m)
     return Shift(dx, dy if finger == "left" else -dy)
@@ -129,11 +119,9 @@ def beyond_pads_shift(*, finger: str, first_touch_opening_m: float, object_width
 def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,
                       object_width_m: float, pads_touch: bool, closed_to_request: bool,
                       taxel_config) -> bool:
-    """Whether the closed fingers hold the object between them and the palm, off the pads:
-    the first touch was on the palm side (first_touch_offset_m [m] below
-    -centre_tolerance_m), and the fingers stopped short of the request (read at the 2 s
-    timeouts, after the close has ended) narrower than the object with neither pad
-    touching (docs/controller.md, "Caged behind the pads")."""
+    """Whether the closed fingers hold the object against the palm, off the pads: a first touch
+    on the palm side (below -centre_tolerance_m [m]) and fingers stopped short of the request,
+    narrower than the object, neither pad touching (docs/controller.md, "Caged behind the pads")."""
     return (not closed_to_request and not pads_touch and opening_m < object_width_m
             and first_touch_offset_m < -taxel_config.centre_tolerance_m)
 

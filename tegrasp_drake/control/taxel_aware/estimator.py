@@ -48,8 +48,7 @@ class ContactMemory:
 
 @dataclasses.dataclass(frozen=True)
 class ContactReading:
-    """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike
-    sense."""
+    """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike sense."""
     t: float
     mode: Mode
     stage: object
@@ -73,10 +72,9 @@ class ContactReading:
 
 @dataclasses.dataclass(frozen=True)
 class ContactEstimate:
-    """What the rules read [s, N, m; world]; each field is named for what
-    contact_geometry.py computes. pad_travel_to_grasp_m: how much further along the
-    approach axis the pads' centres lie once closed on the object (the linkage's pads move
-    out as they close; 0 on the prismatic hand); bracket: (centre y, extent) or None."""
+    """What the rules read [s, N, m; world], each field named for what contact_geometry.py
+    computes. pad_travel_to_grasp_m: how much further along the approach the pads' centres lie
+    once closed (0 on the prismatic hand); bracket: (centre y, extent) or None."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -186,10 +184,7 @@ class ContactEstimator:
 
     def _first_touch(self, memory: ContactMemory, r: ContactReading, shape: GraspContact,
                      first_load: bool) -> tuple[ContactMemory, bool]:
-        """While the close goes on: remember the first touch (any taxel above
-        taxel_contact_n) and say whether the push since would topple the object if
-        released. In the first Load only a fingertip-side touch is remembered (for
-        touched_beyond_pads; caged_behind_pads reads the Reach's palm-side one)."""
+        """Remembers the close's first touch and whether the push since would topple the object."""
         g = self._geometry
         recording = r.closing or (first_load and shape.approach_offset_m >= 0.0)
         if (recording and memory.first_touch_opening_m < 0.0

@@ -1,11 +1,8 @@
-"""Kinova JACO2 LCM messages (Drake's `lcmt_jaco_command`, `lcmt_jaco_status`) to and from
-vectors; the four systems only convert, in Drake's driver pattern.
-
-The Kinova driver runs the arm in joint-velocity mode at 100 Hz and ignores a command's
-`joint_position` (kept for logs and the emulator), so JacoVelocityTracker turns a position
-error into velocity before the sender. Units: rad, rad/s, N m, `utime` in us; num_fingers = 0
-(the 2F-85 is on its own bus). `check_jaco_status` and `check_jaco_command` are the arm's
-message-boundary checks (hardware/message_boundary.py).
+"""Kinova JACO2 LCM messages (`lcmt_jaco_command`, `lcmt_jaco_status`) to and from
+vectors, in Drake's driver pattern, and the arm's message-boundary checks. The driver runs
+the arm in joint-velocity mode at 100 Hz and ignores `joint_position` (kept for logs), so
+JacoVelocityTracker turns position error into velocity first. Units: rad, rad/s, N m, `utime`
+in us; num_fingers = 0 (the 2F-85 is on its own bus).
 """
 
 import math
@@ -63,8 +60,7 @@ def make_jaco_status(utime, position, velocity, torque) -> lcmt_jaco_status:
 
 
 def _check_joints(message, fields) -> None:
-    """RejectedMessage unless `message` holds JACO_NUM_JOINTS finite values in each of
-    `fields`."""
+    """RejectedMessage unless `message` holds JACO_NUM_JOINTS finite values in each of `fields`."""
     name = type(message).__name__
     if message.num_joints != JACO_NUM_JOINTS:
         raise RejectedMessage(WRONG_JOINT_COUNT, f"{name} with num_joints = "
@@ -78,17 +74,15 @@ def _check_joints(message, fields) -> None:
 
 
 def check_jaco_status(data: bytes) -> lcmt_jaco_status:
-    """The bytes of a KINOVA_JACO_STATUS message decoded and checked: 6 joints, finite
-    joint positions, velocities and torques; else RejectedMessage naming the defect."""
+    """A KINOVA_JACO_STATUS message decoded and checked (6 joints, finite); else RejectedMessage."""
     message = decode_lcm(lcmt_jaco_status, data)
     _check_joints(message, ("joint_position", "joint_velocity", "joint_torque"))
     return message
 
 
 def check_jaco_command(data: bytes) -> lcmt_jaco_command:
-    """The bytes of a KINOVA_JACO_COMMAND message decoded and checked: 6 joints, finite
-    positions and velocities, no joint faster than JACO_MAX_JOINT_SPEED; else
-    RejectedMessage naming the defect (such a command never reaches the arm)."""
+    """A KINOVA_JACO_COMMAND message decoded and checked (6 joints, finite, no joint faster
+    than JACO_MAX_JOINT_SPEED); else RejectedMessage naming the defect."""
     message = decode_lcm(lcmt_jaco_command, data)
     _check_joints(message, ("joint_position", "joint_velocity"))
     fast = [k for k, v in enumerate(message.joint_velocity) if abs(v) > JACO_MAX_JOINT_SPEED]
@@ -135,10 +129,8 @@ class JacoCommandSender(LeafSystem):
 
 class JacoCommandReceiver(LeafSystem):
     """`lcmt_jaco_command` as desired_state (12: q [rad], then v [rad/s]), on the emulator side.
-
-    As the real driver does, the arm stops when commands stop: with no new `utime` for
-    `command_timeout` [s] (or none yet), the output holds the last sampled position_measured
-    (6, rad) at zero velocity.
+    With no new `utime` for `command_timeout` [s] (or none yet) the arm stops, as with the real
+    driver: the last sampled position_measured [rad] at zero velocity.
 
     .. pydrake_system::
 

@@ -1,8 +1,7 @@
-"""Builders that wire the JACO2 LCM systems into a diagram, for either end of the bus:
-`AddJacoLcmDriver` (hardware: controller -> KINOVA_JACO_COMMAND, KINOVA_JACO_STATUS ->
-measured state) and `AddJacoLcmEmulator` (a simulation answering commands with status, as
-Drake's hardware_sim does). Both need an `LcmInterfaceSystem` for the same `lcm`. What each
-receives crosses a MessageBoundary with jaco_lcm's checks.
+"""Builders that wire the JACO2 LCM systems into a diagram for either end of the bus:
+`AddJacoLcmDriver` (hardware) and `AddJacoLcmEmulator` (a simulation answering commands, as
+Drake's hardware_sim). Both need an `LcmInterfaceSystem` for the same `lcm`; what each
+receives crosses a MessageBoundary.
 """
 
 import dataclasses

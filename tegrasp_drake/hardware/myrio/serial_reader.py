@@ -1,9 +1,6 @@
-"""A reader thread for the myRIO tactile stream: serial port -> decoder -> bounded queue.
-
-The thread blocks on the port (at most `read_timeout` at a time, so it notices `close()`);
-the diagram calls only `drain()`, which never blocks. When the consumer falls behind, the
-oldest frames are dropped and counted; a serial error is counted and retried, so a
-replugged adapter comes back.
+"""A reader thread for the myRIO tactile stream: serial port -> decoder -> bounded queue. The
+diagram calls only `drain()`, which never blocks; when it falls behind the oldest frames are
+dropped and counted; a serial error is counted and retried (a replugged adapter comes back).
 """
 
 import collections
@@ -33,9 +30,8 @@ class TactileReaderCounters:
 
 class TactileSerialReader:
     """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
-    `port`: a device path or a pyserial URL; a context manager, or start()/close(). A burst
-    is batched for `batch_period` [s], so the thread takes Python's interpreter lock a few
-    hundred times a second, not per 1 ms frame; the queue holds `queue_size` frames."""
+    `port`: a device path or pyserial URL; a context manager. Bursts are batched for
+    `batch_period` [s], so the thread takes the interpreter lock a few hundred times a second."""
 
     def __init__(self, port: str, *, baudrate: int = DEFAULT_BAUDRATE, queue_size: int = 1024,
                  read_timeout: float = 0.005, batch_period: float = 0.002):
@@ -85,8 +81,7 @@ class TactileSerialReader:
         return frames
 
     def discard_pending(self) -> int:
-        """Drops the frames received so far (a start-up backlog would only delay the first ticks)
-        and forgets their overflows; returns how many were dropped."""
+        """Drops the frames received so far (a start-up backlog) and overflows; returns how many."""
         with self._lock:
             dropped = len(self._queue) + self._counters.queue_overflows
             self._queue.clear()

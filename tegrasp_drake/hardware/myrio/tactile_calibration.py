@@ -1,12 +1,11 @@
 """Calibration of the tactile pads: AD7147 counts to taxel forces [N], piezo samples to an
-acceleration-equivalent [m/s^2] (the film's one axis, put in x of the pad frame):
+acceleration-equivalent [m/s^2] (the film's one axis, in x of the pad frame):
 
     F_k = max(0, gain_k * (counts_k - offset_k))
     a = piezo_gain * (counts * volts_per_count - piezo_offset)
 
-The offsets drift, so they are re-estimated at start (zeroing, nothing touching the pads).
-A real pad's gains go in a YAML file (`LoadTactileCalibration`); how to measure them:
-hardware/myrio/TACTILE_FRAME.md, "Calibration".
+Offsets are re-estimated at start (zeroing); gains come from a YAML file
+(hardware/myrio/TACTILE_FRAME.md, "Calibration").
 """
 
 import dataclasses
@@ -46,9 +45,7 @@ class TactileCalibration:
 
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
-    """Reads a TactileCalibration from YAML (the dataclasses' fields); a ConfigError naming the
-    file and field for anything else (missing, empty, FIFO or device, too large, bad YAML, an
-    unknown or non-finite field)."""
+    """Reads a TactileCalibration from YAML; otherwise a ConfigError naming the file and field."""
     from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, read_yaml_file
     data = read_yaml_file(filename, "the tactile calibration")
     if data is None:

@@ -1,11 +1,7 @@
 """The myRIO tactile stream's binary frame: `encode_frame` and a resynchronising streaming
-decoder. Layout, rates and decoding rules: hardware/myrio/TACTILE_FRAME.md.
-
-A 1 ms frame carries each finger's piezo sample (i16, LSB = 10 V / 32768) and, when that
-finger's AD7147 finished a 12-stage sequence (~108 Hz), its 12 counts, then a CRC-32. The
-decoder passes on only CRC-valid frames that follow the last one (a newer sequence whose
-timestamp advanced by the gap's frame periods), counts what it skips, follows a restarted
-device after RESTART_RUN frames and unwraps device time frame by frame.
+decoder. Layout, rates and decoding rules: hardware/myrio/TACTILE_FRAME.md. The decoder
+passes on only CRC-valid frames that follow the last one, counts what it skips, follows a
+restarted device after RESTART_RUN frames and unwraps device time frame by frame.
 """
 
 import dataclasses
@@ -165,9 +161,7 @@ class TactileFrameDecoder:
 
     def _follows(self, sequence: int, raw_timestamp: int, last_sequence: int,
                  last_raw: int) -> str:
-        """How a frame relates to the one before it: "next" (newer, its time advanced by its
-        sequence gap's frame periods within TIME_TOLERANCE), "old" (repeated or older) or
-        "implausible"."""
+        """How a frame relates to the one before it: "next", "old" or "implausible"."""
         gap = (sequence - last_sequence) % SEQUENCE_MODULUS
         if gap == 0 or gap > SEQUENCE_MODULUS // 2:
             return "old"

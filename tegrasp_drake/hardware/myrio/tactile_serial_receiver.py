@@ -1,11 +1,7 @@
-"""The myRIO tactile stream as a Drake system with the simulated pads' ports.
-
-Every `period` (1 ms) an unrestricted update drains the reader thread's frames (never
-blocking), calibrates them and keeps the result in the Context. A burst is played one frame
-per tick, two while more than two wait, all but `max_backlog` beyond that, keeping the
-newest counts and the largest piezo sample (an impact is never lost); filters that need
-every device sample read `pad_acceleration_samples` (docs/hardware.md, "Serial bursts and
-the slip band").
+"""The myRIO tactile stream as a Drake system with the simulated pads' ports. Every `period` (1 ms)
+an update drains the reader thread's frames without blocking and calibrates them. A burst is played
+one frame per tick, two while more than two wait, all but `max_backlog` beyond that, keeping the
+newest counts and the largest piezo sample (docs/hardware.md, "Serial bursts and the slip band").
 """
 
 import dataclasses
@@ -162,9 +158,8 @@ class TactileSerialReceiver(LeafSystem):
         return self._reader
 
     def zero_before_start(self, deadline: float) -> bool:
-        """Zeroes the pads (untouched) on the frames arriving now, before the Simulator starts;
-        blocks until `zero_samples` count sequences per finger arrived or time.monotonic() passes
-        `deadline` [s]. True when zeroed; initialization then starts the receiver zeroed."""
+        """Zeroes the untouched pads before the Simulator starts, blocking until `zero_samples`
+        sequences per finger arrived or `deadline` [s, monotonic] passes; True when zeroed."""
         state = initial_receiver_state(self._calibration)
         while not state.zeroed and time.monotonic() < deadline:
             frames = self._reader.drain()

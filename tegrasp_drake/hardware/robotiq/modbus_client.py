@@ -1,10 +1,8 @@
-"""A Robotiq 2F-85 Modbus RTU client on its own thread, never blocking its caller.
-
-The thread activates the gripper as the manual prescribes (zeros, then rACT = 1, then poll
-until gSTA = 3), then every `period` (the gripper's 200 Hz limit at most) writes the newest
-command when it changed or every `command_refresh_period`, and reads the status. Every
-answer crosses a MessageBoundary (`check_answer`); a failed transaction is counted and
-skipped, so a silent gripper shows as a status whose arrival time stops advancing.
+"""A Robotiq 2F-85 Modbus RTU client on its own thread, never blocking its caller. It
+activates the gripper as the manual prescribes, then every `period` (200 Hz at most) writes
+the newest command when it changed (or every `command_refresh_period`) and reads the status.
+Every answer crosses a MessageBoundary; a failed transaction is counted and skipped, so a
+silent gripper shows as a status whose arrival time stops advancing.
 """
 
 import dataclasses
@@ -200,8 +198,7 @@ class RobotiqModbusClient:
 
     def _transaction(self, request, function: int, address: int, register_count: int,
                      **kwargs):
-        """One request of `function` for `register_count` registers at `address`: the checked
-        answer, or None (counted by the boundary)."""
+        """One request's checked answer, or None (counted by the boundary)."""
         try:
             response = request(address, device_id=self._config.device_id, **kwargs)
         except ModbusException as exc:

@@ -1,9 +1,7 @@
-"""The Robotiq 2F-85 over Modbus RTU as a Drake system with the simulated gripper's ports.
-
-A periodic publish event hands `command` to the RobotiqModbusClient (its thread does the
-I/O) and a periodic unrestricted update copies the client's newest status into the Context;
-nothing here waits on the serial line. `fault` names a nonzero gFLT (by the manual's name)
-or the client's error.
+"""The Robotiq 2F-85 over Modbus RTU as a Drake system with the simulated gripper's ports:
+periodic events hand `command` to the RobotiqModbusClient's thread and copy its newest
+status into the Context, never waiting on the serial line. `fault` names a nonzero gFLT (the
+manual's name) or the client's error.
 """
 
 import dataclasses
