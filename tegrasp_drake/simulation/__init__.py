@@ -3,8 +3,7 @@
 station.py: MakeGraspStation; station_visualization.py: what it shows in Meshcat.
 gripper_hands.py: the two simulated 2F-85 hands (linkage, prismatic) and what differs.
 sim_robotiq_driver.py: SimRobotiqDriver, the twin of the 2F-85's own controller.
-robotiq_drive_step.py: the drive's per-step set-point as compiled systems;
-ordered_expressions.py: symbolic formulas in Python's float operation order.
+robotiq_drive_step.py, ordered_expressions.py: the drive's step compiled, in float order.
 gripper_bench.py: MakeGripperBench, the simulated 2F-85 alone, for the hand's checks.
 jaco_velocity_drive.py: the JACO2's velocity command path: hold, latency, servo set-point.
 carriage.py, carriage_systems.py: the Cartesian carriage for sweeps, behind the arm's ports.

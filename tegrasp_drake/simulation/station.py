@@ -1,34 +1,14 @@
 """MakeGraspStation: the simulated hardware of the paper (Sec. III-A, Fig. 4) as one Diagram.
 
-A JACO2 arm on a table, the tactile 2F-85-like gripper on its flange, the object on its
-marker (plus its offset), and the sensors: both pads' taxel arrays and vibration
-films. The exported ports are those of the hardware interface (rig/station_interface.py:
-its CONTROLLER_INPUTS and CONTROLLER_OUTPUTS), so a controller cannot tell the two apart;
-the taxels' readings are newtons, or with the capacitive transducer calibrated newtons or
-AD7147 counts (capacitive_taxels.py); each pad's PVDF film is in acceleration-equivalent
-units [m/s^2] on the pad normal (z), or its high-passed accelerometer (pad_accelerometers.py).
-For evaluation the simulation also exports the ground truth that station_interface lists
-as simulation only: the object's state, the taxel forces before noise, the contact results,
-body poses and query object, the gripper's joint state and the simulated 2F-85
-controller's set-point of the hand's actuated joint.
-
-The hand is `gripper.model` (gripper_hands.py): the 2F-85's finger linkage (the
-default) or the earlier prismatic fingers.
-
-The Jaco's firmware compensates gravity, so gravity is off for the arm and gripper bodies.
-The arm is driven as the real JACO2 is (jaco_velocity_drive.py): arm.desired_state goes
-through the hardware's velocity tracker, 100 Hz commands and their latency to the arm's
-velocity servo, whose set-point (arm.servo_set_point, simulation only) the joints track
-with the plant's implicit PD; arm.commanded_state shows the commands, as on the hardware
-station.
-
-With `station: !SimulatedStationConfig {arm: carriage}` the gripper rides on a Cartesian
-carriage instead (carriage.py), which follows the pose the servo's set-point gives G
-(the same command path, the servos ideal); the arm's ports stay: arm.position_measured
-reports the set-point's joints moved by the carriage's deflection, arm.velocity_measured
-the set-point's rates, and arm.torque_measured the joint torques that would hold the
-wrench measured at the carriage-gripper weld. Simulation only there: carriage.desired_state (12, the carriage
-PD's set-point), gripper.wrist_wrench (6: [M; F] on the arm at G, world [N m, N]).
+A JACO2 on a table, the tactile 2F-85 on its flange (`gripper.model`, gripper_hands.py),
+the object on its marker plus its offset, and both pads' taxels and films. Its ports are the
+hardware interface's (rig/station_interface.py), so a controller cannot tell the two apart,
+plus the ground truth that interface lists as simulation only. Gravity is off for the arm
+and gripper (the JACO2's firmware compensates it). The arm is driven as the real one is,
+through the velocity tracker, 100 Hz commands and their latency (jaco_velocity_drive.py;
+docs/model.md, "The arm: joint velocities at 100 Hz, late"); with `station:
+!SimulatedStationConfig {arm: carriage}` a Cartesian carriage carries the gripper instead
+(carriage.py; docs/model.md, "The carriage: the arm as a stiff pose source (for sweeps)").
 """
 
 import dataclasses
