@@ -102,11 +102,10 @@ class EventMatcher(WindowNormalizer):
         - scored_event
 
     Ports:
-        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2) at the config's
-            SA and RA rates; sa_block, ra_block: in blocks (ConnectWindowChannels).
+        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2); sa_block,
+            ra_block: in blocks (ConnectWindowChannels).
         expected_event: [index] of the event to check, or -1 for none.
-        ra_floor: [left, right] RA noise floor [m/s^2], declared with ra_noise_floor_sigmas
-            > 0 or a quiet template.
+        ra_floor: [left, right] RA noise floor [m/s^2], with a floor or quiet template.
         sa_window, ra_window: the max-normalised windows that are scored.
         scores: the four scores in [-1, 1]; 0 with no event, a partial, too flat or
             below-floor window; 1 for a quiet template within its floor.
@@ -188,12 +187,10 @@ class EventMatcher(WindowNormalizer):
 
     @property
     def has_ra_floor(self) -> bool:
-        """Whether the matcher reads the RA noise floor (its `ra_floor` input)."""
         return self._floor_port is not None
 
     @property
     def transitions(self) -> tuple[str, ...]:
-        """The events' transitions, by index."""
         return self._transitions
 
     def event_index(self, transition: str) -> int:

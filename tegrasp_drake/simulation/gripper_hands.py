@@ -28,8 +28,7 @@ class PrismaticHand:
     actuated_joint: str = "left_finger_joint"
     non_backdrivable: bool = False
     events_folder: str = "prismatic"  # its memorized events, in the package's events
-    # Eq. 3 [SA, RA] of its ensemble events, chosen on held-out runs
-    # (analysis/ensemble_thresholds_prismatic.md)
+    # Eq. 3 [SA, RA], chosen on held-out runs (analysis/ensemble_thresholds_prismatic.md)
     ensemble_thresholds: tuple = (("reach_load", (0.44, 0.65)), ("load_lift", (0.94, 0.90)),
                                   ("place_unload", (0.98, 0.90)))
 
@@ -66,8 +65,7 @@ class LinkageHand:
     actuated_joint: str = "left_driver_joint"
     non_backdrivable: bool = True
     events_folder: str = ""  # its memorized events: the package's events themselves
-    # Eq. 3 [SA, RA] of its ensemble events, chosen on held-out runs
-    # (analysis/ensemble_thresholds.md)
+    # Eq. 3 [SA, RA], chosen on held-out runs (analysis/ensemble_thresholds.md)
     ensemble_thresholds: tuple = (("reach_load", (0.88, 0.55)), ("load_lift", (0.48, 0.75)),
                                   ("place_unload", (0.98, 0.65)))
 

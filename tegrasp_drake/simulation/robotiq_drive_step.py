@@ -13,8 +13,7 @@ from tegrasp_drake.simulation.ordered_expressions import (SYMBOLIC, Ordered, exp
                                                          ordered_max, ordered_min, variable_of,
                                                          variables, where)
 
-# moving: the loop drives; stuck: the screw holds a load above the motor's torque;
-# held: stopped at the current limit, object reported, no current
+# phases: the loop drives; the screw holds a load over the torque; held at the limit
 MOVING, STUCK, HELD = 0.0, 1.0, 2.0
 
 # the planner's state: q [m], m/s, m/s^2, m, m/s, N, byte, gOBJ, s, +-1, counts

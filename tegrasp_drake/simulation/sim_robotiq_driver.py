@@ -32,8 +32,7 @@ _PLANNER_SIZE = len(PLANNER)  # the planner's state (robotiq_drive_step.PLANNER)
 @public_dataclass
 @dataclasses.dataclass
 class GripperDriverConfig:
-    """The simulated 2F-85: which hand, and its controller (a position loop with a force
-    limit)."""
+    """The simulated 2F-85: its hand and its controller (a force-limited position loop)."""
     # "linkage" (the 2F-85's five-bar fingers) or "prismatic" (gripper_hands.py)
     model: str = "linkage"
     update_rate_hz: float = bounded(200.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
@@ -87,17 +86,15 @@ def status_position_byte(q: float) -> float:
 
 
 def has_arrived(q: float, v: float, goal: float, acceleration: float, dt: float) -> bool:
-    """True when the reference (q, v) is within one step's reach of goal at rest; it is then
-    put on the goal, or reference_step's bang-bang would circle it in a limit cycle that
-    the PD's damping turns into a grip-force ripple the real gripper does not have."""
+    """True when the reference (q, v) is a step from goal at rest: it is then put on the goal
+    (docs/model.md, "The driver's reference")."""
     return abs(goal - q) <= acceleration * dt * dt and abs(v) <= acceleration * dt
 
 
 def force_limited_set_point(q: float, q_ref: float, force: float, position_gain: float,
                             lever: float = 1.0) -> float:
-    """The PD set-point for the actuated coordinate: the reference, but no further than
-    2 force lever / position_gain from the measured q, so that a blocked finger pushes each
-    pad (one actuator drives both) with at most force [N]; lever = |d(half opening)/dq|."""
+    """The PD set-point: the reference within 2 force lever / position_gain of q, so that a
+    blocked finger pushes each pad with at most force [N]; lever = |d(half opening)/dq|."""
     band = 2.0 * force * lever / position_gain
     return q + min(max(q_ref - q, -band), band)  # floats: called on every plant step
 
@@ -169,8 +166,7 @@ class SimRobotiqPlanner(LeafSystem):
 
     Ports:
         command: (3) rPR, rSP, rFR bytes.
-        finger_state: (2) the hand's actuated coordinate a and its rate, as
-            MakeSimRobotiqDriver's.
+        finger_state: (2) a and its rate, as MakeSimRobotiqDriver's.
         drive_memory: the drive's memory (robotiq_drive_step.MEMORY).
         planner_state: this system's state (robotiq_drive_step.PLANNER), for the drive.
         status: (8) status bytes, robotiq.units order.
@@ -223,8 +219,7 @@ class SimRobotiqPlanner(LeafSystem):
                 s[REF_Q], s[REF_V], phase = q, 0.0, MOVING
                 s[RESTARTS] += 1.0
             if s[GOAL] != s[REF_Q]:
-                # the nut's direction in a, kept to the next command (the reference may
-                # pass its goal by a hair)
+                # the nut's direction, kept to the next command
                 rate = hand.half_opening_rate(hand.actuated(s[REF_Q]))
                 s[DIRECTION] = 1.0 if (s[GOAL] - s[REF_Q]) * rate > 0.0 else -1.0
         if has_arrived(s[REF_Q], s[REF_V], s[GOAL], self._config.acceleration, self._dt):

@@ -36,7 +36,7 @@ class WindowNormalizerConfig:
 
 
 def window_layout(group: RateGroup) -> SlidingWindowState:
-    """How a WindowNormalizer holds `group`'s window: at the start of the group's state."""
+    """`group`'s window, at the start of the group's state."""
     return SlidingWindowState(default_sliding_window(len(group.channels), group.window_length))
 
 
@@ -140,7 +140,6 @@ class WindowNormalizer(LeafSystem):
 
     @property
     def rate_windows(self) -> tuple[RateWindow, ...]:
-        """The windows, one per rate group, in the order of config.rate_groups()."""
         return self._rate_windows
 
     def window_length(self, kind: str) -> int:
