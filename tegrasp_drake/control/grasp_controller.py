@@ -156,7 +156,7 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     needs them. ra_noise_std_mps2 [m/s^2 rms] and tactile raise the RA and SA thresholds to
     their noise sigmas (control/noise_thresholds.py); 0 and None: the numbers alone.
     """
-    entry = controller_entry(controller)  # how this controller adds its systems
+    entry = controller_entry(controller)
     return entry.load("add_systems")(
         builder, entry=entry, controller=controller, plan=plan,
         station=station, arm=arm, sample_rates_hz=sample_rates_hz, events=events,

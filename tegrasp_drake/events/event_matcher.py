@@ -239,7 +239,7 @@ class EventMatcher(WindowNormalizer):
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
                     context, sample_time: float) -> None:
         """Slides the rate's correlation by the pushed samples; records whether it passed."""
-        rows, offset, full = pushed  # (a star call costs more than this unpacking)
+        rows, offset, full = pushed
         name = window.group.name
         expected = self._expected_event(context)
         scores = self._correlations[name].slide(state, rows, offset, full, expected, missing)

@@ -26,7 +26,7 @@ from tegrasp_drake.simulation.robotiq_drive_step import (
     effective_phase, object_status_now)
 from tegrasp_drake.rig.api_boundary import public_dataclass
 
-_PLANNER_SIZE = len(PLANNER)  # the planner's state (robotiq_drive_step.PLANNER)
+_PLANNER_SIZE = len(PLANNER)
 
 
 @public_dataclass
@@ -38,8 +38,8 @@ class GripperDriverConfig:
     update_rate_hz: float = bounded(200.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
                                     why="the 2F-85 takes commands at up to 200 Hz")
     # the prismatic hand's PD on half the opening
-    position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")  # N/m
-    damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")  # N s/m
+    position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")
+    damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")
     # the linkage hand's drive; sources and ranges in robotiq/drive.py
     position_loop_hz: float = bounded(
         drive.POSITION_LOOP_HZ, low=drive.POSITION_LOOP_HZ_RANGE[0],
@@ -96,7 +96,7 @@ def force_limited_set_point(q: float, q_ref: float, force: float, position_gain:
     """The PD set-point: the reference within 2 force lever / position_gain of q, so that a
     blocked finger pushes each pad with at most force [N]; lever = |d(half opening)/dq|."""
     band = 2.0 * force * lever / position_gain
-    return q + min(max(q_ref - q, -band), band)  # floats: called on every plant step
+    return q + min(max(q_ref - q, -band), band)
 
 
 def drive_set_point(*, a: float, v: float, v_prev: float, set_point: tuple[float, float],
@@ -167,8 +167,7 @@ class SimRobotiqPlanner(LeafSystem):
     Ports:
         command: (3) rPR, rSP, rFR bytes.
         finger_state: (2) a and its rate, as MakeSimRobotiqDriver's.
-        drive_memory: the drive's memory (robotiq_drive_step.MEMORY).
-        planner_state: this system's state (robotiq_drive_step.PLANNER), for the drive.
+        drive_memory, planner_state: robotiq_drive_step's MEMORY and PLANNER vectors.
         status: (8) status bytes, robotiq.units order.
     """
 
@@ -272,8 +271,7 @@ def MakeSimRobotiqDriver(*, config: GripperDriverConfig, time_step: float,
 
     Ports:
         command: (3) rPR, rSP, rFR bytes.
-        finger_state: (2) actuated a and its rate (left driver [rad], [rad/s] on the
-            linkage hand; half the opening [m], [m/s] on the prismatic one).
+        finger_state: (2) a and its rate ([rad], [rad/s] linkage; [m], [m/s] prismatic).
         desired_state: (2) a and da/dt set-points of the plant's PD for the next step.
         status: (8) status bytes, robotiq.units order.
     time_step: the plant's [s].

@@ -77,10 +77,8 @@ class WindowNormalizer(LeafSystem):
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2).
         sa_block, ra_block (sa_ra_block when the rates match): the rate's last
             block_samples samples, oldest first, for a rate in blocks or read batches.
-        sa_window: 2 * N_sa values, [sa_left, sa_right] windows, oldest first, each divided
-            by its max |value| (all-zero stays zero); unitless.
-        ra_window: 2 * N_ra values, likewise for ra_left, ra_right.
-    with N_sa = window_s * sa_rate_hz and N_ra = window_s * ra_rate_hz.
+        sa_window, ra_window: [left, right] windows of window_s * rate samples, oldest
+            first, each divided by its max |value| (all-zero stays zero); unitless.
     """
 
     @public_api
