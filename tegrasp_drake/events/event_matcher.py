@@ -109,7 +109,7 @@ class EventMatcher(WindowNormalizer):
         sa_window, ra_window: the max-normalised windows that are scored.
         scores: the four scores in [-1, 1]; 0 with no event, a partial, too flat or
             below-floor window; 1 for a quiet template within its floor.
-        match: [1.0] when every channel passes for the event now expected.
+        match: [1.0] when every channel passes for the expected event (blocks: a block late).
         scored_event: [index] the scores refer to; -1 for none or while SA and RA disagree.
     """
 
