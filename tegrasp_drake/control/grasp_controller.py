@@ -1,15 +1,7 @@
-"""The closed-loop grasp controller wired to a station: Eq. 1-2 channels, the event detector
-(the memorized events' EventMatcher: a WindowNormalizer that scores its windows by Eq. 3,
-or the heuristic thresholds), the
-GraspStateMachine and the Cartesian arm controller; or the open-loop script.
-
-With the memorized events the live diagram follows the paper's Fig. 3:
-
-    mechanoreceptor_channels (Eq. 1-2) -> event_matcher (the 0.5 s windows,
-      max-normalised, scored by Eq. 3 against the expected event) -> grasp_state_machine
-
-`AddGraspController` connects to any system with the station's exported port names
-(rig/station_interface.py): the simulated station and the hardware interface alike.
+"""The grasp controller wired to a station: Eq. 1-2 channels -> event detector (the
+memorized events' EventMatcher, the paper's Fig. 3, or heuristic thresholds) ->
+GraspStateMachine -> Cartesian arm controller; or the open-loop script. It connects to any
+system with the station's port names (rig/station_interface.py), simulated or hardware.
 """
 
 import dataclasses
@@ -69,8 +61,7 @@ class GraspController:
         return self.state_machine.GetMyContextFromRoot(root_context)
 
     def transitions(self, root_context) -> list[Transition]:
-        """The transitions so far (open loop: the script's changes of mode, by its timer;
-        they carry no scores)."""
+        """The transitions so far (open loop: the script's mode changes, without scores)."""
         if self.segments is None:
             return list(self.state_machine.transitions(self._system_context(root_context)))
         t_now = root_context.get_time()
@@ -90,10 +81,8 @@ class GraspController:
 
 
 def controller_events_folders(controller, events_dir=None, hand_folder: str = "") -> list:
-    """The folders the controller (its config) reads its memorized events from: the events
-    search path (rig/paths.events_search_path, the package's for the hand in hand_folder),
-    each folder's sub-folder controller.events_folder ("" for the paper's memorized
-    controller)."""
+    """The folders the controller reads its memorized events from: each events search path
+    folder (rig/paths.events_search_path) joined with controller.events_folder."""
     sub = controller.events_folder or ""
     return [folder / sub if sub else folder
             for folder in paths.events_search_path(events_dir, hand_folder)]
@@ -101,12 +90,9 @@ def controller_events_folders(controller, events_dir=None, hand_folder: str = ""
 
 def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
                          rates_hz: tuple[float, float]):
-    """The EventMatcherConfig of an event-triggered controller's matcher: its Eq. 3
-    thresholds (and the hand's chosen ensemble ones), the live SA and RA rates [Hz], its
-    sample blocks, RA envelope and RA noise floor. The one mapping from a controller's
-    settings to its matcher's, which the live run and a replay of its log share (the live
-    run adds its state machine's tick as read_period_s, which changes nothing the machine
-    reads: tactile/read_batch.py)."""
+    """The EventMatcherConfig of an event-triggered controller (thresholds, live SA and RA
+    rates [Hz], blocks, RA envelope and floor): the one mapping, shared by the live run
+    and a replay of its log."""
     from tegrasp_drake.events import EventMatcherConfig
     return EventMatcherConfig(
         **dataclasses.asdict(config.matching),
@@ -116,8 +102,7 @@ def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
 
 
 def add_event_matcher_detector(builder, *, config, plan, rates_hz, events, channels):
-    """The memorized events' EventMatcher fed by `channels` (an output port), and its
-    trigger: the detector of an event-triggered controller."""
+    """An event-triggered controller's detector: the EventMatcher on `channels`, trigger."""
     from tegrasp_drake.events import add_event_matcher
     if events is None:
         raise ValueError(f"AddGraspController: the {config.name} controller needs its "
@@ -130,8 +115,7 @@ def add_event_matcher_detector(builder, *, config, plan, rates_hz, events, chann
 
 
 def add_heuristic_detector(builder, *, config, plan, rates_hz, events, channels):
-    """The heuristic thresholds' detector fed by `channels` (an output port), and its
-    trigger."""
+    """The heuristic thresholds' detector on `channels`, and its trigger."""
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
         config.heuristic, grip_force_n=plan.grip_force))
     builder.Connect(channels, detector.GetInputPort("channels"))
@@ -139,8 +123,7 @@ def add_heuristic_detector(builder, *, config, plan, rates_hz, events, channels)
 
 
 def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channels):
-    """The corrective EventMatcher (`corrective_matcher`) of the memorized corrective
-    events, fed by `channels`, with their thresholds (controller.memorized_corrective)."""
+    """The `corrective_matcher` of controller.memorized_corrective's events on `channels`."""
     from tegrasp_drake.events import EventMatcher, EventMatcherConfig
     if corrective_events is None:
         raise ValueError("AddGraspController: controller.memorized_corrective.events names "
@@ -165,22 +148,15 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
                        events: dict | None = None, corrective_events: dict | None = None,
                        ra_noise_std_mps2: Annotated[float, Range(low=0.0, unit="m/s^2")] = 0.0,
                        tactile: TactileSensorConfig | None = None) -> GraspController:
-    """Adds the controller configured by `controller` (a ControllerConfig), as its entry in
-    control/controller_registry.py says, and connects it to `station`'s ports; returns its
-    GraspController.
+    """Adds `controller` as its control/controller_registry.py entry says, connected to
+    `station`'s ports; returns its GraspController.
 
-    plan: the grasp it follows (GraspPlan.make); arm: the arm's settings (ArmDriverConfig:
-    its start pose and the Cartesian controller's period); sample_rates_hz: the live SA
-    (taxel) and RA (film) rates [Hz] the matchers read. events: {transition:
-    MemorizedEvent}, needed by the event-triggered controllers (load_controller_events).
-    corrective_events: the memorized corrective events {lift_load, hold_avoid}, needed when
-    controller.memorized_corrective.events names some (load_corrective_events).
-    ra_noise_std_mps2: the RA channel's noise [m/s^2 rms], which raises the RA thresholds
-    to their sigmas (control/noise_thresholds.py); 0: the numbers alone. tactile: the
-    taxels' electronics (TactileSensorConfig), whose noise raises the SA thresholds
-    (noise_thresholds.sa_noise_floors); None: the numbers alone.
+    sample_rates_hz: live SA and RA rates [Hz]. events, corrective_events: {transition:
+    MemorizedEvent} (load_controller_events, load_corrective_events) when the controller
+    needs them. ra_noise_std_mps2 [m/s^2 rms] and tactile raise the RA and SA thresholds to
+    their noise sigmas (control/noise_thresholds.py); 0 and None: the numbers alone.
     """
-    entry = controller_entry(controller)  # how this controller adds its systems
+    entry = controller_entry(controller)
     return entry.load("add_systems")(
         builder, entry=entry, controller=controller, plan=plan,
         station=station, arm=arm, sample_rates_hz=sample_rates_hz, events=events,
@@ -189,8 +165,7 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
 
 
 def _add_arm_controller(builder, *, station: System, arm: ArmDriverConfig):
-    """The Cartesian arm controller on the station's arm ports: (its X_WG_desired input,
-    its arm.desired_state output)."""
+    """The Cartesian arm controller on the station: (X_WG_desired input, desired_state)."""
     from tegrasp_drake.simulation.station import initial_arm_positions
     X_WG_desired, arm_desired_state = AddCartesianArmController(
         builder, position_measured=station.GetOutputPort(ports.ARM_POSITION_MEASURED),
@@ -223,9 +198,8 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
                               events: dict | None, corrective_events: dict | None,
                               ra_noise_std_mps2: float,
                               tactile: TactileSensorConfig | None) -> GraspController:
-    """A closed-loop controller: the channels, the detector of `entry`, the
-    GraspStateMachine with the entry's rules and estimator, and the Cartesian arm
-    controller (AddGraspController's arguments)."""
+    """A closed-loop controller: channels, `entry`'s detector, rules and estimator, and the
+    Cartesian arm controller (AddGraspController's arguments)."""
     config = resolve_noise_thresholds(controller, ra_noise_std_mps2=ra_noise_std_mps2,
                                       ra_rate_hz=sample_rates_hz[1], tactile=tactile,
                                       sa_rate_hz=sample_rates_hz[0])
@@ -265,8 +239,7 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
         builder.Connect(station.GetOutputPort(ports.pad_acceleration(finger)),
                         accelerations.get_input_port(k))
     builder.Connect(accelerations.get_output_port(), machine.GetInputPort("pad_acceleration"))
-    # On hardware the band filters the device's own samples (see SlipVibrationBand), in
-    # simulation the film's samples in blocks.
+    # hardware: the device's own samples; simulation: the film's, in blocks
     samples = (station.GetOutputPort(ports.TACTILE_PAD_ACCELERATION_SAMPLES)
                if station.HasOutputPort(ports.TACTILE_PAD_ACCELERATION_SAMPLES) else None)
     builder.Connect(AddSlipVibrationBand(builder, accelerations.get_output_port(),
@@ -283,7 +256,6 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
                         taxels.get_input_port(k))
     builder.Connect(taxels.get_output_port(), machine.GetInputPort("taxel_forces"))
     if entry.senses_finger_strike and station.HasOutputPort(ports.ARM_TORQUE_MEASURED):
-        # The finger-strike sense: the wrench the arm's joint torques hold at the grasp frame.
         wrench = builder.AddNamedSystem("grasp_wrench_estimator", GraspWrenchEstimator())
         builder.Connect(station.GetOutputPort(ports.ARM_POSITION_MEASURED),
                         wrench.GetInputPort(ports.ARM_POSITION_MEASURED))

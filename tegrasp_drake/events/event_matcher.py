@@ -30,40 +30,30 @@ from tegrasp_drake.tactile.window_normalizer import (
 @public_dataclass
 @dataclasses.dataclass
 class EventMatcherConfig:
-    """Thresholds of Sec. III-B (a channel passes above its threshold) and the live rates [Hz];
-    min_contrast: live contrast a channel needs for its score to count (correlation.py). The
-    settings a controller gives it are declared once, in rig/event_matching.EventMatchingConfig.
-    """
+    """Sec. III-B thresholds, live rates [Hz] and gates; the controller's settings are
+    declared in rig/event_matching.EventMatchingConfig."""
     sa_threshold: float = declared_field(EventMatchingConfig, "sa_threshold")
     ra_threshold: float = declared_field(EventMatchingConfig, "ra_threshold")
     # {transition: (sa, ra)} per-event thresholds in place of the two above (taxel_aware)
     event_thresholds: Mapping[str, tuple[float, float]] = dataclasses.field(
         default_factory=dict)
     min_contrast: float = bounded(0.25, low=0.0, low_open=True, below="must be positive")
-    # Beyond the paper: a flat template channel scores only a flat live window (correlation.py)
     flat_template_needs_flat_window: bool = declared_field(EventMatchingConfig,
                                                            "flat_template_needs_flat_window")
     sa_rate_hz: float = bounded(100.0, low=0.0, low_open=True, unit="Hz")
     ra_rate_hz: float = bounded(1000.0, low=0.0, low_open=True, unit="Hz")
-    # Block [s] in which a fast rate's samples are scored in one update (0: per sample); a
-    # match shows at most one block late (WindowNormalizerConfig.block_s).
+    # block [s] scored in one update (0: per sample); a match shows at most a block late
     block_s: float = bounded(0.0, low=0.0, unit="s")
-    # The tick [s] of the one reader (the state machine's update); a rate taken per sample
-    # then takes each tick's samples in one update just before it (tactile/read_batch.py).
-    # 0: read at any time. Not with an RA noise floor (read at each sample).
+    # the reader's tick [s] (tactile/read_batch.py); 0: read any time (so with an RA floor)
     read_period_s: float = bounded(0.0, low=0.0, unit="s")
-    # Cutoff [Hz] of the RA envelope on memorized and live RA alike (ra_envelope.py); 0: none
     ra_envelope_hz: float = declared_field(EventMatchingConfig, "ra_envelope_hz")
-    # The RA noise floor (events/ra_noise_floor.py): k of the floor m + k s measured on the
-    # first ra_noise_quiet_s [s]; an RA window not above it scores 0 (0: no gate; quiet
-    # templates then read the floor with the rule's k).
+    # RA noise floor m + k s over the first quiet seconds (events/ra_noise_floor.py)
     ra_noise_floor_sigmas: float = declared_field(EventMatchingConfig, "ra_noise_floor_sigmas")
     ra_noise_quiet_s: float = declared_field(EventMatchingConfig, "ra_noise_quiet_s")
 
 
 def check_matcher_config(config: EventMatcherConfig) -> None:
-    """ConfigError or TypeError naming the first field out of its range, or an event threshold
-    that is not a pair in SCORE_RANGE."""
+    """ConfigError or TypeError naming the first field or event threshold out of range."""
     check_field_values(config, "EventMatcher: config")
     score = Range(**SCORE_RANGE)
     for transition, pair in dict(config.event_thresholds).items():
@@ -91,15 +81,9 @@ def window_normalizer_config(events: Mapping[str, MemorizedEvent],
 
 
 class EventMatcher(WindowNormalizer):
-    """The paper's Fig. 3 path: channels -> WindowNormalizer (last window_s per channel,
-    max-normalised) -> Eq. 3 against the expected event -> scores, match.
-
-    Each rate's state holds its window, the streaming correlation (SlidingCorrelation) and a
-    pass history of its last samples. Events are numbered in grasp order
-    (`transition_indices`). A rate in blocks (config.block_s) slides through a block in one
-    update; `match` asks whether the per-sample matcher would have matched after any of its
-    samples. With config.read_period_s, a rate taken per sample slides through each reader's
-    tick's samples in one update just before the tick (tactile/read_batch.py).
+    """The paper's Fig. 3 path: channels -> WindowNormalizer (last window_s, max-normalised)
+    -> Eq. 3 against the expected event -> scores, match. Each rate's state holds its
+    window, its SlidingCorrelation and a PassHistory; events are numbered in grasp order.
 
     .. pydrake_system::
 
@@ -118,16 +102,14 @@ class EventMatcher(WindowNormalizer):
         - scored_event
 
     Ports:
-        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2) at the config's
-            SA and RA rates; sa_block, ra_block: in blocks (ConnectWindowChannels).
+        channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2); sa_block,
+            ra_block: in blocks (ConnectWindowChannels).
         expected_event: [index] of the event to check, or -1 for none.
-        ra_floor: [left, right] RA noise floor [m/s^2], declared with ra_noise_floor_sigmas
-            > 0 or a quiet template.
+        ra_floor: [left, right] RA noise floor [m/s^2], with a floor or quiet template.
         sa_window, ra_window: the max-normalised windows that are scored.
-        scores: the four scores in [-1, 1]; 0 with no event, before a full window, for a too
-            flat window or an RA window below its floor; 1 for a quiet template within it.
-        match: [1.0] when every channel passes for the event now expected (never the previous
-            one); in blocks, held to the next block end, at most one block late.
+        scores: the four scores in [-1, 1]; 0 with no event, a partial, too flat or
+            below-floor window; 1 for a quiet template within its floor.
+        match: [1.0] when every channel passes for the expected event (blocks: a block late).
         scored_event: [index] the scores refer to; -1 for none or while SA and RA disagree.
     """
 
@@ -138,7 +120,6 @@ class EventMatcher(WindowNormalizer):
         check_matcher_config(config)
         ordered_events = self._ordered_events(events)
         normalizer_config = window_normalizer_config(events, config)
-        # One correlation per rate window, its state after the window in the rate's state.
         correlations = {}
         templates_by_event = [{} for _ in ordered_events]
         for group in normalizer_config.rate_groups():
@@ -155,7 +136,6 @@ class EventMatcher(WindowNormalizer):
             for by_channel in templates_by_event for c in RA_CHANNELS)
         if reads_floor:  # the floor is read at each sample: no read batches
             normalizer_config = dataclasses.replace(normalizer_config, read_period_s=0.0)
-        # After each correlation its PassHistory: a block's samples, or per sample two blocks'.
         block_span_s = max(block_samples(g.rate_hz, config.block_s) / g.rate_hz
                            for g in normalizer_config.rate_groups())
         self._histories = {}
@@ -179,11 +159,9 @@ class EventMatcher(WindowNormalizer):
             [sa] * len(SA_CHANNELS) + [ra] * len(RA_CHANNELS) for sa, ra in (
                 config.event_thresholds.get(t, (config.sa_threshold, config.ra_threshold))
                 for t in self._transitions)])
-        # Per rate group, per event: the thresholds of the group's channels (floats).
         self._group_thresholds = {window.group.name: [
             row[window.channels].tolist() for row in self._thresholds]
             for window in self.rate_windows}
-        # expected_event values accepted, as the port holds them -> event index.
         self._event_of_value = {float(event): event
                                 for event in range(NO_EVENT, len(self._events))}
         self._expected_port = self.DeclareVectorInputPort("expected_event", 1)
@@ -209,12 +187,10 @@ class EventMatcher(WindowNormalizer):
 
     @property
     def has_ra_floor(self) -> bool:
-        """Whether the matcher reads the RA noise floor (its `ra_floor` input)."""
         return self._floor_port is not None
 
     @property
     def transitions(self) -> tuple[str, ...]:
-        """The events' transitions, by index."""
         return self._transitions
 
     def event_index(self, transition: str) -> int:
@@ -249,7 +225,6 @@ class EventMatcher(WindowNormalizer):
             if zero:
                 raise ValueError(f"event '{event.transition}' of '{event.object_name}' has "
                                  f"all-zero channels {zero}: Eq. 3 could never match them")
-            # An all-flat event is allowed: its flat RA channels are quiet templates.
 
     def _expected_event(self, context) -> int:
         value = self._expected_port.Eval(context)[0]
@@ -263,9 +238,8 @@ class EventMatcher(WindowNormalizer):
     def _after_push(self, window: RateWindow, state: np.ndarray,
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
                     context, sample_time: float) -> None:
-        """Slides the rate's correlation by the samples just pushed and adds whether its
-        channels passed to its pass history."""
-        rows, offset, full = pushed  # (a star call costs more than this unpacking)
+        """Slides the rate's correlation by the pushed samples; records whether it passed."""
+        rows, offset, full = pushed
         name = window.group.name
         expected = self._expected_event(context)
         scores = self._correlations[name].slide(state, rows, offset, full, expected, missing)
@@ -306,8 +280,8 @@ class EventMatcher(WindowNormalizer):
         output.SetAtIndex(0, 1.0 if matched else 0.0)
 
     def _matched_at_a_sample(self, context, expected: int) -> bool:
-        """Whether every rate passed for `expected` at one instant: a sample of the last block
-        of a rate in blocks, or else the latest samples of all."""
+        """Whether every rate passed for `expected` at one instant (a sample of a blocked
+        rate's last block, or else the latest samples)."""
         entries = {window.group.name: self._histories[window.group.name].entries(state)
                    for window, _, state in self._correlation_states(context)}
         if not all(entries.values()):
@@ -321,19 +295,16 @@ class EventMatcher(WindowNormalizer):
 
 @dataclasses.dataclass(frozen=True)
 class PassHistory:
-    """Where a rate's state vector keeps its last `length` samples' [time [s], expected
-    event, passed (0 or 1)], oldest first, from entry `at` on; in_blocks: the rate is taken
-    in blocks of `length` samples (the history is then its last block)."""
+    """The last `length` samples' [time [s], expected event, passed] in a rate's state from
+    entry `at`, oldest first; in_blocks: the history is the rate's last block."""
     at: int
     in_blocks: bool
     length: int
 
     def initial_state(self) -> np.ndarray:
-        """No sample yet: times far in the past, no event, not passed."""
         return np.tile([-math.inf, float(NO_EVENT), 0.0], self.length)
 
     def add(self, state: np.ndarray, time: float, event: int, passed: bool) -> None:
-        """Appends a sample's entry to the history in `state`, in place."""
         rows = state[self.at:self.at + 3 * self.length].reshape(self.length, 3)
         rows[:-1] = rows[1:]
         rows[-1] = (time, event, 1.0 if passed else 0.0)
@@ -344,14 +315,12 @@ class PassHistory:
         return [(t, int(e), p > 0.0) for t, e, p in rows if t > -math.inf]
 
 
-# Sample times of two rates that coincide are computed apart (k / rate in the simulator, a
-# block's end less whole periods here): equal within this [s].
+# coinciding sample times of two rates, computed apart, are equal within this [s]
 _SAME_INSTANT_S = 1e-7
 
 
 def passed_at(entries, instant: float, event: int) -> bool:
-    """Whether the latest of a rate's history `entries` taken at or before `instant` [s]
-    passed for `event` (False when none was)."""
+    """Whether the latest entry at or before `instant` [s] passed for `event`."""
     latest = None
     for time, scored, passed in entries:
         if time <= instant + _SAME_INSTANT_S:
@@ -364,10 +333,8 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
                       channels=None) -> EventMatcher:
     """Adds the paper's Fig. 3 comparison to `builder`: an EventMatcher (`event_matcher`).
 
-    channels: an output port of the four channels, connected to its inputs (through sample
-    registers in blocks); None: the caller connects them. With config.ra_envelope_hz the
-    events' and channels' RA pass through the RA envelope first; with a noise floor a
-    RaNoiseFloor on the raw `channels` feeds `ra_floor`. Both need `channels`.
+    channels: the four channels' output port, or None (the caller connects them); needed
+    for an RA envelope (filters events and channels) and a noise floor (feeds `ra_floor`).
     """
     raw_channels = channels
     if config is not None and config.ra_envelope_hz:

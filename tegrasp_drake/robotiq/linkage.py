@@ -1,14 +1,10 @@
 """The Robotiq 2F-85 finger linkage in closed form: the one source of its dimensions
 (docs/model.md, "The hand: the 2F-85 finger linkage").
 
-Each finger is an underactuated five-bar in the base's y-z plane (y along the stroke
-toward this finger, z along the approach axis; metres): the motor turns driver A-B about
-A; a pin stops coupler B-C turning one way against the driver; C carries the torsional
-spring and the follower (with the fingertip); spring link D-E pivots on the base at E. On
-the pin A-C-D-E is a parallelogram, so the pad translates on a circle and stays parallel.
-Angles are the SDF joint coordinates of the +y finger: theta, the driver's turn from open
-(positive closing); beta, the coupler's turn off its pin (0 on it, negative off it, the
-fingertip curling toward the object).
+Each finger is an underactuated five-bar in the base's y-z plane [m] (y along the stroke,
+z the approach axis). Angles are the +y finger's SDF joint coordinates: theta, the driver's
+turn from open (positive closing); beta, the coupler's turn off its pin (0 on it, negative
+off it).
 """
 
 import dataclasses
@@ -26,31 +22,27 @@ C = np.array([0.06776, 0.09809])
 D = np.array([0.04986, 0.10460])
 E = np.array([0.01270, 0.06118])
 
-# [m] the pad face's centre, open: where Menagerie's stock pad sits (z 111.9-149.4 mm), the
-# face at half the 85 mm stroke; the pad is the paper's (rig/tactile_fingertip.py).
+# [m] the pad face's centre, open: Menagerie's stock pad, the face at half the 85 mm stroke
 PAD_CENTER_OPEN = np.array([0.0425, 0.1307])
 DRIVER_RANGE_RAD = math.radians(47.0)  # the driver's travel (Isaac asset; Menagerie 0.8 rad)
 COUPLER_RANGE_RAD = 1.57  # the coupler's travel off its pin (Menagerie: -1.57..0)
 FOLLOWER_RANGE_RAD = 0.872664  # the follower's travel against the coupler (Menagerie)
-# The spring at C, 0.0004 N m/deg preloaded by 90 deg (GRIPPER_SIMULATION_GUIDE.md, 4.2): it
-# uncurls the follower against the coupler, holding B on its pin.
+# the spring at C holding B on its pin: 0.0004 N m/deg, 90 deg preload (Robotiq sim guide 4.2)
 SPRING_STIFFNESS_NM_PER_RAD = 0.0004 * 180.0 / math.pi
 SPRING_REST_ANGLE_RAD = -math.pi / 2.0
 
 _AC = C - A
 LINK_RADIUS = float(np.linalg.norm(_AC))  # m, 57.16 mm: the follower's circle on the pin
 _PHI_OPEN = math.atan2(_AC[1], _AC[0])  # the angle of A->C from +y, open: 49.4 deg
-# As Python floats: half_opening and driver_angle run every plant step, and numpy's scalar
-# overhead would cost several times their arithmetic.
+# Python floats: half_opening and driver_angle run every plant step
 _A_Y, _C_Y, _PAD_OPEN_Y, _AC_Y, _AC_Z = (float(x) for x in (A[0], C[0], PAD_CENTER_OPEN[0],
                                                            _AC[0], _AC[1]))
 
 
 @dataclasses.dataclass(frozen=True)
 class Functions:
-    """The math functions half_opening, driver_angle and half_opening_rate use: math's on
-    floats (FLOATS) or symbolic ones (simulation/ordered_expressions.py's SYMBOLIC), so one
-    formula serves floats and compiled expressions. `number` takes the argument in."""
+    """The math functions of half_opening, driver_angle and half_opening_rate: on floats
+    (FLOATS) or symbolic (ordered_expressions.SYMBOLIC), so one formula serves both."""
     cos: typing.Callable
     sin: typing.Callable
     acos: typing.Callable
@@ -68,8 +60,7 @@ def _rotate(v, angle: float) -> np.ndarray:
 
 
 def follower_offset(theta: float) -> np.ndarray:
-    """The follower's (and the pad's) displacement from the open pose [m], (y, z), with
-    the driver at theta [rad] and B on its pin."""
+    """The follower's (and pad's) displacement from open [m], (y, z), driver at theta [rad]."""
     return A + _rotate(_AC, theta) - C
 
 
@@ -79,21 +70,18 @@ def pad_center(theta: float) -> np.ndarray:
 
 
 def half_opening(theta: float, f: Functions = FLOATS) -> float:
-    """The pad face's distance from the grasp axis [m] (half the opening), on the pin:
-    pad_center(theta)[0] on floats or, with f, on expressions."""
+    """Half the opening [m], pad_center(theta)[0], on the pin (f: floats or expressions)."""
     c, s = f.cos(theta), f.sin(theta)
     return _PAD_OPEN_Y + ((_A_Y + (c * _AC_Y - s * _AC_Z)) - _C_Y)
 
 
 def pad_travel(theta: float) -> float:
-    """The pad's travel along the approach axis from the open pose [m] (positive away
-    from the palm), on the pin."""
+    """The pad's travel along the approach axis from open [m] (positive away from the palm)."""
     return float(follower_offset(theta)[1])
 
 
 def driver_angle(half_opening_m: float, f: Functions = FLOATS) -> float:
-    """The driver angle [rad] leaving the pad face half_opening_m [m] from the grasp axis (the
-    inverse of half_opening), for 0 <= half_opening_m <= the open value."""
+    """The driver angle [rad] of half_opening_m [m] (half_opening's inverse, clipped)."""
     q = f.min(f.max(f.number(half_opening_m), 0.0), _PAD_OPEN_Y)
     cosine = (q - _PAD_OPEN_Y + _C_Y - _A_Y) / LINK_RADIUS
     return f.acos(f.min(f.max(cosine, -1.0), 1.0)) - _PHI_OPEN
@@ -114,9 +102,8 @@ def pad_travel_at_opening(opening_m: float) -> float:
 
 @dataclasses.dataclass(frozen=True)
 class FingerPose:
-    """The five-bar's moving joints [m], (y, z) in the base frame, and the follower's turn from
-    open [rad] (positive: the fingertip tilts toward the object).
-    """
+    """The moving joints [m], (y, z) in the base frame, and the follower's turn from open
+    [rad] (positive: the fingertip tilts toward the object)."""
     b: np.ndarray
     c: np.ndarray
     d: np.ndarray
@@ -162,9 +149,8 @@ def _spring_joint_angle(theta: float, beta: float) -> float:
 
 def coupler_generalized_force(theta: float, contact_height_m: float, force_n: float,
                               step: float = 1e-6) -> float:
-    """The generalized force on beta [N m], the driver held at theta and B on its pin, of a
-    force force_n [N] pushing the pad face outward (+y) contact_height_m [m] above the pad
-    centre, plus the spring's; negative: B leaves its pin. Virtual work by central differences."""
+    """The generalized force on beta [N m] (negative: B leaves its pin) of force_n [N] pushing
+    the pad outward (+y) contact_height_m [m] above its centre, plus the spring's."""
     p_open = PAD_CENTER_OPEN + np.array([0.0, contact_height_m])
     dp = (point_on_follower(theta, step, p_open)
           - point_on_follower(theta, -step, p_open)) / (2.0 * step)
@@ -176,7 +162,6 @@ def coupler_generalized_force(theta: float, contact_height_m: float, force_n: fl
 
 
 def flip_height(theta: float, force_n: float) -> float:
-    """The contact height [m] above the pad centre (negative: toward the palm) below which a pad
-    force force_n [N] lifts B off its pin, the driver held at theta [rad]."""
+    """The contact height [m] above the pad centre below which force_n [N] lifts B off its pin."""
     return brentq(lambda h: coupler_generalized_force(theta, h, force_n), -0.1, 0.1,
                   xtol=1e-7)

@@ -1,9 +1,8 @@
 """A pad strike: the smallest scene with the station's first-contact RA transient.
 
-The tactile gripper welded in the side-grasp pose above the table, the object standing
-between its pads toward the left finger, the 2F-85 closing at a constant finger speed with
-the station's sensors: the left pad strikes first and pushes the object on. Used by the RA
-tests and analysis/compare_ra_transients.py.
+The gripper welded in the side-grasp pose above the table closes at a constant finger
+speed on an object standing nearer its left pad, which strikes first. Used by the RA tests
+and analysis/compare_ra_transients.py.
 """
 
 import dataclasses
@@ -51,10 +50,9 @@ class PadStrikeConfig:
 
 @dataclasses.dataclass(frozen=True)
 class PadStrike:
-    """What a strike logged. t_ra (M,) [s], ra (M, 2): each film's sample (z, signed,
-    m/s^2-equivalent, left, right); pad_acceleration (M, 2): each pad's rigid-body acceleration
-    along its normal; t_sa (N,), sa (N, 2) [N]: noise-free taxel sums; contact_times (2,): each
-    pad's first step with contact force [s] (nan if none)."""
+    """What a strike logged, (left, right) columns: t_ra (M,) [s], ra (M, 2) films' signed z
+    [m/s^2-equivalent], pad_acceleration (M, 2) along the normals; t_sa (N,), sa (N, 2)
+    taxel sums [N]; contact_times (2,) each pad's first contact [s] (nan if none)."""
     t_ra: np.ndarray
     ra: np.ndarray
     pad_acceleration: np.ndarray
@@ -64,8 +62,7 @@ class PadStrike:
     time_step_s: float
 
     def accelerometer_ra(self, highpass_hz: float) -> np.ndarray:
-        """(M, 2) the RA the replaced chain gave: |high-passed rigid-body acceleration|
-        (normal axis only; the other axes are quiet in this scene)."""
+        """(M, 2) |high-passed rigid-body acceleration| along the normal [m/s^2]."""
         dt = float(np.median(np.diff(self.t_ra)))
         return np.abs(first_order_highpass(self.pad_acceleration, highpass_hz, dt))
 
@@ -76,8 +73,7 @@ class PadStrike:
         return float(np.abs(self.ra[mask, pad]).max())
 
     def eq3_scores(self, event) -> np.ndarray:
-        """Gated Eq. 3 scores [sa_left, sa_right, ra_left, ra_right] of the window that the
-        memorized `event` would cut around the left pad's contact, against that event."""
+        """Gated Eq. 3 scores of the window `event` would cut around the left contact."""
         start = self.contact_times[0] - event.pre_transition_s
         windows = []
         for times, values, rate in ((self.t_sa, self.sa, event.sa_rate_hz),
@@ -91,8 +87,8 @@ class PadStrike:
 
 
 def strike_scenario(config: PadStrikeConfig):
-    """The default scenario at config's plant step, noise-free unless config.sensor_noise,
-    on the prismatic hand (the strike is a finger moving along its pad normal)."""
+    """The default scenario at config's step on the prismatic hand (a finger moving along
+    its pad normal), noise-free unless config.sensor_noise."""
     from tegrasp_drake.scenario.scenario import LoadScenario
     scenario = LoadScenario(overrides=[f"plant_config.time_step={config.time_step_s}",
                                        "gripper.model=prismatic"])
@@ -106,8 +102,7 @@ def strike_scenario(config: PadStrikeConfig):
 
 
 def run_pad_strike(config: PadStrikeConfig = PadStrikeConfig(), scenario=None) -> PadStrike:
-    """Simulates the strike; `scenario` (default: the default one at config's time step,
-    noise-free unless config.sensor_noise) gives the object, sensors and gripper driver."""
+    """Simulates the strike; `scenario` (default strike_scenario) gives object and sensors."""
     scenario = scenario or strike_scenario(config)
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)

@@ -1,12 +1,7 @@
-"""MakeGripperBench: the simulated 2F-85 alone, its base welded to the world, for the hand's
-checks against closed form (the pad's path, the flip height, the grip force, the drive's
-non-backdrivability, the loops' closure).
-
-The gripper's base frame is the world frame (z the approach axis, y the stroke); gravity is
-off for the gripper, as on the arm. The simulated 2F-85 controller (SimRobotiqDriver) plays
-one command. Optionally a rigid obstacle is welded to the world between the fingers (a box,
-or a rod across the pads), and a constant force pushes the left pad outward from a given
-time, at the pad centre.
+"""MakeGripperBench: the simulated 2F-85 alone, its base frame the world frame (z the
+approach axis, y the stroke; no gravity on it), playing one command, for the hand's checks
+against closed form. Optionally an obstacle between the fingers and a constant outward push
+on the left pad's centre.
 """
 
 import dataclasses
@@ -34,11 +29,9 @@ from tegrasp_drake.simulation.station import pad_geometries
 
 @dataclasses.dataclass
 class BenchObstacle:
-    """An obstacle welded between the fingers: `box` (size [m], x y z in the gripper base
-    frame) or `rod` (a cylinder across the pads, along x: size = [diameter, length])
-    centred at (0, 0, z_m) in the gripper base frame; rigid, or compliant hydroelastic
-    of hydroelastic_modulus [Pa] with the pads' Hunt-Crossley dissipation; a rod's facets
-    about resolution_hint_m [m] long."""
+    """An obstacle welded at (0, 0, z_m) [m] in the base frame: `box` (size x y z [m]) or
+    `rod` along x (size [diameter, length]); rigid, or compliant of hydroelastic_modulus
+    [Pa] with the pads' dissipation."""
     shape: str
     size: tuple
     z_m: float
@@ -85,9 +78,7 @@ def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConf
                      push_start_s: float = 0.0,
                      plant_config: MultibodyPlantConfig | None = None,
                      pad_refinement: int = 0) -> GripperBench:
-    """The gripper of `driver.model` playing `command` (rPR, rSP, rFR bytes) from the open
-    pose, its pads meshed as `pad_refinement` says (ContactGeometryConfig); see the module
-    docstring."""
+    """The gripper of `driver.model` playing `command` (rPR, rSP, rFR) from open."""
     plant_config = plant_config or MultibodyPlantConfig(
         time_step=1e-3, discrete_contact_approximation="lagged",
         contact_model="hydroelastic_with_fallback")
@@ -121,7 +112,7 @@ def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConf
     builder.Connect(plant.get_body_poses_output_port(), pad_forces.GetInputPort("body_poses"))
     if push_n:
         left = pads["left"]
-        # Along the base's +y: the left pad's outward normal on the pin.
+        # +y: the left pad's outward normal on the pin
         push = builder.AddSystem(BodyForcePulse(body_index=left.body_index,
                                                 p_BQ=left.X_BP.translation(),
                                                 f_W=[0.0, push_n, 0.0], start_s=push_start_s))
@@ -132,8 +123,7 @@ def MakeGripperBench(*, command, driver: GripperDriverConfig = GripperDriverConf
 
 
 def loop_closure_error_m(plant, plant_context, gripper) -> float:
-    """The largest distance [m] between the two bodies' copies of joint D (follower and
-    spring link) over both linkage fingers: how far the ball constraints are violated."""
+    """The largest gap [m] between the follower's and spring link's copies of joint D."""
     worst = 0.0
     for finger, sign in (("left", 1.0), ("right", -1.0)):
         p_D = np.array([0.0, sign * linkage.D[0], linkage.D[1]])

@@ -1,19 +1,11 @@
 """The two simulated 2F-85 hands, selected by `gripper.model`: what differs between them.
 
-- `linkage` (the default): the 2F-85's underactuated five-bar fingers
-  (robotiq/linkage.py, modelgen/robotiq_linkage_sdf.py). The actuated coordinate is
-  the left driver's angle [rad]; behind it the 2F-85's drive (robotiq/drive.py): the
-  motor's rotor (the actuator's reflected inertia), the firmware's position loop (the
-  plant's PD on the driver), the current limit and the self-locking screw (the
-  SimRobotiqDriver's set-point).
-- `prismatic`: two prismatic fingers, the right one mimicking the left
-  (modelgen/robotiq_sdf.py); the actuated coordinate is half the opening [m]. Kept so that
-  results can be compared with the earlier hand; its drive is idealised: no rotor, a stiff
-  PD whose set-point the force limit bounds, backdrivable.
+- `linkage` (default): the 2F-85's five-bar fingers (robotiq/linkage.py); actuated
+  coordinate a, the left driver's angle [rad], behind it the drive (robotiq/drive.py).
+- `prismatic`: two prismatic fingers (modelgen/robotiq_sdf.py); a is half the opening [m],
+  with an idealised drive (no rotor, a stiff force-bounded PD, backdrivable).
 
-Everything else (the taxels, the films, the driver's command and status bytes) is common.
-A hand maps its actuated coordinate `a` to half the pad opening q [m] on the pin: the
-SimRobotiqDriver plans in q (the 2F-85's speed is a finger speed) and commands `a`.
+A hand maps a to half the pad opening q [m], in which SimRobotiqDriver plans.
 """
 
 import dataclasses
@@ -36,8 +28,7 @@ class PrismaticHand:
     actuated_joint: str = "left_finger_joint"
     non_backdrivable: bool = False
     events_folder: str = "prismatic"  # its memorized events, in the package's events
-    # Eq. 3 thresholds [SA, RA] of its ensemble events, chosen on held-out ensemble runs
-    # (analysis/choose_ensemble_thresholds.py; analysis/ensemble_thresholds_prismatic.md).
+    # Eq. 3 [SA, RA], chosen on held-out runs (analysis/ensemble_thresholds_prismatic.md)
     ensemble_thresholds: tuple = (("reach_load", (0.44, 0.65)), ("load_lift", (0.94, 0.90)),
                                   ("place_unload", (0.98, 0.90)))
 
@@ -63,8 +54,7 @@ class PrismaticHand:
         return 0.0
 
     def pad_center_offset(self, opening_m: float) -> float:
-        """How far the pads' centres lie beyond the grasp frame along the approach axis [m]
-        when the pads are opening_m apart: 0, the pads move along the stroke only."""
+        """The pads' centres' offset beyond the grasp frame [m]: 0 at any opening."""
         return 0.0
 
 
@@ -75,8 +65,7 @@ class LinkageHand:
     actuated_joint: str = "left_driver_joint"
     non_backdrivable: bool = True
     events_folder: str = ""  # its memorized events: the package's events themselves
-    # Eq. 3 thresholds [SA, RA] of its ensemble events, chosen on held-out ensemble runs
-    # (analysis/choose_ensemble_thresholds.py; analysis/ensemble_thresholds.md).
+    # Eq. 3 [SA, RA], chosen on held-out runs (analysis/ensemble_thresholds.md)
     ensemble_thresholds: tuple = (("reach_load", (0.88, 0.55)), ("load_lift", (0.48, 0.75)),
                                   ("place_unload", (0.98, 0.65)))
 
@@ -93,27 +82,23 @@ class LinkageHand:
         return [0.0] * 8  # every joint at zero is the open pose, the loops closed
 
     def pd_gains(self, config) -> tuple[float, float]:
-        """(kp [N m/rad], kd [N m s/rad]) of the PD on the driver: the firmware's position
-        loop of bandwidth config.position_loop_hz on the drive's inertia."""
+        """(kp [N m/rad], kd [N m s/rad]): the firmware's position loop on the driver."""
         return drive.loop_gains(config.position_loop_hz, self.drive_inertia(config))
 
     def drive_inertia(self, config) -> float:
-        """The drive's inertia about the driver [kg m^2]: the linkage and the rotor through
-        a screw of efficiency config.screw_efficiency."""
+        """The drive's inertia about the driver [kg m^2] (linkage and rotor via the screw)."""
         return drive.drive_inertia(config.screw_efficiency)
 
     def pad_center_offset(self, opening_m: float) -> float:
-        """How far the pads' centres lie beyond the grasp frame along the approach axis [m]
-        when the pads are opening_m apart (on the pin): -9.3 mm open, +1.8 mm at 45 mm,
-        +4.0 mm at 25 mm."""
+        """The pads' centres' offset beyond the grasp frame along the approach axis [m] at
+        opening_m apart (on the pin): -9.3 mm open, +4.0 mm at 25 mm."""
         return (float(linkage.PAD_CENTER_OPEN[1]) - PAD_CENTER_Z
                 + linkage.pad_travel_at_opening(opening_m))
 
 
 def add_gripper_model(parser, hand, pad_refinement: int = 0):
-    """Adds the model of `hand` to the parser's plant and returns its model instance; with
-    pad_refinement > 0 (the linkage hand only) its pads' collision geometry is their box's
-    mesh split that many times (modelgen/pad_mesh.py), the rest of the model the same."""
+    """Adds `hand`'s model and returns its instance; pad_refinement > 0 (linkage hand only)
+    splits the pads' collision box mesh that many times (modelgen/pad_mesh.py)."""
     if not pad_refinement:
         (gripper,) = parser.AddModels(url=hand.url)
         return gripper
@@ -129,10 +114,8 @@ def gripper_hand(model: str):
 
 
 def configure_drive(plant, gripper, hand, config) -> None:
-    """Sets the gripper's actuator before Finalize: the PD gains of `hand` (its drive) for
-    the GripperDriverConfig `config` and, on a hand whose model carries a rotor, the rotor's
-    inertia as it weighs at the fingers through the screw (robotiq/drive.py): the model
-    holds the rotor's own, the screw's efficiency scales it."""
+    """Sets the gripper actuator's PD gains before Finalize and scales a modelled rotor's
+    inertia by the screw's efficiency (robotiq/drive.py)."""
     kp, kd = hand.pd_gains(config)
     # GetJointActuatorIndices(instance) is empty before Finalize(): walk all actuators.
     for i in range(plant.num_actuators()):
@@ -146,8 +129,7 @@ def configure_drive(plant, gripper, hand, config) -> None:
 
 
 def actuated_state_selector(plant, gripper, hand) -> MatrixGain:
-    """A MatrixGain that picks (a, da/dt) of the hand's actuated joint out of the gripper
-    model instance's state (for the driver's `finger_state` input)."""
+    """A MatrixGain picking (a, da/dt) out of the gripper's state (driver's finger_state)."""
     joint = plant.GetJointByName(hand.actuated_joint, gripper)
     nq, nv = plant.num_positions(gripper), plant.num_velocities(gripper)
     q_marker = np.zeros(plant.num_positions())

@@ -1,12 +1,9 @@
 """Symbolic expressions that a compiled system evaluates as Python evaluates the same formula
 on floats: the same IEEE operations on the same operands, in the same order.
 
-pydrake.symbolic keeps canonical forms (n-ary sums and products, merged like terms, folded
-constants, x * x as pow), which round differently from Python's left-to-right order.
-`Ordered` builds each binary operation and, where pydrake did not keep it as one node of
-its two operands, wraps the operands in max(operand, -inf), which equals the operand and
-which no sum or product looks into. Write the formula as Python evaluates it and test the
-system against the Python function bit for bit (a -0.0 may come out +0.0).
+pydrake.symbolic's canonical forms (n-ary sums, merged terms, folded constants, x * x as
+pow) round differently; where it does not keep a binary operation as one node, `Ordered`
+wraps the operands in max(operand, -inf), which no sum or product looks into.
 """
 
 import math
@@ -30,8 +27,7 @@ def _expression(value) -> Expression:
 
 
 def _opaque(expression: Expression) -> Expression:
-    """The expression as one node that sums and products do not merge into (a variable or
-    a constant is one already)."""
+    """The expression as one node that sums and products do not merge into."""
     if expression.get_kind() in (ExpressionKind.Var, ExpressionKind.Constant):
         return expression
     return symbolic_max(expression, -math.inf)
@@ -46,8 +42,7 @@ def _constant(e: Expression):
 
 
 def _kept_sum(result: Expression, left: Expression, right: Expression) -> bool:
-    """Whether `result` (left + right, right negated for a difference) is one sum node of
-    exactly those two operands: no flattened, merged or folded term."""
+    """Whether `result` (left + right) is one sum node of exactly those two operands."""
     if result.get_kind() != ExpressionKind.Add:
         return False
     _, (constant, *terms) = result.Unapply()
@@ -76,8 +71,7 @@ def _kept_product(result: Expression, left: Expression, right: Expression) -> bo
 
 
 def _build(operation, left: Expression, right: Expression) -> Expression:
-    """operation(left, right) as that one operation: as pydrake builds it when it keeps
-    it so, else on opaque operands (module docstring)."""
+    """operation(left, right) as one node, on opaque operands if pydrake would merge it."""
     result = operation(left, right)
     if operation is _divide:
         kept = (result.get_kind() == ExpressionKind.Div
@@ -95,8 +89,7 @@ def _build(operation, left: Expression, right: Expression) -> Expression:
 
 
 class Ordered:
-    """A symbolic value whose +, -, *, / keep Python's floating-point order (module
-    docstring); comparisons give Formulas (for `where`)."""
+    """A symbolic value whose +, -, *, / keep Python's order; comparisons give Formulas."""
 
     __slots__ = ("expression",)
 
@@ -176,8 +169,7 @@ def _divide(a, b):
 
 
 def variables(names) -> list[Ordered]:
-    """One Ordered symbolic variable per name (the system's inputs), in order; the
-    Variables themselves are `.expression.GetVariables()` of each, or `variable_of`."""
+    """One Ordered symbolic variable per name, in order."""
     return [Ordered(Variable(name)) for name in names]
 
 
@@ -219,6 +211,6 @@ def expressions(values) -> list[Expression]:
     return [_expression(value) for value in values]
 
 
-# The closed-form linkage's functions on Ordered values (robotiq/linkage.py Functions).
+# robotiq/linkage.py's Functions on Ordered values
 SYMBOLIC = Functions(cos=cos, sin=sin, acos=acos, min=ordered_min, max=ordered_max,
                      number=Ordered)

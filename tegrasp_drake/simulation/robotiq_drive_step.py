@@ -1,10 +1,8 @@
-"""The simulated 2F-85's drive, once a plant step, as compiled Drake systems (the physics is in
-sim_robotiq_driver.py): a SymbolicVectorSystem evaluates drive_set_point (linkage hand) or
-force_limited_set_point (prismatic) on the hand's (a, da/dt), the planner's state (PLANNER)
-and the drive's memory (MEMORY); a ZeroOrderHold samples the new memory half a plant step
-after the plant's; a second SymbolicVectorSystem gives the PD's set-point (a, da/dt), the
-hand's initial a until the first step (memory starts at zero, STARTED 0). The expressions
-keep Python's float order (ordered_expressions.py): the same set-points bit for bit.
+"""The simulated 2F-85's drive, once a plant step, compiled (physics: sim_robotiq_driver.py):
+a SymbolicVectorSystem evaluates drive_set_point or force_limited_set_point on (a, da/dt),
+PLANNER and MEMORY; a ZeroOrderHold keeps MEMORY, sampled half a plant step after the
+plant's; a second one gives the PD's set-point. Float order is Python's
+(ordered_expressions.py), so the set-points match bit for bit.
 """
 
 from pydrake.symbolic import Variable, logical_and, logical_or
@@ -15,19 +13,13 @@ from tegrasp_drake.simulation.ordered_expressions import (SYMBOLIC, Ordered, exp
                                                          ordered_max, ordered_min, variable_of,
                                                          variables, where)
 
-# The drive's phases: moving (the loop drives, within the current limit), stuck (the
-# screw holds the rotor against a load larger than the motor's torque, the motor still
-# pushing) and held (stopped at the current limit: object reported, no current).
+# phases: the loop drives; the screw holds a load over the torque; held at the limit
 MOVING, STUCK, HELD = 0.0, 1.0, 2.0
 
-# The planner's state: reference q [m], dq/dt [m/s], d2q/dt2 [m/s^2], goal q [m], half the
-# closing speed [m/s], force limit [N], position byte, gOBJ as last set, reference time [s],
-# the command's nut direction (+-1), restarts of held or stuck fingers, planner updates.
+# the planner's state: q [m], m/s, m/s^2, m, m/s, N, byte, gOBJ, s, +-1, counts
 PLANNER = ("ref_q", "ref_v", "ref_a", "goal", "half_speed", "force", "position_byte",
            "object", "time", "direction", "restarts", "updates")
-# The drive's memory: a step has run, set-point (a [rad], da/dt [rad/s]), phase, motor
-# torque [N m], anchor [rad], last da/dt, restarts seen, gOBJ of held fingers, 1 + the
-# planner updates when the drive last set it (0: never).
+# the drive's memory: flag, rad, rad/s, phase, N m, rad, rad/s, count, gOBJ, 1 + updates
 MEMORY = ("started", "set_a", "set_v", "phase", "motor", "anchor", "v_prev",
           "restarts_seen", "held_object", "held_object_since")
 (REF_Q, REF_V, REF_A, GOAL, HALF_SPEED, FORCE, POSITION_BYTE, OBJECT, TIME, DIRECTION,
@@ -40,16 +32,14 @@ _OPENING = float(ru.ObjectStatus.STOPPED_ON_CONTACT_OPENING)
 
 
 def effective_phase(planner_state, memory) -> float:
-    """The drive's phase as the planner's last update left it: MOVING after a restart the
-    drive has not stepped since, else the memory's (floats)."""
+    """The drive's phase: MOVING after a restart not yet stepped, else the memory's."""
     if planner_state[RESTARTS] != memory[RESTARTS_SEEN]:
         return MOVING
     return memory[PHASE]
 
 
 def object_status_now(planner_state, memory) -> float:
-    """gOBJ: the drive's, if it held the fingers since the planner's last update, else the
-    planner's (floats)."""
+    """gOBJ: the drive's if it held since the planner's last update, else the planner's."""
     if memory[HELD_OBJECT_SINCE] == planner_state[UPDATES] + 1.0:
         return memory[HELD_OBJECT]
     return planner_state[OBJECT]
@@ -57,8 +47,7 @@ def object_status_now(planner_state, memory) -> float:
 
 def _linkage_drive(*, a, v, v_prev, set_a, set_v, phase, anchor, reference, v_ref, limit,
                    direction, gain, damping, inertia, time_step):
-    """sim_robotiq_driver.drive_set_point on Ordered values: (set_a, set_v, phase, motor,
-    anchor) after the step, its branches as nested conditions (first match wins)."""
+    """sim_robotiq_driver.drive_set_point on Ordered values, branches as nested `where`."""
     load = gain * (set_a - a) + damping * (set_v - v) - inertia * (v - v_prev) / time_step
     demand = gain * (reference - a) + damping * (v_ref - v)
     motor = ordered_min(ordered_max(demand, -limit), limit)
@@ -81,11 +70,8 @@ def _linkage_drive(*, a, v, v_prev, set_a, set_v, phase, anchor, reference, v_re
 
 def drive_step_system(hand, *, gain: float, damping: float, inertia: float,
                       time_step: float, initial_actuated: float) -> SymbolicVectorSystem:
-    """The drive_step SymbolicVectorSystem (module docstring) of `hand` (gripper_hands.py)
-    with the plant's PD gains, the drive's inertia [kg m^2] and the plant's time_step [s]:
-    input [a, da/dt, PLANNER, MEMORY], output the MEMORY after a step at its time (half a
-    plant step before the plant's); `_drive_step` of the SimRobotiqDriver as it was in
-    Python, line by line."""
+    """The drive_step system of `hand`: input [a, da/dt, PLANNER, MEMORY], output MEMORY
+    after the step; gains of the plant's PD, inertia [kg m^2], time_step [s]."""
     t = Variable("t")
     a, v = variables(["a", "v"])
     planner = variables([f"planner_{name}" for name in PLANNER])
@@ -94,7 +80,6 @@ def drive_step_system(hand, *, gain: float, damping: float, inertia: float,
     set_a = where(started, memory[SET_A], initial_actuated)
     anchor = where(started, memory[ANCHOR], initial_actuated)
     phase = where(planner[RESTARTS].differs(memory[RESTARTS_SEEN]), MOVING, memory[PHASE])
-    # The reference at the next plant step, in the actuated coordinate.
     h = Ordered(t) + 0.5 * time_step - planner[TIME]
     q_ref = planner[REF_Q] + planner[REF_V] * h + 0.5 * planner[REF_A] * h * h
     reference = hand.actuated(q_ref, SYMBOLIC)
@@ -124,8 +109,7 @@ def drive_step_system(hand, *, gain: float, damping: float, inertia: float,
 
 
 def set_point_system(initial_actuated: float) -> SymbolicVectorSystem:
-    """drive_set_point (module docstring): input MEMORY, output the PD's set-point
-    [a, da/dt]."""
+    """Input MEMORY, output the PD's set-point [a, da/dt]."""
     memory = variables([f"memory_{name}" for name in MEMORY])
     started = memory[STARTED].differs(0.0)
     return SymbolicVectorSystem(
@@ -136,9 +120,8 @@ def set_point_system(initial_actuated: float) -> SymbolicVectorSystem:
 
 def AddDriveStep(builder, *, hand, gain: float, damping: float, inertia: float,
                  time_step: float, initial_actuated: float, planner_state):
-    """Adds the drive's systems (module docstring) to `builder`, fed by the planner's
-    `planner_state` (an output port). Returns (the input port of the hand's (a, da/dt),
-    for the caller to connect, the memory's output port, the set-point's output port)."""
+    """Adds the drive fed by `planner_state`; returns the (a, da/dt) input port to connect,
+    the memory's and the set-point's output ports."""
     gather = builder.AddNamedSystem("drive_inputs", Multiplexer([2, len(PLANNER),
                                                                 len(MEMORY)]))
     step = builder.AddNamedSystem("drive_step", drive_step_system(

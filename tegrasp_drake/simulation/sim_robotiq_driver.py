@@ -1,27 +1,12 @@
 """SimRobotiqDriver: the simulated twin of the Robotiq 2F-85's own controller.
 
-It takes the same command bytes as the real gripper (rPR, rSP, rFR) and reports the same
-status bytes (robotiq/units.py). Inside, half the pad opening q [m] follows a speed- and
-acceleration-limited reference toward the requested position (the 2F-85's speed setting is a
-finger speed), planned at the 2F-85's command rate; the hand (gripper_hands.py) maps it to
-its actuated coordinate a (the left driver's angle on the linkage hand, q itself on the
-prismatic one), which the plant's implicit PD (SAP) tracks.
-
-On the linkage hand the plant's PD is the 2F-85 firmware's position loop on the drive's
-inertia (the rotor is the actuator's reflected inertia; robotiq/drive.py), and the driver
-adds what a PD cannot do, once a plant step (half a step after the plant's, so that it sees
-the state the plant steps from): the current limit while the fingers move (the loop's torque
-capped at 2 F |dq/da|, both pads on the one motor: the set-point is moved so that the PD's
-torque is the cap), the self-locking screw (a load that would drive the rotor back stops it
-where it stands: the set-point then holds the rotor under the load it carries), and the stop
-(standing at the current limit, the firmware reports an object, gOBJ, and cuts the current,
-gCU = 0; the screw holds the force of that instant). A new command restarts the reference
-from where the fingers stand. The prismatic hand keeps the idealised drive: no rotor, a
-stiff PD whose set-point stays within 2 F / kp of the finger, backdrivable. The position byte
-gPO is computed from the measured a through the hand's linkage.
-
-MakeSimRobotiqDriver: SimRobotiqPlanner (Python, command rate) and the per-plant-step drive
-compiled from this module's set-point functions (robotiq_drive_step.py).
+Same command bytes (rPR, rSP, rFR) and status bytes as the real gripper (robotiq/units.py).
+Half the pad opening q [m] follows a speed- and acceleration-limited reference, planned at
+the command rate (SimRobotiqPlanner); the hand (gripper_hands.py) maps it to its actuated
+coordinate a, which the plant's implicit PD tracks. On the linkage hand a compiled drive
+(robotiq_drive_step.py) adds, once a plant step, the current limit, the self-locking screw
+and the stop (docs/model.md, "The drive: rotor, position loop, current limit, screw"); the
+prismatic hand keeps a stiff, backdrivable PD whose set-point stays within 2 F / kp.
 """
 
 import dataclasses
@@ -41,26 +26,21 @@ from tegrasp_drake.simulation.robotiq_drive_step import (
     effective_phase, object_status_now)
 from tegrasp_drake.rig.api_boundary import public_dataclass
 
-_PLANNER_SIZE = len(PLANNER)  # the planner's state (robotiq_drive_step.PLANNER)
+_PLANNER_SIZE = len(PLANNER)
 
 
 @public_dataclass
 @dataclasses.dataclass
 class GripperDriverConfig:
-    """The simulated 2F-85: which hand, and its controller (a position loop with a force
-    limit)."""
-    # The hand (gripper_hands.py): "linkage", the 2F-85's five-bar fingers, or "prismatic".
+    """The simulated 2F-85: its hand and its controller (a force-limited position loop)."""
+    # "linkage" (the 2F-85's five-bar fingers) or "prismatic" (gripper_hands.py)
     model: str = "linkage"
-    # the 2F-85 accepts commands at up to 200 Hz
     update_rate_hz: float = bounded(200.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
                                     why="the 2F-85 takes commands at up to 200 Hz")
-    # The prismatic hand's PD on half the opening.
-    position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")  # N/m
-    damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")  # N s/m
-    # The linkage hand's drive (robotiq/drive.py has the sources and ranges): the firmware's
-    # position loop bandwidth [Hz], critically damped on the drive's inertia, and the
-    # self-locking screw's forward efficiency, which sets how much of the rotor's inertia
-    # the fingers feel while the motor drives them.
+    # the prismatic hand's PD on half the opening
+    position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")
+    damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")
+    # the linkage hand's drive; sources and ranges in robotiq/drive.py
     position_loop_hz: float = bounded(
         drive.POSITION_LOOP_HZ, low=drive.POSITION_LOOP_HZ_RANGE[0],
         high=drive.POSITION_LOOP_HZ_RANGE[1], unit="Hz",
@@ -80,8 +60,7 @@ class GripperDriverConfig:
 def reference_step(q: float, v: float, goal: float, max_speed: float, acceleration: float,
                    dt: float) -> float:
     """The constant acceleration [m/s^2] over the next dt that moves (q, v) toward goal
-    without exceeding max_speed and while still able to stop at the goal. Python floats
-    (math.sqrt rounds as np.sqrt does), called on every update."""
+    within max_speed, still able to stop there (Python floats: called every update)."""
     distance = goal - q
     if abs(distance) < 1e-6:
         target_v = 0.0
@@ -94,58 +73,47 @@ def reference_step(q: float, v: float, goal: float, max_speed: float, accelerati
 @functools.lru_cache(maxsize=256)
 def command_targets(position: float, speed: float, force: float) -> tuple[float, ...]:
     """(position byte, goal finger coordinate q [m], half the closing speed [m/s], force
-    limit [N]) of a command's (rPR, rSP, rFR) bytes. Cached: the command changes a few
-    times a trial and is read on every update."""
+    limit [N]) of a command's (rPR, rSP, rFR) bytes; cached (read every update)."""
     position_byte = float(np.clip(np.round(position), 0, 255))
     return (position_byte, float(ru.opening_from_position_byte(position_byte) / 2),
             float(ru.speed_from_byte(speed) / 2), float(ru.force_from_byte(force)))
 
 
 def status_position_byte(q: float) -> float:
-    """gPO of the finger coordinate q [m]: ru.position_byte_from_opening(2 q) on Python
-    floats (round() rounds half to even, as np.rint)."""
+    """gPO of the finger coordinate q [m]: ru.position_byte_from_opening(2 q) on floats."""
     fraction = min(max(2.0 * q / ru.STROKE_M, 0.0), 1.0)
     return float(round(ru.POSITION_CLOSED_BYTE - fraction * ru.POSITION_SPAN_BYTES))
 
 
 def has_arrived(q: float, v: float, goal: float, acceleration: float, dt: float) -> bool:
-    """True when the reference (q, v) is within one step's reach of goal at rest: it is then
-    put on the goal. Otherwise the discrete bang-bang of reference_step circles the goal in
-    a limit cycle (|q - goal| about acceleration dt^2, |v| about acceleration dt), whose
-    velocity the plant's PD damping turns into a grip-force ripple (about 0.1 N peak to peak
-    at 30 Hz with the defaults) that a blocked finger never sees on the real gripper."""
+    """True when the reference (q, v) is a step from goal at rest: it is then put on the goal
+    (docs/model.md, "The driver's reference")."""
     return abs(goal - q) <= acceleration * dt * dt and abs(v) <= acceleration * dt
 
 
 def force_limited_set_point(q: float, q_ref: float, force: float, position_gain: float,
                             lever: float = 1.0) -> float:
-    """The PD set-point for the actuated coordinate: the reference, but no further than
-    2 force lever / position_gain from the measured q, so that a blocked finger pushes each
-    pad (one actuator drives both) with at most force [N]; lever = |d(half opening)/dq|."""
+    """The PD set-point: the reference within 2 force lever / position_gain of q, so that a
+    blocked finger pushes each pad with at most force [N]; lever = |d(half opening)/dq|."""
     band = 2.0 * force * lever / position_gain
-    return q + min(max(q_ref - q, -band), band)  # floats: called on every plant step
+    return q + min(max(q_ref - q, -band), band)
 
 
 def drive_set_point(*, a: float, v: float, v_prev: float, set_point: tuple[float, float],
                     phase: float, anchor: float, reference: tuple[float, float], limit: float,
                     direction: float, gain: float, damping: float, inertia: float,
                     time_step: float) -> tuple[float, float, float, float, float]:
-    """One step of the 2F-85's drive on the linkage hand (module docstring): the set-point
-    (a_d [rad], v_d [rad/s]) of the plant's PD (gain, damping) for the next plant step, the
-    phase, the motor's torque [N m] and the anchor (where the screw stopped the rotor
-    [rad]), from the driver's state a, v (v_prev one step before), the set-point and phase
-    of the last step, the loop's reference (a_ref, v_ref), the torque cap `limit` [N m],
-    the direction the command moves the nut in (+1 or -1), the drive's inertia [kg m^2] and
-    the plant's time step [s]. Python floats: called once a plant step."""
+    """One plant step of the linkage hand's drive: (a_d [rad], v_d [rad/s], phase, motor
+    torque [N m], anchor [rad] where the screw stopped the rotor) from the driver's a, v
+    (v_prev a step before), the last set-point and phase, the reference, the torque cap
+    `limit` [N m], the nut's direction (+1/-1), the inertia [kg m^2] and the step [s]."""
     set_a, set_v = set_point
-    # The load on the drive over the last step: the PD's torque at the step's end (SAP
-    # evaluates it there) less what accelerated the inertia.
+    # the load: the PD's torque at the step's end (SAP's) less what accelerated the inertia
     load = gain * (set_a - a) + damping * (set_v - v) - inertia * (v - v_prev) / time_step
     demand = gain * (reference[0] - a) + damping * (reference[1] - v)
     motor = min(max(demand, -limit), limit)
     if phase == HELD:
-        # The screw holds; the firmware watches the encoder: a finger that closes on by
-        # half the squeeze the hold carries has lost its object, and the motor drives on.
+        # a finger closing on by half the held squeeze has lost its object: drive on
         if direction * (a - anchor) <= 0.5 * direction * (set_a - anchor):
             return set_a, 0.0, HELD, 0.0, anchor
         phase = MOVING
@@ -154,13 +122,12 @@ def drive_set_point(*, a: float, v: float, v_prev: float, set_point: tuple[float
             return set_a, 0.0, HELD if direction * motor >= limit else STUCK, motor, anchor
         phase = MOVING
     elif direction * v <= 0.0 and direction * load > max(direction * motor, 0.0):
-        # The load would drive the rotor back: the screw stops it where it stands.
+        # the load would drive the rotor back: the screw stops it
         set_a = a + load / gain
         return set_a, 0.0, HELD if direction * motor >= limit else STUCK, motor, a
     if abs(demand) <= limit:
         return reference[0], reference[1], phase, motor, anchor
-    # At the current limit: the set-point that makes the PD's torque the cap, at the
-    # velocity the next step reaches if the last step's acceleration holds.
+    # at the limit: the PD's torque is the cap, at the velocity the last acceleration gives
     v_next = 2.0 * v - v_prev
     return a + time_step * v_next + motor / gain, v_next, phase, motor, anchor
 
@@ -183,9 +150,8 @@ def object_status(q: float, v: float, q_ref: float, goal: float, stall_speed: fl
 
 
 class SimRobotiqPlanner(LeafSystem):
-    """The simulated 2F-85 controller's command intake, reference and status bytes, at the
-    2F-85's command rate; its drive (robotiq_drive_step.py) sets the plant's PD every
-    plant step from this system's state. MakeSimRobotiqDriver joins the two.
+    """The simulated 2F-85's command intake, reference and status bytes at the command
+    rate; the drive (robotiq_drive_step.py) reads its state every plant step.
 
     .. pydrake_system::
 
@@ -200,10 +166,8 @@ class SimRobotiqPlanner(LeafSystem):
 
     Ports:
         command: (3) rPR, rSP, rFR bytes.
-        finger_state: (2) the hand's actuated coordinate a and its rate, as
-            MakeSimRobotiqDriver's.
-        drive_memory: the drive's memory (robotiq_drive_step.MEMORY).
-        planner_state: this system's state (robotiq_drive_step.PLANNER), for the drive.
+        finger_state: (2) a and its rate, as MakeSimRobotiqDriver's.
+        drive_memory, planner_state: robotiq_drive_step's MEMORY and PLANNER vectors.
         status: (8) status bytes, robotiq.units order.
     """
 
@@ -241,7 +205,6 @@ class SimRobotiqPlanner(LeafSystem):
         a, v = self._finger_state.Eval(context).tolist()
         phase = effective_phase(s, self._memory.Eval(context))
         q = hand.half_opening(a)
-        # Advance the reference to now with the acceleration chosen at the last update.
         h = t - s[TIME]
         s[REF_Q] += s[REF_V] * h + 0.5 * s[REF_A] * h * h
         s[REF_V] += s[REF_A] * h
@@ -251,13 +214,11 @@ class SimRobotiqPlanner(LeafSystem):
             *self._command.Eval(context).tolist())
         if (s[GOAL], s[FORCE]) != (goal, force):
             if phase != MOVING:
-                # Fingers the screw holds: the new motion starts where they stand, and the
-                # drive moves again (it counts the restarts).
+                # held fingers: the new motion starts where they stand
                 s[REF_Q], s[REF_V], phase = q, 0.0, MOVING
                 s[RESTARTS] += 1.0
             if s[GOAL] != s[REF_Q]:
-                # The direction the command moves the nut in, in the actuated coordinate
-                # (kept until the next command: the reference may pass its goal by a hair).
+                # the nut's direction, kept to the next command
                 rate = hand.half_opening_rate(hand.actuated(s[REF_Q]))
                 s[DIRECTION] = 1.0 if (s[GOAL] - s[REF_Q]) * rate > 0.0 else -1.0
         if has_arrived(s[REF_Q], s[REF_V], s[GOAL], self._config.acceleration, self._dt):
@@ -273,13 +234,11 @@ class SimRobotiqPlanner(LeafSystem):
         discrete_state.set_value(self._state, s)
 
     def _calc_status(self, context, output):
-        # Python floats (round() rounds half to even, as np.round); the same bytes.
         s = context.get_discrete_state(self._state).get_value().tolist()
         memory = self._memory.Eval(context).tolist()
         a = self._finger_state.Eval(context).item(0)
         hand = self._hand
-        # The motor's current: the torque it gives while the fingers move, none once they
-        # stop (the screw holds) or stand at the requested position.
+        # current only while the fingers move (none held or at the request)
         gripper_object = object_status_now(s, memory)
         moving = (gripper_object == int(ru.ObjectStatus.MOVING)
                   and effective_phase(s, memory) != HELD)
@@ -297,9 +256,8 @@ class SimRobotiqPlanner(LeafSystem):
 
 def MakeSimRobotiqDriver(*, config: GripperDriverConfig, time_step: float,
                          initial_opening: float = ru.STROKE_M):
-    """The simulated 2F-85 controller (the module docstring) as a Diagram: its planner
-    (SimRobotiqPlanner, Python, at the command rate) and its drive (robotiq_drive_step.py,
-    compiled, once a plant step).
+    """The simulated 2F-85 controller (module docstring): SimRobotiqPlanner at the command
+    rate and the compiled drive (robotiq_drive_step.py) once a plant step.
 
     .. pydrake_system::
 
@@ -313,14 +271,10 @@ def MakeSimRobotiqDriver(*, config: GripperDriverConfig, time_step: float,
 
     Ports:
         command: (3) rPR, rSP, rFR bytes.
-        finger_state: (2) the hand's actuated coordinate a and its rate (the left driver's
-            angle [rad] and [rad/s] on the linkage hand; half the opening [m], [m/s] on the
-            prismatic one), from gripper_hands.actuated_state_selector.
-        desired_state: (2) a and da/dt set-points for the plant's PD on the actuated joint,
-            for the plant step that follows (set half a step before it).
+        finger_state: (2) a and its rate ([rad], [rad/s] linkage; [m], [m/s] prismatic).
+        desired_state: (2) a and da/dt set-points of the plant's PD for the next step.
         status: (8) status bytes, robotiq.units order.
-
-    time_step is the plant's [s]: the drive runs once a plant step, half a step after it.
+    time_step: the plant's [s].
     """
     if not time_step > 0.0:
         raise ValueError(f"time_step {time_step} must be the plant's positive step [s]")

@@ -20,15 +20,10 @@ from tegrasp_drake.tactile.sliding_window import SlidingWindowState, default_sli
 
 @dataclasses.dataclass
 class WindowNormalizerConfig:
-    """Window length [s], the rates [Hz] at which SA and RA channels are sampled, and the
-    block [s] in which a rate's samples are taken (0: one update per sample; else each rate
-    takes block_samples(rate, block_s) samples per update, tactile/sample_block.py).
-
-    read_period_s: the tick [s] of the one reader of the outputs (the grasp state machine,
-    which reads them in its update at multiples of it); 0: read at any time. A rate taken
-    per sample that has 2 or more samples per tick (read_batch.samples_per_read) then takes
-    them in one update just before each tick (tactile/read_batch.py): the reader sees what
-    the per-sample system would show, a read at any other instant up to a tick old."""
+    """Window length [s], SA and RA sample rates [Hz], the block [s] a rate takes in one
+    update (0: per sample; tactile/sample_block.py), and read_period_s, the tick [s] of the
+    one reader (0: read any time; else a per-sample rate takes each tick's samples in one
+    update just before it, tactile/read_batch.py)."""
     window_s: float = 0.5
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0
@@ -36,13 +31,12 @@ class WindowNormalizerConfig:
     read_period_s: float = 0.0
 
     def rate_groups(self) -> tuple[RateGroup, ...]:
-        """The channels sampled together, one periodic update per group."""
-        return rate_groups(sa_rate_hz=self.sa_rate_hz, ra_rate_hz=self.ra_rate_hz,
+            return rate_groups(sa_rate_hz=self.sa_rate_hz, ra_rate_hz=self.ra_rate_hz,
                            window_s=self.window_s)
 
 
 def window_layout(group: RateGroup) -> SlidingWindowState:
-    """How a WindowNormalizer holds `group`'s window: at the start of the group's state."""
+    """`group`'s window, at the start of the group's state."""
     return SlidingWindowState(default_sliding_window(len(group.channels), group.window_length))
 
 
@@ -62,24 +56,11 @@ class WindowNormalizer(LeafSystem):
     """Keeps the last `window_s` of each channel in the Context and outputs them
     max-normalised (the paper's Fig. 3, Sec. III-A).
 
-    Periodic discrete updates sample the SA entries of `channels` at sa_rate_hz and the RA
-    entries at ra_rate_hz (one update for all four when the rates match). With
-    config.block_s > 0, a rate fast enough to have several samples per block (the 1 kHz RA
-    channels in 10 ms blocks) is instead updated once per block from the `<group>_block`
-    input, which a sample register on `channels` feeds (ConnectWindowChannels): each update
-    pushes the block's samples in order, so at each block boundary the windows equal the
-    per-sample windows; between boundaries they are up to one block old. With
-    config.read_period_s, a rate taken per sample with several samples per reader's tick
-    is updated once per tick instead, just before it, from a held register of the
-    tick's samples (tactile/read_batch.py): the reader's update at the tick sees the
-    per-sample windows. Before a full window has been sampled, the older part of the window
-    is zero. A non-finite sample is missing: the channel's previous sample enters instead
-    (SlidingWindowState.entering_samples).
-
-    Each rate's window is one discrete state vector. A subclass that works on the windows
-    (the EventMatcher scores them) keeps what it needs after the window in that vector
-    (`window_states`) and updates it in `_after_push`, in the update that pushed the sample:
-    one copy of the windows, one state group and one update per rate and tick.
+    One periodic update per rate group; a rate in blocks or read batches pushes the
+    `<group>_block` input's samples in order, so at each block end or reader's tick the
+    windows equal the per-sample ones. An unfilled window is zero at its old end; a
+    non-finite sample repeats the channel's previous one. A subclass keeps its own state
+    after the window in the group's vector (`window_states`), updated in `_after_push`.
 
     .. pydrake_system::
 
@@ -94,22 +75,17 @@ class WindowNormalizer(LeafSystem):
 
     Ports:
         channels: [sa_left, sa_right, ra_left, ra_right] (N, N, m/s^2, m/s^2).
-        sa_block, ra_block (sa_ra_block when the rates match): the last block_samples
-            samples of the rate's channels, oldest first (block_samples x channels, in
-            channels' order); read instead of `channels` by a rate in blocks or in read
-            batches.
-        sa_window: 2 * N_sa values, [sa_left window, sa_right window], oldest first, each
-            divided by its max |value| (an all-zero window stays zero); unitless.
-        ra_window: 2 * N_ra values, likewise for ra_left, ra_right.
-    with N_sa = window_s * sa_rate_hz and N_ra = window_s * ra_rate_hz.
+        sa_block, ra_block (sa_ra_block when the rates match): the rate's last
+            block_samples samples, oldest first, for a rate in blocks or read batches.
+        sa_window, ra_window: [left, right] windows of window_s * rate samples, oldest
+            first, each divided by its max |value| (all-zero stays zero); unitless.
     """
 
     @public_api
     def __init__(self, config: WindowNormalizerConfig | None = None, *,
                  window_states: Mapping[str, np.ndarray] | None = None):
-        """window_states: for a subclass, {rate group name: the initial state vector of the
-        group}: an empty window_layout(group) window, then what the subclass keeps (default:
-        the window alone)."""
+        """window_states: for a subclass, {group name: initial state}: an empty window, then
+        what the subclass keeps."""
         super().__init__()
         config = dataclasses.replace(config or WindowNormalizerConfig())
         self._config = config
@@ -162,7 +138,6 @@ class WindowNormalizer(LeafSystem):
 
     @property
     def rate_windows(self) -> tuple[RateWindow, ...]:
-        """The windows, one per rate group, in the order of config.rate_groups()."""
         return self._rate_windows
 
     def window_length(self, kind: str) -> int:
@@ -170,10 +145,7 @@ class WindowNormalizer(LeafSystem):
         return self._window_lengths[kind]
 
     def _sample(self, window: RateWindow, context, discrete_state) -> None:
-        """The periodic update of `window`: pushes this tick's samples of its channels into
-        it, at the start of the group's state vector (in discrete_state; the context still
-        holds the vector before), a missing one as its channel's previous sample, then
-        calls `_after_push`."""
+        """Pushes this tick's samples into `window`, then calls `_after_push`."""
         state = discrete_state.get_mutable_value(window.state)
         samples, missing = window.layout.entering_samples(
             state, self._channels_port.Eval(context)[window.channels])
@@ -181,9 +153,7 @@ class WindowNormalizer(LeafSystem):
         self._after_push(window, state, pushed, missing, context, context.get_time())
 
     def _sample_block(self, window: RateWindow, context, discrete_state) -> None:
-        """The periodic update of a `window` in blocks: pushes the samples of its channels
-        taken since the last update (the rows of its block input, oldest first), each as
-        `_sample` pushes one."""
+        """Pushes the block input's samples taken since the last update, oldest first."""
         state = discrete_state.get_mutable_value(window.state)
         period, now = 1.0 / window.group.rate_hz, context.get_time()
         taken = samples_in_block(now, period, window.block_samples)
@@ -195,9 +165,7 @@ class WindowNormalizer(LeafSystem):
                              now - (window.block_samples - 1 - k) * period)
 
     def _sample_batch(self, window: RateWindow, context, discrete_state) -> None:
-        """The periodic update of a `window` in read batches (read_batch.py): pushes the
-        samples of its channels taken since the last batch (the rows of its block input,
-        oldest first), each as `_sample` pushes one at its own time."""
+        """Pushes the read batch's samples (read_batch.py), each at its own time."""
         state = discrete_state.get_mutable_value(window.state)
         rate, read_period = window.group.rate_hz, self._config.read_period_s
         period = 1.0 / rate
@@ -207,17 +175,13 @@ class WindowNormalizer(LeafSystem):
         for k in range(window.block_samples):
             samples, missing = window.layout.entering_samples(state, block[k])
             pushed = window.layout.push(state, samples)
-            # The time stamp the simulator gives the per-sample update: index x period.
             self._after_push(window, state, pushed, missing, context, (first + k) * period)
 
     def _after_push(self, window: RateWindow, state: np.ndarray,
                     pushed: tuple[np.ndarray, int, bool], missing: list[bool] | None,
                     context, sample_time: float) -> None:
-        """For a subclass that keeps more about `window` in `state`, the group's state
-        vector: update it after each push. pushed: SlidingWindowState.push's (buffer,
-        offset, full); missing: SlidingWindowState.entering_samples's (None, or per channel
-        whether its sample was missing); sample_time: when the sample was taken [s] (an
-        update in blocks pushes several, taken before the update). Nothing to do here."""
+        """Subclass hook after each push: pushed is SlidingWindowState.push's (buffer,
+        offset, full), missing entering_samples's, sample_time the sample's time [s]."""
 
     def _calc_window(self, window: RateWindow, rows: slice, context, output):
         raw = window.layout.current(context.get_discrete_state(window.state).value())
@@ -225,11 +189,9 @@ class WindowNormalizer(LeafSystem):
 
 
 def ConnectWindowChannels(builder, normalizer: WindowNormalizer, channels) -> None:
-    """Connects `channels` (an output port of the four channels) to a WindowNormalizer (or
-    EventMatcher) already in `builder`: to its `channels` input and, for each rate in blocks
-    or in read batches, through a register of the rate's channels (a sample register,
-    `<system name>_<group>_block`, or a held one, `<system name>_<group>_batch`) to its
-    `<group>_block` input."""
+    """Connects the four channels' port to a WindowNormalizer (or EventMatcher) in
+    `builder`: its `channels` input and, for a rate in blocks or read batches, a register
+    (`<name>_<group>_block` or `_batch`) to its `<group>_block` input."""
     builder.Connect(channels, normalizer.GetInputPort("channels"))
     for window in normalizer.rate_windows:
         if window.block_samples == 1:
