@@ -101,25 +101,35 @@ def interruptions_deferred():
                 os.kill(os.getpid(), received[0])
 
 
-def folder_problem(path) -> str | None:
-    """Why `path` cannot be, or be made as, a folder this user writes in (None if it can),
-    proven by making an entry in its nearest existing part (permission bits do not tell)."""
+def _nearest_existing_part(path) -> tuple[pathlib.Path | None, OSError | None]:
+    """The nearest part of `path` (itself first) that exists, or None; with the OSError that
+    stopped the look there (a symlink loop, a name too long) if one did."""
     path = pathlib.Path(path)
     for place in (path, *path.parents):
         try:
-            exists = place.exists() or place.is_symlink()
-        except OSError as e:  # a symlink loop, a name too long
-            return f"{place}: {e.strerror or e}"
-        if exists:
-            if not place.is_dir():
-                return f"{place} is not a folder"
-            if not os.access(place, os.W_OK | os.X_OK):
-                return f"{place} is not writable"
-            try:
-                os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
-            except OSError as e:
-                return f"{place} is not writable ({e.strerror or e})"
-            return None
+            if place.exists() or place.is_symlink():
+                return place, None
+        except OSError as e:
+            return place, e
+    return None, None
+
+
+def folder_problem(path) -> str | None:
+    """Why `path` cannot be, or be made as, a folder this user writes in (None if it can),
+    proven by making an entry in its nearest existing part (permission bits do not tell)."""
+    place, error = _nearest_existing_part(path)
+    if error:
+        return f"{place}: {error.strerror or error}"
+    if place is None:
+        return None
+    if not place.is_dir():
+        return f"{place} is not a folder"
+    if not os.access(place, os.W_OK | os.X_OK):
+        return f"{place} is not writable"
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
+    except OSError as e:
+        return f"{place} is not writable ({e.strerror or e})"
     return None
 
 
@@ -138,16 +148,25 @@ def replace_problem(path) -> str | None:
         return f"cannot be used ({e.strerror or e})"
     if mode is not None and stat.S_ISDIR(mode):
         return "is a folder where a file belongs (no file can replace a folder); move it away"
-    for place in path.parents:
-        try:
-            if not (place.exists() or place.is_symlink()):
-                continue
-        except OSError as e:
-            return f"cannot be used ({place}: {e.strerror or e})"
-        if not place.is_dir():
-            return f"cannot be written: {place} is not a folder"
-        break
+    blocked = non_folder_on_path(path.parent)
+    if blocked:
+        place, error = blocked
+        if error:
+            return f"cannot be used ({place}: {error.strerror or error})"
+        return f"cannot be written: {place} is not a folder"
     return None
+
+
+def non_folder_on_path(folder) -> tuple[pathlib.Path, OSError | None] | None:
+    """The nearest existing part of `folder` (itself first) when it is not a folder, with the
+    OSError that stopped the look if one did; None when that part is a folder or no part
+    exists, so `folder` is one or can be made."""
+    place, error = _nearest_existing_part(folder)
+    if error:
+        return place, error
+    if place is None or place.is_dir():
+        return None
+    return place, None
 
 
 def claim_folder(path) -> bool:

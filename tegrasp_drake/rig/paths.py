@@ -56,22 +56,18 @@ def user_events_dir() -> pathlib.Path:
 
 def _check_folder_path(folder: pathlib.Path, named: str, meant: str) -> None:
     """UserPathError naming the environment setting `named` (which should point at `meant`)
-    unless `folder` is a folder, or could be made as one: its nearest existing part must be a
-    folder."""
-    from tegrasp_drake.rig.files import UserPathError
-    for place in (folder, *folder.parents):
-        try:
-            there = os.path.lexists(place)
-            is_folder = place.is_dir()
-        except OSError as e:  # a name too long, a symlink loop
-            raise UserPathError(f"{named} cannot be used ({e.strerror or e}); point it at "
-                                f"{meant}, or unset it") from None
-        if there:
-            if not is_folder:
-                what = "is not a folder" if place == folder else f"passes through {place}, " \
-                    "which is not a folder"
-                raise UserPathError(f"{named} {what}; point it at {meant}, or unset it")
-            return
+    unless `folder` is a folder, or could be made as one (files.non_folder_on_path)."""
+    from tegrasp_drake.rig.files import UserPathError, non_folder_on_path
+    blocked = non_folder_on_path(folder)
+    if blocked is None:
+        return
+    place, error = blocked
+    if error:
+        raise UserPathError(f"{named} cannot be used ({error.strerror or error}); point it at "
+                            f"{meant}, or unset it")
+    what = ("is not a folder" if place == folder
+            else f"passes through {place}, which is not a folder")
+    raise UserPathError(f"{named} {what}; point it at {meant}, or unset it")
 
 
 def events_search_path(explicit=None, hand_folder: str = "") -> list[pathlib.Path]:
