@@ -9,8 +9,9 @@ from typing import Annotated
 from collections.abc import Iterable, Sequence
 
 from tegrasp_drake.rig.files import interruptions_deferred, replace_problem, staged_file
+from tegrasp_drake.rig.objects import OBJECT_NAME_PATTERN
 from tegrasp_drake.events.event_file import (
-    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
+    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError, remake_advice,
     event_json_text, event_summary, event_to_json, read_index, read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import (REQUIRED_TRANSITIONS, TRANSITIONS,
@@ -184,8 +185,10 @@ def find_memorized_events(folders, object_name: str, *,
         looked.append(f"{folder} (has {', '.join(objects) or 'none'})")
     error = MemorizedEventError(folders[0] / INDEX_FILE if folders else INDEX_FILE,
                                 "no events", object_name)
+    advice = (f"Record them with `{RECORD_COMMAND} ...` (they go to the first folder)."
+              if OBJECT_NAME_PATTERN.match(object_name) else remake_advice(object_name))
     error.args = (f"no memorized events of object '{object_name}' in {'; '.join(looked)}. "
-                  f"Record them with `{RECORD_COMMAND} ...` (they go to the first folder).",)
+                  f"{advice}",)
     raise error
 
 

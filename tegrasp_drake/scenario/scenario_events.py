@@ -4,12 +4,11 @@ recorded on. They read the whole Scenario, so they live with it; the controller 
 the events given.
 """
 
-import yaml
-
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.rig.typed_yaml import YamlSyntaxError, parse_yaml
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
@@ -100,10 +99,12 @@ HAND_BEFORE_THE_MODEL_SETTING = "prismatic"
 
 def recorded_hand(event) -> str | None:
     """The `gripper.model` of the scenario an event was recorded in, or None when its
-    scenario text is not a scenario (a note, e.g. an ensemble's combined runs)."""
+    scenario text is not a scenario (a note, e.g. an ensemble's combined runs). Read as every
+    scenario is (parse_yaml): YAML past the reader's limits is a ConfigError naming the event."""
     try:
-        recorded = yaml.safe_load(event.scenario)
-    except (yaml.YAMLError, ValueError):  # ValueError: an integer Python will not convert
+        recorded = parse_yaml(event.scenario,
+                              f"memorized event {event.relative_path()}: its scenario")
+    except YamlSyntaxError:
         return None
     gripper = recorded.get("gripper") if isinstance(recorded, dict) else None
     if not isinstance(gripper, dict):
