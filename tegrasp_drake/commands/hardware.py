@@ -90,9 +90,8 @@ def _events_folder(events, args, scenario) -> str:
 
 
 def commit_hardware_run(staged, log, result_path, result: dict) -> None:
-    """Renames the staged log over --log and writes the result beside it, Ctrl-C and SIGTERM
-    held back, so the earlier run's log and result are replaced together (a run without a
-    log file commits its result alone)."""
+    """Renames the staged log over --log and writes the result beside it, Ctrl-C and SIGTERM held
+    back, so the old log and result are replaced together (without a log, the result alone)."""
     with interruptions_deferred():
         if pathlib.Path(staged).exists():
             os.replace(staged, log)

@@ -90,9 +90,8 @@ def controller_events_folders(controller, events_dir=None, hand_folder: str = ""
 
 def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
                          rates_hz: tuple[float, float]):
-    """The EventMatcherConfig of an event-triggered controller (thresholds, live SA and RA
-    rates [Hz], blocks, RA envelope and floor): the one mapping, shared by the live run
-    and a replay of its log."""
+    """The EventMatcherConfig of an event-triggered controller (thresholds, SA and RA rates [Hz],
+    blocks, RA envelope and floor), shared by the live run and a replay of its log."""
     from tegrasp_drake.events import EventMatcherConfig
     return EventMatcherConfig(
         **dataclasses.asdict(config.matching),

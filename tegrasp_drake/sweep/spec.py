@@ -110,10 +110,8 @@ class Perturbation:
 @dataclass(frozen=True)
 class TrialSpec:
     """One trial; `to_dict()` is what the trial function receives. The object sits at the
-    expected position + marker offset + jitter (gripper's x normal, y stroke), yawed by
-    `perturbation.yaw_rad`; `seed` seeds the sensor noise, apart from the perturbation's stream;
-    `pair_id` names the same scene for every controller.
-    """
+    expected position + marker offset + jitter (x normal, y stroke); `seed` seeds the sensor
+    noise; `pair_id` names the same scene for every controller."""
     trial_id: str
     pair_id: str
     controller: str
