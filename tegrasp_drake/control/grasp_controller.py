@@ -153,8 +153,7 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     sample_rates_hz: live SA and RA rates [Hz]. events, corrective_events: {transition:
     MemorizedEvent} (load_controller_events, load_corrective_events) when the controller
     needs them. ra_noise_std_mps2 [m/s^2 rms] and tactile raise the RA and SA thresholds to
-    their noise sigmas (control/noise_thresholds.py); 0 and None: the numbers alone.
-    """
+    their noise sigmas (control/noise_thresholds.py); 0 and None: the numbers alone."""
     entry = controller_entry(controller)
     return entry.load("add_systems")(
         builder, entry=entry, controller=controller, plan=plan,

@@ -56,8 +56,7 @@ def check_gripper_request(data: bytes) -> int:
 
 class GripperRequestFollower:
     """The newest gPR [byte] on GRIPPER_STATE_CHANNEL (None before the first), when called;
-    thread-safe. A malformed message is counted in `boundary` and the last good request kept.
-    """
+    thread-safe. A malformed message is counted in `boundary` and the last good request kept."""
 
     def __init__(self):
         self._lock = threading.Lock()

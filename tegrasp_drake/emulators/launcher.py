@@ -54,8 +54,7 @@ class FaultInjection:
 
 class Emulators:
     """The emulated devices (module docstring); close() stops them all. lcm_url: the arm's bus;
-    out: takes each line saying where a device listens or what it does.
-    """
+    out: takes each line saying where a device listens or what it does."""
 
     def __init__(self, *, lcm_url: str, out=print):
         self.lcm_url = lcm_url

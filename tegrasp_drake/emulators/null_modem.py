@@ -20,8 +20,7 @@ def open_raw_pty() -> tuple[int, int, str]:
 
 class NullModem:
     """Joins two pseudo-terminals, `device_port` and `host_port`; the relay wakes at least every
-    `poll_interval` [s]. Use as a context manager.
-    """
+    `poll_interval` [s]. Use as a context manager."""
 
     def __init__(self, *, poll_interval: float = 0.02, to_device=None):
         self._poll_interval = poll_interval

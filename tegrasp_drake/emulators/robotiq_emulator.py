@@ -37,8 +37,7 @@ class RobotiqEmulatorConfig:
 
 class RobotiqGripperModel:
     """The gripper's state and behaviour, advanced on every access (time.monotonic()) and
-    thread-safe.
-    """
+    thread-safe."""
 
     def __init__(self, config: RobotiqEmulatorConfig, now: float):
         self._config = config
@@ -173,8 +172,7 @@ class RobotiqGripperModel:
 
 class RobotiqEmulator:
     """Serves `RobotiqGripperModel` over Modbus RTU on `port`; start and stop with a `with` block;
-    `disconnect()` silences the gripper, `reconnect()` brings it back.
-    """
+    `disconnect()` silences the gripper, `reconnect()` brings it back."""
 
     def __init__(self, config: RobotiqEmulatorConfig | None = None):
         self._config = dataclasses.replace(config or RobotiqEmulatorConfig())

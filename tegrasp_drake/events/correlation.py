@@ -36,8 +36,7 @@ def channel_score(peak_correlation: float, live_energy: float, template_norm: fl
                   min_contrast: float, flat_needs_flat: bool = False) -> float:
     """A channel's gated score from its window statistics: peak_correlation (max over lags
     of R_XY), live_energy R_XX(0), template_norm sqrt(R_YY(0)), the live window's extremes;
-    flat_needs_flat: a flat template scores only a flat window.
-    """
+    flat_needs_flat: a flat template scores only a flat window."""
     denominator = math.sqrt(live_energy) * template_norm
     if not denominator > 0.0:
         return 0.0
@@ -50,8 +49,7 @@ def channel_score(peak_correlation: float, live_energy: float, template_norm: fl
 
 
 def max_normalized_xcorr_reference(live: np.ndarray, template: np.ndarray) -> float:
-    """Ungated Eq. 3 of two 1-D windows, from the definition; 0.0 if either is all zero.
-    """
+    """Ungated Eq. 3 of two 1-D windows, from the definition; 0.0 if either is all zero."""
     live = np.asarray(live, dtype=float)
     template = np.asarray(template, dtype=float)
     denominator = math.sqrt(np.dot(live, live)) * math.sqrt(np.dot(template, template))
@@ -63,8 +61,7 @@ def max_normalized_xcorr_reference(live: np.ndarray, template: np.ndarray) -> fl
 def event_scores_reference(live, templates, min_contrast: float,
                            flat_needs_flat: bool = False) -> np.ndarray:
     """Gated Eq. 3 scores, one per channel in [-1, 1], of live windows against templates
-    (sequences of 1-D windows; a channel's pair shares a sample rate).
-    """
+    (sequences of 1-D windows; a channel's pair shares a sample rate)."""
     live = [np.asarray(x, dtype=float) for x in live]
     templates = [np.asarray(y, dtype=float) for y in templates]
     if len(live) != len(templates):

@@ -59,8 +59,7 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
     """Write the events' files and the index; returns the paths written.
 
     Each object given replaces its previous events (stale files removed); keep_other_objects
-    keeps the other objects' index entries. Every object needs the `required` transitions.
-    """
+    keeps the other objects' index entries. Every object needs the `required` transitions."""
     events_dir = pathlib.Path(events_dir)
     events = _sorted_events(events)
     keys = [(e.object_name, e.transition) for e in events]

@@ -26,8 +26,7 @@ _NORMALIZATION_TOLERANCE = 1e-9
 class MemorizedEvent:
     """The four channels of one object's tactile event around one grasp transition: sa, ra
     (2, window_s * rate) windows [left, right], each divided by its max |value|, starting
-    `pre_transition_s` [s] before the physical event (at `transition_time_s` [s] in its trial).
-    """
+    `pre_transition_s` [s] before the physical event (at `transition_time_s` [s] in its trial)."""
     object_name: str
     transition: str
     sa: np.ndarray

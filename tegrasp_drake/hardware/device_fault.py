@@ -15,8 +15,7 @@ DRIVER_ERROR = "driver"      # the driver could not bring the device up (e.g. ac
 @dataclasses.dataclass(frozen=True)
 class DeviceFault:
     """One fault of one device; `code` the device's fault code or -1; `since_*` the last good
-    data (SILENT) or the first sighting, as Context time and time.time() [s].
-    """
+    data (SILENT) or the first sighting, as Context time and time.time() [s]."""
     device: str
     kind: str
     description: str

@@ -43,8 +43,7 @@ class MessageCounters:
 
 class MessageBoundary:
     """Checks messages from one `source` ("arm: KINOVA_JACO_STATUS") with
-    check(message, *args) -> the checked value, or RejectedMessage.
-    """
+    check(message, *args) -> the checked value, or RejectedMessage."""
 
     def __init__(self, source: str, check: Callable | None = None):
         self.source = source

@@ -30,8 +30,7 @@ class DeviceActivity:
 
 class DeviceActivities(tuple):
     """The watchdog's state, ((device, DeviceActivity), ...); immutable, so Drake's 1 kHz
-    Context copies share it.
-    """
+    Context copies share it."""
 
     def __deepcopy__(self, memo):
         return self

@@ -71,8 +71,7 @@ def unwritable_records(out_dir, trial_ids) -> list[tuple[Path, str]]:
 
 def canonical_json(value) -> str:
     """The one JSON text of `value` that checksums are taken over (numpy through `tolist`);
-    RecordError for values JSON cannot hold, NaN and infinities included.
-    """
+    RecordError for values JSON cannot hold, NaN and infinities included."""
     try:
         return json.dumps(value, sort_keys=True, separators=(",", ":"), ensure_ascii=True,
                           allow_nan=False, default=_numpy_to_python)

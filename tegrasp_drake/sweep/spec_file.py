@@ -25,8 +25,7 @@ def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_
                     controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
     """Reads and validates a YAML sweep spec (analysis/example_sweep.yaml shows each field);
     fields left out keep the paper's defaults. `grid` is a list of [dx_m, dy_m] or the product
-    of normal_offsets_m and stroke_offsets_m. ConfigError names the file and the field.
-    """
+    of normal_offsets_m and stroke_offsets_m. ConfigError names the file and the field."""
     fields = read_yaml_file(path, "the sweep spec")
     if fields is None:
         # An empty file is a mistake, not a request for the paper's 243-trial experiment

@@ -27,8 +27,7 @@ STEP_S = GraspControllerConfig().update_period_s  # [s] the state machine's tick
 class TransitionDiagnosis:
     """The offline Eq. 3 scores of one event over the modes that waited for it: best, each
     channel's highest; at_s, the tick [s] where the four came nearest their thresholds;
-    together, the scores there; match, whether all four passed.
-    """
+    together, the scores there; match, whether all four passed."""
     best: tuple[float, ...]
     at_s: float
     together: tuple[float, ...]

@@ -23,8 +23,7 @@ from tegrasp_drake.rig.jaco_velocity_tracker import (
 @dataclasses.dataclass
 class JacoLcmDriverSystems:
     """The hardware-side systems: feed `tracker`'s desired_state (and stop), read
-    `status_receiver`'s *_measured outputs.
-    """
+    `status_receiver`'s *_measured outputs."""
     tracker: JacoVelocityTracker
     command_sender: JacoCommandSender
     command_publisher: LcmPublisherSystem

@@ -37,8 +37,7 @@ TIME_TOLERANCE_FRACTION = 0.05
 class TactileFrame:
     """One decoded frame: u16 sequence; device timestamp [us] (unwrapped by the decoder);
     (left, right) piezo samples [counts]; 12 AD7147 counts per finger or None; arrival_time:
-    host `time.monotonic()` [s] of the chunk that completed it.
-    """
+    host `time.monotonic()` [s] of the chunk that completed it."""
     sequence: int
     timestamp_us: int
     piezo: tuple[int, int]
