@@ -69,9 +69,8 @@ def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
 
 
 def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: float) -> bool:
-    """Pumps `lcm` until `subscriber` received a message its boundary accepts or
-    time.monotonic() passes `deadline`; whether one came. Counts nothing; call it before the
-    Simulator runs, never inside it."""
+    """Pumps `lcm` until `subscriber` received a message its boundary accepts (True) or
+    time.monotonic() passes `deadline`. Counts nothing; call it before the Simulator runs."""
     serializer = subscriber.checked_serializer
     probe = serializer.CreateDefaultValue()
     received = subscriber.WaitForMessage(0, None, 1e-6)

@@ -74,10 +74,9 @@ MAX_YAML_NODES = 100_000
 
 def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: int = 0,
                root_key: str | None = None):
-    """The data of YAML `text` (module docstring); ConfigError "SOURCE: ..." in one line
-    naming the line and column (less the offsets of text the caller put before it), or the
-    field by its dotted path (`root_key`: the name to give the top-level key, for a --set
-    value the caller wrapped in one)."""
+    """The data of YAML `text` (module docstring); ConfigError "SOURCE: ..." in one line naming the
+    line and column (less the offsets of text the caller put before it) or the field's dotted path
+    (`root_key`: the name of the top-level key for a --set value the caller wrapped in one)."""
     if "\x00" in text:
         raise ConfigError(f"{source}: holds a NUL byte; it is not YAML text")
     if len(text.encode("utf-8", errors="replace")) > MAX_YAML_BYTES:

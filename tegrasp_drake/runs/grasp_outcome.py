@@ -103,9 +103,8 @@ def grip_plateau_n(log, after: float = 0.0) -> float:
 
 
 def grip_force_time(log, grip_force: float, after: float = 0.0):
-    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the grip
-    force, or else of grip_plateau_n (thin objects); None when the force never rises above
-    CONTACT_FORCE_N."""
+    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the grip force,
+    else of grip_plateau_n (thin objects); None when it never rises above CONTACT_FORCE_N."""
     weaker = true_sa(log).min(axis=1)
     level = grip_force
     if not np.any((weaker >= GRIP_FRACTION * grip_force) & (log.t_sa >= after)):

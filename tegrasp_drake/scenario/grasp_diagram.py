@@ -37,9 +37,8 @@ EXTRA_TIME_S = 10.0
 @public_api
 def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
                 lcm: DrakeLcm | None = None):
-    """The station of `scenario` as its `station` tag says: MakeSimulatedStation (the
-    default) or MakeHardwareStation (use it in a `with` block; run_on_hardware does). Both
-    export the same ports."""
+    """The station of `scenario` as its `station` tag says: MakeSimulatedStation (default) or
+    MakeHardwareStation (in a `with` block, as run_on_hardware does), both with the same ports."""
     check_ranges(scenario, "MakeStation: scenario")  # a config changed after loading
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation

@@ -111,9 +111,8 @@ def signed_peak(samples: np.ndarray) -> np.ndarray:
 
 
 def symbolic_signed_peak(samples):
-    """signed_peak of one column of expressions, symbolically: the largest sample if it is at
-    least as large as the smallest is negative, else the smallest (ties of opposite sign
-    differ from signed_peak)."""
+    """signed_peak of a column of expressions, symbolically: the largest sample if at least as large
+    as the smallest is negative, else the smallest (opposite-sign ties differ from signed_peak)."""
     highest = lowest = samples[0]
     for sample in samples[1:]:
         highest, lowest = symbolic_max(highest, sample), symbolic_min(lowest, sample)

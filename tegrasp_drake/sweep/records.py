@@ -57,9 +57,8 @@ def record_path(out_dir, trial_id: str) -> Path:
 
 
 def unwritable_records(out_dir, trial_ids) -> list[tuple[Path, str]]:
-    """(path, why) of each of these trials' records that write_record could not put in place
-    (a folder where the record belongs): asked before the trials run, whose results would
-    otherwise be lost."""
+    """(path, why) of each of these trials' records that write_record could not put in place (a
+    folder where it belongs): asked before the trials run, whose results would otherwise be lost."""
     problems = []
     for trial_id in trial_ids:
         path = record_path(out_dir, trial_id)

@@ -76,9 +76,8 @@ def trial_events(trial: dict, events_dir=None) -> tuple:
 
 
 def check_sweep_events(trials, events_dir=None) -> None:
-    """ConfigError, naming the trial, the file and what to do, when some trial's memorized
-    events are missing or of another object (checked once per object and controller, before
-    anything runs); a warning when they were recorded on another hand."""
+    """ConfigError naming the trial, file and remedy when a trial's events are missing or of another
+    object (once per object and controller, before anything runs); a warning for another hand's."""
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.scenario.scenario_events import another_hands_events
     from tegrasp_drake.rig.typed_yaml import ConfigError
