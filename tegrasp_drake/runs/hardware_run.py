@@ -1,14 +1,12 @@
 """A grasp on the real devices (or their emulators) in real time, with a replayable log.
 
-`run_on_hardware` builds the controller diagram around MakeHardwareStation as around the
-simulated station (grasp_diagram.py), waits for the devices and runs the Simulator at
-real-time rate 1. It prints and publishes each transition (TEGRASP_TRANSITION) and device
-fault (TEGRASP_FAULT: the station holds the arm still, the state machine goes to Failed),
-prints each device's first malformed message of a kind and counts them all, and ends
-END_MARGIN_S after Done, Failed or a fault, or at the time limit. A udpm:// bus is logged
-whole (first TEGRASP_RUN_INFO: scenario, hardware config, controller), which
-hardware_log_reader.py reads and `tegrasp replay` re-runs (hardware_log_replay.py).
-"""
+`run_on_hardware` builds the controller diagram around MakeHardwareStation as around the simulated
+station (grasp_diagram.py), waits for the devices and runs the Simulator at real-time rate 1. It
+prints and publishes each transition (TEGRASP_TRANSITION) and device fault (TEGRASP_FAULT: the
+station holds the arm still, the state machine goes to Failed), prints each device's first malformed
+message of a kind and counts them all, and ends END_MARGIN_S after Done, Failed or a fault, or at
+the time limit. A udpm:// bus is logged whole (first TEGRASP_RUN_INFO: scenario, hardware config,
+controller), which hardware_log_reader.py reads and `tegrasp replay` re-runs."""
 
 import dataclasses
 import json
