@@ -1,8 +1,7 @@
 """`tegrasp hardware --config FILE`: the grasp on the real devices (or their emulators), the
 controller diagram unchanged on MakeHardwareStation in real time (runs/hardware_run.py).
 Exit code: 0 finished without a fault, 2 after a fault or Failed, 1 a device did not come
-up. The run's result goes beside its LCM log: run.result.json.
-"""
+up. The run's result goes beside its LCM log: run.result.json."""
 
 import argparse
 import contextlib

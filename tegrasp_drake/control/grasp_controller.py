@@ -1,8 +1,7 @@
 """The grasp controller wired to a station: Eq. 1-2 channels -> event detector (the
 memorized events' EventMatcher, the paper's Fig. 3, or heuristic thresholds) ->
 GraspStateMachine -> Cartesian arm controller; or the open-loop script. It connects to any
-system with the station's port names (rig/station_interface.py), simulated or hardware.
-"""
+system with the station's port names (rig/station_interface.py), simulated or hardware."""
 
 import dataclasses
 from typing import Annotated

@@ -1,6 +1,5 @@
 """`tegrasp emulate ...` in a child process, as real devices are outside the controller's
-process: start it, read where it listens (its "devices: {JSON}" line), stop or kill it.
-"""
+process: start it, read where it listens (its "devices: {JSON}" line), stop or kill it."""
 
 import os
 import select

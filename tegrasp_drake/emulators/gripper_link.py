@@ -1,8 +1,7 @@
 """The emulated 2F-85's go-to request gPR [byte], shared with the emulated myRIO, whose
 replay holds at each recorded grip or release until the gripper is commanded likewise.
 In one process the myRIO reads gPR from the gripper model; across processes it follows the
-latest message on GRIPPER_STATE_CHANNEL, so a lost message only delays it by a period.
-"""
+latest message on GRIPPER_STATE_CHANNEL, so a lost message only delays it by a period."""
 
 import threading
 import time

@@ -5,8 +5,7 @@ the inverse calibration) and, when a finger's AD7147 completes a sequence, its 1
 Frames follow the stream's own clock or a given `trial_clock`; with a `gripper_request` the
 replay holds at each recorded grip or release until the emulated gripper is commanded alike
 (docs/hardware.md, "The commands"). Faults are drawn per frame from a seeded generator; a
-full pty buffer drops frames (counted) and never blocks.
-"""
+full pty buffer drops frames (counted) and never blocks."""
 
 import collections
 import dataclasses

@@ -1,8 +1,7 @@
 """A virtual null-modem cable (like `socat pty pty`): two pseudo-terminals whose masters a
 thread joins, so an emulated device and the driver under test both open a tty by name.
 `connected = False` unplugs it (bytes discarded both ways); `to_device` maps what the host
-sends to what reaches the device (e.g. a framer that drops what a real receiver would).
-"""
+sends to what reaches the device (e.g. a framer that drops what a real receiver would)."""
 
 import os
 import select

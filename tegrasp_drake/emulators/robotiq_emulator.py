@@ -5,8 +5,7 @@ read-only status 2000-2002) whose `action` hook runs `RobotiqGripperModel` on ev
 so a status read in the same transaction as a command already reflects it. pymodbus opens
 its port by name and a pty has one named end, so server and driver sit on the two ends of a
 `NullModem`; requests cross a ModbusRequestFramer on the way, as on a real receiver. What
-the model does: docs/hardware.md, "The emulated 2F-85".
-"""
+the model does: docs/hardware.md, "The emulated 2F-85"."""
 
 import asyncio
 import dataclasses

@@ -2,8 +2,7 @@
 cross-correlation R_XY(n) / sqrt(R_XX(0) R_YY(0)), R_XY(n) = sum_k x[k+n] y[k], no mean
 removed (as the paper); an all-zero window scores 0. A channel scores only when its window's
 contrast reaches `min_contrast` (docs/controller.md, "The contrast gate"). The reference
-here uses numpy.correlate; streaming_correlation.py the loop's update.
-"""
+here uses numpy.correlate; streaming_correlation.py the loop's update."""
 
 import math
 

@@ -1,7 +1,6 @@
 """An events folder: save an object's memorized events with the index, load them back,
 find the folder that holds an object's events. Saving is all or nothing (staged files
-renamed together with Ctrl-C held back, the index last).
-"""
+renamed together with Ctrl-C held back, the index last)."""
 
 import os
 import pathlib

@@ -2,8 +2,7 @@
 `window_s` window of every channel from `pre_transition_s` before each transition's physical
 event, divided by its maximum. An RA window whose peak stays below the recording's noise
 floor (ra_noise_floor.py) is stored as ones, a quiet template (beyond the paper;
-docs/controller.md, "The paper's state machine").
-"""
+docs/controller.md, "The paper's state machine")."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence

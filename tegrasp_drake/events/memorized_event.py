@@ -1,6 +1,5 @@
 """A memorized tactile event: one object's four max-normalised channel windows around one
-grasp transition, checked on construction. Files: event_file.py, events_folder.py, FORMAT.md.
-"""
+grasp transition, checked on construction. Files: event_file.py, events_folder.py, FORMAT.md."""
 
 import dataclasses
 import importlib.metadata

@@ -4,8 +4,7 @@ A wait is the time a mode spent expecting its event until the event's timeout;
 `event_waits` finds them in a trial's transitions. `classify_missed_wait` replays the
 channels with the event held expected (the run's matcher settings) and names the cause: a
 weak dynamic stimulus (SA passed, an RA channel did not: the paper's Sec. V), SA did not
-match, or matched in replay. Definitions: docs/sweeps.md, "A sweep".
-"""
+match, or matched in replay. Definitions: docs/sweeps.md, "A sweep"."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence

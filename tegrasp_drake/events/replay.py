@@ -1,8 +1,7 @@
 """Replay a logged (or synthetic) trial through the tactile event systems, offline.
 `channels_trajectory` holds each logged value until the next and feeds an EventMatcher wired
 as the grasp controller wires it; `replay_events_in_sequence` advances the expected event
-as the state machine would, `replay_event_held` keeps one event expected throughout.
-"""
+as the state machine would, `replay_event_held` keeps one event expected throughout."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence

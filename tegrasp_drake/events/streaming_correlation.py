@@ -4,8 +4,7 @@ C(n) = sum_k x[k+n] y[k] changes by two rank-one terms when the window slides on
 indexed by the buffer column where the template starts, both land on one contiguous slice
 (two BLAS axpy calls per channel). All is recomputed by FFT when the expected event changes
 or the buffer compacts (every `slack` samples), bounding round-off. A missing sample enters
-as the channel's previous one and scores its channel 0 for N slides.
-"""
+as the channel's previous one and scores its channel 0 for N slides."""
 
 import math
 from collections.abc import Sequence

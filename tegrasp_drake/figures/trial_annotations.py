@@ -1,7 +1,6 @@
 """What the figures of a trial (Fig. 5a-b, 9, 10) draw over its signals: states,
 transitions by trigger, the ground truth's physical events, the matcher's scores and a
-title; labels stacked so that none overlaps another (`stack_labels`).
-"""
+title; labels stacked so that none overlaps another (`stack_labels`)."""
 
 import dataclasses
 

@@ -4,8 +4,7 @@
     station: !HardwareStationConfig              # MakeHardwareStation
       arm: {lcm_url: "udpm://239.255.76.67:7667?ttl=0"}
       gripper: {port: /dev/ttyUSB0, device_id: 9}
-      tactile: {port: /dev/ttyACM0, calibration_file: pads.yaml}
-"""
+      tactile: {port: /dev/ttyACM0, calibration_file: pads.yaml}"""
 
 import dataclasses
 import os

@@ -1,7 +1,6 @@
 """A named fault reported by a driver or by the device watchdog: which device, what (with
 the device's own code where it has one) and since when, on both clocks (Context time and
-wall time, to match operator logs). The state machine reports `str(fault)` on Failed.
-"""
+wall time, to match operator logs). The state machine reports `str(fault)` on Failed."""
 
 import dataclasses
 import datetime

@@ -2,8 +2,7 @@
 refuses, by reason, short bytes, another type's fingerprint and truncated fields;
 `CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding through a boundary (a rejected
 message leaves the last good one). No Python callback is subscribed on a DrakeLcm a diagram
-pumps: docs/hardware.md, "The real-time loop on a busy host".
-"""
+pumps: docs/hardware.md, "The real-time loop on a busy host"."""
 
 import time
 from collections.abc import Callable

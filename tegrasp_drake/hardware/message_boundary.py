@@ -1,8 +1,7 @@
 """The one boundary every message from a device crosses: decode, check, count, skip. A check
 returns the checked value or raises `RejectedMessage(reason, detail)` (any other exception counts
 as "undecodable"). A rejected message is counted and skipped and the receiver keeps its last good
-value, so a device sending nothing usable looks silent to the watchdog. Thread-safe.
-"""
+value, so a device sending nothing usable looks silent to the watchdog. Thread-safe."""
 
 import dataclasses
 import threading

@@ -6,8 +6,7 @@ the times of the physical events that mark the transitions (noise-free simulatio
                        plateau, grip_plateau_n): the grip has settled, the earliest lift
   lift_start           the scripted ideal grasp's start of Lift (None in closed loop)
   table_touch          the object's lowest point back within TOUCH_HEIGHT_M of the table
-                       after lift-off (a tilted object touches with an edge)
-"""
+                       after lift-off (a tilted object touches with an edge)"""
 
 import dataclasses
 

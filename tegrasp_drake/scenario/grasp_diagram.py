@@ -1,8 +1,7 @@
 """The grasp diagram: a station (simulated or hardware, by the scenario's `station` tag),
 the grasp controller wired to its measured ports, and the trial's loggers unless
 `log=False`. Both stations export the same ports, so the controller cannot tell them apart.
-`MakeSimulator` is the one simulator set-up for simulated, open-loop and hardware runs.
-"""
+`MakeSimulator` is the one simulator set-up for simulated, open-loop and hardware runs."""
 
 import dataclasses
 

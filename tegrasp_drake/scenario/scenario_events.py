@@ -1,8 +1,7 @@
 """The memorized events a scenario's controller reads: its object's, for its controller and
 its hand, from the events search path (rig/paths.py), checked against the object they were
 recorded on. They read the whole Scenario, so they live with it; the controller itself takes
-the events given.
-"""
+the events given."""
 
 import yaml
 

@@ -6,8 +6,7 @@ interface's (rig/station_interface.py) plus the ground truth listed there as sim
 Gravity is off for the arm and gripper (the JACO2's firmware compensates it). The arm is driven
 as the real one (jaco_velocity_drive.py; docs/model.md, "The arm: joint velocities at 100 Hz,
 late"), or a carriage carries the gripper (SimulatedStationConfig.arm; carriage.py;
-docs/model.md, "The carriage: the arm as a stiff pose source (for sweeps)").
-"""
+docs/model.md, "The carriage: the arm as a stiff pose source (for sweeps)")."""
 
 import dataclasses
 import math

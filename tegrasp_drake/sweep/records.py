@@ -13,8 +13,7 @@
 
 Canonical JSON: sorted keys, no spaces, ASCII, no NaN/Infinity. Written to a temporary file,
 fsync'ed, renamed into place, the folder fsync'ed: a crash leaves no record or a whole one.
-A record that fails to parse or to checksum is corrupt, and its trial runs again.
-"""
+A record that fails to parse or to checksum is corrupt, and its trial runs again."""
 
 import hashlib
 import json

@@ -5,8 +5,7 @@ nothing lost or run twice; a missing, corrupt or error record (a trial function 
 raised, recorded with its traceback) runs again. Backends: a local process pool
 (forkserver, never fork: pydrake has started threads) or a Dask cluster (`scheduler`, the
 `dask` extra); the workers only compute, the parent writes every record. A worker that
-dies leaves its trial unrecorded, for the next run.
-"""
+dies leaves its trial unrecorded, for the next run."""
 
 import dataclasses
 import fcntl

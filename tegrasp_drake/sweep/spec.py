@@ -2,8 +2,7 @@
 The paper's experiment (Sec. IV-B): every object at every marker of a grid, a few attempts
 each, once per controller. Marker offsets are in the gripper's frame at the expected grasp
 (x the approach axis, y the finger stroke). A trial's random numbers come from (base_seed,
-object, marker, attempt), never the controller, so controllers meet the same scenes.
-"""
+object, marker, attempt), never the controller, so controllers meet the same scenes."""
 
 import dataclasses
 import math

@@ -1,7 +1,6 @@
 """Reading a sweep spec from a YAML file: `LoadSweepSpec`, with the same parser and field
 checks as every configuration file (rig/typed_yaml.py); the spec's frozen dataclasses are
-built from the checked data, since Drake's `yaml_load_typed` cannot build them.
-"""
+built from the checked data, since Drake's `yaml_load_typed` cannot build them."""
 
 from collections.abc import Collection
 from dataclasses import dataclass

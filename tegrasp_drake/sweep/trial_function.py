@@ -1,7 +1,6 @@
 """The sweep's trial function: a sweep trial (a TrialSpec.to_dict()) turned into its
 scenario, run with its memorized events (runs/trial.py) and returned as its result dict;
-`check_sweep_events` checks before a sweep starts that every trial's events are there.
-"""
+`check_sweep_events` checks before a sweep starts that every trial's events are there."""
 
 import dataclasses
 import hashlib

@@ -1,8 +1,7 @@
 """Which channel's Eq. 3 score falls short, per transition, in a trial run with events
 memorized elsewhere (docs/transfer.md, "What breaks transfer"): each event scored offline
 every `step_s` while a mode waited for it; "best" per channel, "together" at the tick with
-the largest smallest margin, "match" whether that tick passes.
-"""
+the largest smallest margin, "match" whether that tick passes."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence

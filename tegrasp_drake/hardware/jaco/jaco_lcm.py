@@ -2,8 +2,7 @@
 vectors, in Drake's driver pattern, and the arm's message-boundary checks. The driver runs
 the arm in joint-velocity mode at 100 Hz and ignores `joint_position` (kept for logs), so
 JacoVelocityTracker turns position error into velocity first. Units: rad, rad/s, N m, `utime`
-in us; num_fingers = 0 (the 2F-85 is on its own bus).
-"""
+in us; num_fingers = 0 (the 2F-85 is on its own bus)."""
 
 import math
 

@@ -1,8 +1,7 @@
 """Builders that wire the JACO2 LCM systems into a diagram for either end of the bus:
 `AddJacoLcmDriver` (hardware) and `AddJacoLcmEmulator` (a simulation answering commands, as
 Drake's hardware_sim). Both need an `LcmInterfaceSystem` for the same `lcm`; what each
-receives crosses a MessageBoundary.
-"""
+receives crosses a MessageBoundary."""
 
 import dataclasses
 

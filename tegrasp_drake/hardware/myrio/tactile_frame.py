@@ -1,8 +1,7 @@
 """The myRIO tactile stream's binary frame: `encode_frame` and a resynchronising streaming
 decoder. Layout, rates and decoding rules: hardware/myrio/TACTILE_FRAME.md. The decoder
 passes on only CRC-valid frames that follow the last one, counts what it skips, follows a
-restarted device after RESTART_RUN frames and unwraps device time frame by frame.
-"""
+restarted device after RESTART_RUN frames and unwraps device time frame by frame."""
 
 import dataclasses
 import struct
