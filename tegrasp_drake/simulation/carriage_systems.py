@@ -16,8 +16,7 @@ ARM_JOINTS = ports.ARM_JOINTS
 
 
 class CarriageCommand(LeafSystem):
-    """The arm's joint servo set-point as a carriage set-point, and the arm's reported
-    joint state.
+    """The arm's joint servo set-point as a carriage set-point, and the arm's reported joint state.
 
     .. pydrake_system::
 

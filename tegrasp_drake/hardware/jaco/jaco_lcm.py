@@ -98,9 +98,8 @@ def has_joints(message) -> bool:
 
 
 class JacoCommandSender(LeafSystem):
-    """desired_state (12: q [rad], then v [rad/s]) as an `lcmt_jaco_command`, utime = Context time.
-    The arm executes v, so it must hold the position-error term (JacoVelocityTracker's
-    `commanded_state`).
+    """desired_state (12: q [rad], then v [rad/s]) as an `lcmt_jaco_command`, utime = Context time;
+    the arm executes v, so v holds the position-error term (JacoVelocityTracker's commanded_state).
 
     .. pydrake_system::
 
@@ -184,8 +183,7 @@ class JacoCommandReceiver(LeafSystem):
 
 
 class JacoStatusSender(LeafSystem):
-    """The measured joint state ([rad], [rad/s], [N m]) as an `lcmt_jaco_status`, utime = Context
-    time (emulator side).
+    """The measured joint state ([rad], [rad/s], [N m]) as an `lcmt_jaco_status` (emulator side).
 
     .. pydrake_system::
 
