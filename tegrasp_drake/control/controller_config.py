@@ -91,8 +91,7 @@ class TaxelAwareConfig:
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field path under the controller, what it must be, its value) of the first setting
-        that does not fit another or the RA stream at ra_rate_hz [Hz]; None when all fit."""
+        """(field, must, value) of the first threshold pair neither [] nor [SA, RA]; else None."""
         for name in ("reach_load_thresholds", "load_lift_thresholds",
                      "place_unload_thresholds"):
             pair = getattr(self, name)
@@ -171,9 +170,8 @@ class LiftLoadConfig:
 @public_dataclass
 @dataclasses.dataclass
 class AvoidConfig:
-    """Avoid (Sec. III-C): in Hold, either RA above hit_ra_mps2 (after hit_refractory_s: the
-    lift's stop rings) is a hit; stop sense_s to see which way it pushed, move distance_m that
-    way over move_s, Hold again."""
+    """Avoid (Sec. III-C): in Hold, RA above hit_ra_mps2 after hit_refractory_s (the lift's stop
+    rings) is a hit; stop sense_s to see its push, move distance_m that way over move_s."""
     enabled: bool = True
     hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
                                  below="must be zero or positive [m/s^2]")
@@ -266,9 +264,8 @@ class GraspControllerConfig:
         default_factory=MemorizedCorrectiveConfig)
 
     def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:
-        """(field path under the controller, what it must be, its value) of the first setting that
-        does not fit another or the RA stream (ra_rate_hz [Hz], approach ending at approach_s [s]);
-        None when all fit."""
+        """(field path, what it must be, its value) of the first setting that does not fit another
+        or the RA stream (ra_rate_hz [Hz]; approach ends at approach_s [s]); None when all fit."""
         from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
         for k, name in enumerate(self.event_object_may_differ):
             if name not in DESCRIPTION_FIELDS:

@@ -5,8 +5,7 @@
 
 Sorted keys, one window a line, shortest round-trip floats: a file reads back to the same
 float64 values, and recording the same data again gives identical bytes. A bad file raises
-MemorizedEventError naming the file and the command that remakes it (FORMAT.md).
-"""
+MemorizedEventError naming the file and the command that remakes it (FORMAT.md)."""
 
 import json
 import math

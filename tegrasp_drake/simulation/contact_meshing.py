@@ -3,8 +3,7 @@ Each hydroelastic contact-surface face is one SAP constraint, so coarser meshes 
 cheaper. The defaults are the reference geometry; each coarser choice is opt-in and kept only
 where validation_scenes.py's closed-form checks hold. `pad_refinement` meshes the pads finer
 against friction creep (docs/model.md, "Friction creep"). Costs: docs/sweeps.md, "Coarser
-contact geometry".
-"""
+contact geometry"."""
 
 import dataclasses
 from tegrasp_drake.modelgen.pad_mesh import PAD_REFINEMENTS

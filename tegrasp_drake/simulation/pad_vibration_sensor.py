@@ -1,8 +1,7 @@
 """The PVDF film on each pad and its charge amplifier (the RA source): the settings
 (`VibrationSensorConfig`, the scenario's `vibration` section) and the sensitivity and noise that
 follow from them. The RA output is in acceleration-equivalent units, a = -V / S, on the pad frame's
-z (the inward normal). The model and every number: docs/model.md, "Vibration (RA) model".
-"""
+z (the inward normal). The model and every number: docs/model.md, "Vibration (RA) model"."""
 
 import dataclasses
 
