@@ -21,8 +21,7 @@ each name imported on first use so that `import tegrasp_drake` does not load pyd
 - control/: the state machine, rule tables and controllers.
 - runs/, sweep/, transfer/: a trial and its judgement; sweeps; the transfer study.
 - figures/, reports.py: the paper's figures; a results folder's reports.
-- cli.py, commands/: the `tegrasp` command line.
-"""
+- cli.py, commands/: the `tegrasp` command line."""
 
 import importlib
 

@@ -1,8 +1,7 @@
 """The `tegrasp` command line: one sub-command per module, each with a `register(subparsers)` that
 adds its parser and sets `func=run` (args -> exit code). `main` is the one error boundary: an
 unforeseen exception ends the run with one line on stderr (traceback to a file; `-v` prints it);
-SIGTERM and SIGHUP end a run as Ctrl-C does. Exit codes: docs/user-guide.md, "Exit codes".
-"""
+SIGTERM and SIGHUP end a run as Ctrl-C does. Exit codes: docs/user-guide.md, "Exit codes"."""
 
 import argparse
 import datetime

@@ -21,8 +21,7 @@ def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
                   figure_format: Annotated[str, Choice(FIGURE_FORMATS)] = "png") -> list[Path]:
     """Writes Table I, the statistics, the summary, success by offset and the figures
     (`figure_format`) into `out_dir`, from the records only (with `trial_ids`, those trials');
-    corrupt records are skipped, figures need a finished trial.
-    """
+    corrupt records are skipped, figures need a finished trial."""
     # Imported here: matplotlib loads only when a report is written.
     from tegrasp_drake.figures.figure_files import figure_path
     from tegrasp_drake.figures.latency import latency_samples, plot_latency_distributions

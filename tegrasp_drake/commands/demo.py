@@ -1,7 +1,6 @@
 """`tegrasp demo`: the README's main job, a closed-loop tactile-event grasp on the default
 scenario, with its timeline, success and a Fig. 9-like figure (`--controller open_loop`: the
-ideal scripted grasp of Sec. III-A). It replaces the last demo in out/demo.
-"""
+ideal scripted grasp of Sec. III-A). It replaces the last demo in out/demo."""
 
 import argparse
 

@@ -5,8 +5,7 @@ jaco: the JACO2 simulation on LCM; robotiq: the 2F-85 on a pseudo-terminal, the 
 object between its fingers; myrio: the tactile stream on a pseudo-terminal replaying
 `--trial NPZ`; all: the three in one process (--sync follow, --follow-gripper). Each prints
 where it listens, a line "devices: {JSON}" (emulators/emulator_process.py reads it) and
-"ready"; `--write-config FILE` writes the hardware config. They run until SIGINT or SIGTERM.
-"""
+"ready"; `--write-config FILE` writes the hardware config. They run until SIGINT or SIGTERM."""
 
 import argparse
 import math

@@ -1,8 +1,7 @@
 """`tegrasp hardware --config FILE`: the grasp on the real devices (or their emulators), the
 controller diagram unchanged on MakeHardwareStation in real time (runs/hardware_run.py).
 Exit code: 0 finished without a fault, 2 after a fault or Failed, 1 a device did not come
-up. The run's result goes beside its LCM log: run.result.json.
-"""
+up. The run's result goes beside its LCM log: run.result.json."""
 
 import argparse
 import contextlib
@@ -90,9 +89,8 @@ def _events_folder(events, args, scenario) -> str:
 
 
 def commit_hardware_run(staged, log, result_path, result: dict) -> None:
-    """Renames the staged log over --log and writes the result beside it, Ctrl-C and SIGTERM
-    held back, so the earlier run's log and result are replaced together (a run without a
-    log file commits its result alone)."""
+    """Renames the staged log over --log and writes the result beside it, Ctrl-C and SIGTERM held
+    back, so the old log and result are replaced together (without a log, the result alone)."""
     with interruptions_deferred():
         if pathlib.Path(staged).exists():
             os.replace(staged, log)

@@ -9,8 +9,7 @@
   tegrasp plot success-maps RESULTS    success per marker position
 LOG is a trial.npz written by `tegrasp trial` or `tegrasp demo`; RESULTS the --out folder
 of `tegrasp sweep` (e.g. analysis/results_seed0). --format png|pdf|svg, or --out FILE whose
-suffix names the format.
-"""
+suffix names the format."""
 
 import argparse
 import pathlib

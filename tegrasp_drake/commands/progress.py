@@ -1,6 +1,5 @@
 """A progress bar in simulated seconds, on stderr, only when stderr is a terminal: the runs
-call `progress(t, end)` [s]; lines printed meanwhile are written above the bar.
-"""
+call `progress(t, end)` [s]; lines printed meanwhile are written above the bar."""
 
 import sys
 

@@ -29,6 +29,7 @@ tegrasp_drake/events/FORMAT.md)."""
 EPILOG = """\
 examples:
   tegrasp record-events --object box          # the box's events, into your events folder
+  tegrasp record-events --set gripper.model=prismatic --events prismatic  # all three, so set
   tegrasp record-events --scenario my.yaml --scenario-name my_can --events my_events
   tegrasp record-events --events events       # from a source checkout: the package's own
 
@@ -45,7 +46,9 @@ def register(subparsers) -> None:
         description=DESCRIPTION, epilog=EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--object", action="append", choices=sorted(BUILTIN_OBJECTS),
-                        help="only this object (repeatable; default: all three)")
+                        help="only this object (repeatable; default: all three, each with "
+                        "the --set options, or the one object that --scenario, "
+                        "--scenario-name or --set object.name=... names)")
     parser.add_argument("--events", "--out", dest="events", default=None, metavar="DIR",
                         help="events folder to write (default: $TEGRASP_EVENTS_DIR, else "
                         "~/.local/share/tegrasp/events)")
@@ -54,7 +57,8 @@ def register(subparsers) -> None:
     parser.add_argument("--scenario-name", default=None,
                         help="which scenario of --scenario (its object is recorded)")
     parser.add_argument("--set", dest="overrides", action="append", default=[],
-                        metavar="KEY=VALUE", help="override a field of that scenario")
+                        metavar="KEY=VALUE", help="override a field of the scenario of "
+                        "each object recorded (repeatable)")
     parser.add_argument("--ensemble-runs", type=integer_option, default=None, metavar="N",
                         help="also record the taxel_aware controller's ensemble events from "
                         f"N randomised ideal grasps (default {TEMPLATE_RUNS} for your own "
@@ -65,27 +69,28 @@ def register(subparsers) -> None:
 
 def _scenarios_to_record(args) -> list:
     """(object name, scenario or None for the built-in one) of each object to record:
-    --object names built-in objects (with --set), --scenario/--scenario-name a scenario's
-    object; the two are refused together, and so is a --set that changes which object an
-    --object records."""
-    from tegrasp_drake.commands.scenario_args import scenario_from_arguments
+    --object names built-in objects (default all three), each from its own scenario with
+    --set; --scenario/--scenario-name, or a --set that names an object (object.name=...),
+    record that scenario's object. --object is refused with --scenario/--scenario-name, and
+    so is a --set that changes which object an --object records."""
     if args.object and (args.scenario or args.scenario_name):
         raise SystemExit("tegrasp: error: --object records a built-in object from its own "
                          "scenario; --scenario/--scenario-name record a scenario's object: "
                          "give one or the other")
     if args.object and args.overrides:
-        chosen = []
-        for name in args.object:
-            scenario = scenario_from_arguments(argparse.Namespace(
-                scenario=None, scenario_name=name, overrides=list(args.overrides)),
-                simulates="events")
+        chosen = _builtin_scenarios(args.object, args.overrides)
+        for name, scenario in chosen:
             if scenario.object.name != name:
                 raise SystemExit(f"tegrasp: error: --object {name} with --set "
                                  f"{' --set '.join(args.overrides)} would record the object "
                                  f"'{scenario.object.name}'; drop --object to record it")
-            chosen.append((name, scenario))
         return chosen
+    if args.overrides and not (args.scenario or args.scenario_name):
+        chosen = _builtin_scenarios(sorted(BUILTIN_OBJECTS), args.overrides)
+        if all(scenario.object.name == name for name, scenario in chosen):
+            return chosen  # the --set names no object: all three, each with it
     if args.scenario or args.scenario_name or args.overrides:
+        from tegrasp_drake.commands.scenario_args import scenario_from_arguments
         from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO
         args.scenario_name = args.scenario_name or DEFAULT_SCENARIO
         scenario = scenario_from_arguments(args, simulates="events")
@@ -93,10 +98,21 @@ def _scenarios_to_record(args) -> list:
     return [(name, None) for name in args.object or sorted(BUILTIN_OBJECTS)]
 
 
-def _ensemble_runs(args, scenario) -> int:
+def _builtin_scenarios(object_names, overrides) -> list:
+    """(name, its built-in scenario with the --set overrides) of each built-in object."""
+    from tegrasp_drake.commands.scenario_args import scenario_from_arguments
+    return [(name, scenario_from_arguments(argparse.Namespace(
+        scenario=None, scenario_name=name, overrides=list(overrides)), simulates="events"))
+        for name in object_names]
+
+
+def _ensemble_runs(args, to_record) -> int:
     if args.ensemble_runs is None:
-        # A built-in object named with --object has its ensemble shipped with the package.
-        return TEMPLATE_RUNS if scenario is not None and not args.object else 0
+        # Built-in objects recorded from their own scenarios (--object, or all three) have
+        # their ensembles shipped with the package; the one object of a scenario (--scenario,
+        # --scenario-name, a --set naming it) gets its ensemble recorded.
+        scenarios_object = not args.object and len(to_record) == 1
+        return TEMPLATE_RUNS if scenarios_object and to_record[0][1] is not None else 0
     if not 0 <= args.ensemble_runs <= MAX_ENSEMBLE_RUNS:
         raise SystemExit(f"tegrasp: error: --ensemble-runs {args.ensemble_runs}: give 0 "
                          f"(none) to {MAX_ENSEMBLE_RUNS} ideal grasps (each about 20 s)")
@@ -118,7 +134,7 @@ def run(args) -> int:
         raise SystemExit(f"tegrasp: error: --events {out}: {problem}; give a folder you can "
                          "write")
     to_record = _scenarios_to_record(args)
-    runs = _ensemble_runs(args, to_record[0][1])
+    runs = _ensemble_runs(args, to_record)
     _check_destination(out, [name for name, _ in to_record], runs)
     for object_name, scenario in to_record:
         try:

@@ -1,7 +1,6 @@
 """Where a run's files go, and which earlier run they may replace (docs/user-guide.md, "`tegrasp
 trial` and `tegrasp demo`"). Files are staged in a hidden folder and replace the earlier run's
-together at the end (commit_run), so a failed or interrupted run leaves the earlier one whole.
-"""
+together at the end (commit_run), so a failed or interrupted run leaves the earlier one whole."""
 
 import contextlib
 import fcntl

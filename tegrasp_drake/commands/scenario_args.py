@@ -83,7 +83,10 @@ def controller_events(scenario, events_dir):
         raise SystemExit(f"tegrasp: error: the {scenario.controller.name} controller needs "
                          f"the memorized "
                          f"events of '{scenario.object.name}': {e}") from None
-    warning = another_hands_events(scenario, events)
+    try:
+        warning = another_hands_events(scenario, events)
+    except ConfigError as e:
+        raise SystemExit(f"tegrasp: error: {e}") from None
     if warning:
         logging.getLogger(__name__).warning(warning)
     return events

@@ -4,8 +4,7 @@ Runs every trial without a finished record in `--out` (so the same command resum
 writes the reports and figures there (docs/sweeps.md); options override the spec file.
 Exit codes: 0 all trials finished, 1 some raised or were left unfinished, 2 bad input.
 Testing hook: `--trial-function MODULE:ATTR` (hidden from --help) replaces the real trial
-function, so the tests run the command with a cheap deterministic trial.
-"""
+function, so the tests run the command with a cheap deterministic trial."""
 
 import argparse
 import dataclasses

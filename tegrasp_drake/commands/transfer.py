@@ -1,7 +1,6 @@
 """`tegrasp transfer SPEC.yaml`: events memorized in one world, trials run in another
 (transfer/matrix.py, transfer/report.py): writes DIR/events, DIR/cells, DIR/transfer.md and
-the heat map; the same command resumes. Exit codes as `tegrasp sweep`'s.
-"""
+the heat map; the same command resumes. Exit codes as `tegrasp sweep`'s."""
 
 import argparse
 import sys

@@ -1,8 +1,7 @@
 """`tegrasp trial`: one closed-loop grasp trial, its state timeline and its success.
 
 `tegrasp demo` is this command on the default scenario with a figure (the README's main job).
-Where the files go, and when an earlier run's are kept: commands/run_folder.py.
-"""
+Where the files go, and when an earlier run's are kept: commands/run_folder.py."""
 
 import argparse
 import json

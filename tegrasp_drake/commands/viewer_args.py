@@ -1,7 +1,6 @@
 """The Meshcat options of the run commands (trial, demo): `--meshcat` serves the run live
 (its URL printed on stderr; at the end the command waits for Enter), `--html FILE` writes
-the run's recording as one standalone HTML file (Meshcat.StaticHtml: no server, no network).
-"""
+the run's recording as one standalone HTML file (Meshcat.StaticHtml: no server, no network)."""
 
 import pathlib
 import sys

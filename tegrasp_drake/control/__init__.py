@@ -21,5 +21,4 @@ actions, the taxel-aware extension and the open-loop script.
   scripted_grasp.py            the ideal open-loop grasp (Sec. III-A)
   motion_profiles.py           minimum-jerk moves
   cartesian_arm_controller.py  the grasp frame's pose to joint commands (diff IK)
-  taxel_aware/                 the taxel-aware controller's rules and estimator
-"""
+  taxel_aware/                 the taxel-aware controller's rules and estimator"""

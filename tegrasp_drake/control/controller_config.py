@@ -6,7 +6,7 @@ controller is its entry in controller_registry.py. Imports no Drake (the command
 
 import dataclasses
 import typing
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.ranges import bounded
 
@@ -91,8 +91,7 @@ class TaxelAwareConfig:
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field path under the controller, what it must be, its value) of the first setting
-        that does not fit another or the RA stream at ra_rate_hz [Hz]; None when all fit."""
+        """(field, must, value) of the first threshold pair neither [] nor [SA, RA]; else None."""
         for name in ("reach_load_thresholds", "load_lift_thresholds",
                      "place_unload_thresholds"):
             pair = getattr(self, name)
@@ -171,9 +170,8 @@ class LiftLoadConfig:
 @public_dataclass
 @dataclasses.dataclass
 class AvoidConfig:
-    """Avoid (Sec. III-C): in Hold, either RA above hit_ra_mps2 (after hit_refractory_s: the
-    lift's stop rings) is a hit; stop sense_s to see which way it pushed, move distance_m that
-    way over move_s, Hold again."""
+    """Avoid (Sec. III-C): in Hold, RA above hit_ra_mps2 after hit_refractory_s (the lift's stop
+    rings) is a hit; stop sense_s to see its push, move distance_m that way over move_s."""
     enabled: bool = True
     hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
                                  below="must be zero or positive [m/s^2]")
@@ -266,9 +264,8 @@ class GraspControllerConfig:
         default_factory=MemorizedCorrectiveConfig)
 
     def problem(self, *, ra_rate_hz: float, approach_s: float) -> tuple[str, str, object] | None:
-        """(field path under the controller, what it must be, its value) of the first setting that
-        does not fit another or the RA stream (ra_rate_hz [Hz], approach ending at approach_s [s]);
-        None when all fit."""
+        """(field path, what it must be, its value) of the first setting that does not fit another
+        or the RA stream (ra_rate_hz [Hz]; approach ends at approach_s [s]); None when all fit."""
         from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
         for k, name in enumerate(self.event_object_may_differ):
             if name not in DESCRIPTION_FIELDS:
@@ -282,6 +279,51 @@ class GraspControllerConfig:
             if found is not None:
                 return (f"{section}.{found[0]}",) + found[1:]
         return None
+
+
+# Settings that moved when the controller's were nested by concern (old field -> its path
+# now): assigning an old one is refused naming the new path; scenario/moved_keys.py refuses
+# and migrates the old keys of YAML from this table.
+MOVED_FIELDS = {
+    "re_reach_enabled": "re_reach.enabled",
+    "one_sided_contact_s": "re_reach.one_sided_contact_s",
+    "reach_event_timeout_s": "re_reach.reach_event_timeout_s",
+    "max_re_reaches": "re_reach.max_re_reaches",
+    "re_reach_move_s": "re_reach.move_s",
+    "opened_m": "re_reach.opened_m",
+    "lift_load_enabled": "lift_load.enabled",
+    "slip_vibration_mps2": "lift_load.slip_vibration_mps2",
+    "slip_vibration_sigmas": "lift_load.slip_vibration_sigmas",
+    "slip_band_hz": "lift_load.slip_band_hz",
+    "slip_window_s": "lift_load.slip_window_s",
+    "slip_s": "lift_load.slip_s",
+    "lift_load_force_factor": "lift_load.force_factor",
+    "max_lift_loads": "lift_load.max_lift_loads",
+    "max_grip_force_n": "lift_load.max_grip_force_n",
+    "grip_fraction": "lift_load.grip_fraction",
+    "relift_settle_s": "lift_load.relift_settle_s",
+    "avoid_enabled": "avoid.enabled",
+    "hit_ra_mps2": "avoid.hit_ra_mps2",
+    "hit_ra_sigmas": "avoid.hit_ra_sigmas",
+    "hit_refractory_s": "avoid.hit_refractory_s",
+    "avoid_sense_s": "avoid.sense_s",
+    "avoid_sa_asymmetry_n": "avoid.sa_asymmetry_n",
+    "avoid_distance_m": "avoid.distance_m",
+    "avoid_s": "avoid.move_s",
+    "place_event_timeout_s": "place.event_timeout_s",
+    "memorized_corrective_events": "memorized_corrective.events",
+    "lift_load_event_thresholds": "memorized_corrective.lift_load_thresholds",
+    "hold_avoid_event_thresholds": "memorized_corrective.hold_avoid_thresholds",
+    "memorized_hit_baseline_s": "memorized_corrective.hit_baseline_s",
+    "memorized_hit_armed_s": "memorized_corrective.hit_armed_s",
+    "sa_threshold": "matching.sa_threshold",
+    "ra_threshold": "matching.ra_threshold",
+    "ra_envelope_hz": "matching.ra_envelope_hz",
+    "ra_noise_floor_sigmas": "matching.ra_noise_floor_sigmas",
+    "ra_noise_quiet_s": "matching.ra_noise_quiet_s",
+    "flat_template_needs_flat_window": "matching.flat_template_needs_flat_window",
+}
+register_moved_fields(GraspControllerConfig, MOVED_FIELDS)
 
 
 def _block_problem(block_s: float, ra_rate_hz: float) -> tuple[str, str, object] | None:

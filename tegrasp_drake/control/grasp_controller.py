@@ -1,8 +1,7 @@
 """The grasp controller wired to a station: Eq. 1-2 channels -> event detector (the
 memorized events' EventMatcher, the paper's Fig. 3, or heuristic thresholds) ->
 GraspStateMachine -> Cartesian arm controller; or the open-loop script. It connects to any
-system with the station's port names (rig/station_interface.py), simulated or hardware.
-"""
+system with the station's port names (rig/station_interface.py), simulated or hardware."""
 
 import dataclasses
 from typing import Annotated
@@ -90,9 +89,8 @@ def controller_events_folders(controller, events_dir=None, hand_folder: str = ""
 
 def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
                          rates_hz: tuple[float, float]):
-    """The EventMatcherConfig of an event-triggered controller (thresholds, live SA and RA
-    rates [Hz], blocks, RA envelope and floor): the one mapping, shared by the live run
-    and a replay of its log."""
+    """The EventMatcherConfig of an event-triggered controller (thresholds, SA and RA rates [Hz],
+    blocks, RA envelope and floor), shared by the live run and a replay of its log."""
     from tegrasp_drake.events import EventMatcherConfig
     return EventMatcherConfig(
         **dataclasses.asdict(config.matching),
@@ -154,8 +152,7 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     sample_rates_hz: live SA and RA rates [Hz]. events, corrective_events: {transition:
     MemorizedEvent} (load_controller_events, load_corrective_events) when the controller
     needs them. ra_noise_std_mps2 [m/s^2 rms] and tactile raise the RA and SA thresholds to
-    their noise sigmas (control/noise_thresholds.py); 0 and None: the numbers alone.
-    """
+    their noise sigmas (control/noise_thresholds.py); 0 and None: the numbers alone."""
     entry = controller_entry(controller)
     return entry.load("add_systems")(
         builder, entry=entry, controller=controller, plan=plan,

@@ -82,9 +82,8 @@ def _sa_changes(config, floors: SaNoiseFloors) -> dict:
 
 def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: float,
                              tactile=None, sa_rate_hz: float | None = None):
-    """A copy of `config` with its RA thresholds raised for RA noise ra_noise_std_mps2
-    [m/s^2 rms] at ra_rate_hz [Hz], and, given the taxels' `tactile` config and
-    config.sa_noise_floor, its SA thresholds to sa_noise_floors."""
+    """A copy of `config`, its RA thresholds raised for RA noise ra_noise_std_mps2 [m/s^2 rms] at
+    ra_rate_hz [Hz] and, given `tactile` and config.sa_noise_floor, SA ones to sa_noise_floors."""
     avoid, lift_load = config.avoid, config.lift_load
     band = slip_band_noise_std(ra_noise_std_mps2, lift_load.slip_band_hz, ra_rate_hz)
     changes = {

@@ -9,8 +9,7 @@ modbus_request_framer.py: whole, CRC-valid Modbus requests out of a byte stream.
 null_modem.py: two joined pseudo-terminals.
 myrio_emulator.py: the myRIO replaying a recorded trial as tactile frames.
 controller_clock.py: the controller's clock from its arm commands, to pace the replay.
-gripper_link.py: the emulated gripper's request, for the replay to follow.
-"""
+gripper_link.py: the emulated gripper's request, for the replay to follow."""
 
 from tegrasp_drake.emulators.controller_clock import ControllerClock, follow_jaco_commands
 from tegrasp_drake.emulators.emulator_process import (

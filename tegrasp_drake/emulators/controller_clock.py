@@ -1,8 +1,7 @@
 """The controller's clock as its arm commands carry it (each command's `utime` is Context
 time), to pace a replaying emulator (MyRioEmulator's `trial_clock`) with a controller slower
 than real time: the newest command's time since the first, extrapolated at the recent rate
-for at most one command period.
-"""
+for at most one command period."""
 
 import threading
 import time

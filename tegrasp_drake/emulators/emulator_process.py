@@ -1,6 +1,5 @@
 """`tegrasp emulate ...` in a child process, as real devices are outside the controller's
-process: start it, read where it listens (its "devices: {JSON}" line), stop or kill it.
-"""
+process: start it, read where it listens (its "devices: {JSON}" line), stop or kill it."""
 
 import os
 import select
@@ -21,8 +20,7 @@ class EmulatorProcessError(RuntimeError):
 
 class EmulatorProcess:
     """`python -m tegrasp_drake emulate DEVICE ARGS...`; use as a context manager. `devices`:
-    the HardwareStationConfig fields of its devices once ready; `output`: all it printed so far.
-    """
+    the HardwareStationConfig fields of its devices once ready; `output`: all it printed so far."""
 
     def __init__(self, device: str, *args: str, wait: bool = True, timeout: float = 30.0,
                  env=None, scheduling: str = "normal"):
@@ -100,8 +98,7 @@ class EmulatorProcess:
 class EmulatedDevices:
     """The three devices, each in its own process on `lcm_url`; `config` points a hardware
     station at them. A context manager. `scheduling` defaults to "fifo": real devices have
-    processors of their own, so on a busy host the controller under test should be delayed.
-    """
+    processors of their own, so on a busy host the controller under test should be delayed."""
 
     def __init__(self, *, lcm_url: str, trial, scenario_args=("--scenario-name", "box"),
                  robotiq_args=(), myrio_sync: str = "follow", timeout: float = 30.0,

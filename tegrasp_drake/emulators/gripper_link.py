@@ -1,8 +1,7 @@
 """The emulated 2F-85's go-to request gPR [byte], shared with the emulated myRIO, whose
 replay holds at each recorded grip or release until the gripper is commanded likewise.
 In one process the myRIO reads gPR from the gripper model; across processes it follows the
-latest message on GRIPPER_STATE_CHANNEL, so a lost message only delays it by a period.
-"""
+latest message on GRIPPER_STATE_CHANNEL, so a lost message only delays it by a period."""
 
 import threading
 import time
@@ -56,8 +55,7 @@ def check_gripper_request(data: bytes) -> int:
 
 class GripperRequestFollower:
     """The newest gPR [byte] on GRIPPER_STATE_CHANNEL (None before the first), when called;
-    thread-safe. A malformed message is counted in `boundary` and the last good request kept.
-    """
+    thread-safe. A malformed message is counted in `boundary` and the last good request kept."""
 
     def __init__(self):
         self._lock = threading.Lock()

@@ -2,8 +2,7 @@
 KINOVA_JACO_COMMAND -> joint velocity servos, plant state -> KINOVA_JACO_STATUS at 100 Hz.
 Like the real arm in joint-velocity mode it executes only the commanded velocities (servo
 tau = kd (v_cmd - v), the plant's implicit PD with kp = 0) and stops when commands stop.
-The gripper is one rigid body on the flange; gravity is off (the firmware compensates it).
-"""
+The gripper is one rigid body on the flange; gravity is off (the firmware compensates it)."""
 
 import numpy as np
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig

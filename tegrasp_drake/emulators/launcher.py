@@ -1,14 +1,12 @@
-"""The emulated devices of one `tegrasp emulate`, started together in this process:
-the JACO2 as a real-time Drake simulation on LCM (jaco_arm_emulator.py), the 2F-85 on a
-pseudo-terminal with the scenario's object between its fingers (robotiq_emulator.py; it
-publishes its state for a myRIO emulator elsewhere when none runs here, gripper_link.py)
-and the myRIO replaying a recorded trial (myrio_emulator.py), synced to the arm's commands
-and optionally following the emulated gripper (docs/hardware.md, "The commands").
+"""The emulated devices of one `tegrasp emulate`, started together in this process: the JACO2 as a
+real-time Drake simulation on LCM (jaco_arm_emulator.py), the 2F-85 on a pseudo-terminal with the
+scenario's object between its fingers (robotiq_emulator.py; it publishes its state for a myRIO
+emulator elsewhere, gripper_link.py) and the myRIO replaying a recorded trial (myrio_emulator.py) in
+step with the arm's commands and, if asked, the gripper (docs/hardware.md, "The commands").
 
-What the devices receive crosses a MessageBoundary; `Emulators` reports each kind of
-rejected message once and the counts at close. `devices_line()` gives the devices'
-HardwareStationConfig fields as one JSON line for programs (`devices_from_line`).
-"""
+What the devices receive crosses a MessageBoundary; `Emulators` reports each kind of rejected
+message once and the counts at close. `devices_line()` gives the devices' HardwareStationConfig
+fields as one JSON line for programs (`devices_from_line`)."""
 
 import dataclasses
 import json
@@ -54,8 +52,7 @@ class FaultInjection:
 
 class Emulators:
     """The emulated devices (module docstring); close() stops them all. lcm_url: the arm's bus;
-    out: takes each line saying where a device listens or what it does.
-    """
+    out: takes each line saying where a device listens or what it does."""
 
     def __init__(self, *, lcm_url: str, out=print):
         self.lcm_url = lcm_url

@@ -1,24 +1,17 @@
 """Modbus RTU requests out of a master's byte stream, resynchronising as a slave does.
 
-A request is passed on only whole with a valid CRC; its length follows from its function
-code and, for writes, its byte count (Modbus Application Protocol V1.1b3, section 6). A
-header that cannot start a request (a function of unknown length, a byte count beyond the
-frame or other than its register count says) or a bad CRC drops one byte and the search
-resumes: the next valid request is answered, never a wait for promised bytes. A header
-that promises more bytes than have come is given up as soon as a whole CRC-valid request
-follows it in what has come (the CRC scan a slave uses to find the frame boundaries when it
-cannot time the silent interval, Modbus over Serial Line V1.02, 2.5.1.1): a burst of
-plausible headers costs the one request behind it, not the bytes they promised. Each run of
-dropped bytes counts once in a MessageBoundary. pymodbus's own framer waits for the bytes
-a byte count promises, so one malformed write would swallow the requests behind it; this
-one stands in front of it.
+A request is passed on only whole with a valid CRC; its length follows from its function code and,
+for writes, its byte count (Modbus Application Protocol V1.1b3, section 6). A header that cannot
+start a request (unknown function, byte count beyond the frame or unlike its register count) or a
+bad CRC drops one byte and the search resumes. A header promising more bytes than have come is given
+up once a whole CRC-valid request follows it (the CRC scan of Modbus over Serial Line V1.02,
+2.5.1.1), so a burst of plausible headers costs one request, not the bytes they promised (pymodbus's
+own framer, behind this one, would wait for them). Each run of dropped bytes counts once in a
+MessageBoundary.
 
-Addressing (Modbus over Serial Line V1.02, 2.1): a slave answers only requests addressed to
-it. A request for another slave address, or for the broadcast address 0, is framed (so the
-stream stays in step) and not passed on: on a shared RS-485 line an answer would collide with
-the addressed slave's, and a broadcast is never answered. The emulated gripper does not
-carry out broadcast writes either (the driver never sends one).
-"""
+Addressing (Modbus over Serial Line V1.02, 2.1): a request for another slave address or the
+broadcast address 0 is framed (the stream stays in step) and not passed on: on a shared RS-485 line
+an answer would collide with the addressed slave's, and a broadcast is never answered."""
 
 from pymodbus.framer.rtu import FramerRTU
 

@@ -5,8 +5,7 @@ the inverse calibration) and, when a finger's AD7147 completes a sequence, its 1
 Frames follow the stream's own clock or a given `trial_clock`; with a `gripper_request` the
 replay holds at each recorded grip or release until the emulated gripper is commanded alike
 (docs/hardware.md, "The commands"). Faults are drawn per frame from a seeded generator; a
-full pty buffer drops frames (counted) and never blocks.
-"""
+full pty buffer drops frames (counted) and never blocks."""
 
 import collections
 import dataclasses
@@ -34,8 +33,7 @@ MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 
 @dataclasses.dataclass
 class TactileRecording:
     """The raw pad signals of a recorded trial: times [s] ascending; forces (n, 12) [N];
-    accelerations (m,) or (m, 3) [m/s^2]; optionally the gripper's rPR requests at their times.
-    """
+    accelerations (m,) or (m, 3) [m/s^2]; optionally the gripper's rPR requests at their times."""
     force_times: np.ndarray
     left_forces: np.ndarray
     right_forces: np.ndarray
@@ -148,8 +146,7 @@ class MyRioEmulatorConfig:
 @dataclasses.dataclass(frozen=True)
 class GripperCommandChange:
     """A change of the recorded position request from `before` to `after` [rPR bytes], made after
-    `hold_time` [s] (the last time the old request was logged).
-    """
+    `hold_time` [s] (the last time the old request was logged)."""
     hold_time: float
     before: int
     after: int

@@ -1,8 +1,7 @@
 """A virtual null-modem cable (like `socat pty pty`): two pseudo-terminals whose masters a
 thread joins, so an emulated device and the driver under test both open a tty by name.
 `connected = False` unplugs it (bytes discarded both ways); `to_device` maps what the host
-sends to what reaches the device (e.g. a framer that drops what a real receiver would).
-"""
+sends to what reaches the device (e.g. a framer that drops what a real receiver would)."""
 
 import os
 import select
@@ -20,8 +19,7 @@ def open_raw_pty() -> tuple[int, int, str]:
 
 class NullModem:
     """Joins two pseudo-terminals, `device_port` and `host_port`; the relay wakes at least every
-    `poll_interval` [s]. Use as a context manager.
-    """
+    `poll_interval` [s]. Use as a context manager."""
 
     def __init__(self, *, poll_interval: float = 0.02, to_device=None):
         self._poll_interval = poll_interval

@@ -5,8 +5,7 @@ read-only status 2000-2002) whose `action` hook runs `RobotiqGripperModel` on ev
 so a status read in the same transaction as a command already reflects it. pymodbus opens
 its port by name and a pty has one named end, so server and driver sit on the two ends of a
 `NullModem`; requests cross a ModbusRequestFramer on the way, as on a real receiver. What
-the model does: docs/hardware.md, "The emulated 2F-85".
-"""
+the model does: docs/hardware.md, "The emulated 2F-85"."""
 
 import asyncio
 import dataclasses
@@ -37,8 +36,7 @@ class RobotiqEmulatorConfig:
 
 class RobotiqGripperModel:
     """The gripper's state and behaviour, advanced on every access (time.monotonic()) and
-    thread-safe.
-    """
+    thread-safe."""
 
     def __init__(self, config: RobotiqEmulatorConfig, now: float):
         self._config = config
@@ -173,8 +171,7 @@ class RobotiqGripperModel:
 
 class RobotiqEmulator:
     """Serves `RobotiqGripperModel` over Modbus RTU on `port`; start and stop with a `with` block;
-    `disconnect()` silences the gripper, `reconnect()` brings it back.
-    """
+    `disconnect()` silences the gripper, `reconnect()` brings it back."""
 
     def __init__(self, config: RobotiqEmulatorConfig | None = None):
         self._config = dataclasses.replace(config or RobotiqEmulatorConfig())

@@ -14,8 +14,7 @@
 - replay.py: a logged trial through the matcher, offline.
 - missed_waits.py: why a memorized event did not come in time.
 - synthetic.py: synthetic grasps for tests (not re-exported).
-The figure of the events is figures/events.py (kept out, so the loop needs no matplotlib).
-"""
+The figure of the events is figures/events.py (kept out, so the loop needs no matplotlib)."""
 
 from tegrasp_drake.events.correlation import (
     channel_score, event_scores_reference, max_normalized_xcorr_reference, window_contrast)

@@ -2,8 +2,7 @@
 cross-correlation R_XY(n) / sqrt(R_XX(0) R_YY(0)), R_XY(n) = sum_k x[k+n] y[k], no mean
 removed (as the paper); an all-zero window scores 0. A channel scores only when its window's
 contrast reaches `min_contrast` (docs/controller.md, "The contrast gate"). The reference
-here uses numpy.correlate; streaming_correlation.py the loop's update.
-"""
+here uses numpy.correlate; streaming_correlation.py the loop's update."""
 
 import math
 
@@ -36,8 +35,7 @@ def channel_score(peak_correlation: float, live_energy: float, template_norm: fl
                   min_contrast: float, flat_needs_flat: bool = False) -> float:
     """A channel's gated score from its window statistics: peak_correlation (max over lags
     of R_XY), live_energy R_XX(0), template_norm sqrt(R_YY(0)), the live window's extremes;
-    flat_needs_flat: a flat template scores only a flat window.
-    """
+    flat_needs_flat: a flat template scores only a flat window."""
     denominator = math.sqrt(live_energy) * template_norm
     if not denominator > 0.0:
         return 0.0
@@ -50,8 +48,7 @@ def channel_score(peak_correlation: float, live_energy: float, template_norm: fl
 
 
 def max_normalized_xcorr_reference(live: np.ndarray, template: np.ndarray) -> float:
-    """Ungated Eq. 3 of two 1-D windows, from the definition; 0.0 if either is all zero.
-    """
+    """Ungated Eq. 3 of two 1-D windows, from the definition; 0.0 if either is all zero."""
     live = np.asarray(live, dtype=float)
     template = np.asarray(template, dtype=float)
     denominator = math.sqrt(np.dot(live, live)) * math.sqrt(np.dot(template, template))
@@ -63,8 +60,7 @@ def max_normalized_xcorr_reference(live: np.ndarray, template: np.ndarray) -> fl
 def event_scores_reference(live, templates, min_contrast: float,
                            flat_needs_flat: bool = False) -> np.ndarray:
     """Gated Eq. 3 scores, one per channel in [-1, 1], of live windows against templates
-    (sequences of 1-D windows; a channel's pair shares a sample rate).
-    """
+    (sequences of 1-D windows; a channel's pair shares a sample rate)."""
     live = [np.asarray(x, dtype=float) for x in live]
     templates = [np.asarray(y, dtype=float) for y in templates]
     if len(live) != len(templates):

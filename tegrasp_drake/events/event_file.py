@@ -5,8 +5,7 @@
 
 Sorted keys, one window a line, shortest round-trip floats: a file reads back to the same
 float64 values, and recording the same data again gives identical bytes. A bad file raises
-MemorizedEventError naming the file and the command that remakes it (FORMAT.md).
-"""
+MemorizedEventError naming the file and the command that remakes it (FORMAT.md)."""
 
 import json
 import math
@@ -17,7 +16,7 @@ import numpy as np
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.files import (DuplicateKeyError, InputTooLargeError, JsonValueError,
                                      file_problem, load_json, one_line, read_bounded)
-from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS
+from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import TRANSITIONS
@@ -43,8 +42,22 @@ class MemorizedEventError(Exception):
     def __init__(self, path, problem: str, object_name: str | None = None):
         self.path = pathlib.Path(path)
         self.problem = one_line(problem)  # what is wrong, without the path and the remedy
-        remake = f"{RECORD_COMMAND} --object {object_name}" if object_name else RECORD_COMMAND
-        super().__init__(one_line(f"{self.path}: {problem}. Remake it with `{remake}`."))
+        super().__init__(one_line(f"{self.path}: {problem}. {remake_advice(object_name)}"))
+
+
+def remake_advice(object_name: str | None) -> str:
+    """The sentence that says how to remake a file of `object_name`'s events, naming only
+    options `tegrasp record-events` accepts for that name (none for a name it refuses)."""
+    if not object_name:
+        return f"Remake it with `{RECORD_COMMAND}`."
+    if object_name in BUILTIN_OBJECTS:
+        return f"Remake it with `{RECORD_COMMAND} --object {object_name}`."
+    if not OBJECT_NAME_PATTERN.match(object_name):
+        return (f"'{object_name}' is not an object name (letters, digits, '_' or '-', not "
+                "first): no events are recorded under it.")
+    return (f"Remake it with `{RECORD_COMMAND}` and the options that describe "
+            f"'{object_name}': `--scenario FILE --scenario-name NAME`, or `--set "
+            f"object.name={object_name}` with its other object.* settings.")
 
 
 # ---- Writing -------------------------------------------------------------------------

@@ -334,8 +334,7 @@ def add_event_matcher(builder, events: Mapping[str, MemorizedEvent],
     """Adds the paper's Fig. 3 comparison to `builder`: an EventMatcher (`event_matcher`).
 
     channels: the four channels' output port, or None (the caller connects them); needed
-    for an RA envelope (filters events and channels) and a noise floor (feeds `ra_floor`).
-    """
+    for an RA envelope (filters events and channels) and a noise floor (feeds `ra_floor`)."""
     raw_channels = channels
     if config is not None and config.ra_envelope_hz:
         events, channels = ra_enveloped(builder, events, channels, config)

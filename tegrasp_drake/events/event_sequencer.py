@@ -1,6 +1,5 @@
 """EventSequencer: expects memorized events one after another, in grasp order (one armed
-from a time on, as Place-Unload only in Place), for offline replays (replay.py).
-"""
+from a time on, as Place-Unload only in Place), for offline replays (replay.py)."""
 
 import math
 from collections.abc import Sequence

@@ -1,7 +1,6 @@
 """An events folder: save an object's memorized events with the index, load them back,
 find the folder that holds an object's events. Saving is all or nothing (staged files
-renamed together with Ctrl-C held back, the index last).
-"""
+renamed together with Ctrl-C held back, the index last)."""
 
 import os
 import pathlib
@@ -9,8 +8,9 @@ from typing import Annotated
 from collections.abc import Iterable, Sequence
 
 from tegrasp_drake.rig.files import interruptions_deferred, replace_problem, staged_file
+from tegrasp_drake.rig.objects import OBJECT_NAME_PATTERN
 from tegrasp_drake.events.event_file import (
-    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
+    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError, remake_advice,
     event_json_text, event_summary, event_to_json, read_index, read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import (REQUIRED_TRANSITIONS, TRANSITIONS,
@@ -29,10 +29,9 @@ class EventsDestinationError(ValueError):
 
 def check_events_destination(events_dir, object_names: Iterable[str], *,
                              keep_other_objects: bool = True) -> None:
-    """EventsDestinationError unless save_memorized_events can put `object_names`' events and
-    the index into `events_dir`: no folder (nor a part of the path that is not a folder) where
-    a file belongs and, when the other objects' entries are kept, an index there is one that
-    reads. Asked before the events are recorded (minutes of simulation), and by the save."""
+    """EventsDestinationError unless save_memorized_events can put `object_names`' events and the
+    index into `events_dir`: no folder or non-folder path part where a file belongs and, when other
+    objects' entries are kept, an index that reads. Asked before recording and by the save."""
     events_dir = pathlib.Path(events_dir)
     index = events_dir / INDEX_FILE
     targets = [index] + [events_dir / object_name / f"{transition}.json"
@@ -59,8 +58,7 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
     """Write the events' files and the index; returns the paths written.
 
     Each object given replaces its previous events (stale files removed); keep_other_objects
-    keeps the other objects' index entries. Every object needs the `required` transitions.
-    """
+    keeps the other objects' index entries. Every object needs the `required` transitions."""
     events_dir = pathlib.Path(events_dir)
     events = _sorted_events(events)
     keys = [(e.object_name, e.transition) for e in events]
@@ -130,9 +128,8 @@ def _load_entry(events_dir: pathlib.Path, entry: dict) -> MemorizedEvent:
 def load_memorized_events(events_dir: PathLike, object_name: str, *,
                           required: Sequence[str] = REQUIRED_TRANSITIONS
                           ) -> dict[str, MemorizedEvent]:
-    """The memorized events of `object_name`, by transition, in grasp order; the folder
-    must hold its `required` transitions (a corrective events folder:
-    CORRECTIVE_TRANSITIONS)."""
+    """The memorized events of `object_name`, by transition, in grasp order; the folder must hold
+    its `required` transitions (a corrective events folder: CORRECTIVE_TRANSITIONS)."""
     events_dir = pathlib.Path(events_dir)
     entries = [e for e in read_index(events_dir) if e["object"] == object_name]
     if not entries:
@@ -184,8 +181,10 @@ def find_memorized_events(folders, object_name: str, *,
         looked.append(f"{folder} (has {', '.join(objects) or 'none'})")
     error = MemorizedEventError(folders[0] / INDEX_FILE if folders else INDEX_FILE,
                                 "no events", object_name)
+    advice = (f"Record them with `{RECORD_COMMAND} ...` (they go to the first folder)."
+              if OBJECT_NAME_PATTERN.match(object_name) else remake_advice(object_name))
     error.args = (f"no memorized events of object '{object_name}' in {'; '.join(looked)}. "
-                  f"Record them with `{RECORD_COMMAND} ...` (they go to the first folder).",)
+                  f"{advice}",)
     raise error
 
 

@@ -2,8 +2,7 @@
 `window_s` window of every channel from `pre_transition_s` before each transition's physical
 event, divided by its maximum. An RA window whose peak stays below the recording's noise
 floor (ra_noise_floor.py) is stored as ones, a quiet template (beyond the paper;
-docs/controller.md, "The paper's state machine").
-"""
+docs/controller.md, "The paper's state machine")."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence
@@ -25,8 +24,7 @@ DEFAULT_PRE_TRANSITION_S = 0.25
 class TactileTrial:
     """The channels logged during one grasp (each value held until the next), and its
     transitions' physical-event times: t_sa (N,) [s], sa (N, 2) [N] [left, right]; t_ra (M,)
-    [s], ra (M, 2) [m/s^2]; transition_times: {transition: time [s]}.
-    """
+    [s], ra (M, 2) [m/s^2]; transition_times: {transition: time [s]}."""
     t_sa: np.ndarray
     sa: np.ndarray
     t_ra: np.ndarray
@@ -52,8 +50,7 @@ class TactileTrial:
 def cut_window(times: np.ndarray, values: np.ndarray, *, start_s: float, rate_hz: float,
                length: int, what: str) -> np.ndarray:
     """Samples a log (times (N,), values (N, channels)) at start_s + k / rate_hz, k < length,
-    holding the latest value -> (channels, length); ValueError naming `what` outside the log.
-    """
+    holding the latest value -> (channels, length); ValueError naming `what` outside the log."""
     grid = start_s + np.arange(length) / rate_hz
     tolerance = 1e-6 / rate_hz  # of a sample period: float noise in the time stamps
     if grid[0] < times[0] - tolerance or grid[-1] > times[-1] + tolerance:
@@ -74,8 +71,7 @@ def extract_memorized_events(
         ra_floor: Sequence[float] | None = None) -> dict[str, MemorizedEvent]:
     """One max-normalised MemorizedEvent per transition of `trial`, in grasp order, at the
     memorized (= live) rates [Hz]; ra_floor: the recording's RA noise floor [m/s^2] or None.
-    ValueError for an unknown transition, a window outside the log, or an all-zero channel.
-    """
+    ValueError for an unknown transition, a window outside the log, or an all-zero channel."""
     versions = current_package_versions() if package_versions is None else package_versions
     events = {}
     for name in sorted(trial.transition_times, key=transition_order):

@@ -1,6 +1,5 @@
 """A memorized tactile event: one object's four max-normalised channel windows around one
-grasp transition, checked on construction. Files: event_file.py, events_folder.py, FORMAT.md.
-"""
+grasp transition, checked on construction. Files: event_file.py, events_folder.py, FORMAT.md."""
 
 import dataclasses
 import importlib.metadata
@@ -26,8 +25,7 @@ _NORMALIZATION_TOLERANCE = 1e-9
 class MemorizedEvent:
     """The four channels of one object's tactile event around one grasp transition: sa, ra
     (2, window_s * rate) windows [left, right], each divided by its max |value|, starting
-    `pre_transition_s` [s] before the physical event (at `transition_time_s` [s] in its trial).
-    """
+    `pre_transition_s` [s] before the physical event (at `transition_time_s` [s] in its trial)."""
     object_name: str
     transition: str
     sa: np.ndarray

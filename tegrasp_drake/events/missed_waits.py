@@ -4,8 +4,7 @@ A wait is the time a mode spent expecting its event until the event's timeout;
 `event_waits` finds them in a trial's transitions. `classify_missed_wait` replays the
 channels with the event held expected (the run's matcher settings) and names the cause: a
 weak dynamic stimulus (SA passed, an RA channel did not: the paper's Sec. V), SA did not
-match, or matched in replay. Definitions: docs/sweeps.md, "A sweep".
-"""
+match, or matched in replay. Definitions: docs/sweeps.md, "A sweep"."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence
@@ -121,8 +120,7 @@ def ra_window_peak(trial: TactileTrial, end_s: float, window_s: float) -> np.nda
 def classify_missed_wait(trial: TactileTrial, events: Mapping[str, MemorizedEvent],
                          wait: EventWait, config: EventMatcherConfig) -> MissedWait:
     """Replays `trial` to wait.end_s with wait.transition's event held expected by an
-    EventMatcher of `config` (the run's) and classifies the wait by its ticks' scores.
-    """
+    EventMatcher of `config` (the run's) and classifies the wait by its ticks' scores."""
     if not trial.t_ra[0] <= wait.start_s <= wait.end_s <= trial.t_ra[-1] + 1e-9:
         raise ValueError(f"the wait {wait.start_s:.3f}-{wait.end_s:.3f} s is not within the "
                          f"log's {trial.t_ra[0]:.3f}-{trial.t_ra[-1]:.3f} s: the log is not "

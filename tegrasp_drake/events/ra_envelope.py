@@ -2,8 +2,7 @@
 first-order low-pass before Eq. 3, so that events memorized with one vibration transducer
 match on another (docs/transfer.md, "A remedy: the RA envelope"). y[k] = y[k-1] +
 a (u[k] - y[k-1]), a = 1 - exp(-2 pi f_c / f_s); a memorized window starts from its first
-sample as the steady state, the live filter from zero.
-"""
+sample as the steady state, the live filter from zero."""
 
 import dataclasses
 import math

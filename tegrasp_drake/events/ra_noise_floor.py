@@ -1,8 +1,7 @@
 """The RA noise floor (beyond the paper): an RA window carries no event unless its peak
 rises above its channel's noise, measured while the pads are untouched. Over the first
 `quiet_s` each low-passed RA channel gives the floor m + k s (+inf before), k = Q^-1(alpha / N)
-a union bound over a trial's N RA samples. Reasoning: docs/transfer.md, "The RA noise floor".
-"""
+a union bound over a trial's N RA samples. Reasoning: docs/transfer.md, "The RA noise floor"."""
 
 import math
 

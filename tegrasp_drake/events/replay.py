@@ -1,8 +1,7 @@
 """Replay a logged (or synthetic) trial through the tactile event systems, offline.
 `channels_trajectory` holds each logged value until the next and feeds an EventMatcher wired
 as the grasp controller wires it; `replay_events_in_sequence` advances the expected event
-as the state machine would, `replay_event_held` keeps one event expected throughout.
-"""
+as the state machine would, `replay_event_held` keeps one event expected throughout."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence
@@ -59,8 +58,7 @@ class EventReplay:
     times (T,) [s]; scores (T, 4); match (T,) 0 or 1; expected_event (T,) index or -1;
     fire_times: {transition: time [s] the sequencer passed it, or None}. At each matching tick
     (sequence replays only): windows_at_match, the scored (sa, ra) windows; scores_at_match;
-    ra_peaks_at_match, each RA channel's largest raw |value|; ra_floor_at_match (+inf: none).
-    """
+    ra_peaks_at_match, each RA channel's largest raw |value|; ra_floor_at_match (+inf: none)."""
     transitions: tuple[str, ...]
     times: np.ndarray
     scores: np.ndarray
@@ -179,8 +177,7 @@ def replay_events_in_sequence(
         armed_from_s: Mapping[str, float] | None = None) -> EventReplay:
     """Replays `trial`, expecting the events of `sequence` one after another. events: one
     object's {transition: event}; config: the matcher's thresholds; armed_from_s: {transition:
-    time [s]} before which it is not looked for.
-    """
+    time [s]} before which it is not looked for."""
     return _replay(trial, events, sequence=tuple(sequence), held=None, config=config,
                    t_end=t_end, armed_from_s=armed_from_s)
 

@@ -4,8 +4,7 @@ C(n) = sum_k x[k+n] y[k] changes by two rank-one terms when the window slides on
 indexed by the buffer column where the template starts, both land on one contiguous slice
 (two BLAS axpy calls per channel). All is recomputed by FFT when the expected event changes
 or the buffer compacts (every `slack` samples), bounding round-off. A missing sample enters
-as the channel's previous one and scores its channel 0 for N slides.
-"""
+as the channel's previous one and scores its channel 0 for N slides."""
 
 import math
 from collections.abc import Sequence
@@ -24,8 +23,7 @@ def slide_statistics(statistics: list[float], dropped_and_new: list[list[float]]
                      window: np.ndarray) -> list[float]:
     """[high, low, energy] per channel after one sample per channel left and one entered
     (dropped_and_new), from `statistics`; `window` (new included) is read only when an extreme
-    left or round-off ate the energy.
-    """
+    left or round-off ate the energy."""
     updated = []
     for channel, (dropped, new) in enumerate(dropped_and_new):
         high, low, energy = statistics[_STATISTICS * channel:_STATISTICS * (channel + 1)]
@@ -74,8 +72,7 @@ class SlidingCorrelation:
         templates: one (channels, N) array per event, at the live sample rate.
         min_contrast: live contrast a channel needs for its score to count (correlation.py).
         window: the sliding window's layout (its channels and N must be the templates').
-        flat_needs_flat: a flat template channel needs a flat live window (correlation.py).
-    """
+        flat_needs_flat: a flat template channel needs a flat live window (correlation.py)."""
 
     def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float,
                  window: SlidingWindow, flat_needs_flat: bool = False):
@@ -141,8 +138,7 @@ class SlidingCorrelation:
         """Slides the correlations by the window's new samples and scores the window against
         `event` (index or NO_EVENT), in place. state: C-contiguous float64 (BLAS writes into it);
         rows, offset, full: the window after SlidingWindowState.push; missing: per channel (it then
-        scores 0 for N slides). Returns the scores view, 0 until the window is full.
-        """
+        scores 0 for N slides). Returns the scores view, 0 until the window is full."""
         length = self._length
         left = None  # slides left per channel, read only while a missing sample is around
         if missing is not None or state.item(self._missing_at):
@@ -187,8 +183,7 @@ class SlidingCorrelation:
     def gate_below(self, state: np.ndarray, floors: list[float | None], *,
                    gate_events: bool = True) -> np.ndarray:
         """Scores, after `slide` and in place, each channel with a finite floor whose window peak is
-        not above it as noise: 1 for a flat template, else 0. Returns the scores view.
-        """
+        not above it as noise: 1 for a flat template, else 0. Returns the scores view."""
         event = int(state[self._event_at])
         if event != NO_EVENT:
             statistics = state[self._statistics_at:self._missing_at].tolist()
@@ -206,8 +201,7 @@ class SlidingCorrelation:
 
     def _recompute(self, state: np.ndarray, window: np.ndarray, offset: int,
                    event: int) -> None:
-        """Exact cross-correlation of window and event templates by FFT; later lags zeroed.
-        """
+        """Exact cross-correlation of window and event templates by FFT; later lags zeroed."""
         length = self._length
         rows = state[self._rows_at:self._size].reshape(self._n_channels, self._row_length)
         circular = np.fft.irfft(np.fft.rfft(window, self._fft_length) * self._spectra[event],
@@ -219,8 +213,7 @@ class SlidingCorrelation:
 
 class StreamingCorrelator:
     """A sliding window and its SlidingCorrelation in one flat vector, outside a Diagram (tests,
-    benchmarks): push a sample, get the scores. slack: samples between exact recomputations.
-    """
+    benchmarks): push a sample, get the scores. slack: samples between exact recomputations."""
 
     def __init__(self, templates: Sequence[np.ndarray], *, min_contrast: float, slack: int,
                  flat_needs_flat: bool = False):
@@ -253,8 +246,7 @@ class StreamingCorrelator:
 
     def push(self, state: np.ndarray, samples, event: int) -> np.ndarray:
         """Appends one sample per channel and scores the window against `event` (or NO_EVENT),
-        in place in `state` (C-contiguous float64); returns the scores view, 0 until full.
-        """
+        in place in `state` (C-contiguous float64); returns the scores view, 0 until full."""
         self._correlation.check_event(event)
         samples, missing = self._window.entering_samples(
             state, np.asarray(samples, dtype=float))

@@ -1,8 +1,7 @@
 """Synthetic tactile channels of a grasp, shaped like the simulated ones, for tests.
 SA per finger [N]: contact, load, a dip at table touch, unload, as smooth steps. RA per
 finger [m/s^2]: ring-downs at contact, lift-off and table touch plus the lift's motion.
-Noise is Gaussian on SA and on each RA axis before the magnitude (a positive floor, as |a|).
-"""
+Noise is Gaussian on SA and on each RA axis before the magnitude (a positive floor, as |a|)."""
 
 import dataclasses
 

@@ -1,7 +1,6 @@
 """The grasp transitions that memorized tactile events can trigger, in grasp order, each
 anchored on a physical event of the ideal grasp (extraction.py). A name is `from_to` in
-lower case (reach_load).
-"""
+lower case (reach_load)."""
 
 # The value of an `expected_event` or `scored_event` port when no event is expected.
 NO_EVENT = -1

@@ -11,5 +11,4 @@ table1.py: Table I against the paper, from a sweep.
 sweep.py: per-position success maps of a sweep.
 latency.py: detection latency distributions of a sweep.
 ra_transients.py: the first-contact RA transient of the accelerometer chain and of the film.
-figure_files.py: new_figure and save_figure.
-"""
+figure_files.py: new_figure and save_figure."""

@@ -1,6 +1,5 @@
 """Fig. 5c of the paper: the memorized events, one row per transition, one column per channel, one
-line per object; each window max-normalised, time relative to the physical event (dashed line).
-"""
+line per object; each window max-normalised, time relative to the physical event (dashed line)."""
 
 import pathlib
 from collections.abc import Mapping

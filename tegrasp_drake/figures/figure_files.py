@@ -1,7 +1,6 @@
 """A figure, its file and its format: every figure module makes its Figure with `new_figure`
 and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib's object API
-(no pyplot, no global backend state).
-"""
+(no pyplot, no global backend state)."""
 
 import pathlib
 

@@ -1,7 +1,6 @@
 """Per-position success maps: one panel per (controller, object, phase), the marker grid
 seen from above (stroke y across, palm normal x up), each marker coloured by its success
-rate; the well-placed marker outlined.
-"""
+rate; the well-placed marker outlined."""
 
 from collections import defaultdict
 from pathlib import Path

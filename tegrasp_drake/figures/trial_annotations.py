@@ -1,7 +1,6 @@
 """What the figures of a trial (Fig. 5a-b, 9, 10) draw over its signals: states,
 transitions by trigger, the ground truth's physical events, the matcher's scores and a
-title; labels stacked so that none overlaps another (`stack_labels`).
-"""
+title; labels stacked so that none overlaps another (`stack_labels`)."""
 
 import dataclasses
 
@@ -137,9 +136,8 @@ class Label:
 
 def stack_labels(axis, labels: list[Label], *, fontsize: float = 7.5, bottom: float = 0.0,
                  gap_px: float = 4.0) -> int:
-    """Places `labels` on their times in `axis`, each on the lowest level where it overlaps
-    none (leader lines from higher levels); returns the number of levels. Call it once the
-    layout and time limits are set."""
+    """Places `labels` at their times in `axis`, each on the lowest level where it overlaps none
+    (leader lines from higher ones); returns the levels. Call once layout and limits are set."""
     figure = axis.figure
     renderer = figure.canvas.get_renderer()
     texts, right_edges, levels = [], [], []

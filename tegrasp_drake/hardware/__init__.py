@@ -12,8 +12,7 @@ message_boundary.py: decode, check, count and skip what a device sends.
 lcm_boundary.py: LCM messages through that boundary.
 device_log_messages.py: tactile and gripper data as LCM messages for logs.
 realtime.py: real-time scheduling of the control loop.
-lcm_time.py, state_outputs.py: utime conversion; scalar ports from a receiver's state.
-"""
+lcm_time.py, state_outputs.py: utime conversion; scalar ports from a receiver's state."""
 
 from tegrasp_drake.hardware.device_fault import (
     DEVICE_FAULT, DRIVER_ERROR, SILENT, DeviceFault, describe_faults)

@@ -4,8 +4,7 @@
     station: !HardwareStationConfig              # MakeHardwareStation
       arm: {lcm_url: "udpm://239.255.76.67:7667?ttl=0"}
       gripper: {port: /dev/ttyUSB0, device_id: 9}
-      tactile: {port: /dev/ttyACM0, calibration_file: pads.yaml}
-"""
+      tactile: {port: /dev/ttyACM0, calibration_file: pads.yaml}"""
 
 import dataclasses
 import os
@@ -33,8 +32,7 @@ DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
 @dataclasses.dataclass
 class JacoLcmDriver:
     """The JACO2 through the Kinova LCM driver (joint-velocity mode, 100 Hz) on `lcm_url`
-    (`?ttl=0` keeps multicast on this host), Drake's KINOVA_JACO_{COMMAND,STATUS} channels.
-    """
+    (`?ttl=0` keeps multicast on this host), Drake's KINOVA_JACO_{COMMAND,STATUS} channels."""
     lcm_url: str = DEFAULT_LCM_URL
     tracker: JacoVelocityTrackerConfig = dataclasses.field(
         default_factory=JacoVelocityTrackerConfig)
@@ -48,8 +46,7 @@ class JacoLcmDriver:
 @dataclasses.dataclass
 class SerialTactileDriver:
     """The myRIO tactile stream (hardware/myrio/TACTILE_FRAME.md) on a serial port, with an
-    optional TactileCalibration YAML ("" for the defaults).
-    """
+    optional TactileCalibration YAML ("" for the defaults)."""
     port: str = "/dev/ttyACM0"
     # 23 kB/s of frames is 25 % of 921600 baud (TACTILE_FRAME.md)
     baudrate: int = bounded(921600, low=300, high=12_000_000, unit="baud")
@@ -66,8 +63,7 @@ class SerialTactileDriver:
 @dataclasses.dataclass
 class DeviceWatchdogConfig:
     """Silence [s] after which a device trips the watchdog (hardware/watchdog.py), and the
-    extra time a device may take to say anything after the start.
-    """
+    extra time a device may take to say anything after the start."""
     arm_timeout: float = bounded(DEFAULT_TIMEOUTS["arm"], low=0.0, low_open=True, high=10.0,
                                  unit="s", below="must be positive [s]")
     gripper_timeout: float = bounded(DEFAULT_TIMEOUTS["gripper"], low=0.0, low_open=True,

@@ -1,7 +1,6 @@
 """A named fault reported by a driver or by the device watchdog: which device, what (with
 the device's own code where it has one) and since when, on both clocks (Context time and
-wall time, to match operator logs). The state machine reports `str(fault)` on Failed.
-"""
+wall time, to match operator logs). The state machine reports `str(fault)` on Failed."""
 
 import dataclasses
 import datetime
@@ -15,8 +14,7 @@ DRIVER_ERROR = "driver"      # the driver could not bring the device up (e.g. ac
 @dataclasses.dataclass(frozen=True)
 class DeviceFault:
     """One fault of one device; `code` the device's fault code or -1; `since_*` the last good
-    data (SILENT) or the first sighting, as Context time and time.time() [s].
-    """
+    data (SILENT) or the first sighting, as Context time and time.time() [s]."""
     device: str
     kind: str
     description: str

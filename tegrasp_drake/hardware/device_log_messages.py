@@ -1,8 +1,7 @@
 """The hardware station's device data as LCM messages (tegrasp_drake/lcmtypes), so a bus log
 holds all the control loop saw: Sender systems (vectors -> message) and pure decoders back
 to arrays. Channels: TEGRASP_TACTILE (1 kHz), TEGRASP_GRIPPER (100 Hz); the run adds
-TEGRASP_TRANSITION, TEGRASP_FAULT and TEGRASP_RUN_INFO. `utime` is Context time [us].
-"""
+TEGRASP_TRANSITION, TEGRASP_FAULT and TEGRASP_RUN_INFO. `utime` is Context time [us]."""
 
 import time
 

@@ -1,7 +1,6 @@
 """FaultLatch: the faults of every source, kept once seen, and the arm's stop signal. A
 Robotiq fault code can clear, but the run that saw it must not carry on: every fault stays,
-with its own `since`, and `stop` stays set.
-"""
+with its own `since`, and `stop` stays set."""
 
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem

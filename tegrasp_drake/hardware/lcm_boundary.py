@@ -2,8 +2,7 @@
 refuses, by reason, short bytes, another type's fingerprint and truncated fields;
 `CheckedLcmSubscriber` is Drake's LcmSubscriberSystem decoding through a boundary (a rejected
 message leaves the last good one). No Python callback is subscribed on a DrakeLcm a diagram
-pumps: docs/hardware.md, "The real-time loop on a busy host".
-"""
+pumps: docs/hardware.md, "The real-time loop on a busy host"."""
 
 import time
 from collections.abc import Callable
@@ -69,9 +68,8 @@ def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
 
 
 def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: float) -> bool:
-    """Pumps `lcm` until `subscriber` received a message its boundary accepts or
-    time.monotonic() passes `deadline`; whether one came. Counts nothing; call it before the
-    Simulator runs, never inside it."""
+    """Pumps `lcm` until `subscriber` received a message its boundary accepts (True) or
+    time.monotonic() passes `deadline`. Counts nothing; call it before the Simulator runs."""
     serializer = subscriber.checked_serializer
     probe = serializer.CreateDefaultValue()
     received = subscriber.WaitForMessage(0, None, 1e-6)

@@ -1,8 +1,7 @@
 """The one boundary every message from a device crosses: decode, check, count, skip. A check
 returns the checked value or raises `RejectedMessage(reason, detail)` (any other exception counts
 as "undecodable"). A rejected message is counted and skipped and the receiver keeps its last good
-value, so a device sending nothing usable looks silent to the watchdog. Thread-safe.
-"""
+value, so a device sending nothing usable looks silent to the watchdog. Thread-safe."""
 
 import dataclasses
 import threading
@@ -43,8 +42,7 @@ class MessageCounters:
 
 class MessageBoundary:
     """Checks messages from one `source` ("arm: KINOVA_JACO_STATUS") with
-    check(message, *args) -> the checked value, or RejectedMessage.
-    """
+    check(message, *args) -> the checked value, or RejectedMessage."""
 
     def __init__(self, source: str, check: Callable | None = None):
         self.source = source

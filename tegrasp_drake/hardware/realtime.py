@@ -1,8 +1,7 @@
 """Scheduling of the real-time control loop, so that a busy host does not delay it:
 `realtime_scheduling` raises the calling thread for a block, falling back from "fifo" to
 "nice" to "normal"; emulators use `raise_scheduling`. Why: docs/hardware.md, "The real-time
-loop on a busy host".
-"""
+loop on a busy host"."""
 
 import contextlib
 import os

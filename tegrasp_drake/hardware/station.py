@@ -2,8 +2,7 @@
 so the controller runs unchanged on either: the JACO2 on LCM, the 2F-85 on Modbus RTU and
 the myRIO stream, each on its own thread; a DeviceWatchdog and a FaultLatch that hold the arm
 still; tactile and gripper data republished on the bus for the log. Use it in a `with`
-block, call `wait_until_ready()` before Initialize() and run at real-time rate 1.
-"""
+block, call `wait_until_ready()` before Initialize() and run at real-time rate 1."""
 
 import time
 

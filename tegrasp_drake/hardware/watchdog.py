@@ -1,7 +1,6 @@
 """A watchdog that names the device that stopped talking, and since when, and stops the arm.
 A device is silent when its `time_measured` has not changed for longer than its timeout
-(Context time), with `startup_grace` more before it is first heard. A trip latches.
-"""
+(Context time), with `startup_grace` more before it is first heard. A trip latches."""
 
 import dataclasses
 import time
@@ -30,8 +29,7 @@ class DeviceActivity:
 
 class DeviceActivities(tuple):
     """The watchdog's state, ((device, DeviceActivity), ...); immutable, so Drake's 1 kHz
-    Context copies share it.
-    """
+    Context copies share it."""
 
     def __deepcopy__(self, memo):
         return self

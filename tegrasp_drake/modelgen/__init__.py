@@ -6,5 +6,4 @@
   robotiq_linkage_sdf.py  the 2F-85 with its five-bar finger linkage
   pad_mesh.py             the pad's refined tetrahedral meshes
   table_sdf.py            the table with the paper's 9 object markers
-  sdf_text.py             SDFormat text helpers (poses, inertias, friction)
-"""
+  sdf_text.py             SDFormat text helpers (poses, inertias, friction)"""

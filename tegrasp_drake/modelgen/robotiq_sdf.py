@@ -21,6 +21,17 @@ BASE_MASS, FINGER_MASS = 0.80, 0.05  # kg, the datasheet's 0.9 kg in all
 # a 1 ms step (measured on this scene).
 PAD_MODULUS = 2.0e6  # Pa
 PAD_DISSIPATION = 5.0  # s/m
+# [s] Read only by `plant_config.discrete_contact_approximation: sap`: SAP damps contact with a
+# linear Kelvin-Voigt term d = tau k, tau the sum of the pair's relaxation times (Drake's
+# default 0.1 s for a geometry that sets none, as the objects); `lagged` (the default),
+# `similar` and `tamsi` use PAD_DISSIPATION instead (Drake, DiscreteContactApproximation).
+# A linear damper has one loss factor a frequency, tan(delta) = 2 pi f tau: 0.02 s gives 0.13
+# at 1 Hz, a silicone or urethane elastomer's 0.05-0.3, on the grasp's slow load changes
+# (grip, lift). At the touch it is no restitution: on k = E A / (t / 2) = 4.8e5 N/m and the
+# 0.06-0.2 kg objects (w = 1.5-2.8e3 rad/s) zeta = tau w / 2 = 15-28 overdamps it (e = 0);
+# an elastomer's e of 0.5-0.8 (zeta 0.07-0.22) needs tau 0.05-0.3 ms, as PAD_DISSIPATION's
+# Hunt-Crossley term, whose tau at the touch is d x: 0.26 ms at 25 N (e 0.92 at 25 mm/s).
+PAD_RELAXATION_TIME_S = 0.02
 PAD_FRICTION = materials.PAD_COVER
 FINGER_FRICTION = materials.ALUMINIUM  # the finger behind the pad and the palm
 FINGER_LINK_THICKNESS = 0.010  # m, rigid finger behind the pad
@@ -40,7 +51,7 @@ def pad_text(sign: float, relative_to: str | None = None, mesh_uri: str | None =
             "<drake:mesh_resolution_hint>0.004</drake:mesh_resolution_hint>"
             f"<drake:hunt_crossley_dissipation>{PAD_DISSIPATION:g}"
             "</drake:hunt_crossley_dissipation>"
-            "<drake:relaxation_time>0.02</drake:relaxation_time>"
+            f"<drake:relaxation_time>{PAD_RELAXATION_TIME_S:g}</drake:relaxation_time>"
             f"{friction_text(PAD_FRICTION)}</drake:proximity_properties></collision>"
             f'<visual name="pad">{center}<geometry>{box}</geometry>'
             "<material><diffuse>0.1 0.1 0.1 1</diffuse></material></visual>")

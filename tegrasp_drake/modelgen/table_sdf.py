@@ -13,7 +13,7 @@ STROKE_OFFSETS = (-0.015, 0.0, 0.015)  # m, along world y
 NORMAL_OFFSETS = (-0.010, 0.0, 0.010)  # m, along world x
 MODULUS = 1.0e7  # Pa
 DISSIPATION = 5.0  # s/m, Hunt-Crossley, as the pads'
-RELAXATION_TIME_S = 0.02  # as the pads'
+RELAXATION_TIME_S = 0.02  # s, as the pads' (robotiq_sdf.PAD_RELAXATION_TIME_S)
 FRICTION = materials.TABLE_TOP
 
 

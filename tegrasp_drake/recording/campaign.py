@@ -1,8 +1,7 @@
 """One event-recording campaign: open-loop grasps of one object, each cut into memorized
 events, the template runs' windows combined per transition by their mean (docs/controller.md,
 "Events from an ensemble of grasps"). Run k is seeded base + k, each base at or above
-1_000_000, apart from every sweep's seeds.
-"""
+1_000_000, apart from every sweep's seeds."""
 
 import dataclasses
 import logging

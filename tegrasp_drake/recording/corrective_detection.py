@@ -1,8 +1,7 @@
 """How well the corrective triggers detect their situations, from recorded logs: the
 memorized corrective events and the heuristic triggers they would replace, on the same spans,
 and the threshold rule: the centre of the admissible range (the highest admissible pair sits
-at its edge and misses real hits).
-"""
+at its edge and misses real hits)."""
 
 import dataclasses
 import math

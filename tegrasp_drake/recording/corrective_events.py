@@ -1,8 +1,7 @@
 """Memorized corrective events: a slip during Lift (`lift_load`) and a hit during Hold
 (`hold_avoid`), matched by Eq. 3 like the grasp transitions, recorded from open-loop grasps
 of perturbed scenes ("template" runs make the events, "held_out" runs choose the thresholds).
-docs/controller.md, "Memorized corrective triggers".
-"""
+docs/controller.md, "Memorized corrective triggers"."""
 
 import dataclasses
 

@@ -1,8 +1,7 @@
 """How well a memorized event detects its transition, from recorded logs: detection, false
 triggers and latency at any Eq. 3 threshold pair, each trial replayed once per transition.
 choose_thresholds takes, of the pairs with no false trigger and the most detections, the
-highest: the widest margin above the spans' scores before their events.
-"""
+highest: the widest margin above the spans' scores before their events."""
 
 import dataclasses
 from collections.abc import Iterable, Sequence

@@ -1,8 +1,7 @@
 """Memorized events from an ensemble of randomised ideal grasps, for the taxel_aware
 controller: a campaign of the object's ideal grasp, each run its own draw of ENSEMBLE_RANGES
 and noise seed, combined by their mean; the first TEMPLATE_RUNS make the events, the rest
-choose the thresholds. docs/controller.md, "Events from an ensemble of grasps".
-"""
+choose the thresholds. docs/controller.md, "Events from an ensemble of grasps"."""
 
 import dataclasses
 

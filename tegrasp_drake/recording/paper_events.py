@@ -1,8 +1,7 @@
 """Memorizing the tactile events of the ideal grasp (Sec. III-A): the paper's campaign. The
 ideal open-loop grasp of one object is cut into 0.5 s windows around the physical events of
 EVENT_OF_TRANSITION (campaign.py, events/FORMAT.md); the lift must start with GRIP_FRACTION
-of the settled grip on the weaker pad, else the recording says to lengthen grasp.load_s.
-"""
+of the settled grip on the weaker pad, else the recording says to lengthen grasp.load_s."""
 
 import logging
 from collections.abc import Callable

@@ -15,5 +15,4 @@
   ranges.py                 each numeric setting's unit and range
   api_boundary.py           argument checks at the public API; dataclasses take fields only
   files.py                  atomic writes, bounded reads, signals, strict JSON
-  npz_headers.py            .npz arrays checked from their headers
-"""
+  npz_headers.py            .npz arrays checked from their headers"""

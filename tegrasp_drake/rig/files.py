@@ -134,11 +134,9 @@ def folder_problem(path) -> str | None:
 
 
 def replace_problem(path) -> str | None:
-    """Why an atomic write (a temporary file renamed onto `path`) cannot put a file at `path`,
-    in words that follow it, or None: a folder in its place (a rename never replaces one), or
-    a part of its folder path that is not a folder; checked before the work whose result it
-    is, so that result is never made only to be lost. (A FIFO, socket or device entry at
-    `path` is replaced as a file is.)"""
+    """Why an atomic write (a temporary file renamed onto `path`) cannot put a file at `path`, in
+    words that follow it, or None: a folder in its place (a rename never replaces one) or a
+    non-folder on its folder path; ask before the work, so its result is never lost."""
     path = pathlib.Path(path)
     try:
         mode = os.lstat(path).st_mode
@@ -158,9 +156,8 @@ def replace_problem(path) -> str | None:
 
 
 def non_folder_on_path(folder) -> tuple[pathlib.Path, OSError | None] | None:
-    """The nearest existing part of `folder` (itself first) when it is not a folder, with the
-    OSError that stopped the look if one did; None when that part is a folder or no part
-    exists, so `folder` is one or can be made."""
+    """The nearest existing part of `folder` (itself first) when not a folder, with the OSError
+    that stopped the look if any; None when `folder` is one or can be made."""
     place, error = _nearest_existing_part(folder)
     if error:
         return place, error
@@ -332,8 +329,7 @@ def _refuse_nonstandard_constant(name: str):
 
 
 def _float_ranged_int(text: str) -> int:
-    """A JSON integer, through the one bounded integer reader (integer_text.py): refused when
-    no float64 holds it."""
+    """A JSON integer via the bounded reader (integer_text.py); refused when no float64 holds it."""
     from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
     try:
         return read_integer(text, yaml11=False)

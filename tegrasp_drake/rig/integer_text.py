@@ -1,15 +1,12 @@
-"""Integers written as text, read with a bound: the one integer reader of every typed reader
-(YAML files and `--set` values through typed_yaml.parse_yaml, JSON through files.load_json,
-integer command-line options).
+"""Integers written as text, read with a bound: the one integer reader of every typed reader (YAML
+and `--set` values via typed_yaml.parse_yaml, JSON via files.load_json, integer options).
 
-Python refuses to convert decimal text of more than 4300 digits (`sys.int_max_str_digits`,
-a guard against quadratic-time conversion), and no setting of this package holds a number a
-float64 cannot (the float fields take integers too). So an integer is read only when it lies
-within a float64's range, |n| <= 1.8e308, which is decided from the text's length before any
-conversion; past it, IntegerTextError says how many digits the text has. Forms read: the
-decimal integers of JSON and YAML 1.2, and YAML 1.1's (what PyYAML reads): `_` separators,
-0b, 0x and 0 (octal) prefixes and base-60 `1:30`.
-"""
+Python refuses decimal text of more than 4300 digits (`sys.int_max_str_digits`, against
+quadratic-time conversion), and no setting holds a number a float64 cannot (float fields take
+integers too). So an integer is read only within a float64's range, |n| <= 1.8e308, decided from the
+text's length before any conversion; past it, IntegerTextError says how many digits the text has.
+Forms read: JSON's and YAML 1.2's decimal integers, and YAML 1.1's (PyYAML's): `_` separators, 0b,
+0x and 0 (octal) prefixes and base-60 `1:30`."""
 
 import math
 import re

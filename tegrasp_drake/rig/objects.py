@@ -2,7 +2,8 @@
 centre of the base, z up. The paper gives no sizes: the built-in ones fit the 85 mm stroke
 with the +-1.5 cm misplacement and 2.5 mm finger clearance; masses are those of plastic or
 cardboard objects that size. `friction` is the geometry's own coefficient, not a pair's
-(docs/model.md, "Friction by material pair")."""
+(docs/model.md, "Friction by material pair"), written as both its static and dynamic
+coefficient: Drake's discrete solvers use only the dynamic one, for sticking too."""
 
 import dataclasses
 import math

@@ -34,9 +34,6 @@ def package_events_dir() -> pathlib.Path:
     return _data_dir("tegrasp_drake.events_data", "events")
 
 
-events_dir = package_events_dir  # the old name (read-only: never write there)
-
-
 def user_events_dir() -> pathlib.Path:
     """Where the user's recorded events go (module docstring); UserPathError naming the
     variable when $TEGRASP_EVENTS_DIR names something that is not a folder or cannot be one."""

@@ -28,6 +28,11 @@ class ConfigError(ValueError):
         super().__init__(_bounded_message(one_line(str(message))))
 
 
+class YamlSyntaxError(ConfigError):
+    """Text that is not YAML (parse_yaml), told apart from YAML past the reader's limits by a
+    caller that also takes free text."""
+
+
 # a value pasted by mistake must not make an error hundreds of kB long
 ECHO_CHARS = 80
 MAX_MESSAGE_CHARS = 1000
@@ -77,7 +82,10 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
     """The data of YAML `text` (module docstring); ConfigError "SOURCE: ..." in one line
     naming the line and column (less the offsets of text the caller put before it), or the
     field by its dotted path (`root_key`: the name to give the top-level key, for a --set
-    value the caller wrapped in one)."""
+    value the caller wrapped in one); YamlSyntaxError for text that is not YAML. None for
+    empty text."""
+    if not text:
+        return None
     if "\x00" in text:
         raise ConfigError(f"{source}: holds a NUL byte; it is not YAML text")
     if len(text.encode("utf-8", errors="replace")) > MAX_YAML_BYTES:
@@ -89,8 +97,8 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
             _check_nodes(root, source, line_offset, column_offset, root_key)
         return yaml_load(data=text)
     except yaml.YAMLError as e:
-        raise ConfigError(f"{source}: not valid YAML: "
-                          f"{_yaml_problem(e, line_offset, column_offset)}") from None
+        raise YamlSyntaxError(f"{source}: not valid YAML: "
+                              f"{_yaml_problem(e, line_offset, column_offset)}") from None
     except RecursionError:
         raise ConfigError(f"{source}: the YAML nests too deeply") from None
 

@@ -4,8 +4,7 @@
 Each finger is an underactuated five-bar in the base's y-z plane [m] (y along the stroke,
 z the approach axis). Angles are the +y finger's SDF joint coordinates: theta, the driver's
 turn from open (positive closing); beta, the coupler's turn off its pin (0 on it, negative
-off it).
-"""
+off it)."""
 
 import dataclasses
 import math

@@ -6,8 +6,7 @@ the times of the physical events that mark the transitions (noise-free simulatio
                        plateau, grip_plateau_n): the grip has settled, the earliest lift
   lift_start           the scripted ideal grasp's start of Lift (None in closed loop)
   table_touch          the object's lowest point back within TOUCH_HEIGHT_M of the table
-                       after lift-off (a tilted object touches with an edge)
-"""
+                       after lift-off (a tilted object touches with an edge)"""
 
 import dataclasses
 
@@ -103,9 +102,8 @@ def grip_plateau_n(log, after: float = 0.0) -> float:
 
 
 def grip_force_time(log, grip_force: float, after: float = 0.0):
-    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the grip
-    force, or else of grip_plateau_n (thin objects); None when the force never rises above
-    CONTACT_FORCE_N."""
+    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the grip force,
+    else of grip_plateau_n (thin objects); None when it never rises above CONTACT_FORCE_N."""
     weaker = true_sa(log).min(axis=1)
     level = grip_force
     if not np.any((weaker >= GRIP_FRACTION * grip_force) & (log.t_sa >= after)):

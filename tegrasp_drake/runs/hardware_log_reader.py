@@ -1,8 +1,7 @@
 """The log of a hardware run (an LCM event log, lcm-logger's) read back: `read_run_log` ->
 RunLog. Channels, types and fields: tegrasp_drake/lcmtypes/README.md. A damaged log is read
 as far as it goes (RunLog.damage says what was lost); hardware_log_replay.py re-runs the
-matcher on it.
-"""
+matcher on it."""
 
 import dataclasses
 import pathlib

@@ -1,8 +1,7 @@
 """The event matcher re-run offline on a hardware run's LCM log (`tegrasp replay LOG`):
 the SA and RA channels computed from TEGRASP_TACTILE as the controller did, matched against
 the object's memorized events two ways (per logged mode, and in grasp order; events/replay.py),
-with the run's own matcher settings (TEGRASP_RUN_INFO), else the defaults.
-"""
+with the run's own matcher settings (TEGRASP_RUN_INFO), else the defaults."""
 
 import dataclasses
 import pathlib

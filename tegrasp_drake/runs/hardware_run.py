@@ -1,14 +1,12 @@
 """A grasp on the real devices (or their emulators) in real time, with a replayable log.
 
-`run_on_hardware` builds the controller diagram around MakeHardwareStation as around the
-simulated station (grasp_diagram.py), waits for the devices and runs the Simulator at
-real-time rate 1. It prints and publishes each transition (TEGRASP_TRANSITION) and device
-fault (TEGRASP_FAULT: the station holds the arm still, the state machine goes to Failed),
-prints each device's first malformed message of a kind and counts them all, and ends
-END_MARGIN_S after Done, Failed or a fault, or at the time limit. A udpm:// bus is logged
-whole (first TEGRASP_RUN_INFO: scenario, hardware config, controller), which
-hardware_log_reader.py reads and `tegrasp replay` re-runs (hardware_log_replay.py).
-"""
+`run_on_hardware` builds the controller diagram around MakeHardwareStation as around the simulated
+station (grasp_diagram.py), waits for the devices and runs the Simulator at real-time rate 1. It
+prints and publishes each transition (TEGRASP_TRANSITION) and device fault (TEGRASP_FAULT: the
+station holds the arm still, the state machine goes to Failed), prints each device's first malformed
+message of a kind and counts them all, and ends END_MARGIN_S after Done, Failed or a fault, or at
+the time limit. A udpm:// bus is logged whole (first TEGRASP_RUN_INFO: scenario, hardware config,
+controller), which hardware_log_reader.py reads and `tegrasp replay` re-runs."""
 
 import dataclasses
 import json
@@ -52,12 +50,10 @@ LOG_MIN_FREE_BYTES = 1_000_000
 
 
 class BusLogWriter:
-    """Records every message on the bus at `url` to an LCM log with lcm-logger in its own
-    process: a Python all-channel subscriber here would slow the control loop (by a third),
-    DrakeLcm's all-channel subscription drops messages when pumped in step with its own
-    publications, and a Python callback on the DrakeLcm the Simulator pumps is unsafe
-    (hardware/lcm_boundary.py). A memq:// bus lives inside this process, where no logger
-    can hear it: nothing is recorded, and `unrecorded` says so."""
+    """Records every message on the bus at `url` to an LCM log with lcm-logger in its own process
+    (here, a Python all-channel subscriber slows the loop by a third, DrakeLcm's drops messages,
+    and a callback on the Simulator's DrakeLcm is unsafe: hardware/lcm_boundary.py). A memq://
+    bus cannot be heard from outside this process: nothing is recorded, `unrecorded` says so."""
 
     def __init__(self, url: str, path, *, start_timeout: float = 5.0):
         self.path = pathlib.Path(path)
@@ -81,9 +77,8 @@ class BusLogWriter:
         time.sleep(LOGGER_SUBSCRIBE_S)
 
     def problem(self) -> str | None:
-        """Why the log has stopped recording (None while it records, or when it records
-        nothing): lcm-logger exited, or the disk holding it has less than
-        LOG_MIN_FREE_BYTES left."""
+        """Why the log stopped (None while it records, or records nothing): lcm-logger exited, or
+        its disk has less than LOG_MIN_FREE_BYTES left."""
         if self._process is None:
             return None
         if self._process.poll() is not None:
@@ -246,8 +241,7 @@ class HardwareRunResult:
         return self.sim_time / self.wall_time if self.wall_time > 0 else float("nan")
 
     def as_dict(self) -> dict:
-        """The JSON form (the result.json beside the log): times in s, faults and counters
-        as dicts."""
+        """The JSON form (result.json beside the log): times in s, faults and counters as dicts."""
         return {"transitions": self.transitions,
                 "faults": [dataclasses.asdict(fault) for fault in self.faults],
                 "sim_time_s": self.sim_time, "wall_time_s": self.wall_time,
@@ -281,11 +275,9 @@ def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None 
                     drake_lcm: DrakeLcm | None = None, out: Callable = print,
                     progress: Callable | None = None) -> HardwareRunResult:
     """Runs the grasp on the devices of `config` (default: the scenario's `station`, then a
-    HardwareStationConfig) in real time (module docstring).
-
-    controller, events, corrective_events: default the scenario's and the package's; drake_lcm:
-    a DrakeLcm instead of one on the config's URL; out: prints a line; progress: progress(t,
-    end) [s of Context time]."""
+    HardwareStationConfig) in real time (module docstring). controller, events,
+    corrective_events: default the scenario's and the package's; drake_lcm: instead of one on
+    the config's URL; out: prints a line; progress: progress(t, end) [s of Context time]."""
     check_ranges(scenario, "run_on_hardware: scenario")  # a config changed after loading
     config = config or scenario.station
     if not isinstance(config, HardwareStationConfig):

@@ -1,6 +1,5 @@
 """The ideal open-loop grasp as a runnable trial (Sec. III-A): the grasp diagram with the
-scripted grasp (control/scripted_grasp.py), simulated to the script's end and a little beyond.
-"""
+scripted grasp (control/scripted_grasp.py), simulated to the script's end and a little beyond."""
 
 import dataclasses
 import logging

@@ -2,8 +2,7 @@
 
 The gripper welded in the side-grasp pose above the table closes at a constant finger
 speed on an object standing nearer its left pad, which strikes first. Used by the RA tests
-and analysis/compare_ra_transients.py.
-"""
+and analysis/compare_ra_transients.py."""
 
 import dataclasses
 

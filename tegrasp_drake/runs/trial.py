@@ -1,7 +1,6 @@
 """One closed-loop grasp trial: build the station and controller, simulate until the state
 machine ends or time runs out, log, and judge it against the ground truth. `run_trial`
-returns a TrialResult (a sweep's trial function: sweep/trial_function.py).
-"""
+returns a TrialResult (a sweep's trial function: sweep/trial_function.py)."""
 
 import dataclasses
 import logging

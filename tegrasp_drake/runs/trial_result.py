@@ -1,7 +1,6 @@
 """TrialResult: what one simulated trial did, judged against the ground truth (Sec. IV-C).
 Its JSON form (`to_dict`) is what result.json, `tegrasp trial --json` and a sweep record's
-"result" hold; `from_dict` reads one back (a missing field takes its default).
-"""
+"result" hold; `from_dict` reads one back (a missing field takes its default)."""
 
 import dataclasses
 

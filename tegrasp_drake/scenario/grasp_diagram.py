@@ -1,8 +1,7 @@
 """The grasp diagram: a station (simulated or hardware, by the scenario's `station` tag),
 the grasp controller wired to its measured ports, and the trial's loggers unless
 `log=False`. Both stations export the same ports, so the controller cannot tell them apart.
-`MakeSimulator` is the one simulator set-up for simulated, open-loop and hardware runs.
-"""
+`MakeSimulator` is the one simulator set-up for simulated, open-loop and hardware runs."""
 
 import dataclasses
 
@@ -37,9 +36,8 @@ EXTRA_TIME_S = 10.0
 @public_api
 def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
                 lcm: DrakeLcm | None = None):
-    """The station of `scenario` as its `station` tag says: MakeSimulatedStation (the
-    default) or MakeHardwareStation (use it in a `with` block; run_on_hardware does). Both
-    export the same ports."""
+    """The station of `scenario` as its `station` tag says: MakeSimulatedStation (default) or
+    MakeHardwareStation (in a `with` block, as run_on_hardware does), both with the same ports."""
     check_ranges(scenario, "MakeStation: scenario")  # a config changed after loading
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation

@@ -1,15 +1,13 @@
 """The memorized events a scenario's controller reads: its object's, for its controller and
 its hand, from the events search path (rig/paths.py), checked against the object they were
 recorded on. They read the whole Scenario, so they live with it; the controller itself takes
-the events given.
-"""
-
-import yaml
+the events given."""
 
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.rig.typed_yaml import YamlSyntaxError, parse_yaml
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
@@ -21,11 +19,10 @@ def _hand_folder(scenario) -> str:
 @public_api
 def load_controller_events(scenario: Scenario, events_dir: PathLike | None = None, *,
                            nominal_object: ObjectConfig | None = None) -> dict:
-    """The memorized events of the scenario's object for its controller, from `events_dir`
-    or else the user's events folder or the package's. MemorizedEventError (naming the
-    folders, the file and the command that records them) when they are missing or were
-    recorded on an object that differs from the scenario's (or `nominal_object`) in a field
-    not in controller.event_object_may_differ."""
+    """The memorized events of the scenario's object for its controller, from `events_dir` or else
+    the user's events folder or the package's. MemorizedEventError (naming the folders, the file and
+    the command that records them) when missing or recorded on an object that differs from the
+    scenario's (or `nominal_object`) in a field not in controller.event_object_may_differ."""
     return _load_checked_events(
         scenario, controller_events_folders(scenario.controller, events_dir,
                                             _hand_folder(scenario)),
@@ -35,9 +32,8 @@ def load_controller_events(scenario: Scenario, events_dir: PathLike | None = Non
 @public_api
 def load_corrective_events(scenario: Scenario, events_dir: PathLike | None = None, *,
                            nominal_object: ObjectConfig | None = None) -> dict:
-    """The memorized corrective events (lift_load, hold_avoid) of the scenario's object,
-    from the CORRECTIVE_EVENTS_FOLDER of the events search path, checked against the
-    object as load_controller_events checks the transition events."""
+    """The corrective events (lift_load, hold_avoid) of the scenario's object from the search path's
+    CORRECTIVE_EVENTS_FOLDER, checked against the object as load_controller_events checks."""
     from tegrasp_drake.control.controller_config import CORRECTIVE_EVENTS_FOLDER
     from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
     folders = [folder / CORRECTIVE_EVENTS_FOLDER
@@ -100,10 +96,12 @@ HAND_BEFORE_THE_MODEL_SETTING = "prismatic"
 
 def recorded_hand(event) -> str | None:
     """The `gripper.model` of the scenario an event was recorded in, or None when its
-    scenario text is not a scenario (a note, e.g. an ensemble's combined runs)."""
+    scenario text is not a scenario (a note, e.g. an ensemble's combined runs). Read as every
+    scenario is (parse_yaml): YAML past the reader's limits is a ConfigError naming the event."""
     try:
-        recorded = yaml.safe_load(event.scenario)
-    except (yaml.YAMLError, ValueError):  # ValueError: an integer Python will not convert
+        recorded = parse_yaml(event.scenario,
+                              f"memorized event {event.relative_path()}: its scenario")
+    except YamlSyntaxError:
         return None
     gripper = recorded.get("gripper") if isinstance(recorded, dict) else None
     if not isinstance(gripper, dict):
@@ -113,9 +111,8 @@ def recorded_hand(event) -> str | None:
 
 
 def another_hands_events(scenario, events: dict) -> str | None:
-    """A one-line warning when `events` were recorded on a hand other than the scenario's
-    `gripper.model` (the transfer study does that on purpose; anyone else has most likely
-    pointed --events at the wrong folder), else None."""
+    """A one-line warning when `events` were recorded on a hand other than `gripper.model` (on
+    purpose in the transfer study; else most likely --events names the wrong folder), else None."""
     hands = {recorded_hand(event) for event in events.values()} - {None}
     others = sorted(hands - {scenario.gripper.model})
     if not others:

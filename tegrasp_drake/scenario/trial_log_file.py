@@ -6,8 +6,7 @@ Arrays (times in s, simulation clock):
   t_slow (K,), arm_q (K, 6) [rad], arm_q_desired (K, 6), gripper_command (K, 3),
   gripper_status (K, 8), phase (K,) [index into `phases`], object_state (K, 13)
 Metadata (JSON in `meta`): format version, scenario YAML, phase names, phase start times,
-physical event times, controller name, package versions.
-"""
+physical event times, controller name, package versions."""
 
 import dataclasses
 import json

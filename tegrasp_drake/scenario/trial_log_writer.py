@@ -1,6 +1,5 @@
 """Wires a controller to the station with the Eq. 1-2 channels and the trial's loggers: any
-controller with `X_WG_desired`, `gripper_command` (and `phase`) outputs can be logged.
-"""
+controller with `X_WG_desired`, `gripper_command` (and `phase`) outputs can be logged."""
 
 import dataclasses
 import importlib.metadata

@@ -21,5 +21,4 @@ film_chain.py, film_readout.py: the films as one compiled Diagram; the amplifier
 pad_normal_forces.py, linkage_pad_statics.py: the pad force from contacts or joint forces.
 pad_slip_vibration.py: PadSlipVibration, the pad cover's texture under slip.
 drive_vibration.py: the gripper's and the arm's drive vibration as the films read it.
-pad_accelerometers.py: PadAccelerometers, the paper's idealised RA transducer.
-"""
+pad_accelerometers.py: PadAccelerometers, the paper's idealised RA transducer."""

@@ -3,8 +3,7 @@
 taxel's mean pressure p = F / A. The AD7147 reports Delta C in whole 16-bit counts with
 noise; the station reports counts above baseline or, by default, newtons through the
 hardware's per-taxel calibration (hardware/myrio/tactile_calibration.py). Numbers and
-sources: docs/model.md, "The capacitive taxel".
-"""
+sources: docs/model.md, "The capacitive taxel"."""
 
 import dataclasses
 

@@ -3,8 +3,7 @@ end-point impedance at the grasp frame G, for sweeps (`station.arm: carriage`). 
 prismatic joints along the principal axes of the arm's translational mobility at G, then
 yaw, pitch and roll about world z, y, x; each on the plant's implicit PD (stable under SAP at
 1 ms for any gains). docs/model.md, "The carriage". Frames: world W; G between the pads'
-centres, z the approach; wrenches [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G, in W.
-"""
+centres, z the approach; wrenches [Mx, My, Mz, Fx, Fy, Fz] [N m, N] at G, in W."""
 
 import dataclasses
 

@@ -1,7 +1,6 @@
 """The two systems that let the carriage (carriage.py) stand in for the JACO2 behind the
 arm's ports: CarriageCommand (the arm's servo set-point to the carriage's, and the arm's
-joints) and CarriageWristWrench (the weld's wrench and the joint torques that would hold it).
-"""
+joints) and CarriageWristWrench (the weld's wrench and the joint torques that would hold it)."""
 
 import numpy as np
 from pydrake.common.value import AbstractValue
@@ -17,8 +16,7 @@ ARM_JOINTS = ports.ARM_JOINTS
 
 
 class CarriageCommand(LeafSystem):
-    """The arm's joint servo set-point as a carriage set-point, and the arm's reported
-    joint state.
+    """The arm's joint servo set-point as a carriage set-point, and the arm's reported joint state.
 
     .. pydrake_system::
 

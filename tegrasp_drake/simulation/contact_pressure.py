@@ -5,8 +5,7 @@ The pressure is linear over each face and the taxels form a grid, so each cell's
 each triangle has a closed form, exact however large the faces: the cumulative integral over
 {x < a, y < b} summed from the triangle's edges (Green's theorem), a cell's force by
 inclusion-exclusion at its corners. Points beyond the pad's edge count to the nearest edge
-taxel.
-"""
+taxel."""
 
 import numpy as np
 

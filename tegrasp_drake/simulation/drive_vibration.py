@@ -3,8 +3,7 @@ tones at f_k = order_k n, n = motor_revolutions_per_unit |v| [rev/s] (v the grip
 half-opening rate [m/s] or the arm's joint rates [rad/s]), amplitude A_k |v| / full_speed
 |H(f_k)|, H the fingertip mode's gain (film_dynamics.py). A drive of several joints is one set
 of tones; tones are point samples at the RA rate (the myRIO has no anti-aliasing filter). One
-compiled SymbolicVectorSystem; spectra: docs/model.md, "Drive vibration".
-"""
+compiled SymbolicVectorSystem; spectra: docs/model.md, "Drive vibration"."""
 
 import dataclasses
 import math

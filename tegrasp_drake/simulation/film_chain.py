@@ -5,8 +5,7 @@
       the films' states) | film_readout (SymbolicVectorSystem) -> film_samples ([0, 0, a] per pad)
 
 The states live in a ZeroOrderHold, not a LinearSystem, whose state would draw from the
-random generator and shift every noise stream seeded after it.
-"""
+random generator and shift every noise stream seeded after it."""
 
 import numpy as np
 from pydrake.common import RandomDistribution

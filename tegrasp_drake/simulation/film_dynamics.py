@@ -2,8 +2,7 @@
 five states s = [l1, l2, y, y', z]: l1, l2 a critically damped low-pass of the slow load L [N]; y
 [m] the fingertip's mode, y'' + 2 zeta w y' + w^2 y = (l2 + d) / m with d [N] a direct load
 (impact, slip texture); z the charge amplifier's low-pass of y. The output is a = w^2 (y - z)
-[m/s^2], integrated exactly over 20 kHz internal steps. docs/model.md, "Vibration (RA) model".
-"""
+[m/s^2], integrated exactly over 20 kHz internal steps. docs/model.md, "Vibration (RA) model"."""
 
 import dataclasses
 import math
@@ -111,9 +110,8 @@ def signed_peak(samples: np.ndarray) -> np.ndarray:
 
 
 def symbolic_signed_peak(samples):
-    """signed_peak of one column of expressions, symbolically: the largest sample if it is at
-    least as large as the smallest is negative, else the smallest (ties of opposite sign
-    differ from signed_peak)."""
+    """signed_peak of a column of expressions, symbolically: the largest sample if at least as large
+    as the smallest is negative, else the smallest (opposite-sign ties differ from signed_peak)."""
     highest = lowest = samples[0]
     for sample in samples[1:]:
         highest, lowest = symbolic_max(highest, sample), symbolic_min(lowest, sample)

@@ -2,8 +2,7 @@
 L = F + m a_n [N] and the direct loads d [N] at the step's n internal instants (the impact's
 half-sine at a contact's onset, the slip texture). The impact needs the plant's abstract
 ports, so this is the chain's one Python system; its memory is in its output, which the
-chain holds and feeds back (`held`). docs/model.md, "Vibration (RA) model".
-"""
+chain holds and feeds back (`held`). docs/model.md, "Vibration (RA) model"."""
 
 import dataclasses
 import math

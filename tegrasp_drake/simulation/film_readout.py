@@ -4,8 +4,7 @@ analog input (paper, Sec. IV-A), as pure functions. Per RA sample:
   V = clip(S a + n, -swing, +swing)   S [V/(m/s^2)], n Gaussian noise
   code = clip(round((V + offset) / lsb), low, high),   a_read = (code lsb - offset) / S
 
-docs/model.md, "Vibration (RA) model" (Readout).
-"""
+docs/model.md, "Vibration (RA) model" (Readout)."""
 
 import dataclasses
 import math

@@ -1,8 +1,7 @@
 """MakeGripperBench: the simulated 2F-85 alone, its base frame the world frame (z the
 approach axis, y the stroke; no gravity on it), playing one command, for the hand's checks
 against closed form. Optionally an obstacle between the fingers and a constant outward push
-on the left pad's centre.
-"""
+on the left pad's centre."""
 
 import dataclasses
 

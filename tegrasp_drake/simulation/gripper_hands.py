@@ -5,8 +5,7 @@
 - `prismatic`: two prismatic fingers (modelgen/robotiq_sdf.py); a is half the opening [m],
   with an idealised drive (no rotor, a stiff force-bounded PD, backdrivable).
 
-A hand maps a to half the pad opening q [m], in which SimRobotiqDriver plans.
-"""
+A hand maps a to half the pad opening q [m], in which SimRobotiqDriver plans."""
 
 import dataclasses
 

@@ -1,8 +1,7 @@
 """The simulated JACO2 driven as the real one is: by joint velocities, sampled, late.
 `arm.desired_state` -> JacoVelocityTracker -> ZeroOrderHold at the command rate ->
 DiscreteTimeDelay -> the servo set-point q_ref = q0 + integral of v_cmd (as the JACO2's DSP does)
--> the plant's implicit PD per joint. Why, and the settings' sources: docs/model.md, "The arm".
-"""
+-> the plant's implicit PD per joint. Why, and the settings' sources: docs/model.md, "The arm"."""
 
 import dataclasses
 

@@ -4,8 +4,7 @@ base -A- driver -B- coupler -C- follower, in-plane force F and moment M_C about 
 
     tau_C = M_C,   tau_B = M_C + (C - B) x F,   tau_A = M_C + (C - A) x F
 
-so the last two give F, and the pad force is F . n, n the pad's outward normal.
-"""
+so the last two give F, and the pad force is F . n, n the pad's outward normal."""
 
 import dataclasses
 import math

@@ -1,7 +1,6 @@
 """Adds the scenario's object to a plant: a primitive shape written as SDF, or a model file.
 Primitive objects are rigid hydroelastic bodies with frame O at the centre of the base face,
-z up, and the inertia of a uniform solid.
-"""
+z up, and the inertia of a uniform solid."""
 
 import itertools
 

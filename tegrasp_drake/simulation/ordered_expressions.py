@@ -3,8 +3,7 @@ on floats: the same IEEE operations on the same operands, in the same order.
 
 pydrake.symbolic's canonical forms (n-ary sums, merged terms, folded constants, x * x as
 pow) round differently; where it does not keep a binary operation as one node, `Ordered`
-wraps the operands in max(operand, -inf), which no sum or product looks into.
-"""
+wraps the operands in max(operand, -inf), which no sum or product looks into."""
 
 import math
 

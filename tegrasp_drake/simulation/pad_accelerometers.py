@@ -2,8 +2,7 @@
 `vibration.transducer: accelerometer`): per pad a Drake `Accelerometer` on the pad frame
 (with gravity), its inward-normal (z) component through the first-order high-pass
 y[k] = a (y[k-1] + u[k] - u[k-1]), a = RC / (RC + T), at the RA rate, plus Gaussian noise.
-The outputs are the film's: [0, 0, y] per pad.
-"""
+The outputs are the film's: [0, 0, y] per pad."""
 
 import math
 

@@ -1,8 +1,7 @@
 """PadNormalForces: each finger's net contact force along its pad's outward normal, the
 film's load on the linkage hand, whose finger joints turn (on the prismatic hand the finger
 joint's generalized contact force is that force): the contact forces on the finger body
-summed from the plant's contact results.
-"""
+summed from the plant's contact results."""
 
 import numpy as np
 from pydrake.common.value import AbstractValue

@@ -1,8 +1,7 @@
 """Vibration that sliding excites in a pad's piezo film (the RA response to slip). The pad's cover
 is a texture of height h and period lambda: at slip speed v (the object's point at the pad centre
 relative to the pad, in the pad plane) the film is driven at f = v / lambda with amplitude h (2 pi
-v / lambda)^2 along the pad normal, its phase the integrated slip distance.
-"""
+v / lambda)^2 along the pad normal, its phase the integrated slip distance."""
 
 import math
 import typing

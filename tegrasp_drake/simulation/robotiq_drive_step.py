@@ -2,8 +2,7 @@
 a SymbolicVectorSystem evaluates drive_set_point or force_limited_set_point on (a, da/dt),
 PLANNER and MEMORY; a ZeroOrderHold keeps MEMORY, sampled half a plant step after the
 plant's; a second one gives the PD's set-point. Float order is Python's
-(ordered_expressions.py), so the set-points match bit for bit.
-"""
+(ordered_expressions.py), so the set-points match bit for bit."""
 
 from pydrake.symbolic import Variable, logical_and, logical_or
 from pydrake.systems.primitives import Multiplexer, SymbolicVectorSystem, ZeroOrderHold

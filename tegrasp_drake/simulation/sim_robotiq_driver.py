@@ -37,8 +37,15 @@ class GripperDriverConfig:
     model: str = "linkage"
     update_rate_hz: float = bounded(200.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
                                     why="the 2F-85 takes commands at up to 200 Hz")
-    # the prismatic hand's PD on half the opening
+    # The prismatic hand's PD on half the opening a, which moves both fingers (the right one
+    # mimics the left): m = 2 x 0.05 kg (modelgen/robotiq_sdf.py FINGER_MASS).
+    # kp: w_n = sqrt(kp / m) = 200 rad/s (32 Hz), a 31 ms period that 1 ms plant steps
+    # resolve; the lag behind the reference's acceleration, m a / kp = 12.5 um, is far below
+    # one position byte (0.19 mm of a). Robotiq publishes no loop gain (the linkage hand's
+    # loop, robotiq/drive.py, is 60 Hz on the rotor).
     position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")
+    # kd: damping ratio kd / (2 sqrt(kp m)) = 1, critically damped as the 2F-85, which does
+    # not overshoot a requested position (robotiq/drive.py POSITION_LOOP_DAMPING_RATIO)
     damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")
     # the linkage hand's drive; sources and ranges in robotiq/drive.py
     position_loop_hz: float = bounded(
@@ -50,7 +57,12 @@ class GripperDriverConfig:
         drive.SCREW_EFFICIENCY, low=drive.SCREW_EFFICIENCY_RANGE[0],
         high=drive.SCREW_EFFICIENCY_RANGE[1],
         why="a self-locking screw's forward efficiency is below 0.5")
-    # m/s^2, finger speed ramps
+    # The reference's ramp on half the opening, both hands. Robotiq publishes only the speed
+    # (20-150 mm/s pad to pad, 10-75 mm/s a finger): at 0.5 m/s^2 a finger reaches 75 mm/s in
+    # 0.15 s over 5.6 mm of its 42.5 mm travel (a full stroke 0.72 s, 0.57 s with no ramp),
+    # 10 mm/s in 20 ms. A profile, not a motor limit: at the lowest force cap (20 N) the
+    # linkage hand's drive (robotiq/drive.py) gives 2 F (dq/da)^2 / J = 13-22 m/s^2. Below one
+    # film converter code (1.23 m/s^2): the fingers' start and stop stay in the RA noise.
     acceleration: float = bounded(0.5, low=0.0, low_open=True, high=10.0, unit="m/s^2")
     # m/s; slower than this before the goal = object detected
     stall_speed: float = bounded(0.002, low=0.0, low_open=True, high=0.15, unit="m/s",

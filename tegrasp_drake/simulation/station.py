@@ -1,15 +1,12 @@
 """MakeGraspStation: the simulated hardware of the paper (Sec. III-A, Fig. 4) as one Diagram.
 
-A JACO2 on a table, the tactile 2F-85 on its flange (`gripper.model`, gripper_hands.py),
-the object on its marker plus its offset, and both pads' taxels and films. Its ports are the
-hardware interface's (rig/station_interface.py), so a controller cannot tell the two apart,
-plus the ground truth that interface lists as simulation only. Gravity is off for the arm
-and gripper (the JACO2's firmware compensates it). The arm is driven as the real one is,
-through the velocity tracker, 100 Hz commands and their latency (jaco_velocity_drive.py;
-docs/model.md, "The arm: joint velocities at 100 Hz, late"); with `station:
-!SimulatedStationConfig {arm: carriage}` a Cartesian carriage carries the gripper instead
-(carriage.py; docs/model.md, "The carriage: the arm as a stiff pose source (for sweeps)").
-"""
+A JACO2 on a table, the tactile 2F-85 on its flange (`gripper.model`, gripper_hands.py), the
+object on its marker plus its offset, and both pads' taxels and films. Its ports are the hardware
+interface's (rig/station_interface.py) plus the ground truth listed there as simulation only.
+Gravity is off for the arm and gripper (the JACO2's firmware compensates it). The arm is driven
+as the real one (jaco_velocity_drive.py; docs/model.md, "The arm: joint velocities at 100 Hz,
+late"), or a carriage carries the gripper (SimulatedStationConfig.arm; carriage.py;
+docs/model.md, "The carriage: the arm as a stiff pose source (for sweeps)")."""
 
 import dataclasses
 import math
@@ -79,9 +76,7 @@ class ArmDriverConfig:
     # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state.
     control_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
                                       why="ten periods of the JACO2's 100 Hz commands at most")
-    # The joint-velocity commands the host sends: their rate [Hz] (the JACO2's 100 Hz) and
-    # their latency to the arm [s], a whole number of plant steps (drive_problem checks
-    # both against the plant's step).
+    # The host's joint-velocity commands: rate [Hz], latency [s] (a whole number of plant steps)
     command_rate_hz: float = bounded(100.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
                                      why="the JACO2 takes 100 Hz, Kinova kinova-ros README; "
                                          "faster fills its buffer",
@@ -91,8 +86,7 @@ class ArmDriverConfig:
                                            "0.1 s is ten commands queued",
                                        below="must be a whole number of plant steps, at least "
                                              "one, e.g. 0.01 [s] (the JACO2's is about 0.01)")
-    # What turns arm.desired_state into those commands, as on the hardware (whose own
-    # tracker settings are the hardware config's arm.tracker).
+    # Turns arm.desired_state into those commands (on hardware: the hardware config's arm.tracker)
     tracker: JacoVelocityTrackerConfig = dataclasses.field(
         default_factory=JacoVelocityTrackerConfig)
 
@@ -103,14 +97,11 @@ ARM_MOUNTS = ("jaco2", "carriage")
 @public_dataclass
 @dataclasses.dataclass
 class SimulatedStationConfig:
-    """The simulated station (MakeGraspStation); its other settings are the scenario's
-    sections (scenario/grasp_diagram.py MakeSimulatedStation hands them over).
+    """The simulated station (MakeGraspStation); its other settings are the scenario's sections.
 
-    arm: what carries the gripper. `jaco2` (the default, for demos and hardware twins): the
-    JACO2 arm, its joints on the plant's PD. `carriage` (for sweeps): the gripper on a
-    six-joint Cartesian carriage with the arm's end-point stiffness, damping and inertia
-    at the grasp pose (simulation/carriage.py), driven by the same arm.desired_state and
-    reporting the same arm ports (simulation/carriage_systems.py)."""
+    arm: what carries the gripper: `jaco2` (default, for demos and hardware twins), the JACO2 on
+    the plant's PD; `carriage` (for sweeps), a six-joint Cartesian carriage with the arm's
+    end-point impedance at the grasp pose (simulation/carriage.py), with the same arm ports."""
     arm: str = "jaco2"
 
     def uses_carriage(self) -> bool:
@@ -119,15 +110,13 @@ class SimulatedStationConfig:
 
 def object_pose_on_table(expected_object_xy, object_offset, object_yaw_deg: float
                          ) -> RigidTransform:
-    """X_WO of an object resting on its marker `expected_object_xy` [m, world] moved by
-    `object_offset` [m] and yawed by `object_yaw_deg` [deg]."""
+    """X_WO on the marker `expected_object_xy` [m] plus `object_offset` [m], yawed [deg]."""
     x, y = np.add(expected_object_xy, object_offset)
     return RigidTransform(RollPitchYaw(0, 0, math.radians(object_yaw_deg)), [x, y, 0.0])
 
 
 def initial_arm_positions(arm: ArmDriverConfig) -> np.ndarray:
-    """Joint angles [rad] that put the grasp frame at the arm's start pose
-    (arm.initial_gripper_xyz, side-grasp orientation)."""
+    """Joint angles [rad] that put G at arm.initial_gripper_xyz, side-grasp orientation."""
     X_WG = RigidTransform(R_WG_SIDE_GRASP, arm.initial_gripper_xyz)
     return solve_grasp_frame_ik(make_arm_control_plant(), X_WG)
 
@@ -172,13 +161,10 @@ def _add_slip_vibration(builder, plant, pads, body, taxels, config: VibrationSen
 def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
                       tactile: TactileSensorConfig, vibration: VibrationSensorConfig,
                       gripper_model: str, random_seed: int, drive_rates=()):
-    """Both pads' taxel arrays (TactilePads, seeded by `random_seed`), the slip texture
-    (PadSlipVibration) and the films (MakePadFilms) of the hand `gripper_model`, connected to
-    the finalized `plant` (the linkage's pad forces from `vibration.pad_force_source`);
-    returns (TactilePads, the films' Diagram). With `vibration.transducer`
-    accelerometer, the pads' accelerometers (PadAccelerometers) take the films' place,
-    without the slip texture. `drive_rates`: (DriveVibrationConfig, joint-rate port) of the
-    drives the films feel (drive_vibration.py)."""
+    """(TactilePads, films' Diagram) of both pads on the finalized `plant`: taxels, slip texture
+    and films (the linkage's pad forces from `vibration.pad_force_source`), or with the
+    accelerometer transducer PadAccelerometers and no texture. `drive_rates`:
+    (DriveVibrationConfig, joint-rate port) of the drives the films feel (drive_vibration.py)."""
     pads = pad_geometries(plant, scene_graph, gripper)
     taxels = builder.AddNamedSystem(
         "tactile_pads", TactilePads(pads=pads, config=tactile, seed=random_seed))
@@ -206,10 +192,8 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
 
 
 def _drive_rates(builder, *, hand, selector, arm_velocity, vibration: VibrationSensorConfig):
-    """(DriveVibrationConfig, rate port) of the gripper's drive (its half-opening rate
-    [m/s]: the actuated joint's rate from `selector` times the hand's lever at mid-stroke)
-    and the arm's (`arm_velocity`, its joint rates [rad/s]); those the films feel (none with
-    the accelerometer transducer, none switched off)."""
+    """[(DriveVibrationConfig, rate port)] the films feel: the gripper's half-opening rate [m/s]
+    (lever at mid-stroke) and the arm's joint rates [rad/s]."""
     if vibration.transducer != "film":
         return []
     rates = [(vibration.arm_drive, arm_velocity)] if vibration.arm_drive.enabled() else []
@@ -234,8 +218,7 @@ def _add_disturbance(builder, plant, body, config: DisturbanceConfig):
 
 @dataclasses.dataclass
 class StationPlant:
-    """The station's MultibodyPlant and SceneGraph and its model instances; `arm` is the
-    carriage's instance when the gripper rides on one (then `carriage` describes it)."""
+    """The station's plant, SceneGraph and model instances (`arm`: the carriage's, if any)."""
     plant: object
     scene_graph: object
     arm: object
@@ -257,9 +240,7 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
     """Adds the station's plant (`plant_config`) to `builder`: the arm at its start pose, or
     with `carriage` the gripper on a Cartesian carriage of that impedance; the gripper of
     `gripper.model` (PD gains, no gravity), the table and `object` at X_WO meshed as
-    `contact_geometry` says (default: the reference geometry), finalized.
-    MakeGraspStation builds its sensors on it; the trial benchmark's plant-alone floor
-    (benchmarks/plant_floor.py) drives it alone."""
+    `contact_geometry` says (default: the reference geometry), finalized."""
     arm_config, gripper_config, impedance = arm, gripper, carriage
     plant, scene_graph = AddMultibodyPlant(plant_config, builder)
     parser = paths.make_parser(plant)
@@ -302,14 +283,12 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
 
 def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
                             time_step: float) -> None:
-    """The arm's ports on the carriage (carriage_systems.py), and `carriage.desired_state`
-    (the carriage PD's set-point) and `gripper.wrist_wrench` (on the arm at G, world)."""
+    """The arm's ports on the carriage, `carriage.desired_state` and `gripper.wrist_wrench`."""
     plant = parts.plant
     q0 = initial_arm_positions(arm)
     command = builder.AddNamedSystem("carriage_command", CarriageCommand(
         parts.carriage, initial_positions=q0, period_s=time_step))
-    # The arm's velocity drive as on the JACO2 mount, its servo ideal: the joints are at the
-    # servo's set-point, which the carriage follows.
+    # The JACO2 mount's velocity drive with an ideal servo: the carriage follows its set-point.
     drive = AddJacoVelocityDrive(builder, arm=arm, time_step=time_step, initial_positions=q0,
                                  position_measured=command.GetOutputPort(
                                      ports.ARM_POSITION_MEASURED))
@@ -346,13 +325,9 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
                      carriage: EndpointImpedance | None = None,
                      contact_geometry: ContactGeometryConfig | None = None,
                      meshcat: Meshcat | None = None):
-    """Builds the simulated station Diagram (see the module docstring) from the sections it
-    uses: the plant, arm and gripper configs, the object at X_WO, the taxels' and films'
-    configs (their noise seeded by `random_seed`), the hit on the object, the contact
-    world's meshes (`contact_geometry`, default the reference); with `carriage`,
-    the gripper on a Cartesian carriage of that impedance in the arm's place; with
-    `meshcat`, its visualization, the camera on the grasp at `grasp_height` [m] above the
-    table."""
+    """The simulated station Diagram (module docstring) from the scenario's sections, the
+    noise seeded by `random_seed`; with `carriage`, a Cartesian carriage of that impedance in
+    the arm's place; with `meshcat`, its visualization, the camera at `grasp_height` [m]."""
     builder = DiagramBuilder()
     parts = AddStationPlant(builder, plant_config=plant_config, arm=arm, gripper=gripper,
                             object=object, X_WO=X_WO, carriage=carriage,
@@ -362,8 +337,7 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
     arm_instance, gripper, obj = parts.arm, parts.gripper, parts.object_instance
 
     if parts.carriage is None:
-        # Arm: the desired state goes through the velocity drive to the plant's PD;
-        # the measured state is split.
+        # Arm: the desired state goes through the velocity drive to the plant's PD.
         arm_state = builder.AddNamedSystem("arm_state_demux",
                                            Demultiplexer([ports.ARM_JOINTS] * 2))
         builder.Connect(plant.get_state_output_port(arm_instance), arm_state.get_input_port())

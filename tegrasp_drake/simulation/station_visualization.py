@@ -1,7 +1,6 @@
 """What the simulated station shows in Meshcat: the scene, the contact forces (Drake's
 ContactVisualizer), each taxel's force (TaxelForceDisplay) and a camera framed on the grasp;
-all of it also into Meshcat's recording when one runs.
-"""
+all of it also into Meshcat's recording when one runs."""
 
 import numpy as np
 from pydrake.multibody.meshcat import ContactVisualizer, ContactVisualizerParams

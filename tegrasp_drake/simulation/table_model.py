@@ -1,6 +1,5 @@
 """Adds the table (models/table) to a plant, its top at the world's z = 0, as the compliant
-box of the model file or a compliant half-space with its material (`contact_geometry.table`).
-"""
+box of the model file or a compliant half-space with its material (`contact_geometry.table`)."""
 
 from pydrake.geometry import (AddCompliantHydroelasticPropertiesForHalfSpace,
                               AddContactMaterial, HalfSpace, ProximityProperties)

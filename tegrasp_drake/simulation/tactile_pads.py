@@ -1,8 +1,7 @@
 """TactilePads: the 12-taxel arrays of both fingertip pads, sampled at the taxel rate. Each sample
 integrates each contact surface's pressure over the taxels (contact_pressure.py), scales it to the
 solver's normal force (docs/model.md, "Taxel forces from the contact surface"), then adds offset,
-noise seeded by (seed, sample index) and quantisation.
-"""
+noise seeded by (seed, sample index) and quantisation."""
 
 import dataclasses
 import functools

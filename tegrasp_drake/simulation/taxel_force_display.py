@@ -1,8 +1,7 @@
 """TaxelForceDisplay: each pad's 12 taxel forces drawn in Meshcat, live and in the
 recording: a bar per taxel on the back of its finger, growing with the force, yellow to dark
 red; below the threshold a thin grey tile. The recording gets "material.color" and the live
-viewer "color": Meshcat's SetProperty of "material.color" turns the live bar black.
-"""
+viewer "color": Meshcat's SetProperty of "material.color" turns the live bar black."""
 
 import dataclasses
 

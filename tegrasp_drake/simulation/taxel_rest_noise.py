@@ -1,8 +1,7 @@
 """What a taxel reads from noise alone, as an exact distribution of the transducer's model,
 for the SA thresholds (docs/model.md, "SA thresholds against the taxels' noise"). Every path
 ends in a quantiser, so the noise is a lattice distribution; the calibrated reading is
-clipped at zero (a positive mean at rest), which under load is not reached (`loaded_noise`).
-"""
+clipped at zero (a positive mean at rest), which under load is not reached (`loaded_noise`)."""
 
 import dataclasses
 

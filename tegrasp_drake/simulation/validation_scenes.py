@@ -2,8 +2,7 @@
 (docs/model.md, "Validation against closed form"): the station's gripper welded to the world,
 the table if asked for and one object, with the scenario's `plant_config` and
 `contact_geometry`; the fingers on a force-limited position loop allowed below the 2F-85's
-20 N so that slip can be provoked.
-"""
+20 N so that slip can be provoked."""
 
 import dataclasses
 import math

@@ -11,8 +11,7 @@
 - failure_classes.py: why each failed trial failed.
 - detection_report.py: detection quality per trigger, paired comparisons.
 - missed_event_report.py: the memorized events that did not come, replayed.
-The figures and the whole results folder: tegrasp_drake/reports.py.
-"""
+The figures and the whole results folder: tegrasp_drake/reports.py."""
 
 from tegrasp_drake.sweep.offset_table import offset_rows, write_offset_table
 from tegrasp_drake.sweep.records import (

@@ -1,8 +1,7 @@
 """Detection quality per trigger and controller, and paired comparisons of controllers, from
 a sweep's records (docs/sweeps.md, "A sweep": the definitions): per event transition,
 detected, false, other and latency [s]; the hit in Hold likewise; McNemar's exact test on
-the scenes both controllers ran.
-"""
+the scenes both controllers ran."""
 
 import collections
 import dataclasses

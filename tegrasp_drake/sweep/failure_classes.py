@@ -1,7 +1,6 @@
 """Why a trial failed: one class per failed trial (FAILURE_CLASSES, the first that applies),
 from its sweep record's result, after the paper's failure modes (Sec. IV-C) and the
-controller's own reasons for giving up; the classes: docs/sweeps.md, "A sweep".
-"""
+controller's own reasons for giving up; the classes: docs/sweeps.md, "A sweep"."""
 
 from tegrasp_drake.control.controller_registry import controller_title
 from tegrasp_drake.control.grasp_modes import Mode, Trigger

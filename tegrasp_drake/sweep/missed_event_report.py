@@ -1,7 +1,6 @@
 """Missed memorized events of a sweep: every wait that ended on its event's timeout, replayed
 from the trial's log (`tegrasp sweep --logs LOGS`) with the events and matcher settings the
-controller ran with, classified (events/missed_waits.py) and counted per object and class.
-"""
+controller ran with, classified (events/missed_waits.py) and counted per object and class."""
 
 import dataclasses
 import pathlib

@@ -1,7 +1,6 @@
 """Success per placement offset: Table I split by marker, so a reader sees where each
 controller fails. One table per controller: a row per marker (nominal dx normal to the
-palm, dy along the stroke, mm), a (~Hold, ~Unload) column pair per object.
-"""
+palm, dy along the stroke, mm), a (~Hold, ~Unload) column pair per object."""
 
 from collections import defaultdict
 from dataclasses import dataclass

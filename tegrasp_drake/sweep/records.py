@@ -13,8 +13,7 @@
 
 Canonical JSON: sorted keys, no spaces, ASCII, no NaN/Infinity. Written to a temporary file,
 fsync'ed, renamed into place, the folder fsync'ed: a crash leaves no record or a whole one.
-A record that fails to parse or to checksum is corrupt, and its trial runs again.
-"""
+A record that fails to parse or to checksum is corrupt, and its trial runs again."""
 
 import hashlib
 import json
@@ -57,9 +56,8 @@ def record_path(out_dir, trial_id: str) -> Path:
 
 
 def unwritable_records(out_dir, trial_ids) -> list[tuple[Path, str]]:
-    """(path, why) of each of these trials' records that write_record could not put in place
-    (a folder where the record belongs): asked before the trials run, whose results would
-    otherwise be lost."""
+    """(path, why) of each of these trials' records that write_record could not put in place (a
+    folder where it belongs): asked before the trials run, whose results would otherwise be lost."""
     problems = []
     for trial_id in trial_ids:
         path = record_path(out_dir, trial_id)
@@ -71,8 +69,7 @@ def unwritable_records(out_dir, trial_ids) -> list[tuple[Path, str]]:
 
 def canonical_json(value) -> str:
     """The one JSON text of `value` that checksums are taken over (numpy through `tolist`);
-    RecordError for values JSON cannot hold, NaN and infinities included.
-    """
+    RecordError for values JSON cannot hold, NaN and infinities included."""
     try:
         return json.dumps(value, sort_keys=True, separators=(",", ":"), ensure_ascii=True,
                           allow_nan=False, default=_numpy_to_python)

@@ -5,8 +5,7 @@ nothing lost or run twice; a missing, corrupt or error record (a trial function 
 raised, recorded with its traceback) runs again. Backends: a local process pool
 (forkserver, never fork: pydrake has started threads) or a Dask cluster (`scheduler`, the
 `dask` extra); the workers only compute, the parent writes every record. A worker that
-dies leaves its trial unrecorded, for the next run.
-"""
+dies leaves its trial unrecorded, for the next run."""
 
 import dataclasses
 import fcntl
@@ -90,8 +89,7 @@ def check_result(result) -> str | None:
 
 def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict]:
     """Runs one trial in a worker: ("ok", result) or ("error", error dict), never raises; the
-    result goes through canonical JSON here (numpy to plain numbers, unstorable results fail).
-    """
+    result goes through canonical JSON here (numpy to plain numbers, unstorable results fail)."""
     try:
         result = json.loads(canonical_json(trial_function(trial)))
     except Exception as error:  # Any failure of the trial is recorded, not raised.
@@ -117,8 +115,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
     `trial_function(trial_dict) -> result_dict`: a picklable module-level callable. `workers`
     defaults to all local cores; `scheduler` ("tcp://host:port") runs on that Dask cluster.
     ConfigError or SweepError before any trial runs for an invalid spec, a folder holding
-    another sweep's records, or another sweep writing there.
-    """
+    another sweep's records, or another sweep writing there."""
     start = time.perf_counter()
     trials = [trial.to_dict() for trial in expand_trials(spec)]
     progress_bar = _progress_bar_factory(progress)
@@ -367,8 +364,7 @@ def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
                   progress: bool = True) -> tuple[list[BenchmarkRun], bool]:
     """Runs the memorized sweep of `spec` once per worker count, each into a fresh temporary
     folder, timed whole (pool start-up included); returns the runs and whether every result
-    was the same in all (TIMING_FIELDS aside): the worker count must not change a result.
-    """
+    was the same in all (TIMING_FIELDS aside): the worker count must not change a result."""
     spec = dataclasses.replace(spec, controllers=("memorized",))
     runs, results = [], []
     for workers in worker_counts:

@@ -2,8 +2,7 @@
 The paper's experiment (Sec. IV-B): every object at every marker of a grid, a few attempts
 each, once per controller. Marker offsets are in the gripper's frame at the expected grasp
 (x the approach axis, y the finger stroke). A trial's random numbers come from (base_seed,
-object, marker, attempt), never the controller, so controllers meet the same scenes.
-"""
+object, marker, attempt), never the controller, so controllers meet the same scenes."""
 
 import dataclasses
 import math
@@ -81,8 +80,7 @@ class RandomisationConfig:
 @dataclass(frozen=True)
 class SweepSpec:
     """A sweep: objects x grid markers x attempts, once per controller; `grid` holds the marker
-    offsets (dx_m, dy_m), x normal to the palm, y along the stroke.
-    """
+    offsets (dx_m, dy_m), x normal to the palm, y along the stroke."""
     objects: tuple[str, ...] = BUILTIN_OBJECTS
     controllers: tuple[str, ...] = PAPER_CONTROLLERS
     grid: tuple[tuple[float, float], ...] = bounded(
@@ -110,10 +108,8 @@ class Perturbation:
 @dataclass(frozen=True)
 class TrialSpec:
     """One trial; `to_dict()` is what the trial function receives. The object sits at the
-    expected position + marker offset + jitter (gripper's x normal, y stroke), yawed by
-    `perturbation.yaw_rad`; `seed` seeds the sensor noise, apart from the perturbation's stream;
-    `pair_id` names the same scene for every controller.
-    """
+    expected position + marker offset + jitter (x normal, y stroke); `seed` seeds the sensor
+    noise; `pair_id` names the same scene for every controller."""
     trial_id: str
     pair_id: str
     controller: str
@@ -193,8 +189,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                   builtin_objects: Collection[str] = BUILTIN_OBJECTS,
                   controllers: Collection[str] = CONTROLLER_NAMES) -> None:
     """Raises ConfigError naming `source` and the field when `spec` cannot run (objects against
-    `builtin_objects` and the spec's `user_objects`, controllers against `controllers`).
-    """
+    `builtin_objects` and the spec's `user_objects`, controllers against `controllers`)."""
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
@@ -309,8 +304,7 @@ def _offset_key(offset) -> tuple[int, int]:
 
 def marker_names(grid) -> list[str]:
     """`m{i}{j}`: i, j index the sorted distinct x and y offsets (zero-padded past ten values);
-    the paper's grid gives m00 .. m22, m11 well placed.
-    """
+    the paper's grid gives m00 .. m22, m11 well placed."""
     xs = sorted({_offset_key(o)[0] for o in grid})
     ys = sorted({_offset_key(o)[1] for o in grid})
     width = len(str(max(len(xs), len(ys)) - 1))
@@ -322,8 +316,7 @@ def trial_seed_sequence(base_seed: int, object_name: str, marker_offset,
                         attempt: int) -> np.random.SeedSequence:
     """The seed of one scene, from (base_seed, object, marker offset, attempt) only: CRC-32 of
     their text (stable across processes), the offset in whole micrometres (a marker keeps its
-    seed when the grid around it changes).
-    """
+    seed when the grid around it changes)."""
     dx_um, dy_um = _offset_key(marker_offset)
     return np.random.SeedSequence(
         entropy=base_seed,
@@ -355,8 +348,7 @@ def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN
                   controllers: Collection[str] = CONTROLLER_NAMES) -> list[TrialSpec]:
     """Validates `spec` and lists its trials, controller-major, deterministically. Each scene's
     seed sequence spawns two children: a PCG64 Generator for `draw_perturbation`, and the
-    trial's 32-bit `seed`. Trial ids read `{controller}/{object}/{marker}/a{attempt}`.
-    """
+    trial's 32-bit `seed`. Trial ids read `{controller}/{object}/{marker}/a{attempt}`."""
     validate_spec(spec, builtin_objects=builtin_objects, controllers=controllers)
     names = marker_names(spec.grid)
     scenes = []

@@ -1,7 +1,6 @@
 """Reading a sweep spec from a YAML file: `LoadSweepSpec`, with the same parser and field
 checks as every configuration file (rig/typed_yaml.py); the spec's frozen dataclasses are
-built from the checked data, since Drake's `yaml_load_typed` cannot build them.
-"""
+built from the checked data, since Drake's `yaml_load_typed` cannot build them."""
 
 from collections.abc import Collection
 from dataclasses import dataclass
@@ -25,8 +24,7 @@ def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_
                     controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
     """Reads and validates a YAML sweep spec (analysis/example_sweep.yaml shows each field);
     fields left out keep the paper's defaults. `grid` is a list of [dx_m, dy_m] or the product
-    of normal_offsets_m and stroke_offsets_m. ConfigError names the file and the field.
-    """
+    of normal_offsets_m and stroke_offsets_m. ConfigError names the file and the field."""
     fields = read_yaml_file(path, "the sweep spec")
     if fields is None:
         # An empty file is a mistake, not a request for the paper's 243-trial experiment

@@ -1,8 +1,7 @@
 """The results table of a sweep: per controller, Table I's average success rates beside its
 false-trigger rate and detection latencies (median, over the trials where the event came on
 time), and the paper's row. Made from a results folder's records only (`write_summary`);
-analysis/update_results_page.py copies it into docs/results.md.
-"""
+analysis/update_results_page.py copies it into docs/results.md."""
 
 import re
 import subprocess

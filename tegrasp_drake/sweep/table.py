@@ -1,7 +1,6 @@
 """Table I of the paper from sweep records, and statistics of the trials. "~Hold": held 3 s;
 "~Unload": held, then placed upright (Sec. IV-C); the average row is the mean of the
-objects' rates, as the paper's (docs/sweeps.md, "A sweep").
-"""
+objects' rates, as the paper's (docs/sweeps.md, "A sweep")."""
 
 import csv
 import json

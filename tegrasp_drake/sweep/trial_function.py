@@ -1,7 +1,6 @@
 """The sweep's trial function: a sweep trial (a TrialSpec.to_dict()) turned into its
 scenario, run with its memorized events (runs/trial.py) and returned as its result dict;
-`check_sweep_events` checks before a sweep starts that every trial's events are there.
-"""
+`check_sweep_events` checks before a sweep starts that every trial's events are there."""
 
 import dataclasses
 import hashlib
@@ -76,9 +75,8 @@ def trial_events(trial: dict, events_dir=None) -> tuple:
 
 
 def check_sweep_events(trials, events_dir=None) -> None:
-    """ConfigError, naming the trial, the file and what to do, when some trial's memorized
-    events are missing or of another object (checked once per object and controller, before
-    anything runs); a warning when they were recorded on another hand."""
+    """ConfigError naming the trial, file and remedy when a trial's events are missing or of another
+    object (once per object and controller, before anything runs); a warning for another hand's."""
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.scenario.scenario_events import another_hands_events
     from tegrasp_drake.rig.typed_yaml import ConfigError

@@ -3,8 +3,7 @@
 A per-sample Python system read only at a 5 ms tick takes each tick's samples, each at
 its own time, in one update a quarter sample period before the tick, from a held register
 (AddHeldSampleRegister); a read at another instant may be up to a tick old. Why it is
-exact: docs/controller.md (read batches).
-"""
+exact: docs/controller.md (read batches)."""
 
 import numpy as np
 from pydrake.systems.primitives import MatrixGain, Multiplexer, ZeroOrderHold

@@ -20,10 +20,9 @@ from tegrasp_drake.tactile.sliding_window import SlidingWindowState, default_sli
 
 @dataclasses.dataclass
 class WindowNormalizerConfig:
-    """Window length [s], SA and RA sample rates [Hz], the block [s] a rate takes in one
-    update (0: per sample; tactile/sample_block.py), and read_period_s, the tick [s] of the
-    one reader (0: read any time; else a per-sample rate takes each tick's samples in one
-    update just before it, tactile/read_batch.py)."""
+    """Window [s], SA and RA rates [Hz], the block [s] a rate takes per update (0: per sample;
+    sample_block.py), and read_period_s, the one reader's tick [s] (0: any time; else a per-sample
+    rate takes each tick's samples in one update just before it, read_batch.py)."""
     window_s: float = 0.5
     sa_rate_hz: float = 100.0
     ra_rate_hz: float = 1000.0

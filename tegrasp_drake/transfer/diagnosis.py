@@ -1,8 +1,7 @@
 """Which channel's Eq. 3 score falls short, per transition, in a trial run with events
 memorized elsewhere (docs/transfer.md, "What breaks transfer"): each event scored offline
 every `step_s` while a mode waited for it; "best" per channel, "together" at the tick with
-the largest smallest margin, "match" whether that tick passes.
-"""
+the largest smallest margin, "match" whether that tick passes."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence
@@ -27,8 +26,7 @@ STEP_S = GraspControllerConfig().update_period_s  # [s] the state machine's tick
 class TransitionDiagnosis:
     """The offline Eq. 3 scores of one event over the modes that waited for it: best, each
     channel's highest; at_s, the tick [s] where the four came nearest their thresholds;
-    together, the scores there; match, whether all four passed.
-    """
+    together, the scores there; match, whether all four passed."""
     best: tuple[float, ...]
     at_s: float
     together: tuple[float, ...]

@@ -1,8 +1,7 @@
 """Do memorized events transfer? Events memorized in one world, trials run in another. A world is a
 scenario preset plus `--set` assignments; a transfer spec names the worlds, the cells (memorizing,
 running world) and one sweep. `run_transfer` records each memorizing world's events, then runs each
-cell as an ordinary, resumable sweep (docs/transfer.md, "A transfer sweep").
-"""
+cell as an ordinary, resumable sweep (docs/transfer.md, "A transfer sweep")."""
 
 import dataclasses
 import functools

@@ -1,7 +1,6 @@
 """The transfer matrix's table and heat map, from its cells' sweep records: per cell and
 controller, match rates and latencies per event transition, false triggers, hold and unload
-success and cost (docs/transfer.md, "A transfer sweep").
-"""
+success and cost (docs/transfer.md, "A transfer sweep")."""
 
 import dataclasses
 import pathlib

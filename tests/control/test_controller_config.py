@@ -2,6 +2,8 @@
 scenario's `controller` field (or the shorthand controller.name)."""
 
 import dataclasses
+import subprocess
+import sys
 import typing
 
 import pytest
@@ -192,3 +194,19 @@ def test_the_taxel_aware_event_thresholds_are_empty_or_pairs():
     config = TaxelAwareControllerConfig(taxel_aware=TaxelAwareConfig(load_lift_thresholds=[0.8]))
     field, words, value = config.problem(ra_rate_hz=1000.0, approach_s=2.8)
     assert (field, value) == ("taxel_aware.load_lift_thresholds", [0.8]) and "[SA, RA]" in words
+
+
+def test_a_moved_setting_names_its_new_path_with_only_this_module_imported():
+    """A script that builds a controller config without the scenario package gets the new
+    path of a moved setting, not the nearest field's name."""
+    code = ("import sys\n"
+            "from tegrasp_drake.control.controller_config import MemorizedControllerConfig\n"
+            "assert 'tegrasp_drake.scenario' not in sys.modules\n"
+            "try:\n"
+            "    MemorizedControllerConfig().re_reach_enabled = False\n"
+            "except AttributeError as error:\n"
+            "    print(error)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert out == ("MemorizedControllerConfig has no field 're_reach_enabled': it is now "
+                   "'re_reach.enabled'")

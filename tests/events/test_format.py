@@ -2,10 +2,13 @@
 
 import dataclasses
 import json
+import re
+import shlex
 
 import numpy as np
 import pytest
 
+from tegrasp_drake import cli
 from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.event_file import (
     INDEX_FILE, MemorizedEventError, read_index, read_memorized_event)
@@ -159,8 +162,33 @@ def test_unknown_object_names_the_index_and_the_command_for_it(saved):
     with pytest.raises(MemorizedEventError, match="no memorized events for object 'cup'") as (
             error):
         load_memorized_events(events_dir, "cup")
+    assert_names_file_and_command(error, events_dir / INDEX_FILE, "--set object.name=cup")
+    with pytest.raises(MemorizedEventError) as error:
+        load_memorized_events(events_dir, "thin_cylinder")
     assert_names_file_and_command(error, events_dir / INDEX_FILE,
-                                  "tegrasp record-events --object cup")
+                                  "tegrasp record-events --object thin_cylinder")
+
+
+def record_events_arguments(message: str) -> list[list[str]]:
+    """The record-events arguments of each command the message quotes."""
+    quoted = [shlex.split(text) for text in re.findall(r"`([^`]+)`", message)]
+    return [words[2:] if words[:2] == ["tegrasp", "record-events"] else words
+            for words in quoted if words[:2] == ["tegrasp", "record-events"]
+            or words[0].startswith("--")]
+
+
+@pytest.mark.parametrize("name", ["thin_cylinder", "cup", "../../etc", "my/box", "-x"])
+def test_the_advice_for_an_object_suggests_only_what_record_events_accepts(saved, name):
+    events_dir, _ = saved
+    with pytest.raises(MemorizedEventError) as error:
+        load_memorized_events(events_dir, name)
+    message = str(error.value)
+    parser = cli.build_parser()
+    for arguments in record_events_arguments(message):
+        parser.parse_args(["record-events", *arguments])  # argparse exits on what it refuses
+    if name in ("../../etc", "my/box", "-x"):
+        assert f"'{name}' is not an object name" in message
+        assert record_events_arguments(message) == []
 
 
 def test_an_event_must_be_normalised_by_its_maximum():

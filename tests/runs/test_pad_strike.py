@@ -25,7 +25,7 @@ def test_ra_converges_with_the_plant_step():
     scores of the same trial against the same memorized event within 0.05 (measured: peaks
     within 1 %, scores within 0.03)."""
     # The strike is the prismatic hand's finger: that hand's memorized event.
-    event = load_memorized_events(paths.events_dir() / "prismatic", "box")["reach_load"]
+    event = load_memorized_events(paths.package_events_dir() / "prismatic", "box")["reach_load"]
     strikes = [run_pad_strike(PadStrikeConfig(time_step_s=dt)) for dt in (1e-3, 5e-4, 2.5e-4)]
     for pad in (0, 1):  # the right pad's peak is its own contact, the object already moving
         peaks = [strike.contact_peak(pad) for strike in strikes]

@@ -4,7 +4,10 @@ when it is not the scenario's."""
 import dataclasses
 import logging
 
+import pytest
+
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.scenario.scenario_events import (another_hands_events,
                                                     load_controller_events, recorded_hand)
@@ -49,3 +52,22 @@ def test_a_sweep_warns_once_before_it_runs_when_its_events_are_another_hands(cap
     with caplog.at_level(logging.WARNING):
         check_sweep_events([trial])
     assert not caplog.records
+
+
+def test_a_recorded_scenario_is_read_as_every_scenario_is():
+    event = next(iter(load_controller_events(LoadScenario()).values()))
+    tagged = "gripper: {model: prismatic}\nstation: !SimStationConfig {}\n"
+    assert recorded_hand(dataclasses.replace(event, scenario=tagged)) == "prismatic"
+    assert recorded_hand(dataclasses.replace(event, scenario="")) is None
+    assert recorded_hand(dataclasses.replace(event, scenario="note: a: b")) is None  # not YAML
+
+
+def test_a_recorded_scenario_past_the_readers_limits_is_a_one_line_error_naming_the_event():
+    event = next(iter(load_controller_events(LoadScenario()).values()))
+    for text, words in [("gripper: {model: linkage}\ngripper: {model: prismatic}\n",
+                         "key 'gripper' appears twice"),
+                        ("a: !!python/object:os.system {}\n", "a Python object tag")]:
+        with pytest.raises(ConfigError) as error:
+            recorded_hand(dataclasses.replace(event, scenario=text))
+        assert f"memorized event {event.relative_path()}" in str(error.value)
+        assert words in str(error.value) and "\n" not in str(error.value)

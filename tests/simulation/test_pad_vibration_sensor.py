@@ -1,6 +1,9 @@
 """The film's settings (simulation/pad_vibration_sensor.py): the film's mechanics in their
 own section, and what relates the settings, checked by the class."""
 
+import subprocess
+import sys
+
 import pytest
 
 from tegrasp_drake.rig.ranges import check_ranges
@@ -33,3 +36,16 @@ def test_what_relates_the_films_settings_is_checked_by_its_class(config, field, 
 
 def test_the_default_film_fits():
     assert VibrationSensorConfig().problem() is None
+
+
+def test_a_moved_film_setting_names_its_new_path_with_only_this_module_imported():
+    code = ("import sys\n"
+            "from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig\n"
+            "assert 'tegrasp_drake.scenario' not in sys.modules\n"
+            "try:\n"
+            "    VibrationSensorConfig().mode_mass_kg = 0.03\n"
+            "except AttributeError as error:\n"
+            "    print(error)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert out == "VibrationSensorConfig has no field 'mode_mass_kg': it is now 'film.mode_mass_kg'"

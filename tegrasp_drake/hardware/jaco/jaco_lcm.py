@@ -2,8 +2,7 @@
 vectors, in Drake's driver pattern, and the arm's message-boundary checks. The driver runs
 the arm in joint-velocity mode at 100 Hz and ignores `joint_position` (kept for logs), so
 JacoVelocityTracker turns position error into velocity first. Units: rad, rad/s, N m, `utime`
-in us; num_fingers = 0 (the 2F-85 is on its own bus).
-"""
+in us; num_fingers = 0 (the 2F-85 is on its own bus)."""
 
 import math
 
@@ -99,9 +98,8 @@ def has_joints(message) -> bool:
 
 
 class JacoCommandSender(LeafSystem):
-    """desired_state (12: q [rad], then v [rad/s]) as an `lcmt_jaco_command`, utime = Context time.
-    The arm executes v, so it must hold the position-error term (JacoVelocityTracker's
-    `commanded_state`).
+    """desired_state (12: q [rad], then v [rad/s]) as an `lcmt_jaco_command`, utime = Context time;
+    the arm executes v, so v holds the position-error term (JacoVelocityTracker's commanded_state).
 
     .. pydrake_system::
 
@@ -185,8 +183,7 @@ class JacoCommandReceiver(LeafSystem):
 
 
 class JacoStatusSender(LeafSystem):
-    """The measured joint state ([rad], [rad/s], [N m]) as an `lcmt_jaco_status`, utime = Context
-    time (emulator side).
+    """The measured joint state ([rad], [rad/s], [N m]) as an `lcmt_jaco_status` (emulator side).
 
     .. pydrake_system::
 

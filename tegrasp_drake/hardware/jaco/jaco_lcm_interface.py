@@ -1,8 +1,7 @@
 """Builders that wire the JACO2 LCM systems into a diagram for either end of the bus:
 `AddJacoLcmDriver` (hardware) and `AddJacoLcmEmulator` (a simulation answering commands, as
 Drake's hardware_sim). Both need an `LcmInterfaceSystem` for the same `lcm`; what each
-receives crosses a MessageBoundary.
-"""
+receives crosses a MessageBoundary."""
 
 import dataclasses
 
@@ -23,8 +22,7 @@ from tegrasp_drake.rig.jaco_velocity_tracker import (
 @dataclasses.dataclass
 class JacoLcmDriverSystems:
     """The hardware-side systems: feed `tracker`'s desired_state (and stop), read
-    `status_receiver`'s *_measured outputs.
-    """
+    `status_receiver`'s *_measured outputs."""
     tracker: JacoVelocityTracker
     command_sender: JacoCommandSender
     command_publisher: LcmPublisherSystem

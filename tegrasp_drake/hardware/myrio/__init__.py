@@ -3,5 +3,4 @@
 tactile_frame.py: the binary frame, its encoder and the streaming decoder.
 serial_reader.py: TactileSerialReader, the reader thread with a bounded queue.
 tactile_calibration.py: counts to newtons, piezo samples to m/s^2, zeroing sums.
-tactile_serial_receiver.py: TactileSerialReceiver, the pads as a Drake system.
-"""
+tactile_serial_receiver.py: TactileSerialReceiver, the pads as a Drake system."""

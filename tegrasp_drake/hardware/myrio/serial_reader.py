@@ -1,7 +1,6 @@
 """A reader thread for the myRIO tactile stream: serial port -> decoder -> bounded queue. The
 diagram calls only `drain()`, which never blocks; when it falls behind the oldest frames are
-dropped and counted; a serial error is counted and retried (a replugged adapter comes back).
-"""
+dropped and counted; a serial error is counted and retried (a replugged adapter comes back)."""
 
 import collections
 import contextlib

@@ -5,8 +5,7 @@ acceleration-equivalent [m/s^2] (the film's one axis, in x of the pad frame):
     a = piezo_gain * (counts * volts_per_count - piezo_offset)
 
 Offsets are re-estimated at start (zeroing); gains come from a YAML file
-(hardware/myrio/TACTILE_FRAME.md, "Calibration").
-"""
+(hardware/myrio/TACTILE_FRAME.md, "Calibration")."""
 
 import dataclasses
 

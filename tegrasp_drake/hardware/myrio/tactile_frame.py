@@ -1,8 +1,7 @@
 """The myRIO tactile stream's binary frame: `encode_frame` and a resynchronising streaming
 decoder. Layout, rates and decoding rules: hardware/myrio/TACTILE_FRAME.md. The decoder
 passes on only CRC-valid frames that follow the last one, counts what it skips, follows a
-restarted device after RESTART_RUN frames and unwraps device time frame by frame.
-"""
+restarted device after RESTART_RUN frames and unwraps device time frame by frame."""
 
 import dataclasses
 import struct
@@ -37,8 +36,7 @@ TIME_TOLERANCE_FRACTION = 0.05
 class TactileFrame:
     """One decoded frame: u16 sequence; device timestamp [us] (unwrapped by the decoder);
     (left, right) piezo samples [counts]; 12 AD7147 counts per finger or None; arrival_time:
-    host `time.monotonic()` [s] of the chunk that completed it.
-    """
+    host `time.monotonic()` [s] of the chunk that completed it."""
     sequence: int
     timestamp_us: int
     piezo: tuple[int, int]

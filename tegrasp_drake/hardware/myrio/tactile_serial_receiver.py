@@ -1,8 +1,7 @@
 """The myRIO tactile stream as a Drake system with the simulated pads' ports. Every `period` (1 ms)
 an update drains the reader thread's frames without blocking and calibrates them. A burst is played
 one frame per tick, two while more than two wait, all but `max_backlog` beyond that, keeping the
-newest counts and the largest piezo sample (docs/hardware.md, "Serial bursts and the slip band").
-"""
+newest counts and the largest piezo sample (docs/hardware.md, "Serial bursts and the slip band")."""
 
 import dataclasses
 import time

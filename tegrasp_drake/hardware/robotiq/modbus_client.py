@@ -2,8 +2,7 @@
 activates the gripper as the manual prescribes, then every `period` (200 Hz at most) writes
 the newest command when it changed (or every `command_refresh_period`) and reads the status.
 Every answer crosses a MessageBoundary; a failed transaction is counted and skipped, so a
-silent gripper shows as a status whose arrival time stops advancing.
-"""
+silent gripper shows as a status whose arrival time stops advancing."""
 
 import dataclasses
 import threading

@@ -1,8 +1,7 @@
 """The Robotiq 2F-85 over Modbus RTU as a Drake system with the simulated gripper's ports:
 periodic events hand `command` to the RobotiqModbusClient's thread and copy its newest
 status into the Context, never waiting on the serial line. `fault` names a nonzero gFLT (the
-manual's name) or the client's error.
-"""
+manual's name) or the client's error."""
 
 import dataclasses
 import time
