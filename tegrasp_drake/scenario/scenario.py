@@ -70,8 +70,8 @@ class Scenario:
     placement: ObjectPlacementConfig = dataclasses.field(default_factory=ObjectPlacementConfig)
     # stiction_tolerance 1e-6 m/s, not Drake's 1e-4: SAP's friction is viscous below it, so a
     # held object creeps; 1e-6 reaches the solver's own floor. Triangles: each contact polygon
-    # cut at its centroid, more faces for the floor to spread over (docs/model.md, "Friction
-    # creep").
+    # cut at its centroid, more faces for the floor to spread over
+    # (docs/model.md, "Friction creep").
     plant_config: MultibodyPlantConfig = dataclasses.field(
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged", stiction_tolerance=1e-6,

@@ -31,8 +31,8 @@ class ContactGeometryConfig:
 
 
 # The linkage pads' refinement by the object's shape when the scenario leaves it unset: the
-# coarsest at which the paper grid's Holds showed no friction creep (docs/model.md, "Friction
-# creep": the paper's 9 markers, development seed 600). A box's flat face loads the pads far
+# coarsest at which the paper grid's Holds showed no friction creep (the paper's 9 markers,
+# development seed 600; docs/model.md, "Friction creep"). A box's flat face loads the pads far
 # inside their friction cone and holds at one split (about 390 faces a pad in Hold); a
 # cylinder's line can leave both fingers off their pins, held by friction near the cone, and
 # needs two (about 700 faces a pad). A mesh from a file is taken as curved.
