@@ -1,0 +1,58 @@
+"""Bad inputs found by the sixth hostile pass: every output is checked by one function before
+the work, every read is bounded, damaged logs are damaged, no empty value the user gave is
+replaced by a built-in one, and the Python API checks what it is given."""
+
+import os
+import pathlib
+
+import pytest
+
+from tests.test_bad_input import run_cli
+
+
+def _one_error_line(text: str) -> list[str]:
+    return [line for line in text.splitlines() if "error:" in line]
+
+
+@pytest.fixture
+def fifo(tmp_path) -> pathlib.Path:
+    path = tmp_path / "pipe.html"
+    os.mkfifo(path)
+    return path
+
+
+@pytest.mark.parametrize("argv_of", [
+    lambda p: ["trial", "--controller", "open_loop", "--out", str(p.parent / "o"),
+               "--html", str(p)],
+    lambda p: ["plot", "trial", str(p.parent / "missing.npz"), "--out",
+               str(p.with_suffix(".png"))],
+])
+def test_an_output_on_a_fifo_is_refused_naming_its_option(tmp_path, argv_of, capfd):
+    path = tmp_path / "pipe.html"
+    argv = argv_of(path)
+    os.mkfifo(argv[-1])
+    code, text = run_cli(argv, capfd)
+    assert code not in (0, 70)
+    errors = _one_error_line(text)
+    assert len(errors) == 1 and argv[-2] in errors[0] and "named pipe" in errors[0], text
+    assert pathlib.Path(argv[-1]).exists() and not pathlib.Path(argv[-1]).is_file()
+
+
+@pytest.mark.parametrize("option, name", [("--html", "h.html")])
+def test_an_output_in_proc_is_refused_before_the_run(tmp_path, option, name, capfd):
+    code, text = run_cli(["trial", "--controller", "open_loop", "--out", str(tmp_path / "o"),
+                          option, f"/proc/{name}"], capfd)
+    assert code not in (0, 70)
+    errors = _one_error_line(text)
+    assert len(errors) == 1 and option in errors[0] and "/proc" in errors[0], text
+    assert not (tmp_path / "o").exists()
+
+
+def test_output_file_problem_refuses_devices_and_proc_and_accepts_a_new_file(tmp_path):
+    from tegrasp_drake.rig.files import output_file_problem
+    assert "device" in output_file_problem("/dev/null")
+    assert "/proc" in output_file_problem("/proc/self/x.html")
+    assert "folder" in output_file_problem(tmp_path)
+    assert output_file_problem(tmp_path / "new" / "replay.html") is None
+    (tmp_path / "plain").write_text("x")
+    assert "not a folder" in output_file_problem(tmp_path / "plain" / "replay.html")
