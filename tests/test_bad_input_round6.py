@@ -56,3 +56,22 @@ def test_output_file_problem_refuses_devices_and_proc_and_accepts_a_new_file(tmp
     assert output_file_problem(tmp_path / "new" / "replay.html") is None
     (tmp_path / "plain").write_text("x")
     assert "not a folder" in output_file_problem(tmp_path / "plain" / "replay.html")
+
+
+@pytest.mark.parametrize("trial", ["/dev/zero", "fifo"])
+def test_emulate_myrio_refuses_a_trial_that_is_not_a_file_before_reading(tmp_path, trial,
+                                                                         capfd):
+    if trial == "fifo":
+        trial = str(tmp_path / "t.npz")
+        os.mkfifo(trial)
+    code, text = run_cli(["emulate", "--scheduling", "normal", "myrio", "--trial", trial,
+                          "--lcm-url", "udpm://239.255.76.67:8716?ttl=0"], capfd)
+    assert code == 1
+    errors = _one_error_line(text)
+    assert len(errors) == 1 and trial in errors[0] and "not a file" in errors[0], text
+
+
+def test_every_npz_reader_refuses_a_device_before_reading():
+    from tegrasp_drake.rig.npz_headers import NpzHeaderError, checked_npz_arrays
+    with pytest.raises(NpzHeaderError, match="not a regular file"):
+        checked_npz_arrays("/dev/zero", ("t",), max_bytes=10)
