@@ -75,3 +75,41 @@ def test_every_npz_reader_refuses_a_device_before_reading():
     from tegrasp_drake.rig.npz_headers import NpzHeaderError, checked_npz_arrays
     with pytest.raises(NpzHeaderError, match="not a regular file"):
         checked_npz_arrays("/dev/zero", ("t",), max_bytes=10)
+
+
+@pytest.mark.parametrize("assignment", ["object.size=[]", "object.shape=''", "object.color=[]",
+                                        "object.file=''"])
+def test_an_empty_value_the_user_gives_is_refused_not_read_as_unset(assignment):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    field = assignment.split("=")[0]
+    with pytest.raises(ConfigError, match=f"field '{field}' is empty: give a value, or leave"):
+        LoadScenario(name="box", overrides=[assignment])
+
+
+def test_a_stored_scenario_with_empty_defaults_still_reads(tmp_path):
+    from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
+    stored = scenario_to_yaml(LoadScenario(name="box"))
+    assert "file: ''" in stored
+    path = tmp_path / "s.yaml"
+    path.write_text("x:\n" + "".join(f"  {line}\n" for line in stored.splitlines()))
+    assert LoadScenario(path, name="x").object.size == LoadScenario(name="box").object.size
+
+
+def test_a_null_scenario_entry_is_refused_naming_it(tmp_path, capfd):
+    path = tmp_path / "s.yaml"
+    path.write_text("x:\n")
+    code, text = run_cli(["trial", "--scenario", str(path), "--scenario-name", "x",
+                          "--out", str(tmp_path / "o")], capfd)
+    assert code == 1
+    errors = _one_error_line(text)
+    assert len(errors) == 1 and "scenario 'x' is empty" in errors[0], text
+
+
+def test_a_sweep_spec_that_is_an_empty_mapping_is_refused_like_an_empty_file(tmp_path):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.sweep.spec_file import LoadSweepSpec
+    for text in ("", "{}\n"):
+        (tmp_path / "spec.yaml").write_text(text)
+        with pytest.raises(ConfigError, match="the sweep spec is empty"):
+            LoadSweepSpec(tmp_path / "spec.yaml")

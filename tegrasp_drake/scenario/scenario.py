@@ -27,7 +27,8 @@ from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, chec
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          parse_yaml, read_yaml_file, require)
+                                          parse_yaml, read_yaml_file, refuse_unset_markers,
+                                          require)
 from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
                                                         TAXEL_TRANSDUCERS,
                                                         ad7147_frame_rate_hz,
@@ -349,7 +350,10 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     if not isinstance(document, dict) or name not in document:
         names = ", ".join(document) if isinstance(document, dict) else "none"
         raise ConfigError(f"{path}: no scenario named '{name}' (scenarios: {names})")
-    data = document[name] or {}
+    data = document[name]
+    if data is None:  # `x:` alone: an entry left empty, not the default scenario
+        raise ConfigError(f"{path}: scenario '{name}' is empty (null): give its fields, or "
+                          f"`{name}: {{}}` for the default scenario")
     if not isinstance(data, dict):
         raise ConfigError(f"{path}: scenario '{name}' must be a mapping of fields, got "
                           f"{type(data).__name__} {data!r}")
@@ -358,6 +362,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     # A bad value given with --set is named as such, not as the file's.
     source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
     refuse_moved_keys(data, source)
+    refuse_unset_markers(data, Scenario, overrides, source)
     if controller is not None:
         data.setdefault("controller", {})["name"] = controller
     try:
