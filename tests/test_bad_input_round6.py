@@ -113,3 +113,48 @@ def test_a_sweep_spec_that_is_an_empty_mapping_is_refused_like_an_empty_file(tmp
         (tmp_path / "spec.yaml").write_text(text)
         with pytest.raises(ConfigError, match="the sweep spec is empty"):
             LoadSweepSpec(tmp_path / "spec.yaml")
+
+
+def _reachable_dataclasses(*roots):
+    import dataclasses
+    import typing
+    from tegrasp_drake.rig.ranges import _config_classes
+    seen, pending = [], list(roots)
+    while pending:
+        cls = pending.pop()
+        if cls in seen or not dataclasses.is_dataclass(cls):
+            continue
+        seen.append(cls)
+        hints = typing.get_type_hints(cls)
+        for field in dataclasses.fields(cls):
+            pending.extend(_config_classes(hints[field.name]))
+    return seen
+
+
+def test_every_timeout_refuses_zero_as_the_user_guide_says():
+    import dataclasses
+    from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_named
+    from tegrasp_drake.hardware.config import HardwareStationConfig
+    from tegrasp_drake.rig.ranges import range_of
+    from tegrasp_drake.scenario.scenario import Scenario
+    roots = [Scenario, HardwareStationConfig,
+             *(type(controller_named(name)) for name in CONTROLLER_NAMES)]
+    timeouts, zero_allowed = [], []
+    for cls in _reachable_dataclasses(*roots):
+        for field in dataclasses.fields(cls):
+            declared = range_of(field)
+            if "timeout" in field.name and declared is not None:
+                timeouts.append(f"{cls.__name__}.{field.name}")
+                if declared.low is not None and declared.low <= 0 and not declared.low_open:
+                    zero_allowed.append(f"{cls.__name__}.{field.name}")
+    assert len(timeouts) >= 4 and zero_allowed == []
+
+
+@pytest.mark.parametrize("key", ["controller.load_event_timeout_s",
+                                 "controller.re_reach.reach_event_timeout_s",
+                                 "controller.place.event_timeout_s"])
+def test_a_zero_controller_timeout_is_refused(key):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    with pytest.raises(ConfigError, match=f"field '{key}' must be positive"):
+        LoadScenario(name="box", overrides=[f"{key}=0.0"])
