@@ -158,3 +158,44 @@ def test_a_zero_controller_timeout_is_refused(key):
     from tegrasp_drake.scenario.scenario import LoadScenario
     with pytest.raises(ConfigError, match=f"field '{key}' must be positive"):
         LoadScenario(name="box", overrides=[f"{key}=0.0"])
+
+
+@pytest.mark.parametrize("name, size, words", [("box", [0.1], "3 positive sizes"),
+                                               ("thin_cylinder", [0.02, 0.1, 0.1],
+                                                "2 positive sizes")])
+def test_builders_recheck_an_object_a_script_changed(name, size, words):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    scenario = LoadScenario(name=name)
+    scenario.object.size = size
+    with pytest.raises(ConfigError, match=f"MakeGraspDiagram: scenario: field 'object.size' "
+                                          f"must hold {words}"):
+        MakeGraspDiagram(scenario)
+
+
+def test_a_recheck_keeps_a_built_in_object_with_sizes_the_user_set_and_resolves_a_bare_one():
+    from tegrasp_drake.scenario.scenario import LoadScenario, Scenario, rechecked
+    loaded = LoadScenario(name="box", overrides=["object.size=[0.05,0.05,0.1]"])
+    assert rechecked(loaded, "test").object.size == [0.05, 0.05, 0.1]
+    assert rechecked(Scenario(), "test").object.size == LoadScenario(name="box").object.size
+
+
+def test_record_result_refuses_what_is_not_a_trial_record():
+    from tegrasp_drake.sweep.records import record_result
+    with pytest.raises(ValueError, match="argument 'record' is not a sweep record"):
+        record_result({"a": 1})
+    with pytest.raises(ValueError, match="'result' is not a trial's result"):
+        record_result({"status": "ok", "result": {"a": 1}})
+    assert record_result({"status": "error", "result": None}) is None
+
+
+def test_public_dataclasses_check_scalar_field_types_at_construction():
+    import numpy as np
+    from tegrasp_drake.rig.objects import ObjectConfig
+    from tegrasp_drake.runs.trial_result import TrialResult
+    with pytest.raises(TypeError, match="TrialResult: field 'hold_success' must be bool, got str"):
+        TrialResult(hold_success="yes")
+    with pytest.raises(TypeError, match="ObjectConfig: field 'mass' must be"):
+        ObjectConfig(mass="heavy")
+    assert TrialResult(hold_success=np.bool_(True), seed=np.int64(3), hold_time_s=2).seed == 3

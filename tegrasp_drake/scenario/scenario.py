@@ -133,8 +133,11 @@ declare_ranges(SimulatorConfig, {
 })
 
 
-def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConfig:
-    """The full description of the scenario's object (a built-in one if shape is empty)."""
+def resolve_object(config: ObjectConfig, source: str = "scenario", *,
+                   loaded: bool = False) -> ObjectConfig:
+    """The full description of the scenario's object (a built-in one if shape is empty).
+    loaded: `config` came resolved from a loaded scenario, where a built-in's name with other
+    sizes is that built-in with the sizes the user set (LoadScenario already asked)."""
     if not config.shape:
         if config.name not in BUILTIN_OBJECTS:
             raise ConfigError(
@@ -154,7 +157,8 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
             mass=builtin.mass if config.mass is None else config.mass,
             friction=builtin.friction if config.friction is None else config.friction,
             color=list(config.color or builtin.color))
-    elif config.name in BUILTIN_OBJECTS and not _is_builtin_geometry(config):
+    elif (config.name in BUILTIN_OBJECTS and not loaded
+          and not _is_builtin_geometry(config)):
         raise ConfigError(
             f"{source}: field 'object.name': your own object (object.shape "
             f"'{config.shape}') needs its own name, not the built-in '{config.name}': its "
@@ -275,10 +279,11 @@ def _check_transducers(scenario: Scenario, source: str) -> None:
 
 
 def validate(scenario: Scenario, source: str = "scenario", *,
-             allow_long: bool = False) -> Scenario:
+             allow_long: bool = False, loaded: bool = False) -> Scenario:
     """Checks what the schema cannot (each number's declared range, then what relates
-    fields); returns the scenario with its object resolved."""
-    scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source))
+    fields); returns the scenario with its object resolved (loaded: see resolve_object)."""
+    scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source,
+                                                                   loaded=loaded))
     disturbance = scenario.disturbance
     if len(disturbance.hit_force_n) != 3:
         raise ConfigError(f"{source}: field 'disturbance': hit_force_n must be [x, y, z] in "
@@ -382,6 +387,14 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     if ignored and on_ignored is not None:
         on_ignored(ignored)
     return scenario
+
+
+def rechecked(scenario: Scenario, source: str) -> Scenario:
+    """`scenario` checked again as LoadScenario checks it, for a builder given one a script
+    may have changed after loading (ranges, list lengths, the object's sizes for its shape);
+    returned with its object resolved (a bare Scenario() is the built-in box). A long grasp
+    script is accepted: that limit is LoadScenario's allow_long."""
+    return validate(scenario, source, allow_long=True, loaded=True)
 
 
 def _echo(assignment: str) -> str:
