@@ -284,6 +284,8 @@ def _scalar_fields(cls, hints: dict) -> dict:
     scalar = {}
     for field in dataclasses.fields(cls):
         hint = hints.get(field.name)
+        if typing.get_origin(hint) not in (None, typing.Union, types.UnionType):
+            continue  # a collection: public_api's item checks are for arguments
         members = [m for m in (typing.get_args(hint) or (hint,)) if m is not type(None)]
         if members and all(m in (str, int, float, bool) for m in members):
             scalar[field.name] = hint

@@ -172,11 +172,15 @@ def output_file_problem(path) -> str | None:
             return "is a folder where a file belongs; give a file name"
         return (_kind_problem(mode, "") or "is not a regular file").split(";")[0] + \
             "; give a regular file to write"
+    problem = replace_problem(path)
+    if problem:
+        return f"{problem}; give a file in a folder you can write"
     real = os.path.realpath(path)
-    if any(real == top or real.startswith(top + "/") for top in ("/proc", "/sys", "/dev")):
-        return f"is in {real.split('/')[1] and '/' + real.split('/')[1]}, not a place for " \
-               "files; give a file in a folder you can write"
-    problem = replace_problem(path) or folder_problem(path.parent)
+    top = next((top for top in ("/proc", "/sys", "/dev")
+                if real == top or real.startswith(top + "/")), None)
+    if top:
+        return f"is in {top}, not a place for files; give a file in a folder you can write"
+    problem = folder_problem(path.parent)
     if problem:
         return f"{problem}; give a file in a folder you can write"
     return None

@@ -285,9 +285,8 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source,
                                                                    loaded=loaded))
     disturbance = scenario.disturbance
-    if len(disturbance.hit_force_n) != 3:
-        raise ConfigError(f"{source}: field 'disturbance': hit_force_n must be [x, y, z] in "
-                          f"newtons, got {disturbance.hit_force_n}")
+    require(len(disturbance.hit_force_n) == 3, source, "disturbance.hit_force_n",
+            "must hold 3 numbers [N] ([x, y, z])", disturbance.hit_force_n)
     force = math.hypot(*disturbance.hit_force_n)
     require(force <= MAX_HIT_FORCE_N, source, "disturbance.hit_force_n",
             f"must be at most {MAX_HIT_FORCE_N:g} N in size (five times the paper's 20 N "

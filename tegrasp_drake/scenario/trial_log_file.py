@@ -74,7 +74,6 @@ class TrialLog:
         return self.channels[:, 2:]
 
 
-@public_api
 def check_trial_log_file(path: PathLike) -> None:
     """TrialLogError naming `path` unless it is a regular file, asked before a byte is read:
     every reader of a trial log (plot, the myRIO emulator) starts here."""
@@ -88,6 +87,7 @@ def check_trial_log_file(path: PathLike) -> None:
                             "trial log is the trial.npz that `tegrasp trial --out DIR` writes)")
 
 
+@public_api
 def load_trial_log(path: PathLike) -> TrialLog:
     """Reads a TrialLog; raises TrialLogError naming the file on any defect."""
     path = pathlib.Path(path)
