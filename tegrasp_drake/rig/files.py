@@ -155,6 +155,37 @@ def replace_problem(path) -> str | None:
     return None
 
 
+def output_file_problem(path) -> str | None:
+    """Why a command may not write the file `path` (an output option's value), in words that
+    follow it, or None; asked before the work starts. Refuses an existing device, FIFO, socket
+    or folder (a rename onto a device node would replace it), /proc and /sys, and a folder the
+    user cannot write in."""
+    path = pathlib.Path(path)
+    try:
+        mode = os.stat(path).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        mode = None
+    except OSError as e:
+        return f"cannot be used ({e.strerror or e})"
+    if mode is not None and not stat.S_ISREG(mode):
+        if stat.S_ISDIR(mode):
+            return "is a folder where a file belongs; give a file name"
+        return (_kind_problem(mode, "") or "is not a regular file").split(";")[0] + \
+            "; give a regular file to write"
+    problem = replace_problem(path)
+    if problem:
+        return f"{problem}; give a file in a folder you can write"
+    real = os.path.realpath(path)
+    top = next((top for top in ("/proc", "/sys", "/dev")
+                if real == top or real.startswith(top + "/")), None)
+    if top:
+        return f"is in {top}, not a place for files; give a file in a folder you can write"
+    problem = folder_problem(path.parent)
+    if problem:
+        return f"{problem}; give a file in a folder you can write"
+    return None
+
+
 def non_folder_on_path(folder) -> tuple[pathlib.Path, OSError | None] | None:
     """The nearest existing part of `folder` (itself first) when not a folder, with the OSError
     that stopped the look if any; None when `folder` is one or can be made."""

@@ -282,6 +282,32 @@ def require(condition: bool, source: str, path: str, words: str, value) -> None:
         raise ConfigError(f"{source}: field '{path}' {words}, got {shorten(repr(value))}")
 
 
+def refuse_unset_markers(data: dict, schema, assignments, source: str) -> None:
+    """ConfigError when a `key=value` of `assignments` (--set) gives an empty text or list
+    that is its field's default, where empty means "not set" (e.g. the built-in object's
+    shape or size): refused rather than read as that, as a null is. Stored scenarios keep
+    their empty defaults; only what the user gives is asked."""
+    for assignment in assignments:
+        key = assignment.split("=", 1)[0].strip()
+        node, cls = data, schema
+        field = None
+        for part in key.split("."):
+            if not (dataclasses.is_dataclass(cls) and isinstance(node, dict) and part in node):
+                field = None
+                break
+            field = next((f for f in dataclasses.fields(cls) if f.name == part), None)
+            if field is None:
+                break
+            node, cls = node[part], typing.get_type_hints(cls).get(part)
+        if field is None or not isinstance(node, (str, list)) or len(node) != 0:
+            continue
+        default = (field.default_factory() if field.default_factory is not dataclasses.MISSING
+                   else field.default)
+        if type(default) is type(node) and default == node:
+            raise ConfigError(f"{source}: field '{key}' is empty: give a value, or leave it "
+                              "out to take its default")
+
+
 def _check_value(value, hint, path: str, source: str) -> None:
     origin = typing.get_origin(hint)
     if origin in (typing.Union, types.UnionType):

@@ -145,8 +145,8 @@ def test_avoid_and_place_settings_declare_their_units_and_ranges():
     _refused(AvoidConfig(distance_m=1.0), "field 'distance_m' must lie in [0, 0.3] m")
     _refused(AvoidConfig(hit_ra_sigmas=-1.0), "field 'hit_ra_sigmas' must be zero (the number "
              "alone) or positive [noise sigmas]")
-    _refused(PlaceConfig(event_timeout_s=-1.0), "field 'event_timeout_s' must be zero or "
-             "positive [s]")
+    _refused(PlaceConfig(event_timeout_s=-1.0), "field 'event_timeout_s' must be positive [s]")
+    _refused(PlaceConfig(event_timeout_s=0.0), "field 'event_timeout_s' must be positive [s]")
 
 
 def test_memorized_corrective_settings_name_corrective_events_and_pairs_of_scores():
