@@ -205,11 +205,11 @@ def record_result(record: dict):
     """The TrialResult of a record's "result" (its JSON form), None for a record without
     one (an error)."""
     from tegrasp_drake.runs.trial_result import TrialResult
-    if "status" not in record or "result" not in record:
-        keys = shorten(", ".join(map(str, record)))
+    if not isinstance(record, dict) or "result" not in record:
+        keys = shorten(", ".join(map(str, record))) if isinstance(record, dict) else type(
+            record).__name__
         raise ValueError(f"record_result: argument 'record' is not a sweep record (it has no "
-                         f"'status' and 'result'; its keys: {keys}); give a record of "
-                         "load_records(FOLDER)")
+                         f"'result'; got {keys}); give a record of load_records(FOLDER)")
     result = record["result"]
     if result is None:
         return None
