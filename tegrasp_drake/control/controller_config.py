@@ -9,6 +9,7 @@ import typing
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 
 # The events folder's subfolder of memorized corrective events.
@@ -57,6 +58,9 @@ class FingerStrikeConfig:
                                    below="must be zero or positive [N m]")
 
 
+_HANDS_THRESHOLDS = "the hand's thresholds for this event"
+
+
 @public_dataclass
 @dataclasses.dataclass
 class TaxelAwareConfig:
@@ -88,9 +92,12 @@ class TaxelAwareConfig:
                                     below="must be zero or positive [s]")
     max_regrasps: int = bounded(1, low=0, high=10, below="must be zero or positive")
     # Eq. 3 [SA, RA] per ensemble event; empty: the hand's (analysis/choose_ensemble_thresholds.py)
-    reach_load_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
-    load_lift_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
-    place_unload_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
+    reach_load_thresholds: list[float] = unset_when_empty(
+        _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
+    load_lift_thresholds: list[float] = unset_when_empty(
+        _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
+    place_unload_thresholds: list[float] = unset_when_empty(
+        _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
     def problem(self) -> tuple[str, str, object] | None:

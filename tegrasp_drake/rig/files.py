@@ -178,12 +178,30 @@ def output_file_problem(path) -> str | None:
     real = os.path.realpath(path)
     top = next((top for top in ("/proc", "/sys", "/dev")
                 if real == top or real.startswith(top + "/")), None)
-    if top:
+    # /dev holds device nodes, but a RAM-backed folder mounted in it (/dev/shm) holds files.
+    if top and not (top == "/dev" and _filesystem_type(os.path.dirname(real)) == "tmpfs"):
         return f"is in {top}, not a place for files; give a file in a folder you can write"
     problem = folder_problem(path.parent)
     if problem:
         return f"{problem}; give a file in a folder you can write"
     return None
+
+
+def _filesystem_type(folder: str) -> str | None:
+    """The type of the filesystem `folder` (a real path) is on, from the mount table
+    (/proc/self/mounts: the longest mount point that holds it); None if unknown."""
+    try:
+        with open("/proc/self/mounts", encoding="utf-8", errors="replace") as mounts:
+            table = [line.split()[1:3] for line in mounts if len(line.split()) >= 3]
+    except OSError:
+        return None
+    best, kind = "", None
+    for point, fs_type in table:
+        point = point.replace("\\040", " ")
+        inside = folder == point or folder.startswith(point.rstrip("/") + "/")
+        if inside and len(point) >= len(best):
+            best, kind = point, fs_type
+    return kind
 
 
 def non_folder_on_path(folder) -> tuple[pathlib.Path, OSError | None] | None:

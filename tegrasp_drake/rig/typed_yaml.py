@@ -17,6 +17,7 @@ from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
 
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, one_line, read_bounded
 
 
@@ -234,12 +235,16 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         raise ConfigError(f"{source}: {_field(where)}must be a mapping of fields, got "
                           f"{_describe(data)}")
     hints = typing.get_type_hints(schema)
-    hints = {field.name: hints[field.name] for field in dataclasses.fields(schema)}
+    fields = {field.name: field for field in dataclasses.fields(schema)}
     for key, value in data.items():
         path = f"{where}.{key}" if where else str(key)
-        if key not in hints:
+        if key not in fields:
             raise ConfigError(f"{source}: field '{path}': unknown field '{path}' (known: "
-                              f"{', '.join(sorted(hints))})")
+                              f"{', '.join(sorted(fields))})")
+        means = empty_meaning(fields[key])
+        if means is not None and isinstance(value, (str, list)) and len(value) == 0:
+            raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
+                              f"out for {means}")
         _check_value(value, hints[key], path, source)
     for field in dataclasses.fields(schema):
         required = (field.default is dataclasses.MISSING
@@ -280,32 +285,6 @@ def require(condition: bool, source: str, path: str, words: str, value) -> None:
     """Raises ConfigError "SOURCE: field 'PATH' WORDS, got VALUE" unless `condition`."""
     if not condition:
         raise ConfigError(f"{source}: field '{path}' {words}, got {shorten(repr(value))}")
-
-
-def refuse_unset_markers(data: dict, schema, assignments, source: str) -> None:
-    """ConfigError when a `key=value` of `assignments` (--set) gives an empty text or list
-    that is its field's default, where empty means "not set" (e.g. the built-in object's
-    shape or size): refused rather than read as that, as a null is. Stored scenarios keep
-    their empty defaults; only what the user gives is asked."""
-    for assignment in assignments:
-        key = assignment.split("=", 1)[0].strip()
-        node, cls = data, schema
-        field = None
-        for part in key.split("."):
-            if not (dataclasses.is_dataclass(cls) and isinstance(node, dict) and part in node):
-                field = None
-                break
-            field = next((f for f in dataclasses.fields(cls) if f.name == part), None)
-            if field is None:
-                break
-            node, cls = node[part], typing.get_type_hints(cls).get(part)
-        if field is None or not isinstance(node, (str, list)) or len(node) != 0:
-            continue
-        default = (field.default_factory() if field.default_factory is not dataclasses.MISSING
-                   else field.default)
-        if type(default) is type(node) and default == node:
-            raise ConfigError(f"{source}: field '{key}' is empty: give a value, or leave it "
-                              "out to take its default")
 
 
 def _check_value(value, hint, path: str, source: str) -> None:

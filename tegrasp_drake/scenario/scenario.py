@@ -26,9 +26,9 @@ from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, chec
                                       declare_ranges, shorten)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
+from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          parse_yaml, read_yaml_file, refuse_unset_markers,
-                                          require)
+                                          parse_yaml, read_yaml_file, require)
 from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
                                                         TAXEL_TRANSDUCERS,
                                                         ad7147_frame_rate_hz,
@@ -366,7 +366,6 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     # A bad value given with --set is named as such, not as the file's.
     source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
     refuse_moved_keys(data, source)
-    refuse_unset_markers(data, Scenario, overrides, source)
     if controller is not None:
         data.setdefault("controller", {})["name"] = controller
     try:
@@ -469,5 +468,6 @@ def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenar
 
 @public_api
 def scenario_to_yaml(scenario: Scenario) -> str:
-    """The scenario as YAML text (for logs and provenance)."""
-    return yaml_dump_typed(scenario)
+    """The scenario as YAML text (for logs and provenance), without its empty "not set"
+    fields (rig/unset_fields.py), so that it reads back as a scenario file."""
+    return without_unset_fields(yaml_dump_typed(scenario), scenario)
