@@ -16,7 +16,7 @@ class UncertainParameter:
     """One guessed scenario setting: `key` its dotted name (`--set key=value`), `default`
     the scenario's value, [low, high] its plausible range in `unit`; `choices` the values a
     discrete setting takes (low, default and high among them), `step` the grid a continuous
-    one must sit on; `also_sets` the assignments that go with a value (a setting whose
+    one must sit on (else 4 significant digits); `also_sets` the assignments that go with a value (a setting whose
     partner must follow it); `kind` says what the range rests on (datasheet, paper,
     handbook, closed-form estimate) and `source` the argument."""
     key: str
@@ -29,6 +29,7 @@ class UncertainParameter:
     choices: tuple[float, ...] = ()
     step: float = 0.0
     also_sets: tuple[tuple[float, tuple[str, ...]], ...] = ()
+    log_scale: bool = False  # sampled uniformly in log(value): a range over a decade
 
     @property
     def name(self) -> str:
@@ -42,14 +43,17 @@ class UncertainParameter:
             return min(self.choices, key=lambda c: abs(c - value))
         if self.step:
             return round(round(value / self.step) * self.step, 9)
-        return float(value)
+        return float(f"{value:.4g}")
 
     def at_fraction(self, u: float) -> float:
         """The value a fraction u in [0, 1) of the range stands for: equal shares of the
-        choices for a discrete setting, else low + u (high - low), snapped."""
+        choices for a discrete setting, else low + u (high - low) (low (high / low)^u on a log
+        scale), snapped."""
         if self.choices:
             inside = [c for c in self.choices if self.low <= c <= self.high]
             return inside[min(int(u * len(inside)), len(inside) - 1)]
+        if self.log_scale:
+            return self.snapped(self.low * (self.high / self.low) ** u)
         return self.snapped(self.low + u * (self.high - self.low))
 
     def assignments(self, value: float) -> tuple[str, ...]:
@@ -103,7 +107,8 @@ UNCERTAIN_PARAMETERS = (
         "film data) and the bending strain of a free 6 x 45 mm cantilever's root, the "
         "upper bound (a free film; TE's LDT0-028K reads about 50 mV/g); a film bonded "
         "behind the fingertip's board strains 3-30 times less, about 1e-6 C/m "
-        "(closed-form beam estimate; \"The film's sensitivity S and its range\")"),
+        "(closed-form beam estimate; \"The film's sensitivity S and its range\")",
+        log_scale=True),
 )
 
 
