@@ -126,8 +126,8 @@ def tornado_bars(points, rows: list[PointRow], controller: str, metric: str) -> 
 
 def draw_tornado(points, rows: list[PointRow], controllers, path) -> pathlib.Path | None:
     """Panels, rows by metric (misplaced held, placed) and columns by controller: each
-    parameter a bar from the default's rate to its low end's (blue) and to its high end's
-    (orange); parameters ordered by their largest swing over all panels, largest on top.
+    parameter two bars from the default's rate, to its low end's (blue, below) and to its
+    high end's (orange, above), a tick at each end's rate; parameters ordered by their largest swing over all panels, largest on top.
     None when no panel has a bar."""
     panels = {(c, m): tornado_bars(points, rows, c, m) for c in controllers for _, m in METRICS}
     swing = collections.defaultdict(float)
@@ -148,13 +148,17 @@ def draw_tornado(points, rows: list[PointRow], controllers, path) -> pathlib.Pat
                 bar = bars.get(key)
                 if bar is None:
                     continue
-                for end, colour in (("low", "tab:blue"), ("high", "tab:orange")):
+                for end, colour, shift in (("low", "tab:blue", -0.18),
+                                           ("high", "tab:orange", 0.18)):
                     value = getattr(bar, end)
                     if value is not None and np.isfinite(value):
-                        ax.barh(k, 100 * (value - bar.default), left=100 * bar.default,
-                                height=0.6, color=colour, label=f"{end} end")
+                        ax.barh(k + shift, 100 * (value - bar.default), left=100 * bar.default,
+                                height=0.34, color=colour, label=f"{end} end")
+                        ax.plot(100 * value, k + shift, marker="|", color=colour,
+                                markersize=7)  # seen also where an end leaves the rate
                 ax.axvline(100 * bar.default, color="black", linewidth=0.8)
             ax.set_xlim(-2, 102)
+            ax.set_ylim(-0.6, len(order) - 0.4)
             ax.set_title(f"{controller}: {title}", fontsize=9)
             ax.set_yticks(range(len(order)), order, fontsize=7)
             ax.set_xlabel("% of misplaced trials", fontsize=8)
@@ -184,6 +188,27 @@ def spread_markdown(rows: list[PointRow], controllers) -> str:
     return "\n".join(lines) + "\n"
 
 
+def ends_markdown(points, rows: list[PointRow]) -> str:
+    """Which failure classes appear at which end: per one-factor parameter and controller,
+    the classes at its low end, at the defaults and at its high end."""
+    classes = {(r.point, r.controller): ", ".join(f"{name} {n}" for name, n in r.failures)
+               or "none" for r in rows}
+    ends = {}
+    for point in points:
+        if point.parameter:
+            ends.setdefault(point.parameter, {})[point.end] = point.name
+    lines = ["| parameter | controller | low end | defaults | high end |",
+             "|---|---|---|---|---|"]
+    controllers = list(dict.fromkeys(r.controller for r in rows))
+    for key, names in ends.items():
+        for controller in controllers:
+            cells = [classes.get((names[end], controller), "not run") if end in names
+                     else "(the default)" for end in ("low", "high")]
+            lines.append(f"| `{key}` | {controller} | {cells[0]} | "
+                         f"{classes.get((DEFAULT_POINT, controller), 'not run')} | {cells[1]} |")
+    return "\n".join(lines) + "\n"
+
+
 def write_sensitivity_report(spec, points, out_dir, *,
                              figure_format: str = "png") -> list[pathlib.Path]:
     """Writes OUT/sensitivity.md and the tornado chart OUT/tornado.<format> (when one-factor
@@ -206,6 +231,8 @@ def write_sensitivity_report(spec, points, out_dir, *,
         text += [f"![tornado chart]({figure.name})", "",
                  "Each bar runs from the rate at the defaults (black line) to the rate with "
                  "one parameter at its low (blue) or high (orange) end.", ""]
+    if any(p.parameter for p in points):
+        text += ["## Failure classes at each end", "", ends_markdown(points, rows)]
     text += ["## Spread over the points", "", spread_markdown(rows, controllers),
              "## Each point", "", points_markdown(points, rows)]
     missing = [p.name for p in points if not any(r.point == p.name for r in rows)]
