@@ -73,8 +73,7 @@ def _yaml_number(value: float) -> str:
 # The AD7147's frame rate follows its decimation (simulation/capacitive_taxels.py): the
 # capacitive transducer's sample rate is set with it.
 _DECIMATION_RATES = ((64, ("tactile.sample_rate_hz=108.0",)),
-                     (128, ("tactile.sample_rate_hz=54.0",)),
-                     (256, ("tactile.sample_rate_hz=27.0",)))
+                     (128, ("tactile.sample_rate_hz=54.0",)))
 
 UNCERTAIN_PARAMETERS = (
     UncertainParameter(
@@ -95,11 +94,12 @@ UNCERTAIN_PARAMETERS = (
         "a cycle; 30 ms is a host that queues a command or two. On the plant's 1 ms steps",
         step=0.001),
     UncertainParameter(
-        "tactile.capacitive.decimation", 64, 64, 256, "", "datasheet",
+        "tactile.capacitive.decimation", 64, 64, 128, "", "datasheet",
         "the AD7147's decimation, 64, 128 or 256 (Analog Devices AD7147 data sheet): 12 "
-        "stages of 0.768 ms at 64, a frame of 9.2, 18.4 or 36.9 ms (108, 54 or 27 Hz), the "
-        "noise falling as sqrt(64 / decimation); the paper does not give it. The sample "
-        "rate is set with it", choices=(64, 128, 256),
+        "stages of 0.768 ms at 64, a frame of 9.2 or 18.4 ms (108 or 54 Hz), the noise "
+        "falling as sqrt(64 / decimation); the paper does not give it. Not 256: its 27.1 Hz "
+        "frames do not fill the paper's 0.5 s event window (Sec. III-A) a whole number of "
+        "times (13.6). The sample rate is set with it", choices=(64, 128),
         also_sets=_DECIMATION_RATES),
     UncertainParameter(
         "vibration.film.film_charge_gain_c_per_m", 2.5e-5, 1e-6, 2.5e-5, "C/m", "datasheet",

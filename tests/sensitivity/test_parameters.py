@@ -6,7 +6,9 @@ import pathlib
 
 import pytest
 
-from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.events.extraction import DEFAULT_WINDOW_S
+from tegrasp_drake.scenario.scenario import LoadScenario, sample_rates_hz
+from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, documented_table,
                                                   parameter, parameters_markdown,
                                                   scenario_setting)
@@ -39,6 +41,16 @@ def test_each_end_loads_as_a_scenario_with_the_setting_there(entry):
         assert scenario_setting(scenario, entry.key)[0] == pytest.approx(end, rel=1e-12)
 
 
+@PARAMETERS
+def test_each_end_fills_the_event_window_with_whole_samples(entry):
+    """The memorized events' 0.5 s window holds a whole number of samples of each stream
+    at either end (the matcher refuses a trial otherwise)."""
+    for end in (entry.low, entry.high):
+        scenario = LoadScenario(overrides=entry.assignments(end))
+        for rate_hz in sample_rates_hz(scenario):
+            assert samples_per_window(DEFAULT_WINDOW_S, rate_hz) >= 2
+
+
 def test_the_model_page_shows_the_table_generated_from_the_data():
     text = (ROOT / "docs" / "model.md").read_text(encoding="utf-8")
     assert documented_table(text) == parameters_markdown(), (
@@ -47,7 +59,7 @@ def test_the_model_page_shows_the_table_generated_from_the_data():
 
 def test_a_discrete_setting_takes_only_its_choices_and_a_stepped_one_its_steps():
     decimation = parameter("tactile.capacitive.decimation")
-    assert [decimation.at_fraction(u) for u in (0.0, 0.34, 0.99)] == [64, 128, 256]
+    assert [decimation.at_fraction(u) for u in (0.0, 0.49, 0.5, 0.99)] == [64, 64, 128, 128]
     assert decimation.assignments(128) == ("tactile.capacitive.decimation=128",
                                            "tactile.sample_rate_hz=54.0")
     latency = parameter("arm.command_latency_s")

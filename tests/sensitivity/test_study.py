@@ -52,7 +52,7 @@ def test_one_at_a_time_moves_each_parameter_to_each_end_that_is_not_its_default(
                 assert moved[entry.key, end] == value
     assert all(len(p.values) == 1 for p in points[1:])
     decimation = next(p for p in points if p.parameter == "tactile.capacitive.decimation")
-    assert "tactile.sample_rate_hz=27.0" in decimation.assignments()
+    assert "tactile.sample_rate_hz=54.0" in decimation.assignments()
 
 
 def test_the_latin_hypercube_puts_one_point_in_each_stratum_of_each_continuous_parameter():
