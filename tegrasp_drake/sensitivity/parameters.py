@@ -15,8 +15,8 @@ import sys
 class UncertainParameter:
     """One guessed scenario setting: `key` its dotted name (`--set key=value`), `default`
     the scenario's value, [low, high] its plausible range in `unit`; `choices` the values a
-    discrete setting takes (low, default and high among them), `step` the grid a continuous
-    one must sit on (else 4 significant digits); `also_sets` the assignments that go with a value (a setting whose
+    discrete setting takes, `step` the grid a continuous one must sit on (else 4
+    significant digits); `also_sets` the assignments that go with a value (a setting whose
     partner must follow it); `kind` says what the range rests on (datasheet, paper,
     handbook, closed-form estimate) and `source` the argument."""
     key: str

@@ -127,8 +127,8 @@ def tornado_bars(points, rows: list[PointRow], controller: str, metric: str) -> 
 def draw_tornado(points, rows: list[PointRow], controllers, path) -> pathlib.Path | None:
     """Panels, rows by metric (misplaced held, placed) and columns by controller: each
     parameter two bars from the default's rate, to its low end's (blue, below) and to its
-    high end's (orange, above), a tick at each end's rate; parameters ordered by their largest swing over all panels, largest on top.
-    None when no panel has a bar."""
+    high end's (orange, above), a tick at each end's rate; parameters ordered by their
+    largest swing over all panels, largest on top. None when no panel has a bar."""
     panels = {(c, m): tornado_bars(points, rows, c, m) for c in controllers for _, m in METRICS}
     swing = collections.defaultdict(float)
     for bars in panels.values():
