@@ -77,6 +77,14 @@ _DECIMATION_RATES = ((64, ("tactile.sample_rate_hz=108.0",)),
 
 UNCERTAIN_PARAMETERS = (
     UncertainParameter(
+        "gripper.pad_friction", 4.42, 0.91, 50.0, "", "handbook",
+        "the pads' geometry coefficient, which Drake combines with an object's as "
+        "2 mu_pad mu / (mu_pad + mu); the default gives the pad-object pairs 0.81 (cardboard) "
+        "and 0.69 (plastic), the handbook's 0.80 and 0.70 for a fabric over a compliant "
+        "backing on paper or polymer, 0.5-0.9 (\"Friction by material pair\"). "
+        "At 0.91 the pairs are 0.60 and 0.53, a quarter lower; at 50 they are 0.89 and 0.74, "
+        "the most the objects' own coefficients allow (twice theirs)", log_scale=True),
+    UncertainParameter(
         "gripper.position_loop_hz", 60.0, 40.0, 100.0, "Hz", "closed-form estimate",
         "Robotiq publishes no loop gain. The 2F-85 takes commands at up to 200 Hz, and a "
         "position loop faster than half that follows no command faster (100 Hz); below "
