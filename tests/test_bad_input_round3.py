@@ -69,7 +69,8 @@ def test_an_events_variable_naming_a_file_is_refused(tmp_path, monkeypatch, capf
 
 
 # Arguments a command needs before the path option under test.
-_POSITIONALS = {"plot": ["events"], "transfer": ["spec.yaml"], "replay": ["run.lcmlog"],
+_POSITIONALS = {"plot": ["events"], "transfer": ["spec.yaml"], "sensitivity": ["spec.yaml"],
+                "replay": ["run.lcmlog"],
                 "emulate": ["myrio"]}
 
 
