@@ -19,7 +19,8 @@ each name imported on first use so that `import tegrasp_drake` does not load pyd
 - tactile/: the live tactile chain of Fig. 3 (Eq. 1-2, the 0.5 s window).
 - events/, recording/: memorized events and their matching; recording them.
 - control/: the state machine, rule tables and controllers.
-- runs/, sweep/, transfer/: a trial and its judgement; sweeps; the transfer study.
+- runs/, sweep/, transfer/, sensitivity/: a trial and its judgement; sweeps; the transfer
+  study; the guessed parameters swept over their ranges.
 - figures/, reports.py: the paper's figures; a results folder's reports.
 - cli.py, commands/: the `tegrasp` command line."""
 

@@ -21,6 +21,7 @@ COMMAND_MODULES = (
     "tegrasp_drake.commands.trial",
     "tegrasp_drake.commands.sweep",
     "tegrasp_drake.commands.transfer",
+    "tegrasp_drake.commands.sensitivity",
     "tegrasp_drake.commands.record_events",
     "tegrasp_drake.commands.plot",
     "tegrasp_drake.commands.emulate",

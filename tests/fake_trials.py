@@ -111,3 +111,12 @@ def stuck_fake_trial(trial):
         with open(marker + ".finished", "w") as stream:
             stream.write("finished")
     return fake_trial(trial)
+
+
+def slow_fake_trial_with_events(trial, *, events_dir):
+    """slow_fake_trial of a transfer cell or sensitivity point: the result names the events'
+    world (the folder's name, so that records in two output folders compare equal)."""
+    import pathlib
+    result = slow_fake_trial(trial)
+    result["events_world"] = pathlib.Path(events_dir).name
+    return result

@@ -31,6 +31,7 @@ from tegrasp_drake.sweep.trial_function import trial_log_name
     ["hardware", "--config", "/dev/zero"],
     ["sweep", "--spec", "/dev/zero", "--out", "sw"],
     ["transfer", "/dev/zero", "--out", "tr"],
+    ["sensitivity", "/dev/zero", "--out", "se"],
 ])
 def test_a_configuration_without_an_end_is_refused_at_its_limit(argv, tmp_path, monkeypatch,
                                                                 capfd):

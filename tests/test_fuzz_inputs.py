@@ -2,10 +2,10 @@
 or the module's own one-line error, never another exception, and a crafted input cannot make
 a reader hold more than a bound.
 
-Inputs: scenario YAML files and `--set` assignments, sweep and transfer specs, hardware
-configs, memorized event files and their index, trial logs (.npz), LCM run logs, the myRIO's
-serial frames and the Robotiq's Modbus replies. Each comes both as raw bytes or text and as
-a mutation of a well-formed example, which reaches the checks past the parser.
+Inputs: scenario YAML files and `--set` assignments, sweep, transfer and sensitivity specs,
+hardware configs, memorized event files and their index, trial logs (.npz), LCM run logs,
+the myRIO's serial frames and the Robotiq's Modbus replies. Each comes both as raw bytes or
+text and as a mutation of a well-formed example, which reaches the checks past the parser.
 
 The examples are bounded for CI (the whole module about a minute on a loaded 2-core host);
 `TEGRASP_FUZZ=long python -m pytest -p no:cacheprovider tests/test_fuzz_inputs.py` runs
@@ -53,6 +53,7 @@ from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
 from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
 from tegrasp_drake.tactile.sampling import samples_per_window
+from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
 from tegrasp_drake.transfer.matrix import LoadTransferSpec
 
 LONG = os.environ.get("TEGRASP_FUZZ") == "long"
@@ -253,6 +254,23 @@ TRANSFER_SHAPED = st.fixed_dictionaries({}, optional={
 def test_any_transfer_spec_loads_or_is_one_config_error(data, folder):
     try:
         LoadTransferSpec(_file(folder, "transfer.yaml", data))
+    except ConfigError as error:
+        assert "\n" not in str(error)
+
+
+SENSITIVITY_SHAPED = st.fixed_dictionaries({}, optional={
+    "parameters": st.lists(st.sampled_from(["gripper.screw_efficiency", "arm_command_latency_s",
+                                            "object.size", ""]) | YAML_VALUES, max_size=3)
+    | YAML_VALUES,
+    "events": st.sampled_from(["each_point", "default_point", "x"]) | YAML_VALUES,
+    "sweep": schema_shaped(SweepSpec)})
+
+
+@fuzz(40)
+@given(data=st.one_of(SENSITIVITY_SHAPED.map(yaml_text), RAW_TEXT, YAML_SNIPPETS))
+def test_any_sensitivity_spec_loads_or_is_one_config_error(data, folder):
+    try:
+        LoadSensitivitySpec(_file(folder, "sensitivity.yaml", data))
     except ConfigError as error:
         assert "\n" not in str(error)
 

@@ -2,7 +2,8 @@
 
 - demo.py, trial.py: one closed-loop trial (the demo: the default scenario, a figure).
 - record_events.py: memorize the events of the ideal grasp.
-- sweep.py, transfer.py: the grasping experiment; the transfer study.
+- sweep.py, transfer.py, sensitivity.py: the grasping experiment; the transfer study; the
+  guessed parameters over their ranges.
 - emulate.py, hardware.py, replay.py: emulated devices; the run on them; its log replayed.
 - plot.py: the paper's figures from a log or a results folder.
 - scenario_args.py, viewer_args.py, verbosity.py: options shared by the commands.

@@ -21,7 +21,7 @@ from tegrasp_drake.hardware.config import DEFAULT_LCM_URL, lcm_url_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
-from tegrasp_drake.rig.files import folder_problem
+from tegrasp_drake.rig.files import output_file_problem
 
 DEVICES = (*EMULATED_DEVICES, "all")
 GFLT_MAX = 0xF  # the Robotiq status register's fault field is 4 bits
@@ -100,6 +100,9 @@ def _check_config_target(path) -> None:
     if path.is_dir():
         raise SystemExit(f"tegrasp: error: --write-config {path} is a folder; give a file "
                          "name, e.g. hw.yaml")
+    problem = output_file_problem(path)  # a missing folder is made, as plot --out's is
+    if problem:
+        raise SystemExit(f"tegrasp: error: --write-config {path} {problem}")
     if path.exists():
         try:
             first = path.read_text(encoding="utf-8", errors="replace").split("\n", 1)[0]
@@ -110,10 +113,6 @@ def _check_config_target(path) -> None:
             raise SystemExit(f"tegrasp: error: --write-config {path} exists and was not "
                              "written by `tegrasp emulate` (its first line is not the one "
                              "emulate writes); give another file name, or remove it yourself")
-    problem = folder_problem(path.parent)  # a missing folder is made, as plot --out's is
-    if problem:
-        raise SystemExit(f"tegrasp: error: --write-config {path}: {problem}; give a file in "
-                         "a folder you can write")
 
 
 def _refuse_unused_options(args, devices) -> None:

@@ -13,7 +13,7 @@ import sys
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
-from tegrasp_drake.rig.files import file_problem, folder_problem, interruptions_deferred
+from tegrasp_drake.rig.files import file_problem, interruptions_deferred, output_file_problem
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   quiet_modbus_library, scenario_from_arguments)
@@ -145,10 +145,9 @@ def run(args) -> int:
             raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
-    problem = folder_problem(pathlib.Path(log).parent)
+    problem = output_file_problem(log)
     if problem:
-        raise SystemExit(f"tegrasp: error: --log {log}: {problem}; give a file in a folder "
-                         "you can write")
+        raise SystemExit(f"tegrasp: error: --log {log} {problem}")
     pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
     # The run logs to a hidden file beside --log; the earlier log and result stay whole
     # until this run's replace them together at the end (commit_hardware_run).

@@ -15,6 +15,7 @@ import argparse
 import pathlib
 
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.rig.files import output_file_problem
 from tegrasp_drake.rig import paths
 
 TRIAL_FIGURES = ("signals", "trial", "avoid")
@@ -65,6 +66,9 @@ def output_path(args) -> pathlib.Path:
     if args.format is not None and args.format != suffix:
         raise SystemExit(f"tegrasp: error: --out {out} is a .{suffix} file but --format is "
                          f"{args.format}; give one of them")
+    problem = output_file_problem(out)
+    if problem:
+        raise SystemExit(f"tegrasp: error: --out {out} {problem}")
     return out
 
 

@@ -5,6 +5,7 @@ Where the files go, and when an earlier run's are kept: commands/run_folder.py."
 
 import argparse
 import json
+import sys
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RunFolderError, choose_run_folder, commit_run,
@@ -103,11 +104,18 @@ def run(args) -> int:
             with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
                 trial = run_trial(scenario, meshcat=meshcat, events=events,
                                   corrective_events=corrective, progress=progress)
+            html_error = None
+            if html is not None:
+                try:  # its own error: a failed replay names --html and keeps the run
+                    replay_html = str(write_replay_html(meshcat, html))
+                except OSError as e:
+                    html_error = (f"tegrasp: error: --html {html}: cannot write it "
+                                  f"({e.strerror or e}); the run is kept in {out}")
             try:
                 result = dict(trial.to_dict(), log=str(trial.log.save(stage / "trial.npz")),
                               **write_trial_figures(trial.log, stage, args.format))
-                if html is not None:
-                    result["replay_html"] = str(write_replay_html(meshcat, html))
+                if html is not None and html_error is None:
+                    result["replay_html"] = replay_html
                 result = commit_run(stage, out, result)
             except OSError as e:
                 raise RunFolderError(f"cannot write the run to {out}: {e.strerror or e}; "
@@ -123,8 +131,11 @@ def run(args) -> int:
               + (f", {result['contact_ra_figure']} (RA at first contact)"
                  if "contact_ra_figure" in result else "")
               + (f", {result['avoid_figure']} (Fig. 10)" if "avoid_figure" in result else ""))
-        if html is not None:
+        if "replay_html" in result:
             print(f"replay {result['replay_html']} (open it in a browser)")
     wait_for_viewer(args, meshcat)
+    if html_error:
+        print(html_error, file=sys.stderr, flush=True)
+        return 1
     return 0
 

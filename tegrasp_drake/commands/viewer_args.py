@@ -5,7 +5,7 @@ the run's recording as one standalone HTML file (Meshcat.StaticHtml: no server, 
 import pathlib
 import sys
 
-from tegrasp_drake.rig.files import write_atomically
+from tegrasp_drake.rig.files import output_file_problem, write_atomically
 
 
 def add_viewer_arguments(parser) -> None:
@@ -23,15 +23,9 @@ def check_html_path(args) -> pathlib.Path | None:
     if args.html is None:
         return None
     path = pathlib.Path(args.html)
-    if path.is_dir():
-        raise SystemExit(f"tegrasp: error: --html {path} is a folder; give a file name, "
-                         "e.g. replay.html")
-    for parent in path.parents:
-        if parent.exists():
-            if not parent.is_dir():
-                raise SystemExit(f"tegrasp: error: --html {path}: {parent} is a file, not a "
-                                 "folder")
-            break
+    problem = output_file_problem(path)
+    if problem:
+        raise SystemExit(f"tegrasp: error: --html {path} {problem}, e.g. replay.html")
     return path
 
 

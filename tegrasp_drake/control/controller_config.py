@@ -9,6 +9,7 @@ import typing
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 
 # The events folder's subfolder of memorized corrective events.
@@ -18,6 +19,9 @@ CORRECTIVE_EVENTS_FOLDER = "corrective"
 _SIGMAS_WHY = "noise alone crosses 5.51 in one trial of a thousand"
 _SIGMAS_BELOW = "must be zero (the number alone) or positive [noise sigmas]"
 
+
+# A timeout of zero would give up before its event could come (the user guide: refused)
+TIMEOUT_BELOW = "must be positive [s]: a zero timeout gives up before its event can come"
 
 @public_dataclass
 @dataclasses.dataclass
@@ -54,6 +58,9 @@ class FingerStrikeConfig:
                                    below="must be zero or positive [N m]")
 
 
+_HANDS_THRESHOLDS = "the hand's thresholds for this event"
+
+
 @public_dataclass
 @dataclasses.dataclass
 class TaxelAwareConfig:
@@ -85,9 +92,12 @@ class TaxelAwareConfig:
                                     below="must be zero or positive [s]")
     max_regrasps: int = bounded(1, low=0, high=10, below="must be zero or positive")
     # Eq. 3 [SA, RA] per ensemble event; empty: the hand's (analysis/choose_ensemble_thresholds.py)
-    reach_load_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
-    load_lift_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
-    place_unload_thresholds: list[float] = bounded(default_factory=list, **SCORE_RANGE)
+    reach_load_thresholds: list[float] = unset_when_empty(
+        _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
+    load_lift_thresholds: list[float] = unset_when_empty(
+        _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
+    place_unload_thresholds: list[float] = unset_when_empty(
+        _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
 
     def problem(self) -> tuple[str, str, object] | None:
@@ -116,8 +126,8 @@ class ReReachConfig:
     enabled: bool = True
     one_sided_contact_s: float = bounded(0.1, low=0.0, high=10.0, unit="s",
                                          below="must be zero or positive [s]")
-    reach_event_timeout_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
-                                           below="must be zero or positive [s]")
+    reach_event_timeout_s: float = bounded(2.0, low=0.0, low_open=True, high=60.0,
+                                           unit="s", below=TIMEOUT_BELOW)
     max_re_reaches: int = bounded(2, low=0, high=10, below="must be zero or positive")
     # time to shift the open gripper sideways [s]
     move_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
@@ -195,8 +205,8 @@ class AvoidConfig:
 class PlaceConfig:
     """Place: the object set down on the table, Unload on the Place-Unload event."""
     # without the Place-Unload event, unload anyway this long after the arm stops [s]
-    event_timeout_s: float = bounded(1.0, low=0.0, high=60.0, unit="s",
-                                     below="must be zero or positive [s]")
+    event_timeout_s: float = bounded(1.0, low=0.0, low_open=True, high=60.0,
+                                     unit="s", below=TIMEOUT_BELOW)
 
 
 @public_dataclass
@@ -250,8 +260,8 @@ class GraspControllerConfig:
     # Raise each SA threshold to the taxels' noise (control/noise_thresholds.py)
     sa_noise_floor: bool = True
     # Load without the Load-Lift event: give up [s]
-    load_event_timeout_s: float = bounded(2.0, low=0.0, high=60.0, unit="s",
-                                          below="must be zero or positive [s]")
+    load_event_timeout_s: float = bounded(2.0, low=0.0, low_open=True, high=60.0,
+                                          unit="s", below=TIMEOUT_BELOW)
     # Lost object: in Lift, Hold, Avoid or Place, both SA below contact_force_n.
     drop_check_enabled: bool = True
     # object fields the events' object may differ in, e.g. [friction] (a slippery box)

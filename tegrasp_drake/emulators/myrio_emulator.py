@@ -23,8 +23,8 @@ from tegrasp_drake.rig.npz_headers import MAX_TRIAL_LOG_BYTES, checked_npz_array
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
-from tegrasp_drake.scenario.trial_log_file import (TrialLogError, load_trial_log,
-                                                   trial_arrays_problem)
+from tegrasp_drake.scenario.trial_log_file import (TrialLogError, check_trial_log_file,
+                                                   load_trial_log, trial_arrays_problem)
 from tegrasp_drake.emulators.null_modem import open_raw_pty
 
 MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 kHz)
@@ -59,6 +59,10 @@ def load_tactile_recording(path) -> TactileRecording:
     """The pad signals of a TrialLog .npz (left then right) and the gripper's position
     requests when present; a bare recording (save_tactile_recording) is checked alike."""
     wanted = ("t_sa", "taxels", "t_ra", "pad_acceleration")
+    try:
+        check_trial_log_file(path)
+    except TrialLogError as e:
+        raise TactileRecordingError(str(e)) from None
     try:
         arrays = checked_npz_arrays(path, wanted, optional=(
             "meta", "channels", "t_slow", "gripper_command"), max_bytes=MAX_TRIAL_LOG_BYTES,

@@ -13,6 +13,7 @@
   typed_yaml.py             YAML configuration with errors naming the field
   integer_text.py           the one bounded reader of integers from text
   ranges.py                 each numeric setting's unit and range
+  unset_fields.py           fields whose empty value means "not set"
   api_boundary.py           argument checks at the public API; dataclasses take fields only
   files.py                  atomic writes, bounded reads, signals, strict JSON
   npz_headers.py            .npz arrays checked from their headers"""

@@ -209,14 +209,17 @@ def _short_repr(value) -> str:
 
 
 def public_dataclass(cls):
-    """Class decorator (above @dataclass): the constructor refuses a text string in a field
-    annotated as a collection (`objects='box'` for `tuple[str, ...]`), naming class and field."""
+    """Class decorator (above @dataclass): the constructor refuses a value not of its field's
+    type where that is str, int, float or bool (or optional: `hold_success='yes'`), and a
+    text string in a field annotated as a collection (`objects='box'` for `tuple[str, ...]`),
+    naming class and field."""
     init = cls.__init__
     fields = None
+    scalar = None
 
     @functools.wraps(init)
     def checked_init(self, *args, **kwargs):
-        nonlocal fields
+        nonlocal fields, scalar
         init(self, *args, **kwargs)
         if fields is None:
             try:
@@ -226,6 +229,9 @@ def public_dataclass(cls):
                          if not isinstance(f.type, str)}
             fields = [name for name in getattr(cls, "__dataclass_fields__", {})
                       if _expects_collection(hints.get(name))]
+            scalar = _scalar_fields(cls, hints)
+        if type(self) is cls:  # a subclass's own fields are its own decorator's
+            _check_scalar_fields(self, scalar, cls.__name__)
         for name in fields:
             value = getattr(self, name)
             if isinstance(value, _TEXT):
@@ -267,18 +273,35 @@ def check_field_values(instance, source: str | None = None) -> None:
     field not of its (scalar) type, then ConfigError for the first number outside its range."""
     from tegrasp_drake.rig.ranges import check_ranges
     cls = type(instance)
-    source = source or cls.__name__
-    hints = typing.get_type_hints(cls)
-    for field in dataclasses.fields(instance):
+    _check_scalar_fields(instance, _scalar_fields(cls, typing.get_type_hints(cls)),
+                         source or cls.__name__)
+    check_ranges(instance, source or cls.__name__)
+
+
+def _scalar_fields(cls, hints: dict) -> dict:
+    """{name: annotation} of `cls`'s fields annotated as str, int, float or bool (or an
+    optional one): the fields a public dataclass checks at construction."""
+    scalar = {}
+    for field in dataclasses.fields(cls):
         hint = hints.get(field.name)
-        scalars = [m for m in (typing.get_args(hint) or (hint,)) if m is not type(None)]
-        if not scalars or not all(m in (str, int, float, bool) for m in scalars):
-            continue
-        value = getattr(instance, field.name)
-        if not _matches(value, hint):
-            raise TypeError(f"{source}: field '{field.name}' must be {_describe_hint(hint)}, "
+        if typing.get_origin(hint) not in (None, typing.Union, types.UnionType):
+            continue  # a collection: public_api's item checks are for arguments
+        members = [m for m in (typing.get_args(hint) or (hint,)) if m is not type(None)]
+        if members and all(m in (str, int, float, bool) for m in members):
+            scalar[field.name] = hint
+    return scalar
+
+
+def _check_scalar_fields(instance, scalar: dict, source: str) -> None:
+    """TypeError naming the first of the `scalar` fields whose value is not of its type (a
+    NumPy scalar counts as the Python one it holds: np.bool_ as bool)."""
+    for name, hint in scalar.items():
+        value = getattr(instance, name)
+        plain = value.item() if type(value).__module__ == "numpy" and hasattr(
+            value, "item") and getattr(value, "ndim", None) == 0 else value
+        if not _matches(plain, hint):
+            raise TypeError(f"{source}: field '{name}' must be {_describe_hint(hint)}, "
                             f"got {type(value).__name__} {_short_repr(value)}")
-    check_ranges(instance, source)
 
 
 def _expects_collection(hint) -> bool:

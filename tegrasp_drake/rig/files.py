@@ -155,6 +155,55 @@ def replace_problem(path) -> str | None:
     return None
 
 
+def output_file_problem(path) -> str | None:
+    """Why a command may not write the file `path` (an output option's value), in words that
+    follow it, or None; asked before the work starts. Refuses an existing device, FIFO, socket
+    or folder (a rename onto a device node would replace it), /proc and /sys, and a folder the
+    user cannot write in."""
+    path = pathlib.Path(path)
+    try:
+        mode = os.stat(path).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        mode = None
+    except OSError as e:
+        return f"cannot be used ({e.strerror or e})"
+    if mode is not None and not stat.S_ISREG(mode):
+        if stat.S_ISDIR(mode):
+            return "is a folder where a file belongs; give a file name"
+        return (_kind_problem(mode, "") or "is not a regular file").split(";")[0] + \
+            "; give a regular file to write"
+    problem = replace_problem(path)
+    if problem:
+        return f"{problem}; give a file in a folder you can write"
+    real = os.path.realpath(path)
+    top = next((top for top in ("/proc", "/sys", "/dev")
+                if real == top or real.startswith(top + "/")), None)
+    # /dev holds device nodes, but a RAM-backed folder mounted in it (/dev/shm) holds files.
+    if top and not (top == "/dev" and _filesystem_type(os.path.dirname(real)) == "tmpfs"):
+        return f"is in {top}, not a place for files; give a file in a folder you can write"
+    problem = folder_problem(path.parent)
+    if problem:
+        return f"{problem}; give a file in a folder you can write"
+    return None
+
+
+def _filesystem_type(folder: str) -> str | None:
+    """The type of the filesystem `folder` (a real path) is on, from the mount table
+    (/proc/self/mounts: the longest mount point that holds it); None if unknown."""
+    try:
+        with open("/proc/self/mounts", encoding="utf-8", errors="replace") as mounts:
+            table = [line.split()[1:3] for line in mounts if len(line.split()) >= 3]
+    except OSError:
+        return None
+    best, kind = "", None
+    for point, fs_type in table:
+        point = point.replace("\\040", " ")
+        inside = folder == point or folder.startswith(point.rstrip("/") + "/")
+        if inside and len(point) >= len(best):
+            best, kind = point, fs_type
+    return kind
+
+
 def non_folder_on_path(folder) -> tuple[pathlib.Path, OSError | None] | None:
     """The nearest existing part of `folder` (itself first) when not a folder, with the OSError
     that stopped the look if any; None when `folder` is one or can be made."""

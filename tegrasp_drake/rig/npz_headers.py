@@ -2,6 +2,8 @@
 before np.load, which would allocate whatever shape a few-kB file declares."""
 
 import math
+import os
+import stat
 import tokenize
 import zipfile
 import zlib
@@ -62,7 +64,15 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
 def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
                        text=()) -> dict[str, np.ndarray]:
     """The arrays `names` (and `optional` ones present) of the .npz at `path`, once their
-    headers fit `max_bytes` and hold numbers (text for `text`); NpzHeaderError otherwise."""
+    headers fit `max_bytes` and hold numbers (text for `text`); NpzHeaderError otherwise,
+    before a byte is read when `path` is not a regular file (a FIFO or /dev/zero never ends)."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError as e:
+        raise NpzHeaderError(f"it cannot be read: {e.strerror or e}") from None
+    if not stat.S_ISREG(mode):
+        raise NpzHeaderError("it is not a regular file (a folder, named pipe or device); "
+                             "give the trial.npz file")
     try:
         zip_file = zipfile.ZipFile(path)
     except (RuntimeError, NotImplementedError) as e:  # a zip feature zipfile does not read

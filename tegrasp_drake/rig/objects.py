@@ -13,6 +13,7 @@ from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig import materials
 from tegrasp_drake.robotiq.units import STROKE_M
 from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 # The entries of an object's `size` [m] for each shape.
 OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),
@@ -30,10 +31,10 @@ class ObjectConfig:
     values); else your own "box", "cylinder" or "file" (a one-body SDF/URDF) with the sizes
     of OBJECT_SIZES [m], mass and friction, its events stored under `name`."""
     name: str = "box"
-    shape: str = ""
-    size: list[float] = bounded(default_factory=list, low=0.0, low_open=True, high=0.5, unit="m",
-                                why="an object the 2F-85 lifts from the table: at most 0.5 m in "
-                                    "any extent")
+    shape: str = unset_when_empty("the built-in object named by 'name'")
+    size: list[float] = unset_when_empty("the built-in object's sizes", bounded(
+        default_factory=list, low=0.0, low_open=True, high=0.5, unit="m",
+        why="an object the 2F-85 lifts from the table: at most 0.5 m in any extent"))
     mass: float | None = bounded(None, low=0.0, low_open=True, high=5.0, unit="kg",
                                  why="the 2F-85's rated payload, Robotiq 2F-85 manual",
                                  below="must be positive (the object's mass [kg])")
@@ -43,10 +44,10 @@ class ObjectConfig:
                                          "1.5, rubber on rubber",
                                      below="must be positive (its Coulomb friction coefficient, "
                                            "e.g. 0.5)")
-    file: str = ""
+    file: str = unset_when_empty("no model file (a built-in or primitive shape)")
     # [r, g, b, a] in [0, 1]; empty: the built-in object's colour, or DEFAULT_COLOR
-    color: list[float] = bounded(default_factory=list, low=0.0, high=1.0,
-                                 why="RGBA components")
+    color: list[float] = unset_when_empty("the built-in object's colour, or the default", bounded(
+        default_factory=list, low=0.0, high=1.0, why="RGBA components"))
 
     def width_along_stroke(self) -> float:
         """Extent along the finger stroke [m] (y of the object when placed on its marker)."""

@@ -17,6 +17,7 @@ from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
 
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, one_line, read_bounded
 
 
@@ -234,12 +235,16 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         raise ConfigError(f"{source}: {_field(where)}must be a mapping of fields, got "
                           f"{_describe(data)}")
     hints = typing.get_type_hints(schema)
-    hints = {field.name: hints[field.name] for field in dataclasses.fields(schema)}
+    fields = {field.name: field for field in dataclasses.fields(schema)}
     for key, value in data.items():
         path = f"{where}.{key}" if where else str(key)
-        if key not in hints:
+        if key not in fields:
             raise ConfigError(f"{source}: field '{path}': unknown field '{path}' (known: "
-                              f"{', '.join(sorted(hints))})")
+                              f"{', '.join(sorted(fields))})")
+        means = empty_meaning(fields[key])
+        if means is not None and isinstance(value, (str, list)) and len(value) == 0:
+            raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
+                              f"out for {means}")
         _check_value(value, hints[key], path, source)
     for field in dataclasses.fields(schema):
         required = (field.default is dataclasses.MISSING

@@ -172,6 +172,26 @@ TIME_NEIGHBOURS = 5  # messages on each side whose median time a message's is co
 MAX_TIME_OUTLIER_S = 1.0
 
 
+def _in_time_order(messages: list) -> tuple[list, int]:
+    """The (log time, message) pairs whose times never go back (by the message's utime when
+    it has one, else the log's) and that do not repeat a message of the same time byte for
+    byte, and how many did: every timed channel is read through it."""
+    kept, last, same_time = [], -np.inf, set()
+    for wall, message in messages:
+        t = getattr(message, "utime", wall)
+        if t < last:
+            continue
+        if t > last:
+            same_time = set()
+        data = message.encode()
+        if data in same_time:
+            continue
+        same_time.add(data)
+        kept.append((wall, message))
+        last = t
+    return kept, len(messages) - len(kept)
+
+
 def _plausible_tactile(messages: list) -> tuple[list, int]:
     """The (wall time, lcmt_tegrasp_tactile) messages whose values can be real, and how many
     were not. LCM logs carry no checksum, so a flipped byte shows only as an impossible value:
@@ -233,6 +253,13 @@ def read_run_log(path) -> RunLog:
         damage.append(f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values "
                       "(not finite, beyond 1e6, or time going back: corrupt bytes); skipped")
     decoded[TACTILE_CHANNEL] = tactile_messages
+    for channel in (TRANSITION_CHANNEL, FAULT_CHANNEL, GRIPPER_CHANNEL, JACO_COMMAND_CHANNEL,
+                    JACO_STATUS_CHANNEL, RUN_INFO_CHANNEL):
+        decoded[channel], backwards = _in_time_order(decoded[channel])
+        if backwards:
+            damage.append(f"{backwards} message(s) on {channel} repeat or are earlier "
+                          "than the one before (a log joined to itself, or corrupt bytes); "
+                          "skipped")
     tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
     tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     info = decoded[RUN_INFO_CHANNEL]

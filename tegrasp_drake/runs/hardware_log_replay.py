@@ -62,6 +62,9 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
     matcher = add_event_matcher(builder, events, config, channels=channels.get_output_port())
     index = {name: matcher.event_index(name) for name in matcher.transitions}
     schedule = expected_event_schedule(transitions, index)
+    # transitions in one tick: the mode after the last one holds from that time on
+    schedule = [entry for k, entry in enumerate(schedule)
+                if k + 1 == len(schedule) or schedule[k + 1][0] > entry[0]]
     end = float(max(trial.t_sa[-1], trial.t_ra[-1]))
     breaks = [t for t, _ in schedule] + [max(end, schedule[-1][0]) + 1.0]
     values = np.array([[float(i) for _, i in schedule] + [float(NO_EVENT)]])

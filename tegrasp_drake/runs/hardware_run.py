@@ -35,8 +35,8 @@ from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
                                     lcmt_tegrasp_transition)
 from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
 from tegrasp_drake.scenario.trial_log_writer import package_versions
-from tegrasp_drake.scenario.scenario import Scenario
-from tegrasp_drake.rig.ranges import Range, check_ranges
+from tegrasp_drake.scenario.scenario import Scenario, rechecked
+from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
@@ -278,7 +278,7 @@ def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None 
     HardwareStationConfig) in real time (module docstring). controller, events,
     corrective_events: default the scenario's and the package's; drake_lcm: instead of one on
     the config's URL; out: prints a line; progress: progress(t, end) [s of Context time]."""
-    check_ranges(scenario, "run_on_hardware: scenario")  # a config changed after loading
+    scenario = rechecked(scenario, "run_on_hardware: scenario")  # changed after loading?
     config = config or scenario.station
     if not isinstance(config, HardwareStationConfig):
         raise ValueError("run_on_hardware needs a HardwareStationConfig (the scenario's "

@@ -20,8 +20,8 @@ from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_tim
                                               grip_fraction_at, judge_grasp,
                                               table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
-from tegrasp_drake.scenario.scenario import Scenario
-from tegrasp_drake.rig.ranges import Range, check_ranges
+from tegrasp_drake.scenario.scenario import Scenario, rechecked
+from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig.api_boundary import public_api
 
 HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
@@ -118,7 +118,7 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
     """Simulates one trial of `scenario` with its controller; returns its TrialResult.
     max_time: [s] simulated at most (default: the controller's limit); events,
     corrective_events: default MakeGraspDiagram's; progress: progress(t, end) [s, simulated]."""
-    check_ranges(scenario, "run_trial: scenario")  # a config changed after loading
+    scenario = rechecked(scenario, "run_trial: scenario")  # changed after loading?
     grasp = MakeGraspDiagram(scenario, station=MakeSimulatedStation(scenario, meshcat=meshcat),
                                 events=events, corrective_events=corrective_events)
     controller, loggers = grasp.controller, grasp.loggers

@@ -25,8 +25,7 @@ from tegrasp_drake.scenario.scenario import (grasp_plan, object_pose, ra_noise_s
 from tegrasp_drake.simulation.carriage import arm_endpoint_impedance
 from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStationConfig,
                                               side_grasp_pose)
-from tegrasp_drake.scenario.scenario import Scenario
-from tegrasp_drake.rig.ranges import check_ranges
+from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
 
 # Beyond the ideal grasp's duration, for corrections [s] (and the controller's extra_time_s).
@@ -38,7 +37,7 @@ def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
                 lcm: DrakeLcm | None = None):
     """The station of `scenario` as its `station` tag says: MakeSimulatedStation (default) or
     MakeHardwareStation (in a `with` block, as run_on_hardware does), both with the same ports."""
-    check_ranges(scenario, "MakeStation: scenario")  # a config changed after loading
+    scenario = rechecked(scenario, "MakeStation: scenario")  # changed after loading?
     if isinstance(scenario.station, HardwareStationConfig):
         from tegrasp_drake.hardware.station import MakeHardwareStation
         return MakeHardwareStation(scenario.station, lcm=lcm)
@@ -58,6 +57,7 @@ def station_carriage(scenario):
 @public_api
 def MakeSimulatedStation(scenario: Scenario, *, meshcat: Meshcat | None = None):
     """MakeGraspStation with the scenario's sections, whatever its `station` tag says."""
+    scenario = rechecked(scenario, "MakeSimulatedStation: scenario")  # changed after loading?
     return MakeGraspStation(
         plant_config=scenario.plant_config, arm=scenario.arm, gripper=scenario.gripper,
         object=scenario.object, X_WO=object_pose(scenario), tactile=scenario.tactile,
@@ -103,7 +103,7 @@ def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
     """Builds the station and the scenario's controller into one Diagram. station: default
     MakeStation's; events, corrective_events: default the package's for the scenario's object;
     log: add the TrialLog loggers."""
-    check_ranges(scenario, "MakeGraspDiagram: scenario")  # a config changed after loading
+    scenario = rechecked(scenario, "MakeGraspDiagram: scenario")  # changed after loading?
     builder = DiagramBuilder()
     if station is None:
         station = MakeStation(scenario, meshcat=meshcat)

@@ -26,6 +26,7 @@ from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, chec
                                       declare_ranges, shorten)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
+from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
                                           parse_yaml, read_yaml_file, require)
 from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
@@ -135,8 +136,11 @@ declare_ranges(SimulatorConfig, {
 })
 
 
-def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConfig:
-    """The full description of the scenario's object (a built-in one if shape is empty)."""
+def resolve_object(config: ObjectConfig, source: str = "scenario", *,
+                   loaded: bool = False) -> ObjectConfig:
+    """The full description of the scenario's object (a built-in one if shape is empty).
+    loaded: `config` came resolved from a loaded scenario, where a built-in's name with other
+    sizes is that built-in with the sizes the user set (LoadScenario already asked)."""
     if not config.shape:
         if config.name not in BUILTIN_OBJECTS:
             raise ConfigError(
@@ -156,7 +160,8 @@ def resolve_object(config: ObjectConfig, source: str = "scenario") -> ObjectConf
             mass=builtin.mass if config.mass is None else config.mass,
             friction=builtin.friction if config.friction is None else config.friction,
             color=list(config.color or builtin.color))
-    elif config.name in BUILTIN_OBJECTS and not _is_builtin_geometry(config):
+    elif (config.name in BUILTIN_OBJECTS and not loaded
+          and not _is_builtin_geometry(config)):
         raise ConfigError(
             f"{source}: field 'object.name': your own object (object.shape "
             f"'{config.shape}') needs its own name, not the built-in '{config.name}': its "
@@ -277,14 +282,14 @@ def _check_transducers(scenario: Scenario, source: str) -> None:
 
 
 def validate(scenario: Scenario, source: str = "scenario", *,
-             allow_long: bool = False) -> Scenario:
+             allow_long: bool = False, loaded: bool = False) -> Scenario:
     """Checks what the schema cannot (each number's declared range, then what relates
-    fields); returns the scenario with its object resolved."""
-    scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source))
+    fields); returns the scenario with its object resolved (loaded: see resolve_object)."""
+    scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source,
+                                                                   loaded=loaded))
     disturbance = scenario.disturbance
-    if len(disturbance.hit_force_n) != 3:
-        raise ConfigError(f"{source}: field 'disturbance': hit_force_n must be [x, y, z] in "
-                          f"newtons, got {disturbance.hit_force_n}")
+    require(len(disturbance.hit_force_n) == 3, source, "disturbance.hit_force_n",
+            "must hold 3 numbers [N] ([x, y, z])", disturbance.hit_force_n)
     force = math.hypot(*disturbance.hit_force_n)
     require(force <= MAX_HIT_FORCE_N, source, "disturbance.hit_force_n",
             f"must be at most {MAX_HIT_FORCE_N:g} N in size (five times the paper's 20 N "
@@ -352,7 +357,10 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     if not isinstance(document, dict) or name not in document:
         names = ", ".join(document) if isinstance(document, dict) else "none"
         raise ConfigError(f"{path}: no scenario named '{name}' (scenarios: {names})")
-    data = document[name] or {}
+    data = document[name]
+    if data is None:  # `x:` alone: an entry left empty, not the default scenario
+        raise ConfigError(f"{path}: scenario '{name}' is empty (null): give its fields, or "
+                          f"`{name}: {{}}` for the default scenario")
     if not isinstance(data, dict):
         raise ConfigError(f"{path}: scenario '{name}' must be a mapping of fields, got "
                           f"{type(data).__name__} {data!r}")
@@ -380,6 +388,14 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     if ignored and on_ignored is not None:
         on_ignored(ignored)
     return scenario
+
+
+def rechecked(scenario: Scenario, source: str) -> Scenario:
+    """`scenario` checked again as LoadScenario checks it, for a builder given one a script
+    may have changed after loading (ranges, list lengths, the object's sizes for its shape);
+    returned with its object resolved (a bare Scenario() is the built-in box). A long grasp
+    script is accepted: that limit is LoadScenario's allow_long."""
+    return validate(scenario, source, allow_long=True, loaded=True)
 
 
 def _echo(assignment: str) -> str:
@@ -455,5 +471,6 @@ def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenar
 
 @public_api
 def scenario_to_yaml(scenario: Scenario) -> str:
-    """The scenario as YAML text (for logs and provenance)."""
-    return yaml_dump_typed(scenario)
+    """The scenario as YAML text (for logs and provenance), without its empty "not set"
+    fields (rig/unset_fields.py), so that it reads back as a scenario file."""
+    return without_unset_fields(yaml_dump_typed(scenario), scenario)

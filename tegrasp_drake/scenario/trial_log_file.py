@@ -74,9 +74,9 @@ class TrialLog:
         return self.channels[:, 2:]
 
 
-@public_api
-def load_trial_log(path: PathLike) -> TrialLog:
-    """Reads a TrialLog; raises TrialLogError naming the file on any defect."""
+def check_trial_log_file(path: PathLike) -> None:
+    """TrialLogError naming `path` unless it is a regular file, asked before a byte is read:
+    every reader of a trial log (plot, the myRIO emulator) starts here."""
     path = pathlib.Path(path)
     problem = file_problem(path)
     if problem == "does not exist":
@@ -85,6 +85,13 @@ def load_trial_log(path: PathLike) -> TrialLog:
     if problem or not path.is_file():  # /dev/null, /dev/zero: not a trial log either
         raise TrialLogError(f"trial log '{path}' {problem or 'is a device, not a file'} (a "
                             "trial log is the trial.npz that `tegrasp trial --out DIR` writes)")
+
+
+@public_api
+def load_trial_log(path: PathLike) -> TrialLog:
+    """Reads a TrialLog; raises TrialLogError naming the file on any defect."""
+    path = pathlib.Path(path)
+    check_trial_log_file(path)
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
                                     max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",))

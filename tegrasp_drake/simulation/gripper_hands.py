@@ -107,6 +107,28 @@ def add_gripper_model(parser, hand, pad_refinement: int = 0):
     return gripper
 
 
+PAD_COLLISION = "pad"  # the pads' collision geometries' name (modelgen/robotiq_sdf.py)
+
+
+def set_pad_friction(plant, scene_graph, gripper, mu: float) -> None:
+    """Gives the hand's pads (collision geometries named PAD_COLLISION) the Coulomb
+    coefficient mu, static and dynamic, replacing the model file's; before Finalize.
+    ValueError when the hand has no pad."""
+    from pydrake.geometry import ProximityProperties, RoleAssign
+    from pydrake.multibody.plant import CoulombFriction
+    inspector = scene_graph.model_inspector()
+    pads = [geometry for index in plant.GetBodyIndices(gripper)
+            for geometry in plant.GetCollisionGeometriesForBody(plant.get_body(index))
+            if inspector.GetName(geometry).split("::")[-1] == PAD_COLLISION]
+    if not pads:
+        raise ValueError(f"the gripper model has no '{PAD_COLLISION}' collision geometry")
+    for geometry in pads:
+        properties = ProximityProperties(inspector.GetProximityProperties(geometry))
+        properties.UpdateProperty("material", "coulomb_friction", CoulombFriction(mu, mu))
+        scene_graph.AssignRole(plant.get_source_id(), geometry, properties,
+                               RoleAssign.kReplace)
+
+
 def gripper_hand(model: str):
     """The hand of a `gripper.model` name (GRIPPER_MODELS)."""
     return {"linkage": LinkageHand, "prismatic": PrismaticHand}[model]()

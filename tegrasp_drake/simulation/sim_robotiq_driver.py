@@ -16,6 +16,7 @@ import math
 import numpy as np
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
+from tegrasp_drake.rig import materials
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import drive
 from tegrasp_drake.robotiq import units as ru
@@ -57,6 +58,14 @@ class GripperDriverConfig:
         drive.SCREW_EFFICIENCY, low=drive.SCREW_EFFICIENCY_RANGE[0],
         high=drive.SCREW_EFFICIENCY_RANGE[1],
         why="a self-locking screw's forward efficiency is below 0.5")
+    # The pads' Coulomb coefficient (static = dynamic) as a geometry's, which Drake combines
+    # with the other geometry's as 2 mu_pad mu / (mu_pad + mu): the default 4.42 meets the
+    # pad-object pairs' handbook values, 0.81 on the box, 0.69 on the cylinders
+    # (rig/materials.py; docs/model.md, "Friction by material pair").
+    pad_friction: float = bounded(
+        materials.PAD_COVER, low=0.0, low_open=True, high=100.0,
+        why="a geometry's coefficient; above about 100 the pairs are twice the other "
+            "geometry's and no longer change")
     # The reference's ramp on half the opening, both hands. Robotiq publishes only the speed
     # (20-150 mm/s pad to pad, 10-75 mm/s a finger): at 0.5 m/s^2 a finger reaches 75 mm/s in
     # 0.15 s over 5.6 mm of its 42.5 mm travel (a full stroke 0.72 s, 0.57 s with no ramp),

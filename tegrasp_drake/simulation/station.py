@@ -37,7 +37,8 @@ from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.simulation.jaco_velocity_drive import AddJacoVelocityDrive
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     add_gripper_model,
-                                                    configure_drive, gripper_hand)
+                                                    configure_drive, gripper_hand,
+                                                    set_pad_friction)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig, pad_refinement_for
@@ -268,6 +269,7 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
     if carriage is None:
         set_pd_gains(plant, arm, arm_config.position_gain, arm_config.damping_gain)
     configure_drive(plant, gripper, hand, gripper_config)
+    set_pad_friction(plant, scene_graph, gripper, gripper_config.pad_friction)
     plant.Finalize()
 
     q_arm = initial_arm_positions(arm_config)

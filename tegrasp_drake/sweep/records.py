@@ -25,6 +25,7 @@ from pathlib import Path
 from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, load_json,
                                      read_bounded, replace_problem, write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
+from tegrasp_drake.rig.ranges import shorten
 
 RECORD_FORMAT = "tegrasp-sweep-record"
 RECORD_FORMAT_VERSION = 1
@@ -204,5 +205,16 @@ def record_result(record: dict):
     """The TrialResult of a record's "result" (its JSON form), None for a record without
     one (an error)."""
     from tegrasp_drake.runs.trial_result import TrialResult
-    result = record.get("result")
-    return None if result is None else TrialResult.from_dict(result)
+    if not isinstance(record, dict) or "result" not in record:
+        keys = shorten(", ".join(map(str, record))) if isinstance(record, dict) else type(
+            record).__name__
+        raise ValueError(f"record_result: argument 'record' is not a sweep record (it has no "
+                         f"'result'; got {keys}); give a record of load_records(FOLDER)")
+    result = record["result"]
+    if result is None:
+        return None
+    if not (isinstance(result, dict) and "hold_success" in result):
+        raise ValueError(f"record_result: the record's 'result' is not a trial's result (a "
+                         f"TrialResult's JSON form, with hold_success), got "
+                         f"{shorten(repr(result))}")
+    return TrialResult.from_dict(result)

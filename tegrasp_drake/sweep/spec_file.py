@@ -26,8 +26,8 @@ def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_
     fields left out keep the paper's defaults. `grid` is a list of [dx_m, dy_m] or the product
     of normal_offsets_m and stroke_offsets_m. ConfigError names the file and the field."""
     fields = read_yaml_file(path, "the sweep spec")
-    if fields is None:
-        # An empty file is a mistake, not a request for the paper's 243-trial experiment
+    if fields is None or fields == {}:
+        # An empty file (or `{}`) is a mistake, not a request for the paper's 243-trial experiment
         # (which running without --spec gives).
         raise ConfigError(f"{path}: the sweep spec is empty; give at least one field (e.g. "
                           "objects: [box]), or leave out --spec for the paper's experiment")

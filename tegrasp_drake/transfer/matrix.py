@@ -54,7 +54,7 @@ def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tu
     assignments = []
 
     def flatten(prefix, value):
-        if isinstance(value, dict) and value:
+        if isinstance(value, dict):  # an empty section (or preset) sets nothing
             for key, item in value.items():
                 flatten(f"{prefix}.{key}" if prefix else str(key), item)
         else:  # JSON is YAML: quoted text, numbers, true/false, [lists]
@@ -92,16 +92,22 @@ def LoadTransferSpec(path) -> TransferSpec:
     cells = _parse_cells(data["cells"], worlds, source)
     sweep = sweep_spec_from_fields(data.get("sweep"), f"{source} [sweep]")
     spec = TransferSpec(worlds=worlds, cells=cells, sweep=sweep)
-    for name in dict.fromkeys(w for cell in cells for w in cell):
-        try:  # the world's assignments as each cell's sweep checks them
+    check_worlds(spec, source)
+    return spec
+
+
+def check_worlds(spec: TransferSpec, source: str) -> None:
+    """ConfigError naming `source` and the world whose preset and overrides, with the
+    sweep's, some controller's scenario refuses (each cell's sweep checks them so)."""
+    for name in dict.fromkeys(w for cell in spec.cells for w in cell):
+        try:
             sweep_spec_from_fields(
                 {"scenario_overrides": list(running_sweep(spec, name).scenario_overrides),
-                 "controllers": list(sweep.controllers)}, f"{source} [worlds.{name}]")
+                 "controllers": list(spec.sweep.controllers)}, f"{source} [worlds.{name}]")
         except ConfigError as error:
             raise ConfigError(str(error).replace("field 'scenario_overrides", "the world's "
                                                  "preset and overrides ('scenario_overrides")
                               ) from None
-    return spec
 
 
 def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:

@@ -54,11 +54,12 @@ def test_meshcat_waits_for_enter_even_with_json(json_output, monkeypatch, capsys
 
 
 def test_html_that_is_a_folder_stops_before_the_run(tmp_path):
-    with pytest.raises(SystemExit, match="is a folder; give a file name"):
+    with pytest.raises(SystemExit,
+                       match="--html .* is a folder where a file belongs; give a file name"):
         check_html_path(_args(html=str(tmp_path)))
 
 
 def test_html_under_a_file_stops_before_the_run(tmp_path):
     (tmp_path / "a_file").write_text("")
-    with pytest.raises(SystemExit, match="is a file, not a folder"):
+    with pytest.raises(SystemExit, match="--html .*a_file is not a folder"):
         check_html_path(_args(html=str(tmp_path / "a_file" / "replay.html")))

@@ -2,6 +2,8 @@
 script is refused naming its class and what to write, never kept and ignored."""
 
 import dataclasses
+import subprocess
+import sys
 import typing
 
 import pytest
@@ -9,6 +11,17 @@ import pytest
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_class
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.scenario.scenario import Scenario, scenario_to_yaml
+
+
+def assignment_error_in_a_fresh_interpreter(module: str, cls: str, statement: str) -> str:
+    """The AttributeError's text of `cls().<statement>` in a Python that imports only
+    `module` (asserting the scenario package stays unimported)."""
+    code = (f"import sys\nfrom {module} import {cls}\n"
+            "assert 'tegrasp_drake.scenario' not in sys.modules\n"
+            f"try:\n    {cls}().{statement}\nexcept AttributeError as error:\n"
+            "    print(error)\n")
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True).stdout.strip()
 
 
 def _reachable_dataclasses():

@@ -88,3 +88,14 @@ def test_a_json_integer_beyond_a_float_is_refused_without_converting_it():
     from tegrasp_drake.rig.files import JsonValueError, load_json
     with pytest.raises(JsonValueError, match="5000 digits"):
         load_json('{"a": ' + "9" * 5000 + "}")
+
+
+@pytest.mark.skipif(not os.path.isdir("/dev/shm"), reason="no /dev/shm on this machine")
+def test_an_output_file_may_go_to_a_ram_folder_in_dev_but_not_beside_the_device_nodes():
+    from tegrasp_drake.rig.files import _filesystem_type, output_file_problem
+    assert "is in /dev, not a place for files" in output_file_problem("/dev/x.html")
+    assert "is a device" in output_file_problem("/dev/null")
+    if _filesystem_type("/dev/shm") != "tmpfs":
+        pytest.skip("/dev/shm is not a tmpfs mount here")
+    assert output_file_problem("/dev/shm/x.html") is None
+    assert "is in /proc" in output_file_problem("/proc/x.html")

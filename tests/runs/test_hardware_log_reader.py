@@ -208,3 +208,14 @@ def test_a_log_whose_tactile_messages_are_all_rejected_says_why_it_cannot_be_rep
     words = str(refused.value)
     assert "fewer than 2 tactile messages" in words and "0 usable of 5" in words
     assert "impossible values" in words
+
+
+def test_a_log_joined_to_itself_is_a_damaged_log_exit_3(run_log_path, tmp_path, capfd):
+    joined = tmp_path / "joined.lcmlog"
+    joined.write_bytes(run_log_path.read_bytes() * 2)
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code = cli.main(["replay", str(joined), "--events", str(tmp_path / "events"), "--json"])
+    err = capfd.readouterr().err
+    assert code == 3
+    assert "damaged log" in err and TRANSITION_CHANNEL in err and "internal error" not in err
+    assert len(read_run_log(joined).transitions) == len(read_run_log(run_log_path).transitions)

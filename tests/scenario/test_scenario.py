@@ -30,7 +30,7 @@ def test_override_changes_a_nested_field():
     (["controller.name=magic"], "field 'controller.name': 'magic' is not one of"),
     (["controller.name=heuristic", "controller.matching.sa_threshold=0.5"],
      "field 'controller.matching.sa_threshold' is a setting of the memorized and taxel_aware"),
-    (["disturbance.hit_force_n=[1, 2]"], "field 'disturbance'"),
+    (["disturbance.hit_force_n=[1, 2]"], "field 'disturbance.hit_force_n' must hold 3 numbers"),
     (["object.mass=-1"], "field 'object.mass' must be positive"),
     (["object.name=model", "object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",
       "object.mass=0.1", "object.friction=0.5"], "model file '/no/such/model.sdf' does not exist"),

@@ -77,3 +77,44 @@ def test_actuated_state_selector_picks_the_actuated_joints_position_and_velocity
     np.testing.assert_array_equal(selector.get_output_port().Eval(context),
                                   [q_all[joint.position_start()],
                                    v_all[joint.velocity_start()]])
+
+
+def _pad_and_object_friction(scenario):
+    """(each pad's, the object's) Coulomb coefficients (static, dynamic) as the built plant
+    reads them at run time (the query object's inspector), copied out of the diagram."""
+    from pydrake.systems.framework import DiagramBuilder
+    from tegrasp_drake.scenario.scenario import object_pose
+    from tegrasp_drake.simulation.object_model import object_body
+    from tegrasp_drake.simulation.station import AddStationPlant, pad_geometries
+    builder = DiagramBuilder()
+    parts = AddStationPlant(builder, plant_config=scenario.plant_config, arm=scenario.arm,
+                            gripper=scenario.gripper, object=scenario.object,
+                            X_WO=object_pose(scenario),
+                            contact_geometry=scenario.contact_geometry)
+    diagram = builder.Build()
+    context = diagram.CreateDefaultContext()
+    inspector = parts.scene_graph.get_query_output_port().Eval(
+        parts.scene_graph.GetMyContextFromRoot(context)).inspector()
+
+    def friction(geometry):
+        coulomb = inspector.GetProximityProperties(geometry).GetProperty(
+            "material", "coulomb_friction")
+        return float(coulomb.static_friction()), float(coulomb.dynamic_friction())
+    pads = [friction(pad.geometry_id) for pad in
+            pad_geometries(parts.plant, parts.scene_graph, parts.gripper).values()]
+    (obj,) = parts.plant.GetCollisionGeometriesForBody(
+        object_body(parts.plant, parts.object_instance))
+    return pads, friction(obj)
+
+
+def test_the_pad_friction_setting_replaces_the_pads_coefficient_and_only_theirs():
+    from tegrasp_drake.rig import materials
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    default_pads, default_object = _pad_and_object_friction(LoadScenario())
+    assert default_pads == [(materials.PAD_COVER, materials.PAD_COVER)] * 2
+    pads, obj = _pad_and_object_friction(LoadScenario(overrides=["gripper.pad_friction=0.91"]))
+    assert pads == [(0.91, 0.91)] * 2
+    assert obj == default_object == (materials.CARDBOARD, materials.CARDBOARD)
+    # the box's pair with the pads, as Drake combines them: 0.60 (0.81 at the default)
+    assert materials.pair_friction(0.91, obj[1]) == pytest.approx(0.60,
+                                                                                 abs=0.005)

@@ -1,15 +1,13 @@
 """The film's settings (simulation/pad_vibration_sensor.py): the film's mechanics in their
 own section, and what relates the settings, checked by the class."""
 
-import subprocess
-import sys
-
 import pytest
 
 from tegrasp_drake.rig.ranges import check_ranges
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.simulation.drive_vibration import DriveVibrationConfig
 from tegrasp_drake.simulation.pad_vibration_sensor import FilmConfig, VibrationSensorConfig
+from tests.rig.test_api_boundary import assignment_error_in_a_fresh_interpreter
 
 
 def test_the_films_mechanics_declare_their_units_and_ranges():
@@ -39,13 +37,7 @@ def test_the_default_film_fits():
 
 
 def test_a_moved_film_setting_names_its_new_path_with_only_this_module_imported():
-    code = ("import sys\n"
-            "from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig\n"
-            "assert 'tegrasp_drake.scenario' not in sys.modules\n"
-            "try:\n"
-            "    VibrationSensorConfig().mode_mass_kg = 0.03\n"
-            "except AttributeError as error:\n"
-            "    print(error)\n")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout.strip()
+    out = assignment_error_in_a_fresh_interpreter(
+        "tegrasp_drake.simulation.pad_vibration_sensor", "VibrationSensorConfig",
+        "mode_mass_kg = 0.03")
     assert out == "VibrationSensorConfig has no field 'mode_mass_kg': it is now 'film.mode_mass_kg'"

@@ -1,0 +1,69 @@
+"""`tegrasp sensitivity SPEC.yaml`: the guessed parameters (docs/model.md, "What was
+guessed") each moved to either end of its range, or sampled together as a Latin hypercube;
+each point the spec's sweep (sensitivity/study.py, sensitivity/report.py). Writes
+DIR/points.json, DIR/events, DIR/cells, DIR/sensitivity.md and the tornado chart; the same
+command resumes. Exit codes as `tegrasp sweep`'s."""
+
+import argparse
+import sys
+
+from tegrasp_drake.commands.progress import progress_wanted
+from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
+                                          check_runner_arguments, resolve_trial_function)
+from tegrasp_drake.rig.integer_text import integer_option
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.sweep.runner import SweepError, summary_text
+
+DEFAULT_OUT = "results/sensitivity"
+
+EPILOG = """\
+examples:
+  tegrasp sensitivity analysis/sensitivity.yaml --out results/sensitivity
+  tegrasp sensitivity analysis/sensitivity.yaml --latin-hypercube 32 --out results/lhs
+  tegrasp sensitivity my_sensitivity.yaml --scheduler tcp://10.0.0.5:8786 --out out/sens
+
+A spec names the parameters (keys of the uncertain parameters' table; all when left out),
+where each point's events are memorized (events: each_point or default_point) and the sweep
+of each point (docs/sweeps.md). Re-running the command into the same --out resumes it."""
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("spec", metavar="SPEC.yaml", help="the sensitivity spec")
+    parser.add_argument("--latin-hypercube", type=integer_option, metavar="N",
+                        help="N points sampled over all the spec's parameters together "
+                             "(and the defaults), instead of each parameter's two ends")
+    add_runner_arguments(parser, default_out=DEFAULT_OUT)
+    parser.add_argument("--trial-function", default=DEFAULT_TRIAL_FUNCTION,
+                        help=argparse.SUPPRESS)  # Testing hook, as `tegrasp sweep`'s.
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "sensitivity", help="the guessed parameters at the ends of their ranges (a sweep at "
+        "each point; tornado chart)", description=__doc__.split("\n\n")[0], epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_arguments(parser)
+    parser.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from tegrasp_drake.sensitivity.report import write_sensitivity_report
+    from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
+                                                 one_at_a_time, run_sensitivity)
+    try:
+        check_runner_arguments(args)
+        spec = LoadSensitivitySpec(args.spec)
+        points = (one_at_a_time(spec) if args.latin_hypercube is None
+                  else latin_hypercube(spec, args.latin_hypercube))
+        trial_function = resolve_trial_function(args.trial_function)
+        summaries = run_sensitivity(spec, points, trial_function, args.out,
+                                    workers=args.workers, scheduler=args.scheduler,
+                                    progress=not args.no_progress and progress_wanted(args))
+    except (ConfigError, SweepError) as error:
+        print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
+        return 2
+    for name, summary in summaries.items():
+        print(f"{name}: {summary_text(summary)}")
+    for path in write_sensitivity_report(spec, points, args.out, figure_format=args.format):
+        print(f"wrote {path}")
+    return 1 if any(s.errors or s.unfinished for s in summaries.values()) else 0

@@ -1,0 +1,199 @@
+"""What was guessed: the scenario settings nobody published, each with a plausible range and
+the argument for it (docs/model.md, "What was guessed"). The one place the sensitivity sweep
+and the docs table read; `python -m tegrasp_drake.sensitivity.parameters --check|--write
+docs/model.md` compares or replaces the table between `<!-- uncertain parameters -->` and
+`<!-- end of uncertain parameters -->`."""
+
+import argparse
+import dataclasses
+import pathlib
+import re
+import sys
+
+
+@dataclasses.dataclass(frozen=True)
+class UncertainParameter:
+    """One guessed scenario setting: `key` its dotted name (`--set key=value`), `default`
+    the scenario's value, [low, high] its plausible range in `unit`; `choices` the values a
+    discrete setting takes, `step` the grid a continuous one must sit on (else 4
+    significant digits); `also_sets` the assignments that go with a value (a setting whose
+    partner must follow it); `kind` says what the range rests on (datasheet, paper,
+    handbook, closed-form estimate) and `source` the argument."""
+    key: str
+    default: float
+    low: float
+    high: float
+    unit: str
+    kind: str
+    source: str
+    choices: tuple[float, ...] = ()
+    step: float = 0.0
+    also_sets: tuple[tuple[float, tuple[str, ...]], ...] = ()
+    log_scale: bool = False  # sampled uniformly in log(value): a range over a decade
+
+    @property
+    def name(self) -> str:
+        """The key as a word of a folder's name: `gripper.position_loop_hz` ->
+        `gripper_position_loop_hz`."""
+        return self.key.replace(".", "_")
+
+    def snapped(self, value: float) -> float:
+        """`value` on the setting's own values: the nearest choice, or the nearest step."""
+        if self.choices:
+            return min(self.choices, key=lambda c: abs(c - value))
+        if self.step:
+            return round(round(value / self.step) * self.step, 9)
+        return float(f"{value:.4g}")
+
+    def at_fraction(self, u: float) -> float:
+        """The value a fraction u in [0, 1) of the range stands for: equal shares of the
+        choices for a discrete setting, else low + u (high - low) (low (high / low)^u on a log
+        scale), snapped."""
+        if self.choices:
+            inside = [c for c in self.choices if self.low <= c <= self.high]
+            return inside[min(int(u * len(inside)), len(inside) - 1)]
+        if self.log_scale:
+            return self.snapped(self.low * (self.high / self.low) ** u)
+        return self.snapped(self.low + u * (self.high - self.low))
+
+    def assignments(self, value: float) -> tuple[str, ...]:
+        """The `--set` assignments that put the setting at `value`."""
+        extra = dict(self.also_sets).get(value, ())
+        return (f"{self.key}={_yaml_number(value)}",) + tuple(extra)
+
+
+def _yaml_number(value: float) -> str:
+    """`value` as YAML reads it back as the same number (YAML 1.1 needs a point in a float
+    with an exponent: 1.0e-06, not 1e-06)."""
+    if float(value).is_integer() and abs(value) < 1e6:
+        return str(int(value)) if isinstance(value, int) else f"{float(value):.1f}"
+    return f"{float(value):.6e}" if abs(value) < 1e-3 else repr(float(value))
+
+
+# The AD7147's frame rate follows its decimation (simulation/capacitive_taxels.py): the
+# capacitive transducer's sample rate is set with it.
+_DECIMATION_RATES = ((64, ("tactile.sample_rate_hz=108.0",)),
+                     (128, ("tactile.sample_rate_hz=54.0",)))
+
+UNCERTAIN_PARAMETERS = (
+    UncertainParameter(
+        "gripper.pad_friction", 4.42, 0.91, 50.0, "", "handbook",
+        "the pads' geometry coefficient, which Drake combines with an object's as "
+        "2 mu_pad mu / (mu_pad + mu); the default gives the pad-object pairs 0.81 (cardboard) "
+        "and 0.69 (plastic), the handbook's 0.80 and 0.70 for a fabric over a compliant "
+        "backing on paper or polymer, 0.5-0.9 (\"Friction by material pair\"). "
+        "At 0.91 the pairs are 0.60 and 0.53, a quarter lower; at 50 they are 0.89 and 0.74, "
+        "the most the objects' own coefficients allow (twice theirs)", log_scale=True),
+    UncertainParameter(
+        "gripper.position_loop_hz", 60.0, 40.0, 100.0, "Hz", "closed-form estimate",
+        "Robotiq publishes no loop gain. The 2F-85 takes commands at up to 200 Hz, and a "
+        "position loop faster than half that follows no command faster (100 Hz); below "
+        "40 Hz the locked drive, at the loop's stiffness J (2 pi f)^2, yields more than "
+        "0.5 mm to a 50 N push (\"The drive\")"),
+    UncertainParameter(
+        "gripper.screw_efficiency", 0.35, 0.26, 0.47, "", "handbook",
+        "a self-locking lead screw's forward efficiency tan(lead) / tan(lead + atan(mu)): "
+        "0.26-0.47 for leads of 3-8 deg, steel on bronze (mu 0.15; Shigley's Mechanical "
+        "Engineering Design, power screws)"),
+    UncertainParameter(
+        "arm.command_latency_s", 0.010, 0.005, 0.030, "s", "closed-form estimate",
+        "Kinova publishes no figure: the JACO2's 10 ms DSP cycle of buffering (Kinova's "
+        "kinova-ros README, 100 Hz velocity commands) plus about 1 ms of USB, at least half "
+        "a cycle; 30 ms is a host that queues a command or two. On the plant's 1 ms steps",
+        step=0.001),
+    UncertainParameter(
+        "tactile.capacitive.decimation", 64, 64, 128, "", "datasheet",
+        "the AD7147's decimation, 64, 128 or 256 (Analog Devices AD7147 data sheet): 12 "
+        "stages of 0.768 ms at 64, a frame of 9.2 or 18.4 ms (108 or 54 Hz), the noise "
+        "falling as sqrt(64 / decimation); the paper does not give it. Not 256: its 27.1 Hz "
+        "frames do not fill the paper's 0.5 s event window (Sec. III-A) a whole number of "
+        "times (13.6). The sample rate is set with it", choices=(64, 128),
+        also_sets=_DECIMATION_RATES),
+    UncertainParameter(
+        "vibration.film.film_charge_gain_c_per_m", 2.5e-5, 1e-6, 2.5e-5, "C/m", "datasheet",
+        "G_Q = d31 E_f kappa A_f with d31 23 pC/N and E_f 2.5 GPa (TE Connectivity PVDF "
+        "film data) and the bending strain of a free 6 x 45 mm cantilever's root, the "
+        "upper bound (a free film; TE's LDT0-028K reads about 50 mV/g); a film bonded "
+        "behind the fingertip's board strains 3-30 times less, about 1e-6 C/m "
+        "(closed-form beam estimate; \"The film's sensitivity S and its range\")",
+        log_scale=True),
+)
+
+
+def parameter(key: str) -> UncertainParameter:
+    """The table's parameter of `key`; KeyError naming the known keys."""
+    for entry in UNCERTAIN_PARAMETERS:
+        if entry.key == key or entry.name == key:
+            return entry
+    raise KeyError(f"'{key}' is not an uncertain parameter (known: "
+                   f"{', '.join(p.key for p in UNCERTAIN_PARAMETERS)})")
+
+
+def scenario_setting(scenario, key: str):
+    """(value, declared Range or None) of the dotted setting `key` of `scenario`; KeyError
+    when no field of that name exists."""
+    from tegrasp_drake.rig.ranges import range_of
+    node, field = scenario, None
+    for part in key.split("."):
+        if not dataclasses.is_dataclass(node):
+            raise KeyError(f"'{key}': '{part}' is not a field of a section")
+        field = next((f for f in dataclasses.fields(node) if f.name == part), None)
+        if field is None:
+            raise KeyError(f"'{key}': no field '{part}'")
+        node = getattr(node, part)
+    return node, range_of(field)
+
+
+def _number(value: float, unit: str) -> str:
+    text = f"{value:g}" if not float(value).is_integer() or abs(value) >= 1e5 \
+        else str(int(value))
+    return f"{text} {unit}".strip()
+
+
+def parameters_markdown(parameters=UNCERTAIN_PARAMETERS) -> str:
+    """The docs' table: setting, default, low, high, what the range rests on, the argument."""
+    lines = ["| setting | default | low | high | rests on | argument for the range |",
+             "|---|---|---|---|---|---|"]
+    for p in parameters:
+        lines.append(f"| `{p.key}` | {_number(p.default, p.unit)} | {_number(p.low, p.unit)} "
+                     f"| {_number(p.high, p.unit)} | {p.kind} | {p.source} |")
+    return "\n".join(lines) + "\n"
+
+
+BEGIN = "<!-- uncertain parameters -->\n"
+END = "<!-- end of uncertain parameters -->"
+_BLOCK = re.compile(re.escape(BEGIN) + r"(?P<table>.*?)" + re.escape(END), re.DOTALL)
+
+
+def documented_table(text: str) -> str | None:
+    """The table a page holds between the markers, or None when it has none."""
+    match = _BLOCK.search(text)
+    return match["table"] if match else None
+
+
+def main(argv=None) -> int:
+    """`--check PAGE` (exit 1 when the page's table is not the generated one) or `--write
+    PAGE` (replace it)."""
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    group = parser.add_mutually_exclusive_group(required=True)
+    group.add_argument("--check", metavar="PAGE")
+    group.add_argument("--write", metavar="PAGE")
+    args = parser.parse_args(argv)
+    page = pathlib.Path(args.check or args.write)
+    text = page.read_text(encoding="utf-8")
+    if documented_table(text) is None:
+        print(f"{page}: no '{BEGIN.strip()}' ... '{END}' block", file=sys.stderr)
+        return 2
+    if args.check:
+        same = documented_table(text) == parameters_markdown()
+        print(f"{page}: the uncertain parameters table is "
+              + ("up to date" if same else "out of date: run with --write"))
+        return 0 if same else 1
+    from tegrasp_drake.rig.files import write_atomically
+    write_atomically(page, _BLOCK.sub(lambda m: BEGIN + parameters_markdown() + END, text))
+    print(f"wrote the uncertain parameters table into {page}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
