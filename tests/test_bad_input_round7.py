@@ -33,3 +33,23 @@ def test_a_closed_output_pipe_ends_the_command_quietly(monkeypatch, argv, closed
     finally:
         stream.close()
     assert "Traceback" not in getattr(cli.sys, other).getvalue()
+
+
+@pytest.mark.parametrize("override, words", [
+    ("object.mass=1.0e-9", "field 'object.mass' must lie in [0.01, 5] kg"),
+    ("object.mass=1e-30", "field 'object.mass' must lie in [0.01, 5] kg"),  # read as a number
+    ("object.size=[1.0e-4,1.0e-4,0.11]", "field 'object.size[0]' must lie in [0.005, 0.5] m"),
+])
+def test_a_tiny_object_is_refused_before_drake_sees_it(override, words):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    with pytest.raises(ConfigError) as error:
+        LoadScenario(name="box", overrides=[override])
+    assert words in str(error.value)
+
+
+def test_the_smallest_object_is_one_the_contact_geometry_resolves():
+    from tegrasp_drake.rig.objects import MIN_SIZE_M
+    from tegrasp_drake.rig.taxel_layout import CELL_X, CELL_Y
+    from tegrasp_drake.simulation.object_model import MESH_RESOLUTION_M
+    assert MESH_RESOLUTION_M <= MIN_SIZE_M <= min(CELL_X, CELL_Y)
