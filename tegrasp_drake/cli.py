@@ -92,8 +92,13 @@ def main(argv=None) -> int:
             return _main(argv)
         finally:  # what is still buffered goes out now, while a closed pipe can be told
             for stream in (sys.stdout, sys.stderr):
-                if stream is not None:
-                    stream.flush()
+                try:
+                    if stream is not None:
+                        stream.flush()
+                except BrokenPipeError:
+                    raise
+                except (OSError, ValueError):  # a full disk: Python's exit reports it as before
+                    pass
     except BrokenPipeError:
         _detach_closed_output()
         return EXIT_CLOSED_PIPE
