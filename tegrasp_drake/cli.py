@@ -81,7 +81,56 @@ EXIT_GRASP_FAILED = 2  # hardware: a fault or a Failed state machine (also argpa
 EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
 
 
+EXIT_CLOSED_PIPE = 128 + signal.SIGPIPE  # the shell's status of a command SIGPIPE ended
+
+
 def main(argv=None) -> int:
+    """The command line's exit code; a closed stdout or stderr (`tegrasp ... | head`) ends
+    the command quietly with EXIT_CLOSED_PIPE, as SIGPIPE ends a C program."""
+    try:
+        try:
+            return _main(argv)
+        finally:  # what is still buffered goes out now, while a closed pipe can be told
+            for stream in (sys.stdout, sys.stderr):
+                try:
+                    if stream is not None:
+                        stream.flush()
+                except BrokenPipeError:
+                    raise
+                except (OSError, ValueError):  # a full disk: Python's exit reports it as before
+                    pass
+    except BrokenPipeError:
+        _detach_closed_output()
+        return EXIT_CLOSED_PIPE
+
+
+def _output_closed() -> bool:
+    """Whether stdout or stderr is a pipe whose reader has gone (poll reports an error)."""
+    import select
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            poller = select.poll()
+            poller.register(stream.fileno(), select.POLLOUT)
+            if any(events & select.POLLERR for _, events in poller.poll(0)):
+                return True
+        except (AttributeError, OSError, ValueError):
+            continue
+    return False
+
+
+def _detach_closed_output() -> None:
+    """Points stdout and stderr at the null device: Python's flush at exit then finds no
+    closed pipe to report ("Exception ignored ... BrokenPipeError")."""
+    null = os.open(os.devnull, os.O_WRONLY)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            os.dup2(null, stream.fileno())
+        except (AttributeError, OSError, ValueError):
+            pass
+    os.close(null)
+
+
+def _main(argv) -> int:
     from tegrasp_drake.rig.files import (UserPathError, interrupt_received, one_line,
                                          termination_interrupts)
     argv = sys.argv[1:] if argv is None else list(argv)
@@ -106,6 +155,10 @@ def main(argv=None) -> int:
                 return _interrupted(interrupt_received())
             print(f"tegrasp: error: {error}", file=sys.stderr, flush=True)
             return EXIT_ERROR
+        except BrokenPipeError:
+            if _output_closed():  # the reader of our output left: main ends quietly
+                raise
+            return _internal_error(sys.exc_info()[1], argv)
         except BaseException as error:  # noqa: BLE001: the error boundary
             if interrupt_received():  # a Ctrl-C that Drake wrapped in another exception
                 return _interrupted(interrupt_received())

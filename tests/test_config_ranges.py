@@ -123,13 +123,14 @@ def test_open_and_closed_ends():
     (["placement.offset=[2,2]"], "field 'placement.offset[0]' must lie in [-0.2, 0.2] m"),
     (["placement.expected_xy=[0.9,0.49]"], "field 'placement.offset' puts the object at "
      "(0.900, 0.490) m"),
-    (["object.size=[0.045,0.045,50]"], "field 'object.size[2]' must lie in (0, 0.5] m"),
-    (["object.mass=1.0e+9"], "field 'object.mass' must lie in (0, 5] kg"),
+    (["object.size=[0.045,0.045,50]"], "field 'object.size[2]' must lie in [0.005, 0.5] m"),
+    (["object.mass=1.0e+9"], "field 'object.mass' must lie in [0.01, 5] kg"),
     (["object.friction=1.0e+9"], "field 'object.friction' must lie in (0, 2]"),
     (["grasp.grip_force=1.0e+9"], "field 'grasp.grip_force' must lie in (0, 235] N"),
     (["grasp.close_speed=0"], "field 'grasp.close_speed' must lie in [0.02, 0.15] m/s"),
     (["grasp.hold_s=50", "grasp.lift_s=20"], "field 'grasp': the grasp script lasts"),
-    (["object.mass=1e9"], "got str '1e9' (YAML reads it as text: write 1000000000.0)"),
+    (["object.mass=1e9"], "field 'object.mass' must lie in [0.01, 5] kg"),  # a number
+    (["object.mass='1e9'"], "got str '1e9' (YAML reads it as text: write 1000000000.0)"),
     (["controller.update_period_s=0"], "field 'controller.update_period_s' must be positive"),
     (["controller.lift_load.slip_s=-1"], "field 'controller.lift_load.slip_s' must be zero or positive [s]"),
     (["arm.initial_gripper_xyz=[0.69,0.0,7]"],

@@ -97,7 +97,7 @@ def run(args) -> int:
     except RunFolderError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     from tegrasp_drake.figures.trial_figures import write_trial_figures
-    from tegrasp_drake.runs.trial import run_trial
+    from tegrasp_drake.runs.trial import SimulationFailedError, run_trial
     meshcat = start_viewer(args)
     try:
         with staged_run(out) as stage:
@@ -120,7 +120,7 @@ def run(args) -> int:
             except OSError as e:
                 raise RunFolderError(f"cannot write the run to {out}: {e.strerror or e}; "
                                      "an earlier run there is kept whole") from None
-    except RunFolderError as e:
+    except (RunFolderError, SimulationFailedError) as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     if args.json:
         print(json.dumps(result, sort_keys=True), flush=True)

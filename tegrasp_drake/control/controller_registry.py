@@ -117,8 +117,10 @@ class UnknownControllerError(ValueError):
 
 
 @public_api
-def controller_entry(controller: typing.Any) -> ControllerEntry:
-    """The entry of a controller's name, config or config class (UnknownControllerError)."""
+def controller_entry(controller: typing.Any,
+                     what: str = "controller_entry: argument 'controller'") -> ControllerEntry:
+    """The entry of a controller's name, config or config class; UnknownControllerError
+    naming `what` (the argument, or e.g. "scenario: field 'controller'") if none."""
     if isinstance(controller, str):
         entry = _ENTRY_OF_NAME.get(controller)
     elif isinstance(controller, type):
@@ -126,8 +128,12 @@ def controller_entry(controller: typing.Any) -> ControllerEntry:
     else:
         entry = _ENTRY_OF_CLASS.get(type(controller))
     if entry is None:
+        from tegrasp_drake.rig.ranges import shorten
+        shown = (repr(controller) if isinstance(controller, str) else
+                 f"{type(controller).__name__} {shorten(repr(controller))}")
         raise UnknownControllerError(
-            f"'{controller}' is not one of {', '.join(CONTROLLER_NAMES)}")
+            f"{what}: {shown} is not one of {', '.join(CONTROLLER_NAMES)} (a controller's "
+            "name, its config or its config class)")
     return entry
 
 
@@ -156,10 +162,10 @@ def controllers_help() -> str:
 
 def controller_class(name: str):
     """The config class of the controller called `name` (UnknownControllerError)."""
-    if not isinstance(name, str):  # a list or mapping given as the name
+    if not isinstance(name, str) or name not in _ENTRY_OF_NAME:  # a list or mapping too
         raise UnknownControllerError(
             f"'{name}' is not one of {', '.join(CONTROLLER_NAMES)}")
-    return controller_entry(name).config
+    return _ENTRY_OF_NAME[name].config
 
 
 def _fields(cls) -> set[str]:

@@ -21,6 +21,15 @@ OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),
 OBJECT_SHAPES = tuple(OBJECT_SIZES)
 FINGER_CLEARANCE_M = 0.0025  # smallest gap between an open pad and the object
 MAX_WIDTH_M = STROKE_M - 2 * FINGER_CLEARANCE_M  # widest object the open fingers clear
+# The smallest extent [m] the contact geometry resolves: a primitive's rigid mesh has 5 mm facets
+# (simulation/object_model.py MESH_RESOLUTION_M), a pad's taxel is 20/3 x 24/4 mm
+# (rig/taxel_layout.py); a smaller object touches one facet of one taxel, and at 0.1 mm Drake
+# meets a non-finite pose.
+MIN_SIZE_M = 0.005
+# The lightest object [kg]: its weight, 0.1 N, is what a lift adds to the pads' load; the SA
+# thresholds that tell the grasp's events apart are 0.3-1 N (controller contact_force_n), so a
+# lighter object's lift is not felt. Near zero Drake's mass matrix is not positive-definite.
+MIN_MASS_KG = 0.01
 OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")  # it names a folder
 
 
@@ -33,11 +42,13 @@ class ObjectConfig:
     name: str = "box"
     shape: str = unset_when_empty("the built-in object named by 'name'")
     size: list[float] = unset_when_empty("the built-in object's sizes", bounded(
-        default_factory=list, low=0.0, low_open=True, high=0.5, unit="m",
-        why="an object the 2F-85 lifts from the table: at most 0.5 m in any extent"))
-    mass: float | None = bounded(None, low=0.0, low_open=True, high=5.0, unit="kg",
-                                 why="the 2F-85's rated payload, Robotiq 2F-85 manual",
-                                 below="must be positive (the object's mass [kg])")
+        default_factory=list, low=MIN_SIZE_M, high=0.5, unit="m",
+        why="an object the 2F-85 lifts from the table: at least the contact meshes' 5 mm "
+            "facets (a pad's taxel is 6-7 mm), at most 0.5 m in any extent"))
+    mass: float | None = bounded(None, low=MIN_MASS_KG, high=5.0, unit="kg",
+                                 why="lighter, its weight is under a third of the pads' "
+                                     "smallest event threshold, 0.3 N; at most the 2F-85's "
+                                     "rated payload, Robotiq 2F-85 manual")
     # Coulomb coefficient of the object's geometry (static = dynamic; module docstring)
     friction: float | None = bounded(None, low=0.0, low_open=True, high=2.0,
                                      why="dry Coulomb coefficients of solids stay below about "

@@ -9,6 +9,7 @@ import collections.abc
 import dataclasses
 import math
 import pathlib
+import re
 import types
 import typing
 
@@ -96,12 +97,59 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
         root = yaml.compose(text, Loader=yaml.SafeLoader)
         if root is not None:
             _check_nodes(root, source, line_offset, column_offset, root_key)
-        return yaml_load(data=text)
+        data = yaml_load(data=text)
+        for path in _plain_exponent_numbers(root):
+            data = _as_number(data, path)
+        return data
     except yaml.YAMLError as e:
         raise YamlSyntaxError(f"{source}: not valid YAML: "
                               f"{_yaml_problem(e, line_offset, column_offset)}") from None
     except RecursionError:
         raise ConfigError(f"{source}: the YAML nests too deeply") from None
+
+
+# A number in exponent notation without a dot ("1e-9", "-2E+3"): YAML 1.2 and Drake's C++
+# loader read it as a number, PyYAML's YAML 1.1 as text, which a user writing a mass of 1e-9
+# does not mean; unquoted, it is read as the number here.
+_EXPONENT_NUMBER = re.compile(r"[-+]?[0-9]+[eE][-+]?[0-9]+")
+
+
+def _plain_exponent_numbers(root) -> list[tuple]:
+    """The paths (keys and indices) of unquoted scalars written as _EXPONENT_NUMBER."""
+    found, pending, seen = [], [(root, ())], set()
+    while pending:
+        node, path = pending.pop()
+        if node is None or id(node) in seen:
+            continue
+        seen.add(id(node))
+        if isinstance(node, yaml.ScalarNode):
+            if (node.style is None and node.tag == "tag:yaml.org,2002:str"
+                    and _EXPONENT_NUMBER.fullmatch(node.value)):
+                found.append(path)
+        elif isinstance(node, yaml.SequenceNode):
+            pending.extend((item, path + (k,)) for k, item in enumerate(node.value))
+        elif isinstance(node, yaml.MappingNode):
+            pending.extend((value, path + (key.value,)) for key, value in node.value
+                           if isinstance(key, yaml.ScalarNode))
+    return found
+
+
+def _as_number(data, path: tuple):
+    """`data` with the text at `path` (if it is still there, as text) read as a float."""
+    if not path:
+        return float(data) if isinstance(data, str) else data
+    container, key = data, path[-1]
+    for part in path[:-1]:
+        try:
+            container = container[part]
+        except (KeyError, IndexError, TypeError):
+            return data
+    try:
+        if isinstance(container[key], str) and _EXPONENT_NUMBER.fullmatch(container[key]):
+            container[key] = float(container[key])
+    except (KeyError, IndexError, TypeError, OverflowError):
+        pass
+    return data
 
 
 def _check_nodes(root, source: str, line_offset: int, column_offset: int,

@@ -14,6 +14,7 @@ import os
 import pathlib
 import signal
 import subprocess
+import tempfile
 import time
 from typing import Annotated
 from collections.abc import Callable
@@ -65,16 +66,31 @@ class BusLogWriter:
                                "lcm-logger cannot hear it (a udpm:// URL can be logged)")
             return
         self.path.unlink(missing_ok=True)
+        # Its words go to a file, not the user's terminal (it says "Logger exiting" on every
+        # stop); what it said is quoted when it fails.
+        self._output = tempfile.TemporaryFile()
         self._process = subprocess.Popen(
             [str(pathlib.Path(lcm.LCM_BIN_DIR) / "lcm-logger"), "--quiet", "--force",
-             f"--lcm-url={url}", str(self.path)])
+             f"--lcm-url={url}", str(self.path)],
+            stdin=subprocess.DEVNULL, stdout=self._output, stderr=subprocess.STDOUT)
         deadline = time.monotonic() + start_timeout
         while not self.path.exists():
             if self._process.poll() is not None or time.monotonic() > deadline:
                 raise RuntimeError(f"lcm-logger did not start on {url} (exit code "
-                                   f"{self._process.poll()})")
+                                   f"{self._process.poll()}){self._said()}")
             time.sleep(0.01)
         time.sleep(LOGGER_SUBSCRIBE_S)
+
+    def _said(self) -> str:
+        """": what lcm-logger said" on one line (its goodbye left out), or ""."""
+        from tegrasp_drake.rig.files import one_line
+        from tegrasp_drake.rig.ranges import shorten
+        if self._output.closed:
+            return ""
+        self._output.seek(0)
+        lines = [line.strip() for line in self._output.read(4096).decode(
+            "utf-8", "replace").splitlines() if line.strip() and line.strip() != "Logger exiting"]
+        return f": {shorten(one_line('; '.join(lines)), 200)}" if lines else ""
 
     def problem(self) -> str | None:
         """Why the log stopped (None while it records, or records nothing): lcm-logger exited, or
@@ -83,7 +99,7 @@ class BusLogWriter:
             return None
         if self._process.poll() is not None:
             return (f"the LCM log {self.path} stopped: lcm-logger exited with code "
-                    f"{self._process.returncode}")
+                    f"{self._process.returncode}{self._said()}")
         try:
             stat = os.statvfs(self.path.parent)
         except OSError as e:
@@ -103,6 +119,8 @@ class BusLogWriter:
             except subprocess.TimeoutExpired:
                 self._process.kill()
                 self._process.wait()
+        if self._process is not None:
+            self._output.close()
         return self.messages
 
     @property

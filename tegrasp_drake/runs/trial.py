@@ -21,8 +21,15 @@ from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_tim
                                               table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
-from tegrasp_drake.rig.ranges import Range
+from tegrasp_drake.rig.ranges import Range, shorten
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.api_boundary import public_api
+
+class SimulationFailedError(ConfigError):
+    """Drake could not step a trial's physics (a singular mass matrix, a non-finite pose): the
+    scenario's settings are the likely cause, since each lies in its range but together they
+    can ask for physics the model does not handle. One line naming the time and Drake's words."""
+
 
 HOLD_REQUIRED_S = 3.0  # the paper: held for at least 3 s
 UPRIGHT_TILT_DEG = 10.0  # standing upright after Unload
@@ -110,6 +117,23 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
             "failure": next((e.reason for e in transitions if e.to_mode == Mode.FAILED), "")}
 
 
+def _step(advance: Callable, context) -> None:
+    """Runs `advance`; Drake's RuntimeError while it steps becomes SimulationFailedError (the
+    one boundary between a trial's simulation and its caller)."""
+    try:
+        advance()
+    except RuntimeError as error:
+        from tegrasp_drake.rig.files import interrupt_received, one_line
+        if interrupt_received():  # a Ctrl-C Drake wrapped: the command line's to report
+            raise
+        words = one_line(str(error).strip().split(". ")[0]) or type(error).__name__
+        raise SimulationFailedError(
+            f"the simulation stopped at t = {context.get_time():.3f} s: Drake: "
+            f"{shorten(words, 200)}; a setting far from the built-in scenario's is the likely "
+            "cause (check the values you set with --set or in the scenario file; if you set "
+            "none, please report it)") from None
+
+
 @public_api
 def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dict | None = None,
               corrective_events: dict | None = None,
@@ -134,11 +158,12 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
     if meshcat is not None:
         meshcat.StartRecording()
     start, start_cpu = time.perf_counter(), time.process_time()
-    simulator.Initialize()
+    _step(simulator.Initialize, context)
     ended_at = None
     reported = 0
     while context.get_time() < limit - 1e-9:
-        simulator.AdvanceTo(min(context.get_time() + CHECK_PERIOD_S, limit))
+        _step(lambda: simulator.AdvanceTo(min(context.get_time() + CHECK_PERIOD_S, limit)),
+              context)
         if logger.isEnabledFor(logging.INFO):
             transitions = controller.transitions(context)
             for transition in transitions[reported:]:

@@ -285,6 +285,13 @@ def validate(scenario: Scenario, source: str = "scenario", *,
              allow_long: bool = False, loaded: bool = False) -> Scenario:
     """Checks what the schema cannot (each number's declared range, then what relates
     fields); returns the scenario with its object resolved (loaded: see resolve_object)."""
+    try:  # every check below reads the controller's kind
+        entry = controller_entry(scenario.controller, f"{source}: field 'controller'")
+    except UnknownControllerError as e:
+        raise ConfigError(str(e)) from None
+    require(isinstance(scenario.controller, entry.config), source, "controller",
+            f"must be a controller's config, e.g. {entry.config.__name__}(), not its name "
+            "or class", scenario.controller)
     scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source,
                                                                    loaded=loaded))
     disturbance = scenario.disturbance

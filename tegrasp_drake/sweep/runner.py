@@ -105,6 +105,43 @@ def default_workers() -> int:
     return len(os.sched_getaffinity(0))
 
 
+# Resident memory of one worker process running a trial [bytes]: sweep workers hold 250-300 MB
+# RSS, and one open-loop `tegrasp trial` process peaks at 333 MB (GNU time's maximum RSS).
+WORKER_MEMORY_BYTES = 330e6
+
+
+def available_memory_bytes() -> float | None:
+    """Memory the system can give new processes without swapping [bytes] (Linux's
+    MemAvailable; None where it cannot be read)."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as meminfo:
+            for line in meminfo:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
+
+
+def pool_size(workers: int | None, pending: int) -> int:
+    """Worker processes for `pending` trials: never more than the trials, nor (for the
+    default) more than the available memory holds; SweepError for an explicit `workers`
+    whose processes the memory cannot hold."""
+    n = min(workers or default_workers(), max(pending, 1))
+    available = available_memory_bytes()
+    if available is None:
+        return n
+    fits = max(1, int(available // WORKER_MEMORY_BYTES))
+    if n <= fits:
+        return n
+    if workers is None:
+        return fits
+    raise SweepError(f"--workers {workers}: {n} worker processes need about "
+                     f"{n * WORKER_MEMORY_BYTES / 1e9:.1f} GB (each holds about "
+                     f"{WORKER_MEMORY_BYTES / 1e6:.0f} MB) and {available / 1e9:.1f} GB are "
+                     f"available; give at most {fits}")
+
+
 @public_api
 def run_sweep(spec: SweepSpec, trial_function: Callable,
               out_dir: Annotated[PathLike, OUTPUT_FOLDER], *,
@@ -139,7 +176,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
             more = f" (and {len(unwritable) - 1} more)" if len(unwritable) > 1 else ""
             raise SweepError(f"the record {path} {problem}{more}; nothing was run")
         if scheduler is None:
-            n = min(workers or default_workers(), max(len(pending), 1))
+            n = pool_size(workers, len(pending))
             backend = f"processes:{n}"
             outcomes = _run_on_process_pool(trial_function, pending, n)
         else:

@@ -2,19 +2,17 @@
 with SIGKILL mid-run and resumed gives exactly the records and report of an uninterrupted
 run; a bad spec is refused in one line before anything runs."""
 
-import os
 import shutil
 import signal
 import subprocess
 import sys
 import textwrap
-import time
-from pathlib import Path
 
 from tegrasp_drake.rig import paths
 
-TESTS = Path(__file__).resolve().parents[1]
-REPOSITORY = TESTS.parent
+from tests import killed_runs
+from tests.killed_runs import environment
+
 TIMEOUT_S = 600  # [s] a hang guard on a busy host, not a performance criterion
 # The default point and the decimation's high end (its low end is the default): two points.
 TWO_POINTS = """\
@@ -28,11 +26,6 @@ TWO_POINTS = """\
     """
 POINTS = ("default", "tactile_capacitive_decimation_high")
 TRIALS_TOTAL = 2 * 9 * 2  # points x markers x attempts
-
-
-def environment():
-    entries = [str(REPOSITORY), str(TESTS), os.environ.get("PYTHONPATH", "")]
-    return {**os.environ, "PYTHONPATH": os.pathsep.join(e for e in entries if e)}
 
 
 def prepared(tmp_path, name):
@@ -58,31 +51,8 @@ def record_files(out):
 
 
 def kill_after_some_records(spec, out, minimum):
-    """Starts the command in its own process group and SIGKILLs the group once `minimum`
-    records exist; returns how many existed then."""
-    process = subprocess.Popen(command(spec, out), env=environment(),
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                               start_new_session=True)
-    deadline = time.monotonic() + TIMEOUT_S
-    try:
-        while len(record_files(out)) < minimum:
-            assert process.poll() is None, "the study ended before it could be killed"
-            assert time.monotonic() < deadline, "no records appeared in time"
-            time.sleep(0.005)
-        os.killpg(process.pid, signal.SIGKILL)
-        count = len(record_files(out))
-        process.wait(timeout=TIMEOUT_S)
-    finally:
-        if process.poll() is None:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait(timeout=TIMEOUT_S)
-    while time.monotonic() < deadline:  # the group gone, its lock released
-        try:
-            os.killpg(process.pid, 0)
-        except ProcessLookupError:
-            break
-        time.sleep(0.01)
-    return count, process.returncode
+    return killed_runs.kill_after_some_records(
+        command(spec, out), lambda: record_files(out), minimum, TIMEOUT_S)
 
 
 def test_a_killed_study_resumes_to_the_records_and_report_of_an_uninterrupted_run(tmp_path):

@@ -70,6 +70,18 @@ def test_an_entry_is_found_by_name_config_or_class():
         controller_entry("no_such_controller")
 
 
+@pytest.mark.parametrize("controller", [None, 3, object])
+def test_something_not_a_controller_is_refused_naming_the_argument(controller):
+    with pytest.raises(UnknownControllerError,
+                       match=r"^controller_entry: argument 'controller': .* not one of"):
+        controller_entry(controller)
+
+
+def test_a_caller_names_what_held_the_controller():
+    with pytest.raises(UnknownControllerError, match=r"^scenario: field 'controller': "):
+        controller_entry(None, "scenario: field 'controller'")
+
+
 def test_an_unregistered_name_is_shown_as_it_is():
     assert controller_label("an_old_controller") == "an_old_controller"
     assert controller_label("memorized") == "memorized triggers"

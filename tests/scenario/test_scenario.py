@@ -90,3 +90,13 @@ def test_capacitive_taxels_at_a_rate_the_ad7147_cannot_give_need_the_idealised_r
         LoadScenario(overrides=at_1khz)
     idealised = LoadScenario(overrides=at_1khz + ["tactile.capacitive.ad7147_timing=false"])
     assert idealised.tactile.sample_rate_hz == 1000.0
+
+
+@pytest.mark.parametrize("controller", [None, "memorized", "EventMatcherConfig"])
+def test_a_scenario_holding_no_controller_config_is_refused_naming_the_field(controller):
+    from tegrasp_drake.events.event_matcher import EventMatcherConfig
+    from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram
+    scenario = LoadScenario(name="box")
+    scenario.controller = EventMatcherConfig() if controller == "EventMatcherConfig" else controller
+    with pytest.raises(ConfigError, match=r"field 'controller'"):
+        MakeGraspDiagram(scenario)

@@ -8,8 +8,9 @@ import sys
 import time
 from pathlib import Path
 
-TESTS = Path(__file__).resolve().parents[1]
-REPOSITORY = TESTS.parent
+from tests import killed_runs
+from tests.killed_runs import environment
+
 TRIALS_TOTAL = 2 * 9 * 3  # two objects, nine markers, three attempts, one controller
 TIMEOUT_S = 600  # [s] a hang guard on a busy host, not a performance criterion
 
@@ -19,11 +20,6 @@ def sweep_command(out_dir):
             "--objects", "box", "thin_cylinder", "--controllers", "memorized",
             "--attempts", "3", "--workers", "2", "--out", str(out_dir), "--no-progress",
             "--trial-function", "tests.fake_trials:slow_fake_trial"]
-
-
-def environment():
-    paths = [str(REPOSITORY), str(TESTS), os.environ.get("PYTHONPATH", "")]
-    return {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in paths if p)}
 
 
 def run_to_end(out_dir):
@@ -37,33 +33,8 @@ def record_files(out_dir):
 
 
 def kill_after_some_records(out_dir, minimum):
-    """Starts the sweep in its own process group and SIGKILLs the group (the parent and
-    its workers, as a job scheduler or the OOM killer would) once `minimum` records
-    exist. Returns how many records existed at the kill."""
-    process = subprocess.Popen(sweep_command(out_dir), env=environment(),
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                               start_new_session=True)
-    deadline = time.monotonic() + TIMEOUT_S
-    try:
-        while len(record_files(out_dir)) < minimum:
-            assert process.poll() is None, "the sweep ended before it could be killed"
-            assert time.monotonic() < deadline, "no records appeared in time"
-            time.sleep(0.005)
-        os.killpg(process.pid, signal.SIGKILL)
-        count = len(record_files(out_dir))
-        process.wait(timeout=TIMEOUT_S)
-    finally:
-        if process.poll() is None:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait(timeout=TIMEOUT_S)
-    # Let the whole group go before resuming (the lock is released as the parent dies).
-    while time.monotonic() < deadline:
-        try:
-            os.killpg(process.pid, 0)
-        except ProcessLookupError:
-            break
-        time.sleep(0.01)
-    return count, process.returncode
+    return killed_runs.kill_after_some_records(
+        sweep_command(out_dir), lambda: record_files(out_dir), minimum, TIMEOUT_S)
 
 
 def test_sigkill_then_resume_gives_the_records_of_an_uninterrupted_run(tmp_path):

@@ -163,3 +163,22 @@ def test_a_scheduler_without_the_dask_extra_is_reported(tmp_path, monkeypatch):
         run_sweep(SMALL, fake_trial, tmp_path, scheduler="tcp://127.0.0.1:8786",
                   progress=False)
     assert not (tmp_path / "trials").exists()
+
+
+def test_explicit_workers_the_memory_cannot_hold_are_refused(tmp_path, monkeypatch):
+    from tegrasp_drake.sweep import runner
+    monkeypatch.setattr(runner, "available_memory_bytes",
+                        lambda: 3.5 * runner.WORKER_MEMORY_BYTES)
+    with pytest.raises(SweepError, match=r"--workers 100000: 36 worker processes .* give at "
+                                         r"most 3"):
+        run_sweep(SMALL, fake_trial, tmp_path, workers=100000, progress=False)
+    assert not (tmp_path / "trials").exists() or not any((tmp_path / "trials").iterdir())
+
+
+def test_the_pool_never_exceeds_the_trials_nor_by_default_the_memory(monkeypatch):
+    from tegrasp_drake.sweep import runner
+    monkeypatch.setattr(runner, "available_memory_bytes",
+                        lambda: 2.5 * runner.WORKER_MEMORY_BYTES)
+    monkeypatch.setattr(runner, "default_workers", lambda: 8)
+    assert runner.pool_size(2, 1) == 1
+    assert runner.pool_size(None, 100) == 2

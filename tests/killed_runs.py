@@ -1,0 +1,46 @@
+"""Commands killed mid-run, as a job scheduler or the OOM killer kills them (no tests here):
+the kill-and-resume tests of the sweep and of the studies built on it share this."""
+
+import os
+import signal
+import subprocess
+import time
+from pathlib import Path
+
+TESTS = Path(__file__).resolve().parent
+REPOSITORY = TESTS.parent
+
+
+def environment() -> dict:
+    """This process's environment with the checkout and tests/ first on PYTHONPATH (the
+    fake trial functions live in tests/)."""
+    paths = [str(REPOSITORY), str(TESTS), os.environ.get("PYTHONPATH", "")]
+    return {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in paths if p)}
+
+
+def kill_after_some_records(command, record_files, minimum: int, timeout_s: float):
+    """Starts `command` in its own process group and SIGKILLs the group (the parent and its
+    workers) once `record_files()` lists `minimum` records; waits until the whole group is
+    gone (its folder lock released with it). Returns (records at the kill, return code)."""
+    process = subprocess.Popen(command, env=environment(), stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL, start_new_session=True)
+    deadline = time.monotonic() + timeout_s
+    try:
+        while len(record_files()) < minimum:
+            assert process.poll() is None, "the command ended before it could be killed"
+            assert time.monotonic() < deadline, "no records appeared in time"
+            time.sleep(0.005)
+        os.killpg(process.pid, signal.SIGKILL)
+        count = len(record_files())
+        process.wait(timeout=timeout_s)
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait(timeout=timeout_s)
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(process.pid, 0)
+        except ProcessLookupError:
+            break
+        time.sleep(0.01)
+    return count, process.returncode
