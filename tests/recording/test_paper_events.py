@@ -11,7 +11,7 @@ from tegrasp_drake.scenario.scenario_events import load_controller_events
 from tegrasp_drake.events.events_folder import events_folder_of
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.rig import paths
-from tegrasp_drake.recording.paper_events import record_events
+from tegrasp_drake.recording.paper_events import events_of_ideal_grasp
 from tegrasp_drake.events import load_memorized_events
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, object_description
 from tests.cheap_contact import cheap_contact_arguments
@@ -20,9 +20,11 @@ pytestmark = pytest.mark.slow
 
 
 @pytest.mark.parametrize("object_name", sorted(BUILTIN_OBJECTS))
-def test_rerunning_record_events_reproduces_the_committed_files(object_name):
+def test_rerunning_record_events_reproduces_the_committed_files(object_name, ideal_grasp_log):
+    """record_events is the ideal grasp (the session's shared run of it) and the cut."""
     committed = load_memorized_events(paths.package_events_dir(), object_name)
-    recorded = record_events(object_name)
+    recorded = events_of_ideal_grasp(ideal_grasp_log(object_name),
+                                     LoadScenario(name=object_name), object_name)
     assert set(recorded) == set(committed)
     for transition, event in recorded.items():
         np.testing.assert_allclose(event.sa, committed[transition].sa, rtol=0, atol=1e-12)
