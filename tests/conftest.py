@@ -1,6 +1,7 @@
 """Fixtures shared by test modules."""
 
 import functools
+import signal
 
 import numpy as np
 import pytest
@@ -9,6 +10,16 @@ from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS
 from tegrasp_drake.hardware.realtime import realtime_scheduling
+
+
+def pytest_configure(config):
+    """The suite runs as a user at a terminal runs a command: Ctrl-C (SIGINT) interrupts.
+    A shell without job control starts a background job with SIGINT ignored, and the
+    commands rightly leave an ignored signal ignored; the tests of what an interrupt does
+    would then see none. The commands the tests start get SIGINT's default action back
+    too: exec resets a handled signal and keeps an ignored one."""
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture(scope="module", autouse=True)

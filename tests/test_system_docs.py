@@ -41,6 +41,7 @@ from tegrasp_drake.events.event_sequencer import EventSequencer
 from tegrasp_drake.events.events_folder import load_memorized_events
 from benchmarks.drivers import LoopTick
 from benchmarks.matcher import _InputReader
+from benchmarks.per_step_python import BarePythonOutput, PythonPadStatics, linkage_pad_statics
 from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import GripperStatusSender, TactileStatusSender
@@ -179,6 +180,8 @@ CONSTRUCTORS = {
     LoopTick: lambda: LoopTick([]),
     GraspWrenchEstimator: GraspWrenchEstimator,
     _InputReader: _InputReader,
+    BarePythonOutput: lambda: BarePythonOutput(4),
+    PythonPadStatics: lambda: PythonPadStatics(linkage_pad_statics()),
     DeviceWatchdog: DeviceWatchdog,
     FaultLatch: lambda: FaultLatch(["watchdog", "gripper"]),
     JacoVelocityTracker: JacoVelocityTracker,

@@ -10,6 +10,9 @@ import dataclasses
 import math
 import operator
 
+from pydrake.symbolic import cos as symbolic_cos
+from pydrake.symbolic import sin as symbolic_sin
+
 from tegrasp_drake.rig.channels import FINGER_NAMES
 
 # VibrationSensorConfig.pad_force_source: PadNormalForces' walk over the contact results,
@@ -43,14 +46,15 @@ class FingerChain:
     normal: tuple[float, float]
 
 
-def finger_pad_force(chain: FingerChain, tau, q) -> float:
+def finger_pad_force(chain: FingerChain, tau, q, *, cos=math.cos, sin=math.sin) -> float:
     """The pad's normal contact force [N], positive pushing the pad open, from one finger's
-    (driver, coupler, follower) generalized contact forces tau [N m] and angles q [rad]."""
+    (driver, coupler, follower) generalized contact forces tau [N m] and angles q [rad];
+    cos and sin: pydrake.symbolic's to write it on expressions."""
     theta, beta, gamma = q
     tau_a, tau_b, tau_c = tau
     (ab_y, ab_z), (bc_y, bc_z), (n_y, n_z) = chain.ab, chain.bc, chain.normal
-    c1, s1 = math.cos(theta), math.sin(theta)
-    c2, s2 = math.cos(theta + beta), math.sin(theta + beta)
+    c1, s1 = cos(theta), sin(theta)
+    c2, s2 = cos(theta + beta), sin(theta + beta)
     # C - B and C - A, turned with the links.
     cb_y, cb_z = c2 * bc_y - s2 * bc_z, s2 * bc_y + c2 * bc_z
     ca_y, ca_z = c1 * ab_y - s1 * ab_z + cb_y, s1 * ab_y + c1 * ab_z + cb_z
@@ -59,7 +63,7 @@ def finger_pad_force(chain: FingerChain, tau, q) -> float:
     determinant = cb_y * ca_z - cb_z * ca_y
     force_y = (ca_y * rhs_b - cb_y * rhs_a) / determinant
     force_z = (ca_z * rhs_b - cb_z * rhs_a) / determinant
-    c3, s3 = math.cos(theta + beta + gamma), math.sin(theta + beta + gamma)
+    c3, s3 = cos(theta + beta + gamma), sin(theta + beta + gamma)
     return force_y * (c3 * n_y - s3 * n_z) + force_z * (s3 * n_y + c3 * n_z)
 
 
@@ -110,3 +114,10 @@ class LinkagePadStatics:
         (left, left_tau, left_q), (right, right_tau, right_q) = self._fingers
         return (finger_pad_force(left, left_tau(tau), left_q(state)),
                 finger_pad_force(right, right_tau(tau), right_q(state)))
+
+    def normal_force_expressions(self, tau: list, state: list) -> tuple:
+        """normal_forces on pydrake.symbolic variables (the entries of `tau` and `state`)."""
+        (left, left_tau, left_q), (right, right_tau, right_q) = self._fingers
+        functions = {"cos": symbolic_cos, "sin": symbolic_sin}
+        return (finger_pad_force(left, left_tau(tau), left_q(state), **functions),
+                finger_pad_force(right, right_tau(tau), right_q(state), **functions))

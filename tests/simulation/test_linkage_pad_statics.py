@@ -8,6 +8,7 @@ import pytest
 from pydrake.common import RandomGenerator
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import JacobianWrtVariable
+from pydrake.symbolic import Variable
 from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.control.scripted_grasp import gripper_command
@@ -158,3 +159,21 @@ def test_films_on_the_joints_forces_read_as_on_the_contact_results_walk():
     assert films.HasInputPort("gripper_state")
     assert np.abs(walk).max() > 100.0  # the touch rang the films
     assert np.abs(joints - walk).max() < 0.1 * VibrationSensorConfig().noise_std_mps2
+
+
+def test_the_symbolic_statics_evaluate_to_the_float_ones():
+    # normal_force_expressions is the same formula on pydrake.symbolic variables; its
+    # evaluation may round differently (symbolic sums reorder), so to round-off.
+    plant, gripper = _linkage_plant()
+    statics = LinkagePadStatics(plant, gripper)
+    tau = [Variable(f"tau_{i}") for i in range(statics.velocities)]
+    state = [Variable(f"x_{i}") for i in range(statics.states)]
+    expressions = statics.normal_force_expressions(tau, state)
+    rng = np.random.default_rng(601)
+    for _ in range(20):
+        tau_values = rng.uniform(-2.0, 2.0, statics.velocities).tolist()
+        state_values = rng.uniform(-0.6, 0.8, statics.states).tolist()
+        environment = dict(zip(tau + state, tau_values + state_values))
+        floats = statics.normal_forces(tau_values, state_values)
+        for expression, value in zip(expressions, floats):
+            assert expression.Evaluate(environment) == pytest.approx(value, rel=1e-12, abs=1e-12)
