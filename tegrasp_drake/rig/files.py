@@ -381,7 +381,7 @@ def _float_ranged_int(text: str) -> int:
     """A JSON integer via the bounded reader (integer_text.py); refused when no float64 holds it."""
     from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
     try:
-        return read_integer(text, yaml11=False)
+        return read_integer(text, decimal_only=True)
     except IntegerTextError as e:
         raise JsonValueError(f"holds a number that {e}; write a finite number") from None
 
