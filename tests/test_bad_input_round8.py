@@ -1,7 +1,14 @@
 """Bad inputs found by the eighth hostile pass, one test per rule."""
 
+import argparse
+import io
+import os
+import subprocess
+import sys
+
 import pytest
 
+from tegrasp_drake import cli
 from tests.test_bad_input import assert_one_line_error, run_cli
 
 
@@ -38,3 +45,84 @@ def test_a_sweep_spec_reads_base_60_as_text(tmp_path, capfd):
     assert_one_line_error(code, text, "attempts", "1:00")
     assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
 
+
+# Rule: the environment is told in one line at the error boundary, never as an internal error
+# or another library's lines: an output stream the system refuses to write, a deleted current
+# folder, a locale whose encoding is not UTF-8, an unwritable matplotlib folder.
+def _full_stream():
+    """A text stream on /dev/full, whose every write fails with ENOSPC."""
+    return open("/dev/full", "w", encoding="utf-8")
+
+
+needs_dev_full = pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full")
+
+
+@needs_dev_full
+def test_help_to_a_full_disk_is_one_line(monkeypatch):
+    stream, errors = _full_stream(), io.StringIO()
+    monkeypatch.setattr(cli.sys, "stdout", stream)
+    monkeypatch.setattr(cli.sys, "stderr", errors)
+    try:
+        assert cli.main(["--help"]) == cli.EXIT_ERROR
+    finally:
+        stream.close()
+    assert errors.getvalue() == ("tegrasp: error: cannot write to standard output: No space "
+                                 "left on device\n")
+
+
+def _parser_of_one_command(func):
+    """A command line whose one command `say` runs `func`."""
+    parser = argparse.ArgumentParser(prog="tegrasp")
+    commands = parser.add_subparsers(dest="command", required=True)
+    commands.add_parser("say").set_defaults(func=func)
+    return parser
+
+
+@needs_dev_full
+def test_a_command_writing_to_a_full_disk_is_refused_in_one_line(monkeypatch):
+    stream, errors = _full_stream(), io.StringIO()
+    monkeypatch.setattr(cli, "build_parser",
+                        lambda: _parser_of_one_command(lambda args: print("x" * 100_000)))
+    monkeypatch.setattr(cli.sys, "stdout", stream)
+    monkeypatch.setattr(cli.sys, "stderr", errors)
+    try:
+        assert cli.main(["say"]) == cli.EXIT_ERROR
+    finally:
+        stream.close()
+    assert errors.getvalue().splitlines() == [
+        "tegrasp: error: cannot write to standard output: No space left on device"]
+
+
+def test_a_deleted_current_folder_is_named(tmp_path, monkeypatch, capfd):
+    from tegrasp_drake.rig.files import folder_problem, output_file_problem
+    gone = tmp_path / "gone"
+    gone.mkdir()
+    monkeypatch.chdir(gone)
+    gone.rmdir()
+    for problem in (output_file_problem("f.png"), folder_problem("o")):
+        assert "the current folder no longer exists; cd to one that does" in problem
+    code, text = run_cli(["plot", "trial", str(tmp_path / "trial.npz"), "--out", "f.png"],
+                         capfd)
+    assert_one_line_error(code, text, "current folder no longer exists")
+
+
+def _tegrasp(argv, **environment):
+    """`python -m tegrasp_drake ARGV` in a child process with `environment` changed."""
+    env = {**os.environ, **environment}
+    return subprocess.run([sys.executable, "-m", "tegrasp_drake", *argv], env=env,
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_a_locale_without_utf8_runs_the_command_in_utf8_mode():
+    done = _tegrasp(["trial", "--help"], LC_ALL="C", LANG="C", PYTHONUTF8="0")
+    assert done.returncode == 0, done.stderr
+    assert "--out" in done.stdout and done.stderr == ""
+
+
+def test_an_unwritable_matplotlib_folder_adds_no_lines(tmp_path):
+    env = {"HOME": "/proc", "TEGRASP_EVENTS_DIR": "", "XDG_DATA_HOME": "",
+           "XDG_CONFIG_HOME": "", "XDG_CACHE_HOME": "", "MPLCONFIGDIR": ""}
+    done = _tegrasp(["record-events", "--object", "box"], **env)
+    assert done.returncode == 1
+    assert len(done.stderr.splitlines()) == 1, done.stderr
+    assert "/proc" in done.stderr and "matplotlib" not in done.stderr.lower()

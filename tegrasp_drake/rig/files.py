@@ -114,9 +114,25 @@ def _nearest_existing_part(path) -> tuple[pathlib.Path | None, OSError | None]:
     return None, None
 
 
+def _place_problem(path) -> str | None:
+    """What makes `path` no place for the user's output whatever its folder's permissions:
+    a relative path when the current folder has been deleted."""
+    path = pathlib.Path(path)
+    if not path.is_absolute():
+        try:
+            os.getcwd()
+        except FileNotFoundError:
+            return "cannot be written: the current folder no longer exists; cd to one that does"
+    return None
+
+
 def folder_problem(path) -> str | None:
     """Why `path` cannot be, or be made as, a folder this user writes in (None if it can),
-    proven by making an entry in its nearest existing part (permission bits do not tell)."""
+    proven by making an entry in its nearest existing part (permission bits do not tell);
+    _place_problem first."""
+    problem = _place_problem(path)
+    if problem:
+        return problem
     place, error = _nearest_existing_part(path)
     if error:
         return f"{place}: {error.strerror or error}"
@@ -159,8 +175,11 @@ def output_file_problem(path) -> str | None:
     """Why a command may not write the file `path` (an output option's value), in words that
     follow it, or None; asked before the work starts. Refuses an existing device, FIFO, socket
     or folder (a rename onto a device node would replace it), /proc and /sys, and a folder the
-    user cannot write in."""
+    user cannot write in; _place_problem first."""
     path = pathlib.Path(path)
+    problem = _place_problem(path)
+    if problem:
+        return problem
     try:
         mode = os.stat(path).st_mode
     except (FileNotFoundError, NotADirectoryError):
