@@ -350,7 +350,7 @@ def _number_as_text_hint(value, hint) -> str:
             if not number.is_integer() or abs(number) > 1e18:
                 return " (an integer field takes whole numbers, written as digits, e.g. 3)"
             return f" (YAML reads it as text: write {int(number)}, digits without quotes)"
-        return f" (YAML reads it as text: write {number!r} without quotes)"
+        return f" (YAML reads it as text: write {number!r})"
     return ""
 
 
