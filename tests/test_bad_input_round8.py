@@ -126,3 +126,34 @@ def test_an_unwritable_matplotlib_folder_adds_no_lines(tmp_path):
     assert done.returncode == 1
     assert len(done.stderr.splitlines()) == 1, done.stderr
     assert "/proc" in done.stderr and "matplotlib" not in done.stderr.lower()
+
+
+# Rule: a public function's number takes the range its command-line or scenario twin takes,
+# from the same declaration.
+def test_the_api_rates_noise_and_duration_share_the_command_lines_ranges():
+    from tegrasp_drake.commands.hardware import MAX_DURATION_S
+    from tegrasp_drake.control.grasp_controller import RA_NOISE_RANGE, SAMPLE_RATE_RANGE
+    from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, field_range
+    from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+    from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
+    assert SAMPLE_RATE_RANGE == field_range(TactileSensorConfig, "sample_rate_hz")
+    assert SAMPLE_RATE_RANGE == field_range(VibrationSensorConfig, "sample_rate_hz")
+    assert RA_NOISE_RANGE == field_range(VibrationSensorConfig, "noise_std_mps2")
+    assert MAX_DURATION_S == HARDWARE_RUN_DURATION.high
+
+
+def test_a_huge_sample_rate_is_refused_before_anything_is_built():
+    from pydrake.systems.framework import DiagramBuilder
+    from pydrake.systems.primitives import ConstantVectorSource
+    from tegrasp_drake import AddGraspController, LoadScenario, grasp_plan
+    scenario = LoadScenario(name="box")
+    with pytest.raises(ValueError, match=r"sample_rates_hz.*must lie in \[16, 20000\] Hz"):
+        AddGraspController(DiagramBuilder(), controller=scenario.controller,
+                           plan=grasp_plan(scenario), station=ConstantVectorSource([0.0]),
+                           arm=scenario.arm, sample_rates_hz=(1e12, 1e12))
+
+
+def test_a_hardware_run_longer_than_the_command_lines_cap_is_refused():
+    from tegrasp_drake import LoadScenario, run_on_hardware
+    with pytest.raises(ValueError, match=r"duration.*must lie in \(0, 600\] s"):
+        run_on_hardware(LoadScenario(name="box"), duration=1e9)
