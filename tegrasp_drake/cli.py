@@ -1,7 +1,8 @@
 """The `tegrasp` command line: one sub-command per module, each with a `register(subparsers)` that
 adds its parser and sets `func=run` (args -> exit code). `main` is the one error boundary: an
 unforeseen exception ends the run with one line on stderr (traceback to a file; `-v` prints it);
-SIGTERM and SIGHUP end a run as Ctrl-C does. Exit codes: docs/user-guide.md, "Exit codes"."""
+SIGTERM, SIGHUP and the other catchable terminating signals end a run as Ctrl-C does
+(rig/files.TERMINATION_SIGNALS). Exit codes: docs/user-guide.md, "Exit codes"."""
 
 import argparse
 import contextlib

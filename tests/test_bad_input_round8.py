@@ -3,12 +3,14 @@
 import argparse
 import io
 import os
+import signal
 import subprocess
 import sys
 
 import pytest
 
 from tegrasp_drake import cli
+from tests import killed_runs
 from tests.test_bad_input import assert_one_line_error, run_cli
 
 
@@ -157,3 +159,39 @@ def test_a_hardware_run_longer_than_the_command_lines_cap_is_refused():
     from tegrasp_drake import LoadScenario, run_on_hardware
     with pytest.raises(ValueError, match=r"duration.*must lie in \(0, 600\] s"):
         run_on_hardware(LoadScenario(name="box"), duration=1e9)
+
+
+# Rule: every catchable terminating signal stops a run as Ctrl-C does (its staging removed);
+# a run killed past its handlers leaves a staging folder the next run into its folder removes.
+@pytest.mark.parametrize("name", ["SIGQUIT", "SIGUSR1", "SIGUSR2", "SIGALRM"])
+def test_a_terminating_signal_removes_the_runs_staging(name, tmp_path, monkeypatch, capfd):
+    from tegrasp_drake.commands.run_folder import STAGING_PREFIX, staged_run
+
+    def stage_and_signal(args):
+        with staged_run(tmp_path):
+            os.kill(os.getpid(), signal.Signals[name])
+            raise AssertionError("the signal did not stop the run")
+
+    monkeypatch.setattr(cli, "build_parser", lambda: _parser_of_one_command(stage_and_signal))
+    code, text = run_cli(["say"], capfd)
+    assert code == 128 + signal.Signals[name].value
+    assert text.strip() == f"tegrasp: interrupted ({name}); the run's unfinished files were removed"
+    assert not list(tmp_path.glob(f"{STAGING_PREFIX}*"))
+
+
+def test_the_staging_of_a_killed_run_is_removed_by_the_next_run(tmp_path):
+    from tegrasp_drake.commands.run_folder import STAGING_PREFIX, RunFolderError, staged_run
+    killed = subprocess.run(
+        [sys.executable, "-c", "import os, signal, sys\n"
+         "from tegrasp_drake.commands.run_folder import staged_run\n"
+         "with staged_run(sys.argv[1]):\n    os.kill(os.getpid(), signal.SIGKILL)\n",
+         str(tmp_path)], env=killed_runs.environment(), timeout=300)
+    assert killed.returncode == -signal.SIGKILL
+    (left,) = tmp_path.glob(f"{STAGING_PREFIX}*")
+    with staged_run(tmp_path) as stage:
+        assert not left.exists() and stage.is_dir()
+        with pytest.raises(RunFolderError, match="another run is writing there now"):
+            with staged_run(tmp_path):
+                pass
+        assert stage.is_dir()  # a live run's staging is never touched
+    assert not list(tmp_path.glob(f"{STAGING_PREFIX}*"))

@@ -80,14 +80,14 @@ def temporary_sibling(path):
 
 @contextlib.contextmanager
 def interruptions_deferred():
-    """Holds SIGINT, SIGTERM and SIGHUP back until the block ends, then acts on the first as the
+    """Holds TERMINATION_SIGNALS back until the block ends, then acts on the first as the
     previous handler would (main thread only)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     received = []
     previous = {number: signal.signal(number, lambda got, frame: received.append(got))
-                for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+                for number in TERMINATION_SIGNALS}
     try:
         yield
     finally:
@@ -313,6 +313,13 @@ def read_bounded(path, limit: int) -> bytes:
     return data
 
 
+# The signals whose default action ends the process and that a handler can catch: Ctrl-C,
+# kill's default, a closed terminal, Ctrl-\ (SIGQUIT), the user-defined pair and an alarm
+# (signal(7); SIGPIPE has its own handling, cli.py). SIGKILL cannot be caught: a run folder's
+# next run removes what one leaves (commands/run_folder.py).
+TERMINATION_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT,
+                       signal.SIGUSR1, signal.SIGUSR2, signal.SIGALRM)
+
 _received_interrupts = []  # the names of the signals _interrupt has raised, first first
 
 
@@ -330,14 +337,14 @@ def interrupt_received() -> str | None:
 
 @contextlib.contextmanager
 def termination_interrupts():
-    """SIGINT, SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread during the block,
-    so every `finally` runs; signals someone already handles are left alone."""
+    """TERMINATION_SIGNALS raise KeyboardInterrupt in the main thread during the block, so
+    every `finally` runs; signals someone already handles are left alone."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     previous = {}
     _received_interrupts.clear()  # a new run (tests call cli.main many times)
-    for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+    for number in TERMINATION_SIGNALS:
         if signal.getsignal(number) in (signal.SIG_DFL, signal.default_int_handler):
             previous[number] = signal.signal(number, _interrupt)
     try:
