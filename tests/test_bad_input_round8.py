@@ -195,3 +195,22 @@ def test_the_staging_of_a_killed_run_is_removed_by_the_next_run(tmp_path):
                 pass
         assert stage.is_dir()  # a live run's staging is never touched
     assert not list(tmp_path.glob(f"{STAGING_PREFIX}*"))
+
+
+# Rule: no output of any command goes inside the installed package, which pip deletes.
+def test_output_inside_the_installed_package_is_refused(tmp_path, monkeypatch, capfd):
+    from tegrasp_drake.rig import files
+    package = (tmp_path / "site-packages" / "tegrasp_drake").resolve()
+    (package / "events").mkdir(parents=True)
+    monkeypatch.setattr(files, "installed_package_dir", lambda: package)
+    assert "pip deletes" in files.folder_problem(package / "events" / "mine")
+    assert "pip deletes" in files.output_file_problem(package / "f.png")
+    assert files.folder_problem(tmp_path / "mine") is None
+    code, text = run_cli(["trial", "--out", str(package / "events" / "mine")], capfd)
+    assert_one_line_error(code, text, "is inside the installed package", "outside it")
+    assert not (package / "events" / "mine").exists()
+
+
+def test_a_source_checkout_is_not_an_installed_package():
+    from tegrasp_drake.rig.files import installed_package_dir
+    assert installed_package_dir() is None  # the tests run from the checkout

@@ -116,14 +116,34 @@ def _nearest_existing_part(path) -> tuple[pathlib.Path | None, OSError | None]:
 
 def _place_problem(path) -> str | None:
     """What makes `path` no place for the user's output whatever its folder's permissions:
-    a relative path when the current folder has been deleted."""
+    a relative path when the current folder has been deleted; a path inside the installed
+    package (installed_package_dir), which pip deletes with everything in it."""
     path = pathlib.Path(path)
     if not path.is_absolute():
         try:
             os.getcwd()
         except FileNotFoundError:
             return "cannot be written: the current folder no longer exists; cd to one that does"
+    package = installed_package_dir()
+    if package is not None:
+        try:
+            real = pathlib.Path(os.path.realpath(path))
+        except (OSError, RuntimeError):
+            return None
+        if real == package or package in real.parents:
+            return (f"is inside the installed package ({package}), which pip deletes with "
+                    "everything in it when it upgrades or removes the package; use a folder "
+                    "outside it")
     return None
+
+
+def installed_package_dir() -> pathlib.Path | None:
+    """The installed tegrasp_drake folder (a real path), None for a source checkout's (one
+    beside a pyproject.toml: its maintainers place files in it, and pip does not remove it)."""
+    package = pathlib.Path(__file__).resolve().parents[1]
+    if (package.parent / "pyproject.toml").is_file():
+        return None
+    return package
 
 
 def folder_problem(path) -> str | None:
