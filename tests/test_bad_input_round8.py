@@ -214,3 +214,11 @@ def test_output_inside_the_installed_package_is_refused(tmp_path, monkeypatch, c
 def test_a_source_checkout_is_not_an_installed_package():
     from tegrasp_drake.rig.files import installed_package_dir
     assert installed_package_dir() is None  # the tests run from the checkout
+
+
+# Rule: a save of nothing is refused, as the command line never makes one.
+def test_saving_no_events_is_refused(tmp_path):
+    from tegrasp_drake import save_memorized_events
+    with pytest.raises(ValueError, match="no events given; there is nothing to save"):
+        save_memorized_events(tmp_path / "ev", [])
+    assert not (tmp_path / "ev").exists()
