@@ -7,4 +7,6 @@
 - emulate.py, hardware.py, replay.py: emulated devices; the run on them; its log replayed.
 - plot.py: the paper's figures from a log or a results folder.
 - scenario_args.py, viewer_args.py, verbosity.py: options shared by the commands.
-- run_folder.py, progress.py: where a run's files go; the progress bar."""
+- run_folder.py, progress.py: where a run's files go; the progress bar.
+- process_environment.py: the process set up before a command runs (UTF-8 mode, matplotlib's
+  folder)."""

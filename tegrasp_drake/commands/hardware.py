@@ -14,6 +14,7 @@ import sys
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
 from tegrasp_drake.rig.files import file_problem, interruptions_deferred, output_file_problem
+from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   quiet_modbus_library, scenario_from_arguments)
@@ -62,9 +63,8 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
-# The longest real-time run [s]: the grasp takes about 12 s; ten minutes leaves room for a
-# slow hand-held test without a typo (a 1e7) holding the devices for days.
-MAX_DURATION_S = 600.0
+# The longest real-time run [s] (rig/ranges.py).
+MAX_DURATION_S = HARDWARE_RUN_DURATION.high
 
 
 def duration_seconds(text: str) -> float:
@@ -73,7 +73,7 @@ def duration_seconds(text: str) -> float:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
-    if not 0 < value <= MAX_DURATION_S:  # also refuses nan
+    if not HARDWARE_RUN_DURATION.contains(value):  # also refuses nan
         raise argparse.ArgumentTypeError(f"{text}: give a duration in (0, {MAX_DURATION_S:g}] "
                                          "seconds")
     return value

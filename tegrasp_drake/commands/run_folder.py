@@ -67,13 +67,21 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
     return folder
 
 
+STAGING_PREFIX = ".staging-"  # a run's files until it commits them (staged_run)
+
+
 @contextlib.contextmanager
 def staged_run(folder):
     """A hidden staging folder inside the run folder (removed when the block ends), the run
-    folder locked (flock) for the block, so a second run into it is refused at once."""
+    folder locked (flock) for the block, so a second run into it is refused at once. Staging
+    folders already there are removed first: with the lock held no live run writes there, so
+    they are what a run killed past its handlers (SIGKILL, a power cut) left."""
     with claimed_run_folder(folder):
+        for stale in pathlib.Path(folder).glob(f"{STAGING_PREFIX}*"):
+            if stale.is_dir() and not stale.is_symlink():
+                shutil.rmtree(stale, ignore_errors=True)
         try:
-            stage = pathlib.Path(tempfile.mkdtemp(prefix=".staging-", dir=folder))
+            stage = pathlib.Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=folder))
         except OSError as e:
             raise RunFolderError(f"--out {folder}: cannot write there: "
                                  f"{e.strerror or e}") from None
@@ -110,7 +118,7 @@ def own_file_problem(path, folder) -> str | None:
     if path.resolve().parent != folder.resolve():
         return None
     stem = path.name.split(".", 1)[0]
-    if path.name in RUN_FILES or stem in TRIAL_FIGURE_STEMS or path.name.startswith(".staging-"):
+    if path.name in RUN_FILES or stem in TRIAL_FIGURE_STEMS or path.name.startswith(STAGING_PREFIX):
         return (f"is one of the run's own files in {folder} ({path.name}); give another "
                 "name, e.g. replay.html")
     return None

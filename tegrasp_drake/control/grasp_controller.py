@@ -26,11 +26,12 @@ from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorCha
 from tegrasp_drake.tactile.sample_block import block_samples
 from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 from tegrasp_drake.simulation.station import ArmDriverConfig
+from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.control.controller_registry import (ControllerConfig, ControllerEntry,
                                                        controller_entry)
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
-from tegrasp_drake.rig.ranges import Range
+from tegrasp_drake.rig.ranges import field_range
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
 _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
@@ -138,13 +139,20 @@ def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channe
     return matcher
 
 
+# The live SA and RA rates [Hz] and the RA noise [m/s^2] take the ranges the scenario's
+# tactile.sample_rate_hz, vibration.sample_rate_hz and vibration.noise_std_mps2 take, so that a
+# script and the command line meet the same bounds (the two rates share theirs: 8 samples in
+# the 0.5 s event window at the low end, the films' 20 kHz integration at the high end).
+SAMPLE_RATE_RANGE = field_range(TactileSensorConfig, "sample_rate_hz")
+RA_NOISE_RANGE = field_range(VibrationSensorConfig, "noise_std_mps2")
+
+
 @public_api
 def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
                        plan: GraspPlan, station: System, arm: ArmDriverConfig,
-                       sample_rates_hz: Annotated[tuple[float, float], Range(
-                           low=0.0, low_open=True, unit="Hz")],
+                       sample_rates_hz: Annotated[tuple[float, float], SAMPLE_RATE_RANGE],
                        events: dict | None = None, corrective_events: dict | None = None,
-                       ra_noise_std_mps2: Annotated[float, Range(low=0.0, unit="m/s^2")] = 0.0,
+                       ra_noise_std_mps2: Annotated[float, RA_NOISE_RANGE] = 0.0,
                        tactile: TactileSensorConfig | None = None) -> GraspController:
     """Adds `controller` as its control/controller_registry.py entry says, connected to
     `station`'s ports; returns its GraspController.

@@ -150,9 +150,9 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
 
 def _description_from_scenario(scenario_text: str, path, object_name) -> dict:
     """A version-1 file's object description: the object section of its scenario text."""
-    import yaml
+    from tegrasp_drake.rig.typed_yaml import ConfigError, parse_yaml
     try:
-        scenario = yaml.safe_load(scenario_text)
+        scenario = parse_yaml(scenario_text, str(path))
         obj = scenario["object"]
         description = {name: obj.get(name, "") for name in DESCRIPTION_FIELDS}
         description["size"] = [float(v) for v in description["size"]]
@@ -160,7 +160,7 @@ def _description_from_scenario(scenario_text: str, path, object_name) -> dict:
                                                         float(obj["friction"]))
         if not description["shape"] or not description["size"]:
             raise KeyError("shape")
-    except (yaml.YAMLError, TypeError, KeyError, ValueError):
+    except (ConfigError, TypeError, KeyError, ValueError):
         raise MemorizedEventError(
             path, "is a format_version 1 file whose scenario text does not describe the "
             "object (shape, size, mass, friction), so it cannot be checked against the "

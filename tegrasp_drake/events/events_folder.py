@@ -58,9 +58,13 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
     """Write the events' files and the index; returns the paths written.
 
     Each object given replaces its previous events (stale files removed); keep_other_objects
-    keeps the other objects' index entries. Every object needs the `required` transitions."""
+    keeps the other objects' index entries. Every object needs the `required` transitions;
+    no events at all is refused (ValueError)."""
     events_dir = pathlib.Path(events_dir)
     events = _sorted_events(events)
+    if not events:
+        raise ValueError("save_memorized_events: no events given; there is nothing to save "
+                         "(record some with record_events)")
     keys = [(e.object_name, e.transition) for e in events]
     if len(set(keys)) != len(keys):
         raise ValueError("two events share an object and a transition")

@@ -11,6 +11,7 @@
   jaco_velocity_tracker.py  JacoVelocityTracker, position error to joint velocity
   paths.py                  where models and events live
   typed_yaml.py             YAML configuration with errors naming the field
+  core_schema_yaml.py       YAML text to data, numbers read as YAML 1.2's core schema
   integer_text.py           the one bounded reader of integers from text
   ranges.py                 each numeric setting's unit and range
   unset_fields.py           fields whose empty value means "not set"

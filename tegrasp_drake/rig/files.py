@@ -80,14 +80,14 @@ def temporary_sibling(path):
 
 @contextlib.contextmanager
 def interruptions_deferred():
-    """Holds SIGINT, SIGTERM and SIGHUP back until the block ends, then acts on the first as the
+    """Holds TERMINATION_SIGNALS back until the block ends, then acts on the first as the
     previous handler would (main thread only)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     received = []
     previous = {number: signal.signal(number, lambda got, frame: received.append(got))
-                for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+                for number in TERMINATION_SIGNALS}
     try:
         yield
     finally:
@@ -114,9 +114,45 @@ def _nearest_existing_part(path) -> tuple[pathlib.Path | None, OSError | None]:
     return None, None
 
 
+def _place_problem(path) -> str | None:
+    """What makes `path` no place for the user's output whatever its folder's permissions:
+    a relative path when the current folder has been deleted; a path inside the installed
+    package (installed_package_dir), which pip deletes with everything in it."""
+    path = pathlib.Path(path)
+    if not path.is_absolute():
+        try:
+            os.getcwd()
+        except FileNotFoundError:
+            return "cannot be written: the current folder no longer exists; cd to one that does"
+    package = installed_package_dir()
+    if package is not None:
+        try:
+            real = pathlib.Path(os.path.realpath(path))
+        except (OSError, RuntimeError):
+            return None
+        if real == package or package in real.parents:
+            return (f"is inside the installed package ({package}), which pip deletes with "
+                    "everything in it when it upgrades or removes the package; use a folder "
+                    "outside it")
+    return None
+
+
+def installed_package_dir() -> pathlib.Path | None:
+    """The installed tegrasp_drake folder (a real path), None for a source checkout's (one
+    beside a pyproject.toml: its maintainers place files in it, and pip does not remove it)."""
+    package = pathlib.Path(__file__).resolve().parents[1]
+    if (package.parent / "pyproject.toml").is_file():
+        return None
+    return package
+
+
 def folder_problem(path) -> str | None:
     """Why `path` cannot be, or be made as, a folder this user writes in (None if it can),
-    proven by making an entry in its nearest existing part (permission bits do not tell)."""
+    proven by making an entry in its nearest existing part (permission bits do not tell);
+    _place_problem first."""
+    problem = _place_problem(path)
+    if problem:
+        return problem
     place, error = _nearest_existing_part(path)
     if error:
         return f"{place}: {error.strerror or error}"
@@ -159,8 +195,11 @@ def output_file_problem(path) -> str | None:
     """Why a command may not write the file `path` (an output option's value), in words that
     follow it, or None; asked before the work starts. Refuses an existing device, FIFO, socket
     or folder (a rename onto a device node would replace it), /proc and /sys, and a folder the
-    user cannot write in."""
+    user cannot write in; _place_problem first."""
     path = pathlib.Path(path)
+    problem = _place_problem(path)
+    if problem:
+        return problem
     try:
         mode = os.stat(path).st_mode
     except (FileNotFoundError, NotADirectoryError):
@@ -294,6 +333,13 @@ def read_bounded(path, limit: int) -> bytes:
     return data
 
 
+# The signals whose default action ends the process and that a handler can catch: Ctrl-C,
+# kill's default, a closed terminal, Ctrl-\ (SIGQUIT), the user-defined pair and an alarm
+# (signal(7); SIGPIPE has its own handling, cli.py). SIGKILL cannot be caught: a run folder's
+# next run removes what one leaves (commands/run_folder.py).
+TERMINATION_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT,
+                       signal.SIGUSR1, signal.SIGUSR2, signal.SIGALRM)
+
 _received_interrupts = []  # the names of the signals _interrupt has raised, first first
 
 
@@ -311,14 +357,14 @@ def interrupt_received() -> str | None:
 
 @contextlib.contextmanager
 def termination_interrupts():
-    """SIGINT, SIGTERM and SIGHUP raise KeyboardInterrupt in the main thread during the block,
-    so every `finally` runs; signals someone already handles are left alone."""
+    """TERMINATION_SIGNALS raise KeyboardInterrupt in the main thread during the block, so
+    every `finally` runs; signals someone already handles are left alone."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     previous = {}
     _received_interrupts.clear()  # a new run (tests call cli.main many times)
-    for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+    for number in TERMINATION_SIGNALS:
         if signal.getsignal(number) in (signal.SIG_DFL, signal.default_int_handler):
             previous[number] = signal.signal(number, _interrupt)
     try:
@@ -381,7 +427,7 @@ def _float_ranged_int(text: str) -> int:
     """A JSON integer via the bounded reader (integer_text.py); refused when no float64 holds it."""
     from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
     try:
-        return read_integer(text, yaml11=False)
+        return read_integer(text, decimal_only=True)
     except IntegerTextError as e:
         raise JsonValueError(f"holds a number that {e}; write a finite number") from None
 

@@ -5,8 +5,8 @@ Python refuses decimal text of more than 4300 digits (`sys.int_max_str_digits`, 
 quadratic-time conversion), and no setting holds a number a float64 cannot (float fields take
 integers too). So an integer is read only within a float64's range, |n| <= 1.8e308, decided from the
 text's length before any conversion; past it, IntegerTextError says how many digits the text has.
-Forms read: JSON's and YAML 1.2's decimal integers, and YAML 1.1's (PyYAML's): `_` separators, 0b,
-0x and 0 (octal) prefixes and base-60 `1:30`."""
+Forms read: YAML 1.2's core schema's integers (decimal, `0o17` octal, `0x1f` hexadecimal; `017` is
+decimal 17), or with `decimal_only` decimal digits alone, as JSON and the command line write them."""
 
 import math
 import re
@@ -16,56 +16,32 @@ import sys
 LIMIT = sys.float_info.max
 # Digits of LIMIT in a base, for the length check made before any conversion.
 _MAX_BITS = sys.float_info.max_exp  # 1024: |n| < 2**1024 for every finite float
-_BASE_PREFIXES = {"0b": 2, "0x": 16}
-_YAML11_INT = re.compile(r"""^(?:[-+]?0b[0-1_]+
-    |[-+]?0[0-7_]+
-    |[-+]?(?:0|[1-9][0-9_]*)
-    |[-+]?0x[0-9a-fA-F_]+
-    |[-+]?[1-9][0-9_]*(?::[0-5]?[0-9])+)$""", re.X)
+_BASE_PREFIXES = {"0o": 8, "0x": 16}
+# YAML 1.2 core schema's integer forms (core_schema_yaml.py resolves plain scalars with it).
+CORE_INT = re.compile(r"^(?:[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+)$")
+_DECIMAL_INT = re.compile(r"^[-+]?[0-9]+$")
 
 
 class IntegerTextError(ValueError):
     """Integer text beyond LIMIT (or not an integer); the message says why, without the text."""
 
 
-def is_integer_text(text: str) -> bool:
-    """True for text YAML 1.1 (PyYAML's resolver) reads as an integer."""
-    return bool(_YAML11_INT.match(text))
-
-
-_DECIMAL_INT = re.compile(r"^[-+]?[0-9]+$")
-
-
-def read_integer(text: str, *, yaml11: bool = True) -> int:
-    """The integer `text` writes (module docstring; `yaml11=False`: decimal digits alone, as
-    JSON and the command line write them), IntegerTextError for text that is not one or whose
-    value lies beyond LIMIT; the text's length is checked before it is converted."""
-    grammar = _YAML11_INT if yaml11 else _DECIMAL_INT
+def read_integer(text: str, *, decimal_only: bool = False) -> int:
+    """The integer `text` writes (module docstring), IntegerTextError for text that is not one
+    or whose value lies beyond LIMIT; the text's length is checked before it is converted."""
+    grammar = _DECIMAL_INT if decimal_only else CORE_INT
     if not isinstance(text, str) or not grammar.match(text.strip()):
         raise IntegerTextError("is not an integer")
-    body = text.strip().replace("_", "")
+    body = text.strip()
     sign = -1 if body.startswith("-") else 1
     body = body.lstrip("+-")
-    if ":" in body:  # base 60, YAML 1.1: each part below 60
-        parts = body.split(":")
-        digits, base = len(parts), 60
-    elif body[:2].lower() in _BASE_PREFIXES:
-        base = _BASE_PREFIXES[body[:2].lower()]
-        parts, digits = None, len(body) - 2
-    elif yaml11 and len(body) > 1 and body.startswith("0"):
-        base, parts, digits = 8, None, len(body) - 1
-    else:
-        base, parts, digits = 10, None, len(body)
+    base = _BASE_PREFIXES.get(body[:2], 10)
+    if base != 10:
+        body = body[2:]
+    digits = len(body)
     if (digits - 1) * math.log2(base) >= _MAX_BITS:
         raise IntegerTextError(_beyond(digits))
-    if parts is not None:
-        value = 0
-        for part in parts:
-            value = value * 60 + int(part)
-    elif base == 10:
-        value = int(body)
-    else:
-        value = int(body[2:] if base != 8 else body[1:], base)
+    value = int(body, base)
     if value > LIMIT:
         raise IntegerTextError(_beyond(digits))
     return sign * value
@@ -81,7 +57,7 @@ def integer_option(text: str) -> int:
     argparse's, the text cut to a few dozen characters."""
     import argparse
     try:
-        return read_integer(text, yaml11=False)
+        return read_integer(text, decimal_only=True)
     except IntegerTextError as e:
         shown = text if len(text) <= 40 else f"{text[:20]}...({len(text)} characters)"
         raise argparse.ArgumentTypeError(f"{shown!r} {e}") from None

@@ -51,6 +51,13 @@ class Range:
                 f"{')' if self.high_open else ']'}{unit}{why}")
 
 
+# A real-time run on the devices [s] (`tegrasp hardware --duration`, run_on_hardware's duration):
+# the grasp takes about 12 s; ten minutes leaves room for a slow hand-held test without a typo
+# (a 1e7) holding the devices for days.
+HARDWARE_RUN_DURATION = Range(low=0.0, low_open=True, high=600.0, unit="s",
+                              why="a grasp takes about 12 s; at most ten minutes on the devices")
+
+
 def _number(value) -> str:
     """A range end as written: integers whole (4294967295, not 4.29497e+09), others short."""
     if value is None:

@@ -1,7 +1,8 @@
 """Typed configuration from YAML (scenarios, the hardware config, sweep specs) with
 one-line errors that name the field. `parse_yaml`, the one way YAML text becomes data (files
-and `--set` alike), is Drake's safe `yaml_load` after refusing duplicate keys, oversized
-text, alias bombs and integers past the bounded reader's range (integer_text.py);
+and `--set` alike), reads scalars as YAML 1.2's core schema does (core_schema_yaml.py) after
+refusing duplicate keys, oversized text, alias bombs and integers past the bounded reader's
+range (integer_text.py);
 `check_fields` names the first unknown, missing, mistyped, non-finite or null field by its
 dotted path; `load_typed` then builds the dataclass with `yaml_load_typed`."""
 
@@ -14,8 +15,9 @@ import types
 import typing
 
 import yaml
-from pydrake.common.yaml import yaml_dump, yaml_load, yaml_load_typed
+from pydrake.common.yaml import yaml_dump, yaml_load_typed
 
+from tegrasp_drake.rig.core_schema_yaml import compose, construct
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.unset_fields import empty_meaning
@@ -94,62 +96,15 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
         raise ConfigError(f"{source}: {len(text.encode('utf-8', errors='replace'))} bytes of "
                           f"YAML; a configuration is at most {MAX_YAML_BYTES} bytes")
     try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        root = compose(text)
         if root is not None:
             _check_nodes(root, source, line_offset, column_offset, root_key)
-        data = yaml_load(data=text)
-        for path in _plain_exponent_numbers(root):
-            data = _as_number(data, path)
-        return data
+        return construct(root)
     except yaml.YAMLError as e:
         raise YamlSyntaxError(f"{source}: not valid YAML: "
                               f"{_yaml_problem(e, line_offset, column_offset)}") from None
     except RecursionError:
         raise ConfigError(f"{source}: the YAML nests too deeply") from None
-
-
-# A number in exponent notation without a dot ("1e-9", "-2E+3"): YAML 1.2 and Drake's C++
-# loader read it as a number, PyYAML's YAML 1.1 as text, which a user writing a mass of 1e-9
-# does not mean; unquoted, it is read as the number here.
-_EXPONENT_NUMBER = re.compile(r"[-+]?[0-9]+[eE][-+]?[0-9]+")
-
-
-def _plain_exponent_numbers(root) -> list[tuple]:
-    """The paths (keys and indices) of unquoted scalars written as _EXPONENT_NUMBER."""
-    found, pending, seen = [], [(root, ())], set()
-    while pending:
-        node, path = pending.pop()
-        if node is None or id(node) in seen:
-            continue
-        seen.add(id(node))
-        if isinstance(node, yaml.ScalarNode):
-            if (node.style is None and node.tag == "tag:yaml.org,2002:str"
-                    and _EXPONENT_NUMBER.fullmatch(node.value)):
-                found.append(path)
-        elif isinstance(node, yaml.SequenceNode):
-            pending.extend((item, path + (k,)) for k, item in enumerate(node.value))
-        elif isinstance(node, yaml.MappingNode):
-            pending.extend((value, path + (key.value,)) for key, value in node.value
-                           if isinstance(key, yaml.ScalarNode))
-    return found
-
-
-def _as_number(data, path: tuple):
-    """`data` with the text at `path` (if it is still there, as text) read as a float."""
-    if not path:
-        return float(data) if isinstance(data, str) else data
-    container, key = data, path[-1]
-    for part in path[:-1]:
-        try:
-            container = container[part]
-        except (KeyError, IndexError, TypeError):
-            return data
-    try:
-        if isinstance(container[key], str) and _EXPONENT_NUMBER.fullmatch(container[key]):
-            container[key] = float(container[key])
-    except (KeyError, IndexError, TypeError, OverflowError):
-        pass
-    return data
 
 
 def _check_nodes(root, source: str, line_offset: int, column_offset: int,
@@ -371,11 +326,20 @@ def _check_value(value, hint, path: str, source: str) -> None:
         check_fields(value, hint, source, path)
 
 
+# Numbers in YAML 1.1's forms that the core schema reads as text: base 60 (1:30), binary
+# (0b101), `_` separators (1_000), a sign before 0x/0o.
+_YAML11_ONLY_NUMBER = re.compile(
+    r"[-+]?(?:[0-9][0-9_]*(?::[0-5]?[0-9])+|0b[01_]+|[0-9][0-9_]*_[0-9_.]*|0[xo][0-9a-fA-F_]+)")
+
+
 def _number_as_text_hint(value, hint) -> str:
-    """For a number YAML 1.1 reads as text (1e9, 1E-3: no dot; "3": quoted), how to write it
-    as a value of the field's type: a float field's with a dot and a signed exponent, an
-    integer field's as plain digits (an integer field takes no 3.0)."""
+    """For a number read as text (quoted, or in a form only YAML 1.1 reads as a number), how
+    to write it as a value of the field's type: decimal digits, an integer field's without a
+    point or exponent."""
     if hint in (float, int) and isinstance(value, str):
+        if _YAML11_ONLY_NUMBER.fullmatch(value.strip()):
+            return (" (numbers are read as YAML 1.2 reads them: base-60 1:30, binary 0b101 and "
+                    "1_000 are text; write the number in decimal digits)")
         try:
             number = float(value)
         except ValueError:
@@ -386,12 +350,7 @@ def _number_as_text_hint(value, hint) -> str:
             if not number.is_integer() or abs(number) > 1e18:
                 return " (an integer field takes whole numbers, written as digits, e.g. 3)"
             return f" (YAML reads it as text: write {int(number)}, digits without quotes)"
-        text = repr(number)
-        if "e" in text:  # YAML 1.1 wants a dot in the mantissa and a signed exponent
-            mantissa, exponent = text.split("e")
-            mantissa += "" if "." in mantissa else ".0"
-            text = f"{mantissa}e{'' if exponent[0] in '+-' else '+'}{exponent}"
-        return f" (YAML reads it as text: write {text})"
+        return f" (YAML reads it as text: write {number!r})"
     return ""
 
 

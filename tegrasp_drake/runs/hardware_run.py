@@ -37,7 +37,7 @@ from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
 from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
 from tegrasp_drake.scenario.trial_log_writer import package_versions
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
-from tegrasp_drake.rig.ranges import Range
+from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
@@ -288,8 +288,7 @@ def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None 
                     controller: str | None = None, events: dict | None = None,
                     corrective_events: dict | None = None, events_dir: str = "",
                     log_path: PathLike | None = None,
-                    duration: Annotated[float | None, Range(low=0.0, low_open=True,
-                                                            unit="s")] = None,
+                    duration: Annotated[float | None, HARDWARE_RUN_DURATION] = None,
                     drake_lcm: DrakeLcm | None = None, out: Callable = print,
                     progress: Callable | None = None) -> HardwareRunResult:
     """Runs the grasp on the devices of `config` (default: the scenario's `station`, then a

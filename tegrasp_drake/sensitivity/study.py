@@ -167,9 +167,12 @@ def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, w
                     scheduler=None, progress: bool = True, log=print) -> dict:
     """Records each memorizing point's events, runs each point's sweep; {cell: summary}.
     Resumable: what is finished in `out_dir` is kept."""
-    from tegrasp_drake.transfer.matrix import run_transfer
+    from tegrasp_drake.sweep.trial_function import run_trial_from_spec
+    from tegrasp_drake.transfer.matrix import check_unrecorded_events, run_transfer
     matrix = transfer_spec(spec, points)
     check_worlds(matrix, "the sensitivity study")
+    if trial_function is run_trial_from_spec:  # before OUT is written
+        check_unrecorded_events(matrix, out_dir)
     record_points(points, out_dir)
     return run_transfer(matrix, trial_function, out_dir, workers=workers, scheduler=scheduler,
                         progress=progress, log=log)

@@ -223,12 +223,31 @@ def cell_folder(out_dir, memorizing: str, running: str) -> pathlib.Path:
     return pathlib.Path(out_dir) / CELLS_FOLDER / cell_name(memorizing, running)
 
 
+def check_unrecorded_events(spec: TransferSpec, out_dir) -> None:
+    """ConfigError, before anything is recorded or written, for a cell's trials of a controller
+    that reads events a world's recording does not make (its own folder's: the ensemble's;
+    record_world_events records the paper's events alone) when they are not there already."""
+    from tegrasp_drake.control.controller_registry import controller_class
+    from tegrasp_drake.sweep.spec import expand_trials
+    from tegrasp_drake.sweep.trial_function import check_sweep_events
+    for memorizing, running in spec.cells:
+        trials = [t.to_dict() for t in expand_trials(running_sweep(spec, running))
+                  if controller_class(t.controller).events_folder]
+        try:
+            check_sweep_events(trials, world_events_folder(out_dir, memorizing))
+        except ConfigError as error:
+            raise ConfigError(f"{error}; a world's recording makes the paper's events alone, "
+                              "so record these there first or drop the controller") from None
+
+
 def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
                  scheduler=None, progress: bool = True, log=print) -> dict:
     """Records the memorizing worlds' events, runs each cell's sweep; {cell: summary}. Resumable."""
     from tegrasp_drake.sweep.runner import run_sweep
     from tegrasp_drake.sweep.spec import expand_trials
     from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec
+    if trial_function is run_trial_from_spec:
+        check_unrecorded_events(spec, out_dir)
     for world in spec.memorizing_worlds():
         record_world_events(spec, world, world_events_folder(out_dir, world), log=log)
     if trial_function is run_trial_from_spec:  # every cell's events, before any trial

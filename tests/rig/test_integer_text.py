@@ -5,27 +5,30 @@ import sys
 
 import pytest
 
-from tegrasp_drake.rig.integer_text import (IntegerTextError, integer_option, is_integer_text,
-                                            read_integer)
+from tegrasp_drake.rig.integer_text import IntegerTextError, integer_option, read_integer
 
 
 @pytest.mark.parametrize("text, value", [
-    ("12", 12), ("-7", -7), ("+3", 3), ("1_000", 1000), ("0x1f", 31), ("0b101", 5),
-    ("017", 15), ("1:30", 90), ("0", 0)])
-def test_the_yaml_11_integer_forms_read_as_pyyaml_reads_them(text, value):
-    assert is_integer_text(text)
+    ("12", 12), ("-7", -7), ("+3", 3), ("0x1f", 31), ("0o17", 15), ("017", 17), ("0", 0)])
+def test_the_yaml_12_core_integer_forms_are_read(text, value):
     assert read_integer(text) == value
 
 
-def test_decimal_only_reads_a_leading_zero_as_decimal_and_refuses_yaml_forms():
-    assert read_integer("017", yaml11=False) == 17
-    for text in ("0x1f", "1_000", "1:30", "3.0", ""):
+@pytest.mark.parametrize("text", ["1:30", "0b101", "1_000", "+0x1f", "3.0", ""])
+def test_yaml_11_only_integer_forms_are_not_integers(text):
+    with pytest.raises(IntegerTextError, match="is not an integer"):
+        read_integer(text)
+
+
+def test_decimal_only_refuses_the_prefixed_forms():
+    assert read_integer("017", decimal_only=True) == 17
+    for text in ("0x1f", "0o17"):
         with pytest.raises(IntegerTextError, match="is not an integer"):
-            read_integer(text, yaml11=False)
+            read_integer(text, decimal_only=True)
 
 
 @pytest.mark.parametrize("text", ["9" * 5000, "-" + "9" * 400, "0x" + "f" * 300,
-                                  "0b" + "1" * 1100, "1" + ":59" * 200, "9" * 309])
+                                  "0o" + "7" * 400, "9" * 309])
 def test_an_integer_beyond_a_floats_range_is_refused_with_its_length(text):
     with pytest.raises(IntegerTextError, match=r"is an integer of \d+ digits, beyond the range"):
         read_integer(text)

@@ -1,0 +1,82 @@
+"""What the command line sets up in its own process before any command runs, so that the
+user's environment does not surface as an internal error or as lines of another library:
+
+- Python's UTF-8 mode under a locale whose encoding is not UTF-8 (`LC_ALL=C`, with
+  `PYTHONUTF8=0` so Python does not turn it on itself): pydrake reads its own files with the
+  locale's encoding and fails to import under ASCII. The process runs itself again with
+  `-X utf8` (PEP 540) before pydrake is imported; if it cannot, one line says what to set.
+- A private matplotlib configuration folder when matplotlib's own (under $XDG_CONFIG_HOME or
+  ~/.config, and its cache under $XDG_CACHE_HOME or ~/.cache) cannot be written, e.g. HOME=/proc:
+  matplotlib would make a temporary one itself but says so in two lines of warnings first.
+  The folder is removed when the process ends."""
+
+import atexit
+import codecs
+import locale
+import os
+import pathlib
+import shutil
+import sys
+import tempfile
+
+
+def locale_is_utf8() -> bool:
+    """Whether text files are read as UTF-8: UTF-8 mode, or a locale whose encoding is UTF-8."""
+    if sys.flags.utf8_mode:
+        return True
+    try:
+        return codecs.lookup(locale.getpreferredencoding(False)).name == "utf-8"
+    except LookupError:
+        return False
+
+
+def run_in_utf8_mode() -> None:
+    """Replaces this process by itself in UTF-8 mode when the locale is not UTF-8 (module
+    docstring); SystemExit with one line to set LANG=C.UTF-8 when that cannot be done. Call
+    it before pydrake is imported, from the command line's entry point only."""
+    if locale_is_utf8():
+        return
+    original = list(getattr(sys, "orig_argv", []))
+    if original and sys.executable:
+        try:
+            os.execv(sys.executable, [sys.executable, "-X", "utf8", *original[1:]])
+        except OSError:
+            pass
+    raise SystemExit(f"tegrasp: error: the locale's text encoding is "
+                     f"{locale.getpreferredencoding(False)}, and Drake needs UTF-8; set "
+                     "LANG=C.UTF-8 (and unset LC_ALL, or set it to C.UTF-8) or PYTHONUTF8=1")
+
+
+def _writable_folder(folder: pathlib.Path) -> bool:
+    """Whether `folder` is, or can be made as, a folder this user writes (as matplotlib asks)."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return False
+    return folder.is_dir() and os.access(folder, os.W_OK)
+
+
+def _home_folder(variable: str, fallback: str) -> pathlib.Path:
+    chosen = os.environ.get(variable, "").strip()
+    return pathlib.Path(chosen) if chosen else pathlib.Path.home() / fallback
+
+
+def private_matplotlib_config() -> None:
+    """Points MPLCONFIGDIR at a temporary folder (removed at exit) when it is not set and
+    matplotlib's configuration or cache folder cannot be written (module docstring)."""
+    if os.environ.get("MPLCONFIGDIR"):
+        return
+    try:
+        usable = all(_writable_folder(_home_folder(variable, fallback) / "matplotlib")
+                     for variable, fallback in (("XDG_CONFIG_HOME", ".config"),
+                                                ("XDG_CACHE_HOME", ".cache")))
+    except RuntimeError:  # no home folder at all
+        usable = False
+    if usable:
+        return
+    try:
+        folder = tempfile.mkdtemp(prefix="tegrasp-matplotlib-")
+    except OSError:
+        return  # matplotlib says why, as it would have
+    atexit.register(shutil.rmtree, folder, ignore_errors=True)
+    os.environ["MPLCONFIGDIR"] = folder
