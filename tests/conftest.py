@@ -13,13 +13,15 @@ from tegrasp_drake.hardware.realtime import realtime_scheduling
 
 
 def pytest_configure(config):
-    """The suite runs as a user at a terminal runs a command: Ctrl-C (SIGINT) interrupts.
-    A shell without job control starts a background job with SIGINT ignored, and the
-    commands rightly leave an ignored signal ignored; the tests of what an interrupt does
-    would then see none. The commands the tests start get SIGINT's default action back
-    too: exec resets a handled signal and keeps an ignored one."""
-    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+    """The suite runs as a user at a terminal runs a command: Ctrl-C (SIGINT) and Ctrl-\\
+    (SIGQUIT) stop it. A shell without job control starts a background job with both
+    ignored, and the commands rightly leave an ignored signal ignored; the tests of what such
+    a signal does would then see none. The commands the tests start get the default action
+    back too: exec resets a handled signal and keeps an ignored one."""
+    defaults = {signal.SIGINT: signal.default_int_handler, signal.SIGQUIT: signal.SIG_DFL}
+    for number, handler in defaults.items():
+        if signal.getsignal(number) == signal.SIG_IGN:
+            signal.signal(number, handler)
 
 
 @pytest.fixture(scope="module", autouse=True)
