@@ -59,17 +59,25 @@ def _full_stream():
 needs_dev_full = pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full")
 
 
-@needs_dev_full
-def test_help_to_a_full_disk_is_one_line(monkeypatch):
+def _main_writing_to_a_full_disk(monkeypatch, argv) -> tuple[int, list[str]]:
+    """(exit code, stderr's lines) of cli.main(argv) with stdout on /dev/full."""
     stream, errors = _full_stream(), io.StringIO()
     monkeypatch.setattr(cli.sys, "stdout", stream)
     monkeypatch.setattr(cli.sys, "stderr", errors)
     try:
-        assert cli.main(["--help"]) == cli.EXIT_ERROR
+        code = cli.main(argv)
     finally:
         stream.close()
-    assert errors.getvalue() == ("tegrasp: error: cannot write to standard output: No space "
-                                 "left on device\n")
+    return code, errors.getvalue().splitlines()
+
+
+FULL_DISK_LINE = "tegrasp: error: cannot write to standard output: No space left on device"
+
+
+@needs_dev_full
+def test_help_to_a_full_disk_is_one_line(monkeypatch):
+    assert _main_writing_to_a_full_disk(monkeypatch, ["--help"]) == (cli.EXIT_ERROR,
+                                                                     [FULL_DISK_LINE])
 
 
 def _parser_of_one_command(func):
@@ -82,17 +90,10 @@ def _parser_of_one_command(func):
 
 @needs_dev_full
 def test_a_command_writing_to_a_full_disk_is_refused_in_one_line(monkeypatch):
-    stream, errors = _full_stream(), io.StringIO()
     monkeypatch.setattr(cli, "build_parser",
                         lambda: _parser_of_one_command(lambda args: print("x" * 100_000)))
-    monkeypatch.setattr(cli.sys, "stdout", stream)
-    monkeypatch.setattr(cli.sys, "stderr", errors)
-    try:
-        assert cli.main(["say"]) == cli.EXIT_ERROR
-    finally:
-        stream.close()
-    assert errors.getvalue().splitlines() == [
-        "tegrasp: error: cannot write to standard output: No space left on device"]
+    assert _main_writing_to_a_full_disk(monkeypatch, ["say"]) == (cli.EXIT_ERROR,
+                                                                  [FULL_DISK_LINE])
 
 
 def test_a_deleted_current_folder_is_named(tmp_path, monkeypatch, capfd):
