@@ -107,8 +107,9 @@ def main(argv=None) -> int:
         # what is still buffered goes out now, while a closed pipe or a full disk can be told
         unwritable = _unwritable_output()
         return _cannot_write(*unwritable) if unwritable else code
-    except BrokenPipeError:
-        _detach_closed_output()
+    except BrokenPipeError:  # Python's flush at exit then finds no closed pipe to report
+        for stream in (sys.stdout, sys.stderr):
+            _detach(stream)
         return EXIT_CLOSED_PIPE
 
 
@@ -171,18 +172,6 @@ def _output_closed() -> bool:
         except (AttributeError, OSError, ValueError):
             continue
     return False
-
-
-def _detach_closed_output() -> None:
-    """Points stdout and stderr at the null device: Python's flush at exit then finds no
-    closed pipe to report ("Exception ignored ... BrokenPipeError")."""
-    null = os.open(os.devnull, os.O_WRONLY)
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            os.dup2(null, stream.fileno())
-        except (AttributeError, OSError, ValueError):
-            pass
-    os.close(null)
 
 
 class OutputStreamError(OSError):
