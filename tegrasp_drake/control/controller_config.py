@@ -216,7 +216,7 @@ class MemorizedCorrectiveConfig:
     # of "hold_avoid", "lift_load" (matches every normal lift: comparison only); []: heuristic
     events: list[str] = dataclasses.field(default_factory=list)
     # Eq. 3 [SA, RA], chosen on held-out runs: analysis/corrective_thresholds.md
-    lift_load_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.85],
+    lift_load_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.60],
                                                 length=2, **SCORE_RANGE)
     hold_avoid_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.40],
                                                  length=2, **SCORE_RANGE)

@@ -79,6 +79,13 @@ def record_events(object_name: str, scenario: Scenario | None = None, *,
     MemorizedEvents; RecordEventsError when a physical event is missing."""
     scenario = scenario or LoadScenario(name=object_name)
     log, _ = run_ideal_grasp(scenario, progress=progress)
+    return events_of_ideal_grasp(log, scenario, object_name)
+
+
+def events_of_ideal_grasp(log, scenario: Scenario, object_name: str):
+    """The MemorizedEvents cut from `log`, the TrialLog of `scenario`'s ideal grasp (what
+    record_events does after simulating it); RecordEventsError when a physical event is
+    missing."""
     times = grasp_event_times(log, scenario)
     logger.info("%s: physical events of the ideal grasp at %s; the lift starts with %s of "
                 "the settled grip", object_name, times, lift_grip_fraction(log, scenario))

@@ -70,11 +70,14 @@ class Scenario:
     # Where it stands: its marker, the misplacement from it, its yaw.
     placement: ObjectPlacementConfig = dataclasses.field(default_factory=ObjectPlacementConfig)
     # stiction_tolerance 1e-6 m/s, not Drake's 1e-4: SAP's friction is viscous below it, so a
-    # held object creeps; 1e-6 reaches the solver's own floor (docs/model.md, "Friction creep").
+    # held object creeps; 1e-6 reaches the solver's own floor. Triangles: each contact polygon
+    # cut at its centroid, more faces for the floor to spread over
+    # (docs/model.md, "Friction creep").
     plant_config: MultibodyPlantConfig = dataclasses.field(
         default_factory=lambda: MultibodyPlantConfig(
             time_step=1e-3, discrete_contact_approximation="lagged", stiction_tolerance=1e-6,
-            contact_model="hydroelastic_with_fallback"))
+            contact_model="hydroelastic_with_fallback",
+            contact_surface_representation="triangle"))
     # How finely the object and the table are meshed (simulation/contact_meshing.py).
     contact_geometry: ContactGeometryConfig = dataclasses.field(
         default_factory=ContactGeometryConfig)
@@ -332,10 +335,10 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     problem = contact_geometry_problem(scenario.contact_geometry)
     if problem:
         raise ConfigError(f"{source}: field 'contact_geometry.{problem[0]}' {problem[1]}")
-    require(scenario.contact_geometry.pad_refinement == 0 or scenario.gripper.model == "linkage",
+    require(not scenario.contact_geometry.pad_refinement or scenario.gripper.model == "linkage",
             source, "contact_geometry.pad_refinement", "must be 0 with gripper.model prismatic "
             "(the refined pad meshes are the linkage hand's: set gripper.model=linkage, or "
-            "leave pad_refinement at 0)",
+            "leave pad_refinement unset)",
             scenario.contact_geometry.pad_refinement)
     _check_transducers(scenario, source)
     if isinstance(scenario.station, HardwareStationConfig):

@@ -1,9 +1,10 @@
 """How finely the contact world is meshed: the scenario's `contact_geometry` section.
 Each hydroelastic contact-surface face is one SAP constraint, so coarser meshes make a trial
-cheaper. The defaults are the reference geometry; each coarser choice is opt-in and kept only
-where validation_scenes.py's closed-form checks hold. `pad_refinement` meshes the pads finer
-against friction creep (docs/model.md, "Friction creep"). Costs: docs/sweeps.md, "Coarser
-contact geometry"."""
+cheaper. The object and table defaults are the reference geometry; each coarser choice is
+opt-in and kept only where validation_scenes.py's closed-form checks hold. The linkage pads
+are meshed finer by default, against SAP's friction creep (docs/model.md, "Friction creep").
+Costs: docs/sweeps.md, "Coarser contact geometry".
+"""
 
 import dataclasses
 from tegrasp_drake.modelgen.pad_mesh import PAD_REFINEMENTS
@@ -21,9 +22,30 @@ class ContactGeometryConfig:
     # 24 (Drake's Box) or 12 (the convex hull of the corners)
     box_triangles: int = bounded(24, low=12, high=24, why="12 or 24")
     table: str = "box"  # "box" or "half_space"
-    # 0 (Drake's mesh of the pad box), 1 or 2 (that mesh split as many times into eight)
-    pad_refinement: int = bounded(0, low=min(PAD_REFINEMENTS), high=max(PAD_REFINEMENTS),
-                                  why="Drake's medial-axis mesh of the pad, split up to twice")
+    # 0 (Drake's mesh of the pad box), 1 or 2 (that mesh split as many times into eight);
+    # None: by the hand and the object (pad_refinement_for)
+    pad_refinement: int | None = bounded(None, low=min(PAD_REFINEMENTS),
+                                         high=max(PAD_REFINEMENTS),
+                                         why="Drake's medial-axis mesh of the pad, split up "
+                                             "to twice")
+
+
+# The linkage pads' refinement by the object's shape when the scenario leaves it unset: the
+# coarsest at which the paper grid's Holds showed no friction creep (the paper's 9 markers,
+# development seed 600; docs/model.md, "Friction creep"). A box's flat face loads the pads far
+# inside their friction cone and holds at one split (about 390 faces a pad in Hold); a
+# cylinder's line can leave both fingers off their pins, held by friction near the cone, and
+# needs two (about 700 faces a pad). A mesh from a file is taken as curved.
+PAD_REFINEMENT_BY_SHAPE = {"box": 1, "cylinder": 2, "file": 2}
+
+
+def pad_refinement_for(config: ContactGeometryConfig, hand_model: str,
+                       object_shape: str) -> int:
+    """The pads' refinement: the scenario's if set, else 0 on the prismatic hand and the
+    object shape's level (PAD_REFINEMENT_BY_SHAPE) on the linkage hand."""
+    if config.pad_refinement is not None:
+        return config.pad_refinement
+    return PAD_REFINEMENT_BY_SHAPE[object_shape] if hand_model == "linkage" else 0
 
 
 def contact_geometry_problem(config: ContactGeometryConfig) -> tuple[str, str] | None:

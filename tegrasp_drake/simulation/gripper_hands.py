@@ -66,7 +66,7 @@ class LinkageHand:
     events_folder: str = ""  # its memorized events: the package's events themselves
     # Eq. 3 [SA, RA], chosen on held-out runs (analysis/ensemble_thresholds.md)
     ensemble_thresholds: tuple = (("reach_load", (0.88, 0.55)), ("load_lift", (0.48, 0.75)),
-                                  ("place_unload", (0.98, 0.65)))
+                                  ("place_unload", (0.98, 0.50)))
 
     def half_opening(self, a: float, f: linkage.Functions = linkage.FLOATS) -> float:
         return linkage.half_opening(a, f)

@@ -41,7 +41,7 @@ from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_
                                                     set_pad_friction)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
-from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig, pad_refinement_for
 from tegrasp_drake.simulation.object_model import AddObject, object_body
 from tegrasp_drake.simulation.capacitive_taxels import AddTaxelTransducer
 from tegrasp_drake.simulation.body_force_pulse import BodyForcePulse, DisturbanceConfig
@@ -253,8 +253,8 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
         (arm,) = parser.AddModels(url=ARM_URL)
         plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base", arm))
     hand = gripper_hand(gripper_config.model)
-    gripper = add_gripper_model(parser, hand, (contact_geometry or ContactGeometryConfig()
-                                               ).pad_refinement)
+    gripper = add_gripper_model(parser, hand, pad_refinement_for(
+        contact_geometry or ContactGeometryConfig(), gripper_config.model, object.shape))
     if carriage is None:
         weld = plant.WeldFrames(plant.GetFrameByName("flange", arm),
                                 plant.GetFrameByName("base", gripper), X_FLANGE_GRIPPER)

@@ -10,6 +10,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from benchmarks.system_costs import eval_calls, system_costs
+from tests.cheap_contact import CHEAP_CONTACT
 
 
 class _Counter(LeafSystem):
@@ -58,7 +59,10 @@ def test_system_costs_count_the_calls_cpp_made_and_the_evals():
 def test_the_plant_alone_floor_replays_the_trial_to_the_same_object_pose(arm):
     from benchmarks.plant_floor import record_plant_inputs, run_plant_floor
     from tegrasp_drake.scenario.scenario import LoadScenario
-    scenario = LoadScenario(overrides=[f"station.arm={arm}", "random_seed=600"])
+    # The carriage in the cheap contact: the claim is that the floor replays this arm's
+    # inputs step for step; the default contact's replay is the JACO2's case.
+    contact = list(CHEAP_CONTACT) if arm == "carriage" else []
+    scenario = LoadScenario(overrides=[f"station.arm={arm}", "random_seed=600", *contact])
     inputs = record_plant_inputs(scenario)
     assert inputs.arm_desired_state.shape == (12, inputs.times.size)
     run = run_plant_floor(scenario, inputs)

@@ -7,11 +7,15 @@ import json
 import pytest
 
 from tegrasp_drake import cli
+from tests.cheap_contact import CHEAP_CONTACT_SECTIONS
 
+# The cheap contact: the claim is the documented commands' plumbing on an own object (its
+# events recorded, then read by taxel_aware), the same whichever contact both run in.
 MY_SCENARIOS = """\
 my_box:
   object: {name: my_box, shape: box, size: [0.050, 0.045, 0.100], mass: 0.14, friction: 0.45}
-"""
+""" + "".join(f"  {section}: {json.dumps(fields)}\n"
+              for section, fields in CHEAP_CONTACT_SECTIONS.items())
 
 
 @pytest.mark.slow

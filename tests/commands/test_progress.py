@@ -19,6 +19,7 @@ import pytest
 import tegrasp_drake
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, log_level
+from tests.cheap_contact import cheap_contact_arguments
 
 
 class Terminal(io.StringIO):
@@ -80,10 +81,10 @@ def test_a_demo_on_a_terminal_shows_the_bar_unless_quiet(tmp_path, quiet):
     that reads --json): the bar is drawn there, and stdout holds only the JSON."""
     controller, terminal = pty.openpty()
     fcntl.ioctl(terminal, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 120, 0, 0))  # 120 columns
+    # The cheap contact: the claim is where the bar and the JSON go, not the grasp.
     command = [sys.executable, "-m", "tegrasp_drake.cli", "demo", "--controller",
-               "open_loop", "--json", "--out", str(tmp_path / "demo"), "-v"]
-    if quiet:
-        command[-1] = "--quiet"
+               "open_loop", "--json", "--out", str(tmp_path / "demo"),
+               *cheap_contact_arguments(), "--quiet" if quiet else "-v"]
     process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=terminal,
                                stdin=subprocess.DEVNULL, cwd=tmp_path,
                                env=dict(os.environ, PYTHONPATH=package_path()))

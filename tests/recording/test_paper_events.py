@@ -11,17 +11,20 @@ from tegrasp_drake.scenario.scenario_events import load_controller_events
 from tegrasp_drake.events.events_folder import events_folder_of
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.rig import paths
-from tegrasp_drake.recording.paper_events import record_events
+from tegrasp_drake.recording.paper_events import events_of_ideal_grasp
 from tegrasp_drake.events import load_memorized_events
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, object_description
+from tests.cheap_contact import cheap_contact_arguments
 
 pytestmark = pytest.mark.slow
 
 
 @pytest.mark.parametrize("object_name", sorted(BUILTIN_OBJECTS))
-def test_rerunning_record_events_reproduces_the_committed_files(object_name):
+def test_rerunning_record_events_reproduces_the_committed_files(object_name, ideal_grasp_log):
+    """record_events is the ideal grasp (the session's shared run of it) and the cut."""
     committed = load_memorized_events(paths.package_events_dir(), object_name)
-    recorded = record_events(object_name)
+    recorded = events_of_ideal_grasp(ideal_grasp_log(object_name),
+                                     LoadScenario(name=object_name), object_name)
     assert set(recorded) == set(committed)
     for transition, event in recorded.items():
         np.testing.assert_allclose(event.sa, committed[transition].sa, rtol=0, atol=1e-12)
@@ -42,7 +45,10 @@ def test_record_events_writes_the_users_folder_and_the_controller_reads_it_first
         empty_user_events_folder, capsys):
     package = paths.package_events_dir()
     before = _folder_digest(package)
-    assert cli.main(["record-events", "--object", "thin_cylinder"]) == 0
+    # The cheap contact: the claim is where the recorded files go and which folder the
+    # controller reads, not what they hold.
+    assert cli.main(["record-events", "--object", "thin_cylinder",
+                     *cheap_contact_arguments()]) == 0
     assert str(empty_user_events_folder) in capsys.readouterr().out
     assert _folder_digest(package) == before  # the package's events are read-only
     assert (empty_user_events_folder / "thin_cylinder" / "reach_load.json").is_file()
@@ -60,10 +66,12 @@ def test_an_object_whose_taxels_never_see_the_commanded_grip_records_at_its_plat
     command) on the taxels (the pad does not cover all of its contact) although the grasp
     lifts it. Its grip is judged against its plateau, so the script's lift starts with the
     grip settled and record-events records it, Load-Lift at the start of the lift."""
+    # The cheap contact: the claim is the recording's grip-settled rule against the taxels'
+    # plateau (the pad's coverage of a thin rod), not how the held rod creeps.
     assert cli.main(["record-events", "--events", str(tmp_path),
                      "--set", "object.name=rod", "--set", "object.shape=cylinder",
                      "--set", "object.size=[0.022,0.12]", "--set", "object.mass=0.25",
-                     "--set", "object.friction=0.5"]) == 0
+                     "--set", "object.friction=0.5", *cheap_contact_arguments()]) == 0
     events = load_memorized_events(tmp_path, "rod")
     assert set(events) == {"reach_load", "load_lift", "place_unload"}
     contact = events["reach_load"].transition_time_s

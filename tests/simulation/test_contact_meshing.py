@@ -12,7 +12,7 @@ from pydrake.systems.framework import DiagramBuilder
 
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import LoadScenario, object_pose
-from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
+from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig, pad_refinement_for
 from tegrasp_drake.simulation.object_model import object_body
 from tegrasp_drake.simulation.station import AddStationPlant, pad_geometries
 from tegrasp_drake.simulation.table_model import HALF_SPACE_SLAB_THICKNESS_M
@@ -131,6 +131,30 @@ def test_the_pads_are_drakes_box_mesh_or_that_mesh_split(reference, refinement, 
         assert inspector.GetPoseInFrame(pad.geometry_id).IsExactlyEqualTo(
             reference.scene_graph.model_inspector().GetPoseInFrame(
                 reference_pads[finger].geometry_id))
+
+
+@pytest.mark.parametrize("name, model, tetrahedra", [
+    ("box", "linkage", 44 * 8), ("thick_cylinder", "linkage", 44 * 64),
+    ("thin_cylinder", "linkage", 44 * 64), ("box", "prismatic", None)])
+def test_unset_the_pads_are_split_by_the_objects_shape(name, model, tetrahedra):
+    scenario = LoadScenario(name=name, overrides=[f"gripper.model={model}"])
+    assert scenario.contact_geometry.pad_refinement is None
+    assert scenario.plant_config.contact_surface_representation == "triangle"
+    parts = _station_plant(scenario)
+    inspector = parts.scene_graph.model_inspector()
+    pads = pad_geometries(parts.plant, parts.scene_graph, parts.gripper).values()
+    for pad in pads:
+        mesh = inspector.maybe_get_hydroelastic_mesh(pad.geometry_id)
+        if tetrahedra is None:  # the prismatic hand's pads: Drake's own box
+            assert isinstance(inspector.GetShape(pad.geometry_id), Box)
+        else:
+            assert mesh.num_elements() == tetrahedra
+
+
+def test_a_set_refinement_wins_over_the_shapes():
+    assert pad_refinement_for(ContactGeometryConfig(pad_refinement=0), "linkage", "cylinder") == 0
+    assert pad_refinement_for(ContactGeometryConfig(pad_refinement=2), "linkage", "box") == 2
+    assert pad_refinement_for(ContactGeometryConfig(), "prismatic", "cylinder") == 0
 
 
 def test_the_refined_pads_are_the_linkage_hands_only():

@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from tegrasp_drake.transfer.matrix import TransferWorld, world_assignments
+from tests.cheap_contact import CHEAP_CONTACT, cheap_contact_arguments, cheap_contact_yaml
 
 TESTS = Path(__file__).resolve().parents[1]
 REPOSITORY = TESTS.parent
@@ -40,12 +41,14 @@ def without_timing(result: dict) -> dict:
     return {key: value for key, value in result.items() if key not in TIMING}
 
 
+# The cheap contact in the world, the recording and the sweep alike: the claim is that the
+# transfer machinery gives what the ordinary commands give, the same in whichever contact.
 @pytest.mark.slow
 def test_the_faithful_diagonal_is_the_ordinary_sweep_of_the_faithful_world(tmp_path):
     spec = tmp_path / "transfer.yaml"
     spec.write_text(textwrap.dedent(f"""\
         worlds:
-          faithful: {{scenario: faithful_world}}
+          faithful: {{scenario: faithful_world, overrides: {cheap_contact_yaml()}}}
         cells: [[faithful, faithful]]
         sweep: {json.dumps(SWEEP)}
         """))
@@ -53,7 +56,8 @@ def test_the_faithful_diagonal_is_the_ordinary_sweep_of_the_faithful_world(tmp_p
     run("transfer", spec, "--out", out, "--workers", "1", "--no-progress")
 
     events = tmp_path / "events"
-    run("record-events", "--scenario-name", "faithful_world", "--events", events, "-q")
+    run("record-events", "--scenario-name", "faithful_world", "--events", events, "-q",
+        *cheap_contact_arguments())
     for recorded in (out / "events" / "faithful" / "box").glob("*.json"):
         mine = json.loads((events / "box" / recorded.name).read_text())
         theirs = json.loads(recorded.read_text())
@@ -62,7 +66,7 @@ def test_the_faithful_diagonal_is_the_ordinary_sweep_of_the_faithful_world(tmp_p
 
     sweep_spec = tmp_path / "sweep.yaml"
     sweep_spec.write_text(json.dumps(SWEEP))  # JSON is YAML
-    assignments = world_assignments(TransferWorld("faithful_world"))
+    assignments = world_assignments(TransferWorld("faithful_world", CHEAP_CONTACT))
     sweep_out = tmp_path / "sweep"
     run("sweep", "--spec", sweep_spec, "--events", events, "--out", sweep_out, "--workers",
         "1", "--no-progress", *[a for assignment in assignments

@@ -21,6 +21,7 @@ from tegrasp_drake.transfer.matrix import (LoadTransferSpec, TransferWorld,
                                                        world_assignments)
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.typed_yaml import ConfigError
+from tests.cheap_contact import cheap_contact_yaml
 
 TESTS = Path(__file__).resolve().parents[1]
 REPOSITORY = TESTS.parent
@@ -168,7 +169,10 @@ def wait_for(condition, process, what):
 def test_two_real_trials_run_end_to_end_and_resume_after_a_kill(tmp_path):
     """Memorize in the idealised world, run in the faithful one: the events are recorded,
     the first trial finishes, the command is killed, and the rerun runs only the second."""
-    spec = write_spec(tmp_path, TWO_WORLDS)
+    # The cheap contact in both worlds: the claim is the command's recording, killing and
+    # resuming, the same in whichever contact.
+    spec = write_spec(tmp_path, TWO_WORLDS.replace(
+        "_world}", f"_world, overrides: {cheap_contact_yaml()}}}"))
     out = tmp_path / "out"
     trials = out / "cells" / "ideal-in-faithful" / "trials"
     process = subprocess.Popen(transfer_command(spec, out), env=environment(),
