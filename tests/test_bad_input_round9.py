@@ -1,0 +1,70 @@
+"""Bad inputs and environments the ninth review found, one test per rule."""
+
+import os
+import pathlib
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from tests import killed_runs
+
+
+def _processes_naming(path: pathlib.Path) -> list[int]:
+    """The ids of the processes whose command line names `path` (Linux's /proc)."""
+    found = []
+    for entry in pathlib.Path("/proc").iterdir():
+        try:
+            if entry.name.isdigit() and str(path).encode() in (entry / "cmdline").read_bytes():
+                found.append(int(entry.name))
+        except OSError:
+            continue
+    return found
+
+
+def _wait_until(condition, what: str, timeout_s: float = 120.0) -> None:
+    deadline = time.monotonic() + timeout_s
+    while not condition():
+        assert time.monotonic() < deadline, what
+        time.sleep(0.05)
+
+
+# Rule: a run killed past its handlers (SIGKILL) leaves nothing running and nothing for ever:
+# its staging log is removed by the next run into the folder, a live run's is left alone.
+@pytest.mark.slow
+@pytest.mark.skipif(not pathlib.Path("/proc/self/cmdline").exists(), reason="no /proc")
+def test_a_killed_hardware_runs_staging_log_is_removed_by_the_next_run(tmp_path,
+                                                                       ideal_grasp_log):
+    from tegrasp_drake.emulators.emulator_process import EmulatedDevices
+    from tegrasp_drake.hardware.config import hardware_config_to_yaml
+    trial = ideal_grasp_log("box").save(tmp_path / "box.npz")
+    logs = tmp_path / "logs"
+    url = f"udpm://239.255.76.67:{7500 + (os.getpid() * 7) % 100}?ttl=0"
+    command = [sys.executable, "-m", "tegrasp_drake", "hardware", "--config",
+               str(tmp_path / "hw.yaml"), "--scenario-name", "box", "--controller",
+               "heuristic", "--config-set", "scheduling=normal"]
+    with EmulatedDevices(lcm_url=url, trial=trial, scheduling="normal") as devices:
+        (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(devices.config))
+        run = subprocess.Popen([*command, "--log", str(logs / "run.lcmlog")],
+                               env=killed_runs.environment(), stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+        staging = logs / f".run.lcmlog.{run.pid}.staging"
+        try:
+            _wait_until(lambda: staging.exists() and staging.stat().st_size > 0,
+                        "the run never logged")
+        finally:
+            run.kill()  # SIGKILL, the run alone (as the OOM killer does)
+            run.wait()
+    assert run.returncode == -signal.SIGKILL and staging.exists()
+    _wait_until(lambda: not _processes_naming(staging), "the run's lcm-logger outlived it")
+    live = logs / f".other.lcmlog.{os.getpid()}.staging"  # a run still going
+    live.write_bytes(b"being written")
+    done = subprocess.run([*command, "--log", str(logs / "next.lcmlog"),
+                           "--config-set", "tactile.port=/dev/no_such_port",
+                           "--config-set", "ready_timeout=1"],
+                          env=killed_runs.environment(), capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 1, done.stderr  # the devices did not come up: quickly done
+    assert sorted(path.name for path in logs.iterdir()) == [live.name]
