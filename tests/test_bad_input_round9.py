@@ -68,3 +68,51 @@ def test_a_killed_hardware_runs_staging_log_is_removed_by_the_next_run(tmp_path,
                           timeout=300)
     assert done.returncode == 1, done.stderr  # the devices did not come up: quickly done
     assert sorted(path.name for path in logs.iterdir()) == [live.name]
+
+
+# Rule: a public function's number takes the range its command-line or scenario twin takes,
+# from one declaration.
+def _declared(function, argument: str):
+    """The Range annotated on `function`'s `argument`."""
+    import typing
+    from tegrasp_drake.rig.ranges import Range
+    hint = typing.get_type_hints(function.__wrapped__, include_extras=True)[argument]
+    (declared,) = [m for m in hint.__metadata__ if isinstance(m, Range)]
+    return declared
+
+
+def test_seeds_workers_and_simulated_durations_are_declared_once():
+    import tegrasp_drake
+    from tegrasp_drake.rig.ranges import SEED_RANGE, SIMULATED_DURATION, field_range
+    from tegrasp_drake.sweep.runner import WORKER_COUNT
+    assert _declared(tegrasp_drake.MakeGraspStation, "random_seed") == SEED_RANGE
+    assert field_range(tegrasp_drake.Scenario, "random_seed") == SEED_RANGE
+    assert field_range(tegrasp_drake.SweepSpec, "base_seed") == SEED_RANGE
+    assert _declared(tegrasp_drake.run_sweep, "workers") == WORKER_COUNT
+    assert _declared(tegrasp_drake.run_trial, "max_time") == SIMULATED_DURATION
+    assert _declared(tegrasp_drake.run_ideal_grasp, "duration") == SIMULATED_DURATION
+
+
+@pytest.mark.parametrize("controller", ["memorized", "taxel_aware"])
+def test_a_trial_longer_than_the_scenarios_time_limit_is_refused_before_it_is_built(
+        controller, monkeypatch):
+    import tegrasp_drake
+    from tegrasp_drake.runs import ideal_grasp, trial
+    from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram
+    scenario = tegrasp_drake.LoadScenario(name="box", controller=controller)
+    limit = MakeGraspDiagram(scenario, log=False).time_limit  # where `tegrasp trial` stops
+
+    def not_built(*args, **kwargs):
+        raise AssertionError("built before the argument was checked")
+    monkeypatch.setattr(trial, "MakeGraspDiagram", not_built)
+    monkeypatch.setattr(ideal_grasp, "MakeGraspDiagram", not_built)
+    words = f"must lie in (0, {limit:g}] s (the scenario's time limit"
+    with pytest.raises(ValueError, match="run_trial: argument 'max_time'") as refused:
+        tegrasp_drake.run_trial(scenario, max_time=1.0e7)
+    assert words in str(refused.value)
+    with pytest.raises(ValueError, match="argument 'max_time' must be above 0 s"):
+        tegrasp_drake.run_trial(scenario, max_time=0.0)
+    with pytest.raises(ValueError, match="run_ideal_grasp: argument 'duration' must lie in"):
+        tegrasp_drake.run_ideal_grasp(scenario, duration=1.0e7)
+    with pytest.raises(AssertionError, match="built before"):  # the limit itself is accepted
+        tegrasp_drake.run_trial(scenario, max_time=limit)
