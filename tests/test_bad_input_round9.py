@@ -116,3 +116,69 @@ def test_a_trial_longer_than_the_scenarios_time_limit_is_refused_before_it_is_bu
         tegrasp_drake.run_ideal_grasp(scenario, duration=1.0e7)
     with pytest.raises(AssertionError, match="built before"):  # the limit itself is accepted
         tegrasp_drake.run_trial(scenario, max_time=limit)
+
+
+# Rule: a log record stderr refuses (-v on a full disk) is dropped, never Python logging's
+# traceback ("--- Logging error ---"); the command ends as a full stdout ends it: one line,
+# EXIT_ERROR. (The package logs only to stderr: there is no log-file option.)
+class _StderrRefusingLogRecords:
+    """A stderr whose disk is full for the log records only (it fills, then frees)."""
+
+    def __init__(self):
+        self.lines = []
+
+    def write(self, text):
+        if "INFO" in text:
+            raise OSError(28, "No space left on device")
+        self.lines.append(text)
+        return len(text)
+
+    def flush(self):
+        pass
+
+
+def _verbose_command(func):
+    """A command line whose one command `say` (with -v/-q) runs `func`."""
+    import argparse
+    from tegrasp_drake.commands.verbosity import add_verbosity_arguments
+    parser = argparse.ArgumentParser(prog="tegrasp")
+    say = parser.add_subparsers(dest="command", required=True).add_parser("say")
+    add_verbosity_arguments(say)
+    say.set_defaults(func=func)
+    return parser
+
+
+def _logs_and_prints(args):
+    import logging
+    for step in range(3):
+        logging.getLogger("tegrasp_drake.say").info("step %d", step)
+    print("said")
+    return 0
+
+
+FULL_STDERR_LINE = "tegrasp: error: cannot write to standard error: No space left on device"
+
+
+def test_a_log_record_stderr_refuses_ends_the_command_in_one_line(monkeypatch, capsys):
+    import logging
+    from tegrasp_drake import cli
+    monkeypatch.setattr(logging.getLogger(), "handlers", [])  # the command line's own
+    monkeypatch.setattr(cli, "build_parser", lambda: _verbose_command(_logs_and_prints))
+    stderr = _StderrRefusingLogRecords()
+    monkeypatch.setattr(sys, "stderr", stderr)
+    assert cli.main(["say", "-v"]) == cli.EXIT_ERROR
+    assert "".join(stderr.lines).splitlines() == [FULL_STDERR_LINE]
+    assert capsys.readouterr().out == "said\n"
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full")
+def test_verbose_logging_to_a_full_stderr_ends_with_the_error_code(tmp_path):
+    script = ("import sys\nfrom tegrasp_drake import cli\n"
+              "from tests.test_bad_input_round9 import _logs_and_prints, _verbose_command\n"
+              "cli.build_parser = lambda: _verbose_command(_logs_and_prints)\n"
+              "sys.exit(cli.main(['say', '-v']))\n")
+    with open("/dev/full", "w") as full:
+        done = subprocess.run([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                              stderr=full, text=True, env=killed_runs.environment(),
+                              timeout=300)
+    assert (done.returncode, done.stdout) == (1, "said\n")

@@ -61,6 +61,12 @@ class _GuardedStream:
 _failed_writes: list[OutputStreamError] = []  # this command's, first first
 
 
+def note_failed_write(failure: OutputStreamError) -> None:
+    """Remembers a write to stdout or stderr that failed outside a guarded stream, for
+    `unwritable_output` to tell (commands/verbosity.py's log handler)."""
+    _failed_writes.append(failure)
+
+
 @contextlib.contextmanager
 def guarded_output():
     """stdout and stderr as _GuardedStreams for the block; no failed write remembered yet."""
