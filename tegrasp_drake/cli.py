@@ -2,10 +2,10 @@
 adds its parser and sets `func=run` (args -> exit code). `main` is the one error boundary: an
 unforeseen exception ends the run with one line on stderr (traceback to a file; `-v` prints it);
 SIGTERM, SIGHUP and the other catchable terminating signals end a run as Ctrl-C does
-(rig/files.TERMINATION_SIGNALS). Exit codes: docs/user-guide.md, "Exit codes"."""
+(rig/files.TERMINATION_SIGNALS); a closed pipe or a full disk on stdout or stderr is told by
+commands/output_streams.py. Exit codes: docs/user-guide.md, "Exit codes"."""
 
 import argparse
-import contextlib
 import datetime
 import importlib
 import os
@@ -14,6 +14,7 @@ import sys
 import tempfile
 import traceback
 
+from tegrasp_drake.commands import output_streams
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 
 # Each entry is a module with a register(subparsers) function. Modules are imported only
@@ -81,8 +82,6 @@ EXIT_SUCCESS = 0
 EXIT_ERROR = 1  # bad input refused, a file not writable, a device that did not come up
 EXIT_GRASP_FAILED = 2  # hardware: a fault or a Failed state machine (also argparse's usage)
 EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
-
-
 EXIT_CLOSED_PIPE = 128 + signal.SIGPIPE  # the shell's status of a command SIGPIPE ended
 
 
@@ -100,146 +99,27 @@ def main(argv=None) -> int:
         try:
             code = _main(argv)
         except SystemExit as exit_:  # argparse's --help or usage error, a command's refusal
-            unwritable = _unwritable_output()
+            unwritable = output_streams.unwritable_output()
             if unwritable and exit_.code in (0, None):
                 return _cannot_write(*unwritable)
             raise
         # what is still buffered goes out now, while a closed pipe or a full disk can be told
-        unwritable = _unwritable_output()
+        unwritable = output_streams.unwritable_output()
         return _cannot_write(*unwritable) if unwritable else code
     except BrokenPipeError:  # Python's flush at exit then finds no closed pipe to report
-        for stream in (sys.stdout, sys.stderr):
-            _detach(stream)
+        output_streams.detach_standard_streams()
         return EXIT_CLOSED_PIPE
 
 
-def _unwritable_output() -> tuple[str, OSError] | None:
-    """The first output stream a write of this command failed on, else the first of stdout and
-    stderr that cannot be flushed now (not a closed pipe, which propagates as BrokenPipeError),
-    with its error; a stream that cannot be flushed is pointed at the null device so that
-    nothing buffered is reported again at exit."""
-    found = (_failed_writes[0].stream_name, _failed_writes[0]) if _failed_writes else None
-    for name, stream in (("standard output", sys.stdout), ("standard error", sys.stderr)):
-        try:
-            if stream is not None:
-                stream.flush()
-        except BrokenPipeError:
-            raise
-        except OSError as error:
-            found = found or (name, error)
-            _detach(stream)
-        except ValueError:  # closed
-            pass
-    return found
-
-
 def _cannot_write(name: str, error: OSError) -> int:
-    """One line for an output stream the system refused to write (EXIT_ERROR); the stream is
-    pointed at the null device, so that nothing it still buffers is reported again."""
-    _failed_writes.clear()  # told now, once
-    if name == "standard output":
-        _detach(sys.stdout)
-    try:
-        print(f"tegrasp: error: cannot write to {name}: {error.strerror or error}",
-              file=sys.stderr, flush=True)
-    except (OSError, ValueError):
-        _detach(sys.stderr)
+    """One line for an output stream the system refused to write (output_streams.py)."""
+    output_streams.tell_cannot_write(name, error)
     return EXIT_ERROR
-
-
-def _detach(stream) -> None:
-    """Points `stream`'s file descriptor at the null device and drops what it buffered."""
-    try:
-        null = os.open(os.devnull, os.O_WRONLY)
-        try:
-            os.dup2(null, stream.fileno())
-        finally:
-            os.close(null)
-        stream.flush()
-    except (AttributeError, OSError, ValueError):
-        pass
-
-
-def _output_closed() -> bool:
-    """Whether stdout or stderr is a pipe whose reader has gone (poll reports an error)."""
-    import select
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            poller = select.poll()
-            poller.register(stream.fileno(), select.POLLOUT)
-            if any(events & select.POLLERR for _, events in poller.poll(0)):
-                return True
-        except (AttributeError, OSError, ValueError):
-            continue
-    return False
-
-
-class OutputStreamError(OSError):
-    """stdout or stderr refused a write (a full disk, an I/O error): the environment's doing,
-    told in one line; `stream_name` says which."""
-
-    def __init__(self, stream_name: str, error: OSError):
-        super().__init__(error.errno, error.strerror)
-        self.stream_name = stream_name
-
-
-class _GuardedStream:
-    """A text stream whose failed writes raise OutputStreamError naming it (a closed pipe
-    stays a BrokenPipeError); everything else is the stream's."""
-
-    def __init__(self, stream, name: str):
-        self._stream, self._name = stream, name
-
-    def write(self, text):
-        try:
-            return self._stream.write(text)
-        except BrokenPipeError:
-            raise
-        except OSError as error:
-            raise self._failed(error) from None
-
-    def flush(self):
-        try:
-            return self._stream.flush()
-        except BrokenPipeError:
-            raise
-        except OSError as error:
-            raise self._failed(error) from None
-
-    def _failed(self, error: OSError) -> OutputStreamError:
-        """The error to raise, also kept in _failed_writes: a caller may swallow it (argparse
-        ignores an OSError printing --help)."""
-        failure = OutputStreamError(self._name, error)
-        _failed_writes.append(failure)
-        return failure
-
-    def __getattr__(self, name):
-        return getattr(self._stream, name)
-
-
-_failed_writes: list[OutputStreamError] = []  # this command's, first first
-
-
-@contextlib.contextmanager
-def _guarded_output():
-    """stdout and stderr as _GuardedStreams for the block."""
-    _failed_writes.clear()
-    original = sys.stdout, sys.stderr
-    guarded = tuple(None if stream is None else _GuardedStream(stream, name)
-                    for stream, name in zip(original, ("standard output", "standard error")))
-    sys.stdout, sys.stderr = guarded
-    try:
-        yield
-    finally:
-        if sys.stdout is guarded[0]:
-            sys.stdout = original[0]
-        if sys.stderr is guarded[1]:
-            sys.stderr = original[1]
 
 
 def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
-    with _guarded_output():
+    with output_streams.guarded_output():
         return _run_command(argv)
 
 
@@ -268,10 +148,10 @@ def _run_command(argv) -> int:
             print(f"tegrasp: error: {error}", file=sys.stderr, flush=True)
             return EXIT_ERROR
         except BrokenPipeError:
-            if _output_closed():  # the reader of our output left: main ends quietly
+            if output_streams.output_closed():  # the reader of our output left: main ends quietly
                 raise
             return _internal_error(sys.exc_info()[1], argv)
-        except OutputStreamError as error:  # a print to a full disk: the environment
+        except output_streams.OutputStreamError as error:  # a print to a full disk
             return _cannot_write(error.stream_name, error)
         except BaseException as error:  # noqa: BLE001: the error boundary
             if interrupt_received():  # a Ctrl-C that Drake wrapped in another exception

@@ -8,5 +8,7 @@
 - plot.py: the paper's figures from a log or a results folder.
 - scenario_args.py, viewer_args.py, verbosity.py: options shared by the commands.
 - run_folder.py, progress.py: where a run's files go; the progress bar.
+- output_streams.py: the command line's stdout and stderr when the system refuses them (a
+  closed pipe, a full disk).
 - process_environment.py: the process set up before a command runs (UTF-8 mode, matplotlib's
   folder)."""

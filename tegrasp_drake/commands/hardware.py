@@ -12,7 +12,8 @@ import pathlib
 import sys
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
-from tegrasp_drake.commands.run_folder import result_path_beside_log, write_result
+from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_file_beside,
+                                               write_result)
 from tegrasp_drake.rig.files import file_problem, interruptions_deferred, output_file_problem
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
@@ -150,8 +151,9 @@ def run(args) -> int:
         raise SystemExit(f"tegrasp: error: --log {log} {problem}")
     pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
     # The run logs to a hidden file beside --log; the earlier log and result stay whole
-    # until this run's replace them together at the end (commit_hardware_run).
-    staged = pathlib.Path(log).with_name(f".{pathlib.Path(log).name}.{os.getpid()}.staging")
+    # until this run's replace them together at the end (commit_hardware_run). A killed
+    # run's staging file is removed by the next run into the folder.
+    staged = staging_file_beside(log)
     try:
         with SimulatedTimeBar("hardware", enabled=progress_wanted(args)) as progress:
             result = run_on_hardware(scenario, config=config, events=events,

@@ -7,6 +7,7 @@ import fcntl
 import json
 import os
 import pathlib
+import re
 import shutil
 import tempfile
 
@@ -89,6 +90,52 @@ def staged_run(folder):
             yield stage
         finally:
             shutil.rmtree(stage, ignore_errors=True)
+
+
+# A file a run writes until it commits it, beside its final name: `.NAME.PID.staging`, PID
+# the writing process's (a hardware run's LCM log, commands/hardware.py).
+_STAGING_FILE = re.compile(r"\.(?P<name>.+)\.(?P<pid>[1-9][0-9]{0,9})\.staging")
+
+
+def staging_file_beside(path) -> pathlib.Path:
+    """Where this process writes `path` until it commits it (`.NAME.PID.staging` beside it);
+    the staging files that runs killed past their handlers (SIGKILL, a power cut) left in
+    that folder are removed first (remove_stale_staging_files)."""
+    path = pathlib.Path(path)
+    remove_stale_staging_files(path.parent)
+    return path.with_name(f".{path.name}.{os.getpid()}.staging")
+
+
+def remove_stale_staging_files(folder) -> list[pathlib.Path]:
+    """Removes the staging files in `folder` whose process has ended, and returns them; a
+    live process's are left alone. The folder is locked meanwhile (claimed_run_folder), as
+    staged_run locks it to remove stale staging folders; when another run holds the lock
+    (a trial writing there), nothing is removed now, and the next run does it."""
+    removed = []
+    try:
+        with claimed_run_folder(folder):
+            for path in pathlib.Path(folder).iterdir():
+                match = _STAGING_FILE.fullmatch(path.name)
+                if (match is None or _process_alive(int(match["pid"])) or path.is_symlink()
+                        or not path.is_file()):
+                    continue
+                with contextlib.suppress(OSError):
+                    path.unlink()
+                    removed.append(path)
+    except (RunFolderError, OSError):
+        pass
+    return removed
+
+
+def _process_alive(pid: int) -> bool:
+    """Whether a process `pid` exists (one of another user's too)."""
+    try:
+        os.kill(pid, 0)  # no signal sent: only whether it could be
+    except (ProcessLookupError, OverflowError):  # no such process; past any process id
+        return False
+    except PermissionError:  # another user's
+        return True
+    return True
 
 
 @contextlib.contextmanager

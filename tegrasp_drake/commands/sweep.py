@@ -186,9 +186,9 @@ def check_workers(args) -> None:
     cores this process may run on."""
     if args.workers is None:
         return
-    if args.workers < 1:
-        raise SweepError(f"--workers must be at least 1, got {args.workers}")
-    from tegrasp_drake.sweep.runner import default_workers
+    from tegrasp_drake.sweep.runner import WORKER_COUNT, default_workers
+    if not WORKER_COUNT.contains(args.workers):
+        raise SweepError(f"--workers {WORKER_COUNT.words(args.workers)}, got {args.workers}")
     cores = default_workers()
     if args.workers > cores and not getattr(args, "oversubscribe", False):
         raise SweepError(f"--workers {args.workers}: this machine gives this process {cores} "

@@ -3,9 +3,36 @@ adds DEBUG; `-q/--quiet` keeps to warnings and errors and shows no progress bar.
 go to stdout; logs and progress bars (commands/progress.py) go to stderr."""
 
 import logging
+import sys
 
 PACKAGE_LOGGER = "tegrasp_drake"
 LOG_FORMAT = "%(levelname)s %(name)s: %(message)s"
+
+
+class StderrLogHandler(logging.StreamHandler):
+    """Log records on the current stderr (the guarded one while a command runs,
+    commands/output_streams.py). A record that stderr refuses (a full disk, an I/O error, a
+    closed pipe) is dropped: stderr is itself the broken stream, the one place a line about
+    it could go. The failure is remembered, and the error boundary ends the command with the
+    full-disk line and EXIT_ERROR (or quietly, for a closed pipe) when it returns; Python's
+    own handleError would write a traceback to that same stream ("--- Logging error ---")."""
+
+    def __init__(self):
+        logging.Handler.__init__(self)  # no stream of its own: `stream` is stderr's
+
+    @property
+    def stream(self):
+        return sys.stderr
+
+    def handleError(self, record):
+        error = sys.exc_info()[1]
+        if not isinstance(error, OSError):  # not the stream's doing: a record that cannot
+            super().handleError(record)     # be formatted, which Python reports
+            return
+        from tegrasp_drake.commands.output_streams import (STANDARD_ERROR, OutputStreamError,
+                                                           note_failed_write)
+        if not isinstance(error, (OutputStreamError, BrokenPipeError)):  # stderr not guarded
+            note_failed_write(OutputStreamError(STANDARD_ERROR, error))
 
 
 def add_verbosity_arguments(parser) -> None:
@@ -24,8 +51,14 @@ def log_level(verbose: int, quiet: bool) -> int:
 
 
 def configure_logging(args) -> None:
-    """Sends log records to stderr (a root handler, if there is none yet) and sets the
-    package's level; other libraries stay at warnings (pydrake keeps its own level)."""
-    logging.basicConfig(format=LOG_FORMAT, level=logging.WARNING)
+    """Sends log records to stderr (a StderrLogHandler on the root logger, if it has no
+    handler yet) and sets the package's level; other libraries stay at warnings (pydrake
+    keeps its own level)."""
+    root = logging.getLogger()
+    if not root.handlers:
+        handler = StderrLogHandler()
+        handler.setFormatter(logging.Formatter(LOG_FORMAT))
+        root.addHandler(handler)
+        root.setLevel(logging.WARNING)
     logging.getLogger(PACKAGE_LOGGER).setLevel(
         log_level(getattr(args, "verbose", 0), getattr(args, "quiet", False)))

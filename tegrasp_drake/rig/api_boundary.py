@@ -106,6 +106,13 @@ def _constraints(hint) -> tuple:
                                   if isinstance(m, (Range, Choice, Folder)))
 
 
+def check_argument(function: str, name: str, value, constraint) -> None:
+    """Raises naming `function`'s argument `name` when `value` breaks `constraint` (a Range,
+    Choice or Folder known only at the call, e.g. from another argument), in the words of
+    the declared ones."""
+    _check_constraint(function, name, value, constraint)
+
+
 def _check_constraint(function: str, name: str, value, constraint) -> None:
     """Raises naming `function`'s argument `name` when `value` breaks `constraint`."""
     from tegrasp_drake.rig.ranges import Choice

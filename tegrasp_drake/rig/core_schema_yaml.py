@@ -63,6 +63,24 @@ CoreSchemaLoader.add_constructor(FLOAT_TAG, CoreSchemaLoader.construct_core_floa
 CoreSchemaLoader.add_multi_constructor("!", CoreSchemaLoader.construct_variant)
 
 
+def yaml11_only_number(text: str) -> bool:
+    """Whether plain `text` is a number by YAML 1.1 (PyYAML's own implicit resolvers,
+    yaml.SafeLoader) and text by the core schema (CoreSchemaLoader): `1:30`, `0b101`,
+    `1_000`, `+0x10`. Each version's grammar is its loader's; none is written a third time."""
+    numbers = (INT_TAG, FLOAT_TAG)
+    return (_implicit_tag(yaml.SafeLoader, text) in numbers
+            and _implicit_tag(CoreSchemaLoader, text) not in numbers)
+
+
+def _implicit_tag(loader_class, text: str) -> str:
+    """The tag `loader_class` resolves a plain (unquoted) scalar `text` to."""
+    loader = loader_class("")
+    try:
+        return loader.resolve(yaml.ScalarNode, text, (True, False))
+    finally:
+        loader.dispose()
+
+
 def compose(text: str):
     """The node tree of one YAML document (None for an empty one), tags resolved as above."""
     loader = CoreSchemaLoader(text)

@@ -58,6 +58,17 @@ HARDWARE_RUN_DURATION = Range(low=0.0, low_open=True, high=600.0, unit="s",
                               why="a grasp takes about 12 s; at most ten minutes on the devices")
 
 
+# A seed [-] (a scenario's random_seed, a sweep's base_seed, MakeGraspStation's random_seed).
+SEED_RANGE = Range(low=0, high=2**32 - 1,
+                   why="Drake's random generator takes a 32-bit seed; a larger one would repeat a "
+                       "smaller one's noise")
+
+# A simulated run's duration [s] (run_trial's max_time, run_ideal_grasp's duration): positive
+# (Drake's simulator cannot advance to a time before its start); at most the scenario's time
+# limit (grasp_diagram.simulated_duration_range), to which `tegrasp trial` runs.
+SIMULATED_DURATION = Range(low=0.0, low_open=True, unit="s")
+
+
 def _number(value) -> str:
     """A range end as written: integers whole (4294967295, not 4.29497e+09), others short."""
     if value is None:

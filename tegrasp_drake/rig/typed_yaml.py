@@ -10,14 +10,13 @@ import collections.abc
 import dataclasses
 import math
 import pathlib
-import re
 import types
 import typing
 
 import yaml
 from pydrake.common.yaml import yaml_dump, yaml_load_typed
 
-from tegrasp_drake.rig.core_schema_yaml import compose, construct
+from tegrasp_drake.rig.core_schema_yaml import compose, construct, yaml11_only_number
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.unset_fields import empty_meaning
@@ -326,18 +325,12 @@ def _check_value(value, hint, path: str, source: str) -> None:
         check_fields(value, hint, source, path)
 
 
-# Numbers in YAML 1.1's forms that the core schema reads as text: base 60 (1:30), binary
-# (0b101), `_` separators (1_000), a sign before 0x/0o.
-_YAML11_ONLY_NUMBER = re.compile(
-    r"[-+]?(?:[0-9][0-9_]*(?::[0-5]?[0-9])+|0b[01_]+|[0-9][0-9_]*_[0-9_.]*|0[xo][0-9a-fA-F_]+)")
-
-
 def _number_as_text_hint(value, hint) -> str:
     """For a number read as text (quoted, or in a form only YAML 1.1 reads as a number), how
     to write it as a value of the field's type: decimal digits, an integer field's without a
     point or exponent."""
     if hint in (float, int) and isinstance(value, str):
-        if _YAML11_ONLY_NUMBER.fullmatch(value.strip()):
+        if yaml11_only_number(value.strip()):
             return (" (numbers are read as YAML 1.2 reads them: base-60 1:30, binary 0b101 and "
                     "1_000 are text; write the number in decimal digits)")
         try:

@@ -72,7 +72,8 @@ class BusLogWriter:
         self._process = subprocess.Popen(
             [str(pathlib.Path(lcm.LCM_BIN_DIR) / "lcm-logger"), "--quiet", "--force",
              f"--lcm-url={url}", str(self.path)],
-            stdin=subprocess.DEVNULL, stdout=self._output, stderr=subprocess.STDOUT)
+            stdin=subprocess.DEVNULL, stdout=self._output, stderr=subprocess.STDOUT,
+            preexec_fn=_stopped_when_this_thread_ends())
         deadline = time.monotonic() + start_timeout
         while not self.path.exists():
             if self._process.poll() is not None or time.monotonic() > deadline:
@@ -131,6 +132,32 @@ class BusLogWriter:
         count = sum(1 for _ in log)
         log.close()
         return count
+
+
+PR_SET_PDEATHSIG = 1  # prctl(2): the signal a child gets when the thread that forked it ends
+
+
+def _stopped_when_this_thread_ends():
+    """A Popen preexec_fn giving the child SIGINT (lcm-logger's way to stop, its log closed
+    whole) when the thread that starts it ends, also when this process is killed past its
+    handlers (SIGKILL): a logger left running would go on writing a killed run's log. The
+    writer is made and closed by one call in one thread (_run). None without prctl(2) (not
+    Linux): the logger then outlives a killed run."""
+    import ctypes
+    import sys
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl  # looked up before the fork
+    except (OSError, AttributeError):
+        return None
+    parent = os.getpid()
+
+    def in_the_child():
+        prctl(PR_SET_PDEATHSIG, int(signal.SIGINT))
+        if os.getppid() != parent:  # the parent ended before prctl took effect
+            os._exit(1)
+    return in_the_child
 
 
 def fault_message(fault, now: float) -> lcmt_tegrasp_fault:

@@ -13,15 +13,11 @@ from pydrake.geometry import Meshcat
 from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.scripted_grasp import PHASES, plan_duration
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
-                                                  MakeSimulator)
+                                                  MakeSimulator, simulated_duration_range)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
-from tegrasp_drake.scenario.scenario import Scenario
-from tegrasp_drake.rig.api_boundary import public_api
-from tegrasp_drake.rig.ranges import Range
-
-# A run's simulated duration [s]: positive and finite (Drake's simulator cannot advance to
-# a time before its start).
-SIMULATED_DURATION = Range(low=0.0, low_open=True, unit="s")
+from tegrasp_drake.scenario.scenario import Scenario, rechecked
+from tegrasp_drake.rig.api_boundary import check_argument, public_api
+from tegrasp_drake.rig.ranges import SIMULATED_DURATION
 
 CONTROLLER_NAME = OpenLoopControllerConfig.name
 END_MARGIN_S = 0.5  # simulated after the script ends, to see the object settle
@@ -32,8 +28,13 @@ logger = logging.getLogger(__name__)
 
 def MakeIdealGraspDiagram(scenario, *, meshcat=None):
     """The GraspDiagram of the scripted grasp around the simulated station."""
-    scripted = dataclasses.replace(scenario, controller=OpenLoopControllerConfig())
+    scripted = scripted_scenario(scenario)
     return MakeGraspDiagram(scripted, station=MakeSimulatedStation(scripted, meshcat=meshcat))
+
+
+def scripted_scenario(scenario: Scenario) -> Scenario:
+    """`scenario` with the open-loop controller: the scripted grasp alone."""
+    return dataclasses.replace(scenario, controller=OpenLoopControllerConfig())
 
 
 def progress_monitor(progress, end_time: float):
@@ -53,8 +54,11 @@ def progress_monitor(progress, end_time: float):
 def run_ideal_grasp(scenario: Scenario, *, meshcat: Meshcat | None = None,
                     duration: Annotated[float | None, SIMULATED_DURATION] = None,
                     progress: Callable | None = None):
-    """Simulates the ideal grasp for `duration` [s] (default: the plan's plus END_MARGIN_S);
-    returns (TrialLog, wall time [s]). progress: progress(t, end) [s, simulated]."""
+    """Simulates the ideal grasp for `duration` [s] (default: the plan's plus END_MARGIN_S; at
+    most the scenario's time limit, as run_trial's max_time); returns (TrialLog, wall time
+    [s]). progress: progress(t, end) [s, simulated]."""
+    scripted = rechecked(scripted_scenario(scenario), "run_ideal_grasp: scenario")
+    check_argument("run_ideal_grasp", "duration", duration, simulated_duration_range(scripted))
     grasp = MakeIdealGraspDiagram(scenario, meshcat=meshcat)
     segments = grasp.controller.segments
     simulator = MakeSimulator(grasp.diagram, scenario)

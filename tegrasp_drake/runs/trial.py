@@ -14,16 +14,16 @@ from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
-                                                  MakeSimulator)
+                                                  MakeSimulator, simulated_duration_range)
 from tegrasp_drake.runs.trial_result import TrialResult
 from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
                                               grip_fraction_at, judge_grasp,
                                               table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
-from tegrasp_drake.rig.ranges import Range, shorten
+from tegrasp_drake.rig.ranges import SIMULATED_DURATION, shorten
 from tegrasp_drake.rig.typed_yaml import ConfigError
-from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.api_boundary import check_argument, public_api
 
 class SimulationFailedError(ConfigError):
     """Drake could not step a trial's physics (a singular mass matrix, a non-finite pose): the
@@ -137,12 +137,14 @@ def _step(advance: Callable, context) -> None:
 @public_api
 def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dict | None = None,
               corrective_events: dict | None = None,
-              max_time: Annotated[float | None, Range(low=0.0, unit="s")] = None,
+              max_time: Annotated[float | None, SIMULATED_DURATION] = None,
               progress: Callable | None = None) -> TrialResult:
     """Simulates one trial of `scenario` with its controller; returns its TrialResult.
-    max_time: [s] simulated at most (default: the controller's limit); events,
-    corrective_events: default MakeGraspDiagram's; progress: progress(t, end) [s, simulated]."""
+    max_time: [s] simulated at most, up to the scenario's time limit (the default; the
+    grasp diagram's time_limit); events, corrective_events: default MakeGraspDiagram's;
+    progress: progress(t, end) [s, simulated]."""
     scenario = rechecked(scenario, "run_trial: scenario")  # changed after loading?
+    check_argument("run_trial", "max_time", max_time, simulated_duration_range(scenario))
     grasp = MakeGraspDiagram(scenario, station=MakeSimulatedStation(scenario, meshcat=meshcat),
                                 events=events, corrective_events=corrective_events)
     controller, loggers = grasp.controller, grasp.loggers

@@ -27,6 +27,7 @@ from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStation
                                               side_grasp_pose)
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
+from tegrasp_drake.rig.ranges import SIMULATED_DURATION, Range
 
 # Beyond the ideal grasp's duration, for corrections [s] (and the controller's extra_time_s).
 EXTRA_TIME_S = 10.0
@@ -122,9 +123,25 @@ def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
                                     gripper_command=grasp.gripper_command, phase=grasp.mode)
     diagram = builder.Build()
     diagram.set_name(f"grasp_{grasp.name}")
-    time_limit = (plan_duration(plan_scripted_grasp(grasp_plan(scenario))) + EXTRA_TIME_S
-                  + scenario.controller.extra_time_s)
-    return GraspDiagram(diagram, station, grasp, loggers, time_limit)
+    return GraspDiagram(diagram, station, grasp, loggers, scenario_time_limit(scenario))
+
+
+def scenario_time_limit(scenario: Scenario) -> float:
+    """The longest a run of `scenario` may take [s of simulated time]: its grasp script plus
+    EXTRA_TIME_S and its controller's extra_time_s for corrections. The script is bounded by
+    its fields' ranges and by LoadScenario (MAX_SCRIPT_S, unless allow_long)."""
+    return (plan_duration(plan_scripted_grasp(grasp_plan(scenario))) + EXTRA_TIME_S
+            + scenario.controller.extra_time_s)
+
+
+def simulated_duration_range(scenario: Scenario) -> Range:
+    """The simulated time [s] a caller may ask a run of `scenario` for (run_trial's max_time,
+    run_ideal_grasp's duration): SIMULATED_DURATION up to scenario_time_limit, the time
+    `tegrasp trial` runs to; a longer one would only simulate a machine that has stopped, or
+    one that never ends."""
+    return dataclasses.replace(SIMULATED_DURATION, high=scenario_time_limit(scenario),
+                               why="the scenario's time limit: its grasp script plus time for "
+                                   "corrections")
 
 
 @public_api

@@ -22,8 +22,8 @@ from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.files import file_problem
-from tegrasp_drake.rig.ranges import (Choice, Range, bounded, check_ranges, check_times_resolved,
-                                      declare_ranges, shorten)
+from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_ranges,
+                                      check_times_resolved, declare_ranges, shorten)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.unset_fields import without_unset_fields
@@ -63,9 +63,7 @@ StationConfig = typing.Union[SimulatedStationConfig, HardwareStationConfig]
 @dataclasses.dataclass
 class Scenario:
     """One simulated trial: scene, sensors, drivers, the scripted grasp and the seed."""
-    random_seed: int = bounded(0, low=0, high=2**32 - 1,
-                               why="Drake's random generator takes a 32-bit seed; a larger one "
-                                   "would repeat a smaller one's noise")
+    random_seed: int = bounded(0, **dataclasses.asdict(SEED_RANGE))
     object: ObjectConfig = dataclasses.field(default_factory=ObjectConfig)
     # Where it stands: its marker, the misplacement from it, its yaw.
     placement: ObjectPlacementConfig = dataclasses.field(default_factory=ObjectPlacementConfig)

@@ -21,7 +21,7 @@ from pydrake.systems.primitives import Demultiplexer, MatrixGain
 from pydrake.geometry import Meshcat
 from pydrake.multibody.plant import MultibodyPlantConfig
 
-from tegrasp_drake.rig.ranges import Range, bounded
+from tegrasp_drake.rig.ranges import SEED_RANGE, bounded
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP,
@@ -57,8 +57,6 @@ from tegrasp_drake.simulation.table_model import AddTable
 from tegrasp_drake.simulation.tactile_pads import PadGeometry, TactilePads, TactileSensorConfig
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
 
-# Drake's random generator takes a 32-bit seed (as the scenario's random_seed says).
-SEED_RANGE = Range(low=0, high=2**32 - 1, why="a 32-bit seed")
 
 
 @public_dataclass

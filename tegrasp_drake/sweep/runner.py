@@ -101,6 +101,11 @@ def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict]:
     return "ok", result
 
 
+# Local worker processes (run_sweep's workers, `tegrasp sweep --workers`); more than the
+# cores only when asked for (--oversubscribe) and never more than the memory holds (pool_size).
+WORKER_COUNT = Range(low=1)
+
+
 def default_workers() -> int:
     return len(os.sched_getaffinity(0))
 
@@ -145,7 +150,7 @@ def pool_size(workers: int | None, pending: int) -> int:
 @public_api
 def run_sweep(spec: SweepSpec, trial_function: Callable,
               out_dir: Annotated[PathLike, OUTPUT_FOLDER], *,
-              workers: Annotated[int | None, Range(low=1)] = None,
+              workers: Annotated[int | None, WORKER_COUNT] = None,
               scheduler: str | None = None, progress: bool = True) -> SweepSummary:
     """Runs the trials of `spec` that have no finished record in `out_dir`.
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tegrasp_drake.rig.api_boundary import describe_hint, public_dataclass, value_matches
-from tegrasp_drake.rig.ranges import bounded, check_ranges
+from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, check_ranges
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
@@ -87,8 +87,7 @@ class SweepSpec:
         product_grid(PAPER_NORMAL_OFFSETS_M, PAPER_STROKE_OFFSETS_M), low=-0.2, high=0.2,
         unit="m", why="marker offsets near the centre marker, within the open hand's reach")
     attempts: int = bounded(3, low=1, high=100_000, below="expected a positive integer")
-    base_seed: int = bounded(0, low=0, high=2**32 - 1,
-                             why="Drake's random generator takes a 32-bit seed")
+    base_seed: int = bounded(0, **dataclasses.asdict(SEED_RANGE))
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
     user_objects: Mapping[str, ObjectConfig] = field(default_factory=dict)
     # `--set key=value` assignments for every trial's scenario (not PER_TRIAL_SCENARIO_FIELDS)

@@ -151,3 +151,34 @@ def test_hardware_keeps_an_earlier_result_when_its_log_is_gone(tmp_path):
         cli.main(["hardware", "--config", str(config), "--log", str(tmp_path / "run.lcmlog")])
     assert str(result) in str(exit_info.value.code) and "--overwrite" in str(exit_info.value.code)
     assert result.read_text() == "an earlier result"
+
+
+def _ended_process_id() -> int:
+    """The id of a process that has ended (and been reaped)."""
+    import subprocess
+    import sys
+    process = subprocess.Popen([sys.executable, "-c", "pass"])
+    process.wait()
+    return process.pid
+
+
+def test_a_staging_file_of_an_ended_process_is_removed_and_a_live_ones_kept(tmp_path):
+    from tegrasp_drake.commands.run_folder import staging_file_beside
+    import os
+    ended = tmp_path / f".run.lcmlog.{_ended_process_id()}.staging"
+    live = tmp_path / f".other.lcmlog.{os.getppid()}.staging"
+    users = [tmp_path / "run.lcmlog", tmp_path / ".notes.1x.staging", tmp_path / "a.staging"]
+    for path in (ended, live, *users):
+        path.write_bytes(b"data")
+    staged = staging_file_beside(tmp_path / "next.lcmlog")
+    assert staged == tmp_path / f".next.lcmlog.{os.getpid()}.staging"
+    assert not ended.exists() and live.exists() and all(path.exists() for path in users)
+
+
+def test_a_folder_another_run_holds_keeps_its_staging_files_for_the_next_run(tmp_path):
+    from tegrasp_drake.commands.run_folder import claimed_run_folder, remove_stale_staging_files
+    ended = tmp_path / f".run.lcmlog.{_ended_process_id()}.staging"
+    ended.write_bytes(b"data")
+    with claimed_run_folder(tmp_path):  # a trial writing there
+        assert remove_stale_staging_files(tmp_path) == [] and ended.exists()
+    assert remove_stale_staging_files(tmp_path) == [ended] and not ended.exists()

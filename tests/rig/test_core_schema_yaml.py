@@ -30,3 +30,17 @@ def test_a_tagged_mapping_carries_its_tag_and_private_top_level_keys_are_dropped
 
 def test_empty_text_is_none():
     assert construct(compose("")) is None
+
+
+@pytest.mark.parametrize("text", ["1:30", "0b101", "1_000", "+0x10", "-0x1F", "1_000.5", "1._"])
+def test_a_yaml_11_number_the_core_schema_reads_as_text_is_told(text):
+    from tegrasp_drake.rig.core_schema_yaml import yaml11_only_number
+    assert yaml11_only_number(text) and _value(text) == text
+
+
+@pytest.mark.parametrize("text", [
+    "12", "017", "1e-9", "0x10",  # numbers in both versions, or only in the core schema
+    "0o8", "0_9", "+0o17", "0:30", "1.5:30", "2024-01-02", "abc"])  # text in YAML 1.1 too
+def test_a_number_of_the_core_schema_or_text_of_yaml_11_is_not_told(text):
+    from tegrasp_drake.rig.core_schema_yaml import yaml11_only_number
+    assert not yaml11_only_number(text)
