@@ -29,7 +29,7 @@ class TrialResult:
     # The physical event behind each event transition taken, and "hit" [s]
     # (trial.physical_event_times); None where it was not found.
     physical_events: dict[str, float | None] = dataclasses.field(default_factory=dict)
-    detection_latency_s: dict[str, float] = dataclasses.field(default_factory=dict)
+    detection_latency_s: dict[str, float | None] = dataclasses.field(default_factory=dict)
     false_triggers: int = 0
     lift_grip_fraction: float | None = None  # the weaker pad's grip at the first lift
     corrective_actions: list[str] = dataclasses.field(default_factory=list)

@@ -1,0 +1,69 @@
+"""Bad inputs the tenth review found, one test per rule."""
+
+import dataclasses
+
+import pytest
+
+import tegrasp_drake as T
+from tegrasp_drake.rig.typed_yaml import ConfigError
+
+
+def _refused(call, *words) -> str:
+    """The one-line ConfigError of `call()`, which names each of `words`."""
+    with pytest.raises(ConfigError) as refused:
+        call()
+    message = str(refused.value)
+    assert "\n" not in message and len(message) < 400, message
+    for word in words:
+        assert word in message, message
+    return message
+
+
+def _scenario_with(field: str, value) -> T.Scenario:
+    scenario = T.LoadScenario(name="box")
+    setattr(scenario, field, value)
+    return scenario
+
+
+# Rule: a builder checks a config it is given against its dataclass's type hints, nested
+# configs included: a mapping, None or a name where a config belongs is refused naming the
+# field, and a config built in Python is checked as a loaded one is (ranges too).
+@pytest.mark.parametrize("field, value, builder", [
+    ("object", {"name": "box", "mass": -1}, "MakeStation"),
+    ("object", None, "MakeStation"),
+    ("object", "box", "MakeStation"),
+    ("station", "sim", "MakeStation"),
+    ("vibration", None, "MakeStation"),
+    ("grasp", None, "grasp_plan"),
+])
+def test_a_builder_refuses_a_nested_config_of_the_wrong_type(field, value, builder):
+    scenario = _scenario_with(field, value)
+    _refused(lambda: getattr(T, builder)(scenario), builder, f"'{field}'", "must be")
+
+
+def test_a_config_built_in_python_is_checked_for_nested_types_and_ranges():
+    _refused(lambda: T.Scenario(object={"name": "box"}), "Scenario", "'object'", "ObjectConfig")
+    _refused(lambda: T.MemorizedControllerConfig(re_reach={"opened_m": 0.2}), "'re_reach'",
+             "ReReachConfig")
+    _refused(lambda: T.HardwareStationConfig(gripper={"port": "/dev/null"}), "'gripper'")
+    _refused(lambda: T.SweepSpec(randomisation={"placement_xy_bound_m": 0.002},
+                                 objects=("box",), controllers=("open_loop",),
+                                 grid=((0.0, 0.0),), attempts=1), "'randomisation'")
+    controller = T.MemorizedControllerConfig()
+    controller.re_reach = {"opened_m": 0.2}  # set after building
+    _refused(lambda: T.MakeGraspDiagram(_scenario_with("controller", controller)),
+             "MakeGraspDiagram", "controller.re_reach")
+    scenario = T.LoadScenario(name="box")
+    scenario.controller = dataclasses.replace(scenario.controller)
+    scenario.controller.re_reach.opened_m = 0.2  # the right type, out of its range
+    _refused(lambda: T.MakeGraspDiagram(scenario), "re_reach.opened_m")
+
+
+# Rule: the public value classes check their fields' types when built, as the guide says.
+def test_the_public_value_classes_refuse_fields_of_the_wrong_type():
+    _refused(lambda: T.Transition(t=1.0, from_mode="Reach", to_mode="Load", trigger="timer",
+                                  reason="x"), "Transition", "'from_mode'", "Mode")
+    _refused(lambda: T.TrialLog(*([None] * 13), meta={}), "TrialLog", "'t_sa'")
+    _refused(lambda: T.TrialResult(final_mode="Done"), "TrialResult", "'final_mode'")
+    _refused(lambda: T.TrialResult(transitions=({"t": 1.0},)), "transitions[0]", "Transition")
+
