@@ -67,3 +67,16 @@ def test_the_public_value_classes_refuse_fields_of_the_wrong_type():
     _refused(lambda: T.TrialResult(final_mode="Done"), "TrialResult", "'final_mode'")
     _refused(lambda: T.TrialResult(transitions=({"t": 1.0},)), "transitions[0]", "Transition")
 
+
+# Rule: a configuration file without a field (empty, comments only, `{}`, a lone tag) is a
+# mistake, not a request for every default: the hardware config as scenario files and specs.
+@pytest.mark.parametrize("text", ["", "# my robot\n", "{}\n", "!Scenario {}\n",
+                                  "!HardwareStationConfig {}\n"])
+def test_a_hardware_config_without_fields_is_refused(tmp_path, text):
+    path = tmp_path / "hardware.yaml"
+    path.write_text(text)
+    _refused(lambda: T.LoadHardwareConfig(path), str(path), "is empty")
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(text)
+    _refused(lambda: T.LoadSweepSpec(spec), str(spec), "is empty")
+

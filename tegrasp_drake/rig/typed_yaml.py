@@ -75,6 +75,14 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
     return parse_yaml(text, str(path)) if text else None
 
 
+def require_fields(data, path, what: str, advice: str) -> None:
+    """ConfigError unless a configuration file's parsed YAML holds a field: an empty or
+    comment-only file, `{}` or a lone tag (`!Scenario {}`) is a mistake, not a request for
+    every default. `what` names the file ("the sweep spec"), `advice` says what to write."""
+    if data is None or (isinstance(data, dict) and not set(data) - {"_tag"}):
+        raise ConfigError(f"{path}: {what} is empty (no fields); {advice}")
+
+
 # A configuration is a few kB; these bound what a mistaken or hostile file can cost.
 MAX_YAML_BYTES = 1_000_000
 MAX_YAML_NODES = 100_000
