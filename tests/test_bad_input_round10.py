@@ -80,3 +80,31 @@ def test_a_hardware_config_without_fields_is_refused(tmp_path, text):
     spec.write_text(text)
     _refused(lambda: T.LoadSweepSpec(spec), str(spec), "is empty")
 
+
+# Rule: the sweep API's records, reports and folders are bounded as the CLI's are: a
+# hand-edited record is one line, trial ids that name no record are refused, an empty
+# folder argument is not the current folder.
+def test_sweep_records_reports_and_folders_at_the_api(tmp_path, monkeypatch):
+    from tests.fake_trials import fake_trial
+    record = {"status": "ok", "result": fake_trial({"pair_id": "p", "seed": 600,
+                                                    "well_placed": True,
+                                                    "controller": "memorized"})}
+    assert T.record_result(record).hold_success in (True, False)
+    for transitions in ([{"t": "soon"}], "Reach", [None]):
+        record["result"]["transitions"] = transitions
+        with pytest.raises(ValueError, match="not a trial result's JSON form") as refused:
+            T.record_result(record)
+        assert "\n" not in str(refused.value)
+    spec = T.SweepSpec(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),),
+                       attempts=1)
+    summary = T.run_sweep(spec, fake_trial, tmp_path / "sweep", workers=1, progress=False)
+    assert summary.ran == 1
+    with pytest.raises(ValueError, match="'trial_ids' names no trial recorded"):
+        T.write_reports(tmp_path / "sweep", trial_ids=["nope"])
+    assert T.write_reports(tmp_path / "sweep", trial_ids=list(summary.trial_ids))
+    monkeypatch.chdir(tmp_path)
+    for empty in ("", " "):
+        with pytest.raises(OSError, match="is empty; give a folder"):
+            T.run_sweep(spec, fake_trial, empty, workers=1, progress=False)
+    assert not (tmp_path / "trials").exists()
+

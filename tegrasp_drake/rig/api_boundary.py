@@ -32,6 +32,8 @@ class Folder:
     def problem(self, path) -> str | None:
         """Why `path` is not such a folder, in words that follow it, or None."""
         from tegrasp_drake.rig.files import folder_problem
+        if not os.fspath(path).strip():  # not the current folder: as the CLI's --out
+            return "is empty; give a folder"
         path = pathlib.Path(path)
         try:
             there = path.exists()

@@ -136,9 +136,9 @@ def meta_problem(meta: dict, phase: np.ndarray) -> str | None:
             if not isinstance(entry, dict) or not _is_time(entry.get("t")):
                 raise ValueError("needs a finite time 't'")
             Transition.from_dict(entry)
-        except KeyError as e:
-            return f"meta 'transitions[{k}]' lacks the field {e}"
         except (TypeError, ValueError) as e:
+            if str(e).startswith("lacks the field"):
+                return f"meta 'transitions[{k}]' {e}"
             return f"meta 'transitions[{k}]' is not a transition ({shorten(str(e))})"
     for key in ("mode_names", "phases"):
         names = meta.get(key)
