@@ -108,3 +108,30 @@ def test_sweep_records_reports_and_folders_at_the_api(tmp_path, monkeypatch):
             T.run_sweep(spec, fake_trial, empty, workers=1, progress=False)
     assert not (tmp_path / "trials").exists()
 
+
+# Rule: a trial log's arrays are finite, every one a reader may draw or judge (not only the
+# tactile signals), and a plot's preconditions are said in one line: the Avoid figure of a
+# controller without an Avoid reaction is "no Avoid transition", not an internal error.
+def test_trial_log_arrays_and_the_avoid_plots_precondition(tmp_path):
+    import json
+
+    import numpy as np
+
+    from tegrasp_drake.cli import main
+    from tegrasp_drake.scenario.trial_log_file import FORMAT_VERSION, TrialLogError
+    from tests.test_bad_input import _trial_log
+    for name, shape in (("object_state", (11, 13)), ("arm_q", (11, 6)),
+                        ("gripper_status", (11, 8))):
+        path = _trial_log(tmp_path / f"{name}.npz", **{name: np.full(shape, np.nan)})
+        with pytest.raises(TrialLogError, match=rf"\['{name}'\] hold NaN or infinite"):
+            T.load_trial_log(path)
+    path = _trial_log(tmp_path / "open_loop.npz")
+    with np.load(path) as stored:
+        arrays = {key: stored[key] for key in stored.files if key != "meta"}
+    scenario = T.with_controller(T.LoadScenario(name="box"), "open_loop")
+    meta = {"format_version": FORMAT_VERSION, "scenario": T.scenario_to_yaml(scenario),
+            "transitions": []}
+    np.savez_compressed(path, meta=np.array(json.dumps(meta)), **arrays)
+    with pytest.raises(SystemExit) as refused:
+        main(["plot", "avoid", str(path), "--out", str(tmp_path / "a.png")])
+    assert "no Avoid transition" in str(refused.value.code), refused.value.code

@@ -186,15 +186,13 @@ def trial_arrays_problem(arrays: dict) -> str | None:
     return nonfinite_signals(arrays)
 
 
-# The measured signals of a trial log: what a plot draws and the myRIO emulator streams.
-SIGNAL_ARRAYS = ("taxels", "channels", "pad_acceleration")
-
-
 def nonfinite_signals(arrays: dict) -> str | None:
-    """What is wrong if any signal array present in `arrays` holds NaN or infinities (a
-    trial log's, or the part of one a reader loads), else None."""
-    bad = [name for name in SIGNAL_ARRAYS
-           if name in arrays and not np.all(np.isfinite(arrays[name]))]
+    """What is wrong if any logged array present in `arrays` (the signals, and the states a
+    figure or an outcome reads: object_state, arm_q, ...) holds NaN or infinities (a trial
+    log's, or the part of one a reader loads), else None."""
+    bad = [name for name in ARRAY_FIELDS if name in arrays and name != "phase"  # meta_problem's
+           and np.asarray(arrays[name]).dtype.kind in "fc"
+           and not np.all(np.isfinite(arrays[name]))]
     if bad:
-        return f"the channels {bad} hold NaN or infinite values"
+        return f"the arrays {bad} hold NaN or infinite values"
     return None
