@@ -124,7 +124,7 @@ def _main(argv) -> int:
 
 
 def _run_command(argv) -> int:
-    from tegrasp_drake.rig.files import (UserPathError, interrupt_received, one_line,
+    from tegrasp_drake.rig.files import (UserPathError, error_line, interrupt_received,
                                          termination_interrupts)
     with termination_interrupts():
         try:
@@ -137,15 +137,15 @@ def _run_command(argv) -> int:
             name = str(interrupt) if str(interrupt).startswith("SIG") else "SIGINT"
             return _interrupted(name)
         except SystemExit as exit_:
-            if isinstance(exit_.code, str):  # "tegrasp: error: ...", always one line
-                raise SystemExit(one_line(exit_.code)) from None
+            if isinstance(exit_.code, str):  # "tegrasp: error: ...", one bounded line
+                raise SystemExit(error_line(exit_.code)) from None
             raise
         except GeneratorExit:
             raise
         except UserPathError as error:  # a file or folder the user named, said in one line
             if interrupt_received():
                 return _interrupted(interrupt_received())
-            print(f"tegrasp: error: {error}", file=sys.stderr, flush=True)
+            print(f"tegrasp: error: {error_line(str(error))}", file=sys.stderr, flush=True)
             return EXIT_ERROR
         except BrokenPipeError:
             if output_streams.output_closed():  # the reader of our output left: main ends quietly

@@ -135,3 +135,32 @@ def test_trial_log_arrays_and_the_avoid_plots_precondition(tmp_path):
     with pytest.raises(SystemExit) as refused:
         main(["plot", "avoid", str(path), "--out", str(tmp_path / "a.png")])
     assert "no Avoid transition" in str(refused.value.code), refused.value.code
+
+
+# Rule: an error is one bounded line that echoes values cut to about 80 characters, and its
+# reason is the true one: a file of many plain values is not said to expand aliases.
+def test_error_text_is_bounded_and_names_the_true_reason(tmp_path):
+    import json
+    import shutil
+
+    from tegrasp_drake.events.event_file import MemorizedEventError
+    from tegrasp_drake.rig import paths
+    folder = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), folder,
+                    ignore=shutil.ignore_patterns("prismatic", "ensemble", "corrective"))
+    path = folder / "box" / "load_lift.json"
+    event = json.loads(path.read_text())
+    event["scenario"] = "default:\n  object: !!python/object/apply:os.system ['true']\n"
+    path.write_text(json.dumps(event))
+    with pytest.raises(MemorizedEventError) as refused:
+        T.load_memorized_events(folder, "box")
+    message = str(refused.value)
+    assert "scenario" in message and "\n" not in message and len(message) < 600, message
+    assert len(str(MemorizedEventError(path, "x" * 5000))) < 1200
+    many = tmp_path / "many.yaml"
+    many.write_text("".join(f"s{k}: {{random_seed: 1}}\n" for k in range(30_000)))
+    _refused(lambda: T.LoadScenario(many, name="s7"), "holds more than 100000 values")
+    aliased = tmp_path / "aliased.yaml"
+    aliased.write_text("a: &a [" + ", ".join(["1"] * 1000) + "]\n"
+                       + "b: [" + ", ".join(["*a"] * 200) + "]\n")
+    _refused(lambda: T.LoadScenario(aliased, name="a"), "aliases expand to more than")

@@ -20,7 +20,7 @@ from tegrasp_drake.rig.core_schema_yaml import compose, construct, yaml11_only_n
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.unset_fields import empty_meaning
-from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, one_line, read_bounded
+from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 
 
 class ConfigError(ValueError):
@@ -28,28 +28,12 @@ class ConfigError(ValueError):
     line break inside a value it quotes is shown as \\n)."""
 
     def __init__(self, message: str = ""):
-        super().__init__(_bounded_message(one_line(str(message))))
+        super().__init__(error_line(str(message)))
 
 
 class YamlSyntaxError(ConfigError):
     """Text that is not YAML (parse_yaml), told apart from YAML past the reader's limits by a
     caller that also takes free text."""
-
-
-# a value pasted by mistake must not make an error hundreds of kB long
-ECHO_CHARS = 80
-MAX_MESSAGE_CHARS = 1000
-
-
-def _bounded_message(message: str) -> str:
-    if len(message) <= MAX_MESSAGE_CHARS:
-        return message
-    message = " ".join(shorten(word, ECHO_CHARS) if len(word) > 2 * ECHO_CHARS else word
-                       for word in message.split(" "))
-    if len(message) <= MAX_MESSAGE_CHARS:
-        return message
-    half = MAX_MESSAGE_CHARS // 2
-    return f"{message[:half]} ... ({len(message) - 2 * half} characters cut) ... {message[-half:]}"
 
 
 def read_yaml_file(path: str | pathlib.Path, what: str):
@@ -118,7 +102,7 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                  root_key: str | None = None) -> None:
     """Refuses duplicate mapping keys, an alias expansion past MAX_YAML_NODES and an integer
     the bounded reader refuses (integer_text.py: Python would not convert it)."""
-    sizes = {}  # id(node) -> its size with every alias expanded
+    sizes = {}  # id(node) -> its size with every alias expanded; len(sizes): values written
 
     def where(node) -> str:
         mark = node.start_mark
@@ -162,6 +146,10 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                 total += size(key, path) + size(value, f"{path}.{name}" if path else name)
         elif isinstance(node, yaml.SequenceNode):
             total += sum(size(item, f"{path}[{k}]") for k, item in enumerate(node.value))
+        if total > MAX_YAML_NODES and len(sizes) > MAX_YAML_NODES:  # written, not aliased
+            raise ConfigError(f"{source}: holds more than {MAX_YAML_NODES} values (keys, "
+                              f"values and entries; {where(node)}); a configuration is "
+                              "smaller: split the file, or keep only the entries you use")
         if total > MAX_YAML_NODES:
             raise ConfigError(f"{source}: the YAML's aliases expand to more than "
                               f"{MAX_YAML_NODES} values ({where(node)}); write the values "
