@@ -91,10 +91,11 @@ def main(argv=None) -> int:
     be written (a full disk, an I/O error) ends it with one line and EXIT_ERROR. `argv`
     None: the process's own command line, run in its environment (process_environment.py)."""
     if argv is None:
-        from tegrasp_drake.commands.process_environment import (private_matplotlib_config,
-                                                                run_in_utf8_mode)
+        from tegrasp_drake.commands.process_environment import (
+            check_matplotlib_backend, private_matplotlib_config, run_in_utf8_mode)
         run_in_utf8_mode()
         private_matplotlib_config()
+        check_matplotlib_backend()
     try:
         try:
             code = _main(argv)

@@ -164,3 +164,42 @@ def test_error_text_is_bounded_and_names_the_true_reason(tmp_path):
     aliased.write_text("a: &a [" + ", ".join(["1"] * 1000) + "]\n"
                        + "b: [" + ", ".join(["*a"] * 200) + "]\n")
     _refused(lambda: T.LoadScenario(aliased, name="a"), "aliases expand to more than")
+
+
+# Rule: an environment variable or option value is checked before a library is handed it:
+# a backend matplotlib does not know, an output encoding that cannot hold a name the user
+# gave, an LCM URL option LCM would ignore, a fault time beyond any hardware run.
+def test_environment_and_option_values_are_checked_before_a_library_gets_them(tmp_path):
+    import io
+    import os
+    import subprocess
+    import sys
+
+    from tegrasp_drake.cli import main
+    from tegrasp_drake.commands.output_streams import guarded_output
+    from tegrasp_drake.hardware.config import lcm_url_problem
+    environment = dict(os.environ, MPLBACKEND="banana")
+    done = subprocess.run([sys.executable, "-m", "tegrasp_drake", "plot", "events", "--out",
+                           str(tmp_path / "x.png")], env=environment, capture_output=True,
+                          text=True, timeout=600)
+    assert done.returncode == 1, done.stderr
+    assert done.stderr.strip().count("\n") == 0 and "MPLBACKEND='banana'" in done.stderr
+    ascii_out = io.TextIOWrapper(io.BytesIO(), encoding="ascii")
+    saved = sys.stdout
+    sys.stdout = ascii_out
+    try:
+        with guarded_output():
+            print("wrote o/été_ü.png")
+    finally:
+        sys.stdout = saved
+    ascii_out.flush()
+    assert ascii_out.buffer.getvalue() == b"wrote o/\\xe9t\\xe9_\\xfc.png\n"
+    for option in ("ttl=zero", "ttl=0&recv_buf_size=lots"):
+        problem = lcm_url_problem(f"udpm://239.255.76.67:8793?{option}")
+        assert problem and "Invalid value for" in problem, problem
+    assert lcm_url_problem("udpm://239.255.76.67:8793?ttl=0") is None
+    for fault in ("14@1e9", "14@601", "14@-1"):
+        with pytest.raises(SystemExit) as refused:
+            main(["emulate", "robotiq", "--inject-fault", fault, "--scheduling", "normal",
+                  "--lcm-url", "udpm://239.255.76.67:8793?ttl=0"])
+        assert "must lie in [0, 600] s" in str(refused.value.code), refused.value.code

@@ -114,6 +114,11 @@ def lcm_url_problem(url: str) -> str | None:
             os.close(saved)
         captured.seek(0)
         said = captured.read().decode(errors="replace").strip()
+    invalid = [line for line in said.splitlines() if "invalid value" in line.lower()]
+    if not failed and invalid:  # LCM warns of an option it did not take, runs with its default
+        reason = invalid[0].removeprefix("Warning:").strip()
+        return (f"has a value LCM does not take ({reason}; LCM would use its default); "
+                "expected e.g. udpm://239.255.76.67:7667?ttl=0")
     if not failed:
         if said:
             print(said, file=sys.stderr)  # not ours to hide
