@@ -91,10 +91,11 @@ def main(argv=None) -> int:
     be written (a full disk, an I/O error) ends it with one line and EXIT_ERROR. `argv`
     None: the process's own command line, run in its environment (process_environment.py)."""
     if argv is None:
-        from tegrasp_drake.commands.process_environment import (private_matplotlib_config,
-                                                                run_in_utf8_mode)
+        from tegrasp_drake.commands.process_environment import (
+            check_matplotlib_backend, private_matplotlib_config, run_in_utf8_mode)
         run_in_utf8_mode()
         private_matplotlib_config()
+        check_matplotlib_backend()
     try:
         try:
             code = _main(argv)
@@ -124,7 +125,7 @@ def _main(argv) -> int:
 
 
 def _run_command(argv) -> int:
-    from tegrasp_drake.rig.files import (UserPathError, interrupt_received, one_line,
+    from tegrasp_drake.rig.files import (UserPathError, error_line, interrupt_received,
                                          termination_interrupts)
     with termination_interrupts():
         try:
@@ -137,15 +138,15 @@ def _run_command(argv) -> int:
             name = str(interrupt) if str(interrupt).startswith("SIG") else "SIGINT"
             return _interrupted(name)
         except SystemExit as exit_:
-            if isinstance(exit_.code, str):  # "tegrasp: error: ...", always one line
-                raise SystemExit(one_line(exit_.code)) from None
+            if isinstance(exit_.code, str):  # "tegrasp: error: ...", one bounded line
+                raise SystemExit(error_line(exit_.code)) from None
             raise
         except GeneratorExit:
             raise
         except UserPathError as error:  # a file or folder the user named, said in one line
             if interrupt_received():
                 return _interrupted(interrupt_received())
-            print(f"tegrasp: error: {error}", file=sys.stderr, flush=True)
+            print(f"tegrasp: error: {error_line(str(error))}", file=sys.stderr, flush=True)
             return EXIT_ERROR
         except BrokenPipeError:
             if output_streams.output_closed():  # the reader of our output left: main ends quietly

@@ -12,7 +12,7 @@ from tegrasp_drake.sweep.summary import write_summary
 from tegrasp_drake.sweep.table import write_statistics, write_table1
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig.api_boundary import UPDATED_FOLDER, PathLike, public_api
-from tegrasp_drake.rig.ranges import Choice
+from tegrasp_drake.rig.ranges import Choice, shorten
 
 
 @public_api
@@ -28,8 +28,13 @@ def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
     from tegrasp_drake.figures.sweep import write_success_maps
     from tegrasp_drake.figures.table1 import plot_table1
     own = None if trial_ids is None else set(trial_ids)
-    records = [record for trial_id, record in load_records(out_dir).records.items()
+    recorded = load_records(out_dir).records
+    records = [record for trial_id, record in recorded.items()
                if own is None or trial_id in own]
+    if own is not None and not records:  # not reports of zero trials over the folder's own
+        raise ValueError(f"write_reports: argument 'trial_ids' names no trial recorded in "
+                         f"{shorten(str(out_dir))} (got {shorten(repr(sorted(own)))}; it has "
+                         f"{len(recorded)} records); give their ids, or None for all")
     paths = (write_table1(records, out_dir) + write_statistics(records, out_dir)
              + write_summary(records, out_dir) + write_offset_table(records, out_dir))
     if any(record["status"] == "ok" for record in records):

@@ -261,7 +261,7 @@ def _flip_bits(path):
     (lambda p: _trial_log(p, channels=np.ones((50, 4))),
      "'channels' has shape (50, 4), but 101 samples of 't_ra' need (101, 4)"),
     (lambda p: _trial_log(p, channels=np.full((101, 4), np.nan)),
-     "the channels ['channels'] hold NaN or infinite values"),
+     "the arrays ['channels'] hold NaN or infinite values"),
 ])
 def test_a_damaged_trial_log_is_named_and_not_plotted(make, expected, tmp_path, capfd):
     path = tmp_path / "trial.npz"

@@ -218,7 +218,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["plot", "trial", "t.npz", "--out", "x.png"], ["'phase' must hold indices 0 to"]),
     ("8 myRIO streams no NaN", _log("t.npz", channels=np.full((101, 4), np.nan)),
      ["emulate", "myrio", "--trial", "t.npz"],
-     ["the channels ['channels'] hold NaN or infinite values"]),
+     ["the arrays ['channels'] hold NaN or infinite values"]),
     ("9 hardware --log a folder of the user's files", _user_folder,
      ["hardware", "--config", "hw.yaml", "--log", "mine", "--overwrite"],
      ["--log mine: mine is a folder, not a file"]),

@@ -18,7 +18,7 @@ from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Emulators,
                                               FaultInjection)
 from tegrasp_drake.hardware.config import DEFAULT_LCM_URL, lcm_url_problem
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.ranges import FAULT_DELAY, shorten
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
 from tegrasp_drake.rig.files import output_file_problem
@@ -87,9 +87,9 @@ def _parse_fault(text) -> FaultInjection:
     if not 0 <= code <= GFLT_MAX:
         raise SystemExit(f"tegrasp: error: --inject-fault '{text}': the 2F-85's fault "
                          f"register gFLT holds 4 bits; give a CODE from 0x0 to {GFLT_MAX:#x}")
-    if not (math.isfinite(at) and at >= 0):
-        raise SystemExit(f"tegrasp: error: --inject-fault '{text}': SECONDS must be a "
-                         "finite number >= 0 (after the gripper's activation)")
+    if not (math.isfinite(at) and FAULT_DELAY.contains(at)):
+        raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': SECONDS "
+                         f"{FAULT_DELAY.words(at)}, got {shorten(repr(at))}")
     return FaultInjection(code, at)
 
 

@@ -27,7 +27,8 @@ class OutputStreamError(OSError):
 
 class _GuardedStream:
     """A text stream whose failed writes raise OutputStreamError naming it (a closed pipe
-    stays a BrokenPipeError); everything else is the stream's."""
+    stays a BrokenPipeError), and which writes what its encoding cannot hold escaped (\\xe9);
+    everything else is the stream's."""
 
     def __init__(self, stream, name: str):
         self._stream, self._name = stream, name
@@ -35,6 +36,9 @@ class _GuardedStream:
     def write(self, text):
         try:
             return self._stream.write(text)
+        except UnicodeEncodeError:  # PYTHONIOENCODING=ascii and a name the user gave, é
+            encoding = getattr(self._stream, "encoding", None) or "ascii"
+            return self._stream.write(text.encode(encoding, "backslashreplace").decode(encoding))
         except BrokenPipeError:
             raise
         except OSError as error:

@@ -101,13 +101,10 @@ def _plot_trial(args, out) -> str:
     if args.what == "trial":
         from tegrasp_drake.figures.states import plot_trial_states
         return plot_trial_states(log, out)
-    from tegrasp_drake.figures.avoid import NoAvoidError, plot_avoid_reaction
-    from tegrasp_drake.figures.trial_annotations import logged_scenario
-    from tegrasp_drake.scenario.scenario import controller_in_force
+    from tegrasp_drake.figures.avoid import (NoAvoidError, logged_hit_threshold,
+                                             plot_avoid_reaction)
     try:
-        return plot_avoid_reaction(log, out,
-                                   hit_threshold=controller_in_force(
-                                       logged_scenario(log)).avoid.hit_ra_mps2)
+        return plot_avoid_reaction(log, out, hit_threshold=logged_hit_threshold(log))
     except NoAvoidError as e:
         raise SystemExit(f"tegrasp: error: {args.source}: {e}") from None
 

@@ -5,6 +5,8 @@ user's environment does not surface as an internal error or as lines of another 
   `PYTHONUTF8=0` so Python does not turn it on itself): pydrake reads its own files with the
   locale's encoding and fails to import under ASCII. The process runs itself again with
   `-X utf8` (PEP 540) before pydrake is imported; if it cannot, one line says what to set.
+- MPLBACKEND checked: matplotlib refuses to import under a backend name it does not know,
+  although the figures are drawn into files (Agg) whatever it names; one line says so.
 - A private matplotlib configuration folder when matplotlib's own (under $XDG_CONFIG_HOME or
   ~/.config, and its cache under $XDG_CACHE_HOME or ~/.cache) cannot be written, e.g. HOME=/proc:
   matplotlib would make a temporary one itself but says so in two lines of warnings first.
@@ -80,3 +82,18 @@ def private_matplotlib_config() -> None:
         return  # matplotlib says why, as it would have
     atexit.register(shutil.rmtree, folder, ignore_errors=True)
     os.environ["MPLCONFIGDIR"] = folder
+
+
+def check_matplotlib_backend() -> None:
+    """SystemExit with one line when MPLBACKEND names no backend matplotlib knows (module
+    docstring); matplotlib is imported here only when the variable is set."""
+    backend = os.environ.get("MPLBACKEND")
+    if backend is None:
+        return
+    try:
+        import matplotlib  # noqa: F401: it reads MPLBACKEND as it is imported
+    except ValueError:
+        shown = backend if len(backend) <= 40 else backend[:40] + "..."
+        raise SystemExit(f"tegrasp: error: MPLBACKEND={shown!r} is not a matplotlib backend; "
+                         "unset it (tegrasp draws its figures into files, with Agg) or give "
+                         "one, e.g. MPLBACKEND=agg") from None

@@ -223,8 +223,12 @@ def run(args) -> int:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
     print(summary_text(summary))
-    for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):
-        print(f"wrote {path}")
+    try:
+        for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):
+            print(f"wrote {path}")
+    except ValueError as error:  # no trial of the sweep left a record: no reports
+        print(f"tegrasp sweep: {error}", file=sys.stderr)
+        return 1
     return 1 if summary.errors or summary.unfinished else 0
 
 

@@ -5,6 +5,7 @@ import dataclasses
 import enum
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.ranges import shorten
 
 
 class Mode(enum.IntEnum):
@@ -105,7 +106,14 @@ class Transition:
 
     @staticmethod
     def from_dict(entry: dict) -> "Transition":
-        """The Transition of its JSON form (as_dict)."""
+        """The Transition of its JSON form (as_dict); ValueError naming what is wrong."""
+        if not isinstance(entry, dict):
+            raise ValueError(f"a transition is a mapping of {', '.join(_REQUIRED_KEYS)}, got "
+                             f"{type(entry).__name__} {shorten(repr(entry))}")
+        missing = [key for key in _REQUIRED_KEYS if key not in entry]
+        if missing:
+            raise ValueError(f"lacks the field '{missing[0]}' (a transition holds "
+                             f"{', '.join(_REQUIRED_KEYS)})")
         optional = {key: tuple(entry[key]) if isinstance(entry[key], list) else entry[key]
                     for key in _OPTIONAL_FIELDS if key in entry}
         return Transition(t=entry["t"], from_mode=Mode.from_label(entry["from"]),
@@ -113,5 +121,6 @@ class Transition:
                           trigger=Trigger(entry["trigger"]), reason=entry["reason"], **optional)
 
 
+_REQUIRED_KEYS = ("t", "from", "to", "trigger", "reason")
 _OPTIONAL_FIELDS = ("scores", "offset_m", "approach_offset_m", "grip_force_n", "direction",
                     "delta_sa_n")

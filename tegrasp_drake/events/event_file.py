@@ -15,7 +15,8 @@ import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.files import (DuplicateKeyError, InputTooLargeError, JsonValueError,
-                                     file_problem, load_json, one_line, read_bounded)
+                                     error_line, file_problem, load_json, one_line,
+                                     read_bounded)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -42,7 +43,7 @@ class MemorizedEventError(Exception):
     def __init__(self, path, problem: str, object_name: str | None = None):
         self.path = pathlib.Path(path)
         self.problem = one_line(problem)  # what is wrong, without the path and the remedy
-        super().__init__(one_line(f"{self.path}: {problem}. {remake_advice(object_name)}"))
+        super().__init__(error_line(f"{self.path}: {problem}. {remake_advice(object_name)}"))
 
 
 def remake_advice(object_name: str | None) -> str:

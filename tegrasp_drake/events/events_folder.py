@@ -9,6 +9,7 @@ from collections.abc import Iterable, Sequence
 
 from tegrasp_drake.rig.files import interruptions_deferred, replace_problem, staged_file
 from tegrasp_drake.rig.objects import OBJECT_NAME_PATTERN
+from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.events.event_file import (
     FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError, remake_advice,
     event_json_text, event_summary, event_to_json, read_index, read_memorized_event)
@@ -124,7 +125,8 @@ def _load_entry(events_dir: pathlib.Path, entry: dict) -> MemorizedEvent:
             raise MemorizedEventError(
                 events_dir / INDEX_FILE,
                 f"entry {entry['object']}/{entry['transition']} says {name} = "
-                f"{entry.get(name)!r} but {entry['file']} says {value!r}", entry["object"])
+                f"{shorten(repr(entry.get(name)))} but {entry['file']} says "
+                f"{shorten(repr(value))}", entry["object"])
     return event
 
 

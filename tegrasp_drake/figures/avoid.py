@@ -20,6 +20,14 @@ class NoAvoidError(ValueError):
     """The trial has no Hold -> Avoid transition to draw."""
 
 
+def logged_hit_threshold(log) -> float | None:
+    """The RA hit threshold [m/s^2] the logged trial's controller ran with, None for a
+    controller without an Avoid reaction (open loop): its log has no Avoid to draw."""
+    from tegrasp_drake.scenario.scenario import controller_in_force
+    avoid = getattr(controller_in_force(logged_scenario(log)), "avoid", None)
+    return None if avoid is None else avoid.hit_ra_mps2
+
+
 def _hit_text(log) -> str:
     hit = logged_scenario(log).disturbance
     if hit.hit_time_s < 0.0:

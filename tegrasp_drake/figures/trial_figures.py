@@ -3,13 +3,12 @@
 transition, Fig. 10 (avoid)."""
 
 from tegrasp_drake.control.grasp_modes import Mode
-from tegrasp_drake.figures.avoid import plot_avoid_reaction
+from tegrasp_drake.figures.avoid import logged_hit_threshold, plot_avoid_reaction
 from tegrasp_drake.figures.contact_ra import plot_contact_ra
 from tegrasp_drake.figures.figure_files import figure_path
 from tegrasp_drake.figures.signals import plot_trial_signals
 from tegrasp_drake.figures.states import plot_trial_states
-from tegrasp_drake.figures.trial_annotations import (logged_scenario, logged_transitions)
-from tegrasp_drake.scenario.scenario import controller_in_force
+from tegrasp_drake.figures.trial_annotations import logged_transitions
 
 
 # The figures' file stems (STEM.FORMAT in the run folder).
@@ -30,5 +29,5 @@ def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, st
     if any(t.to_mode == Mode.AVOID for t in logged_transitions(log)):
         figures["avoid_figure"] = plot_avoid_reaction(
             log, avoid,
-            hit_threshold=controller_in_force(logged_scenario(log)).avoid.hit_ra_mps2)
+            hit_threshold=logged_hit_threshold(log))
     return figures

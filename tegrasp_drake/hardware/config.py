@@ -20,7 +20,7 @@ from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          read_yaml_file, require)
+                                          read_yaml_file, require, require_fields)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
@@ -114,6 +114,11 @@ def lcm_url_problem(url: str) -> str | None:
             os.close(saved)
         captured.seek(0)
         said = captured.read().decode(errors="replace").strip()
+    invalid = [line for line in said.splitlines() if "invalid value" in line.lower()]
+    if not failed and invalid:  # LCM warns of an option it did not take, runs with its default
+        reason = invalid[0].removeprefix("Warning:").strip()
+        return (f"has a value LCM does not take ({reason}; LCM would use its default); "
+                "expected e.g. udpm://239.255.76.67:7667?ttl=0")
     if not failed:
         if said:
             print(said, file=sys.stderr)  # not ours to hide
@@ -150,7 +155,10 @@ def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
     """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
     data = read_yaml_file(filename, "the hardware config")
-    data = {} if data is None else data
+    # Not a request for the default devices (/dev/ttyUSB0, /dev/ttyACM0): name them.
+    require_fields(data, filename, "the hardware config", "give the devices' fields (arm, "
+                   "gripper, tactile, ...; `tegrasp emulate all --write-config FILE` writes "
+                   "one)")
     if not isinstance(data, dict):
         raise ConfigError(f"{filename}: the hardware config must be a mapping of "
                           f"HardwareStationConfig fields (arm, gripper, tactile, watchdog, "

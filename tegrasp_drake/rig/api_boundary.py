@@ -32,6 +32,8 @@ class Folder:
     def problem(self, path) -> str | None:
         """Why `path` is not such a folder, in words that follow it, or None."""
         from tegrasp_drake.rig.files import folder_problem
+        if not os.fspath(path).strip():  # not the current folder: as the CLI's --out
+            return "is empty; give a folder"
         path = pathlib.Path(path)
         try:
             there = path.exists()
@@ -88,6 +90,10 @@ def public_api(function):
                     raise TypeError(f"{name}: argument '{argument}' must be "
                                     f"{_describe_hint(hint)}, got {type(item).__name__} "
                                     f"{_short_repr(item)}")
+        for argument, value in bound.arguments.items():  # a config's fields, changed since?
+            if _mutable_dataclass(value):
+                from tegrasp_drake.rig.typed_yaml import check_instance
+                check_instance(value, f"{name}: argument '{argument}'")
         for argument, value in bound.arguments.items():  # every type is right: the values
             for constraint in _constraints(hints.get(argument))[1]:
                 _check_constraint(name, argument, value, constraint)
@@ -245,6 +251,9 @@ def public_dataclass(cls):
                 raise TypeError(f"{cls.__name__}: field '{name}' must be a collection "
                                 f"(not a single string), got {type(value).__name__} "
                                 f"{_short_repr(value)}; e.g. {name}=[{_short_repr(value)}]")
+        if type(self) is cls:
+            from tegrasp_drake.rig.typed_yaml import check_instance
+            check_instance(self, cls.__name__)  # nested configs, enums, arrays, items
 
     cls.__init__ = checked_init
     cls.__init__.__checked_arguments__ = True
@@ -282,7 +291,15 @@ def check_field_values(instance, source: str | None = None) -> None:
     cls = type(instance)
     _check_scalar_fields(instance, _scalar_fields(cls, typing.get_type_hints(cls)),
                          source or cls.__name__)
+    from tegrasp_drake.rig.typed_yaml import check_instance
+    check_instance(instance, source or cls.__name__)
     check_ranges(instance, source or cls.__name__)
+
+
+def _mutable_dataclass(value) -> bool:
+    """A dataclass instance whose fields may have been set since it was built and checked."""
+    return (dataclasses.is_dataclass(value) and not isinstance(value, type)
+            and not type(value).__dataclass_params__.frozen)
 
 
 def _scalar_fields(cls, hints: dict) -> dict:

@@ -387,6 +387,26 @@ def one_line(text: str) -> str:
         _ESCAPES.get(ch) or repr(ch)[1:-1] for ch in text)
 
 
+# A value pasted by mistake must not make an error hundreds of kB long: an error line is at
+# most MAX_ERROR_CHARS, its words longer than twice ECHO_CHARS cut to about ECHO_CHARS.
+ECHO_CHARS = 80
+MAX_ERROR_CHARS = 1000
+
+
+def error_line(text: str) -> str:
+    """`text` as an error's one line (one_line), bounded: every error the user reads."""
+    from tegrasp_drake.rig.ranges import shorten
+    message = one_line(text)
+    if len(message) <= MAX_ERROR_CHARS:
+        return message
+    message = " ".join(shorten(word, ECHO_CHARS) if len(word) > 2 * ECHO_CHARS else word
+                       for word in message.split(" "))
+    if len(message) <= MAX_ERROR_CHARS:
+        return message
+    half = MAX_ERROR_CHARS // 2
+    return f"{message[:half]} ... ({len(message) - 2 * half} characters cut) ... {message[-half:]}"
+
+
 class UserPathError(OSError):
     """A file or folder the user named cannot be used: str() is one line naming it and what to
     do; `strerror` stays the system's words."""

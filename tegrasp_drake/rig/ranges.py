@@ -58,6 +58,13 @@ HARDWARE_RUN_DURATION = Range(low=0.0, low_open=True, high=600.0, unit="s",
                               why="a grasp takes about 12 s; at most ten minutes on the devices")
 
 
+# When an emulated device fault is injected [s after the gripper's activation] (`tegrasp
+# emulate --inject-fault CODE@SECONDS`): within a hardware run, which lasts at most
+# HARDWARE_RUN_DURATION; a later fault would never be seen.
+FAULT_DELAY = Range(low=0.0, high=HARDWARE_RUN_DURATION.high, unit="s",
+                    why="after the gripper's activation, within a hardware run's ten minutes")
+
+
 # A seed [-] (a scenario's random_seed, a sweep's base_seed, MakeGraspStation's random_seed).
 SEED_RANGE = Range(low=0, high=2**32 - 1,
                    why="Drake's random generator takes a 32-bit seed; a larger one would repeat a "

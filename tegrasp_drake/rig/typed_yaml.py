@@ -8,19 +8,19 @@ dotted path; `load_typed` then builds the dataclass with `yaml_load_typed`."""
 
 import collections.abc
 import dataclasses
+import functools
 import math
 import pathlib
 import types
 import typing
 
 import yaml
-from pydrake.common.yaml import yaml_dump, yaml_load_typed
 
 from tegrasp_drake.rig.core_schema_yaml import compose, construct, yaml11_only_number
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.unset_fields import empty_meaning
-from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, one_line, read_bounded
+from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 
 
 class ConfigError(ValueError):
@@ -28,28 +28,12 @@ class ConfigError(ValueError):
     line break inside a value it quotes is shown as \\n)."""
 
     def __init__(self, message: str = ""):
-        super().__init__(_bounded_message(one_line(str(message))))
+        super().__init__(error_line(str(message)))
 
 
 class YamlSyntaxError(ConfigError):
     """Text that is not YAML (parse_yaml), told apart from YAML past the reader's limits by a
     caller that also takes free text."""
-
-
-# a value pasted by mistake must not make an error hundreds of kB long
-ECHO_CHARS = 80
-MAX_MESSAGE_CHARS = 1000
-
-
-def _bounded_message(message: str) -> str:
-    if len(message) <= MAX_MESSAGE_CHARS:
-        return message
-    message = " ".join(shorten(word, ECHO_CHARS) if len(word) > 2 * ECHO_CHARS else word
-                       for word in message.split(" "))
-    if len(message) <= MAX_MESSAGE_CHARS:
-        return message
-    half = MAX_MESSAGE_CHARS // 2
-    return f"{message[:half]} ... ({len(message) - 2 * half} characters cut) ... {message[-half:]}"
 
 
 def read_yaml_file(path: str | pathlib.Path, what: str):
@@ -73,6 +57,14 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
     except OSError as e:
         raise ConfigError(f"{path}: cannot read {what}: {e.strerror or e}") from None
     return parse_yaml(text, str(path)) if text else None
+
+
+def require_fields(data, path, what: str, advice: str) -> None:
+    """ConfigError unless a configuration file's parsed YAML holds a field: an empty or
+    comment-only file, `{}` or a lone tag (`!Scenario {}`) is a mistake, not a request for
+    every default. `what` names the file ("the sweep spec"), `advice` says what to write."""
+    if data is None or (isinstance(data, dict) and not set(data) - {"_tag"}):
+        raise ConfigError(f"{path}: {what} is empty (no fields); {advice}")
 
 
 # A configuration is a few kB; these bound what a mistaken or hostile file can cost.
@@ -110,7 +102,7 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                  root_key: str | None = None) -> None:
     """Refuses duplicate mapping keys, an alias expansion past MAX_YAML_NODES and an integer
     the bounded reader refuses (integer_text.py: Python would not convert it)."""
-    sizes = {}  # id(node) -> its size with every alias expanded
+    sizes = {}  # id(node) -> its size with every alias expanded; len(sizes): values written
 
     def where(node) -> str:
         mark = node.start_mark
@@ -154,6 +146,10 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                 total += size(key, path) + size(value, f"{path}.{name}" if path else name)
         elif isinstance(node, yaml.SequenceNode):
             total += sum(size(item, f"{path}[{k}]") for k, item in enumerate(node.value))
+        if total > MAX_YAML_NODES and len(sizes) > MAX_YAML_NODES:  # written, not aliased
+            raise ConfigError(f"{source}: holds more than {MAX_YAML_NODES} values (keys, "
+                              f"values and entries; {where(node)}); a configuration is "
+                              "smaller: split the file, or keep only the entries you use")
         if total > MAX_YAML_NODES:
             raise ConfigError(f"{source}: the YAML's aliases expand to more than "
                               f"{MAX_YAML_NODES} values ({where(node)}); write the values "
@@ -215,6 +211,7 @@ def load_typed(data: dict, schema, source: str):
     """An instance of the dataclass `schema` from YAML data (defaults for what is not
     set), after `check_fields`."""
     check_fields(data, schema, source)
+    from pydrake.common.yaml import yaml_dump, yaml_load_typed  # pydrake: loaded when building
     try:
         return yaml_load_typed(schema=schema, data=yaml_dump(data), defaults=schema())
     except (RuntimeError, ValueError, yaml.YAMLError) as e:
@@ -228,6 +225,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         _check_finite_numbers(data, source, where)
+        from pydrake.common.yaml import yaml_dump, yaml_load_typed
         try:
             yaml_load_typed(schema=schema, data=yaml_dump(data))
         except (RuntimeError, ValueError, yaml.YAMLError) as e:  # YAMLError: an odd _tag
@@ -254,6 +252,119 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         if required and field.name not in data:
             path = f"{where}.{field.name}" if where else field.name
             raise ConfigError(f"{source}: field '{path}' is missing")
+
+
+class ConfigTypeError(ConfigError, TypeError):
+    """A config instance's field holds a value not of its declared type (check_instance)."""
+
+
+def check_instance(config, source: str, where: str = "") -> None:
+    """Walks a dataclass instance (built in Python, or changed after loading) against its
+    type hints, as `check_fields` walks YAML data: ConfigTypeError names the first field
+    whose value is not of its type, e.g. a dict, None or text where a config dataclass
+    belongs; the scalars inside by check_fields's own rules. Ranges: ranges.check_ranges."""
+    hints = _type_hints(type(config))
+    for field in dataclasses.fields(config):
+        path = f"{where}.{field.name}" if where else field.name
+        value = getattr(config, field.name)
+        if field.name in hints and not (value is None and field.default is None):
+            _check_instance_value(value, hints[field.name], path, source)
+
+
+@functools.cache
+def _type_hints(cls) -> dict:
+    try:
+        return typing.get_type_hints(cls)
+    except Exception:  # noqa: BLE001: an annotation typing cannot resolve is not checked
+        return {field.name: field.type for field in dataclasses.fields(cls)
+                if not isinstance(field.type, str)}
+
+
+def _is_config_class(hint) -> bool:
+    return isinstance(hint, type) and (dataclasses.is_dataclass(hint)
+                                       or bool(getattr(hint, "__fields__", None)))
+
+
+def _plain(value):
+    """A NumPy scalar as the Python one it holds; other values unchanged."""
+    if type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0:
+        return value.item()
+    return value
+
+
+def _refuse_type(value, words: str, path: str, source: str):
+    raise ConfigTypeError(f"{source}: {_field(path)}must be {words}, got {_describe(value)}")
+
+
+def _check_instance_value(value, hint, path: str, source: str) -> None:
+    origin = typing.get_origin(hint)
+    if hint is typing.Any or hint is object or isinstance(hint, (str, typing.TypeVar)):
+        return
+    if origin is typing.Annotated:
+        _check_instance_value(value, typing.get_args(hint)[0], path, source)
+    elif origin in (typing.Union, types.UnionType):
+        members = [m for m in typing.get_args(hint) if m is not type(None)]
+        if value is None:
+            if len(members) < len(typing.get_args(hint)):
+                return  # an optional field's "not set"
+            _refuse_type(value, _type_words(hint), path, source)
+        for member in members:
+            if _is_config_class(member) and isinstance(value, member):
+                _check_instance_value(value, member, path, source)
+                return
+        if len(members) == 1 or not any(_is_config_class(m) for m in members):
+            for member in members:  # e.g. float | str: the first that takes it
+                try:
+                    _check_instance_value(value, member, path, source)
+                    return
+                except ConfigError:
+                    if member is members[-1]:
+                        raise
+        _refuse_type(value, _type_words(hint), path, source)
+    elif _is_config_class(hint):
+        if not isinstance(value, hint):
+            _refuse_type(value, f"{_type_words(hint)} (e.g. {hint.__name__}(...)), not its "
+                         "fields as a mapping or a name", path, source)
+        if dataclasses.is_dataclass(value):
+            check_instance(value, source, path)
+    elif origin in (list, tuple, collections.abc.Sequence):
+        if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
+            value = value.tolist()
+        if not isinstance(value, (list, tuple)):
+            _refuse_type(value, _type_words(hint), path, source)
+        arguments = [a for a in typing.get_args(hint) if a is not Ellipsis]
+        for k, item in enumerate(value):
+            if arguments:
+                element = arguments[k] if len(arguments) > 1 and k < len(arguments) else (
+                    arguments[0])
+                _check_instance_value(item, element, f"{path}[{k}]", source)
+    elif origin in (dict, collections.abc.Mapping):
+        if not isinstance(value, collections.abc.Mapping):
+            _refuse_type(value, "a mapping", path, source)
+        arguments = typing.get_args(hint)
+        for key, item in value.items() if len(arguments) == 2 else ():
+            _check_instance_value(item, arguments[1], f"{path}.{key}", source)
+    elif hint in _SCALAR_WORDS:
+        value = _plain(value)
+        if not _is_scalar(value, hint) and not (hint is float and isinstance(value, float)):
+            _check_value(value, hint, path, source)  # the YAML path's words for a scalar
+    elif isinstance(hint, type) and origin is None and not isinstance(value, hint):
+        _refuse_type(value, _type_words(hint), path, source)
+
+
+def _type_words(hint) -> str:
+    """The type `hint` in words (an error's "must be ...")."""
+    origin = typing.get_origin(hint)
+    if origin in (typing.Union, types.UnionType):
+        return " or ".join(_type_words(m) for m in typing.get_args(hint))
+    if hint is type(None):
+        return "None"
+    if hint in _SCALAR_WORDS:
+        return _SCALAR_WORDS[hint][0]
+    if origin in (list, tuple, collections.abc.Sequence):
+        return "a list"
+    name = getattr(hint, "__name__", str(hint))
+    return f"{'an' if name[:1] in 'AEIOU' else 'a'} {name}"
 
 
 # What a value of each scalar type must be, in an error message: alone, and in a list.

@@ -5,6 +5,7 @@ Its JSON form (`to_dict`) is what result.json, `tegrasp trial --json` and a swee
 import dataclasses
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
 
@@ -29,7 +30,7 @@ class TrialResult:
     # The physical event behind each event transition taken, and "hit" [s]
     # (trial.physical_event_times); None where it was not found.
     physical_events: dict[str, float | None] = dataclasses.field(default_factory=dict)
-    detection_latency_s: dict[str, float] = dataclasses.field(default_factory=dict)
+    detection_latency_s: dict[str, float | None] = dataclasses.field(default_factory=dict)
     false_triggers: int = 0
     lift_grip_fraction: float | None = None  # the weaker pad's grip at the first lift
     corrective_actions: list[str] = dataclasses.field(default_factory=list)
@@ -59,10 +60,16 @@ class TrialResult:
         """The TrialResult of its JSON form; unknown keys ignored, missing fields defaulted."""
         known = {field.name for field in dataclasses.fields(cls)} - {"log"}
         values = {key: value for key, value in data.items() if key in known}
-        values["transitions"] = tuple(map(Transition.from_dict, data.get("transitions", ())))
-        if "final_mode" in data:
-            values["final_mode"] = Mode.from_label(data["final_mode"])
-        return cls(**values)
+        try:  # a hand-edited JSON form: one line naming the field
+            transitions = data.get("transitions", ())
+            if not isinstance(transitions, list | tuple):
+                raise ValueError(f"'transitions' must be a list, got {shorten(repr(transitions))}")
+            values["transitions"] = tuple(map(Transition.from_dict, transitions))
+            if "final_mode" in data:
+                values["final_mode"] = Mode.from_label(data["final_mode"])
+            return cls(**values)
+        except (ValueError, TypeError) as e:
+            raise ValueError(f"not a trial result's JSON form: {shorten(str(e), 300)}") from None
 
     def entered(self, mode: Mode) -> bool:
         """Whether the trial ever entered `mode`."""

@@ -136,9 +136,9 @@ def meta_problem(meta: dict, phase: np.ndarray) -> str | None:
             if not isinstance(entry, dict) or not _is_time(entry.get("t")):
                 raise ValueError("needs a finite time 't'")
             Transition.from_dict(entry)
-        except KeyError as e:
-            return f"meta 'transitions[{k}]' lacks the field {e}"
         except (TypeError, ValueError) as e:
+            if str(e).startswith("lacks the field"):
+                return f"meta 'transitions[{k}]' {e}"
             return f"meta 'transitions[{k}]' is not a transition ({shorten(str(e))})"
     for key in ("mode_names", "phases"):
         names = meta.get(key)
@@ -186,15 +186,13 @@ def trial_arrays_problem(arrays: dict) -> str | None:
     return nonfinite_signals(arrays)
 
 
-# The measured signals of a trial log: what a plot draws and the myRIO emulator streams.
-SIGNAL_ARRAYS = ("taxels", "channels", "pad_acceleration")
-
-
 def nonfinite_signals(arrays: dict) -> str | None:
-    """What is wrong if any signal array present in `arrays` holds NaN or infinities (a
-    trial log's, or the part of one a reader loads), else None."""
-    bad = [name for name in SIGNAL_ARRAYS
-           if name in arrays and not np.all(np.isfinite(arrays[name]))]
+    """What is wrong if any logged array present in `arrays` (the signals, and the states a
+    figure or an outcome reads: object_state, arm_q, ...) holds NaN or infinities (a trial
+    log's, or the part of one a reader loads), else None."""
+    bad = [name for name in ARRAY_FIELDS if name in arrays and name != "phase"  # meta_problem's
+           and np.asarray(arrays[name]).dtype.kind in "fc"
+           and not np.all(np.isfinite(arrays[name]))]
     if bad:
-        return f"the channels {bad} hold NaN or infinite values"
+        return f"the arrays {bad} hold NaN or infinite values"
     return None

@@ -5,7 +5,8 @@ built from the checked data, since Drake's `yaml_load_typed` cannot build them."
 from collections.abc import Collection
 from dataclasses import dataclass
 
-from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
+from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
+                                          require_fields)
 from tegrasp_drake.sweep.spec import (BUILTIN_OBJECTS, CONTROLLER_NAMES, RENAMED_OBJECT_FIELDS,
                                       USER_OBJECT_FIELDS, RandomisationConfig, SweepSpec,
                                       is_number, product_grid, user_object, validate_spec)
@@ -26,11 +27,9 @@ def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_
     fields left out keep the paper's defaults. `grid` is a list of [dx_m, dy_m] or the product
     of normal_offsets_m and stroke_offsets_m. ConfigError names the file and the field."""
     fields = read_yaml_file(path, "the sweep spec")
-    if fields is None or fields == {}:
-        # An empty file (or `{}`) is a mistake, not a request for the paper's 243-trial experiment
-        # (which running without --spec gives).
-        raise ConfigError(f"{path}: the sweep spec is empty; give at least one field (e.g. "
-                          "objects: [box]), or leave out --spec for the paper's experiment")
+    # Not a request for the paper's 243-trial experiment (which running without --spec gives).
+    require_fields(fields, path, "the sweep spec", "give at least one field (e.g. objects: "
+                   "[box]), or leave out --spec for the paper's experiment")
     return sweep_spec_from_fields(fields, str(path),
                                   builtin_objects=builtin_objects, controllers=controllers)
 
