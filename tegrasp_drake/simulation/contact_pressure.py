@@ -43,7 +43,8 @@ def polygon_fan_triangles(face_data) -> np.ndarray:
 def cumulative_pressure_integrals(xy: np.ndarray, pressure: np.ndarray, x_edges: np.ndarray,
                                   y_edges: np.ndarray) -> np.ndarray:
     """F[t, i, j] = integral of triangle t's linear pressure over t and {x < x_edges[i],
-    y < y_edges[j]} [N for Pa and m]; xy: corners (T, 3, 2), pressure: at them (T, 3)."""
+    y < y_edges[j]} [N for Pa and m]; xy: corners (T, 3, 2), pressure: at them (T, 3);
+    x_edges shared (X,) or per triangle (T, X)."""
     origin = xy[:, :1]
     corner = xy - origin  # coordinates relative to each triangle's first corner
     e1, e2 = corner[:, 1], corner[:, 2]
@@ -64,7 +65,7 @@ def cumulative_pressure_integrals(xy: np.ndarray, pressure: np.ndarray, x_edges:
     c = (start[:, :, 1] - slope * start[:, :, 0])[:, :, None, None]
     slope = slope[:, :, None, None]
     curvature = (2.0 * fx * slope + fy * slope * slope) / 24.0  # g'' / 24 on the edge
-    a = (x_edges[None, :] - origin[:, :, 0])[:, None, :, None]
+    a = (np.atleast_2d(x_edges) - origin[:, :, 0])[:, None, :, None]
     b = (y_edges[None, :] - origin[:, :, 1])[:, None, None, :]
     # The sweep runs from x_P to x_Q, cut at x = a, split where the edge crosses y = b.
     x0 = np.minimum(start[:, :, 0, None, None], a)
@@ -104,6 +105,34 @@ def corner_differences(cumulative: np.ndarray) -> np.ndarray:
     return cells
 
 
+def cell_pressure_integrals(xy: np.ndarray, pressure: np.ndarray) -> np.ndarray:
+    """Each triangle's pressure integral over each taxel cell (T, column, row) [N], corners xy
+    (T, 3, 2) [m, pad frame] and pressure (T, 3) [Pa] as in cumulative_pressure_integrals.
+
+    A triangle within one column (most: the faces are finer than the cells) gives the same
+    cumulative integral at every column edge it does not reach (its corners' x ends each sweep)
+    and exactly zero at every edge below it (each sweep has zero width): its cells are the
+    row differences of its integrals at that column's upper edge alone, the same numbers as
+    the differences over all corners. The others take every corner."""
+    corner_x = xy[:, :, 0] - xy[:, :1, 0]  # as cumulative_pressure_integrals computes them
+    a = COLUMN_UPPER_EDGES[None, :] - xy[:, :1, 0]  # the column edges relative to corner 0
+    reaches = corner_x.max(axis=1)[:, None] <= a  # the edge is at or beyond every corner
+    below = corner_x.min(axis=1)[:, None] >= a  # the edge is at or below every corner
+    within = np.all(reaches | below, axis=1)
+    column = np.argmax(reaches, axis=1)  # the first edge it reaches (the last edge is open)
+    cells = np.zeros((len(xy), COLUMNS, ROWS))
+    one = np.flatnonzero(within)
+    if one.size:
+        edges = COLUMN_UPPER_EDGES[column[one]][:, None]
+        cells[one, column[one]] = corner_differences(cumulative_pressure_integrals(
+            xy[one], pressure[one], edges, ROW_UPPER_EDGES))[:, 0]
+    spread = np.flatnonzero(~within)
+    if spread.size:
+        cells[spread] = corner_differences(cumulative_pressure_integrals(
+            xy[spread], pressure[spread], COLUMN_UPPER_EDGES, ROW_UPPER_EDGES))
+    return cells
+
+
 def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
     """taxel_normal_forces of each surface in `surfaces`, in one pass over all triangles."""
     triangles = [np.asarray(t, dtype=np.intp).reshape(-1, 3) for _, _, t in surfaces]
@@ -111,9 +140,7 @@ def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
                          for (p_PV, _, _), t in zip(surfaces, triangles)])
     pressure = np.concatenate([np.asarray(p, dtype=float)[t]
                                for (_, p, _), t in zip(surfaces, triangles)])
-    cumulative = cumulative_pressure_integrals(xy, pressure, COLUMN_UPPER_EDGES,
-                                               ROW_UPPER_EDGES)
-    cells = corner_differences(cumulative)  # (T, col, row)
+    cells = cell_pressure_integrals(xy, pressure)  # (T, col, row)
     np.maximum(cells, 0.0, out=cells)
     forces, start = [], 0
     for t in triangles:

@@ -5,9 +5,11 @@ noise seeded by (seed, sample index) and quantisation."""
 
 import dataclasses
 import functools
+import itertools
 
 import numpy as np
 from pydrake.common.value import AbstractValue
+from pydrake.geometry import SurfaceTriangle
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import LeafSystem
@@ -65,19 +67,36 @@ def _fan_triangles(face_data: tuple) -> np.ndarray:
     return triangles
 
 
-def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
-    """(p_PV, pressure_V, triangles, applied normal force [N]) of one contact, in frame P."""
-    surface = info.contact_surface()
+def triangle_corners(mesh) -> np.ndarray:
+    """Vertex indices (T, 3) of a TriangleSurfaceMesh's triangles. pydrake binds no bulk
+    accessor: one call per index, mapped (no Python frame per call)."""
+    triangles = mesh.triangles()
+    count = len(triangles)
+    return np.column_stack([
+        np.fromiter(map(SurfaceTriangle.vertex, triangles, itertools.repeat(k, count)), np.intp,
+                    count) for k in range(3)])
+
+
+def surface_arrays(surface) -> tuple:
+    """(p_WV (V, 3) [m, world], pressure_V (V,) [Pa], triangles (T, 3)) of a ContactSurface,
+    either representation (a polygon mesh fan-triangulated)."""
     if surface.is_triangle():
         mesh, field = surface.tri_mesh_W(), surface.tri_e_MN()
-        triangles = np.array([[t.vertex(k) for k in range(3)] for t in mesh.triangles()])
+        triangles = triangle_corners(mesh)
+        count = mesh.num_vertices()
+        p_WV = np.concatenate(mesh.vertices()).reshape(count, 3)  # one call for all vertices
     else:
         mesh, field = surface.poly_mesh_W(), surface.poly_e_MN()
         triangles = _fan_triangles(tuple(mesh.face_data()))
-    # Drake binds no bulk accessor: one call per vertex (map avoids a Python frame each).
-    count = mesh.num_vertices()
-    p_WV = np.concatenate(list(map(mesh.vertex, range(count)))).reshape(count, 3)
+        count = mesh.num_vertices()  # no bulk vertex accessor: one call per vertex, mapped
+        p_WV = np.concatenate(list(map(mesh.vertex, range(count)))).reshape(count, 3)
     pressure = np.fromiter(map(field.EvaluateAtVertex, range(count)), float, count)
+    return p_WV, pressure, triangles
+
+
+def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
+    """(p_PV, pressure_V, triangles, applied normal force [N]) of one contact, in frame P."""
+    p_WV, pressure, triangles = surface_arrays(info.contact_surface())
     p_PV = X_PW.multiply(p_WV.T).T
     applied = abs(float(info.F_Ac_W().translational() @ z_W))
     return p_PV, pressure, triangles, applied
