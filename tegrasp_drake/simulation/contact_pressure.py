@@ -109,28 +109,28 @@ def cell_pressure_integrals(xy: np.ndarray, pressure: np.ndarray) -> np.ndarray:
     """Each triangle's pressure integral over each taxel cell (T, column, row) [N], corners xy
     (T, 3, 2) [m, pad frame] and pressure (T, 3) [Pa] as in cumulative_pressure_integrals.
 
-    A triangle within one column (most: the faces are finer than the cells) gives the same
-    cumulative integral at every column edge it does not reach (its corners' x ends each sweep)
-    and exactly zero at every edge below it (each sweep has zero width): its cells are the
-    row differences of its integrals at that column's upper edge alone, the same numbers as
-    the differences over all corners. The others take every corner."""
+    The cumulative integral at a column edge at or below all of a triangle's corners is zero
+    (every sweep has zero width), and at every edge at or beyond all of them it is the same
+    number (each sweep ends at its corners): the integrals are computed at the edges that
+    cross a triangle and at the first edge beyond it only (one edge for most triangles, the
+    faces being finer than the cells), the others filled in, then differenced at the cell
+    corners: the same numbers as computing all of them."""
     corner_x = xy[:, :, 0] - xy[:, :1, 0]  # as cumulative_pressure_integrals computes them
     a = COLUMN_UPPER_EDGES[None, :] - xy[:, :1, 0]  # the column edges relative to corner 0
-    reaches = corner_x.max(axis=1)[:, None] <= a  # the edge is at or beyond every corner
-    below = corner_x.min(axis=1)[:, None] >= a  # the edge is at or below every corner
-    within = np.all(reaches | below, axis=1)
-    column = np.argmax(reaches, axis=1)  # the first edge it reaches (the last edge is open)
-    cells = np.zeros((len(xy), COLUMNS, ROWS))
-    one = np.flatnonzero(within)
-    if one.size:
-        edges = COLUMN_UPPER_EDGES[column[one]][:, None]
-        cells[one, column[one]] = corner_differences(cumulative_pressure_integrals(
-            xy[one], pressure[one], edges, ROW_UPPER_EDGES))[:, 0]
-    spread = np.flatnonzero(~within)
-    if spread.size:
-        cells[spread] = corner_differences(cumulative_pressure_integrals(
-            xy[spread], pressure[spread], COLUMN_UPPER_EDGES, ROW_UPPER_EDGES))
-    return cells
+    beyond = corner_x.max(axis=1)[:, None] <= a
+    below = corner_x.min(axis=1)[:, None] >= a
+    first = np.argmax(beyond, axis=1)  # the first edge beyond (the last edge is open)
+    edge = np.arange(COLUMN_UPPER_EDGES.size)[None, :]
+    needed = ~below & (~beyond | (edge == first[:, None]))
+    triangle, column = np.nonzero(needed)
+    cumulative = np.zeros((len(xy), COLUMN_UPPER_EDGES.size, ROW_UPPER_EDGES.size))
+    cumulative[triangle, column] = cumulative_pressure_integrals(
+        xy[triangle], pressure[triangle], COLUMN_UPPER_EDGES[column][:, None],
+        ROW_UPPER_EDGES)[:, 0]
+    further = beyond & (edge > first[:, None])
+    cumulative = np.where(further[:, :, None],
+                          cumulative[np.arange(len(xy)), first][:, None, :], cumulative)
+    return corner_differences(cumulative)
 
 
 def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
