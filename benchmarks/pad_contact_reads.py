@@ -103,9 +103,11 @@ def taxel_forces(variant: str, surfaces) -> list[np.ndarray]:
 
 
 def pads_forces(variant: str, contacts, geometry_ids, pad_poses) -> list[np.ndarray]:
-    """tactile_pads.pads_forces of `variant`."""
-    per_pad = pads_surfaces(variant, contacts, geometry_ids, pad_poses)
-    raws = iter(taxel_forces(variant, [s[:3] for pad in per_pad for s in pad]))
+    """tactile_pads.pads_forces ("bulk") or its steps done the per-element way."""
+    if variant == "bulk":
+        return tactile_pads.pads_forces(contacts, geometry_ids, pad_poses)
+    per_pad = per_element_pads_surfaces(contacts, geometry_ids, pad_poses)
+    raws = iter(every_corner_taxel_forces([s[:3] for pad in per_pad for s in pad]))
     result = []
     for pad in per_pad:
         forces = np.zeros(TAXELS_PER_PAD)
