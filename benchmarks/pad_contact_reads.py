@@ -26,16 +26,14 @@ import numpy as np
 
 from benchmarks.arguments import benchmark_parser, parse_benchmark_arguments
 from tegrasp_drake.commands.scenario_args import scenario_from_arguments
-from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.runs.ideal_grasp import MakeIdealGraspDiagram
 from tegrasp_drake.scenario.grasp_diagram import MakeSimulator
 from tegrasp_drake.scenario.scenario import with_controller
 from tegrasp_drake.simulation import tactile_pads
-from tegrasp_drake.simulation.contact_pressure import (COLUMN_UPPER_EDGES, ROW_UPPER_EDGES,
-                                                       corner_differences,
-                                                       cumulative_pressure_integrals,
+from tegrasp_drake.simulation.contact_pressure import (cell_pressure_integrals,
+                                                       every_corner_cell_integrals,
                                                        surfaces_taxel_normal_forces)
-from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS
+from tegrasp_drake.simulation.tactile_pads import surface_arrays
 
 HOLD_S = 0.5  # into Hold: the grip has settled
 BATCH = 10  # calls per timing (process CPU time is read by a system call)
@@ -57,71 +55,35 @@ def per_element_surface_arrays(surface) -> tuple:
     return p_WV, pressure, triangles
 
 
-def every_corner_taxel_forces(surfaces) -> list[np.ndarray]:
-    """surfaces_taxel_normal_forces with every triangle cut at every cell corner."""
-    triangles = [np.asarray(t, dtype=np.intp).reshape(-1, 3) for _, _, t in surfaces]
-    xy = np.concatenate([np.asarray(p, dtype=float)[t][:, :, :2]
-                         for (p, _, _), t in zip(surfaces, triangles)])
-    pressure = np.concatenate([np.asarray(p, dtype=float)[t]
-                               for (_, p, _), t in zip(surfaces, triangles)])
-    cells = corner_differences(cumulative_pressure_integrals(xy, pressure, COLUMN_UPPER_EDGES,
-                                                             ROW_UPPER_EDGES))
-    np.maximum(cells, 0.0, out=cells)
-    forces, start = [], 0
-    for t in triangles:
-        forces.append(cells[start:start + len(t)].sum(axis=0).T.reshape(ROWS * COLUMNS))
-        start += len(t)
-    return forces
+def _reader(variant: str):
+    return surface_arrays if variant == "bulk" else per_element_surface_arrays
 
 
-def per_element_pads_surfaces(contacts, geometry_ids, pad_poses) -> list[list]:
-    """tactile_pads._pads_surfaces by per_element_surface_arrays."""
-    per_pad = [[] for _ in geometry_ids]
-    frames = [(X_WP.inverse(), X_WP.rotation().matrix()[:, 2].copy()) for X_WP in pad_poses()]
-    for i in range(contacts.num_hydroelastic_contacts()):
-        info = contacts.hydroelastic_contact_info(i)
-        ids = (info.contact_surface().id_M(), info.contact_surface().id_N())
-        for k, geometry_id in enumerate(geometry_ids):
-            if geometry_id in ids:
-                X_PW, z_W = frames[k]
-                p_WV, pressure, triangles = per_element_surface_arrays(info.contact_surface())
-                applied = abs(float(info.F_Ac_W().translational() @ z_W))
-                per_pad[k].append((X_PW.multiply(p_WV.T).T, pressure, triangles, applied))
-    return per_pad
+def _cells(variant: str):
+    return cell_pressure_integrals if variant == "bulk" else every_corner_cell_integrals
 
 
 def pads_surfaces(variant: str, contacts, geometry_ids, pad_poses) -> list[list]:
     """tactile_pads._pads_surfaces of `variant`."""
-    return (tactile_pads._pads_surfaces if variant == "bulk"
-            else per_element_pads_surfaces)(contacts, geometry_ids, pad_poses)
+    return tactile_pads._pads_surfaces(contacts, geometry_ids, pad_poses, _reader(variant))
 
 
 def taxel_forces(variant: str, surfaces) -> list[np.ndarray]:
     """The noise-free forces of `surfaces` [(p_PV, pressure_V, triangles)] by `variant`."""
-    return (surfaces_taxel_normal_forces if variant == "bulk"
-            else every_corner_taxel_forces)(surfaces)
+    return surfaces_taxel_normal_forces(surfaces, _cells(variant))
 
 
 def pads_forces(variant: str, contacts, geometry_ids, pad_poses) -> list[np.ndarray]:
-    """tactile_pads.pads_forces ("bulk") or its steps done the per-element way."""
-    if variant == "bulk":
-        return tactile_pads.pads_forces(contacts, geometry_ids, pad_poses)
-    per_pad = per_element_pads_surfaces(contacts, geometry_ids, pad_poses)
-    raws = iter(every_corner_taxel_forces([s[:3] for pad in per_pad for s in pad]))
-    result = []
-    for pad in per_pad:
-        forces = np.zeros(TAXELS_PER_PAD)
-        for (_, _, _, applied), raw in zip(pad, raws):
-            total = raw.sum()
-            if total > 0:
-                forces += raw * (applied / total)
-        result.append(forces)
-    return result
+    """tactile_pads.pads_forces of `variant`."""
+    return tactile_pads.pads_forces(contacts, geometry_ids, pad_poses,
+                                    read_surface=_reader(variant),
+                                    cell_integrals=_cells(variant))
 
 
 def held_contact(scenario):
     """(contact results, pad geometry ids, pad poses function, the surfaces' (faces,
-    vertices, representation)) of the scenario's open-loop grasp HOLD_S into Hold."""
+    vertices, representation), the simulator that owns the results) of the scenario's
+    open-loop grasp HOLD_S into Hold."""
     grasp = MakeIdealGraspDiagram(with_controller(scenario, "open_loop"))
     hold = next(s.t_start for s in grasp.controller.segments if s.phase == "hold") + HOLD_S
     simulator = MakeSimulator(grasp.diagram, scenario)
@@ -135,7 +97,6 @@ def held_contact(scenario):
                 for i in range(contacts.num_hydroelastic_contacts())]
     shapes = [(s.num_faces(), s.num_vertices(), "triangle" if s.is_triangle() else "polygon")
               for s in surfaces]
-    # Keep the simulator (it owns the contact results) alive with the results.
     return contacts, list(pads._geometry_ids), (lambda: poses), shapes, simulator
 
 

@@ -133,14 +133,23 @@ def cell_pressure_integrals(xy: np.ndarray, pressure: np.ndarray) -> np.ndarray:
     return corner_differences(cumulative)
 
 
-def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
-    """taxel_normal_forces of each surface in `surfaces`, in one pass over all triangles."""
+def every_corner_cell_integrals(xy: np.ndarray, pressure: np.ndarray) -> np.ndarray:
+    """cell_pressure_integrals by its definition: every triangle's cumulative integral at every
+    cell corner, differenced."""
+    return corner_differences(cumulative_pressure_integrals(xy, pressure, COLUMN_UPPER_EDGES,
+                                                            ROW_UPPER_EDGES))
+
+
+def surfaces_taxel_normal_forces(surfaces, cell_integrals=cell_pressure_integrals
+                                 ) -> list[np.ndarray]:
+    """taxel_normal_forces of each surface in `surfaces`, in one pass over all triangles;
+    cell_integrals: cell_pressure_integrals or every_corner_cell_integrals."""
     triangles = [np.asarray(t, dtype=np.intp).reshape(-1, 3) for _, _, t in surfaces]
     xy = np.concatenate([np.asarray(p_PV, dtype=float)[t][:, :, :2]
                          for (p_PV, _, _), t in zip(surfaces, triangles)])
     pressure = np.concatenate([np.asarray(p, dtype=float)[t]
                                for (_, p, _), t in zip(surfaces, triangles)])
-    cells = cell_pressure_integrals(xy, pressure)  # (T, col, row)
+    cells = cell_integrals(xy, pressure)  # (T, col, row)
     np.maximum(cells, 0.0, out=cells)
     forces, start = [], 0
     for t in triangles:

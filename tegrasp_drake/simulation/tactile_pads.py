@@ -17,7 +17,8 @@ from pydrake.systems.framework import LeafSystem
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig
-from tegrasp_drake.simulation.contact_pressure import (polygon_fan_triangles,
+from tegrasp_drake.simulation.contact_pressure import (cell_pressure_integrals,
+                                                       polygon_fan_triangles,
                                                        surfaces_taxel_normal_forces)
 from tegrasp_drake.rig.api_boundary import public_dataclass
 
@@ -94,15 +95,16 @@ def surface_arrays(surface) -> tuple:
     return p_WV, pressure, triangles
 
 
-def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
+def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray, read_surface):
     """(p_PV, pressure_V, triangles, applied normal force [N]) of one contact, in frame P."""
-    p_WV, pressure, triangles = surface_arrays(info.contact_surface())
+    p_WV, pressure, triangles = read_surface(info.contact_surface())
     p_PV = X_PW.multiply(p_WV.T).T
     applied = abs(float(info.F_Ac_W().translational() @ z_W))
     return p_PV, pressure, triangles, applied
 
 
-def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[list]:
+def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses,
+                   read_surface=surface_arrays) -> list[list]:
     """Per pad: [(p_PV [m, pad frame], pressure_V, triangles, applied normal force [N])]."""
     per_pad = [[] for _ in geometry_ids]
     frames = None
@@ -115,15 +117,20 @@ def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> 
                 if frames is None:
                     frames = [(X_WP.inverse(), X_WP.rotation().matrix()[:, 2].copy())
                               for X_WP in pad_poses()]
-                per_pad[k].append(_surface_in_frame(info, *frames[k]))
+                per_pad[k].append(_surface_in_frame(info, *frames[k], read_surface))
     return per_pad
 
 
-def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[np.ndarray]:
-    """Each pad's 12 noise-free taxel forces [N]: pressure integrals scaled to the solver's."""
-    per_pad = _pads_surfaces(contact_results, geometry_ids, pad_poses)
+def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses, *,
+                read_surface=surface_arrays,
+                cell_integrals=cell_pressure_integrals) -> list[np.ndarray]:
+    """Each pad's 12 noise-free taxel forces [N]: pressure integrals scaled to the solver's.
+    read_surface and cell_integrals: surface_arrays' and cell_pressure_integrals' signatures
+    (benchmarks and tests pass the plain ways of doing the same)."""
+    per_pad = _pads_surfaces(contact_results, geometry_ids, pad_poses, read_surface)
     surfaces = [surface for pad in per_pad for surface in pad]
-    raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces]) if surfaces else [])
+    raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces], cell_integrals)
+                if surfaces else [])
     result = []
     for pad in per_pad:
         forces = np.zeros(TAXELS_PER_PAD)
