@@ -4,8 +4,8 @@ A face's force on the pad is its pressure integrated over its projection on the 
 The pressure is linear over each face and the taxels form a grid, so each cell's share of
 each triangle has a closed form, exact however large the faces: the cumulative integral over
 {x < a, y < b} summed from the triangle's edges (Green's theorem), a cell's force by
-inclusion-exclusion at its corners. Points beyond the pad's edge count to the nearest edge
-taxel."""
+inclusion-exclusion at its corners; a triangle is cut only at the column edges that cross it
+(cell_pressure_integrals). Points beyond the pad's edge count to the nearest edge taxel."""
 
 import numpy as np
 
