@@ -49,15 +49,16 @@ def _add_block(plant):
 
 
 @functools.cache
-def _pressed_pad(block_first: bool = False):
+def _pressed_pad(block_first: bool = False, representation: str = "polygon"):
     """(plant, pads, contact results, body poses, X_WP) of the block pressed into the left
     pad. `block_first` registers the block's geometry before the gripper's, which makes the
     pad the contact surface's other geometry (N instead of M: F_Ac_W then acts on the
-    block)."""
+    block). representation: the contact surface's, "polygon" or "triangle"."""
     builder = DiagramBuilder()
     # Unsampled output ports: the contact results of the context's own configuration.
-    plant, scene_graph = AddMultibodyPlant(
-        MultibodyPlantConfig(time_step=1e-3, use_sampled_output_ports=False), builder)
+    plant, scene_graph = AddMultibodyPlant(MultibodyPlantConfig(
+        time_step=1e-3, use_sampled_output_ports=False,
+        contact_surface_representation=representation), builder)
     if block_first:
         _add_block(plant)
     (gripper,) = paths.make_parser(plant).AddModels(url=GRIPPER_URL)

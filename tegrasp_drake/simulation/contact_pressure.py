@@ -4,8 +4,8 @@ A face's force on the pad is its pressure integrated over its projection on the 
 The pressure is linear over each face and the taxels form a grid, so each cell's share of
 each triangle has a closed form, exact however large the faces: the cumulative integral over
 {x < a, y < b} summed from the triangle's edges (Green's theorem), a cell's force by
-inclusion-exclusion at its corners. Points beyond the pad's edge count to the nearest edge
-taxel."""
+inclusion-exclusion at its corners; a triangle is cut only at the column edges that cross it
+(cell_pressure_integrals). Points beyond the pad's edge count to the nearest edge taxel."""
 
 import numpy as np
 
@@ -43,7 +43,8 @@ def polygon_fan_triangles(face_data) -> np.ndarray:
 def cumulative_pressure_integrals(xy: np.ndarray, pressure: np.ndarray, x_edges: np.ndarray,
                                   y_edges: np.ndarray) -> np.ndarray:
     """F[t, i, j] = integral of triangle t's linear pressure over t and {x < x_edges[i],
-    y < y_edges[j]} [N for Pa and m]; xy: corners (T, 3, 2), pressure: at them (T, 3)."""
+    y < y_edges[j]} [N for Pa and m]; xy: corners (T, 3, 2), pressure: at them (T, 3);
+    x_edges shared (X,) or per triangle (T, X)."""
     origin = xy[:, :1]
     corner = xy - origin  # coordinates relative to each triangle's first corner
     e1, e2 = corner[:, 1], corner[:, 2]
@@ -64,7 +65,7 @@ def cumulative_pressure_integrals(xy: np.ndarray, pressure: np.ndarray, x_edges:
     c = (start[:, :, 1] - slope * start[:, :, 0])[:, :, None, None]
     slope = slope[:, :, None, None]
     curvature = (2.0 * fx * slope + fy * slope * slope) / 24.0  # g'' / 24 on the edge
-    a = (x_edges[None, :] - origin[:, :, 0])[:, None, :, None]
+    a = (np.atleast_2d(x_edges) - origin[:, :, 0])[:, None, :, None]
     b = (y_edges[None, :] - origin[:, :, 1])[:, None, None, :]
     # The sweep runs from x_P to x_Q, cut at x = a, split where the edge crosses y = b.
     x0 = np.minimum(start[:, :, 0, None, None], a)
@@ -104,16 +105,51 @@ def corner_differences(cumulative: np.ndarray) -> np.ndarray:
     return cells
 
 
-def surfaces_taxel_normal_forces(surfaces) -> list[np.ndarray]:
-    """taxel_normal_forces of each surface in `surfaces`, in one pass over all triangles."""
+def cell_pressure_integrals(xy: np.ndarray, pressure: np.ndarray) -> np.ndarray:
+    """Each triangle's pressure integral over each taxel cell (T, column, row) [N], corners xy
+    (T, 3, 2) [m, pad frame] and pressure (T, 3) [Pa] as in cumulative_pressure_integrals.
+
+    The cumulative integral at a column edge at or below all of a triangle's corners is zero
+    (every sweep has zero width), and at every edge at or beyond all of them it is the same
+    number (each sweep ends at its corners): the integrals are computed at the edges that
+    cross a triangle and at the first edge beyond it only (one edge for most triangles, the
+    faces being finer than the cells), the others filled in, then differenced at the cell
+    corners: the same numbers as computing all of them."""
+    corner_x = xy[:, :, 0] - xy[:, :1, 0]  # as cumulative_pressure_integrals computes them
+    a = COLUMN_UPPER_EDGES[None, :] - xy[:, :1, 0]  # the column edges relative to corner 0
+    beyond = corner_x.max(axis=1)[:, None] <= a
+    below = corner_x.min(axis=1)[:, None] >= a
+    first = np.argmax(beyond, axis=1)  # the first edge beyond (the last edge is open)
+    edge = np.arange(COLUMN_UPPER_EDGES.size)[None, :]
+    needed = ~below & (~beyond | (edge == first[:, None]))
+    triangle, column = np.nonzero(needed)
+    cumulative = np.zeros((len(xy), COLUMN_UPPER_EDGES.size, ROW_UPPER_EDGES.size))
+    cumulative[triangle, column] = cumulative_pressure_integrals(
+        xy[triangle], pressure[triangle], COLUMN_UPPER_EDGES[column][:, None],
+        ROW_UPPER_EDGES)[:, 0]
+    further = beyond & (edge > first[:, None])
+    cumulative = np.where(further[:, :, None],
+                          cumulative[np.arange(len(xy)), first][:, None, :], cumulative)
+    return corner_differences(cumulative)
+
+
+def every_corner_cell_integrals(xy: np.ndarray, pressure: np.ndarray) -> np.ndarray:
+    """cell_pressure_integrals by its definition: every triangle's cumulative integral at every
+    cell corner, differenced."""
+    return corner_differences(cumulative_pressure_integrals(xy, pressure, COLUMN_UPPER_EDGES,
+                                                            ROW_UPPER_EDGES))
+
+
+def surfaces_taxel_normal_forces(surfaces, cell_integrals=cell_pressure_integrals
+                                 ) -> list[np.ndarray]:
+    """taxel_normal_forces of each surface in `surfaces`, in one pass over all triangles;
+    cell_integrals: cell_pressure_integrals or every_corner_cell_integrals."""
     triangles = [np.asarray(t, dtype=np.intp).reshape(-1, 3) for _, _, t in surfaces]
     xy = np.concatenate([np.asarray(p_PV, dtype=float)[t][:, :, :2]
                          for (p_PV, _, _), t in zip(surfaces, triangles)])
     pressure = np.concatenate([np.asarray(p, dtype=float)[t]
                                for (_, p, _), t in zip(surfaces, triangles)])
-    cumulative = cumulative_pressure_integrals(xy, pressure, COLUMN_UPPER_EDGES,
-                                               ROW_UPPER_EDGES)
-    cells = corner_differences(cumulative)  # (T, col, row)
+    cells = cell_integrals(xy, pressure)  # (T, col, row)
     np.maximum(cells, 0.0, out=cells)
     forces, start = [], 0
     for t in triangles:

@@ -5,9 +5,11 @@ noise seeded by (seed, sample index) and quantisation."""
 
 import dataclasses
 import functools
+import itertools
 
 import numpy as np
 from pydrake.common.value import AbstractValue
+from pydrake.geometry import SurfaceTriangle
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import LeafSystem
@@ -15,7 +17,8 @@ from pydrake.systems.framework import LeafSystem
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig
-from tegrasp_drake.simulation.contact_pressure import (polygon_fan_triangles,
+from tegrasp_drake.simulation.contact_pressure import (cell_pressure_integrals,
+                                                       polygon_fan_triangles,
                                                        surfaces_taxel_normal_forces)
 from tegrasp_drake.rig.api_boundary import public_dataclass
 
@@ -65,25 +68,43 @@ def _fan_triangles(face_data: tuple) -> np.ndarray:
     return triangles
 
 
-def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray):
-    """(p_PV, pressure_V, triangles, applied normal force [N]) of one contact, in frame P."""
-    surface = info.contact_surface()
+def triangle_corners(mesh) -> np.ndarray:
+    """Vertex indices (T, 3) of a TriangleSurfaceMesh's triangles. pydrake binds no bulk
+    accessor: one call per index, mapped (no Python frame per call)."""
+    triangles = mesh.triangles()
+    count = len(triangles)
+    return np.column_stack([
+        np.fromiter(map(SurfaceTriangle.vertex, triangles, itertools.repeat(k, count)), np.intp,
+                    count) for k in range(3)])
+
+
+def surface_arrays(surface) -> tuple:
+    """(p_WV (V, 3) [m, world], pressure_V (V,) [Pa], triangles (T, 3)) of a ContactSurface,
+    either representation (a polygon mesh fan-triangulated)."""
     if surface.is_triangle():
         mesh, field = surface.tri_mesh_W(), surface.tri_e_MN()
-        triangles = np.array([[t.vertex(k) for k in range(3)] for t in mesh.triangles()])
+        triangles = triangle_corners(mesh)
+        count = mesh.num_vertices()
+        p_WV = np.concatenate(mesh.vertices()).reshape(count, 3)  # one call for all vertices
     else:
         mesh, field = surface.poly_mesh_W(), surface.poly_e_MN()
         triangles = _fan_triangles(tuple(mesh.face_data()))
-    # Drake binds no bulk accessor: one call per vertex (map avoids a Python frame each).
-    count = mesh.num_vertices()
-    p_WV = np.concatenate(list(map(mesh.vertex, range(count)))).reshape(count, 3)
+        count = mesh.num_vertices()  # no bulk vertex accessor: one call per vertex, mapped
+        p_WV = np.concatenate(list(map(mesh.vertex, range(count)))).reshape(count, 3)
     pressure = np.fromiter(map(field.EvaluateAtVertex, range(count)), float, count)
+    return p_WV, pressure, triangles
+
+
+def _surface_in_frame(info, X_PW: RigidTransform, z_W: np.ndarray, read_surface):
+    """(p_PV, pressure_V, triangles, applied normal force [N]) of one contact, in frame P."""
+    p_WV, pressure, triangles = read_surface(info.contact_surface())
     p_PV = X_PW.multiply(p_WV.T).T
     applied = abs(float(info.F_Ac_W().translational() @ z_W))
     return p_PV, pressure, triangles, applied
 
 
-def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[list]:
+def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses,
+                   read_surface=surface_arrays) -> list[list]:
     """Per pad: [(p_PV [m, pad frame], pressure_V, triangles, applied normal force [N])]."""
     per_pad = [[] for _ in geometry_ids]
     frames = None
@@ -96,15 +117,20 @@ def _pads_surfaces(contact_results: ContactResults, geometry_ids, pad_poses) -> 
                 if frames is None:
                     frames = [(X_WP.inverse(), X_WP.rotation().matrix()[:, 2].copy())
                               for X_WP in pad_poses()]
-                per_pad[k].append(_surface_in_frame(info, *frames[k]))
+                per_pad[k].append(_surface_in_frame(info, *frames[k], read_surface))
     return per_pad
 
 
-def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses) -> list[np.ndarray]:
-    """Each pad's 12 noise-free taxel forces [N]: pressure integrals scaled to the solver's."""
-    per_pad = _pads_surfaces(contact_results, geometry_ids, pad_poses)
+def pads_forces(contact_results: ContactResults, geometry_ids, pad_poses, *,
+                read_surface=surface_arrays,
+                cell_integrals=cell_pressure_integrals) -> list[np.ndarray]:
+    """Each pad's 12 noise-free taxel forces [N]: pressure integrals scaled to the solver's.
+    read_surface and cell_integrals: surface_arrays' and cell_pressure_integrals' signatures
+    (benchmarks and tests pass the plain ways of doing the same)."""
+    per_pad = _pads_surfaces(contact_results, geometry_ids, pad_poses, read_surface)
     surfaces = [surface for pad in per_pad for surface in pad]
-    raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces]) if surfaces else [])
+    raws = iter(surfaces_taxel_normal_forces([s[:3] for s in surfaces], cell_integrals)
+                if surfaces else [])
     result = []
     for pad in per_pad:
         forces = np.zeros(TAXELS_PER_PAD)

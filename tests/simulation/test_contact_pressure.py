@@ -105,3 +105,24 @@ def test_corner_differences_are_numpys_diffs_bit_for_bit():
     cumulative[0] = -0.0  # signed zeros keep their sign as in np.diff
     expected = np.diff(np.diff(cumulative, axis=1, prepend=0.0), axis=2, prepend=0.0)
     assert corner_differences(cumulative).tobytes() == expected.tobytes()
+
+
+def test_cells_from_the_edges_a_triangle_reaches_equal_those_from_every_cell_corner():
+    # Small faces (most within one column), faces across one or two column edges, faces
+    # beyond the pad, a face with a corner on a column edge and a flat one.
+    from tegrasp_drake.simulation.contact_pressure import (COLUMN_UPPER_EDGES,
+                                                        cell_pressure_integrals,
+                                                        every_corner_cell_integrals)
+    rng = np.random.default_rng(600)
+    centres = rng.uniform([-1.3 * W, -1.3 * L], [1.3 * W, 1.3 * L], size=(300, 1, 2))
+    sizes = np.repeat([0.001, 0.004, 0.012], 100)[:, None, None]
+    xy = centres + sizes * rng.uniform(-1.0, 1.0, size=(300, 3, 2))
+    xy[0, 0, 0] = xy[0, 1, 0] = COLUMN_UPPER_EDGES[0]  # on the edge, the third corner right
+    xy[0, 2, 0] = COLUMN_UPPER_EDGES[0] + 0.001
+    xy[1] = [[0.001, 0.002], [0.002, 0.004], [0.003, 0.006]]  # flat (collinear corners)
+    pressure = rng.uniform(0.0, 1e5, size=(300, 3))
+    every_corner = every_corner_cell_integrals(xy, pressure)
+    cells = cell_pressure_integrals(xy, pressure)
+    np.testing.assert_allclose(cells, every_corner, rtol=1e-12,
+                               atol=1e-12 * np.abs(every_corner).max())
+    assert np.count_nonzero(cells.reshape(300, -1).any(axis=1)) > 250  # not all zero
