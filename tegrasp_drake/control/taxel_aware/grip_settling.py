@@ -1,7 +1,8 @@
 """Guard grip_settling (Load): the Load-Lift event lifts only a settled grip, both pads
 above contact_force_n and the 2F-85 reporting its fingers stopped on the object while closing
-(gOBJ 2). Until then the event is held back, and with both pads on the paper's Load timeout
-still lifts (no_event_in_time.py). docs/controller.md, "Lift a settled grip"."""
+(gOBJ 2). Until then the event is held back; with both pads on, load_timeout_both_pads
+(no_event_in_time.py) still lifts at the Load timeout. docs/controller.md, "Lift a settled
+grip"."""
 
 from tegrasp_drake.control.rule_engine import Guard
 
