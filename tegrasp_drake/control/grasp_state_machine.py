@@ -247,9 +247,10 @@ class GraspStateMachine(LeafSystem):
         # only a status echoing the close request (gPR = rPR): a late one of the open reads
         # "at requested position" too
         at_request = int(status[ru.STATUS_OBJ]) == ru.ObjectStatus.AT_REQUESTED_POSITION
+        echoes_request = (status[ru.STATUS_PR]
+                          == gripper_command(*s.gripper)[ru.COMMAND_POSITION])
         closed_on_nothing = (
-            closing and self._gripper_settled(s, t) and not any(contact)
-            and status[ru.STATUS_PR] == gripper_command(*s.gripper)[ru.COMMAND_POSITION]
+            closing and self._gripper_settled(s, t) and not any(contact) and echoes_request
             and at_request)
         fault_code = int(status[ru.STATUS_FLT])
         device_fault = self._device_fault.Eval(context) if self._device_fault.HasValue(
@@ -262,6 +263,8 @@ class GraspStateMachine(LeafSystem):
                 taxel_forces=self._taxel_forces.Eval(context), sa_n=tuple(channels[:2]),
                 contact=contact, opening_m=self._opening(context),
                 at_requested_position=at_request,
+                stopped_on_object=echoes_request and int(status[ru.STATUS_OBJ])
+                == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING,
                 wrench=self._approach_wrench(s, context),
                 gripper_y_m=s.segment.position(t)[1]))
             s = dataclasses.replace(s, contact=memory)

@@ -29,11 +29,11 @@ def taxels(left_row=None, right_row=None, force=0.15):
 
 
 def reading(t=1.0, mode=Mode.REACH, stage=Stage.CLOSING, forces=taxels(), contact=(False, False),
-            opening_m=0.0719, wrench=None, **changes):
+            opening_m=0.0719, wrench=None, stopped_on_object=False, **changes):
     return ContactReading(t=t, mode=mode, stage=stage, lift_loads=0, taxel_forces=forces,
                           sa_n=(0.0, 0.0), contact=contact, opening_m=opening_m,
-                          at_requested_position=False, wrench=wrench, gripper_y_m=0.0,
-                          **changes)
+                          at_requested_position=False, stopped_on_object=stopped_on_object,
+                          wrench=wrench, gripper_y_m=0.0, **changes)
 
 
 def test_the_first_touch_on_one_distal_row_of_a_thin_rod_stops_the_close():
@@ -92,3 +92,16 @@ def test_the_memory_keeps_the_first_touch_into_load_and_the_faces_until_a_re_rea
     assert re_reach.first_touch_offset_m == 0.0
     assert re_reach.touched_faces == (FaceTouch("left", 0.01), *right)
     assert memory.after_transition(Mode.PLACE, Mode.RE_REACH, ()).touched_faces == ()
+
+
+@pytest.mark.parametrize("contact,stopped,settling", [
+    ((True, True), True, False),
+    ((True, False), True, True),  # one pad: the fingers cannot have stopped at the grip force
+    ((True, True), False, True),  # both pads, the fingers still closing
+    ((False, False), True, True),
+])
+def test_the_grip_settles_with_both_pads_on_and_the_fingers_stopped_on_the_object(
+        contact, stopped, settling):
+    _, estimate = ESTIMATOR.update(ContactMemory(), reading(
+        mode=Mode.LOAD, stage=Stage.NONE, contact=contact, stopped_on_object=stopped))
+    assert estimate.grip_settling is settling

@@ -157,6 +157,8 @@ GUARD_CASES = [
     ("tipping_guard", "off_centre", Mode.REACH,
      dict(contact=(True, True), shape=pads(3, 3), event_matched=True),
      dict(topples_if_released=True)),
+    ("grip_settling", "load_lift_event", Mode.LOAD,
+     dict(contact=(True, True), event_matched=True), dict(grip_settling=True)),
 ]
 
 

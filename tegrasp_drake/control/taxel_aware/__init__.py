@@ -14,7 +14,8 @@ the whole taxel array, over what one ContactEstimator senses.
   no_event_in_time.py    rules: both pads on, no event in time
   caged.py               rules and guard: an object caged behind the pads
   regrasp.py             rules: re-grasp an object held tilted
-  tipping_guard.py       guard: no re-centring after a push past the tipping limit"""
+  tipping_guard.py       guard: no re-centring after a push past the tipping limit
+  grip_settling.py       guard: the Load-Lift event lifts only a settled grip"""
 
 from tegrasp_drake.control.taxel_aware.estimator import (ContactEstimate, ContactEstimator,
                                                          ContactMemory, ContactReading,

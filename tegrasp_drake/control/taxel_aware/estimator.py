@@ -12,6 +12,7 @@ from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Mode, Stage
 from tegrasp_drake.control.taxel_aware.contact_geometry import (
     bracketed_object, caged_behind_pads, held_tilted, opposite_face, pushed_distance_m,
     release_topples, remembered_faces, touched_beyond_pads, touched_face, touched_faces)
+from tegrasp_drake.control.taxel_aware.grip_settling import grip_settled
 from tegrasp_drake.control.taxel_contact import GraspContact, grasp_contact
 
 
@@ -48,7 +49,9 @@ class ContactMemory:
 
 @dataclasses.dataclass(frozen=True)
 class ContactReading:
-    """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike sense."""
+    """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike sense;
+    stopped_on_object: the 2F-85 reports its fingers stopped on an object while closing (gOBJ 2)
+    for the close request in force."""
     t: float
     mode: Mode
     stage: object
@@ -58,6 +61,7 @@ class ContactReading:
     contact: tuple
     opening_m: float
     at_requested_position: bool
+    stopped_on_object: bool
     wrench: tuple | None
     gripper_y_m: float
 
@@ -74,7 +78,8 @@ class ContactReading:
 class ContactEstimate:
     """What the rules read [s, N, m; world], each field named for what contact_geometry.py
     computes. pad_travel_to_grasp_m: how much further along the approach the pads' centres lie
-    once closed (0 on the prismatic hand); bracket: (centre y, extent) or None."""
+    once closed (0 on the prismatic hand); bracket: (centre y, extent) or None; grip_settling:
+    the grip has not settled (grip_settling.grip_settled)."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -95,6 +100,7 @@ class ContactEstimate:
     bracket: tuple | None = None
     touched_now: tuple = ()
     tilted_s: float = 0.0
+    grip_settling: bool = False
 
     @property
     def bracketed_width_m(self) -> float:
@@ -162,7 +168,8 @@ class ContactEstimator:
             caged_behind_pads=caged, bracket=bracket,
             touched_now=(touched_faces(r.contact, r.gripper_y_m, r.opening_m)
                          if r.closing else ()),
-            tilted_s=t - tilted_since if tilted else 0.0)
+            tilted_s=t - tilted_since if tilted else 0.0,
+            grip_settling=not grip_settled(r.contact, r.stopped_on_object))
         return memory, estimate
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):

@@ -9,6 +9,7 @@ from tegrasp_drake.control.taxel_aware.bracketing import BRACKET_RECENTRE, BRACK
 from tegrasp_drake.control.taxel_aware.caged import (CAGED, LOAD_TIMEOUT_CAGED,
                                                      REACH_TIMEOUT_CAGED)
 from tegrasp_drake.control.taxel_aware.finger_strike import FINGER_STRIKE
+from tegrasp_drake.control.taxel_aware.grip_settling import GRIP_SETTLING
 from tegrasp_drake.control.taxel_aware.moves import centring_shift
 from tegrasp_drake.control.taxel_aware.no_event_in_time import (LOAD_TIMEOUT_BOTH_PADS,
                                                                 REACH_TIMEOUT_BOTH_PADS)
@@ -27,7 +28,7 @@ TAXEL_AWARE_TABLE = PAPER_TABLE.extended(
     rules=(FINGER_STRIKE, APPROACH_CONTACT, BEYOND_PADS, OFF_CENTRE, ONE_SIDED_AT_WIDTH,
            BRACKETED_AT_EXTENT, BRACKET_RECENTRE, REACH_TIMEOUT_BOTH_PADS, REACH_TIMEOUT_CAGED,
            LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED, REGRASP_AFTER_PLACE),
-    guards=(CAGED, TIPPING_GUARD), re_reach_move=CENTRING_RE_REACH)
+    guards=(CAGED, TIPPING_GUARD, GRIP_SETTLING), re_reach_move=CENTRING_RE_REACH)
 
 
 def rule_table() -> RuleTable:
