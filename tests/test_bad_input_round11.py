@@ -1,8 +1,16 @@
 """Bad inputs the eleventh review found, one test per rule: each stops with one line that
 names the input and what to do, a non-zero exit, and nothing lost."""
 
+import ast
+import pathlib
+import re
+
 import pytest
 
+import tegrasp_drake
+from tegrasp_drake.hardware.robotiq.modbus_client import (RobotiqActivationError,
+                                                          RobotiqModbusClient,
+                                                          RobotiqModbusConfig)
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tests.test_bad_input import assert_one_line_error, run_probe
 from tests.test_bad_input_round2 import _trial_log_with
@@ -33,3 +41,51 @@ def test_a_trial_log_metadata_field_of_the_wrong_form_is_refused_naming_it(
                                       tmp_path, monkeypatch, capfd)
     assert_one_line_error(code, text, "trial log 't.npz'", words)
     assert not (tmp_path / "x.png").exists()
+
+
+# Rule: every number a message shows is written by rig.number_text (or a format spec), so
+# none prints 3.997943786001997 where the others print 3.99794. Each message f-string of the
+# package (raised, printed, an error's text) is read, and a value with a unit in its name
+# (period_s, rate_hz, timeout, ...) or computed by arithmetic must not be formatted bare.
+_UNIT_NAME = re.compile(r"(_s|_hz|_m|_n|_mps2|_rad|_mm|_kg|timeout|time_step|period|rate)$")
+_MESSAGE_CALLS = ("print", "SystemExit", "warn")
+
+
+def _message_fstrings(tree):
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Raise) and node.exc is not None:
+            yield node.exc
+        elif isinstance(node, ast.Call):
+            name = getattr(node.func, "id", None) or getattr(node.func, "attr", "")
+            if name in _MESSAGE_CALLS or name.endswith("Error"):
+                yield node
+
+
+def _bare_float(value: ast.expr) -> bool:
+    """Whether `value` is a number that needs rounding: a name with a unit, or a division."""
+    if isinstance(value, ast.BinOp):
+        return (isinstance(value.op, ast.Div) or _bare_float(value.left)
+                or _bare_float(value.right))
+    name = getattr(value, "attr", None) or getattr(value, "id", "")
+    return bool(_UNIT_NAME.search(name))
+
+
+def test_every_number_a_message_shows_is_rounded_by_one_formatter():
+    package = pathlib.Path(tegrasp_drake.__file__).parent
+    bare = set()  # a raised error's call is walked twice
+    for path in sorted(package.rglob("*.py")):
+        source = path.read_text()
+        for message in _message_fstrings(ast.parse(source)):
+            for part in ast.walk(message):
+                if (isinstance(part, ast.FormattedValue) and part.format_spec is None
+                        and part.conversion == -1 and _bare_float(part.value)):
+                    bare.add(f"{path.relative_to(package)}:{part.lineno}: "
+                             f"{ast.get_source_segment(source, part.value)}")
+    assert not bare, sorted(bare)
+
+
+def test_a_gripper_that_does_not_activate_says_so_with_a_rounded_time():
+    client = RobotiqModbusClient(RobotiqModbusConfig(port="/dev/tegrasp-no-such-port"))
+    with pytest.raises(RobotiqActivationError) as refused:
+        client.wait_until_active(0.0123456789)  # never started: it waits out the timeout
+    assert "not active after 0.0123457 s" in str(refused.value), refused.value

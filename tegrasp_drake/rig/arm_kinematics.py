@@ -9,6 +9,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import FixedOffsetFrame
 from pydrake.solvers import Solve
 
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig import paths
 from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z
@@ -55,6 +56,6 @@ def solve_grasp_frame_ik(plant: MultibodyPlant, X_WG: RigidTransform, q_seed=IK_
     ik.prog().SetInitialGuess(q, q_seed)
     result = Solve(ik.prog())
     if not result.is_success():
-        raise RuntimeError(f"no arm configuration puts the grasp frame at {p} "
-                           f"({result.get_solution_result()})")
+        raise RuntimeError("no arm configuration puts the grasp frame at "
+                           f"{number_text(list(p))} m ({result.get_solution_result()})")
     return result.GetSolution(q)
