@@ -11,8 +11,11 @@ import tegrasp_drake
 from tegrasp_drake.hardware.robotiq.modbus_client import (RobotiqActivationError,
                                                           RobotiqModbusClient,
                                                           RobotiqModbusConfig)
+from tegrasp_drake.rig.ranges import field_range
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
+from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, validate_spec
 from tests.test_bad_input import assert_one_line_error, run_probe
+from tests.test_bad_input_round10 import _refused
 from tests.test_bad_input_round2 import _trial_log_with
 
 
@@ -89,3 +92,28 @@ def test_a_gripper_that_does_not_activate_says_so_with_a_rounded_time():
     with pytest.raises(RobotiqActivationError) as refused:
         client.wait_until_active(0.0123456789)  # never started: it waits out the timeout
     assert "not active after 0.0123457 s" in str(refused.value), refused.value
+
+
+# Rule: a field with a declared range is checked by that declaration alone: a sweep spec's
+# number below its range and one above it are refused in the same words (the Range's), not
+# by a hand-written check beside it with other words.
+@pytest.mark.parametrize("owner, field", [
+    ("spec", "attempts"), ("spec", "base_seed"),
+    ("randomisation", "placement_xy_bound_m"), ("randomisation", "placement_yaw_bound_deg"),
+    ("randomisation", "friction_scale_bound"), ("randomisation", "mass_scale_bound"),
+])
+def test_a_sweep_spec_field_is_refused_in_its_declared_range_words(owner, field):
+    owner_class = SweepSpec if owner == "spec" else RandomisationConfig
+    declared = field_range(owner_class, field)
+    ends = (declared.low - 1, None if declared.high is None else declared.high + 1)
+    for value in (end for end in ends if end is not None):
+        value = type(getattr(owner_class(), field))(value)
+        if owner == "spec":
+            spec = SweepSpec(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),),
+                             **{field: value})
+            where = field
+        else:
+            spec = SweepSpec(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),),
+                             randomisation=RandomisationConfig(**{field: value}))
+            where = f"randomisation.{field}"
+        _refused(lambda: validate_spec(spec), f"field '{where}' {declared.words(value)}")
