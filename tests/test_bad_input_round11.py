@@ -2,18 +2,25 @@
 names the input and what to do, a non-zero exit, and nothing lost."""
 
 import ast
+import errno
+import io
 import pathlib
 import re
+import sys
 
 import pytest
 
 import tegrasp_drake
+from tegrasp_drake.commands import output_streams
+from tegrasp_drake.commands.progress import SimulatedTimeBar
 from tegrasp_drake.hardware.robotiq.modbus_client import (RobotiqActivationError,
                                                           RobotiqModbusClient,
                                                           RobotiqModbusConfig)
 from tegrasp_drake.rig.ranges import field_range
+from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, validate_spec
+from tests.cheap_contact import CHEAP_CONTACT
 from tests.test_bad_input import assert_one_line_error, run_probe
 from tests.test_bad_input_round10 import _refused
 from tests.test_bad_input_round2 import _trial_log_with
@@ -117,3 +124,44 @@ def test_a_sweep_spec_field_is_refused_in_its_declared_range_words(owner, field)
                              randomisation=RandomisationConfig(**{field: value}))
             where = f"randomisation.{field}"
         _refused(lambda: validate_spec(spec), f"field '{where}' {declared.words(value)}")
+
+
+# Rule: the progress bar is decoration: a terminal that refuses it (hung up: EIO; closed)
+# while Drake's monitor draws it stops the bar, not the simulation; a refused write is
+# remembered for the command's end (output_streams), as every failed write is.
+class _RefusingTerminal(io.StringIO):
+    """A terminal that takes the first `accepted` writes, then refuses with `error`."""
+
+    def __init__(self, error: Exception, accepted: int = 0):
+        super().__init__()
+        self._error, self._accepted = error, accepted
+
+    def isatty(self):
+        return True
+
+    def write(self, text):
+        if self._accepted <= 0:
+            raise self._error
+        self._accepted -= 1
+        return super().write(text)
+
+
+@pytest.mark.parametrize("error, remembered", [
+    (OSError(errno.EIO, "Input/output error"), True),  # a terminal hung up
+    (OSError(errno.ENOSPC, "No space left on device"), True),
+    (ValueError("I/O operation on closed file."), False),
+    (BrokenPipeError(errno.EPIPE, "Broken pipe"), False),  # the command line ends quietly
+])
+@pytest.mark.parametrize("accepted", [0, 3])  # refused at the first draw, or mid-run
+def test_a_progress_bar_that_cannot_be_drawn_does_not_stop_the_simulation(
+        error, remembered, accepted, monkeypatch):
+    scenario = LoadScenario(name="box", overrides=list(CHEAP_CONTACT))
+    monkeypatch.setattr(sys, "stderr", _RefusingTerminal(error, accepted))
+    with output_streams.guarded_output():  # as the command line runs: the bar on its stderr
+        with SimulatedTimeBar("ideal grasp", enabled=True) as progress:
+            log, _ = run_ideal_grasp(scenario, duration=1.1, progress=progress)
+        failures = output_streams.unwritable_output()
+    assert log.t_ra[-1] > 1.09  # the whole 1.1 s simulated (5 draws of the bar)
+    assert (failures is not None) == remembered, failures
+    if remembered:
+        assert failures[0] == output_streams.STANDARD_ERROR
