@@ -165,3 +165,32 @@ def test_a_progress_bar_that_cannot_be_drawn_does_not_stop_the_simulation(
     assert (failures is not None) == remembered, failures
     if remembered:
         assert failures[0] == output_streams.STANDARD_ERROR
+
+
+# Rule: a choice of controller (`--controller`, LoadScenario(controller=...)) replaces the
+# scenario's controller tag and drops the other controllers' settings only after the section
+# as written is checked: its form (a mapping, a known tag) and each setting against the
+# controller that has it, type and range, as a load without the choice checks them.
+@pytest.mark.parametrize("text, overrides, words", [
+    ("default: {object: {name: box}, controller: memorized}\n", [],
+     "field 'controller' must be a mapping of fields, got str 'memorized'"),
+    ("default: {object: {name: box}, controller: !Bogus {}}\n", [],
+     "field 'controller': unknown tag !Bogus"),
+    ("default: {}\n", ["controller.matching.sa_threshold=abc"],
+     "field 'controller.matching.sa_threshold' must be a finite number"),
+    ("default: {}\n", ["controller.re_reach.max_re_reaches=-1"],
+     "field 'controller.re_reach.max_re_reaches' must be zero or positive"),
+    ("default: {}\n", ["controller.update_period_s=0.0"],
+     "field 'controller.update_period_s' must be positive"),
+])
+def test_a_choice_of_controller_checks_the_controller_section_as_written(
+        tmp_path, text, overrides, words):
+    path = tmp_path / "s.yaml"
+    path.write_text(text)
+    for controller in ("open_loop", "heuristic"):
+        _refused(lambda: LoadScenario(path, overrides=overrides, controller=controller),
+                 str(path), words)
+    ignored = []
+    LoadScenario(overrides=["controller.matching.sa_threshold=0.5"], controller="heuristic",
+                 on_ignored=ignored.extend)  # a good setting of another controller: dropped
+    assert ignored == ["matching.sa_threshold"]

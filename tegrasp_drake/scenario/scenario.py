@@ -27,8 +27,8 @@ from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.unset_fields import without_unset_fields
-from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          parse_yaml, read_yaml_file, require)
+from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_fields,
+                                          load_typed, parse_yaml, read_yaml_file, require)
 from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
                                                         TAXEL_TRANSDUCERS,
                                                         ad7147_frame_rate_hz,
@@ -375,6 +375,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
     refuse_moved_keys(data, source)
     if controller is not None:
+        check_controller_section_as_written(data, source)
         data.setdefault("controller", {})["name"] = controller
     try:
         ignored = select_controller_tag(data, drop_others=controller is not None)
@@ -393,6 +394,30 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     if ignored and on_ignored is not None:
         on_ignored(ignored)
     return scenario
+
+
+def check_controller_section_as_written(data: dict, source: str) -> None:
+    """ConfigError naming the field unless the YAML data's `controller` section is one a
+    load without a choice of controller accepts in its form (a mapping, a known tag) and each
+    of its settings is one its controller accepts (type and range): a choice of controller
+    replaces the tag and drops the others' settings, which must not hide a mistake."""
+    section = data.get("controller", {})
+    if not isinstance(section, dict) or "_tag" in section:
+        check_fields({"controller": section if not isinstance(section, dict)
+                      else {"_tag": section["_tag"]}}, Scenario, source)
+    by_owner: dict[type, dict] = {}
+    for key, value in section.items():
+        owner = next((cls for cls in CONTROLLER_CLASSES if key in _field_names(cls)), None)
+        if owner is not None:
+            by_owner.setdefault(owner, {})[key] = value
+    for owner, settings in by_owner.items():
+        checked = load_typed({"controller": {"_tag": f"!{owner.__name__}", **settings}},
+                             Scenario, source)
+        check_ranges(checked.controller, source, "controller")
+
+
+def _field_names(cls) -> set[str]:
+    return {field.name for field in dataclasses.fields(cls)}
 
 
 def rechecked(scenario: Scenario, source: str) -> Scenario:
