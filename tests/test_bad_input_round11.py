@@ -19,6 +19,7 @@ from tegrasp_drake.hardware.robotiq.modbus_client import (RobotiqActivationError
 from tegrasp_drake.rig.ranges import field_range
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
+from tegrasp_drake.simulation.station import ArmDriverConfig, initial_arm_positions
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, validate_spec
 from tests.cheap_contact import CHEAP_CONTACT
 from tests.test_bad_input import assert_one_line_error, run_probe
@@ -194,3 +195,15 @@ def test_a_choice_of_controller_checks_the_controller_section_as_written(
     LoadScenario(overrides=["controller.matching.sa_threshold=0.5"], controller="heuristic",
                  on_ignored=ignored.extend)  # a good setting of another controller: dropped
     assert ignored == ["matching.sa_threshold"]
+
+
+# Rule: a setting a solver decides (the arm's start, reached by inverse kinematics) is
+# checked with the others when the scenario is loaded: out of reach, it is refused naming
+# the field, before anything is built; a builder given one says the same.
+def test_a_start_the_arm_cannot_reach_is_refused_naming_the_field():
+    unreachable = "arm.initial_gripper_xyz=[0.69, 0.0, -0.5]"  # 0.5 m under the table
+    _refused(lambda: LoadScenario(overrides=[unreachable]), "field 'arm.initial_gripper_xyz'",
+             "must be a point the JACO2 reaches")
+    arm = ArmDriverConfig(initial_gripper_xyz=[0.69, 0.0, -0.5])
+    _refused(lambda: initial_arm_positions(arm), "field 'arm.initial_gripper_xyz'")
+    assert initial_arm_positions(ArmDriverConfig()).shape == (6,)

@@ -42,7 +42,7 @@ from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
 from tegrasp_drake.simulation.jaco_velocity_drive import drive_problem
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
-                                             SimulatedStationConfig)
+                                             SimulatedStationConfig, start_pose_problem)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.rig.api_boundary import (PathLike, public_api, public_dataclass,
                                          register_moved_fields)
@@ -327,6 +327,10 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario, source)
     problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
+    if problem:
+        field, words, value = problem
+        require(False, source, f"arm.{field}", words, value)
+    problem = start_pose_problem(scenario.arm)
     if problem:
         field, words, value = problem
         require(False, source, f"arm.{field}", words, value)
