@@ -11,6 +11,7 @@ import sys
 import pytest
 
 import tegrasp_drake
+import tegrasp_drake as T
 from tegrasp_drake.commands import output_streams
 from tegrasp_drake.commands.progress import SimulatedTimeBar
 from tegrasp_drake.hardware.robotiq.modbus_client import (RobotiqActivationError,
@@ -207,3 +208,41 @@ def test_a_start_the_arm_cannot_reach_is_refused_naming_the_field():
     arm = ArmDriverConfig(initial_gripper_xyz=[0.69, 0.0, -0.5])
     _refused(lambda: initial_arm_positions(arm), "field 'arm.initial_gripper_xyz'")
     assert initial_arm_positions(ArmDriverConfig()).shape == (6,)
+
+
+# Rule: a config class says what relates its fields (Scenario.check_relations: validate), and
+# the public API checks it on every argument of that class (rig/api_boundary.RELATIONS_CHECK),
+# so a scenario changed after loading is refused by any public function, not only builders.
+def _changed(field: str, value) -> T.Scenario:
+    scenario = LoadScenario(overrides=["random_seed=632"])
+    owner, name = field.split(".")
+    setattr(getattr(scenario, owner), name, value)
+    return scenario
+
+
+@pytest.mark.parametrize("field, value, words", [
+    ("object.size", [1.0], "must hold 3 positive sizes"),
+    ("gripper.model", "bogus", "must be one of linkage, prismatic"),
+])
+@pytest.mark.parametrize("function", ["grasp_plan", "scenario_to_yaml", "sample_rates_hz"])
+def test_a_public_function_refuses_a_scenario_changed_out_of_its_relations(
+        function, field, value, words):
+    _refused(lambda: getattr(T, function)(_changed(field, value)), f"{function}:",
+             f"field '{field}'", words)
+
+
+def test_every_public_function_that_takes_a_scenario_checks_its_arguments():
+    import inspect
+    import typing
+    takes_scenario = []
+    for name in T.__all__:
+        function = getattr(T, name)
+        if not inspect.isfunction(function):
+            continue
+        hints = typing.get_type_hints(getattr(function, "__wrapped__", function))
+        if any(T.Scenario in (hint, *typing.get_args(hint)) for hint in hints.values()):
+            takes_scenario.append(name)
+            assert getattr(function, "__checked_arguments__", False), name
+    assert {"grasp_plan", "MakeGraspDiagram", "run_trial"} <= set(takes_scenario)
+    assert hasattr(T.Scenario, "check_relations")
+

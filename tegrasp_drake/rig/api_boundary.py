@@ -4,6 +4,7 @@ of collections, Callable; text is never a collection), then the `typing.Annotate
 constraints declared beside them: a Range or Choice (rig/ranges.py), a Folder."""
 
 import collections.abc
+import contextlib
 import dataclasses
 import difflib
 import functools
@@ -12,6 +13,7 @@ import math
 import os
 import pathlib
 import re
+import threading
 import types
 import typing
 
@@ -57,6 +59,32 @@ OUTPUT_FOLDER = Folder(exists=False, writable=True)   # written to, made if need
 UPDATED_FOLDER = Folder(exists=True, writable=True)   # read from and written to
 
 
+# A config class's method (source) -> None that raises ConfigError naming the field unless
+# its fields relate as a loaded one's must (an object's sizes for its shape, the arm's start
+# in reach: what a field's type and range cannot say); public_api calls it on each argument
+# of that class, so a config changed after loading is refused before a function uses it.
+RELATIONS_CHECK = "check_relations"
+
+
+class _RelationsCheck(threading.local):
+    active = False  # a relations check runs in this thread
+
+
+_checking_relations = _RelationsCheck()
+
+
+@contextlib.contextmanager
+def relations_checked():
+    """The block checks a config's relations (a validate): the public functions it calls
+    do not check the same config's relations again (which would recurse)."""
+    outer = _checking_relations.active
+    _checking_relations.active = True
+    try:
+        yield
+    finally:
+        _checking_relations.active = outer
+
+
 def public_api(function):
     """Wraps `function` so that each call checks its arguments (module docstring)."""
     signature = inspect.signature(function)
@@ -94,6 +122,10 @@ def public_api(function):
             if _mutable_dataclass(value):
                 from tegrasp_drake.rig.typed_yaml import check_instance
                 check_instance(value, f"{name}: argument '{argument}'")
+                relations = getattr(value, RELATIONS_CHECK, None)  # what relates its fields
+                if relations is not None and not _checking_relations.active:
+                    with relations_checked():  # its own public calls: not again
+                        relations(f"{name}: {argument}")  # as the builders' rechecked
         for argument, value in bound.arguments.items():  # every type is right: the values
             for constraint in _constraints(hints.get(argument))[1]:
                 _check_constraint(name, argument, value, constraint)

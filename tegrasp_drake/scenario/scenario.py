@@ -45,7 +45,7 @@ from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
                                              SimulatedStationConfig, start_pose_problem)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.rig.api_boundary import (PathLike, public_api, public_dataclass,
-                                         register_moved_fields)
+                                            register_moved_fields, relations_checked)
 from tegrasp_drake.scenario.moved_keys import (MOVED_KEYS, migrate_stored_scenario,
                                                 refuse_moved_keys)
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
@@ -92,6 +92,11 @@ class Scenario:
     controller: ControllerConfig = dataclasses.field(default_factory=CONTROLLER_CLASSES[0])
     # Simulated (default) or real devices, selected by the YAML tag (hardware/config.py).
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
+
+    def check_relations(self, source: str) -> None:
+        """ConfigError naming the field unless the fields relate as LoadScenario checks them
+        (validate; a long grasp script accepted): public functions call it on a scenario."""
+        validate(self, source, allow_long=True, loaded=True)
 
 
 register_moved_fields(Scenario, {old: new for old, new in MOVED_KEYS.items()
@@ -283,6 +288,12 @@ def validate(scenario: Scenario, source: str = "scenario", *,
              allow_long: bool = False, loaded: bool = False) -> Scenario:
     """Checks what the schema cannot (each number's declared range, then what relates
     fields); returns the scenario with its object resolved (loaded: see resolve_object)."""
+    with relations_checked():  # the public functions it calls take the scenario as it is
+        return _validated(scenario, source, allow_long=allow_long, loaded=loaded)
+
+
+def _validated(scenario: Scenario, source: str, *, allow_long: bool,
+               loaded: bool) -> Scenario:
     try:  # every check below reads the controller's kind
         entry = controller_entry(scenario.controller, f"{source}: field 'controller'")
     except UnknownControllerError as e:
