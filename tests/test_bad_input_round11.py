@@ -246,3 +246,21 @@ def test_every_public_function_that_takes_a_scenario_checks_its_arguments():
     assert {"grasp_plan", "MakeGraspDiagram", "run_trial"} <= set(takes_scenario)
     assert hasattr(T.Scenario, "check_relations")
 
+
+# Rule: every configuration file the package reads is refused without a field (empty,
+# comments only, `{}`, null), as the sweep spec and the hardware config already were: the
+# sensitivity and transfer specs too, which otherwise started the whole study.
+@pytest.mark.parametrize("text", ["", "# my study\n", "{}\n", "~\n"])
+@pytest.mark.parametrize("loader, what", [
+    ("tegrasp_drake.sensitivity.study:LoadSensitivitySpec", "the sensitivity spec"),
+    ("tegrasp_drake.transfer.matrix:LoadTransferSpec", "the transfer spec"),
+    ("tegrasp_drake.sweep.spec_file:LoadSweepSpec", "the sweep spec"),
+    ("tegrasp_drake.hardware.config:LoadHardwareConfig", "the hardware config"),
+])
+def test_a_configuration_file_without_a_field_is_refused(tmp_path, text, loader, what):
+    import importlib
+    module, name = loader.split(":")
+    path = tmp_path / "config.yaml"
+    path.write_text(text)
+    _refused(lambda: getattr(importlib.import_module(module), name)(path), str(path),
+             f"{what} is empty (no fields)")

@@ -12,7 +12,8 @@ from collections.abc import Mapping
 from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
+from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
+                                          require_fields)
 
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
@@ -78,7 +79,9 @@ def LoadTransferSpec(path) -> TransferSpec:
 
     ConfigError names the file and the field of anything that cannot run."""
     source = str(path)
-    data = read_yaml_file(path, "the transfer spec") or {}
+    data = read_yaml_file(path, "the transfer spec")
+    require_fields(data, source, "the transfer spec", "give its worlds and cells (e.g. "
+                   "worlds: {a: {scenario: memorizing_world}}, cells: [[a, a]])")
     if not isinstance(data, dict):
         raise ConfigError(f"{source}: must be a mapping with worlds, cells and sweep")
     unknown = set(data) - {"worlds", "cells", "sweep"}
