@@ -264,3 +264,20 @@ def test_a_configuration_file_without_a_field_is_refused(tmp_path, text, loader,
     path.write_text(text)
     _refused(lambda: getattr(importlib.import_module(module), name)(path), str(path),
              f"{what} is empty (no fields)")
+
+
+# Rule: a quoted number is text in every section, Drake's config structs too (whose own
+# loader would read '0.5' as 0.5): a numeric or true/false field of SimulatorConfig or
+# MultibodyPlantConfig refuses text as a field of ours does.
+@pytest.mark.parametrize("assignment, words", [
+    ("simulator_config.accuracy='0.5'", "must be a finite number, got str '0.5'"),
+    ("simulator_config.accuracy=!!str 0.5", "must be a finite number, got str '0.5'"),
+    ("simulator_config.max_step_size='0.01'", "must be a finite number"),
+    ("simulator_config.target_realtime_rate='1'", "must be a finite number"),
+    ("plant_config.sap_near_rigid_threshold='1.0'", "must be a finite number"),
+    ("simulator_config.publish_every_time_step='true'", "must be true or false"),
+])
+def test_a_quoted_number_is_text_in_drakes_config_sections_too(assignment, words):
+    field = assignment.split("=")[0]
+    _refused(lambda: LoadScenario(overrides=[assignment]), f"field '{field}'", words)
+    LoadScenario(overrides=[assignment.replace("'", "").replace("!!str ", "")])

@@ -225,6 +225,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         _check_finite_numbers(data, source, where)
+        _check_drake_scalars(data, schema, source, where)
         from pydrake.common.yaml import yaml_dump, yaml_load_typed
         try:
             yaml_load_typed(schema=schema, data=yaml_dump(data))
@@ -392,6 +393,22 @@ def _check_finite_numbers(data, source: str, where: str) -> None:
         path = f"{where}[{key}]" if isinstance(data, list) else (
             f"{where}.{key}" if where else str(key))
         _check_finite_numbers(value, source, path)
+
+
+def _check_drake_scalars(data, schema, source: str, where: str) -> None:
+    """Names the first field of a Drake config class's YAML data whose default is a number
+    or true/false and whose value is not one of that type: Drake's loader reads text such as
+    '0.5' into a number, where a field of ours refuses it (a quoted number is text)."""
+    if not isinstance(data, dict):
+        return
+    defaults = schema()
+    for key, value in data.items():
+        default = getattr(defaults, str(key), None)
+        hint = next((t for t in (bool, int, float) if type(default) is t), None)
+        if hint is not None and not _is_scalar(value, hint):
+            path = f"{where}.{key}" if where else str(key)
+            raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
+                              f"{_describe(value)}{_number_as_text_hint(value, hint)}")
 
 
 def require(condition: bool, source: str, path: str, words: str, value) -> None:
