@@ -296,3 +296,14 @@ def test_an_empty_value_of_a_field_with_a_filled_default_is_refused(tmp_path, te
     path = tmp_path / "hardware.yaml"
     path.write_text(text)
     _refused(lambda: T.LoadHardwareConfig(path), str(path), f"field '{field}' is empty")
+
+
+# Rule: an object's name given to a public function names a folder, as a scenario's
+# object.name does: record_events declares OBJECT_NAME on its argument, checked at the call,
+# so '' or '../x' is refused before an ideal grasp is simulated (load_memorized_events says
+# so in its own words, with what to record instead).
+@pytest.mark.parametrize("name", ["", "../x", "a b"])
+def test_an_object_name_argument_is_refused_unless_it_names_a_folder(tmp_path, name):
+    scenario = LoadScenario(overrides=["random_seed=633"])
+    with pytest.raises(ValueError, match="argument 'object_name' must be letters, digits"):
+        T.record_events(name, scenario)  # at once: no ideal grasp simulated

@@ -26,6 +26,14 @@ _ITEM_CHECKED = (list, tuple, collections.abc.Sequence, collections.abc.Collecti
 
 
 @dataclasses.dataclass(frozen=True)
+class TextPattern:
+    """A text argument that must match `pattern` (a compiled regular expression): `words`
+    say what it must be, following "argument 'x'"."""
+    pattern: re.Pattern
+    words: str
+
+
+@dataclasses.dataclass(frozen=True)
 class Folder:
     """A folder argument: `exists`, already there; `writable`, this user can write in or make."""
     exists: bool = True
@@ -141,7 +149,7 @@ def _constraints(hint) -> tuple:
         return hint, ()
     from tegrasp_drake.rig.ranges import Choice, Range
     return hint.__origin__, tuple(m for m in hint.__metadata__
-                                  if isinstance(m, (Range, Choice, Folder)))
+                                  if isinstance(m, (Range, Choice, Folder, TextPattern)))
 
 
 def check_argument(function: str, name: str, value, constraint) -> None:
@@ -162,6 +170,9 @@ def _check_constraint(function: str, name: str, value, constraint) -> None:
         if problem:
             from tegrasp_drake.rig.files import UserPathError
             raise UserPathError(f"{where}: {os.fspath(value)!r} {problem}")
+    elif isinstance(constraint, TextPattern):
+        if not isinstance(value, str) or not constraint.pattern.match(value):
+            raise ValueError(f"{where} {constraint.words}, got {_short_repr(value)}")
     elif isinstance(constraint, Choice):
         if value not in constraint.names:
             raise ValueError(f"{where} {constraint.words()}, got {_short_repr(value)}")

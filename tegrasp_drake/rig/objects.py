@@ -9,7 +9,7 @@ import dataclasses
 import math
 import re
 
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import TextPattern, public_dataclass
 from tegrasp_drake.rig import materials
 from tegrasp_drake.robotiq.units import STROKE_M
 from tegrasp_drake.rig.ranges import bounded
@@ -31,6 +31,9 @@ MIN_SIZE_M = 0.005
 # lighter object's lift is not felt. Near zero Drake's mass matrix is not positive-definite.
 MIN_MASS_KG = 0.01
 OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")  # it names a folder
+# An object's name as a public function's argument (Annotated[str, OBJECT_NAME]).
+OBJECT_NAME = TextPattern(OBJECT_NAME_PATTERN, "must be letters, digits, '_' or '-' (not "
+                          "first): it names the folder of the object's events")
 
 
 @public_dataclass
