@@ -307,3 +307,16 @@ def test_an_object_name_argument_is_refused_unless_it_names_a_folder(tmp_path, n
     scenario = LoadScenario(overrides=["random_seed=633"])
     with pytest.raises(ValueError, match="argument 'object_name' must be letters, digits"):
         T.record_events(name, scenario)  # at once: no ideal grasp simulated
+
+
+# Rule: the arguments a command binds to a public function for later calls (a sweep's trial
+# function, called in its workers) are checked when bound (api_boundary.bound_arguments), so
+# a missing --events folder is one line before any trial, not an error record per trial.
+def test_a_sweep_with_a_missing_events_folder_stops_before_any_trial(tmp_path, monkeypatch,
+                                                                     capfd):
+    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--base-seed", "640",
+            "--attempts", "1", "--workers", "1", "--out", "sw", "--events", "missing",
+            "--no-progress"]
+    _, _, code, text = run_probe(None, argv, tmp_path, monkeypatch, capfd)
+    assert_one_line_error(code, text, "'missing' does not exist; give an existing folder")
+    assert not (tmp_path / "sw" / "trials").exists()

@@ -109,38 +109,65 @@ def public_api(function):
             bound = signature.bind(*args, **kwargs)
         except TypeError as e:
             raise TypeError(f"{name}: {e}") from None
-        for argument, value in bound.arguments.items():
-            hint = hints.get(argument)
-            if hint is None:
-                continue
-            hint, _ = _constraints(hint)
-            parameter = signature.parameters[argument]
-            if parameter.kind is parameter.VAR_POSITIONAL:
-                values = value
-            elif parameter.kind is parameter.VAR_KEYWORD:
-                values = value.values()
-            else:
-                values = (value,)
-            for item in values:
-                if not _matches(item, hint):
-                    raise TypeError(f"{name}: argument '{argument}' must be "
-                                    f"{_describe_hint(hint)}, got {type(item).__name__} "
-                                    f"{_short_repr(item)}")
-        for argument, value in bound.arguments.items():  # a config's fields, changed since?
-            if _mutable_dataclass(value):
-                from tegrasp_drake.rig.typed_yaml import check_instance
-                check_instance(value, f"{name}: argument '{argument}'")
-                relations = getattr(value, RELATIONS_CHECK, None)  # what relates its fields
-                if relations is not None and not _checking_relations.active:
-                    with relations_checked():  # its own public calls: not again
-                        relations(f"{name}: {argument}")  # as the builders' rechecked
-        for argument, value in bound.arguments.items():  # every type is right: the values
-            for constraint in _constraints(hints.get(argument))[1]:
-                _check_constraint(name, argument, value, constraint)
+        _check_bound(name, signature, hints, bound)
         return function(*args, **kwargs)
 
+    def bind_now(**kwargs):
+        """functools.partial(function, **kwargs) with those arguments checked now, not at
+        each later call (a sweep's trial function, called in its workers)."""
+        nonlocal hints
+        if hints is None:
+            hints = typing.get_type_hints(function, include_extras=True)
+        try:
+            bound = signature.bind_partial(**kwargs)
+        except TypeError as e:
+            raise TypeError(f"{name}: {e}") from None
+        _check_bound(name, signature, hints, bound)
+        return functools.partial(checked, **kwargs)
+
+    checked.bind_now = bind_now
     checked.__checked_arguments__ = True
     return checked
+
+
+def _check_bound(name: str, signature, hints: dict, bound) -> None:
+    """Checks the arguments in `bound` (types, configs' fields and relations, constraints),
+    naming function `name` and the argument."""
+    for argument, value in bound.arguments.items():
+        hint = hints.get(argument)
+        if hint is None:
+            continue
+        hint, _ = _constraints(hint)
+        parameter = signature.parameters[argument]
+        if parameter.kind is parameter.VAR_POSITIONAL:
+            values = value
+        elif parameter.kind is parameter.VAR_KEYWORD:
+            values = value.values()
+        else:
+            values = (value,)
+        for item in values:
+            if not _matches(item, hint):
+                raise TypeError(f"{name}: argument '{argument}' must be "
+                                f"{_describe_hint(hint)}, got {type(item).__name__} "
+                                f"{_short_repr(item)}")
+    for argument, value in bound.arguments.items():  # a config's fields, changed since?
+        if _mutable_dataclass(value):
+            from tegrasp_drake.rig.typed_yaml import check_instance
+            check_instance(value, f"{name}: argument '{argument}'")
+            relations = getattr(value, RELATIONS_CHECK, None)  # what relates its fields
+            if relations is not None and not _checking_relations.active:
+                with relations_checked():  # its own public calls: not again
+                    relations(f"{name}: {argument}")  # as the builders' rechecked
+    for argument, value in bound.arguments.items():  # every type is right: the values
+        for constraint in _constraints(hints.get(argument))[1]:
+            _check_constraint(name, argument, value, constraint)
+
+
+def bound_arguments(function, **kwargs):
+    """functools.partial(function, **kwargs), the arguments checked now when `function` is
+    a public one (public_api): a bad folder is refused before a sweep runs its trials."""
+    bind_now = getattr(function, "bind_now", None)
+    return bind_now(**kwargs) if bind_now is not None else functools.partial(function, **kwargs)
 
 
 def _constraints(hint) -> tuple:

@@ -4,7 +4,6 @@ running world) and one sweep. `run_transfer` records each memorizing world's eve
 cell as an ordinary, resumable sweep (docs/transfer.md, "A transfer sweep")."""
 
 import dataclasses
-import functools
 import json
 import pathlib
 from collections.abc import Mapping
@@ -12,6 +11,7 @@ from collections.abc import Mapping
 from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
                                           require_fields)
 
@@ -263,7 +263,7 @@ def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
         sweep = running_sweep(spec, running)
         name = cell_name(memorizing, running)
         log(f"cell {name}: events of {memorizing}, trials in {running}")
-        summaries[name] = run_sweep(sweep, functools.partial(trial_function, events_dir=events),
+        summaries[name] = run_sweep(sweep, bound_arguments(trial_function, events_dir=events),
                                     cell_folder(out_dir, memorizing, running), workers=workers,
                                     scheduler=scheduler, progress=progress)
     return summaries
