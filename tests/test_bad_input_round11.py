@@ -18,6 +18,7 @@ from tegrasp_drake.hardware.robotiq.modbus_client import (RobotiqActivationError
                                                           RobotiqModbusClient,
                                                           RobotiqModbusConfig)
 from tegrasp_drake.rig.ranges import field_range
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.simulation.station import ArmDriverConfig, initial_arm_positions
@@ -320,3 +321,19 @@ def test_a_sweep_with_a_missing_events_folder_stops_before_any_trial(tmp_path, m
     _, _, code, text = run_probe(None, argv, tmp_path, monkeypatch, capfd)
     assert_one_line_error(code, text, "'missing' does not exist; give an existing folder")
     assert not (tmp_path / "sw" / "trials").exists()
+
+
+# Rule: an object's name is bounded where it is declared (rig/objects.OBJECT_NAME_PATTERN):
+# it names a folder and is part of file names, so 300 characters are refused at load, not
+# after minutes of simulation when the folder cannot be made.
+def test_an_object_name_longer_than_a_folder_name_should_be_is_refused_at_load():
+    own = ["object.shape=box", "object.size=[0.04, 0.04, 0.1]", "object.mass=0.1",
+           "object.friction=0.5"]
+    with pytest.raises(ConfigError) as refused:  # its --set echoes make it long: no _refused
+        LoadScenario(overrides=["object.name=" + "a" * 300, *own])
+    assert "\n" not in str(refused.value)
+    assert "field 'object.name'" in str(refused.value)
+    assert "at most 64 characters" in str(refused.value)
+    assert LoadScenario(overrides=["object.name=" + "a" * 64, *own]).object.name == "a" * 64
+    with pytest.raises(ValueError, match="at most 64 characters"):
+        T.record_events("a" * 65, LoadScenario(overrides=["random_seed=633"]))
