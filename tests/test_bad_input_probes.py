@@ -201,11 +201,11 @@ def test_a_failed_staging_leaves_the_old_events_whole(tmp_path, monkeypatch):
     from tegrasp_drake.events import events_folder
     real_stage, calls = events_folder.staged_file, []
 
-    def stage_until_the_disk_is_full(path, data):
+    def stage_until_the_disk_is_full(path, data, **options):
         calls.append(path)
         if len(calls) == 3:
             raise OSError(28, "No space left on device")
-        return real_stage(path, data)
+        return real_stage(path, data, **options)
     monkeypatch.setattr(events_folder, "staged_file", stage_until_the_disk_is_full)
     with pytest.raises(OSError):
         save_memorized_events(tmp_path, _events(seed=2))

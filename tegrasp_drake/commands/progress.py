@@ -3,6 +3,8 @@ call `progress(t, end)` [s]; lines printed meanwhile are written above the bar."
 
 import sys
 
+from tegrasp_drake.commands import output_streams
+
 BAR_FORMAT = ("{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s simulated "
               "[{elapsed}<{remaining}]")
 
@@ -33,17 +35,35 @@ class SimulatedTimeBar:
         return self
 
     def __call__(self, t: float, end: float) -> None:
-        """Shows `t` of `end` simulated seconds (the bar appears with the first call)."""
+        """Shows `t` of `end` simulated seconds (the bar appears with the first call). Called
+        from inside a simulation (Drake's monitor): a stream that refuses the bar stops the
+        bar, never the run (`_stop_drawing`)."""
         if not self._enabled:
             return
-        if self._bar is None:
-            from tqdm import tqdm
-            # Redrawn on every call: the runs call at most 4 times per simulated second.
-            self._bar = tqdm(total=max(end, t), desc=self._description, file=self._stream,
-                             bar_format=BAR_FORMAT, dynamic_ncols=True, leave=False,
-                             mininterval=0.0, miniters=1)
-        self._bar.total = max(end, t)
-        self._bar.update(t - self._bar.n)
+        try:
+            if self._bar is None:
+                from tqdm import tqdm
+                # Redrawn on every call: the runs call at most 4 times per simulated second.
+                self._bar = tqdm(total=max(end, t), desc=self._description, file=self._stream,
+                                 bar_format=BAR_FORMAT, dynamic_ncols=True, leave=False,
+                                 mininterval=0.0, miniters=1)
+            self._bar.total = max(end, t)
+            self._bar.update(t - self._bar.n)
+        except (OSError, ValueError) as error:  # ValueError: the stream was closed
+            self._stop_drawing(error)
+
+    def _stop_drawing(self, error: Exception) -> None:
+        """No more bar after `error`: a refused write (a full disk, a hung-up terminal) is
+        remembered for the command's end (output_streams) unless the guarded stream did; a
+        closed pipe or stream is left for the end's flush to find."""
+        self._enabled = False
+        bar, self._bar = self._bar, None
+        if bar is not None:
+            bar.disable = True  # closing it draws nothing more
+        if isinstance(error, OSError) and not isinstance(
+                error, (BrokenPipeError, output_streams.OutputStreamError)):
+            output_streams.note_failed_write(
+                output_streams.OutputStreamError(output_streams.STANDARD_ERROR, error))
 
     def write(self, line: str) -> None:
         """Prints `line` on stdout, above the bar."""
@@ -57,6 +77,9 @@ class SimulatedTimeBar:
             self._redirect.__exit__(*exc_info)
             self._redirect = None
         if self._bar is not None:
-            self._bar.close()
+            try:
+                self._bar.close()  # clears the bar's line
+            except (OSError, ValueError) as error:
+                self._stop_drawing(error)
             self._bar = None
         return False

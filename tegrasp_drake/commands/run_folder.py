@@ -7,13 +7,13 @@ import fcntl
 import json
 import os
 import pathlib
-import re
 import shutil
 import tempfile
 
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions_deferred,
-                                     load_json, write_atomically)
+                                     load_json, own_staging_suffix, stale_staging_files,
+                                     write_atomically)
 
 RESULT_FILE = "result.json"
 RUN_FILES = (RESULT_FILE, "trial.npz")  # a folder with any of these holds a run
@@ -92,18 +92,13 @@ def staged_run(folder):
             shutil.rmtree(stage, ignore_errors=True)
 
 
-# A file a run writes until it commits it, beside its final name: `.NAME.PID.staging`, PID
-# the writing process's (a hardware run's LCM log, commands/hardware.py).
-_STAGING_FILE = re.compile(r"\.(?P<name>.+)\.(?P<pid>[1-9][0-9]{0,9})\.staging")
-
-
 def staging_file_beside(path) -> pathlib.Path:
     """Where this process writes `path` until it commits it (`.NAME.PID.staging` beside it);
     the staging files that runs killed past their handlers (SIGKILL, a power cut) left in
     that folder are removed first (remove_stale_staging_files)."""
     path = pathlib.Path(path)
     remove_stale_staging_files(path.parent)
-    return path.with_name(f".{path.name}.{os.getpid()}.staging")
+    return path.with_name(f".{path.name}{own_staging_suffix()}")
 
 
 def remove_stale_staging_files(folder) -> list[pathlib.Path]:
@@ -114,28 +109,13 @@ def remove_stale_staging_files(folder) -> list[pathlib.Path]:
     removed = []
     try:
         with claimed_run_folder(folder):
-            for path in pathlib.Path(folder).iterdir():
-                match = _STAGING_FILE.fullmatch(path.name)
-                if (match is None or _process_alive(int(match["pid"])) or path.is_symlink()
-                        or not path.is_file()):
-                    continue
+            for path in stale_staging_files(folder):
                 with contextlib.suppress(OSError):
                     path.unlink()
                     removed.append(path)
     except (RunFolderError, OSError):
         pass
     return removed
-
-
-def _process_alive(pid: int) -> bool:
-    """Whether a process `pid` exists (one of another user's too)."""
-    try:
-        os.kill(pid, 0)  # no signal sent: only whether it could be
-    except (ProcessLookupError, OverflowError):  # no such process; past any process id
-        return False
-    except PermissionError:  # another user's
-        return True
-    return True
 
 
 @contextlib.contextmanager

@@ -8,7 +8,6 @@ function, so the tests run the command with a cheap deterministic trial."""
 
 import argparse
 import dataclasses
-import functools
 import importlib
 import sys
 
@@ -17,6 +16,7 @@ from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
+from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.sweep.runner import (
@@ -209,10 +209,10 @@ def run(args) -> int:
             check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
         progress = not args.no_progress and progress_wanted(args)
         if args.events:
-            trial_function = functools.partial(trial_function, events_dir=args.events)
+            trial_function = bound_arguments(trial_function, events_dir=args.events)
         if args.logs:
             _check_logs_folder(args.logs)
-            trial_function = functools.partial(trial_function, log_dir=args.logs)
+            trial_function = bound_arguments(trial_function, log_dir=args.logs)
         if args.benchmark:
             runs, identical = run_benchmark(spec, trial_function, progress=progress)
             print(benchmark_text(runs, identical))

@@ -18,6 +18,7 @@ from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html
                                                 write_replay_html)
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.rig.number_text import number_text
 
 DESCRIPTION = """\
 One closed-loop grasp trial of any scenario: the object, its placement, the controller and
@@ -65,7 +66,7 @@ def register(subparsers) -> None:
 
 def print_result(result) -> None:
     """The trial's result (a TrialResult) as text: its scene, its timeline, its success."""
-    print(f"object {result.object} offset {result.offset_m} m, controller "
+    print(f"object {result.object} offset {number_text(result.offset_m)} m, controller "
           f"{result.controller}, seed {result.seed}")
     for transition in result.transitions:
         scores = None if transition.scores is None else list(transition.scores)

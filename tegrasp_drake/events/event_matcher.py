@@ -10,6 +10,7 @@ import numpy as np
 
 from tegrasp_drake.rig.api_boundary import check_field_values, public_api, public_dataclass
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import Range, bounded, declared_field
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
@@ -231,7 +232,8 @@ class EventMatcher(WindowNormalizer):
         event = self._event_of_value.get(value)  # None for NaN, fractions, out of range
         if event is None:
             raise ValueError(
-                f"expected_event {value} is not -1 or an event index 0..{len(self._events) - 1}"
+                f"expected_event {number_text(value)} is not -1 or an event index "
+                f"0..{len(self._events) - 1}"
                 f" ({', '.join(f'{i}: {t}' for i, t in enumerate(self._transitions))})")
         return event
 

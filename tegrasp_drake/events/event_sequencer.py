@@ -8,6 +8,7 @@ import numpy as np
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.events.transitions import NO_EVENT
+from tegrasp_drake.rig.number_text import number_text
 
 DEFAULT_PERIOD_S = 1e-3  # one control tick at 1 kHz
 
@@ -47,12 +48,12 @@ class EventSequencer(LeafSystem):
             raise ValueError(f"event_indices {list(event_indices)} must be one or more "
                              "event indices >= 0")
         if not period_s > 0.0:
-            raise ValueError(f"period_s {period_s} must be positive")
+            raise ValueError(f"period_s {number_text(period_s)} must be positive")
         self._event_indices = tuple(indices)
         armed = [0.0] * len(indices) if armed_from_s is None else [float(t) for t in armed_from_s]
         if len(armed) != len(indices) or not all(math.isfinite(t) for t in armed):
-            raise ValueError(f"armed_from_s {armed_from_s} must give one finite time [s] per "
-                             "event of the sequence")
+            raise ValueError(f"armed_from_s {number_text(armed_from_s)} must give one finite "
+                             "time [s] per event of the sequence")
         self._armed_from_s = tuple(armed)
         self._match_port = self.DeclareVectorInputPort("match", 1)
         self._state_index = self.DeclareDiscreteState(

@@ -7,7 +7,8 @@ import pathlib
 from typing import Annotated
 from collections.abc import Iterable, Sequence
 
-from tegrasp_drake.rig.files import interruptions_deferred, replace_problem, staged_file
+from tegrasp_drake.rig.files import (interruptions_deferred, own_staging_suffix, replace_problem,
+                                     stale_staging_files, staged_file)
 from tegrasp_drake.rig.objects import OBJECT_NAME_PATTERN
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.events.event_file import (
@@ -84,16 +85,19 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
     index = {"format": INDEX_FORMAT, "format_version": FORMAT_VERSION,
              "remake_command": RECORD_COMMAND, "events": entries}
     # All or nothing: every file is staged beside its target first, then the renames and
-    # the stale files' removal commit together with Ctrl-C held back, the index last.
+    # the stale files' removal commit together with Ctrl-C held back, the index last. The
+    # staging files a writer killed past its handlers (SIGKILL) left go first.
     staged = []
     events_dir.mkdir(parents=True, exist_ok=True)
+    _remove_stale_staging(events_dir)
     try:
         for event in events:
             path = events_dir / event.relative_path()
             path.parent.mkdir(parents=True, exist_ok=True)
-            staged.append((staged_file(path, event_json_text(event_to_json(event))), path))
-        staged.append((staged_file(events_dir / INDEX_FILE, event_json_text(index)),
-                       events_dir / INDEX_FILE))
+            staged.append((staged_file(path, event_json_text(event_to_json(event)),
+                                       suffix=own_staging_suffix()), path))
+        staged.append((staged_file(events_dir / INDEX_FILE, event_json_text(index),
+                                   suffix=own_staging_suffix()), events_dir / INDEX_FILE))
         with interruptions_deferred():
             for object_name in objects:
                 object_dir = events_dir / object_name
@@ -128,6 +132,15 @@ def _load_entry(events_dir: pathlib.Path, entry: dict) -> MemorizedEvent:
                 f"{shorten(repr(entry.get(name)))} but {entry['file']} says "
                 f"{shorten(repr(value))}", entry["object"])
     return event
+
+
+def _remove_stale_staging(events_dir: pathlib.Path) -> None:
+    """Removes the staging files of ended writers beside the index and in the objects'
+    folders (a live writer's are its own: its save commits or removes them)."""
+    folders = [events_dir, *(p for p in events_dir.iterdir() if p.is_dir() and not p.is_symlink())]
+    for folder in folders:
+        for stale in stale_staging_files(folder):
+            stale.unlink(missing_ok=True)
 
 
 @public_api

@@ -9,6 +9,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.events.memorized_event import MemorizedEvent, current_package_versions
 from tegrasp_drake.tactile.sampling import samples_per_window
@@ -106,7 +107,7 @@ def recording_ra_floor(trial: TactileTrial, *, quiet_s: float, sigmas: float) ->
     quiet = trial.ra[trial.t_ra < trial.t_ra[0] + quiet_s].T
     if quiet.shape[1] < 2:
         raise ValueError(f"the RA noise floor needs at least 2 samples in the first "
-                         f"{quiet_s} s of the log")
+                         f"{number_text(quiet_s)} s of the log")
     return quiet.mean(axis=1) + sigmas * quiet.std(axis=1)
 
 

@@ -9,6 +9,7 @@ import numpy as np
 
 import tegrasp_drake
 from tegrasp_drake.rig.api_boundary import check_field_values, public_dataclass
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
@@ -57,14 +58,15 @@ class MemorizedEvent:
             raise ValueError(f"normalisation '{self.normalization}' is not "
                              f"'{NORMALIZATION}'")
         if not 0.0 <= self.pre_transition_s <= self.window_s:
-            raise ValueError(f"pre_transition_s {self.pre_transition_s} must lie within "
-                             f"the {self.window_s} s window")
+            raise ValueError(f"pre_transition_s {number_text(self.pre_transition_s)} must lie "
+                             f"within the {number_text(self.window_s)} s window")
         for name, rate in (("sa", self.sa_rate_hz), ("ra", self.ra_rate_hz)):
             window = np.array(getattr(self, name), dtype=float)
             expected = (2, samples_per_window(self.window_s, rate))
             if window.shape != expected:
-                raise ValueError(f"'{name}' has shape {window.shape}; {self.window_s} s at "
-                                 f"{rate} Hz for two fingers needs {expected}")
+                raise ValueError(f"'{name}' has shape {window.shape}; "
+                                 f"{number_text(self.window_s)} s at {number_text(rate)} Hz "
+                                 f"for two fingers needs {expected}")
             if not np.all(np.isfinite(window)):
                 raise ValueError(f"'{name}' holds non-finite values")
             peaks = np.max(np.abs(window), axis=1)

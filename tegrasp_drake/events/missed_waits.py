@@ -16,6 +16,7 @@ from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.replay import replay_event_held
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
+from tegrasp_drake.rig.number_text import number_text
 
 WEAK_DYNAMIC_STIMULUS = "weak dynamic stimulus"
 SA_DID_NOT_MATCH = "SA did not match"
@@ -107,7 +108,8 @@ def ra_noise(trial: TactileTrial, quiet_s: float) -> tuple[np.ndarray, np.ndarra
     """[left, right] mean and std [m/s^2] of the raw RA over the trial's first quiet_s [s]."""
     quiet = trial.ra[trial.t_ra < trial.t_ra[0] + quiet_s]
     if len(quiet) < 2:
-        raise ValueError(f"the trial holds fewer than 2 RA samples in its first {quiet_s} s")
+        raise ValueError("the trial holds fewer than 2 RA samples in its first "
+                         f"{number_text(quiet_s)} s")
     return quiet.mean(axis=0), quiet.std(axis=0)
 
 

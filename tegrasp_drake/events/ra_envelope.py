@@ -13,14 +13,16 @@ from scipy.signal import lfilter
 
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 
 
 def envelope_coefficient(cutoff_hz: float, rate_hz: float) -> float:
     """a of y[k] = y[k-1] + a (u[k] - y[k-1]) for cutoff_hz in (0, rate_hz / 2) [Hz]."""
     if not 0.0 < cutoff_hz < rate_hz / 2.0:
-        raise ValueError(f"RA envelope cutoff {cutoff_hz} Hz must lie between 0 and half the "
-                         f"RA rate ({rate_hz / 2.0} Hz); 0 switches the envelope off")
+        raise ValueError(f"RA envelope cutoff {number_text(cutoff_hz)} Hz must lie between 0 "
+                         f"and half the RA rate ({number_text(rate_hz / 2.0)} Hz); 0 switches "
+                         "the envelope off")
     return 1.0 - math.exp(-2.0 * math.pi * cutoff_hz / rate_hz)
 
 

@@ -11,6 +11,7 @@ from scipy.stats import norm
 
 from tegrasp_drake.events.ra_envelope import envelope_coefficient, ra_envelope
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
+from tegrasp_drake.rig.number_text import number_text
 
 # The rule that sets k (module docstring): alpha per trial, the trial's horizon [s].
 FALSE_ALARM_PER_TRIAL = 1e-3
@@ -65,8 +66,9 @@ class RaNoiseFloor(LeafSystem):
                  envelope_hz: float = 0.0):
         super().__init__()
         if not sigmas > 0.0 or not quiet_s * ra_rate_hz >= 2.0:
-            raise ValueError(f"the RA noise floor needs sigmas > 0 (got {sigmas}) and a quiet "
-                             f"period of at least 2 RA samples (got {quiet_s} s)")
+            raise ValueError(f"the RA noise floor needs sigmas > 0 (got {number_text(sigmas)}) "
+                             "and a quiet period of at least 2 RA samples (got "
+                             f"{number_text(quiet_s)} s)")
         self._sigmas = sigmas
         self._quiet_samples = int(math.floor(quiet_s * ra_rate_hz + 1e-9))
         self._a = envelope_coefficient(envelope_hz, ra_rate_hz) if envelope_hz else 1.0

@@ -9,6 +9,7 @@ from matplotlib.lines import Line2D
 
 from tegrasp_drake.control.controller_registry import controller_label
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.runs.trial_result import TrialResult
 
 STATE_COLORS = {"Reach": "#d9e8f5", "Re-Reach": "#f7d6d0", "Load": "#dcefd9",
@@ -46,8 +47,12 @@ def state_spans(log) -> list[tuple[str, float, float]]:
 
 
 def logged_scenario(log):
-    """The Scenario the trial ran (from the YAML in the log's meta)."""
+    """The Scenario the trial ran (from the YAML in the log's meta); ConfigError for a log
+    without one (the figures need its hit and controller)."""
     from tegrasp_drake.scenario.scenario import scenario_from_yaml  # the figures' only use
+    if "scenario" not in log.meta:
+        raise ConfigError("its metadata has no 'scenario', which the figures need (the "
+                          "trial.npz that `tegrasp trial --out DIR` writes has it)")
     return scenario_from_yaml(log.meta["scenario"], "its scenario")
 
 
@@ -62,9 +67,14 @@ def physical_events(log) -> dict[str, float]:
 
 
 def logged_result(log):
-    """The TrialResult a trial's log holds (run_trial's), None for a log without one."""
+    """The TrialResult a trial's log holds (run_trial's), None for a log without one;
+    ConfigError for one that is not a trial result."""
     result = log.meta.get("result")
-    return TrialResult.from_dict(result) if result else None
+    try:
+        return TrialResult.from_dict(result) if result else None
+    except ValueError as e:
+        raise ConfigError(f"its metadata's 'result' is {e}; run the trial again to remake "
+                          "it") from None
 
 
 def run_description(log) -> str:

@@ -5,6 +5,7 @@ of the settled grip on the weaker pad, else the recording says to lengthen grasp
 
 import logging
 from collections.abc import Callable
+from typing import Annotated
 
 from tegrasp_drake.recording.campaign import CampaignRun, RecordEventsError, cut_events
 from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time,
@@ -15,6 +16,7 @@ from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.scenario.scenario import Scenario
 from tegrasp_drake.rig.api_boundary import public_api
 from tegrasp_drake.rig.event_matching import EventMatchingConfig
+from tegrasp_drake.rig.objects import OBJECT_NAME
 
 logger = logging.getLogger(__name__)
 
@@ -73,8 +75,8 @@ def missing_event_advice(transition: str, log, scenario) -> str:
 
 
 @public_api
-def record_events(object_name: str, scenario: Scenario | None = None, *,
-                  progress: Callable | None = None):
+def record_events(object_name: Annotated[str, OBJECT_NAME], scenario: Scenario | None = None,
+                  *, progress: Callable | None = None):
     """Runs the ideal grasp of one object (built-in by name, or `scenario`'s); returns its
     MemorizedEvents; RecordEventsError when a physical event is missing."""
     scenario = scenario or LoadScenario(name=object_name)

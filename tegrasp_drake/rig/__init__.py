@@ -13,6 +13,7 @@
   typed_yaml.py             YAML configuration with errors naming the field
   core_schema_yaml.py       YAML text to data, numbers read as YAML 1.2's core schema
   integer_text.py           the one bounded reader of integers from text
+  number_text.py            the one writer of numbers in messages (rounded alike)
   ranges.py                 each numeric setting's unit and range
   unset_fields.py           fields whose empty value means "not set"
   api_boundary.py           argument checks at the public API; dataclasses take fields only

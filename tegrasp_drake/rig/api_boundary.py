@@ -4,6 +4,7 @@ of collections, Callable; text is never a collection), then the `typing.Annotate
 constraints declared beside them: a Range or Choice (rig/ranges.py), a Folder."""
 
 import collections.abc
+import contextlib
 import dataclasses
 import difflib
 import functools
@@ -12,6 +13,7 @@ import math
 import os
 import pathlib
 import re
+import threading
 import types
 import typing
 
@@ -21,6 +23,14 @@ PathLike = str | os.PathLike
 _TEXT = (str, bytes, bytearray)
 _ITEM_CHECKED = (list, tuple, collections.abc.Sequence, collections.abc.Collection,
                  collections.abc.Set, set, frozenset)
+
+
+@dataclasses.dataclass(frozen=True)
+class TextPattern:
+    """A text argument that must match `pattern` (a compiled regular expression): `words`
+    say what it must be, following "argument 'x'"."""
+    pattern: re.Pattern
+    words: str
 
 
 @dataclasses.dataclass(frozen=True)
@@ -57,6 +67,32 @@ OUTPUT_FOLDER = Folder(exists=False, writable=True)   # written to, made if need
 UPDATED_FOLDER = Folder(exists=True, writable=True)   # read from and written to
 
 
+# A config class's method (source) -> None that raises ConfigError naming the field unless
+# its fields relate as a loaded one's must (an object's sizes for its shape, the arm's start
+# in reach: what a field's type and range cannot say); public_api calls it on each argument
+# of that class, so a config changed after loading is refused before a function uses it.
+RELATIONS_CHECK = "check_relations"
+
+
+class _RelationsCheck(threading.local):
+    active = False  # a relations check runs in this thread
+
+
+_checking_relations = _RelationsCheck()
+
+
+@contextlib.contextmanager
+def relations_checked():
+    """The block checks a config's relations (a validate): the public functions it calls
+    do not check the same config's relations again (which would recurse)."""
+    outer = _checking_relations.active
+    _checking_relations.active = True
+    try:
+        yield
+    finally:
+        _checking_relations.active = outer
+
+
 def public_api(function):
     """Wraps `function` so that each call checks its arguments (module docstring)."""
     signature = inspect.signature(function)
@@ -73,34 +109,65 @@ def public_api(function):
             bound = signature.bind(*args, **kwargs)
         except TypeError as e:
             raise TypeError(f"{name}: {e}") from None
-        for argument, value in bound.arguments.items():
-            hint = hints.get(argument)
-            if hint is None:
-                continue
-            hint, _ = _constraints(hint)
-            parameter = signature.parameters[argument]
-            if parameter.kind is parameter.VAR_POSITIONAL:
-                values = value
-            elif parameter.kind is parameter.VAR_KEYWORD:
-                values = value.values()
-            else:
-                values = (value,)
-            for item in values:
-                if not _matches(item, hint):
-                    raise TypeError(f"{name}: argument '{argument}' must be "
-                                    f"{_describe_hint(hint)}, got {type(item).__name__} "
-                                    f"{_short_repr(item)}")
-        for argument, value in bound.arguments.items():  # a config's fields, changed since?
-            if _mutable_dataclass(value):
-                from tegrasp_drake.rig.typed_yaml import check_instance
-                check_instance(value, f"{name}: argument '{argument}'")
-        for argument, value in bound.arguments.items():  # every type is right: the values
-            for constraint in _constraints(hints.get(argument))[1]:
-                _check_constraint(name, argument, value, constraint)
+        _check_bound(name, signature, hints, bound)
         return function(*args, **kwargs)
 
+    def bind_now(**kwargs):
+        """functools.partial(function, **kwargs) with those arguments checked now, not at
+        each later call (a sweep's trial function, called in its workers)."""
+        nonlocal hints
+        if hints is None:
+            hints = typing.get_type_hints(function, include_extras=True)
+        try:
+            bound = signature.bind_partial(**kwargs)
+        except TypeError as e:
+            raise TypeError(f"{name}: {e}") from None
+        _check_bound(name, signature, hints, bound)
+        return functools.partial(checked, **kwargs)
+
+    checked.bind_now = bind_now
     checked.__checked_arguments__ = True
     return checked
+
+
+def _check_bound(name: str, signature, hints: dict, bound) -> None:
+    """Checks the arguments in `bound` (types, configs' fields and relations, constraints),
+    naming function `name` and the argument."""
+    for argument, value in bound.arguments.items():
+        hint = hints.get(argument)
+        if hint is None:
+            continue
+        hint, _ = _constraints(hint)
+        parameter = signature.parameters[argument]
+        if parameter.kind is parameter.VAR_POSITIONAL:
+            values = value
+        elif parameter.kind is parameter.VAR_KEYWORD:
+            values = value.values()
+        else:
+            values = (value,)
+        for item in values:
+            if not _matches(item, hint):
+                raise TypeError(f"{name}: argument '{argument}' must be "
+                                f"{_describe_hint(hint)}, got {type(item).__name__} "
+                                f"{_short_repr(item)}")
+    for argument, value in bound.arguments.items():  # a config's fields, changed since?
+        if _mutable_dataclass(value):
+            from tegrasp_drake.rig.typed_yaml import check_instance
+            check_instance(value, f"{name}: argument '{argument}'")
+            relations = getattr(value, RELATIONS_CHECK, None)  # what relates its fields
+            if relations is not None and not _checking_relations.active:
+                with relations_checked():  # its own public calls: not again
+                    relations(f"{name}: {argument}")  # as the builders' rechecked
+    for argument, value in bound.arguments.items():  # every type is right: the values
+        for constraint in _constraints(hints.get(argument))[1]:
+            _check_constraint(name, argument, value, constraint)
+
+
+def bound_arguments(function, **kwargs):
+    """functools.partial(function, **kwargs), the arguments checked now when `function` is
+    a public one (public_api): a bad folder is refused before a sweep runs its trials."""
+    bind_now = getattr(function, "bind_now", None)
+    return bind_now(**kwargs) if bind_now is not None else functools.partial(function, **kwargs)
 
 
 def _constraints(hint) -> tuple:
@@ -109,7 +176,7 @@ def _constraints(hint) -> tuple:
         return hint, ()
     from tegrasp_drake.rig.ranges import Choice, Range
     return hint.__origin__, tuple(m for m in hint.__metadata__
-                                  if isinstance(m, (Range, Choice, Folder)))
+                                  if isinstance(m, (Range, Choice, Folder, TextPattern)))
 
 
 def check_argument(function: str, name: str, value, constraint) -> None:
@@ -130,6 +197,9 @@ def _check_constraint(function: str, name: str, value, constraint) -> None:
         if problem:
             from tegrasp_drake.rig.files import UserPathError
             raise UserPathError(f"{where}: {os.fspath(value)!r} {problem}")
+    elif isinstance(constraint, TextPattern):
+        if not isinstance(value, str) or not constraint.pattern.match(value):
+            raise ValueError(f"{where} {constraint.words}, got {_short_repr(value)}")
     elif isinstance(constraint, Choice):
         if value not in constraint.names:
             raise ValueError(f"{where} {constraint.words()}, got {_short_repr(value)}")

@@ -9,6 +9,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import FixedOffsetFrame
 from pydrake.solvers import Solve
 
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig import paths
 from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z
@@ -40,9 +41,14 @@ def make_arm_control_plant() -> MultibodyPlant:
     return plant
 
 
+class UnreachablePoseError(ValueError):
+    """No arm configuration puts the grasp frame at the pose asked; the message says where."""
+
+
 def solve_grasp_frame_ik(plant: MultibodyPlant, X_WG: RigidTransform, q_seed=IK_SEED,
                          position_tolerance=1e-7, angle_tolerance=1e-7) -> np.ndarray:
-    """Joint angles [rad] that put the grasp frame at X_WG, near q_seed; raises if none."""
+    """Joint angles [rad] that put the grasp frame at X_WG, near q_seed; UnreachablePoseError
+    if none (a pose the caller took from settings: it names them)."""
     ik = InverseKinematics(plant)
     frame = plant.GetFrameByName("grasp_frame")
     p = X_WG.translation()
@@ -55,6 +61,6 @@ def solve_grasp_frame_ik(plant: MultibodyPlant, X_WG: RigidTransform, q_seed=IK_
     ik.prog().SetInitialGuess(q, q_seed)
     result = Solve(ik.prog())
     if not result.is_success():
-        raise RuntimeError(f"no arm configuration puts the grasp frame at {p} "
-                           f"({result.get_solution_result()})")
+        raise UnreachablePoseError("no arm configuration puts the grasp frame at "
+                                   f"{number_text(list(p))} m")
     return result.GetSolution(q)

@@ -7,6 +7,7 @@ import contextlib
 import errno
 import os
 import pathlib
+import re
 import signal
 import stat
 import tempfile
@@ -43,6 +44,42 @@ def staged_file(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Pat
             os.unlink(temporary)
         raise
     return pathlib.Path(temporary)
+
+
+# A file a process writes until it commits it, beside its final name: `.NAME.PID.staging`
+# (NAME may carry staged_file's random part), PID the writing process's, so that what a
+# process killed past its handlers (SIGKILL, a power cut) left is told from a live writer's.
+_STAGING_FILE = re.compile(r"\.(?P<name>.+)\.(?P<pid>[1-9][0-9]{0,9})\.staging")
+
+
+def own_staging_suffix() -> str:
+    """The suffix of this process's staging files (`.PID.staging`), for staged_file."""
+    return f".{os.getpid()}.staging"
+
+
+def stale_staging_files(folder) -> list[pathlib.Path]:
+    """The staging files in `folder` (not below it) whose process has ended."""
+    folder = pathlib.Path(folder)
+    if not folder.is_dir():
+        return []
+    stale = []
+    for path in sorted(folder.iterdir()):
+        match = _STAGING_FILE.fullmatch(path.name)
+        if (match is not None and not process_alive(int(match["pid"]))
+                and not path.is_symlink() and path.is_file()):
+            stale.append(path)
+    return stale
+
+
+def process_alive(pid: int) -> bool:
+    """Whether a process `pid` exists (one of another user's too)."""
+    try:
+        os.kill(pid, 0)  # no signal sent: only whether it could be
+    except (ProcessLookupError, OverflowError):  # no such process; past any process id
+        return False
+    except PermissionError:  # another user's
+        return True
+    return True
 
 
 def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Path:

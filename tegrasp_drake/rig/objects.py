@@ -9,10 +9,10 @@ import dataclasses
 import math
 import re
 
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import TextPattern, public_dataclass
 from tegrasp_drake.rig import materials
 from tegrasp_drake.robotiq.units import STROKE_M
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.ranges import bounded, shorten
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 # The entries of an object's `size` [m] for each shape.
@@ -30,7 +30,13 @@ MIN_SIZE_M = 0.005
 # thresholds that tell the grasp's events apart are 0.3-1 N (controller contact_force_n), so a
 # lighter object's lift is not felt. Near zero Drake's mass matrix is not positive-definite.
 MIN_MASS_KG = 0.01
-OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")  # it names a folder
+# An object's name names a folder (its events) and is part of file names (trial ids, logs):
+# at most 64 characters, well under the 255-byte file-name limit with what is added to it.
+OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]{0,63}$")
+OBJECT_NAME_WORDS = ("must be letters, digits, '_' or '-' (not first), at most 64 characters: "
+                     "it names the folder of the object's events")
+# An object's name as a public function's argument (Annotated[str, OBJECT_NAME]).
+OBJECT_NAME = TextPattern(OBJECT_NAME_PATTERN, OBJECT_NAME_WORDS)
 
 
 @public_dataclass
@@ -87,8 +93,7 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
     """(field, what is wrong) of the first field of a user-defined object that cannot make
     one, in words that follow "field 'x'"; None when all can (a model file is not sought)."""
     if not OBJECT_NAME_PATTERN.match(config.name):
-        return "name", (f"'{config.name}' must be letters, digits, '_' or '-' (not first): "
-                        "it names the folder of the object's events")
+        return "name", f"{shorten(repr(config.name))} {OBJECT_NAME_WORDS}"
     if config.shape not in shapes:
         return "shape", f"names an unknown shape {config.shape!r} (known: {', '.join(shapes)})"
     sizes = OBJECT_SIZES[config.shape]

@@ -9,6 +9,8 @@ import math
 import types
 import typing
 
+from tegrasp_drake.rig.number_text import number_text
+
 _KEY = "tegrasp_range"
 
 
@@ -77,12 +79,8 @@ SIMULATED_DURATION = Range(low=0.0, low_open=True, unit="s")
 
 
 def _number(value) -> str:
-    """A range end as written: integers whole (4294967295, not 4.29497e+09), others short."""
-    if value is None:
-        return ""
-    if float(value).is_integer() and abs(value) < 1e15:
-        return str(int(value))
-    return f"{value:g}"
+    """A range end as written (number_text), nothing for an open end."""
+    return "" if value is None else number_text(value)
 
 
 def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",

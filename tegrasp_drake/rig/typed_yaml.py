@@ -225,6 +225,7 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         _check_finite_numbers(data, source, where)
+        _check_drake_scalars(data, schema, source, where)
         from pydrake.common.yaml import yaml_dump, yaml_load_typed
         try:
             yaml_load_typed(schema=schema, data=yaml_dump(data))
@@ -245,6 +246,10 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         if means is not None and isinstance(value, (str, list)) and len(value) == 0:
             raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
                               f"out for {means}")
+        if isinstance(value, (str, list)) and len(value) == 0 and _default_is_filled(
+                fields[key]):  # empty is no value here (no port, no bus, no joints)
+            raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
+                              f"out for its default, {shorten(repr(_default(fields[key])))}")
         _check_value(value, hints[key], path, source)
     for field in dataclasses.fields(schema):
         required = (field.default is dataclasses.MISSING
@@ -252,6 +257,19 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         if required and field.name not in data:
             path = f"{where}.{field.name}" if where else field.name
             raise ConfigError(f"{source}: field '{path}' is missing")
+
+
+def _default(field: dataclasses.Field):
+    if field.default_factory is not dataclasses.MISSING:
+        return field.default_factory()
+    return None if field.default is dataclasses.MISSING else field.default
+
+
+def _default_is_filled(field: dataclasses.Field) -> bool:
+    """Whether the field's default is non-empty text or a non-empty list: a field for which
+    the package declares no meaning of empty (unset_fields) takes no empty value then."""
+    default = _default(field)
+    return isinstance(default, (str, list, tuple)) and len(default) > 0
 
 
 class ConfigTypeError(ConfigError, TypeError):
@@ -392,6 +410,22 @@ def _check_finite_numbers(data, source: str, where: str) -> None:
         path = f"{where}[{key}]" if isinstance(data, list) else (
             f"{where}.{key}" if where else str(key))
         _check_finite_numbers(value, source, path)
+
+
+def _check_drake_scalars(data, schema, source: str, where: str) -> None:
+    """Names the first field of a Drake config class's YAML data whose default is a number
+    or true/false and whose value is not one of that type: Drake's loader reads text such as
+    '0.5' into a number, where a field of ours refuses it (a quoted number is text)."""
+    if not isinstance(data, dict):
+        return
+    defaults = schema()
+    for key, value in data.items():
+        default = getattr(defaults, str(key), None)
+        hint = next((t for t in (bool, int, float) if type(default) is t), None)
+        if hint is not None and not _is_scalar(value, hint):
+            path = f"{where}.{key}" if where else str(key)
+            raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
+                              f"{_describe(value)}{_number_as_text_hint(value, hint)}")
 
 
 def require(condition: bool, source: str, path: str, words: str, value) -> None:

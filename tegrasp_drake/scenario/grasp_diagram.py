@@ -27,7 +27,9 @@ from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStation
                                               side_grasp_pose)
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
+from tegrasp_drake.rig.arm_kinematics import UnreachablePoseError
 from tegrasp_drake.rig.ranges import SIMULATED_DURATION, Range
+from tegrasp_drake.rig.typed_yaml import ConfigError
 
 # Beyond the ideal grasp's duration, for corrections [s] (and the controller's extra_time_s).
 EXTRA_TIME_S = 10.0
@@ -51,8 +53,14 @@ def station_carriage(scenario):
     station = scenario.station
     if not (isinstance(station, SimulatedStationConfig) and station.uses_carriage()):
         return None
-    return arm_endpoint_impedance(scenario.arm, side_grasp_pose(
-        scenario.placement.expected_xy, scenario.grasp.grasp_height))
+    try:
+        return arm_endpoint_impedance(scenario.arm, side_grasp_pose(
+            scenario.placement.expected_xy, scenario.grasp.grasp_height))
+    except UnreachablePoseError as error:
+        raise ConfigError(f"fields 'placement.expected_xy' and 'grasp.grasp_height' put the "
+                          f"side grasp out of the JACO2's reach ({error}), which the "
+                          "carriage's impedance is taken at: choose a marker in front of "
+                          "the arm") from None
 
 
 @public_api

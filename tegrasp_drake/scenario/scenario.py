@@ -27,8 +27,8 @@ from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.unset_fields import without_unset_fields
-from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          parse_yaml, read_yaml_file, require)
+from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_fields,
+                                          load_typed, parse_yaml, read_yaml_file, require)
 from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
                                                         TAXEL_TRANSDUCERS,
                                                         ad7147_frame_rate_hz,
@@ -42,10 +42,10 @@ from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
 from tegrasp_drake.simulation.jaco_velocity_drive import drive_problem
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
-                                             SimulatedStationConfig)
+                                             SimulatedStationConfig, start_pose_problem)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.rig.api_boundary import (PathLike, public_api, public_dataclass,
-                                         register_moved_fields)
+                                            register_moved_fields, relations_checked)
 from tegrasp_drake.scenario.moved_keys import (MOVED_KEYS, migrate_stored_scenario,
                                                 refuse_moved_keys)
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
@@ -92,6 +92,11 @@ class Scenario:
     controller: ControllerConfig = dataclasses.field(default_factory=CONTROLLER_CLASSES[0])
     # Simulated (default) or real devices, selected by the YAML tag (hardware/config.py).
     station: StationConfig = dataclasses.field(default_factory=SimulatedStationConfig)
+
+    def check_relations(self, source: str) -> None:
+        """ConfigError naming the field unless the fields relate as LoadScenario checks them
+        (validate; a long grasp script accepted): public functions call it on a scenario."""
+        validate(self, source, allow_long=True, loaded=True)
 
 
 register_moved_fields(Scenario, {old: new for old, new in MOVED_KEYS.items()
@@ -283,6 +288,12 @@ def validate(scenario: Scenario, source: str = "scenario", *,
              allow_long: bool = False, loaded: bool = False) -> Scenario:
     """Checks what the schema cannot (each number's declared range, then what relates
     fields); returns the scenario with its object resolved (loaded: see resolve_object)."""
+    with relations_checked():  # the public functions it calls take the scenario as it is
+        return _validated(scenario, source, allow_long=allow_long, loaded=loaded)
+
+
+def _validated(scenario: Scenario, source: str, *, allow_long: bool,
+               loaded: bool) -> Scenario:
     try:  # every check below reads the controller's kind
         entry = controller_entry(scenario.controller, f"{source}: field 'controller'")
     except UnknownControllerError as e:
@@ -327,6 +338,10 @@ def validate(scenario: Scenario, source: str = "scenario", *,
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario, source)
     problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
+    if problem:
+        field, words, value = problem
+        require(False, source, f"arm.{field}", words, value)
+    problem = start_pose_problem(scenario.arm)
     if problem:
         field, words, value = problem
         require(False, source, f"arm.{field}", words, value)
@@ -375,6 +390,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
     refuse_moved_keys(data, source)
     if controller is not None:
+        check_controller_section_as_written(data, source)
         data.setdefault("controller", {})["name"] = controller
     try:
         ignored = select_controller_tag(data, drop_others=controller is not None)
@@ -393,6 +409,30 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     if ignored and on_ignored is not None:
         on_ignored(ignored)
     return scenario
+
+
+def check_controller_section_as_written(data: dict, source: str) -> None:
+    """ConfigError naming the field unless the YAML data's `controller` section is one a
+    load without a choice of controller accepts in its form (a mapping, a known tag) and each
+    of its settings is one its controller accepts (type and range): a choice of controller
+    replaces the tag and drops the others' settings, which must not hide a mistake."""
+    section = data.get("controller", {})
+    if not isinstance(section, dict) or "_tag" in section:
+        check_fields({"controller": section if not isinstance(section, dict)
+                      else {"_tag": section["_tag"]}}, Scenario, source)
+    by_owner: dict[type, dict] = {}
+    for key, value in section.items():
+        owner = next((cls for cls in CONTROLLER_CLASSES if key in _field_names(cls)), None)
+        if owner is not None:
+            by_owner.setdefault(owner, {})[key] = value
+    for owner, settings in by_owner.items():
+        checked = load_typed({"controller": {"_tag": f"!{owner.__name__}", **settings}},
+                             Scenario, source)
+        check_ranges(checked.controller, source, "controller")
+
+
+def _field_names(cls) -> set[str]:
+    return {field.name for field in dataclasses.fields(cls)}
 
 
 def rechecked(scenario: Scenario, source: str) -> Scenario:

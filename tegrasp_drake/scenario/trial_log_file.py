@@ -124,9 +124,38 @@ def _is_time(value) -> bool:
             and math.isfinite(value))
 
 
+def _is_name_list(value) -> bool:
+    return isinstance(value, list) and bool(value) and all(isinstance(n, str) for n in value)
+
+
+def _is_event_times(value) -> bool:
+    return isinstance(value, dict) and all(
+        isinstance(name, str) and (t is None or _is_time(t)) for name, t in value.items())
+
+
+def _is_phase_starts(value) -> bool:
+    return isinstance(value, dict) and all(
+        isinstance(name, str) and _is_time(t) for name, t in value.items())
+
+
+# The metadata fields a reader uses (each optional), what each must hold, and its check. The
+# writer is trial_log_writer.collect_trial_log with the runs' `meta` (runs/trial.py).
+META_FIELDS = {
+    "scenario": ("be the scenario's YAML text", lambda v: isinstance(v, str)),
+    "controller": ("be a controller name", lambda v: isinstance(v, str)),
+    "campaign_run": ("be a recording run's label", lambda v: isinstance(v, str)),
+    "mode_names": ("be a non-empty list of names", _is_name_list),
+    "phases": ("be a non-empty list of names", _is_name_list),
+    "phase_starts": ("map phase names to times [s]", _is_phase_starts),
+    "events": ("map event names to times [s] or null", _is_event_times),
+    # Its fields are TrialResult's (figures/trial_annotations.logged_result reads them).
+    "result": ("be a trial result's JSON form (an object)", lambda v: isinstance(v, dict)),
+}
+
+
 def meta_problem(meta: dict, phase: np.ndarray) -> str | None:
     """What is wrong with a trial log's metadata, or None: transitions as Transition entries,
-    phase names as text, phase start times as numbers, `phase` indexing the phase names."""
+    each field of META_FIELDS as it says, `phase` indexing the phase names."""
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):
@@ -140,16 +169,9 @@ def meta_problem(meta: dict, phase: np.ndarray) -> str | None:
             if str(e).startswith("lacks the field"):
                 return f"meta 'transitions[{k}]' {e}"
             return f"meta 'transitions[{k}]' is not a transition ({shorten(str(e))})"
-    for key in ("mode_names", "phases"):
-        names = meta.get(key)
-        if names is not None and (not isinstance(names, list) or not names
-                                  or not all(isinstance(n, str) for n in names)):
-            return f"meta '{key}' must be a non-empty list of names, got {shorten(repr(names))}"
-    starts = meta.get("phase_starts", {})
-    if not isinstance(starts, dict) or not all(
-            isinstance(name, str) and _is_time(t) for name, t in starts.items()):
-        return (f"meta 'phase_starts' must map phase names to times [s], got "
-                f"{shorten(repr(starts))}")
+    for key, (what, is_valid) in META_FIELDS.items():
+        if key in meta and not is_valid(meta[key]):
+            return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
     count = len(meta.get("mode_names") or meta.get("phases") or Mode)
     if phase.size and (not np.all(np.isfinite(phase)) or np.any(phase != np.round(phase))
                        or phase.min() < 0 or phase.max() >= count):

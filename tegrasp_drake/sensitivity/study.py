@@ -9,7 +9,7 @@ import json
 import pathlib
 
 from tegrasp_drake.rig.files import load_json, write_atomically
-from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file
+from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file, require_fields
 from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, UncertainParameter,
                                                   parameter)
 from tegrasp_drake.sweep.spec import SweepSpec
@@ -56,8 +56,9 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
     ConfigError names the file and the field of anything that cannot run."""
     source = str(path)
     data = read_yaml_file(path, "the sensitivity spec")
-    if data is None or data == {}:
-        data = {}
+    require_fields(data, source, "the sensitivity spec", "give at least one field (e.g. "
+                   "parameters: [object.friction]; `sweep: {}` for every parameter over the "
+                   "paper's sweep)")
     if not isinstance(data, dict):
         raise ConfigError(f"{source}: must be a mapping with parameters, events and sweep")
     unknown = sorted(set(map(str, data)) - set(_FIELDS))

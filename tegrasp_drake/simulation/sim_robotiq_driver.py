@@ -17,6 +17,7 @@ import numpy as np
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from tegrasp_drake.rig import materials
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import drive
 from tegrasp_drake.robotiq import units as ru
@@ -298,7 +299,8 @@ def MakeSimRobotiqDriver(*, config: GripperDriverConfig, time_step: float,
     time_step: the plant's [s].
     """
     if not time_step > 0.0:
-        raise ValueError(f"time_step {time_step} must be the plant's positive step [s]")
+        raise ValueError(f"time_step {number_text(time_step)} must be the plant's positive "
+                         "step [s]")
     builder = DiagramBuilder()
     planner = builder.AddNamedSystem("planner", SimRobotiqPlanner(
         config=config, initial_opening=initial_opening))

@@ -9,6 +9,7 @@ late"), or a carriage carries the gripper (SimulatedStationConfig.arm; carriage.
 docs/model.md, "The carriage: the arm as a stiff pose source (for sweeps)")."""
 
 import dataclasses
+import functools
 import math
 from typing import Annotated
 
@@ -25,10 +26,11 @@ from tegrasp_drake.rig.ranges import SEED_RANGE, bounded
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP,
-                                              X_FLANGE_GRIPPER, make_arm_control_plant,
-                                              solve_grasp_frame_ik)
+                                              X_FLANGE_GRIPPER, UnreachablePoseError,
+                                              make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.rig.channels import FINGER_NAMES
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.robotiq.dimensions import HALF_STROKE
 from tegrasp_drake.simulation.carriage import (AddCarriage, ArmGraspFrameKinematics, Carriage,
                                                EndpointImpedance, carriage_positions)
@@ -115,9 +117,35 @@ def object_pose_on_table(expected_object_xy, object_offset, object_yaw_deg: floa
 
 
 def initial_arm_positions(arm: ArmDriverConfig) -> np.ndarray:
-    """Joint angles [rad] that put G at arm.initial_gripper_xyz, side-grasp orientation."""
-    X_WG = RigidTransform(R_WG_SIDE_GRASP, arm.initial_gripper_xyz)
-    return solve_grasp_frame_ik(make_arm_control_plant(), X_WG)
+    """Joint angles [rad] that put G at arm.initial_gripper_xyz, side-grasp orientation;
+    ConfigError naming that field when the arm cannot reach it (start_pose_problem)."""
+    problem = start_pose_problem(arm)
+    if problem is not None:
+        field, words, value = problem
+        raise ConfigError(f"field 'arm.{field}' {words}, got {value}")
+    return _start_positions(_start_key(arm)).copy()
+
+
+def start_pose_problem(arm: ArmDriverConfig) -> tuple[str, str, list] | None:
+    """(field, what it must be, value) when no arm configuration puts G at
+    arm.initial_gripper_xyz in the side grasp's orientation, else None (the IK is solved once
+    per start)."""
+    try:
+        _start_positions(_start_key(arm))
+    except UnreachablePoseError:
+        return ("initial_gripper_xyz", "must be a point the JACO2 reaches in the side grasp's "
+                "orientation (e.g. the default [0.69, 0.0, 0.145] m, in front of the arm)",
+                list(arm.initial_gripper_xyz))
+    return None
+
+
+def _start_key(arm: ArmDriverConfig) -> tuple[float, ...]:
+    return tuple(float(v) for v in arm.initial_gripper_xyz)
+
+
+@functools.lru_cache(maxsize=32)
+def _start_positions(xyz: tuple[float, ...]) -> np.ndarray:
+    return solve_grasp_frame_ik(make_arm_control_plant(), RigidTransform(R_WG_SIDE_GRASP, xyz))
 
 
 def set_pd_gains(plant, instance, kp, kd):

@@ -8,6 +8,8 @@ exact: docs/controller.md (read batches)."""
 import numpy as np
 from pydrake.systems.primitives import MatrixGain, Multiplexer, ZeroOrderHold
 
+from tegrasp_drake.rig.number_text import number_text
+
 # read instants checked to fall on sample times: 500 s of 5 ms ticks
 CHECKED_READS = 100_000
 
@@ -16,8 +18,8 @@ def samples_per_read(rate_hz: float, read_period_s: float) -> int:
     """Samples a read batch takes: S when the read period [s] holds a whole S >= 2 sample
     periods at `rate_hz` and its multiples fall exactly on sample times; else 1."""
     if not (rate_hz > 0.0 and read_period_s >= 0.0):
-        raise ValueError(f"rate_hz ({rate_hz}) must be positive and read_period_s "
-                         f"({read_period_s}) non-negative")
+        raise ValueError(f"rate_hz ({number_text(rate_hz)}) must be positive and read_period_s "
+                         f"({number_text(read_period_s)}) non-negative")
     exact = read_period_s * rate_hz
     samples = int(round(exact))
     if samples < 2 or abs(exact - samples) > 1e-9 * exact:

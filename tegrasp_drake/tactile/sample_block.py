@@ -10,14 +10,16 @@ import math
 import numpy as np
 from pydrake.systems.primitives import LinearSystem
 
+from tegrasp_drake.rig.number_text import number_text
+
 BLOCK_PERIOD_S = 0.010
 
 
 def block_samples(rate_hz: float, block_s: float = BLOCK_PERIOD_S) -> int:
     """Whole samples at `rate_hz` [Hz] per `block_s` [s] block, at least 1 (0: per sample)."""
     if not (rate_hz > 0.0 and block_s >= 0.0):
-        raise ValueError(f"rate_hz ({rate_hz}) must be positive and block_s ({block_s}) "
-                         "non-negative")
+        raise ValueError(f"rate_hz ({number_text(rate_hz)}) must be positive and block_s "
+                         f"({number_text(block_s)}) non-negative")
     return max(1, math.floor(block_s * rate_hz + 1e-9))
 
 

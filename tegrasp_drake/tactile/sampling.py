@@ -7,6 +7,7 @@ import functools
 import numpy as np
 
 from tegrasp_drake.rig.channels import RA_CHANNELS, SA_CHANNELS
+from tegrasp_drake.rig.number_text import number_text
 
 _INTEGER_TOLERANCE = 1e-9
 
@@ -14,12 +15,14 @@ _INTEGER_TOLERANCE = 1e-9
 def samples_per_window(window_s: float, rate_hz: float) -> int:
     """Samples in `window_s` [s] at `rate_hz` [Hz]; ValueError unless an integer >= 2."""
     if not (window_s > 0.0 and rate_hz > 0.0):
-        raise ValueError(f"window_s ({window_s}) and rate_hz ({rate_hz}) must be positive")
+        raise ValueError(f"window_s ({number_text(window_s)}) and rate_hz "
+                         f"({number_text(rate_hz)}) must be positive")
     exact = window_s * rate_hz
     count = int(round(exact))
     if count < 2 or abs(exact - count) > _INTEGER_TOLERANCE * max(1.0, exact):
         raise ValueError(
-            f"a window of {window_s} s at {rate_hz} Hz holds {exact} samples; "
+            f"a window of {number_text(window_s)} s at {number_text(rate_hz)} Hz holds "
+            f"{number_text(exact)} samples; "
             "choose a window and rate whose product is an integer of 2 or more")
     return count
 

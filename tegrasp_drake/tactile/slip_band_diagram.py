@@ -9,6 +9,7 @@ from pydrake.systems.primitives import SymbolicVectorSystem
 from scipy import signal
 
 from tegrasp_drake.rig.channels import FINGER_NAMES
+from tegrasp_drake.rig.number_text import number_text
 
 _AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
 
@@ -16,8 +17,8 @@ _AXES = 3 * len(FINGER_NAMES)  # (x, y, z) of each pad's vibration vector
 def highpass_biquad(band_hz: float, sample_rate_hz: float) -> np.ndarray:
     """[b0, b1, b2, a1, a2] of the Butterworth high-pass at band_hz, sample_rate_hz [Hz]."""
     if not 0.0 < band_hz < sample_rate_hz / 2:
-        raise ValueError(f"slip band {band_hz} Hz must lie between 0 and the Nyquist "
-                         f"frequency {sample_rate_hz / 2} Hz of the RA samples")
+        raise ValueError(f"slip band {number_text(band_hz)} Hz must lie between 0 and the Nyquist "
+                         f"frequency {number_text(sample_rate_hz / 2)} Hz of the RA samples")
     sos = signal.butter(2, band_hz, "highpass", fs=sample_rate_hz, output="sos")[0]
     return np.array([sos[0], sos[1], sos[2], sos[4], sos[5]])
 

@@ -4,7 +4,6 @@ running world) and one sweep. `run_transfer` records each memorizing world's eve
 cell as an ordinary, resumable sweep (docs/transfer.md, "A transfer sweep")."""
 
 import dataclasses
-import functools
 import json
 import pathlib
 from collections.abc import Mapping
@@ -12,7 +11,9 @@ from collections.abc import Mapping
 from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.typed_yaml import ConfigError, check_fields, read_yaml_file
+from tegrasp_drake.rig.api_boundary import bound_arguments
+from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
+                                          require_fields)
 
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
@@ -78,7 +79,9 @@ def LoadTransferSpec(path) -> TransferSpec:
 
     ConfigError names the file and the field of anything that cannot run."""
     source = str(path)
-    data = read_yaml_file(path, "the transfer spec") or {}
+    data = read_yaml_file(path, "the transfer spec")
+    require_fields(data, source, "the transfer spec", "give its worlds and cells (e.g. "
+                   "worlds: {a: {scenario: memorizing_world}}, cells: [[a, a]])")
     if not isinstance(data, dict):
         raise ConfigError(f"{source}: must be a mapping with worlds, cells and sweep")
     unknown = set(data) - {"worlds", "cells", "sweep"}
@@ -260,7 +263,7 @@ def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
         sweep = running_sweep(spec, running)
         name = cell_name(memorizing, running)
         log(f"cell {name}: events of {memorizing}, trials in {running}")
-        summaries[name] = run_sweep(sweep, functools.partial(trial_function, events_dir=events),
+        summaries[name] = run_sweep(sweep, bound_arguments(trial_function, events_dir=events),
                                     cell_folder(out_dir, memorizing, running), workers=workers,
                                     scheduler=scheduler, progress=progress)
     return summaries

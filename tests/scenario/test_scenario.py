@@ -34,7 +34,7 @@ def test_override_changes_a_nested_field():
     (["object.mass=-1"], "field 'object.mass' must be positive"),
     (["object.name=model", "object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",
       "object.mass=0.1", "object.friction=0.5"], "model file '/no/such/model.sdf' does not exist"),
-    (["plant_config.time_step=fast"], "field 'plant_config'"),
+    (["plant_config.time_step=fast"], "field 'plant_config.time_step' must be a finite number"),
     (["tactile.transducer=piezo"], "field 'tactile.transducer' must be one of force, "
      "capacitive"),
     (["vibration.transducer=microphone"], "field 'vibration.transducer' must be one of film, "

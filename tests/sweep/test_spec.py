@@ -184,7 +184,7 @@ def test_an_empty_yaml_file_is_refused_not_run_as_the_papers_experiment(tmp_path
     ("attempts: three\n", "attempts", "integer"),
     ("attempts: true\n", "attempts", "integer"),
     ("attempts: 0\n", "attempts", "positive"),
-    ("base_seed: -1\n", "base_seed", "non-negative"),
+    ("base_seed: -1\n", "base_seed", "must lie in [0, 4294967295]"),
     ("randomisation: {mass_scale_bound: 1.5}\n", "randomisation.mass_scale_bound", "[0, 1)"),
     ("randomisation: {sensor_noise: 1}\n", "randomisation.sensor_noise", "true or false"),
     ("randomisation: {wobble: 1}\n", "randomisation.wobble", "unknown field"),

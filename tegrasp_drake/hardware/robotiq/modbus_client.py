@@ -15,6 +15,7 @@ from pymodbus.exceptions import ModbusException
 
 from tegrasp_drake.hardware.message_boundary import (
     UNDECODABLE, MessageBoundary, RejectedMessage)
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.robotiq import units
 from tegrasp_drake.robotiq import registers
@@ -98,7 +99,8 @@ class RobotiqModbusClient:
 
     def __init__(self, config: RobotiqModbusConfig):
         if config.period < MIN_PERIOD:
-            raise ValueError(f"period {config.period} s is faster than the gripper's 200 Hz")
+            raise ValueError(f"period {number_text(config.period)} s is faster than the "
+                             "gripper's 200 Hz")
         self._config = dataclasses.replace(config)
         self._lock = threading.Lock()
         self._stop = threading.Event()
@@ -173,7 +175,7 @@ class RobotiqModbusClient:
             if self._finished.is_set() or time.monotonic() > deadline:
                 raise RobotiqActivationError(
                     self.error or f"Robotiq 2F-85 on {self.port} (slave "
-                    f"{self._config.device_id}) not active after {timeout} s")
+                    f"{self._config.device_id}) not active after {number_text(timeout)} s")
         return self.latest_status()
 
     # --- the thread -------------------------------------------------------------------
@@ -256,7 +258,7 @@ class RobotiqModbusClient:
     def _activation_error(self, why) -> RobotiqActivationError:
         return RobotiqActivationError(
             f"Robotiq 2F-85 on {self.port} (slave {self._config.device_id}) did not "
-            f"activate within {self._config.activation_timeout} s: {why}")
+            f"activate within {number_text(self._config.activation_timeout)} s: {why}")
 
     def _loop(self, client):
         period = self._config.period
