@@ -15,6 +15,14 @@ from tegrasp_drake.simulation.film_readout import (ADC_INPUTS, adc_input, noise_
                                                   reading_noise_std)
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 
+
+def pad_contact_stiffness(pad_modulus_pa: float) -> float:
+    """The pad's stiffness under a flat face [N/m]: E A / (t / 2), E its elastomer's modulus
+    [Pa] on the pad's face A and half its thickness t (Drake's pressure field of a compliant
+    box reaches the modulus at its mid-plane)."""
+    return pad_modulus_pa * PAD_WIDTH * PAD_LENGTH / (PAD_THICKNESS / 2)
+
+
 # The film's gain and the amplifier's capacitor: their words for a value not positive.
 _SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
 
@@ -39,8 +47,10 @@ class FilmConfig:
     load_lowpass_hz: float = bounded(60.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
     # Impact at contact onset: the pad's stiffness E A / (t / 2), its Hunt-Crossley dissipation.
     impact_enabled: bool = True
+    # (the default pad modulus's: a pad of another tactile.pad_modulus_pa is given its own,
+    # pad_contact_stiffness, set with it)
     pad_contact_stiffness_n_per_m: float = bounded(
-        PAD_MODULUS * PAD_WIDTH * PAD_LENGTH / (PAD_THICKNESS / 2), low=0.0, low_open=True,
+        pad_contact_stiffness(PAD_MODULUS), low=0.0, low_open=True,
         high=1e9, unit="N/m", why="a silicone pad is about 5e5 N/m; 1e9 is steel on steel")
     pad_dissipation_s_per_m: float = bounded(PAD_DISSIPATION, low=0.0, high=1000.0, unit="s/m",
                                              why="Hunt-Crossley dissipation of soft materials is "

@@ -38,7 +38,7 @@ from tegrasp_drake.simulation.jaco_velocity_drive import AddJacoVelocityDrive
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     add_gripper_model,
                                                     configure_drive, gripper_hand,
-                                                    set_pad_friction)
+                                                    set_pad_contact)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig, pad_refinement_for
@@ -234,12 +234,14 @@ def side_grasp_pose(xy, height: float) -> RigidTransform:
 
 def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
                     gripper: GripperDriverConfig, object: ObjectConfig,
-                    X_WO: RigidTransform, carriage: EndpointImpedance | None = None,
+                    X_WO: RigidTransform, pad_modulus_pa: float,
+                    carriage: EndpointImpedance | None = None,
                     contact_geometry: ContactGeometryConfig | None = None) -> StationPlant:
     """Adds the station's plant (`plant_config`) to `builder`: the arm at its start pose, or
     with `carriage` the gripper on a Cartesian carriage of that impedance; the gripper of
-    `gripper.model` (PD gains, no gravity), the table and `object` at X_WO meshed as
-    `contact_geometry` says (default: the reference geometry), finalized."""
+    `gripper.model` (PD gains, no gravity), its pads of gripper.pad_friction and modulus `pad_modulus_pa` [Pa]
+    (tactile.pad_modulus_pa), the table and `object` at X_WO meshed as `contact_geometry`
+    says (default: the reference geometry), finalized."""
     arm_config, gripper_config, impedance = arm, gripper, carriage
     plant, scene_graph = AddMultibodyPlant(plant_config, builder)
     parser = paths.make_parser(plant)
@@ -267,7 +269,8 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
     if carriage is None:
         set_pd_gains(plant, arm, arm_config.position_gain, arm_config.damping_gain)
     configure_drive(plant, gripper, hand, gripper_config)
-    set_pad_friction(plant, scene_graph, gripper, gripper_config.pad_friction)
+    set_pad_contact(plant, scene_graph, gripper, friction=gripper_config.pad_friction,
+                    modulus_pa=pad_modulus_pa)
     plant.Finalize()
 
     q_arm = initial_arm_positions(arm_config)
@@ -330,7 +333,8 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
     the arm's place; with `meshcat`, its visualization, the camera at `grasp_height` [m]."""
     builder = DiagramBuilder()
     parts = AddStationPlant(builder, plant_config=plant_config, arm=arm, gripper=gripper,
-                            object=object, X_WO=X_WO, carriage=carriage,
+                            object=object, X_WO=X_WO, pad_modulus_pa=tactile.pad_modulus_pa,
+                            carriage=carriage,
                             contact_geometry=contact_geometry)
     gripper_config = gripper
     plant, scene_graph = parts.plant, parts.scene_graph

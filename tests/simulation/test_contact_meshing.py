@@ -22,6 +22,7 @@ def _station_plant(scenario):
     return AddStationPlant(DiagramBuilder(), plant_config=scenario.plant_config,
                            arm=scenario.arm, gripper=scenario.gripper, object=scenario.object,
                            X_WO=object_pose(scenario),
+                           pad_modulus_pa=scenario.tactile.pad_modulus_pa,
                            contact_geometry=scenario.contact_geometry)
 
 
