@@ -102,6 +102,7 @@ def build_plant_floor(scenario, inputs: PlantInputs):
                             gripper=scenario.gripper, object=scenario.object,
                             X_WO=object_pose(scenario),
                             pad_modulus_pa=scenario.tactile.pad_modulus_pa,
+                            random_seed=scenario.random_seed,
                             carriage=station_carriage(scenario),
                             contact_geometry=scenario.contact_geometry)
     plant = parts.plant

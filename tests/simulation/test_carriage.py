@@ -37,6 +37,7 @@ def station_plant(builder, scenario):
                            gripper=scenario.gripper, object=scenario.object,
                            X_WO=object_pose(scenario),
                            pad_modulus_pa=scenario.tactile.pad_modulus_pa,
+                           random_seed=scenario.random_seed,
                            carriage=station_carriage(scenario))
 
 

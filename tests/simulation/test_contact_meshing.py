@@ -23,6 +23,7 @@ def _station_plant(scenario):
                            arm=scenario.arm, gripper=scenario.gripper, object=scenario.object,
                            X_WO=object_pose(scenario),
                            pad_modulus_pa=scenario.tactile.pad_modulus_pa,
+                           random_seed=scenario.random_seed,
                            contact_geometry=scenario.contact_geometry)
 
 

@@ -92,6 +92,7 @@ def _pad_and_object_properties(scenario):
                             gripper=scenario.gripper, object=scenario.object,
                             X_WO=object_pose(scenario),
                             pad_modulus_pa=scenario.tactile.pad_modulus_pa,
+                            random_seed=scenario.random_seed,
                             contact_geometry=scenario.contact_geometry)
     diagram = builder.Build()
     context = diagram.CreateDefaultContext()
