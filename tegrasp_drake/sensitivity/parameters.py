@@ -30,7 +30,7 @@ class UncertainParameter:
     choices: tuple[float, ...] = ()
     step: float = 0.0
     partners: typing.Callable[[float], tuple[str, ...]] | None = None
-    log_scale: bool = False  # sampled uniformly in log(value): a range over a decade
+    log_scale: bool = False  # sampled uniformly in log(value): a range over a factor of several
 
     @property
     def name(self) -> str:
