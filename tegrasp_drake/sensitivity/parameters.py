@@ -78,13 +78,6 @@ def _decimation_rate(decimation: float) -> tuple[str, ...]:
         int(decimation)],)
 
 
-def _impact_stiffness(pad_modulus_pa: float) -> tuple[str, ...]:
-    """The film's impact model takes the pad's stiffness E A / (t / 2) as its own setting
-    (simulation/pad_vibration_sensor.py): set with the modulus it follows."""
-    from tegrasp_drake.simulation.pad_vibration_sensor import pad_contact_stiffness
-    return ("vibration.film.pad_contact_stiffness_n_per_m="
-            + _yaml_number(float(f"{pad_contact_stiffness(pad_modulus_pa):.6g}")),)
-
 UNCERTAIN_PARAMETERS = (
     UncertainParameter(
         "gripper.pad_friction", 4.42, 0.91, 50.0, "", "handbook",
@@ -137,7 +130,7 @@ UNCERTAIN_PARAMETERS = (
         "40 mm^2, 250 kPa, would compress the 4 mm pad by more than half; at 4 MPa the "
         "capacitive taxel's 4 counts of noise are 0.6 N, twice the 0.3 N contact threshold. "
         "The pads' contact, the taxels' compression and the film's impact stiffness E A / "
-        "(t / 2) (set with it) follow it", log_scale=True, partners=_impact_stiffness),
+        "(t / 2) follow it", log_scale=True),
     UncertainParameter(
         "arm.start_position_bound_m", 0.0, 0.0, 0.005, "m", "closed-form estimate",
         "Kinova publishes no repeatability for the JACO2. The hand starts up to this far off "

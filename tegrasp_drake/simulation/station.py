@@ -207,8 +207,8 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
             builder.Connect(plant.get_body_poses_output_port(),
                             pad_forces.GetInputPort("body_poses"))
     films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper, config=vibration,
-                        slip_vibration=slip, pad_forces=pad_forces, pad_statics=pad_statics,
-                        drive_rates=drive_rates)
+                        pad_modulus_pa=tactile.pad_modulus_pa, slip_vibration=slip,
+                        pad_forces=pad_forces, pad_statics=pad_statics, drive_rates=drive_rates)
     return taxels, films
 
 

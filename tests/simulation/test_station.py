@@ -192,3 +192,21 @@ def test_the_arm_starts_off_its_start_pose_by_the_seeds_draw_within_the_bound():
                                np.add(scenario.arm.initial_gripper_xyz, offset), atol=1e-6)
     other_seed = LoadScenario(overrides=["random_seed=601", "arm.start_position_bound_m=0.005"])
     assert not np.allclose(start_offset_m(other_seed.arm, 601), offset)
+
+
+def _film_impact_stiffness(scenario) -> float:
+    """The built station's films' impact stiffness [N/m] (FilmLoads)."""
+    station = MakeSimulatedStation(scenario)
+    films = next(s for s in station.GetSystems() if s.get_name() == "pad_films")
+    return films.GetSubsystemByName("film_loads").impact_stiffness_n_per_m
+
+
+def test_the_films_impact_stiffness_follows_the_pad_modulus_set_alone():
+    from tegrasp_drake.simulation.pad_vibration_sensor import pad_contact_stiffness
+    default = _film_impact_stiffness(LoadScenario())
+    stiffer = _film_impact_stiffness(LoadScenario(overrides=["tactile.pad_modulus_pa=4.0e6"]))
+    assert default == pytest.approx(4.8e5) and stiffer == pytest.approx(9.6e5)
+    assert stiffer == pad_contact_stiffness(4.0e6)
+    overridden = LoadScenario(overrides=["tactile.pad_modulus_pa=4.0e6",
+                                         "vibration.film.pad_contact_stiffness_n_per_m=3.0e5"])
+    assert _film_impact_stiffness(overridden) == pytest.approx(3.0e5)
