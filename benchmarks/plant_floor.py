@@ -100,7 +100,10 @@ def build_plant_floor(scenario, inputs: PlantInputs):
     builder = DiagramBuilder()
     parts = AddStationPlant(builder, plant_config=scenario.plant_config, arm=scenario.arm,
                             gripper=scenario.gripper, object=scenario.object,
-                            X_WO=object_pose(scenario), carriage=station_carriage(scenario),
+                            X_WO=object_pose(scenario),
+                            pad_modulus_pa=scenario.tactile.pad_modulus_pa,
+                            random_seed=scenario.random_seed,
+                            carriage=station_carriage(scenario),
                             contact_geometry=scenario.contact_geometry)
     plant = parts.plant
     arm = builder.AddSystem(_held(inputs.times, inputs.arm_desired_state))

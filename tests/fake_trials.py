@@ -12,9 +12,9 @@ import time
 
 # P(success) by controller and placement: (well placed, misplaced).
 _HOLD_PROBABILITY = {"memorized": (0.95, 0.85), "heuristic": (0.9, 0.7),
-                     "open_loop": (0.8, 0.4)}
+                     "open_loop": (0.8, 0.4), "taxel_aware": (0.95, 0.9)}
 _UNLOAD_PROBABILITY = {"memorized": (0.9, 0.8), "heuristic": (0.8, 0.6),
-                       "open_loop": (0.5, 0.3)}
+                       "open_loop": (0.5, 0.3), "taxel_aware": (0.9, 0.85)}
 SLOW_TRIAL_S = 0.05
 
 
@@ -119,4 +119,18 @@ def slow_fake_trial_with_events(trial, *, events_dir):
     import pathlib
     result = slow_fake_trial(trial)
     result["events_world"] = pathlib.Path(events_dir).name
+    return result
+
+
+def fake_trial_reading_events(trial, *, events_dir):
+    """fake_trial of a sensitivity point or transfer cell that reads its controller's events
+    as the real trial does (trial_events): the result gives the pad modulus [Pa] of the
+    scenario each event was recorded in (None where the recording did not name one)."""
+    import yaml
+    from tegrasp_drake.sweep.trial_function import trial_events
+    _, events, _ = trial_events(trial, events_dir)
+    result = fake_trial(trial)
+    result["events_pad_modulus_pa"] = sorted(
+        {(yaml.safe_load(event.scenario) or {}).get("tactile", {}).get("pad_modulus_pa")
+         for event in events.values()}, key=str)
     return result

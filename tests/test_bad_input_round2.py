@@ -248,7 +248,7 @@ def test_a_fifo_is_refused_without_blocking(tmp_path):
     os.mkfifo(fifo)
     done = subprocess.run([sys.executable, "-m", "tegrasp_drake", "trial", "--scenario",
                            str(fifo), "--scenario-name", "x"], capture_output=True, text=True,
-                          timeout=120, cwd=tmp_path)
+                          timeout=600, cwd=tmp_path)
     assert done.returncode == 1
     assert "named pipe (FIFO)" in done.stderr
 

@@ -225,15 +225,18 @@ def test_saving_no_events_is_refused(tmp_path):
     assert not (tmp_path / "ev").exists()
 
 
-# Rule: a study whose trials read events its worlds' recording does not make (taxel_aware's
-# ensemble) is refused before anything is recorded or written, naming the folder.
-def test_a_sensitivity_study_of_the_ensemble_controller_is_refused_before_recording(
-        tmp_path, capfd):
+# Rule: a study whose trials read events its worlds' recording does not make (the paper's
+# and the taxel_aware ensemble are made; here the ensemble's folder is renamed) is refused
+# before anything is recorded or written, naming the folder.
+def test_a_sensitivity_study_of_events_no_recording_makes_is_refused_before_recording(
+        tmp_path, capfd, monkeypatch):
+    from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
+    monkeypatch.setattr(TaxelAwareControllerConfig, "events_folder", "unrecorded")
     spec = tmp_path / "s.yaml"
     spec.write_text("parameters: [gripper.pad_friction]\nsweep:\n  objects: [box]\n"
                     "  controllers: [taxel_aware]\n  grid: [[0.0, 0.0]]\n  attempts: 1\n")
     code, text = run_cli(["sensitivity", str(spec), "--out", str(tmp_path / "o"),
                           "--workers", "1"], capfd)
-    assert_one_line_error(code, text, "taxel_aware", "ensemble (no index.json)",
+    assert_one_line_error(code, text, "taxel_aware", "unrecorded (no index.json)",
                           "record these there first or drop the controller")
     assert not (tmp_path / "o").exists() or not any((tmp_path / "o").rglob("*"))

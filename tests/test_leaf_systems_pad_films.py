@@ -18,6 +18,7 @@ from pydrake.multibody.plant import ContactResults, MultibodyPlant
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.analysis import Simulator
 
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
 from tegrasp_drake.simulation.film_chain import MakePadFilms
 from tegrasp_drake.simulation.pad_vibration_sensor import (FilmConfig, VibrationSensorConfig,
                                                            volts_per_mps2)
@@ -45,7 +46,8 @@ def _films(highpass_hz: float, noise_std: float = 0.0, adc_input: str = "ideal",
             mode_mass_kg=MODAL_MASS, mode_frequency_hz=MODE_HZ, mode_damping_ratio=ZETA,
             load_lowpass_hz=LOWPASS_HZ, impact_enabled=False),
         adc_input=adc_input, adc_noise_lsb=adc_noise_lsb, amplifier_swing_v=swing_v)
-    films = MakePadFilms(plant=plant, pads=PADS, force_indices=(2, 0), config=config)
+    films = MakePadFilms(plant=plant, pads=PADS, force_indices=(2, 0), config=config,
+                         pad_modulus_pa=PAD_MODULUS)
     context = films.CreateDefaultContext()
     films.GetInputPort("generalized_contact_forces").FixValue(context, [0.0, 100.0,
                                                                          left_force_n])

@@ -66,6 +66,7 @@ from tegrasp_drake.simulation.taxel_force_display import (TaxelForceDisplay,
 from tegrasp_drake.simulation.validation_scenes import FingerDrive, GripProgram
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.simulation.linkage_pad_statics import LinkagePadStatics
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
 from tegrasp_drake.simulation.film_chain import MakePadFilms
 from tegrasp_drake.simulation.film_dynamics import film_step_matrices
 from tegrasp_drake.simulation.film_loads import FilmLoads
@@ -120,7 +121,8 @@ def pad_films():
     LinkagePadStatics)."""
     plant, gripper, pads = welded_linkage_gripper()
     return MakePadFilms(plant=plant, pads=pads, force_indices=(0, 1),
-                        config=VibrationSensorConfig(noise_std_mps2=0.05), with_texture=True,
+                        config=VibrationSensorConfig(noise_std_mps2=0.05),
+                        pad_modulus_pa=PAD_MODULUS, with_texture=True,
                         pad_statics=LinkagePadStatics(plant, gripper),
                         with_drive_vibration=True)
 
@@ -129,6 +131,7 @@ def film_loads() -> FilmLoads:
     plant, gripper, pads = welded_linkage_gripper()
     config = VibrationSensorConfig()
     return FilmLoads(plant=plant, pads=pads, force_indices=(0, 1), config=config,
+                     pad_modulus_pa=PAD_MODULUS,
                      matrices=film_step_matrices(film_parameters(config), 1e-3, 20000.0),
                      with_texture=True, pad_statics=LinkagePadStatics(plant, gripper))
 
@@ -196,7 +199,8 @@ CONSTRUCTORS = {
     HardwareStation: hardware_station,
     FingerDrive: lambda: FingerDrive(program=GripProgram(start_q=0.02), position_gain=4000.0),
     FilmLoads: film_loads,
-    CapacitiveTaxels: lambda: CapacitiveTaxels(config=CapacitiveTaxelConfig()),
+    CapacitiveTaxels: lambda: CapacitiveTaxels(config=CapacitiveTaxelConfig(),
+                                                pad_modulus_pa=2.0e6),
     PadAccelerometers: lambda: PadAccelerometers(sample_rate_hz=1000.0, highpass_cutoff_hz=2.0,
                                                  noise_std_mps2=0.05),
     PadNormalForces: lambda: PadNormalForces(plant=gripper_plant()[0], pads=gripper_plant()[1]),

@@ -9,6 +9,7 @@ import dataclasses
 import pathlib
 import re
 import sys
+import typing
 
 
 @dataclasses.dataclass(frozen=True)
@@ -16,8 +17,8 @@ class UncertainParameter:
     """One guessed scenario setting: `key` its dotted name (`--set key=value`), `default`
     the scenario's value, [low, high] its plausible range in `unit`; `choices` the values a
     discrete setting takes, `step` the grid a continuous one must sit on (else 4
-    significant digits); `also_sets` the assignments that go with a value (a setting whose
-    partner must follow it); `kind` says what the range rests on (datasheet, paper,
+    significant digits); `partners` gives the assignments that go with a value (the
+    settings that must follow it); `kind` says what the range rests on (datasheet, paper,
     handbook, closed-form estimate) and `source` the argument."""
     key: str
     default: float
@@ -28,8 +29,8 @@ class UncertainParameter:
     source: str
     choices: tuple[float, ...] = ()
     step: float = 0.0
-    also_sets: tuple[tuple[float, tuple[str, ...]], ...] = ()
-    log_scale: bool = False  # sampled uniformly in log(value): a range over a decade
+    partners: typing.Callable[[float], tuple[str, ...]] | None = None
+    log_scale: bool = False  # sampled uniformly in log(value): a range over a factor of several
 
     @property
     def name(self) -> str:
@@ -57,8 +58,8 @@ class UncertainParameter:
         return self.snapped(self.low + u * (self.high - self.low))
 
     def assignments(self, value: float) -> tuple[str, ...]:
-        """The `--set` assignments that put the setting at `value`."""
-        extra = dict(self.also_sets).get(value, ())
+        """The `--set` assignments that put the setting at `value`, its partners' after it."""
+        extra = self.partners(value) if self.partners else ()
         return (f"{self.key}={_yaml_number(value)}",) + tuple(extra)
 
 
@@ -70,10 +71,12 @@ def _yaml_number(value: float) -> str:
     return f"{float(value):.6e}" if abs(value) < 1e-3 else repr(float(value))
 
 
-# The AD7147's frame rate follows its decimation (simulation/capacitive_taxels.py): the
-# capacitive transducer's sample rate is set with it.
-_DECIMATION_RATES = ((64, ("tactile.sample_rate_hz=108.0",)),
-                     (128, ("tactile.sample_rate_hz=54.0",)))
+def _decimation_rate(decimation: float) -> tuple[str, ...]:
+    """The AD7147's frame rate follows its decimation (simulation/capacitive_taxels.py): the
+    capacitive transducer's sample rate, as the data sheet's rates are quoted, is set with it."""
+    return ({64: "tactile.sample_rate_hz=108.0", 128: "tactile.sample_rate_hz=54.0"}[
+        int(decimation)],)
+
 
 UNCERTAIN_PARAMETERS = (
     UncertainParameter(
@@ -108,7 +111,7 @@ UNCERTAIN_PARAMETERS = (
         "falling as sqrt(64 / decimation); the paper does not give it. Not 256: its 27.1 Hz "
         "frames do not fill the paper's 0.5 s event window (Sec. III-A) a whole number of "
         "times (13.6). The sample rate is set with it", choices=(64, 128),
-        also_sets=_DECIMATION_RATES),
+        partners=_decimation_rate),
     UncertainParameter(
         "vibration.film.film_charge_gain_c_per_m", 2.5e-5, 1e-6, 2.5e-5, "C/m", "datasheet",
         "G_Q = d31 E_f kappa A_f with d31 23 pC/N and E_f 2.5 GPa (TE Connectivity PVDF "
@@ -117,6 +120,24 @@ UNCERTAIN_PARAMETERS = (
         "behind the fingertip's board strains 3-30 times less, about 1e-6 C/m "
         "(closed-form beam estimate; \"The film's sensitivity S and its range\")",
         log_scale=True),
+    UncertainParameter(
+        "tactile.pad_modulus_pa", 2.0e6, 5.0e5, 4.0e6, "Pa", "handbook",
+        "the paper names no elastomer. Shore 13A-63A by Gent's relation E = 0.0981 (56 + "
+        "7.62 S) / (0.1375 (254 - 2.54 S)) MPa (Gent 1958; 45A gives the default), the "
+        "silicones and urethanes tactile pads are cast from (Dow's Sylgard 184 data sheet "
+        "gives 43A, 1.9 MPa). "
+        "Below 0.5 MPa a taxel's 10 N (the most one carries in the 25-100 N grasps) on its "
+        "40 mm^2, 250 kPa, would compress the 4 mm pad by more than half; at 4 MPa the "
+        "capacitive taxel's 4 counts of noise are 0.6 N, twice the 0.3 N contact threshold. "
+        "The pads' contact, the taxels' compression and the film's impact stiffness E A / "
+        "(t / 2) follow it", log_scale=True),
+    UncertainParameter(
+        "arm.start_position_bound_m", 0.0, 0.0, 0.005, "m", "closed-form estimate",
+        "Kinova publishes no repeatability for the JACO2. The hand starts up to this far off "
+        "its start pose along each axis (uniform, drawn from the trial's seed) while the "
+        "controller plans from the nominal one: 5 mm is 0.4 deg of one joint over the "
+        "0.7 m from the shoulder to the start pose, an arm that repeats a taught pose to a "
+        "few millimetres. At 0 it starts there exactly", step=0.0005),
 )
 
 
@@ -145,8 +166,13 @@ def scenario_setting(scenario, key: str):
 
 
 def _number(value: float, unit: str) -> str:
-    text = f"{value:g}" if not float(value).is_integer() or abs(value) >= 1e5 \
+    """`value` as the table writes it: whole numbers below 1e5 whole, others in 4 significant
+    digits with a short exponent (2e6, 2.5e-5)."""
+    text = f"{value:.4g}" if not float(value).is_integer() or abs(value) >= 1e5 \
         else str(int(value))
+    mantissa, exponent, power = text.partition("e")
+    if exponent:
+        text = f"{mantissa}e{int(power)}"
     return f"{text} {unit}".strip()
 
 

@@ -13,7 +13,6 @@ from pydrake.systems.framework import LeafSystem
 from pydrake.systems.primitives import RandomSource
 
 from tegrasp_drake.rig.ranges import bounded
-from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
 from tegrasp_drake.rig.tactile_fingertip import PAD_THICKNESS
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.rig.taxel_layout import CELL_X, CELL_Y
@@ -94,11 +93,13 @@ def electrode_area_m2() -> float:
     return CELL_X * CELL_Y
 
 
-def taxel_compression_m(forces_n, config: CapacitiveTaxelConfig) -> np.ndarray:
+def taxel_compression_m(forces_n, config: CapacitiveTaxelConfig, *,
+                        pad_modulus_pa: float) -> np.ndarray:
     """Each taxel's elastomer compression [m] under its normal force [N]: d0 p / E, p the
-    taxel's mean pressure; zero for no (or negative) force, at most (1 - minimum gap) d0."""
+    taxel's mean pressure, E the pad's modulus (tactile.pad_modulus_pa) [Pa]; zero for no
+    (or negative) force, at most (1 - minimum gap) d0."""
     pressure = np.maximum(np.asarray(forces_n, dtype=float), 0.0) / electrode_area_m2()
-    return np.minimum(PAD_THICKNESS * pressure / PAD_MODULUS,
+    return np.minimum(PAD_THICKNESS * pressure / pad_modulus_pa,
                       (1.0 - config.minimum_gap_fraction) * PAD_THICKNESS)
 
 
@@ -110,32 +111,39 @@ def capacitance_change_f(compression_m, relative_permittivity: float) -> np.ndar
             * (1.0 / d1 - 1.0 / d0))
 
 
-def counts_above_baseline(forces_n, config: CapacitiveTaxelConfig,
-                          noise_counts=0.0) -> np.ndarray:
+def counts_above_baseline(forces_n, config: CapacitiveTaxelConfig, noise_counts=0.0, *,
+                          pad_modulus_pa: float) -> np.ndarray:
     """The AD7147's reading of each taxel, counts above its baseline: Delta C in counts
-    plus noise, rounded to whole counts, clipped to the 16-bit range."""
-    delta_c = capacitance_change_f(taxel_compression_m(forces_n, config),
-                                   config.relative_permittivity)
+    plus noise, rounded to whole counts, clipped to the 16-bit range (pad_modulus_pa [Pa])."""
+    delta_c = capacitance_change_f(
+        taxel_compression_m(forces_n, config, pad_modulus_pa=pad_modulus_pa),
+        config.relative_permittivity)
     counts = np.rint(delta_c * 1e12 * AD7147_COUNTS_PER_PF + noise_counts)
     return np.clip(counts, -AD7147_BASELINE_COUNTS,
                    AD7147_MAX_COUNTS - AD7147_BASELINE_COUNTS)
 
 
-def calibration_gain_n_per_count(config: CapacitiveTaxelConfig) -> float:
-    """The calibration line's gain [N/count]: the bench force over its noise-free counts."""
-    delta_c = capacitance_change_f(taxel_compression_m(config.calibration_force_n, config),
-                                   config.relative_permittivity)
+def calibration_gain_n_per_count(config: CapacitiveTaxelConfig, *,
+                                 pad_modulus_pa: float) -> float:
+    """The calibration line's gain [N/count]: the bench force over its noise-free counts
+    (pad_modulus_pa [Pa]: a stiffer pad compresses less, so a count is more newtons)."""
+    delta_c = capacitance_change_f(
+        taxel_compression_m(config.calibration_force_n, config, pad_modulus_pa=pad_modulus_pa),
+        config.relative_permittivity)
     return config.calibration_force_n / float(delta_c * 1e12 * AD7147_COUNTS_PER_PF)
 
 
-def capacitive_readings(forces_n, config: CapacitiveTaxelConfig,
-                        noise_counts=0.0) -> np.ndarray:
+def capacitive_readings(forces_n, config: CapacitiveTaxelConfig, noise_counts=0.0, *,
+                        pad_modulus_pa: float) -> np.ndarray:
     """What the station reports for true taxel forces [N]: calibrated newtons (clipped at
-    zero, as the hardware's calibration does) or counts above the baseline."""
-    counts = counts_above_baseline(forces_n, config, noise_counts)
+    zero, as the hardware's calibration does) or counts above the baseline, the elastomer
+    of modulus pad_modulus_pa [Pa]."""
+    counts = counts_above_baseline(forces_n, config, noise_counts,
+                                   pad_modulus_pa=pad_modulus_pa)
     if config.output == "counts":
         return counts
-    return np.maximum(calibration_gain_n_per_count(config) * counts, 0.0)
+    return np.maximum(
+        calibration_gain_n_per_count(config, pad_modulus_pa=pad_modulus_pa) * counts, 0.0)
 
 
 class CapacitiveTaxels(LeafSystem):
@@ -153,12 +161,14 @@ class CapacitiveTaxels(LeafSystem):
 
     Ports: true_taxel_forces (24, N, left then right, held at the taxel rate); noise (24 unit
     Gaussians at the taxel rate, when noise_std_counts > 0); the outputs: 12 readings each,
-    newtons or counts (config.output). No state: they change when a taxel sample is taken.
+    newtons or counts (config.output), of an elastomer of modulus pad_modulus_pa [Pa]. No
+    state: they change when a taxel sample is taken.
     """
 
-    def __init__(self, *, config: CapacitiveTaxelConfig):
+    def __init__(self, *, config: CapacitiveTaxelConfig, pad_modulus_pa: float):
         super().__init__()
         self._config = config
+        self._pad_modulus_pa = pad_modulus_pa
         size = TAXELS_PER_PAD * len(FINGER_NAMES)
         self._forces = self.DeclareVectorInputPort("true_taxel_forces", size)
         self._noise = (self.DeclareVectorInputPort("noise", size)
@@ -177,7 +187,8 @@ class CapacitiveTaxels(LeafSystem):
         noise = 0.0
         if self._noise is not None:
             noise = self._noise_std * self._noise.Eval(context)
-        return capacitive_readings(self._forces.Eval(context), self._config, noise)
+        return capacitive_readings(self._forces.Eval(context), self._config, noise,
+                                   pad_modulus_pa=self._pad_modulus_pa)
 
 
 def AddTaxelTransducer(builder, *, taxels, tactile_config, name: str = "capacitive_taxels"):
@@ -186,7 +197,8 @@ def AddTaxelTransducer(builder, *, taxels, tactile_config, name: str = "capaciti
     if tactile_config.transducer == "force":
         return taxels
     config = tactile_config.capacitive
-    readings = builder.AddNamedSystem(name, CapacitiveTaxels(config=config))
+    readings = builder.AddNamedSystem(name, CapacitiveTaxels(
+        config=config, pad_modulus_pa=tactile_config.pad_modulus_pa))
     builder.Connect(taxels.GetOutputPort("true_taxel_forces"),
                     readings.GetInputPort("true_taxel_forces"))
     if config.noise_std_counts > 0:

@@ -147,8 +147,9 @@ def AddFilmSamples(builder, *, film_loads, config: VibrationSensorConfig, time_s
             hold.get_output_port(), inputs)
 
 
-def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool = False,
-                 pad_statics=None, with_drive_vibration: bool = False):
+def MakePadFilms(*, plant, pads: dict, force_indices, config, pad_modulus_pa: float,
+                 with_texture: bool = False, pad_statics=None,
+                 with_drive_vibration: bool = False):
     """Both pads' films as a Diagram for the discrete `plant`.
 
     .. pydrake_system::
@@ -173,8 +174,8 @@ def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool
     Ports: FilmLoads' inputs (film_loads.py); drive_vibration (2, m/s^2, with
     `with_drive_vibration`) and unit Gaussian noise (2, when noise_draw_std_v > 0) added to
     each sample; the outputs are the read-out sample on z (3, m/s^2-equivalent, pad frame),
-    every sensor period. config: the VibrationSensorConfig; force_indices, pad_statics: as
-    FilmLoads takes them.
+    every sensor period. config: the VibrationSensorConfig; force_indices, pad_modulus_pa
+    [Pa], pad_statics: as FilmLoads takes them.
     """
     time_step = plant.time_step()
     if not time_step > 0.0:
@@ -184,7 +185,8 @@ def MakePadFilms(*, plant, pads: dict, force_indices, config, with_texture: bool
     builder = DiagramBuilder()
     loads = builder.AddNamedSystem("film_loads", FilmLoads(
         plant=plant, pads=pads, force_indices=force_indices, config=config,
-        matrices=matrices, with_texture=with_texture, pad_statics=pad_statics))
+        pad_modulus_pa=pad_modulus_pa, matrices=matrices, with_texture=with_texture,
+        pad_statics=pad_statics))
     signals = [(name, size) for name, size in zip(loads.layout.names, loads.layout.sizes)
                if size > 0]
     gather = builder.AddNamedSystem("film_signals", Multiplexer([size for _, size in signals]))
@@ -223,11 +225,12 @@ def finger_force_indices(plant, gripper) -> list[int]:
 
 
 def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorConfig,
-                slip_vibration=None, pad_forces=None, pad_statics=None,
+                pad_modulus_pa: float, slip_vibration=None, pad_forces=None, pad_statics=None,
                 drive_rates=(), name: str = "pad_films"):
     """Adds both pads' films (with their accelerometers and noise source) to `builder`,
-    connected to `plant`; pad forces from the fingers' joints, `pad_forces` or `pad_statics`;
-    `slip_vibration` and `drive_rates` optional. Returns MakePadFilms' Diagram."""
+    connected to `plant`, for pads of modulus `pad_modulus_pa` [Pa]; pad forces from the
+    fingers' joints, `pad_forces` or `pad_statics`; `slip_vibration` and `drive_rates`
+    optional. Returns MakePadFilms' Diagram."""
     drive = AddDriveVibration(builder, sources=list(drive_rates),
                               period_s=1.0 / config.sample_rate_hz,
                               mode_frequency_hz=config.film.mode_frequency_hz,
@@ -240,9 +243,9 @@ def AddPadFilms(builder, *, plant, pads: dict, gripper, config: VibrationSensorC
     elif pad_statics is None:
         force_indices = finger_force_indices(plant, gripper)
     films = builder.AddNamedSystem(name, MakePadFilms(
-        plant=plant, pads=pads, force_indices=force_indices,
-        config=config, with_texture=slip_vibration is not None, pad_statics=pad_statics,
-        with_drive_vibration=drive is not None))
+        plant=plant, pads=pads, force_indices=force_indices, config=config,
+        pad_modulus_pa=pad_modulus_pa, with_texture=slip_vibration is not None,
+        pad_statics=pad_statics, with_drive_vibration=drive is not None))
     if drive is not None:
         builder.Connect(drive, films.GetInputPort("drive_vibration"))
     builder.Connect(force_port, films.GetInputPort("generalized_contact_forces"))

@@ -114,12 +114,17 @@ class FilmLoads(LeafSystem):
     """
 
     def __init__(self, *, plant, pads: dict, force_indices, config: "VibrationSensorConfig",
-                 matrices: FilmStepMatrices, with_texture: bool = False, pad_statics=None):
-        """matrices: the film's step (film_step_matrices); pad_statics: or None."""
+                 pad_modulus_pa: float, matrices: FilmStepMatrices, with_texture: bool = False,
+                 pad_statics=None):
+        """pad_modulus_pa: the pads' elastomer modulus [Pa] (tactile.pad_modulus_pa), which
+        the impact's stiffness follows (impact_stiffness); matrices: the film's step
+        (film_step_matrices); pad_statics: or None."""
+        from tegrasp_drake.simulation.pad_vibration_sensor import impact_stiffness
         super().__init__()
         self._dt = plant.time_step()
         self._pads = [pads[finger] for finger in FINGER_NAMES]
         self._config = config
+        self._impact_stiffness = impact_stiffness(config.film, pad_modulus_pa)  # [N/m]
         self._matrices = matrices
         self._midpoints = matrices.substep_starts + 0.5 * matrices.h
         self._texture_period_m = config.slip_texture_period_m
@@ -165,6 +170,11 @@ class FilmLoads(LeafSystem):
         self._no_direct = [0.0] * (2 * matrices.substeps)
         self.DeclareVectorOutputPort("film_loads", film_loads_size(matrices.substeps),
                                      self._calc)
+
+    @property
+    def impact_stiffness_n_per_m(self) -> float:
+        """The pad's stiffness [N/m] its impact model uses (impact_stiffness)."""
+        return self._impact_stiffness
 
     def _calc(self, context, output):
         # Python floats: per plant step numpy's scalar overhead would exceed the arithmetic.
@@ -251,7 +261,7 @@ class FilmLoads(LeafSystem):
                 for b in (pad_body, other))
             impulse, duration = impact_pulse(
                 float(np.dot(v_pad - v_other, normal)), self._config.film.mode_mass_kg,
-                self._mass[other], self._config.film.pad_contact_stiffness_n_per_m,
+                self._mass[other], self._impact_stiffness,
                 self._config.film.pad_dissipation_s_per_m)
             pulses[k], pulses[2 + k], pulses[4 + k] = step_start, impulse, duration
 

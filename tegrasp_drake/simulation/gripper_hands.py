@@ -110,10 +110,11 @@ def add_gripper_model(parser, hand, pad_refinement: int = 0):
 PAD_COLLISION = "pad"  # the pads' collision geometries' name (modelgen/robotiq_sdf.py)
 
 
-def set_pad_friction(plant, scene_graph, gripper, mu: float) -> None:
+def set_pad_contact(plant, scene_graph, gripper, *, friction: float,
+                    modulus_pa: float) -> None:
     """Gives the hand's pads (collision geometries named PAD_COLLISION) the Coulomb
-    coefficient mu, static and dynamic, replacing the model file's; before Finalize.
-    ValueError when the hand has no pad."""
+    coefficient `friction`, static and dynamic, and the hydroelastic modulus `modulus_pa`
+    [Pa], replacing the model file's; before Finalize. ValueError when the hand has no pad."""
     from pydrake.geometry import ProximityProperties, RoleAssign
     from pydrake.multibody.plant import CoulombFriction
     inspector = scene_graph.model_inspector()
@@ -124,7 +125,9 @@ def set_pad_friction(plant, scene_graph, gripper, mu: float) -> None:
         raise ValueError(f"the gripper model has no '{PAD_COLLISION}' collision geometry")
     for geometry in pads:
         properties = ProximityProperties(inspector.GetProximityProperties(geometry))
-        properties.UpdateProperty("material", "coulomb_friction", CoulombFriction(mu, mu))
+        properties.UpdateProperty("material", "coulomb_friction",
+                                  CoulombFriction(friction, friction))
+        properties.UpdateProperty("hydroelastic", "hydroelastic_modulus", modulus_pa)
         scene_graph.AssignRole(plant.get_source_id(), geometry, properties,
                                RoleAssign.kReplace)
 

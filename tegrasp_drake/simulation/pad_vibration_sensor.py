@@ -6,7 +6,7 @@ z (the inward normal). The model and every number: docs/model.md, "Vibration (RA
 import dataclasses
 
 from tegrasp_drake.rig.ranges import bounded
-from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION, PAD_MODULUS
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.simulation.drive_vibration import (DriveVibrationConfig, arm_drive_default,
                                                      gripper_drive_default)
@@ -14,6 +14,23 @@ from tegrasp_drake.simulation.film_dynamics import FilmParameters, film_sensitiv
 from tegrasp_drake.simulation.film_readout import (ADC_INPUTS, adc_input, noise_at_amplifier_v,
                                                   reading_noise_std)
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
+
+
+def pad_contact_stiffness(pad_modulus_pa: float) -> float:
+    """The pad's stiffness under a flat face [N/m]: E A / (t / 2), E its elastomer's modulus
+    [Pa] on the pad's face A and half its thickness t (Drake's pressure field of a compliant
+    box reaches the modulus at its mid-plane)."""
+    return pad_modulus_pa * PAD_WIDTH * PAD_LENGTH / (PAD_THICKNESS / 2)
+
+
+def impact_stiffness(film: "FilmConfig", pad_modulus_pa: float) -> float:
+    """The stiffness [N/m] the film's impact model gives the pad: `film`'s
+    pad_contact_stiffness_n_per_m when set, else pad_contact_stiffness of the pads' modulus
+    `pad_modulus_pa` [Pa] (tactile.pad_modulus_pa)."""
+    if film.pad_contact_stiffness_n_per_m is not None:
+        return film.pad_contact_stiffness_n_per_m
+    return pad_contact_stiffness(pad_modulus_pa)
+
 
 # The film's gain and the amplifier's capacitor: their words for a value not positive.
 _SENSITIVITY_BELOW = "must be positive (it sets the film's volts per m/s^2)"
@@ -37,10 +54,12 @@ class FilmConfig:
                                   below="must be positive [kg] (the fingertip's moving mass)")
     # Corner of the low-pass on the plant's per-step load (where the plant's force converges).
     load_lowpass_hz: float = bounded(60.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
-    # Impact at contact onset: the pad's stiffness E A / (t / 2), its Hunt-Crossley dissipation.
+    # Impact at contact onset: the pad's stiffness, its Hunt-Crossley dissipation. The
+    # stiffness follows the pads' modulus, E A / (t / 2) of tactile.pad_modulus_pa
+    # (impact_stiffness), unless a number here overrides it (null: follow the modulus).
     impact_enabled: bool = True
-    pad_contact_stiffness_n_per_m: float = bounded(
-        PAD_MODULUS * PAD_WIDTH * PAD_LENGTH / (PAD_THICKNESS / 2), low=0.0, low_open=True,
+    pad_contact_stiffness_n_per_m: float | None = bounded(
+        None, low=0.0, low_open=True,
         high=1e9, unit="N/m", why="a silicone pad is about 5e5 N/m; 1e9 is steel on steel")
     pad_dissipation_s_per_m: float = bounded(PAD_DISSIPATION, low=0.0, high=1000.0, unit="s/m",
                                              why="Hunt-Crossley dissipation of soft materials is "

@@ -40,7 +40,7 @@ from tegrasp_drake.simulation.jaco_velocity_drive import AddJacoVelocityDrive
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, actuated_state_selector,
                                                     add_gripper_model,
                                                     configure_drive, gripper_hand,
-                                                    set_pad_friction)
+                                                    set_pad_contact)
 from tegrasp_drake.simulation.linkage_pad_statics import JOINT_FORCES, LinkagePadStatics
 from tegrasp_drake.simulation.pad_normal_forces import PadNormalForces
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig, pad_refinement_for
@@ -74,6 +74,14 @@ class ArmDriverConfig:
     initial_gripper_xyz: list[float] = bounded(
         default_factory=lambda: [0.69, 0.0, 0.145], low=-0.9, high=0.9, unit="m", length=3,
         why="within the JACO2's 0.9 m reach, Kinova JACO2 specifications")
+    # The start pose's repeatability: G starts off initial_gripper_xyz by an offset drawn
+    # uniformly on +-start_position_bound_m along each world axis from the scenario's seed
+    # (start_offset_m), while the controller plans from initial_gripper_xyz, as a robot sent
+    # to its start pose believes it is there; 0, the default, starts it there exactly. The
+    # plausible range: docs/model.md, "What was guessed".
+    start_position_bound_m: float = bounded(
+        0.0, low=0.0, high=0.02, unit="m",
+        why="an arm's start pose repeats to millimetres; 2 cm is beyond any working arm's")
     # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state.
     control_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
                                       why="ten periods of the JACO2's 100 Hz commands at most")
@@ -116,14 +124,16 @@ def object_pose_on_table(expected_object_xy, object_offset, object_yaw_deg: floa
     return RigidTransform(RollPitchYaw(0, 0, math.radians(object_yaw_deg)), [x, y, 0.0])
 
 
-def initial_arm_positions(arm: ArmDriverConfig) -> np.ndarray:
-    """Joint angles [rad] that put G at arm.initial_gripper_xyz, side-grasp orientation;
-    ConfigError naming that field when the arm cannot reach it (start_pose_problem)."""
+def initial_arm_positions(arm: ArmDriverConfig,
+                          start_offset=(0.0, 0.0, 0.0)) -> np.ndarray:
+    """Joint angles [rad] that put G at arm.initial_gripper_xyz plus `start_offset` [m,
+    world] (none: where the controller plans from), side-grasp orientation; ConfigError
+    naming arm.initial_gripper_xyz when the arm cannot reach it (start_pose_problem)."""
     problem = start_pose_problem(arm)
     if problem is not None:
         field, words, value = problem
         raise ConfigError(f"field 'arm.{field}' {words}, got {value}")
-    return _start_positions(_start_key(arm)).copy()
+    return _start_positions(_start_key(arm, start_offset)).copy()
 
 
 def start_pose_problem(arm: ArmDriverConfig) -> tuple[str, str, list] | None:
@@ -139,13 +149,25 @@ def start_pose_problem(arm: ArmDriverConfig) -> tuple[str, str, list] | None:
     return None
 
 
-def _start_key(arm: ArmDriverConfig) -> tuple[float, ...]:
-    return tuple(float(v) for v in arm.initial_gripper_xyz)
+def _start_key(arm: ArmDriverConfig, start_offset=(0.0, 0.0, 0.0)) -> tuple[float, ...]:
+    return tuple(float(v) for v in np.add(arm.initial_gripper_xyz, start_offset))
 
 
 @functools.lru_cache(maxsize=32)
 def _start_positions(xyz: tuple[float, ...]) -> np.ndarray:
     return solve_grasp_frame_ik(make_arm_control_plant(), RigidTransform(R_WG_SIDE_GRASP, xyz))
+
+
+_START_POSE_STREAM = 7101  # separates the start pose's draw from other streams of the seed
+
+
+def start_offset_m(arm: ArmDriverConfig, random_seed: int) -> np.ndarray:
+    """Where G starts off arm.initial_gripper_xyz [m, world]: uniform on
+    +-arm.start_position_bound_m along x, y and z, drawn from `random_seed`; zeros at 0."""
+    bound = arm.start_position_bound_m
+    if bound == 0.0:
+        return np.zeros(3)
+    return np.random.default_rng([random_seed, _START_POSE_STREAM]).uniform(-bound, bound, 3)
 
 
 def set_pd_gains(plant, instance, kp, kd):
@@ -213,8 +235,8 @@ def AddTactileSensors(builder, *, plant, scene_graph, gripper, object_body,
             builder.Connect(plant.get_body_poses_output_port(),
                             pad_forces.GetInputPort("body_poses"))
     films = AddPadFilms(builder, plant=plant, pads=pads, gripper=gripper, config=vibration,
-                        slip_vibration=slip, pad_forces=pad_forces, pad_statics=pad_statics,
-                        drive_rates=drive_rates)
+                        pad_modulus_pa=tactile.pad_modulus_pa, slip_vibration=slip,
+                        pad_forces=pad_forces, pad_statics=pad_statics, drive_rates=drive_rates)
     return taxels, films
 
 
@@ -253,6 +275,7 @@ class StationPlant:
     object_instance: object
     carriage: Carriage | None = None
     carriage_weld: object = None  # the carriage-gripper weld joint
+    initial_arm_positions: np.ndarray | None = None  # the arm's joints at t = 0 [rad]
 
 
 def side_grasp_pose(xy, height: float) -> RigidTransform:
@@ -262,12 +285,16 @@ def side_grasp_pose(xy, height: float) -> RigidTransform:
 
 def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
                     gripper: GripperDriverConfig, object: ObjectConfig,
-                    X_WO: RigidTransform, carriage: EndpointImpedance | None = None,
+                    X_WO: RigidTransform, pad_modulus_pa: float,
+                    random_seed: Annotated[int, SEED_RANGE],
+                    carriage: EndpointImpedance | None = None,
                     contact_geometry: ContactGeometryConfig | None = None) -> StationPlant:
-    """Adds the station's plant (`plant_config`) to `builder`: the arm at its start pose, or
-    with `carriage` the gripper on a Cartesian carriage of that impedance; the gripper of
-    `gripper.model` (PD gains, no gravity), the table and `object` at X_WO meshed as
-    `contact_geometry` says (default: the reference geometry), finalized."""
+    """Adds the station's plant (`plant_config`) to `builder`: the arm at its start pose
+    (off it as arm.start_position_bound_m draws from `random_seed`), or with `carriage` the
+    gripper on a Cartesian carriage of that impedance; the gripper of `gripper.model` (PD
+    gains, no gravity), its pads of gripper.pad_friction and modulus `pad_modulus_pa` [Pa]
+    (tactile.pad_modulus_pa), the table and `object` at X_WO meshed as `contact_geometry`
+    says (default: the reference geometry), finalized."""
     arm_config, gripper_config, impedance = arm, gripper, carriage
     plant, scene_graph = AddMultibodyPlant(plant_config, builder)
     parser = paths.make_parser(plant)
@@ -295,10 +322,11 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
     if carriage is None:
         set_pd_gains(plant, arm, arm_config.position_gain, arm_config.damping_gain)
     configure_drive(plant, gripper, hand, gripper_config)
-    set_pad_friction(plant, scene_graph, gripper, gripper_config.pad_friction)
+    set_pad_contact(plant, scene_graph, gripper, friction=gripper_config.pad_friction,
+                    modulus_pa=pad_modulus_pa)
     plant.Finalize()
 
-    q_arm = initial_arm_positions(arm_config)
+    q_arm = initial_arm_positions(arm_config, start_offset_m(arm_config, random_seed))
     if carriage is None:
         plant.SetDefaultPositions(arm, q_arm)
     else:  # where the arm's start joints put G, so that the first command finds it there
@@ -306,14 +334,14 @@ def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
         plant.SetDefaultPositions(arm, carriage_positions(carriage, X_WG_start))
     plant.SetDefaultPositions(gripper, hand.default_positions())
     plant.SetDefaultFloatingBaseBodyPose(object_body(plant, obj), X_WO)
-    return StationPlant(plant, scene_graph, arm, gripper, obj, carriage, weld)
+    return StationPlant(plant, scene_graph, arm, gripper, obj, carriage, weld, q_arm)
 
 
 def _add_carriage_arm_ports(builder, parts: StationPlant, arm: ArmDriverConfig,
                             time_step: float) -> None:
     """The arm's ports on the carriage, `carriage.desired_state` and `gripper.wrist_wrench`."""
     plant = parts.plant
-    q0 = initial_arm_positions(arm)
+    q0 = parts.initial_arm_positions
     command = builder.AddNamedSystem("carriage_command", CarriageCommand(
         parts.carriage, initial_positions=q0, period_s=time_step))
     # The JACO2 mount's velocity drive with an ideal servo: the carriage follows its set-point.
@@ -358,7 +386,8 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
     the arm's place; with `meshcat`, its visualization, the camera at `grasp_height` [m]."""
     builder = DiagramBuilder()
     parts = AddStationPlant(builder, plant_config=plant_config, arm=arm, gripper=gripper,
-                            object=object, X_WO=X_WO, carriage=carriage,
+                            object=object, X_WO=X_WO, pad_modulus_pa=tactile.pad_modulus_pa,
+                            random_seed=random_seed, carriage=carriage,
                             contact_geometry=contact_geometry)
     gripper_config = gripper
     plant, scene_graph = parts.plant, parts.scene_graph
@@ -370,7 +399,7 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
                                            Demultiplexer([ports.ARM_JOINTS] * 2))
         builder.Connect(plant.get_state_output_port(arm_instance), arm_state.get_input_port())
         drive = AddJacoVelocityDrive(builder, arm=arm, time_step=plant_config.time_step,
-                                     initial_positions=initial_arm_positions(arm),
+                                     initial_positions=parts.initial_arm_positions,
                                      position_measured=arm_state.get_output_port(0))
         builder.ExportInput(drive.desired_state, ports.ARM_DESIRED_STATE)
         builder.Connect(drive.set_point, plant.get_desired_state_input_port(arm_instance))

@@ -14,6 +14,7 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import LeafSystem
 
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig
@@ -28,9 +29,18 @@ _NOISE_STREAM = 7001  # separates this sensor's random stream from others seeded
 @public_dataclass
 @dataclasses.dataclass
 class TactileSensorConfig:
-    """The taxel array of each pad (docs/model.md, "The fingertip and its taxels"). transducer:
-    "capacitive" (the real pad's AD7147, settings in `capacitive`) or "force" (an ideal force
-    sensor with the noise, quantisation and offset below, as the paper's simulation)."""
+    """The taxel array of each pad (docs/model.md, "The fingertip and its taxels") and the
+    pad's elastomer. transducer: "capacitive" (the real pad's AD7147, settings in
+    `capacitive`) or "force" (an ideal force sensor with the noise, quantisation and offset
+    below, as the paper's simulation)."""
+    # The pad elastomer's modulus [Pa]: the pads' hydroelastic modulus in contact (the hand's
+    # model is given it when the station is built) and the E of the capacitive taxels'
+    # compression d0 p / E; one number for both. The paper does not name the elastomer; the
+    # default is the hand models' PAD_MODULUS (modelgen/robotiq_sdf.py), its plausible range
+    # in docs/model.md ("What was guessed").
+    pad_modulus_pa: float = bounded(PAD_MODULUS, low=1e5, high=5e7, unit="Pa",
+                                    why="an elastomer: a gel-soft silicone is about 0.1 MPa, "
+                                        "a hard rubber tens of MPa")
     sample_rate_hz: float = bounded(108.0, low=16.0, high=20_000.0, unit="Hz",
                                     why="the 0.5 s event window needs 8 samples; the film is "
                                         "integrated at 20 kHz")

@@ -75,7 +75,8 @@ def _reading_noise(tactile_config, *, at_rest: bool) -> LatticeDistribution:
             return counts
         if at_rest:
             counts = _clipped_at_zero(counts)
-        return _scaled(counts, calibration_gain_n_per_count(c.capacitive))
+        return _scaled(counts, calibration_gain_n_per_count(
+            c.capacitive, pad_modulus_pa=c.pad_modulus_pa))
     step = c.quantization_n or c.noise_std_n / _CONTINUOUS_STEPS_PER_SIGMA
     if step == 0.0:  # neither noise nor quantisation: the reading is the offset
         return LatticeDistribution(1.0, float(c.offset_n), np.ones(1))

@@ -181,12 +181,26 @@ def world_scenario(spec: TransferSpec, world: str, object_name: str):
     return validate(dataclasses.replace(base, object=obj), f"world {world}")
 
 
+def recorded_events_folders(spec: TransferSpec) -> tuple[str, ...]:
+    """The events folders (controller.events_folder) a world's recording makes: always the
+    paper's events (""), and the ensemble ("ensemble") when a sweep's controller reads it."""
+    from tegrasp_drake.control.controller_registry import controller_class
+    from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER
+    wanted = {controller_class(name).events_folder for name in spec.sweep.controllers}
+    return ("",) + ((ENSEMBLE_FOLDER,) if ENSEMBLE_FOLDER in wanted else ())
+
+
 def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) -> int:
-    """Records the events of every object of the sweep in `world` into `folder`, skipping those
-    there; returns how many it recorded. SweepError for a folder of other world settings."""
+    """Records, in `world`, the events every object of the sweep needs for the sweep's
+    controllers (the paper's into `folder`, the taxel_aware controller's ensemble into
+    `folder`/ensemble, as `tegrasp record-events` does), skipping those there; returns how
+    many recordings it made (an object's paper events, its ensemble). SweepError for a folder
+    of other world settings."""
     from tegrasp_drake.events import save_memorized_events
     from tegrasp_drake.events.event_file import INDEX_FILE, read_index
     from tegrasp_drake.recording.campaign import RecordEventsError
+    from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, TEMPLATE_RUNS,
+                                                         record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError
     from tegrasp_drake.rig.files import load_json, write_atomically
@@ -202,19 +216,25 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
                              "remove that one")
     folder.mkdir(parents=True, exist_ok=True)
     write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
-    have = ({entry["object"] for entry in read_index(folder)}
-            if (folder / INDEX_FILE).is_file() else set())
+    recorders = {"": ("", record_events),  # what the log calls them, how they are recorded
+                 ENSEMBLE_FOLDER: ("ensemble ", lambda name, scenario: record_object_ensemble(
+                     name, scenario, TEMPLATE_RUNS))}
     recorded = 0
-    for object_name in spec.sweep.objects:
-        if object_name in have:
-            continue
-        log(f"recording the events of {object_name} in world {world}")
-        try:
-            events = record_events(object_name, world_scenario(spec, world, object_name))
-        except RecordEventsError as error:
-            raise SweepError(f"world {world}: {error}") from None
-        save_memorized_events(folder, events.values())
-        recorded += 1
+    for sub in recorded_events_folders(spec):
+        what, record = recorders[sub]
+        destination = folder / sub
+        have = ({entry["object"] for entry in read_index(destination)}
+                if (destination / INDEX_FILE).is_file() else set())
+        for object_name in spec.sweep.objects:
+            if object_name in have:
+                continue
+            log(f"recording the {what}events of {object_name} in world {world}")
+            try:
+                events = record(object_name, world_scenario(spec, world, object_name))
+            except RecordEventsError as error:
+                raise SweepError(f"world {world}: {error}") from None
+            save_memorized_events(destination, events.values())
+            recorded += 1
     return recorded
 
 
@@ -228,19 +248,21 @@ def cell_folder(out_dir, memorizing: str, running: str) -> pathlib.Path:
 
 def check_unrecorded_events(spec: TransferSpec, out_dir) -> None:
     """ConfigError, before anything is recorded or written, for a cell's trials of a controller
-    that reads events a world's recording does not make (its own folder's: the ensemble's;
-    record_world_events records the paper's events alone) when they are not there already."""
+    that reads events a world's recording does not make (recorded_events_folders) when they
+    are not there already."""
     from tegrasp_drake.control.controller_registry import controller_class
     from tegrasp_drake.sweep.spec import expand_trials
     from tegrasp_drake.sweep.trial_function import check_sweep_events
+    made = recorded_events_folders(spec)
     for memorizing, running in spec.cells:
         trials = [t.to_dict() for t in expand_trials(running_sweep(spec, running))
-                  if controller_class(t.controller).events_folder]
+                  if controller_class(t.controller).events_folder not in (None, *made)]
         try:
             check_sweep_events(trials, world_events_folder(out_dir, memorizing))
         except ConfigError as error:
-            raise ConfigError(f"{error}; a world's recording makes the paper's events alone, "
-                              "so record these there first or drop the controller") from None
+            raise ConfigError(f"{error}; a world's recording makes the paper's events and the "
+                              "ensemble alone, so record these there first or drop the "
+                              "controller") from None
 
 
 def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,

@@ -29,7 +29,8 @@ def _capacitive_rest_sums(config: TactileSensorConfig, seed: int) -> np.ndarray:
     rng = np.random.default_rng(seed)
     std = noise_std_at_decimation(config.capacitive)
     noise = std * rng.standard_normal((SAMPLES, 12))
-    return capacitive_readings(np.zeros((SAMPLES, 12)), config.capacitive, noise).sum(axis=1)
+    return capacitive_readings(np.zeros((SAMPLES, 12)), config.capacitive, noise,
+                               pad_modulus_pa=config.pad_modulus_pa).sum(axis=1)
 
 
 def _force_rest_sums(config: TactileSensorConfig, seed: int) -> np.ndarray:
@@ -98,3 +99,18 @@ def test_a_slower_frame_rate_lowers_the_floor():
     """Fewer samples per trial: noise alone has fewer tries at the threshold."""
     assert (sa_noise_floors(CAPACITIVE, 27.0).pad_sum
             <= sa_noise_floors(CAPACITIVE, SA_RATE_HZ).pad_sum)
+
+
+def test_the_capacitive_noise_floors_follow_the_pads_modulus():
+    """The same counts of noise are more newtons on a stiffer pad (its calibration's gain):
+    each floor scales with the gain, the pad's modulus in the transducer's reading."""
+    from tegrasp_drake.simulation.capacitive_taxels import calibration_gain_n_per_count
+    stiffer = dataclasses.replace(CAPACITIVE, pad_modulus_pa=2 * CAPACITIVE.pad_modulus_pa)
+    ratio = (calibration_gain_n_per_count(stiffer.capacitive,
+                                          pad_modulus_pa=stiffer.pad_modulus_pa)
+             / calibration_gain_n_per_count(CAPACITIVE.capacitive,
+                                            pad_modulus_pa=CAPACITIVE.pad_modulus_pa))
+    assert ratio > 2.0  # the reading is nonlinear: not exactly the modulus' ratio
+    base, floors = (sa_noise_floors(c, SA_RATE_HZ) for c in (CAPACITIVE, stiffer))
+    for name in ("pad_sum", "taxel", "pad_asymmetry"):
+        assert getattr(floors, name) == pytest.approx(ratio * getattr(base, name), rel=1e-9)

@@ -34,7 +34,7 @@ def write_spec(folder, text):
 def test_the_committed_spec_sweeps_every_parameter_on_the_paper_grid():
     spec = LoadSensitivitySpec(ROOT / "analysis" / "sensitivity.yaml")
     assert spec.parameters == UNCERTAIN_PARAMETERS
-    assert spec.sweep.controllers == ("memorized", "open_loop", "heuristic")
+    assert spec.sweep.controllers == ("memorized", "open_loop", "heuristic", "taxel_aware")
     assert len(spec.sweep.objects) * len(spec.sweep.grid) * spec.sweep.attempts == 81
 
 

@@ -19,8 +19,8 @@ EPSILON_0 = 8.8541878128e-12
 COUNTS_PER_F = 4096 * 1e12  # 16 bits over the AD7147's +-8 pF
 
 
-def readings(config, forces, noise=None):
-    system = CapacitiveTaxels(config=config)
+def readings(config, forces, noise=None, modulus_pa=MODULUS_PA):
+    system = CapacitiveTaxels(config=config, pad_modulus_pa=modulus_pa)
     context = system.CreateDefaultContext()
     system.GetInputPort("true_taxel_forces").FixValue(context, forces)
     if noise is not None:
@@ -53,7 +53,7 @@ def test_calibrated_readings_are_exact_at_the_calibration_point_and_nonlinear_el
     forces = np.zeros(24)
     forces[:3] = (1.0, 5.0, 20.0)
     newtons = readings(config, forces)
-    gain = calibration_gain_n_per_count(config)
+    gain = calibration_gain_n_per_count(config, pad_modulus_pa=MODULUS_PA)
     assert newtons[1] == pytest.approx(5.0, abs=gain)  # within one count
     assert newtons[0] < 1.0 - gain  # below the calibration point it reads low
     assert newtons[2] > 20.0 + gain  # above it, high
@@ -66,7 +66,8 @@ def test_noise_is_in_counts_and_the_calibration_clips_negative_readings_to_zero(
     counts = readings(config, np.zeros(24), noise)
     np.testing.assert_array_equal(counts, np.rint(4.0 * noise))
     calibrated = readings(CapacitiveTaxelConfig(noise_std_counts=4.0), np.zeros(24), noise)
-    gain = calibration_gain_n_per_count(CapacitiveTaxelConfig())
+    gain = calibration_gain_n_per_count(CapacitiveTaxelConfig(),
+                                        pad_modulus_pa=MODULUS_PA)
     np.testing.assert_allclose(calibrated, np.maximum(np.rint(4.0 * noise), 0.0) * gain)
 
 
@@ -98,3 +99,24 @@ def test_a_larger_decimation_averages_the_noise_down(decimation, noise_counts):
     config = CapacitiveTaxelConfig(output="counts", decimation=decimation)
     read = readings(config, np.zeros(24), noise=np.full(24, 10.0))
     np.testing.assert_array_equal(read, np.full(24, np.rint(10.0 * noise_counts)))
+
+
+def test_a_stiffer_pad_compresses_less_under_the_same_force():
+    """The compression d0 p / E follows the pad's modulus: twice as stiff, half the
+    compression, read through the same parallel-plate formula."""
+    config = CapacitiveTaxelConfig(noise_std_counts=0.0, output="counts")
+    force = MODULUS_PA * 0.0004 / GAP_M * ELECTRODE_AREA_M2  # 0.4 mm at the default modulus
+    forces = np.zeros(24)
+    forces[5] = force
+    stiffer = readings(config, forces, modulus_pa=2 * MODULUS_PA)
+    delta_c = config.relative_permittivity * EPSILON_0 * ELECTRODE_AREA_M2 * (
+        1 / (GAP_M - 0.0002) - 1 / GAP_M)
+    assert stiffer[5] == np.rint(delta_c * COUNTS_PER_F)
+    assert stiffer[5] < readings(config, forces)[5]
+    # the calibration follows: the bench force over its counts on the stiffer pad
+    bench = CapacitiveTaxelConfig()
+    compression = GAP_M * bench.calibration_force_n / ELECTRODE_AREA_M2 / (2 * MODULUS_PA)
+    bench_counts = bench.relative_permittivity * EPSILON_0 * ELECTRODE_AREA_M2 * (
+        1 / (GAP_M - compression) - 1 / GAP_M) * COUNTS_PER_F
+    assert calibration_gain_n_per_count(bench, pad_modulus_pa=2 * MODULUS_PA) == \
+        pytest.approx(bench.calibration_force_n / bench_counts, rel=1e-12)

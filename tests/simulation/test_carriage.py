@@ -35,7 +35,10 @@ def station_plant(builder, scenario):
     """The scenario's station plant (the carriage's when its station says so)."""
     return AddStationPlant(builder, plant_config=scenario.plant_config, arm=scenario.arm,
                            gripper=scenario.gripper, object=scenario.object,
-                           X_WO=object_pose(scenario), carriage=station_carriage(scenario))
+                           X_WO=object_pose(scenario),
+                           pad_modulus_pa=scenario.tactile.pad_modulus_pa,
+                           random_seed=scenario.random_seed,
+                           carriage=station_carriage(scenario))
 
 
 @pytest.fixture(scope="module")

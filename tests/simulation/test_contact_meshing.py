@@ -22,6 +22,8 @@ def _station_plant(scenario):
     return AddStationPlant(DiagramBuilder(), plant_config=scenario.plant_config,
                            arm=scenario.arm, gripper=scenario.gripper, object=scenario.object,
                            X_WO=object_pose(scenario),
+                           pad_modulus_pa=scenario.tactile.pad_modulus_pa,
+                           random_seed=scenario.random_seed,
                            contact_geometry=scenario.contact_geometry)
 
 

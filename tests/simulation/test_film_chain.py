@@ -23,6 +23,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import PassThrough, RandomSource
 
+from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
 from tegrasp_drake.simulation.film_chain import (AddFilmSamples, MakePadFilms,
                                                  film_readout_system, film_step_matrix)
 from tegrasp_drake.simulation.film_dynamics import (STATE_SIZE, advance_films,
@@ -160,7 +161,8 @@ def test_the_films_draw_nothing_from_the_random_generator():
             plant.Finalize()
             pads = {f: PadGeometry(None, BodyIndex(0), RigidTransform()) for f in ("left", "right")}
             builder.AddSystem(MakePadFilms(plant=plant, pads=pads, force_indices=(0, 1),
-                                           config=VibrationSensorConfig()))
+                                           config=VibrationSensorConfig(),
+                                           pad_modulus_pa=PAD_MODULUS))
         noise = builder.AddSystem(RandomSource(RandomDistribution.kGaussian, 1, TIME_STEP))
         diagram = builder.Build()
         context = diagram.CreateDefaultContext()

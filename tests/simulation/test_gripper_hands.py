@@ -79,9 +79,10 @@ def test_actuated_state_selector_picks_the_actuated_joints_position_and_velocity
                                    v_all[joint.velocity_start()]])
 
 
-def _pad_and_object_friction(scenario):
-    """(each pad's, the object's) Coulomb coefficients (static, dynamic) as the built plant
-    reads them at run time (the query object's inspector), copied out of the diagram."""
+def _pad_and_object_properties(scenario):
+    """(each pad's Coulomb coefficients (static, dynamic), the object's, each pad's
+    hydroelastic modulus [Pa]) as the built plant reads them at run time (the query object's
+    inspector), copied out of the diagram."""
     from pydrake.systems.framework import DiagramBuilder
     from tegrasp_drake.scenario.scenario import object_pose
     from tegrasp_drake.simulation.object_model import object_body
@@ -90,6 +91,8 @@ def _pad_and_object_friction(scenario):
     parts = AddStationPlant(builder, plant_config=scenario.plant_config, arm=scenario.arm,
                             gripper=scenario.gripper, object=scenario.object,
                             X_WO=object_pose(scenario),
+                            pad_modulus_pa=scenario.tactile.pad_modulus_pa,
+                            random_seed=scenario.random_seed,
                             contact_geometry=scenario.contact_geometry)
     diagram = builder.Build()
     context = diagram.CreateDefaultContext()
@@ -100,21 +103,33 @@ def _pad_and_object_friction(scenario):
         coulomb = inspector.GetProximityProperties(geometry).GetProperty(
             "material", "coulomb_friction")
         return float(coulomb.static_friction()), float(coulomb.dynamic_friction())
-    pads = [friction(pad.geometry_id) for pad in
+    pads = [pad.geometry_id for pad in
             pad_geometries(parts.plant, parts.scene_graph, parts.gripper).values()]
     (obj,) = parts.plant.GetCollisionGeometriesForBody(
         object_body(parts.plant, parts.object_instance))
-    return pads, friction(obj)
+    moduli = [float(inspector.GetProximityProperties(pad).GetProperty(
+        "hydroelastic", "hydroelastic_modulus")) for pad in pads]
+    return [friction(pad) for pad in pads], friction(obj), moduli
 
 
 def test_the_pad_friction_setting_replaces_the_pads_coefficient_and_only_theirs():
     from tegrasp_drake.rig import materials
     from tegrasp_drake.scenario.scenario import LoadScenario
-    default_pads, default_object = _pad_and_object_friction(LoadScenario())
+    default_pads, default_object, _ = _pad_and_object_properties(LoadScenario())
     assert default_pads == [(materials.PAD_COVER, materials.PAD_COVER)] * 2
-    pads, obj = _pad_and_object_friction(LoadScenario(overrides=["gripper.pad_friction=0.91"]))
+    pads, obj, _ = _pad_and_object_properties(
+        LoadScenario(overrides=["gripper.pad_friction=0.91"]))
     assert pads == [(0.91, 0.91)] * 2
     assert obj == default_object == (materials.CARDBOARD, materials.CARDBOARD)
     # the box's pair with the pads, as Drake combines them: 0.60 (0.81 at the default)
     assert materials.pair_friction(0.91, obj[1]) == pytest.approx(0.60,
                                                                                  abs=0.005)
+
+
+@pytest.mark.parametrize("modulus_pa", [5.0e5, 4.0e6])
+def test_the_pad_modulus_setting_replaces_the_pads_hydroelastic_modulus(modulus_pa):
+    from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    assert _pad_and_object_properties(LoadScenario())[2] == [PAD_MODULUS] * 2
+    scenario = LoadScenario(overrides=[f"tactile.pad_modulus_pa={modulus_pa}"])
+    assert _pad_and_object_properties(scenario)[2] == [modulus_pa] * 2

@@ -169,3 +169,44 @@ def test_drive_vibration_is_off_while_the_joints_stand_still_and_on_while_they_m
     # 400 Hz, on the fingertip's mode (gain 10), reads up to 0.3 / 3 x 10 = 1 m/s^2 once
     # the fingers are at speed (0.05 s of ramp at 0.5 m/s^2).
     assert closing > 0.1
+
+
+def _start_of_grasp_frame(scenario) -> np.ndarray:
+    """p_WG [m] of the built station's arm at t = 0 (the plant's default positions)."""
+    from tegrasp_drake.simulation.carriage import ArmGraspFrameKinematics
+    station = MakeSimulatedStation(scenario)
+    context = station.CreateDefaultContext()
+    q = station.GetOutputPort(ports.ARM_POSITION_MEASURED).Eval(context)
+    return ArmGraspFrameKinematics().pose_and_jacobian(q)[0].translation()
+
+
+def test_the_arm_starts_off_its_start_pose_by_the_seeds_draw_within_the_bound():
+    from tegrasp_drake.simulation.station import start_offset_m
+    nominal = LoadScenario(overrides=["random_seed=600"])
+    np.testing.assert_allclose(_start_of_grasp_frame(nominal), nominal.arm.initial_gripper_xyz,
+                               atol=1e-6)
+    scenario = LoadScenario(overrides=["random_seed=600", "arm.start_position_bound_m=0.005"])
+    offset = start_offset_m(scenario.arm, scenario.random_seed)
+    assert np.all(np.abs(offset) <= 0.005) and np.linalg.norm(offset) > 0.001
+    np.testing.assert_allclose(_start_of_grasp_frame(scenario),
+                               np.add(scenario.arm.initial_gripper_xyz, offset), atol=1e-6)
+    other_seed = LoadScenario(overrides=["random_seed=601", "arm.start_position_bound_m=0.005"])
+    assert not np.allclose(start_offset_m(other_seed.arm, 601), offset)
+
+
+def _film_impact_stiffness(scenario) -> float:
+    """The built station's films' impact stiffness [N/m] (FilmLoads)."""
+    station = MakeSimulatedStation(scenario)
+    films = next(s for s in station.GetSystems() if s.get_name() == "pad_films")
+    return films.GetSubsystemByName("film_loads").impact_stiffness_n_per_m
+
+
+def test_the_films_impact_stiffness_follows_the_pad_modulus_set_alone():
+    from tegrasp_drake.simulation.pad_vibration_sensor import pad_contact_stiffness
+    default = _film_impact_stiffness(LoadScenario())
+    stiffer = _film_impact_stiffness(LoadScenario(overrides=["tactile.pad_modulus_pa=4.0e6"]))
+    assert default == pytest.approx(4.8e5) and stiffer == pytest.approx(9.6e5)
+    assert stiffer == pad_contact_stiffness(4.0e6)
+    overridden = LoadScenario(overrides=["tactile.pad_modulus_pa=4.0e6",
+                                         "vibration.film.pad_contact_stiffness_n_per_m=3.0e5"])
+    assert _film_impact_stiffness(overridden) == pytest.approx(3.0e5)

@@ -126,7 +126,7 @@ def test_each_cell_is_a_sweep_with_its_memorizing_worlds_events_and_resumes(tmp_
     command = transfer_command(spec, out, "--trial-function",
                                "tests.fake_trials:fake_trial_with_events")
     first = subprocess.run(command, env=environment(), capture_output=True, text=True,
-                           timeout=120)
+                           timeout=TIMEOUT_S)
     assert first.returncode == 0, first.stderr
     for world in ("ideal", "faithful"):
         records = sorted((out / "cells" / f"{world}-in-faithful" / "trials").glob("*.json"))
@@ -141,7 +141,7 @@ def test_each_cell_is_a_sweep_with_its_memorizing_worlds_events_and_resumes(tmp_
     assert (out / "transfer_matrix.png").stat().st_size > 0
 
     again = subprocess.run(command, env=environment(), capture_output=True, text=True,
-                           timeout=120)
+                           timeout=TIMEOUT_S)
     assert again.returncode == 0, again.stderr
     assert again.stdout.count("2 already finished, 0 run now") == 2
 
@@ -152,7 +152,7 @@ def test_a_folder_of_another_worlds_events_is_refused(tmp_path):
     (out / "events" / "ideal").mkdir(parents=True)
     (out / "events" / "ideal" / "world.json").write_text(json.dumps(["gripper.model=1"]))
     done = subprocess.run(transfer_command(spec, out), env=environment(),
-                          capture_output=True, text=True, timeout=120)
+                          capture_output=True, text=True, timeout=TIMEOUT_S)
     assert done.returncode == 2
     assert "holds the events of world 'ideal' recorded with other settings" in done.stderr
 
@@ -204,15 +204,21 @@ def test_two_real_trials_run_end_to_end_and_resume_after_a_kill(tmp_path):
     assert "| ideal | faithful | memorized | 2 |" in (out / "transfer.md").read_text()
 
 
-def test_missing_events_of_a_cell_are_named_before_any_trial_runs(tmp_path):
-    spec = write_spec(tmp_path, TWO_WORLDS.replace("controllers: [memorized]",
-                                                   "controllers: [taxel_aware]"))
+def test_missing_events_of_a_cell_are_named_before_any_trial_runs(tmp_path, monkeypatch):
+    """A controller reading events from a folder a world's recording does not make (the
+    paper's events and the taxel_aware ensemble are made; here the ensemble's folder is
+    renamed) is refused in one line before anything is recorded or run."""
+    from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
+    from tegrasp_drake.sweep.trial_function import run_trial_from_spec
+    from tegrasp_drake.transfer.matrix import run_transfer
+    monkeypatch.setattr(TaxelAwareControllerConfig, "events_folder", "unrecorded")
+    spec = LoadTransferSpec(write_spec(tmp_path, TWO_WORLDS.replace(
+        "controllers: [memorized]", "controllers: [taxel_aware]")))
     out = tmp_path / "out"
-    shutil.copytree(paths.package_events_dir(), out / "events" / "ideal",
-                    ignore=shutil.ignore_patterns("ensemble", "corrective", "prismatic"))
-    done = subprocess.run(transfer_command(spec, out), env=environment(),
-                          capture_output=True, text=True, timeout=120)
-    assert done.returncode == 2
-    assert done.stderr.startswith("tegrasp transfer: error: trial taxel_aware/box/")
-    assert done.stderr.count("\n") == 1
-    assert not (out / "cells").exists()
+    with pytest.raises(ConfigError) as refused:
+        run_transfer(spec, run_trial_from_spec, out, workers=1, progress=False)
+    message = str(refused.value)
+    assert message.startswith("trial taxel_aware/box/") and "unrecorded" in message
+    assert message.endswith("so record these there first or drop the controller")
+    assert "\n" not in message
+    assert not out.exists()
