@@ -41,3 +41,49 @@ def test_an_empty_value_is_kept_where_the_field_declares_what_empty_means(tmp_pa
              "'object.shape'")
     assert T.LoadScenario(name="box", overrides=[
         "controller.event_object_may_differ=[]"]).controller.event_object_may_differ == []
+
+
+# Rule: one object-name rule (rig/objects.object_name_problem) wherever a name becomes a path:
+# a folder name (with the suffixes of the files made of it) fits 255 bytes, and the events
+# folder's own subfolders are no object's name.
+_OWN_OBJECT = ["object.shape=box", "object.size=[0.04,0.04,0.1]", "object.mass=0.1",
+               "object.friction=0.5"]
+
+
+@pytest.mark.parametrize("name", ["ensemble", "corrective", "prismatic", "a" * 300])
+def test_an_object_name_that_cannot_be_its_own_folder_is_refused(name):
+    _refused(lambda: T.LoadScenario(name="box", overrides=[f"object.name={name}"] + _OWN_OBJECT),
+             "'object.name'")
+
+
+def test_the_reserved_names_are_the_events_folders_own_subfolders():
+    from tegrasp_drake.control.controller_registry import CONTROLLERS
+    from tegrasp_drake.recording.corrective_events import CORRECTIVE_FOLDER
+    from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER
+    from tegrasp_drake.rig.objects import EVENTS_SUBFOLDERS
+    from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
+    folders = {entry.config.events_folder for entry in CONTROLLERS}
+    folders |= {gripper_hand(model).events_folder for model in GRIPPER_MODELS}
+    folders |= {CORRECTIVE_FOLDER, ENSEMBLE_FOLDER}
+    assert folders - {None, ""} <= set(EVENTS_SUBFOLDERS)
+
+
+def test_events_of_an_object_named_ensemble_cannot_replace_the_ensemble_folders_index(tmp_path):
+    import dataclasses
+    import shutil
+    from tegrasp_drake.events import load_memorized_events, save_memorized_events
+    from tegrasp_drake.rig import paths
+    events_dir = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir() / "ensemble", events_dir / "ensemble")
+    box = load_memorized_events(paths.package_events_dir(), "box").values()
+    with pytest.raises(ValueError, match="object_name"):
+        save_memorized_events(events_dir, [dataclasses.replace(e, object_name="ensemble")
+                                           for e in box], keep_other_objects=True)
+    assert (events_dir / "ensemble" / "index.json").is_file()
+
+
+def test_a_sweep_object_name_follows_the_object_name_rule(tmp_path):
+    path = tmp_path / "spec.yaml"
+    path.write_text("objects: [ensemble]\ncontrollers: [open_loop]\nuser_objects:\n  ensemble: "
+                    "{shape: box, size: [0.04, 0.04, 0.1], mass: 0.1, friction: 0.5}\n")
+    _refused(lambda: T.LoadSweepSpec(path), "user_objects", "ensemble")

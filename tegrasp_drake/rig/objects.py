@@ -12,7 +12,7 @@ import re
 from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig import materials
 from tegrasp_drake.robotiq.units import STROKE_M
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.ranges import bounded, shorten
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 # The entries of an object's `size` [m] for each shape.
@@ -31,6 +31,33 @@ MIN_SIZE_M = 0.005
 # lighter object's lift is not felt. Near zero Drake's mass matrix is not positive-definite.
 MIN_MASS_KG = 0.01
 OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]*$")  # it names a folder
+# The longest object name [characters, ASCII: bytes]: the longest file name made of it, a sweep's
+# trial record staged beside its target (.<controller>.<object>.mNNN.aNNN.json.XXXXXXXX.tmp), adds
+# under 80 characters to it and must fit a file system's 255-byte name.
+MAX_OBJECT_NAME_LENGTH = 100
+# The events folder's own subfolders (events/FORMAT.md): the ensemble's and the corrective
+# events, and the prismatic hand's events. An object of one of these names would have its
+# events written into them (and their index.json removed as a stale file of its own).
+ENSEMBLE_EVENTS_FOLDER = "ensemble"
+CORRECTIVE_EVENTS_FOLDER = "corrective"
+PRISMATIC_HAND_EVENTS_FOLDER = "prismatic"
+EVENTS_SUBFOLDERS = (ENSEMBLE_EVENTS_FOLDER, CORRECTIVE_EVENTS_FOLDER,
+                     PRISMATIC_HAND_EVENTS_FOLDER)
+
+
+def object_name_problem(name) -> str | None:
+    """Why `name` cannot name an object (it names the folder of the object's events, and
+    files of its trials), in words that follow "field 'object.name'"; None if it can."""
+    if not isinstance(name, str) or not OBJECT_NAME_PATTERN.match(name):
+        return (f"{shorten(repr(name))} must be letters, digits, '_' or '-' (not first): "
+                "it names the folder of the object's events")
+    if len(name) > MAX_OBJECT_NAME_LENGTH:
+        return (f"must be at most {MAX_OBJECT_NAME_LENGTH} characters (it names a folder), "
+                f"got {len(name)}")
+    if name in EVENTS_SUBFOLDERS:
+        return (f"'{name}' is a folder of the events folder itself ({', '.join(EVENTS_SUBFOLDERS)}"
+                "): give your object another name")
+    return None
 
 
 @public_dataclass
@@ -86,9 +113,9 @@ BUILTIN_OBJECTS = {
 def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, str] | None:
     """(field, what is wrong) of the first field of a user-defined object that cannot make
     one, in words that follow "field 'x'"; None when all can (a model file is not sought)."""
-    if not OBJECT_NAME_PATTERN.match(config.name):
-        return "name", (f"'{config.name}' must be letters, digits, '_' or '-' (not first): "
-                        "it names the folder of the object's events")
+    problem = object_name_problem(config.name)
+    if problem:
+        return "name", problem
     if config.shape not in shapes:
         return "shape", f"names an unknown shape {config.shape!r} (known: {', '.join(shapes)})"
     sizes = OBJECT_SIZES[config.shape]
