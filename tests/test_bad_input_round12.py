@@ -87,3 +87,28 @@ def test_a_sweep_object_name_follows_the_object_name_rule(tmp_path):
     path.write_text("objects: [ensemble]\ncontrollers: [open_loop]\nuser_objects:\n  ensemble: "
                     "{shape: box, size: [0.04, 0.04, 0.1], mass: 0.1, friction: 0.5}\n")
     _refused(lambda: T.LoadSweepSpec(path), "user_objects", "ensemble")
+
+
+# Rule: a run log's TEGRASP_RUN_INFO is checked as a whole when it is read: a controller
+# the package lacks, an object name no folder can have or versions that are not JSON are
+# refused naming the field, as a bad scenario in it is.
+@pytest.mark.parametrize("field, value", [("controller", "bogus"),
+                                          ("versions_json", "{not json"),
+                                          ("versions_json", "[1, 2]"),
+                                          ("object_name", "../../etc")])
+def test_a_run_info_field_the_run_never_writes_is_refused(tmp_path, field, value):
+    import lcm
+    from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
+    from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info
+    from tegrasp_drake.runs.hardware_log_reader import RunLogError, read_run_log
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name, info.versions_json = "memorized", "box", "{}"
+    setattr(info, field, value)
+    path = tmp_path / "run.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    log.write_event(0, RUN_INFO_CHANNEL, info.encode())
+    log.close()
+    with pytest.raises(RunLogError, match=f"'{field}'") as refused:
+        read_run_log(path)
+    assert "\n" not in str(refused.value)
+
