@@ -112,3 +112,16 @@ def test_a_run_info_field_the_run_never_writes_is_refused(tmp_path, field, value
         read_run_log(path)
     assert "\n" not in str(refused.value)
 
+
+# Rule: every command that reads memorized events checks its --events folder when its
+# arguments are read, whatever the controller (one argparse type), before anything runs.
+@pytest.mark.parametrize("command", [["trial"], ["sweep"], ["hardware"],
+                                     ["plot", "table1", "results"], ["replay", "run.lcmlog"]])
+def test_every_command_checks_its_events_folder_before_anything_runs(tmp_path, capsys, command):
+    from tegrasp_drake import cli
+    missing = tmp_path / "no-such-events"
+    with pytest.raises(SystemExit) as exited:
+        cli.build_parser().parse_args(command + ["--events", str(missing)])
+    assert exited.value.code == 2
+    error = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "--events" in error and str(missing) in error and "does not exist" in error

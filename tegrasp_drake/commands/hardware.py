@@ -16,7 +16,8 @@ from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_f
                                                write_result)
 from tegrasp_drake.rig.files import file_problem, interruptions_deferred, output_file_problem
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
-from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
+from tegrasp_drake.commands.events_argument import add_events_argument
+from tegrasp_drake.commands.scenario_args import (add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   quiet_modbus_library, scenario_from_arguments)
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help

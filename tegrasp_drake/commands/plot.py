@@ -14,6 +14,7 @@ suffix names the format."""
 import argparse
 import pathlib
 
+from tegrasp_drake.commands.events_argument import add_events_argument
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig.files import output_file_problem
 from tegrasp_drake.rig import paths
@@ -44,9 +45,7 @@ def register(subparsers) -> None:
     parser.add_argument("source", nargs="?", metavar="LOG|RESULTS",
                         help="trial log (trial.npz) for signals, trial and avoid; sweep "
                              "results folder for table1, latency and success-maps")
-    parser.add_argument("--events", default=None, metavar="DIR",
-                        help="events folder (default: $TEGRASP_EVENTS_DIR or "
-                        "~/.local/share/tegrasp/events, then the package's)")
+    add_events_argument(parser)
     parser.add_argument("--format", choices=FIGURE_FORMATS, default=None,
                         help="file format (default: --out's suffix, else png)")
     parser.add_argument("--out", default=None,

@@ -6,6 +6,8 @@ import argparse
 import json
 import sys
 
+from tegrasp_drake.commands.events_argument import add_events_argument
+
 
 EPILOG = """\
 examples:
@@ -19,9 +21,7 @@ def register(subparsers) -> None:
         description=__doc__, epilog=EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("log", metavar="LOG")
-    parser.add_argument("--events", default=None,
-                        help="memorized events folder (default: the one the run used, "
-                        "else the package's)")
+    add_events_argument(parser, default="the one the run used, else the package's")
     parser.add_argument("--object", default=None,
                         help="whose memorized events (default: the run's object)")
     parser.add_argument("--json", action="store_true")

@@ -62,13 +62,6 @@ def quiet_modbus_library() -> None:
     logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
 
 
-def add_events_argument(parser, *, what: str = "read") -> None:
-    parser.add_argument("--events", metavar="DIR", default=None,
-                        help=f"memorized events folder to {what} (default: "
-                        "$TEGRASP_EVENTS_DIR or ~/.local/share/tegrasp/events, then the "
-                        "package's)")
-
-
 def controller_events(scenario, events_dir):
     """The memorized events the scenario's controller needs (None for the others), or
     exits with the message (which folder, which file, what to do)."""

@@ -13,6 +13,7 @@ import importlib
 import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
+from tegrasp_drake.commands.events_argument import add_events_argument
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
@@ -85,9 +86,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--benchmark", action="store_true",
                         help="time the memorized sweep with 1 and then 2 workers, each "
                              "into a temporary folder, and print wall times and speed-up")
-    parser.add_argument("--events", metavar="DIR", default=None,
-                        help="memorized events folder (default: $TEGRASP_EVENTS_DIR or "
-                        "~/.local/share/tegrasp/events, then the package's)")
+    add_events_argument(parser)
     parser.add_argument("--logs", metavar="DIR", default=None,
                         help="also save each trial's log (trial.npz format) in DIR, for "
                         "re-scoring offline (analysis/detection_quality.py)")

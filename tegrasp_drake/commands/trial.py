@@ -10,7 +10,8 @@ import sys
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RunFolderError, choose_run_folder, commit_run,
                                                own_file_problem, staged_run)
-from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
+from tegrasp_drake.commands.events_argument import add_events_argument
+from tegrasp_drake.commands.scenario_args import (add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
 from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html_path,
