@@ -113,6 +113,29 @@ def test_a_run_info_field_the_run_never_writes_is_refused(tmp_path, field, value
     assert "\n" not in str(refused.value)
 
 
+# Rule: a Robotiq status whose gFLT holds a major fault (2F-85 manual: the fingers stop
+# until the next activation) is a device fault, not an active gripper, whatever gSTA says;
+# and the client keeps pymodbus's multi-line hex dumps of garbage replies off stderr (it
+# counts those replies itself).
+@pytest.mark.real_time
+def test_a_gripper_reporting_a_major_fault_is_not_taken_as_active():
+    import logging
+    import time
+    from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator, RobotiqEmulatorConfig
+    from tegrasp_drake.hardware.robotiq.modbus_client import (
+        RobotiqActivationError, RobotiqModbusClient, RobotiqModbusConfig)
+    logging.getLogger("pymodbus").setLevel(logging.NOTSET)
+    config = RobotiqEmulatorConfig(activation_duration=1.0)
+    with RobotiqEmulator(config) as emulator:
+        with RobotiqModbusClient(RobotiqModbusConfig(port=emulator.port,
+                                                     activation_timeout=5.0)) as client:
+            assert logging.getLogger("pymodbus").level == logging.CRITICAL
+            time.sleep(0.3)  # the activation writes are answered; gSTA not yet 3
+            emulator.inject_fault(0x0F)  # automatic release completed
+            with pytest.raises(RobotiqActivationError, match="gFLT = 0x0F"):
+                client.wait_until_active(8.0)
+
+
 # Rule: every command that reads memorized events checks its --events folder when its
 # arguments are read, whatever the controller (one argparse type), before anything runs.
 @pytest.mark.parametrize("command", [["trial"], ["sweep"], ["hardware"],

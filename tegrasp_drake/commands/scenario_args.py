@@ -57,11 +57,6 @@ def scenario_from_arguments(args, *, simulates: str = ""):
     return scenario
 
 
-def quiet_modbus_library() -> None:
-    """Keeps pymodbus's log to what is critical: the Robotiq client counts timed-out requests."""
-    logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
-
-
 def controller_events(scenario, events_dir):
     """The memorized events the scenario's controller needs (None for the others), or
     exits with the message (which folder, which file, what to do)."""
