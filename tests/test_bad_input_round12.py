@@ -148,3 +148,24 @@ def test_every_command_checks_its_events_folder_before_anything_runs(tmp_path, c
     assert exited.value.code == 2
     error = capsys.readouterr().err.strip().splitlines()[-1]
     assert "--events" in error and str(missing) in error and "does not exist" in error
+
+
+# Rule: a corrupt record in a sweep's folder is said, one line naming the file, before its
+# trial runs again, and kept aside rather than overwritten.
+def test_a_corrupt_sweep_record_is_said_and_kept_aside_before_its_trial_reruns(tmp_path, caplog):
+    from tegrasp_drake.sweep.records import record_path
+    from tegrasp_drake.sweep.runner import run_sweep
+    from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
+    from tests.fake_trials import fake_trial
+    spec = SweepSpec(objects=("box",), controllers=("open_loop",), attempts=1,
+                     grid=((0.0, 0.0),))
+    run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    damaged = record_path(tmp_path, expand_trials(spec)[0].trial_id)
+    damaged.write_text('{"trunc')
+    with caplog.at_level("WARNING", logger="tegrasp_drake.sweep.runner"):
+        summary = run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    assert summary.ran == 1
+    said = [r.getMessage() for r in caplog.records if str(damaged) in r.getMessage()]
+    assert len(said) == 1 and "re-run" in said[0] and "\n" not in said[0]
+    (kept,) = tmp_path.glob(f"**/{damaged.name}.corrupt-*")
+    assert kept.read_text() == '{"trunc'
