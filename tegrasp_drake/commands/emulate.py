@@ -12,8 +12,8 @@ import math
 import pathlib
 import signal
 
-from tegrasp_drake.commands.scenario_args import (add_scenario_arguments, quiet_modbus_library,
-                                                   scenario_from_arguments)
+from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
+from tegrasp_drake.hardware.robotiq.modbus_client import quiet_modbus_library
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Emulators,
                                               FaultInjection)

@@ -18,7 +18,7 @@ from tegrasp_drake.rig.files import file_problem, interruptions_deferred, output
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
-                                                  quiet_modbus_library, scenario_from_arguments)
+                                                  scenario_from_arguments)
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
 
 
@@ -114,7 +114,6 @@ def keep_incomplete_log(staged, log) -> pathlib.Path | None:
 
 
 def run(args) -> int:
-    quiet_modbus_library()
     from tegrasp_drake.hardware.config import LoadHardwareConfig
     from tegrasp_drake.runs.hardware_run import run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError

@@ -57,11 +57,6 @@ def scenario_from_arguments(args, *, simulates: str = ""):
     return scenario
 
 
-def quiet_modbus_library() -> None:
-    """Keeps pymodbus's log to what is critical: the Robotiq client counts timed-out requests."""
-    logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
-
-
 def add_events_argument(parser, *, what: str = "read") -> None:
     parser.add_argument("--events", metavar="DIR", default=None,
                         help=f"memorized events folder to {what} (default: "

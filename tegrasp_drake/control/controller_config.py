@@ -8,12 +8,11 @@ import dataclasses
 import typing
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
+from tegrasp_drake.rig.objects import CORRECTIVE_EVENTS_FOLDER, ENSEMBLE_EVENTS_FOLDER
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 
-# The events folder's subfolder of memorized corrective events.
-CORRECTIVE_EVENTS_FOLDER = "corrective"
 
 # RA thresholds in noise sigmas (control/noise_thresholds.py).
 _SIGMAS_WHY = "noise alone crosses 5.51 in one trial of a thousand"
@@ -406,7 +405,7 @@ class OpenLoopControllerConfig:
 class TaxelAwareControllerConfig(EventTriggeredConfig):
     """The paper's algorithm with taxel-array corrections and ensemble events."""
     name: typing.ClassVar[str] = "taxel_aware"
-    events_folder: typing.ClassVar[str | None] = "ensemble"
+    events_folder: typing.ClassVar[str | None] = ENSEMBLE_EVENTS_FOLDER
     # two more Re-Reaches (about 2.5 s each) and a re-grasp (about 9 s), rounded up [s]
     extra_time_s: typing.ClassVar[float] = 15.0
     taxel_aware: TaxelAwareConfig = dataclasses.field(default_factory=TaxelAwareConfig)

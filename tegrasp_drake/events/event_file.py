@@ -17,7 +17,7 @@ from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.files import (DuplicateKeyError, InputTooLargeError, JsonValueError,
                                      error_line, file_problem, load_json, one_line,
                                      read_bounded)
-from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
+from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, DESCRIPTION_FIELDS, object_name_problem
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import TRANSITIONS
@@ -53,9 +53,9 @@ def remake_advice(object_name: str | None) -> str:
         return f"Remake it with `{RECORD_COMMAND}`."
     if object_name in BUILTIN_OBJECTS:
         return f"Remake it with `{RECORD_COMMAND} --object {object_name}`."
-    if not OBJECT_NAME_PATTERN.match(object_name):
-        return (f"'{object_name}' is not an object name (letters, digits, '_' or '-', not "
-                "first): no events are recorded under it.")
+    problem = object_name_problem(object_name)
+    if problem:
+        return f"No events are recorded under this name: object.name {problem}."
     return (f"Remake it with `{RECORD_COMMAND}` and the options that describe "
             f"'{object_name}': `--scenario FILE --scenario-name NAME`, or `--set "
             f"object.name={object_name}` with its other object.* settings.")

@@ -9,7 +9,7 @@ from collections.abc import Iterable, Sequence
 
 from tegrasp_drake.rig.files import (interruptions_deferred, own_staging_suffix, replace_problem,
                                      stale_staging_files, staged_file)
-from tegrasp_drake.rig.objects import OBJECT_NAME_PATTERN
+from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.events.event_file import (
     FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError, remake_advice,
@@ -201,7 +201,7 @@ def find_memorized_events(folders, object_name: str, *,
     error = MemorizedEventError(folders[0] / INDEX_FILE if folders else INDEX_FILE,
                                 "no events", object_name)
     advice = (f"Record them with `{RECORD_COMMAND} ...` (they go to the first folder)."
-              if OBJECT_NAME_PATTERN.match(object_name) else remake_advice(object_name))
+              if object_name_problem(object_name) is None else remake_advice(object_name))
     error.args = (f"no memorized events of object '{object_name}' in {'; '.join(looked)}. "
                   f"{advice}",)
     raise error

@@ -12,12 +12,11 @@ from tegrasp_drake.rig.api_boundary import check_field_values, public_dataclass
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
-from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, OBJECT_NAME_PATTERN
+from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, object_name_problem
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import transition_order
 
 NORMALIZATION = "max"
-_NAME_PATTERN = OBJECT_NAME_PATTERN
 _NORMALIZATION_TOLERANCE = 1e-9
 
 
@@ -47,9 +46,9 @@ class MemorizedEvent:
 
     def __post_init__(self):
         check_field_values(self)  # types of the text fields, ranges of the numbers
-        if not _NAME_PATTERN.match(self.object_name):
-            raise ValueError(f"object name '{self.object_name}' must match "
-                             f"{_NAME_PATTERN.pattern} (it names a folder)")
+        problem = object_name_problem(self.object_name)
+        if problem:
+            raise ValueError(f"MemorizedEvent: field 'object_name' {problem}")
         transition_order(self.transition)
         if tuple(self.channel_names) != CHANNEL_NAMES:
             raise ValueError(f"channels {list(self.channel_names)} must be "

@@ -97,8 +97,9 @@ class HardwareStationConfig:
 
 
 def lcm_url_problem(url: str) -> str | None:
-    """Why LCM cannot open `url`, or None (an empty URL is LCM's default). The library's reason,
-    printed on file descriptor 2, is captured so a bad URL is one line."""
+    """Why LCM cannot open `url`, or None (check_ranges refuses an empty one, which LCM would
+    take for its default bus). The library's reason, printed on file descriptor 2, is
+    captured so a bad URL is one line."""
     import lcm
     with tempfile.TemporaryFile() as captured:
         sys.stderr.flush()

@@ -10,9 +10,10 @@ import numpy as np
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.recording.campaign import (CORRECTIVE_BASE_SEED, CampaignRun,
                                               record_campaign)
+from tegrasp_drake.rig.objects import CORRECTIVE_EVENTS_FOLDER
 from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 
-CORRECTIVE_FOLDER = "corrective"
+CORRECTIVE_FOLDER = CORRECTIVE_EVENTS_FOLDER  # the events folder's subfolder (rig/objects.py)
 PRE_TRANSITION_S = 0.45  # the live window looks most like it ~50 ms after the event
 SLIP_DISPLACEMENT_M = 0.001  # the pads' rise over the object's that counts as slip [m]
 # The modes in which each corrective event is looked for, and its action.

@@ -10,11 +10,12 @@ import numpy as np
 from tegrasp_drake.recording.campaign import (ENSEMBLE_BASE_SEED, CampaignRun,
                                               record_campaign)
 from tegrasp_drake.recording.paper_events import grasp_event_times
+from tegrasp_drake.rig.objects import ENSEMBLE_EVENTS_FOLDER
 from tegrasp_drake.scenario.scenario import LoadScenario
 
 # Reach-Load 0.45 s in: it matches ~50 ms after contact (target 60 ms); else the paper's.
 PRE_TRANSITION_S = {"reach_load": 0.45, "load_lift": 0.25, "place_unload": 0.25}
-ENSEMBLE_FOLDER = "ensemble"
+ENSEMBLE_FOLDER = ENSEMBLE_EVENTS_FOLDER  # the events folder's subfolder (rig/objects.py)
 # The runs whose mean makes the events (analysis/record_ensemble_events.py --template-runs 5).
 TEMPLATE_RUNS = 5
 

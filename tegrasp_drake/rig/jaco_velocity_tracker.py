@@ -7,7 +7,7 @@ import dataclasses
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.ranges import bounded, sized
 from tegrasp_drake.rig.station_interface import ARM_JOINTS
 from tegrasp_drake.rig.api_boundary import public_dataclass
 
@@ -29,7 +29,8 @@ class JacoVelocityTrackerConfig:
         high=JACO2_MAX_JOINT_SPEED, unit="rad/s", length=6,
         why="the JACO2's joint speed limits, 36-48 deg/s, Kinova JACO2 specifications")
     # joints 2 and 3 have limits (modelgen/jaco2_dh.py)
-    continuous_joints: list[bool] = dataclasses.field(
+    continuous_joints: list[bool] = sized(
+        length=ARM_JOINTS, items="true/false values, one per joint",
         default_factory=lambda: [True, False, False, True, True, True])
 
 

@@ -31,12 +31,34 @@ MIN_SIZE_M = 0.005
 # lighter object's lift is not felt. Near zero Drake's mass matrix is not positive-definite.
 MIN_MASS_KG = 0.01
 # An object's name names a folder (its events) and is part of file names (trial ids, logs):
-# at most 64 characters, well under the 255-byte file-name limit with what is added to it.
+# at most 64 characters, well under the 255-byte file-name limit with what is added to it (a
+# sweep's trial record staged beside its target adds under 80).
 OBJECT_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_-]{0,63}$")
 OBJECT_NAME_WORDS = ("must be letters, digits, '_' or '-' (not first), at most 64 characters: "
                      "it names the folder of the object's events")
 # An object's name as a public function's argument (Annotated[str, OBJECT_NAME]).
 OBJECT_NAME = TextPattern(OBJECT_NAME_PATTERN, OBJECT_NAME_WORDS)
+# The events folder's own subfolders (events/FORMAT.md): the ensemble's and the corrective
+# events, and the prismatic hand's events. An object of one of these names would have its
+# events written into them (and their index.json removed as a stale file of its own).
+ENSEMBLE_EVENTS_FOLDER = "ensemble"
+CORRECTIVE_EVENTS_FOLDER = "corrective"
+PRISMATIC_HAND_EVENTS_FOLDER = "prismatic"
+EVENTS_SUBFOLDERS = (ENSEMBLE_EVENTS_FOLDER, CORRECTIVE_EVENTS_FOLDER,
+                     PRISMATIC_HAND_EVENTS_FOLDER)
+
+
+def object_name_problem(name) -> str | None:
+    """Why `name` cannot name an object (it names the folder of the object's events, and
+    files of its trials), in words that follow "field 'object.name'"; None if it can."""
+    if isinstance(name, str) and len(name) > 64:
+        return f"must be at most 64 characters (it names a folder), got {len(name)}"
+    if not isinstance(name, str) or not OBJECT_NAME_PATTERN.match(name):
+        return f"{shorten(repr(name))} {OBJECT_NAME_WORDS}"
+    if name in EVENTS_SUBFOLDERS:
+        return (f"'{name}' is a folder of the events folder itself ({', '.join(EVENTS_SUBFOLDERS)}"
+                "): give your object another name")
+    return None
 
 
 @public_dataclass
@@ -92,8 +114,9 @@ BUILTIN_OBJECTS = {
 def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, str] | None:
     """(field, what is wrong) of the first field of a user-defined object that cannot make
     one, in words that follow "field 'x'"; None when all can (a model file is not sought)."""
-    if not OBJECT_NAME_PATTERN.match(config.name):
-        return "name", f"{shorten(repr(config.name))} {OBJECT_NAME_WORDS}"
+    problem = object_name_problem(config.name)
+    if problem:
+        return "name", problem
     if config.shape not in shapes:
         return "shape", f"names an unknown shape {config.shape!r} (known: {', '.join(shapes)})"
     sizes = OBJECT_SIZES[config.shape]

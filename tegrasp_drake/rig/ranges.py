@@ -12,6 +12,7 @@ import typing
 from tegrasp_drake.rig.number_text import number_text
 
 _KEY = "tegrasp_range"
+_LENGTH_KEY = "tegrasp_length"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -158,17 +159,61 @@ def check_ranges(config, source: str, where: str = "") -> None:
         return
     if not dataclasses.is_dataclass(config) or isinstance(config, type):
         return
-    for path, value, declared in _declared_fields(config, where):
+    for path, value, field in _declared_fields(config, where):
+        _check_not_empty(value, field, source, path)
+        _check_length(value, field, source, path)
+        declared = range_of(field)
         if declared is not None and value is not None:
             _check_value(value, declared, source, path)
         _check_held(value, source, path)
 
 
 def _declared_fields(config, where: str):
-    """(path under `where`, value, declared Range or Choice or None) of each field of `config`."""
+    """(path under `where`, value, dataclasses.Field) of each field of `config`."""
     for field in dataclasses.fields(config):
         path = f"{where}.{field.name}" if where else field.name
-        yield path, getattr(config, field.name), range_of(field)
+        yield path, getattr(config, field.name), field
+
+
+def sized(*, length: int, items: str, default_factory):
+    """A list field of `length` elements that are not numbers (those: `bounded(length=...)`);
+    `items` names them in an error, e.g. "true/false values"."""
+    return dataclasses.field(default_factory=default_factory,
+                             metadata={_LENGTH_KEY: (length, items)})
+
+
+def _check_length(value, field: dataclasses.Field, source: str, path: str) -> None:
+    if _LENGTH_KEY not in field.metadata:
+        return
+    length, items = field.metadata[_LENGTH_KEY]
+    if not isinstance(value, (list, tuple)) or len(value) != length:
+        count = (f"{len(value)} elements" if isinstance(value, (list, tuple))
+                 else type(value).__name__)
+        from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
+        raise ConfigError(f"{source}: field '{path}' must hold {length} {items}, got {count}: "
+                          f"{shorten(repr(value))}")
+
+
+def _field_default(field: dataclasses.Field):
+    if field.default is not dataclasses.MISSING:
+        return field.default
+    if field.default_factory is not dataclasses.MISSING:
+        return field.default_factory()
+    return None
+
+
+def _check_not_empty(value, field: dataclasses.Field, source: str, path: str) -> None:
+    """An empty text or list is a value only where the field's default is itself empty (its
+    documented "none", e.g. no calibration file): elsewhere it would be a silent default (an empty LCM URL is LCM's default bus, an empty port no
+    device), so it is refused naming the field."""
+    if not isinstance(value, (str, list, tuple)) or len(value) > 0:
+        return
+    default = _field_default(field)
+    if not isinstance(default, (str, list, tuple)) or len(default) == 0:
+        return
+    from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
+    raise ConfigError(f"{source}: field '{path}' must not be empty, got {value!r} (give a "
+                      f"value, or leave the field out for its default {shorten(repr(default))})")
 
 
 def _check_value(value, declared: "Range | Choice", source: str, path: str) -> None:

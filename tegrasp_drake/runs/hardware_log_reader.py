@@ -4,13 +4,17 @@ as far as it goes (RunLog.damage says what was lost); hardware_log_replay.py re-
 matcher on it."""
 
 import dataclasses
+import json
 import pathlib
 import struct
 
 import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.rig.objects import object_name_problem
+from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.files import file_problem, one_line, read_bounded
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
@@ -216,6 +220,29 @@ def _plausible_tactile(messages: list) -> tuple[list, int]:
     return kept, len(messages) - len(kept)
 
 
+def check_run_info(info: lcmt_tegrasp_run_info, path) -> None:
+    """RunLogError naming the first field of a run's TEGRASP_RUN_INFO that holds what
+    hardware_run.run_info_message never writes (its scenario is checked where it is read)."""
+    def refuse(field: str, problem: str):
+        raise RunLogError(f"run log '{path}': its TEGRASP_RUN_INFO field '{field}' {problem}: "
+                          "the log is damaged or was not written by `tegrasp hardware`")
+    if info.controller not in CONTROLLER_NAMES:
+        refuse("controller", f"names no controller of this package, got "
+                             f"{shorten(repr(info.controller))} (known: "
+                             f"{', '.join(CONTROLLER_NAMES)})")
+    problem = object_name_problem(info.object_name)
+    if problem:
+        refuse("object_name", problem)
+    try:
+        versions = json.loads(info.versions_json)
+    except ValueError:
+        versions = None
+    if not (isinstance(versions, dict)
+            and all(isinstance(v, str) for v in versions.values())):
+        refuse("versions_json", f"must be a JSON object of package versions, got "
+                                f"{shorten(repr(info.versions_json))}")
+
+
 def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
     holds no event; a damaged log is read as far as it can be (`RunLog.damage`)."""
@@ -263,8 +290,11 @@ def read_run_log(path) -> RunLog:
     tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
     tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     info = decoded[RUN_INFO_CHANNEL]
+    run_info = info[0][1] if info else None
+    if run_info is not None:
+        check_run_info(run_info, path)
     return RunLog(
-        path=path, run_info=info[0][1] if info else None, tactile=tactile,
+        path=path, run_info=run_info, tactile=tactile,
         transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
                       "trigger": m.trigger, "reason": m.reason}
                      for _, m in decoded[TRANSITION_CHANNEL]],

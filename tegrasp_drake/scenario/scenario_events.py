@@ -34,7 +34,7 @@ def load_corrective_events(scenario: Scenario, events_dir: PathLike | None = Non
                            nominal_object: ObjectConfig | None = None) -> dict:
     """The corrective events (lift_load, hold_avoid) of the scenario's object from the search path's
     CORRECTIVE_EVENTS_FOLDER, checked against the object as load_controller_events checks."""
-    from tegrasp_drake.control.controller_config import CORRECTIVE_EVENTS_FOLDER
+    from tegrasp_drake.rig.objects import CORRECTIVE_EVENTS_FOLDER
     from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
     folders = [folder / CORRECTIVE_EVENTS_FOLDER
                for folder in paths.events_search_path(events_dir, _hand_folder(scenario))]

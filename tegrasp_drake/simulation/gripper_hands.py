@@ -14,6 +14,7 @@ from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.primitives import MatrixGain
 
 from tegrasp_drake.modelgen.robotiq_linkage_sdf import robotiq_linkage_sdf
+from tegrasp_drake.rig.objects import PRISMATIC_HAND_EVENTS_FOLDER
 from tegrasp_drake.robotiq import drive, linkage
 from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
 
@@ -26,7 +27,7 @@ class PrismaticHand:
     url: str = "package://tegrasp/robotiq_2f85/robotiq_2f85_tactile.sdf"
     actuated_joint: str = "left_finger_joint"
     non_backdrivable: bool = False
-    events_folder: str = "prismatic"  # its memorized events, in the package's events
+    events_folder: str = PRISMATIC_HAND_EVENTS_FOLDER  # its memorized events, in the package's
     # Eq. 3 [SA, RA], chosen on held-out runs (analysis/ensemble_thresholds_prismatic.md)
     ensemble_thresholds: tuple = (("reach_load", (0.44, 0.65)), ("load_lift", (0.94, 0.90)),
                                   ("place_unload", (0.98, 0.90)))

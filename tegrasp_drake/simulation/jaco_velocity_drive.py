@@ -42,9 +42,6 @@ def drive_problem(arm, time_step: float):
     if len(speeds) != ARM_JOINTS or not all(v > 0 for v in speeds):
         return ("tracker.max_joint_speed", f"must be {ARM_JOINTS} positive speeds [rad/s]",
                 speeds)
-    if len(tracker.continuous_joints) != ARM_JOINTS:
-        return ("tracker.continuous_joints", f"must be {ARM_JOINTS} true/false values",
-                tracker.continuous_joints)
     return None
 
 

@@ -10,6 +10,7 @@ dies leaves its trial unrecorded, for the next run."""
 import dataclasses
 import fcntl
 import json
+import logging
 import multiprocessing
 import os
 import pickle
@@ -35,6 +36,8 @@ from tegrasp_drake.sweep.records import (
 from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, expand_trials
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import Range
+
+logger = logging.getLogger(__name__)
 
 LOCK_FILE_NAME = ".sweep.lock"
 DASK_CONNECT_TIMEOUT_S = 30.0
@@ -172,6 +175,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
     with _exclusive_lock(out_dir):
         remove_temporary_files(out_dir)
         loaded = load_records(out_dir)
+        _keep_corrupt_records_aside(loaded.corrupt)
         _check_same_sweep(trials, loaded.records, out_dir)
         pending = [trial for trial in trials
                    if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
@@ -370,6 +374,15 @@ def _run_on_dask(trial_function, pending, scheduler):
             client.cancel(list(futures))
 
 
+def _keep_corrupt_records_aside(corrupt: dict) -> None:
+    """Renames each corrupt record to NAME.corrupt-<pid> beside it (its trial then runs again
+    into NAME), saying so in one line each before anything runs: nothing silent, nothing lost."""
+    for path, reason in corrupt.items():
+        kept = path.with_name(f"{path.name}.corrupt-{os.getpid()}")
+        os.replace(path, kept)
+        logger.warning(f"sweep: {path}: {reason}; kept as {kept.name}, its trial is re-run")
+
+
 def summary_text(summary: SweepSummary) -> str:
     lines = [f"sweep: {summary.total} trials, {summary.skipped} already finished, "
              f"{summary.ran} run now on {summary.backend} in {summary.wall_time_s:.1f} s"]
@@ -378,7 +391,8 @@ def summary_text(summary: SweepSummary) -> str:
                      f"{summary.out_dir} (another spec's); the reports count only this "
                      "spec's trials")
     if summary.corrupt:
-        lines.append(f"  {len(summary.corrupt)} corrupt record(s) found and re-run: "
+        lines.append(f"  {len(summary.corrupt)} corrupt record(s) kept as NAME.corrupt-<pid> "
+                     "and re-run: "
                      + ", ".join(summary.corrupt))
     if summary.errors:
         lines.append(f"  {len(summary.errors)} trial(s) raised (error records; re-run on "

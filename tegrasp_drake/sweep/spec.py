@@ -6,7 +6,6 @@ object, marker, attempt), never the controller, so controllers meet the same sce
 
 import dataclasses
 import math
-import re
 import typing
 import zlib
 from collections.abc import Collection, Mapping
@@ -32,8 +31,6 @@ PAPER_STROKE_OFFSETS_M = (-0.015, 0.0, 0.015)
 PER_TRIAL_SCENARIO_FIELDS = ("object", "placement.offset", "placement.yaw_deg", "random_seed",
                              "controller.name")
 
-# Names become parts of trial ids and file names: keep them to a safe alphabet.
-_NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
 # A sweep's own object: a primitive shape given by these fields of ObjectConfig.
 _OBJECT_SHAPES = tuple(shape for shape in objects.OBJECT_SHAPES if shape != "file")
 USER_OBJECT_FIELDS = ("shape", "size", "mass", "friction", "color")
@@ -248,8 +245,9 @@ def _check_scenario_overrides(assignments, controllers, fail):
 
 
 def _check_name(name, field_name, fail):
-    if not isinstance(name, str) or not _NAME_PATTERN.match(name):
-        fail(field_name, f"{name!r} is not a valid name (letters, digits, '_' and '-')")
+    problem = objects.object_name_problem(name)  # it becomes part of trial ids and file names
+    if problem:
+        fail(field_name, problem)
 
 
 def _check_names_in(names, known, field_name, kind, fail):

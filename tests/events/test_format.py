@@ -187,7 +187,7 @@ def test_the_advice_for_an_object_suggests_only_what_record_events_accepts(saved
     for arguments in record_events_arguments(message):
         parser.parse_args(["record-events", *arguments])  # argparse exits on what it refuses
     if name in ("../../etc", "my/box", "-x"):
-        assert f"'{name}' is not an object name" in message
+        assert f"No events are recorded under this name: object.name '{name}' must be" in message
         assert record_events_arguments(message) == []
 
 

@@ -22,6 +22,7 @@ from tegrasp_drake.runs.hardware_log_replay import (expected_event_schedule,
 from tegrasp_drake.events.event_matcher import EventMatcherConfig
 from tegrasp_drake.events.replay import live_matcher_config
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
+from tegrasp_drake.scenario.trial_log_writer import package_versions
 
 GRASP = SyntheticGraspConfig()
 EVENTS = extract_memorized_events(synthetic_grasp(GRASP), object_name="box",
@@ -63,6 +64,7 @@ def run_log_path(tmp_path_factory):
     log = lcm.EventLog(str(path), "w", overwrite=True)
     info = lcmt_tegrasp_run_info()
     info.controller, info.object_name = "memorized", "box"
+    info.versions_json = json.dumps(package_versions())  # as run_info_message writes it
     log.write_event(0, RUN_INFO_CHANNEL, info.encode())
     transitions = iter(logged_transitions())
     pending = next(transitions, None)

@@ -197,7 +197,7 @@ def test_an_empty_yaml_file_is_refused_not_run_as_the_papers_experiment(tmp_path
     ("user_objects: {cup: {shape: box, size: [0.04, 0.04, 0.1]}}\n",
      "user_objects.cup.mass", "missing"),
     ("user_objects: {'a.b': {shape: box, size: [0.1, 0.1, 0.1], mass: 1}}\n",
-     "user_objects.a.b", "not a valid name"),
+     "user_objects.a.b", "must be letters, digits"),
     ("user_objects: {cup: {shape: box, size_m: [0.1, 0.1, 0.1], mass: 1}}\n",
      "user_objects.cup.size_m", "rename size_m to size, mass_kg to mass"),
     ("user_objects: {cup: {shape: box, file: cup.sdf}}\n",

@@ -5,6 +5,7 @@ Every answer crosses a MessageBoundary; a failed transaction is counted and skip
 silent gripper shows as a status whose arrival time stops advancing."""
 
 import dataclasses
+import logging
 import threading
 import time
 
@@ -94,6 +95,19 @@ def check_answer(response, function: int, address: int, count: int):
     return response
 
 
+def quiet_modbus_library() -> None:
+    """Keeps pymodbus's log to what is critical: the client counts timed-out and undecodable
+    replies itself (its MessageBoundary), in one line each, where pymodbus would print
+    multi-line hex dumps of garbage replies on stderr."""
+    logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
+
+
+def device_fault_words(status) -> str:
+    """gFLT of a status vector with its name, e.g. "gFLT = 0x0F (automatic release completed)"."""
+    code = int(status[units.STATUS_FLT])
+    return f"gFLT = 0x{code:02X} ({units.fault_name(code)})"
+
+
 class RobotiqModbusClient:
     """See the module docstring. Use as a context manager, or call start() and close()."""
 
@@ -121,6 +135,7 @@ class RobotiqModbusClient:
         """Starts the thread (opening the port happens there); returns at once."""
         if self._thread is not None:
             raise RuntimeError("RobotiqModbusClient already started")
+        quiet_modbus_library()
         self._thread = threading.Thread(target=self._run, name=f"robotiq {self.port}",
                                         daemon=True)
         self._thread.start()
@@ -243,17 +258,20 @@ class RobotiqModbusClient:
                     raise self._activation_error(f"no answer to the write of {words}")
         while not self._stop.wait(self._config.period):
             sample = self._read(client)
+            # A major fault stops the fingers until the next activation (manual, gFLT): the
+            # gripper is at fault, not active, whatever gSTA says.
+            if sample is not None and sample.status[units.STATUS_FLT] >= units.FIRST_MAJOR_FAULT:
+                raise self._activation_error(f"the gripper reports a fault: "
+                                             f"{device_fault_words(sample.status)}")
             if sample is not None and sample.status[units.STATUS_STA] == (
-                    units.ActivationStatus.ACTIVE):
+                    units.ActivationStatus.ACTIVE) and sample.status[units.STATUS_FLT] == 0:
                 self._active.set()
                 return
             if time.monotonic() > deadline:
                 last = sample.status if sample is not None else None
                 raise self._activation_error(
                     "gSTA did not reach 3" if last is None else
-                    f"gSTA = {int(last[units.STATUS_STA])}, gFLT = "
-                    f"0x{int(last[units.STATUS_FLT]):02X} "
-                    f"({units.fault_name(last[units.STATUS_FLT])})")
+                    f"gSTA = {int(last[units.STATUS_STA])}, {device_fault_words(last)}")
 
     def _activation_error(self, why) -> RobotiqActivationError:
         return RobotiqActivationError(
