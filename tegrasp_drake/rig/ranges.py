@@ -318,7 +318,8 @@ def check_times_resolved(config, step_s: float, source: str, where: str = "",
     `step_s`: it would see nothing new between steps, and a 1 ns period makes a trial crawl."""
     if not dataclasses.is_dataclass(config) or isinstance(config, type):
         return
-    for path, value, declared in _declared_fields(config, where):
+    for path, value, field in _declared_fields(config, where):
+        declared = range_of(field)
         if (isinstance(declared, Range) and declared.unit == "s" and declared.low == 0
                 and declared.low_open and value is not None):
             for item_path, item in _values(value, path):

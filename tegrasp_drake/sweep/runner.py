@@ -376,8 +376,12 @@ def _run_on_dask(trial_function, pending, scheduler):
 
 def _keep_corrupt_records_aside(corrupt: dict) -> None:
     """Renames each corrupt record to NAME.corrupt-<pid> beside it (its trial then runs again
-    into NAME), saying so in one line each before anything runs: nothing silent, nothing lost."""
+    into NAME), saying so in one line each before anything runs: nothing silent, nothing lost.
+    What is not a file there (a folder in a record's place) is left for the write check, which
+    refuses the sweep before it runs anything."""
     for path, reason in corrupt.items():
+        if not path.is_file():
+            continue
         kept = path.with_name(f"{path.name}.corrupt-{os.getpid()}")
         os.replace(path, kept)
         logger.warning(f"sweep: {path}: {reason}; kept as {kept.name}, its trial is re-run")
