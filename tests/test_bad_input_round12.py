@@ -4,17 +4,9 @@ import pytest
 
 import tegrasp_drake as T
 from tegrasp_drake.rig.typed_yaml import ConfigError
+from tests.test_bad_input_round10 import _refused
 
 
-def _refused(call, *words) -> str:
-    """The one-line ConfigError of `call()`, which names each of `words`."""
-    with pytest.raises(ConfigError) as refused:
-        call()
-    message = str(refused.value)
-    assert "\n" not in message and len(message) < 400, message
-    for word in words:
-        assert word in message, message
-    return message
 
 
 # Rule: an empty text or list is a value only where the field declares what empty means
