@@ -7,43 +7,14 @@ the same placement plays out otherwise on the linkage hand (its pads sweep along
 approach axis and curl); the rules run on the linkage hand in the sweeps
 (docs/results.md)."""
 
-import dataclasses
-
 import pytest
 
-from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
 from tegrasp_drake.scenario.scenario import LoadScenario
-from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
-from tegrasp_drake.runs.trial import run_trial
-from tegrasp_drake.sweep.trial_function import trial_events
+from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec
 from tests.cheap_contact import CHEAP_CONTACT
+from tests.control.taxel_aware_scenes import Expect, Scene, check_scene
 
 pytestmark = pytest.mark.slow
-
-
-@dataclasses.dataclass(frozen=True)
-class Scene:
-    """A trial: the object placed `offset` [m] (approach axis, stroke) and `yaw_deg` from its
-    marker, the taxel_aware settings changed by `taxel_aware`, or a sweep spec's trial."""
-    object_name: str = "box"
-    offset: tuple = (0.0, 0.0)
-    yaw_deg: float = 0.0
-    seed: int | None = None
-    taxel_aware: tuple = ()  # (setting, value) pairs
-    spec: SweepSpec | None = None
-    reads_the_held_grip: bool = False  # its rule decides in Hold: run in the default contact
-
-
-@dataclasses.dataclass(frozen=True)
-class Expect:
-    """The (from, to, rule name) transitions that must occur in this order (others may come
-    between), `first`: the first of them is the trial's first transition; `check`: a
-    further assertion on (the matched transitions, the result dict)."""
-    steps: tuple
-    first: bool = False
-    no_re_reach: bool = False
-    unload: bool = True
-    check: object = None
 
 
 # The prismatic hand in the world its events were recorded in (events/prismatic: ideal
@@ -57,34 +28,6 @@ HAND = ("gripper.model=prismatic", "tactile.transducer=force")
 
 def _world(scene: Scene) -> tuple[str, ...]:
     return HAND if scene.reads_the_held_grip else HAND + CHEAP_CONTACT
-
-
-def _run(scene: Scene):
-    if scene.spec is not None:
-        spec = dataclasses.replace(scene.spec, scenario_overrides=_world(scene))
-        (trial,) = [t.to_dict() for t in expand_trials(spec)]
-        scenario, events, corrective = trial_events(trial)
-        return run_trial(scenario, events=events, corrective_events=corrective)
-    base = LoadScenario(name=scene.object_name, controller="taxel_aware",
-                        overrides=list(_world(scene)))
-    controller = dataclasses.replace(base.controller, taxel_aware=dataclasses.replace(
-        base.controller.taxel_aware, **dict(scene.taxel_aware)))
-    changes = dict(placement=dataclasses.replace(base.placement, offset=list(scene.offset),
-                                                 yaw_deg=scene.yaw_deg),
-                   controller=controller)
-    if scene.seed is not None:
-        changes["random_seed"] = scene.seed
-    return run_trial(dataclasses.replace(base, **changes))
-
-
-def _matched(transitions, steps):
-    """The transitions matching `steps` in order, or None."""
-    found, k = [], 0
-    for t in transitions:
-        if k < len(steps) and (t.from_mode.label, t.to_mode.label, t.code) == steps[k]:
-            found.append(t)
-            k += 1
-    return found if k == len(steps) else None
 
 
 def _load_waited_the_timeout(found, result):
@@ -177,18 +120,4 @@ ARM_PATH_REGRESSIONS = {"bracket", "finger_strike"}
     for name in SCENES])
 def test_the_scene_is_decided_by_its_rules_and_grasped(name):
     scene, expect = SCENES[name]
-    for _, _, rule in expect.steps:
-        TAXEL_AWARE_TABLE.rule(rule)  # KeyError: no such rule
-    run = _run(scene)
-    result = run.result
-    codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]
-    found = _matched(run.transitions, expect.steps)
-    assert found is not None, codes
-    if expect.first:
-        assert found[0] is run.transitions[0], codes
-    if expect.no_re_reach:
-        assert "re_reach" not in result["corrective_actions"]
-    if expect.check is not None:
-        assert expect.check(found, result), codes
-    assert result["final_mode"] == "Done" and result["hold_success"]
-    assert result["unload_success"] or not expect.unload
+    check_scene(scene, expect, _world(scene))

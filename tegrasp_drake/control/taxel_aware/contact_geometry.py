@@ -94,6 +94,30 @@ def release_topples(pushed_m: float, *, grasp_height_m: float, object_width_m: f
     return pushed_m * object_height_m > grasp_height_m * object_width_m
 
 
+@dataclasses.dataclass(frozen=True)
+class OnePadPush:
+    """The largest force [N] one pad alone presses an upright free-standing object with,
+    quasi-statically, before it gives way: `tips_n` about its far bottom edge, `slides_n` on
+    the table (docs/controller.md, "Which rules one finger can fire")."""
+    tips_n: float
+    slides_n: float
+
+    @property
+    def limit_n(self) -> float:
+        return min(self.tips_n, self.slides_n)
+
+
+def one_pad_push(*, weight_n: float, object_width_m: float, contact_height_m: float,
+                 table_friction: float) -> OnePadPush:
+    """OnePadPush of an object of weight_n [N] and object_width_m [m, along the push] pushed
+    sideways at contact_height_m [m above the table]: tipping balances the push's moment
+    about the far bottom edge against the weight's, F h = W w/2; sliding at the table pair's
+    Coulomb coefficient table_friction, F = mu W. Quasi-static: an impact's transient is not
+    bounded by it, and the pad's own friction on the object is left out."""
+    return OnePadPush(tips_n=weight_n * (object_width_m / 2.0) / contact_height_m,
+                      slides_n=table_friction * weight_n)
+
+
 def touched_beyond_pads(*, first_touch_offset_m: float, one_pad: bool, pushed_m: float,
                         grasp_height_m: float, object_width_m: float, object_height_m: float,
                         taxel_config) -> bool:

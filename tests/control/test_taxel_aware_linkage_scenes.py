@@ -1,0 +1,55 @@
+"""The taxel_aware controller's rules in closed-loop trials on the 2F-85 linkage hand in the
+default world (capacitive pads, the package's events), one scene per rule that can fire
+there: the scene, the rules that must decide its transitions, and what the grasp must
+achieve. Which rules one pad alone cannot fire there, and why: docs/controller.md, "Which
+rules one finger can fire" (scenario/rule_reach.py)."""
+
+import dataclasses
+
+import pytest
+
+from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+from tegrasp_drake.scenario.rule_reach import rule_reach
+from tests.control.taxel_aware_scenes import Expect, Scene, check_scene
+
+pytestmark = pytest.mark.slow
+
+DEFAULT_WORLD = ()
+
+# The box made heavy enough that one pad pushing it reaches a pad's count before it tips or
+# slides (rule_reach: 1.37 kg at the least). It runs on the box's events, accepted for the
+# mass on purpose: the rule under test reads the pads' sums, not the events, and a Load-Lift
+# event the heavier load does not match is covered by load_timeout_both_pads.
+HEAVY_BOX_KG = 2.0
+HEAVY_BOX = (f"object.mass={HEAVY_BOX_KG}", "controller.event_object_may_differ=[mass]")
+
+SCENES = {
+    # 12 mm farther than expected: the contact sits on the fingertip rows; centred first.
+    "off_centre": (Scene("thick_cylinder", (0.012, 0.0), seed=600), Expect(
+        (("Reach", "Re-Reach", "off_centre"),), first=True,
+        check=lambda found, r: found[0].approach_offset_m > 0.004)),
+    # 15 mm along the stroke: the rod's Reach-Load event never matches on the linkage's
+    # curl, both pads hold it; loaded at the timeout where the paper's rule would Re-Reach.
+    "reach_timeout_both_pads": (Scene("thin_cylinder", (0.0, 0.015), seed=601), Expect(
+        (("Reach", "Load", "reach_timeout_both_pads"),), first=True, no_re_reach=True)),
+    # The heavy box 20 mm along the stroke: the left pad alone presses it past a pad's count
+    # (the paper's one_sided, a Re-Reach toward the left finger, +y); the 2 kg box then turns
+    # in the 25 N grip, and is put down and grasped again.
+    "one_sided_heavy_box": (Scene("box", (0.0, 0.02), seed=602, overrides=HEAVY_BOX), Expect(
+        (("Reach", "Re-Reach", "one_sided"), ("Hold", "Place", "held_tilted"),
+         ("Place", "Re-Reach", "regrasp_after_place")), first=True,
+        check=lambda found, r: found[0].offset_m > 0.0
+        and "regrasp" in r["corrective_actions"])),
+}
+
+
+def test_the_heavy_box_is_one_a_pad_can_fire_a_rule_on():
+    box = dataclasses.replace(BUILTIN_OBJECTS["box"], mass=HEAVY_BOX_KG)
+    reach = rule_reach(objects=[("heavy box", box)])
+    assert reach.reaches("pad") == ("heavy box",)
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_the_scene_is_decided_by_its_rules_and_grasped(name):
+    scene, expect = SCENES[name]
+    check_scene(scene, expect, DEFAULT_WORLD)
