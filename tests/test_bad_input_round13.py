@@ -34,3 +34,28 @@ def test_a_physically_meaningless_small_value_is_refused(setting, field):
 def test_the_slip_recordings_slippery_object_still_loads():
     assert T.LoadScenario(name="box", overrides=["object.friction=0.008"]).object.friction \
         == pytest.approx(0.008)
+
+
+# Rule: a public dataclass names the type of each field, so its constructor's check (the
+# public_dataclass decorator every public dataclass has) refuses a value of another type:
+# a controller's systems and ports are Drake systems and output ports, not any object.
+@pytest.fixture(scope="module")
+def built_controller():
+    from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram
+    return MakeGraspDiagram(T.LoadScenario(name="box", controller="open_loop"),
+                            log=False).controller
+
+
+@pytest.mark.parametrize("field, value", [
+    ("channels", "box"), ("detector", 5), ("state_machine", None), ("gripper_command", 1.0),
+    ("arm_desired_state", "port"), ("mode", [0]), ("segments", "abc"),
+])
+def test_a_grasp_controller_refuses_a_field_of_another_type(built_controller, field, value):
+    import dataclasses
+    fields = {f.name: getattr(built_controller, f.name)
+              for f in dataclasses.fields(built_controller)}
+    T.GraspController(**fields)  # the built one's fields are taken
+    fields[field] = value
+    with pytest.raises(TypeError) as refused:
+        T.GraspController(**fields)
+    assert f"'{field}'" in str(refused.value) and "\n" not in str(refused.value)
