@@ -59,3 +59,26 @@ def test_a_grasp_controller_refuses_a_field_of_another_type(built_controller, fi
     with pytest.raises(TypeError) as refused:
         T.GraspController(**fields)
     assert f"'{field}'" in str(refused.value) and "\n" not in str(refused.value)
+
+
+# Rule: values are read as YAML 1.2 reads them (rig/core_schema_yaml.py): `yes`, `no`, `on`
+# and `off` (any case) are text, which a true/false setting refuses saying to write true or
+# false, in a file and in --set alike; a text setting keeps them as text.
+@pytest.mark.parametrize("word", ["yes", "no", "on", "off", "Yes", "OFF", "y", "N"])
+def test_a_yaml_11_boolean_word_is_refused_for_a_true_false_setting(tmp_path, word):
+    path = tmp_path / "s.yaml"
+    path.write_text(f"default: {{arm: {{tracker: {{continuous_joints: "
+                    f"[{word}, false, false, true, true, true]}}}}}}\n")
+    _refused(lambda: T.LoadScenario(path), "'arm.tracker.continuous_joints[0]'",
+             "write true or false")
+    setting = f"vibration.film.impact_enabled={word}"
+    _refused(lambda: T.LoadScenario(name="box", overrides=[setting]),
+             "'vibration.film.impact_enabled'", "write true or false")
+
+
+def test_true_and_false_are_still_read_and_a_text_setting_keeps_yes_as_text():
+    scenario = T.LoadScenario(name="box", overrides=["vibration.film.impact_enabled=False",
+                                                     "object.name=yes", "object.shape=box",
+                                                     "object.size=[0.04,0.04,0.1]",
+                                                     "object.mass=0.1", "object.friction=0.5"])
+    assert scenario.vibration.film.impact_enabled is False and scenario.object.name == "yes"

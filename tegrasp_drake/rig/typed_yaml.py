@@ -16,7 +16,8 @@ import typing
 
 import yaml
 
-from tegrasp_drake.rig.core_schema_yaml import compose, construct, yaml11_only_number
+from tegrasp_drake.rig.core_schema_yaml import (compose, construct, yaml11_only_boolean,
+                                                yaml11_only_number)
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.unset_fields import empty_meaning
@@ -425,7 +426,7 @@ def _check_drake_scalars(data, schema, source: str, where: str) -> None:
         if hint is not None and not _is_scalar(value, hint):
             path = f"{where}.{key}" if where else str(key)
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
-                              f"{_describe(value)}{_number_as_text_hint(value, hint)}")
+                              f"{_describe(value)}{_text_as_value_hint(value, hint)}")
 
 
 def require(condition: bool, source: str, path: str, words: str, value) -> None:
@@ -465,15 +466,19 @@ def _check_value(value, hint, path: str, source: str) -> None:
     elif hint in _SCALAR_WORDS:
         if not _is_scalar(value, hint):
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
-                              f"{_describe(value)}{_number_as_text_hint(value, hint)}")
+                              f"{_describe(value)}{_text_as_value_hint(value, hint)}")
     else:
         check_fields(value, hint, source, path)
 
 
-def _number_as_text_hint(value, hint) -> str:
-    """For a number read as text (quoted, or in a form only YAML 1.1 reads as a number), how
-    to write it as a value of the field's type: decimal digits, an integer field's without a
-    point or exponent."""
+def _text_as_value_hint(value, hint) -> str:
+    """For a number or boolean read as text (quoted, or in a form only YAML 1.1 reads as a
+    number or boolean: `yes`, `off`), how to write it as a value of the field's type: decimal
+    digits, an integer field's without a point or exponent; true or false."""
+    if hint is bool and isinstance(value, str):
+        if yaml11_only_boolean(value.strip()):
+            return " (YAML 1.2 reads yes, no, on and off as text: write true or false)"
+        return " (write true or false, without quotes)"
     if hint in (float, int) and isinstance(value, str):
         if yaml11_only_number(value.strip()):
             return (" (numbers are read as YAML 1.2 reads them: base-60 1:30, binary 0b101 and "
