@@ -247,10 +247,6 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         if means is not None and isinstance(value, (str, list)) and len(value) == 0:
             raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
                               f"out for {means}")
-        if isinstance(value, (str, list)) and len(value) == 0 and _default_is_filled(
-                fields[key]):  # empty is no value here (no port, no bus, no joints)
-            raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
-                              f"out for its default, {shorten(repr(_default(fields[key])))}")
         _check_value(value, hints[key], path, source)
     for field in dataclasses.fields(schema):
         required = (field.default is dataclasses.MISSING
@@ -258,19 +254,6 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         if required and field.name not in data:
             path = f"{where}.{field.name}" if where else field.name
             raise ConfigError(f"{source}: field '{path}' is missing")
-
-
-def _default(field: dataclasses.Field):
-    if field.default_factory is not dataclasses.MISSING:
-        return field.default_factory()
-    return None if field.default is dataclasses.MISSING else field.default
-
-
-def _default_is_filled(field: dataclasses.Field) -> bool:
-    """Whether the field's default is non-empty text or a non-empty list: a field for which
-    the package declares no meaning of empty (unset_fields) takes no empty value then."""
-    default = _default(field)
-    return isinstance(default, (str, list, tuple)) and len(default) > 0
 
 
 class ConfigTypeError(ConfigError, TypeError):
