@@ -304,7 +304,7 @@ def test_a_sweep_with_a_missing_events_folder_stops_before_any_trial(tmp_path, m
             "--attempts", "1", "--workers", "1", "--out", "sw", "--events", "missing",
             "--no-progress"]
     _, _, code, text = run_probe(None, argv, tmp_path, monkeypatch, capfd)
-    assert_one_line_error(code, text, "'missing' does not exist; give an existing folder")
+    assert_one_line_error(code, text, "--events missing: does not exist; give an existing folder")
     assert not (tmp_path / "sw" / "trials").exists()
 
 

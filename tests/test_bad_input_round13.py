@@ -82,3 +82,18 @@ def test_true_and_false_are_still_read_and_a_text_setting_keeps_yes_as_text():
                                                      "object.size=[0.04,0.04,0.1]",
                                                      "object.mass=0.1", "object.friction=0.5"])
     assert scenario.vibration.film.impact_enabled is False and scenario.object.name == "yes"
+
+
+# Rule: a command's refusal names its option, not the function argument it is bound to
+# (`--events`, not run_trial_from_spec's events_dir), before any trial runs.
+@pytest.mark.parametrize("controller", ["open_loop", "memorized"])
+def test_tegrasp_sweep_names_its_events_option(tmp_path, capfd, controller):
+    from tests.test_bad_input import run_cli
+    missing = tmp_path / "MISSING"
+    code, text = run_cli(["sweep", "--objects", "box", "--controllers", controller,
+                          "--base-seed", "640", "--attempts", "1", "--workers", "1",
+                          "--out", str(tmp_path / "sw"), "--events", str(missing)], capfd)
+    assert code == 1, text
+    assert f"--events {missing}" in text and "events_dir" not in text, text
+    assert len(text.strip().splitlines()) == 1, text
+    assert not (tmp_path / "sw").exists()
