@@ -97,3 +97,27 @@ def test_tegrasp_sweep_names_its_events_option(tmp_path, capfd, controller):
     assert f"--events {missing}" in text and "events_dir" not in text, text
     assert len(text.strip().splitlines()) == 1, text
     assert not (tmp_path / "sw").exists()
+
+
+# Rule: the progress bar is decoration in every run that draws it, a hardware run's monitor
+# too: a line written above the bar (SimulatedTimeBar.write, a hardware run's `out`) when the
+# terminal starts refusing stops the bar, as a refused draw does, and the line still reaches
+# stdout; the run goes on.
+@pytest.mark.parametrize("error", [OSError(5, "Input/output error"),
+                                   OSError(28, "No space left on device"),
+                                   ValueError("I/O operation on closed file.")])
+def test_a_line_above_a_refused_bar_stops_the_bar_not_the_run(error, monkeypatch, capsys):
+    import sys
+    from tegrasp_drake.commands import output_streams
+    from tegrasp_drake.commands.progress import SimulatedTimeBar
+    from tests.test_bad_input_round11 import _RefusingTerminal
+    terminal = _RefusingTerminal(error, accepted=10**6)
+    monkeypatch.setattr(sys, "stderr", terminal)
+    with output_streams.guarded_output():
+        with SimulatedTimeBar("hardware", enabled=True) as progress:
+            progress(1.0, 10.0)  # the bar is drawn
+            terminal._accepted = 0  # the terminal hangs up
+            progress.write("gripper active")
+            progress(2.0, 10.0)
+            progress.write("arm moving")
+    assert capsys.readouterr().out.splitlines() == ["gripper active", "arm moving"]
