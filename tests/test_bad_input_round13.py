@@ -121,3 +121,23 @@ def test_a_line_above_a_refused_bar_stops_the_bar_not_the_run(error, monkeypatch
             progress(2.0, 10.0)
             progress.write("arm moving")
     assert capsys.readouterr().out.splitlines() == ["gripper active", "arm moving"]
+
+
+# Rule: what a scenario's fields must be to build is checked where it is loaded (validate),
+# not found while building: a side grasp the JACO2 cannot reach, at which the carriage's
+# impedance is taken (`station.arm: carriage`), is bad input naming the fields (exit 1).
+CARRIAGE_OUT_OF_REACH = ["station.arm=carriage", "placement.expected_xy=[0.2,0.0]"]
+
+
+def test_a_carriage_side_grasp_out_of_reach_is_refused_at_load():
+    _refused(lambda: T.LoadScenario(name="box", overrides=CARRIAGE_OUT_OF_REACH),
+             "'placement.expected_xy'", "reach")
+
+
+def test_tegrasp_trial_says_a_carriage_side_grasp_out_of_reach_as_bad_input(tmp_path, capfd):
+    from tests.test_bad_input import run_cli
+    argv = ["trial", "--set", "random_seed=640", "--out", str(tmp_path / "o")]
+    for setting in CARRIAGE_OUT_OF_REACH:
+        argv += ["--set", setting]
+    code, text = run_cli(argv, capfd)
+    assert code == 1 and "placement.expected_xy" in text and "internal error" not in text, text
