@@ -141,3 +141,20 @@ def test_tegrasp_trial_says_a_carriage_side_grasp_out_of_reach_as_bad_input(tmp_
         argv += ["--set", setting]
     code, text = run_cli(argv, capfd)
     assert code == 1 and "placement.expected_xy" in text and "internal error" not in text, text
+
+
+# Rule: a refusal names what the user set: events recorded into the user's folder that an
+# environment variable chose (no --events) are refused naming that variable, before
+# anything is simulated.
+@pytest.mark.parametrize("variable, value", [("XDG_DATA_HOME", "/proc/x"),
+                                             ("TEGRASP_EVENTS_DIR", "/proc/x/events")])
+def test_an_unusable_events_folder_from_the_environment_is_named_by_its_variable(
+        variable, value, monkeypatch, capfd):
+    from tests.test_bad_input import run_cli
+    monkeypatch.delenv("TEGRASP_EVENTS_DIR", raising=False)
+    monkeypatch.setenv(variable, value)
+    code, text = run_cli(["record-events", "--set", "random_seed=642", "--ensemble-runs", "0"],
+                         capfd)
+    assert code == 1, text
+    assert f"{variable}=" in text and "--events" not in text.split(";")[0], text
+    assert len(text.strip().splitlines()) == 1, text
