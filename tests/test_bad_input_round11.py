@@ -284,21 +284,6 @@ def test_a_quoted_number_is_text_in_drakes_config_sections_too(assignment, words
     LoadScenario(overrides=[assignment.replace("'", "").replace("!!str ", "")])
 
 
-# Rule: empty text or an empty list is a value only where the package declares what empty
-# means (unset_fields); a field whose default is filled (a port, an LCM bus, the joints that
-# wrap) refuses an empty one naming the field, rather than run on no device or LCM's default.
-@pytest.mark.parametrize("text, field", [
-    ("arm: {tracker: {continuous_joints: []}}\n", "arm.tracker.continuous_joints"),
-    ("arm: {lcm_url: ''}\n", "arm.lcm_url"),
-    ("gripper: {port: ''}\n", "gripper.port"),
-    ("tactile: {port: ''}\n", "tactile.port"),
-])
-def test_an_empty_value_of_a_field_with_a_filled_default_is_refused(tmp_path, text, field):
-    path = tmp_path / "hardware.yaml"
-    path.write_text(text)
-    _refused(lambda: T.LoadHardwareConfig(path), str(path), f"field '{field}' is empty")
-
-
 # Rule: an object's name given to a public function names a folder, as a scenario's
 # object.name does: record_events declares OBJECT_NAME on its argument, checked at the call,
 # so '' or '../x' is refused before an ideal grasp is simulated (load_memorized_events says
@@ -319,7 +304,7 @@ def test_a_sweep_with_a_missing_events_folder_stops_before_any_trial(tmp_path, m
             "--attempts", "1", "--workers", "1", "--out", "sw", "--events", "missing",
             "--no-progress"]
     _, _, code, text = run_probe(None, argv, tmp_path, monkeypatch, capfd)
-    assert_one_line_error(code, text, "'missing' does not exist; give an existing folder")
+    assert_one_line_error(code, text, "--events missing: does not exist; give an existing folder")
     assert not (tmp_path / "sw" / "trials").exists()
 
 

@@ -10,19 +10,25 @@ from tests.test_bad_input_round10 import _refused
 
 
 # Rule: an empty text or list is a value only where the field declares what empty means
-# (an empty LCM URL would be LCM's default bus, an empty port no device); a list of a fixed
-# length (one value per joint) holds that many in every config that has it.
-@pytest.mark.parametrize("text, field", [
-    ("arm: {tracker: {continuous_joints: []}}\n", "arm.tracker.continuous_joints"),
-    ("arm: {tracker: {continuous_joints: [true]}}\n", "arm.tracker.continuous_joints"),
-    ('arm: {lcm_url: ""}\n', "arm.lcm_url"),
-    ('gripper: {port: ""}\n', "gripper.port"),
-    ('tactile: {port: ""}\n', "tactile.port"),
+# (unset_fields) or where its default is itself empty; a field whose default is filled (an
+# LCM bus, a port, the joints that wrap) refuses an empty one naming the field, rather than
+# run on LCM's default bus or no device (rig/ranges.check_ranges, at load and at a public
+# function). A list of a fixed length (one value per joint) holds that many in every config.
+@pytest.mark.parametrize("text, field, words", [
+    ("arm: {tracker: {continuous_joints: []}}\n", "arm.tracker.continuous_joints", "is empty"),
+    ("arm: {tracker: {continuous_joints: [true]}}\n", "arm.tracker.continuous_joints",
+     "must hold 6"),
+    ('arm: {lcm_url: ""}\n', "arm.lcm_url", "is empty"),
+    ("arm: {lcm_url: ''}\n", "arm.lcm_url", "is empty"),
+    ('gripper: {port: ""}\n', "gripper.port", "is empty"),
+    ("gripper: {port: ''}\n", "gripper.port", "is empty"),
+    ('tactile: {port: ""}\n', "tactile.port", "is empty"),
+    ("tactile: {port: ''}\n", "tactile.port", "is empty"),
 ])
-def test_a_hardware_config_refuses_an_empty_or_short_value(tmp_path, text, field):
+def test_a_hardware_config_refuses_an_empty_or_short_value(tmp_path, text, field, words):
     path = tmp_path / "hardware.yaml"
     path.write_text(text)
-    _refused(lambda: T.LoadHardwareConfig(path), str(path), f"'{field}'")
+    _refused(lambda: T.LoadHardwareConfig(path), str(path), f"field '{field}' {words}")
 
 
 def test_an_empty_value_is_kept_where_the_field_declares_what_empty_means(tmp_path):

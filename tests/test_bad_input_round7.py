@@ -60,24 +60,25 @@ def test_the_smallest_object_is_one_the_contact_geometry_resolves():
 # (check_times_resolved), a device timeout that short fails at once naming the device. Gains,
 # speeds, forces, fractions and rates: a tiny one makes a slow or failed grasp the trial
 # reports (tried at 1e-9: grip_force, gripper acceleration, arm command rate, slip band).
-# Film and taxel electronics: a tiny value makes a vanishing or clipped signal. Contact:
-# Drake's point contact and regularized friction ran at 1e-9 m and 1e-12 m/s; a tiny friction
-# is an object that slips. The integrator's accuracy and largest step: the diagram is discrete
-# (ran at 1e-12 and 1e-9 s). The others have a plausible minimum instead (object mass, size).
+# Film gain and load low-pass: a tiny value makes a vanishing signal (a test turns the load
+# channel off with a 1e-3 Hz corner). Contact: Drake's point contact and regularized friction
+# ran at 1e-9 m and 1e-12 m/s. The integrator's accuracy and largest step: the diagram is
+# discrete (ran at 1e-12 and 1e-9 s). The others have a plausible physical minimum instead
+# (object mass, size and friction; the fingertip's mode, mass and stiffness; the amplifier's
+# capacitor, swing, corner and rate; the pad texture, pad friction, the 2F-85's 20 N grip;
+# the taxels' calibration weight and gap).
 TINY_IS_HARMLESS = {
     "ArmDriverConfig": {"command_latency_s", "command_rate_hz", "control_period_s",
                         "position_gain"},
-    "CapacitiveTaxelConfig": {"calibration_force_n", "minimum_gap_fraction"},
     "DeviceWatchdogConfig": {"arm_timeout", "gripper_timeout", "tactile_timeout"},
     "DisturbanceConfig": {"hit_duration_s"},
     "DriveVibrationConfig": {"full_speed"},
-    "FilmConfig": {"feedback_capacitance_f", "film_charge_gain_c_per_m", "load_lowpass_hz",
-                   "mode_frequency_hz", "mode_mass_kg", "pad_contact_stiffness_n_per_m"},
+    "FilmConfig": {"film_charge_gain_c_per_m", "load_lowpass_hz"},
     "FingerStrikeConfig": {"force_n"},
     "FixedLoadTimeControllerConfig": {"load_event_timeout_s", "load_time_s", "update_period_s"},
-    "GraspScriptConfig": {"grip_force", "lift_s", "load_s", "place_s", "reach_s", "retract_s",
+    "GraspScriptConfig": {"lift_s", "load_s", "place_s", "reach_s", "retract_s",
                           "unload_s"},
-    "GripperDriverConfig": {"acceleration", "pad_friction", "position_gain", "stall_speed",
+    "GripperDriverConfig": {"acceleration", "position_gain", "stall_speed",
                             "update_rate_hz"},
     "HardwareStationConfig": {"ready_timeout"},
     "HeuristicControllerConfig": {"load_event_timeout_s", "update_period_s"},
@@ -86,15 +87,12 @@ TINY_IS_HARMLESS = {
     "LiftLoadConfig": {"grip_fraction", "slip_band_hz", "slip_window_s"},
     "MemorizedControllerConfig": {"load_event_timeout_s", "update_period_s"},
     "MultibodyPlantConfig": {"penetration_allowance", "stiction_tolerance"},
-    "ObjectConfig": {"friction"},
     "PlaceConfig": {"event_timeout_s"},
     "ReReachConfig": {"reach_event_timeout_s"},
     "RobotiqModbusConfig": {"activation_timeout", "command_refresh_period", "request_timeout"},
     "SerialTactileDriver": {"stale_timeout"},
     "SimulatorConfig": {"accuracy", "max_step_size"},
     "TaxelAwareControllerConfig": {"load_event_timeout_s", "update_period_s"},
-    "VibrationSensorConfig": {"amplifier_swing_v", "highpass_cutoff_hz", "internal_rate_hz",
-                              "slip_texture_period_m"},
 }
 
 

@@ -125,8 +125,8 @@ def test_open_and_closed_ends():
      "(0.900, 0.490) m"),
     (["object.size=[0.045,0.045,50]"], "field 'object.size[2]' must lie in [0.005, 0.5] m"),
     (["object.mass=1.0e+9"], "field 'object.mass' must lie in [0.01, 5] kg"),
-    (["object.friction=1.0e+9"], "field 'object.friction' must lie in (0, 2]"),
-    (["grasp.grip_force=1.0e+9"], "field 'grasp.grip_force' must lie in (0, 235] N"),
+    (["object.friction=1.0e+9"], "field 'object.friction' must lie in [0.005, 2]"),
+    (["grasp.grip_force=1.0e+9"], "field 'grasp.grip_force' must lie in [20, 235] N"),
     (["grasp.close_speed=0"], "field 'grasp.close_speed' must lie in [0.02, 0.15] m/s"),
     (["grasp.hold_s=50", "grasp.lift_s=20"], "field 'grasp': the grasp script lasts"),
     (["object.mass=1e9"], "field 'object.mass' must lie in [0.01, 5] kg"),  # a number

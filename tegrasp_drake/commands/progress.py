@@ -66,11 +66,22 @@ class SimulatedTimeBar:
                 output_streams.OutputStreamError(output_streams.STANDARD_ERROR, error))
 
     def write(self, line: str) -> None:
-        """Prints `line` on stdout, above the bar."""
+        """Prints `line` on stdout, above the bar. Called from inside a run (a hardware run's
+        monitor): a stream that refuses the bar's redraw stops the bar, as in `__call__`,
+        and the line is printed alone (once: the bar's clear and redraw are on its stream, the
+        line on stdout, the command's own output)."""
+        self._on_bar_stream(lambda bar: bar.clear())
+        print(line, flush=True)
+        self._on_bar_stream(lambda bar: bar.refresh())
+
+    def _on_bar_stream(self, draw) -> None:
+        """`draw(bar)` if a bar is shown; a stream that refuses it stops the bar."""
         if self._bar is None:
-            print(line, flush=True)
-        else:
-            self._bar.write(line, file=sys.stdout)
+            return
+        try:
+            draw(self._bar)
+        except (OSError, ValueError) as error:  # ValueError: the stream was closed
+            self._stop_drawing(error)
 
     def __exit__(self, *exc_info):
         if self._redirect is not None:

@@ -124,18 +124,19 @@ def run(args) -> int:
     from tegrasp_drake.events.events_folder import EventsDestinationError
     from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, record_object_ensemble)
     from tegrasp_drake.recording.paper_events import RecordEventsError, record_events
-    out = args.events or paths.user_events_dir()
+    out, named = ((args.events, f"--events {args.events}") if args.events
+                  else paths.user_events_setting())
     if paths.is_installed_package_data(out):
         raise SystemExit(f"tegrasp: error: {out} holds the installed package's events, which "
                          "`pip install` replaces; record into your own folder (--events DIR "
                          f"or {paths.EVENTS_ENV}; default {paths.user_events_dir()})")
     problem = folder_problem(out)
     if problem:
-        raise SystemExit(f"tegrasp: error: --events {out}: {problem}; give a folder you can "
-                         "write")
+        raise SystemExit(f"tegrasp: error: {named}: {problem}; give a folder you can write"
+                         f"{'' if args.events else ' (or --events DIR)'}")
     to_record = _scenarios_to_record(args)
     runs = _ensemble_runs(args, to_record)
-    _check_destination(out, [name for name, _ in to_record], runs)
+    _check_destination(out, named, [name for name, _ in to_record], runs)
     for object_name, scenario in to_record:
         try:
             with SimulatedTimeBar(object_name, enabled=progress_wanted(args)) as progress:
@@ -168,9 +169,10 @@ def run(args) -> int:
     return 0
 
 
-def _check_destination(out, object_names, runs: int) -> None:
+def _check_destination(out, named: str, object_names, runs: int) -> None:
     """Refuses, before anything is simulated, an events folder the new events could not be
-    saved into (events_folder.check_events_destination; the ensemble's folder too)."""
+    saved into (events_folder.check_events_destination; the ensemble's folder too), naming
+    the option or environment setting that chose it (`named`)."""
     from tegrasp_drake.events.events_folder import (EventsDestinationError,
                                                     check_events_destination)
     from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER
@@ -179,7 +181,7 @@ def _check_destination(out, object_names, runs: int) -> None:
         for folder in folders:
             check_events_destination(folder, object_names)
     except EventsDestinationError as e:
-        raise SystemExit(f"tegrasp: error: --events {out}: {e}; nothing was recorded") from None
+        raise SystemExit(f"tegrasp: error: {named}: {e}; nothing was recorded") from None
 
 
 def _builtin_scenario(object_name: str):

@@ -16,7 +16,7 @@ from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
-from tegrasp_drake.rig.api_boundary import bound_arguments
+from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, bound_arguments
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.sweep.runner import (
@@ -125,6 +125,16 @@ def spec_from_arguments(args) -> SweepSpec:
     return spec
 
 
+def _check_events_folder(events) -> None:
+    """--events names an existing folder (the rule run_trial_from_spec's events_dir declares,
+    api_boundary.INPUT_FOLDER), said naming the option, before any trial: bad input (exit 1),
+    as the same refusal of the bound argument was."""
+    problem = INPUT_FOLDER.problem(events)
+    if problem:
+        from tegrasp_drake.rig.files import UserPathError
+        raise UserPathError(f"--events {events}: {problem} of memorized events")
+
+
 def _check_logs_folder(logs) -> None:
     """--logs names a folder this user can write (made if missing), before any trial."""
     problem = folder_problem(logs)
@@ -203,6 +213,8 @@ def run(args) -> int:
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
+        if args.events:
+            _check_events_folder(args.events)
         if args.trial_function == DEFAULT_TRIAL_FUNCTION:
             from tegrasp_drake.sweep.spec import expand_trials
             from tegrasp_drake.sweep.trial_function import check_sweep_events

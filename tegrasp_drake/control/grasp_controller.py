@@ -8,7 +8,7 @@ from typing import Annotated
 
 from pydrake.systems.primitives import Multiplexer
 from pydrake.systems.framework import DiagramBuilder
-from pydrake.systems.framework import System
+from pydrake.systems.framework import OutputPort, System
 
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
@@ -20,7 +20,8 @@ from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
-from tegrasp_drake.control.scripted_grasp import PHASES, ScriptedGraspSource, plan_scripted_grasp
+from tegrasp_drake.control.scripted_grasp import (PHASES, ScriptedGraspSource, ScriptSegment,
+                                                  plan_scripted_grasp)
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
 from tegrasp_drake.tactile.sample_block import block_samples
@@ -44,13 +45,13 @@ _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
 class GraspController:
     """The controller's systems and its ports of interest."""
     name: str
-    channels: object  # MechanoreceptorChannels
-    detector: object  # EventMatcher, HeuristicEventDetector or None (open loop)
-    state_machine: object  # GraspStateMachine, or ScriptedGraspSource (open loop)
-    gripper_command: object  # output port
-    arm_desired_state: object  # output port
-    mode: object  # output port: the Mode value (open loop: the script's phase index)
-    segments: list = None  # the open-loop script's ScriptSegments
+    channels: System  # MakeMechanoreceptorChannels' diagram
+    detector: System | None  # EventMatcher, HeuristicEventDetector or None (open loop)
+    state_machine: GraspStateMachine | ScriptedGraspSource  # ScriptedGraspSource: open loop
+    gripper_command: OutputPort
+    arm_desired_state: OutputPort
+    mode: OutputPort  # the Mode value (open loop: the script's phase index)
+    segments: list[ScriptSegment] | None = None  # the open-loop script's segments
 
     def current_mode(self, root_context) -> Mode:
         """The mode now (open loop: the mode of the script's phase)."""

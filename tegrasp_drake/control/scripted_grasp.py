@@ -30,9 +30,8 @@ class GraspScriptConfig:
     reach_s: float = bounded(2.5, low=0.0, low_open=True, high=30.0, unit="s")
     close_speed: float = bounded(0.05, low=0.02, high=0.15, unit="m/s",
                                  why="the 2F-85 closes at 20-150 mm/s, Robotiq 2F-85 manual")
-    grip_force: float = bounded(25.0, low=0.0, low_open=True, high=235.0, unit="N",
-                                why="the 2F-85 grips with at most 235 N, Robotiq 2F-85 manual",
-                                below="must be positive [N]")
+    grip_force: float = bounded(25.0, low=20.0, high=235.0, unit="N",
+                                why="the 2F-85 grips with 20 to 235 N, Robotiq 2F-85 manual")
     # close command to lift [s]: the close (1.24 s for the 25 mm cylinder) plus 0.56 s on the
     # object, the grip's settling and half a memorized window (recording/paper_events.py checks)
     load_s: float = bounded(1.8, low=0.0, low_open=True, high=30.0, unit="s")

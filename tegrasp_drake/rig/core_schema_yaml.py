@@ -3,13 +3,14 @@ section 10.3.2, https://yaml.org/spec/1.2.2/#1032-tag-resolution), the one loade
 configuration the package reads (typed_yaml.parse_yaml).
 
 PyYAML resolves plain scalars by YAML 1.1, where `1:30` is the integer 90 (base 60), `0b101` is 5,
-`017` is 15 (octal), `1_000` is 1000, `2024-01-02` a date and `1e-9` text. The core schema reads
-decimal, `0o` octal and `0x` hexadecimal integers (`017` is 17) and floats with or without a dot
-or an exponent (`1e-9`); every other plain scalar is text, which a numeric field then refuses by
-its type. Booleans and null keep PyYAML's forms (`yes`/`no`/`on`/`off` as well as `true`/`false`),
-as Drake's loaders read them. As Drake's `yaml_load` does, a tag `!Name` on a mapping adds
-`_tag: "!Name"` to it (a variant's type), and top-level keys starting with `_` (templates for
-aliases) are dropped."""
+`017` is 15 (octal), `1_000` is 1000, `2024-01-02` a date, `1e-9` text and `yes`/`no`/`on`/`off`
+booleans. The core schema reads decimal, `0o` octal and `0x` hexadecimal integers (`017` is 17),
+floats with or without a dot or an exponent (`1e-9`), and `true`/`false` (three cases each) as
+booleans; every other plain scalar is text (`yes`, `off`), which a numeric or true/false field
+then refuses by its type. Null keeps PyYAML's forms, the core schema's (`~`, `null`, empty).
+The data is then dumped for Drake's `yaml_load_typed`, which quotes a text `yes`. As Drake's
+`yaml_load` does, a tag `!Name` on a mapping adds `_tag: "!Name"` to it (a variant's type), and
+top-level keys starting with `_` (templates for aliases) are dropped."""
 
 import math
 import re
@@ -20,14 +21,17 @@ from tegrasp_drake.rig.integer_text import CORE_INT, read_integer
 
 INT_TAG = "tag:yaml.org,2002:int"
 FLOAT_TAG = "tag:yaml.org,2002:float"
-_DROPPED_TAGS = (INT_TAG, FLOAT_TAG, "tag:yaml.org,2002:timestamp")
+BOOL_TAG = "tag:yaml.org,2002:bool"
+_DROPPED_TAGS = (INT_TAG, FLOAT_TAG, BOOL_TAG, "tag:yaml.org,2002:timestamp")
+
+CORE_BOOL = re.compile(r"^(?:true|True|TRUE|false|False|FALSE)$")
 
 CORE_FLOAT = re.compile(r"""^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?
     |[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$""", re.X)
 
 
 class CoreSchemaLoader(yaml.SafeLoader):
-    """PyYAML's safe loader with the core schema's numbers (module docstring)."""
+    """PyYAML's safe loader with the core schema's numbers and booleans (module docstring)."""
 
     yaml_implicit_resolvers = {
         first: [(tag, regexp) for tag, regexp in resolvers if tag not in _DROPPED_TAGS]
@@ -58,6 +62,7 @@ class CoreSchemaLoader(yaml.SafeLoader):
 # The integer resolver first: "12" matches both expressions and is an integer.
 CoreSchemaLoader.add_implicit_resolver(INT_TAG, CORE_INT, list("-+0123456789"))
 CoreSchemaLoader.add_implicit_resolver(FLOAT_TAG, CORE_FLOAT, list("-+.0123456789"))
+CoreSchemaLoader.add_implicit_resolver(BOOL_TAG, CORE_BOOL, list("tTfF"))
 CoreSchemaLoader.add_constructor(INT_TAG, CoreSchemaLoader.construct_core_int)
 CoreSchemaLoader.add_constructor(FLOAT_TAG, CoreSchemaLoader.construct_core_float)
 CoreSchemaLoader.add_multi_constructor("!", CoreSchemaLoader.construct_variant)
@@ -70,6 +75,13 @@ def yaml11_only_number(text: str) -> bool:
     numbers = (INT_TAG, FLOAT_TAG)
     return (_implicit_tag(yaml.SafeLoader, text) in numbers
             and _implicit_tag(CoreSchemaLoader, text) not in numbers)
+
+
+def yaml11_only_boolean(text: str) -> bool:
+    """Whether plain `text` is a boolean by YAML 1.1 (PyYAML's resolvers) and text by the
+    core schema: `yes`, `No`, `ON`, `off`."""
+    return (_implicit_tag(yaml.SafeLoader, text) == BOOL_TAG
+            and _implicit_tag(CoreSchemaLoader, text) != BOOL_TAG)
 
 
 def _implicit_tag(loader_class, text: str) -> str:

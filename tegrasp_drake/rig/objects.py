@@ -78,11 +78,12 @@ class ObjectConfig:
                                      "smallest event threshold, 0.3 N; at most the 2F-85's "
                                      "rated payload, Robotiq 2F-85 manual")
     # Coulomb coefficient of the object's geometry (static = dynamic; module docstring)
-    friction: float | None = bounded(None, low=0.0, low_open=True, high=2.0,
+    # Low end: with the pads' 4.42, Drake's pair 2 mu_pad mu / (mu_pad + mu) of 0.005 is 0.01,
+    # wet ice; the slip recordings (recording/corrective_events.py) use 0.008 to make a box slip.
+    friction: float | None = bounded(None, low=0.005, high=2.0,
                                      why="dry Coulomb coefficients of solids stay below about "
-                                         "1.5, rubber on rubber",
-                                     below="must be positive (its Coulomb friction coefficient, "
-                                           "e.g. 0.5)")
+                                         "1.5, rubber on rubber; at least 0.005, a pad pair of "
+                                         "0.01, wet ice")
     file: str = unset_when_empty("no model file (a built-in or primitive shape)")
     # [r, g, b, a] in [0, 1]; empty: the built-in object's colour, or DEFAULT_COLOR
     color: list[float] = unset_when_empty("the built-in object's colour, or the default", bounded(

@@ -37,18 +37,26 @@ def package_events_dir() -> pathlib.Path:
 def user_events_dir() -> pathlib.Path:
     """Where the user's recorded events go (module docstring); UserPathError naming the
     variable when $TEGRASP_EVENTS_DIR names something that is not a folder or cannot be one."""
+    return user_events_setting()[0]
+
+
+def user_events_setting() -> tuple[pathlib.Path, str]:
+    """(user_events_dir(), the setting that chose it in words, e.g. "XDG_DATA_HOME='/data'
+    (events in /data/tegrasp/events)"), for a refusal to name what the user set."""
     chosen = os.environ.get(EVENTS_ENV, "").strip()
     if chosen:
         folder = pathlib.Path(chosen).expanduser()
-        _check_folder_path(folder, f"{EVENTS_ENV}={chosen!r}", "an events folder")
-        return folder
+        named = f"{EVENTS_ENV}={chosen!r}"
+        _check_folder_path(folder, named, "an events folder")
+        return folder, named
     data_home = os.environ.get("XDG_DATA_HOME", "").strip()
     base = pathlib.Path(data_home) if data_home else pathlib.Path.home() / ".local" / "share"
     folder = base / "tegrasp" / "events"
-    if data_home:
-        _check_folder_path(folder, f"XDG_DATA_HOME={data_home!r} (events in {folder})",
-                           "your data folder")
-    return folder
+    if not data_home:
+        return folder, f"the default events folder {folder}"
+    named = f"XDG_DATA_HOME={data_home!r} (events in {folder})"
+    _check_folder_path(folder, named, "your data folder")
+    return folder, named
 
 
 def _check_folder_path(folder: pathlib.Path, named: str, meant: str) -> None:

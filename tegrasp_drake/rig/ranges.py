@@ -204,16 +204,18 @@ def _field_default(field: dataclasses.Field):
 
 def _check_not_empty(value, field: dataclasses.Field, source: str, path: str) -> None:
     """An empty text or list is a value only where the field's default is itself empty (its
-    documented "none", e.g. no calibration file): elsewhere it would be a silent default (an empty LCM URL is LCM's default bus, an empty port no
-    device), so it is refused naming the field."""
+    documented "none", e.g. no calibration file): elsewhere it would be a silent default (an
+    empty LCM URL is LCM's default bus, an empty port no device), so it is refused naming the
+    field, where a config is loaded and where a public function is handed one. (A field whose
+    empty value means "not set", unset_fields, is refused empty in a file by check_fields.)"""
     if not isinstance(value, (str, list, tuple)) or len(value) > 0:
         return
     default = _field_default(field)
     if not isinstance(default, (str, list, tuple)) or len(default) == 0:
         return
     from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
-    raise ConfigError(f"{source}: field '{path}' must not be empty, got {value!r} (give a "
-                      f"value, or leave the field out for its default {shorten(repr(default))})")
+    raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it out for "
+                      f"its default, {shorten(repr(default))}")
 
 
 def _check_value(value, declared: "Range | Choice", source: str, path: str) -> None:

@@ -16,7 +16,8 @@ import typing
 
 import yaml
 
-from tegrasp_drake.rig.core_schema_yaml import compose, construct, yaml11_only_number
+from tegrasp_drake.rig.core_schema_yaml import (compose, construct, yaml11_only_boolean,
+                                                yaml11_only_number)
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.unset_fields import empty_meaning
@@ -246,10 +247,6 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         if means is not None and isinstance(value, (str, list)) and len(value) == 0:
             raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
                               f"out for {means}")
-        if isinstance(value, (str, list)) and len(value) == 0 and _default_is_filled(
-                fields[key]):  # empty is no value here (no port, no bus, no joints)
-            raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
-                              f"out for its default, {shorten(repr(_default(fields[key])))}")
         _check_value(value, hints[key], path, source)
     for field in dataclasses.fields(schema):
         required = (field.default is dataclasses.MISSING
@@ -257,19 +254,6 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
         if required and field.name not in data:
             path = f"{where}.{field.name}" if where else field.name
             raise ConfigError(f"{source}: field '{path}' is missing")
-
-
-def _default(field: dataclasses.Field):
-    if field.default_factory is not dataclasses.MISSING:
-        return field.default_factory()
-    return None if field.default is dataclasses.MISSING else field.default
-
-
-def _default_is_filled(field: dataclasses.Field) -> bool:
-    """Whether the field's default is non-empty text or a non-empty list: a field for which
-    the package declares no meaning of empty (unset_fields) takes no empty value then."""
-    default = _default(field)
-    return isinstance(default, (str, list, tuple)) and len(default) > 0
 
 
 class ConfigTypeError(ConfigError, TypeError):
@@ -425,7 +409,7 @@ def _check_drake_scalars(data, schema, source: str, where: str) -> None:
         if hint is not None and not _is_scalar(value, hint):
             path = f"{where}.{key}" if where else str(key)
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
-                              f"{_describe(value)}{_number_as_text_hint(value, hint)}")
+                              f"{_describe(value)}{_text_as_value_hint(value, hint)}")
 
 
 def require(condition: bool, source: str, path: str, words: str, value) -> None:
@@ -465,15 +449,19 @@ def _check_value(value, hint, path: str, source: str) -> None:
     elif hint in _SCALAR_WORDS:
         if not _is_scalar(value, hint):
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
-                              f"{_describe(value)}{_number_as_text_hint(value, hint)}")
+                              f"{_describe(value)}{_text_as_value_hint(value, hint)}")
     else:
         check_fields(value, hint, source, path)
 
 
-def _number_as_text_hint(value, hint) -> str:
-    """For a number read as text (quoted, or in a form only YAML 1.1 reads as a number), how
-    to write it as a value of the field's type: decimal digits, an integer field's without a
-    point or exponent."""
+def _text_as_value_hint(value, hint) -> str:
+    """For a number or boolean read as text (quoted, or in a form only YAML 1.1 reads as a
+    number or boolean: `yes`, `off`), how to write it as a value of the field's type: decimal
+    digits, an integer field's without a point or exponent; true or false."""
+    if hint is bool and isinstance(value, str):
+        if yaml11_only_boolean(value.strip()):
+            return " (YAML 1.2 reads yes, no, on and off as text: write true or false)"
+        return " (write true or false, without quotes)"
     if hint in (float, int) and isinstance(value, str):
         if yaml11_only_number(value.strip()):
             return (" (numbers are read as YAML 1.2 reads them: base-60 1:30, binary 0b101 and "

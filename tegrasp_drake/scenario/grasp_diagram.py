@@ -27,9 +27,7 @@ from tegrasp_drake.simulation.station import (MakeGraspStation, SimulatedStation
                                               side_grasp_pose)
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
-from tegrasp_drake.rig.arm_kinematics import UnreachablePoseError
 from tegrasp_drake.rig.ranges import SIMULATED_DURATION, Range
-from tegrasp_drake.rig.typed_yaml import ConfigError
 
 # Beyond the ideal grasp's duration, for corrections [s] (and the controller's extra_time_s).
 EXTRA_TIME_S = 10.0
@@ -49,18 +47,13 @@ def MakeStation(scenario: Scenario, *, meshcat: Meshcat | None = None,
 
 def station_carriage(scenario):
     """The carriage's impedance when the simulated station rides the gripper on one
-    (`station.arm: carriage`): the arm's at the side grasp over the object's marker; else None."""
+    (`station.arm: carriage`): the arm's at the side grasp over the object's marker; else None.
+    That grasp is in reach: validate checks it where the scenario is loaded or handed over."""
     station = scenario.station
     if not (isinstance(station, SimulatedStationConfig) and station.uses_carriage()):
         return None
-    try:
-        return arm_endpoint_impedance(scenario.arm, side_grasp_pose(
-            scenario.placement.expected_xy, scenario.grasp.grasp_height))
-    except UnreachablePoseError as error:
-        raise ConfigError(f"fields 'placement.expected_xy' and 'grasp.grasp_height' put the "
-                          f"side grasp out of the JACO2's reach ({error}), which the "
-                          "carriage's impedance is taken at: choose a marker in front of "
-                          "the arm") from None
+    return arm_endpoint_impedance(scenario.arm, side_grasp_pose(
+        scenario.placement.expected_xy, scenario.grasp.grasp_height))
 
 
 @public_api

@@ -42,7 +42,8 @@ from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS
 from tegrasp_drake.simulation.jaco_velocity_drive import drive_problem
 from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig
 from tegrasp_drake.simulation.station import (ARM_MOUNTS, ArmDriverConfig,
-                                             SimulatedStationConfig, start_pose_problem)
+                                             SimulatedStationConfig, side_grasp_problem,
+                                             start_pose_problem)
 from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.rig.api_boundary import (PathLike, public_api, public_dataclass,
                                             register_moved_fields, relations_checked)
@@ -360,6 +361,13 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
         require(scenario.station.arm in ARM_MOUNTS, source, "station.arm",
                 f"must be one of {', '.join(ARM_MOUNTS)} (the JACO2 arm, or the Cartesian "
                 "carriage with the arm's end-point impedance, for sweeps)", scenario.station.arm)
+        problem = scenario.station.uses_carriage() and side_grasp_problem(
+            scenario.placement.expected_xy, scenario.grasp.grasp_height)
+        if problem:
+            raise ConfigError(f"{source}: fields 'placement.expected_xy' and "
+                              f"'grasp.grasp_height' put the side grasp out of the JACO2's "
+                              f"reach ({problem}), which the carriage's impedance (station.arm "
+                              "carriage) is taken at: choose a marker in front of the arm")
     return scenario
 
 

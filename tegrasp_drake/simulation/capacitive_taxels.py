@@ -75,12 +75,15 @@ class CapacitiveTaxelConfig:
     ad7147_timing: bool = True
     # The elastomer stops compressing at this fraction of its thickness (assumed: the
     # grasps here compress it by 2-30 %).
-    minimum_gap_fraction: float = bounded(0.1, low=0.0, high=1.0, low_open=True, high_open=True)
+    minimum_gap_fraction: float = bounded(0.1, low=0.01, high=1.0, high_open=True,
+                                          why="an elastomer compresses by at most 99 % of its "
+                                              "thickness")
     output: str = "calibrated"  # calibrated (newtons) or counts (above the baseline)
     # The bench calibration's one point [N on a taxel]: a 0.5 kg weight, within the 1-10 N a
     # taxel carries in 25-100 N grasps.
-    calibration_force_n: float = bounded(5.0, low=0.0, low_open=True, high=100.0, unit="N",
-                                         below="must be positive [N]")
+    calibration_force_n: float = bounded(5.0, low=0.1, high=100.0, unit="N",
+                                         why="a calibration weight of at least 10 g; lighter, "
+                                             "its change is within the taxel's noise")
 
 
 def noise_std_at_decimation(config: CapacitiveTaxelConfig) -> float:

@@ -5,7 +5,7 @@ z (the inward normal). The model and every number: docs/model.md, "Vibration (RA
 
 import dataclasses
 
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.ranges import bounded, field_range
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.simulation.drive_vibration import (DriveVibrationConfig, arm_drive_default,
@@ -42,16 +42,21 @@ class FilmConfig:
     """The fingertip's first structural mode, the impact that rings it, and the film's charge per
     deflection with its amplifier's capacitor. Sources: docs/model.md, "Vibration (RA) model"."""
     # The fingertip's first structural mode (an estimate: see docs/model.md).
-    mode_frequency_hz: float = bounded(400.0, low=0.0, low_open=True, high=10_000.0,
+    # Low end: the bolted fingertip, about 1.5e5 N/m on 24 g, rings at 400 Hz (docs/model.md);
+    # below 50 Hz its ring would sit among the grip's own motions (a finger starts and stops
+    # in about 0.15 s), no fingertip a hand carries.
+    mode_frequency_hz: float = bounded(400.0, low=50.0, high=10_000.0,
                                        high_open=True, unit="Hz",
-                                       why="the fingertip's mode, below half the 20 kHz "
-                                           "integration rate; at 0 the film feels no ring")
+                                       why="the fingertip's mode: at least 50 Hz, above the "
+                                           "grip's own motions; below half the 20 kHz "
+                                           "integration rate")
     mode_damping_ratio: float = bounded(0.05, low=0.0, high=10.0,
                                         why="a lightly damped fingertip is 0.01-0.2",
                                         below="must be zero or positive")
-    mode_mass_kg: float = bounded(0.024, low=0.0, low_open=True, high=1.0, unit="kg",
-                                  why="the fingertip's moving mass, tens of grams",
-                                  below="must be positive [kg] (the fingertip's moving mass)")
+    # Low end: a gram is the film and its cover alone, with no fingertip behind them.
+    mode_mass_kg: float = bounded(0.024, low=0.001, high=1.0, unit="kg",
+                                  why="the fingertip's moving mass, tens of grams; at least "
+                                      "the film and its cover's gram")
     # Corner of the low-pass on the plant's per-step load (where the plant's force converges).
     load_lowpass_hz: float = bounded(60.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
     # Impact at contact onset: the pad's stiffness, its Hunt-Crossley dissipation. The
@@ -59,18 +64,19 @@ class FilmConfig:
     # (impact_stiffness), unless a number here overrides it (null: follow the modulus).
     impact_enabled: bool = True
     pad_contact_stiffness_n_per_m: float | None = bounded(
-        None, low=0.0, low_open=True,
-        high=1e9, unit="N/m", why="a silicone pad is about 5e5 N/m; 1e9 is steel on steel")
+        None, low=1e3,
+        high=1e9, unit="N/m", why="a silicone pad is about 5e5 N/m; below 1e3 N/m a 1 N touch "
+                                  "would crush its few millimetres; 1e9 is steel on steel")
     pad_dissipation_s_per_m: float = bounded(PAD_DISSIPATION, low=0.0, high=1000.0, unit="s/m",
                                              why="Hunt-Crossley dissipation of soft materials is "
                                                  "0.1-50 s/m")
     # G_Q = d31 E_film kappa A_film (PVDF film data) and C_f set S = G_Q / (w^2 C_f) [V/(m/s^2)].
     film_charge_gain_c_per_m: float = bounded(2.5e-5, low=0.0, low_open=True, high=1e-2,
                                               unit="C/m", below=_SENSITIVITY_BELOW)
-    feedback_capacitance_f: float = bounded(1e-9, low=0.0, low_open=True, high=1e-6, unit="F",
+    feedback_capacitance_f: float = bounded(1e-9, low=1e-12, high=1e-6, unit="F",
                                             why="a charge amplifier's feedback capacitor is pF to "
-                                                "nF",
-                                            below=_SENSITIVITY_BELOW)
+                                                "nF; below 1 pF the board's stray capacitance "
+                                                "would set the gain")
 
 
 @public_dataclass
@@ -85,20 +91,23 @@ class VibrationSensorConfig:
                                         "every event",
                                     below="must be zero (no noise) or positive [m/s^2]")
     # charge amplifier corner 1 / (2 pi R_f C_f)
-    highpass_cutoff_hz: float = bounded(2.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
-                                        why="the charge amplifier's corner, below the RA band")
+    # Low end: 1 nF with a 10 GOhm feedback resistor, the largest a board carries, is 0.016 Hz.
+    highpass_cutoff_hz: float = bounded(2.0, low=0.01, high=1000.0, unit="Hz",
+                                        why="the charge amplifier's corner, below the RA band; "
+                                            "at least the 0.01 Hz a 10 GOhm resistor gives")
     # The pad cover's texture (pad_slip_vibration.py): woven fabric, 0.5 mm pitch; 0 disables.
     slip_texture_height_m: float = bounded(5e-6, low=0.0, high=1e-3, unit="m",
                                            why="surface roughness, microns")
-    slip_texture_period_m: float = bounded(5e-4, low=0.0, low_open=True, high=0.01, unit="m",
-                                           why="texture wavelength, sub-millimetre")
+    slip_texture_period_m: float = bounded(5e-4, low=1e-6, high=0.01, unit="m",
+                                           why="texture wavelength, sub-millimetre; at least a "
+                                               "polished surface's micron")
     film: FilmConfig = dataclasses.field(default_factory=FilmConfig)
     # The readout (film_readout.py): the amplifier's swing on the myRIO's +-15 V supply, and
     # the NI myRIO-1900's 12-bit input: "msp" (+-10 V), "mxp" (0-5 V) or "ideal" (none).
-    amplifier_swing_v: float = bounded(13.5, low=0.0, low_open=True, high=15.0, unit="V",
+    amplifier_swing_v: float = bounded(13.5, low=0.1, high=15.0, unit="V",
                                        why="an amplifier on the myRIO's +-15 V supply cannot "
-                                           "swing past its rails",
-                                       below="must be positive [V]")
+                                           "swing past its rails; at least 0.1 V, 20 codes of "
+                                           "the 12-bit +-10 V input")
     adc_input: str = "msp"
     adc_noise_lsb: float = bounded(0.5, low=0.0, high=1.0, unit="codes rms",
                                    why="a 12-bit converter's noise is below one code, NI "
@@ -108,10 +117,9 @@ class VibrationSensorConfig:
     gripper_drive: DriveVibrationConfig = dataclasses.field(
         default_factory=gripper_drive_default)
     arm_drive: DriveVibrationConfig = dataclasses.field(default_factory=arm_drive_default)
-    internal_rate_hz: float = bounded(20000.0, low=0.0, low_open=True, high=200_000.0, unit="Hz",
+    internal_rate_hz: float = bounded(20000.0, low=1000.0, high=200_000.0, unit="Hz",
                                       why="exact integration points per second; the wall time "
-                                          "grows with it",
-                                      below="must be positive [Hz]")
+                                          "grows with it; at least the 1 kHz tactile rate")
     # "film", or "accelerometer": a high-passed rigid-body accelerometer on the pad, as in the
     # paper's simulation (pad_accelerometers.py); the film's own settings are then unused.
     transducer: str = "film"
@@ -134,10 +142,11 @@ class VibrationSensorConfig:
                 return (field, f"must be one of {', '.join(names)}{' ' * bool(what)}{what}",
                         getattr(self, field))
         nyquist = self.internal_rate_hz / 2
-        if not 0 < self.film.mode_frequency_hz < nyquist:
-            return ("film.mode_frequency_hz", f"must lie in (0, {nyquist:g}) Hz (the "
-                    "fingertip's mode, integrated at vibration.internal_rate_hz; at 0 the film "
-                    "feels no ring)", self.film.mode_frequency_hz)
+        lowest = field_range(FilmConfig, "mode_frequency_hz").low
+        if not lowest <= self.film.mode_frequency_hz < nyquist:
+            return ("film.mode_frequency_hz", f"must lie in [{lowest:g}, {nyquist:g}) Hz (the "
+                    "fingertip's mode, integrated at vibration.internal_rate_hz)",
+                    self.film.mode_frequency_hz)
         # The film's high-pass runs at its integration rate, the accelerometer's on its samples.
         filter_rate_hz, rate_name = ((self.sample_rate_hz, "vibration.sample_rate_hz")
                                      if self.transducer == "accelerometer" else

@@ -64,9 +64,9 @@ class GripperDriverConfig:
     # pad-object pairs' handbook values, 0.81 on the box, 0.69 on the cylinders
     # (rig/materials.py; docs/model.md, "Friction by material pair").
     pad_friction: float = bounded(
-        materials.PAD_COVER, low=0.0, low_open=True, high=100.0,
-        why="a geometry's coefficient; above about 100 the pairs are twice the other "
-            "geometry's and no longer change")
+        materials.PAD_COVER, low=0.1, high=100.0,
+        why="a geometry's coefficient; below 0.1 every pad pair is under 0.2, no gripper pad; "
+            "above about 100 the pairs are twice the other geometry's and no longer change")
     # The reference's ramp on half the opening, both hands. Robotiq publishes only the speed
     # (20-150 mm/s pad to pad, 10-75 mm/s a finger): at 0.5 m/s^2 a finger reaches 75 mm/s in
     # 0.15 s over 5.6 mm of its 42.5 mm travel (a full stroke 0.72 s, 0.57 s with no ramp),

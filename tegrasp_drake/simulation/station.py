@@ -283,6 +283,16 @@ def side_grasp_pose(xy, height: float) -> RigidTransform:
     return RigidTransform(R_WG_SIDE_GRASP, [xy[0], xy[1], height])
 
 
+def side_grasp_problem(xy, height: float) -> str | None:
+    """Why no arm configuration puts G in the side grasp over `xy` [m, world] at `height` [m]
+    (the pose the carriage's impedance is taken at), else None (the IK solved once a pose)."""
+    try:
+        _start_positions((float(xy[0]), float(xy[1]), float(height)))
+    except UnreachablePoseError as error:
+        return str(error)
+    return None
+
+
 def AddStationPlant(builder, *, plant_config, arm: ArmDriverConfig,
                     gripper: GripperDriverConfig, object: ObjectConfig,
                     X_WO: RigidTransform, pad_modulus_pa: float,

@@ -51,8 +51,8 @@ def test_override_changes_a_nested_field():
     (["vibration.adc_input=usb"], "field 'vibration.adc_input' must be one of msp, mxp, "
      "ideal"),
     (["vibration.adc_noise_lsb=-1"], "field 'vibration.adc_noise_lsb' must be zero"),
-    (["vibration.amplifier_swing_v=0"], "field 'vibration.amplifier_swing_v' must be "
-     "positive"),
+    (["vibration.amplifier_swing_v=0"], "field 'vibration.amplifier_swing_v' must lie in "
+     "[0.1, 15] V"),
     (["vibration.gripper_drive.orders=[1]"], "field 'vibration.gripper_drive.orders' must "
      "give one order per amplitude"),
     (["controller.lift_load.slip_vibration_sigmas=-2"], "field 'controller.lift_load.slip_vibration_sigmas' must "

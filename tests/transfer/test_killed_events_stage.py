@@ -12,7 +12,7 @@ import pytest
 
 from tegrasp_drake.events.events_folder import load_all_memorized_events, read_index
 from tests.killed_runs import environment
-from tests.transfer.test_matrix import write_spec
+from tests.transfer.test_matrix import transfer_arguments, write_spec
 
 SPEC = """\
     worlds:
@@ -33,9 +33,8 @@ FILES_PER_OBJECT = 5  # an object's save renames its four event files and the in
 def _transfer(tmp_path, kill: str) -> subprocess.CompletedProcess:
     out = tmp_path / "out"
     command = [sys.executable, "-m", "fake_recording", str(tmp_path / "recorded.txt"), kill,
-               "--", "transfer", str(tmp_path / "transfer.yaml"), "--out", str(out),
-               "--workers", "1", "--no-progress", "--trial-function",
-               "tests.fake_trials:fake_trial_with_events"]
+               "--", *transfer_arguments(tmp_path / "transfer.yaml", out, "--trial-function",
+                                         "tests.fake_trials:fake_trial_with_events")]
     return subprocess.run(command, env=environment(), capture_output=True, text=True,
                           timeout=300)
 

@@ -110,9 +110,14 @@ def environment():
     return {**os.environ, "PYTHONPATH": os.pathsep.join(e for e in entries if e)}
 
 
-def transfer_command(spec, out, *extra):
-    return [sys.executable, "-m", "tegrasp_drake.cli", "transfer", str(spec), "--out",
-            str(out), "--workers", "1", "--no-progress", *extra]
+def transfer_arguments(spec, out, *extra) -> list[str]:
+    """`tegrasp transfer SPEC --out OUT` with one worker and no bar, then `extra`."""
+    return ["transfer", str(spec), "--out", str(out), "--workers", "1", "--no-progress", *extra]
+
+
+def transfer_command(spec, out, *extra) -> list[str]:
+    """The transfer_arguments as a child process's command line."""
+    return [sys.executable, "-m", "tegrasp_drake.cli", *transfer_arguments(spec, out, *extra)]
 
 
 def test_each_cell_is_a_sweep_with_its_memorizing_worlds_events_and_resumes(tmp_path):
