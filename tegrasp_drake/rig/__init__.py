@@ -10,6 +10,7 @@
   arm_kinematics.py         the arm's control plant, grasp frame and IK
   jaco_velocity_tracker.py  JacoVelocityTracker, position error to joint velocity
   paths.py                  where models and events live
+  generated_table.py        a docs table the code writes and a test checks
   typed_yaml.py             YAML configuration with errors naming the field
   core_schema_yaml.py       YAML text to data, numbers read as YAML 1.2's core schema
   integer_text.py           the one bounded reader of integers from text

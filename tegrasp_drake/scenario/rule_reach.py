@@ -6,16 +6,14 @@ tegrasp_drake.scenario.rule_reach --check|--write docs/controller.md` compares o
 table between `<!-- one-pad reach -->` and `<!-- end of one-pad reach -->` (docs/controller.md,
 "Which rules one finger can fire")."""
 
-import argparse
 import dataclasses
-import pathlib
-import re
 import sys
 
 from pydrake.multibody.tree import UniformGravityFieldElement
 
 from tegrasp_drake.control.taxel_aware.contact_geometry import OnePadPush, one_pad_push
 from tegrasp_drake.modelgen import table_sdf
+from tegrasp_drake.rig.generated_table import GeneratedTable
 from tegrasp_drake.rig.materials import pair_friction
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, ObjectConfig
 from tegrasp_drake.scenario.scenario import LoadScenario, controller_in_force
@@ -144,43 +142,14 @@ def reach_markdown(reach: RuleReach | None = None) -> str:
     return "\n".join(lines) + "\n"
 
 
-BEGIN = "<!-- one-pad reach -->\n"
-END = "<!-- end of one-pad reach -->"
-_BLOCK = re.compile(re.escape(BEGIN) + r"(?P<table>.*?)" + re.escape(END), re.DOTALL)
-
-
-def documented_table(text: str) -> str | None:
-    """The tables a page holds between the markers, or None when it has none."""
-    match = _BLOCK.search(text)
-    return match["table"] if match else None
+REACH_TABLE = GeneratedTable(name="the one-pad reach section", marker="one-pad reach",
+                             markdown=lambda: reach_markdown())
+documented_table = REACH_TABLE.documented
 
 
 def main(argv=None) -> int:
-    """`--check PAGE` (exit 1 when the page's tables are not the generated ones) or `--write
-    PAGE` (replace them)."""
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    group = parser.add_mutually_exclusive_group(required=True)
-    group.add_argument("--check", metavar="PAGE")
-    group.add_argument("--write", metavar="PAGE")
-    args = parser.parse_args(argv)
-    page = pathlib.Path(args.check or args.write)
-    try:
-        text = page.read_text(encoding="utf-8")
-    except OSError as error:
-        print(f"{page}: cannot read it ({error.strerror})", file=sys.stderr)
-        return 2
-    if documented_table(text) is None:
-        print(f"{page}: no '{BEGIN.strip()}' ... '{END}' block", file=sys.stderr)
-        return 2
-    if args.check:
-        same = documented_table(text) == reach_markdown()
-        print(f"{page}: the one-pad reach tables are "
-              + ("up to date" if same else "out of date: run with --write"))
-        return 0 if same else 1
-    from tegrasp_drake.rig.files import write_atomically
-    write_atomically(page, _BLOCK.sub(lambda m: BEGIN + reach_markdown() + END, text))
-    print(f"wrote the one-pad reach tables into {page}")
-    return 0
+    """`--check PAGE` or `--write PAGE` (GeneratedTable.main)."""
+    return REACH_TABLE.main(argv, description=__doc__.split("\n\n")[0])
 
 
 if __name__ == "__main__":

@@ -4,12 +4,11 @@ and the docs table read; `python -m tegrasp_drake.sensitivity.parameters --check
 docs/model.md` compares or replaces the table between `<!-- uncertain parameters -->` and
 `<!-- end of uncertain parameters -->`."""
 
-import argparse
 import dataclasses
-import pathlib
-import re
 import sys
 import typing
+
+from tegrasp_drake.rig.generated_table import GeneratedTable
 
 
 @dataclasses.dataclass(frozen=True)
@@ -186,39 +185,15 @@ def parameters_markdown(parameters=UNCERTAIN_PARAMETERS) -> str:
     return "\n".join(lines) + "\n"
 
 
-BEGIN = "<!-- uncertain parameters -->\n"
-END = "<!-- end of uncertain parameters -->"
-_BLOCK = re.compile(re.escape(BEGIN) + r"(?P<table>.*?)" + re.escape(END), re.DOTALL)
-
-
-def documented_table(text: str) -> str | None:
-    """The table a page holds between the markers, or None when it has none."""
-    match = _BLOCK.search(text)
-    return match["table"] if match else None
+PARAMETERS_TABLE = GeneratedTable(name="the uncertain parameters table",
+                                  marker="uncertain parameters",
+                                  markdown=lambda: parameters_markdown())
+documented_table = PARAMETERS_TABLE.documented
 
 
 def main(argv=None) -> int:
-    """`--check PAGE` (exit 1 when the page's table is not the generated one) or `--write
-    PAGE` (replace it)."""
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    group = parser.add_mutually_exclusive_group(required=True)
-    group.add_argument("--check", metavar="PAGE")
-    group.add_argument("--write", metavar="PAGE")
-    args = parser.parse_args(argv)
-    page = pathlib.Path(args.check or args.write)
-    text = page.read_text(encoding="utf-8")
-    if documented_table(text) is None:
-        print(f"{page}: no '{BEGIN.strip()}' ... '{END}' block", file=sys.stderr)
-        return 2
-    if args.check:
-        same = documented_table(text) == parameters_markdown()
-        print(f"{page}: the uncertain parameters table is "
-              + ("up to date" if same else "out of date: run with --write"))
-        return 0 if same else 1
-    from tegrasp_drake.rig.files import write_atomically
-    write_atomically(page, _BLOCK.sub(lambda m: BEGIN + parameters_markdown() + END, text))
-    print(f"wrote the uncertain parameters table into {page}")
-    return 0
+    """`--check PAGE` or `--write PAGE` (GeneratedTable.main)."""
+    return PARAMETERS_TABLE.main(argv, description=__doc__.split("\n\n")[0])
 
 
 if __name__ == "__main__":
