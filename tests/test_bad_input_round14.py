@@ -1,0 +1,84 @@
+"""Bad inputs the fourteenth review found, one test per rule."""
+
+import json
+import shutil
+
+import pytest
+
+from tegrasp_drake.rig import paths
+from tests.test_bad_input import run_cli
+from tests.test_bad_input_round10 import _refused
+
+_FAKE_TRIALS = ["--trial-function", "tests.fake_trials:fake_trial_with_events"]
+_SWEEP = "sweep: {controllers: [memorized], attempts: 1, objects: [box], grid: [[0.0, 0.0]]}\n"
+_ONE_WORLD = "worlds:\n  a: {scenario: memorizing_world}\ncells: [[a, a]]\n" + _SWEEP
+
+
+def _transfer_out(tmp_path):
+    """A one-world transfer spec and its --out with world a's events and world.json in place,
+    as an earlier run left them: (spec, the world's events folder)."""
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec, world_assignments
+    spec = tmp_path / "t.yaml"
+    spec.write_text(_ONE_WORLD)
+    loaded = LoadTransferSpec(spec)
+    events = tmp_path / "out" / "events" / "a"
+    shutil.copytree(paths.package_events_dir(), events,
+                    ignore=shutil.ignore_patterns("ensemble", "corrective", "prismatic"))
+    (events / "world.json").write_text(json.dumps(
+        list(world_assignments(loaded.worlds["a"]) + loaded.sweep.scenario_overrides)))
+    return spec, events
+
+
+def _one_line_refusal(code, message, *words):
+    assert code == 1, message
+    assert message.startswith("tegrasp: error: ") and "internal error" not in message, message
+    assert message.count("\n") == 0, message
+    for word in words:
+        assert word in message, message
+
+
+# Rule: a run's own state files in its --out (a transfer's world.json and events index, a
+# sensitivity study's points.json) are read with a bound and checked for their shape; a
+# damaged one is refused in one line naming it (exit 1, bad input), a folder in its place
+# too, before anything is recorded or run.
+@pytest.mark.parametrize("damage", ["truncated", "not_a_list", "folder", "too_large"])
+def test_a_damaged_world_json_in_a_transfer_out_is_refused_naming_it(tmp_path, capfd, damage):
+    spec, events = _transfer_out(tmp_path)
+    marker = events / "world.json"
+    if damage == "truncated":
+        marker.write_text('{"x": [1,')
+    elif damage == "not_a_list":
+        marker.write_text('{"x": 1}')
+    elif damage == "folder":
+        marker.unlink()
+        marker.mkdir()
+    else:
+        with open(marker, "wb") as sparse:
+            sparse.truncate(400 * 2**20)
+    code, message = run_cli(["transfer", str(spec), "--out", str(tmp_path / "out"),
+                             "--workers", "1", "--no-progress", *_FAKE_TRIALS], capfd)
+    _one_line_refusal(code, message.strip(), str(marker))
+    assert not (tmp_path / "out" / "cells").exists()
+
+
+@pytest.mark.parametrize("text", ['[{"object": ', "{}"])
+def test_a_damaged_events_index_in_a_transfer_out_is_bad_input(tmp_path, capfd, text):
+    spec, events = _transfer_out(tmp_path)
+    (events / "index.json").write_text(text)
+    code, message = run_cli(["transfer", str(spec), "--out", str(tmp_path / "out"),
+                             "--workers", "1", "--no-progress", *_FAKE_TRIALS], capfd)
+    _one_line_refusal(code, message.strip(), str(events / "index.json"))
+
+
+@pytest.mark.parametrize("text", ["[1,2", "[1,2]", '{"default": [1]}'])
+def test_a_damaged_points_json_in_a_sensitivity_out_is_refused_naming_it(tmp_path, capfd,
+                                                                          text):
+    spec = tmp_path / "s.yaml"
+    spec.write_text("parameters: [gripper.position_loop_hz]\n" + _SWEEP)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "points.json").write_text(text)
+    code, message = run_cli(["sensitivity", str(spec), "--out", str(out), "--workers", "1",
+                             "--no-progress", *_FAKE_TRIALS], capfd)
+    _one_line_refusal(code, message.strip(), str(out / "points.json"))
+    assert not (out / "cells").exists()
