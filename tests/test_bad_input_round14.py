@@ -1,6 +1,7 @@
 """Bad inputs the fourteenth review found, one test per rule."""
 
 import json
+import pathlib
 import shutil
 
 import pytest
@@ -82,3 +83,14 @@ def test_a_damaged_points_json_in_a_sensitivity_out_is_refused_naming_it(tmp_pat
                              "--no-progress", *_FAKE_TRIALS], capfd)
     _one_line_refusal(code, message.strip(), str(out / "points.json"))
     assert not (out / "cells").exists()
+
+
+# Rule: a transfer spec's worlds are all checked when it is loaded, one no cell uses too.
+def test_a_transfer_world_no_cell_uses_is_checked_like_the_others(tmp_path, monkeypatch):
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    monkeypatch.chdir(tmp_path)  # a short name: the message quotes the world's every --set
+    spec = pathlib.Path("t.yaml")
+    spec.write_text("worlds:\n  a: {scenario: memorizing_world}\n"
+                    "  b: {scenario: faithful_world, overrides: [grasp.grip_force=-5.0]}\n"
+                    "cells: [[a, a]]\n" + _SWEEP)
+    _refused(lambda: LoadTransferSpec(spec), str(spec), "worlds.b", "grasp.grip_force")

@@ -107,8 +107,9 @@ def LoadTransferSpec(path) -> TransferSpec:
 
 def check_worlds(spec: TransferSpec, source: str) -> None:
     """ConfigError naming `source` and the world whose preset and overrides, with the
-    sweep's, some controller's scenario refuses (each cell's sweep checks them so)."""
-    for name in dict.fromkeys(w for cell in spec.cells for w in cell):
+    sweep's, some controller's scenario refuses (each cell's sweep checks them so). Every
+    world is checked, those no cell uses too: a spec names only worlds that can run."""
+    for name in spec.worlds:
         try:
             sweep_spec_from_fields(
                 {"scenario_overrides": list(running_sweep(spec, name).scenario_overrides),
