@@ -94,3 +94,42 @@ def test_a_transfer_world_no_cell_uses_is_checked_like_the_others(tmp_path, monk
                     "  b: {scenario: faithful_world, overrides: [grasp.grip_force=-5.0]}\n"
                     "cells: [[a, a]]\n" + _SWEEP)
     _refused(lambda: LoadTransferSpec(spec), str(spec), "worlds.b", "grasp.grip_force")
+
+
+# Rule: a transfer matrix or a sensitivity study is one run: its trials (cells x each cell's
+# sweep) and event recordings together are bounded as a sweep's trials are, refused with
+# the cost before any world is checked or anything recorded.
+def _no_world_checked(monkeypatch):
+    from tegrasp_drake.transfer import matrix
+
+    def checked(spec, running):
+        raise AssertionError(f"world {running} checked before the size was")
+    monkeypatch.setattr(matrix, "running_sweep", checked)
+
+
+def test_a_sensitivity_study_of_too_many_trials_is_refused_with_its_cost(tmp_path,
+                                                                         monkeypatch):
+    from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
+                                                 run_sensitivity)
+    from tests.fake_trials import fake_trial_with_events
+    spec_file = tmp_path / "s.yaml"
+    spec_file.write_text("parameters: [gripper.position_loop_hz]\n")
+    spec = LoadSensitivitySpec(spec_file)
+    points = latin_hypercube(spec, 1000)
+    _no_world_checked(monkeypatch)
+    _refused(lambda: run_sensitivity(spec, points, fake_trial_with_events, tmp_path / "out",
+                                     workers=1, progress=False),
+             "1001 cells x 243 trials", "core-hours", "100000")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_transfer_matrix_of_too_many_trials_is_refused_with_its_cost(tmp_path, monkeypatch):
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    names = [f"w{k}" for k in range(21)]
+    spec = tmp_path / "t.yaml"
+    spec.write_text("worlds:\n" + "".join(f"  {n}: {{scenario: memorizing_world}}\n"
+                                          for n in names)
+                    + f"cells: {{memorize_in: [{', '.join(names)}], run_in: "
+                      f"[{', '.join(names)}]}}\n")
+    _no_world_checked(monkeypatch)
+    _refused(lambda: LoadTransferSpec(spec), str(spec), "441 cells x 243 trials", "core-hours")

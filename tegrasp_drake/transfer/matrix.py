@@ -108,7 +108,9 @@ def LoadTransferSpec(path) -> TransferSpec:
 def check_worlds(spec: TransferSpec, source: str) -> None:
     """ConfigError naming `source` and the world whose preset and overrides, with the
     sweep's, some controller's scenario refuses (each cell's sweep checks them so). Every
-    world is checked, those no cell uses too: a spec names only worlds that can run."""
+    world is checked, those no cell uses too: a spec names only worlds that can run. The
+    whole matrix's size is checked first (check_matrix_size), before any world."""
+    check_matrix_size(spec, source)
     for name in spec.worlds:
         try:
             sweep_spec_from_fields(
@@ -118,6 +120,24 @@ def check_worlds(spec: TransferSpec, source: str) -> None:
             raise ConfigError(str(error).replace("field 'scenario_overrides", "the world's "
                                                  "preset and overrides ('scenario_overrides")
                               ) from None
+
+
+def check_matrix_size(spec: TransferSpec, source: str) -> None:
+    """ConfigError, with the cost, for a matrix whose trials (cells x each cell's sweep) and
+    ideal-grasp recordings (memorizing worlds x objects, 1 + TEMPLATE_RUNS each with the
+    ensemble) are together more than a sweep may be (sweep.spec.MAX_TRIALS): each cell is a
+    sweep under the bound, but many cells are one run."""
+    from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER, TEMPLATE_RUNS
+    from tegrasp_drake.sweep.spec import MAX_TRIALS, core_hours, trial_count
+    trials = len(spec.cells) * trial_count(spec.sweep)
+    per_object = 1 + (TEMPLATE_RUNS if ENSEMBLE_FOLDER in recorded_events_folders(spec) else 0)
+    recordings = len(spec.memorizing_worlds()) * len(spec.sweep.objects) * per_object
+    if trials + recordings > MAX_TRIALS:
+        raise ConfigError(f"{source}: {len(spec.cells)} cells x {trial_count(spec.sweep)} "
+                          f"trials and {recordings} ideal grasps to record the events make "
+                          f"{trials + recordings} simulations, {core_hours(trials + recordings)}"
+                          f"; a transfer or sensitivity run is at most {MAX_TRIALS}, as a "
+                          "sweep is: split it (fewer cells or points, or a smaller sweep)")
 
 
 def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
