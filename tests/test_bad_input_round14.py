@@ -133,3 +133,15 @@ def test_a_transfer_matrix_of_too_many_trials_is_refused_with_its_cost(tmp_path,
                       f"[{', '.join(names)}]}}\n")
     _no_world_checked(monkeypatch)
     _refused(lambda: LoadTransferSpec(spec), str(spec), "441 cells x 243 trials", "core-hours")
+
+
+# Rule: a relative XDG_DATA_HOME is invalid (XDG Base Directory spec) and ignored, with a
+# warning, not a folder below wherever the command runs.
+def test_a_relative_xdg_data_home_is_ignored(monkeypatch, tmp_path, caplog):
+    monkeypatch.delenv(paths.EVENTS_ENV, raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path / "home"))
+    monkeypatch.setenv("XDG_DATA_HOME", "relative/dir")
+    monkeypatch.setattr(paths, "_IGNORED_DATA_HOMES", set())  # warned once per process
+    assert paths.user_events_dir() == tmp_path / "home" / ".local" / "share" / "tegrasp" / (
+        "events")
+    assert "relative/dir" in caplog.text and "not an absolute path" in caplog.text
