@@ -145,3 +145,30 @@ def test_a_relative_xdg_data_home_is_ignored(monkeypatch, tmp_path, caplog):
     assert paths.user_events_dir() == tmp_path / "home" / ".local" / "share" / "tegrasp" / (
         "events")
     assert "relative/dir" in caplog.text and "not an absolute path" in caplog.text
+
+
+# Rule: a run log's TEGRASP_RUN_INFO that is there but does not decode is named as corrupt,
+# not as absent.
+def test_a_corrupt_run_info_message_is_named_corrupt_not_absent(tmp_path):
+    import lcm
+    import numpy as np
+    from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL, TACTILE_CHANNEL
+    from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info
+    from tegrasp_drake.runs.hardware_log_reader import RunLogError
+    from tegrasp_drake.runs.hardware_log_replay import replay_run_log
+    from tests.runs.test_hardware_log_reader import tactile_message
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name, info.versions_json = "memorized", "box", "{}"
+    garbage = np.random.default_rng(650).bytes(len(info.encode()))
+    path = tmp_path / "garbage_info.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    log.write_event(0, RUN_INFO_CHANNEL, garbage)
+    for k in range(3):
+        log.write_event(k + 1, TACTILE_CHANNEL,
+                        tactile_message(0.001 * k, [0.0, 0.0], [0.0, 0.0]).encode())
+    log.close()
+    with pytest.raises(RunLogError) as refused:
+        replay_run_log(path)
+    message = str(refused.value)
+    assert str(path) in message and RUN_INFO_CHANNEL in message and "corrupt" in message
+    assert "has no" not in message and "\n" not in message
