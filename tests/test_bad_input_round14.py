@@ -62,6 +62,15 @@ def test_a_damaged_world_json_in_a_transfer_out_is_refused_naming_it(tmp_path, c
     assert not (tmp_path / "out" / "cells").exists()
 
 
+def test_a_file_where_a_worlds_events_folder_belongs_is_refused_naming_it(tmp_path, capfd):
+    spec, events = _transfer_out(tmp_path)
+    shutil.rmtree(events)
+    events.write_text("not a folder")
+    code, message = run_cli(["transfer", str(spec), "--out", str(tmp_path / "out"),
+                             "--workers", "1", "--no-progress", *_FAKE_TRIALS], capfd)
+    _one_line_refusal(code, message.strip(), str(events), "not a folder")
+
+
 @pytest.mark.parametrize("text", ['[{"object": ', "{}"])
 def test_a_damaged_events_index_in_a_transfer_out_is_bad_input(tmp_path, capfd, text):
     spec, events = _transfer_out(tmp_path)

@@ -230,7 +230,7 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError
-    from tegrasp_drake.rig.files import write_atomically
+    from tegrasp_drake.rig.files import UserPathError, replace_problem, write_atomically
     folder = pathlib.Path(folder)
     assignments = list(world_assignments(spec.worlds[world])
                        + tuple(spec.sweep.scenario_overrides))
@@ -243,6 +243,9 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
             raise SweepError(f"{folder} holds the events of world '{world}' recorded with "
                              f"other settings ({recorded}); give another output folder or "
                              "remove that one")
+    problem = replace_problem(marker)  # a file where the world's folder belongs
+    if problem:
+        raise UserPathError(f"{marker}: {problem}; give another output folder")
     folder.mkdir(parents=True, exist_ok=True)
     write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
     recorders = {"": ("", record_events),  # what the log calls them, how they are recorded
