@@ -50,6 +50,7 @@ def run(args) -> int:
     from tegrasp_drake.sensitivity.report import write_sensitivity_report
     from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
                                                  one_at_a_time, run_sensitivity)
+    from tegrasp_drake.events import MemorizedEventError
     try:
         check_runner_arguments(args)
         spec = LoadSensitivitySpec(args.spec)
@@ -62,6 +63,8 @@ def run(args) -> int:
     except (ConfigError, SweepError) as error:
         print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
         return 2
+    except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's
+        raise SystemExit(f"tegrasp: error: {error}") from None
     for name, summary in summaries.items():
         print(f"{name}: {summary_text(summary)}")
     for path in write_sensitivity_report(spec, points, args.out, figure_format=args.format):

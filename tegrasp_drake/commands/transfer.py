@@ -43,6 +43,7 @@ def register(subparsers) -> None:
 def run(args) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
     from tegrasp_drake.transfer.report import write_transfer_reports
+    from tegrasp_drake.events import MemorizedEventError
     try:
         check_runner_arguments(args)
         spec = LoadTransferSpec(args.spec)
@@ -53,6 +54,8 @@ def run(args) -> int:
     except (ConfigError, SweepError) as error:
         print(f"tegrasp transfer: error: {error}", file=sys.stderr)
         return 2
+    except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's
+        raise SystemExit(f"tegrasp: error: {error}") from None
     for name, summary in summaries.items():
         print(f"{name}: {summary_text(summary)}")
     for path in write_transfer_reports(spec, args.out, figure_format=args.format):

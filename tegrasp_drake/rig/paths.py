@@ -1,9 +1,11 @@
 """Where the package's data (read-only models and events, from importlib.resources or
 a source checkout) and the user's recorded events live ($TEGRASP_EVENTS_DIR, else
-$XDG_DATA_HOME/tegrasp/events, else ~/.local/share/tegrasp/events). Readers search --events
+$XDG_DATA_HOME/tegrasp/events when that is an absolute path, else
+~/.local/share/tegrasp/events). Readers search --events
 alone, else the user's folder, then the package's."""
 
 import importlib.resources
+import logging
 import os
 import pathlib
 
@@ -34,6 +36,9 @@ def package_events_dir() -> pathlib.Path:
     return _data_dir("tegrasp_drake.events_data", "events")
 
 
+_IGNORED_DATA_HOMES = set()  # relative XDG_DATA_HOME values warned about (once each)
+
+
 def user_events_dir() -> pathlib.Path:
     """Where the user's recorded events go (module docstring); UserPathError naming the
     variable when $TEGRASP_EVENTS_DIR names something that is not a folder or cannot be one."""
@@ -50,6 +55,16 @@ def user_events_setting() -> tuple[pathlib.Path, str]:
         _check_folder_path(folder, named, "an events folder")
         return folder, named
     data_home = os.environ.get("XDG_DATA_HOME", "").strip()
+    if data_home and not os.path.isabs(data_home):
+        # The XDG Base Directory spec: "If an implementation encounters a relative path in any
+        # of these variables it should consider the path invalid and ignore it" (else the
+        # events would land below whatever folder the command is run from).
+        if data_home not in _IGNORED_DATA_HOMES:
+            _IGNORED_DATA_HOMES.add(data_home)
+            logging.getLogger(__name__).warning(
+                "XDG_DATA_HOME=%r is not an absolute path, which the XDG Base Directory spec "
+                "says to ignore; your events folder is ~/.local/share/tegrasp/events", data_home)
+        data_home = ""
     base = pathlib.Path(data_home) if data_home else pathlib.Path.home() / ".local" / "share"
     folder = base / "tegrasp" / "events"
     if not data_home:

@@ -21,6 +21,7 @@ from tegrasp_drake.events.replay import (EventReplay, live_matcher_config,
                                          channels_trajectory, replay_events_in_sequence)
 from tegrasp_drake.events.streaming_correlation import NO_EVENT
 from tegrasp_drake.events.transitions import transition_name
+from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
 from tegrasp_drake.rig import paths
 from tegrasp_drake.runs.hardware_log_reader import RunLog, RunLogError, read_run_log
 from tegrasp_drake.scenario.scenario import sample_rates_hz, scenario_from_yaml
@@ -147,8 +148,12 @@ def replay_run_log(path, *, object_name: str | None = None,
     log = read_run_log(path)
     info = log.run_info
     object_name = object_name or (info.object_name if info else None)
+    if not object_name and log.message_counts.get(RUN_INFO_CHANNEL):  # there, undecodable
+        raise RunLogError(f"run log '{path}': its {RUN_INFO_CHANNEL} message is corrupt (it "
+                          "does not decode as lcmt_tegrasp_run_info), so the run's object is "
+                          "not known: give --object")
     if not object_name:
-        raise RunLogError(f"run log '{path}' has no TEGRASP_RUN_INFO: give --object")
+        raise RunLogError(f"run log '{path}' has no {RUN_INFO_CHANNEL}: give --object")
     if not events_dir and info and info.events_dir and pathlib.Path(info.events_dir).is_dir():
         events_dir = info.events_dir
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)

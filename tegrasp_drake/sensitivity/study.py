@@ -6,15 +6,17 @@ at the default (docs/sweeps.md, "How much the guesses matter")."""
 
 import dataclasses
 import json
+import os
 import pathlib
 
-from tegrasp_drake.rig.files import load_json, write_atomically
+from tegrasp_drake.rig.files import write_atomically
 from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file, require_fields
 from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, UncertainParameter,
                                                   parameter)
 from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
-from tegrasp_drake.transfer.matrix import TransferSpec, TransferWorld, check_worlds
+from tegrasp_drake.transfer.matrix import (TransferSpec, TransferWorld, check_worlds,
+                                            read_state_file)
 
 DEFAULT_POINT = "default"
 BASE_PRESET = "default"  # every point: the built-in default scenario, then its assignments
@@ -152,7 +154,9 @@ def record_points(points, out_dir) -> pathlib.Path:
     point of the same name that set other values (another spec's)."""
     from tegrasp_drake.sweep.runner import SweepError
     path = pathlib.Path(out_dir) / POINTS_FILE
-    known = load_json(path.read_text(encoding="utf-8")) if path.is_file() else {}
+    known = (read_state_file(path, _points_problem, "give another output folder, or remove "
+                             "the file if the folder holds this study's points only")
+             if os.path.lexists(path) else {})
     for point in points:
         wanted = list(point.assignments())
         if point.name in known and known[point.name] != wanted:
@@ -162,6 +166,14 @@ def record_points(points, out_dir) -> pathlib.Path:
         known[point.name] = wanted
     path.parent.mkdir(parents=True, exist_ok=True)
     return write_atomically(path, json.dumps(known, indent=1, sort_keys=True) + "\n")
+
+
+def _points_problem(data) -> str | None:
+    if not isinstance(data, dict) or not all(
+            isinstance(assignments, list) and all(isinstance(a, str) for a in assignments)
+            for assignments in data.values()):
+        return "is not a mapping of point names to lists of KEY=VALUE assignments (text)"
+    return None
 
 
 def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, workers=None,

@@ -212,11 +212,11 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
         seen_markers.add(key)
 
     check_ranges(spec, source)  # each number in the range declared on its field
-    trials = len(spec.objects) * len(spec.grid) * spec.attempts * len(spec.controllers)
+    trials = trial_count(spec)
     if trials > MAX_TRIALS:
         fail("attempts", f"{spec.attempts} attempts make {trials} trials (objects x markers x "
-             f"attempts x controllers), about {trials * TRIAL_CORE_SECONDS / 3600:.0f} "
-             f"core-hours; a sweep is at most {MAX_TRIALS} trials: split it")
+             f"attempts x controllers), {core_hours(trials)}; a sweep is at most "
+             f"{MAX_TRIALS} trials: split it")
     if not isinstance(spec.randomisation.sensor_noise, bool):
         fail("randomisation.sensor_noise",
              f"expected true or false, got {spec.randomisation.sensor_noise!r}")
@@ -322,6 +322,16 @@ def draw_perturbation(rng: np.random.Generator,
 # (docs/sweeps.md, "What a trial costs"); the paper's Table I sweep is 81 trials per controller.
 MAX_TRIALS = 100_000
 TRIAL_CORE_SECONDS = 30
+
+
+def trial_count(spec: SweepSpec) -> int:
+    """How many trials `spec` makes: objects x markers x attempts x controllers."""
+    return len(spec.objects) * len(spec.grid) * spec.attempts * len(spec.controllers)
+
+
+def core_hours(simulations: int) -> str:
+    """The cost of `simulations` trial-sized simulations in words: "about N core-hours"."""
+    return f"about {simulations * TRIAL_CORE_SECONDS / 3600:.0f} core-hours"
 
 
 def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,

@@ -5,6 +5,7 @@ cell as an ordinary, resumable sweep (docs/transfer.md, "A transfer sweep")."""
 
 import dataclasses
 import json
+import os
 import pathlib
 from collections.abc import Mapping
 
@@ -18,6 +19,11 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_f
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
 WORLD_FILE = "world.json"  # in a world's events folder: the assignments it was recorded with
+# The most a run's own state file in its --out (world.json, sensitivity's points.json) may
+# hold: the largest written, points.json of a 1001-point Latin hypercube over the 8 uncertain
+# parameters, is 0.36 MB; an event file's bound (16 MB) leaves room for many more parameters
+# and stops a sparse or endless file at once.
+MAX_STATE_FILE_BYTES = 16_000_000
 _NAME_CHARACTERS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_")
 
 
@@ -101,8 +107,11 @@ def LoadTransferSpec(path) -> TransferSpec:
 
 def check_worlds(spec: TransferSpec, source: str) -> None:
     """ConfigError naming `source` and the world whose preset and overrides, with the
-    sweep's, some controller's scenario refuses (each cell's sweep checks them so)."""
-    for name in dict.fromkeys(w for cell in spec.cells for w in cell):
+    sweep's, some controller's scenario refuses (each cell's sweep checks them so). Every
+    world is checked, those no cell uses too: a spec names only worlds that can run. The
+    whole matrix's size is checked first (check_matrix_size), before any world."""
+    check_matrix_size(spec, source)
+    for name in spec.worlds:
         try:
             sweep_spec_from_fields(
                 {"scenario_overrides": list(running_sweep(spec, name).scenario_overrides),
@@ -111,6 +120,24 @@ def check_worlds(spec: TransferSpec, source: str) -> None:
             raise ConfigError(str(error).replace("field 'scenario_overrides", "the world's "
                                                  "preset and overrides ('scenario_overrides")
                               ) from None
+
+
+def check_matrix_size(spec: TransferSpec, source: str) -> None:
+    """ConfigError, with the cost, for a matrix whose trials (cells x each cell's sweep) and
+    ideal-grasp recordings (memorizing worlds x objects, 1 + TEMPLATE_RUNS each with the
+    ensemble) are together more than a sweep may be (sweep.spec.MAX_TRIALS): each cell is a
+    sweep under the bound, but many cells are one run."""
+    from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER, TEMPLATE_RUNS
+    from tegrasp_drake.sweep.spec import MAX_TRIALS, core_hours, trial_count
+    trials = len(spec.cells) * trial_count(spec.sweep)
+    per_object = 1 + (TEMPLATE_RUNS if ENSEMBLE_FOLDER in recorded_events_folders(spec) else 0)
+    recordings = len(spec.memorizing_worlds()) * len(spec.sweep.objects) * per_object
+    if trials + recordings > MAX_TRIALS:
+        raise ConfigError(f"{source}: {len(spec.cells)} cells x {trial_count(spec.sweep)} "
+                          f"trials and {recordings} ideal grasps to record the events make "
+                          f"{trials + recordings} simulations, {core_hours(trials + recordings)}"
+                          f"; a transfer or sensitivity run is at most {MAX_TRIALS}, as a "
+                          "sweep is: split it (fewer cells or points, or a smaller sweep)")
 
 
 def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
@@ -203,17 +230,22 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError
-    from tegrasp_drake.rig.files import load_json, write_atomically
+    from tegrasp_drake.rig.files import UserPathError, replace_problem, write_atomically
     folder = pathlib.Path(folder)
     assignments = list(world_assignments(spec.worlds[world])
                        + tuple(spec.sweep.scenario_overrides))
     marker = folder / WORLD_FILE
-    if marker.is_file():
-        recorded = load_json(marker.read_text(encoding="utf-8"))
+    if os.path.lexists(marker):  # a folder or device in its place is refused by the reader
+        recorded = read_state_file(marker, _assignments_problem,
+                                   f"remove {folder} (its events are recorded again) or give "
+                                   "another output folder")
         if recorded != assignments:
             raise SweepError(f"{folder} holds the events of world '{world}' recorded with "
                              f"other settings ({recorded}); give another output folder or "
                              "remove that one")
+    problem = replace_problem(marker)  # a file where the world's folder belongs
+    if problem:
+        raise UserPathError(f"{marker}: {problem}; give another output folder")
     folder.mkdir(parents=True, exist_ok=True)
     write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
     recorders = {"": ("", record_events),  # what the log calls them, how they are recorded
@@ -236,6 +268,41 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
             save_memorized_events(destination, events.values())
             recorded += 1
     return recorded
+
+
+def read_state_file(path, check, remedy: str):
+    """The JSON data of a file a run wrote in its --out to resume by (world.json, points.json),
+    read as event files are (read_bounded, load_json); `check(data)` says what is wrong with
+    data of the wrong shape (None: nothing). UserPathError, one line naming the file, what is
+    wrong and `remedy`, for a damaged one (a folder, device or FIFO in its place too)."""
+    from tegrasp_drake.rig.files import (InputTooLargeError, NotAFileError, UserPathError,
+                                         load_json, read_bounded)
+    try:
+        data = load_json(read_bounded(path, MAX_STATE_FILE_BYTES).decode("utf-8"))
+        problem = check(data)
+    except InputTooLargeError:
+        problem = f"is larger than {MAX_STATE_FILE_BYTES} bytes, more than this run writes"
+    except NotAFileError as error:  # which kind of file it is, without "give a file"
+        problem = error.strerror.split(";")[0]
+    except OSError as error:
+        problem = f"cannot be read ({error.strerror or error})"
+    except UnicodeDecodeError as error:
+        problem = f"is not UTF-8 text (byte {error.start})"
+    except json.JSONDecodeError as error:
+        problem = f"is not valid JSON, perhaps truncated ({error})"
+    except ValueError as error:  # DuplicateKeyError, JsonValueError: say which
+        problem = str(error)
+    except RecursionError:
+        problem = "nests too deeply to be one this run wrote"
+    if problem:
+        raise UserPathError(f"{path}: {problem}; {remedy}")
+    return data
+
+
+def _assignments_problem(data) -> str | None:
+    if not isinstance(data, list) or not all(isinstance(item, str) for item in data):
+        return "is not a list of KEY=VALUE assignments (text)"
+    return None
 
 
 def world_events_folder(out_dir, world: str) -> pathlib.Path:
