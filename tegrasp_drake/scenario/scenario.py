@@ -394,8 +394,39 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                           f"{type(data).__name__} {data!r}")
     for assignment in overrides:
         apply_override(data, assignment)
-    # A bad value given with --set is named as such, not as the file's.
+    # A bad value given with --set is named as such, not as the file's (_culprits_named).
     source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
+    try:
+        return _checked_scenario(data, source, controller=controller, allow_long=allow_long,
+                                 on_ignored=on_ignored)
+    except ConfigError as error:
+        raise ConfigError(_culprits_named(str(error), source, f"{path} [{name}]",
+                                          overrides)) from None
+
+
+# A source longer than this names only the --set assignments at fault (_culprits_named).
+MAX_SOURCE_CHARACTERS = 200
+
+
+def _culprits_named(message: str, source: str, file_source: str,
+                    overrides: typing.Sequence[str]) -> str:
+    """`message` (which begins with `source`: the file, its entry and every --set), its
+    source cut to the --set assignments whose setting the message names, and how many others
+    there were, when the whole list is long (over MAX_SOURCE_CHARACTERS): a preset's or a
+    sweep's many assignments would bury the one at fault. A short list stays whole: a rule
+    across settings may be broken by one it does not name."""
+    if not message.startswith(source) or len(source) <= MAX_SOURCE_CHARACTERS:
+        return message
+    rest = message[len(source):]
+    named = [a for a in overrides if f"'{a.partition('=')[0].strip()}" in rest]
+    others = len(overrides) - len(named)
+    return (file_source + "".join(f" --set {_echo(a)}" for a in named)
+            + (f" (and {others} other --set)" if others else "") + rest)
+
+
+def _checked_scenario(data: dict, source: str, *, controller, allow_long, on_ignored):
+    """The Scenario of a loaded entry's `data` (its overrides applied), checked; errors name
+    `source`."""
     refuse_moved_keys(data, source)
     if controller is not None:
         check_controller_section_as_written(data, source)
