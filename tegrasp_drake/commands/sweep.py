@@ -177,13 +177,15 @@ def scheduler_problem(address: str) -> str | None:
 
 
 def check_runner_arguments(args) -> None:
-    """SweepError for a bad --workers (check_workers), --scheduler or --out, before any
-    trial runs."""
+    """SweepError for a bad --workers (check_workers), --scheduler (its address, the Dask
+    extra, whether it answers) or --out, before any trial runs or any event is recorded."""
     check_workers(args)
     if args.scheduler is not None:
         problem = scheduler_problem(args.scheduler)
         if problem:
             raise SweepError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
+        from tegrasp_drake.sweep.runner import check_scheduler
+        check_scheduler(args.scheduler)
     if not str(args.out).strip():
         raise SweepError(f"--out {args.out!r} is empty; give a folder you can write")
     problem = folder_problem(args.out)
