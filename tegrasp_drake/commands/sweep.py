@@ -210,9 +210,9 @@ def check_workers(args) -> None:
 
 def run(args) -> int:
     try:
-        check_runner_arguments(args)
-        if args.benchmark and args.scheduler:
+        if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
+        check_runner_arguments(args)
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
         if args.events:
