@@ -38,3 +38,51 @@ def test_a_scheduler_that_cannot_work_is_refused_before_any_event_is_recorded(
     assert code == 2, error
     assert error.count("\n") == 1 and words in error, error
     assert not (tmp_path / "out").exists()
+
+
+# Rule: a Modbus request whose quantity is outside its function's range, or whose byte count
+# contradicts its quantity, gets the exception response the protocol prescribes (Modbus
+# Application Protocol V1.1b3, 6.4 and 6.12: function | 0x80, exception code 03), from the
+# emulated 2F-85's request framer, over its pseudo-terminal as a driver sees it; not a reply
+# of "function 0", not silence. A valid request after them is still answered.
+def _crc(body: bytes) -> bytes:
+    from pymodbus.framer.rtu import FramerRTU
+    return body + FramerRTU.compute_CRC(body).to_bytes(2, "big")
+
+
+def _reply(port_fd: int, request: bytes, timeout_s: float = 2.0) -> bytes:
+    import os
+    import select
+    import time
+    os.write(port_fd, request)
+    reply, end = b"", time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        ready, _, _ = select.select([port_fd], [], [], 0.1)
+        if ready:
+            reply += os.read(port_fd, 256)
+        elif reply:  # a pause after bytes: the reply is whole
+            break
+    return reply
+
+
+@pytest.mark.parametrize("request_body", [
+    bytes([9, 4, 0x07, 0xD0, 0x7F, 0xFF]),               # read 0x7FFF input registers
+    bytes([9, 4, 0x07, 0xD0, 0, 0]),                     # read 0 input registers
+    bytes([9, 4, 0x07, 0xD0, 0, 0x7E]),                  # read 0x7E: one past the most
+    bytes([9, 16, 0x03, 0xE8, 0, 0, 0]),                 # write 0 registers
+    bytes([9, 16, 0x03, 0xE8, 0, 3, 4, 9, 0, 0, 255]),   # 3 registers in 4 bytes
+])
+def test_a_request_with_a_quantity_out_of_range_gets_exception_03(request_body):
+    import os
+    import tty
+    from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulator
+    with RobotiqEmulator() as emulator:
+        fd = os.open(emulator.port, os.O_RDWR | os.O_NOCTTY)
+        try:
+            tty.setraw(fd)
+            function = request_body[1]
+            assert _reply(fd, _crc(request_body)) == _crc(bytes([9, function | 0x80, 0x03]))
+            status = _reply(fd, _crc(bytes([9, 4, 0x07, 0xD0, 0, 3])))
+            assert status[:3] == bytes([9, 4, 6]), status.hex()
+        finally:
+            os.close(fd)
