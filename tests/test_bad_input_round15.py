@@ -86,3 +86,35 @@ def test_a_request_with_a_quantity_out_of_range_gets_exception_03(request_body):
             assert status[:3] == bytes([9, 4, 6]), status.hex()
         finally:
             os.close(fd)
+
+
+# Rule: an event file holds its fields and nothing else: an unknown key in it or in its
+# `samples` (a forged extra channel) is refused naming the key, as a duplicate channel or a
+# window of the wrong length is, rather than ignored.
+@pytest.mark.parametrize("where, key, words", [
+    ("samples", "extra", "field 'samples.extra' is not a channel"),
+    ("file", "sa_rate", "field 'sa_rate' is not a field of an event file"),
+])
+def test_an_event_file_with_an_unknown_key_is_refused_naming_it(tmp_path, where, key, words):
+    import json
+    import shutil
+    from tegrasp_drake.events.event_file import MemorizedEventError, read_memorized_event
+    path = tmp_path / "reach_load.json"
+    shutil.copy("events/box/reach_load.json", path)
+    data = json.loads(path.read_text())
+    (data["samples"] if where == "samples" else data)[key] = [0.0, 0.0, 0.0]
+    path.write_text(json.dumps(data))
+    with pytest.raises(MemorizedEventError) as refused:
+        read_memorized_event(path)
+    message = str(refused.value)
+    assert "\n" not in message and str(path) in message and words in message, message
+
+
+def test_every_committed_event_file_still_loads():
+    import pathlib
+    from tegrasp_drake.events.event_file import read_memorized_event
+    files = [path for path in pathlib.Path("events").glob("**/*.json")
+             if path.name != "index.json"]
+    assert len(files) >= 40
+    for path in files:
+        assert read_memorized_event(path).object_name == path.parent.name
