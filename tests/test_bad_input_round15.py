@@ -118,3 +118,15 @@ def test_every_committed_event_file_still_loads():
     assert len(files) >= 40
     for path in files:
         assert read_memorized_event(path).object_name == path.parent.name
+
+
+# Rule: one path rule for an output file: what --overwrite could never replace (a device, a
+# folder) is refused as such first; only a regular file is said to hold an earlier run.
+def test_a_device_as_the_hardware_log_is_refused_as_a_device(tmp_path, monkeypatch, capfd):
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    from tests.test_bad_input import run_cli
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(["hardware", "--config", "hw.yaml", "--log", "/dev/null"], capfd)
+    assert code == 1 and "\n" not in text.strip(), text
+    assert "--log /dev/null is a device, not a file" in text and "overwrite" not in text, text
