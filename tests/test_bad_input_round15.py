@@ -130,3 +130,25 @@ def test_a_device_as_the_hardware_log_is_refused_as_a_device(tmp_path, monkeypat
     code, text = run_cli(["hardware", "--config", "hw.yaml", "--log", "/dev/null"], capfd)
     assert code == 1 and "\n" not in text.strip(), text
     assert "--log /dev/null is a device, not a file" in text and "overwrite" not in text, text
+
+
+# Rule: a command that talks over LCM to another process (the emulators to `tegrasp
+# hardware`, `tegrasp hardware` to the arm's driver) refuses a bus that exists inside one
+# process (memq://) in one line, before it starts anything; library code may still run both
+# ends in one process on it.
+@pytest.mark.parametrize("argv, words", [
+    (["emulate", "jaco", "--lcm-url", "memq://", "--scheduling", "normal"],
+     ["--lcm-url 'memq://'", "no other process can reach"]),
+    (["hardware", "--config", "hw.yaml", "--config-set", "arm.lcm_url=memq://"],
+     ["hw.yaml: field 'arm.lcm_url'", "no other process can reach"]),
+])
+def test_an_in_process_lcm_bus_is_refused_by_the_commands(tmp_path, monkeypatch, capfd, argv,
+                                                          words):
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    from tests.test_bad_input import run_cli
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(argv, capfd)
+    assert code == 1 and "\n" not in text.strip(), text
+    for word in words:
+        assert word in text, text

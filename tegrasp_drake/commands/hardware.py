@@ -15,7 +15,7 @@ from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_file_beside,
                                                write_result)
 from tegrasp_drake.rig.files import interruptions_deferred, output_file_problem
-from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
+from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, shorten
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
@@ -130,6 +130,12 @@ def run(args) -> int:
     else:
         raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
                          "is `!HardwareStationConfig {...}`")
+    from tegrasp_drake.hardware.config import shared_lcm_url_problem
+    problem = shared_lcm_url_problem(config.arm.lcm_url)  # the arm's driver is another process
+    if problem:
+        where = args.config or "the scenario's station"
+        raise SystemExit(f"tegrasp: error: {where}: field 'arm.lcm_url' {problem}, got "
+                         f"{shorten(repr(config.arm.lcm_url))}")
     events = controller_events(scenario, args.events)
     corrective = corrective_events(scenario, args.events)
     log = args.log or (f"out/hardware/run-"
