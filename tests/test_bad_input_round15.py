@@ -152,3 +152,21 @@ def test_an_in_process_lcm_bus_is_refused_by_the_commands(tmp_path, monkeypatch,
     assert code == 1 and "\n" not in text.strip(), text
     for word in words:
         assert word in text, text
+
+
+# Rule: `-v` makes a command log its main steps at INFO through the package's logging, as
+# `trial` does: for a sweep (and the sweeps of transfer and sensitivity), what it read from
+# --out, what it will run and on what, and what it wrote.
+def test_a_verbose_sweep_logs_what_it_read_ran_and_wrote(tmp_path, capfd, caplog):
+    from tests.test_bad_input import run_cli
+    out = tmp_path / "out"
+    code, text = run_cli(["sweep", "-v", "--objects", "box", "--controllers", "heuristic",
+                          "--attempts", "1", "--workers", "1", "--out", str(out),
+                          "--trial-function", "tests.fake_trials:fake_trial", "--no-progress"],
+                         capfd)
+    assert code == 0, text
+    info = [record.getMessage() for record in caplog.records  # pytest holds the log
+            if record.levelname == "INFO" and record.name.startswith("tegrasp_drake")]
+    assert any(f"0 records read from {out}" in line for line in info), info
+    assert any("running" in line and "processes:1" in line for line in info), info
+    assert any("wrote" in line and str(out) in line for line in info), info

@@ -184,6 +184,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
             path, problem = unwritable[0]
             more = f" (and {len(unwritable) - 1} more)" if len(unwritable) > 1 else ""
             raise SweepError(f"the record {path} {problem}{more}; nothing was run")
+        logger.info(f"sweep: {len(trials)} trials, {len(loaded.records)} records read from "
+                    f"{out_dir}, {len(pending)} to run")
         if scheduler is None:
             n = pool_size(workers, len(pending))
             backend = f"processes:{n}"
@@ -191,7 +193,10 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
         else:
             backend = f"dask:{scheduler}"
             outcomes = _run_on_dask(trial_function, pending, scheduler)
+        logger.info(f"sweep: running {len(pending)} trials on {backend}")
         ran, errors, unfinished = _record_outcomes(outcomes, pending, out_dir, progress_bar)
+        logger.info(f"sweep: wrote {ran} trial records in {out_dir} ({len(errors)} errors, "
+                    f"{len(unfinished)} unfinished)")
     trial_ids = tuple(trial["trial_id"] for trial in trials)
     return SweepSummary(out_dir=out_dir, total=len(trials),
                         skipped=len(trials) - len(pending), ran=ran, errors=tuple(errors),
