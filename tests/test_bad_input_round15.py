@@ -170,3 +170,15 @@ def test_a_verbose_sweep_logs_what_it_read_ran_and_wrote(tmp_path, capfd, caplog
     assert any(f"0 records read from {out}" in line for line in info), info
     assert any("running" in line and "processes:1" in line for line in info), info
     assert any("wrote" in line and str(out) in line for line in info), info
+
+
+def test_a_verbose_plot_logs_what_it_read_and_wrote(tmp_path, capfd, caplog):
+    from tests.test_bad_input import run_cli
+    out = tmp_path / "events.png"
+    code, text = run_cli(["plot", "events", "-v", "--events", "events", "--out", str(out)],
+                         capfd)
+    assert code == 0, text
+    info = [record.getMessage() for record in caplog.records
+            if record.levelname == "INFO" and record.name.startswith("tegrasp_drake")]
+    assert any("reading events" in line and str(out) in line for line in info), info
+    assert any(f"wrote {out}" in line for line in info), info
