@@ -5,7 +5,6 @@ import sys
 import pytest
 
 from tegrasp_drake import cli
-from tests.test_bad_input_round10 import _refused  # noqa: F401  (the rules below reuse it)
 
 
 # Rule: a setting a command cannot use stops it before it does any work. `--scheduler` is
