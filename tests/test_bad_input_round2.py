@@ -221,7 +221,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["the arrays ['channels'] hold NaN or infinite values"]),
     ("9 hardware --log a folder of the user's files", _user_folder,
      ["hardware", "--config", "hw.yaml", "--log", "mine", "--overwrite"],
-     ["--log mine: mine is a folder, not a file"]),
+     ["--log mine is a folder where a file belongs"]),
     ("11 a 300 kB --set value", None, ["trial", "--set", f"object.name={BIG}"],
      ["--set object.name=xxxx", "(300000 characters)"]),
     ("11 a 300 kB --set key", None, ["trial", "--set", f"{BIG}=1"], ["(300000 characters)"]),

@@ -14,8 +14,8 @@ import sys
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_file_beside,
                                                write_result)
-from tegrasp_drake.rig.files import file_problem, interruptions_deferred, output_file_problem
-from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
+from tegrasp_drake.rig.files import interruptions_deferred, output_file_problem
+from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, shorten
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
@@ -130,24 +130,29 @@ def run(args) -> int:
     else:
         raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
                          "is `!HardwareStationConfig {...}`")
+    from tegrasp_drake.hardware.config import shared_lcm_url_problem
+    problem = shared_lcm_url_problem(config.arm.lcm_url)  # the arm's driver is another process
+    if problem:
+        where = args.config or "the scenario's station"
+        raise SystemExit(f"tegrasp: error: {where}: field 'arm.lcm_url' {problem}, got "
+                         f"{shorten(repr(config.arm.lcm_url))}")
     events = controller_events(scenario, args.events)
     corrective = corrective_events(scenario, args.events)
     log = args.log or (f"out/hardware/run-"
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
     result_path = result_path_beside_log(log)
     for taken in (pathlib.Path(log), result_path):
-        # --overwrite replaces a file, never a folder (of the user's files) or a device
-        kind = file_problem(taken) if taken.exists() else None
-        if kind:
-            raise SystemExit(f"tegrasp: error: --log {log}: {taken} {kind.split(';')[0]}; "
-                             "--log names the LCM log file to write, e.g. out/run.lcmlog")
+        # The write rule first: --overwrite replaces a file, never a folder (of the user's
+        # files), a device or a FIFO, so such a path is refused as such whether it exists
+        # or not, before it is said to hold an earlier run.
+        problem = output_file_problem(taken)
+        if problem:
+            where = "" if taken == pathlib.Path(log) else f": {taken}"
+            raise SystemExit(f"tegrasp: error: --log {log}{where} {problem}")
         if taken.exists() and not args.overwrite:
             raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
-    problem = output_file_problem(log)
-    if problem:
-        raise SystemExit(f"tegrasp: error: --log {log} {problem}")
     pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
     # The run logs to a hidden file beside --log; the earlier log and result stay whole
     # until this run's replace them together at the end (commit_hardware_run). A killed

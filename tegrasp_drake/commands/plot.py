@@ -12,11 +12,14 @@ of `tegrasp sweep` (e.g. analysis/results_seed0). --format png|pdf|svg, or --out
 suffix names the format."""
 
 import argparse
+import logging
 import pathlib
 
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig.files import output_file_problem
 from tegrasp_drake.rig import paths
+
+logger = logging.getLogger(__name__)
 
 TRIAL_FIGURES = ("signals", "trial", "avoid")
 DEFAULT_STEMS = {"events": "memorized_events", "signals": "trial_signals",
@@ -144,17 +147,21 @@ def _plot_sweep(args, out) -> str:
 
 def run(args) -> int:
     out = output_path(args)
+    logger.info(f"plot {args.what}: reading "
+                f"{args.source or args.events or 'the memorized events'}, writing {out}")
     if args.what == "events":
         if args.source is not None:
             raise SystemExit(f"tegrasp: error: `tegrasp plot events` takes no LOG or RESULTS "
                              f"(got {args.source!r}); give the events folder as --events DIR")
-        print(_plot_events(args, out))
+        written = _plot_events(args, out)
     elif args.what in TRIAL_FIGURES:
         from tegrasp_drake.rig.typed_yaml import ConfigError
         try:
-            print(_plot_trial(args, out))
+            written = _plot_trial(args, out)
         except ConfigError as e:  # the log's scenario, damaged or edited
             raise SystemExit(f"tegrasp: error: trial log '{args.source}': {e}") from None
     else:
-        print(_plot_sweep(args, out))
+        written = _plot_sweep(args, out)
+    print(written)
+    logger.info(f"plot {args.what}: wrote {written}")
     return 0

@@ -177,13 +177,15 @@ def scheduler_problem(address: str) -> str | None:
 
 
 def check_runner_arguments(args) -> None:
-    """SweepError for a bad --workers (check_workers), --scheduler or --out, before any
-    trial runs."""
+    """SweepError for a bad --workers (check_workers), --scheduler (its address, the Dask
+    extra, whether it answers) or --out, before any trial runs or any event is recorded."""
     check_workers(args)
     if args.scheduler is not None:
         problem = scheduler_problem(args.scheduler)
         if problem:
             raise SweepError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
+        from tegrasp_drake.sweep.runner import check_scheduler
+        check_scheduler(args.scheduler)
     if not str(args.out).strip():
         raise SweepError(f"--out {args.out!r} is empty; give a folder you can write")
     problem = folder_problem(args.out)
@@ -208,9 +210,9 @@ def check_workers(args) -> None:
 
 def run(args) -> int:
     try:
-        check_runner_arguments(args)
-        if args.benchmark and args.scheduler:
+        if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
+        check_runner_arguments(args)
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
         if args.events:

@@ -2,12 +2,16 @@
 
 A request is passed on only whole with a valid CRC; its length follows from its function code and,
 for writes, its byte count (Modbus Application Protocol V1.1b3, section 6). A header that cannot
-start a request (unknown function, byte count beyond the frame or unlike its register count) or a
-bad CRC drops one byte and the search resumes. A header promising more bytes than have come is given
+start a request (unknown function, byte count beyond the largest frame) or a bad CRC drops one byte and the search resumes. A header promising more bytes than have come is given
 up once a whole CRC-valid request follows it (the CRC scan of Modbus over Serial Line V1.02,
 2.5.1.1), so a burst of plausible headers costs one request, not the bytes they promised (pymodbus's
 own framer, behind this one, would wait for them). Each run of dropped bytes counts once in a
 MessageBoundary.
+
+A whole request whose quantity is outside its function's range, or whose byte count is not the
+one its quantity takes, is answered, as a slave must (Modbus Application Protocol V1.1b3, 6.1-6.4,
+6.11, 6.12, 6.17), with the exception response: its function with 0x80 set and exception code 03
+(illegal data value), through `answer`; it is not passed on.
 
 Addressing (Modbus over Serial Line V1.02, 2.1): a request for another slave address or the
 broadcast address 0 is framed (the stream stays in step) and not passed on: on a shared RS-485 line
@@ -22,8 +26,12 @@ CRC_SIZE = 2
 # [bytes, address to CRC] of the fixed-length requests (Modbus Application Protocol, section 6)
 FIXED_SIZES = {1: 8, 2: 8, 3: 8, 4: 8, 5: 8, 6: 8, 8: 8, 7: 4, 11: 4, 12: 4, 17: 4,
                22: 10, 24: 6, 43: 7}
-MAX_WRITE_REGISTERS = 123   # function 16 (and 23's write part: 121)
-MAX_WRITE_COILS = 1968      # function 15
+# The quantity a request may name, per function: (offset of the quantity field, most allowed);
+# at least 1 each (Modbus Application Protocol V1.1b3, 6.1-6.4, 6.11, 6.12, 6.17).
+QUANTITY_LIMITS = {1: ((4, 0x7D0),), 2: ((4, 0x7D0),), 3: ((4, 0x7D),), 4: ((4, 0x7D),),
+                   15: ((4, 0x7B0),), 16: ((4, 0x7B),), 23: ((4, 0x7D), (8, 0x79))}
+ILLEGAL_DATA_VALUE = 0x03   # the exception code for a quantity or byte count out of range
+EXCEPTION_FLAG = 0x80       # set in the function byte of an exception response
 
 BAD_CRC = "bad CRC"
 FRAMING = "framing error"
@@ -31,25 +39,40 @@ BROADCAST_ADDRESS = 0
 
 
 def _write_size(function: int, header: bytes) -> int | str | None:
-    """The frame size of a write (15, 16, 23) from its header; a str: why it cannot start a
-    request; None: more bytes needed."""
-    if function in (15, 16):
-        if len(header) < 7:
-            return None
-        quantity, byte_count = int.from_bytes(header[4:6], "big"), header[6]
-        expected = 2 * quantity if function == 16 else (quantity + 7) // 8
-        limit = MAX_WRITE_REGISTERS if function == 16 else MAX_WRITE_COILS
-        if not 1 <= quantity <= limit or byte_count != expected:
-            return (f"function {function} declares {quantity} values in {byte_count} bytes "
-                    f"(1 to {limit} values, {expected} bytes for {quantity})")
-        return 9 + byte_count
-    if len(header) < 11:  # function 23: read address, count, write address, count, bytes
+    """The frame size of a write (15, 16, 23) from its byte count; a str: why it cannot start a
+    request; None: more bytes needed. Whether the byte count fits the quantity is asked of the
+    whole request (data_value_problem), which is answered when it does not."""
+    count_at = 6 if function in (15, 16) else 10  # 23: read address, count, write address, count
+    if len(header) <= count_at:
         return None
-    quantity, byte_count = int.from_bytes(header[8:10], "big"), header[10]
-    if not 1 <= quantity <= 121 or byte_count != 2 * quantity:
-        return (f"function 23 declares {quantity} registers to write in {byte_count} bytes "
-                "(1 to 121 registers, 2 bytes each)")
-    return 13 + byte_count
+    size = count_at + 1 + header[count_at] + CRC_SIZE
+    if size > MAX_FRAME_SIZE:
+        return (f"function {function} declares {header[count_at]} bytes to write, a "
+                f"{size}-byte frame (at most {MAX_FRAME_SIZE})")
+    return size
+
+
+def data_value_problem(frame: bytes) -> str | None:
+    """Why a whole request's quantity or byte count is out of its function's range, or None."""
+    function = frame[1]
+    for offset, limit in QUANTITY_LIMITS.get(function, ()):
+        quantity = int.from_bytes(frame[offset:offset + 2], "big")
+        if not 1 <= quantity <= limit:
+            return f"function {function} asks for {quantity} values (1 to {limit})"
+    if function in (15, 16, 23):
+        quantity = int.from_bytes(frame[8:10] if function == 23 else frame[4:6], "big")
+        byte_count = frame[10] if function == 23 else frame[6]
+        expected = (quantity + 7) // 8 if function == 15 else 2 * quantity
+        if byte_count != expected:
+            return (f"function {function} declares {byte_count} bytes for {quantity} values "
+                    f"({expected} bytes)")
+    return None
+
+
+def exception_response(request: bytes, code: int) -> bytes:
+    """The RTU exception response to `request`: its address, its function | 0x80, `code`, CRC."""
+    body = bytes([request[0], request[1] | EXCEPTION_FLAG, code])
+    return body + FramerRTU.compute_CRC(body).to_bytes(2, "big")
 
 
 def _crc_valid(frame: bytes) -> bool:
@@ -59,13 +82,15 @@ def _crc_valid(frame: bytes) -> bool:
 class ModbusRequestFramer:
     """Bytes in, whole CRC-valid requests out (module docstring); one reader owns it."""
 
-    def __init__(self, boundary: MessageBoundary, address: int | None = None):
+    def __init__(self, boundary: MessageBoundary, address: int | None = None, answer=None):
         """address: the slave's own (1 to 247); None passes on a request for any slave but the
-        broadcast address."""
+        broadcast address. answer(reply_bytes): sends an exception response to the master;
+        None: a request that would get one is counted as rejected in `boundary` instead."""
         self._buffer = bytearray()
         self._dropping = False  # inside a run of dropped bytes
         self.boundary = boundary
         self.address = address
+        self.answer = answer
         self.skipped_bytes = 0
         self.other_addresses = 0  # whole requests for another slave or for all (broadcast)
 
@@ -93,10 +118,16 @@ class ModbusRequestFramer:
             del self._buffer[:size]
             self._dropping = False
             self.boundary.count_accepted()
-            if self._for_this_slave(frame[0]):
-                requests.append(frame)
-            else:
+            if not self._for_this_slave(frame[0]):
                 self.other_addresses += 1
+                continue
+            problem = data_value_problem(frame)
+            if problem is None:
+                requests.append(frame)
+            elif self.answer is not None:
+                self.answer(exception_response(frame, ILLEGAL_DATA_VALUE))
+            else:
+                self.boundary.reject(FRAMING, f"{problem}; not answered")
         return requests
 
     def _for_this_slave(self, address: int) -> bool:

@@ -1,7 +1,8 @@
 """A virtual null-modem cable (like `socat pty pty`): two pseudo-terminals whose masters a
 thread joins, so an emulated device and the driver under test both open a tty by name.
 `connected = False` unplugs it (bytes discarded both ways); `to_device` maps what the host
-sends to what reaches the device (e.g. a framer that drops what a real receiver would)."""
+sends to what reaches the device (e.g. a framer that drops what a real receiver would), and
+`answer_host` lets that map reply to the host itself (what a receiver answers on its own)."""
 
 import os
 import select
@@ -55,6 +56,11 @@ class NullModem:
                         data = self._to_device(data)
                     if data:
                         self._forward(masters[source], data)
+
+    def answer_host(self, data: bytes):
+        """Sends `data` to the host as if from the device (unplugged: discarded)."""
+        if self.connected:
+            self._forward(self._host[0], data)
 
     def _forward(self, master, data):
         try:

@@ -4,8 +4,9 @@ pymodbus's `ModbusSerialServer` serves a `SimDevice` (command registers 1000-100
 read-only status 2000-2002) whose `action` hook runs `RobotiqGripperModel` on every access,
 so a status read in the same transaction as a command already reflects it. pymodbus opens
 its port by name and a pty has one named end, so server and driver sit on the two ends of a
-`NullModem`; requests cross a ModbusRequestFramer on the way, as on a real receiver. What
-the model does: docs/hardware.md, "The emulated 2F-85"."""
+`NullModem`; requests cross a ModbusRequestFramer on the way, as on a real receiver, which
+itself answers one whose quantity is out of range (exception 03). What the model does:
+docs/hardware.md, "The emulated 2F-85"."""
 
 import asyncio
 import dataclasses
@@ -183,7 +184,8 @@ class RobotiqEmulator:
         self._ready = threading.Event()
         self._error = None
         self.request_boundary = MessageBoundary("robotiq: Modbus requests")
-        self._framer = ModbusRequestFramer(self.request_boundary, address=self._config.device_id)
+        self._framer = ModbusRequestFramer(self.request_boundary, address=self._config.device_id,
+                                           answer=lambda reply: self._cable.answer_host(reply))
 
     @property
     def port(self) -> str:

@@ -212,8 +212,29 @@ def _field(data: dict, name: str, kind: str, path, object_name):
     return data[name]
 
 
+# The fields of an event file (event_to_json), every version's (a version-1 file has no
+# object_description).
+EVENT_FIELDS = ("object", "transition", "channels", "sa_rate_hz", "ra_rate_hz", "window_s",
+                "pre_transition_s", "normalization", "scenario", "package_versions",
+                "object_description", "format", "format_version", "physical_event",
+                "transition_time_s", "samples")
+
+
+def _no_unknown_fields(data: dict, known, prefix: str, which: str, path, object_name) -> None:
+    """MemorizedEventError naming the first key of `data` not in `known` (a forged or
+    misspelt field would otherwise be ignored); `prefix`: the object's field path; `which`:
+    what the known keys are, for the message."""
+    unknown = sorted(set(data) - set(known))
+    if unknown:
+        raise MemorizedEventError(path, f"field '{prefix}{unknown[0]}' is not {which}",
+                                  object_name)
+
+
 def _samples(data: dict, name: str, length: int, path, object_name) -> list[float]:
     samples = _field(data, "samples", "object", path, object_name)
+    _no_unknown_fields(samples, CHANNEL_NAMES, "samples.",
+                       f"a channel (the channels are {', '.join(CHANNEL_NAMES)})", path,
+                       object_name)
     if name not in samples:
         raise MemorizedEventError(path, f"field 'samples.{name}' is missing", object_name)
     values = samples[name]
@@ -234,6 +255,8 @@ def read_memorized_event(path, *, object_name: str | None = None,
     data = _read_json(path, EVENT_FORMAT, object_name)
     file_object = _field(data, "object", "text", path, object_name)
     owner = object_name or file_object
+    _no_unknown_fields(data, EVENT_FIELDS, "", "a field of an event file (FORMAT.md lists "
+                       "them)", path, owner)
     numbers = {name: float(_field(data, name, "number", path, owner))
                for name in ("sa_rate_hz", "ra_rate_hz", "window_s", "pre_transition_s",
                             "transition_time_s")}

@@ -126,7 +126,24 @@ def lcm_url_problem(url: str) -> str | None:
         return None
     reason = said.splitlines()[-1].split(" -- ", 1)[-1].strip() if said else ""
     return (f"cannot be opened by LCM ({reason + '; ' if reason else ''}expected e.g. "
-            "udpm://239.255.76.67:7667?ttl=0 or memq://)")
+            "udpm://239.255.76.67:7667?ttl=0)")
+
+
+# LCM providers whose bus exists only inside the process that opens it (lcm-udpm(7) names
+# the others, which processes share): memq://.
+IN_PROCESS_LCM_PROVIDERS = ("memq",)
+
+
+def shared_lcm_url_problem(url: str) -> str | None:
+    """Why `url` is not a bus another process can reach (an in-process memq:// one, or one LCM
+    cannot open: lcm_url_problem), or None: what a command that talks to another process over
+    LCM (`tegrasp hardware` to the arm's driver, `tegrasp emulate` to `tegrasp hardware`)
+    asks of its URL. Library code and tests may still run both ends in one process on memq://."""
+    provider = url.split("://", 1)[0].strip().lower() if "://" in url else ""
+    if provider in IN_PROCESS_LCM_PROVIDERS:
+        return (f"is a bus inside this one process ({provider}://), which no other process "
+                "can reach; give one they share, e.g. udpm://239.255.76.67:7667?ttl=0")
+    return lcm_url_problem(url)
 
 
 def validate_hardware_config(config: HardwareStationConfig, source: str,

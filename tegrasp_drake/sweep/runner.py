@@ -184,6 +184,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
             path, problem = unwritable[0]
             more = f" (and {len(unwritable) - 1} more)" if len(unwritable) > 1 else ""
             raise SweepError(f"the record {path} {problem}{more}; nothing was run")
+        logger.info(f"sweep: {len(trials)} trials, {len(loaded.records)} records read from "
+                    f"{out_dir}, {len(pending)} to run")
         if scheduler is None:
             n = pool_size(workers, len(pending))
             backend = f"processes:{n}"
@@ -191,7 +193,10 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
         else:
             backend = f"dask:{scheduler}"
             outcomes = _run_on_dask(trial_function, pending, scheduler)
+        logger.info(f"sweep: running {len(pending)} trials on {backend}")
         ran, errors, unfinished = _record_outcomes(outcomes, pending, out_dir, progress_bar)
+        logger.info(f"sweep: wrote {ran} trial records in {out_dir} ({len(errors)} errors, "
+                    f"{len(unfinished)} unfinished)")
     trial_ids = tuple(trial["trial_id"] for trial in trials)
     return SweepSummary(out_dir=out_dir, total=len(trials),
                         skipped=len(trials) - len(pending), ran=ran, errors=tuple(errors),
@@ -346,20 +351,40 @@ def end_with_parent(parent_pid: int) -> None:
     threading.Thread(target=watch, name="end with the sweep", daemon=True).start()
 
 
-def _run_on_dask(trial_function, pending, scheduler):
-    """Yields (trial_id, outcome) from a Dask cluster; outcome None if workers died."""
+def _dask_distributed():
+    """The `distributed` module; SweepError naming the extra to install when it is missing."""
     try:
-        from distributed import Client, as_completed as dask_as_completed
+        import distributed
     except ImportError:
         raise SweepError("--scheduler needs the optional Dask extra: "
                          "pip install 'tegrasp-drake[dask]'") from None
-    if not pending:
-        return
+    return distributed
+
+
+def _dask_client(scheduler: str):
+    """A Client of the Dask scheduler at `scheduler`; SweepError when the extra is missing or
+    the scheduler does not answer within DASK_CONNECT_TIMEOUT_S."""
+    distributed = _dask_distributed()
     try:
-        client = Client(scheduler, timeout=f"{DASK_CONNECT_TIMEOUT_S}s")
+        return distributed.Client(scheduler, timeout=f"{DASK_CONNECT_TIMEOUT_S}s")
     except OSError as error:
         raise SweepError(f"cannot reach the Dask scheduler at {scheduler}: {error}") from None
-    with client:
+
+
+def check_scheduler(scheduler: str) -> None:
+    """SweepError unless the Dask extra is installed and the scheduler at `scheduler` answers:
+    what `run_sweep` finds out before its first trial, for a command (transfer, sensitivity)
+    that has other work (recording events) to do before its first sweep."""
+    with _dask_client(scheduler):
+        pass
+
+
+def _run_on_dask(trial_function, pending, scheduler):
+    """Yields (trial_id, outcome) from a Dask cluster; outcome None if workers died."""
+    dask_as_completed = _dask_distributed().as_completed
+    if not pending:
+        return
+    with _dask_client(scheduler) as client:
         futures = {client.submit(run_trial_safely, trial_function, trial, pure=False,
                                  key=f"tegrasp-trial-{trial['trial_id']}-{os.getpid()}"):
                    trial["trial_id"] for trial in pending}
