@@ -2,11 +2,11 @@
 
 A request is passed on only whole with a valid CRC; its length follows from its function code and,
 for writes, its byte count (Modbus Application Protocol V1.1b3, section 6). A header that cannot
-start a request (unknown function, byte count beyond the largest frame) or a bad CRC drops one byte and the search resumes. A header promising more bytes than have come is given
-up once a whole CRC-valid request follows it (the CRC scan of Modbus over Serial Line V1.02,
-2.5.1.1), so a burst of plausible headers costs one request, not the bytes they promised (pymodbus's
-own framer, behind this one, would wait for them). Each run of dropped bytes counts once in a
-MessageBoundary.
+start a request (unknown function, byte count beyond the largest frame) or a bad CRC drops one byte
+and the search resumes. A header promising more bytes than have come is given up once a whole
+CRC-valid request follows it (the CRC scan of Modbus over Serial Line V1.02, 2.5.1.1), so a burst of
+plausible headers costs one request, not the bytes they promised (pymodbus's own framer, behind
+this one, would wait for them). Each run of dropped bytes counts once in a MessageBoundary.
 
 A whole request whose quantity is outside its function's range, or whose byte count is not the
 one its quantity takes, is answered, as a slave must (Modbus Application Protocol V1.1b3, 6.1-6.4,
