@@ -4,6 +4,7 @@ the object's memorized events two ways (per logged mode, and in grasp order; eve
 with the run's own matcher settings (TEGRASP_RUN_INFO), else the defaults."""
 
 import dataclasses
+import logging
 import pathlib
 
 import numpy as np
@@ -25,6 +26,8 @@ from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
 from tegrasp_drake.rig import paths
 from tegrasp_drake.runs.hardware_log_reader import RunLog, RunLogError, read_run_log
 from tegrasp_drake.scenario.scenario import sample_rates_hz, scenario_from_yaml
+
+logger = logging.getLogger(__name__)
 
 
 def expected_event_schedule(transitions: list[dict], event_index: dict[str, int]):
@@ -146,6 +149,8 @@ def replay_run_log(path, *, object_name: str | None = None,
     `object_name` (default the run's) from `events_dir` (default the run's folder, the user's,
     then the package's). RunLogError, MemorizedEventError or ValueError naming what is wrong."""
     log = read_run_log(path)
+    logger.info(f"replay: read {path}: " + ", ".join(
+        f"{channel} {count}" for channel, count in sorted(log.message_counts.items())))
     info = log.run_info
     object_name = object_name or (info.object_name if info else None)
     if not object_name and log.message_counts.get(RUN_INFO_CHANNEL):  # there, undecodable
@@ -161,6 +166,9 @@ def replay_run_log(path, *, object_name: str | None = None,
     config = matcher_config_of_run(info, events,
                                    f"run log '{path}': its TEGRASP_RUN_INFO scenario")
     trial = log.tactile_trial()
+    logger.info(f"replay: the matcher re-run on {len(trial.t_ra)} tactile samples and "
+                f"{len(log.transitions)} logged transitions with the events of "
+                f"{object_name} from {events_dir}")
     return RunLogReplay(
         log=log, object_name=object_name, events_dir=events_dir,
         transitions=replay_matcher(trial, log.transitions, events, config=config),

@@ -155,6 +155,17 @@ def test_replay_command_reports_the_log_and_the_matches(run_log_path, tmp_path):
     assert all(t is not None for t in summary["sequence_fire_times"].values())
 
 
+def test_a_verbose_replay_logs_what_it_read_and_replayed(run_log_path, tmp_path, caplog):
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert cli.main(["replay", "-v", str(run_log_path), "--events",
+                         str(tmp_path / "events")]) == 0
+    info = [record.getMessage() for record in caplog.records
+            if record.levelname == "INFO" and record.name.startswith("tegrasp_drake")]
+    assert any(f"read {run_log_path}" in line and RUN_INFO_CHANNEL in line for line in info), info
+    assert any("re-run" in line and "events of box" in line for line in info), info
+
+
 def test_a_missing_log_is_named(tmp_path):
     with pytest.raises(RunLogError, match="run log '.*none.lcmlog' does not exist"):
         read_run_log(tmp_path / "none.lcmlog")
