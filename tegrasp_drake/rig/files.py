@@ -496,3 +496,38 @@ def load_json(text: str | bytes):
     return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
                       parse_constant=_refuse_nonstandard_constant,
                       parse_int=_float_ranged_int)
+
+
+# The most a run's own state file in its --out (world.json, sensitivity's points.json) may
+# hold: the largest written, points.json of a 1001-point Latin hypercube over the 8 uncertain
+# parameters, is 0.36 MB; an event file's bound (16 MB) leaves room for many more parameters
+# and stops a sparse or endless file at once.
+MAX_STATE_FILE_BYTES = 16_000_000
+
+
+def read_state_file(path, check, remedy: str):
+    """The JSON data of a file a run wrote in its --out to resume by (world.json, points.json),
+    read as event files are (read_bounded, load_json); `check(data)` says what is wrong with
+    data of the wrong shape (None: nothing). UserPathError, one line naming the file, what is
+    wrong and `remedy`, for a damaged one (a folder, device or FIFO in its place too)."""
+    import json
+    try:
+        data = load_json(read_bounded(path, MAX_STATE_FILE_BYTES).decode("utf-8"))
+        problem = check(data)
+    except InputTooLargeError:
+        problem = f"is larger than {MAX_STATE_FILE_BYTES} bytes, more than this run writes"
+    except NotAFileError as error:  # which kind of file it is, without "give a file"
+        problem = error.strerror.split(";")[0]
+    except OSError as error:
+        problem = f"cannot be read ({error.strerror or error})"
+    except UnicodeDecodeError as error:
+        problem = f"is not UTF-8 text (byte {error.start})"
+    except json.JSONDecodeError as error:
+        problem = f"is not valid JSON, perhaps truncated ({error})"
+    except ValueError as error:  # DuplicateKeyError, JsonValueError: say which
+        problem = str(error)
+    except RecursionError:
+        problem = "nests too deeply to be one this run wrote"
+    if problem:
+        raise UserPathError(f"{path}: {problem}; {remedy}")
+    return data

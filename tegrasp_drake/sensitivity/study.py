@@ -15,8 +15,8 @@ from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, Uncertai
                                                   parameter)
 from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
-from tegrasp_drake.transfer.matrix import (TransferSpec, TransferWorld, check_worlds,
-                                            read_state_file)
+from tegrasp_drake.rig.files import read_state_file
+from tegrasp_drake.transfer.matrix import TransferSpec, TransferWorld, check_worlds
 
 DEFAULT_POINT = "default"
 BASE_PRESET = "default"  # every point: the built-in default scenario, then its assignments

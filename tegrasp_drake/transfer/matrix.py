@@ -19,11 +19,6 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_f
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
 WORLD_FILE = "world.json"  # in a world's events folder: the assignments it was recorded with
-# The most a run's own state file in its --out (world.json, sensitivity's points.json) may
-# hold: the largest written, points.json of a 1001-point Latin hypercube over the 8 uncertain
-# parameters, is 0.36 MB; an event file's bound (16 MB) leaves room for many more parameters
-# and stops a sparse or endless file at once.
-MAX_STATE_FILE_BYTES = 16_000_000
 _NAME_CHARACTERS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_")
 
 
@@ -230,7 +225,8 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError
-    from tegrasp_drake.rig.files import UserPathError, replace_problem, write_atomically
+    from tegrasp_drake.rig.files import (UserPathError, read_state_file, replace_problem,
+                                         write_atomically)
     folder = pathlib.Path(folder)
     assignments = list(world_assignments(spec.worlds[world])
                        + tuple(spec.sweep.scenario_overrides))
@@ -268,35 +264,6 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
             save_memorized_events(destination, events.values())
             recorded += 1
     return recorded
-
-
-def read_state_file(path, check, remedy: str):
-    """The JSON data of a file a run wrote in its --out to resume by (world.json, points.json),
-    read as event files are (read_bounded, load_json); `check(data)` says what is wrong with
-    data of the wrong shape (None: nothing). UserPathError, one line naming the file, what is
-    wrong and `remedy`, for a damaged one (a folder, device or FIFO in its place too)."""
-    from tegrasp_drake.rig.files import (InputTooLargeError, NotAFileError, UserPathError,
-                                         load_json, read_bounded)
-    try:
-        data = load_json(read_bounded(path, MAX_STATE_FILE_BYTES).decode("utf-8"))
-        problem = check(data)
-    except InputTooLargeError:
-        problem = f"is larger than {MAX_STATE_FILE_BYTES} bytes, more than this run writes"
-    except NotAFileError as error:  # which kind of file it is, without "give a file"
-        problem = error.strerror.split(";")[0]
-    except OSError as error:
-        problem = f"cannot be read ({error.strerror or error})"
-    except UnicodeDecodeError as error:
-        problem = f"is not UTF-8 text (byte {error.start})"
-    except json.JSONDecodeError as error:
-        problem = f"is not valid JSON, perhaps truncated ({error})"
-    except ValueError as error:  # DuplicateKeyError, JsonValueError: say which
-        problem = str(error)
-    except RecursionError:
-        problem = "nests too deeply to be one this run wrote"
-    if problem:
-        raise UserPathError(f"{path}: {problem}; {remedy}")
-    return data
 
 
 def _assignments_problem(data) -> str | None:
