@@ -499,10 +499,10 @@ def load_json(text: str | bytes):
                       parse_int=_float_ranged_int)
 
 
-# The most a run's own state file in its --out (world.json, sensitivity's points.json) may
-# hold: the largest written, points.json of a 1001-point Latin hypercube over the 8 uncertain
-# parameters, is 0.36 MB; an event file's bound (16 MB) leaves room for many more parameters
-# and stops a sparse or endless file at once.
+# The most a run's own state file in its --out (world.json, sensitivity's points.json, a
+# run's result.json) may hold: the largest written, points.json of a 1001-point Latin
+# hypercube over the 8 uncertain parameters, is 0.36 MB; an event file's bound (16 MB) leaves
+# room for many more parameters and stops a sparse or endless file at once.
 MAX_STATE_FILE_BYTES = 16_000_000
 
 
