@@ -11,9 +11,9 @@ import shutil
 import tempfile
 
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
-from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions_deferred,
-                                     load_json, own_staging_suffix, stale_staging_files,
-                                     write_atomically)
+from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, JsonFileError, claim_folder,
+                                     folder_problem, interruptions_deferred, own_staging_suffix,
+                                     read_json_file, stale_staging_files, write_atomically)
 
 RESULT_FILE = "result.json"
 RUN_FILES = (RESULT_FILE, "trial.npz")  # a folder with any of these holds a run
@@ -176,11 +176,11 @@ def earlier_run_files(folder) -> list[pathlib.Path]:
     what a new run replaces (the user's own files are never touched)."""
     folder = pathlib.Path(folder)
     files = [folder / name for name in RUN_FILES if (folder / name).is_file()]
-    try:
-        earlier = load_json((folder / RESULT_FILE).read_text(encoding="utf-8"))
-    except (OSError, ValueError, RecursionError):
-        return files
-    if not isinstance(earlier, dict):
+    try:  # bounded, refusing a FIFO (a read would block the commit) or a device
+        earlier = read_json_file(
+            folder / RESULT_FILE, limit=MAX_STATE_FILE_BYTES, kind="a run's result file",
+            check=lambda data: None if isinstance(data, dict) else "is not a JSON object")
+    except JsonFileError:
         return files
     for key, value in earlier.items():
         if key == "result" or not isinstance(value, str) or not value:

@@ -14,9 +14,7 @@ import pathlib
 import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
-from tegrasp_drake.rig.files import (DuplicateKeyError, InputTooLargeError, JsonValueError,
-                                     error_line, file_problem, load_json, one_line,
-                                     read_bounded)
+from tegrasp_drake.rig.files import JsonFileError, error_line, one_line, read_json_file
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, DESCRIPTION_FIELDS, object_name_problem
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -116,37 +114,18 @@ def event_json_text(data: dict) -> str:
 
 
 def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None) -> dict:
-    problem = file_problem(path) or (None if path.is_file() else  # /dev/null, /dev/zero
-                                     "is a device, not a file; give a regular file")
-    if problem:  # missing, or a folder, FIFO, socket or device in the file's place
-        raise MemorizedEventError(path, "file is missing" if problem == "does not exist"
-                                  else problem, object_name)
+    def format_problem(data) -> str | None:
+        if not isinstance(data, dict) or data.get("format") != expected_format:
+            return f"is not a '{expected_format}' file"
+        if data.get("format_version") not in (*MIGRATED_VERSIONS, FORMAT_VERSION):
+            return (f"has format_version {data.get('format_version')!r}; this tegrasp reads "
+                    f"versions {', '.join(map(str, (*MIGRATED_VERSIONS, FORMAT_VERSION)))}")
+        return None
     try:
-        data = load_json(read_bounded(path, MAX_EVENT_FILE_BYTES).decode("utf-8"))
-    except InputTooLargeError:
-        raise MemorizedEventError(path, f"is larger than {MAX_EVENT_FILE_BYTES} bytes; an "
-                                  "event file or index is a few tens of kB", object_name) from None
-    except OSError as error:
-        raise MemorizedEventError(path, f"cannot be read ({error.strerror or error})",
-                                  object_name) from None
-    except UnicodeDecodeError as error:
-        raise MemorizedEventError(path, f"is not UTF-8 text ({error})", object_name) from None
-    except json.JSONDecodeError as error:
-        raise MemorizedEventError(
-            path, f"is not valid JSON, perhaps truncated ({error})", object_name) from None
-    except (DuplicateKeyError, JsonValueError) as error:
-        raise MemorizedEventError(path, str(error), object_name) from None
-    except RecursionError:
-        raise MemorizedEventError(path, "nests too deeply to be an event file or index",
-                                  object_name) from None
-    if not isinstance(data, dict) or data.get("format") != expected_format:
-        raise MemorizedEventError(path, f"is not a '{expected_format}' file", object_name)
-    version = data.get("format_version")
-    if version != FORMAT_VERSION and version not in MIGRATED_VERSIONS:
-        raise MemorizedEventError(
-            path, f"has format_version {version!r}; this tegrasp reads versions "
-            f"{', '.join(map(str, (*MIGRATED_VERSIONS, FORMAT_VERSION)))}", object_name)
-    return data
+        return read_json_file(path, limit=MAX_EVENT_FILE_BYTES, check=format_problem,
+                              kind="an event file or index")
+    except JsonFileError as error:
+        raise MemorizedEventError(path, error.problem, object_name) from None
 
 
 def _description_from_scenario(scenario_text: str, path, object_name) -> dict:

@@ -1,7 +1,7 @@
 """The user's files: atomic writes (a temporary file beside the target, then a
 rename), signals deferred while renames commit one result, a folder claimed with one mkdir,
 bounded reads that refuse FIFOs and devices, SIGTERM and SIGHUP ending a run as Ctrl-C does,
-one-line UserPathError, and strict JSON."""
+one-line UserPathError, strict JSON, and the one reader of a JSON file (read_json_file)."""
 
 import contextlib
 import errno
@@ -323,8 +323,9 @@ class NotAFileError(OSError):
 READABLE_DEVICES = ("/dev/null", "/dev/zero")
 
 
-def _kind_problem(mode: int, path) -> str | None:
-    """Why a file of stat mode `mode` at `path` is not one to read (None: it is)."""
+def _kind_problem(mode: int, path, devices=READABLE_DEVICES) -> str | None:
+    """Why a file of stat mode `mode` at `path` is not one to read (None: it is, or is one of
+    `devices`)."""
     if stat.S_ISREG(mode):
         return None
     if stat.S_ISDIR(mode):
@@ -333,7 +334,7 @@ def _kind_problem(mode: int, path) -> str | None:
         return "is a named pipe (FIFO), not a file; give a regular file"
     if stat.S_ISSOCK(mode):
         return "is a socket, not a file; give a regular file"
-    if stat.S_ISCHR(mode) and os.path.realpath(path) in READABLE_DEVICES:
+    if stat.S_ISCHR(mode) and os.path.realpath(path) in devices:
         return None
     return "is a device, not a file; give a regular file"
 
@@ -350,12 +351,12 @@ def file_problem(path) -> str | None:
     return _kind_problem(mode, path)
 
 
-def read_bounded(path, limit: int) -> bytes:
+def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:
     """The bytes of the file at `path`: InputTooLargeError past `limit`; NotAFileError for a
-    folder, FIFO, socket or device, checked before a byte is read."""
+    folder, FIFO, socket or device (but `devices`), checked before a byte is read."""
     descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
-        problem = _kind_problem(os.fstat(descriptor).st_mode, path)
+        problem = _kind_problem(os.fstat(descriptor).st_mode, path, devices)
         if problem:
             raise NotAFileError(path, problem)
         os.set_blocking(descriptor, True)
@@ -498,36 +499,49 @@ def load_json(text: str | bytes):
                       parse_int=_float_ranged_int)
 
 
-# The most a run's own state file in its --out (world.json, sensitivity's points.json) may
-# hold: the largest written, points.json of a 1001-point Latin hypercube over the 8 uncertain
-# parameters, is 0.36 MB; an event file's bound (16 MB) leaves room for many more parameters
-# and stops a sparse or endless file at once.
+# The most a run's own state file in its --out (world.json, sensitivity's points.json, a
+# run's result.json) may hold: the largest written, points.json of a 1001-point Latin
+# hypercube over the 8 uncertain parameters, is 0.36 MB; an event file's bound (16 MB) leaves
+# room for many more parameters and stops a sparse or endless file at once.
 MAX_STATE_FILE_BYTES = 16_000_000
 
 
-def read_state_file(path, check, remedy: str):
-    """The JSON data of a file a run wrote in its --out to resume by (world.json, points.json),
-    read as event files are (read_bounded, load_json); `check(data)` says what is wrong with
-    data of the wrong shape (None: nothing). UserPathError, one line naming the file, what is
-    wrong and `remedy`, for a damaged one (a folder, device or FIFO in its place too)."""
+class JsonFileError(UserPathError):
+    """A JSON file read_json_file cannot return: str() is one line, the file, what is wrong
+    and the remedy; `problem` says only what is wrong, for a reader that words its own error."""
+
+    def __init__(self, path, problem: str, remedy: str = ""):
+        self.path, self.problem = str(path), one_line(problem)
+        super().__init__(error_line(f"{path}: {problem}" + (f"; {remedy}" if remedy else "")))
+
+
+def read_json_file(path, *, limit: int, kind: str, check=None, encoding: str = "utf-8",
+                   remedy: str = ""):
+    """The data of the JSON file at `path`, `kind` of file ("a trial record"): at most `limit`
+    bytes of `encoding` text, load_json's JSON, and `check(data)` (what is wrong with data of
+    the wrong shape, None: nothing). JsonFileError otherwise, naming the file and `remedy`: a
+    missing file, a folder, FIFO, socket or device in its place (read_bounded; no device
+    holds such a file), a decoding error, truncated JSON, a duplicate key, NaN, deep nesting."""
     import json
     try:
-        data = load_json(read_bounded(path, MAX_STATE_FILE_BYTES).decode("utf-8"))
-        problem = check(data)
+        data = load_json(read_bounded(path, limit, devices=()).decode(encoding))
+        problem = check(data) if check else None
+    except FileNotFoundError:
+        problem = "file is missing"
     except InputTooLargeError:
-        problem = f"is larger than {MAX_STATE_FILE_BYTES} bytes, more than this run writes"
+        problem = f"is larger than {limit} bytes, more than {kind} holds"
     except NotAFileError as error:  # which kind of file it is, without "give a file"
         problem = error.strerror.split(";")[0]
     except OSError as error:
         problem = f"cannot be read ({error.strerror or error})"
     except UnicodeDecodeError as error:
-        problem = f"is not UTF-8 text (byte {error.start})"
+        problem = f"is not {encoding.upper()} text (byte {error.start})"
     except json.JSONDecodeError as error:
         problem = f"is not valid JSON, perhaps truncated ({error})"
     except ValueError as error:  # DuplicateKeyError, JsonValueError: say which
         problem = str(error)
     except RecursionError:
-        problem = "nests too deeply to be one this run wrote"
+        problem = f"nests too deeply to be {kind}"
     if problem:
-        raise UserPathError(f"{path}: {problem}; {remedy}")
+        raise JsonFileError(path, problem, remedy)
     return data

@@ -15,7 +15,7 @@ from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, Uncertai
                                                   parameter)
 from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
-from tegrasp_drake.rig.files import read_state_file
+from tegrasp_drake.rig.files import MAX_STATE_FILE_BYTES, read_json_file
 from tegrasp_drake.transfer.matrix import TransferSpec, TransferWorld, check_worlds
 
 DEFAULT_POINT = "default"
@@ -154,8 +154,9 @@ def record_points(points, out_dir) -> pathlib.Path:
     point of the same name that set other values (another spec's)."""
     from tegrasp_drake.sweep.runner import SweepError
     path = pathlib.Path(out_dir) / POINTS_FILE
-    known = (read_state_file(path, _points_problem, "give another output folder, or remove "
-                             "the file if the folder holds this study's points only")
+    known = (read_json_file(path, limit=MAX_STATE_FILE_BYTES, kind="a study's points file",
+                            check=_points_problem, remedy="give another output folder, or "
+                            "remove the file if the folder holds this study's points only")
              if os.path.lexists(path) else {})
     for point in points:
         wanted = list(point.assignments())

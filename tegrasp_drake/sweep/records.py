@@ -22,8 +22,8 @@ from typing import Annotated
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, load_json,
-                                     read_bounded, replace_problem, write_atomically)
+from tegrasp_drake.rig.files import (JsonFileError, read_json_file, replace_problem,
+                                     write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import shorten
 
@@ -156,21 +156,13 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
 
 def read_record(path) -> tuple[dict | None, str | None]:
     """(record, None) for a valid record file, (None, reason) otherwise."""
-    path = Path(path)
     try:
-        text = read_bounded(path, MAX_RECORD_BYTES).decode("ascii")
-    except (OSError, UnicodeDecodeError) as error:
-        return None, f"unreadable: {error}"
-    try:
-        record = load_json(text)
-    except json.JSONDecodeError as error:
-        return None, f"not valid JSON (partial write?): {error}"
-    except (DuplicateKeyError, JsonValueError) as error:
-        return None, str(error)
-    except RecursionError:
-        return None, "nests too deeply to be a trial record"
-    reason = check_record(record, path.name)
-    return (None, reason) if reason else (record, None)
+        record = read_json_file(path, limit=MAX_RECORD_BYTES, encoding="ascii",
+                                kind="a trial record",
+                                check=lambda data: check_record(data, Path(path).name))
+    except JsonFileError as error:
+        return None, error.problem
+    return record, None
 
 
 @public_api

@@ -225,16 +225,17 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError
-    from tegrasp_drake.rig.files import (UserPathError, read_state_file, replace_problem,
-                                         write_atomically)
+    from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, UserPathError, read_json_file,
+                                         replace_problem, write_atomically)
     folder = pathlib.Path(folder)
     assignments = list(world_assignments(spec.worlds[world])
                        + tuple(spec.sweep.scenario_overrides))
     marker = folder / WORLD_FILE
     if os.path.lexists(marker):  # a folder or device in its place is refused by the reader
-        recorded = read_state_file(marker, _assignments_problem,
-                                   f"remove {folder} (its events are recorded again) or give "
-                                   "another output folder")
+        recorded = read_json_file(
+            marker, limit=MAX_STATE_FILE_BYTES, kind="a world's settings file",
+            check=_assignments_problem, remedy=f"remove {folder} (its events are recorded "
+            "again) or give another output folder")
         if recorded != assignments:
             raise SweepError(f"{folder} holds the events of world '{world}' recorded with "
                              f"other settings ({recorded}); give another output folder or "

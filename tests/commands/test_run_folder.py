@@ -4,6 +4,8 @@ own; result.json is written whole; a hardware run's result goes beside its log."
 
 import dataclasses
 import json
+import os
+import threading
 
 import pytest
 
@@ -182,3 +184,20 @@ def test_a_folder_another_run_holds_keeps_its_staging_files_for_the_next_run(tmp
     with claimed_run_folder(tmp_path):  # a trial writing there
         assert remove_stale_staging_files(tmp_path) == [] and ended.exists()
     assert remove_stale_staging_files(tmp_path) == [ended] and not ended.exists()
+
+
+def test_overwriting_a_run_whose_result_json_is_a_fifo_commits_without_reading_it(tmp_path):
+    folder = earlier_run(tmp_path / "run")
+    os.mkfifo(folder / RESULT_FILE)  # no writer: a plain read of it would wait for one forever
+    with staged_run(folder) as stage:
+        (stage / "trial.npz").write_text("the new run")
+        committing = threading.Thread(target=commit_run, daemon=True,
+                                      args=(stage, folder, {"log": str(stage / "trial.npz")}))
+        committing.start()
+        committing.join(timeout=60)  # a bound on a hang, not a measure of speed
+        waited = committing.is_alive()
+        if waited:  # a writer's open and close ends the blocked read, so the test ends
+            os.close(os.open(folder / RESULT_FILE, os.O_WRONLY | os.O_NONBLOCK))
+            committing.join()
+    assert not waited, "the commit waited on the FIFO in result.json's place"
+    assert json.loads((folder / RESULT_FILE).read_text())["log"] == str(folder / "trial.npz")

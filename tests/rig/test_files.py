@@ -99,3 +99,46 @@ def test_an_output_file_may_go_to_a_ram_folder_in_dev_but_not_beside_the_device_
         pytest.skip("/dev/shm is not a tmpfs mount here")
     assert output_file_problem("/dev/shm/x.html") is None
     assert "is in /proc" in output_file_problem("/proc/x.html")
+
+
+def _is_object(data):
+    return None if isinstance(data, dict) else "is not a JSON object"
+
+
+JSON_DAMAGES = {  # name: (what is put at the path, the fact the error states)
+    "missing": (lambda path: None, "file is missing"),
+    "too large": (lambda path: path.write_bytes(b" " * 300_001), "is larger than 300000 bytes"),
+    "not UTF-8": (lambda path: path.write_bytes(b'{"a": "\xff"}'), "is not UTF-8 text (byte 7)"),
+    "truncated": (lambda path: path.write_text('{"a": [1,'), "is not valid JSON, perhaps trunc"),
+    "duplicate key": (lambda path: path.write_text('{"a": 1, "a": 2}'), "appears twice"),
+    "NaN": (lambda path: path.write_text('{"a": NaN}'), "holds NaN"),
+    "wrong top-level type": (lambda path: path.write_text("[1]"), "is not a JSON object"),
+    "deep nesting": (lambda path: path.write_text("[" * 100_000 + "]" * 100_000),
+                     "nests too deeply to be a test file"),
+    "folder": (lambda path: path.mkdir(), "is a folder, not a file"),
+    "FIFO": (os.mkfifo, "is a named pipe (FIFO), not a file"),
+    "device": (lambda path: path.symlink_to("/dev/null"), "is a device, not a file"),
+}
+
+
+@pytest.mark.parametrize("damage", JSON_DAMAGES)
+def test_a_json_file_that_cannot_be_read_is_one_error_naming_it_and_the_remedy(tmp_path,
+                                                                                damage):
+    from tegrasp_drake.rig.files import JsonFileError, UserPathError, read_json_file
+    make, fact = JSON_DAMAGES[damage]
+    path = tmp_path / "state.json"
+    make(path)
+    with pytest.raises(JsonFileError) as refused:
+        read_json_file(path, limit=300_000, kind="a test file", check=_is_object,
+                       remedy="remake it")
+    message = str(refused.value)
+    assert message.startswith(f"{path}: ") and message.endswith("; remake it"), message
+    assert fact in refused.value.problem and "\n" not in message
+    assert isinstance(refused.value, UserPathError)  # the commands say it in one line
+
+
+def test_a_sound_json_file_is_read_and_checked(tmp_path):
+    from tegrasp_drake.rig.files import read_json_file
+    (tmp_path / "state.json").write_text('{"a": [1, 2.5, "x"]}')
+    assert read_json_file(tmp_path / "state.json", limit=1000, kind="a test file",
+                          check=_is_object) == {"a": [1, 2.5, "x"]}

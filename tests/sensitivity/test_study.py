@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from tegrasp_drake.rig.files import UserPathError
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.sensitivity.parameters import UNCERTAIN_PARAMETERS, parameter
 from tegrasp_drake.sensitivity.study import (DEFAULT_POINT, LoadSensitivitySpec,
@@ -91,6 +92,12 @@ def test_a_folder_of_another_sampling_is_refused(tmp_path):
     other = SensitivitySpec(sweep=spec.sweep.__class__(base_seed=601))
     with pytest.raises(SweepError, match="holds point 'lhs_0'"):
         record_points(latin_hypercube(other, 2), tmp_path)
+
+
+def test_a_points_file_that_is_a_device_is_refused_as_one(tmp_path):
+    (tmp_path / "points.json").symlink_to("/dev/null")  # reads empty, as a truncated file would
+    with pytest.raises(UserPathError, match=r"points.json: is a device, not a file; give "):
+        record_points(latin_hypercube(SensitivitySpec(), 2), tmp_path)
 
 
 @pytest.mark.parametrize("text, words", [
