@@ -138,15 +138,26 @@ def field_range(cls: type, name: str) -> Range:
     return declared
 
 
+def python_scalar(value):
+    """A NumPy scalar as the Python one it holds (np.int64(3) -> 3); other values unchanged."""
+    if type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0:
+        return value.item()
+    return value
+
+
 def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 def _values(value, path: str):
-    """(path, number-or-other) of a scalar or of every leaf of nested lists/tuples."""
+    """(path, number-or-other) of a scalar or of every leaf of nested lists/tuples, and of
+    every value of a mapping (`path.key`: a map of names to times)."""
     if isinstance(value, (list, tuple)):
         for k, item in enumerate(value):
             yield from _values(item, f"{path}[{k}]")
+    elif isinstance(value, collections.abc.Mapping):
+        for key, item in value.items():
+            yield from _values(item, f"{path}.{key}")
     else:
         yield path, value
 
@@ -233,6 +244,7 @@ def _check_value(value, declared: "Range | Choice", source: str, path: str) -> N
                           f"{' [' + declared.unit + ']' if declared.unit else ''}, got "
                           f"{count}: {shorten(repr(value))}")
     for item_path, item in _values(value, path):
+        item = python_scalar(item)
         if item is None:
             continue
         if not _is_number(item) or not math.isfinite(item):
