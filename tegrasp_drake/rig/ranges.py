@@ -68,6 +68,13 @@ FAULT_DELAY = Range(low=0.0, high=HARDWARE_RUN_DURATION.high, unit="s",
                     why="after the gripper's activation, within a hardware run's ten minutes")
 
 
+# The slowest tactile sampling the event windows allow [Hz]: a 0.5 s window (Sec. III-A) of
+# fewer than 8 samples has no shape for Eq. 3 to compare. The low end of the sensors' sample
+# rates, of the rates the EventMatcher and a memorized event are sampled at, and of the arm's
+# command rate (a reaction decided on a tactile sample reaches the arm before the next one).
+EVENT_WINDOW_RATE_LOW_HZ = 16.0
+EVENT_WINDOW_RATE_WHY = "a 0.5 s event window needs 8 samples"
+
 # A seed [-] (a scenario's random_seed, a sweep's base_seed, MakeGraspStation's random_seed).
 SEED_RANGE = Range(low=0, high=2**32 - 1,
                    why="Drake's random generator takes a 32-bit seed; a larger one would repeat a "
