@@ -57,33 +57,32 @@ def test_the_smallest_object_is_one_the_contact_geometry_resolves():
 
 # Every range that stops at an open 0, decided by its physics: a tiny positive value of these
 # is harmless. Times [s]: a simulated one shorter than the plant step is refused
-# (check_times_resolved), a device timeout that short fails at once naming the device. Gains,
-# speeds, forces, fractions and rates: a tiny one makes a slow or failed grasp the trial
-# reports (tried at 1e-9: grip_force, gripper acceleration, arm command rate, slip band).
-# Film gain and load low-pass: a tiny value makes a vanishing signal (a test turns the load
-# channel off with a 1e-3 Hz corner). Contact: Drake's point contact and regularized friction
-# ran at 1e-9 m and 1e-12 m/s. The integrator's accuracy and largest step: the diagram is
-# discrete (ran at 1e-12 and 1e-9 s). The others have a plausible physical minimum instead
-# (object mass, size and friction; the fingertip's mode, mass and stiffness; the amplifier's
-# capacitor, swing, corner and rate; the pad texture, pad friction, the 2F-85's 20 N grip;
-# the taxels' calibration weight and gap).
+# (check_times_resolved), a device timeout that short fails at once naming the device. Speeds,
+# forces and fractions: a tiny one makes a slow or failed grasp the trial reports (tried at
+# 1e-9: grip_force, gripper acceleration). Filter corners (slip band, load low-pass): a tiny
+# one makes a vanishing signal (a test turns the load channel off with a 1e-3 Hz corner).
+# Contact: Drake's point contact and regularized friction ran at 1e-9 m and 1e-12 m/s. The
+# integrator's accuracy and largest step: the diagram is discrete (ran at 1e-12 and 1e-9 s).
+# The others have a plausible physical minimum instead (object mass, size and friction; the
+# fingertip's mode, mass and stiffness; the amplifier's capacitor, swing, corner and rate; the
+# pad texture, pad friction, the 2F-85's 20 N grip; the taxels' calibration weight and gap;
+# the gains and rates: the servos' and the tracker's gains, the film's charge gain, the arm's
+# command and the gripper's update rates).
 TINY_IS_HARMLESS = {
-    "ArmDriverConfig": {"command_latency_s", "command_rate_hz", "control_period_s",
-                        "position_gain"},
+    "ArmDriverConfig": {"command_latency_s", "control_period_s"},
     "DeviceWatchdogConfig": {"arm_timeout", "gripper_timeout", "tactile_timeout"},
     "DisturbanceConfig": {"hit_duration_s"},
     "DriveVibrationConfig": {"full_speed"},
-    "FilmConfig": {"film_charge_gain_c_per_m", "load_lowpass_hz"},
+    "FilmConfig": {"load_lowpass_hz"},
     "FingerStrikeConfig": {"force_n"},
     "FixedLoadTimeControllerConfig": {"load_event_timeout_s", "load_time_s", "update_period_s"},
     "GraspScriptConfig": {"lift_s", "load_s", "place_s", "reach_s", "retract_s",
                           "unload_s"},
-    "GripperDriverConfig": {"acceleration", "position_gain", "stall_speed",
-                            "update_rate_hz"},
+    "GripperDriverConfig": {"acceleration", "stall_speed"},
     "HardwareStationConfig": {"ready_timeout"},
     "HeuristicControllerConfig": {"load_event_timeout_s", "update_period_s"},
     "HeuristicTriggerConfig": {"grip_fraction"},
-    "JacoVelocityTrackerConfig": {"kp", "max_joint_speed"},
+    "JacoVelocityTrackerConfig": {"max_joint_speed"},
     "LiftLoadConfig": {"grip_fraction", "slip_band_hz", "slip_window_s"},
     "MemorizedControllerConfig": {"load_event_timeout_s", "update_period_s"},
     "MultibodyPlantConfig": {"penetration_allowance", "stiction_tolerance"},

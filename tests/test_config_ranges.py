@@ -203,3 +203,34 @@ def test_a_hardware_config_changed_after_loading_is_refused():
     with pytest.raises(ConfigError, match="MakeHardwareStation: config: field "
                        r"'watchdog.arm_timeout' must be positive \[s\]"):
         MakeHardwareStation(config)
+
+
+# A gain or rate next to zero (1e-300, 1e-9 Hz) is no setting a device runs at: each declares
+# a low its range's words give the reason for.
+@pytest.mark.parametrize("override, words", [
+    ("arm.position_gain=1e-300", "field 'arm.position_gain' must lie in [40, 100000] N m/rad"),
+    ("arm.tracker.kp=1e-300", "field 'arm.tracker.kp' must lie in [0.1, 100] 1/s"),
+    ("arm.command_rate_hz=1", "field 'arm.command_rate_hz' must lie in [16, 1000] Hz"),
+    ("gripper.position_gain=1e-300", "field 'gripper.position_gain' must lie in [300,"),
+    ("gripper.update_rate_hz=1e-9", "field 'gripper.update_rate_hz' must lie in [80, 1000] Hz"),
+    ("vibration.film.film_charge_gain_c_per_m=1e-300",
+     "field 'vibration.film.film_charge_gain_c_per_m' must lie in [5e-07, 0.01] C/m"),
+])
+def test_a_gain_or_rate_near_zero_is_refused_naming_its_low(override, words):
+    with pytest.raises(ConfigError) as refused:
+        LoadScenario(name="box", overrides=[override])
+    assert words in str(refused.value) and "\n" not in str(refused.value), str(refused.value)
+
+
+@pytest.mark.parametrize("field", ["sa_rate_hz", "ra_rate_hz"])
+def test_a_matcher_or_event_rate_too_slow_for_the_window_is_refused(field):
+    import numpy as np
+
+    from tegrasp_drake.events.event_matcher import check_matcher_config
+    from tegrasp_drake.events.memorized_event import MemorizedEvent
+    with pytest.raises(ConfigError, match=rf"field '{field}' must be at least 16 Hz"):
+        check_matcher_config(EventMatcherConfig(**{field: 1e-9}))
+    with pytest.raises(ConfigError, match=rf"field '{field}' must be at least 16 Hz"):
+        MemorizedEvent(object_name="box", transition="reach_load", sa=np.ones((2, 8)),
+                       ra=np.ones((2, 8)), **({"sa_rate_hz": 16.0, "ra_rate_hz": 16.0}
+                                              | {field: 1e-9}))

@@ -5,7 +5,7 @@ import dataclasses
 import enum
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.ranges import bounded, check_ranges, shorten
 
 
 class Mode(enum.IntEnum):
@@ -79,19 +79,34 @@ class Decision:
 @dataclasses.dataclass(frozen=True)
 class Transition:
     """One timeline entry: at t [s] (Context time) from_mode -> to_mode; the corrective
-    fields are set only on the transition that starts that action."""
-    t: float
+    fields are set only on the transition that starts that action. Its numbers are checked
+    against their ranges when it is built (a hand-made or read-back entry included)."""
+    t: float = bounded(low=0.0, unit="s", why="Context time since the trial's start")
     from_mode: Mode
     to_mode: Mode
     trigger: Trigger
     reason: str
-    scores: tuple[float, ...] | None = None  # the detector's four channel scores; None: none
-    offset_m: float | None = None  # Re-Reach: the shift along world y [m]
-    approach_offset_m: float | None = None  # taxel_aware Re-Reach: the shift along world x [m]
-    grip_force_n: float | None = None  # Lift-Load: the raised grip force [N]
-    direction: tuple[float, float, float] | None = None  # Avoid: unit direction, world
-    delta_sa_n: tuple[float, float] | None = None  # Avoid: (left, right) SA gain of the hit [N]
+    # The detector's four channel scores; None: none. Eq. 3 correlations in [-1, 1] for the
+    # memorized detector, but each channel over its threshold for the heuristic one (5.2 on
+    # a firm grasp): only finite, no common range.
+    scores: tuple[float, ...] | None = bounded(
+        None, why="Eq. 3 correlations, or the heuristic detector's channel/threshold ratios")
+    # Re-Reach: the shift along world y [m]; taxel_aware Re-Reach: along world x [m].
+    offset_m: float | None = bounded(None, unit="m", why="a shift of the grasp frame")
+    approach_offset_m: float | None = bounded(None, unit="m", why="a shift of the grasp frame")
+    # Lift-Load: the raised grip force [N], a squeeze (not a pull).
+    grip_force_n: float | None = bounded(None, low=0.0, unit="N",
+                                         why="the gripper squeezes, it does not pull")
+    # Avoid: unit direction, world.
+    direction: tuple[float, float, float] | None = bounded(
+        None, low=-1.0, high=1.0, length=3, why="the components of a unit vector")
+    # Avoid: (left, right) SA gain of the hit [N].
+    delta_sa_n: tuple[float, float] | None = bounded(None, unit="N", length=2,
+                                                     why="a change of force: either sign")
     code: str | None = None
+
+    def __post_init__(self):
+        check_ranges(self, type(self).__name__)
 
     def as_dict(self) -> dict:
         """The JSON form (trial results, logs): t, from, to (Mode.label), trigger, reason,

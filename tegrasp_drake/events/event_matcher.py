@@ -11,7 +11,8 @@ import numpy as np
 from tegrasp_drake.rig.api_boundary import check_field_values, public_api, public_dataclass
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.ranges import Range, bounded, declared_field
+from tegrasp_drake.rig.ranges import (EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, Range,
+                                      bounded, declared_field)
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import template_is_flat
@@ -41,8 +42,10 @@ class EventMatcherConfig:
     min_contrast: float = bounded(0.25, low=0.0, low_open=True, below="must be positive")
     flat_template_needs_flat_window: bool = declared_field(EventMatchingConfig,
                                                            "flat_template_needs_flat_window")
-    sa_rate_hz: float = bounded(100.0, low=0.0, low_open=True, unit="Hz")
-    ra_rate_hz: float = bounded(1000.0, low=0.0, low_open=True, unit="Hz")
+    sa_rate_hz: float = bounded(100.0, low=EVENT_WINDOW_RATE_LOW_HZ, unit="Hz",
+                                why=EVENT_WINDOW_RATE_WHY)
+    ra_rate_hz: float = bounded(1000.0, low=EVENT_WINDOW_RATE_LOW_HZ, unit="Hz",
+                                why=EVENT_WINDOW_RATE_WHY)
     # block [s] scored in one update (0: per sample); a match shows at most a block late
     block_s: float = bounded(0.0, low=0.0, unit="s")
     # the reader's tick [s] (tactile/read_batch.py); 0: read any time (so with an RA floor)

@@ -20,10 +20,12 @@ JACO2_MAX_JOINT_SPEED = 48 * _DEG
 @dataclasses.dataclass
 class JacoVelocityTrackerConfig:
     """Gain and limits of the tracker."""
-    # a 0.2 s time constant; phase margin 90 deg - kp (T/2 + L), 86 deg with 15 ms at 100 Hz
-    kp: float = bounded(5.0, low=0.0, low_open=True, high=100.0, unit="1/s",
-                        why="plausible 1-20; the loop's phase margin is gone at about 100",
-                        below="must be positive [1/s] (plausible 1-20)")
+    # a 0.2 s time constant; phase margin 90 deg - kp (T/2 + L), 86 deg with 15 ms at 100 Hz.
+    # Low end: a 10 s time constant, most of a grasp's 12 s; a slower tracker takes back no
+    # position error within a trial.
+    kp: float = bounded(5.0, low=0.1, high=100.0, unit="1/s",
+                        why="plausible 1-20; below 0.1 an error outlasts the grasp; the loop's "
+                            "phase margin is gone at about 100")
     max_joint_speed: list[float] = bounded(
         default_factory=lambda: [36 * _DEG] * 3 + [48 * _DEG] * 3, low=0.0, low_open=True,
         high=JACO2_MAX_JOINT_SPEED, unit="rad/s", length=6,

@@ -68,6 +68,13 @@ FAULT_DELAY = Range(low=0.0, high=HARDWARE_RUN_DURATION.high, unit="s",
                     why="after the gripper's activation, within a hardware run's ten minutes")
 
 
+# The slowest tactile sampling the event windows allow [Hz]: a 0.5 s window (Sec. III-A) of
+# fewer than 8 samples has no shape for Eq. 3 to compare. The low end of the sensors' sample
+# rates, of the rates the EventMatcher and a memorized event are sampled at, and of the arm's
+# command rate (a reaction decided on a tactile sample reaches the arm before the next one).
+EVENT_WINDOW_RATE_LOW_HZ = 16.0
+EVENT_WINDOW_RATE_WHY = "a 0.5 s event window needs 8 samples"
+
 # A seed [-] (a scenario's random_seed, a sweep's base_seed, MakeGraspStation's random_seed).
 SEED_RANGE = Range(low=0, high=2**32 - 1,
                    why="Drake's random generator takes a 32-bit seed; a larger one would repeat a "
@@ -138,15 +145,26 @@ def field_range(cls: type, name: str) -> Range:
     return declared
 
 
+def python_scalar(value):
+    """A NumPy scalar as the Python one it holds (np.int64(3) -> 3); other values unchanged."""
+    if type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0:
+        return value.item()
+    return value
+
+
 def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 def _values(value, path: str):
-    """(path, number-or-other) of a scalar or of every leaf of nested lists/tuples."""
+    """(path, number-or-other) of a scalar or of every leaf of nested lists/tuples, and of
+    every value of a mapping (`path.key`: a map of names to times)."""
     if isinstance(value, (list, tuple)):
         for k, item in enumerate(value):
             yield from _values(item, f"{path}[{k}]")
+    elif isinstance(value, collections.abc.Mapping):
+        for key, item in value.items():
+            yield from _values(item, f"{path}.{key}")
     else:
         yield path, value
 
@@ -233,6 +251,7 @@ def _check_value(value, declared: "Range | Choice", source: str, path: str) -> N
                           f"{' [' + declared.unit + ']' if declared.unit else ''}, got "
                           f"{count}: {shorten(repr(value))}")
     for item_path, item in _values(value, path):
+        item = python_scalar(item)
         if item is None:
             continue
         if not _is_number(item) or not math.isfinite(item):

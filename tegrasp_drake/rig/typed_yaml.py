@@ -19,7 +19,7 @@ import yaml
 from tegrasp_drake.rig.core_schema_yaml import (compose, construct, yaml11_only_boolean,
                                                 yaml11_only_number)
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.ranges import python_scalar, shorten
 from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 
@@ -287,13 +287,6 @@ def _is_config_class(hint) -> bool:
                                        or bool(getattr(hint, "__fields__", None)))
 
 
-def _plain(value):
-    """A NumPy scalar as the Python one it holds; other values unchanged."""
-    if type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0:
-        return value.item()
-    return value
-
-
 def _refuse_type(value, words: str, path: str, source: str):
     raise ConfigTypeError(f"{source}: {_field(path)}must be {words}, got {_describe(value)}")
 
@@ -347,7 +340,7 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
         for key, item in value.items() if len(arguments) == 2 else ():
             _check_instance_value(item, arguments[1], f"{path}.{key}", source)
     elif hint in _SCALAR_WORDS:
-        value = _plain(value)
+        value = python_scalar(value)
         if not _is_scalar(value, hint) and not (hint is float and isinstance(value, float)):
             _check_value(value, hint, path, source)  # the YAML path's words for a scalar
     elif isinstance(hint, type) and origin is None and not isinstance(value, hint):

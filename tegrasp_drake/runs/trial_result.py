@@ -3,9 +3,14 @@ Its JSON form (`to_dict`) is what result.json, `tegrasp trial --json` and a swee
 "result" hold; `from_dict` reads one back (a missing field takes its default)."""
 
 import dataclasses
+import typing
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.number_text import number_text
+from tegrasp_drake.rig.ranges import (SEED_RANGE, bounded, check_ranges, declared_field,
+                                      shorten)
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
 
@@ -15,32 +20,54 @@ class TrialResult:
     """One trial's outcome. Times in seconds of simulated time unless said, lengths in
     metres, angles in degrees; transitions in order, Mode labels in the JSON form."""
     object: str = ""
-    offset_m: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0])
+    offset_m: list[float] = declared_field(ObjectPlacementConfig, "offset")
     controller: str = ""
-    seed: int | None = None
-    transitions: tuple[Transition, ...] = ()
+    seed: int | None = bounded(None, **dataclasses.asdict(SEED_RANGE))
+    transitions: tuple[Transition, ...] = ()  # each checks its own; in time order
     hold_success: bool = False  # lifted and held at least HOLD_REQUIRED_S
     unload_success: bool = False  # then placed upright, released, retracted
     final_mode: Mode = Mode.REACH
-    hold_time_s: float | None = None
-    lift_height_m: float | None = None  # the object's lowest point above its start
-    final_tilt_deg: float | None = None
-    placement_error_m: float | None = None
+    hold_time_s: float | None = bounded(None, low=0.0, unit="s", why="a duration")
+    # The object's lowest point above its start: its highest minus its start, so never below.
+    lift_height_m: float | None = bounded(None, low=0.0, unit="m",
+                                          why="the highest point of a path that starts at 0")
+    final_tilt_deg: float | None = bounded(None, low=0.0, high=180.0, unit="deg",
+                                           why="the angle between the object's up and world up")
+    placement_error_m: float | None = bounded(None, low=0.0, unit="m", why="a distance")
     released: bool = False
     # The physical event behind each event transition taken, and "hit" [s]
     # (trial.physical_event_times); None where it was not found.
-    physical_events: dict[str, float | None] = dataclasses.field(default_factory=dict)
-    detection_latency_s: dict[str, float | None] = dataclasses.field(default_factory=dict)
-    false_triggers: int = 0
-    lift_grip_fraction: float | None = None  # the weaker pad's grip at the first lift
+    physical_events: dict[str, float | None] = bounded(
+        default_factory=dict, low=0.0, unit="s", why="simulated times since the trial's start")
+    # Each event transition's time minus its physical event's [s]: either sign, since a
+    # detection up to trial.FALSE_TRIGGER_MARGIN_S early is still counted as one.
+    detection_latency_s: dict[str, float | None] = bounded(
+        default_factory=dict, unit="s", why="a detection's time minus its physical event's")
+    false_triggers: int = bounded(0, low=0, why="a count")
+    # The weaker pad's grip at the first lift as a fraction of the settled grip.
+    lift_grip_fraction: float | None = bounded(None, low=0.0, why="a ratio of two pad forces")
     corrective_actions: list[str] = dataclasses.field(default_factory=list)
     failure: str = ""  # the reason of the transition to Failed, "" for none
-    sim_time_s: float | None = None
-    wall_time_s: float | None = None
-    cpu_time_s: float | None = None
-    real_time_factor: float | None = None
-    # The trial's log (a TrialLog) when run here; not part of the JSON form.
-    log: object = dataclasses.field(default=None, compare=False, repr=False)
+    sim_time_s: float | None = bounded(None, low=0.0, unit="s", why="a duration")
+    wall_time_s: float | None = bounded(None, low=0.0, unit="s", why="a duration")
+    cpu_time_s: float | None = bounded(None, low=0.0, unit="s", why="a duration")
+    real_time_factor: float | None = bounded(None, low=0.0,
+                                             why="simulated time over wall time, two durations")
+    # The trial's log (a TrialLog) when run here; not part of the JSON form. (typing.Any:
+    # the field `object` hides the builtin in the class body.)
+    log: typing.Any = dataclasses.field(default=None, compare=False, repr=False)
+
+    def __post_init__(self):
+        """ConfigError naming the first field out of its range (the transitions' own
+        included), or the first transition earlier than the one before it."""
+        check_ranges(self, type(self).__name__)
+        for k in range(1, len(self.transitions)):
+            earlier, later = self.transitions[k - 1].t, self.transitions[k].t
+            if later < earlier:
+                raise ConfigError(
+                    f"{type(self).__name__}: field 'transitions[{k}].t' must not be before "
+                    f"transitions[{k - 1}].t = {number_text(earlier)} s (a timeline is in "
+                    f"time order), got {number_text(later)}")
 
     def to_dict(self) -> dict:
         """The JSON form: all fields but `log`; transitions as dicts, the final mode by label."""

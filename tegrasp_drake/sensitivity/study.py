@@ -178,9 +178,9 @@ def _points_problem(data) -> str | None:
 
 
 def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, workers=None,
-                    scheduler=None, progress: bool = True, log=print) -> dict:
+                    scheduler=None, progress: bool = True) -> dict:
     """Records each memorizing point's events, runs each point's sweep; {cell: summary}.
-    Resumable: what is finished in `out_dir` is kept."""
+    Resumable: what is finished in `out_dir` is kept. `progress` and the log: run_transfer's."""
     from tegrasp_drake.sweep.trial_function import run_trial_from_spec
     from tegrasp_drake.transfer.matrix import check_unrecorded_events, run_transfer
     matrix = transfer_spec(spec, points)
@@ -189,4 +189,4 @@ def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, w
         check_unrecorded_events(matrix, out_dir)
     record_points(points, out_dir)
     return run_transfer(matrix, trial_function, out_dir, workers=workers, scheduler=scheduler,
-                        progress=progress, log=log)
+                        progress=progress)

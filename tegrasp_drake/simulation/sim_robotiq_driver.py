@@ -37,15 +37,23 @@ class GripperDriverConfig:
     """The simulated 2F-85: its hand and its controller (a force-limited position loop)."""
     # "linkage" (the 2F-85's five-bar fingers) or "prismatic" (gripper_hands.py)
     model: str = "linkage"
-    update_rate_hz: float = bounded(200.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
-                                    why="the 2F-85 takes commands at up to 200 Hz")
+    # Low end: the position loop follows no command faster than half the update rate, so the
+    # slowest loop the model allows (position_loop_hz, 40 Hz) needs updates at twice that.
+    update_rate_hz: float = bounded(200.0, low=2 * drive.POSITION_LOOP_HZ_RANGE[0],
+                                    high=1000.0, unit="Hz",
+                                    why="the 2F-85 takes commands at up to 200 Hz; at least "
+                                        "twice the slowest position loop, 40 Hz")
     # The prismatic hand's PD on half the opening a, which moves both fingers (the right one
     # mimics the left): m = 2 x 0.05 kg (modelgen/robotiq_sdf.py FINGER_MASS).
     # kp: w_n = sqrt(kp / m) = 200 rad/s (32 Hz), a 31 ms period that 1 ms plant steps
     # resolve; the lag behind the reference's acceleration, m a / kp = 12.5 um, is far below
     # one position byte (0.19 mm of a). Robotiq publishes no loop gain (the linkage hand's
-    # loop, robotiq/drive.py, is 60 Hz on the rotor).
-    position_gain: float = bounded(4000.0, low=0.0, low_open=True, high=1e6, unit="N/m")
+    # loop, robotiq/drive.py, is 60 Hz on the rotor). Low end: that lag reaches one position
+    # byte at about 270 N/m (at the default 0.5 m/s^2); below it the hand would report a
+    # position other than the one it was sent to.
+    position_gain: float = bounded(4000.0, low=300.0, high=1e6, unit="N/m",
+                                   why="the fingers' lag behind the reference stays under one "
+                                       "position byte")
     # kd: damping ratio kd / (2 sqrt(kp m)) = 1, critically damped as the 2F-85, which does
     # not overshoot a requested position (robotiq/drive.py POSITION_LOOP_DAMPING_RATIO)
     damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N s/m")

@@ -22,7 +22,7 @@ from pydrake.systems.primitives import Demultiplexer, MatrixGain
 from pydrake.geometry import Meshcat
 from pydrake.multibody.plant import MultibodyPlantConfig
 
-from tegrasp_drake.rig.ranges import SEED_RANGE, bounded
+from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, SEED_RANGE, bounded
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP,
@@ -66,8 +66,11 @@ from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
 class ArmDriverConfig:
     """The simulated JACO2: its joint-velocity command path and joint servos
     (jaco_velocity_drive.py gives each setting's source); the firmware compensates gravity."""
-    # N m/rad, the joint servos' stiffness (the plant's PD)
-    position_gain: float = bounded(400.0, low=0.0, low_open=True, high=1e5, unit="N m/rad")
+    # N m/rad, the joint servos' stiffness (the plant's PD). Low end: the hand's give to a
+    # contact scales as 1 / gain, 2.1 mm while the box is lifted at 400 N m/rad
+    # (docs/model.md, "The arm"); at a tenth it gives 2 cm, an arm no longer servoed to its pose.
+    position_gain: float = bounded(400.0, low=40.0, high=1e5, unit="N m/rad",
+                                   why="below 40 the hand gives centimetres to a contact")
     damping_gain: float = bounded(40.0, low=0.0, high=1e4, unit="N m s/rad")
     # The grasp frame in world at t = 0; 3 cm behind and 9 cm above the grasp: further back,
     # the Jaco nears its wrist singularity.
@@ -85,11 +88,14 @@ class ArmDriverConfig:
     # Period [s] of the Cartesian controller (differential IK) that makes arm.desired_state.
     control_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
                                       why="ten periods of the JACO2's 100 Hz commands at most")
-    # The host's joint-velocity commands: rate [Hz], latency [s] (a whole number of plant steps)
-    command_rate_hz: float = bounded(100.0, low=0.0, low_open=True, high=1000.0, unit="Hz",
+    # The host's joint-velocity commands: rate [Hz], latency [s] (a whole number of plant steps).
+    # Low end: the commands carry the reaction to a tactile event, so they come at least as
+    # often as the slowest tactile sampling the event windows allow (EVENT_WINDOW_RATE_LOW_HZ).
+    command_rate_hz: float = bounded(100.0, low=EVENT_WINDOW_RATE_LOW_HZ, high=1000.0,
+                                     unit="Hz",
                                      why="the JACO2 takes 100 Hz, Kinova kinova-ros README; "
-                                         "faster fills its buffer",
-                                     below="must be positive [Hz] (the JACO2 takes 100)")
+                                         "faster fills its buffer; at least as often as the "
+                                         "slowest tactile sampling, 16 Hz")
     command_latency_s: float = bounded(0.010, low=0.0, low_open=True, high=0.1, unit="s",
                                        why="the JACO2's is about 0.01, plausible 0.005-0.03; "
                                            "0.1 s is ten commands queued",

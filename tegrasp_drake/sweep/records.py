@@ -195,7 +195,7 @@ def remove_temporary_files(out_dir) -> list[Path]:
 @public_api
 def record_result(record: dict):
     """The TrialResult of a record's "result" (its JSON form), None for a record without
-    one (an error)."""
+    one (an error); ValueError naming the record's file and the field for one that is not."""
     from tegrasp_drake.runs.trial_result import TrialResult
     if not isinstance(record, dict) or "result" not in record:
         keys = shorten(", ".join(map(str, record))) if isinstance(record, dict) else type(
@@ -209,4 +209,11 @@ def record_result(record: dict):
         raise ValueError(f"record_result: the record's 'result' is not a trial's result (a "
                          f"TrialResult's JSON form, with hold_success), got "
                          f"{shorten(repr(result))}")
-    return TrialResult.from_dict(result)
+    try:
+        return TrialResult.from_dict(result)
+    except ValueError as e:  # a record edited by hand: its file, then the field
+        trial_id = record.get("trial_id")
+        if not isinstance(trial_id, str):
+            raise
+        raise ValueError(f"record {TRIALS_FOLDER}/{record_file_name(trial_id)}: its 'result' "
+                         f"is {e}") from None

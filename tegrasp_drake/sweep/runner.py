@@ -163,7 +163,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
     another sweep's records, or another sweep writing there."""
     start = time.perf_counter()
     trials = [trial.to_dict() for trial in expand_trials(spec)]
-    progress_bar = _progress_bar_factory(progress)
+    progress_bar = progress_bar_factory(progress)
     try:
         pickle.dumps(trial_function)
     except Exception as error:
@@ -277,8 +277,9 @@ class _NoProgressBar:
         pass
 
 
-def _progress_bar_factory(enabled):
-    """A function total -> progress bar (tqdm, with rate and ETA), checked up front."""
+def progress_bar_factory(enabled, *, description: str = "sweep", unit: str = "trial"):
+    """A function total -> progress bar (tqdm, with rate and ETA) of `description`, counting
+    `unit`s (a sweep's trials, a study's recordings), checked up front."""
     if not enabled:
         return lambda total: _NoProgressBar()
     try:
@@ -286,7 +287,7 @@ def _progress_bar_factory(enabled):
     except ImportError:
         raise SweepError("the progress bar needs tqdm, a dependency of tegrasp-drake: "
                          "install it, or run without a progress bar") from None
-    return lambda total: tqdm(total=total, desc="sweep", unit="trial", dynamic_ncols=True)
+    return lambda total: tqdm(total=total, desc=description, unit=unit, dynamic_ncols=True)
 
 
 def _run_on_process_pool(trial_function, pending, workers):

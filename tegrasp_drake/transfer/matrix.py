@@ -5,6 +5,7 @@ cell as an ordinary, resumable sweep (docs/transfer.md, "A transfer sweep")."""
 
 import dataclasses
 import json
+import logging
 import os
 import pathlib
 from collections.abc import Mapping
@@ -19,6 +20,7 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_f
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
 WORLD_FILE = "world.json"  # in a world's events folder: the assignments it was recorded with
+logger = logging.getLogger(__name__)
 _NAME_CHARACTERS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_")
 
 
@@ -212,21 +214,25 @@ def recorded_events_folders(spec: TransferSpec) -> tuple[str, ...]:
     return ("",) + ((ENSEMBLE_FOLDER,) if ENSEMBLE_FOLDER in wanted else ())
 
 
-def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) -> int:
+def record_world_events(spec: TransferSpec, world: str, folder, *,
+                        progress: bool = False) -> int:
     """Records, in `world`, the events every object of the sweep needs for the sweep's
     controllers (the paper's into `folder`, the taxel_aware controller's ensemble into
     `folder`/ensemble, as `tegrasp record-events` does), skipping those there; returns how
-    many recordings it made (an object's paper events, its ensemble). SweepError for a folder
-    of other world settings."""
+    many recordings it made (an object's paper events, its ensemble). As a sweep tells of its
+    trials: a progress bar over the recordings when `progress`, each one logged at INFO.
+    SweepError for a folder of other world settings."""
     from tegrasp_drake.events import save_memorized_events
     from tegrasp_drake.events.event_file import INDEX_FILE, read_index
     from tegrasp_drake.recording.campaign import RecordEventsError
     from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, TEMPLATE_RUNS,
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
-    from tegrasp_drake.sweep.runner import SweepError
+    from tegrasp_drake.sweep.runner import SweepError, progress_bar_factory
     from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, UserPathError, read_json_file,
                                          replace_problem, write_atomically)
+    progress_bar = progress_bar_factory(progress, description=f"events of {world}",
+                                        unit="recording")
     folder = pathlib.Path(folder)
     assignments = list(world_assignments(spec.worlds[world])
                        + tuple(spec.sweep.scenario_overrides))
@@ -248,23 +254,23 @@ def record_world_events(spec: TransferSpec, world: str, folder, *, log=print) ->
     recorders = {"": ("", record_events),  # what the log calls them, how they are recorded
                  ENSEMBLE_FOLDER: ("ensemble ", lambda name, scenario: record_object_ensemble(
                      name, scenario, TEMPLATE_RUNS))}
-    recorded = 0
+    pending = []  # (sub-folder, object) of each recording to make
     for sub in recorded_events_folders(spec):
-        what, record = recorders[sub]
         destination = folder / sub
         have = ({entry["object"] for entry in read_index(destination)}
                 if (destination / INDEX_FILE).is_file() else set())
-        for object_name in spec.sweep.objects:
-            if object_name in have:
-                continue
-            log(f"recording the {what}events of {object_name} in world {world}")
+        pending += [(sub, name) for name in spec.sweep.objects if name not in have]
+    with progress_bar(len(pending)) as bar:
+        for sub, object_name in pending:
+            what, record = recorders[sub]
+            logger.info(f"recording the {what}events of {object_name} in world {world}")
             try:
                 events = record(object_name, world_scenario(spec, world, object_name))
             except RecordEventsError as error:
                 raise SweepError(f"world {world}: {error}") from None
-            save_memorized_events(destination, events.values())
-            recorded += 1
-    return recorded
+            save_memorized_events(folder / sub, events.values())
+            bar.update(1)
+    return len(pending)
 
 
 def _assignments_problem(data) -> str | None:
@@ -301,15 +307,18 @@ def check_unrecorded_events(spec: TransferSpec, out_dir) -> None:
 
 
 def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
-                 scheduler=None, progress: bool = True, log=print) -> dict:
-    """Records the memorizing worlds' events, runs each cell's sweep; {cell: summary}. Resumable."""
+                 scheduler=None, progress: bool = True) -> dict:
+    """Records the memorizing worlds' events, runs each cell's sweep; {cell: summary}.
+    Resumable. `progress`: the recordings' and the sweeps' progress bars; the steps are
+    logged at INFO."""
     from tegrasp_drake.sweep.runner import run_sweep
     from tegrasp_drake.sweep.spec import expand_trials
     from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec
     if trial_function is run_trial_from_spec:
         check_unrecorded_events(spec, out_dir)
     for world in spec.memorizing_worlds():
-        record_world_events(spec, world, world_events_folder(out_dir, world), log=log)
+        record_world_events(spec, world, world_events_folder(out_dir, world),
+                            progress=progress)
     if trial_function is run_trial_from_spec:  # every cell's events, before any trial
         for memorizing, running in spec.cells:
             check_sweep_events([t.to_dict() for t in expand_trials(running_sweep(
@@ -319,7 +328,7 @@ def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
         events = world_events_folder(out_dir, memorizing)
         sweep = running_sweep(spec, running)
         name = cell_name(memorizing, running)
-        log(f"cell {name}: events of {memorizing}, trials in {running}")
+        logger.info(f"cell {name}: events of {memorizing}, trials in {running}")
         summaries[name] = run_sweep(sweep, bound_arguments(trial_function, events_dir=events),
                                     cell_folder(out_dir, memorizing, running), workers=workers,
                                     scheduler=scheduler, progress=progress)

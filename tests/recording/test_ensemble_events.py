@@ -18,10 +18,12 @@ from tests.cheap_contact import cheap_contact_arguments
 
 
 def event(sa_row, ra_row, t=1.0):
+    """Four samples a channel: a 0.25 s window at the slowest rate an event may have."""
     return MemorizedEvent(object_name="box", transition="reach_load",
                           sa=np.array([sa_row, sa_row], dtype=float),
-                          ra=np.array([ra_row, ra_row], dtype=float), sa_rate_hz=4.0,
-                          ra_rate_hz=4.0, window_s=1.0, transition_time_s=t)
+                          ra=np.array([ra_row, ra_row], dtype=float), sa_rate_hz=16.0,
+                          ra_rate_hz=16.0, window_s=0.25, pre_transition_s=0.125,
+                          transition_time_s=t)
 
 
 def test_the_combined_event_is_the_max_normalised_mean_of_the_runs():

@@ -3,7 +3,10 @@
 import json
 import pathlib
 
+import pytest
+
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.runs.trial_result import TrialResult
 from tegrasp_drake.sweep.runner import check_result
 
@@ -38,3 +41,69 @@ def test_a_sweep_refuses_a_result_whose_transitions_do_not_parse():
     problem = check_result({"hold_success": True, "unload_success": False,
                             "transitions": [entry]})
     assert problem and "'transitions'[0]" in problem and "reach" in problem
+
+
+def _reach_load(t: float) -> Transition:
+    return Transition(t, Mode.REACH, Mode.LOAD, Trigger.MEMORIZED_EVENT, "Reach-Load event")
+
+
+def _load_lift(t: float) -> Transition:
+    return Transition(t, Mode.LOAD, Mode.LIFT, Trigger.MEMORIZED_EVENT, "Load-Lift event")
+
+
+@pytest.mark.parametrize("fields, words", [
+    ({"hold_time_s": -1.0}, "field 'hold_time_s' must be at least 0"),
+    ({"sim_time_s": -3.0}, "field 'sim_time_s' must be at least 0"),
+    ({"lift_height_m": float("nan")}, "field 'lift_height_m' must be a finite number"),
+    ({"final_tilt_deg": 270.0}, "field 'final_tilt_deg' must lie in [0, 180]"),
+    ({"false_triggers": -2}, "field 'false_triggers' must be at least 0"),
+    ({"offset_m": [float("nan"), 0.0]}, "field 'offset_m[0]' must be a finite number"),
+    ({"seed": -1}, "field 'seed' must lie in"),
+    ({"detection_latency_s": {"reach_load": float("inf")}},
+     "field 'detection_latency_s.reach_load' must be a finite number"),
+    ({"physical_events": {"hit": -1.0}}, "field 'physical_events.hit' must be at least 0"),
+    ({"transitions": (_reach_load(5.0), _load_lift(1.0))},
+     "field 'transitions[1].t' must not be before transitions[0].t"),
+])
+def test_a_result_with_a_value_out_of_its_range_is_refused_naming_the_field(fields, words):
+    with pytest.raises(ConfigError) as refused:
+        TrialResult(**fields)
+    message = str(refused.value)
+    assert "\n" not in message and message.startswith("TrialResult")
+    assert words in message, message
+
+
+def test_a_transition_with_a_value_out_of_its_range_is_refused_naming_the_field():
+    with pytest.raises(ConfigError, match=r"Transition: field 'scores\[2\]' must be a finite"):
+        Transition(1.0, Mode.REACH, Mode.LOAD, Trigger.MEMORIZED_EVENT, "Reach-Load event",
+                   scores=(0.9, 0.9, float("nan"), 1.0))
+    with pytest.raises(ConfigError, match="Transition: field 'grip_force_n' must be a finite"):
+        Transition(1.0, Mode.LIFT, Mode.LOAD, Trigger.CORRECTIVE, "Lift-Load",
+                   grip_force_n=float("nan"))
+    entry = _reach_load(1.0).as_dict() | {"t": -0.5}
+    with pytest.raises(ValueError, match="Transition: field 't' must be at least 0"):
+        TrialResult.from_dict({"transitions": [entry]})
+
+
+def test_a_damaged_records_result_is_refused_naming_the_record_file_and_field(
+        tmp_path, monkeypatch, capfd):
+    """A record whose result was edited (its checksum remade) holds a negative hold time:
+    the figures that read it refuse it in one line naming the record's file and the field."""
+    from tegrasp_drake.sweep.records import load_records, make_record, write_record
+    from tests.fake_trials import fake_trial
+    from tests.test_bad_input import assert_one_line_error, run_cli
+    trial = {"trial_id": "memorized/box/m00/a0", "pair_id": "p", "seed": 600,
+             "well_placed": True, "controller": "memorized", "object": "box"}
+    result = fake_trial(trial)
+    result["hold_time_s"] = -1.0
+    write_record(tmp_path / "sweep", make_record(trial, result=result))
+    assert len(load_records(tmp_path / "sweep").records) == 1  # whole and checksummed
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(["plot", "latency", "sweep", "--out", "latency.png"], capfd)
+    assert_one_line_error(code, text, "memorized.box.m00.a0.json", "'hold_time_s'")
+    assert not (tmp_path / "latency.png").exists()
+
+
+def test_every_numeric_field_of_a_result_declares_its_range():
+    from tegrasp_drake.rig.ranges import unranged_numeric_fields
+    assert unranged_numeric_fields(TrialResult, Transition) == []

@@ -57,8 +57,7 @@ def test_a_point_with_taxel_aware_reads_the_ensemble_recorded_in_its_own_world(
               for point in points}
     assert sorted(moduli.values()) == [5.0e5, 2.0e6, 4.0e6]
     out = tmp_path / "out"
-    run_sensitivity(spec, points, fake_trial_reading_events, out, workers=1, progress=False,
-                    log=lambda line: None)
+    run_sensitivity(spec, points, fake_trial_reading_events, out, workers=1, progress=False)
     assert sorted(recorded) == sorted((kind, m) for kind in ("paper", "ensemble")
                                       for m in moduli.values())
     results = {}

@@ -27,8 +27,7 @@ def finished_transfer(tmp_path_factory):
     for world in ("ideal", "faithful"):  # events there already: nothing is recorded
         shutil.copytree(paths.package_events_dir(), out / "events" / world,
                         ignore=shutil.ignore_patterns("ensemble", "corrective", "prismatic"))
-    run_transfer(spec, fake_trial_with_events, out, workers=1, progress=False,
-                 log=lambda *_: None)
+    run_transfer(spec, fake_trial_with_events, out, workers=1, progress=False)
     return spec, out
 
 
