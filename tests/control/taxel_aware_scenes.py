@@ -59,6 +59,14 @@ def run_scene(scene: Scene, world: tuple):
     return run_trial(dataclasses.replace(base, **changes))
 
 
+def load_waited_the_timeout(found, result):
+    """An Expect check: the first matched transition, out of Load, came load_event_timeout_s
+    after Load was entered, on the corrective trigger (a timeout rule, not an event)."""
+    entered = [t["t"] for t in result["transitions"] if t["to"] == "Load"][0]
+    timeout = LoadScenario(name=result["object"]).controller.load_event_timeout_s
+    return found[0].t - entered >= timeout - 1e-9 and found[0].trigger == "corrective"
+
+
 def matched(transitions, steps):
     """The transitions matching `steps` in order, or None."""
     found, k = [], 0

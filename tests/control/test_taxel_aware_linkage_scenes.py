@@ -2,7 +2,8 @@
 default world (capacitive pads, the package's events), one scene per rule that can fire
 there: the scene, the rules that must decide its transitions, and what the grasp must
 achieve. Which rules one pad alone cannot fire there, and why: docs/controller.md, "Which
-rules one finger can fire" (scenario/rule_reach.py)."""
+rules one finger can fire" (scenario/rule_reach.py), which also says which rules still have
+no scene here."""
 
 import dataclasses
 
@@ -10,7 +11,8 @@ import pytest
 
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.scenario.rule_reach import rule_reach
-from tests.control.taxel_aware_scenes import Expect, Scene, check_scene
+from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,
+                                             load_waited_the_timeout)
 
 pytestmark = pytest.mark.slow
 
@@ -40,6 +42,21 @@ SCENES = {
          ("Place", "Re-Reach", "regrasp_after_place")), first=True,
         check=lambda found, r: found[0].offset_m > 0.0
         and "regrasp" in r["corrective_actions"])),
+    # The box 30 mm along the stroke: its face 52.5 mm out, past the open pad's 42.5 mm, in
+    # the left finger's path. The strike, felt in the joint torques, backs the approach off
+    # and shifts it toward the left finger (+y) by (opening - width) / 2; with the strike
+    # sense off the finger knocks the box over and the grasp closes on nothing.
+    "finger_strike": (Scene("box", (0.0, 0.03), seed=605), Expect(
+        (("Reach", "Re-Reach", "finger_strike"),), first=True,
+        check=lambda found, r: found[0].offset_m > 0.01 and found[0].approach_offset_m < 0.0)),
+    # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
+    # threshold, and a correlation never exceeds 1), as for an object whose load the events
+    # were not recorded on: lifted after the Load timeout with both pads on the box, where the
+    # paper's rule Re-Reaches and fails after its Re-Reaches.
+    "load_timeout_both_pads": (
+        Scene("box", seed=607, taxel_aware=(("load_lift_thresholds", [1.0, 1.0]),)),
+        Expect((("Load", "Lift", "load_timeout_both_pads"),), no_re_reach=True,
+               check=load_waited_the_timeout)),
 }
 
 

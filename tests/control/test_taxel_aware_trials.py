@@ -9,10 +9,10 @@ approach axis and curl); the rules run on the linkage hand in the sweeps
 
 import pytest
 
-from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec
 from tests.cheap_contact import CHEAP_CONTACT
-from tests.control.taxel_aware_scenes import Expect, Scene, check_scene
+from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,
+                                             load_waited_the_timeout)
 
 pytestmark = pytest.mark.slow
 
@@ -28,12 +28,6 @@ HAND = ("gripper.model=prismatic", "tactile.transducer=force")
 
 def _world(scene: Scene) -> tuple[str, ...]:
     return HAND if scene.reads_the_held_grip else HAND + CHEAP_CONTACT
-
-
-def _load_waited_the_timeout(found, result):
-    entered = [t["t"] for t in result["transitions"] if t["to"] == "Load"][0]
-    timeout = LoadScenario(name="box").controller.load_event_timeout_s
-    return found[0].t - entered >= timeout - 1e-9 and found[0].trigger == "corrective"
 
 
 SCENES = {
@@ -95,7 +89,7 @@ SCENES = {
     # pads on the box, where the paper's rule would Re-Reach.
     "load_timeout": (Scene("box", taxel_aware=(("load_lift_thresholds", [1.0, 1.0]),)),
                      Expect((("Load", "Lift", "load_timeout_both_pads"),),
-                            no_re_reach=True, check=_load_waited_the_timeout)),
+                            no_re_reach=True, check=load_waited_the_timeout)),
     # A yawed box 25 mm along the stroke in the left finger's path: the strike, felt in the
     # joint torques, backs the approach off and shifts it toward the left finger (+y).
     "finger_strike": (Scene("box", (0.0, 0.025), -11.8, seed=700), Expect(
