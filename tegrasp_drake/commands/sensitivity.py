@@ -59,7 +59,8 @@ def run(args) -> int:
         trial_function = resolve_trial_function(args.trial_function)
         summaries = run_sensitivity(spec, points, trial_function, args.out,
                                     workers=args.workers, scheduler=args.scheduler,
-                                    progress=not args.no_progress and progress_wanted(args))
+                                    progress=not args.no_progress and progress_wanted(args),
+                                    confirmed_trials=args.confirm_trials)
     except (ConfigError, SweepError) as error:
         print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
         return 2

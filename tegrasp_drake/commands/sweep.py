@@ -28,8 +28,11 @@ from tegrasp_drake.sweep.runner import (
 )
 from tegrasp_drake.sweep.spec import (
     BUILTIN_OBJECTS,
+    CONFIRM_OPTION,
     CONTROLLER_NAMES,
+    MAX_TRIALS,
     SweepSpec,
+    check_sweep_size,
     validate_spec,
 )
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
@@ -67,6 +70,10 @@ def add_runner_arguments(parser: argparse.ArgumentParser, *, default_out: str) -
                         help="no progress bar (there is none off a terminal either)")
     parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
                         help="the figures' file format (default: %(default)s)")
+    parser.add_argument(CONFIRM_OPTION, type=integer_option, metavar="N",
+                        help=f"run a study of more than {MAX_TRIALS} trials: N is its count "
+                        "of trials and event recordings, which its refusal names (at least "
+                        "that many)")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -120,8 +127,9 @@ def spec_from_arguments(args) -> SweepSpec:
     if args.overrides:
         overrides["scenario_overrides"] = spec.scenario_overrides + tuple(args.overrides)
     spec = dataclasses.replace(spec, **overrides)
-    validate_spec(spec, f"{args.spec} with command-line options" if args.spec
-                  else "command line")
+    source = f"{args.spec} with command-line options" if args.spec else "command line"
+    validate_spec(spec, source)
+    check_sweep_size(spec, source, args.confirm_trials)
     return spec
 
 
@@ -178,8 +186,12 @@ def scheduler_problem(address: str) -> str | None:
 
 def check_runner_arguments(args) -> None:
     """SweepError for a bad --workers (check_workers), --scheduler (its address, the Dask
-    extra, whether it answers) or --out, before any trial runs or any event is recorded."""
+    extra, whether it answers), --confirm-trials or --out, before any trial runs or any event
+    is recorded."""
     check_workers(args)
+    if args.confirm_trials is not None and args.confirm_trials < 1:
+        raise SweepError(f"{CONFIRM_OPTION} {args.confirm_trials}: give the study's count of "
+                         "trials, at least 1 (a refusal of a large study names it)")
     if args.scheduler is not None:
         problem = scheduler_problem(args.scheduler)
         if problem:

@@ -46,7 +46,7 @@ def run(args) -> int:
     from tegrasp_drake.events import MemorizedEventError
     try:
         check_runner_arguments(args)
-        spec = LoadTransferSpec(args.spec)
+        spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)
         trial_function = resolve_trial_function(args.trial_function)
         summaries = run_transfer(spec, trial_function, args.out, workers=args.workers,
                                  scheduler=args.scheduler,
