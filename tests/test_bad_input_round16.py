@@ -108,3 +108,38 @@ def test_a_confirmation_that_is_no_count_or_too_few_is_refused(tmp_path, monkeyp
     error = capsys.readouterr().err
     assert "--confirm-trials" in error and value in error and words in error, error
     assert "Traceback" not in error and not calls, error
+
+
+def _count_scenario_file_parses(monkeypatch):
+    """A list that grows by one each time the built-in scenario file's text is parsed."""
+    from tegrasp_drake.rig import paths, typed_yaml
+    parses, parse = [], typed_yaml.parse_yaml
+
+    def counted(text, source, **kwargs):
+        if source == str(paths.scenarios_file()):
+            parses.append(source)
+        return parse(text, source, **kwargs)
+    monkeypatch.setattr(typed_yaml, "parse_yaml", counted)
+    return parses
+
+
+def _worlds(count):
+    """A transfer matrix of `count` worlds of the default scenario, each its own point."""
+    from tegrasp_drake.sweep.spec import SweepSpec
+    from tegrasp_drake.transfer.matrix import TransferSpec, TransferWorld
+    names = [f"w{k}" for k in range(count)]
+    return TransferSpec(worlds={n: TransferWorld(
+        "default", (f"gripper.position_loop_hz={40.0 + k}",))
+                                for k, n in enumerate(names)},
+                        cells=tuple((n, n) for n in names), sweep=SweepSpec())
+
+
+# Rule: checking a study's worlds (each world's preset and overrides with every controller)
+# parses the scenario file once, not once a world and controller: a 1000-point study's check
+# took a minute, most of it parsing the same file.
+def test_checking_many_worlds_parses_the_scenario_file_at_most_once(monkeypatch):
+    from tegrasp_drake.transfer.matrix import check_worlds
+    parses = _count_scenario_file_parses(monkeypatch)
+    check_worlds(_worlds(5), "study")
+    assert len(parses) <= 1, parses  # none when an earlier check read it in this process
+

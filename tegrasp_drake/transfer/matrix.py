@@ -14,7 +14,7 @@ from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
-                                          require_fields)
+                                          read_yaml_file_cached, require_fields)
 
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
@@ -47,7 +47,7 @@ def cell_name(memorizing: str, running: str) -> str:
 
 def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tuple[str, ...]:
     """The world as `--set` assignments: its preset's dotted fields but `object`, then overrides."""
-    document = read_yaml_file(paths.scenarios_file(), "the scenario file")
+    document = read_yaml_file_cached(paths.scenarios_file(), "the scenario file")
     if world.scenario not in document:
         raise ConfigError(f"{source}: scenario '{world.scenario}' is not in "
                           f"{paths.scenarios_file()} (scenarios: {', '.join(document)})")
