@@ -143,3 +143,15 @@ def test_checking_many_worlds_parses_the_scenario_file_at_most_once(monkeypatch)
     check_worlds(_worlds(5), "study")
     assert len(parses) <= 1, parses  # none when an earlier check read it in this process
 
+
+# Rule: a check of many worlds, which takes a while, says so on stderr when it starts and
+# how long it took when it ends, rather than running silently.
+def test_a_long_check_of_worlds_says_what_it_checks_and_how_long_it_took(capsys):
+    from tegrasp_drake.transfer.matrix import check_worlds
+    check_worlds(_worlds(3), "study")
+    assert capsys.readouterr().err == ""
+    check_worlds(_worlds(50), "study")
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 2, lines
+    assert lines[0].startswith("checking 50 worlds"), lines
+    assert lines[1].startswith("checked 50 worlds in "), lines

@@ -103,11 +103,24 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
     return spec
 
 
+# A check of more worlds than this says on stderr what it checks and how long it took (a
+# world's check, its scenario with every controller, is tens of milliseconds).
+WORLDS_CHECKED_QUIETLY = 20
+
+
 def check_worlds(spec: TransferSpec, source: str) -> None:
     """ConfigError naming `source` and the world whose preset and overrides, with the
     sweep's, some controller's scenario refuses (each cell's sweep checks them so). Every
     world is checked, those no cell uses too: a spec names only worlds that can run. A run
-    checks the matrix's size first (check_matrix_size), before any world."""
+    checks the matrix's size first (check_matrix_size), before any world. Over
+    WORLDS_CHECKED_QUIETLY worlds, a line on stderr before and one after (with the time)."""
+    import sys
+    import time
+    talk = len(spec.worlds) > WORLDS_CHECKED_QUIETLY
+    if talk:
+        print(f"checking {len(spec.worlds)} worlds (each world's scenario with "
+              f"{len(spec.sweep.controllers)} controllers) ...", file=sys.stderr, flush=True)
+    start = time.perf_counter()
     for name in spec.worlds:
         try:
             sweep_spec_from_fields(
@@ -117,6 +130,9 @@ def check_worlds(spec: TransferSpec, source: str) -> None:
             raise ConfigError(str(error).replace("field 'scenario_overrides", "the world's "
                                                  "preset and overrides ('scenario_overrides")
                               ) from None
+    if talk:
+        print(f"checked {len(spec.worlds)} worlds in {time.perf_counter() - start:.1f} s",
+              file=sys.stderr, flush=True)
 
 
 def check_matrix_size(spec: TransferSpec, source: str, confirmed: int | None = None) -> None:
