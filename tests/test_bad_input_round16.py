@@ -155,3 +155,38 @@ def test_a_long_check_of_worlds_says_what_it_checks_and_how_long_it_took(capsys)
     assert len(lines) == 2, lines
     assert lines[0].startswith("checking 50 worlds"), lines
     assert lines[1].startswith("checked 50 worlds in "), lines
+
+
+# Rule: --scheduler is connected to once: the check that it answers hands its connection to
+# the sweeps, rather than each (the check, each sweep of a transfer's cells) connecting anew.
+@pytest.mark.parametrize("command", ["sweep", "transfer"])
+def test_a_scheduler_is_connected_to_once(tmp_path, monkeypatch, capsys, command):
+    distributed = pytest.importorskip("distributed",
+                                      reason="the optional 'dask' extra is not installed")
+    from tegrasp_drake.transfer import matrix
+    monkeypatch.setattr(matrix, "record_world_events", lambda *args, **kwargs: 0)
+    spec = tmp_path / "t.yaml"
+    spec.write_text("worlds:\n  a: {scenario: memorizing_world}\n  b: {scenario: "
+                    "faithful_world}\ncells: [[a, a], [a, b]]\nsweep: {controllers: [memorized], "
+                    "attempts: 1, objects: [box], grid: [[0.0, 0.0]]}\n")
+    words = {"sweep": ["--objects", "box", "--controllers", "memorized", "--attempts", "1",
+                       "--trial-function", "tests.fake_trials:fake_trial"],
+             "transfer": [str(spec), *_FAKE_TRIALS]}[command]
+    # Its own HTTP port (":0", any free one): 8787 may be another cluster's on a shared host.
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  protocol="tcp://", dashboard_address=":0") as cluster:
+        connections = []
+
+        class CountedClient(distributed.Client):
+            def __init__(self, *args, **kwargs):
+                connections.append(args[0] if args else kwargs.get("address"))
+                super().__init__(*args, **kwargs)
+
+        monkeypatch.setattr(distributed, "Client", CountedClient)
+        code = cli.main([command, *words, "--no-progress", "--format", "svg",
+                         "--scheduler", cluster.scheduler_address,
+                         "--out", str(tmp_path / "out")])
+    out, error = capsys.readouterr()
+    assert code == 0, error
+    assert "dask:" + cluster.scheduler_address in out or command == "transfer", out
+    assert connections == [cluster.scheduler_address], connections

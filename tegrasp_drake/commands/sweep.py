@@ -184,10 +184,11 @@ def scheduler_problem(address: str) -> str | None:
     return None
 
 
-def check_runner_arguments(args) -> None:
-    """SweepError for a bad --workers (check_workers), --scheduler (its address, the Dask
-    extra, whether it answers), --confirm-trials or --out, before any trial runs or any event
-    is recorded."""
+def check_runner_arguments(args):
+    """SweepError for a bad --workers (check_workers), --confirm-trials, --out or --scheduler
+    (its address, the Dask extra, whether it answers), before any trial runs or any event is
+    recorded. Returns the client connected to --scheduler (None without it): the command's
+    one connection, which its sweeps run on and which close_scheduler closes."""
     check_workers(args)
     if args.confirm_trials is not None and args.confirm_trials < 1:
         raise SweepError(f"{CONFIRM_OPTION} {args.confirm_trials}: give the study's count of "
@@ -196,13 +197,21 @@ def check_runner_arguments(args) -> None:
         problem = scheduler_problem(args.scheduler)
         if problem:
             raise SweepError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
-        from tegrasp_drake.sweep.runner import check_scheduler
-        check_scheduler(args.scheduler)
     if not str(args.out).strip():
         raise SweepError(f"--out {args.out!r} is empty; give a folder you can write")
     problem = folder_problem(args.out)
     if problem:
         raise SweepError(f"--out {args.out}: {problem}; give a folder you can write")
+    if args.scheduler is None:
+        return None
+    from tegrasp_drake.sweep.runner import connect_scheduler
+    return connect_scheduler(args.scheduler)  # last: nothing after it can refuse
+
+
+def close_scheduler(client) -> None:
+    """Closes check_runner_arguments' client, if any."""
+    if client is not None:
+        client.close()
 
 
 def check_workers(args) -> None:
@@ -221,10 +230,11 @@ def check_workers(args) -> None:
 
 
 def run(args) -> int:
+    scheduler = None
     try:
         if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
-        check_runner_arguments(args)
+        scheduler = check_runner_arguments(args)
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
         if args.events:
@@ -244,10 +254,12 @@ def run(args) -> int:
             print(benchmark_text(runs, identical))
             return 0 if identical and not any(run.errors for run in runs) else 1
         summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
-                            scheduler=args.scheduler, progress=progress)
+                            scheduler=scheduler, progress=progress)
     except (ConfigError, SweepError) as error:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
+    finally:
+        close_scheduler(scheduler)
     print(summary_text(summary))
     try:
         for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):
