@@ -7,7 +7,7 @@ import sys
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file
+from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file_cached
 
 
 def add_scenario_arguments(parser) -> None:
@@ -28,7 +28,8 @@ def scenario_from_arguments(args, *, simulates: str = ""):
     ignores), or exits with the error. `simulates`: "trial" refuses a hardware scenario;
     "events" notes that its simulation is used."""
     if args.scenario and not pathlib.Path(args.scenario).exists() and \
-            args.scenario in (read_yaml_file(paths.scenarios_file(), "the scenario file") or {}):
+            args.scenario in (read_yaml_file_cached(paths.scenarios_file(), "the scenario file")
+                              or {}):
         raise SystemExit(f"tegrasp: error: --scenario takes a file of scenarios; "
                          f"'{args.scenario}' is a built-in scenario: give --scenario-name "
                          f"{args.scenario}")

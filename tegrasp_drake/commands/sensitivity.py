@@ -9,7 +9,8 @@ import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          check_runner_arguments, resolve_trial_function)
+                                          check_runner_arguments, close_scheduler,
+                                          resolve_trial_function)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.sweep.runner import SweepError, summary_text
@@ -51,20 +52,24 @@ def run(args) -> int:
     from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
                                                  one_at_a_time, run_sensitivity)
     from tegrasp_drake.events import MemorizedEventError
+    scheduler = None
     try:
-        check_runner_arguments(args)
+        scheduler = check_runner_arguments(args)
         spec = LoadSensitivitySpec(args.spec)
         points = (one_at_a_time(spec) if args.latin_hypercube is None
                   else latin_hypercube(spec, args.latin_hypercube))
         trial_function = resolve_trial_function(args.trial_function)
         summaries = run_sensitivity(spec, points, trial_function, args.out,
-                                    workers=args.workers, scheduler=args.scheduler,
-                                    progress=not args.no_progress and progress_wanted(args))
+                                    workers=args.workers, scheduler=scheduler,
+                                    progress=not args.no_progress and progress_wanted(args),
+                                    confirmed_trials=args.confirm_trials)
     except (ConfigError, SweepError) as error:
         print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
         return 2
     except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's
         raise SystemExit(f"tegrasp: error: {error}") from None
+    finally:
+        close_scheduler(scheduler)
     for name, summary in summaries.items():
         print(f"{name}: {summary_text(summary)}")
     for path in write_sensitivity_report(spec, points, args.out, figure_format=args.format):

@@ -28,8 +28,11 @@ from tegrasp_drake.sweep.runner import (
 )
 from tegrasp_drake.sweep.spec import (
     BUILTIN_OBJECTS,
+    CONFIRM_OPTION,
     CONTROLLER_NAMES,
+    MAX_TRIALS,
     SweepSpec,
+    check_sweep_size,
     validate_spec,
 )
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
@@ -67,6 +70,10 @@ def add_runner_arguments(parser: argparse.ArgumentParser, *, default_out: str) -
                         help="no progress bar (there is none off a terminal either)")
     parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
                         help="the figures' file format (default: %(default)s)")
+    parser.add_argument(CONFIRM_OPTION, type=integer_option, metavar="N",
+                        help=f"run a study of more than {MAX_TRIALS} trials: N is its count "
+                        "of trials and event recordings, which its refusal names (at least "
+                        "that many)")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -120,8 +127,9 @@ def spec_from_arguments(args) -> SweepSpec:
     if args.overrides:
         overrides["scenario_overrides"] = spec.scenario_overrides + tuple(args.overrides)
     spec = dataclasses.replace(spec, **overrides)
-    validate_spec(spec, f"{args.spec} with command-line options" if args.spec
-                  else "command line")
+    source = f"{args.spec} with command-line options" if args.spec else "command line"
+    validate_spec(spec, source)
+    check_sweep_size(spec, source, args.confirm_trials)
     return spec
 
 
@@ -176,21 +184,34 @@ def scheduler_problem(address: str) -> str | None:
     return None
 
 
-def check_runner_arguments(args) -> None:
-    """SweepError for a bad --workers (check_workers), --scheduler (its address, the Dask
-    extra, whether it answers) or --out, before any trial runs or any event is recorded."""
+def check_runner_arguments(args):
+    """SweepError for a bad --workers (check_workers), --confirm-trials, --out or --scheduler
+    (its address, the Dask extra, whether it answers), before any trial runs or any event is
+    recorded. Returns the client connected to --scheduler (None without it): the command's
+    one connection, which its sweeps run on and which close_scheduler closes."""
     check_workers(args)
+    if args.confirm_trials is not None and args.confirm_trials < 1:
+        raise SweepError(f"{CONFIRM_OPTION} {args.confirm_trials}: give the study's count of "
+                         "trials, at least 1 (a refusal of a large study names it)")
     if args.scheduler is not None:
         problem = scheduler_problem(args.scheduler)
         if problem:
             raise SweepError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
-        from tegrasp_drake.sweep.runner import check_scheduler
-        check_scheduler(args.scheduler)
     if not str(args.out).strip():
         raise SweepError(f"--out {args.out!r} is empty; give a folder you can write")
     problem = folder_problem(args.out)
     if problem:
         raise SweepError(f"--out {args.out}: {problem}; give a folder you can write")
+    if args.scheduler is None:
+        return None
+    from tegrasp_drake.sweep.runner import connect_scheduler
+    return connect_scheduler(args.scheduler)  # last: nothing after it can refuse
+
+
+def close_scheduler(client) -> None:
+    """Closes check_runner_arguments' client, if any."""
+    if client is not None:
+        client.close()
 
 
 def check_workers(args) -> None:
@@ -209,10 +230,11 @@ def check_workers(args) -> None:
 
 
 def run(args) -> int:
+    scheduler = None
     try:
         if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise SweepError("--benchmark times the local process pool; drop --scheduler")
-        check_runner_arguments(args)
+        scheduler = check_runner_arguments(args)
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
         if args.events:
@@ -232,10 +254,12 @@ def run(args) -> int:
             print(benchmark_text(runs, identical))
             return 0 if identical and not any(run.errors for run in runs) else 1
         summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
-                            scheduler=args.scheduler, progress=progress)
+                            scheduler=scheduler, progress=progress)
     except (ConfigError, SweepError) as error:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
+    finally:
+        close_scheduler(scheduler)
     print(summary_text(summary))
     try:
         for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):

@@ -60,6 +60,36 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
     return parse_yaml(text, str(path)) if text else None
 
 
+# read_yaml_file_cached's parsed files: (path, device, inode, size, mtime in ns) -> data.
+_PARSED_FILES: dict = {}
+_MAX_PARSED_FILES = 16  # a few scenario files; the oldest is dropped past it
+
+
+def read_yaml_file_cached(path: str | pathlib.Path, what: str):
+    """read_yaml_file's data, parsed once per process for each version of a regular file
+    (its path, device, inode, size and modification time: an edited or replaced file is read
+    again); a deep copy each call, so a caller may change it (LoadScenario applies --set
+    assignments to its entry). For a file many loads read in one run: the scenario file,
+    read once a world and controller when a study's worlds are checked."""
+    import copy
+    import os
+    import stat
+    try:
+        status = os.stat(path)
+    except OSError:
+        status = None
+    if status is None or not stat.S_ISREG(status.st_mode):
+        return read_yaml_file(path, what)  # its error names the problem, nothing is kept
+    key = (os.path.abspath(path), status.st_dev, status.st_ino, status.st_size,
+           status.st_mtime_ns)
+    if key not in _PARSED_FILES:
+        data = read_yaml_file(path, what)
+        if len(_PARSED_FILES) >= _MAX_PARSED_FILES:
+            del _PARSED_FILES[next(iter(_PARSED_FILES))]
+        _PARSED_FILES[key] = data
+    return copy.deepcopy(_PARSED_FILES[key])
+
+
 def require_fields(data, path, what: str, advice: str) -> None:
     """ConfigError unless a configuration file's parsed YAML holds a field: an empty or
     comment-only file, `{}` or a lone tag (`!Scenario {}`) is a mistake, not a request for

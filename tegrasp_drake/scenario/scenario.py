@@ -28,7 +28,7 @@ from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CL
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_fields,
-                                          load_typed, parse_yaml, read_yaml_file, require)
+                                          load_typed, parse_yaml, read_yaml_file_cached, require)
 from tegrasp_drake.simulation.capacitive_taxels import (AD7147_DECIMATIONS, CAPACITIVE_OUTPUTS,
                                                         TAXEL_TRANSDUCERS,
                                                         ad7147_frame_rate_hz,
@@ -381,7 +381,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     dropping the others' (on_ignored, if given, is called with their names); allow_long:
     accept a grasp script longer than MAX_SCRIPT_S."""
     path = pathlib.Path(filename) if filename else paths.scenarios_file()
-    document = read_yaml_file(path, "the scenario file")
+    document = read_yaml_file_cached(path, "the scenario file")
     if not isinstance(document, dict) or name not in document:
         names = ", ".join(document) if isinstance(document, dict) else "none"
         raise ConfigError(f"{path}: no scenario named '{name}' (scenarios: {names})")

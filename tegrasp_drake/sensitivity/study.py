@@ -16,7 +16,8 @@ from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, Uncertai
 from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig.files import MAX_STATE_FILE_BYTES, read_json_file
-from tegrasp_drake.transfer.matrix import TransferSpec, TransferWorld, check_worlds
+from tegrasp_drake.transfer.matrix import (TransferSpec, TransferWorld, check_matrix_size,
+                                           check_worlds)
 
 DEFAULT_POINT = "default"
 BASE_PRESET = "default"  # every point: the built-in default scenario, then its assignments
@@ -178,12 +179,17 @@ def _points_problem(data) -> str | None:
 
 
 def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, workers=None,
-                    scheduler=None, progress: bool = True) -> dict:
+                    scheduler=None, progress: bool = True,
+                    confirmed_trials: int | None = None) -> dict:
     """Records each memorizing point's events, runs each point's sweep; {cell: summary}.
-    Resumable: what is finished in `out_dir` is kept. `progress` and the log: run_transfer's."""
+    Resumable: what is finished in `out_dir` is kept. `progress` and the log: run_transfer's.
+    A study over the trial bound is refused with its cost before anything else unless
+    `confirmed_trials` (the count given with --confirm-trials) covers it
+    (transfer.matrix.check_matrix_size)."""
     from tegrasp_drake.sweep.trial_function import run_trial_from_spec
     from tegrasp_drake.transfer.matrix import check_unrecorded_events, run_transfer
     matrix = transfer_spec(spec, points)
+    check_matrix_size(matrix, "the sensitivity study", confirmed_trials)
     check_worlds(matrix, "the sensitivity study")
     if trial_function is run_trial_from_spec:  # before OUT is written
         check_unrecorded_events(matrix, out_dir)

@@ -17,9 +17,10 @@ import pickle
 import tempfile
 import time
 import traceback
+import typing
 from typing import Annotated
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from contextlib import closing, contextmanager, suppress
+from contextlib import closing, contextmanager, nullcontext, suppress
 from dataclasses import dataclass
 from pathlib import Path
 from collections.abc import Callable
@@ -150,15 +151,28 @@ def pool_size(workers: int | None, pending: int) -> int:
                      f"available; give at most {fits}")
 
 
+@typing.runtime_checkable
+class DaskClient(typing.Protocol):
+    """What a sweep uses of a connected `distributed.Client` (connect_scheduler's)."""
+    scheduler: typing.Any  # its connection; `.address` the scheduler's
+
+    def submit(self, *args, **kwargs): ...
+
+    def cancel(self, futures): ...
+
+
 @public_api
 def run_sweep(spec: SweepSpec, trial_function: Callable,
               out_dir: Annotated[PathLike, OUTPUT_FOLDER], *,
               workers: Annotated[int | None, WORKER_COUNT] = None,
-              scheduler: str | None = None, progress: bool = True) -> SweepSummary:
+              scheduler: str | DaskClient | None = None,
+              progress: bool = True) -> SweepSummary:
     """Runs the trials of `spec` that have no finished record in `out_dir`.
 
     `trial_function(trial_dict) -> result_dict`: a picklable module-level callable. `workers`
-    defaults to all local cores; `scheduler` ("tcp://host:port") runs on that Dask cluster.
+    defaults to all local cores; `scheduler` runs on that Dask cluster: its address
+    ("tcp://host:port", connected to for this sweep) or a client connect_scheduler made (a
+    command's one connection, left open for its next sweep).
     ConfigError or SweepError before any trial runs for an invalid spec, a folder holding
     another sweep's records, or another sweep writing there."""
     start = time.perf_counter()
@@ -191,7 +205,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
             backend = f"processes:{n}"
             outcomes = _run_on_process_pool(trial_function, pending, n)
         else:
-            backend = f"dask:{scheduler}"
+            backend = f"dask:{_scheduler_address(scheduler)}"
             outcomes = _run_on_dask(trial_function, pending, scheduler)
         logger.info(f"sweep: running {len(pending)} trials on {backend}")
         ran, errors, unfinished = _record_outcomes(outcomes, pending, out_dir, progress_bar)
@@ -362,9 +376,11 @@ def _dask_distributed():
     return distributed
 
 
-def _dask_client(scheduler: str):
+def connect_scheduler(scheduler: str) -> DaskClient:
     """A Client of the Dask scheduler at `scheduler`; SweepError when the extra is missing or
-    the scheduler does not answer within DASK_CONNECT_TIMEOUT_S."""
+    the scheduler does not answer within DASK_CONNECT_TIMEOUT_S. A command connects once,
+    before its first trial or event recording, and hands the client to each sweep it runs
+    (run_sweep's `scheduler`); the caller closes it."""
     distributed = _dask_distributed()
     try:
         return distributed.Client(scheduler, timeout=f"{DASK_CONNECT_TIMEOUT_S}s")
@@ -372,20 +388,19 @@ def _dask_client(scheduler: str):
         raise SweepError(f"cannot reach the Dask scheduler at {scheduler}: {error}") from None
 
 
-def check_scheduler(scheduler: str) -> None:
-    """SweepError unless the Dask extra is installed and the scheduler at `scheduler` answers:
-    what `run_sweep` finds out before its first trial, for a command (transfer, sensitivity)
-    that has other work (recording events) to do before its first sweep."""
-    with _dask_client(scheduler):
-        pass
+def _scheduler_address(scheduler: str | DaskClient) -> str:
+    return scheduler if isinstance(scheduler, str) else scheduler.scheduler.address
 
 
-def _run_on_dask(trial_function, pending, scheduler):
-    """Yields (trial_id, outcome) from a Dask cluster; outcome None if workers died."""
+def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):
+    """Yields (trial_id, outcome) from a Dask cluster; outcome None if workers died.
+    `scheduler`: a connected client (left open), or an address connected to here (and
+    closed at the end)."""
     dask_as_completed = _dask_distributed().as_completed
     if not pending:
         return
-    with _dask_client(scheduler) as client:
+    with (connect_scheduler(scheduler) if isinstance(scheduler, str)
+          else nullcontext(scheduler)) as client:
         futures = {client.submit(run_trial_safely, trial_function, trial, pure=False,
                                  key=f"tegrasp-trial-{trial['trial_id']}-{os.getpid()}"):
                    trial["trial_id"] for trial in pending}

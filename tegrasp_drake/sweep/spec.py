@@ -83,7 +83,8 @@ class SweepSpec:
     grid: tuple[tuple[float, float], ...] = bounded(
         product_grid(PAPER_NORMAL_OFFSETS_M, PAPER_STROKE_OFFSETS_M), low=-0.2, high=0.2,
         unit="m", why="marker offsets near the centre marker, within the open hand's reach")
-    # at most MAX_TRIALS with the objects, markers and controllers (validate_spec says so)
+    # more than MAX_TRIALS with the objects, markers and controllers only when confirmed
+    # (check_sweep_size)
     attempts: int = bounded(3, low=1, below="must be a positive integer")
     base_seed: int = bounded(0, **dataclasses.asdict(SEED_RANGE))
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
@@ -212,11 +213,6 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
         seen_markers.add(key)
 
     check_ranges(spec, source)  # each number in the range declared on its field
-    trials = trial_count(spec)
-    if trials > MAX_TRIALS:
-        fail("attempts", f"{spec.attempts} attempts make {trials} trials (objects x markers x "
-             f"attempts x controllers), {core_hours(trials)}; a sweep is at most "
-             f"{MAX_TRIALS} trials: split it")
     if not isinstance(spec.randomisation.sensor_noise, bool):
         fail("randomisation.sensor_noise",
              f"expected true or false, got {spec.randomisation.sensor_noise!r}")
@@ -332,6 +328,35 @@ def trial_count(spec: SweepSpec) -> int:
 def core_hours(simulations: int) -> str:
     """The cost of `simulations` trial-sized simulations in words: "about N core-hours"."""
     return f"about {simulations * TRIAL_CORE_SECONDS / 3600:.0f} core-hours"
+
+
+# The command-line option that confirms a study of more than MAX_TRIALS (check_study_size).
+CONFIRM_OPTION = "--confirm-trials"
+
+
+def check_study_size(simulations: int, counted: str, what: str, source: str,
+                     confirmed: int | None = None, *, unit: str = "simulations") -> None:
+    """ConfigError "SOURCE: COUNTED make N UNIT, about H core-hours; ..." for a study of
+    `simulations` trial-sized simulations over MAX_TRIALS unless `confirmed` (the count given
+    with CONFIRM_OPTION) is at least `simulations`; and for a `confirmed` under
+    `simulations` at any size, which confirmed a smaller study than this one. `what` names
+    the kind of run ("a sweep"). The one check of a study's size against MAX_TRIALS."""
+    cost = f"{source}: {counted} make {simulations} {unit}, {core_hours(simulations)}"
+    run_it = f"add {CONFIRM_OPTION} {simulations} to run it"
+    if confirmed is not None and confirmed < simulations:
+        raise ConfigError(f"{cost}, more than the {confirmed} that {CONFIRM_OPTION} "
+                          f"{confirmed} confirms: {run_it}")
+    if confirmed is None and simulations > MAX_TRIALS:
+        raise ConfigError(f"{cost}; {what} is at most {MAX_TRIALS} trials unless confirmed: "
+                          f"{run_it}, or split it")
+
+
+def check_sweep_size(spec: SweepSpec, source: str, confirmed: int | None = None) -> None:
+    """check_study_size of the sweep's trials, naming its field 'attempts'."""
+    check_study_size(trial_count(spec), f"field 'attempts': {spec.attempts} attempts x "
+                     f"{len(spec.objects)} objects x {len(spec.grid)} markers x "
+                     f"{len(spec.controllers)} controllers", "a sweep", source, confirmed,
+                     unit="trials")
 
 
 def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,

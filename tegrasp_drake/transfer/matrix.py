@@ -15,7 +15,7 @@ from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
-                                          require_fields)
+                                          read_yaml_file_cached, require_fields)
 
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
@@ -49,7 +49,7 @@ def cell_name(memorizing: str, running: str) -> str:
 
 def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tuple[str, ...]:
     """The world as `--set` assignments: its preset's dotted fields but `object`, then overrides."""
-    document = read_yaml_file(paths.scenarios_file(), "the scenario file")
+    document = read_yaml_file_cached(paths.scenarios_file(), "the scenario file")
     if world.scenario not in document:
         raise ConfigError(f"{source}: scenario '{world.scenario}' is not in "
                           f"{paths.scenarios_file()} (scenarios: {', '.join(document)})")
@@ -73,14 +73,16 @@ def running_sweep(spec: TransferSpec, running: str) -> SweepSpec:
         world_assignments(spec.worlds[running]) + tuple(spec.sweep.scenario_overrides)))
 
 
-def LoadTransferSpec(path) -> TransferSpec:
+def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSpec:
     """Reads and checks a transfer spec. Fields:
 
     worlds: {name: {scenario: PRESET, overrides: [KEY=VALUE, ...]}}
     cells: [[memorizing, running], ...], or {memorize_in: [worlds], run_in: [worlds]}
     sweep: the fields of a sweep spec (the paper's sweep when left out)
 
-    ConfigError names the file and the field of anything that cannot run."""
+    ConfigError names the file and the field of anything that cannot run, and gives the
+    cost of a matrix over the trial bound (check_matrix_size; `confirmed_trials`, the count
+    given with --confirm-trials, runs it)."""
     source = str(path)
     data = read_yaml_file(path, "the transfer spec")
     require_fields(data, source, "the transfer spec", "give its worlds and cells (e.g. "
@@ -98,16 +100,29 @@ def LoadTransferSpec(path) -> TransferSpec:
     cells = _parse_cells(data["cells"], worlds, source)
     sweep = sweep_spec_from_fields(data.get("sweep"), f"{source} [sweep]")
     spec = TransferSpec(worlds=worlds, cells=cells, sweep=sweep)
+    check_matrix_size(spec, source, confirmed_trials)
     check_worlds(spec, source)
     return spec
+
+
+# A check of more worlds than this says on stderr what it checks and how long it took (a
+# world's check, its scenario with every controller, is tens of milliseconds).
+WORLDS_CHECKED_QUIETLY = 20
 
 
 def check_worlds(spec: TransferSpec, source: str) -> None:
     """ConfigError naming `source` and the world whose preset and overrides, with the
     sweep's, some controller's scenario refuses (each cell's sweep checks them so). Every
-    world is checked, those no cell uses too: a spec names only worlds that can run. The
-    whole matrix's size is checked first (check_matrix_size), before any world."""
-    check_matrix_size(spec, source)
+    world is checked, those no cell uses too: a spec names only worlds that can run. A run
+    checks the matrix's size first (check_matrix_size), before any world. Over
+    WORLDS_CHECKED_QUIETLY worlds, a line on stderr before and one after (with the time)."""
+    import sys
+    import time
+    talk = len(spec.worlds) > WORLDS_CHECKED_QUIETLY
+    if talk:
+        print(f"checking {len(spec.worlds)} worlds (each world's scenario with "
+              f"{len(spec.sweep.controllers)} controllers) ...", file=sys.stderr, flush=True)
+    start = time.perf_counter()
     for name in spec.worlds:
         try:
             sweep_spec_from_fields(
@@ -117,24 +132,25 @@ def check_worlds(spec: TransferSpec, source: str) -> None:
             raise ConfigError(str(error).replace("field 'scenario_overrides", "the world's "
                                                  "preset and overrides ('scenario_overrides")
                               ) from None
+    if talk:
+        print(f"checked {len(spec.worlds)} worlds in {time.perf_counter() - start:.1f} s",
+              file=sys.stderr, flush=True)
 
 
-def check_matrix_size(spec: TransferSpec, source: str) -> None:
+def check_matrix_size(spec: TransferSpec, source: str, confirmed: int | None = None) -> None:
     """ConfigError, with the cost, for a matrix whose trials (cells x each cell's sweep) and
     ideal-grasp recordings (memorizing worlds x objects, 1 + TEMPLATE_RUNS each with the
-    ensemble) are together more than a sweep may be (sweep.spec.MAX_TRIALS): each cell is a
-    sweep under the bound, but many cells are one run."""
+    ensemble) are together more than sweep.spec.MAX_TRIALS unless `confirmed` (the count of
+    --confirm-trials) covers them, as for a sweep (check_study_size): many cells are one run."""
     from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER, TEMPLATE_RUNS
-    from tegrasp_drake.sweep.spec import MAX_TRIALS, core_hours, trial_count
+    from tegrasp_drake.sweep.spec import check_study_size, trial_count
     trials = len(spec.cells) * trial_count(spec.sweep)
     per_object = 1 + (TEMPLATE_RUNS if ENSEMBLE_FOLDER in recorded_events_folders(spec) else 0)
     recordings = len(spec.memorizing_worlds()) * len(spec.sweep.objects) * per_object
-    if trials + recordings > MAX_TRIALS:
-        raise ConfigError(f"{source}: {len(spec.cells)} cells x {trial_count(spec.sweep)} "
-                          f"trials and {recordings} ideal grasps to record the events make "
-                          f"{trials + recordings} simulations, {core_hours(trials + recordings)}"
-                          f"; a transfer or sensitivity run is at most {MAX_TRIALS}, as a "
-                          "sweep is: split it (fewer cells or points, or a smaller sweep)")
+    check_study_size(trials + recordings,
+                     f"{len(spec.cells)} cells x {trial_count(spec.sweep)} trials and "
+                     f"{recordings} ideal grasps to record the events",
+                     "a transfer or sensitivity run, as a sweep,", source, confirmed)
 
 
 def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
