@@ -190,3 +190,27 @@ def test_a_scheduler_is_connected_to_once(tmp_path, monkeypatch, capsys, command
     assert code == 0, error
     assert "dask:" + cluster.scheduler_address in out or command == "transfer", out
     assert connections == [cluster.scheduler_address], connections
+
+
+def test_the_python_api_bounds_a_study_as_the_commands_do(tmp_path, monkeypatch):
+    """run_sweep and run_transfer, called from a script, refuse a study over the trial bound
+    with its cost before listing a trial, and run it when confirmed."""
+    from tegrasp_drake.sweep import runner
+    from tegrasp_drake.sweep.spec import SweepSpec, trial_count
+    from tegrasp_drake.transfer import matrix
+
+    spec = SweepSpec(attempts=1235)
+    assert trial_count(spec) > MAX_TRIALS
+
+    def listed(*args, **kwargs):
+        raise AssertionError("the trials were listed before the study's size was checked")
+
+    monkeypatch.setattr(runner, "expand_trials", listed)
+    with pytest.raises(Exception, match="add --confirm-trials 100035 to run it"):
+        runner.run_sweep(spec, print, tmp_path / "out", workers=1)
+    with pytest.raises(AssertionError, match="listed before"):  # confirmed: past the check
+        runner.run_sweep(spec, print, tmp_path / "out", workers=1, confirmed_trials=100035)
+
+    transfer = matrix.LoadTransferSpec(_transfer_spec(tmp_path), confirmed_trials=10**6)
+    with pytest.raises(Exception, match="add --confirm-trials 107226 to run it"):
+        matrix.run_transfer(transfer, print, tmp_path / "t")

@@ -254,7 +254,8 @@ def run(args) -> int:
             print(benchmark_text(runs, identical))
             return 0 if identical and not any(run.errors for run in runs) else 1
         summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
-                            scheduler=scheduler, progress=progress)
+                            scheduler=scheduler, progress=progress,
+                            confirmed_trials=args.confirm_trials)
     except (ConfigError, SweepError) as error:
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2

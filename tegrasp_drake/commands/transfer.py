@@ -52,7 +52,8 @@ def run(args) -> int:
         trial_function = resolve_trial_function(args.trial_function)
         summaries = run_transfer(spec, trial_function, args.out, workers=args.workers,
                                  scheduler=scheduler,
-                                 progress=not args.no_progress and progress_wanted(args))
+                                 progress=not args.no_progress and progress_wanted(args),
+                                 confirmed_trials=args.confirm_trials)
     except (ConfigError, SweepError) as error:
         print(f"tegrasp transfer: error: {error}", file=sys.stderr)
         return 2

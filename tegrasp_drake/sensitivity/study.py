@@ -195,4 +195,4 @@ def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, w
         check_unrecorded_events(matrix, out_dir)
     record_points(points, out_dir)
     return run_transfer(matrix, trial_function, out_dir, workers=workers, scheduler=scheduler,
-                        progress=progress)
+                        progress=progress, confirmed_trials=confirmed_trials)

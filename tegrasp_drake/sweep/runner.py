@@ -34,7 +34,7 @@ from tegrasp_drake.sweep.records import (
     unwritable_records,
     write_record,
 )
-from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, expand_trials
+from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, check_sweep_size, expand_trials
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import Range
 
@@ -166,16 +166,20 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
               out_dir: Annotated[PathLike, OUTPUT_FOLDER], *,
               workers: Annotated[int | None, WORKER_COUNT] = None,
               scheduler: str | DaskClient | None = None,
-              progress: bool = True) -> SweepSummary:
+              progress: bool = True,
+              confirmed_trials: int | None = None) -> SweepSummary:
     """Runs the trials of `spec` that have no finished record in `out_dir`.
 
     `trial_function(trial_dict) -> result_dict`: a picklable module-level callable. `workers`
     defaults to all local cores; `scheduler` runs on that Dask cluster: its address
     ("tcp://host:port", connected to for this sweep) or a client connect_scheduler made (a
     command's one connection, left open for its next sweep).
-    ConfigError or SweepError before any trial runs for an invalid spec, a folder holding
-    another sweep's records, or another sweep writing there."""
+    ConfigError or SweepError before any trial runs for an invalid spec, a sweep over the
+    trial bound that `confirmed_trials` (the count given with --confirm-trials) does not
+    cover (checked before its trials are listed), a folder holding another sweep's records,
+    or another sweep writing there."""
     start = time.perf_counter()
+    check_sweep_size(spec, "run_sweep", confirmed_trials)
     trials = [trial.to_dict() for trial in expand_trials(spec)]
     progress_bar = progress_bar_factory(progress)
     try:

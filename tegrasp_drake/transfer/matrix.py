@@ -323,13 +323,16 @@ def check_unrecorded_events(spec: TransferSpec, out_dir) -> None:
 
 
 def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
-                 scheduler=None, progress: bool = True) -> dict:
+                 scheduler=None, progress: bool = True,
+                 confirmed_trials: int | None = None) -> dict:
     """Records the memorizing worlds' events, runs each cell's sweep; {cell: summary}.
     Resumable. `progress`: the recordings' and the sweeps' progress bars; the steps are
-    logged at INFO."""
+    logged at INFO. A matrix over the trial bound is refused before anything runs unless
+    `confirmed_trials` covers it (check_matrix_size)."""
     from tegrasp_drake.sweep.runner import run_sweep
     from tegrasp_drake.sweep.spec import expand_trials
     from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec
+    check_matrix_size(spec, "run_transfer", confirmed_trials)
     if trial_function is run_trial_from_spec:
         check_unrecorded_events(spec, out_dir)
     for world in spec.memorizing_worlds():
@@ -347,5 +350,6 @@ def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
         logger.info(f"cell {name}: events of {memorizing}, trials in {running}")
         summaries[name] = run_sweep(sweep, bound_arguments(trial_function, events_dir=events),
                                     cell_folder(out_dir, memorizing, running), workers=workers,
-                                    scheduler=scheduler, progress=progress)
+                                    scheduler=scheduler, progress=progress,
+                                    confirmed_trials=confirmed_trials)
     return summaries
