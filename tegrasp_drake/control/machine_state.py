@@ -4,11 +4,14 @@ plan it follows (GraspPlan: the grasp script placed for the expected object)."""
 import dataclasses
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.rig.ranges import bounded, check_ranges, field_range
 from tegrasp_drake.control.corrective_actions import Counters
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition
 from tegrasp_drake.control.motion_profiles import MotionSegment
-from tegrasp_drake.control.scripted_grasp import grasp_frame_xy
+from tegrasp_drake.control.scripted_grasp import GraspScriptConfig, grasp_frame_xy
 from tegrasp_drake.control.taxel_aware.estimator import ContactMemory
+from tegrasp_drake.simulation.station import ArmDriverConfig
 
 
 @dataclasses.dataclass(frozen=True)
@@ -49,30 +52,56 @@ class MachineState:
         return self
 
 
+def _ranged_as(cls: type, name: str):
+    """A field without a default, with the Range of `cls`'s field `name` (declared once)."""
+    return bounded(**dataclasses.asdict(field_range(cls, name)))
+
+
+# The arm's reach along each world axis [m] (as its start pose's), and how far the grasp frame's
+# target lies beyond the marker along x: the pads' centres' offset from the grasp frame,
+# -9.3 mm open to +4.4 mm closed on the linkage hand, 0 on the prismatic one (gripper_hands).
+_REACH = field_range(ArmDriverConfig, "initial_gripper_xyz")
+_PAD_OFFSET_BOUND_M = 0.01
+
+
 @public_dataclass
 @dataclasses.dataclass(frozen=True)
 class GraspPlan:
-    """The grasp script's timing and targets placed for the expected object [m, s, N]."""
-    start_xyz: tuple
-    object_xy: tuple  # the grasp frame's target for the expected object (grasp_frame_xy)
-    object_width: float  # along the stroke, for the Re-Reach shift
-    grasp_height: float
-    object_height: float  # for whether a pushed object stands when let go (taxel_aware)
-    lift_height: float
-    place_press: float
-    settle_s: float
-    reach_s: float
-    lift_s: float
-    hold_s: float
-    place_s: float
-    unload_s: float
-    retract_s: float
-    retract_distance: float
-    close_speed: float
-    grip_force: float
-    load_s: float  # the script's close command to the start of its lift
-    place_offset: tuple  # where the script puts the object down, from where it took it
+    """The grasp script's timing and targets placed for the expected object [m, s, N]. Each
+    number takes the range of the setting it comes from (the grasp script's, the arm's start,
+    the object's sizes), checked when it is built (a hand-made plan included)."""
+    start_xyz: tuple[float, float, float] = _ranged_as(ArmDriverConfig, "initial_gripper_xyz")
+    # the grasp frame's target for the expected object (grasp_frame_xy): the marker, within
+    # the arm's reach, moved by the pads' offset
+    object_xy: tuple[float, float] = bounded(
+        low=_REACH.low - _PAD_OFFSET_BOUND_M, high=_REACH.high + _PAD_OFFSET_BOUND_M, unit="m",
+        length=2, why="the marker within the JACO2's reach, moved by the pads' offset, under "
+                      "1 cm")
+    object_width: float = _ranged_as(ObjectConfig, "size")  # along the stroke, for Re-Reach
+    grasp_height: float = _ranged_as(GraspScriptConfig, "grasp_height")
+    # for whether a pushed object stands when let go (taxel_aware)
+    object_height: float = _ranged_as(ObjectConfig, "size")
+    lift_height: float = _ranged_as(GraspScriptConfig, "lift_height")
+    place_press: float = _ranged_as(GraspScriptConfig, "place_press")
+    settle_s: float = _ranged_as(GraspScriptConfig, "settle_s")
+    reach_s: float = _ranged_as(GraspScriptConfig, "reach_s")
+    lift_s: float = _ranged_as(GraspScriptConfig, "lift_s")
+    hold_s: float = _ranged_as(GraspScriptConfig, "hold_s")
+    place_s: float = _ranged_as(GraspScriptConfig, "place_s")
+    unload_s: float = _ranged_as(GraspScriptConfig, "unload_s")
+    retract_s: float = _ranged_as(GraspScriptConfig, "retract_s")
+    retract_distance: float = _ranged_as(GraspScriptConfig, "retract_distance")
+    close_speed: float = _ranged_as(GraspScriptConfig, "close_speed")
+    grip_force: float = _ranged_as(GraspScriptConfig, "grip_force")
+    # the script's close command to the start of its lift
+    load_s: float = _ranged_as(GraspScriptConfig, "load_s")
+    # where the script puts the object down, from where it took it
+    place_offset: tuple[float, float] = _ranged_as(GraspScriptConfig, "place_offset")
     gripper_model: str = "linkage"  # the hand (gripper_hands.py): where its pads lie
+
+    def __post_init__(self):
+        """ConfigError naming the first field outside its range."""
+        check_ranges(self, type(self).__name__)
 
     @staticmethod
     def make(grasp, *, start_xyz, expected_object_xy, object, gripper_model: str

@@ -10,7 +10,9 @@ from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.number_text import number_text
+from tegrasp_drake.rig.ranges import bounded, check_ranges
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig.arm_kinematics import GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP
 from tegrasp_drake.control.motion_profiles import interpolate_pose, minimum_jerk
@@ -53,13 +55,24 @@ class GraspScriptConfig:
 
 @dataclasses.dataclass(frozen=True)
 class ScriptSegment:
-    """One phase: G moves from X_start to X_end over [t_start, t_end] [s], one gripper command."""
+    """One phase: G moves from X_start to X_end over [t_start, t_end] [s], one gripper command.
+    A phase may last no time (grasp.settle_s and grasp.hold_s may be 0: sample_plan passes
+    over it), never less."""
     phase: str
-    t_start: float
-    t_end: float
+    t_start: float = bounded(low=0.0, unit="s", why="time since the script's start")
+    t_end: float = bounded(low=0.0, unit="s", why="time since the script's start")
     X_start: RigidTransform
     X_end: RigidTransform
     gripper_command: tuple
+
+    def __post_init__(self):
+        """ConfigError naming the first time out of its range, or t_end before t_start."""
+        check_ranges(self, type(self).__name__)
+        if self.t_end < self.t_start:
+            raise ConfigError(
+                f"{type(self).__name__}: field 't_end' must not be before t_start = "
+                f"{number_text(self.t_start)} s (a phase lasts zero or more seconds), got "
+                f"{number_text(self.t_end)}")
 
 
 @functools.lru_cache(maxsize=256)

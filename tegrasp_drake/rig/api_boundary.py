@@ -17,6 +17,8 @@ import threading
 import types
 import typing
 
+from tegrasp_drake.rig.ranges import python_scalar
+
 # A file or folder argument: text or a path object (pathlib.Path, os.DirEntry).
 PathLike = str | os.PathLike
 
@@ -391,9 +393,7 @@ def _check_scalar_fields(instance, scalar: dict, source: str) -> None:
     NumPy scalar counts as the Python one it holds: np.bool_ as bool)."""
     for name, hint in scalar.items():
         value = getattr(instance, name)
-        plain = value.item() if type(value).__module__ == "numpy" and hasattr(
-            value, "item") and getattr(value, "ndim", None) == 0 else value
-        if not _matches(plain, hint):
+        if not _matches(python_scalar(value), hint):
             raise TypeError(f"{source}: field '{name}' must be {_describe_hint(hint)}, "
                             f"got {type(value).__name__} {_short_repr(value)}")
 

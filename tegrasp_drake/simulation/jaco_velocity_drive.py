@@ -25,23 +25,17 @@ def plant_steps(duration_s: float, time_step: float) -> int | None:
 
 def drive_problem(arm, time_step: float):
     """(field, words, value) that name what is wrong with the velocity drive's settings of
-    `arm` (ArmDriverConfig) on a plant of step `time_step` [s], or None."""
-    rate, latency, tracker = arm.command_rate_hz, arm.command_latency_s, arm.tracker
+    `arm` (ArmDriverConfig) on a plant of step `time_step` [s], or None: what relates them to
+    the plant's step. Each setting's own range (a positive rate and latency, the tracker's
+    gain and six positive speeds) is its declared Range, checked before (validate)."""
+    rate, latency = arm.command_rate_hz, arm.command_latency_s
     steps = f"plant steps ({time_step:g} s)"
-    if not rate > 0:
-        return "command_rate_hz", "must be positive [Hz] (the JACO2 takes 100)", rate
     if plant_steps(1.0 / rate, time_step) in (None, 0, 1):
         return ("command_rate_hz", f"must make a period of a whole number of {steps}, at "
                 "least two, e.g. 100 or 50 [Hz]", rate)
-    if plant_steps(latency, time_step) in (None, 0) or latency < 0:
+    if plant_steps(latency, time_step) in (None, 0):
         return ("command_latency_s", f"must be a whole number of {steps}, at least one, "
                 "e.g. 0.01 [s] (the JACO2's is about 0.01)", latency)
-    if not tracker.kp >= 0:
-        return "tracker.kp", "must be zero or positive [1/s] (plausible 1-20)", tracker.kp
-    speeds = tracker.max_joint_speed
-    if len(speeds) != ARM_JOINTS or not all(v > 0 for v in speeds):
-        return ("tracker.max_joint_speed", f"must be {ARM_JOINTS} positive speeds [rad/s]",
-                speeds)
     return None
 
 
