@@ -34,7 +34,8 @@ from tegrasp_drake.sweep.records import (
     unwritable_records,
     write_record,
 )
-from tegrasp_drake.sweep.spec import SweepSpec, TrialSpec, check_sweep_size, expand_trials
+from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, check_sweep_size,
+                                      expand_trials)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import Range
 
@@ -167,7 +168,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
               workers: Annotated[int | None, WORKER_COUNT] = None,
               scheduler: str | DaskClient | None = None,
               progress: bool = True,
-              confirmed_trials: int | None = None) -> SweepSummary:
+              confirmed_trials: Annotated[int | None, CONFIRMED_TRIALS] = None
+              ) -> SweepSummary:
     """Runs the trials of `spec` that have no finished record in `out_dir`.
 
     `trial_function(trial_dict) -> result_dict`: a picklable module-level callable. `workers`

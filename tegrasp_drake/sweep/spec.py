@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tegrasp_drake.rig.api_boundary import describe_hint, public_dataclass, value_matches
-from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, check_ranges
+from tegrasp_drake.rig.ranges import SEED_RANGE, Range, bounded, check_ranges
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
@@ -332,6 +332,8 @@ def core_hours(simulations: int) -> str:
 
 # The command-line option that confirms a study of more than MAX_TRIALS (check_study_size).
 CONFIRM_OPTION = "--confirm-trials"
+# The count a confirmation gives: a study of at least one simulation.
+CONFIRMED_TRIALS = Range(low=1, why="the count of trials and recordings the study makes")
 
 
 def check_study_size(simulations: int, counted: str, what: str, source: str,
