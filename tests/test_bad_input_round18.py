@@ -1,0 +1,86 @@
+"""Bad inputs the eighteenth review found, one test per rule."""
+
+import pytest
+
+from tests.test_bad_input import run_cli
+
+_USER_OBJECT = ["--set", "object.name=mine", "--set", "object.shape=file",
+                "--set", "object.size=[0.04,0.04,0.1]", "--set", "object.mass=0.1",
+                "--set", "object.friction=0.5", "--set", "random_seed=640"]
+
+
+def _model(tmp_path, link_contents: str, name: str = "object.sdf"):
+    """An SDF file of one model of one link holding `link_contents` (after its inertia)."""
+    file = tmp_path / name
+    file.write_text('<?xml version="1.0"?><sdf version="1.9"><model name="mine">'
+                    '<link name="body"><inertial><mass>0.1</mass></inertial>'
+                    f"{link_contents}</link></model></sdf>")
+    return file
+
+
+def _mesh_collision(uri: str) -> str:
+    return f'<collision name="c"><geometry><mesh><uri>{uri}</uri></mesh></geometry></collision>'
+
+
+@pytest.fixture
+def no_simulation(monkeypatch):
+    """Fails a test whose trial reaches its simulator."""
+    from tegrasp_drake.runs import trial
+
+    def simulated(*args, **kwargs):
+        raise AssertionError("the trial was simulated")
+    monkeypatch.setattr(trial, "MakeSimulator", simulated)
+
+
+def _empty_mesh(tmp_path):
+    (tmp_path / "empty.obj").write_text("")
+    return "empty.obj"  # relative to the model file, as Drake reads it
+
+
+def _mesh_over_the_bound(tmp_path):
+    from tegrasp_drake.rig.object_file import MAX_MESH_FILE_BYTES
+    mesh = tmp_path / "huge.obj"
+    with open(mesh, "wb") as stream:
+        stream.truncate(MAX_MESH_FILE_BYTES + 1)  # sparse: no disk space used
+    return str(mesh)
+
+
+# Rule: a user's model file is checked as every other user file before anything simulates:
+# each mesh it names is a regular file that exists, of bounded size, and Drake loads the
+# model with its geometry (a convex hull it cannot make is refused), in one line naming
+# object.file; never an internal error at station build.
+@pytest.mark.parametrize("mesh, words", [
+    (lambda tmp_path: "/dev/zero", "is a device"),
+    (lambda tmp_path: "/nonexistent/m.obj", "does not exist"),
+    (lambda tmp_path: "package://tegrasp/no_such_mesh.obj", "cannot be found"),
+    (_empty_mesh, "is not a model Drake can load"),
+    (_mesh_over_the_bound, "is larger than"),
+], ids=["device", "missing", "missing-package-url", "no-vertices", "too-large"])
+def test_a_model_file_naming_a_mesh_drake_cannot_use_is_refused_before_the_trial(
+        mesh, words, tmp_path, no_simulation, capfd):
+    file = _model(tmp_path, _mesh_collision(mesh(tmp_path)))
+    code, text = run_cli(["trial", "--controller", "open_loop", "--out", str(tmp_path / "run"),
+                          *_USER_OBJECT, "--set", f"object.file={file}"], capfd)
+    assert code == 1 and "internal error" not in text, text
+    assert len(text.strip().splitlines()) == 1, text
+    assert "field 'object.file'" in text and str(file) in text and words in text, text
+
+
+# Rule: a model file Drake cannot load when the station is built (changed since it was
+# checked, or an object config given straight to the builder) is one line naming the file.
+def test_a_model_file_drake_cannot_load_at_station_build_is_named(tmp_path):
+    from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+    from pydrake.multibody.parsing import Parser
+    from pydrake.systems.framework import DiagramBuilder
+
+    from tegrasp_drake.rig.files import UserPathError
+    from tegrasp_drake.rig.objects import ObjectConfig
+    from tegrasp_drake.simulation.object_model import AddObject
+    file = _model(tmp_path, _mesh_collision("/nonexistent/m.obj"))
+    config = ObjectConfig(name="mine", shape="file", size=[0.04, 0.04, 0.1], mass=0.1,
+                          friction=0.5, file=str(file))
+    plant, _ = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), DiagramBuilder())
+    with pytest.raises(UserPathError) as refused:
+        AddObject(Parser(plant), config)
+    assert "field 'object.file'" in str(refused.value) and str(file) in str(refused.value)
+    assert "\n" not in str(refused.value)
