@@ -84,3 +84,39 @@ def test_a_model_file_drake_cannot_load_at_station_build_is_named(tmp_path):
         AddObject(Parser(plant), config)
     assert "field 'object.file'" in str(refused.value) and str(file) in str(refused.value)
     assert "\n" not in str(refused.value)
+
+
+_BOX = '<geometry><box><size>0.04 0.04 0.1</size></box></geometry>'
+# Entities expanding the model's name a thousandfold per 3 levels (a "billion laughs" kind).
+_EXPANDING = ('<?xml version="1.0"?>\n<!DOCTYPE sdf [<!ENTITY a "aaaaaaaaaa">'
+              '<!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">'
+              '<!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;">]>\n'
+              '<sdf version="1.9"><model name="&c;"><link name="body"><inertial><mass>0.1'
+              f'</mass></inertial><collision name="c">{_BOX}</collision></link></model></sdf>')
+
+
+def _write(tmp_path, text):
+    file = tmp_path / "object.sdf"
+    file.write_text(text)
+    return file
+
+
+# Rule: a model the hand cannot touch (a body with no collision geometry: nothing to grasp)
+# and a model file declaring a DTD (a model has no use for one; its entities could expand
+# without bound) are refused when the scenario is checked, in one line naming object.file.
+@pytest.mark.parametrize("model, words", [
+    (lambda tmp_path: _model(tmp_path, ""), "has no collision geometry"),
+    (lambda tmp_path: _model(tmp_path, f'<visual name="v">{_BOX}</visual>'),
+     "has no collision geometry"),
+    (lambda tmp_path: _write(tmp_path, _EXPANDING), "declares a document type"),
+    (lambda tmp_path: _write(tmp_path, _EXPANDING.replace(
+        f'<collision name="c">{_BOX}</collision>', "")), "declares a document type"),
+], ids=["inertia-only", "visual-only", "entities", "entities-no-geometry"])
+def test_a_model_with_nothing_to_grasp_or_a_dtd_is_refused_before_the_trial(
+        model, words, tmp_path, no_simulation, capfd):
+    file = model(tmp_path)
+    code, text = run_cli(["trial", "--controller", "open_loop", "--out", str(tmp_path / "run"),
+                          *_USER_OBJECT, "--set", f"object.file={file}"], capfd)
+    assert code == 1 and "internal error" not in text, text
+    assert len(text.strip().splitlines()) == 1, text
+    assert "field 'object.file'" in text and str(file) in text and words in text, text

@@ -1,10 +1,12 @@
 """The check of your own object's model file (object.file: an SDF or URDF path, or a
-package:// URL) before anything simulates. It is checked as every other file the user names:
-the file, and each mesh file it names, must be a regular file that exists and is at most a
-bounded size; then Drake loads it as the station will, into a plant with a SceneGraph, so
-that its geometry is made (mesh files read, convex hulls computed) and what Drake cannot
-use is refused here, in one line naming object.file, not at station build. It must hold one
-model of one body."""
+package:// URL) before anything simulates. It is checked as every other file the user
+names: the file, and each mesh file it names, must be a regular file that exists and is at
+most a bounded size, and the file declares no DTD (a model has no use for one, and its
+entities could expand a small file into gigabytes, the "billion laughs", before Drake reads
+a body). Then Drake loads it as the station will, into a plant with a SceneGraph, so that
+its geometry is made (mesh files read, convex hulls computed) and what Drake cannot use is
+refused here, in one line naming object.file, not at station build. It must hold one model
+of one body, with collision geometry: a body the hand cannot touch is nothing to grasp."""
 
 import pathlib
 import xml.parsers.expat
@@ -27,12 +29,13 @@ _URL_SCHEMES = ("package://", "model://", "file://")  # what Drake's PackageMap 
 
 def check_model_file(file: str, source: str) -> None:
     """ConfigError naming `source` and field object.file unless `file` (module docstring)
-    is a model file Drake loads with its meshes, holding one model of one body."""
+    is a model file with no DTD that Drake loads with its meshes, holding one model of one
+    body with collision geometry."""
     if not file:
         raise ConfigError(f"{source}: field 'object.file' is required for shape 'file'")
     plant, parser = _plant_and_parser()
     path = _model_path(file, parser.package_map(), source)
-    for mesh in _mesh_references(path):
+    for mesh in _mesh_references(path, f"{source}: field 'object.file': '{file}'"):
         _check_mesh(mesh, path, file, parser.package_map(), source)
     try:
         if file.startswith("package://"):
@@ -47,6 +50,10 @@ def check_model_file(file: str, source: str) -> None:
         raise ConfigError(
             f"{source}: field 'object.file': '{file}' must hold one model with one body "
             f"(the object), it holds {len(instances)} model(s) with bodies {bodies}")
+    if not plant.GetCollisionGeometriesForBody(plant.GetBodyByName(bodies[0], instances[0])):
+        raise ConfigError(
+            f"{source}: field 'object.file': '{file}' has no collision geometry on its body "
+            f"'{bodies[0]}', so the hand has nothing to grasp; give its link a <collision>")
 
 
 def drake_error_line(error: Exception) -> str:
@@ -99,7 +106,8 @@ def _resolved(uri: str, package_map, folder: pathlib.Path, refusal: str) -> path
 
 
 def _check_regular_file(path: pathlib.Path, limit: int, named: str) -> None:
-    # A model or mesh is never a device: not /dev/null or /dev/zero either.
+    """ConfigError, `named` first, unless `path` is a regular file of at most `limit` bytes
+    (a model or mesh is never a device: not /dev/null or /dev/zero either)."""
     problem = file_problem(path, devices=())
     if problem is None and path.stat().st_size > limit:
         problem = f"is larger than {limit} bytes, the most this reads"
@@ -107,9 +115,14 @@ def _check_regular_file(path: pathlib.Path, limit: int, named: str) -> None:
         raise ConfigError(f"{named} {problem}")
 
 
-def _mesh_references(path: pathlib.Path) -> list[str]:
+class _DocumentTypeDeclared(Exception):
+    """The model file declares a DTD (refused before its entities are expanded)."""
+
+
+def _mesh_references(path: pathlib.Path, named: str) -> list[str]:
     """The mesh files an SDF (<mesh><uri>) or URDF (<mesh filename=...>) file names, in the
-    order given; none from a file that is not XML (Drake then says what is wrong with it)."""
+    order given. ConfigError, `named` first, for a file that is not well-formed XML, or that
+    declares a DTD (<!DOCTYPE ...>), refused as the parser meets it: before any entity."""
     meshes, elements, text = [], [], []
 
     def start(name, attributes):
@@ -123,11 +136,20 @@ def _mesh_references(path: pathlib.Path) -> list[str]:
             meshes.append("".join(text).strip())
         elements.pop()
 
+    def document_type(*declaration):
+        raise _DocumentTypeDeclared()
+
     parser = xml.parsers.expat.ParserCreate()
     parser.StartElementHandler, parser.EndElementHandler = start, end
     parser.CharacterDataHandler = text.append
+    parser.StartDoctypeDeclHandler = document_type
     try:
         parser.Parse(read_bounded(path, MAX_MODEL_FILE_BYTES, devices=()), True)
-    except xml.parsers.expat.ExpatError:
-        return []
+    except _DocumentTypeDeclared:
+        raise ConfigError(f"{named} declares a document type (<!DOCTYPE ...>), which a model "
+                          "file has no use for and whose entities could expand without "
+                          "bound; remove it (and any &entity; it defines)") from None
+    except xml.parsers.expat.ExpatError as e:
+        raise ConfigError(f"{named} is not a model Drake can load: it is not well-formed XML "
+                          f"({e})") from None
     return [mesh for mesh in meshes if mesh]
