@@ -339,16 +339,16 @@ def _kind_problem(mode: int, path, devices=READABLE_DEVICES) -> str | None:
     return "is a device, not a file; give a regular file"
 
 
-def file_problem(path) -> str | None:
+def file_problem(path, devices=READABLE_DEVICES) -> str | None:
     """Why `path` cannot be read as a file, in words that follow it ("does not exist", "is a named
-    pipe (FIFO), not a file; ..."), or None; nothing is opened."""
+    pipe (FIFO), not a file; ..."), or None (also for one of `devices`); nothing is opened."""
     try:
         mode = os.stat(path).st_mode
     except FileNotFoundError:
         return "does not exist"
     except OSError as e:
         return f"cannot be read: {e.strerror or e}"
-    return _kind_problem(mode, path)
+    return _kind_problem(mode, path, devices)
 
 
 def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:

@@ -2,7 +2,10 @@
 a source checkout) and the user's recorded events live ($TEGRASP_EVENTS_DIR, else
 $XDG_DATA_HOME/tegrasp/events when that is an absolute path, else
 ~/.local/share/tegrasp/events). Readers search --events
-alone, else the user's folder, then the package's."""
+alone, else the user's folder, then the package's. A folder a variable names must exist for
+a reader, as --events must (a typo would read other events than meant, in silence): only
+the default folder, and tegrasp/events in an existing XDG_DATA_HOME, may be absent (no
+events recorded yet); a writer (record-events) makes it."""
 
 import importlib.resources
 import logging
@@ -48,12 +51,21 @@ def user_events_dir() -> pathlib.Path:
 def user_events_setting() -> tuple[pathlib.Path, str]:
     """(user_events_dir(), the setting that chose it in words, e.g. "XDG_DATA_HOME='/data'
     (events in /data/tegrasp/events)"), for a refusal to name what the user set."""
+    folder, named, _ = _user_events_choice()
+    return folder, named
+
+
+def _user_events_choice() -> tuple[pathlib.Path, str, tuple[pathlib.Path, str] | None]:
+    """user_events_setting() and (the folder the variable that chose it names, what that
+    folder should be), which a reader needs to exist (module docstring); None for the
+    default folder."""
     chosen = os.environ.get(EVENTS_ENV, "").strip()
     if chosen:
         folder = pathlib.Path(chosen).expanduser()
         named = f"{EVENTS_ENV}={chosen!r}"
         _check_folder_path(folder, named, "an events folder")
-        return folder, named
+        return folder, named, (folder,
+                               "your events folder (`tegrasp record-events` makes it)")
     data_home = os.environ.get("XDG_DATA_HOME", "").strip()
     if data_home and not os.path.isabs(data_home):
         # The XDG Base Directory spec: "If an implementation encounters a relative path in any
@@ -68,10 +80,21 @@ def user_events_setting() -> tuple[pathlib.Path, str]:
     base = pathlib.Path(data_home) if data_home else pathlib.Path.home() / ".local" / "share"
     folder = base / "tegrasp" / "events"
     if not data_home:
-        return folder, f"the default events folder {folder}"
+        return folder, f"the default events folder {folder}", None
     named = f"XDG_DATA_HOME={data_home!r} (events in {folder})"
     _check_folder_path(folder, named, "your data folder")
-    return folder, named
+    return folder, named, (base, "your data folder")
+
+
+def _user_events_to_read() -> pathlib.Path:
+    """user_events_dir() for a reader: UserPathError naming the variable when the folder it
+    names does not exist (module docstring)."""
+    from tegrasp_drake.rig.files import UserPathError
+    folder, named, named_folder = _user_events_choice()
+    if named_folder is not None and not named_folder[0].is_dir():
+        raise UserPathError(f"{named}: {named_folder[0]} does not exist; point it at "
+                            f"{named_folder[1]}, or unset it")
+    return folder
 
 
 def _check_folder_path(folder: pathlib.Path, named: str, meant: str) -> None:
@@ -96,7 +119,7 @@ def events_search_path(explicit=None, hand_folder: str = "") -> list[pathlib.Pat
     if explicit:
         return [pathlib.Path(explicit).expanduser()]
     package = package_events_dir()
-    return [user_events_dir(), package / hand_folder if hand_folder else package]
+    return [_user_events_to_read(), package / hand_folder if hand_folder else package]
 
 
 def is_installed_package_data(folder) -> bool:

@@ -21,7 +21,6 @@ from tegrasp_drake.control.controller_registry import (
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.files import file_problem
 from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_ranges,
                                       check_times_resolved, declare_ranges, shorten)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
@@ -49,6 +48,7 @@ from tegrasp_drake.rig.api_boundary import (PathLike, public_api, public_datacla
                                             register_moved_fields, relations_checked)
 from tegrasp_drake.scenario.moved_keys import (MOVED_KEYS, migrate_stored_scenario,
                                                 refuse_moved_keys)
+from tegrasp_drake.rig.object_file import check_model_file
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 
 DEFAULT_SCENARIO = "default"
@@ -180,7 +180,7 @@ def resolve_object(config: ObjectConfig, source: str = "scenario", *,
         field, words = problem
         raise ConfigError(f"{source}: field 'object.{field}' {words}")
     if config.shape == "file":
-        _check_model_file(config.file, source)
+        check_model_file(config.file, source)
     return config
 
 
@@ -190,37 +190,6 @@ def _is_builtin_geometry(config: ObjectConfig) -> bool:
     builtin = BUILTIN_OBJECTS[config.name]
     return (config.shape == builtin.shape and list(config.size) == list(builtin.size)
             and config.file == builtin.file)
-
-
-def _check_model_file(file: str, source: str) -> None:
-    """The object's model file parses and holds one model with one body."""
-    from pydrake.multibody.plant import MultibodyPlant
-    if not file:
-        raise ConfigError(f"{source}: field 'object.file' is required for shape 'file'")
-    if not file.startswith("package://"):
-        # What the path is, in words: "does not exist", "is a folder, not a file", "is a
-        # named pipe (FIFO)", "is a device" (a model file is never /dev/null or /dev/zero).
-        problem = file_problem(file) or (None if pathlib.Path(file).is_file() else
-                                         "is a device, not a file; give a regular file")
-        if problem:
-            raise ConfigError(f"{source}: field 'object.file': model file '{file}' "
-                              f"{problem}")
-    plant = MultibodyPlant(time_step=0.0)
-    parser = paths.make_parser(plant)
-    try:
-        if file.startswith("package://"):
-            instances = parser.AddModels(url=file)
-        else:
-            instances = parser.AddModels(file_name=file)
-    except (RuntimeError, ValueError) as e:
-        first_line = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-        raise ConfigError(f"{source}: field 'object.file': '{file}' is not a model Drake "
-                          f"can load: {first_line}") from None
-    bodies = [plant.get_body(b).name() for i in instances for b in plant.GetBodyIndices(i)]
-    if len(instances) != 1 or len(bodies) != 1:
-        raise ConfigError(
-            f"{source}: field 'object.file': '{file}' must hold one model with one body "
-            f"(the object), it holds {len(instances)} model(s) with bodies {bodies}")
 
 
 def _check_controller(scenario: Scenario, source: str) -> None:

@@ -12,6 +12,8 @@ from pydrake.multibody.plant import CoulombFriction
 from pydrake.multibody.tree import ModelInstanceIndex
 
 from tegrasp_drake.modelgen.sdf_text import box_inertia, friction_text, inertial_text
+from tegrasp_drake.rig.files import UserPathError
+from tegrasp_drake.rig.object_file import drake_error_line
 from tegrasp_drake.rig.objects import DEFAULT_COLOR, ObjectConfig
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 
@@ -73,16 +75,27 @@ def _corner_hull_collision(plant, instance, config: ObjectConfig) -> None:
         Convex(corners * half[:, None], "box_corner_hull"), "collision", properties)
 
 
+def _added_model_file(parser, file: str) -> list[ModelInstanceIndex]:
+    """The model instances of the model file `file` (a path or package:// URL); UserPathError
+    (one line, naming object.file, which the command line reports as a user's file) when
+    Drake cannot load it: a file changed since the scenario's check (rig/object_file.py), or
+    an object config that never went through it."""
+    try:
+        if file.startswith("package://"):
+            return parser.AddModels(url=file)
+        return parser.AddModels(file_name=file)
+    except (RuntimeError, ValueError) as e:
+        raise UserPathError(f"field 'object.file': '{file}' is not a model Drake can load: "
+                            f"{drake_error_line(e)}") from None
+
+
 def AddObject(parser, config: ObjectConfig,
               geometry: ContactGeometryConfig | None = None) -> ModelInstanceIndex:
     """Adds the object to the parser's plant, meshed as `geometry` says; returns its instance."""
     geometry = geometry or ContactGeometryConfig()
     corner_hull = config.shape == "box" and geometry.box_triangles == 12
     if config.shape == "file":
-        if config.file.startswith("package://"):
-            instances = parser.AddModels(url=config.file)
-        else:
-            instances = parser.AddModels(file_name=config.file)
+        instances = _added_model_file(parser, config.file)
     else:
         instances = parser.AddModelsFromString(object_sdf(config, collision=not corner_hull),
                                                "sdf")
