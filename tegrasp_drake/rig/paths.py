@@ -2,10 +2,12 @@
 a source checkout) and the user's recorded events live ($TEGRASP_EVENTS_DIR, else
 $XDG_DATA_HOME/tegrasp/events when that is an absolute path, else
 ~/.local/share/tegrasp/events). Readers search --events
-alone, else the user's folder, then the package's. A folder a variable names must exist for
-a reader, as --events must (a typo would read other events than meant, in silence): only
-the default folder, and tegrasp/events in an existing XDG_DATA_HOME, may be absent (no
-events recorded yet); a writer (record-events) makes it."""
+alone, else the user's folder, then the package's. The folder TEGRASP_EVENTS_DIR names must
+exist for a reader, as --events must (the variable names events and nothing else: a typo
+would read other events than meant, in silence). The folder below XDG_DATA_HOME, or the
+default, may be absent, as XDG_DATA_HOME itself may (a variable every application shares,
+set before any of them wrote there): no events recorded yet; a writer (record-events)
+makes it."""
 
 import importlib.resources
 import logging
@@ -56,9 +58,9 @@ def user_events_setting() -> tuple[pathlib.Path, str]:
 
 
 def _user_events_choice() -> tuple[pathlib.Path, str, tuple[pathlib.Path, str] | None]:
-    """user_events_setting() and (the folder the variable that chose it names, what that
-    folder should be), which a reader needs to exist (module docstring); None for the
-    default folder."""
+    """user_events_setting() and (the folder TEGRASP_EVENTS_DIR names, what that folder should
+    be), which a reader needs to exist (module docstring); None for XDG_DATA_HOME's folder
+    and the default."""
     chosen = os.environ.get(EVENTS_ENV, "").strip()
     if chosen:
         folder = pathlib.Path(chosen).expanduser()
@@ -83,7 +85,7 @@ def _user_events_choice() -> tuple[pathlib.Path, str, tuple[pathlib.Path, str] |
         return folder, f"the default events folder {folder}", None
     named = f"XDG_DATA_HOME={data_home!r} (events in {folder})"
     _check_folder_path(folder, named, "your data folder")
-    return folder, named, (base, "your data folder")
+    return folder, named, None
 
 
 def _user_events_to_read() -> pathlib.Path:
