@@ -90,6 +90,11 @@ class TaxelAwareConfig:
     tilt_sustain_s: float = bounded(0.1, low=0.0, high=1.0, unit="s",
                                     below="must be zero or positive [s]")
     max_regrasps: int = bounded(1, low=0, high=10, below="must be zero or positive")
+    # lift at the Load timeout only with each pad's sum above this [N] (load_timeout_both_pads):
+    # the number is contact_force_n plus ideal force taxels' margin; sa_noise_floor raises it
+    # to contact_force_n in force plus the loaded noise's (noise_thresholds.held_margin)
+    lift_pad_sum_n: float = bounded(0.5, low=0.0, high=50.0, unit="N",
+                                    below="must be zero or positive [N]")
     # Eq. 3 [SA, RA] per ensemble event; empty: the hand's (analysis/choose_ensemble_thresholds.py)
     reach_load_thresholds: list[float] = unset_when_empty(
         _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
