@@ -302,3 +302,25 @@ def test_the_papers_controller_reads_no_estimate():
     hold = situation(contact=(True, True), estimate=dict(tilted_s=1.0))
     assert paper_next_mode(Mode.HOLD, hold, Counters(), paper,
                            event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None
+
+
+def test_the_load_timeout_lifts_only_a_grip_the_drop_check_will_not_call_lost():
+    """On the capacitive pads (thresholds raised to their noise), a grip reading just above
+    contact_force_n is one the drop check finds lost within a few samples of noise: the Load
+    timeout Re-Reaches it; a grip clear of it by the noise margin is lifted."""
+    from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
+    from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
+    resolved = resolve_noise_thresholds(CONFIG, ra_noise_std_mps2=0.0, ra_rate_hz=1000.0,
+                                        tactile=TactileSensorConfig(), sa_rate_hz=108.0)
+    drop = resolved.contact_force_n
+    lift = resolved.taxel_aware.lift_pad_sum_n
+    assert lift > drop
+    near_drop = situation(contact=(True, True), **LOAD_LATE,
+                          estimate=dict(sa_n=(drop + 0.6, drop + 0.9)))
+    assert code(Mode.LOAD, near_drop, config=resolved) == "load_timeout"
+    one_pad_short = situation(contact=(True, True), **LOAD_LATE,
+                              estimate=dict(sa_n=(lift + 5.0, lift - 0.1)))
+    assert code(Mode.LOAD, one_pad_short, config=resolved) == "load_timeout"
+    clear = situation(contact=(True, True), **LOAD_LATE,
+                      estimate=dict(sa_n=(lift + 0.1, lift + 0.1)))
+    assert code(Mode.LOAD, clear, config=resolved) == "load_timeout_both_pads"
