@@ -118,8 +118,8 @@ CASES = [
     ("avoid_hit", Mode.HOLD, dict(contact=(True, True), hit=True), dict(contact=(True, True)),
      Counters()),
     ("held_tilted", Mode.HOLD,
-     dict(contact=(True, True), estimate=dict(tilted_s=TAXEL.tilt_sustain_s)),
-     dict(contact=(True, True), estimate=dict(tilted_s=0.5 * TAXEL.tilt_sustain_s)),
+     dict(contact=(True, True), estimate=dict(tilted_s=TAXEL.regrasp.tilt_sustain_s)),
+     dict(contact=(True, True), estimate=dict(tilted_s=0.5 * TAXEL.regrasp.tilt_sustain_s)),
      Counters()),
     ("hold_time", Mode.HOLD, dict(contact=(True, True), time_in_mode=3.0),
      dict(contact=(True, True), time_in_mode=2.9), Counters()),
@@ -242,14 +242,14 @@ def test_the_bracket_re_centres_on_the_middle_of_the_two_faces():
 
 def test_the_regrasp_puts_down_and_re_reaches_without_a_shift_or_a_count():
     hold = decide(Mode.HOLD, situation(contact=(True, True),
-                                       estimate=dict(tilted_s=TAXEL.tilt_sustain_s)))
+                                       estimate=dict(tilted_s=TAXEL.regrasp.tilt_sustain_s)))
     assert (hold.mode, hold.trigger, hold.action) == (Mode.PLACE, Trigger.CORRECTIVE,
                                                       Regrasp())
     place = decide(Mode.PLACE, situation(contact=(True, True), event_matched=True,
                                          regrasp_pending=True), Counters(regrasps=1))
     assert place.action == ReReach(Shift(0.0, 0.0), counted=False)
     once = decide(Mode.HOLD, situation(contact=(True, True), estimate=dict(
-        tilted_s=TAXEL.tilt_sustain_s)), Counters(regrasps=TAXEL.max_regrasps))
+        tilted_s=TAXEL.regrasp.tilt_sustain_s)), Counters(regrasps=TAXEL.regrasp.max_regrasps))
     assert once is None  # at most max_regrasps
 
 
