@@ -62,6 +62,22 @@ _HANDS_THRESHOLDS = "the hand's thresholds for this event"
 
 @public_dataclass
 @dataclasses.dataclass
+class RegraspConfig:
+    """The taxel_aware re-grasp of an object held tilted: put it down and grasp it again."""
+    enabled: bool = True
+    # held tilted: the contact line turned this far, or the contacts this far apart (half a
+    # column)
+    tilt_limit_deg: float = bounded(10.0, low=0.0, high=90.0, unit="deg")
+    height_mismatch_m: float = bounded(0.0033, low=0.0, high=0.05, unit="m",
+                                       below="must be zero or positive [m]")
+    # for this long [s] (one tick of noise is not a tilt)
+    tilt_sustain_s: float = bounded(0.1, low=0.0, high=1.0, unit="s",
+                                    below="must be zero or positive [s]")
+    max_regrasps: int = bounded(1, low=0, high=10, below="must be zero or positive")
+
+
+@public_dataclass
+@dataclasses.dataclass
 class TaxelAwareConfig:
     """The taxel-aware corrections; a pad row is 6 mm along the approach, a column 6.7 mm."""
     # Re-Reach along the approach when the contact is this far off centre [m]: 2/3 of a row
@@ -81,15 +97,12 @@ class TaxelAwareConfig:
     # a first touch on the distal row alone, centroid beyond [m]: the row's 9 mm less 0.5 mm
     beyond_pads_centroid_m: float = bounded(0.0085, low=0.0, high=0.05, unit="m",
                                             below="must be zero or positive [m]")
-    # held tilted: re-grasp (height_mismatch_m: half a column)
-    regrasp_enabled: bool = True
-    tilt_limit_deg: float = bounded(10.0, low=0.0, high=90.0, unit="deg")
-    height_mismatch_m: float = bounded(0.0033, low=0.0, high=0.05, unit="m",
-                                       below="must be zero or positive [m]")
-    # for this long [s] (one tick of noise is not a tilt)
-    tilt_sustain_s: float = bounded(0.1, low=0.0, high=1.0, unit="s",
-                                    below="must be zero or positive [s]")
-    max_regrasps: int = bounded(1, low=0, high=10, below="must be zero or positive")
+    regrasp: RegraspConfig = dataclasses.field(default_factory=RegraspConfig)
+    # lift at the Load timeout only with each pad's sum above this [N] (load_timeout_both_pads):
+    # the number is contact_force_n plus ideal force taxels' margin; sa_noise_floor raises it
+    # to contact_force_n in force plus the loaded noise's (noise_thresholds.held_margin)
+    lift_pad_sum_n: float = bounded(0.5, low=0.0, high=50.0, unit="N",
+                                    below="must be zero or positive [N]")
     # Eq. 3 [SA, RA] per ensemble event; empty: the hand's (analysis/choose_ensemble_thresholds.py)
     reach_load_thresholds: list[float] = unset_when_empty(
         _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
@@ -333,6 +346,15 @@ MOVED_FIELDS = {
     "flat_template_needs_flat_window": "matching.flat_template_needs_flat_window",
 }
 register_moved_fields(GraspControllerConfig, MOVED_FIELDS)
+# The taxel_aware re-grasp's settings, nested when the section was full (old field -> path).
+TAXEL_AWARE_MOVED_FIELDS = {
+    "regrasp_enabled": "regrasp.enabled",
+    "tilt_limit_deg": "regrasp.tilt_limit_deg",
+    "height_mismatch_m": "regrasp.height_mismatch_m",
+    "tilt_sustain_s": "regrasp.tilt_sustain_s",
+    "max_regrasps": "regrasp.max_regrasps",
+}
+register_moved_fields(TaxelAwareConfig, TAXEL_AWARE_MOVED_FIELDS)
 
 
 def _block_problem(block_s: float, ra_rate_hz: float) -> tuple[str, str, object] | None:

@@ -54,6 +54,7 @@ class SaNoiseFloors:
     pad_sum: float        # Eq. 1's sum of one pad at rest
     taxel: float          # one taxel's reading at rest
     pad_asymmetry: float  # |difference of the two pads' SA gains|, both pads loaded
+    held_margin: float    # how far above contact_force_n a pad must read to lift (held_margin)
 
 
 def sa_noise_floors(tactile_config, sa_rate_hz: float) -> SaNoiseFloors:
@@ -65,11 +66,29 @@ def sa_noise_floors(tactile_config, sa_rate_hz: float) -> SaNoiseFloors:
         pad_sum=reading.sum_of(TAXELS_PER_PAD).exceeded_with(
             FALSE_ALARM_PER_TRIAL / (samples * PADS)),
         taxel=reading.exceeded_with(FALSE_ALARM_PER_TRIAL / (samples * PADS * TAXELS_PER_PAD)),
-        pad_asymmetry=float(norm.isf(FALSE_ALARM_PER_TRIAL / 2.0) * asymmetry_std))
+        pad_asymmetry=float(norm.isf(FALSE_ALARM_PER_TRIAL / 2.0) * asymmetry_std),
+        held_margin=held_margin(tactile_config, samples))
+
+
+def held_margin(tactile_config, samples_per_trial: int) -> float:
+    """How far above the drop check's pad sum [N] one reading of each pad must lie to lift.
+
+    The drop check calls the object lost at the first sample both pads read at or below it; a
+    held pad reads its force plus the loaded noise, sigma = sqrt(12) x a taxel's (1.06 N on
+    the capacitive pad), the pads independent. A grip whose force lies z_hold sigma above it
+    leaves both pads below it in at most FALSE_ALARM_PER_TRIAL of trials of samples_per_trial
+    samples: Phi(-z_hold)^2 samples <= FALSE_ALARM_PER_TRIAL. The lift decides on one reading
+    per pad: a grip weaker than that reads z_read sigma more, either pad, in at most
+    FALSE_ALARM_PER_TRIAL of lifts. The margin is (z_hold + z_read) sigma."""
+    sigma = np.sqrt(TAXELS_PER_PAD) * loaded_noise(tactile_config).std()
+    z_hold = norm.isf(np.sqrt(FALSE_ALARM_PER_TRIAL / samples_per_trial))
+    z_read = norm.isf(FALSE_ALARM_PER_TRIAL / PADS)
+    return float((z_hold + z_read) * sigma)
 
 
 def _sa_changes(config, floors: SaNoiseFloors) -> dict:
-    changes = {"contact_force_n": max(config.contact_force_n, floors.pad_sum),
+    contact_force_n = max(config.contact_force_n, floors.pad_sum)
+    changes = {"contact_force_n": contact_force_n,
                "taxel_contact_n": max(config.taxel_contact_n, floors.taxel),
                "avoid": dataclasses.replace(config.avoid, sa_asymmetry_n=max(
                    config.avoid.sa_asymmetry_n, floors.pad_asymmetry))}
@@ -77,6 +96,10 @@ def _sa_changes(config, floors: SaNoiseFloors) -> dict:
     if heuristic is not None:
         changes["heuristic"] = dataclasses.replace(
             heuristic, contact_force_n=max(heuristic.contact_force_n, floors.pad_sum))
+    taxel_aware = getattr(config, "taxel_aware", None)
+    if taxel_aware is not None:
+        changes["taxel_aware"] = dataclasses.replace(taxel_aware, lift_pad_sum_n=max(
+            taxel_aware.lift_pad_sum_n, contact_force_n + floors.held_margin))
     return changes
 
 

@@ -6,6 +6,7 @@ records are read through `migrate_stored_scenario` and `migrate_stored_overrides
 import copy
 
 from tegrasp_drake.control.controller_config import MOVED_FIELDS as CONTROLLER_MOVED
+from tegrasp_drake.control.controller_config import TAXEL_AWARE_MOVED_FIELDS
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.simulation.pad_vibration_sensor import MOVED_TO_FILM
 
@@ -13,6 +14,8 @@ from tegrasp_drake.simulation.pad_vibration_sensor import MOVED_TO_FILM
 # that never imports this package still gets the new path).
 MOVED_KEYS = {
     **{f"controller.{old}": f"controller.{new}" for old, new in CONTROLLER_MOVED.items()},
+    **{f"controller.taxel_aware.{old}": f"controller.taxel_aware.{new}"
+       for old, new in TAXEL_AWARE_MOVED_FIELDS.items()},
     **{f"vibration.{name}": f"vibration.film.{name}" for name in MOVED_TO_FILM},
     "expected_object_xy": "placement.expected_xy",
     "object_offset": "placement.offset",

@@ -29,11 +29,11 @@ def test_the_default_is_the_papers_algorithm():
 def test_a_yaml_tag_selects_the_controller_and_its_settings(tmp_path):
     path = tmp_path / "scenarios.yaml"
     path.write_text("tilted:\n  controller: !TaxelAwareControllerConfig\n"
-                    "    taxel_aware: {tilt_limit_deg: 0.2}\n"
+                    "    taxel_aware: {regrasp: {tilt_limit_deg: 0.2}}\n"
                     "plain:\n  controller: !HeuristicControllerConfig {}\n")
     tilted = LoadScenario(path, "tilted").controller
     assert isinstance(tilted, TaxelAwareControllerConfig)
-    assert tilted.taxel_aware.tilt_limit_deg == 0.2
+    assert tilted.taxel_aware.regrasp.tilt_limit_deg == 0.2
     assert isinstance(LoadScenario(path, "plain").controller, HeuristicControllerConfig)
 
 

@@ -118,8 +118,8 @@ CASES = [
     ("avoid_hit", Mode.HOLD, dict(contact=(True, True), hit=True), dict(contact=(True, True)),
      Counters()),
     ("held_tilted", Mode.HOLD,
-     dict(contact=(True, True), estimate=dict(tilted_s=TAXEL.tilt_sustain_s)),
-     dict(contact=(True, True), estimate=dict(tilted_s=0.5 * TAXEL.tilt_sustain_s)),
+     dict(contact=(True, True), estimate=dict(tilted_s=TAXEL.regrasp.tilt_sustain_s)),
+     dict(contact=(True, True), estimate=dict(tilted_s=0.5 * TAXEL.regrasp.tilt_sustain_s)),
      Counters()),
     ("hold_time", Mode.HOLD, dict(contact=(True, True), time_in_mode=3.0),
      dict(contact=(True, True), time_in_mode=2.9), Counters()),
@@ -242,14 +242,14 @@ def test_the_bracket_re_centres_on_the_middle_of_the_two_faces():
 
 def test_the_regrasp_puts_down_and_re_reaches_without_a_shift_or_a_count():
     hold = decide(Mode.HOLD, situation(contact=(True, True),
-                                       estimate=dict(tilted_s=TAXEL.tilt_sustain_s)))
+                                       estimate=dict(tilted_s=TAXEL.regrasp.tilt_sustain_s)))
     assert (hold.mode, hold.trigger, hold.action) == (Mode.PLACE, Trigger.CORRECTIVE,
                                                       Regrasp())
     place = decide(Mode.PLACE, situation(contact=(True, True), event_matched=True,
                                          regrasp_pending=True), Counters(regrasps=1))
     assert place.action == ReReach(Shift(0.0, 0.0), counted=False)
     once = decide(Mode.HOLD, situation(contact=(True, True), estimate=dict(
-        tilted_s=TAXEL.tilt_sustain_s)), Counters(regrasps=TAXEL.max_regrasps))
+        tilted_s=TAXEL.regrasp.tilt_sustain_s)), Counters(regrasps=TAXEL.regrasp.max_regrasps))
     assert once is None  # at most max_regrasps
 
 
@@ -302,3 +302,25 @@ def test_the_papers_controller_reads_no_estimate():
     hold = situation(contact=(True, True), estimate=dict(tilted_s=1.0))
     assert paper_next_mode(Mode.HOLD, hold, Counters(), paper,
                            event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0) is None
+
+
+def test_the_load_timeout_lifts_only_a_grip_the_drop_check_will_not_call_lost():
+    """On the capacitive pads (thresholds raised to their noise), a grip reading just above
+    contact_force_n is one the drop check finds lost within a few samples of noise: the Load
+    timeout Re-Reaches it; a grip clear of it by the noise margin is lifted."""
+    from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
+    from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
+    resolved = resolve_noise_thresholds(CONFIG, ra_noise_std_mps2=0.0, ra_rate_hz=1000.0,
+                                        tactile=TactileSensorConfig(), sa_rate_hz=108.0)
+    drop = resolved.contact_force_n
+    lift = resolved.taxel_aware.lift_pad_sum_n
+    assert lift > drop
+    near_drop = situation(contact=(True, True), **LOAD_LATE,
+                          estimate=dict(sa_n=(drop + 0.6, drop + 0.9)))
+    assert code(Mode.LOAD, near_drop, config=resolved) == "load_timeout"
+    one_pad_short = situation(contact=(True, True), **LOAD_LATE,
+                              estimate=dict(sa_n=(lift + 5.0, lift - 0.1)))
+    assert code(Mode.LOAD, one_pad_short, config=resolved) == "load_timeout"
+    clear = situation(contact=(True, True), **LOAD_LATE,
+                      estimate=dict(sa_n=(lift + 0.1, lift + 0.1)))
+    assert code(Mode.LOAD, clear, config=resolved) == "load_timeout_both_pads"

@@ -9,6 +9,7 @@ approach axis and curl); the rules run on the linkage hand in the sweeps
 
 import pytest
 
+from tegrasp_drake.control.controller_config import RegraspConfig
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec
 from tests.cheap_contact import CHEAP_CONTACT
 from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,
@@ -51,7 +52,8 @@ SCENES = {
         (("Reach", "Load", "reach_event"), ("Load", "Lift", "load_lift_event")))),
     # The thin cylinder pushed along the stroke is held 3-5 deg tilted; its taxels read
     # 0.4-0.9 deg of line tilt, so the limit is lowered below that to run the re-grasp.
-    "regrasp": (Scene("thin_cylinder", (0.0, 0.015), taxel_aware=(("tilt_limit_deg", 0.2),),
+    "regrasp": (Scene("thin_cylinder", (0.0, 0.015), taxel_aware=(
+                          ("regrasp", RegraspConfig(tilt_limit_deg=0.2)),),
                       reads_the_held_grip=True),
                 Expect((("Hold", "Place", "held_tilted"),
                         ("Place", "Re-Reach", "regrasp_after_place"),

@@ -151,8 +151,9 @@ def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,
 
 
 def held_tilted(contact: GraspContact, taxel_config) -> bool:
-    """A contact line turned past tilt_limit_deg, or contacts height_mismatch_m apart."""
-    tilted_line = contact.tilt_deg is not None and abs(contact.tilt_deg) > \
-        taxel_config.tilt_limit_deg
-    return tilted_line or abs(contact.height_mismatch_m) > taxel_config.height_mismatch_m
+    """A contact line turned past regrasp.tilt_limit_deg, or contacts regrasp.height_mismatch_m
+    apart."""
+    regrasp = taxel_config.regrasp
+    tilted_line = contact.tilt_deg is not None and abs(contact.tilt_deg) > regrasp.tilt_limit_deg
+    return tilted_line or abs(contact.height_mismatch_m) > regrasp.height_mismatch_m
 

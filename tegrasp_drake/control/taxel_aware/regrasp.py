@@ -10,9 +10,9 @@ from tegrasp_drake.control.transition_logic import placed
 
 
 def tilted_for_long(situation) -> bool:
-    taxel = situation.config.taxel_aware
-    return (taxel.regrasp_enabled and situation.estimate.tilted_s >= taxel.tilt_sustain_s
-            and situation.counters.regrasps < taxel.max_regrasps)
+    regrasp = situation.config.taxel_aware.regrasp
+    return (regrasp.enabled and situation.estimate.tilted_s >= regrasp.tilt_sustain_s
+            and situation.counters.regrasps < regrasp.max_regrasps)
 
 
 def put_down(situation):
@@ -30,7 +30,7 @@ def open_and_close_again(situation):
 
 HELD_TILTED = Rule(
     "held_tilted", (Mode.HOLD,), 150, tilted_for_long, put_down,
-    when="held tilted for tilt_sustain_s; re-grasps left",
+    when="held tilted for regrasp.tilt_sustain_s; re-grasps left",
     then="Regrasp (Place)")
 REGRASP_AFTER_PLACE = Rule(
     "regrasp_after_place", (Mode.PLACE,), 50, placed_to_regrasp, open_and_close_again,
