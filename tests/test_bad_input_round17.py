@@ -36,3 +36,45 @@ def test_an_index_listing_no_events_is_refused_naming_it(tmp_path, capfd):
     assert code == 1, error
     assert_one_line_error(code, error, "index.json", "lists no events")
     assert not (tmp_path / "events.png").exists()
+
+
+# Rule: a sweep spec's `user_objects` entry that `objects` does not name is refused, naming it
+# and saying to add it to `objects`, wherever a spec is checked (the file's reader, a
+# SweepSpec built in Python, the command line); not dropped while the default objects run.
+# A command line's `--objects` chooses the objects to run: the spec's other definitions are
+# then the user's choice not to run them.
+MUG = "{mug: {shape: cylinder, size: [0.04, 0.1], mass: 0.3, friction: 0.5}}"
+
+
+@pytest.mark.parametrize("text", [f"user_objects: {MUG}\n",
+                                  f"objects: [box]\nuser_objects: {MUG}\n"])
+def test_a_user_object_the_spec_does_not_run_is_refused(tmp_path, capfd, text):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.sweep import LoadSweepSpec
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(text)
+    with pytest.raises(ConfigError, match=r"user_objects\.mug.*add it to 'objects'"):
+        LoadSweepSpec(spec)
+    code, error = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"),
+                           "--workers", "1", "--base-seed", "640", "--no-progress"], capfd)
+    assert_one_line_error(code, error, "user_objects.mug", "objects")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_user_object_a_python_spec_does_not_run_is_refused():
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.rig.objects import ObjectConfig
+    from tegrasp_drake.sweep import SweepSpec, expand_trials
+    mug = ObjectConfig(name="mug", shape="cylinder", size=[0.04, 0.1], mass=0.3, friction=0.5)
+    with pytest.raises(ConfigError, match=r"user_objects\.mug"):
+        expand_trials(SweepSpec(objects=("box",), user_objects={"mug": mug}))
+
+
+def test_objects_chosen_on_the_command_line_leave_the_other_definitions_unrun(tmp_path):
+    import argparse
+    from tegrasp_drake.commands.sweep import spec_from_arguments
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(f"objects: [box, mug]\nuser_objects: {MUG}\n")
+    args = argparse.Namespace(spec=str(spec), objects=["box"], controllers=None, attempts=None,
+                              base_seed=None, overrides=None)
+    assert spec_from_arguments(args).objects == ("box",)
