@@ -78,3 +78,43 @@ def test_objects_chosen_on_the_command_line_leave_the_other_definitions_unrun(tm
     args = argparse.Namespace(spec=str(spec), objects=["box"], controllers=None, attempts=None,
                               base_seed=None, overrides=None)
     assert spec_from_arguments(args).objects == ("box",)
+
+
+# Rule: a public function checks its arguments as the command line does. Reports of a folder
+# that holds no trial records (none at all, or only corrupt ones) are refused naming the
+# argument and the folder, and nothing is written; `tegrasp plot table1` refuses it alike.
+@pytest.mark.parametrize("corrupt", [False, True])
+def test_reports_of_a_folder_without_trial_records_are_refused(tmp_path, corrupt):
+    import tegrasp_drake as T
+    (tmp_path / "trials").mkdir()
+    if corrupt:
+        (tmp_path / "trials" / "memorized.box.m00.a0.json").write_text("{not json")
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    with pytest.raises(ValueError, match=r"write_reports: argument 'out_dir'.*no trial record"):
+        T.write_reports(tmp_path)
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
+
+
+# Every public function's folder declarations hold at its call: a folder argument declared
+# to exist (Folder(exists=True)) is refused, naming the argument, when it does not.
+def _existing_folder_arguments():
+    import inspect
+    import typing
+    import tegrasp_drake as T
+    from tegrasp_drake.rig.api_boundary import Folder
+    for name in T.__all__:
+        function = getattr(T, name)
+        if not callable(function) or inspect.isclass(function):
+            continue
+        hints = typing.get_type_hints(inspect.unwrap(function), include_extras=True)
+        for argument, hint in hints.items():
+            if any(isinstance(m, Folder) and m.exists for m in getattr(hint, "__metadata__", ())):
+                yield name, argument
+
+
+@pytest.mark.parametrize("name, argument", list(_existing_folder_arguments()))
+def test_every_folder_declared_to_exist_is_checked_at_the_call(tmp_path, name, argument):
+    import tegrasp_drake as T
+    from tegrasp_drake.rig.files import UserPathError
+    with pytest.raises(UserPathError, match=f"argument '{argument}'.*does not exist"):
+        getattr(T, name).bind_now(**{argument: tmp_path / "missing"})
