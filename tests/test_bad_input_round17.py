@@ -118,3 +118,36 @@ def test_every_folder_declared_to_exist_is_checked_at_the_call(tmp_path, name, a
     from tegrasp_drake.rig.files import UserPathError
     with pytest.raises(UserPathError, match=f"argument '{argument}'.*does not exist"):
         getattr(T, name).bind_now(**{argument: tmp_path / "missing"})
+
+
+# Rule: `--overwrite` replaces the earlier run in the folder wherever that folder has been
+# moved or copied to: its files are known by their names (result.json, trial.npz, the
+# figures' STEM.FORMAT), not by the absolute paths its result.json recorded; the user's own
+# files stay.
+@pytest.mark.parametrize("how", ["moved", "copied"])
+def test_an_overwrite_into_a_moved_or_copied_run_folder_replaces_the_earlier_run(tmp_path, how):
+    from tegrasp_drake.commands import run_folder
+    written = tmp_path / "written"
+    written.mkdir()
+    for name in ("trial.npz", "states.png", "signals.png", "contact_ra.png"):
+        (written / name).write_bytes(b"earlier")
+    (written / "mynotes.txt").write_text("the user's own file")
+    (written / "result.json").write_text(json.dumps(
+        {"log": str(written / "trial.npz"), "figure": str(written / "states.png"),
+         "signals_figure": str(written / "signals.png"),
+         "contact_ra_figure": str(written / "contact_ra.png"),
+         "result": str(written / "result.json")}))
+    folder = tmp_path / "elsewhere"
+    (shutil.move if how == "moved" else shutil.copytree)(written, folder)
+    with run_folder.staged_run(folder) as stage:
+        for name in ("trial.npz", "states.svg", "signals.svg"):
+            (stage / name).write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz"),
+                                              "figure": str(stage / "states.svg"),
+                                              "signals_figure": str(stage / "signals.svg")})
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "mynotes.txt", "result.json", "signals.svg", "states.svg", "trial.npz"]
+    if how == "copied":  # the folder it was copied from is not touched
+        assert sorted(p.name for p in written.iterdir()) == [
+            "contact_ra.png", "mynotes.txt", "result.json", "signals.png", "states.png",
+            "trial.npz"]
