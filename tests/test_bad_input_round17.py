@@ -151,3 +151,64 @@ def test_an_overwrite_into_a_moved_or_copied_run_folder_replaces_the_earlier_run
         assert sorted(p.name for p in written.iterdir()) == [
             "contact_ra.png", "mynotes.txt", "result.json", "signals.png", "states.png",
             "trial.npz"]
+
+
+# Rule: the memorized events a sweep's trials match against are a setting of the sweep, as
+# its seeds and overrides are: each record names them (a content hash, and the folder), and a
+# resume whose events differ is refused, naming both, before any trial runs. The same events
+# in another folder (a copy) are the same setting.
+def _sweep(tmp_path, out, events, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [memorized]\nattempts: 1\nbase_seed: 641\n"
+                    "grid: [[0, 0], [0, 0.005]]\n")
+    return run_cli(["sweep", "--spec", str(spec), "--out", str(out), "--events", str(events),
+                    "--workers", "1", "--no-progress",
+                    "--trial-function", "tests.fake_trials:fake_memorized_trial"], capfd)
+
+
+def test_a_sweep_resumed_with_other_memorized_events_is_refused(tmp_path, capfd):
+    from tegrasp_drake.sweep import load_records
+    events = _events_copy(tmp_path)
+    other = tmp_path / "other_events"
+    shutil.copytree(events, other)
+    reach_load = other / "box" / "reach_load.json"
+    event = json.loads(reach_load.read_text())  # the SA channels swapped: still a valid event
+    samples = event["samples"]
+    samples["sa_left"], samples["sa_right"] = samples["sa_right"], samples["sa_left"]
+    reach_load.write_text(json.dumps(event))
+    out = tmp_path / "out"
+    code, text = _sweep(tmp_path, out, events, capfd)
+    assert code == 0, text
+    records = load_records(out).records
+    assert len(records) == 2 and all(r["events"]["sha256"] for r in records.values())
+    first = sorted(records)[0]
+    (out / "trials" / (sorted(records)[1].replace("/", ".") + ".json")).unlink()
+    code, text = _sweep(tmp_path, out, other, capfd)
+    assert code == 2, text
+    assert "other memorized events" in text and str(other) in text and str(events) in text
+    assert sorted(load_records(out).records) == [first]  # nothing ran
+    same = tmp_path / "same_events"  # a copy of the first events: the sweep resumes
+    shutil.copytree(events, same)
+    code, text = _sweep(tmp_path, out, same, capfd)
+    assert code == 0, text
+    assert len(load_records(out).records) == 2
+
+
+def test_records_that_do_not_name_their_events_are_kept_with_a_warning(tmp_path, capfd,
+                                                                       caplog):
+    from tegrasp_drake.sweep import load_records
+    from tegrasp_drake.sweep.records import _checksum
+    events, out = _events_copy(tmp_path), tmp_path / "out"
+    code, text = _sweep(tmp_path, out, events, capfd)
+    assert code == 0, text
+    paths = sorted((out / "trials").glob("*.json"))
+    old = json.loads(paths[0].read_text())  # as a record of format 1 was written
+    del old["events"], old["checksum"]
+    old["format_version"] = 1
+    old["checksum"] = _checksum(old)
+    paths[0].write_text(json.dumps(old))
+    paths[1].unlink()
+    code, text = _sweep(tmp_path, out, events, capfd)
+    assert code == 0, text
+    assert "1 finished record(s) do not name the memorized events" in caplog.text
+    assert len(load_records(out).records) == 2
