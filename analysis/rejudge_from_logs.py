@@ -42,7 +42,7 @@ def main(argv=None) -> int:
             new = dict(result, **judged)
             changed += int(json.dumps(new, sort_keys=True, default=str)
                            != json.dumps(result, sort_keys=True, default=str))
-            record = make_record(record["trial"], result=new)
+            record = make_record(record["trial"], result=new, events=record.get("events"))
         elif result is not None:
             print(f"rejudge_from_logs: no log {path}; {trial_id} copied unchanged",
                   file=sys.stderr)

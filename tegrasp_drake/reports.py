@@ -21,14 +21,22 @@ def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
                   figure_format: Annotated[str, Choice(FIGURE_FORMATS)] = "png") -> list[Path]:
     """Writes Table I, the statistics, the summary, success by offset and the figures
     (`figure_format`) into `out_dir`, from the records only (with `trial_ids`, those trials');
-    corrupt records are skipped, figures need a finished trial."""
+    corrupt records are skipped, figures need a finished trial; ValueError (nothing written)
+    for a folder with no readable record."""
     # Imported here: matplotlib loads only when a report is written.
     from tegrasp_drake.figures.figure_files import figure_path
     from tegrasp_drake.figures.latency import latency_samples, plot_latency_distributions
     from tegrasp_drake.figures.sweep import write_success_maps
     from tegrasp_drake.figures.table1 import plot_table1
     own = None if trial_ids is None else set(trial_ids)
-    recorded = load_records(out_dir).records
+    loaded = load_records(out_dir)
+    recorded = loaded.records
+    if not recorded:  # not a Table I of zero trials (as `tegrasp plot table1` refuses it)
+        corrupt = (f" ({len(loaded.corrupt)} corrupt, first {next(iter(loaded.corrupt))}: "
+                   f"{next(iter(loaded.corrupt.values()))})" if loaded.corrupt else "")
+        raise ValueError(f"write_reports: argument 'out_dir': {shorten(str(out_dir))} holds no "
+                         f"trial record under trials/{corrupt}; give the results folder of a "
+                         "sweep (run_sweep, `tegrasp sweep --out FOLDER`)")
     records = [record for trial_id, record in recorded.items()
                if own is None or trial_id in own]
     if own is not None and not records:  # not reports of zero trials over the folder's own

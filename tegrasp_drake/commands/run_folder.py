@@ -10,6 +10,7 @@ import pathlib
 import shutil
 import tempfile
 
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, JsonFileError, claim_folder,
                                      folder_problem, interruptions_deferred, own_staging_suffix,
@@ -171,11 +172,21 @@ def commit_run(stage, folder, result: dict) -> dict:
     return result
 
 
+def run_file_names() -> set[str]:
+    """The names a run gives its own files in its folder: result.json, trial.npz and each
+    figure's STEM.FORMAT (a folder moved or copied still holds them under these names)."""
+    return set(RUN_FILES) | {f"{stem}.{figure_format}" for stem in TRIAL_FIGURE_STEMS
+                             for figure_format in FIGURE_FORMATS}
+
+
 def earlier_run_files(folder) -> list[pathlib.Path]:
-    """The files of the run `folder` holds, as its result.json lists them, and its run files:
-    what a new run replaces (the user's own files are never touched)."""
+    """The files of the run `folder` holds: those under a run's own names (run_file_names),
+    and those its result.json lists in this folder (the replay its --html named there): what
+    a new run replaces (the user's own files are never touched). Known by name, since the
+    absolute paths result.json recorded name where the run was written, which a moved or
+    copied folder no longer is."""
     folder = pathlib.Path(folder)
-    files = [folder / name for name in RUN_FILES if (folder / name).is_file()]
+    files = [folder / name for name in sorted(run_file_names()) if (folder / name).is_file()]
     try:  # bounded, refusing a FIFO (a read would block the commit) or a device
         earlier = read_json_file(
             folder / RESULT_FILE, limit=MAX_STATE_FILE_BYTES, kind="a run's result file",
@@ -186,7 +197,8 @@ def earlier_run_files(folder) -> list[pathlib.Path]:
         if key == "result" or not isinstance(value, str) or not value:
             continue
         path = pathlib.Path(value)
-        if path.parent.resolve() == folder.resolve() and path.is_file():
+        if (path.parent.resolve() == folder.resolve() and path.is_file()
+                and folder / path.name not in files):
             files.append(folder / path.name)
     return files
 

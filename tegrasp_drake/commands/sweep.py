@@ -126,6 +126,9 @@ def spec_from_arguments(args) -> SweepSpec:
         ("base_seed", args.base_seed)) if value is not None}
     if args.overrides:
         overrides["scenario_overrides"] = spec.scenario_overrides + tuple(args.overrides)
+    if "objects" in overrides:  # --objects chooses what runs: the spec's other objects do not
+        overrides["user_objects"] = {name: config for name, config in spec.user_objects.items()
+                                     if name in overrides["objects"]}
     spec = dataclasses.replace(spec, **overrides)
     source = f"{args.spec} with command-line options" if args.spec else "command line"
     validate_spec(spec, source)

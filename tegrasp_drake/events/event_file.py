@@ -275,10 +275,13 @@ def read_memorized_event(path, *, object_name: str | None = None,
 
 
 def read_index(events_dir) -> list[dict]:
-    """The index's entries (object, transition, file and the events' metadata)."""
+    """The index's entries (object, transition, file and the events' metadata); an index
+    that lists no events is refused here, for every reader of it."""
     path = pathlib.Path(events_dir) / INDEX_FILE
     data = _read_json(path, INDEX_FORMAT, None)
     entries = _field(data, "events", "list", path, None)
+    if not entries:  # no writer makes one (a save needs events): a damaged or forged index
+        raise MemorizedEventError(path, "lists no events (its 'events' list is empty)")
     listed = {}  # (object, transition) and file -> the entry that listed it first
     for number, entry in enumerate(entries):
         if not isinstance(entry, dict):

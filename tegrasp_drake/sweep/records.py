@@ -28,13 +28,16 @@ from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import shorten
 
 RECORD_FORMAT = "tegrasp-sweep-record"
-RECORD_FORMAT_VERSION = 1
+# Version 2 adds "events", what the trial matched against (make_record); a version-1 record
+# (without it) is read as it is, its events unknown.
+RECORD_FORMAT_VERSION = 2
 TRIALS_FOLDER = "trials"
 _TEMP_SUFFIX = ".tmp"
 # A record is one trial's result, a few kB (its transitions and scores); more is not one.
 MAX_RECORD_BYTES = 1_000_000
-_RECORD_FIELDS = {"format", "format_version", "trial_id", "status", "trial", "result",
-                  "error", "checksum"}
+_RECORD_FIELDS_V1 = {"format", "format_version", "trial_id", "status", "trial", "result",
+                     "error", "checksum"}
+_RECORD_FIELDS = {1: _RECORD_FIELDS_V1, 2: _RECORD_FIELDS_V1 | {"events"}}
 
 
 class RecordError(ValueError):
@@ -90,8 +93,11 @@ def _checksum(record_without_checksum: dict) -> str:
 
 
 def make_record(trial: dict, *, result: dict | None = None,
-                error: dict | None = None) -> dict:
-    """A checksummed record of a trial that returned `result` or raised `error`."""
+                error: dict | None = None, events: dict | None = None) -> dict:
+    """A checksummed record of a trial that returned `result` or raised `error`; `events`:
+    the memorized events it matched against ({"folder", "sha256"} of
+    trial_function.events_identity), None when it read none or its trial function does
+    not say."""
     if (result is None) == (error is None):
         raise ValueError("a record holds exactly one of result and error")
     record = {
@@ -102,6 +108,7 @@ def make_record(trial: dict, *, result: dict | None = None,
         "trial": trial,
         "result": result,
         "error": error,
+        "events": events,
     }
     # Round trip through canonical JSON so the record holds exactly what a reader sees.
     record = json.loads(canonical_json(record))
@@ -132,12 +139,21 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
     """Why `record` is not a valid record, or None when it is."""
     if not isinstance(record, dict):
         return "not a JSON object"
-    if set(record) != _RECORD_FIELDS:
-        return f"fields {sorted(record)} are not the record fields {sorted(_RECORD_FIELDS)}"
+    version = record.get("format_version")
+    if type(version) is not int or version not in _RECORD_FIELDS:
+        return (f"format_version {version!r} is not one of "
+                f"{', '.join(map(str, _RECORD_FIELDS))}")
+    fields = _RECORD_FIELDS[version]
+    if set(record) != fields:
+        return f"fields {sorted(record)} are not the record fields {sorted(fields)}"
     if record["format"] != RECORD_FORMAT:
         return f"format {record['format']!r} is not {RECORD_FORMAT!r}"
-    if record["format_version"] != RECORD_FORMAT_VERSION:
-        return f"format_version {record['format_version']!r} is not {RECORD_FORMAT_VERSION}"
+    events = record.get("events")
+    if events is not None and not (
+            isinstance(events, dict) and set(events) == {"folder", "sha256"}
+            and isinstance(events["sha256"], str)
+            and isinstance(events["folder"], (str, type(None)))):
+        return "events is neither null nor {\"folder\", \"sha256\"}"
     content = {key: value for key, value in record.items() if key != "checksum"}
     try:
         checksum = _checksum(content)

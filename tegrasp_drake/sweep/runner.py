@@ -9,6 +9,7 @@ dies leaves its trial unrecorded, for the next run."""
 
 import dataclasses
 import fcntl
+import functools
 import json
 import logging
 import multiprocessing
@@ -197,6 +198,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
         loaded = load_records(out_dir)
         _keep_corrupt_records_aside(loaded.corrupt)
         _check_same_sweep(trials, loaded.records, out_dir)
+        events = trial_events_identities(trial_function, trials)
+        _check_same_events(events, loaded.records, out_dir)
         pending = [trial for trial in trials
                    if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
         unwritable = unwritable_records(out_dir, [trial["trial_id"] for trial in pending])
@@ -214,7 +217,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
             backend = f"dask:{_scheduler_address(scheduler)}"
             outcomes = _run_on_dask(trial_function, pending, scheduler)
         logger.info(f"sweep: running {len(pending)} trials on {backend}")
-        ran, errors, unfinished = _record_outcomes(outcomes, pending, out_dir, progress_bar)
+        ran, errors, unfinished = _record_outcomes(outcomes, pending, out_dir, progress_bar,
+                                                   events)
         logger.info(f"sweep: wrote {ran} trial records in {out_dir} ({len(errors)} errors, "
                     f"{len(unfinished)} unfinished)")
     trial_ids = tuple(trial["trial_id"] for trial in trials)
@@ -260,8 +264,55 @@ def _check_same_sweep(trials, records, out_dir):
                 "resume with the same spec, or choose another output folder")
 
 
-def _record_outcomes(outcomes, pending, out_dir, progress_bar):
-    """Writes each finished trial's record as it arrives; returns (ran, errors, unfinished)."""
+def trial_events_identities(trial_function, trials) -> dict[str, dict | None]:
+    """{trial id: the memorized events it matches against} when the trial function says which
+    (an `events_identities(trials, events_dir)` attribute, as run_trial_from_spec's; the
+    events_dir bound to it, bound_arguments, is the folder it reads); else every one None."""
+    function, keywords = trial_function, {}
+    if isinstance(trial_function, functools.partial):
+        function, keywords = trial_function.func, trial_function.keywords
+    identities = getattr(function, "events_identities", None)
+    if identities is None:
+        return {trial["trial_id"]: None for trial in trials}
+    return identities(trials, keywords.get("events_dir"))
+
+
+def _events_words(events: dict | None) -> str:
+    """A record's events in words: their hash's first 12 hex digits and the folder."""
+    if events is None:
+        return "none"
+    folder = events["folder"] or "your events folder, then the package's"
+    return f"sha256 {events['sha256'][:12]}... from {folder}"
+
+
+def _check_same_events(events: dict, records: dict, out_dir) -> None:
+    """Refuses a folder whose finished records matched against other memorized events than
+    `events` ({trial id: identity}) says this sweep's trials will: their content hashes
+    differ (a copy of the same events in another folder is the same). A record written before
+    records named their events (format 1) cannot be checked: one warning says how many."""
+    unknown = 0
+    for trial_id, identity in events.items():
+        record = records.get(trial_id)
+        if record is None or record["status"] != "ok" or identity is None:
+            continue  # an error record runs again, with this sweep's events
+        recorded = record.get("events")
+        if recorded is None:
+            unknown += 1
+        elif recorded["sha256"] != identity["sha256"]:
+            raise SweepError(
+                f"{out_dir} holds a record of trial {trial_id} made with other memorized "
+                f"events ({_events_words(recorded)}) than this sweep's "
+                f"({_events_words(identity)}); resume with the same events (--events), or "
+                "choose another output folder")
+    if unknown:
+        logger.warning(f"{out_dir}: {unknown} finished record(s) do not name the memorized "
+                       "events they matched against (written before records did); they are "
+                       "kept, unchecked against this sweep's events")
+
+
+def _record_outcomes(outcomes, pending, out_dir, progress_bar, events):
+    """Writes each finished trial's record as it arrives, naming its memorized `events`
+    ({trial id: identity}); returns (ran, errors, unfinished)."""
     by_id = {trial["trial_id"]: trial for trial in pending}
     finished, errors = set(), []
     # closing(): an interrupt shuts the backend down here, not at garbage collection.
@@ -272,11 +323,13 @@ def _record_outcomes(outcomes, pending, out_dir, progress_bar):
             status, payload = outcome
             trial = by_id[trial_id]
             try:
-                record = (make_record(trial, result=payload) if status == "ok"
-                          else make_record(trial, error=payload))
+                record = (make_record(trial, result=payload, events=events[trial_id])
+                          if status == "ok"
+                          else make_record(trial, error=payload, events=events[trial_id]))
             except RecordError as error:
                 record = make_record(trial, error={"type": "RecordError",
-                                                   "message": str(error), "traceback": ""})
+                                                   "message": str(error), "traceback": ""},
+                                     events=events[trial_id])
             write_record(out_dir, record)
             finished.add(trial_id)
             if record["status"] == "error":

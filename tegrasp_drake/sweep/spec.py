@@ -198,6 +198,11 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
         _check_user_object(name, config, fail)
     known_objects = tuple(builtin_objects) + tuple(spec.user_objects)
     _check_names_in(spec.objects, known_objects, "objects", "object", fail)
+    for name in spec.user_objects:  # a definition no trial uses is a spec that says two things
+        if name not in spec.objects:
+            fail(f"user_objects.{name}", f"defines an object that 'objects' does not name "
+                 f"(it names {', '.join(spec.objects)}), so no trial would run it: add it to "
+                 "'objects', or remove its definition")
     _check_names_in(spec.controllers, tuple(controllers), "controllers", "controller", fail)
 
     if not spec.grid:

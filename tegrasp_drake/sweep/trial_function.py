@@ -96,6 +96,47 @@ def check_sweep_events(trials, events_dir=None) -> None:
             logger.warning(warning)
 
 
+def events_identity(events: dict | None, corrective_events: dict | None,
+                    events_dir=None) -> dict | None:
+    """What a record says of the memorized events a trial matched against: the SHA-256 of
+    their content (each event's file text, as save_memorized_events writes it, in grasp
+    order; the corrective events after them) and the folder asked for (None: your events
+    folder, then the package's). None for a trial that reads no events."""
+    from tegrasp_drake.events.event_file import event_json_text, event_to_json
+    chosen = [event for group in (events, corrective_events) if group
+              for event in group.values()]
+    if not chosen:
+        return None
+    digest = hashlib.sha256()
+    for event in chosen:
+        digest.update(f"{event.object_name}/{event.transition}\n".encode("utf-8"))
+        digest.update(event_json_text(event_to_json(event)).encode("utf-8"))
+    return {"folder": None if events_dir is None else str(events_dir),
+            "sha256": digest.hexdigest()}
+
+
+def events_identities(trials, events_dir=None) -> dict[str, dict | None]:
+    """{trial id: events_identity} of sweep trials (TrialSpec.to_dict()) from `events_dir` as
+    run_trial_from_spec reads them, the events loaded once per object, controller and
+    overrides. ConfigError naming the trial, as check_sweep_events, for missing events."""
+    from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    identities, by_setting = {}, {}
+    for trial in trials:
+        setting = canonical_json([trial["object_name"], trial["controller"],
+                                  trial.get("object_definition"),
+                                  trial.get("scenario_overrides", [])])
+        if setting not in by_setting:
+            try:
+                _, events, corrective_events = trial_events(trial, events_dir)
+            except MemorizedEventError as error:
+                raise ConfigError(f"trial {trial['trial_id']} ({trial['controller']} on "
+                                  f"'{trial['object_name']}'): {error}") from None
+            by_setting[setting] = events_identity(events, corrective_events, events_dir)
+        identities[trial["trial_id"]] = by_setting[setting]
+    return identities
+
+
 @public_api
 def run_trial_from_spec(trial: dict, *,
                         events_dir: Annotated[PathLike | None, INPUT_FOLDER] = None,
@@ -112,3 +153,7 @@ def run_trial_from_spec(trial: dict, *,
     if log_dir is not None:
         run.log.save(pathlib.Path(log_dir) / trial_log_name(trial))
     return run.to_dict()
+
+
+# The runner records what run_trial_from_spec's trials matched against (sweep/runner.py).
+run_trial_from_spec.events_identities = events_identities
