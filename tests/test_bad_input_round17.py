@@ -76,7 +76,7 @@ def test_objects_chosen_on_the_command_line_leave_the_other_definitions_unrun(tm
     spec = tmp_path / "spec.yaml"
     spec.write_text(f"objects: [box, mug]\nuser_objects: {MUG}\n")
     args = argparse.Namespace(spec=str(spec), objects=["box"], controllers=None, attempts=None,
-                              base_seed=None, overrides=None)
+                              base_seed=None, overrides=None, confirm_trials=None)
     assert spec_from_arguments(args).objects == ("box",)
 
 
@@ -151,6 +151,26 @@ def test_an_overwrite_into_a_moved_or_copied_run_folder_replaces_the_earlier_run
         assert sorted(p.name for p in written.iterdir()) == [
             "contact_ra.png", "mynotes.txt", "result.json", "signals.png", "states.png",
             "trial.npz"]
+
+
+# Rule: a result.json is no list of files to delete: a file of the folder it names under
+# any key but the replay's (an .html) stays, whatever the key; the replay --html wrote in the
+# folder is replaced with the run.
+def test_an_overwrite_deletes_no_file_the_earlier_result_names_but_its_replay(tmp_path):
+    from tegrasp_drake.commands import run_folder
+    folder = tmp_path / "run"
+    folder.mkdir()
+    for name in ("trial.npz", "thesis.tex", "notes.html", "replay.html"):
+        (folder / name).write_bytes(b"earlier")
+    (folder / "result.json").write_text(json.dumps(
+        {"log": str(folder / "trial.npz"), "figure": str(folder / "thesis.tex"),
+         "signals_figure": str(folder / "notes.html"),
+         run_folder.REPLAY_KEY: str(folder / "replay.html")}))
+    with run_folder.staged_run(folder) as stage:
+        (stage / "trial.npz").write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz")})
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "notes.html", "result.json", "thesis.tex", "trial.npz"]
 
 
 # Rule: the memorized events a sweep's trials match against are a setting of the sweep, as

@@ -18,6 +18,7 @@ from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, JsonFileError, claim_
 
 RESULT_FILE = "result.json"
 RUN_FILES = (RESULT_FILE, "trial.npz")  # a folder with any of these holds a run
+REPLAY_KEY = "replay_html"  # result.json's entry for the replay --html wrote
 
 
 
@@ -181,7 +182,8 @@ def run_file_names() -> set[str]:
 
 def earlier_run_files(folder) -> list[pathlib.Path]:
     """The files of the run `folder` holds: those under a run's own names (run_file_names),
-    and those its result.json lists in this folder (the replay its --html named there): what
+    and the replay its result.json lists in this folder (REPLAY_KEY, an .html --html named
+    there): what
     a new run replaces (the user's own files are never touched). Known by name, since the
     absolute paths result.json recorded name where the run was written, which a moved or
     copied folder no longer is."""
@@ -193,11 +195,12 @@ def earlier_run_files(folder) -> list[pathlib.Path]:
             check=lambda data: None if isinstance(data, dict) else "is not a JSON object")
     except JsonFileError:
         return files
-    for key, value in earlier.items():
-        if key == "result" or not isinstance(value, str) or not value:
-            continue
+    # Only the replay the run wrote: every other file it writes has a run's own name, and a
+    # result.json naming any file of the folder under any key must not get it deleted.
+    value = earlier.get(REPLAY_KEY)
+    if isinstance(value, str) and value.endswith(".html"):
         path = pathlib.Path(value)
-        if (path.parent.resolve() == folder.resolve() and path.is_file()
+        if (path.parent.resolve() == folder.resolve() and (folder / path.name).is_file()
                 and folder / path.name not in files):
             files.append(folder / path.name)
     return files

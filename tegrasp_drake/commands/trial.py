@@ -9,7 +9,7 @@ import sys
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (RunFolderError, choose_run_folder, commit_run,
-                                               own_file_problem, staged_run)
+                                               REPLAY_KEY, own_file_problem, staged_run)
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
@@ -116,7 +116,7 @@ def run(args) -> int:
                 result = dict(trial.to_dict(), log=str(trial.log.save(stage / "trial.npz")),
                               **write_trial_figures(trial.log, stage, args.format))
                 if html is not None and html_error is None:
-                    result["replay_html"] = replay_html
+                    result[REPLAY_KEY] = replay_html
                 result = commit_run(stage, out, result)
             except OSError as e:
                 raise RunFolderError(f"cannot write the run to {out}: {e.strerror or e}; "
@@ -132,8 +132,8 @@ def run(args) -> int:
               + (f", {result['contact_ra_figure']} (RA at first contact)"
                  if "contact_ra_figure" in result else "")
               + (f", {result['avoid_figure']} (Fig. 10)" if "avoid_figure" in result else ""))
-        if "replay_html" in result:
-            print(f"replay {result['replay_html']} (open it in a browser)")
+        if REPLAY_KEY in result:
+            print(f"replay {result[REPLAY_KEY]} (open it in a browser)")
     wait_for_viewer(args, meshcat)
     if html_error:
         print(html_error, file=sys.stderr, flush=True)

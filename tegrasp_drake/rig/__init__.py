@@ -5,6 +5,7 @@
   tactile_fingertip.py      the pad's dimensions
   taxel_layout.py           its 12 taxels in the pad frame
   objects.py                the objects to grasp (built-in and user-defined)
+  object_file.py            a user's model file and its meshes, checked before loading
   materials.py              friction by material pair
   event_matching.py         the Eq. 3 matching settings (thresholds, RA envelope, noise floor)
   arm_kinematics.py         the arm's control plant, grasp frame and IK
