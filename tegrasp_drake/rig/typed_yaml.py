@@ -98,6 +98,18 @@ def require_fields(data, path, what: str, advice: str) -> None:
         raise ConfigError(f"{path}: {what} is empty (no fields); {advice}")
 
 
+def optional_field(data: dict, name: str, source: str, absent):
+    """data[name], or `absent` when the field is left out; ConfigError for a null the user
+    wrote, as check_fields refuses one (a null read as "left out" would put a default, e.g.
+    the paper's whole sweep, in place of what the user gave)."""
+    if name not in data:
+        return absent
+    if data[name] is None:
+        raise ConfigError(f"{source}: field '{name}' is null: give a value, or leave the "
+                          "field out to take its default")
+    return data[name]
+
+
 # A configuration is a few kB; these bound what a mistaken or hostile file can cost.
 MAX_YAML_BYTES = 1_000_000
 MAX_YAML_NODES = 100_000

@@ -10,7 +10,8 @@ import os
 import pathlib
 
 from tegrasp_drake.rig.files import write_atomically
-from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file, require_fields
+from tegrasp_drake.rig.typed_yaml import (ConfigError, optional_field, read_yaml_file,
+                                          require_fields)
 from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, UncertainParameter,
                                                   parameter)
 from tegrasp_drake.sweep.spec import SweepSpec
@@ -68,12 +69,13 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
     if unknown:
         raise ConfigError(f"{source}: unknown field '{unknown[0]}' (fields: "
                           f"{', '.join(_FIELDS)})")
-    parameters = _parse_parameters(data.get("parameters"), source)
+    parameters = _parse_parameters(optional_field(data, "parameters", source, None), source)
     events = data.get("events", "each_point")
     if events not in EVENTS_CHOICES:
         raise ConfigError(f"{source}: field 'events' must be one of "
                           f"{', '.join(EVENTS_CHOICES)}, got {events!r}")
-    sweep = sweep_spec_from_fields(data.get("sweep"), f"{source} [sweep]")
+    sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
+                                   f"{source} [sweep]")
     swept = {key.split("=", 1)[0] for entry in parameters
              for value in (entry.low, entry.default, entry.high)
              for key in entry.assignments(value)}

@@ -14,8 +14,9 @@ from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
-                                          read_yaml_file_cached, require_fields)
+from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, optional_field,
+                                          read_yaml_file, read_yaml_file_cached,
+                                          require_fields)
 
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
@@ -98,7 +99,8 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
             raise ConfigError(f"{source}: field '{required}' is missing")
     worlds = _parse_worlds(data["worlds"], source)
     cells = _parse_cells(data["cells"], worlds, source)
-    sweep = sweep_spec_from_fields(data.get("sweep"), f"{source} [sweep]")
+    sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
+                                   f"{source} [sweep]")
     spec = TransferSpec(worlds=worlds, cells=cells, sweep=sweep)
     check_matrix_size(spec, source, confirmed_trials)
     check_worlds(spec, source)
