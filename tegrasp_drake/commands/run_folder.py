@@ -5,6 +5,7 @@ together at the end (commit_run), so a failed or interrupted run leaves the earl
 import contextlib
 import fcntl
 import json
+import logging
 import os
 import pathlib
 import shutil
@@ -15,6 +16,8 @@ from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, JsonFileError, claim_folder,
                                      folder_problem, interruptions_deferred, own_staging_suffix,
                                      read_json_file, stale_staging_files, write_atomically)
+
+logger = logging.getLogger(__name__)
 
 RESULT_FILE = "result.json"
 RUN_FILES = (RESULT_FILE, "trial.npz")  # a folder with any of these holds a run
@@ -155,14 +158,16 @@ def own_file_problem(path, folder) -> str | None:
 
 def commit_run(stage, folder, result: dict) -> dict:
     """Moves the staged files into `folder` and writes result.json last, Ctrl-C held back;
-    returns `result` with the staged paths replaced by the final ones."""
+    returns `result` with the staged paths replaced by the final ones. What it replaced and
+    removed of the earlier run is logged at INFO (`-v`)."""
     stage, folder = pathlib.Path(stage), pathlib.Path(folder)
     result = {key: (str(folder / pathlib.Path(value).name)
                     if isinstance(value, str) and pathlib.Path(value).parent == stage
                     else value) for key, value in result.items()}
     result["result"] = str(folder / RESULT_FILE)
     new_names = {staged.name for staged in stage.iterdir()} | {RESULT_FILE}
-    leftovers = [path for path in earlier_run_files(folder) if path.name not in new_names]
+    earlier_files = earlier_run_files(folder)
+    leftovers = [path for path in earlier_files if path.name not in new_names]
     with interruptions_deferred():
         for staged in sorted(stage.iterdir()):
             os.replace(staged, folder / staged.name)
@@ -170,6 +175,12 @@ def commit_run(stage, folder, result: dict) -> dict:
         for path in leftovers:  # the earlier run's files this run did not replace
             with contextlib.suppress(OSError):
                 path.unlink()
+    replaced = sorted(new_names & {path.name for path in earlier_files})
+    if replaced:
+        logger.info(f"{folder}: replaced the earlier run's {', '.join(replaced)}")
+    if leftovers:
+        logger.info(f"{folder}: removed the earlier run's "
+                    f"{', '.join(path.name for path in leftovers)} (not written by this run)")
     return result
 
 
