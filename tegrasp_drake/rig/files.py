@@ -5,6 +5,7 @@ one-line UserPathError, strict JSON, and the one reader of a JSON file (read_jso
 
 import contextlib
 import errno
+import json
 import os
 import pathlib
 import re
@@ -493,7 +494,6 @@ def _float_ranged_int(text: str) -> int:
 def load_json(text: str | bytes):
     """The data of a user's JSON text: json.loads, refusing a duplicate key (DuplicateKeyError) and
     NaN, Infinity or an integer no float holds (JsonValueError), both ValueErrors."""
-    import json
     return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
                       parse_constant=_refuse_nonstandard_constant,
                       parse_int=_float_ranged_int)
@@ -522,7 +522,6 @@ def read_json_file(path, *, limit: int, kind: str, check=None, encoding: str = "
     the wrong shape, None: nothing). JsonFileError otherwise, naming the file and `remedy`: a
     missing file, a folder, FIFO, socket or device in its place (read_bounded; no device
     holds such a file), a decoding error, truncated JSON, a duplicate key, NaN, deep nesting."""
-    import json
     try:
         data = load_json(read_bounded(path, limit, devices=()).decode(encoding))
         problem = check(data) if check else None

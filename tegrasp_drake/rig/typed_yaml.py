@@ -7,10 +7,13 @@ range (integer_text.py);
 dotted path; `load_typed` then builds the dataclass with `yaml_load_typed`."""
 
 import collections.abc
+import copy
 import dataclasses
 import functools
 import math
+import os
 import pathlib
+import stat
 import types
 import typing
 
@@ -71,9 +74,6 @@ def read_yaml_file_cached(path: str | pathlib.Path, what: str):
     again); a deep copy each call, so a caller may change it (LoadScenario applies --set
     assignments to its entry). For a file many loads read in one run: the scenario file,
     read once a world and controller when a study's worlds are checked."""
-    import copy
-    import os
-    import stat
     try:
         status = os.stat(path)
     except OSError:

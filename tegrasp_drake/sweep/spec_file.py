@@ -42,8 +42,6 @@ def sweep_spec_from_fields(fields, source: str, *,
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
-    if fields is None:
-        fields = {}
     # The grid has two forms, a list of markers or a product grid: it is read on its own.
     has_grid = isinstance(fields, dict) and "grid" in fields
     grid = fields.pop("grid") if has_grid else None

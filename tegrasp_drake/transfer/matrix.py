@@ -8,6 +8,8 @@ import json
 import logging
 import os
 import pathlib
+import sys
+import time
 from collections.abc import Mapping
 
 from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
@@ -118,8 +120,6 @@ def check_worlds(spec: TransferSpec, source: str) -> None:
     world is checked, those no cell uses too: a spec names only worlds that can run. A run
     checks the matrix's size first (check_matrix_size), before any world. Over
     WORLDS_CHECKED_QUIETLY worlds, a line on stderr before and one after (with the time)."""
-    import sys
-    import time
     talk = len(spec.worlds) > WORLDS_CHECKED_QUIETLY
     if talk:
         print(f"checking {len(spec.worlds)} worlds (each world's scenario with "
