@@ -53,3 +53,49 @@ def test_an_overwrite_says_what_it_replaced_and_removed(tmp_path, caplog):
     assert "replaced the earlier run's result.json, trial.npz" in said, said
     assert "removed the earlier run's states.png" in said, said
     assert "notes.txt" not in said, said
+
+
+def _count_listings(monkeypatch):
+    """A list that grows by one each time a sweep's trials are listed (expand_trials)."""
+    from tegrasp_drake.sweep import runner, spec
+    listed = []
+
+    def counted(*args, **kwargs):
+        listed.append(1)
+        raise AssertionError("the trials were listed")
+    monkeypatch.setattr(spec, "expand_trials", counted)
+    monkeypatch.setattr(runner, "expand_trials", counted)
+    return listed
+
+
+# Rule: a study has a ceiling a confirmation cannot lift (its trials are listed in memory
+# before the first runs): from the command line and from Python, refused before listing.
+def test_a_study_over_the_ceiling_is_refused_even_confirmed(tmp_path, monkeypatch, capsys):
+    from tegrasp_drake import cli
+    from tegrasp_drake.sweep.runner import SweepError, run_sweep
+    from tegrasp_drake.sweep.spec import SweepSpec
+    from tests.fake_trials import fake_trial_with_events
+    ceiling = 1_000_000  # MAX_CONFIRMED_TRIALS
+    listed = _count_listings(monkeypatch)
+    attempts = ceiling // 81 + 1  # 81 trials an attempt: 3 objects, 9 markers, 3 controllers
+    code = cli.main(["sweep", "--objects", "box", "thick_cylinder", "thin_cylinder",
+                     "--attempts", str(attempts), "--trial-function",
+                     "tests.fake_trials:fake_trial_with_events",
+                     "--workers", "1", "--no-progress", "--out", str(tmp_path / "o")])
+    error = capsys.readouterr().err
+    assert code != 0 and f"at most {ceiling} " in error and "split it" in error, error
+    assert "Traceback" not in error and not listed, error
+    with pytest.raises((ConfigError, SweepError, ValueError), match=f"{ceiling}"):
+        run_sweep(SweepSpec(attempts=attempts), fake_trial_with_events, tmp_path / "p",
+                  confirmed_trials=attempts * 81)
+    assert not listed
+
+
+def test_a_confirmation_over_the_ceiling_is_refused(tmp_path, capsys):
+    from tegrasp_drake import cli
+    code = cli.main(["sweep", "--confirm-trials", "1000001", "--objects", "box",
+                     "--attempts", "1", "--trial-function",
+                     "tests.fake_trials:fake_trial_with_events", "--workers", "1", "--no-progress",
+                     "--out", str(tmp_path / "o")])
+    error = capsys.readouterr().err
+    assert code != 0 and "--confirm-trials" in error and "split" in error, error

@@ -30,6 +30,7 @@ from tegrasp_drake.sweep.spec import (
     BUILTIN_OBJECTS,
     CONFIRM_OPTION,
     CONTROLLER_NAMES,
+    MAX_CONFIRMED_TRIALS,
     MAX_TRIALS,
     SweepSpec,
     check_sweep_size,
@@ -193,9 +194,10 @@ def check_runner_arguments(args):
     recorded. Returns the client connected to --scheduler (None without it): the command's
     one connection, which its sweeps run on and which close_scheduler closes."""
     check_workers(args)
-    if args.confirm_trials is not None and args.confirm_trials < 1:
+    if args.confirm_trials is not None and not 1 <= args.confirm_trials <= MAX_CONFIRMED_TRIALS:
         raise SweepError(f"{CONFIRM_OPTION} {args.confirm_trials}: give the study's count of "
-                         "trials, at least 1 (a refusal of a large study names it)")
+                         f"trials, at least 1 and at most {MAX_CONFIRMED_TRIALS} (a refusal of a "
+                         "large study names it; split a larger one)")
     if args.scheduler is not None:
         problem = scheduler_problem(args.scheduler)
         if problem:
