@@ -86,3 +86,38 @@ def test_a_timeline_of_more_transitions_than_a_controller_takes_is_refused_in_on
 ], ids=["grip-negative", "grip-text", "sim-time", "wall-time", "versions"])
 def test_trial_log_meta_fields_have_ranges(tmp_path, meta, expected):
     assert expected in _refused_log(tmp_path, meta)
+
+
+def _spoiled(shape, column, value):
+    array = np.zeros(shape)
+    array[:, column] = value
+    return array
+
+
+# Rule: each logged channel with a physical range is checked against it when the log is read,
+# by every reader: the gripper's request and status registers are bytes (0-255), RA is a
+# magnitude (Eq. 2, >= 0).
+@pytest.mark.parametrize("arrays, expected", [
+    ({"gripper_command": _spoiled((11, 3), 0, 1e9)},
+     "'gripper_command' column 0 (rPR) holds 1000000000, outside 0 to 255"),
+    ({"gripper_command": _spoiled((11, 3), 2, -1.0)}, "'gripper_command' column 2 (rFR) holds -1"),
+    ({"gripper_status": _spoiled((11, 8), 6, 300.0)}, "'gripper_status' column 6 (gPO) holds 300"),
+    ({"channels": _spoiled((101, 4), 3, -2.0)}, "'channels' column 3 (ra_right) holds -2"),
+], ids=["command-1e9", "command-negative", "status", "ra-negative"])
+def test_logged_channels_are_checked_against_their_physical_range(tmp_path, arrays, expected):
+    message = _refused_log(tmp_path, None, **arrays)
+    assert expected in message, message
+
+
+def test_the_myrio_emulator_refuses_gripper_requests_a_2f85_cannot_take(tmp_path):
+    path = _trial_log_with(tmp_path / "trial.npz",
+                           gripper_command=_spoiled((11, 3), 0, 1e9))
+    with pytest.raises(TactileRecordingError, match=r"'gripper_command' column 0 \(rPR\)"):
+        load_tactile_recording(path)
+    bare = tmp_path / "bare.npz"  # a bare recording (no meta) is checked alike
+    with np.load(path) as data:
+        np.savez(bare, **{name: data[name] for name in
+                          ("t_sa", "taxels", "t_ra", "pad_acceleration", "t_slow",
+                           "gripper_command")})
+    with pytest.raises(TactileRecordingError, match=r"'gripper_command' column 0 \(rPR\)"):
+        load_tactile_recording(bare)

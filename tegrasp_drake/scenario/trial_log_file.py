@@ -18,11 +18,13 @@ import zlib
 import numpy as np
 
 from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary_sibling
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
+from tegrasp_drake.robotiq import units as ru
 
 FORMAT_VERSION = 1
 ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_acceleration",
@@ -293,7 +295,8 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 
 def trial_arrays_problem(arrays: dict) -> str | None:
     """What is wrong with the trial-log arrays in `arrays`, or None: each time base at least
-    two finite, increasing times, one row per time, finite signals. Every reader applies it."""
+    two finite, increasing times, one row per time, finite signals within their physical
+    ranges (out_of_range_signals). Every reader applies it."""
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue
@@ -310,7 +313,40 @@ def trial_arrays_problem(arrays: dict) -> str | None:
             if array.shape != expected:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
-    return nonfinite_signals(arrays)
+    return nonfinite_signals(arrays) or out_of_range_signals(arrays)
+
+
+# The logged channels with a physical range: (their columns' names, the columns checked, low,
+# high, why). Measured taxels and SA have none: the force transducer adds zero-mean noise to
+# its offset and does not clip (simulation/tactile_pads.apply_sensor_model), so they dip below
+# zero at rest; true_taxels is a contact force along the pad normal, not a magnitude.
+_PHYSICAL_RANGES = {
+    "gripper_command": (ru.COMMAND_NAMES, range(ru.COMMAND_SIZE), 0.0, ru.BYTE_MAX,
+                        "the 2F-85's request registers are bytes"),
+    "gripper_status": (ru.STATUS_NAMES, range(ru.STATUS_SIZE), 0.0, ru.BYTE_MAX,
+                       "the 2F-85's status registers are bytes"),
+    "channels": (CHANNEL_NAMES, RA_CHANNELS, 0.0, None,
+                 "RA is the magnitude of a pad's vibration (Eq. 2) [m/s^2]"),
+}
+
+
+def out_of_range_signals(arrays: dict) -> str | None:
+    """The first logged channel in `arrays` (finite, of its shape) outside its physical range
+    (_PHYSICAL_RANGES), named with its column and a value, else None."""
+    for name, (names, columns, low, high, why) in _PHYSICAL_RANGES.items():
+        if name not in arrays:
+            continue
+        array = np.asarray(arrays[name], dtype=float)
+        for column in columns:
+            if column >= array.shape[1]:
+                continue
+            values = array[:, column]
+            outside = (values < low) | (values > high if high is not None else False)
+            if np.any(outside):
+                bounds = f"0 to {number_text(high)}" if high is not None else "at least 0"
+                return (f"'{name}' column {column} ({names[column]}) holds "
+                        f"{number_text(float(values[outside][0]))}, outside {bounds} ({why})")
+    return None
 
 
 def nonfinite_signals(arrays: dict) -> str | None:
