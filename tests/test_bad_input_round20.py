@@ -121,3 +121,21 @@ def test_the_myrio_emulator_refuses_gripper_requests_a_2f85_cannot_take(tmp_path
                            "gripper_command")})
     with pytest.raises(TactileRecordingError, match=r"'gripper_command' column 0 \(rPR\)"):
         load_tactile_recording(bare)
+
+
+# Rule: an RA window is a normalised vibration magnitude (Eq. 2), so no sample is negative;
+# a memorized event holding one is refused naming its file and channel. (SA windows may dip
+# below zero: the committed events' reach SA windows reach -0.67 of their peak.)
+def test_a_memorized_event_with_a_negative_ra_window_is_refused(tmp_path, capfd):
+    events = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), events,
+                    ignore=shutil.ignore_patterns("__init__.py", "__pycache__"))
+    path = events / "box" / "load_lift.json"
+    data = json.loads(path.read_text())
+    data["samples"]["ra_left"] = [-1.0] * len(data["samples"]["ra_left"])
+    path.write_text(json.dumps(data))
+    with pytest.raises(MemorizedEventError, match=r"load_lift\.json.*'ra_left'.*negative"):
+        load_memorized_events(events, "box")
+    code, text = run_cli(["plot", "events", "--events", str(events), "--out",
+                          str(tmp_path / "p.png")], capfd)
+    assert_one_line_error(code, text, "load_lift.json", "'ra_left'")
