@@ -11,7 +11,7 @@ import tegrasp_drake
 from tegrasp_drake.rig.api_boundary import check_field_values, public_dataclass
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded
-from tegrasp_drake.rig.channels import CHANNEL_NAMES
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
 from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, object_name_problem
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import transition_order
@@ -72,6 +72,8 @@ class MemorizedEvent:
             if np.any((peaks != 0.0) & (np.abs(peaks - 1.0) > _NORMALIZATION_TOLERANCE)):
                 raise ValueError(f"'{name}' is not normalised by its maximum "
                                  f"(max |value| per finger: {peaks.tolist()})")
+            if name == "ra":
+                _check_magnitudes(window)
             window.setflags(write=False)
             object.__setattr__(self, name, window)
         versions = dict(self.package_versions)
@@ -105,6 +107,21 @@ class MemorizedEvent:
     def relative_path(self) -> str:
         """Path of the event's file inside the events folder."""
         return f"{self.object_name}/{self.transition}.json"
+
+
+def _check_magnitudes(ra: np.ndarray) -> None:
+    """ValueError naming the channel if an RA window holds a negative sample. RA is a pad's
+    vibration magnitude (Eq. 2), and max-normalising divides by a positive peak, so every
+    sample is >= 0 exactly (the committed events' least RA sample is 0.0; the RA envelope, a
+    first-order low-pass, keeps a non-negative window non-negative). SA windows get no such
+    rule: a measured taxel is its offset plus unclipped noise, so a window before contact dips
+    below zero, and max-normalised against a small first-contact peak far below (the committed
+    events' least SA sample, events/prismatic/ensemble/box/reach_load.json, is -0.67)."""
+    for index, window in zip(RA_CHANNELS, ra):
+        if np.any(window < 0.0):
+            raise ValueError(f"'{CHANNEL_NAMES[index]}' holds negative samples (least "
+                             f"{number_text(float(window.min()))}); an RA window is a "
+                             "vibration magnitude, 0 to 1 once normalised")
 
 
 def current_package_versions() -> dict[str, str]:

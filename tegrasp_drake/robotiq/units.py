@@ -16,12 +16,17 @@ POSITION_OPEN_BYTE = 3.0
 POSITION_CLOSED_BYTE = 230.0
 POSITION_SPAN_BYTES = POSITION_CLOSED_BYTE - POSITION_OPEN_BYTE  # the stroke in position bytes
 
+# The registers are bytes: every request and status value lies in [0, BYTE_MAX].
+BYTE_MAX = 255.0
+
 # gripper.command = [rPR, rSP, rFR]
-COMMAND_SIZE = 3
+COMMAND_NAMES = ("rPR", "rSP", "rFR")
+COMMAND_SIZE = len(COMMAND_NAMES)
 COMMAND_POSITION, COMMAND_SPEED, COMMAND_FORCE = range(COMMAND_SIZE)
 
 # gripper.status = [gACT, gGTO, gSTA, gOBJ, gFLT, gPR, gPO, gCU]
-STATUS_SIZE = 8
+STATUS_NAMES = ("gACT", "gGTO", "gSTA", "gOBJ", "gFLT", "gPR", "gPO", "gCU")
+STATUS_SIZE = len(STATUS_NAMES)
 (STATUS_ACT, STATUS_GTO, STATUS_STA, STATUS_OBJ, STATUS_FLT, STATUS_PR, STATUS_PO,
  STATUS_CU) = range(STATUS_SIZE)
 

@@ -18,10 +18,13 @@ import zlib
 import numpy as np
 
 from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary_sibling
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
+from tegrasp_drake.robotiq import units as ru
 
 FORMAT_VERSION = 1
 ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_acceleration",
@@ -113,7 +116,7 @@ def load_trial_log(path: PathLike) -> TrialLog:
         version = meta.get("format_version") if isinstance(meta, dict) else None
         raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
                             f"reads {FORMAT_VERSION}")
-    problem = trial_arrays_problem(arrays) or meta_problem(meta, arrays["phase"])
+    problem = trial_arrays_problem(arrays) or meta_problem(meta, arrays)
     if problem:
         raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
     return TrialLog(meta=meta, **arrays)
@@ -138,8 +141,25 @@ def _is_phase_starts(value) -> bool:
         isinstance(name, str) and _is_time(t) for name, t in value.items())
 
 
-# The metadata fields a reader uses (each optional), what each must hold, and its check. The
-# writer is trial_log_writer.collect_trial_log with the runs' `meta` (runs/trial.py).
+def _is_duration(value) -> bool:
+    return _is_time(value) and value >= 0.0
+
+
+def _is_grip_force(value) -> bool:
+    """A grip force [N] the scenario's grasp.grip_force could hold (its declared range)."""
+    from tegrasp_drake.control.scripted_grasp import GraspScriptConfig  # Drake: on use
+    from tegrasp_drake.rig.ranges import field_range
+    return _is_time(value) and field_range(GraspScriptConfig, "grip_force").contains(value)
+
+
+def _is_versions(value) -> bool:
+    return isinstance(value, dict) and all(
+        isinstance(name, str) and isinstance(v, str) for name, v in value.items())
+
+
+# The metadata fields a reader uses or the writer stores (each optional), what each must hold,
+# and its check. The writer is trial_log_writer.collect_trial_log with the runs' `meta`
+# (runs/trial.py). The times among them are checked against the log's span in meta_problem.
 META_FIELDS = {
     "scenario": ("be the scenario's YAML text", lambda v: isinstance(v, str)),
     "controller": ("be a controller name", lambda v: isinstance(v, str)),
@@ -150,16 +170,98 @@ META_FIELDS = {
     "events": ("map event names to times [s] or null", _is_event_times),
     # Its fields are TrialResult's (figures/trial_annotations.logged_result reads them).
     "result": ("be a trial result's JSON form (an object)", lambda v: isinstance(v, dict)),
+    "grip_force": ("be a grip force in grasp.grip_force's range, 20 to 235 N (the 2F-85's)",
+                   _is_grip_force),
+    "sim_time_s": ("be a duration of at least 0 s", _is_duration),
+    "wall_time_s": ("be a duration of at least 0 s", _is_duration),
+    "versions": ("map package names to version text", _is_versions),
 }
 
 
-def meta_problem(meta: dict, phase: np.ndarray) -> str | None:
-    """What is wrong with a trial log's metadata, or None: transitions as Transition entries,
-    each field of META_FIELDS as it says, `phase` indexing the phase names."""
+def most_transitions() -> int:
+    """The most transitions a trial's timeline can hold. A pass through the state machine
+    enters each mode at most once: len(Mode) - 1 transitions (Reach to Done or Failed). Each
+    correction a controller counts (Re-Reach, Lift-Load, re-grasp) starts at most one more
+    such pass, and each is limited by its configuration's range (max_re_reaches,
+    max_lift_loads, max_regrasps: at most 10 each). Avoid is not counted: it is Hold -> Avoid
+    -> Hold, two transitions, each after hit_refractory_s of Hold, sense_s and move_s (0.93 s
+    at the defaults), so the longest run (a 60 s script, MAX_SCRIPT_S, plus EXTRA_TIME_S and
+    the largest controller extra_time_s: 85 s) fits at most 85 / 0.93 = 91 of them.
+    9 * (1 + 30) + 2 * 91 = 461; a 12 s grasp takes about 6."""
+    from tegrasp_drake.control.controller_config import (AvoidConfig, LiftLoadConfig,
+                                                         RegraspConfig, ReReachConfig,
+                                                         TaxelAwareConfig)
+    from tegrasp_drake.control.controller_registry import CONTROLLER_CLASSES
+    from tegrasp_drake.control.grasp_modes import Mode
+    from tegrasp_drake.rig.ranges import field_range
+    from tegrasp_drake.scenario.grasp_diagram import EXTRA_TIME_S  # Drake: on use
+    from tegrasp_drake.scenario.scenario import MAX_SCRIPT_S
+    one_pass = len(Mode) - 1
+    re_reaches = max(field_range(ReReachConfig, "max_re_reaches").high,
+                     field_range(TaxelAwareConfig, "max_re_reaches").high)
+    corrections = (re_reaches + field_range(LiftLoadConfig, "max_lift_loads").high
+                   + field_range(RegraspConfig, "max_regrasps").high)
+    avoid = AvoidConfig()
+    avoid_s = avoid.hit_refractory_s + avoid.sense_s + avoid.move_s
+    longest_run_s = (MAX_SCRIPT_S + EXTRA_TIME_S
+                     + max(config.extra_time_s for config in CONTROLLER_CLASSES))
+    return int(one_pass * (1 + corrections) + 2 * math.floor(longest_run_s / avoid_s))
+
+
+def _time_span(arrays: dict) -> tuple[float, float]:
+    """[s] from the first sample of the log's time bases to one sample period past the last
+    (the simulation ends at most one logging period after the last sample it logged)."""
+    bases = [np.asarray(arrays[name]) for name in _TIME_BASES if name in arrays]
+    start = min(float(times[0]) for times in bases)
+    end = max(float(times[-1] + (times[-1] - times[-2])) for times in bases)
+    return start, end
+
+
+def _timeline_problem(transitions: list, span: tuple[float, float]) -> str | None:
+    """What is wrong with the timeline as a whole, or None: in time order (one transition per
+    controller update), inside the log's time span, each leaving the mode the one before
+    entered."""
+    start, end = span
+    for k, entry in enumerate(transitions):
+        t = entry["t"]
+        if not start <= t <= end:
+            return (f"meta 'transitions[{k}]' at {number_text(t)} s lies outside the log's "
+                    f"time span, {number_text(start)} to {number_text(end)} s")
+        if k and t <= transitions[k - 1]["t"]:
+            return (f"meta 'transitions[{k}]' at {number_text(t)} s comes before or with "
+                    f"transitions[{k - 1}] at {number_text(transitions[k - 1]['t'])} s; a "
+                    "timeline is in time order, one transition per controller update")
+        if k and entry["from"] != transitions[k - 1]["to"]:
+            return (f"meta 'transitions[{k}]' starts from '{shorten(str(entry['from']))}', but "
+                    f"transitions[{k - 1}] went to '{shorten(str(transitions[k - 1]['to']))}'")
+    return None
+
+
+def _times_problem(meta: dict, span: tuple[float, float]) -> str | None:
+    """A phase start or event time outside the log's time span, or None."""
+    start, end = span
+    for key in ("phase_starts", "events"):
+        for name, t in (meta.get(key) or {}).items():
+            if t is not None and not start <= t <= end:
+                return (f"meta '{key}' time of '{shorten(name)}' ({number_text(t)} s) lies "
+                        f"outside the log's time span, {number_text(start)} to "
+                        f"{number_text(end)} s")
+    return None
+
+
+def meta_problem(meta: dict, arrays: dict) -> str | None:
+    """What is wrong with a trial log's metadata, checked as a whole against the log's
+    `arrays` (already checked by trial_arrays_problem), or None: transitions as Transition
+    entries forming one timeline (_timeline_problem), each field of META_FIELDS as it says,
+    its times within the log's span, `phase` indexing the phase names."""
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):
         return f"meta 'transitions' must be a list, got {type(transitions).__name__}"
+    limit = most_transitions()
+    if len(transitions) > limit:  # before reading each of a crafted many
+        return (f"meta 'transitions' holds {len(transitions)} entries; a trial's timeline holds "
+                f"at most {limit} (every correction a controller can make)")
     for k, entry in enumerate(transitions):
         try:
             if not isinstance(entry, dict) or not _is_time(entry.get("t")):
@@ -172,6 +274,11 @@ def meta_problem(meta: dict, phase: np.ndarray) -> str | None:
     for key, (what, is_valid) in META_FIELDS.items():
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
+    span = _time_span(arrays)
+    problem = _timeline_problem(transitions, span) or _times_problem(meta, span)
+    if problem:
+        return problem
+    phase = arrays["phase"]
     count = len(meta.get("mode_names") or meta.get("phases") or Mode)
     if phase.size and (not np.all(np.isfinite(phase)) or np.any(phase != np.round(phase))
                        or phase.min() < 0 or phase.max() >= count):
@@ -188,7 +295,8 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 
 def trial_arrays_problem(arrays: dict) -> str | None:
     """What is wrong with the trial-log arrays in `arrays`, or None: each time base at least
-    two finite, increasing times, one row per time, finite signals. Every reader applies it."""
+    two finite, increasing times, one row per time, finite signals within their physical
+    ranges (out_of_range_signals). Every reader applies it."""
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue
@@ -205,7 +313,40 @@ def trial_arrays_problem(arrays: dict) -> str | None:
             if array.shape != expected:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
-    return nonfinite_signals(arrays)
+    return nonfinite_signals(arrays) or out_of_range_signals(arrays)
+
+
+# The logged channels with a physical range: (their columns' names, the columns checked, low,
+# high, why). Measured taxels and SA have none: the force transducer adds zero-mean noise to
+# its offset and does not clip (simulation/tactile_pads.apply_sensor_model), so they dip below
+# zero at rest; true_taxels is a contact force along the pad normal, not a magnitude.
+_PHYSICAL_RANGES = {
+    "gripper_command": (ru.COMMAND_NAMES, range(ru.COMMAND_SIZE), 0.0, ru.BYTE_MAX,
+                        "the 2F-85's request registers are bytes"),
+    "gripper_status": (ru.STATUS_NAMES, range(ru.STATUS_SIZE), 0.0, ru.BYTE_MAX,
+                       "the 2F-85's status registers are bytes"),
+    "channels": (CHANNEL_NAMES, RA_CHANNELS, 0.0, None,
+                 "RA is the magnitude of a pad's vibration (Eq. 2) [m/s^2]"),
+}
+
+
+def out_of_range_signals(arrays: dict) -> str | None:
+    """The first logged channel in `arrays` (finite, of its shape) outside its physical range
+    (_PHYSICAL_RANGES), named with its column and a value, else None."""
+    for name, (names, columns, low, high, why) in _PHYSICAL_RANGES.items():
+        if name not in arrays:
+            continue
+        array = np.asarray(arrays[name], dtype=float)
+        for column in columns:
+            if column >= array.shape[1]:
+                continue
+            values = array[:, column]
+            outside = (values < low) | (values > high if high is not None else False)
+            if np.any(outside):
+                bounds = f"0 to {number_text(high)}" if high is not None else "at least 0"
+                return (f"'{name}' column {column} ({names[column]}) holds "
+                        f"{number_text(float(values[outside][0]))}, outside {bounds} ({why})")
+    return None
 
 
 def nonfinite_signals(arrays: dict) -> str | None:
