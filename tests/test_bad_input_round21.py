@@ -1,0 +1,51 @@
+"""Bad inputs the thirteenth hostile pass found (round 21), one test per rule."""
+
+import numpy as np
+import pytest
+from pydrake.lcm import DrakeLcm
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.lcm import LcmInterfaceSystem
+from pydrake.systems.primitives import ConstantVectorSource
+
+from tegrasp_drake.hardware.jaco.jaco_lcm import (
+    JACO_STATUS_CHANNEL, NEGATIVE_UTIME, UTIME_NOT_AFTER, make_jaco_status)
+from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
+
+Q = [0.1, -0.2, 0.3, -0.4, 0.5, -0.6]
+ZERO = [0.0] * 6
+
+
+# Rule: an arm status whose utime is impossible (negative, or not after the last accepted
+# status: the arm's clock never goes back) is counted under its reason and skipped; the
+# receiver keeps the last good status.
+def test_an_arm_status_with_a_negative_or_backward_utime_is_skipped():
+    lcm = DrakeLcm("memq://")
+    builder = DiagramBuilder()
+    builder.AddSystem(LcmInterfaceSystem(lcm))
+    driver = AddJacoLcmDriver(builder, lcm=lcm)
+    source = builder.AddSystem(ConstantVectorSource(np.concatenate([Q, ZERO])))
+    builder.Connect(source.get_output_port(), driver.tracker.GetInputPort("desired_state"))
+    diagram = builder.Build()
+    simulator = Simulator(diagram)
+    simulator.Initialize()
+    context = driver.status_receiver.GetMyContextFromRoot(simulator.get_context())
+    real = [q + 0.2 for q in Q]
+    forged = [0.1] * 6
+
+    def publish(utime, position):
+        lcm.Publish(JACO_STATUS_CHANNEL,
+                    make_jaco_status(utime, position, ZERO, ZERO).encode())
+        simulator.AdvanceTo(simulator.get_context().get_time() + 0.01)
+        return (driver.status_receiver.GetOutputPort("time_measured").Eval(context)[0],
+                list(driver.status_receiver.GetOutputPort("position_measured").Eval(context)))
+
+    assert publish(20_000, real) == (pytest.approx(0.02), pytest.approx(real))
+    for utime in (-2**63, -1, 10_000, 20_000):  # negative, backward, repeated
+        assert publish(utime, forged) == (pytest.approx(0.02), pytest.approx(real))
+    assert publish(30_000, real) == (pytest.approx(0.03), pytest.approx(real))
+    counters = driver.status_boundary.counters()
+    assert counters.accepted == 2
+    assert counters.rejected == {NEGATIVE_UTIME: 2, UTIME_NOT_AFTER: 2}
+    for rejection in driver.status_boundary.new_rejections():
+        assert "\n" not in driver.status_boundary.describe(rejection)
