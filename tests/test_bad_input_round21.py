@@ -1,5 +1,7 @@
 """Bad inputs the thirteenth hostile pass found (round 21), one test per rule."""
 
+import fcntl
+
 import numpy as np
 import pytest
 from pydrake.lcm import DrakeLcm
@@ -11,6 +13,9 @@ from pydrake.systems.primitives import ConstantVectorSource
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_STATUS_CHANNEL, NEGATIVE_UTIME, UTIME_NOT_AFTER, make_jaco_status)
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
+from tegrasp_drake.sweep.runner import LOCK_FILE_NAME
+from tests.test_bad_input import assert_one_line_error, folder_contents, run_cli
+from tests.test_bad_input_round14 import _FAKE_TRIALS, _transfer_out
 
 Q = [0.1, -0.2, 0.3, -0.4, 0.5, -0.6]
 ZERO = [0.0] * 6
@@ -49,3 +54,25 @@ def test_an_arm_status_with_a_negative_or_backward_utime_is_skipped():
     assert counters.rejected == {NEGATIVE_UTIME: 2, UTIME_NOT_AFTER: 2}
     for rejection in driver.status_boundary.new_rejections():
         assert "\n" not in driver.status_boundary.describe(rejection)
+
+
+def _held(folder):
+    """The output folder's lock, taken as another run's process holds it."""
+    folder.mkdir(parents=True, exist_ok=True)
+    lock = open(folder / LOCK_FILE_NAME, "a")
+    fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    return lock
+
+
+# Rule: another run writing into the --out folder is an error outside the run (exit 1, one
+# "tegrasp: error:" line naming the folder), not a refused spec (exit 2).
+def test_a_sweep_into_a_folder_another_run_holds_is_an_error_outside_the_run(tmp_path, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n")
+    out = tmp_path / "out"
+    with _held(out):
+        code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(out), "--no-progress",
+                              "--trial-function", "tests.fake_trials:fake_trial"], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "tegrasp: error:", str(out), "another")
+    assert not (out / "trials").exists()
