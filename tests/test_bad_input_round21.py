@@ -76,3 +76,36 @@ def test_a_sweep_into_a_folder_another_run_holds_is_an_error_outside_the_run(tmp
     assert code == 1, text
     assert_one_line_error(code, text, "tegrasp: error:", str(out), "another")
     assert not (out / "trials").exists()
+
+
+def _no_recording(monkeypatch):
+    """A world's recording replaced by a failure: the tests below must stop before any."""
+    from tegrasp_drake.transfer import matrix
+
+    def recorded(*args, **kwargs):
+        raise AssertionError("a world's events were recorded")
+    monkeypatch.setattr(matrix, "record_world_events", recorded)
+
+
+# Rule: a transfer or a sensitivity study holds its whole --out (the sweep runner's lock)
+# before it records or writes anything, so a second run into the folder is refused at once
+# (exit 1), not after recording every world's events again beside the first.
+@pytest.mark.parametrize("command", ["transfer", "sensitivity"])
+def test_a_second_study_into_a_held_out_is_refused_before_anything(tmp_path, capfd,
+                                                                   monkeypatch, command):
+    if command == "transfer":
+        spec, _ = _transfer_out(tmp_path)
+    else:
+        spec = tmp_path / "s.yaml"
+        spec.write_text("parameters: [gripper.position_loop_hz]\nsweep: {controllers: "
+                        "[memorized], attempts: 1, objects: [box], grid: [[0.0, 0.0]]}\n")
+    _no_recording(monkeypatch)
+    out = tmp_path / "out"
+    with _held(out):
+        before = folder_contents(out)
+        code, text = run_cli([command, str(spec), "--out", str(out), "--workers", "1",
+                              "--no-progress", *_FAKE_TRIALS], capfd)
+        assert folder_contents(out) == before
+    assert code == 1, text
+    assert_one_line_error(code, text, "tegrasp: error:", str(out), "another")
+    assert not (out / "cells").exists()

@@ -44,6 +44,7 @@ from tegrasp_drake.rig.ranges import Range
 logger = logging.getLogger(__name__)
 
 LOCK_FILE_NAME = ".sweep.lock"
+_HELD_FOLDERS = set()  # resolved output folders this process holds (hold_output_folder)
 DASK_CONNECT_TIMEOUT_S = 30.0
 
 
@@ -237,17 +238,26 @@ def hold_output_folder(out_dir: Path):
     """Holds an exclusive flock on the output folder's lock file for the block, so a second
     sweep, transfer or sensitivity run into the folder is refused at once; the kernel drops
     the lock when the process ends, however it ends. UserPathError when another process
-    holds it: an error outside the run (exit 1), not a refused spec. `out_dir` must exist."""
-    with open(Path(out_dir) / LOCK_FILE_NAME, "a") as lock_file:
+    holds it: an error outside the run (exit 1), not a refused spec. `out_dir` must exist.
+    Nested holds of one folder in this process (a sensitivity study holding its folder
+    across the transfer it runs) share the outer lock: a second flock on another open of the
+    file would be refused as another run's."""
+    key = Path(out_dir).resolve()
+    if key in _HELD_FOLDERS:
+        yield
+        return
+    with open(key / LOCK_FILE_NAME, "a") as lock_file:
         try:
             fcntl.flock(lock_file, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
             raise UserPathError(f"{out_dir}: another sweep, transfer or sensitivity run is "
                                 "writing there now; wait for it to end or choose another "
                                 "output folder") from None
+        _HELD_FOLDERS.add(key)
         try:
             yield
         finally:
+            _HELD_FOLDERS.discard(key)
             fcntl.flock(lock_file, fcntl.LOCK_UN)
 
 

@@ -331,12 +331,24 @@ def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
     Resumable. `progress`: the recordings' and the sweeps' progress bars; the steps are
     logged at INFO. A matrix over the trial bound is refused before anything runs unless
     `confirmed_trials` covers it (check_matrix_size)."""
-    from tegrasp_drake.sweep.runner import run_sweep
-    from tegrasp_drake.sweep.spec import expand_trials
-    from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec
+    from tegrasp_drake.sweep.runner import hold_output_folder
+    from tegrasp_drake.sweep.trial_function import run_trial_from_spec
     check_matrix_size(spec, "run_transfer", confirmed_trials)
     if trial_function is run_trial_from_spec:
         check_unrecorded_events(spec, out_dir)
+    pathlib.Path(out_dir).mkdir(parents=True, exist_ok=True)
+    with hold_output_folder(out_dir):  # the whole folder, before anything is recorded
+        return _run_transfer_held(spec, trial_function, out_dir, workers=workers,
+                                  scheduler=scheduler, progress=progress,
+                                  confirmed_trials=confirmed_trials)
+
+
+def _run_transfer_held(spec: TransferSpec, trial_function, out_dir, *, workers, scheduler,
+                       progress: bool, confirmed_trials: int | None) -> dict:
+    """run_transfer's recordings and cells, its folder held."""
+    from tegrasp_drake.sweep.runner import run_sweep
+    from tegrasp_drake.sweep.spec import expand_trials
+    from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec
     for world in spec.memorizing_worlds():
         record_world_events(spec, world, world_events_folder(out_dir, world),
                             progress=progress)
