@@ -79,12 +79,14 @@ def test_a_sweep_into_a_folder_another_run_holds_is_an_error_outside_the_run(tmp
 
 
 def _no_recording(monkeypatch):
-    """A world's recording replaced by a failure: the tests below must stop before any."""
-    from tegrasp_drake.transfer import matrix
+    """An object's recordings (paper events, ensemble) replaced by a failure: the tests below
+    must stop before any simulation."""
+    from tegrasp_drake.recording import ensemble_events, paper_events
 
     def recorded(*args, **kwargs):
-        raise AssertionError("a world's events were recorded")
-    monkeypatch.setattr(matrix, "record_world_events", recorded)
+        raise AssertionError("an object's events were recorded")
+    monkeypatch.setattr(paper_events, "record_events", recorded)
+    monkeypatch.setattr(ensemble_events, "record_object_ensemble", recorded)
 
 
 # Rule: a transfer or a sensitivity study holds its whole --out (the sweep runner's lock)
@@ -109,3 +111,21 @@ def test_a_second_study_into_a_held_out_is_refused_before_anything(tmp_path, cap
     assert code == 1, text
     assert_one_line_error(code, text, "tegrasp: error:", str(out), "another")
     assert not (out / "cells").exists()
+
+
+# Rule: a transfer's events folder kept from an earlier run (its objects are not recorded
+# again) is checked complete, every transition file the cells' controllers read for every
+# object it lists, before anything is recorded or run; one line naming the file and the
+# remedy, exit 1 (a damaged file, not a refused spec).
+def test_a_kept_transfer_events_folder_missing_a_transition_is_refused_at_once(tmp_path,
+                                                                            capfd,
+                                                                            monkeypatch):
+    spec, events = _transfer_out(tmp_path)
+    (events / "box" / "load_lift.json").unlink()
+    _no_recording(monkeypatch)
+    code, text = run_cli(["transfer", str(spec), "--out", str(tmp_path / "out"),
+                          "--workers", "1", "--no-progress"], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "tegrasp: error:", str(events / "box" / "load_lift.json"),
+                          f"remove {events}")
+    assert not (tmp_path / "out" / "cells").exists()
