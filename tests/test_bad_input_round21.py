@@ -1,6 +1,9 @@
 """Bad inputs the thirteenth hostile pass found (round 21), one test per rule."""
 
 import fcntl
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -129,3 +132,20 @@ def test_a_kept_transfer_events_folder_missing_a_transition_is_refused_at_once(t
     assert_one_line_error(code, text, "tegrasp: error:", str(events / "box" / "load_lift.json"),
                           f"remove {events}")
     assert not (tmp_path / "out" / "cells").exists()
+
+
+# Rule: an LCM URL that cannot be used is named where it came from: the LCM_DEFAULT_URL
+# environment variable when it gave the default (no field the user wrote), else the field.
+@pytest.mark.parametrize("command", [
+    ["hardware", "--config", "hw.yaml", "--scenario-name", "box", "--duration", "1"],
+    ["emulate", "jaco"],
+], ids=["hardware", "emulate"])
+def test_a_bad_lcm_default_url_variable_is_named(tmp_path, command):
+    (tmp_path / "hw.yaml").write_text("gripper: {port: /dev/ttyUSB0}\n")
+    bad = "udpm://239.255.76.67:99999?ttl=0"
+    run = subprocess.run([sys.executable, "-m", "tegrasp_drake", *command], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=120,
+                         env={**os.environ, "LCM_DEFAULT_URL": bad})
+    assert run.returncode == 1, run.stderr
+    assert_one_line_error(run.returncode, run.stderr, "tegrasp: error:",
+                          "environment variable LCM_DEFAULT_URL", bad)
