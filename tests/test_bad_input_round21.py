@@ -149,3 +149,24 @@ def test_a_bad_lcm_default_url_variable_is_named(tmp_path, command):
     assert run.returncode == 1, run.stderr
     assert_one_line_error(run.returncode, run.stderr, "tegrasp: error:",
                           "environment variable LCM_DEFAULT_URL", bad)
+
+
+# Rule: a sweep record names the events folder it matched against resolved (absolute), so a
+# record read from another working folder names the right one; a record naming it relative
+# (as records did before) still loads.
+def test_a_sweep_record_names_its_events_folder_resolved(tmp_path, monkeypatch):
+    import shutil
+
+    from tegrasp_drake.rig import paths
+    from tegrasp_drake.sweep.records import check_record, make_record
+    from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
+    from tegrasp_drake.sweep.trial_function import events_identities
+    shutil.copytree(paths.package_events_dir() / "box", tmp_path / "ev" / "box")
+    shutil.copy(paths.package_events_dir() / "index.json", tmp_path / "ev")
+    monkeypatch.chdir(tmp_path)
+    trials = [t.to_dict() for t in expand_trials(SweepSpec(
+        objects=("box",), controllers=("memorized",), attempts=1, grid=((0.0, 0.0),)))]
+    identity = events_identities(trials, "ev")[trials[0]["trial_id"]]
+    assert identity["folder"] == str(tmp_path.resolve() / "ev")
+    old = make_record(trials[0], result={}, events={**identity, "folder": "ev"})
+    assert check_record(old) is None
