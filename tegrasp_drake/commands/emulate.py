@@ -17,7 +17,8 @@ from tegrasp_drake.hardware.robotiq.modbus_client import quiet_modbus_library
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Emulators,
                                               FaultInjection)
-from tegrasp_drake.hardware.config import DEFAULT_LCM_URL, shared_lcm_url_problem
+from tegrasp_drake.hardware.config import (DEFAULT_LCM_URL, lcm_url_origin,
+                                           shared_lcm_url_problem)
 from tegrasp_drake.rig.ranges import FAULT_DELAY, shorten
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
@@ -153,8 +154,8 @@ def run(args) -> int:
             follow_gripper and "myrio" in devices):  # they open --lcm-url
         problem = shared_lcm_url_problem(args.lcm_url)  # the check `tegrasp hardware` makes
         if problem:
-            raise SystemExit(f"tegrasp: error: --lcm-url {shorten(repr(args.lcm_url))} "
-                             f"{problem}")
+            raise SystemExit(f"tegrasp: error: {lcm_url_origin(args.lcm_url, '--lcm-url')} "
+                             f"{shorten(repr(args.lcm_url))} {problem}")
     # Every argument is checked above; only now is the whole process raised.
     out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     emulators = Emulators(lcm_url=args.lcm_url, out=out)

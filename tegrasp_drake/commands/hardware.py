@@ -130,11 +130,12 @@ def run(args) -> int:
     else:
         raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
                          "is `!HardwareStationConfig {...}`")
-    from tegrasp_drake.hardware.config import shared_lcm_url_problem
+    from tegrasp_drake.hardware.config import lcm_url_origin, shared_lcm_url_problem
     problem = shared_lcm_url_problem(config.arm.lcm_url)  # the arm's driver is another process
     if problem:
         where = args.config or "the scenario's station"
-        raise SystemExit(f"tegrasp: error: {where}: field 'arm.lcm_url' {problem}, got "
+        origin = lcm_url_origin(config.arm.lcm_url, "field 'arm.lcm_url'")
+        raise SystemExit(f"tegrasp: error: {where}: {origin} {problem}, got "
                          f"{shorten(repr(config.arm.lcm_url))}")
     events = controller_events(scenario, args.events)
     corrective = corrective_events(scenario, args.events)

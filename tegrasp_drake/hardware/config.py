@@ -24,8 +24,18 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_type
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
-DEFAULT_LCM_URL = (os.environ.get("LCM_DEFAULT_URL", "").strip()
+LCM_URL_VARIABLE = "LCM_DEFAULT_URL"
+DEFAULT_LCM_URL = (os.environ.get(LCM_URL_VARIABLE, "").strip()
                    or "udpm://239.255.76.67:7667?ttl=0")
+
+
+def lcm_url_origin(url: str, field: str) -> str:
+    """Where a message says `url` came from: the LCM_DEFAULT_URL environment variable when it
+    set the default and `url` is that default (the user wrote no `field`, and fixes the
+    variable), else `field` ("field 'arm.lcm_url'", "--lcm-url")."""
+    if os.environ.get(LCM_URL_VARIABLE, "").strip() and url == DEFAULT_LCM_URL:
+        return f"the environment variable {LCM_URL_VARIABLE} (the default of {field})"
+    return field
 
 
 @public_dataclass
@@ -156,8 +166,8 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
             f"must be one of {', '.join(SCHEDULING_POLICIES)}", config.scheduling)
     problem = lcm_url_problem(config.arm.lcm_url)
     if problem:
-        raise ConfigError(f"{source}: field '{prefix}arm.lcm_url' {problem}, got "
-                          f"{config.arm.lcm_url!r}")
+        origin = lcm_url_origin(config.arm.lcm_url, f"field '{prefix}arm.lcm_url'")
+        raise ConfigError(f"{source}: {origin} {problem}, got {config.arm.lcm_url!r}")
     if config.tactile.calibration_file:  # read now, not when the devices start
         from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
         try:

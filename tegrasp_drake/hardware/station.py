@@ -28,7 +28,8 @@ from tegrasp_drake.hardware.myrio.tactile_calibration import (LoadTactileCalibra
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
-from tegrasp_drake.hardware.config import HardwareStationConfig, lcm_url_problem
+from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin,
+                                           lcm_url_problem)
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 from tegrasp_drake.rig.ranges import check_ranges
 from tegrasp_drake.rig.api_boundary import public_api
@@ -79,7 +80,8 @@ class HardwareStation(Diagram):
         self._config = config
         problem = None if lcm is not None else lcm_url_problem(config.arm.lcm_url)
         if problem:
-            raise HardwareNotReadyError(f"arm: the LCM URL {config.arm.lcm_url!r} {problem}")
+            origin = lcm_url_origin(config.arm.lcm_url, "the LCM URL")
+            raise HardwareNotReadyError(f"arm: {origin} {config.arm.lcm_url!r} {problem}")
         self._lcm = lcm or DrakeLcm(config.arm.lcm_url)
         self._gripper_client = None
         self._tactile_reader = None

@@ -188,6 +188,7 @@ def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, w
     A study over the trial bound is refused with its cost before anything else unless
     `confirmed_trials` (the count given with --confirm-trials) covers it
     (transfer.matrix.check_matrix_size)."""
+    from tegrasp_drake.sweep.runner import hold_output_folder
     from tegrasp_drake.sweep.trial_function import run_trial_from_spec
     from tegrasp_drake.transfer.matrix import check_unrecorded_events, run_transfer
     matrix = transfer_spec(spec, points)
@@ -195,6 +196,9 @@ def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, w
     check_worlds(matrix, "the sensitivity study")
     if trial_function is run_trial_from_spec:  # before OUT is written
         check_unrecorded_events(matrix, out_dir)
-    record_points(points, out_dir)
-    return run_transfer(matrix, trial_function, out_dir, workers=workers, scheduler=scheduler,
-                        progress=progress, confirmed_trials=confirmed_trials)
+    pathlib.Path(out_dir).mkdir(parents=True, exist_ok=True)
+    with hold_output_folder(out_dir):  # before points.json; run_transfer shares the hold
+        record_points(points, out_dir)
+        return run_transfer(matrix, trial_function, out_dir, workers=workers,
+                            scheduler=scheduler, progress=progress,
+                            confirmed_trials=confirmed_trials)

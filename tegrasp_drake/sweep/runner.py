@@ -38,11 +38,13 @@ from tegrasp_drake.sweep.records import (
 from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, check_sweep_size,
                                       expand_trials)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
+from tegrasp_drake.rig.files import UserPathError
 from tegrasp_drake.rig.ranges import Range
 
 logger = logging.getLogger(__name__)
 
 LOCK_FILE_NAME = ".sweep.lock"
+_HELD_FOLDERS = set()  # resolved output folders this process holds (hold_output_folder)
 DASK_CONNECT_TIMEOUT_S = 30.0
 
 
@@ -179,8 +181,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
     command's one connection, left open for its next sweep).
     ConfigError or SweepError before any trial runs for an invalid spec, a sweep over the
     trial bound that `confirmed_trials` (the count given with --confirm-trials) does not
-    cover (checked before its trials are listed), a folder holding another sweep's records,
-    or another sweep writing there."""
+    cover (checked before its trials are listed) or a folder holding another sweep's records;
+    UserPathError (hold_output_folder) when another run is writing there."""
     start = time.perf_counter()
     check_sweep_size(spec, "run_sweep", confirmed_trials)
     trials = [trial.to_dict() for trial in expand_trials(spec)]
@@ -193,7 +195,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    with _exclusive_lock(out_dir):
+    with hold_output_folder(out_dir):
         remove_temporary_files(out_dir)
         loaded = load_records(out_dir)
         _keep_corrupt_records_aside(loaded.corrupt)
@@ -232,17 +234,30 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
 
 
 @contextmanager
-def _exclusive_lock(out_dir: Path):
-    """Holds an flock on the folder's lock file; the kernel drops it if we die."""
-    with open(out_dir / LOCK_FILE_NAME, "a") as lock_file:
+def hold_output_folder(out_dir: Path):
+    """Holds an exclusive flock on the output folder's lock file for the block, so a second
+    sweep, transfer or sensitivity run into the folder is refused at once; the kernel drops
+    the lock when the process ends, however it ends. UserPathError when another process
+    holds it: an error outside the run (exit 1), not a refused spec. `out_dir` must exist.
+    Nested holds of one folder in this process (a sensitivity study holding its folder
+    across the transfer it runs) share the outer lock: a second flock on another open of the
+    file would be refused as another run's."""
+    key = Path(out_dir).resolve()
+    if key in _HELD_FOLDERS:
+        yield
+        return
+    with open(key / LOCK_FILE_NAME, "a") as lock_file:
         try:
             fcntl.flock(lock_file, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            raise SweepError(f"another sweep is writing into {out_dir}; wait for it "
-                             "or choose another output folder") from None
+            raise UserPathError(f"{out_dir}: another sweep, transfer or sensitivity run is "
+                                "writing there now; wait for it to end or choose another "
+                                "output folder") from None
+        _HELD_FOLDERS.add(key)
         try:
             yield
         finally:
+            _HELD_FOLDERS.discard(key)
             fcntl.flock(lock_file, fcntl.LOCK_UN)
 
 

@@ -100,8 +100,8 @@ def events_identity(events: dict | None, corrective_events: dict | None,
                     events_dir=None) -> dict | None:
     """What a record says of the memorized events a trial matched against: the SHA-256 of
     their content (each event's file text, as save_memorized_events writes it, in grasp
-    order; the corrective events after them) and the folder asked for (None: your events
-    folder, then the package's). None for a trial that reads no events."""
+    order; the corrective events after them) and the folder asked for, absolute (None: your
+    events folder, then the package's). None for a trial that reads no events."""
     from tegrasp_drake.events.event_file import event_json_text, event_to_json
     chosen = [event for group in (events, corrective_events) if group
               for event in group.values()]
@@ -111,7 +111,8 @@ def events_identity(events: dict | None, corrective_events: dict | None,
     for event in chosen:
         digest.update(f"{event.object_name}/{event.transition}\n".encode("utf-8"))
         digest.update(event_json_text(event_to_json(event)).encode("utf-8"))
-    return {"folder": None if events_dir is None else str(events_dir),
+    # Resolved: a record read from another working folder still names the right one.
+    return {"folder": None if events_dir is None else str(pathlib.Path(events_dir).resolve()),
             "sha256": digest.hexdigest()}
 
 

@@ -324,6 +324,39 @@ def check_unrecorded_events(spec: TransferSpec, out_dir) -> None:
                               "controller") from None
 
 
+def check_kept_events(spec: TransferSpec, out_dir) -> None:
+    """UserPathError, before anything is recorded or run, when an object a world's events
+    folder already lists (so it is kept, not recorded again) lacks a file a cell's controller
+    reads (a transition's event, missing or unusable): one line naming the file, and the
+    remedy (remove the world's folder: its events are recorded again)."""
+    from tegrasp_drake.control.controller_registry import controller_class
+    from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.events.event_file import INDEX_FILE, read_index
+    from tegrasp_drake.rig.files import UserPathError
+    from tegrasp_drake.sweep.spec import expand_trials
+    from tegrasp_drake.sweep.trial_function import trial_events
+    made = recorded_events_folders(spec)
+    checked = set()
+    for memorizing, running in spec.cells:
+        folder = world_events_folder(out_dir, memorizing)
+        for trial in expand_trials(running_sweep(spec, running)):
+            sub = controller_class(trial.controller).events_folder
+            key = (memorizing, trial.object_name, trial.controller)
+            if sub not in made or key in checked:
+                continue
+            checked.add(key)
+            if not (folder / sub / INDEX_FILE).is_file() or trial.object_name not in {
+                    entry["object"] for entry in read_index(folder / sub)}:
+                continue  # recorded by this run
+            try:
+                trial_events(trial.to_dict(), folder)
+            except MemorizedEventError as error:
+                raise UserPathError(f"{error.path}: {error.problem}; the events of world "
+                                    f"'{memorizing}' in {folder} are kept from an earlier "
+                                    f"run: remove {folder} (its events are recorded again) "
+                                    "or give another output folder") from None
+
+
 def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
                  scheduler=None, progress: bool = True,
                  confirmed_trials: int | None = None) -> dict:
@@ -331,12 +364,26 @@ def run_transfer(spec: TransferSpec, trial_function, out_dir, *, workers=None,
     Resumable. `progress`: the recordings' and the sweeps' progress bars; the steps are
     logged at INFO. A matrix over the trial bound is refused before anything runs unless
     `confirmed_trials` covers it (check_matrix_size)."""
-    from tegrasp_drake.sweep.runner import run_sweep
-    from tegrasp_drake.sweep.spec import expand_trials
-    from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec
+    from tegrasp_drake.sweep.runner import hold_output_folder
+    from tegrasp_drake.sweep.trial_function import run_trial_from_spec
     check_matrix_size(spec, "run_transfer", confirmed_trials)
     if trial_function is run_trial_from_spec:
         check_unrecorded_events(spec, out_dir)
+    pathlib.Path(out_dir).mkdir(parents=True, exist_ok=True)
+    with hold_output_folder(out_dir):  # the whole folder, before anything is recorded
+        return _run_transfer_held(spec, trial_function, out_dir, workers=workers,
+                                  scheduler=scheduler, progress=progress,
+                                  confirmed_trials=confirmed_trials)
+
+
+def _run_transfer_held(spec: TransferSpec, trial_function, out_dir, *, workers, scheduler,
+                       progress: bool, confirmed_trials: int | None) -> dict:
+    """run_transfer's recordings and cells, its folder held."""
+    from tegrasp_drake.sweep.runner import run_sweep
+    from tegrasp_drake.sweep.spec import expand_trials
+    from tegrasp_drake.sweep.trial_function import check_sweep_events, run_trial_from_spec
+    if trial_function is run_trial_from_spec:  # before any recording or trial
+        check_kept_events(spec, out_dir)
     for world in spec.memorizing_worlds():
         record_world_events(spec, world, world_events_folder(out_dir, world),
                             progress=progress)

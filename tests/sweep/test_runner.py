@@ -8,6 +8,7 @@ import pytest
 from tegrasp_drake.sweep.records import load_records, record_path
 from tegrasp_drake.sweep.runner import LOCK_FILE_NAME, SweepError, run_sweep
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
+from tegrasp_drake.rig.files import UserPathError
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tests.fake_trials import (
     dying_fake_trial,
@@ -127,7 +128,7 @@ def test_a_folder_of_a_different_sweep_is_refused(tmp_path):
 def test_a_sweep_already_writing_the_folder_is_refused(tmp_path):
     with open(tmp_path / LOCK_FILE_NAME, "a") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        with pytest.raises(SweepError, match="another sweep"):
+        with pytest.raises(UserPathError, match="another sweep, transfer or sensitivity run"):
             run_sweep(SMALL, fake_trial, tmp_path, workers=1, progress=False)
     assert not (tmp_path / "trials").exists()
 

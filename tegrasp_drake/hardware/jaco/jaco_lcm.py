@@ -13,7 +13,7 @@ from pydrake.systems.framework import BasicVector, LeafSystem
 
 from tegrasp_drake.hardware.lcm_boundary import decode_lcm
 from tegrasp_drake.hardware.lcm_time import utime_from_time
-from tegrasp_drake.hardware.message_boundary import RejectedMessage
+from tegrasp_drake.hardware.message_boundary import MessageBoundary, RejectedMessage
 from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_MAX_JOINT_SPEED
 
 JACO_NUM_JOINTS = 6
@@ -26,6 +26,8 @@ JACO_MAX_JOINT_SPEED = JACO2_MAX_JOINT_SPEED
 WRONG_JOINT_COUNT = "wrong joint count"
 NOT_FINITE = "not finite"
 TOO_FAST = "beyond the joint speed limit"
+NEGATIVE_UTIME = "negative utime"
+UTIME_NOT_AFTER = "utime not after the last"
 
 
 def make_jaco_command(utime, position, velocity) -> lcmt_jaco_command:
@@ -73,10 +75,41 @@ def _check_joints(message, fields) -> None:
 
 
 def check_jaco_status(data: bytes) -> lcmt_jaco_status:
-    """A KINOVA_JACO_STATUS message decoded and checked (6 joints, finite); else RejectedMessage."""
+    """A KINOVA_JACO_STATUS message decoded and checked (6 joints, finite, utime >= 0: the
+    arm's clock starts at or after 0); else RejectedMessage."""
     message = decode_lcm(lcmt_jaco_status, data)
     _check_joints(message, ("joint_position", "joint_velocity", "joint_torque"))
+    if message.utime < 0:
+        raise RejectedMessage(NEGATIVE_UTIME, f"lcmt_jaco_status utime = {message.utime} us")
     return message
+
+
+class _StatusAfterLast:
+    """check_jaco_status, and a utime after the last accepted status's: the arm's clock never
+    goes back, so an older or repeated utime is a stale or forged status. The last utime is
+    taken when the boundary accepts (its listener), never by a quiet look."""
+
+    def __init__(self):
+        self.last_utime = None
+
+    def __call__(self, data: bytes) -> lcmt_jaco_status:
+        message = check_jaco_status(data)
+        if self.last_utime is not None and message.utime <= self.last_utime:
+            raise RejectedMessage(UTIME_NOT_AFTER, f"lcmt_jaco_status utime = {message.utime} "
+                                  f"us, the last accepted was {self.last_utime} us")
+        return message
+
+    def accepted(self, message: lcmt_jaco_status) -> None:
+        self.last_utime = message.utime
+
+
+def jaco_status_boundary(source: str = f"arm: {JACO_STATUS_CHANNEL}") -> MessageBoundary:
+    """The boundary of one run's KINOVA_JACO_STATUS stream: check_jaco_status, and each
+    accepted status's utime after the one accepted before it."""
+    check = _StatusAfterLast()
+    boundary = MessageBoundary(source, check)
+    boundary.add_listener(check.accepted)
+    return boundary
 
 
 def check_jaco_command(data: bytes) -> lcmt_jaco_command:

@@ -12,7 +12,7 @@ from pydrake.systems.lcm import LcmPublisherSystem, LcmSubscriberSystem
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD, JACO_STATUS_CHANNEL, JacoCommandReceiver,
     JacoCommandSender, JacoStatusReceiver, JacoStatusSender, check_jaco_command,
-    check_jaco_status)
+    jaco_status_boundary)
 from tegrasp_drake.hardware.lcm_boundary import CheckedLcmSubscriber
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.rig.jaco_velocity_tracker import (
@@ -46,14 +46,15 @@ def AddJacoLcmDriver(builder: DiagramBuilder, *, lcm, prefix: str = "jaco",
                      publish_period: float = JACO_LCM_PERIOD,
                      boundary: MessageBoundary | None = None) -> JacoLcmDriverSystems:
     """Adds tracker -> command sender -> publisher and subscriber -> status receiver, the
-    tracker's feedback from the receiver; status messages cross `boundary` (new by default)."""
+    tracker's feedback from the receiver; status messages cross `boundary`
+    (jaco_status_boundary() by default)."""
     tracker = builder.AddNamedSystem(f"{prefix}_velocity_tracker",
                                      JacoVelocityTracker(tracker_config))
     sender = builder.AddNamedSystem(f"{prefix}_command_sender", JacoCommandSender())
     publisher = builder.AddNamedSystem(f"{prefix}_command_publisher", LcmPublisherSystem.Make(
         channel=JACO_COMMAND_CHANNEL, lcm_type=lcmt_jaco_command, lcm=lcm,
         publish_period=publish_period))
-    boundary = boundary or MessageBoundary(f"arm: {JACO_STATUS_CHANNEL}", check_jaco_status)
+    boundary = boundary or jaco_status_boundary()
     subscriber = builder.AddNamedSystem(f"{prefix}_status_subscriber", CheckedLcmSubscriber(
         channel=JACO_STATUS_CHANNEL, lcm_type=lcmt_jaco_status, boundary=boundary, lcm=lcm))
     receiver = builder.AddNamedSystem(f"{prefix}_status_receiver", JacoStatusReceiver())
