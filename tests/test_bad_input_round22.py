@@ -92,7 +92,7 @@ def test_a_gltf_naming_a_file_drake_does_not_read_is_refused(tmp_path, buffer_ur
 @pytest.mark.parametrize("buffer_uri", [None, "box.bin"], ids=["data-uri", "relative-file"])
 def test_a_gltf_whose_buffer_drake_reads_is_accepted(tmp_path, buffer_uri):
     from tegrasp_drake.rig.object_file import check_model_file
-    check_model_file(str(_gltf_model(tmp_path, buffer_uri)), "scenario")
+    check_model_file(str(_gltf_model(tmp_path, buffer_uri)), "scenario", [0.04, 0.04, 0.1])
 
 
 _CUBE_OBJ = "".join(f"v {x} {y} {z}\n" for z in (0, 0.1) for x, y in (
@@ -130,7 +130,8 @@ def test_an_obj_naming_a_material_file_that_is_not_a_file_is_refused(
 def test_an_obj_with_its_material_library_is_accepted(tmp_path):
     from tegrasp_drake.rig.object_file import check_model_file
     (tmp_path / "wood.png").write_bytes(b"\x89PNG\r\n\x1a\n")
-    check_model_file(str(_obj_model(tmp_path, "box.mtl", "wood.png")), "scenario")
+    check_model_file(str(_obj_model(tmp_path, "box.mtl", "wood.png")), "scenario",
+                     [0.04, 0.04, 0.1])
 
 
 # Rule: a user's model includes no other model (SDF <include>): its one body needs none, and
@@ -145,3 +146,65 @@ def test_a_model_including_another_model_is_refused(tmp_path, no_simulation, cap
     assert code == 1 and len(text.strip().splitlines()) == 1, text
     assert "field 'object.file'" in text and str(file) in text, text
     assert "includes another model (<include>)" in text, text
+
+
+def _obj_mesh_model(tmp_path, obj_text: str, scale: str = "1 1 1"):
+    """A model file whose collision mesh is the OBJ `obj_text`, scaled by `scale`."""
+    (tmp_path / "shape.obj").write_text(obj_text)
+    return _model(tmp_path, '<collision name="c"><geometry><mesh><uri>shape.obj</uri>'
+                            f'<scale>{scale}</scale></mesh></geometry></collision>')
+
+
+_FLAT_OBJ = "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0.1\nv 0.04 0.04 0.1\nf 1 2 3\nf 2 4 3\n"
+
+
+def _urdf_mirrored_mesh(tmp_path):
+    (tmp_path / "box.obj").write_text(_CUBE_OBJ)
+    file = tmp_path / "object.urdf"
+    file.write_text('<?xml version="1.0"?><robot name="mine"><link name="body"><inertial>'
+                    '<mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" '
+                    'ixz="0" iyz="0"/></inertial><collision><geometry><mesh filename="box.obj" '
+                    'scale="-1 1 1"/></geometry></collision></link></robot>')
+    return file
+
+
+_SPANS = "has collision geometry spanning"
+
+
+# Rule: a user model's geometry is what object.size says, since the grasp plan uses the
+# size: its collision geometry's box in its body frame (centre of the base, z up) matches
+# object.size within the fingers' clearance on each side; each collision shape is a solid
+# (no flat hull), each mesh scale positive; else one line naming object.file.
+@pytest.mark.parametrize("model, words", [
+    (lambda tmp_path: _obj_mesh_model(tmp_path, _CUBE_OBJ, "1e30 1e30 1e30"), _SPANS),
+    (lambda tmp_path: _obj_mesh_model(tmp_path, _CUBE_OBJ, "2 2 2"), _SPANS),
+    (lambda tmp_path: _model(tmp_path, '<collision name="c"><geometry><box><size>0.04 0.04 '
+                                       '0.1</size></box></geometry></collision>'), _SPANS),
+    (lambda tmp_path: _obj_mesh_model(tmp_path, _FLAT_OBJ), "it is flat or a needle"),
+    (_urdf_mirrored_mesh, "by [-1, 1, 1]: each factor must be positive"),
+    (lambda tmp_path: _model(tmp_path, '<collision name="c"><geometry><plane><normal>0 0 1'
+                                       '</normal></plane></geometry></collision>'),
+     "has a collision shape HalfSpace, which is no bounded solid"),
+], ids=["scaled-1e30", "twice-the-size", "centred-not-on-its-base", "flat", "mirrored",
+        "half-space"])
+def test_a_model_whose_geometry_is_not_object_size_is_refused(model, words, tmp_path,
+                                                               no_simulation, capfd):
+    file = model(tmp_path)
+    code, text = run_cli(["trial", "--controller", "open_loop", "--out", str(tmp_path / "run"),
+                          *_USER_OBJECT, "--set", f"object.file={file}"], capfd)
+    assert code == 1 and "internal error" not in text, text
+    assert len(text.strip().splitlines()) == 1, text
+    assert "field 'object.file'" in text and str(file) in text and words in text, text
+
+
+@pytest.mark.parametrize("collision, size", [
+    ('<pose>0 0 0.05 0 0 0</pose><geometry><box><size>0.04 0.04 0.1</size></box></geometry>',
+     [0.04, 0.04, 0.1]),
+    # A cylinder lying along y: it reaches its radius along x and z, half its length along y.
+    ('<pose>0 0 0.02 1.5707963 0 0</pose><geometry><cylinder><radius>0.02</radius><length>'
+     '0.06</length></cylinder></geometry>', [0.06, 0.04, 0.04]),
+], ids=["box-on-its-base", "lying-cylinder"])
+def test_a_model_whose_geometry_is_object_size_is_accepted(tmp_path, collision, size):
+    from tegrasp_drake.rig.object_file import check_model_file
+    check_model_file(str(_model(tmp_path, f'<collision name="c">{collision}</collision>')),
+                     "scenario", size)

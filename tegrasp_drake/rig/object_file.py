@@ -8,17 +8,26 @@ entities could expand a small file into gigabytes, the "billion laughs", before 
 a body). Then Drake loads it as the station will, into a plant with a SceneGraph, so that
 its geometry is made (mesh files read, convex hulls computed) and what Drake cannot use is
 refused here, in one line naming object.file, not at station build. It must hold one model
-of one body, with collision geometry: a body the hand cannot touch is nothing to grasp; it
+of one body, with collision geometry: a body the hand cannot touch is nothing to grasp. Its
+collision geometry must fill the box object.size gives, where the object's frame puts it
+(rig/objects.py: frame at the centre of the base, z up, y along the finger stroke), within
+FINGER_CLEARANCE_M on each side, each of its shapes a solid (no flat or needle hull), each
+mesh scaled by positive factors (a negative one mirrors it, turning its faces inside out):
+the grasp plan uses object.size, not the model, to open, place and close the fingers. It
 includes no other model (<include>): one body needs none, and what an include names is
 another model file, unchecked."""
 
 import json
+import math
 import pathlib
 import re
 import xml.parsers.expat
 
+import numpy as np
+
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.files import file_problem, read_bounded
+from tegrasp_drake.rig.objects import FINGER_CLEARANCE_M, MIN_SIZE_M
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 # The most bytes of a model file: it describes one body (its inertia, a few geometries and
@@ -36,17 +45,27 @@ MAX_SUPPORTING_FILE_BYTES = MAX_MESH_FILE_BYTES
 # it), as tinyobjloader, Drake's OBJ reader, reads a material library.
 _TEXTURE_KEYWORDS = ("bump", "disp", "decal", "refl", "norm")
 _URI_SCHEME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]*:")
+# How far [m] each side of the model's collision geometry may lie from the box object.size
+# places in its frame: the grasp plan opens the fingers FINGER_CLEARANCE_M clear of the box
+# object.size gives and sets its grasp height from it; a model wider by more is struck by an
+# open pad, one narrower or off its frame by more is closed on where it is not.
+SIZE_TOLERANCE_M = FINGER_CLEARANCE_M
+# The least volume [m^3] of each collision shape: a cube of MIN_SIZE_M, the smallest extent
+# the contact geometry resolves (rig/objects.py). A flat mesh's hull (volume 0) is no solid
+# for the pads to squeeze, and Drake meets a non-finite pose at extents far under it.
+MIN_SHAPE_VOLUME_M3 = MIN_SIZE_M ** 3
 MODEL_SUFFIXES = (".sdf", ".urdf")  # the formats docs/user-guide.md names for object.file
 _URL_SCHEMES = ("package://", "model://", "file://")  # what Drake's PackageMap resolves
 
 
-def check_model_file(file: str, source: str) -> None:
+def check_model_file(file: str, source: str, size) -> None:
     """ConfigError naming `source` and field object.file unless `file` (module docstring)
     is a model file with no DTD that Drake loads with its meshes, holding one model of one
-    body with collision geometry."""
+    body whose collision geometry fills the box of object.size `size` [m]: [width along the
+    stroke, depth, height] (rig/objects.OBJECT_SIZES)."""
     if not file:
         raise ConfigError(f"{source}: field 'object.file' is required for shape 'file'")
-    plant, parser = _plant_and_parser()
+    plant, scene_graph, parser = _plant_and_parser()
     path = _model_path(file, parser.package_map(), source)
     for mesh in _mesh_references(path, f"{source}: field 'object.file': '{file}'"):
         mesh_path = _check_mesh(mesh, path, file, parser.package_map(), source)
@@ -65,10 +84,13 @@ def check_model_file(file: str, source: str) -> None:
         raise ConfigError(
             f"{source}: field 'object.file': '{file}' must hold one model with one body "
             f"(the object), it holds {len(instances)} model(s) with bodies {bodies}")
-    if not plant.GetCollisionGeometriesForBody(plant.GetBodyByName(bodies[0], instances[0])):
+    body = plant.GetBodyByName(bodies[0], instances[0])
+    if not plant.GetCollisionGeometriesForBody(body):
         raise ConfigError(
             f"{source}: field 'object.file': '{file}' has no collision geometry on its body "
             f"'{bodies[0]}', so the hand has nothing to grasp; give its link a <collision>")
+    _check_geometry(plant, scene_graph.model_inspector(), body, size,
+                    f"{source}: field 'object.file': '{file}'")
 
 
 def drake_error_line(error: Exception) -> str:
@@ -79,11 +101,106 @@ def drake_error_line(error: Exception) -> str:
 
 def _plant_and_parser():
     """A plant registered with a SceneGraph (so that the parser makes its geometry, as in
-    the station) and a parser resolving package://tegrasp/."""
+    the station), the SceneGraph, and a parser resolving package://tegrasp/."""
     from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
     from pydrake.systems.framework import DiagramBuilder
-    plant, _ = AddMultibodyPlantSceneGraph(DiagramBuilder(), time_step=0.0)
-    return plant, paths.make_parser(plant)
+    plant, scene_graph = AddMultibodyPlantSceneGraph(DiagramBuilder(), time_step=0.0)
+    return plant, scene_graph, paths.make_parser(plant)
+
+
+def _check_geometry(plant, inspector, body, size, named: str) -> None:
+    """ConfigError, `named` first, unless each mesh of `body` (collision or visual) has a
+    positive scale, each collision shape is a solid of at least MIN_SHAPE_VOLUME_M3, and
+    their bounding box in the body's frame is the box of object.size `size` (module
+    docstring) within SIZE_TOLERANCE_M on each side."""
+    from pydrake.geometry import Convex, Mesh
+    for geometry in (plant.GetCollisionGeometriesForBody(body)
+                     + plant.GetVisualGeometriesForBody(body)):
+        shape = inspector.GetShape(geometry)
+        if isinstance(shape, (Mesh, Convex)) and not np.all(shape.scale3() > 0):
+            raise ConfigError(
+                f"{named} scales its mesh '{shape.source().description()}' by "
+                f"{_numbers(shape.scale3())}: each factor must be positive (a negative one "
+                f"mirrors the mesh, turning its faces inside out); mirror the mesh file instead")
+    low, high = np.full(3, np.inf), np.full(3, -np.inf)
+    for geometry in plant.GetCollisionGeometriesForBody(body):
+        shape = inspector.GetShape(geometry)
+        support, volume = _support_and_volume(shape, named)
+        if not volume >= MIN_SHAPE_VOLUME_M3:  # also NaN
+            raise ConfigError(
+                f"{named} has the collision shape '{inspector.GetName(geometry)}' of volume "
+                f"{volume:.3g} m^3, less than a {MIN_SIZE_M * 1000:g} mm cube's: it is flat "
+                f"or a needle, no solid for the fingers to squeeze; give a closed solid")
+        X_BG = inspector.GetPoseInFrame(geometry)
+        R_BG, p_BG = X_BG.rotation().matrix(), X_BG.translation()
+        for axis in range(3):  # the body axis in G: row `axis` of R_BG
+            low[axis] = min(low[axis], p_BG[axis] - support(-R_BG[axis]))
+            high[axis] = max(high[axis], p_BG[axis] + support(R_BG[axis]))
+    width, depth, height = size
+    want_low, want_high = (np.array([-depth / 2, -width / 2, 0.0]),
+                           np.array([depth / 2, width / 2, height]))
+    if not (np.all(np.abs(low - want_low) <= SIZE_TOLERANCE_M)
+            and np.all(np.abs(high - want_high) <= SIZE_TOLERANCE_M)):
+        spans = ", ".join(f"{axis} {_numbers([a * 1000, b * 1000])}"
+                          for axis, a, b in zip("xyz", low, high))
+        wanted = ", ".join(f"{axis} {_numbers([a * 1000, b * 1000])}"
+                           for axis, a, b in zip("xyz", want_low, want_high))
+        raise ConfigError(
+            f"{named} has collision geometry spanning {spans} mm in its body's frame, but "
+            f"object.size {_numbers(size)} m puts the object at {wanted} mm (frame at the "
+            f"centre of its base, z up, y along the stroke), each side within "
+            f"{SIZE_TOLERANCE_M * 1000:g} mm: the grasp plan uses object.size; give the "
+            f"model's size, or place and scale its geometry so")
+
+
+def _support_and_volume(shape, named: str):
+    """(h, volume [m^3]) of a collision shape: h(d) is how far [m] it reaches along the unit
+    vector d of its own frame G (its support function), volume its solid's (a mesh's: its
+    convex hull's, the shape Drake's point contact uses)."""
+    from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Mesh, Sphere
+    if isinstance(shape, Box):
+        half = np.array([shape.width(), shape.depth(), shape.height()]) / 2
+        return (lambda d: float(np.abs(d) @ half)), float(np.prod(2 * half))
+    if isinstance(shape, Sphere):
+        r = shape.radius()
+        return (lambda d: r), 4 / 3 * math.pi * r ** 3
+    if isinstance(shape, Cylinder):
+        r, half = shape.radius(), shape.length() / 2
+        return (lambda d: r * math.hypot(d[0], d[1]) + half * abs(d[2])), \
+            math.pi * r ** 2 * 2 * half
+    if isinstance(shape, Capsule):
+        r, half = shape.radius(), shape.length() / 2
+        return (lambda d: r + half * abs(d[2])), \
+            math.pi * r ** 2 * 2 * half + 4 / 3 * math.pi * r ** 3
+    if isinstance(shape, Ellipsoid):
+        axes = np.array([shape.a(), shape.b(), shape.c()])
+        return (lambda d: float(np.linalg.norm(axes * d))), 4 / 3 * math.pi * np.prod(axes)
+    if isinstance(shape, (Mesh, Convex)):
+        hull = shape.GetConvexHull()
+        vertices = np.array([hull.vertex(i) for i in range(hull.num_vertices())])
+        return (lambda d: float(np.max(vertices @ d))), _hull_volume(hull, vertices)
+    raise ConfigError(f"{named} has a collision shape {type(shape).__name__}, which is no "
+                      f"bounded solid to grasp; give a box, sphere, cylinder, capsule, "
+                      f"ellipsoid or mesh")
+
+
+def _hull_volume(hull, vertices) -> float:
+    """The volume [m^3] a closed polygon mesh `hull` (its `vertices`) bounds: the sum over
+    its faces, fanned into triangles, of the signed volumes of the tetrahedra they make with
+    the origin (divergence theorem); a flat hull's faces, both sides of one polygon, sum to
+    zero."""
+    volume = 0.0
+    for face in range(hull.num_elements()):
+        polygon = hull.element(face)
+        corners = vertices[[polygon.vertex(j) for j in range(polygon.num_vertices())]]
+        for j in range(1, len(corners) - 1):
+            volume += float(np.dot(corners[0], np.cross(corners[j], corners[j + 1]))) / 6
+    return abs(volume)
+
+
+def _numbers(values) -> str:
+    """`values` as [a, b, ...] with up to 4 significant digits."""
+    return "[" + ", ".join(f"{float(v):.4g}" for v in values) + "]"
 
 
 def _model_path(file: str, package_map, source: str) -> pathlib.Path:
