@@ -208,3 +208,16 @@ def test_a_model_whose_geometry_is_object_size_is_accepted(tmp_path, collision, 
     from tegrasp_drake.rig.object_file import check_model_file
     check_model_file(str(_model(tmp_path, f'<collision name="c">{collision}</collision>')),
                      "scenario", size)
+
+
+# Rule: a warning Drake gives while loading a user's model (an OBJ face naming a vertex the
+# OBJ does not have, which Drake drops with a warning) refuses the model, in one line naming
+# object.file and the warning; the run does not go on with what Drake made of it.
+def test_a_model_drake_warns_about_is_refused(tmp_path, no_simulation, capfd):
+    file = _obj_mesh_model(tmp_path, _CUBE_OBJ + "f 1 2 3 999999999\n")
+    code, text = run_cli(["trial", "--controller", "open_loop", "--out", str(tmp_path / "run"),
+                          *_USER_OBJECT, "--set", f"object.file={file}"], capfd)
+    assert code == 1 and "internal error" not in text, text
+    assert len(text.strip().splitlines()) == 1, text
+    assert "field 'object.file'" in text and str(file) in text, text
+    assert "is not a model Drake loads cleanly" in text and "Vertex indices out of" in text, text

@@ -17,7 +17,9 @@ the grasp plan uses object.size, not the model, to open, place and close the fin
 includes no other model (<include>): one body needs none, and what an include names is
 another model file, unchecked."""
 
+import contextlib
 import json
+import logging
 import math
 import pathlib
 import re
@@ -72,13 +74,19 @@ def check_model_file(file: str, source: str, size) -> None:
         _check_supporting_files(
             mesh_path, f"{source}: field 'object.file': '{file}' names the mesh '{mesh}', which")
     try:
-        if file.startswith("package://"):
-            instances = parser.AddModels(url=file)
-        else:
-            instances = parser.AddModels(file_name=file)
+        with _drake_warnings() as warnings:
+            if file.startswith("package://"):
+                instances = parser.AddModels(url=file)
+            else:
+                instances = parser.AddModels(file_name=file)
     except (RuntimeError, ValueError) as e:
         raise ConfigError(f"{source}: field 'object.file': '{file}' is not a model Drake "
                           f"can load: {drake_error_line(e)}") from None
+    if warnings:
+        raise ConfigError(
+            f"{source}: field 'object.file': '{file}' is not a model Drake loads cleanly: it "
+            f"warned ({len(warnings)} warning(s)), first: "
+            f"{drake_error_line(warnings[0]).removeprefix('warning: ')}; fix the model")
     bodies = [plant.get_body(b).name() for i in instances for b in plant.GetBodyIndices(i)]
     if len(instances) != 1 or len(bodies) != 1:
         raise ConfigError(
@@ -97,6 +105,34 @@ def drake_error_line(error: Exception) -> str:
     """The first line of a Drake parse error (its text, else its type's name)."""
     text = str(error).strip()
     return text.splitlines()[0] if text else type(error).__name__
+
+
+class _Collected(logging.Handler):
+    """The messages of the log records it is handed."""
+
+    def __init__(self):
+        super().__init__(logging.WARNING)
+        self.messages = []
+
+    def emit(self, record):
+        self.messages.append(record.getMessage())
+
+
+@contextlib.contextmanager
+def _drake_warnings():
+    """The messages Drake logs (pydrake hands its log to the Python logger "drake") at
+    WARNING or above while the block runs, kept from the terminal: a warning about the
+    model (an OBJ face naming a vertex it does not have, which Drake drops) is a refusal,
+    in one line."""
+    logger = logging.getLogger("drake")
+    collected, propagate = _Collected(), logger.propagate
+    logger.addHandler(collected)
+    logger.propagate = False
+    try:
+        yield collected.messages
+    finally:
+        logger.removeHandler(collected)
+        logger.propagate = propagate
 
 
 def _plant_and_parser():
