@@ -1,21 +1,23 @@
 """The check of your own object's model file (object.file: an SDF or URDF path, or a
-package:// URL) before anything simulates. It is checked as every other file the user
-names: the file, and each mesh file it names, must be a regular file that exists and is at
-most a bounded size, and so must each file a mesh names in turn (a glTF's buffers and images,
-an OBJ's material libraries and their textures), resolved as Drake resolves them; the file
-declares no DTD (a model has no use for one, and its
-entities could expand a small file into gigabytes, the "billion laughs", before Drake reads
-a body). Then Drake loads it as the station will, into a plant with a SceneGraph, so that
-its geometry is made (mesh files read, convex hulls computed) and what Drake cannot use is
-refused here, in one line naming object.file, not at station build. It must hold one model
-of one body, with collision geometry: a body the hand cannot touch is nothing to grasp. Its
-collision geometry must fill the box object.size gives, where the object's frame puts it
-(rig/objects.py: frame at the centre of the base, z up, y along the finger stroke), within
-FINGER_CLEARANCE_M on each side, each of its shapes a solid (no flat or needle hull), each
-mesh scaled by positive factors (a negative one mirrors it, turning its faces inside out):
-the grasp plan uses object.size, not the model, to open, place and close the fingers. It
-includes no other model (<include>): one body needs none, and what an include names is
-another model file, unchecked."""
+package:// URL) before anything simulates, each refusal one line naming object.file.
+
+It is checked as every other file the user names: the file, each mesh file it names, and
+each file a mesh names in turn (a glTF's buffers and images, an OBJ's material libraries
+and their textures), resolved as Drake resolves them, must be a regular file that exists
+and is at most a bounded size. The file declares no DTD (a model has no use for one, and
+its entities could expand a small file into gigabytes, the "billion laughs", before Drake
+reads a body) and includes no other model (<include>: one body needs none, and what it
+names is another model file, unchecked).
+
+Then Drake loads it as the station will, into a plant with a SceneGraph, so that its
+geometry is made (mesh files read, convex hulls computed): what Drake cannot use, or warns
+about, is refused here, not at station build. It must hold one model of one body, with
+collision geometry: a body the hand cannot touch is nothing to grasp. That geometry must
+fill the box object.size gives, where the object's frame puts it (rig/objects.py: frame at
+the centre of the base, z up, y along the finger stroke), within SIZE_TOLERANCE_M on each
+side, each of its shapes a solid (no flat or needle hull), each mesh scaled by positive
+factors (a negative one mirrors it, turning its faces inside out): the grasp plan uses
+object.size, not the model, to open, place and close the fingers."""
 
 import contextlib
 import json
