@@ -180,7 +180,7 @@ def resolve_object(config: ObjectConfig, source: str = "scenario", *,
         field, words = problem
         raise ConfigError(f"{source}: field 'object.{field}' {words}")
     if config.shape == "file":
-        check_model_file(config.file, source)
+        check_model_file(config.file, source, config.size)
     return config
 
 
