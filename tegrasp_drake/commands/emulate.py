@@ -105,8 +105,10 @@ def _check_config_target(path) -> None:
     if problem:
         raise SystemExit(f"tegrasp: error: --write-config {path} {problem}")
     if path.exists():
-        try:
-            first = path.read_text(encoding="utf-8", errors="replace").split("\n", 1)[0]
+        try:  # the first line only: a huge file is no config emulate wrote, and not read
+            with open(path, "rb") as existing:
+                head = existing.read(len(WRITTEN_BY_EMULATE.encode()) + 1)
+            first = head.decode("utf-8", errors="replace").split("\n", 1)[0]
         except OSError as e:
             raise SystemExit(f"tegrasp: error: --write-config {path}: cannot read it "
                              f"({e.strerror or e}); give another file name") from None
