@@ -118,7 +118,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["trial", "--scenario", "sc.yaml", "--scenario-name", "mine", "--set", "random_seed=1"],
      ["sc.yaml: scenario 'mine' must be a mapping of fields, got int 5"]),
     ("10 sweep --attempts 100000000", None, ["sweep", "--attempts", "100000000", "--out", "sw"],
-     ["field 'attempts'", "a sweep is at most 100000 trials"]),
+     ["field 'attempts'", "a sweep is at most 1000000 trials even confirmed"]),
     ("record-events --ensemble-runs 99", None,
      ["record-events", "--ensemble-runs", "99", "--set", "object.name=mine", *OWN_BOX],
      ["--ensemble-runs 99: give 0 (none) to 50 ideal grasps"]),
