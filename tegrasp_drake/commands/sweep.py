@@ -247,7 +247,11 @@ def run(args) -> int:
         if args.trial_function == DEFAULT_TRIAL_FUNCTION:
             from tegrasp_drake.sweep.spec import expand_trials
             from tegrasp_drake.sweep.trial_function import check_sweep_events
-            check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
+            try:
+                check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
+            except ConfigError as error:  # an event file missing or damaged: bad input, 1
+                print(f"tegrasp sweep: error: {error}", file=sys.stderr)
+                return 1
         progress = not args.no_progress and progress_wanted(args)
         if args.events:
             trial_function = bound_arguments(trial_function, events_dir=args.events)
