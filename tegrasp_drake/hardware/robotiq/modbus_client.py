@@ -75,6 +75,7 @@ EXCEPTION_RESPONSE = "exception response"
 WRONG_FUNCTION = "wrong function"
 WRONG_REGISTER_COUNT = "wrong register count"
 WRONG_ECHO = "wrong write echo"
+IMPOSSIBLE_STATUS = "impossible status"
 
 
 def check_answer(response, function: int, address: int, count: int):
@@ -92,6 +93,17 @@ def check_answer(response, function: int, address: int, count: int):
     elif len(response.registers) != count:
         raise RejectedMessage(WRONG_REGISTER_COUNT, f"{len(response.registers)} registers "
                               f"answering a read of {count}")
+    return response
+
+
+def check_status_answer(response, function: int, address: int, count: int):
+    """check_answer, and for a status read a status the manual's register map allows
+    (registers.status_contradiction); else RejectedMessage naming why."""
+    response = check_answer(response, function, address, count)
+    if function != 16:
+        contradiction = registers.status_contradiction(response.registers)
+        if contradiction is not None:
+            raise RejectedMessage(IMPOSSIBLE_STATUS, contradiction)
     return response
 
 
@@ -125,7 +137,7 @@ class RobotiqModbusClient:
         self._sample = None
         self._error = None
         self._counters = RobotiqModbusCounters()
-        self.boundary = MessageBoundary(f"gripper: {config.port}", check_answer)
+        self.boundary = MessageBoundary(f"gripper: {config.port}", check_status_answer)
 
     @property
     def port(self) -> str:
