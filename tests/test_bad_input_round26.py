@@ -89,3 +89,36 @@ def test_a_status_the_register_map_allows_is_taken(monkeypatch, words):
     gripper, client = _Gripper(monkeypatch), _client()
     assert gripper.read(client, words) is not None
     assert client.counters().rejected == {}
+
+
+# Rule: a gPO step between two accepted statuses farther than the 2F-85's fingers can move
+# at their top speed in between is counted and skipped (the fingers crossing the whole
+# stroke between two 5 ms reads); the client keeps the last good status.
+def test_a_position_jump_faster_than_the_fingers_is_counted_and_skipped(monkeypatch):
+    gripper, client = _Gripper(monkeypatch), _client()
+    good = gripper.read(client, _words(gPO=3))
+    for position in (255, 230, 255):
+        assert gripper.read(client, _words(gPO=position)) is None
+        assert client.latest_status() is good
+    counters = client.counters()
+    assert counters.rejected == {modbus_client.POSITION_JUMP: 3}
+    assert "gPO" in counters.last_error and "150 mm/s" in counters.last_error
+
+
+# The fingers moving at their top speed are taken, and a long silence allows the distance
+# covered in it; the first status, and the first after a (re)activation (gSTA not 3: the
+# fingers stroke to calibrate), have nothing to be compared with.
+def test_a_position_the_fingers_can_reach_is_taken(monkeypatch):
+    gripper, client = _Gripper(monkeypatch), _client()
+    # [counts/s] the top speed, were the whole byte range the stroke (more counts per mm than
+    # the encoder's 3..230: the fastest the counts can change)
+    rate = units.SPEED_MAX_MPS / units.STROKE_M * units.BYTE_MAX
+    position = 3.0
+    assert gripper.read(client, _words(gPO=255)) is not None  # the first status
+    assert gripper.read(client, _words(gPO=3), after=1.0) is not None  # a second later
+    for _ in range(20):  # a read every 5 ms at full speed
+        position += rate * 0.005
+        assert gripper.read(client, _words(gPO=round(position))) is not None
+    assert gripper.read(client, _words(gSTA=1, gGTO=0, gPO=40)) is not None  # reactivation
+    assert gripper.read(client, _words(gPO=200)) is not None
+    assert client.counters().rejected == {}
