@@ -23,6 +23,9 @@ STATUS_ACT_BIT = 0
 STATUS_GTO_BIT = 3
 STATUS_STA_SHIFT = 4
 STATUS_OBJ_SHIFT = 6
+# Status bits the manual marks "Reserved": byte 0 bits 1-2 and all of byte 1 (byte 2's high
+# nibble is kFLT, the controller's fault, not reserved). A gripper leaves them clear.
+STATUS_RESERVED_BITS = (0x06, 0xFF, 0x00, 0x00, 0x00, 0x00)  # a mask per status byte
 
 
 def _words_from_bytes(six_bytes) -> list[int]:
@@ -77,6 +80,27 @@ def status_registers(status) -> list[int]:
                       | (s[units.STATUS_OBJ] & 3) << STATUS_OBJ_SHIFT)
     return _words_from_bytes([gripper_status, 0, s[units.STATUS_FLT] & 0x0F,
                               s[units.STATUS_PR], s[units.STATUS_PO], s[units.STATUS_CU]])
+
+
+def status_contradiction(words) -> str | None:
+    """What in the 3 status registers the manual's register map makes impossible, or None.
+    The manual ("Gripper status"): reserved bits (STATUS_RESERVED_BITS); gSTA 0x02 "Not used";
+    gACT is the echo of rACT, 0 "Gripper reset", and a gripper in reset reports gSTA 0x00
+    "Gripper is in reset (or automatic release) state": activation in progress (gSTA 1) or
+    completed (gSTA 3) needs rACT = 1. gGTO echoes rGTO, which may be set while in reset
+    (fault 0x07), so gGTO with gACT = 0 is possible and not refused."""
+    b = _bytes_from_words(words)
+    for index, (byte, mask) in enumerate(zip(b, STATUS_RESERVED_BITS)):
+        if byte & mask:
+            return (f"reserved bits 0x{byte & mask:02X} set in status byte {index} "
+                    f"(0x{byte:02X}); the 2F-85 leaves them clear")
+    active_bit = (b[0] >> STATUS_ACT_BIT) & 1
+    activation = (b[0] >> STATUS_STA_SHIFT) & 3
+    if activation == units.ActivationStatus.UNUSED:
+        return "gSTA = 2, a value the 2F-85 does not use"
+    if activation != units.ActivationStatus.RESET and not active_bit:
+        return f"gSTA = {activation} with gACT = 0: a gripper in reset reports gSTA = 0"
+    return None
 
 
 def status_from_registers(words) -> np.ndarray:

@@ -75,6 +75,17 @@ EXCEPTION_RESPONSE = "exception response"
 WRONG_FUNCTION = "wrong function"
 WRONG_REGISTER_COUNT = "wrong register count"
 WRONG_ECHO = "wrong write echo"
+IMPOSSIBLE_STATUS = "impossible status"
+POSITION_JUMP = "position jump"
+
+# [counts/s] the fastest gPO can change: the 2F-85's top speed, 150 mm/s over its 85 mm
+# stroke (datasheet), with the whole byte range 0..255 taken for the stroke. The encoder reads
+# about 3 (open) to 230 (closed) (manual), so this bounds the counts per mm from above: a
+# gripper whose encoder spans more counts than thought is not refused.
+MAX_POSITION_RATE = units.SPEED_MAX_MPS / units.STROKE_M * units.BYTE_MAX
+# [counts] gPO is a finger position rounded to a whole count: two readings of fingers that
+# moved d counts differ by up to d + 1.
+POSITION_QUANTUM = 1.0
 
 
 def check_answer(response, function: int, address: int, count: int):
@@ -93,6 +104,48 @@ def check_answer(response, function: int, address: int, count: int):
         raise RejectedMessage(WRONG_REGISTER_COUNT, f"{len(response.registers)} registers "
                               f"answering a read of {count}")
     return response
+
+
+class StatusAnswerCheck:
+    """check_answer, and for a status read a status the 2F-85 can send: one its manual's
+    register map allows (registers.status_contradiction) and a gPO the fingers can reach from
+    the last accepted status's. The gripper samples gPO at some instant between a request's
+    sending and its answer's arrival, so two samples lie at most (this answer's arrival - the
+    last accepted request's sending) apart: that interval, which holds the read's timing
+    jitter, times MAX_POSITION_RATE, plus POSITION_QUANTUM, is the largest step. A refused
+    status leaves the last accepted one, so the interval and the allowed step grow until a
+    status fits. Positions are compared only while activation is complete (gSTA = 3):
+    activation strokes the fingers to calibrate them, so the first status, and the first after
+    a reactivation or a restart of the gripper, have nothing to be compared with. The client
+    calls `accepted` with each status its boundary lets through."""
+
+    def __init__(self):
+        self._last = None  # (gPO, its request's sending [s]) of the last accepted active status
+
+    def __call__(self, response, function: int, address: int, count: int,
+                 sent: float, arrived: float):
+        response = check_answer(response, function, address, count)
+        if function == 16:
+            return response
+        contradiction = registers.status_contradiction(response.registers)
+        if contradiction is not None:
+            raise RejectedMessage(IMPOSSIBLE_STATUS, contradiction)
+        status = registers.status_from_registers(response.registers)
+        if self._last is not None and status[units.STATUS_STA] == units.ActivationStatus.ACTIVE:
+            last_position, last_sent = self._last
+            interval = max(arrived - last_sent, 0.0)
+            step = abs(status[units.STATUS_PO] - last_position)
+            if step > MAX_POSITION_RATE * interval + POSITION_QUANTUM:
+                raise RejectedMessage(
+                    POSITION_JUMP, f"gPO {last_position:.0f} -> {status[units.STATUS_PO]:.0f} "
+                    f"within {number_text(interval * 1e3)} ms; the 2F-85's fingers move at "
+                    f"most 150 mm/s ({number_text(MAX_POSITION_RATE)} counts/s)")
+        return response
+
+    def accepted(self, status, sent: float) -> None:
+        """Takes `status`, read by a request sent at `sent` [s], as the last accepted."""
+        active = status[units.STATUS_STA] == units.ActivationStatus.ACTIVE
+        self._last = (status[units.STATUS_PO], sent) if active else None
 
 
 def quiet_modbus_library() -> None:
@@ -125,7 +178,8 @@ class RobotiqModbusClient:
         self._sample = None
         self._error = None
         self._counters = RobotiqModbusCounters()
-        self.boundary = MessageBoundary(f"gripper: {config.port}", check_answer)
+        self._status_check = StatusAnswerCheck()
+        self.boundary = MessageBoundary(f"gripper: {config.port}", self._status_check)
 
     @property
     def port(self) -> str:
@@ -214,7 +268,9 @@ class RobotiqModbusClient:
 
     def _transaction(self, request, function: int, address: int, register_count: int,
                      **kwargs):
-        """One request's checked answer, or None (counted by the boundary)."""
+        """One request's checked answer and when the request was sent (time.monotonic() [s]),
+        or None (counted by the boundary)."""
+        sent = time.monotonic()
         try:
             response = request(address, device_id=self._config.device_id, **kwargs)
         except ModbusException as exc:
@@ -223,7 +279,9 @@ class RobotiqModbusClient:
         except Exception as exc:  # noqa: BLE001: bytes pymodbus could not make sense of
             self.boundary.reject(UNDECODABLE, f"{type(exc).__name__}: {exc}")
             return None
-        return self.boundary.accept(response, function, address, register_count)
+        checked = self.boundary.accept(response, function, address, register_count, sent,
+                                       time.monotonic())
+        return None if checked is None else (checked, sent)
 
     def _write(self, client, words) -> bool:
         ok = self._transaction(client.write_registers, 16, registers.COMMAND_ADDRESS,
@@ -236,16 +294,17 @@ class RobotiqModbusClient:
     def _read(self, client) -> RobotiqStatusSample | None:
         read = (client.read_input_registers if self._config.read_function == 4
                 else client.read_holding_registers)
-        response = self._transaction(read, self._config.read_function,
-                                     registers.STATUS_ADDRESS, registers.REGISTER_COUNT,
-                                     count=registers.REGISTER_COUNT)
-        if response is None:
+        answer = self._transaction(read, self._config.read_function,
+                                   registers.STATUS_ADDRESS, registers.REGISTER_COUNT,
+                                   count=registers.REGISTER_COUNT)
+        if answer is None:
             return None
+        response, sent = answer
+        status = registers.status_from_registers(response.registers)
+        self._status_check.accepted(status, sent)
         with self._lock:
             self._counters.reads += 1
-            self._sample = RobotiqStatusSample(
-                registers.status_from_registers(response.registers), time.monotonic(),
-                self._counters.reads)
+            self._sample = RobotiqStatusSample(status, time.monotonic(), self._counters.reads)
             return self._sample
 
     def _activate(self, client):
