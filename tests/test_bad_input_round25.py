@@ -84,3 +84,37 @@ def test_an_arm_status_a_little_ahead_costs_at_most_the_stated_lead():
     assert offer(9_000_020_000 + lead_us)  # the genuine stream again, one lead later
     counters = boundary.counters()
     assert counters.rejected == {jaco_lcm.UTIME_AHEAD: 1, jaco_lcm.UTIME_NOT_AFTER: 1}
+
+
+# Rule: an arm status whose joint positions, velocities or torques lie beyond the JACO2's
+# physical ranges (modelgen/jaco2_dh.py) is counted and skipped, as a non-finite one is;
+# one at the published limits is the arm's and is accepted.
+@pytest.mark.parametrize("field, joint, value", [
+    ("joint_position", 0, 1e300),   # finite, but no angle of a continuous joint
+    ("joint_position", 1, np.radians(30.0)),   # joint 2 stops at 47 deg
+    ("joint_position", 2, np.radians(350.0)),  # joint 3 stops at 341 deg
+    ("joint_velocity", 3, -1e300),
+    ("joint_velocity", 0, np.radians(90.0)),   # joint 1 turns at most 36 deg/s
+    ("joint_torque", 1, 1e300),
+    ("joint_torque", 5, -100.0),               # joint 6 makes at most 20 N m
+])
+def test_an_arm_status_beyond_the_jaco2s_ranges_is_skipped(field, joint, value):
+    clock = _Clock()
+    boundary = jaco_status_boundary(clock=clock)
+    values = {"joint_position": list(Q), "joint_velocity": list(ZERO),
+              "joint_torque": list(ZERO)}
+    values[field][joint] = value
+    bad = make_jaco_status(1_000_000, values["joint_position"], values["joint_velocity"],
+                           values["joint_torque"])
+    assert boundary.accept(bad.encode()) is None
+    assert boundary.counters().rejected == {jaco_lcm.OUT_OF_RANGE: 1}
+    (rejection,) = boundary.new_rejections()
+    assert f"{field}[{joint}]" in rejection.detail
+    assert "\n" not in boundary.describe(rejection)
+    clock.now += 0.01
+    at_limits = make_jaco_status(
+        1_010_000, [0.0, np.radians(47.0), np.radians(341.0), 0.0, 0.0, 0.0],
+        np.radians([36.0, -36.0, 36.0, 48.0, -48.0, 48.0]),
+        [40.0, -80.0, 40.0, 20.0, -20.0, 20.0])
+    assert boundary.accept(at_limits.encode()) is not None
+    assert boundary.counters().rejected == {jaco_lcm.OUT_OF_RANGE: 1}

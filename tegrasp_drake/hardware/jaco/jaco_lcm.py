@@ -17,6 +17,7 @@ from tegrasp_drake.hardware.lcm_boundary import decode_lcm
 from tegrasp_drake.hardware.lcm_time import utime_from_time
 from tegrasp_drake.hardware.message_boundary import MessageBoundary, RejectedMessage
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
+from tegrasp_drake.modelgen.jaco2_dh import JOINTS as JACO2_JOINTS
 from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_MAX_JOINT_SPEED
 
 JACO_NUM_JOINTS = 6
@@ -32,6 +33,37 @@ TOO_FAST = "beyond the joint speed limit"
 NEGATIVE_UTIME = "negative utime"
 UTIME_NOT_AFTER = "utime not after the last"
 UTIME_AHEAD = "utime ahead of the receiver's clock"
+OUT_OF_RANGE = "beyond the JACO2's range"
+
+# What a JACO2 can report, per joint, from its published limits (modelgen/jaco2_dh.py:
+# Kinova's joint limits, speeds and torques). Stated bounds, not from a specification:
+# [rad] past a limited joint's stop (joints 2, 3): the firmware stops the joint at its
+# limit; overshoot within a 10 ms period at 36 deg/s is 0.36 deg and compliance under load a
+# degree or two, so 5 deg past the stop is no reading of this arm.
+_STOP_MARGIN = math.radians(5.0)
+# [rad] a continuous joint's angle: the actuator may count whole turns; a thousand turns
+# take over two hours of turning one way at 48 deg/s, beyond any session.
+_CONTINUOUS_RANGE = 1000 * 2 * math.pi
+# Measured speed and torque may pass the actuator's own maximum when the arm is pushed or
+# overshoots; twice that is beyond either (the emulated arm's runs read at most 20 deg/s
+# and 1.2 N m).
+_MEASURED_MARGIN = 2.0
+
+
+def _position_range(joint) -> tuple[float, float]:
+    if joint.lower is None:
+        return -_CONTINUOUS_RANGE, _CONTINUOUS_RANGE
+    return joint.lower - _STOP_MARGIN, joint.upper + _STOP_MARGIN
+
+
+# field -> ([(low, high)] per joint, unit), the ranges check_jaco_status enforces.
+JACO_STATUS_RANGES = {
+    "joint_position": ([_position_range(j) for j in JACO2_JOINTS], "rad"),
+    "joint_velocity": ([(-_MEASURED_MARGIN * j.max_speed, _MEASURED_MARGIN * j.max_speed)
+                        for j in JACO2_JOINTS], "rad/s"),
+    "joint_torque": ([(-_MEASURED_MARGIN * j.max_torque, _MEASURED_MARGIN * j.max_torque)
+                      for j in JACO2_JOINTS], "N m"),
+}
 
 
 def status_max_lead(arm_timeout: float) -> float:
@@ -98,10 +130,17 @@ def _check_joints(message, fields) -> None:
 
 
 def check_jaco_status(data: bytes) -> lcmt_jaco_status:
-    """A KINOVA_JACO_STATUS message decoded and checked (6 joints, finite, utime >= 0: the
-    arm's clock starts at or after 0); else RejectedMessage."""
+    """A KINOVA_JACO_STATUS message decoded and checked (6 joints, finite, within
+    JACO_STATUS_RANGES, utime >= 0: the arm's clock starts at or after 0); else
+    RejectedMessage."""
     message = decode_lcm(lcmt_jaco_status, data)
-    _check_joints(message, ("joint_position", "joint_velocity", "joint_torque"))
+    _check_joints(message, tuple(JACO_STATUS_RANGES))
+    for field, (ranges, unit) in JACO_STATUS_RANGES.items():
+        for k, (value, (low, high)) in enumerate(zip(getattr(message, field), ranges)):
+            if not low <= value <= high:
+                raise RejectedMessage(OUT_OF_RANGE, f"lcmt_jaco_status {field}[{k}] = "
+                                      f"{value:.6g} {unit}; the JACO2's joint {k + 1} reads "
+                                      f"within [{low:.6g}, {high:.6g}] {unit}")
     if message.utime < 0:
         raise RejectedMessage(NEGATIVE_UTIME, f"lcmt_jaco_status utime = {message.utime} us")
     return message
