@@ -20,7 +20,7 @@ from tegrasp_drake.sweep.runner import LOCK_FILE_NAME
 from tests.test_bad_input import assert_one_line_error, folder_contents, run_cli
 from tests.test_bad_input_round14 import _FAKE_TRIALS, _transfer_out
 
-Q = [0.1, -0.2, 0.3, -0.4, 0.5, -0.6]
+Q = [0.1, 2.8, 0.9, -0.4, 0.5, -0.6]  # [rad] inside the JACO2's joint ranges
 ZERO = [0.0] * 6
 
 
@@ -39,7 +39,7 @@ def test_an_arm_status_with_a_negative_or_backward_utime_is_skipped():
     simulator.Initialize()
     context = driver.status_receiver.GetMyContextFromRoot(simulator.get_context())
     real = [q + 0.2 for q in Q]
-    forged = [0.1] * 6
+    forged = [2.0] * 6
 
     def publish(utime, position):
         lcm.Publish(JACO_STATUS_CHANNEL,

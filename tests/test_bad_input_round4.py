@@ -57,7 +57,7 @@ from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, TrialLog, load_t
 from tegrasp_drake.simulation.station import initial_arm_positions
 
 SEED = 604
-Q = [0.1, -0.2, 0.3, -0.4, 0.5, -0.6]
+Q = [0.1, 2.8, 0.9, -0.4, 0.5, -0.6]  # [rad] inside the JACO2's joint ranges
 ZERO = [0.0] * 6
 
 

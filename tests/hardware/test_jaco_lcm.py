@@ -21,7 +21,7 @@ from tegrasp_drake.rig.jaco_velocity_tracker import (
 
 pytestmark = pytest.mark.real_time  # conftest: runs at real-time scheduling
 
-Q = np.array([0.1, -0.2, 0.3, -0.4, 0.5, -0.6])
+Q = np.array([0.1, 2.8, 0.9, -0.4, 0.5, -0.6])  # [rad] inside the JACO2's joint ranges
 V = np.array([0.01, 0.02, -0.03, 0.04, -0.05, 0.06])
 TAU = np.array([1.0, 2.0, 3.0, -4.0, -5.0, -6.0])
 
@@ -191,7 +191,7 @@ def test_velocity_mode_arm_reaches_the_goal_through_both_builders():
     lcm = DrakeLcm("memq://")
     builder = DiagramBuilder()
     builder.AddSystem(LcmInterfaceSystem(lcm))
-    arm = builder.AddSystem(VelocityModeArm(np.zeros(6)))
+    arm = builder.AddSystem(VelocityModeArm(Q - 0.5))
     AddJacoLcmEmulator(builder, lcm=lcm, desired_state_input=arm.GetInputPort("desired_state"),
                        position_output=arm.GetOutputPort("position"),
                        velocity_output=arm.GetOutputPort("zeros"),

@@ -34,8 +34,11 @@ def test_the_package_subscribes_no_python_callback_on_a_drake_lcm():
     assert calls == []
 
 
+POSE = [0.0, 2.8, 0.9, 0.0, 0.0, 0.0]  # [rad] inside the JACO2's joint ranges
+
+
 def _status(utime) -> bytes:
-    return make_jaco_status(utime, ZERO, ZERO, ZERO).encode()
+    return make_jaco_status(utime, POSE, ZERO, ZERO).encode()
 
 
 def _subscribed_diagram():

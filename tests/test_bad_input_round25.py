@@ -1,0 +1,120 @@
+"""Bad inputs the fourteenth hostile pass found (round 25), one test per rule."""
+
+import numpy as np
+import pytest
+from pydrake.lcm import DrakeLcm
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.lcm import LcmInterfaceSystem
+from pydrake.systems.primitives import ConstantVectorSource
+
+from tegrasp_drake.hardware.jaco import jaco_lcm
+from tegrasp_drake.hardware.jaco.jaco_lcm import (
+    JACO_STATUS_CHANNEL, jaco_status_boundary, make_jaco_status)
+from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
+
+Q = [3.3, 4.5, 1.1, 2.5, 2.3, 3.9]  # [rad] inside every joint's range
+ZERO = [0.0] * 6
+
+
+# Rule: a status from the far future (utime 2^62 us, 146,000 years ahead) is counted and
+# skipped; it does not become the clock the arm's genuine statuses must beat.
+def test_an_arm_status_from_the_far_future_does_not_lock_out_the_genuine_stream():
+    lcm = DrakeLcm("memq://")
+    builder = DiagramBuilder()
+    builder.AddSystem(LcmInterfaceSystem(lcm))
+    driver = AddJacoLcmDriver(builder, lcm=lcm)
+    source = builder.AddSystem(ConstantVectorSource(np.concatenate([Q, ZERO])))
+    builder.Connect(source.get_output_port(), driver.tracker.GetInputPort("desired_state"))
+    simulator = Simulator(builder.Build())
+    simulator.Initialize()
+    context = driver.status_receiver.GetMyContextFromRoot(simulator.get_context())
+
+    def publish(utime):
+        lcm.Publish(JACO_STATUS_CHANNEL, make_jaco_status(utime, Q, ZERO, ZERO).encode())
+        simulator.AdvanceTo(simulator.get_context().get_time() + 0.01)
+        return driver.status_receiver.GetOutputPort("time_measured").Eval(context)[0]
+
+    assert publish(6_580_000) == pytest.approx(6.58)  # the origin
+    assert publish(6_590_000) == pytest.approx(6.59)  # within the bound: confirmed
+    assert publish(2**62) == pytest.approx(6.59)
+    for utime in (6_600_000, 6_610_000, 6_620_000):
+        assert publish(utime) == pytest.approx(utime * 1e-6)
+    counters = driver.status_boundary.counters()
+    assert counters.accepted == 5
+    assert counters.rejected == {jaco_lcm.UTIME_AHEAD: 1}
+    (rejection,) = driver.status_boundary.new_rejections()
+    assert "4611686018427387904" in rejection.detail
+
+
+class _Clock:
+    """A monotonic clock [s] the test sets."""
+
+    def __init__(self):
+        self.now = 100.0
+
+    def __call__(self):
+        return self.now
+
+
+# Rule: a status's utime advances at most as the receiver's own clock does, plus
+# JACO_STATUS_MAX_LEAD; the first status is the clock's origin, whatever its utime,
+# replaced by a later one further ahead until a status within the bound confirms it (a
+# start-up backlog). So a forged status just inside the bound is accepted and costs the
+# genuine stream at most that lead: once the receiver's clock has run past it, genuine
+# statuses are accepted again.
+def test_an_arm_status_a_little_ahead_costs_at_most_the_stated_lead():
+    clock = _Clock()
+    boundary = jaco_status_boundary(clock=clock)
+    lead_us = round(jaco_lcm.JACO_STATUS_MAX_LEAD * 1e6)
+
+    def offer(utime):
+        return boundary.accept(make_jaco_status(utime, Q, ZERO, ZERO).encode()) is not None
+
+    assert offer(8_000_000_000)  # the origin: any utime
+    clock.now += 0.001
+    assert offer(9_000_000_000)  # further ahead: the last of a start-up backlog, the origin
+    clock.now += 0.01
+    assert offer(9_000_010_000)  # within the bound: the origin confirmed
+    assert not offer(9_000_010_000 + lead_us + 1)  # one microsecond too far ahead
+    assert offer(9_000_010_000 + lead_us)  # forged, as far ahead as allowed
+    clock.now += 0.01
+    assert not offer(9_000_020_000)  # the genuine stream, behind the forged status
+    clock.now += jaco_lcm.JACO_STATUS_MAX_LEAD
+    assert offer(9_000_020_000 + lead_us)  # the genuine stream again, one lead later
+    counters = boundary.counters()
+    assert counters.rejected == {jaco_lcm.UTIME_AHEAD: 1, jaco_lcm.UTIME_NOT_AFTER: 1}
+
+
+# Rule: an arm status whose joint positions, velocities or torques lie beyond the JACO2's
+# physical ranges (modelgen/jaco2_dh.py) is counted and skipped, as a non-finite one is;
+# one at the published limits is the arm's and is accepted.
+@pytest.mark.parametrize("field, joint, value", [
+    ("joint_position", 0, 1e300),   # finite, but no angle of a continuous joint
+    ("joint_position", 1, np.radians(30.0)),   # joint 2 stops at 47 deg
+    ("joint_position", 2, np.radians(350.0)),  # joint 3 stops at 341 deg
+    ("joint_velocity", 3, -1e300),
+    ("joint_velocity", 0, np.radians(90.0)),   # joint 1 turns at most 36 deg/s
+    ("joint_torque", 1, 1e300),
+    ("joint_torque", 5, -100.0),               # joint 6 makes at most 20 N m
+])
+def test_an_arm_status_beyond_the_jaco2s_ranges_is_skipped(field, joint, value):
+    clock = _Clock()
+    boundary = jaco_status_boundary(clock=clock)
+    values = {"joint_position": list(Q), "joint_velocity": list(ZERO),
+              "joint_torque": list(ZERO)}
+    values[field][joint] = value
+    bad = make_jaco_status(1_000_000, values["joint_position"], values["joint_velocity"],
+                           values["joint_torque"])
+    assert boundary.accept(bad.encode()) is None
+    assert boundary.counters().rejected == {jaco_lcm.OUT_OF_RANGE: 1}
+    (rejection,) = boundary.new_rejections()
+    assert f"{field}[{joint}]" in rejection.detail
+    assert "\n" not in boundary.describe(rejection)
+    clock.now += 0.01
+    at_limits = make_jaco_status(
+        1_010_000, [0.0, np.radians(47.0), np.radians(341.0), 0.0, 0.0, 0.0],
+        np.radians([36.0, -36.0, 36.0, 48.0, -48.0, 48.0]),
+        [40.0, -80.0, 40.0, 20.0, -20.0, 20.0])
+    assert boundary.accept(at_limits.encode()) is not None
+    assert boundary.counters().rejected == {jaco_lcm.OUT_OF_RANGE: 1}
