@@ -76,3 +76,69 @@ def test_the_commands_refuse_a_file_lcm_url_and_leave_the_file_whole(tmp_path, c
         assert word in text, text
     assert precious.read_text() == PRECIOUS
     assert not (tmp_path / "hw").exists()
+
+
+# Rule: `-v` logs a command's steps on stderr (Python logging at INFO), `-vv` adds details
+# (DEBUG), and neither changes stdout: `tegrasp hardware` says the devices it checked and
+# that they came up, the run's start and end, the log and result it wrote, and, with
+# --overwrite, the earlier run's log and result it replaced; `tegrasp emulate` says each
+# device it raised and where, and that they stopped.
+@pytest.mark.slow
+def test_verbose_hardware_and_emulate_log_their_steps_on_stderr(tmp_path, ideal_grasp_log):
+    from tegrasp_drake.commands.run_folder import result_path_beside_log
+    from tegrasp_drake.emulators.emulator_process import EmulatedDevices, EmulatorProcess
+    from tegrasp_drake.hardware.config import hardware_config_to_yaml
+    trial = ideal_grasp_log("box").save(tmp_path / "box.npz")
+    url = f"udpm://239.255.76.67:{7600 + (os.getpid() * 7) % 100}?ttl=0"
+    log = tmp_path / "hw" / "run.lcmlog"
+    log.parent.mkdir()
+    log.write_text("the earlier run's log")
+    result = result_path_beside_log(log)
+    result.write_text("{}")
+    with EmulatedDevices(lcm_url=url, trial=trial, scheduling="normal") as devices:
+        (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(devices.config))
+        done = subprocess.run(
+            [sys.executable, "-m", "tegrasp_drake", "hardware", "-vv", "--config",
+             str(tmp_path / "hw.yaml"), "--scenario-name", "box", "--set", "random_seed=691",
+             "--config-set", "scheduling=normal", "--log", str(log), "--overwrite"],
+            capture_output=True, text=True, timeout=300)
+    assert done.returncode in (0, 2), done.stderr
+    for words in (["devices checked", url, devices.config.gripper.port],
+                  [f"gripper on {devices.config.gripper.port} (Modbus slave"],  # DEBUG
+                  ["devices ready"], ["the run started"], ["the run ended"],
+                  [f"wrote the log {log} and the result {result}"],
+                  [f"replaced the earlier run's log {log} and result {result}"]):
+        assert any(all(word in line for word in words)
+                   for line in done.stderr.splitlines()), (words, done.stderr)
+    assert "replaced" not in done.stdout and "the run started" not in done.stdout
+    assert log.read_bytes() != b"the earlier run's log"
+    replayed = subprocess.run([sys.executable, "-m", "tegrasp_drake", "replay", "-vv",
+                               str(log)], capture_output=True, text=True, timeout=300)
+    assert replayed.returncode == 0, replayed.stderr
+    assert "the matcher's settings" in replayed.stderr, replayed.stderr  # DEBUG
+    emulator_url = f"udpm://239.255.76.67:{7700 + (os.getpid() * 7) % 100}?ttl=0"
+    with EmulatorProcess("jaco", "-vv", "--lcm-url", emulator_url, "--scheduling",
+                         "normal") as jaco:
+        jaco.stop()
+    said = "\n".join(jaco.output)  # its stdout and stderr
+    for words in (f"jaco up on {emulator_url}", f"the station's arm: lcm_url={emulator_url}",
+                  "the devices stopped"):
+        assert words in said, said
+
+
+# Rule: `-vv` adds DEBUG details to `plot`'s INFO steps: what it read (the events of each
+# folder, a trial log's samples).
+def test_a_very_verbose_plot_logs_what_it_read_in_detail(tmp_path, capfd, caplog,
+                                                         ideal_grasp_log):
+    from tests.test_bad_input import run_cli
+    trial = ideal_grasp_log("box").save(tmp_path / "box.npz")
+    for argv, words in ((["plot", "events", "-vv", "--out", str(tmp_path / "e.png")],
+                         "memorized events from"),
+                        (["plot", "signals", str(trial), "-vv", "--out",
+                          str(tmp_path / "s.png")], "tactile samples")):
+        caplog.clear()
+        code, text = run_cli(argv, capfd)
+        assert code == 0, text
+        debug = [record.getMessage() for record in caplog.records
+                 if record.levelname == "DEBUG" and record.name.startswith("tegrasp_drake")]
+        assert any(words in line for line in debug), (argv, debug)
