@@ -146,7 +146,7 @@ def test_a_bad_object_model_file_is_named(content, expected, tmp_path, capfd):
     ("watchdog: {arm_timeout: 0}\n", "field 'watchdog.arm_timeout' must be positive"),
     ("arm: {lcm_url: 'udpm://239.255.76.67:99999?ttl=0'}\n",
      "field 'arm.lcm_url' cannot be opened by LCM"),
-    ("arm: {lcm_url: garbage}\n", "field 'arm.lcm_url' cannot be opened by LCM"),
+    ("arm: {lcm_url: garbage}\n", "field 'arm.lcm_url' is not an LCM bus URL"),
     ("watchdog: {arm_timeout: 0.05\n", "not valid YAML"),
     ("scheduling: deadline\n", "field 'scheduling' must be one of fifo, nice, normal"),
 ])

@@ -189,7 +189,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["trial log '/dev/zero' is a device, not a file"]),
     ("5 emulate on an LCM URL that does not open", None,
      ["emulate", "jaco", "--lcm-url", "garbage://nowhere"],
-     ["--lcm-url 'garbage://nowhere' cannot be opened by LCM", "garbage"]),
+     ["--lcm-url 'garbage://nowhere' is not a bus other processes share", "garbage://"]),
     ("6 --html over the run's result", _html_over_own_result,
      ["trial", "--out", "o", "--html", "o/result.json"],
      ["--html o/result.json is one of the run's own files in o (result.json)"]),

@@ -8,6 +8,7 @@ where it listens, a line "devices: {JSON}" (emulators/emulator_process.py reads 
 "ready"; `--write-config FILE` writes the hardware config. They run until SIGINT or SIGTERM."""
 
 import argparse
+import logging
 import math
 import pathlib
 import signal
@@ -23,6 +24,8 @@ from tegrasp_drake.rig.ranges import FAULT_DELAY, shorten
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
 from tegrasp_drake.rig.files import output_file_problem
+
+logger = logging.getLogger(__name__)
 
 DEVICES = (*EMULATED_DEVICES, "all")
 GFLT_MAX = 0xF  # the Robotiq status register's fault field is 4 bits
@@ -159,6 +162,8 @@ def run(args) -> int:
             raise SystemExit(f"tegrasp: error: {lcm_url_origin(args.lcm_url, '--lcm-url')} "
                              f"{shorten(repr(args.lcm_url))} {problem}")
     # Every argument is checked above; only now is the whole process raised.
+    logger.info(f"emulate: arguments checked; starting {', '.join(devices)} (LCM "
+                f"{args.lcm_url}, sync {sync})")
     out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     emulators = Emulators(lcm_url=args.lcm_url, out=out)
     for signal_number in (signal.SIGINT, signal.SIGTERM):
@@ -168,7 +173,10 @@ def run(args) -> int:
                         follow_gripper=follow_gripper and "myrio" in devices,
                         inject_fault=inject_fault)
         if args.write_config:
+            replaced = pathlib.Path(args.write_config).exists()
             emulators.write_hardware_config(args.write_config)
+            if replaced:
+                logger.info(f"emulate: replaced the earlier config {args.write_config}")
             out(f"config: wrote {args.write_config}; run `tegrasp hardware --config "
                 f"{args.write_config}`")
         out(emulators.devices_line())
@@ -178,5 +186,6 @@ def run(args) -> int:
         raise SystemExit(f"tegrasp: error: {e}") from None
     finally:
         emulators.close()
+        logger.info("emulate: the devices stopped")
     out("stopped")
     return 0

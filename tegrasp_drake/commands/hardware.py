@@ -9,6 +9,7 @@ import dataclasses
 import datetime
 import os
 import pathlib
+import logging
 import sys
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
@@ -20,6 +21,8 @@ from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scena
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
+
+logger = logging.getLogger(__name__)
 
 
 DESCRIPTION = """\
@@ -137,6 +140,10 @@ def run(args) -> int:
         origin = lcm_url_origin(config.arm.lcm_url, "field 'arm.lcm_url'")
         raise SystemExit(f"tegrasp: error: {where}: {origin} {problem}, got "
                          f"{shorten(repr(config.arm.lcm_url))}")
+    source = args.config or "the scenario's station"
+    logger.info(f"hardware: devices checked ({source}): arm "
+                f"on {config.arm.lcm_url}, gripper on {config.gripper.port}, tactile on "
+                f"{config.tactile.port}")
     events = controller_events(scenario, args.events)
     corrective = corrective_events(scenario, args.events)
     log = args.log or (f"out/hardware/run-"
@@ -154,6 +161,7 @@ def run(args) -> int:
             raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
+    earlier = [taken for taken in (pathlib.Path(log), result_path) if taken.exists()]
     pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
     # The run logs to a hidden file beside --log; the earlier log and result stay whole
     # until this run's replace them together at the end (commit_hardware_run). A killed
@@ -176,6 +184,7 @@ def run(args) -> int:
             print(f"tegrasp: the run did not finish; what its log recorded is in {kept}",
                   file=sys.stderr, flush=True)
         raise
+    logged = staged.exists()  # none when the bus could not be recorded
     try:
         commit_hardware_run(staged, log, result_path,
                             dict(result.as_dict(), log=str(log), result=str(result_path)))
@@ -183,6 +192,12 @@ def run(args) -> int:
         kept = keep_incomplete_log(staged, log)
         raise SystemExit(f"tegrasp: error: cannot write the run's result to {result_path}: "
                          f"{e.strerror or e}" + (f"; its log is in {kept}" if kept else ""))
+    logger.info(f"hardware: wrote {f'the log {log} and ' if logged else ''}the result "
+                f"{result_path}")
+    if earlier:
+        logger.info("hardware: replaced the earlier run's "
+                    + " and ".join(f"{'log' if taken == pathlib.Path(log) else 'result'} "
+                                   f"{taken}" for taken in earlier))
     result = dataclasses.replace(result, log_path=pathlib.Path(log))
     faults = len(result.faults) + bool(result.log_fault)  # a log that stops is a fault
     print(f"ran {result.sim_time:.2f} s in {result.wall_time:.2f} s (real-time rate "

@@ -83,7 +83,9 @@ def _plot_events(args, out) -> str:
         # The first folder that has an object's events wins (the user's before the package's).
         for folder in reversed(paths.events_search_path(args.events)):
             if (folder / "index.json").is_file() or args.events:
-                events.update(load_all_memorized_events(folder))
+                loaded = load_all_memorized_events(folder)
+                logger.debug(f"plot events: {len(loaded)} memorized events from {folder}")
+                events.update(loaded)
     except MemorizedEventError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     return str(plot_memorized_events(events, out))
@@ -98,6 +100,9 @@ def _plot_trial(args, out) -> str:
         log = load_trial_log(args.source)
     except TrialLogError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
+    logger.debug(f"plot {args.what}: {args.source}: {log.t_sa.size} slow-adapting and "
+                 f"{log.t_ra.size} fast-adapting tactile samples, "
+                 f"{len(log.meta.get('transitions', ()))} transitions")
     if args.what == "signals":
         from tegrasp_drake.figures.signals import plot_trial_signals
         return plot_trial_signals(log, out)
@@ -129,6 +134,7 @@ def _plot_sweep(args, out) -> str:
                          f"would be wrong: `tegrasp sweep --out {args.source}` with the "
                          "sweep's options runs them again")
     records = list(loaded.records.values())
+    logger.debug(f"plot {args.what}: {len(records)} trial records from {args.source}")
     if not records:
         raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
                          "(run `tegrasp sweep --out FOLDER` first)")

@@ -10,6 +10,7 @@ fields as one JSON line for programs (`devices_from_line`)."""
 
 import dataclasses
 import json
+import logging
 import pathlib
 import threading
 import time
@@ -24,6 +25,8 @@ WRITTEN_BY_EMULATE = "# written by `tegrasp emulate --write-config`; the next on
 DEVICES = ("jaco", "robotiq", "myrio")
 SYNC_MODES = ("none", "start", "follow")
 DEVICES_LINE_PREFIX = "devices: "
+
+logger = logging.getLogger(__name__)
 
 
 def devices_from_line(line: str) -> dict | None:
@@ -78,10 +81,17 @@ class Emulators:
             raise ValueError("the myRIO needs a trial to replay")
         if "jaco" in devices:
             self._start_jaco(scenario)
+            logger.info(f"emulate: jaco up on {self.lcm_url}")
         if "robotiq" in devices:
             self._start_robotiq(scenario, inject_fault, publish="myrio" not in devices)
+            logger.info(f"emulate: robotiq up on {self._devices['gripper']['port']}")
         if "myrio" in devices:
             self._start_myrio(trial, sync, follow_gripper)
+            logger.info(f"emulate: myrio up on {self._devices['tactile']['port']}, replaying "
+                        f"{trial}")
+        for section, fields in self._devices.items():
+            logger.debug(f"emulate: the station's {section}: "
+                         + ", ".join(f"{name}={value}" for name, value in fields.items()))
         return self
 
     @property

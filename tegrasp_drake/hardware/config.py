@@ -106,10 +106,36 @@ class HardwareStationConfig:
     realtime_priority: int = bounded(10, low=1, high=99, why="SCHED_FIFO priorities, sched(7)")
 
 
+# The LCM providers (lcm_create's URL schemes) a URL may name, by its text, before LCM is
+# given it: the buses other processes share (udpm:// multicast, tcpq:// through an
+# lcm-tcpq server) and memq://, a bus inside the one process that opens it (library code and
+# tests run both ends in one process on it). Anything else is refused unopened: LCM's
+# file:// provider is an event-log file, which opening (even to check it) creates, or with
+# ?mode=w truncates, and which no other process hears.
+SHARED_LCM_PROVIDERS = ("udpm", "tcpq")
+IN_PROCESS_LCM_PROVIDERS = ("memq",)
+
+
+def lcm_provider(url: str) -> str:
+    """The provider `url` names (the text before "://"), or "" when it names none."""
+    return url.split("://", 1)[0] if "://" in url else ""
+
+
+def _providers_text(providers) -> str:
+    return " or ".join(f"{provider}://" for provider in providers)
+
+
 def lcm_url_problem(url: str) -> str | None:
-    """Why LCM cannot open `url`, or None (check_ranges refuses an empty one, which LCM would
-    take for its default bus). The library's reason, printed on file descriptor 2, is
-    captured so a bad URL is one line."""
+    """Why LCM cannot open `url` as a bus, or None (check_ranges refuses an empty one, which
+    LCM would take for its default bus). A provider other than SHARED_LCM_PROVIDERS and
+    IN_PROCESS_LCM_PROVIDERS is refused from the text, before LCM opens anything. The
+    library's reason, printed on file descriptor 2, is captured so a bad URL is one line."""
+    provider = lcm_provider(url)
+    if provider not in SHARED_LCM_PROVIDERS + IN_PROCESS_LCM_PROVIDERS:
+        return (f"is not an LCM bus URL: {_provider_named(provider)}; accepted: "
+                f"{_providers_text(SHARED_LCM_PROVIDERS)} (and "
+                f"{_providers_text(IN_PROCESS_LCM_PROVIDERS)} inside one process), e.g. "
+                "udpm://239.255.76.67:7667?ttl=0")
     import lcm
     with tempfile.TemporaryFile() as captured:
         sys.stderr.flush()
@@ -139,20 +165,30 @@ def lcm_url_problem(url: str) -> str | None:
             "udpm://239.255.76.67:7667?ttl=0)")
 
 
-# LCM providers whose bus exists only inside the process that opens it (lcm-udpm(7) names
-# the others, which processes share): memq://.
-IN_PROCESS_LCM_PROVIDERS = ("memq",)
+def _provider_named(provider: str) -> str:
+    if not provider:
+        return "it names no provider (PROVIDER://...)"
+    if provider == "file":
+        return ("file:// is LCM's event-log file, not a bus, and is not opened (it would be "
+                "created or overwritten)")
+    return f"{provider}:// is not one"
 
 
 def shared_lcm_url_problem(url: str) -> str | None:
-    """Why `url` is not a bus another process can reach (an in-process memq:// one, or one LCM
-    cannot open: lcm_url_problem), or None: what a command that talks to another process over
-    LCM (`tegrasp hardware` to the arm's driver, `tegrasp emulate` to `tegrasp hardware`)
-    asks of its URL. Library code and tests may still run both ends in one process on memq://."""
-    provider = url.split("://", 1)[0].strip().lower() if "://" in url else ""
+    """Why `url` is not a bus another process can reach (its provider, from the text, is not
+    one of SHARED_LCM_PROVIDERS: an in-process memq:// bus, a file:// log; or LCM cannot open
+    it: lcm_url_problem), or None: what a command that talks to another process over LCM
+    (`tegrasp hardware` to the arm's driver, `tegrasp emulate` to `tegrasp hardware`) asks of
+    its URL. Library code and tests may still run both ends in one process on memq://."""
+    provider = lcm_provider(url)
     if provider in IN_PROCESS_LCM_PROVIDERS:
         return (f"is a bus inside this one process ({provider}://), which no other process "
-                "can reach; give one they share, e.g. udpm://239.255.76.67:7667?ttl=0")
+                f"can reach; give one they share ({_providers_text(SHARED_LCM_PROVIDERS)}), "
+                "e.g. udpm://239.255.76.67:7667?ttl=0")
+    if provider not in SHARED_LCM_PROVIDERS:
+        return (f"is not a bus other processes share: {_provider_named(provider)}; accepted: "
+                f"{_providers_text(SHARED_LCM_PROVIDERS)}, e.g. "
+                "udpm://239.255.76.67:7667?ttl=0")
     return lcm_url_problem(url)
 
 

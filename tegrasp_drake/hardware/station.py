@@ -4,6 +4,7 @@ the myRIO stream, each on its own thread; a DeviceWatchdog and a FaultLatch that
 still; tactile and gripper data republished on the bus for the log. Use it in a `with`
 block, call `wait_until_ready()` before Initialize() and run at real-time rate 1."""
 
+import logging
 import time
 
 from pydrake.lcm import DrakeLcm
@@ -34,6 +35,8 @@ from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 from tegrasp_drake.rig.ranges import check_ranges
 from tegrasp_drake.rig.api_boundary import public_api
+
+logger = logging.getLogger(__name__)
 
 
 class HardwareNotReadyError(RuntimeError):
@@ -120,6 +123,10 @@ class HardwareStation(Diagram):
 
     def _open_devices(self):
         config = self._config
+        logger.debug(f"station: arm on {self._lcm.get_lcm_url()}, gripper on "
+                     f"{config.gripper.port} (Modbus slave {config.gripper.device_id}, "
+                     f"{config.gripper.baudrate} baud), tactile on {config.tactile.port} "
+                     f"({config.tactile.baudrate} baud)")
         self._gripper_client = RobotiqModbusClient(config.gripper).start()
         try:
             self._tactile_reader = TactileSerialReader(
@@ -240,6 +247,10 @@ class HardwareStation(Diagram):
                 f"sequences per finger on {self._tactile_reader.port}; they did not arrive "
                 f"within {timeout:g} s ({self._tactile_reader.counters()})")
         self._tactile_reader.discard_pending()
+        logger.info(f"station: devices ready (arm status on {self._lcm.get_lcm_url()}, "
+                    f"gripper active on {self._config.gripper.port}, pads zeroed from "
+                    f"{self._tactile_reader.port})")
+        logger.debug(f"station: at the start: {self._tactile_reader.counters()}")
 
     def close(self):
         """Stops the device threads and closes their ports (idempotent)."""

@@ -166,6 +166,9 @@ def replay_run_log(path, *, object_name: str | None = None,
     config = matcher_config_of_run(info, events,
                                    f"run log '{path}': its TEGRASP_RUN_INFO scenario")
     trial = log.tactile_trial()
+    logger.debug(f"replay: the run's controller "
+                 f"{info.controller if info and info.controller else 'not logged'}; the "
+                 f"matcher's settings {config}")
     logger.info(f"replay: the matcher re-run on {len(trial.t_ra)} tactile samples and "
                 f"{len(log.transitions)} logged transitions with the events of "
                 f"{object_name} from {events_dir}")

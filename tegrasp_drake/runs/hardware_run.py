@@ -10,6 +10,7 @@ controller), which hardware_log_reader.py reads and `tegrasp replay` re-runs."""
 
 import dataclasses
 import json
+import logging
 import os
 import pathlib
 import signal
@@ -48,6 +49,8 @@ LOG_CHECK_PERIOD_S = 0.1  # [s] of Context time between looks at the LCM log's h
 # Free space [bytes] below which the log counts as stopped: ten seconds of the ~100 kB/s bus
 # (1 kHz tactile frames, arm and gripper status), the margin to stop and write the result.
 LOG_MIN_FREE_BYTES = 1_000_000
+
+logger = logging.getLogger(__name__)
 
 
 class BusLogWriter:
@@ -345,6 +348,9 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
                   if log_path else None)
         if writer is not None and writer.unrecorded:
             out(writer.unrecorded)
+        elif writer is not None:
+            logger.info(f"hardware: lcm-logger records the bus "
+                        f"{station.lcm.get_lcm_url()} to {writer.path}")
         try:
             station.lcm.Publish(RUN_INFO_CHANNEL, run_info_message(
                 scenario, config, scenario.controller.name, events_dir).encode())
@@ -362,15 +368,24 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
             simulator.set_monitor(reporter)
             simulator.Initialize()
             out("devices ready; running in real time")
+            logger.info(f"hardware: the run started (controller "
+                        f"{scenario.controller.name}, object {scenario.object.name}; it ends "
+                        f"at {end_time:g} s at the latest)")
             start = time.monotonic()
             simulator.AdvanceTo(end_time)
             wall = time.monotonic() - start
+            logger.info(f"hardware: the run ended at {simulator.get_context().get_time():.2f} "
+                        f"s after {wall:.2f} s; {len(reporter.transitions)} transitions, "
+                        f"{len(reporter.faults)} fault{'' if len(reporter.faults) == 1 else 's'}")
             counters = {"gripper": station.gripper_client.counters(),
                         "tactile": station.tactile_reader.counters(),
                         "arm": station.arm_status_boundary.counters()}
             out(format_counters(counters))
         finally:
             messages = writer.close() if writer is not None else 0
+            if writer is not None and writer.unrecorded is None:
+                logger.info(f"hardware: lcm-logger stopped; {messages} messages in "
+                            f"{writer.path}")
         context = simulator.get_context()
         return HardwareRunResult(
             transitions=[transition.as_dict() for transition in reporter.transitions],
