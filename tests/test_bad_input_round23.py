@@ -38,3 +38,34 @@ def test_a_sweep_events_folder_missing_a_file_exits_1(tmp_path, capfd):
     assert code == 1, text
     assert "load_lift.json" in text and len(text.strip().splitlines()) == 1, text
     assert "Traceback" not in text and not (tmp_path / "sw").exists(), text
+
+
+# Rule: a sweep simulates its trials, and a transfer world runs a sweep: an override that
+# makes the station the real devices' is refused when the spec is loaded, naming the world.
+def test_a_transfer_world_on_the_hardware_station_is_refused(tmp_path):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    spec = tmp_path / "t.yaml"
+    spec.write_text("worlds:\n  w: {scenario: faithful_world, overrides: "
+                    "['station=!HardwareStationConfig {}']}\n"
+                    "cells:\n  memorize_in: [w]\n  run_in: [w]\n"
+                    "sweep:\n  objects: [box]\n  controllers: [heuristic]\n  attempts: 1\n")
+    with pytest.raises(ConfigError, match=r"worlds\.w.*HardwareStationConfig.*simulates"):
+        LoadTransferSpec(spec)
+
+
+# Rule: an event file's numbers are in their ranges when read: the transition's time in its
+# trial is not before the trial started.
+def test_an_event_whose_transition_time_is_negative_is_refused(tmp_path):
+    import json
+    import shutil
+    from tegrasp_drake.events import MemorizedEventError, load_memorized_events
+    from tegrasp_drake.rig import paths
+    events = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), events)
+    path = events / "box" / "reach_load.json"
+    data = json.loads(path.read_text())
+    data["transition_time_s"] = -50.0
+    path.write_text(json.dumps(data))
+    with pytest.raises(MemorizedEventError, match="transition_time_s"):
+        load_memorized_events(events, "box")

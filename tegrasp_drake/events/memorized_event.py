@@ -35,7 +35,8 @@ class MemorizedEvent:
     window_s: float = bounded(0.5, low=0.0, low_open=True, unit="s")
     # [s] from the window's start to the transition, within the window
     pre_transition_s: float = bounded(0.25, low=0.0, unit="s")
-    transition_time_s: float = bounded(0.0, unit="s")  # in the source trial
+    transition_time_s: float = bounded(0.0, low=0.0, unit="s",
+                                       why="a time in its trial, which starts at 0")
     scenario: str = ""  # name or text of the scenario that produced the trial
     package_versions: Mapping[str, str] = dataclasses.field(default_factory=dict)
     # The object the event was felt on: {shape, size, mass, friction, file}

@@ -238,11 +238,16 @@ def _check_scenario_overrides(assignments, controllers, fail):
                     per_trial.startswith(key + "."):
                 fail(field_name, f"'{key}' is set per trial by the sweep (objects, grid, "
                                  "randomisation, base_seed, controllers); set it there")
+    from tegrasp_drake.hardware.config import HardwareStationConfig
     for controller in controllers if assignments else ():
         try:
-            LoadScenario(overrides=assignments, controller=controller)
+            scenario = LoadScenario(overrides=assignments, controller=controller)
         except ConfigError as error:
             fail("scenario_overrides", str(error))
+        if isinstance(scenario.station, HardwareStationConfig):
+            fail("scenario_overrides", "sets the station to !HardwareStationConfig (the real "
+                                       "arm, gripper and pads); a sweep simulates its trials: "
+                                       "leave the station out")
 
 
 def _check_name(name, field_name, fail):
