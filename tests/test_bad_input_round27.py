@@ -1,0 +1,48 @@
+"""Bad inputs the fourteenth hostile pass found in sweep records, one test per rule."""
+
+import json
+
+import pytest
+
+from tegrasp_drake.sweep.records import _checksum, load_records, record_path
+from tegrasp_drake.sweep.runner import run_sweep
+from tegrasp_drake.sweep.spec import SweepSpec
+from tests.fake_trials import fake_trial
+
+ONE_TRIAL = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1,
+                      grid=((0.0, 0.0),))
+
+
+def _forge(folder, edit):
+    """Runs ONE_TRIAL into `folder`, then rewrites its record's result with `edit` and a
+    checksum that matches, as a hand edit would; returns the record's path."""
+    summary = run_sweep(ONE_TRIAL, fake_trial, folder, workers=1, progress=False)
+    path = record_path(folder, summary.trial_ids[0])
+    record = json.loads(path.read_text())
+    edit(record["result"])
+    del record["checksum"]
+    record["checksum"] = _checksum(record)
+    path.write_text(json.dumps(record))
+    return path
+
+
+def _set(**fields):
+    return lambda result: result.update(fields)
+
+
+@pytest.mark.parametrize("edit, field", [
+    (_set(hold_success="yes"), "hold_success"),
+    (_set(final_mode="Exploded"), "Exploded"),
+    (_set(final_tilt_deg=720.0), "final_tilt_deg"),
+    (lambda result: result["transitions"][0].update(t=-3.0), "field 't'"),
+])
+def test_a_record_whose_result_is_out_of_range_is_corrupt_and_runs_again(
+        tmp_path, edit, field):
+    path = _forge(tmp_path, edit)
+    loaded = load_records(tmp_path)
+    assert loaded.records == {}
+    assert field in loaded.corrupt[path] and "'result'" in loaded.corrupt[path]
+    summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.skipped, summary.corrupt) == (1, 0, (str(path),))
+    assert list(tmp_path.glob("trials/*.corrupt-*"))  # kept aside, not lost
+    assert load_records(tmp_path).corrupt == {}
