@@ -46,3 +46,25 @@ def test_a_record_whose_result_is_out_of_range_is_corrupt_and_runs_again(
     assert (summary.ran, summary.skipped, summary.corrupt) == (1, 0, (str(path),))
     assert list(tmp_path.glob("trials/*.corrupt-*"))  # kept aside, not lost
     assert load_records(tmp_path).corrupt == {}
+
+
+def _failed(result):
+    result["transitions"].append({"t": 2.0, "from": "Load", "to": "Failed", "trigger": "timer",
+                                  "reason": "no Load-Lift event"})
+    result["failure"] = "x" * 50000
+
+
+@pytest.mark.parametrize("edit, field", [
+    (_set(hold_success=False, unload_success=True), "'unload_success' is true"),
+    (lambda result: result["detection_latency_s"].update({"reach->load": 1e300}),
+     "detection_latency_s.reach->load"),
+    (lambda result: result["transitions"][0].update(t=9.0), "transitions[0].t"),
+    (_set(physical_events={"reach_load": 50.0}), "physical_events.reach_load"),
+    (_set(hold_time_s=9.0), "hold_time_s"),
+    (_failed, "'failure' must be at most"),
+])
+def test_a_record_whose_result_contradicts_itself_is_corrupt(tmp_path, edit, field):
+    path = _forge(tmp_path, edit)
+    loaded = load_records(tmp_path)
+    assert loaded.records == {}
+    assert field in loaded.corrupt[path]
