@@ -68,3 +68,16 @@ def test_a_record_whose_result_contradicts_itself_is_corrupt(tmp_path, edit, fie
     loaded = load_records(tmp_path)
     assert loaded.records == {}
     assert field in loaded.corrupt[path]
+
+
+def unload_without_hold_trial(trial):
+    """fake_trial's result, unloaded without a hold: no trial run produces it."""
+    return {**fake_trial(trial), "hold_success": False, "unload_success": True}
+
+
+def test_a_trial_function_result_the_records_would_refuse_is_an_error_not_a_record(tmp_path):
+    summary = run_sweep(ONE_TRIAL, unload_without_hold_trial, tmp_path, workers=1,
+                        progress=False)
+    record = load_records(tmp_path).records[summary.errors[0]]
+    assert record["error"]["type"] == "InvalidResult"
+    assert "'unload_success' is true" in record["error"]["message"]
