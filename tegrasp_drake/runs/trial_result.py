@@ -14,6 +14,11 @@ from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
 
+# A failure is the reason a controller gives for going to Failed, one sentence (the longest
+# in the committed sweep records: 109 characters); ten times a long sentence is not one.
+MAX_FAILURE_CHARS = 1000
+
+
 @public_dataclass
 @dataclasses.dataclass
 class TrialResult:
@@ -59,15 +64,46 @@ class TrialResult:
 
     def __post_init__(self):
         """ConfigError naming the first field out of its range (the transitions' own
-        included), or the first transition earlier than the one before it."""
-        check_ranges(self, type(self).__name__)
+        included), the first transition earlier than the one before it, or the first
+        relation between fields that run_trial guarantees and this result breaks."""
+        name = type(self).__name__
+        check_ranges(self, name)
         for k in range(1, len(self.transitions)):
             earlier, later = self.transitions[k - 1].t, self.transitions[k].t
             if later < earlier:
                 raise ConfigError(
-                    f"{type(self).__name__}: field 'transitions[{k}].t' must not be before "
+                    f"{name}: field 'transitions[{k}].t' must not be before "
                     f"transitions[{k - 1}].t = {number_text(earlier)} s (a timeline is in "
                     f"time order), got {number_text(later)}")
+        self._check_relations(name)
+
+    def _check_relations(self, name: str) -> None:
+        """The relations judge_trial and run_trial (runs/trial.py) guarantee: Unload is
+        judged only after a Hold; the failure is one sentence; every time is within the
+        simulated time (transitions, the physical events and the hold are taken during the
+        run, so a latency, a transition's time minus its event's, is within it either way)."""
+        if self.unload_success and not self.hold_success:
+            raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
+                              "false (a trial is judged unloaded only after it held)")
+        if len(self.failure) > MAX_FAILURE_CHARS:
+            raise ConfigError(f"{name}: field 'failure' must be at most {MAX_FAILURE_CHARS} "
+                              f"characters (a controller's one-sentence reason), got "
+                              f"{len(self.failure)}")
+        if self.sim_time_s is None:
+            return
+        sim = number_text(self.sim_time_s)
+        times = [(f"transitions[{k}].t", entry.t, f"at most sim_time_s = {sim} s")
+                 for k, entry in enumerate(self.transitions)]
+        times += [(f"physical_events.{key}", value, f"at most sim_time_s = {sim} s")
+                  for key, value in self.physical_events.items() if value is not None]
+        times += [(f"detection_latency_s.{key}", value, f"in [-{sim}, {sim}] s (either sign)")
+                  for key, value in self.detection_latency_s.items() if value is not None]
+        if self.hold_time_s is not None:
+            times.append(("hold_time_s", self.hold_time_s, f"at most sim_time_s = {sim} s"))
+        for field, value, within in times:
+            if abs(value) > self.sim_time_s:
+                raise ConfigError(f"{name}: field '{field}' must be {within} (within the "
+                                  f"simulated time), got {number_text(value)}")
 
     def to_dict(self) -> dict:
         """The JSON form: all fields but `log`; transitions as dicts, the final mode by label."""

@@ -13,7 +13,9 @@
 
 Canonical JSON: sorted keys, no spaces, ASCII, no NaN/Infinity. Written to a temporary file,
 fsync'ed, renamed into place, the folder fsync'ed: a crash leaves no record or a whole one.
-A record that fails to parse or to checksum is corrupt, and its trial runs again."""
+A record that fails to parse or to checksum, or whose result is not a TrialResult's JSON form
+(TrialResult.from_dict: its fields' ranges and the relations between them), is corrupt, and
+its trial runs again."""
 
 import hashlib
 import json
@@ -163,10 +165,28 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
         return "checksum does not match the content"
     if record["status"] not in ("ok", "error"):
         return f"status {record['status']!r} is neither 'ok' nor 'error'"
+    if record["status"] == "ok":
+        problem = result_problem(record["result"])
+        if problem is not None:
+            return f"its 'result' is {problem}"
     if expected_file_name is not None and (
             not isinstance(record["trial_id"], str)
             or record_file_name(record["trial_id"]) != expected_file_name):
         return f"trial_id {record['trial_id']!r} does not belong in {expected_file_name}"
+    return None
+
+
+def result_problem(result) -> str | None:
+    """Why `result` is not a TrialResult's JSON form (from_dict: its fields' ranges and the
+    relations between them), or None when it is: a record is checked whole when it is read,
+    so that a result no trial could have produced runs again instead of reaching a report."""
+    from tegrasp_drake.runs.trial_result import TrialResult
+    if not isinstance(result, dict):
+        return f"not a trial result's JSON form (a mapping), got {shorten(repr(result))}"
+    try:
+        TrialResult.from_dict(result)
+    except ValueError as error:
+        return str(error)
     return None
 
 

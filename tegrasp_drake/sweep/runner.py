@@ -32,6 +32,7 @@ from tegrasp_drake.sweep.records import (
     load_records,
     make_record,
     remove_temporary_files,
+    result_problem,
     unwritable_records,
     write_record,
 )
@@ -69,7 +70,8 @@ class SweepSummary:
 
 
 def check_result(result) -> str | None:
-    """Why a trial function's return value cannot be a result, or None when it can."""
+    """Why a trial function's return value cannot be a result, or None when it can (the
+    checks below name the field; result_problem is the record's own check, the last word)."""
     if not isinstance(result, dict):
         return f"the trial function returned {type(result).__name__}, not a dict"
     for name in ("hold_success", "unload_success"):
@@ -92,7 +94,10 @@ def check_result(result) -> str | None:
             Mode.from_label(result["final_mode"])
         except ValueError as e:
             return f"result field 'final_mode': {e}"
-    return None
+    # What load_records will ask of the record: a result it would refuse is an error now,
+    # not a record that is corrupt at every resume and runs again each time.
+    problem = result_problem(result)
+    return None if problem is None else f"the result is {problem}"
 
 
 def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict]:

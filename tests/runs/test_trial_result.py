@@ -88,7 +88,8 @@ def test_a_transition_with_a_value_out_of_its_range_is_refused_naming_the_field(
 def test_a_damaged_records_result_is_refused_naming_the_record_file_and_field(
         tmp_path, monkeypatch, capfd):
     """A record whose result was edited (its checksum remade) holds a negative hold time:
-    the figures that read it refuse it in one line naming the record's file and the field."""
+    it is corrupt, and the figures refuse it in one line naming the record's file and the
+    field."""
     from tegrasp_drake.sweep.records import load_records, make_record, write_record
     from tests.fake_trials import fake_trial
     from tests.test_bad_input import assert_one_line_error, run_cli
@@ -97,7 +98,9 @@ def test_a_damaged_records_result_is_refused_naming_the_record_file_and_field(
     result = fake_trial(trial)
     result["hold_time_s"] = -1.0
     write_record(tmp_path / "sweep", make_record(trial, result=result))
-    assert len(load_records(tmp_path / "sweep").records) == 1  # whole and checksummed
+    # Checksummed, but its result is read at load: corrupt, named with the field.
+    (reason,) = load_records(tmp_path / "sweep").corrupt.values()
+    assert "'hold_time_s'" in reason
     monkeypatch.chdir(tmp_path)
     code, text = run_cli(["plot", "latency", "sweep", "--out", "latency.png"], capfd)
     assert_one_line_error(code, text, "memorized.box.m00.a0.json", "'hold_time_s'")

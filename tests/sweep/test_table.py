@@ -84,11 +84,11 @@ def test_errors_are_counted_apart_from_the_rates(records):
     assert rows[("open_loop", "thin_cylinder")].cells[2].percent == 0.0
 
 
-def test_unload_counts_only_after_a_hold():
+def test_an_unload_without_a_hold_is_refused_not_counted():
     trial = expand_trials(SweepSpec(objects=("box",), controllers=("memorized",),
                                     grid=((0.0, 0.0),), attempts=1))[0].to_dict()
-    row = table1_rows([make_record(trial, result=result(False, True))])[0]
-    assert (row.cells[0].successes, row.cells[1].successes) == (0, 0)
+    with pytest.raises(ValueError, match="'unload_success' is true but 'hold_success'"):
+        table1_rows([make_record(trial, result=result(False, True))])
 
 
 def test_markdown_and_csv_files(records, tmp_path):

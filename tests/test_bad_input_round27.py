@@ -1,0 +1,83 @@
+"""Bad inputs the fourteenth hostile pass found in sweep records, one test per rule."""
+
+import json
+
+import pytest
+
+from tegrasp_drake.sweep.records import _checksum, load_records, record_path
+from tegrasp_drake.sweep.runner import run_sweep
+from tegrasp_drake.sweep.spec import SweepSpec
+from tests.fake_trials import fake_trial
+
+ONE_TRIAL = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1,
+                      grid=((0.0, 0.0),))
+
+
+def _forge(folder, edit):
+    """Runs ONE_TRIAL into `folder`, then rewrites its record's result with `edit` and a
+    checksum that matches, as a hand edit would; returns the record's path."""
+    summary = run_sweep(ONE_TRIAL, fake_trial, folder, workers=1, progress=False)
+    path = record_path(folder, summary.trial_ids[0])
+    record = json.loads(path.read_text())
+    edit(record["result"])
+    del record["checksum"]
+    record["checksum"] = _checksum(record)
+    path.write_text(json.dumps(record))
+    return path
+
+
+def _set(**fields):
+    return lambda result: result.update(fields)
+
+
+@pytest.mark.parametrize("edit, field", [
+    (_set(hold_success="yes"), "hold_success"),
+    (_set(final_mode="Exploded"), "Exploded"),
+    (_set(final_tilt_deg=720.0), "final_tilt_deg"),
+    (lambda result: result["transitions"][0].update(t=-3.0), "field 't'"),
+])
+def test_a_record_whose_result_is_out_of_range_is_corrupt_and_runs_again(
+        tmp_path, edit, field):
+    path = _forge(tmp_path, edit)
+    loaded = load_records(tmp_path)
+    assert loaded.records == {}
+    assert field in loaded.corrupt[path] and "'result'" in loaded.corrupt[path]
+    summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.skipped, summary.corrupt) == (1, 0, (str(path),))
+    assert list(tmp_path.glob("trials/*.corrupt-*"))  # kept aside, not lost
+    assert load_records(tmp_path).corrupt == {}
+
+
+def _failed(result):
+    result["transitions"].append({"t": 2.0, "from": "Load", "to": "Failed", "trigger": "timer",
+                                  "reason": "no Load-Lift event"})
+    result["failure"] = "x" * 50000
+
+
+@pytest.mark.parametrize("edit, field", [
+    (_set(hold_success=False, unload_success=True), "'unload_success' is true"),
+    (lambda result: result["detection_latency_s"].update({"reach->load": 1e300}),
+     "detection_latency_s.reach->load"),
+    (lambda result: result["transitions"][0].update(t=9.0), "transitions[0].t"),
+    (_set(physical_events={"reach_load": 50.0}), "physical_events.reach_load"),
+    (_set(hold_time_s=9.0), "hold_time_s"),
+    (_failed, "'failure' must be at most"),
+])
+def test_a_record_whose_result_contradicts_itself_is_corrupt(tmp_path, edit, field):
+    path = _forge(tmp_path, edit)
+    loaded = load_records(tmp_path)
+    assert loaded.records == {}
+    assert field in loaded.corrupt[path]
+
+
+def unload_without_hold_trial(trial):
+    """fake_trial's result, unloaded without a hold: no trial run produces it."""
+    return {**fake_trial(trial), "hold_success": False, "unload_success": True}
+
+
+def test_a_trial_function_result_the_records_would_refuse_is_an_error_not_a_record(tmp_path):
+    summary = run_sweep(ONE_TRIAL, unload_without_hold_trial, tmp_path, workers=1,
+                        progress=False)
+    record = load_records(tmp_path).records[summary.errors[0]]
+    assert record["error"]["type"] == "InvalidResult"
+    assert "'unload_success' is true" in record["error"]["message"]
