@@ -121,14 +121,14 @@ def test_bad_spec_file_stops_before_any_trial(tmp_path, capsys, text, message):
 def test_missing_memorized_events_stop_the_real_sweep_before_any_trial(
         tmp_path, capsys, arguments, spec_text, message):
     """The real trial function's events are checked once per object and controller
-    before anything runs: one line naming the trial, the folders and what to do, exit 2,
-    no results folder (not one error record per trial)."""
+    before anything runs: one line naming the trial, the folders and what to do, exit 1
+    (bad input: a file), no results folder (not one error record per trial)."""
     out = tmp_path / "out"
     if spec_text is not None:
         spec = tmp_path / "cup.yaml"
         spec.write_text(spec_text)
         arguments = ["--spec", str(spec)]
-    assert command.main([*arguments, "--out", str(out), "--no-progress"]) == 2
+    assert command.main([*arguments, "--out", str(out), "--no-progress"]) == 1
     err = capsys.readouterr().err.strip()
     assert message in err and "\n" not in err and "Traceback" not in err
     assert not out.exists()
