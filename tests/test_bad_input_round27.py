@@ -81,3 +81,33 @@ def test_a_trial_function_result_the_records_would_refuse_is_an_error_not_a_reco
     record = load_records(tmp_path).records[summary.errors[0]]
     assert record["error"]["type"] == "InvalidResult"
     assert "'unload_success' is true" in record["error"]["message"]
+
+
+def _forge_record(folder, edit):
+    """_forge with `edit` given the whole record (its result included)."""
+    summary = run_sweep(ONE_TRIAL, fake_trial, folder, workers=1, progress=False)
+    path = record_path(folder, summary.trial_ids[0])
+    record = json.loads(path.read_text())
+    edit(record)
+    del record["checksum"]
+    record["checksum"] = _checksum(record)
+    path.write_text(json.dumps(record))
+    return path
+
+
+# Rule: a record is its trial's: a result naming another seed, controller or object, or a
+# record holding both a result and an error, is corrupt (kept aside, its trial run again).
+@pytest.mark.parametrize("edit, words", [
+    (lambda r: r["result"].update(seed=r["trial"]["seed"] + 1), "result's seed"),
+    (lambda r: r["result"].update(controller="heuristic"), "result's controller"),
+    (lambda r: r["result"].update(object="thin_cylinder"), "result's object"),
+    (lambda r: r.update(status="error", error={"type": "RuntimeError", "message": "x"}),
+     "an error and no result"),
+    (lambda r: r["trial"].update(trial_id="heuristic/box/m00/a0"), "trial_id"),
+])
+def test_a_record_of_another_trial_is_corrupt_and_runs_again(tmp_path, edit, words):
+    path = _forge_record(tmp_path, edit)
+    loaded = load_records(tmp_path)
+    assert loaded.records == {} and words in loaded.corrupt[path], loaded.corrupt
+    summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.skipped) == (1, 0)

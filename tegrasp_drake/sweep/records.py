@@ -137,6 +137,11 @@ def _fsync_folder(folder: Path) -> None:
         os.close(descriptor)
 
 
+# The result fields a trial's run copies from its trial (where the result has them): a
+# record whose result names another trial's is not this trial's record.
+_RESULT_OF_TRIAL = (("seed", "seed"), ("controller", "controller"), ("object", "object_name"))
+
+
 def check_record(record, expected_file_name: str | None = None) -> str | None:
     """Why `record` is not a valid record, or None when it is."""
     if not isinstance(record, dict):
@@ -165,10 +170,22 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
         return "checksum does not match the content"
     if record["status"] not in ("ok", "error"):
         return f"status {record['status']!r} is neither 'ok' nor 'error'"
-    if record["status"] == "ok":
+    ok = record["status"] == "ok"
+    if ok != (record["result"] is not None) or ok == (record["error"] is not None):
+        return ("it must hold a result and no error (status 'ok') or an error and no result "
+                "(status 'error'), as a run writes it")
+    trial = record["trial"]
+    if not isinstance(trial, dict) or trial.get("trial_id") != record["trial_id"]:
+        return "its trial's trial_id is not the record's trial_id"
+    if ok:
         problem = result_problem(record["result"])
         if problem is not None:
             return f"its 'result' is {problem}"
+        for field, trial_field in _RESULT_OF_TRIAL:
+            value = record["result"].get(field, trial.get(trial_field))
+            if value != trial.get(trial_field):
+                return (f"its result's {field} {shorten(repr(value))} is not its trial's "
+                        f"{trial_field} {shorten(repr(trial.get(trial_field)))}")
     if expected_file_name is not None and (
             not isinstance(record["trial_id"], str)
             or record_file_name(record["trial_id"]) != expected_file_name):
