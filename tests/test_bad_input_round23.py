@@ -69,3 +69,34 @@ def test_an_event_whose_transition_time_is_negative_is_refused(tmp_path):
     path.write_text(json.dumps(data))
     with pytest.raises(MemorizedEventError, match="transition_time_s"):
         load_memorized_events(events, "box")
+
+
+# Rule: what is in the place of a run's own file is a regular file, or the run is refused
+# before it simulates (a FIFO, a device link, a folder there is no earlier run's file).
+@pytest.mark.parametrize("make", [
+    lambda path: __import__("os").mkfifo(path),
+    lambda path: path.symlink_to("/dev/zero"),
+    lambda path: path.mkdir(),
+], ids=["fifo", "device-link", "folder"])
+def test_an_overwrite_over_a_run_file_that_is_no_regular_file_is_refused(tmp_path, capfd,
+                                                                         monkeypatch, make):
+    from tegrasp_drake.runs import trial as trial_module
+    from tests.test_bad_input import run_cli
+    monkeypatch.setattr(trial_module, "run_trial",
+                        lambda *a, **k: pytest.fail("the trial was simulated"))
+    out = tmp_path / "o"
+    out.mkdir()
+    make(out / "result.json")
+    code, text = run_cli(["trial", "--set", "random_seed=600", "--out", str(out),
+                          "--overwrite"], capfd)
+    assert code == 1 and "result.json" in text and "remove it yourself" in text, text
+    assert len(text.strip().splitlines()) == 1, text
+
+
+# Rule: a transition's numbers are in their ranges when built: a Lift-Load's grip force is
+# one the 2F-85 can give.
+def test_a_transition_with_a_grip_force_beyond_the_gripper_is_refused():
+    import tegrasp_drake as T
+    with pytest.raises(ValueError, match="grip_force_n"):
+        T.Transition(t=1.0, from_mode=T.Mode.LIFT, to_mode=T.Mode.LOAD,
+                     trigger=list(T.Trigger)[0], reason="x", grip_force_n=1e9)

@@ -14,8 +14,9 @@ import tempfile
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, JsonFileError, claim_folder,
-                                     folder_problem, interruptions_deferred, own_staging_suffix,
-                                     read_json_file, stale_staging_files, write_atomically)
+                                     file_problem, folder_problem, interruptions_deferred,
+                                     own_staging_suffix, read_json_file, stale_staging_files,
+                                     write_atomically)
 
 logger = logging.getLogger(__name__)
 
@@ -59,6 +60,12 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
     RunFolderError when `out` holds a run without `overwrite`, or cannot be written."""
     check_run_folder(out if out is not None else default)
     folder = pathlib.Path(out if out is not None else default)
+    for name in sorted(run_file_names()) if out is not None else ():
+        problem = os.path.lexists(folder / name) and file_problem(folder / name, devices=())
+        if problem and problem != "does not exist":  # a dangling symlink is replaced
+            raise RunFolderError(
+                f"--out {folder}: {name} {problem.split(';')[0]}, where the run writes its "
+                f"{name}; remove it yourself, or give another --out")
     if out is not None and holds_run(folder) and not overwrite:
         present = ", ".join(name for name in RUN_FILES if (folder / name).exists())
         raise RunFolderError(f"{folder} already holds a run ({present}); give another "

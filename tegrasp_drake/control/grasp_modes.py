@@ -95,8 +95,9 @@ class Transition:
     offset_m: float | None = bounded(None, unit="m", why="a shift of the grasp frame")
     approach_offset_m: float | None = bounded(None, unit="m", why="a shift of the grasp frame")
     # Lift-Load: the raised grip force [N], a squeeze (not a pull).
-    grip_force_n: float | None = bounded(None, low=0.0, unit="N",
-                                         why="the gripper squeezes, it does not pull")
+    grip_force_n: float | None = bounded(None, low=0.0, high=235.0, unit="N",
+                                         why="the gripper squeezes, it does not pull; the "
+                                             "2F-85 grips with at most 235 N (its manual)")
     # Avoid: unit direction, world.
     direction: tuple[float, float, float] | None = bounded(
         None, low=-1.0, high=1.0, length=3, why="the components of a unit vector")
