@@ -97,7 +97,8 @@ def load_trial_log(path: PathLike) -> TrialLog:
     check_trial_log_file(path)
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
-                                    max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",))
+                                    max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",),
+                                    known=("meta", *ARRAY_FIELDS), kind="a trial log")
         meta = load_json(str(arrays.pop("meta")))
     except NpzHeaderError as e:
         if "lacks the arrays" in str(e):

@@ -1,0 +1,59 @@
+"""Bad inputs the fourteenth hostile pass found in trial logs, one test per rule."""
+
+import io
+import json
+import warnings
+import zipfile
+
+import numpy as np
+import pytest
+
+from tegrasp_drake.emulators.myrio_emulator import TactileRecordingError, load_tactile_recording
+from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
+from tests.test_bad_input import _trial_log
+from tests.test_bad_input_round2 import _trial_log_with
+
+
+def _npy(array) -> bytes:
+    buffer = io.BytesIO()
+    np.save(buffer, array)
+    return buffer.getvalue()
+
+
+def _rezipped(path, extra_members):
+    """`path` (an .npz) rewritten with `extra_members` ((member name, array) pairs) appended."""
+    with np.load(path) as data:
+        contents = {name: data[name] for name in data.files}
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as archive:
+        for name, array in contents.items():
+            archive.writestr(f"{name}.npy", _npy(array))
+        with warnings.catch_warnings():  # zipfile warns of the duplicate this makes
+            warnings.simplefilter("ignore", UserWarning)
+            for name, array in extra_members:
+                archive.writestr(name, _npy(array))
+    return path
+
+
+def _refused(path, expected):
+    """Both readers of a trial log refuse `path` in one line naming it and `expected`."""
+    with pytest.raises(TrialLogError) as refused:
+        load_trial_log(path)
+    message = str(refused.value)
+    assert str(path) in message and expected in message and "\n" not in message, message
+    with pytest.raises(TactileRecordingError) as refused:
+        load_tactile_recording(path)
+    message = str(refused.value)
+    assert str(path) in message and expected in message and "\n" not in message, message
+
+
+# Rule: a trial log's zip holds each array once and only the arrays the format has: with two
+# members of one name, which one is read is the zip library's choice.
+@pytest.mark.parametrize("member, expected", [
+    ("meta.npy", "'meta.npy' is stored twice"),
+    ("zzz.npy", "'zzz.npy' is not an array a trial log has"),
+], ids=["duplicate", "unknown"])
+def test_a_trial_log_with_duplicate_or_unknown_members_is_refused_naming_the_member(
+        tmp_path, member, expected):
+    path = _rezipped(_trial_log(tmp_path / "trial.npz"),
+                     [(member, np.array(json.dumps({"format_version": 1})))])
+    _refused(path, expected)
