@@ -57,3 +57,21 @@ def test_a_trial_log_with_duplicate_or_unknown_members_is_refused_naming_the_mem
     path = _rezipped(_trial_log(tmp_path / "trial.npz"),
                      [(member, np.array(json.dumps({"format_version": 1})))])
     _refused(path, expected)
+
+
+def _with_last(times, value):
+    times = times.copy()
+    times[-1] = value
+    return times
+
+
+# Rule: each time base is sampled at one period (the logger's): a last sample 1e12 s after the
+# others would make a 0.1 s log span 31,700 years.
+@pytest.mark.parametrize("name, times", [
+    ("t_ra", _with_last(np.linspace(0, 0.1, 101), 1e12)),
+    ("t_sa", _with_last(np.linspace(0, 0.1, 11), 0.1005)),
+    ("t_slow", np.concatenate([np.linspace(0, 0.05, 6), np.linspace(0.07, 0.12, 5)])),
+], ids=["huge-last", "late-last", "gap"])
+def test_a_trial_log_time_base_not_sampled_at_one_period_is_refused(tmp_path, name, times):
+    _refused(_trial_log(tmp_path / "trial.npz", **{name: times}),
+             f"'{name}' is not sampled at one period")

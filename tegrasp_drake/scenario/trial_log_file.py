@@ -294,10 +294,20 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
                           "gripper_status": 8, "phase": None, "object_state": 13}}
 
 
+# How far a time base's steps may differ from their median, relative to it. The loggers sample
+# at a fixed period (LogVectorOutput's publish period: trial_log_writer), so the steps differ
+# only by float64 rounding of the sample times: at most eps * t_end / period, 2e-11 for the
+# 1 ms RA period over the longest run (85 s, most_transitions); measured in nine real logs
+# (seeds 600-680, 12 to 18.5 s, three controllers): at most 2.2e-12. 1e-6 is five orders
+# above that and far below any missing or displaced sample (a step off by its whole size).
+STEP_TOLERANCE = 1e-6
+
+
 def trial_arrays_problem(arrays: dict) -> str | None:
     """What is wrong with the trial-log arrays in `arrays`, or None: each time base at least
-    two finite, increasing times, one row per time, finite signals within their physical
-    ranges (out_of_range_signals). Every reader applies it."""
+    two finite, increasing times sampled at one period (STEP_TOLERANCE), one row per time,
+    finite signals within their physical ranges (out_of_range_signals). Every reader applies
+    it."""
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue
@@ -306,6 +316,13 @@ def trial_arrays_problem(arrays: dict) -> str | None:
             return f"'{time_name}' holds {times.size} time(s); a trial needs at least two"
         if not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
             return f"'{time_name}' is not a finite, increasing list of times"
+        steps = np.diff(times)
+        period = float(np.median(steps))
+        off = int(np.argmax(np.abs(steps - period)))
+        if abs(steps[off] - period) > STEP_TOLERANCE * period:
+            return (f"'{time_name}' is not sampled at one period: its step from sample {off} "
+                    f"to {off + 1} is {number_text(float(steps[off]))} s, its others "
+                    f"{number_text(period)} s")
         for name, width in columns.items():
             if name not in arrays:
                 continue
