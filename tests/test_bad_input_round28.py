@@ -75,3 +75,26 @@ def _with_last(times, value):
 def test_a_trial_log_time_base_not_sampled_at_one_period_is_refused(tmp_path, name, times):
     _refused(_trial_log(tmp_path / "trial.npz", **{name: times}),
              f"'{name}' is not sampled at one period")
+
+
+def _object_state(quaternion):
+    """_trial_log's 11 object states, sample 5's orientation `quaternion` (w, x, y, z)."""
+    state = np.zeros((11, 13))
+    state[:, 0] = 1.0
+    state[5, :4] = quaternion
+    return state
+
+
+def test_a_trial_log_with_unit_object_quaternions_is_read(tmp_path):
+    turned = [np.cos(0.3), 0.0, 0.0, np.sin(0.3)]  # 0.6 rad about z
+    log = load_trial_log(_trial_log(tmp_path / "trial.npz", object_state=_object_state(turned)))
+    assert log.object_state.shape == (11, 13)
+
+
+# Rule: the object's orientation is a unit quaternion (the state of a rigid body), within the
+# drift its integration leaves.
+@pytest.mark.parametrize("quaternion", [[0.0, 0.0, 0.0, 0.0], [2.0, 0.0, 0.0, 0.0]],
+                         ids=["zero", "norm-2"])
+def test_a_trial_log_with_an_object_quaternion_far_from_unit_is_refused(tmp_path, quaternion):
+    _refused(_trial_log(tmp_path / "trial.npz", object_state=_object_state(quaternion)),
+             "'object_state' sample 5 holds an orientation quaternion of norm")

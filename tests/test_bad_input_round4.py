@@ -443,6 +443,7 @@ def _small_trial_log(path, channels: int) -> pathlib.Path:
     arrays = {name: np.zeros((n, shapes[name])) if name in shapes else times
               for name in ARRAY_FIELDS}
     arrays["phase"] = np.zeros(n)
+    arrays["object_state"][:, 0] = 1.0  # the identity orientation, a unit quaternion
     return TrialLog(meta={}, **arrays).save(path)
 
 

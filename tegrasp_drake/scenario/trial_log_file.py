@@ -297,9 +297,8 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 # How far a time base's steps may differ from their median, relative to it. The loggers sample
 # at a fixed period (LogVectorOutput's publish period: trial_log_writer), so the steps differ
 # only by float64 rounding of the sample times: at most eps * t_end / period, 2e-11 for the
-# 1 ms RA period over the longest run (85 s, most_transitions); measured in nine real logs
-# (seeds 600-680, 12 to 18.5 s, three controllers): at most 2.2e-12. 1e-6 is five orders
-# above that and far below any missing or displaced sample (a step off by its whole size).
+# 1 ms RA period over the longest run (85 s, most_transitions); measured in eleven real logs
+# (12 to 18.5 s, four controllers): at most 2.2e-12. 1e-6 is five orders above that and far below any missing or displaced sample (a step off by its whole size).
 STEP_TOLERANCE = 1e-6
 
 
@@ -331,7 +330,32 @@ def trial_arrays_problem(arrays: dict) -> str | None:
             if array.shape != expected:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
-    return nonfinite_signals(arrays) or out_of_range_signals(arrays)
+    return (nonfinite_signals(arrays) or out_of_range_signals(arrays)
+            or object_orientation_problem(arrays))
+
+
+# How far the norm of the object's logged orientation quaternion may be from 1. object_state is
+# the free body's MultibodyPlant state, [qw qx qy qz, x y z, w (3), v (3)]; the integrator
+# lets the quaternion's norm drift (the logged state is not renormalized). Measured in
+# eleven real logs (12 to 18.5 s, four controllers): |norm - 1| at most 2.4e-4 (a 13 s
+# taxel-aware trial); a drift growing in proportion to time would reach 1.6e-3 over the
+# longest run (85 s). 1e-2 is six times that; a zero or a scaled quaternion is not
+# an orientation.
+QUATERNION_NORM_TOLERANCE = 1e-2
+
+
+def object_orientation_problem(arrays: dict) -> str | None:
+    """What is wrong if an orientation in `arrays`' object_state (finite, of its shape) is not
+    a unit quaternion within QUATERNION_NORM_TOLERANCE, else None."""
+    if "object_state" not in arrays:
+        return None
+    norms = np.linalg.norm(np.asarray(arrays["object_state"], dtype=float)[:, :4], axis=1)
+    off = np.flatnonzero(np.abs(norms - 1.0) > QUATERNION_NORM_TOLERANCE)
+    if off.size:
+        return (f"'object_state' sample {off[0]} holds an orientation quaternion of norm "
+                f"{number_text(float(norms[off[0]]))} (columns 0 to 3, w x y z); a rigid "
+                f"body's orientation is a unit quaternion (within {QUATERNION_NORM_TOLERANCE})")
+    return None
 
 
 # The logged channels with a physical range: (their columns' names, the columns checked, low,
