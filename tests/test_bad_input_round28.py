@@ -98,3 +98,25 @@ def test_a_trial_log_with_unit_object_quaternions_is_read(tmp_path):
 def test_a_trial_log_with_an_object_quaternion_far_from_unit_is_refused(tmp_path, quaternion):
     _refused(_trial_log(tmp_path / "trial.npz", object_state=_object_state(quaternion)),
              "'object_state' sample 5 holds an orientation quaternion of norm")
+
+
+def _refused_meta(tmp_path, meta, expected):
+    path = _trial_log_with(tmp_path / "trial.npz", meta)
+    with pytest.raises(TrialLogError) as refused:
+        load_trial_log(path)
+    message = str(refused.value)
+    assert str(path) in message and expected in message and "\n" not in message, message
+
+
+def test_a_trial_log_with_the_controllers_mode_names_is_read(tmp_path):
+    from tegrasp_drake.control.grasp_modes import Mode
+    names = [mode.label for mode in Mode]
+    path = _trial_log_with(tmp_path / "trial.npz", {"mode_names": names})
+    assert load_trial_log(path).meta["mode_names"] == names
+
+
+# Rule: mode_names (what `phase` indexes) are the controllers' modes' labels, in their order,
+# as the trial writes them: other names would label the phase plot with what never ran.
+@pytest.mark.parametrize("names", [["A"] * 10, ["Reach", "Load"]], ids=["renamed", "short"])
+def test_a_trial_log_whose_mode_names_are_not_the_modes_is_refused(tmp_path, names):
+    _refused_meta(tmp_path, {"mode_names": names}, "meta 'mode_names' must be the modes' labels")

@@ -132,6 +132,12 @@ def _is_name_list(value) -> bool:
     return isinstance(value, list) and bool(value) and all(isinstance(n, str) for n in value)
 
 
+def _is_mode_names(value) -> bool:
+    """The controllers' modes' labels in Mode's order, as a controller trial writes them."""
+    from tegrasp_drake.control.grasp_modes import Mode
+    return value == [mode.label for mode in Mode]
+
+
 def _is_event_times(value) -> bool:
     return isinstance(value, dict) and all(
         isinstance(name, str) and (t is None or _is_time(t)) for name, t in value.items())
@@ -165,7 +171,7 @@ META_FIELDS = {
     "scenario": ("be the scenario's YAML text", lambda v: isinstance(v, str)),
     "controller": ("be a controller name", lambda v: isinstance(v, str)),
     "campaign_run": ("be a recording run's label", lambda v: isinstance(v, str)),
-    "mode_names": ("be a non-empty list of names", _is_name_list),
+    "mode_names": ("be the modes' labels in their order, Reach to Failed", _is_mode_names),
     "phases": ("be a non-empty list of names", _is_name_list),
     "phase_starts": ("map phase names to times [s]", _is_phase_starts),
     "events": ("map event names to times [s] or null", _is_event_times),
