@@ -120,3 +120,50 @@ def test_a_trial_log_with_the_controllers_mode_names_is_read(tmp_path):
 @pytest.mark.parametrize("names", [["A"] * 10, ["Reach", "Load"]], ids=["renamed", "short"])
 def test_a_trial_log_whose_mode_names_are_not_the_modes_is_refused(tmp_path, names):
     _refused_meta(tmp_path, {"mode_names": names}, "meta 'mode_names' must be the modes' labels")
+
+
+def _transition(t, from_mode, to_mode):
+    return {"t": t, "from": from_mode, "to": to_mode, "trigger": "timer", "reason": "test"}
+
+
+# Reach -> Load -> Lift -> Hold -> Re-Reach -> Reach -> Load, inside _trial_log's 0.1 s.
+_TIMELINE = [_transition(0.02, "Reach", "Load"), _transition(0.03, "Load", "Lift"),
+             _transition(0.04, "Lift", "Hold"), _transition(0.05, "Hold", "Re-Reach"),
+             _transition(0.06, "Re-Reach", "Reach"), _transition(0.07, "Reach", "Load")]
+# When each mode was first entered, as runs/trial.py writes it.
+_STARTS = {"Load": 0.02, "Lift": 0.03, "Hold": 0.04, "Re-Reach": 0.05, "Reach": 0.06}
+
+
+def test_a_trial_log_whose_phase_starts_are_the_first_entries_is_read(tmp_path):
+    path = _trial_log_with(tmp_path / "trial.npz",
+                           {"transitions": _TIMELINE, "phase_starts": _STARTS})
+    assert load_trial_log(path).meta["phase_starts"] == _STARTS
+
+
+# Rule: phase_starts says when the timeline first entered each mode it entered: a Hold
+# starting before the Load and Lift that led to it is not what the trial did.
+@pytest.mark.parametrize("starts, expected", [
+    ({**_STARTS, "Hold": 0.01}, "gives 'Hold' starting at 0.01 s, but the transitions first "
+                                "enter it at 0.04 s"),
+    ({**_STARTS, "Load": 0.07}, "gives 'Load' starting at 0.07 s"),
+    ({**_STARTS, "Place": 0.08}, "names 'Place', which no transition enters"),
+    ({k: v for k, v in _STARTS.items() if k != "Hold"}, "lacks 'Hold'"),
+], ids=["before", "last-entry", "never-entered", "missing"])
+def test_a_trial_log_whose_phase_starts_contradict_its_transitions_is_refused(
+        tmp_path, starts, expected):
+    _refused_meta(tmp_path, {"transitions": _TIMELINE, "phase_starts": starts},
+                  f"meta 'phase_starts' {expected}")
+
+
+# Rule: without a timeline (an ideal grasp's log), the phases start in the order `phases`
+# lists them.
+def test_an_ideal_grasp_log_whose_phase_starts_are_out_of_order_is_refused(tmp_path):
+    phases = ["approach", "close", "lift"]
+    path = _trial_log_with(tmp_path / "ok.npz", {
+        "phases": phases, "phase_starts": {"approach": 0.0, "close": 0.02, "lift": 0.05}})
+    assert load_trial_log(path).meta["phases"] == phases
+    _refused_meta(tmp_path, {"phases": phases, "phase_starts": {"approach": 0.0, "close": 0.06,
+                                                                "lift": 0.05}},
+                  "meta 'phase_starts' gives 'lift' starting at 0.05 s, before 'close'")
+    _refused_meta(tmp_path, {"phases": phases, "phase_starts": {"hover": 0.0}},
+                  "meta 'phase_starts' names 'hover', which is not one of the phases")

@@ -256,11 +256,61 @@ def _times_problem(meta: dict, span: tuple[float, float]) -> str | None:
     return None
 
 
+# How far a phase start may be from the transition it records [s]: the two are one float
+# (runs/trial.py copies it), so only rounding, far below the 5 ms controller period, is let by.
+_SAME_TIME_S = 1e-9
+
+
+def _phase_starts_problem(meta: dict) -> str | None:
+    """What is wrong with meta 'phase_starts' against the log's timeline, or None. A controller
+    trial's (it holds 'transitions') names each mode the timeline enters, at the time of the
+    first transition entering it (runs/trial.py); an ideal grasp's (no timeline, its script's
+    'phases') starts its phases in the order 'phases' lists them (scripted_grasp)."""
+    starts = meta.get("phase_starts")
+    if starts is None:
+        return None
+    if "transitions" in meta:
+        entered = {}
+        for k, entry in enumerate(meta["transitions"]):
+            entered.setdefault(entry["to"], (k, entry["t"]))
+        for name, t in starts.items():
+            if name not in entered:
+                return (f"meta 'phase_starts' names '{shorten(name)}', which no transition "
+                        "enters")
+            k, first = entered[name]
+            if abs(t - first) > _SAME_TIME_S:
+                return (f"meta 'phase_starts' gives '{shorten(name)}' starting at "
+                        f"{number_text(t)} s, but the transitions first enter it at "
+                        f"{number_text(first)} s (transitions[{k}])")
+        for name, (k, first) in entered.items():
+            if name not in starts:
+                return (f"meta 'phase_starts' lacks '{shorten(name)}', which transitions[{k}] "
+                        f"enters at {number_text(first)} s")
+        return None
+    phases = meta.get("phases")
+    if phases is None:
+        return None
+    previous = None
+    for name in phases:
+        if name in starts:
+            if previous is not None and starts[name] < starts[previous]:
+                return (f"meta 'phase_starts' gives '{shorten(name)}' starting at "
+                        f"{number_text(starts[name])} s, before '{shorten(previous)}' at "
+                        f"{number_text(starts[previous])} s, which 'phases' lists first")
+            previous = name
+    unknown = [name for name in starts if name not in phases]
+    if unknown:
+        return (f"meta 'phase_starts' names '{shorten(unknown[0])}', which is not one of the "
+                "phases")
+    return None
+
+
 def meta_problem(meta: dict, arrays: dict) -> str | None:
     """What is wrong with a trial log's metadata, checked as a whole against the log's
     `arrays` (already checked by trial_arrays_problem), or None: transitions as Transition
     entries forming one timeline (_timeline_problem), each field of META_FIELDS as it says,
-    its times within the log's span, `phase` indexing the phase names."""
+    its times within the log's span, phase starts agreeing with the timeline
+    (_phase_starts_problem), `phase` indexing the phase names."""
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):
@@ -282,7 +332,8 @@ def meta_problem(meta: dict, arrays: dict) -> str | None:
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
     span = _time_span(arrays)
-    problem = _timeline_problem(transitions, span) or _times_problem(meta, span)
+    problem = (_timeline_problem(transitions, span) or _times_problem(meta, span)
+               or _phase_starts_problem(meta))
     if problem:
         return problem
     phase = arrays["phase"]
