@@ -167,3 +167,13 @@ def test_an_ideal_grasp_log_whose_phase_starts_are_out_of_order_is_refused(tmp_p
                   "meta 'phase_starts' gives 'lift' starting at 0.05 s, before 'close'")
     _refused_meta(tmp_path, {"phases": phases, "phase_starts": {"hover": 0.0}},
                   "meta 'phase_starts' names 'hover', which is not one of the phases")
+
+
+# Rule: the log's controller is the one its trial result names: a figure labels the run with
+# one and annotates it with the other's outcome.
+def test_a_trial_log_whose_controller_differs_from_its_results_is_refused(tmp_path):
+    path = _trial_log_with(tmp_path / "ok.npz", {"controller": "memorized",
+                                                  "result": {"controller": "memorized"}})
+    assert load_trial_log(path).meta["controller"] == "memorized"
+    _refused_meta(tmp_path, {"controller": "heuristic", "result": {"controller": "memorized"}},
+                  "meta 'controller' is 'heuristic', but its 'result' is of 'memorized'")

@@ -309,8 +309,8 @@ def meta_problem(meta: dict, arrays: dict) -> str | None:
     """What is wrong with a trial log's metadata, checked as a whole against the log's
     `arrays` (already checked by trial_arrays_problem), or None: transitions as Transition
     entries forming one timeline (_timeline_problem), each field of META_FIELDS as it says,
-    its times within the log's span, phase starts agreeing with the timeline
-    (_phase_starts_problem), `phase` indexing the phase names."""
+    its controller its result's, its times within the log's span, phase starts agreeing
+    with the timeline (_phase_starts_problem), `phase` indexing the phase names."""
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):
@@ -331,6 +331,10 @@ def meta_problem(meta: dict, arrays: dict) -> str | None:
     for key, (what, is_valid) in META_FIELDS.items():
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
+    logged = (meta.get("result") or {}).get("controller")
+    if "controller" in meta and logged is not None and logged != meta["controller"]:
+        return (f"meta 'controller' is '{shorten(meta['controller'])}', but its 'result' is of "
+                f"'{shorten(str(logged))}'")
     span = _time_span(arrays)
     problem = (_timeline_problem(transitions, span) or _times_problem(meta, span)
                or _phase_starts_problem(meta))
