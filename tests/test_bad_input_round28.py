@@ -177,3 +177,12 @@ def test_a_trial_log_whose_controller_differs_from_its_results_is_refused(tmp_pa
     assert load_trial_log(path).meta["controller"] == "memorized"
     _refused_meta(tmp_path, {"controller": "heuristic", "result": {"controller": "memorized"}},
                   "meta 'controller' is 'heuristic', but its 'result' is of 'memorized'")
+
+
+# Rule: the log's trial result is of the seed its scenario ran with.
+def test_a_trial_log_whose_result_seed_differs_from_its_scenarios_is_refused(tmp_path):
+    scenario = "random_seed: 680\nobject:\n  name: box\n"
+    path = _trial_log_with(tmp_path / "ok.npz", {"scenario": scenario, "result": {"seed": 680}})
+    assert load_trial_log(path).meta["result"]["seed"] == 680
+    _refused_meta(tmp_path, {"scenario": scenario, "result": {"seed": 681}},
+                  "meta 'result' is of seed 681, but its 'scenario' ran with random_seed 680")

@@ -305,6 +305,24 @@ def _phase_starts_problem(meta: dict) -> str | None:
     return None
 
 
+def _seed_problem(meta: dict) -> str | None:
+    """What is wrong if meta's result is of another seed than its scenario's random_seed (the
+    seed the trial ran with: runs/trial.py), or None; only the scenario's top level is read."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError, parse_yaml
+    seed = (meta.get("result") or {}).get("seed")
+    if seed is None or not isinstance(meta.get("scenario"), str):
+        return None
+    try:
+        scenario = parse_yaml(meta["scenario"], "meta 'scenario'")
+    except ConfigError as e:
+        return str(e)
+    ran = scenario.get("random_seed") if isinstance(scenario, dict) else None
+    if ran is not None and ran != seed:
+        return (f"meta 'result' is of seed {shorten(repr(seed))}, but its 'scenario' ran with "
+                f"random_seed {shorten(repr(ran))}")
+    return None
+
+
 def meta_problem(meta: dict, arrays: dict) -> str | None:
     """What is wrong with a trial log's metadata, checked as a whole against the log's
     `arrays` (already checked by trial_arrays_problem), or None: transitions as Transition
@@ -335,6 +353,9 @@ def meta_problem(meta: dict, arrays: dict) -> str | None:
     if "controller" in meta and logged is not None and logged != meta["controller"]:
         return (f"meta 'controller' is '{shorten(meta['controller'])}', but its 'result' is of "
                 f"'{shorten(str(logged))}'")
+    problem = _seed_problem(meta)
+    if problem:
+        return problem
     span = _time_span(arrays)
     problem = (_timeline_problem(transitions, span) or _times_problem(meta, span)
                or _phase_starts_problem(meta))
