@@ -186,3 +186,14 @@ def test_a_trial_log_whose_result_seed_differs_from_its_scenarios_is_refused(tmp
     assert load_trial_log(path).meta["result"]["seed"] == 680
     _refused_meta(tmp_path, {"scenario": scenario, "result": {"seed": 681}},
                   "meta 'result' is of seed 681, but its 'scenario' ran with random_seed 680")
+
+
+# Rule: the JACO2's logged joint angles lie within the joints' declared limits (joints 2 and 3;
+# the others turn without end): 1e300 rad is not an arm's pose.
+@pytest.mark.parametrize("name", ["arm_q", "arm_q_desired"])
+def test_a_trial_log_with_joint_angles_beyond_the_jaco2s_limits_is_refused(tmp_path, name):
+    q = np.tile([0.0, 3.0, 1.0, 0.0, 0.0, 0.0], (11, 1))
+    assert load_trial_log(_trial_log(tmp_path / "ok.npz", **{name: q})) is not None
+    q[4, :] = 1e300
+    _refused(_trial_log(tmp_path / "trial.npz", **{name: q}),
+             f"'{name}' column 1 (joint 2) holds 1e+300 rad, outside")

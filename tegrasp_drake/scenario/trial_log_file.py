@@ -413,7 +413,36 @@ def trial_arrays_problem(arrays: dict) -> str | None:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
     return (nonfinite_signals(arrays) or out_of_range_signals(arrays)
-            or object_orientation_problem(arrays))
+            or object_orientation_problem(arrays) or joint_angle_problem(arrays))
+
+
+# How far a logged joint angle may lie past the JACO2's declared limit [rad]: the plant holds
+# a limit as a compliant constraint, which the arm's drive can push a little past (real logs
+# stay inside: joint 2 at 4.29 to 4.54 rad in [0.82, 5.46], joint 3 at 0.86 to 1.16 in
+# [0.33, 5.95]); 0.01 rad is 0.6 degrees, a margin, not a pose.
+JOINT_LIMIT_MARGIN_RAD = 0.01
+
+
+def joint_angle_problem(arrays: dict) -> str | None:
+    """The first logged joint angle (arm_q, arm_q_desired; finite, of their shape) outside its
+    joint's declared limits (modelgen/jaco2_dh.JOINTS: joints 2 and 3; the others are
+    continuous) by more than JOINT_LIMIT_MARGIN_RAD, named, else None."""
+    from tegrasp_drake.modelgen.jaco2_dh import JOINTS
+    for name in ("arm_q", "arm_q_desired"):
+        if name not in arrays:
+            continue
+        q = np.asarray(arrays[name], dtype=float)
+        for column, joint in enumerate(JOINTS):
+            if joint.lower is None or column >= q.shape[1]:
+                continue
+            low, high = joint.lower - JOINT_LIMIT_MARGIN_RAD, joint.upper + JOINT_LIMIT_MARGIN_RAD
+            outside = (q[:, column] < low) | (q[:, column] > high)
+            if np.any(outside):
+                return (f"'{name}' column {column} (joint {column + 1}) holds "
+                        f"{number_text(float(q[outside, column][0]))} rad, outside the "
+                        f"JACO2's limits {number_text(joint.lower)} to "
+                        f"{number_text(joint.upper)} rad")
+    return None
 
 
 # How far the norm of the object's logged orientation quaternion may be from 1. object_state is
