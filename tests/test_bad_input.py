@@ -236,6 +236,9 @@ def _trial_log(path, **changes):
               "arm_q_desired": np.zeros((n_slow, 6)), "gripper_command": np.zeros((n_slow, 3)),
               "gripper_status": np.zeros((n_slow, 8)), "phase": np.zeros(n_slow),
               "object_state": np.zeros((n_slow, 13))}
+    arrays["object_state"][:, 0] = 1.0  # the identity orientation, a unit quaternion
+    for name in ("arm_q", "arm_q_desired"):  # joints 2 and 3 within the JACO2's limits
+        arrays[name][:, 1:3] = [3.0, 1.0]
     assert set(arrays) == set(ARRAY_FIELDS)
     arrays.update(changes)
     meta = json.dumps({"format_version": FORMAT_VERSION})

@@ -213,7 +213,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
     ("8 phase start not a time", _log("t.npz", {"phase_starts": {"Reach": "soon"}}),
      ["plot", "trial", "t.npz", "--out", "x.png"], ["meta 'phase_starts' must map"]),
     ("8 no mode names", _log("t.npz", {"mode_names": []}),
-     ["plot", "trial", "t.npz", "--out", "x.png"], ["meta 'mode_names' must be a non-empty"]),
+     ["plot", "trial", "t.npz", "--out", "x.png"], ["meta 'mode_names' must be the modes' labels"]),
     ("8 phase index 1e9", _log("t.npz", phase=np.full(11, 1e9)),
      ["plot", "trial", "t.npz", "--out", "x.png"], ["'phase' must hold indices 0 to"]),
     ("8 myRIO streams no NaN", _log("t.npz", channels=np.full((101, 4), np.nan)),

@@ -443,6 +443,9 @@ def _small_trial_log(path, channels: int) -> pathlib.Path:
     arrays = {name: np.zeros((n, shapes[name])) if name in shapes else times
               for name in ARRAY_FIELDS}
     arrays["phase"] = np.zeros(n)
+    arrays["object_state"][:, 0] = 1.0  # the identity orientation, a unit quaternion
+    for name in ("arm_q", "arm_q_desired"):  # joints 2 and 3 within the JACO2's limits
+        arrays[name][:, 1:3] = [3.0, 1.0]
     return TrialLog(meta={}, **arrays).save(path)
 
 

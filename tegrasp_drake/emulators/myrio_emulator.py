@@ -23,7 +23,8 @@ from tegrasp_drake.rig.npz_headers import MAX_TRIAL_LOG_BYTES, checked_npz_array
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
-from tegrasp_drake.scenario.trial_log_file import (TrialLogError, check_trial_log_file,
+from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, TrialLogError,
+                                                   check_trial_log_file,
                                                    load_trial_log, trial_arrays_problem)
 from tegrasp_drake.emulators.null_modem import open_raw_pty
 
@@ -66,7 +67,7 @@ def load_tactile_recording(path) -> TactileRecording:
     try:
         arrays = checked_npz_arrays(path, wanted, optional=(
             "meta", "channels", "t_slow", "gripper_command"), max_bytes=MAX_TRIAL_LOG_BYTES,
-            text=("meta",))
+            text=("meta",), known=("meta", *ARRAY_FIELDS), kind="a trial log")
     except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:
         raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
                                     f"and pad_acceleration (or it is truncated or corrupt): "

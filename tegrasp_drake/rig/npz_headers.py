@@ -28,10 +28,14 @@ _MAX_HEADER_BYTES = 65_536
 
 def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dtype, int]]:
     """{array name: (shape, dtype, bytes of data)} of every member of an open .npz, from the
-    headers alone; NpzHeaderError for a member that is not an .npy array."""
+    headers alone; NpzHeaderError for a member that is not an .npy array, or for a second
+    member of one array name (np.load would read one of them, the zip library's choice)."""
     headers = {}
     for info in zip_file.infolist():
         name = info.filename[:-4] if info.filename.endswith(".npy") else info.filename
+        if name in headers:
+            raise NpzHeaderError(f"'{info.filename}' is stored twice in the archive (which "
+                                 "one is read would be the zip library's choice)")
         with zip_file.open(info) as member:
             try:
                 version = npy_format.read_magic(member)
@@ -61,11 +65,13 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
     return headers
 
 
-def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
-                       text=()) -> dict[str, np.ndarray]:
+def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
+                       known=None, kind="an .npz") -> dict[str, np.ndarray]:
     """The arrays `names` (and `optional` ones present) of the .npz at `path`, once their
-    headers fit `max_bytes` and hold numbers (text for `text`); NpzHeaderError otherwise,
-    before a byte is read when `path` is not a regular file (a FIFO or /dev/zero never ends)."""
+    headers fit `max_bytes` and hold numbers (text for `text`), and (when `known`, the array
+    names the format has, is given) it holds no other array; NpzHeaderError otherwise, naming
+    `kind` (what the file is meant to be), before a byte is read when `path` is not a regular
+    file (a FIFO or /dev/zero never ends)."""
     try:
         mode = os.stat(path).st_mode
     except OSError as e:
@@ -82,6 +88,11 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(),
             headers = npz_array_headers(zip_file)
         except (RuntimeError, NotImplementedError) as e:  # encrypted, unknown compression
             raise NpzHeaderError(f"a member cannot be read: {e}") from None
+        if known is not None:
+            unknown = [name for name in headers if name not in known]
+            if unknown:
+                raise NpzHeaderError(f"'{unknown[0]}.npy' is not an array {kind} has (it "
+                                     f"has {', '.join(known)})")
         missing = [name for name in names if name not in headers]
         if missing:
             raise NpzHeaderError(f"it lacks the arrays {missing}")

@@ -97,7 +97,8 @@ def load_trial_log(path: PathLike) -> TrialLog:
     check_trial_log_file(path)
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
-                                    max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",))
+                                    max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",),
+                                    known=("meta", *ARRAY_FIELDS), kind="a trial log")
         meta = load_json(str(arrays.pop("meta")))
     except NpzHeaderError as e:
         if "lacks the arrays" in str(e):
@@ -129,6 +130,12 @@ def _is_time(value) -> bool:
 
 def _is_name_list(value) -> bool:
     return isinstance(value, list) and bool(value) and all(isinstance(n, str) for n in value)
+
+
+def _is_mode_names(value) -> bool:
+    """The controllers' modes' labels in Mode's order, as a controller trial writes them."""
+    from tegrasp_drake.control.grasp_modes import Mode
+    return value == [mode.label for mode in Mode]
 
 
 def _is_event_times(value) -> bool:
@@ -164,7 +171,7 @@ META_FIELDS = {
     "scenario": ("be the scenario's YAML text", lambda v: isinstance(v, str)),
     "controller": ("be a controller name", lambda v: isinstance(v, str)),
     "campaign_run": ("be a recording run's label", lambda v: isinstance(v, str)),
-    "mode_names": ("be a non-empty list of names", _is_name_list),
+    "mode_names": ("be the modes' labels in their order, Reach to Failed", _is_mode_names),
     "phases": ("be a non-empty list of names", _is_name_list),
     "phase_starts": ("map phase names to times [s]", _is_phase_starts),
     "events": ("map event names to times [s] or null", _is_event_times),
@@ -249,11 +256,79 @@ def _times_problem(meta: dict, span: tuple[float, float]) -> str | None:
     return None
 
 
+# How far a phase start may be from the transition it records [s]: the two are one float
+# (runs/trial.py copies it), so only rounding, far below the 5 ms controller period, is let by.
+_SAME_TIME_S = 1e-9
+
+
+def _phase_starts_problem(meta: dict) -> str | None:
+    """What is wrong with meta 'phase_starts' against the log's timeline, or None. A controller
+    trial's (it holds 'transitions') names each mode the timeline enters, at the time of the
+    first transition entering it (runs/trial.py); an ideal grasp's (no timeline, its script's
+    'phases') starts its phases in the order 'phases' lists them (scripted_grasp)."""
+    starts = meta.get("phase_starts")
+    if starts is None:
+        return None
+    if "transitions" in meta:
+        entered = {}
+        for k, entry in enumerate(meta["transitions"]):
+            entered.setdefault(entry["to"], (k, entry["t"]))
+        for name, t in starts.items():
+            if name not in entered:
+                return (f"meta 'phase_starts' names '{shorten(name)}', which no transition "
+                        "enters")
+            k, first = entered[name]
+            if abs(t - first) > _SAME_TIME_S:
+                return (f"meta 'phase_starts' gives '{shorten(name)}' starting at "
+                        f"{number_text(t)} s, but the transitions first enter it at "
+                        f"{number_text(first)} s (transitions[{k}])")
+        for name, (k, first) in entered.items():
+            if name not in starts:
+                return (f"meta 'phase_starts' lacks '{shorten(name)}', which transitions[{k}] "
+                        f"enters at {number_text(first)} s")
+        return None
+    phases = meta.get("phases")
+    if phases is None:
+        return None
+    previous = None
+    for name in phases:
+        if name in starts:
+            if previous is not None and starts[name] < starts[previous]:
+                return (f"meta 'phase_starts' gives '{shorten(name)}' starting at "
+                        f"{number_text(starts[name])} s, before '{shorten(previous)}' at "
+                        f"{number_text(starts[previous])} s, which 'phases' lists first")
+            previous = name
+    unknown = [name for name in starts if name not in phases]
+    if unknown:
+        return (f"meta 'phase_starts' names '{shorten(unknown[0])}', which is not one of the "
+                "phases")
+    return None
+
+
+def _seed_problem(meta: dict) -> str | None:
+    """What is wrong if meta's result is of another seed than its scenario's random_seed (the
+    seed the trial ran with: runs/trial.py), or None; only the scenario's top level is read."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError, parse_yaml
+    seed = (meta.get("result") or {}).get("seed")
+    if seed is None or not isinstance(meta.get("scenario"), str):
+        return None
+    try:
+        scenario = parse_yaml(meta["scenario"], "meta 'scenario'")
+    except ConfigError as e:
+        return str(e)
+    ran = scenario.get("random_seed") if isinstance(scenario, dict) else None
+    if ran is not None and ran != seed:
+        return (f"meta 'result' is of seed {shorten(repr(seed))}, but its 'scenario' ran with "
+                f"random_seed {shorten(repr(ran))}")
+    return None
+
+
 def meta_problem(meta: dict, arrays: dict) -> str | None:
     """What is wrong with a trial log's metadata, checked as a whole against the log's
     `arrays` (already checked by trial_arrays_problem), or None: transitions as Transition
     entries forming one timeline (_timeline_problem), each field of META_FIELDS as it says,
-    its times within the log's span, `phase` indexing the phase names."""
+    its controller its result's, its times within the log's span, phase starts agreeing
+    with the timeline (_phase_starts_problem), `phase` indexing the phase names."""
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):
@@ -274,8 +349,16 @@ def meta_problem(meta: dict, arrays: dict) -> str | None:
     for key, (what, is_valid) in META_FIELDS.items():
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
+    logged = (meta.get("result") or {}).get("controller")
+    if "controller" in meta and logged is not None and logged != meta["controller"]:
+        return (f"meta 'controller' is '{shorten(meta['controller'])}', but its 'result' is of "
+                f"'{shorten(str(logged))}'")
+    problem = _seed_problem(meta)
+    if problem:
+        return problem
     span = _time_span(arrays)
-    problem = _timeline_problem(transitions, span) or _times_problem(meta, span)
+    problem = (_timeline_problem(transitions, span) or _times_problem(meta, span)
+               or _phase_starts_problem(meta))
     if problem:
         return problem
     phase = arrays["phase"]
@@ -293,10 +376,19 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
                           "gripper_status": 8, "phase": None, "object_state": 13}}
 
 
+# How far a time base's steps may differ from their median, relative to it. The loggers sample
+# at a fixed period (LogVectorOutput's publish period: trial_log_writer), so the steps differ
+# only by float64 rounding of the sample times: at most eps * t_end / period, 2e-11 for the
+# 1 ms RA period over the longest run (85 s, most_transitions); measured in eleven real logs
+# (12 to 18.5 s, four controllers): at most 2.2e-12. 1e-6 is five orders above that and far below any missing or displaced sample (a step off by its whole size).
+STEP_TOLERANCE = 1e-6
+
+
 def trial_arrays_problem(arrays: dict) -> str | None:
     """What is wrong with the trial-log arrays in `arrays`, or None: each time base at least
-    two finite, increasing times, one row per time, finite signals within their physical
-    ranges (out_of_range_signals). Every reader applies it."""
+    two finite, increasing times sampled at one period (STEP_TOLERANCE), one row per time,
+    finite signals within their physical ranges (out_of_range_signals). Every reader applies
+    it."""
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue
@@ -305,6 +397,13 @@ def trial_arrays_problem(arrays: dict) -> str | None:
             return f"'{time_name}' holds {times.size} time(s); a trial needs at least two"
         if not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
             return f"'{time_name}' is not a finite, increasing list of times"
+        steps = np.diff(times)
+        period = float(np.median(steps))
+        off = int(np.argmax(np.abs(steps - period)))
+        if abs(steps[off] - period) > STEP_TOLERANCE * period:
+            return (f"'{time_name}' is not sampled at one period: its step from sample {off} "
+                    f"to {off + 1} is {number_text(float(steps[off]))} s, its others "
+                    f"{number_text(period)} s")
         for name, width in columns.items():
             if name not in arrays:
                 continue
@@ -313,7 +412,61 @@ def trial_arrays_problem(arrays: dict) -> str | None:
             if array.shape != expected:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
-    return nonfinite_signals(arrays) or out_of_range_signals(arrays)
+    return (nonfinite_signals(arrays) or out_of_range_signals(arrays)
+            or object_orientation_problem(arrays) or joint_angle_problem(arrays))
+
+
+# How far a logged joint angle may lie past the JACO2's declared limit [rad]: the plant holds
+# a limit as a compliant constraint, which the arm's drive can push a little past (real logs
+# stay inside: joint 2 at 4.29 to 4.54 rad in [0.82, 5.46], joint 3 at 0.86 to 1.16 in
+# [0.33, 5.95]); 0.01 rad is 0.6 degrees, a margin, not a pose.
+JOINT_LIMIT_MARGIN_RAD = 0.01
+
+
+def joint_angle_problem(arrays: dict) -> str | None:
+    """The first logged joint angle (arm_q, arm_q_desired; finite, of their shape) outside its
+    joint's declared limits (modelgen/jaco2_dh.JOINTS: joints 2 and 3; the others are
+    continuous) by more than JOINT_LIMIT_MARGIN_RAD, named, else None."""
+    from tegrasp_drake.modelgen.jaco2_dh import JOINTS
+    for name in ("arm_q", "arm_q_desired"):
+        if name not in arrays:
+            continue
+        q = np.asarray(arrays[name], dtype=float)
+        for column, joint in enumerate(JOINTS):
+            if joint.lower is None or column >= q.shape[1]:
+                continue
+            low, high = joint.lower - JOINT_LIMIT_MARGIN_RAD, joint.upper + JOINT_LIMIT_MARGIN_RAD
+            outside = (q[:, column] < low) | (q[:, column] > high)
+            if np.any(outside):
+                return (f"'{name}' column {column} (joint {column + 1}) holds "
+                        f"{number_text(float(q[outside, column][0]))} rad, outside the "
+                        f"JACO2's limits {number_text(joint.lower)} to "
+                        f"{number_text(joint.upper)} rad")
+    return None
+
+
+# How far the norm of the object's logged orientation quaternion may be from 1. object_state is
+# the free body's MultibodyPlant state, [qw qx qy qz, x y z, w (3), v (3)]; the integrator
+# lets the quaternion's norm drift (the logged state is not renormalized). Measured in
+# eleven real logs (12 to 18.5 s, four controllers): |norm - 1| at most 2.4e-4 (a 13 s
+# taxel-aware trial); a drift growing in proportion to time would reach 1.6e-3 over the
+# longest run (85 s). 1e-2 is six times that; a zero or a scaled quaternion is not
+# an orientation.
+QUATERNION_NORM_TOLERANCE = 1e-2
+
+
+def object_orientation_problem(arrays: dict) -> str | None:
+    """What is wrong if an orientation in `arrays`' object_state (finite, of its shape) is not
+    a unit quaternion within QUATERNION_NORM_TOLERANCE, else None."""
+    if "object_state" not in arrays:
+        return None
+    norms = np.linalg.norm(np.asarray(arrays["object_state"], dtype=float)[:, :4], axis=1)
+    off = np.flatnonzero(np.abs(norms - 1.0) > QUATERNION_NORM_TOLERANCE)
+    if off.size:
+        return (f"'object_state' sample {off[0]} holds an orientation quaternion of norm "
+                f"{number_text(float(norms[off[0]]))} (columns 0 to 3, w x y z); a rigid "
+                f"body's orientation is a unit quaternion (within {QUATERNION_NORM_TOLERANCE})")
+    return None
 
 
 # The logged channels with a physical range: (their columns' names, the columns checked, low,
