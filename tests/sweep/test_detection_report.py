@@ -6,8 +6,9 @@ from tegrasp_drake.sweep.detection_report import (
     corrective_counts, event_trigger_rows, hit_avoid_rows, paired_comparison, report_markdown)
 
 
-def record(controller, pair, *, hold=True, unload=True, reach_t=4.05, well_placed=False,
+def record(controller, pair, *, hold=True, unload=None, reach_t=4.05, well_placed=False,
            actions=()):
+    """A record; unload: as hold unless given (a trial unloads only after it held)."""
     transitions = [{"t": 3.0, "from": "Reach", "to": "Re-Reach", "trigger": "corrective",
                     "reason": "only the left finger touched"},
                    {"t": reach_t, "from": "Reach", "to": "Load",
@@ -15,7 +16,8 @@ def record(controller, pair, *, hold=True, unload=True, reach_t=4.05, well_place
     return {"trial_id": f"{controller}/{pair}",
             "trial": {"controller": controller, "pair_id": pair, "well_placed": well_placed},
             "result": {"transitions": transitions, "hold_success": hold,
-                       "unload_success": unload, "corrective_actions": list(actions),
+                       "unload_success": hold if unload is None else unload,
+                       "corrective_actions": list(actions),
                        "physical_events": {"reach_load": 4.0}}}
 
 
