@@ -17,8 +17,9 @@ Q = [3.3, 4.5, 1.1, 2.5, 2.3, 3.9]  # [rad] inside every joint's range
 ZERO = [0.0] * 6
 
 
-# Rule: a status from the far future (utime 2^62 us, 146,000 years ahead) is counted and
-# skipped; it does not become the clock the arm's genuine statuses must beat.
+# Rule: a status from the far future (utime 2^62 us, 146,000 years ahead) does not become a
+# clock the arm's genuine statuses must beat: it is one sample, and the genuine stream after
+# it is taken (the order of utime is not checked: jaco_lcm.jaco_status_boundary says why).
 def test_an_arm_status_from_the_far_future_does_not_lock_out_the_genuine_stream():
     lcm = DrakeLcm("memq://")
     builder = DiagramBuilder()
@@ -35,55 +36,13 @@ def test_an_arm_status_from_the_far_future_does_not_lock_out_the_genuine_stream(
         simulator.AdvanceTo(simulator.get_context().get_time() + 0.01)
         return driver.status_receiver.GetOutputPort("time_measured").Eval(context)[0]
 
-    assert publish(6_580_000) == pytest.approx(6.58)  # the origin
-    assert publish(6_590_000) == pytest.approx(6.59)  # within the bound: confirmed
-    assert publish(2**62) == pytest.approx(6.59)
+    assert publish(6_580_000) == pytest.approx(6.58)
+    assert publish(6_590_000) == pytest.approx(6.59)
+    assert publish(2**62) == pytest.approx(2**62 * 1e-6)
     for utime in (6_600_000, 6_610_000, 6_620_000):
         assert publish(utime) == pytest.approx(utime * 1e-6)
     counters = driver.status_boundary.counters()
-    assert counters.accepted == 5
-    assert counters.rejected == {jaco_lcm.UTIME_AHEAD: 1}
-    (rejection,) = driver.status_boundary.new_rejections()
-    assert "4611686018427387904" in rejection.detail
-
-
-class _Clock:
-    """A monotonic clock [s] the test sets."""
-
-    def __init__(self):
-        self.now = 100.0
-
-    def __call__(self):
-        return self.now
-
-
-# Rule: a status's utime advances at most as the receiver's own clock does, plus
-# JACO_STATUS_MAX_LEAD; the first status is the clock's origin, whatever its utime,
-# replaced by a later one further ahead until a status within the bound confirms it (a
-# start-up backlog). So a forged status just inside the bound is accepted and costs the
-# genuine stream at most that lead: once the receiver's clock has run past it, genuine
-# statuses are accepted again.
-def test_an_arm_status_a_little_ahead_costs_at_most_the_stated_lead():
-    clock = _Clock()
-    boundary = jaco_status_boundary(clock=clock)
-    lead_us = round(jaco_lcm.JACO_STATUS_MAX_LEAD * 1e6)
-
-    def offer(utime):
-        return boundary.accept(make_jaco_status(utime, Q, ZERO, ZERO).encode()) is not None
-
-    assert offer(8_000_000_000)  # the origin: any utime
-    clock.now += 0.001
-    assert offer(9_000_000_000)  # further ahead: the last of a start-up backlog, the origin
-    clock.now += 0.01
-    assert offer(9_000_010_000)  # within the bound: the origin confirmed
-    assert not offer(9_000_010_000 + lead_us + 1)  # one microsecond too far ahead
-    assert offer(9_000_010_000 + lead_us)  # forged, as far ahead as allowed
-    clock.now += 0.01
-    assert not offer(9_000_020_000)  # the genuine stream, behind the forged status
-    clock.now += jaco_lcm.JACO_STATUS_MAX_LEAD
-    assert offer(9_000_020_000 + lead_us)  # the genuine stream again, one lead later
-    counters = boundary.counters()
-    assert counters.rejected == {jaco_lcm.UTIME_AHEAD: 1, jaco_lcm.UTIME_NOT_AFTER: 1}
+    assert counters.accepted == 6 and counters.rejected == {}
 
 
 # Rule: an arm status whose joint positions, velocities or torques lie beyond the JACO2's
@@ -99,8 +58,7 @@ def test_an_arm_status_a_little_ahead_costs_at_most_the_stated_lead():
     ("joint_torque", 5, -100.0),               # joint 6 makes at most 20 N m
 ])
 def test_an_arm_status_beyond_the_jaco2s_ranges_is_skipped(field, joint, value):
-    clock = _Clock()
-    boundary = jaco_status_boundary(clock=clock)
+    boundary = jaco_status_boundary()
     values = {"joint_position": list(Q), "joint_velocity": list(ZERO),
               "joint_torque": list(ZERO)}
     values[field][joint] = value
@@ -111,7 +69,6 @@ def test_an_arm_status_beyond_the_jaco2s_ranges_is_skipped(field, joint, value):
     (rejection,) = boundary.new_rejections()
     assert f"{field}[{joint}]" in rejection.detail
     assert "\n" not in boundary.describe(rejection)
-    clock.now += 0.01
     at_limits = make_jaco_status(
         1_010_000, [0.0, np.radians(47.0), np.radians(341.0), 0.0, 0.0, 0.0],
         np.radians([36.0, -36.0, 36.0, 48.0, -48.0, 48.0]),

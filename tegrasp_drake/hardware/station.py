@@ -18,8 +18,7 @@ from tegrasp_drake.hardware.device_log_messages import (
     GRIPPER_CHANNEL, GRIPPER_PUBLISH_PERIOD, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
     GripperStatusSender, TactileStatusSender)
 from tegrasp_drake.hardware.fault_latch import FaultLatch
-from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_STATUS_CHANNEL, jaco_status_boundary,
-                                                 status_max_lead)
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
 from tegrasp_drake.hardware.lcm_boundary import wait_for_checked_message
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
@@ -142,10 +141,7 @@ class HardwareStation(Diagram):
         builder.AddNamedSystem("lcm", LcmInterfaceSystem(self._lcm))
 
         # Arm.
-        jaco = AddJacoLcmDriver(
-            builder, lcm=self._lcm, tracker_config=config.arm.tracker,
-            boundary=jaco_status_boundary(
-                max_lead=status_max_lead(config.watchdog.arm_timeout)))
+        jaco = AddJacoLcmDriver(builder, lcm=self._lcm, tracker_config=config.arm.tracker)
         builder.ExportInput(jaco.tracker.GetInputPort("desired_state"), ports.ARM_DESIRED_STATE)
         for name, port in (("position_measured", ports.ARM_POSITION_MEASURED),
                            ("velocity_measured", ports.ARM_VELOCITY_MEASURED),
