@@ -153,10 +153,10 @@ def test_an_overwrite_into_a_moved_or_copied_run_folder_replaces_the_earlier_run
             "trial.npz"]
 
 
-# Rule: a result.json is no list of files to delete: a file of the folder it names under
-# any key but the replay's (an .html) stays, whatever the key; the replay --html wrote in the
-# folder is replaced with the run.
-def test_an_overwrite_deletes_no_file_the_earlier_result_names_but_its_replay(tmp_path):
+# Rule: a result.json is no list of files to delete: a file of the folder it names stays,
+# whatever the key, the replay an earlier --html wrote too (a file the user named, which may
+# be theirs by now).
+def test_an_overwrite_deletes_no_file_the_earlier_result_names(tmp_path):
     from tegrasp_drake.commands import run_folder
     folder = tmp_path / "run"
     folder.mkdir()
@@ -170,7 +170,7 @@ def test_an_overwrite_deletes_no_file_the_earlier_result_names_but_its_replay(tm
         (stage / "trial.npz").write_bytes(b"new")
         run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz")})
     assert sorted(p.name for p in folder.iterdir()) == [
-        "notes.html", "result.json", "thesis.tex", "trial.npz"]
+        "notes.html", "replay.html", "result.json", "thesis.tex", "trial.npz"]
 
 
 # Rule: the memorized events a sweep's trials match against are a setting of the sweep, as

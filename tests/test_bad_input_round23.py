@@ -100,3 +100,42 @@ def test_a_transition_with_a_grip_force_beyond_the_gripper_is_refused():
     with pytest.raises(ValueError, match="grip_force_n"):
         T.Transition(t=1.0, from_mode=T.Mode.LIFT, to_mode=T.Mode.LOAD,
                      trigger=list(T.Trigger)[0], reason="x", grip_force_n=1e9)
+
+
+# Rule: a run removes only the staging folders a run left (named as mkdtemp names them,
+# holding nothing but a run's own files), never a folder of the user's with that prefix.
+def test_a_run_keeps_a_users_folder_named_like_a_staging_folder(tmp_path):
+    from tegrasp_drake.commands import run_folder
+    folder = tmp_path / "run"
+    folder.mkdir()
+    mine = {".staging-mydata": "thesis.txt", ".staging-x": "notes.txt",
+            ".staging-abcd1234": "notes.txt"}
+    for name, file in mine.items():
+        (folder / name).mkdir()
+        (folder / name / file).write_text("the user's")
+    left = folder / ".staging-k2j4h5g6"
+    left.mkdir()
+    (left / "trial.npz").write_bytes(b"a killed run's")
+    (left / "states.png").write_bytes(b"a killed run's")
+    with run_folder.staged_run(folder):
+        pass
+    for name, file in mine.items():
+        assert (folder / name / file).read_text() == "the user's"
+    assert not left.exists()
+
+
+# Rule: an --overwrite leaves the replay an earlier --html wrote into the folder (a file the
+# user named, and may have replaced with their own since).
+def test_an_overwrite_keeps_the_earlier_replay_html(tmp_path):
+    import json
+    from tegrasp_drake.commands import run_folder
+    folder = tmp_path / "run"
+    folder.mkdir()
+    (folder / "trial.npz").write_bytes(b"earlier")
+    (folder / "notes.html").write_text("<html>my own notes</html>")
+    (folder / "result.json").write_text(json.dumps(
+        {run_folder.REPLAY_KEY: str(folder / "notes.html")}))
+    with run_folder.staged_run(folder) as stage:
+        (stage / "trial.npz").write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz")})
+    assert (folder / "notes.html").read_text() == "<html>my own notes</html>"

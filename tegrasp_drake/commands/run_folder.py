@@ -8,15 +8,15 @@ import json
 import logging
 import os
 import pathlib
+import re
 import shutil
 import tempfile
 
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
-from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, JsonFileError, claim_folder,
-                                     file_problem, folder_problem, interruptions_deferred,
-                                     own_staging_suffix, read_json_file, stale_staging_files,
-                                     write_atomically)
+from tegrasp_drake.rig.files import (claim_folder, file_problem, folder_problem,
+                                     interruptions_deferred, own_staging_suffix,
+                                     stale_staging_files, write_atomically)
 
 logger = logging.getLogger(__name__)
 
@@ -83,15 +83,40 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 STAGING_PREFIX = ".staging-"  # a run's files until it commits them (staged_run)
 
 
+# What tempfile.mkdtemp names a staging folder: the prefix and 8 of its random characters.
+_STAGING_FOLDER_NAME = re.compile(re.escape(STAGING_PREFIX) + r"[a-z0-9_]{8}")
+
+
+def is_left_staging_folder(path) -> bool:
+    """Whether `path` is a staging folder a run left (staged_run): named as mkdtemp names
+    one, a folder (not a link), holding nothing but files under a run's own names and their
+    hidden temporary files. A folder of the user's that happens to start with the prefix
+    holds something else, or is named otherwise, and is left alone."""
+    path = pathlib.Path(path)
+    if (not _STAGING_FOLDER_NAME.fullmatch(path.name) or path.is_symlink()
+            or not path.is_dir()):
+        return False
+    names = run_file_names()
+    try:
+        entries = list(path.iterdir())
+    except OSError:
+        return False
+    return all(entry.is_file() and not entry.is_symlink()
+               and (entry.name in names
+                    or (entry.name.startswith(".") and any(name in entry.name for name in names)))
+               for entry in entries)
+
+
 @contextlib.contextmanager
 def staged_run(folder):
     """A hidden staging folder inside the run folder (removed when the block ends), the run
     folder locked (flock) for the block, so a second run into it is refused at once. Staging
-    folders already there are removed first: with the lock held no live run writes there, so
-    they are what a run killed past its handlers (SIGKILL, a power cut) left."""
+    folders already there that a run left (is_left_staging_folder) are removed first: with the
+    lock held no live run writes there, so they are what a run killed past its handlers
+    (SIGKILL, a power cut) left."""
     with claimed_run_folder(folder):
         for stale in pathlib.Path(folder).glob(f"{STAGING_PREFIX}*"):
-            if stale.is_dir() and not stale.is_symlink():
+            if is_left_staging_folder(stale):
                 shutil.rmtree(stale, ignore_errors=True)
         try:
             stage = pathlib.Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=folder))
@@ -199,29 +224,13 @@ def run_file_names() -> set[str]:
 
 
 def earlier_run_files(folder) -> list[pathlib.Path]:
-    """The files of the run `folder` holds: those under a run's own names (run_file_names),
-    and the replay its result.json lists in this folder (REPLAY_KEY, an .html --html named
-    there): what
-    a new run replaces (the user's own files are never touched). Known by name, since the
-    absolute paths result.json recorded name where the run was written, which a moved or
-    copied folder no longer is."""
+    """The files of the run `folder` holds, under a run's own names (run_file_names): what
+    a new run replaces. Known by name, since the absolute paths result.json recorded name
+    where the run was written, which a moved or copied folder no longer is. Nothing else is
+    touched: not the replay an earlier `--html` wrote (a file the user named, and may have
+    edited or replaced since), nor any file result.json names."""
     folder = pathlib.Path(folder)
-    files = [folder / name for name in sorted(run_file_names()) if (folder / name).is_file()]
-    try:  # bounded, refusing a FIFO (a read would block the commit) or a device
-        earlier = read_json_file(
-            folder / RESULT_FILE, limit=MAX_STATE_FILE_BYTES, kind="a run's result file",
-            check=lambda data: None if isinstance(data, dict) else "is not a JSON object")
-    except JsonFileError:
-        return files
-    # Only the replay the run wrote: every other file it writes has a run's own name, and a
-    # result.json naming any file of the folder under any key must not get it deleted.
-    value = earlier.get(REPLAY_KEY)
-    if isinstance(value, str) and value.endswith(".html"):
-        path = pathlib.Path(value)
-        if (path.parent.resolve() == folder.resolve() and (folder / path.name).is_file()
-                and folder / path.name not in files):
-            files.append(folder / path.name)
-    return files
+    return [folder / name for name in sorted(run_file_names()) if (folder / name).is_file()]
 
 
 def write_result(path, result: dict) -> pathlib.Path:
