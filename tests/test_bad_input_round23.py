@@ -139,3 +139,20 @@ def test_an_overwrite_keeps_the_earlier_replay_html(tmp_path):
         (stage / "trial.npz").write_bytes(b"new")
         run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz")})
     assert (folder / "notes.html").read_text() == "<html>my own notes</html>"
+
+
+# Rule: a duplicate key is refused naming both lines, a merge key '<<' too (the first
+# merge's values were dropped without a word); one '<<' with a list of mappings merges both.
+def test_two_merge_keys_in_one_mapping_are_refused(tmp_path):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    twice = tmp_path / "twice.yaml"
+    twice.write_text("default:\n  object: {name: box}\nother:\n  <<: {random_seed: 681}\n"
+                     "  <<: {random_seed: 682}\n")
+    with pytest.raises(ConfigError, match="key '<<' appears twice.*list of them"):
+        LoadScenario(str(twice), "other")
+    listed = tmp_path / "listed.yaml"
+    listed.write_text("default:\n  object: {name: box}\nother:\n"
+                      "  <<: [{random_seed: 681}, {object: {name: thin_cylinder}}]\n")
+    scenario = LoadScenario(str(listed), "other")
+    assert scenario.random_seed == 681 and scenario.object.name == "thin_cylinder"

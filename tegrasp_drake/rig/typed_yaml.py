@@ -177,11 +177,14 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                             "a list" if isinstance(key, yaml.SequenceNode) else "a mapping")
                     raise ConfigError(f"{source}: {where(key)}: a key must be a name (text), "
                                       f"got {what}"[:300])
-                if isinstance(key, yaml.ScalarNode) and key.tag != "tag:yaml.org,2002:merge":
+                if isinstance(key, yaml.ScalarNode):  # a merge key '<<' too
                     if key.value in seen:
+                        merging = key.tag == "tag:yaml.org,2002:merge"
                         raise ConfigError(
                             f"{source}: key '{key.value}' appears twice ({seen[key.value]} "
-                            f"and {where(key)}); keep one")
+                            f"and {where(key)}); keep one"
+                            + ("; to merge several mappings give one '<<' a list of them"
+                               if merging else ""))
                     seen[key.value] = where(key)
                 name = str(key.value) if isinstance(key, yaml.ScalarNode) else "<<"
                 if not path and root_key is not None:
