@@ -111,3 +111,24 @@ def test_a_record_of_another_trial_is_corrupt_and_runs_again(tmp_path, edit, wor
     assert loaded.records == {} and words in loaded.corrupt[path], loaded.corrupt
     summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
     assert (summary.ran, summary.skipped) == (1, 0)
+
+
+# Rule: a FIFO or a device link in a record's place is a record that cannot be read: named in
+# one warning, kept aside as NAME.corrupt-PID (the entry itself), and its trial runs again.
+@pytest.mark.parametrize("make", [
+    lambda path: __import__("os").mkfifo(path),
+    lambda path: path.symlink_to("/dev/zero"),
+], ids=["fifo", "device-link"])
+def test_a_record_that_is_no_file_is_kept_aside_with_a_warning(tmp_path, caplog, make):
+    import logging
+    summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    path = record_path(tmp_path, summary.trial_ids[0])
+    path.unlink()
+    make(path)
+    with caplog.at_level(logging.WARNING):
+        summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.skipped) == (1, 0)
+    assert any(path.name in message and "kept as" in message for message in caplog.messages)
+    (kept,) = list(path.parent.glob(f"{path.name}.corrupt-*"))
+    assert kept.is_symlink() or not kept.is_file()
+    assert path.is_file() and load_records(tmp_path).corrupt == {}

@@ -497,10 +497,11 @@ def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):
 def _keep_corrupt_records_aside(corrupt: dict) -> None:
     """Renames each corrupt record to NAME.corrupt-<pid> beside it (its trial then runs again
     into NAME), saying so in one line each before anything runs: nothing silent, nothing lost.
-    What is not a file there (a folder in a record's place) is left for the write check, which
-    refuses the sweep before it runs anything."""
+    A FIFO or a link (to a device) in a record's place is renamed as a file is (the entry, not
+    what it points to); a folder there is left for the write check, which refuses the sweep
+    before it runs anything."""
     for path, reason in corrupt.items():
-        if not path.is_file():
+        if path.is_dir() and not path.is_symlink():
             continue
         kept = path.with_name(f"{path.name}.corrupt-{os.getpid()}")
         os.replace(path, kept)
