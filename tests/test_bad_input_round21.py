@@ -27,17 +27,23 @@ ZERO = [0.0] * 6
 # Rule: an arm status whose utime is impossible (negative: the arm's clock starts at 0) is
 # counted under its reason and skipped; the receiver keeps the last good status. (The order
 # of utime is not checked: jaco_lcm.jaco_status_boundary says why.)
-def test_an_arm_status_with_a_negative_utime_is_skipped():
+def jaco_driver_on_memq(q):
+    """(lcm, driver, simulator, the status receiver's context): the Jaco LCM driver on an
+    in-process bus, its tracker held at joint angles `q` [rad], initialized."""
     lcm = DrakeLcm("memq://")
     builder = DiagramBuilder()
     builder.AddSystem(LcmInterfaceSystem(lcm))
     driver = AddJacoLcmDriver(builder, lcm=lcm)
-    source = builder.AddSystem(ConstantVectorSource(np.concatenate([Q, ZERO])))
+    source = builder.AddSystem(ConstantVectorSource(np.concatenate([q, ZERO])))
     builder.Connect(source.get_output_port(), driver.tracker.GetInputPort("desired_state"))
-    diagram = builder.Build()
-    simulator = Simulator(diagram)
+    simulator = Simulator(builder.Build())
     simulator.Initialize()
-    context = driver.status_receiver.GetMyContextFromRoot(simulator.get_context())
+    return (lcm, driver, simulator,
+            driver.status_receiver.GetMyContextFromRoot(simulator.get_context()))
+
+
+def test_an_arm_status_with_a_negative_utime_is_skipped():
+    lcm, driver, simulator, context = jaco_driver_on_memq(Q)
     real = [q + 0.2 for q in Q]
     forged = [2.0] * 6
 

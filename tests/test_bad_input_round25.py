@@ -2,16 +2,11 @@
 
 import numpy as np
 import pytest
-from pydrake.lcm import DrakeLcm
-from pydrake.systems.analysis import Simulator
-from pydrake.systems.framework import DiagramBuilder
-from pydrake.systems.lcm import LcmInterfaceSystem
-from pydrake.systems.primitives import ConstantVectorSource
 
 from tegrasp_drake.hardware.jaco import jaco_lcm
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_STATUS_CHANNEL, jaco_status_boundary, make_jaco_status)
-from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
+from tests.test_bad_input_round21 import jaco_driver_on_memq
 
 Q = [3.3, 4.5, 1.1, 2.5, 2.3, 3.9]  # [rad] inside every joint's range
 ZERO = [0.0] * 6
@@ -21,15 +16,7 @@ ZERO = [0.0] * 6
 # clock the arm's genuine statuses must beat: it is one sample, and the genuine stream after
 # it is taken (the order of utime is not checked: jaco_lcm.jaco_status_boundary says why).
 def test_an_arm_status_from_the_far_future_does_not_lock_out_the_genuine_stream():
-    lcm = DrakeLcm("memq://")
-    builder = DiagramBuilder()
-    builder.AddSystem(LcmInterfaceSystem(lcm))
-    driver = AddJacoLcmDriver(builder, lcm=lcm)
-    source = builder.AddSystem(ConstantVectorSource(np.concatenate([Q, ZERO])))
-    builder.Connect(source.get_output_port(), driver.tracker.GetInputPort("desired_state"))
-    simulator = Simulator(builder.Build())
-    simulator.Initialize()
-    context = driver.status_receiver.GetMyContextFromRoot(simulator.get_context())
+    lcm, driver, simulator, context = jaco_driver_on_memq(Q)
 
     def publish(utime):
         lcm.Publish(JACO_STATUS_CHANNEL, make_jaco_status(utime, Q, ZERO, ZERO).encode())
