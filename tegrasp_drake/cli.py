@@ -40,6 +40,20 @@ class _Parser(argparse.ArgumentParser):
         from tegrasp_drake.rig.files import one_line
         super().error(one_line(message))
 
+    def parse_known_args(self, args=None, namespace=None):
+        """A command with an optional positional (`plot signals -v LOG`) takes it after its
+        options too: argparse alone fills an optional positional with its default when an
+        option comes first, and then refuses the positional as an unrecognized argument."""
+        optional_positional = any(not action.option_strings and action.nargs in ("?", "*")
+                                  for action in self._actions)
+        if not optional_positional or getattr(self, "_intermixing", False):
+            return super().parse_known_args(args, namespace)
+        self._intermixing = True  # parse_known_intermixed_args calls parse_known_args
+        try:
+            return self.parse_known_intermixed_args(args, namespace)
+        finally:
+            self._intermixing = False
+
 
 # The arguments that name a file or folder, by their `dest`: an empty one ('' from an unset
 # shell variable) is refused, never taken as "not given" or as the current folder.
