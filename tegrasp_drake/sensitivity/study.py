@@ -152,30 +152,125 @@ def point_folder_cell(spec: SensitivitySpec, point: SensitivityPoint) -> tuple[s
     return (point.name if spec.events == "each_point" else DEFAULT_POINT, point.name)
 
 
-def record_points(points, out_dir) -> pathlib.Path:
-    """Adds the points' assignments to OUT/points.json; SweepError when the folder holds a
-    point of the same name that set other values (another spec's)."""
+def study_identity(spec: SensitivitySpec, points) -> dict:
+    """What makes a study's folder its own, as points.json keeps it: the design (one factor at
+    a time, a Latin hypercube of N points and its seed, or points given otherwise), each
+    parameter with its range, where events are memorized and the sweep (its trials)."""
+    points = tuple(points)
+    if points == one_at_a_time(spec):
+        design = {"design": "one_at_a_time"}
+        entries = sorted(spec.parameters, key=lambda entry: entry.key)  # order is moot
+    else:
+        samples = len(points) - 1
+        lhs = (1 <= samples <= MAX_LATIN_HYPERCUBE
+               and all(p.name.startswith("lhs_") for p in points[1:])
+               and points == latin_hypercube(spec, samples))
+        design = ({"design": "latin_hypercube", "samples": samples,
+                   "seed": spec.sweep.base_seed} if lhs else {"design": "given"})
+        entries = spec.parameters  # a sample's columns follow this order
+    return json.loads(json.dumps({
+        **design,
+        "parameters": [{"key": e.key, "low": e.low, "default": e.default, "high": e.high,
+                        "choices": list(e.choices), "step": e.step, "log_scale": e.log_scale}
+                       for e in entries],
+        "events": spec.events,
+        "sweep": dataclasses.asdict(spec.sweep)}))  # as read back: lists, not tuples
+
+
+def record_points(spec: SensitivitySpec, points, out_dir) -> pathlib.Path:
+    """Writes OUT/points.json: the study's identity (study_identity) and each point's
+    assignments. SweepError, before anything is written, when the folder holds another study
+    (another design, parameter, range, events or sweep; a folder written before points.json
+    named its study is this study's when its points are exactly these)."""
     from tegrasp_drake.sweep.runner import SweepError
     path = pathlib.Path(out_dir) / POINTS_FILE
-    known = (read_json_file(path, limit=MAX_STATE_FILE_BYTES, kind="a study's points file",
-                            check=_points_problem, remedy="give another output folder, or "
-                            "remove the file if the folder holds this study's points only")
-             if os.path.lexists(path) else {})
-    for point in points:
-        wanted = list(point.assignments())
-        if point.name in known and known[point.name] != wanted:
-            raise SweepError(f"{out_dir} holds point '{point.name}' set to "
-                             f"{known[point.name]}, not {wanted} (another sampling); give "
-                             "another output folder")
-        known[point.name] = wanted
+    study = study_identity(spec, points)
+    wanted = {point.name: list(point.assignments()) for point in points}
+    if os.path.lexists(path):
+        known = read_json_file(path, limit=MAX_STATE_FILE_BYTES, kind="a study's points file",
+                               check=_points_problem, remedy="give another output folder, or "
+                               "remove the file if the folder holds this study's points only")
+        named = set(known) == {"study", "points"}
+        difference = (_study_difference(known["study"], study) if named else None) or \
+            _points_difference(known["points"] if named else known, wanted)
+        if difference:
+            raise SweepError(f"{out_dir} holds another sensitivity study: {difference}; "
+                             "give another --out")
     path.parent.mkdir(parents=True, exist_ok=True)
-    return write_atomically(path, json.dumps(known, indent=1, sort_keys=True) + "\n")
+    return write_atomically(path, json.dumps({"study": study, "points": wanted}, indent=1,
+                                             sort_keys=True) + "\n")
+
+
+def _design_words(study: dict) -> str:
+    design = study.get("design")
+    if design == "one_at_a_time":
+        return "one-at-a-time"
+    if design == "latin_hypercube":
+        return f"a Latin hypercube of {study.get('samples')} points, seed {study.get('seed')}"
+    return "points given by a script"
+
+
+def _study_difference(known: dict, wanted: dict) -> str | None:
+    """What differs between two study identities, in words (the folder's, then this one's);
+    None when they are the same study."""
+    if _design_words(known) != _design_words(wanted):
+        return (f"the folder's design is {_design_words(known)}, this study's "
+                f"{_design_words(wanted)}")
+    keys = ([p.get("key") for p in known.get("parameters", ())],
+            [p.get("key") for p in wanted["parameters"]])
+    if keys[0] != keys[1]:
+        return f"parameters {keys[0]} in the folder, not {keys[1]}"
+    for had, has in zip(known["parameters"], wanted["parameters"]):
+        if had != has:
+            return (f"the folder's range of {has['key']} is {_range_words(had)}, this "
+                    f"study's {_range_words(has)}")
+    if known.get("events") != wanted["events"]:
+        return f"events {known.get('events')} in the folder, not {wanted['events']}"
+    sweep = known.get("sweep") if isinstance(known.get("sweep"), dict) else {}
+    for field in wanted["sweep"]:
+        if sweep.get(field) != wanted["sweep"][field]:
+            return (f"the folder's sweep field '{field}' is {sweep.get(field)!r}, this "
+                    f"study's {wanted['sweep'][field]!r}")
+    return None if known == wanted else "the folder names its study otherwise"
+
+
+def _range_words(entry: dict) -> str:
+    return (f"{entry.get('low')} .. {entry.get('default')} .. {entry.get('high')}"
+            + (f" (choices {entry.get('choices')})" if entry.get("choices") else "")
+            + (", log scale" if entry.get("log_scale") else ""))
+
+
+def _points_difference(known: dict, wanted: dict) -> str | None:
+    """What differs between the folder's points and these, in words; None when the same."""
+    extra = [name for name in known if name not in wanted]
+    if extra:
+        return f"point '{extra[0]}' in the folder is not one of this study's ({_names(wanted)})"
+    missing = [name for name in wanted if name not in known]
+    if missing:
+        return f"point '{missing[0]}' of this study is not in the folder ({_names(known)})"
+    for name, assignments in wanted.items():
+        if known[name] != assignments:
+            return f"point '{name}' set to {known[name]} in the folder, not {assignments}"
+    return None
+
+
+def _names(points, shown: int = 4) -> str:
+    """The first `shown` point names, and how many more (a hypercube has up to 1001)."""
+    names = list(points)
+    more = f" and {len(names) - shown} more" if len(names) > shown else ""
+    return ", ".join(names[:shown]) + more or "none"
 
 
 def _points_problem(data) -> str | None:
-    if not isinstance(data, dict) or not all(
+    named = isinstance(data, dict) and set(data) == {"study", "points"}
+    if named and not (isinstance(data["study"], dict)
+                      and isinstance(data["study"].get("parameters"), list)
+                      and all(isinstance(p, dict) for p in data["study"]["parameters"])):
+        return "has a 'study' that is not a mapping with a list of parameters"
+    points = data["points"] if named else data
+    if not isinstance(points, dict) or not all(
             isinstance(assignments, list) and all(isinstance(a, str) for a in assignments)
-            for assignments in data.values()):
+            for assignments in points.values()):
         return "is not a mapping of point names to lists of KEY=VALUE assignments (text)"
     return None
 
@@ -198,7 +293,7 @@ def run_sensitivity(spec: SensitivitySpec, points, trial_function, out_dir, *, w
         check_unrecorded_events(matrix, out_dir)
     pathlib.Path(out_dir).mkdir(parents=True, exist_ok=True)
     with hold_output_folder(out_dir):  # before points.json; run_transfer shares the hold
-        record_points(points, out_dir)
+        record_points(spec, points, out_dir)
         return run_transfer(matrix, trial_function, out_dir, workers=workers,
                             scheduler=scheduler, progress=progress,
                             confirmed_trials=confirmed_trials)

@@ -87,17 +87,18 @@ def test_each_point_is_a_world_memorizing_in_itself_or_at_the_defaults():
 
 def test_a_folder_of_another_sampling_is_refused(tmp_path):
     spec = SensitivitySpec()
-    record_points(latin_hypercube(spec, 2), tmp_path)
-    record_points(latin_hypercube(spec, 2), tmp_path)  # the same points: resumed
+    record_points(spec, latin_hypercube(spec, 2), tmp_path)
+    record_points(spec, latin_hypercube(spec, 2), tmp_path)  # the same points: resumed
     other = SensitivitySpec(sweep=spec.sweep.__class__(base_seed=601))
-    with pytest.raises(SweepError, match="holds point 'lhs_0'"):
-        record_points(latin_hypercube(other, 2), tmp_path)
+    with pytest.raises(SweepError,
+                       match=r"another sensitivity study: .*seed 0, this study.s .*seed 601;"):
+        record_points(other, latin_hypercube(other, 2), tmp_path)
 
 
 def test_a_points_file_that_is_a_device_is_refused_as_one(tmp_path):
     (tmp_path / "points.json").symlink_to("/dev/null")  # reads empty, as a truncated file would
     with pytest.raises(UserPathError, match=r"points.json: is a device, not a file; give "):
-        record_points(latin_hypercube(SensitivitySpec(), 2), tmp_path)
+        record_points(SensitivitySpec(), latin_hypercube(SensitivitySpec(), 2), tmp_path)
 
 
 @pytest.mark.parametrize("text, words", [
