@@ -68,9 +68,9 @@ def test_pad_accelerations_within_the_films_full_scale_are_read(tmp_path):
 # Rule: the object starts on the table and moves no faster than the hand or a hit can drive it
 # (or falls): 100 m away after 0.1 s is not where an object can be.
 @pytest.mark.parametrize("column, value, expected", [
-    (4, 100.0, "column 4 holds 100 m, outside"),
-    (6, 100.0, "column 6 holds 100 m, outside"),
-    (6, -100.0, "column 6 holds -100 m, outside"),
+    (4, 100.0, "column 4 (x) holds 100 m, outside"),
+    (6, 100.0, "column 6 (z) holds 100 m, outside"),
+    (6, -100.0, "column 6 (z) holds -100 m, outside"),
 ], ids=["x", "z-up", "z-down"])
 def test_an_object_position_beyond_where_it_can_be_is_refused(tmp_path, column, value, expected):
     path = _log(tmp_path, SCENARIO, "object_state", 5, 0.0)
@@ -104,3 +104,23 @@ def test_a_trial_log_storing_a_scenario_out_of_its_ranges_is_refused(tmp_path):
     message = str(refused.value)
     assert (str(path) in message and "meta 'scenario'" in message
             and "tactile.noise_std_n" in message and "\n" not in message), message
+
+
+# Rule: Eq. 1's SA is a pad's 12 taxels' sum and Eq. 2's RA the size of its 3 axes' vector, so
+# each lies within 12 times, or sqrt(3) times, what the scenario's sensors read.
+@pytest.mark.parametrize("column, value, expected", [
+    (0, -1e6, "column 0 (sa_left) holds -1000000 N, outside 0 to 8136.93 N"),
+    (3, 1e300, "column 3 (ra_right) holds 1e+300 m/s^2, outside 0 to 4376.23 m/s^2"),
+], ids=["sa", "ra"])
+def test_sa_and_ra_beyond_what_the_sensors_give_are_refused(tmp_path, column, value, expected):
+    _refused(_log(tmp_path, SCENARIO, "channels", 50, [1.0] * column + [value]
+                  + [1.0] * (3 - column)), f"'channels' sample 50 {expected}")
+
+
+# Rule: the accelerometer transducer (no electronics) reads at most twice (its high-pass) the
+# pad's largest acceleration: its top speed reversed within one plant step, and gravity.
+def test_an_accelerometer_reading_no_pad_motion_gives_is_refused(tmp_path):
+    scenario = SCENARIO + "vibration:\n  transducer: accelerometer\n"
+    assert load_trial_log(_log(tmp_path, scenario, "pad_acceleration", 50, 3000.0)) is not None
+    _refused(_log(tmp_path, scenario, "pad_acceleration", 50, 1e6),
+             "'pad_acceleration' sample 50 column 0 holds 1000000 m/s^2, outside")

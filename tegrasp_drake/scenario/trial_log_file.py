@@ -18,7 +18,8 @@ import zlib
 import numpy as np
 
 from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary_sibling
-from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
+from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
@@ -624,39 +625,50 @@ def sensor_bounds(scenario, duration_s: float) -> SensorBounds:
                         taxel_unit=unit, pad_acceleration=pad, object_xyz=xyz, whose=whose)
 
 
+def _sensor_limits(bounds: SensorBounds, duration_s: float) -> list[tuple]:
+    """(array, column, its name or "", low, high, unit, why) of each column sensor_range_problem
+    checks: the taxels, Eq. 1's SA (a pad's 12 taxels' sum) and Eq. 2's RA (the size of its
+    3 axes' vector), the pads' accelerations, the object's position (object_state 4 to 6)."""
+    whose, (low, high), unit = bounds.whose, bounds.taxels, bounds.taxel_unit
+    pad = bounds.pad_acceleration
+    taxel_why = f"what {whose} taxels can read (their model, noise to 10 sigma)"
+    pad_why = f"what {whose} RA transducer can read (its full scale)"
+    rows = [("taxels", column, "", low, high, unit, taxel_why)
+            for column in range(len(CHANNEL_NAMES) // 2 * TAXELS_PER_PAD)]
+    rows += [("channels", column, CHANNEL_NAMES[column], TAXELS_PER_PAD * low,
+              TAXELS_PER_PAD * high, unit, f"{TAXELS_PER_PAD} times {taxel_why}")
+             for column in SA_CHANNELS]
+    rows += [("channels", column, CHANNEL_NAMES[column], 0.0,
+              math.sqrt(PAD_ACCELERATION_AXES) * pad, "m/s^2",
+              f"the size of {PAD_ACCELERATION_AXES} axes' {pad_why}") for column in RA_CHANNELS]
+    rows += [("pad_acceleration", column, "", -pad, pad, "m/s^2", pad_why)
+             for column in range(len(RA_CHANNELS) * PAD_ACCELERATION_AXES)]
+    object_why = (f"where {whose} object can be by {number_text(duration_s)} s (on the table at "
+                  "the start, moving no faster than the hand or a hit drives it, or falling)")
+    rows += [("object_state", 4 + k, axis, *bounds.object_xyz[k], "m", object_why)
+             for k, axis in enumerate("xyz")]
+    return rows
+
+
 def sensor_range_problem(arrays: dict, scenario=None) -> str | None:
-    """The first logged taxel reading, pad acceleration or object position in `arrays` (finite,
-    of their shapes) outside the range its sensor or the workspace gives it (sensor_bounds of
-    `scenario`, over the log's simulated time), named with its column and value, else None."""
-    wanted = [name for name in ("taxels", "pad_acceleration", "object_state") if name in arrays]
-    if not wanted:
+    """The first logged taxel reading, SA or RA sample, pad acceleration or object position in
+    `arrays` (finite, of their shapes) outside the range its sensors or the workspace give it
+    (sensor_bounds of `scenario`, over the log's simulated time), named with its column and
+    value, else None."""
+    if not any(name in arrays for name in ("taxels", "channels", "pad_acceleration",
+                                           "object_state")):
         return None
     duration = _time_span(arrays)[1]
-    bounds = sensor_bounds(scenario, duration)
-    whose = bounds.whose
-    checks = {"taxels": (range(24), *bounds.taxels, bounds.taxel_unit,
-                         f"what {whose} taxels can read (their model, noise to 10 sigma)"),
-              "pad_acceleration": (range(6), -bounds.pad_acceleration, bounds.pad_acceleration,
-                                   "m/s^2", f"what {whose} RA transducer can read (its full "
-                                            "scale)"),
-              "object_state": (range(4, 7), None, None, "m",
-                               f"where {whose} object can be by {number_text(duration)} s (on "
-                               "the table at the start, moving no faster than the hand or a "
-                               "hit drives it, or falling)")}
-    for name in wanted:
-        columns, low, high, unit, why = checks[name]
-        array = np.asarray(arrays[name], dtype=float)
-        for column in columns:
-            if column >= array.shape[1]:
-                continue
-            if name == "object_state":
-                low, high = bounds.object_xyz[column - 4]
-            values = array[:, column]
-            outside = np.flatnonzero((values < low) | (values > high))
-            if outside.size:
-                k = outside[0]
-                return (f"'{name}' sample {k} column {column} holds "
-                        f"{number_text(float(values[k]))} {unit}, outside {number_text(low)} to "
-                        f"{number_text(high)} {unit}, {why}")
+    for name, column, label, low, high, unit, why in _sensor_limits(
+            sensor_bounds(scenario, duration), duration):
+        if name not in arrays or column >= arrays[name].shape[1]:
+            continue
+        values = np.asarray(arrays[name][:, column], dtype=float)
+        outside = np.flatnonzero((values < low) | (values > high))
+        if outside.size:
+            k = outside[0]
+            named = f" ({label})" if label else ""
+            return (f"'{name}' sample {k} column {column}{named} holds "
+                    f"{number_text(float(values[k]))} {unit}, outside {number_text(low)} to "
+                    f"{number_text(high)} {unit}, {why}")
     return None
-
