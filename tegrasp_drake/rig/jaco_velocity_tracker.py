@@ -14,6 +14,11 @@ from tegrasp_drake.rig.api_boundary import public_dataclass
 _DEG = np.pi / 180.0
 # [rad/s] the fastest JACO2 joints (4-6), Kinova's JACO2 6-DOF specification.
 JACO2_MAX_JOINT_SPEED = 48 * _DEG
+# [m] the JACO2's reach, Kinova's JACO2 6-DOF specification.
+JACO2_REACH_M = 0.9
+# [m/s] the fastest the hand can move: each of the 6 joints turning at the fastest joint speed
+# moves it at most that speed times its distance from the joint, at most the reach.
+HAND_SPEED_BOUND_MPS = 6 * JACO2_MAX_JOINT_SPEED * JACO2_REACH_M
 
 
 @public_dataclass

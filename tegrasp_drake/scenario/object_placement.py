@@ -41,3 +41,32 @@ class ObjectPlacementConfig:
                 f"{list(self.expected_xy)} + placement.offset), off the table top (x "
                 f"{cx - half_x:g} to {cx + half_x:g} m, y {cy - half_y:g} to {cy + half_y:g} m); "
                 "place it on the table", list(self.offset))
+
+
+def object_speed_bound_mps(hit_impulse_n_s: float) -> float:
+    """The fastest [m/s] a scenario's object can move: as fast as the hand carrying or throwing
+    it (rig/jaco_velocity_tracker.HAND_SPEED_BOUND_MPS) plus what a hit of hit_impulse_n_s
+    [N s] (its force times its duration; 0: no hit) gives the lightest object a scenario
+    allows (rig/objects.MIN_MASS_KG). Gravity adds to it while the object falls
+    (object_position_bounds)."""
+    from tegrasp_drake.rig.jaco_velocity_tracker import HAND_SPEED_BOUND_MPS
+    from tegrasp_drake.rig.objects import MIN_MASS_KG
+    return HAND_SPEED_BOUND_MPS + hit_impulse_n_s / MIN_MASS_KG
+
+
+def object_position_bounds(duration_s: float, speed_mps: float,
+                           gravity_mps2: float) -> tuple[tuple[float, float], tuple[float, float],
+                                                          tuple[float, float]]:
+    """(x, y, z) ranges [m, world] the object's origin stays in for duration_s [s] of a
+    trial: it starts on the table top (ObjectPlacementConfig.problem refuses a placement off
+    it) and moves at most speed_mps [m/s] (object_speed_bound_mps) sideways; up, the hand
+    lifts it at most the JACO2's reach above the table (it holds it within the reach) and it
+    moves at most speed_mps further; down, it may also fall (off the table's edge) under
+    gravity_mps2 [m/s^2] the whole time."""
+    from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_REACH_M
+    travel = speed_mps * duration_s
+    (cx, cy), (half_x, half_y) = TABLE_CENTER_XY, (TABLE_SIZE[0] / 2, TABLE_SIZE[1] / 2)
+    return ((cx - half_x - travel, cx + half_x + travel),
+            (cy - half_y - travel, cy + half_y + travel),
+            (-travel - gravity_mps2 * duration_s ** 2 / 2, JACO2_REACH_M + travel))
+

@@ -18,7 +18,8 @@ import zlib
 import numpy as np
 
 from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary_sibling
-from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
+from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
@@ -117,7 +118,8 @@ def load_trial_log(path: PathLike) -> TrialLog:
         version = meta.get("format_version") if isinstance(meta, dict) else None
         raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
                             f"reads {FORMAT_VERSION}")
-    problem = trial_arrays_problem(arrays) or meta_problem(meta, arrays)
+    scenario, problem = logged_scenario(meta)
+    problem = problem or trial_arrays_problem(arrays, scenario) or meta_problem(meta, arrays)
     if problem:
         raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
     return TrialLog(meta=meta, **arrays)
@@ -384,11 +386,12 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 STEP_TOLERANCE = 1e-6
 
 
-def trial_arrays_problem(arrays: dict) -> str | None:
+def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
     """What is wrong with the trial-log arrays in `arrays`, or None: each time base at least
     two finite, increasing times sampled at one period (STEP_TOLERANCE), one row per time,
-    finite signals within their physical ranges (out_of_range_signals). Every reader applies
-    it."""
+    finite signals within their physical ranges (out_of_range_signals, and sensor_range_problem
+    for the sensors of `scenario`, the log's Scenario, or of any scenario when None). Every
+    reader applies it."""
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue
@@ -413,6 +416,7 @@ def trial_arrays_problem(arrays: dict) -> str | None:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
     return (nonfinite_signals(arrays) or out_of_range_signals(arrays)
+            or sensor_range_problem(arrays, scenario)
             or object_orientation_problem(arrays) or joint_angle_problem(arrays))
 
 
@@ -470,9 +474,10 @@ def object_orientation_problem(arrays: dict) -> str | None:
 
 
 # The logged channels with a physical range: (their columns' names, the columns checked, low,
-# high, why). Measured taxels and SA have none: the force transducer adds zero-mean noise to
-# its offset and does not clip (simulation/tactile_pads.apply_sensor_model), so they dip below
-# zero at rest; true_taxels is a contact force along the pad normal, not a magnitude.
+# high, why). Measured taxels, pad accelerations and the object's position have the ranges of
+# the log's sensors and workspace instead (sensor_range_problem); SA has none here (the force
+# transducer's noise dips below zero at rest); true_taxels is a contact force along the pad
+# normal, not a magnitude.
 _PHYSICAL_RANGES = {
     "gripper_command": (ru.COMMAND_NAMES, range(ru.COMMAND_SIZE), 0.0, ru.BYTE_MAX,
                         "the 2F-85's request registers are bytes"),
@@ -511,4 +516,159 @@ def nonfinite_signals(arrays: dict) -> str | None:
            and not np.all(np.isfinite(arrays[name]))]
     if bad:
         return f"the arrays {bad} hold NaN or infinite values"
+    return None
+
+
+def logged_scenario(meta: dict):
+    """(the Scenario of meta 'scenario', None) when the log stores one, (None, None) when not,
+    or (None, what is wrong) when its text is not a scenario."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import scenario_from_yaml  # Drake: on use
+    text = meta.get("scenario")
+    if not isinstance(text, str):
+        return None, None  # none stored, or not text (meta_problem names it)
+    try:
+        return scenario_from_yaml(text, "meta 'scenario'"), None
+    except ConfigError as e:
+        return None, shorten(str(e), 300)
+
+
+@dataclasses.dataclass(frozen=True)
+class SensorBounds:
+    """The physical range of the logged sensor channels and object position, each from where
+    its model is declared: taxels [low, high] (N, or counts: taxel_reading_range),
+    pad_acceleration, the largest |reading| [m/s^2] (pad_reading_bound_mps2), object_xyz,
+    the (low, high) [m, world] of the object's x, y and z (object_position_bounds)."""
+    taxels: tuple[float, float]
+    taxel_unit: str
+    pad_acceleration: float
+    object_xyz: tuple
+    whose: str
+
+
+def _pad_speed_mps() -> float:
+    """The fastest a pad moves [m/s]: with the hand (HAND_SPEED_BOUND_MPS), and its finger
+    closing at the 2F-85's top speed."""
+    from tegrasp_drake.rig.jaco_velocity_tracker import HAND_SPEED_BOUND_MPS
+    return HAND_SPEED_BOUND_MPS + ru.SPEED_MAX_MPS
+
+
+def _hit_impulse_n_s(disturbance) -> float:
+    """The impulse [N s] of a scenario's hit (0 without one)."""
+    if disturbance.hit_time_s < 0:
+        return 0.0
+    return math.hypot(*disturbance.hit_force_n) * disturbance.hit_duration_s
+
+
+def _widest_configs():
+    """(tactile configs, vibration configs, largest hit impulse [N s], shortest plant step
+    [s]): the corners of the declared ranges at which the sensors' ranges are widest (a
+    log that stores no scenario may be of any)."""
+    from tegrasp_drake.rig.ranges import field_range
+    from tegrasp_drake.scenario.scenario import MAX_HIT_FORCE_N, MIN_TIME_STEP_S
+    from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
+    from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig
+    from tegrasp_drake.simulation.pad_vibration_sensor import FilmConfig, VibrationSensorConfig
+    from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
+
+    def low(cls, name):
+        return field_range(cls, name).low
+
+    def high(cls, name):
+        return field_range(cls, name).high
+
+    T, C, F, V = TactileSensorConfig, CapacitiveTaxelConfig, FilmConfig, VibrationSensorConfig
+    noisy = C(noise_std_counts=high(C, "noise_std_counts"))
+    tactile = [T(transducer="force", offset_n=offset, noise_std_n=high(T, "noise_std_n"),
+                 quantization_n=high(T, "quantization_n"))
+               for offset in (low(T, "offset_n"), high(T, "offset_n"))]
+    tactile.append(T(capacitive=dataclasses.replace(noisy, output="counts")))
+    # The most newtons a count is: the stiffest pad, the thinnest dielectric, the lightest
+    # calibration weight, the least gap left.
+    tactile.append(T(pad_modulus_pa=high(T, "pad_modulus_pa"), capacitive=dataclasses.replace(
+        noisy, relative_permittivity=low(C, "relative_permittivity"),
+        calibration_force_n=low(C, "calibration_force_n"),
+        minimum_gap_fraction=low(C, "minimum_gap_fraction"))))
+    # The least sensitive film (S = G_Q / (w^2 C_f)) read without a converter at the widest swing.
+    film = F(film_charge_gain_c_per_m=low(F, "film_charge_gain_c_per_m"),
+             mode_frequency_hz=high(F, "mode_frequency_hz"),
+             feedback_capacitance_f=high(F, "feedback_capacitance_f"))
+    vibration = [V(film=film, amplifier_swing_v=high(V, "amplifier_swing_v"), adc_input="ideal"),
+                 V(transducer="accelerometer", noise_std_mps2=high(V, "noise_std_mps2"))]
+    impulse = MAX_HIT_FORCE_N * high(DisturbanceConfig, "hit_duration_s")
+    return tactile, vibration, impulse, MIN_TIME_STEP_S
+
+
+def sensor_bounds(scenario, duration_s: float) -> SensorBounds:
+    """The SensorBounds of a log of `scenario` (a Scenario; None: the widest of any scenario)
+    lasting duration_s [s] of simulated time."""
+    from pydrake.multibody.tree import UniformGravityFieldElement  # the plant's gravity
+    from tegrasp_drake.scenario.object_placement import (object_position_bounds,
+                                                         object_speed_bound_mps)
+    from tegrasp_drake.simulation.pad_vibration_sensor import pad_reading_bound_mps2
+    from tegrasp_drake.simulation.tactile_pads import taxel_reading_range
+    if scenario is None:
+        tactile, vibration, impulse, time_step = _widest_configs()
+        whose, unit = "any scenario's", "N or counts"
+    else:
+        tactile, vibration = [scenario.tactile], [scenario.vibration]
+        impulse, time_step = _hit_impulse_n_s(scenario.disturbance), scenario.plant_config.time_step
+        counts = (scenario.tactile.transducer == "capacitive"
+                  and scenario.tactile.capacitive.output == "counts")
+        whose, unit = "its scenario's", "counts" if counts else "N"
+    taxel_ranges = [taxel_reading_range(config) for config in tactile]
+    pad = max(pad_reading_bound_mps2(config, time_step_s=time_step,
+                                     pad_speed_mps=_pad_speed_mps()) for config in vibration)
+    xyz = object_position_bounds(duration_s, object_speed_bound_mps(impulse),
+                                 UniformGravityFieldElement.kDefaultStrength)
+    return SensorBounds(taxels=(min(r[0] for r in taxel_ranges), max(r[1] for r in taxel_ranges)),
+                        taxel_unit=unit, pad_acceleration=pad, object_xyz=xyz, whose=whose)
+
+
+def _sensor_limits(bounds: SensorBounds, duration_s: float) -> list[tuple]:
+    """(array, column, its name or "", low, high, unit, why) of each column sensor_range_problem
+    checks: the taxels, Eq. 1's SA (a pad's 12 taxels' sum) and Eq. 2's RA (the size of its
+    3 axes' vector), the pads' accelerations, the object's position (object_state 4 to 6)."""
+    whose, (low, high), unit = bounds.whose, bounds.taxels, bounds.taxel_unit
+    pad = bounds.pad_acceleration
+    taxel_why = f"what {whose} taxels can read (their model, noise to 10 sigma)"
+    pad_why = f"what {whose} RA transducer can read (its full scale)"
+    rows = [("taxels", column, "", low, high, unit, taxel_why)
+            for column in range(len(CHANNEL_NAMES) // 2 * TAXELS_PER_PAD)]
+    rows += [("channels", column, CHANNEL_NAMES[column], TAXELS_PER_PAD * low,
+              TAXELS_PER_PAD * high, unit, f"{TAXELS_PER_PAD} times {taxel_why}")
+             for column in SA_CHANNELS]
+    rows += [("channels", column, CHANNEL_NAMES[column], 0.0,
+              math.sqrt(PAD_ACCELERATION_AXES) * pad, "m/s^2",
+              f"the size of {PAD_ACCELERATION_AXES} axes' {pad_why}") for column in RA_CHANNELS]
+    rows += [("pad_acceleration", column, "", -pad, pad, "m/s^2", pad_why)
+             for column in range(len(RA_CHANNELS) * PAD_ACCELERATION_AXES)]
+    object_why = (f"where {whose} object can be by {number_text(duration_s)} s (on the table at "
+                  "the start, moving no faster than the hand or a hit drives it, or falling)")
+    rows += [("object_state", 4 + k, axis, *bounds.object_xyz[k], "m", object_why)
+             for k, axis in enumerate("xyz")]
+    return rows
+
+
+def sensor_range_problem(arrays: dict, scenario=None) -> str | None:
+    """The first logged taxel reading, SA or RA sample, pad acceleration or object position in
+    `arrays` (finite, of their shapes) outside the range its sensors or the workspace give it
+    (sensor_bounds of `scenario`, over the log's simulated time), named with its column and
+    value, else None."""
+    if not any(name in arrays for name in ("taxels", "channels", "pad_acceleration",
+                                           "object_state")):
+        return None
+    duration = _time_span(arrays)[1]
+    for name, column, label, low, high, unit, why in _sensor_limits(
+            sensor_bounds(scenario, duration), duration):
+        if name not in arrays or column >= arrays[name].shape[1]:
+            continue
+        values = np.asarray(arrays[name][:, column], dtype=float)
+        outside = np.flatnonzero((values < low) | (values > high))
+        if outside.size:
+            k = outside[0]
+            named = f" ({label})" if label else ""
+            return (f"'{name}' sample {k} column {column}{named} holds "
+                    f"{number_text(float(values[k]))} {unit}, outside {number_text(low)} to "
+                    f"{number_text(high)} {unit}, {why}")
     return None

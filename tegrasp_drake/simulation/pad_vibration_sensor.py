@@ -4,6 +4,7 @@ follow from them. The RA output is in acceleration-equivalent units, a = -V / S,
 z (the inward normal). The model and every number: docs/model.md, "Vibration (RA) model"."""
 
 import dataclasses
+import math
 
 from tegrasp_drake.rig.ranges import (EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded,
                                       field_range)
@@ -13,7 +14,7 @@ from tegrasp_drake.simulation.drive_vibration import (DriveVibrationConfig, arm_
                                                      gripper_drive_default)
 from tegrasp_drake.simulation.film_dynamics import FilmParameters, film_sensitivity
 from tegrasp_drake.simulation.film_readout import (ADC_INPUTS, adc_input, noise_at_amplifier_v,
-                                                  reading_noise_std)
+                                                  reading_mps2, reading_noise_std)
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 
 
@@ -202,3 +203,29 @@ def ra_noise_std_mps2(config: VibrationSensorConfig) -> float:
         return config.noise_std_mps2
     return reading_noise_std(config.noise_std_mps2, config.adc_noise_lsb,
                              volts_per_mps2(config), adc_input(config.adc_input))
+
+
+# How far the accelerometer transducer's Gaussian noise can carry one reading, in noise sigmas
+# (a trial logs at most 2 pads x 20 kHz x 85 s = 3.4e6 readings; 10 sigma, 7.6e-24 a reading
+# on one side, is never reached by noise).
+PAD_NOISE_SIGMAS = 10.0
+
+
+def pad_reading_bound_mps2(config: VibrationSensorConfig, *, time_step_s: float,
+                           pad_speed_mps: float) -> float:
+    """The largest |reading| [m/s^2] a pad's RA transducer of `config` logs (each of its 3
+    axes). The film's: its readout's full scale, the amplifier's swing or the converter's
+    last code over the sensitivity S (film_readout.reading_mps2 of an unbounded
+    acceleration). The accelerometer's (no electronics): a first-order high-pass of the pad
+    frame's acceleration, at most twice its input's largest (y = u - a low-pass of u); in a
+    plant of step time_step_s [s] the pad's velocity changes in one step by at most twice
+    pad_speed_mps [m/s] (the fastest the pad moves, reversed), and gravity is read too; plus
+    PAD_NOISE_SIGMAS of noise."""
+    if config.transducer == "film":
+        sensitivity, adc = volts_per_mps2(config), adc_input(config.adc_input)
+        return max(abs(reading_mps2(value, 0.0, sensitivity, config.amplifier_swing_v, adc))
+                   for value in (-math.inf, math.inf))
+    from pydrake.multibody.tree import UniformGravityFieldElement  # the plant's gravity
+    largest = 2.0 * pad_speed_mps / time_step_s + UniformGravityFieldElement.kDefaultStrength
+    return 2.0 * largest + PAD_NOISE_SIGMAS * config.noise_std_mps2
+

@@ -17,7 +17,11 @@ from pydrake.systems.framework import LeafSystem
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
 from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
-from tegrasp_drake.simulation.capacitive_taxels import CapacitiveTaxelConfig
+from tegrasp_drake.robotiq.units import FORCE_MAX_N
+from tegrasp_drake.simulation.capacitive_taxels import (CapacitiveTaxelConfig,
+                                                        capacitive_readings,
+                                                        counts_above_baseline,
+                                                        noise_std_at_decimation)
 from tegrasp_drake.simulation.contact_pressure import (cell_pressure_integrals,
                                                        polygon_fan_triangles,
                                                        surfaces_taxel_normal_forces)
@@ -60,6 +64,33 @@ class TactileSensorConfig:
     transducer: str = "capacitive"
     capacitive: CapacitiveTaxelConfig = dataclasses.field(
         default_factory=CapacitiveTaxelConfig)
+
+
+# How far a taxel's Gaussian noise can carry one reading from its noise-free value, in noise
+# sigmas. A trial logs at most 24 taxels x 20 kHz x 85 s = 4e7 readings (the largest taxel rate
+# and the longest run, trial_log_file.most_transitions); a Gaussian passes 10 sigma on one side
+# with probability 7.6e-24, so no trial's noise reaches it (6 sigma, 1e-9 a reading, could).
+TAXEL_NOISE_SIGMAS = 10.0
+
+
+def taxel_reading_range(config: TactileSensorConfig) -> tuple[float, float]:
+    """The lowest and highest reading a taxel of `config` logs [N; counts above the baseline
+    with the capacitive output "counts"]: its transducer's model (apply_sensor_model,
+    capacitive_readings) at no force and at the most force, with TAXEL_NOISE_SIGMAS of noise.
+    The force transducer does not clip: its reading is the offset plus noise at rest (below
+    zero for a negative offset or noise) and at most the 2F-85's whole grip force (235 N,
+    FORCE_MAX_N: a taxel carries a share of its pad's normal force, which the gripper's
+    force-limited drive sets) plus offset and noise. The capacitive one clips at the AD7147's
+    16-bit range, and its calibrated newtons at zero; its most is the elastomer at its
+    minimum gap, or the converter's full scale."""
+    if config.transducer == "capacitive":
+        c = config.capacitive
+        spread = TAXEL_NOISE_SIGMAS * noise_std_at_decimation(c)
+        read = counts_above_baseline if c.output == "counts" else capacitive_readings
+        return (float(read(0.0, c, -spread, pad_modulus_pa=config.pad_modulus_pa)),
+                float(read(np.inf, c, spread, pad_modulus_pa=config.pad_modulus_pa)))
+    spread = TAXEL_NOISE_SIGMAS * config.noise_std_n + config.quantization_n / 2
+    return config.offset_n - spread, FORCE_MAX_N + config.offset_n + spread
 
 
 @dataclasses.dataclass(frozen=True)
