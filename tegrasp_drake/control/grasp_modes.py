@@ -155,13 +155,14 @@ _OPTIONAL_FIELDS = ("scores", "offset_m", "approach_offset_m", "grip_force_n", "
 
 def _check_code(code) -> None:
     """ValueError unless `code` is the name of a rule of a registered controller's table."""
+    what = "Transition: field 'code'"
     if not isinstance(code, str):
-        raise ValueError(f"field 'code' must be a rule's name (text), got "
-                         f"{type(code).__name__} {shorten(repr(code))}")
+        raise ValueError(f"{what} must be a rule's name (text), got {type(code).__name__} "
+                         f"{shorten(repr(code))}")
     if len(code) > CODE_MAX_LENGTH:
-        raise ValueError(f"field 'code' {shorten(repr(code), CODE_MAX_LENGTH)} is longer than "
-                         f"a rule's name (at most {CODE_MAX_LENGTH} characters)")
+        raise ValueError(f"{what} {shorten(repr(code), CODE_MAX_LENGTH)} is longer than a "
+                         f"rule's name (at most {CODE_MAX_LENGTH} characters)")
     from tegrasp_drake.control.controller_registry import rule_codes  # imports the tables
     if code not in rule_codes():
-        raise ValueError(f"field 'code' {code!r} names no rule of the controllers' rule tables "
-                         f"(the rules: docs/controller.md)")
+        raise ValueError(f"{what} {code!r} names no rule of the controllers' rule tables (the "
+                         f"rules: docs/controller.md)")
