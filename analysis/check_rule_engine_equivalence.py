@@ -118,8 +118,23 @@ def run_scene(tree: pathlib.Path, trial: dict, path: pathlib.Path, fresh: bool) 
     return output
 
 
+def _keeps_codes(result: dict) -> bool:
+    """Whether the result's timeline names the rule of a transition (its `code`)."""
+    return any("code" in entry for entry in result.get("transitions", ()))
+
+
+def _without_codes(result: dict) -> dict:
+    return {**result, "transitions": [{key: value for key, value in entry.items()
+                                       if key != "code"}
+                                      for entry in result.get("transitions", ())]}
+
+
 def differences(base: dict, tip: dict) -> list[str]:
-    """The result fields (timing aside) whose values differ."""
+    """The result fields (timing aside) whose values differ. When one side's timeline keeps
+    the deciding rules' codes and the other's does not (a base from before timelines kept
+    them), the transitions are compared without them; the rules are printed from the tip."""
+    if _keeps_codes(base) != _keeps_codes(tip):
+        base, tip = _without_codes(base), _without_codes(tip)
     keys = (set(base) | set(tip)) - set(TIMING_FIELDS)
     return sorted(key for key in keys if base.get(key) != tip.get(key))
 

@@ -43,6 +43,15 @@ def test_a_trial_log_with_an_ordered_chained_timeline_inside_its_span_is_read(tm
     assert len(load_trial_log(path).meta["transitions"]) == 2
 
 
+def test_a_trial_log_keeps_its_transitions_rule_codes_and_refuses_an_unknown_one(tmp_path):
+    coded = [{**_CHAIN[0], "code": "reach_event"}, {**_CHAIN[1], "code": "load_lift_event"}]
+    path = _trial_log_with(tmp_path / "coded.npz", {"transitions": coded})
+    assert [t["code"] for t in load_trial_log(path).meta["transitions"]] == [
+        "reach_event", "load_lift_event"]
+    message = _refused_log(tmp_path, {"transitions": [{**_CHAIN[0], "code": "reach_evnt"}]})
+    assert "meta 'transitions[0]'" in message and "'reach_evnt'" in message, message
+
+
 # Rule: a trial log's metadata is checked as a whole against the log: the timeline holds at
 # most as many transitions as a controller can take, in time order, inside the log's time
 # span, each starting where the one before ended; phase start and event times lie in the span.

@@ -6,6 +6,7 @@ name their behaviour as "module:function", loaded on use, so this module imports
 
 import copy
 import dataclasses
+import functools
 import importlib
 import typing
 from collections.abc import Callable
@@ -110,6 +111,25 @@ _DERIVED = [(a.name, b.name) for a in CONTROLLERS for b in CONTROLLERS
 if _DERIVED:
     raise ImportError(f"controller_registry: config classes derived from another entry's "
                       f"(derive from its base instead): {_DERIVED}")
+
+
+def rule_tables() -> dict:
+    """The state-machine controllers' RuleTables by their names, in the registry's order
+    (controllers sharing a table: once)."""
+    tables = {}
+    for entry in CONTROLLERS:
+        table = entry.rule_table()
+        if table is not None:
+            tables.setdefault(table.name, table)
+    return tables
+
+
+@functools.cache
+def rule_codes() -> frozenset[str]:
+    """The names of every registered table's rules: the codes a timeline entry can carry
+    (grasp_modes.Transition.code). Loading the tables imports the controllers (and Drake)."""
+    return frozenset(rule.name for table in rule_tables().values()
+                     for rule in table.all_rules())
 
 
 class UnknownControllerError(ValueError):

@@ -40,6 +40,12 @@ TERMINAL_MODES = (Mode.DONE, Mode.FAILED)
 HOLDING_MODES = (Mode.LIFT, Mode.HOLD, Mode.AVOID, Mode.PLACE)
 
 
+# The most characters of a rule's name, and so of the `code` a timeline entry may carry: a
+# rule's name is a few words joined by underscores (the longest today, reach_timeout_both_pads,
+# has 23); the bound refuses a crafted code before it is looked up or quoted back.
+CODE_MAX_LENGTH = 40
+
+
 class Trigger(enum.StrEnum):
     """What made a transition (the `trigger` of each timeline entry)."""
     MEMORIZED_EVENT = "memorized_event"  # the EventMatcher matched the expected memorized event
@@ -79,8 +85,10 @@ class Decision:
 @dataclasses.dataclass(frozen=True)
 class Transition:
     """One timeline entry: at t [s] (Context time) from_mode -> to_mode; the corrective
-    fields are set only on the transition that starts that action. Its numbers are checked
-    against their ranges when it is built (a hand-made or read-back entry included)."""
+    fields are set only on the transition that starts that action; `code` is the name of the
+    rule that decided it (every state-machine transition has one; the open-loop script's have
+    None). Its numbers are checked against their ranges when it is built (a hand-made or
+    read-back entry included)."""
     t: float = bounded(low=0.0, unit="s", why="Context time since the trial's start")
     from_mode: Mode
     to_mode: Mode
@@ -104,14 +112,14 @@ class Transition:
     # Avoid: (left, right) SA gain of the hit [N].
     delta_sa_n: tuple[float, float] | None = bounded(None, unit="N", length=2,
                                                      why="a change of force: either sign")
-    code: str | None = None
+    code: str | None = None  # the deciding rule's name (rule_engine.Rule.name)
 
     def __post_init__(self):
         check_ranges(self, type(self).__name__)
 
     def as_dict(self) -> dict:
         """The JSON form (trial results, logs): t, from, to (Mode.label), trigger, reason,
-        then the _OPTIONAL_FIELDS that are set, tuples as lists (not `code`)."""
+        then the _OPTIONAL_FIELDS that are set (`code` last), tuples as lists."""
         entry = {"t": self.t, "from": self.from_mode.label, "to": self.to_mode.label,
                  "trigger": self.trigger.value, "reason": self.reason}
         for key in _OPTIONAL_FIELDS:
@@ -122,7 +130,8 @@ class Transition:
 
     @staticmethod
     def from_dict(entry: dict) -> "Transition":
-        """The Transition of its JSON form (as_dict); ValueError naming what is wrong."""
+        """The Transition of its JSON form (as_dict); ValueError naming what is wrong (a
+        `code` must name a rule of a registered controller's table)."""
         if not isinstance(entry, dict):
             raise ValueError(f"a transition is a mapping of {', '.join(_REQUIRED_KEYS)}, got "
                              f"{type(entry).__name__} {shorten(repr(entry))}")
@@ -132,6 +141,8 @@ class Transition:
                              f"{', '.join(_REQUIRED_KEYS)})")
         optional = {key: tuple(entry[key]) if isinstance(entry[key], list) else entry[key]
                     for key in _OPTIONAL_FIELDS if key in entry}
+        if "code" in entry:
+            _check_code(entry["code"])
         return Transition(t=entry["t"], from_mode=Mode.from_label(entry["from"]),
                           to_mode=Mode.from_label(entry["to"]),
                           trigger=Trigger(entry["trigger"]), reason=entry["reason"], **optional)
@@ -139,4 +150,19 @@ class Transition:
 
 _REQUIRED_KEYS = ("t", "from", "to", "trigger", "reason")
 _OPTIONAL_FIELDS = ("scores", "offset_m", "approach_offset_m", "grip_force_n", "direction",
-                    "delta_sa_n")
+                    "delta_sa_n", "code")
+
+
+def _check_code(code) -> None:
+    """ValueError unless `code` is the name of a rule of a registered controller's table."""
+    what = "Transition: field 'code'"
+    if not isinstance(code, str):
+        raise ValueError(f"{what} must be a rule's name (text), got {type(code).__name__} "
+                         f"{shorten(repr(code))}")
+    if len(code) > CODE_MAX_LENGTH:
+        raise ValueError(f"{what} {shorten(repr(code), CODE_MAX_LENGTH)} is longer than a "
+                         f"rule's name (at most {CODE_MAX_LENGTH} characters)")
+    from tegrasp_drake.control.controller_registry import rule_codes  # imports the tables
+    if code not in rule_codes():
+        raise ValueError(f"{what} {code!r} names no rule of the controllers' rule tables (the "
+                         f"rules: docs/controller.md)")

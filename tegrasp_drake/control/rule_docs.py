@@ -8,21 +8,11 @@ import pathlib
 import re
 import sys
 
+from tegrasp_drake.control.controller_registry import rule_tables
 from tegrasp_drake.control.rule_engine import LIVE_MODES, RuleTable
 
 BEGIN = re.compile(r"^<!-- rule table: (?P<name>\w+)(?P<added>, added)? -->$", re.MULTILINE)
 END = "<!-- end of rule table -->"
-
-
-def registered_tables() -> dict[str, RuleTable]:
-    """The state-machine controllers' rule tables by their names, in the registry's order."""
-    from tegrasp_drake.control.controller_registry import CONTROLLERS
-    tables = {}
-    for entry in CONTROLLERS:
-        table = entry.rule_table()
-        if table is not None:
-            tables.setdefault(table.name, table)
-    return tables
 
 
 def _rows(table: RuleTable, added_only: bool) -> list[tuple[str, object]]:
@@ -90,7 +80,7 @@ def main(argv=None) -> int:
     action.add_argument("--check", type=pathlib.Path, metavar="PAGE",
                         help="exit 1 when PAGE's tables differ from the engine's")
     args = parser.parse_args(argv)
-    tables = registered_tables()
+    tables = rule_tables()
     path = args.write or args.check
     if path is None:
         for name, table in tables.items():

@@ -6,7 +6,8 @@ back decides; its Decision carries the rule's name."""
 import dataclasses
 from collections.abc import Callable
 
-from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Decision, Mode, Trigger
+from tegrasp_drake.control.grasp_modes import (CODE_MAX_LENGTH, TERMINAL_MODES, Decision, Mode,
+                                               Trigger)
 from tegrasp_drake.control.rule_actions import re_reach_or_fail
 
 # The modes a rule can apply in (the terminal modes have no transitions).
@@ -80,8 +81,8 @@ class Guard:
 @dataclasses.dataclass(frozen=True)
 class RuleTable:
     """A controller's rules and guards added to those of `base` (None: none), and how its
-    Re-Reaches move. ValueError on a repeated rule name, two rules of one mode with one
-    priority, or a guard of a rule the table lacks."""
+    Re-Reaches move. ValueError on a repeated or over-long (CODE_MAX_LENGTH) name, two rules
+    of one mode with one priority, or a guard of a rule the table lacks."""
     name: str
     rules: tuple[Rule, ...]
     re_reach_move: ReReachMove
@@ -91,6 +92,10 @@ class RuleTable:
     def __post_init__(self):
         rules, guards = self.all_rules(), self.all_guards()
         names = [rule.name for rule in rules] + [guard.name for guard in guards]
+        long = [name for name in names if len(name) > CODE_MAX_LENGTH]
+        if long:
+            raise ValueError(f"rule table '{self.name}': the names {long} are longer than "
+                             f"{CODE_MAX_LENGTH} characters (a timeline entry's code)")
         repeated = sorted({name for name in names if names.count(name) > 1})
         if repeated:
             raise ValueError(f"rule table '{self.name}': the names {repeated} are given twice")

@@ -12,7 +12,8 @@ import tegrasp_drake
 from tegrasp_drake.control import controller_config
 from tegrasp_drake.control.controller_registry import (CONTROLLER_NAMES, CONTROLLERS,
                                                        UnknownControllerError,
-                                                       controller_entry, controller_label)
+                                                       controller_entry, controller_label,
+                                                       rule_codes)
 from tegrasp_drake.control.rule_engine import RuleTable
 
 PACKAGE = pathlib.Path(tegrasp_drake.__file__).parent
@@ -93,3 +94,12 @@ def test_the_registry_imports_no_drake():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.strip()
     assert out == "False"
+
+
+def test_the_rule_codes_are_the_names_of_every_registered_tables_rules():
+    tables = [entry.rule_table() for entry in CONTROLLERS if entry.rules is not None]
+    names = {rule.name for table in tables for rule in table.all_rules()}
+    assert rule_codes() == names
+    assert {"reach_event", "closed_on_nothing", "finger_strike", "load_time"} <= names
+    guards = {guard.name for table in tables for guard in table.all_guards()}
+    assert guards and not guards & rule_codes()  # a guard holds rules back, it decides nothing

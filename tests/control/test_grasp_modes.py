@@ -50,3 +50,25 @@ def test_an_avoid_transition_lists_its_direction_after_the_scores():
     assert list(entry)[-3:] == ["scores", "direction", "delta_sa_n"]
     assert entry["direction"] == [0.0, 1.0, 0.0] and entry["delta_sa_n"] == [3.1, -0.2]
     assert Transition.from_dict(json.loads(json.dumps(entry))) == avoid
+
+
+def test_a_rule_driven_transition_writes_and_reads_back_its_rule_code():
+    reach_load = Transition(t=3.76, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+                            trigger=Trigger.MEMORIZED_EVENT, reason="Reach-Load event",
+                            scores=(0.9004, 0.9007, 0.9987, 0.9986), code="reach_event")
+    entry = json.loads(json.dumps(reach_load.as_dict()))
+    assert entry == {**REACH_LOAD, "code": "reach_event"}
+    assert Transition.from_dict(entry) == reach_load
+
+
+@pytest.mark.parametrize("code, words", [
+    ("reach_evnt", "'reach_evnt' names no rule of the controllers"),
+    ("x" * 5000, "is longer than"),
+    (7, "must be a rule's name (text), got int"),
+], ids=["unknown", "too-long", "not-text"])
+def test_a_code_that_names_no_rule_is_refused_in_one_line_naming_it(code, words):
+    with pytest.raises(ValueError) as refused:
+        Transition.from_dict({**REACH_LOAD, "code": code})
+    message = str(refused.value)
+    assert "field 'code'" in message and words in message, message
+    assert "\n" not in message and len(message) < 400, message

@@ -204,6 +204,7 @@ def test_gripper_fault_fails_with_its_name():
     simulator.AdvanceTo(0.02)
     assert mode(machine, context) == Mode.FAILED
     assert ru.fault_name(0x08) in machine.timeline(context)[-1]["reason"]
+    assert machine.timeline(context)[-1]["code"] == "gripper_fault"
 
 
 def test_device_fault_input_fails_with_the_message():
@@ -214,6 +215,7 @@ def test_device_fault_input_fails_with_the_message():
     simulator.AdvanceTo(0.02)
     assert mode(machine, context) == Mode.FAILED
     assert machine.timeline(context)[-1]["reason"] == "tactile: no frame since 1.234 s"
+    assert machine.timeline(context)[-1]["code"] == "device_fault"
 
 
 def test_closed_on_nothing_needs_a_status_that_echoes_the_close_request():
@@ -228,4 +230,4 @@ def test_closed_on_nothing_needs_a_status_that_echoes_the_close_request():
     closed = machine.GetOutputPort("gripper_command").Eval(context)[ru.COMMAND_POSITION]
     inputs.set(status=status(0.0, ru.ObjectStatus.AT_REQUESTED_POSITION, request_byte=closed))
     run_until_mode(simulator, machine, Mode.RE_REACH, 0.2)
-    assert machine.timeline(context)[-1]["reason"] == "the gripper closed on nothing"
+    assert machine.timeline(context)[-1]["code"] == "closed_on_nothing"

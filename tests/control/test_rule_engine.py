@@ -82,6 +82,7 @@ def test_an_extension_adds_rules_among_its_base_ones_by_priority():
     ((A, dataclasses.replace(B, priority=10)), (), "share the priority 10 in Hold"),
     ((A, dataclasses.replace(B, priority=10, modes=None)), (), "share the priority 10"),
     ((A,), (Guard("g", ("c",), lambda s: True, when=""),), "does not have"),
+    ((A, dataclasses.replace(B, name="b" * 41)), (), "longer than 40 characters"),
 ])
 def test_a_table_that_could_not_decide_one_way_is_refused(rules, guards, message):
     with pytest.raises(ValueError, match=message):
@@ -112,9 +113,10 @@ def test_every_registered_table_has_a_module_testing_its_rules():
 def test_the_docs_rule_tables_are_the_engines():
     """docs/controller.md shows each table as `python -m tegrasp_drake.control.rule_docs
     --write docs/controller.md` generates it."""
-    from tegrasp_drake.control.rule_docs import registered_tables, updated_page
+    from tegrasp_drake.control.controller_registry import rule_tables
+    from tegrasp_drake.control.rule_docs import updated_page
     page = (ROOT / "docs" / "controller.md").read_text()
-    tables = registered_tables()
+    tables = rule_tables()
     updated, shown = updated_page(page, tables)
     assert set(shown) == set(tables), "every controller's table is in the docs"
     assert updated == page, ("docs/controller.md's rule tables differ from the engine's: run "

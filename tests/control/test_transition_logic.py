@@ -218,7 +218,7 @@ def test_place_without_event_unloads_on_timer():
 @pytest.mark.parametrize("mode", HOLDING_MODES)
 def test_losing_the_object_fails(mode):
     decision = decide(mode, contact=(False, False))
-    assert decision.mode == Mode.FAILED and "object lost" in decision.reason
+    assert (decision.mode, decision.code) == (Mode.FAILED, "object_lost")
 
 
 def test_faults_name_the_device():

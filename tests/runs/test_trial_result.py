@@ -27,10 +27,12 @@ def test_the_json_form_round_trips():
     result = TrialResult(object="box", controller="memorized", seed=600, hold_success=True,
                          transitions=(Transition(3.8, Mode.REACH, Mode.LOAD,
                                                  Trigger.MEMORIZED_EVENT, "Reach-Load event",
-                                                 scores=(0.9, 0.9, 1.0, 1.0)),),
+                                                 scores=(0.9, 0.9, 1.0, 1.0),
+                                                 code="reach_event"),),
                          final_mode=Mode.LOAD, physical_events={"reach_load": 3.6})
     data = json.loads(json.dumps(result.to_dict()))
     assert data["final_mode"] == "Load" and data["transitions"][0]["from"] == "Reach"
+    assert data["transitions"][0]["code"] == "reach_event"
     assert TrialResult.from_dict(data) == result
     assert "log" not in data
 
@@ -41,6 +43,16 @@ def test_a_sweep_refuses_a_result_whose_transitions_do_not_parse():
     problem = check_result({"hold_success": True, "unload_success": False,
                             "transitions": [entry]})
     assert problem and "'transitions'[0]" in problem and "reach" in problem
+
+
+def test_a_sweep_refuses_a_result_whose_transition_names_no_rule():
+    entry = {"t": 1.0, "from": "Reach", "to": "Load", "trigger": "memorized_event",
+             "reason": "Reach-Load event", "code": "reach_evnt"}
+    problem = check_result({"hold_success": True, "unload_success": False,
+                            "transitions": [entry]})
+    assert problem and "'transitions'[0]" in problem and "reach_evnt" in problem
+    assert check_result({"hold_success": True, "unload_success": False,
+                         "transitions": [{**entry, "code": "reach_event"}]}) is None
 
 
 def _reach_load(t: float) -> Transition:
