@@ -20,7 +20,8 @@ from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
     tactile_arrays)
-from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
+from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD,
+                                                JACO_STATUS_CHANNEL)
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
@@ -119,13 +120,13 @@ def _next_event_number(data: bytes, position: int) -> int | None:
 
 # The receive times of a log (its LCM event timestamps: when lcm-logger got each message,
 # [us] on the host's clock) run forward with no long silence. Measured in 11 logs of
-# `tegrasp hardware` on the emulators (15-19 s runs, 2791-16059 messages): the longest gap
+# `tegrasp hardware` on the emulators (4-19 s runs, 2791-16059 messages): the longest gap
 # 11.6 ms, the largest step back 0.16 ms (3 steps back in all).
 # Steps back: LCM stamps a message when it arrives and lcm-logger writes messages in the
 # order its handler gets them, so two arriving together from different publishers can swap.
-# A step back of more than the arm's status period (10 ms: the Jaco status, the slowest
-# steady stream on a run's bus, at 100 Hz) is no such swap but a log joined or edited.
-MAX_RECEIVE_STEP_BACK_US = 10_000
+# A step back of more than the arm driver's period (10 ms at 100 Hz, as the gripper's: the
+# slowest steady streams on a run's bus) is no such swap but a log joined or edited.
+MAX_RECEIVE_STEP_BACK_US = round(JACO_LCM_PERIOD * 1e6)
 # Gaps: once the run starts the station publishes TEGRASP_TACTILE every millisecond; before,
 # while `tegrasp hardware` waits for the devices (ready_timeout, at most its range's 600 s),
 # the bus may hold only the run's TEGRASP_RUN_INFO; after the run lcm-logger records for at
