@@ -14,12 +14,14 @@ from drake import lcmt_jaco_command, lcmt_jaco_status
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.ranges import field_range, shorten
 from tegrasp_drake.rig.files import file_problem, one_line, read_bounded
+from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
     tactile_arrays)
-from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
+from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD,
+                                                JACO_STATUS_CHANNEL)
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
@@ -116,11 +118,66 @@ def _next_event_number(data: bytes, position: int) -> int | None:
     return _EVENT_HEADER.unpack_from(data, position)[1]
 
 
+# The receive times of a log (its LCM event timestamps: when lcm-logger got each message,
+# [us] on the host's clock) run forward with no long silence. Measured in 11 logs of
+# `tegrasp hardware` on the emulators (4-19 s runs, 2791-16059 messages): the longest gap
+# 11.6 ms, the largest step back 0.16 ms (3 steps back in all).
+# Steps back: LCM stamps a message when it arrives and lcm-logger writes messages in the
+# order its handler gets them, so two arriving together from different publishers can swap.
+# A step back of more than the arm driver's period (10 ms at 100 Hz, as the gripper's: the
+# slowest steady streams on a run's bus) is no such swap but a log joined or edited.
+MAX_RECEIVE_STEP_BACK_US = round(JACO_LCM_PERIOD * 1e6)
+# Gaps: once the run starts the station publishes TEGRASP_TACTILE every millisecond; before,
+# while `tegrasp hardware` waits for the devices (ready_timeout, at most its range's 600 s),
+# the bus may hold only the run's TEGRASP_RUN_INFO; after the run lcm-logger records for at
+# most 5.1 s more (BusLogWriter.close: 0.1 s, then 5 s to exit), rounded up to 10 s. A longer
+# silence is not within one run.
+MAX_RECEIVE_GAP_US = round(
+    (field_range(HardwareStationConfig, "ready_timeout").high + 10.0) * 1e6)
+_YEAR_S = 365.25 * 86400
+
+
+def _duration_text(microseconds: int) -> str:
+    """A duration in words, in the largest unit it makes whole: "10.7 ms", "31.7 years"."""
+    seconds = microseconds * 1e-6
+    if seconds < 1.0:
+        return f"{seconds * 1e3:.3g} ms"
+    for unit, size in (("years", _YEAR_S), ("days", 86400), ("h", 3600)):
+        if seconds >= size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"
+
+
+def receive_time_damage(timestamps: list[int]) -> list[str]:
+    """What is wrong with a log's receive times (the events' timestamps [us], in file order),
+    in words: steps back beyond MAX_RECEIVE_STEP_BACK_US and gaps beyond MAX_RECEIVE_GAP_US,
+    each said with its count and the largest one's place. The messages themselves are kept
+    (their contents are checked on their own); their receive times are what is wrong."""
+    steps = [later - earlier for earlier, later in zip(timestamps, timestamps[1:])]
+    total, damage = len(timestamps), []
+    for name, wrong, why in (
+            ("jump forward", [k for k, step in enumerate(steps) if step > MAX_RECEIVE_GAP_US],
+             f"longer than a run's bus is ever silent, {MAX_RECEIVE_GAP_US * 1e-6:g} s"),
+            ("go back", [k for k, step in enumerate(steps) if step < -MAX_RECEIVE_STEP_BACK_US],
+             f"lcm-logger writes messages as it receives them; two arriving together swap "
+             f"by less than {MAX_RECEIVE_STEP_BACK_US * 1e-3:g} ms")):
+        if not wrong:
+            continue
+        largest = max(wrong, key=lambda k: abs(steps[k]))
+        damage.append(
+            f"the receive times (LCM event timestamps) {name} in {len(wrong)} place(s), the "
+            f"largest by {_duration_text(abs(steps[largest]))} between messages {largest + 1} "
+            f"and {largest + 2} of {total} ({why}): the log was edited or joined, or has "
+            "corrupt bytes; the messages are kept, their receive times are wrong")
+    return damage
+
+
 def scan_lcm_log(path) -> tuple[list, list[str]]:
     """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
     words: bytes that are no events (skipped to the next header), event numbers missing, an
-    event cut short at the end. LCM's format: per event a big-endian header (sync 0xEDA1DA01,
-    number, timestamp, channel and data lengths), channel, data."""
+    event cut short at the end, receive times that cannot be one run's (receive_time_damage).
+    LCM's format: per event a big-endian header (sync 0xEDA1DA01, number, timestamp, channel
+    and data lengths), channel, data."""
     data = read_bounded(path, MAX_RUN_LOG_BYTES)
     events = []
     corrupt_regions = corrupt_bytes = lost = 0
@@ -168,6 +225,7 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
         damage.append(f"{lost} message(s) lost (gaps in the event numbers)")
     if truncated:
         damage.append(f"truncated: {truncated}; what followed is lost")
+    damage += receive_time_damage([timestamp for timestamp, _, _ in events])
     return events, damage
 
 
