@@ -98,7 +98,7 @@ def main(argv=None) -> int:
         check_matplotlib_backend()
     try:
         try:
-            code = _main(argv)
+            code = _main(argv, process_ends=argv is None)
         except SystemExit as exit_:  # argparse's --help or usage error, a command's refusal
             unwritable = output_streams.unwritable_output()
             if unwritable and exit_.code in (0, None):
@@ -118,16 +118,18 @@ def _cannot_write(name: str, error: OSError) -> int:
     return EXIT_ERROR
 
 
-def _main(argv) -> int:
+def _main(argv, process_ends: bool = False) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     with output_streams.guarded_output():
-        return _run_command(argv)
+        return _run_command(argv, process_ends)
 
 
-def _run_command(argv) -> int:
+def _run_command(argv, process_ends: bool = False) -> int:
+    """The command's exit code. `process_ends`: the process exits after it (termination
+    signals after the first are then ignored until it has: rig/files.termination_interrupts)."""
     from tegrasp_drake.rig.files import (UserPathError, error_line, interrupt_received,
                                          termination_interrupts)
-    with termination_interrupts():
+    with termination_interrupts(process_ends):
         try:
             parser = build_parser()
             args = parser.parse_args(argv)
