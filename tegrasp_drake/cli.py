@@ -126,12 +126,16 @@ def _main(argv, process_ends: bool = False) -> int:
 
 def _run_command(argv, process_ends: bool = False) -> int:
     """The command's exit code. `process_ends`: the process exits after it (termination
-    signals after the first are then ignored until it has: rig/files.termination_interrupts)."""
+    signals after the first are then ignored until it has: rig/files.termination_interrupts).
+    A signal while the command modules are imported (pydrake among them) is acted on once
+    they are, a second or two later: pydrake's C++ initialisation catches a KeyboardInterrupt
+    raised inside it and prints its own stack instead of passing the interrupt on."""
     from tegrasp_drake.rig.files import (UserPathError, error_line, interrupt_received,
-                                         termination_interrupts)
+                                         interruptions_deferred, termination_interrupts)
     with termination_interrupts(process_ends):
         try:
-            parser = build_parser()
+            with interruptions_deferred():
+                parser = build_parser()
             args = parser.parse_args(argv)
             refuse_empty_values(parser, args)
             configure_logging(args)

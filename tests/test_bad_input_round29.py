@@ -75,3 +75,11 @@ def test_a_second_signal_during_the_cleanup_of_the_first_is_not_a_traceback(tmp_
     _assert_one_interruption_line(code, text, "SIGHUP")
     assert list((tmp_path / "run").iterdir()) == []  # the staging folder removed
 
+
+# Rule: a signal during pydrake's import is acted on once the import returned: the one line,
+# not pydrake's own report of a KeyboardInterrupt in its initialisation.
+def test_a_signal_while_pydrake_is_imported_is_the_one_interruption_line(tmp_path):
+    code, text = _run_signalled("import", "trial", "--set", "random_seed=629",
+                                "--out", str(tmp_path / "run"))
+    _assert_one_interruption_line(code, text, "SIGTERM")
+    assert not (tmp_path / "run").exists()
