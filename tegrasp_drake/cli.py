@@ -167,8 +167,13 @@ def _run_command(argv, process_ends: bool = False) -> int:
 
 
 def _interrupted(name: str) -> int:
+    """128 + N for the signal `name`, after the one line that says it stopped the run."""
     print(f"tegrasp: interrupted ({name}); the run's unfinished files were removed",
           file=sys.stderr, flush=True)
+    # CPython marks a KeyboardInterrupt that leaves code exec() ran from a string (scipy
+    # imports numpy so) as never caught, and then ends a `python -m` process by SIGINT in
+    # place of its exit code (-2 for a SIGTERM's 143). Each exec of a string clears the mark.
+    exec("")  # noqa: S102: a constant, empty program
     return 128 + signal.Signals[name].value
 
 

@@ -2,7 +2,8 @@
 first is handled, one while pydrake is imported. Each test runs the real command line
 (`python -m tegrasp_drake`) in a subprocess whose signals are sent from inside the calls
 they must interrupt (a staging folder made or removed, a module imported, the interpreter's
-exit), so what arrives when does not depend on how loaded the machine is."""
+exit), so what arrives when does not depend on how loaded the machine is: a sitecustomize
+module, which Python imports at start-up, wraps those calls."""
 
 import signal
 import subprocess
@@ -10,18 +11,20 @@ import sys
 
 from tests import killed_runs
 
-# Runs `python -m tegrasp_drake ARGS` after wrapping the calls named by the first argument:
-# "staging" sends SIGHUP as the run's staging folder is made and SIGTERM as it is removed
-# (the second signal during the first's cleanup), then SIGINT and SIGTERM at the
-# interpreter's exit; "import" sends SIGTERM as pydrake.common, a C++ module, imports its
-# first Python module (inside the C++ initialisation that catches a KeyboardInterrupt).
-_BOOTSTRAP = """
-import atexit, importlib.abc, os, runpy, shutil, signal, sys, tempfile
+# The wrapped calls, chosen by the variable SIGNALS_AT. "staging": SIGHUP as the run's
+# staging folder is made and SIGTERM as it is removed (the second signal during the first's
+# cleanup), then SIGINT and SIGTERM at the interpreter's exit. "import": SIGTERM as
+# pydrake.common, a C++ module, imports its first Python module (inside the C++
+# initialisation that catches a KeyboardInterrupt). "exec": SIGTERM inside code run by
+# exec() of a string (as scipy imports numpy) while the run's folder is made.
+_SITECUSTOMIZE = """
+import atexit, importlib.abc, os, pathlib, shutil, signal, sys, tempfile
 
 def send(number):
     os.kill(os.getpid(), number)
 
-if sys.argv[1] == "staging":
+where = os.environ.pop("SIGNALS_AT", "")
+if where == "staging":
     made, removed = tempfile.mkdtemp, shutil.rmtree
 
     def mkdtemp(*args, **kwargs):
@@ -37,7 +40,7 @@ if sys.argv[1] == "staging":
 
     tempfile.mkdtemp, shutil.rmtree = mkdtemp, rmtree
     atexit.register(lambda: (send(signal.SIGINT), send(signal.SIGTERM)))
-else:
+elif where == "import":
     class SignalAtPydrake(importlib.abc.MetaPathFinder):
         def find_spec(self, name, path=None, target=None):
             if name.startswith("pydrake.common.") and not getattr(self, "sent", False):
@@ -46,17 +49,29 @@ else:
             return None
 
     sys.meta_path.insert(0, SignalAtPydrake())
-sys.argv = [sys.argv[0], *sys.argv[2:]]
-runpy.run_module("tegrasp_drake", run_name="__main__", alter_sys=True)
+elif where == "exec":
+    mkdir = pathlib.Path.mkdir
+
+    def signalled_mkdir(self, *args, **kwargs):
+        if self.name == "run":
+            exec("send(signal.SIGTERM)", {"send": send, "signal": signal})
+        return mkdir(self, *args, **kwargs)
+
+    pathlib.Path.mkdir = signalled_mkdir
 """
 
 
-def _run_signalled(how, *arguments):
-    """(exit code, stderr) of `tegrasp ARGUMENTS` signalled as `how` says (_BOOTSTRAP)."""
-    finished = subprocess.run([sys.executable, "-c", _BOOTSTRAP, how, *arguments],
-                              env={**killed_runs.environment(), "PYTHONUTF8": "1"},
-                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-                              timeout=600)
+def _run_signalled(where, tmp_path, *arguments):
+    """(exit code, stderr) of `python -m tegrasp_drake ARGUMENTS` signalled at `where`."""
+    hooks = tmp_path / "hooks"
+    hooks.mkdir()
+    (hooks / "sitecustomize.py").write_text(_SITECUSTOMIZE)
+    environment = killed_runs.environment()
+    environment.update(PYTHONPATH=f"{hooks}:{environment['PYTHONPATH']}", SIGNALS_AT=where,
+                       PYTHONUTF8="1")
+    finished = subprocess.run([sys.executable, "-m", "tegrasp_drake", *arguments],
+                              env=environment, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, text=True, timeout=600)
     return finished.returncode, finished.stderr
 
 
@@ -70,7 +85,7 @@ def _assert_one_interruption_line(code, text, name):
 # Rule: the first termination signal is taken once; more while it is handled, or while the
 # interpreter exits, neither print a traceback nor change the exit code nor keep a file.
 def test_a_second_signal_during_the_cleanup_of_the_first_is_not_a_traceback(tmp_path):
-    code, text = _run_signalled("staging", "trial", "--set", "random_seed=629",
+    code, text = _run_signalled("staging", tmp_path, "trial", "--set", "random_seed=629",
                                 "--out", str(tmp_path / "run"))
     _assert_one_interruption_line(code, text, "SIGHUP")
     assert list((tmp_path / "run").iterdir()) == []  # the staging folder removed
@@ -79,7 +94,16 @@ def test_a_second_signal_during_the_cleanup_of_the_first_is_not_a_traceback(tmp_
 # Rule: a signal during pydrake's import is acted on once the import returned: the one line,
 # not pydrake's own report of a KeyboardInterrupt in its initialisation.
 def test_a_signal_while_pydrake_is_imported_is_the_one_interruption_line(tmp_path):
-    code, text = _run_signalled("import", "trial", "--set", "random_seed=629",
+    code, text = _run_signalled("import", tmp_path, "trial", "--set", "random_seed=629",
+                                "--out", str(tmp_path / "run"))
+    _assert_one_interruption_line(code, text, "SIGTERM")
+    assert not (tmp_path / "run").exists()
+
+
+# Rule: the exit code is the signal's even when its KeyboardInterrupt passed through code
+# that exec() ran from a string (CPython then ends a `python -m` process by SIGINT).
+def test_an_interrupt_raised_inside_exec_keeps_the_signals_exit_code(tmp_path):
+    code, text = _run_signalled("exec", tmp_path, "trial", "--set", "random_seed=629",
                                 "--out", str(tmp_path / "run"))
     _assert_one_interruption_line(code, text, "SIGTERM")
     assert not (tmp_path / "run").exists()
