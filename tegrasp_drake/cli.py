@@ -112,7 +112,7 @@ def main(argv=None) -> int:
         check_matplotlib_backend()
     try:
         try:
-            code = _main(argv)
+            code = _main(argv, process_ends=argv is None)
         except SystemExit as exit_:  # argparse's --help or usage error, a command's refusal
             unwritable = output_streams.unwritable_output()
             if unwritable and exit_.code in (0, None):
@@ -132,18 +132,24 @@ def _cannot_write(name: str, error: OSError) -> int:
     return EXIT_ERROR
 
 
-def _main(argv) -> int:
+def _main(argv, process_ends: bool = False) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     with output_streams.guarded_output():
-        return _run_command(argv)
+        return _run_command(argv, process_ends)
 
 
-def _run_command(argv) -> int:
+def _run_command(argv, process_ends: bool = False) -> int:
+    """The command's exit code. `process_ends`: the process exits after it (termination
+    signals after the first are then ignored until it has: rig/files.termination_interrupts).
+    A signal while the command modules are imported (pydrake among them) is acted on once
+    they are, a second or two later: pydrake's C++ initialisation catches a KeyboardInterrupt
+    raised inside it and prints its own stack instead of passing the interrupt on."""
     from tegrasp_drake.rig.files import (UserPathError, error_line, interrupt_received,
-                                         termination_interrupts)
-    with termination_interrupts():
+                                         interruptions_deferred, termination_interrupts)
+    with termination_interrupts(process_ends):
         try:
-            parser = build_parser()
+            with interruptions_deferred():
+                parser = build_parser()
             args = parser.parse_args(argv)
             refuse_empty_values(parser, args)
             configure_logging(args)
@@ -175,8 +181,13 @@ def _run_command(argv) -> int:
 
 
 def _interrupted(name: str) -> int:
+    """128 + N for the signal `name`, after the one line that says it stopped the run."""
     print(f"tegrasp: interrupted ({name}); the run's unfinished files were removed",
           file=sys.stderr, flush=True)
+    # CPython marks a KeyboardInterrupt that leaves code exec() ran from a string (scipy
+    # imports numpy so) as never caught, and then ends a `python -m` process by SIGINT in
+    # place of its exit code (-2 for a SIGTERM's 143). Each exec of a string clears the mark.
+    exec("")  # noqa: S102: a constant, empty program
     return 128 + signal.Signals[name].value
 
 

@@ -118,15 +118,18 @@ def staged_run(folder):
         for stale in pathlib.Path(folder).glob(f"{STAGING_PREFIX}*"):
             if is_left_staging_folder(stale):
                 shutil.rmtree(stale, ignore_errors=True)
+        stage = None
         try:
-            stage = pathlib.Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=folder))
-        except OSError as e:
-            raise RunFolderError(f"--out {folder}: cannot write there: "
-                                 f"{e.strerror or e}") from None
-        try:
+            with interruptions_deferred():  # a signal between mkdir and `stage` leaves it
+                try:
+                    stage = pathlib.Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=folder))
+                except OSError as e:
+                    raise RunFolderError(f"--out {folder}: cannot write there: "
+                                         f"{e.strerror or e}") from None
             yield stage
         finally:
-            shutil.rmtree(stage, ignore_errors=True)
+            if stage is not None:
+                shutil.rmtree(stage, ignore_errors=True)
 
 
 def staging_file_beside(path) -> pathlib.Path:

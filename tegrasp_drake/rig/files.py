@@ -379,13 +379,17 @@ def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:
 TERMINATION_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT,
                        signal.SIGUSR1, signal.SIGUSR2, signal.SIGALRM)
 
-_received_interrupts = []  # the names of the signals _interrupt has raised, first first
+_received_interrupts = []  # the names of the signals _interrupt took, first first
 
 
 def _interrupt(signal_number, frame):
-    name = signal.Signals(signal_number).name
-    _received_interrupts.append(name)
-    raise KeyboardInterrupt(name)
+    """Raises KeyboardInterrupt for the first signal only. A later one (a second Ctrl-C, or
+    the SIGHUP `timeout` relays twice within ms) arrives while the first's KeyboardInterrupt
+    unwinds, inside the `finally` that removes the run's files: raising again there would
+    stop that cleanup and end the command in a traceback. It is recorded, nothing more."""
+    _received_interrupts.append(signal.Signals(signal_number).name)
+    if len(_received_interrupts) == 1:
+        raise KeyboardInterrupt(_received_interrupts[0])
 
 
 def interrupt_received() -> str | None:
@@ -395,9 +399,13 @@ def interrupt_received() -> str | None:
 
 
 @contextlib.contextmanager
-def termination_interrupts():
+def termination_interrupts(process_ends: bool = False):
     """TERMINATION_SIGNALS raise KeyboardInterrupt in the main thread during the block, so
-    every `finally` runs; signals someone already handles are left alone."""
+    every `finally` runs; the first signal only (_interrupt), later ones are recorded. Signals
+    someone already handles are left alone. The handlers are restored when the block ends,
+    unless `process_ends` (the command line: the process exits after the block) and a signal
+    was taken: then the later ones are ignored until the process is gone, so none raises in
+    the interpreter's exit (threads joined, atexit) and the exit code stays the first's."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -409,8 +417,9 @@ def termination_interrupts():
     try:
         yield
     finally:
+        ignore = process_ends and bool(_received_interrupts)
         for number, handler in previous.items():
-            signal.signal(number, handler)
+            signal.signal(number, signal.SIG_IGN if ignore else handler)
 
 
 _ESCAPES = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
