@@ -2,10 +2,11 @@
 
 A wait is the time a mode spent expecting its event until the event's timeout;
 `event_waits` finds them in a trial's transitions, by the code of the rule that gave up
-(EVENT_TIMEOUT_RULES), or by the reason's words for an entry written before codes. `classify_missed_wait` replays the
-channels with the event held expected (the run's matcher settings) and names the cause: a
-weak dynamic stimulus (SA passed, an RA channel did not: the paper's Sec. V), SA did not
-match, or matched in replay. Definitions: docs/sweeps.md, "A sweep"."""
+(EVENT_TIMEOUT_RULES), or by the reason's words for an entry written before codes.
+`classify_missed_wait` replays the channels with the event held expected (the run's matcher
+settings) and names the cause: a weak dynamic stimulus (SA passed, an RA channel did not:
+the paper's Sec. V), SA did not match, or matched in replay. Definitions: docs/sweeps.md,
+"A sweep"."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence
