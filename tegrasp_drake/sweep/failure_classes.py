@@ -5,6 +5,7 @@ FAILURE_CLASS_OF_RULE), or by the reason's words for a result written before tim
 entries carried their rule's code; the classes: docs/sweeps.md, "A sweep"."""
 
 from tegrasp_drake.control.controller_registry import controller_title
+from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
 from tegrasp_drake.runs.trial import UPRIGHT_TILT_DEG
@@ -31,8 +32,8 @@ FAILURE_CLASS_OF_RULE = {
     "finger_strike": "other",
     "approach_contact": "other",
 }
-# The class instead once the trial has made a Lift-Load (a Lift -> Load by the rule
-# lift_load): no Load-Lift event after it is the slip that the Lift-Load did not stop.
+# The class instead once the trial has made a Lift-Load (corrective_actions.py): no Load-Lift
+# event after it is the slip that the Lift-Load did not stop.
 FAILURE_CLASS_AFTER_LIFT_LOAD = {"load_timeout": "slipped in Lift"}
 
 
@@ -51,7 +52,7 @@ def rule_failure_class(code: str, result) -> str:
     if code not in FAILURE_CLASS_OF_RULE:
         raise ValueError(f"the rule '{code}' went to Failed but has no failure class: add it "
                          "to FAILURE_CLASS_OF_RULE (tegrasp_drake/sweep/failure_classes.py)")
-    lift_loaded = any(entry.code == "lift_load" and entry.to_mode == Mode.LOAD
+    lift_loaded = any(corrective_action_of(entry.from_mode, entry.to_mode) == "lift_load"
                       for entry in result.transitions[:-1])
     if lift_loaded and code in FAILURE_CLASS_AFTER_LIFT_LOAD:
         return FAILURE_CLASS_AFTER_LIFT_LOAD[code]
