@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.control.controller_config import MemorizedControllerConfig
+from tegrasp_drake.control.controller_registry import rule_tables
 from tegrasp_drake.control.corrective_actions import Counters
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.control.transition_logic import Observation, next_mode
@@ -19,8 +20,9 @@ from tegrasp_drake.events.event_matcher import EventMatcherConfig
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.events.extraction import extract_memorized_events
 from tegrasp_drake.events.missed_waits import (
-    MATCHED_IN_REPLAY, SA_DID_NOT_MATCH, WEAK_DYNAMIC_STIMULUS, EventWait,
-    classify_missed_wait, event_waits)
+    EVENT_TIMEOUT_RULES, MATCHED_IN_REPLAY, SA_DID_NOT_MATCH, WEAK_DYNAMIC_STIMULUS, EventWait,
+    classify_missed_wait, event_waits, timeout_reason_prefix)
+from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 from tegrasp_drake.events.synthetic import (SyntheticGraspConfig, SyntheticSensorsConfig,
                                              synthetic_grasp)
 from tegrasp_drake.events.ra_noise_floor import rule_sigmas
@@ -72,34 +74,74 @@ def reason_of(mode: Mode, observation: Observation, counters=Counters()) -> Tran
 
 
 def entry(t: float, from_mode: Mode, to_mode: Mode, reason: str,
-          trigger=Trigger.CORRECTIVE) -> dict:
+          trigger=Trigger.CORRECTIVE, code: str | None = None) -> dict:
     return Transition(t=t, from_mode=from_mode, to_mode=to_mode, trigger=trigger,
-                      reason=reason).as_dict()
+                      reason=reason, code=code).as_dict()
 
 
-def test_event_waits_are_the_timeouts_of_the_state_machines_rules():
+def decided(t: float, from_mode: Mode, decision, trigger=Trigger.CORRECTIVE) -> dict:
+    """The timeline entry of a rule's decision, with its code."""
+    return entry(t, from_mode, decision.mode, decision.reason, trigger, decision.code)
+
+
+def without_codes(transitions: list[dict]) -> list[dict]:
+    """The entries as written before timeline entries carried their rule's code."""
+    return [{key: value for key, value in e.items() if key != "code"} for e in transitions]
+
+
+@pytest.mark.parametrize("codes", [True, False], ids=["by code", "by the words, no codes"])
+def test_event_waits_are_the_timeouts_of_the_state_machines_rules(codes):
     reach = reason_of(Mode.REACH, Observation(closing_s=10.0))
     load = reason_of(Mode.LOAD, Observation(time_in_mode=10.0))
     place = reason_of(Mode.PLACE, Observation(motion_done=True, time_since_motion_done=10.0,
                                                 contact=(True, True)))
     one_finger = reason_of(Mode.REACH, Observation(contact=(True, False), one_sided_s=10.0))
+    event = Trigger.MEMORIZED_EVENT
     transitions = [
-        entry(3.0, Mode.REACH, reach.mode, reach.reason),
-        entry(4.0, Mode.RE_REACH, Mode.REACH, "re-centred"),
-        entry(5.0, Mode.REACH, Mode.LOAD, "Reach-Load event", Trigger.MEMORIZED_EVENT),
-        entry(7.0, Mode.LOAD, load.mode, load.reason),
-        entry(8.0, Mode.RE_REACH, Mode.REACH, "re-centred"),
-        entry(9.0, Mode.REACH, one_finger.mode, one_finger.reason),
-        entry(10.0, Mode.RE_REACH, Mode.REACH, "re-centred"),
-        entry(11.0, Mode.REACH, Mode.LOAD, "Reach-Load event", Trigger.MEMORIZED_EVENT),
-        entry(11.5, Mode.LOAD, Mode.LIFT, "Load-Lift event", Trigger.MEMORIZED_EVENT),
-        entry(13.0, Mode.LIFT, Mode.HOLD, "lift motion ended", Trigger.TIMER),
-        entry(16.0, Mode.HOLD, Mode.PLACE, "held 3 s", Trigger.TIMER),
-        entry(19.0, Mode.PLACE, place.mode, place.reason, Trigger.TIMER),
+        decided(3.0, Mode.REACH, reach),
+        entry(4.0, Mode.RE_REACH, Mode.REACH, "re-centred", code="re_centred"),
+        entry(5.0, Mode.REACH, Mode.LOAD, "Reach-Load event", event, "reach_event"),
+        decided(7.0, Mode.LOAD, load),
+        entry(8.0, Mode.RE_REACH, Mode.REACH, "re-centred", code="re_centred"),
+        decided(9.0, Mode.REACH, one_finger),
+        entry(10.0, Mode.RE_REACH, Mode.REACH, "re-centred", code="re_centred"),
+        entry(11.0, Mode.REACH, Mode.LOAD, "Reach-Load event", event, "reach_event"),
+        entry(11.5, Mode.LOAD, Mode.LIFT, "Load-Lift event", event, "load_lift_event"),
+        entry(13.0, Mode.LIFT, Mode.HOLD, "lift motion ended", Trigger.TIMER, "lift_ended"),
+        entry(16.0, Mode.HOLD, Mode.PLACE, "held 3 s", Trigger.TIMER, "hold_time"),
+        decided(19.0, Mode.PLACE, place, Trigger.TIMER),
     ]
-    waits = event_waits(transitions)
+    waits = event_waits(transitions if codes else without_codes(transitions))
     assert [(w.transition, w.start_s, w.end_s) for w in waits] == [
         ("reach_load", 0.0, 3.0), ("load_lift", 5.0, 7.0), ("place_unload", 16.0, 19.0)]
+
+
+def test_a_reworded_timeout_is_a_wait_by_its_rules_code():
+    transitions = [
+        entry(2.0, Mode.REACH, Mode.LOAD, "waited 2 s for the Reach-Load event in vain, both "
+              "pads hold the object: load", code="reach_timeout_both_pads"),
+        entry(4.0, Mode.LOAD, Mode.RE_REACH, "the Load-Lift event never came",
+              code="load_timeout")]
+    assert [(w.transition, w.start_s, w.end_s) for w in event_waits(transitions)] == [
+        ("reach_load", 0.0, 2.0), ("load_lift", 2.0, 4.0)]
+    assert event_waits(without_codes(transitions)) == []  # the words alone name no timeout
+
+
+def test_a_reason_that_reads_like_a_timeout_is_no_wait_when_its_rule_is_another():
+    transitions = [entry(1.0, Mode.REACH, Mode.RE_REACH,
+                         "no Reach-Load event: only the left finger touched", code="one_sided")]
+    assert event_waits(transitions) == []
+    assert len(event_waits(without_codes(transitions))) == 1  # as the words alone read it
+
+
+def test_every_rule_that_gives_up_on_an_event_is_a_timeout_rule():
+    """A rule is in EVENT_TIMEOUT_RULES, with its event, exactly when its `when` in the rule
+    tables (docs/controller.md) starts "no X-Y event": a new timeout rule cannot be left out."""
+    rules = {rule.name: rule for table in rule_tables().values() for rule in table.all_rules()}
+    described = {name: transition for name, rule in rules.items()
+                 for transition in REQUIRED_TRANSITIONS
+                 if rule.when.startswith(timeout_reason_prefix(transition))}
+    assert EVENT_TIMEOUT_RULES == described
 
 
 def test_a_trial_that_matched_every_event_has_no_waits():

@@ -1,10 +1,12 @@
 """Why a memorized event did not come in time: a logged wait replayed through Eq. 3.
 
 A wait is the time a mode spent expecting its event until the event's timeout;
-`event_waits` finds them in a trial's transitions. `classify_missed_wait` replays the
-channels with the event held expected (the run's matcher settings) and names the cause: a
-weak dynamic stimulus (SA passed, an RA channel did not: the paper's Sec. V), SA did not
-match, or matched in replay. Definitions: docs/sweeps.md, "A sweep"."""
+`event_waits` finds them in a trial's transitions, by the code of the rule that gave up
+(EVENT_TIMEOUT_RULES), or by the reason's words for an entry written before codes.
+`classify_missed_wait` replays the channels with the event held expected (the run's matcher
+settings) and names the cause: a weak dynamic stimulus (SA passed, an RA channel did not:
+the paper's Sec. V), SA did not match, or matched in replay. Definitions: docs/sweeps.md,
+"A sweep"."""
 
 import dataclasses
 from collections.abc import Mapping, Sequence
@@ -25,6 +27,18 @@ MISS_CLASSES = (WEAK_DYNAMIC_STIMULUS, SA_DID_NOT_MATCH, MATCHED_IN_REPLAY)
 
 # The mode that waits for each event-triggered transition (its from-state), by label.
 _WAITING_MODE = {transition_states(name)[0]: name for name in REQUIRED_TRANSITIONS}
+# The rules that give up waiting for an event, by name (a timeline entry's code): the event
+# transition each waited for. Their `when` starts "no X-Y event" in the rule tables
+# (docs/controller.md); the taxel-aware ones Load or Lift where the paper's would Re-Reach.
+EVENT_TIMEOUT_RULES = {
+    "reach_timeout": "reach_load",
+    "reach_timeout_both_pads": "reach_load",
+    "reach_timeout_caged": "reach_load",
+    "load_timeout": "load_lift",
+    "load_timeout_both_pads": "load_lift",
+    "load_timeout_caged": "load_lift",
+    "place_timeout": "place_unload",
+}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -41,14 +55,25 @@ def timeout_reason_prefix(transition: str) -> str:
     return "no {}-{} event".format(*transition_states(transition))
 
 
+def timed_out_event(entry: Mapping) -> str | None:
+    """The event transition whose timeout a timeline entry (JSON form) gave up on, or None: by
+    its rule's code (EVENT_TIMEOUT_RULES), or, for an entry without one (written before
+    codes), by its reason starting with timeout_reason_prefix of its mode's event."""
+    if entry.get("code") is not None:
+        return EVENT_TIMEOUT_RULES.get(entry["code"])
+    transition = _WAITING_MODE.get(entry["from"])
+    if transition is not None and entry["reason"].startswith(timeout_reason_prefix(transition)):
+        return transition
+    return None
+
+
 def event_waits(transitions: Sequence[Mapping]) -> list[EventWait]:
     """The waits in a trial's transitions (JSON form, in time order) that ended on their event's
     timeout, each from the last entry into the waiting mode (0 for the first Reach)."""
     waits, entered = [], {"Reach": 0.0}  # the machine starts in Reach at 0
     for entry in transitions:
-        transition = _WAITING_MODE.get(entry["from"])
-        if transition is not None and entry["reason"].startswith(
-                timeout_reason_prefix(transition)):
+        transition = timed_out_event(entry)
+        if transition is not None:
             start = entered.get(entry["from"], 0.0)
             waits.append(EventWait(transition, float(start), float(entry["t"]),
                                    entry["reason"]))

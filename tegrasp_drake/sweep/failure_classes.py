@@ -1,8 +1,11 @@
 """Why a trial failed: one class per failed trial (FAILURE_CLASSES, the first that applies),
 from its sweep record's result, after the paper's failure modes (Sec. IV-C) and the
-controller's own reasons for giving up; the classes: docs/sweeps.md, "A sweep"."""
+controller's own reasons for giving up: by the rule that went to Failed (its code,
+FAILURE_CLASS_OF_RULE), or by the reason's words for a result written before timeline
+entries carried their rule's code; the classes: docs/sweeps.md, "A sweep"."""
 
 from tegrasp_drake.control.controller_registry import controller_title
+from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
 from tegrasp_drake.runs.trial import UPRIGHT_TILT_DEG
@@ -12,13 +15,60 @@ FAILURE_CLASSES = ("closed on nothing", "one finger only", "slipped in Lift",
                    "event never matched", "object lost", "device fault", "not lifted",
                    "dropped in Hold", "toppled at release", "not placed", "other")
 
+# The failure class of each rule that can go to Failed (its `then` says so in the rule tables,
+# docs/controller.md), by its name: the code of the transition into Failed. A finger striking
+# the object or a pad touching it in the approach, once the Re-Reaches are used up, has no
+# class of its own: "other", as the words of their reasons are classed.
+FAILURE_CLASS_OF_RULE = {
+    "device_fault": "device fault",
+    "gripper_fault": "device fault",
+    "object_lost": "object lost",
+    "closed_on_nothing": "closed on nothing",
+    "one_sided": "one finger only",
+    "bracket_recentre": "one finger only",  # one finger alone again, the other's face known
+    "reach_timeout": "event never matched",
+    "load_timeout": "event never matched",
+    "lift_load": "slipped in Lift",  # still slipping after max_lift_loads
+    "finger_strike": "other",
+    "approach_contact": "other",
+}
+# The class instead once the trial has made a Lift-Load (corrective_actions.py): no Load-Lift
+# event after it is the slip that the Lift-Load did not stop.
+FAILURE_CLASS_AFTER_LIFT_LOAD = {"load_timeout": "slipped in Lift"}
+
+
+def failing_rule(result) -> str | None:
+    """The code of the transition into Failed that ended `result` (a TrialResult), None when it
+    did not end in Failed or its timeline carries no codes (written before them)."""
+    if result.final_mode != Mode.FAILED or not result.transitions:
+        return None
+    last = result.transitions[-1]
+    return last.code if last.to_mode == Mode.FAILED else None
+
+
+def rule_failure_class(code: str, result) -> str:
+    """The failure class of `result`, which the rule `code` sent to Failed; ValueError for a
+    rule without one (FAILURE_CLASS_OF_RULE lacks it)."""
+    if code not in FAILURE_CLASS_OF_RULE:
+        raise ValueError(f"the rule '{code}' went to Failed but has no failure class: add it "
+                         "to FAILURE_CLASS_OF_RULE (tegrasp_drake/sweep/failure_classes.py)")
+    lift_loaded = any(corrective_action_of(entry.from_mode, entry.to_mode) == "lift_load"
+                      for entry in result.transitions[:-1])
+    if lift_loaded and code in FAILURE_CLASS_AFTER_LIFT_LOAD:
+        return FAILURE_CLASS_AFTER_LIFT_LOAD[code]
+    return FAILURE_CLASS_OF_RULE[code]
+
 
 def failure_class(result) -> str | None:
-    """The failure class of a trial's result (a TrialResult), None when it held and unloaded."""
+    """The failure class of a trial's result (a TrialResult), None when it held and unloaded:
+    a Failed one's by the rule that sent it there (failing_rule), else by its failure's words."""
     if result.unload_success:
         return None
+    code = failing_rule(result)
+    if code is not None:
+        return rule_failure_class(code, result)
     failure = result.failure
-    if failure:
+    if failure:  # a result without codes: the reason's words
         if "closed on nothing" in failure:
             return "closed on nothing"
         if "finger touched" in failure:

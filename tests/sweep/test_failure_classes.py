@@ -1,8 +1,15 @@
 import pytest
 
+from tegrasp_drake.control.controller_config import MemorizedControllerConfig
+from tegrasp_drake.control.controller_registry import rule_codes, rule_tables
+from tegrasp_drake.control.corrective_actions import Counters
+from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.runs.trial_result import TrialResult
-from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASSES, failure_class,
-                                                 failure_class_counts, failure_classes_markdown)
+from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASS_AFTER_LIFT_LOAD,
+                                                 FAILURE_CLASS_OF_RULE, FAILURE_CLASSES,
+                                                 failure_class, failure_class_counts,
+                                                 failure_classes_markdown)
 
 
 def result(**changes):
@@ -64,3 +71,103 @@ def test_counts_per_controller_and_object_and_the_table():
     table = failure_classes_markdown(counts)
     assert "| box | 1 |" in table and "toppled at release" in table
     assert "not lifted" not in table  # only the classes that occur
+
+
+# ---- by the code of the rule that went to Failed ---------------------------------------
+
+def entry(t, from_mode, to_mode, reason, code, trigger="corrective"):
+    return {"t": t, "from": from_mode, "to": to_mode, "trigger": trigger, "reason": reason,
+            "code": code}
+
+
+LIFT_LOAD = entry(4.0, "Lift", "Load", "slip during Lift (Lift-Load)", "lift_load")
+
+
+def failed(reason, code, from_mode="Reach", *, before=(), trigger="corrective"):
+    """A result that the rule `code` sent from `from_mode` to Failed for `reason`."""
+    return TrialResult.from_dict(result(
+        **FAILED, failure=reason,
+        transitions=[*before, entry(5.0, from_mode, "Failed", reason, code, trigger)]))
+
+
+def without_codes(trial: TrialResult) -> TrialResult:
+    """`trial` as a result written before timeline entries carried their rule's code."""
+    data = trial.to_dict()
+    for transition in data["transitions"]:
+        transition.pop("code", None)
+    return TrialResult.from_dict(data)
+
+
+def test_a_reworded_reason_is_classed_by_its_rules_code():
+    reworded = failed("the fingers met without the object between them, after 2 Re-Reach "
+                      "attempts", "closed_on_nothing")
+    assert failure_class(reworded) == "closed on nothing"
+    assert failure_class(without_codes(reworded)) == "other"  # the words alone name nothing
+
+
+def test_the_code_decides_where_the_words_would_mislead():
+    # A watchdog's message that reads like an event timeout ("no ... event").
+    watchdog = failed("no tactile event stream for 500 ms", "device_fault", "Load",
+                      trigger="fault")
+    assert failure_class(watchdog) == "device fault"
+    assert failure_class(without_codes(watchdog)) == "event never matched"
+
+
+def test_a_load_timeout_after_a_lift_load_slipped_in_lift():
+    reason = "the Load-Lift event did not come in time"
+    before = [entry(1.0, "Reach", "Load", "Reach-Load event", "reach_event", "memorized_event"),
+              entry(2.0, "Load", "Lift", "Load-Lift event", "load_lift_event",
+                    "memorized_event"), LIFT_LOAD]
+    assert failure_class(failed(reason, "load_timeout", "Load", before=before)) == \
+        "slipped in Lift"
+    assert failure_class(failed(reason, "load_timeout", "Load", before=before[:1])) == \
+        "event never matched"
+
+
+def test_a_rule_that_went_to_failed_without_a_class_is_refused():
+    with pytest.raises(ValueError, match="'released' went to Failed but has no failure class"):
+        failure_class(failed("released and retracted", "released", "Unload"))
+
+
+def test_every_rule_that_can_go_to_failed_has_a_class():
+    """Each rule whose `then` names Failed (the rule tables of docs/controller.md) has a class,
+    and no other rule is listed, so a new rule cannot be left out."""
+    failing = {rule.name for table in rule_tables().values() for rule in table.all_rules()
+               if "Failed" in rule.then}
+    assert failing <= rule_codes()
+    assert set(FAILURE_CLASS_OF_RULE) == failing
+    assert set(FAILURE_CLASS_AFTER_LIFT_LOAD) <= failing
+    assert set(FAILURE_CLASS_OF_RULE.values()) | set(FAILURE_CLASS_AFTER_LIFT_LOAD.values()) \
+        <= set(FAILURE_CLASSES)
+
+
+USED_UP = Counters(re_reaches=MemorizedControllerConfig().re_reach.max_re_reaches,
+                   lift_loads=MemorizedControllerConfig().lift_load.max_lift_loads)
+
+
+@pytest.mark.parametrize("mode, observation, counters, lift_loaded, expected", [
+    (Mode.REACH, Observation(device_fault="tactile: no new data for more than 500 ms"),
+     Counters(), False, "device fault"),
+    (Mode.REACH, Observation(gripper_fault="overcurrent"), Counters(), False, "device fault"),
+    (Mode.HOLD, Observation(contact=(False, False)), Counters(), False, "object lost"),
+    (Mode.REACH, Observation(closed_on_nothing=True), USED_UP, False, "closed on nothing"),
+    (Mode.REACH, Observation(contact=(True, False), one_sided_s=10.0), USED_UP, False,
+     "one finger only"),
+    (Mode.REACH, Observation(closing_s=10.0), USED_UP, False, "event never matched"),
+    (Mode.LOAD, Observation(time_in_mode=10.0), Counters(re_reaches=USED_UP.re_reaches),
+     False, "event never matched"),
+    (Mode.LOAD, Observation(time_in_mode=10.0), Counters(lift_loads=1), True,
+     "slipped in Lift"),
+    (Mode.LIFT, Observation(contact=(True, True), slip_s=10.0), USED_UP, True,
+     "slipped in Lift"),
+])
+def test_the_paper_rules_failures_class_alike_by_code_and_by_their_words(
+        mode, observation, counters, lift_loaded, expected):
+    """The paper's rules' own failures: the same class by their code as by the words of their
+    reasons, so records with codes class as those written before them."""
+    decision = next_mode(mode, observation, counters, MemorizedControllerConfig(),
+                         event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert decision.mode == Mode.FAILED
+    trial = failed(decision.reason, decision.code, mode.label,
+                   before=[LIFT_LOAD] if lift_loaded else [], trigger=decision.trigger.value)
+    assert (failure_class(trial), failure_class(without_codes(trial))) == (expected, expected)
