@@ -388,7 +388,8 @@ STEP_TOLERANCE = 1e-6
 
 def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
     """What is wrong with the trial-log arrays in `arrays`, or None: each time base at least
-    two finite, increasing times sampled at one period (STEP_TOLERANCE), one row per time,
+    two finite, increasing times sampled at one period (STEP_TOLERANCE), the bases covering
+    one run at their loggers' periods (time_bases_problem), one row per time,
     finite signals within their physical ranges (out_of_range_signals, and sensor_range_problem
     for the sensors of `scenario`, the log's Scenario, or of any scenario when None). Every
     reader applies it."""
@@ -415,9 +416,50 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
             if array.shape != expected:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
-    return (nonfinite_signals(arrays) or out_of_range_signals(arrays)
+    return (time_bases_problem(arrays, scenario)
+            or nonfinite_signals(arrays) or out_of_range_signals(arrays)
             or sensor_range_problem(arrays, scenario)
             or object_orientation_problem(arrays) or joint_angle_problem(arrays))
+
+
+def logger_periods(scenario) -> dict:
+    """[s] The period each time base is logged at in a trial of `scenario` (a Scenario): the
+    taxels at the SA rate, the RA channels at the RA rate, the rest at SLOW_LOG_PERIOD
+    (trial_log_writer.AddTrialLogging)."""
+    from tegrasp_drake.scenario.trial_log_writer import SLOW_LOG_PERIOD  # Drake: on use
+    return {"t_sa": 1.0 / scenario.tactile.sample_rate_hz,
+            "t_ra": 1.0 / scenario.vibration.sample_rate_hz, "t_slow": SLOW_LOG_PERIOD}
+
+
+def time_bases_problem(arrays: dict, scenario=None) -> str | None:
+    """What is wrong if the time bases in `arrays` (each finite, increasing, at one period)
+    do not cover one run, or None. With `scenario` (the log's Scenario), each base's period is
+    the one its logger writes at (logger_periods, within STEP_TOLERANCE: the same float
+    rounding as its steps). Every logger samples from the simulation's start at its own period
+    until the run ends, so the bases' first samples coincide and their last ones lie within
+    one period of the run's end: two bases start and end within the slower of the periods
+    (the loggers' with a scenario, else the bases' own steps). A bare recording (no scenario)
+    may be sampled at any rates, so only its bases' span is checked."""
+    periods = {name: float(np.median(np.diff(arrays[name]))) for name in _TIME_BASES
+               if name in arrays}
+    if scenario is not None:
+        for name, expected in logger_periods(scenario).items():
+            if name in periods and abs(periods[name] - expected) > STEP_TOLERANCE * expected:
+                return (f"'{name}' is sampled every {number_text(periods[name])} s, but its "
+                        f"scenario's logger writes it every {number_text(expected)} s")
+        periods = {name: logger_periods(scenario)[name] for name in periods}
+    names = list(periods)
+    for k, first in enumerate(names):
+        for second in names[k + 1:]:
+            slower = max(periods[first], periods[second])
+            for index, which in ((0, "starts"), (-1, "ends")):
+                a, b = float(arrays[first][index]), float(arrays[second][index])
+                if abs(a - b) > slower:
+                    return (f"'{first}' {which} at {number_text(a)} s but '{second}' at "
+                            f"{number_text(b)} s; a trial's time bases cover one run, "
+                            f"starting and ending within {number_text(slower)} s (the slower "
+                            "one's period)")
+    return None
 
 
 # How far a logged joint angle may lie past the JACO2's declared limit [rad]: the plant holds
