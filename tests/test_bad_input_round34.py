@@ -51,3 +51,72 @@ def test_time_bases_that_do_not_cover_one_run_are_refused(tmp_path, scenario, na
 def test_a_scaled_time_base_ends_apart_from_the_others_without_a_scenario(tmp_path):
     _refused(_with_times(tmp_path, None, "t_ra", lambda t: t * 1e-9),
              "'t_sa' ends at 0.0925926 s but 't_ra' at 1e-10 s")
+
+
+def _result_refused(data, expected):
+    """TrialResult's JSON form `data` is refused (result.json, a sweep record, a trial log's
+    stored result all read it so) with one line naming `expected`."""
+    from tegrasp_drake.runs.trial_result import TrialResult
+    with pytest.raises(ValueError) as refused:
+        TrialResult.from_dict(data)
+    message = str(refused.value)
+    assert expected in message and "\n" not in message, message
+
+
+def _event(t, from_mode, to_mode, scores=None):
+    entry = {"t": t, "from": from_mode, "to": to_mode, "trigger": "memorized_event",
+             "reason": "event"}
+    return {**entry, "scores": scores} if scores is not None else entry
+
+
+# Rule: a result's success flags are what judge_trial makes of its other fields: a hold
+# succeeds exactly when held 3 s, and an unload only in a trial that ends Done.
+@pytest.mark.parametrize("data, expected", [
+    ({"hold_success": True, "unload_success": True, "final_mode": "Failed", "hold_time_s": 0.0},
+     "field 'unload_success' is true but 'final_mode' is Failed"),
+    ({"hold_success": True, "final_mode": "Failed", "hold_time_s": 0.0},
+     "field 'hold_success' is true but 'hold_time_s' is 0 s (a hold succeeds when held at "
+     "least 3 s)"),
+    ({"hold_success": False, "final_mode": "Done", "hold_time_s": 4.5},
+     "field 'hold_success' is false but 'hold_time_s' is 4.5 s"),
+], ids=["unload-in-failed", "held-0-s", "not-held-4.5-s"])
+def test_success_flags_contradicting_the_result_are_refused(data, expected):
+    _result_refused(data, expected)
+
+
+def test_a_result_held_then_failed_is_read():
+    """Hold, then a drop while placing: 8 committed records end so (held, final Failed)."""
+    from tegrasp_drake.runs.trial_result import TrialResult
+    result = TrialResult.from_dict({"hold_success": True, "final_mode": "Failed",
+                                    "hold_time_s": 3.2})
+    assert result.hold_success and not result.unload_success
+
+
+# Rule: a result names a registered controller and the corrective actions controllers take.
+@pytest.mark.parametrize("data, expected", [
+    ({"controller": "evil"}, "field 'controller' must be one of memorized, heuristic"),
+    ({"corrective_actions": ["re_reach", "x" * 100_000]},
+     "field 'corrective_actions[1]' must be one of avoid, lift_load, load_without_event, "
+     "re_reach, regrasp, got 'xxxx"),
+], ids=["controller", "action"])
+def test_unknown_controllers_and_actions_are_refused(data, expected):
+    _result_refused({"hold_success": False, **data}, expected)
+
+
+# Rule: the memorized detector's scores are Eq. 3 correlations, in [-1, 1]; the heuristic
+# detector's are channel/threshold ratios (above 1 on a firm grasp), so only finite.
+@pytest.mark.parametrize("controller", ["memorized", "fixed_load_time", "taxel_aware"])
+def test_correlation_scores_outside_minus_one_to_one_are_refused(controller):
+    transitions = [_event(1.0, "Reach", "Load", [7.0, 9.0, -3.0, 1e300])]
+    _result_refused({"hold_success": False, "controller": controller, "final_mode": "Load",
+                     "transitions": transitions},
+                    "field 'transitions[0].scores' holds 7, outside -1 to 1 (Eq. 3 scores are "
+                    f"correlations, from the {controller} controller's detector)")
+
+
+def test_the_heuristic_detectors_ratios_are_read():
+    from tegrasp_drake.runs.trial_result import TrialResult
+    transitions = [_event(1.0, "Reach", "Load", [5.2, 4.35, 0.5, 0.1])]
+    result = TrialResult.from_dict({"hold_success": False, "controller": "heuristic",
+                                    "final_mode": "Load", "transitions": transitions})
+    assert result.transitions[0].scores[0] > 1.0
