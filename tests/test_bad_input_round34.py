@@ -120,3 +120,72 @@ def test_the_heuristic_detectors_ratios_are_read():
     result = TrialResult.from_dict({"hold_success": False, "controller": "heuristic",
                                     "final_mode": "Load", "transitions": transitions})
     assert result.transitions[0].scores[0] > 1.0
+
+
+# A controller trial's metadata as runs/trial.py writes it, on the small log (0 to 0.1 s).
+TIMELINE = [_event(0.02, "Reach", "Load", [0.9, 0.8, 0.7, 0.95]),
+            _event(0.05, "Load", "Lift", [0.9, 0.8, 0.7, 0.95])]
+RESULT = {"object": "box", "controller": "memorized", "seed": 600, "hold_success": False,
+          "final_mode": "Lift", "hold_time_s": 0.0, "transitions": TIMELINE,
+          "corrective_actions": [], "sim_time_s": 0.1}
+META = {"scenario": SCENARIO, "controller": "memorized", "transitions": TIMELINE,
+        "phase_starts": {"Load": 0.02, "Lift": 0.05}, "result": RESULT}
+
+
+def _meta_refused(tmp_path, meta, expected):
+    _refused(_trial_log_with(tmp_path / "trial.npz", meta), expected)
+
+
+def test_a_controller_trials_metadata_is_read(tmp_path):
+    from tegrasp_drake.scenario.trial_log_file import load_trial_log
+    log = load_trial_log(_trial_log_with(tmp_path / "trial.npz", META))
+    assert log.meta["result"]["transitions"] == TIMELINE
+
+
+# Rule: the stored result's transitions are the log's timeline, entry for entry.
+@pytest.mark.parametrize("transitions, expected", [
+    ([TIMELINE[0], {**TIMELINE[1], "from": "Hold"}],
+     "meta 'result' transitions[1] is Hold -> Lift at 0.05 s (memorized_event), but the log's "
+     "'transitions[1]' is Load -> Lift at 0.05 s (memorized_event) (a trial has one timeline)"),
+    (TIMELINE + [_event(0.08, "Lift", "Hold")],
+     "meta 'result' transitions[2] is Lift -> Hold at 0.08 s (memorized_event), but the log's "
+     "'transitions[2]' is absent"),
+    (TIMELINE[:1], "meta 'result' transitions[1] is absent"),
+], ids=["from-hold", "one-more", "one-fewer"])
+def test_a_stored_result_with_another_timeline_is_refused(tmp_path, transitions, expected):
+    result = {**RESULT, "transitions": transitions, "final_mode": transitions[-1]["to"]}
+    _meta_refused(tmp_path, {**META, "result": result}, expected)
+
+
+# Rule: the stored result is of the log's scenario's object and of a registered controller,
+# its own fields consistent (TrialResult's relations).
+@pytest.mark.parametrize("change, expected", [
+    ({"result": {**RESULT, "object": "../../../etc/passwd"}},
+     "meta 'result' is of object '../../../etc/passwd', but its 'scenario' grasps 'box'"),
+    ({"controller": "evil", "result": {**RESULT, "controller": "evil"}},
+     "meta 'controller' must be a controller name, one of memorized, heuristic"),
+    ({"result": {**RESULT, "hold_success": True, "unload_success": True,
+                 "final_mode": "Failed"}},
+     "meta 'result' is not a trial result's JSON form: TrialResult: field 'unload_success' is "
+     "true but 'final_mode' is Failed"),
+    ({"result": {**RESULT, "corrective_actions": ["x" * 100_000] * 50}},
+     "field 'corrective_actions[0]' must be one of"),
+], ids=["object", "controller", "unload-in-failed", "actions"])
+def test_a_stored_result_the_log_contradicts_is_refused(tmp_path, change, expected):
+    _meta_refused(tmp_path, {**META, **change}, expected)
+
+
+# Rule: a memorized detector's scores are correlations, in the result and the timeline alike.
+def test_correlation_scores_out_of_range_in_a_log_are_refused(tmp_path):
+    bad = [{**TIMELINE[0], "scores": [7.0, 9.0, -3.0, 1e300]}, TIMELINE[1]]
+    _meta_refused(tmp_path, {**META, "transitions": bad, "result": {**RESULT, "transitions": bad}},
+                  "field 'transitions[0].scores' holds 7, outside -1 to 1")
+    no_result = {key: value for key, value in META.items() if key != "result"}
+    _meta_refused(tmp_path, {**no_result, "transitions": bad},
+                  "meta 'transitions[0].scores' holds 7, outside -1 to 1")
+
+
+# Rule: a log with a timeline says when each of its phases began.
+def test_a_log_without_phase_starts_is_refused(tmp_path):
+    meta = {key: value for key, value in META.items() if key != "phase_starts"}
+    _meta_refused(tmp_path, meta, "meta lacks 'phase_starts'")
