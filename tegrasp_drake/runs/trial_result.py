@@ -82,9 +82,10 @@ class TrialResult:
     def _check_relations(self, name: str) -> None:
         """The relations judge_trial and run_trial (runs/trial.py) guarantee: Unload is
         judged only after a Hold, in a trial ending Done; a hold succeeds exactly when held
-        HOLD_REQUIRED_S; the controller's (_check_controller); the failure is one sentence; every time is within the
-        simulated time (transitions, the physical events and the hold are taken during the
-        run, so a latency, a transition's time minus its event's, is within it either way)."""
+        HOLD_REQUIRED_S; the controller's (_check_controller); the failure is one sentence;
+        every time is within the simulated time (transitions, the physical events and the
+        hold are taken during the run, so a latency, a transition's time minus its event's,
+        is within it either way)."""
         if self.unload_success and not self.hold_success:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
                               "false (a trial is judged unloaded only after it held)")

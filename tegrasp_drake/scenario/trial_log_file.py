@@ -373,7 +373,8 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
     it stores none), or None: transitions as Transition entries forming one timeline
     (_timeline_problem) with the scores its controller's detector gives, each field of
     META_FIELDS as it says, its result that of the log (_result_problem), its times within the
-    log's span, phase starts (required with a result) agreeing with the timeline (_phase_starts_problem), `phase` indexing the phase names."""
+    log's span, phase starts (required with a result) agreeing with the timeline
+    (_phase_starts_problem), `phase` indexing the phase names."""
     from tegrasp_drake.runs.trial_result import transition_scores_problem
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
