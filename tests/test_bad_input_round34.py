@@ -189,3 +189,12 @@ def test_correlation_scores_out_of_range_in_a_log_are_refused(tmp_path):
 def test_a_log_without_phase_starts_is_refused(tmp_path):
     meta = {key: value for key, value in META.items() if key != "phase_starts"}
     _meta_refused(tmp_path, meta, "meta lacks 'phase_starts'")
+
+
+def test_a_correlation_one_round_off_past_one_is_read():
+    """The streaming matcher's running window energy can put a true 1 a few ulps past it."""
+    from tegrasp_drake.runs.trial_result import TrialResult
+    transitions = [_event(1.0, "Reach", "Load", [1.0 + 1e-12, 1.0, -1.0 - 1e-12, 0.5])]
+    result = TrialResult.from_dict({"hold_success": False, "controller": "memorized",
+                                    "final_mode": "Load", "transitions": transitions})
+    assert result.transitions[0].scores[0] > 1.0

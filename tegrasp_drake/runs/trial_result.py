@@ -181,6 +181,16 @@ def corrective_action_names() -> frozenset[str]:
     return frozenset(CORRECTIVE_ACTIONS.values()) | frozenset(CORRECTIVE_ONLY_ACTIONS.values())
 
 
+# How far past SCORE_RANGE a memorized detector's score may read. A score is a correlation over
+# the live window's energy, which the streaming matcher keeps as a running sum (add the
+# entering sample's square, drop the leaving one's: events/streaming_correlation.py); its
+# round-off is at most one float64 epsilon of the largest window energy per update, 85,000
+# updates over the longest run (85 s at 1 kHz): 2e-11 of it. 1e-6 lets a window five orders
+# weaker than the run's strongest score a true 1 without a refusal; 7 or 1e300 are not
+# round-off. (The committed records' memorized scores reach exactly 1.0, never past it.)
+SCORE_ROUND_OFF = 1e-6
+
+
 def transition_scores_problem(transitions, controller: str | None) -> str | None:
     """"'transitions[k].scores' ..." if a transition's scores lie outside what the detector of
     `controller` (a registered name) gives, else None. The memorized detector's are Eq. 3
@@ -196,7 +206,7 @@ def transition_scores_problem(transitions, controller: str | None) -> str | None
     low, high = SCORE_RANGE["low"], SCORE_RANGE["high"]
     for k, entry in enumerate(transitions):
         for score in entry.scores or ():
-            if not low <= score <= high:
+            if not low - SCORE_ROUND_OFF <= score <= high + SCORE_ROUND_OFF:
                 return (f"'transitions[{k}].scores' holds {number_text(score)}, outside "
                         f"{number_text(low)} to {number_text(high)} ({SCORE_RANGE['why']}, from "
                         f"the {controller} controller's detector)")
