@@ -32,6 +32,7 @@ def fake_trial(trial):
     return {
         "hold_success": hold,
         "unload_success": unload,
+        **({"final_mode": "Done"} if unload else {}),  # unloaded: judged only in a Done trial
         "transitions": [{"t": 1.0, "from": "Reach", "to": "Load", "trigger": "memorized_event",
                          "reason": "Reach-Load event"}],
         "corrective_actions": ["regrasp"] if not trial["well_placed"] and hold else [],

@@ -227,9 +227,10 @@ def test_events_of_a_changed_builtin_object_are_refused_unless_accepted(capfd):
 # --- trial logs -------------------------------------------------------------------------
 
 def _trial_log(path, **changes):
-    """A small well-formed trial log (the arrays' shapes as TrialLog.save writes them)."""
+    """A small well-formed trial log (the arrays' shapes as TrialLog.save writes them, each
+    time base at its logger's period for the default scenario: 108 Hz, 1 kHz, 10 ms)."""
     n_sa, n_ra, n_slow = 11, 101, 11
-    arrays = {"t_sa": np.linspace(0, 0.1, n_sa), "taxels": np.ones((n_sa, 24)),
+    arrays = {"t_sa": np.arange(n_sa) / 108.0, "taxels": np.ones((n_sa, 24)),
               "true_taxels": np.ones((n_sa, 24)), "t_ra": np.linspace(0, 0.1, n_ra),
               "channels": np.ones((n_ra, 4)), "pad_acceleration": np.zeros((n_ra, 6)),
               "t_slow": np.linspace(0, 0.1, n_slow), "arm_q": np.zeros((n_slow, 6)),

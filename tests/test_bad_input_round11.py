@@ -38,7 +38,7 @@ _BOX = scenario_to_yaml(LoadScenario(name="box"))
 # the field; a log without the scenario the figures need is refused as such.
 @pytest.mark.parametrize("meta, words", [
     ({"phases": [1, 2, 3]}, "meta 'phases' must be a non-empty list of names"),
-    ({"controller": 5}, "meta 'controller' must be a controller name, got 5"),
+    ({"controller": 5}, "meta 'controller' must be a controller name, one of memorized"),
     ({"scenario": 5}, "meta 'scenario' must be the scenario's YAML text"),
     ({"campaign_run": ["a"]}, "meta 'campaign_run' must be"),
     ({"events": 5}, "meta 'events' must map event names to times [s]"),

@@ -172,7 +172,7 @@ def test_an_ideal_grasp_log_whose_phase_starts_are_out_of_order_is_refused(tmp_p
 # Rule: the log's controller is the one its trial result names: a figure labels the run with
 # one and annotates it with the other's outcome.
 def test_a_trial_log_whose_controller_differs_from_its_results_is_refused(tmp_path):
-    path = _trial_log_with(tmp_path / "ok.npz", {"controller": "memorized",
+    path = _trial_log_with(tmp_path / "ok.npz", {"controller": "memorized", "phase_starts": {},
                                                   "result": {"controller": "memorized"}})
     assert load_trial_log(path).meta["controller"] == "memorized"
     _refused_meta(tmp_path, {"controller": "heuristic", "result": {"controller": "memorized"}},
@@ -182,7 +182,8 @@ def test_a_trial_log_whose_controller_differs_from_its_results_is_refused(tmp_pa
 # Rule: the log's trial result is of the seed its scenario ran with.
 def test_a_trial_log_whose_result_seed_differs_from_its_scenarios_is_refused(tmp_path):
     scenario = "random_seed: 680\nobject:\n  name: box\n"
-    path = _trial_log_with(tmp_path / "ok.npz", {"scenario": scenario, "result": {"seed": 680}})
+    path = _trial_log_with(tmp_path / "ok.npz", {"scenario": scenario, "result": {"seed": 680},
+                                                 "phase_starts": {}})
     assert load_trial_log(path).meta["result"]["seed"] == 680
     _refused_meta(tmp_path, {"scenario": scenario, "result": {"seed": 681}},
                   "meta 'result' is of seed 681, but its 'scenario' ran with random_seed 680")

@@ -198,4 +198,4 @@ def test_public_dataclasses_check_scalar_field_types_at_construction():
         TrialResult(hold_success="yes")
     with pytest.raises(TypeError, match="ObjectConfig: field 'mass' must be"):
         ObjectConfig(mass="heavy")
-    assert TrialResult(hold_success=np.bool_(True), seed=np.int64(3), hold_time_s=2).seed == 3
+    assert TrialResult(hold_success=np.bool_(True), seed=np.int64(3), hold_time_s=3).seed == 3

@@ -14,6 +14,8 @@ from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
 
+HOLD_REQUIRED_S = 3.0  # the paper (Sec. IV-C): a hold succeeds when held at least 3 s
+
 # A failure is the reason a controller gives for going to Failed, one sentence (the longest
 # in the committed sweep records: 109 characters); ten times a long sentence is not one.
 MAX_FAILURE_CHARS = 1000
@@ -79,12 +81,25 @@ class TrialResult:
 
     def _check_relations(self, name: str) -> None:
         """The relations judge_trial and run_trial (runs/trial.py) guarantee: Unload is
-        judged only after a Hold; the failure is one sentence; every time is within the
-        simulated time (transitions, the physical events and the hold are taken during the
-        run, so a latency, a transition's time minus its event's, is within it either way)."""
+        judged only after a Hold, in a trial ending Done; a hold succeeds exactly when held
+        HOLD_REQUIRED_S; the controller's (_check_controller); the failure is one sentence;
+        every time is within the simulated time (transitions, the physical events and the
+        hold are taken during the run, so a latency, a transition's time minus its event's,
+        is within it either way)."""
         if self.unload_success and not self.hold_success:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
                               "false (a trial is judged unloaded only after it held)")
+        final = getattr(self.final_mode, "label", self.final_mode)
+        if self.unload_success and final != Mode.DONE.label:
+            raise ConfigError(f"{name}: field 'unload_success' is true but 'final_mode' is "
+                              f"{shorten(str(final))} (a trial is judged unloaded only when it "
+                              "ends Done)")
+        if self.hold_time_s is not None and self.hold_success != (
+                self.hold_time_s >= HOLD_REQUIRED_S):
+            raise ConfigError(f"{name}: field 'hold_success' is {str(self.hold_success).lower()} "
+                              f"but 'hold_time_s' is {number_text(self.hold_time_s)} s (a hold "
+                              f"succeeds when held at least {number_text(HOLD_REQUIRED_S)} s)")
+        self._check_controller(name)
         if len(self.failure) > MAX_FAILURE_CHARS:
             raise ConfigError(f"{name}: field 'failure' must be at most {MAX_FAILURE_CHARS} "
                               f"characters (a controller's one-sentence reason), got "
@@ -104,6 +119,25 @@ class TrialResult:
             if abs(value) > self.sim_time_s:
                 raise ConfigError(f"{name}: field '{field}' must be {within} (within the "
                                   f"simulated time), got {number_text(value)}")
+
+    def _check_controller(self, name: str) -> None:
+        """The relations with the controller that wrote the result: a registered name ("":
+        not said), corrective actions among the controllers' (corrective_actions), and the
+        transitions' scores within what its detector gives (transition_scores_problem)."""
+        from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
+        if self.controller and self.controller not in CONTROLLER_NAMES:
+            raise ConfigError(f"{name}: field 'controller' must be one of "
+                              f"{', '.join(CONTROLLER_NAMES)}, got "
+                              f"{shorten(repr(self.controller))}")
+        if self.corrective_actions:
+            known = corrective_action_names()
+            for k, action in enumerate(self.corrective_actions):
+                if action not in known:
+                    raise ConfigError(f"{name}: field 'corrective_actions[{k}]' must be one of "
+                                      f"{', '.join(sorted(known))}, got {shorten(repr(action))}")
+        problem = transition_scores_problem(self.transitions, self.controller)
+        if problem:
+            raise ConfigError(f"{name}: field {problem}")
 
     def to_dict(self) -> dict:
         """The JSON form: all fields but `log`; transitions as dicts, the final mode by label."""
@@ -137,3 +171,43 @@ class TrialResult:
     def entered(self, mode: Mode) -> bool:
         """Whether the trial ever entered `mode`."""
         return any(transition.to_mode == mode for transition in self.transitions)
+
+
+def corrective_action_names() -> frozenset[str]:
+    """The names of the corrective actions a transition can start (corrective_actions:
+    CORRECTIVE_ACTIONS, and taxel_aware's CORRECTIVE_ONLY_ACTIONS)."""
+    from tegrasp_drake.control.corrective_actions import (  # Drake: on use
+        CORRECTIVE_ACTIONS, CORRECTIVE_ONLY_ACTIONS)
+    return frozenset(CORRECTIVE_ACTIONS.values()) | frozenset(CORRECTIVE_ONLY_ACTIONS.values())
+
+
+# How far past SCORE_RANGE a memorized detector's score may read. A score is a correlation over
+# the live window's energy, which the streaming matcher keeps as a running sum (add the
+# entering sample's square, drop the leaving one's: events/streaming_correlation.py); its
+# round-off is at most one float64 epsilon of the largest window energy per update, 85,000
+# updates over the longest run (85 s at 1 kHz): 2e-11 of it. 1e-6 lets a window five orders
+# weaker than the run's strongest score a true 1 without a refusal; 7 or 1e300 are not
+# round-off. (The committed records' memorized scores reach exactly 1.0, never past it.)
+SCORE_ROUND_OFF = 1e-6
+
+
+def transition_scores_problem(transitions, controller: str | None) -> str | None:
+    """"'transitions[k].scores' ..." if a transition's scores lie outside what the detector of
+    `controller` (a registered name) gives, else None. The memorized detector's are Eq. 3
+    correlations (event_matching.SCORE_RANGE, [-1, 1]); the heuristic detector's are
+    channel/threshold ratios with no common bound (Transition.scores), so a controller with
+    another detector, or none named, has its scores checked only as finite (Transition's own)."""
+    from tegrasp_drake.control.controller_registry import (CONTROLLER_NAMES, EVENT_MATCHER,
+                                                            controller_entry)
+    from tegrasp_drake.rig.event_matching import SCORE_RANGE
+    if (controller not in CONTROLLER_NAMES
+            or controller_entry(controller).detector != EVENT_MATCHER):
+        return None
+    low, high = SCORE_RANGE["low"], SCORE_RANGE["high"]
+    for k, entry in enumerate(transitions):
+        for score in entry.scores or ():
+            if not low - SCORE_ROUND_OFF <= score <= high + SCORE_ROUND_OFF:
+                return (f"'transitions[{k}].scores' holds {number_text(score)}, outside "
+                        f"{number_text(low)} to {number_text(high)} ({SCORE_RANGE['why']}, from "
+                        f"the {controller} controller's detector)")
+    return None

@@ -26,6 +26,7 @@ from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.robotiq import units as ru
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
 
 FORMAT_VERSION = 1
 ARRAY_FIELDS = ("t_sa", "taxels", "true_taxels", "t_ra", "channels", "pad_acceleration",
@@ -119,7 +120,8 @@ def load_trial_log(path: PathLike) -> TrialLog:
         raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
                             f"reads {FORMAT_VERSION}")
     scenario, problem = logged_scenario(meta)
-    problem = problem or trial_arrays_problem(arrays, scenario) or meta_problem(meta, arrays)
+    problem = (problem or trial_arrays_problem(arrays, scenario)
+               or meta_problem(meta, arrays, scenario))
     if problem:
         raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
     return TrialLog(meta=meta, **arrays)
@@ -171,7 +173,8 @@ def _is_versions(value) -> bool:
 # (runs/trial.py). The times among them are checked against the log's span in meta_problem.
 META_FIELDS = {
     "scenario": ("be the scenario's YAML text", lambda v: isinstance(v, str)),
-    "controller": ("be a controller name", lambda v: isinstance(v, str)),
+    "controller": ("be a controller name, one of " + ", ".join(CONTROLLER_NAMES),
+                   lambda v: isinstance(v, str) and v in CONTROLLER_NAMES),
     "campaign_run": ("be a recording run's label", lambda v: isinstance(v, str)),
     "mode_names": ("be the modes' labels in their order, Reach to Failed", _is_mode_names),
     "phases": ("be a non-empty list of names", _is_name_list),
@@ -325,12 +328,54 @@ def _seed_problem(meta: dict) -> str | None:
     return None
 
 
-def meta_problem(meta: dict, arrays: dict) -> str | None:
+def _result_problem(meta: dict, transitions: list, scenario) -> str | None:
+    """What is wrong with meta 'result' against the rest of the log, or None: a TrialResult's
+    JSON form (its own relations: TrialResult), of the log's controller, of its scenario's
+    object (`scenario`, the log's Scenario, when it stores one), its transitions the log's
+    timeline ('transitions', [] when absent: one timeline, checked by _timeline_problem)."""
+    from tegrasp_drake.control.grasp_modes import Transition
+    from tegrasp_drake.runs.trial_result import TrialResult
+    data = meta.get("result")
+    if data is None:
+        return None
+    try:
+        result = TrialResult.from_dict(data)
+    except ValueError as e:
+        return f"meta 'result' is {shorten(str(e), 300)}"
+    if "controller" in meta and "controller" in data and result.controller != meta["controller"]:
+        return (f"meta 'controller' is '{shorten(meta['controller'])}', but its 'result' is of "
+                f"'{shorten(result.controller)}'")
+    if scenario is not None and "object" in data and result.object != scenario.object.name:
+        return (f"meta 'result' is of object '{shorten(result.object)}', but its 'scenario' "
+                f"grasps '{shorten(scenario.object.name)}'")
+    if "transitions" in data:
+        timeline = tuple(Transition.from_dict(entry) for entry in transitions)
+        for k in range(max(len(timeline), len(result.transitions))):
+            ours = timeline[k] if k < len(timeline) else None
+            theirs = result.transitions[k] if k < len(result.transitions) else None
+            if ours != theirs:
+                return (f"meta 'result' transitions[{k}] is {_transition_text(theirs)}, but "
+                        f"the log's 'transitions[{k}]' is {_transition_text(ours)} (a trial "
+                        "has one timeline)")
+    return None
+
+
+def _transition_text(entry) -> str:
+    if entry is None:
+        return "absent"
+    return (f"{entry.from_mode.label} -> {entry.to_mode.label} at {number_text(entry.t)} s"
+            f" ({entry.trigger.value})")
+
+
+def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
     """What is wrong with a trial log's metadata, checked as a whole against the log's
-    `arrays` (already checked by trial_arrays_problem), or None: transitions as Transition
-    entries forming one timeline (_timeline_problem), each field of META_FIELDS as it says,
-    its controller its result's, its times within the log's span, phase starts agreeing
-    with the timeline (_phase_starts_problem), `phase` indexing the phase names."""
+    `arrays` (already checked by trial_arrays_problem) and its Scenario (`scenario`, None when
+    it stores none), or None: transitions as Transition entries forming one timeline
+    (_timeline_problem) with the scores its controller's detector gives, each field of
+    META_FIELDS as it says, its result that of the log (_result_problem), its times within the
+    log's span, phase starts (required with a result) agreeing with the timeline
+    (_phase_starts_problem), `phase` indexing the phase names."""
+    from tegrasp_drake.runs.trial_result import transition_scores_problem
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):
@@ -351,18 +396,19 @@ def meta_problem(meta: dict, arrays: dict) -> str | None:
     for key, (what, is_valid) in META_FIELDS.items():
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
-    logged = (meta.get("result") or {}).get("controller")
-    if "controller" in meta and logged is not None and logged != meta["controller"]:
-        return (f"meta 'controller' is '{shorten(meta['controller'])}', but its 'result' is of "
-                f"'{shorten(str(logged))}'")
-    problem = _seed_problem(meta)
+    problem = (_result_problem(meta, transitions, scenario) or _seed_problem(meta)
+               or transition_scores_problem(list(map(Transition.from_dict, transitions)),
+                                            meta.get("controller")))
     if problem:
-        return problem
+        return problem if problem.startswith("meta") else f"meta {problem}"
     span = _time_span(arrays)
     problem = (_timeline_problem(transitions, span) or _times_problem(meta, span)
                or _phase_starts_problem(meta))
     if problem:
         return problem
+    if "result" in meta and "phase_starts" not in meta:  # run_trial writes both
+        return ("meta lacks 'phase_starts', which a trial's log holds with its 'result' (when "
+                "each mode of its timeline began)")
     phase = arrays["phase"]
     count = len(meta.get("mode_names") or meta.get("phases") or Mode)
     if phase.size and (not np.all(np.isfinite(phase)) or np.any(phase != np.round(phase))
@@ -388,7 +434,8 @@ STEP_TOLERANCE = 1e-6
 
 def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
     """What is wrong with the trial-log arrays in `arrays`, or None: each time base at least
-    two finite, increasing times sampled at one period (STEP_TOLERANCE), one row per time,
+    two finite, increasing times sampled at one period (STEP_TOLERANCE), the bases covering
+    one run at their loggers' periods (time_bases_problem), one row per time,
     finite signals within their physical ranges (out_of_range_signals, and sensor_range_problem
     for the sensors of `scenario`, the log's Scenario, or of any scenario when None). Every
     reader applies it."""
@@ -415,9 +462,50 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
             if array.shape != expected:
                 return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
                         f"'{time_name}' need {expected}")
-    return (nonfinite_signals(arrays) or out_of_range_signals(arrays)
+    return (time_bases_problem(arrays, scenario)
+            or nonfinite_signals(arrays) or out_of_range_signals(arrays)
             or sensor_range_problem(arrays, scenario)
             or object_orientation_problem(arrays) or joint_angle_problem(arrays))
+
+
+def logger_periods(scenario) -> dict:
+    """[s] The period each time base is logged at in a trial of `scenario` (a Scenario): the
+    taxels at the SA rate, the RA channels at the RA rate, the rest at SLOW_LOG_PERIOD
+    (trial_log_writer.AddTrialLogging)."""
+    from tegrasp_drake.scenario.trial_log_writer import SLOW_LOG_PERIOD  # Drake: on use
+    return {"t_sa": 1.0 / scenario.tactile.sample_rate_hz,
+            "t_ra": 1.0 / scenario.vibration.sample_rate_hz, "t_slow": SLOW_LOG_PERIOD}
+
+
+def time_bases_problem(arrays: dict, scenario=None) -> str | None:
+    """What is wrong if the time bases in `arrays` (each finite, increasing, at one period)
+    do not cover one run, or None. With `scenario` (the log's Scenario), each base's period is
+    the one its logger writes at (logger_periods, within STEP_TOLERANCE: the same float
+    rounding as its steps). Every logger samples from the simulation's start at its own period
+    until the run ends, so the bases' first samples coincide and their last ones lie within
+    one period of the run's end: two bases start and end within the slower of the periods
+    (the loggers' with a scenario, else the bases' own steps). A bare recording (no scenario)
+    may be sampled at any rates, so only its bases' span is checked."""
+    periods = {name: float(np.median(np.diff(arrays[name]))) for name in _TIME_BASES
+               if name in arrays}
+    if scenario is not None:
+        for name, expected in logger_periods(scenario).items():
+            if name in periods and abs(periods[name] - expected) > STEP_TOLERANCE * expected:
+                return (f"'{name}' is sampled every {number_text(periods[name])} s, but its "
+                        f"scenario's logger writes it every {number_text(expected)} s")
+        periods = {name: logger_periods(scenario)[name] for name in periods}
+    names = list(periods)
+    for k, first in enumerate(names):
+        for second in names[k + 1:]:
+            slower = max(periods[first], periods[second])
+            for index, which in ((0, "starts"), (-1, "ends")):
+                a, b = float(arrays[first][index]), float(arrays[second][index])
+                if abs(a - b) > slower:
+                    return (f"'{first}' {which} at {number_text(a)} s but '{second}' at "
+                            f"{number_text(b)} s; a trial's time bases cover one run, "
+                            f"starting and ending within {number_text(slower)} s (the slower "
+                            "one's period)")
+    return None
 
 
 # How far a logged joint angle may lie past the JACO2's declared limit [rad]: the plant holds

@@ -15,7 +15,7 @@ from tegrasp_drake.transfer.matrix import cell_folder, running_sweep
 SPEC = SensitivitySpec(parameters=(parameter("gripper.screw_efficiency"),), sweep=SweepSpec(
     objects=("box",), controllers=("memorized",), grid=((0.0, 0.0), (0.01, 0.0)),
     attempts=2, base_seed=600))
-HELD_AND_PLACED = {"hold_success": True, "unload_success": True,
+HELD_AND_PLACED = {"hold_success": True, "unload_success": True, "final_mode": "Done",
                    "lift_height_m": LIFTED_HEIGHT_M + 0.05, "final_tilt_deg": 0.0}
 DROPPED = {**HELD_AND_PLACED, "hold_success": False, "unload_success": False}
 TOPPLED = {**HELD_AND_PLACED, "unload_success": False, "final_tilt_deg": UPRIGHT_TILT_DEG + 30}

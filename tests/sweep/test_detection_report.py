@@ -17,6 +17,7 @@ def record(controller, pair, *, hold=True, unload=None, reach_t=4.05, well_place
             "trial": {"controller": controller, "pair_id": pair, "well_placed": well_placed},
             "result": {"transitions": transitions, "hold_success": hold,
                        "unload_success": hold if unload is None else unload,
+                       "final_mode": "Done" if (hold if unload is None else unload) else "Load",
                        "corrective_actions": list(actions),
                        "physical_events": {"reach_load": 4.0}}}
 
@@ -65,7 +66,8 @@ def hit_record(controller, pair, *, hit, avoids=(), trigger="corrective_event",
     events = {"reach_load": 3.95} if hit is None else {"reach_load": 3.95, "hit": hit}
     return {"trial": {"controller": controller, "pair_id": pair, "well_placed": True},
             "result": {"transitions": transitions, "hold_success": True,
-                       "unload_success": True, "corrective_actions": ["avoid"] * len(avoids),
+                       "unload_success": True, "final_mode": "Done",
+                       "corrective_actions": ["avoid"] * len(avoids),
                        "physical_events": events}}
 
 

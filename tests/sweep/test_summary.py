@@ -18,6 +18,7 @@ RESULTS_PAGE = ROOT / "docs" / "results.md"
 
 def result(hold, *, latency=None, false_triggers=0):
     return {"hold_success": hold, "unload_success": hold, "transitions": [],
+            "final_mode": "Done" if hold else "Failed",
             "corrective_actions": [], "detection_latency_s": latency or {},
             "false_triggers": false_triggers, "sim_time_s": 12.0, "wall_time_s": 25.0}
 

@@ -26,6 +26,7 @@ PAPER_COUNTS = {"box": (3, 3, 24, 24), "thick_cylinder": (3, 3, 20, 20),
 
 def result(hold, unload, **extra):
     return {"hold_success": hold, "unload_success": unload, "transitions": [],
+            "final_mode": "Done" if unload else "Failed",
             "corrective_actions": [], "detection_latency_s": {}, "false_triggers": 0,
             "sim_time_s": 10.0, "wall_time_s": 20.0, **extra}
 
