@@ -32,7 +32,8 @@ def _wait_until(condition, what: str, timeout_s: float = 120.0) -> None:
 
 
 # Rule: a run killed past its handlers (SIGKILL) leaves nothing running and nothing for ever:
-# its staging log is removed by the next run into the folder, a live run's is left alone.
+# its staging log is removed by the next run logging to the same --log, a live run's is left
+# alone.
 @pytest.mark.slow
 @pytest.mark.skipif(not pathlib.Path("/proc/self/cmdline").exists(), reason="no /proc")
 def test_a_killed_hardware_runs_staging_log_is_removed_by_the_next_run(tmp_path,
@@ -59,9 +60,9 @@ def test_a_killed_hardware_runs_staging_log_is_removed_by_the_next_run(tmp_path,
             run.wait()
     assert run.returncode == -signal.SIGKILL and staging.exists()
     _wait_until(lambda: not _processes_naming(staging), "the run's lcm-logger outlived it")
-    live = logs / f".other.lcmlog.{os.getpid()}.staging"  # a run still going
+    live = logs / f".run.lcmlog.{os.getpid()}.staging"  # a run still going
     live.write_bytes(b"being written")
-    done = subprocess.run([*command, "--log", str(logs / "next.lcmlog"),
+    done = subprocess.run([*command, "--log", str(logs / "run.lcmlog"),
                            "--config-set", "tactile.port=/dev/no_such_port",
                            "--config-set", "ready_timeout=1"],
                           env=killed_runs.environment(), capture_output=True, text=True,

@@ -165,8 +165,9 @@ def run(args) -> int:
     pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
     # The run logs to a hidden file beside --log; the earlier log and result stay whole
     # until this run's replace them together at the end (commit_hardware_run). A killed
-    # run's staging file is removed by the next run into the folder.
-    staged = staging_file_beside(log)
+    # run's staging file is removed by the next run logging to the same --log.
+    from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
+    staged = staging_file_beside(log, LCM_LOG_START)
     try:
         with SimulatedTimeBar("hardware", enabled=progress_wanted(args)) as progress:
             result = run_on_hardware(scenario, config=config, events=events,

@@ -16,7 +16,7 @@ from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (claim_folder, file_problem, folder_problem,
                                      interruptions_deferred, own_staging_suffix,
-                                     stale_staging_files, write_atomically)
+                                     stale_staging_files_of, write_atomically)
 
 logger = logging.getLogger(__name__)
 
@@ -132,24 +132,28 @@ def staged_run(folder):
                 shutil.rmtree(stage, ignore_errors=True)
 
 
-def staging_file_beside(path) -> pathlib.Path:
+def staging_file_beside(path, start: bytes) -> pathlib.Path:
     """Where this process writes `path` until it commits it (`.NAME.PID.staging` beside it);
-    the staging files that runs killed past their handlers (SIGKILL, a power cut) left in
-    that folder are removed first (remove_stale_staging_files)."""
+    the staging files of `path` that runs killed past their handlers (SIGKILL, a power cut)
+    left, holding what starts with `start` (its format's magic), are removed first
+    (remove_stale_staging_files). Other files in the folder are left alone, whatever
+    their names."""
     path = pathlib.Path(path)
-    remove_stale_staging_files(path.parent)
+    remove_stale_staging_files(path, start)
     return path.with_name(f".{path.name}{own_staging_suffix()}")
 
 
-def remove_stale_staging_files(folder) -> list[pathlib.Path]:
-    """Removes the staging files in `folder` whose process has ended, and returns them; a
-    live process's are left alone. The folder is locked meanwhile (claimed_run_folder), as
-    staged_run locks it to remove stale staging folders; when another run holds the lock
-    (a trial writing there), nothing is removed now, and the next run does it."""
+def remove_stale_staging_files(target, start: bytes) -> list[pathlib.Path]:
+    """Removes the staging files of `target` whose process has ended and whose content starts
+    as `target`'s does (stale_staging_files_of), and returns them; a live process's are left
+    alone. The folder is locked meanwhile (claimed_run_folder), as staged_run locks it to
+    remove stale staging folders; when another run holds the lock (a trial writing there),
+    nothing is removed now, and the next run does it."""
+    target = pathlib.Path(target)
     removed = []
     try:
-        with claimed_run_folder(folder):
-            for path in stale_staging_files(folder):
+        with claimed_run_folder(target.parent):
+            for path in stale_staging_files_of(target, start):
                 with contextlib.suppress(OSError):
                     path.unlink()
                     removed.append(path)

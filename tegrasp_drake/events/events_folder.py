@@ -8,12 +8,13 @@ from typing import Annotated
 from collections.abc import Iterable, Sequence
 
 from tegrasp_drake.rig.files import (interruptions_deferred, own_staging_suffix, replace_problem,
-                                     stale_staging_files, staged_file)
+                                     stale_staging_files_of, staged_file)
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.events.event_file import (
-    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError, remake_advice,
-    event_json_text, event_summary, event_to_json, read_index, read_memorized_event)
+    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, JSON_START, RECORD_COMMAND, MemorizedEventError,
+    remake_advice, event_json_text, event_summary, event_to_json, read_index,
+    read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import (REQUIRED_TRANSITIONS, TRANSITIONS,
                                               transition_order)
@@ -86,14 +87,17 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
              "remake_command": RECORD_COMMAND, "events": entries}
     # All or nothing: every file is staged beside its target first, then the renames and
     # the stale files' removal commit together with Ctrl-C held back, the index last. The
-    # staging files a writer killed past its handlers (SIGKILL) left go first.
+    # staging files of these same files a writer killed past its handlers (SIGKILL) left go
+    # first.
     staged = []
     events_dir.mkdir(parents=True, exist_ok=True)
-    _remove_stale_staging(events_dir)
+    for event in events:
+        (events_dir / event.relative_path()).parent.mkdir(parents=True, exist_ok=True)
+    _remove_stale_staging([events_dir / e.relative_path() for e in events]
+                          + [events_dir / INDEX_FILE])
     try:
         for event in events:
             path = events_dir / event.relative_path()
-            path.parent.mkdir(parents=True, exist_ok=True)
             staged.append((staged_file(path, event_json_text(event_to_json(event)),
                                        suffix=own_staging_suffix()), path))
         staged.append((staged_file(events_dir / INDEX_FILE, event_json_text(index),
@@ -134,12 +138,12 @@ def _load_entry(events_dir: pathlib.Path, entry: dict) -> MemorizedEvent:
     return event
 
 
-def _remove_stale_staging(events_dir: pathlib.Path) -> None:
-    """Removes the staging files of ended writers beside the index and in the objects'
-    folders (a live writer's are its own: its save commits or removes them)."""
-    folders = [events_dir, *(p for p in events_dir.iterdir() if p.is_dir() and not p.is_symlink())]
-    for folder in folders:
-        for stale in stale_staging_files(folder):
+def _remove_stale_staging(targets: list[pathlib.Path]) -> None:
+    """Removes the staging files of `targets` that ended writers left (stale_staging_files_of:
+    named for one of them and holding JSON's start); a live writer's are its own (its save
+    commits or removes them), and other files of the folder are the user's."""
+    for target in targets:
+        for stale in stale_staging_files_of(target, JSON_START):
             stale.unlink(missing_ok=True)
 
 

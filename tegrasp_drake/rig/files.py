@@ -47,10 +47,12 @@ def staged_file(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Pat
     return pathlib.Path(temporary)
 
 
-# A file a process writes until it commits it, beside its final name: `.NAME.PID.staging`
-# (NAME may carry staged_file's random part), PID the writing process's, so that what a
+# A file a process writes until it commits it, beside its final name: `.NAME.PID.staging`,
+# or `.NAME.XXXXXXXX.PID.staging` with staged_file's 8 random characters (tempfile's
+# lowercase letters, digits and underscore), PID the writing process's, so that what a
 # process killed past its handlers (SIGKILL, a power cut) left is told from a live writer's.
-_STAGING_FILE = re.compile(r"\.(?P<name>.+)\.(?P<pid>[1-9][0-9]{0,9})\.staging")
+_RANDOM_PART = r"(?:\.[a-z0-9_]{8})?"
+_PID_PART = r"\.(?P<pid>[1-9][0-9]{0,9})\.staging"
 
 
 def own_staging_suffix() -> str:
@@ -58,18 +60,40 @@ def own_staging_suffix() -> str:
     return f".{os.getpid()}.staging"
 
 
-def stale_staging_files(folder) -> list[pathlib.Path]:
-    """The staging files in `folder` (not below it) whose process has ended."""
-    folder = pathlib.Path(folder)
-    if not folder.is_dir():
+def stale_staging_files_of(target, start: bytes) -> list[pathlib.Path]:
+    """The staging files that writers of `target` which have ended left beside it: named
+    for `target` itself (`.NAME.PID.staging`, staged_file's random part or not), regular
+    files (not links), holding what `target` holds, known by how such a file starts (`start`:
+    a format's magic, e.g. an LCM log's sync word, `{` for JSON) or a part of it (a writer
+    killed early leaves its first bytes or nothing). A file named for another target, or
+    holding something else, is not a writer's of `target` and is not listed."""
+    target = pathlib.Path(target)
+    name = re.compile(re.escape(f".{target.name}") + _RANDOM_PART + _PID_PART)
+    try:
+        entries = sorted(target.parent.iterdir())
+    except OSError:
         return []
-    stale = []
-    for path in sorted(folder.iterdir()):
-        match = _STAGING_FILE.fullmatch(path.name)
-        if (match is not None and not process_alive(int(match["pid"]))
-                and not path.is_symlink() and path.is_file()):
-            stale.append(path)
-    return stale
+    return [path for path in entries
+            if (match := name.fullmatch(path.name)) is not None
+            and not process_alive(int(match["pid"])) and _starts_with(path, start)]
+
+
+def _starts_with(path, start: bytes) -> bool:
+    """Whether `path` is a regular file (not a link) whose first bytes are `start`, or the
+    first part of it (all the file holds); False when it cannot be read."""
+    try:
+        descriptor = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError:
+        return False
+    try:
+        if not stat.S_ISREG(os.fstat(descriptor).st_mode):
+            return False
+        head = os.read(descriptor, len(start))
+    except OSError:
+        return False
+    finally:
+        os.close(descriptor)
+    return start.startswith(head)
 
 
 def process_alive(pid: int) -> bool:

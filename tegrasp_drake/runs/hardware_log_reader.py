@@ -83,6 +83,8 @@ class RunLog:
 
 
 LCM_SYNC = 0xEDA1DA01
+# How an LCM log file starts: LCM's format has no file header, so its first event's sync word.
+LCM_LOG_START = struct.pack(">I", LCM_SYNC)
 _EVENT_HEADER = struct.Struct(">IqqII")  # sync, event number, timestamp, channel, data sizes
 MAX_CHANNEL_LENGTH = 256
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones

@@ -168,12 +168,12 @@ def test_a_staging_file_of_an_ended_process_is_removed_and_a_live_ones_kept(tmp_
     from tegrasp_drake.commands.run_folder import staging_file_beside
     import os
     ended = tmp_path / f".run.lcmlog.{_ended_process_id()}.staging"
-    live = tmp_path / f".other.lcmlog.{os.getppid()}.staging"
+    live = tmp_path / f".run.lcmlog.{os.getppid()}.staging"
     users = [tmp_path / "run.lcmlog", tmp_path / ".notes.1x.staging", tmp_path / "a.staging"]
     for path in (ended, live, *users):
         path.write_bytes(b"data")
-    staged = staging_file_beside(tmp_path / "next.lcmlog")
-    assert staged == tmp_path / f".next.lcmlog.{os.getpid()}.staging"
+    staged = staging_file_beside(tmp_path / "run.lcmlog", b"data")
+    assert staged == tmp_path / f".run.lcmlog.{os.getpid()}.staging"
     assert not ended.exists() and live.exists() and all(path.exists() for path in users)
 
 
@@ -182,8 +182,10 @@ def test_a_folder_another_run_holds_keeps_its_staging_files_for_the_next_run(tmp
     ended = tmp_path / f".run.lcmlog.{_ended_process_id()}.staging"
     ended.write_bytes(b"data")
     with claimed_run_folder(tmp_path):  # a trial writing there
-        assert remove_stale_staging_files(tmp_path) == [] and ended.exists()
-    assert remove_stale_staging_files(tmp_path) == [ended] and not ended.exists()
+        assert remove_stale_staging_files(tmp_path / "run.lcmlog", b"data") == []
+        assert ended.exists()
+    assert remove_stale_staging_files(tmp_path / "run.lcmlog", b"data") == [ended]
+    assert not ended.exists()
 
 
 def test_overwriting_a_run_whose_result_json_is_a_fifo_commits_without_reading_it(tmp_path):
