@@ -25,3 +25,24 @@ def test_two_positionals_where_one_is_taken_are_still_refused(tmp_path, capfd):
         cli.main(["plot", "trial", "-v", str(tmp_path / "a.npz"), str(tmp_path / "b.npz")])
     assert exit_.value.code == 2
     assert "unrecognized arguments" in capfd.readouterr().err
+
+
+# Rule: a symbolic link under a run file's name (a figure, trial.npz, result.json) is the
+# user's: a run writes its files itself, never a link. The trial is refused before it
+# simulates, as for a FIFO there, and the link stays (--overwrite removed it as "the earlier
+# run's" figure when the new run wrote another format).
+@pytest.mark.parametrize("name", ["avoid.svg", "trial.npz"])
+def test_a_link_under_a_run_files_name_refuses_the_trial_and_stays(tmp_path, capfd,
+                                                                  monkeypatch, name):
+    from tegrasp_drake.runs import trial as trial_module
+    monkeypatch.setattr(trial_module, "run_trial",
+                        lambda *a, **k: pytest.fail("the trial was simulated"))
+    folder, precious = tmp_path / "ow", tmp_path / "precious.svg"
+    folder.mkdir()
+    precious.write_text("<svg/>")
+    (folder / name).symlink_to(precious)
+    code, text = run_cli(["trial", "--set", "random_seed=633", "--out", str(folder),
+                          "--overwrite"], capfd)
+    assert code == 1, text
+    assert f"{name} is a symbolic link" in text and text.count("\n") == 0, text
+    assert (folder / name).is_symlink() and precious.read_text() == "<svg/>"

@@ -62,6 +62,8 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
     folder = pathlib.Path(out if out is not None else default)
     for name in sorted(run_file_names()) if out is not None else ():
         problem = os.path.lexists(folder / name) and file_problem(folder / name, devices=())
+        if not problem and os.path.islink(folder / name):  # a run writes no link: the user's
+            problem = "is a symbolic link (a run writes its files itself, never a link)"
         if problem and problem != "does not exist":  # a dangling symlink is replaced
             raise RunFolderError(
                 f"--out {folder}: {name} {problem.split(';')[0]}, where the run writes its "
