@@ -10,6 +10,7 @@ import pytest
 from tegrasp_drake.emulators.controller_clock import ControllerClock
 from tegrasp_drake.emulators.myrio_emulator import (
     MyRioEmulator, MyRioEmulatorConfig, TactileRecording)
+from tegrasp_drake.emulators.null_modem import open_raw_pty
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 
 PERIOD = 1e-3           # [s] the emulator's frame period
@@ -94,3 +95,36 @@ def test_the_controller_clock_begins_a_new_run_when_commands_resume_from_an_earl
     now[0] += COMMAND_PERIOD
     clock.on_command(10_000)
     assert clock() == pytest.approx(0.01, abs=0.011)
+
+
+def reader_counters_after(write: bytes):
+    """The counters of a reader on a pty the other end of which wrote `write`."""
+    master, slave, port = open_raw_pty()
+    try:
+        with TactileSerialReader(port) as reader:
+            if write:
+                os.write(master, write)
+            wait_for(lambda: reader.counters().bytes_read >= len(write), "bytes read")
+            time.sleep(0.1)
+            return reader.counters()
+    finally:
+        os.close(master)
+        os.close(slave)
+
+
+# Rule: a tactile port that sent no valid frame is reported in words (what arrived, what to
+# check), never as the counters' Python repr.
+def test_a_silent_tactile_port_is_reported_in_words():
+    from tegrasp_drake.hardware.myrio.serial_reader import no_valid_frame_problem
+    problem = no_valid_frame_problem(reader_counters_after(b""))
+    assert "Counters(" not in problem
+    assert "not one byte arrived" in problem and "streaming on that port" in problem
+
+
+def test_a_tactile_port_sending_other_bytes_is_reported_in_words():
+    from tegrasp_drake.hardware.myrio.serial_reader import no_valid_frame_problem
+    modbus = bytes([9, 3, 7, 208, 0, 3, 4, 14]) * 20  # a Robotiq's Modbus RTU, not frames
+    problem = no_valid_frame_problem(reader_counters_after(modbus))
+    assert "Counters(" not in problem
+    assert f"{len(modbus)} bytes arrived but none made a valid myRIO frame" in problem
+    assert "another device's port" in problem
