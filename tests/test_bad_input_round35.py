@@ -1,5 +1,6 @@
 """An emulated myRIO that streams on after a run stops and replays again for the next one; a
-tactile port that sends no valid frame named in words; two devices on one serial port."""
+tactile port that sends no valid frame named in words; two devices on one serial port
+refused."""
 
 import os
 import time
@@ -11,7 +12,9 @@ from tegrasp_drake.emulators.controller_clock import ControllerClock
 from tegrasp_drake.emulators.myrio_emulator import (
     MyRioEmulator, MyRioEmulatorConfig, TactileRecording)
 from tegrasp_drake.emulators.null_modem import open_raw_pty
+from tegrasp_drake.hardware.config import LoadHardwareConfig
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
+from tests.test_bad_input import assert_one_line_error, run_cli
 
 PERIOD = 1e-3           # [s] the emulator's frame period
 COMMAND_PERIOD = 0.01   # [s] the arm commands' period (100 Hz)
@@ -128,3 +131,39 @@ def test_a_tactile_port_sending_other_bytes_is_reported_in_words():
     assert "Counters(" not in problem
     assert f"{len(modbus)} bytes arrived but none made a valid myRIO frame" in problem
     assert "another device's port" in problem
+
+
+# Rule: two devices configured on one serial port (the same name, or one line through a
+# symlink) are refused by the config check, naming both fields and the file, before any
+# device is opened (the tactile reader took the gripper's answers; the run blamed the gripper).
+@pytest.mark.parametrize("through_symlink", [False, True], ids=["same-name", "symlink"])
+def test_two_devices_on_one_serial_port_are_refused(through_symlink, tmp_path, capfd):
+    master, slave, port = open_raw_pty()  # a serial line no device answers on
+    try:
+        tactile = port
+        if through_symlink:
+            tactile = str(tmp_path / "ttyMYRIO")
+            os.symlink(port, tactile)
+        config = tmp_path / "hw.yaml"
+        config.write_text(f"ready_timeout: 1.0\nscheduling: normal\ngripper: {{port: {port}}}\n"
+                          f"tactile: {{port: {tactile}}}\n")
+        code, output = run_cli(["hardware", "--config", str(config), "--set",
+                                "random_seed=620"], capfd)
+    finally:
+        os.close(master)
+        os.close(slave)
+    assert_one_line_error(code, output, str(config), "'tactile.port'", "'gripper.port'",
+                          "are one serial line")
+
+
+def test_distinct_serial_ports_are_accepted(tmp_path):
+    first, second = open_raw_pty(), open_raw_pty()
+    try:
+        config = tmp_path / "hw.yaml"
+        config.write_text(f"gripper: {{port: {first[2]}}}\ntactile: {{port: {second[2]}}}\n")
+        loaded = LoadHardwareConfig(config)
+    finally:
+        for master, slave, _ in (first, second):
+            os.close(master)
+            os.close(slave)
+    assert (loaded.gripper.port, loaded.tactile.port) == (first[2], second[2])
