@@ -167,3 +167,40 @@ def test_distinct_serial_ports_are_accepted(tmp_path):
             os.close(master)
             os.close(slave)
     assert (loaded.gripper.port, loaded.tactile.port) == (first[2], second[2])
+
+
+# Rule: `tegrasp emulate` says when a run's arm commands stop (the myRIO streams on, holding)
+# and when the next run's begin (its replay starts from the beginning), instead of staying
+# silent at "ready" while the stream has stopped.
+def test_the_emulated_myrio_says_when_a_run_stops_and_the_next_begins(tmp_path):
+    import lcm
+    from tegrasp_drake.emulators.launcher import Emulators
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, make_jaco_command
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    from tegrasp_drake.emulators.myrio_emulator import save_tactile_recording
+
+    url = f"udpm://239.255.76.67:{8600 + os.getpid() % 400}?ttl=0"
+    trial = save_tactile_recording(tmp_path / "trial.npz", ramp_trial())
+    bus, lines = lcm.LCM(url), []
+
+    def run_commands(seconds):
+        for n in range(int(round(seconds / COMMAND_PERIOD)) + 1):
+            command = make_jaco_command(n * COMMAND_PERIOD * 1e6, [0.0] * 6, [0.0] * 6)
+            bus.publish(JACO_COMMAND_CHANNEL, command.encode())
+            time.sleep(COMMAND_PERIOD)
+
+    def said(words):
+        return lambda: any(words in line for line in lines)
+
+    with Emulators(lcm_url=url, out=lines.append).start(
+            ("myrio",), LoadScenario(name="box"), trial=trial, sync="follow") as emulators, \
+            TactileSerialReader(emulators.devices["tactile"]["port"]) as reader:
+        run_commands(0.2)
+        wait_for(said("the arm commands stopped: streaming on"), "word of the stop")
+        streamed = reader.counters().decoder.frames
+        time.sleep(0.5)
+        assert reader.counters().decoder.frames > streamed + 50
+        assert not said("a new run's arm commands")()
+        run_commands(0.1)
+        wait_for(said("a new run's arm commands: replaying the trial from its beginning"),
+                 "word of the next run")
