@@ -1,7 +1,9 @@
 """The controller's clock as its arm commands carry it (each command's `utime` is Context
 time), to pace a replaying emulator (MyRioEmulator's `trial_clock`) with a controller slower
 than real time: the newest command's time since the first, extrapolated at the recent rate
-for at most one command period."""
+for at most one command period. A run's commands that stop for IDLE_AFTER leave the clock
+idle (the run ended or was killed); a command after that stamped no later than the last one
+(the next run's Context time starts again) begins a new run, counted in `run`."""
 
 import threading
 import time
@@ -12,13 +14,19 @@ from tegrasp_drake.hardware.lcm_boundary import checked_handler
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
 
 RATE_SMOOTHING = 10  # [commands] rate averaging, 0.1 s at 100 Hz: smooth, yet quick
+# [s] the arm commands' silence after which a run has ended: 50 command periods, far longer
+# than a live controller's gaps (one 10 ms period, a few on a loaded host), far shorter than
+# the start-up of the next `tegrasp hardware` (seconds: imports, the wait for the devices).
+IDLE_AFTER = 0.5
 
 
 class ControllerClock:
     """Seconds of controller time since its first command (0 before); thread-safe."""
 
-    def __init__(self, *, max_extrapolation: float = JACO_LCM_PERIOD, now=time.monotonic):
+    def __init__(self, *, max_extrapolation: float = JACO_LCM_PERIOD,
+                 idle_after: float = IDLE_AFTER, now=time.monotonic):
         self._max_extrapolation = max_extrapolation
+        self._idle_after = idle_after
         self._now = now
         self._lock = threading.Lock()
         self._first_utime = None
@@ -26,20 +34,37 @@ class ControllerClock:
         self._received = 0.0
         self._rate = 1.0  # controller seconds per wall second
         self._last_value = 0.0
+        self._run = 0
         self.started = threading.Event()
 
     def on_command(self, utime: int):
         """A command stamped `utime` [us] arrived."""
         with self._lock:
+            now = self._now()
+            if (self._utime is not None and utime <= self._utime
+                    and now - self._received >= self._idle_after):
+                self._first_utime = self._utime = None  # the next run's first command
+                self._rate, self._last_value = 1.0, 0.0
+                self._run += 1
             if self._first_utime is None:
                 self._first_utime = utime
-            now = self._now()
             if self._utime is not None and utime > self._utime and now > self._received:
                 rate = (utime - self._utime) * 1e-6 / (now - self._received)
                 self._rate += (min(rate, 2.0) - self._rate) / RATE_SMOOTHING
             if self._utime is None or utime > self._utime:
                 self._utime, self._received = utime, now
         self.started.set()
+
+    @property
+    def run(self) -> int:
+        """How many times a new run's commands began after the first run's (0 in the first)."""
+        with self._lock:
+            return self._run
+
+    def idle(self) -> bool:
+        """Whether no command arrived for `idle_after` [s] (or none yet): the run stopped."""
+        with self._lock:
+            return self._utime is None or self._now() - self._received >= self._idle_after
 
     def __call__(self) -> float:
         with self._lock:

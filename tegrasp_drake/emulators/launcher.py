@@ -221,9 +221,10 @@ class Emulators:
         if clock is not None:
             self._feed_controller_clock(clock)
             threading.Thread(target=self._start_trial_on_first_command,
-                             args=(emulator, clock), daemon=True).start()
+                             args=(emulator, clock, sync == "follow"),
+                             daemon=True).start()
         when = {"none": "now", "start": "from the arm's first command",
-                "follow": "on the arm commands' clock"}[sync]
+                "follow": "on the arm commands' clock (from its beginning for each run)"}[sync]
         self._out(f"myrio: tactile stream (1 kHz frames) on {emulator.port}, replaying "
                   f"{trial_path} ({recording.duration:.2f} s) {when}, then holding its last "
                   "values")
@@ -261,8 +262,21 @@ class Emulators:
         follow_jaco_commands(self.lcm_url, clock, self.stop, boundary)
         self._boundaries.append(boundary)
 
-    def _start_trial_on_first_command(self, emulator, clock):
+    def _start_trial_on_first_command(self, emulator, clock, follow: bool):
+        """Starts the replay at the arm's first command; following the arm commands' clock,
+        says when a run's commands stop (the stream holds) and when the next run's begin
+        (its replay starts from the beginning)."""
         while not clock.started.wait(0.2):
             if self.stop.is_set():
                 return
         emulator.start_trial()
+        run, idle = clock.run, False
+        while follow and not self.stop.wait(0.2):
+            if clock.run != run:
+                run, idle = clock.run, False
+                self._out("myrio: a new run's arm commands: replaying the trial from its "
+                          "beginning")
+            elif clock.idle() and not idle:
+                idle = True
+                self._out("myrio: the arm commands stopped: streaming on, holding the "
+                          "replay's values until the next run's commands")

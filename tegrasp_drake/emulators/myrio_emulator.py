@@ -2,10 +2,13 @@
 
 It replays a TactileRecording: frame k carries the film's acceleration at its time (through
 the inverse calibration) and, when a finger's AD7147 completes a sequence, its 12 counts.
-Frames follow the stream's own clock or a given `trial_clock`; with a `gripper_request` the
-replay holds at each recorded grip or release until the emulated gripper is commanded alike
-(docs/hardware.md, "The commands"). Faults are drawn per frame from a seeded generator; a
-full pty buffer drops frames (counted) and never blocks."""
+Frames follow the stream's own clock or a given `trial_clock`; a ControllerClock gone idle
+(the arm commands stopped) leaves the stream at the real rate holding the replay's last
+sample, as a myRIO streams whatever the arm does, and its next run restarts the replay from
+the beginning. With a `gripper_request` the replay holds at each recorded grip or release
+until the emulated gripper is commanded alike (docs/hardware.md, "The commands"). Faults are
+drawn per frame from a seeded generator; a full pty buffer drops frames (counted) and never
+blocks."""
 
 import collections
 import dataclasses
@@ -270,6 +273,7 @@ class MyRioEmulatorCounters:
     faulted_frames: int = 0   # frames sent with at least one injected fault
     tx_overruns: int = 0   # frames not written because the pty buffer was full
     held_frames: int = 0   # frames that held the replay until the gripper followed
+    restarts: int = 0   # replays restarted from the beginning by a new run's arm commands
     injected: dict = dataclasses.field(default_factory=lambda: collections.Counter())
 
 
@@ -359,7 +363,10 @@ class MyRioEmulator:
         trial_start = None if self._config.start_on_trigger else self._source.lead_in_frames
         changes = self._source.gripper_changes if self._gripper_request is not None else []
         next_change = 0  # the first of `changes` the gripper has not followed yet
-        held = 0  # frames by which the trial runs behind the stream, waiting for the gripper
+        held = 0  # frames by which the trial runs behind the stream (gripper, idle clock)
+        offset = 0  # frames streamed while the clock was idle: the clock's pacing shifts on
+        run = getattr(self._trial_clock, "run", 0)  # the controller run the replay follows
+        last_write = start
         k = 0
         while not self._stop.is_set():
             if trial_start is None and self._trigger.is_set():
@@ -374,14 +381,29 @@ class MyRioEmulator:
                         and k - held >= trial_start + self._source.trial_frames):
                     break
             if self._trial_clock is not None and trial_start is not None:
+                if getattr(self._trial_clock, "run", 0) != run:
+                    # A new run's commands: its replay starts from the beginning, now.
+                    run, trial_start, held, offset, next_change = (
+                        self._trial_clock.run, k, 0, 0, 0)
+                    with self._lock:
+                        self._trial_start_time = time.monotonic()
+                        self._counters.restarts += 1
+                idle = getattr(self._trial_clock, "idle", None)
                 # Paced by the clock: trial sample n goes out once the clock reached it.
-                due = trial_start + int(self._trial_clock() / period + 1e-9)
-                if k > due:
+                due = trial_start + offset + int(self._trial_clock() / period + 1e-9)
+                if k > due and idle is not None and idle():
+                    # The arm commands stopped: stream on at the real rate, holding the
+                    # sample the replay reached (the frames shift the clock's pacing on).
+                    delay = last_write + period - time.monotonic()
+                    if delay > 0:
+                        time.sleep(delay)
+                    held, offset = held + 1, offset + 1
+                elif k > due:
                     time.sleep(period / 4)
                     continue
                 if not self._talking.is_set():
                     self._talking.wait(0.05)
-                    k = trial_start + int(self._trial_clock() / period)  # not sent
+                    k = trial_start + offset + int(self._trial_clock() / period)  # not sent
                     continue
             else:
                 delay = start + k * period - time.monotonic()
@@ -411,6 +433,7 @@ class MyRioEmulator:
                 written = os.write(self._master, data)
             except BlockingIOError:
                 written = 0
+            last_write = time.monotonic()
             with self._lock:
                 self._counters.held_frames += holding
                 if written:

@@ -8,6 +8,7 @@
 
 import dataclasses
 import os
+import stat
 import sys
 import tempfile
 import typing
@@ -192,6 +193,25 @@ def shared_lcm_url_problem(url: str) -> str | None:
     return lcm_url_problem(url)
 
 
+def same_serial_line(a: str, b: str) -> bool:
+    """Whether two configured ports are one line: the same name, the same file after symlinks,
+    or the same character device (st_rdev, e.g. /dev/serial/by-id/... and /dev/ttyUSB0).
+    pyserial URLs (`loop://`, `socket://...`) compare by name only."""
+    if a == b:
+        return True
+    if "://" in a or "://" in b:
+        return False
+    if os.path.realpath(a) == os.path.realpath(b):
+        return True
+    try:
+        first, second = os.stat(a), os.stat(b)
+    except OSError:  # a port not there yet is opened (and named) when the devices start
+        return False
+    return ((first.st_dev, first.st_ino) == (second.st_dev, second.st_ino)
+            or (stat.S_ISCHR(first.st_mode) and stat.S_ISCHR(second.st_mode)
+                and first.st_rdev == second.st_rdev))
+
+
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
     """Checks what the schema cannot (ranges, LCM URL, calibration); ConfigError names the field."""
@@ -204,6 +224,12 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     if problem:
         origin = lcm_url_origin(config.arm.lcm_url, f"field '{prefix}arm.lcm_url'")
         raise ConfigError(f"{source}: {origin} {problem}, got {config.arm.lcm_url!r}")
+    tactile, gripper = config.tactile.port, config.gripper.port
+    if same_serial_line(tactile, gripper):
+        raise ConfigError(
+            f"{source}: fields '{prefix}tactile.port' ({tactile!r}) and '{prefix}gripper.port' "
+            f"({gripper!r}) are one serial line; each device needs its own (the myRIO's "
+            "reader would take the gripper's answers): set one of them to its device's port")
     if config.tactile.calibration_file:  # read now, not when the devices start
         from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
         try:

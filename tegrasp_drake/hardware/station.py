@@ -26,7 +26,8 @@ from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError, RobotiqModbusClient
 from tegrasp_drake.hardware.myrio.tactile_calibration import (LoadTactileCalibration,
                                                               TactileCalibration)
-from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
+from tegrasp_drake.hardware.myrio.serial_reader import (
+    TactileSerialReader, no_valid_frame_problem)
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin,
@@ -235,7 +236,8 @@ class HardwareStation(Diagram):
             if time.monotonic() > deadline:
                 raise HardwareNotReadyError(
                     f"tactile: no valid frame on {self._tactile_reader.port} within "
-                    f"{timeout:g} s ({self._tactile_reader.counters()})")
+                    f"{timeout:g} s: "
+                    f"{no_valid_frame_problem(self._tactile_reader.counters())}")
             time.sleep(0.005)
         if not self._tactile_receiver.zero_before_start(deadline):
             raise HardwareNotReadyError(

@@ -27,6 +27,24 @@ class TactileReaderCounters:
     last_error: str = ""
 
 
+def no_valid_frame_problem(counters: TactileReaderCounters) -> str:
+    """What the reader counted when no valid frame arrived, and what to check, in words."""
+    decoder = counters.decoder
+    if counters.bytes_read == 0:
+        problem = ("not one byte arrived; is the myRIO (or `tegrasp emulate myrio` or `all`) "
+                   "streaming on that port?")
+    else:
+        problem = (f"{counters.bytes_read} bytes arrived but none made a valid myRIO frame "
+                   f"({decoder.bad_crc} with a bad CRC, {decoder.corrupt_header} with an "
+                   f"unknown header, {decoder.truncated} cut short, {decoder.skipped_bytes} "
+                   "bytes outside any frame); is this another device's port (the gripper's?), "
+                   "or is tactile.baudrate not the myRIO's?")
+    if counters.serial_errors:
+        problem += (f" The port reported {counters.serial_errors} read errors (the last: "
+                    f"{counters.last_error}).")
+    return problem
+
+
 class TactileSerialReader:
     """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
     `port`: a device path or pyserial URL; a context manager. Bursts are batched for
