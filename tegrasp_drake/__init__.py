@@ -84,7 +84,7 @@ _PUBLIC = {
     # Runs: a simulated trial, the ideal grasp, a run on the devices, a sweep.
     "run_trial": "tegrasp_drake.runs.trial",
     "run_trial_from_spec": "tegrasp_drake.sweep.trial_function",
-    "TrialResult": "tegrasp_drake.runs.trial_result",
+    "TrialResult": "tegrasp_drake.scenario.trial_result",
     "run_ideal_grasp": "tegrasp_drake.runs.ideal_grasp",
     "TrialLog": "tegrasp_drake.scenario.trial_log_file",
     "load_trial_log": "tegrasp_drake.scenario.trial_log_file",

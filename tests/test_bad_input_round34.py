@@ -56,7 +56,7 @@ def test_a_scaled_time_base_ends_apart_from_the_others_without_a_scenario(tmp_pa
 def _result_refused(data, expected):
     """TrialResult's JSON form `data` is refused (result.json, a sweep record, a trial log's
     stored result all read it so) with one line naming `expected`."""
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     with pytest.raises(ValueError) as refused:
         TrialResult.from_dict(data)
     message = str(refused.value)
@@ -86,7 +86,7 @@ def test_success_flags_contradicting_the_result_are_refused(data, expected):
 
 def test_a_result_held_then_failed_is_read():
     """Hold, then a drop while placing: 8 committed records end so (held, final Failed)."""
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     result = TrialResult.from_dict({"hold_success": True, "final_mode": "Failed",
                                     "hold_time_s": 3.2})
     assert result.hold_success and not result.unload_success
@@ -115,7 +115,7 @@ def test_correlation_scores_outside_minus_one_to_one_are_refused(controller):
 
 
 def test_the_heuristic_detectors_ratios_are_read():
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     transitions = [_event(1.0, "Reach", "Load", [5.2, 4.35, 0.5, 0.1])]
     result = TrialResult.from_dict({"hold_success": False, "controller": "heuristic",
                                     "final_mode": "Load", "transitions": transitions})
@@ -193,7 +193,7 @@ def test_a_log_without_phase_starts_is_refused(tmp_path):
 
 def test_a_correlation_one_round_off_past_one_is_read():
     """The streaming matcher's running window energy can put a true 1 a few ulps past it."""
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     transitions = [_event(1.0, "Reach", "Load", [1.0 + 1e-12, 1.0, -1.0 - 1e-12, 0.5])]
     result = TrialResult.from_dict({"hold_success": False, "controller": "memorized",
                                     "final_mode": "Load", "transitions": transitions})

@@ -193,7 +193,7 @@ def test_record_result_refuses_what_is_not_a_trial_record():
 def test_public_dataclasses_check_scalar_field_types_at_construction():
     import numpy as np
     from tegrasp_drake.rig.objects import ObjectConfig
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     with pytest.raises(TypeError, match="TrialResult: field 'hold_success' must be bool, got str"):
         TrialResult(hold_success="yes")
     with pytest.raises(TypeError, match="ObjectConfig: field 'mass' must be"):

@@ -10,7 +10,7 @@ from matplotlib.lines import Line2D
 from tegrasp_drake.control.controller_registry import controller_label
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.rig.typed_yaml import ConfigError
-from tegrasp_drake.runs.trial_result import TrialResult
+from tegrasp_drake.scenario.trial_result import TrialResult
 
 STATE_COLORS = {"Reach": "#d9e8f5", "Re-Reach": "#f7d6d0", "Load": "#dcefd9",
                 "Lift": "#fff2cc", "Hold": "#e8e0f0", "Avoid": "#f4c7c3", "Place": "#d0ece7",

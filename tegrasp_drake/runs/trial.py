@@ -15,7 +15,7 @@ from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
                                                   MakeSimulator, simulated_duration_range)
-from tegrasp_drake.runs.trial_result import HOLD_REQUIRED_S, TrialResult
+from tegrasp_drake.scenario.trial_result import HOLD_REQUIRED_S, TrialResult
 from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
                                               grip_fraction_at, judge_grasp,
                                               table_touch_time)

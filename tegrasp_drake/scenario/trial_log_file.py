@@ -334,7 +334,7 @@ def _result_problem(meta: dict, transitions: list, scenario) -> str | None:
     object (`scenario`, the log's Scenario, when it stores one), its transitions the log's
     timeline ('transitions', [] when absent: one timeline, checked by _timeline_problem)."""
     from tegrasp_drake.control.grasp_modes import Transition
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     data = meta.get("result")
     if data is None:
         return None
@@ -375,7 +375,7 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
     META_FIELDS as it says, its result that of the log (_result_problem), its times within the
     log's span, phase starts (required with a result) agreeing with the timeline
     (_phase_starts_problem), `phase` indexing the phase names."""
-    from tegrasp_drake.runs.trial_result import transition_scores_problem
+    from tegrasp_drake.scenario.trial_result import transition_scores_problem
     from tegrasp_drake.control.grasp_modes import Mode, Transition
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):

@@ -197,7 +197,7 @@ def result_problem(result) -> str | None:
     """Why `result` is not a TrialResult's JSON form (from_dict: its fields' ranges and the
     relations between them), or None when it is: a record is checked whole when it is read,
     so that a result no trial could have produced runs again instead of reaching a report."""
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     if not isinstance(result, dict):
         return f"not a trial result's JSON form (a mapping), got {shorten(repr(result))}"
     try:
@@ -249,7 +249,7 @@ def remove_temporary_files(out_dir) -> list[Path]:
 def record_result(record: dict):
     """The TrialResult of a record's "result" (its JSON form), None for a record without
     one (an error); ValueError naming the record's file and the field for one that is not."""
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     if not isinstance(record, dict) or "result" not in record:
         keys = shorten(", ".join(map(str, record))) if isinstance(record, dict) else type(
             record).__name__

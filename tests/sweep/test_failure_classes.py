@@ -5,7 +5,7 @@ from tegrasp_drake.control.controller_registry import rule_codes, rule_tables
 from tegrasp_drake.control.corrective_actions import Counters
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.transition_logic import Observation, next_mode
-from tegrasp_drake.runs.trial_result import TrialResult
+from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASS_AFTER_LIFT_LOAD,
                                                  FAILURE_CLASS_OF_RULE, FAILURE_CLASSES,
                                                  failure_class, failure_class_counts,

@@ -7,7 +7,7 @@ import pytest
 
 from tegrasp_drake.scenario.scenario import LoadScenario, validate
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
-from tegrasp_drake.runs.trial_result import TrialResult
+from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec
 from tegrasp_drake.rig.typed_yaml import ConfigError
 

@@ -7,7 +7,7 @@ import pytest
 
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.rig.typed_yaml import ConfigError
-from tegrasp_drake.runs.trial_result import TrialResult
+from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.runner import check_result
 
 RECORD = (pathlib.Path(__file__).resolve().parents[2] / "analysis" / "results_linkage"
