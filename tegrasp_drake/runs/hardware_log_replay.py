@@ -146,8 +146,8 @@ class RunLogReplay:
 def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
     """Reads a run's log and re-runs the matcher on it both ways, with the events of
-    `object_name` (default the run's) from `events_dir` (default the run's folder, the user's,
-    then the package's). RunLogError, MemorizedEventError or ValueError naming what is wrong."""
+    `object_name` (default the run's) from `events_dir` (default the run's folder, which must
+    still be there, else the user's, then the package's). RunLogError, MemorizedEventError or ValueError naming what is wrong."""
     log = read_run_log(path)
     logger.info(f"replay: read {path}: " + ", ".join(
         f"{channel} {count}" for channel, count in sorted(log.message_counts.items())))
@@ -159,7 +159,14 @@ def replay_run_log(path, *, object_name: str | None = None,
                           "not known: give --object")
     if not object_name:
         raise RunLogError(f"run log '{path}' has no {RUN_INFO_CHANNEL}: give --object")
-    if not events_dir and info and info.events_dir and pathlib.Path(info.events_dir).is_dir():
+    if not events_dir and info and info.events_dir:
+        # the events the run used; gone, another folder's would be a different replay, so
+        # it is refused as a missing --events DIR is (docs/user-guide.md, "events")
+        if not pathlib.Path(info.events_dir).is_dir():
+            raise RunLogError(
+                f"run log '{path}': the run's events folder '{info.events_dir}' (its "
+                f"{RUN_INFO_CHANNEL} events_dir) is not a folder here: give --events DIR, "
+                "the folder holding the object's events, to replay with those")
         events_dir = info.events_dir
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
     events_dir = str(folder)

@@ -1,0 +1,70 @@
+"""A hardware run's LCM log whose TEGRASP_RUN_INFO contradicts itself or the run, read by
+`tegrasp replay`: refused or named as damage, never trusted in silence."""
+
+import lcm
+import numpy as np
+
+from tegrasp_drake.events import save_memorized_events
+from tegrasp_drake.events.synthetic import synthetic_grasp
+from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL, TACTILE_CHANNEL
+from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info
+from tegrasp_drake.scenario.scenario import Scenario, scenario_to_yaml
+from tests.runs.test_hardware_log_reader import EVENTS, GRASP, tactile_message
+from tests.test_bad_input import run_cli
+
+START_US = 1_796_070_992_580_719  # a hardware log's first receive time (lcm-logger's clock)
+
+
+def _run_info(**fields):
+    """A run's TEGRASP_RUN_INFO as run_info_message writes it (the box scenario), with
+    `fields` changed."""
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name, info.versions_json = "memorized", "box", "{}"
+    info.scenario_yaml = scenario_to_yaml(Scenario())
+    for name, value in fields.items():
+        setattr(info, name, value)
+    return info
+
+
+def _run_log(path, infos=(), tactile=lambda k, message: message):
+    """A run's log from the synthetic grasp at 1 kHz, written with lcm.EventLog: the
+    TEGRASP_RUN_INFO messages `infos` (the first before the tactile messages, the others
+    after the 500th), then the tactile messages, tactile(k, message) of message k."""
+    trial = synthetic_grasp(GRASP)
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    infos = list(infos) or [_run_info()]
+    log.write_event(START_US, RUN_INFO_CHANNEL, infos[0].encode())
+    for k, t in enumerate(trial.t_ra):
+        sa = trial.sa[min(np.searchsorted(trial.t_sa, t, side="right") - 1, len(trial.sa) - 1)]
+        receive_us = START_US + 1000 * (k + 1)
+        log.write_event(receive_us, TACTILE_CHANNEL,
+                        tactile(k, tactile_message(t, sa, trial.ra[k])).encode())
+        if k == 500:
+            for info in infos[1:]:
+                log.write_event(receive_us, RUN_INFO_CHANNEL, info.encode())
+    log.close()
+    return path
+
+
+def _replay(argv, capfd):
+    code, text = run_cli(["replay", *argv], capfd)
+    assert "Traceback" not in text
+    return code, text
+
+
+# Rule: the run's events folder (TEGRASP_RUN_INFO events_dir) is the events the run used; a
+# folder that is gone is refused as a missing --events DIR is, never swapped for the
+# package's events in silence.
+def test_the_runs_events_folder_gone_is_refused_naming_it(tmp_path, capfd):
+    gone = tmp_path / "events-of-the-run"
+    path = _run_log(tmp_path / "run.lcmlog", [_run_info(events_dir=str(gone))])
+    code, text = _replay([str(path)], capfd)
+    assert code == 1, text
+    lines = text.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tegrasp: error:"), text
+    assert str(gone) in text and "--events DIR" in text, text
+    # given --events, the log replays
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 0, text
+
