@@ -8,6 +8,7 @@ from tegrasp_drake.events import save_memorized_events
 from tegrasp_drake.events.synthetic import synthetic_grasp
 from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL, TACTILE_CHANNEL
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info
+from tegrasp_drake.runs.hardware_log_reader import read_run_log
 from tegrasp_drake.scenario.scenario import Scenario, scenario_to_yaml
 from tests.runs.test_hardware_log_reader import EVENTS, GRASP, tactile_message
 from tests.test_bad_input import run_cli
@@ -67,4 +68,29 @@ def test_the_runs_events_folder_gone_is_refused_naming_it(tmp_path, capfd):
     save_memorized_events(tmp_path / "events", EVENTS.values())
     code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
     assert code == 0, text
+
+
+# Rule: run_info_message writes object_name from its scenario's object, once per run; a log
+# whose TEGRASP_RUN_INFO contradicts itself, or that holds two that differ, is damaged.
+def test_run_info_object_differing_from_its_scenario_is_damage(tmp_path, capfd):
+    path = _run_log(tmp_path / "run.lcmlog", [_run_info(object_name="thin_cylinder")])
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert "thin_cylinder" in damage[0] and "'box'" in damage[0], damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())  # the box's only
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3, text
+    assert "object box" in text and "thin_cylinder" in text, text
+
+
+def test_two_run_infos_that_differ_are_damage(tmp_path, capfd):
+    path = _run_log(tmp_path / "run.lcmlog",
+                    [_run_info(), _run_info(object_name="thin_cylinder",
+                                            scenario_yaml="")])
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert f"2 {RUN_INFO_CHANNEL}" in damage[0] and "object_name" in damage[0], damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3 and "object box" in text, text
 

@@ -23,6 +23,8 @@ from tegrasp_drake.hardware.device_log_messages import (
 from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL,
                                                 JACO_STATUS_CHANNEL)
 from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.scenario.scenario import scenario_from_yaml
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
                                     lcmt_tegrasp_transition)
@@ -62,6 +64,16 @@ class RunLog:
         return (f"{self.path}: damaged log: read {sum(self.message_counts.values())} "
                 f"messages; " + "; ".join(self.damage)
                 + ". The replay uses the messages that were read.")
+
+    @property
+    def object_name(self) -> str | None:
+        """The run's object: its scenario's (run_info_message writes object_name from it;
+        run_info_damage says when the two differ), else the logged object_name; None
+        without a TEGRASP_RUN_INFO."""
+        scenario = logged_scenario(self.run_info)
+        if scenario is not None:
+            return scenario.object.name
+        return self.run_info.object_name if self.run_info is not None else None
 
     def tactile_trial(self) -> TactileTrial:
         """The SA and RA channels the controller computed from the logged tactile ports,
@@ -302,6 +314,42 @@ def check_run_info(info: lcmt_tegrasp_run_info, path) -> None:
                                 f"{shorten(repr(info.versions_json))}")
 
 
+def logged_scenario(info: lcmt_tegrasp_run_info | None):
+    """The Scenario of a run's TEGRASP_RUN_INFO, or None when it holds none or one that is
+    not a scenario (the replay refuses that one where it reads it, naming the field)."""
+    if info is None or not info.scenario_yaml:
+        return None
+    try:
+        return scenario_from_yaml(info.scenario_yaml)
+    except ConfigError:
+        return None
+
+
+def run_info_damage(messages: list) -> list[str]:
+    """What is wrong with a log's TEGRASP_RUN_INFO messages (in log order), in words: the
+    first one's object_name not its own scenario's object (run_info_message writes it from
+    the scenario), and later ones that differ from the first (a run publishes one: two
+    logs joined, or corrupt bytes). The replay uses the first, and its scenario's object."""
+    first, damage = messages[0], []
+    scenario = logged_scenario(first)
+    if scenario is not None and scenario.object.name != first.object_name:
+        damage.append(
+            f"its {RUN_INFO_CHANNEL} names the object {shorten(repr(first.object_name))} "
+            f"while its own scenario's object is {shorten(repr(scenario.object.name))} (a "
+            "run logs its scenario's: corrupt bytes or an edited log); the scenario's is used")
+    fields = [field for field in first.__slots__ if field != "utime"]
+    differing = [message for message in messages[1:]
+                 if any(getattr(message, f) != getattr(first, f) for f in fields)]
+    if differing:
+        names = sorted({f for message in differing for f in fields
+                        if getattr(message, f) != getattr(first, f)})
+        damage.append(
+            f"{len(messages)} {RUN_INFO_CHANNEL} messages, {len(differing)} differing from the "
+            f"first in {', '.join(names)} (a run publishes one: two logs joined, or corrupt "
+            "bytes); the first is used")
+    return damage
+
+
 def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
     holds no event; a damaged log is read as far as it can be (`RunLog.damage`)."""
@@ -352,6 +400,7 @@ def read_run_log(path) -> RunLog:
     run_info = info[0][1] if info else None
     if run_info is not None:
         check_run_info(run_info, path)
+        damage += run_info_damage([message for _, message in info])
     return RunLog(
         path=path, run_info=run_info, tactile=tactile,
         transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,

@@ -152,7 +152,7 @@ def replay_run_log(path, *, object_name: str | None = None,
     logger.info(f"replay: read {path}: " + ", ".join(
         f"{channel} {count}" for channel, count in sorted(log.message_counts.items())))
     info = log.run_info
-    object_name = object_name or (info.object_name if info else None)
+    object_name = object_name or log.object_name
     if not object_name and log.message_counts.get(RUN_INFO_CHANNEL):  # there, undecodable
         raise RunLogError(f"run log '{path}': its {RUN_INFO_CHANNEL} message is corrupt (it "
                           "does not decode as lcmt_tegrasp_run_info), so the run's object is "
