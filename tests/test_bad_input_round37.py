@@ -1,6 +1,8 @@
 """A hardware run's LCM log whose TEGRASP_RUN_INFO contradicts itself or the run, read by
 `tegrasp replay`: refused or named as damage, never trusted in silence."""
 
+import struct
+
 import lcm
 import numpy as np
 
@@ -93,4 +95,22 @@ def test_two_run_infos_that_differ_are_damage(tmp_path, capfd):
     save_memorized_events(tmp_path / "events", EVENTS.values())
     code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
     assert code == 3 and "object box" in text, text
+
+
+# Rule: lcm-logger numbers its events 0, 1, 2, ...; numbers that do not go up (two logs
+# spliced, corrupt bytes) are damage even where no message is lost.
+def test_event_numbers_that_do_not_increase_are_damage(tmp_path):
+    path = _run_log(tmp_path / "run.lcmlog")
+    data = bytearray(path.read_bytes())
+    position = events = 0
+    while position < len(data):  # every event number set to 0
+        _, _, _, channel_length, data_length = struct.unpack_from(">IqqII", data, position)
+        struct.pack_into(">q", data, position + 4, 0)
+        position += 28 + channel_length + data_length
+        events += 1
+    path.write_bytes(bytes(data))
+    log = read_run_log(path)
+    assert sum(log.message_counts.values()) == events
+    assert len(log.damage) == 1, log.damage
+    assert "event number" in log.damage[0] and str(events - 1) in log.damage[0], log.damage
 

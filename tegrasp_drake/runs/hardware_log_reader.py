@@ -187,13 +187,14 @@ def receive_time_damage(timestamps: list[int]) -> list[str]:
 
 def scan_lcm_log(path) -> tuple[list, list[str]]:
     """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
-    words: bytes that are no events (skipped to the next header), event numbers missing, an
-    event cut short at the end, receive times that cannot be one run's (receive_time_damage).
-    LCM's format: per event a big-endian header (sync 0xEDA1DA01, number, timestamp, channel
+    words: bytes that are no events (skipped to the next header), event numbers missing or
+    not following the one before, an event cut short at the end, receive times that cannot
+    be one run's (receive_time_damage). LCM's format: per event a big-endian header (sync 0xEDA1DA01, number, timestamp, channel
     and data lengths), channel, data."""
     data = read_bounded(path, MAX_RUN_LOG_BYTES)
     events = []
     corrupt_regions = corrupt_bytes = lost = 0
+    renumbered = []  # file positions of events whose numbers do not follow the one before
     truncated = None
     position, expected_number = 0, None
     while position < len(data):
@@ -224,6 +225,7 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
                 0 < number - expected_number < MAX_EVENT_GAP
                 and _next_event_number(data, end) in (None, number + 1)):
             number = expected_number  # a damaged event number: count it as the next one
+            renumbered.append(position)
         if expected_number is not None:
             lost += number - expected_number
         expected_number = number + 1
@@ -236,6 +238,11 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
         damage.append(f"{corrupt_bytes} corrupt bytes in {corrupt_regions} place(s) skipped")
     if lost:
         damage.append(f"{lost} message(s) lost (gaps in the event numbers)")
+    if renumbered:
+        damage.append(
+            f"{len(renumbered)} event number(s) do not follow the one before (the first at "
+            f"byte {renumbered[0]}; lcm-logger numbers its events 0, 1, 2, ...: logs spliced "
+            "together, or corrupt bytes); the messages are kept")
     if truncated:
         damage.append(f"truncated: {truncated}; what followed is lost")
     damage += receive_time_damage([timestamp for timestamp, _, _ in events])
