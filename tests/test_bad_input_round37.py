@@ -114,3 +114,17 @@ def test_event_numbers_that_do_not_increase_are_damage(tmp_path):
     assert len(log.damage) == 1, log.damage
     assert "event number" in log.damage[0] and str(events - 1) in log.damage[0], log.damage
 
+
+# Rule: a taxel force outside what the taxel model can read (taxel_reading_range) is an
+# impossible value, as 1e30 m/s^2 is.
+def test_taxel_forces_no_taxel_reads_are_damage(tmp_path):
+    def negative(k, message):
+        if k % 3 == 2:
+            message.left_taxel_forces = [-50.0] * 12
+        return message
+    path = _run_log(tmp_path / "run.lcmlog", tactile=negative)
+    log = read_run_log(path)
+    logged = log.message_counts[TACTILE_CHANNEL]
+    assert len(log.damage) == 1, log.damage
+    assert f"{logged // 3} message(s) on {TACTILE_CHANNEL}" in log.damage[0], log.damage
+    assert len(log.tactile["t"]) == logged - logged // 3

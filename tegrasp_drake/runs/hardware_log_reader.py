@@ -23,8 +23,11 @@ from tegrasp_drake.hardware.device_log_messages import (
 from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL,
                                                 JACO_STATUS_CHANNEL)
 from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import scenario_from_yaml
+from tegrasp_drake.scenario.trial_log_file import _widest_configs
+from tegrasp_drake.simulation.tactile_pads import taxel_reading_range
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
                                     lcmt_tegrasp_transition)
@@ -249,7 +252,7 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
     return events, damage
 
 
-MAX_TACTILE_VALUE = 1e6  # [N], [m/s^2]: no taxel or film reads this much
+MAX_TACTILE_VALUE = 1e6  # [m/s^2]: no film reads this much (taxels: taxel_force_range)
 TIME_NEIGHBOURS = 5  # messages on each side whose median time a message's is compared with
 MAX_TIME_OUTLIER_S = 1.0
 
@@ -274,19 +277,39 @@ def _in_time_order(messages: list) -> tuple[list, int]:
     return kept, len(messages) - len(kept)
 
 
-def _plausible_tactile(messages: list) -> tuple[list, int]:
+def taxel_force_range(scenario) -> tuple[float, float]:
+    """The lowest and highest taxel force [N] a run's TEGRASP_TACTILE can hold: what the
+    taxel model of `scenario` (a Scenario, the run's) reads, taxel_reading_range, as the
+    trial-log reader bounds a simulated trial's taxels; for None, the widest of any
+    scenario's. The messages carry newtons whatever the model's output (the tactile receiver
+    calibrates the counts), so a capacitive model is taken at its calibrated output."""
+    def in_newtons(config):
+        return dataclasses.replace(config, capacitive=dataclasses.replace(
+            config.capacitive, output="calibrated"))
+    configs = [scenario.tactile] if scenario is not None else _widest_configs()[0]
+    ranges = [taxel_reading_range(in_newtons(config)) for config in configs]
+    return min(low for low, _ in ranges), max(high for _, high in ranges)
+
+
+def _plausible_tactile(messages: list, taxel_range: tuple[float, float]) -> tuple[list, int]:
     """The (wall time, lcmt_tegrasp_tactile) messages whose values can be real, and how many
     were not. LCM logs carry no checksum, so a flipped byte shows only as an impossible value:
-    not finite, beyond MAX_TACTILE_VALUE, not 12 taxels, a time more than MAX_TIME_OUTLIER_S
-    from its neighbours' median (1 ms ticks) or before the previous message's."""
+    not finite, a taxel force outside `taxel_range` [N] (taxel_force_range), an acceleration
+    beyond MAX_TACTILE_VALUE, not 12 taxels, a time more than MAX_TIME_OUTLIER_S from its
+    neighbours' median (1 ms ticks) or before the previous message's."""
+    low, high = taxel_range
     values_ok = []
     for _, message in messages:
-        values = np.array([*message.left_taxel_forces, *message.right_taxel_forces,
-                           *message.left_pad_acceleration, *message.right_pad_acceleration])
+        forces = np.array([*message.left_taxel_forces, *message.right_taxel_forces])
+        accelerations = np.array([*message.left_pad_acceleration,
+                                  *message.right_pad_acceleration])
         values_ok.append(len(message.left_taxel_forces) == TAXELS_PER_PAD
                          and len(message.right_taxel_forces) == TAXELS_PER_PAD
-                         and bool(np.all(np.isfinite(values)))
-                         and float(np.max(np.abs(values), initial=0.0)) <= MAX_TACTILE_VALUE)
+                         and bool(np.all(np.isfinite(forces)))
+                         and bool(np.all(np.isfinite(accelerations)))
+                         and bool(np.all((forces >= low) & (forces <= high)))
+                         and float(np.max(np.abs(accelerations), initial=0.0))
+                         <= MAX_TACTILE_VALUE)
     times = np.array([message.utime * 1e-6 for _, message in messages])
     kept, last = [], -np.inf
     for k, (wall, message) in enumerate(messages):
@@ -389,11 +412,6 @@ def read_run_log(path) -> RunLog:
             decoded[channel].append((timestamp, message))
     damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
                " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
-    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL])
-    if implausible:
-        damage.append(f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values "
-                      "(not finite, beyond 1e6, or time going back: corrupt bytes); skipped")
-    decoded[TACTILE_CHANNEL] = tactile_messages
     for channel in (TRANSITION_CHANNEL, FAULT_CHANNEL, GRIPPER_CHANNEL, JACO_COMMAND_CHANNEL,
                     JACO_STATUS_CHANNEL, RUN_INFO_CHANNEL):
         decoded[channel], backwards = _in_time_order(decoded[channel])
@@ -401,13 +419,24 @@ def read_run_log(path) -> RunLog:
             damage.append(f"{backwards} message(s) on {channel} repeat or are earlier "
                           "than the one before (a log joined to itself, or corrupt bytes); "
                           "skipped")
-    tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
-    tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     info = decoded[RUN_INFO_CHANNEL]
     run_info = info[0][1] if info else None
     if run_info is not None:
         check_run_info(run_info, path)
         damage += run_info_damage([message for _, message in info])
+    scenario = logged_scenario(run_info)
+    taxel_range = taxel_force_range(scenario)
+    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL], taxel_range)
+    if implausible:
+        whose = "its scenario's" if scenario is not None else "any scenario's"
+        damage.append(
+            f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values (not "
+            f"finite, taxel forces outside {number_text(taxel_range[0])} to "
+            f"{number_text(taxel_range[1])} N, what {whose} taxels can read, accelerations "
+            "beyond 1e6 m/s^2, or time going back: corrupt bytes); skipped")
+    decoded[TACTILE_CHANNEL] = tactile_messages
+    tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
+    tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     return RunLog(
         path=path, run_info=run_info, tactile=tactile,
         transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
