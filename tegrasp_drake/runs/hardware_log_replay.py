@@ -147,7 +147,8 @@ def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
     """Reads a run's log and re-runs the matcher on it both ways, with the events of
     `object_name` (default the run's) from `events_dir` (default the run's folder, which must
-    still be there, else the user's, then the package's). RunLogError, MemorizedEventError or ValueError naming what is wrong."""
+    still be there, else the user's, then the package's). RunLogError, MemorizedEventError
+    or ValueError naming what is wrong."""
     log = read_run_log(path)
     logger.info(f"replay: read {path}: " + ", ".join(
         f"{channel} {count}" for channel, count in sorted(log.message_counts.items())))
