@@ -97,22 +97,38 @@ def test_two_run_infos_that_differ_are_damage(tmp_path, capfd):
     assert code == 3 and "object box" in text, text
 
 
+def _renumbered(path, number):
+    """The log at `path` with event k's number set to number(k)."""
+    data = bytearray(path.read_bytes())
+    position = k = 0
+    while position < len(data):
+        _, _, _, channel_length, data_length = struct.unpack_from(">IqqII", data, position)
+        struct.pack_into(">q", data, position + 4, number(k))
+        position += 28 + channel_length + data_length
+        k += 1
+    path.write_bytes(bytes(data))
+    return k
+
+
 # Rule: lcm-logger numbers its events 0, 1, 2, ...; numbers that do not go up (two logs
 # spliced, corrupt bytes) are damage even where no message is lost.
 def test_event_numbers_that_do_not_increase_are_damage(tmp_path):
     path = _run_log(tmp_path / "run.lcmlog")
-    data = bytearray(path.read_bytes())
-    position = events = 0
-    while position < len(data):  # every event number set to 0
-        _, _, _, channel_length, data_length = struct.unpack_from(">IqqII", data, position)
-        struct.pack_into(">q", data, position + 4, 0)
-        position += 28 + channel_length + data_length
-        events += 1
-    path.write_bytes(bytes(data))
+    events = _renumbered(path, lambda k: 0)
     log = read_run_log(path)
     assert sum(log.message_counts.values()) == events
     assert len(log.damage) == 1, log.damage
     assert "event number" in log.damage[0] and str(events - 1) in log.damage[0], log.damage
+
+
+def test_event_numbers_starting_again_are_one_place_of_damage(tmp_path):
+    # a log whose event numbers start again from 0 at its 2001st event (two logs spliced):
+    # one place, the numbers that follow it followed, nothing lost
+    path = _run_log(tmp_path / "run.lcmlog")
+    _renumbered(path, lambda k: k if k < 2000 else k - 2000)
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert damage[0].startswith("1 event number(s) do not follow"), damage
 
 
 # Rule: a taxel force outside what the taxel model can read (taxel_reading_range) is an

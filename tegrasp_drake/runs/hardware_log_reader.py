@@ -192,12 +192,12 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
     """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
     words: bytes that are no events (skipped to the next header), event numbers missing or
     not following the one before, an event cut short at the end, receive times that cannot
-    be one run's (receive_time_damage). LCM's format: per event a big-endian header (sync 0xEDA1DA01, number, timestamp, channel
-    and data lengths), channel, data."""
+    be one run's (receive_time_damage). LCM's format: per event a big-endian header (sync
+    0xEDA1DA01, number, timestamp, channel and data lengths), channel, data."""
     data = read_bounded(path, MAX_RUN_LOG_BYTES)
     events = []
     corrupt_regions = corrupt_bytes = lost = 0
-    renumbered = []  # file positions of events whose numbers do not follow the one before
+    renumbered = []  # file positions of events whose numbers go back or are damaged
     truncated = None
     position, expected_number = 0, None
     while position < len(data):
@@ -224,13 +224,16 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
             corrupt_bytes += stop - position
             position = stop
             continue
-        if expected_number is not None and number != expected_number and not (
-                0 < number - expected_number < MAX_EVENT_GAP
-                and _next_event_number(data, end) in (None, number + 1)):
-            number = expected_number  # a damaged event number: count it as the next one
-            renumbered.append(position)
-        if expected_number is not None:
-            lost += number - expected_number
+        if expected_number is not None and number != expected_number:
+            # the next event's number confirms this one's: a gap (messages lost) or a step
+            # back (logs spliced), followed; else a damaged number, counted as the next one
+            confirmed = _next_event_number(data, end) in (None, number + 1)
+            if confirmed and 0 < number - expected_number < MAX_EVENT_GAP:
+                lost += number - expected_number
+            else:
+                renumbered.append(position)
+                if not (confirmed and number < expected_number):
+                    number = expected_number
         expected_number = number + 1
         start = position + _EVENT_HEADER.size
         channel = data[start:start + channel_length].decode("ascii")
