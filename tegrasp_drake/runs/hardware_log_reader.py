@@ -59,6 +59,7 @@ class RunLog:
     arm_status: list        # (wall utime, lcmt_jaco_status)
     message_counts: dict    # channel -> messages (every channel in the file)
     damage: list = dataclasses.field(default_factory=list)  # what was lost, in words
+    scenario: object = None  # the run's Scenario (logged_scenario), None if not logged
 
     def damage_text(self) -> str:
         """One line: what was read and what was lost ("" for an intact log)."""
@@ -73,9 +74,8 @@ class RunLog:
         """The run's object: its scenario's (run_info_message writes object_name from it;
         run_info_damage says when the two differ), else the logged object_name; None
         without a TEGRASP_RUN_INFO."""
-        scenario = logged_scenario(self.run_info)
-        if scenario is not None:
-            return scenario.object.name
+        if self.scenario is not None:
+            return self.scenario.object.name
         return self.run_info.object_name if self.run_info is not None else None
 
     def tactile_trial(self) -> TactileTrial:
@@ -358,13 +358,12 @@ def logged_scenario(info: lcmt_tegrasp_run_info | None):
         return None
 
 
-def run_info_damage(messages: list) -> list[str]:
+def run_info_damage(messages: list, scenario) -> list[str]:
     """What is wrong with a log's TEGRASP_RUN_INFO messages (in log order), in words: the
-    first one's object_name not its own scenario's object (run_info_message writes it from
-    the scenario), and later ones that differ from the first (a run publishes one: two
+    first one's object_name not its own scenario's object (`scenario`, logged_scenario of
+    the first; run_info_message writes object_name from it), and later ones that differ from the first (a run publishes one: two
     logs joined, or corrupt bytes). The replay uses the first, and its scenario's object."""
     first, damage = messages[0], []
-    scenario = logged_scenario(first)
     if scenario is not None and scenario.object.name != first.object_name:
         damage.append(
             f"its {RUN_INFO_CHANNEL} names the object {shorten(repr(first.object_name))} "
@@ -424,10 +423,11 @@ def read_run_log(path) -> RunLog:
                           "skipped")
     info = decoded[RUN_INFO_CHANNEL]
     run_info = info[0][1] if info else None
+    scenario = None
     if run_info is not None:
         check_run_info(run_info, path)
-        damage += run_info_damage([message for _, message in info])
-    scenario = logged_scenario(run_info)
+        scenario = logged_scenario(run_info)
+        damage += run_info_damage([message for _, message in info], scenario)
     taxel_range = taxel_force_range(scenario)
     tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL], taxel_range)
     if implausible:
@@ -448,4 +448,4 @@ def read_run_log(path) -> RunLog:
         faults=[m for _, m in decoded[FAULT_CHANNEL]],
         gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
         arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],
-        message_counts=counts, damage=damage)
+        message_counts=counts, damage=damage, scenario=scenario)
