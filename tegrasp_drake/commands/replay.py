@@ -20,8 +20,9 @@ def register(subparsers) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("log", metavar="LOG")
     parser.add_argument("--events", default=None,
-                        help="memorized events folder (default: the one the run used, "
-                        "else the package's)")
+                        help="memorized events folder (default: the one the run used, which "
+                        "must still be there; for a log naming none, yours, then the "
+                        "package's)")
     parser.add_argument("--object", default=None,
                         help="whose memorized events (default: the run's object)")
     parser.add_argument("--json", action="store_true")

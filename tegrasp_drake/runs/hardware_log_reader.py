@@ -23,6 +23,11 @@ from tegrasp_drake.hardware.device_log_messages import (
 from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL,
                                                 JACO_STATUS_CHANNEL)
 from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.rig.number_text import number_text
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.scenario.scenario import scenario_from_yaml
+from tegrasp_drake.scenario.trial_log_file import _widest_configs
+from tegrasp_drake.simulation.tactile_pads import taxel_reading_range
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
                                     lcmt_tegrasp_transition)
@@ -54,6 +59,7 @@ class RunLog:
     arm_status: list        # (wall utime, lcmt_jaco_status)
     message_counts: dict    # channel -> messages (every channel in the file)
     damage: list = dataclasses.field(default_factory=list)  # what was lost, in words
+    scenario: object = None  # the run's Scenario (logged_scenario), None if not logged
 
     def damage_text(self) -> str:
         """One line: what was read and what was lost ("" for an intact log)."""
@@ -62,6 +68,15 @@ class RunLog:
         return (f"{self.path}: damaged log: read {sum(self.message_counts.values())} "
                 f"messages; " + "; ".join(self.damage)
                 + ". The replay uses the messages that were read.")
+
+    @property
+    def object_name(self) -> str | None:
+        """The run's object: its scenario's (run_info_message writes object_name from it;
+        run_info_damage says when the two differ), else the logged object_name; None
+        without a TEGRASP_RUN_INFO."""
+        if self.scenario is not None:
+            return self.scenario.object.name
+        return self.run_info.object_name if self.run_info is not None else None
 
     def tactile_trial(self) -> TactileTrial:
         """The SA and RA channels the controller computed from the logged tactile ports,
@@ -177,13 +192,14 @@ def receive_time_damage(timestamps: list[int]) -> list[str]:
 
 def scan_lcm_log(path) -> tuple[list, list[str]]:
     """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
-    words: bytes that are no events (skipped to the next header), event numbers missing, an
-    event cut short at the end, receive times that cannot be one run's (receive_time_damage).
-    LCM's format: per event a big-endian header (sync 0xEDA1DA01, number, timestamp, channel
-    and data lengths), channel, data."""
+    words: bytes that are no events (skipped to the next header), event numbers missing or
+    not following the one before, an event cut short at the end, receive times that cannot
+    be one run's (receive_time_damage). LCM's format: per event a big-endian header (sync
+    0xEDA1DA01, number, timestamp, channel and data lengths), channel, data."""
     data = read_bounded(path, MAX_RUN_LOG_BYTES)
     events = []
     corrupt_regions = corrupt_bytes = lost = 0
+    renumbered = []  # file positions of events whose numbers go back or are damaged
     truncated = None
     position, expected_number = 0, None
     while position < len(data):
@@ -210,12 +226,16 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
             corrupt_bytes += stop - position
             position = stop
             continue
-        if expected_number is not None and number != expected_number and not (
-                0 < number - expected_number < MAX_EVENT_GAP
-                and _next_event_number(data, end) in (None, number + 1)):
-            number = expected_number  # a damaged event number: count it as the next one
-        if expected_number is not None:
-            lost += number - expected_number
+        if expected_number is not None and number != expected_number:
+            # the next event's number confirms this one's: a gap (messages lost) or a step
+            # back (logs spliced), followed; else a damaged number, counted as the next one
+            confirmed = _next_event_number(data, end) in (None, number + 1)
+            if confirmed and 0 < number - expected_number < MAX_EVENT_GAP:
+                lost += number - expected_number
+            else:
+                renumbered.append(position)
+                if not (confirmed and number < expected_number):
+                    number = expected_number
         expected_number = number + 1
         start = position + _EVENT_HEADER.size
         channel = data[start:start + channel_length].decode("ascii")
@@ -226,13 +246,18 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
         damage.append(f"{corrupt_bytes} corrupt bytes in {corrupt_regions} place(s) skipped")
     if lost:
         damage.append(f"{lost} message(s) lost (gaps in the event numbers)")
+    if renumbered:
+        damage.append(
+            f"{len(renumbered)} event number(s) do not follow the one before (the first at "
+            f"byte {renumbered[0]}; lcm-logger numbers its events 0, 1, 2, ...: logs spliced "
+            "together, or corrupt bytes); the messages are kept")
     if truncated:
         damage.append(f"truncated: {truncated}; what followed is lost")
     damage += receive_time_damage([timestamp for timestamp, _, _ in events])
     return events, damage
 
 
-MAX_TACTILE_VALUE = 1e6  # [N], [m/s^2]: no taxel or film reads this much
+MAX_TACTILE_VALUE = 1e6  # [m/s^2]: no film reads this much (taxels: taxel_force_range)
 TIME_NEIGHBOURS = 5  # messages on each side whose median time a message's is compared with
 MAX_TIME_OUTLIER_S = 1.0
 
@@ -257,19 +282,39 @@ def _in_time_order(messages: list) -> tuple[list, int]:
     return kept, len(messages) - len(kept)
 
 
-def _plausible_tactile(messages: list) -> tuple[list, int]:
+def taxel_force_range(scenario) -> tuple[float, float]:
+    """The lowest and highest taxel force [N] a run's TEGRASP_TACTILE can hold: what the
+    taxel model of `scenario` (a Scenario, the run's) reads, taxel_reading_range, as the
+    trial-log reader bounds a simulated trial's taxels; for None, the widest of any
+    scenario's. The messages carry newtons whatever the model's output (the tactile receiver
+    calibrates the counts), so a capacitive model is taken at its calibrated output."""
+    def in_newtons(config):
+        return dataclasses.replace(config, capacitive=dataclasses.replace(
+            config.capacitive, output="calibrated"))
+    configs = [scenario.tactile] if scenario is not None else _widest_configs()[0]
+    ranges = [taxel_reading_range(in_newtons(config)) for config in configs]
+    return min(low for low, _ in ranges), max(high for _, high in ranges)
+
+
+def _plausible_tactile(messages: list, taxel_range: tuple[float, float]) -> tuple[list, int]:
     """The (wall time, lcmt_tegrasp_tactile) messages whose values can be real, and how many
     were not. LCM logs carry no checksum, so a flipped byte shows only as an impossible value:
-    not finite, beyond MAX_TACTILE_VALUE, not 12 taxels, a time more than MAX_TIME_OUTLIER_S
-    from its neighbours' median (1 ms ticks) or before the previous message's."""
+    not finite, a taxel force outside `taxel_range` [N] (taxel_force_range), an acceleration
+    beyond MAX_TACTILE_VALUE, not 12 taxels, a time more than MAX_TIME_OUTLIER_S from its
+    neighbours' median (1 ms ticks) or before the previous message's."""
+    low, high = taxel_range
     values_ok = []
     for _, message in messages:
-        values = np.array([*message.left_taxel_forces, *message.right_taxel_forces,
-                           *message.left_pad_acceleration, *message.right_pad_acceleration])
+        forces = np.array([*message.left_taxel_forces, *message.right_taxel_forces])
+        accelerations = np.array([*message.left_pad_acceleration,
+                                  *message.right_pad_acceleration])
         values_ok.append(len(message.left_taxel_forces) == TAXELS_PER_PAD
                          and len(message.right_taxel_forces) == TAXELS_PER_PAD
-                         and bool(np.all(np.isfinite(values)))
-                         and float(np.max(np.abs(values), initial=0.0)) <= MAX_TACTILE_VALUE)
+                         and bool(np.all(np.isfinite(forces)))
+                         and bool(np.all(np.isfinite(accelerations)))
+                         and bool(np.all((forces >= low) & (forces <= high)))
+                         and float(np.max(np.abs(accelerations), initial=0.0))
+                         <= MAX_TACTILE_VALUE)
     times = np.array([message.utime * 1e-6 for _, message in messages])
     kept, last = [], -np.inf
     for k, (wall, message) in enumerate(messages):
@@ -304,6 +349,41 @@ def check_run_info(info: lcmt_tegrasp_run_info, path) -> None:
                                 f"{shorten(repr(info.versions_json))}")
 
 
+def logged_scenario(info: lcmt_tegrasp_run_info | None):
+    """The Scenario of a run's TEGRASP_RUN_INFO, or None when it holds none or one that is
+    not a scenario (the replay refuses that one where it reads it, naming the field)."""
+    if info is None or not info.scenario_yaml:
+        return None
+    try:
+        return scenario_from_yaml(info.scenario_yaml)
+    except ConfigError:
+        return None
+
+
+def run_info_damage(messages: list, scenario) -> list[str]:
+    """What is wrong with a log's TEGRASP_RUN_INFO messages (in log order), in words: the
+    first one's object_name not its own scenario's object (`scenario`, logged_scenario of
+    the first; run_info_message writes object_name from it), and later ones that differ from the first (a run publishes one: two
+    logs joined, or corrupt bytes). The replay uses the first, and its scenario's object."""
+    first, damage = messages[0], []
+    if scenario is not None and scenario.object.name != first.object_name:
+        damage.append(
+            f"its {RUN_INFO_CHANNEL} names the object {shorten(repr(first.object_name))} "
+            f"while its own scenario's object is {shorten(repr(scenario.object.name))} (a "
+            "run logs its scenario's: corrupt bytes or an edited log); the scenario's is used")
+    fields = [field for field in first.__slots__ if field != "utime"]
+    differing = [message for message in messages[1:]
+                 if any(getattr(message, f) != getattr(first, f) for f in fields)]
+    if differing:
+        names = sorted({f for message in differing for f in fields
+                        if getattr(message, f) != getattr(first, f)})
+        damage.append(
+            f"{len(messages)} {RUN_INFO_CHANNEL} messages, {len(differing)} differing from the "
+            f"first in {', '.join(names)} (a run publishes one: two logs joined, or corrupt "
+            "bytes); the first is used")
+    return damage
+
+
 def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
     holds no event; a damaged log is read as far as it can be (`RunLog.damage`)."""
@@ -336,11 +416,6 @@ def read_run_log(path) -> RunLog:
             decoded[channel].append((timestamp, message))
     damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
                " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
-    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL])
-    if implausible:
-        damage.append(f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values "
-                      "(not finite, beyond 1e6, or time going back: corrupt bytes); skipped")
-    decoded[TACTILE_CHANNEL] = tactile_messages
     for channel in (TRANSITION_CHANNEL, FAULT_CHANNEL, GRIPPER_CHANNEL, JACO_COMMAND_CHANNEL,
                     JACO_STATUS_CHANNEL, RUN_INFO_CHANNEL):
         decoded[channel], backwards = _in_time_order(decoded[channel])
@@ -348,12 +423,25 @@ def read_run_log(path) -> RunLog:
             damage.append(f"{backwards} message(s) on {channel} repeat or are earlier "
                           "than the one before (a log joined to itself, or corrupt bytes); "
                           "skipped")
-    tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
-    tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     info = decoded[RUN_INFO_CHANNEL]
     run_info = info[0][1] if info else None
+    scenario = None
     if run_info is not None:
         check_run_info(run_info, path)
+        scenario = logged_scenario(run_info)
+        damage += run_info_damage([message for _, message in info], scenario)
+    taxel_range = taxel_force_range(scenario)
+    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL], taxel_range)
+    if implausible:
+        whose = "its scenario's" if scenario is not None else "any scenario's"
+        damage.append(
+            f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values (not "
+            f"finite, taxel forces outside {number_text(taxel_range[0])} to "
+            f"{number_text(taxel_range[1])} N, what {whose} taxels can read, accelerations "
+            "beyond 1e6 m/s^2, or time going back: corrupt bytes); skipped")
+    decoded[TACTILE_CHANNEL] = tactile_messages
+    tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
+    tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
     return RunLog(
         path=path, run_info=run_info, tactile=tactile,
         transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
@@ -362,4 +450,4 @@ def read_run_log(path) -> RunLog:
         faults=[m for _, m in decoded[FAULT_CHANNEL]],
         gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
         arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],
-        message_counts=counts, damage=damage)
+        message_counts=counts, damage=damage, scenario=scenario)

@@ -146,20 +146,28 @@ class RunLogReplay:
 def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
     """Reads a run's log and re-runs the matcher on it both ways, with the events of
-    `object_name` (default the run's) from `events_dir` (default the run's folder, the user's,
-    then the package's). RunLogError, MemorizedEventError or ValueError naming what is wrong."""
+    `object_name` (default the run's) from `events_dir` (default the run's folder, which must
+    still be there, else the user's, then the package's). RunLogError, MemorizedEventError
+    or ValueError naming what is wrong."""
     log = read_run_log(path)
     logger.info(f"replay: read {path}: " + ", ".join(
         f"{channel} {count}" for channel, count in sorted(log.message_counts.items())))
     info = log.run_info
-    object_name = object_name or (info.object_name if info else None)
+    object_name = object_name or log.object_name
     if not object_name and log.message_counts.get(RUN_INFO_CHANNEL):  # there, undecodable
         raise RunLogError(f"run log '{path}': its {RUN_INFO_CHANNEL} message is corrupt (it "
                           "does not decode as lcmt_tegrasp_run_info), so the run's object is "
                           "not known: give --object")
     if not object_name:
         raise RunLogError(f"run log '{path}' has no {RUN_INFO_CHANNEL}: give --object")
-    if not events_dir and info and info.events_dir and pathlib.Path(info.events_dir).is_dir():
+    if not events_dir and info and info.events_dir:
+        # the events the run used; gone, another folder's would be a different replay, so
+        # it is refused as a missing --events DIR is (docs/user-guide.md, "events")
+        if not pathlib.Path(info.events_dir).is_dir():
+            raise RunLogError(
+                f"run log '{path}': the run's events folder '{info.events_dir}' (its "
+                f"{RUN_INFO_CHANNEL} events_dir) is not a folder here: give --events DIR, "
+                "the folder holding the object's events, to replay with those")
         events_dir = info.events_dir
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
     events_dir = str(folder)
