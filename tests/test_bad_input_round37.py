@@ -1,10 +1,12 @@
 """A hardware run's LCM log whose TEGRASP_RUN_INFO contradicts itself or the run, read by
 `tegrasp replay`: refused or named as damage, never trusted in silence."""
 
+import re
 import struct
 
 import lcm
 import numpy as np
+import pytest
 
 from tegrasp_drake.events import save_memorized_events
 from tegrasp_drake.events.synthetic import synthetic_grasp
@@ -144,3 +146,33 @@ def test_taxel_forces_no_taxel_reads_are_damage(tmp_path):
     assert len(log.damage) == 1, log.damage
     assert f"{logged // 3} message(s) on {TACTILE_CHANNEL}" in log.damage[0], log.damage
     assert len(log.tactile["t"]) == logged - logged // 3
+
+
+# Rule: on the devices a taxel's force is its calibrated count, which may read past what the
+# scenario's simulated model reads (678 N at the defaults) for a pad calibrated with a larger
+# gain: such a run log is no damage, up to the largest gain a calibration file may give.
+def test_a_calibrated_force_past_the_models_range_is_no_damage(tmp_path):
+    def pressed_hard(k, message):
+        if k == 700:
+            message.left_taxel_forces = [900.0] * 12  # 0.03 N/count x 30,000 counts
+        return message
+    log = read_run_log(_run_log(tmp_path / "run.lcmlog", tactile=pressed_hard))
+    assert log.damage == [], log.damage
+
+
+# Rule: a tactile calibration file's gains, offsets and piezo offset lie in their declared
+# ranges, each pad's lists 12 long, named in one line.
+@pytest.mark.parametrize("body, field", [
+    ("left: {gain: [-1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, "
+     "1.0e-3, 1.0e-3, 1.0e-3]}", "left.gain[0]"),
+    ("left: {gain: [1.0e-3]}", "left.gain"),
+    ("right: {offset: [70000, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]}", "right.offset[0]"),
+    ("left: {piezo_offset: 50.0}", "left.piezo_offset"),
+])
+def test_a_tactile_calibration_out_of_its_ranges_is_refused(tmp_path, body, field):
+    from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    path = tmp_path / "calibration.yaml"
+    path.write_text(body + "\n")
+    with pytest.raises(ConfigError, match=f"field '{re.escape(field)}'"):
+        LoadTactileCalibration(str(path))

@@ -20,6 +20,8 @@ from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
     tactile_arrays)
+from tegrasp_drake.hardware.myrio.tactile_calibration import (COUNT_MAX,
+                                                              MAX_TAXEL_GAIN_N_PER_COUNT)
 from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL,
                                                 JACO_STATUS_CHANNEL)
 from tegrasp_drake.events.extraction import TactileTrial
@@ -293,6 +295,9 @@ def taxel_force_range(scenario) -> tuple[float, float]:
             config.capacitive, output="calibrated"))
     configs = [scenario.tactile] if scenario is not None else _widest_configs()[0]
     ranges = [taxel_reading_range(in_newtons(config)) for config in configs]
+    # On the devices the myRIO's counts are calibrated, not modelled: 0 (negative forces
+    # clip) to the largest gain a calibration file may give times the AD7147's full count.
+    ranges.append((0.0, MAX_TAXEL_GAIN_N_PER_COUNT * COUNT_MAX))
     return min(low for low, _ in ranges), max(high for _, high in ranges)
 
 
@@ -433,7 +438,7 @@ def read_run_log(path) -> RunLog:
     taxel_range = taxel_force_range(scenario)
     tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL], taxel_range)
     if implausible:
-        whose = "its scenario's" if scenario is not None else "any scenario's"
+        whose = ("its scenario's" if scenario is not None else "any scenario's") + " or a pad's"
         damage.append(
             f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values (not "
             f"finite, taxel forces outside {number_text(taxel_range[0])} to "

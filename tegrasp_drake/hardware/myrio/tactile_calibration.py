@@ -13,21 +13,35 @@ import numpy as np
 from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.hardware.myrio.tactile_frame import PIEZO_VOLTS_PER_COUNT
 
 COUNT_MAX = 65535
 PIEZO_COUNT_LIMIT = 32767
 
 
+# The most force one AD7147 count may stand for [N/count]: at 0.1 N/count the counts above a
+# mid-range offset (about 35,000) span 3,500 N, 15 times the 2F-85's whole grip (235 N, its
+# manual) on one taxel; a larger gain is a unit slip (newtons per kilocount, or per volt).
+MAX_TAXEL_GAIN_N_PER_COUNT = 0.1
+# The myRIO's piezo input: +-10 V (PIEZO_VOLTS_PER_COUNT over the signed 16-bit count).
+PIEZO_INPUT_V = PIEZO_VOLTS_PER_COUNT * (PIEZO_COUNT_LIMIT + 1)
+
+
 @dataclasses.dataclass
 class PadCalibration:
     """One finger's pad."""
-    gain: list[float] = dataclasses.field(
-        default_factory=lambda: [1e-3] * TAXELS_PER_PAD)  # [N/count] placeholder; bench-calibrate
-    offset: list[float] = dataclasses.field(
-        default_factory=lambda: [30000.0] * TAXELS_PER_PAD)  # [counts] mid-range; zeroed at start
+    gain: list[float] = bounded(  # [N/count] placeholder; bench-calibrate
+        default_factory=lambda: [1e-3] * TAXELS_PER_PAD, low=0.0, low_open=True,
+        high=MAX_TAXEL_GAIN_N_PER_COUNT, unit="N/count", length=TAXELS_PER_PAD,
+        why="a press reads as a push; 0.1 N/count spans 15 times the 2F-85's grip on one "
+            "taxel, so more is a unit slip")
+    offset: list[float] = bounded(  # [counts] mid-range; zeroed at start
+        default_factory=lambda: [30000.0] * TAXELS_PER_PAD, low=0.0, high=COUNT_MAX,
+        unit="counts", length=TAXELS_PER_PAD, why="the AD7147's 16-bit conversion result")
     piezo_gain: float = 253.0   # [(m/s^2)/V], 1 / S of the simulated film (docs/model.md)
-    piezo_offset: float = 0.0   # [V]
+    piezo_offset: float = bounded(0.0, low=-PIEZO_INPUT_V, high=PIEZO_INPUT_V, unit="V",
+                                  why="the myRIO's piezo input range")
 
 
 @dataclasses.dataclass
@@ -56,7 +70,9 @@ def LoadTactileCalibration(filename: str) -> TactileCalibration:
                           "fields (left, right, zero_samples, piezo_volts_per_count), got "
                           f"a {type(data).__name__}")
     data.pop("_tag", None)
-    return load_typed(data, TactileCalibration, str(filename))
+    calibration = load_typed(data, TactileCalibration, str(filename))
+    check_ranges(calibration, str(filename))
+    return calibration
 
 
 def SaveTactileCalibration(calibration: TactileCalibration, filename: str):
