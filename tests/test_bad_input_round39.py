@@ -20,3 +20,12 @@ def test_a_hardware_config_with_an_unknown_scheduling_is_refused_by_the_builder(
         else:
             config = HardwareStationConfig(scheduling="rr")
         MakeHardwareStation(config)
+
+
+# Rule: a timeline entry leaves one mode for another (no rule's `then` keeps its mode).
+def test_a_transition_that_keeps_its_mode_is_refused():
+    from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+    with pytest.raises(ConfigError, match="Transition: field 'to_mode' must differ from "
+                                          "'from_mode'"):
+        Transition(t=1.0, from_mode=Mode.LOAD, to_mode=Mode.LOAD, trigger=Trigger.TIMER,
+                   reason="x")
