@@ -9,7 +9,7 @@ from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import (SEED_RANGE, bounded, check_ranges, declared_field,
                                       shorten)
-from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.rig.typed_yaml import ConfigError, check_instance
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
@@ -65,10 +65,12 @@ class TrialResult:
     log: typing.Any = dataclasses.field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
-        """ConfigError naming the first field out of its range (the transitions' own
-        included), the first transition earlier than the one before it, or the first
-        relation between fields that run_trial guarantees and this result breaks."""
+        """ConfigError naming the first field not of its type or out of its range (the
+        transitions' own included), the first transition earlier than the one before it,
+        or the first relation between fields that run_trial guarantees and this result
+        breaks. The types first: the relations read the fields' values."""
         name = type(self).__name__
+        check_instance(self, name)
         check_ranges(self, name)
         for k in range(1, len(self.transitions)):
             earlier, later = self.transitions[k - 1].t, self.transitions[k].t
