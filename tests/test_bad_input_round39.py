@@ -29,3 +29,31 @@ def test_a_transition_that_keeps_its_mode_is_refused():
                                           "'from_mode'"):
         Transition(t=1.0, from_mode=Mode.LOAD, to_mode=Mode.LOAD, trigger=Trigger.TIMER,
                    reason="x")
+
+
+# Rule: without sim_time_s, a time of a result is still bounded by the longest run a trial
+# can last (the longest grasp script plus the time for corrections).
+@pytest.mark.parametrize("field, value", [
+    ("detection_latency_s", {"reach_load": 1e300}),
+    ("detection_latency_s", {"reach_load": -1e300}),
+    ("physical_events", {"hit": 1e300}),
+])
+def test_a_result_time_longer_than_any_run_is_refused_without_sim_time(field, value):
+    from tegrasp_drake.runs.trial_result import TrialResult
+    key = next(iter(value))
+    with pytest.raises(ConfigError, match=f"TrialResult: field '{field}.{key}' must be .*"
+                                          "the longest run a trial can last"):
+        TrialResult(**{field: value})
+
+
+def test_a_result_time_within_the_longest_run_is_accepted_without_sim_time():
+    from tegrasp_drake.runs.trial_result import TrialResult
+    result = TrialResult(detection_latency_s={"reach_load": 0.2}, physical_events={"hit": 9.0})
+    assert result.detection_latency_s == {"reach_load": 0.2}
+
+
+def test_a_simulated_time_longer_than_any_run_is_refused():
+    from tegrasp_drake.runs.trial_result import TrialResult
+    with pytest.raises(ConfigError, match="TrialResult: field 'sim_time_s' must be at most .*"
+                                          "the longest run a trial can last"):
+        TrialResult(sim_time_s=1e300, detection_latency_s={"reach_load": 1e299})
