@@ -39,7 +39,7 @@ def test_a_transition_that_keeps_its_mode_is_refused():
     ("physical_events", {"hit": 1e300}),
 ])
 def test_a_result_time_longer_than_any_run_is_refused_without_sim_time(field, value):
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     key = next(iter(value))
     with pytest.raises(ConfigError, match=f"TrialResult: field '{field}.{key}' must be .*"
                                           "the longest run a trial can last"):
@@ -47,13 +47,21 @@ def test_a_result_time_longer_than_any_run_is_refused_without_sim_time(field, va
 
 
 def test_a_result_time_within_the_longest_run_is_accepted_without_sim_time():
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     result = TrialResult(detection_latency_s={"reach_load": 0.2}, physical_events={"hit": 9.0})
     assert result.detection_latency_s == {"reach_load": 0.2}
 
 
 def test_a_simulated_time_longer_than_any_run_is_refused():
-    from tegrasp_drake.runs.trial_result import TrialResult
+    from tegrasp_drake.scenario.trial_result import TrialResult
     with pytest.raises(ConfigError, match="TrialResult: field 'sim_time_s' must be at most .*"
                                           "the longest run a trial can last"):
         TrialResult(sim_time_s=1e300, detection_latency_s={"reach_load": 1e299})
+
+
+# Rule: a result's fields are checked for their types before the relations that read them
+# (a mapping where a Transition belongs, with sim_time_s set, was an AttributeError).
+def test_a_result_with_a_mapping_for_a_transition_names_the_field():
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    with pytest.raises(ConfigError, match=r"TrialResult: field 'transitions\[0\]'"):
+        TrialResult(transitions=({"t": 1.0},), sim_time_s=10.0)
