@@ -148,7 +148,7 @@ def test_a_bad_object_model_file_is_named(content, expected, tmp_path, capfd):
      "field 'arm.lcm_url' cannot be opened by LCM"),
     ("arm: {lcm_url: garbage}\n", "field 'arm.lcm_url' is not an LCM bus URL"),
     ("watchdog: {arm_timeout: 0.05\n", "not valid YAML"),
-    ("scheduling: deadline\n", "field 'scheduling' must be one of fifo, nice, normal"),
+    ("scheduling: deadline\n", "field 'scheduling' must be one of 'fifo', 'nice', 'normal'"),
 ])
 def test_a_bad_hardware_config_is_named_before_any_device_is_opened(text, expected, tmp_path,
                                                                      capfd):

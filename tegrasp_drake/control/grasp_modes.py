@@ -115,7 +115,16 @@ class Transition:
     code: str | None = None  # the deciding rule's name (rule_engine.Rule.name)
 
     def __post_init__(self):
+        """ConfigError naming the first field out of its range, or a to_mode that is the
+        from_mode: an entry records a change of mode (no rule's `then` keeps its mode, and
+        the open-loop script logs a phase only when its mode changes)."""
         check_ranges(self, type(self).__name__)
+        if self.to_mode == self.from_mode:
+            from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
+            label = getattr(self.to_mode, "label", self.to_mode)
+            raise ConfigError(f"{type(self).__name__}: field 'to_mode' must differ from "
+                              f"'from_mode' (a transition changes the mode), got {label} to "
+                              f"{label}")
 
     def as_dict(self) -> dict:
         """The JSON form (trial results, logs): t, from, to (Mode.label), trigger, reason,

@@ -11,7 +11,7 @@ from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.ranges import bounded, check_ranges
+from tegrasp_drake.rig.ranges import bounded, check_ranges, field_range
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig.arm_kinematics import GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP
@@ -132,6 +132,14 @@ def sample_plan(segments: list[ScriptSegment], t: float):
 
 def plan_duration(segments: list[ScriptSegment]) -> float:
     return segments[-1].t_end
+
+
+def longest_script_s() -> float:
+    """The longest grasp script [s] its fields' ranges allow: each phase's duration field
+    (`settle_s`, ... `retract_s`, one per PHASES entry before "done") at its range's high
+    end. LoadScenario refuses a script over MAX_SCRIPT_S unless allow_long; a builder given
+    a scenario accepts one up to this."""
+    return sum(field_range(GraspScriptConfig, f"{phase}_s").high for phase in PHASES[:-1])
 
 
 class ScriptedGraspSource(LeafSystem):

@@ -15,13 +15,14 @@ import typing
 
 from pydrake.common.yaml import yaml_dump_typed
 
-from tegrasp_drake.rig.ranges import bounded, check_ranges
+from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
+from tegrasp_drake.rig.ranges import bounded, check_ranges, chosen
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          read_yaml_file, require, require_fields)
+                                          read_yaml_file, require_fields)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
@@ -103,7 +104,7 @@ class HardwareStationConfig:
     ready_timeout: float = bounded(10.0, low=0.0, low_open=True, high=600.0, unit="s",
                                    below="must be positive [s]")
     # "fifo", "nice" or "normal", each falling back to the next (hardware/realtime.py)
-    scheduling: str = "fifo"
+    scheduling: str = chosen("fifo", names=SCHEDULING_POLICIES)
     realtime_priority: int = bounded(10, low=1, high=99, why="SCHED_FIFO priorities, sched(7)")
 
 
@@ -214,12 +215,10 @@ def same_serial_line(a: str, b: str) -> bool:
 
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
-    """Checks what the schema cannot (ranges, LCM URL, calibration); ConfigError names the field."""
-    from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
+    """Checks what the schema cannot (ranges and choices, LCM URL, calibration); ConfigError
+    names the field."""
     prefix = f"{where}." if where else ""
     check_ranges(config, source, where)
-    require(config.scheduling in SCHEDULING_POLICIES, source, prefix + "scheduling",
-            f"must be one of {', '.join(SCHEDULING_POLICIES)}", config.scheduling)
     problem = lcm_url_problem(config.arm.lcm_url)
     if problem:
         origin = lcm_url_origin(config.arm.lcm_url, f"field '{prefix}arm.lcm_url'")

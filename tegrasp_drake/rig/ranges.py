@@ -1,7 +1,8 @@
 """Every numeric setting's unit and allowed range, declared once beside the field
-(`hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s", why=...)`). `check_ranges` walks a
-config where it is loaded and where a builder is handed one, and raises a one-line
-ConfigError for the first value outside its range."""
+(`hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s", why=...)`), and every text
+setting's allowed names (`chosen("fifo", names=(...))`). `check_ranges` walks a config where
+it is loaded and where a builder is handed one, and raises a one-line ConfigError for the
+first value outside its range or choice."""
 
 import collections.abc
 import dataclasses
@@ -101,6 +102,13 @@ def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
         _KEY: Range(low, high, unit, why, low_open, high_open, below, length)})
 
 
+def chosen(default, *, names: tuple[str, ...], why: str = ""):
+    """A text field whose value must be one of `names` (a Choice; `why` says whose they
+    are): checked by check_ranges with the numbers' Ranges, where a config is loaded and
+    where a builder is handed one."""
+    return dataclasses.field(default=default, metadata={_KEY: Choice(tuple(names), why)})
+
+
 def declared_field(cls: type, name: str) -> dataclasses.Field:
     """A new field with the default and Range of `cls`'s field `name` (declared once)."""
     field = next(f for f in dataclasses.fields(cls) if f.name == name)
@@ -133,7 +141,7 @@ def declared_ranges(cls: type) -> dict:
     return dict(_FOREIGN.get(cls, {}))
 
 
-def range_of(field: dataclasses.Field) -> Range | None:
+def range_of(field: dataclasses.Field) -> "Range | Choice | None":
     return field.metadata.get(_KEY)
 
 
@@ -171,7 +179,8 @@ def _values(value, path: str):
 
 def check_ranges(config, source: str, where: str = "") -> None:
     """ConfigError naming the first field of `config` (a dataclass instance, and everything
-    it holds) whose value is not a finite number inside its declared Range."""
+    it holds) whose value is not a finite number inside its declared Range, or not one of
+    its declared Choice's names."""
     if type(config) in _FOREIGN:
         _check_foreign(config, source, where)
         return

@@ -12,10 +12,11 @@ from pydrake.systems.framework import System
 from pydrake.geometry import Meshcat
 from pydrake.lcm import DrakeLcm
 
-from tegrasp_drake.control.controller_registry import controller_entry
+from tegrasp_drake.control.controller_registry import CONTROLLER_CLASSES, controller_entry
 from tegrasp_drake.control.grasp_controller import AddGraspController, GraspController
 from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Transition
-from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
+from tegrasp_drake.control.scripted_grasp import (longest_script_s, plan_duration,
+                                                  plan_scripted_grasp)
 from tegrasp_drake.scenario.scenario_events import load_controller_events, load_corrective_events
 from tegrasp_drake.scenario.trial_log_writer import TrialLoggers, AddTrialLogging
 from tegrasp_drake.hardware.config import HardwareStationConfig
@@ -125,6 +126,14 @@ def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
     diagram = builder.Build()
     diagram.set_name(f"grasp_{grasp.name}")
     return GraspDiagram(diagram, station, grasp, loggers, scenario_time_limit(scenario))
+
+
+def longest_run_s() -> float:
+    """The longest simulated run [s] a trial of any scenario can last: the longest grasp
+    script (longest_script_s) plus EXTRA_TIME_S and the largest controller extra_time_s,
+    the most scenario_time_limit gives; a trial's times (TrialResult) lie within it."""
+    return (longest_script_s() + EXTRA_TIME_S
+            + max(config.extra_time_s for config in CONTROLLER_CLASSES))
 
 
 def scenario_time_limit(scenario: Scenario) -> float:

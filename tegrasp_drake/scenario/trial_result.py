@@ -9,7 +9,7 @@ from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import (SEED_RANGE, bounded, check_ranges, declared_field,
                                       shorten)
-from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.rig.typed_yaml import ConfigError, check_instance
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
@@ -65,10 +65,12 @@ class TrialResult:
     log: typing.Any = dataclasses.field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
-        """ConfigError naming the first field out of its range (the transitions' own
-        included), the first transition earlier than the one before it, or the first
-        relation between fields that run_trial guarantees and this result breaks."""
+        """ConfigError naming the first field not of its type or out of its range (the
+        transitions' own included), the first transition earlier than the one before it,
+        or the first relation between fields that run_trial guarantees and this result
+        breaks. The types first: the relations read the fields' values."""
         name = type(self).__name__
+        check_instance(self, name)
         check_ranges(self, name)
         for k in range(1, len(self.transitions)):
             earlier, later = self.transitions[k - 1].t, self.transitions[k].t
@@ -85,7 +87,8 @@ class TrialResult:
         HOLD_REQUIRED_S; the controller's (_check_controller); the failure is one sentence;
         every time is within the simulated time (transitions, the physical events and the
         hold are taken during the run, so a latency, a transition's time minus its event's,
-        is within it either way)."""
+        is within it either way), and that within the longest run a trial can last
+        (grasp_diagram.longest_run_s), which also bounds the times when it is not set."""
         if self.unload_success and not self.hold_success:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
                               "false (a trial is judged unloaded only after it held)")
@@ -104,21 +107,32 @@ class TrialResult:
             raise ConfigError(f"{name}: field 'failure' must be at most {MAX_FAILURE_CHARS} "
                               f"characters (a controller's one-sentence reason), got "
                               f"{len(self.failure)}")
-        if self.sim_time_s is None:
-            return
-        sim = number_text(self.sim_time_s)
-        times = [(f"transitions[{k}].t", entry.t, f"at most sim_time_s = {sim} s")
+        from tegrasp_drake.scenario.grasp_diagram import longest_run_s  # Drake: on use
+        longest = longest_run_s()
+        longest_why = ("the longest run a trial can last: the longest grasp script plus the "
+                       "time for corrections")
+        if self.sim_time_s is not None and self.sim_time_s > longest:
+            raise ConfigError(f"{name}: field 'sim_time_s' must be at most "
+                              f"{number_text(longest)} s ({longest_why}), got "
+                              f"{number_text(self.sim_time_s)}")
+        if self.sim_time_s is None:  # not said: the longest run still bounds each time
+            limit, end, why = longest, number_text(longest), longest_why
+        else:
+            limit, why = self.sim_time_s, "within the simulated time"
+            end = f"sim_time_s = {number_text(self.sim_time_s)}"
+        times = [(f"transitions[{k}].t", entry.t, f"at most {end} s")
                  for k, entry in enumerate(self.transitions)]
-        times += [(f"physical_events.{key}", value, f"at most sim_time_s = {sim} s")
+        times += [(f"physical_events.{key}", value, f"at most {end} s")
                   for key, value in self.physical_events.items() if value is not None]
-        times += [(f"detection_latency_s.{key}", value, f"in [-{sim}, {sim}] s (either sign)")
+        span = number_text(limit)
+        times += [(f"detection_latency_s.{key}", value, f"in [-{span}, {span}] s (either sign)")
                   for key, value in self.detection_latency_s.items() if value is not None]
         if self.hold_time_s is not None:
-            times.append(("hold_time_s", self.hold_time_s, f"at most sim_time_s = {sim} s"))
+            times.append(("hold_time_s", self.hold_time_s, f"at most {end} s"))
         for field, value, within in times:
-            if abs(value) > self.sim_time_s:
-                raise ConfigError(f"{name}: field '{field}' must be {within} (within the "
-                                  f"simulated time), got {number_text(value)}")
+            if abs(value) > limit:
+                raise ConfigError(f"{name}: field '{field}' must be {within} ({why}), got "
+                                  f"{number_text(value)}")
 
     def _check_controller(self, name: str) -> None:
         """The relations with the controller that wrote the result: a registered name ("":
