@@ -73,14 +73,14 @@ def test_trial_log_timeline_is_checked_against_the_log(tmp_path, meta, expected)
 def test_a_timeline_of_more_transitions_than_a_controller_takes_is_refused_in_one_line(
         tmp_path, capfd):
     from tegrasp_drake.scenario.trial_log_file import most_transitions
-    step = _SPAN_END_S / (3 * most_transitions())
+    step = _SPAN_END_S / (3 * most_transitions(_SPAN_END_S))
     modes = ["Hold", "Avoid"]
     timeline = [_transition(step * (k + 1), modes[k % 2], modes[(k + 1) % 2])
-                for k in range(most_transitions() + 1)]
+                for k in range(most_transitions(_SPAN_END_S) + 1)]
     path = _trial_log_with(tmp_path / "trial.npz", {"transitions": timeline})
     code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "o.png")], capfd)
     assert_one_line_error(code, text, f"meta 'transitions' holds {len(timeline)} entries",
-                          f"at most {most_transitions()}")
+                          f"at most {most_transitions(_SPAN_END_S)}")
     assert not (tmp_path / "o.png").exists()
 
 

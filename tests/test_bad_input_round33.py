@@ -46,3 +46,24 @@ def test_a_link_under_a_run_files_name_refuses_the_trial_and_stays(tmp_path, cap
     assert code == 1, text
     assert f"{name} is a symbolic link" in text and text.count("\n") == 0, text
     assert (folder / name).is_symlink() and precious.read_text() == "<svg/>"
+
+
+# Rule: a timeline's length is bounded by its own log's span and its controller's Avoid timing
+# (two transitions an Avoid cycle, at least a controller update apart), not by the default
+# timing over the longest run: a user's short Avoid timings over a long run fit, a 12 s log
+# cannot hold the 461 entries the longest default run could.
+def test_the_most_transitions_follow_the_logs_span_and_its_avoid_timing():
+    import dataclasses
+
+    from tegrasp_drake.control.controller_config import GraspControllerConfig
+    from tegrasp_drake.scenario.trial_log_file import most_transitions
+    quick = GraspControllerConfig()
+    quick = dataclasses.replace(quick, avoid=dataclasses.replace(
+        quick.avoid, hit_refractory_s=0.05, sense_s=0.01, move_s=0.04))
+    corrections_only = most_transitions(0.0)  # and one Avoid cycle begun at the end
+    assert most_transitions(12.0) - corrections_only == 2 * 12  # 0.93 s cycles
+    assert abs(most_transitions(85.0, quick) - corrections_only - 2 * 850) <= 2  # 0.1 s
+    assert most_transitions(12.0) < 461 < most_transitions(85.0, quick)
+    no_pause = dataclasses.replace(quick, avoid=dataclasses.replace(
+        quick.avoid, hit_refractory_s=0.0, sense_s=0.0, move_s=0.0))
+    assert abs(most_transitions(1.0, no_pause) - corrections_only - 2 * 100) <= 2  # 5 ms updates

@@ -190,34 +190,33 @@ META_FIELDS = {
 }
 
 
-def most_transitions() -> int:
-    """The most transitions a trial's timeline can hold. A pass through the state machine
-    enters each mode at most once: len(Mode) - 1 transitions (Reach to Done or Failed). Each
-    correction a controller counts (Re-Reach, Lift-Load, re-grasp) starts at most one more
-    such pass, and each is limited by its configuration's range (max_re_reaches,
-    max_lift_loads, max_regrasps: at most 10 each). Avoid is not counted: it is Hold -> Avoid
-    -> Hold, two transitions, each after hit_refractory_s of Hold, sense_s and move_s (0.93 s
-    at the defaults), so the longest run (a 60 s script, MAX_SCRIPT_S, plus EXTRA_TIME_S and
-    the largest controller extra_time_s: 85 s) fits at most 85 / 0.93 = 91 of them.
-    9 * (1 + 30) + 2 * 91 = 461; a 12 s grasp takes about 6."""
-    from tegrasp_drake.control.controller_config import (AvoidConfig, LiftLoadConfig,
+def most_transitions(span_s: float, controller=None) -> int:
+    """The most transitions a trial's timeline of `span_s` [s] can hold, its controller's
+    config `controller` (a GraspControllerConfig; None: the defaults). A pass through the state
+    machine enters each mode at most once: len(Mode) - 1 transitions (Reach to Done or
+    Failed). Each correction a controller counts (Re-Reach, Lift-Load, re-grasp) starts at
+    most one more such pass, and each is limited by its configuration's range
+    (max_re_reaches, max_lift_loads, max_regrasps: at most 10 each): 9 * (1 + 30) = 279.
+    Avoid is not counted but timed: Hold -> Avoid -> Hold, two transitions, after
+    hit_refractory_s of Hold, sense_s and move_s (0.93 s at the defaults), each transition at
+    least one controller update (update_period_s) after the one before; so at most two a
+    cycle over the span, plus one cycle begun at its end. A 12 s grasp takes about 6."""
+    from tegrasp_drake.control.controller_config import (GraspControllerConfig, LiftLoadConfig,
                                                          RegraspConfig, ReReachConfig,
                                                          TaxelAwareConfig)
-    from tegrasp_drake.control.controller_registry import CONTROLLER_CLASSES
     from tegrasp_drake.control.grasp_modes import Mode
     from tegrasp_drake.rig.ranges import field_range
-    from tegrasp_drake.scenario.grasp_diagram import EXTRA_TIME_S  # Drake: on use
-    from tegrasp_drake.scenario.scenario import MAX_SCRIPT_S
+    if not hasattr(controller, "avoid"):  # none given, or one that never Avoids (open loop)
+        controller = GraspControllerConfig()
     one_pass = len(Mode) - 1
     re_reaches = max(field_range(ReReachConfig, "max_re_reaches").high,
                      field_range(TaxelAwareConfig, "max_re_reaches").high)
     corrections = (re_reaches + field_range(LiftLoadConfig, "max_lift_loads").high
                    + field_range(RegraspConfig, "max_regrasps").high)
-    avoid = AvoidConfig()
-    avoid_s = avoid.hit_refractory_s + avoid.sense_s + avoid.move_s
-    longest_run_s = (MAX_SCRIPT_S + EXTRA_TIME_S
-                     + max(config.extra_time_s for config in CONTROLLER_CLASSES))
-    return int(one_pass * (1 + corrections) + 2 * math.floor(longest_run_s / avoid_s))
+    avoid = controller.avoid
+    cycle_s = max(avoid.hit_refractory_s + avoid.sense_s + avoid.move_s,
+                  2 * controller.update_period_s)
+    return int(one_pass * (1 + corrections) + 2 * (math.floor(max(span_s, 0.0) / cycle_s) + 1))
 
 
 def _time_span(arrays: dict) -> tuple[float, float]:
@@ -380,10 +379,13 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
     transitions = meta.get("transitions", [])
     if not isinstance(transitions, list):
         return f"meta 'transitions' must be a list, got {type(transitions).__name__}"
-    limit = most_transitions()
+    span = _time_span(arrays)
+    limit = most_transitions(span[1] - span[0],
+                             scenario.controller if scenario is not None else None)
     if len(transitions) > limit:  # before reading each of a crafted many
-        return (f"meta 'transitions' holds {len(transitions)} entries; a trial's timeline holds "
-                f"at most {limit} (every correction a controller can make)")
+        return (f"meta 'transitions' holds {len(transitions)} entries; a trial's timeline of "
+                f"{number_text(span[1] - span[0])} s holds at most {limit} (every correction "
+                "a controller can make, and an Avoid and its return each Avoid cycle)")
     for k, entry in enumerate(transitions):
         try:
             if not isinstance(entry, dict) or not _is_time(entry.get("t")):
@@ -401,7 +403,6 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
                                             meta.get("controller")))
     if problem:
         return problem if problem.startswith("meta") else f"meta {problem}"
-    span = _time_span(arrays)
     problem = (_timeline_problem(transitions, span) or _times_problem(meta, span)
                or _phase_starts_problem(meta))
     if problem:
@@ -427,7 +428,7 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 # How far a time base's steps may differ from their median, relative to it. The loggers sample
 # at a fixed period (LogVectorOutput's publish period: trial_log_writer), so the steps differ
 # only by float64 rounding of the sample times: at most eps * t_end / period, 2e-11 for the
-# 1 ms RA period over the longest run (85 s, most_transitions); measured in eleven real logs
+# 1 ms RA period over the longest run (275 s, grasp_diagram.longest_run_s); measured in eleven real logs
 # (12 to 18.5 s, four controllers): at most 2.2e-12. 1e-6 is five orders above that and far below any missing or displaced sample (a step off by its whole size).
 STEP_TOLERANCE = 1e-6
 
