@@ -23,7 +23,8 @@ def scheduler_address():
     with dask.config.set({"distributed.comm.timeouts.connect": "600s",
                           "distributed.comm.timeouts.tcp": "600s"}), \
             distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                     dashboard_address=None) as cluster:
+                                     dashboard_address=":0") as cluster:  # any free port:
+        # None means Dask's default :8787, which another process on the host may hold
         yield cluster.scheduler_address
 
 
