@@ -13,9 +13,10 @@
 
 Canonical JSON: sorted keys, no spaces, ASCII, no NaN/Infinity. Written to a temporary file,
 fsync'ed, renamed into place, the folder fsync'ed: a crash leaves no record or a whole one.
-A record that fails to parse or to checksum, or whose result is not a TrialResult's JSON form
-(TrialResult.from_dict: its fields' ranges and the relations between them), is corrupt, and
-its trial runs again."""
+A record that fails to parse or to checksum, whose trial is not one a sweep makes
+(spec.trial_problem: TrialSpec's fields, their ranges and relations), or whose result is not a
+TrialResult's JSON form (TrialResult.from_dict: its fields' ranges and the relations between
+them), is corrupt, and its trial runs again."""
 
 import hashlib
 import json
@@ -28,6 +29,7 @@ from tegrasp_drake.rig.files import (JsonFileError, read_json_file, replace_prob
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.sweep.spec import trial_problem
 
 RECORD_FORMAT = "tegrasp-sweep-record"
 # Version 2 adds "events", what the trial matched against (make_record); a version-1 record
@@ -177,6 +179,9 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
     trial = record["trial"]
     if not isinstance(trial, dict) or trial.get("trial_id") != record["trial_id"]:
         return "its trial's trial_id is not the record's trial_id"
+    problem = trial_problem(trial)
+    if problem is not None:
+        return f"its 'trial' is not one a sweep makes: {problem}"
     if ok:
         problem = result_problem(record["result"])
         if problem is not None:
