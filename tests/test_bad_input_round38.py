@@ -83,3 +83,22 @@ def test_the_trials_a_sweep_makes_are_read():
     from tegrasp_drake.sweep.spec import expand_trials, trial_problem
     spec = SweepSpec(base_seed=620, attempts=2)  # the paper's objects, grid and controllers
     assert [t.trial_id for t in expand_trials(spec) if trial_problem(t.to_dict())] == []
+
+
+def _result(**fields):
+    return lambda record: record["result"].update(fields)
+
+
+# Rule: a record's result is where its trial put the object (the marker moved by the jitter).
+@pytest.mark.parametrize("edit, words", [
+    (_result(offset_m=[0.19, -0.19]), "offset_m"),
+    (_result(offset_m=[0.01, 0.0]), "offset_m"),  # the marker, without its jitter
+], ids=["offset-far", "offset-without-jitter"])
+def test_a_record_whose_result_is_not_its_trials_is_corrupt_and_runs_again(
+        tmp_path, edit, words):
+    path = _forge(tmp_path, MISPLACED, edit)
+    loaded = load_records(tmp_path)
+    assert words in loaded.corrupt[path], loaded.corrupt
+    summary = run_sweep(SPEC, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.corrupt) == (1, (str(path),))
+

@@ -144,6 +144,28 @@ def _fsync_folder(folder: Path) -> None:
 _RESULT_OF_TRIAL = (("seed", "seed"), ("controller", "controller"), ("object", "object_name"))
 
 
+# How far a result's offset may lie from its trial's marker + jitter [m]: the trial function
+# sets it to that sum (scenario_from_trial_spec) and JSON carries a float exactly, so only a
+# sum taken in another order differs, by ~1e-17 m; a nanometre is far below anything the
+# simulation resolves and far above that rounding.
+OFFSET_TOLERANCE_M = 1e-9
+
+
+def _offset_problem(result: dict, trial: dict) -> str | None:
+    """Why the result's offset_m (where it has one) is not where its trial put the object,
+    the marker moved by the jitter (x normal to the palm, y along the stroke), or None."""
+    if "offset_m" not in result:
+        return None
+    jitter = trial["perturbation"]
+    expected = [trial["marker_dx_m"] + jitter["dx_m"], trial["marker_dy_m"] + jitter["dy_m"]]
+    offset = result["offset_m"]
+    if len(offset) != 2 or any(abs(a - b) > OFFSET_TOLERANCE_M
+                               for a, b in zip(offset, expected)):
+        return (f"its result's offset_m {shorten(repr(offset))} m is not its trial's marker + "
+                f"jitter [{expected[0]!r}, {expected[1]!r}] m (where the trial puts the object)")
+    return None
+
+
 def check_record(record, expected_file_name: str | None = None) -> str | None:
     """Why `record` is not a valid record, or None when it is."""
     if not isinstance(record, dict):
@@ -191,6 +213,9 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
             if value != trial.get(trial_field):
                 return (f"its result's {field} {shorten(repr(value))} is not its trial's "
                         f"{trial_field} {shorten(repr(trial.get(trial_field)))}")
+        problem = _offset_problem(record["result"], trial)
+        if problem is not None:
+            return problem
     if expected_file_name is not None and (
             not isinstance(record["trial_id"], str)
             or record_file_name(record["trial_id"]) != expected_file_name):
