@@ -89,11 +89,18 @@ def _result(**fields):
     return lambda record: record["result"].update(fields)
 
 
-# Rule: a record's result is where its trial put the object (the marker moved by the jitter).
+def _events(**identity):
+    return lambda record: record.update(events=identity)
+
+
+# Rule: a record's result is where its trial put the object (the marker moved by the jitter),
+# and its events identity is a SHA-256 and a folder (or null), as a sweep writes it.
 @pytest.mark.parametrize("edit, words", [
     (_result(offset_m=[0.19, -0.19]), "offset_m"),
     (_result(offset_m=[0.01, 0.0]), "offset_m"),  # the marker, without its jitter
-], ids=["offset-far", "offset-without-jitter"])
+    (_events(folder="/etc", sha256="zz"), "events.sha256"),
+    (_events(folder="", sha256="0" * 64), "events.folder"),
+], ids=["offset-far", "offset-without-jitter", "events-digest", "events-folder-empty"])
 def test_a_record_whose_result_is_not_its_trials_is_corrupt_and_runs_again(
         tmp_path, edit, words):
     path = _forge(tmp_path, MISPLACED, edit)

@@ -21,6 +21,7 @@ them), is corrupt, and its trial runs again."""
 import hashlib
 import json
 import os
+import re
 from typing import Annotated
 from dataclasses import dataclass
 from pathlib import Path
@@ -166,6 +167,29 @@ def _offset_problem(result: dict, trial: dict) -> str | None:
     return None
 
 
+# An events identity's digest: SHA-256, 64 lowercase hex digits (hashlib's hexdigest).
+_SHA256_HEX = re.compile(r"[0-9a-f]{64}")
+
+
+def events_problem(events) -> str | None:
+    """Why `events` is not what a record says of the memorized events a trial matched
+    against (trial_function.events_identity: null, or {"folder": the folder asked for, absolute
+    (older records name it relative), or null; "sha256": the SHA-256 of their content}), or
+    None."""
+    if events is None:
+        return None
+    if not (isinstance(events, dict) and set(events) == {"folder", "sha256"}):
+        return "events is neither null nor {\"folder\", \"sha256\"}"
+    if not (isinstance(events["sha256"], str) and _SHA256_HEX.fullmatch(events["sha256"])):
+        return (f"events.sha256 must be a SHA-256 (64 lowercase hex digits), got "
+                f"{shorten(repr(events['sha256']))}")
+    folder = events["folder"]
+    if folder is not None and not (isinstance(folder, str) and folder):
+        return (f"events.folder must be null or a folder's path (the events folder the sweep "
+                f"was given; older records name it relative), got {shorten(repr(folder))}")
+    return None
+
+
 def check_record(record, expected_file_name: str | None = None) -> str | None:
     """Why `record` is not a valid record, or None when it is."""
     if not isinstance(record, dict):
@@ -179,12 +203,9 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
         return f"fields {sorted(record)} are not the record fields {sorted(fields)}"
     if record["format"] != RECORD_FORMAT:
         return f"format {record['format']!r} is not {RECORD_FORMAT!r}"
-    events = record.get("events")
-    if events is not None and not (
-            isinstance(events, dict) and set(events) == {"folder", "sha256"}
-            and isinstance(events["sha256"], str)
-            and isinstance(events["folder"], (str, type(None)))):
-        return "events is neither null nor {\"folder\", \"sha256\"}"
+    problem = events_problem(record.get("events"))
+    if problem is not None:
+        return problem
     content = {key: value for key, value in record.items() if key != "checksum"}
     try:
         checksum = _checksum(content)
