@@ -109,3 +109,17 @@ def test_a_record_whose_result_is_not_its_trials_is_corrupt_and_runs_again(
     summary = run_sweep(SPEC, fake_trial, tmp_path, workers=1, progress=False)
     assert (summary.ran, summary.corrupt) == (1, (str(path),))
 
+
+
+# Rule: a result's real-time factor is its simulated time over its wall time, as run_trial
+# writes it; a factor of 1e300 on a 8 s trial that took 2 s is refused.
+@pytest.mark.parametrize("data, words", [
+    ({"sim_time_s": 8.0, "wall_time_s": 2.0, "real_time_factor": 1e300}, "sim_time_s / wall"),
+    ({"sim_time_s": 8.0, "wall_time_s": 2.0, "real_time_factor": 0.0}, "sim_time_s / wall"),
+    ({"sim_time_s": 8.0, "wall_time_s": 0.0, "real_time_factor": 3.0}, "wall_time_s' is 0"),
+])
+def test_a_real_time_factor_not_simulated_over_wall_time_is_refused(data, words):
+    from tegrasp_drake.runs.trial_result import TrialResult
+    with pytest.raises(ValueError, match=words):
+        TrialResult.from_dict(data)
+
