@@ -123,3 +123,11 @@ def test_a_real_time_factor_not_simulated_over_wall_time_is_refused(data, words)
     with pytest.raises(ValueError, match=words):
         TrialResult.from_dict(data)
 
+
+
+# Rule: a sweep trial runs at most the longest scenario time limit (a grasp script within
+# its limit plus the time for corrections); a record of a longer run is corrupt.
+def test_a_record_of_a_run_longer_than_any_sweep_trial_is_corrupt(tmp_path):
+    path = _forge(tmp_path, MISPLACED, _result(sim_time_s=1e12))
+    loaded = load_records(tmp_path)
+    assert "sim_time_s" in loaded.corrupt[path], loaded.corrupt

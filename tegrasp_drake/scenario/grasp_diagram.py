@@ -135,6 +135,16 @@ def scenario_time_limit(scenario: Scenario) -> float:
             + scenario.controller.extra_time_s)
 
 
+def longest_time_limit() -> float:
+    """The longest scenario_time_limit [s of simulated time] of a scenario LoadScenario
+    accepts without allow_long (as a sweep's trials are loaded): a MAX_SCRIPT_S script plus
+    EXTRA_TIME_S and the largest controller's extra_time_s."""
+    from tegrasp_drake.control.controller_registry import CONTROLLER_CLASSES
+    from tegrasp_drake.scenario.scenario import MAX_SCRIPT_S
+    return (MAX_SCRIPT_S + EXTRA_TIME_S
+            + max(config.extra_time_s for config in CONTROLLER_CLASSES))
+
+
 def simulated_duration_range(scenario: Scenario) -> Range:
     """The simulated time [s] a caller may ask a run of `scenario` for (run_trial's max_time,
     run_ideal_grasp's duration): SIMULATED_DURATION up to scenario_time_limit, the time

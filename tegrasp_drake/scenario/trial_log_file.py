@@ -203,11 +203,9 @@ def most_transitions() -> int:
     from tegrasp_drake.control.controller_config import (AvoidConfig, LiftLoadConfig,
                                                          RegraspConfig, ReReachConfig,
                                                          TaxelAwareConfig)
-    from tegrasp_drake.control.controller_registry import CONTROLLER_CLASSES
     from tegrasp_drake.control.grasp_modes import Mode
     from tegrasp_drake.rig.ranges import field_range
-    from tegrasp_drake.scenario.grasp_diagram import EXTRA_TIME_S  # Drake: on use
-    from tegrasp_drake.scenario.scenario import MAX_SCRIPT_S
+    from tegrasp_drake.scenario.grasp_diagram import longest_time_limit  # Drake: on use
     one_pass = len(Mode) - 1
     re_reaches = max(field_range(ReReachConfig, "max_re_reaches").high,
                      field_range(TaxelAwareConfig, "max_re_reaches").high)
@@ -215,8 +213,7 @@ def most_transitions() -> int:
                    + field_range(RegraspConfig, "max_regrasps").high)
     avoid = AvoidConfig()
     avoid_s = avoid.hit_refractory_s + avoid.sense_s + avoid.move_s
-    longest_run_s = (MAX_SCRIPT_S + EXTRA_TIME_S
-                     + max(config.extra_time_s for config in CONTROLLER_CLASSES))
+    longest_run_s = longest_time_limit()
     return int(one_pass * (1 + corrections) + 2 * math.floor(longest_run_s / avoid_s))
 
 

@@ -167,6 +167,19 @@ def _offset_problem(result: dict, trial: dict) -> str | None:
     return None
 
 
+def _sim_time_problem(result: dict) -> str | None:
+    """Why the result's sim_time_s (where it has one) is longer than any sweep trial runs:
+    a sweep loads its scenarios without allow_long, so a run stops by longest_time_limit."""
+    from tegrasp_drake.scenario.grasp_diagram import longest_time_limit  # Drake: on use
+    sim_time = result.get("sim_time_s")
+    longest = longest_time_limit()
+    if sim_time is not None and sim_time > longest:
+        return (f"its result's sim_time_s {shorten(repr(sim_time))} s is longer than a sweep "
+                f"trial runs, at most {longest:g} s (the longest grasp script a scenario "
+                "allows plus the time for corrections)")
+    return None
+
+
 # An events identity's digest: SHA-256, 64 lowercase hex digits (hashlib's hexdigest).
 _SHA256_HEX = re.compile(r"[0-9a-f]{64}")
 
@@ -234,7 +247,7 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
             if value != trial.get(trial_field):
                 return (f"its result's {field} {shorten(repr(value))} is not its trial's "
                         f"{trial_field} {shorten(repr(trial.get(trial_field)))}")
-        problem = _offset_problem(record["result"], trial)
+        problem = _offset_problem(record["result"], trial) or _sim_time_problem(record["result"])
         if problem is not None:
             return problem
     if expected_file_name is not None and (
