@@ -128,12 +128,15 @@ def MakeGraspDiagram(scenario: Scenario, *, station: System | None = None,
     return GraspDiagram(diagram, station, grasp, loggers, scenario_time_limit(scenario))
 
 
-def longest_run_s() -> float:
-    """The longest simulated run [s] a trial of any scenario can last: the longest grasp
-    script (longest_script_s) plus EXTRA_TIME_S and the largest controller extra_time_s,
-    the most scenario_time_limit gives; a trial's times (TrialResult) lie within it."""
-    return (longest_script_s() + EXTRA_TIME_S
-            + max(config.extra_time_s for config in CONTROLLER_CLASSES))
+def longest_trial_s(allow_long: bool = True) -> float:
+    """The longest simulated run [s] a trial can last: the longest grasp script (with
+    `allow_long` the longest its phases' ranges allow, longest_script_s; without, as a sweep
+    loads its scenarios, MAX_SCRIPT_S) plus EXTRA_TIME_S and the largest controller
+    extra_time_s, the most scenario_time_limit gives; a trial's times (TrialResult) lie
+    within it."""
+    from tegrasp_drake.scenario.scenario import MAX_SCRIPT_S
+    script_s = longest_script_s() if allow_long else MAX_SCRIPT_S
+    return script_s + EXTRA_TIME_S + max(config.extra_time_s for config in CONTROLLER_CLASSES)
 
 
 def scenario_time_limit(scenario: Scenario) -> float:

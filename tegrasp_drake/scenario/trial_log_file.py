@@ -428,7 +428,7 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 # How far a time base's steps may differ from their median, relative to it. The loggers sample
 # at a fixed period (LogVectorOutput's publish period: trial_log_writer), so the steps differ
 # only by float64 rounding of the sample times: at most eps * t_end / period, 2e-11 for the
-# 1 ms RA period over the longest run (275 s, grasp_diagram.longest_run_s); measured in eleven real logs
+# 1 ms RA period over the longest run (275 s, grasp_diagram.longest_trial_s); measured in eleven real logs
 # (12 to 18.5 s, four controllers): at most 2.2e-12. 1e-6 is five orders above that and far below any missing or displaced sample (a step off by its whole size).
 STEP_TOLERANCE = 1e-6
 

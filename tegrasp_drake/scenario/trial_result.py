@@ -3,6 +3,7 @@ Its JSON form (`to_dict`) is what result.json, `tegrasp trial --json` and a swee
 "result" hold; `from_dict` reads one back (a missing field takes its default)."""
 
 import dataclasses
+import math
 import typing
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
@@ -19,6 +20,12 @@ HOLD_REQUIRED_S = 3.0  # the paper (Sec. IV-C): a hold succeeds when held at lea
 # A failure is the reason a controller gives for going to Failed, one sentence (the longest
 # in the committed sweep records: 109 characters); ten times a long sentence is not one.
 MAX_FAILURE_CHARS = 1000
+
+
+# How far a real-time factor may lie from sim_time_s / wall_time_s (relative): run_trial
+# writes that quotient and JSON carries floats exactly; 1e-9 allows the quotient taken again
+# from times rounded in the last digits, far below the spread between runs.
+REAL_TIME_FACTOR_TOLERANCE = 1e-9
 
 
 @public_dataclass
@@ -88,7 +95,7 @@ class TrialResult:
         every time is within the simulated time (transitions, the physical events and the
         hold are taken during the run, so a latency, a transition's time minus its event's,
         is within it either way), and that within the longest run a trial can last
-        (grasp_diagram.longest_run_s), which also bounds the times when it is not set."""
+        (grasp_diagram.longest_trial_s), which also bounds the times when it is not set."""
         if self.unload_success and not self.hold_success:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
                               "false (a trial is judged unloaded only after it held)")
@@ -107,8 +114,9 @@ class TrialResult:
             raise ConfigError(f"{name}: field 'failure' must be at most {MAX_FAILURE_CHARS} "
                               f"characters (a controller's one-sentence reason), got "
                               f"{len(self.failure)}")
-        from tegrasp_drake.scenario.grasp_diagram import longest_run_s  # Drake: on use
-        longest = longest_run_s()
+        self._check_real_time_factor(name)
+        from tegrasp_drake.scenario.grasp_diagram import longest_trial_s  # Drake: on use
+        longest = longest_trial_s()
         longest_why = ("the longest run a trial can last: the longest grasp script plus the "
                        "time for corrections")
         if self.sim_time_s is not None and self.sim_time_s > longest:
@@ -133,6 +141,22 @@ class TrialResult:
             if abs(value) > limit:
                 raise ConfigError(f"{name}: field '{field}' must be {within} ({why}), got "
                                   f"{number_text(value)}")
+
+    def _check_real_time_factor(self, name: str) -> None:
+        """The real-time factor is what run_trial makes it: simulated over wall time (none
+        for a wall time of 0), where the result gives all three."""
+        if None in (self.real_time_factor, self.sim_time_s, self.wall_time_s):
+            return
+        if self.wall_time_s <= 0:
+            raise ConfigError(f"{name}: field 'real_time_factor' is "
+                              f"{number_text(self.real_time_factor)} but 'wall_time_s' is 0 (no "
+                              "factor without a wall time: leave it null)")
+        expected = self.sim_time_s / self.wall_time_s
+        if not math.isclose(self.real_time_factor, expected,
+                            rel_tol=REAL_TIME_FACTOR_TOLERANCE):
+            raise ConfigError(f"{name}: field 'real_time_factor' must be sim_time_s / "
+                              f"wall_time_s = {number_text(expected)}, got "
+                              f"{number_text(self.real_time_factor)}")
 
     def _check_controller(self, name: str) -> None:
         """The relations with the controller that wrote the result: a registered name ("":

@@ -13,13 +13,15 @@
 
 Canonical JSON: sorted keys, no spaces, ASCII, no NaN/Infinity. Written to a temporary file,
 fsync'ed, renamed into place, the folder fsync'ed: a crash leaves no record or a whole one.
-A record that fails to parse or to checksum, or whose result is not a TrialResult's JSON form
-(TrialResult.from_dict: its fields' ranges and the relations between them), is corrupt, and
-its trial runs again."""
+A record that fails to parse or to checksum, whose trial is not one a sweep makes
+(spec.trial_problem: TrialSpec's fields, their ranges and relations), or whose result is not a
+TrialResult's JSON form (TrialResult.from_dict: its fields' ranges and the relations between
+them), is corrupt, and its trial runs again."""
 
 import hashlib
 import json
 import os
+import re
 from typing import Annotated
 from dataclasses import dataclass
 from pathlib import Path
@@ -28,6 +30,7 @@ from tegrasp_drake.rig.files import (JsonFileError, read_json_file, replace_prob
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.sweep.spec import trial_problem
 
 RECORD_FORMAT = "tegrasp-sweep-record"
 # Version 2 adds "events", what the trial matched against (make_record); a version-1 record
@@ -142,6 +145,64 @@ def _fsync_folder(folder: Path) -> None:
 _RESULT_OF_TRIAL = (("seed", "seed"), ("controller", "controller"), ("object", "object_name"))
 
 
+# How far a result's offset may lie from its trial's marker + jitter [m]: the trial function
+# sets it to that sum (scenario_from_trial_spec) and JSON carries a float exactly, so only a
+# sum taken in another order differs, by ~1e-17 m; a nanometre is far below anything the
+# simulation resolves and far above that rounding.
+OFFSET_TOLERANCE_M = 1e-9
+
+
+def _offset_problem(result: dict, trial: dict) -> str | None:
+    """Why the result's offset_m (where it has one) is not where its trial put the object,
+    the marker moved by the jitter (x normal to the palm, y along the stroke), or None."""
+    if "offset_m" not in result:
+        return None
+    jitter = trial["perturbation"]
+    expected = [trial["marker_dx_m"] + jitter["dx_m"], trial["marker_dy_m"] + jitter["dy_m"]]
+    offset = result["offset_m"]
+    if len(offset) != 2 or any(abs(a - b) > OFFSET_TOLERANCE_M
+                               for a, b in zip(offset, expected)):
+        return (f"its result's offset_m {shorten(repr(offset))} m is not its trial's marker + "
+                f"jitter [{expected[0]!r}, {expected[1]!r}] m (where the trial puts the object)")
+    return None
+
+
+def _sim_time_problem(result: dict) -> str | None:
+    """Why the result's sim_time_s (where it has one) is longer than any sweep trial runs:
+    a sweep loads its scenarios without allow_long, so a run stops by longest_trial_s of those."""
+    from tegrasp_drake.scenario.grasp_diagram import longest_trial_s  # Drake: on use
+    sim_time = result.get("sim_time_s")
+    longest = longest_trial_s(allow_long=False)
+    if sim_time is not None and sim_time > longest:
+        return (f"its result's sim_time_s {shorten(repr(sim_time))} s is longer than a sweep "
+                f"trial runs, at most {longest:g} s (the longest grasp script a scenario "
+                "allows plus the time for corrections)")
+    return None
+
+
+# An events identity's digest: SHA-256, 64 lowercase hex digits (hashlib's hexdigest).
+_SHA256_HEX = re.compile(r"[0-9a-f]{64}")
+
+
+def events_problem(events) -> str | None:
+    """Why `events` is not what a record says of the memorized events a trial matched
+    against (trial_function.events_identity: null, or {"folder": the folder asked for, absolute
+    (older records name it relative), or null; "sha256": the SHA-256 of their content}), or
+    None."""
+    if events is None:
+        return None
+    if not (isinstance(events, dict) and set(events) == {"folder", "sha256"}):
+        return "events is neither null nor {\"folder\", \"sha256\"}"
+    if not (isinstance(events["sha256"], str) and _SHA256_HEX.fullmatch(events["sha256"])):
+        return (f"events.sha256 must be a SHA-256 (64 lowercase hex digits), got "
+                f"{shorten(repr(events['sha256']))}")
+    folder = events["folder"]
+    if folder is not None and not (isinstance(folder, str) and folder):
+        return (f"events.folder must be null or a folder's path (the events folder the sweep "
+                f"was given; older records name it relative), got {shorten(repr(folder))}")
+    return None
+
+
 def check_record(record, expected_file_name: str | None = None) -> str | None:
     """Why `record` is not a valid record, or None when it is."""
     if not isinstance(record, dict):
@@ -155,12 +216,9 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
         return f"fields {sorted(record)} are not the record fields {sorted(fields)}"
     if record["format"] != RECORD_FORMAT:
         return f"format {record['format']!r} is not {RECORD_FORMAT!r}"
-    events = record.get("events")
-    if events is not None and not (
-            isinstance(events, dict) and set(events) == {"folder", "sha256"}
-            and isinstance(events["sha256"], str)
-            and isinstance(events["folder"], (str, type(None)))):
-        return "events is neither null nor {\"folder\", \"sha256\"}"
+    problem = events_problem(record.get("events"))
+    if problem is not None:
+        return problem
     content = {key: value for key, value in record.items() if key != "checksum"}
     try:
         checksum = _checksum(content)
@@ -177,6 +235,9 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
     trial = record["trial"]
     if not isinstance(trial, dict) or trial.get("trial_id") != record["trial_id"]:
         return "its trial's trial_id is not the record's trial_id"
+    problem = trial_problem(trial)
+    if problem is not None:
+        return f"its 'trial' is not one a sweep makes: {problem}"
     if ok:
         problem = result_problem(record["result"])
         if problem is not None:
@@ -186,6 +247,9 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
             if value != trial.get(trial_field):
                 return (f"its result's {field} {shorten(repr(value))} is not its trial's "
                         f"{trial_field} {shorten(repr(trial.get(trial_field)))}")
+        problem = _offset_problem(record["result"], trial) or _sim_time_problem(record["result"])
+        if problem is not None:
+            return problem
     if expected_file_name is not None and (
             not isinstance(record["trial_id"], str)
             or record_file_name(record["trial_id"]) != expected_file_name):

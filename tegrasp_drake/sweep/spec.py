@@ -6,6 +6,7 @@ object, marker, attempt), never the controller, so controllers meet the same sce
 
 import dataclasses
 import math
+import re
 import typing
 import zlib
 from collections.abc import Collection, Mapping
@@ -14,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tegrasp_drake.rig.api_boundary import describe_hint, public_dataclass, value_matches
-from tegrasp_drake.rig.ranges import SEED_RANGE, Range, bounded, check_ranges
+from tegrasp_drake.rig.ranges import SEED_RANGE, Range, bounded, check_ranges, field_range
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
@@ -93,14 +94,32 @@ class SweepSpec:
     scenario_overrides: tuple[str, ...] = ()
 
 
+# The largest perturbation draw_perturbation can draw: each draw is U(-b, b) with b at most the
+# upper end declared on RandomisationConfig's bound (a scale's bound below 1 keeps it positive).
+_XY_BOUND_M = field_range(RandomisationConfig, "placement_xy_bound_m").high
+_YAW_BOUND_RAD = math.radians(field_range(RandomisationConfig, "placement_yaw_bound_deg").high)
+_SCALE_BOUND = 1.0 + field_range(RandomisationConfig, "mass_scale_bound").high
+
+
 @dataclass(frozen=True)
 class Perturbation:
-    """One attempt's random perturbation of the scene, drawn from the trial's seed."""
-    dx_m: float            # placement jitter along x (normal to the palm)
-    dy_m: float            # placement jitter along y (stroke)
-    yaw_rad: float         # placement jitter about the vertical
-    friction_scale: float  # multiplies the object's friction coefficient
-    mass_scale: float      # multiplies the object's mass
+    """One attempt's random perturbation of the scene, drawn from the trial's seed; each in
+    the range draw_perturbation draws it from under the largest RandomisationConfig bounds."""
+    # placement jitter along x (normal to the palm)
+    dx_m: float = bounded(low=-_XY_BOUND_M, high=_XY_BOUND_M, unit="m",
+                          why="U(-b, b), b at most placement_xy_bound_m's upper end")
+    # placement jitter along y (stroke)
+    dy_m: float = bounded(low=-_XY_BOUND_M, high=_XY_BOUND_M, unit="m",
+                          why="U(-b, b), b at most placement_xy_bound_m's upper end")
+    # placement jitter about the vertical
+    yaw_rad: float = bounded(low=-_YAW_BOUND_RAD, high=_YAW_BOUND_RAD, unit="rad",
+                             why="U(-b, b), b at most placement_yaw_bound_deg's 180 deg")
+    # multiplies the object's friction coefficient
+    friction_scale: float = bounded(low=0.0, high=_SCALE_BOUND, low_open=True, high_open=True,
+                                    why="1 + U(-b, b) with b below 1")
+    # multiplies the object's mass
+    mass_scale: float = bounded(low=0.0, high=_SCALE_BOUND, low_open=True, high_open=True,
+                                why="1 + U(-b, b) with b below 1")
 
 
 @dataclass(frozen=True)
@@ -114,12 +133,12 @@ class TrialSpec:
     object_name: str
     object_definition: ObjectConfig | None  # a user object; None: the built-in one
     marker: str
-    marker_dx_m: float
-    marker_dy_m: float
-    well_placed: bool
-    attempt: int
-    base_seed: int
-    seed: int
+    marker_dx_m: float = bounded(**dataclasses.asdict(field_range(SweepSpec, "grid")))
+    marker_dy_m: float = bounded(**dataclasses.asdict(field_range(SweepSpec, "grid")))
+    well_placed: bool  # exactly when the marker is (0, 0)
+    attempt: int = bounded(low=0, why="attempts count from 0")
+    base_seed: int = bounded(**dataclasses.asdict(SEED_RANGE))
+    seed: int = bounded(**dataclasses.asdict(SEED_RANGE))  # scene_seeds of the scene
     sensor_noise: bool
     perturbation: Perturbation
     scenario_overrides: tuple[str, ...] = ()
@@ -178,6 +197,56 @@ def trial_dict_problem(trial: Mapping) -> str | None:
         return None
     return ("; ".join(parts) + " (a sweep trial is a TrialSpec.to_dict(), as expand_trials "
             "makes them)")
+
+
+# A marker's name as marker_names gives it: m, then the x and y indices, equally wide.
+_MARKER_NAME = re.compile(r"m(\d+)")
+
+
+def trial_problem(trial) -> str | None:
+    """What keeps `trial` (a record's TrialSpec.to_dict()) from being one expand_trials
+    makes, or None: its fields' types (trial_dict_problem), the ranges declared on TrialSpec's
+    and Perturbation's fields, and the relations expand_trials gives them (trial and pair
+    ids from the controller, object, marker and attempt; well placed exactly at the (0, 0)
+    marker; the seed scene_seeds derives from the base seed and the scene)."""
+    if not isinstance(trial, Mapping):
+        return f"trial must be a mapping, got {type(trial).__name__}"
+    problem = trial_dict_problem(trial)
+    if problem:
+        return problem
+    try:
+        spec = TrialSpec.from_dict(trial)
+        check_ranges(spec, "trial")
+    except (TypeError, ValueError) as error:
+        return str(error)
+    name_problem = objects.object_name_problem(spec.object_name)
+    if name_problem:
+        return f"trial: field 'object_name': {name_problem}"
+    if spec.controller not in CONTROLLER_NAMES:
+        return (f"trial: field 'controller' must be one of {', '.join(CONTROLLER_NAMES)}, got "
+                f"{spec.controller!r}")
+    marker = _MARKER_NAME.fullmatch(spec.marker)
+    if not marker or len(marker.group(1)) % 2:
+        return (f"trial: field 'marker' must be a marker name as a sweep gives it (m, then "
+                f"the x and y indices, e.g. m11), got {spec.marker!r}")
+    pair_id = f"{spec.object_name}/{spec.marker}/a{spec.attempt}"
+    if spec.pair_id != pair_id:
+        return (f"trial: field 'pair_id' must be {pair_id!r} (object/marker/attempt), got "
+                f"{spec.pair_id!r}")
+    if spec.trial_id != f"{spec.controller}/{pair_id}":
+        return (f"trial: field 'trial_id' must be {spec.controller + '/' + pair_id!r} "
+                f"(controller/pair_id), got {spec.trial_id!r}")
+    offset = (spec.marker_dx_m, spec.marker_dy_m)
+    if spec.well_placed != (_offset_key(offset) == (0, 0)):
+        return (f"trial: field 'well_placed' is {str(spec.well_placed).lower()} but the marker "
+                f"is ({spec.marker_dx_m!r}, {spec.marker_dy_m!r}) m (well placed is the marker "
+                "at (0, 0))")
+    _, seed = scene_seeds(spec.base_seed, spec.object_name, offset, spec.attempt)
+    if spec.seed != seed:
+        return (f"trial: field 'seed' must be {seed}, the seed of base_seed {spec.base_seed}, "
+                f"object {spec.object_name!r}, marker {list(offset)} m and attempt "
+                f"{spec.attempt}, got {spec.seed}")
+    return None
 
 
 # Validation
@@ -311,6 +380,15 @@ def trial_seed_sequence(base_seed: int, object_name: str, marker_offset,
                    attempt))
 
 
+def scene_seeds(base_seed: int, object_name: str, marker_offset,
+                attempt: int) -> tuple[np.random.SeedSequence, int]:
+    """One scene's two children of trial_seed_sequence: the seed sequence its perturbation is
+    drawn from, and the trial's 32-bit `seed` (the sensor noise's)."""
+    perturbation_seq, trial_seq = trial_seed_sequence(
+        base_seed, object_name, marker_offset, attempt).spawn(2)
+    return perturbation_seq, int(trial_seq.generate_state(1, dtype=np.uint32)[0])
+
+
 def draw_perturbation(rng: np.random.Generator,
                       randomisation: RandomisationConfig) -> Perturbation:
     """Draws, in this order: dx, dy, yaw, friction scale, mass scale; each U(-b, b)."""
@@ -392,8 +470,8 @@ def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN
     for object_name in spec.objects:
         for marker, offset in zip(names, spec.grid):
             for attempt in range(spec.attempts):
-                perturbation_seq, trial_seq = trial_seed_sequence(
-                    spec.base_seed, object_name, offset, attempt).spawn(2)
+                perturbation_seq, seed = scene_seeds(spec.base_seed, object_name, offset,
+                                                     attempt)
                 scenes.append(dict(
                     pair_id=f"{object_name}/{marker}/a{attempt}",
                     object_name=object_name,
@@ -404,7 +482,7 @@ def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN
                     well_placed=_offset_key(offset) == (0, 0),
                     attempt=attempt,
                     base_seed=spec.base_seed,
-                    seed=int(trial_seq.generate_state(1, dtype=np.uint32)[0]),
+                    seed=seed,
                     sensor_noise=spec.randomisation.sensor_noise,
                     perturbation=draw_perturbation(np.random.default_rng(perturbation_seq),
                                                    spec.randomisation),

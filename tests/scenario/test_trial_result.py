@@ -105,8 +105,10 @@ def test_a_damaged_records_result_is_refused_naming_the_record_file_and_field(
     from tegrasp_drake.sweep.records import load_records, make_record, write_record
     from tests.fake_trials import fake_trial
     from tests.test_bad_input import assert_one_line_error, run_cli
-    trial = {"trial_id": "memorized/box/m00/a0", "pair_id": "p", "seed": 600,
-             "well_placed": True, "controller": "memorized", "object": "box"}
+    from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
+    (trial,) = [t.to_dict() for t in expand_trials(SweepSpec(
+        objects=("box",), controllers=("memorized",), attempts=1, grid=((-0.01, -0.015),),
+        base_seed=600))]
     result = fake_trial(trial)
     result["hold_time_s"] = -1.0
     write_record(tmp_path / "sweep", make_record(trial, result=result))
