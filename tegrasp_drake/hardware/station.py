@@ -118,8 +118,9 @@ class HardwareStation(Diagram):
         return self._arm_status_boundary
 
     def message_boundaries(self) -> dict:
-        """{device: MessageBoundary}; the myRIO decoder counts its own (its reader's counters)."""
-        return {"arm": self._arm_status_boundary, "gripper": self._gripper_client.boundary}
+        """{device: MessageBoundary}: where each device's refused messages are counted."""
+        return {"arm": self._arm_status_boundary, "gripper": self._gripper_client.boundary,
+                "tactile": self._tactile_reader.boundary}
 
     def _open_devices(self):
         config = self._config

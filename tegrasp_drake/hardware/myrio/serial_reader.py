@@ -10,6 +10,7 @@ import time
 
 import serial
 
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.hardware.myrio.tactile_frame import (
     TactileDecoderCounters, TactileFrame, TactileFrameDecoder)
 
@@ -59,7 +60,7 @@ class TactileSerialReader:
         self._queue = collections.deque(maxlen=queue_size)
         self._lock = threading.Lock()
         self._stop = threading.Event()
-        self._decoder = TactileFrameDecoder()
+        self._decoder = TactileFrameDecoder(boundary=MessageBoundary(f"tactile: {port}"))
         self._counters = TactileReaderCounters(decoder=self._decoder.counters)
         self._serial = None
         self._thread = None
@@ -67,6 +68,11 @@ class TactileSerialReader:
     @property
     def port(self) -> str:
         return self._port
+
+    @property
+    def boundary(self) -> MessageBoundary:
+        """Where the decoder counts the frames it refuses, by reason (said once each in a run)."""
+        return self._decoder.boundary
 
     def start(self) -> "TactileSerialReader":
         """Opens the port (raises if it cannot) and starts the thread."""

@@ -1,0 +1,60 @@
+"""Refused device messages the forty-first review found unreported or misnamed: the myRIO
+decoder's repeated and implausible frames, and a gripper's activation refused for a reason
+the error did not name. Real decoder and client classes, forged bytes on pseudo-terminals."""
+
+import os
+import time
+import types
+
+from tegrasp_drake.emulators.null_modem import open_raw_pty
+from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
+from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
+from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusClient, RobotiqModbusConfig
+
+
+def wait_for(predicate, what: str, timeout: float = 10.0):
+    """Polls `predicate` (generously: the CI runs beside a CPU hog)."""
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        assert time.monotonic() < deadline, f"timed out waiting for {what}"
+        time.sleep(0.01)
+
+
+def forged_tactile_stream() -> bytes:
+    """Valid-CRC frames 0..19 at 1 ms; frame 20's timestamp jumps 2^31 us (implausible);
+    frame 15 again (repeated); then frames 21..29, which still follow frame 19."""
+    frames = [encode_frame(k, 1000 * k, (0, 0)) for k in range(20)]
+    frames.append(encode_frame(20, 1000 * 20 + (1 << 31), (0, 0)))
+    frames.append(encode_frame(15, 1000 * 15, (0, 0)))
+    frames += [encode_frame(k, 1000 * k, (0, 0)) for k in range(21, 30)]
+    return b"".join(frames)
+
+
+# Rule: every frame the myRIO decoder refuses is counted under its reason in the run's
+# closing summary and said once, as it happens, through the one boundary every device's
+# refused messages cross (the station hands it to the run's reporter as the gripper's).
+def test_refused_tactile_frames_are_summarised_and_said_once_by_reason():
+    from tegrasp_drake.hardware.station import HardwareStation
+    from tegrasp_drake.runs.hardware_run import format_counters
+    stream = forged_tactile_stream()
+    master, slave, port = open_raw_pty()
+    try:
+        with TactileSerialReader(port) as reader:
+            os.write(master, stream)
+            wait_for(lambda: reader.counters().decoder.frames == 29, "29 frames")
+            counters = reader.counters()
+            boundary = HardwareStation.message_boundaries(types.SimpleNamespace(
+                _arm_status_boundary=None, _gripper_client=types.SimpleNamespace(boundary=None),
+                _tactile_reader=reader))["tactile"]
+            said = [boundary.describe(rejection) for rejection in boundary.new_rejections()]
+    finally:
+        os.close(master)
+        os.close(slave)
+    assert (counters.decoder.implausible, counters.decoder.repeated) == (1, 1)
+    summary = format_counters({"gripper": RobotiqModbusClient(RobotiqModbusConfig()).counters(),
+                               "tactile": counters})
+    # frame 20 was refused, so 19 -> 21 also counts one dropped
+    assert "tactile: 29 frames, 2 rejected (repeated 1, implausible 1), 1 dropped" in summary
+    assert len(said) == 2, said
+    assert said[0].startswith(f"tactile: {port}: skipped a message (implausible: sequence 20 ")
+    assert said[1].startswith(f"tactile: {port}: skipped a message (repeated: sequence 15 ")
