@@ -3,13 +3,18 @@ decoder's repeated and implausible frames, and a gripper's activation refused fo
 the error did not name. Real decoder and client classes, forged bytes on pseudo-terminals."""
 
 import os
+import select
+import threading
 import time
 import types
+
+import pytest
 
 from tegrasp_drake.emulators.null_modem import open_raw_pty
 from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
-from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusClient, RobotiqModbusConfig
+from tegrasp_drake.hardware.robotiq.modbus_client import (
+    RobotiqActivationError, RobotiqModbusClient, RobotiqModbusConfig)
 
 
 def wait_for(predicate, what: str, timeout: float = 10.0):
@@ -58,3 +63,68 @@ def test_refused_tactile_frames_are_summarised_and_said_once_by_reason():
     assert len(said) == 2, said
     assert said[0].startswith(f"tactile: {port}: skipped a message (implausible: sequence 20 ")
     assert said[1].startswith(f"tactile: {port}: skipped a message (repeated: sequence 15 ")
+
+
+class ForgedGripper:
+    """A gripper on a pty answering each Modbus RTU request with `answer(request)` -> body
+    (the CRC is added). A context manager; the client opens `port`."""
+
+    def __init__(self, answer):
+        from pymodbus.framer.rtu import FramerRTU
+        self._crc = FramerRTU.compute_CRC
+        self._answer = answer
+        self._master, self._slave, self.port = open_raw_pty()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self):
+        while not self._stop.is_set():
+            ready, _, _ = select.select([self._master], [], [], 0.05)
+            if not ready:
+                continue
+            try:
+                request = os.read(self._master, 256)
+            except OSError:
+                continue
+            if len(request) >= 4:
+                body = self._answer(request)
+                os.write(self._master, body + self._crc(body).to_bytes(2, "big"))
+
+    def __enter__(self):
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        self._thread.join(2.0)
+        os.close(self._master)
+        os.close(self._slave)
+
+
+def exception_04(request: bytes) -> bytes:
+    return bytes([request[0], request[1] | 0x80, 0x04])  # server device failure
+
+
+def all_status_bits_set(request: bytes) -> bytes:
+    if request[1] in (3, 4):
+        return bytes([request[0], request[1], 6]) + b"\xff" * 6
+    return request[:6]  # a write's echo
+
+
+# Rule: a gripper that does not activate is reported with what it last answered, under the
+# reason docs/hardware.md names (an exception response and its code; an impossible status and
+# why), not as "no answer" or "gSTA did not reach 3" when it answered and reached 3.
+@pytest.mark.parametrize("answer, words", [
+    (exception_04, "the write of [0, 0, 0] was not accepted (the last refused: exception "
+                   "response: exception code 04 to a function 16 request)"),
+    (all_status_bits_set, "no status read was accepted (the last refused: impossible status: "
+                          "reserved bits"),
+])
+def test_a_gripper_activation_failure_names_what_was_answered(answer, words):
+    with ForgedGripper(answer) as gripper, RobotiqModbusClient(RobotiqModbusConfig(
+            port=gripper.port, activation_timeout=0.5, request_timeout=0.5)) as client:
+        with pytest.raises(RobotiqActivationError) as raised:
+            client.wait_until_active(30.0)
+    message = str(raised.value)
+    assert "did not activate within 0.5 s: " + words in message, message
+    assert "no answer" not in message and "did not reach 3" not in message, message
