@@ -128,3 +128,27 @@ def test_a_gripper_activation_failure_names_what_was_answered(answer, words):
     message = str(raised.value)
     assert "did not activate within 0.5 s: " + words in message, message
     assert "no answer" not in message and "did not reach 3" not in message, message
+
+
+# Rule: a tactile stream whose frames arrive but cannot zero the pads (no taxel counts in
+# them) is reported in words, what arrived and what to check, never the counters' repr.
+def test_a_tactile_stream_without_counts_is_reported_in_words_when_zeroing_fails():
+    from tegrasp_drake.hardware.myrio.serial_reader import zeroing_problem
+    from tegrasp_drake.hardware.myrio.tactile_calibration import TactileCalibration
+    from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
+    calibration = TactileCalibration(zero_samples=4)
+    master, slave, port = open_raw_pty()
+    try:
+        with TactileSerialReader(port) as reader:
+            os.write(master, b"".join(encode_frame(k, 1000 * k, (0, 0)) for k in range(50)))
+            wait_for(lambda: reader.counters().decoder.frames == 50, "50 frames")
+            receiver = TactileSerialReceiver(reader, calibration=calibration)
+            assert not receiver.zero_before_start(time.monotonic() + 0.2)
+            problem = zeroing_problem(reader.counters(), receiver.zero_samples)
+    finally:
+        os.close(master)
+        os.close(slave)
+    assert "Counters(" not in problem
+    assert problem.startswith("the frames that arrived (50 frames, 0 rejected, 0 dropped, "
+                              "0 restarts) did not hold 4 taxel count sequences per finger")
+    assert "does the myRIO stream send the pads' counts" in problem

@@ -46,6 +46,14 @@ def no_valid_frame_problem(counters: TactileReaderCounters) -> str:
     return problem
 
 
+def zeroing_problem(counters: TactileReaderCounters, zero_samples: int) -> str:
+    """Why the pads were not zeroed although frames arrived, and what to check, in words."""
+    return (f"the frames that arrived ({counters.decoder.summary()}) did not hold "
+            f"{zero_samples} taxel count sequences per finger (frames with flags 0x01 and "
+            "0x02, hardware/myrio/TACTILE_FRAME.md); does the myRIO stream send the pads' "
+            "counts, or is ready_timeout shorter than they take (one per ~9.2 ms)?")
+
+
 class TactileSerialReader:
     """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
     `port`: a device path or pyserial URL; a context manager. Bursts are batched for
