@@ -27,7 +27,7 @@ from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError,
 from tegrasp_drake.hardware.myrio.tactile_calibration import (LoadTactileCalibration,
                                                               TactileCalibration)
 from tegrasp_drake.hardware.myrio.serial_reader import (
-    TactileSerialReader, no_valid_frame_problem)
+    TactileSerialReader, no_valid_frame_problem, zeroing_problem)
 from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialReceiver
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin,
@@ -118,8 +118,9 @@ class HardwareStation(Diagram):
         return self._arm_status_boundary
 
     def message_boundaries(self) -> dict:
-        """{device: MessageBoundary}; the myRIO decoder counts its own (its reader's counters)."""
-        return {"arm": self._arm_status_boundary, "gripper": self._gripper_client.boundary}
+        """{device: MessageBoundary}: where each device's refused messages are counted."""
+        return {"arm": self._arm_status_boundary, "gripper": self._gripper_client.boundary,
+                "tactile": self._tactile_reader.boundary}
 
     def _open_devices(self):
         config = self._config
@@ -241,9 +242,9 @@ class HardwareStation(Diagram):
             time.sleep(0.005)
         if not self._tactile_receiver.zero_before_start(deadline):
             raise HardwareNotReadyError(
-                f"tactile: zeroing the pads needs {self._tactile_receiver.zero_samples} count "
-                f"sequences per finger on {self._tactile_reader.port}; they did not arrive "
-                f"within {timeout:g} s ({self._tactile_reader.counters()})")
+                f"tactile: the pads on {self._tactile_reader.port} were not zeroed within "
+                f"{timeout:g} s: " + zeroing_problem(self._tactile_reader.counters(),
+                                                    self._tactile_receiver.zero_samples))
         self._tactile_reader.discard_pending()
         logger.info(f"station: devices ready (arm status on {self._lcm.get_lcm_url()}, "
                     f"gripper active on {self._config.gripper.port}, pads zeroed from "

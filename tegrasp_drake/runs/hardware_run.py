@@ -192,15 +192,13 @@ def format_transition(transition: Transition) -> str:
 
 def format_counters(counters: dict) -> str:
     gripper, tactile = counters["gripper"], counters["tactile"]
-    decoder = tactile.decoder
     reasons = ", ".join(f"{reason} {count}" for reason, count
                         in sorted(gripper.rejected.items()))
     arm = counters.get("arm")
     return (f"gripper: {gripper.reads} status reads, {gripper.writes} writes, "
             f"{gripper.errors} failed transactions"
             + (f" ({reasons}; last: {gripper.last_error})" if gripper.errors else "")
-            + f"; tactile: {decoder.frames} frames, {decoder.rejected} rejected, "
-            f"{decoder.dropped_frames} dropped, {tactile.queue_overflows} overflowed"
+            + f"; tactile: {tactile.decoder.summary()}, {tactile.queue_overflows} overflowed"
             + (f"; arm: {arm.summary('status messages')}" if arm is not None else ""))
 
 

@@ -10,6 +10,7 @@ import time
 
 import serial
 
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.hardware.myrio.tactile_frame import (
     TactileDecoderCounters, TactileFrame, TactileFrameDecoder)
 
@@ -45,6 +46,14 @@ def no_valid_frame_problem(counters: TactileReaderCounters) -> str:
     return problem
 
 
+def zeroing_problem(counters: TactileReaderCounters, zero_samples: int) -> str:
+    """Why the pads were not zeroed although frames arrived, and what to check, in words."""
+    return (f"the frames that arrived ({counters.decoder.summary()}) did not hold "
+            f"{zero_samples} taxel count sequences per finger (frames with flags 0x01 and "
+            "0x02, hardware/myrio/TACTILE_FRAME.md); does the myRIO stream send the pads' "
+            "counts, or is ready_timeout shorter than they take (one per ~9.2 ms)?")
+
+
 class TactileSerialReader:
     """Reads and decodes frames on a thread; `drain()` hands them over without blocking.
     `port`: a device path or pyserial URL; a context manager. Bursts are batched for
@@ -59,7 +68,7 @@ class TactileSerialReader:
         self._queue = collections.deque(maxlen=queue_size)
         self._lock = threading.Lock()
         self._stop = threading.Event()
-        self._decoder = TactileFrameDecoder()
+        self._decoder = TactileFrameDecoder(boundary=MessageBoundary(f"tactile: {port}"))
         self._counters = TactileReaderCounters(decoder=self._decoder.counters)
         self._serial = None
         self._thread = None
@@ -67,6 +76,11 @@ class TactileSerialReader:
     @property
     def port(self) -> str:
         return self._port
+
+    @property
+    def boundary(self) -> MessageBoundary:
+        """Where the decoder counts the frames it refuses, by reason (said once each in a run)."""
+        return self._decoder.boundary
 
     def start(self) -> "TactileSerialReader":
         """Opens the port (raises if it cannot) and starts the thread."""

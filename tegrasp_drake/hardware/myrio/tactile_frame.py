@@ -1,13 +1,16 @@
 """The myRIO tactile stream's binary frame: `encode_frame` and a resynchronising streaming
 decoder. Layout, rates and decoding rules: hardware/myrio/TACTILE_FRAME.md. The decoder
 passes on only CRC-valid frames that follow the last one, counts what it skips, follows a
-restarted device after RESTART_RUN frames and unwraps device time frame by frame."""
+restarted device after RESTART_RUN frames and unwraps device time frame by frame. Each frame
+it refuses is also handed to its MessageBoundary, which says the first of each reason."""
 
 import dataclasses
 import struct
 import zlib
 
 import numpy as np
+
+from tegrasp_drake.hardware.message_boundary import MessageBoundary
 
 SYNC = b"\xa5\x5a"
 VERSION = 1
@@ -86,13 +89,27 @@ class TactileDecoderCounters:
 
     @property
     def rejected(self) -> int:
-        return self.bad_crc + self.corrupt_header + self.truncated
+        """Frames refused, whatever the reason (REJECTION_REASONS)."""
+        return sum(getattr(self, reason) for reason in REJECTION_REASONS)
+
+    def summary(self) -> str:
+        """E.g. "1110 frames, 176 rejected (implausible 176), 0 dropped, 25 restarts"."""
+        reasons = ", ".join(f"{reason} {getattr(self, reason)}" for reason in REJECTION_REASONS
+                            if getattr(self, reason))
+        return (f"{self.frames} frames, {self.rejected} rejected"
+                + (f" ({reasons})" if reasons else "")
+                + f", {self.dropped_frames} dropped, {self.restarts} restarts")
+
+
+# The counters of refused frames; each is also the reason a MessageBoundary counts them under.
+REJECTION_REASONS = ("bad_crc", "corrupt_header", "truncated", "repeated", "implausible")
 
 
 class TactileFrameDecoder:
     """Streaming decoder (see module docstring). Not thread-safe: one reader owns it."""
 
-    def __init__(self, frame_period_us: int = FRAME_PERIOD_US):
+    def __init__(self, frame_period_us: int = FRAME_PERIOD_US,
+                 boundary: MessageBoundary | None = None):
         self._buffer = bytearray()
         self._frame_period_us = frame_period_us
         self._last_sequence = None
@@ -100,6 +117,8 @@ class TactileFrameDecoder:
         self._device_time_us = 0
         self._candidate = None  # (sequence, raw timestamp, run) of frames held back
         self.counters = TactileDecoderCounters()
+        # Told of every refused frame (reason, what was wrong): a run says the first of each.
+        self.boundary = boundary or MessageBoundary("tactile")
 
     def feed(self, data: bytes, arrival_time: float = 0.0) -> list[TactileFrame]:
         """Adds a chunk; returns the frames it completed, in order."""
@@ -116,28 +135,34 @@ class TactileFrameDecoder:
                 return frames
             version, flags = self._buffer[2], self._buffer[3]
             if version != VERSION or flags & ~(FLAG_LEFT_COUNTS | FLAG_RIGHT_COUNTS):
-                self.counters.corrupt_header += 1
+                self._reject("corrupt_header", f"version {version}, flags 0x{flags:02x}; "
+                             f"this decoder reads version {VERSION}")
                 self._skip(1)
                 continue
             size = frame_size(flags)
             if len(self._buffer) < size:
                 if self._complete_frame_follows(len(self._buffer)):
-                    self.counters.truncated += 1
+                    self._reject("truncated", "a valid frame starts inside this one")
                     self._skip(1)
                     continue
                 return frames
             body = bytes(self._buffer[:size])
             if zlib.crc32(body[len(SYNC):-CRC_SIZE]) != _CRC.unpack_from(body, size - CRC_SIZE)[0]:
                 if self._buffer.find(SYNC, 1, min(len(self._buffer), size + 1)) >= 0:
-                    self.counters.truncated += 1
+                    self._reject("truncated", "its CRC fails and another sync lies inside it")
                 else:
-                    self.counters.bad_crc += 1
+                    self._reject("bad_crc", f"a {size}-byte frame whose CRC fails")
                 self._skip(1)
                 continue
             del self._buffer[:size]
             frame = self._accept(body, flags, arrival_time)
             if frame is not None:
                 frames.append(frame)
+
+    def _reject(self, reason: str, detail: str):
+        """Counts a refused frame under `reason` (a counter of REJECTION_REASONS)."""
+        setattr(self.counters, reason, getattr(self.counters, reason) + 1)
+        self.boundary.reject(reason, detail)
 
     def _skip(self, count: int):
         if count > 0:
@@ -192,9 +217,15 @@ class TactileFrameDecoder:
                 self._candidate = (sequence, raw_timestamp, run)
                 if run < RESTART_RUN:
                     if relation == "old":
-                        self.counters.repeated += 1
+                        self._reject("repeated", f"sequence {sequence} is not newer than the "
+                                     f"last passed on, {self._last_sequence}")
                     else:
-                        self.counters.implausible += 1
+                        elapsed = (raw_timestamp - self._last_raw_timestamp) % (
+                            TIMESTAMP_MODULUS)
+                        self._reject("implausible", f"sequence {sequence} follows "
+                                     f"{self._last_sequence} but its timestamp moved "
+                                     f"{elapsed} us; {RESTART_RUN} such frames in a row that "
+                                     "follow each other are taken as a device restart")
                     return None
                 self.counters.restarts += 1
                 self._candidate = None

@@ -92,7 +92,10 @@ def check_answer(response, function: int, address: int, count: int):
     """`response` (pymodbus's, to a request of `function` for `count` registers at `address`)
     when it answers that request, else RejectedMessage naming why."""
     if response.isError():
-        raise RejectedMessage(EXCEPTION_RESPONSE, str(response))
+        code = getattr(response, "exception_code", None)
+        raise RejectedMessage(EXCEPTION_RESPONSE, (
+            f"exception code {code:02d}" if isinstance(code, int) else str(response))
+            + f" to a function {function} request")
     if response.function_code != function:
         raise RejectedMessage(WRONG_FUNCTION, f"a function {response.function_code} answer "
                               f"to a function {function} request")
@@ -314,9 +317,12 @@ class RobotiqModbusClient:
         for words in (reset, activate):
             while not self._write(client, words):
                 if self._stop.wait(self._config.period) or time.monotonic() > deadline:
-                    raise self._activation_error(f"no answer to the write of {words}")
+                    raise self._activation_error(f"the write of {words} was not accepted "
+                                                 f"({self._last_refusal()})")
+        last = None  # the last accepted status
         while not self._stop.wait(self._config.period):
             sample = self._read(client)
+            last = sample.status if sample is not None else last
             # A major fault stops the fingers until the next activation (manual, gFLT): the
             # gripper is at fault, not active, whatever gSTA says.
             if sample is not None and sample.status[units.STATUS_FLT] >= units.FIRST_MAJOR_FAULT:
@@ -327,10 +333,19 @@ class RobotiqModbusClient:
                 self._active.set()
                 return
             if time.monotonic() > deadline:
-                last = sample.status if sample is not None else None
+                if last is None:
+                    raise self._activation_error("no status read was accepted "
+                                                 f"({self._last_refusal()})")
+                refused = "" if sample is not None else (
+                    f"; the last status read was refused, {self._last_refusal()}")
                 raise self._activation_error(
-                    "gSTA did not reach 3" if last is None else
-                    f"gSTA = {int(last[units.STATUS_STA])}, {device_fault_words(last)}")
+                    f"gSTA = {int(last[units.STATUS_STA])} in the last accepted status, "
+                    f"{device_fault_words(last)}{refused}")
+
+    def _last_refusal(self) -> str:
+        """The last refused answer in words, under its reason (docs/hardware.md's)."""
+        last = self.boundary.counters().last_rejection
+        return f"the last refused: {last}" if last else "no answer was refused"
 
     def _activation_error(self, why) -> RobotiqActivationError:
         return RobotiqActivationError(
