@@ -223,7 +223,7 @@ def _changed(field: str, value) -> T.Scenario:
 
 @pytest.mark.parametrize("field, value, words", [
     ("object.size", [1.0], "must hold 3 positive sizes"),
-    ("gripper.model", "bogus", "must be one of linkage, prismatic"),
+    ("gripper.model", "bogus", "must be one of 'linkage', 'prismatic'"),
 ])
 @pytest.mark.parametrize("function", ["grasp_plan", "scenario_to_yaml", "sample_rates_hz"])
 def test_a_public_function_refuses_a_scenario_changed_out_of_its_relations(

@@ -200,7 +200,7 @@ def test_a_hardware_config_changed_after_loading_is_refused():
     from tegrasp_drake import MakeHardwareStation
     config = HardwareStationConfig()
     config.watchdog.arm_timeout = -5.0
-    with pytest.raises(ConfigError, match="MakeHardwareStation: config: field "
+    with pytest.raises(ConfigError, match="MakeHardwareStation: argument 'config': field "
                        r"'watchdog.arm_timeout' must be positive \[s\]"):
         MakeHardwareStation(config)
 

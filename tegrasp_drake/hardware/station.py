@@ -33,7 +33,6 @@ from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin,
                                            lcm_url_problem)
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
-from tegrasp_drake.rig.ranges import check_ranges
 from tegrasp_drake.rig.api_boundary import public_api
 
 logger = logging.getLogger(__name__)
@@ -270,6 +269,6 @@ class HardwareStation(Diagram):
 @public_api
 def MakeHardwareStation(config: HardwareStationConfig, *,
                         lcm: DrakeLcm | None = None) -> HardwareStation:
-    """The hardware interface for `config`; `lcm` overrides its URL (e.g. memq:// in tests)."""
-    check_ranges(config, "MakeHardwareStation: config")  # a config changed after loading
+    """The hardware interface for `config`; `lcm` overrides its URL (e.g. memq:// in tests).
+    A config changed after loading is checked against its declared ranges by public_api."""
     return HardwareStation(config, lcm=lcm)

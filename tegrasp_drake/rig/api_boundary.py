@@ -1,7 +1,9 @@
 """The public API's boundary: `@public_api` checks a public function's arguments
 against their annotations at the call and names the wrong one (classes, unions, the items
-of collections, Callable; text is never a collection), then the `typing.Annotated`
-constraints declared beside them: a Range or Choice (rig/ranges.py), a Folder."""
+of collections, Callable; text is never a collection), then a config argument's fields
+(their types, and the ranges and choices declared on them, as where a config is loaded),
+then the `typing.Annotated` constraints declared beside them: a Range or Choice
+(rig/ranges.py), a Folder."""
 
 import collections.abc
 import contextlib
@@ -17,7 +19,7 @@ import threading
 import types
 import typing
 
-from tegrasp_drake.rig.ranges import python_scalar
+from tegrasp_drake.rig.ranges import check_ranges, python_scalar
 
 # A file or folder argument: text or a path object (pathlib.Path, os.DirEntry).
 PathLike = str | os.PathLike
@@ -156,10 +158,14 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
         if _mutable_dataclass(value):
             from tegrasp_drake.rig.typed_yaml import check_instance
             check_instance(value, f"{name}: argument '{argument}'")
+            if _checking_relations.active:
+                continue  # a part of a config being checked: its check names the config
             relations = getattr(value, RELATIONS_CHECK, None)  # what relates its fields
-            if relations is not None and not _checking_relations.active:
-                with relations_checked():  # its own public calls: not again
-                    relations(f"{name}: {argument}")  # as the builders' rechecked
+            if relations is None:  # its declared ranges and choices, as the loader checks
+                check_ranges(value, f"{name}: argument '{argument}'")
+                continue
+            with relations_checked():  # its own public calls: not again
+                relations(f"{name}: {argument}")  # its ranges too, as the builders' rechecked
     for argument, value in bound.arguments.items():  # every type is right: the values
         for constraint in _constraints(hints.get(argument))[1]:
             _check_constraint(name, argument, value, constraint)

@@ -102,10 +102,11 @@ def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
         _KEY: Range(low, high, unit, why, low_open, high_open, below, length)})
 
 
-def chosen(default, *, names: tuple[str, ...], why: str = ""):
-    """A text field whose value must be one of `names` (a Choice; `why` says whose they
-    are): checked by check_ranges with the numbers' Ranges, where a config is loaded and
-    where a builder is handed one."""
+def chosen(default, *, names: tuple[str | int, ...], why: str = ""):
+    """A text field (or an integer one taking a few values, e.g. the AD7147's decimations)
+    whose value must be one of `names` (a Choice; `why` says whose they are): checked by
+    check_ranges with the numbers' Ranges, where a config is loaded and where a builder is
+    handed one."""
     return dataclasses.field(default=default, metadata={_KEY: Choice(tuple(names), why)})
 
 
@@ -118,9 +119,13 @@ def declared_field(cls: type, name: str) -> dataclasses.Field:
 
 @dataclasses.dataclass(frozen=True)
 class Choice:
-    """A text setting's allowed values; `why` says whose they are."""
-    names: tuple[str, ...]
+    """A text (or integer) setting's allowed values; `why` says whose they are."""
+    names: tuple[str | int, ...]
     why: str = ""
+
+    def contains(self, value) -> bool:
+        """Whether `value` is one of the names (as Range.contains for a number)."""
+        return value in self.names
 
     def words(self) -> str:
         why = f" ({self.why})" if self.why else ""

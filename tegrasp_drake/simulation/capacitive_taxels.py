@@ -12,7 +12,7 @@ from pydrake.common import RandomDistribution
 from pydrake.systems.framework import LeafSystem
 from pydrake.systems.primitives import RandomSource
 
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.ranges import bounded, chosen
 from tegrasp_drake.rig.tactile_fingertip import PAD_THICKNESS
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.rig.taxel_layout import CELL_X, CELL_Y
@@ -69,16 +69,15 @@ class CapacitiveTaxelConfig:
     # The AD7147's decimation: frames at 108, 54 or 27 Hz (ad7147_frame_rate_hz), which
     # tactile.sample_rate_hz must match unless ad7147_timing is false (a counterfactual
     # readout at any rate, as the transfer study's 1 kHz worlds use).
-    decimation: int = bounded(64, low=64, high=256,
-                              why="the AD7147's decimations are 64, 128 and 256, AD7147 data "
-                                  "sheet")
+    decimation: int = chosen(64, names=AD7147_DECIMATIONS, why="the AD7147's, AD7147 data sheet")
     ad7147_timing: bool = True
     # The elastomer stops compressing at this fraction of its thickness (assumed: the
     # grasps here compress it by 2-30 %).
     minimum_gap_fraction: float = bounded(0.1, low=0.01, high=1.0, high_open=True,
                                           why="an elastomer compresses by at most 99 % of its "
                                               "thickness")
-    output: str = "calibrated"  # calibrated (newtons) or counts (above the baseline)
+    output: str = chosen("calibrated", names=CAPACITIVE_OUTPUTS,
+                         why="newtons, or counts above the baseline")
     # The bench calibration's one point [N on a taxel]: a 0.5 kg weight, within the 1-10 N a
     # taxel carries in 25-100 N grasps.
     calibration_force_n: float = bounded(5.0, low=0.1, high=100.0, unit="N",

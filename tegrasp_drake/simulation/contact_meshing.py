@@ -8,7 +8,7 @@ Costs: docs/sweeps.md, "Coarser contact geometry".
 
 import dataclasses
 from tegrasp_drake.modelgen.pad_mesh import PAD_REFINEMENTS
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.ranges import bounded, chosen
 from tegrasp_drake.rig.api_boundary import public_dataclass
 
 BOX_TRIANGLES = (24, 12)
@@ -20,8 +20,10 @@ TABLE_SHAPES = ("box", "half_space")
 class ContactGeometryConfig:
     """How finely the contact world is meshed; the defaults are the reference geometry."""
     # 24 (Drake's Box) or 12 (the convex hull of the corners)
-    box_triangles: int = bounded(24, low=12, high=24, why="12 or 24")
-    table: str = "box"  # "box" or "half_space"
+    box_triangles: int = chosen(24, names=BOX_TRIANGLES, why="Drake's box mesh, or its "
+                                                           "corners' convex hull")
+    table: str = chosen("box", names=TABLE_SHAPES, why="the compliant table box, or a "
+                                                       "compliant half-space at its top")
     # 0 (Drake's mesh of the pad box), 1 or 2 (that mesh split as many times into eight);
     # None: by the hand and the object (pad_refinement_for)
     pad_refinement: int | None = bounded(None, low=min(PAD_REFINEMENTS),
@@ -47,14 +49,3 @@ def pad_refinement_for(config: ContactGeometryConfig, hand_model: str,
         return config.pad_refinement
     return PAD_REFINEMENT_BY_SHAPE[object_shape] if hand_model == "linkage" else 0
 
-
-def contact_geometry_problem(config: ContactGeometryConfig) -> tuple[str, str] | None:
-    """The first field of `config` that is not a choice the contact world offers, and what
-    is wrong, in words that follow "field 'contact_geometry.x'"; None when all are."""
-    if config.box_triangles not in BOX_TRIANGLES:
-        return "box_triangles", (f"must be 24 (Drake's box mesh) or 12 (its corners' convex "
-                                 f"hull), got {config.box_triangles!r}")
-    if config.table not in TABLE_SHAPES:
-        return "table", (f"must be one of {', '.join(TABLE_SHAPES)} (the compliant table "
-                         f"box, or a compliant half-space at its top), got {config.table!r}")
-    return None

@@ -7,12 +7,14 @@ import dataclasses
 import math
 
 from tegrasp_drake.rig.ranges import (EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded,
-                                      field_range)
+                                      chosen, field_range)
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.simulation.drive_vibration import (DriveVibrationConfig, arm_drive_default,
                                                      gripper_drive_default)
 from tegrasp_drake.simulation.film_dynamics import FilmParameters, film_sensitivity
+from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
+from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
 from tegrasp_drake.simulation.film_readout import (ADC_INPUTS, adc_input, noise_at_amplifier_v,
                                                   reading_mps2, reading_noise_std)
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
@@ -110,7 +112,8 @@ class VibrationSensorConfig:
                                        why="an amplifier on the myRIO's +-15 V supply cannot "
                                            "swing past its rails; at least 0.1 V, 20 codes of "
                                            "the 12-bit +-10 V input")
-    adc_input: str = "msp"
+    adc_input: str = chosen("msp", names=ADC_INPUTS, why="the myRIO's +-10 V MSP input, its 0-5 V "
+                                                        "MXP input, or no converter")
     adc_noise_lsb: float = bounded(0.5, low=0.0, high=1.0, unit="codes rms",
                                    why="a 12-bit converter's noise is below one code, NI "
                                        "PCI-1200 User Manual; 0: none",
@@ -124,25 +127,17 @@ class VibrationSensorConfig:
                                           "grows with it; at least the 1 kHz tactile rate")
     # "film", or "accelerometer": a high-passed rigid-body accelerometer on the pad, as in the
     # paper's simulation (pad_accelerometers.py); the film's own settings are then unused.
-    transducer: str = "film"
+    transducer: str = chosen("film", names=VIBRATION_TRANSDUCERS,
+                             why="the PVDF film, or a high-passed accelerometer on the pad")
     # The linkage hand's pad forces: "contact_results" (PadNormalForces) or "joint_forces"
     # (linkage_pad_statics.py, cheaper); the same forces to round-off.
-    pad_force_source: str = "contact_results"
+    pad_force_source: str = chosen("contact_results", names=PAD_FORCE_SOURCES,
+                                   why="the contact results, or the linkage's joint statics")
 
     def problem(self) -> tuple[str, str, object] | None:
-        """(field, what it must be, its value) of the first choice or cross-field setting that
-        does not fit (each number's range is declared on its field); None when all fit."""
-        from tegrasp_drake.simulation.linkage_pad_statics import PAD_FORCE_SOURCES
-        from tegrasp_drake.simulation.pad_accelerometers import VIBRATION_TRANSDUCERS
-        choices = (("transducer", VIBRATION_TRANSDUCERS, "(the PVDF film, or a high-passed "
-                    "accelerometer on the pad)"),
-                   ("pad_force_source", PAD_FORCE_SOURCES, ""),
-                   ("adc_input", ADC_INPUTS, "(the myRIO's +-10 V MSP input, its 0-5 V MXP "
-                    "input, or no converter)"))
-        for field, names, what in choices:
-            if getattr(self, field) not in names:
-                return (field, f"must be one of {', '.join(names)}{' ' * bool(what)}{what}",
-                        getattr(self, field))
+        """(field, what it must be, its value) of the first cross-field setting that does not
+        fit (each number's range and each text's choices are declared on its field); None
+        when all fit."""
         nyquist = self.internal_rate_hz / 2
         lowest = field_range(FilmConfig, "mode_frequency_hz").low
         if not lowest <= self.film.mode_frequency_hz < nyquist:

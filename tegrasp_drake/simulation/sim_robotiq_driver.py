@@ -18,7 +18,7 @@ from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from tegrasp_drake.rig import materials
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.ranges import bounded, chosen
 from tegrasp_drake.robotiq import drive
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
@@ -36,7 +36,8 @@ _PLANNER_SIZE = len(PLANNER)
 class GripperDriverConfig:
     """The simulated 2F-85: its hand and its controller (a force-limited position loop)."""
     # "linkage" (the 2F-85's five-bar fingers) or "prismatic" (gripper_hands.py)
-    model: str = "linkage"
+    model: str = chosen("linkage", names=GRIPPER_MODELS,
+                        why="the 2F-85's finger linkage, or prismatic fingers")
     # Low end: the position loop follows no command faster than half the update rate, so the
     # slowest loop the model allows (position_loop_hz, 40 Hz) needs updates at twice that.
     update_rate_hz: float = bounded(200.0, low=2 * drive.POSITION_LOOP_HZ_RANGE[0],

@@ -22,7 +22,7 @@ from pydrake.systems.primitives import Demultiplexer, MatrixGain
 from pydrake.geometry import Meshcat
 from pydrake.multibody.plant import MultibodyPlantConfig
 
-from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, SEED_RANGE, bounded
+from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, SEED_RANGE, bounded, chosen
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import (ARM_URL, GRASP_HEIGHT_RANGE, R_WG_SIDE_GRASP,
@@ -117,7 +117,9 @@ class SimulatedStationConfig:
     arm: what carries the gripper: `jaco2` (default, for demos and hardware twins), the JACO2 on
     the plant's PD; `carriage` (for sweeps), a six-joint Cartesian carriage with the arm's
     end-point impedance at the grasp pose (simulation/carriage.py), with the same arm ports."""
-    arm: str = "jaco2"
+    arm: str = chosen("jaco2", names=ARM_MOUNTS, why="the JACO2 arm, or the Cartesian carriage "
+                                                     "with the arm's end-point impedance, for "
+                                                     "sweeps")
 
     def uses_carriage(self) -> bool:
         return self.arm == "carriage"

@@ -15,10 +15,11 @@ from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
-from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded
+from tegrasp_drake.rig.ranges import (EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded,
+                                      chosen)
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.robotiq.units import FORCE_MAX_N
-from tegrasp_drake.simulation.capacitive_taxels import (CapacitiveTaxelConfig,
+from tegrasp_drake.simulation.capacitive_taxels import (TAXEL_TRANSDUCERS, CapacitiveTaxelConfig,
                                                         capacitive_readings,
                                                         counts_above_baseline,
                                                         noise_std_at_decimation)
@@ -61,7 +62,8 @@ class TactileSensorConfig:
     # per taxel constant bias
     offset_n: float = bounded(0.0, low=-5.0, high=5.0, unit="N",
                               why="a bias within the taxel's 5 N calibration point")
-    transducer: str = "capacitive"
+    transducer: str = chosen("capacitive", names=TAXEL_TRANSDUCERS,
+                             why="ideal force taxels, or the AD7147's parallel-plate taxels")
     capacitive: CapacitiveTaxelConfig = dataclasses.field(
         default_factory=CapacitiveTaxelConfig)
 

@@ -35,21 +35,21 @@ def test_override_changes_a_nested_field():
     (["object.name=model", "object.shape=file", "object.file=/no/such/model.sdf", "object.size=[0.04,0.04,0.1]",
       "object.mass=0.1", "object.friction=0.5"], "model file '/no/such/model.sdf' does not exist"),
     (["plant_config.time_step=fast"], "field 'plant_config.time_step' must be a finite number"),
-    (["tactile.transducer=piezo"], "field 'tactile.transducer' must be one of force, "
-     "capacitive"),
-    (["vibration.transducer=microphone"], "field 'vibration.transducer' must be one of film, "
-     "accelerometer"),
+    (["tactile.transducer=piezo"], "field 'tactile.transducer' must be one of 'force', "
+     "'capacitive'"),
+    (["vibration.transducer=microphone"], "field 'vibration.transducer' must be one of 'film', "
+     "'accelerometer'"),
     (["tactile.capacitive.minimum_gap_fraction=1.5"],
      "field 'tactile.capacitive.minimum_gap_fraction' must lie in"),
     (["tactile.capacitive.output=volts"], "field 'tactile.capacitive.output' must be one of "
-     "calibrated, counts"),
+     "'calibrated', 'counts'"),
     (["tactile.capacitive.decimation=100"], "field 'tactile.capacitive.decimation' must be "
      "one of 64, 128, 256"),
     (["tactile.transducer=capacitive", "tactile.capacitive.decimation=128"],
      "field 'tactile.sample_rate_hz' must be the AD7147's frame rate at "
      "tactile.capacitive.decimation 128, 54.3 Hz"),
-    (["vibration.adc_input=usb"], "field 'vibration.adc_input' must be one of msp, mxp, "
-     "ideal"),
+    (["vibration.adc_input=usb"], "field 'vibration.adc_input' must be one of 'msp', 'mxp', "
+     "'ideal'"),
     (["vibration.adc_noise_lsb=-1"], "field 'vibration.adc_noise_lsb' must be zero"),
     (["vibration.amplifier_swing_v=0"], "field 'vibration.amplifier_swing_v' must lie in "
      "[0.1, 15] V"),

@@ -15,10 +15,20 @@ def test_the_films_mechanics_declare_their_units_and_ranges():
         check_ranges(VibrationSensorConfig(film=FilmConfig(mode_mass_kg=0.0)), "here")
 
 
+@pytest.mark.parametrize("config, words", [
+    (VibrationSensorConfig(transducer="piezo"),
+     "field 'transducer' must be one of 'film', 'accelerometer'"),
+    (VibrationSensorConfig(adc_input="usb"), "field 'adc_input' must be one of 'msp', 'mxp', "
+     "'ideal'"),
+    (VibrationSensorConfig(pad_force_source="usb"), "field 'pad_force_source' must be one of "
+     "'contact_results', 'joint_forces'"),
+])
+def test_the_films_choices_are_declared_on_their_fields(config, words):
+    with pytest.raises(ConfigError, match=words):
+        check_ranges(config, "here")
+
+
 @pytest.mark.parametrize("config, field, words", [
-    (VibrationSensorConfig(transducer="piezo"), "transducer",
-     "must be one of film, accelerometer"),
-    (VibrationSensorConfig(adc_input="usb"), "adc_input", "must be one of msp, mxp, ideal"),
     (VibrationSensorConfig(film=FilmConfig(mode_frequency_hz=12_000.0)),
      "film.mode_frequency_hz", "must lie in [50, 10000) Hz"),
     (VibrationSensorConfig(transducer="accelerometer", highpass_cutoff_hz=600.0),
