@@ -303,41 +303,49 @@ def public_dataclass(cls):
     """Class decorator (above @dataclass): the constructor refuses a value not of its field's
     type where that is str, int, float or bool (or optional: `hold_success='yes'`), and a
     text string in a field annotated as a collection (`objects='box'` for `tuple[str, ...]`),
-    naming class and field."""
+    naming class and field (check_field_types, which a __post_init__ that reads its fields'
+    values calls first)."""
     init = cls.__init__
-    fields = None
-    scalar = None
 
     @functools.wraps(init)
     def checked_init(self, *args, **kwargs):
-        nonlocal fields, scalar
         init(self, *args, **kwargs)
-        if fields is None:
-            try:
-                hints = typing.get_type_hints(cls)
-            except Exception:  # noqa: BLE001: an annotation typing cannot resolve
-                hints = {f.name: f.type for f in dataclasses.fields(cls)
-                         if not isinstance(f.type, str)}
-            fields = [name for name in getattr(cls, "__dataclass_fields__", {})
-                      if _expects_collection(hints.get(name))]
-            scalar = _scalar_fields(cls, hints)
         if type(self) is cls:  # a subclass's own fields are its own decorator's
-            _check_scalar_fields(self, scalar, cls.__name__)
-        for name in fields:
-            value = getattr(self, name)
-            if isinstance(value, _TEXT):
-                raise TypeError(f"{cls.__name__}: field '{name}' must be a collection "
-                                f"(not a single string), got {type(value).__name__} "
-                                f"{_short_repr(value)}; e.g. {name}=[{_short_repr(value)}]")
-        if type(self) is cls:
-            from tegrasp_drake.rig.typed_yaml import check_instance
-            check_instance(self, cls.__name__)  # nested configs, enums, arrays, items
+            check_field_types(self)
 
     cls.__init__ = checked_init
     cls.__init__.__checked_arguments__ = True
     if not cls.__dataclass_params__.frozen:
         cls.__setattr__ = _set_field_only
     return cls
+
+
+@functools.cache
+def _typed_fields(cls) -> tuple[list, object]:
+    """(the fields of `cls` annotated as collections, its scalar fields)."""
+    try:
+        hints = typing.get_type_hints(cls)
+    except Exception:  # noqa: BLE001: an annotation typing cannot resolve
+        hints = {f.name: f.type for f in dataclasses.fields(cls) if not isinstance(f.type, str)}
+    return ([name for name in getattr(cls, "__dataclass_fields__", {})
+             if _expects_collection(hints.get(name))], _scalar_fields(cls, hints))
+
+
+def check_field_types(instance) -> None:
+    """TypeError naming the first field of a public dataclass `instance` not of its type: a
+    scalar field (str, int, float, bool), a collection given as one string, then nested
+    configs, enums, arrays and items (typed_yaml.check_instance)."""
+    cls = type(instance)
+    collections_, scalar = _typed_fields(cls)
+    _check_scalar_fields(instance, scalar, cls.__name__)
+    for name in collections_:
+        value = getattr(instance, name)
+        if isinstance(value, _TEXT):
+            raise TypeError(f"{cls.__name__}: field '{name}' must be a collection "
+                            f"(not a single string), got {type(value).__name__} "
+                            f"{_short_repr(value)}; e.g. {name}=[{_short_repr(value)}]")
+    from tegrasp_drake.rig.typed_yaml import check_instance
+    check_instance(instance, cls.__name__)  # nested configs, enums, arrays, items
 
 
 def _set_field_only(self, name: str, value) -> None:

@@ -6,11 +6,11 @@ import dataclasses
 import math
 import typing
 
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import check_field_types, public_dataclass
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import (SEED_RANGE, bounded, check_ranges, declared_field,
                                       shorten)
-from tegrasp_drake.rig.typed_yaml import ConfigError, check_instance
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
@@ -77,7 +77,7 @@ class TrialResult:
         or the first relation between fields that run_trial guarantees and this result
         breaks. The types first: the relations read the fields' values."""
         name = type(self).__name__
-        check_instance(self, name)
+        check_field_types(self)
         check_ranges(self, name)
         for k in range(1, len(self.transitions)):
             earlier, later = self.transitions[k - 1].t, self.transitions[k].t
