@@ -11,8 +11,9 @@ names is another model file, unchecked).
 
 Then Drake loads it as the station will, into a plant with a SceneGraph, so that its
 geometry is made (mesh files read, convex hulls computed): what Drake cannot use, or warns
-about, is refused here, not at station build. It must hold one model of one body, with
-collision geometry: a body the hand cannot touch is nothing to grasp. That geometry must
+about, is refused here, not at station build. It must hold one model of one body, free (no
+joint or weld to the world or anything: the hand must lift it), with collision geometry: a
+body the hand cannot touch is nothing to grasp. That geometry must
 fill the box object.size gives, where the object's frame puts it (rig/objects.py: frame at
 the centre of the base, z up, y along the finger stroke), within SIZE_TOLERANCE_M on each
 side, each of its shapes a solid (no flat or needle hull), each mesh scaled by positive
@@ -65,7 +66,7 @@ _URL_SCHEMES = ("package://", "model://", "file://")  # what Drake's PackageMap 
 def check_model_file(file: str, source: str, size) -> None:
     """ConfigError naming `source` and field object.file unless `file` (module docstring)
     is a model file with no DTD that Drake loads with its meshes, holding one model of one
-    body whose collision geometry fills the box of object.size `size` [m]: [width along the
+    free body (no joint, no <static>) whose collision geometry fills the box of object.size `size` [m]: [width along the
     stroke, depth, height] (rig/objects.OBJECT_SIZES)."""
     if not file:
         raise ConfigError(f"{source}: field 'object.file' is required for shape 'file'")
@@ -95,12 +96,30 @@ def check_model_file(file: str, source: str, size) -> None:
             f"{source}: field 'object.file': '{file}' must hold one model with one body "
             f"(the object), it holds {len(instances)} model(s) with bodies {bodies}")
     body = plant.GetBodyByName(bodies[0], instances[0])
+    _check_free(plant, f"{source}: field 'object.file': '{file}'")
     if not plant.GetCollisionGeometriesForBody(body):
         raise ConfigError(
             f"{source}: field 'object.file': '{file}' has no collision geometry on its body "
             f"'{bodies[0]}', so the hand has nothing to grasp; give its link a <collision>")
     _check_geometry(plant, scene_graph.model_inspector(), body, size,
                     f"{source}: field 'object.file': '{file}'")
+
+
+def _check_free(plant, named: str) -> None:
+    """ConfigError, `named` first, if the model loaded into `plant` (which held nothing
+    before) has any joint: its body must be free, as the station places it and the hand
+    lifts it. Drake makes a joint, before the plant is finalized, for each <joint> of an SDF
+    or URDF model (to the world or anything) and a weld to the world for the link of an SDF
+    <static>true</static> model; a free body has none until Finalize gives it its floating
+    joint."""
+    joints = [plant.get_joint(j) for j in plant.GetJointIndices()]
+    if joints:
+        listed = ", ".join(f"'{j.name()}' ({j.type_name()}, '{j.parent_body().name()}' to "
+                           f"'{j.child_body().name()}')" for j in joints)
+        raise ConfigError(
+            f"{named} joins its body to another by the joint(s) {listed}: the object must be "
+            f"one free body the hand can lift; remove its <joint> elements (and any "
+            f"<static>true</static>, which welds it to the world)")
 
 
 def drake_error_line(error: Exception) -> str:
