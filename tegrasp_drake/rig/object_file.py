@@ -96,7 +96,9 @@ def check_model_file(file: str, source: str, size) -> None:
             f"{source}: field 'object.file': '{file}' must hold one model with one body "
             f"(the object), it holds {len(instances)} model(s) with bodies {bodies}")
     body = plant.GetBodyByName(bodies[0], instances[0])
-    _check_free(plant, f"{source}: field 'object.file': '{file}'")
+    problem = joints_problem(plant, instances[0])
+    if problem:
+        raise ConfigError(f"{source}: field 'object.file': '{file}' {problem}")
     if not plant.GetCollisionGeometriesForBody(body):
         raise ConfigError(
             f"{source}: field 'object.file': '{file}' has no collision geometry on its body "
@@ -105,20 +107,20 @@ def check_model_file(file: str, source: str, size) -> None:
                     f"{source}: field 'object.file': '{file}'")
 
 
-def _check_free(plant, named: str) -> None:
-    """ConfigError, `named` first, if the model loaded into `plant` (which held nothing
-    before) has any joint: its body must be free, as the station places it and the hand
-    lifts it. Drake makes a joint, before the plant is finalized, for each <joint> of an SDF
-    or URDF model (to the world or anything) and a weld to the world for the link of an SDF
-    <static>true</static> model; a free body has none until Finalize gives it its floating
-    joint."""
-    joints = [plant.get_joint(j) for j in plant.GetJointIndices()]
-    if joints:
-        listed = ", ".join(f"'{j.name()}' ({j.type_name()}, '{j.parent_body().name()}' to "
-                           f"'{j.child_body().name()}')" for j in joints)
-        raise ConfigError(
-            f"{named} joins its body to another by the joint(s) {listed}: the object must be "
-            f"one free body the hand can lift; remove its <joint> elements (and any "
+def joints_problem(plant, instance) -> str | None:
+    """What is wrong, in words after the file's name, with the model instance `instance` of
+    `plant` (not yet finalized) as the object, if it has any joint; else None. Its body must
+    be free, as the station places it and the hand lifts it. Drake makes a joint, before the
+    plant is finalized, for each <joint> of an SDF or URDF model (to the world or anything)
+    and a weld to the world for the link of an SDF <static>true</static> model; a free body
+    has none until Finalize gives it its floating joint."""
+    joints = [plant.get_joint(j) for j in plant.GetJointIndices(instance)]
+    if not joints:
+        return None
+    listed = ", ".join(f"'{j.name()}' ({j.type_name()}, '{j.parent_body().name()}' to "
+                       f"'{j.child_body().name()}')" for j in joints)
+    return (f"joins its body to another by the joint(s) {listed}: the object must be one "
+            f"free body the hand can lift; remove its <joint> elements (and any "
             f"<static>true</static>, which welds it to the world)")
 
 
