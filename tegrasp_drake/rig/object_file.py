@@ -66,8 +66,8 @@ _URL_SCHEMES = ("package://", "model://", "file://")  # what Drake's PackageMap 
 def check_model_file(file: str, source: str, size) -> None:
     """ConfigError naming `source` and field object.file unless `file` (module docstring)
     is a model file with no DTD that Drake loads with its meshes, holding one model of one
-    free body (no joint, no <static>) whose collision geometry fills the box of object.size `size` [m]: [width along the
-    stroke, depth, height] (rig/objects.OBJECT_SIZES)."""
+    free body (no joint, no <static>) whose collision geometry fills the box of object.size
+    `size` [m]: [width along the stroke, depth, height] (rig/objects.OBJECT_SIZES)."""
     if not file:
         raise ConfigError(f"{source}: field 'object.file' is required for shape 'file'")
     plant, scene_graph, parser = _plant_and_parser()
