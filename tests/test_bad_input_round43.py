@@ -95,3 +95,25 @@ def test_a_model_hinged_to_the_world_is_refused_before_the_trial(tmp_path, no_si
 def test_the_same_free_body_is_accepted(tmp_path, model):
     from tegrasp_drake.rig.object_file import check_model_file
     check_model_file(str(model(tmp_path)), "scenario", _SIZE)
+
+
+# Rule: the station build refuses it too (a file changed since the scenario's check, or an
+# object config given straight to the builder), one line naming object.file, never a hinged
+# object in the simulation.
+def test_a_jointed_model_is_refused_at_station_build(tmp_path):
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+    from pydrake.systems.framework import DiagramBuilder
+
+    from tegrasp_drake.rig.files import UserPathError
+    from tegrasp_drake.rig.objects import ObjectConfig
+    from tegrasp_drake.simulation.object_model import AddObject
+    file = _sdf(tmp_path, _sdf_joint("revolute"))
+    config = ObjectConfig(name="mine", shape="file", size=_SIZE, mass=0.1, friction=0.5,
+                          file=str(file))
+    plant, _ = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), DiagramBuilder())
+    with pytest.raises(UserPathError) as refused:
+        AddObject(Parser(plant), config)
+    text = str(refused.value)
+    assert "\n" not in text and "field 'object.file'" in text and str(file) in text, text
+    assert "one free body" in text, text

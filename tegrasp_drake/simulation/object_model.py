@@ -13,7 +13,7 @@ from pydrake.multibody.tree import ModelInstanceIndex
 
 from tegrasp_drake.modelgen.sdf_text import box_inertia, friction_text, inertial_text
 from tegrasp_drake.rig.files import UserPathError
-from tegrasp_drake.rig.object_file import drake_error_line
+from tegrasp_drake.rig.object_file import drake_error_line, joints_problem
 from tegrasp_drake.rig.objects import DEFAULT_COLOR, ObjectConfig
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 
@@ -101,6 +101,10 @@ def AddObject(parser, config: ObjectConfig,
                                                "sdf")
     if len(instances) != 1:
         raise ValueError(f"object.file '{config.file}' must hold exactly one model")
+    if config.shape == "file":
+        problem = joints_problem(parser.plant(), instances[0])
+        if problem:  # the scenario's check refused it; the file changed since, or was unchecked
+            raise UserPathError(f"field 'object.file': '{config.file}' {problem}")
     if corner_hull:
         _corner_hull_collision(parser.plant(), instances[0], config)
     return instances[0]
