@@ -78,7 +78,7 @@ def test_a_model_whose_body_is_jointed_or_welded_is_refused(tmp_path, model):
 
 
 # Rule: the refusal comes before the trial simulates, one line from the command line (the
-# hostile review's reproducer: an SDF link hinged to the world by a revolute joint).
+# case: an SDF link hinged to the world by a revolute joint).
 def test_a_model_hinged_to_the_world_is_refused_before_the_trial(tmp_path, no_simulation,
                                                                   capfd):
     file = _sdf(tmp_path, _sdf_joint("revolute"))
