@@ -1,5 +1,6 @@
 """Bad inputs the thirteenth hostile pass found (round 21), one test per rule."""
 
+import contextlib
 import fcntl
 import os
 import subprocess
@@ -16,7 +17,6 @@ from pydrake.systems.primitives import ConstantVectorSource
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_STATUS_CHANNEL, NEGATIVE_UTIME, make_jaco_status)
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
-from tegrasp_drake.sweep.runner import LOCK_FILE_NAME
 from tests.test_bad_input import assert_one_line_error, folder_contents, run_cli
 from tests.test_bad_input_round14 import _FAKE_TRIALS, _transfer_out
 
@@ -65,12 +65,16 @@ def test_an_arm_status_with_a_negative_utime_is_skipped():
         assert "\n" not in driver.status_boundary.describe(rejection)
 
 
+@contextlib.contextmanager
 def _held(folder):
-    """The output folder's lock, taken as another run's process holds it."""
+    """The output folder held as another run's process holds it (a flock on the folder)."""
     folder.mkdir(parents=True, exist_ok=True)
-    lock = open(folder / LOCK_FILE_NAME, "a")
-    fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    return lock
+    lock = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        yield
+    finally:
+        os.close(lock)
 
 
 # Rule: another run writing into the --out folder is an error outside the run (exit 1, one

@@ -1,5 +1,8 @@
 """Bad inputs the lead found beside the fifteenth hostile pass, one test per rule."""
 
+import subprocess
+import sys
+
 import pytest
 
 from tegrasp_drake import cli
@@ -67,3 +70,42 @@ def test_the_most_transitions_follow_the_logs_span_and_its_avoid_timing():
     no_pause = dataclasses.replace(quick, avoid=dataclasses.replace(
         quick.avoid, hit_refractory_s=0.0, sense_s=0.0, move_s=0.0))
     assert abs(most_transitions(1.0, no_pause) - corrections_only - 2 * 100) <= 2  # 5 ms updates
+
+
+# Rule: every command that writes a run into a folder takes one lock, the folder's own: a
+# sweep into the folder a trial is writing is refused at once, and the reverse (the sweep held
+# D/.sweep.lock, the trial the folder itself: both ran, and the lock file stayed in the trial's
+# run folder).
+_HOLD = ("import sys\n"
+         "from tegrasp_drake.commands.run_folder import claimed_run_folder\n"
+         "with claimed_run_folder(sys.argv[1]):\n"
+         "    print('held', flush=True)\n"
+         "    sys.stdin.read()\n")
+_CLAIM = ("import sys\n"
+          "from tegrasp_drake.commands.run_folder import RunFolderError, claimed_run_folder\n"
+          "try:\n"
+          "    with claimed_run_folder(sys.argv[1]):\n"
+          "        print('claimed')\n"
+          "except RunFolderError as e:\n"
+          "    print(e)\n")
+
+
+def test_a_trial_and_a_sweep_exclude_each_other_on_one_folder(tmp_path):
+    from tegrasp_drake.rig.files import UserPathError
+    from tegrasp_drake.sweep.runner import hold_output_folder
+    folder = tmp_path / "D"
+    folder.mkdir()
+    trial = subprocess.Popen([sys.executable, "-c", _HOLD, str(folder)], stdin=subprocess.PIPE,
+                             stdout=subprocess.PIPE, text=True)
+    try:
+        assert trial.stdout.readline() == "held\n"  # a trial's run holds the folder
+        with pytest.raises(UserPathError, match="another run .* is writing there now"):
+            with hold_output_folder(folder):
+                pass
+    finally:
+        trial.communicate("", timeout=600)
+    with hold_output_folder(folder):  # a sweep holds it: a trial's run is refused
+        claim = subprocess.run([sys.executable, "-c", _CLAIM, str(folder)],
+                               capture_output=True, text=True, timeout=600)
+    assert "another run is writing there now" in claim.stdout, claim.stdout + claim.stderr
+    assert list(folder.iterdir()) == []  # no lock file left behind

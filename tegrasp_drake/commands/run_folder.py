@@ -3,7 +3,6 @@ trial` and `tegrasp demo`"). Files are staged in a hidden folder and replace the
 together at the end (commit_run), so a failed or interrupted run leaves the earlier one whole."""
 
 import contextlib
-import fcntl
 import json
 import logging
 import os
@@ -14,7 +13,8 @@ import tempfile
 
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
-from tegrasp_drake.rig.files import (claim_folder, file_problem, folder_problem,
+from tegrasp_drake.rig.files import (FolderHeldError, claim_folder, file_problem,
+                                     folder_problem, held_folder,
                                      interruptions_deferred, own_staging_suffix,
                                      stale_staging_files_of, write_atomically)
 
@@ -166,20 +166,17 @@ def remove_stale_staging_files(target, start: bytes) -> list[pathlib.Path]:
 
 @contextlib.contextmanager
 def claimed_run_folder(folder):
-    """Holds an exclusive flock on `folder` for the block; RunFolderError if another holds it."""
-    try:
-        descriptor = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
-    except OSError as e:
-        raise RunFolderError(f"--out {folder}: cannot open it: {e.strerror or e}") from None
-    try:
+    """Holds `folder` for the block (rig.files.held_folder, the lock every run into a folder
+    takes); RunFolderError if another run holds it or it cannot be opened."""
+    with contextlib.ExitStack() as stack:
         try:
-            fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
+            stack.enter_context(held_folder(folder))
+        except FolderHeldError:
             raise RunFolderError(f"--out {folder}: another run is writing there now; wait "
                                  "for it to end, or give another --out") from None
+        except OSError as e:
+            raise RunFolderError(f"--out {folder}: cannot open it: {e.strerror or e}") from None
         yield
-    finally:
-        os.close(descriptor)  # releases the lock
 
 
 def own_file_problem(path, folder) -> str | None:

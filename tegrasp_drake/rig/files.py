@@ -5,6 +5,7 @@ one-line UserPathError, strict JSON, and the one reader of a JSON file (read_jso
 
 import contextlib
 import errno
+import fcntl
 import json
 import os
 import pathlib
@@ -325,6 +326,49 @@ def claim_folder(path) -> bool:
     except FileExistsError:
         return False
     return True
+
+
+class FolderHeldError(OSError):
+    """Another process holds the folder (held_folder): another run is writing there."""
+
+
+_SHARED_HOLDS = {}  # resolved folder -> how many nested shared holds this process has on it
+
+
+@contextlib.contextmanager
+def held_folder(folder, *, shared: bool = False):
+    """Holds an exclusive flock on `folder` itself (its directory, opened read-only: no file
+    is made in it) for the block, so every command that writes a run into a folder (a trial,
+    a hardware run, a sweep, a transfer, a sensitivity study) refuses a second one at once;
+    the kernel drops the lock when the process ends, however it ends. A `shared` hold nested
+    in another shared hold of the folder in this process (a sensitivity study holding its
+    folder across the transfer it runs) shares the outer one; any other second hold is
+    refused, in this process as in another. FolderHeldError when another hold has it;
+    OSError when the folder cannot be opened."""
+    key = pathlib.Path(folder).resolve()
+    if shared and _SHARED_HOLDS.get(key):
+        _SHARED_HOLDS[key] += 1
+        try:
+            yield
+        finally:
+            _SHARED_HOLDS[key] -= 1
+        return
+    descriptor = os.open(key, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        try:
+            fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise FolderHeldError(errno.EWOULDBLOCK, "another run is writing there now",
+                                  str(folder)) from None
+        if shared:
+            _SHARED_HOLDS[key] = 1
+        try:
+            yield
+        finally:
+            if shared:
+                del _SHARED_HOLDS[key]
+    finally:
+        os.close(descriptor)  # releases the lock
 
 
 class InputTooLargeError(OSError):

@@ -8,7 +8,6 @@ raised, recorded with its traceback) runs again. Backends: a local process pool
 dies leaves its trial unrecorded, for the next run."""
 
 import dataclasses
-import fcntl
 import functools
 import json
 import logging
@@ -21,7 +20,7 @@ import traceback
 import typing
 from typing import Annotated
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from contextlib import closing, contextmanager, nullcontext, suppress
+from contextlib import ExitStack, closing, contextmanager, nullcontext, suppress
 from dataclasses import dataclass
 from pathlib import Path
 from collections.abc import Callable
@@ -39,13 +38,11 @@ from tegrasp_drake.sweep.records import (
 from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, check_sweep_size,
                                       expand_trials)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
-from tegrasp_drake.rig.files import UserPathError
+from tegrasp_drake.rig.files import FolderHeldError, UserPathError, held_folder
 from tegrasp_drake.rig.ranges import Range
 
 logger = logging.getLogger(__name__)
 
-LOCK_FILE_NAME = ".sweep.lock"
-_HELD_FOLDERS = set()  # resolved output folders this process holds (hold_output_folder)
 DASK_CONNECT_TIMEOUT_S = 30.0
 
 
@@ -240,30 +237,19 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
 
 @contextmanager
 def hold_output_folder(out_dir: Path):
-    """Holds an exclusive flock on the output folder's lock file for the block, so a second
-    sweep, transfer or sensitivity run into the folder is refused at once; the kernel drops
-    the lock when the process ends, however it ends. UserPathError when another process
-    holds it: an error outside the run (exit 1), not a refused spec. `out_dir` must exist.
-    Nested holds of one folder in this process (a sensitivity study holding its folder
-    across the transfer it runs) share the outer lock: a second flock on another open of the
-    file would be refused as another run's."""
-    key = Path(out_dir).resolve()
-    if key in _HELD_FOLDERS:
+    """Holds the output folder for the block (rig.files.held_folder, the lock every run into
+    a folder takes, a trial's and a hardware run's too), so a second run into it is refused
+    at once; nested holds of one folder in this process (a sensitivity study holding its
+    folder across the transfer it runs) share the outer one. UserPathError when another
+    holds it: an error outside the run (exit 1), not a refused spec. `out_dir` must exist."""
+    with ExitStack() as stack:
+        try:
+            stack.enter_context(held_folder(out_dir, shared=True))
+        except FolderHeldError:
+            raise UserPathError(f"{out_dir}: another run (a trial, sweep, transfer or "
+                                "sensitivity study) is writing there now; wait for it to end "
+                                "or choose another output folder") from None
         yield
-        return
-    with open(key / LOCK_FILE_NAME, "a") as lock_file:
-        try:
-            fcntl.flock(lock_file, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            raise UserPathError(f"{out_dir}: another sweep, transfer or sensitivity run is "
-                                "writing there now; wait for it to end or choose another "
-                                "output folder") from None
-        _HELD_FOLDERS.add(key)
-        try:
-            yield
-        finally:
-            _HELD_FOLDERS.discard(key)
-            fcntl.flock(lock_file, fcntl.LOCK_UN)
 
 
 def _check_same_sweep(trials, records, out_dir):

@@ -1,12 +1,13 @@
 """The sweep runner on a local process pool: recording, resuming, errors, refusals."""
 
 import fcntl
+import os
 import sys
 
 import pytest
 
 from tegrasp_drake.sweep.records import load_records, record_path
-from tegrasp_drake.sweep.runner import LOCK_FILE_NAME, SweepError, run_sweep
+from tegrasp_drake.sweep.runner import SweepError, run_sweep
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.rig.files import UserPathError
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -126,10 +127,13 @@ def test_a_folder_of_a_different_sweep_is_refused(tmp_path):
 
 
 def test_a_sweep_already_writing_the_folder_is_refused(tmp_path):
-    with open(tmp_path / LOCK_FILE_NAME, "a") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        with pytest.raises(UserPathError, match="another sweep, transfer or sensitivity run"):
+    held = os.open(tmp_path, os.O_RDONLY | os.O_DIRECTORY)  # as another run holds it
+    try:
+        fcntl.flock(held, fcntl.LOCK_EX)
+        with pytest.raises(UserPathError, match="another run .* is writing there now"):
             run_sweep(SMALL, fake_trial, tmp_path, workers=1, progress=False)
+    finally:
+        os.close(held)
     assert not (tmp_path / "trials").exists()
 
 
