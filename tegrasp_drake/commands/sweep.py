@@ -277,6 +277,13 @@ def run(args) -> int:
     except ValueError as error:  # no trial of the sweep left a record: no reports
         print(f"tegrasp sweep: {error}", file=sys.stderr)
         return 1
+    if summary.unwritten_log is not None:  # a file that cannot be written: exit 1
+        print(f"tegrasp sweep: error: --logs {args.logs}: cannot write the trial log "
+              f"{summary.unwritten_log}; its trial's result is recorded and the sweep stopped "
+              f"({len(summary.unfinished)} trial(s) left for the next run): free space or give "
+              "another --logs (logs of recorded trials are made again only with a new --out)",
+              file=sys.stderr)
+        return 1
     return 1 if summary.errors or summary.unfinished else 0
 
 
