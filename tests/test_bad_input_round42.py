@@ -52,3 +52,16 @@ def test_a_sweep_whose_logs_cannot_be_written_records_the_result_and_stops(tmp_p
     assert len(records) == 1, "the sweep stops at the first log it cannot write"
     assert records[0]["status"] == "ok", records[0]
 
+
+
+def test_a_benchmark_whose_logs_cannot_be_written_says_so_once(tmp_path, capsys):
+    """--benchmark --logs on a full disk: one error line naming --logs and the reason, exit 1;
+    the benchmark stops at the first run that met it."""
+    code = cli.main([*_SWEEP[:-2], "--benchmark", "--logs", str(tmp_path / "logs"),
+                     "--trial-function", "tests.fake_trials:full_disk_fake_trial"])
+    out, error = capsys.readouterr()
+    assert code == 1, error
+    lines = [line for line in error.splitlines() if "error:" in line]
+    assert len(lines) == 1, error
+    assert f"--logs {tmp_path / 'logs'}" in lines[0] and "No space left on device" in lines[0]
+    assert out.count("worker(s):") == 1, out

@@ -577,13 +577,15 @@ class BenchmarkRun:
     trials: int
     errors: int
     wall_time_s: float
+    unwritten_log: str | None = None  # as SweepSummary's: this run stopped there
 
 
 def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
                   progress: bool = True) -> tuple[list[BenchmarkRun], bool]:
     """Runs the memorized sweep of `spec` once per worker count, each into a fresh temporary
     folder, timed whole (pool start-up included); returns the runs and whether every result
-    was the same in all (TIMING_FIELDS aside): the worker count must not change a result."""
+    was the same in all (TIMING_FIELDS aside): the worker count must not change a result.
+    A run that could not write a trial's log copy (SweepSummary.unwritten_log) is the last."""
     spec = dataclasses.replace(spec, controllers=("memorized",))
     runs, results = [], []
     for workers in worker_counts:
@@ -592,11 +594,14 @@ def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
                                 progress=progress)
             records = load_records(folder).records
         runs.append(BenchmarkRun(workers=workers, trials=summary.ran,
-                                 errors=len(summary.errors), wall_time_s=summary.wall_time_s))
+                                 errors=len(summary.errors), wall_time_s=summary.wall_time_s,
+                                 unwritten_log=summary.unwritten_log))
         results.append({trial_id: canonical_json(
             {k: v for k, v in (record["result"] or record["error"]).items()
              if k not in TIMING_FIELDS + ("traceback",)})
             for trial_id, record in records.items()})
+        if summary.unwritten_log is not None:
+            break
     return runs, all(r == results[0] for r in results)
 
 
