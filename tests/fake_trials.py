@@ -149,3 +149,20 @@ def _events_identities(trials, events_dir=None):
 
 
 fake_memorized_trial.events_identities = _events_identities
+
+
+def full_disk_fake_trial(trial, *, log_dir):
+    """fake_trial that saves its log in `log_dir` (`tegrasp sweep --logs`) as the sweep's
+    trial function does, through save_log_copy, on a full disk: the write fails with ENOSPC
+    (the workers are separate processes, so the failing write is here, not monkeypatched)."""
+    import errno
+    import pathlib
+    from tegrasp_drake.sweep.runner import save_log_copy
+
+    def save(path):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+
+    result = fake_trial(trial)
+    save_log_copy(save, pathlib.Path(log_dir) / f"{trial['trial_id'].replace('/', '.')}.log",
+                  result)
+    return result

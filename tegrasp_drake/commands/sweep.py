@@ -155,6 +155,15 @@ def _check_logs_folder(logs) -> None:
                          "trials' logs")
 
 
+def unwritten_log_error(logs, unwritten_log: str, left: int | None = None) -> str:
+    """The one error line of a sweep that stopped at a --logs copy it could not write
+    ("PATH: reason", SweepSummary.unwritten_log), `left` trials unrun."""
+    left_words = "" if left is None else f" ({left} trial(s) left for the next run)"
+    return (f"tegrasp sweep: error: --logs {logs}: cannot write the trial log {unwritten_log}; "
+            f"its trial's result is recorded and the sweep stopped{left_words}: free space "
+            "or give another --logs (a recorded trial's log is made again only in a new --out)")
+
+
 def resolve_trial_function(text: str):
     """Imports `MODULE:ATTR`."""
     module_name, _, attribute = text.partition(":")
@@ -261,6 +270,9 @@ def run(args) -> int:
         if args.benchmark:
             runs, identical = run_benchmark(spec, trial_function, progress=progress)
             print(benchmark_text(runs, identical))
+            if runs[-1].unwritten_log is not None:
+                print(unwritten_log_error(args.logs, runs[-1].unwritten_log), file=sys.stderr)
+                return 1
             return 0 if identical and not any(run.errors for run in runs) else 1
         summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
                             scheduler=scheduler, progress=progress,
@@ -276,6 +288,10 @@ def run(args) -> int:
             print(f"wrote {path}")
     except ValueError as error:  # no trial of the sweep left a record: no reports
         print(f"tegrasp sweep: {error}", file=sys.stderr)
+        return 1
+    if summary.unwritten_log is not None:  # a file that cannot be written: exit 1
+        print(unwritten_log_error(args.logs, summary.unwritten_log, len(summary.unfinished)),
+              file=sys.stderr)
         return 1
     return 1 if summary.errors or summary.unfinished else 0
 

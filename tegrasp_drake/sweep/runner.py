@@ -64,6 +64,29 @@ class SweepSummary:
     wall_time_s: float
     trial_ids: tuple[str, ...] = ()  # the trials of this spec (what the reports count)
     other_records: int = 0          # records in the folder of trials not in this spec
+    unwritten_log: str | None = None  # "PATH: reason" of a --logs copy not written (the
+    #                                   sweep stopped there; its trial's result is recorded)
+
+
+class LogNotWritten(Exception):
+    """Raised by a trial function that finished but could not write its optional log copy
+    (`tegrasp sweep --logs`): carries the trial's `result`, which the sweep records as any
+    result, and the log's `path` and the OS `reason`, which the sweep reports."""
+
+    def __init__(self, result, path, reason: str):
+        super().__init__(result, str(path), reason)
+        self.result, self.path, self.reason = result, str(path), reason
+
+
+def save_log_copy(save: Callable, path, result):
+    """save(path), the optional log copy of a finished trial whose result is `result`; an
+    OSError (a full disk, a folder made read-only) is LogNotWritten carrying the result, so
+    a log that cannot be written never turns the trial's result into an error."""
+    try:
+        save(path)
+    except OSError as error:
+        reason = os.strerror(error.errno) if error.errno else str(error)
+        raise LogNotWritten(result, path, reason) from None
 
 
 def check_result(result) -> str | None:
@@ -97,18 +120,26 @@ def check_result(result) -> str | None:
     return None if problem is None else f"the result is {problem}"
 
 
-def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict]:
-    """Runs one trial in a worker: ("ok", result) or ("error", error dict), never raises; the
-    result goes through canonical JSON here (numpy to plain numbers, unstorable results fail)."""
+def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict, str | None]:
+    """Runs one trial in a worker: ("ok", result, unwritten log) or ("error", error dict,
+    unwritten log), never raises; the unwritten log is "PATH: reason" when the trial finished
+    but its log copy could not be written (LogNotWritten), else None. The result goes
+    through canonical JSON here (numpy to plain numbers, unstorable results fail)."""
+    unwritten_log = None
     try:
-        result = json.loads(canonical_json(trial_function(trial)))
+        try:
+            value = trial_function(trial)
+        except LogNotWritten as unwritten:  # the result stands; only the copy is lost
+            value, unwritten_log = unwritten.result, f"{unwritten.path}: {unwritten.reason}"
+        result = json.loads(canonical_json(value))
     except Exception as error:  # Any failure of the trial is recorded, not raised.
         return "error", {"type": type(error).__name__, "message": str(error),
-                         "traceback": traceback.format_exc()}
+                         "traceback": traceback.format_exc()}, unwritten_log
     problem = check_result(result)
     if problem is not None:
-        return "error", {"type": "InvalidResult", "message": problem, "traceback": ""}
-    return "ok", result
+        return ("error", {"type": "InvalidResult", "message": problem, "traceback": ""},
+                unwritten_log)
+    return "ok", result, unwritten_log
 
 
 # Local worker processes (run_sweep's workers, `tegrasp sweep --workers`); more than the
@@ -221,8 +252,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
             backend = f"dask:{_scheduler_address(scheduler)}"
             outcomes = _run_on_dask(trial_function, pending, scheduler)
         logger.info(f"sweep: running {len(pending)} trials on {backend}")
-        ran, errors, unfinished = _record_outcomes(outcomes, pending, out_dir, progress_bar,
-                                                   events)
+        ran, errors, unfinished, unwritten_log = _record_outcomes(
+            outcomes, pending, out_dir, progress_bar, events)
         logger.info(f"sweep: wrote {ran} trial records in {out_dir} ({len(errors)} errors, "
                     f"{len(unfinished)} unfinished)")
     trial_ids = tuple(trial["trial_id"] for trial in trials)
@@ -232,7 +263,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
                         corrupt=tuple(str(path) for path in loaded.corrupt),
                         backend=backend, wall_time_s=time.perf_counter() - start,
                         trial_ids=trial_ids,
-                        other_records=len(set(loaded.records) - set(trial_ids)))
+                        other_records=len(set(loaded.records) - set(trial_ids)),
+                        unwritten_log=unwritten_log)
 
 
 @contextmanager
@@ -318,15 +350,19 @@ def _check_same_events(events: dict, records: dict, out_dir) -> None:
 
 def _record_outcomes(outcomes, pending, out_dir, progress_bar, events):
     """Writes each finished trial's record as it arrives, naming its memorized `events`
-    ({trial id: identity}); returns (ran, errors, unfinished)."""
+    ({trial id: identity}); returns (ran, errors, unfinished, unwritten log).
+
+    A trial whose log copy could not be written ("PATH: reason") is recorded with its result
+    and ends the sweep there: the other trials are left unfinished for the next run rather
+    than spend their CPU on logs the full or unwritable --logs folder would lose too."""
     by_id = {trial["trial_id"]: trial for trial in pending}
-    finished, errors = set(), []
+    finished, errors, unwritten_log = set(), [], None
     # closing(): an interrupt shuts the backend down here, not at garbage collection.
     with closing(outcomes), progress_bar(len(pending)) as bar:
         for trial_id, outcome in outcomes:
             if outcome is None:
                 continue  # The worker died: no record, the next run retries it.
-            status, payload = outcome
+            status, payload, unwritten_log = outcome
             trial = by_id[trial_id]
             try:
                 record = (make_record(trial, result=payload, events=events[trial_id])
@@ -341,8 +377,10 @@ def _record_outcomes(outcomes, pending, out_dir, progress_bar, events):
             if record["status"] == "error":
                 errors.append(trial_id)
             bar.update(1)
+            if unwritten_log is not None:
+                break  # closing(outcomes) ends the workers; their trials stay unfinished
     unfinished = [trial["trial_id"] for trial in pending if trial["trial_id"] not in finished]
-    return len(finished), sorted(errors), unfinished
+    return len(finished), sorted(errors), unfinished, unwritten_log
 
 
 class _NoProgressBar:
@@ -525,13 +563,15 @@ class BenchmarkRun:
     trials: int
     errors: int
     wall_time_s: float
+    unwritten_log: str | None = None  # as SweepSummary's: this run stopped there
 
 
 def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
                   progress: bool = True) -> tuple[list[BenchmarkRun], bool]:
     """Runs the memorized sweep of `spec` once per worker count, each into a fresh temporary
     folder, timed whole (pool start-up included); returns the runs and whether every result
-    was the same in all (TIMING_FIELDS aside): the worker count must not change a result."""
+    was the same in all (TIMING_FIELDS aside): the worker count must not change a result.
+    A run that could not write a trial's log copy (SweepSummary.unwritten_log) is the last."""
     spec = dataclasses.replace(spec, controllers=("memorized",))
     runs, results = [], []
     for workers in worker_counts:
@@ -540,11 +580,14 @@ def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
                                 progress=progress)
             records = load_records(folder).records
         runs.append(BenchmarkRun(workers=workers, trials=summary.ran,
-                                 errors=len(summary.errors), wall_time_s=summary.wall_time_s))
+                                 errors=len(summary.errors), wall_time_s=summary.wall_time_s,
+                                 unwritten_log=summary.unwritten_log))
         results.append({trial_id: canonical_json(
             {k: v for k, v in (record["result"] or record["error"]).items()
              if k not in TIMING_FIELDS + ("traceback",)})
             for trial_id, record in records.items()})
+        if summary.unwritten_log is not None:
+            break
     return runs, all(r == results[0] for r in results)
 
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.sweep.records import canonical_json
+from tegrasp_drake.sweep.runner import save_log_copy
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, OUTPUT_FOLDER, PathLike, public_api
 
 logger = logging.getLogger(__name__)
@@ -143,7 +144,8 @@ def run_trial_from_spec(trial: dict, *,
                         events_dir: Annotated[PathLike | None, INPUT_FOLDER] = None,
                         log_dir: Annotated[PathLike | None, OUTPUT_FOLDER] = None) -> dict:
     """The sweep's trial function: runs `trial` (a TrialSpec.to_dict()) and returns its result
-    dict (its log also in `log_dir`); ConfigError when it is no sweep trial."""
+    dict (its log also in `log_dir`); ConfigError when it is no sweep trial; LogNotWritten,
+    carrying the result, when the log cannot be written in `log_dir`."""
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.sweep.spec import trial_dict_problem
     problem = trial_dict_problem(trial)
@@ -151,9 +153,10 @@ def run_trial_from_spec(trial: dict, *,
         raise ConfigError(f"run_trial_from_spec: argument 'trial': {problem}")
     scenario, events, corrective_events = trial_events(trial, events_dir)
     run = run_trial(scenario, events=events, corrective_events=corrective_events)
+    result = run.to_dict()
     if log_dir is not None:
-        run.log.save(pathlib.Path(log_dir) / trial_log_name(trial))
-    return run.to_dict()
+        save_log_copy(run.log.save, pathlib.Path(log_dir) / trial_log_name(trial), result)
+    return result
 
 
 # The runner records what run_trial_from_spec's trials matched against (sweep/runner.py).
