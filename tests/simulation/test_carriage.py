@@ -47,7 +47,7 @@ def scenario():
 
 
 def test_an_unknown_arm_is_refused_with_the_choices():
-    with pytest.raises(ConfigError, match="station.arm.*jaco2, carriage"):
+    with pytest.raises(ConfigError, match="station.arm.*'jaco2', 'carriage'"):
         LoadScenario(name="box", overrides=["station.arm=ur5"])
 
 
