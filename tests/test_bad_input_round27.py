@@ -83,16 +83,22 @@ def test_a_trial_function_result_the_records_would_refuse_is_an_error_not_a_reco
     assert "'unload_success' is true" in record["error"]["message"]
 
 
-def _forge_record(folder, edit):
-    """_forge with `edit` given the whole record (its result included)."""
-    summary = run_sweep(ONE_TRIAL, fake_trial, folder, workers=1, progress=False)
-    path = record_path(folder, summary.trial_ids[0])
+def forge_record(folder, spec, trial_id, edit):
+    """Runs `spec` with fake trials into `folder`, then rewrites the record of `trial_id`
+    (None: the first trial's) with `edit` (given the whole record, its result included) and a
+    checksum that matches, as a hand edit would; returns its path."""
+    summary = run_sweep(spec, fake_trial, folder, workers=1, progress=False)
+    path = record_path(folder, trial_id or summary.trial_ids[0])
     record = json.loads(path.read_text())
     edit(record)
     del record["checksum"]
     record["checksum"] = _checksum(record)
     path.write_text(json.dumps(record))
     return path
+
+
+def _forge_record(folder, edit):
+    return forge_record(folder, ONE_TRIAL, None, edit)
 
 
 # Rule: a record is its trial's: a result naming another seed, controller or object, or a

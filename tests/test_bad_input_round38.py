@@ -1,14 +1,13 @@
 """Bad inputs the fifteenth hostile pass found in sweep records: a record whose checksum was
 recomputed after a hand edit is refused by what it holds, one test per rule."""
 
-import json
-
 import pytest
 
-from tegrasp_drake.sweep.records import _checksum, load_records, record_path
+from tegrasp_drake.sweep.records import load_records, record_path
 from tegrasp_drake.sweep.runner import run_sweep
 from tegrasp_drake.sweep.spec import SweepSpec
 from tests.fake_trials import fake_trial
+from tests.test_bad_input_round27 import forge_record
 
 # Two markers, so that one trial is well placed and one is not.
 SPEC = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1,
@@ -17,16 +16,8 @@ WELL_PLACED, MISPLACED = "memorized/box/m00/a0", "memorized/box/m10/a0"
 
 
 def _forge(folder, trial_id, edit):
-    """Runs SPEC into `folder`, then rewrites the record of `trial_id` with `edit` (given
-    the whole record) and a checksum that matches, as a hand edit would; returns its path."""
-    run_sweep(SPEC, fake_trial, folder, workers=1, progress=False)
-    path = record_path(folder, trial_id)
-    record = json.loads(path.read_text())
-    edit(record)
-    del record["checksum"]
-    record["checksum"] = _checksum(record)
-    path.write_text(json.dumps(record))
-    return path
+    """SPEC's record of `trial_id`, hand-edited with `edit` (forge_record)."""
+    return forge_record(folder, SPEC, trial_id, edit)
 
 
 def _trial(**fields):
