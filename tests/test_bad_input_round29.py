@@ -61,6 +61,14 @@ elif where == "exec":
 """
 
 
+def _default_signal_dispositions():
+    """The child's termination signals as a terminal's shell leaves them: a suite run under
+    `nohup` (or a runner that ignores SIGHUP) would pass its SIG_IGN on, which tegrasp
+    rightly leaves alone, and the SIGHUP this test sends would never arrive."""
+    for number in (signal.SIGHUP, signal.SIGTERM, signal.SIGINT):
+        signal.signal(number, signal.SIG_DFL)
+
+
 def _run_signalled(where, tmp_path, *arguments):
     """(exit code, stderr) of `python -m tegrasp_drake ARGUMENTS` signalled at `where`."""
     hooks = tmp_path / "hooks"
@@ -71,7 +79,8 @@ def _run_signalled(where, tmp_path, *arguments):
                        PYTHONUTF8="1")
     finished = subprocess.run([sys.executable, "-m", "tegrasp_drake", *arguments],
                               env=environment, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.PIPE, text=True, timeout=600)
+                              stderr=subprocess.PIPE, text=True, timeout=600,
+                              preexec_fn=_default_signal_dispositions)
     return finished.returncode, finished.stderr
 
 
