@@ -18,6 +18,7 @@ import tempfile
 import time
 import traceback
 import typing
+import uuid
 from typing import Annotated
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import ExitStack, closing, contextmanager, nullcontext, suppress
@@ -504,8 +505,10 @@ def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):
         return
     with (connect_scheduler(scheduler) if isinstance(scheduler, str)
           else nullcontext(scheduler)) as client:
+        # A key of its own for each submission: a transfer's cells share trial ids, and a key
+        # the previous cell's futures were just cancelled under could cancel the next's.
         futures = {client.submit(run_trial_safely, trial_function, trial, pure=False,
-                                 key=f"tegrasp-trial-{trial['trial_id']}-{os.getpid()}"):
+                                 key=f"tegrasp-trial-{trial['trial_id']}-{uuid.uuid4().hex}"):
                    trial["trial_id"] for trial in pending}
         try:
             for future in dask_as_completed(list(futures)):
