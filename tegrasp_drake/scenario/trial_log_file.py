@@ -309,22 +309,15 @@ def _phase_starts_problem(meta: dict) -> str | None:
     return None
 
 
-def _seed_problem(meta: dict) -> str | None:
-    """What is wrong if meta's result is of another seed than its scenario's random_seed (the
-    seed the trial ran with: runs/trial.py), or None; only the scenario's top level is read."""
-    from tegrasp_drake.rig.typed_yaml import ConfigError, parse_yaml
+def _seed_problem(meta: dict, scenario) -> str | None:
+    """What is wrong if meta's result is of another seed than its Scenario's random_seed
+    (`scenario`, the log's, parsed once by logged_scenario; the seed the trial ran with:
+    runs/trial.py), or None."""
     seed = (meta.get("result") or {}).get("seed")
-    if seed is None or not isinstance(meta.get("scenario"), str):
+    if seed is None or scenario is None or scenario.random_seed == seed:
         return None
-    try:
-        scenario = parse_yaml(meta["scenario"], "meta 'scenario'")
-    except ConfigError as e:
-        return str(e)
-    ran = scenario.get("random_seed") if isinstance(scenario, dict) else None
-    if ran is not None and ran != seed:
-        return (f"meta 'result' is of seed {shorten(repr(seed))}, but its 'scenario' ran with "
-                f"random_seed {shorten(repr(ran))}")
-    return None
+    return (f"meta 'result' is of seed {shorten(repr(seed))}, but its 'scenario' ran with "
+            f"random_seed {shorten(repr(scenario.random_seed))}")
 
 
 def _result_problem(meta: dict, transitions: list, scenario) -> str | None:
@@ -398,7 +391,7 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
     for key, (what, is_valid) in META_FIELDS.items():
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
-    problem = (_result_problem(meta, transitions, scenario) or _seed_problem(meta)
+    problem = (_result_problem(meta, transitions, scenario) or _seed_problem(meta, scenario)
                or transition_scores_problem(list(map(Transition.from_dict, transitions)),
                                             meta.get("controller")))
     if problem:
