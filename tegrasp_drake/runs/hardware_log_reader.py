@@ -28,7 +28,7 @@ from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import scenario_from_yaml
-from tegrasp_drake.scenario.trial_log_file import _widest_configs
+from tegrasp_drake.scenario.trial_log_file import widest_configs
 from tegrasp_drake.simulation.tactile_pads import taxel_reading_range
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
@@ -293,7 +293,7 @@ def taxel_force_range(scenario) -> tuple[float, float]:
     def in_newtons(config):
         return dataclasses.replace(config, capacitive=dataclasses.replace(
             config.capacitive, output="calibrated"))
-    configs = [scenario.tactile] if scenario is not None else _widest_configs()[0]
+    configs = [scenario.tactile] if scenario is not None else widest_configs()[0]
     ranges = [taxel_reading_range(in_newtons(config)) for config in configs]
     # On the devices the myRIO's counts are calibrated, not modelled: 0 (negative forces
     # clip) to the largest gain a calibration file may give times the AD7147's full count.

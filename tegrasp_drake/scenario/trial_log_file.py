@@ -642,7 +642,7 @@ def _hit_impulse_n_s(disturbance) -> float:
     return math.hypot(*disturbance.hit_force_n) * disturbance.hit_duration_s
 
 
-def _widest_configs():
+def widest_configs():
     """(tactile configs, vibration configs, largest hit impulse [N s], shortest plant step
     [s]): the corners of the declared ranges at which the sensors' ranges are widest (a
     log that stores no scenario may be of any)."""
@@ -690,7 +690,7 @@ def sensor_bounds(scenario, duration_s: float) -> SensorBounds:
     from tegrasp_drake.simulation.pad_vibration_sensor import pad_reading_bound_mps2
     from tegrasp_drake.simulation.tactile_pads import taxel_reading_range
     if scenario is None:
-        tactile, vibration, impulse, time_step = _widest_configs()
+        tactile, vibration, impulse, time_step = widest_configs()
         whose, unit = "any scenario's", "N or counts"
     else:
         tactile, vibration = [scenario.tactile], [scenario.vibration]
