@@ -11,14 +11,12 @@ from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
 from tegrasp_drake.runs.trial import UPRIGHT_TILT_DEG
 from tegrasp_drake.sweep.records import record_result
 
-FAILURE_CLASSES = ("closed on nothing", "one finger only", "slipped in Lift",
-                   "event never matched", "object lost", "device fault", "not lifted",
-                   "dropped in Hold", "toppled at release", "not placed", "other")
+FAILURE_CLASSES = ("struck on approach", "closed on nothing", "one finger only",
+                   "slipped in Lift", "event never matched", "object lost", "device fault",
+                   "not lifted", "dropped in Hold", "toppled at release", "not placed", "other")
 
 # The failure class of each rule that can go to Failed (its `then` says so in the rule tables,
-# docs/controller.md), by its name: the code of the transition into Failed. A finger striking
-# the object or a pad touching it in the approach, once the Re-Reaches are used up, has no
-# class of its own: "other", as the words of their reasons are classed.
+# docs/controller.md), by its name: the code of the transition into Failed.
 FAILURE_CLASS_OF_RULE = {
     "device_fault": "device fault",
     "gripper_fault": "device fault",
@@ -29,8 +27,10 @@ FAILURE_CLASS_OF_RULE = {
     "reach_timeout": "event never matched",
     "load_timeout": "event never matched",
     "lift_load": "slipped in Lift",  # still slipping after max_lift_loads
-    "finger_strike": "other",
-    "approach_contact": "other",
+    # the open gripper ran into the object on its way in, Re-Reaches used up: a finger's front
+    # struck it (the wrist's force) or a pad's face touched it before the close
+    "finger_strike": "struck on approach",
+    "approach_contact": "struck on approach",
 }
 # The class instead once the trial has made a Lift-Load (corrective_actions.py): no Load-Lift
 # event after it is the slip that the Lift-Load did not stop.
@@ -69,6 +69,8 @@ def failure_class(result) -> str | None:
         return rule_failure_class(code, result)
     failure = result.failure
     if failure:  # a result without codes: the reason's words
+        if "during the approach" in failure:  # finger_strike's and approach_contact's
+            return "struck on approach"
         if "closed on nothing" in failure:
             return "closed on nothing"
         if "finger touched" in failure:

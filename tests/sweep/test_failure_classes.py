@@ -1,10 +1,16 @@
+import numpy as np
 import pytest
 
-from tegrasp_drake.control.controller_config import MemorizedControllerConfig
+from tegrasp_drake.control.controller_config import (MemorizedControllerConfig,
+                                                     TaxelAwareControllerConfig)
 from tegrasp_drake.control.controller_registry import rule_codes, rule_tables
 from tegrasp_drake.control.corrective_actions import Counters
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
+from tegrasp_drake.control.taxel_aware.estimator import ContactEstimate
+from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.transition_logic import Observation, next_mode
+from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASS_AFTER_LIFT_LOAD,
                                                  FAILURE_CLASS_OF_RULE, FAILURE_CLASSES,
@@ -171,3 +177,35 @@ def test_the_paper_rules_failures_class_alike_by_code_and_by_their_words(
     trial = failed(decision.reason, decision.code, mode.label,
                    before=[LIFT_LOAD] if lift_loaded else [], trigger=decision.trigger.value)
     assert (failure_class(trial), failure_class(without_codes(trial))) == (expected, expected)
+
+
+TAXEL_AWARE = TaxelAwareControllerConfig()
+
+
+def approach(contact=(False, False), **estimate) -> Observation:
+    """An Observation in the approach: the gripper 80 mm open on the 45 mm box, no taxel
+    pressed, the pads' contact as given, `estimate`: further ContactEstimate fields."""
+    shape = grasp_contact(np.zeros(2 * ROWS * COLUMNS), TAXEL_AWARE.taxel_contact_n)
+    sensed = ContactEstimate(shape=shape, sa_n=tuple(3.0 * c for c in contact),
+                             contact=contact, opening_m=0.080, object_width_m=0.045,
+                             gripper_y_m=0.0, approaching=True, **estimate)
+    return Observation(contact=contact, estimate=sensed)
+
+
+@pytest.mark.parametrize("rule, observation", [
+    ("finger_strike", approach(strike_s=TAXEL_AWARE.taxel_aware.finger_strike.sustain_s,
+                               strike_finger="left", strike_force_n=6.3)),
+    ("approach_contact", approach(contact=(False, True),
+                                  approach_contact_s=TAXEL_AWARE.re_reach.one_sided_contact_s)),
+])
+def test_a_gripper_that_ran_into_the_object_on_its_way_in_was_struck_on_approach(
+        rule, observation):
+    """The taxel-aware approach rules' failures, with the Re-Reaches used up: the same class
+    by their code as by the words of their reasons."""
+    used_up = Counters(re_reaches=TAXEL_AWARE.taxel_aware.max_re_reaches)
+    decision = TAXEL_AWARE_TABLE.next_mode(Mode.REACH, observation, used_up, TAXEL_AWARE,
+                                           event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (decision.code, decision.mode) == (rule, Mode.FAILED)
+    trial = failed(decision.reason, decision.code, trigger=decision.trigger.value)
+    assert (failure_class(trial), failure_class(without_codes(trial))) == \
+        ("struck on approach", "struck on approach")
