@@ -1,9 +1,12 @@
-"""`tegrasp trial`: what it does when a write fails after the simulation."""
+"""`tegrasp trial`: what it does when a write fails after the simulation; its timeline."""
 
 import errno
 import json
+import re
 import types
 
+from tegrasp_drake.commands.trial import print_result
+from tegrasp_drake.scenario.trial_result import TrialResult
 from tests.test_bad_input import run_cli
 
 
@@ -38,3 +41,26 @@ def test_a_replay_that_cannot_be_written_names_html_keeps_the_run_and_exits_1(
     assert result["hold"] == "SUCCESS" and "replay_html" not in result
     assert (out / "trial.npz").read_bytes() == b"log"
     assert not (tmp_path / "r.html").exists()
+
+
+def test_the_timeline_shows_the_code_of_the_rule_beside_each_transition(capsys):
+    def entry(t, from_mode, to_mode, trigger, reason, **fields):
+        return {"t": t, "from": from_mode, "to": to_mode, "trigger": trigger,
+                "reason": reason, **fields}
+    result = TrialResult.from_dict({
+        "object": "box", "offset_m": [0.0, 0.025], "controller": "taxel_aware", "seed": 680,
+        "transitions": [
+            entry(1.0, "Reach", "Re-Reach", "corrective", "a finger struck the object",
+                  code="finger_strike"),
+            entry(2.0, "Re-Reach", "Reach", "timer", "moved"),  # no code (as open loop)
+            entry(3.0, "Reach", "Load", "memorized_event", "Reach-Load event",
+                  scores=[0.9, 0.9, 0.9, 0.9], code="reach_event")],
+        "final_mode": "Load", "hold_time_s": 0.0, "final_tilt_deg": 0.0,
+        "sim_time_s": 4.0, "wall_time_s": 8.0, "real_time_factor": 0.5})
+    print_result(result)
+    timeline = capsys.readouterr().out.splitlines()[1:4]
+    assert re.search(r"Reach -> Re-Reach +\[corrective: finger_strike\] a finger struck",
+                     timeline[0]), timeline
+    assert re.search(r"Re-Reach -> Reach +\[timer\] moved", timeline[1]), timeline
+    assert re.search(r"Reach -> Load +\[memorized_event: reach_event\] Reach-Load event",
+                     timeline[2]), timeline
