@@ -7,15 +7,17 @@ spec and base seed: a trial id names the controller, object, marker and attempt,
 seeds follow from them), one run on each hand. For every controller in both: Table I's
 columns (well-placed and misplaced, hold and hold-and-unload) per object on each hand, the
 exact McNemar test on hold-and-unload over the paired trials, and each trial whose outcome
-changed, with the linkage run's failure. Then the linkage run's failures by class.
+changed, with each run's failure class (sweep/failure_classes.py). Then the linkage run's
+failures by class.
 """
 
 import argparse
 import collections
 import json
 import pathlib
-import re
 
+from tegrasp_drake.scenario.trial_result import TrialResult
+from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
 
@@ -34,13 +36,9 @@ def success(result) -> bool:
 
 
 def failure_class(result) -> str:
-    """A trial's class: held and placed, or what went wrong (its numbers left out)."""
-    if success(result):
-        return "held and unloaded"
-    reason = re.sub(r"[-+]?\d+(\.\d+)?", "N", result.get("failure") or "").strip()
-    upright = "fell over" if result["final_tilt_deg"] > 30.0 else "upright"
-    what = "held, not unloaded" if result["hold_success"] else "not held"
-    return f"{what}, {upright}" + (f": {reason}" if reason else "")
+    """A record's result (its JSON form) as its failure class (sweep/failure_classes.py),
+    "held and unloaded" for a trial that was."""
+    return trial_failure_class(TrialResult.from_dict(result)) or "held and unloaded"
 
 
 def rates(pairs, side: int) -> str:
