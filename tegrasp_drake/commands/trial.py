@@ -64,14 +64,6 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run, default_out="out/trial", replace_default_out=False)
 
 
-def decided_by(transition) -> str:
-    """What made `transition` (a Transition), for the timeline: its trigger and, after a
-    colon, the code of the rule that decided it ("corrective: finger_strike"); the trigger
-    alone for an entry without a code (the open-loop script's)."""
-    trigger = transition.trigger.value
-    return f"{trigger}: {transition.code}" if transition.code else trigger
-
-
 def print_result(result) -> None:
     """The trial's result (a TrialResult) as text: its scene, its timeline, its success."""
     print(f"object {result.object} offset {number_text(result.offset_m)} m, controller "
@@ -80,7 +72,7 @@ def print_result(result) -> None:
         scores = None if transition.scores is None else list(transition.scores)
         extra = f"  scores {scores}" if transition.trigger.is_event else ""
         print(f"  {transition.t:7.3f} s  {transition.from_mode.label:>8} -> "
-              f"{transition.to_mode.label:<8} [{decided_by(transition)}] "
+              f"{transition.to_mode.label:<8} [{transition.decided_by}] "
               f"{transition.reason}{extra}")
     print(f"hold {'SUCCESS' if result.hold_success else 'FAIL'} (held "
           f"{result.hold_time_s:.2f} s), unload "

@@ -126,6 +126,14 @@ class Transition:
                               f"'from_mode' (a transition changes the mode), got {label} to "
                               f"{label}")
 
+    @property
+    def decided_by(self) -> str:
+        """What made the transition, for printed timelines: its trigger and, after a colon,
+        the deciding rule's code ("corrective: finger_strike"); the trigger alone for an
+        entry without a code (the open-loop script's)."""
+        trigger = self.trigger.value
+        return f"{trigger}: {self.code}" if self.code else trigger
+
     def as_dict(self) -> dict:
         """The JSON form (trial results, logs): t, from, to (Mode.label), trigger, reason,
         then the _OPTIONAL_FIELDS that are set (`code` last), tuples as lists."""

@@ -184,7 +184,7 @@ def transition_message(transition: dict) -> lcmt_tegrasp_transition:
 
 
 def format_transition(transition: Transition) -> str:
-    why = "; ".join(part for part in (transition.trigger.value, transition.reason) if part)
+    why = "; ".join(part for part in (transition.decided_by, transition.reason) if part)
     trigger = f"  ({why})" if why else ""
     return (f"[{transition.t:8.3f} s] {transition.from_mode.label} -> "
             f"{transition.to_mode.label}{trigger}")

@@ -31,3 +31,17 @@ def test_a_logger_that_fails_is_named_with_what_it_said(tmp_path, capfd):
     assert "notaport" in message  # lcm-logger's own reason
     captured = capfd.readouterr()
     assert "Logger exiting" not in captured.out + captured.err
+
+
+def test_the_live_printout_names_the_rule_that_decided_each_transition():
+    from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+    from tegrasp_drake.runs.hardware_run import format_transition
+    transition = Transition(t=1.25, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+                            trigger=Trigger.MEMORIZED_EVENT, reason="the Reach-Load event matched",
+                            code="reach_event")
+    line = format_transition(transition)
+    assert "Reach -> Load" in line and "memorized_event: reach_event" in line
+    assert "the Reach-Load event matched" in line
+    scripted = Transition(t=1.25, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+                          trigger=Trigger.TIMER, reason="")
+    assert ":" not in format_transition(scripted).split("(")[1]
