@@ -165,12 +165,18 @@ def unwritten_log_error(logs, unwritten_log: str, left: int | None = None) -> st
 
 
 def resolve_trial_function(text: str):
-    """Imports `MODULE:ATTR`."""
+    """Imports `MODULE:ATTR`: MODULE an absolute dotted module name, ATTR a name in it.
+    SweepError for another form, or when importing the module (user code) fails anyhow."""
     module_name, _, attribute = text.partition(":")
+    if not (all(part.isidentifier() for part in module_name.split("."))
+            and attribute.isidentifier()):
+        raise SweepError(f"the trial function {text!r} is not MODULE:NAME (an absolute "
+                         "dotted module name, a colon, a name in it, e.g. mypkg.trials:run)")
     try:
         function = getattr(importlib.import_module(module_name), attribute)
-    except (ImportError, AttributeError) as error:
-        raise SweepError(f"cannot load the trial function {text}: {error}") from None
+    except Exception as error:  # the module is the user's code: any error importing it
+        raise SweepError(f"cannot load the trial function {text}: "
+                         f"{type(error).__name__}: {error}") from None
     if not callable(function):
         raise SweepError(f"the trial function {text} is not callable")
     return function
