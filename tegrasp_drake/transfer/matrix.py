@@ -16,6 +16,7 @@ from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
+from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, optional_field,
                                           read_yaml_file, read_yaml_file_cached,
                                           require_fields)
@@ -25,6 +26,9 @@ CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
 WORLD_FILE = "world.json"  # in a world's events folder: the assignments it was recorded with
 logger = logging.getLogger(__name__)
 _NAME_CHARACTERS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_")
+# A world's name names its events folder and, twice, its cells' folders (`<m>-in-<r>`): 64
+# characters, as an object's name, keeps a cell's name within a file system's 255 bytes.
+_NAME_MAX_CHARACTERS = 64
 
 
 @dataclasses.dataclass(frozen=True)
@@ -163,8 +167,12 @@ def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
     for name, fields in value.items():
         name = str(name)
         if not name or not set(name) <= _NAME_CHARACTERS:
-            raise ConfigError(f"{source}: field 'worlds.{name}': a world's name is letters, "
-                              "digits and '_' (it names folders)")
+            raise ConfigError(f"{source}: field 'worlds.{shorten(name)}': a world's name is "
+                              "letters, digits and '_' (it names folders)")
+        if len(name) > _NAME_MAX_CHARACTERS:
+            raise ConfigError(f"{source}: field 'worlds.{shorten(name)}': a world's name must "
+                              f"be at most {_NAME_MAX_CHARACTERS} characters (it names folders), "
+                              f"got {len(name)}")
         check_fields(fields, TransferWorld, source, f"worlds.{name}")
         world = TransferWorld(scenario=fields["scenario"],
                               overrides=tuple(fields.get("overrides", ())))

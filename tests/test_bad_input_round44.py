@@ -1,0 +1,45 @@
+"""Bad inputs the sixteenth hostile pass found, one test per rule; nothing is simulated."""
+
+import pytest
+
+from tests.test_bad_input import run_cli
+from tests.test_bad_input_round14 import _FAKE_TRIALS
+
+_SWEEP = ("sweep: {controllers: [memorized], attempts: 1, objects: [box], grid: [[0.0, 0.0]], "
+          "base_seed: 640}\n")
+
+
+def test_a_world_name_too_long_for_a_folder_is_refused_at_load(tmp_path, capfd):
+    """A world's name names folders (its cells' twice): refused in one line before any
+    folder is made, not an OSError after the events folder was."""
+    name = "a" * 300
+    spec = tmp_path / "t.yaml"
+    spec.write_text(f"worlds: {{{name}: {{scenario: faithful_world}}}}\n"
+                    f"cells: [[{name}, {name}]]\n" + _SWEEP)
+    out = tmp_path / "out"
+    code, text = run_cli(["transfer", str(spec), "--out", str(out), "--workers", "1",
+                          "--no-progress", *_FAKE_TRIALS], capfd)
+    assert code == 2, text
+    assert "at most 64 characters" in text and "worlds.aaaa" in text
+    assert len(text.strip().splitlines()) == 1 and "Traceback" not in text
+    assert not (out / "events").exists()
+
+
+@pytest.mark.parametrize("hook", ["..x:y", ".x:y", "x:", ":y", "x y:z", "x:y.z"])
+def test_a_trial_function_not_module_colon_name_is_refused_in_one_line(tmp_path, capfd, hook):
+    spec = tmp_path / "s.yaml"
+    spec.write_text("controllers: [memorized]\nattempts: 1\nobjects: [box]\n"
+                    "grid: [[0.0, 0.0]]\nbase_seed: 640\n")
+    code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"),
+                          "--workers", "1", "--no-progress", "--trial-function", hook], capfd)
+    assert code in (1, 2), text
+    assert "trial function" in text and "Traceback" not in text and "internal error" not in text
+
+
+def test_a_trial_function_module_that_raises_on_import_is_one_line(tmp_path, capfd,
+                                                                    monkeypatch):
+    (tmp_path / "bad_trials_module.py").write_text("raise RuntimeError('broken at import')\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    from tegrasp_drake.commands.sweep import SweepError, resolve_trial_function
+    with pytest.raises(SweepError, match="RuntimeError: broken at import"):
+        resolve_trial_function("bad_trials_module:run")
