@@ -43,3 +43,43 @@ def test_a_trial_function_module_that_raises_on_import_is_one_line(tmp_path, cap
     from tegrasp_drake.commands.sweep import SweepError, resolve_trial_function
     with pytest.raises(SweepError, match="RuntimeError: broken at import"):
         resolve_trial_function("bad_trials_module:run")
+
+
+@pytest.mark.parametrize("override", ["gripper={pad_friction: 1.0}", "gripper.pad_friction=1.0",
+                                      " gripper.pad_friction =1.0"])
+def test_a_sweep_override_of_a_swept_setting_or_its_section_is_refused(tmp_path, override):
+    """A study whose every point ran the override's value would say its parameter changes
+    nothing."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
+    spec = tmp_path / "s.yaml"
+    spec.write_text("parameters: [gripper.pad_friction]\n"
+                    "sweep: {objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], "
+                    f"attempts: 1, base_seed: 640, scenario_overrides: ['{override}']}}\n")
+    with pytest.raises(ConfigError, match=r"scenario_overrides\[0\].*gripper.pad_friction"):
+        LoadSensitivitySpec(spec)
+
+
+@pytest.mark.parametrize("override", ["grasp.grip_force=25.0", "grasp={grip_force: 25.0}"])
+def test_a_sweep_override_of_what_a_world_sets_is_refused(tmp_path, override):
+    """The world named for 50 N ran (and recorded its events) at the sweep's 25 N."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    spec = tmp_path / "t.yaml"
+    spec.write_text("worlds: {w50: {scenario: faithful_world, overrides: [grasp.grip_force=50.0]}}\n"
+                    "cells: [[w50, w50]]\n"
+                    "sweep: {objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], "
+                    f"attempts: 1, base_seed: 640, scenario_overrides: ['{override}']}}\n")
+    with pytest.raises(ConfigError, match=r"scenario_overrides\[0\].*world 'w50'"):
+        LoadTransferSpec(spec)
+
+
+def test_a_sweep_override_beside_the_worlds_settings_is_kept(tmp_path):
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec, world_scenario
+    spec = tmp_path / "t.yaml"
+    spec.write_text("worlds: {w50: {scenario: faithful_world, overrides: [grasp.grip_force=50.0]}}\n"
+                    "cells: [[w50, w50]]\n"
+                    "sweep: {objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], "
+                    "attempts: 1, base_seed: 640, scenario_overrides: ['grasp.hold_s=4.0']}\n")
+    scenario = world_scenario(LoadTransferSpec(spec), "w50", "box")
+    assert scenario.grasp.grip_force == 50.0 and scenario.grasp.hold_s == 4.0

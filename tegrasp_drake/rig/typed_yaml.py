@@ -225,6 +225,18 @@ def set_words(assignment: str) -> str:
     return f"--set '{shorten(key)}{equals}{shorten(text)}'"
 
 
+def assignment_key(assignment: str) -> str:
+    """The dotted KEY of a `KEY=VALUE` assignment, as apply_override reads it."""
+    return assignment.split("=", 1)[0].strip()
+
+
+def keys_overlap(a: str, b: str) -> bool:
+    """Whether dotted keys `a` and `b` name one field, or one names a section holding the
+    other: an assignment to either changes what the other sets (`gripper={pad_friction: 1}`
+    sets gripper.pad_friction)."""
+    return a == b or a.startswith(b + ".") or b.startswith(a + ".")
+
+
 def apply_override(data: dict, assignment: str) -> None:
     """Sets `key.sub=value` (YAML value) in nested YAML data."""
     if "=" not in assignment:

@@ -10,7 +10,9 @@ import os
 import pathlib
 
 from tegrasp_drake.rig.files import write_atomically
-from tegrasp_drake.rig.typed_yaml import (ConfigError, optional_field, read_yaml_file,
+from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, keys_overlap,
+                                          optional_field, read_yaml_file,
                                           require_fields)
 from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, UncertainParameter,
                                                   parameter)
@@ -76,15 +78,17 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
                           f"{', '.join(EVENTS_CHOICES)}, got {events!r}")
     sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
                                    f"{source} [sweep]")
-    swept = {key.split("=", 1)[0] for entry in parameters
+    swept = {assignment_key(assignment) for entry in parameters
              for value in (entry.low, entry.default, entry.high)
-             for key in entry.assignments(value)}
+             for assignment in entry.assignments(value)}
     for k, assignment in enumerate(sweep.scenario_overrides):
-        key = assignment.split("=", 1)[0].strip()
-        if key in swept:
-            raise ConfigError(f"{source}: field 'sweep.scenario_overrides[{k}]': '{key}' is "
-                              "set by the study's points; drop it here, or drop its "
-                              "parameter from 'parameters'")
+        key = assignment_key(assignment)
+        for swept_key in sorted(swept):
+            if keys_overlap(key, swept_key):
+                held = "" if key == swept_key else f" (it holds '{swept_key}')"
+                raise ConfigError(f"{source}: field 'sweep.scenario_overrides[{k}]': "
+                                  f"'{shorten(key)}'{held} is set by the study's points; drop "
+                                  "it here, or drop its parameter from 'parameters'")
     spec = SensitivitySpec(parameters=parameters, events=events, sweep=sweep)
     check_worlds(transfer_spec(spec, one_at_a_time(spec)), source)
     return spec

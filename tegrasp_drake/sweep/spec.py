@@ -19,7 +19,7 @@ from tegrasp_drake.rig.ranges import SEED_RANGE, Range, bounded, check_ranges, f
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
-from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.rig.typed_yaml import ConfigError, assignment_key, keys_overlap
 
 # The paper's three objects (Fig. 8a); a spec can add its own (`user_objects`).
 BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
@@ -301,10 +301,9 @@ def _check_scenario_overrides(assignments, controllers, fail):
         if not isinstance(assignment, str) or "=" not in assignment:
             fail(field_name, f"expected 'key=value' (as `tegrasp trial --set`), got "
                              f"{assignment!r}")
-        key = assignment.split("=", 1)[0].strip()
+        key = assignment_key(assignment)
         for per_trial in PER_TRIAL_SCENARIO_FIELDS:
-            if key == per_trial or key.startswith(per_trial + ".") or \
-                    per_trial.startswith(key + "."):
+            if keys_overlap(key, per_trial):
                 fail(field_name, f"'{key}' is set per trial by the sweep (objects, grid, "
                                  "randomisation, base_seed, controllers); set it there")
     from tegrasp_drake.hardware.config import HardwareStationConfig

@@ -17,7 +17,8 @@ from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.ranges import shorten
-from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, optional_field,
+from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fields,
+                                          keys_overlap, optional_field,
                                           read_yaml_file, read_yaml_file_cached,
                                           require_fields)
 
@@ -107,10 +108,26 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
     cells = _parse_cells(data["cells"], worlds, source)
     sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
                                    f"{source} [sweep]")
+    _check_sweep_leaves_worlds_alone(worlds, sweep, source)
     spec = TransferSpec(worlds=worlds, cells=cells, sweep=sweep)
     check_matrix_size(spec, source, confirmed_trials)
     check_worlds(spec, source)
     return spec
+
+
+def _check_sweep_leaves_worlds_alone(worlds, sweep, source: str) -> None:
+    """ConfigError when a sweep override sets a field (or a section holding one) that a
+    world's preset or overrides set: the sweep's come last and would silently replace what
+    names the world."""
+    for k, assignment in enumerate(sweep.scenario_overrides):
+        key = assignment_key(assignment)
+        for name, world in worlds.items():
+            for world_key in map(assignment_key, world_assignments(world)):
+                if keys_overlap(key, world_key):
+                    raise ConfigError(
+                        f"{source}: field 'sweep.scenario_overrides[{k}]': '{shorten(key)}' "
+                        f"sets '{world_key}', which world '{name}' sets (its preset or "
+                        "overrides); set it in the worlds, or drop it here")
 
 
 # A check of more worlds than this says on stderr what it checks and how long it took (a
@@ -177,8 +194,8 @@ def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
         world = TransferWorld(scenario=fields["scenario"],
                               overrides=tuple(fields.get("overrides", ())))
         for assignment in world.overrides:
-            key = assignment.split("=", 1)[0].strip()
-            if any(key == f or key.startswith(f + ".") for f in PER_TRIAL_SCENARIO_FIELDS):
+            key = assignment_key(assignment)
+            if any(keys_overlap(key, f) for f in PER_TRIAL_SCENARIO_FIELDS):
                 raise ConfigError(f"{source}: field 'worlds.{name}.overrides': '{key}' is set "
                                   "per trial by the sweep; a world may not set it")
         world_assignments(world, f"{source}: field 'worlds.{name}.scenario'")
