@@ -22,7 +22,7 @@ from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, 
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import shorten
-from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
+from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NPZ_START, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.robotiq import units as ru
@@ -64,8 +64,10 @@ class TrialLog:
         path.parent.mkdir(parents=True, exist_ok=True)
         meta = dict(self.meta, format_version=FORMAT_VERSION)
         arrays = {name: getattr(self, name) for name in ARRAY_FIELDS}
-        with temporary_sibling(path) as temporary, open(temporary, "wb") as f:
-            # A full disk or Ctrl-C leaves no truncated log, and an earlier one whole.
+        with (temporary_sibling(path, start=NPZ_START) as temporary,
+              open(temporary, "wb") as f):
+            # A full disk or Ctrl-C leaves no truncated log, and an earlier one whole; what a
+            # save of this log killed by SIGKILL left beside it is removed first.
             np.savez_compressed(f, meta=np.array(json.dumps(meta, sort_keys=True)), **arrays)
         return path
 
