@@ -11,9 +11,12 @@ physical event times, controller name, package versions."""
 import dataclasses
 import json
 import math
+import os
 import pathlib
 import zipfile
 import zlib
+
+from collections.abc import Callable
 
 import numpy as np
 
@@ -79,6 +82,27 @@ class TrialLog:
     @property
     def ra(self) -> np.ndarray:
         return self.channels[:, 2:]
+
+
+class LogNotWritten(Exception):
+    """Raised by a run that finished but could not write its optional log copy (`tegrasp
+    sweep --logs`): carries the run's `result`, which its caller keeps as any result, and
+    the log's `path` and the OS `reason`, which its caller reports."""
+
+    def __init__(self, result, path, reason: str):
+        super().__init__(result, str(path), reason)
+        self.result, self.path, self.reason = result, str(path), reason
+
+
+def save_log_copy(save: Callable, path, result):
+    """save(path), the optional log copy of a finished run whose result is `result`; an
+    OSError (a full disk, a folder made read-only) is LogNotWritten carrying the result, so
+    a log that cannot be written never turns the run's result into an error."""
+    try:
+        save(path)
+    except OSError as error:
+        reason = os.strerror(error.errno) if error.errno else str(error)
+        raise LogNotWritten(result, path, reason) from None
 
 
 def check_trial_log_file(path: PathLike) -> None:
