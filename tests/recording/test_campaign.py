@@ -81,3 +81,30 @@ def test_a_full_disk_keeps_the_recording_and_leaves_no_half_written_log(tmp_path
     _assert_same_events(unwritten.value.result, _events_of_templates())
     assert list(tmp_path.iterdir()) == []
 
+
+
+def test_a_corrective_recording_on_a_full_disk_carries_its_one_event(tmp_path, monkeypatch):
+    import dataclasses
+    from tegrasp_drake.recording import corrective_events
+
+    def ideal_grasp(scenario, *, duration, progress):  # a small log, no physics
+        return TrialLog(**{name: np.zeros(2) for name in ARRAY_FIELDS}, meta={}), 0.0
+
+    def cut(log, run, times, **options):  # the probes' first event, as hold_avoid's
+        (transition,) = times
+        return {transition: dataclasses.replace(_events(seed=len(run.label))[0],
+                                                transition=transition)}
+
+    def disk_full(stream, **arrays):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(campaign, "run_ideal_grasp", ideal_grasp)
+    monkeypatch.setattr(campaign, "cut_events", cut)
+    monkeypatch.setattr(corrective_events, "corrective_event_time", lambda *args: 1.0)
+    monkeypatch.setattr(np, "savez_compressed", disk_full)
+    with pytest.raises(LogNotWritten) as unwritten:
+        corrective_events.record_corrective_events("box", "hold_avoid", log_dir=tmp_path)
+    event = unwritten.value.result
+    assert event.transition == "hold_avoid" and event.object_name == "mine"
+    assert unwritten.value.reason == "No space left on device"
+    assert list(tmp_path.iterdir()) == []
