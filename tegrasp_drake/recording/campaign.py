@@ -139,7 +139,7 @@ def record_campaign(runs: typing.Sequence[CampaignRun], event_times: EventTimes,
         except LogNotWritten as not_written:  # the run stands; only its log file is lost
             log, unwritten = not_written.result, unwritten or not_written
             logger.info("%s: its log %s was not written: %s", run.label,
-                           not_written.path, not_written.reason)
+                        not_written.path, not_written.reason)
         events = cut_events(log, run, event_times(log, run.scenario),
                             object_name=object_name, nominal_object=nominal_object,
                             pre_transition_s=pre_transition_s)
