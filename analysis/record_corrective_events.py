@@ -12,13 +12,15 @@ EVENTS/corrective/. The held-out runs' logs are for analysis/choose_corrective_t
 
 import argparse
 import pathlib
+import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
-from tegrasp_drake.recording.campaign import run_log_path, simulate_run
+from tegrasp_drake.recording.campaign import run_log_path, simulate_run, unwritten_log_words
 from tegrasp_drake.recording.corrective_events import (
     CORRECTIVE_FOLDER, CORRECTIVE_RUNS, campaign_run, record_corrective_events)
+from tegrasp_drake.scenario.trial_log_file import LogNotWritten
 
 
 def log_path(logs: pathlib.Path, object_name: str, run) -> pathlib.Path:
@@ -40,13 +42,29 @@ def main(argv=None) -> int:
     parser.add_argument("--events", type=pathlib.Path, default=pathlib.Path("events"))
     args = parser.parse_args(argv)
     with ProcessPoolExecutor(args.workers) as pool:  # the logs, in parallel
-        list(pool.map(simulate, [(args.object, run, args.logs) for run in CORRECTIVE_RUNS]))
-    events = [record_corrective_events(args.object, transition,
-                                       log_dir=args.logs / args.object)
-              for transition in CORRECTIVE_TRANSITIONS]
+        try:
+            list(pool.map(simulate, [(args.object, run, args.logs)
+                                     for run in CORRECTIVE_RUNS]))
+        except LogNotWritten as unwritten:  # the later logs would be lost too: stop here
+            pool.shutdown(cancel_futures=True)
+            print(f"record_corrective_events: error: {unwritten_log_words(unwritten)}",
+                  file=sys.stderr)
+            return 1
+    events, unwritten = [], None
+    for transition in CORRECTIVE_TRANSITIONS:
+        try:
+            events.append(record_corrective_events(args.object, transition,
+                                                   log_dir=args.logs / args.object))
+        except LogNotWritten as not_written:  # the event stands; only a log is lost
+            events.append(not_written.result)
+            unwritten = unwritten or not_written
     written = save_memorized_events(args.events / CORRECTIVE_FOLDER, events,
                                     required=CORRECTIVE_TRANSITIONS)
     print(f"wrote {len(written)} files to {args.events / CORRECTIVE_FOLDER}")
+    if unwritten is not None:
+        print(f"record_corrective_events: error: {unwritten_log_words(unwritten)}",
+              file=sys.stderr)
+        return 1
     return 0
 
 

@@ -16,10 +16,11 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.events_folder import save_memorized_events
-from tegrasp_drake.recording.campaign import run_log_path, simulate_run
+from tegrasp_drake.recording.campaign import run_log_path, simulate_run, unwritten_log_words
 from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, ensemble_runs,
                                                      record_object_ensemble)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+from tegrasp_drake.scenario.trial_log_file import LogNotWritten
 
 
 def simulate(job) -> None:
@@ -45,14 +46,28 @@ def main(argv=None) -> int:
     jobs = [(name, k, args.runs, args.template_runs, args.logs / name)
             for name in sorted(BUILTIN_OBJECTS) for k in range(args.runs)]
     with ProcessPoolExecutor(args.workers) as pool:  # the logs, in parallel
-        list(pool.map(simulate, jobs))
-    combined = []
+        try:
+            list(pool.map(simulate, jobs))
+        except LogNotWritten as unwritten:  # the later logs would be lost too: stop here
+            pool.shutdown(cancel_futures=True)
+            print(f"record_ensemble_events: error: {unwritten_log_words(unwritten)}",
+                  file=sys.stderr)
+            return 1
+    combined, unwritten = [], None
     for name in sorted(BUILTIN_OBJECTS):
-        combined += record_object_ensemble(
-            name, LoadScenario(name=name), args.runs, template_runs=args.template_runs,
-            log_dir=args.logs / name).values()
+        try:
+            events = record_object_ensemble(
+                name, LoadScenario(name=name), args.runs, template_runs=args.template_runs,
+                log_dir=args.logs / name)
+        except LogNotWritten as not_written:  # the events stand; only a log is lost
+            events, unwritten = not_written.result, unwritten or not_written
+        combined += events.values()
     written = save_memorized_events(args.events / ENSEMBLE_FOLDER, combined)
     print(f"wrote {len(written)} files to {args.events / ENSEMBLE_FOLDER}")
+    if unwritten is not None:
+        print(f"record_ensemble_events: error: {unwritten_log_words(unwritten)}",
+              file=sys.stderr)
+        return 1
     return 0
 
 

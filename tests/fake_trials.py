@@ -157,7 +157,7 @@ def full_disk_fake_trial(trial, *, log_dir):
     (the workers are separate processes, so the failing write is here, not monkeypatched)."""
     import errno
     import pathlib
-    from tegrasp_drake.sweep.runner import save_log_copy
+    from tegrasp_drake.scenario.trial_log_file import save_log_copy
 
     def save(path):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))

@@ -4,6 +4,7 @@ the kill-and-resume tests of the sweep and of the studies built on it share this
 import os
 import signal
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -44,3 +45,15 @@ def kill_after_some_records(command, record_files, minimum: int, timeout_s: floa
             break
         time.sleep(0.01)
     return count, process.returncode
+
+
+def killed_before_rename(statements: str, timeout_s: float = 120) -> None:
+    """Runs the Python `statements` in a child process that its first os.replace SIGKILLs, as
+    the OOM killer or a power cut ends a writer between writing its temporary file and renaming
+    it onto the target: no handler runs, so what the writer staged stays behind."""
+    prelude = ("import os, signal\n"
+               "os.replace = lambda *names, **options: os.kill(os.getpid(), signal.SIGKILL)\n")
+    process = subprocess.run([sys.executable, "-c", prelude + statements], env=environment(),
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                             timeout=timeout_s)  # a bound on a hang, not a measure of speed
+    assert process.returncode == -signal.SIGKILL, process.stderr.decode(errors="replace")

@@ -114,7 +114,7 @@ def test_written_files_honour_the_umask(umask, mode, tmp_path):
     previous = os.umask(umask)
     try:
         written = files.write_atomically(tmp_path / "a.json", "{}")
-        with files.temporary_sibling(tmp_path / "b.png") as temporary:
+        with files.temporary_sibling(tmp_path / "b.png", start=b"\x89PNG") as temporary:
             temporary.write_bytes(b"figure")
     finally:
         os.umask(previous)

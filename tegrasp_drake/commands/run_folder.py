@@ -16,7 +16,7 @@ from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (FolderHeldError, claim_folder, file_problem,
                                      folder_problem, held_folder,
                                      interruptions_deferred, own_staging_suffix,
-                                     stale_staging_files_of, write_atomically)
+                                     remove_stale_staging_files_of, write_atomically)
 
 logger = logging.getLogger(__name__)
 
@@ -152,16 +152,11 @@ def remove_stale_staging_files(target, start: bytes) -> list[pathlib.Path]:
     remove stale staging folders; when another run holds the lock (a trial writing there),
     nothing is removed now, and the next run does it."""
     target = pathlib.Path(target)
-    removed = []
     try:
         with claimed_run_folder(target.parent):
-            for path in stale_staging_files_of(target, start):
-                with contextlib.suppress(OSError):
-                    path.unlink()
-                    removed.append(path)
+            return remove_stale_staging_files_of(target, start)
     except (RunFolderError, OSError):
-        pass
-    return removed
+        return []
 
 
 @contextlib.contextmanager

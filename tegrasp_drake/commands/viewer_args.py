@@ -7,6 +7,8 @@ import sys
 
 from tegrasp_drake.rig.files import output_file_problem, write_atomically
 
+HTML_START = b"<!DOCTYPE html>"  # how Meshcat.StaticHtml's page starts (an HTML5 document)
+
 
 def add_viewer_arguments(parser) -> None:
     parser.add_argument("--meshcat", action="store_true",
@@ -42,10 +44,11 @@ def start_viewer(args):
 
 
 def write_replay_html(meshcat, path) -> pathlib.Path:
-    """Writes the Meshcat's scene and published recording as one HTML file."""
+    """Writes the Meshcat's scene and published recording as one HTML file, atomically; what a
+    write of this page killed by SIGKILL left beside it is removed first."""
     path = pathlib.Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    return write_atomically(path, meshcat.StaticHtml())
+    return write_atomically(path, meshcat.StaticHtml(), start=HTML_START)
 
 
 def wait_for_viewer(args, meshcat) -> None:

@@ -8,7 +8,7 @@ from typing import Annotated
 from collections.abc import Iterable, Sequence
 
 from tegrasp_drake.rig.files import (interruptions_deferred, own_staging_suffix, replace_problem,
-                                     stale_staging_files_of, staged_file)
+                                     remove_stale_staging_files_of, staged_file)
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.events.event_file import (
@@ -143,8 +143,7 @@ def _remove_stale_staging(targets: list[pathlib.Path]) -> None:
     named for one of them and holding JSON's start); a live writer's are its own (its save
     commits or removes them), and other files of the folder are the user's."""
     for target in targets:
-        for stale in stale_staging_files_of(target, JSON_START):
-            stale.unlink(missing_ok=True)
+        remove_stale_staging_files_of(target, JSON_START)
 
 
 @public_api

@@ -7,6 +7,13 @@ import pathlib
 from tegrasp_drake.rig.files import UserPathError, temporary_sibling
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
+# How a figure file of each format starts, as matplotlib writes it: PNG's signature (PNG
+# specification, 5.2), PDF's header (ISO 32000-1, 7.5.2), and the XML declaration and
+# document type matplotlib's SVG backend writes first (tests/figures/test_figure_files.py:
+# what a killed write of each format left is removed, so each is matplotlib's start).
+FIGURE_STARTS = {"png": b"\x89PNG\r\n\x1a\n", "pdf": b"%PDF-",
+                 "svg": b'<?xml version="1.0" encoding="utf-8" standalone="no"?>\n'
+                        b"<!DOCTYPE svg"}
 PNG_DPI = 150  # about 1800 px across a 12 in figure: sharp on screens and in a PDF viewer
 
 
@@ -41,12 +48,16 @@ def check_figure_path(path) -> pathlib.Path:
 
 
 def save_figure(figure, path) -> pathlib.Path:
-    """Writes `figure` in the format `path`'s suffix names; returns the path, or UserPathError."""
+    """Writes `figure` in the format `path`'s suffix names; returns the path, or UserPathError.
+    What a write of this figure killed by SIGKILL left beside it is removed first."""
     path = check_figure_path(path)
+    figure_format = path.suffix.lstrip(".").lower()
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        with temporary_sibling(path) as temporary:  # a full disk leaves the old figure whole
-            figure.savefig(temporary, dpi=PNG_DPI, metadata=_metadata(path))
+        # A full disk leaves the old figure whole.
+        with temporary_sibling(path, start=FIGURE_STARTS[figure_format]) as temporary:
+            figure.savefig(temporary, format=figure_format, dpi=PNG_DPI,
+                           metadata=_metadata(path))
     except OSError as error:
         raise UserPathError(f"cannot write the figure {path}: {error.strerror or error}; "
                             "give a file in a folder you can write, with room", error) from None

@@ -17,7 +17,7 @@ from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.ra_noise_floor import rule_sigmas
 from tegrasp_drake.rig.objects import object_description
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
-from tegrasp_drake.scenario.trial_log_file import load_trial_log
+from tegrasp_drake.scenario.trial_log_file import LogNotWritten, load_trial_log, save_log_copy
 from tegrasp_drake.scenario.trial_log_writer import package_versions
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 
@@ -45,14 +45,16 @@ EventTimes = Callable[[typing.Any, typing.Any], Mapping[str, float | None]]
 
 
 def simulate_run(run: CampaignRun, *, log_path=None, progress=None):
-    """The run's TrialLog: read from `log_path` if there, else simulated (and saved there)."""
+    """The run's TrialLog: read from `log_path` if there, else simulated (and saved there);
+    LogNotWritten carrying the simulated log when it cannot be saved there (a full disk, a
+    folder that cannot be made), so the simulation is not lost with it."""
     if log_path is not None and pathlib.Path(log_path).is_file():
         return load_trial_log(log_path)
     log, wall = run_ideal_grasp(run.scenario, duration=run.duration_s, progress=progress)
     logger.info("%s: %.1f s wall", run.label, wall)
     if log_path is not None:
         log.meta["campaign_run"] = run.label
-        log.save(log_path)
+        save_log_copy(log.save, log_path, log)
     return log
 
 
@@ -123,17 +125,36 @@ def record_campaign(runs: typing.Sequence[CampaignRun], event_times: EventTimes,
                     pre_transition_s: float | Mapping[str, float] | None = None, note: str,
                     log_dir=None, progress_of_run=None) -> dict[str, MemorizedEvent]:
     """The campaign's events: every run simulated (its log kept in or reused from
-    `log_dir`/<label>.npz), cut and combined. progress_of_run(k): run k's callback or None."""
-    templates = []
+    `log_dir`/<label>.npz), cut and combined. progress_of_run(k): run k's callback or None.
+
+    A log that cannot be written in `log_dir` (a full disk, a folder that cannot be made)
+    costs only that file: its run is cut from the log in memory, the campaign goes on (each
+    later run's log is tried in turn) and ends in LogNotWritten carrying the events, naming
+    the first log it could not write and the OS reason, for the caller to keep and report."""
+    templates, unwritten = [], None
     for k, run in enumerate(runs):
-        log = simulate_run(run, log_path=run_log_path(log_dir, run),
-                           progress=progress_of_run(k) if progress_of_run else None)
+        try:
+            log = simulate_run(run, log_path=run_log_path(log_dir, run),
+                               progress=progress_of_run(k) if progress_of_run else None)
+        except LogNotWritten as not_written:  # the run stands; only its log file is lost
+            log, unwritten = not_written.result, unwritten or not_written
+            logger.info("%s: its log %s was not written: %s", run.label,
+                        not_written.path, not_written.reason)
         events = cut_events(log, run, event_times(log, run.scenario),
                             object_name=object_name, nominal_object=nominal_object,
                             pre_transition_s=pre_transition_s)
         if run.role == "template":
             templates.append(events)
-    return combine_runs(templates, note=note)
+    combined = combine_runs(templates, note=note)
+    if unwritten is not None:
+        raise LogNotWritten(combined, unwritten.path, unwritten.reason)
+    return combined
+
+
+def unwritten_log_words(unwritten: LogNotWritten) -> str:
+    """A campaign's log that could not be written, and what to do, for its one error line."""
+    return (f"cannot write the run log {unwritten.path} ({unwritten.reason}): free space or "
+            "give another logs folder; the logs written so far are reused by the next run")
 
 
 def run_log_path(log_dir, run: CampaignRun) -> pathlib.Path | None:

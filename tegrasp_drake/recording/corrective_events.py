@@ -8,6 +8,7 @@ import dataclasses
 import numpy as np
 
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
+from tegrasp_drake.scenario.trial_log_file import LogNotWritten
 from tegrasp_drake.recording.campaign import (CORRECTIVE_BASE_SEED, CampaignRun,
                                               record_campaign)
 from tegrasp_drake.rig.objects import CORRECTIVE_EVENTS_FOLDER
@@ -118,12 +119,18 @@ def corrective_event_time(log, scenario, transition: str) -> float | None:
 
 def record_corrective_events(object_name: str, transition: str, *, log_dir=None):
     """The memorized corrective event of `transition` on `object_name`: the template runs of
-    its CORRECTIVE_RUNS combined by their mean (held-out logs kept in `log_dir`)."""
+    its CORRECTIVE_RUNS combined by their mean (held-out logs kept in `log_dir`);
+    LogNotWritten carrying the event when a log cannot be written there (record_campaign)."""
     runs = [campaign_run(object_name, run) for run in CORRECTIVE_RUNS
             if run.transition == transition]
-    return record_campaign(
-        runs, lambda log, scenario: {transition: corrective_event_time(log, scenario,
-                                                                       transition)},
-        object_name=object_name, nominal_object=LoadScenario(name=object_name).object,
-        pre_transition_s=PRE_TRANSITION_S, log_dir=log_dir,
-        note=f"corrective template runs of {object_name} ({transition})")[transition]
+    try:
+        events = record_campaign(
+            runs, lambda log, scenario: {transition: corrective_event_time(log, scenario,
+                                                                           transition)},
+            object_name=object_name, nominal_object=LoadScenario(name=object_name).object,
+            pre_transition_s=PRE_TRANSITION_S, log_dir=log_dir,
+            note=f"corrective template runs of {object_name} ({transition})")
+    except LogNotWritten as unwritten:  # the event stands; only a log file is lost
+        raise LogNotWritten(unwritten.result[transition], unwritten.path,
+                            unwritten.reason) from None
+    return events[transition]

@@ -70,7 +70,9 @@ def record_object_ensemble(object_name: str, scenario, runs: int = TEMPLATE_RUNS
                            template_runs: int | None = None, log_dir=None,
                            progress_of_run=None):
     """The ensemble events of `scenario`'s object: `runs` randomised ideal grasps, the first
-    `template_runs` combined by the mean; RecordEventsError when a run lacks an event."""
+    `template_runs` combined by the mean; RecordEventsError when a run lacks an event;
+    LogNotWritten carrying the events when a log cannot be written in `log_dir`
+    (record_campaign)."""
     template_runs = runs if template_runs is None else template_runs
     return record_campaign(
         ensemble_runs(object_name, runs, template_runs, base=scenario), grasp_event_times,

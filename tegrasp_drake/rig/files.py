@@ -79,6 +79,17 @@ def stale_staging_files_of(target, start: bytes) -> list[pathlib.Path]:
             and not process_alive(int(match["pid"])) and _starts_with(path, start)]
 
 
+def remove_stale_staging_files_of(target, start: bytes) -> list[pathlib.Path]:
+    """Removes the staging files that ended writers of `target` left, holding what `target`
+    holds (stale_staging_files_of), and returns them; one that cannot be removed is left."""
+    removed = []
+    for path in stale_staging_files_of(target, start):
+        with contextlib.suppress(OSError):
+            path.unlink()
+            removed.append(path)
+    return removed
+
+
 def _starts_with(path, start: bytes) -> bool:
     """Whether `path` is a regular file (not a link) whose first bytes are `start`, or the
     first part of it (all the file holds); False when it cannot be read."""
@@ -108,9 +119,17 @@ def process_alive(pid: int) -> bool:
     return True
 
 
-def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Path:
+def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp",
+                     start: bytes | None = None) -> pathlib.Path:
     """Writes `data` (text as UTF-8) to `path` through a temporary file in its (existing) folder
-    and a rename; OSError, the target untouched, when it cannot."""
+    and a rename; OSError, the target untouched, when it cannot. Given `start` (how a file of
+    `path`'s kind starts: its format's magic), the temporary file is this process's staging
+    file (`.NAME.XXXXXXXX.PID.staging`, not `suffix`), and the staging files of `path` that
+    writers killed past their handlers (SIGKILL, a power cut) left holding that kind are
+    removed first (remove_stale_staging_files_of)."""
+    if start is not None:
+        remove_stale_staging_files_of(path, start)
+        suffix = own_staging_suffix()
     temporary = staged_file(path, data, suffix=suffix)
     try:
         os.replace(temporary, path)
@@ -122,12 +141,17 @@ def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp") -> pathli
 
 
 @contextlib.contextmanager
-def temporary_sibling(path):
+def temporary_sibling(path, *, start: bytes):
     """A temporary file name beside `path` for a writer that wants a name (np.savez,
-    matplotlib); on success it is renamed over `path`, on any error removed."""
+    matplotlib: tell it the format, which the name does not end in); on success it is renamed
+    over `path`, on any error removed. It is this process's staging file of `path`
+    (`.NAME.XXXXXXXX.PID.staging`), and the staging files of `path` that writers killed past
+    their handlers (SIGKILL, a power cut) left, holding what starts with `start` (the
+    format's magic), are removed first (remove_stale_staging_files_of)."""
     path = pathlib.Path(path)
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix,
-                                             dir=path.parent)
+    remove_stale_staging_files_of(path, start)
+    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.",
+                                             suffix=own_staging_suffix(), dir=path.parent)
     try:
         _honour_umask(descriptor)
     finally:

@@ -12,6 +12,8 @@ import numpy as np
 import numpy.lib.format as npy_format
 
 
+# How an .npz file starts: a zip archive's first local file header (PKWARE APPNOTE 4.3.7).
+NPZ_START = b"PK\x03\x04"
 # 11 float64 columns at 20 kHz: 512 MB is 4.8 minutes, far beyond any trial
 MAX_TRIAL_LOG_BYTES = 512 * 2**20
 

@@ -90,21 +90,28 @@ def check_model_file(file: str, source: str, size) -> None:
             f"{source}: field 'object.file': '{file}' is not a model Drake loads cleanly: it "
             f"warned ({len(warnings)} warning(s)), first: "
             f"{drake_error_line(warnings[0]).removeprefix('warning: ')}; fix the model")
-    bodies = [plant.get_body(b).name() for i in instances for b in plant.GetBodyIndices(i)]
-    if len(instances) != 1 or len(bodies) != 1:
-        raise ConfigError(
-            f"{source}: field 'object.file': '{file}' must hold one model with one body "
-            f"(the object), it holds {len(instances)} model(s) with bodies {bodies}")
-    body = plant.GetBodyByName(bodies[0], instances[0])
-    problem = joints_problem(plant, instances[0])
+    problem = one_body_problem(plant, instances) or joints_problem(plant, instances[0])
     if problem:
         raise ConfigError(f"{source}: field 'object.file': '{file}' {problem}")
+    (body_index,) = plant.GetBodyIndices(instances[0])
+    body = plant.get_body(body_index)
     if not plant.GetCollisionGeometriesForBody(body):
         raise ConfigError(
             f"{source}: field 'object.file': '{file}' has no collision geometry on its body "
             f"'{bodies[0]}', so the hand has nothing to grasp; give its link a <collision>")
     _check_geometry(plant, scene_graph.model_inspector(), body, size,
                     f"{source}: field 'object.file': '{file}'")
+
+
+def one_body_problem(plant, instances) -> str | None:
+    """What is wrong, in words after the file's name, with the model instances `instances`
+    that a model file added to `plant` as the object, unless they are one model of one body;
+    else None. The station places, senses and lifts the object as one body."""
+    bodies = [plant.get_body(b).name() for i in instances for b in plant.GetBodyIndices(i)]
+    if len(instances) == 1 and len(bodies) == 1:
+        return None
+    return (f"must hold one model with one body (the object), it holds {len(instances)} "
+            f"model(s) with bodies {bodies}")
 
 
 def joints_problem(plant, instance) -> str | None:

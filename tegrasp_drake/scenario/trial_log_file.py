@@ -11,9 +11,12 @@ physical event times, controller name, package versions."""
 import dataclasses
 import json
 import math
+import os
 import pathlib
 import zipfile
 import zlib
+
+from collections.abc import Callable
 
 import numpy as np
 
@@ -22,7 +25,7 @@ from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, 
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import shorten
-from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NpzHeaderError,
+from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NPZ_START, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.robotiq import units as ru
@@ -64,8 +67,10 @@ class TrialLog:
         path.parent.mkdir(parents=True, exist_ok=True)
         meta = dict(self.meta, format_version=FORMAT_VERSION)
         arrays = {name: getattr(self, name) for name in ARRAY_FIELDS}
-        with temporary_sibling(path) as temporary, open(temporary, "wb") as f:
-            # A full disk or Ctrl-C leaves no truncated log, and an earlier one whole.
+        with (temporary_sibling(path, start=NPZ_START) as temporary,
+              open(temporary, "wb") as f):
+            # A full disk or Ctrl-C leaves no truncated log, and an earlier one whole; what a
+            # save of this log killed by SIGKILL left beside it is removed first.
             np.savez_compressed(f, meta=np.array(json.dumps(meta, sort_keys=True)), **arrays)
         return path
 
@@ -77,6 +82,27 @@ class TrialLog:
     @property
     def ra(self) -> np.ndarray:
         return self.channels[:, 2:]
+
+
+class LogNotWritten(Exception):
+    """Raised by a run that finished but could not write its optional log copy (`tegrasp
+    sweep --logs`): carries the run's `result`, which its caller keeps as any result, and
+    the log's `path` and the OS `reason`, which its caller reports."""
+
+    def __init__(self, result, path, reason: str):
+        super().__init__(result, str(path), reason)
+        self.result, self.path, self.reason = result, str(path), reason
+
+
+def save_log_copy(save: Callable, path, result):
+    """save(path), the optional log copy of a finished run whose result is `result`; an
+    OSError (a full disk, a folder made read-only) is LogNotWritten carrying the result, so
+    a log that cannot be written never turns the run's result into an error."""
+    try:
+        save(path)
+    except OSError as error:
+        reason = os.strerror(error.errno) if error.errno else str(error)
+        raise LogNotWritten(result, path, reason) from None
 
 
 def check_trial_log_file(path: PathLike) -> None:

@@ -13,7 +13,7 @@ from pydrake.multibody.tree import ModelInstanceIndex
 
 from tegrasp_drake.modelgen.sdf_text import box_inertia, friction_text, inertial_text
 from tegrasp_drake.rig.files import UserPathError
-from tegrasp_drake.rig.object_file import drake_error_line, joints_problem
+from tegrasp_drake.rig.object_file import drake_error_line, joints_problem, one_body_problem
 from tegrasp_drake.rig.objects import DEFAULT_COLOR, ObjectConfig
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 
@@ -99,11 +99,12 @@ def AddObject(parser, config: ObjectConfig,
     else:
         instances = parser.AddModelsFromString(object_sdf(config, collision=not corner_hull),
                                                "sdf")
-    if len(instances) != 1:
-        raise ValueError(f"object.file '{config.file}' must hold exactly one model")
-    if config.shape == "file":
-        problem = joints_problem(parser.plant(), instances[0])
-        if problem:  # the scenario's check refused it; the file changed since, or was unchecked
+    if config.shape == "file":  # a primitive's SDF is one model of one free body
+        # The scenario's check (rig/object_file.py) refused these already, in these words;
+        # here: a file changed since, or an object config that never went through it.
+        problem = (one_body_problem(parser.plant(), instances)
+                   or joints_problem(parser.plant(), instances[0]))
+        if problem:
             raise UserPathError(f"field 'object.file': '{config.file}' {problem}")
     if corner_hull:
         _corner_hull_collision(parser.plant(), instances[0], config)

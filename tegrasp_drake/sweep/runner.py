@@ -41,6 +41,7 @@ from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, ch
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.files import FolderHeldError, UserPathError, held_folder
 from tegrasp_drake.rig.ranges import Range
+from tegrasp_drake.scenario.trial_log_file import LogNotWritten
 
 logger = logging.getLogger(__name__)
 
@@ -67,27 +68,6 @@ class SweepSummary:
     other_records: int = 0          # records in the folder of trials not in this spec
     unwritten_log: str | None = None  # "PATH: reason" of a --logs copy not written (the
     #                                   sweep stopped there; its trial's result is recorded)
-
-
-class LogNotWritten(Exception):
-    """Raised by a trial function that finished but could not write its optional log copy
-    (`tegrasp sweep --logs`): carries the trial's `result`, which the sweep records as any
-    result, and the log's `path` and the OS `reason`, which the sweep reports."""
-
-    def __init__(self, result, path, reason: str):
-        super().__init__(result, str(path), reason)
-        self.result, self.path, self.reason = result, str(path), reason
-
-
-def save_log_copy(save: Callable, path, result):
-    """save(path), the optional log copy of a finished trial whose result is `result`; an
-    OSError (a full disk, a folder made read-only) is LogNotWritten carrying the result, so
-    a log that cannot be written never turns the trial's result into an error."""
-    try:
-        save(path)
-    except OSError as error:
-        reason = os.strerror(error.errno) if error.errno else str(error)
-        raise LogNotWritten(result, path, reason) from None
 
 
 def check_result(result) -> str | None:

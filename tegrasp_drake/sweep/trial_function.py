@@ -12,7 +12,7 @@ import numpy as np
 
 from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.sweep.records import canonical_json
-from tegrasp_drake.sweep.runner import save_log_copy
+from tegrasp_drake.scenario.trial_log_file import save_log_copy
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, OUTPUT_FOLDER, PathLike, public_api
 
 logger = logging.getLogger(__name__)

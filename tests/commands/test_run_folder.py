@@ -203,3 +203,17 @@ def test_overwriting_a_run_whose_result_json_is_a_fifo_commits_without_reading_i
             committing.join()
     assert not waited, "the commit waited on the FIFO in result.json's place"
     assert json.loads((folder / RESULT_FILE).read_text())["log"] == str(folder / "trial.npz")
+
+
+def test_a_run_killed_writing_a_figure_leaves_a_staging_folder_the_next_run_removes(tmp_path):
+    from tests.killed_runs import killed_before_rename
+    from tegrasp_drake.commands.run_folder import STAGING_PREFIX, staged_run
+    killed_before_rename(
+        "from tegrasp_drake.commands.run_folder import staged_run\n"
+        "from tegrasp_drake.figures.figure_files import new_figure, save_figure\n"
+        f"with staged_run({str(tmp_path)!r}) as stage:\n"
+        "    save_figure(new_figure(2, 1), stage / 'states.png')\n")
+    (left,) = tmp_path.glob(f"{STAGING_PREFIX}*")
+    assert [path.name.startswith(".states.") for path in left.iterdir()] == [True]
+    with staged_run(tmp_path):
+        assert not left.exists()

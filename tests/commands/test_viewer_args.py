@@ -63,3 +63,33 @@ def test_html_under_a_file_stops_before_the_run(tmp_path):
     (tmp_path / "a_file").write_text("")
     with pytest.raises(SystemExit, match="--html .*a_file is not a folder"):
         check_html_path(_args(html=str(tmp_path / "a_file" / "replay.html")))
+
+
+class _Page:
+    """A stand-in for the Meshcat whose page --html writes (a real one serves a port)."""
+
+    @staticmethod
+    def StaticHtml() -> str:
+        return "<!DOCTYPE html>\n<html><body>a replay</body></html>\n"
+
+
+# Rule: --html writes its page through a temporary file; what a write of that same page
+# killed past its handlers (SIGKILL) left beside it, the next one removes, and only that: a
+# page of the user's named like a leftover (other content) or another page's stays.
+def test_an_html_write_removes_what_a_killed_write_of_that_page_left(tmp_path):
+    from tests.commands.test_run_folder import _ended_process_id
+    from tests.killed_runs import killed_before_rename
+    target = tmp_path / "replay.html"
+    killed_before_rename("from tegrasp_drake.commands.viewer_args import write_replay_html\n"
+                         f"from tests.commands.test_viewer_args import _Page\n"
+                         f"write_replay_html(_Page(), {str(target)!r})")
+    left = sorted(tmp_path.iterdir())
+    assert len(left) == 1 and not target.exists(), left  # the killed write's temporary file
+    dead = _ended_process_id()
+    kept = {tmp_path / f".other.html.abcd1234.{dead}.staging": b"<!DOCTYPE html>",
+            tmp_path / f".replay.html.abcd1234.{dead}.staging": b"my notes"}
+    for path, data in kept.items():
+        path.write_bytes(data)
+    write_replay_html(_Page(), target)
+    assert sorted(tmp_path.iterdir()) == sorted([target, *kept])
+    assert target.read_text() == _Page.StaticHtml()

@@ -32,12 +32,12 @@ def test_a_failed_write_leaves_the_old_file_and_no_temporary(tmp_path):
 
 def test_temporary_sibling_renames_on_success_and_removes_on_error(tmp_path):
     target = tmp_path / "trial.npz"
-    with temporary_sibling(target) as temporary:
-        assert temporary.parent == tmp_path and temporary.suffix == ".npz"
+    with temporary_sibling(target, start=b"PK") as temporary:
+        assert temporary.parent == tmp_path and temporary.name.startswith(".trial.npz.")
         temporary.write_text("done")
     assert target.read_text() == "done"
     with pytest.raises(RuntimeError):
-        with temporary_sibling(target) as temporary:
+        with temporary_sibling(target, start=b"PK") as temporary:
             temporary.write_text("half")
             raise RuntimeError("the writer failed")
     assert target.read_text() == "done"

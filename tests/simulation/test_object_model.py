@@ -75,17 +75,27 @@ def _file_object(tmp_path, sdf: str) -> ObjectConfig:
 LINK = '<link name="{}"><inertial><mass>0.1</mass></inertial></link>'
 
 
+def _refused_at_build(config: ObjectConfig) -> str:
+    """The one-line refusal AddObject gives `config`, checked to be the loader's words."""
+    from tegrasp_drake.rig.files import UserPathError
+    with pytest.raises(UserPathError) as refused:
+        _added(config)
+    text = str(refused.value)
+    assert "\n" not in text and f"field 'object.file': '{config.file}'" in text, text
+    assert "must hold one model with one body (the object)" in text, text
+    return text
+
+
+# The loader (rig/object_file.check_model_file) refuses such files first; AddObject, reached
+# with an object config that never went through it, refuses them in the same words.
 def test_a_model_file_with_two_models_is_refused(tmp_path):
     config = _file_object(tmp_path, '<?xml version="1.0"?><sdf version="1.9"><world name="w">'
                           f'<model name="a">{LINK.format("a")}</model>'
                           f'<model name="b">{LINK.format("b")}</model></world></sdf>')
-    with pytest.raises(ValueError, match="must hold exactly one model"):
-        _added(config)
+    assert "it holds 2 model(s) with bodies ['a', 'b']" in _refused_at_build(config)
 
 
 def test_a_model_with_two_bodies_is_refused(tmp_path):
     config = _file_object(tmp_path, '<?xml version="1.0"?><sdf version="1.9"><model name="a">'
                           f'{LINK.format("one")}{LINK.format("two")}</model></sdf>')
-    plant, _, instance = _added(config)
-    with pytest.raises(ValueError, match="exactly one body, it has 2"):
-        object_body(plant, instance)
+    assert "it holds 1 model(s) with bodies ['one', 'two']" in _refused_at_build(config)
