@@ -1,5 +1,7 @@
 """Bad inputs the sixteenth hostile pass found, one test per rule; nothing is simulated."""
 
+import contextlib
+
 import pytest
 
 from tests.test_bad_input import run_cli
@@ -83,3 +85,59 @@ def test_a_sweep_override_beside_the_worlds_settings_is_kept(tmp_path):
                     "attempts: 1, base_seed: 640, scenario_overrides: ['grasp.hold_s=4.0']}\n")
     scenario = world_scenario(LoadTransferSpec(spec), "w50", "box")
     assert scenario.grasp.grip_force == 50.0 and scenario.grasp.hold_s == 4.0
+
+
+@pytest.fixture
+def listener():
+    """A local TCP service on a free port that is not a Dask scheduler: `silent` accepts and
+    says nothing; `garbage` sends 0xff bytes (a frame length of 2**64 - 1) and hangs up."""
+    import socket
+    import threading
+    servers = []
+
+    def start(kind):
+        server = socket.socket()
+        server.bind(("127.0.0.1", 0))
+        server.listen(8)
+        servers.append(server)
+        held = []
+
+        def serve():
+            while True:
+                try:
+                    connection, _ = server.accept()
+                except OSError:
+                    return
+                if kind == "silent":
+                    held.append(connection)
+                    continue
+                with contextlib.suppress(OSError):
+                    connection.sendall(b"\xff" * 4096)
+                connection.close()
+        threading.Thread(target=serve, daemon=True).start()
+        return f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    yield start
+    for server in servers:
+        server.close()
+
+
+@pytest.mark.parametrize("kind", ["silent", "garbage"])
+def test_a_scheduler_address_that_is_not_a_dask_scheduler_is_one_error(listener, monkeypatch,
+                                                                       kind):
+    """A silent peer held the Client past distributed's timeout (forever); garbage was exit
+    70 from inside distributed's frame reader. The wall-time bound is shortened here only so
+    the test takes seconds."""
+    pytest.importorskip("distributed")
+    from tegrasp_drake.sweep import runner
+    monkeypatch.setattr(runner, "DASK_ANSWER_BOUND_S", 3.0)
+    with pytest.raises(runner.SweepError, match="Dask scheduler"):
+        runner.connect_scheduler(listener(kind))
+
+
+def test_an_inproc_scheduler_address_is_refused_by_its_form(tmp_path, capfd):
+    spec = tmp_path / "s.yaml"
+    spec.write_text("controllers: [memorized]\nattempts: 1\nobjects: [box]\n"
+                    "grid: [[0.0, 0.0]]\nbase_seed: 640\n")
+    code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"),
+                          "--workers", "1", "--scheduler", "inproc://x", *_FAKE_TRIALS], capfd)
+    assert code == 2 and "--scheduler 'inproc://x' is not a scheduler address" in text, text

@@ -182,8 +182,9 @@ def resolve_trial_function(text: str):
     return function
 
 
-# The transports a Dask scheduler address may name (distributed's comm registry).
-DASK_PROTOCOLS = ("tcp", "tls", "inproc", "ucx", "ws", "wss")
+# The transports a Dask scheduler address may name (distributed's comm registry), but
+# inproc: it names a scheduler inside this process, and the command line starts none.
+DASK_PROTOCOLS = ("tcp", "tls", "ucx", "ws", "wss")
 
 
 def scheduler_problem(address: str) -> str | None:
@@ -196,8 +197,7 @@ def scheduler_problem(address: str) -> str | None:
         port = parts.port
     except ValueError as e:
         return f"is not an address ({e})"
-    if parts.scheme not in DASK_PROTOCOLS or not parts.hostname or (
-            parts.scheme != "inproc" and port is None):
+    if parts.scheme not in DASK_PROTOCOLS or not parts.hostname or port is None:
         return (f"is not a scheduler address PROTOCOL://HOST:PORT (PROTOCOL one of "
                 f"{', '.join(DASK_PROTOCOLS)}), e.g. tcp://127.0.0.1:8786")
     return None

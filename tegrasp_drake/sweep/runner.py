@@ -15,6 +15,7 @@ import multiprocessing
 import os
 import pickle
 import tempfile
+import threading
 import time
 import traceback
 import typing
@@ -40,12 +41,16 @@ from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, ch
                                       expand_trials)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.files import FolderHeldError, UserPathError, held_folder
-from tegrasp_drake.rig.ranges import Range
+from tegrasp_drake.rig.ranges import Range, shorten
 from tegrasp_drake.scenario.trial_log_file import LogNotWritten
 
 logger = logging.getLogger(__name__)
 
 DASK_CONNECT_TIMEOUT_S = 30.0
+# The wall time a scheduler has to answer, the handshake included: distributed's connect
+# timeout and as long again for the handshake's replies (a scheduler on a loaded host
+# answers in well under a second).
+DASK_ANSWER_BOUND_S = 2 * DASK_CONNECT_TIMEOUT_S
 
 
 class SweepError(RuntimeError):
@@ -461,15 +466,39 @@ def _dask_distributed():
 
 
 def connect_scheduler(scheduler: str) -> DaskClient:
-    """A Client of the Dask scheduler at `scheduler`; SweepError when the extra is missing or
-    the scheduler does not answer within DASK_CONNECT_TIMEOUT_S. A command connects once,
+    """A Client of the Dask scheduler at `scheduler`; SweepError when the extra is missing,
+    the address cannot be reached, or what answers there is not a Dask scheduler (any error
+    of the handshake), all within DASK_ANSWER_BOUND_S of wall time. A command connects once,
     before its first trial or event recording, and hands the client to each sweep it runs
-    (run_sweep's `scheduler`); the caller closes it."""
+    (run_sweep's `scheduler`); the caller closes it.
+
+    distributed's own `timeout` bounds the TCP connect, not every read of the handshake: a
+    peer that accepts and stays silent held the Client forever. The Client is made on a
+    daemon thread, abandoned (with its socket) when the bound passes."""
     distributed = _dask_distributed()
-    try:
-        return distributed.Client(scheduler, timeout=f"{DASK_CONNECT_TIMEOUT_S}s")
-    except OSError as error:
-        raise SweepError(f"cannot reach the Dask scheduler at {scheduler}: {error}") from None
+    made = {}
+
+    def make_client():
+        try:
+            made["client"] = distributed.Client(scheduler, timeout=f"{DASK_CONNECT_TIMEOUT_S}s")
+        except Exception as error:  # the peer's answer decides what is raised: any of them
+            made["error"] = error
+    connecting = threading.Thread(target=make_client, name="tegrasp-dask-connect",
+                                  daemon=True)
+    connecting.start()
+    connecting.join(DASK_ANSWER_BOUND_S)
+    if connecting.is_alive():
+        raise SweepError(f"the Dask scheduler at {scheduler} did not answer as one within "
+                         f"{DASK_ANSWER_BOUND_S:.0f} s: give the address `dask scheduler` "
+                         "prints")
+    error = made.get("error")
+    if isinstance(error, OSError):
+        raise SweepError(f"cannot reach the Dask scheduler at {scheduler}: {error}")
+    if error is not None:
+        raise SweepError(f"what answers at {scheduler} is not a Dask scheduler "
+                         f"({type(error).__name__}: {shorten(str(error))}): give the address "
+                         "`dask scheduler` prints")
+    return made["client"]
 
 
 def _scheduler_address(scheduler: str | DaskClient) -> str:
