@@ -141,3 +141,18 @@ def test_an_inproc_scheduler_address_is_refused_by_its_form(tmp_path, capfd):
     code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"),
                           "--workers", "1", "--scheduler", "inproc://x", *_FAKE_TRIALS], capfd)
     assert code == 2 and "--scheduler 'inproc://x' is not a scheduler address" in text, text
+
+
+def test_a_world_events_folder_that_cannot_be_made_is_one_line(tmp_path, capfd):
+    """OUT/events a link to a folder no world's folder can be made in (/proc): refused in one
+    line before anything is recorded, not exit 70 from mkdir."""
+    spec = tmp_path / "t.yaml"
+    spec.write_text("worlds: {w: {scenario: faithful_world}}\ncells: [[w, w]]\n" + _SWEEP)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "events").symlink_to("/proc")
+    code, text = run_cli(["transfer", str(spec), "--out", str(out), "--workers", "1",
+                          "--no-progress", *_FAKE_TRIALS], capfd)
+    assert code == 1, text
+    assert "events/w" in text and "internal error" not in text
+    assert len(text.strip().splitlines()) == 1

@@ -272,8 +272,8 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError, progress_bar_factory
-    from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, UserPathError, read_json_file,
-                                         replace_problem, write_atomically)
+    from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, UserPathError, folder_problem,
+                                         read_json_file, replace_problem, write_atomically)
     progress_bar = progress_bar_factory(progress, description=f"events of {world}",
                                         unit="recording")
     folder = pathlib.Path(folder)
@@ -289,11 +289,15 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
             raise SweepError(f"{folder} holds the events of world '{world}' recorded with "
                              f"other settings ({recorded}); give another output folder or "
                              "remove that one")
-    problem = replace_problem(marker)  # a file where the world's folder belongs
+    problem = folder_problem(folder) or replace_problem(marker)  # e.g. a file in its place
     if problem:
         raise UserPathError(f"{marker}: {problem}; give another output folder")
-    folder.mkdir(parents=True, exist_ok=True)
-    write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
+    except OSError as error:  # a file system that changed since the check, or refuses
+        raise UserPathError(f"{marker}: cannot be written ({error.strerror or error}); give "
+                            "another output folder") from None
     recorders = {"": ("", record_events),  # what the log calls them, how they are recorded
                  ENSEMBLE_FOLDER: ("ensemble ", lambda name, scenario: record_object_ensemble(
                      name, scenario, TEMPLATE_RUNS))}
