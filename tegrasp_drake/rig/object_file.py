@@ -98,7 +98,7 @@ def check_model_file(file: str, source: str, size) -> None:
     if not plant.GetCollisionGeometriesForBody(body):
         raise ConfigError(
             f"{source}: field 'object.file': '{file}' has no collision geometry on its body "
-            f"'{bodies[0]}', so the hand has nothing to grasp; give its link a <collision>")
+            f"'{body.name()}', so the hand has nothing to grasp; give its link a <collision>")
     _check_geometry(plant, scene_graph.model_inspector(), body, size,
                     f"{source}: field 'object.file': '{file}'")
 
