@@ -156,3 +156,67 @@ def test_a_world_events_folder_that_cannot_be_made_is_one_line(tmp_path, capfd):
     assert code == 1, text
     assert "events/w" in text and "internal error" not in text
     assert len(text.strip().splitlines()) == 1
+
+
+def test_a_finished_transfer_rerun_on_a_full_disk_is_one_line_and_keeps_its_reports(
+        tmp_path, capfd, monkeypatch):
+    """A rerun with nothing left to run rewrites only its reports: on a full disk that was exit
+    70 (world.json rewritten unchanged) and a 0-byte table1.md (written in place)."""
+    import errno
+
+    from tegrasp_drake.events.events_folder import load_memorized_events
+    from tegrasp_drake.recording import paper_events
+    from tegrasp_drake.rig import files, paths
+    monkeypatch.setattr(paper_events, "record_events", lambda name, scenario=None, **_:
+                        load_memorized_events(paths.package_events_dir(), name))
+    spec = tmp_path / "t.yaml"
+    spec.write_text("worlds: {w: {scenario: faithful_world}}\ncells: [[w, w]]\n" + _SWEEP)
+    out = tmp_path / "out"
+    argv = ["transfer", str(spec), "--out", str(out), "--workers", "1", "--no-progress",
+            *_FAKE_TRIALS]
+    code, text = run_cli(argv, capfd)
+    assert code == 0, text
+    reports = sorted(out.glob("transfer.*"))
+    assert any(report.name == "transfer.md" for report in reports)
+    before = {report: report.read_bytes() for report in reports}
+    world = out / "events" / "w" / "world.json"
+    world_before = world.stat().st_mtime_ns
+
+    def full_disk(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    monkeypatch.setattr(files, "staged_file", full_disk)
+    code, text = run_cli(argv, capfd)
+    assert code == 1, text
+    assert "No space left on device" in text and "internal error" not in text
+    assert len([line for line in text.splitlines() if "error" in line]) == 1, text
+    assert "transfer.md" in text  # the first write of the rerun: world.json is kept as it is
+    assert {report: report.read_bytes() for report in reports} == before
+    assert world.stat().st_mtime_ns == world_before
+
+
+def test_a_finished_sweep_rerun_on_a_full_disk_is_one_line_and_keeps_its_reports(
+        tmp_path, capfd, monkeypatch):
+    """The Markdown, CSV and JSON reports were written in place: a full disk left a 0-byte
+    table1.md where the earlier one was, and exit 70."""
+    import errno
+
+    from tegrasp_drake.rig import files
+    spec = tmp_path / "s.yaml"
+    spec.write_text("controllers: [memorized]\nattempts: 1\nobjects: [box]\n"
+                    "grid: [[0.0, 0.0]]\nbase_seed: 640\n")
+    out = tmp_path / "out"
+    argv = ["sweep", "--spec", str(spec), "--out", str(out), "--workers", "1",
+            "--no-progress", "--trial-function", "tests.fake_trials:fake_trial"]
+    code, text = run_cli(argv, capfd)
+    assert code == 0, text
+    reports = sorted(path for path in out.iterdir() if path.suffix in (".md", ".csv", ".json"))
+    assert {"table1.md", "table1.csv", "statistics.json"} <= {path.name for path in reports}
+    before = {report: report.read_bytes() for report in reports}
+
+    def full_disk(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    monkeypatch.setattr(files, "staged_file", full_disk)
+    code, text = run_cli(argv, capfd)
+    assert code == 1, text
+    assert "No space left on device" in text and "internal error" not in text
+    assert {report: report.read_bytes() for report in reports} == before

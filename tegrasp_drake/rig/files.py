@@ -122,7 +122,8 @@ def process_alive(pid: int) -> bool:
 def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp",
                      start: bytes | None = None) -> pathlib.Path:
     """Writes `data` (text as UTF-8) to `path` through a temporary file in its (existing) folder
-    and a rename; OSError, the target untouched, when it cannot. Given `start` (how a file of
+    and a rename; UserPathError (an OSError) naming `path`, the target untouched, when it
+    cannot (a full disk, a folder that is not one). Given `start` (how a file of
     `path`'s kind starts: its format's magic), the temporary file is this process's staging
     file (`.NAME.XXXXXXXX.PID.staging`, not `suffix`), and the staging files of `path` that
     writers killed past their handlers (SIGKILL, a power cut) left holding that kind are
@@ -130,13 +131,19 @@ def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp",
     if start is not None:
         remove_stale_staging_files_of(path, start)
         suffix = own_staging_suffix()
-    temporary = staged_file(path, data, suffix=suffix)
     try:
-        os.replace(temporary, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(temporary)
+        temporary = staged_file(path, data, suffix=suffix)
+        try:
+            os.replace(temporary, path)
+        except BaseException:
+            with contextlib.suppress(OSError):
+                os.unlink(temporary)
+            raise
+    except UserPathError:
         raise
+    except OSError as error:
+        raise UserPathError(f"cannot write {path}: {error.strerror or error}; free some space "
+                            "or give a folder you can write", error) from None
     return pathlib.Path(path)
 
 

@@ -3,6 +3,7 @@
 objects' rates, as the paper's (docs/sweeps.md, "A sweep")."""
 
 import csv
+import io
 import json
 import math
 from collections import Counter, defaultdict
@@ -15,6 +16,7 @@ from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_cl
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
 from tegrasp_drake.sweep.records import record_result
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
+from tegrasp_drake.rig.files import write_atomically
 
 # (placement, phase) columns of Table I, in the paper's order.
 TABLE1_COLUMNS = (("well_placed", "hold"), ("well_placed", "unload"),
@@ -144,11 +146,12 @@ def write_markdown_and_csv(out_dir, stem: str, markdown: str, header: list,
     `out_dir`; returns their paths. Every report table of a results folder is written so."""
     out_dir = Path(out_dir)
     markdown_path, csv_path = out_dir / f"{stem}.md", out_dir / f"{stem}.csv"
-    markdown_path.write_text(markdown, encoding="utf-8")
-    with open(csv_path, "w", newline="", encoding="utf-8") as file:
-        writer = csv.writer(file)
-        writer.writerow(header)
-        writer.writerows(rows)
+    table = io.StringIO(newline="")
+    writer = csv.writer(table)
+    writer.writerow(header)
+    writer.writerows(rows)
+    write_atomically(markdown_path, markdown)
+    write_atomically(csv_path, table.getvalue())
     return [markdown_path, csv_path]
 
 
@@ -307,11 +310,10 @@ def write_statistics(records, out_dir) -> list[Path]:
     counted = failure_class_counts(records)
     failures = {controller: counted[controller] for controller in statistics
                 if controller in counted}
-    markdown_path.write_text(statistics_markdown(statistics, comparisons) + "\n"
-                             + failure_classes_markdown(failures),
-                             encoding="utf-8")
-    json_path.write_text(json.dumps({"controllers": statistics,
-                                     "paired_comparisons": comparisons,
-                                     "failure_classes": failures},
-                                    indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    write_atomically(markdown_path, statistics_markdown(statistics, comparisons) + "\n"
+                 + failure_classes_markdown(failures))
+    write_atomically(json_path, json.dumps({"controllers": statistics,
+                                        "paired_comparisons": comparisons,
+                                        "failure_classes": failures},
+                                       indent=1, sort_keys=True) + "\n")
     return [markdown_path, json_path]

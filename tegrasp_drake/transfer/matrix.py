@@ -280,7 +280,8 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
     assignments = list(world_assignments(spec.worlds[world])
                        + tuple(spec.sweep.scenario_overrides))
     marker = folder / WORLD_FILE
-    if os.path.lexists(marker):  # a folder or device in its place is refused by the reader
+    kept = os.path.lexists(marker)
+    if kept:  # a folder or device in its place is refused by the reader
         recorded = read_json_file(
             marker, limit=MAX_STATE_FILE_BYTES, kind="a world's settings file",
             check=_assignments_problem, remedy=f"remove {folder} (its events are recorded "
@@ -289,15 +290,16 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
             raise SweepError(f"{folder} holds the events of world '{world}' recorded with "
                              f"other settings ({recorded}); give another output folder or "
                              "remove that one")
-    problem = folder_problem(folder) or replace_problem(marker)  # e.g. a file in its place
-    if problem:
-        raise UserPathError(f"{marker}: {problem}; give another output folder")
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
+    if not kept:  # a kept one holds these settings (checked above): nothing to write
+        problem = folder_problem(folder) or replace_problem(marker)  # e.g. a file in its place
+        if problem:
+            raise UserPathError(f"{marker}: {problem}; give another output folder")
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError as error:  # a file system that changed since the check, or refuses
+            raise UserPathError(f"{folder}: cannot be made ({error.strerror or error}); give "
+                                "another output folder") from None
         write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
-    except OSError as error:  # a file system that changed since the check, or refuses
-        raise UserPathError(f"{marker}: cannot be written ({error.strerror or error}); give "
-                            "another output folder") from None
     recorders = {"": ("", record_events),  # what the log calls them, how they are recorded
                  ENSEMBLE_FOLDER: ("ensemble ", lambda name, scenario: record_object_ensemble(
                      name, scenario, TEMPLATE_RUNS))}

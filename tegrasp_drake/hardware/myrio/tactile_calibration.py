@@ -13,6 +13,7 @@ import numpy as np
 from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.rig.files import write_atomically
 from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.hardware.myrio.tactile_frame import PIEZO_VOLTS_PER_COUNT
 
@@ -76,9 +77,9 @@ def LoadTactileCalibration(filename: str) -> TactileCalibration:
 
 
 def SaveTactileCalibration(calibration: TactileCalibration, filename: str):
-    """Writes a TactileCalibration as YAML."""
-    with open(filename, "w", encoding="utf-8") as file:
-        file.write(yaml_dump_typed(calibration))
+    """Writes a TactileCalibration as YAML (atomically: an earlier file stays whole until the
+    new one is complete)."""
+    write_atomically(filename, yaml_dump_typed(calibration))
 
 
 def forces_from_counts(counts, gain, offset) -> np.ndarray:
