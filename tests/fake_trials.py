@@ -18,6 +18,16 @@ _UNLOAD_PROBABILITY = {"memorized": (0.9, 0.8), "heuristic": (0.8, 0.6),
 SLOW_TRIAL_S = 0.05
 
 
+def timeline_ending(final_mode: str, t: float = 1.0) -> list[dict]:
+    """A hand-built result's timeline: one timed transition at `t` [s] from Reach into
+    `final_mode` ([] for Reach), since a result's final mode is its last transition's. No event
+    transition: nothing in it counts as a match or a false trigger."""
+    if final_mode == "Reach":
+        return []
+    return [{"t": t, "from": "Reach", "to": final_mode, "trigger": "timer",
+             "reason": "the test's timeline"}]
+
+
 def _uniforms(trial, count):
     digest = hashlib.sha256(f"{trial['pair_id']}|{trial['seed']}".encode()).digest()
     return [int.from_bytes(digest[4 * k:4 * k + 4], "big") / 2.0 ** 32 for k in range(count)]
@@ -32,9 +42,13 @@ def fake_trial(trial):
     return {
         "hold_success": hold,
         "unload_success": unload,
-        **({"final_mode": "Done"} if unload else {}),  # unloaded: judged only in a Done trial
+        # Unloaded: judged only in a Done trial, the object released; else it stopped in Load.
+        "final_mode": "Done" if unload else "Load",
+        "released": unload,
         "transitions": [{"t": 1.0, "from": "Reach", "to": "Load", "trigger": "memorized_event",
-                         "reason": "Reach-Load event"}],
+                         "reason": "Reach-Load event"}] + ([
+            {"t": 2.0, "from": "Load", "to": "Done", "trigger": "timer",
+             "reason": "the test's timeline"}] if unload else []),
         "corrective_actions": ["regrasp"] if not trial["well_placed"] and hold else [],
         "detection_latency_s": {"reach->load": latency, "lift->hold": latency},
         "false_triggers": int(u_false < 0.2),
@@ -93,8 +107,8 @@ def fake_trial_with_events(trial, *, events_dir):
     """fake_trial of a transfer cell, which hands each trial its memorizing world's events
     folder: the result names that folder, so a test can check which events a cell used."""
     result = fake_trial(trial)
-    result["transitions"] = [{"t": 1.0, "from": "Reach", "to": "Load",
-                              "trigger": "memorized_event", "reason": "Reach-Load event"}]
+    result["transitions"][0] = {"t": 1.0, "from": "Reach", "to": "Load",
+                                "trigger": "memorized_event", "reason": "Reach-Load event"}
     result["physical_events"] = {"reach_load": 0.97}
     result["events_dir"] = str(events_dir)
     return result

@@ -269,7 +269,8 @@ def test_the_command_classes_a_sweeps_missed_waits_from_its_records_and_logs(tmp
               [entry(3.4, Mode.REACH, reach.mode, reach.reason)])]
     for trial, (config, transitions) in zip(trials, cases):
         write_record(tmp_path / "results", make_record(trial, result={
-            "transitions": transitions, "hold_success": True, "unload_success": False}))
+            "transitions": transitions, "hold_success": True, "unload_success": False,
+            "final_mode": transitions[-1]["to"]}))
         synthetic_trial_log(synthetic_grasp(config)).save(
             tmp_path / "logs" / trial_log_name(trial))
     out = tmp_path / "weak_stimuli.md"

@@ -49,9 +49,11 @@ def test_a_record_whose_result_is_out_of_range_is_corrupt_and_runs_again(
 
 
 def _failed(result):
-    result["transitions"].append({"t": 2.0, "from": "Load", "to": "Failed", "trigger": "timer",
-                                  "reason": "no Load-Lift event"})
-    result["failure"] = "x" * 50000
+    """The result of a trial that failed in Load, with a reason of 50000 characters."""
+    result["transitions"][1:] = [{"t": 2.0, "from": "Load", "to": "Failed", "trigger": "timer",
+                                  "reason": "no Load-Lift event"}]
+    result.update(final_mode="Failed", hold_success=False, unload_success=False,
+                  released=False, failure="x" * 50000)
 
 
 @pytest.mark.parametrize("edit, field", [

@@ -52,8 +52,8 @@ def _refused_as_another_study(code, message, *words):
 
 
 # Rule: a sensitivity folder names its study (the design, one-at-a-time or a Latin hypercube
-# of N points and its seed; the parameters and their ranges; where events are memorized; the
-# sweep), and a resume into it by another study is refused in one line naming what differs,
+# of N points and its seed; the parameters and their ranges; where events are memorized and
+# at which seed; the sweep), and a resume into it by another study is refused in one line naming what differs,
 # before anything is written, exit 2 as a sweep's (docs/sweeps.md, "Resuming"); the folder's
 # own study still resumes.
 @pytest.mark.parametrize("second, options, words", [
@@ -61,6 +61,7 @@ def _refused_as_another_study(code, message, *words):
      ["one-at-a-time", "a Latin hypercube of 4 points"]),
     (_FRICTION + _SWEEP, [], ["parameters", "tactile.pad_modulus_pa", "gripper.pad_friction"]),
     (_MODULUS + "events: default_point\n" + _SWEEP, [], ["events", "default_point"]),
+    (_MODULUS + "events_seed: 650\n" + _SWEEP, [], ["events_seed 0 in the folder, not 650"]),
     (_MODULUS + _SWEEP.replace("attempts: 1", "attempts: 2"), [], ["sweep", "attempts"]),
 ])
 def test_a_sensitivity_folder_of_another_study_is_refused(tmp_path, capfd, stopped_studies,

@@ -87,8 +87,13 @@ def test_success_flags_contradicting_the_result_are_refused(data, expected):
 def test_a_result_held_then_failed_is_read():
     """Hold, then a drop while placing: 8 committed records end so (held, final Failed)."""
     from tegrasp_drake.scenario.trial_result import TrialResult
+    timeline = [_event(1.0, "Reach", "Load"), _event(1.5, "Load", "Lift"),
+                {"t": 2.5, "from": "Lift", "to": "Hold", "trigger": "timer", "reason": "lifted"},
+                {"t": 5.7, "from": "Hold", "to": "Place", "trigger": "timer", "reason": "held"},
+                {"t": 6.5, "from": "Place", "to": "Failed", "trigger": "threshold",
+                 "reason": "object lost"}]
     result = TrialResult.from_dict({"hold_success": True, "final_mode": "Failed",
-                                    "hold_time_s": 3.2})
+                                    "hold_time_s": 3.2, "transitions": timeline})
     assert result.hold_success and not result.unload_success
 
 

@@ -5,7 +5,7 @@ import pytest
 
 from tegrasp_drake.sweep.records import load_records, record_path
 from tegrasp_drake.sweep.runner import run_sweep
-from tegrasp_drake.sweep.spec import SweepSpec
+from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec
 from tests.fake_trials import fake_trial
 from tests.test_bad_input_round27 import forge_record
 
@@ -68,6 +68,62 @@ def test_a_record_whose_trial_no_sweep_makes_is_corrupt_and_runs_again(
         tmp_path, trial_id, edit, words):
     path = _forge(tmp_path, trial_id, edit)
     _assert_corrupt_and_run_again(tmp_path, path, words)
+
+
+def _rebased(base_seed):
+    """A forger's edit: another base seed, the seed it gives the scene recomputed, the
+    perturbation (what the trial ran with) kept."""
+    def edit(record):
+        from tegrasp_drake.sweep.spec import scene_seeds
+        trial = record["trial"]
+        _, seed = scene_seeds(base_seed, trial["object_name"],
+                              (trial["marker_dx_m"], trial["marker_dy_m"]), trial["attempt"])
+        trial.update(base_seed=base_seed, seed=seed)
+        record["result"]["seed"] = seed
+    return edit
+
+
+def _nudged(field, by):
+    return lambda record: record["trial"]["perturbation"].update(
+        {field: record["trial"]["perturbation"][field] + by})
+
+
+def _flipped(field):
+    return lambda record: record["trial"]["perturbation"].update(
+        {field: -record["trial"]["perturbation"][field]})
+
+
+# Rule: a record's perturbation is its seed's draw (the seed's uniforms under one set of
+# randomisation bounds): a base seed changed and its seed recomputed, or a draw edited, is
+# corrupt and its trial runs again.
+@pytest.mark.parametrize("edit, words", [
+    (_rebased(621), "perturbation."),
+    (_nudged("dy_m", 1e-6), "perturbation.d"),  # dx and dy share a bound: one is named
+    (_flipped("yaw_rad"), "perturbation.yaw_rad"),
+], ids=["base-seed-recomputed", "jitter-nudged", "yaw-flipped"])
+def test_a_record_whose_perturbation_is_not_its_seeds_draw_is_corrupt_and_runs_again(
+        tmp_path, edit, words):
+    path = _forge(tmp_path, MISPLACED, edit)
+    _assert_corrupt_and_run_again(tmp_path, path, words)
+
+
+def test_a_plot_of_a_record_whose_perturbation_is_not_its_seeds_draw_is_refused_in_one_line(
+        tmp_path, monkeypatch, capfd):
+    from tests.test_bad_input import assert_one_line_error, run_cli
+    _forge(tmp_path / "sweep", MISPLACED, _rebased(621))
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(["plot", "latency", "sweep", "--out", "latency.png"], capfd)
+    assert_one_line_error(code, text, "memorized.box.m10.a0.json", "perturbation.")
+    assert not (tmp_path / "latency.png").exists()
+
+
+@pytest.mark.parametrize("randomisation", [
+    RandomisationConfig(), RandomisationConfig(0.0, 0.0, 0.0, 0.0),
+    RandomisationConfig(0.05, 180.0, 0.999999, 1e-12)], ids=["default", "none", "extremes"])
+def test_the_draws_of_any_randomisation_bounds_are_read(randomisation):
+    from tegrasp_drake.sweep.spec import expand_trials, trial_problem
+    spec = SweepSpec(base_seed=620, attempts=2, randomisation=randomisation)
+    assert [t.trial_id for t in expand_trials(spec) if trial_problem(t.to_dict())] == []
 
 
 def test_the_trials_a_sweep_makes_are_read():

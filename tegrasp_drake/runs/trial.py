@@ -15,7 +15,7 @@ from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
                                                   MakeSimulator, simulated_duration_range)
-from tegrasp_drake.scenario.trial_result import HOLD_REQUIRED_S, TrialResult
+from tegrasp_drake.scenario.trial_result import HOLD_REQUIRED_S, UPRIGHT_TILT_DEG, TrialResult
 from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
                                               grip_fraction_at, judge_grasp,
                                               table_touch_time)
@@ -31,7 +31,6 @@ class SimulationFailedError(ConfigError):
     can ask for physics the model does not handle. One line naming the time and Drake's words."""
 
 
-UPRIGHT_TILT_DEG = 10.0  # standing upright after Unload
 RESTING_HEIGHT_M = 0.005  # back on the table: within this of its starting height
 END_MARGIN_S = 0.5  # simulated after the machine ends, to see the object settle
 CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended

@@ -16,6 +16,8 @@ from tegrasp_drake.control.grasp_modes import Mode, Transition
 
 
 HOLD_REQUIRED_S = 3.0  # the paper (Sec. IV-C): a hold succeeds when held at least 3 s
+# An unload succeeds only with the object standing upright: tilted less than this [deg].
+UPRIGHT_TILT_DEG = 10.0
 
 # A failure is the reason a controller gives for going to Failed, one sentence (the longest
 # in the committed sweep records: 109 characters); ten times a long sentence is not one.
@@ -90,11 +92,12 @@ class TrialResult:
 
     def _check_relations(self, name: str) -> None:
         """The relations judge_trial and run_trial (runs/trial.py) guarantee: Unload is
-        judged only after a Hold, in a trial ending Done; a hold succeeds exactly when held
-        HOLD_REQUIRED_S; the controller's (_check_controller); the failure is one sentence;
-        every time is within the simulated time (transitions, the physical events and the
-        hold are taken during the run, so a latency, a transition's time minus its event's,
-        is within it either way), and that within the longest run a trial can last
+        judged only after a Hold, in a trial ending Done with the object released and upright;
+        a hold succeeds exactly when held HOLD_REQUIRED_S; the final mode is the last
+        transition's (_check_final_mode); the controller's (_check_controller); the failure
+        is one sentence; every time is within the simulated time (transitions, the physical
+        events and the hold are taken during the run, so a latency, a transition's time minus
+        its event's, is within it either way), and that within the longest run a trial can last
         (grasp_diagram.longest_trial_s), which also bounds the times when it is not set."""
         if self.unload_success and not self.hold_success:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
@@ -104,11 +107,21 @@ class TrialResult:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'final_mode' is "
                               f"{shorten(str(final))} (a trial is judged unloaded only when it "
                               "ends Done)")
+        if self.unload_success and not self.released:
+            raise ConfigError(f"{name}: field 'unload_success' is true but 'released' is false "
+                              "(a trial is judged unloaded only with the object released)")
+        if (self.unload_success and self.final_tilt_deg is not None
+                and self.final_tilt_deg >= UPRIGHT_TILT_DEG):
+            raise ConfigError(f"{name}: field 'unload_success' is true but 'final_tilt_deg' is "
+                              f"{number_text(self.final_tilt_deg)} deg (a trial is judged "
+                              f"unloaded only with the object upright, tilted less than "
+                              f"{number_text(UPRIGHT_TILT_DEG)} deg)")
         if self.hold_time_s is not None and self.hold_success != (
                 self.hold_time_s >= HOLD_REQUIRED_S):
             raise ConfigError(f"{name}: field 'hold_success' is {str(self.hold_success).lower()} "
                               f"but 'hold_time_s' is {number_text(self.hold_time_s)} s (a hold "
                               f"succeeds when held at least {number_text(HOLD_REQUIRED_S)} s)")
+        self._check_final_mode(name, final)
         self._check_controller(name)
         if len(self.failure) > MAX_FAILURE_CHARS:
             raise ConfigError(f"{name}: field 'failure' must be at most {MAX_FAILURE_CHARS} "
@@ -141,6 +154,20 @@ class TrialResult:
             if abs(value) > limit:
                 raise ConfigError(f"{name}: field '{field}' must be {within} ({why}), got "
                                   f"{number_text(value)}")
+
+    def _check_final_mode(self, name: str, final: str) -> None:
+        """The final mode is the mode the last transition entered, Reach (the first mode)
+        when none was taken, as judge_trial gives it."""
+        if self.transitions:
+            entered = self.transitions[-1].to_mode
+            if final != entered.label:
+                raise ConfigError(f"{name}: field 'final_mode' is {shorten(str(final))} but the "
+                                  f"last transition enters {entered.label} (a trial ends in the "
+                                  "mode its last transition entered)")
+        elif final != Mode.REACH.label:
+            raise ConfigError(f"{name}: field 'final_mode' is {shorten(str(final))} but no "
+                              f"transition was taken (a trial without one ends in "
+                              f"{Mode.REACH.label}, where it starts)")
 
     def _check_real_time_factor(self, name: str) -> None:
         """The real-time factor is what run_trial makes it: simulated over wall time (none

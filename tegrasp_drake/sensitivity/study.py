@@ -19,24 +19,27 @@ from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, Uncertai
 from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig.files import MAX_STATE_FILE_BYTES, read_json_file
-from tegrasp_drake.transfer.matrix import (TransferSpec, TransferWorld, check_matrix_size,
-                                           check_worlds)
+from tegrasp_drake.rig.ranges import SEED_RANGE, bounded
+from tegrasp_drake.transfer.matrix import (DEFAULT_EVENTS_SEED, TransferSpec, TransferWorld,
+                                           check_matrix_size, check_worlds, events_seed_field)
 
 DEFAULT_POINT = "default"
 BASE_PRESET = "default"  # every point: the built-in default scenario, then its assignments
 EVENTS_CHOICES = ("each_point", "default_point")
 POINTS_FILE = "points.json"  # OUT/points.json: what each point sets
 MAX_LATIN_HYPERCUBE = 1000  # samples; each is a whole sweep
-_FIELDS = ("parameters", "events", "sweep")
+_FIELDS = ("parameters", "events", "events_seed", "sweep")
 
 
 @dataclasses.dataclass(frozen=True)
 class SensitivitySpec:
     """The parameters swept, where each point's events are memorized ("each_point": in the
-    point's own world; "default_point": once, at the defaults) and the sweep of each point."""
+    point's own world; "default_point": once, at the defaults), the seed of the ideal grasps
+    that record them (a transfer's events_seed) and the sweep of each point."""
     parameters: tuple[UncertainParameter, ...] = UNCERTAIN_PARAMETERS
     events: str = "each_point"
     sweep: SweepSpec = dataclasses.field(default_factory=SweepSpec)
+    events_seed: int = bounded(DEFAULT_EVENTS_SEED, **dataclasses.asdict(SEED_RANGE))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -57,6 +60,7 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
 
     parameters: [dotted keys of the uncertain parameters] (all of them when left out)
     events: each_point (default) or default_point
+    events_seed: the seed of the ideal grasps that record the events (a transfer spec's)
     sweep: the fields of a sweep spec (the paper's sweep when left out)
 
     ConfigError names the file and the field of anything that cannot run."""
@@ -89,7 +93,8 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
                 raise ConfigError(f"{source}: field 'sweep.scenario_overrides[{k}]': "
                                   f"'{shorten(key)}'{held} is set by the study's points; drop "
                                   "it here, or drop its parameter from 'parameters'")
-    spec = SensitivitySpec(parameters=parameters, events=events, sweep=sweep)
+    spec = SensitivitySpec(parameters=parameters, events=events, sweep=sweep,
+                           events_seed=events_seed_field(data, source))
     check_worlds(transfer_spec(spec, one_at_a_time(spec)), source)
     return spec
 
@@ -148,7 +153,8 @@ def transfer_spec(spec: SensitivitySpec, points) -> TransferSpec:
     worlds = {point.name: TransferWorld(BASE_PRESET, point.assignments()) for point in points}
     memorizing = {"each_point": None, "default_point": DEFAULT_POINT}[spec.events]
     cells = tuple((memorizing or point.name, point.name) for point in points)
-    return TransferSpec(worlds=worlds, cells=cells, sweep=spec.sweep)
+    return TransferSpec(worlds=worlds, cells=cells, sweep=spec.sweep,
+                        events_seed=spec.events_seed)
 
 
 def point_folder_cell(spec: SensitivitySpec, point: SensitivityPoint) -> tuple[str, str]:
@@ -159,7 +165,8 @@ def point_folder_cell(spec: SensitivitySpec, point: SensitivityPoint) -> tuple[s
 def study_identity(spec: SensitivitySpec, points) -> dict:
     """What makes a study's folder its own, as points.json keeps it: the design (one factor at
     a time, a Latin hypercube of N points and its seed, or points given otherwise), each
-    parameter with its range, where events are memorized and the sweep (its trials)."""
+    parameter with its range, where events are memorized and at which seed, and the sweep (its
+    trials)."""
     points = tuple(points)
     if points == one_at_a_time(spec):
         design = {"design": "one_at_a_time"}
@@ -178,6 +185,7 @@ def study_identity(spec: SensitivitySpec, points) -> dict:
                         "choices": list(e.choices), "step": e.step, "log_scale": e.log_scale}
                        for e in entries],
         "events": spec.events,
+        "events_seed": spec.events_seed,
         "sweep": dataclasses.asdict(spec.sweep)}))  # as read back: lists, not tuples
 
 
@@ -216,7 +224,9 @@ def _design_words(study: dict) -> str:
 
 def _study_difference(known: dict, wanted: dict) -> str | None:
     """What differs between two study identities, in words (the folder's, then this one's);
-    None when they are the same study."""
+    None when they are the same study. A folder's identity without events_seed was written
+    before a spec could set it: its events were recorded at DEFAULT_EVENTS_SEED."""
+    known = {"events_seed": DEFAULT_EVENTS_SEED, **known}
     if _design_words(known) != _design_words(wanted):
         return (f"the folder's design is {_design_words(known)}, this study's "
                 f"{_design_words(wanted)}")
@@ -230,6 +240,9 @@ def _study_difference(known: dict, wanted: dict) -> str | None:
                     f"study's {_range_words(has)}")
     if known.get("events") != wanted["events"]:
         return f"events {known.get('events')} in the folder, not {wanted['events']}"
+    if known["events_seed"] != wanted["events_seed"]:
+        return (f"events recorded at events_seed {known['events_seed']!r} in the folder, not "
+                f"{wanted['events_seed']}")
     sweep = known.get("sweep") if isinstance(known.get("sweep"), dict) else {}
     for field in wanted["sweep"]:
         if sweep.get(field) != wanted["sweep"][field]:

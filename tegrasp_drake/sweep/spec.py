@@ -208,7 +208,8 @@ def trial_problem(trial) -> str | None:
     makes, or None: its fields' types (trial_dict_problem), the ranges declared on TrialSpec's
     and Perturbation's fields, and the relations expand_trials gives them (trial and pair
     ids from the controller, object, marker and attempt; well placed exactly at the (0, 0)
-    marker; the seed scene_seeds derives from the base seed and the scene)."""
+    marker; the seed scene_seeds derives from the base seed and the scene; the perturbation
+    its draw, perturbation_problem)."""
     if not isinstance(trial, Mapping):
         return f"trial must be a mapping, got {type(trial).__name__}"
     problem = trial_dict_problem(trial)
@@ -246,7 +247,7 @@ def trial_problem(trial) -> str | None:
         return (f"trial: field 'seed' must be {seed}, the seed of base_seed {spec.base_seed}, "
                 f"object {spec.object_name!r}, marker {list(offset)} m and attempt "
                 f"{spec.attempt}, got {spec.seed}")
-    return None
+    return perturbation_problem(spec)
 
 
 # Validation
@@ -399,6 +400,58 @@ def draw_perturbation(rng: np.random.Generator,
     mass_scale = 1.0 + rng.uniform(-r.mass_scale_bound, r.mass_scale_bound)
     return Perturbation(dx_m=float(dx), dy_m=float(dy), yaw_rad=float(yaw),
                         friction_scale=float(friction_scale), mass_scale=float(mass_scale))
+
+
+# How far a record's perturbation may lie from its seed's redraw, as a fraction of each draw's
+# bound: a record does not keep the sweep's bounds, so each is taken from a draw's value over
+# the seed's uniform (a quotient, rounded in its last digits) and the draws redrawn with it;
+# JSON keeps floats exactly. A draw from another seed misses by about its bound.
+PERTURBATION_TOLERANCE = 1e-9
+
+# Each Perturbation field: the RandomisationConfig bound it is drawn under, the centre it is
+# drawn about, and the field's units per unit of the bound (radians per degree for the yaw).
+_DRAWN_UNDER = (("dx_m", "placement_xy_bound_m", 0.0, 1.0),
+                ("dy_m", "placement_xy_bound_m", 0.0, 1.0),
+                ("yaw_rad", "placement_yaw_bound_deg", 0.0, math.pi / 180.0),
+                ("friction_scale", "friction_scale_bound", 1.0, 1.0),
+                ("mass_scale", "mass_scale_bound", 1.0, 1.0))
+
+
+def perturbation_problem(spec: TrialSpec) -> str | None:
+    """Why spec.perturbation is not what draw_perturbation draws from the trial's scene seed
+    (scene_seeds of its base seed, object, marker and attempt), or None. A record does not
+    keep the sweep's RandomisationConfig, but each draw is c + b (2u - 1) with u a uniform the
+    seed alone gives, so each value names its bound b: each must lie in RandomisationConfig's
+    range of it (the value on the side of c the seed draws it), and the five redrawn under
+    those bounds (dx and dy under one) must be the record's."""
+    sequence, _ = scene_seeds(spec.base_seed, spec.object_name,
+                              (spec.marker_dx_m, spec.marker_dy_m), spec.attempt)
+    uniforms = np.random.default_rng(sequence).random(len(_DRAWN_UNDER))
+    seed_words = (f"its seed's draw (base_seed {spec.base_seed}, object {spec.object_name!r}, "
+                  f"marker {spec.marker}, attempt {spec.attempt})")
+    bounds = {}  # bound name: (its value, the 2u - 1 it was taken over)
+    for (field, bound, centre, unit), u in zip(_DRAWN_UNDER, uniforms):
+        value, signed = getattr(spec.perturbation, field), 2.0 * u - 1.0
+        implied = (value - centre) / (signed * unit) if signed else 0.0
+        high = field_range(RandomisationConfig, bound).high
+        if implied < 0.0:
+            return (f"trial: field 'perturbation.{field}' {value!r} is not {seed_words}, which "
+                    f"lies {'below' if signed < 0 else 'above'} {centre:g}")
+        if implied > high * (1.0 + PERTURBATION_TOLERANCE):
+            return (f"trial: field 'perturbation.{field}' {value!r} is not {seed_words}: it "
+                    f"would take a {bound} of {implied:.6g}, above that bound's highest, {high:g}")
+        if bound not in bounds or abs(signed) > abs(bounds[bound][1]):  # the finer quotient
+            bounds[bound] = (abs(implied), signed)  # -0.0 is no bound numpy draws under
+    redrawn = draw_perturbation(np.random.default_rng(sequence), RandomisationConfig(
+        **{bound: value for bound, (value, _) in bounds.items()}))
+    for field, bound, _, unit in _DRAWN_UNDER:
+        value, expected = getattr(spec.perturbation, field), getattr(redrawn, field)
+        allowed = (PERTURBATION_TOLERANCE * bounds[bound][0] * unit
+                   + 4.0 * math.ulp(max(abs(value), abs(expected))))
+        if abs(value - expected) > allowed:
+            return (f"trial: field 'perturbation.{field}' must be {expected!r}, {seed_words} "
+                    f"under the {bound} of {bounds[bound][0]:.6g} its draws give, got {value!r}")
+    return None
 
 
 # What one sweep may ask for: a trial is a simulation of about TRIAL_CORE_SECONDS of one core

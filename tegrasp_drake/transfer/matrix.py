@@ -16,7 +16,7 @@ from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fields,
                                           keys_overlap, optional_field,
                                           read_yaml_file, read_yaml_file_cached,
@@ -25,6 +25,9 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fie
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
 WORLD_FILE = "world.json"  # in a world's events folder: the assignments it was recorded with
+# The random_seed of the ideal grasp that records a world's paper events: the default
+# scenario's, which every transfer recorded its events at before a spec could set it.
+DEFAULT_EVENTS_SEED = 0
 logger = logging.getLogger(__name__)
 _NAME_CHARACTERS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_")
 # A world's name names its events folder and, twice, its cells' folders (`<m>-in-<r>`): 64
@@ -41,10 +44,13 @@ class TransferWorld:
 
 @dataclasses.dataclass(frozen=True)
 class TransferSpec:
-    """The worlds, the cells (memorizing world, running world) and the sweep of each cell."""
+    """The worlds, the cells (memorizing world, running world), the sweep of each cell, and
+    the seed of the ideal grasps that record the memorizing worlds' paper events (their sensor
+    noise and start pose, as a trial's random_seed; the ensemble's runs take their own)."""
     worlds: Mapping[str, TransferWorld]
     cells: tuple[tuple[str, str], ...]
     sweep: SweepSpec
+    events_seed: int = bounded(DEFAULT_EVENTS_SEED, **dataclasses.asdict(SEED_RANGE))
 
     def memorizing_worlds(self) -> tuple[str, ...]:
         return tuple(dict.fromkeys(a for a, _ in self.cells))
@@ -87,6 +93,8 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
     worlds: {name: {scenario: PRESET, overrides: [KEY=VALUE, ...]}}
     cells: [[memorizing, running], ...], or {memorize_in: [worlds], run_in: [worlds]}
     sweep: the fields of a sweep spec (the paper's sweep when left out)
+    events_seed: the seed of the ideal grasps that record the events (DEFAULT_EVENTS_SEED
+        when left out)
 
     ConfigError names the file and the field of anything that cannot run, and gives the
     cost of a matrix over the trial bound (check_matrix_size; `confirmed_trials`, the count
@@ -97,10 +105,10 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
                    "worlds: {a: {scenario: memorizing_world}}, cells: [[a, a]])")
     if not isinstance(data, dict):
         raise ConfigError(f"{source}: must be a mapping with worlds, cells and sweep")
-    unknown = set(data) - {"worlds", "cells", "sweep"}
+    unknown = set(data) - {"worlds", "cells", "sweep", "events_seed"}
     if unknown:
         raise ConfigError(f"{source}: unknown field '{sorted(unknown)[0]}' (fields: worlds, "
-                          "cells, sweep)")
+                          "cells, sweep, events_seed)")
     for required in ("worlds", "cells"):
         if required not in data:
             raise ConfigError(f"{source}: field '{required}' is missing")
@@ -109,7 +117,8 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
     sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
                                    f"{source} [sweep]")
     _check_sweep_leaves_worlds_alone(worlds, sweep, source)
-    spec = TransferSpec(worlds=worlds, cells=cells, sweep=sweep)
+    spec = TransferSpec(worlds=worlds, cells=cells, sweep=sweep,
+                        events_seed=events_seed_field(data, source))
     check_matrix_size(spec, source, confirmed_trials)
     check_worlds(spec, source)
     return spec
@@ -128,6 +137,20 @@ def _check_sweep_leaves_worlds_alone(worlds, sweep, source: str) -> None:
                         f"{source}: field 'sweep.scenario_overrides[{k}]': '{shorten(key)}' "
                         f"sets '{world_key}', which world '{name}' sets (its preset or "
                         "overrides); set it in the worlds, or drop it here")
+
+
+def events_seed_field(data: dict, source: str) -> int:
+    """The spec's `events_seed` (DEFAULT_EVENTS_SEED when left out); ConfigError naming
+    `source` and the field for one that is not a whole number in SEED_RANGE."""
+    value = data.get("events_seed", DEFAULT_EVENTS_SEED)
+    if type(value) is not int:
+        raise ConfigError(f"{source}: field 'events_seed' must be a whole number (the seed of "
+                          f"the ideal grasps that record the events), got "
+                          f"{shorten(repr(value))}")
+    if not SEED_RANGE.contains(value):
+        raise ConfigError(f"{source}: field 'events_seed' {SEED_RANGE.words(value)}, got "
+                          f"{value}")
+    return value
 
 
 # A check of more worlds than this says on stderr what it checks and how long it took (a
@@ -236,12 +259,22 @@ class _CellProduct:
     run_in: list[str]
 
 
+def recording_assignments(spec: TransferSpec, world: str) -> tuple[str, ...]:
+    """The `--set` assignments `world`'s events are recorded with, as its world.json keeps
+    them: the world's, the sweep's, then `random_seed` when spec.events_seed is not
+    DEFAULT_EVENTS_SEED (left out at the default, as folders recorded before the field
+    name their settings)."""
+    seed = (() if spec.events_seed == DEFAULT_EVENTS_SEED
+            else (f"random_seed={spec.events_seed}",))
+    return world_assignments(spec.worlds[world]) + tuple(spec.sweep.scenario_overrides) + seed
+
+
 def world_scenario(spec: TransferSpec, world: str, object_name: str):
-    """The nominal Scenario of `object_name` in `world`: what its events are recorded on."""
+    """The nominal Scenario of `object_name` in `world`, at spec.events_seed: what its events
+    are recorded on."""
     from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
     from tegrasp_drake.rig.objects import ObjectConfig
-    base = LoadScenario(overrides=world_assignments(spec.worlds[world])
-                        + tuple(spec.sweep.scenario_overrides))
+    base = LoadScenario(overrides=recording_assignments(spec, world))
     definition = spec.sweep.user_objects.get(object_name)
     obj = (definition.object_config(object_name) if definition
            else resolve_object(ObjectConfig(name=object_name)))
@@ -277,8 +310,7 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
     progress_bar = progress_bar_factory(progress, description=f"events of {world}",
                                         unit="recording")
     folder = pathlib.Path(folder)
-    assignments = list(world_assignments(spec.worlds[world])
-                       + tuple(spec.sweep.scenario_overrides))
+    assignments = list(recording_assignments(spec, world))
     marker = folder / WORLD_FILE
     kept = os.path.lexists(marker)
     if kept:  # a folder or device in its place is refused by the reader

@@ -51,7 +51,7 @@ def test_a_sweep_refuses_a_result_whose_transition_names_no_rule():
     problem = check_result({"hold_success": True, "unload_success": False,
                             "transitions": [entry]})
     assert problem and "'transitions'[0]" in problem and "reach_evnt" in problem
-    assert check_result({"hold_success": True, "unload_success": False,
+    assert check_result({"hold_success": True, "unload_success": False, "final_mode": "Load",
                          "transitions": [{**entry, "code": "reach_event"}]}) is None
 
 
@@ -124,3 +124,29 @@ def test_a_damaged_records_result_is_refused_naming_the_record_file_and_field(
 def test_every_numeric_field_of_a_result_declares_its_range():
     from tegrasp_drake.rig.ranges import unranged_numeric_fields
     assert unranged_numeric_fields(TrialResult, Transition) == []
+
+
+@pytest.mark.parametrize("fields, words", [
+    ({"transitions": (_reach_load(1.0), _load_lift(2.0)), "final_mode": Mode.LOAD},
+     "field 'final_mode' is Load but the last transition enters Lift"),
+    ({"final_mode": Mode.DONE}, "field 'final_mode' is Done but no transition was taken"),
+    ({"hold_success": True, "unload_success": True, "final_mode": Mode.DONE,
+      "released": False}, "field 'unload_success' is true but 'released' is false"),
+    ({"hold_success": True, "unload_success": True, "final_mode": Mode.DONE,
+      "released": True, "final_tilt_deg": 45.0},
+     "field 'unload_success' is true but 'final_tilt_deg' is 45"),
+])
+def test_a_result_breaking_a_relation_of_its_modes_or_its_unload_is_refused(fields, words):
+    """run_trial's final mode is the last transition's (Reach when none was taken), and an
+    unload is judged a success only released and upright: a result saying otherwise is one
+    no trial produced."""
+    if fields.get("final_mode") == Mode.DONE and "unload_success" in fields:
+        fields = fields | {"transitions": (
+            _reach_load(1.0), _load_lift(2.0),
+            Transition(3.0, Mode.LIFT, Mode.DONE, Trigger.TIMER, "done"))}
+    with pytest.raises(ConfigError) as refused:
+        TrialResult(**fields)
+    message = str(refused.value)
+    assert "\n" not in message and message.startswith("TrialResult")
+    assert words in message, message
+

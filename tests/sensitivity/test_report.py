@@ -2,7 +2,7 @@
 the tornado's bars, the failure classes at each end, the figure written."""
 
 from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
-from tegrasp_drake.runs.trial import UPRIGHT_TILT_DEG
+from tegrasp_drake.scenario.trial_result import UPRIGHT_TILT_DEG
 from tegrasp_drake.sensitivity.parameters import parameter
 from tegrasp_drake.sensitivity.report import (point_rows, tornado_bars,
                                               write_sensitivity_report)
@@ -11,11 +11,13 @@ from tegrasp_drake.sensitivity.study import (SensitivitySpec, one_at_a_time,
 from tegrasp_drake.sweep.records import make_record, write_record
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.transfer.matrix import cell_folder, running_sweep
+from tests.fake_trials import timeline_ending
 
 SPEC = SensitivitySpec(parameters=(parameter("gripper.screw_efficiency"),), sweep=SweepSpec(
     objects=("box",), controllers=("memorized",), grid=((0.0, 0.0), (0.01, 0.0)),
     attempts=2, base_seed=600))
 HELD_AND_PLACED = {"hold_success": True, "unload_success": True, "final_mode": "Done",
+                   "transitions": timeline_ending("Done"), "released": True,
                    "lift_height_m": LIFTED_HEIGHT_M + 0.05, "final_tilt_deg": 0.0}
 DROPPED = {**HELD_AND_PLACED, "hold_success": False, "unload_success": False}
 TOPPLED = {**HELD_AND_PLACED, "unload_success": False, "final_tilt_deg": UPRIGHT_TILT_DEG + 30}

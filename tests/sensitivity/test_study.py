@@ -1,6 +1,8 @@
 """The sensitivity spec and its points: the one-factor ends, the Latin hypercube's strata,
 the points as transfer worlds and cells, and one-line refusals of a bad spec."""
 
+import dataclasses
+import json
 import textwrap
 from pathlib import Path
 
@@ -95,6 +97,31 @@ def test_a_folder_of_another_sampling_is_refused(tmp_path):
         record_points(other, latin_hypercube(other, 2), tmp_path)
 
 
+def test_the_events_seed_reaches_the_worlds_and_a_folder_of_another_is_refused(tmp_path):
+    """A spec's events_seed is its transfer's (the seed its events are recorded at); a folder
+    recorded at another is another study, and one whose points.json was written before the
+    field was recorded at the default."""
+    spec = LoadSensitivitySpec(write_spec(tmp_path, "parameters: [gripper.screw_efficiency]\n"
+                                          "events_seed: 650\n"
+                                          + textwrap.dedent(SMALL_SWEEP)))
+    points = one_at_a_time(spec)
+    assert transfer_spec(spec, points).events_seed == 650
+    record_points(spec, points, tmp_path / "seeded")
+    record_points(spec, points, tmp_path / "seeded")  # the same seed: resumed
+    default = dataclasses.replace(spec, events_seed=0)
+    with pytest.raises(SweepError, match=r"another sensitivity study: events recorded at "
+                                         r"events_seed 650 in the folder, not 0;"):
+        record_points(default, points, tmp_path / "seeded")
+    older = tmp_path / "older" / "points.json"
+    record_points(default, points, older.parent)
+    written = json.loads(older.read_text())
+    del written["study"]["events_seed"]  # as written before the field
+    older.write_text(json.dumps(written))
+    record_points(default, points, older.parent)
+    with pytest.raises(SweepError, match="events_seed 0 in the folder, not 650"):
+        record_points(spec, points, older.parent)
+
+
 def test_a_points_file_that_is_a_device_is_refused_as_one(tmp_path):
     (tmp_path / "points.json").symlink_to("/dev/null")  # reads empty, as a truncated file would
     with pytest.raises(UserPathError, match=r"points.json: is a device, not a file; give "):
@@ -108,6 +135,8 @@ def test_a_points_file_that_is_a_device_is_refused_as_one(tmp_path):
     ("parameters: [gripper.screw_efficiency, gripper_screw_efficiency]\n",
      "field 'parameters[1]'"),
     ("events: everywhere\n", "field 'events' must be one of each_point, default_point"),
+    ("events_seed: -3\n", "field 'events_seed' must lie in [0, 4294967295]"),
+    ("events_seed: '650'\n", "field 'events_seed' must be a whole number"),
     ("points: 3\n", "unknown field 'points'"),
     ("sweep: {attempts: 0}\n", "field 'attempts'"),
     ("sweep: {scenario_overrides: [gripper.screw_efficiency=0.9]}\n",

@@ -13,11 +13,15 @@ def record(controller, pair, *, hold=True, unload=None, reach_t=4.05, well_place
                     "reason": "only the left finger touched"},
                    {"t": reach_t, "from": "Reach", "to": "Load",
                     "trigger": "memorized_event", "reason": "Reach-Load event"}]
+    unload = hold if unload is None else unload
+    if unload:  # a trial judged unloaded ends Done
+        transitions.append({"t": 12.0, "from": "Load", "to": "Done", "trigger": "timer",
+                            "reason": "the test's timeline"})
     return {"trial_id": f"{controller}/{pair}",
             "trial": {"controller": controller, "pair_id": pair, "well_placed": well_placed},
             "result": {"transitions": transitions, "hold_success": hold,
-                       "unload_success": hold if unload is None else unload,
-                       "final_mode": "Done" if (hold if unload is None else unload) else "Load",
+                       "unload_success": unload, "released": unload,
+                       "final_mode": "Done" if unload else "Load",
                        "corrective_actions": list(actions),
                        "physical_events": {"reach_load": 4.0}}}
 
@@ -63,10 +67,12 @@ def hit_record(controller, pair, *, hit, avoids=(), trigger="corrective_event",
                          "reason": "hit"},
                         {"t": t + 0.6, "from": "Avoid", "to": "Hold", "trigger": "timer",
                          "reason": "avoiding motion ended"}]
+    transitions.append({"t": transitions[-1]["t"] + 5.0, "from": "Hold", "to": "Done",
+                        "trigger": "timer", "reason": "the test's timeline"})
     events = {"reach_load": 3.95} if hit is None else {"reach_load": 3.95, "hit": hit}
     return {"trial": {"controller": controller, "pair_id": pair, "well_placed": True},
             "result": {"transitions": transitions, "hold_success": True,
-                       "unload_success": True, "final_mode": "Done",
+                       "unload_success": True, "final_mode": "Done", "released": True,
                        "corrective_actions": ["avoid"] * len(avoids),
                        "physical_events": events}}
 

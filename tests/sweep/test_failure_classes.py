@@ -12,6 +12,7 @@ from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS
 from tegrasp_drake.scenario.trial_result import TrialResult
+from tests.fake_trials import timeline_ending
 from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASS_AFTER_LIFT_LOAD,
                                                  FAILURE_CLASS_OF_RULE, FAILURE_CLASSES,
                                                  failure_class, failure_class_counts,
@@ -21,8 +22,9 @@ from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASS_AFTER_LIFT_LOAD,
 def result(**changes):
     """A held and unloaded trial's result, changed by `changes`."""
     base = {"hold_success": True, "unload_success": True, "failure": "", "final_mode": "Done",
-            "lift_height_m": 0.06, "final_tilt_deg": 0.5, "transitions": []}
-    return {**base, **changes}
+            "lift_height_m": 0.06, "final_tilt_deg": 0.5, "released": True}
+    changed = {**base, **changes}
+    return {"transitions": timeline_ending(changed["final_mode"]), **changed}
 
 
 FAILED = dict(hold_success=False, unload_success=False, final_mode="Failed",

@@ -8,6 +8,7 @@ import pytest
 
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.sweep import SweepSpec, expand_trials, make_record
+from tests.fake_trials import timeline_ending
 from tegrasp_drake.sweep.summary import (PAPER_ROW_NAME, RESULTS_BLOCK, RECORDS_LINE, last_commit,
                                          page_with_record_commits, readme_with_summaries,
                                          summary_rows)
@@ -17,7 +18,8 @@ RESULTS_PAGE = ROOT / "docs" / "results.md"
 
 
 def result(hold, *, latency=None, false_triggers=0):
-    return {"hold_success": hold, "unload_success": hold, "transitions": [],
+    return {"hold_success": hold, "unload_success": hold, "released": hold,
+            "transitions": timeline_ending("Done" if hold else "Failed"),
             "final_mode": "Done" if hold else "Failed",
             "corrective_actions": [], "detection_latency_s": latency or {},
             "false_triggers": false_triggers, "sim_time_s": 12.0, "wall_time_s": 25.0}

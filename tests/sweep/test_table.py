@@ -7,6 +7,7 @@ import pytest
 
 from tegrasp_drake.figures.sweep import success_grids, write_success_maps
 from tegrasp_drake.sweep.records import make_record
+from tests.fake_trials import timeline_ending
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.sweep.table import (
     PAPER_TABLE1,
@@ -25,7 +26,8 @@ PAPER_COUNTS = {"box": (3, 3, 24, 24), "thick_cylinder": (3, 3, 20, 20),
 
 
 def result(hold, unload, **extra):
-    return {"hold_success": hold, "unload_success": unload, "transitions": [],
+    return {"hold_success": hold, "unload_success": unload, "released": unload,
+            "transitions": timeline_ending("Done" if unload else "Failed"),
             "final_mode": "Done" if unload else "Failed",
             "corrective_actions": [], "detection_latency_s": {}, "false_triggers": 0,
             "sim_time_s": 10.0, "wall_time_s": 20.0, **extra}

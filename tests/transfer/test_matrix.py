@@ -18,7 +18,8 @@ from tegrasp_drake.events.ra_noise_floor import (FALSE_ALARM_PER_TRIAL, TRIAL_HO
                                                   floor_sigmas)
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.transfer.matrix import (LoadTransferSpec, TransferWorld,
-                                                       world_assignments)
+                                           record_world_events, world_assignments,
+                                           world_scenario)
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tests.cheap_contact import cheap_contact_yaml
@@ -97,6 +98,12 @@ def test_the_remedy_spec_is_cells_of_the_matrix_with_the_envelope_and_floor_in_e
      "letters, digits and '_'"),
     ("worlds: {ideal: {scenario: memorizing_world}}\ncells: [[ideal, ideal]]\n"
      "sweep: {attempts: 0}\n", "field 'attempts'"),
+    ("worlds: {ideal: {scenario: memorizing_world}}\ncells: [[ideal, ideal]]\n"
+     "events_seed: -1\n", "field 'events_seed' must lie in [0, 4294967295]"),
+    ("worlds: {ideal: {scenario: memorizing_world}}\ncells: [[ideal, ideal]]\n"
+     "events_seed: 4294967296\n", "field 'events_seed' must lie in [0, 4294967295]"),
+    ("worlds: {ideal: {scenario: memorizing_world}}\ncells: [[ideal, ideal]]\n"
+     "events_seed: 650.5\n", "field 'events_seed' must be a whole number"),
 ])
 def test_a_bad_spec_is_refused_naming_the_field(tmp_path, text, words):
     with pytest.raises(ConfigError) as error:
@@ -160,6 +167,41 @@ def test_a_folder_of_another_worlds_events_is_refused(tmp_path):
                           capture_output=True, text=True, timeout=TIMEOUT_S)
     assert done.returncode == 2
     assert "holds the events of world 'ideal' recorded with other settings" in done.stderr
+
+
+def test_the_events_are_recorded_at_the_specs_events_seed(tmp_path):
+    """A spec's events_seed is the seed of the ideal grasps that record its worlds' events;
+    left out, the default scenario's, as before a spec could set it."""
+    chosen = LoadTransferSpec(write_spec(tmp_path, TWO_WORLDS + "events_seed: 650\n"))
+    assert chosen.events_seed == 650
+    assert world_scenario(chosen, "ideal", "box").random_seed == 650
+    default = LoadTransferSpec(write_spec(tmp_path, TWO_WORLDS))
+    assert world_scenario(default, "ideal", "box").random_seed == LoadScenario().random_seed
+
+
+def test_events_recorded_at_another_events_seed_are_refused(tmp_path):
+    """A world's events recorded at one events_seed are not resumed at another, either way."""
+    seeded = LoadTransferSpec(write_spec(tmp_path, TWO_WORLDS + "events_seed: 650\n"))
+    default = LoadTransferSpec(write_spec(tmp_path, TWO_WORLDS))
+    from tegrasp_drake.sweep.runner import SweepError
+    for first, then in ((seeded, default), (default, seeded)):
+        folder = tmp_path / f"events_{first.events_seed}" / "ideal"
+        shutil.copytree(paths.package_events_dir(), folder,  # there already: none recorded
+                        ignore=shutil.ignore_patterns("ensemble", "corrective", "prismatic"))
+        assert record_world_events(first, "ideal", folder) == 0
+        assert record_world_events(first, "ideal", folder) == 0  # the same seed: resumed
+        with pytest.raises(SweepError, match="recorded with other settings"):
+            record_world_events(then, "ideal", folder)
+
+
+def test_the_committed_transfer_events_resume_at_the_default_events_seed(tmp_path):
+    """analysis/results_transfer's events were recorded before a spec could set the seed:
+    its spec, which sets none, still resumes them."""
+    spec = LoadTransferSpec(REPOSITORY / "analysis" / "transfer_ends.yaml")
+    for world in ("ideal", "faithful"):
+        folder = tmp_path / world
+        shutil.copytree(REPOSITORY / "analysis" / "results_transfer" / "events" / world, folder)
+        assert record_world_events(spec, world, folder) == 0
 
 
 def wait_for(condition, process, what):
