@@ -140,7 +140,7 @@ def test_an_inproc_scheduler_address_is_refused_by_its_form(tmp_path, capfd):
                     "grid: [[0.0, 0.0]]\nbase_seed: 640\n")
     code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"),
                           "--workers", "1", "--scheduler", "inproc://x", *_FAKE_TRIALS], capfd)
-    assert code == 2 and "--scheduler 'inproc://x' is not a scheduler address" in text, text
+    assert code == 1 and "--scheduler 'inproc://x' is not a scheduler address" in text, text
 
 
 def test_a_world_events_folder_that_cannot_be_made_is_one_line(tmp_path, capfd):
@@ -220,3 +220,24 @@ def test_a_finished_sweep_rerun_on_a_full_disk_is_one_line_and_keeps_its_reports
     assert code == 1, text
     assert "No space left on device" in text and "internal error" not in text
     assert {report: report.read_bytes() for report in reports} == before
+
+
+@pytest.mark.parametrize("command", ["sweep", "transfer", "sensitivity"])
+def test_a_runner_option_refused_is_bad_input_as_for_every_command(tmp_path, capfd, command):
+    """An --out that is a file: exit 1, as `tegrasp trial` and `plot` give (the table: bad
+    input, a file that cannot be written); a spec refused stays 2."""
+    taken = tmp_path / "a_file"
+    taken.write_text("")
+    spec = tmp_path / "spec.yaml"
+    spec.write_text({"sweep": "controllers: [memorized]\nattempts: 1\nobjects: [box]\n"
+                              "grid: [[0.0, 0.0]]\nbase_seed: 640\n",
+                     "transfer": "worlds: {w: {scenario: faithful_world}}\ncells: [[w, w]]\n"
+                                 + _SWEEP,
+                     "sensitivity": "parameters: [gripper.pad_friction]\n" + _SWEEP}[command])
+    spec_argument = ["--spec", str(spec)] if command == "sweep" else [str(spec)]
+    for out, code in ((taken, 1), (tmp_path / "out", 1)):
+        workers = "1" if out == taken else "0"
+        status, text = run_cli([command, *spec_argument, "--out", str(out), "--workers",
+                                workers, "--no-progress", *_FAKE_TRIALS], capfd)
+        assert status == code, text
+        assert len(text.strip().splitlines()) == 1, text

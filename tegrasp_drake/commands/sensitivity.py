@@ -9,7 +9,8 @@ import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          check_runner_arguments, close_scheduler,
+                                          OptionError, check_runner_arguments,
+                                          close_scheduler,
                                           resolve_trial_function)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -56,14 +57,22 @@ def run(args) -> int:
     try:
         scheduler = check_runner_arguments(args)
         spec = LoadSensitivitySpec(args.spec)
-        points = (one_at_a_time(spec) if args.latin_hypercube is None
-                  else latin_hypercube(spec, args.latin_hypercube))
+        if args.latin_hypercube is None:
+            points = one_at_a_time(spec)
+        else:
+            try:
+                points = latin_hypercube(spec, args.latin_hypercube)
+            except ConfigError as error:  # its count
+                raise OptionError(str(error)) from None
         trial_function = resolve_trial_function(args.trial_function)
         summaries = run_sensitivity(spec, points, trial_function, args.out,
                                     workers=args.workers, scheduler=scheduler,
                                     progress=not args.no_progress and progress_wanted(args),
                                     confirmed_trials=args.confirm_trials)
-    except (ConfigError, SweepError) as error:
+    except OptionError as error:  # bad input
+        print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
+        return 1
+    except (ConfigError, SweepError) as error:  # the spec refused
         print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
         return 2
     except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's

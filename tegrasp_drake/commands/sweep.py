@@ -203,29 +203,37 @@ def scheduler_problem(address: str) -> str | None:
     return None
 
 
+class OptionError(SweepError):
+    """A command-line option's value refused: bad input (exit 1), unlike a spec refused
+    (exit 2); str() is the one line to print."""
+
+
 def check_runner_arguments(args):
-    """SweepError for a bad --workers (check_workers), --confirm-trials, --out or --scheduler
+    """OptionError for a bad --workers (check_workers), --confirm-trials, --out or --scheduler
     (its address, the Dask extra, whether it answers), before any trial runs or any event is
     recorded. Returns the client connected to --scheduler (None without it): the command's
     one connection, which its sweeps run on and which close_scheduler closes."""
     check_workers(args)
     if args.confirm_trials is not None and not 1 <= args.confirm_trials <= MAX_CONFIRMED_TRIALS:
-        raise SweepError(f"{CONFIRM_OPTION} {args.confirm_trials}: give the study's count of "
+        raise OptionError(f"{CONFIRM_OPTION} {args.confirm_trials}: give the study's count of "
                          f"trials, at least 1 and at most {MAX_CONFIRMED_TRIALS} (a refusal of a "
                          "large study names it; split a larger one)")
     if args.scheduler is not None:
         problem = scheduler_problem(args.scheduler)
         if problem:
-            raise SweepError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
+            raise OptionError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
     if not str(args.out).strip():
-        raise SweepError(f"--out {args.out!r} is empty; give a folder you can write")
+        raise OptionError(f"--out {args.out!r} is empty; give a folder you can write")
     problem = folder_problem(args.out)
     if problem:
-        raise SweepError(f"--out {args.out}: {problem}; give a folder you can write")
+        raise OptionError(f"--out {args.out}: {problem}; give a folder you can write")
     if args.scheduler is None:
         return None
     from tegrasp_drake.sweep.runner import connect_scheduler
-    return connect_scheduler(args.scheduler)  # last: nothing after it can refuse
+    try:
+        return connect_scheduler(args.scheduler)  # last: nothing after it can refuse
+    except SweepError as error:
+        raise OptionError(str(error)) from None
 
 
 def close_scheduler(client) -> None:
@@ -235,16 +243,16 @@ def close_scheduler(client) -> None:
 
 
 def check_workers(args) -> None:
-    """SweepError unless --workers is at least 1 and, without --oversubscribe, at most the
+    """OptionError unless --workers is at least 1 and, without --oversubscribe, at most the
     cores this process may run on."""
     if args.workers is None:
         return
     from tegrasp_drake.sweep.runner import WORKER_COUNT, default_workers
     if not WORKER_COUNT.contains(args.workers):
-        raise SweepError(f"--workers {WORKER_COUNT.words(args.workers)}, got {args.workers}")
+        raise OptionError(f"--workers {WORKER_COUNT.words(args.workers)}, got {args.workers}")
     cores = default_workers()
     if args.workers > cores and not getattr(args, "oversubscribe", False):
-        raise SweepError(f"--workers {args.workers}: this machine gives this process {cores} "
+        raise OptionError(f"--workers {args.workers}: this machine gives this process {cores} "
                          f"core(s); give at most {cores}, or add --oversubscribe to start "
                          f"{args.workers} workers anyway")
 
@@ -253,7 +261,7 @@ def run(args) -> int:
     scheduler = None
     try:
         if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
-            raise SweepError("--benchmark times the local process pool; drop --scheduler")
+            raise OptionError("--benchmark times the local process pool; drop --scheduler")
         scheduler = check_runner_arguments(args)
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
@@ -283,7 +291,10 @@ def run(args) -> int:
         summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
                             scheduler=scheduler, progress=progress,
                             confirmed_trials=args.confirm_trials)
-    except (ConfigError, SweepError) as error:
+    except OptionError as error:  # bad input
+        print(f"tegrasp sweep: error: {error}", file=sys.stderr)
+        return 1
+    except (ConfigError, SweepError) as error:  # the spec refused
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
     finally:

@@ -7,7 +7,8 @@ import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          check_runner_arguments, close_scheduler,
+                                          OptionError, check_runner_arguments,
+                                          close_scheduler,
                                           resolve_trial_function)
 from tegrasp_drake.sweep.runner import SweepError, summary_text
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -54,7 +55,10 @@ def run(args) -> int:
                                  scheduler=scheduler,
                                  progress=not args.no_progress and progress_wanted(args),
                                  confirmed_trials=args.confirm_trials)
-    except (ConfigError, SweepError) as error:
+    except OptionError as error:  # bad input
+        print(f"tegrasp transfer: error: {error}", file=sys.stderr)
+        return 1
+    except (ConfigError, SweepError) as error:  # the spec refused
         print(f"tegrasp transfer: error: {error}", file=sys.stderr)
         return 2
     except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's
