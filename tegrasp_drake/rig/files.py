@@ -28,12 +28,15 @@ def _honour_umask(descriptor: int) -> None:
     os.fchmod(descriptor, 0o666 & ~_umask())
 
 
-def staged_file(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Path:
-    """A flushed temporary file beside `path` (.NAME.XXXX`suffix`) holding `data` (text as UTF-8),
-    for a later os.replace onto `path`; the caller removes it if that never comes."""
+def staged_file(path, data: str | bytes) -> pathlib.Path:
+    """A flushed temporary file beside `path` holding `data` (text as UTF-8), for a later
+    os.replace onto `path`: this process's staging file of `path`
+    (`.NAME.XXXXXXXX.PID.staging`, own_staging_suffix), which the caller removes if that never
+    comes and which, should it be killed past its handlers, the next writer of `path` removes
+    (remove_stale_staging_files_of)."""
     path = pathlib.Path(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix,
+    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=own_staging_suffix(),
                                              dir=path.parent)
     try:
         _honour_umask(descriptor)
@@ -57,7 +60,7 @@ _PID_PART = r"\.(?P<pid>[1-9][0-9]{0,9})\.staging"
 
 
 def own_staging_suffix() -> str:
-    """The suffix of this process's staging files (`.PID.staging`), for staged_file."""
+    """The suffix of this process's staging files (`.PID.staging`)."""
     return f".{os.getpid()}.staging"
 
 
@@ -119,18 +122,27 @@ def process_alive(pid: int) -> bool:
     return True
 
 
-def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp",
-                     start: bytes | None = None) -> pathlib.Path:
-    """Writes `data` (text as UTF-8) to `path` through a temporary file in its (existing) folder
-    and a rename; OSError, the target untouched, when it cannot. Given `start` (how a file of
-    `path`'s kind starts: its format's magic), the temporary file is this process's staging
-    file (`.NAME.XXXXXXXX.PID.staging`, not `suffix`), and the staging files of `path` that
-    writers killed past their handlers (SIGKILL, a power cut) left holding that kind are
-    removed first (remove_stale_staging_files_of)."""
-    if start is not None:
-        remove_stale_staging_files_of(path, start)
-        suffix = own_staging_suffix()
-    temporary = staged_file(path, data, suffix=suffix)
+# How the files of the text kinds this project writes start, for write_atomically's `start`
+# (the kind a killed writer's staging file must hold to be removed; binary kinds sit beside
+# their writers: FIGURE_STARTS, NPZ_START, HTML_START, LCM_LOG_START). A JSON text's first
+# character is its top value's (RFC 8259, 2; json.dumps writes no whitespace before it), an
+# object's `{` or an array's `[`; every Markdown page the project writes (reports, docs
+# pages) opens on its level-1 heading, `# `.
+JSON_OBJECT_START = b"{"
+JSON_ARRAY_START = b"["
+MARKDOWN_START = b"# "
+
+
+def write_atomically(path, data: str | bytes, *, start: bytes) -> pathlib.Path:
+    """Writes `data` (text as UTF-8) to `path` through this process's staging file in its
+    (existing) folder (`.NAME.XXXXXXXX.PID.staging`) and a rename; OSError, the target
+    untouched, when it cannot. `start` is how a file of `path`'s kind starts (its format's
+    magic: JSON_OBJECT_START, MARKDOWN_START, ...): the staging files of `path` that writers
+    killed past their handlers (SIGKILL, a power cut) left holding that kind are removed
+    first (remove_stale_staging_files_of). Required, so that no write leaves a file that
+    nothing removes."""
+    remove_stale_staging_files_of(path, start)
+    temporary = staged_file(path, data)
     try:
         os.replace(temporary, path)
     except BaseException:

@@ -26,8 +26,8 @@ from typing import Annotated
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import (JsonFileError, read_json_file, replace_problem,
-                                     write_atomically)
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, read_json_file,
+                                     replace_problem, write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.sweep.spec import trial_problem
@@ -127,7 +127,7 @@ def write_record(out_dir, record: dict) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     text = json.dumps(record, sort_keys=True, indent=1, ensure_ascii=True, allow_nan=False)
     # Through rig/files.py: the umask's mode, as a trial's outputs, not mkstemp's 0600.
-    write_atomically(path, (text + "\n").encode("ascii"), suffix=_TEMP_SUFFIX)
+    write_atomically(path, (text + "\n").encode("ascii"), start=JSON_OBJECT_START)
     _fsync_folder(path.parent)
     return path
 

@@ -272,8 +272,9 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError, progress_bar_factory
-    from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, UserPathError, folder_problem,
-                                         read_json_file, replace_problem, write_atomically)
+    from tegrasp_drake.rig.files import (JSON_ARRAY_START, MAX_STATE_FILE_BYTES, UserPathError,
+                                         folder_problem, read_json_file, replace_problem,
+                                         write_atomically)
     progress_bar = progress_bar_factory(progress, description=f"events of {world}",
                                         unit="recording")
     folder = pathlib.Path(folder)
@@ -294,7 +295,8 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
         raise UserPathError(f"{marker}: {problem}; give another output folder")
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
+        write_atomically(marker, json.dumps(assignments, indent=1) + "\n",
+                         start=JSON_ARRAY_START)
     except OSError as error:  # a file system that changed since the check, or refuses
         raise UserPathError(f"{marker}: cannot be written ({error.strerror or error}); give "
                             "another output folder") from None
