@@ -55,8 +55,9 @@ def staged_file(path, data: str | bytes) -> pathlib.Path:
 # or `.NAME.XXXXXXXX.PID.staging` with staged_file's 8 random characters (tempfile's
 # lowercase letters, digits and underscore), PID the writing process's, so that what a
 # process killed past its handlers (SIGKILL, a power cut) left is told from a live writer's.
-_RANDOM_PART = r"(?:\.[a-z0-9_]{8})?"
-_PID_PART = r"\.(?P<pid>[1-9][0-9]{0,9})\.staging"
+# `rest` is the target's name, with the random part when there is one.
+_STAGING_NAME = re.compile(r"\.(?P<rest>.+)\.(?P<pid>[1-9][0-9]{0,9})\.staging", re.DOTALL)
+_RANDOM_PART = re.compile(r"\.[a-z0-9_]{8}")
 
 
 def own_staging_suffix() -> str:
@@ -72,21 +73,46 @@ def stale_staging_files_of(target, start: bytes) -> list[pathlib.Path]:
     killed early leaves its first bytes or nothing). A file named for another target, or
     holding something else, is not a writer's of `target` and is not listed."""
     target = pathlib.Path(target)
-    name = re.compile(re.escape(f".{target.name}") + _RANDOM_PART + _PID_PART)
+    return stale_staging_files_in(target.parent, [target.name], start)
+
+
+def stale_staging_files_in(folder, names, start: bytes) -> list[pathlib.Path]:
+    """The staging files that ended writers of the files `names` (names in `folder`, each
+    holding what starts with `start`) left, as stale_staging_files_of lists one target's,
+    from one listing of `folder` (a folder of many targets: a sweep's records)."""
+    names = set(names)
     try:
-        entries = sorted(target.parent.iterdir())
+        entries = sorted(pathlib.Path(folder).iterdir())
     except OSError:
         return []
     return [path for path in entries
-            if (match := name.fullmatch(path.name)) is not None
+            if (match := _STAGING_NAME.fullmatch(path.name)) is not None
+            and _staging_target(match["rest"]) & names
             and not process_alive(int(match["pid"])) and _starts_with(path, start)]
+
+
+def _staging_target(rest: str) -> set[str]:
+    """The target names a staging file's name part `rest` (before `.PID.staging`) can be
+    of: `rest` itself, or `rest` without staged_file's random part when it ends in one."""
+    names = {rest}
+    if len(rest) > 9 and _RANDOM_PART.fullmatch(rest[-9:]):
+        names.add(rest[:-9])
+    return names
 
 
 def remove_stale_staging_files_of(target, start: bytes) -> list[pathlib.Path]:
     """Removes the staging files that ended writers of `target` left, holding what `target`
     holds (stale_staging_files_of), and returns them; one that cannot be removed is left."""
+    target = pathlib.Path(target)
+    return remove_stale_staging_files_in(target.parent, [target.name], start)
+
+
+def remove_stale_staging_files_in(folder, names, start: bytes) -> list[pathlib.Path]:
+    """Removes the staging files that ended writers of the files `names` in `folder` left,
+    holding what starts with `start` (stale_staging_files_in), and returns them; one that
+    cannot be removed is left."""
     removed = []
-    for path in stale_staging_files_of(target, start):
+    for path in stale_staging_files_in(folder, names, start):
         with contextlib.suppress(OSError):
             path.unlink()
             removed.append(path)
