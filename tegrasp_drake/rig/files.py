@@ -153,10 +153,12 @@ def process_alive(pid: int) -> bool:
 # their writers: FIGURE_STARTS, NPZ_START, HTML_START, LCM_LOG_START). A JSON text's first
 # character is its top value's (RFC 8259, 2; json.dumps writes no whitespace before it), an
 # object's `{` or an array's `[`; every Markdown page the project writes (reports, docs
-# pages) opens on its level-1 heading, `# `.
+# pages) opens on its level-1 heading, `# `, but a page that is one table (a sweep's
+# summary.md, a block for the results page), which opens on its header row's `| `.
 JSON_OBJECT_START = b"{"
 JSON_ARRAY_START = b"["
 MARKDOWN_START = b"# "
+MARKDOWN_TABLE_START = b"| "
 
 
 def write_atomically(path, data: str | bytes, *, start: bytes) -> pathlib.Path:

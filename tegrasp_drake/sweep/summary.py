@@ -9,6 +9,7 @@ from pathlib import Path
 
 from tegrasp_drake.control.controller_registry import controller_label
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
+from tegrasp_drake.rig.files import MARKDOWN_TABLE_START, write_atomically
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.table import AVERAGE, PAPER_TABLE1, controller_statistics, table1_rows
 
@@ -86,9 +87,9 @@ def summary_markdown(records) -> str:
 
 
 def write_summary(records, out_dir) -> list[Path]:
-    """Writes `summary.md` into `out_dir`; returns its path in a list."""
+    """Writes `summary.md` into `out_dir` (atomically); returns its path in a list."""
     path = Path(out_dir) / SUMMARY_FILE
-    path.write_text(summary_markdown(records), encoding="utf-8")
+    write_atomically(path, summary_markdown(records), start=MARKDOWN_TABLE_START)
     return [path]
 
 
