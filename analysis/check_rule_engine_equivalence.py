@@ -27,6 +27,7 @@ import sys
 import tarfile
 import tempfile
 
+from tegrasp_drake.rig.files import JSON_OBJECT_START, write_atomically
 from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -112,9 +113,7 @@ def run_scene(tree: pathlib.Path, trial: dict, path: pathlib.Path, fresh: bool) 
                          f"{done.stderr.strip()[-2000:]}")
     output = json.loads(done.stdout.strip().splitlines()[-1])
     path.parent.mkdir(parents=True, exist_ok=True)
-    temporary = path.with_suffix(".tmp")
-    temporary.write_text(json.dumps(output, indent=1))
-    temporary.rename(path)
+    write_atomically(path, json.dumps(output, indent=1), start=JSON_OBJECT_START)
     return output
 
 

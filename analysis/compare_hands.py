@@ -16,6 +16,7 @@ import collections
 import json
 import pathlib
 
+from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
@@ -103,9 +104,7 @@ def main() -> None:
     for folder in args.prismatic:
         prismatic.update(load(folder))
     text = f"# Prismatic against linkage hand\n\n{report(prismatic, load(args.linkage))}"
-    temporary = args.out.with_name(args.out.name + ".tmp")
-    temporary.write_text(text)
-    temporary.replace(args.out)
+    write_atomically(args.out, text, start=MARKDOWN_START)
     print(f"wrote {args.out}")
 
 

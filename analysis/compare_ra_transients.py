@@ -7,7 +7,9 @@ for the same pad strike at plant steps of 1, 0.5 and 0.25 ms; prints the contact
 import argparse
 import sys
 
+from tegrasp_drake.figures.figure_files import FigureFormatError, check_figure_path
 from tegrasp_drake.figures.ra_transients import plot_ra_transients
+from tegrasp_drake.rig.files import UserPathError
 from tegrasp_drake.runs.pad_strike import PadStrikeConfig, run_pad_strike
 
 TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
@@ -15,9 +17,13 @@ TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("out", help="the PNG to write")
+    parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
     parser.add_argument("--speed", type=float, default=0.025, help="finger speed [m/s]")
     args = parser.parse_args(argv)
+    try:
+        check_figure_path(args.out)  # before the strikes, not after
+    except FigureFormatError as error:
+        parser.error(str(error))
     strikes = {dt: run_pad_strike(PadStrikeConfig(time_step_s=dt, finger_speed_mps=args.speed))
                for dt in TIME_STEPS}
     for dt, strike in strikes.items():
@@ -25,7 +31,10 @@ def main(argv=None) -> int:
         print(f"dt {1e3 * dt:g} ms: film peaks left {strike.contact_peak(0):.1f}, right "
               f"(own contact) {strike.contact_peak(1):.1f} m/s^2; accelerometer peak "
               f"{old[:, 0].max():.1f} m/s^2")
-    print(f"wrote {plot_ra_transients(strikes, args.out)}")
+    try:
+        print(f"wrote {plot_ra_transients(strikes, args.out)}")
+    except UserPathError as error:
+        raise SystemExit(f"compare_ra_transients: {error}") from None
     return 0
 
 

@@ -33,9 +33,16 @@ def run_corner(job):
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("out", help="the PNG to write")
+    parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args(argv)
+    from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_path,
+                                                    save_figure)
+    from tegrasp_drake.rig.files import UserPathError
+    try:
+        check_figure_path(args.out)  # before the trials, not after
+    except FigureFormatError as error:
+        parser.error(str(error))
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -68,7 +75,10 @@ def main(argv=None) -> int:
             row.grid(alpha=0.3)
         axes[0, column].legend(fontsize=8)
     figure.tight_layout()
-    figure.savefig(args.out, dpi=110)
+    try:
+        save_figure(figure, args.out, dpi=110)
+    except UserPathError as error:
+        raise SystemExit(f"explain_open_loop: {error}") from None
     print(f"wrote {args.out}")
     return 0
 

@@ -16,6 +16,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from tegrasp_drake.figures.figure_files import (FigureFormatError,  # noqa: E402
+                                                check_figure_path, save_figure)
+from tegrasp_drake.rig.files import UserPathError  # noqa: E402
 from tegrasp_drake.robotiq import linkage  # noqa: E402
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH  # noqa: E402
 
@@ -41,8 +44,12 @@ def draw(ax, theta: float, color: str, label: str) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out", type=pathlib.Path)
+    parser.add_argument("out", type=pathlib.Path, help="the figure to write (.png, .pdf or .svg)")
     out = parser.parse_args().out
+    try:
+        check_figure_path(out)
+    except FigureFormatError as error:
+        parser.error(str(error))
     fig, ax = plt.subplots(figsize=(6.4, 6.4))
     for theta, color, label in ((0.0, "tab:blue", "open"),
                                 (linkage.driver_angle(0.0225), "tab:orange", "mid"),
@@ -63,10 +70,10 @@ def main() -> None:
     ax.set_xlim(-5, 80)
     ax.set_ylim(45, 160)
     ax.legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 1.06), ncol=1)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    temporary = out.with_name(out.name + ".tmp.png")
-    fig.savefig(temporary, dpi=130, bbox_inches="tight")
-    temporary.replace(out)
+    try:
+        save_figure(fig, out, dpi=130, tight=True)
+    except UserPathError as error:
+        raise SystemExit(f"linkage_figure: {error}") from None
     print(f"wrote {out} ({math.degrees(linkage.THETA_PADS_MEET):.1f} deg to close)")
 
 

@@ -20,7 +20,7 @@ import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
-from tegrasp_drake.rig.files import write_atomically
+from tegrasp_drake.rig.files import JSON_ARRAY_START, write_atomically
 
 MARKERS_M = ((0.0, 0.0), (0.01, 0.0), (0.0, 0.015), (-0.01, -0.015))
 
@@ -78,7 +78,7 @@ def main(argv=None) -> int:
         print(f"| {r['object']} | {tuple(r['offset_mm'])} | {r['seed']} | {rl} | {ll} | "
               f"{fraction} | {pu} | {r['final_mode']} |")
     if args.json:
-        write_atomically(args.json, json.dumps(rows, indent=1))
+        write_atomically(args.json, json.dumps(rows, indent=1), start=JSON_ARRAY_START)
     return 0
 
 

@@ -7,11 +7,10 @@ sweep was re-run and its records committed.
 """
 
 import argparse
-import os
 import pathlib
 import sys
-import tempfile
 
+from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
 from tegrasp_drake.sweep import readme_with_summaries
 from tegrasp_drake.sweep.summary import page_with_record_commits
 
@@ -31,10 +30,7 @@ def main(argv=None) -> int:
         print(f"{path}: {e}", file=sys.stderr)
         return 1
     if updated != text:  # a new file renamed into place: an interruption leaves the old one
-        with tempfile.NamedTemporaryFile("w", encoding="utf-8", dir=path.parent,
-                                         suffix=".tmp", delete=False) as f:
-            f.write(updated)
-        os.replace(f.name, path)
+        write_atomically(path, updated, start=MARKDOWN_START)
     print(f"{path}: results {'updated' if updated != text else 'unchanged'}")
     return 0
 

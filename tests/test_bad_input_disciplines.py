@@ -113,7 +113,8 @@ def test_an_empty_sweep_spec_is_refused_not_run_as_the_paper_experiment(tmp_path
 def test_written_files_honour_the_umask(umask, mode, tmp_path):
     previous = os.umask(umask)
     try:
-        written = files.write_atomically(tmp_path / "a.json", "{}")
+        written = files.write_atomically(tmp_path / "a.json", "{}",
+                                         start=files.JSON_OBJECT_START)
         with files.temporary_sibling(tmp_path / "b.png", start=b"\x89PNG") as temporary:
             temporary.write_bytes(b"figure")
     finally:

@@ -13,8 +13,8 @@ import tempfile
 
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
-from tegrasp_drake.rig.files import (FolderHeldError, claim_folder, file_problem,
-                                     folder_problem, held_folder,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, claim_folder,
+                                     file_problem, folder_problem, held_folder,
                                      interruptions_deferred, own_staging_suffix,
                                      remove_stale_staging_files_of, write_atomically)
 
@@ -236,7 +236,8 @@ def earlier_run_files(folder) -> list[pathlib.Path]:
 
 def write_result(path, result: dict) -> pathlib.Path:
     """Writes `result` as JSON (keys sorted, as `--json` prints it) to `path`, atomically."""
-    return write_atomically(path, json.dumps(result, sort_keys=True, indent=1) + "\n")
+    return write_atomically(path, json.dumps(result, sort_keys=True, indent=1) + "\n",
+                            start=JSON_OBJECT_START)
 
 
 def result_path_beside_log(log_path) -> pathlib.Path:

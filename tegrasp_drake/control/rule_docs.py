@@ -98,8 +98,8 @@ def main(argv=None) -> int:
             return 1
         print(f"{path}: the rule tables {', '.join(names)} agree with the engine")
         return 0
-    from tegrasp_drake.rig.files import write_atomically
-    write_atomically(path, updated)
+    from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
+    write_atomically(path, updated, start=MARKDOWN_START)
     print(f"{path}: wrote the rule tables {', '.join(names)}")
     return 0
 

@@ -112,7 +112,8 @@ class Emulators:
         its folder if need be (as `plot --out` and `trial --html` do)."""
         pathlib.Path(path).parent.mkdir(parents=True, exist_ok=True)
         write_atomically(path, f"{WRITTEN_BY_EMULATE}\n"
-                         + hardware_config_to_yaml(self.hardware_config()))
+                         + hardware_config_to_yaml(self.hardware_config()),
+                         start=WRITTEN_BY_EMULATE.encode("utf-8"))
 
     def run_until_stopped(self) -> None:
         """Runs the arm's simulation in real time (or waits) until `stop`, reporting rejections."""

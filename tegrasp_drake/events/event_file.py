@@ -105,9 +105,6 @@ def _render(value, indent: str = "") -> str:
     return json.dumps(value, allow_nan=False)
 
 
-JSON_START = b"{"  # how every file event_json_text writes starts: a JSON object
-
-
 def event_json_text(data: dict) -> str:
     """The file text of a JSON object: _render's layout and a final newline."""
     return _render(data) + "\n"

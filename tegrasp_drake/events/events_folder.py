@@ -7,12 +7,12 @@ import pathlib
 from typing import Annotated
 from collections.abc import Iterable, Sequence
 
-from tegrasp_drake.rig.files import (interruptions_deferred, own_staging_suffix, replace_problem,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, interruptions_deferred, replace_problem,
                                      remove_stale_staging_files_of, staged_file)
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.events.event_file import (
-    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, JSON_START, RECORD_COMMAND, MemorizedEventError,
+    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
     remake_advice, event_json_text, event_summary, event_to_json, read_index,
     read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -98,10 +98,9 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
     try:
         for event in events:
             path = events_dir / event.relative_path()
-            staged.append((staged_file(path, event_json_text(event_to_json(event)),
-                                       suffix=own_staging_suffix()), path))
-        staged.append((staged_file(events_dir / INDEX_FILE, event_json_text(index),
-                                   suffix=own_staging_suffix()), events_dir / INDEX_FILE))
+            staged.append((staged_file(path, event_json_text(event_to_json(event))), path))
+        staged.append((staged_file(events_dir / INDEX_FILE, event_json_text(index)),
+                       events_dir / INDEX_FILE))
         with interruptions_deferred():
             for object_name in objects:
                 object_dir = events_dir / object_name
@@ -143,7 +142,7 @@ def _remove_stale_staging(targets: list[pathlib.Path]) -> None:
     named for one of them and holding JSON's start); a live writer's are its own (its save
     commits or removes them), and other files of the folder are the user's."""
     for target in targets:
-        remove_stale_staging_files_of(target, JSON_START)
+        remove_stale_staging_files_of(target, JSON_OBJECT_START)
 
 
 @public_api

@@ -47,17 +47,19 @@ def check_figure_path(path) -> pathlib.Path:
     return path
 
 
-def save_figure(figure, path) -> pathlib.Path:
-    """Writes `figure` in the format `path`'s suffix names; returns the path, or UserPathError.
-    What a write of this figure killed by SIGKILL left beside it is removed first."""
+def save_figure(figure, path, *, dpi: float = PNG_DPI, tight: bool = False) -> pathlib.Path:
+    """Writes `figure` in the format `path`'s suffix names, at `dpi` (a PNG's pixels per inch),
+    cropped to what it draws when `tight` (matplotlib's bbox_inches="tight": a legend or title
+    placed outside the axes); returns the path, or UserPathError. What a write of this figure
+    killed by SIGKILL left beside it is removed first."""
     path = check_figure_path(path)
     figure_format = path.suffix.lstrip(".").lower()
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         # A full disk leaves the old figure whole.
         with temporary_sibling(path, start=FIGURE_STARTS[figure_format]) as temporary:
-            figure.savefig(temporary, format=figure_format, dpi=PNG_DPI,
-                           metadata=_metadata(path))
+            figure.savefig(temporary, format=figure_format, dpi=dpi, metadata=_metadata(path),
+                           bbox_inches="tight" if tight else None)
     except OSError as error:
         raise UserPathError(f"cannot write the figure {path}: {error.strerror or error}; "
                             "give a file in a folder you can write, with room", error) from None

@@ -5,8 +5,8 @@ import pathlib
 from collections.abc import Mapping
 
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
+
+from tegrasp_drake.figures.figure_files import new_figure, save_figure
 
 WINDOW_MS = (-5.0, 30.0)  # around each contact
 
@@ -28,11 +28,11 @@ def _panel(axis, strikes, pad: int, contact_pad: int, values_of, title: str):
 
 def plot_ra_transients(strikes: Mapping[float, object], path,
                        highpass_hz: float = 2.0) -> pathlib.Path:
-    """Saves a PNG: rows the left pad at contact, the right pad while only the left touches,
-    the right pad at its contact; columns the accelerometer chain's RA and the film's.
-    `strikes` maps plant steps [s] to PadStrikes of one strike."""
-    figure = Figure(figsize=(12, 10), layout="constrained")
-    FigureCanvasAgg(figure)
+    """Writes the figure to `path` (PNG, PDF or SVG by its suffix: save_figure, atomically):
+    rows the left pad at contact, the right pad while only the left touches, the right pad at
+    its contact; columns the accelerometer chain's RA and the film's. `strikes` maps plant
+    steps [s] to PadStrikes of one strike."""
+    figure = new_figure(12, 10)
     axes = figure.subplots(3, 2)
     rows = (("left pad, its contact", 0, 0), ("right pad, left pad's contact", 1, 0),
             ("right pad, its own contact", 1, 1))
@@ -45,6 +45,4 @@ def plot_ra_transients(strikes: Mapping[float, object], path,
         axes[row, 0].set_ylabel("RA [m/s^2 (equiv.)]")
     figure.suptitle("First-contact RA: rigid-body accelerometer vs PVDF film, "
                     "1 kHz samples at three plant steps")
-    path = pathlib.Path(path)
-    figure.savefig(path, dpi=110)
-    return path
+    return save_figure(figure, path, dpi=110)

@@ -28,12 +28,15 @@ def _honour_umask(descriptor: int) -> None:
     os.fchmod(descriptor, 0o666 & ~_umask())
 
 
-def staged_file(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Path:
-    """A flushed temporary file beside `path` (.NAME.XXXX`suffix`) holding `data` (text as UTF-8),
-    for a later os.replace onto `path`; the caller removes it if that never comes."""
+def staged_file(path, data: str | bytes) -> pathlib.Path:
+    """A flushed temporary file beside `path` holding `data` (text as UTF-8), for a later
+    os.replace onto `path`: this process's staging file of `path`
+    (`.NAME.XXXXXXXX.PID.staging`, own_staging_suffix), which the caller removes if that never
+    comes and which, should it be killed past its handlers, the next writer of `path` removes
+    (remove_stale_staging_files_of)."""
     path = pathlib.Path(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix,
+    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=own_staging_suffix(),
                                              dir=path.parent)
     try:
         _honour_umask(descriptor)
@@ -52,12 +55,13 @@ def staged_file(path, data: str | bytes, *, suffix: str = ".tmp") -> pathlib.Pat
 # or `.NAME.XXXXXXXX.PID.staging` with staged_file's 8 random characters (tempfile's
 # lowercase letters, digits and underscore), PID the writing process's, so that what a
 # process killed past its handlers (SIGKILL, a power cut) left is told from a live writer's.
-_RANDOM_PART = r"(?:\.[a-z0-9_]{8})?"
-_PID_PART = r"\.(?P<pid>[1-9][0-9]{0,9})\.staging"
+# `rest` is the target's name, with the random part when there is one.
+_STAGING_NAME = re.compile(r"\.(?P<rest>.+)\.(?P<pid>[1-9][0-9]{0,9})\.staging", re.DOTALL)
+_RANDOM_PART = re.compile(r"\.[a-z0-9_]{8}")
 
 
 def own_staging_suffix() -> str:
-    """The suffix of this process's staging files (`.PID.staging`), for staged_file."""
+    """The suffix of this process's staging files (`.PID.staging`)."""
     return f".{os.getpid()}.staging"
 
 
@@ -69,21 +73,46 @@ def stale_staging_files_of(target, start: bytes) -> list[pathlib.Path]:
     killed early leaves its first bytes or nothing). A file named for another target, or
     holding something else, is not a writer's of `target` and is not listed."""
     target = pathlib.Path(target)
-    name = re.compile(re.escape(f".{target.name}") + _RANDOM_PART + _PID_PART)
+    return stale_staging_files_in(target.parent, [target.name], start)
+
+
+def stale_staging_files_in(folder, names, start: bytes) -> list[pathlib.Path]:
+    """The staging files that ended writers of the files `names` (names in `folder`, each
+    holding what starts with `start`) left, as stale_staging_files_of lists one target's,
+    from one listing of `folder` (a folder of many targets: a sweep's records)."""
+    names = set(names)
     try:
-        entries = sorted(target.parent.iterdir())
+        entries = sorted(pathlib.Path(folder).iterdir())
     except OSError:
         return []
     return [path for path in entries
-            if (match := name.fullmatch(path.name)) is not None
+            if (match := _STAGING_NAME.fullmatch(path.name)) is not None
+            and _staging_target(match["rest"]) & names
             and not process_alive(int(match["pid"])) and _starts_with(path, start)]
+
+
+def _staging_target(rest: str) -> set[str]:
+    """The target names a staging file's name part `rest` (before `.PID.staging`) can be
+    of: `rest` itself, or `rest` without staged_file's random part when it ends in one."""
+    names = {rest}
+    if len(rest) > 9 and _RANDOM_PART.fullmatch(rest[-9:]):
+        names.add(rest[:-9])
+    return names
 
 
 def remove_stale_staging_files_of(target, start: bytes) -> list[pathlib.Path]:
     """Removes the staging files that ended writers of `target` left, holding what `target`
     holds (stale_staging_files_of), and returns them; one that cannot be removed is left."""
+    target = pathlib.Path(target)
+    return remove_stale_staging_files_in(target.parent, [target.name], start)
+
+
+def remove_stale_staging_files_in(folder, names, start: bytes) -> list[pathlib.Path]:
+    """Removes the staging files that ended writers of the files `names` in `folder` left,
+    holding what starts with `start` (stale_staging_files_in), and returns them; one that
+    cannot be removed is left."""
     removed = []
-    for path in stale_staging_files_of(target, start):
+    for path in stale_staging_files_in(folder, names, start):
         with contextlib.suppress(OSError):
             path.unlink()
             removed.append(path)
@@ -119,20 +148,31 @@ def process_alive(pid: int) -> bool:
     return True
 
 
-def write_atomically(path, data: str | bytes, *, suffix: str = ".tmp",
-                     start: bytes | None = None) -> pathlib.Path:
-    """Writes `data` (text as UTF-8) to `path` through a temporary file in its (existing) folder
-    and a rename; UserPathError (an OSError) naming `path`, the target untouched, when it
-    cannot (a full disk, a folder that is not one). Given `start` (how a file of
-    `path`'s kind starts: its format's magic), the temporary file is this process's staging
-    file (`.NAME.XXXXXXXX.PID.staging`, not `suffix`), and the staging files of `path` that
-    writers killed past their handlers (SIGKILL, a power cut) left holding that kind are
-    removed first (remove_stale_staging_files_of)."""
-    if start is not None:
-        remove_stale_staging_files_of(path, start)
-        suffix = own_staging_suffix()
+# How the files of the text kinds this project writes start, for write_atomically's `start`
+# (the kind a killed writer's staging file must hold to be removed; binary kinds sit beside
+# their writers: FIGURE_STARTS, NPZ_START, HTML_START, LCM_LOG_START). A JSON text's first
+# character is its top value's (RFC 8259, 2; json.dumps writes no whitespace before it), an
+# object's `{` or an array's `[`; every Markdown page the project writes (reports, docs
+# pages) opens on its level-1 heading, `# `, but a page that is one table (a sweep's
+# summary.md, a block for the results page), which opens on its header row's `| `.
+JSON_OBJECT_START = b"{"
+JSON_ARRAY_START = b"["
+MARKDOWN_START = b"# "
+MARKDOWN_TABLE_START = b"| "
+
+
+def write_atomically(path, data: str | bytes, *, start: bytes) -> pathlib.Path:
+    """Writes `data` (text as UTF-8) to `path` through this process's staging file in its
+    (existing) folder (`.NAME.XXXXXXXX.PID.staging`) and a rename; UserPathError (an OSError)
+    naming `path`, the target untouched, when it cannot (a full disk, a folder that is not
+    one). `start` is how a file of `path`'s kind starts (its format's
+    magic: JSON_OBJECT_START, MARKDOWN_START, ...): the staging files of `path` that writers
+    killed past their handlers (SIGKILL, a power cut) left holding that kind are removed
+    first (remove_stale_staging_files_of). Required, so that no write leaves a file that
+    nothing removes."""
+    remove_stale_staging_files_of(path, start)
     try:
-        temporary = staged_file(path, data, suffix=suffix)
+        temporary = staged_file(path, data)
         try:
             os.replace(temporary, path)
         except BaseException:

@@ -59,8 +59,8 @@ class GeneratedTable:
             print(f"{page}: {self.name} is "
                   + ("up to date" if same else "out of date: run with --write"))
             return 0 if same else 1
-        from tegrasp_drake.rig.files import write_atomically
+        from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
         write_atomically(page, self._block().sub(
-            lambda m: self.begin + self.markdown() + self.end, text))
+            lambda m: self.begin + self.markdown() + self.end, text), start=MARKDOWN_START)
         print(f"wrote {self.name} into {page}")
         return 0

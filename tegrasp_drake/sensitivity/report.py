@@ -10,7 +10,7 @@ import pathlib
 import numpy as np
 
 from tegrasp_drake.figures.figure_files import figure_path, new_figure, save_figure
-from tegrasp_drake.rig.files import write_atomically
+from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
 from tegrasp_drake.sensitivity.study import DEFAULT_POINT, point_folder_cell, transfer_spec
 from tegrasp_drake.sweep.failure_classes import FAILURE_CLASSES, failure_class
 from tegrasp_drake.sweep.records import load_records, record_result
@@ -238,5 +238,6 @@ def write_sensitivity_report(spec, points, out_dir, *,
     missing = [p.name for p in points if not any(r.point == p.name for r in rows)]
     if missing:
         text += [f"Not run yet (no finished trial): {', '.join(missing)}.", ""]
-    written.insert(0, write_atomically(out_dir / REPORT_FILE, "\n".join(text)))
+    written.insert(0, write_atomically(out_dir / REPORT_FILE, "\n".join(text),
+                                         start=MARKDOWN_START))
     return written

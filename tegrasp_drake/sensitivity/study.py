@@ -9,7 +9,7 @@ import json
 import os
 import pathlib
 
-from tegrasp_drake.rig.files import write_atomically
+from tegrasp_drake.rig.files import JSON_OBJECT_START, write_atomically
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, keys_overlap,
                                           optional_field, read_yaml_file,
@@ -210,7 +210,7 @@ def record_points(spec: SensitivitySpec, points, out_dir) -> pathlib.Path:
                              "give another --out")
     path.parent.mkdir(parents=True, exist_ok=True)
     return write_atomically(path, json.dumps({"study": study, "points": wanted}, indent=1,
-                                             sort_keys=True) + "\n")
+                                             sort_keys=True) + "\n", start=JSON_OBJECT_START)
 
 
 def _design_words(study: dict) -> str:

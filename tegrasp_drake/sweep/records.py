@@ -26,7 +26,8 @@ from typing import Annotated
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import (JsonFileError, read_json_file, replace_problem,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, read_json_file,
+                                     remove_stale_staging_files_in, replace_problem,
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import shorten
@@ -37,7 +38,9 @@ RECORD_FORMAT = "tegrasp-sweep-record"
 # (without it) is read as it is, its events unknown.
 RECORD_FORMAT_VERSION = 2
 TRIALS_FOLDER = "trials"
-_TEMP_SUFFIX = ".tmp"
+# How earlier versions named a record's temporary file (tempfile's `.NAME.XXXXXXXX.tmp`): no
+# writer's process id, so a killed writer's cannot be told from a live one's.
+_EARLIER_TEMPORARY = re.compile(r"\..+\.json\.[a-z0-9_]{8}\.tmp", re.DOTALL)
 # A record is one trial's result, a few kB (its transitions and scores); more is not one.
 MAX_RECORD_BYTES = 1_000_000
 _RECORD_FIELDS_V1 = {"format", "format_version", "trial_id", "status", "trial", "result",
@@ -127,7 +130,7 @@ def write_record(out_dir, record: dict) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     text = json.dumps(record, sort_keys=True, indent=1, ensure_ascii=True, allow_nan=False)
     # Through rig/files.py: the umask's mode, as a trial's outputs, not mkstemp's 0600.
-    write_atomically(path, (text + "\n").encode("ascii"), suffix=_TEMP_SUFFIX)
+    write_atomically(path, (text + "\n").encode("ascii"), start=JSON_OBJECT_START)
     _fsync_folder(path.parent)
     return path
 
@@ -298,15 +301,27 @@ def load_records(out_dir: Annotated[PathLike, INPUT_FOLDER]) -> LoadedRecords:
     return LoadedRecords(records=records, corrupt=corrupt)
 
 
-def remove_temporary_files(out_dir) -> list[Path]:
-    """Deletes half-written temporary files a killed writer left; returns them."""
+def remove_stale_staging_files(out_dir, trial_ids) -> list[Path]:
+    """Removes the staging files that writers of these trials' records killed past their
+    handlers (SIGKILL, a power cut) left in `<out_dir>/trials`, and returns them: only a
+    record's own (named for it), only an ended writer's, only while it holds JSON
+    (remove_stale_staging_files_in). Another process's, or a file of another name or
+    content, stays."""
+    return remove_stale_staging_files_in(Path(out_dir) / TRIALS_FOLDER,
+                                         [record_file_name(i) for i in trial_ids],
+                                         JSON_OBJECT_START)
+
+
+def earlier_temporary_files(out_dir) -> list[Path]:
+    """The record temporary files (`.NAME.json.XXXXXXXX.tmp`) in `<out_dir>/trials` that an
+    earlier version wrote: not removed, since nothing in them tells a killed writer's from a
+    live one's (an earlier version's run into a folder two hosts share); the user is told."""
     folder = Path(out_dir) / TRIALS_FOLDER
-    removed = []
-    if folder.is_dir():
-        for path in folder.glob("." + "*" + _TEMP_SUFFIX):
-            path.unlink(missing_ok=True)
-            removed.append(path)
-    return removed
+    try:
+        return [path for path in sorted(folder.iterdir())
+                if _EARLIER_TEMPORARY.fullmatch(path.name)]
+    except OSError:
+        return []
 
 
 @public_api

@@ -28,11 +28,13 @@ from pathlib import Path
 from collections.abc import Callable
 
 from tegrasp_drake.sweep.records import (
+    TRIALS_FOLDER,
     RecordError,
     canonical_json,
+    earlier_temporary_files,
     load_records,
     make_record,
-    remove_temporary_files,
+    remove_stale_staging_files,
     result_problem,
     unwritable_records,
     write_record,
@@ -215,7 +217,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     with hold_output_folder(out_dir):
-        remove_temporary_files(out_dir)
+        remove_stale_staging_files(out_dir, [trial["trial_id"] for trial in trials])
+        _tell_earlier_temporary_files(out_dir)
         loaded = load_records(out_dir)
         _keep_corrupt_records_aside(loaded.corrupt)
         _check_same_sweep(trials, loaded.records, out_dir)
@@ -268,6 +271,18 @@ def hold_output_folder(out_dir: Path):
                                 "sensitivity study) is writing there now; wait for it to end "
                                 "or choose another output folder") from None
         yield
+
+
+def _tell_earlier_temporary_files(out_dir) -> None:
+    """Warns of the record temporary files an earlier version left (earlier_temporary_files),
+    which stay: a run of that version may still be writing them."""
+    left = earlier_temporary_files(out_dir)
+    if left:
+        logger.warning(f"sweep: {out_dir / TRIALS_FOLDER} holds {len(left)} temporary "
+                       f"file(s) of an earlier version ({shorten(left[0].name)}"
+                       + (", ..." if len(left) > 1 else "") + "), left by a run killed while "
+                       "writing a record; this version neither writes nor reads them: delete "
+                       "them once no earlier version's run writes into this folder")
 
 
 def _check_same_sweep(trials, records, out_dir):

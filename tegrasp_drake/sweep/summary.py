@@ -9,8 +9,8 @@ from pathlib import Path
 
 from tegrasp_drake.control.controller_registry import controller_label
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
+from tegrasp_drake.rig.files import MARKDOWN_TABLE_START, write_atomically
 from tegrasp_drake.sweep.records import load_records
-from tegrasp_drake.rig.files import write_atomically
 from tegrasp_drake.sweep.table import AVERAGE, PAPER_TABLE1, controller_statistics, table1_rows
 
 SUMMARY_FILE = "summary.md"
@@ -87,9 +87,9 @@ def summary_markdown(records) -> str:
 
 
 def write_summary(records, out_dir) -> list[Path]:
-    """Writes `summary.md` into `out_dir`; returns its path in a list."""
+    """Writes `summary.md` into `out_dir` (atomically); returns its path in a list."""
     path = Path(out_dir) / SUMMARY_FILE
-    write_atomically(path, summary_markdown(records))
+    write_atomically(path, summary_markdown(records), start=MARKDOWN_TABLE_START)
     return [path]
 
 

@@ -14,9 +14,9 @@ import numpy as np
 
 from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_classes_markdown
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
+from tegrasp_drake.rig.files import JSON_OBJECT_START, MARKDOWN_START, write_atomically
 from tegrasp_drake.sweep.records import record_result
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
-from tegrasp_drake.rig.files import write_atomically
 
 # (placement, phase) columns of Table I, in the paper's order.
 TABLE1_COLUMNS = (("well_placed", "hold"), ("well_placed", "unload"),
@@ -143,15 +143,17 @@ def table1_markdown(rows) -> str:
 def write_markdown_and_csv(out_dir, stem: str, markdown: str, header: list,
                            rows: list[list]) -> list[Path]:
     """Writes `stem`.md (the text `markdown`) and `stem`.csv (`header`, then `rows`) into
-    `out_dir`; returns their paths. Every report table of a results folder is written so."""
+    `out_dir`, each atomically (`markdown` opens on its `# ` title); returns their paths. Every
+    report table of a results folder is written so."""
     out_dir = Path(out_dir)
     markdown_path, csv_path = out_dir / f"{stem}.md", out_dir / f"{stem}.csv"
-    table = io.StringIO(newline="")
-    writer = csv.writer(table)
-    writer.writerow(header)
-    writer.writerows(rows)
-    write_atomically(markdown_path, markdown)
-    write_atomically(csv_path, table.getvalue())
+    write_atomically(markdown_path, markdown, start=MARKDOWN_START)
+    header_text, rows_text = io.StringIO(), io.StringIO()
+    csv.writer(header_text).writerow(header)
+    csv.writer(rows_text).writerows(rows)
+    # A CSV file of this table is known by its header row.
+    write_atomically(csv_path, header_text.getvalue() + rows_text.getvalue(),
+                     start=header_text.getvalue().encode("utf-8"))
     return [markdown_path, csv_path]
 
 
@@ -301,7 +303,8 @@ def statistics_markdown(statistics, comparisons) -> str:
 
 
 def write_statistics(records, out_dir) -> list[Path]:
-    """Writes `statistics.md` and `statistics.json` into `out_dir`; returns their paths."""
+    """Writes `statistics.md` and `statistics.json` into `out_dir` (each atomically); returns
+    their paths."""
     records = list(records)
     statistics = controller_statistics(records)
     comparisons = paired_comparisons(records)
@@ -311,9 +314,10 @@ def write_statistics(records, out_dir) -> list[Path]:
     failures = {controller: counted[controller] for controller in statistics
                 if controller in counted}
     write_atomically(markdown_path, statistics_markdown(statistics, comparisons) + "\n"
-                 + failure_classes_markdown(failures))
+                     + failure_classes_markdown(failures), start=MARKDOWN_START)
     write_atomically(json_path, json.dumps({"controllers": statistics,
-                                        "paired_comparisons": comparisons,
-                                        "failure_classes": failures},
-                                       indent=1, sort_keys=True) + "\n")
+                                            "paired_comparisons": comparisons,
+                                            "failure_classes": failures},
+                                           indent=1, sort_keys=True) + "\n",
+                     start=JSON_OBJECT_START)
     return [markdown_path, json_path]

@@ -305,8 +305,9 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError, progress_bar_factory
-    from tegrasp_drake.rig.files import (MAX_STATE_FILE_BYTES, UserPathError, folder_problem,
-                                         read_json_file, replace_problem, write_atomically)
+    from tegrasp_drake.rig.files import (JSON_ARRAY_START, MAX_STATE_FILE_BYTES, UserPathError,
+                                         folder_problem, read_json_file, replace_problem,
+                                         write_atomically)
     progress_bar = progress_bar_factory(progress, description=f"events of {world}",
                                         unit="recording")
     folder = pathlib.Path(folder)
@@ -331,7 +332,8 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
         except OSError as error:  # a file system that changed since the check, or refuses
             raise UserPathError(f"{folder}: cannot be made ({error.strerror or error}); give "
                                 "another output folder") from None
-        write_atomically(marker, json.dumps(assignments, indent=1) + "\n")
+        write_atomically(marker, json.dumps(assignments, indent=1) + "\n",
+                         start=JSON_ARRAY_START)
     recorders = {"": ("", record_events),  # what the log calls them, how they are recorded
                  ENSEMBLE_FOLDER: ("ensemble ", lambda name, scenario: record_object_ensemble(
                      name, scenario, TEMPLATE_RUNS))}

@@ -3,9 +3,12 @@ file whole and no temporary behind; a claimed folder is never claimed twice."""
 
 import os
 import signal
+import subprocess
+import sys
 
 import pytest
 
+from tests.killed_runs import environment, killed_before_rename
 from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions_deferred,
                                      temporary_sibling, write_atomically)
 
@@ -13,8 +16,8 @@ from tegrasp_drake.rig.files import (claim_folder, folder_problem, interruptions
 def test_write_atomically_replaces_the_file_and_leaves_nothing_else(tmp_path):
     target = tmp_path / "events.yaml"
     target.write_text("old")
-    write_atomically(target, "new ü")
-    write_atomically(tmp_path / "data.bin", b"\x00\x01")
+    write_atomically(target, "new ü", start=b"new")
+    write_atomically(tmp_path / "data.bin", b"\x00\x01", start=b"\x00")
     assert target.read_bytes() == "new ü".encode("utf-8")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["data.bin", "events.yaml"]
 
@@ -23,11 +26,56 @@ def test_a_failed_write_leaves_the_old_file_and_no_temporary(tmp_path):
     target = tmp_path / "events.yaml"
     target.write_text("old")
     with pytest.raises(TypeError):
-        write_atomically(target, 12345)  # neither text nor bytes: fails mid-write
+        write_atomically(target, 12345, start=b"")  # neither text nor bytes: fails mid-write
     with pytest.raises(OSError):
-        write_atomically(tmp_path / "missing" / "x.yaml", "data")
+        write_atomically(tmp_path / "missing" / "x.yaml", "data", start=b"data")
     assert target.read_text() == "old"
     assert [p.name for p in tmp_path.iterdir()] == ["events.yaml"]
+
+
+def test_write_atomically_needs_the_kind_of_file_it_writes(tmp_path):
+    with pytest.raises(TypeError, match="start"):  # no write without its clean-up
+        write_atomically(tmp_path / "result.json", "{}")
+    assert list(tmp_path.iterdir()) == []
+
+
+# Each atomic writer of the package: the file it writes, and the statements that write it
+# (TARGET: that file's path; a page it rewrites already holds `_PAGE`).
+_PAGE = "# A page\n\n<!-- a table -->\nold\n<!-- end of a table -->\n"
+_ATOMIC_WRITERS = {
+    "a run's result": (
+        "result.json", "from tegrasp_drake.commands.run_folder import write_result\n"
+        "write_result(TARGET, {'ok': True})"),
+    "a sweep record": (
+        "trials/c.o.m.a1.json", "import pathlib\n"
+        "from tegrasp_drake.sweep.records import write_record\n"
+        "write_record(pathlib.Path(TARGET).parents[1], {'trial_id': 'c/o/m/a1'})"),
+    "the emulators' station config": (
+        "station.yaml", "from tegrasp_drake.emulators.launcher import Emulators\n"
+        "Emulators(lcm_url='memq://').write_hardware_config(TARGET)"),
+    "a generated docs table": (
+        "page.md", "from tegrasp_drake.rig.generated_table import GeneratedTable\n"
+        "GeneratedTable(name='a table', marker='a table', markdown=lambda: 'new\\n')"
+        ".main(['--write', TARGET])"),
+}
+
+
+# Rule: every atomic write of the package removes what a write of that same file killed past
+# its handlers (SIGKILL, the OOM killer, a power cut) left beside it.
+@pytest.mark.parametrize("writer", sorted(_ATOMIC_WRITERS))
+def test_each_atomic_writer_removes_what_a_killed_write_of_its_file_left(tmp_path, writer):
+    name, statements = _ATOMIC_WRITERS[writer]
+    target = tmp_path / name
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_text(_PAGE)
+    statements = statements.replace("TARGET", repr(str(target)))
+    killed_before_rename(statements)
+    left = sorted(path.name for path in target.parent.iterdir())
+    assert len(left) == 2 and target.read_text() == _PAGE, left  # the killed write's file
+    subprocess.run([sys.executable, "-c", statements], env=environment(), check=True,
+                   stdout=subprocess.DEVNULL, timeout=120)  # a bound on a hang
+    assert sorted(target.parent.iterdir()) == [target]
+    assert target.read_text() != _PAGE
 
 
 def test_temporary_sibling_renames_on_success_and_removes_on_error(tmp_path):

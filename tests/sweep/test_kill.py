@@ -54,7 +54,7 @@ def test_sigkill_then_resume_gives_the_records_of_an_uninterrupted_run(tmp_path)
     assert len(clean) == TRIALS_TOTAL
     for a, b in zip(killed, clean):
         assert a.read_bytes() == b.read_bytes(), a.name
-    assert not list((killed_dir / "trials").glob(".*.tmp"))
+    assert not list((killed_dir / "trials").glob(".*"))  # no temporary file of any kind
     assert (killed_dir / "table1.csv").read_bytes() == (clean_dir / "table1.csv").read_bytes()
 
 

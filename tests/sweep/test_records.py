@@ -12,7 +12,7 @@ from tegrasp_drake.sweep.records import (
     make_record,
     read_record,
     record_path,
-    remove_temporary_files,
+    remove_stale_staging_files,
     write_record,
 )
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
@@ -127,13 +127,14 @@ def test_record_of_another_format_version_is_corrupt(tmp_path, trials):
     assert "format_version" in load_records(tmp_path).corrupt[path]
 
 
-def test_temporary_files_are_ignored_then_removed(tmp_path, trials):
+def test_staging_files_are_ignored_then_removed(tmp_path, trials):
+    from tests.commands.test_run_folder import _ended_process_id
     path = _one_record(tmp_path, trials)
-    stray = path.parent / f".{path.name}.abc123.tmp"
+    stray = path.parent / f".{path.name}.abcd1234.{_ended_process_id()}.staging"
     stray.write_text('{"format": "tegrasp-sw')
     loaded = load_records(tmp_path)
     assert len(loaded.records) == 1 and loaded.corrupt == {}
-    assert remove_temporary_files(tmp_path) == [stray]
+    assert remove_stale_staging_files(tmp_path, [trials[0]["trial_id"]]) == [stray]
     assert not stray.exists() and path.exists()
 
 

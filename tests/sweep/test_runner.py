@@ -1,6 +1,7 @@
 """The sweep runner on a local process pool: recording, resuming, errors, refusals."""
 
 import fcntl
+import logging
 import os
 import sys
 
@@ -11,6 +12,8 @@ from tegrasp_drake.sweep.runner import SweepError, run_sweep
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.rig.files import UserPathError
 from tegrasp_drake.rig.typed_yaml import ConfigError
+from tests.commands.test_run_folder import _ended_process_id
+from tests.killed_runs import killed_before_rename
 from tests.fake_trials import (
     dying_fake_trial,
     failing_fake_trial,
@@ -63,7 +66,7 @@ def test_resume_reruns_missing_corrupt_and_half_written_trials(tmp_path, uninter
     record_path(tmp_path, ids[0]).unlink()
     truncated = record_path(tmp_path, ids[5])
     truncated.write_bytes(truncated.read_bytes()[:40])
-    stray = truncated.parent / f".{truncated.name}.x1y2.tmp"
+    stray = truncated.parent / f".{truncated.name}.x1y2abcd.{_ended_process_id()}.staging"
     stray.write_text("{")
 
     summary = run_sweep(SMALL, fake_trial, tmp_path, workers=2, progress=False)
@@ -73,6 +76,31 @@ def test_resume_reruns_missing_corrupt_and_half_written_trials(tmp_path, uninter
     (kept,) = (tmp_path / "trials").glob(f"{truncated.name}.corrupt-*")  # set aside, not lost
     kept.unlink()
     assert record_texts(tmp_path) == record_texts(uninterrupted[0])
+
+
+# Rule: a resumed sweep removes what a write of one of its records killed past its handlers
+# (SIGKILL) left, and only that: an earlier version's temporary file (no writer's id: perhaps
+# a live run's, and told), a live writer's staging file and one of other content stay.
+def test_a_resumed_sweep_removes_a_killed_record_writes_leftover_and_keeps_the_rest(tmp_path,
+                                                                                    caplog):
+    run_sweep(SMALL, fake_trial, tmp_path, workers=2, progress=False)
+    trial_id = expand_trials(SMALL)[0].trial_id
+    path = record_path(tmp_path, trial_id)
+    killed_before_rename("from tegrasp_drake.sweep.records import write_record\n"
+                         f"write_record({str(tmp_path)!r}, {{'trial_id': {trial_id!r}}})")
+    (left,) = path.parent.glob(f".{path.name}.*")
+    dead = _ended_process_id()
+    kept = {path.parent / f".{path.name}.abcd1234.tmp": b'{"format"',  # an earlier version's
+            path.parent / f".{path.name}.efgh5678.{os.getpid()}.staging": b"{",  # live
+            path.parent / f".{path.name}.ijkl9012.{dead}.staging": b"my notes"}  # not JSON
+    for kept_path, data in kept.items():
+        kept_path.write_bytes(data)
+    with caplog.at_level(logging.WARNING, logger="tegrasp_drake.sweep.runner"):
+        summary = run_sweep(SMALL, fake_trial, tmp_path, workers=2, progress=False)
+    assert (summary.ran, summary.corrupt) == (0, ())
+    assert not left.exists()
+    assert all(kept_path.read_bytes() == data for kept_path, data in kept.items())
+    assert "1 temporary file(s) of an earlier version" in caplog.text
 
 
 def test_a_trial_that_raises_is_recorded_and_rerun_on_resume(tmp_path, uninterrupted):

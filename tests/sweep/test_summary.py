@@ -120,3 +120,27 @@ def test_a_readme_without_the_block_or_records_is_an_error(tmp_path):
     block = "<!-- results table from empty -->\nold\n<!-- end of results table -->\n"
     with pytest.raises(ValueError, match="no trial records"):
         readme_with_summaries(block, tmp_path)
+
+
+# Rule: a results folder's reports are each written through a staging file and a rename: a
+# write killed past its handlers (SIGKILL) leaves the earlier reports whole, and the next
+# write leaves the reports and nothing beside them.
+def test_a_killed_report_write_keeps_the_earlier_reports_and_the_next_leaves_no_leftover(
+        tmp_path):
+    import subprocess
+    import sys
+    from tests.killed_runs import environment, killed_before_rename
+    from tegrasp_drake.sweep.records import write_record
+    for record in records(objects=("box",)):
+        write_record(tmp_path, record)
+    earlier = ("table1.md", "table1.csv", "statistics.md", "statistics.json", "summary.md")
+    for name in earlier:
+        (tmp_path / name).write_text("the earlier report")
+    statements = ("from tegrasp_drake.reports import write_reports\n"
+                  f"write_reports({str(tmp_path)!r})")
+    killed_before_rename(statements)
+    assert all((tmp_path / name).read_text() == "the earlier report" for name in earlier)
+    subprocess.run([sys.executable, "-c", statements], env=environment(), check=True,
+                   timeout=300)  # a bound on a hang, not a measure of speed
+    assert not [path.name for path in tmp_path.iterdir() if path.name.startswith(".")]
+    assert all((tmp_path / name).read_text() != "the earlier report" for name in earlier)

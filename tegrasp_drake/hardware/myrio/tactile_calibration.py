@@ -76,10 +76,17 @@ def LoadTactileCalibration(filename: str) -> TactileCalibration:
     return calibration
 
 
+# The first line SaveTactileCalibration writes (a YAML comment): how a calibration file, and
+# a killed writer's staging file of one, starts (write_atomically's `start`).
+CALIBRATION_FILE_START = b"# tactile calibration"
+
+
 def SaveTactileCalibration(calibration: TactileCalibration, filename: str):
-    """Writes a TactileCalibration as YAML (atomically: an earlier file stays whole until the
-    new one is complete)."""
-    write_atomically(filename, yaml_dump_typed(calibration))
+    """Writes a TactileCalibration as YAML, under a first comment line, atomically (an
+    earlier file stays whole until the new one is complete)."""
+    write_atomically(filename, CALIBRATION_FILE_START.decode() + " (gains N/count, offsets "
+                     "counts: LoadTactileCalibration)\n" + yaml_dump_typed(calibration),
+                     start=CALIBRATION_FILE_START)
 
 
 def forces_from_counts(counts, gain, offset) -> np.ndarray:
