@@ -93,14 +93,13 @@ def listener():
     says nothing; `garbage` sends 0xff bytes (a frame length of 2**64 - 1) and hangs up."""
     import socket
     import threading
-    servers = []
+    servers, held = [], []
 
     def start(kind):
         server = socket.socket()
         server.bind(("127.0.0.1", 0))
         server.listen(8)
         servers.append(server)
-        held = []
 
         def serve():
             while True:
@@ -117,8 +116,8 @@ def listener():
         threading.Thread(target=serve, daemon=True).start()
         return f"tcp://127.0.0.1:{server.getsockname()[1]}"
     yield start
-    for server in servers:
-        server.close()
+    for connection in [*servers, *held]:
+        connection.close()
 
 
 @pytest.mark.parametrize("kind", ["silent", "garbage"])
@@ -241,3 +240,14 @@ def test_a_runner_option_refused_is_bad_input_as_for_every_command(tmp_path, cap
                                 workers, "--no-progress", *_FAKE_TRIALS], capfd)
         assert status == code, text
         assert len(text.strip().splitlines()) == 1, text
+
+
+def test_a_transition_built_in_python_with_a_code_of_no_rule_is_refused():
+    """The JSON reader refused it; a Transition built by hand (the API) did not."""
+    from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    with pytest.raises(ConfigError, match="names no rule"):
+        Transition(t=1.0, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+                   trigger=Trigger.MEMORIZED_EVENT, reason="", code="bogus_rule")
+    Transition(t=1.0, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+               trigger=Trigger.MEMORIZED_EVENT, reason="", code="reach_event")

@@ -115,10 +115,17 @@ class Transition:
     code: str | None = None  # the deciding rule's name (rule_engine.Rule.name)
 
     def __post_init__(self):
-        """ConfigError naming the first field out of its range, or a to_mode that is the
-        from_mode: an entry records a change of mode (no rule's `then` keeps its mode, and
-        the open-loop script logs a phase only when its mode changes)."""
+        """ConfigError naming the first field out of its range, a `code` that names no rule
+        of a registered controller's table, or a to_mode that is the from_mode: an entry
+        records a change of mode (no rule's `then` keeps its mode, and the open-loop script
+        logs a phase only when its mode changes)."""
         check_ranges(self, type(self).__name__)
+        if self.code is not None:
+            try:
+                _check_code(self.code)
+            except ValueError as error:
+                from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: when checking
+                raise ConfigError(str(error)) from None
         if self.to_mode == self.from_mode:
             from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
             label = getattr(self.to_mode, "label", self.to_mode)
@@ -159,7 +166,7 @@ class Transition:
         optional = {key: tuple(entry[key]) if isinstance(entry[key], list) else entry[key]
                     for key in _OPTIONAL_FIELDS if key in entry}
         if "code" in entry:
-            _check_code(entry["code"])
+            _check_code(entry["code"])  # a ValueError, as for the rest of the JSON form
         return Transition(t=entry["t"], from_mode=Mode.from_label(entry["from"]),
                           to_mode=Mode.from_label(entry["to"]),
                           trigger=Trigger(entry["trigger"]), reason=entry["reason"], **optional)
