@@ -34,6 +34,10 @@ from tegrasp_drake.sweep.spec import (
     MAX_TRIALS,
     SweepSpec,
     check_sweep_size,
+    core_hours,
+    marker_names,
+    TRIAL_CORE_SECONDS,
+    trial_count,
     validate_spec,
 )
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
@@ -90,6 +94,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--base-seed", type=integer_option, metavar="N",
                         help="seed all trials' randomisation derives from")
     add_runner_arguments(parser, default_out=DEFAULT_OUT)
+    parser.add_argument("--dry-run", action="store_true",
+                        help="check the spec, the options and the events, print the plan "
+                             "(trials, objects, markers, cost) and run nothing")
     parser.add_argument("--benchmark", action="store_true",
                         help="time the memorized sweep with 1 and then 2 workers, each "
                              "into a temporary folder, and print wall times and speed-up")
@@ -135,6 +142,31 @@ def spec_from_arguments(args) -> SweepSpec:
     validate_spec(spec, source)
     check_sweep_size(spec, source, args.confirm_trials)
     return spec
+
+
+def plan_text(spec: SweepSpec) -> str:
+    """What `spec` would run, in a few lines: the count of trials and its cost, the base seed,
+    the objects (a user object with its shape, size, mass and friction), the controllers,
+    the markers (offsets in mm, normal to the palm and along the stroke) and the draws."""
+    own = spec.user_objects
+    objects = ", ".join(
+        f"{name} ({own[name].shape} {list(own[name].size)} m, {own[name].mass} kg, "
+        f"friction {own[name].friction})" if name in own else name for name in spec.objects)
+    markers = " ".join(f"{name} ({dx * 1000:+g}, {dy * 1000:+g})"
+                       for name, (dx, dy) in zip(marker_names(spec.grid), spec.grid))
+    r = spec.randomisation
+    return "\n".join([
+        f"sweep plan (nothing run): {trial_count(spec)} trials ({len(spec.objects)} objects x "
+        f"{len(spec.grid)} markers x {spec.attempts} attempts x {len(spec.controllers)} "
+        f"controllers), base seed {spec.base_seed}, {core_hours(trial_count(spec))} at "
+        f"{TRIAL_CORE_SECONDS} s a trial",
+        f"  objects: {objects}",
+        f"  controllers: {', '.join(spec.controllers)}",
+        f"  markers, mm normal to the palm and along the stroke: {markers}",
+        f"  each attempt draws: +-{r.placement_xy_bound_m * 1000:g} mm about its marker, "
+        f"+-{r.placement_yaw_bound_deg:g} deg yaw, friction x (1 +- {r.friction_scale_bound:g}),"
+        f" mass x (1 +- {r.mass_scale_bound:g}), sensor noise "
+        f"{'on' if r.sensor_noise else 'off'}"])
 
 
 def _check_events_folder(events) -> None:
@@ -275,6 +307,9 @@ def run(args) -> int:
             except ConfigError as error:  # an event file missing or damaged: bad input, 1
                 print(f"tegrasp sweep: error: {error}", file=sys.stderr)
                 return 1
+        if args.dry_run:
+            print(plan_text(spec))
+            return 0
         progress = not args.no_progress and progress_wanted(args)
         if args.events:
             trial_function = bound_arguments(trial_function, events_dir=args.events)

@@ -466,8 +466,12 @@ def trial_count(spec: SweepSpec) -> int:
 
 
 def core_hours(simulations: int) -> str:
-    """The cost of `simulations` trial-sized simulations in words: "about N core-hours"."""
-    return f"about {simulations * TRIAL_CORE_SECONDS / 3600:.0f} core-hours"
+    """The cost of `simulations` trial-sized simulations in words: "about N core-hours", or
+    "about N core-minutes" under an hour (where whole hours would read 0)."""
+    seconds = simulations * TRIAL_CORE_SECONDS
+    if seconds < 3600:
+        return f"about {seconds / 60:.0f} core-minutes"
+    return f"about {seconds / 3600:.0f} core-hours"
 
 
 # The command-line option that confirms a study of more than MAX_TRIALS (check_study_size).

@@ -136,6 +136,37 @@ def test_missing_memorized_events_stop_the_real_sweep_before_any_trial(
     assert not out.exists()
 
 
+def test_dry_run_prints_the_plan_and_runs_nothing(tmp_path, capsys):
+    spec = tmp_path / "wide.yaml"
+    spec.write_text("objects: [box, cup]\ncontrollers: [open_loop, memorized]\nattempts: 2\n"
+                    "grid: {normal_offsets_m: [-0.015, 0.0], stroke_offsets_m: [0.0, 0.025]}\n"
+                    "user_objects:\n"
+                    "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n")
+    out = tmp_path / "out"
+    assert command.main(["--spec", str(spec), "--base-seed", "7", "--dry-run",
+                         "--out", str(out), *FAKE]) == 0
+    text = capsys.readouterr().out
+    assert "32 trials (2 objects x 4 markers x 2 attempts x 2 controllers)" in text
+    assert "base seed 7" in text and "about 16 core-minutes at 30 s a trial" in text
+    assert "cup (cylinder [0.03, 0.1] m, 0.1 kg, friction 0.5)" in text
+    assert "m01 (-15, +25)" in text
+    assert not out.exists()
+
+
+def test_dry_run_checks_the_events_as_the_real_sweep_does(tmp_path, capsys):
+    """A dry run of the real trial function refuses missing events as a run would (exit 1,
+    one line), so a plan it prints is one whose events are all there."""
+    spec = tmp_path / "cup.yaml"
+    spec.write_text("objects: [cup]\ncontrollers: [memorized]\nuser_objects:\n"
+                    "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n")
+    out = tmp_path / "out"
+    assert command.main(["--spec", str(spec), "--dry-run", "--events", str(tmp_path),
+                         "--out", str(out), "--no-progress"]) == 1
+    captured = capsys.readouterr()
+    assert "trial memorized/cup/m00/a0" in captured.err and "sweep plan" not in captured.out
+    assert not out.exists()
+
+
 def test_a_missing_trial_function_is_reported(tmp_path, capsys):
     out = tmp_path / "out"
     assert command.main(["--out", str(out), "--no-progress",

@@ -278,3 +278,32 @@ def test_a_sweep_without_overrides_writes_the_trial_dicts_it_always_wrote():
     d = trial.to_dict()
     assert "scenario_overrides" not in d
     assert TrialSpec.from_dict(d) == trial
+
+
+def test_the_wide_grid_spec_covers_its_ranges_with_the_objects_its_events_are_recorded_for():
+    """analysis/wide_grid.yaml: +-25 mm along the stroke, +-15 mm normal, yaw drawn within
+    +-10 deg; its own objects' pad pairs, as drawn, span 0.30-0.80 and their masses stay at
+    or below 0.30 kg; each own object is the one of the same name in
+    analysis/wide_grid_objects.yaml, the scenario file its events are recorded from."""
+    from tegrasp_drake.rig import materials
+    from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, object_description
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    analysis = Path(__file__).resolve().parents[2] / "analysis"
+    spec = LoadSweepSpec(analysis / "wide_grid.yaml")
+    assert {dy for _, dy in spec.grid} >= {-0.025, 0.025}
+    assert {dx for dx, _ in spec.grid} >= {-0.015, 0.015}
+    assert spec.randomisation.placement_yaw_bound_deg == 10.0
+    assert set(spec.objects) == set(BUILTIN_OBJECTS) | set(spec.user_objects)
+    assert len(spec.user_objects) >= 4
+    assert {o.shape for o in spec.user_objects.values()} == {"box", "cylinder"}
+    b_mu, b_m = (spec.randomisation.friction_scale_bound,
+                 spec.randomisation.mass_scale_bound)
+    pairs = [materials.pair_friction(materials.PAD_COVER, o.friction * (1 + s * b_mu))
+             for o in spec.user_objects.values() for s in (-1, 1)]
+    assert 0.30 <= min(pairs) < 0.31 and 0.79 < max(pairs) <= 0.80
+    assert 0.29 < max(o.mass * (1 + b_m) for o in spec.user_objects.values()) <= 0.30
+    for name, config in spec.user_objects.items():
+        recorded = LoadScenario(analysis / "wide_grid_objects.yaml", name).object
+        assert recorded.name == name
+        assert object_description(recorded) == object_description(config), name
+    assert len(expand_trials(spec)) == 7 * 15 * 2 * 3
