@@ -1,6 +1,7 @@
 """Bad inputs the sixteenth hostile pass found, one test per rule; nothing is simulated."""
 
 import contextlib
+import errno
 
 import pytest
 
@@ -157,12 +158,15 @@ def test_a_world_events_folder_that_cannot_be_made_is_one_line(tmp_path, capfd):
     assert len(text.strip().splitlines()) == 1
 
 
+def _full_disk(*args, **kwargs):
+    """rig.files.staged_file on a file system with no room left."""
+    raise OSError(errno.ENOSPC, "No space left on device")
+
+
 def test_a_finished_transfer_rerun_on_a_full_disk_is_one_line_and_keeps_its_reports(
         tmp_path, capfd, monkeypatch):
     """A rerun with nothing left to run rewrites only its reports: on a full disk that was exit
     70 (world.json rewritten unchanged) and a 0-byte table1.md (written in place)."""
-    import errno
-
     from tegrasp_drake.events.events_folder import load_memorized_events
     from tegrasp_drake.recording import paper_events
     from tegrasp_drake.rig import files, paths
@@ -181,9 +185,7 @@ def test_a_finished_transfer_rerun_on_a_full_disk_is_one_line_and_keeps_its_repo
     world = out / "events" / "w" / "world.json"
     world_before = world.stat().st_mtime_ns
 
-    def full_disk(*args, **kwargs):
-        raise OSError(errno.ENOSPC, "No space left on device")
-    monkeypatch.setattr(files, "staged_file", full_disk)
+    monkeypatch.setattr(files, "staged_file", _full_disk)
     code, text = run_cli(argv, capfd)
     assert code == 1, text
     assert "No space left on device" in text and "internal error" not in text
@@ -197,8 +199,6 @@ def test_a_finished_sweep_rerun_on_a_full_disk_is_one_line_and_keeps_its_reports
         tmp_path, capfd, monkeypatch):
     """The Markdown, CSV and JSON reports were written in place: a full disk left a 0-byte
     table1.md where the earlier one was, and exit 70."""
-    import errno
-
     from tegrasp_drake.rig import files
     spec = tmp_path / "s.yaml"
     spec.write_text("controllers: [memorized]\nattempts: 1\nobjects: [box]\n"
@@ -212,9 +212,7 @@ def test_a_finished_sweep_rerun_on_a_full_disk_is_one_line_and_keeps_its_reports
     assert {"table1.md", "table1.csv", "statistics.json"} <= {path.name for path in reports}
     before = {report: report.read_bytes() for report in reports}
 
-    def full_disk(*args, **kwargs):
-        raise OSError(errno.ENOSPC, "No space left on device")
-    monkeypatch.setattr(files, "staged_file", full_disk)
+    monkeypatch.setattr(files, "staged_file", _full_disk)
     code, text = run_cli(argv, capfd)
     assert code == 1, text
     assert "No space left on device" in text and "internal error" not in text
