@@ -39,18 +39,25 @@ def fake_trial(trial):
     hold = u_hold < _HOLD_PROBABILITY[trial["controller"]][placement]
     unload = hold and u_unload < _UNLOAD_PROBABILITY[trial["controller"]][placement]
     latency = None if trial["controller"] == "open_loop" else round(0.01 + 0.05 * u_latency, 6)
+    re_reach = [{"t": 0.4, "from": "Reach", "to": "Re-Reach", "trigger": "corrective",
+                 "reason": "only the left finger touched"},
+                {"t": 0.7, "from": "Re-Reach", "to": "Reach", "trigger": "corrective",
+                 "reason": "re-centred"}] if not trial["well_placed"] and hold else []
     return {
         "hold_success": hold,
         "unload_success": unload,
         # Unloaded: judged only in a Done trial, the object released; else it stopped in Load.
         "final_mode": "Done" if unload else "Load",
         "released": unload,
-        "transitions": [{"t": 1.0, "from": "Reach", "to": "Load", "trigger": "memorized_event",
-                         "reason": "Reach-Load event"}] + ([
-            {"t": 2.0, "from": "Load", "to": "Done", "trigger": "timer",
-             "reason": "the test's timeline"}] if unload else []),
-        "corrective_actions": ["regrasp"] if not trial["well_placed"] and hold else [],
-        "detection_latency_s": {"reach->load": latency, "lift->hold": latency},
+        # A misplaced trial that held re-centred first (one Re-Reach, its corrective action).
+        "transitions": (re_reach + [{"t": 1.0, "from": "Reach", "to": "Load",
+                                     "trigger": "memorized_event", "reason": "Reach-Load event"}]
+                        + ([{"t": 2.0, "from": "Load", "to": "Done", "trigger": "timer",
+                             "reason": "the test's timeline"}] if unload else [])),
+        "corrective_actions": ["re_reach"] if re_reach else [],
+        # The Reach-Load detection's latency behind its physical event (first contact).
+        "physical_events": {} if latency is None else {"reach_load": 1.0 - latency},
+        "detection_latency_s": {} if latency is None else {"reach_load": latency},
         "false_triggers": int(u_false < 0.2),
         "sim_time_s": 8.0,
         "wall_time_s": 0.0,
@@ -107,7 +114,8 @@ def fake_trial_with_events(trial, *, events_dir):
     """fake_trial of a transfer cell, which hands each trial its memorizing world's events
     folder: the result names that folder, so a test can check which events a cell used."""
     result = fake_trial(trial)
-    result["transitions"][0] = {"t": 1.0, "from": "Reach", "to": "Load",
+    load = next(k for k, entry in enumerate(result["transitions"]) if entry["to"] == "Load")
+    result["transitions"][load] = {"t": 1.0, "from": "Reach", "to": "Load",
                                 "trigger": "memorized_event", "reason": "Reach-Load event"}
     result["physical_events"] = {"reach_load": 0.97}
     result["events_dir"] = str(events_dir)

@@ -37,6 +37,8 @@ CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
 # An event transition earlier than its physical event by more than this [s] is a false
 # trigger; within it lie one 108 Hz taxel sample and noise around the truth's threshold.
 FALSE_TRIGGER_MARGIN_S = 0.01
+# The key of the scenario's hit among the physical events (the others are event transitions).
+HIT_EVENT = "hit"
 
 logger = logging.getLogger(__name__)
 
@@ -53,7 +55,7 @@ def physical_event_times(log, transitions: list[Transition], grip_force: float,
     when the scenario's hit came within the simulated time."""
     events = {}
     if 0.0 <= hit_time_s <= float(log.t_slow[-1]):
-        events["hit"] = float(hit_time_s)
+        events[HIT_EVENT] = float(hit_time_s)
     entered = {Mode.REACH: 0.0}
     for entry in transitions:
         name = _event_transition(entry)

@@ -123,6 +123,8 @@ class TrialResult:
                               f"succeeds when held at least {number_text(HOLD_REQUIRED_S)} s)")
         self._check_final_mode(name, final)
         self._check_controller(name)
+        self._check_events(name)
+        self._check_timeline_fields(name)
         if len(self.failure) > MAX_FAILURE_CHARS:
             raise ConfigError(f"{name}: field 'failure' must be at most {MAX_FAILURE_CHARS} "
                               f"characters (a controller's one-sentence reason), got "
@@ -154,6 +156,46 @@ class TrialResult:
             if abs(value) > limit:
                 raise ConfigError(f"{name}: field '{field}' must be {within} ({why}), got "
                                   f"{number_text(value)}")
+
+    def _check_events(self, name: str) -> None:
+        """The physical events and latencies as judge_trial gives them (runs/trial.py): a
+        physical event is "hit" or one of the event transitions (REQUIRED_TRANSITIONS) the
+        timeline takes; a latency, a detection's time minus its physical event's, is not below
+        -FALSE_TRIGGER_MARGIN_S (a detection earlier by more is a false trigger, counted and
+        given no latency)."""
+        from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, event_transition
+        from tegrasp_drake.runs.trial import FALSE_TRIGGER_MARGIN_S, HIT_EVENT  # Drake: on use
+        taken = [(event_transition(e.from_mode.label, e.to_mode.label), e.trigger.is_event)
+                 for e in self.transitions]
+        for key in self.physical_events:
+            if key != HIT_EVENT and key not in REQUIRED_TRANSITIONS:
+                raise ConfigError(f"{name}: field 'physical_events.{shorten(key)}' names no "
+                                  f"physical event (one of {HIT_EVENT}, "
+                                  f"{', '.join(REQUIRED_TRANSITIONS)})")
+            if key != HIT_EVENT and all(event != key for event, _ in taken):
+                raise ConfigError(f"{name}: field 'physical_events.{key}' but no transition "
+                                  f"{key} was taken (a physical event is looked for behind a "
+                                  "transition the trial took)")
+        for key, latency in self.detection_latency_s.items():
+            if latency is not None and latency < -FALSE_TRIGGER_MARGIN_S:
+                raise ConfigError(f"{name}: field 'detection_latency_s.{key}' must be at least "
+                                  f"-{number_text(FALSE_TRIGGER_MARGIN_S)} s (a detection "
+                                  "earlier than its physical event by more is a false trigger, "
+                                  f"given no latency), got {number_text(latency)}")
+
+    def _check_timeline_fields(self, name: str) -> None:
+        """The fields judge_trial derives from the timeline alone: a failure is the reason of
+        a transition to Failed, so is given only when one was taken, and a lift grip fraction
+        is taken at the first Load -> Lift, so is given only when one was taken."""
+        if self.failure and not any(e.to_mode == Mode.FAILED for e in self.transitions):
+            raise ConfigError(f"{name}: field 'failure' is {shorten(repr(self.failure))} but "
+                              "no transition goes to Failed (the failure is the reason of the "
+                              "transition to Failed; leave it \"\" for none)")
+        if self.lift_grip_fraction is not None and not any(
+                e.from_mode == Mode.LOAD and e.to_mode == Mode.LIFT for e in self.transitions):
+            raise ConfigError(f"{name}: field 'lift_grip_fraction' is "
+                              f"{number_text(self.lift_grip_fraction)} but no transition goes "
+                              "from Load to Lift (the fraction is taken at the first one)")
 
     def _check_final_mode(self, name: str, final: str) -> None:
         """The final mode is the mode the last transition entered, Reach (the first mode)

@@ -150,3 +150,48 @@ def test_a_result_breaking_a_relation_of_its_modes_or_its_unload_is_refused(fiel
     assert "\n" not in message and message.startswith("TrialResult")
     assert words in message, message
 
+
+
+def _edited(path: str, value) -> dict:
+    """The committed RECORD's result with the value at `path` (keys and list indices, dotted)
+    replaced by `value`."""
+    data = json.loads(RECORD.read_text())["result"]
+    *parents, last = [int(key) if key.isdigit() else key for key in path.split(".")]
+    target = data
+    for key in parents:
+        target = target[key]
+    target[last] = value
+    return data
+
+
+@pytest.mark.parametrize("path, value, words", [
+    ("detection_latency_s.reach_load", -0.5,
+     "field 'detection_latency_s.reach_load' must be at least -0.01"),
+    ("physical_events.slip", 12.0, "field 'physical_events.slip' names no physical event"),
+    ("failure", "dropped in Hold", "field 'failure' is 'dropped in Hold' but no transition"),
+])
+def test_a_committed_result_edited_to_contradict_itself_is_refused(path, value, words):
+    """Each edit of a real result gives one judge_trial cannot: a timeline whose modes do not
+    chain, a latency earlier than a false trigger or of a transition not detected, a physical
+    event that is none or behind no transition taken, a failure no transition gave."""
+    TrialResult.from_dict(_edited("failure", ""))  # the record as it is reads
+    with pytest.raises(ValueError) as refused:
+        TrialResult.from_dict(_edited(path, value))
+    message = str(refused.value)
+    assert "\n" not in message and words in message, message
+
+
+def test_a_physical_event_needs_its_transition_taken():
+    with pytest.raises(ConfigError, match="field 'physical_events.place_unload' but no "):
+        TrialResult(transitions=(_reach_load(1.0),), final_mode=Mode.LOAD,
+                    physical_events={"reach_load": 0.95, "place_unload": 2.0})
+    TrialResult(transitions=(_reach_load(1.0),), final_mode=Mode.LOAD,
+                physical_events={"reach_load": 0.95, "hit": 2.0})
+
+
+def test_a_lift_grip_fraction_needs_a_lift_from_load():
+    with pytest.raises(ConfigError, match="field 'lift_grip_fraction' is 5 but no transition"):
+        TrialResult(transitions=(_reach_load(1.0),), final_mode=Mode.LOAD,
+                    lift_grip_fraction=5.0)
+    TrialResult(transitions=(_reach_load(1.0), _load_lift(2.0)), final_mode=Mode.LIFT,
+                lift_grip_fraction=5.0)
