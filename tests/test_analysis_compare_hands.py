@@ -5,6 +5,8 @@ trial and the linkage run's failures are named by the package's failure classes
 import importlib.util
 import pathlib
 
+from tests.fake_trials import timeline_ending
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
@@ -19,7 +21,8 @@ def compare_hands():
 TRIAL = {"trial_id": "taxel_aware/box/m02/a0", "controller": "taxel_aware",
          "object_name": "box", "well_placed": False, "marker_dx_m": 0.0, "marker_dy_m": 0.025}
 HELD = {"hold_success": True, "unload_success": True, "failure": "", "final_mode": "Done",
-        "lift_height_m": 0.06, "final_tilt_deg": 0.5, "transitions": []}
+        "hold_time_s": 4.7, "released": True, "lift_height_m": 0.06, "final_tilt_deg": 0.5,
+        "transitions": timeline_ending("Done")}
 REASON = ("the left finger struck the object during the approach (2.7 N at the wrist), "
           "after 4 Re-Reach attempts")
 STRUCK = {"hold_success": False, "unload_success": False, "failure": REASON,

@@ -8,7 +8,7 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
-FALSE_TRIGGER_MARGIN_S = 0.01  # a match this much before the event is false (the judge's rule)
+from tegrasp_drake.scenario.trial_result import FALSE_TRIGGER_MARGIN_S  # the judge's margin
 DEADLINE_S = 0.5  # a match later than this after the event is missed
 LATENCY_TARGET_S = 0.06  # the median latency choose_thresholds prefers
 

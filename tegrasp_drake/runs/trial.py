@@ -15,7 +15,9 @@ from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
                                                   MakeSimulator, simulated_duration_range)
-from tegrasp_drake.scenario.trial_result import HOLD_REQUIRED_S, UPRIGHT_TILT_DEG, TrialResult
+from tegrasp_drake.scenario.trial_result import (FALSE_TRIGGER_MARGIN_S, HIT_EVENT,
+                                                  HOLD_REQUIRED_S, UPRIGHT_TILT_DEG,
+                                                  TrialResult)
 from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
                                               grip_fraction_at, judge_grasp,
                                               table_touch_time)
@@ -34,11 +36,6 @@ class SimulationFailedError(ConfigError):
 RESTING_HEIGHT_M = 0.005  # back on the table: within this of its starting height
 END_MARGIN_S = 0.5  # simulated after the machine ends, to see the object settle
 CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
-# An event transition earlier than its physical event by more than this [s] is a false
-# trigger; within it lie one 108 Hz taxel sample and noise around the truth's threshold.
-FALSE_TRIGGER_MARGIN_S = 0.01
-# The key of the scenario's hit among the physical events (the others are event transitions).
-HIT_EVENT = "hit"
 
 logger = logging.getLogger(__name__)
 

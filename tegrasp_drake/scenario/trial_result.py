@@ -16,6 +16,11 @@ from tegrasp_drake.control.grasp_modes import Mode, Transition
 
 
 HOLD_REQUIRED_S = 3.0  # the paper (Sec. IV-C): a hold succeeds when held at least 3 s
+# An event transition earlier than its physical event by more than this [s] is a false
+# trigger; within it lie one 108 Hz taxel sample and noise around the truth's threshold.
+FALSE_TRIGGER_MARGIN_S = 0.01
+# The key of the scenario's hit among the physical events (the others are event transitions).
+HIT_EVENT = "hit"
 # An unload succeeds only with the object standing upright: tilted less than this [deg].
 UPRIGHT_TILT_DEG = 10.0
 
@@ -56,7 +61,7 @@ class TrialResult:
     physical_events: dict[str, float | None] = bounded(
         default_factory=dict, low=0.0, unit="s", why="simulated times since the trial's start")
     # Each event transition's time minus its physical event's [s]: either sign, since a
-    # detection up to trial.FALSE_TRIGGER_MARGIN_S early is still counted as one.
+    # detection up to FALSE_TRIGGER_MARGIN_S early is still counted as one.
     detection_latency_s: dict[str, float | None] = bounded(
         default_factory=dict, unit="s", why="a detection's time minus its physical event's")
     false_triggers: int = bounded(0, low=0, why="a count")
@@ -164,7 +169,6 @@ class TrialResult:
         -FALSE_TRIGGER_MARGIN_S (a detection earlier by more is a false trigger, counted and
         given no latency)."""
         from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, event_transition
-        from tegrasp_drake.runs.trial import FALSE_TRIGGER_MARGIN_S, HIT_EVENT  # Drake: on use
         taken = [(event_transition(e.from_mode.label, e.to_mode.label), e.trigger.is_event)
                  for e in self.transitions]
         for key in self.physical_events:

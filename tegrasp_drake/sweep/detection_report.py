@@ -13,7 +13,7 @@ from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_st
 from tegrasp_drake.sweep.records import record_result
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
-FALSE_TRIGGER_MARGIN_S = 0.01  # [s] the trial judge's margin (runs/trial.py)
+from tegrasp_drake.scenario.trial_result import FALSE_TRIGGER_MARGIN_S  # the judge's margin
 EVENT_TRIGGERS = ("memorized_event", "heuristic_event")
 MARKERS = (("well_placed", "hold"), ("well_placed", "unload"), ("misplaced", "hold"),
            ("misplaced", "unload"))
