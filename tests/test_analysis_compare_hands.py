@@ -2,20 +2,13 @@
 trial and the linkage run's failures are named by the package's failure classes
 (sweep/failure_classes.py), not by a text of the script's own."""
 
-import importlib.util
-import pathlib
 
 from tests.fake_trials import timeline_ending
-
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+from tests.analysis_script import load_analysis_script
 
 
 def compare_hands():
-    spec = importlib.util.spec_from_file_location("compare_hands",
-                                                  ROOT / "analysis" / "compare_hands.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_analysis_script("compare_hands")
 
 
 TRIAL = {"trial_id": "taxel_aware/box/m02/a0", "controller": "taxel_aware",

@@ -2,19 +2,14 @@
 run, not after them."""
 
 import concurrent.futures
-import importlib.util
 
 import pytest
 
-from tests.killed_runs import REPOSITORY
+from tests.analysis_script import load_analysis_script
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location(
-        "explain_open_loop", REPOSITORY / "analysis" / "explain_open_loop.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_analysis_script("explain_open_loop")
 
 
 def test_a_name_of_no_figure_format_is_refused_before_any_trial_runs(tmp_path, monkeypatch,

@@ -4,24 +4,17 @@ campaign, nothing half-written left; the logs are its first stage's only product
 (here a thread pool, so the test's stand-ins reach the workers)."""
 
 import errno
-import importlib.util
-import pathlib
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 from tegrasp_drake.recording import campaign
 from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, TrialLog
-
-SCRIPT = (pathlib.Path(__file__).resolve().parents[1] / "analysis"
-          / "record_ensemble_events.py")
+from tests.analysis_script import load_analysis_script
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location("record_ensemble_events", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_analysis_script("record_ensemble_events")
 
 
 def test_a_full_logs_folder_is_one_error_line_and_exit_1(tmp_path, monkeypatch, capsys):

@@ -1,18 +1,11 @@
 """analysis/check_rule_engine_equivalence.py compares two commits' result dicts: a base
 whose timelines keep no rule codes is compared with this checkout's on what both record."""
 
-import importlib.util
-import pathlib
-
-SCRIPT = (pathlib.Path(__file__).resolve().parents[1] / "analysis"
-          / "check_rule_engine_equivalence.py")
+from tests.analysis_script import load_analysis_script
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location("check_rule_engine_equivalence", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_analysis_script("check_rule_engine_equivalence")
 
 
 def _result(*codes, final_mode="Lift", wall_time_s=1.0):

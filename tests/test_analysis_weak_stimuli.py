@@ -5,8 +5,6 @@ grasps whose vibration is buried in noise (a weak dynamic stimulus) or whose sec
 touches too late (SA fails)."""
 
 import dataclasses
-import importlib.util
-import pathlib
 
 import numpy as np
 import pytest
@@ -35,16 +33,13 @@ from tegrasp_drake.sweep.missed_event_report import (
 from tegrasp_drake.sweep.records import make_record, write_record
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec, trial_log_name
+from tests.analysis_script import load_analysis_script
 
 
 
 def load_command():
     """analysis/weak_stimuli.py as a module."""
-    path = pathlib.Path(__file__).resolve().parents[1] / "analysis" / "weak_stimuli.py"
-    spec = importlib.util.spec_from_file_location("weak_stimuli", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_analysis_script("weak_stimuli")
 
 IDEAL = SyntheticGraspConfig()
 EVENTS = extract_memorized_events(synthetic_grasp(IDEAL), object_name="box",

@@ -1,20 +1,13 @@
 """The analysis scripts regenerate a results folder's reports from its records."""
 
-import importlib.util
-from pathlib import Path
-
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.sweep import SweepSpec, run_sweep
 from tests.fake_trials import fake_trial
-
-ANALYSIS = Path(__file__).resolve().parents[2] / "analysis"
+from tests.analysis_script import load_analysis_script
 
 
 def load_script(name):
-    spec = importlib.util.spec_from_file_location(name, ANALYSIS / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_analysis_script(name)
 
 
 def test_scripts_regenerate_the_reports(tmp_path):
