@@ -205,9 +205,12 @@ def test_statistics_json_is_valid(tmp_path):
             r["false_triggers"] for r in results.values())
         assert figures["corrective_actions"]["trials_with_any"] == sum(
             bool(r["corrective_actions"]) for r in results.values())
-        latencies = [r["detection_latency_s"]["reach->load"] for r in results.values()]
+        latencies = [r["detection_latency_s"].get("reach_load") for r in results.values()]
         detected = [value for value in latencies if value is not None]
-        latency = figures["detection_latency_s"]["reach->load"]
+        if name == "open_loop":  # a script detects nothing: no latency, no figure
+            assert not detected and figures["detection_latency_s"] == {}
+            continue
+        latency = figures["detection_latency_s"]["reach_load"]
         assert latency["n"] == len(detected)
         assert latency["not_detected"] == len(latencies) - len(detected)
         if detected:
