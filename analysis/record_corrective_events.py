@@ -17,7 +17,8 @@ from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
-from tegrasp_drake.recording.campaign import run_log_path, simulate_run, unwritten_log_words
+from tegrasp_drake.recording.campaign import (first_unwritten_log, run_log_path, simulate_run,
+                                              unwritten_log_words)
 from tegrasp_drake.recording.corrective_events import (
     CORRECTIVE_FOLDER, CORRECTIVE_RUNS, campaign_run, record_corrective_events)
 from tegrasp_drake.scenario.trial_log_file import LogNotWritten
@@ -42,14 +43,12 @@ def main(argv=None) -> int:
     parser.add_argument("--events", type=pathlib.Path, default=pathlib.Path("events"))
     args = parser.parse_args(argv)
     with ProcessPoolExecutor(args.workers) as pool:  # the logs, in parallel
-        try:
-            list(pool.map(simulate, [(args.object, run, args.logs)
-                                     for run in CORRECTIVE_RUNS]))
-        except LogNotWritten as unwritten:  # the later logs would be lost too: stop here
-            pool.shutdown(cancel_futures=True)
-            print(f"record_corrective_events: error: {unwritten_log_words(unwritten)}",
-                  file=sys.stderr)
-            return 1
+        unwritten = first_unwritten_log(pool, simulate, [(args.object, run, args.logs)
+                                                         for run in CORRECTIVE_RUNS])
+    if unwritten is not None:
+        print(f"record_corrective_events: error: {unwritten_log_words(unwritten)}",
+              file=sys.stderr)
+        return 1
     events, unwritten = [], None
     for transition in CORRECTIVE_TRANSITIONS:
         try:

@@ -16,7 +16,8 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.events.events_folder import save_memorized_events
-from tegrasp_drake.recording.campaign import run_log_path, simulate_run, unwritten_log_words
+from tegrasp_drake.recording.campaign import (first_unwritten_log, run_log_path, simulate_run,
+                                              unwritten_log_words)
 from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, ensemble_runs,
                                                      record_object_ensemble)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
@@ -46,13 +47,11 @@ def main(argv=None) -> int:
     jobs = [(name, k, args.runs, args.template_runs, args.logs / name)
             for name in sorted(BUILTIN_OBJECTS) for k in range(args.runs)]
     with ProcessPoolExecutor(args.workers) as pool:  # the logs, in parallel
-        try:
-            list(pool.map(simulate, jobs))
-        except LogNotWritten as unwritten:  # the later logs would be lost too: stop here
-            pool.shutdown(cancel_futures=True)
-            print(f"record_ensemble_events: error: {unwritten_log_words(unwritten)}",
-                  file=sys.stderr)
-            return 1
+        unwritten = first_unwritten_log(pool, simulate, jobs)
+    if unwritten is not None:
+        print(f"record_ensemble_events: error: {unwritten_log_words(unwritten)}",
+              file=sys.stderr)
+        return 1
     combined, unwritten = [], None
     for name in sorted(BUILTIN_OBJECTS):
         try:

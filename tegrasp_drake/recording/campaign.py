@@ -151,6 +151,18 @@ def record_campaign(runs: typing.Sequence[CampaignRun], event_times: EventTimes,
     return combined
 
 
+def first_unwritten_log(pool, function: Callable, jobs) -> LogNotWritten | None:
+    """Runs `function` over `jobs` on the executor `pool` (a campaign's logs, made in
+    parallel); at the first log that cannot be written, cancels the jobs not started (their
+    logs would be lost too) and returns its LogNotWritten; None when every log was written."""
+    try:
+        list(pool.map(function, jobs))
+    except LogNotWritten as unwritten:
+        pool.shutdown(cancel_futures=True)
+        return unwritten
+    return None
+
+
 def unwritten_log_words(unwritten: LogNotWritten) -> str:
     """A campaign's log that could not be written, and what to do, for its one error line."""
     return (f"cannot write the run log {unwritten.path} ({unwritten.reason}): free space or "
