@@ -19,6 +19,7 @@ import sys
 
 import numpy as np
 
+from tegrasp_drake.rig.files import MARKDOWN_START, UserPathError, write_atomically
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.events_folder import load_memorized_events
@@ -158,7 +159,10 @@ def main(argv=None) -> int:
             lines.append(f"| {ra:g} | {p.detected}/{situations} | {p.false}/{p.spans} | {lat} |")
         lines.append("")
         print(transition, best, flush=True)
-    args.out.write_text("\n".join(lines) + "\n")
+    try:
+        write_atomically(args.out, "\n".join(lines) + "\n", start=MARKDOWN_START)
+    except UserPathError as error:
+        raise SystemExit(f"choose_corrective_thresholds: {error}") from None
     print(f"wrote {args.out}")
     return 0
 

@@ -25,6 +25,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 
 from compare_hands import failure_class, load  # noqa: E402
 
+from tegrasp_drake.rig.files import MARKDOWN_START, UserPathError, write_atomically  # noqa: E402
 from tegrasp_drake.scenario.trial_result import TrialResult  # noqa: E402
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value  # noqa: E402
 from tegrasp_drake.sweep.table import succeeded as _succeeded  # noqa: E402
@@ -74,7 +75,8 @@ def _largest_latency_change(reference, coarse) -> str:
 
 def report(reference: dict, coarse: dict, label: str = "coarse") -> str:
     common = sorted(set(reference) & set(coarse))
-    lines = [f"{len(common)} paired trials (reference {len(reference)}, {label} {len(coarse)} "
+    lines = [f"# {label} against the reference, paired trial by trial", "",
+             f"{len(common)} paired trials (reference {len(reference)}, {label} {len(coarse)} "
              "records).", ""]
     for controller in sorted({reference[t][0]["controller"] for t in common}):
         pairs = [(reference[t][0], reference[t][1], coarse[t][1]) for t in common
@@ -119,7 +121,10 @@ def main(argv=None) -> int:
         if not (folder / "trials").is_dir():
             parser.error(f"{folder}: no trials/ folder of sweep records there")
     text = report(load(args.reference), load(args.coarse), args.label)
-    args.out.write_text(text + "\n")
+    try:
+        write_atomically(args.out, text + "\n", start=MARKDOWN_START)
+    except UserPathError as error:
+        raise SystemExit(f"compare_geometry: {error}") from None
     print(text)
     return 0
 

@@ -56,7 +56,11 @@ def main(argv=None) -> int:
                          f"{1000 * result['placement_error_m']:.0f} mm | "
                          f"{result['wall_time_s']:.0f} |")
             print(lines[-1], flush=True)
-    args.out.write_text("\n".join(lines) + "\n")
+    from tegrasp_drake.rig.files import MARKDOWN_TABLE_START, UserPathError, write_atomically
+    try:
+        write_atomically(args.out, "\n".join(lines) + "\n", start=MARKDOWN_TABLE_START)
+    except UserPathError as error:
+        raise SystemExit(f"judge_corrective_triggers: {error}") from None
     return 0
 
 
