@@ -193,7 +193,8 @@ class LiftLoadConfig:
 @dataclasses.dataclass
 class AvoidConfig:
     """Avoid (Sec. III-C): in Hold, RA above hit_ra_mps2 after hit_refractory_s (the lift's stop
-    rings) is a hit; stop sense_s to see its push, move distance_m that way over move_s."""
+    rings) is a hit; stop sense_s to see its push, move distance_m that way over move_s, at
+    most max_avoids times a grasp."""
     enabled: bool = True
     hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
                                  below="must be zero or positive [m/s^2]")
@@ -210,6 +211,11 @@ class AvoidConfig:
                                 below="must be zero or positive [m]")
     move_s: float = bounded(0.6, low=0.0, high=10.0, unit="s",
                             below="must be zero or positive [s]")
+    # Avoids in one grasp; a hit past them is not avoided (Hold goes on to Place). Each
+    # moves the held object distance_m, so 3 keep it within 0.15 m of where it was lifted,
+    # over the table the grasp was planned on, while hits keep coming; the paper's test
+    # strikes once a trial.
+    max_avoids: int = bounded(3, low=0, high=10, below="must be zero or positive")
 
 
 @public_dataclass

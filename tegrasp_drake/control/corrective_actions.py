@@ -24,9 +24,10 @@ R_G_PAD = (RotationMatrix.MakeXRotation(math.pi / 2),  # left pad
 
 @dataclasses.dataclass(frozen=True)
 class Counters:
-    """How many Re-Reach and Lift-Load corrections the grasp has made."""
+    """How many Re-Reach, Lift-Load and Avoid corrections the grasp has made."""
     re_reaches: int = 0
     lift_loads: int = 0
+    avoids: int = 0
     regrasps: int = 0  # the taxel_aware controller's re-grasps of a tilted object
 
 
@@ -119,17 +120,24 @@ def is_hit(ra_mps2: float, time_in_hold_s: float, config: GraspControllerConfig)
     return time_in_hold_s >= avoid.hit_refractory_s and ra_mps2 > avoid.hit_ra_mps2
 
 
-def avoid_on_hit(hit: bool, config: GraspControllerConfig) -> Decision | None:
-    """In Hold: Avoid a hit (is_hit) when Avoid is on; None otherwise."""
-    if config.avoid.enabled and hit:
+def avoiding(counters: Counters, config: GraspControllerConfig) -> bool:
+    """Whether a hit in Hold is avoided: Avoid is on and fewer than avoid.max_avoids made."""
+    return config.avoid.enabled and counters.avoids < config.avoid.max_avoids
+
+
+def avoid_on_hit(hit: bool, counters: Counters,
+                 config: GraspControllerConfig) -> Decision | None:
+    """In Hold: Avoid a hit (is_hit) while `avoiding`; None otherwise."""
+    if hit and avoiding(counters, config):
         return Decision(Mode.AVOID, Trigger.THRESHOLD, "hit: RA above the hit threshold")
     return None
 
 
-def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float,
+def avoid_on_hit_event(hit_event: bool, time_in_hold_s: float, counters: Counters,
                        config: GraspControllerConfig) -> Decision | None:
-    """In Hold: Avoid on the memorized hit event from hit_armed_s [s] in Hold on, else None."""
-    if (config.avoid.enabled and hit_event
+    """In Hold: Avoid on the memorized hit event from hit_armed_s [s] in Hold on while
+    `avoiding`, else None."""
+    if (avoiding(counters, config) and hit_event
             and time_in_hold_s >= config.memorized_corrective.hit_armed_s):
         return Decision(Mode.AVOID, Trigger.CORRECTIVE_EVENT, "memorized hit event in Hold")
     return None

@@ -379,7 +379,8 @@ class GraspStateMachine(LeafSystem):
             return new(segment=MotionSegment(t, p.lift_s * max(remaining, 0.2), tuple(here),
                                              target))
         if mode == Mode.AVOID:  # stop, sense the hit's direction, then move (_sense_hit)
-            return new(stage=Stage.SENSING)
+            return new(stage=Stage.SENSING,
+                       counters=dataclasses.replace(counters, avoids=counters.avoids + 1))
         if mode == Mode.PLACE:
             target = (here[0], here[1], p.grasp_height - p.place_press)
             regrasp = isinstance(decision.action, Regrasp)  # a tilted object

@@ -113,8 +113,9 @@ def _lift_load(s: Situation) -> Decision | None:
 
 def _avoid(s: Situation) -> Decision | None:
     if memorized_corrective_trigger(s.config, "hold_avoid"):
-        return avoid_on_hit_event(s.obs.corrective_event_matched, s.obs.time_in_mode, s.config)
-    return avoid_on_hit(s.obs.hit, s.config)
+        return avoid_on_hit_event(s.obs.corrective_event_matched, s.obs.time_in_mode,
+                                  s.counters, s.config)
+    return avoid_on_hit(s.obs.hit, s.counters, s.config)
 
 
 def _decides(decision: Callable[[Situation], Decision | None]) -> Callable[[Situation], bool]:
@@ -193,7 +194,8 @@ PAPER_RULES = (
     # Hold.
     Rule("avoid_hit", (Mode.HOLD,), 100, _decides(_avoid), _avoid,
          when="a hit: either RA above avoid.hit_ra_mps2 from avoid.hit_refractory_s in Hold "
-         "(or the memorized hit event: memorized_corrective.events); avoid.enabled",
+         "(or the memorized hit event: memorized_corrective.events); avoid.enabled, fewer "
+         "than avoid.max_avoids Avoids made",
          then="Avoid: sense the hit's direction, move avoid.distance_m away"),
     Rule("hold_time", (Mode.HOLD,), 200, lambda s: s.obs.time_in_mode >= s.hold_s,
          lambda s: Decision(Mode.PLACE, Trigger.TIMER, f"held {s.hold_s:g} s"),

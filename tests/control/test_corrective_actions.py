@@ -103,11 +103,19 @@ def test_a_hit_is_ra_above_the_threshold_after_the_refractory_time():
 
 
 def test_a_hit_starts_avoid_unless_switched_off():
-    decision = avoid_on_hit(True, CONFIG)
+    decision = avoid_on_hit(True, Counters(), CONFIG)
     assert (decision.mode, decision.trigger) == (Mode.AVOID, Trigger.THRESHOLD)
-    assert avoid_on_hit(False, CONFIG) is None
+    assert avoid_on_hit(False, Counters(), CONFIG) is None
     off = dataclasses.replace(CONFIG, avoid=dataclasses.replace(CONFIG.avoid, enabled=False))
-    assert avoid_on_hit(True, off) is None
+    assert avoid_on_hit(True, Counters(), off) is None
+
+
+def test_hits_past_max_avoids_are_not_avoided():
+    limit = CONFIG.avoid.max_avoids
+    assert avoid_on_hit(True, Counters(avoids=limit - 1), CONFIG) is not None
+    assert avoid_on_hit(True, Counters(avoids=limit), CONFIG) is None
+    none = dataclasses.replace(CONFIG, avoid=dataclasses.replace(CONFIG.avoid, max_avoids=0))
+    assert avoid_on_hit(True, Counters(), none) is None
 
 
 def test_pad_frames_and_hit_direction():

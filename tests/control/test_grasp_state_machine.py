@@ -8,7 +8,7 @@ from pydrake.systems.analysis import Simulator
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
-from tegrasp_drake.control.controller_config import MemorizedControllerConfig
+from tegrasp_drake.control.controller_config import AvoidConfig, MemorizedControllerConfig
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
 from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
@@ -231,3 +231,22 @@ def test_closed_on_nothing_needs_a_status_that_echoes_the_close_request():
     inputs.set(status=status(0.0, ru.ObjectStatus.AT_REQUESTED_POSITION, request_byte=closed))
     run_until_mode(simulator, machine, Mode.RE_REACH, 0.2)
     assert machine.timeline(context)[-1]["code"] == "closed_on_nothing"
+
+
+def test_hits_in_hold_are_avoided_at_most_max_avoids_times():
+    machine, scenario = make_machine(avoid=AvoidConfig(max_avoids=1))
+    simulator, context, inputs = start(machine)
+    lift(simulator, machine, context, inputs, scenario)
+    run_until_mode(simulator, machine, Mode.HOLD, scenario.grasp.lift_s + 0.1)
+    config = MemorizedControllerConfig()
+    quiet, hit = [10.0, 10.0, 0.1, 0.1], [10.0, 10.0, 10.0 * config.avoid.hit_ra_mps2, 0.1]
+    simulator.AdvanceTo(context.get_time() + config.avoid.hit_refractory_s + 0.01)
+    inputs.set(channels=hit)
+    run_until_mode(simulator, machine, Mode.AVOID, 0.01)
+    inputs.set(channels=quiet)
+    run_until_mode(simulator, machine, Mode.HOLD, config.avoid.sense_s + config.avoid.move_s + 0.1)
+    simulator.AdvanceTo(context.get_time() + config.avoid.hit_refractory_s + 0.01)
+    inputs.set(channels=hit)  # a second hit: past max_avoids, Hold goes on
+    simulator.AdvanceTo(context.get_time() + 0.1)
+    assert mode(machine, context) == Mode.HOLD
+    assert [e["to"] for e in machine.timeline(context)].count("Avoid") == 1

@@ -41,13 +41,15 @@ def decide(mode, config, **fields):
 
 
 def test_a_memorized_hit_event_avoids_once_the_window_is_clear_of_the_stop():
-    decision = avoid_on_hit_event(True, CONFIG.memorized_corrective.hit_armed_s, CONFIG)
+    decision = avoid_on_hit_event(True, CONFIG.memorized_corrective.hit_armed_s, Counters(), CONFIG)
     assert (decision.mode, decision.trigger) == (Mode.AVOID, Trigger.CORRECTIVE_EVENT)
     # The heuristic's refractory time is not enough: the window still holds the stop.
-    assert avoid_on_hit_event(True, CONFIG.avoid.hit_refractory_s + 0.2, CONFIG) is None
-    assert avoid_on_hit_event(False, 1.0, CONFIG) is None
+    assert avoid_on_hit_event(True, CONFIG.avoid.hit_refractory_s + 0.2, Counters(), CONFIG) is None
+    assert avoid_on_hit_event(False, 1.0, Counters(), CONFIG) is None
     no_avoid = dataclasses.replace(CONFIG, avoid=dataclasses.replace(CONFIG.avoid, enabled=False))
-    assert avoid_on_hit_event(True, 1.0, no_avoid) is None
+    assert avoid_on_hit_event(True, 1.0, Counters(), no_avoid) is None
+    used_up = Counters(avoids=CONFIG.avoid.max_avoids)
+    assert avoid_on_hit_event(True, 1.0, used_up, CONFIG) is None
 
 
 def test_a_memorized_slip_event_lift_loads_until_they_are_used_up():
