@@ -1,7 +1,9 @@
 """The one boundary every message from a device crosses: decode, check, count, skip. A check
 returns the checked value or raises `RejectedMessage(reason, detail)` (any other exception counts
 as "undecodable"). A rejected message is counted and skipped and the receiver keeps its last good
-value, so a device sending nothing usable looks silent to the watchdog. Thread-safe."""
+value, so a device sending nothing usable looks silent to the watchdog. What a stream does that
+is no refusal but changes what follows (a device restarting its sequence) is a notice: said
+live, counted by the decoder that saw it. Thread-safe."""
 
 import dataclasses
 import threading
@@ -50,6 +52,7 @@ class MessageBoundary:
         self._lock = threading.Lock()
         self._counters = MessageCounters()
         self._unreported = []  # RejectedMessage of reasons not yet handed to new_rejections
+        self._notices = {}  # what -> [the first detail, how many] not yet handed to new_notices
         self._listeners = []
 
     def add_listener(self, listener: Callable) -> None:
@@ -107,6 +110,22 @@ class MessageBoundary:
         with self._lock:
             new, self._unreported = self._unreported, []
         return new
+
+    def notice(self, what: str, detail: str) -> None:
+        """Records that the stream did `what` ("restarted its sequence"), `detail` saying
+        where, for a live line (new_notices)."""
+        with self._lock:
+            self._notices.setdefault(what, [detail, 0])[1] += 1
+
+    def new_notices(self) -> list[str]:
+        """One line per kind of notice since the last call: the first's detail and, when
+        several came together, how many (a stream that keeps doing it is said once a call,
+        not once a frame)."""
+        with self._lock:
+            notices, self._notices = self._notices, {}
+        return [f"{self.source}: the stream {what} ({detail})"
+                + (f", {count} times since the last report" if count > 1 else "")
+                for what, (detail, count) in notices.items()]
 
     def describe(self, rejection: RejectedMessage) -> str:
         """One line for the first rejection of a reason."""

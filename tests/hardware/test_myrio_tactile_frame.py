@@ -119,6 +119,19 @@ def test_a_restarted_device_is_followed_after_a_run_of_frames():
     decoded = decoder.feed(b"".join(make_frames(RESTART_RUN + 2)))
     assert [f.sequence for f in decoded] == [RESTART_RUN - 1, RESTART_RUN, RESTART_RUN + 1]
     assert decoder.counters.restarts == 1
+    (notice,) = decoder.boundary.new_notices()  # said live (RunReporter prints it)
+    assert "restarted its sequence" in notice and f"sequence {RESTART_RUN - 1}" in notice
+    assert decoder.boundary.new_notices() == []
+
+
+def test_restarts_between_two_looks_are_said_once_with_their_count():
+    decoder = TactileFrameDecoder()
+    decoder.feed(b"".join(make_frames(100)))
+    for _ in range(3):
+        decoder.feed(b"".join(make_frames(RESTART_RUN + 2)))
+    assert decoder.counters.restarts == 3
+    (notice,) = decoder.boundary.new_notices()
+    assert notice.endswith("3 times since the last report") and "\n" not in notice
 
 
 def test_timestamps_are_unwrapped():

@@ -45,3 +45,42 @@ def test_the_live_printout_names_the_rule_that_decided_each_transition():
     scripted = Transition(t=1.25, from_mode=Mode.REACH, to_mode=Mode.LOAD,
                           trigger=Trigger.TIMER, reason="")
     assert ":" not in format_transition(scripted).split("(")[1]
+
+
+def test_a_tactile_stream_restart_is_said_live_with_the_time():
+    from tegrasp_drake.hardware.myrio.tactile_frame import RESTART_RUN, TactileFrameDecoder
+    from tegrasp_drake.runs.hardware_run import RunReporter
+    from tests.hardware.test_myrio_tactile_frame import make_frames
+
+    class Quiet:
+        """A station with no faults, a grasp with no transitions, a bus, at t = 2.5 s."""
+        def GetOutputPort(self, name):
+            return self
+
+        def Eval(self, context):
+            return []
+
+        def GetMyContextFromRoot(self, context):
+            return context
+
+        def transitions(self, context):
+            return []
+
+        def Publish(self, channel, data):
+            pass
+
+        def get_time(self):
+            return 2.5
+
+    decoder = TactileFrameDecoder()
+    decoder.feed(b"".join(make_frames(100)))
+    decoder.feed(b"".join(make_frames(RESTART_RUN + 2)))
+    lines = []
+    quiet = Quiet()
+    RunReporter(diagram=None, station=quiet, grasp=quiet, drake_lcm=quiet, out=lines.append,
+                boundaries=[decoder.boundary])(quiet)
+    # The frames before the restart was taken were refused (said once, as every refusal),
+    # then the restart itself.
+    assert "skipped a message (repeated" in lines[0]
+    assert lines[1].startswith("[   2.500 s] tactile: the stream restarted its sequence")
+    assert len(lines) == 2

@@ -228,6 +228,9 @@ class TactileFrameDecoder:
                                      "follow each other are taken as a device restart")
                     return None
                 self.counters.restarts += 1
+                self.boundary.notice(
+                    "restarted its sequence", f"followed again from sequence {sequence}, "
+                    f"{RESTART_RUN} frames in a row; those before it were refused as implausible")
                 self._candidate = None
                 device_time_us = raw_timestamp  # the restarted device's own clock
         self._last_sequence = sequence
