@@ -3,6 +3,7 @@ RunLog. Channels, types and fields: tegrasp_drake/lcmtypes/README.md. A damaged 
 as far as it goes (RunLog.damage says what was lost); hardware_log_replay.py re-runs the
 matcher on it."""
 
+import bisect
 import dataclasses
 import json
 import pathlib
@@ -12,18 +13,20 @@ import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
+from tegrasp_drake.control.grasp_modes import Mode, Transition
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import field_range, shorten
 from tegrasp_drake.rig.files import file_problem, one_line, read_bounded
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import (
-    FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
-    tactile_arrays)
+    FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
+    TRANSITION_CHANNEL, tactile_arrays)
 from tegrasp_drake.hardware.myrio.tactile_calibration import (COUNT_MAX,
                                                               MAX_TAXEL_GAIN_N_PER_COUNT)
 from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL,
-                                                JACO_STATUS_CHANNEL)
+                                                JACO_STATUS_CHANNEL, check_jaco_status)
+from tegrasp_drake.hardware.message_boundary import RejectedMessage
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -265,23 +268,115 @@ MAX_TIME_OUTLIER_S = 1.0
 
 
 def _in_time_order(messages: list) -> tuple[list, int]:
-    """The (log time, message) pairs whose times never go back (by the message's utime when
-    it has one, else the log's) and that do not repeat a message of the same time byte for
-    byte, and how many did: every timed channel is read through it."""
-    kept, last, same_time = [], -np.inf, set()
+    """The (log time, message) pairs of the longest run of them, in log order, whose times
+    never go back (by the message's utime when it has one, else the log's), byte-for-byte
+    repeats of a message at its time dropped first, and how many were left out: every timed
+    channel is read through it. The longest run, not "each at or after the last kept": one
+    message far in the future (a forged or damaged utime) is left out alone instead of
+    taking every later message with it."""
+    unique, seen = [], set()
     for wall, message in messages:
         t = getattr(message, "utime", wall)
-        if t < last:
-            continue
-        if t > last:
-            same_time = set()
-        data = message.encode()
-        if data in same_time:
-            continue
-        same_time.add(data)
-        kept.append((wall, message))
-        last = t
+        key = (t, message.encode())
+        if key not in seen:
+            seen.add(key)
+            unique.append((t, wall, message))
+    # Longest non-decreasing subsequence: ends[k] is the index of the smallest last time of
+    # a run of length k + 1 so far, before[i] the index preceding i in its run.
+    end_times, ends, before = [], [], []
+    for i, (t, _, _) in enumerate(unique):
+        k = bisect.bisect_right(end_times, t)
+        before.append(ends[k - 1] if k else -1)
+        if k == len(ends):
+            end_times.append(t)
+            ends.append(i)
+        else:
+            end_times[k], ends[k] = t, i
+    run, i = [], ends[-1] if ends else -1
+    while i >= 0:
+        run.append(i)
+        i = before[i]
+    kept = [unique[i][1:] for i in reversed(run)]
     return kept, len(messages) - len(kept)
+
+
+def _time_order_damage(decoded: dict, channel: str) -> list[str]:
+    """Puts `decoded[channel]` in time order (_in_time_order) and says what it left out."""
+    decoded[channel], backwards = _in_time_order(decoded[channel])
+    return ([f"{backwards} message(s) on {channel} repeat or are out of time order (a log "
+             "joined to itself, a message with a forged time, or corrupt bytes); skipped"]
+            if backwards else [])
+
+
+def _live_refusals(messages: list, check) -> tuple[list, dict]:
+    """The (log time, message) pairs whose raw message `check` (the live run's boundary
+    check, e.g. check_jaco_status) accepts, and the refused ones' counts by reason: a
+    message the run refused on the bus (a forged or damaged status) is refused again, so
+    that it never sets the replay's time order."""
+    kept, refused = [], {}
+    for wall, message in messages:
+        try:
+            check(message.encode())
+        except RejectedMessage as rejection:
+            refused[rejection.reason] = refused.get(rejection.reason, 0) + 1
+            continue
+        kept.append((wall, message))
+    return kept, refused
+
+
+def _plausible_transitions(messages: list, span: tuple[float, float] | None,
+                           logged_at=None) -> tuple[list, dict]:
+    """The (log time, lcmt_tegrasp_transition) pairs that can be the run's, and the others'
+    counts by what is wrong, each with the first one's words: no transition a controller
+    makes (Transition's reader refuses it: a mode or trigger no controller has), a time
+    outside the run's tactile stream's `span` [s] (the controller's Context time, which both
+    carry; None: not checked), or more than MAX_TIME_OUTLIER_S from the run's time when it
+    was logged (`logged_at`(receive time [us]) -> that Context time [s], from the tactile
+    messages received around it; None: not checked). The receive time is lcm-logger's, which
+    no publisher sets, so a message on the bus from elsewhere must carry a time within a
+    second of the run's to be taken. Checked before the time order, which a forged time
+    would otherwise set."""
+    kept, wrong = [], {}
+    for wall, message in messages:
+        t = message.utime * 1e-6
+        try:
+            Transition.from_dict({"t": t, "from": message.from_mode, "to": message.to_mode,
+                                  "trigger": message.trigger, "reason": message.reason})
+        except ValueError as error:
+            problem, detail = "are no transition a controller makes", str(error)
+        else:
+            problem, detail = None, (f"{shorten(message.from_mode)} -> "
+                                     f"{shorten(message.to_mode)} at {number_text(t)} s")
+            if span is not None and not span[0] <= t <= span[1]:
+                problem = (f"lie outside the run's tactile stream's time span, "
+                           f"{number_text(span[0])} to {number_text(span[1])} s")
+            elif logged_at is not None and abs(t - logged_at(wall)) > MAX_TIME_OUTLIER_S:
+                problem = (f"carry a time more than {number_text(MAX_TIME_OUTLIER_S)} s from "
+                           "the run's when they were logged")
+                detail += f", logged at {number_text(logged_at(wall))} s"
+        if problem:
+            wrong.setdefault(problem, [0, detail])[0] += 1
+        else:
+            kept.append((wall, message))
+    return kept, wrong
+
+
+def _chained_transitions(messages: list) -> tuple[list, dict]:
+    """The (log time, lcmt_tegrasp_transition) pairs, in time order, each leaving the mode
+    the one before entered (the timeline starts in Reach, GraspStateMachine.initial_state),
+    and the others' count with the first one's words, as _plausible_transitions. One that
+    follows the timeline within a second of the run's time cannot be told from the run's
+    own."""
+    kept, wrong, mode = [], {}, Mode.REACH.label
+    for wall, message in messages:
+        if message.from_mode != mode:
+            wrong.setdefault("do not leave the mode the timeline is in", [0, (
+                f"{shorten(message.from_mode)} -> {shorten(message.to_mode)} at "
+                f"{number_text(message.utime * 1e-6)} s, in {shorten(mode)}")])[0] += 1
+            continue
+        kept.append((wall, message))
+        mode = message.to_mode
+    return kept, wrong
 
 
 def taxel_force_range(scenario) -> tuple[float, float]:
@@ -421,13 +516,17 @@ def read_run_log(path) -> RunLog:
             decoded[channel].append((timestamp, message))
     damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
                " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
-    for channel in (TRANSITION_CHANNEL, FAULT_CHANNEL, GRIPPER_CHANNEL, JACO_COMMAND_CHANNEL,
-                    JACO_STATUS_CHANNEL, RUN_INFO_CHANNEL):
-        decoded[channel], backwards = _in_time_order(decoded[channel])
-        if backwards:
-            damage.append(f"{backwards} message(s) on {channel} repeat or are earlier "
-                          "than the one before (a log joined to itself, or corrupt bytes); "
-                          "skipped")
+    decoded[JACO_STATUS_CHANNEL], refused = _live_refusals(decoded[JACO_STATUS_CHANNEL],
+                                                           check_jaco_status)
+    if refused:
+        damage.append(
+            f"{sum(refused.values())} message(s) on {JACO_STATUS_CHANNEL} are statuses the "
+            "live run refuses ("
+            + ", ".join(f"{reason} {n}" for reason, n in sorted(refused.items()))
+            + "; another publisher on the bus, or corrupt bytes); skipped")
+    for channel in (FAULT_CHANNEL, GRIPPER_CHANNEL, JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL,
+                    RUN_INFO_CHANNEL):
+        damage += _time_order_damage(decoded, channel)
     info = decoded[RUN_INFO_CHANNEL]
     run_info = info[0][1] if info else None
     scenario = None
@@ -447,6 +546,20 @@ def read_run_log(path) -> RunLog:
     decoded[TACTILE_CHANNEL] = tactile_messages
     tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
     tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
+    # The transitions' Context times lie within the tactile stream's, published every tick
+    # from the start of the run to its end (one tick's tolerance each side).
+    span = ((tactile["t"][0] - TACTILE_PUBLISH_PERIOD, tactile["t"][-1] + TACTILE_PUBLISH_PERIOD)
+            if len(tactile["t"]) else None)
+    received = np.maximum.accumulate(tactile["wall_us"]) if span is not None else None
+    logged_at = (None if span is None else
+                 lambda wall: float(np.interp(wall, received, tactile["t"])))
+    decoded[TRANSITION_CHANNEL], wrong = _plausible_transitions(decoded[TRANSITION_CHANNEL],
+                                                                span, logged_at)
+    damage += _time_order_damage(decoded, TRANSITION_CHANNEL)
+    decoded[TRANSITION_CHANNEL], unchained = _chained_transitions(decoded[TRANSITION_CHANNEL])
+    damage += [f"{n} message(s) on {TRANSITION_CHANNEL} {problem} (the first: {detail}; "
+               "another publisher on the bus, or corrupt bytes); skipped"
+               for problem, (n, detail) in sorted(wrong.items()) + list(unchained.items())]
     return RunLog(
         path=path, run_info=run_info, tactile=tactile,
         transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,

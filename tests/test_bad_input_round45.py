@@ -1,0 +1,120 @@
+"""Round 45: a run log whose bus carried forged or damaged messages (another publisher on the
+LCM URL) is replayed from its genuine messages: statuses the live run refuses are refused
+again, one status or transition far in the future costs itself alone, and a transition that
+names no mode, lies outside the run or does not follow the timeline is skipped and said."""
+
+import json
+
+import lcm
+import numpy as np
+import pytest
+
+from tegrasp_drake import cli
+from tegrasp_drake.events import save_memorized_events
+from tegrasp_drake.hardware.device_log_messages import (RUN_INFO_CHANNEL, TACTILE_CHANNEL,
+                                                        TRANSITION_CHANNEL)
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL, make_jaco_status
+from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info, lcmt_tegrasp_transition
+from tegrasp_drake.runs.hardware_log_reader import read_run_log
+from tegrasp_drake.runs.hardware_run import transition_message
+from tegrasp_drake.scenario.trial_log_writer import package_versions
+from tests.runs.test_hardware_log_reader import (EVENTS, GRASP, logged_transitions,
+                                                 tactile_message)
+from tegrasp_drake.events.synthetic import synthetic_grasp
+
+WALL_START_US = 1_764_547_200_000_000  # [us] lcm-logger's clock at the run's start
+ARM_PERIOD_US = 10_000  # the arm's status every 10 ms on its own clock, from 1 s
+ZEROS = [0.0] * 6
+HOME = [0.0, np.pi, np.pi, 0.0, 0.0, 0.0]  # [rad] within each joint's range (JACO_STATUS_RANGES)
+
+
+def status(utime, position=HOME):
+    return make_jaco_status(utime, position, ZEROS, ZEROS).encode()
+
+
+def forged_transition(utime, from_mode, to_mode):
+    message = lcmt_tegrasp_transition()
+    message.utime, message.from_mode, message.to_mode = utime, from_mode, to_mode
+    message.trigger, message.reason = "memorized_event", "forged"
+    return message.encode()
+
+
+def write_log(path, forged_at=None, forged=()):
+    """A run's log (the synthetic grasp at 1 kHz, its transitions, an arm status every
+    10 ms) with the (channel, data) messages `forged` written after tactile tick
+    `forged_at`, as another publisher on the bus would have them logged."""
+    trial = synthetic_grasp(GRASP)
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name = "memorized", "box"
+    info.versions_json = json.dumps(package_versions())
+    now = [0.0]  # [s] the run's time as lcm-logger receives each message
+
+    def write(channel, data):
+        log.write_event(WALL_START_US + round(now[0] * 1e6), channel, data)
+    write(RUN_INFO_CHANNEL, info.encode())
+    transitions = iter(logged_transitions())
+    pending = next(transitions, None)
+    for k, t in enumerate(trial.t_ra):
+        now[0] = t
+        sa = trial.sa[min(np.searchsorted(trial.t_sa, t, side="right") - 1, len(trial.sa) - 1)]
+        write(TACTILE_CHANNEL, tactile_message(t, sa, trial.ra[k]).encode())
+        if k % 10 == 0:
+            write(JACO_STATUS_CHANNEL, status(1_000_000 + k // 10 * ARM_PERIOD_US))
+        if pending is not None and pending["t"] <= t:
+            write(TRANSITION_CHANNEL, transition_message(pending).encode())
+            pending = next(transitions, None)
+        if k == forged_at:
+            for channel, data in forged:
+                write(channel, data)
+    log.close()
+    return path
+
+
+@pytest.fixture(scope="module")
+def genuine(tmp_path_factory):
+    return read_run_log(write_log(tmp_path_factory.mktemp("genuine") / "run.lcmlog"))
+
+
+def test_statuses_the_live_run_refuses_are_refused_again_and_do_not_order_the_rest(
+        genuine, tmp_path):
+    nan = make_jaco_status(2**40, [float("nan")] + HOME[1:], ZEROS, ZEROS).encode()
+    log = read_run_log(write_log(tmp_path / "run.lcmlog", forged_at=100,
+                                 forged=[(JACO_STATUS_CHANNEL, nan)] * 3))
+    assert len(log.arm_status) == len(genuine.arm_status)
+    assert any("live run refuses (not finite 3" in words for words in log.damage)
+
+
+def test_one_status_far_in_the_future_costs_itself_alone(genuine, tmp_path):
+    log = read_run_log(write_log(tmp_path / "run.lcmlog", forged_at=100,
+                                 forged=[(JACO_STATUS_CHANNEL, status(2**62))]))
+    assert len(log.arm_status) == len(genuine.arm_status)
+    assert any(f"1 message(s) on {JACO_STATUS_CHANNEL}" in words for words in log.damage)
+
+
+@pytest.mark.parametrize("utime, from_mode, to_mode, wrong", [
+    (100, "Banana", "Kiwi", "are no transition a controller makes (the first: unknown mode"),
+    (-5, "Reach", "Load", "are no transition a controller makes"),
+    (3_000_000_000, "Reach", "Load", "lie outside the run's tactile stream's time span"),
+    (100_000, "Reach", "Load", "carry a time more than 1 s from the run's when they were "
+                               "logged (the first: Reach -> Load at 0.1 s, logged at 1.5 s"),
+    (2**62, "Reach", "Done", "lie outside the run's tactile stream's time span"),
+    # At 1.5 s the run is in Load (Reach -> Load at 1.1 s, Load -> Lift at 1.9 s).
+    (1_500_000, "Lift", "Hold", "do not leave the mode the timeline is in (the first: Lift "
+                                "-> Hold at 1.5 s, in Load"),
+])
+def test_a_forged_transition_is_skipped_and_said_and_the_timeline_kept(
+        genuine, tmp_path, capfd, utime, from_mode, to_mode, wrong):
+    path = write_log(tmp_path / "run.lcmlog", forged_at=1500,
+                     forged=[(TRANSITION_CHANNEL, forged_transition(utime, from_mode, to_mode))])
+    log = read_run_log(path)
+    assert log.transitions == genuine.transitions
+    assert any(f"1 message(s) on {TRANSITION_CHANNEL} {wrong}" in words
+               for words in log.damage)
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    assert cli.main(["replay", str(path), "--events", str(tmp_path / "events")]) == 3
+    out, err = capfd.readouterr()
+    assert "damaged log" in err and "Traceback" not in err
+    printed = [line.split("]", 1)[1].split("(")[0].strip() for line in out.splitlines()
+               if " -> " in line]
+    assert printed == [f"{t['from']} -> {t['to']}" for t in genuine.transitions]
