@@ -9,7 +9,9 @@ import dataclasses
 
 import pytest
 
+from tegrasp_drake.control.taxel_aware.contact_geometry import release_topples
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+from tegrasp_drake.robotiq.units import STROKE_M
 from tegrasp_drake.scenario.rule_reach import rule_reach
 from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,
                                              load_waited_the_timeout)
@@ -24,6 +26,12 @@ DEFAULT_WORLD = ()
 # event the heavier load does not match is covered by load_timeout_both_pads.
 HEAVY_BOX_KG = 2.0
 HEAVY_BOX = (f"object.mass={HEAVY_BOX_KG}", "controller.event_object_may_differ=[mass]")
+# The heavy box made 180 mm tall (5.5 g/cm3, a steel block's order): a pad's push topples it
+# past 55 mm x 45 mm / 180 mm = 13.75 mm (release_topples at the 55 mm grasp height), within
+# the pad's reach (its face first meets a face 20 mm or less along the stroke), where the
+# 110 mm box needs 22.5 mm. Its 8.0 N limit lets a taxel count (1.69 N).
+TALL_HEAVY_BOX = (f"object.mass={HEAVY_BOX_KG}", "object.size=[0.045,0.045,0.180]",
+                  "controller.event_object_may_differ=[mass,size]")
 
 SCENES = {
     # 12 mm farther than expected: the contact sits on the fingertip rows; centred first.
@@ -49,6 +57,18 @@ SCENES = {
     "finger_strike": (Scene("box", (0.0, 0.03), seed=605), Expect(
         (("Reach", "Re-Reach", "finger_strike"),), first=True,
         check=lambda found, r: found[0].offset_m > 0.01 and found[0].approach_offset_m < 0.0)),
+    # The tall heavy box 19.5 mm along the stroke (its face 0.5 mm inside the open left pad)
+    # and 19 mm farther than expected: at the close's first touch (openings 84-78 mm) the
+    # pad's centre is 10.7-8.3 mm short of where it is at the box's 45 mm
+    # (LinkageHand.pad_center_offset), so the box's near face lies 7-5 mm toward the
+    # fingertips from it: the distal row's taxels (6-12 mm) count, the next row's barely
+    # touched (centroid at least 8.5 mm). Closing on would push it (first-touch opening - 45
+    # mm) / 2, 16-19.5 mm, past its 13.75 mm: the close stops and Re-Reaches 12 mm forward
+    # and toward the left pad by that push. Switched off (on the box 150 mm tall), the paper's
+    # one_sided and three off_centre Re-Reaches used up the Re-Reaches; the box was not held.
+    "beyond_pads": (Scene("box", (0.019, 0.0195), seed=614, overrides=TALL_HEAVY_BOX), Expect(
+        (("Reach", "Re-Reach", "beyond_pads"),), first=True,
+        check=lambda found, r: found[0].approach_offset_m > 0.01 and found[0].offset_m > 0.01)),
     # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
     # threshold, and a correlation never exceeds 1), as for an object whose load the events
     # were not recorded on: lifted after the Load timeout with both pads on the box, where the
@@ -64,6 +84,16 @@ def test_the_heavy_box_is_one_a_pad_can_fire_a_rule_on():
     box = dataclasses.replace(BUILTIN_OBJECTS["box"], mass=HEAVY_BOX_KG)
     reach = rule_reach(objects=[("heavy box", box)])
     assert reach.reaches("pad") == ("heavy box",)
+
+
+def test_the_tall_heavy_box_is_one_a_pad_can_push_past_its_tipping():
+    box = dataclasses.replace(BUILTIN_OBJECTS["box"], mass=HEAVY_BOX_KG,
+                              size=[0.045, 0.045, 0.180])
+    reach = rule_reach(objects=[("tall heavy box", box)])
+    assert reach.reaches("taxel") == ("tall heavy box",)
+    pad_reach_m = (STROKE_M - box.width_along_stroke()) / 2  # the open pad's face meets it
+    assert release_topples(pad_reach_m, grasp_height_m=reach.contact_height_m,
+                           object_width_m=box.width_along_stroke(), object_height_m=box.height())
 
 
 @pytest.mark.parametrize("name", SCENES)
