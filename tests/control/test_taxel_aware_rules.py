@@ -80,6 +80,9 @@ CASES = [
      dict(contact=(True, True), shape=pads(1, 2), event_matched=True), Counters()),
     ("reach_event", Mode.REACH, dict(contact=(True, True), event_matched=True),
      dict(contact=(True, True)), Counters()),
+    ("touch_confirmed", Mode.REACH,
+     dict(contact=(True, False), estimate=dict(match_confirmed_s=0.015)),
+     dict(contact=(True, False), estimate=dict(match_confirmed_s=-1.0)), Counters()),
     ("one_sided_at_width", Mode.REACH, dict(**ONE_SIDED, estimate=dict(opening_m=0.0452)),
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0530)), Counters()),
     ("bracketed_at_extent", Mode.REACH,
@@ -159,6 +162,8 @@ GUARD_CASES = [
      dict(topples_if_released=True)),
     ("grip_settling", "load_lift_event", Mode.LOAD,
      dict(contact=(True, True), event_matched=True), dict(grip_settling=True)),
+    ("touch_unconfirmed", "reach_event", Mode.REACH,
+     dict(contact=(True, True), event_matched=True), dict(touch_unconfirmed=True)),
 ]
 
 
@@ -324,3 +329,17 @@ def test_the_load_timeout_lifts_only_a_grip_the_drop_check_will_not_call_lost():
     clear = situation(contact=(True, True), **LOAD_LATE,
                       estimate=dict(sa_n=(lift + 0.1, lift + 0.1)))
     assert code(Mode.LOAD, clear, config=resolved) == "load_timeout_both_pads"
+
+
+def test_a_reach_load_match_no_pad_confirms_stays_in_reach_where_the_paper_loads():
+    from tegrasp_drake.control.transition_logic import next_mode as paper_next_mode
+    untouched = situation(event_matched=True, estimate=dict(touch_unconfirmed=True))
+    assert decide(Mode.REACH, untouched) is None
+    paper = paper_next_mode(Mode.REACH, untouched, Counters(), MemorizedControllerConfig(),
+                            event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert paper.code == "reach_event"  # the paper's controller is unchanged
+    confirmed = decide(Mode.REACH, situation(contact=(False, True),
+                                             estimate=dict(match_confirmed_s=0.010)))
+    assert (confirmed.mode, confirmed.trigger, confirmed.code) == (
+        Mode.LOAD, Trigger.MEMORIZED_EVENT, "touch_confirmed")
+    assert "right pad" in confirmed.reason
