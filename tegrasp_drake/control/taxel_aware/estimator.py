@@ -84,9 +84,9 @@ class ContactEstimate:
     """What the rules read [s, N, m; world], each field named for what contact_geometry.py
     computes. pad_travel_to_grasp_m: how much further along the approach the pads' centres lie
     once closed (0 on the prismatic hand); bracket: (centre y, extent) or None; grip_settling:
-    the grip has not settled (grip_settling.grip_settled); touch_unconfirmed: in Reach, no
-    pad's SA above contact_force_n; match_confirmed_s: in Reach, the time since the latest
-    Reach-Load match that a pad's touch confirms, -1 none (touch_confirmed.py)."""
+    the grip has not settled (grip_settling.grip_settled); match_confirmed_s: in Reach, the
+    time since the latest Reach-Load match that a pad's touch confirms (0 at the match
+    itself), -1 none (touch_confirmed.py)."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -108,7 +108,6 @@ class ContactEstimate:
     touched_now: tuple = ()
     tilted_s: float = 0.0
     grip_settling: bool = False
-    touch_unconfirmed: bool = False
     match_confirmed_s: float = -1.0
 
     @property
@@ -186,7 +185,6 @@ class ContactEstimator:
                          if r.closing else ()),
             tilted_s=t - tilted_since if tilted else 0.0,
             grip_settling=not grip_settled(r.contact, r.stopped_on_object),
-            touch_unconfirmed=reaching and not any(r.contact),
             match_confirmed_s=(confirmed_delay_s(match_at, t, any(r.contact),
                                                  self._match_confirm_window_s)
                                if reaching else -1.0))

@@ -1,9 +1,11 @@
 """Guard touch_unconfirmed and rule touch_confirmed (Reach): a Reach-Load event match is
-taken only when a pad's touch confirms it. While no pad's SA sum is above contact_force_n
-the paper's reach_event is held back; a pad above it at the match, or within
-match_confirm_window_s after it, takes the match (Load); else the match is dropped and
-Reach goes on, the matcher free to match again (docs/controller.md, "A pad's touch
-confirms the Reach-Load event")."""
+acted on only when a pad's touch confirms it (reach_load_confirmed, the one test every rule
+acting on the match reads: the paper's reach_event through the guard, off_centre and
+touch_confirmed directly). A pad's SA sum above contact_force_n at the match, or within
+match_confirm_window_s after it, confirms it; until then the paper's reach_event and
+off_centre are held back, and a match no pad confirms in the window is dropped, Reach going
+on, the matcher free to match again (docs/controller.md, "A pad's touch confirms the
+Reach-Load event")."""
 
 from tegrasp_drake.control.grasp_modes import Mode
 from tegrasp_drake.control.rule_actions import Load, decide
@@ -33,12 +35,14 @@ def confirmed_delay_s(matched_at: float, t: float, touching: bool, window_s: flo
     return t - matched_at if pending and touching else -1.0
 
 
-def touch_unconfirmed(situation) -> bool:
-    return situation.estimate.touch_unconfirmed
-
-
-def confirmed(situation) -> bool:
+def reach_load_confirmed(situation) -> bool:
+    """The Reach-Load match is confirmed: in Reach, a pad's touch at the latest match or
+    within the window after it (ContactEstimate.match_confirmed_s, 0 at the match itself)."""
     return situation.estimate.match_confirmed_s >= 0.0
+
+
+def touch_unconfirmed(situation) -> bool:
+    return not reach_load_confirmed(situation)
 
 
 def load_confirmed(situation):
@@ -51,9 +55,10 @@ def load_confirmed(situation):
 
 TOUCH_UNCONFIRMED = Guard(
     "touch_unconfirmed", ("reach_event",), touch_unconfirmed,
-    when="no pad's SA above contact_force_n (a Reach-Load match waits for a pad's touch)")
+    when="no pad's touch confirms the Reach-Load match (a pad's SA above contact_force_n at "
+    "it or within two taxel frames and a controller tick after it)")
 TOUCH_CONFIRMED = Rule(
-    "touch_confirmed", (Mode.REACH,), 110, confirmed, load_confirmed,
+    "touch_confirmed", (Mode.REACH,), 110, reach_load_confirmed, load_confirmed,
     when="a pad's SA above contact_force_n within two taxel frames and a controller tick "
     "of a Reach-Load event match",
     then="Load (event): close at the grip force")
