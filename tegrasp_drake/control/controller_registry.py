@@ -31,9 +31,9 @@ PAPER_RULES = "tegrasp_drake.control.transition_logic:rule_table"  # the paper's
 class ControllerEntry:
     """One controller. config: its config class (YAML tag `!<class>`); label, title, color:
     how tables and figures show it. add_systems, detector, rules, estimator: "module:function"
-    references (the builder, the event detector, () -> RuleTable, (config, plan) ->
-    ContactEstimator), None when absent. senses_finger_strike: reads the arm's wrench at G;
-    in_paper: in Table I's comparison."""
+    references (the builder, the event detector, () -> RuleTable, (config, plan, *,
+    sa_rate_hz) -> ContactEstimator), None when absent. senses_finger_strike: reads the
+    arm's wrench at G; in_paper: in Table I's comparison."""
     config: type
     label: str
     title: str

@@ -227,7 +227,8 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
         corrective_event_indices=({t: corrective.event_index(t)
                                    for t in corrective.transitions} if corrective else None),
         rules=entry.rule_table(),
-        estimator=make_estimator(config, plan) if make_estimator else None))
+        estimator=(make_estimator(config, plan, sa_rate_hz=sample_rates_hz[0])
+                   if make_estimator else None)))
     if corrective is not None:
         builder.Connect(machine.GetOutputPort("corrective_expected_event"),
                         corrective.GetInputPort("expected_event"))

@@ -256,6 +256,7 @@ class GraspStateMachine(LeafSystem):
         device_fault = self._device_fault.Eval(context) if self._device_fault.HasValue(
             context) else ""
         time_in_mode = t - s.mode_start
+        event_matched = bool(self._match.Eval(context)[0] > 0.5)
         estimate = None
         if self._estimator is not None:
             memory, estimate = self._estimator.update(s.contact, taxel_aware.ContactReading(
@@ -266,10 +267,10 @@ class GraspStateMachine(LeafSystem):
                 stopped_on_object=echoes_request and int(status[ru.STATUS_OBJ])
                 == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING,
                 wrench=self._approach_wrench(s, context),
-                gripper_y_m=s.segment.position(t)[1]))
+                gripper_y_m=s.segment.position(t)[1], event_matched=event_matched))
             s = dataclasses.replace(s, contact=memory)
         observation = Observation(
-            time_in_mode=time_in_mode, event_matched=bool(self._match.Eval(context)[0] > 0.5),
+            time_in_mode=time_in_mode, event_matched=event_matched,
             motion_done=motion_done,
             time_since_motion_done=t - motion_done_since if motion_done else 0.0,
             closing_s=t - timers.closing_since if closing else -1.0, contact=contact,

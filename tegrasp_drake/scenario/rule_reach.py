@@ -44,6 +44,8 @@ RULE_COUNTS = {
     "held_tilted": (None, "held in Hold: the grip squeezes"),
     "regrasp_after_place": (None, "after held_tilted"),
     "grip_settling": (None, "both pads' sums: the grip squeezes"),
+    "touch_unconfirmed": (None, "holds back while no pad's sum reads: nothing to press"),
+    "touch_confirmed": (None, "a pad's sum just after the Reach-Load event: the close squeezes"),
     "caged": (None, "a first touch on the palm side, by one pad or both at once; both squeeze"),
     "reach_timeout_caged": (None, "after caged"),
     "load_timeout_caged": (None, "after caged"),

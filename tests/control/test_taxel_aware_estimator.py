@@ -9,15 +9,20 @@ from tegrasp_drake.control.grasp_modes import Mode, Stage
 from tegrasp_drake.control.taxel_aware import (ContactEstimator, ContactMemory,
                                                ContactReading, ObjectGeometry)
 from tegrasp_drake.control.taxel_aware.contact_geometry import FaceTouch
+from tegrasp_drake.control.taxel_aware.touch_confirmed import match_confirm_window_s
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS
 
 TAXEL = TaxelAwareConfig()
 THIN = BUILTIN_OBJECTS["thin_cylinder"]
 CONTACT_N = GraspControllerConfig().taxel_contact_n  # the ideal force taxels' number
+# The capacitive pads' frame rate and the controller's tick (docs/model.md, docs/controller.md).
+SA_RATE_HZ = 108.0
+CONFIRM_S = match_confirm_window_s(SA_RATE_HZ, GraspControllerConfig().update_period_s)
 ESTIMATOR = ContactEstimator(
-    taxel_config=TAXEL, taxel_contact_n=CONTACT_N, geometry=ObjectGeometry(
-        width_m=THIN.width_along_stroke(), height_m=THIN.height(), grasp_height_m=0.055))
+    taxel_config=TAXEL, taxel_contact_n=CONTACT_N, match_confirm_window_s=CONFIRM_S,
+    geometry=ObjectGeometry(width_m=THIN.width_along_stroke(), height_m=THIN.height(),
+                            grasp_height_m=0.055))
 
 
 def taxels(left_row=None, right_row=None, force=0.15):
@@ -29,11 +34,13 @@ def taxels(left_row=None, right_row=None, force=0.15):
 
 
 def reading(t=1.0, mode=Mode.REACH, stage=Stage.CLOSING, forces=taxels(), contact=(False, False),
-            opening_m=0.0719, wrench=None, stopped_on_object=False, **changes):
+            opening_m=0.0719, wrench=None, stopped_on_object=False, event_matched=False,
+            **changes):
     return ContactReading(t=t, mode=mode, stage=stage, lift_loads=0, taxel_forces=forces,
                           sa_n=(0.0, 0.0), contact=contact, opening_m=opening_m,
                           at_requested_position=False, stopped_on_object=stopped_on_object,
-                          wrench=wrench, gripper_y_m=0.0, **changes)
+                          wrench=wrench, gripper_y_m=0.0, event_matched=event_matched,
+                          **changes)
 
 
 def test_the_first_touch_on_one_distal_row_of_a_thin_rod_stops_the_close():
@@ -67,7 +74,7 @@ def test_a_sustained_force_on_the_wrist_in_the_approach_is_a_strike():
     assert estimates[-1].strike_finger == "left"  # the moment about z is positive
     off = ContactEstimator(taxel_config=TaxelAwareConfig(finger_strike=type(
         TAXEL.finger_strike)(enabled=False)), taxel_contact_n=CONTACT_N,
-        geometry=ESTIMATOR._geometry)
+        match_confirm_window_s=CONFIRM_S, geometry=ESTIMATOR._geometry)
     assert off.update(memory, reading(stage=Stage.MOVING, wrench=tuple(push)))[1].strike_s == 0
 
 
@@ -105,3 +112,51 @@ def test_the_grip_settles_with_both_pads_on_and_the_fingers_stopped_on_the_objec
     _, estimate = ESTIMATOR.update(ContactMemory(), reading(
         mode=Mode.LOAD, stage=Stage.NONE, contact=contact, stopped_on_object=stopped))
     assert estimate.grip_settling is settling
+
+
+def test_the_confirmation_window_is_two_taxel_frames_and_a_controller_tick():
+    assert match_confirm_window_s(108.0, 0.005) == pytest.approx(2 / 108.0 + 0.005)
+    assert match_confirm_window_s(54.0, 0.005) > match_confirm_window_s(108.0, 0.005)
+    with pytest.raises(ValueError, match="sample rate"):
+        match_confirm_window_s(0.0, 0.005)
+
+
+def confirm_run(touch_after_s, *, matched=(True,), mode=Mode.REACH, t0=3.0):
+    """The estimates of a Reach-Load match on the first ticks (`matched`), no pad touching,
+    then a pad's SA above contact_force_n from `touch_after_s` [s] after the first match
+    (None: never), over 0.1 s of 5 ms ticks."""
+    memory, estimates = ContactMemory(), []
+    for k in range(21):
+        t = t0 + 0.005 * k
+        touching = touch_after_s is not None and t - t0 >= touch_after_s - 1e-9
+        memory, estimate = ESTIMATOR.update(memory, reading(
+            t=t, mode=mode, contact=(touching, False),
+            event_matched=k < len(matched) and matched[k]))
+        estimates.append(estimate)
+    return estimates
+
+
+def test_a_touch_within_the_window_confirms_the_reach_load_match():
+    estimates = confirm_run(0.015)  # the real grasps' +3.9 to +13.9 ms, read on a tick
+    assert [e.match_confirmed_s >= 0 for e in estimates[:4]] == [False, False, False, True]
+    assert estimates[3].match_confirmed_s == pytest.approx(0.015)
+
+
+def test_a_pad_touching_at_the_match_confirms_it_at_once():
+    assert confirm_run(0.0)[0].match_confirmed_s == pytest.approx(0.0, abs=1e-12)
+
+
+def test_a_match_no_pad_confirms_in_the_window_is_dropped():
+    late = confirm_run(CONFIRM_S + 0.005)
+    assert all(e.match_confirmed_s < 0 for e in late)
+    assert all(e.match_confirmed_s < 0 for e in confirm_run(None))
+
+
+def test_the_window_runs_from_the_latest_match():
+    # matched on the first three ticks: a touch 25 ms after the first is 15 ms after the last
+    estimates = confirm_run(0.025, matched=(True, True, True))
+    assert estimates[5].match_confirmed_s == pytest.approx(0.015)
+
+
+def test_no_match_is_confirmed_out_of_reach():
+    assert all(e.match_confirmed_s < 0 for e in confirm_run(0.0, mode=Mode.LOAD))

@@ -4,7 +4,9 @@ seed 600), where one finger pushes the rod to the other before the grip can rise
 ensemble Load-Lift event matches while the grip still rises; lifted then, the rod was
 judged lost on the lift's first tick (both pads under contact_force_n). The guard
 grip_settling holds the event back until both pads touch and the fingers stop on the rod;
-the trial runs until the lift has ended."""
+the trial runs until the lift has ended. Its Reach-Load event matches before a pad's SA sum
+reads the rod, so the close is the one a pad's touch confirms (touch_confirmed), and
+off_centre, reading the same confirmation, does not Re-Reach on the unconfirmed match."""
 
 import pytest
 
@@ -27,7 +29,7 @@ def test_the_rod_pushed_along_the_stroke_is_lifted_once_gripped_and_stays_held()
     run = run_trial(scenario, events=events, corrective_events=corrective,
                     max_time=UNTIL_LIFTED_S)
     codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]
-    assert codes == [("Reach", "Load", "reach_event"), ("Load", "Lift", "load_lift_event"),
+    assert codes == [("Reach", "Load", "touch_confirmed"), ("Load", "Lift", "load_lift_event"),
                      ("Lift", "Hold", "lift_ended")], codes
     lifted_m = run.log.object_state[-1, 6] - run.log.object_state[0, 6]
     assert lifted_m > scenario.grasp.lift_height / 2, lifted_m

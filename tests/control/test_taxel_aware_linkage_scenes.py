@@ -7,14 +7,16 @@ no scene here."""
 
 import dataclasses
 
+import numpy as np
 import pytest
 
+from tegrasp_drake.control.grasp_modes import Mode
 from tegrasp_drake.control.taxel_aware.contact_geometry import release_topples
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.robotiq.units import STROKE_M
 from tegrasp_drake.scenario.rule_reach import rule_reach
 from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,
-                                             load_waited_the_timeout)
+                                             load_waited_the_timeout, run_scene)
 
 pytestmark = pytest.mark.slow
 
@@ -100,3 +102,23 @@ def test_the_tall_heavy_box_is_one_a_pad_can_push_past_its_tipping():
 def test_the_scene_is_decided_by_its_rules_and_grasped(name):
     scene, expect = SCENES[name]
     check_scene(scene, expect, DEFAULT_WORLD)
+
+
+# A box 25 mm deep and 60 mm wide, 30 mm toward the palm: the fingers' backings meet its
+# edges and the fingers curl past it with no pad touching, and the Reach-Load event matches
+# on the backings' push (docs/controller.md, "Known failure: a Reach-Load event with no pad
+# touching"). The grasp cannot be made there; what is checked is that no match loads it.
+UNTOUCHED_BOX = Scene("box", (-0.03, 0.0), seed=660, overrides=(
+    "object.size=[0.025,0.06,0.11]", "controller.event_object_may_differ=[size]"))
+
+
+def test_a_reach_load_match_no_pad_touch_confirms_does_not_load():
+    run = run_scene(UNTOUCHED_BOX, DEFAULT_WORLD)
+    codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]
+    log = run.log
+    pad_force_n = np.column_stack([log.true_taxels[:, :12].sum(axis=1),
+                                   log.true_taxels[:, 12:].sum(axis=1)])
+    for load in (t for t in run.transitions if t.to_mode == Mode.LOAD):
+        frame = np.searchsorted(log.t_sa, load.t, side="right") - 1
+        assert pad_force_n[frame].max() > 0.0, (load.t, codes)
+    assert run.transitions[0].to_mode != Mode.LOAD, codes

@@ -37,10 +37,13 @@ def pads(left_row=None, right_row=None, force=1.0):
 
 def situation(*, contact=(False, False), shape=None, estimate=None, **observation):
     """An Observation with a ContactEstimate: the contact (SA) and the shape as given, the
-    gripper 80 mm open on the 45 mm box; `estimate`: further ContactEstimate fields."""
+    gripper 80 mm open on the 45 mm box, a Reach-Load match this tick confirmed when a pad
+    touches (as the estimator finds it); `estimate`: further ContactEstimate fields."""
+    confirmed_now = observation.get("event_matched", False) and any(contact)
     sensed = ContactEstimate(shape=shape or pads(), sa_n=tuple(3.0 * c for c in contact),
                              contact=contact, opening_m=0.080, object_width_m=WIDTH_M,
-                             gripper_y_m=0.0, approaching=False)
+                             gripper_y_m=0.0, approaching=False,
+                             match_confirmed_s=0.0 if confirmed_now else -1.0)
     sensed = dataclasses.replace(sensed, **(estimate or {}))
     return Observation(contact=contact, estimate=sensed, **observation)
 
@@ -80,6 +83,9 @@ CASES = [
      dict(contact=(True, True), shape=pads(1, 2), event_matched=True), Counters()),
     ("reach_event", Mode.REACH, dict(contact=(True, True), event_matched=True),
      dict(contact=(True, True)), Counters()),
+    ("touch_confirmed", Mode.REACH,
+     dict(contact=(True, False), estimate=dict(match_confirmed_s=0.015)),
+     dict(contact=(True, False), estimate=dict(match_confirmed_s=-1.0)), Counters()),
     ("one_sided_at_width", Mode.REACH, dict(**ONE_SIDED, estimate=dict(opening_m=0.0452)),
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0530)), Counters()),
     ("bracketed_at_extent", Mode.REACH,
@@ -159,6 +165,8 @@ GUARD_CASES = [
      dict(topples_if_released=True)),
     ("grip_settling", "load_lift_event", Mode.LOAD,
      dict(contact=(True, True), event_matched=True), dict(grip_settling=True)),
+    ("touch_unconfirmed", "reach_event", Mode.REACH,
+     dict(contact=(True, True), event_matched=True), dict(match_confirmed_s=-1.0)),
 ]
 
 
@@ -324,3 +332,31 @@ def test_the_load_timeout_lifts_only_a_grip_the_drop_check_will_not_call_lost():
     clear = situation(contact=(True, True), **LOAD_LATE,
                       estimate=dict(sa_n=(lift + 0.1, lift + 0.1)))
     assert code(Mode.LOAD, clear, config=resolved) == "load_timeout_both_pads"
+
+
+def test_a_reach_load_match_no_pad_confirms_stays_in_reach_where_the_paper_loads():
+    from tegrasp_drake.control.transition_logic import next_mode as paper_next_mode
+    untouched = situation(event_matched=True)
+    assert decide(Mode.REACH, untouched) is None
+    paper = paper_next_mode(Mode.REACH, untouched, Counters(), MemorizedControllerConfig(),
+                            event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert paper.code == "reach_event"  # the paper's controller is unchanged
+    confirmed = decide(Mode.REACH, situation(contact=(False, True),
+                                             estimate=dict(match_confirmed_s=0.010)))
+    assert (confirmed.mode, confirmed.trigger, confirmed.code) == (
+        Mode.LOAD, Trigger.MEMORIZED_EVENT, "touch_confirmed")
+    assert "right pad" in confirmed.reason
+
+
+def test_off_centre_acts_only_on_a_reach_load_match_a_pads_touch_confirms():
+    """The taxels show the rod off the pads' centres, but no pad's SA sum reads above
+    contact_force_n: the match is unconfirmed, so off_centre waits as the paper's reach_event
+    does; once a pad's touch confirms the match (after the matching tick), off_centre acts."""
+    unconfirmed = situation(shape=pads(3, 3), event_matched=True)
+    assert decide(Mode.REACH, unconfirmed) is None
+    confirmed_later = situation(contact=(True, True), shape=pads(3, 3),
+                                estimate=dict(match_confirmed_s=0.015))
+    assert code(Mode.REACH, confirmed_later) == "off_centre"
+    centred = situation(contact=(True, True), shape=pads(1, 2),
+                        estimate=dict(match_confirmed_s=0.015))
+    assert code(Mode.REACH, centred) == "touch_confirmed"

@@ -15,7 +15,8 @@ the whole taxel array, over what one ContactEstimator senses.
   caged.py               rules and guard: an object caged behind the pads
   regrasp.py             rules: re-grasp an object held tilted
   tipping_guard.py       guard: no re-centring after a push past the tipping limit
-  grip_settling.py       guard: the Load-Lift event lifts only a settled grip"""
+  grip_settling.py       guard: the Load-Lift event lifts only a settled grip
+  touch_confirmed.py     guard and rule: a pad's touch confirms the Reach-Load event"""
 
 from tegrasp_drake.control.taxel_aware.estimator import (ContactEstimate, ContactEstimator,
                                                          ContactMemory, ContactReading,

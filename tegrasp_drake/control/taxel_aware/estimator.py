@@ -13,6 +13,8 @@ from tegrasp_drake.control.taxel_aware.contact_geometry import (
     bracketed_object, caged_behind_pads, held_tilted, opposite_face, pushed_distance_m,
     release_topples, remembered_faces, touched_beyond_pads, touched_face, touched_faces)
 from tegrasp_drake.control.taxel_aware.grip_settling import grip_settled
+from tegrasp_drake.control.taxel_aware.touch_confirmed import (confirmed_delay_s,
+                                                               match_confirm_window_s)
 from tegrasp_drake.control.taxel_contact import GraspContact, grasp_contact
 
 
@@ -21,7 +23,8 @@ class ContactMemory:
     """What the estimator remembers between ticks (times in s; -1: not running):
     first_touch_* (opening [m; -1 none], approach-axis offset [m], the pad alone or ""),
     the faces touched when the last Re-Reaches began, and the finger strike's baseline
-    wrench, timer, summed side moment and finger."""
+    wrench, timer, summed side moment and finger; reach_match_at: the latest tick of this
+    Reach at which the Reach-Load event matched (touch_confirmed.py)."""
     first_touch_opening_m: float = -1.0
     first_touch_offset_m: float = 0.0
     first_touch_finger: str = ""
@@ -32,6 +35,7 @@ class ContactMemory:
     strike_finger: str = ""
     approach_contact_since: float = -1.0
     tilted_since: float = -1.0
+    reach_match_at: float = -1.0
 
     def after_transition(self, from_mode: Mode, to_mode: Mode,
                          touched_now: tuple) -> "ContactMemory":
@@ -51,7 +55,7 @@ class ContactMemory:
 class ContactReading:
     """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike sense;
     stopped_on_object: the 2F-85 reports its fingers stopped on an object while closing (gOBJ 2)
-    for the close request in force."""
+    for the close request in force; event_matched: the detector matches the mode's event."""
     t: float
     mode: Mode
     stage: object
@@ -64,6 +68,7 @@ class ContactReading:
     stopped_on_object: bool
     wrench: tuple | None
     gripper_y_m: float
+    event_matched: bool
 
     @property
     def approaching(self) -> bool:
@@ -79,7 +84,9 @@ class ContactEstimate:
     """What the rules read [s, N, m; world], each field named for what contact_geometry.py
     computes. pad_travel_to_grasp_m: how much further along the approach the pads' centres lie
     once closed (0 on the prismatic hand); bracket: (centre y, extent) or None; grip_settling:
-    the grip has not settled (grip_settling.grip_settled)."""
+    the grip has not settled (grip_settling.grip_settled); match_confirmed_s: in Reach, the
+    time since the latest Reach-Load match that a pad's touch confirms (0 at the match
+    itself), -1 none (touch_confirmed.py)."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -101,6 +108,7 @@ class ContactEstimate:
     touched_now: tuple = ()
     tilted_s: float = 0.0
     grip_settling: bool = False
+    match_confirmed_s: float = -1.0
 
     @property
     def bracketed_width_m(self) -> float:
@@ -119,12 +127,16 @@ class ObjectGeometry:
 
 
 class ContactEstimator:
-    """Estimates the contact each tick; a taxel counts above taxel_contact_n [N]."""
+    """Estimates the contact each tick; a taxel counts above taxel_contact_n [N]; a pad's
+    touch confirms a Reach-Load match within match_confirm_window_s [s]
+    (touch_confirmed.match_confirm_window_s)."""
 
-    def __init__(self, *, taxel_config, geometry: ObjectGeometry, taxel_contact_n: float):
+    def __init__(self, *, taxel_config, geometry: ObjectGeometry, taxel_contact_n: float,
+                 match_confirm_window_s: float):
         self._config = taxel_config
         self._geometry = geometry
         self._taxel_contact_n = taxel_contact_n
+        self._match_confirm_window_s = match_confirm_window_s
 
     def update(self, memory: ContactMemory, r: ContactReading
                ) -> tuple[ContactMemory, ContactEstimate]:
@@ -134,8 +146,11 @@ class ContactEstimator:
         tilted_since = _since(memory.tilted_since, t, tilted)
         touching_in_approach = r.approaching and any(r.contact)
         approach_since = _since(memory.approach_contact_since, t, touching_in_approach)
+        reaching = r.mode == Mode.REACH
+        match_at = t if reaching and r.event_matched else memory.reach_match_at
         memory = dataclasses.replace(memory, tilted_since=tilted_since,
-                                     approach_contact_since=approach_since)
+                                     approach_contact_since=approach_since,
+                                     reach_match_at=match_at)
         memory, strike = self._sense_strike(memory, r)
         # a Reach-Load event can match a taxel sample (9.3 ms) before the taxels show it
         first_load = r.mode == Mode.LOAD and r.lift_loads == 0
@@ -169,7 +184,10 @@ class ContactEstimator:
             touched_now=(touched_faces(r.contact, r.gripper_y_m, r.opening_m)
                          if r.closing else ()),
             tilted_s=t - tilted_since if tilted else 0.0,
-            grip_settling=not grip_settled(r.contact, r.stopped_on_object))
+            grip_settling=not grip_settled(r.contact, r.stopped_on_object),
+            match_confirmed_s=(confirmed_delay_s(match_at, t, any(r.contact),
+                                                 self._match_confirm_window_s)
+                               if reaching else -1.0))
         return memory, estimate
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):
@@ -213,11 +231,13 @@ def _since(since: float, t: float, on: bool) -> float:
     return (since if since >= 0 else t) if on else -1.0
 
 
-def estimator_for_plan(config, plan) -> ContactEstimator:
-    """The ContactEstimator of taxel_aware `config` for the GraspPlan `plan`."""
+def estimator_for_plan(config, plan, *, sa_rate_hz: float) -> ContactEstimator:
+    """The ContactEstimator of taxel_aware `config` for the GraspPlan `plan`, its pads'
+    taxels sampled at sa_rate_hz [Hz] (the scenario's tactile.sample_rate_hz)."""
     from tegrasp_drake.simulation.gripper_hands import gripper_hand
     return ContactEstimator(
         taxel_config=config.taxel_aware, taxel_contact_n=config.taxel_contact_n,
+        match_confirm_window_s=match_confirm_window_s(sa_rate_hz, config.update_period_s),
         geometry=ObjectGeometry(
             width_m=plan.object_width, height_m=plan.object_height,
             grasp_height_m=plan.grasp_height,

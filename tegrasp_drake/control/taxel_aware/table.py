@@ -17,6 +17,7 @@ from tegrasp_drake.control.taxel_aware.off_centre import OFF_CENTRE
 from tegrasp_drake.control.taxel_aware.one_sided_at_width import ONE_SIDED_AT_WIDTH
 from tegrasp_drake.control.taxel_aware.regrasp import HELD_TILTED, REGRASP_AFTER_PLACE
 from tegrasp_drake.control.taxel_aware.tipping_guard import TIPPING_GUARD
+from tegrasp_drake.control.taxel_aware.touch_confirmed import TOUCH_CONFIRMED, TOUCH_UNCONFIRMED
 from tegrasp_drake.control.transition_logic import PAPER_TABLE
 
 CENTRING_RE_REACH = ReReachMove(
@@ -25,10 +26,12 @@ CENTRING_RE_REACH = ReReachMove(
 
 TAXEL_AWARE_TABLE = PAPER_TABLE.extended(
     "taxel_aware",
-    rules=(FINGER_STRIKE, APPROACH_CONTACT, BEYOND_PADS, OFF_CENTRE, ONE_SIDED_AT_WIDTH,
-           BRACKETED_AT_EXTENT, BRACKET_RECENTRE, REACH_TIMEOUT_BOTH_PADS, REACH_TIMEOUT_CAGED,
-           LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED, REGRASP_AFTER_PLACE),
-    guards=(CAGED, TIPPING_GUARD, GRIP_SETTLING), re_reach_move=CENTRING_RE_REACH)
+    rules=(FINGER_STRIKE, APPROACH_CONTACT, BEYOND_PADS, OFF_CENTRE, TOUCH_CONFIRMED,
+           ONE_SIDED_AT_WIDTH, BRACKETED_AT_EXTENT, BRACKET_RECENTRE, REACH_TIMEOUT_BOTH_PADS,
+           REACH_TIMEOUT_CAGED, LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED,
+           REGRASP_AFTER_PLACE),
+    guards=(CAGED, TIPPING_GUARD, GRIP_SETTLING, TOUCH_UNCONFIRMED),
+    re_reach_move=CENTRING_RE_REACH)
 
 
 def rule_table() -> RuleTable:
