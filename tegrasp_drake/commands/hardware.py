@@ -17,6 +17,7 @@ from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_f
                                                write_result)
 from tegrasp_drake.rig.files import interruptions_deferred, output_file_problem
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, shorten
+from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
@@ -203,7 +204,7 @@ def run(args) -> int:
     faults = len(result.faults) + bool(result.log_fault)  # a log that stops is a fault
     print(f"ran {result.sim_time:.2f} s in {result.wall_time:.2f} s (real-time rate "
           f"{result.realtime_rate:.3f}); {len(result.transitions)} transitions, "
-          f"{faults} fault{'' if faults == 1 else 's'}"
+          f"{count_text(faults, 'fault')}"
           f"{' (the log stopped)' if result.log_fault else ''}; log {result.log_path} "
           f"({result.log_messages} messages), result {result_path}", flush=True)
     if result.log_fault:

@@ -19,6 +19,7 @@ from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, bound_arguments
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
     SweepError,
     benchmark_text,
@@ -154,12 +155,14 @@ def plan_text(spec: SweepSpec) -> str:
         f"friction {own[name].friction})" if name in own else name for name in spec.objects)
     markers = " ".join(f"{name} ({dx * 1000:+g}, {dy * 1000:+g})"
                        for name, (dx, dy) in zip(marker_names(spec.grid), spec.grid))
+    counted = " x ".join(count_text(n, noun) for n, noun in (
+        (len(spec.objects), "object"), (len(spec.grid), "marker"), (spec.attempts, "attempt"),
+        (len(spec.controllers), "controller")))
     r = spec.randomisation
     return "\n".join([
-        f"sweep plan (nothing run): {trial_count(spec)} trials ({len(spec.objects)} objects x "
-        f"{len(spec.grid)} markers x {spec.attempts} attempts x {len(spec.controllers)} "
-        f"controllers), base seed {spec.base_seed}, {core_hours(trial_count(spec))} at "
-        f"{TRIAL_CORE_SECONDS} s a trial",
+        f"sweep plan (nothing run): {count_text(trial_count(spec), 'trial')} ({counted}), "
+        f"base seed {spec.base_seed}, {core_hours(trial_count(spec))} at {TRIAL_CORE_SECONDS} s "
+        "a trial",
         f"  objects: {objects}",
         f"  controllers: {', '.join(spec.controllers)}",
         f"  markers, mm normal to the palm and along the stroke: {markers}",

@@ -9,8 +9,8 @@ from typing import Annotated
 
 from tegrasp_drake.recording.campaign import CampaignRun, RecordEventsError, cut_events
 from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time,
-                                              grip_fraction_at, physical_events,
-                                              scripted_lift_start, true_sa)
+                                              grip_fraction_at, object_sa, physical_events,
+                                              scripted_lift_start)
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.scenario.scenario import Scenario
@@ -62,7 +62,7 @@ def missing_event_advice(transition: str, log, scenario) -> str:
                 f"Load; lengthen grasp.load_s (now {scenario.grasp.load_s:g} s from the close "
                 "command)")
     if transition == "load_lift":
-        sa = true_sa(log)
+        sa = object_sa(log)
         peak = float(sa.min(axis=1).max()) if len(sa) else 0.0
         return (f"the weaker pad's force peaked at {peak:.2f} N (commanded grasp.grip_force = "
                 f"{grip:g} N): the fingers never squeezed the object with both pads, so "

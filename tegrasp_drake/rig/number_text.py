@@ -16,3 +16,9 @@ def number_text(value) -> str:
     if float(value).is_integer() and abs(value) < 1e15:
         return str(int(value))
     return f"{float(value):g}"
+
+
+def count_text(count: int, noun: str) -> str:
+    """`count` things as a message says it: "1 object", "0 objects", "4 objects" (`noun`
+    singular; English adds "s" for every count but one)."""
+    return f"{count} {noun}{'' if count == 1 else 's'}"

@@ -1,18 +1,26 @@
 """Ground-truth judgement of a trial from its TrialLog: lift, hold, placement, release, and
 the times of the physical events that mark the transitions (noise-free simulation truth):
 
-  first_contact        either pad's true normal force first exceeds CONTACT_FORCE_N
+  first_contact        either pad's true normal force on the object first exceeds
+                       CONTACT_FORCE_N
   grip_force_reached   both pads reach GRIP_FRACTION of the grip force (or of the grip's
                        plateau, grip_plateau_n): the grip has settled, the earliest lift
   lift_start           the scripted ideal grasp's start of Lift (None in closed loop)
   table_touch          the object's lowest point back within TOUCH_HEIGHT_M of the table
-                       after lift-off (a tilted object touches with an edge)"""
+                       after lift-off (a tilted object touches with an edge)
+
+A pad's force counts as on the object only while the fingers stand apart (object_sa): fingers
+that closed on nothing press their pads on each other, which the taxels feel as they would
+an object."""
 
 import dataclasses
 
 import numpy as np
 from pydrake.common.eigen_geometry import Quaternion
 from pydrake.math import RotationMatrix
+
+from tegrasp_drake.rig.objects import MIN_SIZE_M
+from tegrasp_drake.robotiq import units as ru
 
 CONTACT_FORCE_N = 0.2
 GRIP_FRACTION = 0.9
@@ -21,6 +29,11 @@ LIFTED_HEIGHT_M = 0.02  # above its resting height, the object counts as lifted
 RELEASED_FORCE_N = 0.5
 # [s] over which the held grip is measured (docs/controller.md, "The grip a trial holds")
 SETTLE_WINDOW_S = 0.2
+# [m] Fingers closer than this hold nothing between their pads: half the thinnest object a
+# scenario takes (rig/objects.MIN_SIZE_M, 5 mm), ten gPO bytes (0.37 mm each) from closed,
+# and far above the pads' squeeze of a held object (25 N on a 20 x 24 mm, 4 mm, 2 MPa pad:
+# 0.1 mm). The pads themselves meet at a zero opening (the gPO's closed byte).
+PADS_MEET_OPENING_M = MIN_SIZE_M / 2
 
 
 @dataclasses.dataclass
@@ -89,22 +102,39 @@ def true_sa(log) -> np.ndarray:
     return log.true_taxels.reshape(len(log.true_taxels), 2, -1).sum(axis=2)
 
 
+def pads_apart(log) -> np.ndarray:
+    """(N,) at each taxel frame (log.t_sa): the fingers' opening in the latest gripper status
+    (gPO, log.t_slow) is at least PADS_MEET_OPENING_M, so what the pads press is between
+    them; before the first status, apart (the fingers start open)."""
+    index = np.searchsorted(log.t_slow, log.t_sa, side="right") - 1
+    opening = ru.opening_from_position_byte(log.gripper_status[:, ru.STATUS_PO])
+    return np.where(index >= 0, opening[np.maximum(index, 0)] >= PADS_MEET_OPENING_M, True)
+
+
+def object_sa(log) -> np.ndarray:
+    """(N, 2) true_sa where the pads press something between them, 0 where the fingers have
+    closed on each other (pads_apart): the pads' force on the object [N]."""
+    return np.where(pads_apart(log)[:, None], true_sa(log), 0.0)
+
+
 def first_contact_time(log, after: float = 0.0):
-    """First time >= after [s] that either pad's true force exceeds CONTACT_FORCE_N."""
-    return _first(log.t_sa, (true_sa(log).max(axis=1) > CONTACT_FORCE_N) & (log.t_sa >= after))
+    """First time >= after [s] that either pad's force on the object exceeds CONTACT_FORCE_N."""
+    return _first(log.t_sa, (object_sa(log).max(axis=1) > CONTACT_FORCE_N) & (log.t_sa >= after))
 
 
 def grip_plateau_n(log, after: float = 0.0) -> float:
-    """The level [N] the weaker pad's true force settles at after `after` [s]: its maximum (the
-    squeeze rises monotonically to it and the lift only redistributes it). 0 without samples."""
-    weaker = true_sa(log).min(axis=1)[log.t_sa >= after]
+    """The level [N] the weaker pad's force on the object settles at after `after` [s]: its
+    maximum (the squeeze rises monotonically to it and the lift only redistributes it). 0
+    without samples."""
+    weaker = object_sa(log).min(axis=1)[log.t_sa >= after]
     return float(weaker.max()) if weaker.size else 0.0
 
 
 def grip_force_time(log, grip_force: float, after: float = 0.0):
-    """First time >= after [s] that both pads' true force reaches GRIP_FRACTION of the grip force,
-    else of grip_plateau_n (thin objects); None when it never rises above CONTACT_FORCE_N."""
-    weaker = true_sa(log).min(axis=1)
+    """First time >= after [s] that both pads' force on the object reaches GRIP_FRACTION of the
+    grip force, else of grip_plateau_n (thin objects); None when it never rises above
+    CONTACT_FORCE_N."""
+    weaker = object_sa(log).min(axis=1)
     level = grip_force
     if not np.any((weaker >= GRIP_FRACTION * grip_force) & (log.t_sa >= after)):
         level = grip_plateau_n(log, after)
@@ -114,24 +144,24 @@ def grip_force_time(log, grip_force: float, after: float = 0.0):
 
 
 def settled_grip_n(log, grip_force: float, after: float = 0.0) -> float:
-    """The grip [N] the weaker pad holds: its median true force over SETTLE_WINDOW_S after
-    the grip force is reached (grip_force_time, after `after` [s]); 0 if never."""
+    """The grip [N] the weaker pad holds: its median force on the object over SETTLE_WINDOW_S
+    after the grip force is reached (grip_force_time, after `after` [s]); 0 if never."""
     start = grip_force_time(log, grip_force, after)
     if start is None:
         return 0.0
-    weaker = true_sa(log).min(axis=1)
+    weaker = object_sa(log).min(axis=1)
     window = (log.t_sa >= start) & (log.t_sa <= start + SETTLE_WINDOW_S)
     return float(np.median(weaker[window]))
 
 
 def grip_fraction_at(log, t: float, grip_force: float, after: float = 0.0) -> float | None:
-    """The weaker pad's true force at t [s] (latest taxel frame) as a fraction of
+    """The weaker pad's force on the object at t [s] (latest taxel frame) as a fraction of
     settled_grip_n; None before the first frame or when the pads never grip."""
     index = int(np.searchsorted(log.t_sa, t, side="right")) - 1
     settled = settled_grip_n(log, grip_force, after)
     if index < 0 or settled <= CONTACT_FORCE_N:
         return None
-    return float(true_sa(log)[index].min() / settled)
+    return float(object_sa(log)[index].min() / settled)
 
 
 def scripted_lift_start(log) -> float | None:

@@ -39,6 +39,7 @@ from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
 from tegrasp_drake.scenario.trial_log_writer import package_versions
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
+from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
@@ -384,7 +385,7 @@ def _run(scenario, config, events, corrective_events, events_dir, log_path,
             wall = time.monotonic() - start
             logger.info(f"hardware: the run ended at {simulator.get_context().get_time():.2f} "
                         f"s after {wall:.2f} s; {len(reporter.transitions)} transitions, "
-                        f"{len(reporter.faults)} fault{'' if len(reporter.faults) == 1 else 's'}")
+                        f"{count_text(len(reporter.faults), 'fault')}")
             counters = {"gripper": station.gripper_client.counters(),
                         "tactile": station.tactile_reader.counters(),
                         "arm": station.arm_status_boundary.counters()}

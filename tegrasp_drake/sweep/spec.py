@@ -16,6 +16,7 @@ import numpy as np
 
 from tegrasp_drake.rig.api_boundary import describe_hint, public_dataclass, value_matches
 from tegrasp_drake.rig.ranges import SEED_RANGE, Range, bounded, check_ranges, field_range
+from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
@@ -509,10 +510,11 @@ def check_study_size(simulations: int, counted: str, what: str, source: str,
 
 def check_sweep_size(spec: SweepSpec, source: str, confirmed: int | None = None) -> None:
     """check_study_size of the sweep's trials, naming its field 'attempts'."""
-    check_study_size(trial_count(spec), f"field 'attempts': {spec.attempts} attempts x "
-                     f"{len(spec.objects)} objects x {len(spec.grid)} markers x "
-                     f"{len(spec.controllers)} controllers", "a sweep", source, confirmed,
-                     unit="trials")
+    counted = " x ".join(count_text(n, noun) for n, noun in (
+        (spec.attempts, "attempt"), (len(spec.objects), "object"), (len(spec.grid), "marker"),
+        (len(spec.controllers), "controller")))
+    check_study_size(trial_count(spec), f"field 'attempts': {counted}", "a sweep", source,
+                     confirmed, unit="trials")
 
 
 def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN_OBJECTS,

@@ -7,9 +7,10 @@ import types
 import numpy as np
 import pytest
 
-from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, grip_force_time, grip_fraction_at,
-                                              lifted_mask, scripted_lift_start)
+from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time, grip_force_time,
+                                              grip_fraction_at, lifted_mask, scripted_lift_start)
 from tegrasp_drake.rig.objects import ObjectConfig
+from tegrasp_drake.robotiq import units as ru
 
 BOX = ObjectConfig(name="box", shape="box", size=[0.045, 0.045, 0.11], mass=0.15,
                    friction=0.8)
@@ -32,12 +33,20 @@ def test_a_box_knocked_onto_its_side_is_not_lifted_but_a_raised_one_is():
     assert list(lifted_mask(raised, BOX)) == [False, True]
 
 
-def squeeze_log(peak_n):
-    """Both pads' force rising linearly to peak_n over 1 s, then flat."""
+def gripper_at(t, opening_m):
+    """t_slow and gripper_status of fingers standing opening_m apart throughout."""
+    status = np.zeros((len(t), ru.STATUS_SIZE))
+    status[:, ru.STATUS_PO] = ru.position_byte_from_opening(opening_m)
+    return dict(t_slow=t, gripper_status=status)
+
+
+def squeeze_log(peak_n, opening_m=0.045):
+    """Both pads' force rising linearly to peak_n over 1 s, then flat, the fingers opening_m
+    apart (by default on a 45 mm box)."""
     t = np.arange(0.0, 2.0, 0.01)
     force = peak_n * np.clip(t, 0.0, 1.0)
     taxels = np.repeat(force[:, None] / 12.0, 24, axis=1)
-    return types.SimpleNamespace(t_sa=t, true_taxels=taxels)
+    return types.SimpleNamespace(t_sa=t, true_taxels=taxels, **gripper_at(t, opening_m))
 
 
 def test_the_grip_force_is_reached_at_the_command_or_at_the_plateau_below_it():
@@ -58,7 +67,7 @@ def overshoot_log(peak_n, held_n):
     t = np.arange(0.0, 2.0, 0.01)
     force = np.where(t < 0.5, 0.0, held_n + (peak_n - held_n) * np.exp(-(t - 0.5) / 0.02))
     taxels = np.repeat(force[:, None] / 12.0, 24, axis=1)
-    return types.SimpleNamespace(t_sa=t, true_taxels=taxels)
+    return types.SimpleNamespace(t_sa=t, true_taxels=taxels, **gripper_at(t, 0.045))
 
 
 def test_the_grip_fraction_is_the_weaker_pads_force_over_the_held_grip():
@@ -74,6 +83,20 @@ def test_the_grip_fraction_is_the_weaker_pads_force_over_the_held_grip():
     # Taxels that never see 90 % of the command: the plateau is the grip.
     assert grip_fraction_at(squeeze_log(21.4), 0.5, 25.0) == pytest.approx(0.5, abs=0.02)
     assert grip_fraction_at(squeeze_log(0.1), 1.5, 25.0) is None  # never squeezed
+
+
+def test_pads_pressed_on_each_other_are_no_contact_and_no_grip():
+    """Fingers that closed on nothing (the 2F-85 at its closed byte) press their pads on each
+    other: the taxels read it (6.3 N a pad, as an open-loop close past a box pushed out of
+    reach did), but no object was touched or gripped. Between the pads of a 5 mm object the
+    same forces are its grip."""
+    empty = squeeze_log(6.3, opening_m=0.0)
+    assert first_contact_time(empty) is None
+    assert grip_force_time(empty, 25.0) is None
+    assert grip_fraction_at(empty, 1.5, 25.0) is None
+    thinnest = squeeze_log(6.3, opening_m=0.005)
+    assert first_contact_time(thinnest) == pytest.approx(0.04, abs=0.011)
+    assert grip_fraction_at(thinnest, 1.5, 25.0) == pytest.approx(1.0, abs=0.01)
 
 
 def test_the_lift_start_is_the_scripts_and_a_closed_loop_log_has_none():
