@@ -43,6 +43,7 @@ from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, ch
                                       expand_trials)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.files import FolderHeldError, UserPathError, held_folder
+from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.ranges import Range, shorten
 from tegrasp_drake.scenario.trial_log_file import LogNotWritten
 
@@ -231,7 +232,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
             path, problem = unwritable[0]
             more = f" (and {len(unwritable) - 1} more)" if len(unwritable) > 1 else ""
             raise SweepError(f"the record {path} {problem}{more}; nothing was run")
-        logger.info(f"sweep: {len(trials)} trials, {len(loaded.records)} records read from "
+        logger.info(f"sweep: {count_text(len(trials), 'trial')}, "
+                    f"{count_text(len(loaded.records), 'record')} read from "
                     f"{out_dir}, {len(pending)} to run")
         if scheduler is None:
             n = pool_size(workers, len(pending))
@@ -240,7 +242,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
         else:
             backend = f"dask:{_scheduler_address(scheduler)}"
             outcomes = _run_on_dask(trial_function, pending, scheduler)
-        logger.info(f"sweep: running {len(pending)} trials on {backend}")
+        logger.info(f"sweep: running {count_text(len(pending), 'trial')} on {backend}")
         ran, errors, unfinished, unwritten_log = _record_outcomes(
             outcomes, pending, out_dir, progress_bar, events)
         logger.info(f"sweep: wrote {ran} trial records in {out_dir} ({len(errors)} errors, "
@@ -560,8 +562,8 @@ def _keep_corrupt_records_aside(corrupt: dict) -> None:
 
 
 def summary_text(summary: SweepSummary) -> str:
-    lines = [f"sweep: {summary.total} trials, {summary.skipped} already finished, "
-             f"{summary.ran} run now on {summary.backend} in {summary.wall_time_s:.1f} s"]
+    lines = [f"sweep: {count_text(summary.total, 'trial')}, {summary.skipped} already "
+             f"finished, {summary.ran} run now on {summary.backend} in {summary.wall_time_s:.1f} s"]
     if summary.other_records:
         lines.append(f"  {summary.other_records} record(s) of trials not in this spec are in "
                      f"{summary.out_dir} (another spec's); the reports count only this "
