@@ -153,26 +153,20 @@ def test_dry_run_prints_the_plan_and_runs_nothing(tmp_path, capsys):
     assert not out.exists()
 
 
-def test_dry_run_of_one_of_each_counts_them_in_the_singular(tmp_path, capsys):
-    """One object, marker, attempt and controller read "1 object", not "1 objects"."""
+@pytest.mark.parametrize("attempts, code, stream, words", [
+    # One object, marker, attempt and controller read "1 object", not "1 objects".
+    (1, 0, "out", "1 trial (1 object x 1 marker x 1 attempt x 1 controller)"),
+    # The size refusal (a usage error) names the factors as the plan does.
+    (100001, 2, "err", "100001 attempts x 1 object x 1 marker x 1 controller"),
+])
+def test_a_plan_counts_its_factors_in_the_singular_where_one(tmp_path, capsys, attempts, code,
+                                                              stream, words):
     spec = tmp_path / "one.yaml"
-    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+    spec.write_text(f"objects: [box]\ncontrollers: [open_loop]\nattempts: {attempts}\n"
                     "grid: [[0.0, 0.0]]\n")
     assert command.main(["--spec", str(spec), "--dry-run", "--out", str(tmp_path / "out"),
-                         *FAKE]) == 0
-    assert ("1 trial (1 object x 1 marker x 1 attempt x 1 controller)"
-            in capsys.readouterr().out)
-
-
-def test_a_sweep_too_large_counts_its_factors_in_the_singular_where_one(tmp_path, capsys):
-    """The size refusal names the factors as the plan does: "1 object x 1 marker"."""
-    spec = tmp_path / "long.yaml"
-    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 100001\n"
-                    "grid: [[0.0, 0.0]]\n")
-    assert command.main(["--spec", str(spec), "--dry-run", "--out", str(tmp_path / "out"),
-                         *FAKE]) == 2  # a usage error: a sweep of that many trials
-    assert ("100001 attempts x 1 object x 1 marker x 1 controller"
-            in capsys.readouterr().err)
+                         *FAKE]) == code
+    assert words in getattr(capsys.readouterr(), stream)
 
 
 def test_dry_run_checks_the_events_as_the_real_sweep_does(tmp_path, capsys):
