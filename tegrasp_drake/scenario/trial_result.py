@@ -81,8 +81,8 @@ class TrialResult:
     def __post_init__(self):
         """ConfigError naming the first field not of its type or out of its range (the
         transitions' own included), the first transition earlier than the one before it,
-        or the first relation between fields that run_trial guarantees and this result
-        breaks. The types first: the relations read the fields' values."""
+        the first transition that leaves a mode other than the one entered before it, or the
+        first relation between fields that run_trial guarantees and this result breaks. The types first: the relations read the fields' values."""
         name = type(self).__name__
         check_field_types(self)
         check_ranges(self, name)
@@ -93,6 +93,13 @@ class TrialResult:
                     f"{name}: field 'transitions[{k}].t' must not be before "
                     f"transitions[{k - 1}].t = {number_text(earlier)} s (a timeline is in "
                     f"time order), got {number_text(later)}")
+        for k in range(1, len(self.transitions)):
+            left, entered = self.transitions[k].from_mode, self.transitions[k - 1].to_mode
+            if left != entered:
+                raise ConfigError(
+                    f"{name}: field 'transitions[{k}].from' must be {entered.label}, the mode "
+                    f"transitions[{k - 1}] entered (a timeline is one chain of modes), got "
+                    f"{left.label}")
         self._check_relations(name)
 
     def _check_relations(self, name: str) -> None:

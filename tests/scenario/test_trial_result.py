@@ -165,6 +165,7 @@ def _edited(path: str, value) -> dict:
 
 
 @pytest.mark.parametrize("path, value, words", [
+    ("transitions.2.from", "Load", "field 'transitions[2].from' must be Reach"),
     ("detection_latency_s.reach_load", -0.5,
      "field 'detection_latency_s.reach_load' must be at least -0.01"),
     ("physical_events.slip", 12.0, "field 'physical_events.slip' names no physical event"),
