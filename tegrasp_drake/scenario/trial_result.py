@@ -24,6 +24,15 @@ HIT_EVENT = "hit"
 # An unload succeeds only with the object standing upright: tilted less than this [deg].
 UPRIGHT_TILT_DEG = 10.0
 
+# How far a latency may lie from its transition's time minus its physical event's, in units in
+# the last place (math.ulp) of the larger of the two times. judge_trial takes the difference once
+# in float64 and JSON carries each float exactly, so a result run_trial wrote matches to the bit
+# (all committed results do); a result written by hand from a decimal latency, its event's time
+# taken as the transition's minus it, is off by the rounding of that latency (half a unit), of
+# that subtraction (half a unit) and of the check's own (exact or half a unit): under 2. A
+# latency off by more is not round-off: 1e-9 s is ten million units at a time of 10 s.
+LATENCY_ROUND_OFF_ULPS = 2
+
 # A failure is the reason a controller gives for going to Failed, one sentence (the longest
 # in the committed sweep records: 109 characters); ten times a long sentence is not one.
 MAX_FAILURE_CHARS = 1000
@@ -172,9 +181,8 @@ class TrialResult:
     def _check_events(self, name: str) -> None:
         """The physical events and latencies as judge_trial gives them (runs/trial.py): a
         physical event is "hit" or one of the event transitions (REQUIRED_TRANSITIONS) the
-        timeline takes; a latency, a detection's time minus its physical event's, is not below
-        -FALSE_TRIGGER_MARGIN_S (a detection earlier by more is a false trigger, counted and
-        given no latency)."""
+        timeline takes; a latency is keyed by an event transition (REQUIRED_TRANSITIONS) and
+        is its detection's (_check_latency)."""
         from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, event_transition
         taken = [(event_transition(e.from_mode.label, e.to_mode.label), e.trigger.is_event)
                  for e in self.transitions]
@@ -188,11 +196,51 @@ class TrialResult:
                                   f"{key} was taken (a physical event is looked for behind a "
                                   "transition the trial took)")
         for key, latency in self.detection_latency_s.items():
-            if latency is not None and latency < -FALSE_TRIGGER_MARGIN_S:
-                raise ConfigError(f"{name}: field 'detection_latency_s.{key}' must be at least "
-                                  f"-{number_text(FALSE_TRIGGER_MARGIN_S)} s (a detection "
-                                  "earlier than its physical event by more is a false trigger, "
-                                  f"given no latency), got {number_text(latency)}")
+            if key not in REQUIRED_TRANSITIONS:
+                raise ConfigError(f"{name}: field 'detection_latency_s.{shorten(key)}' names "
+                                  f"no event transition (one of "
+                                  f"{', '.join(REQUIRED_TRANSITIONS)})")
+            if latency is not None:
+                self._check_latency(name, key, latency)
+
+    def _check_latency(self, name: str, key: str, latency: float) -> None:
+        """A latency is judge_trial's: of an event-triggered transition `key` taken whose
+        physical event was found, not below -FALSE_TRIGGER_MARGIN_S (a detection earlier by
+        more is a false trigger, counted and given no latency), and equal, within
+        LATENCY_ROUND_OFF_ULPS, to the time of the last such detection not a false trigger
+        minus the physical event's (judge_trial keeps the last)."""
+        from tegrasp_drake.events.transitions import event_transition
+        detections = [(k, e.t) for k, e in enumerate(self.transitions) if e.trigger.is_event
+                      and event_transition(e.from_mode.label, e.to_mode.label) == key]
+        if not detections:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' but no "
+                              f"event-triggered transition {key} was taken (a latency is a "
+                              "detection's)")
+        physical = self.physical_events.get(key)
+        if physical is None:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' but "
+                              f"'physical_events.{key}' is not given (a latency is the "
+                              "detection's time minus its physical event's)")
+        if latency < -FALSE_TRIGGER_MARGIN_S:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' must be at least "
+                              f"-{number_text(FALSE_TRIGGER_MARGIN_S)} s (a detection "
+                              "earlier than its physical event by more is a false trigger, "
+                              f"given no latency), got {number_text(latency)}")
+        counted = [(k, t) for k, t in detections if t >= physical - FALSE_TRIGGER_MARGIN_S]
+        if not counted:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' but every {key} "
+                              f"detection came more than {number_text(FALSE_TRIGGER_MARGIN_S)} s "
+                              f"before 'physical_events.{key}' = {number_text(physical)} s "
+                              "(false triggers, given no latency)")
+        k, t = counted[-1]
+        expected = t - physical
+        allowed = LATENCY_ROUND_OFF_ULPS * math.ulp(max(abs(t), abs(physical)))
+        if abs(latency - expected) > allowed:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' must be "
+                              f"transitions[{k}].t - physical_events.{key} = "
+                              f"{number_text(expected)} s (the last {key} detection's time "
+                              f"minus its physical event's), got {number_text(latency)}, off by "
+                              f"{number_text(abs(latency - expected))} s")
 
     def _check_timeline_fields(self, name: str) -> None:
         """The fields judge_trial derives from the timeline alone: a failure is the reason of
