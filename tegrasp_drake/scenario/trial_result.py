@@ -119,7 +119,8 @@ class TrialResult:
         is one sentence; every time is within the simulated time (transitions, the physical
         events and the hold are taken during the run, so a latency, a transition's time minus
         its event's, is within it either way), and that within the longest run a trial can last
-        (grasp_diagram.longest_trial_s), which also bounds the times when it is not set."""
+        (grasp_diagram.longest_trial_s), which also bounds the times when it is not set; last,
+        each latency against the timeline (_check_latency)."""
         if self.unload_success and not self.hold_success:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
                               "false (a trial is judged unloaded only after it held)")
@@ -177,12 +178,16 @@ class TrialResult:
             if abs(value) > limit:
                 raise ConfigError(f"{name}: field '{field}' must be {within} ({why}), got "
                                   f"{number_text(value)}")
+        for key, latency in self.detection_latency_s.items():
+            if latency is not None:
+                self._check_latency(name, key, latency)
 
     def _check_events(self, name: str) -> None:
         """The physical events and latencies as judge_trial gives them (runs/trial.py): a
         physical event is "hit" or one of the event transitions (REQUIRED_TRANSITIONS) the
         timeline takes; a latency is keyed by an event transition (REQUIRED_TRANSITIONS) and
-        is its detection's (_check_latency)."""
+        not below -FALSE_TRIGGER_MARGIN_S (a detection earlier by more is a false trigger,
+        counted and given no latency); its relation to the timeline is _check_latency's."""
         from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, event_transition
         taken = [(event_transition(e.from_mode.label, e.to_mode.label), e.trigger.is_event)
                  for e in self.transitions]
@@ -200,15 +205,18 @@ class TrialResult:
                 raise ConfigError(f"{name}: field 'detection_latency_s.{shorten(key)}' names "
                                   f"no event transition (one of "
                                   f"{', '.join(REQUIRED_TRANSITIONS)})")
-            if latency is not None:
-                self._check_latency(name, key, latency)
+            if latency is not None and latency < -FALSE_TRIGGER_MARGIN_S:
+                raise ConfigError(f"{name}: field 'detection_latency_s.{key}' must be at least "
+                                  f"-{number_text(FALSE_TRIGGER_MARGIN_S)} s (a detection "
+                                  "earlier than its physical event by more is a false trigger, "
+                                  f"given no latency), got {number_text(latency)}")
 
     def _check_latency(self, name: str, key: str, latency: float) -> None:
         """A latency is judge_trial's: of an event-triggered transition `key` taken whose
-        physical event was found, not below -FALSE_TRIGGER_MARGIN_S (a detection earlier by
-        more is a false trigger, counted and given no latency), and equal, within
-        LATENCY_ROUND_OFF_ULPS, to the time of the last such detection not a false trigger
-        minus the physical event's (judge_trial keeps the last)."""
+        physical event was found, and equal, within LATENCY_ROUND_OFF_ULPS, to the time of the
+        last such detection not a false trigger minus the physical event's (judge_trial keeps
+        the last). Checked after the times' bounds, so a latency past the longest run is
+        named as such."""
         from tegrasp_drake.events.transitions import event_transition
         detections = [(k, e.t) for k, e in enumerate(self.transitions) if e.trigger.is_event
                       and event_transition(e.from_mode.label, e.to_mode.label) == key]
@@ -221,11 +229,6 @@ class TrialResult:
             raise ConfigError(f"{name}: field 'detection_latency_s.{key}' but "
                               f"'physical_events.{key}' is not given (a latency is the "
                               "detection's time minus its physical event's)")
-        if latency < -FALSE_TRIGGER_MARGIN_S:
-            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' must be at least "
-                              f"-{number_text(FALSE_TRIGGER_MARGIN_S)} s (a detection "
-                              "earlier than its physical event by more is a false trigger, "
-                              f"given no latency), got {number_text(latency)}")
         counted = [(k, t) for k, t in detections if t >= physical - FALSE_TRIGGER_MARGIN_S]
         if not counted:
             raise ConfigError(f"{name}: field 'detection_latency_s.{key}' but every {key} "
