@@ -91,7 +91,8 @@ class TrialResult:
         """ConfigError naming the first field not of its type or out of its range (the
         transitions' own included), the first transition earlier than the one before it,
         the first transition that leaves a mode other than the one entered before it, or the
-        first relation between fields that run_trial guarantees and this result breaks. The types first: the relations read the fields' values."""
+        first relation between fields that run_trial guarantees and this result breaks. The
+        types first: the relations read the fields' values."""
         name = type(self).__name__
         check_field_types(self)
         check_ranges(self, name)
@@ -246,13 +247,28 @@ class TrialResult:
                               f"{number_text(abs(latency - expected))} s")
 
     def _check_timeline_fields(self, name: str) -> None:
-        """The fields judge_trial derives from the timeline alone: a failure is the reason of
-        a transition to Failed, so is given only when one was taken, and a lift grip fraction
-        is taken at the first Load -> Lift, so is given only when one was taken."""
-        if self.failure and not any(e.to_mode == Mode.FAILED for e in self.transitions):
+        """The fields judge_trial derives from the timeline alone: the failure is the reason
+        of the first transition to Failed ("" when none was taken), the corrective actions
+        are those the transitions start, in order (corrective_action_of), and a lift grip
+        fraction is taken at the first Load -> Lift, so is given only when one was taken."""
+        failed = next(((k, e) for k, e in enumerate(self.transitions)
+                       if e.to_mode == Mode.FAILED), None)
+        if self.failure and failed is None:
             raise ConfigError(f"{name}: field 'failure' is {shorten(repr(self.failure))} but "
                               "no transition goes to Failed (the failure is the reason of the "
                               "transition to Failed; leave it \"\" for none)")
+        if failed is not None and self.failure != failed[1].reason:
+            raise ConfigError(f"{name}: field 'failure' must be the reason of transitions"
+                              f"[{failed[0]}], the first to Failed, "
+                              f"{shorten(repr(failed[1].reason))}, got "
+                              f"{shorten(repr(self.failure))}")
+        from tegrasp_drake.control.corrective_actions import corrective_action_of  # Drake
+        started = [action for action in (corrective_action_of(e.from_mode, e.to_mode, e.trigger)
+                                         for e in self.transitions) if action is not None]
+        if self.corrective_actions != started:
+            raise ConfigError(f"{name}: field 'corrective_actions' must be the actions the "
+                              f"transitions start, in order, [{', '.join(started)}], got "
+                              f"{shorten(repr(self.corrective_actions))}")
         if self.lift_grip_fraction is not None and not any(
                 e.from_mode == Mode.LOAD and e.to_mode == Mode.LIFT for e in self.transitions):
             raise ConfigError(f"{name}: field 'lift_grip_fraction' is "

@@ -24,7 +24,8 @@ def result(**changes):
     base = {"hold_success": True, "unload_success": True, "failure": "", "final_mode": "Done",
             "lift_height_m": 0.06, "final_tilt_deg": 0.5, "released": True}
     changed = {**base, **changes}
-    return {"transitions": timeline_ending(changed["final_mode"]), **changed}
+    return {"transitions": timeline_ending(changed["final_mode"], reason=changed["failure"]),
+            **changed}
 
 
 FAILED = dict(hold_success=False, unload_success=False, final_mode="Failed",
@@ -48,8 +49,9 @@ FAILED = dict(hold_success=False, unload_success=False, final_mode="Failed",
      "object lost"),
     ({**FAILED, "failure": "gripper fault overcurrent"}, "device fault"),
     ({**FAILED, "failure": "tactile: no new data for more than 500 ms",
-      "transitions": [{"t": 5.0, "from": "Hold", "to": "Failed", "trigger": "fault",
-                       "reason": "tactile: ..."}]}, "device fault"),
+      "transitions": [{"t": 5.0, "from": "Reach", "to": "Failed", "trigger": "fault",
+                       "reason": "tactile: no new data for more than 500 ms"}]},
+     "device fault"),
     ({**FAILED, "failure": "something new"}, "other"),
     ({"hold_success": False, "unload_success": False, "lift_height_m": 0.001}, "not lifted"),
     ({"hold_success": False, "unload_success": False, "lift_height_m": 0.05},
@@ -118,7 +120,7 @@ def failed(reason, code, from_mode="Reach", *, lift_loaded=False, trigger="corre
     before = timeline_to(from_mode, lift_loaded)
     t = before[-1]["t"] + 1.0 if before else 5.0
     return TrialResult.from_dict(result(
-        **FAILED, failure=reason,
+        **FAILED, failure=reason, corrective_actions=["lift_load"] if lift_loaded else [],
         transitions=[*before, entry(t, from_mode, "Failed", reason, code, trigger)]))
 
 
