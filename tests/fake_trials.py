@@ -18,14 +18,15 @@ _UNLOAD_PROBABILITY = {"memorized": (0.9, 0.8), "heuristic": (0.8, 0.6),
 SLOW_TRIAL_S = 0.05
 
 
-def timeline_ending(final_mode: str, t: float = 1.0) -> list[dict]:
+def timeline_ending(final_mode: str, t: float = 1.0,
+                    reason: str = "the test's timeline") -> list[dict]:
     """A hand-built result's timeline: one timed transition at `t` [s] from Reach into
-    `final_mode` ([] for Reach), since a result's final mode is its last transition's. No event
+    `final_mode` ([] for Reach), since a result's final mode is its last transition's, for
+    `reason` (a result's failure is the reason of its transition to Failed). No event
     transition: nothing in it counts as a match or a false trigger."""
     if final_mode == "Reach":
         return []
-    return [{"t": t, "from": "Reach", "to": final_mode, "trigger": "timer",
-             "reason": "the test's timeline"}]
+    return [{"t": t, "from": "Reach", "to": final_mode, "trigger": "timer", "reason": reason}]
 
 
 def _uniforms(trial, count):
@@ -118,6 +119,8 @@ def fake_trial_with_events(trial, *, events_dir):
     result["transitions"][load] = {"t": 1.0, "from": "Reach", "to": "Load",
                                 "trigger": "memorized_event", "reason": "Reach-Load event"}
     result["physical_events"] = {"reach_load": 0.97}
+    if result["detection_latency_s"]:  # the detection's at 1 s, 30 ms behind its event
+        result["detection_latency_s"] = {"reach_load": 1.0 - 0.97}
     result["events_dir"] = str(events_dir)
     return result
 

@@ -257,15 +257,17 @@ def test_the_command_classes_a_sweeps_missed_waits_from_its_records_and_logs(tmp
                                                                            ra_scale=0.01)),
               [entry(2.5, Mode.REACH, Mode.LOAD, "Reach-Load event", Trigger.MEMORIZED_EVENT),
                entry(3.0, Mode.LOAD, Mode.LIFT, "Load-Lift event", Trigger.MEMORIZED_EVENT),
+               entry(3.5, Mode.LIFT, Mode.HOLD, "lift motion ended", Trigger.TIMER),
                entry(4.3, Mode.HOLD, Mode.PLACE, "held 3 s", Trigger.TIMER),
                entry(5.5, Mode.PLACE, place.mode, place.reason, Trigger.TIMER)]),
              (dataclasses.replace(SWEEP_GRASP, sensors=dataclasses.replace(SWEEP_GRASP.sensors,
                                                                            right_delay_s=1.0)),
               [entry(3.4, Mode.REACH, reach.mode, reach.reason)])]
-    for trial, (config, transitions) in zip(trials, cases):
+    assert reach.mode == Mode.RE_REACH  # the timeout's first Re-Reach, its corrective action
+    for trial, (config, transitions), actions in zip(trials, cases, ([], ["re_reach"])):
         write_record(tmp_path / "results", make_record(trial, result={
             "transitions": transitions, "hold_success": True, "unload_success": False,
-            "final_mode": transitions[-1]["to"]}))
+            "final_mode": transitions[-1]["to"], "corrective_actions": actions}))
         synthetic_trial_log(synthetic_grasp(config)).save(
             tmp_path / "logs" / trial_log_name(trial))
     out = tmp_path / "weak_stimuli.md"

@@ -93,7 +93,8 @@ def test_a_result_held_then_failed_is_read():
                 {"t": 6.5, "from": "Place", "to": "Failed", "trigger": "threshold",
                  "reason": "object lost"}]
     result = TrialResult.from_dict({"hold_success": True, "final_mode": "Failed",
-                                    "hold_time_s": 3.2, "transitions": timeline})
+                                    "hold_time_s": 3.2, "transitions": timeline,
+                                    "failure": "object lost"})
     assert result.hold_success and not result.unload_success
 
 
@@ -149,14 +150,14 @@ def test_a_controller_trials_metadata_is_read(tmp_path):
 
 # Rule: the stored result's transitions are the log's timeline, entry for entry.
 @pytest.mark.parametrize("transitions, expected", [
-    ([TIMELINE[0], {**TIMELINE[1], "from": "Hold"}],
-     "meta 'result' transitions[1] is Hold -> Lift at 0.05 s (memorized_event), but the log's "
+    ([TIMELINE[0], {**TIMELINE[1], "to": "Hold"}],
+     "meta 'result' transitions[1] is Load -> Hold at 0.05 s (memorized_event), but the log's "
      "'transitions[1]' is Load -> Lift at 0.05 s (memorized_event) (a trial has one timeline)"),
     (TIMELINE + [_event(0.08, "Lift", "Hold")],
      "meta 'result' transitions[2] is Lift -> Hold at 0.08 s (memorized_event), but the log's "
      "'transitions[2]' is absent"),
     (TIMELINE[:1], "meta 'result' transitions[1] is absent"),
-], ids=["from-hold", "one-more", "one-fewer"])
+], ids=["to-hold", "one-more", "one-fewer"])
 def test_a_stored_result_with_another_timeline_is_refused(tmp_path, transitions, expected):
     result = {**RESULT, "transitions": transitions, "final_mode": transitions[-1]["to"]}
     _meta_refused(tmp_path, {**META, "result": result}, expected)

@@ -50,7 +50,11 @@ def test_a_result_time_longer_than_any_run_is_refused_without_sim_time(field, va
 
 def test_a_result_time_within_the_longest_run_is_accepted_without_sim_time():
     from tegrasp_drake.scenario.trial_result import TrialResult
-    result = TrialResult(detection_latency_s={"reach_load": 0.2}, physical_events={"hit": 9.0})
+    from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+    detected = Transition(1.0, Mode.REACH, Mode.LOAD, Trigger.MEMORIZED_EVENT, "Reach-Load event")
+    result = TrialResult(transitions=(detected,), final_mode=Mode.LOAD,
+                         detection_latency_s={"reach_load": 0.2},
+                         physical_events={"reach_load": 0.8, "hit": 9.0})
     assert result.detection_latency_s == {"reach_load": 0.2}
 
 

@@ -70,10 +70,19 @@ def physical_event_times(log, transitions: list[Transition], grip_force: float,
 def lift_grip_fraction(log, transitions: list[Transition], grip_force: float
                        ) -> float | None:
     """The weaker pad's true force at the first Load -> Lift as a fraction of the settled
-    grip (grasp_outcome.grip_fraction_at); None when the trial never lifted from Load."""
-    lift = next((e.t for e in transitions
-                 if e.from_mode == Mode.LOAD and e.to_mode == Mode.LIFT), None)
-    return None if lift is None else grip_fraction_at(log, lift, grip_force)
+    grip (grasp_outcome.grip_fraction_at); None when the trial never lifted from Load. The
+    grip is the one settled after the last Reach before that lift, as for the Load-Lift
+    physical event (physical_event_times): a close before a Re-Reach is let go, and the grip
+    it first reached, measured while the gripper opens, can be a rub of a few tenths of a
+    newton."""
+    reach, lift = 0.0, None
+    for entry in transitions:
+        if entry.from_mode == Mode.LOAD and entry.to_mode == Mode.LIFT:
+            lift = entry.t
+            break
+        if entry.to_mode == Mode.REACH:
+            reach = entry.t
+    return None if lift is None else grip_fraction_at(log, lift, grip_force, after=reach)
 
 
 def judge_trial(log, transitions: list[Transition], scenario) -> dict:

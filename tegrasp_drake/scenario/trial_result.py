@@ -24,6 +24,15 @@ HIT_EVENT = "hit"
 # An unload succeeds only with the object standing upright: tilted less than this [deg].
 UPRIGHT_TILT_DEG = 10.0
 
+# How far a latency may lie from its transition's time minus its physical event's, in units in
+# the last place (math.ulp) of the larger of the two times. judge_trial takes the difference once
+# in float64 and JSON carries each float exactly, so a result run_trial wrote matches to the bit
+# (all committed results do); a result written by hand from a decimal latency, its event's time
+# taken as the transition's minus it, is off by the rounding of that latency (half a unit), of
+# that subtraction (half a unit) and of the check's own (exact or half a unit): under 2. A
+# latency off by more is not round-off: 1e-9 s is ten million units at a time of 10 s.
+LATENCY_ROUND_OFF_ULPS = 2
+
 # A failure is the reason a controller gives for going to Failed, one sentence (the longest
 # in the committed sweep records: 109 characters); ten times a long sentence is not one.
 MAX_FAILURE_CHARS = 1000
@@ -81,8 +90,9 @@ class TrialResult:
     def __post_init__(self):
         """ConfigError naming the first field not of its type or out of its range (the
         transitions' own included), the first transition earlier than the one before it,
-        or the first relation between fields that run_trial guarantees and this result
-        breaks. The types first: the relations read the fields' values."""
+        the first transition that leaves a mode other than the one entered before it, or the
+        first relation between fields that run_trial guarantees and this result breaks. The
+        types first: the relations read the fields' values."""
         name = type(self).__name__
         check_field_types(self)
         check_ranges(self, name)
@@ -93,6 +103,13 @@ class TrialResult:
                     f"{name}: field 'transitions[{k}].t' must not be before "
                     f"transitions[{k - 1}].t = {number_text(earlier)} s (a timeline is in "
                     f"time order), got {number_text(later)}")
+        for k in range(1, len(self.transitions)):
+            left, entered = self.transitions[k].from_mode, self.transitions[k - 1].to_mode
+            if left != entered:
+                raise ConfigError(
+                    f"{name}: field 'transitions[{k}].from' must be {entered.label}, the mode "
+                    f"transitions[{k - 1}] entered (a timeline is one chain of modes), got "
+                    f"{left.label}")
         self._check_relations(name)
 
     def _check_relations(self, name: str) -> None:
@@ -103,7 +120,8 @@ class TrialResult:
         is one sentence; every time is within the simulated time (transitions, the physical
         events and the hold are taken during the run, so a latency, a transition's time minus
         its event's, is within it either way), and that within the longest run a trial can last
-        (grasp_diagram.longest_trial_s), which also bounds the times when it is not set."""
+        (grasp_diagram.longest_trial_s), which also bounds the times when it is not set; last,
+        each latency against the timeline (_check_latency)."""
         if self.unload_success and not self.hold_success:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
                               "false (a trial is judged unloaded only after it held)")
@@ -161,13 +179,16 @@ class TrialResult:
             if abs(value) > limit:
                 raise ConfigError(f"{name}: field '{field}' must be {within} ({why}), got "
                                   f"{number_text(value)}")
+        for key, latency in self.detection_latency_s.items():
+            if latency is not None:
+                self._check_latency(name, key, latency)
 
     def _check_events(self, name: str) -> None:
         """The physical events and latencies as judge_trial gives them (runs/trial.py): a
         physical event is "hit" or one of the event transitions (REQUIRED_TRANSITIONS) the
-        timeline takes; a latency, a detection's time minus its physical event's, is not below
-        -FALSE_TRIGGER_MARGIN_S (a detection earlier by more is a false trigger, counted and
-        given no latency)."""
+        timeline takes; a latency is keyed by an event transition (REQUIRED_TRANSITIONS) and
+        not below -FALSE_TRIGGER_MARGIN_S (a detection earlier by more is a false trigger,
+        counted and given no latency); its relation to the timeline is _check_latency's."""
         from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, event_transition
         taken = [(event_transition(e.from_mode.label, e.to_mode.label), e.trigger.is_event)
                  for e in self.transitions]
@@ -181,20 +202,73 @@ class TrialResult:
                                   f"{key} was taken (a physical event is looked for behind a "
                                   "transition the trial took)")
         for key, latency in self.detection_latency_s.items():
+            if key not in REQUIRED_TRANSITIONS:
+                raise ConfigError(f"{name}: field 'detection_latency_s.{shorten(key)}' names "
+                                  f"no event transition (one of "
+                                  f"{', '.join(REQUIRED_TRANSITIONS)})")
             if latency is not None and latency < -FALSE_TRIGGER_MARGIN_S:
                 raise ConfigError(f"{name}: field 'detection_latency_s.{key}' must be at least "
                                   f"-{number_text(FALSE_TRIGGER_MARGIN_S)} s (a detection "
                                   "earlier than its physical event by more is a false trigger, "
                                   f"given no latency), got {number_text(latency)}")
 
+    def _check_latency(self, name: str, key: str, latency: float) -> None:
+        """A latency is judge_trial's: of an event-triggered transition `key` taken whose
+        physical event was found, and equal, within LATENCY_ROUND_OFF_ULPS, to the time of the
+        last such detection not a false trigger minus the physical event's (judge_trial keeps
+        the last). Checked after the times' bounds, so a latency past the longest run is
+        named as such."""
+        from tegrasp_drake.events.transitions import event_transition
+        detections = [(k, e.t) for k, e in enumerate(self.transitions) if e.trigger.is_event
+                      and event_transition(e.from_mode.label, e.to_mode.label) == key]
+        if not detections:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' but no "
+                              f"event-triggered transition {key} was taken (a latency is a "
+                              "detection's)")
+        physical = self.physical_events.get(key)
+        if physical is None:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' but "
+                              f"'physical_events.{key}' is not given (a latency is the "
+                              "detection's time minus its physical event's)")
+        counted = [(k, t) for k, t in detections if t >= physical - FALSE_TRIGGER_MARGIN_S]
+        if not counted:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' but every {key} "
+                              f"detection came more than {number_text(FALSE_TRIGGER_MARGIN_S)} s "
+                              f"before 'physical_events.{key}' = {number_text(physical)} s "
+                              "(false triggers, given no latency)")
+        k, t = counted[-1]
+        expected = t - physical
+        allowed = LATENCY_ROUND_OFF_ULPS * math.ulp(max(abs(t), abs(physical)))
+        if abs(latency - expected) > allowed:
+            raise ConfigError(f"{name}: field 'detection_latency_s.{key}' must be "
+                              f"transitions[{k}].t - physical_events.{key} = "
+                              f"{number_text(expected)} s (the last {key} detection's time "
+                              f"minus its physical event's), got {number_text(latency)}, off by "
+                              f"{number_text(abs(latency - expected))} s")
+
     def _check_timeline_fields(self, name: str) -> None:
-        """The fields judge_trial derives from the timeline alone: a failure is the reason of
-        a transition to Failed, so is given only when one was taken, and a lift grip fraction
-        is taken at the first Load -> Lift, so is given only when one was taken."""
-        if self.failure and not any(e.to_mode == Mode.FAILED for e in self.transitions):
+        """The fields judge_trial derives from the timeline alone: the failure is the reason
+        of the first transition to Failed ("" when none was taken), the corrective actions
+        are those the transitions start, in order (corrective_action_of), and a lift grip
+        fraction is taken at the first Load -> Lift, so is given only when one was taken."""
+        failed = next(((k, e) for k, e in enumerate(self.transitions)
+                       if e.to_mode == Mode.FAILED), None)
+        if self.failure and failed is None:
             raise ConfigError(f"{name}: field 'failure' is {shorten(repr(self.failure))} but "
                               "no transition goes to Failed (the failure is the reason of the "
                               "transition to Failed; leave it \"\" for none)")
+        if failed is not None and self.failure != failed[1].reason:
+            raise ConfigError(f"{name}: field 'failure' must be the reason of transitions"
+                              f"[{failed[0]}], the first to Failed, "
+                              f"{shorten(repr(failed[1].reason))}, got "
+                              f"{shorten(repr(self.failure))}")
+        from tegrasp_drake.control.corrective_actions import corrective_action_of  # Drake
+        started = [action for action in (corrective_action_of(e.from_mode, e.to_mode, e.trigger)
+                                         for e in self.transitions) if action is not None]
+        if self.corrective_actions != started:
+            raise ConfigError(f"{name}: field 'corrective_actions' must be the actions the "
+                              f"transitions start, in order, [{', '.join(started)}], got "
+                              f"{shorten(repr(self.corrective_actions))}")
         if self.lift_grip_fraction is not None and not any(
                 e.from_mode == Mode.LOAD and e.to_mode == Mode.LIFT for e in self.transitions):
             raise ConfigError(f"{name}: field 'lift_grip_fraction' is "

@@ -55,8 +55,8 @@ def test_the_timeline_shows_the_code_of_the_rule_beside_each_transition(capsys):
             entry(2.0, "Re-Reach", "Reach", "timer", "moved"),  # no code (as open loop)
             entry(3.0, "Reach", "Load", "memorized_event", "Reach-Load event",
                   scores=[0.9, 0.9, 0.9, 0.9], code="reach_event")],
-        "final_mode": "Load", "hold_time_s": 0.0, "final_tilt_deg": 0.0,
-        "sim_time_s": 4.0, "wall_time_s": 8.0, "real_time_factor": 0.5})
+        "final_mode": "Load", "corrective_actions": ["re_reach"], "hold_time_s": 0.0,
+        "final_tilt_deg": 0.0, "sim_time_s": 4.0, "wall_time_s": 8.0, "real_time_factor": 0.5})
     print_result(result)
     timeline = capsys.readouterr().out.splitlines()[1:4]
     assert re.search(r"Reach -> Re-Reach +\[corrective: finger_strike\] a finger struck",

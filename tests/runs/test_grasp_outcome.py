@@ -7,10 +7,12 @@ import types
 import numpy as np
 import pytest
 
+from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time, grip_force_time,
                                               grip_fraction_at, lifted_mask, scripted_lift_start)
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.robotiq import units as ru
+from tegrasp_drake.runs.trial import lift_grip_fraction
 
 BOX = ObjectConfig(name="box", shape="box", size=[0.045, 0.045, 0.11], mass=0.15,
                    friction=0.8)
@@ -104,3 +106,27 @@ def test_the_lift_start_is_the_scripts_and_a_closed_loop_log_has_none():
     closed_loop = types.SimpleNamespace(meta={"phase_starts": {"Load": 3.8, "Lift": 4.2}})
     assert scripted_lift_start(scripted) == 4.6
     assert scripted_lift_start(closed_loop) is None
+
+
+def re_reached_log():
+    """A grasp that re-centred: the first close pinches the object for 40 ms at 0.5 s (28 N),
+    then only rubs it (0.4 N) while the gripper opens, until 1.0 s; after the Reach again at
+    1.5 s the second close rises to 25 N by 2.5 s and holds it."""
+    t = np.arange(0.0, 4.0, 0.01)
+    force = np.where((t >= 0.5) & (t < 0.54), 28.0, np.where((t >= 0.54) & (t < 1.0), 0.4, 0.0))
+    force = np.where(t >= 2.0, 25.0 * np.clip((t - 2.0) / 0.5, 0.0, 1.0), force)
+    taxels = np.repeat(force[:, None] / 12.0, 24, axis=1)
+    return types.SimpleNamespace(t_sa=t, true_taxels=taxels, **gripper_at(t, 0.045))
+
+
+def test_the_lift_grip_fraction_is_of_the_grip_settled_after_the_last_reach():
+    """The settled grip of a trial that re-centred is the second close's, the one it lifts
+    with, not the first close's rub as the gripper opened (which made the fraction 62)."""
+    transitions = [Transition(0.8, Mode.REACH, Mode.RE_REACH, Trigger.CORRECTIVE, "one finger"),
+                   Transition(1.5, Mode.RE_REACH, Mode.REACH, Trigger.CORRECTIVE, "re-centred"),
+                   Transition(2.2, Mode.REACH, Mode.LOAD, Trigger.MEMORIZED_EVENT, "event"),
+                   Transition(3.0, Mode.LOAD, Mode.LIFT, Trigger.MEMORIZED_EVENT, "event")]
+    assert lift_grip_fraction(re_reached_log(), transitions, 25.0) == pytest.approx(1.0,
+                                                                                    abs=0.01)
+    # Without the Re-Reach, the first close's settled grip is the trial's: its rub.
+    assert lift_grip_fraction(re_reached_log(), transitions[2:], 25.0) > 10.0

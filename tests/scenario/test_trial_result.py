@@ -165,10 +165,27 @@ def _edited(path: str, value) -> dict:
 
 
 @pytest.mark.parametrize("path, value, words", [
+    ("transitions.2.from", "Load", "field 'transitions[2].from' must be Reach"),
     ("detection_latency_s.reach_load", -0.5,
      "field 'detection_latency_s.reach_load' must be at least -0.01"),
+    ("detection_latency_s.reach_hold", 0.05,
+     "field 'detection_latency_s.reach_hold' names no event transition"),
+    ("transitions.9.trigger", "timer",
+     "field 'detection_latency_s.load_lift' but no event-triggered transition"),
+    ("physical_events.reach_load", None,
+     "field 'detection_latency_s.reach_load' but 'physical_events.reach_load' is not given"),
+    ("detection_latency_s.reach_load", 0.05,
+     "field 'detection_latency_s.reach_load' must be transitions[8].t - "
+     "physical_events.reach_load = 0.0407407 s"),
+    ("physical_events.place_unload", 17.5,
+     "field 'detection_latency_s.place_unload' but every place_unload detection came more"),
     ("physical_events.slip", 12.0, "field 'physical_events.slip' names no physical event"),
     ("failure", "dropped in Hold", "field 'failure' is 'dropped in Hold' but no transition"),
+    ("corrective_actions", ["re_reach", "re_reach", "re_reach"],
+     "field 'corrective_actions' must be the actions the transitions start, in order, "
+     "[re_reach, re_reach, re_reach, re_reach]"),
+    ("corrective_actions", ["re_reach", "re_reach", "re_reach", "re_reach", "avoid"],
+     "field 'corrective_actions' must be the actions"),
 ])
 def test_a_committed_result_edited_to_contradict_itself_is_refused(path, value, words):
     """Each edit of a real result gives one judge_trial cannot: a timeline whose modes do not
@@ -179,6 +196,42 @@ def test_a_committed_result_edited_to_contradict_itself_is_refused(path, value, 
         TrialResult.from_dict(_edited(path, value))
     message = str(refused.value)
     assert "\n" not in message and words in message, message
+
+
+def test_a_latency_is_its_detections_time_minus_its_events_to_round_off():
+    """A latency written by hand from a decimal (its event the detection's time minus it)
+    reads; one off by a nanosecond does not. The latency is the last detection's counted."""
+    again = (Transition(1.4, Mode.LOAD, Mode.RE_REACH, Trigger.CORRECTIVE, "no Load-Lift event"),
+             Transition(2.0, Mode.RE_REACH, Mode.REACH, Trigger.CORRECTIVE, "re-centred"),
+             _reach_load(3.3))
+    for latency in (0.05, 0.043, 1e-3, 0.0):
+        TrialResult(transitions=(_reach_load(3.3),), final_mode=Mode.LOAD,
+                    physical_events={"reach_load": 3.3 - latency},
+                    detection_latency_s={"reach_load": latency})
+    TrialResult(transitions=(_reach_load(1.0), *again), final_mode=Mode.LOAD,
+                physical_events={"reach_load": 3.3 - 0.043},
+                detection_latency_s={"reach_load": 0.043}, corrective_actions=["re_reach"])
+    with pytest.raises(ConfigError, match="off by 1e-09 s"):
+        TrialResult(transitions=(_reach_load(3.3),), final_mode=Mode.LOAD,
+                    physical_events={"reach_load": 3.3 - 0.043},
+                    detection_latency_s={"reach_load": 0.043 + 1e-9})
+    with pytest.raises(ConfigError, match=r"must be transitions\[3\].t - physical_events"):
+        TrialResult(transitions=(_reach_load(1.0), *again), final_mode=Mode.LOAD,
+                    physical_events={"reach_load": 1.0 - 0.043},
+                    detection_latency_s={"reach_load": 0.043}, corrective_actions=["re_reach"])
+
+
+def test_the_failure_is_the_reason_of_the_transition_to_failed():
+    lost = Transition(2.0, Mode.LOAD, Mode.FAILED, Trigger.THRESHOLD,
+                      "object lost: no finger in contact")
+    TrialResult(transitions=(_reach_load(1.0), lost), final_mode=Mode.FAILED,
+                failure="object lost: no finger in contact")
+    for failure in ("", "dropped in Hold"):
+        with pytest.raises(ConfigError, match=r"field 'failure' must be the reason of "
+                                              r"transitions\[1\], the first to Failed, "
+                                              "'object lost: no finger in contact'"):
+            TrialResult(transitions=(_reach_load(1.0), lost), final_mode=Mode.FAILED,
+                        failure=failure)
 
 
 def test_a_physical_event_needs_its_transition_taken():

@@ -6,23 +6,33 @@ from tegrasp_drake.sweep.detection_report import (
     corrective_counts, event_trigger_rows, hit_avoid_rows, paired_comparison, report_markdown)
 
 
-def record(controller, pair, *, hold=True, unload=None, reach_t=4.05, well_placed=False,
-           actions=()):
-    """A record; unload: as hold unless given (a trial unloads only after it held)."""
-    transitions = [{"t": 3.0, "from": "Reach", "to": "Re-Reach", "trigger": "corrective",
-                    "reason": "only the left finger touched"},
-                   {"t": reach_t, "from": "Reach", "to": "Load",
-                    "trigger": "memorized_event", "reason": "Reach-Load event"}]
+def chain(*steps) -> list[dict]:
+    """A timeline from Reach through `steps`, each (t, to, trigger, reason): every transition
+    leaves the mode the one before it entered, as a trial's do."""
+    timeline, mode = [], "Reach"
+    for t, to, trigger, reason in steps:
+        timeline.append({"t": t, "from": mode, "to": to, "trigger": trigger, "reason": reason})
+        mode = to
+    return timeline
+
+
+RE_REACH = ((3.0, "Re-Reach", "corrective", "only the left finger touched"),
+            (3.4, "Reach", "corrective", "re-centred"))
+
+
+def record(controller, pair, *, hold=True, unload=None, reach_t=4.05, well_placed=False):
+    """A record that re-centred once (one Re-Reach) before its Reach-Load detection at
+    reach_t; unload: as hold unless given (a trial unloads only after it held)."""
     unload = hold if unload is None else unload
+    steps = RE_REACH + ((reach_t, "Load", "memorized_event", "Reach-Load event"),)
     if unload:  # a trial judged unloaded ends Done
-        transitions.append({"t": 12.0, "from": "Load", "to": "Done", "trigger": "timer",
-                            "reason": "the test's timeline"})
+        steps += ((12.0, "Done", "timer", "the test's timeline"),)
     return {"trial_id": f"{controller}/{pair}",
             "trial": {"controller": controller, "pair_id": pair, "well_placed": well_placed},
-            "result": {"transitions": transitions, "hold_success": hold,
+            "result": {"transitions": chain(*steps), "hold_success": hold,
                        "unload_success": unload, "released": unload,
                        "final_mode": "Done" if unload else "Load",
-                       "corrective_actions": list(actions),
+                       "corrective_actions": ["re_reach"],
                        "physical_events": {"reach_load": 4.0}}}
 
 
@@ -49,7 +59,20 @@ def test_mcnemar_counts_the_discordant_pairs_of_the_same_scenes():
 
 
 def test_corrective_actions_are_counted_once_per_trial():
-    records = {"a": record("taxel_aware", "a", actions=("re_reach", "re_reach", "regrasp"))}
+    """Two Re-Reaches, then a re-grasp of the object held tilted (a taxel_aware trial)."""
+    steps = RE_REACH + ((3.6, "Re-Reach", "corrective", "only the left finger touched"),
+                        (4.0, "Reach", "corrective", "re-centred"),
+                        (4.6, "Load", "memorized_event", "Reach-Load event"),
+                        (4.65, "Lift", "memorized_event", "Load-Lift event"),
+                        (6.15, "Hold", "timer", "lift motion ended"),
+                        (6.3, "Place", "corrective", "held tilted: put down to re-grasp"),
+                        (8.8, "Re-Reach", "corrective", "re-grasp: open and close again"),
+                        (10.4, "Reach", "corrective", "re-centred"),
+                        (11.6, "Load", "memorized_event", "Reach-Load event"))
+    result = {"transitions": chain(*steps), "hold_success": False, "final_mode": "Load",
+              "corrective_actions": ["re_reach", "re_reach", "regrasp"]}
+    records = {"a": {"trial": {"controller": "taxel_aware", "pair_id": "a",
+                               "well_placed": False}, "result": result}}
     assert corrective_counts(records)["taxel_aware"] == {"re_reach": 1, "regrasp": 1}
 
 

@@ -24,7 +24,8 @@ def result(**changes):
     base = {"hold_success": True, "unload_success": True, "failure": "", "final_mode": "Done",
             "lift_height_m": 0.06, "final_tilt_deg": 0.5, "released": True}
     changed = {**base, **changes}
-    return {"transitions": timeline_ending(changed["final_mode"]), **changed}
+    return {"transitions": timeline_ending(changed["final_mode"], reason=changed["failure"]),
+            **changed}
 
 
 FAILED = dict(hold_success=False, unload_success=False, final_mode="Failed",
@@ -48,8 +49,9 @@ FAILED = dict(hold_success=False, unload_success=False, final_mode="Failed",
      "object lost"),
     ({**FAILED, "failure": "gripper fault overcurrent"}, "device fault"),
     ({**FAILED, "failure": "tactile: no new data for more than 500 ms",
-      "transitions": [{"t": 5.0, "from": "Hold", "to": "Failed", "trigger": "fault",
-                       "reason": "tactile: ..."}]}, "device fault"),
+      "transitions": [{"t": 5.0, "from": "Reach", "to": "Failed", "trigger": "fault",
+                       "reason": "tactile: no new data for more than 500 ms"}]},
+     "device fault"),
     ({**FAILED, "failure": "something new"}, "other"),
     ({"hold_success": False, "unload_success": False, "lift_height_m": 0.001}, "not lifted"),
     ({"hold_success": False, "unload_success": False, "lift_height_m": 0.05},
@@ -88,14 +90,38 @@ def entry(t, from_mode, to_mode, reason, code, trigger="corrective"):
             "code": code}
 
 
-LIFT_LOAD = entry(4.0, "Lift", "Load", "slip during Lift (Lift-Load)", "lift_load")
+LIFT_LOAD = entry(2.5, "Lift", "Load", "slip during Lift (Lift-Load)", "lift_load")
+RELIFT = entry(3.0, "Load", "Lift", "raised grip force reached (Lift-Load)", "relift")
+# A grasp that runs as the paper's script does, its Lift-Load (if any) after the first Lift.
+GRASP = (entry(1.0, "Reach", "Load", "Reach-Load event", "reach_event", "memorized_event"),
+         entry(2.0, "Load", "Lift", "Load-Lift event", "load_lift_event", "memorized_event"),
+         entry(3.5, "Lift", "Hold", "lift motion ended", "lift_ended", "timer"),
+         entry(6.5, "Hold", "Place", "held 3 s", "hold_time", "timer"),
+         entry(8.0, "Place", "Unload", "Place-Unload event", "place_event", "memorized_event"))
 
 
-def failed(reason, code, from_mode="Reach", *, before=(), trigger="corrective"):
-    """A result that the rule `code` sent from `from_mode` to Failed for `reason`."""
+def timeline_to(mode: str, lift_loaded: bool = False) -> list[dict]:
+    """The grasp's timeline (GRASP) until it enters `mode` ([] for Reach), through a Lift-Load
+    and the Lift after it when `lift_loaded`."""
+    steps = [*GRASP[:2], LIFT_LOAD, RELIFT, *GRASP[2:]] if lift_loaded else list(GRASP)
+    timeline = []
+    if mode == "Reach":
+        return timeline
+    for step in steps:
+        timeline.append(step)
+        if step["to"] == mode and (LIFT_LOAD in timeline or not lift_loaded):
+            return timeline
+    return timeline
+
+
+def failed(reason, code, from_mode="Reach", *, lift_loaded=False, trigger="corrective"):
+    """A result that the rule `code` sent from `from_mode` to Failed for `reason`, a second
+    after the grasp (timeline_to) entered it."""
+    before = timeline_to(from_mode, lift_loaded)
+    t = before[-1]["t"] + 1.0 if before else 5.0
     return TrialResult.from_dict(result(
-        **FAILED, failure=reason,
-        transitions=[*before, entry(5.0, from_mode, "Failed", reason, code, trigger)]))
+        **FAILED, failure=reason, corrective_actions=["lift_load"] if lift_loaded else [],
+        transitions=[*before, entry(t, from_mode, "Failed", reason, code, trigger)]))
 
 
 def without_codes(trial: TrialResult) -> TrialResult:
@@ -123,13 +149,9 @@ def test_the_code_decides_where_the_words_would_mislead():
 
 def test_a_load_timeout_after_a_lift_load_slipped_in_lift():
     reason = "the Load-Lift event did not come in time"
-    before = [entry(1.0, "Reach", "Load", "Reach-Load event", "reach_event", "memorized_event"),
-              entry(2.0, "Load", "Lift", "Load-Lift event", "load_lift_event",
-                    "memorized_event"), LIFT_LOAD]
-    assert failure_class(failed(reason, "load_timeout", "Load", before=before)) == \
+    assert failure_class(failed(reason, "load_timeout", "Load", lift_loaded=True)) == \
         "slipped in Lift"
-    assert failure_class(failed(reason, "load_timeout", "Load", before=before[:1])) == \
-        "event never matched"
+    assert failure_class(failed(reason, "load_timeout", "Load")) == "event never matched"
 
 
 def test_a_rule_that_went_to_failed_without_a_class_is_refused():
@@ -177,7 +199,7 @@ def test_the_paper_rules_failures_class_alike_by_code_and_by_their_words(
                          event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
     assert decision.mode == Mode.FAILED
     trial = failed(decision.reason, decision.code, mode.label,
-                   before=[LIFT_LOAD] if lift_loaded else [], trigger=decision.trigger.value)
+                   lift_loaded=lift_loaded, trigger=decision.trigger.value)
     assert (failure_class(trial), failure_class(without_codes(trial))) == (expected, expected)
 
 

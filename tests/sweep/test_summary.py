@@ -8,7 +8,6 @@ import pytest
 
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.sweep import SweepSpec, expand_trials, make_record
-from tests.fake_trials import timeline_ending
 from tegrasp_drake.sweep.summary import (PAPER_ROW_NAME, RESULTS_BLOCK, RECORDS_LINE, last_commit,
                                          page_with_record_commits, readme_with_summaries,
                                          summary_rows)
@@ -17,11 +16,27 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 RESULTS_PAGE = ROOT / "docs" / "results.md"
 
 
-def result(hold, *, latency=None, false_triggers=0):
+FAILURE = "the object still slips after 2 Lift-Load corrections"
+
+
+def result(hold, *, latency=None, false_triggers=0, trigger="timer"):
+    """A trial through the grasp's modes, to Done when it held, else to Failed from Lift; its
+    event transitions taken by `trigger`, each given in `latency` [s] that far behind its
+    physical event."""
+    latency = latency or {}
+    steps = [(4.0, "Reach", "Load", trigger), (4.5, "Load", "Lift", trigger)]
+    steps += ([(6.0, "Lift", "Hold", "timer"), (9.0, "Hold", "Place", "timer"),
+               (10.5, "Place", "Unload", trigger), (11.5, "Unload", "Done", "timer")]
+              if hold else [(5.0, "Lift", "Failed", "corrective")])
+    timeline = [{"t": t, "from": start, "to": end, "trigger": by,
+                 "reason": FAILURE if end == "Failed" else "the test's timeline"}
+                for t, start, end, by in steps]
+    events = {f"{start}_{end}".lower(): t - latency[f"{start}_{end}".lower()]
+              for t, start, end, _ in steps if f"{start}_{end}".lower() in latency}
     return {"hold_success": hold, "unload_success": hold, "released": hold,
-            "transitions": timeline_ending("Done" if hold else "Failed"),
-            "final_mode": "Done" if hold else "Failed",
-            "corrective_actions": [], "detection_latency_s": latency or {},
+            "transitions": timeline, "final_mode": "Done" if hold else "Failed",
+            "failure": "" if hold else FAILURE, "corrective_actions": [],
+            "physical_events": events, "detection_latency_s": latency,
             "false_triggers": false_triggers, "sim_time_s": 12.0, "wall_time_s": 25.0}
 
 
@@ -34,12 +49,14 @@ def records(objects=("box", "thick_cylinder", "thin_cylinder")):
     for k, trial in enumerate(expand_trials(spec)):
         index = k % 9  # the trial's marker, per (controller, object)
         if trial.controller == "memorized":
-            r = result(not trial.well_placed, latency={"reach_load": 0.1 + 0.01 * index,
-                                            "load_lift": 0.2, "place_unload": 0.3},
-                       false_triggers=int(index % 4 == 0))
+            held = not trial.well_placed  # a failed trial never reached Place
+            latency = {"reach_load": 0.1 + 0.01 * index, "load_lift": 0.2,
+                       **({"place_unload": 0.3} if held else {})}
+            r = result(held, latency=latency, false_triggers=int(index % 4 == 0),
+                       trigger="memorized_event")
         elif trial.controller == "heuristic":
             r = result(True, latency={"reach_load": 0.05, "place_unload": 0.01},
-                       false_triggers=1)
+                       false_triggers=1, trigger="heuristic_event")
         else:
             r = result(True)
         made.append(make_record(trial.to_dict(), result=r))

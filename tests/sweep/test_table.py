@@ -7,7 +7,6 @@ import pytest
 
 from tegrasp_drake.figures.sweep import success_grids, write_success_maps
 from tegrasp_drake.sweep.records import make_record
-from tests.fake_trials import timeline_ending
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.sweep.table import (
     PAPER_TABLE1,
@@ -25,11 +24,32 @@ PAPER_COUNTS = {"box": (3, 3, 24, 24), "thick_cylinder": (3, 3, 20, 20),
                 "thin_cylinder": (3, 2, 18, 6)}
 
 
-def result(hold, unload, **extra):
+LOAD_T = 4.0  # [s] the Reach-Load transition of result()'s timeline
+FAILURE = "the object still slips after 2 Lift-Load corrections"
+
+
+def result(hold, unload, *, re_reaches=0, reach_latency=None, **extra):
+    """A trial that re-centred `re_reaches` times, went to Load at LOAD_T (the Reach-Load
+    event, its latency `reach_latency` behind first contact, if given), and ended Done when
+    unloaded, else Failed."""
+    timeline = []
+    for k in range(re_reaches):
+        timeline += [{"t": 1.0 + 0.8 * k, "from": "Reach", "to": "Re-Reach",
+                      "trigger": "corrective", "reason": "only the left finger touched"},
+                     {"t": 1.4 + 0.8 * k, "from": "Re-Reach", "to": "Reach",
+                      "trigger": "corrective", "reason": "re-centred"}]
+    timeline.append({"t": LOAD_T, "from": "Reach", "to": "Load", "trigger": "memorized_event",
+                     "reason": "Reach-Load event"})
+    timeline.append({"t": 9.0, "from": "Load", "to": "Done" if unload else "Failed",
+                     "trigger": "timer" if unload else "corrective",
+                     "reason": "the test's timeline" if unload else FAILURE})
+    latency = {} if reach_latency is None else {"reach_load": reach_latency}
     return {"hold_success": hold, "unload_success": unload, "released": unload,
-            "transitions": timeline_ending("Done" if unload else "Failed"),
-            "final_mode": "Done" if unload else "Failed",
-            "corrective_actions": [], "detection_latency_s": {}, "false_triggers": 0,
+            "transitions": timeline, "final_mode": "Done" if unload else "Failed",
+            "failure": "" if unload else FAILURE,
+            "corrective_actions": ["re_reach"] * re_reaches,
+            "physical_events": {"reach_load": LOAD_T - reach_latency} if latency else {},
+            "detection_latency_s": latency, "false_triggers": 0,
             "sim_time_s": 10.0, "wall_time_s": 20.0, **extra}
 
 
@@ -50,11 +70,9 @@ def paper_records():
         hold_n, unload_n = counts[:2] if trial.well_placed else counts[2:]
         key = (trial.object_name, trial.well_placed)
         k = seen[key] = seen.get(key, -1) + 1   # k-th trial of this group
-        latency = {"reach->load": 0.01 * (k + 1), "place->unload": None}
-        actions = ["regrasp"] * (k % 3)
         records.append(make_record(t, result=result(
-            k < hold_n, k < unload_n, detection_latency_s=latency,
-            corrective_actions=actions, false_triggers=int(k == 0))))
+            k < hold_n, k < unload_n, re_reaches=k % 3, reach_latency=0.01 * (k + 1),
+            false_triggers=int(k == 0))))
     return records
 
 
@@ -129,19 +147,17 @@ def test_statistics_of_latency_actions_and_false_triggers(records, tmp_path):
     statistics = controller_statistics(records)
     memorized = statistics["memorized"]
     assert memorized["trials"] == 81 and statistics["open_loop"]["errors"] == 1
-    reach = memorized["detection_latency_s"]["reach->load"]
+    reach = memorized["detection_latency_s"]["reach_load"]
     # Per object: 3 well-placed latencies 0.01..0.03 and 24 misplaced 0.01..0.24.
     values = sorted([0.01 * (k + 1) for k in range(3)] * 3
                     + [0.01 * (k + 1) for k in range(24)] * 3)
     assert reach["n"] == 81 and reach["median"] == pytest.approx(values[40])
     assert reach["p90"] == pytest.approx(values[72])  # linear percentile, 0.9 x 80
-    assert memorized["detection_latency_s"]["place->unload"] == {
-        "n": 0, "median": None, "p90": None, "not_detected": 81}
-    regrasps = 3 * (1 + 2 + 8 * 1 + 8 * 2)  # k % 3 over k < 3 and k < 24, three objects
-    assert memorized["corrective_actions"]["counts"] == {"regrasp": regrasps}
+    re_reaches = 3 * (1 + 2 + 8 * 1 + 8 * 2)  # k % 3 over k < 3 and k < 24, three objects
+    assert memorized["corrective_actions"]["counts"] == {"re_reach": re_reaches}
     assert memorized["false_triggers"]["total"] == 6  # k == 0 in six groups
     paths = write_statistics(records, tmp_path)
-    assert "| reach->load | 81 | 0 |" in paths[0].read_text()
+    assert "| reach_load | 81 | 0 |" in paths[0].read_text()
     assert json.loads(paths[1].read_text())["controllers"]["memorized"]["trials"] == 81
 
 
