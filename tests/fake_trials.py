@@ -8,6 +8,7 @@ trial), and each controller turns them into success with its own probability.
 
 import hashlib
 import os
+import pathlib
 import time
 
 # P(success) by controller and placement: (well placed, misplaced).
@@ -71,6 +72,15 @@ def slow_fake_trial(trial):
     result = fake_trial(trial)
     result["wall_time_s"] = SLOW_TRIAL_S  # Nominal, so records stay deterministic.
     return result
+
+
+def started_fake_trial(trial):
+    """Says it started (a file named for its trial in the folder $FAKE_TRIALS_STARTED), then
+    runs for a minute: a trial the sweep is in the middle of when a test signals it."""
+    folder = pathlib.Path(os.environ["FAKE_TRIALS_STARTED"])
+    (folder / trial["trial_id"].replace("/", ".")).touch()
+    time.sleep(60.0)
+    return fake_trial(trial)
 
 
 def failing_fake_trial(trial):

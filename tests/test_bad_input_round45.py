@@ -3,7 +3,13 @@ LCM URL) is replayed from its genuine messages: statuses the live run refuses ar
 again, one status or transition far in the future costs itself alone, and a transition that
 names no mode, lies outside the run or does not follow the timeline is skipped and said."""
 
+import contextlib
 import json
+import os
+import signal
+import subprocess
+import sys
+import time
 
 import lcm
 import numpy as np
@@ -21,6 +27,9 @@ from tegrasp_drake.scenario.trial_log_writer import package_versions
 from tests.runs.test_hardware_log_reader import (EVENTS, GRASP, logged_transitions,
                                                  tactile_message)
 from tegrasp_drake.events.synthetic import synthetic_grasp
+from tests import killed_runs
+from tests.test_bad_input_round29 import (_assert_one_interruption_line,
+                                          _default_signal_dispositions)
 
 WALL_START_US = 1_764_547_200_000_000  # [us] lcm-logger's clock at the run's start
 ARM_PERIOD_US = 10_000  # the arm's status every 10 ms on its own clock, from 1 s
@@ -118,3 +127,30 @@ def test_a_forged_transition_is_skipped_and_said_and_the_timeline_kept(
     printed = [line.split("]", 1)[1].split("(")[0].strip() for line in out.splitlines()
                if " -> " in line]
     assert printed == [f"{t['from']} -> {t['to']}" for t in genuine.transitions]
+
+
+def test_a_hangup_sent_to_a_sweeps_process_group_is_one_line(tmp_path):
+    """A terminal that closes sends SIGHUP to the whole process group, the pool's helper
+    processes too; multiprocessing's resource tracker died of it and, relaunched during the
+    clean-up, printed a traceback for each semaphore it had not seen."""
+    started = tmp_path / "started"
+    started.mkdir()
+    process = subprocess.Popen(
+        [sys.executable, "-m", "tegrasp_drake", "sweep", "--objects", "box", "--controllers",
+         "open_loop", "--attempts", "2", "--workers", "2", "--out", str(tmp_path / "out"),
+         "--trial-function", "tests.fake_trials:started_fake_trial", "--no-progress"],
+        env={**killed_runs.environment(), "FAKE_TRIALS_STARTED": str(started)},
+        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, start_new_session=True,
+        preexec_fn=_default_signal_dispositions)
+    try:
+        deadline = time.monotonic() + 300.0
+        while len(list(started.iterdir())) < 2:  # both workers are in a trial
+            assert process.poll() is None and time.monotonic() < deadline
+            time.sleep(0.1)
+        os.killpg(process.pid, signal.SIGHUP)
+        _, err = process.communicate(timeout=300)
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(process.pid, signal.SIGKILL)
+    _assert_one_interruption_line(process.returncode, err, "SIGHUP")
+    assert "resource_tracker" not in err and "leak" not in err, err

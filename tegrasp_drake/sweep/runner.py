@@ -14,6 +14,7 @@ import logging
 import multiprocessing
 import os
 import pickle
+import signal
 import tempfile
 import threading
 import time
@@ -418,13 +419,15 @@ def _run_on_process_pool(trial_function, pending, workers):
         return
     start_method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
         else "spawn"
-    executor = ProcessPoolExecutor(max_workers=workers,
-                                   mp_context=multiprocessing.get_context(start_method),
-                                   initializer=end_with_parent, initargs=(os.getpid(),))
+    with _hangup_held_from_helpers():
+        executor = ProcessPoolExecutor(max_workers=workers,
+                                       mp_context=multiprocessing.get_context(start_method),
+                                       initializer=end_with_parent, initargs=(os.getpid(),))
     finished = False
     try:
-        futures = {executor.submit(run_trial_safely, trial_function, trial): trial["trial_id"]
-                   for trial in pending}
+        with _hangup_held_from_helpers():
+            futures = {executor.submit(run_trial_safely, trial_function, trial):
+                       trial["trial_id"] for trial in pending}
         for future in as_completed(futures):
             try:
                 outcome = future.result()
@@ -436,6 +439,22 @@ def _run_on_process_pool(trial_function, pending, workers):
         if not finished:
             _end_workers(executor)
         executor.shutdown(wait=True, cancel_futures=True)
+
+
+@contextmanager
+def _hangup_held_from_helpers():
+    """SIGHUP blocked in this thread while the pool's helper processes start (the workers,
+    multiprocessing's fork server and resource tracker), which keep the blocked mask. A
+    terminal that closes sends SIGHUP to its whole process group: the tracker, which ignores
+    only SIGINT and SIGTERM, died of it and was relaunched during the pool's clean-up with
+    none of the semaphores it is then told to release, printing a traceback for each. This
+    process takes a SIGHUP that came meanwhile when the block ends (a run ends on it as on
+    Ctrl-C, rig/files); the helpers end with it (_end_workers, end_with_parent)."""
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGHUP})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def _end_workers(executor: ProcessPoolExecutor) -> None:
