@@ -21,6 +21,7 @@ from tegrasp_drake.hardware.device_log_messages import (RUN_INFO_CHANNEL, TACTIL
                                                         TRANSITION_CHANNEL)
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL, make_jaco_status
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info, lcmt_tegrasp_transition
+from tegrasp_drake.rig.files import held_folder
 from tegrasp_drake.runs.hardware_log_reader import read_run_log
 from tegrasp_drake.runs.hardware_run import transition_message
 from tegrasp_drake.scenario.trial_log_writer import package_versions
@@ -28,6 +29,7 @@ from tests.runs.test_hardware_log_reader import (EVENTS, GRASP, logged_transitio
                                                  tactile_message)
 from tegrasp_drake.events.synthetic import synthetic_grasp
 from tests import killed_runs
+from tests.test_bad_input import assert_one_line_error, run_cli
 from tests.test_bad_input_round29 import (_assert_one_interruption_line,
                                           _default_signal_dispositions)
 
@@ -154,3 +156,17 @@ def test_a_hangup_sent_to_a_sweeps_process_group_is_one_line(tmp_path):
             os.killpg(process.pid, signal.SIGKILL)
     _assert_one_interruption_line(process.returncode, err, "SIGHUP")
     assert "resource_tracker" not in err and "leak" not in err, err
+
+
+def test_record_events_into_a_folder_another_recording_holds_is_refused_at_once(tmp_path,
+                                                                                capfd):
+    """Two record-events into one folder: the second replaced the first's events when both
+    saved; now it is refused before it simulates, as a second run into an --out is."""
+    events = tmp_path / "events"
+    events.mkdir()
+    with held_folder(events):  # the first recording, still running
+        code, text = run_cli(["record-events", "--object", "box", "--set", "random_seed=620",
+                              "--events", str(events), "-q"], capfd)
+    assert_one_line_error(code, text, f"--events {events}: another run is recording events "
+                                      "there now")
+    assert list(events.iterdir()) == []

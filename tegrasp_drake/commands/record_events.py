@@ -14,7 +14,8 @@ import pathlib
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.integer_text import integer_option
-from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
+from tegrasp_drake.rig.files import (FolderHeldError, folder_problem, held_folder,
+                                     interruptions_deferred)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 TEMPLATE_RUNS = 5  # recording/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
@@ -120,10 +121,6 @@ def _ensemble_runs(args, to_record) -> int:
 
 
 def run(args) -> int:
-    from tegrasp_drake.events import save_memorized_events
-    from tegrasp_drake.events.events_folder import EventsDestinationError
-    from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, record_object_ensemble)
-    from tegrasp_drake.recording.paper_events import RecordEventsError, record_events
     out, named = ((args.events, f"--events {args.events}") if args.events
                   else paths.user_events_setting())
     if paths.is_installed_package_data(out):
@@ -137,6 +134,34 @@ def run(args) -> int:
     to_record = _scenarios_to_record(args)
     runs = _ensemble_runs(args, to_record)
     _check_destination(out, named, [name for name, _ in to_record], runs)
+    with _held_events_folder(out, named):
+        return _record(out, to_record, runs, args)
+
+
+@contextlib.contextmanager
+def _held_events_folder(out, named: str):
+    """Holds the events folder (made if missing) for the whole recording, as a run holds
+    its --out (rig.files.held_folder): a second record-events into it is refused at once,
+    instead of replacing the first's events (and the index's entries) when both save."""
+    with contextlib.ExitStack() as stack:
+        try:
+            pathlib.Path(out).mkdir(parents=True, exist_ok=True)
+            stack.enter_context(held_folder(out))
+        except FolderHeldError:
+            raise SystemExit(f"tegrasp: error: {named}: another run is recording events "
+                             "there now; wait for it to end, or give another folder") from None
+        except OSError as e:
+            raise SystemExit(f"tegrasp: error: {named}: cannot open it: {e.strerror or e}; "
+                             "give a folder you can write") from None
+        yield
+
+
+def _record(out, to_record, runs: int, args) -> int:
+    """Records and saves each object's events into `out` (held by the caller)."""
+    from tegrasp_drake.events import save_memorized_events
+    from tegrasp_drake.events.events_folder import EventsDestinationError
+    from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, record_object_ensemble)
+    from tegrasp_drake.recording.paper_events import RecordEventsError, record_events
     for object_name, scenario in to_record:
         try:
             with SimulatedTimeBar(object_name, enabled=progress_wanted(args)) as progress:
