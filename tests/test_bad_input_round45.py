@@ -10,12 +10,14 @@ import signal
 import subprocess
 import sys
 import time
+import types
 
 import lcm
 import numpy as np
 import pytest
 
 from tegrasp_drake import cli
+from tegrasp_drake.commands.viewer_args import wait_for_viewer
 from tegrasp_drake.events import save_memorized_events
 from tegrasp_drake.hardware.device_log_messages import (RUN_INFO_CHANNEL, TACTILE_CHANNEL,
                                                         TRANSITION_CHANNEL)
@@ -170,3 +172,21 @@ def test_record_events_into_a_folder_another_recording_holds_is_refused_at_once(
     assert_one_line_error(code, text, f"--events {events}: another run is recording events "
                                       "there now")
     assert list(events.iterdir()) == []
+
+
+class _Viewer:
+    def web_url(self):
+        return "http://localhost:7000"
+
+
+@pytest.mark.parametrize("stdin", [None, "hung up"])
+def test_the_viewer_closes_when_there_is_no_standard_input_to_wait_on(monkeypatch, capsys,
+                                                                      stdin):
+    """`tegrasp trial --meshcat 0<&-` ran the trial, then stopped with exit 70 waiting for
+    Enter on a standard input Python had set to None."""
+    class HungUp:
+        def readline(self):
+            raise OSError(5, "Input/output error")
+    monkeypatch.setattr(sys, "stdin", None if stdin is None else HungUp())
+    wait_for_viewer(types.SimpleNamespace(meshcat=True), _Viewer())
+    assert capsys.readouterr().err.count("\n") == 1

@@ -52,9 +52,18 @@ def write_replay_html(meshcat, path) -> pathlib.Path:
 
 
 def wait_for_viewer(args, meshcat) -> None:
-    """With --meshcat, keeps the viewer up until Enter (prompt on stderr)."""
+    """With --meshcat, keeps the viewer up until Enter (prompt on stderr), or until standard
+    input ends: at once when there is none (closed, as under cron or `<&-`; at its end, as
+    /dev/null; a terminal that hung up)."""
     if meshcat is None or not args.meshcat:
+        return
+    if sys.stdin is None:  # Python's stand-in for a closed file descriptor 0
+        print(f"Meshcat at {meshcat.web_url()}: standard input is closed, so the viewer "
+              "closes now (--html FILE keeps the recording)", file=sys.stderr, flush=True)
         return
     print(f"Meshcat at {meshcat.web_url()}: the recording replays there (its controls: "
           "Animations); press Enter to quit.", file=sys.stderr, flush=True)
-    sys.stdin.readline()
+    try:
+        sys.stdin.readline()
+    except (OSError, ValueError):  # a terminal that hung up (EIO); a stream closed meanwhile
+        pass
