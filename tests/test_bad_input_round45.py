@@ -190,3 +190,20 @@ def test_the_viewer_closes_when_there_is_no_standard_input_to_wait_on(monkeypatc
     monkeypatch.setattr(sys, "stdin", None if stdin is None else HungUp())
     wait_for_viewer(types.SimpleNamespace(meshcat=True), _Viewer())
     assert capsys.readouterr().err.count("\n") == 1
+
+
+@pytest.mark.parametrize("flags, joint", [("[true,true,false,true,true,true]", 2),
+                                          ("[true,false,true,true,true,true]", 3)])
+def test_a_limited_joint_marked_continuous_is_refused_in_both_configs(tmp_path, flags, joint):
+    """The tracker wraps a continuous joint's error into [-pi, pi): on the JACO2's joints 2
+    and 3, which have stops, that drives an error past half a turn through the stop."""
+    from tegrasp_drake.hardware.config import LoadHardwareConfig
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    words = f"marks joint {joint} continuous, but the JACO2's joint {joint} turns only"
+    with pytest.raises(ConfigError, match=words):
+        LoadScenario(name="box", overrides=[f"arm.tracker.continuous_joints={flags}"])
+    config = tmp_path / "hardware.yaml"
+    config.write_text(f"arm: {{tracker: {{continuous_joints: {flags}}}}}\n")
+    with pytest.raises(ConfigError, match="field 'arm.tracker.continuous_joints' " + words):
+        LoadHardwareConfig(config)

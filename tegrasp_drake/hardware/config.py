@@ -17,6 +17,7 @@ from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
 from tegrasp_drake.rig.ranges import bounded, check_ranges, chosen
+from tegrasp_drake.modelgen.jaco2_dh import continuous_joints_problem
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
@@ -219,6 +220,10 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     names the field."""
     prefix = f"{where}." if where else ""
     check_ranges(config, source, where)
+    problem = continuous_joints_problem(config.arm.tracker.continuous_joints)
+    if problem:
+        raise ConfigError(f"{source}: field '{prefix}arm.tracker.{problem[0]}' {problem[1]}, "
+                          f"got {problem[2]}")
     problem = lcm_url_problem(config.arm.lcm_url)
     if problem:
         origin = lcm_url_origin(config.arm.lcm_url, f"field '{prefix}arm.lcm_url'")

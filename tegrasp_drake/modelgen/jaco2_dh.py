@@ -43,6 +43,20 @@ JOINTS = (
 )
 
 
+def continuous_joints_problem(continuous) -> tuple[str, str, object] | None:
+    """(field, words, value) for a list of per-joint flags (JacoVelocityTrackerConfig's
+    `continuous_joints`: the joints whose position error is wrapped into [-pi, pi)) that marks
+    a joint with limits continuous, or None. Wrapped, such a joint's error past half a turn
+    drives it the short way round, through its stop, where it has to go the long way."""
+    for k, (flag, joint) in enumerate(zip(continuous, JOINTS)):
+        if flag and joint.lower is not None:
+            return ("continuous_joints", f"marks joint {k + 1} continuous, but the JACO2's "
+                    f"joint {k + 1} turns only from {joint.lower / _DEG:g} to "
+                    f"{joint.upper / _DEG:g} deg (its error must not be wrapped): give false "
+                    "for it", list(continuous))
+    return None
+
+
 def dh_transform(alpha: float, a: float, d: float, theta: float) -> np.ndarray:
     """4x4 classic DH transform Rz(theta) Tz(d) Tx(a) Rx(alpha)."""
     ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)

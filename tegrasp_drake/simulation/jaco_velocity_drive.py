@@ -9,6 +9,7 @@ import numpy as np
 from pydrake.systems.framework import InputPort, OutputPort
 from pydrake.systems.primitives import AffineSystem, DiscreteTimeDelay, ZeroOrderHold
 
+from tegrasp_drake.modelgen.jaco2_dh import continuous_joints_problem
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTracker
 from tegrasp_drake.rig.station_interface import ARM_JOINTS
 
@@ -36,6 +37,9 @@ def drive_problem(arm, time_step: float):
     if plant_steps(latency, time_step) in (None, 0):
         return ("command_latency_s", f"must be a whole number of {steps}, at least one, "
                 "e.g. 0.01 [s] (the JACO2's is about 0.01)", latency)
+    problem = continuous_joints_problem(arm.tracker.continuous_joints)
+    if problem:
+        return (f"tracker.{problem[0]}",) + problem[1:]
     return None
 
 
