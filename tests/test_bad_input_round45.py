@@ -207,3 +207,12 @@ def test_a_limited_joint_marked_continuous_is_refused_in_both_configs(tmp_path, 
     config.write_text(f"arm: {{tracker: {{continuous_joints: {flags}}}}}\n")
     with pytest.raises(ConfigError, match="field 'arm.tracker.continuous_joints' " + words):
         LoadHardwareConfig(config)
+
+
+def test_a_replay_against_another_objects_events_says_whose_run_it_was(genuine, capfd):
+    """`replay --object thin_cylinder` of a box run named the log's object thin_cylinder."""
+    code = cli.main(["replay", str(genuine.path), "--object", "thin_cylinder"])
+    out, err = capfd.readouterr()
+    assert code == 0, err
+    assert "the run was of the object 'box'" in err and err.count("\n") == 1
+    assert "object thin_cylinder's events (the run's object: box)" in out

@@ -36,6 +36,7 @@ def _fmt(value):
 def run(args) -> int:
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.runs.hardware_log_reader import RunLogError
+    from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
     from tegrasp_drake.runs.hardware_log_replay import replay_run_log
     try:
         replay = replay_run_log(args.log, object_name=args.object, events_dir=args.events)
@@ -45,12 +46,19 @@ def run(args) -> int:
     damaged = replay.log.damage_text()
     if damaged:
         print(f"tegrasp: warning: {damaged}", file=sys.stderr)
+    runs_object = replay.log.object_name
+    if runs_object and runs_object != replay.object_name:
+        print(f"tegrasp: warning: the run was of the object '{runs_object}' (its "
+              f"{RUN_INFO_CHANNEL}); its tactile data are matched against "
+              f"'{replay.object_name}''s events, as --object asks", file=sys.stderr)
     if args.json:
         print(json.dumps(dict(summary, damage=replay.log.damage), sort_keys=True))
         return 3 if damaged else 0
     log = replay.log
+    events_of = (f"{replay.object_name}'s events (the run's object: {runs_object})"
+                 if runs_object and runs_object != replay.object_name else replay.object_name)
     print(f"{summary['log']}: controller {summary['controller']}, object "
-          f"{replay.object_name}, {summary['tactile_s']:.2f} s of tactile data "
+          f"{events_of}, {summary['tactile_s']:.2f} s of tactile data "
           f"({summary['stale_ticks']} stale ticks)")
     print("messages: " + ", ".join(f"{c} {n}" for c, n in sorted(log.message_counts.items())))
     for t in log.transitions:
