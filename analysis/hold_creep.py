@@ -81,7 +81,7 @@ def main(argv=None) -> int:
     for record in load_records(args.results).records.values():
         if not any(t["to"] == "Avoid" for t in record["result"]["transitions"]):
             continue
-        path = args.logs / trial_log_name(record["trial"])
+        path = args.logs / trial_log_name(record["trial"], record.get("events"))
         if not path.exists():
             missing.append(record["trial_id"])
             continue

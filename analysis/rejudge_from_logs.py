@@ -33,7 +33,7 @@ def main(argv=None) -> int:
     (args.out / TRIALS_FOLDER).mkdir(parents=True)
     changed = 0
     for trial_id, record in load_records(args.results).records.items():
-        path = args.logs / trial_log_name(record["trial"])
+        path = args.logs / trial_log_name(record["trial"], record.get("events"))
         result = record.get("result")
         if result is not None and path.is_file():
             scenario = scenario_from_trial_spec(migrate_stored_trial(record["trial"]))

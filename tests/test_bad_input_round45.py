@@ -216,3 +216,15 @@ def test_a_replay_against_another_objects_events_says_whose_run_it_was(genuine, 
     assert code == 0, err
     assert "the run was of the object 'box'" in err and err.count("\n") == 1
     assert "object thin_cylinder's events (the run's object: box)" in out
+
+
+def test_sweeps_against_other_events_keep_their_own_logs():
+    """Two sweeps of one spec and seed, one against other memorized events (--events), on one
+    --logs folder: the second replaced the first's logs. A trial's log is named for what it
+    matched against too, as its record says ("events")."""
+    from tegrasp_drake.sweep.trial_function import trial_log_name
+    trial = {"trial_id": "memorized/box/m00/a0", "seed": 620}
+    mine, theirs = ({"folder": None, "sha256": digit * 64} for digit in "ab")
+    names = {trial_log_name(trial), trial_log_name(trial, mine), trial_log_name(trial, theirs)}
+    assert len(names) == 3
+    assert trial_log_name(trial, dict(mine, folder="/elsewhere")) == trial_log_name(trial, mine)

@@ -77,7 +77,7 @@ def sweep_misses(records: dict, logs_dir, *, controller: str = "memorized",
         trials += 1
         if not record_has_waits(record, controller):
             continue
-        path = pathlib.Path(logs_dir) / trial_log_name(record["trial"])
+        path = pathlib.Path(logs_dir) / trial_log_name(record["trial"], record.get("events"))
         if not path.is_file():
             without_log.append(trial_id)
             continue

@@ -51,10 +51,13 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     return validate(scenario, f"sweep trial {trial['trial_id']}")
 
 
-def trial_log_name(trial: dict) -> str:
+def trial_log_name(trial: dict, events: dict | None = None) -> str:
     """A sweep trial's log file name: its id ('/' as '.') and the first 12 hex digits of the
-    trial spec's SHA-256, so sweeps sharing a --logs folder keep their own logs."""
-    digest = hashlib.sha256(canonical_json(trial).encode("utf-8")).hexdigest()[:12]
+    SHA-256 of the trial spec and, for a trial that matched memorized events, their content
+    (`events`: its events_identity, a record's "events"), so sweeps sharing a --logs folder
+    keep their own logs, those run against other events too."""
+    named = trial if events is None else {"trial": trial, "events": events["sha256"]}
+    digest = hashlib.sha256(canonical_json(named).encode("utf-8")).hexdigest()[:12]
     return f"{trial['trial_id'].replace('/', '.')}.{digest}.npz"
 
 
@@ -155,7 +158,8 @@ def run_trial_from_spec(trial: dict, *,
     run = run_trial(scenario, events=events, corrective_events=corrective_events)
     result = run.to_dict()
     if log_dir is not None:
-        save_log_copy(run.log.save, pathlib.Path(log_dir) / trial_log_name(trial), result)
+        name = trial_log_name(trial, events_identity(events, corrective_events, events_dir))
+        save_log_copy(run.log.save, pathlib.Path(log_dir) / name, result)
     return result
 
 
