@@ -122,6 +122,10 @@ class TrialResult:
         its event's, is within it either way), and that within the longest run a trial can last
         (grasp_diagram.longest_trial_s), which also bounds the times when it is not set; last,
         each latency against the timeline (_check_latency)."""
+        if len(self.failure) > MAX_FAILURE_CHARS:
+            raise ConfigError(f"{name}: field 'failure' must be at most {MAX_FAILURE_CHARS} "
+                              f"characters (a controller's one-sentence reason), got "
+                              f"{len(self.failure)}")
         if self.unload_success and not self.hold_success:
             raise ConfigError(f"{name}: field 'unload_success' is true but 'hold_success' is "
                               "false (a trial is judged unloaded only after it held)")
@@ -148,10 +152,6 @@ class TrialResult:
         self._check_controller(name)
         self._check_events(name)
         self._check_timeline_fields(name)
-        if len(self.failure) > MAX_FAILURE_CHARS:
-            raise ConfigError(f"{name}: field 'failure' must be at most {MAX_FAILURE_CHARS} "
-                              f"characters (a controller's one-sentence reason), got "
-                              f"{len(self.failure)}")
         self._check_real_time_factor(name)
         from tegrasp_drake.scenario.grasp_diagram import longest_trial_s  # Drake: on use
         longest = longest_trial_s()

@@ -10,6 +10,7 @@ Reach-Load event")."""
 from tegrasp_drake.control.grasp_modes import Mode
 from tegrasp_drake.control.rule_actions import Load, decide
 from tegrasp_drake.control.rule_engine import Guard, Rule
+from tegrasp_drake.rig.number_text import number_text
 
 
 def match_confirm_window_s(sa_rate_hz: float, update_period_s: float) -> float:
@@ -22,8 +23,9 @@ def match_confirm_window_s(sa_rate_hz: float, update_period_s: float) -> float:
     the other, and sampled at its end); the controller then reads that frame on its first
     tick at or after it, up to one period later. ValueError unless both are positive."""
     if not (sa_rate_hz > 0.0 and update_period_s > 0.0):
-        raise ValueError(f"the pads' sample rate ({sa_rate_hz} Hz) and the controller's "
-                         f"update period ({update_period_s} s) must be positive")
+        raise ValueError(f"the pads' sample rate ({number_text(sa_rate_hz)} Hz) and the "
+                         f"controller's update period ({number_text(update_period_s)} s) must "
+                         "be positive")
     return 2.0 / sa_rate_hz + update_period_s
 
 
