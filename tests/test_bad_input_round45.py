@@ -1,7 +1,11 @@
-"""Round 45: a run log whose bus carried forged or damaged messages (another publisher on the
-LCM URL) is replayed from its genuine messages: statuses the live run refuses are refused
-again, one status or transition far in the future costs itself alone, and a transition that
-names no mode, lies outside the run or does not follow the timeline is skipped and said."""
+"""Bad inputs the seventeenth hostile pass found, one test per rule: a run log whose bus
+carried forged or damaged messages (another publisher on the LCM URL) is replayed from its
+genuine messages (statuses the live run refuses are refused again, one status or transition
+far in the future costs itself alone, a transition that names no mode, lies outside the run,
+carries another time than when it was logged or does not follow the timeline is skipped and
+said); a hangup to a sweep's process group, a second record-events into a folder, a viewer
+with no standard input, a limited joint marked continuous, a replay against another object's
+events, and sweeps against other events sharing a --logs folder."""
 
 import contextlib
 import json
