@@ -124,6 +124,8 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["--ensemble-runs 99: give 0 (none) to 50 ideal grasps"]),
     ("also --inject-fault 0x10", None, ["emulate", "robotiq", "--inject-fault", "0x10@3"],
      ["--inject-fault '0x10@3'", "4 bits"]),
+    ("also --inject-fault 0 (no fault)", None, ["emulate", "robotiq", "--inject-fault", "0@3"],
+     ["--inject-fault '0@3'", "0x0 being no fault; give a CODE from 0x1 to 0xf"]),
     ("also duplicate keys", _write("dup.yaml", "mine:\n  random_seed: 1\n  random_seed: 2\n"),
      ["trial", "--scenario", "dup.yaml", "--scenario-name", "mine"],
      ["dup.yaml: key 'random_seed' appears twice (line 2, column 3 and line 3, column 3)"]),

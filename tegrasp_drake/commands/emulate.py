@@ -81,16 +81,18 @@ def register(subparsers) -> None:
 
 
 def _parse_fault(text) -> FaultInjection:
-    """CODE@SECONDS: CODE a gFLT value (4 bits: 0x0..0xF), SECONDS finite and >= 0."""
+    """CODE@SECONDS: CODE a gFLT fault (4 bits, not 0x0, which is no fault: 0x1..0xF),
+    SECONDS finite and >= 0."""
     try:
         code, at = text.split("@")
         code, at = int(code, 0), float(at)
     except ValueError:
         raise SystemExit(f"tegrasp: error: --inject-fault '{text}': expected CODE@SECONDS, "
                          "e.g. 0x0E@3.5") from None
-    if not 0 <= code <= GFLT_MAX:
+    if not 0 < code <= GFLT_MAX:
         raise SystemExit(f"tegrasp: error: --inject-fault '{text}': the 2F-85's fault "
-                         f"register gFLT holds 4 bits; give a CODE from 0x0 to {GFLT_MAX:#x}")
+                         f"register gFLT holds 4 bits, 0x0 being no fault; give a CODE from "
+                         f"0x1 to {GFLT_MAX:#x}")
     if not (math.isfinite(at) and FAULT_DELAY.contains(at)):
         raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': SECONDS "
                          f"{FAULT_DELAY.words(at)}, got {shorten(repr(at))}")
