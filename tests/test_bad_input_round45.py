@@ -232,3 +232,18 @@ def test_sweeps_against_other_events_keep_their_own_logs():
     names = {trial_log_name(trial), trial_log_name(trial, mine), trial_log_name(trial, theirs)}
     assert len(names) == 3
     assert trial_log_name(trial, dict(mine, folder="/elsewhere")) == trial_log_name(trial, mine)
+
+
+def test_write_config_says_which_ports_are_defaults_not_emulated_devices():
+    """`emulate jaco --write-config` wrote the default gripper and tactile ports without a
+    word; a run on that config opens them."""
+    from tegrasp_drake.commands.emulate import config_written_line
+    from tegrasp_drake.emulators.launcher import Emulators, hardware_config_for
+    line = config_written_line(Emulators(lcm_url="memq://", out=lambda text: None), "hw.yaml")
+    assert "gripper.port /dev/" in line and "tactile.port /dev/" in line
+    assert "the defaults, for devices not emulated here" in line and "\n" not in line
+    devices = {"gripper": {"port": "/dev/pts/7"}}  # the robotiq emulator's, as it records it
+    robotiq = types.SimpleNamespace(devices=devices,
+                                    hardware_config=lambda: hardware_config_for(devices))
+    line = config_written_line(robotiq, "hw.yaml")
+    assert "gripper.port" not in line and "tactile.port /dev/" in line

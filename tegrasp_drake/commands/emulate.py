@@ -80,6 +80,17 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
+def config_written_line(emulators, path) -> str:
+    """What --write-config wrote: the file, and the ports it holds that are no emulated
+    device's (the config's defaults, for the devices emulated elsewhere or real ones)."""
+    config = emulators.hardware_config()
+    kept = [f"{section}.port {getattr(config, section).port}"
+            for section in ("gripper", "tactile") if section not in emulators.devices]
+    defaults = (f" ({', '.join(kept)}: the defaults, for devices not emulated here; set them "
+                "to your devices' ports)" if kept else "")
+    return f"config: wrote {path}{defaults}; run `tegrasp hardware --config {path}`"
+
+
 def _parse_fault(text) -> FaultInjection:
     """CODE@SECONDS: CODE a gFLT fault (4 bits, not 0x0, which is no fault: 0x1..0xF),
     SECONDS finite and >= 0."""
@@ -179,8 +190,7 @@ def run(args) -> int:
             emulators.write_hardware_config(args.write_config)
             if replaced:
                 logger.info(f"emulate: replaced the earlier config {args.write_config}")
-            out(f"config: wrote {args.write_config}; run `tegrasp hardware --config "
-                f"{args.write_config}`")
+            out(config_written_line(emulators, args.write_config))
         out(emulators.devices_line())
         out("ready")
         emulators.run_until_stopped()
