@@ -82,6 +82,36 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
     return folder
 
 
+def _made_by(make, folder) -> tuple[pathlib.Path, list[pathlib.Path]]:
+    """Runs make() -> the run folder, and returns it with the folders it created (the folder
+    and its parents that were not there before), deepest first."""
+    absent = [path for path in (folder, *folder.parents) if not path.exists()]
+    made_folder = make()
+    if made_folder != folder:  # a numbered folder claimed beside `folder`
+        absent = [made_folder] + absent[1:] if absent and absent[0] == folder else [made_folder]
+    return made_folder, [path for path in absent if path.is_dir()]
+
+
+@contextlib.contextmanager
+def new_run_folder(out, *, default, replace_default: bool, overwrite: bool):
+    """choose_run_folder for the block. When the block raises or is interrupted (a failed
+    simulation, Ctrl-C, SIGTERM), the folders made for it, the run folder and any parents it
+    needed, are removed again if they are still empty: a run that wrote nothing leaves
+    nothing."""
+    folder = pathlib.Path(out if out is not None else default)
+    folder, made = _made_by(lambda: choose_run_folder(
+        out, default=default, replace_default=replace_default, overwrite=overwrite), folder)
+    try:
+        yield folder
+    except BaseException:
+        for path in made:  # deepest first; rmdir removes only an empty folder
+            try:
+                path.rmdir()
+            except OSError:
+                break
+        raise
+
+
 STAGING_PREFIX = ".staging-"  # a run's files until it commits them (staged_run)
 
 

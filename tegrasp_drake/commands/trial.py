@@ -4,12 +4,13 @@
 Where the files go, and when an earlier run's are kept: commands/run_folder.py."""
 
 import argparse
+import contextlib
 import json
 import sys
 
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
-from tegrasp_drake.commands.run_folder import (RunFolderError, choose_run_folder, commit_run,
-                                               REPLAY_KEY, own_file_problem, staged_run)
+from tegrasp_drake.commands.run_folder import (REPLAY_KEY, RunFolderError, commit_run,
+                                               new_run_folder, own_file_problem, staged_run)
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
@@ -91,38 +92,39 @@ def run(args) -> int:
     problem = html and own_file_problem(html, args.out or args.default_out)
     if problem:
         raise SystemExit(f"tegrasp: error: --html {html} {problem}")
-    try:
-        out = choose_run_folder(args.out, default=args.default_out,
-                                replace_default=args.replace_default_out,
-                                overwrite=args.overwrite)
-    except RunFolderError as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
-    from tegrasp_drake.figures.trial_figures import write_trial_figures
-    from tegrasp_drake.runs.trial import SimulationFailedError, run_trial
-    meshcat = start_viewer(args)
-    try:
-        with staged_run(out) as stage:
-            with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
-                trial = run_trial(scenario, meshcat=meshcat, events=events,
-                                  corrective_events=corrective, progress=progress)
-            html_error = None
-            if html is not None:
-                try:  # its own error: a failed replay names --html and keeps the run
-                    replay_html = str(write_replay_html(meshcat, html))
+    with contextlib.ExitStack() as stack:  # the folder made for a run that fails is removed
+        try:
+            out = stack.enter_context(new_run_folder(
+                args.out, default=args.default_out, replace_default=args.replace_default_out,
+                overwrite=args.overwrite))
+        except RunFolderError as e:
+            raise SystemExit(f"tegrasp: error: {e}") from None
+        from tegrasp_drake.figures.trial_figures import write_trial_figures
+        from tegrasp_drake.runs.trial import SimulationFailedError, run_trial
+        meshcat = start_viewer(args)
+        try:
+            with staged_run(out) as stage:
+                with SimulatedTimeBar(args.command, enabled=progress_wanted(args)) as progress:
+                    trial = run_trial(scenario, meshcat=meshcat, events=events,
+                                      corrective_events=corrective, progress=progress)
+                html_error = None
+                if html is not None:
+                    try:  # its own error: a failed replay names --html and keeps the run
+                        replay_html = str(write_replay_html(meshcat, html))
+                    except OSError as e:
+                        html_error = (f"tegrasp: error: --html {html}: cannot write it "
+                                      f"({e.strerror or e}); the run is kept in {out}")
+                try:
+                    result = dict(trial.to_dict(), log=str(trial.log.save(stage / "trial.npz")),
+                                  **write_trial_figures(trial.log, stage, args.format))
+                    if html is not None and html_error is None:
+                        result[REPLAY_KEY] = replay_html
+                    result = commit_run(stage, out, result)
                 except OSError as e:
-                    html_error = (f"tegrasp: error: --html {html}: cannot write it "
-                                  f"({e.strerror or e}); the run is kept in {out}")
-            try:
-                result = dict(trial.to_dict(), log=str(trial.log.save(stage / "trial.npz")),
-                              **write_trial_figures(trial.log, stage, args.format))
-                if html is not None and html_error is None:
-                    result[REPLAY_KEY] = replay_html
-                result = commit_run(stage, out, result)
-            except OSError as e:
-                raise RunFolderError(f"cannot write the run to {out}: {e.strerror or e}; "
-                                     "an earlier run there is kept whole") from None
-    except (RunFolderError, SimulationFailedError) as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
+                    raise RunFolderError(f"cannot write the run to {out}: {e.strerror or e}; "
+                                         "an earlier run there is kept whole") from None
+        except (RunFolderError, SimulationFailedError) as e:
+            raise SystemExit(f"tegrasp: error: {e}") from None
     if args.json:
         print(json.dumps(result, sort_keys=True), flush=True)
     else:

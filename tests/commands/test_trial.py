@@ -64,3 +64,49 @@ def test_the_timeline_shows_the_code_of_the_rule_beside_each_transition(capsys):
     assert re.search(r"Re-Reach -> Reach +\[timer\] moved", timeline[1]), timeline
     assert re.search(r"Reach -> Load +\[memorized_event: reach_event\] Reach-Load event",
                      timeline[2]), timeline
+
+
+def _simulation_fails(*args, **kwargs):
+    from tegrasp_drake.runs.trial import SimulationFailedError
+    raise SimulationFailedError("the simulation failed at t = 1.0 s (a test's failure)")
+
+
+def _interrupted(*args, **kwargs):
+    raise KeyboardInterrupt
+
+
+def _with_trial(monkeypatch, run_trial):
+    monkeypatch.setattr("tegrasp_drake.runs.trial.run_trial", run_trial)
+    monkeypatch.setattr("tegrasp_drake.commands.trial.start_viewer", lambda args: None)
+
+
+def test_a_trial_that_fails_removes_the_out_folder_and_the_parents_it_made(
+        tmp_path, monkeypatch, capfd):
+    _with_trial(monkeypatch, _simulation_fails)
+    code, text = run_cli(["trial", "--out", str(tmp_path / "a" / "b" / "run"), "-q"], capfd)
+    assert code != 0 and "the simulation failed at t = 1.0 s" in text
+    assert list(tmp_path.iterdir()) == [], text
+
+
+def test_an_interrupted_trial_removes_the_numbered_folder_it_claimed(tmp_path, monkeypatch):
+    _with_trial(monkeypatch, _interrupted)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "out" / "trial").mkdir(parents=True)
+    from tegrasp_drake import cli
+    assert cli.main(["trial", "-q"]) != 0
+    assert sorted(path.name for path in (tmp_path / "out").iterdir()) == ["trial"]
+
+
+def test_a_failed_trial_keeps_a_folder_that_was_there_and_what_it_holds(
+        tmp_path, monkeypatch, capfd):
+    _with_trial(monkeypatch, _simulation_fails)
+    out = tmp_path / "run"
+    out.mkdir()
+    (out / "notes.txt").write_text("the user's")
+    code, text = run_cli(["trial", "--out", str(out), "-q"], capfd)
+    assert code != 0
+    assert [path.name for path in out.iterdir()] == ["notes.txt"]
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    code, text = run_cli(["trial", "--out", str(empty), "-q"], capfd)
+    assert code != 0 and empty.is_dir()
