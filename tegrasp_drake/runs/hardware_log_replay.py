@@ -101,15 +101,16 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
     return results
 
 
-def matcher_config_of_run(run_info, events, source: str = "the run's scenario"
-                          ) -> EventMatcherConfig:
-    """The live matcher of an event-triggered run; else the defaults at the events' rates."""
-    if run_info is not None and run_info.scenario_yaml:
+def matcher_config_of_run(run_info, events, source: str = "the run's scenario", *,
+                          scenario=None) -> EventMatcherConfig:
+    """The live matcher of an event-triggered run; else the defaults at the events' rates.
+    `scenario`: the run's Scenario when the caller has read it already (RunLog.scenario), so
+    it is not parsed again; else it is read from run_info, a bad one refused naming `source`."""
+    if scenario is None and run_info is not None and run_info.scenario_yaml:
         scenario = scenario_from_yaml(run_info.scenario_yaml, source)
-        if controller_entry(scenario.controller).event_triggered:
-            return event_matcher_config(scenario.controller,
-                                        gripper_model=scenario.gripper.model,
-                                        rates_hz=sample_rates_hz(scenario))
+    if scenario is not None and controller_entry(scenario.controller).event_triggered:
+        return event_matcher_config(scenario.controller, gripper_model=scenario.gripper.model,
+                                    rates_hz=sample_rates_hz(scenario))
     return live_matcher_config(events, EventMatcherConfig())
 
 
@@ -172,7 +173,8 @@ def replay_run_log(path, *, object_name: str | None = None,
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
     events_dir = str(folder)
     config = matcher_config_of_run(info, events,
-                                   f"run log '{path}': its TEGRASP_RUN_INFO scenario")
+                                   f"run log '{path}': its TEGRASP_RUN_INFO scenario",
+                                   scenario=log.scenario)
     trial = log.tactile_trial()
     logger.debug(f"replay: the run's controller "
                  f"{info.controller if info and info.controller else 'not logged'}; the "

@@ -120,6 +120,30 @@ def test_the_replay_takes_the_live_runs_matcher_settings_from_its_scenario():
         EVENTS, EventMatcherConfig())  # no scenario: the defaults at the events' rates
 
 
+def test_the_replay_reads_the_runs_scenario_once(run_log_path, tmp_path, monkeypatch):
+    import tegrasp_drake.runs.hardware_log_reader as reader
+    import tegrasp_drake.runs.hardware_log_replay as replay
+    with_scenario = tmp_path / "run.lcmlog"  # the run's log with its scenario in its run info
+    source, copy = lcm.EventLog(str(run_log_path), "r"), lcm.EventLog(str(with_scenario), "w")
+    for event in source:
+        data = event.data
+        if event.channel == RUN_INFO_CHANNEL:
+            info = lcmt_tegrasp_run_info.decode(data)
+            info.scenario_yaml = scenario_to_yaml(LoadScenario())  # the box, memorized
+            data = info.encode()
+        copy.write_event(event.timestamp, event.channel, data)
+    source.close()
+    copy.close()
+    run_log_path = with_scenario
+    parsed = []
+    for module in (reader, replay):
+        real = module.scenario_from_yaml
+        monkeypatch.setattr(module, "scenario_from_yaml",
+                            lambda text, *args, real=real: parsed.append(1) or real(text, *args))
+    replay.replay_run_log(run_log_path)
+    assert len(parsed) == 1
+
+
 def test_the_replayed_matcher_has_the_runs_ra_envelope(run_log_path):
     log = read_run_log(run_log_path)
     raw = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
