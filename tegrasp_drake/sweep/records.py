@@ -245,12 +245,7 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
         problem = result_problem(record["result"])
         if problem is not None:
             return f"its 'result' is {problem}"
-        for field, trial_field in _RESULT_OF_TRIAL:
-            value = record["result"].get(field, trial.get(trial_field))
-            if value != trial.get(trial_field):
-                return (f"its result's {field} {shorten(repr(value))} is not its trial's "
-                        f"{trial_field} {shorten(repr(trial.get(trial_field)))}")
-        problem = _offset_problem(record["result"], trial) or _sim_time_problem(record["result"])
+        problem = result_trial_problem(record["result"], trial)
         if problem is not None:
             return problem
     if expected_file_name is not None and (
@@ -258,6 +253,18 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
             or record_file_name(record["trial_id"]) != expected_file_name):
         return f"trial_id {record['trial_id']!r} does not belong in {expected_file_name}"
     return None
+
+
+def result_trial_problem(result: dict, trial: dict) -> str | None:
+    """Why `result` (a valid result, result_problem) cannot be the result of `trial` (a sweep
+    trial's dict): its seed, controller, object or offset are another trial's, or it ran
+    longer than a sweep trial runs; None when it can."""
+    for field, trial_field in _RESULT_OF_TRIAL:
+        value = result.get(field, trial.get(trial_field))
+        if value != trial.get(trial_field):
+            return (f"its result's {field} {shorten(repr(value))} is not its trial's "
+                    f"{trial_field} {shorten(repr(trial.get(trial_field)))}")
+    return _offset_problem(result, trial) or _sim_time_problem(result)
 
 
 def result_problem(result) -> str | None:

@@ -37,6 +37,7 @@ from tegrasp_drake.sweep.records import (
     make_record,
     remove_stale_staging_files,
     result_problem,
+    result_trial_problem,
     unwritable_records,
     write_record,
 )
@@ -79,9 +80,10 @@ class SweepSummary:
     #                                   sweep stopped there; its trial's result is recorded)
 
 
-def check_result(result) -> str | None:
-    """Why a trial function's return value cannot be a result, or None when it can (the
-    checks below name the field; result_problem is the record's own check, the last word)."""
+def check_result(result, trial: dict) -> str | None:
+    """Why a trial function's return value cannot be `trial`'s result, or None when it can
+    (the checks below name the field; result_problem and result_trial_problem are the
+    record's own checks, the last word)."""
     if not isinstance(result, dict):
         return f"the trial function returned {type(result).__name__}, not a dict"
     for name in ("hold_success", "unload_success"):
@@ -107,7 +109,9 @@ def check_result(result) -> str | None:
     # What load_records will ask of the record: a result it would refuse is an error now,
     # not a record that is corrupt at every resume and runs again each time.
     problem = result_problem(result)
-    return None if problem is None else f"the result is {problem}"
+    if problem is not None:
+        return f"the result is {problem}"
+    return result_trial_problem(result, trial)
 
 
 def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict, str | None]:
@@ -125,7 +129,7 @@ def run_trial_safely(trial_function, trial: dict) -> tuple[str, dict, str | None
     except Exception as error:  # Any failure of the trial is recorded, not raised.
         return "error", {"type": type(error).__name__, "message": str(error),
                          "traceback": traceback.format_exc()}, unwritten_log
-    problem = check_result(result)
+    problem = check_result(result, trial)
     if problem is not None:
         return ("error", {"type": "InvalidResult", "message": problem, "traceback": ""},
                 unwritten_log)

@@ -37,11 +37,16 @@ def test_the_json_form_round_trips():
     assert "log" not in data
 
 
+# A trial a result names nothing of (no seed, controller, object or offset): these tests are
+# about the result alone.
+A_TRIAL = {}
+
+
 def test_a_sweep_refuses_a_result_whose_transitions_do_not_parse():
     entry = {"t": 1.0, "from": "reach", "to": "Load", "trigger": "memorized_event",
              "reason": "Reach-Load event"}
     problem = check_result({"hold_success": True, "unload_success": False,
-                            "transitions": [entry]})
+                            "transitions": [entry]}, A_TRIAL)
     assert problem and "'transitions'[0]" in problem and "reach" in problem
 
 
@@ -49,10 +54,10 @@ def test_a_sweep_refuses_a_result_whose_transition_names_no_rule():
     entry = {"t": 1.0, "from": "Reach", "to": "Load", "trigger": "memorized_event",
              "reason": "Reach-Load event", "code": "reach_evnt"}
     problem = check_result({"hold_success": True, "unload_success": False,
-                            "transitions": [entry]})
+                            "transitions": [entry]}, A_TRIAL)
     assert problem and "'transitions'[0]" in problem and "reach_evnt" in problem
     assert check_result({"hold_success": True, "unload_success": False, "final_mode": "Load",
-                         "transitions": [{**entry, "code": "reach_event"}]}) is None
+                         "transitions": [{**entry, "code": "reach_event"}]}, A_TRIAL) is None
 
 
 def _reach_load(t: float) -> Transition:
