@@ -14,7 +14,7 @@ from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arg
                                           resolve_trial_function)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.typed_yaml import ConfigError
-from tegrasp_drake.sweep.runner import SweepError, summary_text
+from tegrasp_drake.sweep.runner import SchedulerLostError, SweepError, summary_text
 
 DEFAULT_OUT = "results/sensitivity"
 
@@ -70,6 +70,9 @@ def run(args) -> int:
                                     progress=not args.no_progress and progress_wanted(args),
                                     confirmed_trials=args.confirm_trials)
     except OptionError as error:  # bad input
+        print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
+        return 1
+    except SchedulerLostError as error:  # trials left unfinished: run again
         print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
         return 1
     except (ConfigError, SweepError) as error:  # the spec refused

@@ -21,6 +21,7 @@ from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
+    SchedulerLostError,
     SweepError,
     benchmark_text,
     run_benchmark,
@@ -264,17 +265,29 @@ def check_runner_arguments(args):
         raise OptionError(f"--out {args.out}: {problem}; give a folder you can write")
     if args.scheduler is None:
         return None
-    from tegrasp_drake.sweep.runner import connect_scheduler
+    from tegrasp_drake.sweep.runner import connect_scheduler, hold_dask_logs
     try:
-        return connect_scheduler(args.scheduler)  # last: nothing after it can refuse
+        client = connect_scheduler(args.scheduler)  # last: nothing after it can refuse
     except SweepError as error:
         raise OptionError(str(error)) from None
+    if getattr(args, "verbose", 0) < 2:  # -vv shows distributed's own logs
+        _DASK_LOGS_RESTORED_AT_CLOSE[id(client)] = hold_dask_logs()
+    return client
+
+
+# id(client) -> the function that gives distributed's loggers back their levels, called by
+# close_scheduler: the client logs while it closes too.
+_DASK_LOGS_RESTORED_AT_CLOSE = {}
 
 
 def close_scheduler(client) -> None:
-    """Closes check_runner_arguments' client, if any."""
+    """Closes check_runner_arguments' client, if any, and ends its hold on distributed's
+    logs."""
     if client is not None:
-        client.close()
+        try:
+            client.close()
+        finally:
+            _DASK_LOGS_RESTORED_AT_CLOSE.pop(id(client), lambda: None)()
 
 
 def check_workers(args) -> None:
@@ -330,6 +343,9 @@ def run(args) -> int:
                             scheduler=scheduler, progress=progress,
                             confirmed_trials=args.confirm_trials)
     except OptionError as error:  # bad input
+        print(f"tegrasp sweep: error: {error}", file=sys.stderr)
+        return 1
+    except SchedulerLostError as error:  # trials left unfinished: run again
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 1
     except (ConfigError, SweepError) as error:  # the spec refused

@@ -62,6 +62,10 @@ class SweepError(RuntimeError):
     """A sweep cannot start or could not finish; the message says what to do."""
 
 
+class SchedulerLostError(SweepError):
+    """The Dask scheduler went away while trials ran; the finished ones are recorded."""
+
+
 @dataclass(frozen=True)
 class SweepSummary:
     """What one `run_sweep` call did."""
@@ -541,6 +545,28 @@ def connect_scheduler(scheduler: str) -> DaskClient:
     return made["client"]
 
 
+# The loggers distributed configures (dask's `logging` config) and tornado's under them.
+_DASK_LOGGERS = ("distributed", "tornado")
+
+
+def hold_dask_logs() -> Callable[[], None]:
+    """Silences distributed's and tornado's loggers (their tracebacks while a client
+    reconnects to a scheduler that went away, and while it closes); returns the function
+    that gives them their levels back. A command holds them from connecting to closing its
+    client unless asked for debug output (-vv): what it needs to say, it says in one line
+    (SchedulerLostError, a trial unfinished)."""
+    names = [name for name in logging.root.manager.loggerDict
+             if name.split(".")[0] in _DASK_LOGGERS] + list(_DASK_LOGGERS)
+    levels = {name: logging.getLogger(name).level for name in names}
+    for name in names:
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+
+    def restore():
+        for name, level in levels.items():
+            logging.getLogger(name).setLevel(level)
+    return restore
+
+
 def _scheduler_address(scheduler: str | DaskClient) -> str:
     return scheduler if isinstance(scheduler, str) else scheduler.scheduler.address
 
@@ -552,6 +578,7 @@ def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):
     dask_as_completed = _dask_distributed().as_completed
     if not pending:
         return
+    address = _scheduler_address(scheduler)
     with (connect_scheduler(scheduler) if isinstance(scheduler, str)
           else nullcontext(scheduler)) as client:
         # A key of its own for each submission: a transfer's cells share trial ids, and a key
@@ -559,15 +586,24 @@ def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):
         futures = {client.submit(run_trial_safely, trial_function, trial, pure=False,
                                  key=f"tegrasp-trial-{trial['trial_id']}-{uuid.uuid4().hex}"):
                    trial["trial_id"] for trial in pending}
+        finished = 0
         try:
             for future in dask_as_completed(list(futures)):
                 try:
                     outcome = future.result()
                 except Exception:  # KilledWorker and kin: no trial result.
+                    if client.status != "running":  # its futures were cancelled with it
+                        raise SchedulerLostError(
+                            f"lost the Dask scheduler at {address} after "
+                            f"{finished} of {len(futures)} trials: the finished ones are "
+                            "recorded; start the scheduler and its workers again and run the "
+                            "same command to run the rest") from None
                     outcome = None
+                finished += outcome is not None
                 yield futures[future], outcome
         finally:
-            client.cancel(list(futures))
+            with suppress(Exception):  # a client whose scheduler is gone cannot cancel
+                client.cancel(list(futures))
 
 
 def _keep_corrupt_records_aside(corrupt: dict) -> None:
