@@ -304,7 +304,9 @@ def public_dataclass(cls):
     type where that is str, int, float or bool (or optional: `hold_success='yes'`), and a
     text string in a field annotated as a collection (`objects='box'` for `tuple[str, ...]`),
     naming class and field (check_field_types, which a __post_init__ that reads its fields'
-    values calls first)."""
+    values calls first). Assigning an attribute that is not a field is refused naming the
+    class and what to write; assigning a field of a frozen class, in one line saying how to
+    make a changed copy (FrozenFieldError)."""
     init = cls.__init__
 
     @functools.wraps(init)
@@ -315,7 +317,10 @@ def public_dataclass(cls):
 
     cls.__init__ = checked_init
     cls.__init__.__checked_arguments__ = True
-    if not cls.__dataclass_params__.frozen:
+    if cls.__dataclass_params__.frozen:
+        cls.__setattr__ = _refuse_change
+        cls.__delattr__ = _refuse_change
+    else:
         cls.__setattr__ = _set_field_only
     return cls
 
@@ -348,20 +353,42 @@ def check_field_types(instance) -> None:
     check_instance(instance, cls.__name__)  # nested configs, enums, arrays, items
 
 
+class FrozenFieldError(dataclasses.FrozenInstanceError):
+    """A field of a frozen public dataclass assigned or deleted (a FrozenInstanceError, as
+    the dataclass's own, so code that catches that still does)."""
+
+
 def _set_field_only(self, name: str, value) -> None:
     """Assigns a field; an attribute that is not one (a misspelt or moved setting, which would
     otherwise be kept and ignored) is an AttributeError naming its class and what to write."""
-    fields = type(self).__dataclass_fields__
-    if name not in fields and not name.startswith("_"):
-        moved = getattr(type(self), "__moved_fields__", {}).get(name)
-        if moved:
-            advice = f"it is now '{moved}'"
-        else:
-            close = difflib.get_close_matches(name, fields, n=1)
-            advice = (f"did you mean '{close[0]}'?" if close
-                      else f"its fields: {', '.join(fields)}")
-        raise AttributeError(f"{type(self).__name__} has no field '{name}': {advice}")
+    if name not in type(self).__dataclass_fields__ and not name.startswith("_"):
+        raise AttributeError(_no_such_field(type(self), name))
     object.__setattr__(self, name, value)
+
+
+def _refuse_change(self, name: str, value=None) -> None:
+    """A frozen public dataclass's __setattr__ and __delattr__: FrozenFieldError, for a field
+    saying how to make a changed copy, else naming the class's fields as _set_field_only does."""
+    cls = type(self)
+    if name not in cls.__dataclass_fields__:
+        raise FrozenFieldError(_no_such_field(cls, name))
+    # What to call the instance in the advice: its class name's last word (TrialResult: result).
+    instance = re.findall(r"[A-Z]?[a-z0-9]+|[A-Z]+(?![a-z])", cls.__name__)[-1].lower()
+    raise FrozenFieldError(f"{cls.__name__}.{name} cannot be changed: make a changed copy with "
+                           f"dataclasses.replace({instance}, {name}=...)")
+
+
+def _no_such_field(cls, name: str) -> str:
+    """'<cls> has no field '<name>': <advice>', the advice the field it moved to, else the
+    closest field name, else the list of fields."""
+    fields = cls.__dataclass_fields__
+    moved = getattr(cls, "__moved_fields__", {}).get(name)
+    if moved:
+        advice = f"it is now '{moved}'"
+    else:
+        close = difflib.get_close_matches(name, fields, n=1)
+        advice = f"did you mean '{close[0]}'?" if close else f"its fields: {', '.join(fields)}"
+    return f"{cls.__name__} has no field '{name}': {advice}"
 
 
 def register_moved_fields(cls, moved: dict[str, str]) -> None:

@@ -64,3 +64,45 @@ def test_a_moved_or_misspelt_setting_names_what_to_write(statement, advice):
         exec(statement, {"scenario": scenario})
     assert str(raised.value).endswith(advice)
     assert scenario_to_yaml(scenario) == scenario_to_yaml(Scenario())
+
+
+def _frozen_public_dataclasses():
+    """The frozen dataclasses of the package's public API (`tegrasp_drake.__all__`)."""
+    import tegrasp_drake
+    found = [getattr(tegrasp_drake, name) for name in tegrasp_drake.__all__]
+    return [cls for cls in found if isinstance(cls, type) and dataclasses.is_dataclass(cls)
+            and cls.__dataclass_params__.frozen]
+
+
+def test_the_public_api_has_frozen_dataclasses():
+    assert len(_frozen_public_dataclasses()) >= 3
+
+
+@pytest.mark.parametrize("cls", _frozen_public_dataclasses(), ids=lambda cls: cls.__name__)
+def test_a_frozen_field_assigned_says_how_to_make_a_changed_copy(cls):
+    instance = object.__new__(cls)  # the refusal reads no field: no need to build one
+    field = dataclasses.fields(cls)[0].name
+    with pytest.raises(dataclasses.FrozenInstanceError) as raised:
+        setattr(instance, field, 1)
+    message = str(raised.value)
+    assert message.startswith(f"{cls.__name__}.{field} cannot be changed: make a changed copy "
+                              "with dataclasses.replace(")
+    assert message.endswith(f", {field}=...)") and "\n" not in message
+    with pytest.raises(dataclasses.FrozenInstanceError, match="cannot be changed"):
+        delattr(instance, field)
+
+
+@pytest.mark.parametrize("cls", _frozen_public_dataclasses(), ids=lambda cls: cls.__name__)
+def test_a_frozen_class_names_its_fields_for_an_attribute_that_is_not_one(cls):
+    with pytest.raises(dataclasses.FrozenInstanceError,
+                       match=f"^{cls.__name__} has no field 'no_such_setting': "):
+        object.__new__(cls).no_such_setting = 1
+
+
+def test_the_advice_calls_the_instance_by_its_class_names_last_word():
+    from tegrasp_drake import MemorizedEvent
+    with pytest.raises(dataclasses.FrozenInstanceError) as raised:
+        object.__new__(MemorizedEvent).object_name = "box"
+    assert str(raised.value) == (
+        "MemorizedEvent.object_name cannot be changed: make a changed copy with "
+        "dataclasses.replace(event, object_name=...)")
