@@ -14,8 +14,7 @@ import pathlib
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.integer_text import integer_option
-from tegrasp_drake.rig.files import (FolderHeldError, folder_problem, held_folder,
-                                     interruptions_deferred)
+from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 TEMPLATE_RUNS = 5  # recording/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
@@ -140,14 +139,15 @@ def run(args) -> int:
 
 @contextlib.contextmanager
 def _held_events_folder(out, named: str):
-    """Holds the events folder (made if missing) for the whole recording, as a run holds
-    its --out (rig.files.held_folder): a second record-events into it is refused at once,
-    instead of replacing the first's events (and the index's entries) when both save."""
+    """Holds the events folder (made if missing) for the whole recording, with the hold each
+    save takes (events_folder.held_events_folder): a second record-events, or a script's
+    save, into it is refused at once, instead of replacing the first's events (and the
+    index's entries) when both save."""
+    from tegrasp_drake.events.events_folder import EventsFolderHeldError, held_events_folder
     with contextlib.ExitStack() as stack:
         try:
-            pathlib.Path(out).mkdir(parents=True, exist_ok=True)
-            stack.enter_context(held_folder(out))
-        except FolderHeldError:
+            stack.enter_context(held_events_folder(out))
+        except EventsFolderHeldError:
             raise SystemExit(f"tegrasp: error: {named}: another run is recording events "
                              "there now; wait for it to end, or give another folder") from None
         except OSError as e:

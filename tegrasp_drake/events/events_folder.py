@@ -1,13 +1,16 @@
 """An events folder: save an object's memorized events with the index, load them back,
 find the folder that holds an object's events. Saving is all or nothing (staged files
-renamed together with Ctrl-C held back, the index last)."""
+renamed together with Ctrl-C held back, the index last) and holds the folder, so that two
+processes saving into one folder cannot interleave their index writes."""
 
+import contextlib
 import os
 import pathlib
 from typing import Annotated
 from collections.abc import Iterable, Sequence
 
-from tegrasp_drake.rig.files import (JSON_OBJECT_START, interruptions_deferred, replace_problem,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, held_folder,
+                                     interruptions_deferred, replace_problem,
                                      remove_stale_staging_files_of, staged_file)
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import shorten
@@ -53,6 +56,30 @@ def check_events_destination(events_dir, object_names: Iterable[str], *,
                 "folder") from None
 
 
+class EventsFolderHeldError(EventsDestinationError):
+    """Another process is saving or recording events into the folder (held_events_folder)."""
+
+
+@contextlib.contextmanager
+def held_events_folder(events_dir):
+    """Holds `events_dir` (made if missing) for the block: the hold save_memorized_events takes
+    for each save and `tegrasp record-events` for its whole recording (rig.files.held_folder,
+    shared, so a save inside this process's recording shares it). Another process's save or
+    recording there is refused at once (EventsFolderHeldError) rather than read the index
+    before this one writes it and then drop this one's entries; OSError when the folder
+    cannot be made or opened."""
+    events_dir = pathlib.Path(events_dir)
+    events_dir.mkdir(parents=True, exist_ok=True)
+    with contextlib.ExitStack() as stack:
+        try:
+            stack.enter_context(held_folder(events_dir, shared=True))
+        except FolderHeldError:
+            raise EventsFolderHeldError(
+                f"{events_dir}: another process is saving or recording events there now; "
+                "wait for it to end, or give another folder") from None
+        yield
+
+
 @public_api
 def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
                           events: Iterable[MemorizedEvent], *,
@@ -62,7 +89,9 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
 
     Each object given replaces its previous events (stale files removed); keep_other_objects
     keeps the other objects' index entries. Every object needs the `required` transitions;
-    no events at all is refused (ValueError)."""
+    no events at all is refused (ValueError). The folder is held while it is read and written
+    (held_events_folder): a save while another process saves or records there is refused
+    (EventsFolderHeldError, an EventsDestinationError)."""
     events_dir = pathlib.Path(events_dir)
     events = _sorted_events(events)
     if not events:
@@ -77,6 +106,13 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
         if missing:
             raise ValueError(f"object '{object_name}' lacks transitions {missing}")
     check_events_destination(events_dir, objects, keep_other_objects=keep_other_objects)
+    with held_events_folder(events_dir):
+        return _save_held(events_dir, events, objects, keep_other_objects)
+
+
+def _save_held(events_dir: pathlib.Path, events: list[MemorizedEvent], objects: list[str],
+               keep_other_objects: bool) -> list[pathlib.Path]:
+    """save_memorized_events's reading of the index and writing, in the folder it holds."""
     kept_entries = []
     if keep_other_objects and (events_dir / INDEX_FILE).exists():
         kept_entries = [entry for entry in read_index(events_dir)
@@ -90,7 +126,6 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
     # staging files of these same files a writer killed past its handlers (SIGKILL) left go
     # first.
     staged = []
-    events_dir.mkdir(parents=True, exist_ok=True)
     for event in events:
         (events_dir / event.relative_path()).parent.mkdir(parents=True, exist_ok=True)
     _remove_stale_staging([events_dir / e.relative_path() for e in events]
