@@ -24,8 +24,8 @@ from tegrasp_drake.hardware.device_log_messages import (
     TRANSITION_CHANNEL, tactile_arrays)
 from tegrasp_drake.hardware.myrio.tactile_calibration import (COUNT_MAX,
                                                               MAX_TAXEL_GAIN_N_PER_COUNT)
-from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL,
-                                                JACO_STATUS_CHANNEL, check_jaco_status)
+from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL,
+                                                check_jaco_status_message)
 from tegrasp_drake.hardware.message_boundary import RejectedMessage
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.rig.number_text import number_text
@@ -309,14 +309,14 @@ def _time_order_damage(decoded: dict, channel: str) -> list[str]:
 
 
 def _live_refusals(messages: list, check) -> tuple[list, dict]:
-    """The (log time, message) pairs whose raw message `check` (the live run's boundary
-    check, e.g. check_jaco_status) accepts, and the refused ones' counts by reason: a
-    message the run refused on the bus (a forged or damaged status) is refused again, so
-    that it never sets the replay's time order."""
+    """The (log time, decoded message) pairs that `check` (the live run's boundary check
+    of a decoded message, e.g. check_jaco_status_message) accepts, and the refused ones'
+    counts by reason: a message the run refused on the bus (a forged or damaged status) is
+    refused again, so that it never sets the replay's time order."""
     kept, refused = [], {}
     for wall, message in messages:
         try:
-            check(message.encode())
+            check(message)
         except RejectedMessage as rejection:
             refused[rejection.reason] = refused.get(rejection.reason, 0) + 1
             continue
@@ -517,7 +517,7 @@ def read_run_log(path) -> RunLog:
     damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
                " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
     decoded[JACO_STATUS_CHANNEL], refused = _live_refusals(decoded[JACO_STATUS_CHANNEL],
-                                                           check_jaco_status)
+                                                           check_jaco_status_message)
     if refused:
         damage.append(
             f"{sum(refused.values())} message(s) on {JACO_STATUS_CHANNEL} are statuses the "

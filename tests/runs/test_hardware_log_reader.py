@@ -256,3 +256,29 @@ def test_a_log_joined_to_itself_is_a_damaged_log_exit_3(run_log_path, tmp_path, 
     assert code == 3
     assert "damaged log" in err and TRANSITION_CHANNEL in err and "internal error" not in err
     assert len(read_run_log(joined).transitions) == len(read_run_log(run_log_path).transitions)
+
+
+def test_each_arm_status_in_a_log_is_decoded_once(tmp_path, monkeypatch):
+    """The reader decodes a status and checks the decoded message as the live run does; it
+    decoded each twice (once to read it, once more in the live check of its bytes)."""
+    from drake import lcmt_jaco_status
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL, make_jaco_status
+    path = tmp_path / "arm.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    home = [0.0, np.pi, np.pi, 0.0, 0.0, 0.0]  # [rad] within each joint's range
+    for k in range(50):
+        log.write_event(k, TACTILE_CHANNEL,
+                        tactile_message(0.001 * k, [1.0, 1.0], [0.0, 0.0]).encode())
+        if k % 10 == 0:
+            position = home if k else [float("nan")] + home[1:]  # the first: refused
+            log.write_event(k, JACO_STATUS_CHANNEL, make_jaco_status(
+                1_000_000 + 1000 * k, position, [0.0] * 6, [0.0] * 6).encode())
+    log.close()
+    decode = lcmt_jaco_status.decode
+    decoded = []
+    monkeypatch.setattr(lcmt_jaco_status, "decode",
+                        staticmethod(lambda data: decoded.append(1) or decode(data)))
+    run = read_run_log(path)
+    assert len(decoded) == 5
+    assert len(run.arm_status) == 4
+    assert any("live run refuses (not finite 1" in words for words in run.damage)

@@ -106,10 +106,15 @@ def _check_joints(message, fields) -> None:
 
 
 def check_jaco_status(data: bytes) -> lcmt_jaco_status:
-    """A KINOVA_JACO_STATUS message decoded and checked (6 joints, finite, within
-    JACO_STATUS_RANGES, utime >= 0: the arm's clock starts at or after 0); else
+    """A KINOVA_JACO_STATUS message decoded and checked (check_jaco_status_message); else
     RejectedMessage."""
-    message = decode_lcm(lcmt_jaco_status, data)
+    return check_jaco_status_message(decode_lcm(lcmt_jaco_status, data))
+
+
+def check_jaco_status_message(message: lcmt_jaco_status) -> lcmt_jaco_status:
+    """`message`, a decoded status, checked as the live run checks each one it receives (6
+    joints, finite, within JACO_STATUS_RANGES, utime >= 0: the arm's clock starts at or after
+    0); else RejectedMessage. A run log's reader checks the statuses it has decoded with it."""
     _check_joints(message, tuple(JACO_STATUS_RANGES))
     for field, (ranges, unit) in JACO_STATUS_RANGES.items():
         for k, (value, (low, high)) in enumerate(zip(getattr(message, field), ranges)):
