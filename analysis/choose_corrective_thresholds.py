@@ -19,7 +19,7 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.rig.files import MARKDOWN_START, UserPathError, write_atomically
+from tegrasp_drake.commands.script_output import write_report
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.events_folder import load_memorized_events
@@ -159,10 +159,7 @@ def main(argv=None) -> int:
             lines.append(f"| {ra:g} | {p.detected}/{situations} | {p.false}/{p.spans} | {lat} |")
         lines.append("")
         print(transition, best, flush=True)
-    try:
-        write_atomically(args.out, "\n".join(lines) + "\n", start=MARKDOWN_START)
-    except UserPathError as error:
-        raise SystemExit(f"choose_corrective_thresholds: {error}") from None
+    write_report(args.out, "\n".join(lines) + "\n", script="choose_corrective_thresholds")
     print(f"wrote {args.out}")
     return 0
 

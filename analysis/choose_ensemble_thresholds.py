@@ -15,7 +15,7 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.rig.files import MARKDOWN_START, UserPathError, write_atomically
+from tegrasp_drake.commands.script_output import write_report
 from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.events import tactile_trial_from_log
@@ -110,10 +110,7 @@ def main(argv=None) -> int:
             lines.append(f"| {scale:.2f} | {p.sa_threshold:.3f} | {p.ra_threshold:.3f} | "
                          f"{p.detection_rate:.2f} | {p.false_rate:.2f} | "
                          f"{_fmt(p.median_latency_s)} |")
-    try:
-        write_atomically(args.out, "\n".join(lines) + "\n", start=MARKDOWN_START)
-    except UserPathError as error:
-        raise SystemExit(f"choose_ensemble_thresholds: {error}") from None
+    write_report(args.out, "\n".join(lines) + "\n", script="choose_ensemble_thresholds")
     print({t: (c.sa_threshold, c.ra_threshold) for t, c in chosen.items()}, f"wrote {args.out}")
     return 0
 

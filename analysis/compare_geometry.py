@@ -25,7 +25,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 
 from compare_hands import failure_class, load  # noqa: E402
 
-from tegrasp_drake.rig.files import MARKDOWN_START, UserPathError, write_atomically  # noqa: E402
+from tegrasp_drake.commands.script_output import write_report  # noqa: E402
 from tegrasp_drake.scenario.trial_result import TrialResult  # noqa: E402
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value  # noqa: E402
 from tegrasp_drake.sweep.table import succeeded as _succeeded  # noqa: E402
@@ -121,10 +121,7 @@ def main(argv=None) -> int:
         if not (folder / "trials").is_dir():
             parser.error(f"{folder}: no trials/ folder of sweep records there")
     text = report(load(args.reference), load(args.coarse), args.label)
-    try:
-        write_atomically(args.out, text + "\n", start=MARKDOWN_START)
-    except UserPathError as error:
-        raise SystemExit(f"compare_geometry: {error}") from None
+    write_report(args.out, text + "\n", script="compare_geometry")
     print(text)
     return 0
 

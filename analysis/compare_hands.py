@@ -16,7 +16,7 @@ import collections
 import json
 import pathlib
 
-from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
+from tegrasp_drake.commands.script_output import write_report
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
@@ -94,19 +94,20 @@ def report(prismatic: dict, linkage: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def main() -> None:
+def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("linkage", type=pathlib.Path)
     parser.add_argument("prismatic", type=pathlib.Path, nargs="+")
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     prismatic = {}
     for folder in args.prismatic:
         prismatic.update(load(folder))
     text = f"# Prismatic against linkage hand\n\n{report(prismatic, load(args.linkage))}"
-    write_atomically(args.out, text, start=MARKDOWN_START)
+    write_report(args.out, text, script="compare_hands")
     print(f"wrote {args.out}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())

@@ -12,7 +12,7 @@ import argparse
 import pathlib
 import sys
 
-from tegrasp_drake.rig.files import MARKDOWN_START, UserPathError, write_atomically
+from tegrasp_drake.commands.script_output import write_report
 from tegrasp_drake.sweep.detection_report import report_markdown
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
@@ -34,10 +34,7 @@ def main(argv=None) -> int:
     controllers = [c for c in CONTROLLER_NAMES
                    if any(r["trial"]["controller"] == c for r in records.values())]
     text = report_markdown(records, controllers, args.reference, args.title)
-    try:
-        write_atomically(args.out, text, start=MARKDOWN_START)
-    except UserPathError as error:
-        raise SystemExit(f"detection_quality: {error}") from None
+    write_report(args.out, text, script="detection_quality")
     print(text)
     return 0
 

@@ -31,7 +31,7 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
+from tegrasp_drake.commands.script_output import write_report
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.trial_function import trial_log_name
@@ -102,7 +102,7 @@ def main(argv=None) -> int:
         lines += ["", f"No log for {len(missing)} trials: {', '.join(sorted(missing))}."]
     text = "\n".join(lines) + "\n"
     if args.out:
-        write_atomically(args.out, text, start=MARKDOWN_START)
+        write_report(args.out, text, script="hold_creep")
     sys.stdout.write(text)
     return 0
 

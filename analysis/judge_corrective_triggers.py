@@ -56,11 +56,10 @@ def main(argv=None) -> int:
                          f"{1000 * result['placement_error_m']:.0f} mm | "
                          f"{result['wall_time_s']:.0f} |")
             print(lines[-1], flush=True)
-    from tegrasp_drake.rig.files import MARKDOWN_TABLE_START, UserPathError, write_atomically
-    try:
-        write_atomically(args.out, "\n".join(lines) + "\n", start=MARKDOWN_TABLE_START)
-    except UserPathError as error:
-        raise SystemExit(f"judge_corrective_triggers: {error}") from None
+    from tegrasp_drake.commands.script_output import write_report
+    from tegrasp_drake.rig.files import MARKDOWN_TABLE_START
+    write_report(args.out, "\n".join(lines) + "\n", script="judge_corrective_triggers",
+                 start=MARKDOWN_TABLE_START)
     return 0
 
 

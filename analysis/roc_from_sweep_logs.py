@@ -18,7 +18,7 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.rig.files import MARKDOWN_START, UserPathError, write_atomically
+from tegrasp_drake.commands.script_output import write_report
 from tegrasp_drake.control.controller_registry import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
@@ -100,10 +100,7 @@ def main(argv=None) -> int:
                          f"{p.detection_rate:.2f} | {p.false_rate:.2f} | "
                          f"{p.missed / p.spans if p.spans else 0:.2f} | {latency} |")
         lines.append("")
-    try:
-        write_atomically(args.out, "\n".join(lines), start=MARKDOWN_START)
-    except UserPathError as error:
-        raise SystemExit(f"roc_from_sweep_logs: {error}") from None
+    write_report(args.out, "\n".join(lines), script="roc_from_sweep_logs")
     print(f"wrote {args.out}")
     return 0
 

@@ -26,7 +26,8 @@ import pathlib
 import sys
 
 from tegrasp_drake.sweep.missed_event_report import report_markdown, sweep_misses
-from tegrasp_drake.rig.files import MARKDOWN_START, folder_problem, write_atomically
+from tegrasp_drake.commands.script_output import write_report
+from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.sweep.records import load_records
 
 
@@ -69,11 +70,7 @@ def main(argv=None) -> int:
         print(f"weak_stimuli: no log for {trial_id} in {args.logs}; not counted",
               file=sys.stderr)
     if args.out is not None:
-        try:
-            write_atomically(args.out, text, start=MARKDOWN_START)
-        except OSError as error:
-            raise SystemExit(f"weak_stimuli: cannot write --out {args.out}: {error.strerror}; "
-                             "give a path in a folder you can write") from None
+        write_report(args.out, text, script="weak_stimuli")
     print(text)
     return 0
 

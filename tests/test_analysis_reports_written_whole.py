@@ -22,10 +22,13 @@ def results(tmp_path):
 
 def arguments(script, out, results):
     return {"compare_geometry": [str(out), str(results), str(results)],
-            "detection_quality": [str(out), str(results)]}[script]
+            "compare_hands": [str(out), str(results), str(results)],
+            "detection_quality": [str(out), str(results)],
+            "hold_creep": [str(results), str(results), "--out", str(out)]}[script]
 
 
-@pytest.mark.parametrize("script", ["compare_geometry", "detection_quality"])
+@pytest.mark.parametrize("script", ["compare_geometry", "compare_hands", "detection_quality",
+                                    "hold_creep"])
 def test_a_report_that_cannot_be_written_is_one_line_naming_it(script, results, tmp_path):
     out = tmp_path / "no such folder" / "report.md"
     with pytest.raises(SystemExit) as stopped:

@@ -11,4 +11,5 @@
 - output_streams.py: the command line's stdout and stderr when the system refuses them (a
   closed pipe, a full disk).
 - process_environment.py: the process set up before a command runs (UTF-8 mode, matplotlib's
-  folder)."""
+  folder).
+- script_output.py: the reports the analysis scripts write, and their one-line error."""
