@@ -1,7 +1,8 @@
 """The grasp state machine's rule engine, pure and Drake-free: Rules (modes, priority,
 condition, action), Guards that hold named rules back, and RuleTables that extend another.
 Each tick, of the mode's rules, lowest priority first, the first that holds and is not held
-back decides; its Decision carries the rule's name."""
+back decides; its Decision carries the rule's name. A rule or guard may be kept to some
+hand models (`hands`); RuleTable.for_hand is the table a hand runs."""
 
 import dataclasses
 from collections.abc import Callable
@@ -9,9 +10,25 @@ from collections.abc import Callable
 from tegrasp_drake.control.grasp_modes import (CODE_MAX_LENGTH, TERMINAL_MODES, Decision, Mode,
                                                Trigger)
 from tegrasp_drake.control.rule_actions import re_reach_or_fail
+from tegrasp_drake.robotiq.hand_models import GRIPPER_MODELS
 
 # The modes a rule can apply in (the terminal modes have no transitions).
 LIVE_MODES = tuple(mode for mode in Mode if mode not in TERMINAL_MODES)
+
+
+def _check_hands(kind: str, name: str, hands) -> None:
+    """ValueError unless `hands` is None or a non-empty tuple of GRIPPER_MODELS names."""
+    if hands is None:
+        return
+    if not isinstance(hands, tuple) or not hands or any(h not in GRIPPER_MODELS for h in hands):
+        raise ValueError(f"{kind} '{name}': hands {hands!r} is not a tuple of hand models "
+                         f"({', '.join(GRIPPER_MODELS)}); give None for every hand")
+
+
+def _check_hand(table: str, hand) -> None:
+    if hand not in GRIPPER_MODELS:
+        raise ValueError(f"rule table '{table}': no hand model {hand!r}; the hand models are "
+                         f"{', '.join(GRIPPER_MODELS)}")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -56,7 +73,8 @@ class Situation:
 class Rule:
     """One row: in `modes` (None: every live mode), when condition(situation) holds and no
     guard holds it back, action(situation) is the Decision; lower `priority` first, unique per
-    mode. `when` and `then` word it for the docs."""
+    mode. `when` and `then` word it for the docs. `hands`: the hand models (GRIPPER_MODELS)
+    it applies on, None every one (ValueError for another name)."""
     name: str
     modes: tuple[Mode, ...] | None
     priority: int
@@ -64,18 +82,33 @@ class Rule:
     action: Callable[[Situation], Decision]
     when: str
     then: str
+    hands: tuple[str, ...] | None = None
+
+    def __post_init__(self):
+        _check_hands("rule", self.name, self.hands)
 
     def applies_in(self, mode: Mode) -> bool:
         return mode in LIVE_MODES if self.modes is None else mode in self.modes
 
+    def applies_on(self, hand: str) -> bool:
+        return self.hands is None or hand in self.hands
+
 
 @dataclasses.dataclass(frozen=True)
 class Guard:
-    """While condition(situation) holds, the rules in `holds_back` do not fire; `when` words it."""
+    """While condition(situation) holds, the rules in `holds_back` do not fire; `when` words it.
+    `hands`: the hand models it applies on, None every one (as Rule's)."""
     name: str
     holds_back: tuple[str, ...]
     condition: Callable[[Situation], bool]
     when: str
+    hands: tuple[str, ...] | None = None
+
+    def __post_init__(self):
+        _check_hands("guard", self.name, self.hands)
+
+    def applies_on(self, hand: str) -> bool:
+        return self.hands is None or hand in self.hands
 
 
 @dataclasses.dataclass(frozen=True)
@@ -125,6 +158,22 @@ class RuleTable:
         """This table with `rules` and `guards` added, as the table called `name`."""
         return RuleTable(name=name, rules=tuple(rules), guards=tuple(guards),
                          re_reach_move=re_reach_move or self.re_reach_move, base=self)
+
+    def for_hand(self, hand: str) -> "RuleTable":
+        """The table `hand` (GRIPPER_MODELS) runs: this one, with its names and bases, without
+        the rules and guards kept to other hands; a guard no longer holds back a rule dropped,
+        and is dropped when it holds none back. ValueError for an unknown hand."""
+        _check_hand(self.name, hand)
+        base = self.base.for_hand(hand) if self.base else None
+        rules = tuple(rule for rule in self.rules if rule.applies_on(hand))
+        kept = {rule.name for rule in (base.all_rules() if base else ()) + rules}
+        guards = []
+        for guard in self.guards:
+            holds_back = tuple(name for name in guard.holds_back if name in kept)
+            if guard.applies_on(hand) and holds_back:
+                guards.append(dataclasses.replace(guard, holds_back=holds_back))
+        return RuleTable(name=self.name, rules=rules, re_reach_move=self.re_reach_move,
+                         guards=tuple(guards), base=base)
 
     def all_rules(self) -> tuple[Rule, ...]:
         """Its rules and its base's."""

@@ -89,6 +89,55 @@ def test_a_table_that_could_not_decide_one_way_is_refused(rules, guards, message
         RuleTable(name="bad", rules=rules, guards=guards, re_reach_move=MOVE)
 
 
+# A prismatic-only rule of Hold and its guard, and a guard that holds back it and `a`.
+ONLY_PRISMATIC = dataclasses.replace(going_to(Mode.FAILED, "blocked"), priority=5,
+                                     hands=("prismatic",))
+HELD = BASE.extended("held", rules=(ONLY_PRISMATIC,), guards=(
+    Guard("on_prismatic", ("blocked",), lambda s: s.obs.b, when="b"),
+    Guard("on_both", ("blocked", "a"), lambda s: s.obs.b, when="b")))
+
+
+def test_a_hands_table_drops_the_rules_kept_to_other_hands_and_their_guards_references():
+    linkage = HELD.for_hand("linkage")
+    assert [rule.name for rule, _ in linkage.ordered(Mode.HOLD)] == ["a", "b"]
+    assert {guard.name: guard.holds_back for guard in linkage.all_guards()} == {
+        "on_both": ("a",)}
+    assert (linkage.name, linkage.origin("a"), linkage.base.name) == ("held", "base", "base")
+    assert decide(linkage, blocked=True, a=True).code == "a"
+    assert decide(HELD.for_hand("prismatic"), blocked=True, a=True).code == "blocked"
+    assert [rule.name for rule, _ in HELD.for_hand("prismatic").ordered(Mode.HOLD)] == [
+        "blocked", "a", "b"]
+
+
+def test_a_guard_kept_to_a_hand_is_dropped_on_the_others():
+    kept = BASE.extended("kept", guards=(
+        Guard("blocker", ("a",), lambda s: s.obs.blocked, when="blocked",
+              hands=("prismatic",)),))
+    assert decide(kept.for_hand("prismatic"), a=True, blocked=True) is None
+    assert decide(kept.for_hand("linkage"), a=True, blocked=True).code == "a"
+
+
+def test_a_guard_holding_back_only_dropped_rules_is_dropped():
+    only = BASE.extended("only", rules=(ONLY_PRISMATIC,), guards=(
+        Guard("on_prismatic", ("blocked",), lambda s: s.obs.b, when="b"),))
+    assert only.for_hand("linkage").all_guards() == ()
+    assert [g.name for g in only.for_hand("prismatic").all_guards()] == ["on_prismatic"]
+
+
+@pytest.mark.parametrize("hands", [("gecko",), "prismatic", ()])
+def test_a_rule_or_guard_kept_to_no_known_hand_is_refused(hands):
+    with pytest.raises(ValueError, match=r"^rule 'a': hands .*\(linkage, prismatic\)"):
+        dataclasses.replace(A, hands=hands)
+    with pytest.raises(ValueError, match=r"^guard 'g': hands .*\(linkage, prismatic\)"):
+        Guard("g", ("a",), lambda s: True, when="", hands=hands)
+
+
+def test_an_unknown_hand_has_no_table():
+    with pytest.raises(ValueError, match=r"^rule table 'held': no hand model 'gecko'; the hand "
+                                         r"models are linkage, prismatic$"):
+        HELD.for_hand("gecko")
+
+
 def test_the_decision_names_its_rule_and_keeps_its_action():
     decision = decide(BASE, b=True)
     assert (decision.mode, decision.trigger, decision.reason, decision.code) == (
