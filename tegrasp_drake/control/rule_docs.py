@@ -27,29 +27,41 @@ def _rows(table: RuleTable, added_only: bool) -> list[tuple[str, object]]:
     return rows
 
 
+def hands_label(item) -> str:
+    """A rule's or guard's hands for the docs: "both" (every hand model), or their names."""
+    return "both" if item.hands is None else ", ".join(item.hands)
+
+
 def markdown(table: RuleTable, *, added_only: bool = False) -> str:
-    """The table's rules, then its guards, as Markdown (`from` and `held back by` columns
-    when it has a base or guards); `added_only`: only what it adds to its base."""
+    """The table's rules, then its guards, as Markdown (`from`, `hands` and `held back by`
+    columns when it has a base, a rule or guard kept to some hands, or guards); `added_only`:
+    only what it adds to its base."""
     move = table.re_reach_move
     guards = table.all_guards() if not added_only else table.guards
     held = {rule.name: [g.name for g in table.all_guards() if rule.name in g.holds_back]
             for rule in table.all_rules()}
-    # The columns "from" for an extended table, "held back by" for one with guards.
+    kept = any(item.hands is not None for item in (*table.all_rules(), *table.all_guards()))
+    # The columns "from" for an extended table, "hands" for one with a rule or guard kept to
+    # some hands, "held back by" for one with guards.
     columns = ["mode", "priority", "rule"] + ["from"] * (table.base is not None) + [
-        "held back by"] * bool(table.all_guards()) + ["when", "then"]
+        "hands"] * kept + ["held back by"] * bool(table.all_guards()) + ["when", "then"]
     lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
     for mode, rule in _rows(table, added_only):
         cells = {"mode": mode, "priority": str(rule.priority), "rule": f"`{rule.name}`",
-                 "from": table.origin(rule.name),
+                 "from": table.origin(rule.name), "hands": hands_label(rule),
                  "held back by": ", ".join(f"`{g}`" for g in held[rule.name]) or "-",
                  "when": rule.when,
                  "then": rule.then.format(re_reach=move.label, re_reach_shift=move.shift_label)}
         lines.append("| " + " | ".join(cells[column] for column in columns) + " |")
     if guards:
-        lines += ["", "| guard | from | holds back | while |", "|---|---|---|---|"]
-        lines += [f"| `{g.name}` | {table.origin(g.name)} | "
-                  f"{', '.join(f'`{name}`' for name in g.holds_back)} | {g.when} |"
-                  for g in guards]
+        columns = ["guard", "from"] + ["hands"] * kept + ["holds back", "while"]
+        lines += ["", "| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+        for g in guards:
+            cells = {"guard": f"`{g.name}`", "from": table.origin(g.name),
+                     "hands": hands_label(g),
+                     "holds back": ", ".join(f"`{name}`" for name in g.holds_back),
+                     "while": g.when}
+            lines.append("| " + " | ".join(cells[column] for column in columns) + " |")
     return "\n".join(lines) + "\n"
 
 

@@ -138,6 +138,14 @@ def test_an_unknown_hand_has_no_table():
         HELD.for_hand("gecko")
 
 
+def test_the_docs_name_the_hands_a_rule_or_guard_is_kept_to():
+    from tegrasp_drake.control.rule_docs import markdown
+    page = markdown(HELD)
+    assert "| `blocked` | held | prismatic |" in page and "| `a` | base | both |" in page
+    assert "| `on_both` | held | both | `blocked`, `a` |" in page
+    assert "hands" not in markdown(BASE)  # no rule or guard of it is kept to a hand
+
+
 def test_the_decision_names_its_rule_and_keeps_its_action():
     decision = decide(BASE, b=True)
     assert (decision.mode, decision.trigger, decision.reason, decision.code) == (
