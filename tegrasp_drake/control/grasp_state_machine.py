@@ -71,7 +71,8 @@ class GraspStateMachine(LeafSystem):
     the watchdog's message; taxel_forces: [left 12, right 12] [N] (taxel_aware);
     grasp_wrench: [M, F] at G [N m, N, world] (finger strike). Outputs: X_WG_desired;
     gripper_command [rPR, rSP, rFR]; expected_event and corrective_expected_event (index,
-    -1 none; state only, since the matchers feed back); mode. rules: the RuleTable;
+    -1 none; state only, since the matchers feed back); mode. rules: the RuleTable, run as
+    kept to the plan's hand (RuleTable.for_hand(plan.gripper_model), rule_table());
     estimator: a taxel_aware ContactEstimator or None (both from the registry entry).
     """
 
@@ -106,7 +107,7 @@ class GraspStateMachine(LeafSystem):
         self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
         self._grasp_wrench = self.DeclareVectorInputPort("grasp_wrench", 6)
         self._estimator = estimator
-        self._rules = rules
+        self._rules = rules.for_hand(plan.gripper_model)
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period_s, 0.0, self._update)
         state_only = {self.abstract_state_ticket(self._state)}
@@ -131,6 +132,10 @@ class GraspStateMachine(LeafSystem):
             segment=MotionSegment(p.settle_s, p.reach_s, p.start_xyz, grasp),
             gripper=(ru.STROKE_M, p.close_speed, p.grip_force), gripper_request_time=0.0,
             grip_force=p.grip_force, stage=Stage.MOVING)
+
+    def rule_table(self):
+        """The RuleTable it runs: its rules kept to the plan's hand."""
+        return self._rules
 
     def state(self, context) -> MachineState:
         return context.get_abstract_state(self._state).get_value()

@@ -8,9 +8,12 @@ from pydrake.systems.analysis import Simulator
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig import station_interface as ports
 from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
-from tegrasp_drake.control.controller_config import AvoidConfig, MemorizedControllerConfig
+from tegrasp_drake.control.controller_config import (AvoidConfig, MemorizedControllerConfig,
+                                                     TaxelAwareControllerConfig)
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
+from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
+from tegrasp_drake.control.taxel_aware.hands import PRISMATIC_ONLY
 from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
@@ -250,3 +253,25 @@ def test_hits_in_hold_are_avoided_at_most_max_avoids_times():
     simulator.AdvanceTo(context.get_time() + 0.1)
     assert mode(machine, context) == Mode.HOLD
     assert [e["to"] for e in machine.timeline(context)].count("Avoid") == 1
+
+
+def taxel_aware_machine(gripper_model: str) -> GraspStateMachine:
+    scenario = LoadScenario(name="box", overrides=[f"gripper.model={gripper_model}"])
+    return GraspStateMachine(plan=grasp_plan(scenario), config=TaxelAwareControllerConfig(),
+                             event_indices=EVENT_INDICES, event_trigger=Trigger.MEMORIZED_EVENT,
+                             rules=TAXEL_AWARE_TABLE)
+
+
+def names(table) -> set:
+    return {item.name for item in (*table.all_rules(), *table.all_guards())}
+
+
+def test_the_machine_runs_only_the_rules_kept_to_its_hand():
+    prismatic_only = {item.name for item in (*TAXEL_AWARE_TABLE.all_rules(),
+                                             *TAXEL_AWARE_TABLE.all_guards())
+                      if item.hands == PRISMATIC_ONLY}
+    assert {"caged", "tipping_guard", "approach_contact"} <= prismatic_only
+    linkage = taxel_aware_machine("linkage").rule_table()
+    assert not names(linkage) & prismatic_only
+    assert names(linkage) | prismatic_only == names(TAXEL_AWARE_TABLE)
+    assert names(taxel_aware_machine("prismatic").rule_table()) == names(TAXEL_AWARE_TABLE)

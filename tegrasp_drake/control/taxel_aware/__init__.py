@@ -5,6 +5,7 @@ the whole taxel array, over what one ContactEstimator senses.
   estimator.py           ContactEstimator: what the rules sense, each tick
   contact_geometry.py    the geometry the estimator computes (pure functions)
   moves.py               the centring Re-Reach
+  hands.py               the hands a rule is kept to (PRISMATIC_ONLY)
   finger_strike.py       rule: a finger's front struck the object in the approach
   approach_contact.py    rule: a pad touched in the approach
   beyond_pads.py         rule: a first touch beyond the pads stops the close

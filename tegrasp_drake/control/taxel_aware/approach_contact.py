@@ -5,6 +5,7 @@ approach again (docs/controller.md, "Approach contact")."""
 from tegrasp_drake.control.grasp_modes import Mode
 from tegrasp_drake.control.rule_actions import re_reach_or_fail
 from tegrasp_drake.control.rule_engine import Rule
+from tegrasp_drake.control.taxel_aware.hands import PRISMATIC_ONLY
 from tegrasp_drake.control.taxel_aware.moves import centring_shift
 
 
@@ -23,4 +24,4 @@ def stop_back_off_and_shift(situation):
 APPROACH_CONTACT = Rule(
     "approach_contact", (Mode.REACH,), 20, touches_in_approach, stop_back_off_and_shift,
     when="a pad touched for re_reach.one_sided_contact_s in the approach",
-    then="ReReach(back off, the paper's shift) or Failed")
+    then="ReReach(back off, the paper's shift) or Failed", hands=PRISMATIC_ONLY)

@@ -6,6 +6,7 @@ touching alone in turn bracket the object")."""
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Load, decide, re_reach_or_fail
 from tegrasp_drake.control.rule_engine import Rule
+from tegrasp_drake.control.taxel_aware.hands import PRISMATIC_ONLY
 from tegrasp_drake.control.taxel_aware.moves import centring_shift
 from tegrasp_drake.control.transition_logic import one_sided, touching_finger
 
@@ -39,8 +40,8 @@ def recentre(situation):
 BRACKETED_AT_EXTENT = Rule(
     "bracketed_at_extent", (Mode.REACH,), 180, closed_to_extent, load,
     when="one finger alone, the other's face remembered, closed to their extent + margin",
-    then="Load")
+    then="Load", hands=PRISMATIC_ONLY)
 BRACKET_RECENTRE = Rule(
     "bracket_recentre", (Mode.REACH,), 190, bracketed, recentre,
     when="one finger alone, the other's face remembered",
-    then="ReReach(to the faces' midpoint) or Failed")
+    then="ReReach(to the faces' midpoint) or Failed", hands=PRISMATIC_ONLY)

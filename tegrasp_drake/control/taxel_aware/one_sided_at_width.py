@@ -5,6 +5,7 @@ one_sided_width_margin_m of the object's width: Load, before the paper's one_sid
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Load, decide
 from tegrasp_drake.control.rule_engine import Rule
+from tegrasp_drake.control.taxel_aware.hands import PRISMATIC_ONLY
 from tegrasp_drake.control.transition_logic import one_sided, touching_finger
 
 
@@ -23,4 +24,4 @@ def load(situation):
 ONE_SIDED_AT_WIDTH = Rule(
     "one_sided_at_width", (Mode.REACH,), 170, closed_to_width, load,
     when="one finger alone for re_reach.one_sided_contact_s, closed to the width + margin",
-    then="Load")
+    then="Load", hands=PRISMATIC_ONLY)

@@ -3,6 +3,7 @@
 loads it where it is (docs/controller.md, "Not after a push past the tipping limit")."""
 
 from tegrasp_drake.control.rule_engine import Guard
+from tegrasp_drake.control.taxel_aware.hands import PRISMATIC_ONLY
 
 
 def pushed_over(situation) -> bool:
@@ -11,4 +12,4 @@ def pushed_over(situation) -> bool:
 
 TIPPING_GUARD = Guard(
     "tipping_guard", ("off_centre",), pushed_over,
-    when="the close pushed the object past its tipping limit")
+    when="the close pushed the object past its tipping limit", hands=PRISMATIC_ONLY)
