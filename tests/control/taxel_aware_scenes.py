@@ -80,8 +80,9 @@ def matched(transitions, steps):
 def check_scene(scene: Scene, expect: Expect, world: tuple):
     """Runs `scene` in `world` and asserts `expect`: its rules decide its transitions in
     order, and the grasp is held (and put down unless not expect.unload). Returns the run."""
+    hand = LoadScenario(overrides=list(world + tuple(scene.overrides))).gripper.model
     for _, _, rule in expect.steps:
-        TAXEL_AWARE_TABLE.rule(rule)  # KeyError: no such rule
+        TAXEL_AWARE_TABLE.for_hand(hand).rule(rule)  # KeyError: no such rule on this hand
     run = run_scene(scene, world)
     result = run.result
     codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]
