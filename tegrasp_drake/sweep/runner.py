@@ -636,8 +636,10 @@ def summary_text(summary: SweepSummary) -> str:
                      "the next run): " + ", ".join(summary.errors[:10])
                      + (" ..." if len(summary.errors) > 10 else ""))
     if summary.unfinished:
-        lines.append(f"  {len(summary.unfinished)} trial(s) unfinished because a worker "
-                     "died; run the same command again to finish them")
+        why = ("the sweep stopped where a trial's log could not be written (the error line)"
+               if summary.unwritten_log is not None else "a worker died")
+        lines.append(f"  {len(summary.unfinished)} trial(s) unfinished because {why}; run "
+                     "the same command again to finish them")
     return "\n".join(lines)
 
 
