@@ -16,9 +16,12 @@ import typing
 from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded, check_ranges, chosen
 from tegrasp_drake.modelgen.jaco2_dh import continuous_joints_problem
-from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
+from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD,
+                                                  JACO_STATUS_CHANNEL)
+from tegrasp_drake.hardware.myrio.tactile_frame import FRAME_PERIOD_US
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
@@ -214,6 +217,35 @@ def same_serial_line(a: str, b: str) -> bool:
                 and first.st_rdev == second.st_rdev))
 
 
+# A silence the watchdog may call a device's fault: more than this many of its update periods,
+# so that one late sample never trips it (the defaults, DEFAULT_TIMEOUTS, allow 5-20).
+WATCHDOG_MIN_PERIODS = 2
+
+
+def device_update_periods(config: HardwareStationConfig) -> dict[str, float]:
+    """{device: the period [s] at which it updates what the watchdog reads}: the JACO2's
+    statuses (JACO_LCM_PERIOD, the driver's 100 Hz), the gripper's reads (gripper.period),
+    the myRIO's frames (TACTILE_FRAME.md, one a millisecond)."""
+    return {"arm": JACO_LCM_PERIOD, "gripper": config.gripper.period,
+            "tactile": FRAME_PERIOD_US * 1e-6}
+
+
+def watchdog_timeouts_problem(config: HardwareStationConfig, prefix: str = "") -> str | None:
+    """"field 'watchdog.<device>_timeout' ..." when a device's watchdog timeout is not longer
+    than WATCHDOG_MIN_PERIODS of its update periods (it would trip on the first late sample,
+    at once), else None."""
+    for device, period in device_update_periods(config).items():
+        timeout = config.watchdog.timeouts()[device]
+        least = WATCHDOG_MIN_PERIODS * period
+        if not timeout > least:
+            return (f"field '{prefix}watchdog.{device}_timeout' is {number_text(timeout)} s, not "
+                    f"longer than {WATCHDOG_MIN_PERIODS} of the {device}'s updates "
+                    f"({number_text(period)} s each), so the watchdog would stop the run on "
+                    f"the first late one: give more than {number_text(least)} s (default "
+                    f"{number_text(DeviceWatchdogConfig().timeouts()[device])} s)")
+    return None
+
+
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
     """Checks what the schema cannot (ranges and choices, LCM URL, calibration); ConfigError
@@ -228,6 +260,9 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     if problem:
         origin = lcm_url_origin(config.arm.lcm_url, f"field '{prefix}arm.lcm_url'")
         raise ConfigError(f"{source}: {origin} {problem}, got {config.arm.lcm_url!r}")
+    problem = watchdog_timeouts_problem(config, prefix)
+    if problem:
+        raise ConfigError(f"{source}: {problem}")
     tactile, gripper = config.tactile.port, config.gripper.port
     if same_serial_line(tactile, gripper):
         raise ConfigError(
