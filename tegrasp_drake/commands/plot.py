@@ -15,6 +15,7 @@ import argparse
 import logging
 import pathlib
 
+from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig.files import output_file_problem
 from tegrasp_drake.rig import paths
@@ -78,6 +79,7 @@ def output_path(args) -> pathlib.Path:
 def _plot_events(args, out) -> str:
     from tegrasp_drake.events import MemorizedEventError, load_all_memorized_events
     from tegrasp_drake.figures.events import plot_memorized_events
+    check_events_folder(args.events)
     events = {}
     try:
         # The first folder that has an object's events wins (the user's before the package's).
@@ -126,6 +128,11 @@ def _plot_sweep(args, out) -> str:
         raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
                          f"({args.source} is not a folder; give the --out folder of "
                          "`tegrasp sweep`)")
+    trials = pathlib.Path(args.source) / "trials"
+    if trials.exists() and not trials.is_dir():
+        raise SystemExit(f"tegrasp: error: {trials} is not a folder of trial records (a "
+                         "sweep writes its records there); give the --out folder of "
+                         "`tegrasp sweep`")
     loaded = load_records(args.source)
     if loaded.corrupt:
         path, reason = next(iter(loaded.corrupt.items()))

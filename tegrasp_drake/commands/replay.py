@@ -6,6 +6,8 @@ import argparse
 import json
 import sys
 
+from tegrasp_drake.commands.events_option import check_events_folder
+
 
 EPILOG = """\
 examples:
@@ -38,6 +40,7 @@ def run(args) -> int:
     from tegrasp_drake.runs.hardware_log_reader import RunLogError
     from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
     from tegrasp_drake.runs.hardware_log_replay import replay_run_log
+    check_events_folder(args.events)
     try:
         replay = replay_run_log(args.log, object_name=args.object, events_dir=args.events)
     except (RunLogError, MemorizedEventError, ValueError) as e:

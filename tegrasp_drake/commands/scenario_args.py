@@ -6,6 +6,7 @@ import sys
 
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
+from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file_cached
 
@@ -68,6 +69,7 @@ def add_events_argument(parser, *, what: str = "read") -> None:
 def controller_events(scenario, events_dir):
     """The memorized events the scenario's controller needs (None for the others), or
     exits with the message (which folder, which file, what to do)."""
+    check_events_folder(events_dir)
     if scenario.controller.events_folder is None:
         return None
     from tegrasp_drake.scenario.scenario_events import (another_hands_events,

@@ -12,11 +12,12 @@ import importlib
 import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
+from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
-from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, bound_arguments
+from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.rig.number_text import count_text
@@ -173,16 +174,6 @@ def plan_text(spec: SweepSpec) -> str:
         f"{'on' if r.sensor_noise else 'off'}"])
 
 
-def _check_events_folder(events) -> None:
-    """--events names an existing folder (the rule run_trial_from_spec's events_dir declares,
-    api_boundary.INPUT_FOLDER), said naming the option, before any trial: bad input (exit 1),
-    as the same refusal of the bound argument was."""
-    problem = INPUT_FOLDER.problem(events)
-    if problem:
-        from tegrasp_drake.rig.files import UserPathError
-        raise UserPathError(f"--events {events}: {problem} of memorized events")
-
-
 def _check_logs_folder(logs) -> None:
     """--logs names a folder this user can write (made if missing), before any trial."""
     problem = folder_problem(logs)
@@ -236,6 +227,12 @@ def scheduler_problem(address: str) -> str | None:
     if parts.scheme not in DASK_PROTOCOLS or not parts.hostname or port is None:
         return (f"is not a scheduler address PROTOCOL://HOST:PORT (PROTOCOL one of "
                 f"{', '.join(DASK_PROTOCOLS)}), e.g. tcp://127.0.0.1:8786")
+    extra = [name for name, value in (("a path", parts.path), ("a query", parts.query),
+                                      ("a fragment", parts.fragment),
+                                      ("a user", parts.username)) if value]
+    if extra:
+        return (f"has {' and '.join(extra)} beside PROTOCOL://HOST:PORT, which a Dask "
+                f"scheduler address does not take; give {parts.scheme}://{parts.netloc.split('@')[-1]}")
     return None
 
 
@@ -313,8 +310,7 @@ def run(args) -> int:
         scheduler = check_runner_arguments(args)
         spec = spec_from_arguments(args)
         trial_function = resolve_trial_function(args.trial_function)
-        if args.events:
-            _check_events_folder(args.events)
+        check_events_folder(args.events)
         if args.trial_function == DEFAULT_TRIAL_FUNCTION:
             from tegrasp_drake.sweep.spec import expand_trials
             from tegrasp_drake.sweep.trial_function import check_sweep_events
