@@ -338,8 +338,8 @@ def _typed_fields(cls) -> tuple[list, object]:
 
 def check_field_types(instance) -> None:
     """TypeError naming the first field of a public dataclass `instance` not of its type: a
-    scalar field (str, int, float, bool), a collection given as one string, then nested
-    configs, enums, arrays and items (typed_yaml.check_instance)."""
+    scalar field (str, int, float, bool), a collection given as one string or as an array
+    (numpy's), then nested configs, enums, arrays and items (typed_yaml.check_instance)."""
     cls = type(instance)
     collections_, scalar = _typed_fields(cls)
     _check_scalar_fields(instance, scalar, cls.__name__)
@@ -349,6 +349,11 @@ def check_field_types(instance) -> None:
             raise TypeError(f"{cls.__name__}: field '{name}' must be a collection "
                             f"(not a single string), got {type(value).__name__} "
                             f"{_short_repr(value)}; e.g. {name}=[{_short_repr(value)}]")
+        if hasattr(value, "__array__") and not isinstance(value, (list, tuple)):
+            # an array's truth and equality are elementwise: refused here, not deep inside
+            raise TypeError(f"{cls.__name__}: field '{name}' must be a list or tuple, got "
+                            f"{type(value).__module__}.{type(value).__name__}; give "
+                            f"{name}={name}.tolist()")
     from tegrasp_drake.rig.typed_yaml import check_instance
     check_instance(instance, cls.__name__)  # nested configs, enums, arrays, items
 

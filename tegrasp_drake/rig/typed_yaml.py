@@ -14,6 +14,7 @@ import math
 import os
 import pathlib
 import stat
+import sys
 import types
 import typing
 
@@ -138,7 +139,9 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
         raise YamlSyntaxError(f"{source}: not valid YAML: "
                               f"{_yaml_problem(e, line_offset, column_offset)}") from None
     except RecursionError:
-        raise ConfigError(f"{source}: the YAML nests too deeply") from None
+        raise ConfigError(f"{source}: the YAML nests deeper than Python's recursion limit "
+                          f"({sys.getrecursionlimit()} levels); no configuration nests more "
+                          "than a few levels: give a flat mapping of its fields") from None
 
 
 def _check_nodes(root, source: str, line_offset: int, column_offset: int,

@@ -141,8 +141,12 @@ def load_trial_log(path: PathLike) -> TrialLog:
             UnicodeDecodeError) as e:
         raise TrialLogError(f"trial log '{path}' is truncated or corrupt ({type(e).__name__}: "
                             f"{e}); run the trial again to remake it") from None
-    if not isinstance(meta, dict) or meta.get("format_version") != FORMAT_VERSION:
-        version = meta.get("format_version") if isinstance(meta, dict) else None
+    if not isinstance(meta, dict):
+        raise TrialLogError(f"trial log '{path}': its metadata is a JSON "
+                            f"{type(meta).__name__}, not the object a trial log holds; it is "
+                            "not a trial log (`tegrasp trial --out DIR` writes one)")
+    if meta.get("format_version") != FORMAT_VERSION:
+        version = meta.get("format_version")
         raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
                             f"reads {FORMAT_VERSION}")
     scenario, problem = logged_scenario(meta)
