@@ -6,7 +6,8 @@
   guessed parameters over their ranges.
 - emulate.py, hardware.py, replay.py: emulated devices; the run on them; its log replayed.
 - plot.py: the paper's figures from a log or a results folder.
-- scenario_args.py, viewer_args.py, verbosity.py: options shared by the commands.
+- scenario_args.py, viewer_args.py, verbosity.py, events_option.py: options shared by the
+  commands.
 - run_folder.py, progress.py: where a run's files go; the progress bar.
 - output_streams.py: the command line's stdout and stderr when the system refuses them (a
   closed pipe, a full disk).
