@@ -50,6 +50,7 @@ RULE_COUNTS = {
     "reach_timeout_caged": (None, "after caged"),
     "load_timeout_caged": (None, "after caged"),
     "finger_strike": (None, "the wrist force of a finger's front, an impact: not quasi-static"),
+    "closed_untouched": (None, "no taxel's touch in the close: fires on what no pad pressed"),
 }
 
 

@@ -11,10 +11,12 @@ from tegrasp_drake.control.controller_config import GraspControllerConfig, Taxel
 from tegrasp_drake.control.taxel_aware.contact_geometry import (
     FaceTouch, Shift, approach_shift, beyond_pads_shift, bracketed_object, caged_behind_pads,
     held_tilted, opposite_face, pushed_distance_m, release_topples, remembered_faces,
-    touched_beyond_pads, touched_face, touched_faces)
+    touched_beyond_pads, touched_face, touched_faces, untouched_reach_m)
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
+from tegrasp_drake.robotiq.units import STROKE_M
 
 TAXEL = TaxelAwareConfig()
 CONTACT_N = GraspControllerConfig().taxel_contact_n  # the ideal force taxels' number
@@ -199,3 +201,22 @@ def test_faces_read_closer_than_the_objects_width_fall_back_to_the_papers_shift(
     assert extent == pytest.approx(0.045)
     assert centre == pytest.approx(0.030 - 0.0225)
 
+
+
+def test_an_untouched_object_lies_past_the_pads_distal_reach_plus_its_half_depth():
+    """A hand whose pads do not move along the approach (the prismatic hand): their distal
+    edge, half a pad beyond their centres, plus the object's half depth."""
+    reach = untouched_reach_m(lambda opening_m: 0.0, 0.025, STROKE_M)
+    assert reach == pytest.approx(PAD_LENGTH / 2 + 0.0125)
+
+
+def test_the_linkage_pads_farthest_travel_over_the_close_adds_to_the_untouched_reach():
+    """On the 2F-85 the pads' centres travel on past the object's width as the close goes on
+    (farthest near a 10 mm opening): an untouched object lies beyond that farthest point."""
+    from tegrasp_drake.simulation.gripper_hands import LinkageHand
+    offset = LinkageHand().pad_center_offset
+    reach = untouched_reach_m(offset, 0.025, STROKE_M)
+    past_the_width = offset(0.010) - offset(0.025)
+    assert past_the_width > 0.0
+    assert reach >= PAD_LENGTH / 2 + 0.0125 + past_the_width
+    assert reach < PAD_LENGTH / 2 + 0.0125 + past_the_width + 0.001

@@ -96,8 +96,11 @@ CASES = [
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0577)), Counters()),
     ("one_sided", Mode.REACH, dict(**ONE_SIDED),
      dict(contact=(False, True), one_sided_s=0.02), Counters()),
-    ("closed_on_nothing", Mode.REACH, dict(closed_on_nothing=True), dict(closing_s=0.5),
-     Counters()),
+    ("closed_untouched", Mode.REACH, dict(closed_on_nothing=True),
+     dict(closed_on_nothing=True, estimate=dict(first_touch_opening_m=0.06)), Counters()),
+    ("closed_on_nothing", Mode.REACH,
+     dict(closed_on_nothing=True, estimate=dict(first_touch_opening_m=0.06)),
+     dict(closing_s=0.5, estimate=dict(first_touch_opening_m=0.06)), Counters()),
     ("reach_timeout_both_pads", Mode.REACH, dict(contact=(True, True), **REACH_LATE),
      dict(contact=(True, True), closing_s=0.5), Counters()),
     ("reach_timeout_caged", Mode.REACH,
@@ -360,3 +363,22 @@ def test_off_centre_acts_only_on_a_reach_load_match_a_pads_touch_confirms():
     centred = situation(contact=(True, True), shape=pads(1, 2),
                         estimate=dict(match_confirmed_s=0.015))
     assert code(Mode.REACH, centred) == "touch_confirmed"
+
+
+def test_a_close_that_touched_nothing_re_reaches_forward_by_the_untouched_reach():
+    decision = decide(Mode.REACH, situation(closed_on_nothing=True,
+                                            estimate=dict(untouched_reach_m=0.025)))
+    assert decision.code == "closed_untouched"
+    assert decision.action == ReReach(Shift(0.025, 0.0))
+
+
+def test_a_close_on_nothing_after_a_reach_load_match_is_the_papers():
+    """A match with no pad touching can be a finger's backing on the object (docs/controller.md,
+    "Known failure: a Reach-Load event with no pad touching"): no forward search."""
+    obs = situation(closed_on_nothing=True, estimate=dict(reach_matched=True))
+    assert code(Mode.REACH, obs) == "closed_on_nothing"
+
+
+def test_a_close_that_touched_nothing_fails_with_no_re_reach_left():
+    decision = decide(Mode.REACH, situation(closed_on_nothing=True), USED_UP)
+    assert (decision.code, decision.mode) == ("closed_on_nothing", Mode.FAILED)

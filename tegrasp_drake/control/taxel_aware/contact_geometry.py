@@ -140,6 +140,20 @@ def beyond_pads_shift(*, finger: str, first_touch_opening_m: float, object_width
     return Shift(dx, dy if finger == "left" else -dy)
 
 
+def untouched_reach_m(pad_center_offset, object_width_m: float, stroke_m: float) -> float:
+    """How far beyond the pads' centres at the object's width [m, along the approach] the
+    nearest centre lies of an object no pad touched in a whole close (nothing after it on the
+    taxels): the pads' distal edges (PAD_LENGTH / 2 beyond their centres) reach at most the
+    centres' farthest point over the close, pad_center_offset(opening) [m] at the openings
+    0..stroke_m (1 mm apart: the closed form varies by under 0.01 mm between them); the
+    untouched object's near face lies past that, its centre half its depth further, taken as
+    object_width_m (the built-in objects are round or square in plan). docs/controller.md,
+    "A close that touched nothing searches beyond the fingertips"."""
+    openings = np.linspace(0.0, stroke_m, int(round(stroke_m / 0.001)) + 1)
+    farthest = max(pad_center_offset(float(o)) for o in openings)
+    return PAD_LENGTH / 2 + farthest - pad_center_offset(object_width_m) + object_width_m / 2
+
+
 def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,
                       object_width_m: float, pads_touch: bool, closed_to_request: bool,
                       taxel_config) -> bool:

@@ -11,11 +11,13 @@ from tegrasp_drake.control.finger_strike import side_moment_nm, strike_force_n, 
 from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Mode, Stage
 from tegrasp_drake.control.taxel_aware.contact_geometry import (
     bracketed_object, caged_behind_pads, held_tilted, opposite_face, pushed_distance_m,
-    release_topples, remembered_faces, touched_beyond_pads, touched_face, touched_faces)
+    release_topples, remembered_faces, touched_beyond_pads, touched_face, touched_faces,
+    untouched_reach_m)
 from tegrasp_drake.control.taxel_aware.grip_settling import grip_settled
 from tegrasp_drake.control.taxel_aware.touch_confirmed import (confirmed_delay_s,
                                                                match_confirm_window_s)
 from tegrasp_drake.control.taxel_contact import GraspContact, grasp_contact
+from tegrasp_drake.robotiq.units import STROKE_M
 
 
 @dataclasses.dataclass(frozen=True)
@@ -86,7 +88,10 @@ class ContactEstimate:
     once closed (0 on the prismatic hand); bracket: (centre y, extent) or None; grip_settling:
     the grip has not settled (grip_settling.grip_settled); match_confirmed_s: in Reach, the
     time since the latest Reach-Load match that a pad's touch confirms (0 at the match
-    itself), -1 none (touch_confirmed.py)."""
+    itself), -1 none (touch_confirmed.py); reach_matched: the Reach-Load event matched in this
+    Reach, confirmed or not; untouched_reach_m: how far beyond the pads' centres at the
+    object's width an object no pad touched in the close has its centre
+    (contact_geometry.untouched_reach_m)."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -109,6 +114,8 @@ class ContactEstimate:
     tilted_s: float = 0.0
     grip_settling: bool = False
     match_confirmed_s: float = -1.0
+    reach_matched: bool = False
+    untouched_reach_m: float = 0.0
 
     @property
     def bracketed_width_m(self) -> float:
@@ -137,6 +144,8 @@ class ContactEstimator:
         self._geometry = geometry
         self._taxel_contact_n = taxel_contact_n
         self._match_confirm_window_s = match_confirm_window_s
+        self._untouched_reach_m = untouched_reach_m(geometry.pad_center_offset,
+                                                    geometry.width_m, STROKE_M)
 
     def update(self, memory: ContactMemory, r: ContactReading
                ) -> tuple[ContactMemory, ContactEstimate]:
@@ -187,7 +196,9 @@ class ContactEstimator:
             grip_settling=not grip_settled(r.contact, r.stopped_on_object),
             match_confirmed_s=(confirmed_delay_s(match_at, t, any(r.contact),
                                                  self._match_confirm_window_s)
-                               if reaching else -1.0))
+                               if reaching else -1.0),
+            reach_matched=reaching and match_at >= 0.0,
+            untouched_reach_m=self._untouched_reach_m)
         return memory, estimate
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):

@@ -18,6 +18,7 @@ from tegrasp_drake.control.taxel_aware.one_sided_at_width import ONE_SIDED_AT_WI
 from tegrasp_drake.control.taxel_aware.regrasp import HELD_TILTED, REGRASP_AFTER_PLACE
 from tegrasp_drake.control.taxel_aware.tipping_guard import TIPPING_GUARD
 from tegrasp_drake.control.taxel_aware.touch_confirmed import TOUCH_CONFIRMED, TOUCH_UNCONFIRMED
+from tegrasp_drake.control.taxel_aware.untouched_close import CLOSED_UNTOUCHED
 from tegrasp_drake.control.transition_logic import PAPER_TABLE
 
 CENTRING_RE_REACH = ReReachMove(
@@ -27,7 +28,8 @@ CENTRING_RE_REACH = ReReachMove(
 TAXEL_AWARE_TABLE = PAPER_TABLE.extended(
     "taxel_aware",
     rules=(FINGER_STRIKE, APPROACH_CONTACT, BEYOND_PADS, OFF_CENTRE, TOUCH_CONFIRMED,
-           ONE_SIDED_AT_WIDTH, BRACKETED_AT_EXTENT, BRACKET_RECENTRE, REACH_TIMEOUT_BOTH_PADS,
+           ONE_SIDED_AT_WIDTH, BRACKETED_AT_EXTENT, BRACKET_RECENTRE, CLOSED_UNTOUCHED,
+           REACH_TIMEOUT_BOTH_PADS,
            REACH_TIMEOUT_CAGED, LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED,
            REGRASP_AFTER_PLACE),
     guards=(CAGED, TIPPING_GUARD, GRIP_SETTLING, TOUCH_UNCONFIRMED),
