@@ -160,3 +160,19 @@ def test_the_window_runs_from_the_latest_match():
 
 def test_no_match_is_confirmed_out_of_reach():
     assert all(e.match_confirmed_s < 0 for e in confirm_run(0.0, mode=Mode.LOAD))
+
+
+def test_a_reach_load_match_no_pad_confirms_is_still_remembered_as_a_match_in_this_reach():
+    """closed_untouched reads it: a match with no pad touching can be a backing's push."""
+    memory, estimate = ESTIMATOR.update(ContactMemory(), reading(event_matched=True))
+    assert estimate.match_confirmed_s < 0.0 and estimate.reach_matched
+    _, later = ESTIMATOR.update(memory, reading(t=1.5))
+    assert later.reach_matched
+    reset = memory.after_transition(Mode.REACH, Mode.RE_REACH, ())
+    _, after_re_reach = ESTIMATOR.update(reset, reading(t=2.0))
+    assert not after_re_reach.reach_matched
+
+
+def test_the_estimate_carries_the_untouched_reach_of_the_object():
+    _, estimate = ESTIMATOR.update(ContactMemory(), reading())
+    assert estimate.untouched_reach_m == pytest.approx(0.012 + THIN.width_along_stroke() / 2)

@@ -71,6 +71,14 @@ SCENES = {
     "beyond_pads": (Scene("box", (0.019, 0.0195), seed=614, overrides=TALL_HEAVY_BOX), Expect(
         (("Reach", "Re-Reach", "beyond_pads"),), first=True,
         check=lambda found, r: found[0].approach_offset_m > 0.01 and found[0].offset_m > 0.01)),
+    # The thin cylinder 25 mm farther than expected: past what the pads' distal edges reach
+    # over the close (24.95 mm with its half depth, contact_geometry.untouched_reach_m), so
+    # no pad touches it and the gripper closes on nothing. The paper's Re-Reach had nothing to
+    # centre on and closed on nothing again four times; the forward Re-Reach by that reach
+    # puts the pads' centres on it.
+    "closed_untouched": (Scene("thin_cylinder", (0.025, 0.0), seed=716), Expect(
+        (("Reach", "Re-Reach", "closed_untouched"),), first=True,
+        check=lambda found, r: found[0].approach_offset_m > 0.02)),
     # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
     # threshold, and a correlation never exceeds 1), as for an object whose load the events
     # were not recorded on: lifted after the Load timeout with both pads on the box, where the

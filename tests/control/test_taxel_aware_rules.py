@@ -377,8 +377,3 @@ def test_a_close_on_nothing_after_a_reach_load_match_is_the_papers():
     "Known failure: a Reach-Load event with no pad touching"): no forward search."""
     obs = situation(closed_on_nothing=True, estimate=dict(reach_matched=True))
     assert code(Mode.REACH, obs) == "closed_on_nothing"
-
-
-def test_a_close_that_touched_nothing_fails_with_no_re_reach_left():
-    decision = decide(Mode.REACH, situation(closed_on_nothing=True), USED_UP)
-    assert (decision.code, decision.mode) == ("closed_on_nothing", Mode.FAILED)
