@@ -145,10 +145,11 @@ def untouched_reach_m(pad_center_offset, object_width_m: float, stroke_m: float)
     nearest centre lies of an object no pad touched in a whole close (nothing after it on the
     taxels): the pads' distal edges (PAD_LENGTH / 2 beyond their centres) reach at most the
     centres' farthest point over the close, pad_center_offset(opening) [m] at the openings
-    0..stroke_m (1 mm apart: the closed form varies by under 0.01 mm between them); the
-    untouched object's near face lies past that, its centre half its depth further, taken as
-    object_width_m (the built-in objects are round or square in plan). docs/controller.md,
-    "A close that touched nothing searches beyond the fingertips"."""
+    0..stroke_m 1 mm apart (the 2F-85's farthest, 4.43 mm near a 10.7 mm opening, within
+    0.001 mm of a 0.01 mm grid's); the untouched object's near face lies past that, its
+    centre half its depth further, taken as object_width_m (the built-in objects are round or
+    square in plan). docs/controller.md, "A close that touched nothing searches beyond the
+    fingertips"."""
     openings = np.linspace(0.0, stroke_m, int(round(stroke_m / 0.001)) + 1)
     farthest = max(pad_center_offset(float(o)) for o in openings)
     return PAD_LENGTH / 2 + farthest - pad_center_offset(object_width_m) + object_width_m / 2
