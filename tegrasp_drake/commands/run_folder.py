@@ -83,13 +83,13 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 
 
 def _made_by(make, folder) -> tuple[pathlib.Path, list[pathlib.Path]]:
-    """Runs make() -> the run folder, and returns it with the folders it created (the folder
-    and its parents that were not there before), deepest first."""
-    absent = [path for path in (folder, *folder.parents) if not path.exists()]
-    made_folder = make()
-    if made_folder != folder:  # a numbered folder claimed beside `folder`
-        absent = [made_folder] + absent[1:] if absent and absent[0] == folder else [made_folder]
-    return made_folder, [path for path in absent if path.is_dir()]
+    """Runs make() -> the run folder, and returns it with the folders it created (the run
+    folder, if it was not there, then its parents that were not), deepest first."""
+    absent_parents = [path for path in folder.parents if not path.exists()]
+    existed = folder.exists()
+    made_folder = make()  # `folder`, or a numbered one it claimed beside `folder`
+    new = [] if made_folder == folder and existed else [made_folder]
+    return made_folder, [path for path in new + absent_parents if path.is_dir()]
 
 
 @contextlib.contextmanager

@@ -231,8 +231,9 @@ def scheduler_problem(address: str) -> str | None:
                                       ("a fragment", parts.fragment),
                                       ("a user", parts.username)) if value]
     if extra:
+        host_and_port = parts.netloc.split("@")[-1]
         return (f"has {' and '.join(extra)} beside PROTOCOL://HOST:PORT, which a Dask "
-                f"scheduler address does not take; give {parts.scheme}://{parts.netloc.split('@')[-1]}")
+                f"scheduler address does not take; give {parts.scheme}://{host_and_port}")
     return None
 
 
