@@ -107,6 +107,10 @@ LCM_SYNC = 0xEDA1DA01
 LCM_LOG_START = struct.pack(">I", LCM_SYNC)
 _EVENT_HEADER = struct.Struct(">IqqII")  # sync, event number, timestamp, channel, data sizes
 MAX_CHANNEL_LENGTH = 256
+# The largest message LCM sends (LCM_MAX_MESSAGE_SIZE, lcm/lcm.h: 2^28 bytes); lcm-logger
+# writes only messages it received, so a longer data length is a corrupt header, never a
+# message: the header is skipped as corrupt bytes, not read as a message cut off at the end.
+MAX_LCM_MESSAGE_BYTES = 1 << 28
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
 # The largest run log read into memory: a 10-minute run (hardware --duration's limit) at the
 # bus's ~100 kB/s is about 60 MB; 1 GiB bounds what a file can make the reader hold.
@@ -117,10 +121,10 @@ def _plausible_header(data: bytes, position: int) -> bool:
     """Whether an LCM event header that fits in `data` starts at `position`."""
     if len(data) - position < _EVENT_HEADER.size:
         return False
-    word, _, _, channel_length, _ = _EVENT_HEADER.unpack_from(data, position)
+    word, _, _, channel_length, data_length = _EVENT_HEADER.unpack_from(data, position)
     channel = data[position + _EVENT_HEADER.size:position + _EVENT_HEADER.size + channel_length]
     return (word == LCM_SYNC and 0 < channel_length <= MAX_CHANNEL_LENGTH
-            and len(channel) == channel_length
+            and data_length <= MAX_LCM_MESSAGE_BYTES and len(channel) == channel_length
             and all(32 < c < 127 for c in channel))
 
 
@@ -200,13 +204,16 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
     words: bytes that are no events (skipped to the next header), event numbers missing or
     not following the one before, an event cut short at the end, receive times that cannot
     be one run's (receive_time_damage). LCM's format: per event a big-endian header (sync
-    0xEDA1DA01, number, timestamp, channel and data lengths), channel, data."""
+    0xEDA1DA01, number, timestamp, channel and data lengths), channel, data. lcm-logger
+    numbers a log's events from 0, so the first one read is checked against 0 as each
+    later one is against the one before: a corrupt first frame is counted as lost as one
+    further on is. A length is never allocated: events are slices of the bytes read."""
     data = read_bounded(path, MAX_RUN_LOG_BYTES)
     events = []
     corrupt_regions = corrupt_bytes = lost = 0
     renumbered = []  # file positions of events whose numbers go back or are damaged
     truncated = None
-    position, expected_number = 0, None
+    position, expected_number = 0, 0
     while position < len(data):
         plausible = _plausible_header(data, position)
         end = None
@@ -231,7 +238,7 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
             corrupt_bytes += stop - position
             position = stop
             continue
-        if expected_number is not None and number != expected_number:
+        if number != expected_number:
             # the next event's number confirms this one's: a gap (messages lost) or a step
             # back (logs spliced), followed; else a damaged number, counted as the next one
             confirmed = _next_event_number(data, end) in (None, number + 1)

@@ -41,6 +41,7 @@ from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.runs.hardware_log_reader import scan_lcm_log
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
 LOGGER_SUBSCRIBE_S = 0.2  # [s] given to lcm-logger to subscribe once its file exists
@@ -134,12 +135,12 @@ class BusLogWriter:
 
     @property
     def messages(self) -> int:
+        """The messages the log holds whole. Counted by scan_lcm_log, which bounds each
+        event by the bytes read; lcm.EventLog allocates an event's declared length first
+        and crashes the process on a corrupt one (a data length of 2^31-1)."""
         if self._process is None:
             return 0
-        log = lcm.EventLog(str(self.path), "r")
-        count = sum(1 for _ in log)
-        log.close()
-        return count
+        return len(scan_lcm_log(self.path)[0])
 
 
 PR_SET_PDEATHSIG = 1  # prctl(2): the signal a child gets when the thread that forked it ends

@@ -4,6 +4,7 @@ on a log written here from a synthetic grasp."""
 import contextlib
 import io
 import json
+import struct
 
 import lcm
 import numpy as np
@@ -14,7 +15,7 @@ from tegrasp_drake.hardware.device_log_messages import (RUN_INFO_CHANNEL, TACTIL
                                                         TRANSITION_CHANNEL)
 from tegrasp_drake.events import extract_memorized_events, save_memorized_events
 from tegrasp_drake.events.synthetic import SyntheticGraspConfig, synthetic_grasp
-from tegrasp_drake.runs.hardware_run import transition_message
+from tegrasp_drake.runs.hardware_run import BusLogWriter, transition_message
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info, lcmt_tegrasp_tactile
 from tegrasp_drake.runs.hardware_log_reader import RunLogError, read_run_log
 from tegrasp_drake.runs.hardware_log_replay import (expected_event_schedule,
@@ -282,3 +283,63 @@ def test_each_arm_status_in_a_log_is_decoded_once(tmp_path, monkeypatch):
     assert len(decoded) == 5
     assert len(run.arm_status) == 4
     assert any("live run refuses (not finite 1" in words for words in run.damage)
+
+
+DATA_LENGTH_AT = 24  # LCM event header: sync 4, number 8, timestamp 8, channel length 4 bytes
+
+
+def _first_event(data: bytes) -> bytes:
+    """The bytes of a log's first event: its header (28 bytes), channel and data."""
+    channel_length, data_length = struct.unpack_from(">II", data, DATA_LENGTH_AT - 4)
+    return data[:DATA_LENGTH_AT + 4 + channel_length + data_length]
+
+
+def _first_data_length(data: bytes, length: int) -> bytes:
+    damaged = bytearray(data)
+    struct.pack_into(">I", damaged, DATA_LENGTH_AT, length)
+    return bytes(damaged)
+
+
+@pytest.mark.parametrize("length", [2**31 - 1, "past the end"])
+def test_a_first_message_with_a_corrupt_length_is_counted_lost_and_the_rest_replayed(
+        length, run_log_path, tmp_path, capsys):
+    """A corrupt first frame is counted and skipped as one further on is: the message is
+    said lost, every later one is read, and the replay warns and exits 3."""
+    data = run_log_path.read_bytes()
+    path = tmp_path / "first.lcmlog"
+    path.write_bytes(_first_data_length(data, len(data) if length == "past the end" else length))
+    total = sum(read_run_log(run_log_path).message_counts.values())
+    log = read_run_log(path)
+    assert sum(log.message_counts.values()) == total - 1
+    assert any("1 message(s) lost" in words for words in log.damage)
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code = cli.main(["replay", str(path), "--events", str(tmp_path / "events"),
+                     "--object", "box", "--json"])
+    warning = [line for line in capsys.readouterr().err.splitlines() if "damaged log" in line]
+    assert code == 3 and len(warning) == 1 and "1 message(s) lost" in warning[0]
+
+
+@pytest.mark.parametrize("damage, words", [
+    (lambda data: _first_data_length(_first_event(data), 2**31 - 1), "corrupt bytes"),
+    (lambda data: data[:10], "cut-off header"),
+    (lambda data: _first_event(data)[:-5], "the last message is cut off")])
+def test_a_log_whose_only_message_is_damaged_says_how(damage, words, run_log_path, tmp_path):
+    """The first (and only) frame with a data length of 2^31-1 is a corrupt one (more than
+    LCM ever sends), not a message cut off by the end of the file; one truncated mid-header
+    or mid-payload is."""
+    path = tmp_path / "only.lcmlog"
+    path.write_bytes(damage(run_log_path.read_bytes()))
+    with pytest.raises(RunLogError, match="holds no LCM message") as refused:
+        read_run_log(path)
+    assert words in str(refused.value)
+    assert ("truncated" in str(refused.value)) == (words != "corrupt bytes")
+
+
+def test_the_log_writers_count_skips_a_corrupt_first_frame(run_log_path, tmp_path):
+    """The hardware run's count of logged messages reads a log whose first event's data
+    length is 2^31-1 without allocating it (lcm.EventLog crashes the process on it)."""
+    writer = BusLogWriter("udpm://239.255.76.67:7684?ttl=0", tmp_path / "run.lcmlog")
+    writer.close(linger=0.0)
+    writer.path.write_bytes(_first_data_length(run_log_path.read_bytes(), 2**31 - 1))
+    total = sum(read_run_log(run_log_path).message_counts.values())
+    assert writer.messages == total - 1
