@@ -633,14 +633,19 @@ def summary_text(summary: SweepSummary) -> str:
                      + ", ".join(summary.corrupt))
     if summary.errors:
         lines.append(f"  {len(summary.errors)} trial(s) raised (error records; re-run on "
-                     "the next run): " + ", ".join(summary.errors[:10])
-                     + (" ..." if len(summary.errors) > 10 else ""))
+                     "the next run): " + _trial_ids_text(summary.errors))
     if summary.unfinished:
         why = ("the sweep stopped where a trial's log could not be written (the error line)"
                if summary.unwritten_log is not None else "a worker died")
-        lines.append(f"  {len(summary.unfinished)} trial(s) unfinished because {why}; run "
-                     "the same command again to finish them")
+        lines.append(f"  {len(summary.unfinished)} trial(s) unfinished because {why}, not "
+                     f"recorded: {_trial_ids_text(summary.unfinished)}; run the same command "
+                     "again (the same --out) to run them")
     return "\n".join(lines)
+
+
+def _trial_ids_text(trial_ids, shown: int = 10) -> str:
+    """The first `shown` trial ids, comma-separated, "..." after them if there are more."""
+    return ", ".join(trial_ids[:shown]) + (" ..." if len(trial_ids) > shown else "")
 
 
 # Result fields that measure the machine, not the trial.

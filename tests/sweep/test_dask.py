@@ -67,3 +67,32 @@ def test_a_cluster_with_more_workers_than_cores_runs_every_trial_once(tmp_path):
     records = load_records(tmp_path).records
     assert len(records) == 36
     assert len({r["result"]["worker_pid"] for r in records.values()}) > runner.default_workers()
+
+
+def test_a_trial_whose_worker_dies_is_named_lost_and_runs_on_resume(tmp_path, scheduler_address,
+                                                                     capsys):
+    """A trial that kills its Dask worker (each time the scheduler retries it) leaves no
+    record; the sweep names it in one line with the command that runs it, and the same
+    command with a working trial function finishes it."""
+    from tegrasp_drake import cli
+    command = ["sweep", "--objects", "box", "--controllers", "memorized", "--attempts", "1",
+               "--scheduler", scheduler_address, "--out", str(tmp_path), "--no-progress",
+               "--trial-function"]
+    code = cli.main(command + ["tests.fake_trials:dying_fake_trial"])
+    out = capsys.readouterr().out
+    lost = [line for line in out.splitlines() if "memorized/box/m11/a0" in line]
+    assert code == 1 and len(lost) == 1, out
+    assert "a worker died" in lost[0] and "same command" in lost[0]
+    # the trial killed with its worker (it may take another running there with it): each
+    # one left without a record is named, and none is recorded as finished
+    recorded = load_records(tmp_path).records
+    from tegrasp_drake.sweep.spec import marker_names
+    missing = {f"memorized/box/{marker}/a0"
+               for marker in marker_names(SweepSpec().grid)} - set(recorded)
+    assert "memorized/box/m11/a0" in missing
+    assert f"{len(missing)} trial(s) unfinished" in lost[0]
+    assert all(trial_id in lost[0] for trial_id in missing)
+    assert cli.main(command + ["tests.fake_trials:fake_trial"]) == 0
+    out = capsys.readouterr().out
+    assert f"{len(missing)} run now" in out and f"{9 - len(missing)} already finished" in out
+    assert len(load_records(tmp_path).records) == 9
