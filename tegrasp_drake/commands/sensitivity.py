@@ -10,8 +10,7 @@ import sys
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
                                           OptionError, check_runner_arguments,
-                                          close_scheduler,
-                                          resolve_trial_function)
+                                          resolve_trial_function, scheduler_connection)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.sweep.runner import SchedulerLostError, SweepError, summary_text
@@ -53,22 +52,22 @@ def run(args) -> int:
     from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
                                                  one_at_a_time, run_sensitivity)
     from tegrasp_drake.events import MemorizedEventError
-    scheduler = None
     try:
-        scheduler = check_runner_arguments(args)
-        spec = LoadSensitivitySpec(args.spec)
-        if args.latin_hypercube is None:
-            points = one_at_a_time(spec)
-        else:
-            try:
-                points = latin_hypercube(spec, args.latin_hypercube)
-            except ConfigError as error:  # its count
-                raise OptionError(str(error)) from None
-        trial_function = resolve_trial_function(args.trial_function)
-        summaries = run_sensitivity(spec, points, trial_function, args.out,
-                                    workers=args.workers, scheduler=scheduler,
-                                    progress=not args.no_progress and progress_wanted(args),
-                                    confirmed_trials=args.confirm_trials)
+        check_runner_arguments(args)
+        with scheduler_connection(args) as scheduler:
+            spec = LoadSensitivitySpec(args.spec)
+            if args.latin_hypercube is None:
+                points = one_at_a_time(spec)
+            else:
+                try:
+                    points = latin_hypercube(spec, args.latin_hypercube)
+                except ConfigError as error:  # its count
+                    raise OptionError(str(error)) from None
+            trial_function = resolve_trial_function(args.trial_function)
+            summaries = run_sensitivity(spec, points, trial_function, args.out,
+                                        workers=args.workers, scheduler=scheduler,
+                                        progress=not args.no_progress and progress_wanted(args),
+                                        confirmed_trials=args.confirm_trials)
     except OptionError as error:  # bad input
         print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
         return 1
@@ -80,8 +79,6 @@ def run(args) -> int:
         return 2
     except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's
         raise SystemExit(f"tegrasp: error: {error}") from None
-    finally:
-        close_scheduler(scheduler)
     for name, summary in summaries.items():
         print(f"{name}: {summary_text(summary)}")
     for path in write_sensitivity_report(spec, points, args.out, figure_format=args.format):

@@ -7,6 +7,7 @@ Testing hook: `--trial-function MODULE:ATTR` (hidden from --help) replaces the r
 function, so the tests run the command with a cheap deterministic trial."""
 
 import argparse
+import contextlib
 import dataclasses
 import importlib
 import sys
@@ -242,11 +243,10 @@ class OptionError(SweepError):
     (exit 2); str() is the one line to print."""
 
 
-def check_runner_arguments(args):
+def check_runner_arguments(args) -> None:
     """OptionError for a bad --workers (check_workers), --confirm-trials, --out or --scheduler
-    (its address, the Dask extra, whether it answers), before any trial runs or any event is
-    recorded. Returns the client connected to --scheduler (None without it): the command's
-    one connection, which its sweeps run on and which close_scheduler closes."""
+    address, before any trial runs or any event is recorded; scheduler_connection then asks
+    the scheduler whether it answers."""
     check_workers(args)
     if args.confirm_trials is not None and not 1 <= args.confirm_trials <= MAX_CONFIRMED_TRIALS:
         raise OptionError(f"{CONFIRM_OPTION} {args.confirm_trials}: give the study's count of "
@@ -261,31 +261,33 @@ def check_runner_arguments(args):
     problem = folder_problem(args.out)
     if problem:
         raise OptionError(f"--out {args.out}: {problem}; give a folder you can write")
+
+
+@contextlib.contextmanager
+def scheduler_connection(args):
+    """The command's one connection to --scheduler (None without it), which its sweeps run
+    on: entered, it connects (OptionError when the Dask extra is missing or the scheduler
+    does not answer) and, unless asked for debug output (-vv shows distributed's own logs),
+    holds distributed's loggers; left, it closes the client and then gives the loggers
+    back (the client logs while it closes too). Entered after check_runner_arguments, so
+    that nothing after the connection refuses an option."""
     if args.scheduler is None:
-        return None
+        yield None
+        return
     from tegrasp_drake.sweep.runner import connect_scheduler, hold_dask_logs
     try:
-        client = connect_scheduler(args.scheduler)  # last: nothing after it can refuse
+        client = connect_scheduler(args.scheduler)
     except SweepError as error:
         raise OptionError(str(error)) from None
-    if getattr(args, "verbose", 0) < 2:  # -vv shows distributed's own logs
-        _DASK_LOGS_RESTORED_AT_CLOSE[id(client)] = hold_dask_logs()
-    return client
-
-
-# id(client) -> the function that gives distributed's loggers back their levels, called by
-# close_scheduler: the client logs while it closes too.
-_DASK_LOGS_RESTORED_AT_CLOSE = {}
-
-
-def close_scheduler(client) -> None:
-    """Closes check_runner_arguments' client, if any, and ends its hold on distributed's
-    logs."""
-    if client is not None:
+    restore_logs = hold_dask_logs() if getattr(args, "verbose", 0) < 2 else None
+    try:
+        yield client
+    finally:
         try:
             client.close()
         finally:
-            _DASK_LOGS_RESTORED_AT_CLOSE.pop(id(client), lambda: None)()
+            if restore_logs is not None:
+                restore_logs()
 
 
 def check_workers(args) -> None:
@@ -304,41 +306,42 @@ def check_workers(args) -> None:
 
 
 def run(args) -> int:
-    scheduler = None
     try:
         if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise OptionError("--benchmark times the local process pool; drop --scheduler")
-        scheduler = check_runner_arguments(args)
-        spec = spec_from_arguments(args)
-        trial_function = resolve_trial_function(args.trial_function)
-        check_events_folder(args.events)
-        if args.trial_function == DEFAULT_TRIAL_FUNCTION:
-            from tegrasp_drake.sweep.spec import expand_trials
-            from tegrasp_drake.sweep.trial_function import check_sweep_events
-            try:
-                check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
-            except ConfigError as error:  # an event file missing or damaged: bad input, 1
-                print(f"tegrasp sweep: error: {error}", file=sys.stderr)
-                return 1
-        if args.dry_run:
-            print(plan_text(spec))
-            return 0
-        progress = not args.no_progress and progress_wanted(args)
-        if args.events:
-            trial_function = bound_arguments(trial_function, events_dir=args.events)
-        if args.logs:
-            _check_logs_folder(args.logs)
-            trial_function = bound_arguments(trial_function, log_dir=args.logs)
-        if args.benchmark:
-            runs, identical = run_benchmark(spec, trial_function, progress=progress)
-            print(benchmark_text(runs, identical))
-            if runs[-1].unwritten_log is not None:
-                print(unwritten_log_error(args.logs, runs[-1].unwritten_log), file=sys.stderr)
-                return 1
-            return 0 if identical and not any(run.errors for run in runs) else 1
-        summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
-                            scheduler=scheduler, progress=progress,
-                            confirmed_trials=args.confirm_trials)
+        check_runner_arguments(args)
+        with scheduler_connection(args) as scheduler:
+            spec = spec_from_arguments(args)
+            trial_function = resolve_trial_function(args.trial_function)
+            check_events_folder(args.events)
+            if args.trial_function == DEFAULT_TRIAL_FUNCTION:
+                from tegrasp_drake.sweep.spec import expand_trials
+                from tegrasp_drake.sweep.trial_function import check_sweep_events
+                try:
+                    check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
+                except ConfigError as error:  # an event file missing or damaged: bad input, 1
+                    print(f"tegrasp sweep: error: {error}", file=sys.stderr)
+                    return 1
+            if args.dry_run:
+                print(plan_text(spec))
+                return 0
+            progress = not args.no_progress and progress_wanted(args)
+            if args.events:
+                trial_function = bound_arguments(trial_function, events_dir=args.events)
+            if args.logs:
+                _check_logs_folder(args.logs)
+                trial_function = bound_arguments(trial_function, log_dir=args.logs)
+            if args.benchmark:
+                runs, identical = run_benchmark(spec, trial_function, progress=progress)
+                print(benchmark_text(runs, identical))
+                if runs[-1].unwritten_log is not None:
+                    print(unwritten_log_error(args.logs, runs[-1].unwritten_log),
+                          file=sys.stderr)
+                    return 1
+                return 0 if identical and not any(run.errors for run in runs) else 1
+            summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
+                                scheduler=scheduler, progress=progress,
+                                confirmed_trials=args.confirm_trials)
     except OptionError as error:  # bad input
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 1
@@ -348,8 +351,6 @@ def run(args) -> int:
     except (ConfigError, SweepError) as error:  # the spec refused
         print(f"tegrasp sweep: error: {error}", file=sys.stderr)
         return 2
-    finally:
-        close_scheduler(scheduler)
     print(summary_text(summary))
     try:
         for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):

@@ -8,8 +8,7 @@ import sys
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
                                           OptionError, check_runner_arguments,
-                                          close_scheduler,
-                                          resolve_trial_function)
+                                          resolve_trial_function, scheduler_connection)
 from tegrasp_drake.sweep.runner import SchedulerLostError, SweepError, summary_text
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
@@ -46,15 +45,15 @@ def run(args) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
     from tegrasp_drake.transfer.report import write_transfer_reports
     from tegrasp_drake.events import MemorizedEventError
-    scheduler = None
     try:
-        scheduler = check_runner_arguments(args)
-        spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)
-        trial_function = resolve_trial_function(args.trial_function)
-        summaries = run_transfer(spec, trial_function, args.out, workers=args.workers,
-                                 scheduler=scheduler,
-                                 progress=not args.no_progress and progress_wanted(args),
-                                 confirmed_trials=args.confirm_trials)
+        check_runner_arguments(args)
+        with scheduler_connection(args) as scheduler:
+            spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)
+            trial_function = resolve_trial_function(args.trial_function)
+            summaries = run_transfer(spec, trial_function, args.out, workers=args.workers,
+                                     scheduler=scheduler,
+                                     progress=not args.no_progress and progress_wanted(args),
+                                     confirmed_trials=args.confirm_trials)
     except OptionError as error:  # bad input
         print(f"tegrasp transfer: error: {error}", file=sys.stderr)
         return 1
@@ -66,8 +65,6 @@ def run(args) -> int:
         return 2
     except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's
         raise SystemExit(f"tegrasp: error: {error}") from None
-    finally:
-        close_scheduler(scheduler)
     for name, summary in summaries.items():
         print(f"{name}: {summary_text(summary)}")
     for path in write_transfer_reports(spec, args.out, figure_format=args.format):

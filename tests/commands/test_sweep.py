@@ -262,3 +262,42 @@ def test_a_smaller_spec_in_a_reused_folder_counts_only_its_own_trials(tmp_path, 
     trials = sum(int(box[header.index(f"{placement}_hold_trials")])
                  for placement in ("well_placed", "misplaced"))
     assert trials == 9
+
+
+class _FakeClient:
+    closed = False
+
+    def close(self):
+        self.closed = True
+
+
+@pytest.mark.parametrize("verbose, held", [(0, True), (2, False)])
+def test_the_scheduler_connection_holds_dasks_logs_until_its_client_is_closed(
+        verbose, held, monkeypatch):
+    """Entered: connected, distributed's logger silenced (unless -vv); left, also by an
+    error: the client closed, then the logger's level given back."""
+    import logging
+    from tegrasp_drake.sweep import runner
+    client = _FakeClient()
+    monkeypatch.setattr(runner, "connect_scheduler", lambda address: client)
+    dask_logger = logging.getLogger("distributed")
+    monkeypatch.setattr(dask_logger, "level", logging.INFO)
+    args = argparse.Namespace(scheduler="tcp://127.0.0.1:8786", verbose=verbose)
+    with pytest.raises(KeyError):
+        with command.scheduler_connection(args) as connected:
+            assert connected is client and not client.closed
+            assert (dask_logger.level > logging.CRITICAL) == held
+            raise KeyError("the command's body failed")
+    assert client.closed and dask_logger.level == logging.INFO
+
+
+def test_a_scheduler_that_does_not_answer_is_an_option_error(monkeypatch):
+    from tegrasp_drake.sweep import runner
+
+    def refuse(address):
+        raise runner.SweepError(f"cannot reach the Dask scheduler at {address}")
+    monkeypatch.setattr(runner, "connect_scheduler", refuse)
+    args = argparse.Namespace(scheduler="tcp://127.0.0.1:9", verbose=0)
+    with pytest.raises(command.OptionError, match="cannot reach the Dask scheduler"):
+        with command.scheduler_connection(args):
+            pass
