@@ -5,15 +5,15 @@ DIR/points.json, DIR/events, DIR/cells, DIR/sensitivity.md and the tornado chart
 command resumes. Exit codes as `tegrasp sweep`'s."""
 
 import argparse
-import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
                                           OptionError, check_runner_arguments,
-                                          resolve_trial_function, scheduler_connection)
+                                          refusals_said, resolve_trial_function,
+                                          scheduler_connection)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.typed_yaml import ConfigError
-from tegrasp_drake.sweep.runner import SchedulerLostError, SweepError, summary_text
+from tegrasp_drake.sweep.runner import summary_text
 
 DEFAULT_OUT = "results/sensitivity"
 
@@ -51,8 +51,7 @@ def run(args) -> int:
     from tegrasp_drake.sensitivity.report import write_sensitivity_report
     from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
                                                  one_at_a_time, run_sensitivity)
-    from tegrasp_drake.events import MemorizedEventError
-    try:
+    with refusals_said("sensitivity") as refused:
         check_runner_arguments(args)
         with scheduler_connection(args) as scheduler:
             spec = LoadSensitivitySpec(args.spec)
@@ -68,17 +67,8 @@ def run(args) -> int:
                                         workers=args.workers, scheduler=scheduler,
                                         progress=not args.no_progress and progress_wanted(args),
                                         confirmed_trials=args.confirm_trials)
-    except OptionError as error:  # bad input
-        print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
-        return 1
-    except SchedulerLostError as error:  # trials left unfinished: run again
-        print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
-        return 1
-    except (ConfigError, SweepError) as error:  # the spec refused
-        print(f"tegrasp sensitivity: error: {error}", file=sys.stderr)
-        return 2
-    except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's
-        raise SystemExit(f"tegrasp: error: {error}") from None
+    if refused.exit_code is not None:
+        return refused.exit_code
     for name, summary in summaries.items():
         print(f"{name}: {summary_text(summary)}")
     for path in write_sensitivity_report(spec, points, args.out, figure_format=args.format):

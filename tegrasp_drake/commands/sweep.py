@@ -243,6 +243,35 @@ class OptionError(SweepError):
     (exit 2); str() is the one line to print."""
 
 
+@dataclasses.dataclass
+class Refusal:
+    """What refusals_said caught: the command's exit code, None while nothing was refused."""
+    exit_code: int | None = None
+
+
+@contextlib.contextmanager
+def refusals_said(command: str):
+    """The refusals of a command that runs sweeps (sweep, transfer, sensitivity), each said
+    in one line on stderr, `tegrasp COMMAND: error: ...`, with its exit code set on the
+    Refusal yielded: 1 for bad input (OptionError) and for a scheduler lost mid-run
+    (SchedulerLostError: the unfinished trials run again with the same command), 2 for a
+    spec refused (ConfigError, SweepError). Memorized events that cannot be read
+    (MemorizedEventError, e.g. a damaged DIR/events) end the command as bad input,
+    `tegrasp: error: ...` (exit 1)."""
+    from tegrasp_drake.events import MemorizedEventError
+    refusal = Refusal()
+    try:
+        yield refusal
+    except (OptionError, SchedulerLostError) as error:
+        print(f"tegrasp {command}: error: {error}", file=sys.stderr)
+        refusal.exit_code = 1
+    except (ConfigError, SweepError) as error:
+        print(f"tegrasp {command}: error: {error}", file=sys.stderr)
+        refusal.exit_code = 2
+    except MemorizedEventError as error:
+        raise SystemExit(f"tegrasp: error: {error}") from None
+
+
 def check_runner_arguments(args) -> None:
     """OptionError for a bad --workers (check_workers), --confirm-trials, --out or --scheduler
     address, before any trial runs or any event is recorded; scheduler_connection then asks
@@ -306,7 +335,7 @@ def check_workers(args) -> None:
 
 
 def run(args) -> int:
-    try:
+    with refusals_said("sweep") as refused:
         if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise OptionError("--benchmark times the local process pool; drop --scheduler")
         check_runner_arguments(args)
@@ -342,15 +371,8 @@ def run(args) -> int:
             summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
                                 scheduler=scheduler, progress=progress,
                                 confirmed_trials=args.confirm_trials)
-    except OptionError as error:  # bad input
-        print(f"tegrasp sweep: error: {error}", file=sys.stderr)
-        return 1
-    except SchedulerLostError as error:  # trials left unfinished: run again
-        print(f"tegrasp sweep: error: {error}", file=sys.stderr)
-        return 1
-    except (ConfigError, SweepError) as error:  # the spec refused
-        print(f"tegrasp sweep: error: {error}", file=sys.stderr)
-        return 2
+    if refused.exit_code is not None:
+        return refused.exit_code
     print(summary_text(summary))
     try:
         for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):

@@ -3,14 +3,12 @@
 the heat map; the same command resumes. Exit codes as `tegrasp sweep`'s."""
 
 import argparse
-import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          OptionError, check_runner_arguments,
+                                          check_runner_arguments, refusals_said,
                                           resolve_trial_function, scheduler_connection)
-from tegrasp_drake.sweep.runner import SchedulerLostError, SweepError, summary_text
-from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.sweep.runner import summary_text
 
 DEFAULT_OUT = "results/transfer"
 
@@ -44,8 +42,7 @@ def register(subparsers) -> None:
 def run(args) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
     from tegrasp_drake.transfer.report import write_transfer_reports
-    from tegrasp_drake.events import MemorizedEventError
-    try:
+    with refusals_said("transfer") as refused:
         check_runner_arguments(args)
         with scheduler_connection(args) as scheduler:
             spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)
@@ -54,17 +51,8 @@ def run(args) -> int:
                                      scheduler=scheduler,
                                      progress=not args.no_progress and progress_wanted(args),
                                      confirmed_trials=args.confirm_trials)
-    except OptionError as error:  # bad input
-        print(f"tegrasp transfer: error: {error}", file=sys.stderr)
-        return 1
-    except SchedulerLostError as error:  # trials left unfinished: run again
-        print(f"tegrasp transfer: error: {error}", file=sys.stderr)
-        return 1
-    except (ConfigError, SweepError) as error:  # the spec refused
-        print(f"tegrasp transfer: error: {error}", file=sys.stderr)
-        return 2
-    except MemorizedEventError as error:  # the events in DIR/events: bad input, not the spec's
-        raise SystemExit(f"tegrasp: error: {error}") from None
+    if refused.exit_code is not None:
+        return refused.exit_code
     for name, summary in summaries.items():
         print(f"{name}: {summary_text(summary)}")
     for path in write_transfer_reports(spec, args.out, figure_format=args.format):

@@ -301,3 +301,23 @@ def test_a_scheduler_that_does_not_answer_is_an_option_error(monkeypatch):
     with pytest.raises(command.OptionError, match="cannot reach the Dask scheduler"):
         with command.scheduler_connection(args):
             pass
+
+
+@pytest.mark.parametrize("error, code", [
+    (command.OptionError("--workers 0"), 1),
+    (command.SchedulerLostError("lost the Dask scheduler"), 1),
+    (command.ConfigError("field 'attempts'"), 2),
+    (command.SweepError("another sweep's records"), 2)])
+def test_a_sweep_commands_refusal_is_one_line_and_its_exit_code(error, code, capsys):
+    with command.refusals_said("transfer") as refused:
+        raise error
+    assert refused.exit_code == code
+    assert capsys.readouterr().err == f"tegrasp transfer: error: {error}\n"
+
+
+def test_unreadable_memorized_events_end_a_sweep_command_as_bad_input():
+    from tegrasp_drake.events import MemorizedEventError
+    with pytest.raises(SystemExit, match="^tegrasp: error: ") as ended:
+        with command.refusals_said("sensitivity"):
+            raise MemorizedEventError("events/index.json", "not JSON")
+    assert "events/index.json" in str(ended.value)
