@@ -14,6 +14,7 @@ user's environment does not surface as an internal error or as lines of another 
 
 import atexit
 import codecs
+import importlib
 import locale
 import os
 import pathlib
@@ -91,7 +92,7 @@ def check_matplotlib_backend() -> None:
     if backend is None:
         return
     try:
-        import matplotlib  # noqa: F401: it reads MPLBACKEND as it is imported
+        importlib.import_module("matplotlib")  # it reads MPLBACKEND as it is imported
     except ValueError:
         shown = backend if len(backend) <= 40 else backend[:40] + "..."
         raise SystemExit(f"tegrasp: error: MPLBACKEND={shown!r} is not a matplotlib backend; "
