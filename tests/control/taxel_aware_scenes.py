@@ -8,21 +8,18 @@ import dataclasses
 from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
 from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.scenario.scenario import LoadScenario
-from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
-from tegrasp_drake.sweep.trial_function import trial_events
 
 
 @dataclasses.dataclass(frozen=True)
 class Scene:
     """A trial: the object placed `offset` [m] (approach axis, stroke) and `yaw_deg` from its
     marker, the taxel_aware settings changed by `taxel_aware`, further `--set` assignments
-    `overrides`, or a sweep spec's trial."""
+    `overrides`."""
     object_name: str = "box"
     offset: tuple = (0.0, 0.0)
     yaw_deg: float = 0.0
     seed: int | None = None
     taxel_aware: tuple = ()  # (setting, value) pairs
-    spec: SweepSpec | None = None
     reads_the_held_grip: bool = False  # its rule decides in Hold: run in the default contact
     overrides: tuple = ()  # KEY=VALUE assignments, after the world's
 
@@ -41,12 +38,6 @@ class Expect:
 
 def run_scene(scene: Scene, world: tuple):
     """The TrialRun of `scene` in the world of `world`'s `--set` assignments."""
-    if scene.spec is not None:
-        spec = dataclasses.replace(scene.spec,
-                                   scenario_overrides=world + tuple(scene.overrides))
-        (trial,) = [t.to_dict() for t in expand_trials(spec)]
-        scenario, events, corrective = trial_events(trial)
-        return run_trial(scenario, events=events, corrective_events=corrective)
     base = LoadScenario(name=scene.object_name, controller="taxel_aware",
                         overrides=list(world + tuple(scene.overrides)))
     controller = dataclasses.replace(base.controller, taxel_aware=dataclasses.replace(
