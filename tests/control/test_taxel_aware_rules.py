@@ -251,6 +251,24 @@ def test_the_bracket_re_centres_on_the_middle_of_the_two_faces():
     assert decide(Mode.REACH, obs, USED_UP).action == Failed()
 
 
+def test_without_the_bracket_rules_one_finger_alone_re_reaches_by_the_papers_shift():
+    """The faces' midpoint is bracket_recentre's move alone: a table without the bracket
+    rules Re-Reaches one finger alone by the same shift, a bracket standing or not."""
+    table = dataclasses.replace(TAXEL_AWARE_TABLE, rules=tuple(
+        rule for rule in TAXEL_AWARE_TABLE.rules
+        if rule.name not in ("bracketed_at_extent", "bracket_recentre")))
+
+    def shift(bracket):
+        obs = situation(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=bracket,
+                                                   gripper_y_m=-0.0379))
+        decision = table.next_mode(Mode.REACH, obs, Counters(), CONFIG,
+                                   event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+        assert decision.code == "one_sided"
+        return decision.action.shift
+
+    assert shift((-0.0348, 0.0514)) == shift(None)
+
+
 def test_the_regrasp_puts_down_and_re_reaches_without_a_shift_or_a_count():
     hold = decide(Mode.HOLD, situation(contact=(True, True),
                                        estimate=dict(tilted_s=TAXEL.regrasp.tilt_sustain_s)))

@@ -1,6 +1,6 @@
 """The centring Re-Reach of the taxel-aware table: along the stroke the paper's
-shift, or the midpoint of two bracketing faces; along the approach axis the contact's offset
-(contact_geometry.approach_shift), or a back-off of approach_retreat_m in the approach."""
+shift; along the approach axis the contact's offset (contact_geometry.approach_shift), or a
+back-off of approach_retreat_m in the approach."""
 
 from tegrasp_drake.control.corrective_actions import re_reach_shift
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift, approach_shift
@@ -12,7 +12,4 @@ def centring_shift(situation) -> Shift:
     dy = re_reach_shift(e.sa_n, e.opening_m, e.object_width_m, config.contact_force_n)
     if e.approaching:
         return Shift(-config.taxel_aware.approach_retreat_m, dy)
-    dx = approach_shift(e.shape, config.taxel_aware, e.pad_travel_to_grasp_m)
-    if e.bracket is not None:
-        return Shift(dx, e.bracket[0] - e.gripper_y_m)
-    return Shift(dx, dy)
+    return Shift(approach_shift(e.shape, config.taxel_aware, e.pad_travel_to_grasp_m), dy)
