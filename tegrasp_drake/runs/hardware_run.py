@@ -107,6 +107,8 @@ class BusLogWriter:
         its disk has less than LOG_MIN_FREE_BYTES left."""
         if self._process is None:
             return None
+        if not self.path.exists():  # lcm-logger would go on writing a file nobody can open
+            return f"the LCM log {self.path} stopped: it was removed during the run"
         if self._process.poll() is not None:
             return (f"the LCM log {self.path} stopped: lcm-logger exited with code "
                     f"{self._process.returncode}{self._said()}")
@@ -135,12 +137,16 @@ class BusLogWriter:
 
     @property
     def messages(self) -> int:
-        """The messages the log holds whole. Counted by scan_lcm_log, which bounds each
-        event by the bytes read; lcm.EventLog allocates an event's declared length first
-        and crashes the process on a corrupt one (a data length of 2^31-1)."""
+        """The messages the log holds whole; 0 when nothing was recorded or the file was
+        removed (problem() says so). Counted by scan_lcm_log, which bounds each event by the
+        bytes read; lcm.EventLog allocates an event's declared length first and crashes the
+        process on a corrupt one (a data length of 2^31-1)."""
         if self._process is None:
             return 0
-        return len(scan_lcm_log(self.path)[0])
+        try:
+            return len(scan_lcm_log(self.path)[0])
+        except FileNotFoundError:
+            return 0
 
 
 PR_SET_PDEATHSIG = 1  # prctl(2): the signal a child gets when the thread that forked it ends
@@ -261,6 +267,8 @@ class RunReporter:
             for boundary in self._boundaries:
                 for notice in boundary.new_notices():
                     self._out(f"[{now:8.3f} s] {notice}")
+        if self.log_fault is not None:  # said once; Initialize and AdvanceTo both look
+            return EventStatus.ReachedTermination(self._diagram, self.log_fault)
         if self._log_problem is not None and now >= self._next_log_check:
             self._next_log_check = now + LOG_CHECK_PERIOD_S
             problem = self._log_problem()

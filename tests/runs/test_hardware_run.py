@@ -84,3 +84,53 @@ def test_a_tactile_stream_restart_is_said_live_with_the_time():
     assert "skipped a message (repeated" in lines[0]
     assert lines[1].startswith("[   2.500 s] tactile: the stream restarted its sequence")
     assert len(lines) == 2
+
+
+class _Clock:
+    """A station with no faults, a grasp with no transitions and a bus, at a time the test
+    sets (the monitor is called as Initialize then AdvanceTo call it)."""
+    def __init__(self):
+        self.t = 0.0
+
+    def GetOutputPort(self, name):
+        return self
+
+    def Eval(self, context):
+        return []
+
+    def GetMyContextFromRoot(self, context):
+        return context
+
+    def transitions(self, context):
+        return []
+
+    def Publish(self, channel, data):
+        pass
+
+    def get_time(self):
+        return self.t
+
+
+def test_a_log_that_stops_is_said_once_however_often_the_monitor_looks():
+    from pydrake.systems.framework import EventStatus, LeafSystem
+    from tegrasp_drake.runs.hardware_run import RunReporter
+    clock, lines = _Clock(), []
+    reporter = RunReporter(diagram=LeafSystem(), station=clock, grasp=clock, drake_lcm=clock,
+                           out=lines.append, log_problem=lambda: "the LCM log x stopped")
+    for t in (0.0, 0.103, 0.25, 0.5):
+        clock.t = t
+        status = reporter(clock)
+        assert status.severity() == EventStatus.Severity.kReachedTermination
+    assert sum("FAULT" in line for line in lines) == 1
+    assert reporter.log_fault == "the LCM log x stopped"
+
+
+def test_a_log_file_removed_during_the_run_is_a_stopped_log(tmp_path):
+    writer = BusLogWriter(URL, tmp_path / "run.lcmlog")
+    try:
+        assert writer.problem() is None
+        (tmp_path / "run.lcmlog").unlink()
+        problem = writer.problem()
+    finally:
+        assert writer.close(linger=0.0) == 0  # counted as nothing, not an error
+    assert problem is not None and "removed" in problem and "run.lcmlog" in problem
