@@ -11,6 +11,7 @@ import argparse
 import logging
 import math
 import pathlib
+import re
 import signal
 
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
@@ -68,8 +69,9 @@ def register(subparsers) -> None:
                         "the pads never show a release the controller has not commanded "
                         "(default: on with `all`, else off)")
     parser.add_argument("--inject-fault", metavar="CODE@SECONDS",
-                        help="robotiq/all: set gFLT to CODE (e.g. 0x0E) SECONDS after the "
-                        "gripper's activation completes")
+                        help="robotiq/all: set gFLT to CODE (hexadecimal with 0x, e.g. "
+                        "0x0E, or decimal, e.g. 14) SECONDS after the gripper's activation "
+                        "completes")
     parser.add_argument("--write-config", metavar="FILE",
                         help="write the hardware config for `tegrasp hardware --config`")
     parser.add_argument("--scheduling", choices=SCHEDULING_POLICIES, default="fifo",
@@ -91,19 +93,27 @@ def config_written_line(emulators, path) -> str:
     return f"config: wrote {path}{defaults}; run `tegrasp hardware --config {path}`"
 
 
+# CODE: hexadecimal with 0x (as the 2F-85 manual writes gFLT codes) or decimal, nothing else
+# (int(text, 0) would also take 0b1110, 0o16 and 1_4).
+FAULT_CODE = re.compile(r"\s*(0[xX][0-9a-fA-F]+|[0-9]+)\s*")
+
+
 def _parse_fault(text) -> FaultInjection:
-    """CODE@SECONDS: CODE a gFLT fault (4 bits, not 0x0, which is no fault: 0x1..0xF),
-    SECONDS finite and >= 0."""
+    """CODE@SECONDS: CODE a gFLT fault (4 bits, not 0x0, which is no fault: 0x1..0xF, or
+    decimal 1..15), SECONDS finite and >= 0."""
     try:
         code, at = text.split("@")
-        code, at = int(code, 0), float(at)
+        if not FAULT_CODE.fullmatch(code):
+            raise ValueError(code)
+        code, at = int(code, 0 if code.strip()[:2].lower() == "0x" else 10), float(at)
     except ValueError:
-        raise SystemExit(f"tegrasp: error: --inject-fault '{text}': expected CODE@SECONDS, "
-                         "e.g. 0x0E@3.5") from None
+        raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': expected "
+                         "CODE@SECONDS, CODE hexadecimal with 0x or decimal, e.g. 0x0E@3.5 "
+                         "or 14@3.5") from None
     if not 0 < code <= GFLT_MAX:
-        raise SystemExit(f"tegrasp: error: --inject-fault '{text}': the 2F-85's fault "
-                         f"register gFLT holds 4 bits, 0x0 being no fault; give a CODE from "
-                         f"0x1 to {GFLT_MAX:#x}")
+        raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': the 2F-85's "
+                         f"fault register gFLT holds 4 bits, 0x0 being no fault; give a CODE "
+                         f"from 0x1 to {GFLT_MAX:#x} (decimal 1 to {GFLT_MAX})")
     if not (math.isfinite(at) and FAULT_DELAY.contains(at)):
         raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': SECONDS "
                          f"{FAULT_DELAY.words(at)}, got {shorten(repr(at))}")

@@ -73,7 +73,10 @@ MAX_DURATION_S = HARDWARE_RUN_DURATION.high
 
 
 def duration_seconds(text: str) -> float:
-    """--duration: a number of seconds in (0, MAX_DURATION_S]."""
+    """--duration: a number of seconds in [one arm command period, MAX_DURATION_S]: a shorter
+    run would end before the controller sent the arm its first command (the JACO2 driver's
+    100 Hz, hardware/jaco/jaco_lcm.py)."""
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_LCM_PERIOD
     try:
         value = float(text)
     except ValueError:
@@ -81,6 +84,10 @@ def duration_seconds(text: str) -> float:
     if not HARDWARE_RUN_DURATION.contains(value):  # also refuses nan
         raise argparse.ArgumentTypeError(f"{text}: give a duration in (0, {MAX_DURATION_S:g}] "
                                          "seconds")
+    if value < JACO_LCM_PERIOD:
+        raise argparse.ArgumentTypeError(
+            f"{text}: give at least {JACO_LCM_PERIOD:g} s, one period of the arm's commands "
+            "(a shorter run ends before the arm is commanded)")
     return value
 
 
@@ -94,12 +101,46 @@ def _events_folder(events, args, scenario) -> str:
 
 
 def commit_hardware_run(staged, log, result_path, result: dict) -> None:
-    """Renames the staged log over --log and writes the result beside it, Ctrl-C and SIGTERM held
-    back, so the old log and result are replaced together (without a log, the result alone)."""
+    """Writes the result to a staging file beside `result_path`, then renames the staged log
+    over `log` and the result over `result_path`, Ctrl-C and SIGTERM held back: the old log
+    and result are replaced together, and stay whole when the result cannot be written (a
+    full disk). Without a staged log (the bus was not recorded, or the file was removed), the
+    result alone. The folder is made again if it was removed during the run."""
+    from tegrasp_drake.rig.files import JSON_OBJECT_START
+    result_path = pathlib.Path(result_path)
+    result_path.parent.mkdir(parents=True, exist_ok=True)
+    pending = staging_file_beside(result_path, JSON_OBJECT_START)
     with interruptions_deferred():
-        if pathlib.Path(staged).exists():
-            os.replace(staged, log)
-        write_result(result_path, result)
+        try:
+            write_result(pending, result)
+            if pathlib.Path(staged).exists():
+                os.replace(staged, log)
+            os.replace(pending, result_path)
+        finally:
+            pending.unlink(missing_ok=True)
+
+
+def free_space_problem(folder) -> str | None:
+    """Why the disk holding `folder` cannot take a run's log (less than LOG_MIN_FREE_BYTES
+    free, the level at which a running log counts as stopped), or None."""
+    from tegrasp_drake.runs.hardware_run import LOG_MIN_FREE_BYTES
+    try:
+        stat = os.statvfs(folder)
+    except OSError as e:
+        return f"cannot be checked for free space: {e.strerror or e}"
+    free = stat.f_bavail * stat.f_frsize
+    if free < LOG_MIN_FREE_BYTES:
+        return (f"is on a disk with {free // 1000} kB free; a run needs at least "
+                f"{LOG_MIN_FREE_BYTES // 10**6} MB for its log (ten seconds of the bus): "
+                "free some space or give a --log on another disk")
+    return None
+
+
+def failed_run_path(log) -> pathlib.Path:
+    """Where a failed run's log goes when --overwrite would have replaced an earlier run's:
+    LOG.failed-<pid>.lcmlog beside it (its result: LOG.failed-<pid>.result.json)."""
+    log = pathlib.Path(log)
+    return log.with_name(f"{log.stem}.failed-{os.getpid()}{log.suffix}")
 
 
 def keep_incomplete_log(staged, log) -> pathlib.Path | None:
@@ -119,8 +160,6 @@ def keep_incomplete_log(staged, log) -> pathlib.Path | None:
 
 def run(args) -> int:
     from tegrasp_drake.hardware.config import LoadHardwareConfig
-    from tegrasp_drake.runs.hardware_run import run_on_hardware
-    from tegrasp_drake.hardware.station import HardwareNotReadyError
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.hardware.config import HardwareStationConfig
     scenario = scenario_from_arguments(args)
@@ -158,15 +197,40 @@ def run(args) -> int:
         if problem:
             where = "" if taken == pathlib.Path(log) else f": {taken}"
             raise SystemExit(f"tegrasp: error: --log {log}{where} {problem}")
+    pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
+    # One run at a time per --log: a second one (with --overwrite or not) would replace the
+    # first one's log and result under it.
+    from tegrasp_drake.rig.files import FileHeldError, held_file
+    with contextlib.ExitStack() as stack:
+        try:
+            stack.enter_context(held_file(log))
+        except FileHeldError:
+            raise SystemExit(f"tegrasp: error: --log {log}: another tegrasp hardware run is "
+                             "writing it now; give another --log, or wait for that run to "
+                             "end") from None
+        except OSError as e:
+            raise SystemExit(f"tegrasp: error: --log {log}: cannot make its lock file "
+                             f"beside it: {e.strerror or e}") from None
+        return _run_holding_log(args, scenario, config, events, corrective, log,
+                                result_path)
+
+
+def _run_holding_log(args, scenario, config, events, corrective, log, result_path) -> int:
+    from tegrasp_drake.runs.hardware_run import run_on_hardware
+    from tegrasp_drake.hardware.station import HardwareNotReadyError
+    for taken in (pathlib.Path(log), result_path):
         if taken.exists() and not args.overwrite:
             raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
     earlier = [taken for taken in (pathlib.Path(log), result_path) if taken.exists()]
-    pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
+    problem = free_space_problem(pathlib.Path(log).parent)  # before the devices come up
+    if problem:
+        raise SystemExit(f"tegrasp: error: --log {log} {problem}")
     # The run logs to a hidden file beside --log; the earlier log and result stay whole
-    # until this run's replace them together at the end (commit_hardware_run). A killed
-    # run's staging file is removed by the next run logging to the same --log.
+    # until this run's replace them together at the end (commit_hardware_run), and a run
+    # that fails keeps them (its own go beside them, failed_run_path). A killed run's
+    # staging file is removed by the next run logging to the same --log.
     from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
     staged = staging_file_beside(log, LCM_LOG_START)
     try:
@@ -186,30 +250,44 @@ def run(args) -> int:
             print(f"tegrasp: the run did not finish; what its log recorded is in {kept}",
                   file=sys.stderr, flush=True)
         raise
-    logged = staged.exists()  # none when the bus could not be recorded
+    failed = bool(result.faults or result.log_fault or (
+        result.transitions and result.transitions[-1]["to"] == "Failed"))
+    keep_earlier = failed and earlier
+    target = failed_run_path(log) if keep_earlier else pathlib.Path(log)
+    target_result = result_path_beside_log(target)
+    logged = staged.exists()  # none when the bus could not be recorded, or was removed
+    kept_words = ("; the earlier run's " + " and ".join(str(taken) for taken in earlier)
+                  + " are kept" if earlier else "")
     try:
-        commit_hardware_run(staged, log, result_path,
-                            dict(result.as_dict(), log=str(log), result=str(result_path)))
+        commit_hardware_run(staged, target, target_result,
+                            dict(result.as_dict(), log=str(target) if logged else None,
+                                 result=str(target_result)))
     except OSError as e:
         kept = keep_incomplete_log(staged, log)
-        raise SystemExit(f"tegrasp: error: cannot write the run's result to {result_path}: "
-                         f"{e.strerror or e}" + (f"; its log is in {kept}" if kept else ""))
-    logger.info(f"hardware: wrote {f'the log {log} and ' if logged else ''}the result "
-                f"{result_path}")
-    if earlier:
+        raise SystemExit(f"tegrasp: error: cannot write the run's result to {target_result}: "
+                         f"{e.strerror or e}" + (f"; its log is in {kept}" if kept else "")
+                         + kept_words)
+    logger.info(f"hardware: wrote {f'the log {target} and ' if logged else ''}the result "
+                f"{target_result}")
+    if earlier and not keep_earlier:
         logger.info("hardware: replaced the earlier run's "
                     + " and ".join(f"{'log' if taken == pathlib.Path(log) else 'result'} "
                                    f"{taken}" for taken in earlier))
+    log = target
+    result_path = target_result
     result = dataclasses.replace(result, log_path=pathlib.Path(log))
     faults = len(result.faults) + bool(result.log_fault)  # a log that stops is a fault
+    logged_words = (f"log {result.log_path} ({result.log_messages} messages)" if logged
+                    else "no log")
     print(f"ran {result.sim_time:.2f} s in {result.wall_time:.2f} s (real-time rate "
           f"{result.realtime_rate:.3f}); {len(result.transitions)} transitions, "
           f"{count_text(faults, 'fault')}"
-          f"{' (the log stopped)' if result.log_fault else ''}; log {result.log_path} "
-          f"({result.log_messages} messages), result {result_path}", flush=True)
+          f"{' (the log stopped)' if result.log_fault else ''}; {logged_words}, "
+          f"result {result_path}", flush=True)
     if result.log_fault:
         print(f"tegrasp: error: {result.log_fault}; the run was stopped", file=sys.stderr,
               flush=True)
-    failed = result.faults or result.log_fault or (result.transitions
-                               and result.transitions[-1]["to"] == "Failed")
+    if keep_earlier:
+        print(f"tegrasp: the run failed{kept_words}; this run's are {log} and {result_path}",
+              file=sys.stderr, flush=True)
     return 2 if failed else 0

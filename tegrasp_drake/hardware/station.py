@@ -38,6 +38,31 @@ from tegrasp_drake.rig.api_boundary import public_api
 logger = logging.getLogger(__name__)
 
 
+def serial_port_in_use(port: str) -> bool:
+    """Whether another process holds `port` (a device path) open exclusively, as pyserial's
+    `exclusive=True` and this station's readers do (an advisory flock on POSIX); False for a
+    pyserial URL, a path that is no device, or one that cannot be opened (the reader that
+    opens it says why)."""
+    import fcntl
+    import os
+    import stat
+    try:
+        if not stat.S_ISCHR(os.stat(port).st_mode):
+            return False
+        descriptor = os.open(port, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK | os.O_CLOEXEC)
+    except OSError:
+        return False
+    try:
+        fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        return True
+    except OSError:
+        return False
+    finally:
+        os.close(descriptor)  # releases a lock this took
+    return False
+
+
 class HardwareNotReadyError(RuntimeError):
     """A device did not come up; the message names it and where it was looked for."""
 
@@ -123,6 +148,11 @@ class HardwareStation(Diagram):
 
     def _open_devices(self):
         config = self._config
+        for device, port in (("gripper", config.gripper.port), ("tactile", config.tactile.port)):
+            if serial_port_in_use(port):
+                raise HardwareNotReadyError(
+                    f"{device}: the serial port {port} is in use by another process (another "
+                    "tegrasp hardware run?); end it, or give this run other devices")
         logger.debug(f"station: arm on {self._lcm.get_lcm_url()}, gripper on "
                      f"{config.gripper.port} (Modbus slave {config.gripper.device_id}, "
                      f"{config.gripper.baudrate} baud), tactile on {config.tactile.port} "

@@ -442,6 +442,44 @@ def held_folder(folder, *, shared: bool = False):
         os.close(descriptor)  # releases the lock
 
 
+class FileHeldError(OSError):
+    """Another process holds the file (held_file): another run is writing it."""
+
+
+@contextlib.contextmanager
+def held_file(path):
+    """Holds an exclusive flock on `.NAME.lock` beside `path` for the block, so a second run
+    writing the same output (whose own writes go through staging files and renames, which no
+    lock on the output itself would cover) is refused at once; the lock file is removed at
+    the end, and the kernel drops the lock when the process ends, however it ends.
+    FileHeldError when another process holds it; OSError when it cannot be made."""
+    path = pathlib.Path(path)
+    lock = path.with_name(f".{path.name}.lock")
+    while True:
+        descriptor = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o644)
+        try:
+            fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(descriptor)
+            raise FileHeldError(errno.EWOULDBLOCK, "another run is writing it now",
+                                str(path)) from None
+        try:
+            same = os.path.samestat(os.fstat(descriptor), os.stat(lock))
+        except FileNotFoundError:
+            same = False
+        if same:
+            break
+        # The holder before us removed the file between our open and our lock: the lock
+        # we hold is on a file nobody else will see; take the one on the path again.
+        os.close(descriptor)
+    try:
+        yield
+    finally:
+        with contextlib.suppress(OSError):
+            lock.unlink()  # while still held: a waiting opener then retries on a new file
+        os.close(descriptor)
+
+
 class InputTooLargeError(OSError):
     """A file is larger than its reader accepts; raised before the rest is read."""
 

@@ -84,8 +84,10 @@ class TactileSerialReader:
 
     def start(self) -> "TactileSerialReader":
         """Opens the port (raises if it cannot) and starts the thread."""
+        # exclusive: a flock on the port (POSIX), so a second reader (another run on the same
+        # devices) cannot open it and split the frames with this one.
         self._serial = serial.serial_for_url(self._port, baudrate=self._baudrate,
-                                             timeout=self._read_timeout)
+                                             timeout=self._read_timeout, exclusive=True)
         self._thread = threading.Thread(target=self._run, name=f"tactile {self._port}",
                                         daemon=True)
         self._thread.start()

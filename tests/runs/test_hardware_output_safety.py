@@ -1,0 +1,145 @@
+"""`tegrasp hardware` keeps an earlier run's output whole: one run at a time per --log, a
+disk too full for a log refused before the devices come up, a failed run's files kept beside
+(not over) the earlier run's, a log removed mid-run reported as a fault with the result still
+written; and one run at a time per serial device."""
+
+import json
+import os
+
+import pytest
+
+from tegrasp_drake import cli
+from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+from tegrasp_drake.runs import hardware_run
+
+
+@pytest.fixture
+def earlier_run(tmp_path, monkeypatch):
+    """A hardware config (devices that are not there) and an earlier run's log and result."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    (tmp_path / "run.lcmlog").write_bytes(b"the earlier run's log")
+    (tmp_path / "run.result.json").write_text('{"earlier": true}\n')
+    return tmp_path
+
+
+HARDWARE_TO = ["hardware", "--config", "hw.yaml", "--config-set", "scheduling=normal",
+               "--controller", "heuristic", "--overwrite", "--log"]
+HARDWARE = HARDWARE_TO + ["run.lcmlog"]
+
+
+def ended_run(staged_bytes=b"this run's log", *, log_fault=None, remove=None):
+    """A run_on_hardware standing in for the devices: it writes `staged_bytes` to the log it is
+    given (or removes `remove` as a user would mid-run) and ends with `log_fault`."""
+    def run(scenario, *, log_path, **kwargs):
+        if staged_bytes is not None:
+            log_path.write_bytes(staged_bytes)
+        if remove is not None:
+            import shutil
+            shutil.rmtree(remove)
+        return hardware_run.HardwareRunResult(
+            transitions=[], faults=(), sim_time=1.0, wall_time=1.0, log_path=log_path,
+            log_messages=0, device_counters={}, log_fault=log_fault)
+    return run
+
+
+def test_a_second_run_on_a_log_another_run_writes_is_refused(earlier_run):
+    from tegrasp_drake.rig.files import held_file
+    with held_file(earlier_run / "run.lcmlog"):  # the first run
+        with pytest.raises(SystemExit) as refused:
+            cli.main(HARDWARE)
+    message = str(refused.value.code)
+    assert "another tegrasp hardware run is writing it" in message and "\n" not in message
+    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+
+
+def test_a_log_on_a_disk_too_full_for_it_is_refused_before_the_devices(earlier_run,
+                                                                       monkeypatch):
+    from tegrasp_drake.commands import hardware as hardware_command
+
+    class Full:
+        f_bavail, f_frsize = 10, 4096
+    monkeypatch.setattr(hardware_command.os, "statvfs", lambda path: Full())
+    monkeypatch.setattr(hardware_run, "run_on_hardware", lambda *a, **k: pytest.fail(
+        "the devices came up"))
+    with pytest.raises(SystemExit) as refused:
+        cli.main(HARDWARE)
+    assert "40 kB free" in str(refused.value.code) and "1 MB" in str(refused.value.code)
+    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+
+
+def test_a_failed_run_keeps_the_earlier_runs_log_and_result(earlier_run, monkeypatch, capfd):
+    monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(
+        log_fault="the LCM log stopped: the disk holding it has less than 1 MB free"))
+    assert cli.main(HARDWARE) == 2
+    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+    assert (earlier_run / "run.result.json").read_text() == '{"earlier": true}\n'
+    failed = earlier_run / f"run.failed-{os.getpid()}.lcmlog"
+    assert failed.read_bytes() == b"this run's log"
+    result = json.loads((earlier_run / f"run.failed-{os.getpid()}.result.json").read_text())
+    assert result["log"] == failed.name and result["log_fault"]
+    err = capfd.readouterr().err
+    assert "run.lcmlog and run.result.json are kept" in err
+
+
+def test_a_run_that_ends_well_replaces_the_earlier_runs_log_and_result(earlier_run,
+                                                                       monkeypatch):
+    monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run())
+    assert cli.main(HARDWARE) == 0
+    assert (earlier_run / "run.lcmlog").read_bytes() == b"this run's log"
+    assert json.loads((earlier_run / "run.result.json").read_text())["log"] == "run.lcmlog"
+    assert not list(earlier_run.glob(".*"))  # no lock or staging file left
+
+
+def test_a_log_folder_removed_mid_run_is_a_fault_and_the_result_is_still_written(
+        earlier_run, monkeypatch, capfd):
+    (earlier_run / "logs").mkdir()
+    monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(
+        None, remove=earlier_run / "logs",
+        log_fault="the LCM log stopped: it was removed during the run"))
+    code = cli.main(HARDWARE_TO + ["logs/run.lcmlog"])
+    captured = capfd.readouterr()
+    assert code == 2, captured
+    result = json.loads((earlier_run / "logs" / "run.result.json").read_text())
+    assert result["log"] is None and "removed" in result["log_fault"]
+    assert "no log" in captured.out and "removed during the run" in captured.err
+
+
+@pytest.mark.parametrize("duration", ["1e-9", "0.001"])
+def test_a_run_shorter_than_one_arm_command_period_is_refused(duration, capsys):
+    with pytest.raises(SystemExit) as refused:
+        cli.build_parser().parse_args(["hardware", "--duration", duration])
+    assert refused.value.code == 2
+    assert "one period of the arm's commands" in capsys.readouterr().err
+
+
+def test_a_serial_port_another_run_reads_cannot_be_opened_by_a_second(tmp_path):
+    import serial
+    from tegrasp_drake.emulators.null_modem import open_raw_pty
+    from tegrasp_drake.hardware.myrio.serial_reader import TactileSerialReader
+    from tegrasp_drake.hardware.station import serial_port_in_use
+    master, slave, port = open_raw_pty()
+    try:
+        assert not serial_port_in_use(port)
+        with TactileSerialReader(port):  # the first run's
+            assert serial_port_in_use(port)
+            with pytest.raises(serial.SerialException):
+                TactileSerialReader(port).start()
+        assert not serial_port_in_use(port)
+    finally:
+        os.close(master)
+        os.close(slave)
+
+
+@pytest.mark.parametrize("text, code", [("14@3", 14), ("0x0E@3", 14), ("0X0e@3", 14)])
+def test_an_injected_fault_code_is_hexadecimal_with_0x_or_decimal(text, code):
+    from tegrasp_drake.commands.emulate import _parse_fault
+    assert _parse_fault(text).code == code
+
+
+@pytest.mark.parametrize("text", ["0b1110@3", "0o16@3", "1_4@3"])
+def test_an_injected_fault_code_in_another_notation_is_refused_naming_both(text):
+    from tegrasp_drake.commands.emulate import _parse_fault
+    with pytest.raises(SystemExit) as refused:
+        _parse_fault(text)
+    assert "hexadecimal with 0x or decimal" in str(refused.value.code)
