@@ -356,8 +356,39 @@ def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None 
                     log_path, duration, drake_lcm, out, progress)
 
 
+# [s] listened to the arm's command channel before a run: 20 commands of another controller
+# at the JACO2 driver's 100 Hz (jaco_lcm.py), yet short beside a device's ready_timeout.
+OTHER_CONTROLLER_LISTEN_S = 0.2
+
+
+def arm_commands_heard(url: str, listen_s: float = OTHER_CONTROLLER_LISTEN_S) -> int:
+    """How many KINOVA_JACO_COMMAND messages another process publishes on the bus at `url` in
+    `listen_s` [s] (0 for a memq:// bus, which no other process can reach): before a run
+    starts, any is another controller commanding the arm."""
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL
+    if url.startswith("memq"):
+        return 0
+    heard = []
+    bus = lcm.LCM(url)
+    subscription = bus.subscribe(JACO_COMMAND_CHANNEL, lambda channel, data: heard.append(1))
+    try:
+        deadline = time.monotonic() + listen_s
+        while (left := deadline - time.monotonic()) > 0:
+            bus.handle_timeout(max(1, int(left * 1000)))
+    finally:
+        bus.unsubscribe(subscription)
+    return len(heard)
+
+
 def _run(scenario, config, events, corrective_events, events_dir, log_path,
          duration, drake_lcm, out, progress) -> HardwareRunResult:
+    url = drake_lcm.get_lcm_url() if drake_lcm is not None else config.arm.lcm_url
+    heard = arm_commands_heard(url)
+    if heard:
+        from tegrasp_drake.hardware.station import HardwareNotReadyError
+        raise HardwareNotReadyError(
+            f"arm: another controller is commanding it ({heard} KINOVA_JACO_COMMAND messages "
+            f"on {url} in {OTHER_CONTROLLER_LISTEN_S:g} s before this run); end it first")
     with MakeHardwareStation(config, lcm=drake_lcm) as station:
         parts = MakeGraspDiagram(scenario, station=station, events=events,
                                  corrective_events=corrective_events, log=False)

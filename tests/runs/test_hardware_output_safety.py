@@ -143,3 +143,27 @@ def test_an_injected_fault_code_in_another_notation_is_refused_naming_both(text)
     with pytest.raises(SystemExit) as refused:
         _parse_fault(text)
     assert "hexadecimal with 0x or decimal" in str(refused.value.code)
+
+
+def test_another_controllers_arm_commands_are_heard_before_a_run():
+    import threading
+    import time
+    import lcm
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_COMMAND_CHANNEL
+    from tegrasp_drake.runs.hardware_run import arm_commands_heard
+    url = f"udpm://239.255.76.122:{7722 + os.getpid() % 50}?ttl=0"  # loopback only
+    assert arm_commands_heard(url) == 0
+    stop = threading.Event()
+
+    def other_controller():  # publishes at the JACO2 driver's 100 Hz
+        bus = lcm.LCM(url)
+        while not stop.is_set():
+            bus.publish(JACO_COMMAND_CHANNEL, b"a command")
+            time.sleep(0.01)
+    thread = threading.Thread(target=other_controller, daemon=True)
+    thread.start()
+    try:
+        assert arm_commands_heard(url) > 0
+    finally:
+        stop.set()
+        thread.join()
