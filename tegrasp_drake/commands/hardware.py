@@ -31,7 +31,8 @@ The grasp on the real devices (or their emulators), in real time: the controller
 `tegrasp trial` on MakeHardwareStation. Prints each state transition and device fault as it
 happens, logs the whole LCM bus (tegrasp replay LOG, lcm-logplayer LOG) and writes the
 result beside the log (run.lcmlog -> run.result.json). Exit code 0: the grasp finished
-without a fault; 2: a fault or a Failed state machine; 1: a device did not come up."""
+without a fault; 2: a fault or a Failed state machine; 1: a device did not come up or is in
+use by another run, or --log is being written by another run."""
 
 EPILOG = """\
 examples:
@@ -61,7 +62,9 @@ def register(subparsers) -> None:
     parser.add_argument("--log", metavar="FILE", default=None,
                         help="LCM log to write (default: out/hardware/run-<time>.lcmlog)")
     parser.add_argument("--overwrite", action="store_true",
-                        help="replace the --log FILE (and its result) if it exists")
+                        help="replace the --log FILE (and its result) if it exists; a run "
+                        "that fails keeps them and writes its own beside them as "
+                        "LOG.failed-<pid>.lcmlog")
     parser.add_argument("--duration", type=duration_seconds, default=None,
                         help="stop after this many seconds, at most "
                         f"{MAX_DURATION_S:g} (default: when the grasp ends)")
