@@ -1,6 +1,8 @@
 """The ContactEstimator, pure: what it senses from a reading and what it remembers, tick
 to tick and across a change of mode."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -176,3 +178,18 @@ def test_a_reach_load_match_no_pad_confirms_is_still_remembered_as_a_match_in_th
 def test_the_estimate_carries_the_untouched_reach_of_the_object():
     _, estimate = ESTIMATOR.update(ContactMemory(), reading())
     assert estimate.untouched_reach_m == pytest.approx(0.012 + THIN.width_along_stroke() / 2)
+
+
+def test_a_touch_or_strike_at_an_earlier_close_is_remembered_for_the_rest_of_the_trial():
+    """closed_untouched reads it: an object once touched or struck lies within the pads'
+    reach, so a later close on nothing means it moved, not that it lies beyond."""
+    untouched = ContactMemory()
+    assert not untouched.after_transition(Mode.REACH, Mode.RE_REACH, ()).touched_before
+    touched = dataclasses.replace(untouched, first_touch_opening_m=0.06)
+    struck = dataclasses.replace(untouched, strike_finger="left")
+    for memory in (touched, struck):
+        re_reach = memory.after_transition(Mode.REACH, Mode.RE_REACH, ())
+        reach = re_reach.after_transition(Mode.RE_REACH, Mode.REACH, ())
+        assert re_reach.touched_before and reach.touched_before
+        _, estimate = ESTIMATOR.update(reach, reading(t=3.0))
+        assert estimate.touched_before

@@ -390,6 +390,13 @@ def test_a_close_that_touched_nothing_re_reaches_forward_by_the_untouched_reach(
     assert decision.action == ReReach(Shift(0.025, 0.0))
 
 
+def test_a_close_on_nothing_after_an_earlier_touch_is_the_papers():
+    """The object was within the pads' reach at an earlier close: it moved (pushed or
+    toppled), so no forward search."""
+    obs = situation(closed_on_nothing=True, estimate=dict(touched_before=True))
+    assert code(Mode.REACH, obs, Counters(re_reaches=1)) == "closed_on_nothing"
+
+
 def test_a_close_on_nothing_after_a_reach_load_match_is_the_papers():
     """A match with no pad touching can be a finger's backing on the object (docs/controller.md,
     "Known failure: a Reach-Load event with no pad touching"): no forward search."""

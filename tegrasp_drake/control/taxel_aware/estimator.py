@@ -26,7 +26,9 @@ class ContactMemory:
     first_touch_* (opening [m; -1 none], approach-axis offset [m], the pad alone or ""),
     the faces touched when the last Re-Reaches began, and the finger strike's baseline
     wrench, timer, summed side moment and finger; reach_match_at: the latest tick of this
-    Reach at which the Reach-Load event matched (touch_confirmed.py)."""
+    Reach at which the Reach-Load event matched (touch_confirmed.py); touched_before: a
+    taxel touched the object, or a finger struck it, before the latest transition in this
+    trial (untouched_close.py)."""
     first_touch_opening_m: float = -1.0
     first_touch_offset_m: float = 0.0
     first_touch_finger: str = ""
@@ -38,6 +40,7 @@ class ContactMemory:
     approach_contact_since: float = -1.0
     tilted_since: float = -1.0
     reach_match_at: float = -1.0
+    touched_before: bool = False
 
     def after_transition(self, from_mode: Mode, to_mode: Mode,
                          touched_now: tuple) -> "ContactMemory":
@@ -50,7 +53,10 @@ class ContactMemory:
             first_touch_finger=self.first_touch_finger if close_goes_on else "",
             first_touch_offset_m=0.0 if re_reach else self.first_touch_offset_m,
             touched_faces=(remembered_faces(self.touched_faces, touched_now) if re_reach
-                           else self.touched_faces))
+                           else self.touched_faces),
+            touched_before=(self.touched_before or self.first_touch_opening_m >= 0.0
+                            or bool(touched_now) or bool(self.strike_finger)
+                            or self.strike_since >= 0.0))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -91,7 +97,7 @@ class ContactEstimate:
     itself), -1 none (touch_confirmed.py); reach_matched: the Reach-Load event matched in this
     Reach, confirmed or not; untouched_reach_m: how far beyond the pads' centres at the
     object's width an object no pad touched in the close has its centre
-    (contact_geometry.untouched_reach_m)."""
+    (contact_geometry.untouched_reach_m); touched_before: ContactMemory.touched_before."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -116,6 +122,7 @@ class ContactEstimate:
     match_confirmed_s: float = -1.0
     reach_matched: bool = False
     untouched_reach_m: float = 0.0
+    touched_before: bool = False
 
     @property
     def bracketed_width_m(self) -> float:
@@ -198,7 +205,8 @@ class ContactEstimator:
                                                  self._match_confirm_window_s)
                                if reaching else -1.0),
             reach_matched=reaching and match_at >= 0.0,
-            untouched_reach_m=self._untouched_reach_m)
+            untouched_reach_m=self._untouched_reach_m,
+            touched_before=memory.touched_before)
         return memory, estimate
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):
