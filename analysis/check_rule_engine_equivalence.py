@@ -27,6 +27,7 @@ import sys
 import tarfile
 import tempfile
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.rig.files import JSON_OBJECT_START, write_atomically
 from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
 
@@ -189,4 +190,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "check_rule_engine_equivalence"))

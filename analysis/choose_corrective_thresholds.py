@@ -19,7 +19,8 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import write_report
+from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.events_folder import load_memorized_events
@@ -88,7 +89,7 @@ def main(argv=None) -> int:
     parser.add_argument("ensemble_logs", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("--object", default="box")
-    parser.add_argument("--events", type=pathlib.Path, default=pathlib.Path("events"))
+    parser.add_argument("--events", type=pathlib.Path, default=package_events_dir())
     args = parser.parse_args(argv)
     events = load_memorized_events(args.events / CORRECTIVE_FOLDER, args.object,
                                    required=CORRECTIVE_TRANSITIONS)
@@ -165,4 +166,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(run_script(main, "choose_corrective_thresholds"))

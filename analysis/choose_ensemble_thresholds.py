@@ -15,7 +15,8 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import write_report
+from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.events import tactile_trial_from_log
@@ -61,7 +62,7 @@ def main(argv=None) -> int:
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("--runs", type=int, nargs="+", default=[5, 6, 7])
-    parser.add_argument("--events", default="events")
+    parser.add_argument("--events", default=str(package_events_dir()))
     args = parser.parse_args(argv)
     spans = []
     for name in sorted(BUILTIN_OBJECTS):
@@ -116,4 +117,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "choose_ensemble_thresholds"))

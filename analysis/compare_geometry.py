@@ -25,7 +25,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 
 from compare_hands import failure_class, load  # noqa: E402
 
-from tegrasp_drake.commands.script_output import write_report  # noqa: E402
+from tegrasp_drake.commands.script_output import run_script, write_report  # noqa: E402
 from tegrasp_drake.scenario.trial_result import TrialResult  # noqa: E402
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value  # noqa: E402
 from tegrasp_drake.sweep.table import succeeded as _succeeded  # noqa: E402
@@ -117,14 +117,12 @@ def main(argv=None) -> int:
     parser.add_argument("--label", default="coarse",
                         help="the variant's name in the report (default: coarse)")
     args = parser.parse_args(argv)
-    for folder in (args.reference, args.coarse):
-        if not (folder / "trials").is_dir():
-            parser.error(f"{folder}: no trials/ folder of sweep records there")
-    text = report(load(args.reference), load(args.coarse), args.label)
+    text = report(load(args.reference, "compare_geometry"), load(args.coarse, "compare_geometry"),
+                  args.label)
     write_report(args.out, text + "\n", script="compare_geometry")
     print(text)
     return 0
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(run_script(main, "compare_geometry"))

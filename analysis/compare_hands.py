@@ -13,22 +13,28 @@ failures by class.
 
 import argparse
 import collections
-import json
 import pathlib
+import sys
 
-from tegrasp_drake.commands.script_output import write_report
+from tegrasp_drake.commands.script_output import run_script, write_report
 from tegrasp_drake.scenario.trial_result import TrialResult
+from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
 
-def load(folder: pathlib.Path) -> dict:
-    """{trial_id: (trial, result)} of a folder's finished records."""
-    records = {}
-    for path in sorted((folder / "trials").glob("*.json")):
-        record = json.loads(path.read_text())
-        if record.get("status") == "ok":
-            records[record["trial_id"]] = (record["trial"], record["result"])
+def load(folder: pathlib.Path, script: str = "compare_hands") -> dict:
+    """{trial_id: (trial, result)} of a folder's finished records (sweep.load_records: a
+    record that does not read is named on stderr and left out); SystemExit naming the
+    folder when none is finished."""
+    loaded = load_records(folder)
+    for path, reason in loaded.corrupt.items():
+        print(f"{script}: skipped corrupt record {path}: {reason}", file=sys.stderr)
+    records = {trial_id: (record["trial"], record["result"])
+               for trial_id, record in loaded.records.items() if record.get("status") == "ok"}
+    if not records:
+        raise SystemExit(f"{script}: {folder} holds no finished trial record (trials/*.json "
+                         "with status ok); give the --out folder of a `tegrasp sweep`")
     return records
 
 
@@ -110,4 +116,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(run_script(main, "compare_hands"))

@@ -7,6 +7,7 @@ for the same pad strike at plant steps of 1, 0.5 and 0.25 ms; prints the contact
 import argparse
 import sys
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.figures.figure_files import FigureFormatError, check_figure_path
 from tegrasp_drake.figures.ra_transients import plot_ra_transients
 from tegrasp_drake.rig.files import UserPathError
@@ -39,4 +40,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "compare_ra_transients"))

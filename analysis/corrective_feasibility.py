@@ -11,20 +11,23 @@ corrective triggers"): Eq. 3 scores, from recorded logs, of
     python analysis/corrective_feasibility.py CORRECTIVE_LOGS ENSEMBLE_LOGS GRID_LOGS
 """
 
+import argparse
 import pathlib
 import sys
 
 import numpy as np
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
-from tegrasp_drake.events.correlation import event_scores_reference, normalize_by_max
+from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.extraction import cut_window
 from tegrasp_drake.recording.corrective_detection import slip_band
 from tegrasp_drake.recording.corrective_events import (CORRECTIVE_RUNS, corrective_scenario,
                                                        slip_onset_time)
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
+from tegrasp_drake.tactile.max_normalization import normalize_by_max
 
 sys.path.insert(0, str(pathlib.Path(__file__).parent))
 from record_corrective_events import log_path  # noqa: E402
@@ -89,11 +92,15 @@ def one_finger(grid, ensemble):
 
 
 def main(argv=None) -> int:
-    corrective, ensemble, grid = map(pathlib.Path, (argv or sys.argv[1:])[:3])
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    for name in ("corrective_logs", "ensemble_logs", "grid_logs"):
+        parser.add_argument(name, type=pathlib.Path)
+    args = parser.parse_args(argv)
+    corrective, ensemble, grid = args.corrective_logs, args.ensemble_logs, args.grid_logs
     slip(corrective, ensemble)
     one_finger(grid, ensemble)
     return 0
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(run_script(main, "corrective_feasibility"))

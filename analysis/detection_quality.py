@@ -12,7 +12,7 @@ import argparse
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import write_report
+from tegrasp_drake.commands.script_output import run_script, write_report
 from tegrasp_drake.sweep.detection_report import report_markdown
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
@@ -40,4 +40,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "detection_quality"))

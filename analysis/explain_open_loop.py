@@ -43,6 +43,8 @@ def main(argv=None) -> int:
         check_figure_path(args.out)  # before the trials, not after
     except FigureFormatError as error:
         parser.error(str(error))
+    from tegrasp_drake.commands.script_output import refuse_unusable_output
+    refuse_unusable_output("explain_open_loop", args.out)
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -84,4 +86,5 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from tegrasp_drake.commands.script_output import run_script
+    sys.exit(run_script(main, "explain_open_loop"))

@@ -31,7 +31,7 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import write_report
+from tegrasp_drake.commands.script_output import run_script, write_report
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.trial_function import trial_log_name
@@ -108,4 +108,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "hold_creep"))

@@ -7,6 +7,7 @@ false triggers; writes a markdown table.
 
 import argparse
 import pathlib
+import sys
 from concurrent.futures import ProcessPoolExecutor
 
 # Hits that no template, threshold choice or earlier judge saw. (The first judge, of the
@@ -36,6 +37,8 @@ def main(argv=None) -> int:
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args(argv)
+    from tegrasp_drake.commands.script_output import refuse_unusable_output
+    refuse_unusable_output("judge_corrective_triggers", args.out)
     jobs = [(label, force, time, trigger) for label, force, time in HITS
             for trigger in TRIGGERS]
     lines = ["| situation | trigger | Avoid at (after the hit) | Avoid's trigger | direction | "
@@ -64,4 +67,5 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    from tegrasp_drake.commands.script_output import run_script
+    sys.exit(run_script(main, "judge_corrective_triggers"))

@@ -10,12 +10,14 @@ the stroke, and the flip height at 25 N (a contact below it lifts B off its pin)
 import argparse
 import math
 import pathlib
+import sys
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from tegrasp_drake.commands.script_output import run_script  # noqa: E402
 from tegrasp_drake.figures.figure_files import (FigureFormatError,  # noqa: E402
                                                 check_figure_path, save_figure)
 from tegrasp_drake.rig.files import UserPathError  # noqa: E402
@@ -42,10 +44,10 @@ def draw(ax, theta: float, color: str, label: str) -> None:
                   f"pad +{linkage.pad_travel(theta) * 1000:.1f} mm")
 
 
-def main() -> None:
+def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", type=pathlib.Path, help="the figure to write (.png, .pdf or .svg)")
-    out = parser.parse_args().out
+    out = parser.parse_args(argv).out
     try:
         check_figure_path(out)
     except FigureFormatError as error:
@@ -75,7 +77,8 @@ def main() -> None:
     except UserPathError as error:
         raise SystemExit(f"linkage_figure: {error}") from None
     print(f"wrote {out} ({math.degrees(linkage.THETA_PADS_MEET):.1f} deg to close)")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(run_script(main, "linkage_figure"))

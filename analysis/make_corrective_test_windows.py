@@ -11,11 +11,13 @@ file was cut from the prismatic hand's runs with the earlier 1.3 s Load phase (L
 times and events folder with it.
 """
 
+import argparse
 import pathlib
 import sys
 
 import numpy as np
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
@@ -39,7 +41,11 @@ def cut(log, name, start, end, arrays):
 def main(argv=None) -> int:
     from tegrasp_drake.recording.corrective_events import (CORRECTIVE_RUNS, HOLD_END_S,
                                                            LIFT_END_S, LIFT_START_S)
-    corrective, ensemble = map(pathlib.Path, (argv or sys.argv[1:])[:2])
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("corrective_logs", type=pathlib.Path)
+    parser.add_argument("ensemble_logs", type=pathlib.Path)
+    args = parser.parse_args(argv)
+    corrective, ensemble = args.corrective_logs, args.ensemble_logs
     runs = {run.label: run for run in CORRECTIVE_RUNS}
     arrays = {}
     cut(load_trial_log(log_path(corrective, "box", runs["hit +y 15 N 1.3 s into Hold"])),
@@ -55,4 +61,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(run_script(main, "make_corrective_test_windows"))

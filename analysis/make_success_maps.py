@@ -7,6 +7,7 @@ written by `tegrasp sweep`.
 import argparse
 import sys
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.figures.sweep import write_success_maps
 from tegrasp_drake.sweep import load_records
 
@@ -28,4 +29,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "make_success_maps"))

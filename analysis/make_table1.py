@@ -8,6 +8,7 @@ results folder written by `tegrasp sweep`.
 import argparse
 import sys
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.sweep import (load_records, write_offset_table, write_statistics, write_summary,
                                  write_table1)
 
@@ -31,4 +32,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "make_table1"))

@@ -10,6 +10,7 @@ contact (the Reach's own: accelerating the arm), the strike's onset (the force a
 (about world x plus z) every 2 ms over those 40 ms, and when the object first moved 1 mm.
 """
 
+import argparse
 import dataclasses
 import sys
 
@@ -18,6 +19,7 @@ from pydrake.multibody.tree import JacobianWrtVariable
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake import AddScenarioController, LoadScenario, MakeSimulator, MakeStation
 from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.finger_strike import (grasp_wrench_from_torques, side_moment_nm,
@@ -69,7 +71,8 @@ def wrenches(q, tau):
     return np.array(out)
 
 
-def main() -> int:
+def main(argv=None) -> int:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args(argv)
     for scene in SCENES:
         data = reach_log(*scene)
         t, w = data["t"], wrenches(data["q"], data["tau"])
@@ -94,4 +97,4 @@ def main() -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "measure_finger_strike"))

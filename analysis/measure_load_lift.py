@@ -20,6 +20,8 @@ import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
+from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script
+from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.rig.files import JSON_ARRAY_START, write_atomically
 
 MARKERS_M = ((0.0, 0.0), (0.01, 0.0), (0.0, 0.015), (-0.01, -0.015))
@@ -53,7 +55,7 @@ def trial_row(job) -> dict:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--events", default="events")
+    parser.add_argument("--events", default=str(package_events_dir()))
     parser.add_argument("--objects", nargs="+",
                         default=["box", "thick_cylinder", "thin_cylinder"])
     parser.add_argument("--seed", type=int, default=600)
@@ -62,6 +64,13 @@ def main(argv=None) -> int:
                         metavar="KEY=VALUE", help="override a scenario field of every trial")
     parser.add_argument("--json", type=pathlib.Path, default=None)
     args = parser.parse_args(argv)
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    from tegrasp_drake.scenario.scenario_events import load_controller_events
+    for name in args.objects:  # the events every trial reads, refused before any simulates
+        load_controller_events(LoadScenario(name=name, overrides=list(args.overrides)),
+                               args.events)
+    if args.json:
+        refuse_unusable_folders("measure_load_lift", args.json.parent)
     jobs = [(name, offset, args.seed + k, args.events, tuple(args.overrides))
             for name in args.objects for k, offset in enumerate(MARKERS_M)]
     with ProcessPoolExecutor(args.workers) as pool:
@@ -83,4 +92,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "measure_load_lift"))

@@ -15,6 +15,8 @@ import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
+from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script
+from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
 from tegrasp_drake.recording.campaign import (first_unwritten_log, run_log_path, simulate_run,
@@ -40,8 +42,10 @@ def main(argv=None) -> int:
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("--object", default="box")
     parser.add_argument("--workers", type=int, default=2)
-    parser.add_argument("--events", type=pathlib.Path, default=pathlib.Path("events"))
+    parser.add_argument("--events", type=pathlib.Path, default=package_events_dir())
     args = parser.parse_args(argv)
+    refuse_unusable_folders("record_corrective_events", args.logs / args.object,
+                            args.events / CORRECTIVE_FOLDER)
     with ProcessPoolExecutor(args.workers) as pool:  # the logs, in parallel
         unwritten = first_unwritten_log(pool, simulate, [(args.object, run, args.logs)
                                                          for run in CORRECTIVE_RUNS])
@@ -68,4 +72,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(run_script(main, "record_corrective_events"))

@@ -15,6 +15,8 @@ import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
+from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script
+from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.recording.campaign import (first_unwritten_log, run_log_path, simulate_run,
                                               unwritten_log_words)
@@ -39,10 +41,13 @@ def main(argv=None) -> int:
     parser.add_argument("--runs", type=int, default=8)
     parser.add_argument("--template-runs", type=int, default=5)
     parser.add_argument("--workers", type=int, default=2)
-    parser.add_argument("--events", type=pathlib.Path, default=pathlib.Path("events"))
+    parser.add_argument("--events", type=pathlib.Path, default=package_events_dir())
     args = parser.parse_args(argv)
     if not 0 < args.template_runs <= args.runs:
         raise SystemExit("record_ensemble_events: --template-runs must be 1..--runs")
+    refuse_unusable_folders("record_ensemble_events",
+                            *(args.logs / name for name in sorted(BUILTIN_OBJECTS)),
+                            args.events / ENSEMBLE_FOLDER)
     from tegrasp_drake.scenario.scenario import LoadScenario
     jobs = [(name, k, args.runs, args.template_runs, args.logs / name)
             for name in sorted(BUILTIN_OBJECTS) for k in range(args.runs)]
@@ -71,4 +76,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "record_ensemble_events"))

@@ -14,6 +14,7 @@ import json
 import pathlib
 import sys
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.sweep.records import (TRIALS_FOLDER, load_records, make_record, write_record)
 from tegrasp_drake.runs.trial import judge_trial
@@ -52,4 +53,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "rejudge_from_logs"))

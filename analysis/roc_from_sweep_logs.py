@@ -18,7 +18,8 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import write_report
+from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.control.controller_registry import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
@@ -51,7 +52,7 @@ def main(argv=None) -> int:
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("--controller", default="taxel_aware")
-    parser.add_argument("--events", default="events")
+    parser.add_argument("--events", default=str(package_events_dir()))
     parser.add_argument("--limit", type=int, default=None)
     parser.add_argument("--gripper-model", default="linkage",
                         help="the hand the logs were simulated on (its chosen thresholds)")
@@ -106,4 +107,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "roc_from_sweep_logs"))

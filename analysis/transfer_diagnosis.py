@@ -16,6 +16,7 @@ import json
 import pathlib
 import sys
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.events.replay import tactile_trial_from_log
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
@@ -48,4 +49,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "transfer_diagnosis"))

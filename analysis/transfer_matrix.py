@@ -10,6 +10,7 @@ RESULTS the folder `tegrasp transfer` wrote (its cells/ folder holds the records
 import argparse
 import sys
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.transfer.matrix import LoadTransferSpec
 from tegrasp_drake.transfer.report import write_transfer_reports
@@ -38,4 +39,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "transfer_matrix"))

@@ -10,6 +10,7 @@ import argparse
 import pathlib
 import sys
 
+from tegrasp_drake.commands.script_output import run_script
 from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
 from tegrasp_drake.sweep import readme_with_summaries
 from tegrasp_drake.sweep.summary import page_with_record_commits
@@ -36,4 +37,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "update_results_page"))

@@ -26,7 +26,7 @@ import pathlib
 import sys
 
 from tegrasp_drake.sweep.missed_event_report import report_markdown, sweep_misses
-from tegrasp_drake.commands.script_output import write_report
+from tegrasp_drake.commands.script_output import run_script, write_report
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.sweep.records import load_records
 
@@ -76,4 +76,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_script(main, "weak_stimuli"))

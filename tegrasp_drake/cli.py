@@ -6,15 +6,11 @@ SIGTERM, SIGHUP and the other catchable terminating signals end a run as Ctrl-C 
 commands/output_streams.py. Exit codes: docs/user-guide.md, "Exit codes"."""
 
 import argparse
-import datetime
 import importlib
-import os
 import signal
 import sys
-import tempfile
-import traceback
 
-from tegrasp_drake.commands import output_streams
+from tegrasp_drake.commands import error_boundary, output_streams
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 
 # Each entry is a module with a register(subparsers) function. Modules are imported only
@@ -95,7 +91,7 @@ def build_parser() -> argparse.ArgumentParser:
 EXIT_SUCCESS = 0
 EXIT_ERROR = 1  # bad input refused, a file not writable, a device that did not come up
 EXIT_GRASP_FAILED = 2  # hardware: a fault or a Failed state machine (also argparse's usage)
-EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
+EXIT_INTERNAL_ERROR = error_boundary.EXIT_INTERNAL_ERROR  # an exception no command foresaw
 EXIT_CLOSED_PIPE = 128 + signal.SIGPIPE  # the shell's status of a command SIGPIPE ended
 
 
@@ -171,13 +167,13 @@ def _run_command(argv, process_ends: bool = False) -> int:
         except BrokenPipeError:
             if output_streams.output_closed():  # the reader of our output left: main ends quietly
                 raise
-            return _internal_error(sys.exc_info()[1], argv)
+            return error_boundary.internal_error(sys.exc_info()[1], argv)
         except output_streams.OutputStreamError as error:  # a print to a full disk
             return _cannot_write(error.stream_name, error)
         except BaseException as error:  # noqa: BLE001: the error boundary
             if interrupt_received():  # a Ctrl-C that Drake wrapped in another exception
                 return _interrupted(interrupt_received())
-            return _internal_error(error, argv)
+            return error_boundary.internal_error(error, argv)
 
 
 def _interrupted(name: str) -> int:
@@ -189,35 +185,6 @@ def _interrupted(name: str) -> int:
     # place of its exit code (-2 for a SIGTERM's 143). Each exec of a string clears the mark.
     exec("")  # noqa: S102: a constant, empty program
     return 128 + signal.Signals[name].value
-
-
-def _internal_error(error: BaseException, argv) -> int:
-    """One line on stderr for an exception no command foresaw; its traceback in a file."""
-    text = "".join(traceback.format_exception(error))
-    where = _write_traceback(text, argv)
-    verbose = any(a in ("-v", "-vv", "--verbose") for a in argv)
-    if verbose:
-        print(text, file=sys.stderr, end="")
-    from tegrasp_drake.rig.files import one_line
-    summary = one_line(str(error).strip().splitlines()[0]) if str(error).strip() else ""
-    print(f"tegrasp: internal error: {type(error).__name__}"
-          + (f": {summary[:300]}" if summary else "")
-          + (f"; traceback in {where}" if where else "; the traceback could not be written")
-          + ("" if verbose else " (-v shows it)")
-          + "; please report it", file=sys.stderr, flush=True)
-    return EXIT_INTERNAL_ERROR
-
-
-def _write_traceback(text: str, argv) -> str | None:
-    """Writes the command line and `text` to a new file in the temporary folder; its path."""
-    stamp = datetime.datetime.now().strftime("%Y%m%d-%H%M%S")
-    try:
-        descriptor, path = tempfile.mkstemp(prefix=f"tegrasp-{stamp}-", suffix=".traceback")
-        with os.fdopen(descriptor, "w", encoding="utf-8", errors="replace") as stream:
-            stream.write("tegrasp " + " ".join(argv) + "\n\n" + text)
-    except OSError:
-        return None
-    return path
 
 
 if __name__ == "__main__":

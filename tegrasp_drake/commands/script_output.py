@@ -1,9 +1,14 @@
-"""The reports the analysis scripts (analysis/*.py) write: written whole, and a report that
-cannot be written ends the script with one line naming it."""
+"""The analysis scripts' (analysis/*.py) reports, written whole (a report that cannot be
+written ends the script with one line naming it), and their one error boundary, run_script."""
 
 import pathlib
+import signal
+import sys
 
-from tegrasp_drake.rig.files import MARKDOWN_START, UserPathError, write_atomically
+from tegrasp_drake.commands.error_boundary import internal_error
+from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
+                                     output_file_problem,
+                                     write_atomically)
 
 
 def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
@@ -16,3 +21,67 @@ def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
         return write_atomically(path, text, start=start)
     except UserPathError as error:
         raise SystemExit(f"{script}: {error}") from None
+
+
+# An analysis script's exit codes: those of the `tegrasp` command line (docs/user-guide.md,
+# "Exit codes"): 1 for input refused or nothing to do on it, 70 for an exception no
+# check foresaw.
+EXIT_ERROR = 1
+
+
+def run_script(main, script: str, argv=None) -> int:
+    """`main(argv)`'s exit code (argv None: the process's arguments), behind the scripts'
+    one error boundary: an error in a file or folder the user named (UserPathError,
+    TrialLogError, MemorizedEventError, ConfigError, RecordError, another OSError, UnicodeDecodeError)
+    ends it with one line, `<script>: error: <path>: <what is wrong>`, and EXIT_ERROR; any
+    other exception with error_boundary's internal-error line, its traceback in a file."""
+    from tegrasp_drake.events.event_file import MemorizedEventError
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.trial_log_file import TrialLogError
+    from tegrasp_drake.sweep.records import RecordError
+    arguments = sys.argv[1:] if argv is None else list(argv)
+    try:
+        return int(main(argv) or 0)
+    except SystemExit as exit_:
+        if isinstance(exit_.code, str):  # "script: ...", one bounded line
+            raise SystemExit(error_line(exit_.code)) from None
+        raise
+    except KeyboardInterrupt:
+        print(f"{script}: interrupted (SIGINT)", file=sys.stderr, flush=True)
+        return 128 + signal.SIGINT
+    except (UserPathError, TrialLogError, MemorizedEventError, ConfigError, RecordError) as error:
+        return _refused(script, str(error))
+    except OSError as error:  # the system's words, after the path it could not use
+        path = error.filename or getattr(error, "path", None)
+        words = error.strerror or str(error)
+        return _refused(script, f"{path}: {words}" if path else words)
+    except UnicodeDecodeError as error:
+        return _refused(script, f"a file is not UTF-8 text (byte {error.start}: "
+                                f"{error.object[error.start:error.start + 1]!r}); give a "
+                                "UTF-8 text file")
+    except Exception as error:  # noqa: BLE001: the error boundary
+        return internal_error(error, arguments, script)
+
+
+def _refused(script: str, message: str) -> int:
+    print(f"{script}: error: {error_line(message)}", file=sys.stderr, flush=True)
+    return EXIT_ERROR
+
+
+def refuse_unusable_folders(script: str, *folders) -> None:
+    """SystemExit with one line naming the first of `folders` (a script's outputs) that
+    cannot be, or be made as, a folder this user writes in (rig.files.folder_problem);
+    asked before the work starts, so that a long run does not end on its output."""
+    for folder in folders:
+        problem = folder_problem(folder)
+        if problem:
+            raise SystemExit(f"{script}: cannot write into {folder}: {problem}; give a "
+                             "folder you can write in")
+
+
+def refuse_unusable_output(script: str, path) -> None:
+    """SystemExit with one line unless `path` can be written as a script's report or figure
+    (rig.files.output_file_problem); asked before the work starts."""
+    problem = output_file_problem(path)
+    if problem:
+        raise SystemExit(f"{script}: cannot write {path}: {problem}")

@@ -1,0 +1,41 @@
+"""The one line an exception no code foresaw ends a program with (the `tegrasp` command line,
+cli.py, and the analysis scripts, script_output.run_script): its type and first line, the
+file its traceback was written to, exit code EXIT_INTERNAL_ERROR."""
+
+import datetime
+import os
+import sys
+import tempfile
+import traceback
+
+EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
+
+
+def internal_error(error: BaseException, argv, program: str = "tegrasp") -> int:
+    """One line on stderr for an exception no command foresaw, `program` first; its traceback
+    in a file (printed too when `argv` asks for -v)."""
+    text = "".join(traceback.format_exception(error))
+    where = write_traceback(text, argv, program)
+    verbose = any(a in ("-v", "-vv", "--verbose") for a in argv)
+    if verbose:
+        print(text, file=sys.stderr, end="")
+    from tegrasp_drake.rig.files import one_line
+    summary = one_line(str(error).strip().splitlines()[0]) if str(error).strip() else ""
+    print(f"{program}: internal error: {type(error).__name__}"
+          + (f": {summary[:300]}" if summary else "")
+          + (f"; traceback in {where}" if where else "; the traceback could not be written")
+          + ("" if verbose else " (-v shows it)")
+          + "; please report it", file=sys.stderr, flush=True)
+    return EXIT_INTERNAL_ERROR
+
+
+def write_traceback(text: str, argv, program: str = "tegrasp") -> str | None:
+    """Writes the command line and `text` to a new file in the temporary folder; its path."""
+    stamp = datetime.datetime.now().strftime("%Y%m%d-%H%M%S")
+    try:
+        descriptor, path = tempfile.mkstemp(prefix=f"{program}-{stamp}-", suffix=".traceback")
+        with os.fdopen(descriptor, "w", encoding="utf-8", errors="replace") as stream:
+            stream.write(" ".join([program, *argv]) + "\n\n" + text)
+    except OSError:
+        return None
+    return path
