@@ -77,19 +77,29 @@ def main(argv=None) -> int:
     for folder in (args.results, args.logs):
         if not folder.is_dir():
             raise SystemExit(f"hold_creep: {folder} is not a folder")
-    rows, missing = [], []
-    for record in load_records(args.results).records.values():
-        if not any(t["to"] == "Avoid" for t in record["result"]["transitions"]):
-            continue
-        path = args.logs / trial_log_name(record["trial"], record.get("events"))
-        if not path.exists():
-            missing.append(record["trial_id"])
-            continue
-        for hold in trial_holds(record, load_trial_log(path)):
-            rows.append((record["trial_id"], hold))
+    loaded = load_records(args.results)
+    for path, reason in loaded.corrupt.items():
+        print(f"hold_creep: skipped corrupt record {path}: {reason}", file=sys.stderr)
+    ran = [r for r in loaded.records.values() if r.get("result") is not None]
+    if not ran:
+        raise SystemExit(f"hold_creep: {args.results} holds no trial record with a result "
+                         "(trials/*.json); give the --out folder of a `tegrasp sweep`")
+    avoided = {r["trial_id"]: (r, args.logs / trial_log_name(r["trial"], r.get("events")))
+               for r in ran if any(t["to"] == "Avoid" for t in r["result"]["transitions"])}
+    missing = [trial_id for trial_id, (_, path) in avoided.items() if not path.exists()]
+    if avoided and len(missing) == len(avoided):
+        raise SystemExit(f"hold_creep: {args.logs} holds none of the logs of the "
+                         f"{len(avoided)} trials with an Avoid (e.g. "
+                         f"{next(iter(avoided.values()))[1].name}); give the --logs folder of "
+                         "the sweep that wrote the records")
+    rows = []
+    for trial_id, (record, path) in avoided.items():
+        if trial_id not in missing:
+            rows.extend((trial_id, hold) for hold in trial_holds(record, load_trial_log(path)))
     creep = sum(1 for _, h in rows if h["creep"])
     lines = ["# Hold -> Avoid: friction creep or something else", "",
-             f"{len(rows)} Avoids in {len({r for r, _ in rows})} trials: {creep} with the "
+             f"{len(rows)} Avoids in {len({r for r, _ in rows})} of {len(ran)} trials: "
+             f"{creep} with the "
              "creep signature (grip falling, the film at a steady level), "
              f"{len(rows) - creep} without.", "",
              "| trial | Avoid at [s] | grip rate [N/s] | film level, peak [m/s^2] "

@@ -6,7 +6,8 @@ updated records beside the original (records' results replaced, nothing re-simul
 
 RESULTS: a sweep's results folder; LOGS: its `tegrasp sweep --logs` folder; OUT: the new
 results folder (created; must not exist). A record whose log is missing is copied unchanged
-and named on stderr.
+and named on stderr; RESULTS without records, or LOGS holding none of their logs, is refused
+(exit 1) before OUT is made.
 """
 
 import argparse
@@ -31,10 +32,25 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.out.exists():
         raise SystemExit(f"rejudge_from_logs: {args.out} exists; choose a new folder")
+    loaded = load_records(args.results)
+    for path, reason in loaded.corrupt.items():
+        print(f"rejudge_from_logs: skipped corrupt record {path}: {reason}", file=sys.stderr)
+    logs = {trial_id: args.logs / trial_log_name(record["trial"], record.get("events"))
+            for trial_id, record in loaded.records.items() if record.get("result") is not None}
+    if not logs:
+        raise SystemExit(f"rejudge_from_logs: {args.results} holds no trial record with a "
+                         "result (trials/*.json); give the --out folder of a `tegrasp sweep`")
+    if not args.logs.is_dir():
+        raise SystemExit(f"rejudge_from_logs: {args.logs} is not a folder; give the sweep's "
+                         "--logs folder")
+    if not any(path.is_file() for path in logs.values()):
+        raise SystemExit(f"rejudge_from_logs: {args.logs} holds none of the {len(logs)} "
+                         f"records' logs (e.g. {next(iter(logs.values())).name}); give the "
+                         "--logs folder of the sweep that wrote the records")
     (args.out / TRIALS_FOLDER).mkdir(parents=True)
     changed = 0
-    for trial_id, record in load_records(args.results).records.items():
-        path = args.logs / trial_log_name(record["trial"], record.get("events"))
+    for trial_id, record in loaded.records.items():
+        path = logs.get(trial_id)
         result = record.get("result")
         if result is not None and path.is_file():
             scenario = scenario_from_trial_spec(migrate_stored_trial(record["trial"]))
@@ -48,7 +64,9 @@ def main(argv=None) -> int:
             print(f"rejudge_from_logs: no log {path}; {trial_id} copied unchanged",
                   file=sys.stderr)
         write_record(args.out, record)
-    print(f"wrote {args.out}; {changed} results changed")
+    without_log = sum(not path.is_file() for path in logs.values())
+    print(f"wrote {args.out}; {len(logs) - without_log} results re-judged, {changed} changed; "
+          f"{without_log} without a log copied unchanged")
     return 0
 
 

@@ -11,12 +11,15 @@ import pathlib
 import sys
 
 from tegrasp_drake.commands.script_output import run_script
-from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
+from tegrasp_drake.rig.files import MARKDOWN_START, read_bounded, write_atomically
 from tegrasp_drake.sweep import readme_with_summaries
 from tegrasp_drake.sweep.summary import page_with_record_commits
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PAGE = ROOT / "docs" / "results.md"
+# docs/results.md is about 41 kB; a page 100 times longer is still one to regenerate, and the
+# bound stops /dev/zero or a mistaken large file before it is read whole.
+MAX_PAGE_BYTES = 4_000_000
 
 
 def main(argv=None) -> int:
@@ -24,7 +27,11 @@ def main(argv=None) -> int:
     parser.add_argument("page", nargs="?", default=str(PAGE))
     args = parser.parse_args(argv)
     path = pathlib.Path(args.page)
-    text = path.read_text(encoding="utf-8")
+    try:  # a folder, FIFO or device refused before it is opened for reading (no blocking)
+        text = read_bounded(path, MAX_PAGE_BYTES, devices=()).decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise SystemExit(f"update_results_page: {path}: is not UTF-8 text (byte {error.start}); "
+                         "give the Markdown results page") from None
     try:
         updated = page_with_record_commits(readme_with_summaries(text, path.parent), ROOT)
     except ValueError as e:

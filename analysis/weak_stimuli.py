@@ -25,7 +25,7 @@ import argparse
 import pathlib
 import sys
 
-from tegrasp_drake.sweep.missed_event_report import report_markdown, sweep_misses
+from tegrasp_drake.sweep.missed_event_report import record_has_waits, report_markdown, sweep_misses
 from tegrasp_drake.commands.script_output import run_script, write_report
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.sweep.records import load_records
@@ -64,6 +64,12 @@ def main(argv=None) -> int:
     if not trials:
         raise SystemExit(f"weak_stimuli: {args.results} holds no '{args.controller}' trials "
                          "that ran; see --controller")
+    if without_log and not misses and len(without_log) == sum(
+            record_has_waits(record, args.controller) for record in loaded.records.values()
+            if record.get("status") == "ok" and record["trial"]["controller"] == args.controller):
+        raise SystemExit(f"weak_stimuli: {args.logs} holds none of the logs of the "
+                         f"{len(without_log)} trials that waited for an event; give the "
+                         "--logs folder of the sweep that wrote the records")
     text = report_markdown(misses, without_log, trials, args.controller,
                            f"Missed memorized events of `{args.results.name}`")
     for trial_id in without_log:

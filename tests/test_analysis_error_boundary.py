@@ -8,7 +8,9 @@ import sys
 
 import pytest
 
-from tests.analysis_script import ANALYSIS
+from tegrasp_drake.sweep import SweepSpec, run_sweep
+from tests.analysis_script import ANALYSIS, load_analysis_script
+from tests.fake_trials import fake_trial
 
 # The scripts that take no file or folder from the user, and why they are not run here.
 NO_USER_PATHS = {"measure_finger_strike": "takes no arguments; its scenes are built in"}
@@ -55,7 +57,7 @@ def run_script(name: str, arguments: list[str], cwd) -> subprocess.CompletedProc
     environment = dict(os.environ, PYTHONPATH=str(ANALYSIS.parent), MPLBACKEND="Agg")
     return subprocess.run([sys.executable, str(ANALYSIS / f"{name}.py"), *arguments],
                           cwd=cwd, env=environment, capture_output=True, text=True,
-                          stdin=subprocess.DEVNULL, timeout=600)
+                          stdin=subprocess.DEVNULL, timeout=300)
 
 
 def test_every_script_is_listed():
@@ -73,3 +75,56 @@ def test_script_refuses_a_junk_path_in_one_line(name, tmp_path):
     assert done.returncode != 0, (done.stdout, done.stderr)
     assert "Traceback" not in done.stderr and "internal error" not in done.stderr, done.stderr
     assert len(lines) == 1, done.stderr
+
+
+def test_results_page_refuses_a_fifo_without_opening_it(tmp_path):
+    fifo = tmp_path / "results.md"
+    os.mkfifo(fifo)  # no writer: open() for reading would block for ever
+    done = run_script("update_results_page", [str(fifo)], tmp_path)
+    assert done.returncode == 1 and "named pipe" in done.stderr, done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+def fake_trial_with_avoid(trial):
+    """fake_trial's result with a Hold that an Avoid ended (hold_creep's trials)."""
+    result = fake_trial(trial)
+    chain = ("Reach", "Load", "Lift", "Hold", "Avoid")
+    result.update(hold_success=False, unload_success=False, released=False,
+                  final_mode="Avoid", corrective_actions=["avoid"], transitions=[
+                      {"t": 1.0 + 0.5 * k, "from": a, "to": b, "reason": "",
+                       "trigger": "memorized_event" if k == 0 else "timer"}
+                      for k, (a, b) in enumerate(zip(chain, chain[1:]))])
+    return result
+
+
+@pytest.fixture
+def sweep_without_logs(tmp_path):
+    """(a sweep's results folder of two trials with an Avoid, an empty logs folder)."""
+    results, logs = tmp_path / "results", tmp_path / "logs"
+    logs.mkdir()
+    run_sweep(SweepSpec(objects=("box",), attempts=2), fake_trial_with_avoid, results,
+              workers=1, progress=False)
+    return results, logs
+
+
+@pytest.mark.parametrize("empty", ["results", "logs"])
+def test_rejudge_refuses_when_it_has_nothing_to_judge(empty, sweep_without_logs, tmp_path):
+    results, logs = sweep_without_logs
+    if empty == "results":
+        results = tmp_path / "empty"
+        results.mkdir()
+    out = tmp_path / "rejudged"
+    with pytest.raises(SystemExit, match="holds no" if empty == "results" else "holds none of"):
+        load_analysis_script("rejudge_from_logs").main([str(results), str(logs), str(out)])
+    assert not out.exists()
+
+
+def test_hold_creep_refuses_logs_that_match_no_record(sweep_without_logs):
+    results, logs = sweep_without_logs
+    with pytest.raises(SystemExit, match="holds none of the logs of the .* trials with an Avoid"):
+        load_analysis_script("hold_creep").main([str(results), str(logs)])
+
+
+def test_hold_creep_refuses_a_folder_without_records(tmp_path):
+    with pytest.raises(SystemExit, match="holds no trial record"):
+        load_analysis_script("hold_creep").main([str(tmp_path), str(tmp_path)])

@@ -32,8 +32,8 @@ EXIT_ERROR = 1
 def run_script(main, script: str, argv=None) -> int:
     """`main(argv)`'s exit code (argv None: the process's arguments), behind the scripts'
     one error boundary: an error in a file or folder the user named (UserPathError,
-    TrialLogError, MemorizedEventError, ConfigError, RecordError, another OSError, UnicodeDecodeError)
-    ends it with one line, `<script>: error: <path>: <what is wrong>`, and EXIT_ERROR; any
+    TrialLogError, MemorizedEventError, ConfigError, RecordError, another OSError,
+    UnicodeDecodeError) ends it with one line, `<script>: error: <path>: <what is wrong>`, and EXIT_ERROR; any
     other exception with error_boundary's internal-error line, its traceback in a file."""
     from tegrasp_drake.events.event_file import MemorizedEventError
     from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -53,7 +53,8 @@ def run_script(main, script: str, argv=None) -> int:
         return _refused(script, str(error))
     except OSError as error:  # the system's words, after the path it could not use
         path = error.filename or getattr(error, "path", None)
-        words = error.strerror or str(error)
+        words = ("does not exist; check the path" if isinstance(error, FileNotFoundError)
+                 else error.strerror or str(error))
         return _refused(script, f"{path}: {words}" if path else words)
     except UnicodeDecodeError as error:
         return _refused(script, f"a file is not UTF-8 text (byte {error.start}: "
