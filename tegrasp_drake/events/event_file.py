@@ -117,7 +117,8 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
     def format_problem(data) -> str | None:
         if not isinstance(data, dict) or data.get("format") != expected_format:
             return f"is not a '{expected_format}' file"
-        if data.get("format_version") not in (*MIGRATED_VERSIONS, FORMAT_VERSION):
+        version = data.get("format_version")  # 3.0 reads as 3; JSON's true is no version
+        if isinstance(version, bool) or version not in (*MIGRATED_VERSIONS, FORMAT_VERSION):
             return (f"has format_version {data.get('format_version')!r}; this tegrasp reads "
                     f"versions {', '.join(map(str, (*MIGRATED_VERSIONS, FORMAT_VERSION)))}")
         return None

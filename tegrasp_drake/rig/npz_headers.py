@@ -11,6 +11,8 @@ import zlib
 import numpy as np
 import numpy.lib.format as npy_format
 
+from tegrasp_drake.rig.ranges import is_integer
+
 
 # How an .npz file starts: a zip archive's first local file header (PKWARE APPNOTE 4.3.7).
 NPZ_START = b"PK\x03\x04"
@@ -57,7 +59,7 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
         if dtype.kind not in _ALLOWED_KINDS or dtype.hasobject or dtype.fields:
             raise NpzHeaderError(f"'{name}' holds {dtype} values; only numbers and text are "
                                  "read")
-        if any(not isinstance(n, int) or n < 0 for n in shape):
+        if any(not is_integer(n) or n < 0 for n in shape):
             raise NpzHeaderError(f"'{name}' declares the shape {shape}")
         data_bytes = math.prod(shape) * dtype.itemsize
         if header_bytes + data_bytes != info.file_size:

@@ -169,6 +169,12 @@ def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
+def is_integer(value) -> bool:
+    """Whether `value` is a whole number as Python holds one (an int, not a bool: Python's True
+    is the int 1, JSON's `true` is no number), for every field that must be an integer."""
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
 def _values(value, path: str):
     """(path, number-or-other) of a scalar or of every leaf of nested lists/tuples, and of
     every value of a mapping (`path.key`: a map of names to times)."""

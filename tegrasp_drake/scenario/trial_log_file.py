@@ -24,7 +24,7 @@ from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.ranges import is_integer, shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NPZ_START, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
@@ -145,7 +145,7 @@ def load_trial_log(path: PathLike) -> TrialLog:
         raise TrialLogError(f"trial log '{path}': its metadata is a JSON "
                             f"{type(meta).__name__}, not the object a trial log holds; it is "
                             "not a trial log (`tegrasp trial --out DIR` writes one)")
-    if meta.get("format_version") != FORMAT_VERSION:
+    if not is_integer(meta.get("format_version")) or meta["format_version"] != FORMAT_VERSION:
         version = meta.get("format_version")
         raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
                             f"reads {FORMAT_VERSION}")

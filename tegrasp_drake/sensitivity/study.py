@@ -10,7 +10,7 @@ import os
 import pathlib
 
 from tegrasp_drake.rig.files import JSON_OBJECT_START, write_atomically
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.ranges import is_integer, shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, keys_overlap,
                                           optional_field, read_yaml_file,
                                           require_fields)
@@ -134,7 +134,7 @@ def latin_hypercube(spec: SensitivitySpec, samples: int) -> tuple[SensitivityPoi
     """The default point and `samples` points of a Latin hypercube over all the spec's
     parameters (scipy.stats.qmc, seeded with the sweep's base_seed): each parameter's range
     cut into `samples` equal strata, one point in each (parameters.at_fraction)."""
-    if not isinstance(samples, int) or not 1 <= samples <= MAX_LATIN_HYPERCUBE:
+    if not is_integer(samples) or not 1 <= samples <= MAX_LATIN_HYPERCUBE:
         raise ConfigError(f"--latin-hypercube must be a whole number of samples from 1 to "
                           f"{MAX_LATIN_HYPERCUBE}, got {samples!r}")
     from scipy.stats import qmc

@@ -122,6 +122,9 @@ DAMAGES = {  # name: (file, damage, what the message says)
     "truncated file": ("reach_load", truncate, "not valid JSON"),
     "wrong format_version": ("place_unload", edit(lambda data: data.update(format_version=99)),
                              "has format_version 99"),
+    # JSON's true is no version, though Python's True equals 1 (a version this reads)
+    "format_version true": ("place_unload", edit(lambda data: data.update(format_version=True)),
+                            "has format_version True"),
     "missing field": ("reach_load", edit(lambda data: data.pop("sa_rate_hz")),
                       "field 'sa_rate_hz' is missing"),
     "window too short": ("load_lift", edit(lambda data: data["samples"]["ra_left"].pop()),

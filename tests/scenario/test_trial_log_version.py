@@ -1,0 +1,32 @@
+"""A trial log's metadata names its format version as a whole number: JSON's true, which
+Python reads as 1 (the version this package writes), is refused."""
+
+import json
+
+import numpy as np
+import pytest
+
+from tegrasp_drake.rig.ranges import is_integer
+from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, FORMAT_VERSION, TrialLog,
+                                                   TrialLogError, load_trial_log)
+
+
+def test_a_trial_log_whose_format_version_is_true_is_refused(tmp_path):
+    saved = TrialLog(**{name: np.zeros(2) for name in ARRAY_FIELDS}, meta={}).save(
+        tmp_path / "saved.npz")
+    with np.load(saved) as data:
+        arrays = {name: data[name] for name in data.files}
+    meta = json.loads(str(arrays["meta"]))
+    assert meta["format_version"] == FORMAT_VERSION == True  # noqa: E712: the trap itself
+    meta["format_version"] = True
+    arrays["meta"] = np.array(json.dumps(meta))
+    path = tmp_path / "trial.npz"
+    np.savez(path, **arrays)
+    with pytest.raises(TrialLogError, match="has format version True"):
+        load_trial_log(path)
+
+
+@pytest.mark.parametrize("value, expected", [(1, True), (0, True), (True, False),
+                                             (False, False), (1.0, False), ("1", False)])
+def test_is_integer_takes_ints_and_not_bools(value, expected):
+    assert is_integer(value) is expected
