@@ -176,11 +176,12 @@ def plan_text(spec: SweepSpec) -> str:
 
 
 def _check_logs_folder(logs) -> None:
-    """--logs names a folder this user can write (made if missing), before any trial."""
+    """--logs names a folder this user can write (made if missing), before any trial;
+    OptionError (bad input, exit 1, as for --out) when it does not."""
     problem = folder_problem(logs)
     if problem:
-        raise SweepError(f"--logs {logs}: {problem}; give a folder you can write for the "
-                         "trials' logs")
+        raise OptionError(f"--logs {logs}: {problem}; give a folder you can write for the "
+                          "trials' logs")
 
 
 def unwritten_log_error(logs, unwritten_log: str, left: int | None = None) -> str:
@@ -210,13 +211,17 @@ def resolve_trial_function(text: str):
     return function
 
 
-# The transports a Dask scheduler address may name (distributed's comm registry), but
-# inproc: it names a scheduler inside this process, and the command line starts none.
-DASK_PROTOCOLS = ("tcp", "tls", "ucx", "ws", "wss")
+# The transport a --scheduler address may name. distributed also speaks tls:// (which needs
+# certificates: this command takes no option for them), ucx:// (an extra package), ws:// and
+# wss://; tegrasp is built and tested against `dask scheduler`'s default, tcp://. inproc://
+# names a scheduler inside this process, which the command line starts none of.
+DASK_PROTOCOLS = ("tcp",)
+OTHER_DASK_PROTOCOLS = ("tls", "ucx", "ws", "wss")
 
 
 def scheduler_problem(address: str) -> str | None:
-    """Why `address` is not a Dask scheduler address PROTOCOL://HOST:PORT, or None."""
+    """Why `address` is not a Dask scheduler address tcp://HOST:PORT, or None. The protocol
+    is read case-insensitively, as connect_scheduler passes it on (in lower case)."""
     import urllib.parse
     if not address.strip():
         return "is empty"
@@ -225,9 +230,16 @@ def scheduler_problem(address: str) -> str | None:
         port = parts.port
     except ValueError as e:
         return f"is not an address ({e})"
+    if parts.scheme in OTHER_DASK_PROTOCOLS:
+        return (f"names the protocol {parts.scheme}://; tegrasp connects to a Dask scheduler "
+                "over tcp:// only (a `dask scheduler` started without --protocol listens on "
+                "it), e.g. tcp://127.0.0.1:8786")
     if parts.scheme not in DASK_PROTOCOLS or not parts.hostname or port is None:
-        return (f"is not a scheduler address PROTOCOL://HOST:PORT (PROTOCOL one of "
-                f"{', '.join(DASK_PROTOCOLS)}), e.g. tcp://127.0.0.1:8786")
+        return ("is not a scheduler address PROTOCOL://HOST:PORT (PROTOCOL tcp), "
+                "e.g. tcp://127.0.0.1:8786")
+    if port == 0:  # port 0 asks the system for any free port when listening: no destination
+        return ("names port 0, which no scheduler listens on; give the port `dask scheduler` "
+                "prints (8786 unless --port)")
     extra = [name for name, value in (("a path", parts.path), ("a query", parts.query),
                                       ("a fragment", parts.fragment),
                                       ("a user", parts.username)) if value]

@@ -510,7 +510,8 @@ def _dask_distributed():
 
 
 def connect_scheduler(scheduler: str) -> DaskClient:
-    """A Client of the Dask scheduler at `scheduler`; SweepError when the extra is missing,
+    """A Client of the Dask scheduler at `scheduler` (its protocol read in any case);
+    SweepError when the extra is missing,
     the address cannot be reached, or what answers there is not a Dask scheduler (any error
     of the handshake), all within DASK_ANSWER_BOUND_S of wall time. A command connects once,
     before its first trial or event recording, and hands the client to each sweep it runs
@@ -521,10 +522,12 @@ def connect_scheduler(scheduler: str) -> DaskClient:
     daemon thread, abandoned (with its socket) when the bound passes."""
     distributed = _dask_distributed()
     made = {}
+    protocol, separator, rest = scheduler.partition("://")
+    address = protocol.lower() + separator + rest  # distributed knows "tcp", not "TCP"
 
     def make_client():
         try:
-            made["client"] = distributed.Client(scheduler, timeout=f"{DASK_CONNECT_TIMEOUT_S}s")
+            made["client"] = distributed.Client(address, timeout=f"{DASK_CONNECT_TIMEOUT_S}s")
         except Exception as error:  # the peer's answer decides what is raised: any of them
             made["error"] = error
     connecting = threading.Thread(target=make_client, name="tegrasp-dask-connect",

@@ -96,6 +96,39 @@ def test_bad_options_stop_before_any_trial(tmp_path, capsys, arguments, message,
     assert not out.exists()
 
 
+@pytest.mark.parametrize("address, message", [
+    ("tls://127.0.0.1:8786", "names the protocol tls://; tegrasp connects to a Dask "
+     "scheduler over tcp:// only"),
+    ("ucx://127.0.0.1:8786", "names the protocol ucx://"),
+    ("WSS://127.0.0.1:8786", "names the protocol wss://"),
+    ("tcp://127.0.0.1:0", "names port 0, which no scheduler listens on; give the port"),
+])
+def test_a_scheduler_address_tegrasp_cannot_connect_to_is_refused_by_its_form(
+        tmp_path, capsys, address, message):
+    """Only tcp:// (tls:// would need certificates, which no option gives) and a port a
+    scheduler can listen on: refused in one line before any connection, exit 1."""
+    out = tmp_path / "out"
+    assert command.main(["--objects", "box", "--scheduler", address, "--out", str(out),
+                         *FAKE]) == 1
+    err = capsys.readouterr().err
+    assert f"--scheduler {address!r} {message}" in err
+    assert not out.exists()
+
+
+def test_a_logs_folder_that_cannot_be_written_is_a_bad_option_as_out_is(tmp_path, capsys):
+    """--logs where no folder can be made is bad input, exit 1 (as for --out), not the 2 of
+    a refused spec."""
+    (tmp_path / "afile").write_text("mine")
+    out = tmp_path / "out"
+    assert command.main(["--objects", "box", "--controllers", "memorized", "--attempts", "1",
+                         "--logs", str(tmp_path / "afile" / "logs"), "--out", str(out),
+                         *FAKE]) == 1
+    err = capsys.readouterr().err
+    assert f"--logs {tmp_path / 'afile' / 'logs'}" in err and "give a folder you can write" in err
+    assert not (out / "trials").exists()
+    assert (tmp_path / "afile").read_text() == "mine"
+
+
 @pytest.mark.parametrize("text, message", [
     ("grid: []\n", "field 'grid': is empty"),
     ("grid: {normal_offsets_m: [0.0], stroke_offsets_m: []}\n",
