@@ -96,3 +96,16 @@ def test_a_trial_whose_worker_dies_is_named_lost_and_runs_on_resume(tmp_path, sc
     out = capsys.readouterr().out
     assert f"{len(missing)} run now" in out and f"{9 - len(missing)} already finished" in out
     assert len(load_records(tmp_path).records) == 9
+
+
+def test_a_scheduler_address_is_read_in_any_case(tmp_path, scheduler_address):
+    """distributed knows the protocol "tcp" only in lower case; the address check reads it
+    in any case, and the connection passes it on in lower case."""
+    spec = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1)
+    shouted = scheduler_address.replace("tcp://", "TCP://")
+    client = runner.connect_scheduler(shouted)
+    try:
+        summary = run_sweep(spec, fake_trial, tmp_path, scheduler=client, progress=False)
+    finally:
+        client.close()
+    assert (summary.ran, summary.errors) == (9, ())
