@@ -13,4 +13,6 @@
   closed pipe, a full disk).
 - process_environment.py: the process set up before a command runs (UTF-8 mode, matplotlib's
   folder).
-- script_output.py: the reports the analysis scripts write, and their one-line error."""
+- script_output.py: the reports the analysis scripts write, and their one-line error.
+- error_boundary.py: the one line, and the traceback file, an unforeseen exception ends a
+  program with (the command line and the analysis scripts)."""
