@@ -65,6 +65,17 @@ def re_reach_target(p_WG, shift_m: float) -> np.ndarray:
     return p_WG + np.array([0.0, shift_m, 0.0])
 
 
+def approach_retreat_target(p_WG, retreat_m: float, *, start_xyz, grasp_xyz) -> np.ndarray:
+    """p_WG [m, world] moved back along the Reach's path (grasp_xyz to start_xyz) by retreat_m
+    [m], never past the start pose along it: the Reach's own motion reversed, which takes a
+    finger off whatever that motion pressed it into, an object's top as well as a face in
+    front (docs/controller.md, "Finger strike"), and keeps the arm on the segment it can reach."""
+    toward_start = np.subtract(start_xyz, grasp_xyz, dtype=float)
+    u = toward_start / np.linalg.norm(toward_start)
+    room_m = float(np.dot(np.subtract(start_xyz, p_WG, dtype=float), u))
+    return np.asarray(p_WG, dtype=float) + min(retreat_m, max(room_m, 0.0)) * u
+
+
 # ---- Lift-Load ------------------------------------------------------------------------
 
 

@@ -13,7 +13,7 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.control import taxel_aware, transition_logic
 from tegrasp_drake.control.corrective_actions import (
-    avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
+    approach_retreat_target, avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
     pad_accelerations_in_world, re_reach_shift, re_reach_target)
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.machine_state import GraspPlan, MachineState, ModeTimers
@@ -199,7 +199,13 @@ class GraspStateMachine(LeafSystem):
                 here = s.segment.position(t)
                 if s.mode == Mode.RE_REACH:
                     dx, dy = s.reentry_shift
-                    target = re_reach_target(here, dy) + np.array([dx, 0.0, 0.0])
+                    target = re_reach_target(here, dy)
+                    if s.resume_approach and dx < 0.0:  # a back-off in the approach
+                        target = approach_retreat_target(
+                            target, -dx, start_xyz=p.start_xyz,
+                            grasp_xyz=(p.object_xy[0], p.object_xy[1], p.grasp_height))
+                    else:
+                        target = target + np.array([dx, 0.0, 0.0])
                     duration = self._config.re_reach.move_s
                 else:
                     # Back to the start pose's distance (nearer, the wrist nears its singularity).

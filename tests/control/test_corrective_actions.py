@@ -7,9 +7,9 @@ import pytest
 
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.control.corrective_actions import (
-    Counters, avoid_direction, avoid_move, avoid_on_hit, corrective_action_of, is_hit,
-    lift_load_grip_force, lift_load_or_fail, pad_accelerations_in_world, re_reach_shift,
-    re_reach_target, relift_after_lift_load)
+    Counters, approach_retreat_target, avoid_direction, avoid_move, avoid_on_hit,
+    corrective_action_of, is_hit, lift_load_grip_force, lift_load_or_fail,
+    pad_accelerations_in_world, re_reach_shift, re_reach_target, relift_after_lift_load)
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 
 CONFIG = GraspControllerConfig()
@@ -44,6 +44,34 @@ def test_re_reach_never_shifts_away_when_the_opening_is_narrower_than_the_object
 def test_re_reach_target_moves_along_world_y_only():
     target = re_reach_target(np.array([0.72, 0.0, 0.06]), 0.0125)
     np.testing.assert_array_equal(target, [0.72, 0.0125, 0.06])
+
+
+# The default Reach: from 3 cm behind and 9 cm above the grasp (docs/model.md, "The scene")
+GRASP_XYZ = (0.72, 0.0, 0.055)
+START_XYZ = (0.69, 0.0, 0.145)
+
+
+def test_an_approach_retreat_retraces_the_reach_and_so_lifts():
+    # a finger struck on the way down, 25 mm above the grasp: 2 cm back along the path lifts
+    # it 2 cm x 90 / 94.9 = 19 mm, where a retreat along -x alone lifts nothing
+    here = np.array([0.72 - 0.025 / 3, 0.0, 0.08])
+    target = approach_retreat_target(here, 0.02, start_xyz=START_XYZ, grasp_xyz=GRASP_XYZ)
+    assert np.linalg.norm(target - here) == pytest.approx(0.02)
+    assert target[2] - here[2] == pytest.approx(0.02 * 0.09 / np.hypot(0.03, 0.09))
+    assert target[0] < here[0]
+
+
+def test_an_approach_retreat_stops_at_the_start_pose():
+    # retreats one after another never take the arm behind its start, toward its singularity
+    here = np.array([0.69 + 0.005 / 3, 0.0, 0.14])
+    target = approach_retreat_target(here, 0.02, start_xyz=START_XYZ, grasp_xyz=GRASP_XYZ)
+    np.testing.assert_allclose(target, START_XYZ, atol=1e-12)
+
+
+def test_an_approach_retreat_keeps_the_shift_along_the_stroke():
+    here = np.array([0.71, 0.02, 0.085])
+    target = approach_retreat_target(here, 0.02, start_xyz=START_XYZ, grasp_xyz=GRASP_XYZ)
+    assert target[1] == pytest.approx(0.02)
 
 
 # ---- Lift-Load ------------------------------------------------------------------------

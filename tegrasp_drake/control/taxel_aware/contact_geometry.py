@@ -14,7 +14,8 @@ from tegrasp_drake.rig.taxel_layout import PAD_LENGTH
 
 @dataclasses.dataclass(frozen=True)
 class Shift:
-    """A Re-Reach move of the open gripper [m, world]: dx along the approach, dy the stroke."""
+    """A Re-Reach move of the open gripper [m, world]: dx along the approach, dy the stroke; a
+    negative dx during the Reach's move backs off that far along the Reach's path."""
     dx_m: float
     dy_m: float
 

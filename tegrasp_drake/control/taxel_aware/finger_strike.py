@@ -1,6 +1,7 @@
 """Rule finger_strike (Reach, in the approach): a finger's front struck the
-object (control/finger_strike.py): back off approach_retreat_m, shift toward the struck
-finger, approach again (docs/controller.md, "Finger strike")."""
+object (control/finger_strike.py): back off approach_retreat_m along the Reach's path (the
+state machine's approach_retreat_target), shift toward the struck finger, approach again
+(docs/controller.md, "Finger strike")."""
 
 from tegrasp_drake.control.finger_strike import strike_shift
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
