@@ -59,6 +59,15 @@ SCENES = {
     "finger_strike": (Scene("box", (0.0, 0.03), seed=605), Expect(
         (("Reach", "Re-Reach", "finger_strike"),), first=True,
         check=lambda found, r: found[0].offset_m > 0.01 and found[0].approach_offset_m < 0.0)),
+    # The box 15 mm nearer the palm and 25 mm along the stroke, yawed 5 deg: coming down the
+    # Reach's slope, the left finger's lower edge lands on its top 18.6 mm inside its near
+    # face. Backing off along the approach axis alone dragged the finger over that top,
+    # tipped the box and struck it again until the Re-Reaches ran out; back along the path
+    # the finger lifts 19 mm, one strike suffices and the box is held where it stood.
+    "finger_strike_on_top": (Scene("box", (-0.015, 0.025), yaw_deg=5.0, seed=741), Expect(
+        (("Reach", "Re-Reach", "finger_strike"),), first=True,
+        check=lambda found, r: found[0].offset_m > 0.01
+        and [t["code"] for t in r["transitions"]].count("finger_strike") == 1)),
     # The tall heavy box 19.5 mm along the stroke (its face 0.5 mm inside the open left pad)
     # and 19 mm farther than expected: at the close's first touch (openings 84-78 mm) the
     # pad's centre is 10.7-8.3 mm short of where it is at the box's 45 mm
