@@ -98,20 +98,9 @@ SCENES = {
 }
 
 
-# Scenes found on the ideal arm (its joints on the desired state, no latency) that the JACO2's
-# velocity command path changes: the tracker's position correction winds the set-point up
-# against a contact (with the tracker's kp at 0 the strike scene ends Done). The strike scene
-# strikes 2.2-3.0 N again after each Re-Reach and fails after four. The rule is to be
-# re-derived on the faithful robot; until then this records the regression and fails once it
-# is gone.
-ARM_PATH_REGRESSIONS = {"finger_strike"}
 
 
-@pytest.mark.parametrize("name", [
-    pytest.param(name, marks=pytest.mark.xfail(
-        strict=True, reason="the scene was found on the ideal arm; the JACO2's velocity "
-        "command path plays it out otherwise")) if name in ARM_PATH_REGRESSIONS else name
-    for name in SCENES])
+@pytest.mark.parametrize("name", SCENES)
 def test_the_scene_is_decided_by_its_rules_and_grasped(name):
     scene, expect = SCENES[name]
     check_scene(scene, expect, _world(scene))
