@@ -98,8 +98,6 @@ SCENES = {
 }
 
 
-
-
 @pytest.mark.parametrize("name", SCENES)
 def test_the_scene_is_decided_by_its_rules_and_grasped(name):
     scene, expect = SCENES[name]
