@@ -103,7 +103,7 @@ SCENES = {
 # The bracket scene was found with the finger strike's back-off straight back along x. With
 # the back-off retracing the Reach's path, after the strike's Re-Reach the left finger
 # touches alone once (one_sided, +7.1 mm) and the Reach-Load event loads: held and put
-# down, the same with the bracket off, neither bracket rule firing. Over 25 placements near
+# down, the same with the bracket off, neither bracket rule firing. Over 32 placements near
 # it on this back-off (0-15 mm beyond; 20-25 mm along the stroke and yawed 5-10 deg,
 # either way) bracket_recentre fired in 17 but bracketed_at_extent in none, so no placement decided
 # by both rules is known. This records that, and fails once the scene plays out by its
