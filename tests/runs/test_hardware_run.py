@@ -52,31 +52,12 @@ def test_a_tactile_stream_restart_is_said_live_with_the_time():
     from tegrasp_drake.runs.hardware_run import RunReporter
     from tests.hardware.test_myrio_tactile_frame import make_frames
 
-    class Quiet:
-        """A station with no faults, a grasp with no transitions, a bus, at t = 2.5 s."""
-        def GetOutputPort(self, name):
-            return self
-
-        def Eval(self, context):
-            return []
-
-        def GetMyContextFromRoot(self, context):
-            return context
-
-        def transitions(self, context):
-            return []
-
-        def Publish(self, channel, data):
-            pass
-
-        def get_time(self):
-            return 2.5
-
     decoder = TactileFrameDecoder()
     decoder.feed(b"".join(make_frames(100)))
     decoder.feed(b"".join(make_frames(RESTART_RUN + 2)))
     lines = []
-    quiet = Quiet()
+    quiet = _Clock()
+    quiet.t = 2.5
     RunReporter(diagram=None, station=quiet, grasp=quiet, drake_lcm=quiet, out=lines.append,
                 boundaries=[decoder.boundary])(quiet)
     # The frames before the restart was taken were refused (said once, as every refusal),
