@@ -303,8 +303,9 @@ def test_sweep_records_honour_the_umask(umask, mode, tmp_path):
 
 def test_only_rig_files_makes_temporary_files():
     """Every writer goes through rig/files.py, which gives a file the mode the umask gives
-    (mkstemp alone makes it 0600). The one other: the CLI's private traceback file."""
+    (mkstemp alone makes it 0600). The one other: the private traceback file of the command
+    line and the analysis scripts (commands/error_boundary.py)."""
     package = pathlib.Path(tegrasp_drake.__file__).parent
     users = sorted(str(p.relative_to(package)) for p in package.rglob("*.py")
                    if "mkstemp(" in p.read_text(encoding="utf-8"))
-    assert users == ["cli.py", "rig/files.py"]
+    assert users == ["commands/error_boundary.py", "rig/files.py"]

@@ -90,8 +90,8 @@ class TaxelAwareConfig:
     max_re_reaches: int = bounded(4, low=0, high=10, below="must be zero or positive")
     # back off this far after a touch in the approach [m], back along the Reach's path: the pad
     # less its palm row, 18 mm, up; on the default path (3 cm in, 9 cm down) it lifts a finger
-    # struck on an object's top 19 mm, past the 0.2 mm it sank (docs/controller.md, "Finger
-    # strike")
+    # struck on an object's top 19 mm, past the 0.2 mm it sank
+    # (docs/controller.md, "Finger strike")
     approach_retreat_m: float = bounded(0.02, low=0.0, high=0.1, unit="m",
                                         below="must be zero or positive [m]")
     # one finger alone within this of the width loads [m]: a Re-Reach would shift < 1/3 row
