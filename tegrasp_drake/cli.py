@@ -89,7 +89,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 # Exit codes (docs/user-guide.md, "Exit codes"); a command returns the first three itself.
 EXIT_SUCCESS = 0
-EXIT_ERROR = 1  # bad input refused, a file not writable, a device that did not come up
+EXIT_ERROR = error_boundary.EXIT_ERROR  # bad input refused, an output or a device unusable
 EXIT_GRASP_FAILED = 2  # hardware: a fault or a Failed state machine (also argparse's usage)
 EXIT_INTERNAL_ERROR = error_boundary.EXIT_INTERNAL_ERROR  # an exception no command foresaw
 EXIT_CLOSED_PIPE = 128 + signal.SIGPIPE  # the shell's status of a command SIGPIPE ended

@@ -8,6 +8,7 @@ import sys
 import tempfile
 import traceback
 
+EXIT_ERROR = 1  # bad input refused, a file not writable, a device that did not come up
 EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
 
 

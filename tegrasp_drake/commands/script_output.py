@@ -5,10 +5,9 @@ import pathlib
 import signal
 import sys
 
-from tegrasp_drake.commands.error_boundary import internal_error
+from tegrasp_drake.commands.error_boundary import EXIT_ERROR, internal_error
 from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
-                                     output_file_problem,
-                                     write_atomically)
+                                     output_file_problem, write_atomically)
 
 
 def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
@@ -23,18 +22,17 @@ def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
         raise SystemExit(f"{script}: {error}") from None
 
 
-# An analysis script's exit codes: those of the `tegrasp` command line (docs/user-guide.md,
-# "Exit codes"): 1 for input refused or nothing to do on it, 70 for an exception no
-# check foresaw.
-EXIT_ERROR = 1
+# An analysis script's exit codes are the `tegrasp` command line's (docs/user-guide.md,
+# "Exit codes"): EXIT_ERROR for input refused or nothing to do on it, EXIT_INTERNAL_ERROR
+# for an exception no check foresaw.
 
 
 def run_script(main, script: str, argv=None) -> int:
     """`main(argv)`'s exit code (argv None: the process's arguments), behind the scripts'
     one error boundary: an error in a file or folder the user named (UserPathError,
     TrialLogError, MemorizedEventError, ConfigError, RecordError, another OSError,
-    UnicodeDecodeError) ends it with one line, `<script>: error: <path>: <what is wrong>`, and EXIT_ERROR; any
-    other exception with error_boundary's internal-error line, its traceback in a file."""
+    UnicodeDecodeError) ends it with one line, `<script>: error: <path>: <what is wrong>`,
+    and EXIT_ERROR; any other exception with error_boundary's internal-error line, its traceback in a file."""
     from tegrasp_drake.events.event_file import MemorizedEventError
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.scenario.trial_log_file import TrialLogError
