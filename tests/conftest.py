@@ -3,7 +3,6 @@
 import functools
 import signal
 
-import numpy as np
 import pytest
 
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp

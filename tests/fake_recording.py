@@ -11,7 +11,6 @@ at the Nth rename of a staged events file onto its target (SIGKILL: past every h
 the OOM killer does)."""
 
 import os
-import pathlib
 import signal
 import sys
 

@@ -3,7 +3,6 @@
 import pytest
 
 import tegrasp_drake as T
-from tegrasp_drake.rig.typed_yaml import ConfigError
 from tests.test_bad_input_round10 import _refused
 
 
@@ -59,7 +58,8 @@ def test_the_reserved_names_are_the_events_folders_own_subfolders():
     from tegrasp_drake.recording.corrective_events import CORRECTIVE_FOLDER
     from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER
     from tegrasp_drake.rig.objects import EVENTS_SUBFOLDERS
-    from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
+    from tegrasp_drake.robotiq.hand_models import GRIPPER_MODELS
+    from tegrasp_drake.simulation.gripper_hands import gripper_hand
     folders = {entry.config.events_folder for entry in CONTROLLERS}
     folders |= {gripper_hand(model).events_folder for model in GRIPPER_MODELS}
     folders |= {CORRECTIVE_FOLDER, ENSEMBLE_FOLDER}

@@ -6,7 +6,6 @@ import shutil
 
 import pytest
 
-from tegrasp_drake import cli
 from tegrasp_drake.rig.paths import package_events_dir
 from tests.test_bad_input import assert_one_line_error, run_cli
 

@@ -5,9 +5,7 @@ refused as corrupt); a Dask scheduler that goes away during a sweep is one line 
 (before: distributed's tracebacks, and its trials counted as left by dead workers)."""
 
 import contextlib
-import os
 import re
-import signal
 import subprocess
 import sys
 import time

@@ -9,7 +9,6 @@ vibration, h (2 pi v / lambda)^2 sin(2 pi v t / lambda) at a constant slip speed
 import math
 
 import numpy as np
-import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.math import SpatialVelocity
 from pydrake.multibody.tree import BodyIndex

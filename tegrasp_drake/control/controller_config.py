@@ -8,7 +8,7 @@ import dataclasses
 import typing
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
-from tegrasp_drake.rig.objects import CORRECTIVE_EVENTS_FOLDER, ENSEMBLE_EVENTS_FOLDER
+from tegrasp_drake.rig.objects import ENSEMBLE_EVENTS_FOLDER
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 

@@ -2,7 +2,6 @@
 machine ends or time runs out, log, and judge it against the ground truth. `run_trial`
 returns a TrialResult (a sweep's trial function: sweep/trial_function.py)."""
 
-import dataclasses
 import logging
 import time
 from collections.abc import Callable

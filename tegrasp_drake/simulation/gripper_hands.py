@@ -17,7 +17,6 @@ from tegrasp_drake.modelgen.robotiq_linkage_sdf import robotiq_linkage_sdf
 from tegrasp_drake.rig.objects import PRISMATIC_HAND_EVENTS_FOLDER
 from tegrasp_drake.robotiq import drive, linkage
 from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
-from tegrasp_drake.robotiq.hand_models import GRIPPER_MODELS  # noqa: F401 (its importers')
 
 
 @dataclasses.dataclass(frozen=True)

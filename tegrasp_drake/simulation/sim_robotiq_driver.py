@@ -21,7 +21,8 @@ from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded, chosen
 from tegrasp_drake.robotiq import drive
 from tegrasp_drake.robotiq import units as ru
-from tegrasp_drake.simulation.gripper_hands import GRIPPER_MODELS, gripper_hand
+from tegrasp_drake.robotiq.hand_models import GRIPPER_MODELS
+from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.simulation.robotiq_drive_step import (
     DIRECTION, FORCE, GOAL, HALF_SPEED, HELD, MEMORY, MOTOR, MOVING, OBJECT, PLANNER,
     POSITION_BYTE, REF_A, REF_Q, REF_V, RESTARTS, STUCK, TIME, UPDATES, AddDriveStep,

@@ -431,26 +431,26 @@ def perturbation_problem(spec: TrialSpec) -> str | None:
     seed_words = (f"its seed's draw (base_seed {spec.base_seed}, object {spec.object_name!r}, "
                   f"marker {spec.marker}, attempt {spec.attempt})")
     bounds = {}  # bound name: (its value, the 2u - 1 it was taken over)
-    for (field, bound, centre, unit), u in zip(_DRAWN_UNDER, uniforms):
-        value, signed = getattr(spec.perturbation, field), 2.0 * u - 1.0
+    for (drawn, bound, centre, unit), u in zip(_DRAWN_UNDER, uniforms):
+        value, signed = getattr(spec.perturbation, drawn), 2.0 * u - 1.0
         implied = (value - centre) / (signed * unit) if signed else 0.0
         high = field_range(RandomisationConfig, bound).high
         if implied < 0.0:
-            return (f"trial: field 'perturbation.{field}' {value!r} is not {seed_words}, which "
+            return (f"trial: field 'perturbation.{drawn}' {value!r} is not {seed_words}, which "
                     f"lies {'below' if signed < 0 else 'above'} {centre:g}")
         if implied > high * (1.0 + PERTURBATION_TOLERANCE):
-            return (f"trial: field 'perturbation.{field}' {value!r} is not {seed_words}: it "
+            return (f"trial: field 'perturbation.{drawn}' {value!r} is not {seed_words}: it "
                     f"would take a {bound} of {implied:.6g}, above that bound's highest, {high:g}")
         if bound not in bounds or abs(signed) > abs(bounds[bound][1]):  # the finer quotient
             bounds[bound] = (abs(implied), signed)  # -0.0 is no bound numpy draws under
     redrawn = draw_perturbation(np.random.default_rng(sequence), RandomisationConfig(
         **{bound: value for bound, (value, _) in bounds.items()}))
-    for field, bound, _, unit in _DRAWN_UNDER:
-        value, expected = getattr(spec.perturbation, field), getattr(redrawn, field)
+    for drawn, bound, _, unit in _DRAWN_UNDER:
+        value, expected = getattr(spec.perturbation, drawn), getattr(redrawn, drawn)
         allowed = (PERTURBATION_TOLERANCE * bounds[bound][0] * unit
                    + 4.0 * math.ulp(max(abs(value), abs(expected))))
         if abs(value - expected) > allowed:
-            return (f"trial: field 'perturbation.{field}' must be {expected!r}, {seed_words} "
+            return (f"trial: field 'perturbation.{drawn}' must be {expected!r}, {seed_words} "
                     f"under the {bound} of {bounds[bound][0]:.6g} its draws give, got {value!r}")
     return None
 

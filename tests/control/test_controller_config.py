@@ -2,7 +2,6 @@
 scenario's `controller` field (or the shorthand controller.name)."""
 
 import dataclasses
-import sys
 import typing
 
 import pytest

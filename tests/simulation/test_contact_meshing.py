@@ -3,7 +3,6 @@ meshes SceneGraph holds for contact, keeps the materials, and bad values are ref
 Whether the contact world still matches closed-form mechanics with them is in
 simulation/test_validation_scenes.py."""
 
-import dataclasses
 
 import numpy as np
 import pytest

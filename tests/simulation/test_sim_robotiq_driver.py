@@ -200,7 +200,6 @@ def test_cached_gripper_command_equals_the_computed_one():
 def test_simulated_and_emulated_grippers_read_no_current_once_stopped_on_an_object():
     # The manual's Modbus example of a finished grasp reads gCU = 0x00: the screw holds.
     from tegrasp_drake.emulators.robotiq_emulator import RobotiqEmulatorConfig, RobotiqGripperModel
-    from tegrasp_drake.simulation import sim_robotiq_driver as sim
     force_byte = 128
     driver = MakeSimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
@@ -221,7 +220,6 @@ def test_simulated_and_emulated_grippers_read_no_current_once_stopped_on_an_obje
 
 
 def test_the_simulated_current_follows_the_motors_torque_while_the_fingers_move():
-    from tegrasp_drake.simulation import sim_robotiq_driver as sim
     driver = MakeSimRobotiqDriver(config=GripperDriverConfig(model="linkage"), time_step=TIME_STEP)
     context = driver.CreateDefaultContext()
     driver.GetInputPort("command").FixValue(context, [255, 255, 255])

@@ -8,7 +8,6 @@ from pathlib import Path
 import pytest
 
 from tegrasp_drake.sweep.spec import (
-    CONTROLLER_NAMES,
     PAPER_CONTROLLERS,
     RandomisationConfig,
     SweepSpec,
