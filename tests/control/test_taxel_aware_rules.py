@@ -135,8 +135,9 @@ CASES = [
     ("avoid_ended", Mode.AVOID, dict(contact=(True, True), motion_done=True),
      dict(contact=(True, True)), Counters()),
     ("regrasp_after_place", Mode.PLACE,
+     dict(contact=(True, True), event_matched=True, motion_done=True, regrasp_pending=True),
      dict(contact=(True, True), event_matched=True, regrasp_pending=True),
-     dict(contact=(True, True), regrasp_pending=True), Counters(regrasps=1)),
+     Counters(regrasps=1)),
     ("place_event", Mode.PLACE, dict(contact=(True, True), event_matched=True),
      dict(contact=(True, True)), Counters()),
     ("place_timeout", Mode.PLACE,
@@ -155,21 +156,27 @@ def test_the_rule_fires_on_its_situation_and_not_on_a_near_miss(rule, mode, fire
     assert code(mode, situation(**misses), counters) != rule
 
 
-# (guard, a rule it holds back, mode, the situation in which that rule fires, the estimate
-# fields under which the guard holds)
+# (guard, a rule it holds back, mode, the situation in which that rule fires, the
+# Observation fields, `estimate` the ContactEstimate's, under which the guard holds)
 GUARD_CASES = [
-    ("caged", "object_lost", Mode.HOLD, dict(), dict(caged_behind_pads=True)),
+    ("caged", "object_lost", Mode.HOLD, dict(), dict(estimate=dict(caged_behind_pads=True))),
     ("caged", "avoid_hit", Mode.HOLD, dict(contact=(True, True), hit=True),
-     dict(caged_behind_pads=True)),
+     dict(estimate=dict(caged_behind_pads=True))),
     ("caged", "lift_load", Mode.LIFT, dict(contact=(True, True), slip_s=1.0),
-     dict(caged_behind_pads=True)),
+     dict(estimate=dict(caged_behind_pads=True))),
     ("tipping_guard", "off_centre", Mode.REACH,
      dict(contact=(True, True), shape=pads(3, 3), event_matched=True),
-     dict(topples_if_released=True)),
+     dict(estimate=dict(topples_if_released=True))),
     ("grip_settling", "load_lift_event", Mode.LOAD,
-     dict(contact=(True, True), event_matched=True), dict(grip_settling=True)),
+     dict(contact=(True, True), event_matched=True), dict(estimate=dict(grip_settling=True))),
     ("touch_unconfirmed", "reach_event", Mode.REACH,
-     dict(contact=(True, True), event_matched=True), dict(match_confirmed_s=-1.0)),
+     dict(contact=(True, True), event_matched=True),
+     dict(estimate=dict(match_confirmed_s=-1.0))),
+    ("regrasp_set_down", "place_event", Mode.PLACE,
+     dict(contact=(True, True), event_matched=True), dict(regrasp_pending=True)),
+    ("regrasp_set_down", "place_timeout", Mode.PLACE,
+     dict(contact=(True, True), motion_done=True,
+          time_since_motion_done=CONFIG.place.event_timeout_s), dict(regrasp_pending=True)),
 ]
 
 
@@ -178,7 +185,7 @@ GUARD_CASES = [
 def test_the_guard_holds_back_its_rule_only_while_its_condition_holds(guard, rule, mode, fires,
                                                                       holds):
     assert code(mode, situation(**fires)) == rule
-    assert code(mode, situation(**fires, estimate=holds)) != rule
+    assert code(mode, situation(**fires, **holds)) != rule
 
 
 def test_every_rule_and_guard_of_the_table_has_a_case():
@@ -275,11 +282,26 @@ def test_the_regrasp_puts_down_and_re_reaches_without_a_shift_or_a_count():
     assert (hold.mode, hold.trigger, hold.action) == (Mode.PLACE, Trigger.CORRECTIVE,
                                                       Regrasp())
     place = decide(Mode.PLACE, situation(contact=(True, True), event_matched=True,
-                                         regrasp_pending=True), Counters(regrasps=1))
+                                         motion_done=True, regrasp_pending=True),
+                   Counters(regrasps=1))
     assert place.action == ReReach(Shift(0.0, 0.0), counted=False)
     once = decide(Mode.HOLD, situation(contact=(True, True), estimate=dict(
         tilted_s=TAXEL.regrasp.tilt_sustain_s)), Counters(regrasps=TAXEL.regrasp.max_regrasps))
     assert once is None  # at most max_regrasps
+
+
+def test_a_regrasps_place_neither_opens_nor_lets_go_while_the_place_move_is_on():
+    """A Place-Unload match while the arm still carries the object down (one matched 0.145 s
+    into the move, the object 61 mm up) is no set-down: the gripper stays closed."""
+    held = Counters(regrasps=1)
+    moving = dict(contact=(True, True), regrasp_pending=True, motion_done=False)
+    assert decide(Mode.PLACE, situation(**moving, event_matched=True), held) is None
+    assert decide(Mode.PLACE, situation(**moving, time_in_mode=10.0), held) is None
+    done = dict(moving, motion_done=True)
+    assert decide(Mode.PLACE, situation(**done), held) is None  # the event or its timeout
+    for ended in (dict(event_matched=True),
+                  dict(time_since_motion_done=CONFIG.place.event_timeout_s)):
+        assert code(Mode.PLACE, situation(**done, **ended), held) == "regrasp_after_place"
 
 
 @pytest.mark.parametrize("obs,counters", [

@@ -15,7 +15,7 @@ the whole taxel array, over what one ContactEstimator senses.
   untouched_close.py     rule: a close that touched nothing searches beyond the fingertips
   no_event_in_time.py    rules: both pads on, no event in time
   caged.py               rules and guard: an object caged behind the pads
-  regrasp.py             rules: re-grasp an object held tilted
+  regrasp.py             rules and guard: re-grasp an object held tilted
   tipping_guard.py       guard: no re-centring after a push past the tipping limit
   grip_settling.py       guard: the Load-Lift event lifts only a settled grip
   touch_confirmed.py     guard and rule: a pad's touch confirms the Reach-Load event"""

@@ -1,10 +1,11 @@
 """Rules held_tilted (Hold: tilted for tilt_sustain_s, put it down) and
-regrasp_after_place (Place: open and close again without a shift), at most max_regrasps
+regrasp_after_place (Place: open and close again without a shift), at most max_regrasps, and
+the guard regrasp_set_down (a re-grasp's Place ends by regrasp_after_place alone)
 (docs/controller.md, "Held tilted: re-grasp")."""
 
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Regrasp, ReReach, decide
-from tegrasp_drake.control.rule_engine import Rule
+from tegrasp_drake.control.rule_engine import Guard, Rule
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
 from tegrasp_drake.control.transition_logic import placed
 
@@ -19,8 +20,19 @@ def put_down(situation):
     return decide(Regrasp(), Trigger.CORRECTIVE, "held tilted: put down to re-grasp")
 
 
-def placed_to_regrasp(situation) -> bool:
-    return situation.obs.regrasp_pending and placed(situation.obs, situation.config)
+def regrasp_place(situation) -> bool:
+    """This Place puts a tilted object down to grasp it again."""
+    return situation.obs.regrasp_pending
+
+
+def set_down_to_regrasp(situation) -> bool:
+    """The re-grasp's Place move has ended, then the Place-Unload event or its timeout.
+
+    The move ends place_press below the height the object was picked up from, so a held
+    object stands on the table by then; the event alone also matches on a held object's
+    rest signals in the air (docs/controller.md, "Held tilted: re-grasp")."""
+    obs = situation.obs
+    return regrasp_place(situation) and obs.motion_done and placed(obs, situation.config)
 
 
 def open_and_close_again(situation):
@@ -33,6 +45,9 @@ HELD_TILTED = Rule(
     when="held tilted for regrasp.tilt_sustain_s; re-grasps left",
     then="Regrasp (Place)")
 REGRASP_AFTER_PLACE = Rule(
-    "regrasp_after_place", (Mode.PLACE,), 50, placed_to_regrasp, open_and_close_again,
-    when="a re-grasp's Place: the object stands again",
-    then="ReReach(no shift, not counted)")
+    "regrasp_after_place", (Mode.PLACE,), 50, set_down_to_regrasp, open_and_close_again,
+    when="a re-grasp's Place: the arm's Place move ended (the object set down), then the "
+    "Place-Unload event or place.event_timeout_s", then="ReReach(no shift, not counted)")
+REGRASP_SET_DOWN = Guard(
+    "regrasp_set_down", ("place_event", "place_timeout"), regrasp_place,
+    when="a re-grasp's Place: it ends by regrasp_after_place, never by letting go")

@@ -15,7 +15,8 @@ from tegrasp_drake.control.taxel_aware.no_event_in_time import (LOAD_TIMEOUT_BOT
                                                                 REACH_TIMEOUT_BOTH_PADS)
 from tegrasp_drake.control.taxel_aware.off_centre import OFF_CENTRE
 from tegrasp_drake.control.taxel_aware.one_sided_at_width import ONE_SIDED_AT_WIDTH
-from tegrasp_drake.control.taxel_aware.regrasp import HELD_TILTED, REGRASP_AFTER_PLACE
+from tegrasp_drake.control.taxel_aware.regrasp import (HELD_TILTED, REGRASP_AFTER_PLACE,
+                                                      REGRASP_SET_DOWN)
 from tegrasp_drake.control.taxel_aware.tipping_guard import TIPPING_GUARD
 from tegrasp_drake.control.taxel_aware.touch_confirmed import TOUCH_CONFIRMED, TOUCH_UNCONFIRMED
 from tegrasp_drake.control.taxel_aware.untouched_close import CLOSED_UNTOUCHED
@@ -32,7 +33,7 @@ TAXEL_AWARE_TABLE = PAPER_TABLE.extended(
            REACH_TIMEOUT_BOTH_PADS,
            REACH_TIMEOUT_CAGED, LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED,
            REGRASP_AFTER_PLACE),
-    guards=(CAGED, TIPPING_GUARD, GRIP_SETTLING, TOUCH_UNCONFIRMED),
+    guards=(CAGED, TIPPING_GUARD, GRIP_SETTLING, TOUCH_UNCONFIRMED, REGRASP_SET_DOWN),
     re_reach_move=CENTRING_RE_REACH)
 
 
