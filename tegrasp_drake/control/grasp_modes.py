@@ -99,8 +99,10 @@ class Transition:
     # a firm grasp): only finite, no common range.
     scores: tuple[float, ...] | None = bounded(
         None, why="Eq. 3 correlations, or the heuristic detector's channel/threshold ratios")
-    # Re-Reach: the shift along world y [m]; taxel_aware Re-Reach: along world x [m].
+    # Re-Reach: the shift along world y, the stroke [m].
     offset_m: float | None = bounded(None, unit="m", why="a shift of the grasp frame")
+    # taxel_aware Re-Reach: the shift along world x, the approach axis [m]; negative in the
+    # approach (a back-off), that far back along the Reach's path instead (mostly up).
     approach_offset_m: float | None = bounded(None, unit="m", why="a shift of the grasp frame")
     # Lift-Load: the raised grip force [N], a squeeze (not a pull).
     grip_force_n: float | None = bounded(None, low=0.0, high=235.0, unit="N",
