@@ -14,9 +14,11 @@ from tegrasp_drake.control.grasp_modes import Mode
 from tegrasp_drake.control.taxel_aware.contact_geometry import release_topples
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.robotiq.units import STROKE_M
+from tegrasp_drake.runs.trial import RESTING_HEIGHT_M, run_trial
 from tegrasp_drake.scenario.rule_reach import rule_reach
+from tegrasp_drake.sweep.trial_function import trial_events
 from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,
-                                             load_waited_the_timeout, run_scene)
+                                             load_waited_the_timeout, matched, run_scene)
 
 pytestmark = pytest.mark.slow
 
@@ -139,3 +141,32 @@ def test_a_reach_load_match_no_pad_touch_confirms_does_not_load():
         frame = np.searchsorted(log.t_sa, load.t, side="right") - 1
         assert pad_force_n[frame].max() > 0.0, (load.t, codes)
     assert run.transitions[0].to_mode != Mode.LOAD, codes
+
+
+# The wide grid's thin cylinder at its marker m11 (-12.5 mm along the stroke), one recorded
+# sweep trial: held tilted after the lift and put down to be grasped again. A Place-Unload
+# match on the held rod's rest signals came 0.145 s into that Place, the rod 61 mm up.
+TILTED_ROD_TRIAL = {
+    "attempt": 0, "base_seed": 800, "controller": "taxel_aware", "marker": "m11",
+    "marker_dx_m": 0.0, "marker_dy_m": -0.0125, "object_definition": None,
+    "object_name": "thin_cylinder", "pair_id": "thin_cylinder/m11/a0",
+    "perturbation": {"dx_m": -0.0018360958924133759, "dy_m": -0.0015842710770572403,
+                     "friction_scale": 1.0756515617564388, "mass_scale": 0.9021898856550541,
+                     "yaw_rad": -0.1077885663417914},
+    "seed": 3074882568, "sensor_noise": True, "trial_id": "taxel_aware/thin_cylinder/m11/a0",
+    "well_placed": False}
+
+
+def test_a_regrasp_opens_only_once_the_place_move_has_set_the_object_down():
+    scenario, events, corrective_events = trial_events(TILTED_ROD_TRIAL)
+    run = run_trial(scenario, events=events, corrective_events=corrective_events)
+    codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]
+    found = matched(run.transitions, (("Hold", "Place", "held_tilted"),
+                                      ("Place", "Re-Reach", "regrasp_after_place")))
+    assert found is not None, codes
+    put_down, regrasp = found
+    assert regrasp.t - put_down.t >= scenario.grasp.place_s - 1e-9, codes
+    log = run.log
+    height = log.object_state[:, 6] - log.object_state[0, 6]
+    assert height[np.searchsorted(log.t_slow, regrasp.t)] < RESTING_HEIGHT_M, codes
+    assert run.hold_success and run.unload_success, codes
