@@ -34,7 +34,6 @@ RULE_COUNTS = {
     "one_sided": ("pad", "one pad's sum, the other's not, for re_reach.one_sided_contact_s"),
     "approach_contact": ("pad", "a pad's sum in the approach (the open fingers: one pad)"),
     "one_sided_at_width": ("pad", "one pad's sum alone, closed to the width"),
-    "bracketed_at_extent": ("pad", "one pad's sum alone, the other's face remembered"),
     "bracket_recentre": ("pad", "one pad's sum alone, the other's face remembered"),
     "beyond_pads": ("taxel", "the first touch on one pad's distal row alone"),
     "tipping_guard": ("taxel", "the first touch on one pad, the other still to close"),

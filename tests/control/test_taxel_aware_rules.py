@@ -88,9 +88,6 @@ CASES = [
      dict(contact=(True, False), estimate=dict(match_confirmed_s=-1.0)), Counters()),
     ("one_sided_at_width", Mode.REACH, dict(**ONE_SIDED, estimate=dict(opening_m=0.0452)),
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0530)), Counters()),
-    ("bracketed_at_extent", Mode.REACH,
-     dict(**ONE_SIDED, estimate=dict(opening_m=0.0530, bracket=(0.0, 0.0514))),
-     dict(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=(0.0, 0.0514))), Counters()),
     ("bracket_recentre", Mode.REACH,
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=(0.01, 0.0514))),
      dict(**ONE_SIDED, estimate=dict(opening_m=0.0577)), Counters()),
@@ -258,12 +255,11 @@ def test_the_bracket_re_centres_on_the_middle_of_the_two_faces():
     assert decide(Mode.REACH, obs, USED_UP).action == Failed()
 
 
-def test_without_the_bracket_rules_one_finger_alone_re_reaches_by_the_papers_shift():
-    """The faces' midpoint is bracket_recentre's move alone: a table without the bracket
-    rules Re-Reaches one finger alone by the same shift, a bracket standing or not."""
+def test_without_the_bracket_rule_one_finger_alone_re_reaches_by_the_papers_shift():
+    """The faces' midpoint is bracket_recentre's move alone: a table without the rule
+    Re-Reaches one finger alone by the same shift, a bracket standing or not."""
     table = dataclasses.replace(TAXEL_AWARE_TABLE, rules=tuple(
-        rule for rule in TAXEL_AWARE_TABLE.rules
-        if rule.name not in ("bracketed_at_extent", "bracket_recentre")))
+        rule for rule in TAXEL_AWARE_TABLE.rules if rule.name != "bracket_recentre"))
 
     def shift(bracket):
         obs = situation(**ONE_SIDED, estimate=dict(opening_m=0.0577, bracket=bracket,

@@ -11,7 +11,7 @@ the whole taxel array, over what one ContactEstimator senses.
   beyond_pads.py         rule: a first touch beyond the pads stops the close
   off_centre.py          rule: re-centre along the approach axis
   one_sided_at_width.py  rule: one finger alone at the object's width loads
-  bracketing.py          rules: faces touched in turn bracket the object
+  bracketing.py          rule: faces touched in turn bracket the object
   untouched_close.py     rule: a close that touched nothing searches beyond the fingertips
   no_event_in_time.py    rules: both pads on, no event in time
   caged.py               rules and guard: an object caged behind the pads

@@ -5,7 +5,7 @@ within taxel_aware.max_re_reaches."""
 from tegrasp_drake.control.rule_engine import ReReachMove, RuleTable
 from tegrasp_drake.control.taxel_aware.approach_contact import APPROACH_CONTACT
 from tegrasp_drake.control.taxel_aware.beyond_pads import BEYOND_PADS
-from tegrasp_drake.control.taxel_aware.bracketing import BRACKET_RECENTRE, BRACKETED_AT_EXTENT
+from tegrasp_drake.control.taxel_aware.bracketing import BRACKET_RECENTRE
 from tegrasp_drake.control.taxel_aware.caged import (CAGED, LOAD_TIMEOUT_CAGED,
                                                      REACH_TIMEOUT_CAGED)
 from tegrasp_drake.control.taxel_aware.finger_strike import FINGER_STRIKE
@@ -29,7 +29,7 @@ CENTRING_RE_REACH = ReReachMove(
 TAXEL_AWARE_TABLE = PAPER_TABLE.extended(
     "taxel_aware",
     rules=(FINGER_STRIKE, APPROACH_CONTACT, BEYOND_PADS, OFF_CENTRE, TOUCH_CONFIRMED,
-           ONE_SIDED_AT_WIDTH, BRACKETED_AT_EXTENT, BRACKET_RECENTRE, CLOSED_UNTOUCHED,
+           ONE_SIDED_AT_WIDTH, BRACKET_RECENTRE, CLOSED_UNTOUCHED,
            REACH_TIMEOUT_BOTH_PADS,
            REACH_TIMEOUT_CAGED, LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED,
            REGRASP_AFTER_PLACE),
