@@ -7,12 +7,16 @@ the same placement plays out otherwise on the linkage hand (its pads sweep along
 approach axis and curl); the rules run on the linkage hand in the sweeps
 (docs/results.md)."""
 
+import dataclasses
+
 import pytest
 
+from tegrasp_drake.control import taxel_aware
 from tegrasp_drake.control.controller_config import RegraspConfig
+from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
 from tests.cheap_contact import CHEAP_CONTACT
 from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,
-                                             load_waited_the_timeout)
+                                             load_waited_the_timeout, run_scene)
 
 pytestmark = pytest.mark.slow
 
@@ -30,6 +34,7 @@ def _world(scene: Scene) -> tuple[str, ...]:
     return HAND if scene.reads_the_held_grip else HAND + CHEAP_CONTACT
 
 
+BRACKET_SCENE = Scene("box", (0.010, 0.020), -10.0, seed=775)
 SCENES = {
     # 12 mm farther than expected: the contact sits on the fingertip rows.
     "off_centre": (Scene("thick_cylinder", (0.012, 0.0)), Expect(
@@ -75,17 +80,17 @@ SCENES = {
     "beyond_pads": (Scene("thin_cylinder", (0.0139, -0.0246), 7.8), Expect(
         (("Reach", "Re-Reach", "beyond_pads"),), first=True,
         check=lambda found, r: found[0].approach_offset_m > 0.0 and found[0].offset_m < -0.015)),
-    # The box 5 mm beyond and 25 mm along the stroke, yawed -10 deg. With the finger strike's
-    # back-off straight back along x: the left finger struck it, then the right finger alone
-    # and the left alone in turn; the Re-Reach went between the two faces, back by less than
-    # it came (the paper's shift overshot and the fingers touched alone in turn until
-    # Failed), and the close to their extent loaded. With the back-off retracing the Reach's
-    # path it is an expected failure (BACK_OFF_REGRESSIONS).
-    "bracket": (Scene("box", (0.005, 0.025), -10.0, seed=784), Expect(
+    # The box 10 mm beyond and 20 mm along the stroke, yawed -10 deg: the left pad touched
+    # it in the approach (+20 mm), the left finger alone at the next close (one_sided,
+    # +13 mm), then the right alone: the Re-Reach went back to the faces' midpoint, by less
+    # than the one_sided shift came (-7 mm), and the Reach-Load event loaded. Without the rule the paper's
+    # shift overshoots each way and the fingers touch alone in turn until Failed
+    # (test_without_bracket_recentre_the_bracket_scene_fails).
+    "bracket": (BRACKET_SCENE, Expect(
         (("Reach", "Re-Reach", "one_sided"), ("Reach", "Re-Reach", "bracket_recentre"),
-         ("Reach", "Load", "bracketed_at_extent")),
-        check=lambda found, r: found[0].offset_m < 0.0
-        and 0.0 < found[1].offset_m < abs(found[0].offset_m))),
+         ("Reach", "Load", "reach_event")),
+        check=lambda found, r: found[0].offset_m * found[1].offset_m < 0.0
+        and abs(found[1].offset_m) < abs(found[0].offset_m))),
     # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
     # threshold, and a correlation never exceeds 1): lifted after the Load timeout with both
     # pads on the box, where the paper's rule would Re-Reach.
@@ -100,23 +105,21 @@ SCENES = {
 }
 
 
-# The bracket scene was found with the finger strike's back-off straight back along x. With
-# the back-off retracing the Reach's path, after the strike's Re-Reach the left finger
-# touches alone once (one_sided, +7.1 mm) and the Reach-Load event loads: held and put
-# down, the same with the bracket off, neither bracket rule firing. Over 32 placements near
-# it on this back-off (0-15 mm beyond; 20-25 mm along the stroke and yawed 5-10 deg,
-# either way) bracket_recentre fired in 17 but bracketed_at_extent in none, so no placement decided
-# by both rules is known. This records that, and fails once the scene plays out by its
-# rules again.
-BACK_OFF_REGRESSIONS = {"bracket"}
-
-
-@pytest.mark.parametrize("name", [
-    pytest.param(name, marks=pytest.mark.xfail(
-        strict=True, reason="the scene was found with the back-off along x; with the "
-        "retraced back-off it is loaded by the Reach-Load event after one one_sided "
-        "Re-Reach, neither bracket rule firing")) if name in BACK_OFF_REGRESSIONS else name
-    for name in SCENES])
+@pytest.mark.parametrize("name", list(SCENES))
 def test_the_scene_is_decided_by_its_rules_and_grasped(name):
     scene, expect = SCENES[name]
     check_scene(scene, expect, _world(scene))
+
+
+def test_without_bracket_recentre_the_bracket_scene_fails(monkeypatch):
+    """The bracket scene with the rule taken out of the table the controller runs: the
+    paper's one_sided Re-Reaches it until they run out, and the box is not held."""
+    without = dataclasses.replace(TAXEL_AWARE_TABLE, rules=tuple(
+        rule for rule in TAXEL_AWARE_TABLE.rules if rule.name != "bracket_recentre"))
+    monkeypatch.setattr(taxel_aware, "rule_table", lambda: without)
+    run = run_scene(BRACKET_SCENE, _world(BRACKET_SCENE))
+    codes = [t.code for t in run.transitions]
+    assert "bracket_recentre" not in codes
+    assert codes.count("one_sided") >= 2, codes
+    assert run.transitions[-1].code == "one_sided", codes  # it went to Failed
+    assert run.result["final_mode"] == "Failed" and not run.result["hold_success"], codes
