@@ -578,7 +578,6 @@ def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):
     """Yields (trial_id, outcome) from a Dask cluster; outcome None if workers died.
     `scheduler`: a connected client (left open), or an address connected to here (and
     closed at the end)."""
-    dask_as_completed = _dask_distributed().as_completed
     if not pending:
         return
     address = _scheduler_address(scheduler)
@@ -591,7 +590,8 @@ def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):
                    trial["trial_id"] for trial in pending}
         finished = 0
         try:
-            for future in dask_as_completed(list(futures)):
+            for future in _as_completed_saying_when_no_workers(client, list(futures),
+                                                               address):
                 try:
                     outcome = future.result()
                 except Exception:  # KilledWorker and kin: no trial result.
@@ -607,6 +607,64 @@ def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):
         finally:
             with suppress(Exception):  # a client whose scheduler is gone cannot cancel
                 client.cancel(list(futures))
+
+
+# How long a scheduler may have no worker while trials wait before a sweep says so [s]. A
+# `dask worker` registers within about a second of starting (importing distributed, then a
+# connect and a registration message), a LocalCluster's or a batch system's several within a
+# few; ten seconds lets those in without a word and is still short beside a trial (tens of
+# seconds) for a user waiting for output.
+NO_WORKERS_NOTICE_S = 10.0
+# How often the submitting thread looks for finished trials, and asks the scheduler how many
+# workers it has (one small message), while none has finished [s]. distributed's own
+# as_completed iterator looks every 0.1 s; a trial takes tens of seconds.
+DASK_LOOK_PERIOD_S = 0.2
+WORKER_COUNT_PERIOD_S = 1.0
+
+
+def _as_completed_saying_when_no_workers(client, futures: list, address: str):
+    """Yields `futures` one at a time as they finish (distributed's as_completed, looked at
+    without blocking). Between looks, this thread (the only one that uses the client) asks
+    the scheduler every WORKER_COUNT_PERIOD_S how many workers it has; after
+    NO_WORKERS_NOTICE_S with none it warns once, in one line, and keeps waiting: workers may
+    still come, and Ctrl-C stops the sweep with its finished trials kept. Workers that join
+    and leave again start the count afresh."""
+    completed = _dask_distributed().as_completed(futures, loop=client.loop)
+    none_since = asked_at = None
+    said = False
+    while not completed.is_empty():
+        ready = completed.next_batch(block=False)
+        yield from ready
+        if ready:
+            continue
+        now = time.monotonic()
+        if asked_at is None or now - asked_at >= WORKER_COUNT_PERIOD_S:
+            asked_at = now
+            workers = _worker_count(client)
+            if workers:
+                none_since, said = None, False
+            elif workers == 0:
+                none_since = now if none_since is None else none_since
+        if not said and none_since is not None and now - none_since >= NO_WORKERS_NOTICE_S:
+            said = True
+            logger.warning(
+                f"sweep: the Dask scheduler at {address} has had no worker for "
+                f"{now - none_since:.0f} s (none has connected, or the last one left); "
+                f"{count_text(completed.count(), 'trial')} waiting: start one with `dask "
+                f"worker {address}`, or stop with Ctrl-C (finished trials are kept; the same "
+                "command runs the rest)")
+        time.sleep(DASK_LOOK_PERIOD_S)
+
+
+def _worker_count(client) -> int | None:
+    """How many workers the client's scheduler has; None when it cannot say (gone or
+    reconnecting: the futures' cancellation then says so, SchedulerLostError)."""
+    if client.status != "running":
+        return None
+    try:
+        return int(client.scheduler_info(n_workers=0)["n_workers"])
+    except Exception:  # any failure of the one message: ask again next time
+        return None
 
 
 def _keep_corrupt_records_aside(corrupt: dict) -> None:

@@ -1,5 +1,8 @@
 """The same sweep on a Dask distributed cluster (a local one here)."""
 
+import logging
+import threading
+
 import pytest
 
 from tegrasp_drake.sweep import runner
@@ -109,3 +112,88 @@ def test_a_scheduler_address_is_read_in_any_case(tmp_path, scheduler_address):
     finally:
         client.close()
     assert (summary.ran, summary.errors) == (9, ())
+
+
+class _ActOnNoWorkersLine(logging.Handler):
+    """Keeps the sweep's warnings; on the no-worker line, does `act` (what a user would)."""
+
+    def __init__(self, act):
+        super().__init__(level=logging.WARNING)
+        self.said, self.act, self.told = [], act, threading.Event()
+
+    def emit(self, record):
+        self.said.append(record.getMessage())
+        if "has had no worker" in record.getMessage():
+            self.told.set()
+            self.act()
+
+
+@pytest.fixture
+def cluster_without_workers(monkeypatch):
+    """A scheduler with no worker (a LocalCluster of none, scaled up by a test when it
+    likes), the sweep's no-worker delay short, and a hang guard: if the sweep never says it
+    has no workers, a worker is started after ten minutes all the same, so the test fails
+    on its assertions instead of hanging."""
+    import dask
+    monkeypatch.setattr(runner, "NO_WORKERS_NOTICE_S", 0.5)
+    with dask.config.set({"distributed.comm.timeouts.connect": "600s",
+                          "distributed.comm.timeouts.tcp": "600s"}), \
+            distributed.LocalCluster(n_workers=0, threads_per_worker=1, processes=True,
+                                     dashboard_address=":0") as cluster:
+        handlers = []
+        guard_ends = threading.Event()
+        guard = threading.Thread(
+            target=lambda: guard_ends.wait(600.0) or any(h.told.is_set() for h in handlers)
+            or cluster.scale(1), daemon=True)
+        guard.start()
+        try:
+            yield cluster, handlers
+        finally:
+            guard_ends.set()
+            for handler in handlers:
+                runner.logger.removeHandler(handler)
+
+
+def _said_no_workers(handler, cluster) -> str:
+    told = [line for line in handler.said if "has had no worker" in line]
+    assert len(told) == 1, handler.said
+    address = cluster.scheduler_address
+    assert f"the Dask scheduler at {address} has had no worker for" in told[0]
+    assert f"9 trials waiting: start one with `dask worker {address}`" in told[0]
+    assert "Ctrl-C" in told[0] and "\n" not in told[0]
+    return told[0]
+
+
+def test_a_scheduler_without_workers_is_said_once_and_the_trials_run_when_one_joins(
+        tmp_path, cluster_without_workers):
+    cluster, handlers = cluster_without_workers
+    handler = _ActOnNoWorkersLine(lambda: cluster.scale(1))
+    handlers.append(handler)
+    runner.logger.addHandler(handler)
+    spec = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1)
+    summary = run_sweep(spec, fake_trial, tmp_path, scheduler=cluster.scheduler_address,
+                        progress=False)
+    _said_no_workers(handler, cluster)
+    assert (summary.ran, summary.errors, summary.unfinished) == (9, (), ())
+
+
+def test_a_sweep_waiting_for_workers_stops_on_ctrl_c_and_the_same_sweep_resumes(
+        tmp_path, cluster_without_workers):
+    cluster, handlers = cluster_without_workers
+
+    def press_ctrl_c():
+        raise KeyboardInterrupt  # as the signal does, in the thread that waits
+
+    handler = _ActOnNoWorkersLine(press_ctrl_c)
+    handlers.append(handler)
+    runner.logger.addHandler(handler)
+    spec = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1)
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(spec, fake_trial, tmp_path, scheduler=cluster.scheduler_address,
+                  progress=False)
+    _said_no_workers(handler, cluster)
+    runner.logger.removeHandler(handler)
+    cluster.scale(1)
+    summary = run_sweep(spec, fake_trial, tmp_path, scheduler=cluster.scheduler_address,
+                        progress=False)
+    assert (summary.ran, summary.skipped, summary.errors) == (9, 0, ())
