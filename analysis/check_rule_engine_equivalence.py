@@ -17,7 +17,6 @@ transitions (from this checkout's run) and whether the two agree; exits 1 on a d
 The records themselves are not compared: the package has changed since they were made.
 """
 
-import argparse
 import hashlib
 import json
 import os
@@ -27,7 +26,7 @@ import sys
 import tarfile
 import tempfile
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.rig.files import JSON_OBJECT_START, write_atomically
 from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
 
@@ -140,7 +139,7 @@ def differences(base: dict, tip: dict) -> list[str]:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("check_rule_engine_equivalence", __doc__)
     parser.add_argument("--base", required=True, help="the commit to compare against")
     parser.add_argument("--out", type=pathlib.Path, default=ROOT / "out" / "rule_engine_equivalence")
     parser.add_argument("--scenes", nargs="+", default=list(SCENES),

@@ -13,13 +13,12 @@ template runs and the ensemble's runs 0-4. The closed-loop trials that judge the
 (tests/runs/test_corrective_trials.py) use other seeds.
 """
 
-import argparse
 import pathlib
 import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
@@ -84,7 +83,7 @@ def tally(outcomes, situations: int):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("choose_corrective_thresholds", __doc__)
     parser.add_argument("corrective_logs", type=pathlib.Path)
     parser.add_argument("ensemble_logs", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)

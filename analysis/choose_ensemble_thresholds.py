@@ -9,13 +9,12 @@ names the runs NOT used for the templates (the default: runs 5-7 of 8, the first
 the templates). The sweeps that judge the controller use other seeds altogether.
 """
 
-import argparse
 import pathlib
 import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.grasp_controller import controller_events_folders
@@ -58,7 +57,7 @@ def _fmt(value):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("choose_ensemble_thresholds", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("--runs", type=int, nargs="+", default=[5, 6, 7])

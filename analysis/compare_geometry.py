@@ -16,7 +16,6 @@ were). The contract (docs/sweeps.md, "Coarser contact geometry"): no significant
 outcomes, every changed trial explained, median latencies within 10 ms.
 """
 
-import argparse
 import pathlib
 import statistics
 import sys
@@ -25,7 +24,8 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 
 from compare_hands import failure_class, load  # noqa: E402
 
-from tegrasp_drake.commands.script_output import run_script, write_report  # noqa: E402
+from tegrasp_drake.commands.script_output import (run_script, script_parser,  # noqa: E402
+                                                   write_report)
 from tegrasp_drake.scenario.trial_result import TrialResult  # noqa: E402
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value  # noqa: E402
 from tegrasp_drake.sweep.table import succeeded as _succeeded  # noqa: E402
@@ -108,7 +108,7 @@ def report(reference: dict, coarse: dict, label: str = "coarse") -> str:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("compare_geometry", __doc__)
     parser.add_argument("out", type=pathlib.Path, help="the Markdown report to write")
     parser.add_argument("reference", type=pathlib.Path,
                         help="records on the reference representation")

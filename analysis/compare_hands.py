@@ -11,12 +11,11 @@ changed, with each run's failure class (sweep/failure_classes.py). Then the link
 failures by class.
 """
 
-import argparse
 import collections
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
@@ -101,7 +100,7 @@ def report(prismatic: dict, linkage: dict) -> str:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("compare_hands", __doc__)
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("linkage", type=pathlib.Path)
     parser.add_argument("prismatic", type=pathlib.Path, nargs="+")

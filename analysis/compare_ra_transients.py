@@ -4,10 +4,9 @@ for the same pad strike at plant steps of 1, 0.5 and 0.25 ms; prints the contact
     python analysis/compare_ra_transients.py OUT.png [--speed 0.025]
 """
 
-import argparse
 import sys
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.figures.figure_files import FigureFormatError, check_figure_path
 from tegrasp_drake.figures.ra_transients import plot_ra_transients
 from tegrasp_drake.rig.files import UserPathError
@@ -17,14 +16,14 @@ TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = script_parser("compare_ra_transients", __doc__)
     parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
     parser.add_argument("--speed", type=float, default=0.025, help="finger speed [m/s]")
     args = parser.parse_args(argv)
     try:
         check_figure_path(args.out)  # before the strikes, not after
     except FigureFormatError as error:
-        parser.error(str(error))
+        raise SystemExit(f"compare_ra_transients: error: {error}") from None
     strikes = {dt: run_pad_strike(PadStrikeConfig(time_step_s=dt, finger_speed_mps=args.speed))
                for dt in TIME_STEPS}
     for dt, strike in strikes.items():

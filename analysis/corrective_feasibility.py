@@ -11,13 +11,12 @@ corrective triggers"): Eq. 3 scores, from recorded logs, of
     python analysis/corrective_feasibility.py CORRECTIVE_LOGS ENSEMBLE_LOGS GRID_LOGS
 """
 
-import argparse
 import pathlib
 import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.correlation import event_scores_reference
@@ -92,7 +91,7 @@ def one_finger(grid, ensemble):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("corrective_feasibility", __doc__)
     for name in ("corrective_logs", "ensemble_logs", "grid_logs"):
         parser.add_argument(name, type=pathlib.Path)
     args = parser.parse_args(argv)

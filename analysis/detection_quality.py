@@ -8,18 +8,17 @@ The folders' records are merged (the same base seed and grid give the same pair 
 folder of one controller pairs with another folder's controllers).
 """
 
-import argparse
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
 from tegrasp_drake.sweep.detection_report import report_markdown
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("detection_quality", __doc__)
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("results", type=pathlib.Path, nargs="+")
     parser.add_argument("--reference", default="open_loop")

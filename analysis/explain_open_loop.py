@@ -6,7 +6,6 @@ prints the margins.
     python analysis/explain_open_loop.py OUT.png [--workers 2]
 """
 
-import argparse
 import concurrent.futures
 import sys
 
@@ -32,7 +31,8 @@ def run_corner(job):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    from tegrasp_drake.commands.script_output import refuse_unusable_output, script_parser
+    parser = script_parser("explain_open_loop", __doc__)
     parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args(argv)
@@ -42,8 +42,7 @@ def main(argv=None) -> int:
     try:
         check_figure_path(args.out)  # before the trials, not after
     except FigureFormatError as error:
-        parser.error(str(error))
-    from tegrasp_drake.commands.script_output import refuse_unusable_output
+        raise SystemExit(f"explain_open_loop: error: {error}") from None
     refuse_unusable_output("explain_open_loop", args.out)
     import matplotlib
     matplotlib.use("Agg")

@@ -9,13 +9,12 @@ the object (gOBJ 2), before the lift loads the pads; the rise runs from the firs
 (either pad above 0.05 N) to 10 % and 90 % of the held force.
 """
 
-import argparse
 import json
 import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
@@ -45,7 +44,7 @@ def grip_rise_of_log(path: str) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("grip_rise", __doc__)
     parser.add_argument("logs", nargs="+", help="trial logs (tegrasp trial --out's trial.npz)")
     for path in parser.parse_args(argv).logs:
         print(json.dumps(grip_rise_of_log(path)))

@@ -25,13 +25,12 @@ The sweeps here script no hits (`disturbance.hit_time_s` < 0), so every Avoid is
 one; the report says how many are creep and how many are something else.
 """
 
-import argparse
 import pathlib
 import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.trial_function import trial_log_name
@@ -69,7 +68,7 @@ def trial_holds(record: dict, log) -> list[dict]:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("hold_creep", __doc__)
     parser.add_argument("results", type=pathlib.Path)
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("--out", type=pathlib.Path, default=None)

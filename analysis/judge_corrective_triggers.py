@@ -5,7 +5,6 @@ false triggers; writes a markdown table.
     python analysis/judge_corrective_triggers.py OUT.md [--workers 2]
 """
 
-import argparse
 import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
@@ -33,11 +32,11 @@ def one(job):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    from tegrasp_drake.commands.script_output import refuse_unusable_output, script_parser
+    parser = script_parser("judge_corrective_triggers", __doc__)
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args(argv)
-    from tegrasp_drake.commands.script_output import refuse_unusable_output
     refuse_unusable_output("judge_corrective_triggers", args.out)
     jobs = [(label, force, time, trigger) for label, force, time in HITS
             for trigger in TRIGGERS]

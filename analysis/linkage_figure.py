@@ -7,7 +7,6 @@ follower (C-D, carrying the pad) and spring link (E-D), the pad face, its centre
 the stroke, and the flip height at 25 N (a contact below it lifts B off its pin).
 """
 
-import argparse
 import math
 import pathlib
 import sys
@@ -17,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from tegrasp_drake.commands.script_output import run_script  # noqa: E402
+from tegrasp_drake.commands.script_output import run_script, script_parser  # noqa: E402
 from tegrasp_drake.figures.figure_files import (FigureFormatError,  # noqa: E402
                                                 check_figure_path, save_figure)
 from tegrasp_drake.rig.files import UserPathError  # noqa: E402
@@ -45,13 +44,13 @@ def draw(ax, theta: float, color: str, label: str) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("linkage_figure", __doc__)
     parser.add_argument("out", type=pathlib.Path, help="the figure to write (.png, .pdf or .svg)")
     out = parser.parse_args(argv).out
     try:
         check_figure_path(out)
     except FigureFormatError as error:
-        parser.error(str(error))
+        raise SystemExit(f"linkage_figure: error: {error}") from None
     fig, ax = plt.subplots(figsize=(6.4, 6.4))
     for theta, color, label in ((0.0, "tab:blue", "open"),
                                 (linkage.driver_angle(0.0225), "tab:orange", "mid"),

@@ -11,13 +11,12 @@ file was cut from the prismatic hand's runs with the earlier 1.3 s Load phase (L
 times and events folder with it.
 """
 
-import argparse
 import pathlib
 import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
@@ -41,7 +40,7 @@ def cut(log, name, start, end, arrays):
 def main(argv=None) -> int:
     from tegrasp_drake.recording.corrective_events import (CORRECTIVE_RUNS, HOLD_END_S,
                                                            LIFT_END_S, LIFT_START_S)
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("make_corrective_test_windows", __doc__)
     parser.add_argument("corrective_logs", type=pathlib.Path)
     parser.add_argument("ensemble_logs", type=pathlib.Path)
     args = parser.parse_args(argv)

@@ -4,16 +4,15 @@ written by `tegrasp sweep`.
     python analysis/make_success_maps.py RESULTS_DIR [--file NAME.png]
 """
 
-import argparse
 import sys
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.figures.sweep import write_success_maps
 from tegrasp_drake.sweep import load_records
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = script_parser("make_success_maps", __doc__)
     parser.add_argument("results", help="the --out folder of a sweep")
     parser.add_argument("--file", default="success_maps.png",
                         help="file name inside the results folder")

@@ -5,16 +5,15 @@ results folder written by `tegrasp sweep`.
     python analysis/make_table1.py RESULTS_DIR
 """
 
-import argparse
 import sys
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.sweep import (load_records, write_offset_table, write_statistics, write_summary,
                                  write_table1)
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = script_parser("make_table1", __doc__)
     parser.add_argument("results", help="the --out folder of a sweep")
     args = parser.parse_args(argv)
     loaded = load_records(args.results)

@@ -10,7 +10,6 @@ contact (the Reach's own: accelerating the arm), the strike's onset (the force a
 (about world x plus z) every 2 ms over those 40 ms, and when the object first moved 1 mm.
 """
 
-import argparse
 import dataclasses
 import sys
 
@@ -19,7 +18,7 @@ from pydrake.multibody.tree import JacobianWrtVariable
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake import AddScenarioController, LoadScenario, MakeSimulator, MakeStation
 from tegrasp_drake.control.controller_config import OpenLoopControllerConfig
 from tegrasp_drake.control.finger_strike import (grasp_wrench_from_torques, side_moment_nm,
@@ -72,7 +71,7 @@ def wrenches(q, tau):
 
 
 def main(argv=None) -> int:
-    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args(argv)
+    script_parser("measure_finger_strike", __doc__).parse_args(argv)
     for scene in SCENES:
         data = reach_log(*scene)
         t, w = data["t"], wrenches(data["q"], data["tau"])

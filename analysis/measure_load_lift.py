@@ -13,14 +13,13 @@ grip-settled times, and the final state. The closed-loop check of the Load-Lift 
 (recording/paper_events.py): the lift should start with the grip settled.
 """
 
-import argparse
 import dataclasses
 import json
 import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
-from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script
+from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script, script_parser
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.rig.files import JSON_ARRAY_START, write_atomically
 
@@ -54,7 +53,7 @@ def trial_row(job) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("measure_load_lift", __doc__)
     parser.add_argument("--events", default=str(package_events_dir()))
     parser.add_argument("--objects", nargs="+",
                         default=["box", "thick_cylinder", "thin_cylinder"])

@@ -10,12 +10,11 @@ and writes the mean of the template runs of each corrective transition to
 EVENTS/corrective/. The held-out runs' logs are for analysis/choose_corrective_thresholds.py.
 """
 
-import argparse
 import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
-from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script
+from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script, script_parser
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
@@ -38,7 +37,7 @@ def simulate(job) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("record_corrective_events", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("--object", default="box")
     parser.add_argument("--workers", type=int, default=2)

@@ -10,12 +10,11 @@ the other runs' logs for choosing the thresholds (analysis/choose_ensemble_thres
 apart from the sweeps that judge.
 """
 
-import argparse
 import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
-from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script
+from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script, script_parser
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.recording.campaign import (first_unwritten_log, run_log_path, simulate_run,
@@ -36,7 +35,7 @@ def simulate(job) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("record_ensemble_events", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("--runs", type=int, default=8)
     parser.add_argument("--template-runs", type=int, default=5)

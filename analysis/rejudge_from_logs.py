@@ -10,12 +10,11 @@ and named on stderr; RESULTS without records, or LOGS holding none of their logs
 (exit 1) before OUT is made.
 """
 
-import argparse
 import json
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.sweep.records import (TRIALS_FOLDER, load_records, make_record, write_record)
 from tegrasp_drake.runs.trial import judge_trial
@@ -25,7 +24,7 @@ from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("rejudge_from_logs", __doc__)
     parser.add_argument("results", type=pathlib.Path)
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)

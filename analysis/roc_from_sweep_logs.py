@@ -12,13 +12,12 @@ Load, Place-Unload from the entry into Place. The physical events are the trial'
 (result physical_events, kept in the log's meta).
 """
 
-import argparse
 import pathlib
 import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.control.controller_registry import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
@@ -48,7 +47,7 @@ def armed_from(transitions, transition):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("roc_from_sweep_logs", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)
     parser.add_argument("--controller", default="taxel_aware")

@@ -11,12 +11,11 @@ where all four came nearest their thresholds, at "at_s") and "match". --ra-envel
 scores with the RA envelope on both sides (events/ra_envelope.py).
 """
 
-import argparse
 import json
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.events.replay import tactile_trial_from_log
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
@@ -34,16 +33,15 @@ def diagnose(run: pathlib.Path, events_dir, ra_envelope_hz: float) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = script_parser("transfer_diagnosis", __doc__)
     parser.add_argument("events", help="the events folder the trials read")
     parser.add_argument("runs", nargs="+", help="trial folders (tegrasp trial --out)")
     parser.add_argument("--ra-envelope-hz", type=float, default=0.0)
     args = parser.parse_args(argv)
     for run in map(pathlib.Path, args.runs):
         if not (run / "trial.npz").is_file() or not (run / "result.json").is_file():
-            print(f"transfer_diagnosis.py: error: {run} holds no trial.npz and result.json "
-                  "(give folders that `tegrasp trial --out` wrote)", file=sys.stderr)
-            return 2
+            raise SystemExit(f"transfer_diagnosis: error: {run} holds no trial.npz and "
+                             "result.json (give folders that `tegrasp trial --out` wrote)")
         print(json.dumps(diagnose(run, args.events, args.ra_envelope_hz)))
     return 0
 

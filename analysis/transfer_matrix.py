@@ -7,32 +7,24 @@ SPEC.yaml is the transfer spec the results were run with (analysis/transfer_matr
 RESULTS the folder `tegrasp transfer` wrote (its cells/ folder holds the records).
 """
 
-import argparse
 import sys
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.transfer.matrix import LoadTransferSpec
 from tegrasp_drake.transfer.report import write_transfer_reports
-from tegrasp_drake.rig.typed_yaml import ConfigError
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = script_parser("transfer_matrix", __doc__)
     parser.add_argument("spec", help="the transfer spec (YAML)")
     parser.add_argument("results", help="the folder `tegrasp transfer` wrote")
     parser.add_argument("--format", choices=FIGURE_FORMATS, default="png")
     args = parser.parse_args(argv)
-    try:
-        spec = LoadTransferSpec(args.spec)
-    except ConfigError as error:
-        print(f"transfer_matrix.py: error: {error}", file=sys.stderr)
-        return 2
+    spec = LoadTransferSpec(args.spec)  # a ConfigError: run_script's one line, EXIT_ERROR
     written = write_transfer_reports(spec, args.results, figure_format=args.format)
     if not written:
-        print(f"transfer_matrix.py: error: no finished trial in {args.results}/cells",
-              file=sys.stderr)
-        return 1
+        raise SystemExit(f"transfer_matrix: error: no finished trial in {args.results}/cells")
     for path in written:
         print(f"wrote {path}")
     return 0

@@ -6,11 +6,10 @@ sweep was re-run and its records committed.
     python analysis/update_results_page.py [docs/results.md]
 """
 
-import argparse
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import run_script
+from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.rig.files import MARKDOWN_START, read_bounded, write_atomically
 from tegrasp_drake.sweep import readme_with_summaries
 from tegrasp_drake.sweep.summary import page_with_record_commits
@@ -23,7 +22,7 @@ MAX_PAGE_BYTES = 4_000_000
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = script_parser("update_results_page", __doc__)
     parser.add_argument("page", nargs="?", default=str(PAGE))
     args = parser.parse_args(argv)
     path = pathlib.Path(args.page)

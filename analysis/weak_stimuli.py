@@ -21,18 +21,17 @@ The report lists each wait (scores, each RA window's peak in m/s^2, noise sigmas
 converter codes) and the counts per object and class.
 """
 
-import argparse
 import pathlib
 import sys
 
 from tegrasp_drake.sweep.missed_event_report import record_has_waits, report_markdown, sweep_misses
-from tegrasp_drake.commands.script_output import run_script, write_report
+from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
 from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.sweep.records import load_records
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = script_parser("weak_stimuli", __doc__)
     parser.add_argument("results", type=pathlib.Path, help="a sweep's results folder")
     parser.add_argument("logs", type=pathlib.Path, help="the sweep's --logs folder")
     parser.add_argument("--events", type=pathlib.Path, default=None,

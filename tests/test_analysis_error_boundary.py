@@ -8,6 +8,7 @@ import sys
 
 import pytest
 
+from tegrasp_drake.commands.error_boundary import EXIT_ERROR, EXIT_USAGE
 from tegrasp_drake.sweep import SweepSpec, run_sweep
 from tests.analysis_script import ANALYSIS, load_analysis_script
 from tests.fake_trials import fake_trial
@@ -72,9 +73,32 @@ def test_script_refuses_a_junk_path_in_one_line(name, tmp_path):
     junk.write_bytes(b"\xff\xfe\x00junk\x80" * 64)
     done = run_script(name, script_arguments(junk, junk / "x")[name], tmp_path)
     lines = done.stderr.strip().splitlines()
-    assert done.returncode != 0, (done.stdout, done.stderr)
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
     assert "Traceback" not in done.stderr and "internal error" not in done.stderr, done.stderr
     assert len(lines) == 1, done.stderr
+
+
+@pytest.mark.parametrize("name", SCRIPTS)
+def test_script_refuses_a_command_line_that_does_not_parse_in_one_line(name, tmp_path):
+    """Every script's parser (script_output.script_parser) ends an unknown option with the
+    code of a command line that does not parse and one line naming the script, no usage."""
+    done = run_script(name, ["--no-such-option"], tmp_path)
+    assert done.returncode == EXIT_USAGE, (done.stdout, done.stderr)
+    assert done.stdout == ""
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert lines[0].startswith(f"{name}: error: ") and f"{name}.py --help" in lines[0], lines
+
+
+@pytest.mark.parametrize("name", ["compare_ra_transients", "explain_open_loop",
+                                  "linkage_figure"])
+def test_a_figure_name_of_no_format_is_bad_input_not_a_command_line_error(name, tmp_path):
+    done = run_script(name, [str(tmp_path / "figure.jpg")], tmp_path)
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"{name}: error: "), done.stderr
+    assert "must end in one of .png, .pdf, .svg" in lines[0]
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_results_page_refuses_a_fifo_without_opening_it(tmp_path):

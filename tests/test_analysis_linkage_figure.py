@@ -29,6 +29,6 @@ def test_the_figure_is_written_in_the_format_its_name_says_and_nothing_else(tmp_
 
 def test_a_name_of_no_figure_format_is_refused_in_one_line(tmp_path):
     done = _draw(tmp_path / "finger_linkage.jpg")
-    assert done.returncode == 2
+    assert done.returncode == 1
     assert "must end in one of .png, .pdf, .svg" in done.stderr.splitlines()[-1]
     assert list(tmp_path.iterdir()) == []

@@ -9,6 +9,7 @@ import tempfile
 import traceback
 
 EXIT_ERROR = 1  # bad input refused, a file not writable, a device that did not come up
+EXIT_USAGE = 2  # a command line that does not parse (argparse's own code)
 EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
 
 

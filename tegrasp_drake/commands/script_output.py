@@ -1,11 +1,12 @@
 """The analysis scripts' (analysis/*.py) reports, written whole (a report that cannot be
 written ends the script with one line naming it), and their one error boundary, run_script."""
 
+import argparse
 import pathlib
 import signal
 import sys
 
-from tegrasp_drake.commands.error_boundary import EXIT_ERROR, internal_error
+from tegrasp_drake.commands.error_boundary import EXIT_ERROR, EXIT_USAGE, internal_error
 from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
                                      output_file_problem, write_atomically)
 
@@ -23,8 +24,31 @@ def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
 
 
 # An analysis script's exit codes are the `tegrasp` command line's (docs/user-guide.md,
-# "Exit codes"): EXIT_ERROR for input refused or nothing to do on it, EXIT_INTERNAL_ERROR
-# for an exception no check foresaw.
+# "Exit codes"): EXIT_USAGE for a command line that does not parse, EXIT_ERROR for input
+# refused (a path, a file's content, a figure name) or nothing to do on it,
+# EXIT_INTERNAL_ERROR for an exception no check foresaw.
+
+
+class _ScriptParser(argparse.ArgumentParser):
+    """argparse's parser for a script, ending a command line that does not parse with one
+    line, `<script>: error: <what>; <script>.py --help shows the usage`, and EXIT_USAGE
+    (argparse's own error prints the usage first, several lines)."""
+
+    def __init__(self, script: str, **keywords):
+        super().__init__(prog=f"{script}.py", **keywords)
+        self._script = script
+
+    def error(self, message):
+        self.exit(EXIT_USAGE, f"{self._script}: error: {error_line(message)}; "
+                              f"{self.prog} --help shows the usage\n")
+
+
+def script_parser(script: str, doc: str) -> argparse.ArgumentParser:
+    """The argument parser of analysis/`script`.py, described by the first paragraph of its
+    docstring `doc`: every script's command line is read through it, so each refuses one
+    that does not parse alike (_ScriptParser). A value that parses but cannot be used (a
+    figure name of no format, a path) is refused after parsing, with EXIT_ERROR."""
+    return _ScriptParser(script, description=doc.strip().split("\n\n")[0])
 
 
 def run_script(main, script: str, argv=None) -> int:
