@@ -22,10 +22,10 @@ import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).parent))
 
-from compare_hands import failure_class, load  # noqa: E402
+from compare_hands import failure_class, load_folders  # noqa: E402
 
-from tegrasp_drake.commands.script_output import (run_script, script_parser,  # noqa: E402
-                                                   write_report)
+from tegrasp_drake.commands.script_output import (  # noqa: E402
+    refuse_unusable_output, run_script, script_parser, write_report)
 from tegrasp_drake.scenario.trial_result import TrialResult  # noqa: E402
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value  # noqa: E402
 from tegrasp_drake.sweep.table import succeeded as _succeeded  # noqa: E402
@@ -117,8 +117,9 @@ def main(argv=None) -> int:
     parser.add_argument("--label", default="coarse",
                         help="the variant's name in the report (default: coarse)")
     args = parser.parse_args(argv)
-    text = report(load(args.reference, "compare_geometry"), load(args.coarse, "compare_geometry"),
-                  args.label)
+    refuse_unusable_output("compare_geometry", args.out)
+    reference, coarse = load_folders([args.reference, args.coarse], "compare_geometry")
+    text = report(reference, coarse, args.label)
     write_report(args.out, text + "\n", script="compare_geometry")
     print(text)
     return 0

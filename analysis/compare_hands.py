@@ -15,26 +15,32 @@ import collections
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
+from tegrasp_drake.commands.script_output import (refuse_unusable_output, run_script,
+                                                   script_parser, write_report)
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
 
-def load(folder: pathlib.Path, script: str = "compare_hands") -> dict:
-    """{trial_id: (trial, result)} of a folder's finished records (sweep.load_records: a
-    record that does not read is named on stderr and left out); SystemExit naming the
-    folder when none is finished."""
-    loaded = load_records(folder)
-    for path, reason in loaded.corrupt.items():
-        print(f"{script}: skipped corrupt record {path}: {reason}", file=sys.stderr)
-    records = {trial_id: (record["trial"], record["result"])
-               for trial_id, record in loaded.records.items() if record.get("status") == "ok"}
-    if not records:
-        raise SystemExit(f"{script}: {folder} holds no finished trial record (trials/*.json "
-                         "with status ok); give the --out folder of a `tegrasp sweep`")
-    return records
+def load_folders(folders, script: str = "compare_hands") -> list[dict]:
+    """Each folder's {trial_id: (trial, result)} of finished records (sweep.load_records),
+    all read before a word is said: SystemExit naming the first folder with no finished
+    record, with nothing printed before it; then each record that does not read, left out,
+    is named on stderr."""
+    loaded = [(folder, load_records(folder)) for folder in folders]
+    finished = [{trial_id: (record["trial"], record["result"])
+                 for trial_id, record in records.records.items()
+                 if record.get("status") == "ok"} for _, records in loaded]
+    for (folder, _), records in zip(loaded, finished):
+        if not records:
+            raise SystemExit(f"{script}: {folder} holds no finished trial record "
+                             "(trials/*.json with status ok); give the --out folder of a "
+                             "`tegrasp sweep`")
+    for _, records in loaded:
+        for path, reason in records.corrupt.items():
+            print(f"{script}: skipped corrupt record {path}: {reason}", file=sys.stderr)
+    return finished
 
 
 def success(result) -> bool:
@@ -105,10 +111,12 @@ def main(argv=None) -> int:
     parser.add_argument("linkage", type=pathlib.Path)
     parser.add_argument("prismatic", type=pathlib.Path, nargs="+")
     args = parser.parse_args(argv)
+    refuse_unusable_output("compare_hands", args.out)
+    linkage, *prismatic_runs = load_folders([args.linkage, *args.prismatic])
     prismatic = {}
-    for folder in args.prismatic:
-        prismatic.update(load(folder))
-    text = f"# Prismatic against linkage hand\n\n{report(prismatic, load(args.linkage))}"
+    for records in prismatic_runs:
+        prismatic.update(records)
+    text = f"# Prismatic against linkage hand\n\n{report(prismatic, linkage)}"
     write_report(args.out, text, script="compare_hands")
     print(f"wrote {args.out}")
     return 0

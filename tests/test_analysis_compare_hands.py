@@ -2,9 +2,14 @@
 trial and the linkage run's failures are named by the package's failure classes
 (sweep/failure_classes.py), not by a text of the script's own."""
 
+import shutil
+
+import pytest
 
 from tests.fake_trials import timeline_ending
-from tests.analysis_script import load_analysis_script
+from tests.analysis_script import ANALYSIS, load_analysis_script
+
+RECORDS = ANALYSIS / "results_linkage" / "paper_grid" / "trials"
 
 
 def compare_hands():
@@ -30,3 +35,19 @@ def test_a_changed_trial_and_the_failures_are_named_by_the_packages_failure_clas
     assert "| taxel_aware/box/m02/a0 | +0, +25 | held and unloaded | struck on approach |" \
         in text, text
     assert "| taxel_aware | struck on approach | 1 |" in text, text
+
+
+def test_a_folder_without_records_is_refused_before_anything_is_printed(tmp_path, capsys):
+    """Every folder is read before a word is said: a corrupt record in the first one read is
+    not announced when a later one is refused."""
+    linkage, prismatic, out = tmp_path / "linkage", tmp_path / "prismatic", tmp_path / "out.md"
+    (linkage / "trials").mkdir(parents=True)
+    (prismatic / "trials").mkdir(parents=True)
+    record = sorted(RECORDS.glob("*.json"))[0]
+    shutil.copy(record, prismatic / "trials")
+    (linkage / "trials" / record.name).write_text("{not json")
+    with pytest.raises(SystemExit) as refused:
+        compare_hands().main([str(out), str(linkage), str(prismatic)])
+    assert str(refused.value).startswith(f"compare_hands: {linkage} holds no finished trial")
+    assert capsys.readouterr() == ("", "")
+    assert not out.exists()
