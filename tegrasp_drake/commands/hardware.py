@@ -64,7 +64,7 @@ def register(subparsers) -> None:
     parser.add_argument("--overwrite", action="store_true",
                         help="replace the --log FILE (and its result) if it exists; a run "
                         "that fails keeps them and writes its own beside them as "
-                        "LOG.failed-<pid>.lcmlog")
+                        "LOG.failed.lcmlog, replacing an earlier failed run's")
     parser.add_argument("--duration", type=duration_seconds, default=None,
                         help="stop after this many seconds, at most "
                         f"{MAX_DURATION_S:g} (default: when the grasp ends)")
@@ -141,9 +141,27 @@ def free_space_problem(folder) -> str | None:
 
 def failed_run_path(log) -> pathlib.Path:
     """Where a failed run's log goes when --overwrite would have replaced an earlier run's:
-    LOG.failed-<pid>.lcmlog beside it (its result: LOG.failed-<pid>.result.json)."""
+    LOG.failed.lcmlog beside it (its result: LOG.failed.result.json), the newest failed
+    run's only: --overwrite replaces a failed run's pair as it does any run's, while the
+    earlier run that did not fail stays. A LOG without a suffix gets .lcmlog there, so the
+    failed result is never named as LOG's own (result_path_beside_log takes the stem)."""
     log = pathlib.Path(log)
-    return log.with_name(f"{log.stem}.failed-{os.getpid()}{log.suffix}")
+    return log.with_name(f"{log.stem}.failed{log.suffix or '.lcmlog'}")
+
+
+def earlier_failed_runs_words(log) -> str:
+    """'; N failed runs' logs of an earlier version are beside it (LOG.failed-<pid>.lcmlog,
+    ...)', or '': those (named by the failed run's process id) are the user's to keep or
+    delete; this version neither replaces nor removes them."""
+    log = pathlib.Path(log)
+    older = sorted(path.name for path in log.parent.glob(f"{log.stem}.failed-*{log.suffix}")
+                   if path.name[len(log.stem) + len(".failed-"):][:1].isdigit()
+                   and not path.name.endswith(".result.json"))  # a LOG without a suffix
+    if not older:
+        return ""
+    return (f"; {count_text(len(older), 'earlier failed run')} kept beside it by an earlier "
+            f"version ({older[0]}{', ...' if len(older) > 1 else ''}) stay: delete them when "
+            "you no longer need them")
 
 
 def keep_incomplete_log(staged, log) -> pathlib.Path | None:
@@ -192,10 +210,13 @@ def run(args) -> int:
     log = args.log or (f"out/hardware/run-"
                        f"{datetime.datetime.now().strftime('%Y%m%d-%H%M%S')}.lcmlog")
     result_path = result_path_beside_log(log)
-    for taken in (pathlib.Path(log), result_path):
+    failed_log = failed_run_path(log)
+    for taken in (pathlib.Path(log), result_path,
+                  failed_log, result_path_beside_log(failed_log)):
         # The write rule first: --overwrite replaces a file, never a folder (of the user's
         # files), a device or a FIFO, so such a path is refused as such whether it exists
-        # or not, before it is said to hold an earlier run.
+        # or not, before it is said to hold an earlier run. The same for where a failed
+        # run's pair would go (failed_run_path).
         problem = output_file_problem(taken)
         if problem:
             where = "" if taken == pathlib.Path(log) else f": {taken}"
@@ -258,6 +279,8 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
     keep_earlier = failed and earlier
     target = failed_run_path(log) if keep_earlier else pathlib.Path(log)
     target_result = result_path_beside_log(target)
+    replaced_failed = ([taken for taken in (target, target_result) if taken.exists()]
+                       if keep_earlier else [])
     logged = staged.exists()  # none when the bus could not be recorded, or was removed
     kept_words = ("; the earlier run's " + " and ".join(str(taken) for taken in earlier)
                   + " are kept" if earlier else "")
@@ -276,6 +299,7 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
         logger.info("hardware: replaced the earlier run's "
                     + " and ".join(f"{'log' if taken == pathlib.Path(log) else 'result'} "
                                    f"{taken}" for taken in earlier))
+    older_failed_words = earlier_failed_runs_words(log) if keep_earlier else ""
     log = target
     result_path = target_result
     result = dataclasses.replace(result, log_path=pathlib.Path(log))
@@ -291,6 +315,10 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
         print(f"tegrasp: error: {result.log_fault}; the run was stopped", file=sys.stderr,
               flush=True)
     if keep_earlier:
-        print(f"tegrasp: the run failed{kept_words}; this run's are {log} and {result_path}",
+        replaced_words = ("; they replace the earlier failed run's "
+                          + " and ".join(str(taken) for taken in replaced_failed)
+                          if replaced_failed else "")
+        print(f"tegrasp: the run failed{kept_words}; this run's are {log} and {result_path}"
+              f"{replaced_words}{older_failed_words}",
               file=sys.stderr, flush=True)
     return 2 if failed else 0

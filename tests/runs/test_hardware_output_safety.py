@@ -74,12 +74,71 @@ def test_a_failed_run_keeps_the_earlier_runs_log_and_result(earlier_run, monkeyp
     assert cli.main(HARDWARE) == 2
     assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
     assert (earlier_run / "run.result.json").read_text() == '{"earlier": true}\n'
-    failed = earlier_run / f"run.failed-{os.getpid()}.lcmlog"
+    failed = earlier_run / "run.failed.lcmlog"
     assert failed.read_bytes() == b"this run's log"
-    result = json.loads((earlier_run / f"run.failed-{os.getpid()}.result.json").read_text())
+    result = json.loads((earlier_run / "run.failed.result.json").read_text())
     assert result["log"] == failed.name and result["log_fault"]
     err = capfd.readouterr().err
     assert "run.lcmlog and run.result.json are kept" in err
+
+
+FAULT = "the LCM log stopped: the disk holding it has less than 1 MB free"
+
+
+def test_a_failed_run_replaces_the_earlier_failed_runs_pair_and_names_it(earlier_run,
+                                                                         monkeypatch, capfd):
+    """Failed runs do not pile up beside --log: the newest failed pair replaces the one
+    before, which the stderr line names; the run that did not fail stays."""
+    (earlier_run / "run.failed.lcmlog").write_bytes(b"an earlier failed run's log")
+    (earlier_run / "run.failed.result.json").write_text('{"earlier failed": true}\n')
+    monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(log_fault=FAULT))
+    assert cli.main(HARDWARE) == 2
+    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+    assert (earlier_run / "run.failed.lcmlog").read_bytes() == b"this run's log"
+    assert sorted(path.name for path in earlier_run.iterdir()) == [
+        "hw.yaml", "run.failed.lcmlog", "run.failed.result.json", "run.lcmlog",
+        "run.result.json"]
+    line = [line for line in capfd.readouterr().err.splitlines() if "the run failed" in line]
+    assert len(line) == 1
+    assert ("they replace the earlier failed run's run.failed.lcmlog and "
+            "run.failed.result.json") in line[0]
+
+
+def test_failed_runs_of_an_earlier_version_are_left_and_said(earlier_run, monkeypatch,
+                                                              capfd):
+    older = [earlier_run / f"run.failed-{pid}.lcmlog" for pid in (4242, 4243)]
+    for path in older:
+        path.write_bytes(b"an earlier version's failed run")
+    monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(log_fault=FAULT))
+    assert cli.main(HARDWARE) == 2
+    assert all(path.read_bytes() == b"an earlier version's failed run" for path in older)
+    err = capfd.readouterr().err
+    assert "2 earlier failed runs kept beside it by an earlier version (run.failed-4242" in err
+
+
+def test_a_failed_run_of_a_log_without_a_suffix_keeps_the_earlier_result(tmp_path,
+                                                                          monkeypatch):
+    """LOG.failed's result would be named as LOG's own (the stem is LOG): it gets .lcmlog."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    (tmp_path / "run").write_bytes(b"the earlier run's log")
+    (tmp_path / "run.result.json").write_text('{"earlier": true}\n')
+    monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(log_fault=FAULT))
+    assert cli.main(HARDWARE_TO + ["run"]) == 2
+    assert (tmp_path / "run.result.json").read_text() == '{"earlier": true}\n'
+    assert (tmp_path / "run.failed.lcmlog").read_bytes() == b"this run's log"
+    assert (tmp_path / "run.failed.result.json").exists()
+
+
+def test_a_folder_where_a_failed_run_would_go_is_refused_before_the_devices(earlier_run,
+                                                                            monkeypatch):
+    (earlier_run / "run.failed.lcmlog").mkdir()
+    monkeypatch.setattr(hardware_run, "run_on_hardware", lambda *a, **k: pytest.fail(
+        "the devices came up"))
+    with pytest.raises(SystemExit) as refused:
+        cli.main(HARDWARE)
+    assert "run.failed.lcmlog" in str(refused.value.code)
+    assert "\n" not in str(refused.value.code)
 
 
 def test_a_run_that_ends_well_replaces_the_earlier_runs_log_and_result(earlier_run,
