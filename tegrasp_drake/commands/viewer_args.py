@@ -8,6 +8,7 @@ import sys
 from tegrasp_drake.rig.files import output_file_problem, write_atomically
 
 HTML_START = b"<!DOCTYPE html>"  # how Meshcat.StaticHtml's page starts (an HTML5 document)
+REPLAY_TITLE = b"<title>Drake MeshCat</title>"  # in that page's head, within its first kB
 
 
 def add_viewer_arguments(parser) -> None:
@@ -25,10 +26,29 @@ def check_html_path(args) -> pathlib.Path | None:
     if args.html is None:
         return None
     path = pathlib.Path(args.html)
-    problem = output_file_problem(path)
+    problem = output_file_problem(path) or _replacing_problem(path, args)
     if problem:
         raise SystemExit(f"tegrasp: error: --html {path} {problem}, e.g. replay.html")
     return path
+
+
+def _replacing_problem(path: pathlib.Path, args) -> str | None:
+    """Why an existing `path` may not be replaced by the run's page, or None: only a replay
+    page (a Meshcat StaticHtml head) is replaced, and only with --overwrite, or by `tegrasp
+    demo`, which replaces its last run."""
+    if not path.exists():
+        return None
+    try:  # the head only: a huge file is no page of ours, and is not read
+        with open(path, "rb") as existing:
+            head = existing.read(1024)
+    except OSError as e:
+        return f"cannot be read to check what it is ({e.strerror or e}); give another file name"
+    if not (head.startswith(HTML_START) and REPLAY_TITLE in head):
+        return ("exists and is not a replay page (no Meshcat page head in its first kB); "
+                "give another file name, or remove it yourself")
+    if not (getattr(args, "overwrite", False) or getattr(args, "replace_default_out", False)):
+        return "exists (an earlier replay); pass --overwrite to replace it, or give a new file name"
+    return None
 
 
 def start_viewer(args):

@@ -93,3 +93,37 @@ def test_an_html_write_removes_what_a_killed_write_of_that_page_left(tmp_path):
     write_replay_html(_Page(), target)
     assert sorted(tmp_path.iterdir()) == sorted([target, *kept])
     assert target.read_text() == _Page.StaticHtml()
+
+
+def _replay_page(path, meshcat=None):
+    return write_replay_html(meshcat or start_viewer(_args(html=str(path))), path)
+
+
+def test_html_over_a_file_that_is_no_replay_is_refused_even_with_overwrite(tmp_path):
+    notes = tmp_path / "notes.txt"
+    notes.write_text("notes")
+    for overwrite in (False, True):
+        with pytest.raises(SystemExit, match=r"--html .*notes.txt exists and is not a replay "
+                           r"page .*give another file name"):
+            check_html_path(_args(html=str(notes), overwrite=overwrite))
+    assert notes.read_text() == "notes"
+
+
+def test_html_over_an_earlier_replay_needs_overwrite_or_the_demo(tmp_path):
+    page = _replay_page(tmp_path / "replay.html")
+    with pytest.raises(SystemExit, match="exists .*pass --overwrite to replace it"):
+        check_html_path(_args(html=str(page), overwrite=False, replace_default_out=False))
+    assert check_html_path(_args(html=str(page), overwrite=True)) == page
+    assert check_html_path(_args(html=str(page), overwrite=False,
+                                 replace_default_out=True)) == page
+
+
+def test_a_trial_refuses_an_html_file_of_the_users_before_it_runs(tmp_path, capfd,
+                                                                    monkeypatch):
+    from tests.test_bad_input import run_cli
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "notes.txt").write_text("notes")
+    code, text = run_cli(["trial", "-q", "--html", "notes.txt", "--out", "o"], capfd)
+    assert code == 1 and "--html notes.txt exists and is not a replay page" in text, text
+    assert (tmp_path / "notes.txt").read_text() == "notes"
+    assert not (tmp_path / "o").exists()
