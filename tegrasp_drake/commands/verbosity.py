@@ -6,6 +6,7 @@ import logging
 import sys
 
 PACKAGE_LOGGER = "tegrasp_drake"
+DRAKE_LOGGER = "drake"  # where pydrake sends Drake's log
 LOG_FORMAT = "%(levelname)s %(name)s: %(message)s"
 
 
@@ -52,13 +53,15 @@ def log_level(verbose: int, quiet: bool) -> int:
 
 def configure_logging(args) -> None:
     """Sends log records to stderr (a StderrLogHandler on the root logger, if it has no
-    handler yet) and sets the package's level; other libraries stay at warnings (pydrake
-    keeps its own level)."""
+    handler yet) and sets the package's level; other libraries stay at warnings, Drake's
+    (pydrake hands its log to the Python logger "drake", at INFO) too unless -v: its INFO
+    lines (Meshcat's port) are not warnings."""
     root = logging.getLogger()
     if not root.handlers:
         handler = StderrLogHandler()
         handler.setFormatter(logging.Formatter(LOG_FORMAT))
         root.addHandler(handler)
         root.setLevel(logging.WARNING)
-    logging.getLogger(PACKAGE_LOGGER).setLevel(
-        log_level(getattr(args, "verbose", 0), getattr(args, "quiet", False)))
+    level = log_level(getattr(args, "verbose", 0), getattr(args, "quiet", False))
+    logging.getLogger(PACKAGE_LOGGER).setLevel(level)
+    logging.getLogger(DRAKE_LOGGER).setLevel(max(level, logging.INFO))

@@ -74,6 +74,26 @@ def test_verbosity_sets_the_package_log_level():
         arguments("-v", "--quiet")  # one or the other
 
 
+
+@pytest.mark.parametrize("flags, says_meshcat_port", [((), False), (("-q",), False),
+                                                     (("-v",), True)])
+def test_drakes_info_lines_show_only_with_verbose(flags, says_meshcat_port):
+    # Meshcat logs its port at INFO through pydrake's "drake" logger: not a warning. In a
+    # child process: pytest's own root handlers would take the records here.
+    script = ("import argparse, sys\n"
+              "from pydrake.geometry import Meshcat\n"
+              "from tegrasp_drake.commands.verbosity import (add_verbosity_arguments,\n"
+              "                                              configure_logging)\n"
+              "parser = argparse.ArgumentParser()\n"
+              "add_verbosity_arguments(parser)\n"
+              "configure_logging(parser.parse_args(sys.argv[1:]))\n"
+              "Meshcat()\n")
+    child = subprocess.run([sys.executable, "-c", script, *flags], capture_output=True,
+                           text=True, timeout=300,
+                           env={**os.environ, "PYTHONPATH": package_path()})
+    assert child.returncode == 0, child.stderr
+    assert ("Meshcat listening" in child.stderr) == says_meshcat_port, child.stderr
+
 @pytest.mark.slow
 @pytest.mark.parametrize("quiet", [False, True])
 def test_a_demo_on_a_terminal_shows_the_bar_unless_quiet(tmp_path, quiet):
