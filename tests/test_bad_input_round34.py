@@ -174,7 +174,7 @@ def test_a_stored_result_with_another_timeline_is_refused(tmp_path, transitions,
                  "final_mode": "Failed"}},
      "meta 'result' is not a trial result's JSON form: TrialResult: field 'unload_success' is "
      "true but 'final_mode' is Failed"),
-    ({"result": {**RESULT, "corrective_actions": ["x" * 100_000] * 50}},
+    ({"result": {**RESULT, "corrective_actions": ["x" * 100_000] * 30}},
      "field 'corrective_actions[0]' must be one of"),
 ], ids=["object", "controller", "unload-in-failed", "actions"])
 def test_a_stored_result_the_log_contradicts_is_refused(tmp_path, change, expected):

@@ -70,9 +70,11 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
 
 
 def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
-                       known=None, kind="an .npz") -> dict[str, np.ndarray]:
+                       max_text_chars: int | None = None, known=None,
+                       kind="an .npz") -> dict[str, np.ndarray]:
     """The arrays `names` (and `optional` ones present) of the .npz at `path`, once their
-    headers fit `max_bytes` and hold numbers (text for `text`), and (when `known`, the array
+    headers fit `max_bytes` and hold numbers (text for `text`, each at most `max_text_chars`
+    characters when given; numpy stores 4 bytes a character), and (when `known`, the array
     names the format has, is given) it holds no other array; NpzHeaderError otherwise, naming
     `kind` (what the file is meant to be), before a byte is read when `path` is not a regular
     file (a FIFO or /dev/zero never ends)."""
@@ -106,6 +108,10 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
             if dtype.kind not in ("U" if name in text else "biuf"):
                 raise NpzHeaderError(f"'{name}' holds {dtype} values, not "
                                      f"{'text' if name in text else 'numbers'}")
+            chars = headers[name][2] // 4
+            if name in text and max_text_chars is not None and chars > max_text_chars:
+                raise NpzHeaderError(f"'{name}' declares {chars} characters of text, more than "
+                                     f"the {max_text_chars} {kind} holds")
         total = sum(headers[name][2] for name in wanted)
         if total > max_bytes:
             raise NpzHeaderError(f"its arrays declare {total} bytes, more than the "

@@ -126,6 +126,7 @@ def load_trial_log(path: PathLike) -> TrialLog:
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
                                     max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",),
+                                    max_text_chars=MAX_META_CHARS,
                                     known=("meta", *ARRAY_FIELDS), kind="a trial log")
         meta = load_json(str(arrays.pop("meta")))
     except NpzHeaderError as e:
@@ -218,6 +219,14 @@ META_FIELDS = {
     "wall_time_s": ("be a duration of at least 0 s", _is_duration),
     "versions": ("map package names to version text", _is_versions),
 }
+
+
+META_KEYS = frozenset({*META_FIELDS, "transitions", "format_version"})
+# [characters] The metadata's JSON holds the scenario's YAML (its file at most
+# typed_yaml.MAX_YAML_BYTES, 1 MB), the transitions twice (in 'transitions' and the result;
+# a sweep record, result and all, is at most records.MAX_RECORD_BYTES, 1 MB) and a few short
+# fields: under 3 MB; 4 M characters bound it before its 16 MB are decompressed.
+MAX_META_CHARS = 4_000_000
 
 
 def most_transitions(span_s: float, controller=None) -> int:
@@ -418,6 +427,10 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
             if str(e).startswith("lacks the field"):
                 return f"meta 'transitions[{k}]' {e}"
             return f"meta 'transitions[{k}]' is not a transition ({shorten(str(e))})"
+    unknown = sorted(key for key in meta if key not in META_KEYS)
+    if unknown:
+        return (f"meta holds the key '{shorten(str(unknown[0]))}', which no trial log has (its "
+                f"keys: {', '.join(sorted(META_KEYS))})")
     for key, (what, is_valid) in META_FIELDS.items():
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
