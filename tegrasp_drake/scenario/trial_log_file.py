@@ -501,7 +501,7 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
                         f"'{time_name}' need {expected}")
     return (time_bases_problem(arrays, scenario)
             or nonfinite_signals(arrays) or out_of_range_signals(arrays)
-            or sensor_range_problem(arrays, scenario)
+            or sensor_range_problem(arrays, scenario) or object_path_problem(arrays, scenario)
             or object_orientation_problem(arrays) or joint_angle_problem(arrays))
 
 
@@ -663,12 +663,16 @@ class SensorBounds:
     """The physical range of the logged sensor channels and object position, each from where
     its model is declared: taxels [low, high] (N, or counts: taxel_reading_range),
     pad_acceleration, the largest |reading| [m/s^2] (pad_reading_bound_mps2), object_xyz,
-    the (low, high) [m, world] of the object's x, y and z (object_position_bounds)."""
+    the (low, high) [m, world] of the object's x, y and z over the whole log
+    (object_position_bounds), object_speed [m/s] (object_speed_bound_mps) and gravity
+    [m/s^2], from which object_path_problem bounds each sample by its own time."""
     taxels: tuple[float, float]
     taxel_unit: str
     pad_acceleration: float
     object_xyz: tuple
     whose: str
+    object_speed: float = 0.0
+    gravity: float = 0.0
 
 
 def _pad_speed_mps() -> float:
@@ -744,10 +748,11 @@ def sensor_bounds(scenario, duration_s: float) -> SensorBounds:
     taxel_ranges = [taxel_reading_range(config) for config in tactile]
     pad = max(pad_reading_bound_mps2(config, time_step_s=time_step,
                                      pad_speed_mps=_pad_speed_mps()) for config in vibration)
-    xyz = object_position_bounds(duration_s, object_speed_bound_mps(impulse),
-                                 UniformGravityFieldElement.kDefaultStrength)
+    speed, gravity = object_speed_bound_mps(impulse), UniformGravityFieldElement.kDefaultStrength
+    xyz = object_position_bounds(duration_s, speed, gravity)
     return SensorBounds(taxels=(min(r[0] for r in taxel_ranges), max(r[1] for r in taxel_ranges)),
-                        taxel_unit=unit, pad_acceleration=pad, object_xyz=xyz, whose=whose)
+                        taxel_unit=unit, pad_acceleration=pad, object_xyz=xyz, whose=whose,
+                        object_speed=speed, gravity=gravity)
 
 
 def _sensor_limits(bounds: SensorBounds, duration_s: float) -> list[tuple]:
@@ -796,4 +801,49 @@ def sensor_range_problem(arrays: dict, scenario=None) -> str | None:
             return (f"'{name}' sample {k} column {column}{named} holds "
                     f"{number_text(float(values[k]))} {unit}, outside {number_text(low)} to "
                     f"{number_text(high)} {unit}, {why}")
+    return None
+
+
+# [m] What the object's logged position may move between two samples beyond its speed bound:
+# the contact solver's penetration corrections are sub-millimetre (a pad's squeeze of a held
+# object is 0.1 mm, grasp_outcome.PADS_MEET_OPENING_M's note); 1 mm is ten times that.
+OBJECT_STEP_SLACK_M = 1e-3
+
+
+def object_path_problem(arrays: dict, scenario=None) -> str | None:
+    """The first object position in `arrays` (object_state 4 to 6 at t_slow; finite, of their
+    shapes) off where the object can be by its own time (object_position_bounds at that time),
+    or that moved from the sample before faster than it can move (the speed bound plus what
+    gravity adds by then, plus OBJECT_STEP_SLACK_M), named with its sample and time; else None.
+    sensor_range_problem checks the same bounds over the whole log."""
+    from tegrasp_drake.scenario.object_placement import object_position_bounds
+    if "object_state" not in arrays or "t_slow" not in arrays or not len(arrays["t_slow"]):
+        return None
+    t = np.asarray(arrays["t_slow"], dtype=float)
+    xyz = np.asarray(arrays["object_state"], dtype=float)[:, 4:7]
+    bounds = sensor_bounds(scenario, float(t[-1]))
+    elapsed = np.maximum(t, 0.0)
+    for k, ((low, high), axis) in enumerate(zip(
+            object_position_bounds(elapsed, bounds.object_speed, bounds.gravity), "xyz")):
+        outside = np.flatnonzero((xyz[:, k] < low) | (xyz[:, k] > high))
+        if outside.size:
+            i = outside[0]
+            return (f"'object_state' sample {i} (t = {number_text(float(t[i]))} s) puts the "
+                    f"object's {axis} at {number_text(float(xyz[i, k]))} m, outside "
+                    f"{number_text(float(np.broadcast_to(low, t.shape)[i]))} to "
+                    f"{number_text(float(np.broadcast_to(high, t.shape)[i]))} m, where "
+                    f"{bounds.whose} object can be by then (on the table at the start, moving "
+                    "no faster than the hand or a hit drives it, or falling)")
+    if len(t) < 2:
+        return None
+    steps = np.linalg.norm(np.diff(xyz, axis=0), axis=1)
+    reach = ((bounds.object_speed + bounds.gravity * elapsed[1:]) * np.diff(t)
+             + OBJECT_STEP_SLACK_M)
+    too_far = np.flatnonzero(steps > reach)
+    if too_far.size:
+        i = too_far[0] + 1
+        return (f"'object_state' sample {i} (t = {number_text(float(t[i]))} s) puts the object "
+                f"{number_text(float(steps[i - 1]))} m from the sample before, more than the "
+                f"{number_text(float(reach[i - 1]))} m {bounds.whose} object can move in "
+                f"{number_text(float(t[i] - t[i - 1]))} s")
     return None
