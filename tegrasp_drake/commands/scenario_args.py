@@ -72,7 +72,7 @@ def controller_events(scenario, events_dir):
     check_events_folder(events_dir)
     if scenario.controller.events_folder is None:
         return None
-    from tegrasp_drake.scenario.scenario_events import (another_hands_events,
+    from tegrasp_drake.scenario.scenario_events import (another_worlds_events,
                                                        load_controller_events)
     from tegrasp_drake.events import MemorizedEventError
     try:
@@ -82,7 +82,7 @@ def controller_events(scenario, events_dir):
                          f"the memorized "
                          f"events of '{scenario.object.name}': {e}") from None
     try:
-        warning = another_hands_events(scenario, events)
+        warning = another_worlds_events(scenario, events)
     except ConfigError as e:
         raise SystemExit(f"tegrasp: error: {e}") from None
     if warning:

@@ -94,30 +94,55 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
 HAND_BEFORE_THE_MODEL_SETTING = "prismatic"
 
 
-def recorded_hand(event) -> str | None:
-    """The `gripper.model` of the scenario an event was recorded in, or None when its
-    scenario text is not a scenario (a note, e.g. an ensemble's combined runs). Read as every
-    scenario is (parse_yaml): YAML past the reader's limits is a ConfigError naming the event."""
+def recorded_setting(event, section: str, key: str, default=None) -> str | None:
+    """The text value of `section.key` in the scenario an event was recorded in (`default`
+    when the section has no such key), or None when its scenario text is not a scenario (a
+    note, e.g. an ensemble's combined runs) or holds no such section. Read as every scenario
+    is (parse_yaml): YAML past the reader's limits is a ConfigError naming the event."""
     try:
         recorded = parse_yaml(event.scenario,
                               f"memorized event {event.relative_path()}: its scenario")
     except YamlSyntaxError:
         return None
-    gripper = recorded.get("gripper") if isinstance(recorded, dict) else None
-    if not isinstance(gripper, dict):
+    settings = recorded.get(section) if isinstance(recorded, dict) else None
+    if not isinstance(settings, dict):
         return None
-    model = gripper.get("model", HAND_BEFORE_THE_MODEL_SETTING)
-    return model if isinstance(model, str) else None
+    value = settings.get(key, default)
+    return value if isinstance(value, str) else None
 
 
-def another_hands_events(scenario, events: dict) -> str | None:
-    """A one-line warning when `events` were recorded on a hand other than `gripper.model` (on
-    purpose in the transfer study; else most likely --events names the wrong folder), else None."""
+def recorded_hand(event) -> str | None:
+    """The `gripper.model` of the scenario an event was recorded in (recorded_setting)."""
+    return recorded_setting(event, "gripper", "model", HAND_BEFORE_THE_MODEL_SETTING)
+
+
+# The sensor settings whose change makes memorized events another world's, as the hand's does
+# (the transfer study, docs/transfer.md: events recorded through one transducer miss or fire
+# early through the other): (section, key, what its values name).
+EVENT_WORLD_SENSORS = (("tactile", "transducer", "taxels"),
+                       ("vibration", "transducer", "RA transducer"))
+
+
+def another_worlds_events(scenario, events: dict) -> str | None:
+    """A one-line warning when `events` were recorded on a hand other than `gripper.model`,
+    or through other SA or RA transducers than the scenario's (on purpose in the transfer
+    study; else most likely --events names the wrong folder), else None."""
+    differences = []
     hands = {recorded_hand(event) for event in events.values()} - {None}
     others = sorted(hands - {scenario.gripper.model})
-    if not others:
+    if others:
+        differences.append(f"on the {' and '.join(others)} hand and are matched on the "
+                           f"{scenario.gripper.model} hand")
+    for section, key, what in EVENT_WORLD_SENSORS:
+        live = getattr(getattr(scenario, section), key)
+        recorded = {recorded_setting(event, section, key) for event in events.values()}
+        others = sorted(recorded - {None, live})
+        if others:
+            differences.append(f"with {' and '.join(others)} {what} and are matched with "
+                               f"{live} {what}")
+    if not differences:
         return None
-    return (f"the memorized events of '{scenario.object.name}' were recorded on the "
-            f"{' and '.join(others)} hand and are matched on the {scenario.gripper.model} "
-            "hand: expect missed or early triggers (record the hand's own with "
-            "`tegrasp record-events --set gripper.model=...`)")
+    return (f"the memorized events of '{scenario.object.name}' were recorded "
+            f"{'; and '.join(differences)}: expect missed or early triggers (record this "
+            "world's own with `tegrasp record-events` and the same --set, e.g. "
+            "--set gripper.model=...)")

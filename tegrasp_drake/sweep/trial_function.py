@@ -82,7 +82,7 @@ def check_sweep_events(trials, events_dir=None) -> None:
     """ConfigError naming the trial, file and remedy when a trial's events are missing or of another
     object (once per object and controller, before anything runs); a warning for another hand's."""
     from tegrasp_drake.events import MemorizedEventError
-    from tegrasp_drake.scenario.scenario_events import another_hands_events
+    from tegrasp_drake.scenario.scenario_events import another_worlds_events
     from tegrasp_drake.rig.typed_yaml import ConfigError
     checked = set()
     for trial in trials:
@@ -95,7 +95,7 @@ def check_sweep_events(trials, events_dir=None) -> None:
         except MemorizedEventError as error:
             raise ConfigError(f"trial {trial['trial_id']} ({trial['controller']} on "
                               f"'{trial['object_name']}'): {error}") from None
-        warning = events and another_hands_events(scenario, events)
+        warning = events and another_worlds_events(scenario, events)
         if warning:
             logger.warning(warning)
 

@@ -9,7 +9,7 @@ import pytest
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import LoadScenario
-from tegrasp_drake.scenario.scenario_events import (another_hands_events,
+from tegrasp_drake.scenario.scenario_events import (another_worlds_events,
                                                     load_controller_events, recorded_hand)
 from tegrasp_drake.sweep.trial_function import check_sweep_events
 
@@ -27,13 +27,28 @@ def test_each_packaged_event_names_the_hand_it_was_recorded_on():
 def test_events_of_another_hand_give_a_warning_naming_both_hands():
     scenario = LoadScenario()  # the linkage hand
     prismatic = load_controller_events(scenario, paths.package_events_dir() / "prismatic")
-    warning = another_hands_events(scenario, prismatic)
+    warning = another_worlds_events(scenario, prismatic)
     assert "'box' were recorded on the prismatic hand" in warning
     assert "matched on the linkage hand" in warning
-    assert another_hands_events(scenario, load_controller_events(scenario)) is None
+    assert another_worlds_events(scenario, load_controller_events(scenario)) is None
     on_prismatic = LoadScenario(overrides=["gripper.model=prismatic"])
-    assert another_hands_events(on_prismatic, prismatic) is None
+    assert another_worlds_events(on_prismatic, prismatic) is None
 
+
+
+@pytest.mark.parametrize("setting, recorded, live", [
+    ("tactile.transducer", "capacitive taxels", "force taxels"),
+    ("vibration.transducer", "film RA transducer", "accelerometer RA transducer"),
+])
+def test_events_recorded_through_other_transducers_give_a_warning_naming_both(setting, recorded,
+                                                                              live):
+    # The package's events were recorded in the default world (capacitive taxels, the film).
+    events = load_controller_events(LoadScenario())
+    value = live.split()[0]
+    scenario = LoadScenario(overrides=[f"{setting}={value}"])
+    warning = another_worlds_events(scenario, events)
+    assert f"'box' were recorded with {recorded} and are matched with {live}" in warning
+    assert "\n" not in warning
 
 def test_a_sweep_warns_once_before_it_runs_when_its_events_are_another_hands(caplog):
     trial = {"trial_id": "memorized/box/m00/a0", "controller": "memorized",
