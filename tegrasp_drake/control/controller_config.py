@@ -114,6 +114,14 @@ class TaxelAwareConfig:
     place_unload_thresholds: list[float] = unset_when_empty(
         _HANDS_THRESHOLDS, bounded(default_factory=list, **SCORE_RANGE))
     finger_strike: FingerStrikeConfig = dataclasses.field(default_factory=FingerStrikeConfig)
+    # a close's first RA onset is one film above this [m/s^2] (ra_onset.py): the number is
+    # Avoid's hit (avoid.hit_ra_mps2); ra_onset_sigmas raises it to that many of the RA noise
+    # at rest (noise_thresholds.resolve_noise_thresholds); 0 disables the rule
+    ra_onset_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
+                                   below="must be zero or positive [m/s^2]")
+    # the raw magnitude's rule (docs/model.md, "Thresholds in noise sigmas")
+    ra_onset_sigmas: float = bounded(5.51, low=0.0, high=100.0, unit="noise sigmas",
+                                     why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
 
     def problem(self) -> tuple[str, str, object] | None:
         """(field, must, value) of the first threshold pair neither [] nor [SA, RA]; else None."""

@@ -278,7 +278,8 @@ class GraspStateMachine(LeafSystem):
                 stopped_on_object=echoes_request and int(status[ru.STATUS_OBJ])
                 == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING,
                 wrench=self._approach_wrench(s, context),
-                gripper_y_m=s.segment.position(t)[1], event_matched=event_matched))
+                gripper_y_m=s.segment.position(t)[1], event_matched=event_matched,
+                ra_mps2=tuple(channels[2:4])))
             s = dataclasses.replace(s, contact=memory)
         observation = Observation(
             time_in_mode=time_in_mode, event_matched=event_matched,

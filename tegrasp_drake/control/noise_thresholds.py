@@ -118,6 +118,10 @@ def resolve_noise_thresholds(config, *, ra_noise_std_mps2: float, ra_rate_hz: fl
     if heuristic is not None:
         changes["heuristic"] = dataclasses.replace(heuristic, place_ra_mps2=max(
             heuristic.place_ra_mps2, heuristic.place_ra_sigmas * ra_noise_std_mps2))
+    taxel_aware = getattr(config, "taxel_aware", None)
+    if taxel_aware is not None and taxel_aware.ra_onset_mps2 > 0.0:
+        changes["taxel_aware"] = dataclasses.replace(taxel_aware, ra_onset_mps2=max(
+            taxel_aware.ra_onset_mps2, taxel_aware.ra_onset_sigmas * ra_noise_std_mps2))
     resolved = dataclasses.replace(config, **changes)
     if tactile is None or not config.sa_noise_floor:
         return resolved

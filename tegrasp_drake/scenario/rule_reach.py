@@ -51,6 +51,7 @@ RULE_COUNTS = {
     "load_timeout_caged": (None, "after caged"),
     "finger_strike": (None, "the wrist force of a finger's front, an impact: not quasi-static"),
     "closed_untouched": (None, "no taxel's touch in the close: fires on what no pad pressed"),
+    "ra_onset_one_film": (None, "one film's RA onset, an impact the SA need not see"),
 }
 
 

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.control.controller_config import (HeuristicControllerConfig,
-                                                     MemorizedControllerConfig)
+                                                     MemorizedControllerConfig,
+                                                     TaxelAwareControllerConfig)
 from tegrasp_drake.control.noise_thresholds import (default_rule_sigmas,
                                                     resolve_noise_thresholds,
                                                     slip_band_noise_std)
@@ -123,3 +124,22 @@ def test_the_configs_sigmas_are_the_rules():
     assert config.avoid.hit_ra_sigmas == pytest.approx(magnitude_k, abs=0.005)
     assert config.heuristic.place_ra_sigmas == pytest.approx(magnitude_k, abs=0.005)
     assert config.lift_load.slip_vibration_sigmas == pytest.approx(band_k, abs=0.005)
+    assert TaxelAwareControllerConfig().taxel_aware.ra_onset_sigmas == pytest.approx(
+        magnitude_k, abs=0.005)
+
+
+@pytest.mark.parametrize("noise", NOISE_SETTINGS)
+def test_the_ra_onset_threshold_in_force_is_the_larger_of_the_number_and_k_sigma(noise):
+    sigma = ra_noise_std_mps2(VibrationSensorConfig(noise_std_mps2=noise))
+    taxel = TaxelAwareControllerConfig().taxel_aware
+    resolved = resolve_noise_thresholds(TaxelAwareControllerConfig(), ra_noise_std_mps2=sigma,
+                                        ra_rate_hz=RATE_HZ)
+    assert resolved.taxel_aware.ra_onset_mps2 == pytest.approx(
+        max(taxel.ra_onset_mps2, taxel.ra_onset_sigmas * sigma))
+
+
+def test_an_ra_onset_threshold_of_zero_stays_off():
+    config = TaxelAwareControllerConfig()
+    config.taxel_aware.ra_onset_mps2 = 0.0
+    resolved = resolve_noise_thresholds(config, ra_noise_std_mps2=1.0, ra_rate_hz=RATE_HZ)
+    assert resolved.taxel_aware.ra_onset_mps2 == 0.0

@@ -193,3 +193,35 @@ def test_a_touch_or_strike_at_an_earlier_close_is_remembered_for_the_rest_of_the
         assert re_reach.touched_before and reach.touched_before
         _, estimate = ESTIMATOR.update(reach, reading(t=3.0))
         assert estimate.touched_before
+
+
+def test_the_first_ra_onset_of_the_close_is_remembered_with_its_film_and_opening():
+    """The thin cylinder: the right film at 71.9 mm open, 23.5 mm of push to come against its
+    11.5 mm tipping limit."""
+    threshold = TAXEL.ra_onset_mps2
+    memory, estimate = ESTIMATOR.update(ContactMemory(), reading(ra_mps2=(0.5 * threshold, 0.0)))
+    assert estimate.ra_onset_finger == "" and estimate.ra_onset_opening_m < 0.0
+    memory, estimate = ESTIMATOR.update(memory, reading(t=1.005, ra_mps2=(0.0, 2 * threshold)))
+    assert (estimate.ra_onset_finger, estimate.ra_onset_opening_m) == ("right", 0.0719)
+    assert estimate.ra_onset_topples
+    memory, estimate = ESTIMATOR.update(memory, reading(
+        t=1.010, ra_mps2=(2 * threshold, 2 * threshold), opening_m=0.070))
+    assert (estimate.ra_onset_finger, estimate.ra_onset_opening_m) == ("right", 0.0719)
+    assert memory.after_transition(Mode.REACH, Mode.RE_REACH, ()).ra_onset_opening_m < 0.0
+
+
+def test_an_ra_onset_on_both_films_in_one_tick_names_no_film():
+    _, estimate = ESTIMATOR.update(ContactMemory(), reading(ra_mps2=(10.0, 10.0)))
+    assert estimate.ra_onset_finger == "" and estimate.ra_onset_opening_m == 0.0719
+
+
+def test_an_ra_onset_outside_the_close_is_not_remembered():
+    memory, _ = ESTIMATOR.update(ContactMemory(), reading(stage=Stage.MOVING,
+                                                          ra_mps2=(0.0, 10.0)))
+    assert memory.ra_onset_opening_m < 0.0
+
+
+def test_an_ra_onset_near_the_width_does_not_topple_the_object():
+    _, estimate = ESTIMATOR.update(ContactMemory(), reading(ra_mps2=(0.0, 10.0),
+                                                            opening_m=0.035))
+    assert estimate.ra_onset_finger == "right" and not estimate.ra_onset_topples

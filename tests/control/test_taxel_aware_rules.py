@@ -74,6 +74,10 @@ CASES = [
                                                approaching=True)),
      dict(contact=(False, True), estimate=dict(approach_contact_s=0.02, approaching=True)),
      Counters()),
+    ("ra_onset_one_film", Mode.REACH,
+     dict(estimate=dict(ra_onset_finger="right", ra_onset_opening_m=0.078,
+                        ra_onset_topples=True)),
+     dict(estimate=dict(ra_onset_finger="right", ra_onset_opening_m=0.078)), Counters()),
     ("beyond_pads", Mode.REACH,
      dict(estimate=dict(touched_beyond_pads=True, first_touch_finger="right",
                         first_touch_opening_m=0.0719)),
@@ -226,6 +230,31 @@ def test_the_approach_contact_backs_off_with_the_papers_shift_along_the_stroke()
                                           pytest.approx(-(0.080 - WIDTH_M) / 2))
 
 
+def test_an_ra_onset_on_one_film_re_reaches_toward_its_finger_by_the_offset_it_implies():
+    decision = decide(Mode.REACH, situation(estimate=dict(
+        ra_onset_finger="right", ra_onset_opening_m=0.078, ra_onset_topples=True)))
+    assert decision.action.shift == Shift(0.0, pytest.approx(-(0.078 - WIDTH_M) / 2))
+    assert decision.trigger == Trigger.CORRECTIVE
+
+
+@pytest.mark.parametrize("estimate,contact", [
+    (dict(ra_onset_finger="", ra_onset_opening_m=0.078, ra_onset_topples=True),
+     (False, False)),  # both films at once
+    (dict(ra_onset_finger="right", ra_onset_opening_m=0.078, ra_onset_topples=True),
+     (False, True)),  # the SA sees it
+])
+def test_an_ra_onset_on_both_films_or_one_the_taxels_see_is_no_one_film_onset(estimate,
+                                                                                  contact):
+    assert code(Mode.REACH, situation(contact=contact, estimate=estimate)) != "ra_onset_one_film"
+
+
+def test_an_ra_onset_with_no_re_reach_left_lets_the_close_go_on():
+    obs = situation(closing_s=0.2, estimate=dict(ra_onset_finger="left",
+                                                 ra_onset_opening_m=0.078,
+                                                 ra_onset_topples=True))
+    assert decide(Mode.REACH, obs, USED_UP) is None
+
+
 def test_beyond_the_pads_moves_forward_by_half_a_pad_and_by_the_push_toward_the_pad():
     decision = decide(Mode.REACH, situation(estimate=dict(
         touched_beyond_pads=True, first_touch_finger="right", first_touch_opening_m=0.0719)))
@@ -313,7 +342,7 @@ def test_corrections_used_up_fail(obs, counters):
 def test_the_table_asks_the_devices_first_and_the_approach_before_the_papers_reach():
     reach = [rule.name for rule, _ in TAXEL_AWARE_TABLE.ordered(Mode.REACH)]
     assert reach[:6] == ["device_fault", "gripper_fault", "object_lost", "finger_strike",
-                         "approach_contact", "beyond_pads"]
+                         "approach_contact", "ra_onset_one_film"]
     assert reach.index("off_centre") < reach.index("reach_event") < reach.index("one_sided")
     assert TAXEL_AWARE_TABLE.ordered(Mode.DONE) == ()
     assert decide(Mode.DONE, situation(device_fault="x")) is None

@@ -14,6 +14,7 @@ from tegrasp_drake.control.taxel_aware.contact_geometry import (
     release_topples, remembered_faces, touched_beyond_pads, touched_face, touched_faces,
     untouched_reach_m)
 from tegrasp_drake.control.taxel_aware.grip_settling import grip_settled
+from tegrasp_drake.control.taxel_aware.ra_onset import onset_finger
 from tegrasp_drake.control.taxel_aware.touch_confirmed import (confirmed_delay_s,
                                                                match_confirm_window_s)
 from tegrasp_drake.control.taxel_contact import GraspContact, grasp_contact
@@ -28,7 +29,8 @@ class ContactMemory:
     wrench, timer, summed side moment and finger; reach_match_at: the latest tick of this
     Reach at which the Reach-Load event matched (touch_confirmed.py); touched_before: a
     taxel touched the object, or a finger struck it, before the latest transition in this
-    trial (untouched_close.py)."""
+    trial (untouched_close.py); ra_onset_*: the close's first RA onset, its film ("" both)
+    and the opening [m; -1 none] (ra_onset.py)."""
     first_touch_opening_m: float = -1.0
     first_touch_offset_m: float = 0.0
     first_touch_finger: str = ""
@@ -41,6 +43,8 @@ class ContactMemory:
     tilted_since: float = -1.0
     reach_match_at: float = -1.0
     touched_before: bool = False
+    ra_onset_finger: str = ""
+    ra_onset_opening_m: float = -1.0
 
     def after_transition(self, from_mode: Mode, to_mode: Mode,
                          touched_now: tuple) -> "ContactMemory":
@@ -63,7 +67,8 @@ class ContactMemory:
 class ContactReading:
     """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike sense;
     stopped_on_object: the 2F-85 reports its fingers stopped on an object while closing (gOBJ 2)
-    for the close request in force; event_matched: the detector matches the mode's event."""
+    for the close request in force; event_matched: the detector matches the mode's event;
+    ra_mps2: the films' RA readings (left, right) [m/s^2]."""
     t: float
     mode: Mode
     stage: object
@@ -77,6 +82,7 @@ class ContactReading:
     wrench: tuple | None
     gripper_y_m: float
     event_matched: bool
+    ra_mps2: tuple = (0.0, 0.0)
 
     @property
     def approaching(self) -> bool:
@@ -97,7 +103,9 @@ class ContactEstimate:
     itself), -1 none (touch_confirmed.py); reach_matched: the Reach-Load event matched in this
     Reach, confirmed or not; untouched_reach_m: how far beyond the pads' centres at the
     object's width an object no pad touched in the close has its centre
-    (contact_geometry.untouched_reach_m); touched_before: ContactMemory.touched_before."""
+    (contact_geometry.untouched_reach_m); touched_before: ContactMemory.touched_before;
+    ra_onset_finger, ra_onset_opening_m: ContactMemory's; ra_onset_topples: the push still to
+    come from that opening would topple the object (contact_geometry.release_topples)."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -123,6 +131,9 @@ class ContactEstimate:
     reach_matched: bool = False
     untouched_reach_m: float = 0.0
     touched_before: bool = False
+    ra_onset_finger: str = ""
+    ra_onset_opening_m: float = -1.0
+    ra_onset_topples: bool = False
 
     @property
     def bracketed_width_m(self) -> float:
@@ -151,6 +162,7 @@ class ContactEstimator:
         self._geometry = geometry
         self._taxel_contact_n = taxel_contact_n
         self._match_confirm_window_s = match_confirm_window_s
+        self._ra_onset_mps2 = taxel_config.ra_onset_mps2
         self._untouched_reach_m = untouched_reach_m(geometry.pad_center_offset,
                                                     geometry.width_m, STROKE_M)
 
@@ -171,6 +183,7 @@ class ContactEstimator:
         # a Reach-Load event can match a taxel sample (9.3 ms) before the taxels show it
         first_load = r.mode == Mode.LOAD and r.lift_loads == 0
         memory, topples = self._first_touch(memory, r, shape, first_load)
+        memory = self._ra_onset(memory, r)
         touch = (touched_face("left" if r.contact[0] else "right", r.gripper_y_m, r.opening_m)
                  if r.closing and r.contact[0] != r.contact[1] else None)
         bracket = (bracketed_object(opposite_face(memory.touched_faces, touch.finger), touch,
@@ -206,8 +219,24 @@ class ContactEstimator:
                                if reaching else -1.0),
             reach_matched=reaching and match_at >= 0.0,
             untouched_reach_m=self._untouched_reach_m,
-            touched_before=memory.touched_before)
+            touched_before=memory.touched_before,
+            ra_onset_finger=memory.ra_onset_finger,
+            ra_onset_opening_m=memory.ra_onset_opening_m,
+            ra_onset_topples=release_topples(
+                pushed_distance_m(memory.ra_onset_opening_m, g.width_m),
+                grasp_height_m=g.grasp_height_m, object_width_m=g.width_m,
+                object_height_m=g.height_m))
         return memory, estimate
+
+    def _ra_onset(self, memory: ContactMemory, r: ContactReading) -> ContactMemory:
+        """Remembers the close's first RA onset (ra_onset.onset_finger)."""
+        if not r.closing or memory.ra_onset_opening_m >= 0.0:
+            return memory
+        finger = onset_finger(r.ra_mps2, self._ra_onset_mps2)
+        if finger is None:
+            return memory
+        return dataclasses.replace(memory, ra_onset_finger=finger,
+                                   ra_onset_opening_m=r.opening_m)
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):
         """The finger-strike sense: the updated memory and the estimate's strike fields."""

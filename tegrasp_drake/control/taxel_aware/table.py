@@ -15,6 +15,7 @@ from tegrasp_drake.control.taxel_aware.no_event_in_time import (LOAD_TIMEOUT_BOT
                                                                 REACH_TIMEOUT_BOTH_PADS)
 from tegrasp_drake.control.taxel_aware.off_centre import OFF_CENTRE
 from tegrasp_drake.control.taxel_aware.one_sided_at_width import ONE_SIDED_AT_WIDTH
+from tegrasp_drake.control.taxel_aware.ra_onset import RA_ONSET_ONE_FILM
 from tegrasp_drake.control.taxel_aware.regrasp import (HELD_TILTED, REGRASP_AFTER_PLACE,
                                                       REGRASP_SET_DOWN)
 from tegrasp_drake.control.taxel_aware.tipping_guard import TIPPING_GUARD
@@ -28,8 +29,8 @@ CENTRING_RE_REACH = ReReachMove(
 
 TAXEL_AWARE_TABLE = PAPER_TABLE.extended(
     "taxel_aware",
-    rules=(FINGER_STRIKE, APPROACH_CONTACT, BEYOND_PADS, OFF_CENTRE, TOUCH_CONFIRMED,
-           ONE_SIDED_AT_WIDTH, BRACKET_RECENTRE, CLOSED_UNTOUCHED,
+    rules=(FINGER_STRIKE, APPROACH_CONTACT, RA_ONSET_ONE_FILM, BEYOND_PADS, OFF_CENTRE,
+           TOUCH_CONFIRMED, ONE_SIDED_AT_WIDTH, BRACKET_RECENTRE, CLOSED_UNTOUCHED,
            REACH_TIMEOUT_BOTH_PADS,
            REACH_TIMEOUT_CAGED, LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED,
            REGRASP_AFTER_PLACE),
