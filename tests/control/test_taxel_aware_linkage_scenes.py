@@ -90,6 +90,14 @@ SCENES = {
     "closed_untouched": (Scene("thin_cylinder", (0.025, 0.0), seed=716), Expect(
         (("Reach", "Re-Reach", "closed_untouched"),), first=True,
         check=lambda found, r: found[0].approach_offset_m > 0.02)),
+    # The thin cylinder 15 mm nearer the palm and 25 mm along the stroke (-y): the right pad
+    # touches it first with taxel forces inside the pad's noise; its film rings far above
+    # ra_onset_mps2, the left film's does not. The close stops and Re-Reaches toward the
+    # right finger by (opening - width) / 2; switched off (ra_onset_mps2 0), the close pushed
+    # the cylinder onto its side (90 deg) and the four Re-Reaches closed on nothing: Failed.
+    "ra_onset_one_film": (Scene("thin_cylinder", (-0.015, -0.025), seed=950), Expect(
+        (("Reach", "Re-Reach", "ra_onset_one_film"),), first=True,
+        check=lambda found, r: found[0].offset_m < -0.015)),
     # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
     # threshold, and a correlation never exceeds 1), as for an object whose load the events
     # were not recorded on: lifted after the Load timeout with both pads on the box, where the
