@@ -30,6 +30,13 @@ pytestmark = pytest.mark.slow
 HAND = ("gripper.model=prismatic", "tactile.transducer=force")
 
 
+# ra_onset_one_film switched off: in the thin cylinder's scenes below, found before it, the
+# first pad's film alone rings at its touch with a push past the rod's tipping limit to come,
+# and the rule re-centres the rod before the push those scenes' rules read (measured: then
+# off_centre or reach_event, the rod held in each).
+NO_RA_ONSET = (("ra_onset_mps2", 0.0),)
+
+
 def _world(scene: Scene) -> tuple[str, ...]:
     return HAND if scene.reads_the_held_grip else HAND + CHEAP_CONTACT
 
@@ -57,7 +64,7 @@ SCENES = {
     # The thin cylinder pushed along the stroke is held 3-5 deg tilted; its taxels read
     # 0.4-0.9 deg of line tilt, so the limit is lowered below that to run the re-grasp.
     "regrasp": (Scene("thin_cylinder", (0.0, 0.015), taxel_aware=(
-                          ("regrasp", RegraspConfig(tilt_limit_deg=0.2)),),
+                          ("regrasp", RegraspConfig(tilt_limit_deg=0.2)), *NO_RA_ONSET),
                       reads_the_held_grip=True),
                 Expect((("Hold", "Place", "held_tilted"),
                         ("Place", "Re-Reach", "regrasp_after_place"),
@@ -69,15 +76,16 @@ SCENES = {
     # The rod pushed 15 mm along the stroke past its tipping limit: loaded where it is by
     # the event (the tipping guard holds off_centre back), not let go to re-centre (it
     # would fall).
-    "tipping_guard": (Scene("thin_cylinder", (-0.01, -0.015)), Expect(
+    "tipping_guard": (Scene("thin_cylinder", (-0.01, -0.015), taxel_aware=NO_RA_ONSET), Expect(
         (("Reach", "Load", "reach_event"),), no_re_reach=True)),
     # The rod 15 mm toward the palm is pushed behind the pads and caged there.
-    "caged": (Scene("thin_cylinder", (-0.015, -0.025), -10.0), Expect(
+    "caged": (Scene("thin_cylinder", (-0.015, -0.025), -10.0, taxel_aware=NO_RA_ONSET), Expect(
         (("Reach", "Load", "reach_timeout_caged"),
          ("Load", "Lift", "load_timeout_caged")), first=True, no_re_reach=True)),
     # The rod's axis beyond the pads' distal edge: stop at the first touch, move forward
     # and toward the right pad.
-    "beyond_pads": (Scene("thin_cylinder", (0.0139, -0.0246), 7.8), Expect(
+    "beyond_pads": (Scene("thin_cylinder", (0.0139, -0.0246), 7.8, taxel_aware=NO_RA_ONSET),
+                    Expect(
         (("Reach", "Re-Reach", "beyond_pads"),), first=True,
         check=lambda found, r: found[0].approach_offset_m > 0.0 and found[0].offset_m < -0.015)),
     # The box 10 mm beyond and 20 mm along the stroke, yawed -10 deg: the left pad touched
