@@ -44,7 +44,11 @@ SCENES = {
         check=lambda found, r: found[0].approach_offset_m > 0.004)),
     # 15 mm along the stroke: the rod's Reach-Load event never matches on the linkage's
     # curl, both pads hold it; loaded at the timeout where the paper's rule would Re-Reach.
-    "reach_timeout_both_pads": (Scene("thin_cylinder", (0.0, 0.015), seed=601), Expect(
+    # ra_onset_one_film off: the first pad's film alone rings at the touch, 15 mm of push to
+    # come past the rod's 11.5 mm, and the rule re-centres it before that push (measured:
+    # then reach_event loads it, held and put down), so this rule would not be reached.
+    "reach_timeout_both_pads": (Scene("thin_cylinder", (0.0, 0.015), seed=601,
+                                      taxel_aware=(("ra_onset_mps2", 0.0),)), Expect(
         (("Reach", "Load", "reach_timeout_both_pads"),), first=True, no_re_reach=True)),
     # The heavy box 20 mm along the stroke: the left pad alone presses it past a pad's count
     # (the paper's one_sided, a Re-Reach toward the left finger, +y); the 2 kg box then turns
@@ -79,7 +83,11 @@ SCENES = {
     # mm) / 2, 16-19.5 mm, past its 13.75 mm: the close stops and Re-Reaches 12 mm forward
     # and toward the left pad by that push. Switched off (on the box 150 mm tall), the paper's
     # one_sided and three off_centre Re-Reaches used up the Re-Reaches; the box was not held.
-    "beyond_pads": (Scene("box", (0.019, 0.0195), seed=614, overrides=TALL_HEAVY_BOX), Expect(
+    # ra_onset_one_film off: the left film alone rings at that touch, before the taxels count
+    # it, and the rule re-centres along the stroke first (measured: then off_centre and
+    # reach_event, held and put down), so beyond_pads would not be reached.
+    "beyond_pads": (Scene("box", (0.019, 0.0195), seed=614, overrides=TALL_HEAVY_BOX,
+                          taxel_aware=(("ra_onset_mps2", 0.0),)), Expect(
         (("Reach", "Re-Reach", "beyond_pads"),), first=True,
         check=lambda found, r: found[0].approach_offset_m > 0.01 and found[0].offset_m > 0.01)),
     # The thin cylinder 25 mm farther than expected: past what the pads' distal edges reach
