@@ -86,7 +86,7 @@ def main(argv=None) -> int:
     parser = script_parser("choose_corrective_thresholds", __doc__)
     parser.add_argument("corrective_logs", type=pathlib.Path)
     parser.add_argument("ensemble_logs", type=pathlib.Path)
-    parser.add_argument("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path)
     parser.add_argument("--object", default="box")
     parser.add_argument("--events", type=pathlib.Path, default=package_events_dir())
     args = parser.parse_args(argv)

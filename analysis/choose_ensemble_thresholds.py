@@ -59,7 +59,7 @@ def _fmt(value):
 def main(argv=None) -> int:
     parser = script_parser("choose_ensemble_thresholds", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
-    parser.add_argument("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path)
     parser.add_argument("--runs", type=int, nargs="+", default=[5, 6, 7])
     parser.add_argument("--events", default=str(package_events_dir()))
     args = parser.parse_args(argv)

@@ -15,20 +15,18 @@ import collections
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import (refuse_unusable_output, run_script,
-                                                   script_parser, write_report)
+from tegrasp_drake.commands.script_output import (load_sweep_records, refuse_unusable_output,
+                                                  run_script, script_parser, write_report)
 from tegrasp_drake.scenario.trial_result import TrialResult
-from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
 
 def load_folders(folders, script: str = "compare_hands") -> list[dict]:
     """Each folder's {trial_id: (trial, result)} of finished records (sweep.load_records),
-    all read before a word is said: SystemExit naming the first folder with no finished
-    record, with nothing printed before it; then each record that does not read, left out,
-    is named on stderr."""
-    loaded = [(folder, load_records(folder)) for folder in folders]
+    all read before a word is said: SystemExit naming the first folder with a corrupt record
+    (script_output.load_sweep_records) or with no finished record."""
+    loaded = [(folder, load_sweep_records(script, folder)) for folder in folders]
     finished = [{trial_id: (record["trial"], record["result"])
                  for trial_id, record in records.records.items()
                  if record.get("status") == "ok"} for _, records in loaded]
@@ -37,9 +35,6 @@ def load_folders(folders, script: str = "compare_hands") -> list[dict]:
             raise SystemExit(f"{script}: {folder} holds no finished trial record "
                              "(trials/*.json with status ok); give the --out folder of a "
                              "`tegrasp sweep`")
-    for _, records in loaded:
-        for path, reason in records.corrupt.items():
-            print(f"{script}: skipped corrupt record {path}: {reason}", file=sys.stderr)
     return finished
 
 

@@ -19,7 +19,7 @@ from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
 
 def main(argv=None) -> int:
     parser = script_parser("detection_quality", __doc__)
-    parser.add_argument("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path)
     parser.add_argument("results", type=pathlib.Path, nargs="+")
     parser.add_argument("--reference", default="open_loop")
     parser.add_argument("--title", default="Detection quality and paired comparison")

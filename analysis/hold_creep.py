@@ -30,9 +30,9 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
+from tegrasp_drake.commands.script_output import (load_sweep_records, run_script, script_parser,
+                                                  write_report)
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
-from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.trial_function import trial_log_name
 
 G_OBJ, G_PO = 3, 6  # gripper_status columns: the object status and the position [counts]
@@ -71,14 +71,12 @@ def main(argv=None) -> int:
     parser = script_parser("hold_creep", __doc__)
     parser.add_argument("results", type=pathlib.Path)
     parser.add_argument("logs", type=pathlib.Path)
-    parser.add_argument("--out", type=pathlib.Path, default=None)
+    parser.add_output("--out", type=pathlib.Path, default=None)
     args = parser.parse_args(argv)
     for folder in (args.results, args.logs):
         if not folder.is_dir():
             raise SystemExit(f"hold_creep: {folder} is not a folder")
-    loaded = load_records(args.results)
-    for path, reason in loaded.corrupt.items():
-        print(f"hold_creep: skipped corrupt record {path}: {reason}", file=sys.stderr)
+    loaded = load_sweep_records("hold_creep", args.results)
     ran = [r for r in loaded.records.values() if r.get("result") is not None]
     if not ran:
         raise SystemExit(f"hold_creep: {args.results} holds no trial record with a result "

@@ -1,29 +1,34 @@
 """Regenerate the per-position success maps (success_maps.png) from a results folder
 written by `tegrasp sweep`.
 
-    python analysis/make_success_maps.py RESULTS_DIR [--file NAME.png]
+    python analysis/make_success_maps.py RESULTS_DIR [--file FIGURE.png]
+
+The figure goes to RESULTS_DIR/success_maps.png, or to --file (.png, .pdf or .svg), a path
+from the current folder like every other path on a command line.
 """
 
+import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import run_script, script_parser
+from tegrasp_drake.commands.script_output import (load_sweep_records, refuse_unusable_output,
+                                                  run_script, script_parser)
 from tegrasp_drake.figures.sweep import write_success_maps
-from tegrasp_drake.sweep import load_records
 
 
 def main(argv=None) -> int:
     parser = script_parser("make_success_maps", __doc__)
     parser.add_argument("results", help="the --out folder of a sweep")
-    parser.add_argument("--file", default="success_maps.png",
-                        help="file name inside the results folder")
+    parser.add_argument("--file", type=pathlib.Path, default=None,
+                        help="the figure to write (.png, .pdf or .svg; default "
+                             "RESULTS/success_maps.png)")
     args = parser.parse_args(argv)
-    loaded = load_records(args.results)
-    for path, reason in loaded.corrupt.items():
-        print(f"skipped corrupt record {path}: {reason}", file=sys.stderr)
+    out = args.file or pathlib.Path(args.results) / "success_maps.png"
+    refuse_unusable_output("make_success_maps", out, figure=True)  # before the records
+    loaded = load_sweep_records("make_success_maps", args.results)
     if not any(record["status"] == "ok" for record in loaded.records.values()):
-        print(f"no finished trial records under {args.results}", file=sys.stderr)
-        return 1
-    print(f"wrote {write_success_maps(loaded.records.values(), args.results, args.file)}")
+        raise SystemExit(f"make_success_maps: error: no finished trial records under "
+                         f"{args.results}; give the --out folder of `tegrasp sweep`")
+    print(f"wrote {write_success_maps(loaded.records.values(), out.parent, out.name)}")
     return 0
 
 

@@ -7,21 +7,20 @@ results folder written by `tegrasp sweep`.
 
 import sys
 
-from tegrasp_drake.commands.script_output import run_script, script_parser
-from tegrasp_drake.sweep import (load_records, write_offset_table, write_statistics, write_summary,
-                                 write_table1)
+from tegrasp_drake.commands.script_output import (load_sweep_records, refuse_unusable_folders,
+                                                  run_script, script_parser)
+from tegrasp_drake.sweep import write_offset_table, write_statistics, write_summary, write_table1
 
 
 def main(argv=None) -> int:
     parser = script_parser("make_table1", __doc__)
     parser.add_argument("results", help="the --out folder of a sweep")
     args = parser.parse_args(argv)
-    loaded = load_records(args.results)
-    for path, reason in loaded.corrupt.items():
-        print(f"skipped corrupt record {path}: {reason}", file=sys.stderr)
+    refuse_unusable_folders("make_table1", args.results)  # it writes the tables there
+    loaded = load_sweep_records("make_table1", args.results)
     if not loaded.records:
-        print(f"no trial records under {args.results}", file=sys.stderr)
-        return 1
+        raise SystemExit(f"make_table1: error: no trial records under {args.results}; give "
+                         "the --out folder of `tegrasp sweep`")
     records = list(loaded.records.values())
     for path in (write_table1(records, args.results) + write_statistics(records, args.results)
                  + write_summary(records, args.results)

@@ -14,9 +14,9 @@ import json
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import run_script, script_parser
+from tegrasp_drake.commands.script_output import load_sweep_records, run_script, script_parser
 from tegrasp_drake.control.grasp_modes import Transition
-from tegrasp_drake.sweep.records import (TRIALS_FOLDER, load_records, make_record, write_record)
+from tegrasp_drake.sweep.records import TRIALS_FOLDER, make_record, write_record
 from tegrasp_drake.runs.trial import judge_trial
 from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec, trial_log_name
 from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
@@ -31,9 +31,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.out.exists():
         raise SystemExit(f"rejudge_from_logs: {args.out} exists; choose a new folder")
-    loaded = load_records(args.results)
-    for path, reason in loaded.corrupt.items():
-        print(f"rejudge_from_logs: skipped corrupt record {path}: {reason}", file=sys.stderr)
+    loaded = load_sweep_records("rejudge_from_logs", args.results)
     logs = {trial_id: args.logs / trial_log_name(record["trial"], record.get("events"))
             for trial_id, record in loaded.records.items() if record.get("result") is not None}
     if not logs:

@@ -49,7 +49,7 @@ def armed_from(transitions, transition):
 def main(argv=None) -> int:
     parser = script_parser("roc_from_sweep_logs", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
-    parser.add_argument("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path)
     parser.add_argument("--controller", default="taxel_aware")
     parser.add_argument("--events", default=str(package_events_dir()))
     parser.add_argument("--limit", type=int, default=None)

@@ -34,8 +34,7 @@ def main(argv=None) -> int:
     try:
         updated = page_with_record_commits(readme_with_summaries(text, path.parent), ROOT)
     except ValueError as e:
-        print(f"{path}: {e}", file=sys.stderr)
-        return 1
+        raise SystemExit(f"update_results_page: error: {path}: {e}") from None
     if updated != text:  # a new file renamed into place: an interruption leaves the old one
         write_atomically(path, updated, start=MARKDOWN_START)
     print(f"{path}: results {'updated' if updated != text else 'unchanged'}")

@@ -25,9 +25,9 @@ import pathlib
 import sys
 
 from tegrasp_drake.sweep.missed_event_report import record_has_waits, report_markdown, sweep_misses
-from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
+from tegrasp_drake.commands.script_output import (load_sweep_records, run_script, script_parser,
+                                                  write_report)
 from tegrasp_drake.rig.files import folder_problem
-from tegrasp_drake.sweep.records import load_records
 
 
 def main(argv=None) -> int:
@@ -50,11 +50,9 @@ def main(argv=None) -> int:
     if out_problem:  # before the replays, which take minutes
         raise SystemExit(f"weak_stimuli: --out {args.out} {out_problem}; give a file path in "
                          "a folder you can write")
-    loaded = load_records(args.results)
+    loaded = load_sweep_records("weak_stimuli", args.results)
     if not loaded.records:
         raise SystemExit(f"weak_stimuli: {args.results} holds no trial records (trials/*.json)")
-    for path, problem in loaded.corrupt.items():
-        print(f"weak_stimuli: skipped corrupt record {path}: {problem}", file=sys.stderr)
     try:
         misses, without_log, trials = sweep_misses(
             loaded.records, args.logs, controller=args.controller, events_dir=args.events)

@@ -37,9 +37,10 @@ def test_a_changed_trial_and_the_failures_are_named_by_the_packages_failure_clas
     assert "| taxel_aware | struck on approach | 1 |" in text, text
 
 
-def test_a_folder_without_records_is_refused_before_anything_is_printed(tmp_path, capsys):
-    """Every folder is read before a word is said: a corrupt record in the first one read is
-    not announced when a later one is refused."""
+def test_a_folder_with_a_corrupt_record_is_refused_before_anything_is_printed(tmp_path,
+                                                                               capsys):
+    """A folder holding a corrupt record is refused (a comparison without that trial would be
+    wrong) in one line, before a word of the comparison is said."""
     linkage, prismatic, out = tmp_path / "linkage", tmp_path / "prismatic", tmp_path / "out.md"
     (linkage / "trials").mkdir(parents=True)
     (prismatic / "trials").mkdir(parents=True)
@@ -48,6 +49,7 @@ def test_a_folder_without_records_is_refused_before_anything_is_printed(tmp_path
     (linkage / "trials" / record.name).write_text("{not json")
     with pytest.raises(SystemExit) as refused:
         compare_hands().main([str(out), str(linkage), str(prismatic)])
-    assert str(refused.value).startswith(f"compare_hands: {linkage} holds no finished trial")
+    assert str(refused.value).startswith(f"compare_hands: error: 1 corrupt trial record(s) in "
+                                         f"{linkage}")
     assert capsys.readouterr() == ("", "")
     assert not out.exists()

@@ -76,6 +76,7 @@ def test_script_refuses_a_junk_path_in_one_line(name, tmp_path):
     assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
     assert "Traceback" not in done.stderr and "internal error" not in done.stderr, done.stderr
     assert len(lines) == 1, done.stderr
+    assert lines[0].startswith(f"{name}: "), lines  # which script it was
 
 
 @pytest.mark.parametrize("name", SCRIPTS)

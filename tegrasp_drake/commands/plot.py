@@ -134,12 +134,9 @@ def _plot_sweep(args, out) -> str:
                          "sweep writes its records there); give the --out folder of "
                          "`tegrasp sweep`")
     loaded = load_records(args.source)
-    if loaded.corrupt:
-        path, reason = next(iter(loaded.corrupt.items()))
-        raise SystemExit(f"tegrasp: error: {len(loaded.corrupt)} corrupt trial record(s) in "
-                         f"{args.source} (first: {path}: {reason}); a figure without them "
-                         f"would be wrong: `tegrasp sweep --out {args.source}` with the "
-                         "sweep's options runs them again")
+    problem = loaded.corrupt_problem(args.source)
+    if problem:
+        raise SystemExit(f"tegrasp: error: {problem}")
     records = list(loaded.records.values())
     logger.debug(f"plot {args.what}: {len(records)} trial records from {args.source}")
     if not records:

@@ -7,6 +7,7 @@ import signal
 import sys
 
 from tegrasp_drake.commands.error_boundary import EXIT_ERROR, EXIT_USAGE, internal_error
+from tegrasp_drake.figures.figure_files import FigureFormatError, check_figure_path
 from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
                                      output_file_problem, write_atomically)
 
@@ -37,6 +38,22 @@ class _ScriptParser(argparse.ArgumentParser):
     def __init__(self, script: str, **keywords):
         super().__init__(prog=f"{script}.py", **keywords)
         self._script = script
+        self._outputs = []  # (destination, is a figure) of each add_output argument
+
+    def add_output(self, *names, figure: bool = False, **keywords):
+        """add_argument for a file the script writes (a report; a figure when `figure`):
+        parse_args refuses one it cannot write (refuse_unusable_output) before any work."""
+        action = self.add_argument(*names, **keywords)
+        self._outputs.append((action.dest, figure))
+        return action
+
+    def parse_args(self, args=None, namespace=None):
+        parsed = super().parse_args(args, namespace)
+        for destination, figure in self._outputs:
+            path = getattr(parsed, destination)
+            if path is not None:
+                refuse_unusable_output(self._script, path, figure=figure)
+        return parsed
 
     def error(self, message):
         self.exit(EXIT_USAGE, f"{self._script}: error: {error_line(message)}; "
@@ -53,9 +70,10 @@ def script_parser(script: str, doc: str) -> argparse.ArgumentParser:
 
 def run_script(main, script: str, argv=None) -> int:
     """`main(argv)`'s exit code (argv None: the process's arguments), behind the scripts'
-    one error boundary: an error in a file or folder the user named (UserPathError,
-    TrialLogError, MemorizedEventError, ConfigError, RecordError, another OSError,
-    UnicodeDecodeError) ends it with one line, `<script>: error: <path>: <what is wrong>`,
+    one error boundary: a SystemExit with a message ends it with that line, led by the
+    script's name (_with_prefix); an error in a file or folder the user named (UserPathError,
+    TrialLogError, MemorizedEventError, ConfigError, RecordError, FigureFormatError, another
+    OSError, UnicodeDecodeError) ends it with one line, `<script>: error: <path>: <what is wrong>`,
     and EXIT_ERROR; any other exception with error_boundary's internal-error line, its traceback in a file."""
     from tegrasp_drake.events.event_file import MemorizedEventError
     from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -66,12 +84,13 @@ def run_script(main, script: str, argv=None) -> int:
         return int(main(argv) or 0)
     except SystemExit as exit_:
         if isinstance(exit_.code, str):  # "script: ...", one bounded line
-            raise SystemExit(error_line(exit_.code)) from None
+            raise SystemExit(error_line(_with_prefix(script, exit_.code))) from None
         raise
     except KeyboardInterrupt:
         print(f"{script}: interrupted (SIGINT)", file=sys.stderr, flush=True)
         return 128 + signal.SIGINT
-    except (UserPathError, TrialLogError, MemorizedEventError, ConfigError, RecordError) as error:
+    except (UserPathError, TrialLogError, MemorizedEventError, ConfigError, RecordError,
+            FigureFormatError) as error:
         return _refused(script, str(error))
     except OSError as error:  # the system's words, after the path it could not use
         path = error.filename or getattr(error, "path", None)
@@ -86,9 +105,26 @@ def run_script(main, script: str, argv=None) -> int:
         return internal_error(error, arguments, script)
 
 
+def _with_prefix(script: str, message: str) -> str:
+    """`message`, a line ending the script, led by `<script>: ` (`<script>: error: ` when it
+    names no script), so that every line a script ends with says which script it was."""
+    return message if message.startswith(f"{script}: ") else f"{script}: error: {message}"
+
+
 def _refused(script: str, message: str) -> int:
     print(f"{script}: error: {error_line(message)}", file=sys.stderr, flush=True)
     return EXIT_ERROR
+
+
+def load_sweep_records(script: str, results):
+    """The records (sweep.LoadedRecords) of the sweep folder `results`; SystemExit with one
+    line if any is corrupt (LoadedRecords.corrupt_problem, as `tegrasp plot` refuses it)."""
+    from tegrasp_drake.sweep.records import load_records
+    loaded = load_records(results)
+    problem = loaded.corrupt_problem(results)
+    if problem:
+        raise SystemExit(f"{script}: error: {problem}")
+    return loaded
 
 
 def refuse_unusable_folders(script: str, *folders) -> None:
@@ -102,9 +138,15 @@ def refuse_unusable_folders(script: str, *folders) -> None:
                              "folder you can write in")
 
 
-def refuse_unusable_output(script: str, path) -> None:
-    """SystemExit with one line unless `path` can be written as a script's report or figure
+def refuse_unusable_output(script: str, path, *, figure: bool = False) -> None:
+    """SystemExit with one line unless `path` can be written as a script's report, or its
+    figure when `figure` (a suffix naming a figure format, figure_files.check_figure_path),
     (rig.files.output_file_problem); asked before the work starts."""
+    if figure:
+        try:
+            check_figure_path(path)
+        except FigureFormatError as error:
+            raise SystemExit(f"{script}: error: {error}") from None
     problem = output_file_problem(path)
     if problem:
         raise SystemExit(f"{script}: cannot write {path}: {problem}")

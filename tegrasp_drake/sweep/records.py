@@ -58,6 +58,17 @@ class LoadedRecords:
     records: dict[str, dict]
     corrupt: dict[Path, str]
 
+    def corrupt_problem(self, out_dir) -> str | None:
+        """Why a table or figure may not be made from this folder's records, or None: a
+        corrupt record is a trial the table would silently lose (Table I of 242 trials
+        presented as the sweep's 243), so every reader of a sweep folder refuses it alike."""
+        if not self.corrupt:
+            return None
+        path, reason = next(iter(self.corrupt.items()))
+        return (f"{len(self.corrupt)} corrupt trial record(s) in {out_dir} (first: {path}: "
+                f"{reason}); a table or figure without them would be wrong: `tegrasp sweep "
+                f"--out {out_dir}` with the sweep's options runs them again")
+
 
 def record_file_name(trial_id: str) -> str:
     return trial_id.replace("/", ".") + ".json"

@@ -1,0 +1,107 @@
+"""The analysis scripts' outputs are checked before any work (a figure name of no format, a
+device, a path no file can take: one line, EXIT_ERROR), and a script that makes a table or
+figure from a sweep folder refuses one holding a corrupt record, as `tegrasp plot` does,
+rather than writing a table that silently lost a trial."""
+
+import pathlib
+
+import pytest
+
+from tegrasp_drake.commands import script_output
+from tegrasp_drake.commands.error_boundary import EXIT_ERROR
+from tegrasp_drake.sweep import SweepSpec, run_sweep
+from tests.analysis_script import load_analysis_script
+from tests.fake_trials import fake_trial
+from tests.test_analysis_error_boundary import run_script
+
+
+def output_arguments(junk: str, out: str) -> dict[str, list[str]]:
+    """Each script that writes a report or figure, with `junk` for what it reads and `out`
+    for what it writes."""
+    return {"choose_corrective_thresholds": [junk, junk, out],
+            "choose_ensemble_thresholds": [junk, out],
+            "detection_quality": [out, junk],
+            "hold_creep": [junk, junk, "--out", out],
+            "make_success_maps": [junk, "--file", out],
+            "roc_from_sweep_logs": [junk, out]}
+
+
+@pytest.mark.parametrize("name", sorted(output_arguments("j", "o")))
+def test_an_output_that_cannot_be_written_is_refused_before_the_inputs_are_read(name, tmp_path):
+    junk = tmp_path / "junk"
+    junk.write_bytes(b"\xff\xfe\x00junk\x80" * 64)
+    done = run_script(name, output_arguments(str(junk), "/dev/full")[name], tmp_path)
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    assert len(lines) == 1 and lines[0].startswith(f"{name}: "), done.stderr
+    assert "/dev/full" in lines[0], lines
+
+
+@pytest.fixture
+def sweep(tmp_path):
+    """A sweep's results folder of two fake trials."""
+    results = tmp_path / "results"
+    run_sweep(SweepSpec(objects=("box",), attempts=2), fake_trial, results, workers=1,
+              progress=False)
+    return results
+
+
+def test_success_maps_refuse_a_figure_name_of_no_format_before_reading(sweep, tmp_path):
+    done = run_script("make_success_maps", [str(sweep), "--file", "o/maps.bmp"], tmp_path)
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    assert len(lines) == 1 and lines[0].startswith("make_success_maps: error: "), lines
+    assert "must end in one of .png, .pdf, .svg" in lines[0]
+
+
+def test_success_maps_file_is_a_path_from_the_current_folder(sweep, tmp_path):
+    done = run_script("make_success_maps", [str(sweep), "--file", "o/maps.svg"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "o" / "maps.svg").is_file()
+    assert not (sweep / "o").exists()
+
+
+def corrupt_one_record(results):
+    record = sorted((results / "trials").glob("*.json"))[0]
+    record.write_text(record.read_text().replace('"box"', '"bux"', 1))
+    return record
+
+
+def sweep_script_arguments(results, tmp_path) -> dict[str, list[str]]:
+    r, out = str(results), str(tmp_path / "out")
+    return {"make_table1": [r],
+            "make_success_maps": [r],
+            "hold_creep": [r, r],
+            "weak_stimuli": [r, r],
+            "rejudge_from_logs": [r, r, out],
+            "compare_hands": [str(tmp_path / "report.md"), r, r]}
+
+
+@pytest.mark.parametrize("name", sorted(sweep_script_arguments("r", pathlib.Path("t"))))
+def test_a_sweep_folder_with_a_corrupt_record_is_refused(name, sweep, tmp_path):
+    record = corrupt_one_record(sweep)
+    before = {path.name: path.stat().st_mtime_ns for path in sweep.iterdir()}
+    with pytest.raises(SystemExit) as stopped:
+        load_analysis_script(name).main(sweep_script_arguments(sweep, tmp_path)[name])
+    message = str(stopped.value)
+    assert message.startswith(f"{name}: error: 1 corrupt trial record(s)"), message
+    assert record.name in message and "\n" not in message
+    assert {path.name: path.stat().st_mtime_ns for path in sweep.iterdir()} == before
+
+
+def test_results_page_without_the_table_block_is_refused_naming_the_script(tmp_path):
+    page = tmp_path / "page.md"
+    page.write_text("# Results\n\nno table here\n")
+    done = run_script("update_results_page", [str(page)], tmp_path)
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    assert len(lines) == 1 and lines[0].startswith("update_results_page: error: "), lines
+    assert str(page) in lines[0]
+
+
+def test_a_line_a_script_ends_with_is_led_by_its_name():
+    def main(argv):
+        raise SystemExit("results: holds nothing")
+    with pytest.raises(SystemExit) as stopped:
+        script_output.run_script(main, "some_script", [])
+    assert str(stopped.value) == "some_script: error: results: holds nothing"
