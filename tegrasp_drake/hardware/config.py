@@ -26,7 +26,7 @@ from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          read_yaml_file, require_fields)
+                                          read_yaml_file, require_fields, require_mapping)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
@@ -288,10 +288,8 @@ def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
     require_fields(data, filename, "the hardware config", "give the devices' fields (arm, "
                    "gripper, tactile, ...; `tegrasp emulate all --write-config FILE` writes "
                    "one)")
-    if not isinstance(data, dict):
-        raise ConfigError(f"{filename}: the hardware config must be a mapping of "
-                          f"HardwareStationConfig fields (arm, gripper, tactile, watchdog, "
-                          f"...), got a {type(data).__name__}")
+    require_mapping(data, filename, "the hardware config", "HardwareStationConfig fields "
+                    "(arm, gripper, tactile, watchdog, ...)")
     data.pop("_tag", None)
     for assignment in overrides:
         apply_override(data, assignment)

@@ -99,6 +99,15 @@ def require_fields(data, path, what: str, advice: str) -> None:
         raise ConfigError(f"{path}: {what} is empty (no fields); {advice}")
 
 
+def require_mapping(data, path, what: str, contents: str) -> None:
+    """ConfigError unless a configuration file's top level is a mapping: a file whose top
+    level is a list or a scalar says so, in the words of `what` ("the scenario file") and
+    `contents` (what its keys are: "scenario names"), not as a missing key."""
+    if not isinstance(data, dict):
+        raise ConfigError(f"{path}: {what}'s top level must be a mapping of {contents}, got "
+                          f"{_describe(data)}")
+
+
 def optional_field(data: dict, name: str, source: str, absent):
     """data[name], or `absent` when the field is left out; ConfigError for a null the user
     wrote, as check_fields refuses one (a null read as "left out" would put a default, e.g.

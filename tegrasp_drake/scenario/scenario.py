@@ -27,7 +27,8 @@ from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CL
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_fields,
-                                          load_typed, parse_yaml, read_yaml_file_cached, require)
+                                          load_typed, parse_yaml, read_yaml_file_cached, require,
+                                          require_mapping)
 from tegrasp_drake.simulation.capacitive_taxels import ad7147_frame_rate_hz, frame_rate_matches
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
@@ -330,8 +331,11 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     accept a grasp script longer than MAX_SCRIPT_S."""
     path = pathlib.Path(filename) if filename else paths.scenarios_file()
     document = read_yaml_file_cached(path, "the scenario file")
-    if not isinstance(document, dict) or name not in document:
-        names = ", ".join(document) if isinstance(document, dict) else "none"
+    if document is not None:  # an empty file: no scenario named `name`, below
+        require_mapping(document, path, "the scenario file",
+                        "scenario names to scenarios (default: {object: {name: box}})")
+    if not document or name not in document:
+        names = ", ".join(map(str, document)) if document else "none"
         raise ConfigError(f"{path}: no scenario named '{name}' (scenarios: {names})")
     data = document[name]
     if data is None:  # `x:` alone: an entry left empty, not the default scenario

@@ -12,7 +12,7 @@ import pathlib
 from tegrasp_drake.rig.files import JSON_OBJECT_START, write_atomically
 from tegrasp_drake.rig.ranges import is_integer, shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, keys_overlap,
-                                          optional_field, read_yaml_file,
+                                          optional_field, read_yaml_file, require_mapping,
                                           require_fields)
 from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, UncertainParameter,
                                                   parameter)
@@ -69,8 +69,8 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
     require_fields(data, source, "the sensitivity spec", "give at least one field (e.g. "
                    "parameters: [object.friction]; `sweep: {}` for every parameter over the "
                    "paper's sweep)")
-    if not isinstance(data, dict):
-        raise ConfigError(f"{source}: must be a mapping with parameters, events and sweep")
+    require_mapping(data, source, "the sensitivity spec",
+                    "its fields (parameters, events, sweep)")
     unknown = sorted(set(map(str, data)) - set(_FIELDS))
     if unknown:
         raise ConfigError(f"{source}: unknown field '{unknown[0]}' (fields: "

@@ -6,7 +6,7 @@ from collections.abc import Collection
 from dataclasses import dataclass
 
 from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
-                                          require_fields)
+                                          require_fields, require_mapping)
 from tegrasp_drake.sweep.spec import (BUILTIN_OBJECTS, CONTROLLER_NAMES, RENAMED_OBJECT_FIELDS,
                                       USER_OBJECT_FIELDS, RandomisationConfig, SweepSpec,
                                       is_number, product_grid, user_object, validate_spec)
@@ -30,6 +30,8 @@ def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_
     # Not a request for the paper's 243-trial experiment (which running without --spec gives).
     require_fields(fields, path, "the sweep spec", "give at least one field (e.g. objects: "
                    "[box]), or leave out --spec for the paper's experiment")
+    require_mapping(fields, path, "the sweep spec", "fields (objects, controllers, grid, "
+                    "attempts, ...)")
     return sweep_spec_from_fields(fields, str(path),
                                   builtin_objects=builtin_objects, controllers=controllers)
 

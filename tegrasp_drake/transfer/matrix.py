@@ -19,7 +19,7 @@ from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fields,
                                           keys_overlap, optional_field,
-                                          read_yaml_file, read_yaml_file_cached,
+                                          read_yaml_file, read_yaml_file_cached, require_mapping,
                                           require_fields)
 
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
@@ -103,8 +103,8 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
     data = read_yaml_file(path, "the transfer spec")
     require_fields(data, source, "the transfer spec", "give its worlds and cells (e.g. "
                    "worlds: {a: {scenario: memorizing_world}}, cells: [[a, a]])")
-    if not isinstance(data, dict):
-        raise ConfigError(f"{source}: must be a mapping with worlds, cells and sweep")
+    require_mapping(data, source, "the transfer spec",
+                    "its fields (worlds, cells, sweep, events_seed)")
     unknown = set(data) - {"worlds", "cells", "sweep", "events_seed"}
     if unknown:
         raise ConfigError(f"{source}: unknown field '{sorted(unknown)[0]}' (fields: worlds, "

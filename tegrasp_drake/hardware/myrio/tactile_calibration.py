@@ -60,16 +60,15 @@ class TactileCalibration:
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
     """Reads a TactileCalibration from YAML; otherwise a ConfigError naming the file and field."""
-    from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, read_yaml_file
+    from tegrasp_drake.rig.typed_yaml import (ConfigError, load_typed, read_yaml_file,
+                                              require_mapping)
     data = read_yaml_file(filename, "the tactile calibration")
     if data is None:
         raise ConfigError(f"{filename}: the tactile calibration is empty; give the pads' "
                           "gains and offsets (left, right, zero_samples), or no file for "
                           "the defaults")
-    if not isinstance(data, dict):
-        raise ConfigError(f"{filename}: the tactile calibration must be a mapping of "
-                          "fields (left, right, zero_samples, piezo_volts_per_count), got "
-                          f"a {type(data).__name__}")
+    require_mapping(data, filename, "the tactile calibration",
+                    "fields (left, right, zero_samples, piezo_volts_per_count)")
     data.pop("_tag", None)
     calibration = load_typed(data, TactileCalibration, str(filename))
     check_ranges(calibration, str(filename))

@@ -1,0 +1,38 @@
+"""Every YAML file kind the project reads (scenario file, sweep, transfer and sensitivity
+specs, hardware config, tactile calibration) whose top level is a list or a scalar is refused
+in one line naming the file, its kind and that its top level must be a mapping, not as a
+missing key or an unnamed shape (typed_yaml.require_mapping)."""
+
+import pytest
+
+from tegrasp_drake.hardware.config import LoadHardwareConfig
+from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.scenario import LoadScenario
+from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
+from tegrasp_drake.sweep.spec_file import LoadSweepSpec
+from tegrasp_drake.transfer.matrix import LoadTransferSpec
+
+LOADERS = {"the scenario file": LoadScenario, "the sweep spec": LoadSweepSpec,
+           "the transfer spec": LoadTransferSpec, "the sensitivity spec": LoadSensitivitySpec,
+           "the hardware config": LoadHardwareConfig,
+           "the tactile calibration": LoadTactileCalibration}
+
+
+@pytest.mark.parametrize("top_level", ["- box\n- cylinder\n", "42\n", "just words\n"])
+@pytest.mark.parametrize("what", sorted(LOADERS))
+def test_a_file_whose_top_level_is_not_a_mapping_says_so(what, top_level, tmp_path):
+    path = tmp_path / "file.yaml"
+    path.write_text(top_level)
+    with pytest.raises(ConfigError) as refused:
+        LOADERS[what](path)
+    message = str(refused.value)
+    assert message.startswith(f"{path}: {what}'s top level must be a mapping of "), message
+    assert "\n" not in message
+
+
+def test_a_scenario_file_says_its_keys_are_scenario_names(tmp_path):
+    path = tmp_path / "list.yaml"
+    path.write_text("- default\n")
+    with pytest.raises(ConfigError, match="must be a mapping of scenario names"):
+        LoadScenario(path)
