@@ -9,7 +9,7 @@ import typing
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.objects import ENSEMBLE_EVENTS_FOLDER
-from tegrasp_drake.rig.ranges import bounded
+from tegrasp_drake.rig.ranges import bounded, distinct_names
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 
@@ -243,7 +243,7 @@ class PlaceConfig:
 class MemorizedCorrectiveConfig:
     """Corrective events matched by Eq. 3 (docs/controller.md, "Memorized corrective triggers")."""
     # of "hold_avoid", "lift_load" (matches every normal lift: comparison only); []: heuristic
-    events: list[str] = dataclasses.field(default_factory=list)
+    events: list[str] = distinct_names(items="corrective events")
     # Eq. 3 [SA, RA], chosen on held-out runs: analysis/corrective_thresholds.md
     lift_load_thresholds: list[float] = bounded(default_factory=lambda: [0.45, 0.60],
                                                 length=2, **SCORE_RANGE)
@@ -294,7 +294,7 @@ class GraspControllerConfig:
     # Lost object: in Lift, Hold, Avoid or Place, both SA below contact_force_n.
     drop_check_enabled: bool = True
     # object fields the events' object may differ in, e.g. [friction] (a slippery box)
-    event_object_may_differ: list[str] = dataclasses.field(default_factory=list)
+    event_object_may_differ: list[str] = distinct_names(items="object fields")
     re_reach: ReReachConfig = dataclasses.field(default_factory=ReReachConfig)
     lift_load: LiftLoadConfig = dataclasses.field(default_factory=LiftLoadConfig)
     avoid: AvoidConfig = dataclasses.field(default_factory=AvoidConfig)

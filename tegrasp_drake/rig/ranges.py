@@ -14,6 +14,7 @@ from tegrasp_drake.rig.number_text import number_text
 
 _KEY = "tegrasp_range"
 _LENGTH_KEY = "tegrasp_length"
+_DISTINCT_KEY = "tegrasp_distinct"  # a list of names, each at most once
 
 
 @dataclasses.dataclass(frozen=True)
@@ -200,6 +201,7 @@ def check_ranges(config, source: str, where: str = "") -> None:
     for path, value, field in _declared_fields(config, where):
         _check_not_empty(value, field, source, path)
         _check_length(value, field, source, path)
+        _check_distinct(value, field, source, path)
         declared = range_of(field)
         if declared is not None and value is not None:
             _check_value(value, declared, source, path)
@@ -218,6 +220,28 @@ def sized(*, length: int, items: str, default_factory):
     `items` names them in an error, e.g. "true/false values"."""
     return dataclasses.field(default_factory=default_factory,
                              metadata={_LENGTH_KEY: (length, items)})
+
+
+def distinct_names(*, items: str):
+    """A list field of names (empty by default) that each name once: a repeated name is a
+    mistake (the same event matched twice, a field listed twice), refused naming the field
+    and the name; `items` names them in the error, e.g. "corrective events"."""
+    return dataclasses.field(default_factory=list, metadata={_DISTINCT_KEY: items})
+
+
+def _check_distinct(value, field: dataclasses.Field, source: str, path: str) -> None:
+    if _DISTINCT_KEY not in field.metadata or not isinstance(value, (list, tuple)):
+        return
+    seen = set()
+    for k, name in enumerate(value):
+        if not isinstance(name, collections.abc.Hashable):
+            continue  # a type error, which load_typed names
+        if name in seen:
+            from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: on checking
+            raise ConfigError(f"{source}: field '{path}' names {shorten(repr(name))} twice "
+                              f"(items {value.index(name)} and {k}); list each of its "
+                              f"{field.metadata[_DISTINCT_KEY]} once")
+        seen.add(name)
 
 
 def _check_length(value, field: dataclasses.Field, source: str, path: str) -> None:
@@ -328,6 +352,26 @@ def _drake_fields(cls) -> tuple:
     """The (name, type) of a Drake config class's fields (pydrake's `__fields__`), else ()."""
     return tuple((f.name, f.type) for f in getattr(cls, "__fields__", ()) or ()
                  if hasattr(f, "name") and hasattr(f, "type"))
+
+
+def undeclared_name_lists(*roots) -> list[str]:
+    """"Class.field" of every list-of-text field reachable from `roots` (dataclasses) not
+    declared with distinct_names: each such list names things, and a repeated name is refused
+    only where it is declared."""
+    seen, missing, pending = set(), [], list(roots)
+    while pending:
+        cls = pending.pop()
+        if cls in seen or not dataclasses.is_dataclass(cls):
+            continue
+        seen.add(cls)
+        hints = typing.get_type_hints(cls)
+        for field in dataclasses.fields(cls):
+            hint = hints[field.name]
+            if (typing.get_origin(hint) in (list, tuple) and typing.get_args(hint)[:1] == (str,)
+                    and _DISTINCT_KEY not in field.metadata):
+                missing.append(f"{cls.__module__}.{cls.__qualname__}.{field.name}")
+            pending.extend(_config_classes(hint))
+    return sorted(missing)
 
 
 def unranged_numeric_fields(*roots) -> list[str]:
