@@ -26,6 +26,35 @@ REPLAY_KEY = "replay_html"  # result.json's entry for the replay --html wrote
 
 
 
+# What each command that writes a run folder leaves at its top level, the entries that say
+# whose run a folder holds; asked in this order, since a sensitivity study's folder holds a
+# transfer's entries too (its points.json beside them).
+RUN_OWNERS = (("sensitivity", ("points.json",)), ("transfer", ("cells", "events")),
+              ("sweep", ("trials",)), ("trial", RUN_FILES))
+
+
+def run_owner(folder) -> tuple[str, str] | None:
+    """(the command whose run `folder` holds, the entry that says so), or None."""
+    folder = pathlib.Path(folder)
+    for command, entries in RUN_OWNERS:
+        for entry in entries:
+            if os.path.lexists(folder / entry):
+                return command, entry
+    return None
+
+
+def other_run_problem(folder, command: str) -> str | None:
+    """Why `tegrasp <command>` may not write its run into `folder`, or None: it holds another
+    command's run, whose files a run of this one would mix with (and a resume of that run
+    would then read); each command's run keeps a folder of its own."""
+    owner = run_owner(folder)
+    if owner is None or owner[0] == command or (command, owner[0]) == ("sensitivity",
+                                                                      "transfer"):
+        return None  # a sensitivity study is a transfer with its points.json beside it
+    return (f"--out {folder} holds a `tegrasp {owner[0]}` run ({owner[1]}); give another "
+            f"--out for this {command} run")
+
+
 class RunFolderError(Exception):
     """A run would replace an earlier run's files; the message says what to do."""
 
@@ -60,6 +89,9 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
     RunFolderError when `out` holds a run without `overwrite`, or cannot be written."""
     check_run_folder(out if out is not None else default)
     folder = pathlib.Path(out if out is not None else default)
+    problem = out is not None and other_run_problem(folder, "trial")
+    if problem:
+        raise RunFolderError(problem)
     for name in sorted(run_file_names()) if out is not None else ():
         problem = os.path.lexists(folder / name) and file_problem(folder / name, devices=())
         if not problem and os.path.islink(folder / name):  # a run writes no link: the user's

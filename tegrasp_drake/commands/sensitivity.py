@@ -52,7 +52,7 @@ def run(args) -> int:
     from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
                                                  one_at_a_time, run_sensitivity)
     with refusals_said("sensitivity") as refused:
-        check_runner_arguments(args)
+        check_runner_arguments(args, "sensitivity")
         with scheduler_connection(args) as scheduler:
             spec = LoadSensitivitySpec(args.spec)
             if args.latin_hypercube is None:

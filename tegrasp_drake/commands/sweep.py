@@ -13,6 +13,7 @@ import importlib
 import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
+from tegrasp_drake.commands.run_folder import other_run_problem
 from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
@@ -26,6 +27,7 @@ from tegrasp_drake.sweep.runner import (
     SchedulerLostError,
     SweepError,
     benchmark_text,
+    check_sweep_folder,
     run_benchmark,
     run_sweep,
     summary_text,
@@ -284,10 +286,11 @@ def refusals_said(command: str):
         raise SystemExit(f"tegrasp: error: {error}") from None
 
 
-def check_runner_arguments(args) -> None:
-    """OptionError for a bad --workers (check_workers), --confirm-trials, --out or --scheduler
-    address, before any trial runs or any event is recorded; scheduler_connection then asks
-    the scheduler whether it answers."""
+def check_runner_arguments(args, command: str) -> None:
+    """OptionError for a bad --workers (check_workers), --confirm-trials, --out (also one
+    holding another command's run: run_folder.other_run_problem) or --scheduler address,
+    before any trial runs or any event is recorded; `command` is the one run (sweep, transfer,
+    sensitivity); scheduler_connection then asks the scheduler whether it answers."""
     check_workers(args)
     if args.confirm_trials is not None and not 1 <= args.confirm_trials <= MAX_CONFIRMED_TRIALS:
         raise OptionError(f"{CONFIRM_OPTION} {args.confirm_trials}: give the study's count of "
@@ -302,6 +305,9 @@ def check_runner_arguments(args) -> None:
     problem = folder_problem(args.out)
     if problem:
         raise OptionError(f"--out {args.out}: {problem}; give a folder you can write")
+    problem = not getattr(args, "benchmark", False) and other_run_problem(args.out, command)
+    if problem:  # a benchmark writes into folders of its own
+        raise OptionError(problem)
 
 
 @contextlib.contextmanager
@@ -350,7 +356,7 @@ def run(args) -> int:
     with refusals_said("sweep") as refused:
         if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise OptionError("--benchmark times the local process pool; drop --scheduler")
-        check_runner_arguments(args)
+        check_runner_arguments(args, "sweep")
         with scheduler_connection(args) as scheduler:
             spec = spec_from_arguments(args)
             trial_function = resolve_trial_function(args.trial_function)
@@ -363,15 +369,17 @@ def run(args) -> int:
                 except ConfigError as error:  # an event file missing or damaged: bad input, 1
                     print(f"tegrasp sweep: error: {error}", file=sys.stderr)
                     return 1
-            if args.dry_run:
-                print(plan_text(spec))
-                return 0
-            progress = not args.no_progress and progress_wanted(args)
             if args.events:
                 trial_function = bound_arguments(trial_function, events_dir=args.events)
             if args.logs:
                 _check_logs_folder(args.logs)
                 trial_function = bound_arguments(trial_function, log_dir=args.logs)
+            if args.dry_run:  # refused as the real run would refuse it, before any trial
+                if not args.benchmark:
+                    check_sweep_folder(spec, trial_function, args.out)
+                print(plan_text(spec))
+                return 0
+            progress = not args.no_progress and progress_wanted(args)
             if args.benchmark:
                 runs, identical = run_benchmark(spec, trial_function, progress=progress)
                 print(benchmark_text(runs, identical))

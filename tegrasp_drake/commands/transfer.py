@@ -43,7 +43,7 @@ def run(args) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
     from tegrasp_drake.transfer.report import write_transfer_reports
     with refusals_said("transfer") as refused:
-        check_runner_arguments(args)
+        check_runner_arguments(args, "transfer")
         with scheduler_connection(args) as scheduler:
             spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)
             trial_function = resolve_trial_function(args.trial_function)

@@ -231,9 +231,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
         _tell_earlier_temporary_files(out_dir)
         loaded = load_records(out_dir)
         _keep_corrupt_records_aside(loaded.corrupt)
-        _check_same_sweep(trials, loaded.records, out_dir)
-        events = trial_events_identities(trial_function, trials)
-        _check_same_events(events, loaded.records, out_dir)
+        events = _check_records_fit(trials, trial_function, loaded.records, out_dir)
         pending = [trial for trial in trials
                    if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
         unwritable = unwritable_records(out_dir, [trial["trial_id"] for trial in pending])
@@ -294,6 +292,26 @@ def _tell_earlier_temporary_files(out_dir) -> None:
                        + (", ..." if len(left) > 1 else "") + "), left by a run killed while "
                        "writing a record; this version neither writes nor reads them: delete "
                        "them once no earlier version's run writes into this folder")
+
+
+def check_sweep_folder(spec: SweepSpec, trial_function: Callable, out_dir) -> None:
+    """What run_sweep refuses in `out_dir` before it runs a trial (records made with other
+    settings, or matched against other memorized events, for this spec's trial ids), checked
+    without writing anything: `tegrasp sweep --dry-run` asks it, so a plan it prints is one
+    the real run does not refuse. ConfigError or SweepError, as run_sweep's."""
+    if not Path(out_dir).is_dir():
+        return  # a new folder: nothing recorded to disagree with
+    trials = [trial.to_dict() for trial in expand_trials(spec)]
+    _check_records_fit(trials, trial_function, load_records(out_dir).records, out_dir)
+
+
+def _check_records_fit(trials, trial_function, records, out_dir) -> dict[str, dict | None]:
+    """The trials' memorized-event identities (trial_events_identities), after refusing
+    `records` made for the same ids with other settings or other events."""
+    _check_same_sweep(trials, records, out_dir)
+    events = trial_events_identities(trial_function, trials)
+    _check_same_events(events, records, out_dir)
+    return events
 
 
 def _check_same_sweep(trials, records, out_dir):

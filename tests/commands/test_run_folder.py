@@ -217,3 +217,47 @@ def test_a_run_killed_writing_a_figure_leaves_a_staging_folder_the_next_run_remo
     assert [path.name.startswith(".states.") for path in left.iterdir()] == [True]
     with staged_run(tmp_path):
         assert not left.exists()
+
+
+def _other_runs(tmp_path):
+    """{command: its run's top-level entry}, each made in its own folder under tmp_path."""
+    entries = {"trial": "result.json", "sweep": "trials", "transfer": "cells",
+               "sensitivity": "points.json"}
+    folders = {}
+    for command, entry in entries.items():
+        folder = tmp_path / f"{command}_run"
+        folder.mkdir()
+        if "." in entry:
+            (folder / entry).write_text("{}")
+        else:
+            (folder / entry).mkdir()
+        folders[command] = folder
+    return folders
+
+
+TRANSFER_SPEC = "worlds: {a: {scenario: memorizing_world}}\ncells: [[a, a]]\n"
+
+
+@pytest.mark.parametrize("command, into", [
+    ("transfer", "trial"), ("transfer", "sweep"), ("transfer", "sensitivity"),
+    ("sweep", "trial"), ("sweep", "transfer"), ("sensitivity", "trial"),
+    ("sensitivity", "sweep"), ("trial", "sweep"), ("trial", "transfer")])
+def test_a_run_into_a_folder_holding_another_commands_run_is_refused(command, into, tmp_path,
+                                                                     capsys):
+    folder = _other_runs(tmp_path)[into]
+    before = sorted(path.name for path in folder.iterdir())
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(TRANSFER_SPEC if command == "transfer" else
+                    "parameters: [object.friction]\nsweep: {objects: [box], attempts: 1}\n")
+    arguments = {"transfer": [str(spec)], "sensitivity": [str(spec)],
+                 "sweep": ["--objects", "box", "--attempts", "1", "--trial-function",
+                           "tests.fake_trials:fake_trial", "--no-progress"],
+                 "trial": []}[command]
+    try:
+        code = cli.main([command, *arguments, "--out", str(folder)])
+        lines = capsys.readouterr().err.strip().splitlines()
+    except SystemExit as exit_:  # trial's refusals end the process with their line
+        code, lines = 1, [str(exit_.code)]
+    assert code == 1
+    assert len(lines) == 1 and f"holds a `tegrasp {into}` run" in lines[0], lines
+    assert sorted(path.name for path in folder.iterdir()) == before

@@ -216,6 +216,32 @@ def test_dry_run_checks_the_events_as_the_real_sweep_does(tmp_path, capsys):
     assert not out.exists()
 
 
+def test_dry_run_refuses_a_logs_path_that_is_not_a_folder_as_the_run_does(tmp_path, capsys):
+    (tmp_path / "trial.npz").write_bytes(b"PK\x03\x04 not a folder")
+    arguments = ["--objects", "box", "--controllers", "memorized", "--attempts", "1",
+                 "--logs", str(tmp_path / "trial.npz"), "--out", str(tmp_path / "out"), *FAKE]
+    for dry_run in ([], ["--dry-run"]):
+        assert command.main([*arguments, *dry_run]) == 1, dry_run
+        captured = capsys.readouterr()
+        assert f"--logs {tmp_path / 'trial.npz'}" in captured.err, (dry_run, captured.err)
+        assert "sweep plan" not in captured.out
+
+
+def test_dry_run_refuses_an_out_folder_of_records_made_with_other_settings(tmp_path, capsys):
+    out = tmp_path / "out"
+    common = ["--objects", "box", "--controllers", "memorized", "--attempts", "1",
+              "--out", str(out), *FAKE]
+    assert command.main(common) == 0
+    capsys.readouterr()
+    records = {path: path.stat().st_mtime_ns for path in (out / "trials").iterdir()}
+    for dry_run in (["--dry-run"], []):  # the plan, then the run, refused alike
+        assert command.main([*common, "--base-seed", "7", *dry_run]) == 2, dry_run
+        captured = capsys.readouterr()
+        assert "made with other settings" in captured.err, captured.err
+        assert "sweep plan" not in captured.out
+    assert {path: path.stat().st_mtime_ns for path in (out / "trials").iterdir()} == records
+
+
 def test_a_missing_trial_function_is_reported(tmp_path, capsys):
     out = tmp_path / "out"
     assert command.main(["--out", str(out), "--no-progress",
