@@ -139,6 +139,13 @@ def test_a_logged_scenario_is_checked_as_a_loaded_one():
         scenario_from_yaml(damaged, "run log 'x'")
 
 
+# Rule: a logged scenario is walked field by field as a loaded one is (check_fields): a section
+# corrupt bytes made a scalar is named, never an AssertionError inside Drake's loader.
+def test_a_logged_scenario_whose_section_is_text_names_the_field():
+    with pytest.raises(ConfigError, match="run log 'x': field 'object' must be a mapping"):
+        scenario_from_yaml("object: name-box\n", "run log 'x'")
+
+
 def test_a_trial_refuses_a_scenario_for_the_devices(tmp_path, capfd):
     scenario = tmp_path / "scenarios.yaml"
     scenario.write_text("mine:\n  station: !HardwareStationConfig {ready_timeout: 1.0}\n")

@@ -12,6 +12,7 @@ from tegrasp_drake.events import save_memorized_events
 from tegrasp_drake.events.synthetic import synthetic_grasp
 from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL, TACTILE_CHANNEL
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info
+from tegrasp_drake.rig.files import one_line
 from tegrasp_drake.runs.hardware_log_reader import read_run_log
 from tegrasp_drake.scenario.scenario import Scenario, scenario_to_yaml
 from tests.runs.test_hardware_log_reader import EVENTS, GRASP, tactile_message
@@ -97,6 +98,65 @@ def test_two_run_infos_that_differ_are_damage(tmp_path, capfd):
     save_memorized_events(tmp_path / "events", EVENTS.values())
     code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
     assert code == 3 and "object box" in text, text
+
+
+def _run_info_scenario_changed(path, change):
+    """The log at `path` with its TEGRASP_RUN_INFO's scenario text's bytes passed through
+    change(bytearray), in place: LCM logs carry no checksum, so corrupt bytes decode."""
+    data = bytearray(path.read_bytes())
+    text = scenario_to_yaml(Scenario()).encode()
+    start = data.find(text)
+    assert start > 0
+    data[start:start + len(text)] = change(bytearray(text))
+    path.write_bytes(bytes(data))
+
+
+def _flipped(*positions):
+    def change(text):
+        for k in positions:
+            text[k] ^= 0xFF
+        return text
+    return change
+
+
+def _upper_cased(word):
+    def change(text):
+        k = text.find(word.encode())
+        text[k:k + len(word)] = word.upper().encode()
+        return text
+    return change
+
+
+# Rule: a TEGRASP_RUN_INFO whose scenario text corrupt bytes changed is damage, named (which
+# message and field, not UTF-8 at which byte, or which field does not load), with no raw
+# replacement character; the log is replayed with its logged object and the matcher's
+# defaults, exit 3 as for any damaged log.
+@pytest.mark.parametrize("change, words", [
+    # the 'b' of 'object:\n  name: box' made 0x9d, a UTF-8 continuation byte with no lead
+    (_flipped(31), "is not UTF-8 at byte 31"),
+    (_upper_cased("expected_xy"), "placement.EXPECTED_XY"),  # UTF-8, a key no scenario has
+])
+def test_a_run_info_scenario_with_corrupt_bytes_is_damage_and_the_log_replays(
+        tmp_path, capfd, change, words):
+    path = _run_log(tmp_path / "run.lcmlog")
+    _run_info_scenario_changed(path, change)
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert f"{RUN_INFO_CHANNEL} field 'scenario_yaml'" in damage[0] and words in damage[0], \
+        damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3, text
+    assert "\ufffd" not in text, text
+    assert "object box" in text and "fired at" in text, text
+    warnings = [line for line in text.splitlines() if line.startswith("tegrasp: warning:")]
+    assert len(warnings) == 1 and words in warnings[0], text
+
+
+# Rule: every error line shows a replacement character U+FFFD (bytes a decoder could not
+# read) escaped, as it shows line breaks and ESC, so that no line looks like intact text.
+def test_an_error_line_escapes_the_replacement_character():
+    assert one_line("name: \ufffd\ufffdx\n") == "name: \\ufffd\\ufffdx\\n"
 
 
 def _renumbered(path, number):

@@ -602,14 +602,20 @@ def termination_interrupts(process_ends: bool = False):
 _ESCAPES = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
 
 
+# U+FFFD is what a decoder puts for bytes that are not UTF-8 (errors="replace", as LCM's
+# generated decoders do): printable, but it shows no byte, so it is escaped with the others.
+REPLACEMENT_CHARACTER = "\ufffd"
+
+
 def one_line(text: str) -> str:
-    """`text` as one plain line: characters that are not printable (line breaks, ESC, ...) shown
-    escaped as Python would (\\n, \\x1b, \\u2028)."""
-    if text.isprintable():
+    """`text` as one plain line: characters that are not printable (line breaks, ESC, ...) and
+    the replacement character U+FFFD shown escaped as Python would (\\n, \\x1b, \\u2028,
+    \\ufffd)."""
+    if text.isprintable() and REPLACEMENT_CHARACTER not in text:
         return text
     return "".join(
-        ch if ch.isprintable() or ch == " " else
-        _ESCAPES.get(ch) or repr(ch)[1:-1] for ch in text)
+        ch if (ch.isprintable() and ch != REPLACEMENT_CHARACTER) or ch == " " else
+        _ESCAPES.get(ch) or ch.encode("unicode_escape").decode("ascii") for ch in text)
 
 
 # A value pasted by mistake must not make an error hundreds of kB long: an error line is at

@@ -17,7 +17,8 @@ from tegrasp_drake.control.grasp_modes import Mode, Transition
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import field_range, shorten
-from tegrasp_drake.rig.files import file_problem, one_line, read_bounded
+from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, file_problem, one_line,
+                                     read_bounded)
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
@@ -65,6 +66,7 @@ class RunLog:
     message_counts: dict    # channel -> messages (every channel in the file)
     damage: list = dataclasses.field(default_factory=list)  # what was lost, in words
     scenario: object = None  # the run's Scenario (logged_scenario), None if not logged
+    scenario_problem: str | None = None  # why a logged scenario_yaml was not read (damage)
 
     def damage_text(self) -> str:
         """One line: what was read and what was lost ("" for an intact log)."""
@@ -457,14 +459,21 @@ def check_run_info(info: lcmt_tegrasp_run_info, path) -> None:
 
 
 def logged_scenario(info: lcmt_tegrasp_run_info | None):
-    """The Scenario of a run's TEGRASP_RUN_INFO, or None when it holds none or one that is
-    not a scenario (the replay refuses that one where it reads it, naming the field)."""
+    """(the Scenario of a run's TEGRASP_RUN_INFO, None); (None, None) when it holds none; or
+    (None, what is wrong) when its scenario_yaml is not a scenario: bytes that are not UTF-8
+    (the generated decoder puts U+FFFD for them) named by their byte, else the field that
+    does not load (ConfigError), escaped to one line."""
     if info is None or not info.scenario_yaml:
-        return None
+        return None, None
+    text = info.scenario_yaml
+    if REPLACEMENT_CHARACTER in text:
+        # the characters before the first U+FFFD decoded as they were written
+        byte = len(text[:text.index(REPLACEMENT_CHARACTER)].encode("utf-8"))
+        return None, f"is not UTF-8 at byte {byte} of its text"
     try:
-        return scenario_from_yaml(info.scenario_yaml)
-    except ConfigError:
-        return None
+        return scenario_from_yaml(text, "its scenario_yaml"), None
+    except ConfigError as e:
+        return None, f"is not a scenario ({shorten(one_line(str(e)), 300)})"
 
 
 def run_info_damage(messages: list, scenario) -> list[str]:
@@ -537,9 +546,15 @@ def read_run_log(path) -> RunLog:
     info = decoded[RUN_INFO_CHANNEL]
     run_info = info[0][1] if info else None
     scenario = None
+    scenario_problem = None
     if run_info is not None:
         check_run_info(run_info, path)
-        scenario = logged_scenario(run_info)
+        scenario, scenario_problem = logged_scenario(run_info)
+        if scenario_problem:
+            damage.append(
+                f"its {RUN_INFO_CHANNEL} field 'scenario_yaml' {scenario_problem} (corrupt "
+                "bytes); the run's object is its object_name, the matcher's settings the "
+                "defaults (give --object to match another object's events)")
         damage += run_info_damage([message for _, message in info], scenario)
     taxel_range = taxel_force_range(scenario)
     tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL], taxel_range)
@@ -575,4 +590,5 @@ def read_run_log(path) -> RunLog:
         faults=[m for _, m in decoded[FAULT_CHANNEL]],
         gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
         arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],
-        message_counts=counts, damage=damage, scenario=scenario)
+        message_counts=counts, damage=damage, scenario=scenario,
+        scenario_problem=scenario_problem)

@@ -172,7 +172,8 @@ def replay_run_log(path, *, object_name: str | None = None,
         events_dir = info.events_dir
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
     events_dir = str(folder)
-    config = matcher_config_of_run(info, events,
+    # a scenario_yaml that does not read is damage (RunLog.damage): the defaults are used
+    config = matcher_config_of_run(None if log.scenario_problem else info, events,
                                    f"run log '{path}': its TEGRASP_RUN_INFO scenario",
                                    scenario=log.scenario)
     trial = log.tactile_trial()

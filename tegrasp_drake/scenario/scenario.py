@@ -11,7 +11,7 @@ import pathlib
 import typing
 
 import yaml
-from pydrake.common.yaml import yaml_dump, yaml_dump_typed, yaml_load_typed
+from pydrake.common.yaml import yaml_dump_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 
@@ -492,7 +492,9 @@ def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenar
     try:
         data = migrate_stored_scenario(parse_yaml(text, source) or {})
         select_controller_tag(data, drop_others=True)
-        scenario = yaml_load_typed(schema=Scenario, data=yaml_dump(data), defaults=Scenario())
+        # load_typed walks the fields first (check_fields), as LoadScenario's loading does: a
+        # key or section that corrupt bytes changed is named, never handed to Drake's loader
+        scenario = load_typed(data, Scenario, source)
     except (RuntimeError, ValueError, TypeError, AttributeError, yaml.YAMLError) as e:
         if isinstance(e, ConfigError):
             raise
