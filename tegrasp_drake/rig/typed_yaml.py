@@ -277,10 +277,10 @@ def apply_override(data: dict, assignment: str) -> None:
     node[parts[-1]] = value
 
 
-def load_typed(data: dict, schema, source: str):
+def load_typed(data: dict, schema, source: str, *, stored: bool = False):
     """An instance of the dataclass `schema` from YAML data (defaults for what is not
-    set), after `check_fields`."""
-    check_fields(data, schema, source)
+    set), after `check_fields` (`stored`: as check_fields's)."""
+    check_fields(data, schema, source, stored=stored)
     from pydrake.common.yaml import yaml_dump, yaml_load_typed  # pydrake: loaded when building
     try:
         return yaml_load_typed(schema=schema, data=yaml_dump(data), defaults=schema())
@@ -288,10 +288,12 @@ def load_typed(data: dict, schema, source: str):
         raise ConfigError(f"{source}: {e}") from None
 
 
-def check_fields(data, schema, source: str, where: str = "") -> None:
+def check_fields(data, schema, source: str, where: str = "", *, stored: bool = False) -> None:
     """Walks YAML data against a dataclass schema; ConfigError names the first unknown,
     missing or mistyped field (dataclasses, scalars, lists, tuples, mappings, optionals,
-    tagged Unions; Drake's config classes are checked by Drake)."""
+    tagged Unions; Drake's config classes are checked by Drake). `stored`: the text this
+    package wrote (a log's or an event's scenario), whose empty "not set" fields are read as
+    not set: versions before scenario_to_yaml dropped them wrote them; a user's are refused."""
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         _check_finite_numbers(data, source, where)
@@ -313,10 +315,11 @@ def check_fields(data, schema, source: str, where: str = "") -> None:
             raise ConfigError(f"{source}: field '{path}': unknown field '{path}' (known: "
                               f"{', '.join(sorted(fields))})")
         means = empty_meaning(fields[key])
-        if means is not None and isinstance(value, (str, list)) and len(value) == 0:
+        if (means is not None and not stored and isinstance(value, (str, list))
+                and len(value) == 0):
             raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
                               f"out for {means}")
-        _check_value(value, hints[key], path, source)
+        _check_value(value, hints[key], path, source, stored)
     for field in dataclasses.fields(schema):
         required = (field.default is dataclasses.MISSING
                     and field.default_factory is dataclasses.MISSING)
@@ -480,7 +483,7 @@ def require(condition: bool, source: str, path: str, words: str, value) -> None:
         raise ConfigError(f"{source}: field '{path}' {words}, got {shorten(repr(value))}")
 
 
-def _check_value(value, hint, path: str, source: str) -> None:
+def _check_value(value, hint, path: str, source: str, stored: bool = False) -> None:
     origin = typing.get_origin(hint)
     if origin in (typing.Union, types.UnionType):
         members = [m for m in typing.get_args(hint) if m is not type(None)]
@@ -490,10 +493,10 @@ def _check_value(value, hint, path: str, source: str) -> None:
             raise ConfigError(f"{source}: field '{path}' is null: give a value, or leave "
                               "the field out to take its default")
         if len(members) == 1:
-            _check_value(value, members[0], path, source)
+            _check_value(value, members[0], path, source, stored)
         else:
             member, value = _union_member(value, members, path, source)
-            _check_value(value, member, path, source)
+            _check_value(value, member, path, source, stored)
     elif origin in (list, tuple):
         element = typing.get_args(hint)[0]
         if not isinstance(value, list):
@@ -501,19 +504,19 @@ def _check_value(value, hint, path: str, source: str) -> None:
             raise ConfigError(f"{source}: field '{path}' must be a list of {words}, got "
                               f"{_describe(value)}")
         for k, item in enumerate(value):
-            _check_value(item, element, f"{path}[{k}]", source)
+            _check_value(item, element, f"{path}[{k}]", source, stored)
     elif origin in (dict, collections.abc.Mapping):
         if not isinstance(value, dict):
             raise ConfigError(f"{source}: field '{path}' must be a mapping, got "
                               f"{_describe(value)}")
         for key, item in value.items():
-            _check_value(item, typing.get_args(hint)[1], f"{path}.{key}", source)
+            _check_value(item, typing.get_args(hint)[1], f"{path}.{key}", source, stored)
     elif hint in _SCALAR_WORDS:
         if not _is_scalar(value, hint):
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
                               f"{_describe(value)}{_text_as_value_hint(value, hint)}")
     else:
-        check_fields(value, hint, source, path)
+        check_fields(value, hint, source, path, stored=stored)
 
 
 def _text_as_value_hint(value, hint) -> str:

@@ -494,7 +494,7 @@ def scenario_from_yaml(text: str, source: str = "the logged scenario") -> Scenar
         select_controller_tag(data, drop_others=True)
         # load_typed walks the fields first (check_fields), as LoadScenario's loading does: a
         # key or section that corrupt bytes changed is named, never handed to Drake's loader
-        scenario = load_typed(data, Scenario, source)
+        scenario = load_typed(data, Scenario, source, stored=True)
     except (RuntimeError, ValueError, TypeError, AttributeError, yaml.YAMLError) as e:
         if isinstance(e, ConfigError):
             raise
