@@ -233,7 +233,8 @@ def synthetic_trial_log(trial) -> TrialLog:
                     pad_acceleration=zeros(trial.t_ra, 6), t_slow=t_slow,
                     arm_q=arm_q, arm_q_desired=arm_q,
                     gripper_command=zeros(t_slow, 3), gripper_status=zeros(t_slow, 8),
-                    phase=np.zeros(2), object_state=object_state, meta={})
+                    phase=np.zeros(2), object_state=object_state,
+                    meta={"controller": "memorized"})
 
 
 def test_the_command_classes_a_sweeps_missed_waits_from_its_records_and_logs(tmp_path):

@@ -242,7 +242,9 @@ def _trial_log(path, **changes):
         arrays[name][:, 1:3] = [3.0, 1.0]
     assert set(arrays) == set(ARRAY_FIELDS)
     arrays.update(changes)
-    meta = json.dumps({"format_version": FORMAT_VERSION})
+    # every trial log names its controller (trial_log_file.REQUIRED_META_FIELDS): the
+    # default scenario's
+    meta = json.dumps({"format_version": FORMAT_VERSION, "controller": "memorized"})
     np.savez_compressed(path, meta=np.array(meta), **arrays)
     return path
 

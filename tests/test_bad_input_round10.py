@@ -130,7 +130,7 @@ def test_trial_log_arrays_and_the_avoid_plots_precondition(tmp_path):
         arrays = {key: stored[key] for key in stored.files if key != "meta"}
     scenario = T.with_controller(T.LoadScenario(name="box"), "open_loop")
     meta = {"format_version": FORMAT_VERSION, "scenario": T.scenario_to_yaml(scenario),
-            "transitions": []}
+            "controller": "open_loop", "transitions": []}
     np.savez_compressed(path, meta=np.array(json.dumps(meta)), **arrays)
     with pytest.raises(SystemExit) as refused:
         main(["plot", "avoid", str(path), "--out", str(tmp_path / "a.png")])

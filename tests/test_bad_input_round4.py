@@ -446,7 +446,7 @@ def _small_trial_log(path, channels: int) -> pathlib.Path:
     arrays["object_state"][:, 0] = 1.0  # the identity orientation, a unit quaternion
     for name in ("arm_q", "arm_q_desired"):  # joints 2 and 3 within the JACO2's limits
         arrays[name][:, 1:3] = [3.0, 1.0]
-    return TrialLog(meta={}, **arrays).save(path)
+    return TrialLog(meta={"controller": "memorized"}, **arrays).save(path)
 
 
 def test_a_trial_log_the_plots_refuse_is_not_streamed_either(tmp_path):

@@ -199,9 +199,9 @@ def _is_versions(value) -> bool:
         isinstance(name, str) and isinstance(v, str) for name, v in value.items())
 
 
-# The metadata fields a reader uses or the writer stores (each optional), what each must hold,
-# and its check. The writer is trial_log_writer.collect_trial_log with the runs' `meta`
-# (runs/trial.py). The times among them are checked against the log's span in meta_problem.
+# The metadata fields a reader uses or the writer stores (optional but REQUIRED_META_FIELDS),
+# what each must hold, and its check. The writer is trial_log_writer.collect_trial_log with
+# the runs' `meta` (runs/trial.py). The times among them are checked against the log's span in meta_problem.
 META_FIELDS = {
     "scenario": ("be the scenario's YAML text", lambda v: isinstance(v, str)),
     "controller": ("be a controller name, one of " + ", ".join(CONTROLLER_NAMES),
@@ -222,6 +222,11 @@ META_FIELDS = {
 
 
 META_KEYS = frozenset({*META_FIELDS, "transitions", "format_version"})
+# The fields every trial log holds: each of its writers stores the controller that ran it
+# (runs/trial.py the scenario's, runs/ideal_grasp.py the open-loop script's), and the
+# figures' labels and the transition scores' check read it; a log without one was not
+# written by this package or was edited.
+REQUIRED_META_FIELDS = ("controller",)
 # [characters] The metadata's JSON holds the scenario's YAML (its file at most
 # typed_yaml.MAX_YAML_BYTES, 1 MB), the transitions twice (in 'transitions' and the result;
 # a sweep record, result and all, is at most records.MAX_RECORD_BYTES, 1 MB) and a few short
@@ -431,6 +436,10 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
     if unknown:
         return (f"meta holds the key '{shorten(str(unknown[0]))}', which no trial log has (its "
                 f"keys: {', '.join(sorted(META_KEYS))})")
+    for key in REQUIRED_META_FIELDS:
+        if key not in meta:
+            what = META_FIELDS[key][0].removeprefix("be ")
+            return f"meta lacks the field '{key}', which every trial log holds ({what})"
     for key, (what, is_valid) in META_FIELDS.items():
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"

@@ -2,9 +2,13 @@
 and its text is bounded before it is decompressed: a 1 MB file of one repeated character
 declares hundreds of MB."""
 
+import json
+
+import numpy as np
 import pytest
 
 from tegrasp_drake.scenario.trial_log_file import MAX_META_CHARS, TrialLogError, load_trial_log
+from tests.test_bad_input import assert_one_line_error, run_cli
 from tests.test_bad_input_round2 import _trial_log_with
 
 
@@ -21,3 +25,21 @@ def test_a_trial_log_whose_meta_declares_too_much_text_is_refused_before_reading
     with pytest.raises(TrialLogError, match="'meta' declares .* characters of text, more than "
                        f"the {MAX_META_CHARS} a trial log holds"):
         load_trial_log(path)
+
+
+# Rule: every writer of a trial log stores the controller that ran it (runs/trial.py, and the
+# ideal grasp's open-loop script), so a log without one is refused naming the file and the
+# field, never read as a log of no controller.
+def test_a_trial_log_whose_meta_has_no_controller_is_refused_naming_the_field(tmp_path, capfd):
+    path = _trial_log_with(tmp_path / "trial.npz")
+    with np.load(path) as stored:
+        contents = {name: stored[name] for name in stored.files}
+    meta = json.loads(str(contents["meta"]))
+    assert meta.pop("controller") == "memorized"
+    contents["meta"] = np.array(json.dumps(meta))
+    np.savez_compressed(path, **contents)
+    with pytest.raises(TrialLogError, match="meta lacks the field 'controller'"):
+        load_trial_log(path)
+    code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "t.png")], capfd)
+    assert_one_line_error(code, text, str(path), "'controller'")
+    assert not (tmp_path / "t.png").exists()
