@@ -53,7 +53,7 @@ def run(args) -> int:
                                                  one_at_a_time, run_sensitivity)
     with refusals_said("sensitivity") as refused:
         check_runner_arguments(args, "sensitivity")
-        with scheduler_connection(args) as scheduler:
+        with scheduler_connection(args, "sensitivity") as scheduler:
             spec = LoadSensitivitySpec(args.spec)
             if args.latin_hypercube is None:
                 points = one_at_a_time(spec)

@@ -311,17 +311,25 @@ def check_runner_arguments(args, command: str) -> None:
 
 
 @contextlib.contextmanager
-def scheduler_connection(args):
+def scheduler_connection(args, command: str):
     """The command's one connection to --scheduler (None without it), which its sweeps run
-    on: entered, it connects (OptionError when the Dask extra is missing or the scheduler
-    does not answer) and, unless asked for debug output (-vv shows distributed's own logs),
+    on: entered, it says on stderr (unless --quiet) what it connects to and for how long at
+    most, as distributed retries an address where nothing listens until its timeout (31 s
+    for tcp://127.0.0.1:1 when measured), then connects (OptionError when the Dask extra is
+    missing or the scheduler does not answer) and, unless asked for debug output (-vv shows
+    distributed's own logs),
     holds distributed's loggers; left, it closes the client and then gives the loggers
     back (the client logs while it closes too). Entered after check_runner_arguments, so
     that nothing after the connection refuses an option."""
     if args.scheduler is None:
         yield None
         return
-    from tegrasp_drake.sweep.runner import connect_scheduler, hold_dask_logs
+    from tegrasp_drake.sweep.runner import (DASK_ANSWER_BOUND_S, connect_scheduler,
+                                            hold_dask_logs)
+    if not getattr(args, "quiet", False):
+        print(f"tegrasp {command}: connecting to the Dask scheduler at "
+              f"{shorten(args.scheduler)} (at most {DASK_ANSWER_BOUND_S:.0f} s) ...",
+              file=sys.stderr, flush=True)
     try:
         client = connect_scheduler(args.scheduler)
     except SweepError as error:
@@ -357,7 +365,7 @@ def run(args) -> int:
         if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise OptionError("--benchmark times the local process pool; drop --scheduler")
         check_runner_arguments(args, "sweep")
-        with scheduler_connection(args) as scheduler:
+        with scheduler_connection(args, "sweep") as scheduler:
             spec = spec_from_arguments(args)
             trial_function = resolve_trial_function(args.trial_function)
             check_events_folder(args.events)

@@ -44,7 +44,7 @@ def run(args) -> int:
     from tegrasp_drake.transfer.report import write_transfer_reports
     with refusals_said("transfer") as refused:
         check_runner_arguments(args, "transfer")
-        with scheduler_connection(args) as scheduler:
+        with scheduler_connection(args, "transfer") as scheduler:
             spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)
             trial_function = resolve_trial_function(args.trial_function)
             summaries = run_transfer(spec, trial_function, args.out, workers=args.workers,

@@ -343,7 +343,7 @@ def test_the_scheduler_connection_holds_dasks_logs_until_its_client_is_closed(
     monkeypatch.setattr(dask_logger, "level", logging.INFO)
     args = argparse.Namespace(scheduler="tcp://127.0.0.1:8786", verbose=verbose)
     with pytest.raises(KeyError):
-        with command.scheduler_connection(args) as connected:
+        with command.scheduler_connection(args, "sweep") as connected:
             assert connected is client and not client.closed
             assert (dask_logger.level > logging.CRITICAL) == held
             raise KeyError("the command's body failed")
@@ -358,8 +358,33 @@ def test_a_scheduler_that_does_not_answer_is_an_option_error(monkeypatch):
     monkeypatch.setattr(runner, "connect_scheduler", refuse)
     args = argparse.Namespace(scheduler="tcp://127.0.0.1:9", verbose=0)
     with pytest.raises(command.OptionError, match="cannot reach the Dask scheduler"):
-        with command.scheduler_connection(args):
+        with command.scheduler_connection(args, "sweep"):
             pass
+
+
+# Rule: distributed retries an address where nothing listens until its timeout (half a minute
+# and more): the command says what it connects to, and for how long at most, before it tries,
+# unless --quiet; the refusal follows as its one error line.
+@pytest.mark.parametrize("quiet", [False, True])
+def test_the_scheduler_connection_says_what_it_connects_to_before_it_tries(
+        quiet, monkeypatch, capsys):
+    from tegrasp_drake.sweep import runner
+    said = []
+
+    def refuse(address):
+        said.append(capsys.readouterr().err)  # what was on stderr when the connect began
+        raise runner.SweepError(f"cannot reach the Dask scheduler at {address}")
+    monkeypatch.setattr(runner, "connect_scheduler", refuse)
+    args = argparse.Namespace(scheduler="tcp://127.0.0.1:1", verbose=0, quiet=quiet)
+    with command.refusals_said("transfer") as refused:
+        with command.scheduler_connection(args, "transfer"):
+            pass
+    assert refused.exit_code == 1
+    expected = ("" if quiet else "tegrasp transfer: connecting to the Dask scheduler at "
+                f"tcp://127.0.0.1:1 (at most {runner.DASK_ANSWER_BOUND_S:.0f} s) ...\n")
+    assert said == [expected]
+    assert capsys.readouterr().err == ("tegrasp transfer: error: cannot reach the Dask "
+                                       "scheduler at tcp://127.0.0.1:1\n")
 
 
 @pytest.mark.parametrize("error, code", [
