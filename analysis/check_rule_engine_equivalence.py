@@ -141,7 +141,8 @@ def differences(base: dict, tip: dict) -> list[str]:
 def main(argv=None) -> int:
     parser = script_parser("check_rule_engine_equivalence", __doc__)
     parser.add_argument("--base", required=True, help="the commit to compare against")
-    parser.add_argument("--out", type=pathlib.Path, default=ROOT / "out" / "rule_engine_equivalence")
+    parser.add_output("--out", folder=True, type=pathlib.Path,
+                      default=ROOT / "out" / "rule_engine_equivalence")
     parser.add_argument("--scenes", nargs="+", default=list(SCENES),
                         help="records under analysis/, {controller} standing for each controller")
     parser.add_argument("--controllers", nargs="+", default=list(CONTROLLERS))

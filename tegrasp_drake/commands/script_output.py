@@ -38,21 +38,29 @@ class _ScriptParser(argparse.ArgumentParser):
     def __init__(self, script: str, **keywords):
         super().__init__(prog=f"{script}.py", **keywords)
         self._script = script
-        self._outputs = []  # (destination, is a figure) of each add_output argument
+        self._outputs = []  # (destination, kind) of each add_output argument
 
-    def add_output(self, *names, figure: bool = False, **keywords):
-        """add_argument for a file the script writes (a report; a figure when `figure`):
-        parse_args refuses one it cannot write (refuse_unusable_output) before any work."""
+    def add_output(self, *names, figure: bool = False, folder: bool = False, **keywords):
+        """add_argument for a file the script writes (a report; a figure when `figure`), or
+        a folder it writes in (`folder`: its reports, its cache): parse_args refuses one it
+        cannot write (refuse_unusable_output, refuse_unusable_folders) before any work."""
+        if figure and folder:
+            raise ValueError("add_output: an output is a figure or a folder, not both")
         action = self.add_argument(*names, **keywords)
-        self._outputs.append((action.dest, figure))
+        self._outputs.append((action.dest, "figure" if figure else
+                              "folder" if folder else "report"))
         return action
 
     def parse_args(self, args=None, namespace=None):
         parsed = super().parse_args(args, namespace)
-        for destination, figure in self._outputs:
+        for destination, kind in self._outputs:
             path = getattr(parsed, destination)
-            if path is not None:
-                refuse_unusable_output(self._script, path, figure=figure)
+            if path is None:
+                continue
+            if kind == "folder":
+                refuse_unusable_folders(self._script, path)
+            else:
+                refuse_unusable_output(self._script, path, figure=kind == "figure")
         return parsed
 
     def error(self, message):
