@@ -13,7 +13,8 @@ import numpy.lib.format as npy_format
 import pytest
 
 import tegrasp_drake
-from tests.test_bad_input import assert_one_line_error, run_cli
+from tests.runs.test_hardware_output_safety import disk_with_free_bytes
+from tests.test_bad_input import assert_one_line_error, folder_contents, run_cli
 from tegrasp_drake import cli
 from tegrasp_drake.commands import hardware as hardware_command
 from tegrasp_drake.commands import run_folder
@@ -221,9 +222,7 @@ def test_a_log_on_a_full_disk_is_a_problem_that_names_it(tmp_path, monkeypatch):
     try:
         assert writer.problem() is None
 
-        class Full:
-            f_bavail, f_frsize = 10, 4096
-        monkeypatch.setattr(hardware_run.os, "statvfs", lambda path: Full())
+        disk_with_free_bytes(monkeypatch, 40_960)
         assert "the disk holding it has less than 1 MB free" in writer.problem()
     finally:
         writer.close()
@@ -290,6 +289,27 @@ def test_record_events_does_not_record_another_object_under_an_objects_name(tmp_
                           "box", "--events", str(tmp_path / "events")], capfd)
     assert_one_line_error(code, text, "give one or the other")
     assert list((tmp_path / "events").iterdir()) == []
+
+
+# Rule: a trial asks for the free space its files take before it simulates (the probe
+# `tegrasp hardware` asks for its log's, rig.files.free_space_problem), so a full disk refuses
+# it in one line rather than ending three minutes of simulation; an earlier run is kept.
+@pytest.mark.parametrize("earlier", [False, True])
+def test_a_trial_on_a_disk_too_full_for_its_files_is_refused_before_it_simulates(
+        earlier, tmp_path, monkeypatch, capfd):
+    from tegrasp_drake.runs import trial as trial_module
+    out = tmp_path / "run"
+    if earlier:
+        out.mkdir()
+        (out / "result.json").write_text('{"earlier": true}\n')
+    before = folder_contents(tmp_path)
+    disk_with_free_bytes(monkeypatch, 40_960)
+    monkeypatch.setattr(trial_module, "run_trial", lambda *a, **k: pytest.fail("it simulated"))
+    code, text = run_cli(["trial", "--out", str(out), *(["--overwrite"] * earlier)], capfd)
+    assert_one_line_error(code, text, f"--out {out}", "40 kB free", "MB for its files")
+    assert code == 1
+    assert folder_contents(tmp_path) == before
+    assert out.exists() == earlier
 
 
 # --- the command line's error boundary --------------------------------------------------------

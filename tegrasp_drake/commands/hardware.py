@@ -15,7 +15,8 @@ import sys
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_file_beside,
                                                write_result)
-from tegrasp_drake.rig.files import interruptions_deferred, output_file_problem
+from tegrasp_drake.rig.files import (free_space_problem, interruptions_deferred,
+                                     output_file_problem)
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, shorten
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
@@ -123,22 +124,6 @@ def commit_hardware_run(staged, log, result_path, result: dict) -> None:
             pending.unlink(missing_ok=True)
 
 
-def free_space_problem(folder) -> str | None:
-    """Why the disk holding `folder` cannot take a run's log (less than LOG_MIN_FREE_BYTES
-    free, the level at which a running log counts as stopped), or None."""
-    from tegrasp_drake.runs.hardware_run import LOG_MIN_FREE_BYTES
-    try:
-        stat = os.statvfs(folder)
-    except OSError as e:
-        return f"cannot be checked for free space: {e.strerror or e}"
-    free = stat.f_bavail * stat.f_frsize
-    if free < LOG_MIN_FREE_BYTES:
-        return (f"is on a disk with {free // 1000} kB free; a run needs at least "
-                f"{LOG_MIN_FREE_BYTES // 10**6} MB for its log (ten seconds of the bus): "
-                "free some space or give a --log on another disk")
-    return None
-
-
 def failed_run_path(log) -> pathlib.Path:
     """Where a failed run's log goes when --overwrite would have replaced an earlier run's:
     LOG.failed.lcmlog beside it (its result: LOG.failed.result.json), the newest failed
@@ -240,7 +225,7 @@ def run(args) -> int:
 
 
 def _run_holding_log(args, scenario, config, events, corrective, log, result_path) -> int:
-    from tegrasp_drake.runs.hardware_run import run_on_hardware
+    from tegrasp_drake.runs.hardware_run import LOG_MIN_FREE_BYTES, run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError
     for taken in (pathlib.Path(log), result_path):
         if taken.exists() and not args.overwrite:
@@ -248,7 +233,8 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
     earlier = [taken for taken in (pathlib.Path(log), result_path) if taken.exists()]
-    problem = free_space_problem(pathlib.Path(log).parent)  # before the devices come up
+    problem = free_space_problem(  # before the devices come up
+        pathlib.Path(log).parent, LOG_MIN_FREE_BYTES, "its log (ten seconds of the bus)")
     if problem:
         raise SystemExit(f"tegrasp: error: --log {log} {problem}")
     # The run logs to a hidden file beside --log; the earlier log and result stay whole

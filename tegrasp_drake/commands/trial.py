@@ -19,7 +19,28 @@ from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html
                                                 write_replay_html)
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.rig.files import free_space_problem
 from tegrasp_drake.rig.number_text import number_text
+
+# [bytes per second of simulated time] what a trial's run folder takes, in the largest
+# figure format. Measured on a 12.0 s box trial (memorized controller): trial.npz 0.40 MB,
+# result.json 2 kB, its figures 0.91 MB as PNG, 0.39 MB as PDF, 1.85 MB as SVG: 2.26 MB at
+# most, 0.19 MB/s (the log and the time-series figures grow with the time simulated);
+# rounded up to 0.25 MB/s for the Avoid figure a hit adds. The free space asked before a
+# trial simulates is this times its scenario's time limit (the longest it runs): its files
+# are staged in full beside an earlier run's, which is kept until the new one is complete.
+TRIAL_OUTPUT_BYTES_PER_S = 250_000
+
+
+def trial_output_problem(out, scenario) -> str | None:
+    """Why the disk holding the run folder `out` cannot take a trial of `scenario`'s files
+    (rig.files.free_space_problem), or None; asked before the trial simulates."""
+    from tegrasp_drake.scenario.grasp_diagram import scenario_time_limit
+    limit_s = scenario_time_limit(scenario)
+    return free_space_problem(
+        out, round(TRIAL_OUTPUT_BYTES_PER_S * limit_s),
+        f"its files (the trial log, the result and the figures of up to "
+        f"{number_text(limit_s)} s simulated)")
 
 DESCRIPTION = """\
 One closed-loop grasp trial of any scenario: the object, its placement, the controller and
@@ -99,6 +120,9 @@ def run(args) -> int:
                 overwrite=args.overwrite))
         except RunFolderError as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
+        problem = trial_output_problem(out, scenario)
+        if problem:  # before the simulation, not after it (the folder made is removed)
+            raise SystemExit(f"tegrasp: error: --out {out} {problem}")
         from tegrasp_drake.figures.trial_figures import write_trial_figures
         from tegrasp_drake.runs.trial import SimulationFailedError, run_trial
         meshcat = start_viewer(args)

@@ -10,6 +10,7 @@ import json
 import os
 import pathlib
 import re
+import shutil
 import signal
 import stat
 import tempfile
@@ -300,6 +301,32 @@ def folder_problem(path) -> str | None:
         os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
     except OSError as e:
         return f"{place} is not writable ({e.strerror or e})"
+    return None
+
+
+def free_bytes(path) -> int:
+    """The bytes this user may still write on the disk holding `path` (its nearest existing
+    part): the one free-space probe of the package (shutil.disk_usage, the blocks available
+    to an unprivileged user). OSError when it cannot be asked."""
+    place, error = _nearest_existing_part(path)
+    if error:
+        raise error
+    return shutil.disk_usage(place if place is not None else ".").free
+
+
+def free_space_problem(path, needed_bytes: int, for_what: str) -> str | None:
+    """Why the disk holding `path` (an output, or the folder it goes in) cannot take
+    `needed_bytes` more, in words that follow the path, or None; `for_what` says what needs
+    them and why that much (e.g. "its log (ten seconds of the bus)"). Asked before a run's
+    work, so that a full disk refuses the run rather than ending it."""
+    try:
+        free = free_bytes(path)
+    except OSError as e:
+        return f"cannot be checked for free space: {e.strerror or e}"
+    if free < needed_bytes:
+        return (f"is on a disk with {free // 1000} kB free; the run needs at least "
+                f"{round(needed_bytes / 1e6, 1):g} MB for {for_what}: free some space or "
+                "write it to another disk")
     return None
 
 

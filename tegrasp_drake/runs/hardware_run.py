@@ -33,6 +33,7 @@ from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config
 from tegrasp_drake.hardware.realtime import realtime_scheduling
 from tegrasp_drake.hardware.station import MakeHardwareStation
 from tegrasp_drake.rig import station_interface as ports
+from tegrasp_drake.rig.files import free_bytes
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
                                     lcmt_tegrasp_transition)
 from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
@@ -113,10 +114,10 @@ class BusLogWriter:
             return (f"the LCM log {self.path} stopped: lcm-logger exited with code "
                     f"{self._process.returncode}{self._said()}")
         try:
-            stat = os.statvfs(self.path.parent)
+            free = free_bytes(self.path.parent)
         except OSError as e:
             return f"the LCM log {self.path} stopped: {e.strerror or e}"
-        if stat.f_bavail * stat.f_frsize < LOG_MIN_FREE_BYTES:
+        if free < LOG_MIN_FREE_BYTES:
             return (f"the LCM log {self.path} stopped: the disk holding it has less than "
                     f"{LOG_MIN_FREE_BYTES // 10**6} MB free")
         return None

@@ -53,13 +53,17 @@ def test_a_second_run_on_a_log_another_run_writes_is_refused(earlier_run):
     assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
 
 
+def disk_with_free_bytes(monkeypatch, free: int):
+    """The free-space probe (rig.files.free_bytes's shutil.disk_usage) reporting `free`."""
+    import shutil
+    import types
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: types.SimpleNamespace(
+        total=10**12, used=10**12 - free, free=free))
+
+
 def test_a_log_on_a_disk_too_full_for_it_is_refused_before_the_devices(earlier_run,
                                                                        monkeypatch):
-    from tegrasp_drake.commands import hardware as hardware_command
-
-    class Full:
-        f_bavail, f_frsize = 10, 4096
-    monkeypatch.setattr(hardware_command.os, "statvfs", lambda path: Full())
+    disk_with_free_bytes(monkeypatch, 40_960)
     monkeypatch.setattr(hardware_run, "run_on_hardware", lambda *a, **k: pytest.fail(
         "the devices came up"))
     with pytest.raises(SystemExit) as refused:
