@@ -210,8 +210,8 @@ def test_an_unfinished_hardware_runs_log_is_kept_beside_not_over_the_earlier(tmp
     log.write_bytes(b"earlier")
     staged = tmp_path / ".run.lcmlog.1.staging"
     staged.write_bytes(b"half a run")
-    kept = hardware_command.keep_incomplete_log(staged, log)
-    assert kept.name == f"run.incomplete-{os.getpid()}.lcmlog"
+    kept, replaced = hardware_command.keep_incomplete_log(staged, log)
+    assert kept.name == "run.incomplete.lcmlog" and not replaced
     assert kept.read_bytes() == b"half a run" and log.read_bytes() == b"earlier"
 
 

@@ -134,34 +134,75 @@ def failed_run_path(log) -> pathlib.Path:
     return log.with_name(f"{log.stem}.failed{log.suffix or '.lcmlog'}")
 
 
-def earlier_failed_runs_words(log) -> str:
-    """'; N failed runs' logs of an earlier version are beside it (LOG.failed-<pid>.lcmlog,
-    ...)', or '': those (named by the failed run's process id) are the user's to keep or
-    delete; this version neither replaces nor removes them."""
+def incomplete_run_path(log) -> pathlib.Path:
+    """Where a run that broke off keeps what its log recorded: LOG.incomplete.lcmlog beside
+    --log, the newest such run's only (as failed_run_path keeps the newest failed run's)."""
     log = pathlib.Path(log)
-    older = sorted(path.name for path in log.parent.glob(f"{log.stem}.failed-*{log.suffix}")
-                   if path.name[len(log.stem) + len(".failed-"):][:1].isdigit()
-                   and not path.name.endswith(".result.json"))  # a LOG without a suffix
+    return log.with_name(f"{log.stem}.incomplete{log.suffix or '.lcmlog'}")
+
+
+def _earlier_version_runs(log, kind: str) -> list[str]:
+    """The names of LOG.<kind>-<pid>.lcmlog beside `log`: what an earlier version kept of
+    each failed or broken-off run, named by its process id (their results left out)."""
+    log = pathlib.Path(log)
+    prefix = f"{log.stem}.{kind}-"
+    return sorted(path.name for path in log.parent.glob(f"{prefix}*{log.suffix}")
+                  if path.name[len(prefix):][:1].isdigit()
+                  and not path.name.endswith(".result.json"))  # a LOG without a suffix
+
+
+def earlier_version_runs_words(log, kind: str = "failed") -> str:
+    """'; N failed runs' logs of an earlier version are beside it (LOG.failed-<pid>.lcmlog,
+    ...)', or '' (`kind` "incomplete": of runs that broke off): those are the user's to keep
+    or delete; this version neither replaces nor removes them."""
+    older = _earlier_version_runs(log, kind)
     if not older:
         return ""
-    return (f"; {count_text(len(older), 'earlier failed run')} kept beside it by an earlier "
+    what = "earlier failed run" if kind == "failed" else "earlier unfinished run's log"
+    return (f"; {count_text(len(older), what)} kept beside it by an earlier "
             f"version ({older[0]}{', ...' if len(older) > 1 else ''}) stay: delete them when "
             "you no longer need them")
 
 
-def keep_incomplete_log(staged, log) -> pathlib.Path | None:
-    """An unfinished run's staged log, kept as LOG.incomplete-<pid>.lcmlog beside --log (never
-    over the earlier run's); None when there was none."""
+def _replaceable_incomplete_log(path: pathlib.Path) -> bool:
+    """Whether `path` may be replaced by a newer unfinished run's log: absent, or what
+    keep_incomplete_log keeps there, an LCM log (or an empty file) with no result beside it.
+    A completed run's log under that name (given as --log: its result is beside it), a link
+    or another file is never replaced."""
+    if not (path.exists() or path.is_symlink()):
+        return True
+    from tegrasp_drake.rig.files import file_starts_with
+    from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
+    return (file_starts_with(path, LCM_LOG_START)
+            and not result_path_beside_log(path).exists())
+
+
+def keep_incomplete_log(staged, log) -> tuple[pathlib.Path | None, bool]:
+    """An unfinished run's staged log, kept beside --log as LOG.incomplete.lcmlog
+    (incomplete_run_path), replacing an earlier unfinished run's there (never the earlier
+    run's --log itself, nor a completed run's log of that name: then as
+    LOG.incomplete-<pid>.lcmlog); (where it was kept, whether it replaced one), (None, False)
+    when there was none."""
     staged, log = pathlib.Path(staged), pathlib.Path(log)
     if not staged.exists():
-        return None
-    kept = log.with_name(f"{log.stem}.incomplete-{os.getpid()}{log.suffix}")
+        return None, False
+    kept = incomplete_run_path(log)
+    if not _replaceable_incomplete_log(kept):
+        kept = log.with_name(f"{log.stem}.incomplete-{os.getpid()}{log.suffix or '.lcmlog'}")
+    replaced = kept.exists()
     with contextlib.suppress(OSError):
         os.replace(staged, kept)
-        return kept
+        return kept, replaced
     with contextlib.suppress(OSError):
         staged.unlink()
-    return None
+    return None, False
+
+
+def incomplete_log_words(kept: pathlib.Path, replaced: bool, log) -> str:
+    """How a run that broke off says where its log is kept (keep_incomplete_log)."""
+    return (f"{kept}" + (" (it replaces the earlier unfinished run's log there: copy one "
+                         "elsewhere first to keep it)" if replaced else "")
+            + earlier_version_runs_words(log, "incomplete"))
 
 
 def run(args) -> int:
@@ -255,10 +296,10 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
         print(f"tegrasp: error: {e}", file=sys.stderr, flush=True)
         return 1
     except BaseException:
-        kept = keep_incomplete_log(staged, log)
+        kept, replaced = keep_incomplete_log(staged, log)
         if kept:
-            print(f"tegrasp: the run did not finish; what its log recorded is in {kept}",
-                  file=sys.stderr, flush=True)
+            print("tegrasp: the run did not finish; what its log recorded is in "
+                  + incomplete_log_words(kept, replaced, log), file=sys.stderr, flush=True)
         raise
     failed = bool(result.faults or result.log_fault or (
         result.transitions and result.transitions[-1]["to"] == "Failed"))
@@ -275,17 +316,18 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
                             dict(result.as_dict(), log=str(target) if logged else None,
                                  result=str(target_result)))
     except OSError as e:
-        kept = keep_incomplete_log(staged, log)
+        kept, replaced = keep_incomplete_log(staged, log)
         raise SystemExit(f"tegrasp: error: cannot write the run's result to {target_result}: "
-                         f"{e.strerror or e}" + (f"; its log is in {kept}" if kept else "")
-                         + kept_words)
+                         f"{e.strerror or e}"
+                         + (f"; its log is in {incomplete_log_words(kept, replaced, log)}"
+                            if kept else "") + kept_words)
     logger.info(f"hardware: wrote {f'the log {target} and ' if logged else ''}the result "
                 f"{target_result}")
     if earlier and not keep_earlier:
         logger.info("hardware: replaced the earlier run's "
                     + " and ".join(f"{'log' if taken == pathlib.Path(log) else 'result'} "
                                    f"{taken}" for taken in earlier))
-    older_failed_words = earlier_failed_runs_words(log) if keep_earlier else ""
+    older_failed_words = earlier_version_runs_words(log) if keep_earlier else ""
     log = target
     result_path = target_result
     result = dataclasses.replace(result, log_path=pathlib.Path(log))

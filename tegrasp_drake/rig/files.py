@@ -89,7 +89,7 @@ def stale_staging_files_in(folder, names, start: bytes) -> list[pathlib.Path]:
     return [path for path in entries
             if (match := _STAGING_NAME.fullmatch(path.name)) is not None
             and _staging_target(match["rest"]) & names
-            and not process_alive(int(match["pid"])) and _starts_with(path, start)]
+            and not process_alive(int(match["pid"])) and file_starts_with(path, start)]
 
 
 def _staging_target(rest: str) -> set[str]:
@@ -120,7 +120,7 @@ def remove_stale_staging_files_in(folder, names, start: bytes) -> list[pathlib.P
     return removed
 
 
-def _starts_with(path, start: bytes) -> bool:
+def file_starts_with(path, start: bytes) -> bool:
     """Whether `path` is a regular file (not a link) whose first bytes are `start`, or the
     first part of it (all the file holds); False when it cannot be read."""
     try:

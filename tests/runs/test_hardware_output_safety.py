@@ -230,3 +230,48 @@ def test_another_controllers_arm_commands_are_heard_before_a_run():
     finally:
         stop.set()
         thread.join()
+
+
+def broken_off_run(staged_bytes: bytes):
+    """A run_on_hardware that records `staged_bytes` (an LCM log's start) and is then
+    interrupted, as by Ctrl-C."""
+    def run(scenario, *, log_path, **kwargs):
+        log_path.write_bytes(staged_bytes)
+        raise KeyboardInterrupt
+    return run
+
+
+# Rule: a run that breaks off keeps what its log recorded as LOG.incomplete.lcmlog, the newest
+# such run's only (as the failed pair): the next one replaces it and says so, so that they
+# do not pile up; the earlier run's LOG and result stay, and a completed run's log under that
+# name (its result beside it) is never replaced.
+def test_only_the_newest_unfinished_runs_log_is_kept_and_the_replaced_one_named(
+        earlier_run, monkeypatch, capfd):
+    from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
+    for k in (1, 2):
+        monkeypatch.setattr(hardware_run, "run_on_hardware",
+                            broken_off_run(LCM_LOG_START + b"run %d" % k))
+        assert cli.main(HARDWARE) == 130
+        said = capfd.readouterr().err
+        kept = earlier_run / "run.incomplete.lcmlog"
+        assert f"what its log recorded is in {kept.name}" in said, said
+        assert ("replaces the earlier unfinished run's log" in said) == (k == 2), said
+    assert kept.read_bytes() == LCM_LOG_START + b"run 2"
+    assert sorted(path.name for path in earlier_run.iterdir()) == [
+        "hw.yaml", "run.incomplete.lcmlog", "run.lcmlog", "run.result.json"]
+    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+
+
+def test_a_completed_log_named_as_an_unfinished_ones_is_never_replaced(earlier_run,
+                                                                      monkeypatch, capfd):
+    from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
+    completed = earlier_run / "run.incomplete.lcmlog"  # a user's --log, with its result
+    completed.write_bytes(LCM_LOG_START + b"a completed run")
+    (earlier_run / "run.incomplete.result.json").write_text('{"completed": true}\n')
+    monkeypatch.setattr(hardware_run, "run_on_hardware",
+                        broken_off_run(LCM_LOG_START + b"half a run"))
+    assert cli.main(HARDWARE) == 130
+    said = capfd.readouterr().err
+    assert completed.read_bytes() == LCM_LOG_START + b"a completed run"
+    kept = earlier_run / f"run.incomplete-{os.getpid()}.lcmlog"
+    assert kept.read_bytes() == LCM_LOG_START + b"half a run" and kept.name in said, said
