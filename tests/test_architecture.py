@@ -30,9 +30,10 @@ def test_every_sub_package_is_installed():
 
 def test_tests_mirror_the_package():
     """A module's tests live in tests/<package>/test_<module>.py; tests/ itself keeps the
-    checks that span packages, none named after one package."""
+    checks that span packages, none named after one package, and tests/bad_input/ the
+    bad-input checks, which span packages too (a file for each kind of input)."""
     packages = {init.parent.name for init in (ROOT / "tegrasp_drake").glob("*/__init__.py")}
-    packages.add("benchmarks")
+    packages |= {"benchmarks", "bad_input"}
     misplaced = [test.name for test in (ROOT / "tests").glob("test_*.py")
                  if any(test.stem.startswith(f"test_{package}_") for package in packages)]
     assert misplaced == []

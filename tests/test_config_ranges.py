@@ -6,7 +6,7 @@ import typing
 
 import pytest
 
-from tests.test_bad_input import assert_one_line_error, run_cli
+from tests.bad_input.probes import assert_one_line_error, run_cli
 from tegrasp_drake.control import controller_registry
 from tegrasp_drake.control.controller_config import AvoidConfig
 from tegrasp_drake.events import EventMatcherConfig

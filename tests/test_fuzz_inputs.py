@@ -35,7 +35,7 @@ from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator, SimulatorConfig
 from pydrake.systems.framework import DiagramBuilder
 
-from tests.test_bad_input import _trial_log
+from tests.bad_input.probes import trial_log
 from tegrasp_drake.events.event_file import MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -349,9 +349,9 @@ def test_any_event_file_or_index_loads_or_is_one_memorized_event_error(
 # --- trial logs -----------------------------------------------------------------------------------
 
 def _trial_log_bytes(**changes) -> bytes:
-    """A well-formed trial log's bytes (test_bad_input._trial_log), with `changes`."""
+    """A well-formed trial log's bytes (trial_log of tests/bad_input/probes.py), with `changes`."""
     buffer = io.BytesIO()
-    _trial_log(buffer, **changes)
+    trial_log(buffer, **changes)
     return buffer.getvalue()
 
 

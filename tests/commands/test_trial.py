@@ -7,7 +7,7 @@ import types
 
 from tegrasp_drake.commands.trial import print_result
 from tegrasp_drake.scenario.trial_result import TrialResult
-from tests.test_bad_input import run_cli
+from tests.bad_input.probes import run_cli
 
 
 class _FinishedTrial:

@@ -120,7 +120,7 @@ def test_html_over_an_earlier_replay_needs_overwrite_or_the_demo(tmp_path):
 
 def test_a_trial_refuses_an_html_file_of_the_users_before_it_runs(tmp_path, capfd,
                                                                     monkeypatch):
-    from tests.test_bad_input import run_cli
+    from tests.bad_input.probes import run_cli
     monkeypatch.chdir(tmp_path)
     (tmp_path / "notes.txt").write_text("notes")
     code, text = run_cli(["trial", "-q", "--html", "notes.txt", "--out", "o"], capfd)

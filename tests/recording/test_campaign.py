@@ -10,7 +10,7 @@ import types
 import numpy as np
 import pytest
 
-from tests.test_bad_input_probes import _events
+from tests.bad_input.probes import memorized_events
 from tegrasp_drake.recording import campaign
 from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, LogNotWritten, TrialLog
 
@@ -31,7 +31,7 @@ def simulated(monkeypatch):
         return TrialLog(**{name: np.zeros(2) for name in ARRAY_FIELDS}, meta={}), 0.0
 
     def cut(log, run, times, **options):
-        return {e.transition: e for e in _events(seed=run.scenario.random_seed)}
+        return {e.transition: e for e in memorized_events(seed=run.scenario.random_seed)}
 
     monkeypatch.setattr(campaign, "run_ideal_grasp", ideal_grasp)
     monkeypatch.setattr(campaign, "cut_events", cut)
@@ -44,7 +44,7 @@ def _record(log_dir):
 
 
 def _events_of_templates() -> dict:
-    return campaign.combine_runs([{e.transition: e for e in _events(seed=seed)}
+    return campaign.combine_runs([{e.transition: e for e in memorized_events(seed=seed)}
                                   for seed in (1_000_000, 1_000_001)], note="test")
 
 
@@ -92,7 +92,7 @@ def test_a_corrective_recording_on_a_full_disk_carries_its_one_event(tmp_path, m
 
     def cut(log, run, times, **options):  # the probes' first event, as hold_avoid's
         (transition,) = times
-        return {transition: dataclasses.replace(_events(seed=len(run.label))[0],
+        return {transition: dataclasses.replace(memorized_events(seed=len(run.label))[0],
                                                 transition=transition)}
 
     def disk_full(stream, **arrays):

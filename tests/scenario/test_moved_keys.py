@@ -9,7 +9,7 @@ import pathlib
 import pytest
 import yaml
 
-from tests.test_bad_input import assert_one_line_error, run_cli
+from tests.bad_input.probes import assert_one_line_error, run_cli
 from tegrasp_drake.events import load_memorized_events, read_index
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.moved_keys import (MOVED_KEYS, migrate_stored_overrides,

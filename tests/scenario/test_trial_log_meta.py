@@ -8,19 +8,18 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.scenario.trial_log_file import MAX_META_CHARS, TrialLogError, load_trial_log
-from tests.test_bad_input import assert_one_line_error, run_cli
-from tests.test_bad_input_round2 import _trial_log_with
+from tests.bad_input.probes import assert_one_line_error, run_cli, trial_log_with
 
 
 def test_a_trial_log_whose_meta_holds_a_key_no_writer_stores_is_refused(tmp_path):
-    path = _trial_log_with(tmp_path / "trial.npz", {"padding": "x"})
+    path = trial_log_with(tmp_path / "trial.npz", {"padding": "x"})
     with pytest.raises(TrialLogError, match="meta holds the key 'padding', which no trial "
                        "log has"):
         load_trial_log(path)
 
 
 def test_a_trial_log_whose_meta_declares_too_much_text_is_refused_before_reading_it(tmp_path):
-    path = _trial_log_with(tmp_path / "trial.npz", {"result": {"note": "x" * MAX_META_CHARS}})
+    path = trial_log_with(tmp_path / "trial.npz", {"result": {"note": "x" * MAX_META_CHARS}})
     assert path.stat().st_size < 1_000_000
     with pytest.raises(TrialLogError, match="'meta' declares .* characters of text, more than "
                        f"the {MAX_META_CHARS} a trial log holds"):
@@ -31,7 +30,7 @@ def test_a_trial_log_whose_meta_declares_too_much_text_is_refused_before_reading
 # ideal grasp's open-loop script), so a log without one is refused naming the file and the
 # field, never read as a log of no controller.
 def test_a_trial_log_whose_meta_has_no_controller_is_refused_naming_the_field(tmp_path, capfd):
-    path = _trial_log_with(tmp_path / "trial.npz")
+    path = trial_log_with(tmp_path / "trial.npz")
     with np.load(path) as stored:
         contents = {name: stored[name] for name in stored.files}
     meta = json.loads(str(contents["meta"]))

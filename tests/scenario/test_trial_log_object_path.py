@@ -9,11 +9,11 @@ import pytest
 
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
-from tests.test_bad_input_round2 import _trial_log_with
+from tests.bad_input.probes import trial_log_with
 
 
 def _trial_log(path, object_state):
-    return _trial_log_with(path, {"scenario": scenario_to_yaml(LoadScenario())},
+    return trial_log_with(path, {"scenario": scenario_to_yaml(LoadScenario())},
                            object_state=object_state)
 
 

@@ -109,7 +109,7 @@ def test_a_damaged_records_result_is_refused_naming_the_record_file_and_field(
     field."""
     from tegrasp_drake.sweep.records import load_records, make_record, write_record
     from tests.fake_trials import fake_trial
-    from tests.test_bad_input import assert_one_line_error, run_cli
+    from tests.bad_input.probes import assert_one_line_error, run_cli
     from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
     (trial,) = [t.to_dict() for t in expand_trials(SweepSpec(
         objects=("box",), controllers=("memorized",), attempts=1, grid=((-0.01, -0.015),),

@@ -1,0 +1,125 @@
+"""Reads are bounded and refuse what is not a regular file before reading: an endless or
+oversized file stops at its limit, a named pipe is refused without blocking, a device is
+refused by every reader, and a trial log declaring huge arrays is refused from its header."""
+
+import json
+import os
+import subprocess
+import sys
+import zipfile
+
+import numpy as np
+import numpy.lib.format as npy_format
+import pytest
+
+from tegrasp_drake.rig import files
+from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, FORMAT_VERSION
+from tests.bad_input.probes import assert_one_line_error, one_error_line, run_cli
+
+
+# --- bounded reads ------------------------------------------------------------------------
+
+@pytest.mark.parametrize("argv", [
+    ["trial", "--scenario", "/dev/zero", "--scenario-name", "x"],
+    ["record-events", "--scenario", "/dev/zero", "--scenario-name", "x"],
+    ["hardware", "--config", "/dev/zero"],
+    ["sweep", "--spec", "/dev/zero", "--out", "sw"],
+    ["transfer", "/dev/zero", "--out", "tr"],
+    ["sensitivity", "/dev/zero", "--out", "se"],
+])
+def test_a_configuration_without_an_end_is_refused_at_its_limit(argv, tmp_path, monkeypatch,
+                                                                capfd):
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(argv, capfd)
+    assert_one_line_error(code, text, "/dev/zero", "more than 1000000 bytes")
+
+
+def _log_declaring(path, declared_shape, stored_bytes: int):
+    """A small .npz with every trial-log array, whose 't_sa' header declares
+    `declared_shape` float64 values over `stored_bytes` bytes of zeros."""
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as archive:
+        for name in ("meta", *ARRAY_FIELDS):
+            with archive.open(name + ".npy", "w", force_zip64=True) as member:
+                if name == "meta":
+                    npy_format.write_array(member, np.array(json.dumps(
+                        {"format_version": FORMAT_VERSION})))
+                    continue
+                shape = declared_shape if name == "t_sa" else (2,)
+                npy_format.write_array_header_1_0(
+                    member, {"descr": "<f8", "fortran_order": False, "shape": shape})
+                member.write(bytes(stored_bytes if name == "t_sa" else 16))
+    return path
+
+
+@pytest.fixture
+def no_array_is_read(monkeypatch):
+    """Fails the test if numpy is asked to read (and so allocate) any array."""
+    def refuse(*args, **kwargs):
+        raise AssertionError("an array was read before its header was checked")
+    monkeypatch.setattr(npy_format, "read_array", refuse)
+
+
+@pytest.mark.parametrize("argv", [["plot", "trial", "LOG", "--out", "x.png"],
+                                  ["emulate", "myrio", "--trial", "LOG"]])
+def test_a_trial_log_declaring_a_huge_array_is_refused_from_its_header(
+        argv, tmp_path, monkeypatch, capfd, no_array_is_read):
+    """A 4 GiB array declared over 40 kB of data: np.load would allocate 4 GiB first."""
+    monkeypatch.chdir(tmp_path)
+    log = _log_declaring(tmp_path / "trial.npz", (2**29,), 40_000)
+    code, text = run_cli([str(log) if a == "LOG" else a for a in argv], capfd)
+    assert_one_line_error(code, text, "trial.npz", "'t_sa' declares (536870912,) float64")
+
+
+def test_arrays_over_the_limit_are_refused_before_they_are_read(tmp_path, no_array_is_read):
+    from tegrasp_drake.rig.npz_headers import NpzHeaderError, checked_npz_arrays
+    log = _log_declaring(tmp_path / "trial.npz", (5_000,), 40_000)
+    with pytest.raises(NpzHeaderError, match="more than the 1000 this reads"):
+        checked_npz_arrays(log, ("t_sa",), max_bytes=1000)
+
+
+def test_read_bounded_stops_at_its_limit_on_an_endless_file():
+    with pytest.raises(files.InputTooLargeError):
+        files.read_bounded("/dev/zero", 4096)
+    assert files.read_bounded("/dev/null", 4096) == b""
+
+
+def test_a_fifo_is_refused_without_blocking(tmp_path):
+    """In a child process with a time limit: a regression blocks in open(), not the suite."""
+    fifo = tmp_path / "f.yaml"
+    os.mkfifo(fifo)
+    done = subprocess.run([sys.executable, "-m", "tegrasp_drake", "trial", "--scenario",
+                           str(fifo), "--scenario-name", "x"], capture_output=True, text=True,
+                          timeout=600, cwd=tmp_path)
+    assert done.returncode == 1
+    assert "named pipe (FIFO)" in done.stderr
+
+
+def test_read_bounded_refuses_what_is_not_a_file_before_reading(tmp_path):
+    os.mkfifo(tmp_path / "fifo")
+    for path, words in ((tmp_path / "fifo", "named pipe"), (tmp_path, "folder")):
+        with pytest.raises(files.NotAFileError, match=words):
+            files.read_bounded(path, 4096)
+    with pytest.raises(files.InputTooLargeError):  # the documented devices, as before
+        files.read_bounded("/dev/zero", 4096)
+    assert files.read_bounded("/dev/null", 4096) == b""
+    assert files.file_problem(tmp_path / "none") == "does not exist"
+    assert files.file_problem(tmp_path / "fifo").startswith("is a named pipe")
+
+
+@pytest.mark.parametrize("trial", ["/dev/zero", "fifo"])
+def test_emulate_myrio_refuses_a_trial_that_is_not_a_file_before_reading(tmp_path, trial,
+                                                                         capfd):
+    if trial == "fifo":
+        trial = str(tmp_path / "t.npz")
+        os.mkfifo(trial)
+    code, text = run_cli(["emulate", "--scheduling", "normal", "myrio", "--trial", trial,
+                          "--lcm-url", "udpm://239.255.76.67:8716?ttl=0"], capfd)
+    assert code == 1
+    errors = one_error_line(text)
+    assert len(errors) == 1 and trial in errors[0] and "not a file" in errors[0], text
+
+
+def test_every_npz_reader_refuses_a_device_before_reading():
+    from tegrasp_drake.rig.npz_headers import NpzHeaderError, checked_npz_arrays
+    with pytest.raises(NpzHeaderError, match="not a regular file"):
+        checked_npz_arrays("/dev/zero", ("t",), max_bytes=10)

@@ -1,0 +1,380 @@
+"""The command line's one error boundary: a bad option, value or environment stops the
+command before anything runs, with one line that names the input and says what to do and a
+non-zero exit, never a traceback; the line is bounded, quotes no control character raw and
+rounds its numbers by one formatter; an unforeseen exception is one line with its traceback
+in a file. The table of probes below gives one bad command line a row."""
+
+import ast
+import os
+import pathlib
+import re
+
+import pytest
+
+import tegrasp_drake
+import tegrasp_drake as T
+from tegrasp_drake import cli
+from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+from tegrasp_drake.rig import files
+from tests.bad_input.probes import (FAKE_TRIALS, SEEDED_SWEEP, assert_one_line_error,
+                                    folder_contents, refusal, run_cli, run_probe,
+                                    tegrasp_in_child_process)
+
+OWN_BOX = ["--set", "object.shape=box", "--set", "object.size=[0.04,0.04,0.1]",
+           "--set", "object.mass=0.1", "--set", "object.friction=0.5"]
+
+
+def _write(name, text):
+    return lambda folder: (folder / name).write_text(text)
+
+
+def _nested_aliases(folder):
+    lines = ["a0: &a0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]"]
+    lines += [f"a{k}: &a{k} [{', '.join([f'*a{k - 1}'] * 10)}]" for k in range(1, 7)]
+    (folder / "bomb.yaml").write_text("\n".join(lines) + "\nmine: {object: {name: box}}\n")
+
+
+def _large_scenario(folder):
+    (folder / "big.yaml").write_text("mine: {object: {name: box}}\n"
+                                     + "".join(f"k{k}: {'x' * 60}\n" for k in range(20_000)))
+
+
+def _hardware_result(folder):
+    (folder / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    (folder / "run.result.json").write_text("an earlier result")
+
+
+def _earlier_run(folder):
+    (folder / "run").mkdir()
+    (folder / "run" / "result.json").write_text("an earlier result")
+    (folder / "run" / "trial.npz").write_text("an earlier log")
+    (folder / "replay").mkdir()
+
+
+def _symlink_loop(folder):
+    (folder / "loop").symlink_to("loop")
+
+
+def _corrupt_sweep_record(folder):
+    (folder / "sweep" / "trials").mkdir(parents=True)
+    (folder / "sweep" / "trials" / "memorized.box.m00.a0.json").write_text('{"trial_id": ')
+
+PROBES = [  # (name, files made first, argv, words the one error line holds)
+    ("1 hardware result beside --log", _hardware_result,
+     ["hardware", "--config", "hw.yaml", "--log", "run.lcmlog"],
+     ["run.result.json already holds a run's result", "--overwrite"]),
+    ("2 --set unclosed list", None, ["trial", "--set", "placement.offset=[0.0,0.015"],
+     ["--set 'placement.offset=[0.0,0.015'", "not valid YAML", "quote"]),
+    ("2 --set mapping in a name", None, ["trial", "--set", "object.name=a: b"],
+     ["--set 'object.name=a: b'", "not valid YAML", "object.name='a: b'"]),
+    ("2 --set undefined alias", None, ["trial", "--set", "random_seed=*foo"],
+     ["--set 'random_seed=*foo'", "undefined alias 'foo'"]),
+    ("2 --set python tag", None,
+     ["trial", "--set", "random_seed=!!python/object/apply:os.system [touch hacked]"],
+     ["Python object tag", "never loaded"]),
+    ("3 sweep --logs FILE", _write("afile", "x"),
+     ["sweep", "--logs", "afile", "--objects", "box", "--controllers", "heuristic",
+      "--attempts", "1", "--out", "sweep"], ["--logs afile", "not a folder"]),
+    ("5 emulate --write-config over a user's file", _write("hw.yaml", "port: mine\n"),
+     ["emulate", "robotiq", "--write-config", "hw.yaml"],
+     ["--write-config hw.yaml exists and was not written by `tegrasp emulate`"]),
+    ("6 seed 2^32", None, ["trial", "--set", "random_seed=4294967296"],
+     ["field 'random_seed' must lie in [0, 4294967295]", "32-bit"]),
+    ("6 negative seed", None, ["trial", "--set", "random_seed=-1"],
+     ["field 'random_seed' must lie in"]),
+    ("6 seed 2^64", None, ["trial", "--set", "random_seed=18446744073709551616"],
+     ["field 'random_seed' must lie in"]),
+    ("7 negative taxel noise", None, ["trial", "--set", "tactile.noise_std_n=-0.01"],
+     ["field 'tactile.noise_std_n' must be zero (no noise) or positive"]),
+    ("7 negative film noise", None, ["trial", "--set", "vibration.noise_std_mps2=-0.05"],
+     ["field 'vibration.noise_std_mps2' must be zero (no noise) or positive"]),
+    ("7 mode frequency 0", None, ["trial", "--set", "vibration.film.mode_frequency_hz=0"],
+     ["field 'vibration.film.mode_frequency_hz' must lie in [50, "]),
+    ("7 hit after the trial", None, ["trial", "--set", "disturbance.hit_time_s=100"],
+     ["field 'disturbance.hit_time_s' must come before the grasp's script ends"]),
+    ("9 --overwrite with a bad --html", _earlier_run,
+     ["trial", "--out", "run", "--overwrite", "--html", "replay"],
+     ["--html replay is a folder"]),
+    ("10 object name with /", None, ["record-events", "--set", "object.name=my/box", *OWN_BOX],
+     ["field 'object.name' 'my/box' must be letters, digits"]),
+    ("10 --out a file", _write("afile", "x"), ["trial", "--out", "afile"],
+     ["--out afile: afile is not a folder"]),
+    ("10 --out /dev/full", None, ["trial", "--out", "/dev/full"],
+     ["--out /dev/full: /dev/full is not a folder"]),
+    ("10 events folder a symlink loop", _symlink_loop,
+     ["record-events", "--object", "box", "--events", "loop"], ["--events loop"]),
+    ("10 time step 0.1 s", None, ["trial", "--set", "plant_config.time_step=0.1"],
+     ["field 'plant_config.time_step' must lie in [0.0001, 0.001] s"]),
+    ("10 time step 1e-7 s", None, ["trial", "--set", "plant_config.time_step=0.0000001"],
+     ["field 'plant_config.time_step' must lie in"]),
+    ("10 a 1e6 N hit", None, ["trial", "--set", "disturbance.hit_force_n=[0.0,1000000.0,0.0]"],
+     ["field 'disturbance.hit_force_n' must be at most 100 N"]),
+    ("10 mode mass 0", None, ["trial", "--set", "vibration.film.mode_mass_kg=0"],
+     ["field 'vibration.film.mode_mass_kg' must lie in [0.001, 1] kg"]),
+    ("10 taxel rate 0.001 Hz", None, ["trial", "--set", "tactile.sample_rate_hz=0.001"],
+     ["field 'tactile.sample_rate_hz' must lie in [16, 20000] Hz"]),
+    ("10 taxel rate 1e6 Hz", None, ["trial", "--set", "tactile.sample_rate_hz=1000000.0"],
+     ["field 'tactile.sample_rate_hz' must lie in [16, 20000] Hz"]),
+    ("10 scalar scenario with --set", _write("sc.yaml", "mine: 5\n"),
+     ["trial", "--scenario", "sc.yaml", "--scenario-name", "mine", "--set", "random_seed=1"],
+     ["sc.yaml: scenario 'mine' must be a mapping of fields, got int 5"]),
+    ("10 sweep --attempts 100000000", None, ["sweep", "--attempts", "100000000", "--out", "sw"],
+     ["field 'attempts'", "a sweep is at most 1000000 trials even confirmed"]),
+    ("record-events --ensemble-runs 99", None,
+     ["record-events", "--ensemble-runs", "99", "--set", "object.name=mine", *OWN_BOX],
+     ["--ensemble-runs 99: give 0 (none) to 50 ideal grasps"]),
+    ("also --inject-fault 0x10", None, ["emulate", "robotiq", "--inject-fault", "0x10@3"],
+     ["--inject-fault '0x10@3'", "4 bits"]),
+    ("also --inject-fault 0 (no fault)", None, ["emulate", "robotiq", "--inject-fault", "0@3"],
+     ["--inject-fault '0@3'", "0x0 being no fault; give a CODE from 0x1 to 0xf"]),
+    ("also duplicate keys", _write("dup.yaml", "mine:\n  random_seed: 1\n  random_seed: 2\n"),
+     ["trial", "--scenario", "dup.yaml", "--scenario-name", "mine"],
+     ["dup.yaml: key 'random_seed' appears twice (line 2, column 3 and line 3, column 3)"]),
+    ("also nested aliases", _nested_aliases,
+     ["trial", "--scenario", "bomb.yaml", "--scenario-name", "mine"],
+     ["bomb.yaml: the YAML's aliases expand to more than 100000 values"]),
+    ("also a 1.3 MB scenario", _large_scenario,
+     ["trial", "--scenario", "big.yaml", "--scenario-name", "mine"],
+     ["big.yaml:", "bytes of YAML; a configuration is at most 1000000 bytes"]),
+    ("also plot table1 with a corrupt record", _corrupt_sweep_record,
+     ["plot", "table1", "sweep", "--out", "table1.png"],
+     ["1 corrupt trial record(s) in sweep", "memorized.box.m00.a0.json"]),
+]
+
+
+@pytest.mark.parametrize("make, argv, expected", [probe[1:] for probe in PROBES],
+                         ids=[probe[0] for probe in PROBES])
+def test_a_probe_stops_with_one_line_and_loses_nothing(make, argv, expected, tmp_path,
+                                                       monkeypatch, capfd):
+    before, _, code, text = run_probe(make, argv, tmp_path, monkeypatch, capfd)
+    assert_one_line_error(code, text, *expected)
+    after = folder_contents(tmp_path)
+    assert {name: after.get(name) for name in before} == before  # nothing lost or changed
+    assert not (tmp_path / "hacked").exists()
+
+
+# --- the command line's error boundary --------------------------------------------------------
+
+def test_an_unforeseen_exception_is_one_line_with_its_traceback_in_a_file(monkeypatch, capfd):
+    from tegrasp_drake.commands import plot
+
+    def broken(args):
+        raise RuntimeError("something no check foresaw\nsecond line")
+    monkeypatch.setattr(plot, "run", broken)
+    code, text = run_cli(["plot", "table1", "nowhere"], capfd)
+    assert code == cli.EXIT_INTERNAL_ERROR
+    assert len(text.strip().splitlines()) == 1, text
+    assert "tegrasp: internal error: RuntimeError: something no check foresaw" in text
+    assert "(-v shows it)" in text
+    where = text.split("traceback in ")[1].split(" ")[0].rstrip(";")
+    assert "Traceback" in pathlib.Path(where).read_text()
+    os.unlink(where)
+    code, text = run_cli(["plot", "table1", "nowhere", "-v"], capfd)
+    assert code == cli.EXIT_INTERNAL_ERROR and "Traceback" in text
+    os.unlink(text.split("traceback in ")[1].split(" ")[0].rstrip(";"))
+
+
+# Arguments a command needs before the path option under test.
+_POSITIONALS = {"plot": ["events"], "transfer": ["spec.yaml"], "sensitivity": ["spec.yaml"],
+                "replay": ["run.lcmlog"],
+                "emulate": ["myrio"]}
+
+
+def _path_options():
+    parser = cli.build_parser()
+    commands = next(a for a in parser._actions if hasattr(a, "choices") and a.choices)
+    return [(name, action.option_strings[0]) for name, command in commands.choices.items()
+            for action in command._actions
+            if action.dest in cli.PATH_ARGUMENTS and action.option_strings]
+
+
+@pytest.mark.parametrize("command, option", _path_options())
+def test_every_empty_path_option_is_refused(command, option, capfd):
+    code, text = run_cli([command, *_POSITIONALS.get(command, []), option, ""], capfd)
+    assert code == 2 and f"{option} '' is empty" in text and "Traceback" not in text
+
+
+# --- 5. safe messages ------------------------------------------------------------------------
+
+@pytest.mark.parametrize("character", ["\x1b", "\x07", "\x9b", "\u2028", "\r", "\n"])
+def test_an_error_never_quotes_a_control_character_raw(character):
+    quoted = files.one_line(f"a{character}[2Jb")
+    assert quoted.isprintable() and character not in quoted
+
+
+def test_a_set_value_with_an_escape_is_quoted_safely(capfd):
+    code, text = run_cli(["trial", "--set", "object.name=a\x1b[2Jb"], capfd)
+    assert code != 0 and "\x1b" not in text and "\\x1b[2Jb" in text
+    code, text = run_cli(["trial", "--controller", "x\x1b[2J"], capfd)  # argparse's words
+    assert code == 2 and "\x1b" not in text and "\\x1b[2J" in text
+
+
+def test_a_deleted_current_folder_is_named(tmp_path, monkeypatch, capfd):
+    from tegrasp_drake.rig.files import folder_problem, output_file_problem
+    gone = tmp_path / "gone"
+    gone.mkdir()
+    monkeypatch.chdir(gone)
+    gone.rmdir()
+    for problem in (output_file_problem("f.png"), folder_problem("o")):
+        assert "the current folder no longer exists; cd to one that does" in problem
+    code, text = run_cli(["plot", "trial", str(tmp_path / "trial.npz"), "--out", "f.png"],
+                         capfd)
+    assert_one_line_error(code, text, "current folder no longer exists")
+
+
+def test_a_locale_without_utf8_runs_the_command_in_utf8_mode():
+    done = tegrasp_in_child_process(["trial", "--help"], LC_ALL="C", LANG="C", PYTHONUTF8="0")
+    assert done.returncode == 0, done.stderr
+    assert "--out" in done.stdout and done.stderr == ""
+
+
+# Rule: an error is one bounded line that echoes values cut to about 80 characters, and its
+# reason is the true one: a file of many plain values is not said to expand aliases.
+def test_error_text_is_bounded_and_names_the_true_reason(tmp_path):
+    import json
+    import shutil
+
+    from tegrasp_drake.events.event_file import MemorizedEventError
+    from tegrasp_drake.rig import paths
+    folder = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), folder,
+                    ignore=shutil.ignore_patterns("prismatic", "ensemble", "corrective"))
+    path = folder / "box" / "load_lift.json"
+    event = json.loads(path.read_text())
+    event["scenario"] = "default:\n  object: !!python/object/apply:os.system ['true']\n"
+    path.write_text(json.dumps(event))
+    with pytest.raises(MemorizedEventError) as refused:
+        T.load_memorized_events(folder, "box")
+    message = str(refused.value)
+    assert "scenario" in message and "\n" not in message and len(message) < 600, message
+    assert len(str(MemorizedEventError(path, "x" * 5000))) < 1200
+    many = tmp_path / "many.yaml"
+    many.write_text("".join(f"s{k}: {{random_seed: 1}}\n" for k in range(30_000)))
+    refusal(lambda: T.LoadScenario(many, name="s7"), "holds more than 100000 values")
+    aliased = tmp_path / "aliased.yaml"
+    aliased.write_text("a: &a [" + ", ".join(["1"] * 1000) + "]\n"
+                       + "b: [" + ", ".join(["*a"] * 200) + "]\n")
+    refusal(lambda: T.LoadScenario(aliased, name="a"), "aliases expand to more than")
+
+
+# Rule: an environment variable or option value is checked before a library is handed it:
+# a backend matplotlib does not know, an output encoding that cannot hold a name the user
+# gave, an LCM URL option LCM would ignore, a fault time beyond any hardware run.
+def test_environment_and_option_values_are_checked_before_a_library_gets_them(tmp_path):
+    import io
+    import os
+    import subprocess
+    import sys
+
+    from tegrasp_drake.cli import main
+    from tegrasp_drake.commands.output_streams import guarded_output
+    from tegrasp_drake.hardware.config import lcm_url_problem
+    environment = dict(os.environ, MPLBACKEND="banana")
+    done = subprocess.run([sys.executable, "-m", "tegrasp_drake", "plot", "events", "--out",
+                           str(tmp_path / "x.png")], env=environment, capture_output=True,
+                          text=True, timeout=600)
+    assert done.returncode == 1, done.stderr
+    assert done.stderr.strip().count("\n") == 0 and "MPLBACKEND='banana'" in done.stderr
+    ascii_out = io.TextIOWrapper(io.BytesIO(), encoding="ascii")
+    saved = sys.stdout
+    sys.stdout = ascii_out
+    try:
+        with guarded_output():
+            print("wrote o/été_ü.png")
+    finally:
+        sys.stdout = saved
+    ascii_out.flush()
+    assert ascii_out.buffer.getvalue() == b"wrote o/\\xe9t\\xe9_\\xfc.png\n"
+    for option in ("ttl=zero", "ttl=0&recv_buf_size=lots"):
+        problem = lcm_url_problem(f"udpm://239.255.76.67:8793?{option}")
+        assert problem and "Invalid value for" in problem, problem
+    assert lcm_url_problem("udpm://239.255.76.67:8793?ttl=0") is None
+    for fault in ("14@1e9", "14@601", "14@-1"):
+        with pytest.raises(SystemExit) as refused:
+            main(["emulate", "robotiq", "--inject-fault", fault, "--scheduling", "normal",
+                  "--lcm-url", "udpm://239.255.76.67:8793?ttl=0"])
+        assert "must lie in [0, 600] s" in str(refused.value.code), refused.value.code
+
+
+# Rule: every number a message shows is written by rig.number_text (or a format spec), so
+# none prints 3.997943786001997 where the others print 3.99794. Each message f-string of the
+# package (raised, printed, an error's text) is read, and a value with a unit in its name
+# (period_s, rate_hz, timeout, ...) or computed by arithmetic must not be formatted bare.
+_UNIT_NAME = re.compile(r"(_s|_hz|_m|_n|_mps2|_rad|_mm|_kg|timeout|time_step|period|rate)$")
+
+_MESSAGE_CALLS = ("print", "SystemExit", "warn")
+
+
+def _message_fstrings(tree):
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Raise) and node.exc is not None:
+            yield node.exc
+        elif isinstance(node, ast.Call):
+            name = getattr(node.func, "id", None) or getattr(node.func, "attr", "")
+            if name in _MESSAGE_CALLS or name.endswith("Error"):
+                yield node
+
+
+def _bare_float(value: ast.expr) -> bool:
+    """Whether `value` is a number that needs rounding: a name with a unit, or a division."""
+    if isinstance(value, ast.BinOp):
+        return (isinstance(value.op, ast.Div) or _bare_float(value.left)
+                or _bare_float(value.right))
+    name = getattr(value, "attr", None) or getattr(value, "id", "")
+    return bool(_UNIT_NAME.search(name))
+
+
+def test_every_number_a_message_shows_is_rounded_by_one_formatter():
+    package = pathlib.Path(tegrasp_drake.__file__).parent
+    bare = set()  # a raised error's call is walked twice
+    for path in sorted(package.rglob("*.py")):
+        source = path.read_text()
+        for message in _message_fstrings(ast.parse(source)):
+            for part in ast.walk(message):
+                if (isinstance(part, ast.FormattedValue) and part.format_spec is None
+                        and part.conversion == -1 and _bare_float(part.value)):
+                    bare.add(f"{path.relative_to(package)}:{part.lineno}: "
+                             f"{ast.get_source_segment(source, part.value)}")
+    assert not bare, sorted(bare)
+
+
+# Rule: a command's optional positional may follow its options, as a required one may:
+# `plot signals -vv LOG` reads LOG (argparse alone gave LOG|RESULTS its default when -vv came
+# first, then refused LOG as an unrecognized argument).
+@pytest.mark.parametrize("argv", [["plot", "trial", "-vv", "{log}", "--out", "{png}"],
+                                  ["plot", "-v", "trial", "{log}", "--out", "{png}"],
+                                  ["plot", "trial", "--out", "{png}", "-q", "{log}"]])
+def test_an_optional_positional_after_an_option_is_taken(tmp_path, capfd, argv):
+    log, png = tmp_path / "missing.npz", tmp_path / "x.png"
+    code, error = run_cli([a.format(log=log, png=png) for a in argv], capfd)
+    assert code == 1, error
+    assert f"trial log '{log}' does not exist" in error
+    assert "unrecognized arguments" not in error
+
+
+def test_two_positionals_where_one_is_taken_are_still_refused(tmp_path, capfd):
+    with pytest.raises(SystemExit) as exit_:
+        cli.main(["plot", "trial", "-v", str(tmp_path / "a.npz"), str(tmp_path / "b.npz")])
+    assert exit_.value.code == 2
+    assert "unrecognized arguments" in capfd.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["sweep", "transfer", "sensitivity"])
+def test_a_runner_option_refused_is_bad_input_as_for_every_command(tmp_path, capfd, command):
+    """An --out that is a file: exit 1, as `tegrasp trial` and `plot` give (the table: bad
+    input, a file that cannot be written); a spec refused stays 2."""
+    taken = tmp_path / "a_file"
+    taken.write_text("")
+    spec = tmp_path / "spec.yaml"
+    spec.write_text({"sweep": "controllers: [memorized]\nattempts: 1\nobjects: [box]\n"
+                              "grid: [[0.0, 0.0]]\nbase_seed: 640\n",
+                     "transfer": "worlds: {w: {scenario: faithful_world}}\ncells: [[w, w]]\n"
+                                 + SEEDED_SWEEP,
+                     "sensitivity": "parameters: [gripper.pad_friction]\n" + SEEDED_SWEEP}[command])
+    spec_argument = ["--spec", str(spec)] if command == "sweep" else [str(spec)]
+    for out, code in ((taken, 1), (tmp_path / "out", 1)):
+        workers = "1" if out == taken else "0"
+        status, text = run_cli([command, *spec_argument, "--out", str(out), "--workers",
+                                workers, "--no-progress", *FAKE_TRIALS], capfd)
+        assert status == code, text
+        assert len(text.strip().splitlines()) == 1, text

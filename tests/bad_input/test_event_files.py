@@ -1,0 +1,242 @@
+"""Memorized event files and their index are read whole or refused: a duplicate or unknown
+key, a value no float holds, NaN, a negative time or window, a grip force beyond the
+gripper, an event listed twice or no event listed, events of one object at different rates,
+events of a changed built-in object, each named with its file in one line before any trial
+runs. Every committed event file still loads."""
+
+import json
+import math
+import pathlib
+import shutil
+
+import numpy as np
+import pytest
+
+import tegrasp_drake
+from tegrasp_drake.events.event_file import INDEX_FILE, MemorizedEventError, read_index
+from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
+from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tests.bad_input.probes import (assert_one_line_error, edit_json, events_copy_with_index,
+                                    memorized_events, one_line_of, run_cli)
+
+
+def _zero_channel(folder):
+    edit_json(folder / "box" / "load_lift.json",
+          lambda data: data["samples"].update(ra_left=[0.0] * len(data["samples"]["ra_left"])))
+
+
+def _drop_index_entry(folder):
+    edit_json(folder / "index.json", lambda data: data.update(events=[
+        e for e in data["events"] if (e["object"], e["transition"]) != ("box", "load_lift")]))
+
+
+def _copy_other_objects_events(folder):
+    """The thick cylinder's well-formed events copied in as the box's."""
+    for file in (folder / "thick_cylinder").glob("*.json"):
+        shutil.copy(file, folder / "box" / file.name)
+        edit_json(folder / "box" / file.name, lambda data: data.update(object="box"))
+    edit_json(folder / "index.json", lambda data: data.update(events=[
+        dict(e, object="box", file=e["file"].replace("thick_cylinder", "box"))
+        if e["object"] == "thick_cylinder" else e
+        for e in data["events"] if e["object"] != "box"]))
+
+
+@pytest.mark.parametrize("spoil, expected", [
+    (_zero_channel, "channels ['ra_left'] are zero throughout the window"),
+    (_drop_index_entry, "lists no load_lift event of object 'box'"),
+    (_copy_other_objects_events, "were recorded on another object: shape 'cylinder' "
+                                 "(recorded) != 'box' (now)"),
+])
+def test_unusable_events_are_named_before_the_trial_runs(spoil, expected, events_copy, capfd):
+    spoil(events_copy)
+    code, text = run_cli(["trial", "--events", str(events_copy)], capfd)
+    assert_one_line_error(code, text, str(events_copy), expected)
+
+
+def test_events_of_a_changed_builtin_object_are_refused_unless_accepted(capfd):
+    code, text = run_cli(["trial", "--set", "object.mass=0.3"], capfd)
+    assert_one_line_error(code, text, "mass 0.15 (recorded) != 0.3 (now)",
+                          "controller.event_object_may_differ=[mass]")
+
+
+def test_events_of_one_object_with_different_rates_are_refused(tmp_path):
+    mixed = memorized_events(sa_rate_hz=108.0)[:2] + memorized_events(sa_rate_hz=1000.0)[2:]
+    save_memorized_events(tmp_path, mixed)
+    with pytest.raises(MemorizedEventError, match="different windows or rates"):
+        load_memorized_events(tmp_path, "mine")
+    assert (tmp_path / INDEX_FILE).is_file()
+
+
+def test_a_deeply_nested_index_is_one_line(tmp_path, capfd):
+    events = tmp_path / "events"
+    events.mkdir()
+    (events / "index.json").write_text("[" * 100_000 + "]" * 100_000)
+    code, text = run_cli(["trial", "--events", str(events)], capfd)
+    assert_one_line_error(code, text, "index.json")
+
+
+def test_an_unreadable_event_file_is_one_line(tmp_path, capfd):
+    import shutil
+    from tegrasp_drake.rig import paths
+    events = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), events,
+                    ignore=shutil.ignore_patterns("__init__.py", "__pycache__"))
+    (events / "box" / "load_lift.json").unlink()
+    (events / "box" / "load_lift.json").mkdir()  # a folder where the file should be
+    code, text = run_cli(["trial", "--events", str(events)], capfd)
+    assert_one_line_error(code, text, "load_lift.json")
+
+
+def _events_copy(tmp_path) -> pathlib.Path:
+    folder = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), folder,
+                    ignore=shutil.ignore_patterns("prismatic", "ensemble", "corrective"))
+    return folder
+
+
+def test_an_event_file_with_a_duplicate_key_is_refused(tmp_path):
+    folder = _events_copy(tmp_path)
+    path = folder / "box" / "reach_load.json"
+    path.write_text(path.read_text().replace('"format":', '"format_version": 2,\n "format":', 1))
+    with pytest.raises(MemorizedEventError, match="reach_load.json: key 'format_version' appears"):
+        tegrasp_drake.load_memorized_events(folder, "box")
+
+
+def test_an_index_listing_an_event_twice_is_refused(tmp_path):
+    folder = _events_copy(tmp_path)
+    index = json.loads((folder / "index.json").read_text())
+    index["events"].append(dict(index["events"][0]))
+    (folder / "index.json").write_text(json.dumps(index))
+    with pytest.raises(MemorizedEventError, match="both list the box reach_load event"):
+        read_index(folder)
+
+
+def test_events_given_as_a_list_are_named():
+    with pytest.raises(TypeError) as refused:
+        tegrasp_drake.EventMatcher(events=[1, 2])
+    assert "EventMatcher: argument 'events' must be Mapping" in one_line_of(refused.value)
+
+
+@pytest.mark.parametrize("fields, field", [
+    (dict(sa_rate_hz=math.inf), "sa_rate_hz"),
+    (dict(window_s=-0.5), "window_s"),
+    (dict(object_name=5), "object_name"),
+])
+def test_a_memorized_event_names_its_wrong_field(fields, field):
+    arguments = dict(object_name="box", transition="reach_load", sa=np.ones((2, 54)),
+                     ra=np.ones((2, 500)), sa_rate_hz=108.0, ra_rate_hz=1000.0)
+    with pytest.raises((ConfigError, TypeError)) as refused:
+        tegrasp_drake.MemorizedEvent(**{**arguments, **fields})
+    assert f"field '{field}'" in one_line_of(refused.value)
+
+
+def test_an_event_sample_no_float_holds_is_refused_naming_the_file(tmp_path):
+    folder = _events_copy(tmp_path)
+    path = folder / "box" / "load_lift.json"
+    data = json.loads(path.read_text())
+    text = json.dumps(data).replace(json.dumps(data["samples"]["sa_left"][0]), "9" * 5000, 1)
+    path.write_text(text)
+    with pytest.raises(MemorizedEventError) as refused:
+        tegrasp_drake.load_memorized_events(folder, "box")
+    assert "load_lift.json" in one_line_of(refused.value) and "5000 digits" in str(refused.value)
+
+
+def test_an_index_holding_nan_is_refused(tmp_path):
+    folder = _events_copy(tmp_path)
+    index = folder / "index.json"
+    index.write_text(index.read_text().replace("{", '{"x_nan": NaN, ', 1))
+    with pytest.raises(MemorizedEventError) as refused:
+        tegrasp_drake.load_memorized_events(folder, "box")
+    assert "index.json" in one_line_of(refused.value) and "NaN" in str(refused.value)
+
+
+# Rule: an event file holds its fields and nothing else: an unknown key in it or in its
+# `samples` (a forged extra channel) is refused naming the key, as a duplicate channel or a
+# window of the wrong length is, rather than ignored.
+@pytest.mark.parametrize("where, key, words", [
+    ("samples", "extra", "field 'samples.extra' is not a channel"),
+    ("file", "sa_rate", "field 'sa_rate' is not a field of an event file"),
+])
+def test_an_event_file_with_an_unknown_key_is_refused_naming_it(tmp_path, where, key, words):
+    import json
+    import shutil
+    from tegrasp_drake.events.event_file import MemorizedEventError, read_memorized_event
+    path = tmp_path / "reach_load.json"
+    shutil.copy("events/box/reach_load.json", path)
+    data = json.loads(path.read_text())
+    (data["samples"] if where == "samples" else data)[key] = [0.0, 0.0, 0.0]
+    path.write_text(json.dumps(data))
+    with pytest.raises(MemorizedEventError) as refused:
+        read_memorized_event(path)
+    message = str(refused.value)
+    assert "\n" not in message and str(path) in message and words in message, message
+
+
+def test_every_committed_event_file_still_loads():
+    import pathlib
+    from tegrasp_drake.events.event_file import read_memorized_event
+    files = [path for path in pathlib.Path("events").glob("**/*.json")
+             if path.name != "index.json"]
+    assert len(files) >= 40
+    for path in files:
+        assert read_memorized_event(path).object_name == path.parent.name
+
+
+# Rule: an events index that lists no events is a damaged events folder, refused where the
+# index is read (so every reader of it, the plot, a trial, a sweep, names it alike) in one
+# line naming the index and how to remake it; not an internal error of the figure.
+def test_an_index_listing_no_events_is_refused_naming_it(tmp_path, capfd):
+    from tegrasp_drake.events import MemorizedEventError, read_index
+    folder = events_copy_with_index(tmp_path, entries=lambda entries: [])
+    with pytest.raises(MemorizedEventError, match="lists no events"):
+        read_index(folder)
+    code, error = run_cli(["plot", "events", "--events", str(folder),
+                           "--out", str(tmp_path / "events.png")], capfd)
+    assert code == 1, error
+    assert_one_line_error(code, error, "index.json", "lists no events")
+    assert not (tmp_path / "events.png").exists()
+
+
+# Rule: an RA window is a normalised vibration magnitude (Eq. 2), so no sample is negative;
+# a memorized event holding one is refused naming its file and channel. (SA windows may dip
+# below zero: the committed events' reach SA windows reach -0.67 of their peak.)
+def test_a_memorized_event_with_a_negative_ra_window_is_refused(tmp_path, capfd):
+    events = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), events,
+                    ignore=shutil.ignore_patterns("__init__.py", "__pycache__"))
+    path = events / "box" / "load_lift.json"
+    data = json.loads(path.read_text())
+    data["samples"]["ra_left"] = [-1.0] * len(data["samples"]["ra_left"])
+    path.write_text(json.dumps(data))
+    with pytest.raises(MemorizedEventError, match=r"load_lift\.json.*'ra_left'.*negative"):
+        load_memorized_events(events, "box")
+    code, text = run_cli(["plot", "events", "--events", str(events), "--out",
+                          str(tmp_path / "p.png")], capfd)
+    assert_one_line_error(code, text, "load_lift.json", "'ra_left'")
+
+
+# Rule: an event file's numbers are in their ranges when read: the transition's time in its
+# trial is not before the trial started.
+def test_an_event_whose_transition_time_is_negative_is_refused(tmp_path):
+    import json
+    import shutil
+    from tegrasp_drake.events import MemorizedEventError, load_memorized_events
+    from tegrasp_drake.rig import paths
+    events = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), events)
+    path = events / "box" / "reach_load.json"
+    data = json.loads(path.read_text())
+    data["transition_time_s"] = -50.0
+    path.write_text(json.dumps(data))
+    with pytest.raises(MemorizedEventError, match="transition_time_s"):
+        load_memorized_events(events, "box")
+
+
+# Rule: a transition's numbers are in their ranges when built: a Lift-Load's grip force is
+# one the 2F-85 can give.
+def test_a_transition_with_a_grip_force_beyond_the_gripper_is_refused():
+    import tegrasp_drake as T
+    with pytest.raises(ValueError, match="grip_force_n"):
+        T.Transition(t=1.0, from_mode=T.Mode.LIFT, to_mode=T.Mode.LOAD,
+                     trigger=list(T.Trigger)[0], reason="x", grip_force_n=1e9)

@@ -1,0 +1,273 @@
+"""Where memorized events are read from and saved to: --events, TEGRASP_EVENTS_DIR and
+XDG_DATA_HOME name a folder (or one to make); a file, a missing index, a folder without
+events or a destination that cannot be saved into is named by its option or variable before
+anything records or runs; saving replaces an object's events all or nothing."""
+
+import os
+
+import pytest
+
+from tegrasp_drake.events import event_file, events_folder
+from tegrasp_drake.events.events_folder import save_memorized_events
+from tegrasp_drake.rig import paths
+from tests.bad_input.probes import (assert_one_line_error, edit_json, folder_contents,
+                                    memorized_events, run_cli, run_probe)
+
+
+def test_the_corrective_events_are_read_from_the_events_folder_given(events_copy, capfd):
+    edit_json(events_copy / "corrective" / "box" / "hold_avoid.json",
+          lambda data: data["samples"].update(ra_left=[0.0] * len(data["samples"]["ra_left"])))
+    code, text = run_cli(["trial", "--events", str(events_copy), "--set",
+                          "controller.memorized_corrective.events=[hold_avoid]"], capfd)
+    assert_one_line_error(code, text, str(events_copy / "corrective"),
+                          "channels ['ra_left'] are zero throughout the window")
+
+
+def test_a_failed_staging_leaves_the_old_events_whole(tmp_path, monkeypatch):
+    old = memorized_events(seed=1)
+    save_memorized_events(tmp_path, old)
+    before = folder_contents(tmp_path)
+    from tegrasp_drake.events import events_folder
+    real_stage, calls = events_folder.staged_file, []
+
+    def stage_until_the_disk_is_full(path, data, **options):
+        calls.append(path)
+        if len(calls) == 3:
+            raise OSError(28, "No space left on device")
+        return real_stage(path, data, **options)
+    monkeypatch.setattr(events_folder, "staged_file", stage_until_the_disk_is_full)
+    with pytest.raises(OSError):
+        save_memorized_events(tmp_path, memorized_events(seed=2))
+    assert folder_contents(tmp_path) == before
+
+
+def test_record_events_does_not_record_another_object_under_an_objects_name(tmp_path,
+                                                                          capfd):
+    (tmp_path / "events").mkdir()
+    code, text = run_cli(["record-events", "--object", "thin_cylinder", "--set",
+                          "object.name=box", "--events", str(tmp_path / "events")], capfd)
+    assert_one_line_error(code, text, "--object thin_cylinder", "would record the object 'box'")
+    code, text = run_cli(["record-events", "--object", "thin_cylinder", "--scenario-name",
+                          "box", "--events", str(tmp_path / "events")], capfd)
+    assert_one_line_error(code, text, "give one or the other")
+    assert list((tmp_path / "events").iterdir()) == []
+
+
+def test_record_events_with_object_and_set_records_that_object_with_the_setting():
+    import argparse
+    from tegrasp_drake.commands.record_events import _scenarios_to_record
+    args = argparse.Namespace(object=["thin_cylinder"], scenario=None, scenario_name=None,
+                              overrides=["random_seed=603"])
+    (name, scenario), = _scenarios_to_record(args)
+    assert name == "thin_cylinder" and scenario.object.name == "thin_cylinder"
+    assert scenario.random_seed == 603
+
+
+def test_an_events_variable_naming_a_file_is_refused(tmp_path, monkeypatch, capfd):
+    not_a_folder = tmp_path / "events.txt"
+    not_a_folder.write_text("")
+    monkeypatch.setenv(paths.EVENTS_ENV, str(not_a_folder))
+    code, text = run_cli(["plot", "events", "--out", str(tmp_path / "x.png")], capfd)
+    assert_one_line_error(code, text, "TEGRASP_EVENTS_DIR", "is not a folder")
+    assert not (tmp_path / "x.png").exists()
+
+
+# --- 3. record-events checks its destination before simulating; readers name what is there ---
+
+@pytest.fixture
+def no_simulation(monkeypatch):
+    """Fails a test whose command reaches the (minutes long) recording."""
+    from tegrasp_drake.recording import paper_events
+
+    def simulated(*args, **kwargs):
+        raise AssertionError("record-events simulated before checking its destination")
+    monkeypatch.setattr(paper_events, "record_events", simulated)
+
+
+@pytest.mark.parametrize("damage, words", [
+    (lambda ev: (ev / "index.json").mkdir(), "is a folder"),
+    (lambda ev: (ev / "index.json").write_text('{"format": "tegrasp.memorized_event_index", '),
+     "is not valid JSON"),
+    (lambda ev: (ev / "box").write_text("a file where the box's folder belongs"),
+     "is not a folder"),
+])
+def test_record_events_refuses_a_destination_it_could_not_save_into_before_simulating(
+        damage, words, tmp_path, capfd, no_simulation):
+    events = tmp_path / "ev"
+    events.mkdir()
+    damage(events)
+    before = folder_contents(events)
+    code, text = run_cli(["record-events", "--object", "box", "--events", str(events)], capfd)
+    assert_one_line_error(code, text, f"--events {events}", words, "nothing was recorded")
+    assert folder_contents(events) == before
+
+
+@pytest.mark.parametrize("make, words", [
+    (lambda path: path.mkdir(), "is a folder, not a file"),
+    (lambda path: os.mkfifo(path), "is a named pipe (FIFO)"),
+    (lambda path: path.symlink_to("/dev/zero"), "is a device"),
+])
+def test_an_index_that_is_not_a_file_is_named_for_what_it_is(make, words, tmp_path):
+    make(tmp_path / event_file.INDEX_FILE)
+    with pytest.raises(event_file.MemorizedEventError) as refused:
+        event_file.read_index(tmp_path)
+    assert words in str(refused.value) and "missing" not in str(refused.value)
+    with pytest.raises(event_file.MemorizedEventError, match=words.split(" (")[0]):
+        events_folder.find_memorized_events([tmp_path], "box")
+
+
+def test_an_index_that_does_not_exist_is_still_missing(tmp_path):
+    with pytest.raises(event_file.MemorizedEventError, match="file is missing"):
+        event_file.read_index(tmp_path)
+
+
+# --- 6. an events folder named through a file ---------------------------------------------------
+
+def test_an_events_variable_through_a_file_is_refused_naming_it(tmp_path, monkeypatch, capfd):
+    a_file = tmp_path / "hostname"
+    a_file.write_text("not a folder\n")
+    monkeypatch.setenv(paths.EVENTS_ENV, str(a_file / "x"))
+    code, text = run_cli(["trial", "--out", str(tmp_path / "out")], capfd)
+    assert_one_line_error(code, text, paths.EVENTS_ENV, str(a_file))
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_data_home_through_a_file_is_refused_naming_it(tmp_path, monkeypatch):
+    a_file = tmp_path / "data"
+    a_file.write_text("not a folder\n")
+    monkeypatch.delenv(paths.EVENTS_ENV, raising=False)
+    monkeypatch.setenv("XDG_DATA_HOME", str(a_file))
+    with pytest.raises(OSError, match="XDG_DATA_HOME"):
+        paths.user_events_dir()
+
+
+def test_an_events_variable_not_there_yet_is_the_folder_to_make(tmp_path, monkeypatch):
+    monkeypatch.setenv(paths.EVENTS_ENV, str(tmp_path / "new" / "events"))
+    assert paths.user_events_dir() == tmp_path / "new" / "events"
+
+
+# Rule: a save of nothing is refused, as the command line never makes one.
+def test_saving_no_events_is_refused(tmp_path):
+    from tegrasp_drake import save_memorized_events
+    with pytest.raises(ValueError, match="no events given; there is nothing to save"):
+        save_memorized_events(tmp_path / "ev", [])
+    assert not (tmp_path / "ev").exists()
+
+
+# Rule: the arguments a command binds to a public function for later calls (a sweep's trial
+# function, called in its workers) are checked when bound (api_boundary.bound_arguments), so
+# a missing --events folder is one line before any trial, not an error record per trial.
+def test_a_sweep_with_a_missing_events_folder_stops_before_any_trial(tmp_path, monkeypatch,
+                                                                     capfd):
+    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--base-seed", "640",
+            "--attempts", "1", "--workers", "1", "--out", "sw", "--events", "missing",
+            "--no-progress"]
+    _, _, code, text = run_probe(None, argv, tmp_path, monkeypatch, capfd)
+    assert_one_line_error(code, text, "--events missing: does not exist; give an existing folder")
+    assert not (tmp_path / "sw" / "trials").exists()
+
+
+# Rule: a command's refusal names its option, not the function argument it is bound to
+# (`--events`, not run_trial_from_spec's events_dir), before any trial runs.
+@pytest.mark.parametrize("controller", ["open_loop", "memorized"])
+def test_tegrasp_sweep_names_its_events_option(tmp_path, capfd, controller):
+    missing = tmp_path / "MISSING"
+    code, text = run_cli(["sweep", "--objects", "box", "--controllers", controller,
+                          "--base-seed", "640", "--attempts", "1", "--workers", "1",
+                          "--out", str(tmp_path / "sw"), "--events", str(missing)], capfd)
+    assert code == 1, text
+    assert f"--events {missing}" in text and "events_dir" not in text, text
+    assert len(text.strip().splitlines()) == 1, text
+    assert not (tmp_path / "sw").exists()
+
+
+# Rule: a refusal names what the user set: events recorded into the user's folder that an
+# environment variable chose (no --events) are refused naming that variable, before
+# anything is simulated.
+@pytest.mark.parametrize("variable, value", [("XDG_DATA_HOME", "/proc/x"),
+                                             ("TEGRASP_EVENTS_DIR", "/proc/x/events")])
+def test_an_unusable_events_folder_from_the_environment_is_named_by_its_variable(
+        variable, value, monkeypatch, capfd):
+    monkeypatch.delenv("TEGRASP_EVENTS_DIR", raising=False)
+    monkeypatch.setenv(variable, value)
+    code, text = run_cli(["record-events", "--set", "random_seed=642", "--ensemble-runs", "0"],
+                         capfd)
+    assert code == 1, text
+    assert f"{variable}=" in text and "--events" not in text.split(";")[0], text
+    assert len(text.strip().splitlines()) == 1, text
+
+
+# Rule: a relative XDG_DATA_HOME is invalid (XDG Base Directory spec) and ignored, with a
+# warning, not a folder below wherever the command runs.
+def test_a_relative_xdg_data_home_is_ignored(monkeypatch, tmp_path, caplog):
+    monkeypatch.delenv(paths.EVENTS_ENV, raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path / "home"))
+    monkeypatch.setenv("XDG_DATA_HOME", "relative/dir")
+    monkeypatch.setattr(paths, "_IGNORED_DATA_HOMES", set())  # warned once per process
+    assert paths.user_events_dir() == tmp_path / "home" / ".local" / "share" / "tegrasp" / (
+        "events")
+    assert "relative/dir" in caplog.text and "not an absolute path" in caplog.text
+
+
+# Rule: the environment variable naming the events folder (TEGRASP_EVENTS_DIR) is refused by
+# every command that reads events when the folder it names does not exist, as --events is, in
+# one line naming the variable; never the package's events in silence. XDG_DATA_HOME is every
+# application's: a folder it names may not be made yet (no events recorded).
+@pytest.mark.parametrize("variable", ["TEGRASP_EVENTS_DIR"])
+@pytest.mark.parametrize("command", [
+    ["plot", "events"],
+    ["trial", "--set", "random_seed=641"],  # the memorized controller reads its events
+], ids=["plot-events", "trial"])
+def test_an_events_variable_naming_no_folder_is_refused(variable, command, tmp_path,
+                                                        monkeypatch, no_simulation, capfd):
+    missing = tmp_path / "no_such_folder"
+    monkeypatch.delenv("TEGRASP_EVENTS_DIR", raising=False)
+    monkeypatch.setenv(variable, str(missing))
+    code, text = run_cli([*command, "--out", str(tmp_path / "out.png" if command[0] == "plot"
+                                                 else tmp_path / "run")], capfd)
+    assert code == 1 and "internal error" not in text, text
+    assert len(text.strip().splitlines()) == 1, text
+    assert f"{variable}=" in text and f"{missing} does not exist" in text, text
+
+
+@pytest.mark.parametrize("data_home", ["made", "not_made_yet"])
+def test_a_data_folder_without_events_yet_reads_the_packages(data_home, tmp_path, monkeypatch,
+                                                             capfd):
+    monkeypatch.delenv("TEGRASP_EVENTS_DIR", raising=False)
+    # no tegrasp/events in it (none recorded), or the folder itself not made yet
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path if data_home == "made"
+                                            else tmp_path / "share"))
+    code, text = run_cli(["plot", "events", "--out", str(tmp_path / "events.png")], capfd)
+    assert code == 0 and (tmp_path / "events.png").is_file(), text
+
+
+# Rule: an events folder missing a file a trial needs is bad input (exit 1, one line naming
+# the file), as a missing --events folder is; exit 2 is kept for a refused sweep spec.
+def test_a_sweep_events_folder_missing_a_file_exits_1(tmp_path, capfd):
+    import shutil
+    from tegrasp_drake.rig import paths
+    events = tmp_path / "events"
+    shutil.copytree(paths.package_events_dir(), events)
+    (events / "box" / "load_lift.json").unlink()
+    code, text = run_cli(["sweep", "--objects", "box", "--controllers", "memorized",
+                          "--base-seed", "640", "--attempts", "1", "--workers", "1",
+                          "--out", str(tmp_path / "sw"), "--events", str(events)], capfd)
+    assert code == 1, text
+    assert "load_lift.json" in text and len(text.strip().splitlines()) == 1, text
+    assert "Traceback" not in text and not (tmp_path / "sw").exists(), text
+
+
+@pytest.mark.parametrize("command", [["trial"], ["plot", "events"],
+                                     ["replay", "run.lcmlog"], ["sweep", "--dry-run"]])
+@pytest.mark.parametrize("kind", ["file", "pipe"])
+def test_events_that_are_not_a_folder_are_said_so_by_every_command(command, kind, tmp_path,
+                                                                   monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    events = tmp_path / "events"
+    if kind == "file":
+        events.write_text("")
+    else:
+        os.mkfifo(events)
+    code, text = run_cli(command + ["--events", str(events)], capfd)
+    assert_one_line_error(code, text, f"--events {events}: is a ",
+                          "not a folder; give a folder of memorized events")

@@ -1,0 +1,240 @@
+"""The hardware config and its companions are checked at load, before any device is opened:
+empty or short values, missing fields, calibration files (a device, a pipe, ranges), two
+devices on one serial port, scheduling, watchdog timeouts within two device updates, joint
+limits, a duration past the command line's cap, and a scenario for the devices given to a
+simulation."""
+
+import os
+import re
+
+import pytest
+
+import tegrasp_drake
+import tegrasp_drake as T
+from tegrasp_drake.emulators.null_modem import open_raw_pty
+from tegrasp_drake.hardware.config import (HardwareStationConfig, LoadHardwareConfig,
+                                           hardware_config_to_yaml, watchdog_timeouts_problem)
+from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tests.bad_input.probes import assert_one_line_error, refusal, run_cli
+
+
+# --- hardware configs -------------------------------------------------------------------
+
+@pytest.mark.parametrize("text, expected", [
+    ("- arm\n- gripper\n", "must be a mapping of HardwareStationConfig fields"),
+    ("watchdog: {tactile_timeout: .nan}\n", "field 'watchdog.tactile_timeout' must be a finite"),
+    ("ready_timeout: -5\n", "field 'ready_timeout' must be positive"),
+    ("tactile: {max_backlog: -3}\n", "field 'tactile.max_backlog' must be zero or a positive"),
+    ("watchdog: {arm_timeout: 0}\n", "field 'watchdog.arm_timeout' must be positive"),
+    ("arm: {lcm_url: 'udpm://239.255.76.67:99999?ttl=0'}\n",
+     "field 'arm.lcm_url' cannot be opened by LCM"),
+    ("arm: {lcm_url: garbage}\n", "field 'arm.lcm_url' is not an LCM bus URL"),
+    ("watchdog: {arm_timeout: 0.05\n", "not valid YAML"),
+    ("scheduling: deadline\n", "field 'scheduling' must be one of 'fifo', 'nice', 'normal'"),
+])
+def test_a_bad_hardware_config_is_named_before_any_device_is_opened(text, expected, tmp_path,
+                                                                     capfd):
+    config = tmp_path / "hw.yaml"
+    config.write_text(text)
+    code, output = run_cli(["hardware", "--config", str(config), "--controller", "heuristic"],
+                           capfd)
+    assert_one_line_error(code, output, str(config), expected)
+
+
+@pytest.mark.parametrize("duration", ["-5", "0", "nan", "1e7"])
+def test_a_hardware_duration_out_of_range_is_a_usage_error(duration, tmp_path, capfd):
+    code, text = run_cli(["hardware", "--config", "hw.yaml", "--duration", duration], capfd)
+    assert code == 2 and "--duration" in text and "Traceback" not in text
+
+
+def test_a_trial_refuses_a_scenario_for_the_devices(tmp_path, capfd):
+    scenario = tmp_path / "scenarios.yaml"
+    scenario.write_text("mine:\n  station: !HardwareStationConfig {ready_timeout: 1.0}\n")
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine",
+                          "--out", str(tmp_path / "run")], capfd)
+    assert_one_line_error(code, text, "!HardwareStationConfig", "tegrasp hardware")
+    assert not (tmp_path / "run").exists()
+
+
+def _fifo(path):
+    os.mkfifo(path)
+
+
+@pytest.mark.parametrize("make, words", [
+    (None, "it does not exist"),
+    (_fifo, "is a named pipe (FIFO)"),
+    (lambda path: path.write_text("- 1\n- 2\n"), "must be a mapping of fields"),
+    (lambda path: path.write_text("left: {gain: [.nan]}\n"), "must be a finite number"),
+])
+def test_the_hardware_config_reads_its_calibration_file_at_load(make, words, tmp_path):
+    calibration = tmp_path / "pads.yaml"
+    if make:
+        make(calibration)
+    config = HardwareStationConfig()
+    config.tactile.calibration_file = str(calibration)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(config))
+    with pytest.raises(ConfigError, match="field 'tactile.calibration_file': .*pads.yaml") as e:
+        tegrasp_drake.LoadHardwareConfig(tmp_path / "hw.yaml")
+    assert words in str(e.value)
+
+
+def test_a_calibration_device_is_refused_in_one_line():
+    with pytest.raises(ConfigError, match="/dev/zero: more than"):
+        LoadTactileCalibration("/dev/zero")
+
+
+# --- 3. no hang ------------------------------------------------------------------------------
+
+def test_a_fifo_calibration_is_refused_without_blocking(tmp_path):
+    os.mkfifo(tmp_path / "pads.yaml")  # no writer: an open() for reading would block
+    with pytest.raises(ConfigError, match="is a named pipe"):
+        LoadTactileCalibration(str(tmp_path / "pads.yaml"))
+
+
+def test_a_hardware_run_longer_than_the_command_lines_cap_is_refused():
+    from tegrasp_drake import LoadScenario, run_on_hardware
+    with pytest.raises(ValueError, match=r"duration.*must lie in \(0, 600\] s"):
+        run_on_hardware(LoadScenario(name="box"), duration=1e9)
+
+
+# Rule: a configuration file without a field (empty, comments only, `{}`, a lone tag) is a
+# mistake, not a request for every default: the hardware config as scenario files and specs.
+@pytest.mark.parametrize("text", ["", "# my robot\n", "{}\n", "!Scenario {}\n",
+                                  "!HardwareStationConfig {}\n"])
+def test_a_hardware_config_without_fields_is_refused(tmp_path, text):
+    path = tmp_path / "hardware.yaml"
+    path.write_text(text)
+    refusal(lambda: T.LoadHardwareConfig(path), str(path), "is empty")
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(text)
+    refusal(lambda: T.LoadSweepSpec(spec), str(spec), "is empty")
+
+
+# Rule: an empty text or list is a value only where the field declares what empty means
+# (unset_fields) or where its default is itself empty; a field whose default is filled (an
+# LCM bus, a port, the joints that wrap) refuses an empty one naming the field, rather than
+# run on LCM's default bus or no device (rig/ranges.check_ranges, at load and at a public
+# function). A list of a fixed length (one value per joint) holds that many in every config.
+@pytest.mark.parametrize("text, field, words", [
+    ("arm: {tracker: {continuous_joints: []}}\n", "arm.tracker.continuous_joints", "is empty"),
+    ("arm: {tracker: {continuous_joints: [true]}}\n", "arm.tracker.continuous_joints",
+     "must hold 6"),
+    ('arm: {lcm_url: ""}\n', "arm.lcm_url", "is empty"),
+    ("arm: {lcm_url: ''}\n", "arm.lcm_url", "is empty"),
+    ('gripper: {port: ""}\n', "gripper.port", "is empty"),
+    ("gripper: {port: ''}\n", "gripper.port", "is empty"),
+    ('tactile: {port: ""}\n', "tactile.port", "is empty"),
+    ("tactile: {port: ''}\n", "tactile.port", "is empty"),
+])
+def test_a_hardware_config_refuses_an_empty_or_short_value(tmp_path, text, field, words):
+    path = tmp_path / "hardware.yaml"
+    path.write_text(text)
+    refusal(lambda: T.LoadHardwareConfig(path), str(path), f"field '{field}' {words}")
+
+
+# Rule: two devices configured on one serial port (the same name, or one line through a
+# symlink) are refused by the config check, naming both fields and the file, before any
+# device is opened (the tactile reader took the gripper's answers; the run blamed the gripper).
+@pytest.mark.parametrize("through_symlink", [False, True], ids=["same-name", "symlink"])
+def test_two_devices_on_one_serial_port_are_refused(through_symlink, tmp_path, capfd):
+    master, slave, port = open_raw_pty()  # a serial line no device answers on
+    try:
+        tactile = port
+        if through_symlink:
+            tactile = str(tmp_path / "ttyMYRIO")
+            os.symlink(port, tactile)
+        config = tmp_path / "hw.yaml"
+        config.write_text(f"ready_timeout: 1.0\nscheduling: normal\ngripper: {{port: {port}}}\n"
+                          f"tactile: {{port: {tactile}}}\n")
+        code, output = run_cli(["hardware", "--config", str(config), "--set",
+                                "random_seed=620"], capfd)
+    finally:
+        os.close(master)
+        os.close(slave)
+    assert_one_line_error(code, output, str(config), "'tactile.port'", "'gripper.port'",
+                          "are one serial line")
+
+
+def test_distinct_serial_ports_are_accepted(tmp_path):
+    first, second = open_raw_pty(), open_raw_pty()
+    try:
+        config = tmp_path / "hw.yaml"
+        config.write_text(f"gripper: {{port: {first[2]}}}\ntactile: {{port: {second[2]}}}\n")
+        loaded = LoadHardwareConfig(config)
+    finally:
+        for master, slave, _ in (first, second):
+            os.close(master)
+            os.close(slave)
+    assert (loaded.gripper.port, loaded.tactile.port) == (first[2], second[2])
+
+
+# Rule: a tactile calibration file's gains, offsets and piezo offset lie in their declared
+# ranges, each pad's lists 12 long, named in one line.
+@pytest.mark.parametrize("body, field", [
+    ("left: {gain: [-1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, 1.0e-3, "
+     "1.0e-3, 1.0e-3, 1.0e-3]}", "left.gain[0]"),
+    ("left: {gain: [1.0e-3]}", "left.gain"),
+    ("right: {offset: [70000, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]}", "right.offset[0]"),
+    ("left: {piezo_offset: 50.0}", "left.piezo_offset"),
+])
+def test_a_tactile_calibration_out_of_its_ranges_is_refused(tmp_path, body, field):
+    from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    path = tmp_path / "calibration.yaml"
+    path.write_text(body + "\n")
+    with pytest.raises(ConfigError, match=f"field '{re.escape(field)}'"):
+        LoadTactileCalibration(str(path))
+
+
+# Rule: a builder given a config checks its choices as the loader does, not only its ranges
+# (scheduling='rr' went on to open the devices).
+@pytest.mark.parametrize("mutate", [False, True], ids=["built", "changed-after"])
+def test_a_hardware_config_with_an_unknown_scheduling_is_refused_by_the_builder(mutate):
+    from tegrasp_drake import MakeHardwareStation
+    from tegrasp_drake.hardware.config import HardwareStationConfig
+    with pytest.raises(ConfigError, match="field 'scheduling' must be one of 'fifo', 'nice', "
+                                          "'normal', got str 'rr'"):
+        if mutate:
+            config = HardwareStationConfig()
+            config.scheduling = "rr"
+        else:
+            config = HardwareStationConfig(scheduling="rr")
+        MakeHardwareStation(config)
+
+
+@pytest.mark.parametrize("flags, joint", [("[true,true,false,true,true,true]", 2),
+                                          ("[true,false,true,true,true,true]", 3)])
+def test_a_limited_joint_marked_continuous_is_refused_in_both_configs(tmp_path, flags, joint):
+    """The tracker wraps a continuous joint's error into [-pi, pi): on the JACO2's joints 2
+    and 3, which have stops, that drives an error past half a turn through the stop."""
+    from tegrasp_drake.hardware.config import LoadHardwareConfig
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    words = f"marks joint {joint} continuous, but the JACO2's joint {joint} turns only"
+    with pytest.raises(ConfigError, match=words):
+        LoadScenario(name="box", overrides=[f"arm.tracker.continuous_joints={flags}"])
+    config = tmp_path / "hardware.yaml"
+    config.write_text(f"arm: {{tracker: {{continuous_joints: {flags}}}}}\n")
+    with pytest.raises(ConfigError, match="field 'arm.tracker.continuous_joints' " + words):
+        LoadHardwareConfig(config)
+
+
+@pytest.mark.parametrize("device, least", [("arm", "0.02"), ("gripper", "0.01"),
+                                           ("tactile", "0.002")])
+def test_a_watchdog_timeout_within_two_device_updates_is_refused(device, least):
+    config = HardwareStationConfig()
+    assert watchdog_timeouts_problem(config) is None  # the defaults
+    setattr(config.watchdog, f"{device}_timeout", 1e-9)
+    problem = watchdog_timeouts_problem(config)
+    assert f"field 'watchdog.{device}_timeout'" in problem
+    assert f"give more than {least} s" in problem
+
+
+def test_a_config_with_such_a_timeout_is_one_line(tmp_path, capfd):
+    config = tmp_path / "hw.yaml"
+    config.write_text("arm: {lcm_url: 'udpm://239.255.76.67:7667?ttl=0'}\n"
+                      "gripper: {port: /dev/null}\ntactile: {port: /dev/zero}\n"
+                      "watchdog: {arm_timeout: 1.0e-9}\n")
+    code, text = run_cli(["hardware", "--config", str(config)], capfd)
+    assert_one_line_error(code, text, "field 'watchdog.arm_timeout'", "give more than 0.02 s")

@@ -1,0 +1,458 @@
+"""A hardware run's LCM log read by `tegrasp replay`: receive times that jump or go back,
+event numbers that do not increase, TEGRASP_RUN_INFO messages that are corrupt, differ or
+contradict the run, taxel forces no taxel reads, forged statuses and transitions from
+another publisher are named as damage (exit code 3) or skipped and said, never trusted in
+silence; what real runs show (small swaps, a silent wait) is no damage."""
+
+import json
+import struct
+
+import lcm
+import numpy as np
+import pytest
+
+from tegrasp_drake import cli
+from tegrasp_drake.events import save_memorized_events
+from tegrasp_drake.events.synthetic import synthetic_grasp
+from tegrasp_drake.hardware.device_log_messages import (RUN_INFO_CHANNEL, TACTILE_CHANNEL,
+                                                        TRANSITION_CHANNEL)
+from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL, make_jaco_status
+from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info, lcmt_tegrasp_transition
+from tegrasp_drake.rig.files import one_line
+from tegrasp_drake.runs.hardware_log_reader import read_run_log
+from tegrasp_drake.runs.hardware_run import transition_message
+from tegrasp_drake.scenario.scenario import Scenario, scenario_to_yaml
+from tegrasp_drake.scenario.trial_log_writer import package_versions
+from tests.bad_input.probes import run_cli
+from tests.runs.test_hardware_log_reader import EVENTS, GRASP, logged_transitions, tactile_message
+
+
+# Rule: a run log's TEGRASP_RUN_INFO is checked as a whole when it is read: a controller
+# the package lacks, an object name no folder can have or versions that are not JSON are
+# refused naming the field, as a bad scenario in it is.
+@pytest.mark.parametrize("field, value", [("controller", "bogus"),
+                                          ("versions_json", "{not json"),
+                                          ("versions_json", "[1, 2]"),
+                                          ("object_name", "../../etc")])
+def test_a_run_info_field_the_run_never_writes_is_refused(tmp_path, field, value):
+    import lcm
+    from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
+    from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info
+    from tegrasp_drake.runs.hardware_log_reader import RunLogError, read_run_log
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name, info.versions_json = "memorized", "box", "{}"
+    setattr(info, field, value)
+    path = tmp_path / "run.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    log.write_event(0, RUN_INFO_CHANNEL, info.encode())
+    log.close()
+    with pytest.raises(RunLogError, match=f"'{field}'") as refused:
+        read_run_log(path)
+    assert "\n" not in str(refused.value)
+
+
+# Rule: a run log's TEGRASP_RUN_INFO that is there but does not decode is named as corrupt,
+# not as absent.
+def test_a_corrupt_run_info_message_is_named_corrupt_not_absent(tmp_path):
+    import lcm
+    import numpy as np
+    from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL, TACTILE_CHANNEL
+    from tegrasp_drake.lcmtypes import lcmt_tegrasp_run_info
+    from tegrasp_drake.runs.hardware_log_reader import RunLogError
+    from tegrasp_drake.runs.hardware_log_replay import replay_run_log
+    from tests.runs.test_hardware_log_reader import tactile_message
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name, info.versions_json = "memorized", "box", "{}"
+    garbage = np.random.default_rng(650).bytes(len(info.encode()))
+    path = tmp_path / "garbage_info.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    log.write_event(0, RUN_INFO_CHANNEL, garbage)
+    for k in range(3):
+        log.write_event(k + 1, TACTILE_CHANNEL,
+                        tactile_message(0.001 * k, [0.0, 0.0], [0.0, 0.0]).encode())
+    log.close()
+    with pytest.raises(RunLogError) as refused:
+        replay_run_log(path)
+    message = str(refused.value)
+    assert str(path) in message and RUN_INFO_CHANNEL in message and "corrupt" in message
+    assert "has no" not in message and "\n" not in message
+
+START_US = 1_796_070_992_580_719  # a hardware log's first receive time (lcm-logger's clock)
+
+WAIT_US = 300_000_000  # the run's info, then 300 s of silence while the devices come up
+
+SWAP_US = 156  # the largest step back measured in hardware logs (two messages swapped)
+
+
+def _run_log_received_at(path, receive_times):
+    """A run's log from the synthetic grasp at 1 kHz: TEGRASP_RUN_INFO, then the tactile
+    messages, written with lcm.EventLog at `receive_times(k)` [us] for message k (k = 0 the
+    run's info). The messages' own times run forward whatever the receive times do."""
+    trial = synthetic_grasp(GRASP)
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name, info.versions_json = "memorized", "box", "{}"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    log.write_event(receive_times(0), RUN_INFO_CHANNEL, info.encode())
+    for k, t in enumerate(trial.t_ra):
+        sa = trial.sa[min(np.searchsorted(trial.t_sa, t, side="right") - 1, len(trial.sa) - 1)]
+        log.write_event(receive_times(k + 1), TACTILE_CHANNEL,
+                        tactile_message(t, sa, trial.ra[k]).encode())
+    log.close()
+    return path
+
+
+def _real_run_times(k):
+    """Receive times as a real run's: the wait for the devices after the run's info, 1 ms
+    ticks, and one pair of messages swapped by SWAP_US."""
+    if k == 0:
+        return START_US
+    return START_US + WAIT_US + 1000 * k - (SWAP_US + 1000 if k == 1001 else 0)
+
+
+# Rule: the receive times run forward (lcm-logger writes messages in the order it receives
+# them; two that arrive together may swap by less than MAX_RECEIVE_STEP_BACK_US) and never
+# jump further than a run's bus can be silent (MAX_RECEIVE_GAP_US); a log breaking this is
+# damaged, and says where.
+def test_a_31_year_jump_in_the_receive_times_is_damage(tmp_path):
+    jump = 10**15  # added to every receive time from one message on
+    path = _run_log_received_at(tmp_path / "jump.lcmlog",
+                    lambda k: _real_run_times(k) + (jump if k >= 3000 else 0))
+    log = read_run_log(path)
+    assert len(log.damage) == 1, log.damage
+    damage = log.damage[0]
+    assert "receive times" in damage and "forward" in damage and "31.7 years" in damage
+    assert "between messages 3000 and 3001" in damage, damage
+    text = log.damage_text()
+    assert str(path) in text and "\n" not in text
+    assert len(log.tactile["t"]) == log.message_counts[TACTILE_CHANNEL]  # contents kept
+
+
+def test_receive_times_going_back_seconds_are_damage(tmp_path):
+    # a log joined to a copy of its end: the receive times go back 5 s at message 2501, while
+    # the messages' own times run on
+    path = _run_log_received_at(tmp_path / "back.lcmlog",
+                    lambda k: _real_run_times(k) - (5_000_000 if k >= 2500 else 0))
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert "go back" in damage[0] and "by 5 s" in damage[0], damage
+    assert "between messages 2500 and 2501" in damage[0], damage
+
+
+def test_replay_exits_3_naming_a_jump_in_the_receive_times(tmp_path, capfd):
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    path = _run_log_received_at(tmp_path / "jump.lcmlog",
+                    lambda k: _real_run_times(k) + (10**15 if k >= 3000 else 0))
+    code, text = run_cli(["replay", str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3, text
+    assert "Traceback" not in text
+    warnings = [line for line in text.splitlines() if line.startswith("tegrasp: warning:")]
+    assert len(warnings) == 1 and "damaged log" in warnings[0], text
+    assert "receive times" in warnings[0] and "jump forward" in warnings[0], text
+
+
+def _run_info(**fields):
+    """A run's TEGRASP_RUN_INFO as run_info_message writes it (the box scenario), with
+    `fields` changed."""
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name, info.versions_json = "memorized", "box", "{}"
+    info.scenario_yaml = scenario_to_yaml(Scenario())
+    for name, value in fields.items():
+        setattr(info, name, value)
+    return info
+
+
+def _run_log(path, infos=(), tactile=lambda k, message: message):
+    """A run's log from the synthetic grasp at 1 kHz, written with lcm.EventLog: the
+    TEGRASP_RUN_INFO messages `infos` (the first before the tactile messages, the others
+    after the 500th), then the tactile messages, tactile(k, message) of message k."""
+    trial = synthetic_grasp(GRASP)
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    infos = list(infos) or [_run_info()]
+    log.write_event(START_US, RUN_INFO_CHANNEL, infos[0].encode())
+    for k, t in enumerate(trial.t_ra):
+        sa = trial.sa[min(np.searchsorted(trial.t_sa, t, side="right") - 1, len(trial.sa) - 1)]
+        receive_us = START_US + 1000 * (k + 1)
+        log.write_event(receive_us, TACTILE_CHANNEL,
+                        tactile(k, tactile_message(t, sa, trial.ra[k])).encode())
+        if k == 500:
+            for info in infos[1:]:
+                log.write_event(receive_us, RUN_INFO_CHANNEL, info.encode())
+    log.close()
+    return path
+
+
+def _replay(argv, capfd):
+    code, text = run_cli(["replay", *argv], capfd)
+    assert "Traceback" not in text
+    return code, text
+
+
+# Rule: the run's events folder (TEGRASP_RUN_INFO events_dir) is the events the run used; a
+# folder that is gone is refused as a missing --events DIR is, never swapped for the
+# package's events in silence.
+def test_the_runs_events_folder_gone_is_refused_naming_it(tmp_path, capfd):
+    gone = tmp_path / "events-of-the-run"
+    path = _run_log(tmp_path / "run.lcmlog", [_run_info(events_dir=str(gone))])
+    code, text = _replay([str(path)], capfd)
+    assert code == 1, text
+    lines = text.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tegrasp: error:"), text
+    assert str(gone) in text and "--events DIR" in text, text
+    # given --events, the log replays
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 0, text
+
+
+# Rule: run_info_message writes object_name from its scenario's object, once per run; a log
+# whose TEGRASP_RUN_INFO contradicts itself, or that holds two that differ, is damaged.
+def test_run_info_object_differing_from_its_scenario_is_damage(tmp_path, capfd):
+    path = _run_log(tmp_path / "run.lcmlog", [_run_info(object_name="thin_cylinder")])
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert "thin_cylinder" in damage[0] and "'box'" in damage[0], damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())  # the box's only
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3, text
+    assert "object box" in text and "thin_cylinder" in text, text
+
+
+def test_two_run_infos_that_differ_are_damage(tmp_path, capfd):
+    path = _run_log(tmp_path / "run.lcmlog",
+                    [_run_info(), _run_info(object_name="thin_cylinder",
+                                            scenario_yaml="")])
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert f"2 {RUN_INFO_CHANNEL}" in damage[0] and "object_name" in damage[0], damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3 and "object box" in text, text
+
+
+def _run_info_scenario_changed(path, change):
+    """The log at `path` with its TEGRASP_RUN_INFO's scenario text's bytes passed through
+    change(bytearray), in place: LCM logs carry no checksum, so corrupt bytes decode."""
+    data = bytearray(path.read_bytes())
+    text = scenario_to_yaml(Scenario()).encode()
+    start = data.find(text)
+    assert start > 0
+    data[start:start + len(text)] = change(bytearray(text))
+    path.write_bytes(bytes(data))
+
+
+def _flipped(*positions):
+    def change(text):
+        for k in positions:
+            text[k] ^= 0xFF
+        return text
+    return change
+
+
+def _upper_cased(word):
+    def change(text):
+        k = text.find(word.encode())
+        text[k:k + len(word)] = word.upper().encode()
+        return text
+    return change
+
+
+# Rule: a TEGRASP_RUN_INFO whose scenario text corrupt bytes changed is damage, named (which
+# message and field, not UTF-8 at which byte, or which field does not load), with no raw
+# replacement character; the log is replayed with its logged object and the matcher's
+# defaults, exit 3 as for any damaged log.
+@pytest.mark.parametrize("change, words", [
+    # the 'b' of 'object:\n  name: box' made 0x9d, a UTF-8 continuation byte with no lead
+    (_flipped(31), "is not UTF-8 at byte 31"),
+    (_upper_cased("expected_xy"), "placement.EXPECTED_XY"),  # UTF-8, a key no scenario has
+])
+def test_a_run_info_scenario_with_corrupt_bytes_is_damage_and_the_log_replays(
+        tmp_path, capfd, change, words):
+    path = _run_log(tmp_path / "run.lcmlog")
+    _run_info_scenario_changed(path, change)
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert f"{RUN_INFO_CHANNEL} field 'scenario_yaml'" in damage[0] and words in damage[0], \
+        damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3, text
+    assert "\ufffd" not in text, text
+    assert "object box" in text and "fired at" in text, text
+    warnings = [line for line in text.splitlines() if line.startswith("tegrasp: warning:")]
+    assert len(warnings) == 1 and words in warnings[0], text
+
+
+# Rule: every error line shows a replacement character U+FFFD (bytes a decoder could not
+# read) escaped, as it shows line breaks and ESC, so that no line looks like intact text.
+def test_an_error_line_escapes_the_replacement_character():
+    assert one_line("name: \ufffd\ufffdx\n") == "name: \\ufffd\\ufffdx\\n"
+
+
+def _renumbered(path, number):
+    """The log at `path` with event k's number set to number(k)."""
+    data = bytearray(path.read_bytes())
+    position = k = 0
+    while position < len(data):
+        _, _, _, channel_length, data_length = struct.unpack_from(">IqqII", data, position)
+        struct.pack_into(">q", data, position + 4, number(k))
+        position += 28 + channel_length + data_length
+        k += 1
+    path.write_bytes(bytes(data))
+    return k
+
+
+# Rule: lcm-logger numbers its events 0, 1, 2, ...; numbers that do not go up (two logs
+# spliced, corrupt bytes) are damage even where no message is lost.
+def test_event_numbers_that_do_not_increase_are_damage(tmp_path):
+    path = _run_log(tmp_path / "run.lcmlog")
+    events = _renumbered(path, lambda k: 0)
+    log = read_run_log(path)
+    assert sum(log.message_counts.values()) == events
+    assert len(log.damage) == 1, log.damage
+    assert "event number" in log.damage[0] and str(events - 1) in log.damage[0], log.damage
+
+
+def test_event_numbers_starting_again_are_one_place_of_damage(tmp_path):
+    # a log whose event numbers start again from 0 at its 2001st event (two logs spliced):
+    # one place, the numbers that follow it followed, nothing lost
+    path = _run_log(tmp_path / "run.lcmlog")
+    _renumbered(path, lambda k: k if k < 2000 else k - 2000)
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert damage[0].startswith("1 event number(s) do not follow"), damage
+
+
+# Rule: a taxel force outside what the taxel model can read (taxel_reading_range) is an
+# impossible value, as 1e30 m/s^2 is.
+def test_taxel_forces_no_taxel_reads_are_damage(tmp_path):
+    def negative(k, message):
+        if k % 3 == 2:
+            message.left_taxel_forces = [-50.0] * 12
+        return message
+    path = _run_log(tmp_path / "run.lcmlog", tactile=negative)
+    log = read_run_log(path)
+    logged = log.message_counts[TACTILE_CHANNEL]
+    assert len(log.damage) == 1, log.damage
+    assert f"{logged // 3} message(s) on {TACTILE_CHANNEL}" in log.damage[0], log.damage
+    assert len(log.tactile["t"]) == logged - logged // 3
+
+
+# Rule: on the devices a taxel's force is its calibrated count, which may read past what the
+# scenario's simulated model reads (678 N at the defaults) for a pad calibrated with a larger
+# gain: such a run log is no damage, up to the largest gain a calibration file may give.
+def test_a_calibrated_force_past_the_models_range_is_no_damage(tmp_path):
+    def pressed_hard(k, message):
+        if k == 700:
+            message.left_taxel_forces = [900.0] * 12  # 0.03 N/count x 30,000 counts
+        return message
+    log = read_run_log(_run_log(tmp_path / "run.lcmlog", tactile=pressed_hard))
+    assert log.damage == [], log.damage
+
+WALL_START_US = 1_764_547_200_000_000  # [us] lcm-logger's clock at the run's start
+
+ARM_PERIOD_US = 10_000  # the arm's status every 10 ms on its own clock, from 1 s
+
+ZEROS = [0.0] * 6
+
+HOME = [0.0, np.pi, np.pi, 0.0, 0.0, 0.0]  # [rad] within each joint's range (JACO_STATUS_RANGES)
+
+
+def status(utime, position=HOME):
+    return make_jaco_status(utime, position, ZEROS, ZEROS).encode()
+
+
+def forged_transition(utime, from_mode, to_mode):
+    message = lcmt_tegrasp_transition()
+    message.utime, message.from_mode, message.to_mode = utime, from_mode, to_mode
+    message.trigger, message.reason = "memorized_event", "forged"
+    return message.encode()
+
+
+def write_log(path, forged_at=None, forged=()):
+    """A run's log (the synthetic grasp at 1 kHz, its transitions, an arm status every
+    10 ms) with the (channel, data) messages `forged` written after tactile tick
+    `forged_at`, as another publisher on the bus would have them logged."""
+    trial = synthetic_grasp(GRASP)
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    info = lcmt_tegrasp_run_info()
+    info.controller, info.object_name = "memorized", "box"
+    info.versions_json = json.dumps(package_versions())
+    now = [0.0]  # [s] the run's time as lcm-logger receives each message
+
+    def write(channel, data):
+        log.write_event(WALL_START_US + round(now[0] * 1e6), channel, data)
+    write(RUN_INFO_CHANNEL, info.encode())
+    transitions = iter(logged_transitions())
+    pending = next(transitions, None)
+    for k, t in enumerate(trial.t_ra):
+        now[0] = t
+        sa = trial.sa[min(np.searchsorted(trial.t_sa, t, side="right") - 1, len(trial.sa) - 1)]
+        write(TACTILE_CHANNEL, tactile_message(t, sa, trial.ra[k]).encode())
+        if k % 10 == 0:
+            write(JACO_STATUS_CHANNEL, status(1_000_000 + k // 10 * ARM_PERIOD_US))
+        if pending is not None and pending["t"] <= t:
+            write(TRANSITION_CHANNEL, transition_message(pending).encode())
+            pending = next(transitions, None)
+        if k == forged_at:
+            for channel, data in forged:
+                write(channel, data)
+    log.close()
+    return path
+
+
+@pytest.fixture(scope="module")
+def genuine(tmp_path_factory):
+    return read_run_log(write_log(tmp_path_factory.mktemp("genuine") / "run.lcmlog"))
+
+
+def test_statuses_the_live_run_refuses_are_refused_again_and_do_not_order_the_rest(
+        genuine, tmp_path):
+    nan = make_jaco_status(2**40, [float("nan")] + HOME[1:], ZEROS, ZEROS).encode()
+    log = read_run_log(write_log(tmp_path / "run.lcmlog", forged_at=100,
+                                 forged=[(JACO_STATUS_CHANNEL, nan)] * 3))
+    assert len(log.arm_status) == len(genuine.arm_status)
+    assert any("live run refuses (not finite 3" in words for words in log.damage)
+
+
+def test_one_status_far_in_the_future_costs_itself_alone(genuine, tmp_path):
+    log = read_run_log(write_log(tmp_path / "run.lcmlog", forged_at=100,
+                                 forged=[(JACO_STATUS_CHANNEL, status(2**62))]))
+    assert len(log.arm_status) == len(genuine.arm_status)
+    assert any(f"1 message(s) on {JACO_STATUS_CHANNEL}" in words for words in log.damage)
+
+
+@pytest.mark.parametrize("utime, from_mode, to_mode, wrong", [
+    (100, "Banana", "Kiwi", "are no transition a controller makes (the first: unknown mode"),
+    (-5, "Reach", "Load", "are no transition a controller makes"),
+    (3_000_000_000, "Reach", "Load", "lie outside the run's tactile stream's time span"),
+    (100_000, "Reach", "Load", "carry a time more than 1 s from the run's when they were "
+                               "logged (the first: Reach -> Load at 0.1 s, logged at 1.5 s"),
+    (2**62, "Reach", "Done", "lie outside the run's tactile stream's time span"),
+    # At 1.5 s the run is in Load (Reach -> Load at 1.1 s, Load -> Lift at 1.9 s).
+    (1_500_000, "Lift", "Hold", "do not leave the mode the timeline is in (the first: Lift "
+                                "-> Hold at 1.5 s, in Load"),
+])
+def test_a_forged_transition_is_skipped_and_said_and_the_timeline_kept(
+        genuine, tmp_path, capfd, utime, from_mode, to_mode, wrong):
+    path = write_log(tmp_path / "run.lcmlog", forged_at=1500,
+                     forged=[(TRANSITION_CHANNEL, forged_transition(utime, from_mode, to_mode))])
+    log = read_run_log(path)
+    assert log.transitions == genuine.transitions
+    assert any(f"1 message(s) on {TRANSITION_CHANNEL} {wrong}" in words
+               for words in log.damage)
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    assert cli.main(["replay", str(path), "--events", str(tmp_path / "events")]) == 3
+    out, err = capfd.readouterr()
+    assert "damaged log" in err and "Traceback" not in err
+    printed = [line.split("]", 1)[1].split("(")[0].strip() for line in out.splitlines()
+               if " -> " in line]
+    assert printed == [f"{t['from']} -> {t['to']}" for t in genuine.transitions]
+
+
+def test_a_replay_against_another_objects_events_says_whose_run_it_was(genuine, capfd):
+    """`replay --object thin_cylinder` of a box run named the log's object thin_cylinder."""
+    code = cli.main(["replay", str(genuine.path), "--object", "thin_cylinder"])
+    out, err = capfd.readouterr()
+    assert code == 0, err
+    assert "the run was of the object 'box'" in err and err.count("\n") == 1
+    assert "object thin_cylinder's events (the run's object: box)" in out

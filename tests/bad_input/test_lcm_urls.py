@@ -1,0 +1,128 @@
+"""LCM URLs are checked before a bus is opened: an in-process bus (memq://) that no other
+process shares, a file URL that would overwrite a user's file, or a bad LCM_DEFAULT_URL is
+refused in one line naming it, and the file is left whole."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from tests.bad_input.probes import assert_one_line_error, run_cli
+
+
+def test_a_bus_inside_the_process_is_said_not_to_be_logged(tmp_path):
+    from tegrasp_drake.runs import hardware_run
+    writer = hardware_run.BusLogWriter("memq://", tmp_path / "run.lcmlog")
+    assert "lives inside this process" in writer.unrecorded
+    assert writer.problem() is None and writer.close() == 0
+    assert not (tmp_path / "run.lcmlog").exists()
+
+
+# Rule: a command that talks over LCM to another process (the emulators to `tegrasp
+# hardware`, `tegrasp hardware` to the arm's driver) refuses a bus that exists inside one
+# process (memq://) in one line, before it starts anything; library code may still run both
+# ends in one process on it.
+@pytest.mark.parametrize("argv, words", [
+    (["emulate", "jaco", "--lcm-url", "memq://", "--scheduling", "normal"],
+     ["--lcm-url 'memq://'", "no other process can reach"]),
+    (["hardware", "--config", "hw.yaml", "--config-set", "arm.lcm_url=memq://"],
+     ["hw.yaml: field 'arm.lcm_url'", "no other process can reach"]),
+])
+def test_an_in_process_lcm_bus_is_refused_by_the_commands(tmp_path, monkeypatch, capfd, argv,
+                                                          words):
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(argv, capfd)
+    assert code == 1 and "\n" not in text.strip(), text
+    for word in words:
+        assert word in text, text
+
+
+# Rule: an LCM URL that cannot be used is named where it came from: the LCM_DEFAULT_URL
+# environment variable when it gave the default (no field the user wrote), else the field.
+@pytest.mark.parametrize("command", [
+    ["hardware", "--config", "hw.yaml", "--scenario-name", "box", "--duration", "1"],
+    ["emulate", "jaco"],
+], ids=["hardware", "emulate"])
+def test_a_bad_lcm_default_url_variable_is_named(tmp_path, command):
+    (tmp_path / "hw.yaml").write_text("gripper: {port: /dev/ttyUSB0}\n")
+    bad = "udpm://239.255.76.67:99999?ttl=0"
+    run = subprocess.run([sys.executable, "-m", "tegrasp_drake", *command], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=120,
+                         env={**os.environ, "LCM_DEFAULT_URL": bad})
+    assert run.returncode == 1, run.stderr
+    assert_one_line_error(run.returncode, run.stderr, "tegrasp: error:",
+                          "environment variable LCM_DEFAULT_URL", bad)
+
+PRECIOUS = "precious data\n"
+
+
+# Rule: an LCM URL is checked from its text before LCM is given it: only the buses
+# udpm:// and tcpq:// (and, for library code, memq://) are opened; file://, LCM's event-log
+# provider, is refused without being opened, so checking it never creates or truncates the
+# file it names (with ?mode=w, lcm.LCM(url) truncated it).
+def test_a_file_lcm_url_is_refused_by_its_text_and_its_file_left_whole(tmp_path):
+    from tegrasp_drake.hardware.config import lcm_url_problem, shared_lcm_url_problem
+    precious = tmp_path / "precious.txt"
+    precious.write_text(PRECIOUS)
+    absent = tmp_path / "absent.lcmlog"
+    for check in (lcm_url_problem, shared_lcm_url_problem):
+        for url in (f"file://{precious}?mode=w", f"file://{absent}?mode=w"):
+            problem = check(url)
+            assert problem and "file://" in problem and "udpm://" in problem, problem
+            assert "tcpq://" in problem, problem
+    assert precious.read_text() == PRECIOUS
+    assert not absent.exists()
+
+
+def _hardware_config(tmp_path, url):
+    """hw.yaml with arm.lcm_url `url`, or with no arm.lcm_url (its default) when None."""
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    config = HardwareStationConfig()
+    text = hardware_config_to_yaml(config)
+    line = f"  lcm_url: {config.arm.lcm_url}\n"
+    assert line in text, text
+    (tmp_path / "hw.yaml").write_text(
+        text.replace(line, "" if url is None else f"  lcm_url: {url!r}\n"))
+
+
+def _tegrasp(argv, cwd, environment=None):
+    """(exit code, stderr) of `tegrasp ARGV` in its own process; an emulator that accepted
+    the URL would run until stopped, so a run past the timeout fails the test."""
+    done = subprocess.run([sys.executable, "-m", "tegrasp_drake", *argv], cwd=cwd,
+                          env=environment, capture_output=True, text=True, timeout=60)
+    return done.returncode, done.stderr
+
+
+# Rule (the commands): `tegrasp hardware` (arm.lcm_url, or LCM_DEFAULT_URL as its default)
+# and `tegrasp emulate` (--lcm-url, or LCM_DEFAULT_URL as its default) refuse a file:// URL
+# in one line naming the field or variable and the providers accepted, and leave the file
+# as it was.
+@pytest.mark.parametrize("case", ["hardware", "hardware-variable", "emulate",
+                                  "emulate-variable"])
+def test_the_commands_refuse_a_file_lcm_url_and_leave_the_file_whole(tmp_path, case):
+    precious = tmp_path / "precious.txt"
+    precious.write_text(PRECIOUS)
+    url = f"file://{precious}?mode=w"
+    environment = dict(os.environ, PYTHONPATH=os.getcwd())
+    if case.endswith("variable"):
+        environment["LCM_DEFAULT_URL"] = url
+    if case.startswith("hardware"):
+        _hardware_config(tmp_path, None if case.endswith("variable") else url)
+        argv = ["hardware", "--config", "hw.yaml", "--scenario-name", "box", "--set",
+                "random_seed=690", "--log", "hw/run.lcmlog"]
+        named = ("LCM_DEFAULT_URL" if case.endswith("variable")
+                 else "hw.yaml: field 'arm.lcm_url'")
+    else:
+        argv = ["emulate", "jaco", "--scheduling", "normal"]
+        if not case.endswith("variable"):
+            argv += ["--lcm-url", url]
+        named = "LCM_DEFAULT_URL" if case.endswith("variable") else "--lcm-url"
+    code, text = _tegrasp(argv, tmp_path, environment)
+    assert code == 1 and text.strip().count("\n") == 0, text
+    for word in (named, "file://", "udpm://", "tcpq://"):
+        assert word in text, text
+    assert precious.read_text() == PRECIOUS
+    assert not (tmp_path / "hw").exists()

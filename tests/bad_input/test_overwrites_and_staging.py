@@ -1,0 +1,445 @@
+"""Runs replace their predecessors only when complete: a run writes into a staging folder it
+commits at the end; --overwrite says what it replaced and removes only the earlier run's
+own files, never a user's (a link, a folder named like staging, a non-regular file); a
+second run into a folder another run holds is refused; staging left by a killed run is
+removed by the next."""
+
+import contextlib
+import fcntl
+import json
+import logging
+import os
+import pathlib
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import time
+
+import pytest
+
+from tegrasp_drake.commands import run_folder
+from tegrasp_drake.commands.run_folder import staging_file_beside
+from tegrasp_drake.events.events_folder import save_memorized_events
+from tegrasp_drake.rig.files import held_folder
+from tests import killed_runs
+from tests.bad_input.probes import (FAKE_TRIALS, assert_one_line_error, folder_contents,
+                                    memorized_events, no_recording, run_cli, transfer_out)
+from tests.commands.test_run_folder import _ended_process_id
+
+
+def test_an_overwritten_run_keeps_none_of_the_earlier_runs_figures(tmp_path):
+    folder = tmp_path / "run"
+    folder.mkdir()
+    for name in ("trial.npz", "states.png", "signals.png"):
+        (folder / name).write_bytes(b"earlier")
+    (folder / "notes.txt").write_text("the user's own file")
+    (folder / "result.json").write_text(json.dumps(
+        {"log": str(folder / "trial.npz"), "figure": str(folder / "states.png"),
+         "signals_figure": str(folder / "signals.png"), "result": str(folder / "result.json")}))
+    with run_folder.staged_run(folder) as stage:
+        for name in ("trial.npz", "states.svg", "signals.svg"):
+            (stage / name).write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz"),
+                                              "figure": str(stage / "states.svg")})
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "notes.txt", "result.json", "signals.svg", "states.svg", "trial.npz"]
+    assert (folder / "trial.npz").read_bytes() == b"new"
+
+
+# --- one run per run folder -------------------------------------------------------------------
+
+def test_a_second_run_into_a_folder_being_written_is_refused(tmp_path, monkeypatch, capfd):
+    """The first run holds the folder (staged_run's flock) while it simulates; a second
+    `tegrasp trial --out` into it stops with one line before it simulates, and the first
+    run's files are its own."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "same").mkdir()
+    with run_folder.staged_run(tmp_path / "same") as stage:
+        (stage / "trial.npz").write_bytes(b"the first run's log")
+        with pytest.raises(run_folder.RunFolderError, match="another run is writing there"):
+            with run_folder.staged_run(tmp_path / "same"):
+                pass
+        code, text = run_cli(["trial", "--out", "same", "--overwrite"], capfd)
+        assert_one_line_error(code, text, "--out same: another run is writing there now")
+        assert (stage / "trial.npz").read_bytes() == b"the first run's log"
+    with run_folder.staged_run(tmp_path / "same"):  # released when the first run ends
+        pass
+
+
+def test_the_staging_of_a_killed_run_is_removed_by_the_next_run(tmp_path):
+    from tegrasp_drake.commands.run_folder import STAGING_PREFIX, RunFolderError, staged_run
+    killed = subprocess.run(
+        [sys.executable, "-c", "import os, signal, sys\n"
+         "from tegrasp_drake.commands.run_folder import staged_run\n"
+         "with staged_run(sys.argv[1]):\n    os.kill(os.getpid(), signal.SIGKILL)\n",
+         str(tmp_path)], env=killed_runs.environment(), timeout=300)
+    assert killed.returncode == -signal.SIGKILL
+    (left,) = tmp_path.glob(f"{STAGING_PREFIX}*")
+    with staged_run(tmp_path) as stage:
+        assert not left.exists() and stage.is_dir()
+        with pytest.raises(RunFolderError, match="another run is writing there now"):
+            with staged_run(tmp_path):
+                pass
+        assert stage.is_dir()  # a live run's staging is never touched
+    assert not list(tmp_path.glob(f"{STAGING_PREFIX}*"))
+
+
+def _processes_naming(path: pathlib.Path) -> list[int]:
+    """The ids of the processes whose command line names `path` (Linux's /proc)."""
+    found = []
+    for entry in pathlib.Path("/proc").iterdir():
+        try:
+            if entry.name.isdigit() and str(path).encode() in (entry / "cmdline").read_bytes():
+                found.append(int(entry.name))
+        except OSError:
+            continue
+    return found
+
+
+def _wait_until(condition, what: str, timeout_s: float = 120.0) -> None:
+    deadline = time.monotonic() + timeout_s
+    while not condition():
+        assert time.monotonic() < deadline, what
+        time.sleep(0.05)
+
+
+# Rule: a run killed past its handlers (SIGKILL) leaves nothing running and nothing for ever:
+# its staging log is removed by the next run logging to the same --log, a live run's is left
+# alone.
+@pytest.mark.slow
+@pytest.mark.skipif(not pathlib.Path("/proc/self/cmdline").exists(), reason="no /proc")
+def test_a_killed_hardware_runs_staging_log_is_removed_by_the_next_run(tmp_path,
+                                                                       ideal_grasp_log):
+    from tegrasp_drake.emulators.emulator_process import EmulatedDevices
+    from tegrasp_drake.hardware.config import hardware_config_to_yaml
+    trial = ideal_grasp_log("box").save(tmp_path / "box.npz")
+    logs = tmp_path / "logs"
+    url = f"udpm://239.255.76.67:{7500 + (os.getpid() * 7) % 100}?ttl=0"
+    command = [sys.executable, "-m", "tegrasp_drake", "hardware", "--config",
+               str(tmp_path / "hw.yaml"), "--scenario-name", "box", "--controller",
+               "heuristic", "--config-set", "scheduling=normal"]
+    with EmulatedDevices(lcm_url=url, trial=trial, scheduling="normal") as devices:
+        (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(devices.config))
+        run = subprocess.Popen([*command, "--log", str(logs / "run.lcmlog")],
+                               env=killed_runs.environment(), stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+        staging = logs / f".run.lcmlog.{run.pid}.staging"
+        try:
+            _wait_until(lambda: staging.exists() and staging.stat().st_size > 0,
+                        "the run never logged")
+        finally:
+            run.kill()  # SIGKILL, the run alone (as the OOM killer does)
+            run.wait()
+    assert run.returncode == -signal.SIGKILL and staging.exists()
+    _wait_until(lambda: not _processes_naming(staging), "the run's lcm-logger outlived it")
+    live = logs / f".run.lcmlog.{os.getpid()}.staging"  # a run still going
+    live.write_bytes(b"being written")
+    done = subprocess.run([*command, "--log", str(logs / "run.lcmlog"),
+                           "--config-set", "tactile.port=/dev/no_such_port",
+                           "--config-set", "ready_timeout=1"],
+                          env=killed_runs.environment(), capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 1, done.stderr  # the devices did not come up: quickly done
+    assert sorted(path.name for path in logs.iterdir()) == [live.name]
+
+
+# Rule: `--overwrite` replaces the earlier run in the folder wherever that folder has been
+# moved or copied to: its files are known by their names (result.json, trial.npz, the
+# figures' STEM.FORMAT), not by the absolute paths its result.json recorded; the user's own
+# files stay.
+@pytest.mark.parametrize("how", ["moved", "copied"])
+def test_an_overwrite_into_a_moved_or_copied_run_folder_replaces_the_earlier_run(tmp_path, how):
+    from tegrasp_drake.commands import run_folder
+    written = tmp_path / "written"
+    written.mkdir()
+    for name in ("trial.npz", "states.png", "signals.png", "contact_ra.png"):
+        (written / name).write_bytes(b"earlier")
+    (written / "mynotes.txt").write_text("the user's own file")
+    (written / "result.json").write_text(json.dumps(
+        {"log": str(written / "trial.npz"), "figure": str(written / "states.png"),
+         "signals_figure": str(written / "signals.png"),
+         "contact_ra_figure": str(written / "contact_ra.png"),
+         "result": str(written / "result.json")}))
+    folder = tmp_path / "elsewhere"
+    (shutil.move if how == "moved" else shutil.copytree)(written, folder)
+    with run_folder.staged_run(folder) as stage:
+        for name in ("trial.npz", "states.svg", "signals.svg"):
+            (stage / name).write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz"),
+                                              "figure": str(stage / "states.svg"),
+                                              "signals_figure": str(stage / "signals.svg")})
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "mynotes.txt", "result.json", "signals.svg", "states.svg", "trial.npz"]
+    if how == "copied":  # the folder it was copied from is not touched
+        assert sorted(p.name for p in written.iterdir()) == [
+            "contact_ra.png", "mynotes.txt", "result.json", "signals.png", "states.png",
+            "trial.npz"]
+
+
+# Rule: a result.json is no list of files to delete: a file of the folder it names stays,
+# whatever the key, the replay an earlier --html wrote too (a file the user named, which may
+# be theirs by now).
+def test_an_overwrite_deletes_no_file_the_earlier_result_names(tmp_path):
+    from tegrasp_drake.commands import run_folder
+    folder = tmp_path / "run"
+    folder.mkdir()
+    for name in ("trial.npz", "thesis.tex", "notes.html", "replay.html"):
+        (folder / name).write_bytes(b"earlier")
+    (folder / "result.json").write_text(json.dumps(
+        {"log": str(folder / "trial.npz"), "figure": str(folder / "thesis.tex"),
+         "signals_figure": str(folder / "notes.html"),
+         run_folder.REPLAY_KEY: str(folder / "replay.html")}))
+    with run_folder.staged_run(folder) as stage:
+        (stage / "trial.npz").write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz")})
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "notes.html", "replay.html", "result.json", "thesis.tex", "trial.npz"]
+
+
+# Rule: what an --overwrite replaces or removes of the earlier run is said under -v (INFO),
+# each file by name.
+def test_an_overwrite_says_what_it_replaced_and_removed(tmp_path, caplog):
+    from tegrasp_drake.commands import run_folder
+    folder = tmp_path / "run"
+    folder.mkdir()
+    for name in ("trial.npz", "states.png", "notes.txt"):
+        (folder / name).write_bytes(b"earlier")
+    (folder / "result.json").write_text(json.dumps({"log": str(folder / "trial.npz")}))
+    with caplog.at_level(logging.INFO, logger=run_folder.__name__):
+        with run_folder.staged_run(folder) as stage:
+            (stage / "trial.npz").write_bytes(b"new")
+            run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz")})
+    said = "\n".join(record.getMessage() for record in caplog.records)
+    assert "replaced the earlier run's result.json, trial.npz" in said, said
+    assert "removed the earlier run's states.png" in said, said
+    assert "notes.txt" not in said, said
+
+
+@contextlib.contextmanager
+def _held(folder):
+    """The output folder held as another run's process holds it (a flock on the folder)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    lock = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        yield
+    finally:
+        os.close(lock)
+
+
+# Rule: another run writing into the --out folder is an error outside the run (exit 1, one
+# "tegrasp: error:" line naming the folder), not a refused spec (exit 2).
+def test_a_sweep_into_a_folder_another_run_holds_is_an_error_outside_the_run(tmp_path, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n")
+    out = tmp_path / "out"
+    with _held(out):
+        code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(out), "--no-progress",
+                              "--trial-function", "tests.fake_trials:fake_trial"], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "tegrasp: error:", str(out), "another")
+    assert not (out / "trials").exists()
+
+
+# Rule: a transfer or a sensitivity study holds its whole --out (the sweep runner's lock)
+# before it records or writes anything, so a second run into the folder is refused at once
+# (exit 1), not after recording every world's events again beside the first.
+@pytest.mark.parametrize("command", ["transfer", "sensitivity"])
+def test_a_second_study_into_a_held_out_is_refused_before_anything(tmp_path, capfd,
+                                                                   monkeypatch, command):
+    if command == "transfer":
+        spec, _ = transfer_out(tmp_path)
+    else:
+        spec = tmp_path / "s.yaml"
+        spec.write_text("parameters: [gripper.position_loop_hz]\nsweep: {controllers: "
+                        "[memorized], attempts: 1, objects: [box], grid: [[0.0, 0.0]]}\n")
+    no_recording(monkeypatch)
+    out = tmp_path / "out"
+    with _held(out):
+        before = folder_contents(out)
+        code, text = run_cli([command, str(spec), "--out", str(out), "--workers", "1",
+                              "--no-progress", *FAKE_TRIALS], capfd)
+        assert folder_contents(out) == before
+    assert code == 1, text
+    assert_one_line_error(code, text, "tegrasp: error:", str(out), "another")
+    assert not (out / "cells").exists()
+
+
+# Rule: what is in the place of a run's own file is a regular file, or the run is refused
+# before it simulates (a FIFO, a device link, a folder there is no earlier run's file).
+@pytest.mark.parametrize("make", [
+    lambda path: __import__("os").mkfifo(path),
+    lambda path: path.symlink_to("/dev/zero"),
+    lambda path: path.mkdir(),
+], ids=["fifo", "device-link", "folder"])
+def test_an_overwrite_over_a_run_file_that_is_no_regular_file_is_refused(tmp_path, capfd,
+                                                                         monkeypatch, make):
+    from tegrasp_drake.runs import trial as trial_module
+    monkeypatch.setattr(trial_module, "run_trial",
+                        lambda *a, **k: pytest.fail("the trial was simulated"))
+    out = tmp_path / "o"
+    out.mkdir()
+    make(out / "result.json")
+    code, text = run_cli(["trial", "--set", "random_seed=600", "--out", str(out),
+                          "--overwrite"], capfd)
+    assert code == 1 and "result.json" in text and "remove it yourself" in text, text
+    assert len(text.strip().splitlines()) == 1, text
+
+
+# Rule: a run removes only the staging folders a run left (named as mkdtemp names them,
+# holding nothing but a run's own files), never a folder of the user's with that prefix.
+def test_a_run_keeps_a_users_folder_named_like_a_staging_folder(tmp_path):
+    from tegrasp_drake.commands import run_folder
+    folder = tmp_path / "run"
+    folder.mkdir()
+    mine = {".staging-mydata": "thesis.txt", ".staging-x": "notes.txt",
+            ".staging-abcd1234": "notes.txt"}
+    for name, file in mine.items():
+        (folder / name).mkdir()
+        (folder / name / file).write_text("the user's")
+    left = folder / ".staging-k2j4h5g6"
+    left.mkdir()
+    (left / "trial.npz").write_bytes(b"a killed run's")
+    (left / "states.png").write_bytes(b"a killed run's")
+    with run_folder.staged_run(folder):
+        pass
+    for name, file in mine.items():
+        assert (folder / name / file).read_text() == "the user's"
+    assert not left.exists()
+
+
+# Rule: an --overwrite leaves the replay an earlier --html wrote into the folder (a file the
+# user named, and may have replaced with their own since).
+def test_an_overwrite_keeps_the_earlier_replay_html(tmp_path):
+    import json
+    from tegrasp_drake.commands import run_folder
+    folder = tmp_path / "run"
+    folder.mkdir()
+    (folder / "trial.npz").write_bytes(b"earlier")
+    (folder / "notes.html").write_text("<html>my own notes</html>")
+    (folder / "result.json").write_text(json.dumps(
+        {run_folder.REPLAY_KEY: str(folder / "notes.html")}))
+    with run_folder.staged_run(folder) as stage:
+        (stage / "trial.npz").write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz")})
+    assert (folder / "notes.html").read_text() == "<html>my own notes</html>"
+
+
+# Rule: a symbolic link under a run file's name (a figure, trial.npz, result.json) is the
+# user's: a run writes its files itself, never a link. The trial is refused before it
+# simulates, as for a FIFO there, and the link stays (--overwrite removed it as "the earlier
+# run's" figure when the new run wrote another format).
+@pytest.mark.parametrize("name", ["avoid.svg", "trial.npz"])
+def test_a_link_under_a_run_files_name_refuses_the_trial_and_stays(tmp_path, capfd,
+                                                                  monkeypatch, name):
+    from tegrasp_drake.runs import trial as trial_module
+    monkeypatch.setattr(trial_module, "run_trial",
+                        lambda *a, **k: pytest.fail("the trial was simulated"))
+    folder, precious = tmp_path / "ow", tmp_path / "precious.svg"
+    folder.mkdir()
+    precious.write_text("<svg/>")
+    (folder / name).symlink_to(precious)
+    code, text = run_cli(["trial", "--set", "random_seed=633", "--out", str(folder),
+                          "--overwrite"], capfd)
+    assert code == 1, text
+    assert f"{name} is a symbolic link" in text and text.count("\n") == 0, text
+    assert (folder / name).is_symlink() and precious.read_text() == "<svg/>"
+
+
+# Rule: every command that writes a run into a folder takes one lock, the folder's own: a
+# sweep into the folder a trial is writing is refused at once, and the reverse (the sweep held
+# D/.sweep.lock, the trial the folder itself: both ran, and the lock file stayed in the trial's
+# run folder).
+_HOLD = ("import sys\n"
+         "from tegrasp_drake.commands.run_folder import claimed_run_folder\n"
+         "with claimed_run_folder(sys.argv[1]):\n"
+         "    print('held', flush=True)\n"
+         "    sys.stdin.read()\n")
+
+_CLAIM = ("import sys\n"
+          "from tegrasp_drake.commands.run_folder import RunFolderError, claimed_run_folder\n"
+          "try:\n"
+          "    with claimed_run_folder(sys.argv[1]):\n"
+          "        print('claimed')\n"
+          "except RunFolderError as e:\n"
+          "    print(e)\n")
+
+
+def test_a_trial_and_a_sweep_exclude_each_other_on_one_folder(tmp_path):
+    from tegrasp_drake.rig.files import UserPathError
+    from tegrasp_drake.sweep.runner import hold_output_folder
+    folder = tmp_path / "D"
+    folder.mkdir()
+    trial = subprocess.Popen([sys.executable, "-c", _HOLD, str(folder)], stdin=subprocess.PIPE,
+                             stdout=subprocess.PIPE, text=True)
+    try:
+        assert trial.stdout.readline() == "held\n"  # a trial's run holds the folder
+        with pytest.raises(UserPathError, match="another run .* is writing there now"):
+            with hold_output_folder(folder):
+                pass
+    finally:
+        trial.communicate("", timeout=600)
+    with hold_output_folder(folder):  # a sweep holds it: a trial's run is refused
+        claim = subprocess.run([sys.executable, "-c", _CLAIM, str(folder)],
+                               capture_output=True, text=True, timeout=600)
+    assert "another run is writing there now" in claim.stdout, claim.stdout + claim.stderr
+    assert list(folder.iterdir()) == []  # no lock file left behind
+
+LCM_LOG_START = struct.pack(">I", 0xEDA1DA01)  # an LCM log's first event's sync word
+
+
+def _write_all(files: dict) -> None:
+    for path, data in files.items():
+        path.write_bytes(data)
+
+
+# Rule: a hardware run's log staging removes the killed runs' staging logs of that --log
+# alone, and only those holding an LCM log (or nothing, or the start of a sync word).
+def test_a_log_staging_removes_the_same_logs_leftovers_and_keeps_the_users_files(tmp_path):
+    dead = _ended_process_id()
+    users = {tmp_path / f".txt.lcmlog.{dead}.staging": b"not a log",
+             tmp_path / f".other.lcmlog.{dead}.staging": LCM_LOG_START + b"another log",
+             tmp_path / f".kill.lcmlog.{_ended_process_id()}.staging": b"not a log either"}
+    left = {tmp_path / f".kill.lcmlog.{dead}.staging": LCM_LOG_START + b"events",
+            tmp_path / f".kill.lcmlog.{_ended_process_id()}.staging": b"",
+            tmp_path / f".kill.lcmlog.{_ended_process_id()}.staging": LCM_LOG_START[:2]}
+    live = tmp_path / f".kill.lcmlog.{os.getppid()}.staging"
+    _write_all({**users, **left, live: LCM_LOG_START})
+    link = tmp_path / f".kill.lcmlog.{_ended_process_id()}.staging"
+    link.symlink_to(tmp_path / f".txt.lcmlog.{dead}.staging")
+    staging_file_beside(tmp_path / "kill.lcmlog", LCM_LOG_START)
+    assert all(path.read_bytes() == data for path, data in users.items())
+    assert link.is_symlink() and live.exists()
+    assert not any(path.exists() for path in left)
+
+
+# Rule: saving events removes the ended writers' staging files of the files it writes (JSON),
+# and nothing else of the events folder's.
+def test_saving_events_keeps_the_users_files_named_like_staging_files(tmp_path):
+    dead = _ended_process_id()
+    (tmp_path / "mine").mkdir()
+    users = {tmp_path / f".notes.txt.{dead}.staging": b"{my notes}",
+             tmp_path / "mine" / f".photo.json.{dead}.staging": b"{\"a\": 1}",
+             tmp_path / f".index.json.abcd1234.{dead}.staging": b"not JSON"}
+    left = {tmp_path / f".index.json.k2j4h5g6.{dead}.staging": b"{\"format\"",
+            tmp_path / "mine" / f".reach_load.json.x_y0z9w8.{dead}.staging": b""}
+    _write_all({**users, **left})
+    save_memorized_events(tmp_path, memorized_events())
+    assert all(path.read_bytes() == data for path, data in users.items())
+    assert not any(path.exists() for path in left)
+
+
+def test_record_events_into_a_folder_another_recording_holds_is_refused_at_once(tmp_path,
+                                                                                capfd):
+    """Two record-events into one folder: the second replaced the first's events when both
+    saved; now it is refused before it simulates, as a second run into an --out is."""
+    events = tmp_path / "events"
+    events.mkdir()
+    with held_folder(events):  # the first recording, still running
+        code, text = run_cli(["record-events", "--object", "box", "--set", "random_seed=620",
+                              "--events", str(events), "-q"], capfd)
+    assert_one_line_error(code, text, f"--events {events}: another run is recording events "
+                                      "there now")
+    assert list(events.iterdir()) == []

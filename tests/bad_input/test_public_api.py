@@ -1,0 +1,317 @@
+"""The Python API checks what it is given: every public function and class checks every
+argument (types, ranges, folders that must exist, the items of lists, the fields of
+dataclasses) at the call and names the wrong one; value classes such as transitions and
+results refuse fields no run makes; the API's ranges are the command line's."""
+
+import dataclasses
+import enum
+import inspect
+import typing
+
+import numpy as np
+import pytest
+
+import tegrasp_drake
+import tegrasp_drake as T
+from tegrasp_drake.rig.api_boundary import Folder
+from tegrasp_drake.rig.ranges import Range
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tegrasp_drake.sweep.spec import SweepSpec
+from tests.bad_input.probes import refusal
+
+
+# --- the public API's boundary -------------------------------------------------------------------
+
+PUBLIC_FUNCTIONS = [name for name in tegrasp_drake.__all__
+                    if callable(getattr(tegrasp_drake, name))
+                    and not isinstance(getattr(tegrasp_drake, name), type)]
+
+
+@pytest.mark.parametrize("name", PUBLIC_FUNCTIONS)
+def test_every_public_function_checks_every_argument(name):
+    import inspect
+    import typing
+    function = getattr(tegrasp_drake, name)
+    assert getattr(function, "__checked_arguments__", False), f"{name} lacks @public_api"
+    hints = typing.get_type_hints(function)
+    unannotated = [p for p in inspect.signature(function).parameters if p not in hints]
+    assert not unannotated, f"{name}: annotate {unannotated} (typing.Any if any value goes)"
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: tegrasp_drake.LoadScenario(name=None),
+     "LoadScenario: argument 'name' must be str, got NoneType None"),
+    (lambda: tegrasp_drake.LoadScenario(overrides="object.mass=1"),
+     "argument 'overrides' must be a sequence of str (not a single string)"),
+    (lambda: tegrasp_drake.MakeStation(None), "MakeStation: argument 'scenario' must be Scenario"),
+    (lambda: tegrasp_drake.run_trial("box"), "run_trial: argument 'scenario' must be Scenario"),
+    (lambda: tegrasp_drake.load_trial_log(None), "load_trial_log: argument 'path' must be str"),
+    (lambda: tegrasp_drake.load_memorized_events("events", 5),
+     "argument 'object_name' must be str, got int 5"),
+    (lambda: tegrasp_drake.write_reports("out", "memorized/box/m00/a0"),
+     "argument 'trial_ids' must be a sequence of str"),
+])
+def test_a_wrong_argument_is_named_at_the_call(call, words):
+    with pytest.raises(TypeError) as error:
+        call()
+    assert words in str(error.value)
+
+PUBLIC_DATACLASSES = [name for name in tegrasp_drake.__all__
+                      if dataclasses.is_dataclass(getattr(tegrasp_drake, name))]
+
+
+@pytest.mark.parametrize("name", PUBLIC_DATACLASSES)
+def test_every_public_dataclass_checks_its_collections(name):
+    cls = getattr(tegrasp_drake, name)
+    assert getattr(cls.__init__, "__checked_arguments__", False), f"{name} lacks @public_dataclass"
+
+
+def test_a_public_function_checks_the_items_of_a_list(tmp_path):
+    with pytest.raises(TypeError, match="save_memorized_events: argument 'events' must be an "
+                                        "iterable of MemorizedEvent"):
+        tegrasp_drake.save_memorized_events(tmp_path, ["not an event"])
+    assert not (tmp_path / "index.json").exists()
+
+
+def _scalar_types(hint) -> set:
+    hint = typing.get_args(hint)[0] if typing.get_origin(hint) is typing.Annotated else hint
+    members = typing.get_args(hint) if typing.get_origin(hint) in (
+        typing.Union, __import__("types").UnionType) else (hint,)
+    return {m for m in members if m in (int, float)}
+
+
+@pytest.mark.parametrize("name", PUBLIC_FUNCTIONS)
+def test_every_numeric_argument_of_a_public_function_declares_its_range(name):
+    hints = typing.get_type_hints(getattr(tegrasp_drake, name), include_extras=True)
+    for argument, hint in hints.items():
+        if argument == "return" or not _scalar_types(hint):
+            continue
+        metadata = getattr(hint, "__metadata__", ())
+        assert any(isinstance(m, Range) for m in metadata), (
+            f"{name}: annotate '{argument}' as Annotated[..., Range(...)]")
+
+
+@pytest.mark.parametrize("name, argument", [
+    ("load_records", "out_dir"), ("write_reports", "out_dir"), ("run_sweep", "out_dir"),
+    ("save_memorized_events", "events_dir"), ("run_trial_from_spec", "log_dir"),
+])
+def test_every_folder_a_public_function_reads_or_writes_declares_what_it_must_be(name,
+                                                                                  argument):
+    hint = typing.get_type_hints(getattr(tegrasp_drake, name), include_extras=True)[argument]
+    assert any(isinstance(m, Folder) for m in getattr(hint, "__metadata__", ()))
+
+
+# --- 7. public classes check their constructors' arguments ---------------------------------------
+
+PUBLIC_CLASSES = [name for name in tegrasp_drake.__all__
+                  if inspect.isclass(getattr(tegrasp_drake, name))
+                  and not issubclass(getattr(tegrasp_drake, name), (BaseException, enum.Enum))]
+
+
+@pytest.mark.parametrize("name", PUBLIC_CLASSES)
+def test_every_public_class_checks_its_constructors_arguments(name):
+    cls = getattr(tegrasp_drake, name)
+    assert getattr(cls.__init__, "__checked_arguments__", False), (
+        f"{name}: decorate its __init__ with @public_api"
+        + ("" if not dataclasses.is_dataclass(cls) else " (or the class with @public_dataclass)"))
+
+
+def test_a_window_normalizer_given_text_for_its_config_names_the_argument():
+    with pytest.raises(TypeError, match="WindowNormalizer: argument 'config' must be "
+                                        "WindowNormalizerConfig or None, got str 'fast'"):
+        tegrasp_drake.WindowNormalizer(config="fast")
+
+
+def test_public_dataclasses_check_scalar_field_types_at_construction():
+    import numpy as np
+    from tegrasp_drake.rig.objects import ObjectConfig
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    with pytest.raises(TypeError, match="TrialResult: field 'hold_success' must be bool, got str"):
+        TrialResult(hold_success="yes")
+    with pytest.raises(TypeError, match="ObjectConfig: field 'mass' must be"):
+        ObjectConfig(mass="heavy")
+    assert TrialResult(hold_success=np.bool_(True), seed=np.int64(3), hold_time_s=3).seed == 3
+
+
+# Rule: a public function's number takes the range its command-line or scenario twin takes,
+# from the same declaration.
+def test_the_api_rates_noise_and_duration_share_the_command_lines_ranges():
+    from tegrasp_drake.commands.hardware import MAX_DURATION_S
+    from tegrasp_drake.control.grasp_controller import RA_NOISE_RANGE, SAMPLE_RATE_RANGE
+    from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, field_range
+    from tegrasp_drake.simulation.pad_vibration_sensor import VibrationSensorConfig
+    from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
+    assert SAMPLE_RATE_RANGE == field_range(TactileSensorConfig, "sample_rate_hz")
+    assert SAMPLE_RATE_RANGE == field_range(VibrationSensorConfig, "sample_rate_hz")
+    assert RA_NOISE_RANGE == field_range(VibrationSensorConfig, "noise_std_mps2")
+    assert MAX_DURATION_S == HARDWARE_RUN_DURATION.high
+
+
+# Rule: the public value classes check their fields' types when built, as the guide says.
+def test_the_public_value_classes_refuse_fields_of_the_wrong_type():
+    refusal(lambda: T.Transition(t=1.0, from_mode="Reach", to_mode="Load", trigger="timer",
+                                  reason="x"), "Transition", "'from_mode'", "Mode")
+    refusal(lambda: T.TrialLog(*([None] * 13), meta={}), "TrialLog", "'t_sa'")
+    refusal(lambda: T.TrialResult(final_mode="Done"), "TrialResult", "'final_mode'")
+    refusal(lambda: T.TrialResult(transitions=({"t": 1.0},)), "transitions[0]", "Transition")
+
+
+# Rule: the sweep API's records, reports and folders are bounded as the CLI's are: a
+# hand-edited record is one line, trial ids that name no record are refused, an empty
+# folder argument is not the current folder.
+def test_sweep_records_reports_and_folders_at_the_api(tmp_path, monkeypatch):
+    from tests.fake_trials import fake_trial
+    record = {"status": "ok", "result": fake_trial({"pair_id": "p", "seed": 600,
+                                                    "well_placed": True,
+                                                    "controller": "memorized"})}
+    assert T.record_result(record).hold_success in (True, False)
+    for transitions in ([{"t": "soon"}], "Reach", [None]):
+        record["result"]["transitions"] = transitions
+        with pytest.raises(ValueError, match="not a trial result's JSON form") as refused:
+            T.record_result(record)
+        assert "\n" not in str(refused.value)
+    spec = T.SweepSpec(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),),
+                       attempts=1)
+    summary = T.run_sweep(spec, fake_trial, tmp_path / "sweep", workers=1, progress=False)
+    assert summary.ran == 1
+    with pytest.raises(ValueError, match="'trial_ids' names no trial recorded"):
+        T.write_reports(tmp_path / "sweep", trial_ids=["nope"])
+    assert T.write_reports(tmp_path / "sweep", trial_ids=list(summary.trial_ids))
+    monkeypatch.chdir(tmp_path)
+    for empty in ("", " "):
+        with pytest.raises(OSError, match="is empty; give a folder"):
+            T.run_sweep(spec, fake_trial, empty, workers=1, progress=False)
+    assert not (tmp_path / "trials").exists()
+
+
+# Rule: a config class says what relates its fields (Scenario.check_relations: validate), and
+# the public API checks it on every argument of that class (rig/api_boundary.RELATIONS_CHECK),
+# so a scenario changed after loading is refused by any public function, not only builders.
+def _changed(field: str, value) -> T.Scenario:
+    scenario = LoadScenario(overrides=["random_seed=632"])
+    owner, name = field.split(".")
+    setattr(getattr(scenario, owner), name, value)
+    return scenario
+
+
+@pytest.mark.parametrize("field, value, words", [
+    ("object.size", [1.0], "must hold 3 positive sizes"),
+    ("gripper.model", "bogus", "must be one of 'linkage', 'prismatic'"),
+])
+@pytest.mark.parametrize("function", ["grasp_plan", "scenario_to_yaml", "sample_rates_hz"])
+def test_a_public_function_refuses_a_scenario_changed_out_of_its_relations(
+        function, field, value, words):
+    refusal(lambda: getattr(T, function)(_changed(field, value)), f"{function}:",
+             f"field '{field}'", words)
+
+
+def test_every_public_function_that_takes_a_scenario_checks_its_arguments():
+    import inspect
+    import typing
+    takes_scenario = []
+    for name in T.__all__:
+        function = getattr(T, name)
+        if not inspect.isfunction(function):
+            continue
+        hints = typing.get_type_hints(getattr(function, "__wrapped__", function))
+        if any(T.Scenario in (hint, *typing.get_args(hint)) for hint in hints.values()):
+            takes_scenario.append(name)
+            assert getattr(function, "__checked_arguments__", False), name
+    assert {"grasp_plan", "MakeGraspDiagram", "run_trial"} <= set(takes_scenario)
+    assert hasattr(T.Scenario, "check_relations")
+
+
+# Every public function's folder declarations hold at its call: a folder argument declared
+# to exist (Folder(exists=True)) is refused, naming the argument, when it does not.
+def _existing_folder_arguments():
+    import inspect
+    import typing
+    import tegrasp_drake as T
+    from tegrasp_drake.rig.api_boundary import Folder
+    for name in T.__all__:
+        function = getattr(T, name)
+        if not callable(function) or inspect.isclass(function):
+            continue
+        hints = typing.get_type_hints(inspect.unwrap(function), include_extras=True)
+        for argument, hint in hints.items():
+            if any(isinstance(m, Folder) and m.exists for m in getattr(hint, "__metadata__", ())):
+                yield name, argument
+
+
+@pytest.mark.parametrize("name, argument", list(_existing_folder_arguments()))
+def test_every_folder_declared_to_exist_is_checked_at_the_call(tmp_path, name, argument):
+    import tegrasp_drake as T
+    from tegrasp_drake.rig.files import UserPathError
+    with pytest.raises(UserPathError, match=f"argument '{argument}'.*does not exist"):
+        getattr(T, name).bind_now(**{argument: tmp_path / "missing"})
+
+
+# Rule: a timeline entry leaves one mode for another (no rule's `then` keeps its mode).
+def test_a_transition_that_keeps_its_mode_is_refused():
+    from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+    with pytest.raises(ConfigError, match="Transition: field 'to_mode' must differ from "
+                                          "'from_mode'"):
+        Transition(t=1.0, from_mode=Mode.LOAD, to_mode=Mode.LOAD, trigger=Trigger.TIMER,
+                   reason="x")
+
+
+# Rule: without sim_time_s, a time of a result is still bounded by the longest run a trial
+# can last (the longest grasp script plus the time for corrections).
+# (A latency far below zero meets the stricter rule first: no detection is earlier than its
+# physical event by more than the false-trigger margin.)
+@pytest.mark.parametrize("field, value, words", [
+    ("detection_latency_s", {"reach_load": 1e300}, "the longest run a trial can last"),
+    ("detection_latency_s", {"reach_load": -1e300}, "at least -0.01 s"),
+    ("physical_events", {"hit": 1e300}, "the longest run a trial can last"),
+])
+def test_a_result_time_longer_than_any_run_is_refused_without_sim_time(field, value, words):
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    key = next(iter(value))
+    with pytest.raises(ConfigError, match=f"TrialResult: field '{field}.{key}' must be .*"
+                                          f"{words}"):
+        TrialResult(**{field: value})
+
+
+def test_a_result_time_within_the_longest_run_is_accepted_without_sim_time():
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+    detected = Transition(1.0, Mode.REACH, Mode.LOAD, Trigger.MEMORIZED_EVENT, "Reach-Load event")
+    result = TrialResult(transitions=(detected,), final_mode=Mode.LOAD,
+                         detection_latency_s={"reach_load": 0.2},
+                         physical_events={"reach_load": 0.8, "hit": 9.0})
+    assert result.detection_latency_s == {"reach_load": 0.2}
+
+
+def test_a_simulated_time_longer_than_any_run_is_refused():
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    with pytest.raises(ConfigError, match="TrialResult: field 'sim_time_s' must be at most .*"
+                                          "the longest run a trial can last"):
+        TrialResult(sim_time_s=1e300, detection_latency_s={"reach_load": 1e299})
+
+
+# Rule: a result's fields are checked for their types before the relations that read them
+# (a mapping where a Transition belongs, with sim_time_s set, was an AttributeError).
+def test_a_result_with_a_mapping_for_a_transition_names_the_field():
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    with pytest.raises(ConfigError, match=r"TrialResult: field 'transitions\[0\]'"):
+        TrialResult(transitions=({"t": 1.0},), sim_time_s=10.0)
+
+
+def test_a_transition_built_in_python_with_a_code_of_no_rule_is_refused():
+    """The JSON reader refused it; a Transition built by hand (the API) did not."""
+    from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    with pytest.raises(ConfigError, match="names no rule"):
+        Transition(t=1.0, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+                   trigger=Trigger.MEMORIZED_EVENT, reason="", code="bogus_rule")
+    Transition(t=1.0, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+               trigger=Trigger.MEMORIZED_EVENT, reason="", code="reach_event")
+
+
+@pytest.mark.parametrize("field, value", [("grid", np.array([[0.0, 0.0]])),
+                                          ("objects", np.array(["box"]))])
+def test_a_numpy_array_in_a_list_field_is_refused_naming_it(field, value):
+    with pytest.raises(TypeError, match=f"SweepSpec: field '{field}' must be a list or tuple, "
+                                        f"got numpy.ndarray; give {field}={field}.tolist()"):
+        SweepSpec(**{field: value})

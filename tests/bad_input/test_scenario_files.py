@@ -1,0 +1,194 @@
+"""Scenario files and --set values as YAML and JSON: one safe reader refuses syntax errors,
+binary files, duplicate or merged keys, YAML 1.1 booleans, nesting too deep, nulls and empty
+values the user gave, in one line naming the file and field; a built-in name given as a
+file, a file without a field, or a stored scenario read back are named for what they are."""
+
+import pytest
+
+import tegrasp_drake as T
+from tegrasp_drake.rig import files
+from tegrasp_drake.scenario.scenario import LoadScenario
+from tests.bad_input.probes import assert_one_line_error, one_error_line, refusal, run_cli
+
+
+# --- scenario values ----------------------------------------------------------------------
+
+@pytest.mark.parametrize("overrides, expected", [
+    (["object.friction=0"], "field 'object.friction' must be positive"),
+    (["object.mass=0"], "field 'object.mass' must be positive"),
+    (["object.mass=.nan"], "field 'object.mass' must be a finite number, got float nan"),
+    (["object.mass=.inf"], "field 'object.mass' must be a finite number, got float inf"),
+    (["object.friction=.inf"], "field 'object.friction' must be a finite number"),
+    (["controller.matching.sa_threshold=.nan"], "field 'controller.matching.sa_threshold' must be a finite"),
+    (["controller.matching.ra_threshold=2"], "field 'controller.matching.ra_threshold' must lie in [-1, 1]"),
+    (["gripper.position_loop_hz=10"], "field 'gripper.position_loop_hz' must lie in [40, 150]"),
+    (["gripper.screw_efficiency=0.9"], "field 'gripper.screw_efficiency' must lie in [0.2, 0.5]"),
+    (["controller.matching.ra_envelope_hz=-1"], "field 'controller.matching.ra_envelope_hz' must be 0 (no RA"),
+    (["controller.matching.ra_envelope_hz=500"], "between 0 and half the RA rate (500 Hz), got 500"),
+    (["controller.matching.ra_noise_floor_sigmas=5.39", "controller.matching.ra_noise_quiet_s=3"],
+     "field 'controller.matching.ra_noise_quiet_s' must end with the approach, by grasp.settle_s + "
+     "grasp.reach_s = 2.8 s"),
+    (["placement.offset=[.nan,0]"], "field 'placement.offset[0]' must be a finite number"),
+    (["placement.yaw_deg=.nan"], "field 'placement.yaw_deg' must be a finite number"),
+    (["plant_config.time_step=.nan"], "field 'plant_config.time_step' must be a finite"),
+    (["controller.event_object_may_differ=[colour]"],
+     "field 'controller.event_object_may_differ[0]' must name a field"),
+])
+def test_a_bad_scenario_value_is_named_and_nothing_runs(overrides, expected, capfd):
+    argv = ["trial", "--controller", "memorized"]
+    for assignment in overrides:
+        argv += ["--set", assignment]
+    code, text = run_cli(argv, capfd)
+    assert_one_line_error(code, text, expected, f"--set {overrides[0]}")
+
+
+def test_a_yaml_syntax_error_in_a_scenario_file_is_named(tmp_path, capfd):
+    scenario = tmp_path / "bad.yaml"
+    scenario.write_text("mine:\n  object: {name: box\n")
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
+                         capfd)
+    assert_one_line_error(code, text, str(scenario), "not valid YAML: line 3, column 1: "
+                          "expected ',' or '}'")
+
+
+@pytest.mark.parametrize("command", [["record-events"], ["trial"]])
+def test_a_built_in_scenario_name_given_as_its_file_says_use_scenario_name(command, capfd):
+    code, text = run_cli([*command, "--scenario", "memorizing_world"], capfd)
+    assert_one_line_error(code, text, "'memorizing_world' is a built-in scenario",
+                          "--scenario-name memorizing_world")
+
+
+def test_a_binary_scenario_file_is_one_line(tmp_path, capfd):
+    scenario = tmp_path / "binary.yaml"
+    scenario.write_bytes(b"mine:\n  object: \xff\xfe\x00\x01\n")
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
+                         capfd)
+    assert_one_line_error(code, text, str(scenario), "not UTF-8 text")
+
+
+def test_a_colour_on_a_built_in_object_is_honoured():
+    scenario = LoadScenario(overrides=["object.color=[0.1,0.2,0.3,1.0]"])
+    assert scenario.object.color == [0.1, 0.2, 0.3, 1.0]
+    assert scenario.object.mass == LoadScenario().object.mass  # the rest is the built-in's
+
+
+# --- 1. silent acceptance, silent defaults ---------------------------------------------------
+
+def test_the_one_json_reader_refuses_a_duplicate_key():
+    with pytest.raises(files.DuplicateKeyError, match="key 'format_version' appears twice"):
+        files.load_json('{"format_version": 3, "format_version": 2}')
+    assert files.load_json('{"a": {"b": 1}, "b": 2}') == {"a": {"b": 1}, "b": 2}
+
+
+def test_the_json_reader_refuses_what_json_has_not():
+    for text in ('{"a": NaN}', '{"a": Infinity}', '{"a": -Infinity}', '[' + "1" * 400 + ']'):
+        with pytest.raises(files.JsonValueError):
+            files.load_json(text)
+    assert files.load_json('{"a": 1e300, "b": 12}') == {"a": 1e300, "b": 12}
+
+
+@pytest.mark.parametrize("assignment", ["object.size=[]", "object.shape=''", "object.color=[]",
+                                        "object.file=''"])
+def test_an_empty_value_the_user_gives_is_refused_not_read_as_unset(assignment):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    field = assignment.split("=")[0]
+    with pytest.raises(ConfigError, match=f"field '{field}' is empty: give a value, or leave"):
+        LoadScenario(name="box", overrides=[assignment])
+
+
+def test_a_stored_scenario_reads_back_as_a_scenario_file(tmp_path):
+    from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
+    stored = scenario_to_yaml(LoadScenario(name="box"))
+    assert "file:" not in stored  # empty "not set" fields are left out of the text
+    path = tmp_path / "s.yaml"
+    path.write_text("x:\n" + "".join(f"  {line}\n" for line in stored.splitlines()))
+    assert LoadScenario(path, name="x").object.size == LoadScenario(name="box").object.size
+
+
+def test_a_null_scenario_entry_is_refused_naming_it(tmp_path, capfd):
+    path = tmp_path / "s.yaml"
+    path.write_text("x:\n")
+    code, text = run_cli(["trial", "--scenario", str(path), "--scenario-name", "x",
+                          "--out", str(tmp_path / "o")], capfd)
+    assert code == 1
+    errors = one_error_line(text)
+    assert len(errors) == 1 and "scenario 'x' is empty" in errors[0], text
+
+
+# Rule: every configuration file the package reads is refused without a field (empty,
+# comments only, `{}`, null), as the sweep spec and the hardware config already were: the
+# sensitivity and transfer specs too, which otherwise started the whole study.
+@pytest.mark.parametrize("text", ["", "# my study\n", "{}\n", "~\n"])
+@pytest.mark.parametrize("loader, what", [
+    ("tegrasp_drake.sensitivity.study:LoadSensitivitySpec", "the sensitivity spec"),
+    ("tegrasp_drake.transfer.matrix:LoadTransferSpec", "the transfer spec"),
+    ("tegrasp_drake.sweep.spec_file:LoadSweepSpec", "the sweep spec"),
+    ("tegrasp_drake.hardware.config:LoadHardwareConfig", "the hardware config"),
+])
+def test_a_configuration_file_without_a_field_is_refused(tmp_path, text, loader, what):
+    import importlib
+    module, name = loader.split(":")
+    path = tmp_path / "config.yaml"
+    path.write_text(text)
+    refusal(lambda: getattr(importlib.import_module(module), name)(path), str(path),
+             f"{what} is empty (no fields)")
+
+
+def test_an_empty_value_is_kept_where_the_field_declares_what_empty_means(tmp_path):
+    path = tmp_path / "hardware.yaml"
+    path.write_text('tactile: {port: /dev/ttyACM0, calibration_file: ""}\n')
+    assert T.LoadHardwareConfig(path).tactile.calibration_file == ""
+    refusal(lambda: T.LoadScenario(name="box", overrides=["object.shape=''"]),
+             "'object.shape'")
+    assert T.LoadScenario(name="box", overrides=[
+        "controller.event_object_may_differ=[]"]).controller.event_object_may_differ == []
+
+
+# Rule: values are read as YAML 1.2 reads them (rig/core_schema_yaml.py): `yes`, `no`, `on`
+# and `off` (any case) are text, which a true/false setting refuses saying to write true or
+# false, in a file and in --set alike; a text setting keeps them as text.
+@pytest.mark.parametrize("word", ["yes", "no", "on", "off", "Yes", "OFF", "y", "N"])
+def test_a_yaml_11_boolean_word_is_refused_for_a_true_false_setting(tmp_path, word):
+    path = tmp_path / "s.yaml"
+    path.write_text(f"default: {{arm: {{tracker: {{continuous_joints: "
+                    f"[{word}, false, false, true, true, true]}}}}}}\n")
+    refusal(lambda: T.LoadScenario(path), "'arm.tracker.continuous_joints[0]'",
+             "write true or false")
+    setting = f"vibration.film.impact_enabled={word}"
+    refusal(lambda: T.LoadScenario(name="box", overrides=[setting]),
+             "'vibration.film.impact_enabled'", "write true or false")
+
+
+def test_true_and_false_are_still_read_and_a_text_setting_keeps_yes_as_text():
+    scenario = T.LoadScenario(name="box", overrides=["vibration.film.impact_enabled=False",
+                                                     "object.name=yes", "object.shape=box",
+                                                     "object.size=[0.04,0.04,0.1]",
+                                                     "object.mass=0.1", "object.friction=0.5"])
+    assert scenario.vibration.film.impact_enabled is False and scenario.object.name == "yes"
+
+
+# Rule: a duplicate key is refused naming both lines, a merge key '<<' too (the first
+# merge's values were dropped without a word); one '<<' with a list of mappings merges both.
+def test_two_merge_keys_in_one_mapping_are_refused(tmp_path):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    twice = tmp_path / "twice.yaml"
+    twice.write_text("default:\n  object: {name: box}\nother:\n  <<: {random_seed: 681}\n"
+                     "  <<: {random_seed: 682}\n")
+    with pytest.raises(ConfigError, match="key '<<' appears twice.*list of them"):
+        LoadScenario(str(twice), "other")
+    listed = tmp_path / "listed.yaml"
+    listed.write_text("default:\n  object: {name: box}\nother:\n"
+                      "  <<: [{random_seed: 681}, {object: {name: thin_cylinder}}]\n")
+    scenario = LoadScenario(str(listed), "other")
+    assert scenario.random_seed == 681 and scenario.object.name == "thin_cylinder"
+
+
+def test_yaml_nested_too_deeply_says_the_limit_and_what_to_give(tmp_path, capfd):
+    scenario = tmp_path / "deep.yaml"
+    scenario.write_text("mine: " + "[" * 5000 + "]" * 5000 + "\n")
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
+                         capfd)
+    assert_one_line_error(code, text, "nests deeper than Python's recursion limit",
+                          "give a flat mapping of its fields")

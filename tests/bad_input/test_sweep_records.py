@@ -1,0 +1,460 @@
+"""Sweep records are read by what they hold: a record that is not a file, whose result is out
+of range, contradicts itself or is not its trial's, of another trial or of a trial no sweep
+makes, is corrupt, kept aside with a warning and run again; a trial function's result the
+records would refuse is an error, not a record; records and reports of a folder without
+records are refused in one line."""
+
+import json
+
+import pytest
+
+import tegrasp_drake
+from tegrasp_drake.rig import files
+from tegrasp_drake.sweep.records import _checksum, load_records, record_path
+from tegrasp_drake.sweep.runner import run_sweep, run_trial_safely
+from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
+from tests.bad_input.probes import (assert_one_line_error, events_copy_with_index, forge_record,
+                                    run_cli, sweep_with_events)
+from tests.fake_trials import fake_trial
+
+
+def test_records_of_a_file_or_of_no_folder_are_refused(tmp_path):
+    log = tmp_path / "trial.npz"
+    log.write_bytes(b"PK")
+    with pytest.raises(files.UserPathError, match="'out_dir'.*is a file, not a folder"):
+        tegrasp_drake.load_records(log)
+    with pytest.raises(files.UserPathError, match="'out_dir'.*does not exist"):
+        tegrasp_drake.load_records(tmp_path / "not yet")
+    assert tegrasp_drake.load_records(tmp_path).records == {}
+
+
+def test_records_of_a_folder_that_does_not_exist_are_an_error(tmp_path):
+    with pytest.raises(files.UserPathError, match="'out_dir'.*does not exist"):
+        tegrasp_drake.load_records(tmp_path / "nonexistent")
+
+
+# --- 2. a folder in place of a sweep record ------------------------------------------------------
+
+def test_a_folder_in_place_of_a_sweep_record_is_refused_before_the_trial_runs(tmp_path, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[0.0, 0.0]]\n")
+    argv = ["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"), "--workers", "1",
+            "--no-progress", "--trial-function", "tests.fake_trials:fake_trial"]
+    assert run_cli(argv, capfd)[0] == 0
+    record = next((tmp_path / "out" / "trials").glob("*.json"))
+    record.unlink()
+    record.mkdir()
+    (record / "mine.txt").write_text("kept")
+    code, text = run_cli(argv, capfd)
+    assert_one_line_error(code, text, str(record), "is a folder", "nothing was run")
+    assert (record / "mine.txt").read_text() == "kept"
+
+
+def test_record_result_refuses_what_is_not_a_trial_record():
+    from tegrasp_drake.sweep.records import record_result
+    with pytest.raises(ValueError, match="argument 'record' is not a sweep record"):
+        record_result({"a": 1})
+    with pytest.raises(ValueError, match="'result' is not a trial's result"):
+        record_result({"status": "ok", "result": {"a": 1}})
+    assert record_result({"status": "error", "result": None}) is None
+
+
+# Rule: a corrupt record in a sweep's folder is said, one line naming the file, before its
+# trial runs again, and kept aside rather than overwritten.
+def test_a_corrupt_sweep_record_is_said_and_kept_aside_before_its_trial_reruns(tmp_path, caplog):
+    from tegrasp_drake.sweep.records import record_path
+    from tegrasp_drake.sweep.runner import run_sweep
+    from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
+    from tests.fake_trials import fake_trial
+    spec = SweepSpec(objects=("box",), controllers=("open_loop",), attempts=1,
+                     grid=((0.0, 0.0),))
+    run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    damaged = record_path(tmp_path, expand_trials(spec)[0].trial_id)
+    damaged.write_text('{"trunc')
+    with caplog.at_level("WARNING", logger="tegrasp_drake.sweep.runner"):
+        summary = run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    assert summary.ran == 1
+    said = [r.getMessage() for r in caplog.records if str(damaged) in r.getMessage()]
+    assert len(said) == 1 and "re-run" in said[0] and "\n" not in said[0]
+    (kept,) = tmp_path.glob(f"**/{damaged.name}.corrupt-*")
+    assert kept.read_text() == '{"trunc'
+
+
+# Rule: a public function checks its arguments as the command line does. Reports of a folder
+# that holds no trial records (none at all, or only corrupt ones) are refused naming the
+# argument and the folder, and nothing is written; `tegrasp plot table1` refuses it alike.
+@pytest.mark.parametrize("corrupt", [False, True])
+def test_reports_of_a_folder_without_trial_records_are_refused(tmp_path, corrupt):
+    import tegrasp_drake as T
+    (tmp_path / "trials").mkdir()
+    if corrupt:
+        (tmp_path / "trials" / "memorized.box.m00.a0.json").write_text("{not json")
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    with pytest.raises(ValueError, match=r"write_reports: argument 'out_dir'.*no trial record"):
+        T.write_reports(tmp_path)
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
+
+
+def test_records_that_do_not_name_their_events_are_kept_with_a_warning(tmp_path, capfd,
+                                                                       caplog):
+    from tegrasp_drake.sweep import load_records
+    from tegrasp_drake.sweep.records import _checksum
+    events, out = events_copy_with_index(tmp_path), tmp_path / "out"
+    code, text = sweep_with_events(tmp_path, out, events, capfd)
+    assert code == 0, text
+    paths = sorted((out / "trials").glob("*.json"))
+    old = json.loads(paths[0].read_text())  # as a record of format 1 was written
+    del old["events"], old["checksum"]
+    old["format_version"] = 1
+    old["checksum"] = _checksum(old)
+    paths[0].write_text(json.dumps(old))
+    paths[1].unlink()
+    code, text = sweep_with_events(tmp_path, out, events, capfd)
+    assert code == 0, text
+    assert "1 finished record(s) do not name the memorized events" in caplog.text
+    assert len(load_records(out).records) == 2
+
+
+# Rule: a sweep record names the events folder it matched against resolved (absolute), so a
+# record read from another working folder names the right one; a record naming it relative
+# (as records did before) still loads.
+def test_a_sweep_record_names_its_events_folder_resolved(tmp_path, monkeypatch):
+    import shutil
+
+    from tegrasp_drake.rig import paths
+    from tegrasp_drake.sweep.records import check_record, make_record
+    from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
+    from tegrasp_drake.sweep.trial_function import events_identities
+    shutil.copytree(paths.package_events_dir() / "box", tmp_path / "ev" / "box")
+    shutil.copy(paths.package_events_dir() / "index.json", tmp_path / "ev")
+    monkeypatch.chdir(tmp_path)
+    trials = [t.to_dict() for t in expand_trials(SweepSpec(
+        objects=("box",), controllers=("memorized",), attempts=1, grid=((0.0, 0.0),)))]
+    identity = events_identities(trials, "ev")[trials[0]["trial_id"]]
+    assert identity["folder"] == str(tmp_path.resolve() / "ev")
+    old = make_record(trials[0], result={}, events={**identity, "folder": "ev"})
+    assert check_record(old) is None
+
+ONE_TRIAL = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1,
+                      grid=((0.0, 0.0),))
+
+
+def _forge(folder, edit):
+    """Runs ONE_TRIAL into `folder`, then rewrites its record's result with `edit` and a
+    checksum that matches, as a hand edit would; returns the record's path."""
+    summary = run_sweep(ONE_TRIAL, fake_trial, folder, workers=1, progress=False)
+    path = record_path(folder, summary.trial_ids[0])
+    record = json.loads(path.read_text())
+    edit(record["result"])
+    del record["checksum"]
+    record["checksum"] = _checksum(record)
+    path.write_text(json.dumps(record))
+    return path
+
+
+def _set(**fields):
+    return lambda result: result.update(fields)
+
+
+@pytest.mark.parametrize("edit, field", [
+    (_set(hold_success="yes"), "hold_success"),
+    (_set(final_mode="Exploded"), "Exploded"),
+    (_set(final_tilt_deg=720.0), "final_tilt_deg"),
+    (lambda result: result["transitions"][0].update(t=-3.0), "field 't'"),
+])
+def test_a_record_whose_result_is_out_of_range_is_corrupt_and_runs_again(
+        tmp_path, edit, field):
+    path = _forge(tmp_path, edit)
+    loaded = load_records(tmp_path)
+    assert loaded.records == {}
+    assert field in loaded.corrupt[path] and "'result'" in loaded.corrupt[path]
+    summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.skipped, summary.corrupt) == (1, 0, (str(path),))
+    assert list(tmp_path.glob("trials/*.corrupt-*"))  # kept aside, not lost
+    assert load_records(tmp_path).corrupt == {}
+
+
+def _failed(result):
+    """The result of a trial that failed in Load, with a reason of 50000 characters."""
+    result["transitions"][1:] = [{"t": 2.0, "from": "Load", "to": "Failed", "trigger": "timer",
+                                  "reason": "no Load-Lift event"}]
+    result.update(final_mode="Failed", hold_success=False, unload_success=False,
+                  released=False, failure="x" * 50000)
+
+
+@pytest.mark.parametrize("edit, field", [
+    (_set(hold_success=False, unload_success=True), "'unload_success' is true"),
+    (lambda result: result["detection_latency_s"].update({"reach->load": 1e300}),
+     "detection_latency_s.reach->load"),
+    (lambda result: result["transitions"][0].update(t=9.0), "transitions[0].t"),
+    (_set(physical_events={"reach_load": 50.0}), "physical_events.reach_load"),
+    (_set(hold_time_s=9.0), "hold_time_s"),
+    (_failed, "'failure' must be at most"),
+])
+def test_a_record_whose_result_contradicts_itself_is_corrupt(tmp_path, edit, field):
+    path = _forge(tmp_path, edit)
+    loaded = load_records(tmp_path)
+    assert loaded.records == {}
+    assert field in loaded.corrupt[path]
+
+
+def unload_without_hold_trial(trial):
+    """fake_trial's result, unloaded without a hold: no trial run produces it."""
+    return {**fake_trial(trial), "hold_success": False, "unload_success": True}
+
+
+def test_a_trial_function_result_the_records_would_refuse_is_an_error_not_a_record(tmp_path):
+    summary = run_sweep(ONE_TRIAL, unload_without_hold_trial, tmp_path, workers=1,
+                        progress=False)
+    record = load_records(tmp_path).records[summary.errors[0]]
+    assert record["error"]["type"] == "InvalidResult"
+    assert "'unload_success' is true" in record["error"]["message"]
+
+
+def _forge_record(folder, edit):
+    return forge_record(folder, ONE_TRIAL, None, edit)
+
+
+# Rule: a record is its trial's: a result naming another seed, controller or object, or a
+# record holding both a result and an error, is corrupt (kept aside, its trial run again).
+@pytest.mark.parametrize("edit, words", [
+    (lambda r: r["result"].update(seed=r["trial"]["seed"] + 1), "result's seed"),
+    (lambda r: r["result"].update(controller="heuristic"), "result's controller"),
+    (lambda r: r["result"].update(object="thin_cylinder"), "result's object"),
+    (lambda r: r.update(status="error", error={"type": "RuntimeError", "message": "x"}),
+     "an error and no result"),
+    (lambda r: r["trial"].update(trial_id="heuristic/box/m00/a0"), "trial_id"),
+])
+def test_a_record_of_another_trial_is_corrupt_and_runs_again(tmp_path, edit, words):
+    path = _forge_record(tmp_path, edit)
+    loaded = load_records(tmp_path)
+    assert loaded.records == {} and words in loaded.corrupt[path], loaded.corrupt
+    summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.skipped) == (1, 0)
+
+
+# Rule: a FIFO or a device link in a record's place is a record that cannot be read: named in
+# one warning, kept aside as NAME.corrupt-PID (the entry itself), and its trial runs again.
+@pytest.mark.parametrize("make", [
+    lambda path: __import__("os").mkfifo(path),
+    lambda path: path.symlink_to("/dev/zero"),
+], ids=["fifo", "device-link"])
+def test_a_record_that_is_no_file_is_kept_aside_with_a_warning(tmp_path, caplog, make):
+    import logging
+    summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    path = record_path(tmp_path, summary.trial_ids[0])
+    path.unlink()
+    make(path)
+    with caplog.at_level(logging.WARNING):
+        summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.skipped) == (1, 0)
+    assert any(path.name in message and "kept as" in message for message in caplog.messages)
+    (kept,) = list(path.parent.glob(f"{path.name}.corrupt-*"))
+    assert kept.is_symlink() or not kept.is_file()
+    assert path.is_file() and load_records(tmp_path).corrupt == {}
+
+
+# Two markers, so that one trial is well placed and one is not.
+SPEC = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1,
+                 grid=((0.0, 0.0), (0.01, 0.0)), base_seed=620)
+
+WELL_PLACED, MISPLACED = "memorized/box/m00/a0", "memorized/box/m10/a0"
+
+
+def _forge_spec_record(folder, trial_id, edit):
+    """SPEC's record of `trial_id`, hand-edited with `edit` (forge_record)."""
+    return forge_record(folder, SPEC, trial_id, edit)
+
+
+def _trial(**fields):
+    return lambda record: record["trial"].update(fields)
+
+
+def _perturbation(**fields):
+    return lambda record: record["trial"]["perturbation"].update(fields)
+
+
+def _seeds(seed):
+    def edit(record):
+        record["trial"]["seed"] = seed
+        record["result"]["seed"] = seed
+    return edit
+
+
+def _assert_corrupt_and_run_again(folder, path, words):
+    loaded = load_records(folder)
+    assert path not in {record_path(folder, t) for t in loaded.records}
+    assert words in loaded.corrupt[path] and "'trial'" in loaded.corrupt[path], loaded.corrupt
+    summary = run_sweep(SPEC, fake_trial, folder, workers=1, progress=False)
+    assert (summary.ran, summary.corrupt) == (1, (str(path),))
+    assert list(path.parent.glob(f"{path.name}.corrupt-*"))  # kept aside, not lost
+    assert load_records(folder).corrupt == {}
+
+
+# Rule: a record's trial is one the sweep makes: each field within the range declared beside
+# it (the perturbation within what the randomisation bounds can draw, attempts from 0), its
+# ids made of its object, marker and attempt, well placed exactly at the (0, 0) marker, and
+# its seed the one its base seed and scene give; any other is corrupt and its trial runs again.
+@pytest.mark.parametrize("trial_id, edit, words", [
+    (MISPLACED, _perturbation(mass_scale=-1.0), "perturbation.mass_scale"),
+    (MISPLACED, _perturbation(mass_scale=5.0), "perturbation.mass_scale"),
+    (MISPLACED, _perturbation(friction_scale=0.0), "perturbation.friction_scale"),
+    (MISPLACED, _perturbation(dx_m=0.3), "perturbation.dx_m"),
+    (MISPLACED, _trial(attempt=-3), "attempt"),
+    (MISPLACED, _trial(pair_id="../../x"), "pair_id"),
+    (MISPLACED, _trial(marker="../m10"), "marker"),
+    (MISPLACED, _trial(well_placed=True), "well_placed"),
+    (WELL_PLACED, _trial(marker_dx_m=0.01), "well_placed"),
+    (MISPLACED, _seeds(7), "seed"),
+    (MISPLACED, _trial(base_seed=9999), "seed"),
+    (MISPLACED, _trial(perturbation={"dx_m": 0.0}), "perturbation"),
+], ids=["negative-mass", "mass-x5", "no-friction", "jitter-30cm", "attempt", "pair-id",
+        "marker", "well-placed", "marker-moved", "seed", "base-seed", "perturbation-fields"])
+def test_a_record_whose_trial_no_sweep_makes_is_corrupt_and_runs_again(
+        tmp_path, trial_id, edit, words):
+    path = _forge_spec_record(tmp_path, trial_id, edit)
+    _assert_corrupt_and_run_again(tmp_path, path, words)
+
+
+def _rebased(base_seed):
+    """A forger's edit: another base seed, the seed it gives the scene recomputed, the
+    perturbation (what the trial ran with) kept."""
+    def edit(record):
+        from tegrasp_drake.sweep.spec import scene_seeds
+        trial = record["trial"]
+        _, seed = scene_seeds(base_seed, trial["object_name"],
+                              (trial["marker_dx_m"], trial["marker_dy_m"]), trial["attempt"])
+        trial.update(base_seed=base_seed, seed=seed)
+        record["result"]["seed"] = seed
+    return edit
+
+
+def _nudged(field, by):
+    return lambda record: record["trial"]["perturbation"].update(
+        {field: record["trial"]["perturbation"][field] + by})
+
+
+def _flipped(field):
+    return lambda record: record["trial"]["perturbation"].update(
+        {field: -record["trial"]["perturbation"][field]})
+
+
+# Rule: a record's perturbation is its seed's draw (the seed's uniforms under one set of
+# randomisation bounds): a base seed changed and its seed recomputed, or a draw edited, is
+# corrupt and its trial runs again.
+@pytest.mark.parametrize("edit, words", [
+    (_rebased(621), "perturbation."),
+    (_nudged("dy_m", 1e-6), "perturbation.d"),  # dx and dy share a bound: one is named
+    (_flipped("yaw_rad"), "perturbation.yaw_rad"),
+], ids=["base-seed-recomputed", "jitter-nudged", "yaw-flipped"])
+def test_a_record_whose_perturbation_is_not_its_seeds_draw_is_corrupt_and_runs_again(
+        tmp_path, edit, words):
+    path = _forge_spec_record(tmp_path, MISPLACED, edit)
+    _assert_corrupt_and_run_again(tmp_path, path, words)
+
+
+def test_a_plot_of_a_record_whose_perturbation_is_not_its_seeds_draw_is_refused_in_one_line(
+        tmp_path, monkeypatch, capfd):
+    _forge_spec_record(tmp_path / "sweep", MISPLACED, _rebased(621))
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(["plot", "latency", "sweep", "--out", "latency.png"], capfd)
+    assert_one_line_error(code, text, "memorized.box.m10.a0.json", "perturbation.")
+    assert not (tmp_path / "latency.png").exists()
+
+
+@pytest.mark.parametrize("randomisation", [
+    RandomisationConfig(), RandomisationConfig(0.0, 0.0, 0.0, 0.0),
+    RandomisationConfig(0.05, 180.0, 0.999999, 1e-12)], ids=["default", "none", "extremes"])
+def test_the_draws_of_any_randomisation_bounds_are_read(randomisation):
+    from tegrasp_drake.sweep.spec import expand_trials, trial_problem
+    spec = SweepSpec(base_seed=620, attempts=2, randomisation=randomisation)
+    assert [t.trial_id for t in expand_trials(spec) if trial_problem(t.to_dict())] == []
+
+
+def test_the_trials_a_sweep_makes_are_read():
+    from tegrasp_drake.sweep.spec import expand_trials, trial_problem
+    spec = SweepSpec(base_seed=620, attempts=2)  # the paper's objects, grid and controllers
+    assert [t.trial_id for t in expand_trials(spec) if trial_problem(t.to_dict())] == []
+
+
+def _result(**fields):
+    return lambda record: record["result"].update(fields)
+
+
+def _events(**identity):
+    return lambda record: record.update(events=identity)
+
+
+# Rule: a record's result is where its trial put the object (the marker moved by the jitter),
+# and its events identity is a SHA-256 and a folder (or null), as a sweep writes it.
+@pytest.mark.parametrize("edit, words", [
+    (_result(offset_m=[0.19, -0.19]), "offset_m"),
+    (_result(offset_m=[0.01, 0.0]), "offset_m"),  # the marker, without its jitter
+    (_events(folder="/etc", sha256="zz"), "events.sha256"),
+    (_events(folder="", sha256="0" * 64), "events.folder"),
+], ids=["offset-far", "offset-without-jitter", "events-digest", "events-folder-empty"])
+def test_a_record_whose_result_is_not_its_trials_is_corrupt_and_runs_again(
+        tmp_path, edit, words):
+    path = _forge_spec_record(tmp_path, MISPLACED, edit)
+    loaded = load_records(tmp_path)
+    assert words in loaded.corrupt[path], loaded.corrupt
+    summary = run_sweep(SPEC, fake_trial, tmp_path, workers=1, progress=False)
+    assert (summary.ran, summary.corrupt) == (1, (str(path),))
+
+
+# Rule: a result's real-time factor is its simulated time over its wall time, as run_trial
+# writes it; a factor of 1e300 on a 8 s trial that took 2 s is refused.
+@pytest.mark.parametrize("data, words", [
+    ({"sim_time_s": 8.0, "wall_time_s": 2.0, "real_time_factor": 1e300}, "sim_time_s / wall"),
+    ({"sim_time_s": 8.0, "wall_time_s": 2.0, "real_time_factor": 0.0}, "sim_time_s / wall"),
+    ({"sim_time_s": 8.0, "wall_time_s": 0.0, "real_time_factor": 3.0}, "wall_time_s' is 0"),
+])
+def test_a_real_time_factor_not_simulated_over_wall_time_is_refused(data, words):
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    with pytest.raises(ValueError, match=words):
+        TrialResult.from_dict(data)
+
+
+# Rule: a sweep trial runs at most the longest scenario time limit (a grasp script within
+# its limit plus the time for corrections); a record of a longer run is corrupt.
+def test_a_record_of_a_run_longer_than_any_sweep_trial_is_corrupt(tmp_path):
+    path = _forge_spec_record(tmp_path, MISPLACED, _result(sim_time_s=1e12))
+    loaded = load_records(tmp_path)
+    assert "sim_time_s" in loaded.corrupt[path], loaded.corrupt
+
+ONE_TRIAL_SPEC = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1, base_seed=650)
+
+
+def _first_trial() -> dict:
+    return expand_trials(ONE_TRIAL_SPEC)[0].to_dict()
+
+
+@pytest.mark.parametrize("field, value", [("seed", 1), ("controller", "heuristic"),
+                                          ("object", "thin_cylinder"),
+                                          ("offset_m", [0.0123, -0.0045])])
+def test_a_result_that_names_another_trial_is_an_invalid_result(field, value):
+    trial = _first_trial()
+    status, error, _ = run_trial_safely(lambda t: dict(fake_trial(t), **{field: value}), trial)
+    assert status == "error" and error["type"] == "InvalidResult", error
+    assert f"its result's {field}" in error["message"]
+
+
+def test_such_a_result_is_recorded_as_an_error_not_as_a_corrupt_record(tmp_path):
+    summary = run_sweep(ONE_TRIAL_SPEC, seed_of_another_trial, tmp_path, workers=1, progress=False)
+    records = load_records(tmp_path)
+    assert not records.corrupt, records.corrupt
+    assert len(records.records) == len(summary.trial_ids) == len(summary.errors)
+    assert {record["status"] for record in records.records.values()} == {"error"}
+    assert {record["error"]["type"] for record in records.records.values()} == {"InvalidResult"}
+
+
+def seed_of_another_trial(trial):
+    """A trial function that reports the next trial's seed (module level: it is pickled)."""
+    return dict(fake_trial(trial), seed=trial["seed"] + 1)
+
+
+def test_a_results_folder_whose_trials_is_a_file_says_so(tmp_path, capfd):
+    (tmp_path / "trials").write_text("")
+    code, text = run_cli(["plot", "latency", str(tmp_path)], capfd)
+    assert_one_line_error(code, text, f"{tmp_path / 'trials'} is not a folder of trial records")

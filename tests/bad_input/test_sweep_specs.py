@@ -1,0 +1,149 @@
+"""Sweep specs are checked at load: an empty spec or mapping, a string for a list, fields
+outside their declared ranges, objects that cannot run, user objects the spec does not run,
+overrides of a swept setting, and a trial spec that is not one are refused in one line
+naming the field, before any trial runs."""
+
+import pytest
+
+import tegrasp_drake
+from tegrasp_drake.rig.ranges import field_range
+from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, validate_spec
+from tests.bad_input.probes import SEED, assert_one_line_error, one_line_of, refusal, run_cli
+
+
+# --- sweep specs ------------------------------------------------------------------------
+
+@pytest.mark.parametrize("definition, expected", [
+    ("{shape: box, size: [0.04, 0.09, 0.1], mass: 0.1, friction: 0.5}",
+     "field 'user_objects.crate.size': makes the object 90.0 mm wide"),
+    ("{shape: cylinder, size: [0.04, 0.1], mass: 0.1}",
+     "field 'user_objects.crate.friction': is missing"),
+    ("{shape: cylinder, size_m: [0.04, 0.1], mass_kg: 0.1, friction_coefficient: 0.5}",
+     "field 'user_objects.crate.size_m': is the old name of the field: rename size_m to "
+     "size, mass_kg to mass, friction_coefficient to friction"),
+])
+def test_a_sweep_spec_whose_objects_cannot_run_is_refused_at_load(definition, expected,
+                                                                  tmp_path, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(f"objects: [crate]\nuser_objects:\n  crate: {definition}\n")
+    code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"),
+                          "--no-progress"], capfd)
+    assert code == 2, text
+    assert_one_line_error(code, text, str(spec), expected)
+    assert not (tmp_path / "out" / "trials").exists()
+
+
+def test_an_empty_sweep_spec_is_refused_not_run_as_the_paper_experiment(tmp_path, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("")
+    code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "sw")], capfd)
+    assert_one_line_error(code, text, str(spec), "the sweep spec is empty")
+    assert not (tmp_path / "sw").exists()
+
+
+def test_a_sweep_spec_refuses_a_string_for_a_list():
+    with pytest.raises(TypeError, match="SweepSpec: field 'objects' must be a collection"):
+        tegrasp_drake.SweepSpec(objects="box")
+    assert tegrasp_drake.SweepSpec(objects=["box"]).objects == ["box"]
+
+
+@pytest.mark.parametrize("trial, words", [
+    ({}, "lacks trial_id"),
+    ({"object": "teapot", "controller": "open_loop", "seed": SEED}, "object='teapot'"),
+])
+def test_a_trial_spec_that_is_not_one_names_its_keys(trial, words):
+    with pytest.raises(ConfigError) as refused:
+        tegrasp_drake.run_trial_from_spec(trial)
+    assert "argument 'trial'" in one_line_of(refused.value) and words in str(refused.value)
+
+
+def test_a_sweep_spec_that_is_an_empty_mapping_is_refused_like_an_empty_file(tmp_path):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.sweep.spec_file import LoadSweepSpec
+    for text in ("", "{}\n"):
+        (tmp_path / "spec.yaml").write_text(text)
+        with pytest.raises(ConfigError, match="the sweep spec is empty"):
+            LoadSweepSpec(tmp_path / "spec.yaml")
+
+
+# Rule: a field with a declared range is checked by that declaration alone: a sweep spec's
+# number below its range and one above it are refused in the same words (the Range's), not
+# by a hand-written check beside it with other words.
+@pytest.mark.parametrize("owner, field", [
+    ("spec", "attempts"), ("spec", "base_seed"),
+    ("randomisation", "placement_xy_bound_m"), ("randomisation", "placement_yaw_bound_deg"),
+    ("randomisation", "friction_scale_bound"), ("randomisation", "mass_scale_bound"),
+])
+def test_a_sweep_spec_field_is_refused_in_its_declared_range_words(owner, field):
+    owner_class = SweepSpec if owner == "spec" else RandomisationConfig
+    declared = field_range(owner_class, field)
+    ends = (declared.low - 1, None if declared.high is None else declared.high + 1)
+    for value in (end for end in ends if end is not None):
+        value = type(getattr(owner_class(), field))(value)
+        if owner == "spec":
+            spec = SweepSpec(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),),
+                             **{field: value})
+            where = field
+        else:
+            spec = SweepSpec(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),),
+                             randomisation=RandomisationConfig(**{field: value}))
+            where = f"randomisation.{field}"
+        refusal(lambda: validate_spec(spec), f"field '{where}' {declared.words(value)}")
+
+
+# Rule: a sweep spec's `user_objects` entry that `objects` does not name is refused, naming it
+# and saying to add it to `objects`, wherever a spec is checked (the file's reader, a
+# SweepSpec built in Python, the command line); not dropped while the default objects run.
+# A command line's `--objects` chooses the objects to run: the spec's other definitions are
+# then the user's choice not to run them.
+MUG = "{mug: {shape: cylinder, size: [0.04, 0.1], mass: 0.3, friction: 0.5}}"
+
+
+@pytest.mark.parametrize("text", [f"user_objects: {MUG}\n",
+                                  f"objects: [box]\nuser_objects: {MUG}\n"])
+def test_a_user_object_the_spec_does_not_run_is_refused(tmp_path, capfd, text):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.sweep import LoadSweepSpec
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(text)
+    with pytest.raises(ConfigError, match=r"user_objects\.mug.*add it to 'objects'"):
+        LoadSweepSpec(spec)
+    code, error = run_cli(["sweep", "--spec", str(spec), "--out", str(tmp_path / "out"),
+                           "--workers", "1", "--base-seed", "640", "--no-progress"], capfd)
+    assert_one_line_error(code, error, "user_objects.mug", "objects")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_user_object_a_python_spec_does_not_run_is_refused():
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.rig.objects import ObjectConfig
+    from tegrasp_drake.sweep import SweepSpec, expand_trials
+    mug = ObjectConfig(name="mug", shape="cylinder", size=[0.04, 0.1], mass=0.3, friction=0.5)
+    with pytest.raises(ConfigError, match=r"user_objects\.mug"):
+        expand_trials(SweepSpec(objects=("box",), user_objects={"mug": mug}))
+
+
+def test_objects_chosen_on_the_command_line_leave_the_other_definitions_unrun(tmp_path):
+    import argparse
+    from tegrasp_drake.commands.sweep import spec_from_arguments
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(f"objects: [box, mug]\nuser_objects: {MUG}\n")
+    args = argparse.Namespace(spec=str(spec), objects=["box"], controllers=None, attempts=None,
+                              base_seed=None, overrides=None, confirm_trials=None)
+    assert spec_from_arguments(args).objects == ("box",)
+
+
+@pytest.mark.parametrize("override", ["gripper={pad_friction: 1.0}", "gripper.pad_friction=1.0",
+                                      " gripper.pad_friction =1.0"])
+def test_a_sweep_override_of_a_swept_setting_or_its_section_is_refused(tmp_path, override):
+    """A study whose every point ran the override's value would say its parameter changes
+    nothing."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
+    spec = tmp_path / "s.yaml"
+    spec.write_text("parameters: [gripper.pad_friction]\n"
+                    "sweep: {objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], "
+                    f"attempts: 1, base_seed: 640, scenario_overrides: ['{override}']}}\n")
+    with pytest.raises(ConfigError, match=r"scenario_overrides\[0\].*gripper.pad_friction"):
+        LoadSensitivitySpec(spec)
