@@ -175,6 +175,15 @@ def table_touch_time(log, object_config=None, after: float = 0.0):
     return _first(log.t_slow, (low - low[0] < TOUCH_HEIGHT_M) & (log.t_slow > after))
 
 
+def release_height_m(log, t: float, object_config=None) -> float:
+    """Height [m] of the object's lowest point above where it rested at the start (the table
+    top: every trial starts with the object standing on it) in the last logged state at or
+    before `t` [s]: for the start of Unload, the height the gripper let it go from."""
+    low = lowest_point_heights(log.object_state, object_config)
+    k = max(int(np.searchsorted(log.t_slow, t, side="right")) - 1, 0)
+    return float(low[k] - low[0])
+
+
 def physical_events(log, grip_force: float, object_config=None) -> dict:
     lift_index = np.flatnonzero(lifted_mask(log, object_config))
     return {"first_contact": first_contact_time(log),

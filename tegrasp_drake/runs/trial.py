@@ -19,7 +19,7 @@ from tegrasp_drake.scenario.trial_result import (FALSE_TRIGGER_MARGIN_S, HIT_EVE
                                                   TrialResult)
 from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
                                               grip_fraction_at, judge_grasp,
-                                              table_touch_time)
+                                              release_height_m, table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.ranges import SIMULATED_DURATION, shorten
@@ -86,7 +86,9 @@ def lift_grip_fraction(log, transitions: list[Transition], grip_force: float
 
 def judge_trial(log, transitions: list[Transition], scenario) -> dict:
     """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
-    at least 3 s; unload = after Unload, upright on the table, released, gripper retracted."""
+    at least 3 s; unload = after Unload, upright on the table, released, gripper retracted.
+    release_height_m: the object's lowest point above the table top when Unload began (the
+    first transition to Unload: the gripper's open command); None without one."""
     outcome = judge_grasp(log, target_xy=scenario.placement.expected_xy,
                           grip_force=scenario.grasp.grip_force, object_config=scenario.object)
     hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
@@ -111,10 +113,13 @@ def judge_trial(log, transitions: list[Transition], scenario) -> dict:
             latency[name] = entry.t - physical[name]
     corrective = [action for action in (corrective_action_of(e.from_mode, e.to_mode, e.trigger)
                                         for e in transitions) if action is not None]
+    unload = next((e.t for e in transitions if e.to_mode == Mode.UNLOAD), None)
     return {"hold_success": bool(hold_success), "unload_success": unload_success,
             "final_mode": final_mode.label, "hold_time_s": outcome.hold_time_s,
             "lift_height_m": outcome.lift_height_m, "final_tilt_deg": outcome.final_tilt_deg,
             "placement_error_m": outcome.placement_error_m, "released": outcome.released,
+            "release_height_m": None if unload is None else release_height_m(
+                log, unload, scenario.object),
             "physical_events": physical, "detection_latency_s": latency,
             "false_triggers": false_triggers, "lift_grip_fraction": lift_grip_fraction(
                 log, transitions, grip_force),

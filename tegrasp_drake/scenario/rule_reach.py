@@ -43,6 +43,7 @@ RULE_COUNTS = {
     "held_tilted": (None, "held in Hold: the grip squeezes"),
     "regrasp_after_place": (None, "after held_tilted"),
     "regrasp_set_down": (None, "holds back the Unload after held_tilted: lets nothing go"),
+    "place_set_down": (None, "holds back the Unload of a held object: lets nothing go"),
     "grip_settling": (None, "both pads' sums: the grip squeezes"),
     "touch_unconfirmed": (None, "holds back while no pad's sum reads: nothing to press"),
     "touch_confirmed": (None, "a pad's sum just after the Reach-Load event: the close squeezes"),

@@ -65,6 +65,12 @@ class TrialResult:
                                            why="the angle between the object's up and world up")
     placement_error_m: float | None = bounded(None, low=0.0, unit="m", why="a distance")
     released: bool = False
+    # The object's lowest point above the table top (where it rested at the start) when
+    # Unload began, the gripper's open command: the height it was let go from; None when
+    # no transition went to Unload (and in results written before the field).
+    release_height_m: float | None = bounded(
+        None, unit="m", why="a height either side of the table top (pressed into it, or "
+        "fallen past its edge)")
     # The physical event behind each event transition taken, and "hit" [s]
     # (trial.physical_event_times); None where it was not found.
     physical_events: dict[str, float | None] = bounded(
@@ -250,7 +256,8 @@ class TrialResult:
         """The fields judge_trial derives from the timeline alone: the failure is the reason
         of the first transition to Failed ("" when none was taken), the corrective actions
         are those the transitions start, in order (corrective_action_of), and a lift grip
-        fraction is taken at the first Load -> Lift, so is given only when one was taken."""
+        fraction is taken at the first Load -> Lift, so is given only when one was taken,
+        and a release height when Unload begins, so only when a transition went to Unload."""
         failed = next(((k, e) for k, e in enumerate(self.transitions)
                        if e.to_mode == Mode.FAILED), None)
         if self.failure and failed is None:
@@ -269,6 +276,10 @@ class TrialResult:
             raise ConfigError(f"{name}: field 'corrective_actions' must be the actions the "
                               f"transitions start, in order, [{', '.join(started)}], got "
                               f"{shorten(repr(self.corrective_actions))}")
+        if self.release_height_m is not None and not self.entered(Mode.UNLOAD):
+            raise ConfigError(f"{name}: field 'release_height_m' is "
+                              f"{number_text(self.release_height_m)} but no transition goes "
+                              "to Unload (the height is taken when Unload begins)")
         if self.lift_grip_fraction is not None and not any(
                 e.from_mode == Mode.LOAD and e.to_mode == Mode.LIFT for e in self.transitions):
             raise ConfigError(f"{name}: field 'lift_grip_fraction' is "

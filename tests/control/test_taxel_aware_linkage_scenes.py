@@ -192,3 +192,30 @@ def test_a_regrasp_opens_only_once_the_place_move_has_set_the_object_down():
     height = log.object_state[:, 6] - log.object_state[0, 6]
     assert height[np.searchsorted(log.t_slow, regrasp.t)] < RESTING_HEIGHT_M, codes
     assert run.hold_success and run.unload_success, codes
+
+
+# The wide grid's thick cylinder at its marker m00 (-15 mm normal to the palm, -25 mm along
+# the stroke), base seed 900: a Place-Unload match on the held cylinder's rest signals came
+# 10 ms into Place, its lowest point 60 mm above the table; opened there, it dropped.
+HELD_CYLINDER_TRIAL = {
+    "attempt": 0, "base_seed": 900, "controller": "taxel_aware", "marker": "m00",
+    "marker_dx_m": -0.015, "marker_dy_m": -0.025, "object_definition": None,
+    "object_name": "thick_cylinder", "pair_id": "thick_cylinder/m00/a0",
+    "perturbation": {"dx_m": -1.1883289620668886e-05, "dy_m": -0.0010496752583284367,
+                     "yaw_rad": 0.15522047200010095, "friction_scale": 1.0199722264052462,
+                     "mass_scale": 0.9102256603107431},
+    "seed": 4137934781, "sensor_noise": True,
+    "trial_id": "taxel_aware/thick_cylinder/m00/a0", "well_placed": False}
+
+
+def test_a_place_opens_only_once_the_place_move_has_set_the_object_down():
+    scenario, events, corrective_events = trial_events(HELD_CYLINDER_TRIAL)
+    run = run_trial(scenario, events=events, corrective_events=corrective_events)
+    codes = [(t.from_mode.label, t.to_mode.label, t.code) for t in run.transitions]
+    found = matched(run.transitions, (("Hold", "Place", "hold_time"),))
+    unload = [t for t in run.transitions if t.to_mode == Mode.UNLOAD]
+    assert found is not None and len(unload) == 1, codes
+    assert unload[0].code in ("place_event", "place_timeout"), codes
+    assert unload[0].t - found[0].t >= scenario.grasp.place_s - 1e-9, codes
+    assert run.release_height_m < RESTING_HEIGHT_M, (run.release_height_m, codes)
+    assert run.hold_success and run.unload_success, codes

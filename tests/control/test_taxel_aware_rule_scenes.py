@@ -26,6 +26,8 @@ OWN_SCENE_TESTS = {
                           "test_a_reach_load_match_no_pad_touch_confirms_does_not_load"),
     "regrasp_set_down": (f"{LINKAGE_SCENES}::"
                          "test_a_regrasp_opens_only_once_the_place_move_has_set_the_object_down"),
+    "place_set_down": (f"{LINKAGE_SCENES}::"
+                       "test_a_place_opens_only_once_the_place_move_has_set_the_object_down"),
 }
 
 

@@ -17,7 +17,7 @@ from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
 from tegrasp_drake.control.taxel_aware.estimator import ContactEstimate
 from tegrasp_drake.control.taxel_contact import grasp_contact
-from tegrasp_drake.control.transition_logic import Observation
+from tegrasp_drake.control.transition_logic import PAPER_TABLE, Observation
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
 
 CONFIG = TaxelAwareControllerConfig()
@@ -139,8 +139,8 @@ CASES = [
      dict(contact=(True, True), event_matched=True, motion_done=True, regrasp_pending=True),
      dict(contact=(True, True), event_matched=True, regrasp_pending=True),
      Counters(regrasps=1)),
-    ("place_event", Mode.PLACE, dict(contact=(True, True), event_matched=True),
-     dict(contact=(True, True)), Counters()),
+    ("place_event", Mode.PLACE, dict(contact=(True, True), event_matched=True, motion_done=True),
+     dict(contact=(True, True), motion_done=True), Counters()),
     ("place_timeout", Mode.PLACE,
      dict(contact=(True, True), motion_done=True,
           time_since_motion_done=CONFIG.place.event_timeout_s),
@@ -174,10 +174,13 @@ GUARD_CASES = [
      dict(contact=(True, True), event_matched=True),
      dict(estimate=dict(match_confirmed_s=-1.0))),
     ("regrasp_set_down", "place_event", Mode.PLACE,
-     dict(contact=(True, True), event_matched=True), dict(regrasp_pending=True)),
+     dict(contact=(True, True), event_matched=True, motion_done=True),
+     dict(regrasp_pending=True)),
     ("regrasp_set_down", "place_timeout", Mode.PLACE,
      dict(contact=(True, True), motion_done=True,
           time_since_motion_done=CONFIG.place.event_timeout_s), dict(regrasp_pending=True)),
+    ("place_set_down", "place_event", Mode.PLACE,
+     dict(contact=(True, True), event_matched=True, motion_done=True), dict(motion_done=False)),
 ]
 
 
@@ -186,7 +189,7 @@ GUARD_CASES = [
 def test_the_guard_holds_back_its_rule_only_while_its_condition_holds(guard, rule, mode, fires,
                                                                       holds):
     assert code(mode, situation(**fires)) == rule
-    assert code(mode, situation(**fires, **holds)) != rule
+    assert code(mode, situation(**{**fires, **holds})) != rule
 
 
 def test_every_rule_and_guard_of_the_table_has_a_case():
@@ -327,6 +330,23 @@ def test_a_regrasps_place_neither_opens_nor_lets_go_while_the_place_move_is_on()
     for ended in (dict(event_matched=True),
                   dict(time_since_motion_done=CONFIG.place.event_timeout_s)):
         assert code(Mode.PLACE, situation(**done, **ended), held) == "regrasp_after_place"
+
+
+def test_a_place_lets_go_only_once_the_place_move_has_set_the_object_down():
+    """A Place-Unload match while the arm still carries the object down is no set-down: on
+    the linkage hand the event's thresholds pass on a held object's rest signals (one matched
+    10 ms into the move, the object 58 mm up). The paper's memorized controller keeps the
+    paper's rule: it lets go on the match."""
+    moving = dict(contact=(True, True), motion_done=False, event_matched=True)
+    assert decide(Mode.PLACE, situation(**moving)) is None
+    assert decide(Mode.PLACE, situation(**moving, time_in_mode=10.0)) is None
+    ended = decide(Mode.PLACE, situation(**dict(moving, motion_done=True)))
+    assert (ended.code, ended.mode, ended.trigger) == (
+        "place_event", Mode.UNLOAD, Trigger.MEMORIZED_EVENT)
+    paper = PAPER_TABLE.next_mode(Mode.PLACE, Observation(**moving), Counters(),
+                                  MemorizedControllerConfig(),
+                                  event_trigger=Trigger.MEMORIZED_EVENT, hold_s=3.0)
+    assert (paper.code, paper.mode) == ("place_event", Mode.UNLOAD)
 
 
 @pytest.mark.parametrize("obs,counters", [

@@ -9,7 +9,8 @@ import pytest
 
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time, grip_force_time,
-                                              grip_fraction_at, lifted_mask, scripted_lift_start)
+                                              grip_fraction_at, lifted_mask, release_height_m,
+                                              scripted_lift_start)
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.runs.trial import lift_grip_fraction
@@ -33,6 +34,18 @@ def test_a_box_knocked_onto_its_side_is_not_lifted_but_a_raised_one_is():
     assert list(lifted_mask(toppled, BOX)) == [False, False]
     assert list(lifted_mask(toppled)) == [False, True]  # by the origin, as before
     assert list(lifted_mask(raised, BOX)) == [False, True]
+
+
+def test_the_release_height_is_the_lowest_point_above_the_start_when_unload_began():
+    """A box lifted 60 mm and tilted 20 deg about x: its lowest corner hangs below its base's
+    centre by half its depth times sin(20 deg)."""
+    tilt = math.radians(20.0)
+    log = types.SimpleNamespace(t_slow=np.array([0.0, 1.0, 2.0]), object_state=np.array(
+        [state(0.0), state(0.06, tilt), state(0.0)]))
+    hanging_m = 0.06 - 0.045 / 2 * math.sin(tilt)
+    assert release_height_m(log, 1.0, BOX) == pytest.approx(hanging_m, abs=1e-9)
+    assert release_height_m(log, 1.5, BOX) == pytest.approx(hanging_m, abs=1e-9)  # last state
+    assert release_height_m(log, 2.0, BOX) == pytest.approx(0.0, abs=1e-9)
 
 
 def gripper_at(t, opening_m):

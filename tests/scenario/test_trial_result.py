@@ -247,6 +247,19 @@ def test_a_physical_event_needs_its_transition_taken():
                 physical_events={"reach_load": 0.95, "hit": 2.0})
 
 
+def test_a_release_height_needs_an_unload_and_an_older_result_has_none():
+    with pytest.raises(ConfigError, match="field 'release_height_m' is 0.06 but no transition "
+                                          "goes to Unload"):
+        TrialResult(transitions=(_reach_load(1.0),), final_mode=Mode.LOAD,
+                    release_height_m=0.06)
+    with pytest.raises(ConfigError, match="field 'release_height_m' must be a finite number"):
+        TrialResult(release_height_m=float("nan"))
+    stored = json.loads(RECORD.read_text())["result"]
+    assert "release_height_m" not in stored  # written before the field
+    assert TrialResult.from_dict(stored).release_height_m is None
+    assert TrialResult.from_dict({**stored, "release_height_m": 0.06}).release_height_m == 0.06
+
+
 def test_a_lift_grip_fraction_needs_a_lift_from_load():
     with pytest.raises(ConfigError, match="field 'lift_grip_fraction' is 5 but no transition"):
         TrialResult(transitions=(_reach_load(1.0),), final_mode=Mode.LOAD,

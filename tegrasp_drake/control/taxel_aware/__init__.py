@@ -17,6 +17,7 @@ the whole taxel array, over what one ContactEstimator senses.
   no_event_in_time.py    rules: both pads on, no event in time
   caged.py               rules and guard: an object caged behind the pads
   regrasp.py             rules and guard: re-grasp an object held tilted
+  set_down.py            guard: a Place lets go once its move has set the object down
   tipping_guard.py       guard: no re-centring after a push past the tipping limit
   grip_settling.py       guard: the Load-Lift event lifts only a settled grip
   touch_confirmed.py     guard and rule: a pad's touch confirms the Reach-Load event"""

@@ -7,7 +7,7 @@ from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Regrasp, ReReach, decide
 from tegrasp_drake.control.rule_engine import Guard, Rule
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
-from tegrasp_drake.control.transition_logic import placed
+from tegrasp_drake.control.taxel_aware.set_down import set_down
 
 
 def tilted_for_long(situation) -> bool:
@@ -26,13 +26,9 @@ def regrasp_place(situation) -> bool:
 
 
 def set_down_to_regrasp(situation) -> bool:
-    """The re-grasp's Place move has ended, then the Place-Unload event or its timeout.
-
-    The move ends place_press below the height the object was picked up from, so a held
-    object stands on the table by then; the event alone also matches on a held object's
-    rest signals in the air (docs/controller.md, "Held tilted: re-grasp")."""
-    obs = situation.obs
-    return regrasp_place(situation) and obs.motion_done and placed(obs, situation.config)
+    """A re-grasp's Place has set the object down (set_down.set_down: the Place move has
+    ended, then the Place-Unload event or its timeout)."""
+    return regrasp_place(situation) and set_down(situation)
 
 
 def open_and_close_again(situation):

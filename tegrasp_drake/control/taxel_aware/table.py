@@ -18,6 +18,7 @@ from tegrasp_drake.control.taxel_aware.one_sided_at_width import ONE_SIDED_AT_WI
 from tegrasp_drake.control.taxel_aware.ra_onset import RA_ONSET_ONE_FILM
 from tegrasp_drake.control.taxel_aware.regrasp import (HELD_TILTED, REGRASP_AFTER_PLACE,
                                                       REGRASP_SET_DOWN)
+from tegrasp_drake.control.taxel_aware.set_down import PLACE_SET_DOWN
 from tegrasp_drake.control.taxel_aware.tipping_guard import TIPPING_GUARD
 from tegrasp_drake.control.taxel_aware.touch_confirmed import TOUCH_CONFIRMED, TOUCH_UNCONFIRMED
 from tegrasp_drake.control.taxel_aware.untouched_close import CLOSED_UNTOUCHED
@@ -34,7 +35,8 @@ TAXEL_AWARE_TABLE = PAPER_TABLE.extended(
            REACH_TIMEOUT_BOTH_PADS,
            REACH_TIMEOUT_CAGED, LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED,
            REGRASP_AFTER_PLACE),
-    guards=(CAGED, TIPPING_GUARD, GRIP_SETTLING, TOUCH_UNCONFIRMED, REGRASP_SET_DOWN),
+    guards=(CAGED, TIPPING_GUARD, GRIP_SETTLING, TOUCH_UNCONFIRMED, REGRASP_SET_DOWN,
+            PLACE_SET_DOWN),
     re_reach_move=CENTRING_RE_REACH)
 
 
