@@ -4,13 +4,14 @@ figure from a sweep folder refuses one holding a corrupt record, as `tegrasp plo
 rather than writing a table that silently lost a trial."""
 
 import pathlib
+import re
 
 import pytest
 
 from tegrasp_drake.commands import script_output
 from tegrasp_drake.commands.error_boundary import EXIT_ERROR
 from tegrasp_drake.sweep import SweepSpec, run_sweep
-from tests.analysis_script import load_analysis_script
+from tests.analysis_script import ANALYSIS, load_analysis_script
 from tests.fake_trials import fake_trial
 from tests.test_analysis_error_boundary import run_script
 
@@ -79,7 +80,33 @@ def sweep_script_arguments(results, tmp_path) -> dict[str, list[str]]:
             "hold_creep": [r, r],
             "weak_stimuli": [r, r],
             "rejudge_from_logs": [r, r, out],
-            "compare_hands": [str(tmp_path / "report.md"), r, r]}
+            "compare_hands": [str(tmp_path / "report.md"), r, r],
+            "compare_geometry": [str(tmp_path / "report.md"), r, r],
+            "detection_quality": [str(tmp_path / "report.md"), r]}
+
+
+# How a script reads a sweep folder's records: sweep.load_records, script_output's
+# load_sweep_records (which refuses a corrupt record), or compare_hands' load_folders (through it).
+_READS_RECORDS = re.compile(r"\b(load_records|load_sweep_records|load_folders)\(")
+
+
+def scripts_reading_sweep_folders() -> set[str]:
+    return {path.stem for path in ANALYSIS.glob("*.py")
+            if _READS_RECORDS.search(path.read_text(encoding="utf-8"))}
+
+
+def test_every_script_that_reads_a_sweep_folder_is_tried_with_a_corrupt_record():
+    """The parametrisation below is every analysis script that reads records, not a list that a
+    new script (or one that read records its own way) escapes."""
+    assert scripts_reading_sweep_folders() == set(sweep_script_arguments("r", pathlib.Path("t")))
+
+
+def test_scripts_read_a_sweep_folder_only_through_load_sweep_records():
+    """sweep.load_records returns corrupt records beside the good ones; a script calling it
+    directly would make its table without them (script_output.load_sweep_records refuses)."""
+    direct = {path.stem for path in ANALYSIS.glob("*.py")
+              if re.search(r"\bload_records\(", path.read_text(encoding="utf-8"))}
+    assert not direct, f"call script_output.load_sweep_records instead in {sorted(direct)}"
 
 
 @pytest.mark.parametrize("name", sorted(sweep_script_arguments("r", pathlib.Path("t"))))
