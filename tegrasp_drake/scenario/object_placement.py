@@ -54,6 +54,19 @@ def object_speed_bound_mps(hit_impulse_n_s: float) -> float:
     return HAND_SPEED_BOUND_MPS + hit_impulse_n_s / MIN_MASS_KG
 
 
+def object_sideways_speed_bound_mps(speed_mps: float, gravity_mps2: float) -> float:
+    """The fastest [m/s] the object's origin can move sideways (world x, y), given its speed bound
+    speed_mps (object_speed_bound_mps) and gravity_mps2 [m/s^2] along world z only. Gravity
+    speeds a fall but turns it sideways only through a contact (a finger it pivots on, the table
+    it tips over; the scene has no floor, and in free fall the sideways speed stays as it was):
+    by energy, at most sqrt(speed^2 + 2 g h) with h the highest drop a contact can turn, from
+    the JACO2's reach above the table (the highest the hand lifts it) to the table slab's
+    underside."""
+    from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_REACH_M
+    drop = JACO2_REACH_M + TABLE_SIZE[2]
+    return math.sqrt(speed_mps ** 2 + 2.0 * gravity_mps2 * drop)
+
+
 def object_position_bounds(duration_s: float, speed_mps: float,
                            gravity_mps2: float) -> tuple[tuple[float, float], tuple[float, float],
                                                           tuple[float, float]]:

@@ -822,10 +822,12 @@ OBJECT_STEP_SLACK_M = 1e-3
 def object_path_problem(arrays: dict, scenario=None) -> str | None:
     """The first object position in `arrays` (object_state 4 to 6 at t_slow; finite, of their
     shapes) off where the object can be by its own time (object_position_bounds at that time),
-    or that moved from the sample before faster than it can move (the speed bound plus what
-    gravity adds by then, plus OBJECT_STEP_SLACK_M), named with its sample and time; else None.
+    or that moved from the sample before farther than it can move (sideways: its sideways speed
+    bound; vertically: the speed bound plus what gravity adds by then; each plus
+    OBJECT_STEP_SLACK_M), named with its sample and time; else None.
     sensor_range_problem checks the same bounds over the whole log."""
-    from tegrasp_drake.scenario.object_placement import object_position_bounds
+    from tegrasp_drake.scenario.object_placement import (object_position_bounds,
+                                                         object_sideways_speed_bound_mps)
     if "object_state" not in arrays or "t_slow" not in arrays or not len(arrays["t_slow"]):
         return None
     t = np.asarray(arrays["t_slow"], dtype=float)
@@ -845,14 +847,23 @@ def object_path_problem(arrays: dict, scenario=None) -> str | None:
                     "no faster than the hand or a hit drives it, or falling)")
     if len(t) < 2:
         return None
-    steps = np.linalg.norm(np.diff(xyz, axis=0), axis=1)
-    reach = ((bounds.object_speed + bounds.gravity * elapsed[1:]) * np.diff(t)
-             + OBJECT_STEP_SLACK_M)
-    too_far = np.flatnonzero(steps > reach)
-    if too_far.size:
-        i = too_far[0] + 1
-        return (f"'object_state' sample {i} (t = {number_text(float(t[i]))} s) puts the object "
-                f"{number_text(float(steps[i - 1]))} m from the sample before, more than the "
-                f"{number_text(float(reach[i - 1]))} m {bounds.whose} object can move in "
-                f"{number_text(float(t[i] - t[i - 1]))} s")
+    # Sideways (world x, y) and vertically (world z) apart: gravity speeds the object only
+    # along z (a fall: the speed bound plus g t by then), sideways it is bounded by what can
+    # push it (the hand carrying it, the scenario's hit) and a fall turned by a contact
+    # (object_placement.object_sideways_speed_bound_mps), however long the trial has run.
+    dt, step = np.diff(t), np.diff(xyz, axis=0)
+    sideways = object_sideways_speed_bound_mps(bounds.object_speed, bounds.gravity)
+    for name, moved, reach in (
+            ("sideways", np.linalg.norm(step[:, :2], axis=1),
+             sideways * dt + OBJECT_STEP_SLACK_M),
+            ("vertically", np.abs(step[:, 2]),
+             (bounds.object_speed + bounds.gravity * elapsed[1:]) * dt + OBJECT_STEP_SLACK_M)):
+        too_far = np.flatnonzero(moved > reach)
+        if too_far.size:
+            i = too_far[0] + 1
+            return (f"'object_state' sample {i} (t = {number_text(float(t[i]))} s) puts the "
+                    f"object {number_text(float(moved[i - 1]))} m {name} from the sample "
+                    f"before, more than the {number_text(float(reach[i - 1]))} m "
+                    f"{bounds.whose} object can move {name} in "
+                    f"{number_text(float(t[i] - t[i - 1]))} s")
     return None
