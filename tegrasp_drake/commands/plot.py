@@ -16,7 +16,7 @@ import logging
 import pathlib
 
 from tegrasp_drake.commands.events_option import check_events_folder
-from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS, figure_replace_problem
 from tegrasp_drake.rig.files import output_file_problem
 from tegrasp_drake.rig import paths
 
@@ -55,13 +55,23 @@ def register(subparsers) -> None:
                         help="file format (default: --out's suffix, else png)")
     parser.add_argument("--out", default=None,
                         help="figure file (default: out/<figure>.<format>)")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace an existing figure at --out (a file that is not a "
+                             "figure of its format is never replaced)")
     parser.set_defaults(func=run)
 
 
 def output_path(args) -> pathlib.Path:
-    """--out, or out/<figure>.<format>; exits when --out's suffix and --format disagree."""
+    """--out, or out/<figure>.<format> (the command's own, replaced by the next plot of that
+    figure); exits when --out's suffix and --format disagree, or when --out (or the default)
+    exists and is not a figure of its format, or is one and --overwrite is not given
+    (figure_replace_problem)."""
     if args.out is None:
-        return pathlib.Path("out") / f"{DEFAULT_STEMS[args.what]}.{args.format or 'png'}"
+        out = pathlib.Path("out") / f"{DEFAULT_STEMS[args.what]}.{args.format or 'png'}"
+        problem = figure_replace_problem(out)
+        if problem:
+            raise SystemExit(f"tegrasp: error: {out} {problem}")
+        return out
     out = pathlib.Path(args.out)
     suffix = out.suffix.lstrip(".").lower()
     if suffix not in FIGURE_FORMATS:
@@ -70,7 +80,8 @@ def output_path(args) -> pathlib.Path:
     if args.format is not None and args.format != suffix:
         raise SystemExit(f"tegrasp: error: --out {out} is a .{suffix} file but --format is "
                          f"{args.format}; give one of them")
-    problem = output_file_problem(out)
+    problem = output_file_problem(out) or figure_replace_problem(
+        out, overwrite=getattr(args, "overwrite", False))
     if problem:
         raise SystemExit(f"tegrasp: error: --out {out} {problem}")
     return out

@@ -7,7 +7,8 @@ import signal
 import sys
 
 from tegrasp_drake.commands.error_boundary import EXIT_ERROR, EXIT_USAGE, internal_error
-from tegrasp_drake.figures.figure_files import FigureFormatError, check_figure_path
+from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_path,
+                                                figure_replace_problem)
 from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
                                      output_file_problem, write_atomically)
 
@@ -148,13 +149,14 @@ def refuse_unusable_folders(script: str, *folders) -> None:
 
 def refuse_unusable_output(script: str, path, *, figure: bool = False) -> None:
     """SystemExit with one line unless `path` can be written as a script's report, or its
-    figure when `figure` (a suffix naming a figure format, figure_files.check_figure_path),
+    figure when `figure` (a suffix naming a figure format, figure_files.check_figure_path;
+    an existing file only if it is a figure of that format, figure_replace_problem),
     (rig.files.output_file_problem); asked before the work starts."""
     if figure:
         try:
             check_figure_path(path)
         except FigureFormatError as error:
             raise SystemExit(f"{script}: error: {error}") from None
-    problem = output_file_problem(path)
+    problem = output_file_problem(path) or (figure_replace_problem(path) if figure else None)
     if problem:
         raise SystemExit(f"{script}: cannot write {path}: {problem}")

@@ -47,13 +47,42 @@ def check_figure_path(path) -> pathlib.Path:
     return path
 
 
+def figure_replace_problem(path, *, overwrite: bool = True) -> str | None:
+    """Why a figure may not be written at `path`, in words that follow it, or None: an existing
+    file is replaced only when it is a figure of the format `path`'s suffix names (its first
+    bytes are FIGURE_STARTS' for it: the user's notes saved as notes.png are not), and, unless
+    `overwrite`, not at all. Only the head is read."""
+    path = check_figure_path(path)
+    try:
+        with open(path, "rb") as existing:
+            head = existing.read(1024)
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    except OSError as error:
+        return (f"cannot be read to check what it is ({error.strerror or error}); give another "
+                "file name")
+    figure_format = path.suffix.lstrip(".").lower()
+    if not head.startswith(FIGURE_STARTS[figure_format]):
+        return (f"exists and is not a .{figure_format} figure (its first bytes are not those of "
+                f"the {figure_format.upper()} format); give another file name, or remove it "
+                "yourself")
+    if not overwrite:
+        return ("exists (an earlier figure); pass --overwrite to replace it, or give a new "
+                "file name")
+    return None
+
+
 def save_figure(figure, path, *, dpi: float = PNG_DPI, tight: bool = False) -> pathlib.Path:
     """Writes `figure` in the format `path`'s suffix names, at `dpi` (a PNG's pixels per inch),
     cropped to what it draws when `tight` (matplotlib's bbox_inches="tight": a legend or title
     placed outside the axes); returns the path, or UserPathError. What a write of this figure
-    killed by SIGKILL left beside it is removed first."""
+    killed by SIGKILL left beside it is removed first. An existing file that is not a figure
+    of that format is never replaced (figure_replace_problem)."""
     path = check_figure_path(path)
     figure_format = path.suffix.lstrip(".").lower()
+    problem = figure_replace_problem(path)  # checked before the work too; here for every writer
+    if problem:
+        raise UserPathError(f"cannot write the figure {path}: it {problem}")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         # A full disk leaves the old figure whole.

@@ -40,3 +40,40 @@ def test_a_figure_write_keeps_other_figures_and_other_files_leftovers(tmp_path):
     save_figure(new_figure(2, 1), target)
     assert sorted(tmp_path.iterdir()) == sorted([target, link, *kept])
     assert all(path.read_bytes() == data for path, data in kept.items())
+
+
+# --- an existing file is replaced only when it is a figure of its format ------------------
+
+@pytest.mark.parametrize("figure_format", FIGURE_FORMATS)
+def test_a_figure_is_never_written_over_a_file_of_another_kind(tmp_path, figure_format):
+    from tegrasp_drake.rig.files import UserPathError
+    notes = tmp_path / f"notes.{figure_format}"
+    notes.write_text("important\n")
+    with pytest.raises(UserPathError, match=f"is not a .{figure_format} figure"):
+        save_figure(new_figure(2, 2), notes)
+    assert notes.read_text() == "important\n"
+    save_figure(new_figure(2, 2), tmp_path / f"f.{figure_format}")
+    save_figure(new_figure(2, 2), tmp_path / f"f.{figure_format}")  # a figure of its format
+
+
+def test_plot_keeps_a_users_file_and_replaces_a_figure_only_with_overwrite(tmp_path, capfd):
+    from tests.test_bad_input import run_cli
+    notes = tmp_path / "notes.png"
+    notes.write_text("important\n")
+    code, text = run_cli(["plot", "events", "--out", str(notes), "--overwrite"], capfd)
+    assert code != 0 and len(text.strip().splitlines()) == 1, text
+    assert "is not a .png figure" in text and notes.read_text() == "important\n"
+    figure = tmp_path / "events.png"
+    assert run_cli(["plot", "events", "--out", str(figure)], capfd)[0] == 0
+    code, text = run_cli(["plot", "events", "--out", str(figure)], capfd)
+    assert code != 0 and "pass --overwrite" in text, text
+    assert run_cli(["plot", "events", "--out", str(figure), "--overwrite"], capfd)[0] == 0
+
+
+def test_an_analysis_script_keeps_a_users_file_where_its_figure_goes(tmp_path):
+    from tests.test_analysis_error_boundary import run_script
+    notes = tmp_path / "notes.svg"
+    notes.write_text("important\n")
+    done = run_script("make_success_maps", [str(tmp_path), "--file", str(notes)], tmp_path)
+    assert done.returncode != 0 and "is not a .svg figure" in done.stderr, done.stderr
+    assert notes.read_text() == "important\n"
