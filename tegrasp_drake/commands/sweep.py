@@ -150,10 +150,15 @@ def spec_from_arguments(args) -> SweepSpec:
     return spec
 
 
-def plan_text(spec: SweepSpec) -> str:
+def plan_text(spec: SweepSpec, *, left: int | None = None, corrupt: dict | None = None,
+              out=None) -> str:
     """What `spec` would run, in a few lines: the count of trials and its cost, the base seed,
     the objects (a user object with its shape, size, mass and friction), the controllers,
-    the markers (offsets in mm, normal to the palm and along the stroke) and the draws."""
+    the markers (offsets in mm, normal to the palm and along the stroke) and the draws. In a
+    resumed folder `out` (runner.check_sweep_folder): the `left` trials it would run, priced,
+    and a line for each `corrupt` record ({path: why}) it would set aside and run again."""
+    total = trial_count(spec)
+    left = total if left is None else left
     own = spec.user_objects
     objects = ", ".join(
         f"{name} ({own[name].shape} {list(own[name].size)} m, {own[name].mass} kg, "
@@ -164,10 +169,14 @@ def plan_text(spec: SweepSpec) -> str:
         (len(spec.objects), "object"), (len(spec.grid), "marker"), (spec.attempts, "attempt"),
         (len(spec.controllers), "controller")))
     r = spec.randomisation
+    done = (f", {total - left} already finished in {out}, {left} to run,"
+            if left != total else ",")
+    aside = [f"  corrupt record set aside as NAME.corrupt-<pid> and run again: {path}: {why}"
+             for path, why in (corrupt or {}).items()]
     return "\n".join([
-        f"sweep plan (nothing run): {count_text(trial_count(spec), 'trial')} ({counted}), "
-        f"base seed {spec.base_seed}, {core_hours(trial_count(spec))} at {TRIAL_CORE_SECONDS} s "
-        "a trial",
+        f"sweep plan (nothing run): {count_text(total, 'trial')} ({counted}){done} "
+        f"base seed {spec.base_seed}, {core_hours(left)} at {TRIAL_CORE_SECONDS} s "
+        "a trial", *aside,
         f"  objects: {objects}",
         f"  controllers: {', '.join(spec.controllers)}",
         f"  markers, mm normal to the palm and along the stroke: {markers}",
@@ -383,9 +392,9 @@ def run(args) -> int:
                 _check_logs_folder(args.logs)
                 trial_function = bound_arguments(trial_function, log_dir=args.logs)
             if args.dry_run:  # refused as the real run would refuse it, before any trial
-                if not args.benchmark:
+                left, corrupt = (trial_count(spec), {}) if args.benchmark else \
                     check_sweep_folder(spec, trial_function, args.out)
-                print(plan_text(spec))
+                print(plan_text(spec, left=left, corrupt=corrupt, out=args.out))
                 return 0
             progress = not args.no_progress and progress_wanted(args)
             if args.benchmark:

@@ -242,6 +242,29 @@ def test_dry_run_refuses_an_out_folder_of_records_made_with_other_settings(tmp_p
     assert {path: path.stat().st_mtime_ns for path in (out / "trials").iterdir()} == records
 
 
+@pytest.mark.parametrize("damage", ["checksum", "fifo"])
+def test_dry_run_names_a_damaged_record_and_prices_the_trials_left(tmp_path, capsys, damage):
+    import os
+    out = tmp_path / "out"
+    common = ["--objects", "box", "--controllers", "memorized", "--attempts", "1",
+              "--out", str(out), *FAKE]
+    assert command.main(common) == 0  # 9 trials, all finished
+    capsys.readouterr()
+    record = sorted((out / "trials").glob("*.json"))[0]
+    if damage == "checksum":
+        record.write_text(record.read_text().replace('"box"', '"bux"', 1))
+    else:
+        record.unlink()
+        os.mkfifo(record)
+    assert command.main([*common, "--dry-run"]) == 0
+    text = capsys.readouterr().out
+    assert "9 trials (1 object x 9 markers x 1 attempt x 1 controller), 8 already finished" \
+        in text and "1 to run" in text, text
+    assert f"corrupt record set aside as NAME.corrupt-<pid> and run again: {record}" in text
+    assert "about 0 core-minutes" in text and "about 4 core-minutes" not in text  # 1 trial, not 9
+    assert record.name in {path.name for path in (out / "trials").iterdir()}  # nothing moved
+
+
 def test_a_missing_trial_function_is_reported(tmp_path, capsys):
     out = tmp_path / "out"
     assert command.main(["--out", str(out), "--no-progress",
