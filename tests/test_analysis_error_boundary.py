@@ -153,3 +153,38 @@ def test_hold_creep_refuses_logs_that_match_no_record(sweep_without_logs):
 def test_hold_creep_refuses_a_folder_without_records(tmp_path):
     with pytest.raises(SystemExit, match="holds no trial record"):
         load_analysis_script("hold_creep").main([str(tmp_path), str(tmp_path)])
+
+
+def run_script_into_full_disk(name: str, arguments: list[str], cwd):
+    """run_script with its standard output on /dev/full (a disk with no room)."""
+    environment = dict(os.environ, PYTHONPATH=str(ANALYSIS.parent), MPLBACKEND="Agg")
+    with open("/dev/full", "w") as full:
+        return subprocess.run([sys.executable, str(ANALYSIS / f"{name}.py"), *arguments],
+                              cwd=cwd, env=environment, stdout=full, stderr=subprocess.PIPE,
+                              text=True, stdin=subprocess.DEVNULL, timeout=300)
+
+
+@pytest.mark.parametrize("name", SCRIPTS)
+def test_help_that_cannot_be_written_is_an_error_naming_standard_output(name, tmp_path):
+    """argparse drops an OSError printing --help; the scripts' boundary tells it, as `tegrasp
+    --help >/dev/full` does, rather than exit 0 with the help lost."""
+    done = run_script_into_full_disk(name, ["--help"], tmp_path)
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == EXIT_ERROR, done.stderr
+    assert lines == [f"{name}: error: cannot write to standard output: No space left on "
+                     "device"], done.stderr
+
+
+def test_a_report_printed_to_a_full_disk_names_standard_output(tmp_path):
+    from tegrasp_drake.sweep import SweepSpec, run_sweep
+    from tests.fake_trials import fake_trial
+    results = tmp_path / "results"
+    run_sweep(SweepSpec(objects=("box",), attempts=1, controllers=("open_loop",)), fake_trial,
+              results, workers=1, progress=False)
+    done = run_script_into_full_disk("detection_quality",
+                                     [str(tmp_path / "dq.md"), str(results)], tmp_path)
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == EXIT_ERROR, done.stderr
+    assert lines == ["detection_quality: error: cannot write to standard output: No space "
+                     "left on device"], done.stderr
+    assert (tmp_path / "dq.md").is_file()  # the report file was written before the print

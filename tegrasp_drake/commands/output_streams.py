@@ -108,15 +108,15 @@ def unwritable_output() -> tuple[str, OSError] | None:
     return found
 
 
-def tell_cannot_write(name: str, error: OSError) -> None:
-    """One line on stderr for the output stream `name` the system refused to write; that
-    stream is pointed at the null device, so that nothing it still buffers is reported again
-    (stderr too when the line itself cannot be written)."""
+def tell_cannot_write(name: str, error: OSError, program: str = "tegrasp") -> None:
+    """One line on stderr, led by `program`, for the output stream `name` the system refused
+    to write; that stream is pointed at the null device, so that nothing it still buffers is
+    reported again (stderr too when the line itself cannot be written)."""
     _failed_writes.clear()  # told now, once
     if name == STANDARD_OUTPUT:
         detach(sys.stdout)
     try:
-        print(f"tegrasp: error: cannot write to {name}: {error.strerror or error}",
+        print(f"{program}: error: cannot write to {name}: {error.strerror or error}",
               file=sys.stderr, flush=True)
     except (OSError, ValueError):
         detach(sys.stderr)

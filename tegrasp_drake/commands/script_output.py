@@ -79,11 +79,39 @@ def script_parser(script: str, doc: str) -> argparse.ArgumentParser:
 
 def run_script(main, script: str, argv=None) -> int:
     """`main(argv)`'s exit code (argv None: the process's arguments), behind the scripts'
-    one error boundary: a SystemExit with a message ends it with that line, led by the
+    one error boundary (_run_guarded), its standard output and error guarded as the `tegrasp`
+    command line's (output_streams): one that cannot be written (a full disk, an I/O error;
+    --help's text too, which argparse would lose) ends it with one line naming the stream and
+    EXIT_ERROR; a reader that has gone (`| head`) ends it quietly with 128 + SIGPIPE."""
+    from tegrasp_drake.commands import output_streams
+    try:
+        try:
+            with output_streams.guarded_output():
+                code = _run_guarded(main, script, argv)
+        except SystemExit as exit_:  # --help, a usage error, a refusal
+            unwritable = output_streams.unwritable_output()
+            if unwritable and exit_.code in (0, None):
+                output_streams.tell_cannot_write(*unwritable, program=script)
+                return EXIT_ERROR
+            raise
+        unwritable = output_streams.unwritable_output()
+        if unwritable:
+            output_streams.tell_cannot_write(*unwritable, program=script)
+            return EXIT_ERROR
+        return code
+    except BrokenPipeError:
+        output_streams.detach_standard_streams()
+        return 128 + signal.SIGPIPE
+
+
+def _run_guarded(main, script: str, argv=None) -> int:
+    """`main(argv)`'s exit code behind the scripts' one error boundary: a SystemExit with a
+    message ends it with that line, led by the
     script's name (_with_prefix); an error in a file or folder the user named (UserPathError,
     TrialLogError, MemorizedEventError, ConfigError, RecordError, FigureFormatError, another
     OSError, UnicodeDecodeError) ends it with one line, `<script>: error: <path>: <what is wrong>`,
     and EXIT_ERROR; any other exception with error_boundary's internal-error line, its traceback in a file."""
+    from tegrasp_drake.commands.output_streams import OutputStreamError, tell_cannot_write
     from tegrasp_drake.events.event_file import MemorizedEventError
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.scenario.trial_log_file import TrialLogError
@@ -101,6 +129,11 @@ def run_script(main, script: str, argv=None) -> int:
     except (UserPathError, TrialLogError, MemorizedEventError, ConfigError, RecordError,
             FigureFormatError) as error:
         return _refused(script, str(error))
+    except OutputStreamError as error:  # a print to a full disk: the stream, not a path
+        tell_cannot_write(error.stream_name, error, program=script)
+        return EXIT_ERROR
+    except BrokenPipeError:
+        raise
     except OSError as error:  # the system's words, after the path it could not use
         path = error.filename or getattr(error, "path", None)
         words = ("does not exist; check the path" if isinstance(error, FileNotFoundError)
