@@ -101,7 +101,7 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
                                      f"has {', '.join(known)})")
         missing = [name for name in names if name not in headers]
         if missing:
-            raise NpzHeaderError(f"it lacks the arrays {missing}")
+            raise NpzHeaderError(f"lacks the arrays {missing}")
         wanted = [*names, *(name for name in optional if name in headers)]
         for name in wanted:
             dtype = headers[name][1]

@@ -350,7 +350,12 @@ class TrialResult:
 
     @classmethod
     def from_dict(cls, data: dict) -> "TrialResult":
-        """The TrialResult of its JSON form; unknown keys ignored, missing fields defaulted."""
+        """The TrialResult of its JSON form; unknown keys ignored, missing fields defaulted.
+        TypeError naming the argument when `data` is not a dict (as public_api's)."""
+        if not isinstance(data, dict):
+            raise TypeError(f"TrialResult.from_dict: argument 'data' must be a dict (a trial "
+                            f"result's JSON form), got {type(data).__name__} "
+                            f"{shorten(repr(data))}")
         known = {field.name for field in dataclasses.fields(cls)} - {"log"}
         values = {key: value for key, value in data.items() if key in known}
         try:  # a hand-edited JSON form: one line naming the field

@@ -101,3 +101,11 @@ def test_a_fall_late_in_a_trial_is_read(tmp_path):
     state[falling, 6] = 0.2 - 9.81 * (t[falling] - 1.0) ** 2 / 2
     log = load_trial_log(_long_trial_log(tmp_path / "trial.npz", state))
     assert log.object_state[-1, 6] < -100.0
+
+
+def test_a_npz_without_a_trial_logs_arrays_is_named_in_a_sentence(tmp_path):
+    path = tmp_path / "other.npz"
+    np.savez(path, t_sa=np.zeros(3))
+    with pytest.raises(TrialLogError) as refused:
+        load_trial_log(path)
+    assert f"trial log '{path}' lacks the arrays [" in str(refused.value), refused.value

@@ -266,3 +266,10 @@ def test_a_lift_grip_fraction_needs_a_lift_from_load():
                     lift_grip_fraction=5.0)
     TrialResult(transitions=(_reach_load(1.0), _load_lift(2.0)), final_mode=Mode.LIFT,
                 lift_grip_fraction=5.0)
+
+
+@pytest.mark.parametrize("data", [None, "controller", ["transitions"], 3])
+def test_from_dict_of_what_is_not_a_dict_is_a_type_error_naming_the_argument(data):
+    with pytest.raises(TypeError, match=r"^TrialResult.from_dict: argument 'data' must be a "
+                       r"dict \(a trial result's JSON form\), got "):
+        TrialResult.from_dict(data)
