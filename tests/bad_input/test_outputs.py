@@ -21,7 +21,7 @@ from tests.bad_input.probes import (FAKE_TRIALS, SEED, SEEDED_SWEEP, assert_one_
 def test_a_figure_on_a_full_disk_leaves_the_old_figure_whole(tmp_path):
     """Probe 9: savefig fails part-way; the earlier figure stays, no temporary is left."""
     old = tmp_path / "fig.png"
-    old.write_bytes(b"an earlier figure")
+    old.write_bytes(b"\x89PNG\r\n\x1a\n an earlier figure")
 
     class FullDiskFigure:
         def savefig(self, path, **kwargs):
@@ -29,7 +29,7 @@ def test_a_figure_on_a_full_disk_leaves_the_old_figure_whole(tmp_path):
             raise OSError(28, "No space left on device")
     with pytest.raises(OSError):
         figure_files.save_figure(FullDiskFigure(), old)
-    assert old.read_bytes() == b"an earlier figure"
+    assert old.read_bytes() == b"\x89PNG\r\n\x1a\n an earlier figure"
     assert [p.name for p in tmp_path.iterdir()] == ["fig.png"]
 
 
@@ -89,7 +89,7 @@ def test_a_figure_on_a_full_disk_is_one_line_and_the_old_one_kept(tmp_path):
     import errno
     from tegrasp_drake.figures.figure_files import new_figure, save_figure
     old = tmp_path / "fig.png"
-    old.write_bytes(b"the earlier figure")
+    old.write_bytes(b"\x89PNG\r\n\x1a\n the earlier figure")
     figure = new_figure(2, 2)
 
     def disk_full(*args, **kwargs):
@@ -98,7 +98,8 @@ def test_a_figure_on_a_full_disk_is_one_line_and_the_old_one_kept(tmp_path):
     figure.savefig = disk_full
     with pytest.raises(files.UserPathError, match="cannot write the figure .*fig.png: No space"):
         save_figure(figure, old)
-    assert old.read_bytes() == b"the earlier figure" and len(list(tmp_path.iterdir())) == 1
+    assert (old.read_bytes() == b"\x89PNG\r\n\x1a\n the earlier figure"
+            and len(list(tmp_path.iterdir())) == 1)
 
 
 # --- 4. refused before the work --------------------------------------------------------------

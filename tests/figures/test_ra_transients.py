@@ -23,9 +23,9 @@ plot_ra_transients({{1e-3: strike}}, {path!r})
 # whole, and the next write removes what it left beside it.
 def test_a_killed_write_keeps_the_earlier_figure_and_the_next_removes_its_leftover(tmp_path):
     target = tmp_path / "ra_transients.png"
-    target.write_bytes(b"the earlier figure")
+    target.write_bytes(b"\x89PNG\r\n\x1a\n the earlier figure")
     killed_before_rename(_PLOT.format(path=str(target)))
-    assert target.read_bytes() == b"the earlier figure"
+    assert target.read_bytes() == b"\x89PNG\r\n\x1a\n the earlier figure"
     subprocess.run([sys.executable, "-c", _PLOT.format(path=str(target))], env=environment(),
                    check=True, timeout=120)  # a bound on a hang, not a measure of speed
     assert sorted(tmp_path.iterdir()) == [target]
