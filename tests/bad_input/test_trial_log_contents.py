@@ -172,7 +172,7 @@ FORCE_TAXELS = SCENARIO + "tactile:\n  transducer: force\n  noise_std_n: 0.005\n
 
 
 def _log(tmp_path, scenario, name, row, values):
-    """_trial_log_with's log storing `scenario` (None: none), its array `name` (ones but for
+    """trial_log_with's log storing `scenario` (None: none), its array `name` (ones but for
     taxels' rest readings) with `values` written into sample `row`."""
     with np.load(trial_log(tmp_path / "base.npz")) as base:
         array = base[name].copy()

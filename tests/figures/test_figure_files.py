@@ -57,7 +57,7 @@ def test_a_figure_is_never_written_over_a_file_of_another_kind(tmp_path, figure_
 
 
 def test_plot_keeps_a_users_file_and_replaces_a_figure_only_with_overwrite(tmp_path, capfd):
-    from tests.test_bad_input import run_cli
+    from tests.bad_input.probes import run_cli
     notes = tmp_path / "notes.png"
     notes.write_text("important\n")
     code, text = run_cli(["plot", "events", "--out", str(notes), "--overwrite"], capfd)

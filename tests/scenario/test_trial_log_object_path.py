@@ -64,7 +64,7 @@ def _long_trial_log(path, object_state):
             "phase": np.zeros(n_slow)}
     for name in ("arm_q", "arm_q_desired"):
         slow[name][:, 1:3] = [3.0, 1.0]
-    return _trial_log_with(
+    return trial_log_with(
         path, {"scenario": scenario_to_yaml(LoadScenario())},
         t_sa=np.arange(n_sa) / 108.0, taxels=np.ones((n_sa, 24)),
         true_taxels=np.ones((n_sa, 24)), t_ra=np.arange(n_ra) / 1000.0,
