@@ -322,25 +322,27 @@ def check_runner_arguments(args, command: str) -> None:
 @contextlib.contextmanager
 def scheduler_connection(args, command: str):
     """The command's one connection to --scheduler (None without it), which its sweeps run
-    on: entered, it says on stderr (unless --quiet) what it connects to and for how long at
-    most, as distributed retries an address where nothing listens until its timeout (31 s
-    for tcp://127.0.0.1:1 when measured), then connects (OptionError when the Dask extra is
-    missing or the scheduler does not answer) and, unless asked for debug output (-vv shows
-    distributed's own logs),
-    holds distributed's loggers; left, it closes the client and then gives the loggers
-    back (the client logs while it closes too). Entered after check_runner_arguments, so
+    on: entered, once the Dask extra is found, it says on stderr (unless --quiet) what it
+    connects to and for how long at most, as distributed retries an address where nothing
+    listens until its timeout (31 s for tcp://127.0.0.1:1 when measured), then connects
+    (OptionError when the Dask extra is missing or the scheduler does not answer) and,
+    unless asked for debug output (-vv shows distributed's own logs), holds distributed's
+    loggers; left, it closes the client and then gives the loggers back (the client logs
+    while it closes too). Entered after check_runner_arguments, so
     that nothing after the connection refuses an option."""
     if args.scheduler is None:
         yield None
         return
     from tegrasp_drake.sweep.runner import (DASK_ANSWER_BOUND_S, connect_scheduler,
                                             hold_dask_logs)
-    if not getattr(args, "quiet", False):
-        print(f"tegrasp {command}: connecting to the Dask scheduler at "
-              f"{shorten(args.scheduler)} (at most {DASK_ANSWER_BOUND_S:.0f} s) ...",
-              file=sys.stderr, flush=True)
+
+    def announce():
+        if not getattr(args, "quiet", False):
+            print(f"tegrasp {command}: connecting to the Dask scheduler at "
+                  f"{shorten(args.scheduler)} (at most {DASK_ANSWER_BOUND_S:.0f} s) ...",
+                  file=sys.stderr, flush=True)
     try:
-        client = connect_scheduler(args.scheduler)
+        client = connect_scheduler(args.scheduler, announce)
     except SweepError as error:
         raise OptionError(str(error)) from None
     restore_logs = hold_dask_logs() if getattr(args, "verbose", 0) < 2 else None

@@ -534,11 +534,14 @@ def _dask_distributed():
     return distributed
 
 
-def connect_scheduler(scheduler: str) -> DaskClient:
+def connect_scheduler(scheduler: str,
+                      announce: Callable[[], None] | None = None) -> DaskClient:
     """A Client of the Dask scheduler at `scheduler` (its protocol read in any case);
     SweepError when the extra is missing,
     the address cannot be reached, or what answers there is not a Dask scheduler (any error
-    of the handshake), all within DASK_ANSWER_BOUND_S of wall time. A command connects once,
+    of the handshake), all within DASK_ANSWER_BOUND_S of wall time. `announce` is called once
+    the extra is known to be installed, just before connecting (a command says there what it
+    connects to: an address where nothing listens takes the whole bound). A command connects once,
     before its first trial or event recording, and hands the client to each sweep it runs
     (run_sweep's `scheduler`); the caller closes it.
 
@@ -546,6 +549,8 @@ def connect_scheduler(scheduler: str) -> DaskClient:
     peer that accepts and stays silent held the Client forever. The Client is made on a
     daemon thread, abandoned (with its socket) when the bound passes."""
     distributed = _dask_distributed()
+    if announce is not None:
+        announce()
     made = {}
     protocol, separator, rest = scheduler.partition("://")
     address = protocol.lower() + separator + rest  # distributed knows "tcp", not "TCP"

@@ -52,9 +52,13 @@ def test_a_scheduler_that_cannot_work_is_refused_before_any_event_is_recorded(
         monkeypatch.setattr(runner, "DASK_CONNECT_TIMEOUT_S", 1.0)
     code = cli.main([command, spec, "--workers", "1", "--no-progress",
                      "--scheduler", "tcp://127.0.0.1:1", "--out", str(tmp_path / "out")])
-    error = capsys.readouterr().err
-    assert code == 1, error  # an option's value: bad input
-    assert error.count("\n") == 1 and words in error, error
+    lines = capsys.readouterr().err.splitlines()
+    assert code == 1, lines  # an option's value: bad input
+    if cause == "no answer":  # what it connects to, said before the wait (none without Dask)
+        announced = lines.pop(0)
+        assert announced.startswith(f"tegrasp {command}: connecting to the Dask scheduler at "
+                                    "tcp://127.0.0.1:1"), announced
+    assert len(lines) == 1 and words in lines[0], lines
     assert not (tmp_path / "out").exists()
 
 
@@ -209,7 +213,10 @@ def test_a_scheduler_that_goes_away_mid_sweep_is_one_line_and_its_trials_kept(tm
                 process.kill()
             process.wait()
     assert sweep.returncode == 1, err
-    assert text == "" and "Traceback" not in err and len(err.strip().splitlines()) == 1, err
+    announced, *said = err.strip().splitlines()  # what it connects to, then the one error line
+    assert announced.startswith(
+        f"tegrasp sweep: connecting to the Dask scheduler at {address}"), err
+    assert text == "" and "Traceback" not in err and len(said) == 1, err
     finished = re.search(r"lost the Dask scheduler at \S+ after (\d+) of 243 trials", err)
     assert finished, err
     records = load_records(out)

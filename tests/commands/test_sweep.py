@@ -361,7 +361,7 @@ def test_the_scheduler_connection_holds_dasks_logs_until_its_client_is_closed(
     import logging
     from tegrasp_drake.sweep import runner
     client = _FakeClient()
-    monkeypatch.setattr(runner, "connect_scheduler", lambda address: client)
+    monkeypatch.setattr(runner, "connect_scheduler", lambda address, announce=None: client)
     dask_logger = logging.getLogger("distributed")
     monkeypatch.setattr(dask_logger, "level", logging.INFO)
     args = argparse.Namespace(scheduler="tcp://127.0.0.1:8786", verbose=verbose)
@@ -376,7 +376,7 @@ def test_the_scheduler_connection_holds_dasks_logs_until_its_client_is_closed(
 def test_a_scheduler_that_does_not_answer_is_an_option_error(monkeypatch):
     from tegrasp_drake.sweep import runner
 
-    def refuse(address):
+    def refuse(address, announce=None):
         raise runner.SweepError(f"cannot reach the Dask scheduler at {address}")
     monkeypatch.setattr(runner, "connect_scheduler", refuse)
     args = argparse.Namespace(scheduler="tcp://127.0.0.1:9", verbose=0)
@@ -394,7 +394,8 @@ def test_the_scheduler_connection_says_what_it_connects_to_before_it_tries(
     from tegrasp_drake.sweep import runner
     said = []
 
-    def refuse(address):
+    def refuse(address, announce=None):
+        announce()  # the extra found: said just before connecting
         said.append(capsys.readouterr().err)  # what was on stderr when the connect began
         raise runner.SweepError(f"cannot reach the Dask scheduler at {address}")
     monkeypatch.setattr(runner, "connect_scheduler", refuse)
