@@ -203,9 +203,9 @@ class LiftLoadConfig:
 @public_dataclass
 @dataclasses.dataclass
 class AvoidConfig:
-    """Avoid (Sec. III-C): in Hold, RA above hit_ra_mps2 after hit_refractory_s (the lift's stop
-    rings) is a hit; stop sense_s to see its push, move distance_m that way over move_s, at
-    most max_avoids times a grasp."""
+    """Avoid (Sec. III-C): in Hold, RA above hit_ra_mps2 over its own level (its mean over
+    hit_level_s before) after hit_refractory_s (the lift's stop rings) is a hit; stop sense_s
+    to see its push, move distance_m that way over move_s, at most max_avoids times a grasp."""
     enabled: bool = True
     hit_ra_mps2: float = bounded(3.0, low=0.0, high=1000.0, unit="m/s^2",
                                  below="must be zero or positive [m/s^2]")
@@ -214,6 +214,15 @@ class AvoidConfig:
                                    why=_SIGMAS_WHY, below=_SIGMAS_BELOW)
     hit_refractory_s: float = bounded(0.3, low=0.0, high=10.0, unit="s",
                                       below="must be zero or positive [s]")
+    # A hit is a burst above the film's level in Hold, not the level: each film's RA counts
+    # from its mean over this long before the tick [s] (0: from zero, the number alone). A
+    # grip that creeps makes the film read its force's slope through the amplifier's
+    # high-pass, a steady tau dF/dt / m_mode = 3.3 m/s^2 per N/s that noise alone lifts over
+    # the number (docs/controller.md, "Corrective actions", Avoid). 0.1 s: 20 ticks, so the
+    # mean's own noise is sigma / sqrt(20) (0.16 m/s^2), a creep's level moves by hundredths
+    # in it, and it lies in Hold once the 0.3 s refractory time has passed.
+    hit_level_s: float = bounded(0.1, low=0.0, high=1.0, unit="s",
+                                 below="must be zero (the number alone) or positive [s]")
     sense_s: float = bounded(0.03, low=0.0, high=1.0, unit="s",
                              below="must be zero or positive [s]")
     sa_asymmetry_n: float = bounded(1.0, low=0.0, high=100.0, unit="N",

@@ -125,10 +125,30 @@ def relift_after_lift_load(*, grip_reached: bool, slip_quiet: bool, time_in_load
 # ---- Avoid ----------------------------------------------------------------------------
 
 
-def is_hit(ra_mps2: float, time_in_hold_s: float, config: GraspControllerConfig) -> bool:
-    """In Hold: RA [m/s^2] above hit_ra_mps2, from hit_refractory_s [s] in Hold on."""
+def is_hit(ra_mps2, time_in_hold_s: float, config: GraspControllerConfig,
+           level_mps2=0.0) -> bool:
+    """In Hold: a film's RA [m/s^2] (one value or one per film) above hit_ra_mps2 over its
+    level_mps2 (ra_level of the Hold's ticks before; 0: the number alone), from
+    hit_refractory_s [s] in Hold on."""
     avoid = config.avoid
-    return time_in_hold_s >= avoid.hit_refractory_s and ra_mps2 > avoid.hit_ra_mps2
+    rise = np.asarray(ra_mps2, dtype=float) - np.asarray(level_mps2, dtype=float)
+    return time_in_hold_s >= avoid.hit_refractory_s and bool(np.any(rise > avoid.hit_ra_mps2))
+
+
+def ra_history(history: tuple, ra_mps2, level_s: float, period_s: float) -> tuple:
+    """`history` of the films' RA [m/s^2] at the Hold's ticks plus this tick's ra_mps2, kept
+    to level_s [s] of ticks of period_s [s]; () when level_s is 0 (no level)."""
+    keep = round(level_s / period_s)
+    if keep <= 0:
+        return ()
+    return (history + (tuple(float(x) for x in ra_mps2),))[-keep:]
+
+
+def ra_level(history: tuple, films: int = 2) -> tuple:
+    """Each film's RA level [m/s^2]: its mean over `history` (ra_history); 0 with none."""
+    if not history:
+        return (0.0,) * films
+    return tuple(float(x) for x in np.mean(np.asarray(history, dtype=float), axis=0))
 
 
 def avoiding(counters: Counters, config: GraspControllerConfig) -> bool:

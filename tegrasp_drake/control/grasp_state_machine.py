@@ -14,7 +14,7 @@ from pydrake.systems.framework import LeafSystem
 from tegrasp_drake.control import taxel_aware, transition_logic
 from tegrasp_drake.control.corrective_actions import (
     approach_retreat_target, avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
-    pad_accelerations_in_world, re_reach_shift, re_reach_target)
+    pad_accelerations_in_world, ra_history, ra_level, re_reach_shift, re_reach_target)
 from tegrasp_drake.control.grasp_modes import Mode, Stage, Transition, Trigger
 from tegrasp_drake.control.machine_state import GraspPlan, MachineState, ModeTimers
 from tegrasp_drake.control.motion_profiles import MotionSegment
@@ -246,7 +246,11 @@ class GraspStateMachine(LeafSystem):
         contact = self._sa_contact(channels)
         one_sided = contact[0] != contact[1]
         one_sided_since = _since(timers.one_sided_since, t, one_sided)
-        ra = float(max(channels[2], channels[3]))
+        films_ra = (float(channels[2]), float(channels[3]))
+        in_hold = s.mode == Mode.HOLD
+        # Hold's RA ticks before this one (the hit's level), then this one
+        held_ra = (ra_history(timers.ra_history, films_ra, config.avoid.hit_level_s,
+                              config.update_period_s) if in_hold else timers.ra_history)
         slip_vibration = float(max(self._slip_vibration.Eval(context)))
         slipping = s.mode == Mode.LIFT and slip_vibration > config.lift_load.slip_vibration_mps2
         slip_since = _since(timers.slip_since, t, slipping)
@@ -292,7 +296,8 @@ class GraspStateMachine(LeafSystem):
                               >= config.lift_load.grip_fraction * s.grip_force),
             slip_s=t - slip_since if slipping else 0.0,
             slip_quiet=slip_vibration <= config.lift_load.slip_vibration_mps2,
-            hit=s.mode == Mode.HOLD and is_hit(ra, time_in_mode, config),
+            hit=in_hold and is_hit(films_ra, time_in_mode, config,
+                                   ra_level(timers.ra_history)),
             corrective_event_matched=bool(self._memorized_corrective) and bool(
                 self._corrective_match.Eval(context)[0] > 0.5),
             gripper_fault=ru.fault_name(fault_code) if fault_code else "",
@@ -310,10 +315,11 @@ class GraspStateMachine(LeafSystem):
             sa_before = tuple(channels[:2])
         if not (one_sided_since == timers.one_sided_since and slip_since == timers.slip_since
                 and motion_done_since == timers.motion_done_since
-                and sa_history is timers.sa_history):
+                and sa_history is timers.sa_history and held_ra is timers.ra_history):
             timers = dataclasses.replace(
                 timers, one_sided_since=one_sided_since, slip_since=slip_since,
-                motion_done_since=motion_done_since, sa_history=sa_history)
+                motion_done_since=motion_done_since, sa_history=sa_history,
+                ra_history=held_ra)
         return observation, (s if timers is s.timers and sa_before is s.sa_before else
                              dataclasses.replace(s, sa_before=sa_before, timers=timers))
 

@@ -17,12 +17,14 @@ from tegrasp_drake.simulation.station import ArmDriverConfig
 @dataclasses.dataclass(frozen=True)
 class ModeTimers:
     """What a mode measures while it lasts, fresh at each transition (times [s], -1: not
-    running); sa_history: Hold's SA for a memorized hit; the sums: Avoid's sensing."""
+    running); sa_history: Hold's SA for a memorized hit; ra_history: Hold's RA for the hit's
+    level; the sums: Avoid's sensing."""
     closing_since: float = -1.0
     one_sided_since: float = -1.0
     slip_since: float = -1.0
     motion_done_since: float = -1.0
     sa_history: tuple = ()
+    ra_history: tuple = ()
     acceleration_sum: tuple = (0.0, 0.0, 0.0)
     sa_gain_sum: tuple = (0.0, 0.0)
 

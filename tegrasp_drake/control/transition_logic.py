@@ -193,8 +193,9 @@ PAPER_RULES = (
          when="the lift motion ended", then="Hold"),
     # Hold.
     Rule("avoid_hit", (Mode.HOLD,), 100, _decides(_avoid), _avoid,
-         when="a hit: either RA above avoid.hit_ra_mps2 from avoid.hit_refractory_s in Hold "
-         "(or the memorized hit event: memorized_corrective.events); avoid.enabled, fewer "
+         when="a hit: either a film's RA above avoid.hit_ra_mps2 over its mean of the "
+         "avoid.hit_level_s before, from avoid.hit_refractory_s in Hold (or the memorized hit "
+         "event: memorized_corrective.events); avoid.enabled, fewer "
          "than avoid.max_avoids Avoids made",
          then="Avoid: sense the hit's direction, move avoid.distance_m away"),
     Rule("hold_time", (Mode.HOLD,), 200, lambda s: s.obs.time_in_mode >= s.hold_s,

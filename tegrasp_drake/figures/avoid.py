@@ -62,7 +62,8 @@ def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=
                      label=f"SA {finger}", zorder=2)
     if hit_threshold is not None:
         ra_axis.axhline(hit_threshold, color="black", ls="--", lw=0.8,
-                        label=f"hit threshold {hit_threshold:g} m/s²")
+                        label=f"hit threshold {hit_threshold:g} m/s² (over each film's "
+                              "level in Hold)")
     ra_axis.set_ylabel("RA (Eq. 2) [m/s²]")
     sa_axis.set_ylabel("SA (Eq. 1) [N]")
     slow = (log.t_slow >= window[0]) & (log.t_slow <= window[1])

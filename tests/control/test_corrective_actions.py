@@ -9,7 +9,8 @@ from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.control.corrective_actions import (
     Counters, approach_retreat_target, avoid_direction, avoid_move, avoid_on_hit,
     corrective_action_of, is_hit, lift_load_grip_force, lift_load_or_fail,
-    pad_accelerations_in_world, re_reach_shift, re_reach_target, relift_after_lift_load)
+    pad_accelerations_in_world, ra_history, ra_level, re_reach_shift, re_reach_target,
+    relift_after_lift_load)
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 
 CONFIG = GraspControllerConfig()
@@ -128,6 +129,28 @@ def test_a_hit_is_ra_above_the_threshold_after_the_refractory_time():
     assert is_hit(3.5, 0.3, CONFIG)
     assert not is_hit(3.5, 0.29, CONFIG)  # the stop of the lift still rings
     assert not is_hit(3.0, 1.0, CONFIG)  # at the threshold, not above
+
+
+def test_a_hit_counts_from_each_films_level():
+    # A creeping grip holds the left film at a steady 1.9 m/s^2 (its force falling at 0.57
+    # N/s): a reading 3.03 m/s^2 above that level is a hit, one at its noise is not.
+    assert is_hit([4.93, 0.0], 1.0, CONFIG, level_mps2=[1.9, 0.0])
+    assert not is_hit([3.7, 0.0], 1.0, CONFIG, level_mps2=[1.9, 0.0])
+    # each film against its own level: the quiet right film's burst is a hit
+    assert is_hit([3.7, 3.7], 1.0, CONFIG, level_mps2=[1.9, 0.4])
+    assert not is_hit([10.0, 0.0], 0.29, CONFIG, level_mps2=[1.9, 0.0])  # still refractory
+
+
+def test_the_hit_level_is_the_mean_of_the_last_hit_level_s_of_ticks():
+    period = CONFIG.update_period_s
+    keep = round(CONFIG.avoid.hit_level_s / period)
+    history = ()
+    for k in range(keep + 5):
+        history = ra_history(history, (float(k), 1.0), CONFIG.avoid.hit_level_s, period)
+    assert len(history) == keep and history[-1] == (float(keep + 4), 1.0)
+    assert ra_level(history) == pytest.approx((np.mean(range(5, keep + 5)), 1.0))
+    assert ra_level(()) == (0.0, 0.0)  # nothing yet: the number alone
+    assert ra_history(history, (9.0, 9.0), 0.0, period) == ()  # hit_level_s 0: no level
 
 
 def test_a_hit_starts_avoid_unless_switched_off():

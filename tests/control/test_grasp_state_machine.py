@@ -1,5 +1,7 @@
 """GraspStateMachine through its ports, with hand-set inputs (no plant)."""
 
+import pathlib
+
 import numpy as np
 import pytest
 from pydrake.common.value import AbstractValue
@@ -12,9 +14,12 @@ from tegrasp_drake.control.controller_config import (AvoidConfig, MemorizedContr
                                                      TaxelAwareControllerConfig)
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
+from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
 from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
 from tegrasp_drake.control.taxel_aware.hands import PRISMATIC_ONLY
 from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
+from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
+                                                           ra_noise_std_mps2)
 
 EVENT_INDICES = {"reach_load": 0, "load_lift": 1, "place_unload": 2}
 
@@ -253,6 +258,52 @@ def test_hits_in_hold_are_avoided_at_most_max_avoids_times():
     simulator.AdvanceTo(context.get_time() + 0.1)
     assert mode(machine, context) == Mode.HOLD
     assert [e["to"] for e in machine.timeline(context)].count("Avoid") == 1
+
+
+# The films' RA at each controller tick of two Holds of the wide grid's taxel-aware trials
+# at the (+15, -12.5) mm marker (seed 980), both creeping grips (a slick 0.25 kg box whose grip
+# fell at 0.57 N/s, a 60 mm box held on its edges, at 1.6 N/s) that the film reads as a
+# steady 1.9 and 5.4 m/s^2. The slick box's Hold went to Avoid at its last tick (2.34 s, the
+# right film at 4.93 m/s^2, over the 3.93 in force); the wide box's at its first armed tick
+# (0.3 s), whose recording goes on through the Avoid's 30 ms stop, the arm still.
+CREEPING_HOLDS = np.load(pathlib.Path(__file__).parents[1] / "data" / "creeping_hold_ra.npz")
+
+
+def hold_with_film_readings(ra_mps2: np.ndarray) -> tuple[list, float]:
+    """The paper's machine (its Avoid threshold in force at the default film) driven into Hold,
+    then fed ra_mps2 (ticks, 2) one controller tick each with the pads at 25 N: its
+    transitions out of Hold, and the time Hold began [s]."""
+    in_force = resolve_noise_thresholds(
+        MemorizedControllerConfig(), ra_noise_std_mps2=ra_noise_std_mps2(VibrationSensorConfig()),
+        ra_rate_hz=1000.0)
+    machine, scenario = make_machine(avoid=in_force.avoid)
+    simulator, context, inputs = start(machine)
+    lift(simulator, machine, context, inputs, scenario)
+    inputs.set(channels=[25.0, 25.0, 0.0, 0.0])
+    run_until_mode(simulator, machine, Mode.HOLD, scenario.grasp.lift_s + 0.1)
+    hold_start = machine.timeline(context)[-1]["t"]
+    period = in_force.update_period_s
+    for k, (left, right) in enumerate(ra_mps2):
+        inputs.set(channels=[25.0, 25.0, left, right])
+        simulator.AdvanceTo(hold_start + (k + 0.5) * period)  # the tick k * period reads them
+    return [e for e in machine.timeline(context) if e["from"] == "Hold"], hold_start
+
+
+@pytest.mark.parametrize("hold", ["slick_heavy_box", "wide_light_box"])
+def test_a_creeping_grips_steady_film_reading_in_hold_is_not_a_hit(hold):
+    left_hold, _ = hold_with_film_readings(CREEPING_HOLDS[f"{hold}_ra_mps2"])
+    assert left_hold == []
+
+
+def test_a_hit_on_a_creeping_grip_is_seen_at_its_first_tick():
+    # The default scene's hit (20 N for 20 ms) read 7.4 and then 55 m/s^2 on the films.
+    ra = CREEPING_HOLDS["slick_heavy_box_ra_mps2"].copy()
+    hit_tick = 300
+    ra[hit_tick:hit_tick + 3] += [[7.4, 7.4], [55.5, 50.6], [106.1, 97.5]]
+    left_hold, hold_start = hold_with_film_readings(ra)
+    assert [e["to"] for e in left_hold] == ["Avoid"]
+    period = MemorizedControllerConfig().update_period_s
+    assert left_hold[0]["t"] == pytest.approx(hold_start + hit_tick * period, abs=1e-9)
 
 
 def taxel_aware_machine(gripper_model: str) -> GraspStateMachine:
