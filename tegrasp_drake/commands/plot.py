@@ -122,10 +122,10 @@ def _plot_trial(args, out) -> str:
     if args.what == "trial":
         from tegrasp_drake.figures.states import plot_trial_states
         return plot_trial_states(log, out)
-    from tegrasp_drake.figures.avoid import (NoAvoidError, logged_hit_threshold,
+    from tegrasp_drake.figures.avoid import (NoAvoidError, logged_hit_rule,
                                              plot_avoid_reaction)
     try:
-        return plot_avoid_reaction(log, out, hit_threshold=logged_hit_threshold(log))
+        return plot_avoid_reaction(log, out, hit_rule=logged_hit_rule(log))
     except NoAvoidError as e:
         raise SystemExit(f"tegrasp: error: {args.source}: {e}") from None
 

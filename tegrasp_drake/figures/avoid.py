@@ -1,6 +1,8 @@
 """Fig. 10 of the paper for one trial: a hit on the held object, seen by RA, and the Avoid state's
-reaction. Around the first Hold -> Avoid transition: RA of both fingers with the hit threshold, SA,
+reaction. Around the first Hold -> Avoid transition: RA of both fingers with each one's hit trigger, SA,
 and the object's displacement (the gripper carries it along the avoiding direction)."""
+
+import dataclasses
 
 import numpy as np
 
@@ -20,12 +22,53 @@ class NoAvoidError(ValueError):
     """The trial has no Hold -> Avoid transition to draw."""
 
 
-def logged_hit_threshold(log) -> float | None:
-    """The RA hit threshold [m/s^2] the logged trial's controller ran with, None for a
-    controller without an Avoid reaction (open loop): its log has no Avoid to draw."""
+@dataclasses.dataclass(frozen=True)
+class HitRule:
+    """The Avoid hit rule a trial ran with: a film's RA above threshold_mps2 [m/s^2] over its
+    level, the mean of its RA at the Hold's controller ticks (every period_s [s]) in the
+    level_s [s] before (0: no level, the threshold alone)."""
+    threshold_mps2: float
+    level_s: float = 0.0
+    period_s: float = 0.005
+
+
+def logged_hit_rule(log) -> HitRule | None:
+    """The hit rule the logged trial's controller ran with, None for a controller without an
+    Avoid reaction (open loop): its log has no Avoid to draw."""
     from tegrasp_drake.scenario.scenario import controller_in_force
-    avoid = getattr(controller_in_force(logged_scenario(log)), "avoid", None)
-    return None if avoid is None else avoid.hit_ra_mps2
+    controller = controller_in_force(logged_scenario(log))
+    avoid = getattr(controller, "avoid", None)
+    if avoid is None:
+        return None
+    return HitRule(avoid.hit_ra_mps2, avoid.hit_level_s, controller.update_period_s)
+
+
+def hit_trigger_lines(t_ra, ra, hold_spans, rule: HitRule):
+    """Each film's hit trigger in Hold, reconstructed from the log as the controller computes
+    it: (t [s] of the Hold's controller ticks, (n, films) level + threshold [m/s^2]). A tick
+    reads the film's latest RA sample (t_ra [s], ra (samples, films) [m/s^2]); hold_spans:
+    (start, end) [s] of each Hold. The level restarts with each Hold, as the controller's does;
+    a tick with no earlier tick in its Hold has level 0."""
+    t_ra, ra = np.asarray(t_ra, float), np.asarray(ra, float)
+    keep = round(rule.level_s / rule.period_s) if rule.level_s > 0.0 else 0
+    times, lines = [], []
+    for start, end in hold_spans:
+        # the first tick in Hold is the one after the transition's
+        count = int(np.floor((end - start) / rule.period_s))
+        ticks = start + rule.period_s * np.arange(1, count + 1)
+        read = ra[np.clip(np.searchsorted(t_ra, ticks, side="right") - 1, 0, len(t_ra) - 1)]
+        level = np.zeros_like(read)
+        if keep > 0:
+            sums = np.vstack([np.zeros((1, read.shape[1])), np.cumsum(read, axis=0)])
+            k = np.arange(len(ticks))
+            first = np.maximum(k - keep, 0)
+            counts = np.maximum(k - first, 1)[:, None]
+            level = np.where((k > 0)[:, None], (sums[k] - sums[first]) / counts, 0.0)
+        times.append(ticks)
+        lines.append(level + rule.threshold_mps2)
+    if not times:
+        return np.zeros(0), np.zeros((0, ra.shape[1]))
+    return np.concatenate(times), np.vstack(lines)
 
 
 def _hit_text(log) -> str:
@@ -38,8 +81,11 @@ def _hit_text(log) -> str:
             f"{1000 * hit.hit_duration_s:.0f} ms at {hit.hit_time_s:.2f} s")
 
 
-def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=1.2) -> str:
-    """Writes the figure to `path`, returns it; hit_threshold [m/s^2] is drawn when given."""
+def plot_avoid_reaction(log, path, *, hit_rule: HitRule | None = None, before_s=0.3,
+                        after_s=1.2) -> str:
+    """Writes the figure to `path`, returns it; hit_rule's trigger is drawn when given: each
+    film's level + threshold in Hold (hit_trigger_lines), or the threshold alone without a
+    level."""
     transitions, spans = logged_transitions(log), state_spans(log)
     avoid = [e for e in transitions if e.to_mode == Mode.AVOID]
     if not avoid:
@@ -60,10 +106,18 @@ def plot_avoid_reaction(log, path, *, hit_threshold=None, before_s=0.3, after_s=
                      label=f"RA {finger}", zorder=2)
         sa_axis.plot(log.t_ra[fast], log.sa[fast, k], lw=0.8, color=FINGER_COLORS[k],
                      label=f"SA {finger}", zorder=2)
-    if hit_threshold is not None:
-        ra_axis.axhline(hit_threshold, color="black", ls="--", lw=0.8,
-                        label=f"hit threshold {hit_threshold:g} m/s² (over each film's "
-                              "level in Hold)")
+    if hit_rule is not None and hit_rule.level_s <= 0.0:
+        ra_axis.axhline(hit_rule.threshold_mps2, color="black", ls="--", lw=0.8,
+                        label=f"hit threshold {hit_rule.threshold_mps2:.3g} m/s²")
+    elif hit_rule is not None:
+        holds = [(a, b) for state, a, b in spans
+                 if state == Mode.HOLD.label and b > window[0] and a < window[1]]
+        t_tick, trigger = hit_trigger_lines(log.t_ra, log.ra, holds, hit_rule)
+        for k, finger in enumerate(FINGER_NAMES):
+            ra_axis.step(t_tick, trigger[:, k], where="post", color=FINGER_COLORS[k], ls="--",
+                         lw=0.8, zorder=3,
+                         label=f"hit trigger {finger}: {hit_rule.threshold_mps2:.3g} m/s² over "
+                               f"its mean of the {1000 * hit_rule.level_s:g} ms before in Hold")
     ra_axis.set_ylabel("RA (Eq. 2) [m/s²]")
     sa_axis.set_ylabel("SA (Eq. 1) [N]")
     slow = (log.t_slow >= window[0]) & (log.t_slow <= window[1])

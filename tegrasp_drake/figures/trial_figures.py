@@ -3,7 +3,7 @@
 transition, Fig. 10 (avoid)."""
 
 from tegrasp_drake.control.grasp_modes import Mode
-from tegrasp_drake.figures.avoid import logged_hit_threshold, plot_avoid_reaction
+from tegrasp_drake.figures.avoid import logged_hit_rule, plot_avoid_reaction
 from tegrasp_drake.figures.contact_ra import plot_contact_ra
 from tegrasp_drake.figures.figure_files import figure_path
 from tegrasp_drake.figures.signals import plot_trial_signals
@@ -29,5 +29,5 @@ def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, st
     if any(t.to_mode == Mode.AVOID for t in logged_transitions(log)):
         figures["avoid_figure"] = plot_avoid_reaction(
             log, avoid,
-            hit_threshold=logged_hit_threshold(log))
+            hit_rule=logged_hit_rule(log))
     return figures
