@@ -1,6 +1,7 @@
-"""Fig. 10 of the paper for one trial: a hit on the held object, seen by RA, and the Avoid state's
-reaction. Around the first Hold -> Avoid transition: RA of both fingers with each one's hit trigger, SA,
-and the object's displacement (the gripper carries it along the avoiding direction)."""
+"""Fig. 10 of the paper for one trial: a hit on the held object, seen by RA, and the Avoid
+state's reaction. Around the first Hold -> Avoid transition: RA of both fingers with each
+one's hit trigger, SA, and the object's displacement (the gripper carries it along the
+avoiding direction)."""
 
 import dataclasses
 
