@@ -130,6 +130,10 @@ def run(args) -> int:
     if problem:
         raise SystemExit(f"tegrasp: error: {named}: {problem}; give a folder you can write"
                          f"{'' if args.events else ' (or --events DIR)'}")
+    from tegrasp_drake.commands.run_folder import other_run_problem
+    problem = other_run_problem(out, "record-events", named=named)
+    if problem:  # the events would mix with a trial's, sweep's or study's files
+        raise SystemExit(f"tegrasp: error: {problem}")
     to_record = _scenarios_to_record(args)
     runs = _ensemble_runs(args, to_record)
     _check_destination(out, named, [name for name, _ in to_record], runs)

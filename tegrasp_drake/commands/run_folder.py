@@ -43,14 +43,18 @@ def run_owner(folder) -> tuple[str, str] | None:
     return None
 
 
-def other_run_problem(folder, command: str) -> str | None:
+def other_run_problem(folder, command: str, *, named: str | None = None) -> str | None:
     """Why `tegrasp <command>` may not write its run into `folder`, or None: it holds another
     command's run, whose files a run of this one would mix with (and a resume of that run
-    would then read); each command's run keeps a folder of its own."""
+    would then read); each command's run keeps a folder of its own. `named`: the option or
+    setting that chose the folder, when it is not --out (record-events' --events)."""
     owner = run_owner(folder)
     if owner is None or owner[0] == command or (command, owner[0]) == ("sensitivity",
                                                                       "transfer"):
         return None  # a sensitivity study is a transfer with its points.json beside it
+    if named is not None:
+        return (f"{named} holds a `tegrasp {owner[0]}` run ({owner[1]}); give {command} a "
+                "folder of its own (not a run's folder)")
     return (f"--out {folder} holds a `tegrasp {owner[0]}` run ({owner[1]}); give another "
             f"--out for this {command} run")
 
