@@ -14,7 +14,8 @@ import pathlib
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.integer_text import integer_option
-from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
+from tegrasp_drake.rig.files import (absent_folders, folder_problem, interruptions_deferred,
+                                     made_folders_removed_if_empty)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 TEMPLATE_RUNS = 5  # recording/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
@@ -137,7 +138,8 @@ def run(args) -> int:
     to_record = _scenarios_to_record(args)
     runs = _ensemble_runs(args, to_record)
     _check_destination(out, named, [name for name, _ in to_record], runs)
-    with _held_events_folder(out, named):
+    # A recording refused, failed or interrupted before it saved leaves no folder it made.
+    with made_folders_removed_if_empty(absent_folders(out)), _held_events_folder(out, named):
         return _record(out, to_record, runs, args)
 
 

@@ -13,9 +13,10 @@ import tempfile
 
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
-from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, claim_folder,
-                                     file_problem, folder_problem, held_folder,
-                                     interruptions_deferred, own_staging_suffix,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, absent_folders,
+                                     claim_folder, file_problem, folder_problem, held_folder,
+                                     interruptions_deferred, made_folders_removed_if_empty,
+                                     own_staging_suffix,
                                      remove_stale_staging_files_of, write_atomically)
 
 logger = logging.getLogger(__name__)
@@ -121,7 +122,7 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 def _made_by(make, folder) -> tuple[pathlib.Path, list[pathlib.Path]]:
     """Runs make() -> the run folder, and returns it with the folders it created (the run
     folder, if it was not there, then its parents that were not), deepest first."""
-    absent_parents = [path for path in folder.parents if not path.exists()]
+    absent_parents = absent_folders(folder.parent)
     existed = folder.exists()
     made_folder = make()  # `folder`, or a numbered one it claimed beside `folder`
     new = [] if made_folder == folder and existed else [made_folder]
@@ -132,20 +133,13 @@ def _made_by(make, folder) -> tuple[pathlib.Path, list[pathlib.Path]]:
 def new_run_folder(out, *, default, replace_default: bool, overwrite: bool):
     """choose_run_folder for the block. When the block raises or is interrupted (a failed
     simulation, Ctrl-C, SIGTERM), the folders made for it, the run folder and any parents it
-    needed, are removed again if they are still empty: a run that wrote nothing leaves
-    nothing."""
+    needed, are removed again if they are still empty (made_folders_removed_if_empty): a run
+    that wrote nothing leaves nothing."""
     folder = pathlib.Path(out if out is not None else default)
     folder, made = _made_by(lambda: choose_run_folder(
         out, default=default, replace_default=replace_default, overwrite=overwrite), folder)
-    try:
+    with made_folders_removed_if_empty(made):
         yield folder
-    except BaseException:
-        for path in made:  # deepest first; rmdir removes only an empty folder
-            try:
-                path.rmdir()
-            except OSError:
-                break
-        raise
 
 
 STAGING_PREFIX = ".staging-"  # a run's files until it commits them (staged_run)
